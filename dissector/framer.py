@@ -1,0 +1,329 @@
+"""Modbus RTU framer: an untimed byte stream in, frames and noise out.
+
+An RTU frame is `slave | function | data | CRC-16 (low byte first)`, at most 256 bytes. On the wire,
+frames are separated by a silence of 3.5 character times, but a listen-only tap seldom keeps that
+information: a raw capture has no timestamps at all, and USB serial adapters deliver bytes in bursts
+(FTDI: 16 ms latency timer), so a request and its response may arrive in one read and a long response
+in several. Gaps are therefore never trusted to cut frames here.
+
+Instead, each function code's length rules are applied in both directions (a read request is 8
+bytes; its response is 5 + byte count; a FC16 request is 9 + byte count...), and the CRC confirms the
+choice. Length rules come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because that
+6-byte prefix of the 7-byte response `01 04 02 03 01 78 00` happens to carry a valid CRC.
+
+Where both a request and a response layout fit, the expectation decides: after a request to slave S
+with function F, a frame from S with F is its response. Function codes whose data has no length
+rule (FC8 sub-function 0 "Return Query Data", FC43 MEI 13, user-defined and vendor codes) are found
+by scanning for the shortest length with a valid CRC.
+
+When nothing fits, the framer tries to show a damaged frame once, with its bad CRC: an
+interpretation whose length is known and that ends exactly where an intact frame begins. Otherwise
+the byte is noise, and the framer resynchronises on the next valid frame. Noise runs are emitted in
+items of at most NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
+
+The framer is a push parser (`feed` / `finish`) with no I/O of its own: files, pcap records and live
+serial reads all drive the same object, and the answer does not depend on how the stream is split.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from .crc import crc16
+from .model import Chunk, Frame, Item, Kind, Noise
+from .spec import SPEC
+
+MAX_ADU = 256
+MIN_ADU = 4
+NOISE_ITEM_MAX = 4096
+MAX_SLAVE = 247
+
+NEED = -1  # not enough bytes yet to know the length
+NONE = 0  # this interpretation cannot apply here
+
+LengthRule = Callable[[bytes | bytearray, int, int], int]
+
+
+def _fixed(length: int) -> LengthRule:
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        return length
+
+    return rule
+
+
+def _count8(position: int, extra: int) -> LengthRule:
+    """Length = extra + the byte count found at `position` in the frame."""
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + position >= n:
+            return NEED
+        return extra + buf[i + position]
+
+    return rule
+
+
+def _count16(position: int, extra: int) -> LengthRule:
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + position + 1 >= n:
+            return NEED
+        return extra + (buf[i + position] << 8 | buf[i + position + 1])
+
+    return rule
+
+
+def _scan(buf: bytes | bytearray, i: int, n: int, minimum: int = MIN_ADU) -> int:
+    """The shortest length from `minimum` whose CRC checks; NEED while a longer one may still come."""
+    end = min(n - i, MAX_ADU)
+    for length in range(minimum, end + 1):
+        stop = i + length - 2
+        if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+            return length
+    return NEED if n - i < MAX_ADU else NONE
+
+
+def _diagnostics(buf: bytes | bytearray, i: int, n: int) -> int:
+    # Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
+    if i + 3 >= n:
+        return NEED
+    if buf[i + 2] == 0 and buf[i + 3] == 0:
+        return _scan(buf, i, n, minimum=6)
+    return 8
+
+
+def _mei_request(buf: bytes | bytearray, i: int, n: int) -> int:
+    if i + 2 >= n:
+        return NEED
+    return 7 if buf[i + 2] == 14 else _scan(buf, i, n, minimum=5)
+
+
+def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
+    """Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object."""
+    if i + 2 >= n:
+        return NEED
+    if buf[i + 2] != 14:
+        return _scan(buf, i, n, minimum=5)
+    if i + 7 >= n:
+        return NEED
+    count = buf[i + 7]
+    position = 8
+    for _ in range(count):
+        if i + position + 1 >= n:
+            return NEED
+        position += 2 + buf[i + position + 1]
+        if position > MAX_ADU:
+            return NONE
+    return position + 2
+
+
+def _scan_any(buf: bytes | bytearray, i: int, n: int) -> int:
+    return _scan(buf, i, n)
+
+
+# (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
+RULES: dict[int, tuple[LengthRule, LengthRule]] = {
+    1: (_fixed(8), _count8(2, 5)),
+    2: (_fixed(8), _count8(2, 5)),
+    3: (_fixed(8), _count8(2, 5)),
+    4: (_fixed(8), _count8(2, 5)),
+    5: (_fixed(8), _fixed(8)),
+    6: (_fixed(8), _fixed(8)),
+    7: (_fixed(4), _fixed(5)),
+    8: (_diagnostics, _diagnostics),
+    11: (_fixed(4), _fixed(8)),
+    12: (_fixed(4), _count8(2, 5)),
+    15: (_count8(6, 9), _fixed(8)),
+    16: (_count8(6, 9), _fixed(8)),
+    17: (_fixed(4), _count8(2, 5)),
+    20: (_count8(2, 5), _count8(2, 5)),
+    21: (_count8(2, 5), _count8(2, 5)),
+    22: (_fixed(10), _fixed(10)),
+    23: (_count8(10, 13), _count8(2, 5)),
+    24: (_fixed(6), _count16(2, 6)),
+    43: (_mei_request, _mei_response),
+}
+
+# Codes with no public layout: user-defined (65-72, 100-110) and SEL-749M (60h-62h, 7Dh, 7Eh).
+OTHER_FUNCTIONS = frozenset([*range(65, 73), *range(100, 111), 0x60, 0x61, 0x62, 0x7D, 0x7E])
+for _code in OTHER_FUNCTIONS:
+    RULES.setdefault(_code, (_scan_any, _scan_any))
+
+KNOWN_FUNCTIONS = frozenset(RULES)
+# Echo-style functions: request and response have one layout, only the context tells them apart.
+ECHO_FUNCTIONS = frozenset([5, 6, 8, 21, 22])
+
+
+class RtuFramer:
+    """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
+
+    mode = "rtu"
+
+    def __init__(self) -> None:
+        self._buf = bytearray()
+        self._base = 0  # absolute offset of _buf[0]
+        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
+        self._noise = bytearray()
+        self._noise_offset = 0
+        self._noise_reason = ""
+        self._noise_time: float | None = None
+        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+
+    # -- public interface -------------------------------------------------------------------
+    def feed(self, chunk: Chunk) -> list[Item]:
+        if chunk.data:
+            self._times.append((self._base + len(self._buf), chunk.time))
+            self._buf += chunk.data
+        return self._run(final=False)
+
+    def finish(self) -> list[Item]:
+        items = self._run(final=True)
+        self._flush_noise(items)
+        return items
+
+    # -- internals ---------------------------------------------------------------------------
+    def _time_at(self, offset: int) -> float | None:
+        times = self._times
+        # Chunks are few per frame: walk back from the newest.
+        for index in range(len(times) - 1, -1, -1):
+            if times[index][0] <= offset:
+                return times[index][1]
+        return None
+
+    def _interpretations(self, slave: int, function: int) -> list[tuple[Kind, LengthRule]]:
+        if function & 0x80:
+            if (function & 0x7F) in KNOWN_FUNCTIONS:
+                return [(Kind.EXCEPTION, _fixed(5))]
+            return []
+        rules = RULES.get(function)
+        if rules is None:
+            return []
+        request, response = rules
+        if self._expect == (slave, function):
+            return [(Kind.RESPONSE, response), (Kind.REQUEST, request)]
+        return [(Kind.REQUEST, request), (Kind.RESPONSE, response)]
+
+    def _valid_frame_at(self, buf: bytearray, i: int, n: int, final: bool) -> bool | None:
+        """Does an intact frame start at i? None when more bytes are needed to know."""
+        if n - i < MIN_ADU:
+            return None if not final else (i == n)
+        slave, function = buf[i], buf[i + 1]
+        if slave > MAX_SLAVE:
+            return False
+        for _kind, rule in self._interpretations(slave, function):
+            length = rule(buf, i, n)
+            if length == NEED:
+                return None if not final else False
+            if length < MIN_ADU or length > MAX_ADU:
+                continue
+            if i + length > n:
+                if final:
+                    continue
+                return None
+            stop = i + length - 2
+            if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+                return True
+        return False
+
+    def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
+        """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
+        slave, function = buf[i], buf[i + 1]
+        if slave > MAX_SLAVE:
+            return NONE
+        candidates = self._interpretations(slave, function)
+        lengths: list[tuple[Kind, int]] = []
+        for kind, rule in candidates:
+            length = rule(buf, i, n)
+            if length == NEED:
+                if final:
+                    continue
+                return NEED
+            if length < MIN_ADU or length > MAX_ADU:
+                continue
+            if i + length > n:
+                if final:
+                    continue
+                return NEED
+            stop = i + length - 2
+            if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+                return (kind, length, True)
+            lengths.append((kind, length))
+        # No layout checks out: a damaged frame is shown once if it ends where an intact one begins.
+        for kind, length in lengths:
+            following = self._valid_frame_at(buf, i + length, n, final)
+            if following is None:
+                return NEED
+            if following and (i + length < n or self._expect == (slave, function & 0x7F)):
+                return (kind, length, False)
+        return NONE
+
+    def _run(self, final: bool) -> list[Item]:
+        buf = self._buf
+        n = len(buf)
+        i = 0
+        items: list[Item] = []
+        while n - i >= MIN_ADU or (final and i < n):
+            if n - i < MIN_ADU:
+                self._add_noise(buf, i, n - i, "too short for a frame", items)
+                i = n
+                break
+            match = self._match(buf, i, n, final)
+            if match == NEED:
+                break
+            if match == NONE:
+                self._add_noise(buf, i, 1, "no valid frame", items)
+                i += 1
+                continue
+            kind, length, crc_ok = match  # type: ignore[misc]
+            self._flush_noise(items)
+            raw = bytes(buf[i : i + length])
+            offset = self._base + i
+            slave, function = raw[0], raw[1]
+            frame = Frame(
+                offset=offset,
+                raw=raw,
+                time=self._time_at(offset),
+                kind=kind,
+                slave=slave,
+                function=function & 0x7F,
+                crc=raw[-2] | raw[-1] << 8,
+                crc_expected=crc16(raw[:-2]),
+            )
+            if kind is Kind.REQUEST:
+                self._expect = (slave, function) if slave != 0 else None
+            else:
+                self._expect = None
+            items.append(frame)
+            i += length
+        if i:
+            del buf[:i]
+            self._base += i
+            self._prune_times()
+        return items
+
+    def _prune_times(self) -> None:
+        times = self._times
+        keep = 0
+        for index, (offset, _time) in enumerate(times):
+            if offset <= self._base:
+                keep = index
+        if keep:
+            del times[:keep]
+
+    def _add_noise(self, buf: bytearray, i: int, count: int, reason: str, items: list[Item]) -> None:
+        if not self._noise:
+            self._noise_offset = self._base + i
+            self._noise_reason = reason
+            self._noise_time = self._time_at(self._noise_offset)
+        self._noise += buf[i : i + count]
+        if len(self._noise) >= NOISE_ITEM_MAX:
+            self._flush_noise(items)
+
+    def _flush_noise(self, items: list[Item]) -> None:
+        if self._noise:
+            items.append(
+                Noise(
+                    offset=self._noise_offset,
+                    raw=bytes(self._noise),
+                    time=self._noise_time,
+                    reason=self._noise_reason,
+                )
+            )
+            self._noise = bytearray()

@@ -1,0 +1,143 @@
+"""The frame model shared by every stage: framer -> pairing -> decoding -> annotator -> renderers.
+
+Items are either a `Frame` (a CRC- or LRC-delimited Modbus ADU) or `Noise` (bytes that belong to no
+frame). Every byte of an input ends up in exactly one item.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import StrEnum
+from typing import Any
+
+
+class Kind(StrEnum):
+    REQUEST = "request"
+    RESPONSE = "response"
+    EXCEPTION = "exception"
+    NOISE = "noise"
+
+
+@dataclass(slots=True)
+class Register:
+    """One 16-bit register value a frame carries, numbered from the request where needed.
+
+    The annotation fields stay None until a device profile fills them in.
+    """
+
+    address: int | None
+    value: int
+    code: str | None = None
+    name: str | None = None
+    unit: str | None = None
+    scaled: float | int | None = None
+    text: str | None = None
+    status: str | None = None
+    source: str | None = None
+
+
+@dataclass(slots=True)
+class Bit:
+    address: int | None
+    value: int
+
+
+@dataclass(slots=True)
+class DeviceObject:
+    """A FC43/14 device identification object."""
+
+    id: int
+    name: str
+    value: str
+    text: str | None = None
+
+
+@dataclass(slots=True, eq=False)
+class Frame:
+    offset: int
+    raw: bytes
+    time: float | None
+    kind: Kind
+    slave: int
+    function: int
+    crc: int
+    crc_expected: int
+    mode: str = "rtu"
+    number: int = 0
+    request: Frame | None = None
+    response: Frame | None = None
+    unanswered: bool = False
+    broadcast: bool = False
+    warnings: list[str] = field(default_factory=list)
+    # Filled by dissector.decode.decode_frame.
+    decoded: bool = False
+    fields: Any = None
+    start: int | None = None
+    quantity: int | None = None
+    subfunction: int | None = None
+    registers: list[Register] | None = None
+    bits: list[Bit] | None = None
+    objects: list[DeviceObject] | None = None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def crc_ok(self) -> bool:
+        return self.crc == self.crc_expected
+
+    @property
+    def length(self) -> int:
+        return len(self.raw)
+
+    @property
+    def pdu(self) -> bytes:
+        """Function code and data, without address and check."""
+        if self.mode == "ascii":
+            return self.raw_binary[1:-1]
+        return self.raw[1:-2]
+
+    @property
+    def raw_binary(self) -> bytes:
+        """The ADU as binary bytes (for ASCII frames: the hex pairs decoded, LRC included)."""
+        if self.mode == "ascii":
+            return bytes.fromhex(self.raw[1:-2].decode("ascii"))
+        return self.raw
+
+    @property
+    def exception_code(self) -> int | None:
+        if self.kind is Kind.EXCEPTION:
+            pdu = self.pdu
+            return pdu[1] if len(pdu) > 1 else None
+        return None
+
+    @property
+    def response_time(self) -> float | None:
+        if self.request is None or self.time is None or self.request.time is None:
+            return None
+        return self.time - self.request.time
+
+
+@dataclass(slots=True, eq=False)
+class Noise:
+    offset: int
+    raw: bytes
+    time: float | None
+    number: int = 0
+    reason: str = "no valid frame"
+    kind: Kind = Kind.NOISE
+    warnings: list[str] = field(default_factory=list)
+
+    @property
+    def length(self) -> int:
+        return len(self.raw)
+
+
+Item = Frame | Noise
+
+
+@dataclass(slots=True)
+class Chunk:
+    """Bytes as a source delivers them, with the time the first byte was seen (None when unknown)."""
+
+    data: bytes
+    time: float | None = None
+    # True when the source knows a frame boundary follows (one frame per pcap record, say).
+    boundary: bool = False

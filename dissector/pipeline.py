@@ -1,0 +1,67 @@
+"""Wiring of the stages: source chunks -> framer -> pairer -> decoder -> annotator -> items.
+
+Each stage is a plain object or function; this module only connects them, in one direction.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Iterator
+from typing import Protocol
+
+from .decode import decode_frame
+from .framer import RtuFramer
+from .model import Chunk, Frame, Item
+from .pairing import Pairer
+
+
+class Framer(Protocol):
+    mode: str
+
+    def feed(self, chunk: Chunk) -> list[Item]: ...
+
+    def finish(self) -> list[Item]: ...
+
+
+Annotator = Callable[[Frame], None]
+
+
+class Dissector:
+    """Push interface over the whole chain; `feed` returns the items that are complete."""
+
+    def __init__(
+        self,
+        framer: Framer | None = None,
+        annotate: Annotator | None = None,
+        hold: bool = True,
+        timeout: float | None = None,
+    ) -> None:
+        self.framer = framer if framer is not None else RtuFramer()
+        self.pairer = Pairer(hold=hold, timeout=timeout)
+        self.annotate = annotate
+
+    def _finish_items(self, items: list[Item]) -> list[Item]:
+        annotate = self.annotate
+        for item in items:
+            if isinstance(item, Frame):
+                decode_frame(item)
+                if annotate is not None:
+                    annotate(item)
+        return items
+
+    def feed(self, chunk: Chunk) -> list[Item]:
+        return self._finish_items(self.pairer.push(self.framer.feed(chunk)))
+
+    def finish(self) -> list[Item]:
+        items = self.pairer.push(self.framer.finish())
+        items += self.pairer.finish()
+        return self._finish_items(items)
+
+
+def dissect(chunks: Iterable[Chunk], **options: object) -> Iterator[Item]:
+    dissector = Dissector(**options)  # type: ignore[arg-type]
+    for chunk in chunks:
+        yield from dissector.feed(chunk)
+    yield from dissector.finish()
+
+
+def dissect_bytes(data: bytes, **options: object) -> list[Item]:
+    return list(dissect([Chunk(data)], **options))

@@ -1,0 +1,51 @@
+"""Protocol tables (function, exception and object names, limits) loaded from data/modbus.toml."""
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+
+
+def _int_keys(table: dict[str, object]) -> dict[int, str]:
+    return {int(key): str(value) for key, value in table.items()}
+
+
+@dataclass(frozen=True, slots=True)
+class Spec:
+    functions: dict[int, str]
+    exceptions: dict[int, str]
+    diagnostics: dict[int, str]
+    mei_types: dict[int, str]
+    device_id_codes: dict[int, str]
+    device_id_objects: dict[int, str]
+    limits: dict[str, object]
+
+    def function_name(self, code: int) -> str:
+        name = self.functions.get(code)
+        if name is not None:
+            return name
+        if 65 <= code <= 72 or 100 <= code <= 110:
+            return f"User-defined function {code}"
+        return f"Function {code}"
+
+    def exception_name(self, code: int | None) -> str:
+        if code is None:
+            return "Missing exception code"
+        return self.exceptions.get(code, f"Unknown exception {code}")
+
+
+def load_spec() -> Spec:
+    text = resources.files("dissector").joinpath("data/modbus.toml").read_text(encoding="utf-8")
+    data = tomllib.loads(text)
+    return Spec(
+        functions=_int_keys(data["functions"]),
+        exceptions=_int_keys(data["exceptions"]),
+        diagnostics=_int_keys(data["diagnostics"]),
+        mei_types=_int_keys(data["mei_types"]),
+        device_id_codes=_int_keys(data["device_id_codes"]),
+        device_id_objects=_int_keys(data["device_id_objects"]),
+        limits=data["limits"],
+    )
+
+
+SPEC = load_spec()
