@@ -1,0 +1,45 @@
+"""Writing classic pcap files, one Modbus frame (or noise run) a record.
+
+Every record is written and flushed whole, header first, so a reader that opens the file while it is
+being written sees only complete records, and a crash loses nothing already written.
+"""
+from __future__ import annotations
+
+import struct
+from typing import BinaryIO
+
+LINKTYPE_USER0 = 147
+LINKTYPE_RTAC_SERIAL = 250
+SNAPLEN = 65535
+
+_GLOBAL_HEADER = struct.Struct("<IHHiIII")
+_RECORD_HEADER = struct.Struct("<IIII")
+PCAP_MAGIC = 0xA1B2C3D4
+
+
+class PcapWriter:
+    def __init__(self, stream: BinaryIO, linktype: int = LINKTYPE_USER0, flush: bool = True) -> None:
+        self._stream = stream
+        self._flush = flush
+        self._last_time = 0.0
+        stream.write(_GLOBAL_HEADER.pack(PCAP_MAGIC, 2, 4, 0, 0, SNAPLEN, linktype))
+        if flush:
+            stream.flush()
+
+    def write(self, data: bytes, timestamp: float | None = None) -> None:
+        """Append one record. Without a timestamp, the previous one is reused (0 at first)."""
+        if timestamp is None:
+            timestamp = self._last_time
+        self._last_time = timestamp
+        seconds = int(timestamp)
+        micros = int(round((timestamp - seconds) * 1_000_000))
+        if micros >= 1_000_000:
+            seconds, micros = seconds + 1, micros - 1_000_000
+        self._stream.write(
+            _RECORD_HEADER.pack(seconds, micros, len(data), len(data)) + data
+        )
+        if self._flush:
+            self._stream.flush()
+
+    def close(self) -> None:
+        self._stream.close()
