@@ -33,6 +33,7 @@ class Register:
     text: str | None = None
     status: str | None = None
     source: str | None = None
+    label: str | None = None  # display address (e.g. `40101` in PLC style); None: the number itself
 
 
 @dataclass(slots=True)

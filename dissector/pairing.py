@@ -34,7 +34,7 @@ class Pairer:
         if pending is not None:
             pending.unanswered = True
             if not self._pending_released:
-                pending.notes.append("no response before the end of the capture")
+                pending.notes.append("the capture ends before any response")
         self._pending = None
         self._release(out)
         return out
@@ -62,8 +62,6 @@ class Pairer:
                 pending.unanswered = True
                 if self._pending_released:
                     item.notes.append(f"request #{pending.number} was not answered")
-                else:
-                    pending.notes.append("not answered: the next frame is another request")
             self._pending = None
             self._release(out)
             if item.slave == 0:
@@ -92,8 +90,6 @@ class Pairer:
                 pending.unanswered = True
                 if self._pending_released:
                     item.notes.append(f"request #{pending.number} was not answered")
-                else:
-                    pending.notes.append("not answered: the next frame answers another request")
                 self._pending = None
             item.notes.append("response without a matching request in the capture")
         self._queue.append(item)

@@ -1,0 +1,202 @@
+"""Short human descriptions of a decoded frame, shared by the summary line and the detail tree."""
+from __future__ import annotations
+
+from ..model import Frame, Kind, Register
+from ..spec import SPEC
+
+MAX_VALUES = 6
+
+
+def address_text(address: int | None, label: str | None = None) -> str:
+    if label is not None:
+        return label
+    return "?" if address is None else str(address)
+
+
+def span_text(frame: Frame) -> str:
+    """`8400..8402 (3)` or `9001` for the frame's start and quantity."""
+    start, quantity = frame.start, frame.quantity
+    if start is None:
+        return f"({quantity})" if quantity is not None else ""
+    first = _label_for(frame, start)
+    if quantity is None or quantity == 1:
+        return first
+    last = _label_for(frame, (start + quantity - 1) & 0xFFFF)
+    return f"{first}..{last} ({quantity})"
+
+
+def _label_for(frame: Frame, address: int) -> str:
+    for register in frame.registers or ():
+        if register.address == address and register.label:
+            return register.label
+    return str(address)
+
+
+def register_text(register: Register, index: int = 0) -> str:
+    """`CHCF=IO (I/O profile)`, `8400=non-existent`, or `8401=3` without a profile.
+
+    A response whose request is not in the capture has no addresses: its values show as `?+index`.
+    """
+    if register.address is None:
+        name = f"?+{index}"
+    else:
+        name = register.code or address_text(register.address, register.label)
+    status = register.status
+    if status is not None and status not in ("ok",):
+        if status == "ambiguous":
+            return f"{name}={register.text or register.value} (16#8000: ambiguous)"
+        return f"{name}={status}"
+    if register.text is not None:
+        return f"{name}={register.text}"
+    return f"{name}={register.value}"
+
+
+def values_text(frame: Frame) -> str:
+    registers = frame.registers or []
+    parts = [register_text(register, index) for index, register in enumerate(registers[:MAX_VALUES])]
+    if len(registers) > MAX_VALUES:
+        parts.append(f"… (+{len(registers) - MAX_VALUES})")
+    return " ".join(parts)
+
+
+def bits_text(frame: Frame) -> str:
+    bits = frame.bits or []
+    text = "".join(str(bit.value) for bit in bits[:32])
+    if len(bits) > 32:
+        text += f"… (+{len(bits) - 32})"
+    return text
+
+
+def info_text(frame: Frame) -> str:
+    """The Info column: what was asked or answered, in a few words."""
+    function = frame.function
+    name = SPEC.function_name(function)
+    if frame.kind is Kind.EXCEPTION:
+        code = frame.exception_code
+        text = f"{name}: exception {code if code is not None else '?'} ({SPEC.exception_name(code)})"
+        return text
+    fields = frame.fields
+    if fields is None:
+        return f"{name} (malformed)"
+    request = frame.kind is Kind.REQUEST
+    describe = _DESCRIBERS.get(function)
+    detail = describe(frame, request) if describe else f"{len(frame.pdu) - 1} bytes of data"
+    return f"{name} {detail}".rstrip()
+
+
+def _read(frame: Frame, request: bool) -> str:
+    if request:
+        return span_text(frame)
+    if frame.bits is not None:
+        return f"{span_text(frame)}: {bits_text(frame)}".lstrip()
+    return f"{span_text(frame)}: {values_text(frame)}".lstrip(": ")
+
+
+def _write_single_coil(frame: Frame, request: bool) -> str:
+    value = frame.fields.value
+    state = {0xFF00: "ON", 0x0000: "OFF"}.get(value, f"0x{value:04X}")
+    return f"{span_text(frame)} = {state}"
+
+
+def _write_single_register(frame: Frame, request: bool) -> str:
+    registers = frame.registers or []
+    if registers and (registers[0].code or registers[0].text):
+        return f"{span_text(frame)} {register_text(registers[0])}"
+    return f"{span_text(frame)} = {frame.fields.value}"
+
+
+def _diagnostics(frame: Frame, request: bool) -> str:
+    sub = frame.subfunction if frame.subfunction is not None else -1
+    sub_name = SPEC.diagnostics.get(sub, "unknown sub-function")
+    data = frame.fields.data
+    if len(data) == 2:
+        value = int.from_bytes(data, "big")
+        return f"{sub:02X}h {sub_name} = {value}"
+    return f"{sub:02X}h {sub_name}" + (f" data {data.hex()}" if data else "")
+
+
+def _write_multiple(frame: Frame, request: bool) -> str:
+    if request and frame.registers is not None:
+        return f"{span_text(frame)}: {values_text(frame)}"
+    if request and frame.bits is not None:
+        return f"{span_text(frame)}: {bits_text(frame)}"
+    return f"{span_text(frame)} written"
+
+
+def _comm_event_counter(frame: Frame, request: bool) -> str:
+    if request:
+        return ""
+    return f"status 0x{frame.fields.status:04X}, {frame.fields.event_count} events"
+
+
+def _mask_write(frame: Frame, request: bool) -> str:
+    fields = frame.fields
+    return f"{fields.address} AND 0x{fields.and_mask:04X} OR 0x{fields.or_mask:04X}"
+
+
+def _read_write(frame: Frame, request: bool) -> str:
+    fields = frame.fields
+    if request:
+        return (
+            f"read {fields.read_start}..{fields.read_start + fields.read_quantity - 1} "
+            f"({fields.read_quantity}), write {values_text(frame)}"
+        )
+    return f"{span_text(frame)}: {values_text(frame)}"
+
+
+def _fifo(frame: Frame, request: bool) -> str:
+    if request:
+        return f"pointer {frame.fields.address}"
+    return f"{frame.fields.fifo_count} values: {' '.join(map(str, frame.fields['values'][:8]))}"
+
+
+def _mei(frame: Frame, request: bool) -> str:
+    fields = frame.fields
+    mei = SPEC.mei_types.get(fields.mei_type, f"MEI {fields.mei_type}")
+    if fields.mei_type != 14:
+        return mei
+    code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
+    if request:
+        return f"{mei}, {code}, from object {fields.body.object_id}"
+    objects = " ".join(f"{obj.name}={obj.text or obj.value!r}" for obj in frame.objects or [])
+    return f"{mei}, {code}: {objects}"
+
+
+def _simple(frame: Frame, request: bool) -> str:
+    if request:
+        return ""
+    fields = frame.fields
+    if "status" in fields and isinstance(fields.status, int):
+        return f"status 0x{fields.status:02X}"
+    if "data" in fields:
+        return f"{len(fields.data)} bytes"
+    return ""
+
+
+def _file_record(frame: Frame, request: bool) -> str:
+    fields = frame.fields
+    groups = fields.get("subrequests") or fields.get("subresponses") or fields.get("records") or []
+    return f"{len(groups)} record group(s)"
+
+
+_DESCRIBERS = {
+    1: _read,
+    2: _read,
+    3: _read,
+    4: _read,
+    5: _write_single_coil,
+    6: _write_single_register,
+    7: _simple,
+    8: _diagnostics,
+    11: _comm_event_counter,
+    12: _simple,
+    15: _write_multiple,
+    16: _write_multiple,
+    17: _simple,
+    20: _file_record,
+    21: _file_record,
+    22: _mask_write,
+    23: _read_write,
+    24: _fifo,
+    43: _mei,
+}

@@ -1,0 +1,88 @@
+"""One line per item, as tshark prints packets: number, time, slave, kind, info, CRC status."""
+from __future__ import annotations
+
+from rich.text import Text
+
+from ..model import Frame, Item, Kind, Noise
+from .describe import info_text
+
+NOISE_PREVIEW = 16
+
+
+def time_text(item: Item, base: float | None) -> str:
+    if item.time is None:
+        return "-"
+    return f"{item.time - (base or 0.0):.6f}"
+
+
+def crc_text(frame: Frame) -> str:
+    check = "LRC" if frame.mode == "ascii" else "CRC"
+    if frame.crc_ok:
+        return f"{check} ok"
+    width = 2 if frame.mode == "ascii" else 4
+    return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
+
+
+def tail_text(frame: Frame) -> str:
+    """Pairing and findings appended to the info column."""
+    parts = []
+    if frame.request is not None:
+        rt = frame.response_time
+        parts.append(f"[#{frame.request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"))
+    elif frame.kind is not Kind.REQUEST:
+        parts.append("[no request]")
+    if frame.broadcast:
+        parts.append("[broadcast]")
+    if frame.unanswered:
+        parts.append("[no response]")
+    parts.extend(f"[{note}]" for note in frame.notes)
+    parts.extend(f"[warning: {warning}]" for warning in frame.warnings)
+    return " ".join(parts)
+
+
+def noise_info(noise: Noise) -> str:
+    preview = noise.raw[:NOISE_PREVIEW].hex(" ")
+    more = "…" if noise.length > NOISE_PREVIEW else ""
+    return f"{noise.length} bytes of noise at offset {noise.offset}: {preview}{more}"
+
+
+def summary_line(item: Item, base: float | None = None) -> str:
+    head = f"{item.number:>6} {time_text(item, base):>12}"
+    if isinstance(item, Noise):
+        return f"{head}   - noise     {noise_info(item)}"
+    frame = item
+    tail = tail_text(frame)
+    return (
+        f"{head} {frame.slave:>3} {frame.kind.value:<9} {info_text(frame)}"
+        f"{' ' + tail if tail else ''}  {crc_text(frame)}"
+    )
+
+
+_KIND_STYLE = {
+    Kind.REQUEST: "vw3.request",
+    Kind.RESPONSE: "vw3.response",
+    Kind.EXCEPTION: "vw3.exception",
+    Kind.NOISE: "vw3.noise",
+}
+
+
+def summary_text(item: Item, base: float | None = None) -> Text:
+    """The same line as summary_line, styled for a terminal."""
+    text = Text(no_wrap=True, overflow="ellipsis")
+    text.append(f"{item.number:>6} ", "vw3.number")
+    text.append(f"{time_text(item, base):>12} ", "vw3.time")
+    if isinstance(item, Noise):
+        text.append("  - noise     ", "vw3.noise")
+        text.append(noise_info(item), "vw3.noise")
+        return text
+    frame = item
+    text.append(f"{frame.slave:>3} ", "vw3.slave")
+    text.append(f"{frame.kind.value:<9} ", _KIND_STYLE[frame.kind])
+    text.append(info_text(frame))
+    tail = tail_text(frame)
+    if tail:
+        style = "vw3.warning" if frame.warnings or frame.unanswered else "vw3.pairing"
+        text.append(" " + tail, style)
+    text.append("  ")
+    text.append(crc_text(frame), "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad")
+    return text
