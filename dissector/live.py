@@ -1,0 +1,361 @@
+"""Live sniffing: read a serial port (or any pyserial URL), frame and show what crosses the bus.
+
+The port is opened for listening only: nothing is ever written to it, and RTS is left deasserted
+because RS-485 adapters that steer their driver with RTS would otherwise drive the bus.
+
+Reads are short (READ_TIMEOUT), and each read becomes a Chunk stamped with the time the read
+returned. The framer decides where frames end from lengths and CRCs, so a read holding a request
+and its response, or half a frame, is fine. A frame the framer cannot close yet (it waits for
+bytes that would make a longer reading possible, or for what follows a damaged frame) is closed
+once the line has been silent for IDLE_FLUSH (or t3.5 if longer): on the wire, that silence ends
+every RTU frame.
+
+What is heard is teed as it is heard: raw bytes to --raw (one unbuffered write per read), and each
+item to the -w pcap (one record a frame or noise run, flushed) before it is displayed. So whatever
+was shown is on disk, whatever stops the capture (Ctrl-C, SIGKILL, an unplugged adapter).
+"""
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import BinaryIO, TextIO
+
+import serial
+from rich.console import Console
+from rich.text import Text
+
+from .decode import decode_frame
+from .model import Chunk, Frame, Item
+from .pcapwriter import PcapWriter
+from .pipeline import Annotator, Dissector
+from .live_view import LineSink, LiveStats, RichSink, Sink, json_line
+
+PROG = "vw3-decode"
+READ_TIMEOUT = 0.010
+IDLE_FLUSH = 0.020
+READ_SIZE = 4096
+PARITIES = {"N": serial.PARITY_NONE, "E": serial.PARITY_EVEN, "O": serial.PARITY_ODD}
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+
+
+class LiveError(Exception):
+    """A failure with a one-line message; `status` is the exit status."""
+
+    def __init__(self, message: str, status: int) -> None:
+        super().__init__(message)
+        self.status = status
+
+
+def add_live_arguments(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("live capture")
+    group.add_argument(
+        "--live",
+        metavar="PORT",
+        help="listen on a serial port or pyserial URL (/dev/ttyUSB0, COM3, socket://host:port, "
+        "rfc2217://host:port); never writes to it",
+    )
+    group.add_argument("--baud", type=int, default=19200, help="baud rate (default 19200)")
+    group.add_argument(
+        "--parity", type=str.upper, choices=sorted(PARITIES), default="E",
+        help="parity: E (default, the Modbus default), N or O",
+    )
+    group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
+    group.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")
+    group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
+    group.add_argument("--duration", type=float, metavar="SECONDS", help="stop after SECONDS")
+    group.add_argument("--count", type=int, metavar="N", help="stop after N frames")
+    group.add_argument(
+        "--detect", nargs="?", type=float, const=2.0, metavar="SECONDS",
+        help="find the baud rate and parity: listen SECONDS (default 2) at each of "
+        "9600..115200 x E/N/O and print the command line to use",
+    )
+
+
+def silence_threshold(baud: int) -> float:
+    """max(t3.5, IDLE_FLUSH); t3.5 is fixed at 1.75 ms above 19200 baud (Serial Line Guide)."""
+    t35 = 3.5 * 11 / baud if baud <= 19200 else 0.00175
+    return max(t35, IDLE_FLUSH)
+
+
+def setting_text(args: argparse.Namespace) -> str:
+    stopbits = int(args.stopbits) if args.stopbits == int(args.stopbits) else args.stopbits
+    return f"{args.baud} {args.bytesize}{args.parity}{stopbits}"
+
+
+def open_port(args: argparse.Namespace) -> serial.SerialBase:
+    try:
+        port = serial.serial_for_url(args.live, do_not_open=True)
+        port.baudrate = args.baud
+        port.parity = PARITIES[args.parity]
+        port.stopbits = args.stopbits
+        port.bytesize = args.bytesize
+        port.timeout = READ_TIMEOUT
+        port.rts = False
+        port.open()
+    except (serial.SerialException, ValueError, OSError) as error:
+        raise LiveError(f"cannot open {args.live}: {error}", EXIT_BAD_INPUT) from None
+    return port
+
+
+def flush_idle(dissector: Dissector) -> list[Item]:
+    """Close what the framer holds after a silence, keeping pairing state.
+
+    Uses `Dissector.flush_idle()` when the pipeline has it. Until then: the RTU framer's `finish()`
+    consumes its whole buffer and keeps its expectation, so it can go on being fed afterwards; the
+    items go through the pairer without `Pairer.finish()`, so the next response still pairs.
+    """
+    method = getattr(dissector, "flush_idle", None)
+    if method is not None:
+        return method()  # type: ignore[no-any-return]
+    items = dissector.pairer.push(dissector.framer.finish())
+    for item in items:
+        if isinstance(item, Frame):
+            decode_frame(item)
+            if dissector.annotate is not None:
+                dissector.annotate(item)
+    return items
+
+
+class Tee:
+    """The capture files: raw bytes per read, one pcap record per item, both on disk at once."""
+
+    def __init__(self, pcap_path: str | None, raw_path: str | None) -> None:
+        self.paths = [path for path in (pcap_path, raw_path) if path]
+        self._pcap_file: BinaryIO | None = None
+        self._pcap: PcapWriter | None = None
+        self._raw: BinaryIO | None = None
+        try:
+            if pcap_path:
+                self._pcap_file = open(pcap_path, "wb")
+                self._pcap = PcapWriter(self._pcap_file)
+            if raw_path:
+                # Unbuffered: each read is one write(2), on disk before its frames are shown.
+                self._raw = open(raw_path, "wb", buffering=0)
+        except OSError as error:
+            self.close()
+            raise LiveError(f"cannot write {error.filename}: {error.strerror}", EXIT_BAD_INPUT) from None
+
+    def raw(self, data: bytes) -> None:
+        if self._raw is not None:
+            self._raw.write(data)
+
+    def items(self, items: list[Item]) -> None:
+        if self._pcap is not None:
+            for item in items:
+                self._pcap.write(item.raw, item.time)
+
+    def close(self) -> None:
+        for stream in (self._pcap_file, self._raw):
+            if stream is not None:
+                stream.close()
+        self._pcap_file = self._pcap = self._raw = None
+
+
+class StopFlag:
+    """Set by SIGINT/SIGTERM: the read loop sees it within one read timeout and stops cleanly."""
+
+    def __init__(self) -> None:
+        self.signal: int | None = None
+        self._previous: dict[int, object] = {}
+
+    def __enter__(self) -> StopFlag:
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            try:
+                self._previous[signum] = signal.signal(signum, self._handle)
+            except ValueError:  # not the main thread: the caller handles signals
+                pass
+        return self
+
+    def _handle(self, signum: int, _frame: object) -> None:
+        self.signal = signum
+
+    def __exit__(self, *_exc: object) -> None:
+        for signum, handler in self._previous.items():
+            signal.signal(signum, handler)  # type: ignore[arg-type]
+
+
+@dataclass
+class Capture:
+    """The read loop and what it needs; `run` returns why it stopped."""
+
+    port: serial.SerialBase
+    dissector: Dissector
+    tee: Tee
+    sink: Sink
+    stats: LiveStats
+    silence: float
+    duration: float | None = None
+    count: int | None = None
+
+    def deliver(self, items: list[Item]) -> bool:
+        """Tee, count and show items; False once --count is reached."""
+        if self.count is not None:
+            room = self.count - self.stats.frames
+            kept: list[Item] = []
+            for item in items:
+                if room <= 0:
+                    break
+                kept.append(item)
+                room -= isinstance(item, Frame)
+            items = kept
+        self.tee.items(items)
+        for item in items:
+            self.stats.add(item)
+        self.sink.show(items)
+        return self.count is None or self.stats.frames < self.count
+
+    def run(self, stop: StopFlag) -> str:
+        port, dissector = self.port, self.dissector
+        deadline = None if self.duration is None else time.monotonic() + self.duration
+        last_data = time.monotonic()
+        pending = False  # bytes fed since the last idle flush
+        while True:
+            if stop.signal is not None:
+                return "interrupted"
+            now = time.monotonic()
+            if deadline is not None and now >= deadline:
+                return "duration"
+            try:
+                data = port.read(max(1, port.in_waiting))
+                if data and port.in_waiting:
+                    data += port.read(port.in_waiting)
+            except (serial.SerialException, OSError) as error:
+                raise PortVanished(str(error)) from None
+            if data:
+                stamp = time.time()
+                last_data = time.monotonic()
+                pending = True
+                self.tee.raw(data)
+                if not self.deliver(dissector.feed(Chunk(data, time=stamp))):
+                    return "count"
+            elif pending and time.monotonic() - last_data >= self.silence:
+                pending = False
+                if not self.deliver(flush_idle(dissector)):
+                    return "count"
+            self.sink.tick()
+
+
+class PortVanished(Exception):
+    pass
+
+
+def _make_sink(
+    args: argparse.Namespace,
+    out: TextIO,
+    is_terminal: bool,
+    render_line: Callable[[Item], str],
+    render_text: Callable[[Item], Text] | None,
+    stats: LiveStats,
+) -> Sink:
+    if getattr(args, "json", False):
+        return LineSink(out, json_line)
+    if is_terminal:
+        from .render.theme import THEME
+
+        console = Console(file=out, theme=THEME, force_terminal=True, highlight=False)
+        render = render_text or (lambda item: Text(render_line(item), no_wrap=True))
+        title = f"{args.live} at {setting_text(args)} (Ctrl-C to stop)"
+        return RichSink(console, title, stats, render)
+    return LineSink(out, render_line)
+
+
+def run_live(
+    args: argparse.Namespace,
+    out: TextIO,
+    err: TextIO,
+    is_terminal: bool,
+    render_line: Callable[[Item], str],
+    annotate: Annotator | None,
+    render_text: Callable[[Item], Text] | None = None,
+) -> int:
+    """Capture from args.live until --duration, --count, Ctrl-C or the port goes away."""
+    if getattr(args, "detect", None) is not None:
+        from .detect import run_detect
+
+        return run_detect(args, out, err)
+    try:
+        port = open_port(args)
+    except LiveError as error:
+        err.write(f"{PROG}: {error}\n")
+        return error.status
+    try:
+        tee = Tee(getattr(args, "write", None), args.raw)
+    except LiveError as error:
+        port.close()
+        err.write(f"{PROG}: {error}\n")
+        return error.status
+    stats = LiveStats()
+    err.write(f"{PROG}: listening on {args.live} at {setting_text(args)}\n")
+    err.flush()
+    dissector = Dissector(hold=False, annotate=annotate, timeout=getattr(args, "timeout", None))
+    sink = _make_sink(args, out, is_terminal, render_line, render_text, stats)
+    capture = Capture(
+        port, dissector, tee, sink, stats, silence_threshold(args.baud), args.duration, args.count
+    )
+    started = time.monotonic()
+    status = EXIT_OK
+    reason = ""
+    try:
+        with StopFlag() as stop:
+            try:
+                reason = capture.run(stop)
+            except PortVanished as error:
+                reason = f"{args.live} went away ({error})"
+                status = EXIT_FAILED
+            if reason != "count":
+                capture.deliver(dissector.finish())
+    finally:
+        tee.close()
+        port.close()
+        stats.finish()
+        sink.close()
+    seconds = time.monotonic() - started
+    files = f"; wrote {', '.join(tee.paths)}" if tee.paths else ""
+    if status != EXIT_OK:
+        err.write(f"{PROG}: error: {reason}; capture files closed\n")
+    err.write(f"{PROG}: {stats.summary(seconds)}{files}\n")
+    err.flush()
+    return status
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The options the CLI has besides ours, for `python3 -m dissector.live` until cli.py wires it."""
+    parser = argparse.ArgumentParser(prog="python3 -m dissector.live")
+    add_live_arguments(parser)
+    parser.add_argument("-w", dest="write", metavar="FILE", help="write a pcap of every item")
+    parser.add_argument("--json", action="store_true", help="NDJSON, one object per item")
+    parser.add_argument("--timeout", type=float, default=1.0, metavar="SECONDS")
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if not args.live:
+        parser.error("--live PORT is required")
+    from .render.summary import summary_line, summary_text
+
+    base: list[float] = []
+
+    def first_time(item: Item) -> float | None:
+        if not base and item.time is not None:
+            base.append(item.time)
+        return base[0] if base else None
+
+    return run_live(
+        args,
+        sys.stdout,
+        sys.stderr,
+        sys.stdout.isatty(),
+        lambda item: summary_line(item, first_time(item)),
+        None,
+        lambda item: summary_text(item, first_time(item)),
+    )
+
+
+if __name__ == "__main__":
+    sys.exit(main())
