@@ -1,0 +1,20 @@
+"""Test helpers: build RTU frames from hex with the *reference* CRC, decode to NDJSON dicts."""
+from __future__ import annotations
+
+from dissector.crc import crc16_reference
+from dissector.pipeline import dissect_bytes
+from dissector.render.jsonout import item_to_dict
+
+
+def rtu(hex_text: str) -> bytes:
+    """Slave + PDU from hex, with the CRC appended by the reference algorithm (low byte first)."""
+    body = bytes.fromhex(hex_text.replace(" ", ""))
+    return body + crc16_reference(body).to_bytes(2, "little")
+
+
+def decode(data: bytes, **options: object) -> list[dict]:
+    return [item_to_dict(item) for item in dissect_bytes(data, **options)]
+
+
+def hx(text: str) -> bytes:
+    return bytes.fromhex(text.replace(" ", ""))
