@@ -1,0 +1,223 @@
+"""Modbus ASCII framer: `:` + hex pairs (slave, function, data, LRC) + CR LF.
+
+Unlike RTU, ASCII frames delimit themselves: a frame starts at ':' and ends at LF, so no length rule
+is needed to cut the stream. The length rules still decide what a frame is: the decoded binary gets
+the same request / response / exception classification as an RTU frame (framer.RULES, applied to
+the RTU frame that would carry the same bytes), so an ASCII frame whose length fits no layout is
+shown as noise, as it would be in RTU.
+
+A candidate that is cut short (a new ':' before the LF, no LF within the longest legal frame, the
+end of the capture), that is not made of hex pairs, that lacks the CR before the LF or whose
+layout fits nothing becomes a Noise item of its own, with the reason; bytes between frames are
+noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
+damaged. The answer does not depend on how the stream is split into chunks.
+
+The delimiter is always LF here: FC8 sub-function 3 can change it on a device, which a passive tap
+could follow only by decoding that request; frames after such a change show up as noise.
+"""
+from __future__ import annotations
+
+from .crc import crc_bytes, lrc
+from .framer import KNOWN_FUNCTIONS, MAX_SLAVE, NOISE_ITEM_MAX, RULES
+from .model import Chunk, Frame, Item, Kind, Noise
+
+COLON, CR, LF = 0x3A, 0x0D, 0x0A
+MAX_BINARY = 255  # slave + PDU (253) + LRC
+MAX_ASCII = 1 + 2 * MAX_BINARY + 2  # ':' + hex pairs + CR LF
+MIN_BINARY = 3  # slave, function, LRC
+EXCEPTION_ADU = 5  # length of an RTU exception frame, CRC included
+
+_HEX_DIGITS = frozenset(b"0123456789ABCDEFabcdef")
+_ALPHABET = _HEX_DIGITS | {COLON, CR, LF}
+ASCII_SHARE = 0.9  # share of ASCII-mode characters in a sample that makes it ASCII mode
+
+
+def detect_mode(first_bytes: bytes) -> str:
+    """'ascii' when the bytes look like Modbus ASCII (a ':' then hex pairs, almost nothing else).
+
+    Binary RTU data is spread over all 256 byte values; a sample where nine bytes in ten are hex
+    digits, ':', CR or LF, with a ':' followed by hex, is ASCII mode.
+    """
+    colon = first_bytes.find(b":")
+    if colon < 0:
+        return "rtu"
+    following = first_bytes[colon + 1 : colon + 3]
+    if not following or any(byte not in _HEX_DIGITS for byte in following):
+        return "rtu"
+    inside = sum(1 for byte in first_bytes if byte in _ALPHABET)
+    return "ascii" if inside >= ASCII_SHARE * len(first_bytes) else "rtu"
+
+
+class AsciiFramer:
+    """Push parser with RtuFramer's interface: feed chunks, collect items in stream order."""
+
+    mode = "ascii"
+
+    def __init__(self) -> None:
+        self._buf = bytearray()
+        self._base = 0  # absolute offset of _buf[0]
+        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
+        self._noise = bytearray()
+        self._noise_offset = 0
+        self._noise_time: float | None = None
+        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+
+    # -- public interface -------------------------------------------------------------------
+    def feed(self, chunk: Chunk) -> list[Item]:
+        if chunk.data:
+            self._times.append((self._base + len(self._buf), chunk.time))
+            self._buf += chunk.data
+        return self._run(final=False)
+
+    def finish(self) -> list[Item]:
+        items = self._run(final=True)
+        self._flush_noise(items)
+        return items
+
+    # -- internals ---------------------------------------------------------------------------
+    def _time_at(self, offset: int) -> float | None:
+        times = self._times
+        for index in range(len(times) - 1, -1, -1):
+            if times[index][0] <= offset:
+                return times[index][1]
+        return None
+
+    def _run(self, final: bool) -> list[Item]:
+        buf = self._buf
+        n = len(buf)
+        i = 0
+        items: list[Item] = []
+        while i < n:
+            if buf[i] != COLON:
+                colon = buf.find(b":", i)
+                end = n if colon < 0 else colon
+                self._add_noise(buf, i, end, items)
+                i = end
+                continue
+            limit = min(n, i + MAX_ASCII)
+            lf = buf.find(b"\n", i + 1, limit)
+            colon = buf.find(b":", i + 1, limit)
+            if colon >= 0 and (lf < 0 or colon < lf):
+                self._reject(bytes(buf[i:colon]), i, "ASCII frame cut short by the next ':'", items)
+                i = colon
+            elif lf >= 0:
+                self._candidate(bytes(buf[i : lf + 1]), i, items)
+                i = lf + 1
+            elif n - i >= MAX_ASCII:
+                self._reject(
+                    bytes(buf[i : i + MAX_ASCII]), i,
+                    f"no CR LF within {MAX_ASCII} characters of the ':'", items,
+                )
+                i += MAX_ASCII
+            elif final:
+                self._reject(bytes(buf[i:n]), i, "ASCII frame cut off by the end of the capture", items)
+                i = n
+            else:
+                break  # wait for the rest of the frame
+        if i:
+            del buf[:i]
+            self._base += i
+            self._prune_times()
+        return items
+
+    def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
+        """A ':' ... LF run: a Frame when it is one, a Noise item saying why not otherwise."""
+        body = raw[1:-1]
+        if not body.endswith(b"\r"):
+            self._reject(raw, i, "ASCII frame ends with LF without CR", items)
+            return
+        digits = body[:-1]
+        if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
+            self._reject(raw, i, "ASCII frame is not made of hex pairs", items)
+            return
+        binary = bytes.fromhex(digits.decode("ascii"))
+        if len(binary) < MIN_BINARY:
+            self._reject(raw, i, "ASCII frame too short", items)
+            return
+        slave, function = binary[0], binary[1]
+        received, expected = binary[-1], lrc(binary[:-1])
+        check = "LRC ok" if received == expected else f"LRC {received:02X}, expected {expected:02X}"
+        if slave > MAX_SLAVE:
+            self._reject(raw, i, f"slave {slave} out of range ({check})", items)
+            return
+        kind = self._classify(binary[:-1])
+        if kind is None:
+            self._reject(raw, i, f"no Modbus layout fits function {function} ({check})", items)
+            return
+        self._flush_noise(items)
+        offset = self._base + i
+        frame = Frame(
+            offset=offset,
+            raw=raw,
+            time=self._time_at(offset),
+            kind=kind,
+            slave=slave,
+            function=function & 0x7F,
+            crc=received,
+            crc_expected=expected,
+            mode="ascii",
+        )
+        if digits != digits.upper():
+            frame.warnings.append("lower-case hex digits (the spec wants upper case)")
+        if kind is Kind.REQUEST:
+            self._expect = (slave, function) if slave != 0 else None
+        else:
+            self._expect = None
+        items.append(frame)
+
+    def _classify(self, adu: bytes) -> Kind | None:
+        """The kind an RTU frame with the same bytes would have, by the framer's length rules."""
+        slave, function = adu[0], adu[1]
+        equivalent = adu + crc_bytes(adu)
+        length = len(equivalent)
+        if function & 0x80:
+            if (function & 0x7F) in KNOWN_FUNCTIONS and length == EXCEPTION_ADU:
+                return Kind.EXCEPTION
+            return None
+        rules = RULES.get(function)
+        if rules is None:
+            return None
+        request, response = rules
+        order = [(Kind.REQUEST, request), (Kind.RESPONSE, response)]
+        if self._expect == (slave, function):
+            order.reverse()
+        for kind, rule in order:
+            # Rules that scan for a valid CRC find the whole frame (its CRC was just computed),
+            # unless a shorter prefix happens to check too: then the layout is refused.
+            if rule(equivalent, 0, length) == length:
+                return kind
+        return None
+
+    def _prune_times(self) -> None:
+        times = self._times
+        keep = 0
+        for index, (offset, _time) in enumerate(times):
+            if offset <= self._base:
+                keep = index
+        if keep:
+            del times[:keep]
+
+    def _add_noise(self, buf: bytearray, start: int, end: int, items: list[Item]) -> None:
+        """Bytes outside any frame; cut into items of NOISE_ITEM_MAX whatever the chunking."""
+        while start < end:
+            if not self._noise:
+                self._noise_offset = self._base + start
+                self._noise_time = self._time_at(self._noise_offset)
+            take = min(end - start, NOISE_ITEM_MAX - len(self._noise))
+            self._noise += buf[start : start + take]
+            start += take
+            if len(self._noise) >= NOISE_ITEM_MAX:
+                self._flush_noise(items)
+
+    def _reject(self, raw: bytes, i: int, reason: str, items: list[Item]) -> None:
+        self._flush_noise(items)
+        offset = self._base + i
+        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason))
+
+    def _flush_noise(self, items: list[Item]) -> None:
+        if self._noise:
+            items.append(
+                Noise(offset=self._noise_offset, raw=bytes(self._noise), time=self._noise_time,
+                      reason="outside an ASCII frame")
+            )
+            self._noise = bytearray()
