@@ -127,8 +127,8 @@ def json_line(item: Item) -> str:
     return json.dumps(item_to_dict(item))
 
 
-def header_table(title: str, stats: LiveStats) -> Table:
-    table = Table(title=title, title_justify="left", expand=False, pad_edge=False, box=None)
+def header_table(stats: LiveStats) -> Table:
+    table = Table(expand=False, pad_edge=False, box=None)
     for name in ("slave", "requests", "responses", "exceptions", "CRC errors", "unanswered"):
         table.add_column(name, justify="right")
     for slave in sorted(stats.slaves):
@@ -137,14 +137,16 @@ def header_table(title: str, stats: LiveStats) -> Table:
             str(slave), str(c.requests), str(c.responses), str(c.exceptions), str(c.crc_errors),
             str(c.unanswered),
         )
+    return table
+
+
+def totals_text(stats: LiveStats) -> str:
     last = stats.last_response_time
-    table.caption = (
+    return (
         f"{stats.frames} frames, {stats.crc_errors} CRC errors, {stats.unanswered} unanswered, "
         f"{stats.noise_bytes} noise bytes, last response time "
         + (f"{last * 1000:.1f} ms" if last is not None else "-")
     )
-    table.caption_justify = "left"
-    return table
 
 
 class LiveView:
@@ -160,7 +162,13 @@ class LiveView:
         self.lines.append(self._render(item))
 
     def __rich__(self) -> RenderableType:
-        return Group(header_table(self.title, self.stats), Text(""), *self.lines)
+        return Group(
+            Text(self.title, style="bold"),
+            header_table(self.stats),
+            Text(totals_text(self.stats)),
+            Text(""),
+            *self.lines,
+        )
 
 
 class RichSink:
