@@ -1,0 +1,399 @@
+"""The annotator: applies device profiles and register maps to decoded frames, in stream order.
+
+Called once per frame after decode_frame. It names and scales register values, gives read values a
+status (`ok`, `non-existent`, `protected`, `ambiguous`), explains exceptions in the device's own terms,
+flags requests beyond the device's limits, and follows each parameter across the capture so that a
+parameter read earlier and protected now is told as such (VW3 A3 303 manual p.38).
+
+Everything is precomputed per slave on first sight (profile, merged map, address labels), so the cost
+per frame is a few dictionary lookups per register.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from typing import NamedTuple
+
+from .maps import RegisterDef, RegisterMap, interpret
+from .model import DeviceObject, Frame, Kind, Register
+from .profiles import BitsDepend, ExceptionCause, Profile, load_profile_map
+from .spec import SPEC
+
+_READS = frozenset([3, 4, 23])  # functions whose response registers are values read from the device
+_MAX_LISTED = 8  # registers named one by one in an exception explanation
+_READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
+# decode_frame already warns when the spec forbids a broadcast; the profile adds device rules only.
+_SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
+_HAS_LABEL = "label" in Register.__dataclass_fields__
+
+
+@dataclass(frozen=True, slots=True)
+class MapLayer:
+    """Rows from a --map file, for every slave, one slave, or the slaves of one profile."""
+
+    rows: RegisterMap
+    slave: int | None = None
+    profile: str | None = None
+
+
+class _Seen(NamedTuple):
+    value: int | None  # None: the parameter was unreadable (16#8000 or exception)
+    frame: int
+    how: str  # "read", "written", or the unreadable status
+
+
+@dataclass(slots=True)
+class _Device:
+    profile: Profile
+    rows: RegisterMap
+    plain: dict[int, RegisterDef]  # rows without bit labels, for bits_depend
+    depend: dict[int, BitsDepend]
+    plc: dict[int, int] | None  # PLC base per function (None: protocol addresses)
+    plc_default: int
+
+
+def _plc_label(base: int, address: int) -> str:
+    # 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
+    digits = len(str(base))
+    top = (base // 10 ** (digits - 1) + 1) * 10 ** (digits - 1) - 1
+    number = base + address
+    if number > top:
+        number = base * 10 - 9 + address
+    return str(number)
+
+
+def address_name(row: RegisterDef | None, address: int) -> str:
+    """`CHCF (8401)` for a mapped register, `8400` otherwise."""
+    return f"{row.code} ({address})" if row is not None else str(address)
+
+
+class Annotator:
+    def __init__(
+        self,
+        default: Profile,
+        per_slave: dict[int, Profile],
+        layers: list[MapLayer],
+        address_style: str | None = None,
+    ) -> None:
+        self.default = default
+        self.per_slave = dict(per_slave)
+        self.layers = list(layers)
+        self.address_style = address_style
+        self._devices: dict[int, _Device] = {}
+        self._base_maps: dict[str, RegisterMap] = {}
+        self._seen: dict[tuple[int, int], _Seen] = {}
+        for profile in [default, *per_slave.values()]:
+            self._device_for(profile, None)  # load every map now: errors before the first frame
+
+    # -- setup ----------------------------------------------------------------------------------------
+    def _device_for(self, profile: Profile, slave: int | None) -> _Device:
+        base = self._base_maps.get(profile.name)
+        if base is None:
+            base = self._base_maps[profile.name] = load_profile_map(profile)
+        rows = base
+        for layer in self.layers:
+            if layer.slave is not None and layer.slave != slave:
+                continue
+            if layer.profile is not None and layer.profile != profile.name:
+                continue
+            if rows is base:
+                rows = dict(base)
+            rows.update(layer.rows)
+        depend: dict[int, BitsDepend] = {}
+        plain: dict[int, RegisterDef] = {}
+        for rule in profile.bits_depend:
+            for address in rule.registers:
+                if address in rows:
+                    depend[address] = rule
+                    plain[address] = dataclasses.replace(rows[address], bits={})
+        style = self.address_style or profile.address_style
+        return _Device(
+            profile=profile,
+            rows=rows,
+            plain=plain,
+            depend=depend,
+            plc=dict(profile.plc_base) if style == "plc" else None,
+            plc_default=profile.plc_base_default,
+        )
+
+    def device(self, slave: int) -> _Device:
+        device = self._devices.get(slave)
+        if device is None:
+            profile = self.per_slave.get(slave, self.default)
+            device = self._devices[slave] = self._device_for(profile, slave)
+        return device
+
+    # -- names for renderers ------------------------------------------------------------------------------
+    def profile_for(self, slave: int) -> Profile:
+        return self.per_slave.get(slave, self.default)
+
+    def function_name(self, slave: int, function: int) -> str:
+        return self.profile_for(slave).function_names.get(function) or SPEC.function_name(function)
+
+    def exception_name(self, slave: int, code: int | None) -> str:
+        meaning = None if code is None else self.profile_for(slave).exceptions.get(code)
+        return meaning or SPEC.exception_name(code)
+
+    def subfunction_name(self, slave: int, subfunction: int) -> str | None:
+        meaning = self.profile_for(slave).diagnostics.get(subfunction)
+        return meaning or SPEC.diagnostics.get(subfunction)
+
+    def label(self, slave: int, function: int, address: int) -> str | None:
+        """The display address of a register (None: the protocol address itself)."""
+        device = self.device(slave)
+        if device.plc is None:
+            return None
+        return _plc_label(device.plc.get(function, device.plc_default), address)
+
+    # -- per frame ----------------------------------------------------------------------------------------
+    def __call__(self, frame: Frame) -> None:
+        device = self.device(frame.slave)
+        kind = frame.kind
+        function = frame.function
+        if kind is Kind.REQUEST:
+            self._check_request(frame, device)
+        elif kind is Kind.EXCEPTION:
+            self._explain_exception(frame, device)
+            return
+        request = frame.request
+        if kind is Kind.RESPONSE and request is not None and request.registers:
+            # Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+            if function in (16, 23):
+                self._remember_writes(frame, request.registers)
+        registers = frame.registers
+        if registers:
+            read = kind is Kind.RESPONSE and function in _READS
+            self._annotate(frame, device, registers, read)
+            if kind is Kind.RESPONSE and function == 6:
+                self._remember_writes(frame, registers)
+        if function == 8 and frame.subfunction is not None:
+            self._diagnostics(frame, device)
+        if frame.objects:
+            self._objects(frame, device.profile, frame.objects)
+
+    def _annotate(self, frame: Frame, device: _Device, registers: list[Register], read: bool) -> None:
+        rows = device.rows
+        depend = device.depend
+        plc = device.plc
+        base = None if plc is None else plc.get(frame.function, device.plc_default)
+        protected = device.profile.protected_value if read else None
+        # A single-register read of an unreadable parameter draws an exception, not 16#8000 (p.38).
+        multi = len(registers) > 1
+        seen = self._seen
+        slave = frame.slave
+        for register in registers:
+            address = register.address
+            if address is None:
+                continue
+            if base is not None and _HAS_LABEL:
+                register.label = _plc_label(base, address)
+            row = rows.get(address)
+            value = register.value
+            if row is not None:
+                used = row
+                if address in depend:
+                    rule = depend[address]
+                    last = seen.get((slave, rule.on))
+                    if last is not None and last.value in rule.plain_when:
+                        used = device.plain[address]
+                        if rule.reason not in frame.notes:
+                            frame.notes.append(rule.reason)
+                register.code = row.code
+                register.name = row.name
+                register.unit = row.unit
+                register.source = row.source
+                register.scaled, register.text = interpret(used, value)
+            if protected is None:
+                continue
+            if value == protected and multi:
+                if row is None:
+                    status = "non-existent"
+                    register.text = "16#8000: non-existent (address not in the map)"
+                elif row.ambiguous_8000:
+                    status = "ambiguous"  # keep the value's own reading: it may be real
+                else:
+                    status = "protected"
+                    register.scaled = None
+                    register.text = "16#8000: protected"
+            else:
+                status = "ok"
+            register.status = status
+            self._track(frame, address, row, value, status, "16#8000 now")
+
+    def _track(
+        self, frame: Frame, address: int, row: RegisterDef | None, value: int, status: str, now: str
+    ) -> None:
+        key = (frame.slave, address)
+        last = self._seen.get(key)
+        if status == "ok":
+            if last is not None and last.value is None:
+                frame.notes.append(
+                    f"{address_name(row, address)} readable again: {last.how} in frame "
+                    f"#{last.frame}, {value} now"
+                )
+            self._seen[key] = _Seen(value, frame.number, "read")
+        elif status in ("protected", "non-existent"):
+            if last is not None and last.value is not None:
+                became = "protected" if row is not None else "non-existent or protected"
+                frame.notes.append(
+                    f"{address_name(row, address)} became {became}: {last.how} {last.value} in "
+                    f"frame #{last.frame}, {now}"
+                )
+            self._seen[key] = _Seen(None, frame.number, status)
+        # ambiguous: the value may be real or not; what was known before stays.
+
+    def _remember_writes(self, frame: Frame, registers: list[Register]) -> None:
+        seen = self._seen
+        for register in registers:
+            if register.address is not None:
+                seen[(frame.slave, register.address)] = _Seen(register.value, frame.number, "written")
+
+    # -- requests -----------------------------------------------------------------------------------------
+    def _check_request(self, frame: Frame, device: _Device) -> None:
+        profile = device.profile
+        function = frame.function
+        name = profile.function_names.get(function) or SPEC.function_name(function)
+        if profile.functions is not None and function not in profile.functions:
+            frame.warnings.append(f"{name} ({function}) is not supported by the {profile.device}")
+        elif function in profile.inner_only:
+            frame.warnings.append(
+                f"{name} ({function}) is only valid inside an encapsulated packet on the {profile.device}"
+            )
+        limits = profile.limits.get(function)
+        if limits is not None:
+            self._check_limits(frame, profile, name, limits)
+        if (
+            frame.broadcast
+            and profile.broadcast is not None
+            and function not in profile.broadcast
+            and not any(warning.endswith(_SPEC_BROADCAST_WARNING) for warning in frame.warnings)
+        ):
+            allowed = ", ".join(str(code) for code in sorted(profile.broadcast)) or "none"
+            frame.warnings.append(
+                f"{name} cannot be broadcast to the {profile.device} (broadcast functions: {allowed})"
+            )
+
+    @staticmethod
+    def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, ...]) -> None:
+        if frame.function == 23:
+            fields = frame.fields
+            if fields is None:
+                return
+            checks = [("read quantity", fields.read_quantity), ("write quantity", fields.write_quantity)]
+        else:
+            checks = [("quantity", frame.quantity)]
+        for (what, quantity), limit in zip(checks, limits):
+            if quantity is not None and quantity > limit:
+                frame.warnings.append(
+                    f"{what} {quantity} is beyond the {profile.device}'s limit of {limit} words "
+                    f"for {name}"
+                )
+
+    # -- exceptions ---------------------------------------------------------------------------------------
+    def _explain_exception(self, frame: Frame, device: _Device) -> None:
+        profile = device.profile
+        code = frame.exception_code
+        if code is None:
+            return
+        function = frame.function
+        name = profile.function_names.get(function) or SPEC.function_name(function)
+        causes = profile.exception_causes.get((function, code))
+        if causes:
+            chosen = self._pick_causes(frame.request, profile, causes)
+            frame.notes.append(
+                f"exception {code:02X} from the {profile.device} to {name}: "
+                + " or ".join(_cause_text(cause) for cause in chosen)
+            )
+        elif code in profile.exceptions:
+            frame.notes.append(f"exception {code:02X} from the {profile.device}: {profile.exceptions[code]}")
+        elif profile.exceptions:
+            known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
+            frame.notes.append(f"exception {code:02X} is not one the {profile.device} documents ({known})")
+        if code == profile.all_protected_exception and function in _READS:
+            self._all_unreadable(frame, device)
+
+    @staticmethod
+    def _pick_causes(
+        request: Frame | None, profile: Profile, causes: tuple[ExceptionCause, ...]
+    ) -> tuple[ExceptionCause, ...]:
+        if request is None:
+            return causes
+        hits = tuple(cause for cause in causes if cause.when and _holds(cause.when, request, profile))
+        if hits:
+            return hits
+        return tuple(cause for cause in causes if cause.when is None) or causes
+
+    def _all_unreadable(self, frame: Frame, device: _Device) -> None:
+        request = frame.request
+        if request is None or request.start is None or not request.quantity:
+            frame.notes.append(
+                "on a read, this exception means every parameter read is non-existent or protected"
+            )
+            return
+        rows = device.rows
+        addresses = [(request.start + index) & 0xFFFF for index in range(min(request.quantity, _READ_LIMIT))]
+        parts = [
+            f"{address_name(rows.get(address), address)} "
+            + ("non-existent" if rows.get(address) is None else "protected")
+            for address in addresses
+        ]
+        if len(parts) > _MAX_LISTED:
+            parts[_MAX_LISTED:] = [f"… (+{len(parts) - _MAX_LISTED})"]
+        frame.notes.append("every parameter of this read is non-existent or protected: " + ", ".join(parts))
+        now = f"exception {frame.exception_code:02X} now"
+        for address in addresses:
+            row = rows.get(address)
+            self._track(frame, address, row, 0, "non-existent" if row is None else "protected", now)
+
+    # -- other functions ----------------------------------------------------------------------------------
+    @staticmethod
+    def _diagnostics(frame: Frame, device: _Device) -> None:
+        profile = device.profile
+        sub = frame.subfunction
+        meaning = profile.diagnostics.get(sub)  # type: ignore[arg-type]
+        if meaning is None:
+            return
+        text = f"sub-function {sub:02X} on the {profile.device}: {meaning}"
+        fields = frame.fields
+        if frame.kind is Kind.RESPONSE and fields is not None and len(fields.data) == 2:
+            text += f"; value {int.from_bytes(fields.data, 'big')}"
+        frame.notes.append(text)
+
+    @staticmethod
+    def _objects(frame: Frame, profile: Profile, objects: list[DeviceObject]) -> None:
+        for obj in objects:
+            meaning = profile.objects.get(obj.id)
+            if meaning is None:
+                continue
+            if meaning.format == "MMmm":
+                value = obj.value
+                if len(value) == 4 and value.isdigit():
+                    obj.text = f"V{int(value[:2])}.{int(value[2:])}"
+                    continue
+                frame.notes.append(
+                    f"{obj.name} {value!r} is not in the MMmm form the {profile.device} uses"
+                )
+            obj.text = meaning.meaning
+
+
+def _holds(when: str, request: Frame, profile: Profile) -> bool:
+    fields = request.fields
+    if when == "quantity":
+        quantity = request.quantity
+        limits = profile.limits.get(request.function)
+        limit = limits[0] if limits else _READ_LIMIT
+        return quantity is not None and not 1 <= quantity <= limit
+    if when == "byte_count":
+        if fields is None or "byte_count" not in fields or "quantity" not in fields:
+            return False
+        return bool(fields.byte_count != 2 * fields.quantity)
+    return False
+
+
+def _cause_text(cause: ExceptionCause) -> str:
+    if not cause.counters:
+        return cause.error
+    counters = cause.counters
+    names = " and ".join(counters)
+    plural = "counters" if len(counters) > 1 else "counter"
+    return f"{cause.error} (increments the {names} {plural})"
