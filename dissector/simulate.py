@@ -201,7 +201,7 @@ def _sel_currents(relay: Sel749m, cycle: int, rng: random.Random) -> None:
     for offset in range(16):
         relay.values[offset] = 400 + 37 * offset + (cycle * 7 + int(rng.random() * 5)) % 13
     for offset in range(100, 108):
-        relay.values[offset] = 250 + 3 * offset + cycle % 3
+        relay.values[offset] = 250 + 3 * (offset - 100) + cycle % 3
 
 
 def session_sel749m() -> list[Record]:

@@ -13,7 +13,8 @@ Counting rules (the table headers say the same):
   answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
   request and both timed.
 - Per parameter (slave, address, and its code when a profile names it): `reads` counts the values read
-  (FC3/4/23 responses), `writes` the values a master asked to write (FC6/16/23 requests), `refused` those
+  (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent (16#8000 on
+  the ATV71: a marker, so it is not a value and not a change); `writes` the values a master asked to write (FC6/16/23 requests), `refused` those
   whose request got an exception. `last` is the latest value seen on the wire, read or confirmed written
   (FC6 echo; FC16/23 values of a request confirmed by a normal answer); `changes` counts when that value
   differs from the previous one. Registers without an address (an answer whose request is not in the
@@ -27,6 +28,7 @@ import statistics
 from dataclasses import dataclass, field
 from typing import Any
 
+from rich import box
 from rich.console import Group, RenderableType
 from rich.table import Table
 from rich.text import Text
@@ -36,6 +38,8 @@ from .spec import SPEC
 
 READ_FUNCTIONS = frozenset([3, 4, 23])
 WRITE_FUNCTIONS = frozenset([6, 16, 23])
+# Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
+UNREADABLE = frozenset(["protected", "non-existent"])
 
 
 @dataclass(slots=True)
@@ -53,6 +57,7 @@ class FunctionStats:
 class ParameterStats:
     code: str | None = None
     reads: int = 0
+    unreadable: int = 0
     writes: int = 0
     refused: int = 0
     last: int | None = None
@@ -152,7 +157,11 @@ class StatsCollector:
         if function in READ_FUNCTIONS:
             for register in frame.registers or ():
                 parameter = self._parameter(slave, register)
-                if parameter is not None:
+                if parameter is None:
+                    continue
+                if register.status in UNREADABLE:
+                    parameter.unreadable += 1  # 16#8000 stands for "no value", not a value
+                else:
                     parameter.reads += 1
                     parameter.observe(register.value)
         if function == 6:
@@ -194,6 +203,7 @@ class StatsCollector:
                 "address": address,
                 "code": stats.code,
                 "reads": stats.reads,
+                "unreadable": stats.unreadable,
                 "writes": stats.writes,
                 "refused": stats.refused,
                 "last": stats.last,
@@ -216,13 +226,20 @@ class StatsCollector:
 
     def render(self) -> RenderableType:
         report = self.report()
-        traffic = Table(title="Traffic per slave and function", title_justify="left")
-        for header in ("slave", "function", "requests", "responses", "exceptions", "unanswered", "CRC errors"):
-            traffic.add_column(header, justify="left" if header in ("function", "exceptions") else "right")
-        for header in ("min ms", "median ms", "p95 ms", "max ms"):
+        traffic = Table(
+            title="Traffic per slave and function (response times in ms)",
+            title_justify="left",
+            box=box.SIMPLE_HEAD,
+        )
+        traffic.add_column("slave", justify="right")
+        traffic.add_column("function", no_wrap=True, max_width=26, overflow="ellipsis")
+        for header in ("req", "resp"):
+            traffic.add_column(header, justify="right")
+        traffic.add_column("exceptions (code: n)", no_wrap=True)
+        for header in ("no answer", "bad CRC", "min", "median", "p95", "max"):
             traffic.add_column(header, justify="right")
         for row in report["functions"]:
-            exceptions = ", ".join(f"{count}x code {code}" for code, count in row["exceptions"].items())
+            exceptions = ", ".join(f"{code}: {count}" for code, count in row["exceptions"].items())
             times = row["response_time"]
             cells = ["", "", "", ""] if times is None else [
                 _ms(times["min"]), _ms(times["median"]), _ms(times["p95"]), _ms(times["max"])
@@ -237,8 +254,8 @@ class StatsCollector:
                 Text(str(row["crc_errors"]), style="vw3.crc.bad") if row["crc_errors"] else "0",
                 *cells,
             )
-        parameters = Table(title="Parameters", title_justify="left")
-        for header in ("slave", "address", "code", "reads", "writes", "refused", "last", "changes"):
+        parameters = Table(title="Parameters", title_justify="left", box=box.SIMPLE_HEAD)
+        for header in ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes"):
             parameters.add_column(header, justify="left" if header == "code" else "right")
         for row in report["parameters"]:
             parameters.add_row(
@@ -246,6 +263,7 @@ class StatsCollector:
                 str(row["address"]),
                 row["code"] or "",
                 str(row["reads"]),
+                str(row["unreadable"]),
                 str(row["writes"]),
                 str(row["refused"]),
                 "" if row["last"] is None else str(row["last"]),
