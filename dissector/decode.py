@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from construct import Container
 
+from .fastpath import fast_parse
 from .grammar import GrammarError, parse_pdu
 from .model import Bit, DeviceObject, Frame, Kind, Register
 from .spec import SPEC
@@ -51,21 +52,23 @@ def decode_frame(frame: Frame) -> Frame:
     frame.decoded = True
     pdu = frame.pdu
     function = frame.function
-    try:
-        fields = parse_pdu(function, frame.kind, pdu[1:])
-    except GrammarError as error:
-        frame.warnings.append(f"malformed {frame.kind}: {error}")
-        return frame
+    fields = fast_parse(function, frame.kind, pdu)
+    if fields is None:
+        try:
+            fields = parse_pdu(function, frame.kind, pdu[1:])
+        except GrammarError as error:
+            frame.warnings.append(f"malformed {frame.kind}: {error}")
+            return frame
     frame.fields = fields
     if frame.kind is Kind.EXCEPTION:
-        code = fields.exception_code
+        code = fields["exception_code"]
         if code not in SPEC.exceptions:
             frame.warnings.append(f"exception code {code} is not defined by the spec")
     else:
         handler = _HANDLERS.get((function, frame.kind))
         if handler is not None:
             handler(frame, fields)
-    trailing = fields.get("trailing") if isinstance(fields, Container) else None
+    trailing = fields.get("trailing")
     if trailing:
         frame.warnings.append(f"{len(trailing)} unexpected bytes after the data")
     if frame.broadcast and function in _NOT_BROADCAST:
@@ -85,23 +88,23 @@ def _request_fields(frame: Frame) -> Container | None:
 
 
 def _read_request(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.start, fields.quantity
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
     limit = "read_bits" if frame.function in (1, 2) else "read_registers"
-    _check_range(frame, "quantity", fields.quantity, limit)
-    _check_span(frame, fields.start, fields.quantity)
+    _check_range(frame, "quantity", fields["quantity"], limit)
+    _check_span(frame, fields["start"], fields["quantity"])
 
 
 def _read_bits_response(frame: Frame, fields: Container) -> None:
     request = _request_fields(frame)
     start = quantity = None
     if request is not None:
-        start, quantity = request.start, request.quantity
-        if fields.byte_count != _ceil_bytes(quantity):
+        start, quantity = request["start"], request["quantity"]
+        if fields["byte_count"] != _ceil_bytes(quantity):
             frame.warnings.append(
-                f"byte count {fields.byte_count} disagrees with the {quantity} bits asked"
+                f"byte count {fields['byte_count']} disagrees with the {quantity} bits asked"
             )
     frame.start, frame.quantity = start, quantity
-    frame.bits = _bits(start, fields.status, quantity)
+    frame.bits = _bits(start, fields["status"], quantity)
 
 
 def _read_registers_response(frame: Frame, fields: Container) -> None:
@@ -109,103 +112,103 @@ def _read_registers_response(frame: Frame, fields: Container) -> None:
     start = None
     if request is not None:
         if frame.function == 23:
-            start, quantity = request.read_start, request.read_quantity
+            start, quantity = request["read_start"], request["read_quantity"]
         else:
-            start, quantity = request.start, request.quantity
-        if fields.byte_count != 2 * quantity:
+            start, quantity = request["start"], request["quantity"]
+        if fields["byte_count"] != 2 * quantity:
             frame.warnings.append(
-                f"byte count {fields.byte_count} disagrees with the {quantity} registers asked"
+                f"byte count {fields['byte_count']} disagrees with the {quantity} registers asked"
             )
         frame.quantity = quantity
-    elif fields.byte_count % 2 == 0:
-        frame.quantity = fields.byte_count // 2
-    if fields.byte_count % 2:
-        frame.warnings.append(f"odd byte count {fields.byte_count} for 16-bit registers")
+    elif fields["byte_count"] % 2 == 0:
+        frame.quantity = fields["byte_count"] // 2
+    if fields["byte_count"] % 2:
+        frame.warnings.append(f"odd byte count {fields['byte_count']} for 16-bit registers")
     frame.start = start
-    frame.registers = _registers(start, list(fields["values"]))
+    frame.registers = _registers(start, fields["values"])
 
 
 def _write_single_coil(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.address, 1
-    if fields.value not in (0xFF00, 0x0000):
-        frame.warnings.append(f"coil value 0x{fields.value:04X} is neither 0xFF00 (on) nor 0x0000 (off)")
-    frame.bits = [Bit(fields.address, 1 if fields.value == 0xFF00 else 0)]
+    frame.start, frame.quantity = fields["address"], 1
+    if fields["value"] not in (0xFF00, 0x0000):
+        frame.warnings.append(f"coil value 0x{fields['value']:04X} is neither 0xFF00 (on) nor 0x0000 (off)")
+    frame.bits = [Bit(fields["address"], 1 if fields["value"] == 0xFF00 else 0)]
 
 
 def _write_single_register(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.address, 1
-    frame.registers = [Register(fields.address, fields.value)]
+    frame.start, frame.quantity = fields["address"], 1
+    frame.registers = [Register(fields["address"], fields["value"])]
 
 
 def _diagnostics(frame: Frame, fields: Container) -> None:
-    frame.subfunction = fields.subfunction
-    if fields.subfunction not in SPEC.diagnostics:
-        frame.warnings.append(f"diagnostic sub-function {fields.subfunction} is not defined by the spec")
-    if len(fields.data) % 2:
+    frame.subfunction = fields["subfunction"]
+    if fields["subfunction"] not in SPEC.diagnostics:
+        frame.warnings.append(f"diagnostic sub-function {fields['subfunction']} is not defined by the spec")
+    if len(fields["data"]) % 2:
         frame.warnings.append("diagnostic data is not a whole number of words")
 
 
 def _write_coils_request(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.start, fields.quantity
-    _check_range(frame, "quantity", fields.quantity, "write_coils")
-    _check_span(frame, fields.start, fields.quantity)
-    if fields.byte_count != _ceil_bytes(fields.quantity):
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    _check_range(frame, "quantity", fields["quantity"], "write_coils")
+    _check_span(frame, fields["start"], fields["quantity"])
+    if fields["byte_count"] != _ceil_bytes(fields["quantity"]):
         frame.warnings.append(
-            f"byte count {fields.byte_count} disagrees with the quantity {fields.quantity}"
+            f"byte count {fields['byte_count']} disagrees with the quantity {fields['quantity']}"
         )
-    frame.bits = _bits(fields.start, fields.status, fields.quantity)
+    frame.bits = _bits(fields["start"], fields["status"], fields["quantity"])
 
 
 def _write_registers_request(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.start, fields.quantity
-    _check_range(frame, "quantity", fields.quantity, "write_registers")
-    _check_span(frame, fields.start, fields.quantity)
-    if fields.byte_count != 2 * fields.quantity:
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    _check_range(frame, "quantity", fields["quantity"], "write_registers")
+    _check_span(frame, fields["start"], fields["quantity"])
+    if fields["byte_count"] != 2 * fields["quantity"]:
         frame.warnings.append(
-            f"byte count {fields.byte_count} disagrees with the quantity {fields.quantity}"
+            f"byte count {fields['byte_count']} disagrees with the quantity {fields['quantity']}"
         )
-    frame.registers = _registers(fields.start, list(fields["values"]))
+    frame.registers = _registers(fields["start"], fields["values"])
 
 
 def _write_multiple_response(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.start, fields.quantity
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
     request = _request_fields(frame)
-    if request is not None and (request.start, request.quantity) != (fields.start, fields.quantity):
+    if request is not None and (request["start"], request["quantity"]) != (fields["start"], fields["quantity"]):
         frame.warnings.append("the response's start and quantity differ from the request's")
 
 
 def _mask_write(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.address, 1
+    frame.start, frame.quantity = fields["address"], 1
 
 
 def _read_write_request(frame: Frame, fields: Container) -> None:
-    frame.start, frame.quantity = fields.read_start, fields.read_quantity
-    _check_range(frame, "read quantity", fields.read_quantity, "rw_read")
-    _check_range(frame, "write quantity", fields.write_quantity, "rw_write")
-    if fields.byte_count != 2 * fields.write_quantity:
+    frame.start, frame.quantity = fields["read_start"], fields["read_quantity"]
+    _check_range(frame, "read quantity", fields["read_quantity"], "rw_read")
+    _check_range(frame, "write quantity", fields["write_quantity"], "rw_write")
+    if fields["byte_count"] != 2 * fields["write_quantity"]:
         frame.warnings.append(
-            f"byte count {fields.byte_count} disagrees with the write quantity {fields.write_quantity}"
+            f"byte count {fields['byte_count']} disagrees with the write quantity {fields['write_quantity']}"
         )
-    frame.registers = _registers(fields.write_start, list(fields["values"]))
+    frame.registers = _registers(fields["write_start"], fields["values"])
 
 
 def _fifo_request(frame: Frame, fields: Container) -> None:
-    frame.start = fields.address
+    frame.start = fields["address"]
 
 
 def _fifo_response(frame: Frame, fields: Container) -> None:
     request = _request_fields(frame)
     if request is not None:
-        frame.start = request.address
-    frame.quantity = fields.fifo_count
-    if fields.fifo_count > _LIMITS["fifo_count"][1]:  # type: ignore[index]
-        frame.warnings.append(f"FIFO count {fields.fifo_count} above the spec's 31")
-    if fields.byte_count != 2 + 2 * fields.fifo_count:
-        frame.warnings.append(f"byte count {fields.byte_count} disagrees with the FIFO count")
+        frame.start = request["address"]
+    frame.quantity = fields["fifo_count"]
+    if fields["fifo_count"] > _LIMITS["fifo_count"][1]:  # type: ignore[index]
+        frame.warnings.append(f"FIFO count {fields['fifo_count']} above the spec's 31")
+    if fields["byte_count"] != 2 + 2 * fields["fifo_count"]:
+        frame.warnings.append(f"byte count {fields['byte_count']} disagrees with the FIFO count")
 
 
 def _mei_response(frame: Frame, fields: Container) -> None:
-    if fields.mei_type != 14:
+    if fields["mei_type"] != 14:
         return
     frame.objects = [
         DeviceObject(
@@ -213,7 +216,7 @@ def _mei_response(frame: Frame, fields: Container) -> None:
             name=SPEC.device_id_objects.get(obj.id, f"Object {obj.id}"),
             value=obj.value.decode("latin-1"),
         )
-        for obj in fields.body.objects
+        for obj in fields["body"]["objects"]
     ]
 
 

@@ -75,7 +75,7 @@ def _scan(buf: bytes | bytearray, i: int, n: int, minimum: int = MIN_ADU) -> int
     end = min(n - i, MAX_ADU)
     for length in range(minimum, end + 1):
         stop = i + length - 2
-        if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+        if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
             return length
     return NEED if n - i < MAX_ADU else NONE
 
@@ -147,8 +147,37 @@ for _code in OTHER_FUNCTIONS:
     RULES.setdefault(_code, (_scan_any, _scan_any))
 
 KNOWN_FUNCTIONS = frozenset(RULES)
-# Echo-style functions: request and response have one layout, only the context tells them apart.
-ECHO_FUNCTIONS = frozenset([5, 6, 8, 21, 22])
+
+# Interpretations to try at a frame start, in order: the expected direction first.
+_REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+_RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+for _code, (_request_rule, _response_rule) in RULES.items():
+    _REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
+    _RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
+    _REQUEST_FIRST[_code | 0x80] = _RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _fixed(5)),)
+
+# The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
+_FIXED_LENGTHS = {8: (1, 2, 3, 4, 5, 6), 4: (7, 11, 12, 17), 10: (22,), 6: (24,)}
+
+
+def _first_choice(table: dict[int, tuple[tuple[Kind, LengthRule], ...]]) -> dict[int, tuple[Kind, int, LengthRule]]:
+    fixed_requests = {code: length for length, codes in _FIXED_LENGTHS.items() for code in codes}
+    fixed_responses = {5: 8, 6: 8, 7: 5, 11: 8, 15: 8, 16: 8, 22: 10}
+    first = {}
+    for code, choices in table.items():
+        kind, rule = choices[0]
+        if kind is Kind.EXCEPTION:
+            fixed = 5
+        elif kind is Kind.REQUEST:
+            fixed = fixed_requests.get(code, 0)
+        else:
+            fixed = fixed_responses.get(code, 0)
+        first[code] = (kind, fixed, rule)
+    return first
+
+
+_REQUEST_FIRST_FAST = _first_choice(_REQUEST_FIRST)
+_RESPONSE_FIRST_FAST = _first_choice(_RESPONSE_FIRST)
 
 
 class RtuFramer:
@@ -165,10 +194,13 @@ class RtuFramer:
         self._noise_reason = ""
         self._noise_time: float | None = None
         self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+        self._timed = False
 
     # -- public interface -------------------------------------------------------------------
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
+            if chunk.time is not None:
+                self._timed = True
             self._times.append((self._base + len(self._buf), chunk.time))
             self._buf += chunk.data
         return self._run(final=False)
@@ -180,6 +212,8 @@ class RtuFramer:
 
     # -- internals ---------------------------------------------------------------------------
     def _time_at(self, offset: int) -> float | None:
+        if not self._timed:
+            return None
         times = self._times
         # Chunks are few per frame: walk back from the newest.
         for index in range(len(times) - 1, -1, -1):
@@ -187,18 +221,10 @@ class RtuFramer:
                 return times[index][1]
         return None
 
-    def _interpretations(self, slave: int, function: int) -> list[tuple[Kind, LengthRule]]:
-        if function & 0x80:
-            if (function & 0x7F) in KNOWN_FUNCTIONS:
-                return [(Kind.EXCEPTION, _fixed(5))]
-            return []
-        rules = RULES.get(function)
-        if rules is None:
-            return []
-        request, response = rules
+    def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
         if self._expect == (slave, function):
-            return [(Kind.RESPONSE, response), (Kind.REQUEST, request)]
-        return [(Kind.REQUEST, request), (Kind.RESPONSE, response)]
+            return _RESPONSE_FIRST.get(function, ())
+        return _REQUEST_FIRST.get(function, ())
 
     def _valid_frame_at(self, buf: bytearray, i: int, n: int, final: bool) -> bool | None:
         """Does an intact frame start at i? None when more bytes are needed to know."""
@@ -218,7 +244,7 @@ class RtuFramer:
                     continue
                 return None
             stop = i + length - 2
-            if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+            if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
                 return True
         return False
 
@@ -242,7 +268,7 @@ class RtuFramer:
                     continue
                 return NEED
             stop = i + length - 2
-            if crc16(bytes(buf[i:stop])) == buf[stop] | buf[stop + 1] << 8:
+            if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
                 return (kind, length, True)
             lengths.append((kind, length))
         # No layout checks out: a damaged frame is shown once if it ends where an intact one begins.
@@ -264,6 +290,41 @@ class RtuFramer:
                 self._add_noise(buf, i, n - i, "too short for a frame", items)
                 i = n
                 break
+            # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
+            slave = buf[i]
+            function = buf[i + 1]
+            first = (
+                _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
+            ).get(function)
+            if first is not None and slave <= MAX_SLAVE:
+                kind, length, rule = first
+                if not length:
+                    length = rule(buf, i, n)
+                if MIN_ADU <= length <= MAX_ADU and i + length <= n:
+                    stop = i + length - 2
+                    crc = buf[stop] | buf[stop + 1] << 8
+                    if crc16(buf[i:stop]) == crc:
+                        if self._noise:
+                            self._flush_noise(items)
+                        offset = self._base + i
+                        items.append(
+                            Frame(
+                                offset,
+                                bytes(buf[i : i + length]),
+                                self._time_at(offset) if self._timed else None,
+                                kind,
+                                slave,
+                                function & 0x7F,
+                                crc,
+                                crc,
+                            )
+                        )
+                        if kind is Kind.REQUEST:
+                            self._expect = (slave, function) if slave else None
+                        else:
+                            self._expect = None
+                        i += length
+                        continue
             match = self._match(buf, i, n, final)
             if match == NEED:
                 break

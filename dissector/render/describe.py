@@ -26,7 +26,10 @@ def span_text(frame: Frame) -> str:
 
 
 def _label_for(frame: Frame, address: int) -> str:
-    for register in frame.registers or ():
+    registers = frame.registers
+    if not registers or registers[0].label is None:
+        return str(address)
+    for register in registers:
         if register.address == address and register.label:
             return register.label
     return str(address)
@@ -37,10 +40,15 @@ def register_text(register: Register, index: int = 0) -> str:
 
     A response whose request is not in the capture has no addresses: its values show as `?+index`.
     """
+    code = register.code
+    if code is None and register.status is None and register.text is None and register.label is None:
+        if register.address is None:
+            return f"?+{index}={register.value}"
+        return f"{register.address}={register.value}"
     if register.address is None:
         name = f"?+{index}"
     else:
-        name = register.code or address_text(register.address, register.label)
+        name = code or address_text(register.address, register.label)
     status = register.status
     if status is not None and status not in ("ok",):
         if status == "ambiguous":

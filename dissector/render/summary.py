@@ -25,6 +25,15 @@ def crc_text(frame: Frame) -> str:
 
 def tail_text(frame: Frame) -> str:
     """Pairing and findings appended to the info column."""
+    request = frame.request
+    if (
+        request is not None
+        and frame.time is None
+        and not frame.notes
+        and not frame.warnings
+        and not frame.unanswered
+    ):
+        return f"[#{request.number}]"  # the common case, kept cheap
     parts = []
     if frame.request is not None:
         rt = frame.response_time
