@@ -96,12 +96,75 @@ def plugin_data() -> dict[str, Any]:
 
 
 def _profile_data() -> dict[str, Any]:
-    """Device profiles and register maps, when the profiles module exists (see dissector.luaprofiles)."""
-    try:
-        from .luaprofiles import profile_tables
-    except ImportError:
-        return {"profiles": {}, "default_profile": None}
-    return profile_tables()
+    """Built-in device profiles with their register maps, as the Python annotator loads them."""
+    from .profiles import BUILTIN_PROFILES, DEFAULT_PROFILE, load_profile, load_profile_map
+
+    profiles = {}
+    for name in BUILTIN_PROFILES:
+        profile = load_profile(name)
+        profiles[profile.name] = _profile_table(profile, load_profile_map(profile))
+    return {"profiles": profiles, "default_profile": DEFAULT_PROFILE}
+
+
+def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
+    causes = {
+        function * 256 + code: [
+            {"error": cause.error, "counters": list(cause.counters), "when": cause.when} for cause in entries
+        ]
+        for (function, code), entries in sorted(profile.exception_causes.items())
+    }
+    return {
+        "name": profile.name,
+        "title": profile.title,
+        "device": profile.device,
+        "address_style": profile.address_style,
+        "functions": profile.functions,
+        "inner_only": profile.inner_only,
+        "broadcast": profile.broadcast,
+        "broadcast_list": None if profile.broadcast is None else sorted(profile.broadcast),
+        "protected_value": profile.protected_value,
+        "all_protected_exception": profile.all_protected_exception,
+        "limits": {code: list(values) for code, values in sorted(profile.limits.items())},
+        "exceptions": dict(sorted(profile.exceptions.items())),
+        "exception_list": sorted(profile.exceptions),
+        "exception_causes": causes,
+        "diagnostics": dict(sorted(profile.diagnostics.items())),
+        "objects": {
+            key: {"meaning": meaning.meaning, "format": meaning.format}
+            for key, meaning in sorted(profile.objects.items())
+        },
+        "function_names": dict(sorted(profile.function_names.items())),
+        "plc_base": dict(sorted(profile.plc_base.items())),
+        "plc_base_default": profile.plc_base_default,
+        "bits_depend": [
+            {
+                "registers": sorted(rule.registers),
+                "on": rule.on,
+                "plain_when": rule.plain_when,
+                "reason": rule.reason,
+            }
+            for rule in profile.bits_depend
+        ],
+        "map": {address: _row_table(row) for address, row in sorted(rows.items())},
+    }
+
+
+def _row_table(row: Any) -> dict[str, Any]:
+    out: dict[str, Any] = {"code": row.code}
+    for key in ("name", "unit", "scale", "source"):
+        if getattr(row, key) is not None:
+            out[key] = getattr(row, key)
+    if row.enum:
+        out["enum"] = dict(sorted(row.enum.items()))
+    if row.bits:
+        out["bits"] = dict(sorted(row.bits.items()))
+    if row.signed:
+        out["signed"] = True
+    if row.decimals:
+        out["decimals"] = row.decimals
+    if row.ambiguous_8000:
+        out["ambiguous_8000"] = True
+    return out
 
 
 def render_block() -> str:

@@ -136,8 +136,710 @@ local DATA = {
     [24] = true,
     [43] = true,
   },
-  ["profiles"] = {},
-  ["default_profile"] = nil,
+  ["profiles"] = {
+    ["atv71"] = {
+      ["name"] = "atv71",
+      ["title"] = "Altivar 71 (VW3 A3 303 Modbus card)",
+      ["device"] = "VW3 A3 303",
+      ["address_style"] = "protocol",
+      ["functions"] = {
+        [3] = true,
+        [4] = true,
+        [6] = true,
+        [8] = true,
+        [11] = true,
+        [16] = true,
+        [23] = true,
+        [43] = true,
+      },
+      ["inner_only"] = {},
+      ["broadcast"] = {
+        [6] = true,
+        [16] = true,
+      },
+      ["broadcast_list"] = { 6, 16 },
+      ["protected_value"] = 32768,
+      ["all_protected_exception"] = 2,
+      ["limits"] = {
+        [3] = { 63 },
+        [4] = { 63 },
+        [16] = { 61 },
+        [23] = { 20, 20 },
+      },
+      ["exceptions"] = {
+        [1] = "function not recognized",
+        [2] = "address does not exist (also: every parameter read is non-existent or protected)",
+        [3] = "value not permitted",
+        [4] = "execution started but could not be completed",
+        [6] = "write refused: the drive is in Forced local mode",
+        [7] = "write refused: the motor is running (configuration parameter)",
+      },
+      ["exception_list"] = { 1, 2, 3, 4, 6, 7 },
+      ["exception_causes"] = {},
+      ["diagnostics"] = {
+        [15] = "broadcast messages received (the spec's 0F counts requests not answered)",
+      },
+      ["objects"] = {
+        [0] = {
+          ["meaning"] = "manufacturer name",
+          ["format"] = nil,
+        },
+        [1] = {
+          ["meaning"] = "device catalog number",
+          ["format"] = nil,
+        },
+        [2] = {
+          ["meaning"] = "device version",
+          ["format"] = "MMmm",
+        },
+        [6] = {
+          ["meaning"] = "device name ([DEVICE NAME], 7.1 USER PARAMETERS, up to 16 bytes)",
+          ["format"] = nil,
+        },
+      },
+      ["function_names"] = {},
+      ["plc_base"] = {},
+      ["plc_base_default"] = 40001,
+      ["bits_depend"] = {
+        {
+          ["registers"] = { 8501 },
+          ["on"] = 8401,
+          ["plain_when"] = {
+            [3] = true,
+          },
+          ["reason"] = "CHCF = 3 (I/O profile): CMD bits are assigned by configuration",
+        },
+      },
+      ["map"] = {
+        [3015] = {
+          ["code"] = "BFR",
+          ["name"] = "Standard motor frequency",
+          ["source"] = "F",
+        },
+        [3102] = {
+          ["code"] = "SFR",
+          ["name"] = "Switching frequency",
+          ["unit"] = "kHz",
+          ["scale"] = 0.1,
+          ["source"] = "A",
+          ["decimals"] = 1,
+        },
+        [3103] = {
+          ["code"] = "TFR",
+          ["name"] = "Maximum output frequency",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "A",
+          ["decimals"] = 1,
+        },
+        [3104] = {
+          ["code"] = "HSP",
+          ["name"] = "High speed",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "A",
+          ["decimals"] = 1,
+        },
+        [3105] = {
+          ["code"] = "LSP",
+          ["name"] = "Low speed",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "A",
+          ["decimals"] = 1,
+        },
+        [3201] = {
+          ["code"] = "ETA",
+          ["name"] = "Status word",
+          ["source"] = "AC",
+          ["bits"] = {
+            [0] = "Ready to switch on",
+            [1] = "Switched on",
+            [2] = "Operation enabled",
+            [3] = "Fault",
+            [4] = "Voltage enabled",
+            [5] = "Quick stop inactive",
+            [6] = "Switch on disabled",
+            [7] = "Warning",
+            [9] = "Remote",
+            [10] = "Target reached",
+            [11] = "Internal limit active",
+            [14] = "Stop via STOP key",
+            [15] = "Direction of rotation",
+          },
+          ["ambiguous_8000"] = true,
+        },
+        [3202] = {
+          ["code"] = "RFR",
+          ["name"] = "Output frequency",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [3203] = {
+          ["code"] = "FRH",
+          ["name"] = "Frequency reference before ramp",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [3204] = {
+          ["code"] = "LCR",
+          ["name"] = "Motor current",
+          ["unit"] = "A",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [3205] = {
+          ["code"] = "OTR",
+          ["name"] = "Motor torque",
+          ["unit"] = "%",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [3206] = {
+          ["code"] = "ETI",
+          ["name"] = "Extended status word",
+          ["source"] = "F",
+        },
+        [3207] = {
+          ["code"] = "ULN",
+          ["name"] = "Mains voltage",
+          ["unit"] = "V",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [3208] = {
+          ["code"] = "UOP",
+          ["name"] = "Motor voltage",
+          ["unit"] = "V",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [3209] = {
+          ["code"] = "THD",
+          ["name"] = "Drive thermal state",
+          ["unit"] = "%",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [3211] = {
+          ["code"] = "OPR",
+          ["name"] = "Motor power",
+          ["unit"] = "%",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [6001] = {
+          ["code"] = "ADD",
+          ["name"] = "Modbus address (drive port)",
+          ["source"] = "F",
+        },
+        [6003] = {
+          ["code"] = "TBR",
+          ["name"] = "Modbus baud rate",
+          ["source"] = "F",
+          ["enum"] = {
+            [24] = "4800",
+            [28] = "9600",
+            [32] = "19200",
+            [36] = "38400",
+          },
+        },
+        [6004] = {
+          ["code"] = "TFO",
+          ["name"] = "Modbus format",
+          ["source"] = "F",
+          ["enum"] = {
+            [2] = "8O1",
+            [3] = "8E1",
+            [4] = "8N1",
+            [5] = "8N2",
+          },
+        },
+        [6005] = {
+          ["code"] = "TTO",
+          ["name"] = "Modbus time-out",
+          ["unit"] = "s",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [7121] = {
+          ["code"] = "LFT",
+          ["name"] = "Last fault",
+          ["source"] = "F",
+          ["enum"] = {
+            [0] = "nOF",
+            [1] = "InF",
+            [2] = "EEF",
+            [3] = "CFF",
+            [4] = "CFI",
+            [5] = "SLF1",
+            [6] = "ILF",
+            [7] = "CnF",
+            [8] = "EPF1",
+            [9] = "OCF",
+            [10] = "CrF",
+            [11] = "SPF",
+            [12] = "AnF",
+            [13] = "LFF2",
+            [14] = "PtF1",
+            [15] = "OtF1",
+            [16] = "OHF",
+            [17] = "OLF",
+            [18] = "ObF",
+            [19] = "OSF",
+            [20] = "OPF1",
+            [21] = "PHF",
+            [22] = "USF",
+            [23] = "SCF1",
+            [24] = "SOF",
+            [25] = "tnF",
+            [26] = "InF1",
+            [27] = "InF2",
+            [28] = "InF3",
+            [29] = "InF4",
+            [30] = "EEF2",
+            [31] = "SCF2",
+            [32] = "SCF3",
+            [33] = "OPF2",
+            [34] = "COF",
+            [35] = "bLF",
+            [37] = "InF7",
+            [38] = "EPF2",
+            [39] = "APF",
+            [40] = "InF8",
+            [41] = "brF",
+            [42] = "SLF2",
+            [43] = "ECF",
+            [44] = "SSF",
+            [45] = "SLF3",
+            [46] = "PrF",
+            [47] = "PtF2",
+            [48] = "OtF2",
+            [49] = "PtFL",
+            [50] = "OtFL",
+            [51] = "InF9",
+            [52] = "InFA",
+            [53] = "InFb",
+            [54] = "tJF",
+            [55] = "SCF4",
+            [56] = "SCF5",
+            [57] = "SrF",
+            [58] = "FCF1",
+            [59] = "FCF2",
+            [60] = "InFC",
+            [61] = "AI2F",
+            [62] = "EnF",
+            [63] = "CrF2",
+            [64] = "LCF",
+            [65] = "bUF",
+            [66] = "dCF",
+            [67] = "HdF",
+            [68] = "InF6",
+            [69] = "InFE",
+            [70] = "bOF",
+            [71] = "LFF3",
+            [72] = "LFF4",
+            [73] = "HCF",
+            [76] = "dLF",
+            [99] = "CSF",
+          },
+        },
+        [8401] = {
+          ["code"] = "CHCF",
+          ["name"] = "Profile",
+          ["source"] = "S",
+          ["enum"] = {
+            [1] = "SIM (combined)",
+            [2] = "SEP (separate)",
+            [3] = "IO (I/O profile)",
+          },
+        },
+        [8402] = {
+          ["code"] = "COP",
+          ["name"] = "Copy channel 1 <> 2",
+          ["source"] = "S",
+          ["enum"] = {
+            [0] = "nO (no copy)",
+            [1] = "SP (reference)",
+            [2] = "Cd (command)",
+            [3] = "ALL (command and reference)",
+          },
+        },
+        [8413] = {
+          ["code"] = "FR1",
+          ["name"] = "Ref.1 channel",
+          ["source"] = "F",
+          ["enum"] = {
+            [0] = "nO",
+            [1] = "AI1",
+            [2] = "AI2",
+            [3] = "AI3",
+            [4] = "AI4",
+            [163] = "LCC",
+            [164] = "Mdb",
+            [167] = "CAn",
+            [169] = "nEt",
+            [181] = "PI",
+            [182] = "PG",
+          },
+        },
+        [8423] = {
+          ["code"] = "CD1",
+          ["name"] = "Cmd channel 1",
+          ["source"] = "F",
+          ["enum"] = {
+            [1] = "tEr",
+            [3] = "LCC",
+            [10] = "Mdb",
+            [20] = "CAn",
+            [30] = "nEt",
+          },
+        },
+        [8501] = {
+          ["code"] = "CMD",
+          ["name"] = "Control word",
+          ["source"] = "AC",
+          ["bits"] = {
+            [0] = "Switch on",
+            [1] = "Enable voltage",
+            [2] = "No quick stop",
+            [3] = "Enable operation",
+            [7] = "Fault reset",
+            [8] = "Halt",
+            [11] = "Direction of rotation (default assignment)",
+            [12] = "Assignable bit 12",
+            [13] = "Assignable bit 13",
+            [14] = "Assignable bit 14",
+            [15] = "Assignable bit 15",
+          },
+          ["ambiguous_8000"] = true,
+        },
+        [8502] = {
+          ["code"] = "LFR",
+          ["name"] = "Frequency reference",
+          ["unit"] = "Hz",
+          ["scale"] = 0.1,
+          ["source"] = "F",
+          ["decimals"] = 1,
+        },
+        [8503] = {
+          ["code"] = "PISP",
+          ["name"] = "PID setpoint",
+          ["source"] = "F",
+        },
+        [8504] = {
+          ["code"] = "CMI",
+          ["name"] = "Extended control word",
+          ["source"] = "F",
+        },
+        [8602] = {
+          ["code"] = "LFRD",
+          ["name"] = "Speed reference",
+          ["unit"] = "rpm",
+          ["scale"] = 1.0,
+          ["source"] = "A",
+        },
+        [8603] = {
+          ["code"] = "ETAD",
+          ["name"] = "DRIVECOM status word",
+          ["source"] = "FC",
+          ["bits"] = {
+            [0] = "Ready to switch on",
+            [1] = "Switched on",
+            [2] = "Operation enabled",
+            [3] = "Fault",
+            [4] = "Voltage enabled",
+            [5] = "Quick stop inactive",
+            [6] = "Switch on disabled",
+            [7] = "Warning",
+            [9] = "Remote",
+            [10] = "Target reached",
+            [11] = "Internal limit active",
+            [14] = "Stop via STOP key",
+            [15] = "Direction of rotation",
+          },
+          ["ambiguous_8000"] = true,
+        },
+        [8604] = {
+          ["code"] = "RFRD",
+          ["name"] = "Output speed",
+          ["unit"] = "rpm",
+          ["scale"] = 1.0,
+          ["source"] = "A",
+        },
+        [8605] = {
+          ["code"] = "FRHD",
+          ["name"] = "Speed reference before ramp",
+          ["unit"] = "rpm",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [8606] = {
+          ["code"] = "ERRD",
+          ["name"] = "CiA402 fault code",
+          ["source"] = "F",
+        },
+        [9001] = {
+          ["code"] = "ACC",
+          ["name"] = "Acceleration",
+          ["unit"] = "s",
+          ["source"] = "A",
+        },
+        [9002] = {
+          ["code"] = "DEC",
+          ["name"] = "Deceleration",
+          ["unit"] = "s",
+          ["source"] = "A",
+        },
+        [9630] = {
+          ["code"] = "THR",
+          ["name"] = "Motor thermal state",
+          ["unit"] = "%",
+          ["scale"] = 1.0,
+          ["source"] = "F",
+        },
+        [12741] = {
+          ["code"] = "NM1",
+          ["name"] = "Com scanner input 1 value (default ETA)",
+          ["source"] = "A",
+        },
+        [12742] = {
+          ["code"] = "NM2",
+          ["name"] = "Com scanner input 2 value (default RFRD)",
+          ["source"] = "A",
+        },
+        [12743] = {
+          ["code"] = "NM3",
+          ["name"] = "Com scanner input 3 value",
+          ["source"] = "A",
+        },
+        [12744] = {
+          ["code"] = "NM4",
+          ["name"] = "Com scanner input 4 value",
+          ["source"] = "A",
+        },
+        [12745] = {
+          ["code"] = "NM5",
+          ["name"] = "Com scanner input 5 value",
+          ["source"] = "A",
+        },
+        [12746] = {
+          ["code"] = "NM6",
+          ["name"] = "Com scanner input 6 value",
+          ["source"] = "A",
+        },
+        [12747] = {
+          ["code"] = "NM7",
+          ["name"] = "Com scanner input 7 value",
+          ["source"] = "A",
+        },
+        [12748] = {
+          ["code"] = "NM8",
+          ["name"] = "Com scanner input 8 value",
+          ["source"] = "A",
+        },
+        [12761] = {
+          ["code"] = "NC1",
+          ["name"] = "Com scanner output 1 value (default CMD)",
+          ["source"] = "A",
+        },
+        [12762] = {
+          ["code"] = "NC2",
+          ["name"] = "Com scanner output 2 value (default LFRD)",
+          ["source"] = "A",
+        },
+        [12763] = {
+          ["code"] = "NC3",
+          ["name"] = "Com scanner output 3 value",
+          ["source"] = "A",
+        },
+        [12764] = {
+          ["code"] = "NC4",
+          ["name"] = "Com scanner output 4 value",
+          ["source"] = "A",
+        },
+        [12765] = {
+          ["code"] = "NC5",
+          ["name"] = "Com scanner output 5 value",
+          ["source"] = "A",
+        },
+        [12766] = {
+          ["code"] = "NC6",
+          ["name"] = "Com scanner output 6 value",
+          ["source"] = "A",
+        },
+        [12767] = {
+          ["code"] = "NC7",
+          ["name"] = "Com scanner output 7 value",
+          ["source"] = "A",
+        },
+        [12768] = {
+          ["code"] = "NC8",
+          ["name"] = "Com scanner output 8 value",
+          ["source"] = "A",
+        },
+      },
+    },
+    ["sel749m"] = {
+      ["name"] = "sel749m",
+      ["title"] = "SEL-749M motor protection relay",
+      ["device"] = "SEL-749M",
+      ["address_style"] = "plc",
+      ["functions"] = {
+        [3] = true,
+        [4] = true,
+        [6] = true,
+        [16] = true,
+        [96] = true,
+        [97] = true,
+        [98] = true,
+        [125] = true,
+        [126] = true,
+      },
+      ["inner_only"] = {
+        [126] = true,
+      },
+      ["broadcast"] = nil,
+      ["broadcast_list"] = nil,
+      ["protected_value"] = nil,
+      ["all_protected_exception"] = nil,
+      ["limits"] = {
+        [3] = { 125 },
+        [4] = { 125 },
+        [16] = { 100 },
+      },
+      ["exceptions"] = {
+        [1] = "Illegal Function Code",
+        [2] = "Illegal Data Address",
+        [3] = "Illegal Data Value",
+      },
+      ["exception_list"] = { 1, 2, 3 },
+      ["exception_causes"] = {
+        [770] = {
+          {
+            ["error"] = "illegal register to read",
+            ["counters"] = { "Invalid Address" },
+            ["when"] = nil,
+          },
+        },
+        [771] = {
+          {
+            ["error"] = "illegal number of registers to read",
+            ["counters"] = { "Illegal Register" },
+            ["when"] = "quantity",
+          },
+          {
+            ["error"] = "format error",
+            ["counters"] = { "Bad Packet Format" },
+            ["when"] = nil,
+          },
+        },
+        [1026] = {
+          {
+            ["error"] = "illegal register to read",
+            ["counters"] = { "Invalid Address" },
+            ["when"] = nil,
+          },
+        },
+        [1027] = {
+          {
+            ["error"] = "illegal number of registers to read",
+            ["counters"] = { "Illegal Register" },
+            ["when"] = "quantity",
+          },
+          {
+            ["error"] = "format error",
+            ["counters"] = { "Bad Packet Format" },
+            ["when"] = nil,
+          },
+        },
+        [1538] = {
+          {
+            ["error"] = "illegal register address",
+            ["counters"] = { "Invalid Address", "Illegal Write" },
+            ["when"] = nil,
+          },
+        },
+        [1539] = {
+          {
+            ["error"] = "illegal value",
+            ["counters"] = { "Illegal Write" },
+            ["when"] = nil,
+          },
+        },
+        [4098] = {
+          {
+            ["error"] = "illegal register to set",
+            ["counters"] = { "Invalid Address", "Illegal Write" },
+            ["when"] = nil,
+          },
+        },
+        [4099] = {
+          {
+            ["error"] = "illegal number of registers",
+            ["counters"] = { "Illegal Register", "Illegal Write" },
+            ["when"] = "quantity",
+          },
+          {
+            ["error"] = "wrong byte count",
+            ["counters"] = { "Bad Packet Format", "Illegal Write" },
+            ["when"] = "byte_count",
+          },
+          {
+            ["error"] = "invalid data value",
+            ["counters"] = { "Illegal Write" },
+            ["when"] = nil,
+          },
+        },
+      },
+      ["diagnostics"] = {},
+      ["objects"] = {},
+      ["function_names"] = {
+        [96] = "Read Parameter Information",
+        [97] = "Read Parameter Text",
+        [98] = "Read Enumeration Text",
+        [125] = "Encapsulated Packet With Control",
+        [126] = "NOP",
+      },
+      ["plc_base"] = {},
+      ["plc_base_default"] = 40001,
+      ["bits_depend"] = {},
+      ["map"] = {},
+    },
+    ["generic"] = {
+      ["name"] = "generic",
+      ["title"] = "Generic Modbus device (spec semantics only)",
+      ["device"] = "device",
+      ["address_style"] = "protocol",
+      ["functions"] = nil,
+      ["inner_only"] = {},
+      ["broadcast"] = nil,
+      ["broadcast_list"] = nil,
+      ["protected_value"] = nil,
+      ["all_protected_exception"] = nil,
+      ["limits"] = {},
+      ["exceptions"] = {},
+      ["exception_list"] = {},
+      ["exception_causes"] = {},
+      ["diagnostics"] = {},
+      ["objects"] = {},
+      ["function_names"] = {},
+      ["plc_base"] = {
+        [4] = 30001,
+      },
+      ["plc_base_default"] = 40001,
+      ["bits_depend"] = {},
+      ["map"] = {},
+    },
+  },
+  ["default_profile"] = "atv71",
 }
 -- END GENERATED DATA
 
@@ -853,15 +1555,424 @@ local function pair(st, f)
   end
 end
 
+local annotate -- defined with the device profiles below
+
 -- ---------------------------------------------------------------------------------------------------
--- Device profiles and register maps (profile_annotator.py): names, scaling, 16#8000 semantics.
-local annotate = function(st, f) end -- replaced below when profile data are present
+-- Device profiles and register maps (profiles.py, maps.py, profile_annotator.py): names, scaling, the
+-- 16#8000 semantics, exception explanations, device limits. Profile data come from the generated block.
+local PROFILES = DATA.profiles or {}
+local READS = { [3] = true, [4] = true, [23] = true }
+local MAX_LISTED = 8
+local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
+local SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
+local ELLIPSIS = "\226\128\166"
+
+-- The choices the preferences make: default profile, profile per slave, address style override.
+local config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {} }
+
+local function parse_profile_choice(text)
+  local default, per_slave, errors = DATA.default_profile, {}, {}
+  for part in string.gmatch(text or "", "[^,;%s]+") do
+    local slave, name = string.match(part, "^(%d+)=(.+)$")
+    if slave ~= nil then
+      slave = tonumber(slave)
+      if PROFILES[name] == nil then
+        errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
+      elseif slave > 247 then
+        errors[#errors + 1] = format("slave %d is outside 0..247", slave)
+      else
+        per_slave[slave] = name
+      end
+    elseif PROFILES[part] ~= nil then
+      default = part
+    else
+      errors[#errors + 1] = format("%q is neither a built-in profile nor SLAVE=PROFILE", part)
+    end
+  end
+  return default, per_slave, errors
+end
+
+local function ends_with(text, tail) return tail == "" or text:sub(-#tail) == tail end
+
+local function plc_label(base, address)
+  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
+  local digits = #format("%d", base)
+  local power = 1
+  for _ = 2, digits do power = power * 10 end
+  local top = (floor(base / power) + 1) * power - 1
+  local number = base + address
+  if number > top then number = base * 10 - 9 + address end
+  return format("%d", number)
+end
+
+local function address_name(row, address)
+  if row ~= nil then return format("%s (%d)", row.code, address) end
+  return format("%d", address)
+end
+
+local function sorted_keys(set)
+  local keys = {}
+  for key in pairs(set) do keys[#keys + 1] = key end
+  table.sort(keys)
+  return keys
+end
+
+local function device_for(st, slave)
+  local device = st.devices[slave]
+  if device ~= nil then return device end
+  local profile = PROFILES[config.per_slave[slave] or config.default]
+  if profile == nil then
+    st.devices[slave] = false
+    return false
+  end
+  local rows = profile.map or {}
+  local depend, plain = {}, {}
+  for _, rule in ipairs(profile.bits_depend or {}) do
+    for _, address in ipairs(rule.registers) do
+      local row = rows[address]
+      if row ~= nil then
+        depend[address] = rule
+        local copy = {}
+        for key, value in pairs(row) do copy[key] = value end
+        copy.bits = nil
+        plain[address] = copy
+      end
+    end
+  end
+  local style = config.style or profile.address_style
+  device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default }
+  if style == "plc" then device.plc = profile.plc_base or {} end
+  st.devices[slave] = device
+  return device
+end
+
+local function note(f, text) f.notes[#f.notes + 1] = text end
+
+local function has_note(f, text)
+  for _, existing in ipairs(f.notes) do
+    if existing == text then return true end
+  end
+  return false
+end
+
+-- maps.interpret: the scaled value and its display text.
+local function interpret(row, value)
+  local raw_value = value
+  if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
+  if row.enum then
+    local label = row.enum[value]
+    if label ~= nil then return nil, label end
+    return nil, format("%d (not a listed value)", value)
+  end
+  if row.bits then
+    local names = {}
+    for bit_ = 0, 15 do
+      if floor(value / 2 ^ bit_) % 2 == 1 then names[#names + 1] = row.bits[bit_] or format("bit %d", bit_) end
+    end
+    if #names == 0 then return nil, "no bit set" end
+    return nil, concat(names, ", ")
+  end
+  if row.scale == nil then
+    if row.signed then return raw_value, format("%d", raw_value) end
+    return nil, nil
+  end
+  local decimals = row.decimals or 0
+  local text = format("%." .. decimals .. "f", raw_value * row.scale)
+  local scaled = tonumber(text)
+  if decimals == 0 then scaled = floor(scaled + 0.5) end
+  if row.unit ~= nil then return scaled, text .. " " .. row.unit end
+  return scaled, text
+end
+
+local function track(st, f, address, row, value, status, now)
+  local key = f.slave * 65536 + address
+  local last = st.seen[key]
+  if status == "ok" then
+    if last ~= nil and last.value == nil then
+      note(f, format("%s readable again: %s in frame #%d, %d now", address_name(row, address), last.how, last.frame, value))
+    end
+    st.seen[key] = { value = value, frame = f.number, how = "read" }
+  elseif status == "protected" or status == "non-existent" then
+    if last ~= nil and last.value ~= nil then
+      local became = "non-existent or protected"
+      if row ~= nil then became = "protected" end
+      note(f, format("%s became %s: %s %d in frame #%d, %s", address_name(row, address), became, last.how,
+        last.value, last.frame, now))
+    end
+    st.seen[key] = { value = nil, frame = f.number, how = status }
+  end
+end
+
+local function remember_writes(st, f, registers)
+  for _, reg in ipairs(registers) do
+    if reg.address ~= nil then
+      st.seen[f.slave * 65536 + reg.address] = { value = reg.value, frame = f.number, how = "written" }
+    end
+  end
+end
+
+local function annotate_registers(st, f, device, registers, read)
+  local rows, depend = device.rows, device.depend
+  local base = nil
+  if device.plc ~= nil then base = device.plc[f.fn] or device.plc_default end
+  local protected = nil
+  if read then protected = device.profile.protected_value end
+  local multi = #registers > 1
+  for _, reg in ipairs(registers) do
+    local address = reg.address
+    if address ~= nil then
+      if base ~= nil then reg.label = plc_label(base, address) end
+      local row = rows[address]
+      local value = reg.value
+      if row ~= nil then
+        local used = row
+        local rule = depend[address]
+        if rule ~= nil then
+          local last = st.seen[f.slave * 65536 + rule.on]
+          if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
+            used = device.plain[address]
+            if not has_note(f, rule.reason) then note(f, rule.reason) end
+          end
+        end
+        reg.code, reg.name, reg.unit, reg.source = row.code, row.name, row.unit, row.source
+        reg.scaled, reg.text = interpret(used, value)
+      end
+      if protected ~= nil then
+        local status = "ok"
+        if value == protected and multi then
+          if row == nil then
+            status = "non-existent"
+            reg.text = "16#8000: non-existent (address not in the map)"
+          elseif row.ambiguous_8000 then
+            status = "ambiguous"
+          else
+            status = "protected"
+            reg.scaled = nil
+            reg.text = "16#8000: protected"
+          end
+        end
+        reg.status = status
+        track(st, f, address, row, value, status, "16#8000 now")
+      end
+    end
+  end
+end
+
+local function profile_function_name(profile, code)
+  return (profile.function_names or {})[code] or function_name(code)
+end
+
+local function check_request(f, device)
+  local profile = device.profile
+  local code = f.fn
+  local name = profile_function_name(profile, code)
+  if profile.functions ~= nil and not profile.functions[code] then
+    warn(f, format("%s (%d) is not supported by the %s", name, code, profile.device))
+  elseif profile.inner_only and profile.inner_only[code] then
+    warn(f, format("%s (%d) is only valid inside an encapsulated packet on the %s", name, code, profile.device))
+  end
+  local limits = (profile.limits or {})[code]
+  if limits ~= nil then
+    local checks
+    if code == 23 then
+      if f.fields ~= nil then
+        checks = { { "read quantity", f.fields.read_quantity }, { "write quantity", f.fields.write_quantity } }
+      end
+    else
+      checks = { { "quantity", f.quantity } }
+    end
+    for index = 1, math.min(#(checks or {}), #limits) do
+      local what, quantity, limit = checks[index][1], checks[index][2], limits[index]
+      if quantity ~= nil and quantity > limit then
+        warn(f, format("%s %d is beyond the %s's limit of %d words for %s", what, quantity, profile.device, limit, name))
+      end
+    end
+  end
+  if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] then
+    local already = false
+    for _, text in ipairs(f.warnings) do
+      if ends_with(text, SPEC_BROADCAST_WARNING) then already = true end
+    end
+    if not already then
+      local allowed = {}
+      for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
+      local list = concat(allowed, ", ")
+      if list == "" then list = "none" end
+      warn(f, format("%s cannot be broadcast to the %s (broadcast functions: %s)", name, profile.device, list))
+    end
+  end
+end
+
+local function holds(when, request, profile)
+  if when == "quantity" then
+    local limits = (profile.limits or {})[request.fn]
+    local limit = READ_LIMIT
+    if limits ~= nil then limit = limits[1] end
+    local quantity = request.quantity
+    return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
+  end
+  if when == "byte_count" then
+    local fields = request.fields
+    if fields == nil or fields.byte_count == nil or fields.quantity == nil then return false end
+    return fields.byte_count ~= 2 * fields.quantity
+  end
+  return false
+end
+
+local function pick_causes(request, profile, causes)
+  if request == nil then return causes end
+  local hits, plain = {}, {}
+  for _, cause in ipairs(causes) do
+    if cause.when ~= nil and holds(cause.when, request, profile) then hits[#hits + 1] = cause end
+    if cause.when == nil then plain[#plain + 1] = cause end
+  end
+  if #hits > 0 then return hits end
+  if #plain > 0 then return plain end
+  return causes
+end
+
+local function cause_text(cause)
+  local counters = cause.counters or {}
+  if #counters == 0 then return cause.error end
+  local plural = "counter"
+  if #counters > 1 then plural = "counters" end
+  return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
+end
+
+local function all_unreadable(st, f, device)
+  local request = f.request
+  if request == nil or request.start == nil or request.quantity == nil or request.quantity == 0 then
+    note(f, "on a read, this exception means every parameter read is non-existent or protected")
+    return
+  end
+  local rows = device.rows
+  local addresses, parts = {}, {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    addresses[#addresses + 1] = address
+    local row = rows[address]
+    parts[#parts + 1] = address_name(row, address) .. (row == nil and " non-existent" or " protected")
+  end
+  if #parts > MAX_LISTED then
+    local more = #parts - MAX_LISTED
+    for index = #parts, MAX_LISTED + 1, -1 do parts[index] = nil end
+    parts[#parts + 1] = format("%s (+%d)", ELLIPSIS, more)
+  end
+  note(f, "every parameter of this read is non-existent or protected: " .. concat(parts, ", "))
+  local now = format("exception %02X now", f.exception_code)
+  for _, address in ipairs(addresses) do
+    local row = rows[address]
+    track(st, f, address, row, 0, row == nil and "non-existent" or "protected", now)
+  end
+end
+
+local function explain_exception(st, f, device)
+  local profile = device.profile
+  local code = f.exception_code
+  if code == nil then return end
+  local name = profile_function_name(profile, f.fn)
+  local causes = (profile.exception_causes or {})[f.fn * 256 + code]
+  local meanings = profile.exceptions or {}
+  f.exception_meaning = meanings[code]
+  if causes ~= nil and #causes > 0 then
+    local texts = {}
+    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
+    note(f, format("exception %02X from the %s to %s: %s", code, profile.device, name, concat(texts, " or ")))
+  elseif meanings[code] ~= nil then
+    note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
+  elseif next(meanings) ~= nil then
+    local known = {}
+    for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
+    note(f, format("exception %02X is not one the %s documents (%s)", code, profile.device, concat(known, ", ")))
+  end
+  if code == profile.all_protected_exception and READS[f.fn] then all_unreadable(st, f, device) end
+end
+
+local function python_repr(text)
+  -- str.__repr__ for the latin-1 text of a device object (quotes chosen as Python does).
+  local quote = "'"
+  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
+  local out = {}
+  for k = 1, #text do
+    local byte = text:byte(k)
+    local char = string.char(byte)
+    if char == "\\" then out[#out + 1] = "\\\\"
+    elseif char == quote then out[#out + 1] = "\\" .. quote
+    elseif byte == 10 then out[#out + 1] = "\\n"
+    elseif byte == 13 then out[#out + 1] = "\\r"
+    elseif byte == 9 then out[#out + 1] = "\\t"
+    elseif byte < 32 or (byte >= 127 and byte <= 160) or byte == 173 then out[#out + 1] = format("\\x%02x", byte)
+    elseif byte < 128 then out[#out + 1] = char
+    else out[#out + 1] = string.char(192 + floor(byte / 64), 128 + byte % 64) end
+  end
+  return quote .. concat(out) .. quote
+end
+
+local function explain_objects(f, profile)
+  for _, object in ipairs(f.objects) do
+    local meaning = (profile.objects or {})[object.id]
+    if meaning ~= nil then
+      local done = false
+      if meaning.format == "MMmm" then
+        local value = object.value
+        if #value == 4 and value:match("^%d%d%d%d$") then
+          object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
+          done = true
+        else
+          note(f, format("%s %s is not in the MMmm form the %s uses", object.name, python_repr(value), profile.device))
+        end
+      end
+      if not done then object.text = meaning.meaning end
+    end
+  end
+end
+
+local function diagnostics_note(f, device, b)
+  local profile = device.profile
+  local sub = f.subfunction
+  local meaning = (profile.diagnostics or {})[sub]
+  if meaning == nil then return end
+  local text = format("sub-function %02X on the %s: %s", sub, profile.device, meaning)
+  if f.kind == RESPONSE and f.fields ~= nil and f.fields.data_length == 2 then
+    text = text .. format("; value %d", u16(b, f.data_at + 2))
+  end
+  note(f, text)
+end
+
+annotate = function(st, f, b)
+  local device = device_for(st, f.slave)
+  if not device then return end
+  local kind = f.kind
+  if kind == REQUEST then
+    check_request(f, device)
+  elseif kind == EXCEPTION then
+    explain_exception(st, f, device)
+    return
+  end
+  local request = f.request
+  if kind == RESPONSE and request ~= nil and request.registers ~= nil and #request.registers > 0 then
+    -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+    if f.fn == 16 or f.fn == 23 then remember_writes(st, f, request.registers) end
+  end
+  local registers = f.registers
+  if registers ~= nil and #registers > 0 then
+    annotate_registers(st, f, device, registers, kind == RESPONSE and READS[f.fn] ~= nil)
+    if kind == RESPONSE and f.fn == 6 then remember_writes(st, f, registers) end
+  end
+  if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
+  if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
+end
+
+local function configure(profiles_text, style)
+  local default, per_slave, errors = parse_profile_choice(profiles_text)
+  config = { default = default, per_slave = per_slave, style = style, errors = errors }
+end
 
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
 local function new_state()
-  return { expect = nil, pending = nil, count = 0, records = {} }
+  return { expect = nil, pending = nil, count = 0, records = {}, devices = {}, seen = {} }
 end
 
 local function dissect_record(st, bytes, time, number)
@@ -879,7 +1990,7 @@ local function dissect_record(st, bytes, time, number)
       frames = frames + 1
       pair(st, item)
       decode_frame(item, b)
-      annotate(st, item)
+      annotate(st, item, b)
     end
   end
   local record = { items = items, frames = frames, length = n, bytes = b }
@@ -894,7 +2005,8 @@ end
 
 local vw3 = {
   DATA = DATA, new_state = new_state, dissect_record = dissect_record, crc16 = crc16,
-  function_name = function_name, exception_name = exception_name,
+  function_name = function_name, exception_name = exception_name, configure = configure,
+  config = function() return config end,
 }
 
 -- ---------------------------------------------------------------------------------------------------
@@ -956,20 +2068,21 @@ for _, field in pairs(pf) do field_list[#field_list + 1] = field end
 proto.fields = field_list
 
 local ex = {
-  crc_bad = ProtoExpert.new("vw3.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
-  exception = ProtoExpert.new("vw3.exception", "Exception response", expert.group.RESPONSE_CODE, expert.severity.NOTE),
-  unanswered = ProtoExpert.new("vw3.unanswered", "Request not answered", expert.group.SEQUENCE, expert.severity.WARN),
-  no_request = ProtoExpert.new("vw3.no_request", "Response without a matching request", expert.group.SEQUENCE, expert.severity.WARN),
-  warning = ProtoExpert.new("vw3.warning", "Outside the spec or the device profile", expert.group.PROTOCOL, expert.severity.WARN),
-  malformed = ProtoExpert.new("vw3.malformed", "PDU does not fit its layout", expert.group.MALFORMED, expert.severity.ERROR),
-  protected = ProtoExpert.new("vw3.protected", "Protected or non-existent parameter", expert.group.RESPONSE_CODE, expert.severity.WARN),
-  note = ProtoExpert.new("vw3.note", "Note", expert.group.COMMENTS_GROUP, expert.severity.NOTE),
-  noise = ProtoExpert.new("vw3.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
-  multiple = ProtoExpert.new("vw3.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
-  partial = ProtoExpert.new("vw3.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
+  crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
+  exception = ProtoExpert.new("vw3.expert.exception", "Exception response", expert.group.RESPONSE_CODE, expert.severity.NOTE),
+  unanswered = ProtoExpert.new("vw3.expert.unanswered", "Request not answered", expert.group.SEQUENCE, expert.severity.WARN),
+  no_request = ProtoExpert.new("vw3.expert.no_request", "Response without a matching request", expert.group.SEQUENCE, expert.severity.WARN),
+  warning = ProtoExpert.new("vw3.expert.warning", "Outside the spec or the device profile", expert.group.PROTOCOL, expert.severity.WARN),
+  malformed = ProtoExpert.new("vw3.expert.malformed", "PDU does not fit its layout", expert.group.MALFORMED, expert.severity.ERROR),
+  protected = ProtoExpert.new("vw3.expert.protected", "Protected or non-existent parameter", expert.group.RESPONSE_CODE, expert.severity.WARN),
+  note = ProtoExpert.new("vw3.expert.note", "Note", expert.group.COMMENTS_GROUP, expert.severity.NOTE),
+  noise = ProtoExpert.new("vw3.expert.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
+  multiple = ProtoExpert.new("vw3.expert.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
+  partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
+  preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
 }
 proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
-  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial }
+  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference }
 vw3.experts = ex
 
 local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
@@ -984,9 +2097,15 @@ proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial g
 local state = new_state()
 vw3.state = function() return state end
 
+local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
+
+local function apply_prefs()
+  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style])
+end
+
 function proto.init()
+  apply_prefs()
   state = new_state()
-  if vw3.configure then vw3.configure(proto.prefs) end
 end
 
 local function add_text(tree, expert_info, text)
@@ -1023,7 +2142,9 @@ local function add_register(tree, tvb, reg)
   if reg.source then sub:add(pf.reg_source, r, reg.source):set_generated() end
   if reg.status then
     sub:add(pf.reg_status, r, reg.status):set_generated()
-    if reg.status ~= "ok" then add_text(sub, ex.protected, reg.status_text or reg.status) end
+    if reg.status ~= "ok" then
+      add_text(sub, ex.protected, format("Register %s%s: %s", label, reg.code and (" " .. reg.code) or "", reg.text or reg.status))
+    end
   end
 end
 
@@ -1153,6 +2274,7 @@ function proto.dissector(tvb, pinfo, tree)
   if record.frames > 1 then
     add_text(tree, ex.multiple, format("This record holds %d frames", record.frames))
   end
+  for _, text in ipairs(config.errors) do add_text(tree, ex.preference, "Preferences: " .. text) end
   if record.partial then
     add_text(tree, ex.partial, "The record ends inside a frame; its bytes are shown as noise")
   end
@@ -1175,7 +2297,7 @@ function proto.prefs_changed()
     if port ~= 0 then tcp:add(port, proto) end
     current_port = port
   end
-  if vw3.configure then vw3.configure(proto.prefs) end
+  apply_prefs()
 end
 
 return vw3
