@@ -225,38 +225,46 @@ class StatsCollector:
         }
 
     def render(self) -> RenderableType:
+        """Summary line, traffic, response times and parameters: each table fits 80 columns."""
         report = self.report()
-        traffic = Table(
-            title="Traffic per slave and function (response times in ms)",
-            title_justify="left",
-            box=box.SIMPLE_HEAD,
-        )
-        traffic.add_column("slave", justify="right")
-        traffic.add_column("function", no_wrap=True, max_width=26, overflow="ellipsis")
+        traffic = _table("Traffic per slave and function")
+        times = _table("Response times (ms)")
+        for table in (traffic, times):
+            # Short headers and a 28-column function name keep each table within 80 columns.
+            table.add_column("slave", justify="right", no_wrap=True)
+            table.add_column("function", no_wrap=True, max_width=28, overflow="ellipsis")
         for header in ("req", "resp"):
-            traffic.add_column(header, justify="right")
-        traffic.add_column("exceptions (code: n)", no_wrap=True)
-        for header in ("no answer", "bad CRC", "min", "median", "p95", "max"):
-            traffic.add_column(header, justify="right")
+            traffic.add_column(header, justify="right", no_wrap=True)
+        traffic.add_column("exceptions")
+        for header in ("no reply", "bad CRC"):
+            traffic.add_column(header, justify="right", no_wrap=True)
+        traffic.caption = "req: requests, resp: normal responses, exceptions: code:count"
+        traffic.caption_justify = "left"
+        for header in ("count", "min", "median", "p95", "max"):
+            times.add_column(header, justify="right", no_wrap=True)
         for row in report["functions"]:
-            exceptions = ", ".join(f"{code}: {count}" for code, count in row["exceptions"].items())
-            times = row["response_time"]
-            cells = ["", "", "", ""] if times is None else [
-                _ms(times["min"]), _ms(times["median"]), _ms(times["p95"]), _ms(times["max"])
-            ]
+            function = f"{row['function']} {row['function_name']}"
+            exceptions = " ".join(f"{code}:{count}" for code, count in row["exceptions"].items())
             traffic.add_row(
                 str(row["slave"]),
-                f"{row['function']} {row['function_name']}",
+                function,
                 _count(row["requests"], row["broadcasts"]),
                 str(row["responses"]),
                 Text(exceptions, style="vw3.exception") if exceptions else "",
                 Text(str(row["unanswered"]), style="vw3.warning") if row["unanswered"] else "0",
                 Text(str(row["crc_errors"]), style="vw3.crc.bad") if row["crc_errors"] else "0",
-                *cells,
             )
-        parameters = Table(title="Parameters", title_justify="left", box=box.SIMPLE_HEAD)
+            timing = row["response_time"]
+            if timing is not None:
+                times.add_row(
+                    str(row["slave"]),
+                    function,
+                    str(timing["count"]),
+                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max")),
+                )
+        parameters = _table("Parameters")
         for header in ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes"):
-            parameters.add_column(header, justify="left" if header == "code" else "right")
+            parameters.add_column(header, justify="left" if header == "code" else "right", no_wrap=True)
         for row in report["parameters"]:
             parameters.add_row(
                 str(row["slave"]),
@@ -278,7 +286,14 @@ class StatsCollector:
                 else ""
             )
         )
-        return Group(summary, traffic, parameters)
+        blank = Text("")
+        return Group(summary, blank, traffic, blank, times, blank, parameters)
+
+
+def _table(title: str) -> Table:
+    return Table(
+        title=title, title_justify="left", box=box.SIMPLE_HEAD, show_edge=False, collapse_padding=True
+    )
 
 
 def _times(times: list[float]) -> dict[str, float | int] | None:
