@@ -1,28 +1,35 @@
 """`vw3-decode`: decode Modbus serial captures the way tshark shows packets.
 
-The terminal is injected (`Environment`) so tests can run the whole CLI on strings.
+The pipeline is chosen once from the options (source -> framer -> pairing -> decoder -> annotator ->
+filter -> sinks); the terminal is injected (`Environment`) so tests run the whole CLI on strings.
 """
 from __future__ import annotations
 
 import argparse
-import io
+import gc
 import json
 import os
 import sys
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from enum import IntEnum
 from typing import BinaryIO, TextIO
 
-from rich.console import Console
-
-from .model import Chunk, Frame, Item
+from .ascii import AsciiFramer
+from .filters import FilterError, compile_filter
+from .framer import RtuFramer
+from .live import add_live_arguments, run_live
+from .model import Chunk, Item
+from .pcapwriter import PcapWriter
 from .pipeline import Annotator, Dissector
-from .render.detail import detail_tree, render_plain, render_rich
-from .render.hexdump import hexdump
+from .profiles import ProfileError, add_profile_arguments, annotator_from_args
 from .render.jsonout import item_to_dict
+from .render.output import Output, OutputOptions
+from .render.progress import progress_for
 from .render.summary import summary_line, summary_text
-from .render.theme import THEME
+from .sources import FORMATS, MODES, SourceError, open_source
+from .stats import StatsCollector
+from .timing import GapChecker
 
 PROG = "vw3-decode"
 
@@ -62,18 +69,37 @@ def build_parser() -> argparse.ArgumentParser:
         description="Decode Modbus RTU/ASCII serial captures (Altivar 71 VW3 A3 303, SEL-749M) "
         "frame by frame, the way tshark shows packets.",
     )
-    parser.add_argument("files", nargs="*", metavar="FILE", help="capture files; - reads stdin")
+    parser.add_argument(
+        "files",
+        nargs="*",
+        metavar="FILE",
+        help="captures: raw bytes, pcap/pcapng (linktype 147 or 250), hex dump or Modbus ASCII; "
+        "- reads stdin",
+    )
     parser.add_argument(
         "--hex",
         action="append",
         default=[],
         metavar="BYTES",
-        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF"',
+        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" '
+        "(all --hex arguments form one stream)",
     )
     output = parser.add_argument_group("output")
     output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")
     output.add_argument("-x", dest="hexdump", action="store_true", help="hex dump of every item")
-    output.add_argument("--json", action="store_true", help="NDJSON, one object per item")
+    output.add_argument(
+        "--json", action="store_true", help="NDJSON, one object per item (with --stats: the statistics)"
+    )
+    output.add_argument(
+        "-Y", dest="filter", metavar="EXPR", help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'"
+    )
+    output.add_argument(
+        "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
+    )
+    output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
+    output.add_argument(
+        "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
+    )
     output.add_argument(
         "--color",
         choices=["auto", "always", "never"],
@@ -82,17 +108,24 @@ def build_parser() -> argparse.ArgumentParser:
     )
     decoding = parser.add_argument_group("decoding")
     decoding.add_argument(
+        "--format",
+        choices=sorted(FORMATS),
+        help="input format instead of detecting it from the content",
+    )
+    decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
+    decoding.add_argument(
         "--timeout",
         type=float,
         default=1.0,
         metavar="SECONDS",
         help="flag responses later than this (needs timestamps; default 1 s)",
     )
+    decoding.add_argument(
+        "-n", dest="no_profile", action="store_true", help="no device profile: Modbus spec semantics only"
+    )
+    add_profile_arguments(parser)
+    add_live_arguments(parser)
     return parser
-
-
-class UnreadableInput(UsageError):
-    pass
 
 
 def _hex_chunk(text: str) -> Chunk:
@@ -103,103 +136,119 @@ def _hex_chunk(text: str) -> Chunk:
         raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
 
 
-def _read_file_chunks(path: str, env: Environment, chunk_size: int = 1 << 16) -> Iterator[Chunk]:
-    if path == "-":
-        stream = env.stdin
-        close = False
-    else:
-        if os.path.isdir(path):
-            raise UnreadableInput(f"{path}: is a directory")
-        try:
-            stream = open(path, "rb")
-        except OSError as error:
-            raise UnreadableInput(f"{path}: {error.strerror or error}") from None
-        close = True
-    try:
-        while True:
-            try:
-                data = stream.read(chunk_size)
-            except OSError as error:
-                raise UnreadableInput(f"{path}: {error.strerror or error}") from None
-            if not data:
-                return
-            yield Chunk(data)
-    finally:
-        if close:
-            stream.close()
-
-
-class Output:
-    """Writes items as the options ask: summary, detail, hex, or NDJSON; plain or rich."""
+class Sinks:
+    """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
     def __init__(self, args: argparse.Namespace, env: Environment) -> None:
-        self.args = args
         self.env = env
-        use_rich = args.color == "always" or (args.color == "auto" and env.stdout_isatty)
-        self.console: Console | None = None
-        if use_rich and not args.json:
-            self.console = Console(
-                file=env.stdout,
-                theme=THEME,
-                force_terminal=True if args.color == "always" else None,
-                highlight=False,
-                soft_wrap=False,
-            )
-        self.base: float | None = None
-        self._buffer: list[str] = []
+        self.json = args.json
+        self.predicate: Callable[[dict], bool] | None = None
+        if args.filter is not None:
+            self.predicate = compile_filter(args.filter)
+        self.stats = StatsCollector() if args.stats else None
+        self.show = not args.stats and (args.write is None or args.print_too)
+        options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
+        self.output = Output(options, env.stdout, env.stdout_isatty)
+        self.pcap: PcapWriter | None = None
+        if args.write is not None:
+            try:
+                self.pcap = PcapWriter(open(args.write, "wb"), flush=False)
+            except OSError as error:
+                raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
+        self.extra: dict[str, object] | None = None
 
-    def write(self, items: Iterable[Item]) -> None:
-        args = self.args
-        out = self._buffer
-        for item in items:
-            if self.base is None and item.time is not None:
-                self.base = item.time
-            if args.json:
-                out.append(json.dumps(item_to_dict(item)))
-                continue
-            if self.console is not None:
-                self._write_rich(item)
-                continue
-            if args.detail:
-                out.append(render_plain(detail_tree(item, self.base)))
+    def accept(self, items: list[Item]) -> None:
+        predicate = self.predicate
+        if predicate is not None:
+            items = [item for item in items if predicate(item_to_dict(item))]
+        if self.pcap is not None:
+            for item in items:
+                self.pcap.write(item.raw, item.time)
+        if self.stats is not None:
+            for item in items:
+                self.stats.add(item)
+        if self.show:
+            self.output.write(items, self.extra)
+
+    def close(self) -> None:
+        if self.pcap is not None:
+            self.pcap.close()
+        if self.stats is not None:
+            if self.json:
+                self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
             else:
-                out.append(summary_line(item, self.base))
-            if args.hexdump:
-                out.append(hexdump(item.raw))
-            if args.detail or args.hexdump:
-                out.append("")
-        if len(out) > 512:
-            self.flush()
+                self.output.flush()
+                if self.output.console is not None:
+                    self.output.console.print(self.stats.render())
+                else:
+                    from rich.console import Console
 
-    def _write_rich(self, item: Item) -> None:
-        console = self.console
-        assert console is not None
-        if self.args.detail:
-            console.print(render_rich(detail_tree(item, self.base)))
-        else:
-            console.print(summary_text(item, self.base))
-        if self.args.hexdump:
-            console.print(hexdump(item.raw), style="vw3.hex", highlight=False)
-        if self.args.detail or self.args.hexdump:
-            console.print()
-
-    def flush(self) -> None:
-        if self._buffer:
-            self.env.stdout.write("\n".join(self._buffer) + "\n")
-            self._buffer.clear()
-        self.env.stdout.flush()
+                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+        self.output.flush()
 
 
-def decode_stream(
+def decode_chunks(
     chunks: Iterable[Chunk],
-    output: Output,
-    annotate: Annotator | None,
-    timeout: float | None,
+    dissector: Dissector,
+    sinks: Sinks,
+    warn: Callable[[], None] = lambda: None,
 ) -> None:
-    dissector = Dissector(annotate=annotate, timeout=timeout)
     for chunk in chunks:
-        output.write(dissector.feed(chunk))
-    output.write(dissector.finish())
+        sinks.accept(dissector.feed(chunk))
+        warn()
+    sinks.accept(dissector.finish())
+    warn()
+
+
+def _annotator(args: argparse.Namespace) -> Annotator | None:
+    if args.no_profile:
+        return None
+    return annotator_from_args(args)
+
+
+def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]]]]:
+    """(title, chunks, mode, take_warnings) per input."""
+    several = len(args.files) + bool(args.hex) > 1
+    if args.hex:
+        chunks = [_hex_chunk(text) for text in args.hex]
+        mode = args.mode or ("ascii" if chunks and chunks[0].data[:1] == b":" else "rtu")
+        yield ("--hex" if several else None), chunks, mode, list
+    for path in args.files:
+        stdin = env.stdin if path == "-" else None
+        source = open_source(path, args.format, mode=args.mode, stdin=stdin)
+        chunks: Iterable[Chunk] = source
+        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
+            chunks = progress_for(source, path, env.stderr)
+        yield (path if several else None), chunks, source.mode, source.take_warnings
+
+
+def decode_files(args: argparse.Namespace, env: Environment) -> int:
+    annotate = _annotator(args)
+    sinks = Sinks(args, env)
+    status = ExitStatus.OK
+    try:
+        for title, chunks, mode, take_warnings in _inputs(args, env):
+            sinks.output.new_input(title)
+            sinks.extra = {"file": title} if title is not None else None
+
+            def warn() -> None:
+                for warning in take_warnings():
+                    env.stderr.write(f"{PROG}: warning: {warning}\n")
+
+            framer = AsciiFramer() if mode == "ascii" else RtuFramer()
+            dissector = Dissector(
+                framer=framer,
+                annotate=annotate,
+                timeout=args.timeout,
+                gaps=GapChecker(args.baud, mode),
+            )
+            decode_chunks(chunks, dissector, sinks, warn)
+    except OSError as error:
+        env.stderr.write(f"{PROG}: {error.strerror or error}\n")
+        status = ExitStatus.ERROR
+    finally:
+        sinks.close()
+    return status
 
 
 def run(argv: list[str] | None, env: Environment) -> int:
@@ -207,29 +256,34 @@ def run(argv: list[str] | None, env: Environment) -> int:
     try:
         args = parser.parse_args(argv)
     except SystemExit as exit_:
-        return int(exit_.code or 0) and ExitStatus.BAD_INPUT
-    if not args.files and not args.hex:
-        parser.print_usage(env.stderr)
-        env.stderr.write(f"{PROG}: give a capture FILE, - for stdin, or --hex BYTES\n")
-        return ExitStatus.BAD_INPUT
-    output = Output(args, env)
-    annotate: Annotator | None = None
+        return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
     try:
-        if args.hex:
-            # All --hex arguments form one stream, so a request and its response pair up.
-            chunks = [_hex_chunk(text) for text in args.hex]
-            decode_stream(chunks, output, annotate, args.timeout)
-        for path in args.files:
-            decode_stream(_read_file_chunks(path, env), output, annotate, args.timeout)
-        output.flush()
-    except UsageError as error:
-        output.flush()
+        if args.live or args.detect is not None:
+            if args.live is None:
+                raise UsageError("--detect needs --live PORT")
+            return run_live(
+                args,
+                env.stdout,
+                env.stderr,
+                env.stdout_isatty,
+                summary_line,
+                _annotator(args),
+                summary_text,
+            )
+        if not args.files and not args.hex:
+            parser.print_usage(env.stderr)
+            raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")
+        return decode_files(args, env)
+    except (UsageError, SourceError, ProfileError, FilterError) as error:
+        env.stdout.flush()
         env.stderr.write(f"{PROG}: {error}\n")
         return ExitStatus.BAD_INPUT
-    return ExitStatus.OK
 
 
 def main(argv: list[str] | None = None) -> int:
+    # Decoding allocates many small objects that live until written: collect young ones less often.
+    gc.set_threshold(10_000, 20, 20)
+    gc.freeze()
     env = Environment.from_process()
     try:
         status = run(argv, env)

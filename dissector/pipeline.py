@@ -11,6 +11,7 @@ from .decode import decode_frame
 from .framer import RtuFramer
 from .model import Chunk, Frame, Item
 from .pairing import Pairer
+from .timing import GapChecker
 
 
 class Framer(Protocol):
@@ -33,14 +34,19 @@ class Dissector:
         annotate: Annotator | None = None,
         hold: bool = True,
         timeout: float | None = None,
+        gaps: GapChecker | None = None,
     ) -> None:
         self.framer = framer if framer is not None else RtuFramer()
         self.pairer = Pairer(hold=hold, timeout=timeout)
         self.annotate = annotate
+        self.gaps = gaps
 
     def _finish_items(self, items: list[Item]) -> list[Item]:
         annotate = self.annotate
+        gaps = self.gaps
         for item in items:
+            if gaps is not None:
+                item.warnings.extend(gaps.check(item))  # noise too: it lets the checker forget
             if isinstance(item, Frame):
                 decode_frame(item)
                 if annotate is not None:
@@ -48,7 +54,17 @@ class Dissector:
         return items
 
     def feed(self, chunk: Chunk) -> list[Item]:
+        if self.gaps is not None:
+            self.gaps.observe(chunk)
         return self._finish_items(self.pairer.push(self.framer.feed(chunk)))
+
+    def flush_idle(self) -> list[Item]:
+        """After a silence on a live line: what the framer holds is complete, or noise.
+
+        The framer's finish() leaves it ready for more bytes, and the pairer is not finished, so a
+        response that comes later still pairs with its request.
+        """
+        return self._finish_items(self.pairer.push(self.framer.finish()))
 
     def finish(self) -> list[Item]:
         items = self.pairer.push(self.framer.finish())

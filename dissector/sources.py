@@ -81,10 +81,10 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
     return "raw", "the input is text, but neither a hex dump nor Modbus ASCII: decoded as raw bytes"
 
 
-def _open(path: str) -> tuple[BinaryIO, str, bool]:
+def _open(path: str, stdin: BinaryIO | None = None) -> tuple[BinaryIO, str, bool]:
     """(stream, display name, whether to close it)."""
     if path == "-":
-        return sys.stdin.buffer, "<stdin>", False
+        return (stdin if stdin is not None else sys.stdin.buffer), "<stdin>", False
     try:
         if stat.S_ISDIR(os.stat(path).st_mode):
             raise SourceError(f"{path}: is a directory, not a capture")
@@ -165,7 +165,11 @@ class Source:
 
 
 def open_source(
-    path: str, fmt: str | None = None, chunk_size: int = 65536, mode: str | None = None
+    path: str,
+    fmt: str | None = None,
+    chunk_size: int = 65536,
+    mode: str | None = None,
+    stdin: BinaryIO | None = None,
 ) -> Source:
     """Open a capture. `fmt`: raw, pcap, pcapng, hex (hexdump) or ascii; `mode`: rtu or ascii.
 
@@ -176,7 +180,7 @@ def open_source(
     if mode is not None and mode not in MODES:
         raise SourceError(f"unknown mode {mode!r}: choose rtu or ascii")
     chunk_size = max(chunk_size, MIN_CHUNK)
-    stream, name, owned = _open(path)
+    stream, name, owned = _open(path, stdin)
     closer = stream.close if owned else (lambda: None)
     try:
         return _start(stream, name, fmt, mode, chunk_size, closer)

@@ -10,6 +10,8 @@ from pathlib import Path
 from dissector.cli import Environment, run
 from helpers import hx
 
+ROOT = Path(__file__).resolve().parent.parent
+
 SEED_STREAM = hx(
     "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 00 03 00 02 17 E4"
     "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 80 00 00 02 CE 24"
@@ -24,8 +26,18 @@ def run_cli(argv: list[str], stdin: bytes = b"", tty: bool = False) -> tuple[int
     return status, out.getvalue(), err.getvalue()
 
 
-def test_hex_summary_lines() -> None:
+def test_hex_summary_lines_with_the_default_atv71_profile() -> None:
     status, out, err = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF", "--hex", "0C 03 06 80 00 00 03 00 02 17 E4"])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "     1            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
+        "CHCF=IO (I/O profile) COP=Cd (command) [#1]  CRC ok",
+    ]
+
+
+def test_hex_summary_lines_without_profile() -> None:
+    status, out, err = run_cli(["-n", "--hex", "0C 03 20 D0 00 03 0E EF", "--hex", "0C 03 06 80 00 00 03 00 02 17 E4"])
     assert (status, err) == (0, "")
     assert out.splitlines() == [
         "     1            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
@@ -36,9 +48,9 @@ def test_hex_summary_lines() -> None:
 def test_file_and_stdin_give_the_same_frames(tmp_path: Path) -> None:
     capture = tmp_path / "capture.bin"
     capture.write_bytes(SEED_STREAM)
-    status, from_file, _ = run_cli([str(capture)])
+    status, from_file, _ = run_cli([str(capture), "-n"])
     assert status == 0
-    status, from_stdin, _ = run_cli(["-"], stdin=SEED_STREAM)
+    status, from_stdin, _ = run_cli(["-", "-n"], stdin=SEED_STREAM)
     assert status == 0 and from_stdin == from_file
     lines = from_file.splitlines()
     assert len(lines) == 6
@@ -48,7 +60,7 @@ def test_file_and_stdin_give_the_same_frames(tmp_path: Path) -> None:
 def test_json_schema(tmp_path: Path) -> None:
     capture = tmp_path / "capture.bin"
     capture.write_bytes(SEED_STREAM + b"\xff")
-    status, out, _ = run_cli([str(capture), "--json"])
+    status, out, _ = run_cli([str(capture), "--json", "-n"])
     assert status == 0
     items = [json.loads(line) for line in out.splitlines()]
     assert [item["kind"] for item in items] == ["request", "response"] * 2 + ["request", "exception", "noise"]
@@ -66,7 +78,7 @@ def test_json_schema(tmp_path: Path) -> None:
 
 
 def test_detail_tree_and_hex_dump() -> None:
-    status, out, _ = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 00 03 00 02 17 E4", "-V", "-x"])
+    status, out, _ = run_cli(["-n", "--hex", "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 00 03 00 02 17 E4", "-V", "-x"])
     assert status == 0
     assert "Frame 2: 11 bytes at offset 8, response (RTU)" in out
     assert "        Register 8400: 32768 (0x8000)" in out
@@ -78,7 +90,7 @@ def test_detail_tree_and_hex_dump() -> None:
 def test_missing_file_is_one_line_and_status_2(tmp_path: Path) -> None:
     status, out, err = run_cli([str(tmp_path / "nope.bin")])
     assert status == 2 and out == ""
-    assert err == f"vw3-decode: {tmp_path / 'nope.bin'}: No such file or directory\n"
+    assert err == f"vw3-decode: {tmp_path / 'nope.bin'}: no such file\n"
 
 
 def test_directory_is_refused(tmp_path: Path) -> None:
@@ -89,7 +101,9 @@ def test_directory_is_refused(tmp_path: Path) -> None:
 def test_empty_file_has_no_frames(tmp_path: Path) -> None:
     empty = tmp_path / "empty.bin"
     empty.write_bytes(b"")
-    assert run_cli([str(empty)]) == (0, "", "")
+    status, out, err = run_cli([str(empty)])
+    assert (status, out) == (0, "")
+    assert err.endswith("empty.bin: the input is empty\n")
 
 
 def test_bad_hex_and_no_input() -> None:
@@ -108,7 +122,7 @@ def test_rich_output_on_a_terminal() -> None:
 def test_console_script_runs_as_a_module(tmp_path: Path) -> None:
     capture = tmp_path / "c.bin"
     capture.write_bytes(SEED_STREAM)
-    result = subprocess.run([sys.executable, "-m", "dissector", str(capture)], capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-m", "dissector", str(capture)], capture_output=True, text=True, cwd=ROOT)
     assert result.returncode == 0 and len(result.stdout.splitlines()) == 6
-    result = subprocess.run([sys.executable, "-m", "dissector", str(tmp_path / "x")], capture_output=True, text=True)
+    result = subprocess.run([sys.executable, "-m", "dissector", str(tmp_path / "x")], capture_output=True, text=True, cwd=ROOT)
     assert result.returncode == 2 and "Traceback" not in result.stderr

@@ -1,0 +1,101 @@
+"""The item sink of vw3-decode: summary, detail, hex or NDJSON; rich on a terminal, plain when piped.
+
+Plain output is built as strings and written in batches, which is what makes a piped decode fast.
+"""
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import TextIO
+
+from rich.console import Console
+
+from ..model import Item
+from .detail import detail_tree, render_plain, render_rich
+from .hexdump import hexdump
+from .jsonout import item_to_dict
+from .summary import summary_line, summary_text
+from .theme import THEME
+
+BATCH = 512
+
+
+@dataclass(frozen=True, slots=True)
+class OutputOptions:
+    detail: bool = False
+    hexdump: bool = False
+    json: bool = False
+    color: str = "auto"  # auto | always | never
+
+
+class Output:
+    def __init__(self, options: OutputOptions, stream: TextIO, isatty: bool) -> None:
+        self.options = options
+        self.stream = stream
+        use_rich = options.color == "always" or (options.color == "auto" and isatty)
+        self.console: Console | None = None
+        if use_rich and not options.json:
+            self.console = Console(
+                file=stream,
+                theme=THEME,
+                force_terminal=True if options.color == "always" else None,
+                highlight=False,
+                soft_wrap=False,
+            )
+        self.base: float | None = None
+        self._buffer: list[str] = []
+
+    def new_input(self, title: str | None = None) -> None:
+        """Times restart at each input; several inputs are announced as tail(1) does."""
+        self.base = None
+        if title is None:
+            return
+        if self.console is not None:
+            self.console.rule(title)
+        elif not self.options.json:
+            self._buffer.append(f"==> {title} <==")
+
+    def write(self, items: Iterable[Item], extra: dict[str, object] | None = None) -> None:
+        options = self.options
+        out = self._buffer
+        for item in items:
+            if self.base is None and item.time is not None:
+                self.base = item.time
+            if options.json:
+                record = item_to_dict(item)
+                if extra:
+                    record.update(extra)
+                out.append(json.dumps(record))
+                continue
+            if self.console is not None:
+                self._write_rich(item)
+                continue
+            if options.detail:
+                out.append(render_plain(detail_tree(item, self.base)))
+            else:
+                out.append(summary_line(item, self.base))
+            if options.hexdump:
+                out.append(hexdump(item.raw))
+            if options.detail or options.hexdump:
+                out.append("")
+        if len(out) > BATCH:
+            self.flush()
+
+    def _write_rich(self, item: Item) -> None:
+        console = self.console
+        assert console is not None
+        if self.options.detail:
+            console.print(render_rich(detail_tree(item, self.base)))
+        else:
+            console.print(summary_text(item, self.base))
+        if self.options.hexdump:
+            console.print(hexdump(item.raw), style="vw3.hex", highlight=False)
+        if self.options.detail or self.options.hexdump:
+            console.print()
+
+    def flush(self) -> None:
+        if self._buffer:
+            self.stream.write("\n".join(self._buffer) + "\n")
+            self._buffer.clear()
+        self.stream.flush()
