@@ -1076,7 +1076,7 @@ local function frame_record(st, b, n)
       items[#items + 1] = {
         kind = kind, offset = i, length = length, slave = slave, code = code, fn = code % 128,
         crc = b[stop] + b[stop + 1] * 256, crc_expected = crc16(b, i, stop),
-        warnings = {}, notes = {},
+        warnings = {}, notes = {}, mode = "rtu", b = b, data_at = i + 2, data_len = length - 4,
       }
       if kind == REQUEST and slave ~= 0 then
         st.expect = slave * 256 + code
@@ -1084,6 +1084,165 @@ local function frame_record(st, b, n)
         st.expect = nil
       end
       i = i + length
+    end
+  end
+  flush_noise()
+  return items
+end
+
+-- ---------------------------------------------------------------------------------------------------
+-- Modbus ASCII (dissector/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
+-- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
+local COLON, CR, LF = 0x3A, 0x0D, 0x0A
+local MAX_BINARY = 255
+local MAX_ASCII = 1 + 2 * MAX_BINARY + 2
+local MIN_BINARY = 3
+local MODE_SAMPLE = 64
+local ASCII_SHARE = 0.9
+
+local function is_hex(byte)
+  return (byte >= 48 and byte <= 57) or (byte >= 65 and byte <= 70) or (byte >= 97 and byte <= 102)
+end
+
+local function detect_mode(sample)
+  -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
+  local colon = sample:find(":", 1, true)
+  if colon == nil then return "rtu" end
+  local following = sample:sub(colon + 1, colon + 2)
+  if #following == 0 then return "rtu" end
+  for k = 1, #following do
+    if not is_hex(following:byte(k)) then return "rtu" end
+  end
+  local inside = 0
+  for k = 1, #sample do
+    local byte = sample:byte(k)
+    if is_hex(byte) or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+  end
+  if inside >= ASCII_SHARE * #sample then return "ascii" end
+  return "rtu"
+end
+
+local function lrc(bytes_, count)
+  local sum = 0
+  for k = 0, count - 1 do sum = sum + bytes_[k] end
+  return (256 - sum % 256) % 256
+end
+
+local function find_byte(b, value, from, to)
+  for k = from, to - 1 do
+    if b[k] == value then return k end
+  end
+  return nil
+end
+
+local function classify_ascii(st, adu, count)
+  -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
+  local slave, code = adu[0], adu[1]
+  local crc = crc16(adu, 0, count)
+  local equivalent = {}
+  for k = 0, count - 1 do equivalent[k] = adu[k] end
+  equivalent[count] = crc % 256
+  equivalent[count + 1] = floor(crc / 256)
+  local length = count + 2
+  if code >= 128 then
+    if RULES[code - 128] and length == 5 then return EXCEPTION end
+    return nil
+  end
+  local rules = RULES[code]
+  if rules == nil then return nil end
+  local order = AS_REQUEST[code]
+  if st.expect == slave * 256 + code then order = AS_RESPONSE[code] end
+  for _, interpretation in ipairs(order) do
+    if interpretation[2](equivalent, 0, length) == length then return interpretation[1] end
+  end
+  return nil
+end
+
+local function frame_ascii_record(st, b, n)
+  local items = {}
+  local noise_start, noise_length = nil, 0
+  local function flush_noise()
+    if noise_start ~= nil then
+      items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = "outside an ASCII frame" }
+      noise_start, noise_length = nil, 0
+    end
+  end
+  local function add_noise(start, stop)
+    while start < stop do
+      if noise_start == nil then noise_start = start end
+      local take = math.min(stop - start, NOISE_ITEM_MAX - noise_length)
+      noise_length = noise_length + take
+      start = start + take
+      if noise_length >= NOISE_ITEM_MAX then flush_noise() end
+    end
+  end
+  local function reject(at, length, reason)
+    flush_noise()
+    items[#items + 1] = { kind = NOISE, offset = at, length = length, reason = reason }
+  end
+  local function candidate(at, length)
+    -- raw = b[at .. at + length - 1]: ':' digits CR LF
+    if length < 3 or b[at + length - 2] ~= CR then
+      return reject(at, length, "ASCII frame ends with LF without CR")
+    end
+    local digits = length - 3
+    local lower = false
+    if digits % 2 == 1 then return reject(at, length, "ASCII frame is not made of hex pairs") end
+    for k = at + 1, at + digits do
+      if not is_hex(b[k]) then return reject(at, length, "ASCII frame is not made of hex pairs") end
+      if b[k] >= 97 then lower = true end
+    end
+    local bin, count = {}, floor(digits / 2)
+    for k = 0, count - 1 do
+      bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
+    end
+    if count < MIN_BINARY then return reject(at, length, "ASCII frame too short") end
+    local slave, code = bin[0], bin[1]
+    local received, expected = bin[count - 1], lrc(bin, count - 1)
+    local check = "LRC ok"
+    if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
+    if slave > MAX_SLAVE then return reject(at, length, format("slave %d out of range (%s)", slave, check)) end
+    local kind = classify_ascii(st, bin, count - 1)
+    if kind == nil then
+      return reject(at, length, format("no Modbus layout fits function %d (%s)", code, check))
+    end
+    flush_noise()
+    local frame = {
+      kind = kind, offset = at, length = length, slave = slave, code = code, fn = code % 128,
+      crc = received, crc_expected = expected, warnings = {}, notes = {}, mode = "ascii", ascii = true,
+      b = bin, data_at = 2, data_len = count - 3,
+    }
+    if lower then frame.warnings[1] = "lower-case hex digits (the spec wants upper case)" end
+    if kind == REQUEST and slave ~= 0 then
+      st.expect = slave * 256 + code
+    else
+      st.expect = nil
+    end
+    items[#items + 1] = frame
+  end
+  local i = 0
+  while i < n do
+    if b[i] ~= COLON then
+      local stop = find_byte(b, COLON, i, n) or n
+      add_noise(i, stop)
+      i = stop
+    else
+      local limit = math.min(n, i + MAX_ASCII)
+      local lf = find_byte(b, LF, i + 1, limit)
+      local colon = find_byte(b, COLON, i + 1, limit)
+      if colon ~= nil and (lf == nil or colon < lf) then
+        reject(i, colon - i, "ASCII frame cut short by the next ':'")
+        i = colon
+      elseif lf ~= nil then
+        candidate(i, lf + 1 - i)
+        i = lf + 1
+      elseif n - i >= MAX_ASCII then
+        reject(i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII))
+        i = i + MAX_ASCII
+      else
+        reject(i, n - i, "ASCII frame cut off by the end of the record")
+        i = n
+      end
     end
   end
   flush_noise()
@@ -1500,9 +1659,8 @@ H[REQUEST][24] = fifo_request_handler
 H[RESPONSE][24] = fifo_response_handler
 H[RESPONSE][43] = mei_response_handler
 
-local function decode_frame(f, b)
-  local d, len = f.offset + 2, f.length - 4
-  f.data_at = d
+local function decode_frame(f)
+  local b, d, len = f.b, f.data_at, f.data_len
   if f.kind == EXCEPTION then
     f.fields = {}
     f.exception_code = b[d]
@@ -1545,6 +1703,11 @@ local function pair(st, f)
     f.request = pending
     pending.response = f
     st.pending = nil
+    local timeout = st.timeout
+    if timeout ~= nil and f.time ~= nil and pending.time ~= nil and f.time - pending.time > timeout then
+      warn(f, format("response after %.1f ms, later than the %.0f ms timeout", (f.time - pending.time) * 1000,
+        timeout * 1000))
+    end
   else
     if pending ~= nil then
       pending.unanswered = true
@@ -1971,15 +2134,26 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
-local function new_state()
-  return { expect = nil, pending = nil, count = 0, records = {}, devices = {}, seen = {} }
+local function new_state(timeout, mode)
+  -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
+  -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.
+  return {
+    expect = nil, pending = nil, count = 0, records = {}, devices = {}, seen = {}, timeout = timeout,
+    mode = mode,
+  }
 end
 
 local function dissect_record(st, bytes, time, number)
   local n = #bytes
   local b = {}
   for k = 1, n do b[k - 1] = string.byte(bytes, k) end
-  local items = frame_record(st, b, n)
+  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  local items
+  if st.mode == "ascii" then
+    items = frame_ascii_record(st, b, n)
+  else
+    items = frame_record(st, b, n)
+  end
   local frames = 0
   for _, item in ipairs(items) do
     st.count = st.count + 1
@@ -1989,14 +2163,15 @@ local function dissect_record(st, bytes, time, number)
     if item.kind ~= NOISE then
       frames = frames + 1
       pair(st, item)
-      decode_frame(item, b)
-      annotate(st, item, b)
+      decode_frame(item)
+      annotate(st, item, item.b)
     end
   end
   local record = { items = items, frames = frames, length = n, bytes = b }
   -- A record that ends in noise which starts like a frame was most likely cut inside that frame.
   local last = items[#items]
-  if last ~= nil and last.kind == NOISE and last.offset + last.length == n and n - last.offset >= 2 then
+  if st.mode ~= "ascii" and last ~= nil and last.kind == NOISE and last.offset + last.length == n
+      and n - last.offset >= 2 then
     local slave, code = b[last.offset], b[last.offset + 1]
     if slave <= MAX_SLAVE and (RULES[code] or RULES[code - 128]) then record.partial = true end
   end
@@ -2026,6 +2201,7 @@ end
 local pf = {
   item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
   kind = ProtoField.string("vw3.kind", "Kind"),
+  mode = ProtoField.string("vw3.mode", "Mode"),
   slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
   ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, names(FUNCTIONS)),
   crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
@@ -2092,9 +2268,11 @@ proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
   "How register addresses are shown (the vw3.reg.address field is always the address on the wire)",
   { { 1, "As the device profile says", STYLE_DEFAULT }, { 2, "As sent on the wire (8401)", STYLE_PROTOCOL },
     { 3, "PLC 4X reference (48402)", STYLE_PLC } }, false)
+proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
+  "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
 
-local state = new_state()
+local state = new_state(1.0)
 vw3.state = function() return state end
 
 local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
@@ -2103,22 +2281,33 @@ local function apply_prefs()
   configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style])
 end
 
+local function timeout_pref()
+  if proto.prefs.timeout_ms == 0 then return nil end
+  return proto.prefs.timeout_ms / 1000
+end
+
 function proto.init()
   apply_prefs()
-  state = new_state()
+  state = new_state(timeout_pref())
 end
 
 local function add_text(tree, expert_info, text)
   tree:add_proto_expert_info(expert_info, text)
 end
 
-local function range_of(tvb, offset, length)
-  if length <= 0 or offset + length > tvb:len() then return nil end
+-- The tvb range of `size` bytes at `at` in the frame's byte table (ASCII: hex pairs in the record);
+-- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
+local function frame_range(tvb, f, at, size)
+  local offset, length = at, size
+  if f.ascii then offset, length = f.offset + 1 + 2 * at, 2 * size end
+  if length <= 0 or offset < f.offset or offset + length > f.offset + f.length then
+    return tvb:range(f.offset, f.length)
+  end
   return tvb:range(offset, length)
 end
 
-local function add_register(tree, tvb, reg)
-  local r = range_of(tvb, reg.offset, 2)
+local function add_register(tree, tvb, f, reg)
+  local r = frame_range(tvb, f, reg.offset, 2)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
   local text = format("Register %s", label)
   if reg.code then text = text .. " " .. reg.code end
@@ -2163,24 +2352,32 @@ end
 local function show_frame(f, tvb, tree, pinfo)
   local whole = tvb:range(f.offset, f.length)
   local t = tree:add(proto, whole)
-  t:set_text(format("VW3 Modbus RTU, %s", summary(f)))
+  t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
   t:add(pf.item, whole, f.number):set_generated()
   t:add(pf.kind, whole, f.kind):set_generated()
-  t:add(pf.slave, tvb:range(f.offset, 1), f.slave)
-  t:add(pf["function"], tvb:range(f.offset + 1, 1), f.fn)
-  local crc_range = tvb:range(f.offset + f.length - 2, 2)
+  local base = f.data_at - 2 -- the slave byte in the frame's byte table
+  t:add(pf.mode, whole, f.mode):set_generated()
+  t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
+  t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+  local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
   local crc_ok = f.crc == f.crc_expected
   t:add(pf.crc, crc_range, f.crc)
   t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
   t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
-  if not crc_ok then add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected)) end
+  if not crc_ok then
+    if f.ascii then
+      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
+    else
+      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
+    end
+  end
   if f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    t:add(pf.exception_code, tvb:range(f.offset + 2, 1), f.exception_code)
+    t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code)
     add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
     if f.exception_meaning then t:add(pf.exception_text, whole, f.exception_meaning):set_generated() end
   end
-  local data_range = range_of(tvb, f.offset + 2, 2)
+  local data_range = frame_range(tvb, f, f.data_at, 2)
   if f.start ~= nil then
     local item = t:add(pf.start, data_range, f.start)
     if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
@@ -2188,11 +2385,11 @@ local function show_frame(f, tvb, tree, pinfo)
   if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
   if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
   if f.registers then
-    for _, reg in ipairs(f.registers) do add_register(t, tvb, reg) end
+    for _, reg in ipairs(f.registers) do add_register(t, tvb, f, reg) end
   end
   if f.bits then
     for _, bit_ in ipairs(f.bits) do
-      local r = range_of(tvb, bit_.offset, 1)
+      local r = frame_range(tvb, f, bit_.offset, 1)
       local sub = t:add(pf.bit, r)
       sub:set_text(format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value))
       if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
@@ -2201,7 +2398,7 @@ local function show_frame(f, tvb, tree, pinfo)
   end
   if f.objects then
     for _, object in ipairs(f.objects) do
-      local r = range_of(tvb, object.offset, object.length)
+      local r = frame_range(tvb, f, object.offset, object.length)
       local sub = t:add(pf.object, r)
       sub:set_text(format("%s: %s", object.name, object.value))
       sub:add(pf.object_id, r, object.id)
@@ -2231,7 +2428,14 @@ local function show_frame(f, tvb, tree, pinfo)
       add_text(t, ex.warning, text)
     end
   end
-  for _, text in ipairs(f.notes) do
+  local notes = f.notes
+  if f.kind == REQUEST and pinfo.visited and state.pending == f then
+    -- Known only once the whole capture has been read (second pass).
+    notes = {}
+    for _, text in ipairs(f.notes) do notes[#notes + 1] = text end
+    notes[#notes + 1] = "the capture ends before any response"
+  end
+  for _, text in ipairs(notes) do
     if f.no_request and text == "response without a matching request in the capture" then
       add_text(t, ex.no_request, text)
     else

@@ -1,0 +1,132 @@
+"""Frame-by-frame comparison of the Lua plugin's tshark output with the Python decoder's items."""
+from __future__ import annotations
+
+import re
+from typing import Any
+
+from lua_harness import LuaItem, PythonItem
+
+_PAIRING_NOTE = re.compile(r"^request #\d+ was not answered$")
+_MALFORMED = re.compile(r"^(malformed (?:request|response|exception)):.*$")
+WARNING_EXPERTS = ("vw3.expert.warning", "vw3.expert.malformed")
+NOTE_EXPERTS = ("vw3.expert.note", "vw3.expert.no_request")
+
+
+def _warning(text: str) -> str:
+    # Construct's parse errors have no Lua counterpart word for word; what failed is compared.
+    match = _MALFORMED.match(text)
+    return match.group(1) if match else text
+
+
+def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
+    data = item.data
+    out: dict[str, Any] = {
+        "item": data["frame"],
+        "length": data["length"],
+        "kind": data["kind"],
+        "slave": data["slave"],
+        "function": data["function"],
+        "crc_ok": data["crc_ok"],
+        "crc": data["crc"],
+        "crc_expected": data["crc_expected"],
+        "broadcast": data["broadcast"],
+        "start": data.get("start"),
+        "quantity": data.get("quantity"),
+        "subfunction": data.get("subfunction"),
+        "exception_code": data.get("exception_code"),
+        "request_frame": records.get(data["request_frame"]) if "request_frame" in data else None,
+        "response_frame": records.get(data["response_frame"]) if "response_frame" in data else None,
+        "unanswered": data.get("unanswered"),
+        "registers": [
+            (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"))
+            for reg in data.get("registers", [])
+        ],
+        "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
+        "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
+        "warnings": [_warning(text) for text in data["warnings"]],
+        "notes": [text for text in data["notes"] if not _PAIRING_NOTE.match(text)],
+    }
+    return out
+
+
+def _int(text: str | None) -> int | None:
+    if text is None or text == "":
+        return None
+    return int(text, 0)
+
+
+def _bool(text: str | None) -> bool | None:
+    if text is None:
+        return None
+    return text in ("1", "True", "true")
+
+
+def lua_frame(item: LuaItem) -> dict[str, Any]:
+    fields = item.fields
+    kind = fields.get("kind")
+    return {
+        "item": _int(fields.get("item")),
+        "length": item.length,
+        "kind": kind,
+        "slave": _int(fields.get("slave")),
+        "function": _int(fields.get("function")),
+        "crc_ok": _bool(fields.get("crc_ok")),
+        "crc": _int(fields.get("crc")),
+        "crc_expected": _int(fields.get("crc_expected")),
+        "broadcast": bool(_bool(fields.get("broadcast"))),
+        "start": _int(fields.get("start")),
+        "quantity": _int(fields.get("quantity")),
+        "subfunction": _int(fields.get("subfunction")),
+        "exception_code": _int(fields.get("exception_code")),
+        "request_frame": _int(fields.get("request_frame")),
+        "response_frame": _int(fields.get("response_frame")),
+        "unanswered": _bool(fields.get("unanswered")) if kind == "request" else None,
+        "registers": [
+            (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"), reg.get("status"),
+             reg.get("text"), reg.get("label"))
+            for reg in item.registers
+        ],
+        "bits": [(_int(bit.get("address")), _int(bit.get("value"))) for bit in item.bits],
+        "objects": [
+            (_int(obj.get("id")), obj.get("name"), obj.get("value"), obj.get("text")) for obj in item.objects
+        ],
+        "warnings": [_warning(text) for abbrev, text in item.experts if abbrev in WARNING_EXPERTS],
+        "notes": [text for abbrev, text in item.experts if abbrev in NOTE_EXPERTS],
+    }
+
+
+def compare(python: list[PythonItem], lua: list[LuaItem]) -> list[str]:
+    """Every difference, as one line each; empty when the two sides agree."""
+    records = {item.data["frame"]: item.record for item in python}
+    differences: list[str] = []
+    py_frames = {(item.record, item.offset): item for item in python if item.data["kind"] != "noise"}
+    lua_frames = {(item.record, item.offset): item for item in lua if item.fields.get("kind") != "noise"}
+    for key in sorted(set(py_frames) | set(lua_frames)):
+        where = f"record {key[0]} offset {key[1]}"
+        if key not in lua_frames:
+            differences.append(f"{where}: only Python has a frame: {py_frames[key].data['raw']}")
+            continue
+        if key not in py_frames:
+            differences.append(f"{where}: only Lua has a frame ({lua_frames[key].fields.get('kind')})")
+            continue
+        expected = python_frame(py_frames[key], records)
+        got = lua_frame(lua_frames[key])
+        for name, value in expected.items():
+            if got.get(name) != value:
+                differences.append(f"{where} {name}: Python {value!r}, Lua {got.get(name)!r}")
+    py_noise = {
+        (item.record, item.offset + index)
+        for item in python
+        if item.data["kind"] == "noise"
+        for index in range(item.data["length"])
+    }
+    lua_noise = {
+        (item.record, item.offset + index)
+        for item in lua
+        if item.fields.get("kind") == "noise"
+        for index in range(item.length)
+    }
+    for record, offset in sorted(py_noise ^ lua_noise)[:20]:
+        side = "Python" if (record, offset) in py_noise else "Lua"
+        differences.append(f"record {record} offset {offset}: noise only in {side}")
+    return differences
