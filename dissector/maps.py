@@ -28,6 +28,7 @@ from pathlib import Path
 COLUMNS = ("address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source")
 REQUIRED = ("address", "code")
 ACCESS = frozenset(["R", "W", "RW"])
+MEMO_LIMIT = 4096
 
 
 class ProfileError(ValueError):
@@ -51,6 +52,11 @@ class RegisterDef:
     # 16#8000 is a value this register can really hold (signed, bit 15 labelled, or enumerated),
     # so a read of 16#8000 cannot be called protected with certainty.
     ambiguous_8000: bool = False
+    # interpret() results by raw value, filled by the annotator: captures repeat values, and this makes
+    # annotation a dictionary lookup per register. Bounded by MEMO_LIMIT.
+    memo: dict[int, tuple[float | int | None, str | None]] = field(
+        default_factory=dict, repr=False, compare=False
+    )
 
 
 RegisterMap = dict[int, RegisterDef]

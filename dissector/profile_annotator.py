@@ -11,10 +11,9 @@ per frame is a few dictionary lookups per register.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
-from typing import NamedTuple
+from dataclasses import dataclass, field
 
-from .maps import RegisterDef, RegisterMap, interpret
+from .maps import MEMO_LIMIT, RegisterDef, RegisterMap, interpret
 from .model import DeviceObject, Frame, Kind, Register
 from .profiles import BitsDepend, ExceptionCause, Profile, load_profile_map
 from .spec import SPEC
@@ -25,6 +24,13 @@ _READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 # decode_frame already warns when the spec forbids a broadcast; the profile adds device rules only.
 _SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
 _HAS_LABEL = "label" in Register.__dataclass_fields__
+_REQUEST = Kind.REQUEST
+_RESPONSE = Kind.RESPONSE
+_EXCEPTION = Kind.EXCEPTION
+
+# What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
+# (how is then its status); how "read" or "written" otherwise. Plain tuples: this is the hot path.
+_Seen = tuple[int | None, int, str]
 
 
 @dataclass(frozen=True, slots=True)
@@ -36,20 +42,24 @@ class MapLayer:
     profile: str | None = None
 
 
-class _Seen(NamedTuple):
-    value: int | None  # None: the parameter was unreadable (16#8000 or exception)
-    frame: int
-    how: str  # "read", "written", or the unreadable status
-
-
 @dataclass(slots=True)
 class _Device:
+    """Everything one slave needs, computed on its first frame."""
+
     profile: Profile
     rows: RegisterMap
     plain: dict[int, RegisterDef]  # rows without bit labels, for bits_depend
     depend: dict[int, BitsDepend]
     plc: dict[int, int] | None  # PLC base per function (None: protocol addresses)
     plc_default: int
+    # Parameters are followed only where it tells something: protection, or bits that depend on a value.
+    track: bool
+    # Requests that need no check at all (supported, no device limit): the common case costs one lookup.
+    unchecked: frozenset[int]
+    # Supported functions with a device limit: checked inline before the full (slower) check.
+    limited: dict[int, tuple[int, ...]]
+    seen: dict[int, _Seen] = field(default_factory=dict)
+    labels: dict[int, dict[int, str]] = field(default_factory=dict)
 
 
 def _plc_label(base: int, address: int) -> str:
@@ -81,7 +91,6 @@ class Annotator:
         self.address_style = address_style
         self._devices: dict[int, _Device] = {}
         self._base_maps: dict[str, RegisterMap] = {}
-        self._seen: dict[tuple[int, int], _Seen] = {}
         for profile in [default, *per_slave.values()]:
             self._device_for(profile, None)  # load every map now: errors before the first frame
 
@@ -105,8 +114,9 @@ class Annotator:
             for address in rule.registers:
                 if address in rows:
                     depend[address] = rule
-                    plain[address] = dataclasses.replace(rows[address], bits={})
+                    plain[address] = dataclasses.replace(rows[address], bits={}, memo={})
         style = self.address_style or profile.address_style
+        supported = profile.functions if profile.functions is not None else frozenset(range(256))
         return _Device(
             profile=profile,
             rows=rows,
@@ -114,6 +124,13 @@ class Annotator:
             depend=depend,
             plc=dict(profile.plc_base) if style == "plc" else None,
             plc_default=profile.plc_base_default,
+            track=profile.protected_value is not None or bool(depend),
+            unchecked=frozenset(supported - profile.inner_only - set(profile.limits)),
+            limited={
+                function: limits
+                for function, limits in profile.limits.items()
+                if function in supported and function not in profile.inner_only
+            },
         )
 
     def device(self, slave: int) -> _Device:
@@ -147,25 +164,29 @@ class Annotator:
 
     # -- per frame ----------------------------------------------------------------------------------------
     def __call__(self, frame: Frame) -> None:
-        device = self.device(frame.slave)
+        device = self._devices.get(frame.slave)
+        if device is None:
+            device = self.device(frame.slave)
         kind = frame.kind
         function = frame.function
-        if kind is Kind.REQUEST:
-            self._check_request(frame, device)
-        elif kind is Kind.EXCEPTION:
+        if kind is _REQUEST:
+            if frame.broadcast or function not in device.unchecked:
+                if frame.broadcast or not self._within_limits(frame, device):
+                    self._check_request(frame, device)
+        elif kind is _EXCEPTION:
             self._explain_exception(frame, device)
             return
-        request = frame.request
-        if kind is Kind.RESPONSE and request is not None and request.registers:
+        elif device.track and function in (16, 23):
             # Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-            if function in (16, 23):
-                self._remember_writes(frame, request.registers)
+            request = frame.request
+            if request is not None and request.registers:
+                self._remember_writes(frame, device, request.registers)
         registers = frame.registers
         if registers:
-            read = kind is Kind.RESPONSE and function in _READS
+            read = kind is _RESPONSE and function in _READS
             self._annotate(frame, device, registers, read)
-            if kind is Kind.RESPONSE and function == 6:
-                self._remember_writes(frame, registers)
+            if kind is _RESPONSE and function == 6 and device.track:
+                self._remember_writes(frame, device, registers)
         if function == 8 and frame.subfunction is not None:
             self._diagnostics(frame, device)
         if frame.objects:
@@ -174,81 +195,119 @@ class Annotator:
     def _annotate(self, frame: Frame, device: _Device, registers: list[Register], read: bool) -> None:
         rows = device.rows
         depend = device.depend
-        plc = device.plc
-        base = None if plc is None else plc.get(frame.function, device.plc_default)
+        labels: dict[int, str] | None = None
+        base = 0
+        if device.plc is not None and _HAS_LABEL:
+            base = device.plc.get(frame.function, device.plc_default)
+            labels = device.labels.setdefault(base, {})
         protected = device.profile.protected_value if read else None
         # A single-register read of an unreadable parameter draws an exception, not 16#8000 (p.38).
         multi = len(registers) > 1
-        seen = self._seen
-        slave = frame.slave
+        seen = device.seen
+        number = frame.number
         for register in registers:
             address = register.address
             if address is None:
                 continue
-            if base is not None and _HAS_LABEL:
-                register.label = _plc_label(base, address)
+            if labels is not None:
+                label = labels.get(address)
+                if label is None:
+                    label = labels[address] = _plc_label(base, address)
+                register.label = label
             row = rows.get(address)
             value = register.value
             if row is not None:
                 used = row
-                if address in depend:
-                    rule = depend[address]
-                    last = seen.get((slave, rule.on))
-                    if last is not None and last.value in rule.plain_when:
-                        used = device.plain[address]
-                        if rule.reason not in frame.notes:
-                            frame.notes.append(rule.reason)
+                if depend and address in depend:
+                    used = self._depend(frame, device, address)
                 register.code = row.code
                 register.name = row.name
                 register.unit = row.unit
                 register.source = row.source
-                register.scaled, register.text = interpret(used, value)
+                memo = used.memo
+                reading = memo.get(value)
+                if reading is None:
+                    reading = interpret(used, value)
+                    if len(memo) < MEMO_LIMIT:
+                        memo[value] = reading
+                register.scaled, register.text = reading
             if protected is None:
                 continue
             if value == protected and multi:
-                if row is None:
-                    status = "non-existent"
-                    register.text = "16#8000: non-existent (address not in the map)"
-                elif row.ambiguous_8000:
-                    status = "ambiguous"  # keep the value's own reading: it may be real
-                else:
-                    status = "protected"
-                    register.scaled = None
-                    register.text = "16#8000: protected"
-            else:
-                status = "ok"
-            register.status = status
-            self._track(frame, address, row, value, status, "16#8000 now")
+                self._unreadable(frame, device, register, row)
+                continue
+            register.status = "ok"
+            last = seen.get(address)
+            if last is not None and last[0] is None:
+                frame.notes.append(
+                    f"{address_name(row, address)} readable again: {last[2]} in frame #{last[1]}, "
+                    f"{value} now"
+                )
+            seen[address] = (value, number, "read")
 
-    def _track(
-        self, frame: Frame, address: int, row: RegisterDef | None, value: int, status: str, now: str
+    @staticmethod
+    def _depend(frame: Frame, device: _Device, address: int) -> RegisterDef:
+        rule = device.depend[address]
+        last = device.seen.get(rule.on)
+        if last is not None and last[0] in rule.plain_when:
+            if rule.reason not in frame.notes:
+                frame.notes.append(rule.reason)
+            return device.plain[address]
+        return device.rows[address]
+
+    def _unreadable(self, frame: Frame, device: _Device, register: Register, row: RegisterDef | None) -> None:
+        """16#8000 in a multi-register read: non-existent, protected, or (if it can be real) ambiguous."""
+        if row is None:
+            status = "non-existent"
+            register.text = "16#8000: non-existent (address not in the map)"
+        elif row.ambiguous_8000:
+            # The value may be real: keep its own reading, and what was known of the parameter.
+            register.status = "ambiguous"
+            return
+        else:
+            status = "protected"
+            register.scaled = None
+            register.text = "16#8000: protected"
+        register.status = status
+        self._lost(frame, device, register.address, row, status, "16#8000 now")  # type: ignore[arg-type]
+
+    @staticmethod
+    def _lost(
+        frame: Frame, device: _Device, address: int, row: RegisterDef | None, status: str, now: str
     ) -> None:
-        key = (frame.slave, address)
-        last = self._seen.get(key)
-        if status == "ok":
-            if last is not None and last.value is None:
-                frame.notes.append(
-                    f"{address_name(row, address)} readable again: {last.how} in frame "
-                    f"#{last.frame}, {value} now"
-                )
-            self._seen[key] = _Seen(value, frame.number, "read")
-        elif status in ("protected", "non-existent"):
-            if last is not None and last.value is not None:
-                became = "protected" if row is not None else "non-existent or protected"
-                frame.notes.append(
-                    f"{address_name(row, address)} became {became}: {last.how} {last.value} in "
-                    f"frame #{last.frame}, {now}"
-                )
-            self._seen[key] = _Seen(None, frame.number, status)
-        # ambiguous: the value may be real or not; what was known before stays.
+        """Record a parameter as unreadable, telling the story if it was readable before."""
+        last = device.seen.get(address)
+        if last is not None and last[0] is not None:
+            became = "protected" if row is not None else "non-existent or protected"
+            frame.notes.append(
+                f"{address_name(row, address)} became {became}: {last[2]} {last[0]} in "
+                f"frame #{last[1]}, {now}"
+            )
+        device.seen[address] = (None, frame.number, status)
 
-    def _remember_writes(self, frame: Frame, registers: list[Register]) -> None:
-        seen = self._seen
+    @staticmethod
+    def _remember_writes(frame: Frame, device: _Device, registers: list[Register]) -> None:
+        seen = device.seen
+        number = frame.number
         for register in registers:
             if register.address is not None:
-                seen[(frame.slave, register.address)] = _Seen(register.value, frame.number, "written")
+                seen[register.address] = (register.value, number, "written")
 
     # -- requests -----------------------------------------------------------------------------------------
+    @staticmethod
+    def _within_limits(frame: Frame, device: _Device) -> bool:
+        """True when a supported request is within the device's limits (nothing to report)."""
+        limits = device.limited.get(frame.function)
+        if limits is None:
+            return False
+        quantity = frame.quantity
+        if quantity is None or quantity > limits[0]:
+            return False
+        if len(limits) > 1:
+            fields = frame.fields
+            return fields is not None and fields.write_quantity <= limits[1]
+        return True
+
     def _check_request(self, frame: Frame, device: _Device) -> None:
         profile = device.profile
         function = frame.function
@@ -343,7 +402,7 @@ class Annotator:
         now = f"exception {frame.exception_code:02X} now"
         for address in addresses:
             row = rows.get(address)
-            self._track(frame, address, row, 0, "non-existent" if row is None else "protected", now)
+            self._lost(frame, device, address, row, "non-existent" if row is None else "protected", now)
 
     # -- other functions ----------------------------------------------------------------------------------
     @staticmethod
