@@ -19,6 +19,8 @@ from .profiles import BitsDepend, ExceptionCause, Profile, load_profile_map
 from .spec import SPEC
 
 _READS = frozenset([3, 4, 23])  # functions whose response registers are values read from the device
+# Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
+_PLAIN_READS = frozenset([3, 4])
 _MAX_LISTED = 8  # registers named one by one in an exception explanation
 _READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 # decode_frame already warns when the spec forbids a broadcast; the profile adds device rules only.
@@ -368,7 +370,7 @@ class Annotator:
         elif profile.exceptions:
             known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
             frame.notes.append(f"exception {code:02X} is not one the {profile.device} documents ({known})")
-        if code == profile.all_protected_exception and function in _READS:
+        if code == profile.all_protected_exception and function in _PLAIN_READS:
             self._all_unreadable(frame, device)
 
     @staticmethod

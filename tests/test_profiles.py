@@ -244,6 +244,31 @@ def test_sel_4x_display_and_protocol_override() -> None:
 def test_sel_unsupported_function_and_nop_alone() -> None:
     diag = frames(crc("030800000000"), ["sel749m"])[0]
     assert diag.warnings == ["Diagnostics (8) is not supported by the SEL-749M"]
+    nop = frames(crc("037E") + crc("037E"), ["sel749m"])[0]
+    assert nop.warnings == ["NOP (126) is only valid inside an encapsulated packet on the SEL-749M"]
+
+
+def test_fc23_exception_02_is_not_explained_register_by_register() -> None:
+    # The write half may be the cause: only the card's meaning is given.
+    items = frames(crc("020320D10002") + crc("0203040003 0002".replace(" ", ""))
+                   + crc("021720D1000221350001020006") + crc("029702"))
+    assert items[3].notes == [
+        "exception 02 from the VW3 A3 303: address does not exist "
+        "(also: every parameter read is non-existent or protected)"]
+
+
+def test_json_carries_the_annotation() -> None:
+    from dissector.render.jsonout import item_to_dict
+
+    response = frames(P38_REQUEST + P38_SCENARIO_1)[1]
+    assert item_to_dict(response)["registers"] == [
+        {"address": 8400, "value": 32768, "text": "16#8000: non-existent (address not in the map)",
+         "status": "non-existent"},
+        {"address": 8401, "value": 3, "code": "CHCF", "name": "Profile", "text": "IO (I/O profile)",
+         "status": "ok", "source": "S"},
+        {"address": 8402, "value": 2, "code": "COP", "name": "Copy channel 1 <> 2",
+         "text": "Cd (command)", "status": "ok", "source": "S"},
+    ]
 
 
 def test_generic_plc_style_uses_3x_for_input_registers() -> None:
