@@ -1,0 +1,43 @@
+-- Usage: lua5.4 run_records.lua PLUGIN [-o key=value]... HEX[@TIME] ...
+-- Loads the plugin on the Wireshark stub, runs both passes over the records (as tshark -2 does), and
+-- prints the second pass's tree of every record, one `field=value` line per item.
+local here = arg[0]:match("^(.*)/[^/]*$") or "."
+package.path = here .. "/?.lua;" .. package.path
+local stub = require("wireshark_stub")
+
+local plugin = arg[1]
+local records, options = {}, {}
+local index = 2
+while index <= #arg do
+  if arg[index] == "-o" then
+    local key, value = arg[index + 1]:match("^([^=]+)=(.*)$")
+    options[#options + 1] = { key, value }
+    index = index + 2
+  else
+    local hex, time = arg[index]:match("^([^@]*)@?(.*)$")
+    records[#records + 1] = { bytes = (hex:gsub("%x%x", function(pair) return string.char(tonumber(pair, 16)) end)), time = tonumber(time) or #records * 0.01 }
+    index = index + 1
+  end
+end
+
+dofile(plugin)
+local proto = stub.protos.vw3
+assert(stub.tables.wtap_encap.entries[wtap.USER0] == proto, "registered for linktype 147")
+for _, option in ipairs(options) do
+  local value = option[2]
+  if tonumber(value) then value = tonumber(value) end
+  proto.set_pref(option[1], value)
+end
+if proto.prefs_changed then proto.prefs_changed() end
+proto.init()
+for number, record in ipairs(records) do
+  assert(proto.dissector(stub.tvb(record.bytes), stub.pinfo(number, false, record.time), stub.tree()) == #record.bytes)
+end
+for number, record in ipairs(records) do
+  local tree = stub.tree()
+  local pinfo = stub.pinfo(number, true, record.time)
+  proto.dissector(stub.tvb(record.bytes), pinfo, tree)
+  print(string.format("record %d: %s", number, tostring(pinfo.cols.info)))
+  for _, line in ipairs(stub.dump(tree, 1)) do print(line) end
+end
+print("lua version: " .. _VERSION)
