@@ -41,43 +41,43 @@ from typing import Any
 
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
-# field -> (scope, type); types: int (numbers, floats accepted), str, bool, list (of strings)
+# field -> type: number (integer or decimal), str, bool, list (of strings)
 FRAME_FIELDS: dict[str, str] = {
-    "frame": "int",
+    "frame": "number",
     "kind": "str",
-    "offset": "int",
-    "length": "int",
-    "time": "int",
+    "offset": "number",
+    "length": "number",
+    "time": "number",
     "raw": "str",
     "mode": "str",
-    "slave": "int",
-    "function": "int",
+    "slave": "number",
+    "function": "number",
     "function_name": "str",
     "crc_ok": "bool",
-    "crc": "int",
-    "crc_expected": "int",
+    "crc": "number",
+    "crc_expected": "number",
     "broadcast": "bool",
-    "start": "int",
-    "quantity": "int",
-    "subfunction": "int",
+    "start": "number",
+    "quantity": "number",
+    "subfunction": "number",
     "subfunction_name": "str",
-    "exception_code": "int",
+    "exception_code": "number",
     "exception_name": "str",
-    "request_frame": "int",
-    "response_frame": "int",
-    "response_time": "int",
+    "request_frame": "number",
+    "response_frame": "number",
+    "response_time": "number",
     "unanswered": "bool",
     "reason": "str",
     "warnings": "list",
     "notes": "list",
 }
 REGISTER_FIELDS: dict[str, str] = {
-    "address": "int",
-    "value": "int",
+    "address": "number",
+    "value": "number",
     "code": "str",
     "name": "str",
     "unit": "str",
-    "scaled": "int",
+    "scaled": "number",
     "text": "str",
     "status": "str",
     "source": "str",
@@ -168,6 +168,8 @@ def tokenize(text: str) -> list[Token]:
             i = end
             continue
         if group == "number":
+            if len(word) > 40:  # also keeps int() below Python's digit limit
+                raise FilterError("number too long", text, i)
             number: int | float = int(word, 16) if word[:2] in ("0x", "0X") else (
                 float(word) if "." in word else int(word)
             )
@@ -214,15 +216,21 @@ def _numeric(value: Any) -> bool:
 
 def _elements(item: Item) -> list[dict[str, Any]]:
     """The registers and bits of an item, plus address-only entries for addresses it names."""
-    elements: list[dict[str, Any]] = list(item.get("registers") or ()) + list(item.get("bits") or ())
+    registers = item.get("registers") or []
+    bits = item.get("bits")
+    elements: list[dict[str, Any]] = registers + bits if bits else registers
     start, quantity = item.get("start"), item.get("quantity")
-    if _numeric(start) and _numeric(quantity) and item.get("kind") != "exception":
-        known = {element.get("address") for element in elements}
-        for address in range(int(start), int(start) + min(int(quantity), MAX_SYNTHESIZED)):
-            address &= 0xFFFF
-            if address not in known:
-                elements.append({"address": address})
-    return elements
+    if not (_numeric(start) and _numeric(quantity)) or item.get("kind") == "exception":
+        return elements
+    if len(elements) == quantity and elements[0].get("address") == start:
+        return elements  # a read response: its values already cover start..start+quantity-1
+    known = {element.get("address") for element in elements}
+    synthesized = [
+        {"address": address & 0xFFFF}
+        for address in range(int(start), int(start) + min(int(quantity), MAX_SYNTHESIZED))
+        if address & 0xFFFF not in known
+    ]
+    return elements + synthesized if synthesized else elements
 
 
 class _Parser:
@@ -367,7 +375,7 @@ class _Parser:
                 raise self.error(f"{field} is true or false, not {self._describe(token)}")
             self.advance()
             return token.value == "true"
-        if ftype == "int":
+        if ftype == "number":
             if token.kind != "number":
                 raise self.error(f"{field} is a number, not {self._describe(token)}")
             self.advance()
@@ -383,7 +391,7 @@ class _Parser:
         if ftype in ("bool", "list"):
             raise self.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
         if not self.at("punct", "{"):
-            if ftype != "int":
+            if ftype != "number":
                 raise self.error("expected { after in (a set such as {\"CHCF\" \"COP\"})")
             return [self.parse_member(field, ftype, require_range=True)]
         opening = self.advance()
@@ -404,7 +412,7 @@ class _Parser:
         low = self.parse_value(field, ftype)
         self._check_choice(field, low, value_token)
         if self.at("punct", ".."):
-            if ftype != "int":
+            if ftype != "number":
                 raise self.error(f"ranges need numbers; {field} is a text")
             self.advance()
             high = self.parse_value(field, ftype)
@@ -434,7 +442,7 @@ class _Parser:
         return f" (did you mean {close[0]}?)" if close else ""
 
 
-_TYPE_WORDS = {"int": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
+_TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
 
 
 def _match_op(op: str, actual: Any, value: Any) -> bool:

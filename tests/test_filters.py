@@ -148,6 +148,27 @@ def test_errors_point_at_the_token(expression: str, message: str) -> None:
     assert str(caught.value) == message
 
 
+def test_registers_bits_and_named_addresses() -> None:
+    coils = {"kind": "response", "function": 1, "start": 4, "quantity": 2,
+             "bits": [{"address": 4, "value": 0}, {"address": 5, "value": 1}]}
+    assert compile_filter("address == 5 and value == 1")(coils)
+    assert not compile_filter("address == 4 and value == 1")(coils)
+    read_write = {"kind": "request", "function": 23, "start": 3201, "quantity": 2,
+                  "registers": [{"address": 8501, "value": 15}, {"address": 8502, "value": 300}]}
+    assert compile_filter("address == 3202")(read_write)  # read part: named, no value
+    assert not compile_filter("address == 3202 and value")(read_write)
+    assert compile_filter("address == 8502 and value == 300")(read_write)
+    assert not compile_filter("address == 8502 and value == 15")(read_write)
+    exception = {"kind": "exception", "function": 3, "exception_code": 2}
+    assert compile_filter("not address == 8401")(exception)
+    assert not compile_filter("address")(exception)
+
+
+def test_huge_number_is_an_error() -> None:
+    with pytest.raises(FilterError, match="number too long"):
+        compile_filter("slave == " + "9" * 5000)
+
+
 def test_nesting_is_bounded() -> None:
     with pytest.raises(FilterError, match="nested more than 64 levels"):
         compile_filter("(" * 200 + "slave == 1" + ")" * 200)
