@@ -32,6 +32,7 @@ from .stats import StatsCollector
 from .timing import GapChecker
 
 PROG = "vw3-decode"
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
 
 
 class ExitStatus(IntEnum):
@@ -206,20 +207,23 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
     return annotator_from_args(args)
 
 
-def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]]]]:
-    """(title, chunks, mode, take_warnings) per input."""
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
+
+
+def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
+    """(title, chunks, mode, take_warnings, timed) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
         chunks = [_hex_chunk(text) for text in args.hex]
         mode = args.mode or ("ascii" if chunks and chunks[0].data[:1] == b":" else "rtu")
-        yield ("--hex" if several else None), chunks, mode, list
+        yield ("--hex" if several else None), chunks, mode, list, False
     for path in args.files:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
         chunks: Iterable[Chunk] = source
         if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
             chunks = progress_for(source, path, env.stderr)
-        yield (path if several else None), chunks, source.mode, source.take_warnings
+        yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
 
 
 def decode_files(args: argparse.Namespace, env: Environment) -> int:
@@ -227,7 +231,7 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
     sinks = Sinks(args, env)
     status = ExitStatus.OK
     try:
-        for title, chunks, mode, take_warnings in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed in _inputs(args, env):
             sinks.output.new_input(title)
             sinks.extra = {"file": title} if title is not None else None
 
@@ -240,7 +244,7 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
                 framer=framer,
                 annotate=annotate,
                 timeout=args.timeout,
-                gaps=GapChecker(args.baud, mode),
+                gaps=GapChecker(args.baud, mode) if timed else None,
             )
             decode_chunks(chunks, dissector, sinks, warn)
     except OSError as error:
