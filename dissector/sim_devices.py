@@ -41,7 +41,8 @@ Response = bytes | None
 
 
 def exception_pdu(function: int, code: int) -> bytes:
-    return bytes([function | 0x80]) + build_pdu(function, Kind.EXCEPTION, {"exception_code": code, "trailing": b""})
+    fields = {"exception_code": code, "trailing": b""}
+    return bytes([function | 0x80]) + build_pdu(function, Kind.EXCEPTION, fields)
 
 
 def registers_pdu(function: int, values: list[int]) -> bytes:
@@ -206,7 +207,12 @@ class Atv71(Device):
     def _fc_identification(self, function: int, fields: Any) -> Response:
         if fields.mei_type != 14 or fields.body.read_code != 1:
             return exception_pdu(function, 3)
-        texts = [(0, self.rules["vendor"]), (1, self.product), (2, self.rules["revision"]), (6, self.device_name)]
+        texts = [
+            (0, self.rules["vendor"]),
+            (1, self.product),
+            (2, self.rules["revision"]),
+            (6, self.device_name),
+        ]
         objects = [{"id": oid, "length": len(text), "value": text.encode("latin-1")} for oid, text in texts]
         body = {
             "read_code": 1,

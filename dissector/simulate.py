@@ -122,13 +122,17 @@ class Bus:
     def write(self, slave: int, address: int, value: int) -> bytes | None:
         return self.request(slave, pdu_of(6, Kind.REQUEST, address=address, value=value))
 
-    def write_multiple(self, slave: int, start: int, values: list[int], quantity: int | None = None) -> bytes | None:
+    def write_multiple(
+        self, slave: int, start: int, values: list[int], quantity: int | None = None
+    ) -> bytes | None:
         """FC16; a `quantity` other than len(values) makes the byte count disagree with it."""
         count = len(values) if quantity is None else quantity
         pdu = pdu_of(16, Kind.REQUEST, start=start, quantity=count, byte_count=2 * len(values), values=values)
         return self.request(slave, pdu)
 
-    def read_write(self, slave: int, read: tuple[int, int], write_start: int, values: list[int]) -> bytes | None:
+    def read_write(
+        self, slave: int, read: tuple[int, int], write_start: int, values: list[int]
+    ) -> bytes | None:
         pdu = pdu_of(
             23,
             Kind.REQUEST,
@@ -142,7 +146,8 @@ class Bus:
         return self.request(slave, pdu)
 
     def identify(self, slave: int) -> bytes | None:
-        return self.request(slave, pdu_of(43, Kind.REQUEST, mei_type=14, body={"read_code": 1, "object_id": 0}))
+        body = {"read_code": 1, "object_id": 0}  # basic identification from object 0
+        return self.request(slave, pdu_of(43, Kind.REQUEST, mei_type=14, body=body))
 
 
 def _damaged(adu: bytes, index: int) -> bytes:
@@ -299,7 +304,11 @@ def _transaction_pool(seed: int) -> tuple[tuple[bytes, bytes | None, int], ...]:
     for cycle in range(64):
         for drive in drives:
             lfr = (cycle * 37) % 500
-            transact(lambda d=drive, f=lfr: bus.read_write(d.slave, (d.address("ETA"), 2), d.address("CMD"), [0x000F, f]))
+            transact(
+                lambda d=drive, f=lfr: bus.read_write(
+                    d.slave, (d.address("ETA"), 2), d.address("CMD"), [0x000F, f]
+                )
+            )
         _sel_currents(relay, cycle, bus.rng)
         transact(lambda: bus.read(1, 0, 16))
         if cycle % 8 == 3:
@@ -360,7 +369,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--out", type=Path, default=Path("captures"), help="output directory")
     parser.add_argument("--session", action="append", choices=sorted(SESSIONS), help="only these sessions")
-    parser.add_argument("--transactions", type=int, help="write a benchmark session of N transactions instead")
+    parser.add_argument(
+        "--transactions", type=int, help="write a benchmark session of N transactions instead"
+    )
     parser.add_argument("--seed", type=int, default=0, help="seed of the benchmark session")
     args = parser.parse_args(argv)
     args.out.mkdir(parents=True, exist_ok=True)

@@ -12,13 +12,14 @@ Counting rules (the table headers say the same):
   answers; exceptions: exception answers, by code. unanswered: requests the pairing stage found no
   answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
   request and both timed.
-- Per parameter (slave, address, and its code when a profile names it): `reads` counts the values read
-  (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent (16#8000 on
-  the ATV71: a marker, so it is not a value and not a change); `writes` the values a master asked to write (FC6/16/23 requests), `refused` those
-  whose request got an exception. `last` is the latest value seen on the wire, read or confirmed written
-  (FC6 echo; FC16/23 values of a request confirmed by a normal answer); `changes` counts when that value
-  differs from the previous one. Registers without an address (an answer whose request is not in the
-  capture) are counted in `registers_without_address`, not attached to a parameter.
+- Per parameter (slave, address, and its code when a profile names it): `reads` counts the values
+  read (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent
+  (16#8000 on the ATV71: a marker, so neither a value nor a change); `writes` the values a master
+  asked to write (FC6/16/23 requests), `refused` those whose request got an exception. `last` is the
+  latest value seen on the wire, read or confirmed written (FC6 echo; FC16/23 values of a request
+  confirmed by a normal answer; a broadcast write, which nothing confirms); `changes` counts when that
+  value differs from the previous one. Registers without an address (an answer whose request is not
+  in the capture) are counted in `registers_without_address`, not attached to a parameter.
 - p95 is the nearest-rank 95th percentile: the smallest time with at least 95 % of the times <= it.
 """
 from __future__ import annotations
@@ -154,6 +155,15 @@ class StatsCollector:
 
     def _add_response_values(self, frame: Frame) -> None:
         slave, function = frame.slave, frame.function
+        # Writes first: FC23 performs its write before its read.
+        if function == 6:
+            for register in frame.registers or ():
+                if register.address is not None:
+                    self._confirm(slave, register)
+        elif function in (16, 23) and frame.request is not None and frame.request.crc_ok:
+            for register in frame.request.registers or ():
+                if register.address is not None:
+                    self._confirm(slave, register)
         if function in READ_FUNCTIONS:
             for register in frame.registers or ():
                 parameter = self._parameter(slave, register)
@@ -164,19 +174,12 @@ class StatsCollector:
                 else:
                     parameter.reads += 1
                     parameter.observe(register.value)
-        if function == 6:
-            for register in frame.registers or ():
-                if register.address is not None:
-                    self._confirm(slave, register)
-        elif function in (16, 23) and frame.request is not None and frame.request.crc_ok:
-            for register in frame.request.registers or ():
-                if register.address is not None:
-                    self._confirm(slave, register)
 
     def _confirm(self, slave: int, register: Register) -> None:
-        parameter = self.parameters.get((slave, register.address))  # type: ignore[arg-type]
+        key = (slave, register.address)
+        parameter = self.parameters.get(key)  # type: ignore[arg-type]
         if parameter is None:
-            parameter = self.parameters[(slave, register.address)] = ParameterStats(code=register.code)  # type: ignore[index]
+            parameter = self.parameters[key] = ParameterStats(code=register.code)  # type: ignore[index]
         parameter.observe(register.value)
 
     # -- results ------------------------------------------------------------------------------
@@ -263,7 +266,8 @@ class StatsCollector:
                     *(_ms(timing[key]) for key in ("min", "median", "p95", "max")),
                 )
         parameters = _table("Parameters")
-        for header in ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes"):
+        headers = ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes")
+        for header in headers:
             parameters.add_column(header, justify="left" if header == "code" else "right", no_wrap=True)
         for row in report["parameters"]:
             parameters.add_row(
