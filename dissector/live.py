@@ -17,6 +17,7 @@ was shown is on disk, whatever stops the capture (Ctrl-C, SIGKILL, an unplugged 
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 import time
@@ -243,6 +244,17 @@ class PortVanished(Exception):
     pass
 
 
+class NullSink:
+    def show(self, items: list[Item]) -> None:
+        pass
+
+    def tick(self) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
 def _make_sink(
     args: argparse.Namespace,
     out: TextIO,
@@ -306,13 +318,20 @@ def run_live(
             except PortVanished as error:
                 reason = f"{args.live} went away ({error})"
                 status = EXIT_FAILED
+            except BrokenPipeError:
+                # The reader of our output (head, less) went away: stop, keep the files whole.
+                reason = "output closed"
+                capture.sink = sink = NullSink()
             if reason != "count":
                 capture.deliver(dissector.finish())
     finally:
         tee.close()
         port.close()
         stats.finish()
-        sink.close()
+        try:
+            sink.close()
+        except BrokenPipeError:
+            pass
     seconds = time.monotonic() - started
     files = f"; wrote {', '.join(tee.paths)}" if tee.paths else ""
     if status != EXIT_OK:
@@ -346,7 +365,7 @@ def main(argv: list[str] | None = None) -> int:
             base.append(item.time)
         return base[0] if base else None
 
-    return run_live(
+    status = run_live(
         args,
         sys.stdout,
         sys.stderr,
@@ -355,6 +374,13 @@ def main(argv: list[str] | None = None) -> int:
         None,
         lambda item: summary_text(item, first_time(item)),
     )
+    if not sys.stdout.isatty():
+        try:
+            sys.stdout.flush()
+        except BrokenPipeError:
+            # Python would complain at exit about the closed pipe: point stdout elsewhere.
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    return status
 
 
 if __name__ == "__main__":
