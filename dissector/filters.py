@@ -285,7 +285,13 @@ class _Parser:
         if len(parts) == 1:
             return parts[0]
         tests = [test for test, _uses in parts]
-        return (lambda item, reg: all(test(item, reg) for test in tests)), any(u for _t, u in parts)
+        conjunction = _And(tests)
+        frame_tests = [test for test, uses in parts if not uses]
+        register_tests = [test for test, uses in parts if uses]
+        if frame_tests and register_tests:
+            # Frame-level tests are checked once per frame, before any per-register work.
+            conjunction.split = (_And(frame_tests), _And(register_tests))
+        return conjunction, bool(register_tests)
 
     def _enter(self) -> None:
         self.depth += 1
@@ -473,8 +479,34 @@ def _in(actual: Any, members: list[tuple[Any, Any]]) -> bool:
     return False
 
 
+class _And:
+    """All of `tests`; `split` = (frame-level part, register-level part) when it has both."""
+
+    __slots__ = ("tests", "split")
+
+    def __init__(self, tests: list[Test]) -> None:
+        self.tests = tests
+        self.split: tuple[_And, _And] | None = None
+
+    def __call__(self, item: Item, reg: dict[str, Any] | None) -> bool:
+        return all(test(item, reg) for test in self.tests)
+
+
 def quantify(test: Test) -> Callable[[Item], bool]:
     """Some register (or, for a frame without any, no register at all) makes `test` true."""
+    split = test.split if isinstance(test, _And) else None
+    if split is not None:
+        frame_part, register_part = split
+
+        def some_split(item: Item) -> bool:
+            if not frame_part(item, None):
+                return False
+            elements = _elements(item)
+            if not elements:
+                return register_part(item, None)
+            return any(register_part(item, element) for element in elements)
+
+        return some_split
 
     def some(item: Item) -> bool:
         elements = _elements(item)

@@ -209,3 +209,21 @@ def test_generate_session_200k_frames_is_fast() -> None:
     elapsed = time.perf_counter() - started
     assert len(records) > 190_000
     assert elapsed < 3.0
+
+
+def test_cli_one_session_and_a_benchmark_file(tmp_path: Path) -> None:
+    assert main(["--out", str(tmp_path), "--session", "p38_protection"]) == 0
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["p38_protection.bin", "p38_protection.pcap"]
+    assert main(["--out", str(tmp_path / "bench"), "--transactions", "50", "--seed", "2"]) == 0
+    records = generate_session(50, seed=2)
+    assert (tmp_path / "bench" / "bench-50-2.bin").read_bytes() == b"".join(data for data, _t in records)
+    linktype, stored = read_pcap(tmp_path / "bench" / "bench-50-2.pcap")
+    assert linktype == 147 and [data for _t, data in stored] == [data for data, _t in records]
+    assert [round(t * 1e6) for t, _data in stored] == [round(t * 1e6) for _data, t in records]
+
+
+def test_cli_rejects_a_negative_count(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as caught:
+        main(["--out", str(tmp_path), "--transactions", "-1"])
+    assert caught.value.code == 2
+    assert "--transactions must be 0 or more" in capsys.readouterr().err
