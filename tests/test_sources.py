@@ -238,10 +238,13 @@ def test_pcapng_blocks_and_unknown_block(tmp_path: Path) -> None:
 
 def test_pcapng_big_endian_tsresol_tsoffset_and_rtac(tmp_path: Path) -> None:
     o = ">"
-    content = (shb(o) + idb(o, 147, tsresol=9, tsoffset=100) + idb(o, 250, tsresol=0x80 | 10)
-               + epb(o, 0, 1_500_000_000, REQUEST) + epb(o, 1, 3 * 1024 + 512, rtac(T0, 40, RESPONSE)))
+    content = (shb(o) + idb(o, 147, tsresol=9, tsoffset=100) + idb(o, 250) + idb(o, 147, tsresol=0x80 | 10)
+               + epb(o, 0, 1_500_000_000, REQUEST) + epb(o, 1, 7, rtac(T0, 40, RESPONSE))
+               + epb(o, 2, 3 * 1024 + 512, EXCEPTION))
     source = open_source(write(tmp_path, "c", content))
-    assert list(source) == [Chunk(REQUEST, 101.5, True), Chunk(RESPONSE, T0 + 40e-6, True)]
+    # ns resolution + 100 s offset; the RTAC header's own time; 2^-10 s resolution.
+    assert list(source) == [Chunk(REQUEST, 101.5, True), Chunk(RESPONSE, T0 + 40e-6, True),
+                            Chunk(EXCEPTION, 3.5, True)]
     assert source.warnings == ["packets come from several interfaces; their bytes are decoded as one stream"]
 
 
@@ -420,3 +423,22 @@ def test_one_record_per_frame_or_any_split_gives_the_same_frames(tmp_path: Path)
         records[item.offset // 3][0] + records[item.offset // 3][1] / 1_000_000 for item in pieces]
     assert summary(raw) == untimed
     assert summary(lines) == untimed
+
+
+def test_format_pcapng_on_a_pcap_is_an_error(tmp_path: Path) -> None:
+    path = write(tmp_path, "c", pcap([(T0, 0, REQUEST)]))
+    with pytest.raises(SourceError) as error:
+        list(open_source(path, fmt="pcapng"))
+    assert str(error.value) == f"{path}: not a pcapng file (no section header block)"
+
+
+def test_take_warnings_returns_each_warning_once(tmp_path: Path) -> None:
+    records = [(T0, k, rtac(T0, k, REQUEST, event=0x07)) for k in range(8)]
+    source = open_source(write(tmp_path, "c", pcap(records, linktype=250)))
+    iterator = iter(source)
+    next(iterator)
+    # Mode detection read ahead 64 payload bytes: the first 8 records.
+    assert len(source.take_warnings()) == 5
+    assert len(list(iterator)) == 7
+    assert source.take_warnings() == ["... and 3 more RTAC line events"]
+    assert source.take_warnings() == []

@@ -91,5 +91,6 @@ def test_gap_checker_ascii_mode() -> None:
     items = _checked(AsciiFramer(), GapChecker(baud=9600, mode="ascii"), chunks)
     silence = 1.5 - 5 * 10 / 9600
     assert [i.warnings for i in items] == [
-        [f"silence of {silence * 1000:.3f} ms inside the frame before byte 5 (longer than the 1 s ASCII limit)"],
+        [f"silence of {silence * 1000:.3f} ms inside the frame before byte 5 "
+         "(longer than the 1 s ASCII limit)"],
         [], []]

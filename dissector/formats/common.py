@@ -53,7 +53,7 @@ class WarningLog:
         """Append the counts of what was not shown (call once, at the end of the input)."""
         for kind, count in self._counts.items():
             if count > MESSAGES_PER_KIND:
-                self.messages.append(f"... {count - MESSAGES_PER_KIND} more warnings like this ({kind})")
+                self.messages.append(f"... and {count - MESSAGES_PER_KIND} more {kind}")
         self._counts.clear()
 
 
@@ -73,6 +73,14 @@ class Input:
 
     def read(self, count: int) -> bytes:
         """Exactly `count` bytes, fewer only at the end of the input."""
+        if not self._prefix:
+            # A buffered stream's read(n) already waits for n bytes or the end, pipes included.
+            try:
+                data = self.stream.read(count)
+            except OSError as error:
+                raise SourceError(f"{self.name}: read error: {error.strerror or error}") from None
+            self.position += len(data)
+            return data
         parts: list[bytes] = []
         wanted = count
         while wanted > 0:
@@ -129,7 +137,7 @@ def rtac_header(
     """
     if len(head) < RTAC_HEADER.size:
         log.warn(
-            "rtac-short",
+            "records shorter than the RTAC header",
             f"record {record}: {len(head)} bytes, shorter than the 12-byte RTAC serial header; "
             "its bytes are not decoded",
         )
@@ -137,7 +145,7 @@ def rtac_header(
     seconds, micros, event, _lines, _footer = RTAC_HEADER.unpack_from(head)
     trouble = RTAC_TROUBLE_EVENTS.get(event)
     if trouble is not None:
-        log.warn("rtac-event", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
+        log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
     return seconds + micros / 1_000_000, RTAC_HEADER.size
 
 
@@ -165,7 +173,7 @@ def record_chunks(
         cut = len(piece) < wanted
         if cut:
             log.warn(
-                "truncated",
+                "truncated input",
                 f"record {record} is cut short: {length - remaining} of {length} bytes "
                 "(the capture ends inside it); the bytes that are there are decoded",
             )

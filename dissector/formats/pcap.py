@@ -50,14 +50,14 @@ def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
         record += 1
         if len(head) < RECORD_HEADER_SIZE:
             log.warn(
-                "truncated",
+                "truncated input",
                 f"record {record}: the capture ends inside its header ({len(head)} of 16 bytes)",
             )
             return
         seconds, fraction, captured, original = record_header.unpack(head)
         if captured < original:
             log.warn(
-                "snaplen",
+                "records captured in part",
                 f"record {record}: only {captured} of its {original} bytes were captured",
             )
         time = seconds + fraction / units

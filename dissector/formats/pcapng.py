@@ -88,7 +88,7 @@ class _Reader:
             if not head:
                 return
             if len(head) < 8:
-                self.log.warn("truncated", f"the capture ends inside a block header at byte {start}")
+                self.log.warn("truncated input", f"the capture ends inside a block header at byte {start}")
                 return
             if head[:4] == SHB_MAGIC:
                 if not self._section(head, start):
@@ -115,11 +115,11 @@ class _Reader:
             else:
                 if block_type not in NO_PACKET_BLOCKS:
                     self.log.warn(
-                        f"block type {block_type:#x}",
+                        f"pcapng blocks of type {block_type:#x}",
                         f"skipped a pcapng block of unknown type {block_type:#010x} at byte {start}",
                     )
                 if inp.skip(body_length) < body_length:
-                    self.log.warn("truncated", f"the capture ends inside the block at byte {start}")
+                    self.log.warn("truncated input", f"the capture ends inside the block at byte {start}")
                     return
             if not self._trailer(total, start):
                 return
@@ -150,18 +150,19 @@ class _Reader:
             raise SourceError(f"{self.inp.name}: {what} block at byte {start} claims {length} bytes")
         body = self.inp.read(length)
         if len(body) < length:
-            self.log.warn("truncated", f"the capture ends inside the {what} block at byte {start}")
+            self.log.warn("truncated input", f"the capture ends inside the {what} block at byte {start}")
             return None
         return body
 
     def _trailer(self, total: int, start: int) -> bool:
         trailer = self.inp.read(4)
         if len(trailer) < 4:
-            self.log.warn("truncated", f"the capture ends inside the block at byte {start}")
+            self.log.warn("truncated input", f"the capture ends inside the block at byte {start}")
             return False
         if struct.unpack(self.order + "I", trailer)[0] != total:
             raise SourceError(
-                f"{self.inp.name}: block at byte {start}: trailing length differs from {total} (corrupt file?)"
+                f"{self.inp.name}: block at byte {start}: trailing length differs from {total} "
+                "(corrupt file?)"
             )
         return True
 
@@ -186,7 +187,7 @@ class _Reader:
         inp = self.inp
         fixed = inp.read(20)
         if len(fixed) < 20:
-            self.log.warn("truncated", f"the capture ends inside the packet block at byte {start}")
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             return
         if block_type == EPB:
             index, high, low, captured, original = struct.unpack(self.order + "IIIII", fixed)
@@ -204,7 +205,7 @@ class _Reader:
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:
         raw = self.inp.read(4)
         if len(raw) < 4:
-            self.log.warn("truncated", f"the capture ends inside the packet block at byte {start}")
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             return
         original = struct.unpack(self.order + "I", raw)[0]
         interface = self._interface_for(0, start)
@@ -221,7 +222,8 @@ class _Reader:
         self.record += 1
         if captured < original:
             self.log.warn(
-                "snaplen", f"record {self.record}: only {captured} of its {original} bytes were captured"
+                "records captured in part",
+                f"record {self.record}: only {captured} of its {original} bytes were captured",
             )
         before = self.inp.position
         yield from record_chunks(
@@ -231,7 +233,7 @@ class _Reader:
             raise _Ended()
         rest = space - captured
         if self.inp.skip(rest) < rest:
-            self.log.warn("truncated", f"the capture ends inside the packet block at byte {start}")
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             raise _Ended()
 
 
