@@ -1725,6 +1725,8 @@ local annotate -- defined with the device profiles below
 -- 16#8000 semantics, exception explanations, device limits. Profile data come from the generated block.
 local PROFILES = DATA.profiles or {}
 local READS = { [3] = true, [4] = true, [23] = true }
+-- Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
+local PLAIN_READS = { [3] = true, [4] = true }
 local MAX_LISTED = 8
 local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
 local SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
@@ -1804,6 +1806,8 @@ local function device_for(st, slave)
   end
   local style = config.style or profile.address_style
   device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default }
+  -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
+  device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end
   st.devices[slave] = device
   return device
@@ -2048,7 +2052,7 @@ local function explain_exception(st, f, device)
     for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
     note(f, format("exception %02X is not one the %s documents (%s)", code, profile.device, concat(known, ", ")))
   end
-  if code == profile.all_protected_exception and READS[f.fn] then all_unreadable(st, f, device) end
+  if code == profile.all_protected_exception and PLAIN_READS[f.fn] then all_unreadable(st, f, device) end
 end
 
 local function python_repr(text)
@@ -2113,14 +2117,15 @@ annotate = function(st, f, b)
     return
   end
   local request = f.request
-  if kind == RESPONSE and request ~= nil and request.registers ~= nil and #request.registers > 0 then
+  if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
+      and request.registers ~= nil and #request.registers > 0 then
     -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-    if f.fn == 16 or f.fn == 23 then remember_writes(st, f, request.registers) end
+    remember_writes(st, f, request.registers)
   end
   local registers = f.registers
   if registers ~= nil and #registers > 0 then
     annotate_registers(st, f, device, registers, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 then remember_writes(st, f, registers) end
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers) end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
@@ -2237,6 +2242,8 @@ local pf = {
   response_time = ProtoField.relative_time("vw3.response_time", "Time since request"),
   unanswered = ProtoField.bool("vw3.unanswered", "Unanswered"),
   noise_reason = ProtoField.string("vw3.noise.reason", "Why noise"),
+  warning = ProtoField.string("vw3.warning", "Warning"),
+  note = ProtoField.string("vw3.note", "Note"),
   data = ProtoField.bytes("vw3.data", "Data"),
 }
 local field_list = {}
@@ -2421,11 +2428,14 @@ local function show_frame(f, tvb, tree, pinfo)
     t:add(pf.unanswered, whole, unanswered and true or false):set_generated()
     if unanswered then add_text(t, ex.unanswered, "Request not answered") end
   end
+  -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
+  -- label Wireshark cuts at 240 bytes).
   for _, text in ipairs(f.warnings) do
+    local item = t:add(pf.warning, whole, text):set_generated()
     if f.malformed and text:sub(1, 10) == "malformed " then
-      add_text(t, ex.malformed, text)
+      add_text(item, ex.malformed, text)
     else
-      add_text(t, ex.warning, text)
+      add_text(item, ex.warning, text)
     end
   end
   local notes = f.notes
@@ -2436,10 +2446,11 @@ local function show_frame(f, tvb, tree, pinfo)
     notes[#notes + 1] = "the capture ends before any response"
   end
   for _, text in ipairs(notes) do
+    local item = t:add(pf.note, whole, text):set_generated()
     if f.no_request and text == "response without a matching request in the capture" then
-      add_text(t, ex.no_request, text)
+      add_text(item, ex.no_request, text)
     else
-      add_text(t, ex.note, text)
+      add_text(item, ex.note, text)
     end
   end
 end

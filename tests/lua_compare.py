@@ -90,8 +90,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "objects": [
             (_int(obj.get("id")), obj.get("name"), obj.get("value"), obj.get("text")) for obj in item.objects
         ],
-        "warnings": [_warning(text) for abbrev, text in item.experts if abbrev in WARNING_EXPERTS],
-        "notes": [text for abbrev, text in item.experts if abbrev in NOTE_EXPERTS],
+        "warnings": [_warning(text) for text in item.texts.get("warning", [])],
+        "notes": item.texts.get("note", []),
     }
 
 

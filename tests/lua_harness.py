@@ -77,11 +77,14 @@ class LuaItem:
     bits: list[dict[str, str]] = field(default_factory=list)
     objects: list[dict[str, str]] = field(default_factory=list)
     experts: list[tuple[str, str]] = field(default_factory=list)  # (expert abbrev, message)
+    texts: dict[str, list[str]] = field(default_factory=dict)  # "warning" / "note" -> full texts
 
 
 def _experts(element: ET.Element) -> list[tuple[str, str]]:
     out = []
-    for expert in element.findall("field[@name='_ws.expert']"):
+    for expert in element.iter("field"):
+        if expert.get("name") != "_ws.expert":
+            continue
         children = list(expert)
         abbrev = children[0].get("name", "") if children else ""
         message = ""
@@ -121,11 +124,12 @@ def parse_pdml(text: str) -> tuple[list[LuaItem], list[tuple[int, str]]]:
                 if name == "vw3.reg":
                     reg = _subtree(child, "vw3.reg.")
                     item.registers.append(reg)
-                    item.experts += [("reg:" + abbrev, message) for abbrev, message in _experts(child)]
                 elif name == "vw3.bit":
                     item.bits.append(_subtree(child, "vw3.bit."))
                 elif name == "vw3.object":
                     item.objects.append(_subtree(child, "vw3.object."))
+                elif name in ("vw3.warning", "vw3.note"):
+                    item.texts.setdefault(name[4:], []).append(child.get("show", ""))
                 elif name.startswith("vw3."):
                     item.fields[name[4:]] = child.get("show", "")
             item.experts += _experts(proto)
