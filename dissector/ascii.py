@@ -2,7 +2,7 @@
 
 Unlike RTU, ASCII frames delimit themselves: a frame starts at ':' and ends at LF, so no length rule
 is needed to cut the stream. The length rules still decide what a frame is: the decoded binary gets
-the same request / response / exception classification as an RTU frame (framer.RULES, applied to
+the same request / response / exception classification as an RTU frame (framer.interpretations, applied to
 the RTU frame that would carry the same bytes), so an ASCII frame whose length fits no layout is
 shown as noise, as it would be in RTU.
 
@@ -18,14 +18,13 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from .crc import crc_bytes, lrc
-from .framer import KNOWN_FUNCTIONS, MAX_SLAVE, NOISE_ITEM_MAX, RULES
+from .framer import MAX_SLAVE, NOISE_ITEM_MAX, interpretations
 from .model import Chunk, Frame, Item, Kind, Noise
 
 COLON, CR, LF = 0x3A, 0x0D, 0x0A
 MAX_BINARY = 255  # slave + PDU (253) + LRC
 MAX_ASCII = 1 + 2 * MAX_BINARY + 2  # ':' + hex pairs + CR LF
 MIN_BINARY = 3  # slave, function, LRC
-EXCEPTION_ADU = 5  # length of an RTU exception frame, CRC included
 
 _HEX_DIGITS = frozenset(b"0123456789ABCDEFabcdef")
 _ALPHABET = _HEX_DIGITS | {COLON, CR, LF}
@@ -170,18 +169,7 @@ class AsciiFramer:
         slave, function = adu[0], adu[1]
         equivalent = adu + crc_bytes(adu)
         length = len(equivalent)
-        if function & 0x80:
-            if (function & 0x7F) in KNOWN_FUNCTIONS and length == EXCEPTION_ADU:
-                return Kind.EXCEPTION
-            return None
-        rules = RULES.get(function)
-        if rules is None:
-            return None
-        request, response = rules
-        order = [(Kind.REQUEST, request), (Kind.RESPONSE, response)]
-        if self._expect == (slave, function):
-            order.reverse()
-        for kind, rule in order:
+        for kind, rule in interpretations(slave, function, self._expect):
             # Rules that scan for a valid CRC find the whole frame (its CRC was just computed),
             # unless a shorter prefix happens to check too: then the layout is refused.
             if rule(equivalent, 0, length) == length:

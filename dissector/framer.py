@@ -149,12 +149,24 @@ for _code in OTHER_FUNCTIONS:
 KNOWN_FUNCTIONS = frozenset(RULES)
 
 # Interpretations to try at a frame start, in order: the expected direction first.
-_REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
-_RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
 for _code, (_request_rule, _response_rule) in RULES.items():
-    _REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
-    _RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
-    _REQUEST_FIRST[_code | 0x80] = _RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _fixed(5)),)
+    REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
+    RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
+    REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _fixed(5)),)
+
+
+
+def interpretations(
+    slave: int, function: int, expect: tuple[int, int] | None
+) -> tuple[tuple[Kind, LengthRule], ...]:
+    """The (kind, length rule) pairs a frame starting with slave and function may have, likeliest
+    first: after a request from (slave, function), its response. Empty: no frame starts here."""
+    if expect == (slave, function):
+        return RESPONSE_FIRST.get(function, ())
+    return REQUEST_FIRST.get(function, ())
+
 
 # The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
 _FIXED_LENGTHS = {8: (1, 2, 3, 4, 5, 6), 4: (7, 11, 12, 17), 10: (22,), 6: (24,)}
@@ -176,8 +188,8 @@ def _first_choice(table: dict[int, tuple[tuple[Kind, LengthRule], ...]]) -> dict
     return first
 
 
-_REQUEST_FIRST_FAST = _first_choice(_REQUEST_FIRST)
-_RESPONSE_FIRST_FAST = _first_choice(_RESPONSE_FIRST)
+_REQUEST_FIRST_FAST = _first_choice(REQUEST_FIRST)
+_RESPONSE_FIRST_FAST = _first_choice(RESPONSE_FIRST)
 
 
 class RtuFramer:
@@ -222,9 +234,7 @@ class RtuFramer:
         return None
 
     def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
-        if self._expect == (slave, function):
-            return _RESPONSE_FIRST.get(function, ())
-        return _REQUEST_FIRST.get(function, ())
+        return interpretations(slave, function, self._expect)
 
     def _valid_frame_at(self, buf: bytearray, i: int, n: int, final: bool) -> bool | None:
         """Does an intact frame start at i? None when more bytes are needed to know."""

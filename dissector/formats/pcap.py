@@ -60,5 +60,6 @@ def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
                 "records captured in part",
                 f"record {record}: only {captured} of its {original} bytes were captured",
             )
-        time = seconds + fraction / units
+        # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
+        time = seconds + fraction / units if seconds or fraction else None
         yield from record_chunks(inp, captured, time, linktype, record, log, chunk_size)
