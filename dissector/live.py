@@ -8,7 +8,10 @@ returned. The framer decides where frames end from lengths and CRCs, so a read h
 and its response, or half a frame, is fine. A frame the framer cannot close yet (it waits for
 bytes that would make a longer reading possible, or for what follows a damaged frame) is closed
 once the line has been silent for IDLE_FLUSH (or t3.5 if longer): on the wire, that silence ends
-every RTU frame.
+every RTU frame. But a gateway (socket://) or a stalled adapter may also pause inside a frame, and
+a flush there would cut it into noise; so at IDLE_FLUSH the flush is first tried on a copy of the
+framer, and done only if it closes a CRC-valid frame. Anything else (a damaged frame, noise, a
+partial frame) waits for IDLE_FLUSH_LONG of silence.
 
 What is heard is teed as it is heard: raw bytes to --raw (one unbuffered write per read), and each
 item to the -w pcap (one record a frame or noise run, flushed) before it is displayed. So whatever
@@ -17,6 +20,7 @@ was shown is on disk, whatever stops the capture (Ctrl-C, SIGKILL, an unplugged 
 from __future__ import annotations
 
 import argparse
+import copy
 import os
 import signal
 import sys
@@ -38,6 +42,7 @@ from .live_view import LineSink, LiveStats, RichSink, Sink, json_line
 PROG = "vw3-decode"
 READ_TIMEOUT = 0.010
 IDLE_FLUSH = 0.020
+IDLE_FLUSH_LONG = 0.250
 READ_SIZE = 4096
 PARITIES = {"N": serial.PARITY_NONE, "E": serial.PARITY_EVEN, "O": serial.PARITY_ODD}
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
@@ -191,6 +196,16 @@ class Capture:
     silence: float
     duration: float | None = None
     count: int | None = None
+    silence_long: float = IDLE_FLUSH_LONG
+
+    def flush_due(self, silent: float, tried: bool) -> bool:
+        """Whether to close what the framer holds after `silent` seconds without bytes."""
+        if silent >= self.silence_long:
+            return True
+        if tried or silent < self.silence:
+            return False
+        trial = copy.deepcopy(self.dissector.framer).finish()
+        return any(isinstance(item, Frame) and item.crc_ok for item in trial)
 
     def deliver(self, items: list[Item]) -> bool:
         """Tee, count and show items; False once --count is reached."""
@@ -214,6 +229,7 @@ class Capture:
         deadline = None if self.duration is None else time.monotonic() + self.duration
         last_data = time.monotonic()
         pending = False  # bytes fed since the last idle flush
+        tried = False  # flush_due already tried a copy of the framer during this silence
         while True:
             if stop.signal is not None:
                 return "interrupted"
@@ -229,14 +245,17 @@ class Capture:
             if data:
                 stamp = time.time()
                 last_data = time.monotonic()
-                pending = True
+                pending, tried = True, False
                 self.tee.raw(data)
                 if not self.deliver(dissector.feed(Chunk(data, time=stamp))):
                     return "count"
-            elif pending and time.monotonic() - last_data >= self.silence:
-                pending = False
-                if not self.deliver(flush_idle(dissector)):
-                    return "count"
+            elif pending:
+                silent = time.monotonic() - last_data
+                if self.flush_due(silent, tried):
+                    pending = False
+                    if not self.deliver(flush_idle(dissector)):
+                        return "count"
+                tried = tried or silent >= self.silence
             self.sink.tick()
 
 

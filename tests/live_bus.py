@@ -112,7 +112,8 @@ class Slave(threading.Thread):
     def run(self) -> None:
         buf = bytearray()
         while not self.stop.is_set():
-            ready, _, _ = select.select([self.fd], [], [], 0.02)
+            # Generous: a loaded test machine may stall the relay mid-frame for tens of ms.
+            ready, _, _ = select.select([self.fd], [], [], 0.5)
             if not ready:
                 buf.clear()  # a silence ends any partial frame
                 continue
