@@ -1444,8 +1444,16 @@ local function mei_response(f, b, d, len)
       return nil, "object length past the end"
     end
     local size = b[d + position + 1]
+    -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
     local chars = {}
-    for k = 0, size - 1 do chars[#chars + 1] = string.char(b[d + position + 2 + k]) end
+    for k = 0, size - 1 do
+      local byte = b[d + position + 2 + k]
+      if byte < 128 then
+        chars[#chars + 1] = string.char(byte)
+      else
+        chars[#chars + 1] = string.char(192 + floor(byte / 64), 128 + byte % 64)
+      end
+    end
     objects[#objects + 1] = { id = b[d + position], value = concat(chars), offset = d + position, length = 2 + size }
     position = position + 2 + size
   end
@@ -2056,21 +2064,24 @@ local function explain_exception(st, f, device)
 end
 
 local function python_repr(text)
-  -- str.__repr__ for the latin-1 text of a device object (quotes chosen as Python does).
+  -- str.__repr__ of a device object's text (latin-1 characters held as UTF-8), quotes as Python picks.
   local quote = "'"
   if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
   local out = {}
-  for k = 1, #text do
+  local k = 1
+  while k <= #text do
     local byte = text:byte(k)
-    local char = string.char(byte)
+    local code, width = byte, 1
+    if byte >= 192 then code, width = (byte - 192) * 64 + (text:byte(k + 1) - 128), 2 end
+    local char = text:sub(k, k + width - 1)
     if char == "\\" then out[#out + 1] = "\\\\"
     elseif char == quote then out[#out + 1] = "\\" .. quote
-    elseif byte == 10 then out[#out + 1] = "\\n"
-    elseif byte == 13 then out[#out + 1] = "\\r"
-    elseif byte == 9 then out[#out + 1] = "\\t"
-    elseif byte < 32 or (byte >= 127 and byte <= 160) or byte == 173 then out[#out + 1] = format("\\x%02x", byte)
-    elseif byte < 128 then out[#out + 1] = char
-    else out[#out + 1] = string.char(192 + floor(byte / 64), 128 + byte % 64) end
+    elseif code == 10 then out[#out + 1] = "\\n"
+    elseif code == 13 then out[#out + 1] = "\\r"
+    elseif code == 9 then out[#out + 1] = "\\t"
+    elseif code < 32 or (code >= 127 and code <= 160) or code == 173 then out[#out + 1] = format("\\x%02x", code)
+    else out[#out + 1] = char end
+    k = k + width
   end
   return quote .. concat(out) .. quote
 end
@@ -2272,9 +2283,9 @@ local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
 proto.prefs.profiles = Pref.string("Device profiles", "",
   "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave")
 proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
-  "How register addresses are shown (the vw3.reg.address field is always the address on the wire)",
-  { { 1, "As the device profile says", STYLE_DEFAULT }, { 2, "As sent on the wire (8401)", STYLE_PROTOCOL },
-    { 3, "PLC 4X reference (48402)", STYLE_PLC } }, false)
+  "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
+    .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
+  { { 1, "profile", STYLE_DEFAULT }, { 2, "protocol", STYLE_PROTOCOL }, { 3, "plc", STYLE_PLC } }, false)
 proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
   "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")

@@ -63,7 +63,8 @@ def write_pcap(path: Path, records: Iterable[tuple[bytes, float]]) -> Path:
 def run_tshark(pcap: Path, *args: str, timeout: float = 900) -> subprocess.CompletedProcess[str]:
     tshark = ensure_tool("tshark", "tshark")
     command = [tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-r", str(pcap), *args]
-    return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+    # Replacement characters, not an exception, should tshark ever print bytes that are not UTF-8.
+    return subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=timeout)
 
 
 # -- reading tshark's PDML ---------------------------------------------------------------------------
@@ -184,9 +185,9 @@ def record_lengths(pcap: Path) -> list[int]:
     return lengths
 
 
-def python_items(pcap: Path, profiles: list[str] | None = None) -> list[PythonItem]:
+def python_items(pcap: Path, profiles: list[str] | None = None, *options: str) -> list[PythonItem]:
     """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records."""
-    command = [sys.executable, "-m", "dissector", str(pcap), "--json"]
+    command = [sys.executable, "-m", "dissector", str(pcap), "--json", *options]
     for profile in profiles or []:
         command += ["--profile", profile]
     result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=900)
