@@ -29,6 +29,9 @@ def _check_span(frame: Frame, start: int, quantity: int) -> None:
 def _registers(start: int | None, values: list[int]) -> list[Register]:
     if start is None:
         return [Register(None, value) for value in values]
+    end = start + len(values)
+    if end <= 0x10000:
+        return list(map(Register, range(start, end), values))
     return [Register((start + index) & 0xFFFF, value) for index, value in enumerate(values)]
 
 

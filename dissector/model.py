@@ -5,6 +5,7 @@ frame). Every byte of an input ends up in exactly one item.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any
@@ -52,7 +53,7 @@ class DeviceObject:
     text: str | None = None
 
 
-@dataclass(slots=True, eq=False)
+@dataclass(slots=True, eq=False, weakref_slot=True)
 class Frame:
     offset: int
     raw: bytes
@@ -65,7 +66,9 @@ class Frame:
     mode: str = "rtu"
     number: int = 0
     request: Frame | None = None
-    response: Frame | None = None
+    # A weak link back, so a request and its response form no reference cycle: decoded frames are
+    # then freed as soon as they are written, instead of waiting for (and slowing) the cycle collector.
+    response_ref: weakref.ReferenceType[Frame] | None = None
     unanswered: bool = False
     broadcast: bool = False
     warnings: list[str] = field(default_factory=list)
@@ -79,6 +82,11 @@ class Frame:
     bits: list[Bit] | None = None
     objects: list[DeviceObject] | None = None
     notes: list[str] = field(default_factory=list)
+
+    @property
+    def response(self) -> Frame | None:
+        ref = self.response_ref
+        return ref() if ref is not None else None
 
     @property
     def crc_ok(self) -> bool:

@@ -8,6 +8,8 @@ item is released at once, and the next request carries the note instead.
 """
 from __future__ import annotations
 
+import weakref
+
 from .model import Frame, Item, Kind
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
@@ -77,7 +79,7 @@ class Pairer:
         # A response or an exception.
         if pending is not None and pending.slave == item.slave and pending.function == item.function:
             item.request = pending
-            pending.response = item
+            pending.response_ref = weakref.ref(item)
             self._pending = None
             if self._timeout is not None and item.response_time is not None:
                 if item.response_time > self._timeout:

@@ -5,6 +5,7 @@ from ..model import Frame, Kind, Register
 from ..spec import SPEC
 
 MAX_VALUES = 6
+_FUNCTION_NAMES = SPEC.functions
 
 
 def address_text(address: int | None, label: str | None = None) -> str:
@@ -78,7 +79,7 @@ def bits_text(frame: Frame) -> str:
 def info_text(frame: Frame) -> str:
     """The Info column: what was asked or answered, in a few words."""
     function = frame.function
-    name = SPEC.function_name(function)
+    name = _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
     if frame.kind is Kind.EXCEPTION:
         code = frame.exception_code
         text = f"{name}: exception {code if code is not None else '?'} ({SPEC.exception_name(code)})"
@@ -145,10 +146,8 @@ def _mask_write(frame: Frame, request: bool) -> str:
 def _read_write(frame: Frame, request: bool) -> str:
     fields = frame.fields
     if request:
-        return (
-            f"read {fields.read_start}..{fields.read_start + fields.read_quantity - 1} "
-            f"({fields.read_quantity}), write {values_text(frame)}"
-        )
+        start, quantity = fields["read_start"], fields["read_quantity"]
+        return f"read {start}..{start + quantity - 1} ({quantity}), write {values_text(frame)}"
     return f"{span_text(frame)}: {values_text(frame)}"
 
 

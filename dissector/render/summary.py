@@ -16,9 +16,9 @@ def time_text(item: Item, base: float | None) -> str:
 
 
 def crc_text(frame: Frame) -> str:
+    if frame.crc == frame.crc_expected:
+        return "CRC ok" if frame.mode == "rtu" else "LRC ok"
     check = "LRC" if frame.mode == "ascii" else "CRC"
-    if frame.crc_ok:
-        return f"{check} ok"
     width = 2 if frame.mode == "ascii" else 4
     return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
 
@@ -26,14 +26,12 @@ def crc_text(frame: Frame) -> str:
 def tail_text(frame: Frame) -> str:
     """Pairing and findings appended to the info column."""
     request = frame.request
-    if (
-        request is not None
-        and frame.time is None
-        and not frame.notes
-        and not frame.warnings
-        and not frame.unanswered
-    ):
-        return f"[#{request.number}]"  # the common case, kept cheap
+    if not frame.notes and not frame.warnings and not frame.unanswered:
+        if request is None:
+            if frame.kind is Kind.REQUEST and not frame.broadcast:
+                return ""
+        elif frame.time is None:
+            return f"[#{request.number}]"  # the common cases, kept cheap
     parts = []
     if frame.request is not None:
         rt = frame.response_time
@@ -55,14 +53,21 @@ def noise_info(noise: Noise) -> str:
     return f"{noise.length} bytes of noise at offset {noise.offset}: {preview}{more}"
 
 
+_KIND_COLUMN = {kind: f"{kind.value:<9}" for kind in Kind}
+
+
 def summary_line(item: Item, base: float | None = None) -> str:
-    head = f"{item.number:>6} {time_text(item, base):>12}"
+    time = item.time
+    if time is None:
+        head = f"{item.number:>6}            -"
+    else:
+        head = f"{item.number:>6} {time - (base or 0.0):>12.6f}"
     if isinstance(item, Noise):
         return f"{head}   - noise     {noise_info(item)}"
     frame = item
     tail = tail_text(frame)
     return (
-        f"{head} {frame.slave:>3} {frame.kind.value:<9} {info_text(frame)}"
+        f"{head} {frame.slave:>3} {_KIND_COLUMN[frame.kind]} {info_text(frame)}"
         f"{' ' + tail if tail else ''}  {crc_text(frame)}"
     )
 
