@@ -2324,8 +2324,8 @@ local function frame_range(tvb, f, at, size)
   return tvb:range(offset, length)
 end
 
-local function add_register(tree, tvb, f, reg)
-  local r = frame_range(tvb, f, reg.offset, 2)
+local function add_register(tree, tvb, f, reg, range)
+  local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
   local text = format("Register %s", label)
   if reg.code then text = text .. " " .. reg.code end
@@ -2513,6 +2513,69 @@ DissectorTable.get("wtap_encap"):add(wtap.USER0, proto)
 local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
 if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
+
+-- ---------------------------------------------------------------------------------------------------
+-- Post-dissector: names the registers of Wireshark's own Modbus dissection (Modbus/TCP to the same drives
+-- behind an Ethernet card uses the same logic addresses; the unit id picks the profile as the slave does).
+local names_proto = Proto("vw3names", "VW3 register names for Wireshark's Modbus dissection")
+proto.prefs.name_modbus = Pref.bool("Name registers in Wireshark's Modbus dissection", true,
+  "Add the register names, values and 16#8000 status of the device profiles to modbus packets")
+local modbus_fields = {}
+for key, name in pairs({ unit = "mbtcp.unit_id", code = "modbus.func_code", number = "modbus.regnum16",
+  value = "modbus.regval_uint16", request = "modbus.request_frame" }) do
+  local ok, field = pcall(Field.new, name)
+  if ok then modbus_fields[key] = field end
+end
+local names_state = new_state(nil)
+
+function names_proto.init()
+  names_state = new_state(nil)
+end
+
+function names_proto.dissector(tvb, pinfo, tree)
+  if not proto.prefs.name_modbus or modbus_fields.number == nil or modbus_fields.value == nil then return end
+  local numbers = { modbus_fields.number() }
+  if #numbers == 0 then return end
+  local values = { modbus_fields.value() }
+  local codes = modbus_fields.code and { modbus_fields.code() } or {}
+  local units = modbus_fields.unit and { modbus_fields.unit() } or {}
+  local requests = modbus_fields.request and { modbus_fields.request() } or {}
+  local registers = {}
+  for index = 1, math.min(#numbers, #values) do
+    registers[index] = { address = numbers[index].value, value = values[index].value, field = values[index] }
+  end
+  local code = codes[1] and codes[1].value or 3
+  local f = {
+    slave = units[1] and units[1].value or 0, fn = code % 128, kind = (#requests > 0) and RESPONSE or REQUEST,
+    registers = registers, notes = {}, warnings = {}, number = pinfo.number,
+  }
+  local device = device_for(names_state, f.slave)
+  if not device then return end
+  -- The protection story follows the capture order: computed once, on the first pass, then reused.
+  local done = names_state.records[pinfo.number]
+  if done == nil then
+    annotate_registers(names_state, f, device, registers, f.kind == RESPONSE and READS[f.fn] ~= nil)
+    names_state.records[pinfo.number] = { registers = registers, notes = f.notes }
+  else
+    for index, reg in ipairs(done.registers) do
+      if registers[index] ~= nil then done.registers[index].field = registers[index].field end
+    end
+    registers, f.notes = done.registers, done.notes
+  end
+  local t = tree:add(names_proto, tvb:range(0, tvb:len()))
+  t:set_text(format("VW3 register names (%s, unit %d)", device.profile.title, f.slave))
+  for _, reg in ipairs(registers) do
+    local range = reg.field.range
+    local fake = { offset = 0, length = tvb:len(), data_at = 2, data_len = 0 }
+    if range ~= nil then
+      add_register(t, tvb, fake, reg, range)
+    else
+      add_register(t, tvb, fake, reg)
+    end
+  end
+  for _, text in ipairs(f.notes) do add_text(t:add(pf.note, tvb:range(0, tvb:len()), text), ex.note, text) end
+end
+register_postdissector(names_proto)
 
 local current_port = 0
 function proto.prefs_changed()
