@@ -2206,6 +2206,14 @@ if Proto == nil then
   return vw3 -- loaded outside Wireshark (lua5.x tests without a stub): the pure part only
 end
 
+if set_plugin_info then
+  set_plugin_info({
+    version = "1.0.0",
+    description = "Modbus RTU/ASCII for Altivar 71 (VW3 A3 303) and SEL-749M, as vw3-decode decodes it",
+    repository = "vw3-dissector (lua/vw3.lua)",
+  })
+end
+
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
 local function names(table_)

@@ -99,3 +99,27 @@ def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
                            "4.0 kHz,60.0 Hz,50.0 Hz,0.0 Hz"]
     off = run_tshark(tmp_path / "mbtcp.pcap", "-o", "vw3.name_modbus:FALSE", "-T", "fields", "-e", "vw3.reg.code")
     assert off.stdout.split() == []
+
+
+def test_installed_by_copying_into_the_personal_plugins_folder(tmp_path: Path) -> None:
+    # Wireshark loads every .lua file of ~/.local/lib/wireshark/plugins (Linux, macOS) at start.
+    import shutil
+    import subprocess
+
+    from lua_harness import PLUGIN, ROOT, ensure_tool
+
+    folder = tmp_path / ".local" / "lib" / "wireshark" / "plugins"
+    folder.mkdir(parents=True)
+    shutil.copy(PLUGIN, folder / "vw3.lua")
+    tshark = ensure_tool("tshark", "tshark")
+    env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"}
+    plugins = subprocess.run([tshark, "-G", "plugins"], capture_output=True, text=True, env=env)
+    listed = [line.split("\t") for line in plugins.stdout.splitlines() if line.startswith("vw3.lua")]
+    assert [[part.strip() for part in line] for line in listed] == [
+        ["vw3.lua", "1.0.0", "lua script", str(folder / "vw3.lua")]
+    ]
+    capture = ROOT / "captures" / "p38_protection.pcap"
+    result = subprocess.run([tshark, "-n", "-r", str(capture)], capture_output=True, text=True, env=env)
+    assert result.stdout.splitlines()[1].split("→")[1].split() == [
+        "VW3", "11", "12", "Read", "Holding", "Registers", "response", "8400..8402"
+    ]
