@@ -48,7 +48,7 @@ class Relay(threading.Thread):
         self.c_open = True
         self.lock = threading.Lock()
         self.c_bytes = 0
-        self.c_log: list[tuple[int, float]] = []  # (bytes written to C so far, time.time() after)
+        self.c_log: list[tuple[int, float]] = []  # (bytes written to C so far, time.time() before)
         self.c_data = bytearray()
         self.dropped = 0
         fcntl.fcntl(c, fcntl.F_SETFL, fcntl.fcntl(c, fcntl.F_GETFL) | os.O_NONBLOCK)
@@ -79,10 +79,12 @@ class Relay(threading.Thread):
             with self.lock:
                 if self.c_open:
                     try:
+                        # Stamped before write(2): the sniffer may print before it returns.
+                        stamp = time.time()
                         os.write(self.c, piece)
                         self.c_bytes += len(piece)
                         self.c_data += piece
-                        self.c_log.append((self.c_bytes, time.time()))
+                        self.c_log.append((self.c_bytes, stamp))
                     except OSError as error:
                         if error.errno != errno.EAGAIN:
                             raise
