@@ -273,3 +273,44 @@ def random_records(seed: int, count: int) -> list[Record]:
             record = data
         records.append((record, time))
     return records
+
+
+def ascii_frame(binary: bytes, lower: bool = False, bad: bool = False) -> bytes:
+    """The Modbus ASCII form of an RTU frame's bytes (CRC dropped, LRC added)."""
+    check = (-sum(binary)) & 0xFF
+    if bad:
+        check ^= 0x01
+    text = (binary + bytes([check])).hex()
+    return b":" + (text if lower else text.upper()).encode() + b"\r\n"
+
+
+def ascii_session(seed: int, transactions: int, start_time: float = 1767225600.0) -> list[Record]:
+    """A Modbus ASCII session: the RTU transactions re-encoded, with bad LRCs, lower-case digits, junk
+    between frames (never two junk records in a row), cut frames and unanswered requests."""
+    builder = SessionBuilder(seed)
+    rng = builder.rng
+    records: list[Record] = []
+    time = start_time
+    junk_last = True
+    for _ in range(transactions):
+        time += rng.uniform(0.005, 0.02)
+        if rng.random() < 0.04 and not junk_last:
+            records.append((bytes(rng.choice(b"xyz \t0123GHIJ") for _ in range(rng.randint(1, 10))), round(time, 6)))
+            junk_last = True
+            continue
+        junk_last = False
+        slave = rng.choice(_SLAVES)
+        request, response = builder.transaction(slave)
+        roll = rng.random()
+        records.append((ascii_frame(request[:-2], lower=roll < 0.03, bad=0.03 <= roll < 0.06), round(time, 6)))
+        if rng.random() < 0.06 or response is None:
+            continue
+        if rng.random() < 0.1:
+            response = exception(slave, request[1], rng.choice(_EXCEPTIONS))
+        time += rng.uniform(0.003, 0.03)
+        encoded = ascii_frame(response[:-2], bad=rng.random() < 0.03)
+        if rng.random() < 0.02:
+            encoded = encoded[:-1]  # LF lost: the frame runs into the next one's ':'
+            junk_last = True  # (junk next would join it in a byte stream)
+        records.append((encoded, round(time, 6)))
+    return records

@@ -105,3 +105,18 @@ def test_preference_errors_are_shown(tmp_path: Path) -> None:
     texts = [text for _, text in record_experts]
     assert any('profile "atv99" for slave 12 is not built in' in text for text in texts), texts
     assert any('"nonsense" is neither a built-in profile nor SLAVE=PROFILE' in text for text in texts), texts
+
+
+def test_random_ascii_session_parity(tmp_path: Path) -> None:
+    from lua_session import ascii_session
+
+    records = ascii_session(31, 1500)
+    pcap = write_pcap(tmp_path / "ascii.pcap", records)
+    python = python_items(pcap)
+    lua, _, _ = lua_items(pcap)
+    _check(python, lua)
+    frames = [item.data for item in python if item.data["kind"] != "noise"]
+    assert len(frames) > 2000 and all(frame["mode"] == "ascii" for frame in frames)
+    assert sum(not frame["crc_ok"] for frame in frames) > 50
+    assert any("lower-case hex digits" in text for frame in frames for text in frame["warnings"])
+    assert sum(item.data["kind"] == "noise" for item in python) > 40
