@@ -120,3 +120,24 @@ def test_random_ascii_session_parity(tmp_path: Path) -> None:
     assert sum(not frame["crc_ok"] for frame in frames) > 50
     assert any("lower-case hex digits" in text for frame in frames for text in frame["warnings"])
     assert sum(item.data["kind"] == "noise" for item in python) > 40
+
+
+RAW_CAPTURES = sorted((ROOT / "captures").glob("*.bin"))
+
+
+@pytest.mark.parametrize("capture", RAW_CAPTURES, ids=[path.name for path in RAW_CAPTURES])
+def test_raw_capture_written_with_w_opens_the_same_in_wireshark(tmp_path: Path, capture: Path) -> None:
+    # vw3-decode FILE.bin -w out.pcap, then Wireshark on out.pcap: the same items as vw3-decode FILE.bin.
+    import json
+    import subprocess
+    import sys
+
+    from lua_harness import place_items, record_lengths
+
+    written = tmp_path / "written.pcap"
+    subprocess.run([sys.executable, "-m", "dissector", str(capture), "-w", str(written)], cwd=ROOT, check=True,
+                   capture_output=True, timeout=300)
+    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--json"], cwd=ROOT, check=True,
+                            capture_output=True, text=True, timeout=300)
+    python = place_items([json.loads(line) for line in result.stdout.splitlines()], record_lengths(written))
+    _check(python, lua_items(written)[0])
