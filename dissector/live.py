@@ -103,8 +103,16 @@ def open_port(args: argparse.Namespace) -> serial.SerialBase:
         port.rts = False
         port.open()
     except (serial.SerialException, ValueError, OSError) as error:
-        raise LiveError(f"cannot open {args.live}: {error}", EXIT_BAD_INPUT) from None
+        raise LiveError(f"cannot open {args.live}: {_reason(error)}", EXIT_BAD_INPUT) from None
     return port
+
+
+def _reason(error: BaseException) -> str:
+    """The system's words for a failure, without pyserial's nested "[Errno n]" repeats."""
+    for candidate in (error.__context__, error):
+        if isinstance(candidate, OSError) and candidate.strerror and "[Errno" not in candidate.strerror:
+            return candidate.strerror
+    return str(error)
 
 
 def flush_idle(dissector: Dissector) -> list[Item]:
@@ -241,7 +249,7 @@ class Capture:
                 if data and port.in_waiting:
                     data += port.read(port.in_waiting)
             except (serial.SerialException, OSError) as error:
-                raise PortVanished(str(error)) from None
+                raise PortVanished(_reason(error)) from None
             if data:
                 stamp = time.time()
                 last_data = time.monotonic()

@@ -90,10 +90,15 @@ class LiveStats:
         responses = sum(c.responses for c in self.slaves.values())
         exceptions = sum(c.exceptions for c in self.slaves.values())
         return (
-            f"{self.frames} frames ({requests} requests, {responses} responses, {exceptions} exceptions) "
-            f"from {len(self.slaves)} slaves, {self.crc_errors} CRC errors, {self.unanswered} unanswered, "
-            f"{self.noise_bytes} noise bytes in {seconds:.1f} s"
+            f"{_count(self.frames, 'frame')} ({_count(requests, 'request')}, "
+            f"{_count(responses, 'response')}, {_count(exceptions, 'exception')}) "
+            f"from {_count(len(self.slaves), 'slave')}, {_count(self.crc_errors, 'CRC error')}, "
+            f"{self.unanswered} unanswered, {_count(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
         )
+
+
+def _count(number: int, noun: str) -> str:
+    return f"{number} {noun}{'' if number == 1 else 's'}"
 
 
 class Sink(Protocol):

@@ -208,7 +208,7 @@ def test_port_that_cannot_be_opened(tmp_path: Path) -> None:
     sniffer = Sniffer.start(str(tmp_path / "ttyNOPE"), "-w", str(tmp_path / "x.pcap"))
     status, stderr = sniffer.wait()
     assert status == 2
-    assert sniffer.ready.startswith(f"vw3-decode: cannot open {tmp_path / 'ttyNOPE'}: ")
+    assert sniffer.ready == f"vw3-decode: cannot open {tmp_path / 'ttyNOPE'}: No such file or directory\n"
     assert stderr == ""
     assert not (tmp_path / "x.pcap").exists()
 
@@ -250,7 +250,7 @@ def test_count_and_plain_lines(tmp_path: Path) -> None:
     assert status == 0
     assert len(sniffer.lines) == 3
     assert sniffer.lines[0][1].split()[:4] == ["1", "0.000000", str(bus.slave.frames[0][0]), "request"]
-    assert stderr.startswith("vw3-decode: 3 frames (2 requests, 1 responses, 0 exceptions)")
+    assert stderr.startswith("vw3-decode: 3 frames (2 requests, 1 response, 0 exceptions)")
 
 
 def test_flush_idle_keeps_pairing() -> None:
