@@ -96,12 +96,22 @@ def score(baud: int, parity: str, heard: Heard) -> Score:
     return result
 
 
+def _alike(best: Score, other: Score) -> bool:
+    """Whether `other` (a parity of best's baud rate) explains the traffic as well as `best`."""
+    return (
+        other.baud == best.baud
+        and 2 * other.frame_bytes >= best.frame_bytes
+        and (not other.marked or other.errors <= best.errors)
+    )
+
+
 def rank(scores: list[Score]) -> list[Score]:
     """Best first: most bytes in clean frames, then fewest errors, then the order of preference.
 
-    Without error marks, the parities of one baud rate deliver the same bytes and differ only by
-    which stretch of traffic each happened to hear: any parity of the best baud rate that heard at
-    least half as much is as likely, and the preferred one (E first) goes to the front.
+    Parities of one baud rate often deliver the same bytes and differ only by which stretch of
+    traffic each happened to hear. Without error marks (or with no more errors than the best), a
+    parity of the best baud rate that heard at least half as much is as likely, and the preferred
+    one (E first) goes to the front.
     """
     order = {(s.baud, s.parity): i for i, s in enumerate(scores)}
 
@@ -110,21 +120,22 @@ def rank(scores: list[Score]) -> list[Score]:
 
     ranked = sorted(scores, key=key)
     best = ranked[0]
-    if not best.marked and best.frame_bytes:
-        alike = [s for s in ranked if s.baud == best.baud and 2 * s.frame_bytes >= best.frame_bytes]
-        preferred = min(alike, key=lambda s: PARITY_ORDER.index(s.parity))
+    if best.frame_bytes:
+        preferred = min(
+            (s for s in ranked if _alike(best, s)), key=lambda s: PARITY_ORDER.index(s.parity)
+        )
         ranked.remove(preferred)
         ranked.insert(0, preferred)
     return ranked
 
 
 def parity_alike(scores: list[Score]) -> list[Score]:
-    """The other parities that rank() judged as likely as the best (empty when errors are marked)."""
+    """The other parities that rank() judged as likely as the chosen one, in order of preference."""
     best = scores[0]
-    if best.marked or not best.frame_bytes:
+    if not best.frame_bytes:
         return []
-    most = max(s.frame_bytes for s in scores)
-    alike = [s for s in scores[1:] if s.baud == best.baud and 2 * s.frame_bytes >= most]
+    most = max(scores, key=lambda s: (s.frame_bytes, -s.errors))
+    alike = [s for s in scores[1:] if _alike(most, s)]
     return sorted(alike, key=lambda s: PARITY_ORDER.index(s.parity))
 
 
@@ -184,8 +195,14 @@ class SerialListener:
     def listen(self, baud: int, parity: str, seconds: float) -> Heard:
         port = self.port
         try:
+            # pyserial reconfigures the tty once per attribute. A tty that cannot do parity (a
+            # pty) refuses a change of parity alone, so the parity goes first and the baud rate
+            # setter, which always reconfigures everything, gives the verdict.
+            try:
+                port.parity = PARITIES[parity]
+            except (serial.SerialException, ValueError, OSError, *_TERMIOS_ERRORS):
+                pass
             port.baudrate = baud
-            port.parity = PARITIES[parity]
             marked = _mark_errors(port)
         except (serial.SerialException, ValueError, OSError, *_TERMIOS_ERRORS) as error:
             return Heard(b"", failure=str(error))
@@ -240,9 +257,14 @@ def run_detect(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     alike = parity_alike(scores)
     if alike:
         others = ", ".join(s.setting for s in alike)
+        why = (
+            "this port does not report parity errors"
+            if not best.marked
+            else "no more parity or framing errors were flagged there"
+        )
         err.write(
-            f"{PROG}: this port does not report parity errors, and {others} heard frames as well as "
-            f"{best.setting}: {best.parity} was chosen as the Modbus default\n"
+            f"{PROG}: {others} heard frames as well as {best.setting} ({why}): "
+            f"{best.parity} was chosen as the Modbus default\n"
         )
     out.write(command_line(args.live, best) + "\n")
     out.flush()

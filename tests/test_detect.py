@@ -10,7 +10,9 @@ from __future__ import annotations
 import argparse
 import io
 import os
+import subprocess
 import sys
+import termios as termios_module
 import threading
 import time
 import types
@@ -22,7 +24,7 @@ from dissector.crc import with_crc
 from dissector.detect import BAUDS, Heard, SerialListener, detect, rank, score, unmark
 from dissector.live import run_live
 from dissector.render.summary import summary_line
-from live_bus import open_pty
+from live_bus import ROOT, open_pty
 from uart_sim import SimListener, SimSerial, Wire, receive, traffic
 
 FRAMES = traffic(40, seed=2)
@@ -136,8 +138,8 @@ def test_cli_detect_on_a_simulated_port(uartsim: types.ModuleType) -> None:
     assert lines[1].startswith("  38400 8E1: ")
     # Without error marks the three parities of the right baud rate hear alike; the report says so.
     assert lines[-1] == (
-        "vw3-decode: this port does not report parity errors, and 38400 8N1, 38400 8O1 heard "
-        "frames as well as 38400 8E1: E was chosen as the Modbus default"
+        "vw3-decode: 38400 8N1, 38400 8O1 heard frames as well as 38400 8E1 (this port does not "
+        "report parity errors): E was chosen as the Modbus default"
     )
 
 
@@ -148,4 +150,64 @@ def test_cli_detect_hears_nothing() -> None:
     assert out.getvalue() == ""
     assert err.getvalue().splitlines()[-1] == (
         "vw3-decode: no CRC-valid frame heard at any setting (is there traffic? are A and B swapped?)"
+    )
+
+
+SPEEDS = {getattr(termios_module, f"B{baud}"): baud for baud in BAUDS + (19200,)}
+
+
+class TtyFeeder(threading.Thread):
+    """Writes into a pty what a UART at the sniffer's current baud rate would hear of WIRE.
+
+    The speed is read from the terminal itself (termios on the master side reports the slave's), so
+    the sniffer's own reconfiguration drives what it hears. A pty drops PARENB, so the feeder
+    cannot see the parity and hears as 8N1; nor can it mark errors (the kernel would escape them).
+    """
+
+    def __init__(self, master: int, wire: Wire) -> None:
+        super().__init__(daemon=True)
+        self.master, self.wire = master, wire
+        self.stop = threading.Event()
+
+    def run(self) -> None:
+        start = time.monotonic()
+        resume, speed = 0.0, None
+        while not self.stop.wait(0.005):
+            now = time.monotonic() - start
+            current = SPEEDS.get(termios_module.tcgetattr(self.master)[4])
+            if current != speed:
+                speed, resume = current, now  # the receiver starts over at a new setting
+            if speed is None:
+                continue
+            data, _, resume = receive(self.wire, speed, "N", resume, now)
+            if data:
+                os.write(self.master, data)
+
+
+def test_cli_detect_on_a_pty(tmp_path) -> None:
+    master, slave, path = open_pty()
+    feeder = TtyFeeder(master, Wire(38400, "E", traffic(40, seed=8)))
+    feeder.start()
+    try:
+        process = subprocess.run(
+            [sys.executable, "-m", "dissector.live", "--live", path, "--detect", "0.3"],
+            cwd=ROOT, capture_output=True, text=True, timeout=60,
+        )
+    finally:
+        feeder.stop.set()
+        feeder.join(2)
+        os.close(master)
+        os.close(slave)
+    assert process.returncode == 0, process.stderr
+    assert process.stdout == f"vw3-decode --live {path} --baud 38400 --parity E\n"
+    lines = process.stderr.splitlines()
+    assert lines[1].startswith("  38400 8E1: ") and "0 bytes flagged" in lines[1]
+    # A pty marks no errors at any parity: 8N1 is as likely, and the report says so.
+    assert lines[-1] == (
+        "vw3-decode: 38400 8N1 heard frames as well as 38400 8E1 (no more parity or framing errors "
+        "were flagged there): E was chosen as the Modbus default"
+    )
+    # Every setting is reported, including those the pty refused (a parity change alone: 8O1).
+    assert sorted(line.split(":")[0].strip() for line in lines[1:16]) == sorted(
+        f"{baud} 8{parity}1" for baud in BAUDS for parity in "ENO"
     )
