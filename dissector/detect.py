@@ -25,10 +25,11 @@ import serial
 try:
     import termios
 
-    _TERMIOS_ERRORS: tuple[type[Exception], ...] = (termios.error,)
+    # pyserial lets termios.error (not an OSError) through, e.g. when a tty refuses a setting.
+    TERMIOS_ERRORS: tuple[type[Exception], ...] = (termios.error,)
 except ImportError:  # Windows: no termios, and no error marking
     termios = None  # type: ignore[assignment]
-    _TERMIOS_ERRORS = ()
+    TERMIOS_ERRORS = ()
 
 from .framer import RtuFramer
 from .model import Chunk, Frame
@@ -200,11 +201,11 @@ class SerialListener:
             # setter, which always reconfigures everything, gives the verdict.
             try:
                 port.parity = PARITIES[parity]
-            except (serial.SerialException, ValueError, OSError, *_TERMIOS_ERRORS):
+            except (serial.SerialException, ValueError, OSError, *TERMIOS_ERRORS):
                 pass
             port.baudrate = baud
             marked = _mark_errors(port)
-        except (serial.SerialException, ValueError, OSError, *_TERMIOS_ERRORS) as error:
+        except (serial.SerialException, ValueError, OSError, *TERMIOS_ERRORS) as error:
             return Heard(b"", failure=str(error))
         port.reset_input_buffer()  # bytes heard at the previous setting
         data = bytearray()

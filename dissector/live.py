@@ -34,6 +34,7 @@ from rich.console import Console
 from rich.text import Text
 
 from .decode import decode_frame
+from .detect import TERMIOS_ERRORS
 from .model import Chunk, Frame, Item
 from .pcapwriter import PcapWriter
 from .pipeline import Annotator, Dissector
@@ -43,7 +44,6 @@ PROG = "vw3-decode"
 READ_TIMEOUT = 0.010
 IDLE_FLUSH = 0.020
 IDLE_FLUSH_LONG = 0.250
-READ_SIZE = 4096
 PARITIES = {"N": serial.PARITY_NONE, "E": serial.PARITY_EVEN, "O": serial.PARITY_ODD}
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
 
@@ -102,7 +102,7 @@ def open_port(args: argparse.Namespace) -> serial.SerialBase:
         port.timeout = READ_TIMEOUT
         port.rts = False
         port.open()
-    except (serial.SerialException, ValueError, OSError) as error:
+    except (serial.SerialException, ValueError, OSError, *TERMIOS_ERRORS) as error:
         raise LiveError(f"cannot open {args.live}: {_reason(error)}", EXIT_BAD_INPUT) from None
     return port
 
@@ -112,6 +112,8 @@ def _reason(error: BaseException) -> str:
     for candidate in (error.__context__, error):
         if isinstance(candidate, OSError) and candidate.strerror and "[Errno" not in candidate.strerror:
             return candidate.strerror
+    if isinstance(error, TERMIOS_ERRORS) and len(error.args) == 2:
+        return f"the port refused the settings: {error.args[1]}"
     return str(error)
 
 
@@ -139,34 +141,52 @@ class Tee:
 
     def __init__(self, pcap_path: str | None, raw_path: str | None) -> None:
         self.paths = [path for path in (pcap_path, raw_path) if path]
+        self._pcap_path, self._raw_path = pcap_path, raw_path
         self._pcap_file: BinaryIO | None = None
         self._pcap: PcapWriter | None = None
         self._raw: BinaryIO | None = None
+        path = pcap_path
         try:
             if pcap_path:
                 self._pcap_file = open(pcap_path, "wb")
                 self._pcap = PcapWriter(self._pcap_file)
+            path = raw_path
             if raw_path:
                 # Unbuffered: each read is one write(2), on disk before its frames are shown.
                 self._raw = open(raw_path, "wb", buffering=0)
         except OSError as error:
             self.close()
-            raise LiveError(f"cannot write {error.filename}: {error.strerror}", EXIT_BAD_INPUT) from None
+            raise LiveError(f"cannot write {path}: {error.strerror or error}", EXIT_BAD_INPUT) from None
 
     def raw(self, data: bytes) -> None:
         if self._raw is not None:
-            self._raw.write(data)
+            try:
+                self._raw.write(data)
+            except OSError as error:
+                self._failed(self._raw_path, error)
 
     def items(self, items: list[Item]) -> None:
         if self._pcap is not None:
-            for item in items:
-                self._pcap.write(item.raw, item.time)
+            try:
+                for item in items:
+                    self._pcap.write(item.raw, item.time)
+            except OSError as error:
+                self._failed(self._pcap_path, error)
+
+    def _failed(self, path: str | None, error: OSError) -> None:
+        # A full disk or a vanished mount: stop writing (files keep every whole record) and say so.
+        self.close()
+        raise LiveError(f"cannot write {path}: {error.strerror or error}", EXIT_FAILED)
 
     def close(self) -> None:
-        for stream in (self._pcap_file, self._raw):
-            if stream is not None:
-                stream.close()
+        streams = (self._pcap_file, self._raw)
         self._pcap_file = self._pcap = self._raw = None
+        for stream in streams:
+            if stream is not None:
+                try:
+                    stream.close()
+                except OSError:
+                    pass  # what could not be written was already reported
 
 
 class StopFlag:
@@ -345,6 +365,8 @@ def run_live(
             except PortVanished as error:
                 reason = f"{args.live} went away ({error})"
                 status = EXIT_FAILED
+            except LiveError as error:
+                reason, status = str(error), error.status
             except BrokenPipeError:
                 # The reader of our output (head, less) went away: stop, keep the files whole.
                 reason = "output closed"

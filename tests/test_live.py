@@ -375,3 +375,19 @@ def test_pause_inside_a_frame_does_not_cut_it() -> None:
     # After a request to slave 1 with FC16, the framer shows this as a damaged frame, bad CRC.
     assert (second["kind"], second["raw"], second["crc_ok"]) == ("request", damaged.hex(), False)
     assert 0.25 <= sniffer.lines[1][0] - written < 0.25 + LATENCY_LIMIT
+
+
+def test_capture_file_that_fills_up() -> None:
+    """A full disk mid-capture: a clear message, exit status 1, and nothing shown that was not kept."""
+    bus = Bus()
+    sniffer = Sniffer.start(bus.c_path, "--baud", "115200", "--raw", "/dev/full")
+    try:
+        os.write(bus.c, with_crc(bytes.fromhex("010300000001")))
+        status, stderr = sniffer.wait()
+    finally:
+        bus.close()
+    assert status == 1
+    assert stderr.splitlines()[0] == (
+        "vw3-decode: error: cannot write /dev/full: No space left on device; capture files closed"
+    )
+    assert sniffer.lines == []
