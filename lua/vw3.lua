@@ -2338,8 +2338,7 @@ local function add_register(tree, tvb, f, reg, range)
   local text = format("Register %s", label)
   if reg.code then text = text .. " " .. reg.code end
   text = text .. format(" = %d", reg.value)
-  if reg.scaled ~= nil then text = text .. format(" (%s%s)", reg.scaled, reg.unit and (" " .. reg.unit) or "") end
-  if reg.text then text = text .. " " .. reg.text end
+  if reg.text then text = text .. ": " .. reg.text end
   if reg.status then text = text .. " [" .. reg.status .. "]" end
   local sub = tree:add(pf.reg, r)
   sub:set_text(text)
@@ -2542,6 +2541,7 @@ end
 
 function names_proto.dissector(tvb, pinfo, tree)
   if not proto.prefs.name_modbus or modbus_fields.number == nil or modbus_fields.value == nil then return end
+  if tvb:len() == 0 then return end
   local numbers = { modbus_fields.number() }
   if #numbers == 0 then return end
   local values = { modbus_fields.value() }

@@ -22,11 +22,13 @@ from test_seed_vectors import (
 RUNNER = ROOT / "lua" / "tests" / "run_records.lua"
 
 
-def run(records: list[tuple[bytes, float]], *options: str) -> list[str]:
+def run(records: list[tuple[bytes, float]], *options: str, fields: tuple[str, ...] = ()) -> list[str]:
     lua = ensure_tool("lua5.4", "lua5.4")
     args = [lua, str(RUNNER), str(PLUGIN)]
     for option in options:
         args += ["-o", option]
+    for field in fields:
+        args += ["-f", field]
     args += [f"{data.hex()}@{time}" for data, time in records]
     result = subprocess.run(args, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
@@ -49,15 +51,15 @@ def test_p38_protection_story_under_lua54() -> None:
         "vw3: VW3 Modbus RTU, 12 Read Holding Registers response 8400..8402",
         "vw3.item=4", "vw3.kind=response", "vw3.mode=rtu", "vw3.slave=12", "vw3.function=3",
         "vw3.crc=9422", "vw3.crc_expected=9422", "vw3.crc_ok=true", "vw3.start=8400", "vw3.quantity=3",
-        "vw3.reg=Register 8400 = 32768 16#8000: non-existent (address not in the map) [non-existent]",
+        "vw3.reg=Register 8400 = 32768: 16#8000: non-existent (address not in the map) [non-existent]",
         "vw3.reg.address=8400", "vw3.reg.value=32768",
         "vw3.reg.text=16#8000: non-existent (address not in the map)", "vw3.reg.status=non-existent",
         "expert:vw3.expert.protected=Register 8400: 16#8000: non-existent (address not in the map)",
-        "vw3.reg=Register 8401 CHCF = 32768 16#8000: protected [protected]",
+        "vw3.reg=Register 8401 CHCF = 32768: 16#8000: protected [protected]",
         "vw3.reg.address=8401", "vw3.reg.value=32768", "vw3.reg.code=CHCF", "vw3.reg.name=Profile",
         "vw3.reg.text=16#8000: protected", "vw3.reg.source=S", "vw3.reg.status=protected",
         "expert:vw3.expert.protected=Register 8401 CHCF: 16#8000: protected",
-        "vw3.reg=Register 8402 COP = 2 Cd (command) [ok]",
+        "vw3.reg=Register 8402 COP = 2: Cd (command) [ok]",
         "vw3.reg.address=8402", "vw3.reg.value=2", "vw3.reg.code=COP", "vw3.reg.name=Copy channel 1 <> 2",
         "vw3.reg.text=Cd (command)", "vw3.reg.source=S", "vw3.reg.status=ok",
         "vw3.request_frame=3", "vw3.response_time=0.011000000",
@@ -106,3 +108,19 @@ def test_garbage_never_raises_under_lua54() -> None:
     records += [(SCENARIO_1[: rng.randint(0, len(SCENARIO_1))], 1.0) for _ in range(50)]
     lines = run(records)
     assert sum(line.startswith("record ") for line in lines) == len(records)
+
+
+def test_modbus_tcp_post_dissector_under_lua54() -> None:
+    fields = ("mbtcp.unit_id=0", "modbus.func_code=3", "modbus.regnum16=3102,3103",
+              "modbus.regval_uint16=40,600", "modbus.request_frame=1")
+    lines = [line.strip() for line in run([(b"\xff", 1.0)], fields=fields)]
+    start = next(index for index, line in enumerate(lines) if line.startswith("vw3names:"))
+    assert lines[start:] == [
+        "vw3names: VW3 register names (Altivar 71 (VW3 A3 303 Modbus card), unit 0)",
+        "vw3.reg=Register 3102 SFR = 40: 4.0 kHz [ok]",
+        "vw3.reg.address=3102", "vw3.reg.value=40", "vw3.reg.code=SFR", "vw3.reg.name=Switching frequency",
+        "vw3.reg.unit=kHz", "vw3.reg.scaled=4.0", "vw3.reg.text=4.0 kHz", "vw3.reg.source=A", "vw3.reg.status=ok",
+        "vw3.reg=Register 3103 TFR = 600: 60.0 Hz [ok]",
+        "vw3.reg.address=3103", "vw3.reg.value=600", "vw3.reg.code=TFR", "vw3.reg.name=Maximum output frequency",
+        "vw3.reg.unit=Hz", "vw3.reg.scaled=60.0", "vw3.reg.text=60.0 Hz", "vw3.reg.source=A", "vw3.reg.status=ok",
+    ]

@@ -1,4 +1,4 @@
--- Usage: lua5.4 run_records.lua PLUGIN [-o key=value]... HEX[@TIME] ...
+-- Usage: lua5.4 run_records.lua PLUGIN [-o key=value]... [-f field=v1,v2]... HEX[@TIME] ...
 -- Loads the plugin on the Wireshark stub, runs both passes over the records (as tshark -2 does), and
 -- prints the second pass's tree of every record, one `field=value` line per item.
 local here = arg[0]:match("^(.*)/[^/]*$") or "."
@@ -9,7 +9,14 @@ local plugin = arg[1]
 local records, options = {}, {}
 local index = 2
 while index <= #arg do
-  if arg[index] == "-o" then
+  if arg[index] == "-f" then
+    -- -f FIELD=v1,v2: values of a Wireshark field the post-dissector reads, in every packet.
+    local name, list = arg[index + 1]:match("^([^=]+)=(.*)$")
+    local values = {}
+    for value in list:gmatch("[^,]+") do values[#values + 1] = { value = tonumber(value) } end
+    stub.field_values[name] = values
+    index = index + 2
+  elseif arg[index] == "-o" then
     local key, value = arg[index + 1]:match("^([^=]+)=(.*)$")
     options[#options + 1] = { key, value }
     index = index + 2
@@ -37,6 +44,8 @@ for number, record in ipairs(records) do
   local tree = stub.tree()
   local pinfo = stub.pinfo(number, true, record.time)
   proto.dissector(stub.tvb(record.bytes), pinfo, tree)
+  -- The post-dissectors run too; without Modbus fields in the packet they add nothing.
+  for _, post in ipairs(stub.postdissectors) do post.dissector(stub.tvb(record.bytes), pinfo, tree) end
   print(string.format("record %d: %s", number, tostring(pinfo.cols.info)))
   for _, line in ipairs(stub.dump(tree, 1)) do print(line) end
 end

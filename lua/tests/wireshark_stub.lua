@@ -73,6 +73,14 @@ DissectorTable = { get = dissector_table }
 
 function register_postdissector(proto) stub.postdissectors[#stub.postdissectors + 1] = proto end
 
+-- Field extractors: stub.field_values[name] holds the FieldInfo-like tables the next call returns.
+stub.field_values = {}
+Field = {
+  new = function(name)
+    return function() return table.unpack(stub.field_values[name] or {}) end
+  end,
+}
+
 -- Tvb and TvbRange over a Lua string.
 function stub.tvb(bytes)
   local tvb = { bytes = bytes }
