@@ -364,3 +364,16 @@ def test_command_line_arguments() -> None:
         (None, "48401"), ("CHCF", "48402"), ("COP", "48403")]
     with pytest.raises(SystemExit):
         parser.parse_args(["--address-style", "modicon"])
+
+
+def test_names_for_renderers() -> None:
+    annotate = build_annotator(["1=sel749m"], [], None)
+    assert annotate.exception_name(2, 6) == "write refused: the drive is in Forced local mode"
+    assert annotate.exception_name(2, 8) == "Memory Parity Error"  # not documented by the card: spec name
+    assert annotate.function_name(1, 0x60) == "Read Parameter Information"
+    assert annotate.function_name(2, 0x60) == "Function 96"
+    assert annotate.subfunction_name(2, 15) == (
+        "broadcast messages received (the spec's 0F counts requests not answered)")
+    assert annotate.subfunction_name(1, 15) == "Return Server No Response Count"
+    assert annotate.label(1, 3, 500) == "40501"
+    assert annotate.label(2, 3, 8401) is None
