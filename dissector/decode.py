@@ -74,12 +74,11 @@ def decode_frame(frame: Frame) -> Frame:
     trailing = fields.get("trailing")
     if trailing:
         frame.warnings.append(f"{len(trailing)} unexpected bytes after the data")
-    if frame.broadcast and function in _NOT_BROADCAST:
+    if frame.broadcast and function in SPEC.not_broadcast:
         frame.warnings.append(f"{SPEC.function_name(function)} cannot be broadcast (slave 0)")
     return frame
 
 
-_NOT_BROADCAST = frozenset([1, 2, 3, 4, 7, 11, 12, 17, 20, 24, 43])
 
 
 def _request_fields(frame: Frame) -> Container | None:

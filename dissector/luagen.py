@@ -89,7 +89,7 @@ def plugin_data() -> dict[str, Any]:
             "noise_item_max": framer.NOISE_ITEM_MAX,
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
-        "not_broadcast": frozenset(decode._NOT_BROADCAST),
+        "not_broadcast": SPEC.not_broadcast,
     }
     data.update(_profile_data())
     return data

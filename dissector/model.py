@@ -82,6 +82,11 @@ class Frame:
     bits: list[Bit] | None = None
     objects: list[DeviceObject] | None = None
     notes: list[str] = field(default_factory=list)
+    # Filled by a device profile where the device's words differ from the spec's.
+    function_text: str | None = None  # e.g. SEL-749M 60h "Read Parameter Information"
+    exception_text: str | None = None  # e.g. ATV71 exception 6 "write refused: ... Forced local"
+    subfunction_text: str | None = None  # e.g. VW3 A3 303 FC8 0Fh "broadcast messages received"
+    span_label: str | None = None  # the start..end addresses as displayed (4X style), when not the numbers
 
     @property
     def response(self) -> Frame | None:

@@ -24,7 +24,6 @@ _PLAIN_READS = frozenset([3, 4])
 _MAX_LISTED = 8  # registers named one by one in an exception explanation
 _READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 # decode_frame already warns when the spec forbids a broadcast; the profile adds device rules only.
-_SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
 _HAS_LABEL = "label" in Register.__dataclass_fields__
 _REQUEST = Kind.REQUEST
 _RESPONSE = Kind.RESPONSE
@@ -171,6 +170,11 @@ class Annotator:
             device = self.device(frame.slave)
         kind = frame.kind
         function = frame.function
+        special_name = device.profile.function_names.get(function)
+        if special_name is not None:
+            frame.function_text = special_name
+        if device.plc is not None and frame.start is not None:
+            self._span_label(frame, device)
         if kind is _REQUEST:
             if frame.broadcast or function not in device.unchecked:
                 if frame.broadcast or not self._within_limits(frame, device):
@@ -193,6 +197,18 @@ class Annotator:
             self._diagnostics(frame, device)
         if frame.objects:
             self._objects(frame, device.profile, frame.objects)
+
+    @staticmethod
+    def _span_label(frame: Frame, device: _Device) -> None:
+        """`40501..40504` for a PLC-style device, so requests without registers show 4X numbers too."""
+        base = device.plc.get(frame.function, device.plc_default)  # type: ignore[union-attr]
+        start = frame.start
+        quantity = frame.quantity or 1
+        first = _plc_label(base, start)  # type: ignore[arg-type]
+        if quantity == 1:
+            frame.span_label = first
+        else:
+            frame.span_label = f"{first}..{_plc_label(base, (start + quantity - 1) & 0xFFFF)}"  # type: ignore[operator]
 
     def _annotate(self, frame: Frame, device: _Device, registers: list[Register], read: bool) -> None:
         rows = device.rows
@@ -327,7 +343,7 @@ class Annotator:
             frame.broadcast
             and profile.broadcast is not None
             and function not in profile.broadcast
-            and not any(warning.endswith(_SPEC_BROADCAST_WARNING) for warning in frame.warnings)
+            and function not in SPEC.not_broadcast  # decode.py already warned with the spec's rule
         ):
             allowed = ", ".join(str(code) for code in sorted(profile.broadcast)) or "none"
             frame.warnings.append(
@@ -370,6 +386,7 @@ class Annotator:
         elif profile.exceptions:
             known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
             frame.notes.append(f"exception {code:02X} is not one the {profile.device} documents ({known})")
+        frame.exception_text = profile.exceptions.get(code)
         if code == profile.all_protected_exception and function in _PLAIN_READS:
             self._all_unreadable(frame, device)
 
@@ -414,6 +431,7 @@ class Annotator:
         meaning = profile.diagnostics.get(sub)  # type: ignore[arg-type]
         if meaning is None:
             return
+        frame.subfunction_text = meaning
         text = f"sub-function {sub:02X} on the {profile.device}: {meaning}"
         fields = frame.fields
         if frame.kind is Kind.RESPONSE and fields is not None and len(fields.data) == 2:

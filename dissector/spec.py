@@ -19,6 +19,7 @@ class Spec:
     device_id_codes: dict[int, str]
     device_id_objects: dict[int, str]
     limits: dict[str, object]
+    not_broadcast: frozenset[int]
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -45,6 +46,7 @@ def load_spec() -> Spec:
         device_id_codes=_int_keys(data["device_id_codes"]),
         device_id_objects=_int_keys(data["device_id_objects"]),
         limits=data["limits"],
+        not_broadcast=frozenset(data["not_broadcast"]),
     )
 
 

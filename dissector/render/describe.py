@@ -17,6 +17,8 @@ def address_text(address: int | None, label: str | None = None) -> str:
 def span_text(frame: Frame) -> str:
     """`8400..8402 (3)` or `9001` for the frame's start and quantity."""
     start, quantity = frame.start, frame.quantity
+    if frame.span_label is not None:
+        return frame.span_label if quantity is None or quantity == 1 else f"{frame.span_label} ({quantity})"
     if start is None:
         return f"({quantity})" if quantity is not None else ""
     first = _label_for(frame, start)
@@ -79,11 +81,11 @@ def bits_text(frame: Frame) -> str:
 def info_text(frame: Frame) -> str:
     """The Info column: what was asked or answered, in a few words."""
     function = frame.function
-    name = _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
+    name = frame.function_text or _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
     if frame.kind is Kind.EXCEPTION:
         code = frame.exception_code
-        text = f"{name}: exception {code if code is not None else '?'} ({SPEC.exception_name(code)})"
-        return text
+        meaning = frame.exception_text or SPEC.exception_name(code)
+        return f"{name}: exception {code if code is not None else '?'} ({meaning})"
     fields = frame.fields
     if fields is None:
         return f"{name} (malformed)"
@@ -116,7 +118,7 @@ def _write_single_register(frame: Frame, request: bool) -> str:
 
 def _diagnostics(frame: Frame, request: bool) -> str:
     sub = frame.subfunction if frame.subfunction is not None else -1
-    sub_name = SPEC.diagnostics.get(sub, "unknown sub-function")
+    sub_name = frame.subfunction_text or SPEC.diagnostics.get(sub, "unknown sub-function")
     data = frame.fields.data
     if len(data) == 2:
         value = int.from_bytes(data, "big")

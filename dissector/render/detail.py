@@ -82,10 +82,13 @@ def detail_tree(item: Item, base: float | None = None) -> Node:
     modbus = root.add(f"Modbus {frame.mode.upper()}")
     modbus.add(f"Slave: {frame.slave}" + (" (broadcast)" if frame.broadcast else ""))
     code = frame.function | (0x80 if frame.kind is Kind.EXCEPTION else 0)
-    modbus.add(f"Function: {code} (0x{code:02X}) {SPEC.function_name(frame.function)}")
+    function_name = frame.function_text or SPEC.function_name(frame.function)
+    modbus.add(f"Function: {code} (0x{code:02X}) {function_name}")
     if frame.kind is Kind.EXCEPTION:
         exception = frame.exception_code
         modbus.add(f"Exception: {exception} {SPEC.exception_name(exception)}", "vw3.exception")
+        if frame.exception_text is not None:
+            modbus.add(f"Meaning on this device: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:
         for key, value in frame.fields.items():
             if key.startswith("_") or value is None or key in ("values", "status") and frame.registers:
@@ -94,7 +97,8 @@ def detail_tree(item: Item, base: float | None = None) -> Node:
                 continue
             _fields_node(modbus, key, value)
     if frame.subfunction is not None:
-        modbus.add(f"Sub-function name: {SPEC.diagnostics.get(frame.subfunction, 'unknown')}")
+        sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, "unknown")
+        modbus.add(f"Sub-function name: {sub_name}")
     for register in frame.registers or ():
         _register_node(modbus, register)
     if frame.bits is not None:

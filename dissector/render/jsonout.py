@@ -49,7 +49,7 @@ def item_to_dict(item: Item) -> dict[str, Any]:
         "mode": frame.mode,
         "slave": frame.slave,
         "function": frame.function,
-        "function_name": SPEC.function_name(frame.function),
+        "function_name": frame.function_text or SPEC.function_name(frame.function),
         "crc_ok": frame.crc_ok,
         "crc": frame.crc,
         "crc_expected": frame.crc_expected,
@@ -57,11 +57,13 @@ def item_to_dict(item: Item) -> dict[str, Any]:
     }
     if frame.start is not None:
         out["start"] = frame.start
+    if frame.span_label is not None:
+        out["span_label"] = frame.span_label
     if frame.quantity is not None:
         out["quantity"] = frame.quantity
     if frame.subfunction is not None:
         out["subfunction"] = frame.subfunction
-        out["subfunction_name"] = SPEC.diagnostics.get(frame.subfunction)
+        out["subfunction_name"] = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
     if frame.registers is not None:
         out["registers"] = [register_to_dict(register) for register in frame.registers]
     if frame.bits is not None:
@@ -76,6 +78,8 @@ def item_to_dict(item: Item) -> dict[str, Any]:
         code = frame.exception_code
         out["exception_code"] = code
         out["exception_name"] = SPEC.exception_name(code)
+        if frame.exception_text is not None:
+            out["exception_meaning"] = frame.exception_text
     if frame.request is not None:
         out["request_frame"] = frame.request.number
         out["response_time"] = frame.response_time
