@@ -37,6 +37,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "request_frame": records.get(data["request_frame"]) if "request_frame" in data else None,
         "response_frame": records.get(data["response_frame"]) if "response_frame" in data else None,
         "unanswered": data.get("unanswered"),
+        # Microseconds: Wireshark holds times as doubles in Lua (pinfo.abs_ts), pcap gives microseconds.
+        "response_time": None if data.get("response_time") is None else round(data["response_time"], 6),
         "registers": [
             (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"))
             for reg in data.get("registers", [])
@@ -81,6 +83,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "request_frame": _int(fields.get("request_frame")),
         "response_frame": _int(fields.get("response_frame")),
         "unanswered": _bool(fields.get("unanswered")) if kind == "request" else None,
+        "response_time": None if fields.get("response_time") is None else round(float(fields["response_time"]), 6),
         "registers": [
             (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"), reg.get("status"),
              reg.get("text"), reg.get("label"))
@@ -95,8 +98,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
     }
 
 
-def compare(python: list[PythonItem], lua: list[LuaItem]) -> list[str]:
-    """Every difference, as one line each; empty when the two sides agree."""
+def compare(python: list[PythonItem], lua: list[LuaItem], ignore: frozenset[str] = frozenset()) -> list[str]:
+    """Every difference, as one line each; empty when the two sides agree. `ignore`: keys not compared."""
     records = {item.data["frame"]: item.record for item in python}
     differences: list[str] = []
     py_frames = {(item.record, item.offset): item for item in python if item.data["kind"] != "noise"}
@@ -112,7 +115,7 @@ def compare(python: list[PythonItem], lua: list[LuaItem]) -> list[str]:
         expected = python_frame(py_frames[key], records)
         got = lua_frame(lua_frames[key])
         for name, value in expected.items():
-            if got.get(name) != value:
+            if name not in ignore and got.get(name) != value:
                 differences.append(f"{where} {name}: Python {value!r}, Lua {got.get(name)!r}")
     py_noise = {
         (item.record, item.offset + index)
