@@ -255,6 +255,26 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
     return status
 
 
+def _live(args: argparse.Namespace, env: Environment) -> int:
+    first_time: list[float] = []  # the time column starts at the first item heard, as for files
+
+    def base(item: Item) -> float | None:
+        if not first_time and item.time is not None:
+            first_time.append(item.time)
+        return first_time[0] if first_time else None
+
+    is_terminal = args.color == "always" or (args.color == "auto" and env.stdout_isatty)
+    return run_live(
+        args,
+        env.stdout,
+        env.stderr,
+        is_terminal,
+        lambda item: summary_line(item, base(item)),
+        _annotator(args),
+        lambda item: summary_text(item, base(item)),
+    )
+
+
 def run(argv: list[str] | None, env: Environment) -> int:
     parser = build_parser()
     try:
@@ -265,15 +285,9 @@ def run(argv: list[str] | None, env: Environment) -> int:
         if args.live or args.detect is not None:
             if args.live is None:
                 raise UsageError("--detect needs --live PORT")
-            return run_live(
-                args,
-                env.stdout,
-                env.stderr,
-                env.stdout_isatty,
-                summary_line,
-                _annotator(args),
-                summary_text,
-            )
+            if args.files or args.hex:
+                raise UsageError("--live takes no FILE or --hex")
+            return _live(args, env)
         if not args.files and not args.hex:
             parser.print_usage(env.stderr)
             raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")

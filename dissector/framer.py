@@ -30,7 +30,6 @@ from collections.abc import Callable
 
 from .crc import crc16
 from .model import Chunk, Frame, Item, Kind, Noise
-from .spec import SPEC
 
 MAX_ADU = 256
 MIN_ADU = 4

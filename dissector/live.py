@@ -21,9 +21,7 @@ from __future__ import annotations
 
 import argparse
 import copy
-import os
 import signal
-import sys
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -33,7 +31,7 @@ import serial
 from rich.console import Console
 from rich.text import Text
 
-from .decode import decode_frame
+from .ascii import AsciiFramer
 from .detect import TERMIOS_ERRORS
 from .model import Chunk, Frame, Item
 from .pcapwriter import PcapWriter
@@ -115,25 +113,6 @@ def _reason(error: BaseException) -> str:
     if isinstance(error, TERMIOS_ERRORS) and len(error.args) == 2:
         return f"the port refused the settings: {error.args[1]}"
     return str(error)
-
-
-def flush_idle(dissector: Dissector) -> list[Item]:
-    """Close what the framer holds after a silence, keeping pairing state.
-
-    Uses `Dissector.flush_idle()` when the pipeline has it. Until then: the RTU framer's `finish()`
-    consumes its whole buffer and keeps its expectation, so it can go on being fed afterwards; the
-    items go through the pairer without `Pairer.finish()`, so the next response still pairs.
-    """
-    method = getattr(dissector, "flush_idle", None)
-    if method is not None:
-        return method()  # type: ignore[no-any-return]
-    items = dissector.pairer.push(dissector.framer.finish())
-    for item in items:
-        if isinstance(item, Frame):
-            decode_frame(item)
-            if dissector.annotate is not None:
-                dissector.annotate(item)
-    return items
 
 
 class Tee:
@@ -281,7 +260,7 @@ class Capture:
                 silent = time.monotonic() - last_data
                 if self.flush_due(silent, tried):
                     pending = False
-                    if not self.deliver(flush_idle(dissector)):
+                    if not self.deliver(dissector.flush_idle()):
                         return "count"
                 tried = tried or silent >= self.silence
             self.sink.tick()
@@ -350,7 +329,11 @@ def run_live(
     stats = LiveStats()
     err.write(f"{PROG}: listening on {args.live} at {setting_text(args)}\n")
     err.flush()
-    dissector = Dissector(hold=False, annotate=annotate, timeout=getattr(args, "timeout", None))
+    # Modbus ASCII on the line only with --mode ascii: a live stream cannot be sniffed before it starts.
+    framer = AsciiFramer() if getattr(args, "mode", None) == "ascii" else None
+    dissector = Dissector(
+        framer=framer, hold=False, annotate=annotate, timeout=getattr(args, "timeout", None)
+    )
     sink = _make_sink(args, out, is_terminal, render_line, render_text, stats)
     capture = Capture(
         port, dissector, tee, sink, stats, silence_threshold(args.baud), args.duration, args.count
@@ -388,49 +371,3 @@ def run_live(
     err.write(f"{PROG}: {stats.summary(seconds)}{files}\n")
     err.flush()
     return status
-
-
-def build_parser() -> argparse.ArgumentParser:
-    """The options the CLI has besides ours, for `python3 -m dissector.live` until cli.py wires it."""
-    parser = argparse.ArgumentParser(prog="python3 -m dissector.live")
-    add_live_arguments(parser)
-    parser.add_argument("-w", dest="write", metavar="FILE", help="write a pcap of every item")
-    parser.add_argument("--json", action="store_true", help="NDJSON, one object per item")
-    parser.add_argument("--timeout", type=float, default=1.0, metavar="SECONDS")
-    return parser
-
-
-def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    if not args.live:
-        parser.error("--live PORT is required")
-    from .render.summary import summary_line, summary_text
-
-    base: list[float] = []
-
-    def first_time(item: Item) -> float | None:
-        if not base and item.time is not None:
-            base.append(item.time)
-        return base[0] if base else None
-
-    status = run_live(
-        args,
-        sys.stdout,
-        sys.stderr,
-        sys.stdout.isatty(),
-        lambda item: summary_line(item, first_time(item)),
-        None,
-        lambda item: summary_text(item, first_time(item)),
-    )
-    if not sys.stdout.isatty():
-        try:
-            sys.stdout.flush()
-        except BrokenPipeError:
-            # Python would complain at exit about the closed pipe: point stdout elsewhere.
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-    return status
-
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -61,7 +61,8 @@ class Dissector:
     def flush_idle(self) -> list[Item]:
         """After a silence on a live line: what the framer holds is complete, or noise.
 
-        The framer's finish() leaves it ready for more bytes, and the pairer is not finished, so a
+        Framers promise that finish() consumes their buffer and leaves them ready for more bytes
+        (RtuFramer and AsciiFramer keep their expectation); the pairer is not finished, so a
         response that comes later still pairs with its request.
         """
         return self._finish_items(self.pairer.push(self.framer.finish()))

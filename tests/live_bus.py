@@ -185,7 +185,7 @@ class Sniffer:
     @classmethod
     def start(cls, path: str, *options: str) -> Sniffer:
         process = subprocess.Popen(
-            [sys.executable, "-m", "dissector.live", "--live", path, *options],
+            [sys.executable, "-m", "dissector", "--live", path, "-n", *options],
             cwd=ROOT,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,

@@ -190,7 +190,7 @@ def test_cli_detect_on_a_pty(tmp_path) -> None:
     feeder.start()
     try:
         process = subprocess.run(
-            [sys.executable, "-m", "dissector.live", "--live", path, "--detect", "0.3"],
+            [sys.executable, "-m", "dissector", "--live", path, "--detect", "0.3"],
             cwd=ROOT, capture_output=True, text=True, timeout=60,
         )
     finally:

@@ -17,7 +17,7 @@ import pytest
 from rich.console import Console
 
 from dissector.crc import with_crc
-from dissector.live import flush_idle, run_live, silence_threshold
+from dissector.live import run_live, silence_threshold
 from dissector.live_view import LiveStats, LiveView
 from dissector.model import Chunk, Frame
 from dissector.pipeline import Dissector
@@ -105,7 +105,7 @@ def test_our_master_1000_transactions(tmp_path: Path) -> None:
 
 
 def test_pymodbus_master_1000_transactions(tmp_path: Path) -> None:
-    pymodbus_client = pytest.importorskip("pymodbus.client")
+    import pymodbus.client as pymodbus_client  # a test extra: missing it is a failure, not a skip
     import random
 
     def master(bus: Bus) -> None:
@@ -260,7 +260,7 @@ def test_flush_idle_keeps_pairing() -> None:
     assert [item.raw for item in dissector.feed(Chunk(request, 1.0))] == [request]
     # Half the response, a silence, then a damaged tail: the half is closed as noise.
     assert dissector.feed(Chunk(response[:4], 1.01)) == []
-    flushed = flush_idle(dissector)
+    flushed = dissector.flush_idle()
     assert [(item.kind.value, item.raw) for item in flushed] == [("noise", response[:4])]
     items = dissector.feed(Chunk(response, 1.05))
     assert len(items) == 1 and isinstance(items[0], Frame)
