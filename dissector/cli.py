@@ -16,9 +16,9 @@ from enum import IntEnum
 from typing import BinaryIO, TextIO
 
 from .ascii import AsciiFramer
-from .filters import FilterError, compile_filter
+from .filters import FilterError
 from .framer import RtuFramer
-from .live import add_live_arguments, run_live
+from .live_options import add_live_arguments
 from .model import Chunk, Item
 from .pcapwriter import PcapWriter
 from .pipeline import Annotator, Dissector
@@ -28,7 +28,6 @@ from .render.output import Output, OutputOptions
 from .render.progress import progress_for
 from .render.summary import summary_line, summary_text
 from .sources import FORMATS, MODES, SourceError, open_source
-from .stats import StatsCollector
 from .timing import GapChecker
 
 PROG = "vw3-decode"
@@ -145,8 +144,14 @@ class Sinks:
         self.json = args.json
         self.predicate: Callable[[dict], bool] | None = None
         if args.filter is not None:
+            from .filters import compile_filter
+
             self.predicate = compile_filter(args.filter)
-        self.stats = StatsCollector() if args.stats else None
+        self.stats = None
+        if args.stats:
+            from .stats import StatsCollector
+
+            self.stats = StatsCollector()
         self.show = not args.stats and (args.write is None or args.print_too)
         options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
         self.output = Output(options, env.stdout, env.stdout_isatty)
@@ -262,6 +267,8 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
         if not first_time and item.time is not None:
             first_time.append(item.time)
         return first_time[0] if first_time else None
+
+    from .live import run_live  # pyserial is loaded only for a live capture
 
     is_terminal = args.color == "always" or (args.color == "auto" and env.stdout_isatty)
     return run_live(

@@ -35,6 +35,7 @@ from .ascii import AsciiFramer
 from .detect import TERMIOS_ERRORS
 from .model import Chunk, Frame, Item
 from .pcapwriter import PcapWriter
+from .live_options import PARITY_CHOICES
 from .pipeline import Annotator, Dissector
 from .live_view import LineSink, LiveStats, RichSink, Sink, json_line
 
@@ -43,6 +44,7 @@ READ_TIMEOUT = 0.010
 IDLE_FLUSH = 0.020
 IDLE_FLUSH_LONG = 0.250
 PARITIES = {"N": serial.PARITY_NONE, "E": serial.PARITY_EVEN, "O": serial.PARITY_ODD}
+assert set(PARITIES) == set(PARITY_CHOICES)
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
 
 
@@ -52,31 +54,6 @@ class LiveError(Exception):
     def __init__(self, message: str, status: int) -> None:
         super().__init__(message)
         self.status = status
-
-
-def add_live_arguments(parser: argparse.ArgumentParser) -> None:
-    group = parser.add_argument_group("live capture")
-    group.add_argument(
-        "--live",
-        metavar="PORT",
-        help="listen on a serial port or pyserial URL (/dev/ttyUSB0, COM3, socket://host:port, "
-        "rfc2217://host:port); never writes to it",
-    )
-    group.add_argument("--baud", type=int, default=19200, help="baud rate (default 19200)")
-    group.add_argument(
-        "--parity", type=str.upper, choices=sorted(PARITIES), default="E",
-        help="parity: E (default, the Modbus default), N or O",
-    )
-    group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
-    group.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")
-    group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
-    group.add_argument("--duration", type=float, metavar="SECONDS", help="stop after SECONDS")
-    group.add_argument("--count", type=int, metavar="N", help="stop after N frames")
-    group.add_argument(
-        "--detect", nargs="?", type=float, const=2.0, metavar="SECONDS",
-        help="find the baud rate and parity: listen SECONDS (default 2) at each of "
-        "9600..115200 x E/N/O and print the command line to use",
-    )
 
 
 def silence_threshold(baud: int) -> float:

@@ -6,13 +6,14 @@ is decided once and a terminal only adds colour.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
-
-from rich.tree import Tree
+from typing import TYPE_CHECKING, Any
 
 from ..model import Frame, Item, Kind, Noise, Register
 from ..spec import SPEC
 from .summary import crc_text, noise_info
+
+if TYPE_CHECKING:
+    from rich.tree import Tree
 
 
 @dataclass(slots=True)
@@ -137,6 +138,8 @@ def _plain_lines(node: Node, indent: int, lines: list[str]) -> None:
 
 
 def render_rich(node: Node) -> Tree:
+    from rich.tree import Tree  # only a terminal needs rich
+
     tree = Tree(node.label, style=node.style or "", guide_style="dim")
     _rich_children(tree, node)
     return tree

@@ -7,9 +7,7 @@ from __future__ import annotations
 import json
 from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import TextIO
-
-from rich.console import Console
+from typing import TYPE_CHECKING, TextIO
 
 from ..model import Item
 from .detail import detail_tree, render_plain, render_rich
@@ -17,6 +15,9 @@ from .hexdump import hexdump
 from .jsonout import item_to_dict
 from .summary import summary_line, summary_text
 from .theme import THEME
+
+if TYPE_CHECKING:
+    from rich.console import Console
 
 BATCH = 512
 
@@ -36,7 +37,9 @@ class Output:
         use_rich = options.color == "always" or (options.color == "auto" and isatty)
         self.console: Console | None = None
         if use_rich and not options.json:
-            self.console = Console(
+            from rich.console import Console as RichConsole  # only a terminal needs rich
+
+            self.console = RichConsole(
                 file=stream,
                 theme=THEME,
                 force_terminal=True if options.color == "always" else None,
