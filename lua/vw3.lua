@@ -2281,10 +2281,11 @@ local ex = {
   noise = ProtoExpert.new("vw3.expert.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
   multiple = ProtoExpert.new("vw3.expert.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
   partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
+  internal = ProtoExpert.new("vw3.expert.internal", "Plugin error (please report it)", expert.group.UNDECODED, expert.severity.ERROR),
   preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
 }
 proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
-  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference }
+  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal }
 vw3.experts = ex
 
 local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
@@ -2490,10 +2491,21 @@ function proto.dissector(tvb, pinfo, tree)
   local record = state.records[pinfo.number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    record = dissect_record(state, tvb:raw(0, n), pinfo.abs_ts, pinfo.number)
+    local ok, result = pcall(function()
+      return dissect_record(state, tvb:raw(0, n), pinfo.abs_ts, pinfo.number)
+    end)
+    if ok then
+      record = result
+    else
+      -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
+      record = { items = {}, frames = 0, length = n, error = tostring(result) }
+    end
     state.records[pinfo.number] = record
   end
   pinfo.cols.protocol = "VW3"
+  if record.error then
+    add_text(tree:add(proto, tvb:range(0, n)), ex.internal, "Lua Error in vw3.lua: " .. record.error)
+  end
   local summaries = {}
   for _, item in ipairs(record.items) do
     if item.kind == NOISE then

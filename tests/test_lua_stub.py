@@ -22,14 +22,14 @@ from test_seed_vectors import (
 RUNNER = ROOT / "lua" / "tests" / "run_records.lua"
 
 
-def run(records: list[tuple[bytes, float]], *options: str, fields: tuple[str, ...] = ()) -> list[str]:
+def run(records: list[tuple[bytes | None, float]], *options: str, fields: tuple[str, ...] = ()) -> list[str]:
     lua = ensure_tool("lua5.4", "lua5.4")
     args = [lua, str(RUNNER), str(PLUGIN)]
     for option in options:
         args += ["-o", option]
     for field in fields:
         args += ["-f", field]
-    args += [f"{data.hex()}@{time}" for data, time in records]
+    args += ["!error" if data is None else f"{data.hex()}@{time}" for data, time in records]
     result = subprocess.run(args, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
@@ -124,3 +124,14 @@ def test_modbus_tcp_post_dissector_under_lua54() -> None:
         "vw3.reg.address=3103", "vw3.reg.value=600", "vw3.reg.code=TFR", "vw3.reg.name=Maximum output frequency",
         "vw3.reg.unit=Hz", "vw3.reg.scaled=60.0", "vw3.reg.text=60.0 Hz", "vw3.reg.source=A", "vw3.reg.status=ok",
     ]
+
+
+def test_an_error_inside_the_plugin_is_shown_and_contained() -> None:
+    # A record the plugin fails on (here: its bytes cannot be read) says so, and the pairing of the
+    # records around it is not disturbed.
+    lines = run([(SCENARIO_REQUEST, 1.0), (None, 1.005), (SCENARIO_1, 1.01)])
+    broken = section(lines, 2)
+    assert broken[1] == "vw3: nil"
+    assert broken[2].startswith("expert:vw3.expert.internal=Lua Error in vw3.lua: ")
+    assert broken[2].endswith("unreadable bytes")
+    assert "vw3.request_frame=1" in section(lines, 3)

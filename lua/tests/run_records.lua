@@ -20,6 +20,10 @@ while index <= #arg do
     local key, value = arg[index + 1]:match("^([^=]+)=(.*)$")
     options[#options + 1] = { key, value }
     index = index + 2
+  elseif arg[index] == "!error" then
+    -- A record whose bytes cannot be read: exercises the plugin's guard against its own errors.
+    records[#records + 1] = { bytes = "\0\0\0\0", time = #records * 0.01, broken = true }
+    index = index + 1
   else
     local hex, time = arg[index]:match("^([^@]*)@?(.*)$")
     records[#records + 1] = { bytes = (hex:gsub("%x%x", function(pair) return string.char(tonumber(pair, 16)) end)), time = tonumber(time) or #records * 0.01 }
@@ -37,13 +41,18 @@ for _, option in ipairs(options) do
 end
 if proto.prefs_changed then proto.prefs_changed() end
 proto.init()
+local function tvb_of(record)
+  local tvb = stub.tvb(record.bytes)
+  if record.broken then tvb.raw = function() error("unreadable bytes") end end
+  return tvb
+end
 for number, record in ipairs(records) do
-  assert(proto.dissector(stub.tvb(record.bytes), stub.pinfo(number, false, record.time), stub.tree()) == #record.bytes)
+  assert(proto.dissector(tvb_of(record), stub.pinfo(number, false, record.time), stub.tree()) == #record.bytes)
 end
 for number, record in ipairs(records) do
   local tree = stub.tree()
   local pinfo = stub.pinfo(number, true, record.time)
-  proto.dissector(stub.tvb(record.bytes), pinfo, tree)
+  proto.dissector(tvb_of(record), pinfo, tree)
   -- The post-dissectors run too; without Modbus fields in the packet they add nothing.
   for _, post in ipairs(stub.postdissectors) do post.dissector(stub.tvb(record.bytes), pinfo, tree) end
   print(string.format("record %d: %s", number, tostring(pinfo.cols.info)))
