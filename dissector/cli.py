@@ -165,8 +165,12 @@ class Sinks:
 
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
+        records: list[dict] | None = None
         if predicate is not None:
-            items = [item for item in items if predicate(item_to_dict(item))]
+            # The filter reads the NDJSON form; keep it for --json rather than building it twice.
+            pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
+            items = [item for item, _record in pairs]
+            records = [record for _item, record in pairs]
         if self.pcap is not None:
             for item in items:
                 self.pcap.write(item.raw, item.time)
@@ -174,7 +178,7 @@ class Sinks:
             for item in items:
                 self.stats.add(item)
         if self.show:
-            self.output.write(items, self.extra)
+            self.output.write(items, self.extra, records)
 
     def close(self) -> None:
         if self.pcap is not None:

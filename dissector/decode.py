@@ -53,22 +53,23 @@ def decode_frame(frame: Frame) -> Frame:
     if frame.decoded:
         return frame
     frame.decoded = True
-    pdu = frame.pdu
     function = frame.function
-    fields = fast_parse(function, frame.kind, pdu)
+    kind = frame.kind
+    pdu = frame.raw[1:-2] if frame.mode == "rtu" else frame.pdu
+    fields = fast_parse(function, kind, pdu)
     if fields is None:
         try:
-            fields = parse_pdu(function, frame.kind, pdu[1:])
+            fields = parse_pdu(function, kind, pdu[1:])
         except GrammarError as error:
             frame.warnings.append(f"malformed {frame.kind}: {error}")
             return frame
     frame.fields = fields
-    if frame.kind is Kind.EXCEPTION:
+    if kind is Kind.EXCEPTION:
         code = fields["exception_code"]
         if code not in SPEC.exceptions:
             frame.warnings.append(f"exception code {code} is not defined by the spec")
     else:
-        handler = _HANDLERS.get((function, frame.kind))
+        handler = _HANDLERS_BY_KIND[kind].get(function)
         if handler is not None:
             handler(frame, fields)
     trailing = fields.get("trailing")
@@ -248,4 +249,9 @@ _HANDLERS = {
     (24, Kind.REQUEST): _fifo_request,
     (24, Kind.RESPONSE): _fifo_response,
     (43, Kind.RESPONSE): _mei_response,
+}
+
+_HANDLERS_BY_KIND: dict[Kind, dict[int, object]] = {
+    kind: {function: handler for (function, of_kind), handler in _HANDLERS.items() if of_kind is kind}
+    for kind in (Kind.REQUEST, Kind.RESPONSE)
 }

@@ -125,9 +125,15 @@ _FAST = {
 }
 
 
+_FAST_BY_KIND = {
+    kind: {function: parser for (function, of_kind), parser in _FAST.items() if of_kind is kind}
+    for kind in (Kind.REQUEST, Kind.RESPONSE)
+}
+
+
 def fast_parse(function: int, kind: Kind, pdu: bytes) -> Container | None:
     """The grammar's Container for a well-formed common PDU (function code included), else None."""
     if kind is Kind.EXCEPTION:
         return _exception(pdu)
-    parser = _FAST.get((function, kind))
+    parser = _FAST_BY_KIND[kind].get(function)
     return parser(pdu) if parser is not None else None

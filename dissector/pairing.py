@@ -42,14 +42,13 @@ class Pairer:
         return out
 
     # -- internals ---------------------------------------------------------------------------
-    def _number(self, item: Item, out: list[Item]) -> None:
-        self._count += 1
-        item.number = self._count
-        out.append(item)
-
     def _release(self, out: list[Item]) -> None:
+        count = self._count
         for queued in self._queue:
-            self._number(queued, out)
+            count += 1
+            queued.number = count
+            out.append(queued)
+        self._count = count
         self._queue.clear()
         if self._pending is not None:
             self._pending_released = True
@@ -81,8 +80,8 @@ class Pairer:
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
-            if self._timeout is not None and item.response_time is not None:
-                if item.response_time > self._timeout:
+            if self._timeout is not None and item.time is not None and pending.time is not None:
+                if item.time - pending.time > self._timeout:
                     item.warnings.append(
                         f"response after {item.response_time * 1000:.1f} ms, later than the "
                         f"{self._timeout * 1000:.0f} ms timeout"

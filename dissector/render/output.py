@@ -5,7 +5,6 @@ Plain output is built as strings and written in batches, which is what makes a p
 from __future__ import annotations
 
 import json
-from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
@@ -59,14 +58,20 @@ class Output:
         elif not self.options.json:
             self._buffer.append(f"==> {title} <==")
 
-    def write(self, items: Iterable[Item], extra: dict[str, object] | None = None) -> None:
+    def write(
+        self,
+        items: list[Item],
+        extra: dict[str, object] | None = None,
+        records: list[dict] | None = None,
+    ) -> None:
+        """Show items; `records` are their NDJSON dicts when the caller has them already."""
         options = self.options
         out = self._buffer
-        for item in items:
+        for index, item in enumerate(items):
             if self.base is None and item.time is not None:
                 self.base = item.time
             if options.json:
-                record = item_to_dict(item)
+                record = records[index] if records is not None else item_to_dict(item)
                 if extra:
                     record.update(extra)
                 out.append(json.dumps(record))
