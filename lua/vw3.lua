@@ -1741,7 +1741,7 @@ local SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
 local ELLIPSIS = "\226\128\166"
 
 -- The choices the preferences make: default profile, profile per slave, address style override.
-local config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {} }
+local config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {}, layers = {} }
 
 local function parse_profile_choice(text)
   local default, per_slave, errors = DATA.default_profile, {}, {}
@@ -1763,6 +1763,208 @@ local function parse_profile_choice(text)
     end
   end
   return default, per_slave, errors
+end
+
+-- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
+-- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
+local MAP_COLUMNS = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source" }
+local KNOWN_COLUMN = {}
+for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
+
+local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
+
+-- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
+local function csv_cells(line)
+  local cells, cell, k, quoted = {}, {}, 1, false
+  while k <= #line do
+    local char = line:sub(k, k)
+    if quoted then
+      if char == '"' then
+        if line:sub(k + 1, k + 1) == '"' then
+          cell[#cell + 1] = '"'
+          k = k + 1
+        else
+          quoted = false
+        end
+      else
+        cell[#cell + 1] = char
+      end
+    elseif char == '"' and #cell == 0 then
+      quoted = true
+    elseif char == "," then
+      cells[#cells + 1] = concat(cell)
+      cell = {}
+    else
+      cell[#cell + 1] = char
+    end
+    k = k + 1
+  end
+  if quoted then return nil, "unexpected end of data" end
+  cells[#cells + 1] = concat(cell)
+  return cells
+end
+
+local function map_int(text)
+  text = strip(text)
+  local hex = text:match("^16#(%x+)$") or text:match("^0[xX](%x+)$")
+  if hex then return tonumber(hex, 16) end
+  if text:match("^[+-]?%d+$") then return tonumber(text) end
+  return nil
+end
+
+local function map_pairs(text, what, low, high)
+  local out, any = {}, false
+  for part in (text .. ";"):gmatch("([^;]*);") do
+    part = strip(part)
+    if part ~= "" then
+      local key, label = part:match("^([^=]*)=(.*)$")
+      if key == nil or strip(label) == "" then return nil, format("%s entry %q is not `number=label`", what, part) end
+      local number = map_int(key)
+      if number == nil then return nil, format("%s entry %q: %q is not a number", what, part, strip(key)) end
+      if number < low or number > high then
+        return nil, format("%s entry %q: %d is outside %d..%d", what, part, number, low, high)
+      end
+      if out[number] ~= nil then return nil, format("%s entry %q: %d given twice", what, part, number) end
+      out[number] = strip(label)
+      any = true
+    end
+  end
+  if not any then return nil end
+  return out
+end
+
+-- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0).
+local function scale_decimals(text)
+  local mantissa, exponent = text:lower():match("^[+-]?([%d.]+)e([+-]?%d+)$")
+  if mantissa == nil then mantissa, exponent = text:match("^[+-]?([%d.]+)$"), "0" end
+  if mantissa == nil then return 0 end
+  local fraction = (mantissa:match("%.(%d*)$") or ""):gsub("0+$", "")
+  local decimals = #fraction - tonumber(exponent)
+  if decimals < 0 then return 0 end
+  return decimals
+end
+
+local function map_row(values)
+  local address = map_int(values.address or "")
+  if address == nil then return nil, format("address %q is not a number", values.address or "") end
+  if address < 0 or address > 0xFFFF then return nil, format("address %d is outside 0..65535", address) end
+  local code = strip(values.code or "")
+  if code == "" then return nil, "code is empty" end
+  local row = { code = code }
+  for _, key in ipairs({ "name", "unit", "source" }) do
+    local text = strip(values[key] or "")
+    if text ~= "" then row[key] = text end
+  end
+  local scale_text = strip(values.scale or "")
+  if scale_text ~= "" then
+    local scale = tonumber(scale_text)
+    if scale == nil then return nil, format("scale %q is not a number", scale_text) end
+    if scale == 0 then return nil, "scale 0 would hide every value" end
+    row.scale, row.decimals = scale, scale_decimals(scale_text)
+  end
+  local access = strip(values.access or ""):upper()
+  if access ~= "" and access ~= "R" and access ~= "W" and access ~= "RW" then
+    return nil, format("access %q is not R, W or RW", access)
+  end
+  local problem
+  row.enum, problem = map_pairs(values.enum or "", "enum", 0, 0xFFFF)
+  if problem then return nil, problem end
+  row.bits, problem = map_pairs(values.bits or "", "bits", 0, 15)
+  if problem then return nil, problem end
+  local signed = strip(values.signed or "")
+  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, format("signed %q is not 1, 0 or empty", signed) end
+  row.signed = signed == "1" or nil
+  if row.signed and row.enum then return nil, "a signed register cannot carry enum labels" end
+  row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000])) and true or nil
+  return address, row
+end
+
+-- The rows of a map file, or nil and `file:line: what is wrong`.
+local function load_map(path)
+  local handle, open_error = io.open(path, "rb")
+  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
+  local text = handle:read("*a")
+  handle:close()
+  local header, rows, first_line, number = nil, {}, {}, 0
+  for line in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+    number = number + 1
+    local stripped = strip(line)
+    if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
+      local cells, problem = csv_cells(line)
+      if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
+      if header == nil then
+        header = {}
+        local seen = {}
+        for index, cell in ipairs(cells) do
+          local name = strip(cell):lower()
+          if not KNOWN_COLUMN[name] then
+            return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
+          end
+          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
+          seen[name], header[index] = true, name
+        end
+        for _, required in ipairs({ "address", "code" }) do
+          if not seen[required] then
+            return nil, format("%s:%d: the header lacks the %q column", path, number, required)
+          end
+        end
+      else
+        if #cells ~= #header then
+          return nil, format("%s:%d: %d fields, the header has %d (quote a field that holds a comma)", path, number,
+            #cells, #header)
+        end
+        local values = {}
+        for index, name in ipairs(header) do values[name] = cells[index] end
+        local address, row = map_row(values)
+        if address == nil then return nil, format("%s:%d: %s", path, number, row) end
+        if rows[address] ~= nil then
+          return nil, format("%s:%d: address %d already defined on line %d", path, number, address, first_line[address])
+        end
+        rows[address], first_line[address] = row, number
+      end
+    end
+  end
+  if header == nil then return nil, format("%s: no header line (expected: %s)", path, concat(MAP_COLUMNS, ",")) end
+  return rows
+end
+
+-- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
+local function parse_map_choice(text, profile_names)
+  local layers, errors = {}, {}
+  for spec in (text or ""):gmatch("[^;]+") do
+    spec = strip(spec)
+    if spec ~= "" then
+      local target, path = spec:match("^([^=]*)=(.+)$")
+      if target ~= nil then
+        target = strip(target)
+        local whole = io.open(spec, "rb")
+        if whole ~= nil then whole:close(); target, path = nil, spec end
+      else
+        path = spec
+      end
+      local layer = {}
+      if target == nil then
+        -- every slave
+      elseif target:match("^%d+$") then
+        layer.slave = tonumber(target)
+      elseif profile_names[target] then
+        layer.profile = target
+      else
+        errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
+        layer = nil
+      end
+      if layer ~= nil then
+        local rows, problem = load_map(path)
+        if rows == nil then
+          errors[#errors + 1] = problem
+        else
+          layer.rows = rows
+          layers[#layers + 1] = layer
+        end
+      end
+    end
+  end
+  return layers, errors
 end
 
 local function ends_with(text, tail) return tail == "" or text:sub(-#tail) == tail end
@@ -1799,6 +2001,16 @@ local function device_for(st, slave)
     return false
   end
   local rows = profile.map or {}
+  if #config.layers > 0 then
+    local merged = {}
+    for address, row in pairs(rows) do merged[address] = row end
+    for _, layer in ipairs(config.layers) do
+      if (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name) then
+        for address, row in pairs(layer.rows) do merged[address] = row end
+      end
+    end
+    rows = merged
+  end
   local depend, plain = {}, {}
   for _, rule in ipairs(profile.bits_depend or {}) do
     for _, address in ipairs(rule.registers) do
@@ -2142,9 +2354,13 @@ annotate = function(st, f, b)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 
-local function configure(profiles_text, style)
+local function configure(profiles_text, style, maps_text)
   local default, per_slave, errors = parse_profile_choice(profiles_text)
-  config = { default = default, per_slave = per_slave, style = style, errors = errors }
+  local in_use = { [default or ""] = true }
+  for _, name in pairs(per_slave) do in_use[name] = true end
+  local layers, map_errors = parse_map_choice(maps_text, in_use)
+  for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end
+  config = { default = default, per_slave = per_slave, style = style, errors = errors, layers = layers }
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -2291,6 +2507,9 @@ vw3.experts = ex
 local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
 proto.prefs.profiles = Pref.string("Device profiles", "",
   "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave")
+proto.prefs.maps = Pref.string("Register maps", "",
+  "CSV register maps as vw3-decode --map takes them, separated by ';': FILE (every slave), 12=FILE (one "
+    .. "slave) or sel749m=FILE (the slaves of a profile)")
 proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
   "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
     .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
@@ -2305,7 +2524,7 @@ vw3.state = function() return state end
 local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
 
 local function apply_prefs()
-  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style])
+  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style], proto.prefs.maps)
 end
 
 local function timeout_pref()

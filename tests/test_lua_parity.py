@@ -142,3 +142,55 @@ def test_raw_capture_written_with_w_opens_the_same_in_wireshark(tmp_path: Path, 
     python = place_items([json.loads(line) for line in result.stdout.splitlines()], record_lengths(written))
     # A raw capture has no times (no response_time); the pcap written from it has times of 0.
     _check(python, lua_items(written)[0], ignore=frozenset(["response_time"]))
+
+
+SEL_MAP = """# a user's SEL-749M map (rows invented for the test)
+address,code,name,unit,scale,signed,enum,bits
+0,IA,"Phase A current, RMS",A,0.01,,,
+1,IB,Phase B current,A,0.01,,,
+2,VAB,Line voltage,V,1,,,
+3,TEMP,Temperature,C,0.1,1,,
+4,STAT,Status,,,,,0=Trip;1=Warn;15=Run
+5,MODE,Mode,,,,1=Auto;2=Manual;32768=Off,
+0x10,HEX,Hex addressed,,1e-2,,,
+"""
+OVERRIDE_MAP = """address,code,name,enum
+8401,CHCF2,Profile (override),"1=A;3=IO;32768=Weird"
+8400,NEW,Now mapped,
+"""
+
+
+def test_register_maps_preference(tmp_path: Path) -> None:
+    # vw3-decode --map [SLAVE=|PROFILE=]FILE and the plugin's "maps" preference give the same names.
+    sel, override = tmp_path / "sel.csv", tmp_path / "override.csv"
+    sel.write_text(SEL_MAP)
+    override.write_text(OVERRIDE_MAP)
+    capture = ROOT / "captures" / "sel749m_polling.pcap"
+    session = write_pcap(tmp_path / "session.pcap", SessionBuilder(seed=77).session(1500))
+    for pcap in (capture, session):
+        python = python_items(pcap, ["1=sel749m"], "--map", f"sel749m={sel}", "--map", str(override),
+                              "--map", f"12={sel}")
+        lua, record_experts, _ = lua_items(pcap, "-o", "vw3.profiles:1=sel749m",
+                                           "-o", f"vw3.maps:sel749m={sel};{override};12={sel}")
+        _check(python, lua)
+        assert not any("Preferences" in text for _, text in record_experts)
+        codes = {reg.get("code") for item in python for reg in item.data.get("registers", [])}
+        assert {"IA", "TEMP"} <= codes if pcap == capture else "CHCF2" in codes
+
+
+def test_register_map_errors_are_shown(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.csv"
+    bad.write_text("address,code,colour\n1,X,red\n")
+    worse = tmp_path / "worse.csv"
+    worse.write_text("address,code,enum\n1,X,1=A;1=B\n")
+    pcap = write_pcap(tmp_path / "one.pcap", SessionBuilder(seed=3).session(3))
+    _, record_experts, _ = lua_items(pcap, "-o", f"vw3.maps:{bad};{worse};{tmp_path / 'none.csv'};9x={bad}")
+    texts = [text for _, text in record_experts]
+    expected = [
+        f'{bad}:1: unknown column "colour"',
+        f'{worse}:2: enum entry "1=B": 1 given twice',
+        f"{tmp_path / 'none.csv'}: cannot read the map",
+        '"9x" is neither a slave address nor a profile in use',
+    ]
+    for phrase in expected:
+        assert any(phrase in text for text in texts), (phrase, texts)
