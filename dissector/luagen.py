@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from . import decode, framer
+from . import framer
 from .spec import SPEC
 
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.luagen (do not edit by hand)"

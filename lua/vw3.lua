@@ -1737,7 +1737,6 @@ local READS = { [3] = true, [4] = true, [23] = true }
 local PLAIN_READS = { [3] = true, [4] = true }
 local MAX_LISTED = 8
 local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
-local SPEC_BROADCAST_WARNING = "cannot be broadcast (slave 0)"
 local ELLIPSIS = "\226\128\166"
 
 -- The choices the preferences make: default profile, profile per slave, address style override.
@@ -1967,7 +1966,6 @@ local function parse_map_choice(text, profile_names)
   return layers, errors
 end
 
-local function ends_with(text, tail) return tail == "" or text:sub(-#tail) == tail end
 
 local function plc_label(base, address)
   -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
@@ -2175,12 +2173,9 @@ local function check_request(f, device)
       end
     end
   end
-  if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] then
-    local already = false
-    for _, text in ipairs(f.warnings) do
-      if ends_with(text, SPEC_BROADCAST_WARNING) then already = true end
-    end
-    if not already then
+  -- (decode_frame already warned where the spec's own rule forbids the broadcast)
+  if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
+    do
       local allowed = {}
       for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
       local list = concat(allowed, ", ")
@@ -2322,6 +2317,7 @@ local function diagnostics_note(f, device, b)
   local sub = f.subfunction
   local meaning = (profile.diagnostics or {})[sub]
   if meaning == nil then return end
+  f.subfunction_text = meaning
   local text = format("sub-function %02X on the %s: %s", sub, profile.device, meaning)
   if f.kind == RESPONSE and f.fields ~= nil and f.fields.data_length == 2 then
     text = text .. format("; value %d", u16(b, f.data_at + 2))
@@ -2329,9 +2325,25 @@ local function diagnostics_note(f, device, b)
   note(f, text)
 end
 
+local function span_label(f, device)
+  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
+  local base = device.plc[f.fn] or device.plc_default
+  local quantity = f.quantity
+  if quantity == nil or quantity == 0 then quantity = 1 end
+  local first = plc_label(base, f.start)
+  if quantity == 1 then
+    f.span_label = first
+  else
+    f.span_label = first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
+  end
+end
+
 annotate = function(st, f, b)
   local device = device_for(st, f.slave)
   if not device then return end
+  local special_name = (device.profile.function_names or {})[f.fn]
+  if special_name ~= nil then f.function_text = special_name end
+  if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
   if kind == REQUEST then
     check_request(f, device)
@@ -2449,7 +2461,11 @@ local pf = {
   crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
   broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
   exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, names(EXCEPTIONS)),
-  exception_text = ProtoField.string("vw3.exception_text", "Exception meaning"),
+  exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
+  exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
+  function_name = ProtoField.string("vw3.function_name", "Function name"),
+  subfunction_name = ProtoField.string("vw3.subfunction_name", "Sub-function name"),
+  span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
   start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
   quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
   subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, names(DIAGNOSTICS)),
@@ -2583,9 +2599,11 @@ local function add_register(tree, tvb, f, reg, range)
 end
 
 local function summary(f)
-  local parts = { format("%d", f.slave), function_name(f.fn), f.kind }
-  if f.kind == EXCEPTION then parts[#parts + 1] = exception_name(f.exception_code) end
-  if f.start ~= nil and f.quantity ~= nil and f.quantity > 1 then
+  local parts = { format("%d", f.slave), f.function_text or function_name(f.fn), f.kind }
+  if f.kind == EXCEPTION then parts[#parts + 1] = f.exception_meaning or exception_name(f.exception_code) end
+  if f.span_label ~= nil then
+    parts[#parts + 1] = f.span_label
+  elseif f.start ~= nil and f.quantity ~= nil and f.quantity > 1 then
     parts[#parts + 1] = format("%d..%d", f.start, (f.start + f.quantity - 1) % 0x10000)
   elseif f.start ~= nil then
     parts[#parts + 1] = format("%d", f.start)
@@ -2604,6 +2622,7 @@ local function show_frame(f, tvb, tree, pinfo)
   t:add(pf.mode, whole, f.mode):set_generated()
   t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
   t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+  t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
   local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
   local crc_ok = f.crc == f.crc_expected
   t:add(pf.crc, crc_range, f.crc)
@@ -2620,7 +2639,8 @@ local function show_frame(f, tvb, tree, pinfo)
   if f.kind == EXCEPTION then
     t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code)
     add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
-    if f.exception_meaning then t:add(pf.exception_text, whole, f.exception_meaning):set_generated() end
+    t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
+    if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
   end
   local data_range = frame_range(tvb, f, f.data_at, 2)
   if f.start ~= nil then
@@ -2628,7 +2648,12 @@ local function show_frame(f, tvb, tree, pinfo)
     if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
   end
   if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
-  if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
+  if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+  if f.subfunction ~= nil then
+    t:add(pf.subfunction, data_range, f.subfunction)
+    local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
+    if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
+  end
   if f.registers then
     for _, reg in ipairs(f.registers) do add_register(t, tvb, f, reg) end
   end
