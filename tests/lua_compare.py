@@ -18,6 +18,39 @@ def _warning(text: str) -> str:
     return match.group(1) if match else text
 
 
+# Every key of vw3-decode --json the plugin mirrors (or, for "fields", "raw", "offset", "time",
+# deliberately leaves to Wireshark's own bytes pane and frame fields). A new key fails the parity
+# tests until the plugin shows it too.
+FRAME_KEYS = frozenset([
+    "frame", "kind", "offset", "length", "time", "raw", "mode", "slave", "function", "function_name",
+    "crc_ok", "crc", "crc_expected", "broadcast", "start", "span_label", "quantity", "subfunction",
+    "subfunction_name", "registers", "bits", "objects", "exception_code", "exception_name",
+    "exception_meaning", "request_frame", "response_time", "response_frame", "unanswered", "fields",
+    "warnings", "notes",
+])
+NOISE_KEYS = frozenset(["frame", "kind", "offset", "length", "time", "raw", "reason", "warnings"])
+REGISTER_KEYS = frozenset(["address", "value", "code", "name", "unit", "scaled", "text", "status", "source",
+                           "label"])
+OBJECT_KEYS = frozenset(["id", "name", "value", "text"])
+
+
+def unknown_keys(python: list[PythonItem]) -> set[str]:
+    """JSON keys the plugin does not know about (a feature added to the Python side only)."""
+    unknown: set[str] = set()
+    for item in python:
+        data = item.data
+        unknown |= set(data) - (NOISE_KEYS if data["kind"] == "noise" else FRAME_KEYS)
+        for reg in data.get("registers", []):
+            unknown |= {f"registers.{key}" for key in set(reg) - REGISTER_KEYS}
+        for obj in data.get("objects", []):
+            unknown |= {f"objects.{key}" for key in set(obj) - OBJECT_KEYS}
+    return unknown
+
+
+def _scaled(value: Any) -> float | None:
+    return None if value is None else round(float(value), 9)
+
+
 def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
     data = item.data
     out: dict[str, Any] = {
@@ -45,7 +78,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         # Microseconds: Wireshark holds times as doubles in Lua (pinfo.abs_ts), pcap gives microseconds.
         "response_time": None if data.get("response_time") is None else round(data["response_time"], 6),
         "registers": [
-            (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"))
+            (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"),
+             reg.get("name"), reg.get("unit"), reg.get("source"), _scaled(reg.get("scaled")))
             for reg in data.get("registers", [])
         ],
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
@@ -96,7 +130,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "response_time": None if fields.get("response_time") is None else round(float(fields["response_time"]), 6),
         "registers": [
             (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"), reg.get("status"),
-             reg.get("text"), reg.get("label"))
+             reg.get("text"), reg.get("label"), reg.get("name"), reg.get("unit"), reg.get("source"),
+             _scaled(reg.get("scaled")))
             for reg in item.registers
         ],
         "bits": [(_int(bit.get("address")), _int(bit.get("value"))) for bit in item.bits],
@@ -111,7 +146,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
 def compare(python: list[PythonItem], lua: list[LuaItem], ignore: frozenset[str] = frozenset()) -> list[str]:
     """Every difference, as one line each; empty when the two sides agree. `ignore`: keys not compared."""
     records = {item.data["frame"]: item.record for item in python}
-    differences: list[str] = []
+    differences: list[str] = [f"vw3-decode --json has a key the plugin lacks: {key}" for key in
+                              sorted(unknown_keys(python))]
     py_frames = {(item.record, item.offset): item for item in python if item.data["kind"] != "noise"}
     lua_frames = {(item.record, item.offset): item for item in lua if item.fields.get("kind") != "noise"}
     for key in sorted(set(py_frames) | set(lua_frames)):
