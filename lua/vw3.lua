@@ -2530,6 +2530,12 @@ proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
   "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
     .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
   { { 1, "profile", STYLE_DEFAULT }, { 2, "protocol", STYLE_PROTOCOL }, { 3, "plc", STYLE_PLC } }, false)
+local MODE_AUTO, MODE_RTU, MODE_ASCII = 1, 2, 3
+local MODE_NAMES = { [MODE_RTU] = "rtu", [MODE_ASCII] = "ascii" }
+proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
+  "auto: from the first record's bytes (as vw3-decode looks at the first bytes); rtu or ascii: forced, "
+    .. "as vw3-decode --mode", { { 1, "auto", MODE_AUTO }, { 2, "rtu", MODE_RTU }, { 3, "ascii", MODE_ASCII } },
+  false)
 proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
   "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
@@ -2550,7 +2556,7 @@ end
 
 function proto.init()
   apply_prefs()
-  state = new_state(timeout_pref())
+  state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
 end
 
 local function add_text(tree, expert_info, text)

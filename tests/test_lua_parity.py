@@ -194,3 +194,16 @@ def test_register_map_errors_are_shown(tmp_path: Path) -> None:
     ]
     for phrase in expected:
         assert any(phrase in text for text in texts), (phrase, texts)
+
+
+def test_forced_mode_preference(tmp_path: Path) -> None:
+    # An ASCII capture read as RTU (vw3-decode --mode rtu): all noise, on both sides.
+    capture = ROOT / "captures" / "ascii_session.pcap"
+    python = python_items(capture, [], "--mode", "rtu")
+    lua, _, _ = lua_items(capture, "-o", "vw3.mode:rtu")
+    _check(python, lua)
+    assert {item.data["kind"] for item in python} == {"noise"}
+    # And an RTU session starting with a record that looks like ASCII, forced to RTU.
+    records = [(b":0103", 1.0), *SessionBuilder(seed=5).session(50)]
+    pcap = write_pcap(tmp_path / "rtu.pcap", records)
+    _check(python_items(pcap, [], "--mode", "rtu"), lua_items(pcap, "-o", "vw3.mode:rtu")[0])
