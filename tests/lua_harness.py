@@ -141,7 +141,8 @@ def parse_pdml(text: str) -> tuple[list[LuaItem], list[tuple[int, str]]]:
     return items, record_experts
 
 
-def lua_items(pcap: Path, *options: str) -> tuple[list[LuaItem], list[tuple[int, str]], str]:
+def lua_items(pcap: Path, *options: str, header: int = 0) -> tuple[list[LuaItem], list[tuple[int, str]], str]:
+    """The plugin's items; `header`: bytes before the Modbus payload in each record (RTAC: 12)."""
     result = run_tshark(pcap, "-T", "pdml", *options)
     if result.returncode != 0:
         raise AssertionError(f"tshark failed ({result.returncode}): {result.stderr[-3000:]}")
@@ -149,6 +150,8 @@ def lua_items(pcap: Path, *options: str) -> tuple[list[LuaItem], list[tuple[int,
     if errors:
         raise AssertionError(f"Lua errors: {errors[:5]}")
     items, record_experts = parse_pdml(result.stdout)
+    for item in items:
+        item.offset -= header
     return items, record_experts, result.stderr
 
 
@@ -185,7 +188,9 @@ def record_lengths(pcap: Path) -> list[int]:
     return lengths
 
 
-def python_items(pcap: Path, profiles: list[str] | None = None, *options: str) -> list[PythonItem]:
+def python_items(
+    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0
+) -> list[PythonItem]:
     """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records."""
     command = [sys.executable, "-m", "dissector", str(pcap), "--json", *options]
     for profile in profiles or []:
@@ -194,7 +199,7 @@ def python_items(pcap: Path, profiles: list[str] | None = None, *options: str) -
     if result.returncode != 0:
         raise AssertionError(f"{' '.join(command)} failed ({result.returncode}): {result.stderr[-3000:]}")
     dicts = [json.loads(line) for line in result.stdout.splitlines() if line.strip()]
-    return place_items(dicts, record_lengths(pcap))
+    return place_items(dicts, [length - header for length in record_lengths(pcap)])
 
 
 def python_items_library(pcap: Path, profiles: list[str] | None = None) -> list[PythonItem]:

@@ -207,3 +207,21 @@ def test_forced_mode_preference(tmp_path: Path) -> None:
     records = [(b":0103", 1.0), *SessionBuilder(seed=5).session(50)]
     pcap = write_pcap(tmp_path / "rtu.pcap", records)
     _check(python_items(pcap, [], "--mode", "rtu"), lua_items(pcap, "-o", "vw3.mode:rtu")[0])
+
+
+def test_rtac_serial_session_parity(tmp_path: Path) -> None:
+    # Linktype 250 records (12-byte RTAC header, then the serial bytes) through Decode As rtacser.data.
+    import struct
+
+    from dissector.pcapwriter import LINKTYPE_RTAC_SERIAL, PcapWriter
+
+    pcap = tmp_path / "rtac.pcap"
+    with pcap.open("wb") as stream:
+        writer = PcapWriter(stream, linktype=LINKTYPE_RTAC_SERIAL)
+        for data, time in SessionBuilder(seed=9).session(500):
+            seconds, micros = divmod(round(time * 1_000_000), 1_000_000)
+            writer.write(struct.pack(">IIBBH", seconds, micros, 0, 0, 0) + data, time)
+    python = python_items(pcap, header=12)
+    lua, _, _ = lua_items(pcap, "-d", "rtacser.data,vw3", header=12)
+    _check(python, lua)
+    assert len(python) > 900
