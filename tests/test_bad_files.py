@@ -131,6 +131,15 @@ def test_unreadable_captures(tmp_path: Path, content: bytes, fmt: str | None, me
         assert err == [f"{PROG}{path}: {message}"]
 
 
+def test_hex_dump_with_a_timestamp_no_float_holds(tmp_path: Path) -> None:
+    # Regression (fuzzing): 400 digits made the time inf, and --json printed "time": Infinity.
+    path = tmp_path / "stamps.hex"
+    path.write_text("1" * 400 + ".5 0C 03 20 D0 00 03 0E EF\n")
+    status, out, err = cli(str(path), "--format", "hex", "--json")
+    assert (status, out) == (2, [])
+    assert err == [f"{PROG}{path} line 1: timestamp {'1' * 24}... is out of range"]
+
+
 def test_pcapng_block_with_a_corrupt_length(tmp_path: Path) -> None:
     data = bytearray(pcapng([epb(REQUEST, T0)]))
     data[52:56] = struct.pack("<I", 13)  # the EPB's total length: not a multiple of 4

@@ -8,6 +8,7 @@ rejects on the first byte.
 from __future__ import annotations
 
 import io
+import math
 import random
 import struct
 
@@ -239,6 +240,7 @@ def read_all(data: bytes, fmt: str | None) -> int:
     total = 0
     for chunk in source:
         total += len(chunk.data)
+        assert chunk.time is None or math.isfinite(chunk.time)  # NDJSON has no Infinity
         assert len(chunk.data) <= 256 or source.format in ("hexdump",)
     for warning in source.warnings:
         assert "\n" not in warning
@@ -269,6 +271,24 @@ def test_readers_on_mutated_files_raise_only_source_error(
         read_all(data, fmt)
     except SourceError as error:
         assert str(error) and "\n" not in str(error)
+
+
+STAMPS = st.one_of(
+    st.from_regex(r"\A\d{1,400}\.\d{1,30}\Z"),
+    st.from_regex(r"\A\[?\d{4}-\d{2}-\d{2}[T ]\d{2}:\d{2}:\d{2}(\.\d{1,9})?(Z|[+-]\d{2}:?\d{2})?\]?:?\Z"),
+    st.from_regex(r"\A\d{2}:\d{2}:\d{2}(\.\d{1,20})?\Z"),
+)
+
+
+@FUZZ
+@given(st.lists(st.tuples(STAMPS, st.binary(min_size=1, max_size=12)), min_size=1, max_size=4))
+def test_hexdump_timestamps_are_finite_or_refused(lines: list[tuple[str, bytes]]) -> None:
+    # Regression: 400 digits before the point made float('inf'), and NDJSON printed "time": Infinity.
+    text = "".join(f"{stamp} {data.hex(' ')}\n" for stamp, data in lines).encode()
+    try:
+        read_all(text, "hex")
+    except SourceError as error:
+        assert " line " in str(error) and "\n" not in str(error)
 
 
 # -- register maps ---------------------------------------------------------------------------------

@@ -12,6 +12,7 @@ A leading timestamp is recognised only in shapes a hex group can never take (a h
 """
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterator
 from datetime import datetime, timezone
@@ -46,7 +47,10 @@ def _timestamp(tokens: list[str]) -> tuple[float | None, int]:
         return None, 0
     first = _strip_stamp(tokens[0])
     if _SECONDS.fullmatch(first):
-        return float(first), 1
+        seconds = float(first)
+        if not math.isfinite(seconds):  # 400 digits make inf: no time (and no JSON) can hold it
+            raise HexLineError(f"timestamp {first[:24]}... is out of range")
+        return seconds, 1
     if _DATETIME.fullmatch(first):
         return _epoch(first), 1
     if _DATE.fullmatch(first.lstrip("[")) and len(tokens) > 1:
