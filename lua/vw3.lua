@@ -2541,6 +2541,9 @@ proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
 
 local state = new_state(1.0)
+-- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
+-- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
+local rtac_times = {}
 vw3.state = function() return state end
 
 local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
@@ -2555,6 +2558,7 @@ local function timeout_pref()
 end
 
 function proto.init()
+  rtac_times = {}
   apply_prefs()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
 end
@@ -2735,6 +2739,17 @@ local function show_noise(item, tvb, tree)
   add_text(t, ex.noise, format("%d bytes outside any frame: %s", item.length, item.reason))
 end
 
+-- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
+-- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
+-- the record's time otherwise.
+local function record_time(pinfo)
+  local rtac = rtac_times[pinfo.number]
+  if rtac ~= nil then return rtac end
+  local time = pinfo.abs_ts
+  if time == 0 then return nil end
+  return time
+end
+
 function proto.dissector(tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
@@ -2742,7 +2757,7 @@ function proto.dissector(tvb, pinfo, tree)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     local ok, result = pcall(function()
-      return dissect_record(state, tvb:raw(0, n), pinfo.abs_ts, pinfo.number)
+      return dissect_record(state, tvb:raw(0, n), record_time(pinfo), pinfo.number)
     end)
     if ok then
       record = result
@@ -2778,9 +2793,25 @@ function proto.dissector(tvb, pinfo, tree)
 end
 
 -- Registration: linktype 147 (USER0), Decode As for RTAC serial records, and an optional TCP port.
-DissectorTable.get("wtap_encap"):add(wtap.USER0, proto)
+local wtap_encap = DissectorTable.get("wtap_encap")
+wtap_encap:add(wtap.USER0, proto)
 local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
 if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
+
+-- RTAC serial records: note the RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian: when the
+-- device saw the bytes, which response times need), then hand the record to Wireshark's RTAC dissector.
+local RTAC_ENCAP = wtap.RTAC_SERIAL
+local ok_original, rtac_original = pcall(function() return RTAC_ENCAP and wtap_encap:get_dissector(RTAC_ENCAP) end)
+if ok_original and rtac_original ~= nil then
+  local rtac_time = Proto("vw3rtac", "VW3 RTAC timestamp")
+  function rtac_time.dissector(tvb, pinfo, tree)
+    if tvb:len() >= 8 and not pinfo.visited then
+      rtac_times[pinfo.number] = tvb:range(0, 4):uint() + tvb:range(4, 4):uint() / 1000000
+    end
+    return rtac_original:call(tvb, pinfo, tree)
+  end
+  wtap_encap:add(RTAC_ENCAP, rtac_time)
+end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
 
 -- ---------------------------------------------------------------------------------------------------
