@@ -37,3 +37,26 @@ def test_fuzzed_ascii_records(tmp_path: Path) -> None:
             body = b":" + rng.randbytes(rng.randint(0, 260)).hex().upper().encode() + rng.choice([b"\r\n", b"\n", b""])
         records.append((body, index * 0.001))
     _check_no_lua_error(write_pcap(tmp_path / "ascii.pcap", records), len(records))
+
+
+def test_fuzzed_rtac_records(tmp_path: Path) -> None:
+    # RTAC serial records (the pass-through reading their header, then Decode As to the plugin),
+    # including records shorter than the 12-byte header.
+    import struct
+
+    from dissector.pcapwriter import LINKTYPE_RTAC_SERIAL, PcapWriter
+
+    rng = random.Random(250)
+    pcap = tmp_path / "rtac.pcap"
+    payloads = random_records(seed=250, count=3000)
+    with pcap.open("wb") as stream:
+        writer = PcapWriter(stream, linktype=LINKTYPE_RTAC_SERIAL, flush=False)
+        for data, time in payloads:
+            header = struct.pack(">IIBBH", int(time), rng.randrange(1_000_000), rng.randrange(16), 0, 0)
+            record = header + data if rng.random() < 0.95 else header[: rng.randrange(12)]
+            writer.write(record, time)
+    result = run_tshark(pcap, "-V", "-d", "rtacser.data,vw3")
+    assert result.returncode == 0, result.stderr[-3000:]
+    errors = lua_errors(result.stdout + result.stderr)
+    assert not errors, f"{len(errors)} Lua errors, first: {errors[:5]}"
+    assert result.stdout.count("VW3 ") > 2000
