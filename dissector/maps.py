@@ -29,6 +29,9 @@ COLUMNS = ("address", "code", "name", "unit", "scale", "access", "enum", "bits",
 REQUIRED = ("address", "code")
 ACCESS = frozenset(["R", "W", "RW"])
 MEMO_LIMIT = 4096
+# 65,536 addresses of a few hundred bytes each at most: anything bigger is not a map, and reading
+# it whole (a 2 GB file given by mistake) would take the memory of the machine.
+MAX_MAP_BYTES = 16 << 20
 
 
 class ProfileError(ValueError):
@@ -195,11 +198,17 @@ def parse_map(text: str, origin: str) -> RegisterMap:
 def load_map_file(path: str | Path) -> RegisterMap:
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        with path.open("rb") as stream:
+            data = stream.read(MAX_MAP_BYTES + 1)
     except OSError as error:
         raise ProfileError(f"{path}: cannot read the map: {error.strerror or error}") from None
+    if len(data) > MAX_MAP_BYTES:
+        raise ProfileError(f"{path}: larger than {MAX_MAP_BYTES >> 20} MiB, not a register map")
+    try:
+        text = data.decode("utf-8")
     except UnicodeDecodeError:
         raise ProfileError(f"{path}: not UTF-8 text") from None
+    # read_text() turned CR LF into LF; splitlines() in parse_map treats both alike.
     return parse_map(text, str(path))
 
 

@@ -256,6 +256,40 @@ def test_a_pcap_record_claiming_2gb_streams_in_bounded_memory(tmp_path: Path) ->
     assert len(items) > 500 and items[1]["kind"] == "noise"
 
 
+@pytest.mark.parametrize(
+    ("option", "message"),
+    [
+        (["--baud", "0"], "argument --baud: '0' must be more than 0"),
+        (["--baud", "fast"], "argument --baud: 'fast' is not a whole number"),
+        (["--live", "loop://", "--duration", "nan"], "argument --duration: 'nan' must be a number of seconds more than 0"),
+        (["--live", "loop://", "--count", "-1"], "argument --count: '-1' must be more than 0"),
+        (["--live", "loop://", "--detect", "0"], "argument --detect: '0' must be a number of seconds more than 0"),
+    ],
+)
+def test_nonsense_line_settings_are_usage_errors(tmp_path: Path, option: list[str], message: str) -> None:
+    # Regression (fuzzing the options): --baud 0 divided by zero in the gap check of a frame that
+    # spans two pcap records, a traceback.
+    path = tmp_path / "split.pcap"
+    path.write_bytes(pcap([REQUEST[:3], REQUEST[3:]]))
+    done = subprocess.run([sys.executable, "-m", "dissector", str(path), *option], cwd=ROOT,
+                          capture_output=True, timeout=60)
+    err = done.stderr.decode().splitlines()
+    assert (done.returncode, done.stdout) == (2, b"")
+    assert err[0].startswith("usage: vw3-decode") and err[-1] == f"{PROG}error: {message}"
+
+
+def test_a_2gb_map_is_refused_without_reading_it(tmp_path: Path) -> None:
+    # Regression: --map read the whole file into memory before parsing it.
+    path = tmp_path / "huge.csv"
+    with open(path, "wb") as handle:
+        handle.truncate(2 << 30)
+    started = time.monotonic()
+    status, out, err = cli(str(ROOT / "captures" / "p38_protection.bin"), "--map", str(path), timeout=30)
+    assert (status, out) == (2, [])
+    assert err == [f"{PROG}{path}: larger than 16 MiB, not a register map"]
+    assert time.monotonic() - started < 10
+
+
 # -- outputs that fail -------------------------------------------------------------------------------
 def _run_raw(command: list[str], **options: object) -> tuple[int, str]:
     done = subprocess.run(command, cwd=ROOT, stderr=subprocess.PIPE, timeout=60, **options)  # type: ignore[call-overload]
