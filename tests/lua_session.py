@@ -11,8 +11,7 @@ from __future__ import annotations
 import random
 from typing import Any
 
-from dissector.crc import with_crc
-from dissector.framer import _scan
+from dissector.crc import crc16, with_crc
 from dissector.grammar import build_pdu
 from dissector.model import Kind
 
@@ -25,6 +24,14 @@ _EXCEPTIONS = [1, 2, 2, 3, 4, 6, 7, 0, 9]
 _SUBFUNCTIONS = [0, 1, 4, 10, 11, 12, 13, 14, 15, 16, 17, 18, 20, 99]
 _OTHER = [0x60, 0x61, 0x62, 0x7D, 0x7E, 65, 100]
 _SCANNED = frozenset(_OTHER)
+
+
+def first_crc_length(data: bytes, minimum: int = 4) -> int | None:
+    """The shortest length from `minimum` at which `data` ends in a valid CRC (a framer's scan)."""
+    for length in range(minimum, len(data) + 1):
+        if crc16(data[: length - 2]) == int.from_bytes(data[length - 2 : length], "little"):
+            return length
+    return None
 
 
 def frame(slave: int, function: int, kind: Kind, **fields: Any) -> bytes:
@@ -76,7 +83,7 @@ class SessionBuilder:
         framer's scan finds this frame and not a shorter prefix that happens to check)."""
         while True:
             data = with_crc(bytes([slave, function]) + self.rng.randbytes(self.rng.randint(0, most)))
-            if _scan(data, 0, len(data)) == len(data):
+            if first_crc_length(data) == len(data):
                 return data
 
     # -- transactions: (request, response or None) ---------------------------------------------------------
@@ -127,7 +134,7 @@ class SessionBuilder:
             while True:
                 data = rng.randbytes(rng.randint(1, 8)) if sub == 0 else rng.randbytes(2)
                 request = frame(slave, 8, Kind.REQUEST, subfunction=sub, data=data)
-                if sub != 0 or _scan(request, 0, len(request), 6) == len(request):
+                if sub != 0 or first_crc_length(request, 6) == len(request):
                     return request, request
         if function == 7:
             return frame(slave, 7, Kind.REQUEST), frame(slave, 7, Kind.RESPONSE, status=rng.randrange(256))
