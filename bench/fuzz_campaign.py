@@ -52,8 +52,7 @@ from dissector.cli import Environment, run  # noqa: E402
 from dissector.filters import FilterError, compile_filter  # noqa: E402
 from dissector.framer import RtuFramer  # noqa: E402
 from dissector.grammar import GrammarError, parse_pdu  # noqa: E402
-from dissector.maps import ProfileError, parse_map  # noqa: E402
-from dissector.model import Chunk, Kind  # noqa: E402
+from dissector.model import Kind  # noqa: E402
 from dissector.pipeline import dissect  # noqa: E402
 from dissector.render.jsonout import item_to_dict  # noqa: E402
 from dissector.sources import SourceError  # noqa: E402

@@ -22,7 +22,7 @@ from dissector.framer import NOISE_ITEM_MAX, RtuFramer
 from dissector.grammar import GrammarError, parse_pdu
 from dissector.maps import ProfileError, parse_map
 from dissector.model import Chunk, Frame, Kind
-from dissector.pipeline import Dissector, dissect
+from dissector.pipeline import dissect
 from dissector.profiles import build_annotator
 from dissector.render.jsonout import item_to_dict
 from dissector.sources import SourceError, open_source
