@@ -898,6 +898,8 @@ local NOISE_ITEM_MAX = FRAMING.noise_item_max
 local NEED, NONE = -1, 0
 local REQUEST, RESPONSE, EXCEPTION, NOISE = "request", "response", "exception", "noise"
 
+-- A length rule returns the frame's length, NEED, or NONE; or (minimum, true) when the layout gives no
+-- length and the frame is to be found by scanning for a CRC from that minimum (framer.Scan).
 local function fixed(length)
   return function() return length end
 end
@@ -916,40 +918,23 @@ local function count16(position, extra)
   end
 end
 
--- The shortest length from `minimum` whose CRC checks; NEED while a longer one may still come.
-local function scan(b, i, n, minimum)
-  minimum = minimum or MIN_ADU
-  local last = math.min(n - i, MAX_ADU)
-  if minimum <= last then
-    local crc = 0xFFFF
-    for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
-    for length = minimum, last do
-      local stop = i + length - 2
-      if crc == b[stop] + b[stop + 1] * 256 then return length end
-      crc = crc_step(crc, b[stop])
-    end
-  end
-  if n - i < MAX_ADU then return NEED end
-  return NONE
-end
-
 local function diagnostics_rule(b, i, n)
   -- Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
   if i + 3 >= n then return NEED end
-  if b[i + 2] == 0 and b[i + 3] == 0 then return scan(b, i, n, 6) end
+  if b[i + 2] == 0 and b[i + 3] == 0 then return 6, true end
   return 8
 end
 
 local function mei_request_rule(b, i, n)
   if i + 2 >= n then return NEED end
   if b[i + 2] == 14 then return 7 end
-  return scan(b, i, n, 5)
+  return 5, true
 end
 
 local function mei_response_rule(b, i, n)
   -- Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object.
   if i + 2 >= n then return NEED end
-  if b[i + 2] ~= 14 then return scan(b, i, n, 5) end
+  if b[i + 2] ~= 14 then return 5, true end
   if i + 7 >= n then return NEED end
   local position = 8
   for _ = 1, b[i + 7] do
@@ -960,7 +945,7 @@ local function mei_response_rule(b, i, n)
   return position + 2
 end
 
-local function scan_any(b, i, n) return scan(b, i, n) end
+local function scan_any() return MIN_ADU, true end
 
 local RULES = {
   [1] = { fixed(8), count8(2, 5) },
@@ -1006,48 +991,111 @@ local function interpretations(st, slave, code)
   return AS_REQUEST[code]
 end
 
--- Does an intact frame start at i? (The end of the record counts as a frame boundary.)
-local function valid_frame_at(st, b, i, n)
+-- The shortest length from `minimum` at which the bytes from i end in a valid CRC; 0 when none does.
+local function shortest_crc(b, i, n, minimum)
+  local last = math.min(n - i, MAX_ADU)
+  if minimum > last then return 0 end
+  local crc = 0xFFFF
+  for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
+  for length = minimum, last do
+    local stop = i + length - 2
+    if crc == b[stop] + b[stop + 1] * 256 then return length end
+    crc = crc_step(crc, b[stop])
+  end
+  return 0
+end
+
+-- Does an intact frame start at i? The end of the record counts as a frame boundary. With scan false,
+-- only layouts with a length rule count.
+local function valid_frame_at(st, b, i, n, scan)
   if n - i < MIN_ADU then return i == n end
   local slave = b[i]
   if slave > MAX_SLAVE then return false end
   for _, interpretation in ipairs(interpretations(st, slave, b[i + 1])) do
-    local length = interpretation[2](b, i, n)
-    if length == NEED then return false end
-    if length >= MIN_ADU and length <= MAX_ADU and i + length <= n and crc_ok_at(b, i, length) then
+    local length, is_scan = interpretation[2](b, i, n)
+    if is_scan then
+      if scan ~= false and shortest_crc(b, i, n, length) > 0 then return true end
+    elseif length == NEED then
+      return false
+    elseif length >= MIN_ADU and length <= MAX_ADU and i + length <= n and crc_ok_at(b, i, length) then
       return true
     end
   end
   return false
 end
 
+-- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1?
+local function intact_inside(st, b, i, length, n)
+  for j = i + 1, i + length - 1 do
+    if valid_frame_at(st, b, j, n, false) then return true end
+  end
+  return false
+end
+
+-- A frame without a length rule: the shortest CRC match that an intact frame (or the end) follows and
+-- that holds no intact frame inside (a CRC scan alone would take noise for frames).
+local function scan_match(st, b, i, n, minimum)
+  local last = math.min(n - i, MAX_ADU)
+  if minimum > last then return NONE end
+  -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
+  local crc = 0xFFFF
+  for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
+  for length = minimum, last do
+    local stop = i + length - 2
+    if crc == b[stop] + b[stop + 1] * 256 and valid_frame_at(st, b, i + length, n)
+        and not intact_inside(st, b, i, length, n) then
+      return length
+    end
+    crc = crc_step(crc, b[stop])
+  end
+  return NONE
+end
+
 -- kind, length, crc_ok for a frame at i, or nil when i starts no frame.
 local function match(st, b, i, n)
   local slave, code = b[i], b[i + 1]
   if slave > MAX_SLAVE then return nil end
-  local damaged = {}
+  local valid, damaged = {}, {}
   for _, interpretation in ipairs(interpretations(st, slave, code)) do
-    local length = interpretation[2](b, i, n)
-    if length ~= NEED and length >= MIN_ADU and length <= MAX_ADU and i + length <= n then
-      if crc_ok_at(b, i, length) then return interpretation[1], length, true end
-      damaged[#damaged + 1] = { interpretation[1], length }
+    local kind = interpretation[1]
+    local length, is_scan = interpretation[2](b, i, n)
+    if is_scan then
+      local found = scan_match(st, b, i, n, length)
+      if found > 0 then valid[#valid + 1] = { kind, found } end
+    elseif length ~= NEED and length >= MIN_ADU and length <= MAX_ADU and i + length <= n then
+      if crc_ok_at(b, i, length) then
+        valid[#valid + 1] = { kind, length }
+      else
+        damaged[#damaged + 1] = { kind, length }
+      end
     end
   end
-  -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins. A record
-  -- boundary counts as such a place (a capture tool cut the record there).
+  if #valid == 1 then return valid[1][1], valid[1][2], true end
+  if #valid > 1 then
+    -- Two layouts check out (CRC-16/MODBUS has no final XOR: a frame whose CRC high byte is 00 also
+    -- checks one byte short): what follows decides.
+    for _, candidate in ipairs(valid) do
+      if valid_frame_at(st, b, i + candidate[2], n) then return candidate[1], candidate[2], true end
+    end
+    return valid[1][1], valid[1][2], true
+  end
+  -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins (a record
+  -- boundary counts: a capture tool cut the record there) and holds none inside.
   for _, candidate in ipairs(damaged) do
     local length = candidate[2]
-    if valid_frame_at(st, b, i + length, n) then
+    if valid_frame_at(st, b, i + length, n) and not intact_inside(st, b, i, length, n) then
       return candidate[1], length, false
     end
   end
   return nil
 end
 
--- Split one record into frames and noise runs, in order. st carries the expectation across records.
+-- Split one record into frames and noise runs, in order. st carries the expectation across records,
+-- and whether the byte stream was in noise when the record began (the Python framer's pending noise).
 local function frame_record(st, b, n)
   local items = {}
   local noise_start, noise_length, noise_reason = nil, 0, nil
+  local carried = st.noise_carry
   local function flush_noise()
     if noise_start ~= nil then
       items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
@@ -1056,6 +1104,7 @@ local function frame_record(st, b, n)
   end
   local function add_noise(at, count, reason)
     if noise_start == nil then noise_start, noise_reason = at, reason end
+    carried = false
     noise_length = noise_length + count
     if noise_length >= NOISE_ITEM_MAX then flush_noise() end
   end
@@ -1065,13 +1114,20 @@ local function frame_record(st, b, n)
       add_noise(i, n - i, "too short for a frame")
       break
     end
-    local kind, length, _ = match(st, b, i, n)
+    local kind, length, crc_ok = match(st, b, i, n)
+    local slave, code = b[i], b[i + 1]
+    if kind ~= nil and crc_ok and (noise_start ~= nil or carried
+        or (kind ~= REQUEST and st.expect ~= slave * 256 + code % 128)) then
+      -- Resynchronising inside noise, or an answer nobody asked for: random bytes pass a CRC 1 time in
+      -- 65,536 per layout tried, so such a frame counts only when an intact frame (or the end) follows.
+      if not valid_frame_at(st, b, i + length, n) then kind = nil end
+    end
     if kind == nil then
       add_noise(i, 1, "no valid frame")
       i = i + 1
     else
       flush_noise()
-      local slave, code = b[i], b[i + 1]
+      carried = false
       local stop = i + length - 2
       items[#items + 1] = {
         kind = kind, offset = i, length = length, slave = slave, code = code, fn = code % 128,
@@ -1086,6 +1142,7 @@ local function frame_record(st, b, n)
       i = i + length
     end
   end
+  st.noise_carry = carried or noise_start ~= nil
   flush_noise()
   return items
 end
@@ -1153,7 +1210,9 @@ local function classify_ascii(st, adu, count)
   local order = AS_REQUEST[code]
   if st.expect == slave * 256 + code then order = AS_RESPONSE[code] end
   for _, interpretation in ipairs(order) do
-    if interpretation[2](equivalent, 0, length) == length then return interpretation[1] end
+    -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
+    local found, is_scan = interpretation[2](equivalent, 0, length)
+    if found == length or (is_scan and length >= found) then return interpretation[1] end
   end
   return nil
 end

@@ -26,6 +26,12 @@ _OTHER = [0x60, 0x61, 0x62, 0x7D, 0x7E, 65, 100]
 _SCANNED = frozenset(_OTHER)
 
 
+def _scanned_layout(data: bytes) -> bool:
+    """A frame of a layout without a length rule (the framer finds its end by a CRC scan)."""
+    function = data[1]
+    return function in _SCANNED or (function == 8 and data[2:4] == b"\0\0") or (function == 43 and data[2] != 14)
+
+
 def first_crc_length(data: bytes, minimum: int = 4) -> int | None:
     """The shortest length from `minimum` at which `data` ends in a valid CRC (a framer's scan)."""
     for length in range(minimum, len(data) + 1):
@@ -182,61 +188,65 @@ class SessionBuilder:
         records: list[Record] = []
         time = start_time
         last_noise = True  # no noise record first
-        damaged_pending = False  # the previous record is a frame with a bad CRC: an intact one must follow
+        # Frame records to come that must be intact: after a damaged frame (1: it is shown as damaged
+        # only where an intact frame follows), after noise (2: a frame that resynchronises counts only
+        # where an intact frame follows it), after a response nobody asked for (1: the same rule).
+        protect = 0
 
         def add(data: bytes, gap: float) -> None:
-            nonlocal time
+            nonlocal time, protect
             time += gap
             records.append((data, round(time, 6)))
+            protect = max(0, protect - 1)
+            if _scanned_layout(data):
+                protect = max(protect, 1)  # found by a CRC scan: counts only where an intact frame follows
 
-        def corrupt(data: bytes) -> bytes:
+        def damage(data: bytes, chance: float) -> bytes:
             # Only frames whose length a rule gives can be shown with a bad CRC; the others (found by
             # scanning for a CRC) turn into noise, which a byte stream may join to the next record.
-            if data[1] in _SCANNED or (data[1] == 8 and data[2:4] == b"\0\0"):
+            nonlocal protect
+            if protect or rng.random() >= chance or _scanned_layout(data):
                 return data
+            protect = 2  # this frame, then the one after it
             return data[:-2] + bytes([data[-2] ^ 0x5A, data[-1]])
 
         for _ in range(transactions):
-            roll = rng.random()
-            if roll < 0.03 and not last_noise and not damaged_pending:
-                add(bytes([rng.randrange(248, 256)]) * rng.randint(1, 20), 0.003)
+            if rng.random() < 0.03 and not last_noise and not protect:
+                time += 0.003
+                records.append((bytes([rng.randrange(248, 256)]) * rng.randint(1, 20), round(time, 6)))
                 last_noise = True
+                protect = 2
             else:
                 last_noise = False
             slave = rng.choice(_SLAVES) if rng.random() < 0.9 else rng.randint(1, 247)
             request, response = self.transaction(slave)
-            event = rng.random()
-            if event < 0.03:
+            if rng.random() < 0.03:
                 # Broadcast: slave 0, no answer.
-                broadcast = bytes([0]) + request[1:-2]
-                add(with_crc(broadcast), rng.uniform(0.004, 0.012))
-                damaged_pending = False
+                add(with_crc(bytes([0]) + request[1:-2]), rng.uniform(0.004, 0.012))
                 continue
-            bad_request = event < 0.06 and not damaged_pending
-            add(corrupt(request) if bad_request else request, rng.uniform(0.004, 0.012))
-            damaged_pending = bad_request
+            sent = damage(request, 0.04)
+            add(sent, rng.uniform(0.004, 0.012))
             roll = rng.random()
-            if roll < 0.06 and not damaged_pending:
+            if roll < 0.06 and not protect:
                 continue  # unanswered
             if roll < 0.12:
                 response = exception(slave, request[1], rng.choice(_EXCEPTIONS))
             if response is None:
                 continue
-            if roll > 0.96 and not damaged_pending and not bad_request:
+            if roll > 0.96 and not protect:
                 # Request and response in one record (a tap that cut records by time).
                 data, when = records.pop()
                 records.append((data + response, when))
                 continue
             late = 1.2 if rng.random() < 0.02 else rng.uniform(0.003, 0.03)
-            bad_response = rng.random() < 0.03 and not damaged_pending
-            add(corrupt(response) if bad_response else response, late)
-            damaged_pending = bad_response
-            if rng.random() < 0.02 and not damaged_pending:
+            add(damage(response, 0.03), late)
+            if rng.random() < 0.02 and not protect:
                 # A response nobody asked for (the tap missed the request).
                 _, stray = self.transaction(rng.choice(_SLAVES))
                 if stray is not None:
                     add(stray, 0.01)
-        if damaged_pending or not records:
+                    protect = 1
+        if protect or not records:
             request, _ = self.transaction(12)
             add(request, 0.01)
         return records
