@@ -244,3 +244,28 @@ def test_fuzzed_byte_stream_in_one_record_parity(tmp_path: Path, seed: int) -> N
     kinds = Counter(item.data["kind"] for item in python)
     assert kinds["noise"] > 30 and kinds["request"] + kinds["response"] > 100, kinds
     assert sum(not item.data.get("crc_ok", True) for item in python) > 5
+
+
+def test_fuzzed_ascii_stream_in_one_record_parity(tmp_path: Path) -> None:
+    # The same for Modbus ASCII: frames cut short, junk between them, bad LRCs, lower-case digits.
+    import random
+
+    from lua_session import ascii_session
+
+    rng = random.Random(2)
+    alphabet = b"0123456789ABCDEFabcdef:\r\n"
+    parts = [b":02062329000AA2\r\n"]
+    for data, _ in ascii_session(2, 400):
+        roll = rng.random()
+        if roll < 0.1:
+            parts.append(bytes(rng.choice(alphabet) for _ in range(rng.randint(0, 60))))
+        elif roll < 0.2:
+            parts.append(data[: rng.randint(0, len(data))])
+        else:
+            parts.append(data)
+    parts.append(b":02062329000AA2\r\n")
+    pcap = write_pcap(tmp_path / "ascii-blob.pcap", [(b"".join(parts), 1.0)])
+    python = python_items(pcap)
+    _check(python, lua_items(pcap)[0])
+    assert sum(item.data["kind"] == "noise" for item in python) > 50
+    assert sum(item.data["kind"] != "noise" for item in python) > 600
