@@ -18,7 +18,7 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from .crc import crc_bytes, lrc
-from .framer import MAX_SLAVE, NOISE_ITEM_MAX, interpretations
+from .framer import MAX_SLAVE, NOISE_ITEM_MAX, Scan, interpretations
 from .model import Chunk, Frame, Item, Kind, Noise
 
 COLON, CR, LF = 0x3A, 0x0D, 0x0A
@@ -170,9 +170,10 @@ class AsciiFramer:
         equivalent = adu + crc_bytes(adu)
         length = len(equivalent)
         for kind, rule in interpretations(slave, function, self._expect):
-            # Rules that scan for a valid CRC find the whole frame (its CRC was just computed),
-            # unless a shorter prefix happens to check too: then the layout is refused.
-            if rule(equivalent, 0, length) == length:
+            found = rule(equivalent, 0, length)
+            # A layout without a length rule fits any length from its minimum: the ':' and CR LF
+            # already delimit the frame.
+            if found == length or (type(found) is Scan and length >= found):
                 return kind
         return None
 

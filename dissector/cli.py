@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import io
 import json
 import os
 import sys
@@ -18,7 +19,7 @@ from typing import BinaryIO, TextIO
 from .ascii import AsciiFramer
 from .filters import FilterError
 from .framer import RtuFramer
-from .live_options import add_live_arguments
+from .live_options import add_live_arguments, positive_seconds
 from .model import Chunk, Item
 from .pcapwriter import PcapWriter
 from .pipeline import Annotator, Dissector
@@ -54,8 +55,11 @@ class Environment:
 
     @classmethod
     def from_process(cls) -> Environment:
+        """The process's streams. A closed stdin (cron, daemons) reads as empty; main() refuses to run
+        with no stdout or stderr at all."""
+        stdin = sys.stdin.buffer if sys.stdin is not None else io.BytesIO()
         return cls(
-            stdin=sys.stdin.buffer,
+            stdin=stdin,
             stdout=sys.stdout,
             stderr=sys.stderr,
             stdout_isatty=sys.stdout.isatty(),
@@ -115,7 +119,7 @@ def build_parser() -> argparse.ArgumentParser:
     decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
     decoding.add_argument(
         "--timeout",
-        type=float,
+        type=positive_seconds,
         default=1.0,
         metavar="SECONDS",
         help="flag responses later than this (needs timestamps; default 1 s)",
@@ -156,6 +160,7 @@ class Sinks:
         options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
         self.output = Output(options, env.stdout, env.stdout_isatty)
         self.pcap: PcapWriter | None = None
+        self.write_path = args.write
         if args.write is not None:
             try:
                 self.pcap = PcapWriter(open(args.write, "wb"), flush=False)
@@ -172,17 +177,33 @@ class Sinks:
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
         if self.pcap is not None:
-            for item in items:
-                self.pcap.write(item.raw, item.time)
+            try:
+                for item in items:
+                    self.pcap.write(item.raw, item.time)
+            except OSError as error:
+                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
             for item in items:
                 self.stats.add(item)
         if self.show:
             self.output.write(items, self.extra, records)
 
+    def abandon(self) -> None:
+        """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.pcap is not None:
+            try:
+                self.pcap.close()
+            except OSError:
+                pass
+            self.pcap = None
+
     def close(self) -> None:
         if self.pcap is not None:
-            self.pcap.close()
+            pcap, self.pcap = self.pcap, None
+            try:
+                pcap.close()
+            except OSError as error:
+                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
@@ -235,10 +256,25 @@ def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
         yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
 
 
+class OutputError(Exception):
+    """An output that cannot be written (a full disk, a closed pipe): one line, exit status 1."""
+
+
 def decode_files(args: argparse.Namespace, env: Environment) -> int:
     annotate = _annotator(args)
     sinks = Sinks(args, env)
-    status = ExitStatus.OK
+    try:
+        _decode_inputs(args, env, sinks, annotate)
+        sinks.close()
+    except OSError as error:
+        sinks.abandon()
+        raise OutputError(f"standard output: {error.strerror or error}") from None
+    return ExitStatus.OK
+
+
+def _decode_inputs(
+    args: argparse.Namespace, env: Environment, sinks: Sinks, annotate: Annotator | None
+) -> None:
     try:
         for title, chunks, mode, take_warnings, timed in _inputs(args, env):
             sinks.output.new_input(title)
@@ -256,12 +292,9 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
             decode_chunks(chunks, dissector, sinks, warn)
-    except OSError as error:
-        env.stderr.write(f"{PROG}: {error.strerror or error}\n")
-        status = ExitStatus.ERROR
-    finally:
-        sinks.close()
-    return status
+    except BaseException:
+        sinks.abandon()
+        raise
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:
@@ -304,15 +337,29 @@ def run(argv: list[str] | None, env: Environment) -> int:
             raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")
         return decode_files(args, env)
     except (UsageError, SourceError, ProfileError, FilterError) as error:
-        env.stdout.flush()
+        _flush_quietly(env.stdout)
         env.stderr.write(f"{PROG}: {error}\n")
         return ExitStatus.BAD_INPUT
+    except OutputError as error:
+        env.stderr.write(f"{PROG}: {error}\n")
+        return ExitStatus.ERROR
+
+
+def _flush_quietly(stream: TextIO) -> None:
+    try:
+        stream.flush()
+    except OSError:
+        pass
 
 
 def main(argv: list[str] | None = None) -> int:
     # Decoding allocates many small objects that live until written: collect young ones less often.
     gc.set_threshold(10_000, 20, 20)
     gc.freeze()
+    if sys.stdout is None or sys.stderr is None:
+        if sys.stderr is not None:
+            sys.stderr.write(f"{PROG}: standard output is closed\n")
+        return ExitStatus.ERROR
     env = Environment.from_process()
     try:
         status = run(argv, env)
@@ -321,10 +368,19 @@ def main(argv: list[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         # The reader (head, less) went away: stop quietly, as tshark does.
+        _silence_stdout()
+        return ExitStatus.OK
+    if status == ExitStatus.ERROR:
+        _silence_stdout()  # what could not be written must not fail again at exit
+    return int(status)
+
+
+def _silence_stdout() -> None:
+    try:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
-        return ExitStatus.OK
-    return int(status)
+    except (OSError, ValueError):
+        pass
 
 
 if __name__ == "__main__":

@@ -16,10 +16,18 @@ with function F, a frame from S with F is its response. Function codes whose dat
 rule (FC8 sub-function 0 "Return Query Data", FC43 MEI 13, user-defined and vendor codes) are found
 by scanning for the shortest length with a valid CRC.
 
+CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
+without that last byte: when two layouts check out, the one an intact frame follows wins.
+
 When nothing fits, the framer tries to show a damaged frame once, with its bad CRC: an
-interpretation whose length is known and that ends exactly where an intact frame begins. Otherwise
-the byte is noise, and the framer resynchronises on the next valid frame. Noise runs are emitted in
-items of at most NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
+interpretation whose length is known, that ends exactly where an intact frame begins and that holds
+no intact frame inside (a cut frame's length rule must not swallow the frames after it). Otherwise
+the byte is noise, and the framer resynchronises on the next valid frame. A random byte string passes
+a CRC once in 65,536 tries, so while resynchronising, and for an answer nobody asked for, a frame
+counts only when an intact frame (or the end) follows it; the same holds for every CRC scan. Measured
+by bench/noise_accuracy.py (100,000 transactions, 2% of frames damaged): 99.92% of intact frames
+recovered exactly, 0 to 2 false frames per run. Noise runs are emitted in items of at most
+NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
 
 The framer is a push parser (`feed` / `finish`) with no I/O of its own: files, pcap records and live
 serial reads all drive the same object, and the answer does not depend on how the stream is split.
@@ -69,14 +77,13 @@ def _count16(position: int, extra: int) -> LengthRule:
     return rule
 
 
-def _scan(buf: bytes | bytearray, i: int, n: int, minimum: int = MIN_ADU) -> int:
-    """The shortest length from `minimum` whose CRC checks; NEED while a longer one may still come."""
-    end = min(n - i, MAX_ADU)
-    for length in range(minimum, end + 1):
-        stop = i + length - 2
-        if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
-            return length
-    return NEED if n - i < MAX_ADU else NONE
+class Scan(int):
+    """A length rule's answer when the layout gives no length: scan for a CRC from this minimum."""
+
+
+def _crc_ok(buf: bytes | bytearray, i: int, length: int) -> bool:
+    stop = i + length - 2
+    return crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8
 
 
 def _diagnostics(buf: bytes | bytearray, i: int, n: int) -> int:
@@ -84,14 +91,14 @@ def _diagnostics(buf: bytes | bytearray, i: int, n: int) -> int:
     if i + 3 >= n:
         return NEED
     if buf[i + 2] == 0 and buf[i + 3] == 0:
-        return _scan(buf, i, n, minimum=6)
+        return Scan(6)
     return 8
 
 
 def _mei_request(buf: bytes | bytearray, i: int, n: int) -> int:
     if i + 2 >= n:
         return NEED
-    return 7 if buf[i + 2] == 14 else _scan(buf, i, n, minimum=5)
+    return 7 if buf[i + 2] == 14 else Scan(5)
 
 
 def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
@@ -99,7 +106,7 @@ def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
     if i + 2 >= n:
         return NEED
     if buf[i + 2] != 14:
-        return _scan(buf, i, n, minimum=5)
+        return Scan(5)
     if i + 7 >= n:
         return NEED
     count = buf[i + 7]
@@ -114,7 +121,7 @@ def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
 
 
 def _scan_any(buf: bytes | bytearray, i: int, n: int) -> int:
-    return _scan(buf, i, n)
+    return Scan(MIN_ADU)
 
 
 # (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
@@ -235,8 +242,13 @@ class RtuFramer:
     def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
         return interpretations(slave, function, self._expect)
 
-    def _valid_frame_at(self, buf: bytearray, i: int, n: int, final: bool) -> bool | None:
-        """Does an intact frame start at i? None when more bytes are needed to know."""
+    def _valid_frame_at(
+        self, buf: bytearray, i: int, n: int, final: bool, scan: bool = True
+    ) -> bool | None:
+        """Does an intact frame start at i? None when more bytes are needed to know.
+
+        With scan=False only layouts with a length rule count (no CRC scan for the others).
+        """
         if n - i < MIN_ADU:
             return None if not final else (i == n)
         slave, function = buf[i], buf[i + 1]
@@ -244,6 +256,10 @@ class RtuFramer:
             return False
         for _kind, rule in self._interpretations(slave, function):
             length = rule(buf, i, n)
+            if type(length) is Scan:
+                if scan and self._shortest_crc(buf, i, n, length):
+                    return True
+                continue
             if length == NEED:
                 return None if not final else False
             if length < MIN_ADU or length > MAX_ADU:
@@ -252,40 +268,97 @@ class RtuFramer:
                 if final:
                     continue
                 return None
-            stop = i + length - 2
-            if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
+            if _crc_ok(buf, i, length):
                 return True
         return False
+
+    @staticmethod
+    def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
+        for length in range(minimum, min(n - i, MAX_ADU) + 1):
+            if _crc_ok(buf, i, length):
+                return length
+        return 0
+
+    def _intact_inside(self, buf: bytearray, i: int, length: int, n: int) -> bool:
+        """Does a frame with a length rule and a good CRC start inside bytes i..i+length?"""
+        return any(
+            self._valid_frame_at(buf, j, n, final=True, scan=False) for j in range(i + 1, i + length)
+        )
+
+    def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
+        """A frame without a length rule: the shortest CRC match that an intact frame (or the end)
+        follows. A CRC scan alone would take noise for frames: each length tried is a 1 in 65,536
+        chance of a match. (The following frame also settles the 00 case of _match.)
+        """
+        for length in range(minimum, min(n - i, MAX_ADU) + 1):
+            if not _crc_ok(buf, i, length):
+                continue
+            following = self._valid_frame_at(buf, i + length, n, final)
+            if following is None:
+                return NEED
+            # In step (right after a frame) a scanned frame is trusted over a short frame that may
+            # check by chance inside it; while resynchronising, an intact frame inside wins.
+            if following and not (self._noise and self._intact_inside(buf, i, length, n)):
+                return length
+        return NEED if n - i < MAX_ADU and not final else NONE
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
         slave, function = buf[i], buf[i + 1]
         if slave > MAX_SLAVE:
             return NONE
-        candidates = self._interpretations(slave, function)
-        lengths: list[tuple[Kind, int]] = []
-        for kind, rule in candidates:
+        valid: list[tuple[Kind, int]] = []
+        damaged: list[tuple[Kind, int]] = []
+        waiting: list[int] = []  # lengths of layouts whose bytes have not all arrived (NEED: unknown)
+        for kind, rule in self._interpretations(slave, function):
             length = rule(buf, i, n)
+            if type(length) is Scan:
+                found = self._scan(buf, i, n, length, final)
+                if found == NEED:
+                    waiting.append(NEED)
+                elif found:
+                    valid.append((kind, found))
+                continue
             if length == NEED:
-                if final:
-                    continue
-                return NEED
+                if not final:
+                    waiting.append(NEED)
+                continue
             if length < MIN_ADU or length > MAX_ADU:
                 continue
             if i + length > n:
-                if final:
-                    continue
+                if not final:
+                    waiting.append(length)
+                continue
+            (valid if _crc_ok(buf, i, length) else damaged).append((kind, length))
+        if len(valid) == 1:
+            kind, length = valid[0]
+            # CRC-16/MODBUS has no final XOR: a frame whose CRC high byte is 00 still checks without
+            # that byte (1 frame in 256). Unless this is the answer awaited, wait when a layout one
+            # byte longer may still arrive.
+            expected = kind is Kind.RESPONSE and self._expect == (slave, function)
+            if not expected and any(other == NEED or other == length + 1 for other in waiting):
                 return NEED
-            stop = i + length - 2
-            if crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8:
-                return (kind, length, True)
-            lengths.append((kind, length))
-        # No layout checks out: a damaged frame is shown once if it ends where an intact one begins.
-        for kind, length in lengths:
+            return (kind, length, True)
+        if valid:
+            # Two layouts check out (the 00 case above, mostly): what follows decides.
+            for kind, length in valid:
+                following = self._valid_frame_at(buf, i + length, n, final)
+                if following is None:
+                    return NEED
+                if following:
+                    return (kind, length, True)
+            return (*valid[0], True)
+        if waiting:
+            return NEED
+        # No layout checks out: a damaged frame is shown once if it ends where an intact one begins
+        # and holds none inside (a cut frame must not swallow the intact frame that follows it).
+        for kind, length in damaged:
             following = self._valid_frame_at(buf, i + length, n, final)
             if following is None:
                 return NEED
             if following and (i + length < n or self._expect == (slave, function & 0x7F)):
+                if self._intact_inside(buf, i, length, n):
+                    continue
                 return (kind, length, False)
         return NONE
 
@@ -305,11 +378,17 @@ class RtuFramer:
             first = (
                 _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
             ).get(function)
-            if first is not None and slave <= MAX_SLAVE:
+            if (
+                first is not None
+                and slave <= MAX_SLAVE
+                and not self._noise
+                and (first[0] is not Kind.EXCEPTION or self._expect == (slave, function & 0x7F))
+            ):
                 kind, length, rule = first
                 if not length:
                     length = rule(buf, i, n)
-                if MIN_ADU <= length <= MAX_ADU and i + length <= n:
+                # A next byte of 00 may belong to a longer frame (see _match): take the careful path.
+                if type(length) is int and MIN_ADU <= length and i + length < n and buf[i + length]:
                     stop = i + length - 2
                     crc = buf[stop] | buf[stop + 1] << 8
                     if crc16(buf[i:stop]) == crc:
@@ -342,6 +421,18 @@ class RtuFramer:
                 i += 1
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
+            unasked = kind is not Kind.REQUEST and self._expect != (buf[i], buf[i + 1] & 0x7F)
+            if crc_ok and (self._noise or unasked):
+                # Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC
+                # 1 time in 65,536 per layout tried, so such a frame counts only when an intact frame
+                # (or the end) follows it.
+                following = self._valid_frame_at(buf, i + length, n, final)
+                if following is None:
+                    break
+                if not following:
+                    self._add_noise(buf, i, 1, "no valid frame", items)
+                    i += 1
+                    continue
             self._flush_noise(items)
             raw = bytes(buf[i : i + length])
             offset = self._base + i

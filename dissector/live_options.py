@@ -6,7 +6,7 @@ import argparse
 PARITY_CHOICES = ("E", "N", "O")
 
 
-def _positive_int(text: str) -> int:
+def positive_int(text: str) -> int:
     # A baud rate of 0 divided by zero in the timing checks of a timed file (a traceback).
     try:
         value = int(text)
@@ -17,7 +17,7 @@ def _positive_int(text: str) -> int:
     return value
 
 
-def _positive_seconds(text: str) -> float:
+def positive_seconds(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
@@ -35,7 +35,7 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
         help="listen on a serial port or pyserial URL (/dev/ttyUSB0, COM3, socket://host:port, "
         "rfc2217://host:port); never writes to it",
     )
-    group.add_argument("--baud", type=_positive_int, default=19200, help="baud rate (default 19200)")
+    group.add_argument("--baud", type=positive_int, default=19200, help="baud rate (default 19200)")
     group.add_argument(
         "--parity", type=str.upper, choices=PARITY_CHOICES, default="E",
         help="parity: E (default, the Modbus default), N or O",
@@ -43,10 +43,10 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
     group.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
-    group.add_argument("--duration", type=_positive_seconds, metavar="SECONDS", help="stop after SECONDS")
-    group.add_argument("--count", type=_positive_int, metavar="N", help="stop after N frames")
+    group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
+    group.add_argument("--count", type=positive_int, metavar="N", help="stop after N frames")
     group.add_argument(
-        "--detect", nargs="?", type=_positive_seconds, const=2.0, metavar="SECONDS",
+        "--detect", nargs="?", type=positive_seconds, const=2.0, metavar="SECONDS",
         help="find the baud rate and parity: listen SECONDS (default 2) at each of "
         "9600..115200 x E/N/O and print the command line to use",
     )

@@ -294,7 +294,6 @@ def _run_raw(command: list[str], **options: object) -> tuple[int, str]:
     return done.returncode, done.stderr.decode()
 
 
-@pytest.mark.xfail(strict=True, reason="bug: cli.py, a full disk at close (flush of -w, stdout) is a traceback")
 @pytest.mark.parametrize("where", ["-w", "stdout", "stats"])
 def test_an_output_that_cannot_be_written_is_one_line_and_status_1(where: str) -> None:
     # README: exit 1 for "an output that cannot be written". /dev/full fails every write with ENOSPC;
@@ -313,7 +312,6 @@ def test_an_output_that_cannot_be_written_is_one_line_and_status_1(where: str) -
     assert line.startswith(PROG) and "No space left on device" in line
 
 
-@pytest.mark.xfail(strict=True, reason="bug: cli.py Environment.from_process, a closed stdin/stdout is a traceback")
 @pytest.mark.parametrize("closed", ["<&-", ">&-"])
 def test_a_closed_standard_stream_is_no_traceback(closed: str) -> None:
     # Started from a daemon or cron with fd 0 or 1 closed, Python sets sys.stdin / sys.stdout to

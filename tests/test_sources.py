@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import gzip
 import io
-import shutil
 import subprocess
 import struct
 import sys
 from pathlib import Path
 
 import pytest
+
+from lua_harness import ensure_tool
 
 from dissector import sources
 from dissector.model import Chunk, Frame, Kind, Noise
@@ -446,14 +447,14 @@ def test_take_warnings_returns_each_warning_once(tmp_path: Path) -> None:
     assert source.take_warnings() == []
 
 
-@pytest.mark.skipif(shutil.which("editcap") is None, reason="editcap (Wireshark) not installed")
 @pytest.mark.parametrize("target", ["pcapng", "nsecpcap"])
 def test_files_written_by_wireshark_editcap(tmp_path: Path, target: str) -> None:
     """Wireshark's own writer as an oracle: its pcapng and nanosecond pcap read back the same."""
+    editcap = ensure_tool("editcap", "tshark")  # Debian's tshark brings editcap (wireshark-common)
     records = [(s, us, data) for (s, us), data in zip(TIMES, SESSION)]
     original = write(tmp_path, "a.pcap", pcap(records))
     converted = str(tmp_path / "b")
-    subprocess.run(["editcap", "-F", target, original, converted], check=True, capture_output=True)
+    subprocess.run([editcap, "-F", target, original, converted], check=True, capture_output=True)
     source = open_source(converted)
     assert source.format == ("pcapng" if target == "pcapng" else "pcap")
     assert list(source) == session_chunks()
