@@ -18,8 +18,9 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from .crc import crc_bytes, lrc
-from .framer import MAX_SLAVE, NOISE_ITEM_MAX, Scan, interpretations
-from .model import Chunk, Frame, Item, Kind, Noise
+from .framer import MAX_SLAVE, Scan, interpretations
+from .model import Frame, Item, Kind, Noise
+from .streambuf import StreamFramer
 
 COLON, CR, LF = 0x3A, 0x0D, 0x0A
 MAX_BINARY = 255  # slave + PDU (253) + LRC
@@ -47,39 +48,10 @@ def detect_mode(first_bytes: bytes) -> str:
     return "ascii" if inside >= ASCII_SHARE * len(first_bytes) else "rtu"
 
 
-class AsciiFramer:
+class AsciiFramer(StreamFramer):
     """Push parser with RtuFramer's interface: feed chunks, collect items in stream order."""
 
     mode = "ascii"
-
-    def __init__(self) -> None:
-        self._buf = bytearray()
-        self._base = 0  # absolute offset of _buf[0]
-        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
-        self._noise = bytearray()
-        self._noise_offset = 0
-        self._noise_time: float | None = None
-        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
-
-    # -- public interface -------------------------------------------------------------------
-    def feed(self, chunk: Chunk) -> list[Item]:
-        if chunk.data:
-            self._times.append((self._base + len(self._buf), chunk.time))
-            self._buf += chunk.data
-        return self._run(final=False)
-
-    def finish(self) -> list[Item]:
-        items = self._run(final=True)
-        self._flush_noise(items)
-        return items
-
-    # -- internals ---------------------------------------------------------------------------
-    def _time_at(self, offset: int) -> float | None:
-        times = self._times
-        for index in range(len(times) - 1, -1, -1):
-            if times[index][0] <= offset:
-                return times[index][1]
-        return None
 
     def _run(self, final: bool) -> list[Item]:
         buf = self._buf
@@ -90,7 +62,7 @@ class AsciiFramer:
             if buf[i] != COLON:
                 colon = buf.find(b":", i)
                 end = n if colon < 0 else colon
-                self._add_noise(buf, i, end, items)
+                self._add_noise(i, end, "outside an ASCII frame", items)
                 i = end
                 continue
             limit = min(n, i + MAX_ASCII)
@@ -114,9 +86,7 @@ class AsciiFramer:
             else:
                 break  # wait for the rest of the frame
         if i:
-            del buf[:i]
-            self._base += i
-            self._prune_times()
+            self._consume(i)
         return items
 
     def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
@@ -177,36 +147,7 @@ class AsciiFramer:
                 return kind
         return None
 
-    def _prune_times(self) -> None:
-        times = self._times
-        keep = 0
-        for index, (offset, _time) in enumerate(times):
-            if offset <= self._base:
-                keep = index
-        if keep:
-            del times[:keep]
-
-    def _add_noise(self, buf: bytearray, start: int, end: int, items: list[Item]) -> None:
-        """Bytes outside any frame; cut into items of NOISE_ITEM_MAX whatever the chunking."""
-        while start < end:
-            if not self._noise:
-                self._noise_offset = self._base + start
-                self._noise_time = self._time_at(self._noise_offset)
-            take = min(end - start, NOISE_ITEM_MAX - len(self._noise))
-            self._noise += buf[start : start + take]
-            start += take
-            if len(self._noise) >= NOISE_ITEM_MAX:
-                self._flush_noise(items)
-
     def _reject(self, raw: bytes, i: int, reason: str, items: list[Item]) -> None:
         self._flush_noise(items)
         offset = self._base + i
         items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason))
-
-    def _flush_noise(self, items: list[Item]) -> None:
-        if self._noise:
-            items.append(
-                Noise(offset=self._noise_offset, raw=bytes(self._noise), time=self._noise_time,
-                      reason="outside an ASCII frame")
-            )
-            self._noise = bytearray()

@@ -37,11 +37,11 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from .crc import crc16
-from .model import Chunk, Frame, Item, Kind, Noise
+from .model import Frame, Item, Kind
+from .streambuf import StreamFramer
 
 MAX_ADU = 256
 MIN_ADU = 4
-NOISE_ITEM_MAX = 4096
 MAX_SLAVE = 247
 
 NEED = -1  # not enough bytes yet to know the length
@@ -198,46 +198,10 @@ _REQUEST_FIRST_FAST = _first_choice(REQUEST_FIRST)
 _RESPONSE_FIRST_FAST = _first_choice(RESPONSE_FIRST)
 
 
-class RtuFramer:
+class RtuFramer(StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
 
     mode = "rtu"
-
-    def __init__(self) -> None:
-        self._buf = bytearray()
-        self._base = 0  # absolute offset of _buf[0]
-        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
-        self._noise = bytearray()
-        self._noise_offset = 0
-        self._noise_reason = ""
-        self._noise_time: float | None = None
-        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
-        self._timed = False
-
-    # -- public interface -------------------------------------------------------------------
-    def feed(self, chunk: Chunk) -> list[Item]:
-        if chunk.data:
-            if chunk.time is not None:
-                self._timed = True
-            self._times.append((self._base + len(self._buf), chunk.time))
-            self._buf += chunk.data
-        return self._run(final=False)
-
-    def finish(self) -> list[Item]:
-        items = self._run(final=True)
-        self._flush_noise(items)
-        return items
-
-    # -- internals ---------------------------------------------------------------------------
-    def _time_at(self, offset: int) -> float | None:
-        if not self._timed:
-            return None
-        times = self._times
-        # Chunks are few per frame: walk back from the newest.
-        for index in range(len(times) - 1, -1, -1):
-            if times[index][0] <= offset:
-                return times[index][1]
-        return None
 
     def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
         return interpretations(slave, function, self._expect)
@@ -369,7 +333,7 @@ class RtuFramer:
         items: list[Item] = []
         while n - i >= MIN_ADU or (final and i < n):
             if n - i < MIN_ADU:
-                self._add_noise(buf, i, n - i, "too short for a frame", items)
+                self._add_noise(i, n, "too short for a frame", items)
                 i = n
                 break
             # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
@@ -417,7 +381,7 @@ class RtuFramer:
             if match == NEED:
                 break
             if match == NONE:
-                self._add_noise(buf, i, 1, "no valid frame", items)
+                self._add_noise(i, i + 1, "no valid frame", items)
                 i += 1
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
@@ -430,7 +394,7 @@ class RtuFramer:
                 if following is None:
                     break
                 if not following:
-                    self._add_noise(buf, i, 1, "no valid frame", items)
+                    self._add_noise(i, i + 1, "no valid frame", items)
                     i += 1
                     continue
             self._flush_noise(items)
@@ -454,37 +418,5 @@ class RtuFramer:
             items.append(frame)
             i += length
         if i:
-            del buf[:i]
-            self._base += i
-            self._prune_times()
+            self._consume(i)
         return items
-
-    def _prune_times(self) -> None:
-        times = self._times
-        keep = 0
-        for index, (offset, _time) in enumerate(times):
-            if offset <= self._base:
-                keep = index
-        if keep:
-            del times[:keep]
-
-    def _add_noise(self, buf: bytearray, i: int, count: int, reason: str, items: list[Item]) -> None:
-        if not self._noise:
-            self._noise_offset = self._base + i
-            self._noise_reason = reason
-            self._noise_time = self._time_at(self._noise_offset)
-        self._noise += buf[i : i + count]
-        if len(self._noise) >= NOISE_ITEM_MAX:
-            self._flush_noise(items)
-
-    def _flush_noise(self, items: list[Item]) -> None:
-        if self._noise:
-            items.append(
-                Noise(
-                    offset=self._noise_offset,
-                    raw=bytes(self._noise),
-                    time=self._noise_time,
-                    reason=self._noise_reason,
-                )
-            )
-            self._noise = bytearray()

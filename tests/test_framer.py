@@ -6,7 +6,8 @@ import random
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dissector.framer import NOISE_ITEM_MAX, RtuFramer
+from dissector.framer import RtuFramer
+from dissector.streambuf import NOISE_ITEM_MAX
 from dissector.model import Chunk
 from dissector.pipeline import Dissector, dissect
 from helpers import decode, hx, rtu

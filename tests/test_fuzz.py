@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 from dissector.ascii import AsciiFramer
 from dissector.cli import Environment, run
 from dissector.filters import FilterError, compile_filter
-from dissector.framer import NOISE_ITEM_MAX, RtuFramer
+from dissector.framer import RtuFramer
+from dissector.streambuf import NOISE_ITEM_MAX
 from dissector.grammar import GrammarError, parse_pdu
 from dissector.maps import ProfileError, parse_map
 from dissector.model import Chunk, Frame, Kind

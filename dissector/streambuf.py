@@ -1,0 +1,95 @@
+"""What both framers (RTU and ASCII) keep between chunks: the bytes not framed yet, the time each
+chunk arrived, the expectation of an answer, and the noise run being built."""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+from .model import Chunk, Item, Noise
+
+NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
+
+
+class StreamFramer(ABC):
+    """Push parser: feed chunks, collect items in stream order, unnumbered.
+
+    finish() closes whatever is buffered (a frame or noise) and leaves the framer ready for more
+    bytes with its expectation kept: live capture calls it after a silence on the line.
+    """
+
+    mode: str
+
+    def __init__(self) -> None:
+        self._buf = bytearray()
+        self._base = 0  # absolute offset of _buf[0]
+        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
+        self._timed = False
+        self._noise = bytearray()
+        self._noise_offset = 0
+        self._noise_reason = ""
+        self._noise_time: float | None = None
+        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+
+    def feed(self, chunk: Chunk) -> list[Item]:
+        if chunk.data:
+            if chunk.time is not None:
+                self._timed = True
+            self._times.append((self._base + len(self._buf), chunk.time))
+            self._buf += chunk.data
+        return self._run(final=False)
+
+    def finish(self) -> list[Item]:
+        items = self._run(final=True)
+        self._flush_noise(items)
+        return items
+
+    @abstractmethod
+    def _run(self, final: bool) -> list[Item]:
+        """Frame what the buffer holds; with final, nothing more will come."""
+
+    def _time_at(self, offset: int) -> float | None:
+        if not self._timed:
+            return None
+        times = self._times
+        # Chunks are few per frame: walk back from the newest.
+        for index in range(len(times) - 1, -1, -1):
+            if times[index][0] <= offset:
+                return times[index][1]
+        return None
+
+    def _consume(self, count: int) -> None:
+        """Drop the first `count` buffered bytes (framed or noise) and the chunk times before them."""
+        del self._buf[:count]
+        self._base += count
+        times = self._times
+        keep = 0
+        for index, (offset, _time) in enumerate(times):
+            if offset <= self._base:
+                keep = index
+        if keep:
+            del times[:keep]
+
+    def _add_noise(self, start: int, end: int, reason: str, items: list[Item]) -> None:
+        """Bytes start..end of the buffer belong to no frame."""
+        buf = self._buf
+        while start < end:
+            if not self._noise:
+                self._noise_offset = self._base + start
+                self._noise_reason = reason
+                self._noise_time = self._time_at(self._noise_offset)
+            take = min(end - start, NOISE_ITEM_MAX - len(self._noise))
+            self._noise += buf[start : start + take]
+            start += take
+            if len(self._noise) >= NOISE_ITEM_MAX:
+                self._flush_noise(items)
+
+    def _flush_noise(self, items: list[Item]) -> None:
+        if self._noise:
+            items.append(
+                Noise(
+                    offset=self._noise_offset,
+                    raw=bytes(self._noise),
+                    time=self._noise_time,
+                    reason=self._noise_reason,
+                )
+            )
+            self._noise = bytearray()
