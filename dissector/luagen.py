@@ -15,7 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from . import framer
+from . import framer, streambuf
 from .spec import SPEC
 
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.luagen (do not edit by hand)"
@@ -86,7 +86,7 @@ def plugin_data() -> dict[str, Any]:
             "max_adu": framer.MAX_ADU,
             "min_adu": framer.MIN_ADU,
             "max_slave": framer.MAX_SLAVE,
-            "noise_item_max": framer.NOISE_ITEM_MAX,
+            "noise_item_max": streambuf.NOISE_ITEM_MAX,
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,
