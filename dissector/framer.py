@@ -34,6 +34,7 @@ serial reads all drive the same object, and the answer does not depend on how th
 """
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
 from .crc import crc16
@@ -172,6 +173,13 @@ def interpretations(
     if expect == (slave, function):
         return RESPONSE_FIRST.get(function, ())
     return REQUEST_FIRST.get(function, ())
+
+
+# A byte pair that may start a frame: a slave address, then a function code with a layout.
+_POSSIBLE_START = re.compile(
+    b"[\\x00-\\x%02x][%s]" % (MAX_SLAVE, b"".join(b"\\x%02x" % code for code in sorted(REQUEST_FIRST))),
+    re.DOTALL,
+)
 
 
 # The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
@@ -342,10 +350,15 @@ class RtuFramer(StreamFramer):
             first = (
                 _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
             ).get(function)
+            if first is None or slave > MAX_SLAVE:
+                # No frame starts here: skip at C speed to the next byte pair that could start one.
+                found = _POSSIBLE_START.search(buf, i + 1)
+                end = found.start() if found is not None else (n if final else n - 1)
+                self._add_noise(i, end, "no valid frame", items)
+                i = end
+                continue
             if (
-                first is not None
-                and slave <= MAX_SLAVE
-                and not self._noise
+                not self._noise
                 and (first[0] is not Kind.EXCEPTION or self._expect == (slave, function & 0x7F))
             ):
                 kind, length, rule = first
