@@ -308,11 +308,19 @@ class RtuFramer(StreamFramer):
             # that byte (1 frame in 256). Unless this is the answer awaited, wait when a layout one
             # byte longer may still arrive.
             expected = kind is Kind.RESPONSE and self._expect == (slave, function)
-            if not expected and any(other == NEED or other == length + 1 for other in waiting):
+            if (
+                not expected
+                and not self._boundary_at(i + length)  # the record ends here: nothing longer
+                and any(other == NEED or other == length + 1 for other in waiting)
+            ):
                 return NEED
             return (kind, length, True)
         if valid:
-            # Two layouts check out (the 00 case above, mostly): what follows decides.
+            # Two layouts check out (the 00 case above, mostly): a record boundary, else what
+            # follows, decides.
+            for kind, length in valid:
+                if self._boundary_at(i + length):
+                    return (kind, length, True)
             for kind, length in valid:
                 following = self._valid_frame_at(buf, i + length, n, final)
                 if following is None:

@@ -23,6 +23,8 @@ class StreamFramer(ABC):
         self._base = 0  # absolute offset of _buf[0]
         self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
         self._timed = False
+        # Where a source said a frame boundary is (a pcap record's end): breaks ties between layouts.
+        self._boundaries: set[int] = set()
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
@@ -35,6 +37,8 @@ class StreamFramer(ABC):
                 self._timed = True
             self._times.append((self._base + len(self._buf), chunk.time))
             self._buf += chunk.data
+            if chunk.boundary:
+                self._boundaries.add(self._base + len(self._buf))
         return self._run(final=False)
 
     def finish(self) -> list[Item]:
@@ -67,6 +71,12 @@ class StreamFramer(ABC):
                 keep = index
         if keep:
             del times[:keep]
+        if self._boundaries:
+            self._boundaries = {offset for offset in self._boundaries if offset > self._base}
+
+    def _boundary_at(self, index: int) -> bool:
+        """Did the source mark a frame boundary after buffer index `index`?"""
+        return self._base + index in self._boundaries
 
     def _add_noise(self, start: int, end: int, reason: str, items: list[Item]) -> None:
         """Bytes start..end of the buffer belong to no frame."""

@@ -143,3 +143,13 @@ def test_fc8_return_query_data_of_any_length() -> None:
     assert [item["kind"] for item in items] == ["request", "response"]
     assert items[1]["fields"]["data"] == "0102030405"
     assert "diagnostic data is not a whole number of words" in items[1]["warnings"]
+
+
+def test_a_record_boundary_breaks_the_00_tie() -> None:
+    """A FC7 response whose CRC ends in 00 also checks as a 4-byte request. In a raw stream the
+    framer waits for what follows; in a pcap whose record ends after 5 bytes, the boundary decides."""
+    response = rtu("01 07 41")
+    assert response[-1] == 0
+    assert RtuFramer().feed(Chunk(response, 1.0)) == []
+    (frame,) = RtuFramer().feed(Chunk(response, 1.0, boundary=True))
+    assert (frame.kind.value, frame.raw.hex(" "), frame.crc_ok) == ("response", "01 07 41 e2 00", True)
