@@ -409,9 +409,11 @@ class RtuFramer(StreamFramer):
             unasked = kind is not Kind.REQUEST and self._expect != (buf[i], buf[i + 1] & 0x7F)
             if crc_ok and (self._noise or unasked):
                 # Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC
-                # 1 time in 65,536 per layout tried, so such a frame counts only when an intact frame
-                # (or the end) follows it.
-                following = self._valid_frame_at(buf, i + length, n, final)
+                # 1 time in 65,536 per layout tried, so such a frame counts only when an intact frame,
+                # the end, or the end of a record follows it.
+                following = self._boundary_at(i + length) or self._valid_frame_at(
+                    buf, i + length, n, final
+                )
                 if following is None:
                     break
                 if not following:
