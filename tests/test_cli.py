@@ -126,3 +126,17 @@ def test_console_script_runs_as_a_module(tmp_path: Path) -> None:
     assert result.returncode == 0 and len(result.stdout.splitlines()) == 6
     result = subprocess.run([sys.executable, "-m", "dissector", str(tmp_path / "x")], capture_output=True, text=True, cwd=ROOT)
     assert result.returncode == 2 and "Traceback" not in result.stderr
+
+
+def test_progress_bar_only_when_stderr_is_a_terminal_and_stdout_is_not(tmp_path: Path) -> None:
+    capture = tmp_path / "long.bin"
+    capture.write_bytes(SEED_STREAM + bytes(4_600_000))  # 4.6 MB (mostly zeros: quick noise)
+    out, err = io.StringIO(), io.StringIO()
+    env = Environment(io.BytesIO(), out, err, stdout_isatty=False, stderr_isatty=True)
+    assert run([str(capture), "-n"], env) == 0
+    assert "long.bin" in err.getvalue() and "\x1b[" in err.getvalue()
+    assert len(out.getvalue().splitlines()) == 6 + 4_600_000 // 4096 + 1
+    piped_err = io.StringIO()
+    env = Environment(io.BytesIO(), io.StringIO(), piped_err, stdout_isatty=False, stderr_isatty=False)
+    assert run([str(capture), "-n"], env) == 0
+    assert piped_err.getvalue() == ""

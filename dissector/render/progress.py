@@ -29,7 +29,7 @@ def _with_bar(chunks: Iterable[Chunk], path: str, size: int, stream: TextIO) -> 
         BarColumn(),
         DownloadColumn(),
         TimeRemainingColumn(),
-        console=Console(file=stream),
+        console=Console(file=stream, force_terminal=True),  # the caller saw a terminal
         transient=True,
     )
     with progress:
