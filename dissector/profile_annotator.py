@@ -446,7 +446,7 @@ class Annotator:
                 continue
             if meaning.format == "MMmm":
                 value = obj.value
-                if len(value) == 4 and value.isdigit():
+                if len(value) == 4 and value.isascii() and value.isdigit():
                     obj.text = f"V{int(value[:2])}.{int(value[2:])}"
                     continue
                 frame.notes.append(

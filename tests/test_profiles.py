@@ -377,3 +377,17 @@ def test_names_for_renderers() -> None:
     assert annotate.subfunction_name(1, 15) == "Return Server No Response Count"
     assert annotate.label(1, 3, 500) == "40501"
     assert annotate.label(2, 3, 8401) is None
+
+
+def test_a_revision_with_non_ascii_digits_is_not_read_as_a_version() -> None:
+    # Regression (found by the Lua parity fuzz): '0\xb201' is 4 "digits" to str.isdigit().
+    from dissector.pipeline import dissect_bytes
+    from dissector.profiles import build_annotator
+    from helpers import rtu
+
+    response = rtu("02 2B 0E 01 02 00 00 01 02 04 30 B2 30 31")
+    items = dissect_bytes(rtu("02 2B 0E 01 00") + response, annotate=build_annotator([], []))
+    (obj,) = items[1].objects
+    assert (obj.name, obj.value) == ("MajorMinorRevision", "0\xb201")
+    assert obj.text != "V0.1" and not (obj.text or "").startswith("V")
+    assert any("MMmm" in note for note in items[1].notes)
