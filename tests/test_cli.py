@@ -140,3 +140,15 @@ def test_progress_bar_only_when_stderr_is_a_terminal_and_stdout_is_not(tmp_path:
     env = Environment(io.BytesIO(), io.StringIO(), piped_err, stdout_isatty=False, stderr_isatty=False)
     assert run([str(capture), "-n"], env) == 0
     assert piped_err.getvalue() == ""
+
+
+def test_device_identification_summary_shows_values_and_the_decoded_revision() -> None:
+    from test_seed_vectors import DEVICE_ID_REQUEST, DEVICE_ID_RESPONSE
+
+    status, out, _ = run_cli(["--hex", (DEVICE_ID_REQUEST + DEVICE_ID_RESPONSE).hex()])
+    assert status == 0
+    assert out.splitlines()[1] == (
+        "     2            -   2 response  Encapsulated Interface Transport Read Device Identification, "
+        "basic: VendorName='Telemecanique' ProductCode='ATV71HU15M3' MajorMinorRevision=V2.1 "
+        "UserApplicationName='MACHINE 4' [#1]  CRC ok"
+    )

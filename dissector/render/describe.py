@@ -1,7 +1,9 @@
 """Short human descriptions of a decoded frame, shared by the summary line and the detail tree."""
 from __future__ import annotations
 
-from ..model import Frame, Kind, Register
+import re
+
+from ..model import DeviceObject, Frame, Kind, Register
 from ..spec import SPEC
 
 MAX_VALUES = 6
@@ -167,8 +169,18 @@ def _mei(frame: Frame, request: bool) -> str:
     code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     if request:
         return f"{mei}, {code}, from object {fields.body.object_id}"
-    objects = " ".join(f"{obj.name}={obj.text or obj.value!r}" for obj in frame.objects or [])
+    objects = " ".join(f"{obj.name}={_object_value(obj)}" for obj in frame.objects or [])
     return f"{mei}, {code}: {objects}"
+
+
+_VERSION = re.compile(r"V\d+\.\d+")
+
+
+def _object_value(obj: DeviceObject) -> str:
+    """The value as sent; a revision the profile decoded (`0201` -> `V2.1`) shows decoded."""
+    if obj.text is not None and _VERSION.fullmatch(obj.text):
+        return obj.text
+    return repr(obj.value)
 
 
 def _simple(frame: Frame, request: bool) -> str:

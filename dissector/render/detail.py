@@ -6,6 +6,7 @@ is decided once and a terminal only adds colour.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
 from ..model import Frame, Item, Kind, Noise, Register
@@ -26,6 +27,14 @@ class Node:
         child = Node(label, style=style)
         self.children.append(child)
         return child
+
+
+def _utc(seconds: float) -> str:
+    try:
+        moment = datetime.fromtimestamp(seconds, tz=timezone.utc)
+    except (OverflowError, OSError, ValueError):
+        return f"{seconds:.6f}"
+    return moment.strftime("%Y-%m-%d %H:%M:%S.%f UTC")
 
 
 def _register_node(parent: Node, register: Register) -> None:
@@ -79,7 +88,7 @@ def detail_tree(item: Item, base: float | None = None) -> Node:
         f" ({frame.mode.upper()})"
     )
     if frame.time is not None:
-        root.add(f"Time: {frame.time:.6f} ({frame.time - (base or 0.0):.6f} since the first item)")
+        root.add(f"Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)")
     modbus = root.add(f"Modbus {frame.mode.upper()}")
     modbus.add(f"Slave: {frame.slave}" + (" (broadcast)" if frame.broadcast else ""))
     code = frame.function | (0x80 if frame.kind is Kind.EXCEPTION else 0)
