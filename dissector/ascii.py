@@ -113,7 +113,6 @@ class AsciiFramer(StreamFramer):
         if kind is None:
             self._reject(raw, i, f"no Modbus layout fits function {function} ({check})", items)
             return
-        self._flush_noise(items)
         offset = self._base + i
         frame = Frame(
             offset=offset,
@@ -128,11 +127,7 @@ class AsciiFramer(StreamFramer):
         )
         if digits != digits.upper():
             frame.warnings.append("lower-case hex digits (the spec wants upper case)")
-        if kind is Kind.REQUEST:
-            self._expect = (slave, function) if slave != 0 else None
-        else:
-            self._expect = None
-        items.append(frame)
+        self._emit(frame, items)
 
     def _classify(self, adu: bytes) -> Kind | None:
         """The kind an RTU frame with the same bytes would have, by the framer's length rules."""

@@ -420,7 +420,6 @@ class RtuFramer(StreamFramer):
                     self._add_noise(i, i + 1, "no valid frame", items)
                     i += 1
                     continue
-            self._flush_noise(items)
             raw = bytes(buf[i : i + length])
             offset = self._base + i
             slave, function = raw[0], raw[1]
@@ -434,11 +433,7 @@ class RtuFramer(StreamFramer):
                 crc=raw[-2] | raw[-1] << 8,
                 crc_expected=crc16(raw[:-2]),
             )
-            if kind is Kind.REQUEST:
-                self._expect = (slave, function) if slave != 0 else None
-            else:
-                self._expect = None
-            items.append(frame)
+            self._emit(frame, items)
             i += length
         if i:
             self._consume(i)

@@ -8,6 +8,8 @@ never written here.
 """
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import tomllib
 from importlib import resources
 from typing import Any
@@ -50,13 +52,14 @@ def registers_pdu(function: int, values: list[int]) -> bytes:
     return bytes([function]) + build_pdu(function, Kind.RESPONSE, fields)
 
 
-class Device:
+class Device(ABC):
     """A slave: `handle(pdu, now)` answers a response PDU, or None for no answer."""
 
     slave: int
 
-    def handle(self, pdu: bytes, now: float) -> Response:  # pragma: no cover - interface
-        raise NotImplementedError
+    @abstractmethod
+    def handle(self, pdu: bytes, now: float) -> Response:
+        """The response PDU to a request PDU addressed to this slave (None: no answer)."""
 
 
 class Atv71(Device):

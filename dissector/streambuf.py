@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
-from .model import Chunk, Item, Noise
+from .model import Chunk, Frame, Item, Kind, Noise
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
 
@@ -91,6 +91,15 @@ class StreamFramer(ABC):
             start += take
             if len(self._noise) >= NOISE_ITEM_MAX:
                 self._flush_noise(items)
+
+    def _emit(self, frame: Frame, items: list[Item]) -> None:
+        """A frame is found: close the noise before it, and expect the answer to a request."""
+        self._flush_noise(items)
+        items.append(frame)
+        if frame.kind is Kind.REQUEST:
+            self._expect = (frame.slave, frame.function) if frame.slave != 0 else None
+        else:
+            self._expect = None
 
     def _flush_noise(self, items: list[Item]) -> None:
         if self._noise:
