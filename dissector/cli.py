@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from enum import IntEnum
 from typing import BinaryIO, TextIO
 
+from . import __version__
 from .ascii import AsciiFramer
 from .filters import FilterError
 from .framer import RtuFramer
@@ -80,6 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="captures: raw bytes, pcap/pcapng (linktype 147 or 250), hex dump or Modbus ASCII; "
         "- reads stdin",
     )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     parser.add_argument(
         "--hex",
         action="append",
