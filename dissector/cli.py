@@ -87,8 +87,8 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=[],
         metavar="BYTES",
-        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" '
-        "(all --hex arguments form one stream)",
+        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" or an ASCII '
+        'frame --hex ":02062329000AA2" (all --hex arguments form one stream)',
     )
     output = parser.add_argument_group("output")
     output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")
@@ -135,6 +135,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _hex_chunk(text: str) -> Chunk:
+    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
+    (`:02062329000AA2`; the CR LF may be left out)."""
+    stripped = text.strip()
+    if stripped.startswith(":"):
+        return Chunk(stripped.encode("ascii", "replace") + b"\r\n")
     cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
     try:
         return Chunk(bytes.fromhex(cleaned))
@@ -247,7 +252,7 @@ def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
         chunks = [_hex_chunk(text) for text in args.hex]
-        mode = args.mode or ("ascii" if chunks and chunks[0].data[:1] == b":" else "rtu")
+        mode = args.mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
         yield ("--hex" if several else None), chunks, mode, list, False
     for path in args.files:
         stdin = env.stdin if path == "-" else None

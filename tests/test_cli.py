@@ -152,3 +152,12 @@ def test_device_identification_summary_shows_values_and_the_decoded_revision() -
         "basic: VendorName='Telemecanique' ProductCode='ATV71HU15M3' MajorMinorRevision=V2.1 "
         "UserApplicationName='MACHINE 4' [#1]  CRC ok"
     )
+
+
+def test_an_ascii_frame_typed_from_the_manual() -> None:
+    status, out, err = run_cli(["-n", "--hex", ":02062329000AA2", "--hex", ":02062329000AA2"])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "     1            -   2 request   Write Single Register 9001 = 10  LRC ok",
+        "     2            -   2 response  Write Single Register 9001 = 10 [#1]  LRC ok",
+    ]
