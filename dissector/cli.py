@@ -6,6 +6,7 @@ filter -> sinks); the terminal is injected (`Environment`) so tests run the whol
 from __future__ import annotations
 
 import argparse
+import contextlib
 import gc
 import io
 import json
@@ -21,7 +22,7 @@ from .ascii import AsciiFramer
 from .filters import FilterError
 from .framer import RtuFramer
 from .live_options import add_live_arguments, positive_seconds
-from .model import Chunk, Item
+from .model import Chunk, Frame, Item
 from .pcapwriter import PcapWriter
 from .pipeline import Annotator, Dissector
 from .profiles import ProfileError, add_profile_arguments, annotator_from_args
@@ -174,6 +175,8 @@ class Sinks:
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
         self.extra: dict[str, object] | None = None
+        self.frames_left: int | None = args.count
+        self.done = False  # -c N reached
 
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
@@ -183,6 +186,10 @@ class Sinks:
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
+        if self.frames_left is not None:
+            items = self._up_to_count(items)
+            if records is not None:
+                records = records[: len(items)]
         if self.pcap is not None:
             try:
                 for item in items:
@@ -194,6 +201,17 @@ class Sinks:
                 self.stats.add(item)
         if self.show:
             self.output.write(items, self.extra, records)
+
+    def _up_to_count(self, items: list[Item]) -> list[Item]:
+        """Items up to and including the frame that reaches -c N; then the decoding stops."""
+        assert self.frames_left is not None
+        for index, item in enumerate(items):
+            if isinstance(item, Frame):
+                self.frames_left -= 1
+                if self.frames_left == 0:
+                    self.done = True
+                    return items[: index + 1]
+        return items
 
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
@@ -234,6 +252,8 @@ def decode_chunks(
     for chunk in chunks:
         sinks.accept(dissector.feed(chunk))
         warn()
+        if sinks.done:
+            return
     sinks.accept(dissector.finish())
     warn()
 
@@ -284,6 +304,8 @@ def _decode_inputs(
 ) -> None:
     try:
         for title, chunks, mode, take_warnings, timed in _inputs(args, env):
+            if sinks.done:
+                break
             sinks.output.new_input(title)
             sinks.extra = {"file": title} if title is not None else None
 
@@ -329,7 +351,9 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
 def run(argv: list[str] | None, env: Environment) -> int:
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        # argparse writes usage, errors, --help and --version itself: to the injected terminal.
+        with contextlib.redirect_stdout(env.stdout), contextlib.redirect_stderr(env.stderr):
+            args = parser.parse_args(argv)
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
     try:

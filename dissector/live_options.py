@@ -44,7 +44,10 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
     group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
-    group.add_argument("--count", type=positive_int, metavar="N", help="stop after N frames")
+    group.add_argument(
+        "-c", "--count", type=positive_int, metavar="N",
+        help="stop after N frames (live, or shown from files: after -Y), as tshark -c",
+    )
     group.add_argument(
         "--detect", nargs="?", type=positive_seconds, const=2.0, metavar="SECONDS",
         help="find the baud rate and parity: listen SECONDS (default 2) at each of "

@@ -273,7 +273,7 @@ def test_a_pcap_record_claiming_2gb_streams_in_bounded_memory(tmp_path: Path) ->
         (["--baud", "0"], "argument --baud: '0' must be more than 0"),
         (["--baud", "fast"], "argument --baud: 'fast' is not a whole number"),
         (["--live", "loop://", "--duration", "nan"], "argument --duration: 'nan' must be a number of seconds more than 0"),
-        (["--live", "loop://", "--count", "-1"], "argument --count: '-1' must be more than 0"),
+        (["--live", "loop://", "--count", "-1"], "argument -c/--count: '-1' must be more than 0"),
         (["--live", "loop://", "--detect", "0"], "argument --detect: '0' must be a number of seconds more than 0"),
     ],
 )

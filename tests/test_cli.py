@@ -161,3 +161,13 @@ def test_an_ascii_frame_typed_from_the_manual() -> None:
         "     1            -   2 request   Write Single Register 9001 = 10  LRC ok",
         "     2            -   2 response  Write Single Register 9001 = 10 [#1]  LRC ok",
     ]
+
+
+def test_count_stops_after_n_frames_as_tshark_c() -> None:
+    status, out, _ = run_cli(["-n", "-c", "2", "--hex", SEED_STREAM.hex() + "ff"])
+    assert status == 0
+    assert [line.split()[0] for line in out.splitlines()] == ["1", "2"]
+    status, out, _ = run_cli(["-n", "-c", "1", "-Y", 'kind == "exception"', "--hex", SEED_STREAM.hex()])
+    assert [line.split()[0] for line in out.splitlines()] == ["6"]
+    status, _, err = run_cli(["-c", "0", "--hex", "00"])
+    assert status == 2 and "must be more than 0" in err
