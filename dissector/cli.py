@@ -82,6 +82,9 @@ def build_parser() -> argparse.ArgumentParser:
         help="captures: raw bytes, pcap/pcapng (linktype 147 or 250), hex dump or Modbus ASCII; "
         "- reads stdin",
     )
+    parser.add_argument(
+        "-r", dest="read", action="append", default=[], metavar="FILE", help="a capture to read, as tshark -r"
+    )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     parser.add_argument(
         "--hex",
@@ -356,6 +359,7 @@ def run(argv: list[str] | None, env: Environment) -> int:
             args = parser.parse_args(argv)
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
+    args.files = [*args.read, *args.files]
     try:
         if args.live or args.detect is not None:
             if args.live is None:

@@ -171,3 +171,9 @@ def test_count_stops_after_n_frames_as_tshark_c() -> None:
     assert [line.split()[0] for line in out.splitlines()] == ["6"]
     status, _, err = run_cli(["-c", "0", "--hex", "00"])
     assert status == 2 and "must be more than 0" in err
+
+
+def test_r_reads_a_file_as_tshark_does(tmp_path: Path) -> None:
+    capture = tmp_path / "c.bin"
+    capture.write_bytes(SEED_STREAM)
+    assert run_cli(["-n", "-r", str(capture)]) == run_cli(["-n", str(capture)])
