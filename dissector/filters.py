@@ -117,7 +117,7 @@ class Token:
 _TOKEN = re.compile(
     r"""
     (?P<space>\s+)
-  | (?P<number>0[xX][0-9A-Fa-f]+|\d+(?:\.\d+)?(?![0-9A-Za-z_]))
+  | (?P<number>0[xX][0-9A-Fa-f]+|-?\d+(?:\.\d+)?(?![0-9A-Za-z_]))
   | (?P<string>")
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!)

@@ -213,3 +213,13 @@ def test_fuzz_random_bytes_raise_only_filter_error(data: bytes) -> None:
 @given(st.lists(st.sampled_from(TOKENS), max_size=14))
 def test_fuzz_token_soup_raises_only_filter_error(tokens: list[str]) -> None:
     _compile_and_run(" ".join(tokens))
+
+
+def test_negative_numbers_compare_with_signed_scaled_values() -> None:
+    from dissector.filters import compile_filter
+
+    negative = {"kind": "response", "registers": [{"address": 3205, "value": 65436, "scaled": -100}]}
+    positive = {"kind": "response", "registers": [{"address": 3205, "value": 100, "scaled": 100}]}
+    test = compile_filter("scaled < -1")
+    assert (test(negative), test(positive)) == (True, False)
+    assert compile_filter("scaled in -200..-50")(negative) is True
