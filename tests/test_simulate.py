@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pytest
 
+from test_seed_vectors import DEVICE_ID_REQUEST, DEVICE_ID_RESPONSE
+
 from dissector.ascii import AsciiFramer
 from dissector.crc import crc16, lrc
 from dissector.model import Chunk
@@ -83,19 +85,8 @@ def test_p38_session_is_the_seed_page_frame_for_frame() -> None:
 
 def test_commissioning_session_carries_the_manual_frames() -> None:
     data = (CAPTURES / "atv71_commissioning.bin").read_bytes()
-    identification = (
-        hx("02 2B 0E 01 02 00 00 04 00 0D")
-        + b"Telemecanique"
-        + hx("01 0B")
-        + b"ATV71HU15M3"
-        + hx("02 04")
-        + b"0201"
-        + hx("06 09")
-        + b"MACHINE 4"
-        + hx("6F 50")
-    )
-    assert len(identification) == 55
-    assert data.startswith(hx("02 2B 0E 01 00 34 77") + identification)
+    # The seed page's request and its 55-byte answer, as test_seed_vectors spells them out.
+    assert data.startswith(DEVICE_ID_REQUEST + DEVICE_ID_RESPONSE)
     assert hx("02 03 0C 1E 00 04 27 6C 02 03 08 00 28 02 58 01 F4 00 00 52 B0") in data
 
 
