@@ -181,6 +181,18 @@ class Sinks:
         self.frames_left: int | None = args.count
         self.done = False  # -c N reached
 
+    @property
+    def plain_summary_only(self) -> bool:
+        """Every item becomes one plain summary line, nothing else reads them."""
+        return (
+            self.show
+            and self.predicate is None
+            and self.stats is None
+            and self.pcap is None
+            and self.frames_left is None
+            and self.output.plain_summary
+        )
+
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
@@ -323,6 +335,13 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
+            if mode == "rtu" and not timed and sinks.plain_summary_only:
+                from . import fastsummary
+
+                if fastsummary.available():
+                    path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_text)
+                    fastsummary.summarize(chunks, path, warn)
+                    continue
             decode_chunks(chunks, dissector, sinks, warn)
     except BaseException:
         sinks.abandon()

@@ -226,11 +226,14 @@ class RtuFramer(StreamFramer):
         slave, function = buf[i], buf[i + 1]
         if slave > MAX_SLAVE:
             return False
+        undecided = False  # a CRC scan found nothing yet, but a longer frame may still arrive
         for _kind, rule in self._interpretations(slave, function):
             length = rule(buf, i, n)
             if type(length) is Scan:
-                if scan and self._shortest_crc(buf, i, n, length):
-                    return True
+                if scan:
+                    if self._shortest_crc(buf, i, n, length):
+                        return True
+                    undecided = undecided or (not final and n - i < MAX_ADU)
                 continue
             if length == NEED:
                 return None if not final else False
@@ -242,7 +245,7 @@ class RtuFramer(StreamFramer):
                 return None
             if _crc_ok(buf, i, length):
                 return True
-        return False
+        return None if undecided else False
 
     @staticmethod
     def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
@@ -347,7 +350,10 @@ class RtuFramer(StreamFramer):
         n = len(buf)
         i = 0
         items: list[Item] = []
+        paused_from = n if self._pause is None else max(0, self._pause - self._base)
         while n - i >= MIN_ADU or (final and i < n):
+            if i >= paused_from:
+                break
             if n - i < MIN_ADU:
                 self._add_noise(i, n, "too short for a frame", items)
                 i = n

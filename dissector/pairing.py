@@ -24,6 +24,20 @@ class Pairer:
         self._queue: list[Item] = []
         self._count = 0
 
+    @property
+    def idle(self) -> bool:
+        """No request awaits its answer and nothing is held back."""
+        return self._pending is None and not self._queue
+
+    @property
+    def count(self) -> int:
+        """Items numbered so far."""
+        return self._count
+
+    @count.setter
+    def count(self, value: int) -> None:
+        self._count = value
+
     def push(self, items: list[Item]) -> list[Item]:
         out: list[Item] = []
         for item in items:

@@ -63,6 +63,22 @@ class _Device:
     labels: dict[int, dict[int, str]] = field(default_factory=dict)
 
 
+def _name(register: Register, row: RegisterDef, used: RegisterDef) -> None:
+    """Name and read a register from its map row (`used`: the row, or its plain form under bits_depend)."""
+    register.code = row.code
+    register.name = row.name
+    register.unit = row.unit
+    register.source = row.source
+    value = register.value
+    memo = used.memo
+    reading = memo.get(value)
+    if reading is None:
+        reading = interpret(used, value)
+        if len(memo) < MEMO_LIMIT:
+            memo[value] = reading
+    register.scaled, register.text = reading
+
+
 def _plc_label(base: int, address: int) -> str:
     # 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
     digits = len(str(base))
@@ -163,6 +179,45 @@ class Annotator:
             return None
         return _plc_label(device.plc.get(function, device.plc_default), address)
 
+    # -- for the compiled summary path (dissector/fastsummary.py) -------------------------------------------
+    def plain_register(self, slave: int, address: int, value: int) -> Register:
+        """A register named and read as _annotate does when no note applies (no bits_depend switch, no
+        16#8000 status): what a summary shows of it depends on (slave, address, value) alone."""
+        register = Register(address, value)
+        row = self.device(slave).rows.get(address)
+        if row is not None:
+            _name(register, row, row)
+        return register
+
+    def summary_facts(self, slave: int, functions: tuple[int, ...]) -> tuple[object, ...] | None:
+        """What the compiled path must know of a slave to give the annotator's answers itself, or None
+        when it must leave this slave to the Python stages (addresses shown PLC style).
+
+        (names and request checks per function, mapped addresses, bits_depend rules, their sources,
+        the parameter memory, the protected value or -1). A check is () for none, the device's limits,
+        or None when every request must go to _check_request.
+        """
+        device = self.device(slave)
+        if device.plc is not None:
+            return None
+        checks: dict[int, tuple[str | None, tuple[int, ...] | None]] = {}
+        for function in functions:
+            if function in device.unchecked:
+                check: tuple[int, ...] | None = ()
+            else:
+                check = device.limited.get(function)
+            checks[function] = (device.profile.function_names.get(function), check)
+        depend = {address: (rule.on, rule.plain_when) for address, rule in device.depend.items()}
+        protected = device.profile.protected_value
+        return (
+            checks,
+            frozenset(device.rows),
+            depend,
+            frozenset(rule.on for rule in device.depend.values()),
+            device.seen if device.track else None,
+            -1 if protected is None else protected,
+        )
+
     # -- per frame ----------------------------------------------------------------------------------------
     def __call__(self, frame: Frame) -> None:
         device = self._devices.get(frame.slave)
@@ -238,17 +293,7 @@ class Annotator:
                 used = row
                 if depend and address in depend:
                     used = self._depend(frame, device, address)
-                register.code = row.code
-                register.name = row.name
-                register.unit = row.unit
-                register.source = row.source
-                memo = used.memo
-                reading = memo.get(value)
-                if reading is None:
-                    reading = interpret(used, value)
-                    if len(memo) < MEMO_LIMIT:
-                        memo[value] = reading
-                register.scaled, register.text = reading
+                _name(register, row, used)
             if protected is None:
                 continue
             if value == protected and multi:

@@ -30,6 +30,8 @@ class StreamFramer(ABC):
         self._noise_reason = ""
         self._noise_time: float | None = None
         self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+        # Frame nothing that starts at or after this absolute offset yet (see pause_at).
+        self._pause: int | None = None
 
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
@@ -45,6 +47,38 @@ class StreamFramer(ABC):
         items = self._run(final=True)
         self._flush_noise(items)
         return items
+
+    # -- handing the stream over to another framing engine (dissector/fastsummary.py) ------------
+    @property
+    def offset(self) -> int:
+        """Absolute offset of the first byte not framed yet."""
+        return self._base
+
+    @property
+    def idle(self) -> bool:
+        """No noise run is being built: what was framed so far has all been given out."""
+        return not self._noise
+
+    def pause_at(self, offset: int | None) -> None:
+        """Start no frame at or after `offset` (None: no pause): lets a caller take items one frame
+        at a time, to find the points where the stream can change hands."""
+        self._pause = offset
+
+    def restart_at(self, offset: int, expect: tuple[int, int] | None) -> None:
+        """Take the stream up from absolute `offset`, where another engine left it idle."""
+        self._buf = bytearray()
+        self._base = offset
+        self._times = []
+        self._boundaries = set()
+        self._expect = expect
+
+    def hand_back(self) -> tuple[int, bytes, tuple[int, int] | None]:
+        """(offset, bytes not framed yet, expectation) for another engine; the buffer is emptied."""
+        rest = bytes(self._buf)
+        self._base += len(self._buf)
+        self._buf = bytearray()
+        self._times = []
+        return self._base - len(rest), rest, self._expect
 
     @abstractmethod
     def _run(self, final: bool) -> list[Item]:

@@ -90,6 +90,18 @@ class Output:
         if len(out) > BATCH:
             self.flush()
 
+    @property
+    def plain_summary(self) -> bool:
+        """One plain summary line per item and nothing else (what write_text may add to)."""
+        options = self.options
+        return self.console is None and not (options.detail or options.hexdump or options.json)
+
+    def write_text(self, text: str) -> None:
+        """Summary lines made elsewhere (the compiled path), each ending in a newline."""
+        self._buffer.append(text[:-1])
+        if len(self._buffer) > BATCH or len(text) > 1 << 16:
+            self.flush()
+
     def _write_rich(self, item: Item) -> None:
         console = self.console
         assert console is not None

@@ -1,0 +1,798 @@
+/* The compiled summary path of vw3-decode: raw Modbus RTU bytes in, summary lines out.
+ *
+ * It does, for the transactions that make up nearly all of a polling bus (FC3, FC4, FC6, FC16, FC23
+ * requests and their normal responses, unanswered requests), exactly what the Python stages do:
+ * the framer's fast path (framer.py, _run), pairing, the decoder's spec checks, the annotator's
+ * naming and parameter tracking, and the summary line (render/summary.py). Anything else (noise, a
+ * damaged frame, an exception, a warning or a note to give, a slave whose addresses are shown in PLC
+ * style) it hands back, before touching any state, at the start of the transaction: the Python
+ * stages then take that part of the stream, and give it back at their next idle point
+ * (dissector/fastsummary.py). tests/test_fastsummary.py holds the output of both paths equal.
+ *
+ * Device knowledge stays in Python: register texts come from a callback (the annotator and the
+ * summary renderer themselves), cached here by (slave, address, value).
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <stdint.h>
+#include <string.h>
+
+#define MIN_ADU 4
+#define MAX_SLAVE 247
+#define MAX_VALUES 6   /* render/describe.py MAX_VALUES */
+#define PIECE_CACHE_LIMIT 200000
+
+enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
+enum { KIND_REQUEST = 1, KIND_RESPONSE = 2 };
+enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
+
+static uint16_t crc_table[256];
+
+static void crc_init(void) {
+    for (int n = 0; n < 256; n++) {
+        uint16_t c = (uint16_t)n;
+        for (int k = 0; k < 8; k++)
+            c = (c & 1) ? (uint16_t)((c >> 1) ^ 0xA001) : (uint16_t)(c >> 1);
+        crc_table[n] = c;
+    }
+}
+
+static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
+    uint16_t crc = 0xFFFF;
+    while (n--) crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ *p++) & 0xFF]);
+    return crc;
+}
+
+static inline unsigned word(const uint8_t *p) { return (unsigned)p[0] << 8 | p[1]; }
+
+/* ---- output buffer ---------------------------------------------------------------------------- */
+typedef struct { char *data; size_t len, cap; int failed; } Out;
+
+static int out_reserve(Out *o, size_t more) {
+    if (o->len + more <= o->cap) return 0;
+    size_t cap = o->cap ? o->cap : 1 << 16;
+    while (cap < o->len + more) cap *= 2;
+    char *data = PyMem_Realloc(o->data, cap);
+    if (data == NULL) { o->failed = 1; return -1; }
+    o->data = data;
+    o->cap = cap;
+    return 0;
+}
+
+static void out_put(Out *o, const char *s, size_t n) {
+    if (out_reserve(o, n) < 0) return;
+    memcpy(o->data + o->len, s, n);
+    o->len += n;
+}
+
+static void out_cstr(Out *o, const char *s) { out_put(o, s, strlen(s)); }
+
+static void out_uint(Out *o, unsigned long long v, int width) {
+    char digits[24];
+    int n = 0;
+    do { digits[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = ' ';
+    while (n) o->data[o->len++] = digits[--n];
+}
+
+static void out_str(Out *o, PyObject *text) {
+    Py_ssize_t n;
+    const char *s = PyUnicode_AsUTF8AndSize(text, &n);
+    if (s == NULL) { PyErr_Clear(); o->failed = 1; return; }
+    out_put(o, s, (size_t)n);
+}
+
+/* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
+#define HANDLED 5
+static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
+
+static int handled_index(int function) {
+    switch (function) {
+    case 3: return 0;
+    case 4: return 1;
+    case 6: return 2;
+    case 16: return 3;
+    case 23: return 4;
+    default: return -1;
+    }
+}
+
+typedef struct {
+    int loaded;
+    int usable;               /* 0: every transaction of this slave goes to Python */
+    PyObject *info;           /* the tuple, which keeps the objects below alive */
+    PyObject *name[HANDLED];  /* function names as shown */
+    int check[HANDLED];       /* -1: hand over; 0: no device limit; 1, 2: limits below */
+    long limit[HANDLED][2];
+    PyObject *mapped;         /* frozenset of addresses the annotator names */
+    PyObject *depend;         /* dict address -> (on, frozenset plain_when) */
+    PyObject *sources;        /* frozenset of the `on` addresses */
+    PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
+    long protected_value;     /* -1: none */
+} Slave;
+
+typedef struct {
+    PyObject_HEAD
+    unsigned long long count;
+    int expect_slave, expect_function; /* -1: no answer awaited */
+    PyObject *slave_info;
+    PyObject *piece;
+    PyObject *pieces;  /* dict key -> (text, named) */
+    PyObject *read_word, *written_word;
+    long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
+    Slave slaves[256];
+    Out out;
+} Engine;
+
+static void slave_clear(Slave *s) {
+    Py_CLEAR(s->info);
+    s->loaded = 0;
+}
+
+static int load_slave(Engine *e, int address) {
+    Slave *s = &e->slaves[address];
+    PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
+    if (info == NULL) return -1;
+    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 7) {
+        Py_DECREF(info);
+        PyErr_SetString(PyExc_TypeError, "slave_info must return a 7-tuple");
+        return -1;
+    }
+    s->info = info;
+    s->loaded = 1;
+    s->usable = PyObject_IsTrue(PyTuple_GET_ITEM(info, 0));
+    if (!s->usable) return 0;
+    PyObject *functions = PyTuple_GET_ITEM(info, 1);
+    for (int k = 0; k < HANDLED; k++) {
+        PyObject *code = PyLong_FromLong(handled_codes[k]);
+        PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
+        Py_XDECREF(code);
+        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2) {
+            if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "slave_info: bad function entry");
+            return -1;
+        }
+        s->name[k] = PyTuple_GET_ITEM(entry, 0);
+        PyObject *check = PyTuple_GET_ITEM(entry, 1);
+        if (check == Py_None) {
+            s->check[k] = -1;
+        } else {
+            Py_ssize_t n = PyTuple_Size(check);
+            if (n < 0) return -1;
+            s->check[k] = n > 2 ? -1 : (int)n;
+            for (Py_ssize_t j = 0; j < n && j < 2; j++)
+                s->limit[k][j] = PyLong_AsLong(PyTuple_GET_ITEM(check, j));
+            if (PyErr_Occurred()) return -1;
+        }
+    }
+    s->mapped = PyTuple_GET_ITEM(info, 2);
+    s->depend = PyTuple_GET_ITEM(info, 3);
+    s->sources = PyTuple_GET_ITEM(info, 4);
+    PyObject *seen = PyTuple_GET_ITEM(info, 5);
+    s->seen = seen == Py_None ? NULL : seen;
+    s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
+    if (PyErr_Occurred()) return -1;
+    return 0;
+}
+
+static Slave *slave_for(Engine *e, int address) {
+    Slave *s = &e->slaves[address];
+    if (!s->loaded && load_slave(e, address) < 0) return NULL;
+    return s;
+}
+
+/* ---- framing: framer.py's fast path, for the codes handled here -------------------------------- */
+typedef struct {
+    Py_ssize_t at, length;
+    int kind, slave, function;
+} FrameRef;
+
+/* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
+static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
+    int position, extra;
+    if (kind == KIND_REQUEST) {
+        switch (function) {
+        case 3: case 4: case 6: return 8;
+        case 16: position = 6; extra = 9; break;
+        case 23: position = 10; extra = 13; break;
+        default: return FRAME_HANDOVER;
+        }
+    } else {
+        switch (function) {
+        case 6: case 16: return 8;
+        case 3: case 4: case 23: position = 2; extra = 5; break;
+        default: return FRAME_HANDOVER;
+        }
+    }
+    if (i + position >= n) return FRAME_NEED;
+    return extra + b[i + position];
+}
+
+static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
+    if (n - i < MIN_ADU) return FRAME_NEED;
+    int slave = b[i], function = b[i + 1];
+    if (slave > MAX_SLAVE || handled_index(function) < 0) return FRAME_HANDOVER;
+    int kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    Py_ssize_t length = first_length(b, i, n, function, kind);
+    if (length < 0) return (int)length;
+    /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
+    if (i + length >= n) return FRAME_NEED;
+    if (b[i + length] == 0) return FRAME_HANDOVER;
+    Py_ssize_t stop = i + length - 2;
+    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
+    f->at = i;
+    f->length = length;
+    f->kind = kind;
+    f->slave = slave;
+    f->function = function;
+    return FRAME_OK;
+}
+
+/* ---- registers ---------------------------------------------------------------------------------- */
+typedef struct {
+    unsigned start;        /* first address; addresses wrap at 65536 as decode._registers does */
+    unsigned count;
+    const uint8_t *values; /* big-endian words */
+} Words;
+
+static inline unsigned words_address(const Words *w, unsigned k) { return (w->start + k) & 0xFFFF; }
+static inline unsigned words_value(const Words *w, unsigned k) { return word(w->values + 2 * k); }
+
+static int contains(PyObject *set, unsigned address) {
+    if (set == NULL || PySet_GET_SIZE(set) == 0) return 0;
+    PyObject *key = PyLong_FromUnsignedLong(address);
+    if (key == NULL) return -1;
+    int found = PySet_Contains(set, key);
+    Py_DECREF(key);
+    return found;
+}
+
+/* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error. */
+static int register_is_plain(Slave *s, unsigned address) {
+    int touched = contains(s->sources, address);
+    if (touched) return touched < 0 ? -1 : 0; /* a value others depend on: ordering matters, Python */
+    if (PyDict_GET_SIZE(s->depend) == 0) return 1;
+    PyObject *key = PyLong_FromUnsignedLong(address);
+    if (key == NULL) return -1;
+    PyObject *rule = PyDict_GetItemWithError(s->depend, key);
+    Py_DECREF(key);
+    if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (s->seen == NULL) return 1;
+    PyObject *last = PyDict_GetItemWithError(s->seen, PyTuple_GET_ITEM(rule, 0));
+    if (last == NULL) return PyErr_Occurred() ? -1 : 1;
+    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), PyTuple_GET_ITEM(last, 0));
+    return plain < 0 ? -1 : !plain;
+}
+
+static int words_are_plain(Slave *s, const Words *w) {
+    for (unsigned k = 0; k < w->count; k++) {
+        int plain = register_is_plain(s, words_address(w, k));
+        if (plain <= 0) return plain;
+    }
+    return 1;
+}
+
+/* Reads as the annotator sees them: 16#8000 in a multi-word read, or a parameter unreadable before,
+ * gives a note (Python's). `written` are addresses this transaction wrote first (FC23). */
+static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
+    if (s->protected_value < 0) return 1;
+    for (unsigned k = 0; k < w->count; k++) {
+        unsigned address = words_address(w, k);
+        if (w->count > 1 && (long)words_value(w, k) == s->protected_value) return 0;
+        if (written != NULL && s->seen != NULL) {
+            int rewritten = 0;
+            for (unsigned j = 0; j < written->count; j++)
+                if (words_address(written, j) == address) { rewritten = 1; break; }
+            if (rewritten) continue;
+        }
+        if (s->seen == NULL) continue;
+        PyObject *key = PyLong_FromUnsignedLong(address);
+        if (key == NULL) return -1;
+        PyObject *last = PyDict_GetItemWithError(s->seen, key);
+        Py_DECREF(key);
+        if (last == NULL) {
+            if (PyErr_Occurred()) return -1;
+            continue;
+        }
+        if (PyTuple_GET_ITEM(last, 0) == Py_None) return 0;
+    }
+    return 1;
+}
+
+static int remember(Engine *e, Slave *s, const Words *w, unsigned long long number, PyObject *how) {
+    PyObject *frame = PyLong_FromUnsignedLongLong(number);
+    if (frame == NULL) return -1;
+    int status = 0;
+    for (unsigned k = 0; k < w->count && status == 0; k++) {
+        PyObject *key = PyLong_FromUnsignedLong(words_address(w, k));
+        PyObject *value = PyLong_FromUnsignedLong(words_value(w, k));
+        PyObject *entry = (key && value) ? PyTuple_Pack(3, value, frame, how) : NULL;
+        status = entry ? PyDict_SetItem(s->seen, key, entry) : -1;
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+        Py_XDECREF(entry);
+    }
+    Py_DECREF(frame);
+    return status;
+}
+
+/* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
+static int piece(Engine *e, Slave *s, int slave, unsigned address, unsigned value, int *named) {
+    int mapped = contains(s->mapped, address);
+    if (mapped < 0) return -1;
+    if (!mapped) {
+        *named = 0;
+        out_uint(&e->out, address, 0);
+        out_put(&e->out, "=", 1);
+        out_uint(&e->out, value, 0);
+        return 0;
+    }
+    PyObject *key = PyLong_FromUnsignedLongLong((unsigned long long)slave << 32 | address << 16 | value);
+    if (key == NULL) return -1;
+    PyObject *entry = PyDict_GetItemWithError(e->pieces, key);
+    if (entry != NULL) {
+        Py_INCREF(entry);
+    } else if (PyErr_Occurred()) {
+        Py_DECREF(key);
+        return -1;
+    } else {
+        entry = PyObject_CallFunction(e->piece, "iII", slave, address, value);
+        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
+            !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
+            Py_DECREF(key);
+            if (entry != NULL) {
+                Py_DECREF(entry);
+                PyErr_SetString(PyExc_TypeError, "piece must return (str, bool)");
+            }
+            return -1;
+        }
+        if (PyDict_GET_SIZE(e->pieces) < PIECE_CACHE_LIMIT && PyDict_SetItem(e->pieces, key, entry) < 0) {
+            Py_DECREF(key);
+            Py_DECREF(entry);
+            return -1;
+        }
+    }
+    Py_DECREF(key);
+    *named = PyObject_IsTrue(PyTuple_GET_ITEM(entry, 1));
+    out_str(&e->out, PyTuple_GET_ITEM(entry, 0));
+    Py_DECREF(entry);
+    return 0;
+}
+
+/* describe.values_text */
+static int values_text(Engine *e, Slave *s, int slave, const Words *w) {
+    int named;
+    unsigned shown = w->count < MAX_VALUES ? w->count : MAX_VALUES;
+    for (unsigned k = 0; k < shown; k++) {
+        if (k) out_put(&e->out, " ", 1);
+        if (piece(e, s, slave, words_address(w, k), words_value(w, k), &named) < 0) return -1;
+    }
+    if (w->count > MAX_VALUES) {
+        out_cstr(&e->out, " \xe2\x80\xa6 (+");
+        out_uint(&e->out, w->count - MAX_VALUES, 0);
+        out_put(&e->out, ")", 1);
+    }
+    return 0;
+}
+
+/* describe.span_text without labels: `8400..8402 (3)` or `9001` */
+static void span_text(Out *o, unsigned start, unsigned quantity) {
+    out_uint(o, start, 0);
+    if (quantity == 1) return;
+    out_put(o, "..", 2);
+    out_uint(o, (start + quantity - 1) & 0xFFFF, 0);
+    out_put(o, " (", 2);
+    out_uint(o, quantity, 0);
+    out_put(o, ")", 1);
+}
+
+/* ---- one transaction ---------------------------------------------------------------------------- */
+typedef struct {
+    unsigned start, quantity;   /* FC23: the read part */
+    Words writes;               /* FC6, FC16, FC23 */
+    int has_writes;
+} Request;
+
+static int in_range(const long range[2], unsigned value) {
+    return range[0] <= (long)value && (long)value <= range[1];
+}
+
+/* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
+static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
+    int function = f[1];
+    int k = handled_index(function);
+    if (k < 0) return 0;
+    int check = s->check[k];
+    if (check < 0) return 0;
+    r->has_writes = 0;
+    unsigned device_quantity = 0, write_quantity = 0;
+    switch (function) {
+    case 3: case 4:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[0], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        device_quantity = r->quantity;
+        break;
+    case 6:
+        r->start = word(f + 2);
+        r->quantity = 1;
+        r->writes = (Words){r->start, 1, f + 4};
+        r->has_writes = 1;
+        device_quantity = 1;
+        break;
+    case 16:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[1], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        if (f[6] != 2 * r->quantity) return 0;
+        r->writes = (Words){r->start, r->quantity, f + 7};
+        r->has_writes = 1;
+        device_quantity = r->quantity;
+        break;
+    case 23:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        write_quantity = word(f + 8);
+        if (!in_range(e->limits[2], r->quantity) || !in_range(e->limits[3], write_quantity)) return 0;
+        if (f[10] != 2 * write_quantity) return 0;
+        r->writes = (Words){word(f + 6), write_quantity, f + 11};
+        r->has_writes = 1;
+        device_quantity = r->quantity;
+        break;
+    default:
+        return 0;
+    }
+    /* Annotator._within_limits */
+    if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
+    if (check == 2 && (function != 23 || (long)write_quantity > s->limit[k][1])) return 0;
+    return r->has_writes ? words_are_plain(s, &r->writes) : 1;
+}
+
+static void line_head(Out *o, unsigned long long number, int slave, const char *kind) {
+    out_uint(o, number, 6);
+    out_put(o, "            - ", 14);
+    out_uint(o, (unsigned long long)slave, 3);
+    out_cstr(o, kind);
+}
+
+/* Python's str.rstrip() in info_text: hand over unless the info ends in a plain visible character. */
+static int info_end_is_plain(const Out *o) {
+    unsigned char last = (unsigned char)o->data[o->len - 1];
+    return last > 0x20 && last < 0x7F;
+}
+
+static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, unsigned value) {
+    /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
+    out_uint(&e->out, address, 0);
+    size_t mark = e->out.len;
+    int named;
+    out_put(&e->out, " ", 1);
+    if (piece(e, s, slave, address, value, &named) < 0) return -1;
+    if (!named) {
+        e->out.len = mark;
+        out_put(&e->out, " = ", 3);
+        out_uint(&e->out, value, 0);
+    }
+    return 0;
+}
+
+static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
+                        int unanswered) {
+    int slave = f[0], function = f[1];
+    line_head(&e->out, number, slave, " request   ");
+    out_str(&e->out, s->name[handled_index(function)]);
+    out_put(&e->out, " ", 1);
+    switch (function) {
+    case 3: case 4:
+        span_text(&e->out, r->start, r->quantity);
+        break;
+    case 6:
+        if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
+        break;
+    case 16:
+        span_text(&e->out, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        if (values_text(e, s, slave, &r->writes) < 0) return -1;
+        break;
+    case 23:
+        out_cstr(&e->out, "read ");
+        out_uint(&e->out, r->start, 0);
+        out_put(&e->out, "..", 2);
+        out_uint(&e->out, (unsigned long long)r->start + r->quantity - 1, 0);
+        out_put(&e->out, " (", 2);
+        out_uint(&e->out, r->quantity, 0);
+        out_cstr(&e->out, "), write ");
+        if (values_text(e, s, slave, &r->writes) < 0) return -1;
+        break;
+    }
+    if (e->out.failed || !info_end_is_plain(&e->out)) return 0;
+    if (unanswered) out_cstr(&e->out, " [no response]");
+    out_cstr(&e->out, "  CRC ok\n");
+    return 1;
+}
+
+/* The response's checks (decoder and annotator); fills its registers. 1 quiet, 0 hand over. */
+static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Request *r, Words *reads) {
+    int function = f[1];
+    reads->count = 0;
+    switch (function) {
+    case 3: case 4: case 23:
+        if (f[2] != 2 * r->quantity) return 0;
+        *reads = (Words){r->start, r->quantity, f + 3};
+        break;
+    case 6: {
+        Words echo = {word(f + 2), 1, f + 4};
+        return words_are_plain(s, &echo);
+    }
+    case 16:
+        return word(f + 2) == r->start && word(f + 4) == r->quantity;
+    default:
+        return 0;
+    }
+    int plain = words_are_plain(s, reads);
+    if (plain <= 0) return plain;
+    return reads_are_quiet(s, reads, function == 23 ? &r->writes : NULL);
+}
+
+static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
+                         unsigned long long number, unsigned long long request_number) {
+    int slave = f[0], function = f[1];
+    line_head(&e->out, number, slave, " response  ");
+    out_str(&e->out, s->name[handled_index(function)]);
+    out_put(&e->out, " ", 1);
+    switch (function) {
+    case 3: case 4: case 23:
+        span_text(&e->out, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        if (values_text(e, s, slave, reads) < 0) return -1;
+        break;
+    case 6:
+        if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
+        break;
+    case 16:
+        span_text(&e->out, word(f + 2), word(f + 4));
+        out_cstr(&e->out, " written");
+        break;
+    }
+    if (e->out.failed || !info_end_is_plain(&e->out)) return 0;
+    out_cstr(&e->out, " [#");
+    out_uint(&e->out, request_number, 0);
+    out_cstr(&e->out, "]  CRC ok\n");
+    return 1;
+}
+
+/* Annotator state after an answered transaction: what was written, then what was read. */
+static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
+                 unsigned long long number) {
+    if (s->seen == NULL) return 0;
+    int function = f[1];
+    if (function == 16 || function == 23) {
+        if (remember(e, s, &r->writes, number, e->written_word) < 0) return -1;
+    }
+    if (function == 6) {
+        Words echo = {word(f + 2), 1, f + 4};
+        if (remember(e, s, &echo, number, e->written_word) < 0) return -1;
+    }
+    if (reads->count && s->protected_value >= 0)
+        return remember(e, s, reads, number, e->read_word);
+    return 0;
+}
+
+/* ---- the Python object ------------------------------------------------------------------------- */
+static PyObject *engine_run(Engine *e, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t pos;
+    if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
+    const uint8_t *b = view.buf;
+    Py_ssize_t n = view.len;
+    int status = STATUS_NEED;
+    e->out.len = 0;
+    e->out.failed = 0;
+    if (pos < 0 || pos > n) {
+        PyBuffer_Release(&view);
+        PyErr_SetString(PyExc_ValueError, "position outside the buffer");
+        return NULL;
+    }
+    for (;;) {
+        FrameRef q, a;
+        int found = frame_at(e, b, pos, n, &q);
+        if (found != FRAME_OK) { status = found == FRAME_NEED ? STATUS_NEED : STATUS_HANDOVER; break; }
+        if (q.kind != KIND_REQUEST || q.slave == 0) { status = STATUS_HANDOVER; break; }
+        Slave *s = slave_for(e, q.slave);
+        if (s == NULL) goto error;
+        Request r;
+        int quiet = s->usable ? request_is_quiet(e, s, b + q.at, &r) : 0;
+        if (quiet < 0) goto error;
+        if (!quiet) { status = STATUS_HANDOVER; break; }
+        int saved_slave = e->expect_slave, saved_function = e->expect_function;
+        e->expect_slave = q.slave;
+        e->expect_function = q.function;
+        found = frame_at(e, b, q.at + q.length, n, &a);
+        if (found == FRAME_OK && a.kind == KIND_REQUEST) {
+            /* The next frame is a request: this one was not answered (pairing.py). */
+            size_t mark = e->out.len;
+            int written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
+            if (written < 0) goto error;
+            if (!written) {
+                e->out.len = mark;
+                e->expect_slave = saved_slave;
+                e->expect_function = saved_function;
+                status = STATUS_HANDOVER;
+                break;
+            }
+            e->count += 1;
+            pos = a.at;
+            continue;
+        }
+        Words reads;
+        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, &r, &reads) : 0;
+        if (quiet <= 0) {
+            e->expect_slave = saved_slave;
+            e->expect_function = saved_function;
+            if (quiet < 0) goto error;
+            status = found == FRAME_NEED ? STATUS_NEED : STATUS_HANDOVER;
+            break;
+        }
+        size_t mark = e->out.len;
+        int written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+        if (written > 0) written = response_line(e, s, b + a.at, &r, &reads, e->count + 2, e->count + 1);
+        if (written < 0) goto error;
+        if (!written) {
+            e->out.len = mark;
+            e->expect_slave = saved_slave;
+            e->expect_function = saved_function;
+            status = STATUS_HANDOVER;
+            break;
+        }
+        if (track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) goto error;
+        e->count += 2;
+        e->expect_slave = e->expect_function = -1;
+        pos = a.at + a.length;
+    }
+    PyBuffer_Release(&view);
+    if (e->out.failed) return PyErr_NoMemory();
+    PyObject *text = PyUnicode_DecodeUTF8(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len, "strict");
+    if (text == NULL) return NULL;
+    return Py_BuildValue("(Nni)", text, pos, status);
+error:
+    PyBuffer_Release(&view);
+    return NULL;
+}
+
+static PyObject *engine_get_count(Engine *e, void *closure) { return PyLong_FromUnsignedLongLong(e->count); }
+
+static int engine_set_count(Engine *e, PyObject *value, void *closure) {
+    unsigned long long count = value ? PyLong_AsUnsignedLongLong(value) : (unsigned long long)-1;
+    if (PyErr_Occurred()) return -1;
+    e->count = count;
+    return 0;
+}
+
+static PyObject *engine_get_expect(Engine *e, void *closure) {
+    if (e->expect_slave < 0) Py_RETURN_NONE;
+    return Py_BuildValue("(ii)", e->expect_slave, e->expect_function);
+}
+
+static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
+    if (value == NULL || value == Py_None) {
+        e->expect_slave = e->expect_function = -1;
+        return 0;
+    }
+    int slave, function;
+    if (!PyArg_ParseTuple(value, "ii", &slave, &function)) return -1;
+    if (slave < 0 || slave > 255 || function < 0 || function > 255) {
+        PyErr_SetString(PyExc_ValueError, "expect: (slave, function) bytes");
+        return -1;
+    }
+    e->expect_slave = slave;
+    e->expect_function = function;
+    return 0;
+}
+
+static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
+    PyObject *slave_info, *piece_fn;
+    static char *keywords[] = {"slave_info", "piece", "limits", NULL};
+    PyObject *limits;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO", keywords, &slave_info, &piece_fn, &limits)) return -1;
+    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
+                          &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
+                          &e->limits[3][1]))
+        return -1;
+    Py_INCREF(slave_info);
+    Py_XSETREF(e->slave_info, slave_info);
+    Py_INCREF(piece_fn);
+    Py_XSETREF(e->piece, piece_fn);
+    Py_XSETREF(e->pieces, PyDict_New());
+    Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
+    Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
+    if (e->pieces == NULL || e->read_word == NULL || e->written_word == NULL) return -1;
+    for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
+    e->count = 0;
+    e->expect_slave = e->expect_function = -1;
+    return 0;
+}
+
+static int engine_traverse(Engine *e, visitproc visit, void *arg) {
+    Py_VISIT(e->slave_info);
+    Py_VISIT(e->piece);
+    Py_VISIT(e->pieces);
+    for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
+    return 0;
+}
+
+static int engine_clear(Engine *e) {
+    Py_CLEAR(e->slave_info);
+    Py_CLEAR(e->piece);
+    Py_CLEAR(e->pieces);
+    Py_CLEAR(e->read_word);
+    Py_CLEAR(e->written_word);
+    for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
+    return 0;
+}
+
+static void engine_dealloc(Engine *e) {
+    PyObject_GC_UnTrack(e);
+    engine_clear(e);
+    PyMem_Free(e->out.data);
+    Py_TYPE(e)->tp_free((PyObject *)e);
+}
+
+static PyMethodDef engine_methods[] = {
+    {"run", (PyCFunction)engine_run, METH_VARARGS,
+     "run(buffer, position) -> (text, position, status): summary lines of the transactions from\n"
+     "position on; status 0: needs more bytes, 1: hand the stream over at position."},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef engine_getset[] = {
+    {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
+    {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
+     NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject EngineType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "dissector._summary.Engine",
+    .tp_basicsize = sizeof(Engine),
+    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC,
+    .tp_doc = "The compiled summary path (see dissector/fastsummary.py).",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)engine_init,
+    .tp_dealloc = (destructor)engine_dealloc,
+    .tp_traverse = (traverseproc)engine_traverse,
+    .tp_clear = (inquiry)engine_clear,
+    .tp_methods = engine_methods,
+    .tp_getset = engine_getset,
+};
+
+static PyObject *module_crc16(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    if (!PyArg_ParseTuple(args, "y*", &view)) return NULL;
+    uint16_t crc = crc16(view.buf, view.len);
+    PyBuffer_Release(&view);
+    return PyLong_FromLong(crc);
+}
+
+static PyMethodDef module_methods[] = {
+    {"crc16", module_crc16, METH_VARARGS, "CRC-16/MODBUS of a bytes-like object."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef summary_module = {
+    PyModuleDef_HEAD_INIT, "_summary", "The compiled summary path of vw3-decode.", -1, module_methods,
+};
+
+PyMODINIT_FUNC PyInit__summary(void) {
+    crc_init();
+    if (PyType_Ready(&EngineType) < 0) return NULL;
+    PyObject *module = PyModule_Create(&summary_module);
+    if (module == NULL) return NULL;
+    Py_INCREF(&EngineType);
+    if (PyModule_AddObject(module, "Engine", (PyObject *)&EngineType) < 0) {
+        Py_DECREF(&EngineType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}
