@@ -28,7 +28,6 @@ from .pipeline import Annotator, Dissector
 from .profiles import ProfileError, add_profile_arguments, annotator_from_args
 from .render.jsonout import item_to_dict
 from .render.output import Output, OutputOptions
-from .render.progress import progress_for
 from .render.summary import summary_line, summary_text
 from .sources import FORMATS, MODES, SourceError, open_source
 from .timing import GapChecker
@@ -294,6 +293,8 @@ def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
         chunks: Iterable[Chunk] = source
         if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
+            from .render.progress import progress_for  # rich's progress bar: only for a terminal
+
             chunks = progress_for(source, path, env.stderr)
         yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
 
@@ -339,7 +340,7 @@ def _decode_inputs(
                 from . import fastsummary
 
                 if fastsummary.available():
-                    path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_text)
+                    path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
                     fastsummary.summarize(chunks, path, warn)
                     continue
             decode_chunks(chunks, dissector, sinks, warn)

@@ -32,6 +32,10 @@ except ImportError:  # built without a C compiler: the Python stages do everythi
 
 HANDLED = (3, 4, 6, 16, 23)  # function codes the compiled path decodes (_summary.c)
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
+# When the engine hands the stream straight back (a device or function codes it does not show), the
+# Python stages take a growing run of bytes at once instead of one frame at a time.
+SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
+MAX_RUN = 16384
 NEED, HANDOVER = 0, 1
 
 
@@ -84,18 +88,21 @@ class SummaryPath:
     """
 
     def __init__(self, dissector: Dissector, annotator: Any | None, write_items: Callable[[list[Item]], None],
-                 write_text: Callable[[str], None]) -> None:
+                 write_lines: Callable[[bytes], None]) -> None:
         self.dissector = dissector
         self.framer = dissector.framer
         self.pairer = dissector.pairer
         self.engine = make_engine(annotator)
         self.write_items = write_items
-        self.write_text = write_text
+        self.write_lines = write_lines
         self.buf = b""  # bytes not given to either side yet start at buf[pos], absolute offset base+pos
         self.base = 0
         self.pos = 0
         self.python = False  # the Python stages have the stream
         self.taken_at = 0  # where they took it
+        self.run_size = 0  # bytes the Python stages frame freely before looking for an idle point
+        self.run_left = 0
+        self.stretch_start = 0  # engine count when it last took the stream back
 
     def feed(self, data: bytes) -> None:
         if self.pos:
@@ -118,9 +125,9 @@ class SummaryPath:
 
     def _engine_frames(self) -> None:
         while not self.python:
-            text, self.pos, status = self.engine.run(self.buf, self.pos)
-            if text:
-                self.write_text(text)
+            lines, self.pos, status = self.engine.run(self.buf, self.pos)
+            if lines:
+                self.write_lines(lines)
             if status == NEED:
                 return
             self._hand_over()
@@ -129,17 +136,31 @@ class SummaryPath:
     def _hand_over(self) -> None:
         self.taken_at = self.base + self.pos
         self.framer.restart_at(self.taken_at, self.engine.expect)
-        self.pairer.count = self.engine.count
+        count = self.engine.count
+        self.pairer.count = count
+        if count - self.stretch_start < SHORT_STRETCH:
+            self.run_size = min(MAX_RUN, max(2 * self.run_size, WINDOW))
+        else:
+            self.run_size = 0
+        self.run_left = self.run_size
         self.python = True
 
     def _python_frames(self) -> None:
         framer = self.framer
+        if self.run_left:
+            framer.pause_at(None)
+            run = self.buf[self.pos : self.pos + self.run_left]
+            self.pos += len(run)
+            self.write_items(self.dissector.feed(Chunk(run)))
+            self.run_left -= len(run)
+            if self.run_left:
+                return  # the run goes on with the next chunk
         while True:
             if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
                 offset, rest, expect = framer.hand_back()
                 self.buf = rest + self.buf[self.pos :]
                 self.base, self.pos = offset, 0
-                self.engine.count = self.pairer.count
+                self.engine.count = self.stretch_start = self.pairer.count
                 self.engine.expect = expect
                 self.python = False
                 return

@@ -51,8 +51,8 @@ class Collected:
     def items(self, items: list) -> None:
         self.lines.extend(summary_line(item) for item in items)
 
-    def text(self, text: str) -> None:
-        lines = text[:-1].split("\n")
+    def text(self, encoded: bytes) -> None:
+        lines = encoded.decode()[:-1].split("\n")
         self.lines.extend(lines)
         self.engine_lines += len(lines)
 
@@ -272,3 +272,21 @@ def test_cli_hex_frames(monkeypatch: pytest.MonkeyPatch) -> None:
     fast = cli(argv, monkeypatch, pure=False)
     assert fast == cli(argv, monkeypatch, pure=True)
     assert "CHCF=IO (I/O profile)" in fast
+
+
+def test_process_output_through_the_binary_stream(tmp_path: Path) -> None:
+    """vw3-decode writes the engine's UTF-8 lines to stdout's buffer: the bytes equal the Python stages'."""
+    import os
+    import subprocess
+
+    capture = tmp_path / "story.bin"
+    capture.write_bytes(STORY + b"".join(raw for raw, _time in generate_session(300, seed=3)))
+    outputs = []
+    for pure in ("", "1"):
+        env = {**os.environ, "VW3_PURE_PYTHON": pure, "PYTHONIOENCODING": "utf-8"}
+        result = subprocess.run(
+            [sys.executable, "-m", "dissector", str(capture)], capture_output=True, env=env, cwd=ROOT, check=True
+        )
+        outputs.append(result.stdout)
+    assert outputs[0] == outputs[1]
+    assert "\u2026 (+".encode() in outputs[0]

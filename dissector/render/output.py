@@ -13,7 +13,6 @@ from .detail import detail_tree, render_plain, render_rich
 from .hexdump import hexdump
 from .jsonout import item_to_dict
 from .summary import summary_line, summary_text
-from .theme import THEME
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -37,6 +36,8 @@ class Output:
         self.console: Console | None = None
         if use_rich and not options.json:
             from rich.console import Console as RichConsole  # only a terminal needs rich
+
+            from .theme import THEME
 
             self.console = RichConsole(
                 file=stream,
@@ -92,15 +93,21 @@ class Output:
 
     @property
     def plain_summary(self) -> bool:
-        """One plain summary line per item and nothing else (what write_text may add to)."""
+        """One plain summary line per item and nothing else (what write_encoded may add to)."""
         options = self.options
         return self.console is None and not (options.detail or options.hexdump or options.json)
 
-    def write_text(self, text: str) -> None:
-        """Summary lines made elsewhere (the compiled path), each ending in a newline."""
-        self._buffer.append(text[:-1])
-        if len(self._buffer) > BATCH or len(text) > 1 << 16:
-            self.flush()
+    def write_encoded(self, lines: bytes) -> None:
+        """Summary lines made elsewhere (the compiled path), UTF-8, each ending in a newline."""
+        binary = getattr(self.stream, "buffer", None)
+        encoding = (getattr(self.stream, "encoding", None) or "").lower().replace("-", "")
+        if binary is None or encoding != "utf8":
+            self._buffer.append(lines.decode()[:-1])
+            if len(self._buffer) > BATCH:
+                self.flush()
+            return
+        self.flush()  # what the text layer holds goes first
+        binary.write(lines)
 
     def _write_rich(self, item: Item) -> None:
         console = self.console

@@ -1,10 +1,13 @@
 """One line per item, as tshark prints packets: number, time, slave, kind, info, CRC status."""
 from __future__ import annotations
 
-from rich.text import Text
+from typing import TYPE_CHECKING
 
 from ..model import Frame, Item, Kind, Noise
 from .describe import info_text
+
+if TYPE_CHECKING:
+    from rich.text import Text
 
 NOISE_PREVIEW = 16
 
@@ -82,6 +85,7 @@ _KIND_STYLE = {
 
 def summary_text(item: Item, base: float | None = None) -> Text:
     """The same line as summary_line, styled for a terminal."""
+    from rich.text import Text  # only a terminal needs rich: piped output starts faster without it
     text = Text(no_wrap=True, overflow="ellipsis")
     text.append(f"{item.number:>6} ", "vw3.number")
     text.append(f"{time_text(item, base):>12} ", "vw3.time")
