@@ -9,7 +9,8 @@ mbrtu dissector), then times, best of --repeat:
 - vw3-decode --json to a file;
 - tshark's one-line summary, and tshark -T json, with CRC verification on.
 The rounds interleave the commands (best of --repeat rounds each).
-With --memory, peak RSS of vw3-decode on the session and on a tenfold session.
+With --memory, peak RSS of vw3-decode on the session and on a tenfold session; with --gigabyte, also on
+the session repeated to 1 GB (a few minutes).
 Figures are frames per second and ratios against tshark from this one run.
 """
 from __future__ import annotations
@@ -63,6 +64,7 @@ def main() -> int:
     parser.add_argument("--frames", type=int, default=200_000)
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--memory", action="store_true", help="also measure peak RSS at 1x and 10x")
+    parser.add_argument("--gigabyte", action="store_true", help="with --memory: also peak RSS on 1 GB of input")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
     args = parser.parse_args()
     tshark = shutil.which("tshark")
@@ -106,9 +108,22 @@ def main() -> int:
                 sink.write(raw.read_bytes())
         small_mb = peak_rss_mb(VW3 + [str(raw)])
         big_mb = peak_rss_mb(VW3 + [str(big)])
+        json_mb = peak_rss_mb(VW3 + [str(big), "--json"])
         print(f"peak RSS: {small_mb:.1f} MB at {raw.stat().st_size / 1e6:.1f} MB input, "
-              f"{big_mb:.1f} MB at {big.stat().st_size / 1e6:.1f} MB input (x{big_mb / small_mb:.2f})")
+              f"{big_mb:.1f} MB at {big.stat().st_size / 1e6:.1f} MB input (x{big_mb / small_mb:.2f}); "
+              f"--json {json_mb:.1f} MB at {big.stat().st_size / 1e6:.1f} MB")
         big.unlink()
+        if args.gigabyte:
+            huge = args.out / "session1g.bin"
+            data = raw.read_bytes()
+            with huge.open("wb") as sink:
+                for _ in range(-(-10**9 // len(data))):
+                    sink.write(data)
+            start = time.perf_counter()
+            huge_mb = peak_rss_mb(VW3 + [str(huge)])
+            seconds = time.perf_counter() - start
+            print(f"peak RSS: {huge_mb:.1f} MB at {huge.stat().st_size / 1e9:.2f} GB input ({seconds:.0f} s)")
+            huge.unlink()
     return 0
 
 

@@ -11,6 +11,9 @@
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
  * summary renderer themselves), cached here by (slave, address, value).
+ *
+ * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
+ * (CRC, words, output) into the transaction loop without link-time optimisation.
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
