@@ -3,14 +3,14 @@
  * It does, for the transactions that make up nearly all of a polling bus (FC3, FC4, FC6, FC16, FC23
  * requests and their normal responses, unanswered requests), exactly what the Python stages do:
  * the framer's fast path (framer.py, _run), pairing, the decoder's spec checks, the annotator's
- * naming and parameter tracking, and the summary line (render/summary.py). Anything else (noise, a
- * damaged frame, an exception, a warning or a note to give, a slave whose addresses are shown in PLC
- * style) it hands back, before touching any state, at the start of the transaction: the Python
- * stages then take that part of the stream, and give it back at their next idle point
+ * naming (PLC-style addresses included) and parameter tracking, and the summary line
+ * (render/summary.py). Anything else (noise, a damaged frame, an exception, a warning or a note to
+ * give) it hands back, before touching any state, at the start of the transaction: the Python stages
+ * then take that part of the stream, and give it back at their next idle point
  * (dissector/fastsummary.py). tests/test_fastsummary.py holds the output of both paths equal.
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
- * summary renderer themselves), cached here by (slave, address, value).
+ * summary renderer themselves), cached here by (slave, function, address, value).
  *
  * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
  * (CRC, words, output) into the transaction loop without link-time optimisation.
@@ -86,6 +86,20 @@ static void out_str(Out *o, PyObject *text) {
     out_put(o, s, (size_t)n);
 }
 
+/* profile_annotator._plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
+static void out_label(Out *o, long long base, unsigned address) {
+    if (base < 0) {
+        out_uint(o, address, 0);
+        return;
+    }
+    long long scale = 1;
+    while (scale * 10 <= base) scale *= 10;
+    long long top = (base / scale + 1) * scale - 1;
+    long long number = base + address;
+    if (number > top) number = base * 10 - 9 + address;
+    out_uint(o, (unsigned long long)number, 0);
+}
+
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
 #define HANDLED 5
 static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
@@ -113,6 +127,7 @@ typedef struct {
     uint8_t *mapped;          /* addresses the annotator names */
     uint8_t *dependent;       /* addresses with a bits_depend rule */
     uint8_t *sources;         /* the addresses those rules depend on */
+    long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
     PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
     long protected_value;     /* -1: none */
 } Slave;
@@ -162,9 +177,9 @@ static int load_slave(Engine *e, int address) {
     Slave *s = &e->slaves[address];
     PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
     if (info == NULL) return -1;
-    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 7) {
+    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) {
         Py_DECREF(info);
-        PyErr_SetString(PyExc_TypeError, "slave_info must return a 7-tuple");
+        PyErr_SetString(PyExc_TypeError, "slave_info must return an 8-tuple");
         return -1;
     }
     s->info = info;
@@ -208,6 +223,21 @@ static int load_slave(Engine *e, int address) {
     s->seen = seen == Py_None ? NULL : seen;
     s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
     if (PyErr_Occurred()) return -1;
+    PyObject *bases = PyTuple_GET_ITEM(info, 7);
+    for (int k = 0; k < HANDLED; k++) {
+        s->base[k] = -1;
+        if (bases == Py_None) continue;
+        PyObject *code = PyLong_FromLong(handled_codes[k]);
+        PyObject *base = code ? PyDict_GetItemWithError(bases, code) : NULL;
+        Py_XDECREF(code);
+        if (base == NULL) {
+            if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "slave_info: no PLC base for a function");
+            return -1;
+        }
+        s->base[k] = PyLong_AsLongLong(base);
+        if (PyErr_Occurred()) return -1;
+        if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
+    }
     return 0;
 }
 
@@ -343,15 +373,18 @@ static int remember(Engine *e, Slave *s, const Words *w, unsigned long long numb
 }
 
 /* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
-static int piece(Engine *e, Slave *s, int slave, unsigned address, unsigned value, int *named) {
+static int piece(Engine *e, Slave *s, int slave, int function, unsigned address, unsigned value, int *named) {
+    int k = handled_index(function);
     if (!bit(s->mapped, address)) {
         *named = 0;
-        out_uint(&e->out, address, 0);
+        out_label(&e->out, s->base[k], address);
         out_put(&e->out, "=", 1);
         out_uint(&e->out, value, 0);
         return 0;
     }
-    PyObject *key = PyLong_FromUnsignedLongLong((unsigned long long)slave << 32 | address << 16 | value);
+    /* The function matters only for a PLC-style label; it is part of the key all the same. */
+    PyObject *key = PyLong_FromUnsignedLongLong((unsigned long long)k << 40 | (unsigned long long)slave << 32 |
+                                                address << 16 | value);
     if (key == NULL) return -1;
     PyObject *entry = PyDict_GetItemWithError(e->pieces, key);
     if (entry != NULL) {
@@ -360,7 +393,7 @@ static int piece(Engine *e, Slave *s, int slave, unsigned address, unsigned valu
         Py_DECREF(key);
         return -1;
     } else {
-        entry = PyObject_CallFunction(e->piece, "iII", slave, address, value);
+        entry = PyObject_CallFunction(e->piece, "iiII", slave, function, address, value);
         if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
             !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
             Py_DECREF(key);
@@ -384,12 +417,12 @@ static int piece(Engine *e, Slave *s, int slave, unsigned address, unsigned valu
 }
 
 /* describe.values_text */
-static int values_text(Engine *e, Slave *s, int slave, const Words *w) {
+static int values_text(Engine *e, Slave *s, int slave, int function, const Words *w) {
     int named;
     unsigned shown = w->count < MAX_VALUES ? w->count : MAX_VALUES;
     for (unsigned k = 0; k < shown; k++) {
         if (k) out_put(&e->out, " ", 1);
-        if (piece(e, s, slave, words_address(w, k), words_value(w, k), &named) < 0) return -1;
+        if (piece(e, s, slave, function, words_address(w, k), words_value(w, k), &named) < 0) return -1;
     }
     if (w->count > MAX_VALUES) {
         out_cstr(&e->out, " \xe2\x80\xa6 (+");
@@ -399,12 +432,12 @@ static int values_text(Engine *e, Slave *s, int slave, const Words *w) {
     return 0;
 }
 
-/* describe.span_text without labels: `8400..8402 (3)` or `9001` */
-static void span_text(Out *o, unsigned start, unsigned quantity) {
-    out_uint(o, start, 0);
+/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0) */
+static void span_text(Out *o, long long base, unsigned start, unsigned quantity) {
+    out_label(o, base, start);
     if (quantity == 1) return;
     out_put(o, "..", 2);
-    out_uint(o, (start + quantity - 1) & 0xFFFF, 0);
+    out_label(o, base, (start + quantity - 1) & 0xFFFF);
     out_put(o, " (", 2);
     out_uint(o, quantity, 0);
     out_put(o, ")", 1);
@@ -487,11 +520,11 @@ static int info_end_is_plain(const Out *o) {
 
 static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, unsigned value) {
     /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
-    out_uint(&e->out, address, 0);
+    out_label(&e->out, s->base[handled_index(6)], address);
     size_t mark = e->out.len;
     int named;
     out_put(&e->out, " ", 1);
-    if (piece(e, s, slave, address, value, &named) < 0) return -1;
+    if (piece(e, s, slave, 6, address, value, &named) < 0) return -1;
     if (!named) {
         e->out.len = mark;
         out_put(&e->out, " = ", 3);
@@ -503,22 +536,23 @@ static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, u
 static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
                         int unanswered) {
     int slave = f[0], function = f[1];
+    long long base = s->base[handled_index(function)];
     line_head(&e->out, number, slave, " request   ");
     out_str(&e->out, s->name[handled_index(function)]);
     out_put(&e->out, " ", 1);
     switch (function) {
     case 3: case 4:
-        span_text(&e->out, r->start, r->quantity);
+        span_text(&e->out, base, r->start, r->quantity);
         break;
     case 6:
         if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
         break;
     case 16:
-        span_text(&e->out, r->start, r->quantity);
+        span_text(&e->out, base, r->start, r->quantity);
         out_put(&e->out, ": ", 2);
-        if (values_text(e, s, slave, &r->writes) < 0) return -1;
+        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
-    case 23:
+    case 23: /* describe._read_write: the read part as numbers, even PLC style */
         out_cstr(&e->out, "read ");
         out_uint(&e->out, r->start, 0);
         out_put(&e->out, "..", 2);
@@ -526,7 +560,7 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         out_put(&e->out, " (", 2);
         out_uint(&e->out, r->quantity, 0);
         out_cstr(&e->out, "), write ");
-        if (values_text(e, s, slave, &r->writes) < 0) return -1;
+        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
     }
     if (e->out.failed || !info_end_is_plain(&e->out)) return 0;
@@ -561,20 +595,21 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
 static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
                          unsigned long long number, unsigned long long request_number) {
     int slave = f[0], function = f[1];
+    long long base = s->base[handled_index(function)];
     line_head(&e->out, number, slave, " response  ");
     out_str(&e->out, s->name[handled_index(function)]);
     out_put(&e->out, " ", 1);
     switch (function) {
     case 3: case 4: case 23:
-        span_text(&e->out, r->start, r->quantity);
+        span_text(&e->out, base, r->start, r->quantity);
         out_put(&e->out, ": ", 2);
-        if (values_text(e, s, slave, reads) < 0) return -1;
+        if (values_text(e, s, slave, function, reads) < 0) return -1;
         break;
     case 6:
         if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
         break;
     case 16:
-        span_text(&e->out, word(f + 2), word(f + 4));
+        span_text(&e->out, base, word(f + 2), word(f + 4));
         out_cstr(&e->out, " written");
         break;
     }

@@ -5,7 +5,7 @@ framing, pairing, decoding, annotation and the summary text each cost a few, and
 left. What tshark does in 4 us a frame could only be matched by doing all of it in compiled code for
 the transactions that make up a polling bus, so dissector/_summary.c does exactly that, and hands the
 stream over to the Python stages, untouched, for everything else (noise, damage, exceptions, anything
-with a warning or a note, PLC-style addresses, other function codes). The Python stages stay the
+with a warning or a note, other function codes). The Python stages stay the
 reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for
 every text it shows (register readings, function names) and keeps the annotator's parameter memory
 up to date. tests/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
@@ -58,22 +58,19 @@ def make_engine(annotator: Any | None) -> Any:
     plain_functions = {function: (_function_name(function, None), ()) for function in HANDLED}
 
     def slave_info(slave: int) -> tuple[object, ...]:
-        if annotator is None or not hasattr(annotator, "summary_facts"):
-            if annotator is not None:  # an annotator the compiled path knows nothing of
-                return (False, {}, frozenset(), {}, frozenset(), None, -1)
-            return (True, plain_functions, frozenset(), {}, frozenset(), None, -1)
-        facts = annotator.summary_facts(slave, HANDLED)
-        if facts is None:
-            return (False, {}, frozenset(), {}, frozenset(), None, -1)
-        checks, mapped, depend, sources, seen, protected = facts
+        if annotator is None:
+            return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
+        if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
+            return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
+        checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
             function: (_function_name(function, special), check)
             for function, (special, check) in checks.items()
         }
-        return (True, functions, mapped, depend, sources, seen, protected)
+        return (True, functions, mapped, depend, sources, seen, protected, bases)
 
-    def piece(slave: int, address: int, value: int) -> tuple[str, bool]:
-        register = annotator.plain_register(slave, address, value)
+    def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
+        register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
     return _summary.Engine(slave_info, piece, _limits())

@@ -180,26 +180,28 @@ class Annotator:
         return _plc_label(device.plc.get(function, device.plc_default), address)
 
     # -- for the compiled summary path (dissector/fastsummary.py) -------------------------------------------
-    def plain_register(self, slave: int, address: int, value: int) -> Register:
+    def plain_register(self, slave: int, function: int, address: int, value: int) -> Register:
         """A register named and read as _annotate does when no note applies (no bits_depend switch, no
-        16#8000 status): what a summary shows of it depends on (slave, address, value) alone."""
+        16#8000 status): what a summary shows of it depends on (slave, function, address, value) alone."""
         register = Register(address, value)
-        row = self.device(slave).rows.get(address)
+        device = self.device(slave)
+        if device.plc is not None:
+            register.label = _plc_label(device.plc.get(function, device.plc_default), address)
+        row = device.rows.get(address)
         if row is not None:
             _name(register, row, row)
         return register
 
-    def summary_facts(self, slave: int, functions: tuple[int, ...]) -> tuple[object, ...] | None:
-        """What the compiled path must know of a slave to give the annotator's answers itself, or None
-        when it must leave this slave to the Python stages (addresses shown PLC style).
-
+    def summary_facts(self, slave: int, functions: tuple[int, ...]) -> tuple[object, ...]:
+        """What the compiled path must know of a slave to give the annotator's answers itself:
         (names and request checks per function, mapped addresses, bits_depend rules, their sources,
-        the parameter memory, the protected value or -1). A check is () for none, the device's limits,
-        or None when every request must go to _check_request.
+        the parameter memory, the protected value or -1, the PLC base per function or None). A check
+        is () for none, the device's limits, or None when every request must go to _check_request.
         """
         device = self.device(slave)
+        bases = None
         if device.plc is not None:
-            return None
+            bases = {function: device.plc.get(function, device.plc_default) for function in functions}
         checks: dict[int, tuple[str | None, tuple[int, ...] | None]] = {}
         for function in functions:
             if function in device.unchecked:
@@ -216,6 +218,7 @@ class Annotator:
             frozenset(rule.on for rule in device.depend.values()),
             device.seen if device.track else None,
             -1 if protected is None else protected,
+            bases,
         )
 
     # -- per frame ----------------------------------------------------------------------------------------
