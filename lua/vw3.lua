@@ -2637,16 +2637,34 @@ local function frame_range(tvb, f, at, size)
   return tvb:range(offset, length)
 end
 
-local function add_register(tree, tvb, f, reg, range)
-  local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
+-- Texts computed once per register and frame (on the first dissection that shows them) and kept: the
+-- decoding never changes them afterwards, and Wireshark dissects a packet again each time it is shown.
+local function register_texts(reg)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
-  local text = format("Register %s", label)
-  if reg.code then text = text .. " " .. reg.code end
-  text = text .. format(" = %d", reg.value)
-  if reg.text then text = text .. ": " .. reg.text end
-  if reg.status then text = text .. " [" .. reg.status .. "]" end
+  local parts = { "Register ", label }
+  if reg.code then parts[#parts + 1] = " " .. reg.code end
+  parts[#parts + 1] = format(" = %d", reg.value)
+  if reg.text then parts[#parts + 1] = ": " .. reg.text end
+  if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
+  reg.title = concat(parts)
+  if reg.status and reg.status ~= "ok" then
+    reg.expert_text = format("Register %s%s: %s", label, reg.code and (" " .. reg.code) or "", reg.text or reg.status)
+  end
+  if reg.scaled ~= nil then reg.scaled_text = tostring(reg.scaled) end
+end
+
+-- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
+-- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
+-- column without a tree.
+local function add_register(tree, tvb, f, reg, range, full)
+  if reg.title == nil then register_texts(reg) end
+  if full == false then
+    if reg.expert_text then add_text(tree, ex.protected, reg.expert_text) end
+    return
+  end
+  local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
   local sub = tree:add(pf.reg, r)
-  sub:set_text(text)
+  sub:set_text(reg.title)
   if reg.address ~= nil then
     local item = sub:add(pf.reg_address, r, reg.address)
     if r ~= nil then item:set_generated() end
@@ -2656,18 +2674,18 @@ local function add_register(tree, tvb, f, reg, range)
   if reg.code then sub:add(pf.reg_code, r, reg.code):set_generated() end
   if reg.name then sub:add(pf.reg_name, r, reg.name):set_generated() end
   if reg.unit then sub:add(pf.reg_unit, r, reg.unit):set_generated() end
-  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, tostring(reg.scaled)):set_generated() end
+  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled_text):set_generated() end
   if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
   if reg.source then sub:add(pf.reg_source, r, reg.source):set_generated() end
   if reg.status then
     sub:add(pf.reg_status, r, reg.status):set_generated()
-    if reg.status ~= "ok" then
-      add_text(sub, ex.protected, format("Register %s%s: %s", label, reg.code and (" " .. reg.code) or "", reg.text or reg.status))
-    end
+    if reg.expert_text then add_text(sub, ex.protected, reg.expert_text) end
   end
 end
 
 local function summary(f)
+  local text = f.summary_text
+  if text ~= nil then return text end
   local parts = { format("%d", f.slave), f.function_text or function_name(f.fn), f.kind }
   if f.kind == EXCEPTION then parts[#parts + 1] = f.exception_meaning or exception_name(f.exception_code) end
   if f.span_label ~= nil then
@@ -2678,92 +2696,112 @@ local function summary(f)
     parts[#parts + 1] = format("%d", f.start)
   end
   if not (f.crc == f.crc_expected) then parts[#parts + 1] = "BAD CRC" end
-  return concat(parts, " ")
+  text = concat(parts, " ")
+  f.summary_text = text
+  return text
 end
 
-local function show_frame(f, tvb, tree, pinfo)
-  local whole = tvb:range(f.offset, f.length)
-  local t = tree:add(proto, whole)
-  t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
-  t:add(pf.item, whole, f.number):set_generated()
-  t:add(pf.kind, whole, f.kind):set_generated()
-  local base = f.data_at - 2 -- the slave byte in the frame's byte table
-  t:add(pf.mode, whole, f.mode):set_generated()
-  t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
-  t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
-  t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
-  local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
+local function crc_text(f)
+  if f.ascii then return format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected) end
+  return format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected)
+end
+
+local UNANSWERED_NOTE = "the capture ends before any response"
+local NO_REQUEST_NOTE = "response without a matching request in the capture"
+
+local function show_frame(f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
-  t:add(pf.crc, crc_range, f.crc)
-  t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
-  t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
-  if not crc_ok then
-    if f.ascii then
-      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
-    else
-      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
-    end
+  local t, whole = tree, nil
+  if full then
+    whole = tvb:range(f.offset, f.length)
+    t = tree:add(proto, whole)
+    if f.title == nil then f.title = format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)) end
+    t:set_text(f.title)
+    t:add(pf.item, whole, f.number):set_generated()
+    t:add(pf.kind, whole, f.kind):set_generated()
+    local base = f.data_at - 2 -- the slave byte in the frame's byte table
+    t:add(pf.mode, whole, f.mode):set_generated()
+    t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
+    t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+    t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
+    local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
+    t:add(pf.crc, crc_range, f.crc)
+    t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
+    t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
   end
-  if f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
+  if not crc_ok then add_text(t, ex.crc_bad, crc_text(f)) end
+  if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code)
+    if full then t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code) end
     add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
-    t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
-    if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
-  end
-  local data_range = frame_range(tvb, f, f.data_at, 2)
-  if f.start ~= nil then
-    local item = t:add(pf.start, data_range, f.start)
-    if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
-  end
-  if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
-  if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
-  if f.subfunction ~= nil then
-    t:add(pf.subfunction, data_range, f.subfunction)
-    local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
-    if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
-  end
-  if f.registers then
-    for _, reg in ipairs(f.registers) do add_register(t, tvb, f, reg) end
-  end
-  if f.bits then
-    for _, bit_ in ipairs(f.bits) do
-      local r = frame_range(tvb, f, bit_.offset, 1)
-      local sub = t:add(pf.bit, r)
-      sub:set_text(format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value))
-      if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
-      sub:add(pf.bit_value, r, bit_.value):set_generated()
+    if full then
+      t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
+      if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
     end
   end
-  if f.objects then
-    for _, object in ipairs(f.objects) do
-      local r = frame_range(tvb, f, object.offset, object.length)
-      local sub = t:add(pf.object, r)
-      sub:set_text(format("%s: %s", object.name, object.value))
-      sub:add(pf.object_id, r, object.id)
-      sub:add(pf.object_name, r, object.name):set_generated()
-      sub:add(pf.object_value, r, object.value)
-      if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
+  if full then
+    local data_range = frame_range(tvb, f, f.data_at, 2)
+    if f.start ~= nil then
+      local item = t:add(pf.start, data_range, f.start)
+      if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
+    end
+    if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
+    if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.subfunction ~= nil then
+      t:add(pf.subfunction, data_range, f.subfunction)
+      local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
+      if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
     end
   end
-  if f.request ~= nil then
-    t:add(pf.request_frame, whole, f.request.record):set_generated()
-    if f.time ~= nil and f.request.time ~= nil then
-      local delta = f.time - f.request.time
-      local seconds = floor(delta)
-      t:add(pf.response_time, whole, NSTime.new(seconds, floor((delta - seconds) * 1e9 + 0.5))):set_generated()
-    end
+  local registers = f.registers
+  if registers then
+    for index = 1, #registers do add_register(t, tvb, f, registers[index], nil, full) end
   end
-  if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
+  if full then
+    if f.bits then
+      for _, bit_ in ipairs(f.bits) do
+        local r = frame_range(tvb, f, bit_.offset, 1)
+        local sub = t:add(pf.bit, r)
+        sub:set_text(format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value))
+        if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
+        sub:add(pf.bit_value, r, bit_.value):set_generated()
+      end
+    end
+    if f.objects then
+      for _, object in ipairs(f.objects) do
+        local r = frame_range(tvb, f, object.offset, object.length)
+        local sub = t:add(pf.object, r)
+        sub:set_text(format("%s: %s", object.name, object.value))
+        sub:add(pf.object_id, r, object.id)
+        sub:add(pf.object_name, r, object.name):set_generated()
+        sub:add(pf.object_value, r, object.value)
+        if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
+      end
+    end
+    if f.request ~= nil then
+      t:add(pf.request_frame, whole, f.request.record):set_generated()
+      if f.time ~= nil and f.request.time ~= nil then
+        local delta = f.time - f.request.time
+        local seconds = floor(delta)
+        t:add(pf.response_time, whole, NSTime.new(seconds, floor((delta - seconds) * 1e9 + 0.5))):set_generated()
+      end
+    end
+    if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
+  end
+  -- Known only once the whole capture has been read (second pass).
+  local ends_unanswered = f.kind == REQUEST and pinfo.visited and state.pending == f
   if f.kind == REQUEST then
-    local unanswered = f.unanswered or (pinfo.visited and state.pending == f)
-    t:add(pf.unanswered, whole, unanswered and true or false):set_generated()
+    local unanswered = f.unanswered or ends_unanswered
+    if full then t:add(pf.unanswered, whole, unanswered and true or false):set_generated() end
     if unanswered then add_text(t, ex.unanswered, "Request not answered") end
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
-  for _, text in ipairs(f.warnings) do
-    local item = t:add(pf.warning, whole, text):set_generated()
+  local warnings = f.warnings
+  for index = 1, #warnings do
+    local text = warnings[index]
+    local item = t
+    if full then item = t:add(pf.warning, whole, text):set_generated() end
     if f.malformed and text:sub(1, 10) == "malformed " then
       add_text(item, ex.malformed, text)
     else
@@ -2771,15 +2809,13 @@ local function show_frame(f, tvb, tree, pinfo)
     end
   end
   local notes = f.notes
-  if f.kind == REQUEST and pinfo.visited and state.pending == f then
-    -- Known only once the whole capture has been read (second pass).
-    notes = {}
-    for _, text in ipairs(f.notes) do notes[#notes + 1] = text end
-    notes[#notes + 1] = "the capture ends before any response"
-  end
-  for _, text in ipairs(notes) do
-    local item = t:add(pf.note, whole, text):set_generated()
-    if f.no_request and text == "response without a matching request in the capture" then
+  local count = #notes
+  for index = 1, count + (ends_unanswered and 1 or 0) do
+    local text = UNANSWERED_NOTE
+    if index <= count then text = notes[index] end
+    local item = t
+    if full then item = t:add(pf.note, whole, text):set_generated() end
+    if f.no_request and text == NO_REQUEST_NOTE then
       add_text(item, ex.no_request, text)
     else
       add_text(item, ex.note, text)
@@ -2787,15 +2823,23 @@ local function show_frame(f, tvb, tree, pinfo)
   end
 end
 
-local function show_noise(item, tvb, tree)
+local function show_noise(item, tvb, tree, full)
+  if item.title == nil then
+    item.title = format("VW3 noise, %d bytes: %s", item.length, item.reason)
+    item.expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
+  end
+  if not full then
+    add_text(tree, ex.noise, item.expert_text)
+    return
+  end
   local r = tvb:range(item.offset, item.length)
   local t = tree:add(proto, r)
-  t:set_text(format("VW3 noise, %d bytes: %s", item.length, item.reason))
+  t:set_text(item.title)
   t:add(pf.item, r, item.number):set_generated()
   t:add(pf.kind, r, NOISE):set_generated()
   t:add(pf.noise_reason, r, item.reason):set_generated()
   t:add(pf.data, r)
-  add_text(t, ex.noise, format("%d bytes outside any frame: %s", item.length, item.reason))
+  add_text(t, ex.noise, item.expert_text)
 end
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
@@ -2809,15 +2853,28 @@ local function record_time(pinfo)
   return time
 end
 
+-- Is `tree` a real protocol tree? Wireshark passes an empty one (no proto_tree behind it) when the pass
+-- neither shows details nor filters on fields (tshark's first pass, a summary without filters): then
+-- its `text` is nil, where a real tree's root item is Wireshark's own "Wireshark Lua fake item". The
+-- test stub's tree is a Lua table; a Wireshark without TreeItem.text counts as real.
+local function tree_text(tree) return tree.text end
+local function has_tree(tree)
+  if type(tree) ~= "userdata" then return true end
+  local ok, text = pcall(tree_text, tree)
+  return not ok or text ~= nil
+end
+
+local function dissect_now(tvb, pinfo, n)
+  return dissect_record(state, tvb:raw(0, n), record_time(pinfo), pinfo.number)
+end
+
 function proto.dissector(tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
   local record = state.records[pinfo.number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    local ok, result = pcall(function()
-      return dissect_record(state, tvb:raw(0, n), record_time(pinfo), pinfo.number)
-    end)
+    local ok, result = pcall(dissect_now, tvb, pinfo, n)
     if ok then
       record = result
     else
@@ -2827,17 +2884,22 @@ function proto.dissector(tvb, pinfo, tree)
     state.records[pinfo.number] = record
   end
   pinfo.cols.protocol = "VW3"
+  local full = has_tree(tree)
   if record.error then
-    add_text(tree:add(proto, tvb:range(0, n)), ex.internal, "Lua Error in vw3.lua: " .. record.error)
+    add_text(full and tree:add(proto, tvb:range(0, n)) or tree, ex.internal, "Lua Error in vw3.lua: " .. record.error)
   end
-  local summaries = {}
-  for _, item in ipairs(record.items) do
+  local items = record.items
+  local info = record.info
+  local summaries = nil
+  if info == nil then summaries = {} end
+  for index = 1, #items do
+    local item = items[index]
     if item.kind == NOISE then
-      show_noise(item, tvb, tree)
-      summaries[#summaries + 1] = format("noise (%d bytes)", item.length)
+      show_noise(item, tvb, tree, full)
+      if summaries then summaries[index] = format("noise (%d bytes)", item.length) end
     else
-      show_frame(item, tvb, tree, pinfo)
-      summaries[#summaries + 1] = summary(item)
+      show_frame(item, tvb, tree, pinfo, full)
+      if summaries then summaries[index] = summary(item) end
     end
   end
   if record.frames > 1 then
@@ -2847,7 +2909,11 @@ function proto.dissector(tvb, pinfo, tree)
   if record.partial then
     add_text(tree, ex.partial, "The record ends inside a frame; its bytes are shown as noise")
   end
-  pinfo.cols.info = concat(summaries, "; ")
+  if info == nil then
+    info = concat(summaries, "; ")
+    record.info = info
+  end
+  pinfo.cols.info = info
   return n
 end
 
