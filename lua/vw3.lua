@@ -859,7 +859,10 @@ else
   bxor = load("return function(a, b) return a ~ b end")()
 end
 
-local CRC_TABLE = {}
+-- The CRC runs on table lookups only, one byte at a time on its two bytes (lo, hi): a call of `bxor` per
+-- byte (a C function on Lua 5.2) cost more than all the rest of the framing. XOR8[a * 256 + b] = a XOR b;
+-- CRC_LO and CRC_HI are the two bytes of the CRC-16/MODBUS table.
+local XOR8, CRC_LO, CRC_HI = {}, {}, {}
 for byte = 0, 255 do
   local crc = byte
   for _ = 1, 8 do
@@ -869,20 +872,24 @@ for byte = 0, 255 do
       crc = floor(crc / 2)
     end
   end
-  CRC_TABLE[byte] = crc
+  CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
+  for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
 end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table).
 local function crc16(b, from, to)
-  local crc = 0xFFFF
+  local lo, hi = 0xFF, 0xFF
   for k = from, to - 1 do
-    crc = bxor(floor(crc / 256), CRC_TABLE[bxor(crc, b[k]) % 256])
+    local index = XOR8[lo * 256 + b[k]]
+    lo = XOR8[hi * 256 + CRC_LO[index]]
+    hi = CRC_HI[index]
   end
-  return crc
+  return hi * 256 + lo
 end
 
 local function crc_step(crc, byte)
-  return bxor(floor(crc / 256), CRC_TABLE[bxor(crc, byte) % 256])
+  local index = XOR8[(crc % 256) * 256 + byte]
+  return CRC_HI[index] * 256 + XOR8[floor(crc / 256) * 256 + CRC_LO[index]]
 end
 
 local function crc_ok_at(b, i, length)
@@ -1055,23 +1062,36 @@ end
 local function match(st, b, i, n)
   local slave, code = b[i], b[i + 1]
   if slave > MAX_SLAVE then return nil end
-  local valid, damaged = {}, {}
-  for _, interpretation in ipairs(interpretations(st, slave, code)) do
+  -- The first layout that checks out is held in locals: tables only when a second one does, or none does.
+  local first_kind, first_length, valid, damaged = nil, nil, nil, nil
+  local list = interpretations(st, slave, code)
+  for index = 1, #list do
+    local interpretation = list[index]
     local kind = interpretation[1]
     local length, is_scan = interpretation[2](b, i, n)
+    local ok_length = nil
     if is_scan then
       local found = scan_match(st, b, i, n, length)
-      if found > 0 then valid[#valid + 1] = { kind, found } end
+      if found > 0 then ok_length = found end
     elseif length ~= NEED and length >= MIN_ADU and length <= MAX_ADU and i + length <= n then
       if crc_ok_at(b, i, length) then
-        valid[#valid + 1] = { kind, length }
+        ok_length = length
       else
+        damaged = damaged or {}
         damaged[#damaged + 1] = { kind, length }
       end
     end
+    if ok_length ~= nil then
+      if first_kind == nil then
+        first_kind, first_length = kind, ok_length
+      else
+        valid = valid or { { first_kind, first_length } }
+        valid[#valid + 1] = { kind, ok_length }
+      end
+    end
   end
-  if #valid == 1 then return valid[1][1], valid[1][2], true end
-  if #valid > 1 then
+  if first_kind ~= nil and valid == nil then return first_kind, first_length, true end
+  if valid ~= nil then
     -- Two layouts check out (CRC-16/MODBUS has no final XOR: a frame whose CRC high byte is 00 also
     -- checks one byte short): what follows decides.
     for _, candidate in ipairs(valid) do
@@ -1081,7 +1101,7 @@ local function match(st, b, i, n)
   end
   -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins (a record
   -- boundary counts: a capture tool cut the record there) and holds none inside.
-  for _, candidate in ipairs(damaged) do
+  for _, candidate in ipairs(damaged or NO_INTERPRETATION) do
     local length = candidate[2]
     if valid_frame_at(st, b, i + length, n) and not intact_inside(st, b, i, length, n) then
       return candidate[1], length, false
@@ -1129,9 +1149,11 @@ local function frame_record(st, b, n)
       flush_noise()
       carried = false
       local stop = i + length - 2
+      local crc = b[stop] + b[stop + 1] * 256
+      -- (a frame that checks out has the CRC it carries: no need to compute it again)
       items[#items + 1] = {
         kind = kind, offset = i, length = length, slave = slave, code = code, fn = code % 128,
-        crc = b[stop] + b[stop + 1] * 256, crc_expected = crc16(b, i, stop),
+        crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop),
         warnings = {}, notes = {}, mode = "rtu", b = b, data_at = i + 2, data_len = length - 4,
       }
       if kind == REQUEST and slave ~= 0 then
@@ -2026,15 +2048,23 @@ local function parse_map_choice(text, profile_names)
 end
 
 
-local function plc_label(base, address)
+local plc_label
+do
+local PLC_TOP = {} -- the highest reference of each base's digit count
+plc_label = function(base, address)
   -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
-  local digits = #format("%d", base)
-  local power = 1
-  for _ = 2, digits do power = power * 10 end
-  local top = (floor(base / power) + 1) * power - 1
+  local top = PLC_TOP[base]
+  if top == nil then
+    local digits = #format("%d", base)
+    local power = 1
+    for _ = 2, digits do power = power * 10 end
+    top = (floor(base / power) + 1) * power - 1
+    PLC_TOP[base] = top
+  end
   local number = base + address
   if number > top then number = base * 10 - 9 + address end
   return format("%d", number)
+end
 end
 
 local function address_name(row, address)
@@ -2100,7 +2130,18 @@ local function has_note(f, text)
 end
 
 -- maps.interpret: the scaled value and its display text.
-local function interpret(row, value)
+local interpret
+do
+local FIXED = setmetatable({}, { __index = function(formats, decimals)
+  local text = "%." .. decimals .. "f"
+  formats[decimals] = text
+  return text
+end })
+
+local BIT_NAMES = {}
+for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
+
+interpret = function(row, value)
   local raw_value = value
   if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
   if row.enum then
@@ -2109,9 +2150,13 @@ local function interpret(row, value)
     return nil, format("%d (not a listed value)", value)
   end
   if row.bits then
-    local names = {}
+    local names, bits, rest = {}, row.bits, value
     for bit_ = 0, 15 do
-      if floor(value / 2 ^ bit_) % 2 == 1 then names[#names + 1] = row.bits[bit_] or format("bit %d", bit_) end
+      if rest % 2 == 1 then
+        names[#names + 1] = bits[bit_] or BIT_NAMES[bit_]
+        rest = rest - 1
+      end
+      rest = rest / 2
     end
     if #names == 0 then return nil, "no bit set" end
     return nil, concat(names, ", ")
@@ -2121,11 +2166,12 @@ local function interpret(row, value)
     return nil, nil
   end
   local decimals = row.decimals or 0
-  local text = format("%." .. decimals .. "f", raw_value * row.scale)
+  local text = format(FIXED[decimals], raw_value * row.scale)
   local scaled = tonumber(text)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
   if row.unit ~= nil then return scaled, text .. " " .. row.unit end
   return scaled, text
+end
 end
 
 local function track(st, f, address, row, value, status, now)
@@ -2135,7 +2181,11 @@ local function track(st, f, address, row, value, status, now)
     if last ~= nil and last.value == nil then
       note(f, format("%s readable again: %s in frame #%d, %d now", address_name(row, address), last.how, last.frame, value))
     end
-    st.seen[key] = { value = value, frame = f.number, how = "read" }
+    if last ~= nil then
+      last.value, last.frame, last.how = value, f.number, "read"
+    else
+      st.seen[key] = { value = value, frame = f.number, how = "read" }
+    end
   elseif status == "protected" or status == "non-existent" then
     if last ~= nil and last.value ~= nil then
       local became = "non-existent or protected"
@@ -2143,14 +2193,24 @@ local function track(st, f, address, row, value, status, now)
       note(f, format("%s became %s: %s %d in frame #%d, %s", address_name(row, address), became, last.how,
         last.value, last.frame, now))
     end
-    st.seen[key] = { value = nil, frame = f.number, how = status }
+    if last ~= nil then
+      last.value, last.frame, last.how = nil, f.number, status
+    else
+      st.seen[key] = { value = nil, frame = f.number, how = status }
+    end
   end
 end
 
 local function remember_writes(st, f, registers)
   for _, reg in ipairs(registers) do
     if reg.address ~= nil then
-      st.seen[f.slave * 65536 + reg.address] = { value = reg.value, frame = f.number, how = "written" }
+      local key = f.slave * 65536 + reg.address
+      local last = st.seen[key]
+      if last ~= nil then
+        last.value, last.frame, last.how = reg.value, f.number, "written"
+      else
+        st.seen[key] = { value = reg.value, frame = f.number, how = "written" }
+      end
     end
   end
 end
@@ -2449,7 +2509,13 @@ end
 local function dissect_record(st, bytes, time, number)
   local n = #bytes
   local b = {}
-  for k = 1, n do b[k - 1] = string.byte(bytes, k) end
+  local byte = string.byte
+  local k = 1
+  while k + 7 <= n do
+    b[k - 1], b[k], b[k + 1], b[k + 2], b[k + 3], b[k + 4], b[k + 5], b[k + 6] = byte(bytes, k, k + 7)
+    k = k + 8
+  end
+  for rest = k, n do b[rest - 1] = byte(bytes, rest) end
   if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
   local items
   if st.mode == "ascii" then
@@ -2468,9 +2534,10 @@ local function dissect_record(st, bytes, time, number)
       pair(st, item)
       decode_frame(item)
       annotate(st, item, item.b)
+      item.b = nil -- kept for nothing: the display reads the tvb
     end
   end
-  local record = { items = items, frames = frames, length = n, bytes = b }
+  local record = { items = items, frames = frames, length = n }
   -- A record that ends in noise which starts like a frame was most likely cut inside that frame.
   local last = items[#items]
   if st.mode ~= "ascii" and last ~= nil and last.kind == NOISE and last.offset + last.length == n
@@ -2628,13 +2695,55 @@ end
 
 -- The tvb range of `size` bytes at `at` in the frame's byte table (ASCII: hex pairs in the record);
 -- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
-local function frame_range(tvb, f, at, size)
+local function frame_span(f, at, size)
   local offset, length = at, size
   if f.ascii then offset, length = f.offset + 1 + 2 * at, 2 * size end
   if length <= 0 or offset < f.offset or offset + length > f.offset + f.length then
-    return tvb:range(f.offset, f.length)
+    return f.offset, f.length
   end
-  return tvb:range(offset, length)
+  return offset, length
+end
+
+local function frame_range(tvb, f, at, size)
+  return tvb:range(frame_span(f, at, size))
+end
+
+-- Invisible trees. Wireshark often builds a tree that nobody sees, only to run filters, coloring rules or
+-- field extractors over it (this file's own Modbus field extractors make tshark build one on its second
+-- pass). In such a tree an item of a field that nothing refers to is not created: TreeItem:add hands back
+-- the parent item ("faked"). A frame's registers and bits repeat the same few fields, so there each field
+-- is checked once per dissection (the faked item is the frame's item: it has the frame's length), and
+-- the next registers and bits skip a field found faked, doing only what the faked item did: the text
+-- and generated flag of the frame's item, and the expert infos. `serial` counts the dissections.
+-- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
+-- made when a field needs it); .frame_length: the length of the frame's item.
+local unseen = { serial = 0, faked = {}, checked = {}, generated = false }
+
+function unseen.at(tvb, f, at, size)
+  unseen.tvb, unseen.frame_length, unseen.range = tvb, f.length, nil
+  unseen.offset, unseen.length = frame_span(f, at, size)
+end
+
+function unseen.add(parent, field, value, generated)
+  local serial = unseen.serial
+  if unseen.faked[field] == serial then
+    if generated then unseen.generated = true end
+    return parent
+  end
+  local r = unseen.range
+  if r == nil then
+    r = unseen.tvb:range(unseen.offset, unseen.length)
+    unseen.range = r
+  end
+  local item
+  if value == nil then item = parent:add(field, r) else item = parent:add(field, r, value) end
+  if generated then item:set_generated() end
+  if unseen.checked[field] ~= serial then
+    unseen.checked[field] = serial
+    local frame_length = unseen.frame_length
+    if unseen.length ~= frame_length and item.len == frame_length then unseen.faked[field] = serial end
+  end
+  return item
 end
 
 -- Texts computed once per register and frame (on the first dissection that shows them) and kept: the
@@ -2655,11 +2764,31 @@ end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
--- column without a tree.
+-- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
 local function add_register(tree, tvb, f, reg, range, full)
   if reg.title == nil then register_texts(reg) end
   if full == false then
     if reg.expert_text then add_text(tree, ex.protected, reg.expert_text) end
+    return
+  end
+  if full == "unseen" then
+    -- tree is the frame's item, in an invisible tree (see unseen.add).
+    unseen.at(tvb, f, reg.offset or f.offset, 2)
+    local sub = unseen.add(tree, pf.reg)
+    sub:set_text(reg.title)
+    if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
+    if reg.label then unseen.add(sub, pf.reg_label, reg.label, true) end
+    unseen.add(sub, pf.reg_value, reg.value, false)
+    if reg.code then unseen.add(sub, pf.reg_code, reg.code, true) end
+    if reg.name then unseen.add(sub, pf.reg_name, reg.name, true) end
+    if reg.unit then unseen.add(sub, pf.reg_unit, reg.unit, true) end
+    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled_text, true) end
+    if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
+    if reg.source then unseen.add(sub, pf.reg_source, reg.source, true) end
+    if reg.status then
+      unseen.add(sub, pf.reg_status, reg.status, true)
+      if reg.expert_text then add_text(sub, ex.protected, reg.expert_text) end
+    end
     return
   end
   local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
@@ -2701,14 +2830,6 @@ local function summary(f)
   return text
 end
 
-local function crc_text(f)
-  if f.ascii then return format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected) end
-  return format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected)
-end
-
-local UNANSWERED_NOTE = "the capture ends before any response"
-local NO_REQUEST_NOTE = "response without a matching request in the capture"
-
 local function show_frame(f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
   local t, whole = tree, nil
@@ -2729,7 +2850,13 @@ local function show_frame(f, tvb, tree, pinfo, full)
     t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
     t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
   end
-  if not crc_ok then add_text(t, ex.crc_bad, crc_text(f)) end
+  if not crc_ok then
+    if f.ascii then
+      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
+    else
+      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
+    end
+  end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
     if full then t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code) end
@@ -2755,17 +2882,37 @@ local function show_frame(f, tvb, tree, pinfo, full)
   end
   local registers = f.registers
   if registers then
-    for index = 1, #registers do add_register(t, tvb, f, registers[index], nil, full) end
+    -- (checking which fields are faked pays from the second register on)
+    local mode = full
+    if full == "unseen" and #registers < 2 then mode = true end
+    for index = 1, #registers do add_register(t, tvb, f, registers[index], nil, mode) end
   end
   if full then
-    if f.bits then
-      for _, bit_ in ipairs(f.bits) do
-        local r = frame_range(tvb, f, bit_.offset, 1)
-        local sub = t:add(pf.bit, r)
-        sub:set_text(format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value))
-        if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
-        sub:add(pf.bit_value, r, bit_.value):set_generated()
+    local bits = f.bits
+    if bits then
+      local checked = full == "unseen" and #bits > 1
+      for index = 1, #bits do
+        local bit_ = bits[index]
+        local title = format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value)
+        if checked then
+          unseen.at(tvb, f, bit_.offset, 1)
+          local sub = unseen.add(t, pf.bit)
+          sub:set_text(title)
+          if bit_.address ~= nil then unseen.add(sub, pf.bit_address, bit_.address, true) end
+          unseen.add(sub, pf.bit_value, bit_.value, true)
+        else
+          local r = frame_range(tvb, f, bit_.offset, 1)
+          local sub = t:add(pf.bit, r)
+          sub:set_text(title)
+          if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
+          sub:add(pf.bit_value, r, bit_.value):set_generated()
+        end
       end
+    end
+    if unseen.generated then
+      -- what the skipped set_generated() calls of faked items would have done
+      unseen.generated = false
+      t:set_generated()
     end
     if f.objects then
       for _, object in ipairs(f.objects) do
@@ -2811,11 +2958,11 @@ local function show_frame(f, tvb, tree, pinfo, full)
   local notes = f.notes
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = UNANSWERED_NOTE
+    local text = "the capture ends before any response"
     if index <= count then text = notes[index] end
     local item = t
     if full then item = t:add(pf.note, whole, text):set_generated() end
-    if f.no_request and text == NO_REQUEST_NOTE then
+    if f.no_request and text == "response without a matching request in the capture" then
       add_text(item, ex.no_request, text)
     else
       add_text(item, ex.note, text)
@@ -2853,15 +3000,23 @@ local function record_time(pinfo)
   return time
 end
 
--- Is `tree` a real protocol tree? Wireshark passes an empty one (no proto_tree behind it) when the pass
--- neither shows details nor filters on fields (tshark's first pass, a summary without filters): then
--- its `text` is nil, where a real tree's root item is Wireshark's own "Wireshark Lua fake item". The
--- test stub's tree is a Lua table; a Wireshark without TreeItem.text counts as real.
-local function tree_text(tree) return tree.text end
-local function has_tree(tree)
-  if type(tree) ~= "userdata" then return true end
-  local ok, text = pcall(tree_text, tree)
-  return not ok or text ~= nil
+-- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
+-- that neither shows details nor filters on fields: tshark's first pass, a summary without filters); its
+-- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
+-- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
+-- Wireshark without TreeItem.text or .visible.
+local tree_mode
+do
+  local function tree_text(tree) return tree.text end
+  local function tree_visible(tree) return tree.visible end
+  tree_mode = function(tree)
+    if type(tree) ~= "userdata" then return true end
+    local ok, text = pcall(tree_text, tree)
+    if ok and text == nil then return false end
+    local known, visible = pcall(tree_visible, tree)
+    if known and visible == false then return "unseen" end
+    return true
+  end
 end
 
 local function dissect_now(tvb, pinfo, n)
@@ -2884,7 +3039,9 @@ function proto.dissector(tvb, pinfo, tree)
     state.records[pinfo.number] = record
   end
   pinfo.cols.protocol = "VW3"
-  local full = has_tree(tree)
+  local full = tree_mode(tree)
+  unseen.serial = unseen.serial + 1
+  unseen.generated = false
   if record.error then
     add_text(full and tree:add(proto, tvb:range(0, n)) or tree, ex.internal, "Lua Error in vw3.lua: " .. record.error)
   end
