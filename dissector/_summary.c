@@ -21,6 +21,7 @@
 #include <string.h>
 
 #define MIN_ADU 4
+#define MAX_ADU 256
 #define MAX_SLAVE 247
 #define MAX_VALUES 6   /* render/describe.py MAX_VALUES */
 #define PIECE_CACHE_LIMIT 65536 /* entries of ~200 bytes: memory stays bounded */
@@ -49,14 +50,21 @@ static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
 static inline unsigned word(const uint8_t *p) { return (unsigned)p[0] << 8 | p[1]; }
 
 /* ---- output buffer ---------------------------------------------------------------------------- */
+/* Lines being written. After a failed allocation, `failed` is set with MemoryError raised; writers
+ * check it once per line. */
 typedef struct { char *data; size_t len, cap; int failed; } Out;
 
 static int out_reserve(Out *o, size_t more) {
+    if (o->failed) return -1;
     if (o->len + more <= o->cap) return 0;
     size_t cap = o->cap ? o->cap : 1 << 16;
     while (cap < o->len + more) cap *= 2;
     char *data = PyMem_Realloc(o->data, cap);
-    if (data == NULL) { o->failed = 1; return -1; }
+    if (data == NULL) {
+        o->failed = 1;
+        PyErr_NoMemory();
+        return -1;
+    }
     o->data = data;
     o->cap = cap;
     return 0;
@@ -79,11 +87,12 @@ static void out_uint(Out *o, unsigned long long v, int width) {
     while (n) o->data[o->len++] = digits[--n];
 }
 
-static void out_str(Out *o, PyObject *text) {
+static int out_str(Out *o, PyObject *text) {
     Py_ssize_t n;
     const char *s = PyUnicode_AsUTF8AndSize(text, &n);
-    if (s == NULL) { PyErr_Clear(); o->failed = 1; return; }
+    if (s == NULL) return -1;
     out_put(o, s, (size_t)n);
+    return o->failed ? -1 : 0;
 }
 
 /* profile_annotator._plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
@@ -143,6 +152,7 @@ typedef struct {
     long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
     Slave slaves[256];
     Out out;
+    int running; /* inside run(): callbacks must not re-enter */
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -173,26 +183,45 @@ static int fill_bitmap(uint8_t *bitmap, PyObject *addresses) {
     return PyErr_Occurred() ? -1 : 0;
 }
 
+static int fill_slave(Slave *s, PyObject *info);
+
 static int load_slave(Engine *e, int address) {
     Slave *s = &e->slaves[address];
     PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
     if (info == NULL) return -1;
-    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) {
-        Py_DECREF(info);
-        PyErr_SetString(PyExc_TypeError, "slave_info must return an 8-tuple");
+    slave_clear(s); /* the callback may have loaded it already */
+    s->info = info;
+    if (fill_slave(s, info) < 0) {
+        slave_clear(s);
         return -1;
     }
-    s->info = info;
     s->loaded = 1;
+    return 0;
+}
+
+static int bad_info(const char *what) {
+    PyErr_Format(PyExc_TypeError, "slave_info: %s", what);
+    return -1;
+}
+
+static int fill_slave(Slave *s, PyObject *info) {
+    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) return bad_info("not an 8-tuple");
     s->usable = PyObject_IsTrue(PyTuple_GET_ITEM(info, 0));
-    if (!s->usable) return 0;
+    if (s->usable <= 0) return s->usable;
     PyObject *functions = PyTuple_GET_ITEM(info, 1);
+    PyObject *seen = PyTuple_GET_ITEM(info, 5);
+    PyObject *bases = PyTuple_GET_ITEM(info, 7);
+    if (!PyDict_Check(functions) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 2)) ||
+        !PyDict_Check(PyTuple_GET_ITEM(info, 3)) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 4)) ||
+        (seen != Py_None && !PyDict_Check(seen)) || (bases != Py_None && !PyDict_Check(bases)))
+        return bad_info("items of the wrong type");
     for (int k = 0; k < HANDLED; k++) {
         PyObject *code = PyLong_FromLong(handled_codes[k]);
         PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
         Py_XDECREF(code);
-        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2) {
-            if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "slave_info: bad function entry");
+        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
+            !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
+            if (!PyErr_Occurred()) bad_info("bad function entry");
             return -1;
         }
         s->name[k] = PyTuple_GET_ITEM(entry, 0);
@@ -219,11 +248,9 @@ static int load_slave(Engine *e, int address) {
     if (fill_bitmap(s->mapped, PyTuple_GET_ITEM(info, 2)) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
         fill_bitmap(s->sources, PyTuple_GET_ITEM(info, 4)) < 0)
         return -1;
-    PyObject *seen = PyTuple_GET_ITEM(info, 5);
     s->seen = seen == Py_None ? NULL : seen;
     s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
     if (PyErr_Occurred()) return -1;
-    PyObject *bases = PyTuple_GET_ITEM(info, 7);
     for (int k = 0; k < HANDLED; k++) {
         s->base[k] = -1;
         if (bases == Py_None) continue;
@@ -231,7 +258,7 @@ static int load_slave(Engine *e, int address) {
         PyObject *base = code ? PyDict_GetItemWithError(bases, code) : NULL;
         Py_XDECREF(code);
         if (base == NULL) {
-            if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "slave_info: no PLC base for a function");
+            if (!PyErr_Occurred()) bad_info("no PLC base for a function");
             return -1;
         }
         s->base[k] = PyLong_AsLongLong(base);
@@ -271,7 +298,8 @@ static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int
         }
     }
     if (i + position >= n) return FRAME_NEED;
-    return extra + b[i + position];
+    int length = extra + b[i + position];
+    return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
 }
 
 static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
@@ -313,9 +341,11 @@ static int register_is_plain(Slave *s, unsigned address) {
     PyObject *rule = PyDict_GetItemWithError(s->depend, key);
     Py_DECREF(key);
     if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (!PyTuple_Check(rule) || PyTuple_GET_SIZE(rule) != 2) return bad_info("bits_depend rule not (on, values)");
     if (s->seen == NULL) return 1;
     PyObject *last = PyDict_GetItemWithError(s->seen, PyTuple_GET_ITEM(rule, 0));
     if (last == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
     int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), PyTuple_GET_ITEM(last, 0));
     return plain < 0 ? -1 : !plain;
 }
@@ -350,6 +380,7 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
             if (PyErr_Occurred()) return -1;
             continue;
         }
+        if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
         if (PyTuple_GET_ITEM(last, 0) == Py_None) return 0;
     }
     return 1;
@@ -411,9 +442,9 @@ static int piece(Engine *e, Slave *s, int slave, int function, unsigned address,
     }
     Py_DECREF(key);
     *named = PyObject_IsTrue(PyTuple_GET_ITEM(entry, 1));
-    out_str(&e->out, PyTuple_GET_ITEM(entry, 0));
+    int status = *named < 0 ? -1 : out_str(&e->out, PyTuple_GET_ITEM(entry, 0));
     Py_DECREF(entry);
-    return 0;
+    return status;
 }
 
 /* describe.values_text */
@@ -538,7 +569,7 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
     line_head(&e->out, number, slave, " request   ");
-    out_str(&e->out, s->name[handled_index(function)]);
+    if (out_str(&e->out, s->name[handled_index(function)]) < 0) return -1;
     out_put(&e->out, " ", 1);
     switch (function) {
     case 3: case 4:
@@ -563,7 +594,8 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
     }
-    if (e->out.failed || !info_end_is_plain(&e->out)) return 0;
+    if (e->out.failed) return -1;
+    if (!info_end_is_plain(&e->out)) return 0;
     if (unanswered) out_cstr(&e->out, " [no response]");
     out_cstr(&e->out, "  CRC ok\n");
     return 1;
@@ -597,7 +629,7 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
     line_head(&e->out, number, slave, " response  ");
-    out_str(&e->out, s->name[handled_index(function)]);
+    if (out_str(&e->out, s->name[handled_index(function)]) < 0) return -1;
     out_put(&e->out, " ", 1);
     switch (function) {
     case 3: case 4: case 23:
@@ -613,7 +645,8 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
         out_cstr(&e->out, " written");
         break;
     }
-    if (e->out.failed || !info_end_is_plain(&e->out)) return 0;
+    if (e->out.failed) return -1;
+    if (!info_end_is_plain(&e->out)) return 0;
     out_cstr(&e->out, " [#");
     out_uint(&e->out, request_number, 0);
     out_cstr(&e->out, "]  CRC ok\n");
@@ -638,91 +671,102 @@ static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const 
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
+enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
+
+/* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
+static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
+    FrameRef q, a;
+    int found = frame_at(e, b, *pos, n, &q);
+    if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
+    if (q.kind != KIND_REQUEST || q.slave == 0) return STEP_HANDOVER;
+    Slave *s = slave_for(e, q.slave);
+    if (s == NULL) return STEP_ERROR;
+    if (!s->usable) return STEP_HANDOVER;
+    Request r;
+    int quiet = request_is_quiet(e, s, b + q.at, &r);
+    if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
+    int saved_slave = e->expect_slave, saved_function = e->expect_function;
+    size_t mark = e->out.len;
+    e->expect_slave = q.slave;
+    e->expect_function = q.function;
+    int step, written;
+    found = frame_at(e, b, q.at + q.length, n, &a);
+    if (found == FRAME_OK && a.kind == KIND_REQUEST) {
+        /* The next frame is a request: this one was not answered (pairing.py). */
+        written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
+        if (written > 0) {
+            e->count += 1;
+            *pos = a.at;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else {
+        Words reads;
+        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, &r, &reads) : 0;
+        if (quiet > 0) {
+            written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+            if (written > 0) written = response_line(e, s, b + a.at, &r, &reads, e->count + 2, e->count + 1);
+            if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
+            if (written > 0) {
+                e->count += 2;
+                e->expect_slave = e->expect_function = -1;
+                *pos = a.at + a.length;
+                return STEP_DONE;
+            }
+            step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+        } else {
+            step = quiet < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
+        }
+    }
+    /* Not shown here: its lines and its expectation are taken back. */
+    e->out.len = mark;
+    e->out.failed = 0;
+    e->expect_slave = saved_slave;
+    e->expect_function = saved_function;
+    return step;
+}
+
 static PyObject *engine_run(Engine *e, PyObject *args) {
     Py_buffer view;
     Py_ssize_t pos;
+    if (e->slave_info == NULL) {
+        PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
+        return NULL;
+    }
+    if (e->running) { /* a callback calling back in would free what the outer call uses */
+        PyErr_SetString(PyExc_RuntimeError, "Engine.run is not re-entrant");
+        return NULL;
+    }
     if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
-    const uint8_t *b = view.buf;
-    Py_ssize_t n = view.len;
-    int status = STATUS_NEED;
-    e->out.len = 0;
-    e->out.failed = 0;
-    if (pos < 0 || pos > n) {
+    if (pos < 0 || pos > view.len) {
         PyBuffer_Release(&view);
         PyErr_SetString(PyExc_ValueError, "position outside the buffer");
         return NULL;
     }
-    for (;;) {
-        FrameRef q, a;
-        int found = frame_at(e, b, pos, n, &q);
-        if (found != FRAME_OK) { status = found == FRAME_NEED ? STATUS_NEED : STATUS_HANDOVER; break; }
-        if (q.kind != KIND_REQUEST || q.slave == 0) { status = STATUS_HANDOVER; break; }
-        Slave *s = slave_for(e, q.slave);
-        if (s == NULL) goto error;
-        Request r;
-        int quiet = s->usable ? request_is_quiet(e, s, b + q.at, &r) : 0;
-        if (quiet < 0) goto error;
-        if (!quiet) { status = STATUS_HANDOVER; break; }
-        int saved_slave = e->expect_slave, saved_function = e->expect_function;
-        e->expect_slave = q.slave;
-        e->expect_function = q.function;
-        found = frame_at(e, b, q.at + q.length, n, &a);
-        if (found == FRAME_OK && a.kind == KIND_REQUEST) {
-            /* The next frame is a request: this one was not answered (pairing.py). */
-            size_t mark = e->out.len;
-            int written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
-            if (written < 0) goto error;
-            if (!written) {
-                e->out.len = mark;
-                e->expect_slave = saved_slave;
-                e->expect_function = saved_function;
-                status = STATUS_HANDOVER;
-                break;
-            }
-            e->count += 1;
-            pos = a.at;
-            continue;
-        }
-        Words reads;
-        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, &r, &reads) : 0;
-        if (quiet <= 0) {
-            e->expect_slave = saved_slave;
-            e->expect_function = saved_function;
-            if (quiet < 0) goto error;
-            status = found == FRAME_NEED ? STATUS_NEED : STATUS_HANDOVER;
-            break;
-        }
-        size_t mark = e->out.len;
-        int written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
-        if (written > 0) written = response_line(e, s, b + a.at, &r, &reads, e->count + 2, e->count + 1);
-        if (written < 0) goto error;
-        if (!written) {
-            e->out.len = mark;
-            e->expect_slave = saved_slave;
-            e->expect_function = saved_function;
-            status = STATUS_HANDOVER;
-            break;
-        }
-        if (track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) goto error;
-        e->count += 2;
-        e->expect_slave = e->expect_function = -1;
-        pos = a.at + a.length;
-    }
+    e->running = 1;
+    e->out.len = 0;
+    e->out.failed = 0;
+    int step;
+    do {
+        step = transaction(e, view.buf, view.len, &pos);
+    } while (step == STEP_DONE);
+    e->running = 0;
     PyBuffer_Release(&view);
-    if (e->out.failed) return PyErr_NoMemory();
+    if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
     /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
-    PyObject *text = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
-    if (text == NULL) return NULL;
-    return Py_BuildValue("(Nni)", text, pos, status);
-error:
-    PyBuffer_Release(&view);
-    return NULL;
+    PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
+    if (lines == NULL) return NULL;
+    return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
 }
 
 static PyObject *engine_get_count(Engine *e, void *closure) { return PyLong_FromUnsignedLongLong(e->count); }
 
 static int engine_set_count(Engine *e, PyObject *value, void *closure) {
-    unsigned long long count = value ? PyLong_AsUnsignedLongLong(value) : (unsigned long long)-1;
+    if (value == NULL) {
+        PyErr_SetString(PyExc_TypeError, "count cannot be deleted");
+        return -1;
+    }
+    unsigned long long count = PyLong_AsUnsignedLongLong(value);
     if (PyErr_Occurred()) return -1;
     e->count = count;
     return 0;
@@ -753,6 +797,10 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     PyObject *slave_info, *piece_fn;
     static char *keywords[] = {"slave_info", "piece", "limits", NULL};
     PyObject *limits;
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
+        return -1;
+    }
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO", keywords, &slave_info, &piece_fn, &limits)) return -1;
     if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
                           &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
@@ -834,8 +882,44 @@ static PyObject *module_crc16(PyObject *self, PyObject *args) {
     return PyLong_FromLong(crc);
 }
 
+/* crc.crc_lengths: one incremental pass instead of one CRC per candidate length. */
+static PyObject *module_crc_lengths(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t start, minimum, maximum;
+    if (!PyArg_ParseTuple(args, "y*nnn", &view, &start, &minimum, &maximum)) return NULL;
+    const uint8_t *b = view.buf;
+    if (minimum < 2) minimum = 2;
+    if (start < 0 || start > view.len) maximum = -1;
+    if (start + maximum > view.len) maximum = view.len - start;
+    PyObject *lengths = PyList_New(0);
+    if (lengths == NULL || minimum > maximum) {
+        PyBuffer_Release(&view);
+        return lengths;
+    }
+    uint16_t crc = crc16(b + start, minimum - 2);
+    for (Py_ssize_t length = minimum; length <= maximum; length++) {
+        Py_ssize_t stop = start + length - 2;
+        if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
+            PyObject *found = PyLong_FromSsize_t(length);
+            if (found == NULL || PyList_Append(lengths, found) < 0) {
+                Py_XDECREF(found);
+                Py_DECREF(lengths);
+                PyBuffer_Release(&view);
+                return NULL;
+            }
+            Py_DECREF(found);
+        }
+        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+    }
+    PyBuffer_Release(&view);
+    return lengths;
+}
+
 static PyMethodDef module_methods[] = {
     {"crc16", module_crc16, METH_VARARGS, "CRC-16/MODBUS of a bytes-like object."},
+    {"crc_lengths", module_crc_lengths, METH_VARARGS,
+     "crc_lengths(buffer, start, minimum, maximum) -> the lengths L in minimum..maximum at which\n"
+     "buffer[start:start + L] ends in the CRC-16/MODBUS of the bytes before it."},
     {NULL, NULL, 0, NULL},
 };
 

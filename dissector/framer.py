@@ -37,7 +37,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
-from .crc import crc16
+from .crc import crc16, crc_lengths
 from .model import Frame, Item, Kind
 from .streambuf import StreamFramer
 
@@ -249,10 +249,8 @@ class RtuFramer(StreamFramer):
 
     @staticmethod
     def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
-        for length in range(minimum, min(n - i, MAX_ADU) + 1):
-            if _crc_ok(buf, i, length):
-                return length
-        return 0
+        lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
+        return lengths[0] if lengths else 0
 
     def _intact_inside(self, buf: bytearray, i: int, length: int, n: int) -> bool:
         """Does a frame with a length rule and a good CRC start inside bytes i..i+length?"""
@@ -265,9 +263,7 @@ class RtuFramer(StreamFramer):
         follows. A CRC scan alone would take noise for frames: each length tried is a 1 in 65,536
         chance of a match. (The following frame also settles the 00 case of _match.)
         """
-        for length in range(minimum, min(n - i, MAX_ADU) + 1):
-            if not _crc_ok(buf, i, length):
-                continue
+        for length in crc_lengths(buf, i, minimum, min(n - i, MAX_ADU)):
             following = self._valid_frame_at(buf, i + length, n, final)
             if following is None:
                 return NEED
@@ -307,9 +303,9 @@ class RtuFramer(StreamFramer):
             (valid if _crc_ok(buf, i, length) else damaged).append((kind, length))
         if len(valid) == 1:
             kind, length = valid[0]
-            # CRC-16/MODBUS has no final XOR: a frame whose CRC high byte is 00 still checks without
-            # that byte (1 frame in 256). Unless this is the answer awaited, wait when a layout one
-            # byte longer may still arrive.
+            # CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one
+            # byte longer. Unless this is the answer awaited (preferred below too, whatever follows),
+            # wait when a layout one byte longer may still arrive.
             expected = kind is Kind.RESPONSE and self._expect == (slave, function)
             if (
                 not expected
@@ -324,6 +320,10 @@ class RtuFramer(StreamFramer):
             for kind, length in valid:
                 if self._boundary_at(i + length):
                     return (kind, length, True)
+            if self._expect == (slave, function) and valid[0][0] is Kind.RESPONSE:
+                # The answer awaited beats a reading one byte longer that the 00 after it makes check;
+                # it is also what the shortcut above takes when the 00 has not arrived yet.
+                return (*valid[0], True)
             for kind, length in valid:
                 following = self._valid_frame_at(buf, i + length, n, final)
                 if following is None:
@@ -379,7 +379,7 @@ class RtuFramer(StreamFramer):
                 if not length:
                     length = rule(buf, i, n)
                 # A next byte of 00 may belong to a longer frame (see _match): take the careful path.
-                if type(length) is int and MIN_ADU <= length and i + length < n and buf[i + length]:
+                if type(length) is int and MIN_ADU <= length <= MAX_ADU and i + length < n and buf[i + length]:
                     stop = i + length - 2
                     crc = buf[stop] | buf[stop + 1] << 8
                     if crc16(buf[i:stop]) == crc:

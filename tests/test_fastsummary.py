@@ -302,3 +302,79 @@ def test_process_output_through_the_binary_stream(tmp_path: Path) -> None:
         outputs.append(result.stdout)
     assert outputs[0] == outputs[1]
     assert "\u2026 (+".encode() in outputs[0]
+
+
+# Found by review and a differential fuzz (both paths fed the same bytes, cut differently).
+@pytest.mark.parametrize(
+    ("data", "splits"),
+    [
+        # An awaited answer whose CRC ends in 00 and a chunk that ends right after it: the framer
+        # must wait for the next byte, as it decides when the byte is there.
+        (bytes.fromhex("0c041000078000000206370096800000030096bdf2010320d10001dff30103020001798400"), [36]),
+        # A byte count that makes a frame longer than 256 bytes: noise however the stream is cut.
+        (rtu("0c030000007e") + rtu("0c03fc" + "0001" * 126) + rtu("0c0300010001") + rtu("0c03020005"), [20]),
+    ],
+)
+def test_split_invariance_regressions(data: bytes, splits: list[int]) -> None:
+    expected = python_lines(data, atv71())
+    assert fast_lines(data, atv71(), splits).lines == expected
+    dissector = Dissector(annotate=atv71())  # type: ignore[arg-type]
+    from dissector.model import Chunk
+
+    items = dissector.feed(Chunk(data[: splits[0]])) + dissector.feed(Chunk(data[splits[0] :])) + dissector.finish()
+    assert [summary_line(item) for item in items] == expected
+
+
+LIMITS = ((1, 125), (1, 123), (1, 125), (1, 121))
+FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
+
+
+def test_engine_refuses_bad_callbacks_without_crashing() -> None:
+    engine = fastsummary._summary.Engine(
+        lambda slave: (True, {3: ("Read Holding Registers", ())}, frozenset(), {}, frozenset(), None, -1, None),
+        lambda *args: ("x", False),
+        LIMITS,
+    )
+    data = rtu("0c0300000001") + rtu("0c03020005") + b"\x01"
+    for _ in range(2):  # a slave that failed to load is not left half loaded
+        with pytest.raises(TypeError, match="bad function entry"):
+            engine.run(data, 0)
+
+    class Untruthful:
+        def __bool__(self) -> bool:
+            raise ValueError("no truth")
+
+    info = (True, FUNCTIONS, frozenset([5]), {}, frozenset(), None, -1, None)
+    engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()), LIMITS)
+    with pytest.raises(ValueError, match="no truth"):
+        engine.run(rtu("0c0600050001") * 2 + b"\x01", 0)
+
+    def reenter(*args: object) -> tuple[str, bool]:
+        engine.__init__(lambda slave: info, reenter, LIMITS)
+        return "x", True
+
+    engine = fastsummary._summary.Engine(lambda slave: info, reenter, LIMITS)
+    with pytest.raises(RuntimeError, match="inside run"):
+        engine.run(rtu("0c10000500020400010002") + rtu("0c1000050002") + b"\x01", 0)
+    with pytest.raises(TypeError):
+        del engine.count
+
+
+def test_crc_lengths_compiled_and_python_agree() -> None:
+    from dissector import crc
+
+    rng = random.Random(5)
+    for _ in range(300):
+        data = bytes(rng.randrange(256) for _ in range(rng.randrange(0, 300)))
+        if rng.random() < 0.5 and len(data) > 8:
+            cut = rng.randrange(2, len(data) - 2)
+            data = data[:cut] + crc.crc_bytes(data[:cut]) + data[cut:]
+        start = rng.randrange(0, len(data) + 1)
+        minimum, maximum = rng.randrange(0, 10), rng.randrange(0, 300)
+        found = crc._crc_lengths_python(data, start, minimum, maximum)
+        assert fastsummary._summary.crc_lengths(data, start, minimum, maximum) == found
+        assert found == [
+            length
+            for length in range(max(minimum, 2), min(maximum, len(data) - start) + 1)
+            if crc.crc16_reference(data[start : start + length - 2]) == int.from_bytes(data[start + length - 2 : start + length], "little")
+        ]
