@@ -1112,41 +1112,43 @@ end
 
 -- Split one record into frames and noise runs, in order. st carries the expectation across records,
 -- and whether the byte stream was in noise when the record began (the Python framer's pending noise).
+-- (No closures here: this runs once a record, and they cost more to make and collect than the framing.)
 local function frame_record(st, b, n)
   local items = {}
   local noise_start, noise_length, noise_reason = nil, 0, nil
   local carried = st.noise_carry
-  local function flush_noise()
-    if noise_start ~= nil then
-      items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
-      noise_start, noise_length = nil, 0
-    end
-  end
-  local function add_noise(at, count, reason)
-    if noise_start == nil then noise_start, noise_reason = at, reason end
-    carried = false
-    noise_length = noise_length + count
-    if noise_length >= NOISE_ITEM_MAX then flush_noise() end
-  end
   local i = 0
   while i < n do
-    if n - i < MIN_ADU then
-      add_noise(i, n - i, "too short for a frame")
-      break
-    end
-    local kind, length, crc_ok = match(st, b, i, n)
-    local slave, code = b[i], b[i + 1]
-    if kind ~= nil and crc_ok and (noise_start ~= nil or carried
-        or (kind ~= REQUEST and st.expect ~= slave * 256 + code % 128)) then
-      -- Resynchronising inside noise, or an answer nobody asked for: random bytes pass a CRC 1 time in
-      -- 65,536 per layout tried, so such a frame counts only when an intact frame (or the end) follows.
-      if not valid_frame_at(st, b, i + length, n) then kind = nil end
+    local kind, length, crc_ok, slave, code
+    local reason = "too short for a frame"
+    if n - i >= MIN_ADU then
+      reason = "no valid frame"
+      kind, length, crc_ok = match(st, b, i, n)
+      slave, code = b[i], b[i + 1]
+      if kind ~= nil and crc_ok and (noise_start ~= nil or carried
+          or (kind ~= REQUEST and st.expect ~= slave * 256 + code % 128)) then
+        -- Resynchronising inside noise, or an answer nobody asked for: random bytes pass a CRC 1 time in
+        -- 65,536 per layout tried, so such a frame counts only when an intact frame (or the end) follows.
+        if not valid_frame_at(st, b, i + length, n) then kind = nil end
+      end
     end
     if kind == nil then
-      add_noise(i, 1, "no valid frame")
-      i = i + 1
+      -- noise: one byte, or the rest of a record too short for a frame
+      local count = 1
+      if n - i < MIN_ADU then count = n - i end
+      if noise_start == nil then noise_start, noise_reason = i, reason end
+      carried = false
+      noise_length = noise_length + count
+      if noise_length >= NOISE_ITEM_MAX then
+        items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
+        noise_start, noise_length = nil, 0
+      end
+      i = i + count
     else
-      flush_noise()
+      if noise_start ~= nil then
+        items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
+        noise_start, noise_length = nil, 0
+      end
       carried = false
       local stop = i + length - 2
       local crc = b[stop] + b[stop + 1] * 256
@@ -1165,7 +1167,9 @@ local function frame_record(st, b, n)
     end
   end
   st.noise_carry = carried or noise_start ~= nil
-  flush_noise()
+  if noise_start ~= nil then
+    items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
+  end
   return items
 end
 
@@ -1779,7 +1783,10 @@ end
 local function pair(st, f)
   local pending = st.pending
   if f.kind == REQUEST then
-    if pending ~= nil then pending.unanswered = true end
+    if pending ~= nil then
+      pending.unanswered = true
+      pending.fields = nil -- no answer can ask for them any more
+    end
     st.pending = nil
     if f.slave == 0 then
       f.broadcast = true
@@ -2238,7 +2245,7 @@ local function annotate_registers(st, f, device, registers, read)
             if not has_note(f, rule.reason) then note(f, rule.reason) end
           end
         end
-        reg.code, reg.name, reg.unit, reg.source = row.code, row.name, row.unit, row.source
+        reg.row = row -- code, name, unit and source (kept as the row: four fields fewer a register)
         reg.scaled, reg.text = interpret(used, value)
       end
       if protected ~= nil then
@@ -2534,7 +2541,18 @@ local function dissect_record(st, bytes, time, number)
       pair(st, item)
       decode_frame(item)
       annotate(st, item, item.b)
-      item.b = nil -- kept for nothing: the display reads the tvb
+      -- What the display does not need is dropped (the record is kept for every later pass): the byte
+      -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
+      -- ask for them (a request's, until its answer is decoded or it can have none).
+      item.b = nil
+      if #item.warnings == 0 then item.warnings = NO_INTERPRETATION end
+      if #item.notes == 0 then item.notes = NO_INTERPRETATION end
+      if item.kind ~= REQUEST then
+        item.fields = nil
+        if item.request ~= nil then item.request.fields = nil end
+      elseif st.pending ~= item then
+        item.fields = nil
+      end
     end
   end
   local record = { items = items, frames = frames, length = n }
@@ -2717,7 +2735,7 @@ end
 -- and generated flag of the frame's item, and the expert infos. `serial` counts the dissections.
 -- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
 -- made when a field needs it); .frame_length: the length of the frame's item.
-local unseen = { serial = 0, faked = {}, checked = {}, generated = false }
+local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
 function unseen.at(tvb, f, at, size)
   unseen.tvb, unseen.frame_length, unseen.range = tvb, f.length, nil
@@ -2746,75 +2764,78 @@ function unseen.add(parent, field, value, generated)
   return item
 end
 
--- Texts computed once per register and frame (on the first dissection that shows them) and kept: the
--- decoding never changes them afterwards, and Wireshark dissects a packet again each time it is shown.
-local function register_texts(reg)
+-- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
+-- each time they are shown rather than kept: records stay in memory for the whole capture.
+local function register_title(reg)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
+  local code = reg.row and reg.row.code
   local parts = { "Register ", label }
-  if reg.code then parts[#parts + 1] = " " .. reg.code end
+  if code then parts[#parts + 1] = " " .. code end
   parts[#parts + 1] = format(" = %d", reg.value)
   if reg.text then parts[#parts + 1] = ": " .. reg.text end
   if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
-  reg.title = concat(parts)
-  if reg.status and reg.status ~= "ok" then
-    reg.expert_text = format("Register %s%s: %s", label, reg.code and (" " .. reg.code) or "", reg.text or reg.status)
-  end
-  if reg.scaled ~= nil then reg.scaled_text = tostring(reg.scaled) end
+  return concat(parts)
+end
+
+local function register_expert(reg)
+  if not reg.status or reg.status == "ok" then return nil end
+  local label = reg.label or (reg.address and tostring(reg.address)) or "?"
+  local code = reg.row and reg.row.code
+  return format("Register %s%s: %s", label, code and (" " .. code) or "", reg.text or reg.status)
 end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
 local function add_register(tree, tvb, f, reg, range, full)
-  if reg.title == nil then register_texts(reg) end
   if full == false then
-    if reg.expert_text then add_text(tree, ex.protected, reg.expert_text) end
+    if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
     return
   end
   if full == "unseen" then
     -- tree is the frame's item, in an invisible tree (see unseen.add).
     unseen.at(tvb, f, reg.offset or f.offset, 2)
     local sub = unseen.add(tree, pf.reg)
-    sub:set_text(reg.title)
+    sub:set_text(register_title(reg))
     if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
     if reg.label then unseen.add(sub, pf.reg_label, reg.label, true) end
     unseen.add(sub, pf.reg_value, reg.value, false)
-    if reg.code then unseen.add(sub, pf.reg_code, reg.code, true) end
-    if reg.name then unseen.add(sub, pf.reg_name, reg.name, true) end
-    if reg.unit then unseen.add(sub, pf.reg_unit, reg.unit, true) end
-    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled_text, true) end
+    local row = reg.row or unseen.no_row
+    if row.code then unseen.add(sub, pf.reg_code, row.code, true) end
+    if row.name then unseen.add(sub, pf.reg_name, row.name, true) end
+    if row.unit then unseen.add(sub, pf.reg_unit, row.unit, true) end
+    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, tostring(reg.scaled), true) end
     if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
-    if reg.source then unseen.add(sub, pf.reg_source, reg.source, true) end
+    if row.source then unseen.add(sub, pf.reg_source, row.source, true) end
     if reg.status then
       unseen.add(sub, pf.reg_status, reg.status, true)
-      if reg.expert_text then add_text(sub, ex.protected, reg.expert_text) end
+      if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
     end
     return
   end
   local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
   local sub = tree:add(pf.reg, r)
-  sub:set_text(reg.title)
+  sub:set_text(register_title(reg))
   if reg.address ~= nil then
     local item = sub:add(pf.reg_address, r, reg.address)
     if r ~= nil then item:set_generated() end
   end
   if reg.label then sub:add(pf.reg_label, r, reg.label):set_generated() end
   sub:add(pf.reg_value, r, reg.value)
-  if reg.code then sub:add(pf.reg_code, r, reg.code):set_generated() end
-  if reg.name then sub:add(pf.reg_name, r, reg.name):set_generated() end
-  if reg.unit then sub:add(pf.reg_unit, r, reg.unit):set_generated() end
-  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled_text):set_generated() end
+  local row = reg.row or unseen.no_row
+  if row.code then sub:add(pf.reg_code, r, row.code):set_generated() end
+  if row.name then sub:add(pf.reg_name, r, row.name):set_generated() end
+  if row.unit then sub:add(pf.reg_unit, r, row.unit):set_generated() end
+  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, tostring(reg.scaled)):set_generated() end
   if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
-  if reg.source then sub:add(pf.reg_source, r, reg.source):set_generated() end
+  if row.source then sub:add(pf.reg_source, r, row.source):set_generated() end
   if reg.status then
     sub:add(pf.reg_status, r, reg.status):set_generated()
-    if reg.expert_text then add_text(sub, ex.protected, reg.expert_text) end
+    if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
   end
 end
 
 local function summary(f)
-  local text = f.summary_text
-  if text ~= nil then return text end
   local parts = { format("%d", f.slave), f.function_text or function_name(f.fn), f.kind }
   if f.kind == EXCEPTION then parts[#parts + 1] = f.exception_meaning or exception_name(f.exception_code) end
   if f.span_label ~= nil then
@@ -2825,9 +2846,7 @@ local function summary(f)
     parts[#parts + 1] = format("%d", f.start)
   end
   if not (f.crc == f.crc_expected) then parts[#parts + 1] = "BAD CRC" end
-  text = concat(parts, " ")
-  f.summary_text = text
-  return text
+  return concat(parts, " ")
 end
 
 local function show_frame(f, tvb, tree, pinfo, full)
@@ -2836,8 +2855,7 @@ local function show_frame(f, tvb, tree, pinfo, full)
   if full then
     whole = tvb:range(f.offset, f.length)
     t = tree:add(proto, whole)
-    if f.title == nil then f.title = format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)) end
-    t:set_text(f.title)
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, f.kind):set_generated()
     local base = f.data_at - 2 -- the slave byte in the frame's byte table
@@ -3038,7 +3056,8 @@ function proto.dissector(tvb, pinfo, tree)
     end
     state.records[pinfo.number] = record
   end
-  pinfo.cols.protocol = "VW3"
+  local cols = pinfo.cols
+  cols.protocol = "VW3"
   local full = tree_mode(tree)
   unseen.serial = unseen.serial + 1
   unseen.generated = false
@@ -3070,7 +3089,7 @@ function proto.dissector(tvb, pinfo, tree)
     info = concat(summaries, "; ")
     record.info = info
   end
-  pinfo.cols.info = info
+  cols.info = info
   return n
 end
 
@@ -3115,7 +3134,10 @@ function names_proto.init()
 end
 
 function names_proto.dissector(tvb, pinfo, tree)
-  if not proto.prefs.name_modbus or modbus_fields.number == nil or modbus_fields.value == nil then return end
+  if modbus_fields.number == nil or modbus_fields.value == nil then return end
+  -- Every packet comes here: the cheapest test first (no register numbers, no table made).
+  if modbus_fields.number() == nil then return end
+  if not proto.prefs.name_modbus then return end
   if tvb:len() == 0 then return end
   local numbers = { modbus_fields.number() }
   if #numbers == 0 then return end
