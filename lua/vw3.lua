@@ -2954,7 +2954,7 @@ local function show_frame(f, tvb, tree, pinfo, full)
     if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
   end
   -- Known only once the whole capture has been read (second pass).
-  local ends_unanswered = f.kind == REQUEST and pinfo.visited and state.pending == f
+  local ends_unanswered = f.kind == REQUEST and state.pending == f and pinfo.visited
   if f.kind == REQUEST then
     local unanswered = f.unanswered or ends_unanswered
     if full then t:add(pf.unanswered, whole, unanswered and true or false):set_generated() end
@@ -3027,12 +3027,17 @@ local tree_mode
 do
   local function tree_text(tree) return tree.text end
   local function tree_visible(tree) return tree.visible end
+  local function tree_len(tree) return tree.len end
+  local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
   tree_mode = function(tree)
     if type(tree) ~= "userdata" then return true end
     local ok, text = pcall(tree_text, tree)
     if ok and text == nil then return false end
     local known, visible = pcall(tree_visible, tree)
-    if known and visible == false then return "unseen" end
+    if known and visible == false then
+      if has_len == nil then has_len = pcall(tree_len, tree) end
+      if has_len then return "unseen" end
+    end
     return true
   end
 end
