@@ -1092,8 +1092,15 @@ local function match(st, b, i, n)
   end
   if first_kind ~= nil and valid == nil then return first_kind, first_length, true end
   if valid ~= nil then
-    -- Two layouts check out (CRC-16/MODBUS has no final XOR: a frame whose CRC high byte is 00 also
-    -- checks one byte short): what follows decides.
+    -- Two layouts check out (CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks
+    -- as a frame one byte longer): the end of the record, then the answer awaited, then what follows
+    -- decides (framer.py _match).
+    for _, candidate in ipairs(valid) do
+      if i + candidate[2] == n then return candidate[1], candidate[2], true end
+    end
+    if st.expect == slave * 256 + code and valid[1][1] == RESPONSE then
+      return valid[1][1], valid[1][2], true
+    end
     for _, candidate in ipairs(valid) do
       if valid_frame_at(st, b, i + candidate[2], n) then return candidate[1], candidate[2], true end
     end

@@ -269,3 +269,20 @@ def test_fuzzed_ascii_stream_in_one_record_parity(tmp_path: Path) -> None:
     _check(python, lua_items(pcap)[0])
     assert sum(item.data["kind"] == "noise" for item in python) > 50
     assert sum(item.data["kind"] != "noise" for item in python) > 600
+
+
+def test_awaited_answer_followed_by_00_parity(tmp_path: Path) -> None:
+    # CRC-16/MODBUS has no final XOR: an answer followed by a 00 byte also checks as an 8-byte request.
+    # Both take the answer awaited (framer.py _match, vw3.lua match), in one record and across records.
+    from dissector.crc import with_crc
+
+    request = with_crc(bytes.fromhex("0c0320d10001"))
+    answer = with_crc(bytes.fromhex("0c03020003"))
+    assert len(answer) == 7
+    following = with_crc(bytes.fromhex("0c0320d10001"))
+    records = [(request, 1.0), (answer + b"\x00" + following, 1.1), (request + answer + b"\x00" + following, 1.2)]
+    pcap = write_pcap(tmp_path / "zero.pcap", records)
+    python = python_items(pcap)
+    _check(python, lua_items(pcap)[0])
+    kinds = [item.data["kind"] for item in python]
+    assert kinds[:4] == ["request", "response", "noise", "request"], kinds
