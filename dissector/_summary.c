@@ -136,10 +136,19 @@ typedef struct {
     uint8_t *mapped;          /* addresses the annotator names */
     uint8_t *dependent;       /* addresses with a bits_depend rule */
     uint8_t *sources;         /* the addresses those rules depend on */
+    uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
     long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
     PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
     long protected_value;     /* -1: none */
 } Slave;
+
+/* One entry of the annotator's parameter memory, kept here until the end of run(): a polled register
+ * is written once per run into the dict instead of once per read. */
+typedef struct {
+    unsigned long long number;
+    uint16_t address, value;
+    uint8_t slave, written;
+} Remembered;
 
 typedef struct {
     PyObject_HEAD
@@ -152,6 +161,8 @@ typedef struct {
     long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
     Slave slaves[256];
     Out out;
+    Remembered *log;
+    size_t log_len, log_cap;
     int running; /* inside run(): callbacks must not re-enter */
 } Engine;
 
@@ -160,7 +171,7 @@ typedef struct {
 static void slave_clear(Slave *s) {
     Py_CLEAR(s->info);
     PyMem_Free(s->mapped);
-    s->mapped = s->dependent = s->sources = NULL;
+    s->mapped = s->dependent = s->sources = s->pending = NULL;
     s->loaded = 0;
 }
 
@@ -238,13 +249,14 @@ static int fill_slave(Slave *s, PyObject *info) {
         }
     }
     s->depend = PyTuple_GET_ITEM(info, 3);
-    s->mapped = PyMem_Calloc(3, BITMAP_BYTES);
+    s->mapped = PyMem_Calloc(4, BITMAP_BYTES);
     if (s->mapped == NULL) {
         PyErr_NoMemory();
         return -1;
     }
     s->dependent = s->mapped + BITMAP_BYTES;
     s->sources = s->mapped + 2 * BITMAP_BYTES;
+    s->pending = s->mapped + 3 * BITMAP_BYTES;
     if (fill_bitmap(s->mapped, PyTuple_GET_ITEM(info, 2)) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
         fill_bitmap(s->sources, PyTuple_GET_ITEM(info, 4)) < 0)
         return -1;
@@ -371,7 +383,7 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
                 if (words_address(written, j) == address) { rewritten = 1; break; }
             if (rewritten) continue;
         }
-        if (s->seen == NULL) continue;
+        if (s->seen == NULL || bit(s->pending, address)) continue; /* the engine's entries hold values */
         PyObject *key = PyLong_FromUnsignedLong(address);
         if (key == NULL) return -1;
         PyObject *last = PyDict_GetItemWithError(s->seen, key);
@@ -386,20 +398,50 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
     return 1;
 }
 
-static int remember(Engine *e, Slave *s, const Words *w, unsigned long long number, PyObject *how) {
-    PyObject *frame = PyLong_FromUnsignedLongLong(number);
-    if (frame == NULL) return -1;
+/* seen[address] = (value, frame number, "read" or "written"), as the annotator keeps it; logged here
+ * and written to the dict by write_memory(). */
+static int remember(Engine *e, int slave, Slave *s, const Words *w, unsigned long long number, int written) {
+    if (e->log_len + w->count > e->log_cap) {
+        size_t cap = e->log_cap ? e->log_cap : 4096;
+        while (cap < e->log_len + w->count) cap *= 2;
+        Remembered *log = PyMem_Realloc(e->log, cap * sizeof *log);
+        if (log == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        e->log = log;
+        e->log_cap = cap;
+    }
+    for (unsigned k = 0; k < w->count; k++) {
+        unsigned address = words_address(w, k);
+        e->log[e->log_len++] = (Remembered){number, (uint16_t)address, (uint16_t)words_value(w, k),
+                                            (uint8_t)slave, (uint8_t)written};
+        s->pending[address >> 3] |= (uint8_t)(1 << (address & 7));
+    }
+    return 0;
+}
+
+/* The log into the annotator's dicts, newest entry of each address only. */
+static int write_memory(Engine *e) {
     int status = 0;
-    for (unsigned k = 0; k < w->count && status == 0; k++) {
-        PyObject *key = PyLong_FromUnsignedLong(words_address(w, k));
-        PyObject *value = PyLong_FromUnsignedLong(words_value(w, k));
-        PyObject *entry = (key && value) ? PyTuple_Pack(3, value, frame, how) : NULL;
-        status = entry ? PyDict_SetItem(s->seen, key, entry) : -1;
+    for (size_t k = e->log_len; k-- > 0;) {
+        const Remembered *entry = &e->log[k];
+        Slave *s = &e->slaves[entry->slave];
+        if (!bit(s->pending, entry->address)) continue; /* a newer entry was written already */
+        s->pending[entry->address >> 3] &= (uint8_t)~(1 << (entry->address & 7));
+        if (status < 0) continue;
+        PyObject *key = PyLong_FromUnsignedLong(entry->address);
+        PyObject *value = PyLong_FromUnsignedLong(entry->value);
+        PyObject *frame = PyLong_FromUnsignedLongLong(entry->number);
+        PyObject *how = entry->written ? e->written_word : e->read_word;
+        PyObject *item = (key && value && frame) ? PyTuple_Pack(3, value, frame, how) : NULL;
+        if (item == NULL || PyDict_SetItem(s->seen, key, item) < 0) status = -1;
         Py_XDECREF(key);
         Py_XDECREF(value);
-        Py_XDECREF(entry);
+        Py_XDECREF(frame);
+        Py_XDECREF(item);
     }
-    Py_DECREF(frame);
+    e->log_len = 0;
     return status;
 }
 
@@ -657,16 +699,15 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
 static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
                  unsigned long long number) {
     if (s->seen == NULL) return 0;
-    int function = f[1];
+    int slave = f[0], function = f[1];
     if (function == 16 || function == 23) {
-        if (remember(e, s, &r->writes, number, e->written_word) < 0) return -1;
+        if (remember(e, slave, s, &r->writes, number, 1) < 0) return -1;
     }
     if (function == 6) {
         Words echo = {word(f + 2), 1, f + 4};
-        if (remember(e, s, &echo, number, e->written_word) < 0) return -1;
+        if (remember(e, slave, s, &echo, number, 1) < 0) return -1;
     }
-    if (reads->count && s->protected_value >= 0)
-        return remember(e, s, reads, number, e->read_word);
+    if (reads->count && s->protected_value >= 0) return remember(e, slave, s, reads, number, 0);
     return 0;
 }
 
@@ -750,6 +791,8 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
     do {
         step = transaction(e, view.buf, view.len, &pos);
     } while (step == STEP_DONE);
+    /* The Python stages may read the parameter memory as soon as this returns. */
+    if (write_memory(e) < 0 && step != STEP_ERROR) step = STEP_ERROR;
     e->running = 0;
     PyBuffer_Release(&view);
     if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
@@ -842,6 +885,7 @@ static void engine_dealloc(Engine *e) {
     PyObject_GC_UnTrack(e);
     engine_clear(e);
     PyMem_Free(e->out.data);
+    PyMem_Free(e->log);
     Py_TYPE(e)->tp_free((PyObject *)e);
 }
 
