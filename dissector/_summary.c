@@ -24,7 +24,7 @@
 #define MAX_ADU 256
 #define MAX_SLAVE 247
 #define MAX_VALUES 6   /* render/describe.py MAX_VALUES */
-#define PIECE_CACHE_LIMIT 65536 /* entries of ~200 bytes: memory stays bounded */
+#define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
 enum { KIND_REQUEST = 1, KIND_RESPONSE = 2 };
@@ -138,6 +138,9 @@ typedef struct {
     uint8_t *sources;         /* the addresses those rules depend on */
     uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
     long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
+    unsigned long depend_run; /* the run() the answer below was found in */
+    unsigned depend_address;
+    int depend_plain;
     PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
     long protected_value;     /* -1: none */
 } Slave;
@@ -151,12 +154,22 @@ typedef struct {
 } Remembered;
 
 typedef struct {
+    uint64_t key;     /* 0: empty */
+    PyObject *text;   /* owned */
+    const char *utf8; /* text's own UTF-8 form */
+    Py_ssize_t length;
+    int named;
+} PieceSlot;
+
+typedef struct {
     PyObject_HEAD
     unsigned long long count;
     int expect_slave, expect_function; /* -1: no answer awaited */
     PyObject *slave_info;
     PyObject *piece;
-    PyObject *pieces;  /* dict key -> (text, named) */
+    PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
+    size_t piece_count;
+    unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
     long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
     Slave slaves[256];
@@ -172,6 +185,7 @@ static void slave_clear(Slave *s) {
     Py_CLEAR(s->info);
     PyMem_Free(s->mapped);
     s->mapped = s->dependent = s->sources = s->pending = NULL;
+    s->depend_run = 0;
     s->loaded = 0;
 }
 
@@ -344,10 +358,25 @@ typedef struct {
 static inline unsigned words_address(const Words *w, unsigned k) { return (w->start + k) & 0xFFFF; }
 static inline unsigned words_value(const Words *w, unsigned k) { return word(w->values + 2 * k); }
 
-/* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error. */
-static int register_is_plain(Slave *s, unsigned address) {
+static int depend_is_plain(Slave *s, unsigned address);
+
+/* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error.
+ * A bits_depend answer holds for a whole run(): the engine never writes the values rules depend on
+ * (it hands such transactions over), and the Python stages run only between two run() calls. */
+static int register_is_plain(Slave *s, unsigned long run_number, unsigned address) {
     if (bit(s->sources, address)) return 0; /* a value others depend on: ordering matters, Python */
     if (!bit(s->dependent, address)) return 1;
+    if (s->depend_run == run_number && s->depend_address == address) return s->depend_plain;
+    int plain = depend_is_plain(s, address);
+    if (plain >= 0) {
+        s->depend_run = run_number;
+        s->depend_address = address;
+        s->depend_plain = plain;
+    }
+    return plain;
+}
+
+static int depend_is_plain(Slave *s, unsigned address) {
     PyObject *key = PyLong_FromUnsignedLong(address);
     if (key == NULL) return -1;
     PyObject *rule = PyDict_GetItemWithError(s->depend, key);
@@ -362,9 +391,9 @@ static int register_is_plain(Slave *s, unsigned address) {
     return plain < 0 ? -1 : !plain;
 }
 
-static int words_are_plain(Slave *s, const Words *w) {
+static int words_are_plain(Slave *s, unsigned long run_number, const Words *w) {
     for (unsigned k = 0; k < w->count; k++) {
-        int plain = register_is_plain(s, words_address(w, k));
+        int plain = register_is_plain(s, run_number, words_address(w, k));
         if (plain <= 0) return plain;
     }
     return 1;
@@ -446,47 +475,80 @@ static int write_memory(Engine *e) {
 }
 
 /* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
+static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a few low bits */
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ULL;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebULL;
+    return key ^ (key >> 31);
+}
+
+static void pieces_clear(Engine *e) {
+    if (e->pieces == NULL) return;
+    for (size_t k = 0; k < PIECE_SLOTS; k++) Py_XDECREF(e->pieces[k].text);
+    PyMem_Free(e->pieces);
+    e->pieces = NULL;
+    e->piece_count = 0;
+}
+
+/* The cached text of a mapped register, asked of the Python callback on first sight. */
+static const PieceSlot *piece_for(Engine *e, int slave, int function, unsigned address, unsigned value,
+                                  PieceSlot *scratch) {
+    /* The function matters only for a PLC-style label; it is part of the key all the same. */
+    uint64_t key = 1ULL << 63 | (uint64_t)handled_index(function) << 40 | (uint64_t)slave << 32 |
+                   (uint64_t)address << 16 | value;
+    if (e->pieces == NULL) {
+        e->pieces = PyMem_Calloc(PIECE_SLOTS, sizeof *e->pieces);
+        if (e->pieces == NULL) {
+            PyErr_NoMemory();
+            return NULL;
+        }
+    }
+    size_t slot = (size_t)mix(key) & (PIECE_SLOTS - 1);
+    while (e->pieces[slot].key != 0) {
+        if (e->pieces[slot].key == key) return &e->pieces[slot];
+        slot = (slot + 1) & (PIECE_SLOTS - 1);
+    }
+    PyObject *entry = PyObject_CallFunction(e->piece, "iiII", slave, function, address, value);
+    if (entry == NULL) return NULL;
+    if (!PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
+        Py_DECREF(entry);
+        PyErr_SetString(PyExc_TypeError, "piece must return (str, bool)");
+        return NULL;
+    }
+    PieceSlot found = {key, PyTuple_GET_ITEM(entry, 0), NULL, 0, PyObject_IsTrue(PyTuple_GET_ITEM(entry, 1))};
+    found.utf8 = found.named < 0 ? NULL : PyUnicode_AsUTF8AndSize(found.text, &found.length);
+    if (found.utf8 == NULL) {
+        Py_DECREF(entry);
+        return NULL;
+    }
+    Py_INCREF(found.text); /* the text outlives the tuple */
+    Py_DECREF(entry);
+    if (e->piece_count < PIECE_SLOTS / 2) {
+        e->pieces[slot] = found;
+        e->piece_count++;
+        return &e->pieces[slot];
+    }
+    *scratch = found; /* the cache is full: the caller releases the text after use */
+    return scratch;
+}
+
+/* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
 static int piece(Engine *e, Slave *s, int slave, int function, unsigned address, unsigned value, int *named) {
-    int k = handled_index(function);
     if (!bit(s->mapped, address)) {
         *named = 0;
-        out_label(&e->out, s->base[k], address);
+        out_label(&e->out, s->base[handled_index(function)], address);
         out_put(&e->out, "=", 1);
         out_uint(&e->out, value, 0);
         return 0;
     }
-    /* The function matters only for a PLC-style label; it is part of the key all the same. */
-    PyObject *key = PyLong_FromUnsignedLongLong((unsigned long long)k << 40 | (unsigned long long)slave << 32 |
-                                                address << 16 | value);
-    if (key == NULL) return -1;
-    PyObject *entry = PyDict_GetItemWithError(e->pieces, key);
-    if (entry != NULL) {
-        Py_INCREF(entry);
-    } else if (PyErr_Occurred()) {
-        Py_DECREF(key);
-        return -1;
-    } else {
-        entry = PyObject_CallFunction(e->piece, "iiII", slave, function, address, value);
-        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
-            !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
-            Py_DECREF(key);
-            if (entry != NULL) {
-                Py_DECREF(entry);
-                PyErr_SetString(PyExc_TypeError, "piece must return (str, bool)");
-            }
-            return -1;
-        }
-        if (PyDict_GET_SIZE(e->pieces) < PIECE_CACHE_LIMIT && PyDict_SetItem(e->pieces, key, entry) < 0) {
-            Py_DECREF(key);
-            Py_DECREF(entry);
-            return -1;
-        }
-    }
-    Py_DECREF(key);
-    *named = PyObject_IsTrue(PyTuple_GET_ITEM(entry, 1));
-    int status = *named < 0 ? -1 : out_str(&e->out, PyTuple_GET_ITEM(entry, 0));
-    Py_DECREF(entry);
-    return status;
+    PieceSlot scratch = {0};
+    const PieceSlot *found = piece_for(e, slave, function, address, value, &scratch);
+    if (found == NULL) return -1;
+    *named = found->named;
+    out_put(&e->out, found->utf8, (size_t)found->length);
+    Py_XDECREF(scratch.text);
+    return e->out.failed ? -1 : 0;
 }
 
 /* describe.values_text */
@@ -575,7 +637,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
     /* Annotator._within_limits */
     if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
     if (check == 2 && (function != 23 || (long)write_quantity > s->limit[k][1])) return 0;
-    return r->has_writes ? words_are_plain(s, &r->writes) : 1;
+    return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
 }
 
 static void line_head(Out *o, unsigned long long number, int slave, const char *kind) {
@@ -654,14 +716,14 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
         break;
     case 6: {
         Words echo = {word(f + 2), 1, f + 4};
-        return words_are_plain(s, &echo);
+        return words_are_plain(s, e->run_number, &echo);
     }
     case 16:
         return word(f + 2) == r->start && word(f + 4) == r->quantity;
     default:
         return 0;
     }
-    int plain = words_are_plain(s, reads);
+    int plain = words_are_plain(s, e->run_number, reads);
     if (plain <= 0) return plain;
     return reads_are_quiet(s, reads, function == 23 ? &r->writes : NULL);
 }
@@ -785,6 +847,7 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
         return NULL;
     }
     e->running = 1;
+    e->run_number++;
     e->out.len = 0;
     e->out.failed = 0;
     int step;
@@ -853,10 +916,10 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     Py_XSETREF(e->slave_info, slave_info);
     Py_INCREF(piece_fn);
     Py_XSETREF(e->piece, piece_fn);
-    Py_XSETREF(e->pieces, PyDict_New());
+    pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
-    if (e->pieces == NULL || e->read_word == NULL || e->written_word == NULL) return -1;
+    if (e->read_word == NULL || e->written_word == NULL) return -1;
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     e->count = 0;
     e->expect_slave = e->expect_function = -1;
@@ -866,7 +929,6 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
 static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->slave_info);
     Py_VISIT(e->piece);
-    Py_VISIT(e->pieces);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     return 0;
 }
@@ -874,7 +936,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
 static int engine_clear(Engine *e) {
     Py_CLEAR(e->slave_info);
     Py_CLEAR(e->piece);
-    Py_CLEAR(e->pieces);
+    pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);

@@ -35,6 +35,7 @@ WINDOW = 512  # bytes handed to the Python stages at a time while they have the 
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
 SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
+SHORT_STRETCHES = 4  # short stretches in a row before the runs start (exceptions come in clusters)
 MAX_RUN = 16384
 NEED, HANDOVER = 0, 1
 
@@ -99,6 +100,7 @@ class SummaryPath:
         self.taken_at = 0  # where they took it
         self.run_size = 0  # bytes the Python stages frame freely before looking for an idle point
         self.run_left = 0
+        self.short_stretches = 0
         self.stretch_start = 0  # engine count when it last took the stream back
 
     def feed(self, data: bytes) -> None:
@@ -136,6 +138,10 @@ class SummaryPath:
         count = self.engine.count
         self.pairer.count = count
         if count - self.stretch_start < SHORT_STRETCH:
+            self.short_stretches += 1
+        else:
+            self.short_stretches = 0
+        if self.short_stretches >= SHORT_STRETCHES:
             self.run_size = min(MAX_RUN, max(2 * self.run_size, WINDOW))
         else:
             self.run_size = 0

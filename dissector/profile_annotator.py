@@ -61,6 +61,9 @@ class _Device:
     limited: dict[int, tuple[int, ...]]
     seen: dict[int, _Seen] = field(default_factory=dict)
     labels: dict[int, dict[int, str]] = field(default_factory=dict)
+    # Exception explanations depend on the request's bytes alone: a PLC that polls a protected block
+    # draws the same exception again and again.
+    explained: dict[object, object] = field(default_factory=dict)
 
 
 def _name(register: Register, row: RegisterDef, used: RegisterDef) -> None:
@@ -424,11 +427,16 @@ class Annotator:
         name = profile.function_names.get(function) or SPEC.function_name(function)
         causes = profile.exception_causes.get((function, code))
         if causes:
-            chosen = self._pick_causes(frame.request, profile, causes)
-            frame.notes.append(
-                f"exception {code:02X} from the {profile.device} to {name}: "
-                + " or ".join(_cause_text(cause) for cause in chosen)
-            )
+            request = frame.request
+            key = (function, code, None if request is None else request.raw)
+            note = device.explained.get(key)
+            if note is None:
+                chosen = self._pick_causes(request, profile, causes)
+                note = f"exception {code:02X} from the {profile.device} to {name}: " + " or ".join(
+                    _cause_text(cause) for cause in chosen
+                )
+                _remember(device.explained, key, note)
+            frame.notes.append(note)  # type: ignore[arg-type]
         elif code in profile.exceptions:
             frame.notes.append(f"exception {code:02X} from the {profile.device}: {profile.exceptions[code]}")
         elif profile.exceptions:
@@ -456,19 +464,24 @@ class Annotator:
                 "on a read, this exception means every parameter read is non-existent or protected"
             )
             return
-        rows = device.rows
-        addresses = [(request.start + index) & 0xFFFF for index in range(min(request.quantity, _READ_LIMIT))]
-        parts = [
-            f"{address_name(rows.get(address), address)} "
-            + ("non-existent" if rows.get(address) is None else "protected")
-            for address in addresses
-        ]
-        if len(parts) > _MAX_LISTED:
-            parts[_MAX_LISTED:] = [f"… (+{len(parts) - _MAX_LISTED})"]
-        frame.notes.append("every parameter of this read is non-existent or protected: " + ", ".join(parts))
+        key = (request.start, request.quantity)
+        known = device.explained.get(key)
+        if known is None:
+            rows = device.rows
+            addresses = [(request.start + index) & 0xFFFF for index in range(min(request.quantity, _READ_LIMIT))]
+            lost = [(address, rows.get(address)) for address in addresses]
+            parts = [
+                f"{address_name(row, address)} " + ("non-existent" if row is None else "protected")
+                for address, row in lost
+            ]
+            if len(parts) > _MAX_LISTED:
+                parts[_MAX_LISTED:] = [f"… (+{len(parts) - _MAX_LISTED})"]
+            known = ("every parameter of this read is non-existent or protected: " + ", ".join(parts), lost)
+            _remember(device.explained, key, known)
+        note, lost = known  # type: ignore[misc]
+        frame.notes.append(note)
         now = f"exception {frame.exception_code:02X} now"
-        for address in addresses:
-            row = rows.get(address)
+        for address, row in lost:
             self._lost(frame, device, address, row, "non-existent" if row is None else "protected", now)
 
     # -- other functions ----------------------------------------------------------------------------------
@@ -501,6 +514,15 @@ class Annotator:
                     f"{obj.name} {value!r} is not in the MMmm form the {profile.device} uses"
                 )
             obj.text = meaning.meaning
+
+
+_EXPLAINED_LIMIT = 4096  # explanations kept per device: memory stays bounded whatever the capture
+
+
+def _remember(cache: dict[object, object], key: object, value: object) -> None:
+    if len(cache) >= _EXPLAINED_LIMIT:
+        cache.clear()
+    cache[key] = value
 
 
 def _holds(when: str, request: Frame, profile: Profile) -> bool:
