@@ -17,17 +17,14 @@ import shutil
 import struct
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 PLUGIN = ROOT / "lua" / "vw3.lua"
-MBRTU_OPTIONS = [
-    "-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""',
-    "-o", "mbrtu.crc_verification:TRUE",
-]
+
+from throughput import TSHARK_OPTIONS as MBRTU_OPTIONS, timed  # noqa: E402  (bench/ is this script's folder)
 
 
 def pcap_records(path: Path) -> int:
@@ -62,16 +59,6 @@ def session_pcap(frames: int, out: Path) -> Path:
     return pcap
 
 
-def timed(command: list[str], output: Path) -> float:
-    with output.open("wb") as sink:
-        start = time.perf_counter()
-        result = subprocess.run(command, stdout=sink, stderr=subprocess.PIPE, cwd=ROOT)
-        elapsed = time.perf_counter() - start
-    if result.returncode != 0:
-        sys.exit(f"failed ({result.returncode}): {' '.join(command)}\n{result.stderr.decode()[-2000:]}")
-    return elapsed
-
-
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--frames", type=int, default=200_000)
@@ -97,7 +84,7 @@ def main() -> int:
     best = {name: float("inf") for name in runs}
     for _round in range(args.repeat):
         for name, command in runs.items():
-            best[name] = min(best[name], timed(command, args.out / "lua_output.txt"))
+            best[name] = min(best[name], timed(command, args.out / "lua_output.txt", 1))
     rates = {name: frames / seconds for name, seconds in best.items()}
     for name, seconds in best.items():
         print(f"{name:<32} {seconds:8.3f} s  {rates[name]:>10,.0f} frames/s")
