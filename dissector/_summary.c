@@ -640,11 +640,15 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
     return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
 }
 
-static void line_head(Out *o, unsigned long long number, int slave, const char *kind) {
-    out_uint(o, number, 6);
-    out_put(o, "            - ", 14);
-    out_uint(o, (unsigned long long)slave, 3);
-    out_cstr(o, kind);
+/* summary.summary_line up to the info text: number, time (`-`: untimed), slave, kind, function name */
+static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, f[0], 3);
+    out_cstr(&e->out, kind);
+    if (out_str(&e->out, s->name[handled_index(f[1])]) < 0) return -1;
+    out_put(&e->out, " ", 1);
+    return 0;
 }
 
 /* Python's str.rstrip() in info_text: hand over unless the info ends in a plain visible character. */
@@ -672,9 +676,7 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
                         int unanswered) {
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
-    line_head(&e->out, number, slave, " request   ");
-    if (out_str(&e->out, s->name[handled_index(function)]) < 0) return -1;
-    out_put(&e->out, " ", 1);
+    if (line_start(e, s, f, number, " request   ") < 0) return -1;
     switch (function) {
     case 3: case 4:
         span_text(&e->out, base, r->start, r->quantity);
@@ -732,9 +734,7 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
                          unsigned long long number, unsigned long long request_number) {
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
-    line_head(&e->out, number, slave, " response  ");
-    if (out_str(&e->out, s->name[handled_index(function)]) < 0) return -1;
-    out_put(&e->out, " ", 1);
+    if (line_start(e, s, f, number, " response  ") < 0) return -1;
     switch (function) {
     case 3: case 4: case 23:
         span_text(&e->out, base, r->start, r->quantity);

@@ -22,7 +22,7 @@ from typing import Any
 
 from .model import Chunk, Item
 from .pipeline import Dissector
-from .render.describe import _FUNCTION_NAMES, register_text
+from .render.describe import function_label, register_text
 from .spec import SPEC
 
 try:
@@ -44,11 +44,6 @@ def available() -> bool:
     return _summary is not None and not os.environ.get("VW3_PURE_PYTHON")
 
 
-def _function_name(function: int, special: str | None) -> str:
-    """describe.info_text's name: the profile's, else the spec's."""
-    return special or _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
-
-
 def _limits() -> tuple[tuple[int, int], ...]:
     names = ("read_registers", "write_registers", "rw_read", "rw_write")
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
@@ -56,7 +51,7 @@ def _limits() -> tuple[tuple[int, int], ...]:
 
 def make_engine(annotator: Any | None) -> Any:
     """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n)."""
-    plain_functions = {function: (_function_name(function, None), ()) for function in HANDLED}
+    plain_functions = {function: (function_label(function, None), ()) for function in HANDLED}
 
     def slave_info(slave: int) -> tuple[object, ...]:
         if annotator is None:
@@ -65,7 +60,7 @@ def make_engine(annotator: Any | None) -> Any:
             return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
-            function: (_function_name(function, special), check)
+            function: (function_label(function, special), check)
             for function, (special, check) in checks.items()
         }
         return (True, functions, mapped, depend, sources, seen, protected, bases)

@@ -80,10 +80,15 @@ def bits_text(frame: Frame) -> str:
     return text
 
 
+def function_label(function: int, function_text: str | None = None) -> str:
+    """The function as the Info column names it: the device profile's word, else the spec's."""
+    return function_text or _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
+
+
 def info_text(frame: Frame) -> str:
     """The Info column: what was asked or answered, in a few words."""
     function = frame.function
-    name = frame.function_text or _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
+    name = function_label(function, frame.function_text)
     if frame.kind is Kind.EXCEPTION:
         code = frame.exception_code
         meaning = frame.exception_text or SPEC.exception_name(code)
