@@ -1,4 +1,4 @@
-"""The compiled summary path (dissector/_summary.c); everything else is declared in pyproject.toml.
+"""The compiled summary path (dissector/accel/_summary.c); everything else is declared in pyproject.toml.
 
 The extension is optional: without a C compiler the package installs and runs on the pure-Python
 stages, which are the reference the extension is tested against (tests/test_fastsummary.py).
@@ -8,8 +8,8 @@ from setuptools import Extension, setup
 setup(
     ext_modules=[
         Extension(
-            "dissector._summary",
-            ["dissector/_summary.c"],
+            "dissector.accel._summary",
+            ["dissector/accel/_summary.c"],
             extra_compile_args=["-O2", "-std=c99", "-Wall", "-Wextra", "-Wno-unused-parameter", "-Wno-missing-field-initializers", "-Wno-cast-function-type"],
             optional=True,
         )

@@ -21,7 +21,7 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 
 from dissector.model import Chunk  # noqa: E402
 from dissector.pipeline import Dissector  # noqa: E402
-from dissector.profiles import build_annotator  # noqa: E402
+from dissector.devices.build import build_annotator  # noqa: E402
 from dissector.render.summary import summary_line  # noqa: E402
 from helpers import rtu  # noqa: E402
 from test_fastsummary import fast_lines, python_lines  # noqa: E402

@@ -38,24 +38,24 @@ if sys.argv[1:2] == ["--atheris-child"]:
     import atheris
 
     with atheris.instrument_imports(include=["dissector", "construct"]):
-        import dissector.cli  # noqa: F401  (imports every stage the targets reach)
-        import dissector.formats.hexdump  # noqa: F401
-        import dissector.formats.pcap  # noqa: F401
-        import dissector.formats.pcapng  # noqa: F401
+        import dissector.app.cli  # noqa: F401  (imports every stage the targets reach)
+        import dissector.sources.hexdump  # noqa: F401
+        import dissector.sources.pcap  # noqa: F401
+        import dissector.sources.pcapng  # noqa: F401
 
 from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 import test_fuzz as tf  # noqa: E402  (the suite's strategies and properties)
-from dissector.ascii import AsciiFramer  # noqa: E402
-from dissector.cli import Environment, run  # noqa: E402
-from dissector.filters import FilterError, compile_filter  # noqa: E402
-from dissector.framer import RtuFramer  # noqa: E402
-from dissector.grammar import GrammarError, parse_pdu  # noqa: E402
+from dissector.framing.ascii import AsciiFramer  # noqa: E402
+from dissector.app.cli import Environment, run  # noqa: E402
+from dissector.render.filters import FilterError, compile_filter  # noqa: E402
+from dissector.framing.rtu import RtuFramer  # noqa: E402
+from dissector.protocol.grammar import GrammarError, parse_pdu  # noqa: E402
 from dissector.model import Kind  # noqa: E402
 from dissector.pipeline import dissect  # noqa: E402
 from dissector.render.jsonout import item_to_dict  # noqa: E402
-from dissector.sources import SourceError  # noqa: E402
+from dissector.sources.reader import SourceError  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "fuzz"
 FORMATS = (None, "raw", "pcap", "pcapng", "hex", "ascii")

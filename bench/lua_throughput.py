@@ -3,7 +3,7 @@
     python3 bench/lua_throughput.py [--frames 200000] [--repeat 1] [--pcap FILE] [--plugin FILE]
 
 Reuses bench/out/session.pcap when it holds --frames records (bench/throughput.py writes it), or builds
-it the same way (dissector.simulate.generate_session, seed 1, write_capture). Then times, best of
+it the same way (dissector.sim.simulate.generate_session, seed 1, write_capture). Then times, best of
 --repeat rounds (the rounds interleave the commands):
 - `tshark -2 -X lua_script:lua/vw3.lua -r session.pcap`, the one-line summary to a file;
 - tshark's own mbrtu on the same pcap (USER0 mapped to mbrtu, CRC verification on), summary to a file.
@@ -51,7 +51,7 @@ def session_pcap(frames: int, out: Path) -> Path:
     pcap = out / "session.pcap"
     if pcap.exists() and pcap_records(pcap) == frames:
         return pcap
-    from dissector.simulate import generate_session, write_capture
+    from dissector.sim.simulate import generate_session, write_capture
 
     out.mkdir(parents=True, exist_ok=True)
     records = generate_session(frames // 2 + frames // 20, seed=1)[:frames]

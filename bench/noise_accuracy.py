@@ -27,7 +27,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 
-from dissector.crc import crc16_reference  # noqa: E402
+from dissector.protocol.crc import crc16_reference  # noqa: E402
 from dissector.model import Chunk, Frame  # noqa: E402
 from dissector.pipeline import dissect  # noqa: E402
 

@@ -2,7 +2,7 @@
 
     python3 bench/throughput.py [--frames 200000] [--repeat 3] [--memory]
 
-Builds a simulated session (dissector.simulate.generate_session: ATV71 I/O scanning, SEL-749M polls,
+Builds a simulated session (dissector.sim.simulate.generate_session: ATV71 I/O scanning, SEL-749M polls,
 exceptions, unanswered requests), writes it raw (for vw3-decode) and as a USER0 pcap (for tshark's
 mbrtu dissector), then times, best of --repeat:
 - vw3-decode summary to a file, with the ATV71 annotator (the default) and without it (-n);
@@ -26,7 +26,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from dissector.simulate import generate_session, write_capture  # noqa: E402
+from dissector.sim.simulate import generate_session, write_capture  # noqa: E402
 
 TSHARK_OPTIONS = [
     "-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""',

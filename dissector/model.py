@@ -72,7 +72,7 @@ class Frame:
     unanswered: bool = False
     broadcast: bool = False
     warnings: list[str] = field(default_factory=list)
-    # Filled by dissector.decode.decode_frame.
+    # Filled by dissector.decode.fields.decode_frame.
     decoded: bool = False
     fields: Any = None
     start: int | None = None

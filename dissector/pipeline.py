@@ -7,11 +7,11 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Iterator
 from typing import Protocol
 
-from .decode import decode_frame
-from .framer import RtuFramer
-from .model import Chunk, Frame, Item
-from .pairing import Pairer
-from .timing import GapChecker
+from dissector.decode.fields import decode_frame
+from dissector.framing.rtu import RtuFramer
+from dissector.model import Chunk, Frame, Item
+from dissector.decode.pairing import Pairer
+from dissector.framing.timing import GapChecker
 
 
 class Framer(Protocol):

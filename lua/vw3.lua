@@ -6,16 +6,16 @@
 -- `tshark -X lua_script:vw3.lua -r capture.pcap`. It decodes linktype 147 (USER0) records, `rtacser.data`
 -- through Decode As, and Modbus RTU over TCP on the port set in the preferences.
 --
--- The framing, pairing and decoding below mirror the Python package (dissector/framer.py, pairing.py,
+-- The framing, pairing and decoding below mirror the Python package (dissector/framing/rtu.py, pairing.py,
 -- decode.py, profile_annotator.py) rule for rule; a parity test runs tshark with this file and compares
 -- every frame with the Python decoder. The tables between the GENERATED markers come from the package's
--- data files (python3 -m dissector.luagen); a test fails when they are stale.
+-- data files (python3 -m dissector.codegen.lua); a test fails when they are stale.
 --
 -- Runs on Wireshark 4.0 (Lua 5.2) and 4.4+ (Lua 5.4): no native bitwise operators, no `//`, integer
 -- division with math.floor; XOR comes from `bit` (Wireshark's bitop), `bit32`, or 5.3+ operators
 -- compiled at run time.
 
--- BEGIN GENERATED DATA: python3 -m dissector.luagen (do not edit by hand)
+-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)
 local DATA = {
   ["functions"] = {
     [1] = "Read Coils",
@@ -898,7 +898,7 @@ local function crc_ok_at(b, i, length)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Framing (dissector/framer.py): length rules per function code and direction, CRC to confirm.
+-- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
 local FRAMING = DATA.framing or { max_adu = 256, min_adu = 4, max_slave = 247, noise_item_max = 4096 }
 local MAX_ADU, MIN_ADU, MAX_SLAVE = FRAMING.max_adu, FRAMING.min_adu, FRAMING.max_slave
 local NOISE_ITEM_MAX = FRAMING.noise_item_max
@@ -1181,7 +1181,7 @@ local function frame_record(st, b, n)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Modbus ASCII (dissector/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
+-- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
 -- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
 local COLON, CR, LF = 0x3A, 0x0D, 0x0A
 local MAX_BINARY = 255
@@ -1342,7 +1342,7 @@ local function frame_ascii_record(st, b, n)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Protocol names and limits (dissector/spec.py).
+-- Protocol names and limits (dissector/protocol/spec.py).
 local FUNCTIONS = DATA.functions or {}
 local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
@@ -1365,7 +1365,7 @@ local function exception_name(code)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Decoding (dissector/grammar.py + decode.py): PDU data after the function code, then the handlers.
+-- Decoding (dissector/protocol/grammar.py + decode.py): PDU data after the function code, then the handlers.
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
 local function check_range(frame, what, value, limit_name)
@@ -1786,7 +1786,7 @@ local function decode_frame(f)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Pairing (dissector/pairing.py): a response answers the open request with its slave and function.
+-- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 local function pair(st, f)
   local pending = st.pending
   if f.kind == REQUEST then

@@ -3,8 +3,8 @@ from __future__ import annotations
 
 import re
 
-from ..model import DeviceObject, Frame, Kind, Register
-from ..spec import SPEC
+from dissector.model import DeviceObject, Frame, Kind, Register
+from dissector.protocol.spec import SPEC
 
 MAX_VALUES = 6
 _FUNCTION_NAMES = SPEC.functions

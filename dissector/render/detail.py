@@ -9,9 +9,9 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
-from ..model import Frame, Item, Kind, Noise, Register
-from ..spec import SPEC
-from .summary import crc_text, noise_info
+from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.protocol.spec import SPEC
+from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
     from rich.tree import Tree

@@ -7,8 +7,8 @@ from __future__ import annotations
 import json
 from typing import Any, TextIO
 
-from ..model import Frame, Item, Kind, Noise, Register
-from ..spec import SPEC
+from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.protocol.spec import SPEC
 
 _REGISTER_EXTRA = ("code", "name", "unit", "scaled", "text", "status", "source", "label")
 

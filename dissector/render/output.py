@@ -8,11 +8,11 @@ import json
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
-from ..model import Item
-from .detail import detail_tree, render_plain, render_rich
-from .hexdump import hexdump
-from .jsonout import item_to_dict
-from .summary import summary_line, summary_text
+from dissector.model import Item
+from dissector.render.detail import detail_tree, render_plain, render_rich
+from dissector.render.hexdump import hexdump
+from dissector.render.jsonout import item_to_dict
+from dissector.render.summary import summary_line, summary_text
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -37,7 +37,7 @@ class Output:
         if use_rich and not options.json:
             from rich.console import Console as RichConsole  # only a terminal needs rich
 
-            from .theme import THEME
+            from dissector.render.theme import THEME
 
             self.console = RichConsole(
                 file=stream,

@@ -8,7 +8,7 @@ from typing import TextIO
 from rich.console import Console
 from rich.progress import BarColumn, DownloadColumn, Progress, TextColumn, TimeRemainingColumn
 
-from ..model import Chunk
+from dissector.model import Chunk
 
 MIN_SIZE = 4 << 20  # smaller files decode in well under a second: no bar
 

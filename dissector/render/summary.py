@@ -3,8 +3,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..model import Frame, Item, Kind, Noise
-from .describe import info_text
+from dissector.model import Frame, Item, Kind, Noise
+from dissector.render.describe import info_text
 
 if TYPE_CHECKING:
     from rich.text import Text

@@ -1,0 +1,1048 @@
+/* The compiled summary path of vw3-decode: raw Modbus RTU bytes in, summary lines out.
+ *
+ * It does, for the transactions that make up nearly all of a polling bus (FC3, FC4, FC6, FC16, FC23
+ * requests and their normal responses, unanswered requests), exactly what the Python stages do:
+ * the framer's fast path (framer.py, _run), pairing, the decoder's spec checks, the annotator's
+ * naming (PLC-style addresses included) and parameter tracking, and the summary line
+ * (render/summary.py). Anything else (noise, a damaged frame, an exception, a warning or a note to
+ * give) it hands back, before touching any state, at the start of the transaction: the Python stages
+ * then take that part of the stream, and give it back at their next idle point
+ * (dissector/accel/fastsummary.py). tests/test_fastsummary.py holds the output of both paths equal.
+ *
+ * Device knowledge stays in Python: register texts come from a callback (the annotator and the
+ * summary renderer themselves), cached here by (slave, function, address, value).
+ *
+ * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
+ * (CRC, words, output) into the transaction loop without link-time optimisation.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <stdint.h>
+#include <string.h>
+
+#define MIN_ADU 4
+#define MAX_ADU 256
+#define MAX_SLAVE 247
+#define MAX_VALUES 6   /* render/describe.py MAX_VALUES */
+#define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
+
+enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
+enum { KIND_REQUEST = 1, KIND_RESPONSE = 2 };
+enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
+
+static uint16_t crc_table[256];
+
+static void crc_init(void) {
+    for (int n = 0; n < 256; n++) {
+        uint16_t c = (uint16_t)n;
+        for (int k = 0; k < 8; k++)
+            c = (c & 1) ? (uint16_t)((c >> 1) ^ 0xA001) : (uint16_t)(c >> 1);
+        crc_table[n] = c;
+    }
+}
+
+static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
+    uint16_t crc = 0xFFFF;
+    while (n--) crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ *p++) & 0xFF]);
+    return crc;
+}
+
+static inline unsigned word(const uint8_t *p) { return (unsigned)p[0] << 8 | p[1]; }
+
+/* ---- output buffer ---------------------------------------------------------------------------- */
+/* Lines being written. After a failed allocation, `failed` is set with MemoryError raised; writers
+ * check it once per line. */
+typedef struct { char *data; size_t len, cap; int failed; } Out;
+
+static int out_reserve(Out *o, size_t more) {
+    if (o->failed) return -1;
+    if (o->len + more <= o->cap) return 0;
+    size_t cap = o->cap ? o->cap : 1 << 16;
+    while (cap < o->len + more) cap *= 2;
+    char *data = PyMem_Realloc(o->data, cap);
+    if (data == NULL) {
+        o->failed = 1;
+        PyErr_NoMemory();
+        return -1;
+    }
+    o->data = data;
+    o->cap = cap;
+    return 0;
+}
+
+static void out_put(Out *o, const char *s, size_t n) {
+    if (out_reserve(o, n) < 0) return;
+    memcpy(o->data + o->len, s, n);
+    o->len += n;
+}
+
+static void out_cstr(Out *o, const char *s) { out_put(o, s, strlen(s)); }
+
+static void out_uint(Out *o, unsigned long long v, int width) {
+    char digits[24];
+    int n = 0;
+    do { digits[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = ' ';
+    while (n) o->data[o->len++] = digits[--n];
+}
+
+static int out_str(Out *o, PyObject *text) {
+    Py_ssize_t n;
+    const char *s = PyUnicode_AsUTF8AndSize(text, &n);
+    if (s == NULL) return -1;
+    out_put(o, s, (size_t)n);
+    return o->failed ? -1 : 0;
+}
+
+/* profile_annotator._plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
+static void out_label(Out *o, long long base, unsigned address) {
+    if (base < 0) {
+        out_uint(o, address, 0);
+        return;
+    }
+    long long scale = 1;
+    while (scale * 10 <= base) scale *= 10;
+    long long top = (base / scale + 1) * scale - 1;
+    long long number = base + address;
+    if (number > top) number = base * 10 - 9 + address;
+    out_uint(o, (unsigned long long)number, 0);
+}
+
+/* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
+#define HANDLED 5
+static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
+
+static int handled_index(int function) {
+    switch (function) {
+    case 3: return 0;
+    case 4: return 1;
+    case 6: return 2;
+    case 16: return 3;
+    case 23: return 4;
+    default: return -1;
+    }
+}
+
+typedef struct {
+    int loaded;
+    int usable;               /* 0: every transaction of this slave goes to Python */
+    PyObject *info;           /* the tuple, which keeps the objects below alive */
+    PyObject *name[HANDLED];  /* function names as shown */
+    int check[HANDLED];       /* -1: hand over; 0: no device limit; 1, 2: limits below */
+    long limit[HANDLED][2];
+    PyObject *depend;         /* dict address -> (on, frozenset plain_when) */
+    /* Address sets as bitmaps (one bit per address): tested for every register, at C speed. */
+    uint8_t *mapped;          /* addresses the annotator names */
+    uint8_t *dependent;       /* addresses with a bits_depend rule */
+    uint8_t *sources;         /* the addresses those rules depend on */
+    uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
+    long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
+    unsigned long depend_run; /* the run() the answer below was found in */
+    unsigned depend_address;
+    int depend_plain;
+    PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
+    long protected_value;     /* -1: none */
+} Slave;
+
+/* One entry of the annotator's parameter memory, kept here until the end of run(): a polled register
+ * is written once per run into the dict instead of once per read. */
+typedef struct {
+    unsigned long long number;
+    uint16_t address, value;
+    uint8_t slave, written;
+} Remembered;
+
+typedef struct {
+    uint64_t key;     /* 0: empty */
+    PyObject *text;   /* owned */
+    const char *utf8; /* text's own UTF-8 form */
+    Py_ssize_t length;
+    int named;
+} PieceSlot;
+
+typedef struct {
+    PyObject_HEAD
+    unsigned long long count;
+    int expect_slave, expect_function; /* -1: no answer awaited */
+    PyObject *slave_info;
+    PyObject *piece;
+    PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
+    size_t piece_count;
+    unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
+    PyObject *read_word, *written_word;
+    long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
+    Slave slaves[256];
+    Out out;
+    Remembered *log;
+    size_t log_len, log_cap;
+    int running; /* inside run(): callbacks must not re-enter */
+} Engine;
+
+#define BITMAP_BYTES (65536 / 8)
+
+static void slave_clear(Slave *s) {
+    Py_CLEAR(s->info);
+    PyMem_Free(s->mapped);
+    s->mapped = s->dependent = s->sources = s->pending = NULL;
+    s->depend_run = 0;
+    s->loaded = 0;
+}
+
+static inline int bit(const uint8_t *bitmap, unsigned address) {
+    return bitmap[address >> 3] >> (address & 7) & 1;
+}
+
+/* Set the bits of the integer addresses an iterable (set, dict) holds; others cannot be sent. */
+static int fill_bitmap(uint8_t *bitmap, PyObject *addresses) {
+    PyObject *iterator = PyObject_GetIter(addresses);
+    if (iterator == NULL) return -1;
+    PyObject *item;
+    while ((item = PyIter_Next(iterator)) != NULL) {
+        long address = PyLong_AsLong(item);
+        Py_DECREF(item);
+        if (address == -1 && PyErr_Occurred()) break;
+        if (address >= 0 && address < 65536) bitmap[address >> 3] |= (uint8_t)(1 << (address & 7));
+    }
+    Py_DECREF(iterator);
+    return PyErr_Occurred() ? -1 : 0;
+}
+
+static int fill_slave(Slave *s, PyObject *info);
+
+static int load_slave(Engine *e, int address) {
+    Slave *s = &e->slaves[address];
+    PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
+    if (info == NULL) return -1;
+    slave_clear(s); /* the callback may have loaded it already */
+    s->info = info;
+    if (fill_slave(s, info) < 0) {
+        slave_clear(s);
+        return -1;
+    }
+    s->loaded = 1;
+    return 0;
+}
+
+static int bad_info(const char *what) {
+    PyErr_Format(PyExc_TypeError, "slave_info: %s", what);
+    return -1;
+}
+
+static int fill_slave(Slave *s, PyObject *info) {
+    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) return bad_info("not an 8-tuple");
+    s->usable = PyObject_IsTrue(PyTuple_GET_ITEM(info, 0));
+    if (s->usable <= 0) return s->usable;
+    PyObject *functions = PyTuple_GET_ITEM(info, 1);
+    PyObject *seen = PyTuple_GET_ITEM(info, 5);
+    PyObject *bases = PyTuple_GET_ITEM(info, 7);
+    if (!PyDict_Check(functions) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 2)) ||
+        !PyDict_Check(PyTuple_GET_ITEM(info, 3)) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 4)) ||
+        (seen != Py_None && !PyDict_Check(seen)) || (bases != Py_None && !PyDict_Check(bases)))
+        return bad_info("items of the wrong type");
+    for (int k = 0; k < HANDLED; k++) {
+        PyObject *code = PyLong_FromLong(handled_codes[k]);
+        PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
+        Py_XDECREF(code);
+        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
+            !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
+            if (!PyErr_Occurred()) bad_info("bad function entry");
+            return -1;
+        }
+        s->name[k] = PyTuple_GET_ITEM(entry, 0);
+        PyObject *check = PyTuple_GET_ITEM(entry, 1);
+        if (check == Py_None) {
+            s->check[k] = -1;
+        } else {
+            Py_ssize_t n = PyTuple_Size(check);
+            if (n < 0) return -1;
+            s->check[k] = n > 2 ? -1 : (int)n;
+            for (Py_ssize_t j = 0; j < n && j < 2; j++)
+                s->limit[k][j] = PyLong_AsLong(PyTuple_GET_ITEM(check, j));
+            if (PyErr_Occurred()) return -1;
+        }
+    }
+    s->depend = PyTuple_GET_ITEM(info, 3);
+    s->mapped = PyMem_Calloc(4, BITMAP_BYTES);
+    if (s->mapped == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    s->dependent = s->mapped + BITMAP_BYTES;
+    s->sources = s->mapped + 2 * BITMAP_BYTES;
+    s->pending = s->mapped + 3 * BITMAP_BYTES;
+    if (fill_bitmap(s->mapped, PyTuple_GET_ITEM(info, 2)) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
+        fill_bitmap(s->sources, PyTuple_GET_ITEM(info, 4)) < 0)
+        return -1;
+    s->seen = seen == Py_None ? NULL : seen;
+    s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
+    if (PyErr_Occurred()) return -1;
+    for (int k = 0; k < HANDLED; k++) {
+        s->base[k] = -1;
+        if (bases == Py_None) continue;
+        PyObject *code = PyLong_FromLong(handled_codes[k]);
+        PyObject *base = code ? PyDict_GetItemWithError(bases, code) : NULL;
+        Py_XDECREF(code);
+        if (base == NULL) {
+            if (!PyErr_Occurred()) bad_info("no PLC base for a function");
+            return -1;
+        }
+        s->base[k] = PyLong_AsLongLong(base);
+        if (PyErr_Occurred()) return -1;
+        if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
+    }
+    return 0;
+}
+
+static Slave *slave_for(Engine *e, int address) {
+    Slave *s = &e->slaves[address];
+    if (!s->loaded && load_slave(e, address) < 0) return NULL;
+    return s;
+}
+
+/* ---- framing: framer.py's fast path, for the codes handled here -------------------------------- */
+typedef struct {
+    Py_ssize_t at, length;
+    int kind, slave, function;
+} FrameRef;
+
+/* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
+static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
+    int position, extra;
+    if (kind == KIND_REQUEST) {
+        switch (function) {
+        case 3: case 4: case 6: return 8;
+        case 16: position = 6; extra = 9; break;
+        case 23: position = 10; extra = 13; break;
+        default: return FRAME_HANDOVER;
+        }
+    } else {
+        switch (function) {
+        case 6: case 16: return 8;
+        case 3: case 4: case 23: position = 2; extra = 5; break;
+        default: return FRAME_HANDOVER;
+        }
+    }
+    if (i + position >= n) return FRAME_NEED;
+    int length = extra + b[i + position];
+    return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
+}
+
+static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
+    if (n - i < MIN_ADU) return FRAME_NEED;
+    int slave = b[i], function = b[i + 1];
+    if (slave > MAX_SLAVE || handled_index(function) < 0) return FRAME_HANDOVER;
+    int kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    Py_ssize_t length = first_length(b, i, n, function, kind);
+    if (length < 0) return (int)length;
+    /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
+    if (i + length >= n) return FRAME_NEED;
+    if (b[i + length] == 0) return FRAME_HANDOVER;
+    Py_ssize_t stop = i + length - 2;
+    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
+    f->at = i;
+    f->length = length;
+    f->kind = kind;
+    f->slave = slave;
+    f->function = function;
+    return FRAME_OK;
+}
+
+/* ---- registers ---------------------------------------------------------------------------------- */
+typedef struct {
+    unsigned start;        /* first address; addresses wrap at 65536 as decode._registers does */
+    unsigned count;
+    const uint8_t *values; /* big-endian words */
+} Words;
+
+static inline unsigned words_address(const Words *w, unsigned k) { return (w->start + k) & 0xFFFF; }
+static inline unsigned words_value(const Words *w, unsigned k) { return word(w->values + 2 * k); }
+
+static int depend_is_plain(Slave *s, unsigned address);
+
+/* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error.
+ * A bits_depend answer holds for a whole run(): the engine never writes the values rules depend on
+ * (it hands such transactions over), and the Python stages run only between two run() calls. */
+static int register_is_plain(Slave *s, unsigned long run_number, unsigned address) {
+    if (bit(s->sources, address)) return 0; /* a value others depend on: ordering matters, Python */
+    if (!bit(s->dependent, address)) return 1;
+    if (s->depend_run == run_number && s->depend_address == address) return s->depend_plain;
+    int plain = depend_is_plain(s, address);
+    if (plain >= 0) {
+        s->depend_run = run_number;
+        s->depend_address = address;
+        s->depend_plain = plain;
+    }
+    return plain;
+}
+
+static int depend_is_plain(Slave *s, unsigned address) {
+    PyObject *key = PyLong_FromUnsignedLong(address);
+    if (key == NULL) return -1;
+    PyObject *rule = PyDict_GetItemWithError(s->depend, key);
+    Py_DECREF(key);
+    if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (!PyTuple_Check(rule) || PyTuple_GET_SIZE(rule) != 2) return bad_info("bits_depend rule not (on, values)");
+    if (s->seen == NULL) return 1;
+    PyObject *last = PyDict_GetItemWithError(s->seen, PyTuple_GET_ITEM(rule, 0));
+    if (last == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
+    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), PyTuple_GET_ITEM(last, 0));
+    return plain < 0 ? -1 : !plain;
+}
+
+static int words_are_plain(Slave *s, unsigned long run_number, const Words *w) {
+    for (unsigned k = 0; k < w->count; k++) {
+        int plain = register_is_plain(s, run_number, words_address(w, k));
+        if (plain <= 0) return plain;
+    }
+    return 1;
+}
+
+/* Reads as the annotator sees them: 16#8000 in a multi-word read, or a parameter unreadable before,
+ * gives a note (Python's). `written` are addresses this transaction wrote first (FC23). */
+static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
+    if (s->protected_value < 0) return 1;
+    for (unsigned k = 0; k < w->count; k++) {
+        unsigned address = words_address(w, k);
+        if (w->count > 1 && (long)words_value(w, k) == s->protected_value) return 0;
+        if (written != NULL && s->seen != NULL) {
+            int rewritten = 0;
+            for (unsigned j = 0; j < written->count; j++)
+                if (words_address(written, j) == address) { rewritten = 1; break; }
+            if (rewritten) continue;
+        }
+        if (s->seen == NULL || bit(s->pending, address)) continue; /* the engine's entries hold values */
+        PyObject *key = PyLong_FromUnsignedLong(address);
+        if (key == NULL) return -1;
+        PyObject *last = PyDict_GetItemWithError(s->seen, key);
+        Py_DECREF(key);
+        if (last == NULL) {
+            if (PyErr_Occurred()) return -1;
+            continue;
+        }
+        if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
+        if (PyTuple_GET_ITEM(last, 0) == Py_None) return 0;
+    }
+    return 1;
+}
+
+/* seen[address] = (value, frame number, "read" or "written"), as the annotator keeps it; logged here
+ * and written to the dict by write_memory(). */
+static int remember(Engine *e, int slave, Slave *s, const Words *w, unsigned long long number, int written) {
+    if (e->log_len + w->count > e->log_cap) {
+        size_t cap = e->log_cap ? e->log_cap : 4096;
+        while (cap < e->log_len + w->count) cap *= 2;
+        Remembered *log = PyMem_Realloc(e->log, cap * sizeof *log);
+        if (log == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        e->log = log;
+        e->log_cap = cap;
+    }
+    for (unsigned k = 0; k < w->count; k++) {
+        unsigned address = words_address(w, k);
+        e->log[e->log_len++] = (Remembered){number, (uint16_t)address, (uint16_t)words_value(w, k),
+                                            (uint8_t)slave, (uint8_t)written};
+        s->pending[address >> 3] |= (uint8_t)(1 << (address & 7));
+    }
+    return 0;
+}
+
+/* The log into the annotator's dicts, newest entry of each address only. */
+static int write_memory(Engine *e) {
+    int status = 0;
+    for (size_t k = e->log_len; k-- > 0;) {
+        const Remembered *entry = &e->log[k];
+        Slave *s = &e->slaves[entry->slave];
+        if (!bit(s->pending, entry->address)) continue; /* a newer entry was written already */
+        s->pending[entry->address >> 3] &= (uint8_t)~(1 << (entry->address & 7));
+        if (status < 0) continue;
+        PyObject *key = PyLong_FromUnsignedLong(entry->address);
+        PyObject *value = PyLong_FromUnsignedLong(entry->value);
+        PyObject *frame = PyLong_FromUnsignedLongLong(entry->number);
+        PyObject *how = entry->written ? e->written_word : e->read_word;
+        PyObject *item = (key && value && frame) ? PyTuple_Pack(3, value, frame, how) : NULL;
+        if (item == NULL || PyDict_SetItem(s->seen, key, item) < 0) status = -1;
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+        Py_XDECREF(frame);
+        Py_XDECREF(item);
+    }
+    e->log_len = 0;
+    return status;
+}
+
+/* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
+static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a few low bits */
+    key ^= key >> 30;
+    key *= 0xbf58476d1ce4e5b9ULL;
+    key ^= key >> 27;
+    key *= 0x94d049bb133111ebULL;
+    return key ^ (key >> 31);
+}
+
+static void pieces_clear(Engine *e) {
+    if (e->pieces == NULL) return;
+    for (size_t k = 0; k < PIECE_SLOTS; k++) Py_XDECREF(e->pieces[k].text);
+    PyMem_Free(e->pieces);
+    e->pieces = NULL;
+    e->piece_count = 0;
+}
+
+/* The cached text of a mapped register, asked of the Python callback on first sight. */
+static const PieceSlot *piece_for(Engine *e, int slave, int function, unsigned address, unsigned value,
+                                  PieceSlot *scratch) {
+    /* The function matters only for a PLC-style label; it is part of the key all the same. */
+    uint64_t key = 1ULL << 63 | (uint64_t)handled_index(function) << 40 | (uint64_t)slave << 32 |
+                   (uint64_t)address << 16 | value;
+    if (e->pieces == NULL) {
+        e->pieces = PyMem_Calloc(PIECE_SLOTS, sizeof *e->pieces);
+        if (e->pieces == NULL) {
+            PyErr_NoMemory();
+            return NULL;
+        }
+    }
+    size_t slot = (size_t)mix(key) & (PIECE_SLOTS - 1);
+    while (e->pieces[slot].key != 0) {
+        if (e->pieces[slot].key == key) return &e->pieces[slot];
+        slot = (slot + 1) & (PIECE_SLOTS - 1);
+    }
+    PyObject *entry = PyObject_CallFunction(e->piece, "iiII", slave, function, address, value);
+    if (entry == NULL) return NULL;
+    if (!PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
+        Py_DECREF(entry);
+        PyErr_SetString(PyExc_TypeError, "piece must return (str, bool)");
+        return NULL;
+    }
+    PieceSlot found = {key, PyTuple_GET_ITEM(entry, 0), NULL, 0, PyObject_IsTrue(PyTuple_GET_ITEM(entry, 1))};
+    found.utf8 = found.named < 0 ? NULL : PyUnicode_AsUTF8AndSize(found.text, &found.length);
+    if (found.utf8 == NULL) {
+        Py_DECREF(entry);
+        return NULL;
+    }
+    Py_INCREF(found.text); /* the text outlives the tuple */
+    Py_DECREF(entry);
+    if (e->piece_count < PIECE_SLOTS / 2) {
+        e->pieces[slot] = found;
+        e->piece_count++;
+        return &e->pieces[slot];
+    }
+    *scratch = found; /* the cache is full: the caller releases the text after use */
+    return scratch;
+}
+
+/* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
+static int piece(Engine *e, Slave *s, int slave, int function, unsigned address, unsigned value, int *named) {
+    if (!bit(s->mapped, address)) {
+        *named = 0;
+        out_label(&e->out, s->base[handled_index(function)], address);
+        out_put(&e->out, "=", 1);
+        out_uint(&e->out, value, 0);
+        return 0;
+    }
+    PieceSlot scratch = {0};
+    const PieceSlot *found = piece_for(e, slave, function, address, value, &scratch);
+    if (found == NULL) return -1;
+    *named = found->named;
+    out_put(&e->out, found->utf8, (size_t)found->length);
+    Py_XDECREF(scratch.text);
+    return e->out.failed ? -1 : 0;
+}
+
+/* describe.values_text */
+static int values_text(Engine *e, Slave *s, int slave, int function, const Words *w) {
+    int named;
+    unsigned shown = w->count < MAX_VALUES ? w->count : MAX_VALUES;
+    for (unsigned k = 0; k < shown; k++) {
+        if (k) out_put(&e->out, " ", 1);
+        if (piece(e, s, slave, function, words_address(w, k), words_value(w, k), &named) < 0) return -1;
+    }
+    if (w->count > MAX_VALUES) {
+        out_cstr(&e->out, " \xe2\x80\xa6 (+");
+        out_uint(&e->out, w->count - MAX_VALUES, 0);
+        out_put(&e->out, ")", 1);
+    }
+    return 0;
+}
+
+/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0) */
+static void span_text(Out *o, long long base, unsigned start, unsigned quantity) {
+    out_label(o, base, start);
+    if (quantity == 1) return;
+    out_put(o, "..", 2);
+    out_label(o, base, (start + quantity - 1) & 0xFFFF);
+    out_put(o, " (", 2);
+    out_uint(o, quantity, 0);
+    out_put(o, ")", 1);
+}
+
+/* ---- one transaction ---------------------------------------------------------------------------- */
+typedef struct {
+    unsigned start, quantity;   /* FC23: the read part */
+    Words writes;               /* FC6, FC16, FC23 */
+    int has_writes;
+} Request;
+
+static int in_range(const long range[2], unsigned value) {
+    return range[0] <= (long)value && (long)value <= range[1];
+}
+
+/* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
+static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
+    int function = f[1];
+    int k = handled_index(function);
+    if (k < 0) return 0;
+    int check = s->check[k];
+    if (check < 0) return 0;
+    r->has_writes = 0;
+    unsigned device_quantity = 0, write_quantity = 0;
+    switch (function) {
+    case 3: case 4:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[0], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        device_quantity = r->quantity;
+        break;
+    case 6:
+        r->start = word(f + 2);
+        r->quantity = 1;
+        r->writes = (Words){r->start, 1, f + 4};
+        r->has_writes = 1;
+        device_quantity = 1;
+        break;
+    case 16:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[1], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        if (f[6] != 2 * r->quantity) return 0;
+        r->writes = (Words){r->start, r->quantity, f + 7};
+        r->has_writes = 1;
+        device_quantity = r->quantity;
+        break;
+    case 23:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        write_quantity = word(f + 8);
+        if (!in_range(e->limits[2], r->quantity) || !in_range(e->limits[3], write_quantity)) return 0;
+        if (f[10] != 2 * write_quantity) return 0;
+        r->writes = (Words){word(f + 6), write_quantity, f + 11};
+        r->has_writes = 1;
+        device_quantity = r->quantity;
+        break;
+    default:
+        return 0;
+    }
+    /* Annotator._within_limits */
+    if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
+    if (check == 2 && (function != 23 || (long)write_quantity > s->limit[k][1])) return 0;
+    return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
+}
+
+/* summary.summary_line up to the info text: number, time (`-`: untimed), slave, kind, function name */
+static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, f[0], 3);
+    out_cstr(&e->out, kind);
+    if (out_str(&e->out, s->name[handled_index(f[1])]) < 0) return -1;
+    out_put(&e->out, " ", 1);
+    return 0;
+}
+
+/* Python's str.rstrip() in info_text: hand over unless the info ends in a plain visible character. */
+static int info_end_is_plain(const Out *o) {
+    unsigned char last = (unsigned char)o->data[o->len - 1];
+    return last > 0x20 && last < 0x7F;
+}
+
+static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, unsigned value) {
+    /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
+    out_label(&e->out, s->base[handled_index(6)], address);
+    size_t mark = e->out.len;
+    int named;
+    out_put(&e->out, " ", 1);
+    if (piece(e, s, slave, 6, address, value, &named) < 0) return -1;
+    if (!named) {
+        e->out.len = mark;
+        out_put(&e->out, " = ", 3);
+        out_uint(&e->out, value, 0);
+    }
+    return 0;
+}
+
+static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
+                        int unanswered) {
+    int slave = f[0], function = f[1];
+    long long base = s->base[handled_index(function)];
+    if (line_start(e, s, f, number, " request   ") < 0) return -1;
+    switch (function) {
+    case 3: case 4:
+        span_text(&e->out, base, r->start, r->quantity);
+        break;
+    case 6:
+        if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
+        break;
+    case 16:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
+        break;
+    case 23: /* describe._read_write: the read part as numbers, even PLC style */
+        out_cstr(&e->out, "read ");
+        out_uint(&e->out, r->start, 0);
+        out_put(&e->out, "..", 2);
+        out_uint(&e->out, (unsigned long long)r->start + r->quantity - 1, 0);
+        out_put(&e->out, " (", 2);
+        out_uint(&e->out, r->quantity, 0);
+        out_cstr(&e->out, "), write ");
+        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
+        break;
+    }
+    if (e->out.failed) return -1;
+    if (!info_end_is_plain(&e->out)) return 0;
+    if (unanswered) out_cstr(&e->out, " [no response]");
+    out_cstr(&e->out, "  CRC ok\n");
+    return 1;
+}
+
+/* The response's checks (decoder and annotator); fills its registers. 1 quiet, 0 hand over. */
+static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Request *r, Words *reads) {
+    int function = f[1];
+    reads->count = 0;
+    switch (function) {
+    case 3: case 4: case 23:
+        if (f[2] != 2 * r->quantity) return 0;
+        *reads = (Words){r->start, r->quantity, f + 3};
+        break;
+    case 6: {
+        Words echo = {word(f + 2), 1, f + 4};
+        return words_are_plain(s, e->run_number, &echo);
+    }
+    case 16:
+        return word(f + 2) == r->start && word(f + 4) == r->quantity;
+    default:
+        return 0;
+    }
+    int plain = words_are_plain(s, e->run_number, reads);
+    if (plain <= 0) return plain;
+    return reads_are_quiet(s, reads, function == 23 ? &r->writes : NULL);
+}
+
+static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
+                         unsigned long long number, unsigned long long request_number) {
+    int slave = f[0], function = f[1];
+    long long base = s->base[handled_index(function)];
+    if (line_start(e, s, f, number, " response  ") < 0) return -1;
+    switch (function) {
+    case 3: case 4: case 23:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        if (values_text(e, s, slave, function, reads) < 0) return -1;
+        break;
+    case 6:
+        if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
+        break;
+    case 16:
+        span_text(&e->out, base, word(f + 2), word(f + 4));
+        out_cstr(&e->out, " written");
+        break;
+    }
+    if (e->out.failed) return -1;
+    if (!info_end_is_plain(&e->out)) return 0;
+    out_cstr(&e->out, " [#");
+    out_uint(&e->out, request_number, 0);
+    out_cstr(&e->out, "]  CRC ok\n");
+    return 1;
+}
+
+/* Annotator state after an answered transaction: what was written, then what was read. */
+static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
+                 unsigned long long number) {
+    if (s->seen == NULL) return 0;
+    int slave = f[0], function = f[1];
+    if (function == 16 || function == 23) {
+        if (remember(e, slave, s, &r->writes, number, 1) < 0) return -1;
+    }
+    if (function == 6) {
+        Words echo = {word(f + 2), 1, f + 4};
+        if (remember(e, slave, s, &echo, number, 1) < 0) return -1;
+    }
+    if (reads->count && s->protected_value >= 0) return remember(e, slave, s, reads, number, 0);
+    return 0;
+}
+
+/* ---- the Python object ------------------------------------------------------------------------- */
+enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
+
+/* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
+static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
+    FrameRef q, a;
+    int found = frame_at(e, b, *pos, n, &q);
+    if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
+    if (q.kind != KIND_REQUEST || q.slave == 0) return STEP_HANDOVER;
+    Slave *s = slave_for(e, q.slave);
+    if (s == NULL) return STEP_ERROR;
+    if (!s->usable) return STEP_HANDOVER;
+    Request r;
+    int quiet = request_is_quiet(e, s, b + q.at, &r);
+    if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
+    int saved_slave = e->expect_slave, saved_function = e->expect_function;
+    size_t mark = e->out.len;
+    e->expect_slave = q.slave;
+    e->expect_function = q.function;
+    int step, written;
+    found = frame_at(e, b, q.at + q.length, n, &a);
+    if (found == FRAME_OK && a.kind == KIND_REQUEST) {
+        /* The next frame is a request: this one was not answered (pairing.py). */
+        written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
+        if (written > 0) {
+            e->count += 1;
+            *pos = a.at;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else {
+        Words reads;
+        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, &r, &reads) : 0;
+        if (quiet > 0) {
+            written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+            if (written > 0) written = response_line(e, s, b + a.at, &r, &reads, e->count + 2, e->count + 1);
+            if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
+            if (written > 0) {
+                e->count += 2;
+                e->expect_slave = e->expect_function = -1;
+                *pos = a.at + a.length;
+                return STEP_DONE;
+            }
+            step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+        } else {
+            step = quiet < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
+        }
+    }
+    /* Not shown here: its lines and its expectation are taken back. */
+    e->out.len = mark;
+    e->out.failed = 0;
+    e->expect_slave = saved_slave;
+    e->expect_function = saved_function;
+    return step;
+}
+
+static PyObject *engine_run(Engine *e, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t pos;
+    if (e->slave_info == NULL) {
+        PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
+        return NULL;
+    }
+    if (e->running) { /* a callback calling back in would free what the outer call uses */
+        PyErr_SetString(PyExc_RuntimeError, "Engine.run is not re-entrant");
+        return NULL;
+    }
+    if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
+    if (pos < 0 || pos > view.len) {
+        PyBuffer_Release(&view);
+        PyErr_SetString(PyExc_ValueError, "position outside the buffer");
+        return NULL;
+    }
+    e->running = 1;
+    e->run_number++;
+    e->out.len = 0;
+    e->out.failed = 0;
+    int step;
+    do {
+        step = transaction(e, view.buf, view.len, &pos);
+    } while (step == STEP_DONE);
+    /* The Python stages may read the parameter memory as soon as this returns. */
+    if (write_memory(e) < 0 && step != STEP_ERROR) step = STEP_ERROR;
+    e->running = 0;
+    PyBuffer_Release(&view);
+    if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
+    /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
+    PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
+    if (lines == NULL) return NULL;
+    return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
+}
+
+static PyObject *engine_get_count(Engine *e, void *closure) { return PyLong_FromUnsignedLongLong(e->count); }
+
+static int engine_set_count(Engine *e, PyObject *value, void *closure) {
+    if (value == NULL) {
+        PyErr_SetString(PyExc_TypeError, "count cannot be deleted");
+        return -1;
+    }
+    unsigned long long count = PyLong_AsUnsignedLongLong(value);
+    if (PyErr_Occurred()) return -1;
+    e->count = count;
+    return 0;
+}
+
+static PyObject *engine_get_expect(Engine *e, void *closure) {
+    if (e->expect_slave < 0) Py_RETURN_NONE;
+    return Py_BuildValue("(ii)", e->expect_slave, e->expect_function);
+}
+
+static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
+    if (value == NULL || value == Py_None) {
+        e->expect_slave = e->expect_function = -1;
+        return 0;
+    }
+    int slave, function;
+    if (!PyArg_ParseTuple(value, "ii", &slave, &function)) return -1;
+    if (slave < 0 || slave > 255 || function < 0 || function > 255) {
+        PyErr_SetString(PyExc_ValueError, "expect: (slave, function) bytes");
+        return -1;
+    }
+    e->expect_slave = slave;
+    e->expect_function = function;
+    return 0;
+}
+
+static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
+    PyObject *slave_info, *piece_fn;
+    static char *keywords[] = {"slave_info", "piece", "limits", NULL};
+    PyObject *limits;
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
+        return -1;
+    }
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO", keywords, &slave_info, &piece_fn, &limits)) return -1;
+    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
+                          &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
+                          &e->limits[3][1]))
+        return -1;
+    Py_INCREF(slave_info);
+    Py_XSETREF(e->slave_info, slave_info);
+    Py_INCREF(piece_fn);
+    Py_XSETREF(e->piece, piece_fn);
+    pieces_clear(e);
+    Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
+    Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
+    if (e->read_word == NULL || e->written_word == NULL) return -1;
+    for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
+    e->count = 0;
+    e->expect_slave = e->expect_function = -1;
+    return 0;
+}
+
+static int engine_traverse(Engine *e, visitproc visit, void *arg) {
+    Py_VISIT(e->slave_info);
+    Py_VISIT(e->piece);
+    for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
+    return 0;
+}
+
+static int engine_clear(Engine *e) {
+    Py_CLEAR(e->slave_info);
+    Py_CLEAR(e->piece);
+    pieces_clear(e);
+    Py_CLEAR(e->read_word);
+    Py_CLEAR(e->written_word);
+    for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
+    return 0;
+}
+
+static void engine_dealloc(Engine *e) {
+    PyObject_GC_UnTrack(e);
+    engine_clear(e);
+    PyMem_Free(e->out.data);
+    PyMem_Free(e->log);
+    Py_TYPE(e)->tp_free((PyObject *)e);
+}
+
+static PyMethodDef engine_methods[] = {
+    {"run", (PyCFunction)engine_run, METH_VARARGS,
+     "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
+     "position on; status 0: needs more bytes, 1: hand the stream over at position."},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef engine_getset[] = {
+    {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
+    {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
+     NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject EngineType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "dissector.accel._summary.Engine",
+    .tp_basicsize = sizeof(Engine),
+    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC,
+    .tp_doc = "The compiled summary path (see dissector/accel/fastsummary.py).",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)engine_init,
+    .tp_dealloc = (destructor)engine_dealloc,
+    .tp_traverse = (traverseproc)engine_traverse,
+    .tp_clear = (inquiry)engine_clear,
+    .tp_methods = engine_methods,
+    .tp_getset = engine_getset,
+};
+
+static PyObject *module_crc16(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    if (!PyArg_ParseTuple(args, "y*", &view)) return NULL;
+    uint16_t crc = crc16(view.buf, view.len);
+    PyBuffer_Release(&view);
+    return PyLong_FromLong(crc);
+}
+
+/* crc.crc_lengths: one incremental pass instead of one CRC per candidate length. */
+static PyObject *module_crc_lengths(PyObject *self, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t start, minimum, maximum;
+    if (!PyArg_ParseTuple(args, "y*nnn", &view, &start, &minimum, &maximum)) return NULL;
+    const uint8_t *b = view.buf;
+    if (minimum < 2) minimum = 2;
+    if (start < 0 || start > view.len) maximum = -1;
+    if (start + maximum > view.len) maximum = view.len - start;
+    PyObject *lengths = PyList_New(0);
+    if (lengths == NULL || minimum > maximum) {
+        PyBuffer_Release(&view);
+        return lengths;
+    }
+    uint16_t crc = crc16(b + start, minimum - 2);
+    for (Py_ssize_t length = minimum; length <= maximum; length++) {
+        Py_ssize_t stop = start + length - 2;
+        if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
+            PyObject *found = PyLong_FromSsize_t(length);
+            if (found == NULL || PyList_Append(lengths, found) < 0) {
+                Py_XDECREF(found);
+                Py_DECREF(lengths);
+                PyBuffer_Release(&view);
+                return NULL;
+            }
+            Py_DECREF(found);
+        }
+        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+    }
+    PyBuffer_Release(&view);
+    return lengths;
+}
+
+static PyMethodDef module_methods[] = {
+    {"crc16", module_crc16, METH_VARARGS, "CRC-16/MODBUS of a bytes-like object."},
+    {"crc_lengths", module_crc_lengths, METH_VARARGS,
+     "crc_lengths(buffer, start, minimum, maximum) -> the lengths L in minimum..maximum at which\n"
+     "buffer[start:start + L] ends in the CRC-16/MODBUS of the bytes before it."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef summary_module = {
+    PyModuleDef_HEAD_INIT, "_summary", "The compiled summary path of vw3-decode.", -1, module_methods,
+};
+
+PyMODINIT_FUNC PyInit__summary(void) {
+    crc_init();
+    if (PyType_Ready(&EngineType) < 0) return NULL;
+    PyObject *module = PyModule_Create(&summary_module);
+    if (module == NULL) return NULL;
+    Py_INCREF(&EngineType);
+    if (PyModule_AddObject(module, "Engine", (PyObject *)&EngineType) < 0) {
+        Py_DECREF(&EngineType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}

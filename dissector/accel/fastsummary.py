@@ -1,0 +1,186 @@
+"""The compiled summary path: plain summary lines of a raw RTU capture, at tshark's speed.
+
+Profiling the Python stages (README, Performance) showed ~15 us a frame spread over every stage:
+framing, pairing, decoding, annotation and the summary text each cost a few, and no hot spot was
+left. What tshark does in 4 us a frame could only be matched by doing all of it in compiled code for
+the transactions that make up a polling bus, so dissector/accel/_summary.c does exactly that, and hands the
+stream over to the Python stages, untouched, for everything else (noise, damage, exceptions, anything
+with a warning or a note, other function codes). The Python stages stay the
+reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for
+every text it shows (register readings, function names) and keeps the annotator's parameter memory
+up to date. tests/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+
+Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
+statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at
+install time) the Python stages do everything.
+"""
+from __future__ import annotations
+
+import os
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from dissector.model import Chunk, Item
+from dissector.pipeline import Dissector
+from dissector.render.describe import function_label, register_text
+from dissector.protocol.spec import SPEC
+
+try:
+    from dissector.accel import _summary
+except ImportError:  # built without a C compiler: the Python stages do everything
+    _summary = None  # type: ignore[assignment]
+
+HANDLED = (3, 4, 6, 16, 23)  # function codes the compiled path decodes (_summary.c)
+WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
+# When the engine hands the stream straight back (a device or function codes it does not show), the
+# Python stages take a growing run of bytes at once instead of one frame at a time.
+SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
+SHORT_STRETCHES = 4  # short stretches in a row before the runs start (exceptions come in clusters)
+MAX_RUN = 16384
+NEED, HANDOVER = 0, 1
+
+
+def available() -> bool:
+    return _summary is not None and not os.environ.get("VW3_PURE_PYTHON")
+
+
+def _limits() -> tuple[tuple[int, int], ...]:
+    names = ("read_registers", "write_registers", "rw_read", "rw_write")
+    return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
+
+
+def make_engine(annotator: Any | None) -> Any:
+    """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n)."""
+    plain_functions = {function: (function_label(function, None), ()) for function in HANDLED}
+
+    def slave_info(slave: int) -> tuple[object, ...]:
+        if annotator is None:
+            return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
+        if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
+            return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
+        checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
+        functions = {
+            function: (function_label(function, special), check)
+            for function, (special, check) in checks.items()
+        }
+        return (True, functions, mapped, depend, sources, seen, protected, bases)
+
+    def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
+        register = annotator.plain_register(slave, function, address, value)
+        return register_text(register), bool(register.code or register.text)
+
+    return _summary.Engine(slave_info, piece, _limits())
+
+
+class SummaryPath:
+    """Drives the stream through the compiled engine and, where it hands over, the Python stages.
+
+    The Python stages take the stream at the start of a transaction the engine would not show, frame
+    one frame at a time, and give it back as soon as nothing is pending (no request awaiting its
+    answer, no noise run open): both then agree on the item numbers and the framer's expectation.
+    """
+
+    def __init__(self, dissector: Dissector, annotator: Any | None, write_items: Callable[[list[Item]], None],
+                 write_lines: Callable[[bytes], None]) -> None:
+        self.dissector = dissector
+        self.framer = dissector.framer
+        self.pairer = dissector.pairer
+        self.engine = make_engine(annotator)
+        self.write_items = write_items
+        self.write_lines = write_lines
+        self.buf = b""  # bytes not given to either side yet start at buf[pos], absolute offset base+pos
+        self.base = 0
+        self.pos = 0
+        self.python = False  # the Python stages have the stream
+        self.taken_at = 0  # where they took it
+        self.run_size = 0  # bytes the Python stages frame freely before looking for an idle point
+        self.run_left = 0
+        self.short_stretches = 0
+        self.stretch_start = 0  # engine count when it last took the stream back
+
+    def feed(self, data: bytes) -> None:
+        if self.pos:
+            self.base += self.pos
+            self.buf = self.buf[self.pos :]
+            self.pos = 0
+        self.buf += data
+        if self.python:
+            self._python_frames()
+        else:
+            self._engine_frames()
+
+    def finish(self) -> None:
+        if not self.python:
+            self._hand_over()
+        self.framer.pause_at(None)
+        rest = self.buf[self.pos :]
+        self.buf, self.pos = b"", 0
+        self.write_items(self.dissector.feed(Chunk(rest)) + self.dissector.finish())
+
+    def _engine_frames(self) -> None:
+        while not self.python:
+            lines, self.pos, status = self.engine.run(self.buf, self.pos)
+            if lines:
+                self.write_lines(lines)
+            if status == NEED:
+                return
+            self._hand_over()
+            self._python_frames()
+
+    def _hand_over(self) -> None:
+        self.taken_at = self.base + self.pos
+        self.framer.restart_at(self.taken_at, self.engine.expect)
+        count = self.engine.count
+        self.pairer.count = count
+        if count - self.stretch_start < SHORT_STRETCH:
+            self.short_stretches += 1
+        else:
+            self.short_stretches = 0
+        if self.short_stretches >= SHORT_STRETCHES:
+            self.run_size = min(MAX_RUN, max(2 * self.run_size, WINDOW))
+        else:
+            self.run_size = 0
+        self.run_left = self.run_size
+        self.python = True
+
+    def _python_frames(self) -> None:
+        framer = self.framer
+        if self.run_left:
+            framer.pause_at(None)
+            run = self.buf[self.pos : self.pos + self.run_left]
+            self.pos += len(run)
+            self.write_items(self.dissector.feed(Chunk(run)))
+            self.run_left -= len(run)
+            if self.run_left:
+                return  # the run goes on with the next chunk
+        while True:
+            if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+                offset, rest, expect = framer.hand_back()
+                self.buf = rest + self.buf[self.pos :]
+                self.base, self.pos = offset, 0
+                self.engine.count = self.stretch_start = self.pairer.count
+                self.engine.expect = expect
+                self.python = False
+                return
+            before = framer.offset
+            framer.pause_at(before + 1)  # one frame (or one noise run) at a time
+            items = self.dissector.feed(Chunk(b""))
+            if items:
+                self.write_items(items)
+            if framer.offset != before:
+                continue
+            if self.pos >= len(self.buf):
+                return  # it needs bytes that have not come yet
+            window = self.buf[self.pos : self.pos + WINDOW]
+            self.pos += len(window)
+            items = self.dissector.feed(Chunk(window))
+            if items:
+                self.write_items(items)
+
+
+def summarize(chunks: Iterable[Chunk], path: SummaryPath, after_chunk: Callable[[], None]) -> None:
+    for chunk in chunks:
+        path.feed(chunk.data)
+        after_chunk()
+    path.finish()
+    after_chunk()

@@ -1,0 +1,429 @@
+"""`vw3-decode`: decode Modbus serial captures the way tshark shows packets.
+
+The pipeline is chosen once from the options (source -> framer -> pairing -> decoder -> annotator ->
+filter -> sinks); the terminal is injected (`Environment`) so tests run the whole CLI on strings.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import gc
+import io
+import json
+import os
+import sys
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass
+from typing import BinaryIO, TextIO
+
+from dissector.errors import ExitStatus, OutputError, UsageError
+from dissector import __version__
+from dissector.framing.ascii import AsciiFramer
+from dissector.render.filters import FilterError
+from dissector.framing.rtu import RtuFramer
+from dissector.app.live_options import add_live_arguments, positive_seconds
+from dissector.model import Chunk, Frame, Item
+from dissector.render.pcapwriter import PcapWriter
+from dissector.pipeline import Annotator, Dissector
+from dissector.app.profile_options import add_profile_arguments, annotator_from_args
+from dissector.errors import ProfileError
+from dissector.render.jsonout import item_to_dict
+from dissector.render.output import Output, OutputOptions
+from dissector.render.summary import summary_line, summary_text
+from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
+from dissector.framing.timing import GapChecker
+
+PROG = "vw3-decode"
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+
+
+@dataclass
+class Environment:
+    stdin: BinaryIO
+    stdout: TextIO
+    stderr: TextIO
+    stdout_isatty: bool
+    stderr_isatty: bool
+
+    @classmethod
+    def from_process(cls) -> Environment:
+        """The process's streams. A closed stdin (cron, daemons) reads as empty; main() refuses to run
+        with no stdout or stderr at all."""
+        stdin = sys.stdin.buffer if sys.stdin is not None else io.BytesIO()
+        return cls(
+            stdin=stdin,
+            stdout=sys.stdout,
+            stderr=sys.stderr,
+            stdout_isatty=sys.stdout.isatty(),
+            stderr_isatty=sys.stderr.isatty(),
+        )
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog=PROG,
+        description="Decode Modbus RTU/ASCII serial captures (Altivar 71 VW3 A3 303, SEL-749M) "
+        "frame by frame, the way tshark shows packets.",
+    )
+    parser.add_argument(
+        "files",
+        nargs="*",
+        metavar="FILE",
+        help="captures: raw bytes, pcap/pcapng (linktype 147 or 250), hex dump or Modbus ASCII; "
+        "- reads stdin",
+    )
+    parser.add_argument(
+        "-r", dest="read", action="append", default=[], metavar="FILE", help="a capture to read, as tshark -r"
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    parser.add_argument(
+        "--hex",
+        action="append",
+        default=[],
+        metavar="BYTES",
+        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" or an ASCII '
+        'frame --hex ":02062329000AA2" (all --hex arguments form one stream)',
+    )
+    output = parser.add_argument_group("output")
+    output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")
+    output.add_argument("-x", dest="hexdump", action="store_true", help="hex dump of every item")
+    output.add_argument(
+        "--json", action="store_true", help="NDJSON, one object per item (with --stats: the statistics)"
+    )
+    output.add_argument(
+        "-Y", dest="filter", metavar="EXPR", help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'"
+    )
+    output.add_argument(
+        "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
+    )
+    output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
+    output.add_argument(
+        "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
+    )
+    output.add_argument(
+        "--color",
+        choices=["auto", "always", "never"],
+        default="auto",
+        help="colour and layout with rich (auto: only on a terminal)",
+    )
+    decoding = parser.add_argument_group("decoding")
+    decoding.add_argument(
+        "--format",
+        choices=sorted(FORMATS),
+        help="input format instead of detecting it from the content",
+    )
+    decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
+    decoding.add_argument(
+        "--timeout",
+        type=positive_seconds,
+        default=1.0,
+        metavar="SECONDS",
+        help="flag responses later than this (needs timestamps; default 1 s)",
+    )
+    decoding.add_argument(
+        "-n", dest="no_profile", action="store_true", help="no device profile: Modbus spec semantics only"
+    )
+    add_profile_arguments(parser)
+    add_live_arguments(parser)
+    return parser
+
+
+def _hex_chunk(text: str) -> Chunk:
+    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
+    (`:02062329000AA2`; the CR LF may be left out)."""
+    stripped = text.strip()
+    if stripped.startswith(":"):
+        return Chunk(stripped.encode("ascii", "replace") + b"\r\n")
+    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
+    try:
+        return Chunk(bytes.fromhex(cleaned))
+    except ValueError:
+        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
+
+
+class Sinks:
+    """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
+
+    def __init__(self, args: argparse.Namespace, env: Environment) -> None:
+        self.env = env
+        self.json = args.json
+        self.predicate: Callable[[dict], bool] | None = None
+        if args.filter is not None:
+            from dissector.render.filters import compile_filter
+
+            self.predicate = compile_filter(args.filter)
+        self.stats = None
+        if args.stats:
+            from dissector.render.stats import StatsCollector
+
+            self.stats = StatsCollector()
+        self.show = not args.stats and (args.write is None or args.print_too)
+        options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
+        self.output = Output(options, env.stdout, env.stdout_isatty)
+        self.pcap: PcapWriter | None = None
+        self.write_path = args.write
+        if args.write is not None:
+            try:
+                self.pcap = PcapWriter(open(args.write, "wb"), flush=False)
+            except OSError as error:
+                raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
+        self.extra: dict[str, object] | None = None
+        self.frames_left: int | None = args.count
+        self.done = False  # -c N reached
+
+    @property
+    def plain_summary_only(self) -> bool:
+        """Every item becomes one plain summary line, nothing else reads them."""
+        return (
+            self.show
+            and self.predicate is None
+            and self.stats is None
+            and self.pcap is None
+            and self.frames_left is None
+            and self.output.plain_summary
+        )
+
+    def accept(self, items: list[Item]) -> None:
+        predicate = self.predicate
+        records: list[dict] | None = None
+        if predicate is not None:
+            # The filter reads the NDJSON form; keep it for --json rather than building it twice.
+            pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
+            items = [item for item, _record in pairs]
+            records = [record for _item, record in pairs]
+        if self.frames_left is not None:
+            items = self._up_to_count(items)
+            if records is not None:
+                records = records[: len(items)]
+        if self.pcap is not None:
+            try:
+                for item in items:
+                    self.pcap.write(item.raw, item.time)
+            except OSError as error:
+                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
+        if self.stats is not None:
+            for item in items:
+                self.stats.add(item)
+        if self.show:
+            self.output.write(items, self.extra, records)
+
+    def _up_to_count(self, items: list[Item]) -> list[Item]:
+        """Items up to and including the frame that reaches -c N; then the decoding stops."""
+        assert self.frames_left is not None
+        for index, item in enumerate(items):
+            if isinstance(item, Frame):
+                self.frames_left -= 1
+                if self.frames_left == 0:
+                    self.done = True
+                    return items[: index + 1]
+        return items
+
+    def abandon(self) -> None:
+        """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.pcap is not None:
+            try:
+                self.pcap.close()
+            except OSError:
+                pass
+            self.pcap = None
+
+    def close(self) -> None:
+        if self.pcap is not None:
+            pcap, self.pcap = self.pcap, None
+            try:
+                pcap.close()
+            except OSError as error:
+                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
+        if self.stats is not None:
+            if self.json:
+                self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
+            else:
+                self.output.flush()
+                if self.output.console is not None:
+                    self.output.console.print(self.stats.render())
+                else:
+                    from rich.console import Console
+
+                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+        self.output.flush()
+
+
+def decode_chunks(
+    chunks: Iterable[Chunk],
+    dissector: Dissector,
+    sinks: Sinks,
+    warn: Callable[[], None] = lambda: None,
+) -> None:
+    for chunk in chunks:
+        sinks.accept(dissector.feed(chunk))
+        warn()
+        if sinks.done:
+            return
+    sinks.accept(dissector.finish())
+    warn()
+
+
+def _annotator(args: argparse.Namespace) -> Annotator | None:
+    if args.no_profile:
+        return None
+    return annotator_from_args(args)
+
+
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
+
+
+def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
+    """(title, chunks, mode, take_warnings, timed) per input."""
+    several = len(args.files) + bool(args.hex) > 1
+    if args.hex:
+        chunks = [_hex_chunk(text) for text in args.hex]
+        mode = args.mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
+        yield ("--hex" if several else None), chunks, mode, list, False
+    for path in args.files:
+        stdin = env.stdin if path == "-" else None
+        source = open_source(path, args.format, mode=args.mode, stdin=stdin)
+        chunks: Iterable[Chunk] = source
+        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
+            from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
+
+            chunks = progress_for(source, path, env.stderr)
+        yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
+
+
+def decode_files(args: argparse.Namespace, env: Environment) -> int:
+    annotate = _annotator(args)
+    sinks = Sinks(args, env)
+    try:
+        _decode_inputs(args, env, sinks, annotate)
+        sinks.close()
+    except OSError as error:
+        sinks.abandon()
+        raise OutputError(f"standard output: {error.strerror or error}") from None
+    return ExitStatus.OK
+
+
+def _decode_inputs(
+    args: argparse.Namespace, env: Environment, sinks: Sinks, annotate: Annotator | None
+) -> None:
+    try:
+        for title, chunks, mode, take_warnings, timed in _inputs(args, env):
+            if sinks.done:
+                break
+            sinks.output.new_input(title)
+            sinks.extra = {"file": title} if title is not None else None
+
+            def warn() -> None:
+                for warning in take_warnings():
+                    env.stderr.write(f"{PROG}: warning: {warning}\n")
+
+            framer = AsciiFramer() if mode == "ascii" else RtuFramer()
+            dissector = Dissector(
+                framer=framer,
+                annotate=annotate,
+                timeout=args.timeout,
+                gaps=GapChecker(args.baud, mode) if timed else None,
+            )
+            if mode == "rtu" and not timed and sinks.plain_summary_only:
+                from dissector.accel import fastsummary
+
+                if fastsummary.available():
+                    path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
+                    fastsummary.summarize(chunks, path, warn)
+                    continue
+            decode_chunks(chunks, dissector, sinks, warn)
+    except BaseException:
+        sinks.abandon()
+        raise
+
+
+def _live(args: argparse.Namespace, env: Environment) -> int:
+    first_time: list[float] = []  # the time column starts at the first item heard, as for files
+
+    def base(item: Item) -> float | None:
+        if not first_time and item.time is not None:
+            first_time.append(item.time)
+        return first_time[0] if first_time else None
+
+    from dissector.app.live import run_live  # pyserial is loaded only for a live capture
+
+    is_terminal = args.color == "always" or (args.color == "auto" and env.stdout_isatty)
+    return run_live(
+        args,
+        env.stdout,
+        env.stderr,
+        is_terminal,
+        lambda item: summary_line(item, base(item)),
+        _annotator(args),
+        lambda item: summary_text(item, base(item)),
+    )
+
+
+def run(argv: list[str] | None, env: Environment) -> int:
+    parser = build_parser()
+    try:
+        # argparse writes usage, errors, --help and --version itself: to the injected terminal.
+        with contextlib.redirect_stdout(env.stdout), contextlib.redirect_stderr(env.stderr):
+            args = parser.parse_args(argv)
+    except SystemExit as exit_:
+        return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
+    args.files = [*args.read, *args.files]
+    try:
+        if args.live or args.detect is not None:
+            if args.live is None:
+                raise UsageError("--detect needs --live PORT")
+            if args.files or args.hex:
+                raise UsageError("--live takes no FILE or --hex")
+            return _live(args, env)
+        if not args.files and not args.hex:
+            parser.print_usage(env.stderr)
+            raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")
+        return decode_files(args, env)
+    except (UsageError, SourceError, ProfileError, FilterError) as error:
+        _flush_quietly(env.stdout)
+        env.stderr.write(f"{PROG}: {error}\n")
+        return ExitStatus.BAD_INPUT
+    except OutputError as error:
+        env.stderr.write(f"{PROG}: {error}\n")
+        return ExitStatus.ERROR
+
+
+def _flush_quietly(stream: TextIO) -> None:
+    try:
+        stream.flush()
+    except OSError:
+        pass
+
+
+def main(argv: list[str] | None = None) -> int:
+    # Decoding allocates many small objects that live until written: collect young ones less often.
+    gc.set_threshold(10_000, 20, 20)
+    gc.freeze()
+    if sys.stdout is None or sys.stderr is None:
+        if sys.stderr is not None:
+            sys.stderr.write(f"{PROG}: standard output is closed\n")
+        return ExitStatus.ERROR
+    env = Environment.from_process()
+    try:
+        status = run(argv, env)
+    except KeyboardInterrupt:
+        env.stderr.write(f"{PROG}: interrupted\n")
+        return 130
+    except BrokenPipeError:
+        # The reader (head, less) went away: stop quietly, as tshark does.
+        _silence_stdout()
+        return ExitStatus.OK
+    if status == ExitStatus.ERROR:
+        _silence_stdout()  # what could not be written must not fail again at exit
+    return int(status)
+
+
+def _silence_stdout() -> None:
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,209 @@
+"""What a live capture shows: running counters, and the three ways of showing items.
+
+`LiveStats` counts what has been heard (per slave, CRC errors, unanswered requests, last response
+time); it is plain data so tests compare exact numbers. The sinks write items as they come:
+plain lines when the output is a pipe, NDJSON with --json, and a rich live view on a terminal
+(a header of counters above the last frames, which scroll).
+"""
+from __future__ import annotations
+
+import json
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Protocol, TextIO
+
+from rich.console import Console, Group, RenderableType
+from rich.live import Live
+from rich.table import Table
+from rich.text import Text
+
+from dissector.model import Frame, Item, Kind, Noise
+from dissector.render.jsonout import item_to_dict
+
+# The rich view redraws at most this often; a frame is still drawn within 50 ms of being framed.
+REDRAW_INTERVAL = 0.04
+
+
+@dataclass
+class SlaveCounts:
+    requests: int = 0
+    responses: int = 0
+    exceptions: int = 0
+    crc_errors: int = 0
+    unanswered: int = 0
+
+
+@dataclass
+class LiveStats:
+    frames: int = 0
+    noise_items: int = 0
+    noise_bytes: int = 0
+    crc_errors: int = 0
+    unanswered: int = 0
+    last_response_time: float | None = None
+    slaves: dict[int, SlaveCounts] = field(default_factory=dict)
+    # Requests not yet known to be answered or unanswered: the pairer decides later (hold=False),
+    # by setting `response` or `unanswered` on the request object we keep here.
+    _open: list[Frame] = field(default_factory=list)
+
+    def add(self, item: Item) -> None:
+        if isinstance(item, Noise):
+            self.noise_items += 1
+            self.noise_bytes += item.length
+            self._settle()
+            return
+        frame = item
+        self.frames += 1
+        counts = self.slaves.setdefault(frame.slave, SlaveCounts())
+        if not frame.crc_ok:
+            self.crc_errors += 1
+            counts.crc_errors += 1
+        if frame.kind is Kind.REQUEST:
+            counts.requests += 1
+            if not frame.broadcast:
+                self._open.append(frame)
+        elif frame.kind is Kind.EXCEPTION:
+            counts.exceptions += 1
+        else:
+            counts.responses += 1
+        if frame.response_time is not None:
+            self.last_response_time = frame.response_time
+        self._settle()
+
+    def finish(self) -> None:
+        self._settle()
+
+    def _settle(self) -> None:
+        still_open = []
+        for request in self._open:
+            if request.unanswered:
+                self.unanswered += 1
+                self.slaves[request.slave].unanswered += 1
+            elif request.response is None:
+                still_open.append(request)
+        self._open = still_open
+
+    def summary(self, seconds: float) -> str:
+        requests = sum(c.requests for c in self.slaves.values())
+        responses = sum(c.responses for c in self.slaves.values())
+        exceptions = sum(c.exceptions for c in self.slaves.values())
+        return (
+            f"{_count(self.frames, 'frame')} ({_count(requests, 'request')}, "
+            f"{_count(responses, 'response')}, {_count(exceptions, 'exception')}) "
+            f"from {_count(len(self.slaves), 'slave')}, {_count(self.crc_errors, 'CRC error')}, "
+            f"{self.unanswered} unanswered, {_count(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
+        )
+
+
+def _count(number: int, noun: str) -> str:
+    return f"{number} {noun}{'' if number == 1 else 's'}"
+
+
+class Sink(Protocol):
+    def show(self, items: list[Item]) -> None: ...
+
+    def tick(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class LineSink:
+    """One line per item (plain or NDJSON), flushed per batch so a pipe reader sees it at once."""
+
+    def __init__(self, out: TextIO, render: Callable[[Item], str]) -> None:
+        self._out = out
+        self._render = render
+
+    def show(self, items: list[Item]) -> None:
+        if items:
+            self._out.write("".join(self._render(item) + "\n" for item in items))
+            self._out.flush()
+
+    def tick(self) -> None:
+        pass
+
+    def close(self) -> None:
+        self._out.flush()
+
+
+def json_line(item: Item) -> str:
+    return json.dumps(item_to_dict(item))
+
+
+def header_table(stats: LiveStats) -> Table:
+    table = Table(expand=False, pad_edge=False, box=None)
+    for name in ("slave", "requests", "responses", "exceptions", "CRC errors", "unanswered"):
+        table.add_column(name, justify="right")
+    for slave in sorted(stats.slaves):
+        c = stats.slaves[slave]
+        table.add_row(
+            str(slave), str(c.requests), str(c.responses), str(c.exceptions), str(c.crc_errors),
+            str(c.unanswered),
+        )
+    return table
+
+
+def totals_text(stats: LiveStats) -> str:
+    last = stats.last_response_time
+    return (
+        f"{stats.frames} frames, {stats.crc_errors} CRC errors, {stats.unanswered} unanswered, "
+        f"{stats.noise_bytes} noise bytes, last response time "
+        + (f"{last * 1000:.1f} ms" if last is not None else "-")
+    )
+
+
+class LiveView:
+    """Header of counters above the last frames. A renderable: the Console draws it."""
+
+    def __init__(self, title: str, stats: LiveStats, render: Callable[[Item], Text], rows: int) -> None:
+        self.title = title
+        self.stats = stats
+        self._render = render
+        self.lines: deque[Text] = deque(maxlen=max(rows, 1))
+
+    def add(self, item: Item) -> None:
+        self.lines.append(self._render(item))
+
+    def __rich__(self) -> RenderableType:
+        return Group(
+            Text(self.title, style="bold"),
+            header_table(self.stats),
+            Text(totals_text(self.stats)),
+            Text(""),
+            *self.lines,
+        )
+
+
+class RichSink:
+    """The live view on a terminal: redrawn when items arrive, at most every REDRAW_INTERVAL."""
+
+    def __init__(
+        self, console: Console, title: str, stats: LiveStats, render: Callable[[Item], Text]
+    ) -> None:
+        # Keep room for the header (title, column names, caption, a row per slave, a spacer).
+        rows = max(console.size.height - 12, 5)
+        self.view = LiveView(title, stats, render, rows)
+        self._live = Live(self.view, console=console, auto_refresh=False, transient=False)
+        self._live.start()
+        self._dirty = True
+        self._drawn = 0.0
+
+    def show(self, items: list[Item]) -> None:
+        for item in items:
+            self.view.add(item)
+        if items:
+            self._dirty = True
+            self.tick()
+
+    def tick(self) -> None:
+        now = time.monotonic()
+        if self._dirty and now - self._drawn >= REDRAW_INTERVAL:
+            self._live.refresh()
+            self._dirty = False
+            self._drawn = now
+
+    def close(self) -> None:
+        self._live.refresh()
+        self._live.stop()

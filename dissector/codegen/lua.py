@@ -1,0 +1,216 @@
+"""Generate the data block of the Wireshark Lua plugin (lua/vw3.lua) from the Python package's data.
+
+The plugin must decode exactly as the Python decoder does, so every table it needs (function and
+exception names, spec limits, framing constants, device profiles and register maps) is written here
+from the same sources the Python side loads, never copied by hand. The block sits between two marker
+lines inside lua/vw3.lua, so the plugin stays one installable file.
+
+    python3 -m dissector.codegen.lua            # rewrite the block in lua/vw3.lua
+    python3 -m dissector.codegen.lua --check    # exit 1 when the block is stale (the tests do the same)
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from dissector.errors import GenerateError
+from dissector.framing import rtu as framer, stream as streambuf
+from dissector.protocol.spec import SPEC
+
+BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)"
+END = "-- END GENERATED DATA"
+PLUGIN = Path(__file__).resolve().parents[2] / "lua" / "vw3.lua"
+
+
+def lua_literal(value: Any, indent: str = "") -> str:
+    """A Lua literal for plain Python data: dicts, lists, sets, strings, numbers, booleans, None."""
+    if value is None:
+        return "nil"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, str):
+        return _lua_string(value)
+    inner = indent + "  "
+    if isinstance(value, (set, frozenset)):
+        # Sets become lookup tables: key = true.
+        value = {key: True for key in sorted(value)}
+    if isinstance(value, dict):
+        if not value:
+            return "{}"
+        rows = [f"{inner}[{lua_literal(key)}] = {lua_literal(item, inner)}," for key, item in value.items()]
+        return "{\n" + "\n".join(rows) + "\n" + indent + "}"
+    if isinstance(value, (list, tuple)):
+        if not value:
+            return "{}"
+        if all(isinstance(item, (int, str, bool, float)) for item in value) and len(value) <= 16:
+            return "{ " + ", ".join(lua_literal(item) for item in value) + " }"
+        rows = [f"{inner}{lua_literal(item, inner)}," for item in value]
+        return "{\n" + "\n".join(rows) + "\n" + indent + "}"
+    raise TypeError(f"no Lua literal for {type(value).__name__}")
+
+
+def _lua_string(text: str) -> str:
+    # Decimal escapes for everything outside printable ASCII: valid in Lua 5.1 to 5.4 alike.
+    out = []
+    for byte in text.encode("utf-8"):
+        char = chr(byte)
+        if char in '"\\':
+            out.append("\\" + char)
+        elif 32 <= byte < 127:
+            out.append(char)
+        else:
+            out.append(f"\\{byte:03d}")
+    return '"' + "".join(out) + '"'
+
+
+def plugin_data() -> dict[str, Any]:
+    """Everything the plugin takes from the Python side, as plain data."""
+    limits = {key: list(value) if isinstance(value, list) else value for key, value in SPEC.limits.items()}
+    data: dict[str, Any] = {
+        "functions": SPEC.functions,
+        "exceptions": SPEC.exceptions,
+        "diagnostics": SPEC.diagnostics,
+        "mei_types": SPEC.mei_types,
+        "device_id_objects": SPEC.device_id_objects,
+        "limits": limits,
+        "framing": {
+            "max_adu": framer.MAX_ADU,
+            "min_adu": framer.MIN_ADU,
+            "max_slave": framer.MAX_SLAVE,
+            "noise_item_max": streambuf.NOISE_ITEM_MAX,
+        },
+        "other_functions": frozenset(framer.OTHER_FUNCTIONS),
+        "not_broadcast": SPEC.not_broadcast,
+    }
+    data.update(_profile_data())
+    return data
+
+
+def _profile_data() -> dict[str, Any]:
+    """Built-in device profiles with their register maps, as the Python annotator loads them."""
+    from dissector.devices.profiles import BUILTIN_PROFILES, DEFAULT_PROFILE, load_profile, load_profile_map
+
+    profiles = {}
+    for name in BUILTIN_PROFILES:
+        profile = load_profile(name)
+        profiles[profile.name] = _profile_table(profile, load_profile_map(profile))
+    return {"profiles": profiles, "default_profile": DEFAULT_PROFILE}
+
+
+def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
+    causes = {
+        function * 256 + code: [
+            {"error": cause.error, "counters": list(cause.counters), "when": cause.when} for cause in entries
+        ]
+        for (function, code), entries in sorted(profile.exception_causes.items())
+    }
+    return {
+        "name": profile.name,
+        "title": profile.title,
+        "device": profile.device,
+        "address_style": profile.address_style,
+        "functions": profile.functions,
+        "inner_only": profile.inner_only,
+        "broadcast": profile.broadcast,
+        "broadcast_list": None if profile.broadcast is None else sorted(profile.broadcast),
+        "protected_value": profile.protected_value,
+        "all_protected_exception": profile.all_protected_exception,
+        "limits": {code: list(values) for code, values in sorted(profile.limits.items())},
+        "exceptions": dict(sorted(profile.exceptions.items())),
+        "exception_list": sorted(profile.exceptions),
+        "exception_causes": causes,
+        "diagnostics": dict(sorted(profile.diagnostics.items())),
+        "objects": {
+            key: {"meaning": meaning.meaning, "format": meaning.format}
+            for key, meaning in sorted(profile.objects.items())
+        },
+        "function_names": dict(sorted(profile.function_names.items())),
+        "plc_base": dict(sorted(profile.plc_base.items())),
+        "plc_base_default": profile.plc_base_default,
+        "bits_depend": [
+            {
+                "registers": sorted(rule.registers),
+                "on": rule.on,
+                "plain_when": rule.plain_when,
+                "reason": rule.reason,
+            }
+            for rule in profile.bits_depend
+        ],
+        "map": {address: _row_table(row) for address, row in sorted(rows.items())},
+    }
+
+
+def _row_table(row: Any) -> dict[str, Any]:
+    out: dict[str, Any] = {"code": row.code}
+    for key in ("name", "unit", "scale", "source"):
+        if getattr(row, key) is not None:
+            out[key] = getattr(row, key)
+    if row.enum:
+        out["enum"] = dict(sorted(row.enum.items()))
+    if row.bits:
+        out["bits"] = dict(sorted(row.bits.items()))
+    if row.signed:
+        out["signed"] = True
+    if row.decimals:
+        out["decimals"] = row.decimals
+    if row.ambiguous_8000:
+        out["ambiguous_8000"] = True
+    return out
+
+
+def render_block() -> str:
+    data = plugin_data()
+    lines = [BEGIN, "local DATA = " + lua_literal(data), END]
+    return "\n".join(lines) + "\n"
+
+
+def _split(text: str) -> tuple[str, str, str]:
+    if text.count(BEGIN) != 1 or text.count(END) != 1:
+        raise GenerateError(f"{PLUGIN} must hold exactly one '{BEGIN}' line and one '{END}' line")
+    head, rest = text.split(BEGIN + "\n", 1)
+    block, tail = rest.split(END + "\n", 1)
+    return head, BEGIN + "\n" + block + END + "\n", tail
+
+
+def current_block(path: Path = PLUGIN) -> str:
+    return _split(path.read_text(encoding="utf-8"))[1]
+
+
+def write_block(path: Path = PLUGIN) -> bool:
+    """Rewrite the generated block; True when the file changed."""
+    text = path.read_text(encoding="utf-8")
+    head, old, tail = _split(text)
+    new = render_block()
+    if new == old:
+        return False
+    path.write_text(head + new + tail, encoding="utf-8")
+    return True
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python3 -m dissector.codegen.lua", description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="exit 1 when lua/vw3.lua is stale")
+    parser.add_argument("--plugin", type=Path, default=PLUGIN, help="plugin file (default: lua/vw3.lua)")
+    args = parser.parse_args(argv)
+    try:
+        if args.check:
+            if current_block(args.plugin) != render_block():
+                print(f"{args.plugin}: generated data is stale; run python3 -m dissector.codegen.lua", file=sys.stderr)
+                return 1
+            return 0
+        changed = write_block(args.plugin)
+    except (OSError, GenerateError) as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    print(f"{args.plugin}: {'updated' if changed else 'up to date'}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

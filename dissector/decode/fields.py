@@ -1,0 +1,257 @@
+"""Decoding: parse a paired frame's PDU with its grammar and lift out what users ask about.
+
+Runs after pairing, because a response's registers are numbered from the request it answers. Spec
+limits are checked here and reported as warnings, never raised.
+"""
+from __future__ import annotations
+
+from construct import Container
+
+from dissector.decode.fastpath import fast_parse
+from dissector.protocol.grammar import GrammarError, parse_pdu
+from dissector.model import Bit, DeviceObject, Frame, Kind, Register
+from dissector.protocol.spec import SPEC
+
+_LIMITS = SPEC.limits
+
+
+def _check_range(frame: Frame, what: str, value: int, limit_name: str) -> None:
+    low, high = _LIMITS[limit_name]  # type: ignore[misc]
+    if not low <= value <= high:
+        frame.warnings.append(f"{what} {value} outside the spec's {low}..{high}")
+
+
+def _check_span(frame: Frame, start: int, quantity: int) -> None:
+    if start + quantity > 0x10000:
+        frame.warnings.append(f"addresses {start}..{start + quantity - 1} run past 65535")
+
+
+def _registers(start: int | None, values: list[int]) -> list[Register]:
+    if start is None:
+        return [Register(None, value) for value in values]
+    end = start + len(values)
+    if end <= 0x10000:
+        return list(map(Register, range(start, end), values))
+    return [Register((start + index) & 0xFFFF, value) for index, value in enumerate(values)]
+
+
+def _bits(start: int | None, packed: bytes, quantity: int | None) -> list[Bit]:
+    count = len(packed) * 8 if quantity is None else min(quantity, len(packed) * 8)
+    bits = []
+    for index in range(count):
+        value = packed[index >> 3] >> (index & 7) & 1
+        bits.append(Bit(None if start is None else (start + index) & 0xFFFF, value))
+    return bits
+
+
+def _ceil_bytes(bits: int) -> int:
+    return (bits + 7) // 8
+
+
+def decode_frame(frame: Frame) -> Frame:
+    """Fill frame.fields, start, quantity, registers, bits, objects and warnings. Idempotent."""
+    if frame.decoded:
+        return frame
+    frame.decoded = True
+    function = frame.function
+    kind = frame.kind
+    pdu = frame.raw[1:-2] if frame.mode == "rtu" else frame.pdu
+    fields = fast_parse(function, kind, pdu)
+    if fields is None:
+        try:
+            fields = parse_pdu(function, kind, pdu[1:])
+        except GrammarError as error:
+            frame.warnings.append(f"malformed {frame.kind}: {error}")
+            return frame
+    frame.fields = fields
+    if kind is Kind.EXCEPTION:
+        code = fields["exception_code"]
+        if code not in SPEC.exceptions:
+            frame.warnings.append(f"exception code {code} is not defined by the spec")
+    else:
+        handler = _HANDLERS_BY_KIND[kind].get(function)
+        if handler is not None:
+            handler(frame, fields)
+    trailing = fields.get("trailing")
+    if trailing:
+        frame.warnings.append(f"{len(trailing)} unexpected bytes after the data")
+    if frame.broadcast and function in SPEC.not_broadcast:
+        frame.warnings.append(f"{SPEC.function_name(function)} cannot be broadcast (slave 0)")
+    return frame
+
+
+
+
+def _request_fields(frame: Frame) -> Container | None:
+    request = frame.request
+    if request is None:
+        return None
+    decode_frame(request)
+    return request.fields
+
+
+def _read_request(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    limit = "read_bits" if frame.function in (1, 2) else "read_registers"
+    _check_range(frame, "quantity", fields["quantity"], limit)
+    _check_span(frame, fields["start"], fields["quantity"])
+
+
+def _read_bits_response(frame: Frame, fields: Container) -> None:
+    request = _request_fields(frame)
+    start = quantity = None
+    if request is not None:
+        start, quantity = request["start"], request["quantity"]
+        if fields["byte_count"] != _ceil_bytes(quantity):
+            frame.warnings.append(
+                f"byte count {fields['byte_count']} disagrees with the {quantity} bits asked"
+            )
+    frame.start, frame.quantity = start, quantity
+    frame.bits = _bits(start, fields["status"], quantity)
+
+
+def _read_registers_response(frame: Frame, fields: Container) -> None:
+    request = _request_fields(frame)
+    start = None
+    if request is not None:
+        if frame.function == 23:
+            start, quantity = request["read_start"], request["read_quantity"]
+        else:
+            start, quantity = request["start"], request["quantity"]
+        if fields["byte_count"] != 2 * quantity:
+            frame.warnings.append(
+                f"byte count {fields['byte_count']} disagrees with the {quantity} registers asked"
+            )
+        frame.quantity = quantity
+    elif fields["byte_count"] % 2 == 0:
+        frame.quantity = fields["byte_count"] // 2
+    if fields["byte_count"] % 2:
+        frame.warnings.append(f"odd byte count {fields['byte_count']} for 16-bit registers")
+    frame.start = start
+    frame.registers = _registers(start, fields["values"])
+
+
+def _write_single_coil(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["address"], 1
+    if fields["value"] not in (0xFF00, 0x0000):
+        frame.warnings.append(f"coil value 0x{fields['value']:04X} is neither 0xFF00 (on) nor 0x0000 (off)")
+    frame.bits = [Bit(fields["address"], 1 if fields["value"] == 0xFF00 else 0)]
+
+
+def _write_single_register(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["address"], 1
+    frame.registers = [Register(fields["address"], fields["value"])]
+
+
+def _diagnostics(frame: Frame, fields: Container) -> None:
+    frame.subfunction = fields["subfunction"]
+    if fields["subfunction"] not in SPEC.diagnostics:
+        frame.warnings.append(f"diagnostic sub-function {fields['subfunction']} is not defined by the spec")
+    if len(fields["data"]) % 2:
+        frame.warnings.append("diagnostic data is not a whole number of words")
+
+
+def _write_coils_request(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    _check_range(frame, "quantity", fields["quantity"], "write_coils")
+    _check_span(frame, fields["start"], fields["quantity"])
+    if fields["byte_count"] != _ceil_bytes(fields["quantity"]):
+        frame.warnings.append(
+            f"byte count {fields['byte_count']} disagrees with the quantity {fields['quantity']}"
+        )
+    frame.bits = _bits(fields["start"], fields["status"], fields["quantity"])
+
+
+def _write_registers_request(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    _check_range(frame, "quantity", fields["quantity"], "write_registers")
+    _check_span(frame, fields["start"], fields["quantity"])
+    if fields["byte_count"] != 2 * fields["quantity"]:
+        frame.warnings.append(
+            f"byte count {fields['byte_count']} disagrees with the quantity {fields['quantity']}"
+        )
+    frame.registers = _registers(fields["start"], fields["values"])
+
+
+def _write_multiple_response(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["start"], fields["quantity"]
+    request = _request_fields(frame)
+    if request is not None and (request["start"], request["quantity"]) != (fields["start"], fields["quantity"]):
+        frame.warnings.append("the response's start and quantity differ from the request's")
+
+
+def _mask_write(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["address"], 1
+
+
+def _read_write_request(frame: Frame, fields: Container) -> None:
+    frame.start, frame.quantity = fields["read_start"], fields["read_quantity"]
+    _check_range(frame, "read quantity", fields["read_quantity"], "rw_read")
+    _check_range(frame, "write quantity", fields["write_quantity"], "rw_write")
+    if fields["byte_count"] != 2 * fields["write_quantity"]:
+        frame.warnings.append(
+            f"byte count {fields['byte_count']} disagrees with the write quantity {fields['write_quantity']}"
+        )
+    frame.registers = _registers(fields["write_start"], fields["values"])
+
+
+def _fifo_request(frame: Frame, fields: Container) -> None:
+    frame.start = fields["address"]
+
+
+def _fifo_response(frame: Frame, fields: Container) -> None:
+    request = _request_fields(frame)
+    if request is not None:
+        frame.start = request["address"]
+    frame.quantity = fields["fifo_count"]
+    if fields["fifo_count"] > _LIMITS["fifo_count"][1]:  # type: ignore[index]
+        frame.warnings.append(f"FIFO count {fields['fifo_count']} above the spec's 31")
+    if fields["byte_count"] != 2 + 2 * fields["fifo_count"]:
+        frame.warnings.append(f"byte count {fields['byte_count']} disagrees with the FIFO count")
+
+
+def _mei_response(frame: Frame, fields: Container) -> None:
+    if fields["mei_type"] != 14:
+        return
+    frame.objects = [
+        DeviceObject(
+            id=obj.id,
+            name=SPEC.device_id_objects.get(obj.id, f"Object {obj.id}"),
+            value=obj.value.decode("latin-1"),
+        )
+        for obj in fields["body"]["objects"]
+    ]
+
+
+_HANDLERS = {
+    (1, Kind.REQUEST): _read_request,
+    (2, Kind.REQUEST): _read_request,
+    (3, Kind.REQUEST): _read_request,
+    (4, Kind.REQUEST): _read_request,
+    (1, Kind.RESPONSE): _read_bits_response,
+    (2, Kind.RESPONSE): _read_bits_response,
+    (3, Kind.RESPONSE): _read_registers_response,
+    (4, Kind.RESPONSE): _read_registers_response,
+    (5, Kind.REQUEST): _write_single_coil,
+    (5, Kind.RESPONSE): _write_single_coil,
+    (6, Kind.REQUEST): _write_single_register,
+    (6, Kind.RESPONSE): _write_single_register,
+    (8, Kind.REQUEST): _diagnostics,
+    (8, Kind.RESPONSE): _diagnostics,
+    (15, Kind.REQUEST): _write_coils_request,
+    (15, Kind.RESPONSE): _write_multiple_response,
+    (16, Kind.REQUEST): _write_registers_request,
+    (16, Kind.RESPONSE): _write_multiple_response,
+    (22, Kind.REQUEST): _mask_write,
+    (22, Kind.RESPONSE): _mask_write,
+    (23, Kind.REQUEST): _read_write_request,
+    (23, Kind.RESPONSE): _read_registers_response,
+    (24, Kind.REQUEST): _fifo_request,
+    (24, Kind.RESPONSE): _fifo_response,
+    (43, Kind.RESPONSE): _mei_response,
+}
+
+_HANDLERS_BY_KIND: dict[Kind, dict[int, object]] = {
+    kind: {function: handler for (function, of_kind), handler in _HANDLERS.items() if of_kind is kind}
+    for kind in (Kind.REQUEST, Kind.RESPONSE)
+}

@@ -1,0 +1,77 @@
+"""An annotator from what the user asked for: profiles (`atv71`, `12=atv71`) and maps (`FILE`, `12=FILE`,
+`sel749m=FILE`), as plain strings, so that the CLI, the tests and the benchmarks build it one way."""
+from __future__ import annotations
+
+from pathlib import Path
+
+from dissector.devices.annotator import Annotator, MapLayer
+from dissector.devices.maps import load_map_file
+from dissector.devices.profiles import ADDRESS_STYLES, DEFAULT_PROFILE, Profile, load_profile
+from dissector.errors import ProfileError
+
+
+def _split_target(spec: str, option: str) -> tuple[str | None, str]:
+    """`12=atv71` -> ("12", "atv71"); `atv71` -> (None, "atv71")."""
+    target, sep, rest = spec.partition("=")
+    if not sep:
+        return None, spec
+    target = target.strip()
+    if not rest:
+        raise ProfileError(f"{option} {spec!r}: nothing after '='")
+    return target, rest
+
+
+def _slave(text: str, option: str, spec: str) -> int:
+    try:
+        slave = int(text, 10)
+    except ValueError:
+        raise ProfileError(f"{option} {spec!r}: {text!r} is not a slave address") from None
+    if not 0 <= slave <= 247:
+        raise ProfileError(f"{option} {spec!r}: slave {slave} is outside 0..247")
+    return slave
+
+
+def build_annotator(
+    profiles: list[str], maps: list[str], address_style: str | None = None
+) -> Annotator:
+    """Profiles (`atv71`, `12=atv71`), maps (`FILE`, `12=FILE`, `sel749m=FILE`) -> an Annotator."""
+    if address_style is not None and address_style not in ADDRESS_STYLES:
+        raise ProfileError(f"--address-style {address_style!r}: use {' or '.join(ADDRESS_STYLES)}")
+    default: Profile | None = None
+    per_slave: dict[int, Profile] = {}
+    loaded: dict[str, Profile] = {}
+    for spec in profiles:
+        target, name = _split_target(spec, "--profile")
+        profile = loaded.get(name)
+        if profile is None:
+            profile = loaded[name] = load_profile(name)
+        if target is None:
+            if default is not None:
+                raise ProfileError(f"--profile {spec!r}: a default profile ({default.name}) is already set")
+            default = profile
+            continue
+        slave = _slave(target, "--profile", spec)
+        if slave in per_slave:
+            raise ProfileError(f"--profile {spec!r}: slave {slave} already has a profile")
+        per_slave[slave] = profile
+    if default is None:
+        default = loaded.get(DEFAULT_PROFILE) or load_profile(DEFAULT_PROFILE)
+    names = {profile.name for profile in [default, *per_slave.values()]}
+    layers: list[MapLayer] = []
+    for spec in maps:
+        target, path = _split_target(spec, "--map")
+        if target is not None and Path(spec).exists():
+            target, path = None, spec  # a file whose name holds '=' is a file, not a target
+        rows = load_map_file(path)
+        if target is None:
+            layers.append(MapLayer(rows))
+        elif target.isdigit():
+            layers.append(MapLayer(rows, slave=_slave(target, "--map", spec)))
+        elif target in names:
+            layers.append(MapLayer(rows, profile=target))
+        else:
+            raise ProfileError(
+                f"--map {spec!r}: {target!r} is neither a slave address nor a profile in use "
+                f"({', '.join(sorted(names))})"
+            )
+    return Annotator(default, per_slave, layers, address_style)

@@ -1,0 +1,246 @@
+"""Register maps: one CSV per device (data/maps/*.csv) naming, scaling and labelling register values.
+
+Format (shared with the Wireshark Lua helper, keep it in step): a header line naming the columns, then one
+row per register. Lines starting with `#` are comments (the source legend lives there). Columns:
+
+    address  logic address as sent on the wire (decimal, or 0x/16# hexadecimal)
+    code     short code shown to users (CHCF)
+    name     long name ([Profile])
+    unit     unit of the scaled value (Hz)
+    scale    multiply the raw value by this (0.1); empty: shown as is
+    access   R, W or RW
+    enum     value labels: `value=LABEL;value=LABEL`
+    bits     bit labels for status and control words: `bit=Label;bit=Label` (bits 0..15)
+    signed   `1` when the raw word is a two's complement signed value, empty (or 0) otherwise
+    source   where the row comes from (a letter explained in the file's legend comment)
+
+Only `address` and `code` are required in a user's map; the other columns may be left out of the header.
+Every malformed line is reported as `file:line: what is wrong`, never skipped.
+"""
+from __future__ import annotations
+
+from dissector.errors import ProfileError
+import csv
+from dataclasses import dataclass, field
+from decimal import Decimal, InvalidOperation
+from importlib import resources
+from pathlib import Path
+
+COLUMNS = ("address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source")
+REQUIRED = ("address", "code")
+ACCESS = frozenset(["R", "W", "RW"])
+MEMO_LIMIT = 4096
+# 65,536 addresses of a few hundred bytes each at most: anything bigger is not a map, and reading
+# it whole (a 2 GB file given by mistake) would take the memory of the machine.
+MAX_MAP_BYTES = 16 << 20
+
+
+@dataclass(slots=True)
+class RegisterDef:
+    address: int
+    code: str
+    name: str | None = None
+    unit: str | None = None
+    scale: float | None = None
+    access: str | None = None
+    enum: dict[int, str] = field(default_factory=dict)
+    bits: dict[int, str] = field(default_factory=dict)
+    signed: bool = False
+    source: str | None = None
+    # Derived at load so that annotation is only lookups: digits to show after scaling (0.1 -> 1).
+    decimals: int = 0
+    # 16#8000 is a value this register can really hold (signed, bit 15 labelled, or enumerated),
+    # so a read of 16#8000 cannot be called protected with certainty.
+    ambiguous_8000: bool = False
+    # interpret() results by raw value, filled by the annotator: captures repeat values, and this makes
+    # annotation a dictionary lookup per register. Bounded by MEMO_LIMIT.
+    memo: dict[int, tuple[float | int | None, str | None]] = field(
+        default_factory=dict, repr=False, compare=False
+    )
+
+
+RegisterMap = dict[int, RegisterDef]
+
+
+def _parse_int(text: str) -> int:
+    text = text.strip()
+    if text.startswith("16#"):
+        return int(text[3:], 16)
+    return int(text, 0) if text.lower().startswith("0x") else int(text, 10)
+
+
+def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
+    out: dict[int, str] = {}
+    for part in text.split(";"):
+        part = part.strip()
+        if not part:
+            continue
+        key, sep, label = part.partition("=")
+        if not sep or not label.strip():
+            raise ValueError(f"{what} entry {part!r} is not `number=label`")
+        try:
+            number = _parse_int(key)
+        except ValueError:
+            raise ValueError(f"{what} entry {part!r}: {key.strip()!r} is not a number") from None
+        if not low <= number <= high:
+            raise ValueError(f"{what} entry {part!r}: {number} is outside {low}..{high}")
+        if number in out:
+            raise ValueError(f"{what} entry {part!r}: {number} given twice")
+        out[number] = label.strip()
+    return out
+
+
+def _decimals(scale: str) -> int:
+    exponent = Decimal(scale).normalize().as_tuple().exponent
+    return max(0, -int(exponent))
+
+
+def _row(values: dict[str, str]) -> RegisterDef:
+    raw_address = values.get("address", "")
+    try:
+        address = _parse_int(raw_address)
+    except ValueError:
+        raise ValueError(f"address {raw_address!r} is not a number") from None
+    if not 0 <= address <= 0xFFFF:
+        raise ValueError(f"address {address} is outside 0..65535")
+    code = values.get("code", "").strip()
+    if not code:
+        raise ValueError("code is empty")
+    scale: float | None = None
+    decimals = 0
+    raw_scale = values.get("scale", "").strip()
+    if raw_scale:
+        try:
+            scale = float(raw_scale)
+            decimals = _decimals(raw_scale)
+        except (ValueError, InvalidOperation):
+            raise ValueError(f"scale {raw_scale!r} is not a number") from None
+        if scale == 0:
+            raise ValueError("scale 0 would hide every value")
+    access = values.get("access", "").strip().upper() or None
+    if access is not None and access not in ACCESS:
+        raise ValueError(f"access {access!r} is not R, W or RW")
+    enum = _pairs(values.get("enum", ""), "enum", 0, 0xFFFF)
+    bits = _pairs(values.get("bits", ""), "bits", 0, 15)
+    signed_text = values.get("signed", "").strip()
+    if signed_text not in ("", "0", "1"):
+        raise ValueError(f"signed {signed_text!r} is not 1, 0 or empty")
+    signed = signed_text == "1"
+    if signed and enum:
+        # Enumerations are listed as unsigned words; a signed register with labels is a map error.
+        raise ValueError("a signed register cannot carry enum labels")
+    return RegisterDef(
+        address=address,
+        code=code,
+        name=values.get("name", "").strip() or None,
+        unit=values.get("unit", "").strip() or None,
+        scale=scale,
+        access=access,
+        enum=enum,
+        bits=bits,
+        signed=signed,
+        source=values.get("source", "").strip() or None,
+        decimals=decimals,
+        ambiguous_8000=signed or 15 in bits or 0x8000 in enum,
+    )
+
+
+def parse_map(text: str, origin: str) -> RegisterMap:
+    """Parse map text; `origin` names the file in error messages."""
+    header: list[str] | None = None
+    rows: RegisterMap = {}
+    first_line: dict[int, int] = {}
+    for number, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        try:
+            cells = next(csv.reader([line]))
+        except csv.Error as error:
+            raise ProfileError(f"{origin}:{number}: {error}") from None
+        if header is None:
+            header = [cell.strip().lower() for cell in cells]
+            unknown = [name for name in header if name not in COLUMNS]
+            if unknown:
+                raise ProfileError(
+                    f"{origin}:{number}: unknown column {unknown[0]!r} (columns: {', '.join(COLUMNS)})"
+                )
+            missing = [name for name in REQUIRED if name not in header]
+            if missing:
+                raise ProfileError(f"{origin}:{number}: the header lacks the {missing[0]!r} column")
+            if len(set(header)) != len(header):
+                raise ProfileError(f"{origin}:{number}: a column is named twice in the header")
+            continue
+        if len(cells) != len(header):
+            raise ProfileError(
+                f"{origin}:{number}: {len(cells)} fields, the header has {len(header)} "
+                "(quote a field that holds a comma)"
+            )
+        try:
+            row = _row(dict(zip(header, cells)))
+        except ValueError as error:
+            raise ProfileError(f"{origin}:{number}: {error}") from None
+        if row.address in rows:
+            raise ProfileError(
+                f"{origin}:{number}: address {row.address} already defined on line "
+                f"{first_line[row.address]}"
+            )
+        rows[row.address] = row
+        first_line[row.address] = number
+    if header is None:
+        raise ProfileError(f"{origin}: no header line (expected: {','.join(COLUMNS)})")
+    return rows
+
+
+def load_map_file(path: str | Path) -> RegisterMap:
+    path = Path(path)
+    try:
+        with path.open("rb") as stream:
+            data = stream.read(MAX_MAP_BYTES + 1)
+    except OSError as error:
+        raise ProfileError(f"{path}: cannot read the map: {error.strerror or error}") from None
+    if len(data) > MAX_MAP_BYTES:
+        raise ProfileError(f"{path}: larger than {MAX_MAP_BYTES >> 20} MiB, not a register map")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ProfileError(f"{path}: not UTF-8 text") from None
+    # read_text() turned CR LF into LF; splitlines() in parse_map treats both alike.
+    return parse_map(text, str(path))
+
+
+def load_builtin_map(name: str) -> RegisterMap:
+    """A map shipped in dissector/data/maps (name: `atv71.csv`)."""
+    resource = resources.files("dissector").joinpath("data/maps", name)
+    try:
+        text = resource.read_text(encoding="utf-8")
+    except (OSError, FileNotFoundError):
+        raise ProfileError(f"data/maps/{name}: no such built-in map") from None
+    return parse_map(text, f"data/maps/{name}")
+
+
+def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, str | None]:
+    """The scaled value and its display text (`50.0 Hz`, `IO (I/O profile)`, bit names)."""
+    raw = value - 0x10000 if definition.signed and value & 0x8000 else value
+    if definition.enum:
+        # The raw word already is the value; an enumeration or a bit field has no scaled value.
+        label = definition.enum.get(value)
+        return None, label if label is not None else f"{value} (not a listed value)"
+    if definition.bits:
+        names = [
+            definition.bits.get(bit, f"bit {bit}") for bit in range(16) if value >> bit & 1
+        ]
+        return None, ", ".join(names) if names else "no bit set"
+    scale = definition.scale
+    if scale is None:
+        # Without a scale the unit cannot be trusted (ACC/DEC depend on the ramp increment): the raw
+        # value speaks for itself, except a signed one, which is shown with its sign.
+        if definition.signed:
+            return raw, str(raw)
+        return None, None
+    scaled = round(raw * scale, definition.decimals)
+    if not definition.decimals:
+        scaled = int(scaled)
+    text = f"{scaled:.{definition.decimals}f}"
+    unit = definition.unit
+    return scaled, text if unit is None else f"{text} {unit}"

@@ -1,0 +1,125 @@
+"""Modbus ASCII framer: `:` + hex pairs (slave, function, data, LRC) + CR LF.
+
+Unlike RTU, ASCII frames delimit themselves: a frame starts at ':' and ends at LF, so no length rule
+is needed to cut the stream. The length rules still decide what a frame is: the decoded binary gets
+the same request / response / exception classification as an RTU frame (framer.interpretations, applied to
+the RTU frame that would carry the same bytes), so an ASCII frame whose length fits no layout is
+shown as noise, as it would be in RTU.
+
+A candidate that is cut short (a new ':' before the LF, no LF within the longest legal frame, the
+end of the capture), that is not made of hex pairs, that lacks the CR before the LF or whose
+layout fits nothing becomes a Noise item of its own, with the reason; bytes between frames are
+noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
+damaged. The answer does not depend on how the stream is split into chunks.
+
+The delimiter is always LF here: FC8 sub-function 3 can change it on a device, which a passive tap
+could follow only by decoding that request; frames after such a change show up as noise.
+"""
+from __future__ import annotations
+
+from dissector.protocol.crc import crc_bytes, lrc
+from dissector.framing.rtu import MAX_SLAVE, Scan, interpretations
+from dissector.model import Frame, Item, Kind, Noise
+from dissector.framing.stream import StreamFramer
+
+from dissector.protocol.ascii import _HEX_DIGITS, COLON, MAX_ASCII, MIN_BINARY
+
+
+class AsciiFramer(StreamFramer):
+    """Push parser with RtuFramer's interface: feed chunks, collect items in stream order."""
+
+    mode = "ascii"
+
+    def _run(self, final: bool) -> list[Item]:
+        buf = self._buf
+        n = len(buf)
+        i = 0
+        items: list[Item] = []
+        while i < n:
+            if buf[i] != COLON:
+                colon = buf.find(b":", i)
+                end = n if colon < 0 else colon
+                self._add_noise(i, end, "outside an ASCII frame", items)
+                i = end
+                continue
+            limit = min(n, i + MAX_ASCII)
+            lf = buf.find(b"\n", i + 1, limit)
+            colon = buf.find(b":", i + 1, limit)
+            if colon >= 0 and (lf < 0 or colon < lf):
+                self._reject(bytes(buf[i:colon]), i, "ASCII frame cut short by the next ':'", items)
+                i = colon
+            elif lf >= 0:
+                self._candidate(bytes(buf[i : lf + 1]), i, items)
+                i = lf + 1
+            elif n - i >= MAX_ASCII:
+                self._reject(
+                    bytes(buf[i : i + MAX_ASCII]), i,
+                    f"no CR LF within {MAX_ASCII} characters of the ':'", items,
+                )
+                i += MAX_ASCII
+            elif final:
+                self._reject(bytes(buf[i:n]), i, "ASCII frame cut off by the end of the capture", items)
+                i = n
+            else:
+                break  # wait for the rest of the frame
+        if i:
+            self._consume(i)
+        return items
+
+    def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
+        """A ':' ... LF run: a Frame when it is one, a Noise item saying why not otherwise."""
+        body = raw[1:-1]
+        if not body.endswith(b"\r"):
+            self._reject(raw, i, "ASCII frame ends with LF without CR", items)
+            return
+        digits = body[:-1]
+        if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
+            self._reject(raw, i, "ASCII frame is not made of hex pairs", items)
+            return
+        binary = bytes.fromhex(digits.decode("ascii"))
+        if len(binary) < MIN_BINARY:
+            self._reject(raw, i, "ASCII frame too short", items)
+            return
+        slave, function = binary[0], binary[1]
+        received, expected = binary[-1], lrc(binary[:-1])
+        check = "LRC ok" if received == expected else f"LRC {received:02X}, expected {expected:02X}"
+        if slave > MAX_SLAVE:
+            self._reject(raw, i, f"slave {slave} out of range ({check})", items)
+            return
+        kind = self._classify(binary[:-1])
+        if kind is None:
+            self._reject(raw, i, f"no Modbus layout fits function {function} ({check})", items)
+            return
+        offset = self._base + i
+        frame = Frame(
+            offset=offset,
+            raw=raw,
+            time=self._time_at(offset),
+            kind=kind,
+            slave=slave,
+            function=function & 0x7F,
+            crc=received,
+            crc_expected=expected,
+            mode="ascii",
+        )
+        if digits != digits.upper():
+            frame.warnings.append("lower-case hex digits (the spec wants upper case)")
+        self._emit(frame, items)
+
+    def _classify(self, adu: bytes) -> Kind | None:
+        """The kind an RTU frame with the same bytes would have, by the framer's length rules."""
+        slave, function = adu[0], adu[1]
+        equivalent = adu + crc_bytes(adu)
+        length = len(equivalent)
+        for kind, rule in interpretations(slave, function, self._expect):
+            found = rule(equivalent, 0, length)
+            # A layout without a length rule fits any length from its minimum: the ':' and CR LF
+            # already delimit the frame.
+            if found == length or (type(found) is Scan and length >= found):
+                return kind
+        return None
+
+    def _reject(self, raw: bytes, i: int, reason: str, items: list[Item]) -> None:
+        self._flush_noise(items)
+        offset = self._base + i
+        items.append(Noise(offset=offset, raw=raw, time=self._time_at(offset), reason=reason))

@@ -1,0 +1,446 @@
+"""Modbus RTU framer: an untimed byte stream in, frames and noise out.
+
+An RTU frame is `slave | function | data | CRC-16 (low byte first)`, at most 256 bytes. On the wire,
+frames are separated by a silence of 3.5 character times, but a listen-only tap seldom keeps that
+information: a raw capture has no timestamps at all, and USB serial adapters deliver bytes in bursts
+(FTDI: 16 ms latency timer), so a request and its response may arrive in one read and a long response
+in several. Gaps are therefore never trusted to cut frames here.
+
+Instead, each function code's length rules are applied in both directions (a read request is 8
+bytes; its response is 5 + byte count; a FC16 request is 9 + byte count...), and the CRC confirms the
+choice. Length rules come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because that
+6-byte prefix of the 7-byte response `01 04 02 03 01 78 00` happens to carry a valid CRC.
+
+Where both a request and a response layout fit, the expectation decides: after a request to slave S
+with function F, a frame from S with F is its response. Function codes whose data has no length
+rule (FC8 sub-function 0 "Return Query Data", FC43 MEI 13, user-defined and vendor codes) are found
+by scanning for the shortest length with a valid CRC.
+
+CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
+without that last byte: when two layouts check out, the one an intact frame follows wins.
+
+When nothing fits, the framer tries to show a damaged frame once, with its bad CRC: an
+interpretation whose length is known, that ends exactly where an intact frame begins and that holds
+no intact frame inside (a cut frame's length rule must not swallow the frames after it). Otherwise
+the byte is noise, and the framer resynchronises on the next valid frame. A random byte string passes
+a CRC once in 65,536 tries, so while resynchronising, and for an answer nobody asked for, a frame
+counts only when an intact frame (or the end) follows it; the same holds for every CRC scan. Measured
+by bench/noise_accuracy.py (100,000 transactions, 2% of frames damaged): 99.92% of intact frames
+recovered exactly, 0 to 2 false frames per run. Noise runs are emitted in items of at most
+NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
+
+The framer is a push parser (`feed` / `finish`) with no I/O of its own: files, pcap records and live
+serial reads all drive the same object, and the answer does not depend on how the stream is split.
+"""
+from __future__ import annotations
+
+import re
+from collections.abc import Callable
+
+from dissector.protocol.crc import crc16, crc_lengths
+from dissector.model import Frame, Item, Kind
+from dissector.framing.stream import StreamFramer
+
+MAX_ADU = 256
+MIN_ADU = 4
+MAX_SLAVE = 247
+
+NEED = -1  # not enough bytes yet to know the length
+NONE = 0  # this interpretation cannot apply here
+
+LengthRule = Callable[[bytes | bytearray, int, int], int]
+
+
+def _fixed(length: int) -> LengthRule:
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        return length
+
+    return rule
+
+
+def _count8(position: int, extra: int) -> LengthRule:
+    """Length = extra + the byte count found at `position` in the frame."""
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + position >= n:
+            return NEED
+        return extra + buf[i + position]
+
+    return rule
+
+
+def _count16(position: int, extra: int) -> LengthRule:
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + position + 1 >= n:
+            return NEED
+        return extra + (buf[i + position] << 8 | buf[i + position + 1])
+
+    return rule
+
+
+class Scan(int):
+    """A length rule's answer when the layout gives no length: scan for a CRC from this minimum."""
+
+
+def _crc_ok(buf: bytes | bytearray, i: int, length: int) -> bool:
+    stop = i + length - 2
+    return crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8
+
+
+def _diagnostics(buf: bytes | bytearray, i: int, n: int) -> int:
+    # Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
+    if i + 3 >= n:
+        return NEED
+    if buf[i + 2] == 0 and buf[i + 3] == 0:
+        return Scan(6)
+    return 8
+
+
+def _mei_request(buf: bytes | bytearray, i: int, n: int) -> int:
+    if i + 2 >= n:
+        return NEED
+    return 7 if buf[i + 2] == 14 else Scan(5)
+
+
+def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
+    """Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object."""
+    if i + 2 >= n:
+        return NEED
+    if buf[i + 2] != 14:
+        return Scan(5)
+    if i + 7 >= n:
+        return NEED
+    count = buf[i + 7]
+    position = 8
+    for _ in range(count):
+        if i + position + 1 >= n:
+            return NEED
+        position += 2 + buf[i + position + 1]
+        if position > MAX_ADU:
+            return NONE
+    return position + 2
+
+
+def _scan_any(buf: bytes | bytearray, i: int, n: int) -> int:
+    return Scan(MIN_ADU)
+
+
+# (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
+RULES: dict[int, tuple[LengthRule, LengthRule]] = {
+    1: (_fixed(8), _count8(2, 5)),
+    2: (_fixed(8), _count8(2, 5)),
+    3: (_fixed(8), _count8(2, 5)),
+    4: (_fixed(8), _count8(2, 5)),
+    5: (_fixed(8), _fixed(8)),
+    6: (_fixed(8), _fixed(8)),
+    7: (_fixed(4), _fixed(5)),
+    8: (_diagnostics, _diagnostics),
+    11: (_fixed(4), _fixed(8)),
+    12: (_fixed(4), _count8(2, 5)),
+    15: (_count8(6, 9), _fixed(8)),
+    16: (_count8(6, 9), _fixed(8)),
+    17: (_fixed(4), _count8(2, 5)),
+    20: (_count8(2, 5), _count8(2, 5)),
+    21: (_count8(2, 5), _count8(2, 5)),
+    22: (_fixed(10), _fixed(10)),
+    23: (_count8(10, 13), _count8(2, 5)),
+    24: (_fixed(6), _count16(2, 6)),
+    43: (_mei_request, _mei_response),
+}
+
+# Codes with no public layout: user-defined (65-72, 100-110) and SEL-749M (60h-62h, 7Dh, 7Eh).
+OTHER_FUNCTIONS = frozenset([*range(65, 73), *range(100, 111), 0x60, 0x61, 0x62, 0x7D, 0x7E])
+for _code in OTHER_FUNCTIONS:
+    RULES.setdefault(_code, (_scan_any, _scan_any))
+
+KNOWN_FUNCTIONS = frozenset(RULES)
+
+# Interpretations to try at a frame start, in order: the expected direction first.
+REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
+for _code, (_request_rule, _response_rule) in RULES.items():
+    REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
+    RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
+    REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _fixed(5)),)
+
+
+
+def interpretations(
+    slave: int, function: int, expect: tuple[int, int] | None
+) -> tuple[tuple[Kind, LengthRule], ...]:
+    """The (kind, length rule) pairs a frame starting with slave and function may have, likeliest
+    first: after a request from (slave, function), its response. Empty: no frame starts here."""
+    if expect == (slave, function):
+        return RESPONSE_FIRST.get(function, ())
+    return REQUEST_FIRST.get(function, ())
+
+
+# A byte pair that may start a frame: a slave address, then a function code with a layout.
+_POSSIBLE_START = re.compile(
+    b"[\\x00-\\x%02x][%s]" % (MAX_SLAVE, b"".join(b"\\x%02x" % code for code in sorted(REQUEST_FIRST))),
+    re.DOTALL,
+)
+
+
+# The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
+_FIXED_LENGTHS = {8: (1, 2, 3, 4, 5, 6), 4: (7, 11, 12, 17), 10: (22,), 6: (24,)}
+
+
+def _first_choice(table: dict[int, tuple[tuple[Kind, LengthRule], ...]]) -> dict[int, tuple[Kind, int, LengthRule]]:
+    fixed_requests = {code: length for length, codes in _FIXED_LENGTHS.items() for code in codes}
+    fixed_responses = {5: 8, 6: 8, 7: 5, 11: 8, 15: 8, 16: 8, 22: 10}
+    first = {}
+    for code, choices in table.items():
+        kind, rule = choices[0]
+        if kind is Kind.EXCEPTION:
+            fixed = 5
+        elif kind is Kind.REQUEST:
+            fixed = fixed_requests.get(code, 0)
+        else:
+            fixed = fixed_responses.get(code, 0)
+        first[code] = (kind, fixed, rule)
+    return first
+
+
+_REQUEST_FIRST_FAST = _first_choice(REQUEST_FIRST)
+_RESPONSE_FIRST_FAST = _first_choice(RESPONSE_FIRST)
+
+
+class RtuFramer(StreamFramer):
+    """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
+
+    mode = "rtu"
+
+    def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
+        return interpretations(slave, function, self._expect)
+
+    def _valid_frame_at(
+        self, buf: bytearray, i: int, n: int, final: bool, scan: bool = True
+    ) -> bool | None:
+        """Does an intact frame start at i? None when more bytes are needed to know.
+
+        With scan=False only layouts with a length rule count (no CRC scan for the others).
+        """
+        if n - i < MIN_ADU:
+            return None if not final else (i == n)
+        slave, function = buf[i], buf[i + 1]
+        if slave > MAX_SLAVE:
+            return False
+        undecided = False  # a CRC scan found nothing yet, but a longer frame may still arrive
+        for _kind, rule in self._interpretations(slave, function):
+            length = rule(buf, i, n)
+            if type(length) is Scan:
+                if scan:
+                    if self._shortest_crc(buf, i, n, length):
+                        return True
+                    undecided = undecided or (not final and n - i < MAX_ADU)
+                continue
+            if length == NEED:
+                return None if not final else False
+            if length < MIN_ADU or length > MAX_ADU:
+                continue
+            if i + length > n:
+                if final:
+                    continue
+                return None
+            if _crc_ok(buf, i, length):
+                return True
+        return None if undecided else False
+
+    @staticmethod
+    def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
+        lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
+        return lengths[0] if lengths else 0
+
+    def _intact_inside(self, buf: bytearray, i: int, length: int, n: int) -> bool:
+        """Does a frame with a length rule and a good CRC start inside bytes i..i+length?"""
+        return any(
+            self._valid_frame_at(buf, j, n, final=True, scan=False) for j in range(i + 1, i + length)
+        )
+
+    def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
+        """A frame without a length rule: the shortest CRC match that an intact frame (or the end)
+        follows. A CRC scan alone would take noise for frames: each length tried is a 1 in 65,536
+        chance of a match. (The following frame also settles the 00 case of _match.)
+        """
+        for length in crc_lengths(buf, i, minimum, min(n - i, MAX_ADU)):
+            following = self._valid_frame_at(buf, i + length, n, final)
+            if following is None:
+                return NEED
+            # In step (right after a frame) a scanned frame is trusted over a short frame that may
+            # check by chance inside it; while resynchronising, an intact frame inside wins.
+            if following and not (self._noise and self._intact_inside(buf, i, length, n)):
+                return length
+        return NEED if n - i < MAX_ADU and not final else NONE
+
+    def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
+        """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
+        slave, function = buf[i], buf[i + 1]
+        if slave > MAX_SLAVE:
+            return NONE
+        valid: list[tuple[Kind, int]] = []
+        damaged: list[tuple[Kind, int]] = []
+        waiting: list[int] = []  # lengths of layouts whose bytes have not all arrived (NEED: unknown)
+        for kind, rule in self._interpretations(slave, function):
+            length = rule(buf, i, n)
+            if type(length) is Scan:
+                found = self._scan(buf, i, n, length, final)
+                if found == NEED:
+                    waiting.append(NEED)
+                elif found:
+                    valid.append((kind, found))
+                continue
+            if length == NEED:
+                if not final:
+                    waiting.append(NEED)
+                continue
+            if length < MIN_ADU or length > MAX_ADU:
+                continue
+            if i + length > n:
+                if not final:
+                    waiting.append(length)
+                continue
+            (valid if _crc_ok(buf, i, length) else damaged).append((kind, length))
+        if len(valid) == 1:
+            kind, length = valid[0]
+            # CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one
+            # byte longer. Unless this is the answer awaited (preferred below too, whatever follows),
+            # wait when a layout one byte longer may still arrive.
+            expected = kind is Kind.RESPONSE and self._expect == (slave, function)
+            if (
+                not expected
+                and not self._boundary_at(i + length)  # the record ends here: nothing longer
+                and any(other == NEED or other == length + 1 for other in waiting)
+            ):
+                return NEED
+            return (kind, length, True)
+        if valid:
+            # Two layouts check out (the 00 case above, mostly): a record boundary, else what
+            # follows, decides.
+            for kind, length in valid:
+                if self._boundary_at(i + length):
+                    return (kind, length, True)
+            if self._expect == (slave, function) and valid[0][0] is Kind.RESPONSE:
+                # The answer awaited beats a reading one byte longer that the 00 after it makes check;
+                # it is also what the shortcut above takes when the 00 has not arrived yet.
+                return (*valid[0], True)
+            for kind, length in valid:
+                following = self._valid_frame_at(buf, i + length, n, final)
+                if following is None:
+                    return NEED
+                if following:
+                    return (kind, length, True)
+            return (*valid[0], True)
+        if waiting:
+            return NEED
+        # No layout checks out: a damaged frame is shown once if it ends where an intact one begins
+        # and holds none inside (a cut frame must not swallow the intact frame that follows it).
+        for kind, length in damaged:
+            following = self._valid_frame_at(buf, i + length, n, final)
+            if following is None:
+                return NEED
+            if following and (i + length < n or self._expect == (slave, function & 0x7F)):
+                if self._intact_inside(buf, i, length, n):
+                    continue
+                return (kind, length, False)
+        return NONE
+
+    def _run(self, final: bool) -> list[Item]:
+        buf = self._buf
+        n = len(buf)
+        i = 0
+        items: list[Item] = []
+        paused_from = n if self._pause is None else max(0, self._pause - self._base)
+        while n - i >= MIN_ADU or (final and i < n):
+            if i >= paused_from:
+                break
+            if n - i < MIN_ADU:
+                self._add_noise(i, n, "too short for a frame", items)
+                i = n
+                break
+            # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
+            slave = buf[i]
+            function = buf[i + 1]
+            first = (
+                _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
+            ).get(function)
+            if first is None or slave > MAX_SLAVE:
+                # No frame starts here: skip at C speed to the next byte pair that could start one.
+                found = _POSSIBLE_START.search(buf, i + 1)
+                end = found.start() if found is not None else (n if final else n - 1)
+                self._add_noise(i, end, "no valid frame", items)
+                i = end
+                continue
+            if (
+                not self._noise
+                and (first[0] is not Kind.EXCEPTION or self._expect == (slave, function & 0x7F))
+            ):
+                kind, length, rule = first
+                if not length:
+                    length = rule(buf, i, n)
+                # A next byte of 00 may belong to a longer frame (see _match): take the careful path.
+                if type(length) is int and MIN_ADU <= length <= MAX_ADU and i + length < n and buf[i + length]:
+                    stop = i + length - 2
+                    crc = buf[stop] | buf[stop + 1] << 8
+                    if crc16(buf[i:stop]) == crc:
+                        if self._noise:
+                            self._flush_noise(items)
+                        offset = self._base + i
+                        items.append(
+                            Frame(
+                                offset,
+                                bytes(buf[i : i + length]),
+                                self._time_at(offset) if self._timed else None,
+                                kind,
+                                slave,
+                                function & 0x7F,
+                                crc,
+                                crc,
+                            )
+                        )
+                        if kind is Kind.REQUEST:
+                            self._expect = (slave, function) if slave else None
+                        else:
+                            self._expect = None
+                        i += length
+                        continue
+            match = self._match(buf, i, n, final)
+            if match == NEED:
+                break
+            if match == NONE:
+                self._add_noise(i, i + 1, "no valid frame", items)
+                i += 1
+                continue
+            kind, length, crc_ok = match  # type: ignore[misc]
+            unasked = kind is not Kind.REQUEST and self._expect != (buf[i], buf[i + 1] & 0x7F)
+            if crc_ok and (self._noise or unasked):
+                # Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC
+                # 1 time in 65,536 per layout tried, so such a frame counts only when an intact frame,
+                # the end, or the end of a record follows it.
+                following = self._boundary_at(i + length) or self._valid_frame_at(
+                    buf, i + length, n, final
+                )
+                if following is None:
+                    break
+                if not following:
+                    self._add_noise(i, i + 1, "no valid frame", items)
+                    i += 1
+                    continue
+            raw = bytes(buf[i : i + length])
+            offset = self._base + i
+            slave, function = raw[0], raw[1]
+            frame = Frame(
+                offset=offset,
+                raw=raw,
+                time=self._time_at(offset),
+                kind=kind,
+                slave=slave,
+                function=function & 0x7F,
+                crc=raw[-2] | raw[-1] << 8,
+                crc_expected=crc16(raw[:-2]),
+            )
+            self._emit(frame, items)
+            i += length
+        if i:
+            self._consume(i)
+        return items

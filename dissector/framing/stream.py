@@ -1,0 +1,148 @@
+"""What both framers (RTU and ASCII) keep between chunks: the bytes not framed yet, the time each
+chunk arrived, the expectation of an answer, and the noise run being built."""
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+from dissector.model import Chunk, Frame, Item, Kind, Noise
+
+NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
+
+
+class StreamFramer(ABC):
+    """Push parser: feed chunks, collect items in stream order, unnumbered.
+
+    finish() closes whatever is buffered (a frame or noise) and leaves the framer ready for more
+    bytes with its expectation kept: live capture calls it after a silence on the line.
+    """
+
+    mode: str
+
+    def __init__(self) -> None:
+        self._buf = bytearray()
+        self._base = 0  # absolute offset of _buf[0]
+        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
+        self._timed = False
+        # Where a source said a frame boundary is (a pcap record's end): breaks ties between layouts.
+        self._boundaries: set[int] = set()
+        self._noise = bytearray()
+        self._noise_offset = 0
+        self._noise_reason = ""
+        self._noise_time: float | None = None
+        self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+        # Frame nothing that starts at or after this absolute offset yet (see pause_at).
+        self._pause: int | None = None
+
+    def feed(self, chunk: Chunk) -> list[Item]:
+        if chunk.data:
+            if chunk.time is not None:
+                self._timed = True
+            self._times.append((self._base + len(self._buf), chunk.time))
+            self._buf += chunk.data
+            if chunk.boundary:
+                self._boundaries.add(self._base + len(self._buf))
+        return self._run(final=False)
+
+    def finish(self) -> list[Item]:
+        items = self._run(final=True)
+        self._flush_noise(items)
+        return items
+
+    # -- handing the stream over to another framing engine (dissector/accel/fastsummary.py) ------------
+    @property
+    def offset(self) -> int:
+        """Absolute offset of the first byte not framed yet."""
+        return self._base
+
+    @property
+    def idle(self) -> bool:
+        """No noise run is being built: what was framed so far has all been given out."""
+        return not self._noise
+
+    def pause_at(self, offset: int | None) -> None:
+        """Start no frame at or after `offset` (None: no pause): lets a caller take items one frame
+        at a time, to find the points where the stream can change hands."""
+        self._pause = offset
+
+    def restart_at(self, offset: int, expect: tuple[int, int] | None) -> None:
+        """Take the stream up from absolute `offset`, where another engine left it idle."""
+        self._buf = bytearray()
+        self._base = offset
+        self._times = []
+        self._boundaries = set()
+        self._expect = expect
+
+    def hand_back(self) -> tuple[int, bytes, tuple[int, int] | None]:
+        """(offset, bytes not framed yet, expectation) for another engine; the buffer is emptied."""
+        rest = bytes(self._buf)
+        self._base += len(self._buf)
+        self._buf = bytearray()
+        self._times = []
+        return self._base - len(rest), rest, self._expect
+
+    @abstractmethod
+    def _run(self, final: bool) -> list[Item]:
+        """Frame what the buffer holds; with final, nothing more will come."""
+
+    def _time_at(self, offset: int) -> float | None:
+        if not self._timed:
+            return None
+        times = self._times
+        # Chunks are few per frame: walk back from the newest.
+        for index in range(len(times) - 1, -1, -1):
+            if times[index][0] <= offset:
+                return times[index][1]
+        return None
+
+    def _consume(self, count: int) -> None:
+        """Drop the first `count` buffered bytes (framed or noise) and the chunk times before them."""
+        del self._buf[:count]
+        self._base += count
+        times = self._times
+        keep = 0
+        for index, (offset, _time) in enumerate(times):
+            if offset <= self._base:
+                keep = index
+        if keep:
+            del times[:keep]
+        if self._boundaries:
+            self._boundaries = {offset for offset in self._boundaries if offset > self._base}
+
+    def _boundary_at(self, index: int) -> bool:
+        """Did the source mark a frame boundary after buffer index `index`?"""
+        return self._base + index in self._boundaries
+
+    def _add_noise(self, start: int, end: int, reason: str, items: list[Item]) -> None:
+        """Bytes start..end of the buffer belong to no frame."""
+        buf = self._buf
+        while start < end:
+            if not self._noise:
+                self._noise_offset = self._base + start
+                self._noise_reason = reason
+                self._noise_time = self._time_at(self._noise_offset)
+            take = min(end - start, NOISE_ITEM_MAX - len(self._noise))
+            self._noise += buf[start : start + take]
+            start += take
+            if len(self._noise) >= NOISE_ITEM_MAX:
+                self._flush_noise(items)
+
+    def _emit(self, frame: Frame, items: list[Item]) -> None:
+        """A frame is found: close the noise before it, and expect the answer to a request."""
+        self._flush_noise(items)
+        items.append(frame)
+        if frame.kind is Kind.REQUEST:
+            self._expect = (frame.slave, frame.function) if frame.slave != 0 else None
+        else:
+            self._expect = None
+
+    def _flush_noise(self, items: list[Item]) -> None:
+        if self._noise:
+            items.append(
+                Noise(
+                    offset=self._noise_offset,
+                    raw=bytes(self._noise),
+                    time=self._noise_time,
+                    reason=self._noise_reason,
+                )
+            )
+            self._noise = bytearray()

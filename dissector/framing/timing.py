@@ -1,0 +1,123 @@
+"""Timing anomalies seen in timestamped captures: a silence inside a frame.
+
+On the wire, the characters of an RTU frame follow each other with less than 1.5 character times
+of silence (t1.5); a longer pause makes a conforming receiver drop the frame. In ASCII mode the
+limit is one second between characters. Timestamps come with the chunks a source delivers (pcap
+records, hex-dump lines, live reads), each the time of the chunk's first byte (model.Chunk), so the
+silence before a chunk that starts inside a frame is
+
+    time of that chunk - time of the previous chunk - transmission time of the previous chunk's bytes
+
+and a frame that spans chunks separated by more than the limit is reported. The framer never uses
+this to cut frames (length rules and CRC decide); it is a finding for the user. Response timeouts
+are the pairer's business, not this module's.
+
+Serial Line Guide v1.02, 2.5.1.1: an RTU character is 11 bits (start, 8 data, parity or a second
+stop bit, stop); t1.5 is 1.5 character times up to 19200 baud and a fixed 750 us above, where the
+character time would be too short for UARTs' interrupt handling. An ASCII character is 10 bits
+(start, 7 data, parity, stop), with intervals of up to 1 s allowed between characters.
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from dissector.model import Chunk, Frame, Item
+
+DEFAULT_BAUD = 19200
+RTU_BITS_PER_CHAR = 11
+ASCII_BITS_PER_CHAR = 10
+FIXED_TIMING_ABOVE = 19200  # baud rate above which t1.5 and t3.5 are fixed
+FIXED_T15 = 750e-6
+FIXED_T35 = 1750e-6
+ASCII_MAX_SILENCE = 1.0
+
+
+@dataclass(frozen=True, slots=True)
+class LineTiming:
+    baud: int = DEFAULT_BAUD
+    mode: str = "rtu"
+
+    @property
+    def char_time(self) -> float:
+        bits = ASCII_BITS_PER_CHAR if self.mode == "ascii" else RTU_BITS_PER_CHAR
+        return bits / self.baud
+
+    @property
+    def t15(self) -> float:
+        return FIXED_T15 if self.baud > FIXED_TIMING_ABOVE else 1.5 * RTU_BITS_PER_CHAR / self.baud
+
+    @property
+    def t35(self) -> float:
+        return FIXED_T35 if self.baud > FIXED_TIMING_ABOVE else 3.5 * RTU_BITS_PER_CHAR / self.baud
+
+    @property
+    def max_silence(self) -> float:
+        """The longest silence allowed between two characters of one frame."""
+        return ASCII_MAX_SILENCE if self.mode == "ascii" else self.t15
+
+    def describe_limit(self) -> str:
+        if self.mode == "ascii":
+            return "the 1 s ASCII limit"
+        return f"t1.5 = {self.t15 * 1000:.3f} ms at {self.baud} baud"
+
+
+def inner_gaps(
+    offset: int,
+    length: int,
+    starts: Sequence[tuple[int, float | None]],
+    timing: LineTiming,
+) -> list[str]:
+    """Warnings for silences longer than allowed inside the frame at [offset, offset + length).
+
+    `starts` holds (absolute stream offset, time) of consecutive chunk starts in stream order,
+    including at least the chunk the frame starts in (as the framers keep them).
+    """
+    warnings: list[str] = []
+    end = offset + length
+    for (previous_offset, previous_time), (start, time) in zip(starts, starts[1:]):
+        if not offset < start < end or previous_time is None or time is None:
+            continue
+        silence = time - previous_time - (start - previous_offset) * timing.char_time
+        if silence > timing.max_silence:
+            warnings.append(
+                f"silence of {silence * 1000:.3f} ms inside the frame before byte {start - offset} "
+                f"(longer than {timing.describe_limit()})"
+            )
+    return warnings
+
+
+class GapChecker:
+    """Sees the chunks a framer is fed and checks the items that framer returns.
+
+    Usage: `checker.observe(chunk)` for every chunk before feeding it to the framer, then
+    `item.warnings += checker.check(item)` for every item the framer returns, in order (noise
+    too: checking an item lets the checker forget the chunks before it, so memory stays bounded).
+    """
+
+    def __init__(self, baud: int = DEFAULT_BAUD, mode: str = "rtu") -> None:
+        self.timing = LineTiming(baud, mode)
+        self._starts: list[tuple[int, float | None]] = []
+        self._position = 0
+
+    def observe(self, chunk: Chunk) -> None:
+        if chunk.data:
+            self._starts.append((self._position, chunk.time))
+            self._position += len(chunk.data)
+
+    def check(self, item: Item) -> list[str]:
+        end = item.offset + item.length
+        warnings: list[str] = []
+        if isinstance(item, Frame):
+            warnings = inner_gaps(item.offset, item.length, self._starts, self.timing)
+        # Keep the last chunk starting at or before the end: it precedes any later frame's bytes.
+        starts = self._starts
+        keep = 0
+        for index, (start, _time) in enumerate(starts):
+            if start <= end:
+                keep = index
+            else:
+                break
+        if keep:
+            del starts[:keep]
+        return warnings

@@ -1,0 +1,528 @@
+"""Display filters (`-Y EXPR`), evaluated on the NDJSON dict of an item (render.jsonout.item_to_dict).
+
+Syntax, close to Wireshark's:
+
+    slave == 12 and code == "CHCF"          comparisons: == != < <= > >= (also eq ne lt le gt ge)
+    function in {3 4 23}   address in 8400..8402   address in {3201..3202 8501}
+    warnings contains "byte count"          substring of a string, or of any element of a list
+    crc_ok   not unanswered   exception     a bare field: present and not false (0 counts as present)
+    not / !   and / &&   or / ||   ( )      strings in double quotes (\\" and \\\\ escapes), 0x.. hex,
+                                            true / false
+
+Field names are the JSON keys. Frame fields: frame, kind, offset, length, time, raw, mode, slave,
+function, function_name, crc_ok, crc, crc_expected, broadcast, start, quantity, subfunction,
+subfunction_name, exception_code (alias: exception), exception_name, request_frame, response_frame,
+response_time, unanswered, reason, warnings, notes.
+
+Register fields: address, value, code, name, unit, scaled, text, status, source, label. A frame carries
+several registers, so these tests ask "is there a register such that...". The rule:
+
+    The register fields of a filter are tested on ONE register at a time, within the nearest enclosing
+    `not` (or the whole filter): the frame matches when SOME register makes that part true.
+
+So `code == "CHCF" and status == "protected"` needs both on the same register (CHCF read as protected),
+not CHCF somewhere and a protected register elsewhere; `slave == 12 and code == "CHCF"` is "a register
+CHCF in a frame of slave 12". `not code == "CHCF"` is "no register is CHCF" (the `not` closes the
+scope), while `code != "CHCF"` is "some register is not CHCF": use `not` to exclude. The registers of a
+frame are its `registers` and `bits` (whose address and value these fields test too), plus the
+addresses a frame names without carrying a value (a read request's start..start+quantity-1, a FC16
+confirmation): `address == 8401` matches the read request, its response and writes of 8401; those
+address-only entries have no value, code or status.
+
+A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=`
+included. Errors raise FilterError, whose message shows the expression with a caret under the token.
+"""
+from __future__ import annotations
+
+from dissector.errors import MalformedInput
+import re
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
+
+# field -> type: number (integer or decimal), str, bool, list (of strings)
+FRAME_FIELDS: dict[str, str] = {
+    "frame": "number",
+    "kind": "str",
+    "offset": "number",
+    "length": "number",
+    "time": "number",
+    "raw": "str",
+    "mode": "str",
+    "slave": "number",
+    "function": "number",
+    "function_name": "str",
+    "crc_ok": "bool",
+    "crc": "number",
+    "crc_expected": "number",
+    "broadcast": "bool",
+    "start": "number",
+    "quantity": "number",
+    "subfunction": "number",
+    "subfunction_name": "str",
+    "exception_code": "number",
+    "exception_name": "str",
+    "request_frame": "number",
+    "response_frame": "number",
+    "response_time": "number",
+    "unanswered": "bool",
+    "reason": "str",
+    "warnings": "list",
+    "notes": "list",
+}
+REGISTER_FIELDS: dict[str, str] = {
+    "address": "number",
+    "value": "number",
+    "code": "str",
+    "name": "str",
+    "unit": "str",
+    "scaled": "number",
+    "text": "str",
+    "status": "str",
+    "source": "str",
+    "label": "str",
+}
+ALIASES = {"exception": "exception_code"}
+CHOICES = {
+    "kind": ("request", "response", "exception", "noise"),
+    "mode": ("rtu", "ascii"),
+}
+MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
+
+Item = dict[str, Any]
+Test = Callable[[Item, dict[str, Any] | None], bool]
+
+
+class FilterError(MalformedInput):
+    """A filter that cannot be compiled; str() shows the expression and a caret under the token."""
+
+    def __init__(self, message: str, text: str, position: int) -> None:
+        self.message = message
+        self.text = text
+        self.position = position
+        column = position + 1
+        line = text.replace("\t", " ").replace("\n", " ").replace("\r", " ")
+        super().__init__(f"{message} (column {column})\n  {line}\n  {' ' * position}^")
+
+
+@dataclass(slots=True)
+class Token:
+    kind: str  # name, number, string, op, punct, end
+    text: str
+    value: Any
+    position: int
+
+
+_TOKEN = re.compile(
+    r"""
+    (?P<space>\s+)
+  | (?P<number>0[xX][0-9A-Fa-f]+|-?\d+(?:\.\d+)?(?![0-9A-Za-z_]))
+  | (?P<string>")
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!)
+  | (?P<punct>\.\.|[(){},])
+    """,
+    re.VERBOSE,
+)
+_WORD_OPS = {"eq": "==", "ne": "!=", "lt": "<", "le": "<=", "gt": ">", "ge": ">="}
+_KEYWORDS = {"and", "or", "not", "in", "contains", "true", "false"}
+_ESCAPES = {'"': '"', "\\": "\\", "n": "\n", "t": "\t"}
+
+
+def _string(text: str, start: int) -> tuple[str, int]:
+    out: list[str] = []
+    i = start + 1
+    while i < len(text):
+        char = text[i]
+        if char == '"':
+            return "".join(out), i + 1
+        if char == "\\":
+            if i + 1 >= len(text):
+                break
+            escaped = _ESCAPES.get(text[i + 1])
+            if escaped is None:
+                raise FilterError(f"unknown escape \\{text[i + 1]} in a string", text, i)
+            out.append(escaped)
+            i += 2
+            continue
+        out.append(char)
+        i += 1
+    raise FilterError("string not closed (a \" is missing)", text, start)
+
+
+def tokenize(text: str) -> list[Token]:
+    tokens: list[Token] = []
+    i = 0
+    while i < len(text):
+        match = _TOKEN.match(text, i)
+        if match is None:
+            if text[i] == "=":
+                raise FilterError("a single = is not an operator: use == to compare", text, i)
+            raise FilterError(f"unexpected character {text[i]!r}", text, i)
+        group = match.lastgroup
+        word = match.group()
+        if group == "string":
+            value, end = _string(text, i)
+            tokens.append(Token("string", text[i:end], value, i))
+            i = end
+            continue
+        if group == "number":
+            if len(word) > 40:  # also keeps int() below Python's digit limit
+                raise FilterError("number too long", text, i)
+            number: int | float = int(word, 16) if word[:2] in ("0x", "0X") else (
+                float(word) if "." in word else int(word)
+            )
+            tokens.append(Token("number", word, number, i))
+        elif group == "name":
+            lowered = word.lower()
+            if lowered in _WORD_OPS:
+                tokens.append(Token("op", word, _WORD_OPS[lowered], i))
+            elif lowered in _KEYWORDS:
+                tokens.append(Token("keyword", word, lowered, i))
+            else:
+                tokens.append(Token("name", word, word, i))
+        elif group in ("op", "punct"):
+            tokens.append(Token(group, word, word, i))
+        i = match.end()
+    tokens.append(Token("end", "", None, len(text)))
+    return tokens
+
+
+def _present(value: Any) -> bool:
+    return value is not None and value is not False and value != "" and value != []
+
+
+def _compare(op: str, left: Any, right: Any) -> bool:
+    try:
+        if op == "==":
+            return bool(left == right)
+        if op == "!=":
+            return bool(left != right)
+        if op == "<":
+            return bool(left < right)
+        if op == "<=":
+            return bool(left <= right)
+        if op == ">":
+            return bool(left > right)
+        return bool(left >= right)
+    except TypeError:  # a value of an unexpected type in the item: not a match
+        return False
+
+
+def _numeric(value: Any) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _elements(item: Item) -> list[dict[str, Any]]:
+    """The registers and bits of an item, plus address-only entries for addresses it names."""
+    registers = item.get("registers") or []
+    bits = item.get("bits")
+    elements: list[dict[str, Any]] = registers + bits if bits else registers
+    start, quantity = item.get("start"), item.get("quantity")
+    if not (_numeric(start) and _numeric(quantity)) or item.get("kind") == "exception":
+        return elements
+    if len(elements) == quantity and elements[0].get("address") == start:
+        return elements  # a read response: its values already cover start..start+quantity-1
+    known = {element.get("address") for element in elements}
+    synthesized = [
+        {"address": address & 0xFFFF}
+        for address in range(int(start), int(start) + min(int(quantity), MAX_SYNTHESIZED))
+        if address & 0xFFFF not in known
+    ]
+    return elements + synthesized if synthesized else elements
+
+
+class _Parser:
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.tokens = tokenize(text)
+        self.index = 0
+        self.depth = 0
+
+    @property
+    def token(self) -> Token:
+        return self.tokens[self.index]
+
+    def advance(self) -> Token:
+        token = self.tokens[self.index]
+        if token.kind != "end":
+            self.index += 1
+        return token
+
+    def error(self, message: str, token: Token | None = None) -> FilterError:
+        token = token or self.token
+        return FilterError(message, self.text, token.position)
+
+    def at(self, kind: str, *values: str) -> bool:
+        token = self.token
+        return token.kind == kind and (not values or token.value in values)
+
+    # -- grammar ------------------------------------------------------------------------------
+    def parse(self) -> tuple[Test, bool]:
+        if self.token.kind == "end":
+            raise self.error("empty filter: give an expression such as slave == 12")
+        test = self.parse_or()
+        if self.token.kind != "end":
+            raise self.error(f"unexpected {self._describe(self.token)}: expected and, or or the end")
+        return test
+
+    def parse_or(self) -> tuple[Test, bool]:
+        parts = [self.parse_and()]
+        while self.at("keyword", "or") or self.at("op", "||"):
+            self.advance()
+            parts.append(self.parse_and())
+        if len(parts) == 1:
+            return parts[0]
+        tests = [test for test, _uses in parts]
+        return (lambda item, reg: any(test(item, reg) for test in tests)), any(u for _t, u in parts)
+
+    def parse_and(self) -> tuple[Test, bool]:
+        parts = [self.parse_not()]
+        while self.at("keyword", "and") or self.at("op", "&&"):
+            self.advance()
+            parts.append(self.parse_not())
+        if len(parts) == 1:
+            return parts[0]
+        tests = [test for test, _uses in parts]
+        conjunction = _And(tests)
+        frame_tests = [test for test, uses in parts if not uses]
+        register_tests = [test for test, uses in parts if uses]
+        if frame_tests and register_tests:
+            # Frame-level tests are checked once per frame, before any per-register work.
+            conjunction.split = (_And(frame_tests), _And(register_tests))
+        return conjunction, bool(register_tests)
+
+    def _enter(self) -> None:
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise self.error(f"expression nested more than {MAX_DEPTH} levels deep")
+
+    def parse_not(self) -> tuple[Test, bool]:
+        if self.at("keyword", "not") or self.at("op", "!"):
+            self.advance()
+            self._enter()
+            test, uses = self.parse_not()
+            self.depth -= 1
+            if uses:  # the scope of "some register" closes here: not (some register ...)
+                inner = quantify(test)
+                return (lambda item, reg: not inner(item)), False
+            return (lambda item, reg: not test(item, reg)), False
+        return self.parse_primary()
+
+    def parse_primary(self) -> tuple[Test, bool]:
+        token = self.token
+        if self.at("punct", "("):
+            self.advance()
+            self._enter()
+            result = self.parse_or()
+            self.depth -= 1
+            if not self.at("punct", ")"):
+                raise self.error(f"expected ) to close the ( at column {token.position + 1}")
+            self.advance()
+            return result
+        if token.kind != "name":
+            raise self.error(f"expected a field name, found {self._describe(token)}")
+        return self.parse_test()
+
+    def parse_test(self) -> tuple[Test, bool]:
+        name_token = self.advance()
+        field = ALIASES.get(name_token.value, name_token.value)
+        if field in FRAME_FIELDS:
+            register, ftype = False, FRAME_FIELDS[field]
+        elif field in REGISTER_FIELDS:
+            register, ftype = True, REGISTER_FIELDS[field]
+        else:
+            raise self.error(f"unknown field {name_token.text!r}{self._suggest(name_token.text)}", name_token)
+
+        def get(item: Item, reg: dict[str, Any] | None) -> Any:
+            if register:
+                return None if reg is None else reg.get(field)
+            return item.get(field)
+
+        token = self.token
+        if token.kind == "op" and token.value != "!":
+            self.advance()
+            op = token.value
+            value_token = self.token
+            value = self.parse_value(field, ftype)
+            if ftype == "bool" and op not in ("==", "!="):
+                raise self.error(f"{field} is true or false: only == and != compare it", token)
+            if ftype == "list":
+                if op != "==":
+                    raise self.error(f"{field} is a list of texts: use == or contains", token)
+                return (lambda item, reg: any(v == value for v in get(item, reg) or ())), register
+            self._check_choice(field, value, value_token)
+            return (lambda item, reg: _match_op(op, get(item, reg), value)), register
+        if self.at("keyword", "contains"):
+            self.advance()
+            if ftype not in ("str", "list"):
+                raise self.error(f"contains needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
+            value = self.parse_value(field, "str")
+            if ftype == "list":
+                return (
+                    lambda item, reg: any(isinstance(v, str) and value in v for v in get(item, reg) or ())
+                ), register
+            return (lambda item, reg: _contains(get(item, reg), value)), register
+        if self.at("keyword", "in"):
+            self.advance()
+            members = self.parse_set(field, ftype)
+            return (lambda item, reg: _in(get(item, reg), members)), register
+        if token.kind in ("number", "string", "name") or self.at("keyword", "true", "false"):
+            raise self.error(f"expected an operator (== != < <= > >= in contains) after {field}")
+        return (lambda item, reg: _present(get(item, reg))), register
+
+    def parse_value(self, field: str, ftype: str) -> Any:
+        token = self.token
+        if token.kind == "end":
+            raise self.error(f"expected a value to compare {field} with")
+        if ftype == "bool":
+            if not self.at("keyword", "true", "false"):
+                raise self.error(f"{field} is true or false, not {self._describe(token)}")
+            self.advance()
+            return token.value == "true"
+        if ftype == "number":
+            if token.kind != "number":
+                raise self.error(f"{field} is a number, not {self._describe(token)}")
+            self.advance()
+            return token.value
+        if token.kind != "string":
+            hint = ' (strings go in double quotes: "...")' if token.kind in ("name", "number") else ""
+            raise self.error(f"{field} is a text, not {self._describe(token)}{hint}")
+        self.advance()
+        return token.value
+
+    def parse_set(self, field: str, ftype: str) -> list[tuple[Any, Any]]:
+        """`{a b c..d}` (commas optional) or a bare range `a..b`: a list of (low, high) pairs."""
+        if ftype in ("bool", "list"):
+            raise self.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
+        if not self.at("punct", "{"):
+            if ftype != "number":
+                raise self.error("expected { after in (a set such as {\"CHCF\" \"COP\"})")
+            return [self.parse_member(field, ftype, require_range=True)]
+        opening = self.advance()
+        members: list[tuple[Any, Any]] = []
+        while not self.at("punct", "}"):
+            if self.token.kind == "end":
+                raise self.error(f"expected }} to close the {{ at column {opening.position + 1}")
+            members.append(self.parse_member(field, ftype, require_range=False))
+            if self.at("punct", ","):
+                self.advance()
+        if not members:
+            raise self.error("empty set: put values between { }")
+        self.advance()
+        return members
+
+    def parse_member(self, field: str, ftype: str, require_range: bool) -> tuple[Any, Any]:
+        value_token = self.token
+        low = self.parse_value(field, ftype)
+        self._check_choice(field, low, value_token)
+        if self.at("punct", ".."):
+            if ftype != "number":
+                raise self.error(f"ranges need numbers; {field} is a text")
+            self.advance()
+            high = self.parse_value(field, ftype)
+            return (low, high)
+        if require_range:
+            raise self.error("expected .. (a range such as 8400..8402) or a set in { }")
+        return (low, low)
+
+    # -- messages -----------------------------------------------------------------------------
+    def _check_choice(self, field: str, value: Any, token: Token) -> None:
+        choices = CHOICES.get(field)
+        if choices and value not in choices:
+            raise self.error(f"{field} is one of {', '.join(choices)}", token)
+
+    @staticmethod
+    def _describe(token: Token) -> str:
+        if token.kind == "end":
+            return "the end of the filter"
+        return f"{token.text!r}"
+
+    @staticmethod
+    def _suggest(name: str) -> str:
+        import difflib
+
+        names = [*FRAME_FIELDS, *REGISTER_FIELDS, *ALIASES]
+        close = difflib.get_close_matches(name.lower(), names, n=1)
+        return f" (did you mean {close[0]}?)" if close else ""
+
+
+_TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
+
+
+def _match_op(op: str, actual: Any, value: Any) -> bool:
+    if actual is None:
+        return False
+    if isinstance(value, str) != isinstance(actual, str):
+        return False
+    if isinstance(value, bool) != isinstance(actual, bool):
+        return False
+    return _compare(op, actual, value)
+
+
+def _contains(actual: Any, value: str) -> bool:
+    return isinstance(actual, str) and value in actual
+
+
+def _in(actual: Any, members: list[tuple[Any, Any]]) -> bool:
+    if actual is None or isinstance(actual, bool):
+        return False
+    for low, high in members:
+        if isinstance(low, str) != isinstance(actual, str):
+            continue
+        if low == high:
+            if actual == low:
+                return True
+        elif _compare("<=", low, actual) and _compare("<=", actual, high):
+            return True
+    return False
+
+
+class _And:
+    """All of `tests`; `split` = (frame-level part, register-level part) when it has both."""
+
+    __slots__ = ("tests", "split")
+
+    def __init__(self, tests: list[Test]) -> None:
+        self.tests = tests
+        self.split: tuple[_And, _And] | None = None
+
+    def __call__(self, item: Item, reg: dict[str, Any] | None) -> bool:
+        return all(test(item, reg) for test in self.tests)
+
+
+def quantify(test: Test) -> Callable[[Item], bool]:
+    """Some register (or, for a frame without any, no register at all) makes `test` true."""
+    split = test.split if isinstance(test, _And) else None
+    if split is not None:
+        frame_part, register_part = split
+
+        def some_split(item: Item) -> bool:
+            if not frame_part(item, None):
+                return False
+            elements = _elements(item)
+            if not elements:
+                return register_part(item, None)
+            return any(register_part(item, element) for element in elements)
+
+        return some_split
+
+    def some(item: Item) -> bool:
+        elements = _elements(item)
+        if not elements:
+            return test(item, None)
+        return any(test(item, element) for element in elements)
+
+    return some
+
+
+def compile_filter(text: str) -> Callable[[Item], bool]:
+    """Compile a display filter to a predicate on item dicts. Raises FilterError."""
+    if not isinstance(text, str):
+        raise FilterError("a filter is text", "", 0)
+    test, uses_registers = _Parser(text).parse()
+    if uses_registers:
+        return quantify(test)
+    return lambda item: test(item, None)

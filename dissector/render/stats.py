@@ -1,0 +1,321 @@
+"""Capture statistics (`--stats`): traffic per slave and function, and what happened to each parameter.
+
+`StatsCollector.add(item)` takes the decoded items in stream order; `report()` gives a JSON-ready dict
+(`--stats --json`) and `render()` rich tables. Memory stays bounded by the number of distinct
+(slave, function) pairs and (slave, address) parameters, except the response times, kept whole for the
+median and the 95th percentile.
+
+Counting rules (the table headers say the same):
+- A frame whose CRC/LRC fails counts only as a CRC error of the (slave, function) its bytes name: its
+  contents cannot be trusted, so it is neither a request nor a response nor an exception.
+- requests: good requests, broadcasts included; `broadcasts` counts those to slave 0. responses: normal
+  answers; exceptions: exception answers, by code. unanswered: requests the pairing stage found no
+  answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
+  request and both timed.
+- Per parameter (slave, address, and its code when a profile names it): `reads` counts the values
+  read (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent
+  (16#8000 on the ATV71: a marker, so neither a value nor a change); `writes` the values a master
+  asked to write (FC6/16/23 requests), `refused` those whose request got an exception. `last` is the
+  latest value seen on the wire, read or confirmed written (FC6 echo; FC16/23 values of a request
+  confirmed by a normal answer; a broadcast write, which nothing confirms); `changes` counts when that
+  value differs from the previous one. Registers without an address (an answer whose request is not
+  in the capture) are counted in `registers_without_address`, not attached to a parameter.
+- p95 is the nearest-rank 95th percentile: the smallest time with at least 95 % of the times <= it.
+"""
+from __future__ import annotations
+
+import math
+import statistics
+from dataclasses import dataclass, field
+from typing import Any
+
+from rich import box
+from rich.console import Group, RenderableType
+from rich.table import Table
+from rich.text import Text
+
+from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.protocol.spec import SPEC
+
+READ_FUNCTIONS = frozenset([3, 4, 23])
+WRITE_FUNCTIONS = frozenset([6, 16, 23])
+# Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
+UNREADABLE = frozenset(["protected", "non-existent"])
+
+
+@dataclass(slots=True)
+class FunctionStats:
+    requests: int = 0
+    broadcasts: int = 0
+    responses: int = 0
+    exceptions: dict[int, int] = field(default_factory=dict)
+    unanswered: int = 0
+    crc_errors: int = 0
+    times: list[float] = field(default_factory=list)
+
+
+@dataclass(slots=True)
+class ParameterStats:
+    code: str | None = None
+    reads: int = 0
+    unreadable: int = 0
+    writes: int = 0
+    refused: int = 0
+    last: int | None = None
+    changes: int = 0
+
+    def observe(self, value: int) -> None:
+        if self.last is not None and value != self.last:
+            self.changes += 1
+        self.last = value
+
+
+def percentile(sorted_values: list[float], fraction: float) -> float:
+    """Nearest rank: the smallest value with at least `fraction` of the values <= it."""
+    rank = max(1, math.ceil(fraction * len(sorted_values)))
+    return sorted_values[rank - 1]
+
+
+class StatsCollector:
+    def __init__(self) -> None:
+        self.functions: dict[tuple[int, int], FunctionStats] = {}
+        self.parameters: dict[tuple[int, int], ParameterStats] = {}
+        self.frames = 0
+        self.noise_items = 0
+        self.noise_bytes = 0
+        self.registers_without_address = 0
+        self.first_time: float | None = None
+        self.last_time: float | None = None
+
+    # -- collecting ---------------------------------------------------------------------------
+    def _function(self, slave: int, function: int) -> FunctionStats:
+        key = (slave, function)
+        stats = self.functions.get(key)
+        if stats is None:
+            stats = self.functions[key] = FunctionStats()
+        return stats
+
+    def _parameter(self, slave: int, register: Register) -> ParameterStats | None:
+        if register.address is None:
+            self.registers_without_address += 1
+            return None
+        key = (slave, register.address)
+        stats = self.parameters.get(key)
+        if stats is None:
+            stats = self.parameters[key] = ParameterStats()
+        if register.code is not None:
+            stats.code = register.code
+        return stats
+
+    def add(self, item: Item) -> None:
+        if item.time is not None:
+            if self.first_time is None:
+                self.first_time = item.time
+            self.last_time = item.time
+        if isinstance(item, Noise):
+            self.noise_items += 1
+            self.noise_bytes += item.length
+            return
+        self.frames += 1
+        stats = self._function(item.slave, item.function)
+        if not item.crc_ok:
+            stats.crc_errors += 1
+            return
+        if item.kind is Kind.REQUEST:
+            self._add_request(item, stats)
+            return
+        if item.kind is Kind.EXCEPTION:
+            code = item.exception_code if item.exception_code is not None else -1
+            stats.exceptions[code] = stats.exceptions.get(code, 0) + 1
+            request = item.request
+            if request is not None and request.function in WRITE_FUNCTIONS and request.crc_ok:
+                for register in request.registers or ():
+                    parameter = self._parameter(item.slave, register)
+                    if parameter is not None:
+                        parameter.refused += 1
+        else:
+            stats.responses += 1
+            self._add_response_values(item)
+        if item.response_time is not None:
+            stats.times.append(item.response_time)
+
+    def _add_request(self, frame: Frame, stats: FunctionStats) -> None:
+        stats.requests += 1
+        if frame.broadcast:
+            stats.broadcasts += 1
+        if frame.unanswered:
+            stats.unanswered += 1
+        if frame.function in WRITE_FUNCTIONS:
+            for register in frame.registers or ():
+                parameter = self._parameter(frame.slave, register)
+                if parameter is not None:
+                    parameter.writes += 1
+                    if frame.broadcast:  # no answer will confirm it: the request is all there is
+                        parameter.observe(register.value)
+
+    def _add_response_values(self, frame: Frame) -> None:
+        slave, function = frame.slave, frame.function
+        # Writes first: FC23 performs its write before its read.
+        if function == 6:
+            for register in frame.registers or ():
+                if register.address is not None:
+                    self._confirm(slave, register)
+        elif function in (16, 23) and frame.request is not None and frame.request.crc_ok:
+            for register in frame.request.registers or ():
+                if register.address is not None:
+                    self._confirm(slave, register)
+        if function in READ_FUNCTIONS:
+            for register in frame.registers or ():
+                parameter = self._parameter(slave, register)
+                if parameter is None:
+                    continue
+                if register.status in UNREADABLE:
+                    parameter.unreadable += 1  # 16#8000 stands for "no value", not a value
+                else:
+                    parameter.reads += 1
+                    parameter.observe(register.value)
+
+    def _confirm(self, slave: int, register: Register) -> None:
+        key = (slave, register.address)
+        parameter = self.parameters.get(key)  # type: ignore[arg-type]
+        if parameter is None:
+            parameter = self.parameters[key] = ParameterStats(code=register.code)  # type: ignore[index]
+        parameter.observe(register.value)
+
+    # -- results ------------------------------------------------------------------------------
+    def report(self) -> dict[str, Any]:
+        functions = []
+        for (slave, function), stats in sorted(self.functions.items()):
+            functions.append(
+                {
+                    "slave": slave,
+                    "function": function,
+                    "function_name": SPEC.function_name(function),
+                    "requests": stats.requests,
+                    "broadcasts": stats.broadcasts,
+                    "responses": stats.responses,
+                    "exceptions": {str(code): count for code, count in sorted(stats.exceptions.items())},
+                    "unanswered": stats.unanswered,
+                    "crc_errors": stats.crc_errors,
+                    "response_time": _times(stats.times),
+                }
+            )
+        parameters = [
+            {
+                "slave": slave,
+                "address": address,
+                "code": stats.code,
+                "reads": stats.reads,
+                "unreadable": stats.unreadable,
+                "writes": stats.writes,
+                "refused": stats.refused,
+                "last": stats.last,
+                "changes": stats.changes,
+            }
+            for (slave, address), stats in sorted(self.parameters.items())
+        ]
+        return {
+            "frames": self.frames,
+            "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
+            "duration": (
+                None
+                if self.first_time is None or self.last_time is None
+                else self.last_time - self.first_time
+            ),
+            "registers_without_address": self.registers_without_address,
+            "functions": functions,
+            "parameters": parameters,
+        }
+
+    def render(self) -> RenderableType:
+        """Summary line, traffic, response times and parameters: each table fits 80 columns."""
+        report = self.report()
+        traffic = _table("Traffic per slave and function")
+        times = _table("Response times (ms)")
+        for table in (traffic, times):
+            # Short headers and a 28-column function name keep each table within 80 columns.
+            table.add_column("slave", justify="right", no_wrap=True)
+            table.add_column("function", no_wrap=True, max_width=28, overflow="ellipsis")
+        for header in ("req", "resp"):
+            traffic.add_column(header, justify="right", no_wrap=True)
+        traffic.add_column("exceptions")
+        for header in ("no reply", "bad CRC"):
+            traffic.add_column(header, justify="right", no_wrap=True)
+        traffic.caption = "req: requests, resp: normal responses, exceptions: code:count"
+        traffic.caption_justify = "left"
+        for header in ("count", "min", "median", "p95", "max"):
+            times.add_column(header, justify="right", no_wrap=True)
+        for row in report["functions"]:
+            function = f"{row['function']} {row['function_name']}"
+            exceptions = " ".join(f"{code}:{count}" for code, count in row["exceptions"].items())
+            traffic.add_row(
+                str(row["slave"]),
+                function,
+                _count(row["requests"], row["broadcasts"]),
+                str(row["responses"]),
+                Text(exceptions, style="vw3.exception") if exceptions else "",
+                Text(str(row["unanswered"]), style="vw3.warning") if row["unanswered"] else "0",
+                Text(str(row["crc_errors"]), style="vw3.crc.bad") if row["crc_errors"] else "0",
+            )
+            timing = row["response_time"]
+            if timing is not None:
+                times.add_row(
+                    str(row["slave"]),
+                    function,
+                    str(timing["count"]),
+                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max")),
+                )
+        parameters = _table("Parameters")
+        headers = ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes")
+        for header in headers:
+            parameters.add_column(header, justify="left" if header == "code" else "right", no_wrap=True)
+        for row in report["parameters"]:
+            parameters.add_row(
+                str(row["slave"]),
+                str(row["address"]),
+                row["code"] or "",
+                str(row["reads"]),
+                str(row["unreadable"]),
+                str(row["writes"]),
+                str(row["refused"]),
+                "" if row["last"] is None else str(row["last"]),
+                str(row["changes"]),
+            )
+        summary = Text(
+            f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in "
+            f"{report['noise']['items']} runs"
+            + (
+                f", {report['registers_without_address']} register values without an address"
+                if report["registers_without_address"]
+                else ""
+            )
+        )
+        blank = Text("")
+        return Group(summary, blank, traffic, blank, times, blank, parameters)
+
+
+def _table(title: str) -> Table:
+    return Table(
+        title=title, title_justify="left", box=box.SIMPLE_HEAD, show_edge=False, collapse_padding=True
+    )
+
+
+def _times(times: list[float]) -> dict[str, float | int] | None:
+    if not times:
+        return None
+    ordered = sorted(times)
+    return {
+        "count": len(ordered),
+        "min": ordered[0],
+        "median": statistics.median(ordered),
+        "p95": percentile(ordered, 0.95),
+        "max": ordered[-1],
+    }
+
+
+def _ms(seconds: float) -> str:
+    return f"{seconds * 1000:.1f}"
+
+
+def _count(requests: int, broadcasts: int) -> str:
+    return f"{requests} ({broadcasts} broadcast)" if broadcasts else str(requests)

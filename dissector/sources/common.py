@@ -1,0 +1,188 @@
+"""What every capture reader shares: the error type, a forward-only input, a warning log and the
+link-layer payloads (USER0, RTAC serial) that pcap and pcapng records carry.
+"""
+from __future__ import annotations
+
+import struct
+from collections.abc import Iterator
+from typing import BinaryIO
+
+from dissector.errors import SourceError
+from dissector.model import Chunk
+
+LINKTYPE_USER0 = 147
+LINKTYPE_RTAC_SERIAL = 250
+SUPPORTED_LINKTYPES = "147 (USER0) and 250 (RTAC serial)"
+# Names for the link types people most often feed us by mistake, for the error message.
+LINKTYPE_NAMES = {0: "NULL", 1: "Ethernet", 101: "raw IP", 113: "Linux cooked", 228: "IPv4", 229: "IPv6"}
+
+RTAC_HEADER = struct.Struct(">IIBBH")  # seconds, microseconds, event type, control lines, footer
+# Event types from Wireshark's packet-rtacser.c that mean bytes on the line were lost or damaged.
+RTAC_TROUBLE_EVENTS = {
+    0x05: "capture data lost",
+    0x07: "framing error",
+    0x08: "parity error",
+    0x09: "serial break",
+    0x0A: "serial overflow",
+}
+
+MESSAGES_PER_KIND = 5  # warnings of one kind shown before they are only counted
+
+
+class WarningLog:
+    """Warnings for the user, at most MESSAGES_PER_KIND of each kind, the rest counted.
+
+    A damaged capture can repeat one problem on every record; the user needs to know it happens and
+    how often, not to read it a million times.
+    """
+
+    def __init__(self) -> None:
+        self.messages: list[str] = []
+        self._counts: dict[str, int] = {}
+
+    def warn(self, kind: str, message: str) -> None:
+        count = self._counts.get(kind, 0) + 1
+        self._counts[kind] = count
+        if count <= MESSAGES_PER_KIND:
+            self.messages.append(message)
+
+    def close(self) -> None:
+        """Append the counts of what was not shown (call once, at the end of the input)."""
+        for kind, count in self._counts.items():
+            if count > MESSAGES_PER_KIND:
+                self.messages.append(f"... and {count - MESSAGES_PER_KIND} more {kind}")
+        self._counts.clear()
+
+
+class Input:
+    """A forward-only byte stream with a known position; works the same on files and pipes.
+
+    `prefix` holds bytes already read to detect the format, served before the stream's own.
+    """
+
+    def __init__(self, stream: BinaryIO, name: str, prefix: bytes = b"") -> None:
+        self.stream = stream
+        self.name = name
+        self.position = 0
+        self._prefix = prefix
+        # Pipes and terminals get whatever is there (read1) so that a live feed is not held back.
+        self._read_some = getattr(stream, "read1", stream.read)
+
+    def read(self, count: int) -> bytes:
+        """Exactly `count` bytes, fewer only at the end of the input."""
+        if not self._prefix:
+            # A buffered stream's read(n) already waits for n bytes or the end, pipes included.
+            try:
+                data = self.stream.read(count)
+            except OSError as error:
+                raise SourceError(f"{self.name}: read error: {error.strerror or error}") from None
+            self.position += len(data)
+            return data
+        parts: list[bytes] = []
+        wanted = count
+        while wanted > 0:
+            part = self.read_some(wanted)
+            if not part:
+                break
+            parts.append(part)
+            wanted -= len(part)
+        return b"".join(parts)
+
+    def read_some(self, count: int) -> bytes:
+        """Up to `count` bytes, as soon as some are available; b"" at the end of the input."""
+        if self._prefix:
+            part, self._prefix = self._prefix[:count], self._prefix[count:]
+        else:
+            try:
+                part = self._read_some(count)
+            except OSError as error:
+                raise SourceError(f"{self.name}: read error: {error.strerror or error}") from None
+        self.position += len(part)
+        return part
+
+    def skip(self, count: int, piece: int = 65536) -> int:
+        """Discard `count` bytes without holding them; returns how many there were."""
+        skipped = 0
+        while skipped < count:
+            part = self.read(min(piece, count - skipped))
+            if not part:
+                break
+            skipped += len(part)
+        return skipped
+
+
+def linktype_error(name: str, linktype: int, where: str = "") -> SourceError:
+    label = LINKTYPE_NAMES.get(linktype, "not a serial line")
+    return SourceError(
+        f"{name}: {where}linktype {linktype} ({label}) carries no serial bytes; "
+        f"supported: {SUPPORTED_LINKTYPES}"
+    )
+
+
+def check_linktype(name: str, linktype: int, where: str = "") -> None:
+    if linktype not in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL):
+        raise linktype_error(name, linktype, where)
+
+
+def rtac_header(
+    head: bytes, record: int, log: WarningLog
+) -> tuple[float, int] | None:
+    """(time, header length) from an RTAC serial record's start; None when the header is cut.
+
+    The RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian) is when the device saw
+    the bytes, which is what response times need; the pcap record time is when it was stored.
+    """
+    if len(head) < RTAC_HEADER.size:
+        log.warn(
+            "records shorter than the RTAC header",
+            f"record {record}: {len(head)} bytes, shorter than the 12-byte RTAC serial header; "
+            "its bytes are not decoded",
+        )
+        return None
+    seconds, micros, event, _lines, _footer = RTAC_HEADER.unpack_from(head)
+    trouble = RTAC_TROUBLE_EVENTS.get(event)
+    if trouble is not None:
+        log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
+    return seconds + micros / 1_000_000, RTAC_HEADER.size
+
+
+def record_chunks(
+    inp: Input,
+    length: int,
+    time: float | None,
+    linktype: int,
+    record: int,
+    log: WarningLog,
+    chunk_size: int,
+) -> Iterator[Chunk]:
+    """The serial bytes of one pcap/pcapng record of `length` captured bytes.
+
+    A record longer than chunk_size comes out in several chunks (memory stays bounded whatever the
+    file says); only the last one carries boundary=True. When the input ends inside the record,
+    the bytes that are there are still delivered, with a warning and no boundary.
+    """
+    remaining = length
+    first = True
+    while remaining > 0:
+        wanted = min(remaining, chunk_size)
+        piece = inp.read(wanted)
+        remaining -= len(piece)
+        cut = len(piece) < wanted
+        if cut:
+            log.warn(
+                "truncated input",
+                f"record {record} is cut short: {length - remaining} of {length} bytes "
+                "(the capture ends inside it); the bytes that are there are decoded",
+            )
+        if first and linktype == LINKTYPE_RTAC_SERIAL:
+            header = rtac_header(piece, record, log)
+            if header is None:
+                inp.skip(remaining)
+                return
+            time, size = header
+            piece = piece[size:]
+        first = False
+        if piece:
+            yield Chunk(piece, time, remaining == 0 and not cut)
+        if cut:
+            return

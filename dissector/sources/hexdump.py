@@ -1,0 +1,140 @@
+"""Text hex dumps: one frame (or one read of the line) a line.
+
+    # comment lines and trailing comments are ignored
+    0C 03 20 D0 00 03 0E EF
+    0C0306800000030002 17E4          spaces are optional, but each group is whole bytes
+    1700000000.125  0C 83 02 51 32   optional leading timestamp
+
+A leading timestamp is recognised only in shapes a hex group can never take (a hex group has no
+'.', '-' or ':'): seconds with a decimal point (`12.5`, `1700000000.125`), an ISO 8601 date-time
+(`2024-05-01T10:00:00.125`, `2024-05-01 10:00:00.125`, naive means UTC), or a time of day
+(`10:00:00.125`, seconds since midnight). It may be wrapped in [ ] or followed by ':'.
+"""
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Iterator
+from datetime import datetime, timezone
+
+from dissector.errors import MalformedInput
+from dissector.model import Chunk
+from dissector.sources.common import Input, SourceError, WarningLog
+
+MAX_LINE = 1 << 16
+
+_SECONDS = re.compile(r"\d+\.\d+")
+_DATE = re.compile(r"\d{4}-\d{2}-\d{2}")
+_DATETIME = re.compile(r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:?\d{2})?")
+_TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?)")
+_HEX = re.compile(r"(?:[0-9A-Fa-f]{2})+")
+
+
+class HexLineError(MalformedInput):
+    """A hex dump line that is not hex bytes."""
+
+
+def _strip_stamp(token: str) -> str:
+    if token.startswith("[") and token.endswith("]"):
+        token = token[1:-1]
+    if token.endswith(":") and not _HEX.fullmatch(token[:-1]):
+        token = token[:-1]
+    return token
+
+
+def _timestamp(tokens: list[str]) -> tuple[float | None, int]:
+    """(time, tokens used) for a leading timestamp; (None, 0) when the line starts with data."""
+    if not tokens:
+        return None, 0
+    first = _strip_stamp(tokens[0])
+    if _SECONDS.fullmatch(first):
+        seconds = float(first)
+        if not math.isfinite(seconds):  # 400 digits make inf: no time (and no JSON) can hold it
+            raise HexLineError(f"timestamp {first[:24]}... is out of range")
+        return seconds, 1
+    if _DATETIME.fullmatch(first):
+        return _epoch(first), 1
+    if _DATE.fullmatch(first.lstrip("[")) and len(tokens) > 1:
+        joined = _strip_stamp(f"{tokens[0]}T{tokens[1]}")
+        if _DATETIME.fullmatch(joined):
+            return _epoch(joined), 2
+    match = _TIME_OF_DAY.fullmatch(first)
+    if match:
+        hours, minutes, seconds = match.groups()
+        return int(hours) * 3600 + int(minutes) * 60 + float(seconds), 1
+    return None, 0
+
+
+def _epoch(text: str) -> float:
+    try:
+        moment = datetime.fromisoformat(text)
+    except ValueError as error:
+        raise HexLineError(f"bad timestamp {text!r}: {error}") from None
+    if moment.tzinfo is None:
+        moment = moment.replace(tzinfo=timezone.utc)
+    return moment.timestamp()
+
+
+def parse_line(line: str) -> tuple[float | None, bytes] | None:
+    """(time, data) for a line, None for a blank or comment line; HexLineError when malformed."""
+    text = line.split("#", 1)[0].strip()
+    if not text:
+        return None
+    tokens = text.split()
+    time, used = _timestamp(tokens)
+    groups = tokens[used:]
+    for group in groups:
+        if not _HEX.fullmatch(group):
+            problem = "an odd number of hex digits" if re.fullmatch(r"[0-9A-Fa-f]+", group) else "not hex"
+            raise HexLineError(f"{group!r} is {problem}")
+    if not groups:
+        raise HexLineError("a timestamp without data")
+    return time, bytes.fromhex("".join(groups))
+
+
+def looks_like_hexdump(text: str, complete: bool) -> bool:
+    """Do the lines of `text` (the input's first bytes) all parse, with data on at least one?
+
+    The last line is left out unless `complete`: it may be cut where the sample ends.
+    """
+    lines = text.splitlines()
+    if not complete and not text.endswith(("\n", "\r")):
+        lines = lines[:-1]
+    found = False
+    for line in lines:
+        try:
+            parsed = parse_line(line)
+        except HexLineError:
+            return False
+        found = found or parsed is not None
+    return found
+
+
+def _lines(inp: Input, chunk_size: int) -> Iterator[bytes]:
+    pending = b""
+    while True:
+        block = inp.read_some(chunk_size)
+        if not block:
+            if pending:
+                yield pending
+            return
+        pending += block
+        lines = pending.split(b"\n")
+        pending = lines.pop()
+        if len(pending) > MAX_LINE:
+            raise SourceError(f"{inp.name}: a line longer than {MAX_LINE} bytes: not a hex dump")
+        yield from lines
+
+
+def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    for number, raw in enumerate(_lines(inp, chunk_size), start=1):
+        try:
+            line = raw.decode("ascii")
+            parsed = parse_line(line)
+        except UnicodeDecodeError:
+            raise SourceError(f"{inp.name} line {number}: binary data in a hex dump") from None
+        except HexLineError as error:
+            raise SourceError(f"{inp.name} line {number}: {error}") from None
+        if parsed is not None:
+            time, data = parsed
+            yield Chunk(data, time, True)

@@ -1,0 +1,248 @@
+"""pcapng files: sections in either byte order, several interfaces, each with its link type and
+timestamp resolution (if_tsresol) and offset (if_tsoffset).
+
+Packets come from Enhanced (EPB), Simple (SPB, no timestamp) and obsolete Packet blocks (OPB).
+Blocks that carry no packet (name resolution, statistics, secrets, custom) are passed over; blocks
+of unknown type are skipped with a warning. Bodies are read piece by piece, so memory stays
+bounded whatever block sizes the file claims.
+"""
+from __future__ import annotations
+
+import struct
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+from dissector.model import Chunk
+from dissector.sources.common import (
+    Input,
+    SourceError,
+    WarningLog,
+    check_linktype,
+    record_chunks,
+)
+
+SHB = 0x0A0D0D0A
+SHB_MAGIC = bytes.fromhex("0a0d0d0a")
+IDB, OPB, SPB, EPB = 1, 2, 3, 6
+BYTE_ORDER_MAGIC = 0x1A2B3C4D
+# Blocks that carry no packet data: NRB, ISB, systemd journal, DSB, custom (copyable or not).
+NO_PACKET_BLOCKS = {4: "name resolution", 5: "interface statistics", 9: "systemd journal",
+                    0x0A: "decryption secrets", 0x0BAD: "custom", 0x40000BAD: "custom"}
+OPT_END, OPT_TSRESOL, OPT_TSOFFSET = 0, 9, 14
+MAX_HEADER_BLOCK = 1 << 20  # SHB and IDB are parsed whole: a bigger one is corruption
+
+
+@dataclass(slots=True)
+class Interface:
+    linktype: int
+    snaplen: int
+    units: int = 1_000_000  # timestamp units per second (if_tsresol)
+    offset: int = 0  # seconds added to every timestamp (if_tsoffset)
+
+
+def is_pcapng(head: bytes) -> bool:
+    return head[:4] == SHB_MAGIC
+
+
+def _options(body: bytes, order: str) -> Iterator[tuple[int, bytes]]:
+    position = 0
+    while position + 4 <= len(body):
+        code, length = struct.unpack_from(order + "HH", body, position)
+        position += 4
+        if code == OPT_END:
+            return
+        yield code, body[position : position + length]
+        position += (length + 3) & ~3
+
+
+def _interface(body: bytes, order: str, name: str) -> Interface:
+    if len(body) < 8:
+        raise SourceError(f"{name}: interface description block too short ({len(body)} bytes)")
+    linktype, _reserved, snaplen = struct.unpack_from(order + "HHI", body)
+    interface = Interface(linktype, snaplen)
+    for code, value in _options(body[8:], order):
+        if code == OPT_TSRESOL and value:
+            exponent = value[0] & 0x7F
+            interface.units = 2**exponent if value[0] & 0x80 else 10**exponent
+        elif code == OPT_TSOFFSET and len(value) == 8:
+            interface.offset = struct.unpack(order + "q", value)[0]
+    return interface
+
+
+class _Reader:
+    def __init__(self, inp: Input, log: WarningLog, chunk_size: int) -> None:
+        self.inp = inp
+        self.log = log
+        self.chunk_size = chunk_size
+        self.order = "<"
+        self.interfaces: list[Interface] = []
+        self.record = 0
+        self.used_interfaces: set[int] = set()
+
+    def run(self) -> Iterator[Chunk]:
+        inp = self.inp
+        first = True
+        while True:
+            start = inp.position
+            head = inp.read(8)
+            if not head:
+                return
+            if len(head) < 8:
+                self.log.warn("truncated input", f"the capture ends inside a block header at byte {start}")
+                return
+            if head[:4] == SHB_MAGIC:
+                if not self._section(head, start):
+                    return
+                first = False
+                continue
+            if first:
+                raise SourceError(f"{inp.name}: not a pcapng file (no section header block)")
+            block_type, total = struct.unpack(self.order + "II", head)
+            if total < 12 or total % 4:
+                raise SourceError(
+                    f"{inp.name}: block at byte {start} has an invalid length {total} (corrupt file?)"
+                )
+            body_length = total - 12
+            if block_type == IDB:
+                body = self._body(body_length, start, "interface description")
+                if body is None:
+                    return
+                self.interfaces.append(_interface(body, self.order, inp.name))
+            elif block_type in (EPB, OPB):
+                yield from self._packet(block_type, body_length, start)
+            elif block_type == SPB:
+                yield from self._simple(body_length, start)
+            else:
+                if block_type not in NO_PACKET_BLOCKS:
+                    self.log.warn(
+                        f"pcapng blocks of type {block_type:#x}",
+                        f"skipped a pcapng block of unknown type {block_type:#010x} at byte {start}",
+                    )
+                if inp.skip(body_length) < body_length:
+                    self.log.warn("truncated input", f"the capture ends inside the block at byte {start}")
+                    return
+            if not self._trailer(total, start):
+                return
+
+    # -- blocks ------------------------------------------------------------------------------
+    def _section(self, head: bytes, start: int) -> bool:
+        """Read a section header block; False when the input ends inside it."""
+        magic = self.inp.read(4)
+        if len(magic) < 4:
+            raise SourceError(f"{self.inp.name}: truncated section header block at byte {start}")
+        if magic == struct.pack("<I", BYTE_ORDER_MAGIC):
+            self.order = "<"
+        elif magic == struct.pack(">I", BYTE_ORDER_MAGIC):
+            self.order = ">"
+        else:
+            raise SourceError(f"{self.inp.name}: section header at byte {start}: bad byte-order magic")
+        total = struct.unpack(self.order + "I", head[4:])[0]
+        if total < 28 or total % 4:
+            raise SourceError(f"{self.inp.name}: section header at byte {start} has length {total}")
+        # A new section starts its own list of interfaces.
+        self.interfaces = []
+        if self._body(total - 16, start, "section header") is None:
+            return False
+        return self._trailer(total, start)
+
+    def _body(self, length: int, start: int, what: str) -> bytes | None:
+        if length > MAX_HEADER_BLOCK:
+            raise SourceError(f"{self.inp.name}: {what} block at byte {start} claims {length} bytes")
+        body = self.inp.read(length)
+        if len(body) < length:
+            self.log.warn("truncated input", f"the capture ends inside the {what} block at byte {start}")
+            return None
+        return body
+
+    def _trailer(self, total: int, start: int) -> bool:
+        trailer = self.inp.read(4)
+        if len(trailer) < 4:
+            self.log.warn("truncated input", f"the capture ends inside the block at byte {start}")
+            return False
+        if struct.unpack(self.order + "I", trailer)[0] != total:
+            raise SourceError(
+                f"{self.inp.name}: block at byte {start}: trailing length differs from {total} "
+                "(corrupt file?)"
+            )
+        return True
+
+    def _interface_for(self, index: int, start: int) -> Interface:
+        if index >= len(self.interfaces):
+            raise SourceError(
+                f"{self.inp.name}: packet at byte {start} refers to interface {index}, "
+                f"but {len(self.interfaces)} are described"
+            )
+        interface = self.interfaces[index]
+        check_linktype(self.inp.name, interface.linktype, f"interface {index}: ")
+        if index not in self.used_interfaces:
+            self.used_interfaces.add(index)
+            if len(self.used_interfaces) == 2:
+                self.log.warn(
+                    "interfaces",
+                    "packets come from several interfaces; their bytes are decoded as one stream",
+                )
+        return interface
+
+    def _packet(self, block_type: int, body_length: int, start: int) -> Iterator[Chunk]:
+        inp = self.inp
+        fixed = inp.read(20)
+        if len(fixed) < 20:
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+            return
+        if block_type == EPB:
+            index, high, low, captured, original = struct.unpack(self.order + "IIIII", fixed)
+        else:
+            index, _drops, high, low, captured, original = struct.unpack(self.order + "HHIIII", fixed)
+        if 20 + captured > body_length:
+            raise SourceError(
+                f"{inp.name}: packet block at byte {start}: {captured} bytes do not fit in the block"
+            )
+        interface = self._interface_for(index, start)
+        seconds, fraction = divmod(high << 32 | low, interface.units)
+        time = interface.offset + seconds + fraction / interface.units
+        yield from self._data(captured, original, time, interface, body_length - 20, start)
+
+    def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:
+        raw = self.inp.read(4)
+        if len(raw) < 4:
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+            return
+        original = struct.unpack(self.order + "I", raw)[0]
+        interface = self._interface_for(0, start)
+        captured = min(original, body_length - 4)
+        if interface.snaplen:
+            captured = min(captured, interface.snaplen)
+        # A simple packet block has no timestamp.
+        yield from self._data(captured, original, None, interface, body_length - 4, start)
+
+    def _data(
+        self, captured: int, original: int, time: float | None, interface: Interface,
+        space: int, start: int,
+    ) -> Iterator[Chunk]:
+        self.record += 1
+        if captured < original:
+            self.log.warn(
+                "records captured in part",
+                f"record {self.record}: only {captured} of its {original} bytes were captured",
+            )
+        before = self.inp.position
+        yield from record_chunks(
+            self.inp, captured, time, interface.linktype, self.record, self.log, self.chunk_size
+        )
+        if self.inp.position - before < captured:
+            raise _Ended()
+        rest = space - captured
+        if self.inp.skip(rest) < rest:
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+            raise _Ended()
+
+
+class _Ended(Exception):
+    """The input ended inside a block (already reported): stop reading."""
+
+
+def read_pcapng(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    try:
+        yield from _Reader(inp, log, chunk_size).run()
+    except _Ended:
+        return

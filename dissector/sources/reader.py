@@ -1,0 +1,227 @@
+"""Opening captures: a path (or "-" for stdin) in, a stream of model.Chunk out.
+
+The format is read from the content, never from the file name: pcap and pcapng by their magic
+numbers, a text hex dump or a Modbus ASCII byte stream by the shape of their first lines, anything
+else as raw serial bytes. The framing mode (RTU or ASCII) is then read from the first payload bytes.
+`fmt` and `mode` override either guess.
+
+Everything streams: files are read in chunk_size pieces and a pcap record becomes one Chunk (with
+its timestamp and boundary=True), so memory does not grow with the capture. Problems that stop the
+reading raise SourceError with one line for the user, at open time or during iteration; problems
+the reading survives (a truncated last record, a skipped block) go to `Source.warnings`.
+"""
+from __future__ import annotations
+
+import os
+import stat
+import sys
+from collections.abc import Callable, Iterator
+from typing import BinaryIO
+
+from dissector.protocol.ascii import detect_mode
+from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.hexdump import looks_like_hexdump, read_hexdump
+from dissector.sources.pcap import is_pcap, read_pcap
+from dissector.sources.pcapng import is_pcapng, read_pcapng
+from dissector.model import Chunk
+
+__all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
+
+# --format values -> Source.format
+FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
+           "ascii": "ascii"}
+MODES = ("rtu", "ascii")
+SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
+SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
+MODE_SAMPLE = 64  # payload bytes looked at to choose RTU or ASCII
+MIN_CHUNK = 256
+
+_GZIP = b"\x1f\x8b"
+_TEXT = frozenset(range(0x20, 0x7F)) | {0x09, 0x0A, 0x0D}
+
+Reader = Callable[[Input, WarningLog, int], Iterator[Chunk]]
+
+
+def _read_raw(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    while True:
+        data = inp.read_some(chunk_size)
+        if not data:
+            return
+        yield Chunk(data)
+
+
+READERS: dict[str, Reader] = {
+    "raw": _read_raw,
+    "ascii": _read_raw,
+    "pcap": read_pcap,
+    "pcapng": read_pcapng,
+    "hexdump": read_hexdump,
+}
+
+
+def _is_text(sample: bytes) -> bool:
+    return bool(sample) and all(byte in _TEXT for byte in sample)
+
+
+def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
+    """(format, warning or None) for the first bytes of an input; `complete` when that is all of it."""
+    if is_pcap(sample):
+        return "pcap", None
+    if is_pcapng(sample):
+        return "pcapng", None
+    if sample.startswith(_GZIP):
+        raise SourceError("compressed input (gzip): decompress it first")
+    if not _is_text(sample):
+        return "raw", None
+    text = sample.decode("ascii")
+    if text.lstrip().startswith(":"):
+        return "ascii", None
+    if looks_like_hexdump(text, complete):
+        return "hexdump", None
+    return "raw", "the input is text, but neither a hex dump nor Modbus ASCII: decoded as raw bytes"
+
+
+def _open(path: str, stdin: BinaryIO | None = None) -> tuple[BinaryIO, str, bool]:
+    """(stream, display name, whether to close it)."""
+    if path == "-":
+        return (stdin if stdin is not None else sys.stdin.buffer), "<stdin>", False
+    try:
+        if stat.S_ISDIR(os.stat(path).st_mode):
+            raise SourceError(f"{path}: is a directory, not a capture")
+        return open(path, "rb"), path, True
+    except FileNotFoundError:
+        raise SourceError(f"{path}: no such file") from None
+    except PermissionError:
+        raise SourceError(f"{path}: permission denied") from None
+    except OSError as error:
+        raise SourceError(f"{path}: cannot open: {error.strerror or error}") from None
+
+
+def _sniff(inp: Input) -> tuple[bytes, bool]:
+    """The input's first bytes, and whether they are all of it.
+
+    Reads as little as decides the question, so that a live pipe is not held back for long.
+    """
+    sample = b""
+    while len(sample) < SNIFF_BYTES:
+        part = inp.stream.read1(SNIFF_BYTES - len(sample)) if hasattr(inp.stream, "read1") else (
+            inp.stream.read(SNIFF_BYTES - len(sample)))
+        if not part:
+            return sample, True
+        sample += part
+        if len(sample) >= 4 and not _is_text(sample):
+            break
+        if sample.count(b"\n") >= SNIFF_LINES:
+            break
+    return sample, False
+
+
+class Source:
+    """An iterable of Chunk (once), with `format`, `mode`, `name` and `warnings`.
+
+    Iteration may raise SourceError. `warnings` grows while iterating; `take_warnings()` returns
+    the ones not taken yet, for a caller that prints them as they come.
+    """
+
+    def __init__(
+        self, chunks: Iterator[Chunk], head: list[Chunk], format: str, mode: str, name: str,
+        log: WarningLog, closer: Callable[[], None],
+    ) -> None:
+        self.format = format
+        self.mode = mode
+        self.name = name
+        self._chunks = chunks
+        self._head = head
+        self._log = log
+        self._closer = closer
+        self._taken = 0
+
+    @property
+    def warnings(self) -> list[str]:
+        return self._log.messages
+
+    def take_warnings(self) -> list[str]:
+        new = self._log.messages[self._taken :]
+        self._taken = len(self._log.messages)
+        return new
+
+    def __iter__(self) -> Iterator[Chunk]:
+        try:
+            head, self._head = self._head, []
+            yield from head
+            yield from self._chunks
+        finally:
+            self._log.close()
+            self.close()
+
+    def close(self) -> None:
+        self._closer()
+
+    def __enter__(self) -> Source:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def open_source(
+    path: str,
+    fmt: str | None = None,
+    chunk_size: int = 65536,
+    mode: str | None = None,
+    stdin: BinaryIO | None = None,
+) -> Source:
+    """Open a capture. `fmt`: raw, pcap, pcapng, hex (hexdump) or ascii; `mode`: rtu or ascii.
+
+    Raises SourceError with a one-line message for anything that cannot be read.
+    """
+    if fmt is not None and fmt not in FORMATS:
+        raise SourceError(f"unknown format {fmt!r}: choose from {', '.join(sorted(FORMATS))}")
+    if mode is not None and mode not in MODES:
+        raise SourceError(f"unknown mode {mode!r}: choose rtu or ascii")
+    chunk_size = max(chunk_size, MIN_CHUNK)
+    stream, name, owned = _open(path, stdin)
+    closer = stream.close if owned else (lambda: None)
+    try:
+        return _start(stream, name, fmt, mode, chunk_size, closer)
+    except BaseException:
+        closer()
+        raise
+
+
+def _start(
+    stream: BinaryIO, name: str, fmt: str | None, mode: str | None, chunk_size: int,
+    closer: Callable[[], None],
+) -> Source:
+    log = WarningLog()
+    raw_input = Input(stream, name)
+    try:
+        sample, complete = _sniff(raw_input)
+    except OSError as error:
+        raise SourceError(f"{name}: cannot read: {error.strerror or error}") from None
+    if fmt is None:
+        format, warning = detect_format(sample, complete)
+        if warning is not None:
+            log.warn("format", f"{name}: {warning}")
+    else:
+        format = FORMATS[fmt]
+    if not sample:
+        log.warn("empty", f"{name}: the input is empty")
+    inp = Input(stream, name, prefix=sample)
+    chunks = READERS[format](inp, log, chunk_size)
+    # The first payload bytes decide the mode; the chunks read for that are replayed first.
+    head: list[Chunk] = []
+    if mode is None:
+        if format == "ascii":
+            mode = "ascii"
+        else:
+            seen = 0
+            for chunk in chunks:
+                head.append(chunk)
+                seen += len(chunk.data)
+                if seen >= MODE_SAMPLE:
+                    break
+            mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
+    if format == "raw" and mode == "ascii" and fmt is None:
+        format = "ascii"
+    return Source(chunks, head, format, mode, name, log, closer)

@@ -1,0 +1,64 @@
+"""The serial source: a port (or pyserial URL) opened for listening only, with typed settings.
+
+Nothing is ever written to the port, and RTS is left deasserted: RS-485 adapters that steer their
+driver with RTS would otherwise drive the bus.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import serial
+
+from dissector.errors import ExitStatus, LiveError
+
+try:
+    import termios
+
+    # pyserial lets termios.error (not an OSError) through, e.g. when a tty refuses a setting.
+    TERMIOS_ERRORS: tuple[type[Exception], ...] = (termios.error,)
+except ImportError:  # Windows: no termios, and no error marking
+    termios = None  # type: ignore[assignment]
+    TERMIOS_ERRORS = ()
+
+READ_TIMEOUT = 0.010
+PARITIES = {"N": serial.PARITY_NONE, "E": serial.PARITY_EVEN, "O": serial.PARITY_ODD}
+PORT_ERRORS: tuple[type[BaseException], ...] = (serial.SerialException, ValueError, OSError, *TERMIOS_ERRORS)
+
+
+@dataclass(frozen=True)
+class PortSettings:
+    port: str
+    baud: int = 19200
+    parity: str = "E"
+    stopbits: float = 1
+    bytesize: int = 8
+
+    def text(self) -> str:
+        """As a manual writes it: `19200 8E1`."""
+        stopbits = int(self.stopbits) if self.stopbits == int(self.stopbits) else self.stopbits
+        return f"{self.baud} {self.bytesize}{self.parity}{stopbits}"
+
+
+def open_port(settings: PortSettings) -> serial.SerialBase:
+    try:
+        port = serial.serial_for_url(settings.port, do_not_open=True)
+        port.baudrate = settings.baud
+        port.parity = PARITIES[settings.parity]
+        port.stopbits = settings.stopbits
+        port.bytesize = settings.bytesize
+        port.timeout = READ_TIMEOUT
+        port.rts = False
+        port.open()
+    except PORT_ERRORS as error:
+        raise LiveError(f"cannot open {settings.port}: {reason(error)}", ExitStatus.BAD_INPUT) from None
+    return port
+
+
+def reason(error: BaseException) -> str:
+    """The system's words for a failure, without pyserial's nested "[Errno n]" repeats."""
+    for candidate in (error.__context__, error):
+        if isinstance(candidate, OSError) and candidate.strerror and "[Errno" not in candidate.strerror:
+            return candidate.strerror
+    if isinstance(error, TERMIOS_ERRORS) and len(error.args) == 2:
+        return f"the port refused the settings: {error.args[1]}"
+    return str(error)

@@ -1,0 +1,380 @@
+"""The compiled summary path (dissector/accel/_summary.c, driven by dissector/accel/fastsummary.py) against the
+Python stages, which are the reference: same lines, byte for byte, on every kind of stream, however
+it is split into chunks. The extension must be built: a missing one fails here, it is not skipped.
+"""
+from __future__ import annotations
+
+import io
+import random
+import sys
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dissector.accel import fastsummary
+from dissector.app.cli import Environment, run
+from dissector.framing.rtu import RtuFramer
+from dissector.devices.maps import load_map_file as load_map
+from dissector.pipeline import Dissector
+from dissector.devices.annotator import MapLayer
+from dissector.devices.build import build_annotator
+from dissector.render.summary import summary_line
+from dissector.sim.simulate import generate_session
+from helpers import rtu
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "bench"))
+import noise_accuracy  # noqa: E402
+
+
+def python_lines(data: bytes, annotator: object | None) -> list[str]:
+    dissector = Dissector(annotate=annotator)  # type: ignore[arg-type]
+    items = dissector.feed(_chunk(data)) + dissector.finish()
+    return [summary_line(item) for item in items]
+
+
+def _chunk(data: bytes):  # noqa: ANN202
+    from dissector.model import Chunk
+
+    return Chunk(data)
+
+
+class Collected:
+    """What the compiled path wrote, and how much of it came from the engine itself."""
+
+    def __init__(self) -> None:
+        self.lines: list[str] = []
+        self.engine_lines = 0
+
+    def items(self, items: list) -> None:
+        self.lines.extend(summary_line(item) for item in items)
+
+    def text(self, encoded: bytes) -> None:
+        lines = encoded.decode()[:-1].split("\n")
+        self.lines.extend(lines)
+        self.engine_lines += len(lines)
+
+
+def fast_lines(data: bytes, annotator: object | None, splits: list[int] | None = None) -> Collected:
+    out = Collected()
+    path = fastsummary.SummaryPath(Dissector(framer=RtuFramer(), annotate=annotator), annotator, out.items, out.text)  # type: ignore[arg-type]
+    cuts = [0, *sorted(set(splits or [])), len(data)]
+    for start, end in zip(cuts, cuts[1:]):
+        path.feed(data[start:end])
+    path.finish()
+    return out
+
+
+def atv71() -> object:
+    return build_annotator([], [], None)
+
+
+def assert_same(data: bytes, annotator_factory, splits: list[int] | None = None) -> Collected:  # noqa: ANN001
+    expected = python_lines(data, annotator_factory())
+    got = fast_lines(data, annotator_factory(), splits)
+    assert got.lines == expected
+    return got
+
+
+def test_the_extension_is_built() -> None:
+    # pip install builds it (setup.py); without it vw3-decode is 4x slower and this suite proves nothing.
+    assert fastsummary._summary is not None, "dissector.accel._summary is not built: pip install -e . needs a C compiler"
+    assert fastsummary._summary.crc16(bytes.fromhex("0c0320d00003")) == 0xEF0E
+
+
+@pytest.mark.parametrize("capture", sorted(p.name for p in (ROOT / "captures").glob("*.bin")))
+@pytest.mark.parametrize("profile", [None, "atv71", "sel749m"])
+def test_shipped_captures_same_lines(capture: str, profile: str | None) -> None:
+    data = (ROOT / "captures" / capture).read_bytes()
+    if profile is None:
+        assert_same(data, lambda: None)
+    else:
+        assert_same(data, lambda: build_annotator([profile], [], None))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_simulated_sessions_same_lines_and_mostly_compiled(seed: int) -> None:
+    records = generate_session(1500, seed=seed)
+    data = b"".join(raw for raw, _time in records)
+    rng = random.Random(seed)
+    splits = [rng.randrange(len(data)) for _ in range(40)]
+    got = assert_same(data, atv71, splits)
+    # The point of the path: the engine itself writes the lines of a clean polling bus.
+    assert got.engine_lines > 0.85 * len(got.lines)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_damaged_streams_same_lines(seed: int) -> None:
+    """Noise, dropped bytes, bit flips and garbage hand the stream back and forth many times."""
+    rng = random.Random(seed)
+    frames = noise_accuracy.session(rng, 400)
+    stream = bytearray()
+    for frame in frames:
+        if rng.random() < 0.1:
+            _how, frame = noise_accuracy.damage(rng, frame)
+        stream += frame
+    data = bytes(stream)
+    splits = [rng.randrange(len(data)) for _ in range(rng.choice([0, 5, 200]))]
+    assert_same(data, atv71, splits)
+    assert_same(data, lambda: None, splits)
+
+
+def test_every_split_of_a_short_stream() -> None:
+    records = generate_session(12, seed=7)
+    data = b"".join(raw for raw, _time in records)
+    expected = python_lines(data, atv71())
+    for cut in range(len(data) + 1):
+        assert fast_lines(data, atv71(), [cut]).lines == expected, cut
+
+
+# ATV71 semantics the engine must leave to the Python annotator, or reproduce (VW3 A3 303 p.38).
+def read(slave: int, start: int, values: list[int]) -> bytes:
+    request = rtu(f"{slave:02x}03{start:04x}{len(values):04x}")
+    body = "".join(f"{value:04x}" for value in values)
+    return request + rtu(f"{slave:02x}03{2 * len(values):02x}{body}")
+
+
+def write_single(slave: int, address: int, value: int) -> bytes:
+    frame = rtu(f"{slave:02x}06{address:04x}{value:04x}")
+    return frame + frame
+
+
+def write_multiple(slave: int, start: int, values: list[int]) -> bytes:
+    body = "".join(f"{value:04x}" for value in values)
+    request = rtu(f"{slave:02x}10{start:04x}{len(values):04x}{2 * len(values):02x}{body}")
+    return request + rtu(f"{slave:02x}10{start:04x}{len(values):04x}")
+
+
+def read_write(slave: int, read_start: int, reads: list[int], write_start: int, writes: list[int]) -> bytes:
+    body = "".join(f"{value:04x}" for value in writes)
+    request = rtu(
+        f"{slave:02x}17{read_start:04x}{len(reads):04x}{write_start:04x}{len(writes):04x}{2 * len(writes):02x}{body}"
+    )
+    answer = "".join(f"{value:04x}" for value in reads)
+    return request + rtu(f"{slave:02x}17{2 * len(reads):02x}{answer}")
+
+
+STORY = b"".join(
+    [
+        read(12, 8400, [0x8000, 3, 1]),
+        read(12, 8400, [0x8000, 0x8000, 1]),  # CHCF became protected
+        read(12, 8400, [0x8000, 3, 1]),  # readable again
+        rtu("0c0320d00003"),  # unanswered
+        read(12, 8401, [3]),  # CHCF = 3: CMD bits plain from now on
+        write_single(12, 8501, 0x000F),
+        read_write(12, 3201, [0x0637, 150], 8501, [0x000F, 296]),
+        read(12, 8401, [1]),
+        write_single(12, 8501, 0x000F),
+        read_write(12, 8410, [0x8000, 5], 8410, [7, 8]),  # written, then read protected
+        rtu("0c83 02"),  # unasked exception
+        read(12, 3000, list(range(64))),  # beyond the ATV71's 63 words
+        write_multiple(12, 8501, [0x000F, 300, 2]),
+        rtu("0c1020d10002"),  # unasked FC16 answer
+        rtu("000620d10003"),  # broadcast
+        read(3, 0, [1, 2, 3, 4, 5, 6, 7, 8]),
+        rtu("0c0320d00003") + rtu("0c0304000300"),  # byte count disagrees
+        rtu("0c10 20d1 0002 04 0001 0002") + rtu("0c10 20d1 0003"),  # answer differs from the request
+        read(12, 3201, [0x0637, 0x0000]),
+        read(0x7F, 65534, [1, 2]),
+        read(12, 8400, [1, 2]) + b"\x00",  # a 00 after a frame: the careful path
+    ]
+)
+
+
+@pytest.mark.parametrize("annotator", ["atv71", "none", "map"])
+def test_device_semantics_same_lines(annotator: str, tmp_path: Path) -> None:
+    if annotator == "map":
+        path = tmp_path / "user.csv"
+        path.write_text("address,code,name,unit,scale\n0,PV,process value,bar,0.1\n8410,XX,spare,,\n")
+        rows = load_map(path)
+
+        def factory() -> object:
+            return _with_layer(rows)
+
+    else:
+        factory = atv71 if annotator == "atv71" else (lambda: None)
+    for step in (0, 3, 17):
+        splits = list(range(step, len(STORY), step)) if step else None
+        assert_same(STORY, factory, splits)
+
+
+def _with_layer(rows) -> object:  # noqa: ANN001
+    annotator = build_annotator([], [], None)
+    annotator.layers.append(MapLayer(rows, slave=3))  # type: ignore[attr-defined]
+    return annotator
+
+
+def test_plc_style_addresses_come_from_the_engine() -> None:
+    data = (ROOT / "captures" / "sel749m_polling.bin").read_bytes()
+    got = assert_same(data, lambda: build_annotator(["sel749m"], [], None))
+    assert got.engine_lines > len(got.lines) // 2
+    assert "   2            -   1 response  Read Holding Registers 40001..40016 (16): 40001=" in got.lines[1]
+    # Past 49999, six-digit references (profile_annotator._plc_label), as the Python stages show them.
+    high = read(1, 9998, [1, 2, 3]) + write_single(1, 9999, 7) + read(1, 0, [5])
+    got = assert_same(high, lambda: build_annotator(["sel749m"], [], None))
+    assert got.lines[0].endswith("Read Holding Registers 49999..410001 (3)  CRC ok")  # 400001 + 10000
+    assert got.engine_lines == len(got.lines) - 2  # the Python stages frame the end of the input
+
+
+def test_story_lines_carry_the_annotators_notes() -> None:
+    lines = fast_lines(STORY, atv71()).lines
+    assert any("CHCF (8401) became protected: read 3 in frame #2" in line for line in lines)
+    assert any("readable again" in line for line in lines)
+    assert any("[no response]" in line for line in lines)
+    assert any("beyond the ATV71" in line or "limit of 63" in line for line in lines)
+
+
+values = st.sampled_from([0, 1, 3, 5, 0x8000, 0xFFFF, 296, 0x0637])
+addresses = st.sampled_from([0, 3201, 3104, 8400, 8401, 8410, 8501, 65535])
+
+
+@st.composite
+def transactions(draw: st.DrawFn) -> bytes:
+    slave = draw(st.sampled_from([0, 1, 12, 12, 247, 248]))
+    kind = draw(st.integers(0, 6))
+    start = draw(addresses)
+    count = draw(st.integers(1, 7))
+    words = [draw(values) for _ in range(count)]
+    if kind == 0:
+        return read(slave, start, words)
+    if kind == 1:
+        return write_single(slave, start, words[0])
+    if kind == 2:
+        return write_multiple(slave, start, words)
+    if kind == 3:
+        return read_write(slave, start, words, draw(addresses), words[::-1])
+    if kind == 4:
+        return rtu(f"{slave:02x}03{start:04x}{count:04x}")  # unanswered
+    if kind == 5:
+        return rtu(f"{slave:02x}83{draw(st.integers(1, 11)):02x}")
+    return draw(st.binary(min_size=1, max_size=6))
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(transactions(), max_size=14), st.lists(st.integers(0, 400), max_size=4))
+def test_random_sessions_same_lines(parts: list[bytes], splits: list[int]) -> None:
+    data = b"".join(parts)
+    assert_same(data, atv71, [cut for cut in splits if cut < len(data)])
+    assert_same(data, lambda: None, [cut for cut in splits if cut < len(data)])
+
+
+def cli(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
+    if pure:
+        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
+    else:
+        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+    stdout = io.StringIO()
+    env = Environment(io.BytesIO(), stdout, io.StringIO(), False, False)
+    assert run(argv, env) == 0
+    return stdout.getvalue()
+
+
+def test_cli_uses_it_for_raw_files(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    capture = tmp_path / "story.bin"
+    capture.write_bytes(STORY * 3)
+    for extra in ([], ["-n"], ["--profile", "sel749m"], ["--address-style", "plc"]):
+        argv = [str(capture), str(ROOT / "captures" / "p38_protection.bin"), *extra]
+        assert cli(argv, monkeypatch, pure=False) == cli(argv, monkeypatch, pure=True)
+
+
+def test_cli_hex_frames(monkeypatch: pytest.MonkeyPatch) -> None:
+    argv = ["--hex", "0C 03 20 D0 00 03 0E EF", "--hex", rtu("0c03 06 8000 0003 0001").hex(" ")]
+    fast = cli(argv, monkeypatch, pure=False)
+    assert fast == cli(argv, monkeypatch, pure=True)
+    assert "CHCF=IO (I/O profile)" in fast
+
+
+def test_process_output_through_the_binary_stream(tmp_path: Path) -> None:
+    """vw3-decode writes the engine's UTF-8 lines to stdout's buffer: the bytes equal the Python stages'."""
+    import os
+    import subprocess
+
+    capture = tmp_path / "story.bin"
+    capture.write_bytes(STORY + b"".join(raw for raw, _time in generate_session(300, seed=3)))
+    outputs = []
+    for pure in ("", "1"):
+        env = {**os.environ, "VW3_PURE_PYTHON": pure, "PYTHONIOENCODING": "utf-8"}
+        result = subprocess.run(
+            [sys.executable, "-m", "dissector", str(capture)], capture_output=True, env=env, cwd=ROOT, check=True
+        )
+        outputs.append(result.stdout)
+    assert outputs[0] == outputs[1]
+    assert "\u2026 (+".encode() in outputs[0]
+
+
+# Found by review and a differential fuzz (both paths fed the same bytes, cut differently).
+@pytest.mark.parametrize(
+    ("data", "splits"),
+    [
+        # An awaited answer whose CRC ends in 00 and a chunk that ends right after it: the framer
+        # must wait for the next byte, as it decides when the byte is there.
+        (bytes.fromhex("0c041000078000000206370096800000030096bdf2010320d10001dff30103020001798400"), [36]),
+        # A byte count that makes a frame longer than 256 bytes: noise however the stream is cut.
+        (rtu("0c030000007e") + rtu("0c03fc" + "0001" * 126) + rtu("0c0300010001") + rtu("0c03020005"), [20]),
+    ],
+)
+def test_split_invariance_regressions(data: bytes, splits: list[int]) -> None:
+    expected = python_lines(data, atv71())
+    assert fast_lines(data, atv71(), splits).lines == expected
+    dissector = Dissector(annotate=atv71())  # type: ignore[arg-type]
+    from dissector.model import Chunk
+
+    items = dissector.feed(Chunk(data[: splits[0]])) + dissector.feed(Chunk(data[splits[0] :])) + dissector.finish()
+    assert [summary_line(item) for item in items] == expected
+
+
+LIMITS = ((1, 125), (1, 123), (1, 125), (1, 121))
+FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
+
+
+def test_engine_refuses_bad_callbacks_without_crashing() -> None:
+    engine = fastsummary._summary.Engine(
+        lambda slave: (True, {3: ("Read Holding Registers", ())}, frozenset(), {}, frozenset(), None, -1, None),
+        lambda *args: ("x", False),
+        LIMITS,
+    )
+    data = rtu("0c0300000001") + rtu("0c03020005") + b"\x01"
+    for _ in range(2):  # a slave that failed to load is not left half loaded
+        with pytest.raises(TypeError, match="bad function entry"):
+            engine.run(data, 0)
+
+    class Untruthful:
+        def __bool__(self) -> bool:
+            raise ValueError("no truth")
+
+    info = (True, FUNCTIONS, frozenset([5]), {}, frozenset(), None, -1, None)
+    engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()), LIMITS)
+    with pytest.raises(ValueError, match="no truth"):
+        engine.run(rtu("0c0600050001") * 2 + b"\x01", 0)
+
+    def reenter(*args: object) -> tuple[str, bool]:
+        engine.__init__(lambda slave: info, reenter, LIMITS)
+        return "x", True
+
+    engine = fastsummary._summary.Engine(lambda slave: info, reenter, LIMITS)
+    with pytest.raises(RuntimeError, match="inside run"):
+        engine.run(rtu("0c10000500020400010002") + rtu("0c1000050002") + b"\x01", 0)
+    with pytest.raises(TypeError):
+        del engine.count
+
+
+def test_crc_lengths_compiled_and_python_agree() -> None:
+    from dissector.protocol import crc
+
+    rng = random.Random(5)
+    for _ in range(300):
+        data = bytes(rng.randrange(256) for _ in range(rng.randrange(0, 300)))
+        if rng.random() < 0.5 and len(data) > 8:
+            cut = rng.randrange(2, len(data) - 2)
+            data = data[:cut] + crc.crc_bytes(data[:cut]) + data[cut:]
+        start = rng.randrange(0, len(data) + 1)
+        minimum, maximum = rng.randrange(0, 10), rng.randrange(0, 300)
+        found = crc._crc_lengths_python(data, start, minimum, maximum)
+        assert fastsummary._summary.crc_lengths(data, start, minimum, maximum) == found
+        assert found == [
+            length
+            for length in range(max(minimum, 2), min(maximum, len(data) - start) + 1)
+            if crc.crc16_reference(data[start : start + length - 2]) == int.from_bytes(data[start + length - 2 : start + length], "little")
+        ]

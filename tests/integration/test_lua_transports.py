@@ -1,0 +1,125 @@
+"""The plugin's other ways in: RTU over a TCP port, RTAC serial records (Decode As), and the post-dissector
+that names the registers of Wireshark's own Modbus/TCP dissection."""
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+from dissector.render.pcapwriter import LINKTYPE_RTAC_SERIAL, PcapWriter
+from lua_harness import lua_items, run_tshark
+from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
+
+LINKTYPE_ETHERNET = 1
+CLIENT, SERVER = bytes([10, 0, 0, 1]), bytes([10, 0, 0, 2])
+
+
+def _checksum(header: bytes) -> int:
+    total = sum(struct.unpack(f"!{len(header) // 2}H", header))
+    total = (total >> 16) + (total & 0xFFFF)
+    return ~(total + (total >> 16)) & 0xFFFF
+
+
+class TcpWriter:
+    """Ethernet/IPv4/TCP packets with one payload each, sequence numbers kept per direction."""
+
+    def __init__(self, path: Path) -> None:
+        self._stream = path.open("wb")
+        self._writer = PcapWriter(self._stream, linktype=LINKTYPE_ETHERNET, flush=False)
+        self._seq: dict[tuple[int, int], int] = {}
+
+    def send(self, to_server: bool, port: int, payload: bytes, time: float) -> None:
+        source, destination = (CLIENT, SERVER) if to_server else (SERVER, CLIENT)
+        sport, dport = (40000, port) if to_server else (port, 40000)
+        seq = self._seq.get((sport, dport), 1000)
+        self._seq[(sport, dport)] = seq + len(payload)
+        tcp = struct.pack("!HHIIBBHHH", sport, dport, seq, 0, 5 << 4, 0x18, 8192, 0, 0)
+        ip = struct.pack("!BBHHHBBH4s4s", 0x45, 0, 40 + len(payload), 1, 0, 64, 6, 0, source, destination)
+        ip = ip[:10] + struct.pack("!H", _checksum(ip)) + ip[12:]
+        ethernet = bytes.fromhex("001122334455 66778899aabb 0800")
+        self._writer.write(ethernet + ip + tcp + payload, time)
+
+    def close(self) -> None:
+        self._stream.close()
+
+
+def _fields(pcap: Path, *args: str) -> list[list[str]]:
+    result = run_tshark(pcap, *args, "-T", "fields", "-E", "separator=|", "-e", "vw3.kind",
+                        "-e", "vw3.request_frame", "-e", "vw3.reg.code", "-e", "vw3.reg.status")
+    assert result.returncode == 0, result.stderr
+    return [line.split("|") for line in result.stdout.splitlines()]
+
+
+def test_rtu_over_tcp_port_preference_and_decode_as(tmp_path: Path) -> None:
+    writer = TcpWriter(tmp_path / "rtu-tcp.pcap")
+    writer.send(True, 5020, SCENARIO_REQUEST, 1.0)
+    writer.send(False, 5020, SCENARIO_1, 1.01)
+    writer.close()
+    expected = [["request", "", "", ""], ["response", "1", "CHCF,COP", "non-existent,ok,ok"]]
+    assert _fields(tmp_path / "rtu-tcp.pcap", "-o", "vw3.tcp_port:5020") == expected
+    assert _fields(tmp_path / "rtu-tcp.pcap", "-d", "tcp.port==5020,vw3") == expected
+    # Without either, the port is not ours.
+    assert _fields(tmp_path / "rtu-tcp.pcap") == [["", "", "", ""], ["", "", "", ""]]
+
+
+def test_rtac_serial_decode_as(tmp_path: Path) -> None:
+    pcap = tmp_path / "rtac.pcap"
+    with pcap.open("wb") as stream:
+        writer = PcapWriter(stream, linktype=LINKTYPE_RTAC_SERIAL)
+        for index, frame in enumerate([SCENARIO_REQUEST, SCENARIO_2]):
+            header = struct.pack(">IIBBH", 100, index * 10_000, 0, 0, 0)
+            writer.write(header + frame, 100 + index * 0.01)
+    rows = _fields(pcap, "-d", "rtacser.data,vw3")
+    assert rows == [["request", "", "", ""], ["response", "1", "CHCF,COP", "non-existent,protected,ok"]]
+    items, _, _ = lua_items(pcap, "-d", "rtacser.data,vw3")
+    assert [(item.record, item.offset) for item in items] == [(1, 12), (2, 12)]
+
+
+def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
+    writer = TcpWriter(tmp_path / "mbtcp.pcap")
+    pairs = [
+        (bytes.fromhex("0320D00003"), bytes.fromhex("0306 8000 0003 0002")),
+        (bytes.fromhex("0320D00003"), bytes.fromhex("0306 8000 8000 0002")),
+        (bytes.fromhex("030C1E0004"), bytes.fromhex("0308 0028 0258 01F4 0000")),
+    ]
+    time = 1.0
+    for transaction, (request, response) in enumerate(pairs, start=1):
+        for to_server, pdu in ((True, request), (False, response)):
+            writer.send(to_server, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 0) + pdu, time)
+            time += 0.01
+    writer.close()
+    result = run_tshark(tmp_path / "mbtcp.pcap", "-T", "fields", "-E", "separator=|", "-e", "modbus.regnum16",
+                        "-e", "vw3.reg.code", "-e", "vw3.reg.status", "-e", "vw3.reg.text", "-e", "vw3.note")
+    assert result.returncode == 0, result.stderr
+    rows = [line.split("|") for line in result.stdout.splitlines()]
+    assert rows[1] == ["8400,8401,8402", "CHCF,COP", "non-existent,ok,ok",
+                       "16#8000: non-existent (address not in the map),IO (I/O profile),Cd (command)", ""]
+    assert rows[3][:3] == ["8400,8401,8402", "CHCF,COP", "non-existent,protected,ok"]
+    assert rows[3][4] == "CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"
+    assert rows[5][:4] == ["3102,3103,3104,3105", "SFR,TFR,HSP,LSP", "ok,ok,ok,ok",
+                           "4.0 kHz,60.0 Hz,50.0 Hz,0.0 Hz"]
+    off = run_tshark(tmp_path / "mbtcp.pcap", "-o", "vw3.name_modbus:FALSE", "-T", "fields", "-e", "vw3.reg.code")
+    assert off.stdout.split() == []
+
+
+def test_installed_by_copying_into_the_personal_plugins_folder(tmp_path: Path) -> None:
+    # Wireshark loads every .lua file of ~/.local/lib/wireshark/plugins (Linux, macOS) at start.
+    import shutil
+    import subprocess
+
+    from lua_harness import PLUGIN, ROOT, ensure_tool
+
+    folder = tmp_path / ".local" / "lib" / "wireshark" / "plugins"
+    folder.mkdir(parents=True)
+    shutil.copy(PLUGIN, folder / "vw3.lua")
+    tshark = ensure_tool("tshark", "tshark")
+    env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"}
+    plugins = subprocess.run([tshark, "-G", "plugins"], capture_output=True, text=True, env=env)
+    listed = [line.split("\t") for line in plugins.stdout.splitlines() if line.startswith("vw3.lua")]
+    assert [[part.strip() for part in line] for line in listed] == [
+        ["vw3.lua", "1.0.0", "lua script", str(folder / "vw3.lua")]
+    ]
+    capture = ROOT / "captures" / "p38_protection.pcap"
+    result = subprocess.run([tshark, "-n", "-r", str(capture)], capture_output=True, text=True, env=env)
+    assert result.stdout.splitlines()[1].split("→")[1].split() == [
+        "VW3", "11", "12", "Read", "Holding", "Registers", "response", "8400..8402"
+    ]

@@ -1,0 +1,246 @@
+"""Running the Wireshark Lua plugin (lua/vw3.lua) under real tshark, and the Python decoder beside it.
+
+Both sides read the same pcap (one record per pcap record, linktype 147). Items are compared by where
+their bytes are: (record number, offset in the record), since Wireshark numbers records while the
+Python decoder numbers items of one byte stream.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import struct
+import sys
+import shutil
+import subprocess
+import xml.etree.ElementTree as ET
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from dissector.framing.ascii import AsciiFramer
+from dissector.framing.rtu import RtuFramer
+from dissector.render.pcapwriter import PcapWriter
+from dissector.pipeline import Dissector
+from dissector.devices.build import build_annotator
+from dissector.render.jsonout import item_to_dict
+from dissector.sources.reader import open_source
+
+ROOT = Path(__file__).resolve().parents[2]
+PLUGIN = ROOT / "lua" / "vw3.lua"
+CLI_TIMEOUT = 1.0  # vw3-decode's --timeout default, and the plugin's preference default
+
+
+def ensure_tool(command: str, package: str) -> str:
+    """The path of `command`, installing the Debian package when we are root; fail (never skip) otherwise."""
+    path = shutil.which(command)
+    if path is not None:
+        return path
+    if os.geteuid() != 0:
+        pytest.fail(f"{command} is missing and we are not root to install {package}")
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    for args in (["apt-get", "update"], ["apt-get", "install", "-y", package]):
+        result = subprocess.run(args, capture_output=True, text=True, env=env, timeout=900)
+        if result.returncode != 0:
+            pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
+    path = shutil.which(command)
+    if path is None:
+        pytest.fail(f"{package} installed but {command} is still not on PATH")
+    return path
+
+
+def write_pcap(path: Path, records: Iterable[tuple[bytes, float]]) -> Path:
+    with path.open("wb") as stream:
+        writer = PcapWriter(stream, flush=False)
+        for data, time in records:
+            writer.write(data, time)
+    return path
+
+
+def run_tshark(pcap: Path, *args: str, timeout: float = 900) -> subprocess.CompletedProcess[str]:
+    tshark = ensure_tool("tshark", "tshark")
+    command = [tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-r", str(pcap), *args]
+    # Replacement characters, not an exception, should tshark ever print bytes that are not UTF-8.
+    return subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=timeout)
+
+
+# -- reading tshark's PDML ---------------------------------------------------------------------------
+@dataclass
+class LuaItem:
+    record: int
+    offset: int
+    length: int
+    fields: dict[str, str] = field(default_factory=dict)
+    registers: list[dict[str, str]] = field(default_factory=list)
+    bits: list[dict[str, str]] = field(default_factory=list)
+    objects: list[dict[str, str]] = field(default_factory=list)
+    experts: list[tuple[str, str]] = field(default_factory=list)  # (expert abbrev, message)
+    texts: dict[str, list[str]] = field(default_factory=dict)  # "warning" / "note" -> full texts
+
+
+def _experts(element: ET.Element) -> list[tuple[str, str]]:
+    out = []
+    for expert in element.iter("field"):
+        if expert.get("name") != "_ws.expert":
+            continue
+        children = list(expert)
+        abbrev = children[0].get("name", "") if children else ""
+        message = ""
+        for child in children:
+            if child.get("name") == "_ws.expert.message":
+                message = child.get("show", "")
+        out.append((abbrev, message))
+    return out
+
+
+def _subtree(element: ET.Element, prefix: str) -> dict[str, str]:
+    out = {}
+    for child in element:
+        name = child.get("name", "")
+        if name.startswith(prefix):
+            out[name[len(prefix):]] = child.get("show", "")
+    return out
+
+
+def parse_pdml(text: str) -> tuple[list[LuaItem], list[tuple[int, str]]]:
+    """Items per vw3 tree, and record-level experts (record, message) found outside them."""
+    root = ET.fromstring(text)
+    items: list[LuaItem] = []
+    record_experts: list[tuple[int, str]] = []
+    for packet in root.iter("packet"):
+        number = 0
+        for proto in packet.findall("proto"):
+            if proto.get("name") == "geninfo":
+                for child in proto:
+                    if child.get("name") == "num":
+                        number = int(child.get("show", "0"))
+            if proto.get("name") != "vw3":
+                continue
+            item = LuaItem(number, int(proto.get("pos", "0")), int(proto.get("size", "0")))
+            for child in proto:
+                name = child.get("name", "")
+                if name == "vw3.reg":
+                    reg = _subtree(child, "vw3.reg.")
+                    item.registers.append(reg)
+                elif name == "vw3.bit":
+                    item.bits.append(_subtree(child, "vw3.bit."))
+                elif name == "vw3.object":
+                    item.objects.append(_subtree(child, "vw3.object."))
+                elif name in ("vw3.warning", "vw3.note"):
+                    item.texts.setdefault(name[4:], []).append(child.get("show", ""))
+                elif name.startswith("vw3."):
+                    item.fields[name[4:]] = child.get("show", "")
+            item.experts += _experts(proto)
+            items.append(item)
+        for expert in packet.iter("field"):
+            if expert.get("name", "").startswith("vw3.expert.record") or expert.get("name") == "vw3.expert.preference":
+                record_experts.append((number, expert.get("showname", "")))
+    return items, record_experts
+
+
+def lua_items(pcap: Path, *options: str, header: int = 0) -> tuple[list[LuaItem], list[tuple[int, str]], str]:
+    """The plugin's items; `header`: bytes before the Modbus payload in each record (RTAC: 12)."""
+    result = run_tshark(pcap, "-T", "pdml", *options)
+    if result.returncode != 0:
+        raise AssertionError(f"tshark failed ({result.returncode}): {result.stderr[-3000:]}")
+    errors = lua_errors(result.stdout + result.stderr)
+    if errors:
+        raise AssertionError(f"Lua errors: {errors[:5]}")
+    items, record_experts = parse_pdml(result.stdout)
+    for item in items:
+        item.offset -= header
+    return items, record_experts, result.stderr
+
+
+_LUA_ERROR = re.compile(r"Lua Error|lua_script|Error during loading|attempt to|stack traceback", re.I)
+
+
+def lua_errors(text: str) -> list[str]:
+    return [line for line in text.splitlines() if _LUA_ERROR.search(line)]
+
+
+# -- the Python side ---------------------------------------------------------------------------------
+@dataclass
+class PythonItem:
+    record: int
+    offset: int
+    data: dict[str, Any]
+
+
+def record_lengths(pcap: Path) -> list[int]:
+    """Captured length of every record of a classic pcap file (either byte order, us or ns)."""
+    data = pcap.read_bytes()
+    magic = data[:4]
+    if magic in (bytes.fromhex("d4c3b2a1"), bytes.fromhex("4d3cb2a1")):
+        order = "<"
+    elif magic in (bytes.fromhex("a1b2c3d4"), bytes.fromhex("a1b23c4d")):
+        order = ">"
+    else:
+        raise ValueError(f"{pcap}: not a classic pcap file")
+    lengths, position = [], 24
+    while position + 16 <= len(data):
+        captured = struct.unpack_from(order + "I", data, position + 8)[0]
+        lengths.append(captured)
+        position += 16 + captured
+    return lengths
+
+
+def python_items(
+    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0
+) -> list[PythonItem]:
+    """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records."""
+    command = [sys.executable, "-m", "dissector", str(pcap), "--json", *options]
+    for profile in profiles or []:
+        command += ["--profile", profile]
+    result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=900)
+    if result.returncode != 0:
+        raise AssertionError(f"{' '.join(command)} failed ({result.returncode}): {result.stderr[-3000:]}")
+    dicts = [json.loads(line) for line in result.stdout.splitlines() if line.strip()]
+    return place_items(dicts, [length - header for length in record_lengths(pcap)])
+
+
+def python_items_library(pcap: Path, profiles: list[str] | None = None) -> list[PythonItem]:
+    """The same through the library (pcap records as chunks, default profile, 1 s timeout)."""
+    items = []
+    with open_source(str(pcap)) as source:
+        framer = AsciiFramer() if source.mode == "ascii" else RtuFramer()
+        annotate = build_annotator(list(profiles or []), [])
+        dissector = Dissector(framer=framer, annotate=annotate, timeout=CLI_TIMEOUT)
+        for chunk in source:
+            items += dissector.feed(chunk)
+    items += dissector.finish()
+    return place_items([item_to_dict(item) for item in items], record_lengths(pcap))
+
+
+def place_items(dicts: list[dict[str, Any]], lengths: list[int]) -> list[PythonItem]:
+    starts = [0]
+    for length in lengths:
+        starts.append(starts[-1] + length)
+    out = []
+    for data in dicts:
+        record = _record_of(starts, data["offset"])
+        if data["kind"] != "noise":
+            out.append(PythonItem(record + 1, data["offset"] - starts[record], data))
+            continue
+        # A noise run of the byte stream may cross records; Wireshark shows it record by record.
+        offset, end = data["offset"], data["offset"] + data["length"]
+        while offset < end:
+            record = _record_of(starts, offset)
+            stop = min(end, starts[record + 1])
+            out.append(PythonItem(record + 1, offset - starts[record], data | {"length": stop - offset}))
+            offset = stop
+    return out
+
+
+def _record_of(starts: list[int], offset: int) -> int:
+    low, high = 0, len(starts) - 2
+    while low < high:
+        middle = (low + high + 1) // 2
+        if starts[middle] <= offset:
+            low = middle
+        else:
+            high = middle - 1
+    return low

@@ -1,0 +1,225 @@
+"""Display filters: exact matches on the sample captures, the per-register rule, errors, fuzzing."""
+from __future__ import annotations
+
+import functools
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from dissector.framing.ascii import AsciiFramer
+from dissector.render.filters import FilterError, compile_filter
+from dissector.pipeline import dissect
+from dissector.devices.build import build_annotator
+from dissector.render.jsonout import item_to_dict
+from dissector.sources.reader import open_source
+
+from conftest import ROOT
+
+CAPTURES = ROOT / "captures"
+
+
+@functools.cache
+def items(file_name: str) -> tuple[dict, ...]:
+    """A capture decoded with the default profiles (ATV71, SEL-749M at slave 1), as NDJSON dicts."""
+    annotate = build_annotator(["atv71", "1=sel749m"], [])
+    source = open_source(str(CAPTURES / file_name))
+    framer = AsciiFramer() if source.mode == "ascii" else None
+    return tuple(item_to_dict(item) for item in dissect(source, annotate=annotate, framer=framer))
+
+
+def matching(file_name: str, expression: str) -> list[int]:
+    test = compile_filter(expression)
+    return [item["frame"] for item in items(file_name) if test(item)]
+
+
+CASES = [
+    # The per-register rule: both tests on one register.
+    ("p38_protection.bin", 'code == "CHCF" and status == "protected"', [6, 8]),
+    ("p38_protection.bin", 'status == "protected"', [6, 8]),
+    ("p38_protection.bin", 'code == "COP" and status == "protected"', []),
+    ("p38_protection.bin", 'code == "CHCF" and status == "non-existent"', []),
+    ("p38_protection.bin", 'status == "non-existent"', [2, 4, 6, 8]),
+    ("p38_protection.bin", 'value == 0x8000 and code == "CHCF"', [6, 8]),
+    ("p38_protection.bin", 'address == 8401 and value == 3', [2, 4]),
+    ("p38_protection.bin", 'slave == 12 and code == "CHCF"', [2, 4, 6, 8]),
+    # `not` closes the scope: "no register is CHCF"; != is "some register is not CHCF".
+    ("p38_protection.bin", 'not code == "CHCF"', [1, 3, 5, 7, 9, 10, 11, 12]),
+    ("p38_protection.bin", 'code != "CHCF"', [2, 4, 6, 8]),
+    # Read requests name their addresses; exceptions name none.
+    ("p38_protection.bin", "address == 8401", [1, 2, 3, 4, 5, 6, 7, 8, 9, 11]),
+    ("p38_protection.bin", "exception == 2", [10, 12]),
+    ("p38_protection.bin", 'kind == "exception" && slave == 12', [10, 12]),
+    ("atv71_commissioning.bin", "exception_code == 7", [64]),
+    ("atv71_commissioning.bin", 'function == 6 and code == "CHCF"', [7, 8, 63, 103, 104]),
+    ("atv71_commissioning.bin", 'code in {"FR1" "CD1"}', [9, 10, 11, 12, 14, 16]),
+    ("atv71_commissioning.bin", 'address in 8413..8423 and kind == "response"', [10, 12, 14, 16]),
+    (
+        "atv71_commissioning.bin",
+        'function == 23 and code == "RFR" and value >= 300',
+        [58, 60, 62, 68, 70, 72, 74, 76],
+    ),
+    ("atv71_commissioning.bin", "function == 43", [1, 2]),
+    ("atv71_commissioning.bin", "address == 9001", [17, 18]),
+    (
+        "atv71_commissioning.bin",
+        'code == "CMD" and value == 0x0F and (frame < 40 or frame > 70)',
+        [31, 33, 35, 37, 39, 71, 73],
+    ),
+    (
+        "atv71_commissioning.bin",
+        '!(function == 23) && kind == "request"',
+        [1, 3, 5, 7, 9, 11, 13, 15, 17, 63, 65, 103],
+    ),
+    ("atv71_commissioning.bin", 'function_name contains "Multiple" and not function == 23', [17, 18]),
+    ("atv71_commissioning.pcap", "response_time > 0.0175", [26, 56, 80, 82]),
+    ("atv71_commissioning.pcap", "time < 1767225600.03", [1, 2]),
+    ("sel749m_polling.bin", "exception", [14, 26, 32, 38, 44, 50, 56, 62]),
+    ("sel749m_polling.bin", "exception in {1 3}", [26, 32, 44, 50, 56]),
+    ("sel749m_polling.bin", 'function == 16 and warnings contains "byte count"', [49]),
+    (
+        "sel749m_polling.bin",
+        'address in {250, 302} or (address in 400..401 and kind == "request")',
+        [31, 37, 49, 55, 61],
+    ),
+    ("noisy_bus.bin", "not crc_ok", [1, 17, 34]),  # noise has no crc_ok: "not" of an absent field
+    ("noisy_bus.bin", "crc_ok == false", [17]),
+    ("noisy_bus.bin", 'kind == "noise"', [1, 34]),
+    ("noisy_bus.bin", "unanswered", [28, 29]),
+    ("noisy_bus.bin", "slave == 5 or length < 5", [1, 28, 29]),
+    ("noisy_bus.bin", 'kind == "noise" and length >= 5', [34]),
+    (
+        "noisy_bus.bin",
+        'not slave == 12 and not kind == "noise" and function == 3 and kind == "request"',
+        [4, 8, 12, 16, 18, 22, 26, 28, 29, 32, 37],
+    ),
+    ("ascii_session.bin", 'mode == "ascii" and address in 9001..9002', [3, 4, 5, 6]),
+]
+
+
+@pytest.mark.parametrize(("file_name", "expression", "frames"), CASES)
+def test_filter_on_sample_captures(file_name: str, expression: str, frames: list[int]) -> None:
+    assert matching(file_name, expression) == frames
+
+
+def test_word_operators_and_case_insensitive_keywords() -> None:
+    assert matching("p38_protection.bin", "slave eq 12 AND exception_code ge 2") == [10, 12]
+    assert matching("p38_protection.bin", "NOT slave ne 12") == list(range(1, 13))
+
+
+def test_escapes_and_contains_on_strings() -> None:
+    item = {"kind": "noise", "reason": 'say "hi"\\'}
+    assert compile_filter(r'reason == "say \"hi\"\\"')(item)
+    assert compile_filter('reason contains "hi"')(item)
+    assert not compile_filter('reason contains "ho"')(item)
+
+
+ERRORS = [
+    ("slave == ", "expected a value to compare slave with (column 10)\n  slave == \n           ^"),
+    ("slave = 3", "a single = is not an operator: use == to compare (column 7)\n  slave = 3\n        ^"),
+    ("slav == 3", "unknown field 'slav' (did you mean slave?) (column 1)\n  slav == 3\n  ^"),
+    ('slave == "x"', "slave is a number, not '\"x\"' (column 10)\n  slave == \"x\"\n           ^"),
+    (
+        "code == CHCF",
+        "code is a text, not 'CHCF' (strings go in double quotes: \"...\") (column 9)\n"
+        "  code == CHCF\n          ^",
+    ),
+    ("(slave == 3", "expected ) to close the ( at column 1 (column 12)\n  (slave == 3\n             ^"),
+    ("crc_ok > true", "crc_ok is true or false: only == and != compare it (column 8)\n  crc_ok > true\n         ^"),
+    ('kind == "req"', "kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
+    ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
+    ("slave 3", "expected an operator (== != < <= > >= in contains) after slave (column 7)\n  slave 3\n        ^"),
+    ("address in 8400", "expected .. (a range such as 8400..8402) or a set in { } (column 16)\n  address in 8400\n                 ^"),
+    (
+        "slave == 1 slave",
+        "unexpected 'slave': expected and, or or the end (column 12)\n  slave == 1 slave\n             ^",
+    ),
+    ('"abc', "string not closed (a \" is missing) (column 1)\n  \"abc\n  ^"),
+    ("slave contains 1", "contains needs a text field; slave is a number (column 7)\n  slave contains 1\n        ^"),
+    ("function in {}", "empty set: put values between { } (column 14)\n  function in {}\n               ^"),
+    ("slave == 1 $", "unexpected character '$' (column 12)\n  slave == 1 $\n             ^"),
+]
+
+
+@pytest.mark.parametrize(("expression", "message"), ERRORS)
+def test_errors_point_at_the_token(expression: str, message: str) -> None:
+    with pytest.raises(FilterError) as caught:
+        compile_filter(expression)
+    assert str(caught.value) == message
+
+
+def test_registers_bits_and_named_addresses() -> None:
+    coils = {"kind": "response", "function": 1, "start": 4, "quantity": 2,
+             "bits": [{"address": 4, "value": 0}, {"address": 5, "value": 1}]}
+    assert compile_filter("address == 5 and value == 1")(coils)
+    assert not compile_filter("address == 4 and value == 1")(coils)
+    read_write = {"kind": "request", "function": 23, "start": 3201, "quantity": 2,
+                  "registers": [{"address": 8501, "value": 15}, {"address": 8502, "value": 300}]}
+    assert compile_filter("address == 3202")(read_write)  # read part: named, no value
+    assert not compile_filter("address == 3202 and value")(read_write)
+    assert compile_filter("address == 8502 and value == 300")(read_write)
+    assert not compile_filter("address == 8502 and value == 15")(read_write)
+    exception = {"kind": "exception", "function": 3, "exception_code": 2}
+    assert compile_filter("not address == 8401")(exception)
+    assert not compile_filter("address")(exception)
+
+
+def test_huge_number_is_an_error() -> None:
+    with pytest.raises(FilterError, match="number too long"):
+        compile_filter("slave == " + "9" * 5000)
+
+
+def test_nesting_is_bounded() -> None:
+    with pytest.raises(FilterError, match="nested more than 64 levels"):
+        compile_filter("(" * 200 + "slave == 1" + ")" * 200)
+    with pytest.raises(FilterError, match="nested more than 64 levels"):
+        compile_filter("not " * 500 + "slave == 1")
+    long_chain = " or ".join(f"slave == {n}" for n in range(5000))  # flat: no recursion limit
+    assert compile_filter(long_chain)({"slave": 4999})
+
+
+TOKENS = [
+    "slave", "function", "kind", "code", "status", "address", "value", "crc_ok", "exception",
+    "warnings", "time", "==", "!=", "<", ">=", "in", "contains", "and", "or", "not", "&&", "||", "!",
+    "(", ")", "{", "}", "..", ",", "12", "0x20D1", "1.5", '"CHCF"', '"protected"', "true", "false",
+    '"', "=", "$", "\\", "\x00", "é",
+]
+SAMPLES = [dict(item) for item in items("p38_protection.bin")] + [dict(item) for item in items("noisy_bus.bin")[:2]]
+
+
+def _compile_and_run(text: str) -> None:
+    try:
+        test = compile_filter(text)
+    except FilterError as error:
+        assert str(error)
+        return
+    for item in SAMPLES:
+        assert test(item) in (True, False)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.text(max_size=80))
+def test_fuzz_any_text_raises_only_filter_error(text: str) -> None:
+    _compile_and_run(text)
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.binary(max_size=80))
+def test_fuzz_random_bytes_raise_only_filter_error(data: bytes) -> None:
+    _compile_and_run(data.decode("latin-1"))
+
+
+@settings(max_examples=600, deadline=None)
+@given(st.lists(st.sampled_from(TOKENS), max_size=14))
+def test_fuzz_token_soup_raises_only_filter_error(tokens: list[str]) -> None:
+    _compile_and_run(" ".join(tokens))
+
+
+def test_negative_numbers_compare_with_signed_scaled_values() -> None:
+    from dissector.render.filters import compile_filter
+
+    negative = {"kind": "response", "registers": [{"address": 3205, "value": 65436, "scaled": -100}]}
+    positive = {"kind": "response", "registers": [{"address": 3205, "value": 100, "scaled": 100}]}
+    test = compile_filter("scaled < -1")
+    assert (test(negative), test(positive)) == (True, False)
+    assert compile_filter("scaled in -200..-50")(negative) is True

@@ -1,0 +1,53 @@
+"""The plugin's generated data block (lua/vw3.lua) is current, and its Lua literals are exact."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from dissector.codegen import lua as luagen
+from dissector.protocol.spec import SPEC
+
+
+def test_generated_block_is_current() -> None:
+    # Fails when a data file (modbus.toml, profiles/*.toml, maps/*.csv) changed without regenerating.
+    assert luagen.current_block() == luagen.render_block(), "run: python3 -m dissector.codegen.lua"
+
+
+def test_check_command_reports_a_stale_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    stale = tmp_path / "vw3.lua"
+    stale.write_text(luagen.PLUGIN.read_text().replace('"Read Coils"', '"Read Coils (old)"'))
+    assert luagen.main(["--check", "--plugin", str(stale)]) == 1
+    assert "stale" in capsys.readouterr().err
+    assert luagen.main(["--plugin", str(stale)]) == 0
+    assert luagen.main(["--check", "--plugin", str(stale)]) == 0
+    assert stale.read_text() == luagen.PLUGIN.read_text()
+
+
+def test_missing_markers_are_an_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    broken = tmp_path / "vw3.lua"
+    broken.write_text("local DATA = {}\n")
+    assert luagen.main(["--plugin", str(broken)]) == 2
+    assert "must hold exactly one" in capsys.readouterr().err
+
+
+def test_lua_literals() -> None:
+    assert luagen.lua_literal({3: "Read", 4: None}) == '{\n  [3] = "Read",\n  [4] = nil,\n}'
+    assert luagen.lua_literal(frozenset([7, 2])) == "{\n  [2] = true,\n  [7] = true,\n}"
+    assert luagen.lua_literal([1, 125]) == "{ 1, 125 }"
+    assert luagen.lua_literal('a "q" \\ é\n') == '"a \\"q\\" \\\\ \\195\\169\\010"'
+    assert luagen.lua_literal(0.1) == "0.1"
+    with pytest.raises(TypeError):
+        luagen.lua_literal(b"bytes")
+
+
+def test_data_comes_from_the_package() -> None:
+    data = luagen.plugin_data()
+    assert data["functions"] == SPEC.functions
+    assert data["limits"]["read_registers"] == [1, 125]
+    atv71 = data["profiles"]["atv71"]
+    assert atv71["protected_value"] == 0x8000 and atv71["all_protected_exception"] == 2
+    assert atv71["map"][8401]["code"] == "CHCF"
+    assert atv71["map"][3102] == {"code": "SFR", "name": "Switching frequency", "unit": "kHz", "scale": 0.1,
+                                  "source": "A", "decimals": 1}
+    assert data["default_profile"] == "atv71"

@@ -1,0 +1,204 @@
+"""Statistics on the sample captures: exact counts, response times against the pcap timestamps, tables."""
+from __future__ import annotations
+
+import struct
+from io import StringIO
+from pathlib import Path
+
+import pytest
+from rich.console import Console
+
+from dissector.framing.ascii import AsciiFramer
+from dissector.pipeline import dissect, dissect_bytes
+from dissector.devices.build import build_annotator
+from dissector.sources.reader import open_source
+from dissector.render.stats import StatsCollector, percentile
+
+from conftest import ROOT
+from helpers import rtu
+
+CAPTURES = ROOT / "captures"
+
+
+def collect(file_name: str) -> StatsCollector:
+    annotate = build_annotator(["atv71", "1=sel749m"], [])
+    source = open_source(str(CAPTURES / file_name))
+    framer = AsciiFramer() if source.mode == "ascii" else None
+    stats = StatsCollector()
+    for item in dissect(source, annotate=annotate, framer=framer):
+        stats.add(item)
+    return stats
+
+
+def pcap_times(path: Path) -> list[int]:
+    """Record timestamps in microseconds, read straight from the file (the oracle for response times)."""
+    data = path.read_bytes()
+    times, offset = [], 24
+    while offset < len(data):
+        seconds, micros, length, _original = struct.unpack_from("<IIII", data, offset)
+        times.append(seconds * 1_000_000 + micros)
+        offset += 16 + length
+    return times
+
+
+def row(report: dict, slave: int, function: int) -> dict:
+    (found,) = [r for r in report["functions"] if (r["slave"], r["function"]) == (slave, function)]
+    return found
+
+
+def counts(found: dict) -> tuple:
+    return (
+        found["requests"],
+        found["responses"],
+        found["exceptions"],
+        found["unanswered"],
+        found["crc_errors"],
+        None if found["response_time"] is None else found["response_time"]["count"],
+    )
+
+
+def parameter(report: dict, slave: int, address: int) -> dict:
+    (found,) = [p for p in report["parameters"] if (p["slave"], p["address"]) == (slave, address)]
+    return {key: found[key] for key in ("code", "reads", "unreadable", "writes", "refused", "last", "changes")}
+
+
+def test_p38_counts_and_parameters() -> None:
+    report = collect("p38_protection.pcap").report()
+    assert report["frames"] == 12 and report["noise"] == {"items": 0, "bytes": 0}
+    assert [(r["slave"], r["function"]) for r in report["functions"]] == [(12, 3)]
+    assert counts(row(report, 12, 3)) == (6, 4, {"2": 2}, 0, 0, 6)
+    assert parameter(report, 12, 8400) == {
+        "code": None, "reads": 0, "unreadable": 4, "writes": 0, "refused": 0, "last": None, "changes": 0
+    }
+    assert parameter(report, 12, 8401) == {
+        "code": "CHCF", "reads": 2, "unreadable": 2, "writes": 0, "refused": 0, "last": 3, "changes": 0
+    }
+    assert parameter(report, 12, 8402) == {
+        "code": "COP", "reads": 4, "unreadable": 0, "writes": 0, "refused": 0, "last": 2, "changes": 0
+    }
+
+
+def test_p38_response_times_match_the_pcap_timestamps() -> None:
+    times = pcap_times(CAPTURES / "p38_protection.pcap")
+    # Every request (even records) is answered by the next record.
+    expected = sorted(times[index + 1] - times[index] for index in range(0, len(times), 2))
+    timing = row(collect("p38_protection.pcap").report(), 12, 3)["response_time"]
+    assert round(timing["min"] * 1e6) == expected[0]
+    assert round(timing["max"] * 1e6) == expected[-1]
+    assert round(timing["median"] * 1e6) == (expected[2] + expected[3]) // 2  # 6 values
+    assert round(timing["p95"] * 1e6) == expected[5]  # nearest rank: ceil(0.95 x 6) = 6
+
+
+def test_commissioning_counts_and_parameters() -> None:
+    report = collect("atv71_commissioning.pcap").report()
+    assert report["frames"] == 104
+    assert counts(row(report, 2, 3)) == (4, 4, {}, 0, 0, 4)
+    assert counts(row(report, 2, 6)) == (6, 5, {"7": 1}, 0, 0, 6)
+    assert counts(row(report, 2, 16)) == (1, 1, {}, 0, 0, 1)
+    assert counts(row(report, 2, 23)) == (40, 40, {}, 0, 0, 40)
+    assert counts(row(report, 2, 43)) == (1, 1, {}, 0, 0, 1)
+    # CHCF read as 3, written 2 (accepted), 3 (refused while running), 3 (accepted once stopped).
+    assert parameter(report, 2, 8401) == {
+        "code": "CHCF", "reads": 1, "unreadable": 0, "writes": 3, "refused": 1, "last": 3, "changes": 2
+    }
+    assert parameter(report, 2, 3104) == {
+        "code": "HSP", "reads": 1, "unreadable": 0, "writes": 1, "refused": 0, "last": 550, "changes": 1
+    }
+    # The scanner's CMD goes 6, 7, 15, 7, 6 and ETA follows: 0x231, 0x233, 0x237, 0x233, 0x231.
+    assert parameter(report, 2, 8501) == {
+        "code": "CMD", "reads": 0, "unreadable": 0, "writes": 40, "refused": 0, "last": 6, "changes": 4
+    }
+    assert parameter(report, 2, 3201) == {
+        "code": "ETA", "reads": 40, "unreadable": 0, "writes": 0, "refused": 0, "last": 0x231, "changes": 4
+    }
+    assert parameter(report, 2, 9001)["writes"] == 1 and parameter(report, 2, 9001)["last"] == 10
+    assert len(report["parameters"]) == 14
+
+
+def test_sel_counts_and_refused_writes() -> None:
+    report = collect("sel749m_polling.bin").report()
+    assert report["frames"] == 68
+    assert counts(row(report, 1, 3)) == (14, 12, {"2": 1, "3": 1}, 0, 0, None)  # a .bin has no times
+    assert counts(row(report, 1, 4)) == (12, 12, {}, 0, 0, None)
+    assert counts(row(report, 1, 6)) == (3, 1, {"2": 1, "3": 1}, 0, 0, None)
+    assert counts(row(report, 1, 16)) == (4, 1, {"2": 1, "3": 2}, 0, 0, None)
+    assert counts(row(report, 1, 23)) == (1, 0, {"1": 1}, 0, 0, None)
+    # 300: FC6 = 1 (accepted), FC23 (function refused), two refused FC16, FC16 = 0 (accepted).
+    assert parameter(report, 1, 300) == {
+        "code": None, "reads": 0, "unreadable": 0, "writes": 5, "refused": 3, "last": 0, "changes": 1
+    }
+    assert parameter(report, 1, 302) == {
+        "code": None, "reads": 0, "unreadable": 0, "writes": 3, "refused": 3, "last": None, "changes": 0
+    }
+    assert parameter(report, 1, 0)["reads"] == 12
+
+
+def test_noisy_counts() -> None:
+    report = collect("noisy_bus.pcap").report()
+    assert report["frames"] == 36 and report["noise"] == {"items": 2, "bytes": 9}
+    assert counts(row(report, 1, 3)) == (9, 8, {}, 0, 1, 8)
+    assert counts(row(report, 5, 3)) == (2, 0, {}, 2, 0, None)
+    assert counts(row(report, 12, 3)) == (8, 8, {}, 0, 0, 8)
+
+
+def test_ascii_counts() -> None:
+    report = collect("ascii_session.pcap").report()
+    assert report["frames"] == 10
+    assert counts(row(report, 2, 3)) == (3, 2, {"2": 1}, 0, 0, 3)
+    assert counts(row(report, 2, 6)) == (1, 1, {}, 0, 0, 1)
+    assert parameter(report, 2, 9001) == {
+        "code": "ACC", "reads": 1, "unreadable": 0, "writes": 1, "refused": 0, "last": 10, "changes": 0
+    }
+
+
+def test_broadcast_and_unpaired_registers() -> None:
+    stats = StatsCollector()
+    for item in dissect_bytes(rtu("00 06 23 29 00 0A") + rtu("0C 03 04 00 01 00 02")):
+        stats.add(item)
+    report = stats.report()
+    assert counts(row(report, 0, 6)) == (1, 0, {}, 0, 0, None)
+    assert row(report, 0, 6)["broadcasts"] == 1
+    assert parameter(report, 0, 9001)["writes"] == 1 and parameter(report, 0, 9001)["last"] == 10
+    assert counts(row(report, 12, 3)) == (0, 1, {}, 0, 0, None)
+    assert report["registers_without_address"] == 2
+
+
+def test_percentile_nearest_rank() -> None:
+    values = [float(n) for n in range(1, 21)]
+    assert percentile(values, 0.95) == 19.0
+    assert percentile([5.0], 0.95) == 5.0
+    assert percentile(values, 0.5) == 10.0
+
+
+def test_render_p38() -> None:
+    console = Console(file=StringIO(), width=100, color_system=None)
+    console.print(collect("p38_protection.pcap").render())
+    lines = [line.rstrip() for line in console.file.getvalue().splitlines()]
+    assert lines == [
+        "12 frames, 0 noise bytes in 0 runs",
+        "",
+        "Traffic per slave and function",
+        " slave  function                  req  resp  exceptions  no reply  bad CRC",
+        "─" * 75,
+        "    12  3 Read Holding Registers    6     4  2:2                0        0",
+        "req: requests, resp: normal responses, exceptions: code:count",
+        "",
+        "Response times (ms)",
+        " slave  function                  count  min  median   p95   max",
+        "─" * 65,
+        "    12  3 Read Holding Registers      6  8.0     9.5  11.9  11.9",
+        "",
+        "Parameters",
+        " slave  address  code  reads  unreadable  writes  refused  last  changes",
+        "─" * 73,
+        "    12     8400            0           4       0        0              0",
+        "    12     8401  CHCF      2           2       0        0     3        0",
+        "    12     8402  COP       4           0       0        0     2        0",
+    ]
+
+
+@pytest.mark.parametrize("width", [60, 80, 120])
+def test_render_never_fails_at_any_width(width: int) -> None:
+    console = Console(file=StringIO(), width=width, color_system=None)
+    console.print(collect("sel749m_polling.pcap").render())
+    assert "Write Multiple" in console.file.getvalue() or width < 80
