@@ -7,7 +7,7 @@ case, retries, unanswered requests, exceptions, other function codes, noise, bit
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
 with none and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
 reduced to a minimal reproducer; one where the Python framer alone disagrees with itself when the stream
-is cut differently is reported as such. tests/test_fastsummary.py holds a bounded version of this.
+is cut differently is reported as such. tests/differential/test_fastsummary.py holds a bounded version of this.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""A long fuzzing campaign over the same targets as tests/test_fuzz.py.
+"""A long fuzzing campaign over the same targets as tests/differential/test_fuzz.py.
 
     python3 bench/fuzz_campaign.py --seconds 600                  # both engines, time shared by all targets
     python3 bench/fuzz_campaign.py --seconds 120 --engine hypothesis --target rtu_framer
@@ -6,14 +6,14 @@
 Every target is a function of one byte string that must return normally or raise the module's own
 error (GrammarError, SourceError, ProfileError, FilterError); anything else is a crash. Two engines:
 
-- hypothesis: the structured strategies of tests/test_fuzz.py (valid frames and files, mutated), run
+- hypothesis: the structured strategies of tests/differential/test_fuzz.py (valid frames and files, mutated), run
   in rounds of 500 examples with a new seed each until the target's time is up;
 - atheris (coverage-guided libFuzzer, if `pip install atheris` worked): one child process per target,
   seeded with the valid files, for its share of the time.
 
 It prints, per target and engine, the number of inputs tried and the outcome; a crash prints the input
 (hex) and the traceback, and atheris keeps it in bench/out/fuzz/crash-*. Exit status 1 when anything
-crashed. Each crash found becomes a regression test (tests/test_fuzz.py or tests/test_bad_files.py).
+crashed. Each crash found becomes a regression test (tests/differential/test_fuzz.py or tests/unit/test_bad_files.py).
 """
 from __future__ import annotations
 

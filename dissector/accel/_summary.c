@@ -7,7 +7,7 @@
  * (render/summary.py). Anything else (noise, a damaged frame, an exception, a warning or a note to
  * give) it hands back, before touching any state, at the start of the transaction: the Python stages
  * then take that part of the stream, and give it back at their next idle point
- * (dissector/accel/fastsummary.py). tests/test_fastsummary.py holds the output of both paths equal.
+ * (dissector/accel/fastsummary.py). tests/differential/test_fastsummary.py holds the output of both paths equal.
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
  * summary renderer themselves), cached here by (slave, function, address, value).

@@ -8,7 +8,7 @@ stream over to the Python stages, untouched, for everything else (noise, damage,
 with a warning or a note, other function codes). The Python stages stay the
 reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for
 every text it shows (register readings, function names) and keeps the annotator's parameter memory
-up to date. tests/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+up to date. tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
 
 Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
 statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at

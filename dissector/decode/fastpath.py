@@ -4,7 +4,7 @@ The Construct grammars in grammar.py are the reference; this module returns the 
 (same keys, same values) for the frames that make up nearly all of a polling bus's traffic (FC1-6,
 15, 16, 23 and exceptions), about ten times faster. Anything it does not recognise as well formed it
 leaves to the grammar (returns None), so malformed frames get the grammar's precise error messages.
-tests/test_fastpath.py holds the two against each other.
+tests/unit/test_fastpath.py holds the two against each other.
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""--detect: scoring settings on a line modelled bit by bit (tests/uart_sim.py), and on real ttys.
+"""--detect: scoring settings on a line modelled bit by bit (tests/support/uart_sim.py), and on real ttys.
 
 What these prove: the scoring and ranking pick 38400 8E1 out of the 15 settings when wrong settings
 deliver what the UART model says they would; the error marking path works with the Linux tty layer

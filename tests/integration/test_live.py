@@ -1,4 +1,4 @@
-"""Live capture on a pseudo-terminal bus (tests/live_bus.py): real traffic, the sniffer as a process."""
+"""Live capture on a pseudo-terminal bus (tests/support/live_bus.py): real traffic, the sniffer as a process."""
 from __future__ import annotations
 
 import argparse
