@@ -101,6 +101,17 @@ def build_parser() -> argparse.ArgumentParser:
         "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
     )
     output.add_argument(
+        "--watch",
+        metavar="CODES",
+        help="one line per change of these parameters (codes or addresses, e.g. CHCF,HSP,3201) "
+        "instead of items",
+    )
+    output.add_argument(
+        "--report",
+        metavar="FILE",
+        help="write a self-contained HTML report (traffic, poll cycle, trends, events) to FILE",
+    )
+    output.add_argument(
         "--color",
         choices=["auto", "always", "never"],
         default="auto",
@@ -144,7 +155,7 @@ def _hex_chunk(text: str) -> Chunk:
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
-    def __init__(self, args: argparse.Namespace, env: Environment) -> None:
+    def __init__(self, args: argparse.Namespace, env: Environment, annotate: Annotator | None = None) -> None:
         self.env = env
         self.json = args.json
         self.predicate: Callable[[dict], bool] | None = None
@@ -157,7 +168,31 @@ class Sinks:
             from dissector.render.stats import StatsCollector
 
             self.stats = StatsCollector()
-        self.show = not args.stats and (args.write is None or args.print_too)
+        self.stats_shown = args.stats
+        self.watch = None
+        if args.watch is not None:
+            from dissector.render.watch import Watcher, parse_watch, printer, profile_statuses
+
+            codes, addresses = parse_watch(args.watch)
+            self.watch = Watcher(codes, addresses, printer(env.stdout.write, args.json), profile_statuses(annotate))
+        self.report = None
+        self.report_path = args.report
+        self.titles: list[str] = [*args.files] + (["--hex"] if args.hex else [])
+        if args.report is not None:
+            from dissector.render.report import ReportCollector
+
+            self.report = ReportCollector(annotate)
+            try:
+                self.report_file = open(args.report, "w", encoding="utf-8")
+            except OSError as error:
+                raise UsageError(f"--report {args.report}: {error.strerror or error}") from None
+            if self.stats is None:
+                from dissector.render.stats import StatsCollector
+
+                self.stats = StatsCollector()  # the report's counts are --stats' numbers
+        self.show = not args.stats and self.watch is None and self.report is None and (
+            args.write is None or args.print_too
+        )
         options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
         self.output = Output(options, env.stdout, env.stdout_isatty)
         self.pcap: PcapWriter | None = None
@@ -186,6 +221,8 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
+        if self.watch is not None and items:
+            self.watch.set_base(items[0])  # the time column never depends on -Y
         if predicate is not None:
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
@@ -204,6 +241,11 @@ class Sinks:
         if self.stats is not None:
             for item in items:
                 self.stats.add(item)
+        if self.watch is not None:
+            for item in items:
+                self.watch.add(item)
+        if self.report is not None:
+            self.report.add_items(items)
         if self.show:
             self.output.write(items, self.extra, records)
 
@@ -220,6 +262,12 @@ class Sinks:
 
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.report is not None:
+            self.report = None
+            try:
+                self.report_file.close()
+            except OSError:
+                pass
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -234,7 +282,14 @@ class Sinks:
                 pcap.close()
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
-        if self.stats is not None:
+        if self.report is not None:
+            from dissector.render.report import write_report
+
+            assert self.stats is not None
+            report, self.report = self.report, None
+            title = "vw3-decode report: " + ", ".join(self.titles) if self.titles else None
+            write_report(self.report_file, self.report_path, report, self.stats, title)
+        if self.stats is not None and self.stats_shown:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
             else:
@@ -292,7 +347,7 @@ def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
 
 def decode_files(args: argparse.Namespace, env: Environment) -> int:
     annotate = _annotator(args)
-    sinks = Sinks(args, env)
+    sinks = Sinks(args, env, annotate)
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
