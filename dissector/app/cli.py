@@ -222,25 +222,15 @@ class Sinks:
         self.stats_shown = args.stats
         self.watch = None
         if args.watch is not None:
-            from dissector.render.watch import Watcher, parse_watch, printer, profile_statuses
+            from dissector.render.watch import watcher
 
-            codes, addresses = parse_watch(args.watch)
-            self.watch = Watcher(codes, addresses, printer(env.stdout.write, self.json), profile_statuses(annotate))
+            self.watch = watcher(args.watch, env.stdout.write, self.json, annotate)
         self.report = None
-        self.report_path = args.report
-        self.titles: list[str] = [*args.files] + (["--hex"] if args.hex else [])
         if args.report is not None:
-            from dissector.render.report import ReportCollector
+            from dissector.render.report import ReportFile
 
-            self.report = ReportCollector(annotate)
-            try:
-                self.report_file = open(args.report, "w", encoding="utf-8")
-            except OSError as error:
-                raise UsageError(f"--report {args.report}: {error.strerror or error}") from None
-            if self.stats is None:
-                from dissector.render.stats import StatsCollector
-
-                self.stats = StatsCollector()  # the report's counts are --stats' numbers
+            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []))
+            self.stats = self.stats or self.report.stats  # the report's counts are --stats' numbers
         self.show = not args.stats and self.watch is None and self.report is None and (
             args.write is None or args.print_too
         )
@@ -298,7 +288,7 @@ class Sinks:
             for item in items:
                 self.watch.add(item)
         if self.report is not None:
-            self.report.add_items(items)
+            self.report.collector.add_items(items)
         if self.show:
             if self.clock.format == "d":
                 self.clock.keep(items)
@@ -318,11 +308,8 @@ class Sinks:
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
         if self.report is not None:
-            self.report = None
-            try:
-                self.report_file.close()
-            except OSError:
-                pass
+            self.report, report = None, self.report
+            report.abandon()
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -338,12 +325,8 @@ class Sinks:
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.report is not None:
-            from dissector.render.report import write_report
-
-            assert self.stats is not None
             report, self.report = self.report, None
-            title = "vw3-decode report: " + ", ".join(self.titles) if self.titles else None
-            write_report(self.report_file, self.report_path, report, self.stats, title)
+            report.write(self.stats)  # type: ignore[arg-type]
         if self.stats is not None and self.stats_shown:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")

@@ -187,6 +187,11 @@ def profile_statuses(annotate: object) -> Callable[[int, bool, int | None], str 
     return status
 
 
+def watcher(text: str, write: Callable[[str], None], as_json: bool, annotate: object) -> Watcher:
+    codes, addresses = parse_watch(text)
+    return Watcher(codes, addresses, printer(write, as_json), profile_statuses(annotate))
+
+
 def printer(write: Callable[[str], None], as_json: bool) -> Callable[[Change], None]:
     if as_json:
         return lambda change: write(json.dumps(change.record()) + "\n")
