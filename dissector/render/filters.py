@@ -39,12 +39,25 @@ included. Errors raise FilterError, whose message shows the expression with a ca
 from __future__ import annotations
 
 import re
-
-from dissector.errors import MalformedInput
-from dissector.model import REGISTER_STATUSES
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+from dissector.errors import MalformedInput
+from dissector.model import REGISTER_STATUSES
+from dissector.render.filter_match import (
+    address_of,
+    address_test,
+    address_values,
+    any_bit,
+    contains_text,
+    in_members,
+    label_number,
+    match_op,
+    is_number,
+    is_present,
+    search,
+)
 
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
@@ -210,44 +223,19 @@ def tokenize(text: str) -> list[Token]:
     return tokens
 
 
-def _present(value: Any) -> bool:
-    return value is not None and value is not False and value != "" and value != []
-
-
-def _compare(op: str, left: Any, right: Any) -> bool:
-    try:
-        if op == "==":
-            return bool(left == right)
-        if op == "!=":
-            return bool(left != right)
-        if op == "<":
-            return bool(left < right)
-        if op == "<=":
-            return bool(left <= right)
-        if op == ">":
-            return bool(left > right)
-        return bool(left >= right)
-    except TypeError:  # a value of an unexpected type in the item: not a match
-        return False
-
-
-def _numeric(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
 def _elements(item: Item) -> list[dict[str, Any]]:
     """The registers and bits of an item, plus address-only entries for addresses it names."""
     registers = item.get("registers") or []
     bits = item.get("bits")
     elements: list[dict[str, Any]] = registers + bits if bits else registers
     start, quantity = item.get("start"), item.get("quantity")
-    if not (_numeric(start) and _numeric(quantity)) or item.get("kind") == "exception":
+    if not (is_number(start) and is_number(quantity)) or item.get("kind") == "exception":
         return elements
     if len(elements) == quantity and elements[0].get("address") == start:
         return elements  # a read response: its values already cover start..start+quantity-1
     known = {element.get("address") for element in elements}
     span = item.get("span_label")
-    first = _label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
+    first = label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
     synthesized = [
         {"address": address & 0xFFFF}
         if first is None
@@ -374,7 +362,7 @@ class _Parser:
             mask = self.parse_value(field, ftype)
             if not isinstance(mask, int):
                 raise self.error("& needs a whole-number mask such as 0x8000", mask_token)
-            return (lambda item, reg: _bits(get(item, reg), mask)), register
+            return (lambda item, reg: any_bit(get(item, reg), mask)), register
         if self.at("keyword", "matches") or self.at("op", "~"):
             self.advance()
             if ftype not in ("str", "list"):
@@ -385,9 +373,9 @@ class _Parser:
                 return (
                     lambda item, reg: any(isinstance(v, str) and pattern.search(v) for v in get(item, reg) or ())
                 ), register
-            return (lambda item, reg: _search(pattern, get(item, reg))), register
+            return (lambda item, reg: search(pattern, get(item, reg))), register
         if field == "address":
-            get = _address_getter
+            get = address_of
         if token.kind == "op" and token.value != "!":
             self.advance()
             op = token.value
@@ -401,8 +389,8 @@ class _Parser:
                 return (lambda item, reg: any(v == value for v in get(item, reg) or ())), register
             self._check_choice(field, value, value_token)
             if field == "address":
-                return _address_test(op, value), register
-            return (lambda item, reg: _match_op(op, get(item, reg), value)), register
+                return address_test(op, value), register
+            return (lambda item, reg: match_op(op, get(item, reg), value)), register
         if self.at("keyword", "contains"):
             self.advance()
             if ftype not in ("str", "list"):
@@ -412,16 +400,16 @@ class _Parser:
                 return (
                     lambda item, reg: any(isinstance(v, str) and value in v for v in get(item, reg) or ())
                 ), register
-            return (lambda item, reg: _contains(get(item, reg), value)), register
+            return (lambda item, reg: contains_text(get(item, reg), value)), register
         if self.at("keyword", "in"):
             self.advance()
             members = self.parse_set(field, ftype)
             if field == "address":
-                return (lambda item, reg: any(_in(v, members) for v in _address_values(reg))), register
-            return (lambda item, reg: _in(get(item, reg), members)), register
+                return (lambda item, reg: any(in_members(v, members) for v in address_values(reg))), register
+            return (lambda item, reg: in_members(get(item, reg), members)), register
         if token.kind in ("number", "string", "name") or self.at("keyword", "true", "false"):
             raise self.error(f"expected an operator (== != < <= > >= & in contains matches) after {field}")
-        return (lambda item, reg: _present(get(item, reg))), register
+        return (lambda item, reg: is_present(get(item, reg))), register
 
     def parse_value(self, field: str, ftype: str) -> Any:
         token = self.token
@@ -506,20 +494,6 @@ class _Parser:
 _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
 
 
-def _match_op(op: str, actual: Any, value: Any) -> bool:
-    if actual is None:
-        return False
-    if isinstance(value, str) != isinstance(actual, str):
-        return False
-    if isinstance(value, bool) != isinstance(actual, bool):
-        return False
-    return _compare(op, actual, value)
-
-
-def _bits(actual: Any, mask: int) -> bool:
-    return isinstance(actual, int) and not isinstance(actual, bool) and bool(actual & mask)
-
-
 def _regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
     """Case-insensitive as Wireshark's matches; a leading (?-i) asks for case."""
     flags = re.IGNORECASE
@@ -529,52 +503,6 @@ def _regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
         return re.compile(pattern, flags)
     except re.error as error:
         raise FilterError(f"not a regular expression: {error}", text, position) from None
-
-
-def _search(pattern: re.Pattern[str], actual: Any) -> bool:
-    return isinstance(actual, str) and pattern.search(actual) is not None
-
-
-def _label_number(label: Any) -> int | None:
-    return int(label) if isinstance(label, str) and label.isdigit() else None
-
-
-def _address_values(reg: dict[str, Any] | None) -> tuple[Any, ...]:
-    """The protocol address and, where a profile shows PLC-style references, the number shown."""
-    if reg is None:
-        return ()
-    shown = _label_number(reg.get("label"))
-    return (reg.get("address"),) if shown is None else (reg.get("address"), shown)
-
-
-def _address_getter(item: Item, reg: dict[str, Any] | None) -> Any:
-    return None if reg is None else reg.get("address")
-
-
-def _address_test(op: str, value: Any) -> Test:
-    if op == "!=":  # neither the address sent nor the one shown
-        return lambda item, reg: bool(_address_values(reg)) and not any(
-            _match_op("==", v, value) for v in _address_values(reg)
-        )
-    return lambda item, reg: any(_match_op(op, v, value) for v in _address_values(reg))
-
-
-def _contains(actual: Any, value: str) -> bool:
-    return isinstance(actual, str) and value in actual
-
-
-def _in(actual: Any, members: list[tuple[Any, Any]]) -> bool:
-    if actual is None or isinstance(actual, bool):
-        return False
-    for low, high in members:
-        if isinstance(low, str) != isinstance(actual, str):
-            continue
-        if low == high:
-            if actual == low:
-                return True
-        elif _compare("<=", low, actual) and _compare("<=", actual, high):
-            return True
-    return False
 
 
 class _And:
