@@ -84,6 +84,8 @@ class DecodeOptions:
     write: str | None = None
     print_too: bool = False
     stats: bool = False
+    watch: str | None = None
+    report: str | None = None
     output: OutputOptions = OutputOptions()
 
 
@@ -150,6 +152,17 @@ def build_parser() -> argparse.ArgumentParser:
         "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
     )
     output.add_argument(
+        "--watch",
+        metavar="CODES",
+        help="one line per change of these parameters (codes or addresses, e.g. CHCF,HSP,3201) "
+        "instead of items",
+    )
+    output.add_argument(
+        "--report",
+        metavar="FILE",
+        help="write a self-contained HTML report (traffic, poll cycle, trends, events) to FILE",
+    )
+    output.add_argument(
         "--color",
         choices=["auto", "always", "never"],
         default="auto",
@@ -180,7 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
-    def __init__(self, options: DecodeOptions, env: Environment) -> None:
+    def __init__(self, options: DecodeOptions, env: Environment, annotate: Annotator | None = None) -> None:
         args = options
         self.env = env
         self.json = args.output.json
@@ -194,7 +207,21 @@ class Sinks:
             from dissector.render.stats import StatsCollector
 
             self.stats = StatsCollector()
-        self.show = not args.stats and (args.write is None or args.print_too)
+        self.stats_shown = args.stats
+        self.watch = None
+        if args.watch is not None:
+            from dissector.render.watch import watcher
+
+            self.watch = watcher(args.watch, env.stdout.write, self.json, annotate)
+        self.report = None
+        if args.report is not None:
+            from dissector.render.report import ReportFile
+
+            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []))
+            self.stats = self.stats or self.report.stats  # the report's counts are --stats' numbers
+        self.show = not args.stats and self.watch is None and self.report is None and (
+            args.write is None or args.print_too
+        )
         self.output = Output(args.output, env.stdout, env.stdout_isatty)
         self.clock = self.output.clock
         self.pcap: PcapWriter | None = None
@@ -223,6 +250,8 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
+        if self.watch is not None and items:
+            self.watch.set_base(items[0])  # the time column never depends on -Y
         if self.show:
             self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if predicate is not None:
@@ -243,6 +272,11 @@ class Sinks:
         if self.stats is not None:
             for item in items:
                 self.stats.add(item)
+        if self.watch is not None:
+            for item in items:
+                self.watch.add(item)
+        if self.report is not None:
+            self.report.collector.add_items(items)
         if self.show:
             if self.clock.format == "d":
                 self.clock.keep(items)
@@ -261,6 +295,9 @@ class Sinks:
 
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.report is not None:
+            self.report, report = None, self.report
+            report.abandon()
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -275,7 +312,10 @@ class Sinks:
                 pcap.close()
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
-        if self.stats is not None:
+        if self.report is not None:
+            report, self.report = self.report, None
+            report.write(self.stats)  # type: ignore[arg-type]
+        if self.stats is not None and self.stats_shown:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
             else:
@@ -330,6 +370,8 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         write=args.write,
         print_too=args.print_too,
         stats=args.stats,
+        watch=args.watch,
+        report=args.report,
         output=OutputOptions(
             detail=args.detail,
             hexdump=args.hexdump,
@@ -391,7 +433,7 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
 
 
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
-    sinks = Sinks(args, env)
+    sinks = Sinks(args, env, annotate)
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
