@@ -21,6 +21,7 @@ from dissector import __version__
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filters import FilterError
 from dissector.framing.rtu import RtuFramer
+from dissector.app.hexinput import HexInput
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
 from dissector.render.pcapwriter import PcapWriter
@@ -189,19 +190,6 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _hex_chunk(text: str) -> Chunk:
-    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
-    (`:02062329000AA2`; the CR LF may be left out)."""
-    stripped = text.strip()
-    if stripped.startswith(":"):
-        return Chunk(stripped.encode("ascii", "replace") + b"\r\n")
-    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
-    try:
-        return Chunk(bytes.fromhex(cleaned))
-    except ValueError:
-        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
-
-
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
@@ -344,13 +332,14 @@ def decode_chunks(
     dissector: Dissector,
     sinks: Sinks,
     warn: Callable[[], None] = lambda: None,
+    fix: Callable[[list[Item]], list[Item]] = lambda items: items,
 ) -> None:
     for chunk in chunks:
-        sinks.accept(dissector.feed(chunk))
+        sinks.accept(fix(dissector.feed(chunk)))
         warn()
         if sinks.done:
             return
-    sinks.accept(dissector.finish())
+    sinks.accept(fix(dissector.finish()))
     warn()
 
 
@@ -418,16 +407,17 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
             raise UsageError(message)
 
 
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
+Fix = Callable[[list[Item]], list[Item]] | None
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix]
 
 
 def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed) per input."""
+    """(title, chunks, mode, take_warnings, timed, fix) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
-        chunks = [_hex_chunk(text) for text in args.hex]
-        mode = args.mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
-        yield ("--hex" if several else None), chunks, mode, list, False
+        typed = HexInput(args.hex, args.mode)
+        fix = typed.fix if typed.repairs else None
+        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix
     for path in args.files:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
@@ -436,7 +426,8 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
             chunks = progress_for(source, path, env.stderr)
-        yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
+        timed = source.format in TIMED_FORMATS
+        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None
 
 
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
@@ -457,7 +448,7 @@ def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     try:
-        for title, chunks, mode, take_warnings, timed in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed, fix in _inputs(args, env):
             if sinks.done:
                 break
             sinks.output.new_input(title)
@@ -474,14 +465,14 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
-            if mode == "rtu" and not timed and sinks.plain_summary_only:
+            if mode == "rtu" and not timed and fix is None and sinks.plain_summary_only:
                 from dissector.accel import fastsummary
 
                 if fastsummary.available():
                     path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
                     fastsummary.summarize(chunks, path, warn)
                     continue
-            decode_chunks(chunks, dissector, sinks, warn)
+            decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
     except BaseException:
         sinks.abandon()
         raise
