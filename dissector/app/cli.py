@@ -37,7 +37,7 @@ from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 PROG = "vw3-decode"
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
