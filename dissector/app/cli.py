@@ -21,6 +21,7 @@ from dissector import __version__
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filters import FilterError
 from dissector.framing.rtu import RtuFramer
+from dissector.app.hexinput import HexInput
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
 from dissector.render.pcapwriter import PcapWriter
@@ -28,13 +29,15 @@ from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import add_profile_arguments, annotator_from_args
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
+from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import Output, OutputOptions
+from dissector.render.timefmt import TIME_FORMATS
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 PROG = "vw3-decode"
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
@@ -59,8 +62,35 @@ class Environment:
         )
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse that reports a bad command line as one UsageError line, not the usage text."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(f"{message} (see {PROG} --help)")
+
+
+@dataclass(frozen=True, slots=True)
+class DecodeOptions:
+    """What decoding files needs from the command line, checked and typed once (issue 11)."""
+
+    files: tuple[str, ...] = ()
+    hex: tuple[str, ...] = ()
+    format: str | None = None
+    mode: str | None = None
+    timeout: float = 1.0
+    baud: int = 19200
+    filter: str | None = None
+    count: int | None = None
+    write: str | None = None
+    print_too: bool = False
+    stats: bool = False
+    watch: str | None = None
+    report: str | None = None
+    output: OutputOptions = OutputOptions()
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog=PROG,
         description="Decode Modbus RTU/ASCII serial captures (Altivar 71 VW3 A3 303, SEL-749M) "
         "frame by frame, the way tshark shows packets.",
@@ -91,7 +121,28 @@ def build_parser() -> argparse.ArgumentParser:
         "--json", action="store_true", help="NDJSON, one object per item (with --stats: the statistics)"
     )
     output.add_argument(
-        "-Y", dest="filter", metavar="EXPR", help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'"
+        "-T",
+        dest="output_format",
+        choices=["text", "fields", "json"],
+        help="as tshark -T: text (the default), fields (with -e and -E) or json (NDJSON, as --json)",
+    )
+    output.add_argument(
+        "-e", dest="fields", action="append", default=[], metavar="KEY",
+        help="with -T fields: a JSON key (frame, time, slave, response_time, ...), fields.KEY or a "
+        "register key (address, value, code, scaled, status, ...); repeatable, in column order",
+    )
+    output.add_argument(
+        "-E", dest="field_options", action="append", default=[], metavar="NAME=VALUE",
+        help="with -T fields, as tshark: header=y|n, separator=/t|/s|C, quote=d|s|n, "
+        "occurrence=f|l|a, aggregator=,|/s|C, bom=y|n",
+    )
+    output.add_argument(
+        "-t", dest="time_format", choices=list(TIME_FORMATS), default="r",
+        help="time column as tshark -t: " + ", ".join(f"{key} {text}" for key, text in TIME_FORMATS.items()),
+    )
+    output.add_argument(
+        "-Y", dest="filter", action="append", default=[], metavar="EXPR",
+        help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'",
     )
     output.add_argument(
         "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
@@ -99,6 +150,17 @@ def build_parser() -> argparse.ArgumentParser:
     output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
     output.add_argument(
         "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
+    )
+    output.add_argument(
+        "--watch",
+        metavar="CODES",
+        help="one line per change of these parameters (codes or addresses, e.g. CHCF,HSP,3201) "
+        "instead of items",
+    )
+    output.add_argument(
+        "--report",
+        metavar="FILE",
+        help="write a self-contained HTML report (traffic, poll cycle, trends, events) to FILE",
     )
     output.add_argument(
         "--color",
@@ -128,25 +190,13 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _hex_chunk(text: str) -> Chunk:
-    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
-    (`:02062329000AA2`; the CR LF may be left out)."""
-    stripped = text.strip()
-    if stripped.startswith(":"):
-        return Chunk(stripped.encode("ascii", "replace") + b"\r\n")
-    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
-    try:
-        return Chunk(bytes.fromhex(cleaned))
-    except ValueError:
-        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
-
-
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
-    def __init__(self, args: argparse.Namespace, env: Environment) -> None:
+    def __init__(self, options: DecodeOptions, env: Environment, annotate: Annotator | None = None) -> None:
+        args = options
         self.env = env
-        self.json = args.json
+        self.json = args.output.json
         self.predicate: Callable[[dict], bool] | None = None
         if args.filter is not None:
             from dissector.render.filters import compile_filter
@@ -157,9 +207,23 @@ class Sinks:
             from dissector.render.stats import StatsCollector
 
             self.stats = StatsCollector()
-        self.show = not args.stats and (args.write is None or args.print_too)
-        options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
-        self.output = Output(options, env.stdout, env.stdout_isatty)
+        self.stats_shown = args.stats
+        self.watch = None
+        if args.watch is not None:
+            from dissector.render.watch import watcher
+
+            self.watch = watcher(args.watch, env.stdout.write, self.json, annotate)
+        self.report = None
+        if args.report is not None:
+            from dissector.render.report import ReportFile
+
+            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []))
+            self.stats = self.stats or self.report.stats  # the report's counts are --stats' numbers
+        self.show = not args.stats and self.watch is None and self.report is None and (
+            args.write is None or args.print_too
+        )
+        self.output = Output(args.output, env.stdout, env.stdout_isatty)
+        self.clock = self.output.clock
         self.pcap: PcapWriter | None = None
         self.write_path = args.write
         if args.write is not None:
@@ -186,6 +250,10 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
+        if self.watch is not None and items:
+            self.watch.set_base(items[0])  # the time column never depends on -Y
+        if self.show:
+            self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if predicate is not None:
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
@@ -204,7 +272,14 @@ class Sinks:
         if self.stats is not None:
             for item in items:
                 self.stats.add(item)
+        if self.watch is not None:
+            for item in items:
+                self.watch.add(item)
+        if self.report is not None:
+            self.report.collector.add_items(items)
         if self.show:
+            if self.clock.format == "d":
+                self.clock.keep(items)
             self.output.write(items, self.extra, records)
 
     def _up_to_count(self, items: list[Item]) -> list[Item]:
@@ -220,6 +295,9 @@ class Sinks:
 
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.report is not None:
+            self.report, report = None, self.report
+            report.abandon()
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -234,17 +312,18 @@ class Sinks:
                 pcap.close()
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
-        if self.stats is not None:
+        if self.report is not None:
+            report, self.report = self.report, None
+            report.write(self.stats)  # type: ignore[arg-type]
+        if self.stats is not None and self.stats_shown:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
             else:
                 self.output.flush()
                 if self.output.console is not None:
                     self.output.console.print(self.stats.render())
-                else:
-                    from rich.console import Console
-
-                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+                else:  # piped: plain tables at full width, no rich layout cost
+                    self.env.stdout.write(self.stats.render_plain())
         self.output.flush()
 
 
@@ -253,13 +332,14 @@ def decode_chunks(
     dissector: Dissector,
     sinks: Sinks,
     warn: Callable[[], None] = lambda: None,
+    fix: Callable[[list[Item]], list[Item]] = lambda items: items,
 ) -> None:
     for chunk in chunks:
-        sinks.accept(dissector.feed(chunk))
+        sinks.accept(fix(dissector.feed(chunk)))
         warn()
         if sinks.done:
             return
-    sinks.accept(dissector.finish())
+    sinks.accept(fix(dissector.finish()))
     warn()
 
 
@@ -269,33 +349,95 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
     return annotator_from_args(args)
 
 
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
+def decode_options(args: argparse.Namespace) -> DecodeOptions:
+    """The typed options of a file decode; UsageError for options that contradict each other."""
+    _refuse_conflicts(args)
+    output_format = args.output_format or ("json" if args.json else "text")
+    fields: FieldsOptions | None = None
+    if output_format == "fields":
+        fields = parse_fields_options(args.fields, args.field_options)
+    return DecodeOptions(
+        files=tuple(args.files),
+        hex=tuple(args.hex),
+        format=args.format,
+        mode=args.mode,
+        timeout=args.timeout,
+        baud=args.baud,
+        filter=args.filter[0] if args.filter else None,
+        count=args.count,
+        write=args.write,
+        print_too=args.print_too,
+        stats=args.stats,
+        watch=args.watch,
+        report=args.report,
+        output=OutputOptions(
+            detail=args.detail,
+            hexdump=args.hexdump,
+            json=output_format == "json",
+            color=args.color,
+            time_format=args.time_format,
+            fields=fields,
+        ),
+    )
 
 
-def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed) per input."""
+def _refuse_conflicts(args: argparse.Namespace) -> None:
+    """Options that cannot both be meant are refused, never silently dropped."""
+    json_given = args.json or args.output_format == "json"
+    conflicts = [
+        (args.no_profile and bool(args.profile), "-n (no device profile) contradicts --profile"),
+        (args.no_profile and bool(args.map), "-n (no device profile) contradicts --map"),
+        (args.detail and json_given, "-V (detail tree) and --json are two outputs: choose one"),
+        (args.json and args.output_format not in (None, "json"), f"--json contradicts -T {args.output_format}"),
+        (args.output_format == "fields" and args.detail, "-V (detail tree) contradicts -T fields"),
+        (args.output_format == "fields" and args.hexdump, "-x (hex dump) contradicts -T fields"),
+        (args.output_format == "fields" and not args.fields, "-T fields needs at least one -e KEY"),
+        (bool(args.fields) and args.output_format != "fields", "-e KEY needs -T fields"),
+        (bool(args.field_options) and args.output_format != "fields", "-E NAME=VALUE needs -T fields"),
+        (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
+        (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
+        (args.duration is not None, "--duration needs --live PORT"),
+        (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
+        (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
+        (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
+        (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
+    ]
+    for contradiction, message in conflicts:
+        if contradiction:
+            raise UsageError(message)
+
+
+Fix = Callable[[list[Item]], list[Item]] | None
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix]
+
+
+def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
+    """(title, chunks, mode, take_warnings, timed, fix) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
-        chunks = [_hex_chunk(text) for text in args.hex]
-        mode = args.mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
-        yield ("--hex" if several else None), chunks, mode, list, False
+        typed = HexInput(args.hex, args.mode)
+        fix = typed.fix if typed.repairs else None
+        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix
     for path in args.files:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
         chunks: Iterable[Chunk] = source
-        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
+        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.output.records:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
             chunks = progress_for(source, path, env.stderr)
-        yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
+        timed = source.format in TIMED_FORMATS
+        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None
 
 
-def decode_files(args: argparse.Namespace, env: Environment) -> int:
-    annotate = _annotator(args)
-    sinks = Sinks(args, env)
+def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
+    sinks = Sinks(args, env, annotate)
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
+    except BrokenPipeError:
+        sinks.abandon()
+        raise  # the reader went away: main() ends quietly
     except OSError as error:
         sinks.abandon()
         raise OutputError(f"standard output: {error.strerror or error}") from None
@@ -303,10 +445,10 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
 
 
 def _decode_inputs(
-    args: argparse.Namespace, env: Environment, sinks: Sinks, annotate: Annotator | None
+    args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     try:
-        for title, chunks, mode, take_warnings, timed in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed, fix in _inputs(args, env):
             if sinks.done:
                 break
             sinks.output.new_input(title)
@@ -323,14 +465,14 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
-            if mode == "rtu" and not timed and sinks.plain_summary_only:
+            if mode == "rtu" and not timed and fix is None and sinks.plain_summary_only:
                 from dissector.accel import fastsummary
 
                 if fastsummary.available():
                     path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
                     fastsummary.summarize(chunks, path, warn)
                     continue
-            decode_chunks(chunks, dissector, sinks, warn)
+            decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
     except BaseException:
         sinks.abandon()
         raise
@@ -366,6 +508,9 @@ def run(argv: list[str] | None, env: Environment) -> int:
             args = parser.parse_args(argv)
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
+    except UsageError as error:
+        env.stderr.write(f"{PROG}: {error}\n")
+        return ExitStatus.BAD_INPUT
     args.files = [*args.read, *args.files]
     try:
         if args.live or args.detect is not None:
@@ -375,9 +520,9 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--live takes no FILE or --hex")
             return _live(args, env)
         if not args.files and not args.hex:
-            parser.print_usage(env.stderr)
-            raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")
-        return decode_files(args, env)
+            raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")
+        options = decode_options(args)
+        return decode_files(options, env, _annotator(args))
     except (UsageError, SourceError, ProfileError, FilterError) as error:
         _flush_quietly(env.stdout)
         env.stderr.write(f"{PROG}: {error}\n")
