@@ -225,7 +225,12 @@ def _make_sink(
     render_line: Callable[[Item], str],
     render_text: Callable[[Item], Text] | None,
     stats: LiveStats,
+    annotate: Annotator | None = None,
 ) -> Sink:
+    if getattr(args, "watch", None) is not None:
+        from dissector.render.watch import WatchSink
+
+        return WatchSink(args.watch, out, getattr(args, "json", False), annotate)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
@@ -271,7 +276,7 @@ def run_live(
     dissector = Dissector(
         framer=framer, hold=False, annotate=annotate, timeout=getattr(args, "timeout", None)
     )
-    sink = _make_sink(args, out, is_terminal, render_line, render_text, stats)
+    sink = _make_sink(args, out, is_terminal, render_line, render_text, stats, annotate)
     capture = Capture(
         port, dissector, tee, sink, stats, silence_threshold(args.baud), args.duration, args.count
     )

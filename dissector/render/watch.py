@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from typing import TextIO
 from dataclasses import dataclass
 
 from dissector.errors import UsageError
@@ -190,6 +191,29 @@ def profile_statuses(annotate: object) -> Callable[[int, bool, int | None], str 
 def watcher(text: str, write: Callable[[str], None], as_json: bool, annotate: object) -> Watcher:
     codes, addresses = parse_watch(text)
     return Watcher(codes, addresses, printer(write, as_json), profile_statuses(annotate))
+
+
+class WatchSink:
+    """The live capture's sink under --watch: change lines instead of items, each flushed at once."""
+
+    def __init__(self, text: str, out: TextIO, as_json: bool, annotate: object) -> None:
+        self.out = out
+
+        def write(line: str) -> None:
+            out.write(line)
+            out.flush()
+
+        self.watcher = watcher(text, write, as_json, annotate)
+
+    def show(self, items: list[Item]) -> None:
+        for item in items:
+            self.watcher.add(item)
+
+    def tick(self) -> None:
+        pass
+
+    def close(self) -> None:
+        self.out.flush()
 
 
 def printer(write: Callable[[str], None], as_json: bool) -> Callable[[Change], None]:
