@@ -23,7 +23,7 @@ from dissector.render.filters import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
-from dissector.render.pcapwriter import PcapWriter
+from dissector.render.capturefile import STDOUT, CaptureOutput, Ring, noise_comment
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import add_profile_arguments, annotator_from_args
 from dissector.errors import ProfileError
@@ -94,7 +94,16 @@ def build_parser() -> argparse.ArgumentParser:
         "-Y", dest="filter", metavar="EXPR", help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'"
     )
     output.add_argument(
-        "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
+        "-w", dest="write", metavar="FILE",
+        help="write the items shown to a pcap (linktype 147, USER0); - for standard output",
+    )
+    output.add_argument(
+        "-F", dest="file_format", choices=["pcap", "pcapng"],
+        help="-w file format (default: pcapng for a .pcapng name, else pcap)",
+    )
+    output.add_argument(
+        "-b", dest="ring", action="append", metavar="filesize:KB|duration:S|files:N",
+        help="-w ring buffer, as dumpcap: a new file every KB kB or S seconds, keeping the last N",
     )
     output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
     output.add_argument(
@@ -159,14 +168,25 @@ class Sinks:
             self.stats = StatsCollector()
         self.show = not args.stats and (args.write is None or args.print_too)
         options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
-        self.output = Output(options, env.stdout, env.stdout_isatty)
-        self.pcap: PcapWriter | None = None
+        # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
+        self.text_out = env.stderr if args.write == STDOUT else env.stdout
+        text_isatty = env.stderr_isatty if args.write == STDOUT else env.stdout_isatty
+        self.output = Output(options, self.text_out, text_isatty)
+        self.pcap: CaptureOutput | None = None
         self.write_path = args.write
         if args.write is not None:
             try:
-                self.pcap = PcapWriter(open(args.write, "wb"), flush=False)
+                ring = Ring.parse(args.ring) if args.ring else None
+                if ring is not None and args.write == STDOUT:
+                    raise ValueError("-b needs -w FILE, not standard output")
+                stdout = getattr(env.stdout, "buffer", None)
+                self.pcap = CaptureOutput(args.write, args.file_format, ring, flush=False, stdout=stdout)
+            except ValueError as error:
+                raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
+        elif args.ring or args.file_format:
+            raise UsageError(f"{'-b' if args.ring else '-F'} needs -w FILE")
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count
         self.done = False  # -c N reached
@@ -198,7 +218,7 @@ class Sinks:
         if self.pcap is not None:
             try:
                 for item in items:
-                    self.pcap.write(item.raw, item.time)
+                    self.pcap.write(item.raw, item.time, noise_comment(item))
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
@@ -236,7 +256,7 @@ class Sinks:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
             if self.json:
-                self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
+                self.text_out.write(json.dumps(self.stats.report()) + "\n")
             else:
                 self.output.flush()
                 if self.output.console is not None:
@@ -244,7 +264,7 @@ class Sinks:
                 else:
                     from rich.console import Console
 
-                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+                    Console(file=self.text_out, width=160, color_system=None).print(self.stats.render())
         self.output.flush()
 
 
