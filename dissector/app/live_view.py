@@ -131,9 +131,9 @@ PUMP_LIMIT = 20_000  # lines waiting to be written; beyond, lines are dropped (a
 class OutputPump:
     """Writes lines on its own thread, each batch flushed; `put` never blocks."""
 
-    def __init__(self, out: TextIO, limit: int = PUMP_LIMIT) -> None:
+    def __init__(self, out: TextIO, limit: int | None = None) -> None:
         self._out = out
-        self._limit = limit
+        self._limit = PUMP_LIMIT if limit is None else limit
         self._lines: deque[str] = deque()
         self._cond = threading.Condition()
         self._closing = False
