@@ -29,7 +29,7 @@ from typing import BinaryIO
 import serial
 
 from dissector.errors import ExitStatus, LiveError, PortVanished
-from dissector.model import Chunk, Frame, Item
+from dissector.model import Chunk, Frame, Item, Stamp
 from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
 from dissector.sources.serial_port import reason
@@ -45,10 +45,9 @@ def silence_threshold(baud: int) -> float:
     return max(t35, IDLE_FLUSH)
 
 
-def stamp_now() -> float:
-    """The time now, to the microsecond, as the pcap reader computes it from a record."""
-    micros = time.time_ns() // 1000
-    return micros // 1_000_000 + (micros % 1_000_000) / 1_000_000
+def stamp_now() -> Stamp:
+    """The time now, to the microsecond: the Stamp the pcap reader makes of the record written."""
+    return Stamp(time.time_ns() // 1000 * 1000)
 
 
 class CaptureFiles:
