@@ -81,6 +81,8 @@ class DecodeOptions:
     filter: str | None = None
     count: int | None = None
     write: str | None = None
+    file_format: str | None = None  # -F
+    ring: tuple[str, ...] = ()  # -b
     print_too: bool = False
     stats: bool = False
     output: OutputOptions = OutputOptions()
@@ -216,22 +218,16 @@ class Sinks:
 
             self.stats = StatsCollector()
         self.show = not args.stats and (args.write is None or args.print_too)
-<<<<<<< HEAD
-        options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
         text_isatty = env.stderr_isatty if args.write == STDOUT else env.stdout_isatty
-        self.output = Output(options, self.text_out, text_isatty)
-        self.pcap: CaptureOutput | None = None
-=======
-        self.output = Output(args.output, env.stdout, env.stdout_isatty)
+        self.output = Output(args.output, self.text_out, text_isatty)
         self.clock = self.output.clock
-        self.pcap: PcapWriter | None = None
->>>>>>> main
+        self.pcap: CaptureOutput | None = None
         self.write_path = args.write
         if args.write is not None:
             try:
-                ring = Ring.parse(args.ring) if args.ring else None
+                ring = Ring.parse(list(args.ring)) if args.ring else None
                 if ring is not None and args.write == STDOUT:
                     raise ValueError("-b needs -w FILE, not standard output")
                 stdout = getattr(env.stdout, "buffer", None)
@@ -240,8 +236,6 @@ class Sinks:
                 raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
-        elif args.ring or args.file_format:
-            raise UsageError(f"{'-b' if args.ring else '-F'} needs -w FILE")
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count
         self.done = False  # -c N reached
@@ -365,6 +359,8 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         filter=args.filter[0] if args.filter else None,
         count=args.count,
         write=args.write,
+        file_format=args.file_format,
+        ring=tuple(args.ring or ()),
         print_too=args.print_too,
         stats=args.stats,
         output=OutputOptions(
@@ -395,6 +391,8 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
         (args.duration is not None, "--duration needs --live PORT"),
         (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
+        (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
+        (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
         (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
         (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),

@@ -19,6 +19,9 @@ PCAP_MAGIC = 0xA1B2C3D4
 
 def split_time(timestamp: float) -> tuple[int, int]:
     """(seconds, microseconds) as pcap stores them; the reader's seconds + micros / 1e6 gives it back."""
+    ns = getattr(timestamp, "ns", None)  # a Stamp keeps its source's integer nanoseconds
+    if ns is not None:
+        return divmod(int(ns) // 1000, 1_000_000)  # type: ignore[return-value]
     seconds = int(timestamp)
     micros = int(round((timestamp - seconds) * 1_000_000))
     if micros >= 1_000_000:

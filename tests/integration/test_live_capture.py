@@ -367,7 +367,7 @@ def test_bad_ring_options(tmp_path: Path) -> None:
     for options, message in [
         (("-w", str(tmp_path / "x.pcap"), "-b", "files:3"), "-b needs filesize:KB or duration:SECONDS"),
         (("-w", "-", "-b", "filesize:10"), "-b needs -w FILE, not standard output"),
-        (("-b", "filesize:10"), "-b needs -w FILE"),
+        (("-b", "filesize:10"), "-b (ring buffer) needs -w FILE"),
         (("-w", str(tmp_path / "x.pcap"), "-b", "size:3"), "-b size:3: give filesize:KB"),
         (("-w", str(tmp_path / "x.pcap"), "-b", "filesize:0"), "-b filesize:0: must be more than 0"),
     ]:
