@@ -177,7 +177,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=positive_seconds,
         default=1.0,
         metavar="SECONDS",
-        help="flag responses later than this (needs timestamps; default 1 s)",
+        help="a response later than this after its request does not answer it (needs timestamps; "
+        "default 1 s); live, a request's line waits at most this for its answer",
     )
     decoding.add_argument(
         "-n", dest="no_profile", action="store_true", help="no device profile: Modbus spec semantics only"
