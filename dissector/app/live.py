@@ -37,7 +37,7 @@ from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Item
 from dissector.pipeline import Annotator, Dissector
-from dissector.render.capturefile import STDOUT, CaptureOutput, Ring
+from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.sources.serial_port import PARITIES, PortSettings, open_port
 
 PROG = "vw3-decode"
@@ -65,18 +65,14 @@ def capture_output(args: argparse.Namespace, stdout: BinaryIO | None) -> Capture
     path = getattr(args, "write", None)
     if not path:
         return None
-    try:
-        ring = Ring.parse(args.ring) if getattr(args, "ring", None) else None
-        if ring is not None and path == STDOUT:
-            raise ValueError("-b needs -w FILE, not standard output")
-    except ValueError as error:
-        raise LiveError(str(error)) from None
     settings = port_settings(args)
     try:
-        return CaptureOutput(
-            path, getattr(args, "file_format", None), ring, flush=True, stdout=stdout,
-            interface=(settings.port, interface_description(settings)),
+        return open_output(
+            path, getattr(args, "file_format", None), getattr(args, "ring", None) or (), True, stdout,
+            (settings.port, interface_description(settings)),
         )
+    except ValueError as error:
+        raise LiveError(str(error)) from None
     except OSError as error:
         raise LiveError(f"cannot write {path}: {error.strerror or error}") from None
 

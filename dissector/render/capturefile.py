@@ -187,3 +187,18 @@ class CaptureOutput:
     def close(self) -> None:
         if self._writer is not None:
             self._close_writer()
+
+
+def open_output(
+    path: str,
+    fmt: str | None,
+    ring_specs: list[str] | tuple[str, ...],
+    flush: bool,
+    stdout: BinaryIO | None,
+    interface: tuple[str, str] | None = None,
+) -> CaptureOutput:
+    """The -w output from the options; ValueError for bad -b options, OSError from the system."""
+    ring = Ring.parse(list(ring_specs)) if ring_specs else None
+    if ring is not None and path == STDOUT:
+        raise ValueError("-b needs -w FILE, not standard output")
+    return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface)
