@@ -37,7 +37,7 @@ from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 PROG = "vw3-decode"
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
@@ -340,10 +340,8 @@ class Sinks:
                 self.output.flush()
                 if self.output.console is not None:
                     self.output.console.print(self.stats.render())
-                else:
-                    from rich.console import Console
-
-                    Console(file=self.text_out, width=160, color_system=None).print(self.stats.render())
+                else:  # piped: plain tables at full width, no rich layout cost
+                    self.text_out.write(self.stats.render_plain())
         self.output.flush()
 
 
