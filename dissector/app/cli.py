@@ -31,7 +31,7 @@ from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import Output, OutputOptions
-from dissector.render.timefmt import TIME_FORMATS
+from dissector.render.timefmt import TIME_FORMATS, Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
@@ -501,12 +501,12 @@ def _decode_inputs(
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:
-    first_time: list[float] = []  # the time column starts at the first item heard, as for files
+    # The time column as for files (-t): from the first item heard, or the one heard before.
+    clock = Clock(args.time_format)
 
-    def base(item: Item) -> float | None:
-        if not first_time and item.time is not None:
-            first_time.append(item.time)
-        return first_time[0] if first_time else None
+    def column(item: Item) -> str:
+        clock.observe([item])
+        return clock.text(item)
 
     from dissector.app.live import run_live  # pyserial is loaded only for a live capture
 
@@ -516,9 +516,9 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
         env.stdout,
         env.stderr,
         is_terminal,
-        lambda item: summary_line(item, base(item)),
+        lambda item: summary_line(item, column=column(item)),
         _annotator(args),
-        lambda item: summary_text(item, base(item)),
+        lambda item: summary_text(item, column=column(item)),
     )
 
 
