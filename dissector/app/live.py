@@ -31,7 +31,7 @@ from dissector.app.live_capture import (
     silence_threshold,
 )
 from dissector.app.live_options import PARITY_CHOICES
-from dissector.app.live_view import LineSink, LiveStats, RichSink, Sink, json_line
+from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -132,7 +132,7 @@ def _make_sink(
     if getattr(args, "watch", None) is not None:
         from dissector.render.watch import WatchSink
 
-        return WatchSink(args.watch, out, getattr(args, "json", False), annotate)
+        return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
