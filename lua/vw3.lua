@@ -251,7 +251,7 @@ local DATA = {
         [12] = "comm_event_log_response",
         [15] = "write_multiple_response",
         [16] = "write_multiple_response",
-        [17] = "byte_counted",
+        [17] = "report_server_id_response",
         [20] = "read_file_response",
         [21] = "write_file",
         [22] = "mask_write",
@@ -285,6 +285,7 @@ local DATA = {
         [8] = "diagnostics",
         [15] = "write_multiple_response",
         [16] = "write_multiple_response",
+        [17] = "report_server_id_response",
         [22] = "mask_write",
         [23] = "read_registers_response",
         [24] = "fifo_response",
@@ -1744,6 +1745,11 @@ do
     read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
     mask_write = mask_write, read_write_request = read_write_request, fifo_request = fifo_request,
     fifo_response = fifo_response, mei_request = mei_request, mei_response = mei_response,
+    report_server_id_response = function(f, b, d, len)
+      if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
+      f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
+      return 1 + b[d]
+    end,
   }
   for code, name in pairs(DATA.protocol.parsers.request) do GRAMMARS[REQUEST][code] = PARSERS[name] end
   for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
@@ -1914,6 +1920,21 @@ do
     write_multiple_response = write_multiple_response_handler, mask_write = mask_write_handler,
     read_write_request = read_write_request_handler, fifo_request = fifo_request_handler,
     fifo_response = fifo_response_handler, mei_response = mei_response_handler,
+    report_server_id_response = function(f, b)
+      -- the additional data as text when every byte is printable ASCII (a version string), as Python
+      local fields, d = f.fields, f.data_at
+      local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
+      if run ~= 0 and run ~= 255 then
+        warn(f, format("run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)", run))
+      end
+      for k = 0, length - 1 do
+        local byte = b[d + 3 + k]
+        if byte < 32 or byte > 126 then chars = nil break end
+        chars[#chars + 1] = string.char(byte)
+      end
+      f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
+        text = length > 0 and chars and concat(chars) or nil }
+    end,
   }
   for code, name in pairs(DATA.protocol.handlers.request) do H[REQUEST][code] = HANDLERS[name] end
   for code, name in pairs(DATA.protocol.handlers.response) do H[RESPONSE][code] = HANDLERS[name] end
@@ -2814,6 +2835,11 @@ local pf = {
   warning = ProtoField.string("vw3.warning", "Warning"),
   note = ProtoField.string("vw3.note", "Note"),
   data = ProtoField.bytes("vw3.data", "Data"),
+  byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
+  server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
+  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, { [0] = "OFF", [255] = "ON" }),
+  additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
+  additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
 }
 local field_list = {}
 for _, field in pairs(pf) do field_list[#field_list + 1] = field end
@@ -3115,6 +3141,16 @@ local function show_frame(f, tvb, tree, pinfo, full)
         sub:add(pf.object_name, r, object.name):set_generated()
         sub:add(pf.object_value, r, object.value)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
+      end
+    end
+    local server = f.server -- Report Server ID (FC17) response
+    if server then
+      t:add(pf.byte_count, frame_range(tvb, f, server.at, 1), server.byte_count)
+      t:add(pf.server_id, frame_range(tvb, f, server.at + 1, 1), server.id)
+      t:add(pf.run_indicator, frame_range(tvb, f, server.at + 2, 1), server.run)
+      if server.length > 0 then
+        local r = frame_range(tvb, f, server.at + 3, server.length)
+        if server.text then t:add(pf.additional_data, r, server.text) else t:add(pf.additional_bytes, r) end
       end
     end
     if f.request ~= nil then

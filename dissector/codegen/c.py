@@ -83,7 +83,7 @@ def render_header() -> str:
         "    return function >= 0 && function < 256 ? handled_slot[function] : -1;",
         "}",
         "",
-        f"/* Spec limits (data/modbus.toml), in the order of the engine's `limits` argument. */",
+        "/* Spec limits (data/modbus.toml), in the order of the engine's `limits` argument. */",
         f"#define LIMIT_COUNT {len(limits)}",
         *(f"#define LIMIT_{name.upper()} {index}" for index, name in enumerate(limits)),
         "",

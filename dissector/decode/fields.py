@@ -210,6 +210,12 @@ def _fifo_response(frame: Frame, fields: Container) -> None:
         frame.warnings.append(f"byte count {fields['byte_count']} disagrees with the FIFO count")
 
 
+def _report_server_id_response(frame: Frame, fields: Container) -> None:
+    indicator = fields["run_indicator"]
+    if not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
+        frame.warnings.append(f"run indicator 0x{int(indicator):02X} is neither 0x00 (OFF) nor 0xFF (ON)")
+
+
 def _mei_response(frame: Frame, fields: Container) -> None:
     if fields["mei_type"] != 14:
         return
@@ -239,6 +245,7 @@ HANDLERS = {
     "fifo_request": _fifo_request,
     "fifo_response": _fifo_response,
     "mei_response": _mei_response,
+    "report_server_id_response": _report_server_id_response,
 }
 
 _HANDLERS_BY_KIND: dict[Kind, dict[int, object]] = {

@@ -8,8 +8,10 @@ Every layout ends in `trailing`, so bytes past the documented layout are kept an
 from __future__ import annotations
 
 from construct import (
+    Adapter,
     Array,
     Bytes,
+    Enum,
     FixedSized,
     GreedyBytes,
     GreedyRange,
@@ -54,6 +56,27 @@ COMM_EVENT_LOG_RESPONSE = Struct(
     "event_count" / Int16ub,
     "message_count" / Int16ub,
     "events" / Bytes(this.byte_count - 6),
+    _trailing,
+)
+
+
+class _TextWhenPrintable(Adapter):  # type: ignore[misc]
+    """Bytes shown as text when every one is printable ASCII (a version string), as bytes otherwise."""
+
+    def _decode(self, obj: bytes, context: object, path: str) -> str | bytes:
+        return obj.decode("ascii") if obj and all(0x20 <= byte < 0x7F for byte in obj) else obj
+
+    def _encode(self, obj: str | bytes, context: object, path: str) -> bytes:
+        return obj.encode("ascii") if isinstance(obj, str) else obj
+
+
+# Report Server ID: the server id (one byte, as libmodbus and most devices send it), the run
+# indicator (00 OFF, FF ON), then device-specific data, often a version string.
+REPORT_SERVER_ID_RESPONSE = Struct(
+    "byte_count" / Int8ub,
+    "server_id" / Int8ub,
+    "run_indicator" / Enum(Int8ub, OFF=0x00, ON=0xFF),
+    "additional_data" / _TextWhenPrintable(Bytes(this.byte_count - 2)),
     _trailing,
 )
 BYTE_COUNTED = Struct("byte_count" / Int8ub, "data" / Bytes(this.byte_count), _trailing)

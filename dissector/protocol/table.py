@@ -180,7 +180,12 @@ FUNCTIONS: tuple[Function, ...] = (
             writes=Writes("values", "start", "quantity", count="byte_count"),
         ),
     ),
-    Function(17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC),
+    Function(
+        17,
+        _layout("empty", Fixed(4)),
+        _layout("report_server_id_response", _BYTE_COUNT, "report_server_id_response"),
+        Access.DIAGNOSTIC,
+    ),
     Function(
         20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ
     ),

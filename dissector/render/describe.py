@@ -199,6 +199,15 @@ def _simple(frame: Frame, request: bool) -> str:
     return ""
 
 
+def _report_server_id(frame: Frame, request: bool) -> str:
+    fields = frame.fields
+    if request or "server_id" not in fields:
+        return ""
+    data = fields.additional_data
+    text = repr(data) if isinstance(data, str) else f"{len(data)} bytes"
+    return f"server id {fields.server_id}, run {fields.run_indicator}, {text}"
+
+
 def _file_record(frame: Frame, request: bool) -> str:
     fields = frame.fields
     groups = fields.get("subrequests") or fields.get("subresponses") or fields.get("records") or []
@@ -218,7 +227,7 @@ _DESCRIBERS = {
     12: _simple,
     15: _write_multiple,
     16: _write_multiple,
-    17: _simple,
+    17: _report_server_id,
     20: _file_record,
     21: _file_record,
     22: _mask_write,

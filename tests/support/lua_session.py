@@ -155,8 +155,11 @@ class SessionBuilder:
                 message_count=2, events=events,
             )
         if function == 17:
-            data = rng.randbytes(rng.randint(1, 20))
-            return frame(slave, 17, Kind.REQUEST), frame(slave, 17, Kind.RESPONSE, byte_count=len(data), data=data)
+            data = rng.choice([rng.randbytes(rng.randint(0, 18)), b"LMB3.1.6"])
+            return frame(slave, 17, Kind.REQUEST), frame(
+                slave, 17, Kind.RESPONSE, byte_count=2 + len(data), server_id=rng.randrange(256),
+                run_indicator=rng.choice([0, 0xFF, 0xFF, rng.randrange(256)]), additional_data=data,
+            )
         if function == 22:
             request = frame(slave, 22, Kind.REQUEST, address=self._start(), and_mask=rng.randrange(0x10000),
                             or_mask=rng.randrange(0x10000))

@@ -1,0 +1,23 @@
+"""Report Server ID (FC17) in vw3-decode: -V, --json and the summary line, for libmodbus's answer."""
+from __future__ import annotations
+
+import json
+
+from helpers import rtu, run_cli
+from server_id import REQUEST, RESPONSE, check_decoded
+
+
+def test_libmodbus_answer_in_vw3_decode() -> None:
+    check_decoded(REQUEST, RESPONSE, "LMB3.1.6")
+
+
+def test_odd_run_indicator_and_binary_data() -> None:
+    # run indicator 0x12, data 00 01: the number, a warning, the bytes in hex
+    status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", "11 11 04 01 12 00 01", "-V"])
+    assert status == 0
+    assert "        Run indicator: 18 (0x12)\n        Additional data: 00 01\n" in out
+    assert "Warning: run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)" in out
+    status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", rtu("11 11 01 B4").hex(" "), "--json"])
+    assert json.loads(out.splitlines()[1])["warnings"] == [
+        "malformed response: stream read less than specified amount, expected 1, found 0 at (parsing) -> run_indicator"
+    ]
