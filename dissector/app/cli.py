@@ -423,6 +423,9 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
         (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
         (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
+        (args.watch is not None and (args.detail or args.hexdump or args.output_format == "fields"),
+         "--watch replaces the items: -V, -x and -T fields show none"),
+        (args.watch is not None and args.stats, "--watch and --stats are two outputs: choose one"),
     ]
     for contradiction, message in conflicts:
         if contradiction:

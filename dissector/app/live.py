@@ -31,7 +31,7 @@ from dissector.app.live_capture import (
     silence_threshold,
 )
 from dissector.app.live_options import PARITY_CHOICES
-from dissector.app.live_view import LineSink, LiveStats, RichSink, Sink, json_line
+from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -122,12 +122,17 @@ def _make_sink(
     render_line: Callable[[Item], str],
     render_text: Callable[[Item], Text] | None,
     stats: LiveStats,
+    annotate: Annotator | None = None,
 ) -> Sink:
     if getattr(args, "write", None) == STDOUT:
         # Standard output is the pcap: lines only with -P, on standard error (as tshark -w - -P).
         if not getattr(args, "print_too", False):
             return NullSink()
         out, is_terminal = err, False
+    if getattr(args, "watch", None) is not None:
+        from dissector.render.watch import WatchSink
+
+        return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
@@ -207,7 +212,7 @@ def run_live(
     sink: Sink = NullSink()
     try:
         with StopFlag() as stop:
-            sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats)
+            sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
             capture.start()
             display(capture, handoff, dissector, sink, stats, stop)
     finally:
