@@ -47,6 +47,23 @@ class Kind(StrEnum):
     NOISE = "noise"
 
 
+class Note(str):
+    """A note as JSON and -V keep it (the whole text), with the short form a summary line shows and
+    whether it is a key event (a parameter that became protected or non-existent: highlighted)."""
+
+    short: str
+    key: bool
+
+    def __new__(cls, text: str, short: str | None = None, key: bool = False) -> Note:
+        note = super().__new__(cls, text)
+        note.short = text if short is None else short
+        note.key = key
+        return note
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, bool]]:
+        return Note, (str(self), self.short, self.key)
+
+
 # What a device profile says about a register it read (Register.status); filters name these.
 REGISTER_STATUSES = ("ok", "protected", "non-existent", "ambiguous")
 

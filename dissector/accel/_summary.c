@@ -289,7 +289,8 @@ static int fill_slave(Slave *s, PyObject *info) {
         }
         s->base[k] = PyLong_AsLongLong(base);
         if (PyErr_Occurred()) return -1;
-        if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
+        /* odd labels (and zero-padded 0X/1X references): leave them to Python */
+        if (s->base[k] < 10000 || s->base[k] > 999999999) s->usable = 0;
     }
     return 0;
 }
@@ -951,7 +952,26 @@ static void engine_dealloc(Engine *e) {
     Py_TYPE(e)->tp_free((PyObject *)e);
 }
 
+/* forget(slave): ask slave_info again on the slave's next transaction (its device profile changed). */
+static PyObject *engine_forget(Engine *e, PyObject *args) {
+    int address;
+    if (!PyArg_ParseTuple(args, "i", &address)) return NULL;
+    if (address < 0 || address > 255) {
+        PyErr_SetString(PyExc_ValueError, "forget: slave outside 0..255");
+        return NULL;
+    }
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "forget: not while run() is running");
+        return NULL;
+    }
+    slave_clear(&e->slaves[address]);
+    pieces_clear(e); /* register texts of the old profile (rare: a profile changes a few times a run) */
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef engine_methods[] = {
+    {"forget", (PyCFunction)engine_forget, METH_VARARGS,
+     "forget(slave): ask slave_info again on the slave's next transaction (its profile changed)."},
     {"run", (PyCFunction)engine_run, METH_VARARGS,
      "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
      "position on; status 0: needs more bytes, 1: hand the stream over at position."},

@@ -58,6 +58,10 @@ def make_engine(annotator: Any | None) -> Any:
             return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
             return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
+        if not annotator.settled(slave):
+            # Profile `auto` still judges this slave's traffic: its frames go through the annotator
+            # until it is settled (SummaryPath.forget_changed asks again then).
+            return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
             function: (function_label(function, special), check)
@@ -86,6 +90,7 @@ class SummaryPath:
         self.framer = dissector.framer
         self.pairer = dissector.pairer
         self.engine = make_engine(annotator)
+        self.annotator = annotator
         self.write_items = write_items
         self.write_lines = write_lines
         self.buf = b""  # bytes not given to either side yet start at buf[pos], absolute offset base+pos
@@ -143,6 +148,16 @@ class SummaryPath:
         self.run_left = self.run_size
         self.python = True
 
+    def forget_changed(self) -> None:
+        """Slaves whose device profile changed (or settled) while the Python stages had the stream are
+        asked about again: the engine shows them from then on."""
+        annotator = self.annotator
+        changed = getattr(annotator, "changed", None)
+        if changed:
+            for slave in changed:
+                self.engine.forget(slave)
+            changed.clear()
+
     def _python_frames(self) -> None:
         framer = self.framer
         if self.run_left:
@@ -155,6 +170,7 @@ class SummaryPath:
                 return  # the run goes on with the next chunk
         while True:
             if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+                self.forget_changed()
                 offset, rest, expect = framer.hand_back()
                 self.buf = rest + self.buf[self.pos :]
                 self.base, self.pos = offset, 0

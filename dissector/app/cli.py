@@ -435,6 +435,9 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
+        # Profile `auto`: which device each slave was taken for, and why.
+        for line in getattr(annotate, "profile_report", lambda: [])():
+            env.stderr.write(f"{PROG}: {line}\n")
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly

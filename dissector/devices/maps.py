@@ -14,6 +14,8 @@ row per register. Lines starting with `#` are comments (the source legend lives 
     signed   `1` when the raw word is a two's complement signed value, empty (or 0) otherwise
     source   where the row comes from (a letter explained in the file's legend comment)
 
+Maps come as spreadsheets save them: UTF-8 with or without a BOM, separated by `,` or, as European
+Excel writes CSV, `;` (or a tab), told from the header line (cells holding the separator are quoted).
 Only `address` and `code` are required in a user's map; the other columns may be left out of the header.
 Every malformed line is reported as `file:line: what is wrong`, never skipped.
 """
@@ -21,6 +23,7 @@ from __future__ import annotations
 
 from dissector.errors import ProfileError
 import csv
+import re
 from dataclasses import dataclass, field
 from decimal import Decimal, InvalidOperation
 from importlib import resources
@@ -145,17 +148,31 @@ def _row(values: dict[str, str]) -> RegisterDef:
     )
 
 
+_DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
+
+
+def _sniff(header: str) -> str:
+    """The separator of a map from its header line: the one of `,`, `;`, tab that splits it most."""
+    counts = {separator: header.count(separator) for separator in (",", ";", "\t")}
+    best = max(counts, key=lambda separator: counts[separator])
+    return best if counts[best] else ","
+
+
 def parse_map(text: str, origin: str) -> RegisterMap:
     """Parse map text; `origin` names the file in error messages."""
     header: list[str] | None = None
+    text = text.removeprefix("\ufeff")  # the BOM Excel writes in "CSV UTF-8"
+    delimiter = ","
     rows: RegisterMap = {}
     first_line: dict[int, int] = {}
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
+        if header is None:
+            delimiter = _sniff(line)
         try:
-            cells = next(csv.reader([line]))
+            cells = next(csv.reader([line], delimiter=delimiter))
         except csv.Error as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
@@ -174,10 +191,14 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         if len(cells) != len(header):
             raise ProfileError(
                 f"{origin}:{number}: {len(cells)} fields, the header has {len(header)} "
-                "(quote a field that holds a comma)"
+                f"(quote a field that holds a {'comma' if delimiter == ',' else repr(delimiter)})"
             )
+        values = dict(zip(header, cells))
+        scale = values.get("scale", "")
+        if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip()):
+            values["scale"] = scale.replace(",", ".")  # `0,1`: the decimal comma of the same spreadsheets
         try:
-            row = _row(dict(zip(header, cells)))
+            row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if row.address in rows:

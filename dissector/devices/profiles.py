@@ -29,7 +29,9 @@ __all__ = [
 ]
 
 BUILTIN_PROFILES = ("atv71", "sel749m", "generic")
-DEFAULT_PROFILE = "atv71"
+AUTO = "auto"  # not a profile: each slave gets one from evidence in the capture (devices/selection.py)
+DEFAULT_PROFILE = AUTO
+FALLBACK_PROFILE = "generic"  # what `auto` gives a slave until evidence arrives
 ADDRESS_STYLES = ("plc", "protocol")
 _WHEN = ("quantity", "byte_count")
 
@@ -77,6 +79,10 @@ class Profile:
     plc_base: dict[int, int] = field(default_factory=dict)
     plc_base_default: int = 40001
     bits_depend: tuple[BitsDepend, ...] = ()
+    # [identify]: what tells profile `auto` a slave is this device (devices/selection.py).
+    product_codes: tuple[str, ...] = ()  # FC43 ProductCode prefixes
+    identifying_functions: frozenset[int] = frozenset()  # function codes only this device speaks
+    traffic_fit: bool = False  # may be chosen because the traffic fits its map alone
 
 
 # -- loading ------------------------------------------------------------------------------------------
@@ -205,7 +211,7 @@ _KNOWN_KEYS = frozenset(
     [
         "name", "title", "device", "map", "address_style", "functions", "inner_only", "broadcast",
         "protected_value", "all_protected_exception", "limits", "exceptions", "exception_causes",
-        "diagnostics", "objects", "function_names", "plc_base", "bits_depend",
+        "diagnostics", "objects", "function_names", "plc_base", "bits_depend", "identify",
     ]
 )
 
@@ -232,6 +238,16 @@ def parse_profile(text: str, origin: str) -> Profile:
         for key, value in plc.items()
         if key != "default"
     }
+    identify = reader.table(data, "identify")
+    unknown = sorted(set(identify) - {"product_codes", "functions", "traffic_fit"})
+    if unknown:
+        raise reader.fail(f"unknown key {unknown[0]!r} in [identify]")
+    product_codes = identify.get("product_codes", [])
+    if not isinstance(product_codes, list) or not all(isinstance(code, str) and code for code in product_codes):
+        raise reader.fail("[identify] product_codes must be a list of strings")
+    traffic_fit = identify.get("traffic_fit", False)
+    if not isinstance(traffic_fit, bool):
+        raise reader.fail("[identify] traffic_fit must be true or false")
     protected = data.get("protected_value")
     all_protected = data.get("all_protected_exception")
     return Profile(
@@ -258,6 +274,9 @@ def parse_profile(text: str, origin: str) -> Profile:
         plc_base=plc_base,
         plc_base_default=plc_default,
         bits_depend=_bits_depend(reader, data),
+        product_codes=tuple(product_codes),
+        identifying_functions=reader.codes(identify, "functions") or frozenset(),
+        traffic_fit=traffic_fit,
     )
 
 

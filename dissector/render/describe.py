@@ -91,8 +91,8 @@ def info_text(frame: Frame) -> str:
     name = function_label(function, frame.function_text)
     if frame.kind is Kind.EXCEPTION:
         code = frame.exception_code
-        meaning = frame.exception_text or SPEC.exception_name(code)
-        return f"{name}: exception {code if code is not None else '?'} ({meaning})"
+        # The spec's name always; what it means on the device is said once, in a note.
+        return f"{name}: exception {code if code is not None else '?'} ({SPEC.exception_name(code)})"
     fields = frame.fields
     if fields is None:
         return f"{name} (malformed)"

@@ -128,7 +128,7 @@ def detail_tree(item: Item, base: float | None = None) -> Node:
     if frame.unanswered:
         root.add("No response", "vw3.warning")
     for note in frame.notes:
-        root.add(f"Note: {note}", "vw3.protected")
+        root.add(f"Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note")
     for warning in frame.warnings:
         root.add(f"Warning: {warning}", "vw3.warning")
     return root

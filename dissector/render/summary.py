@@ -26,6 +26,39 @@ def crc_text(frame: Frame) -> str:
     return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
 
 
+NOTES_BUDGET = 200  # characters of notes a summary line shows; the rest is counted (all in -V, JSON)
+
+
+def tail_parts(frame: Frame) -> list[tuple[str, str]]:
+    """Pairing and findings appended to the info column, as (text, style name) pieces.
+
+    Notes show their short form (devices/story.py) and, past NOTES_BUDGET characters, only their
+    number; key events (a parameter that became protected) are styled apart from the dim pairing."""
+    parts: list[tuple[str, str]] = []
+    request = frame.request
+    if request is not None:
+        rt = frame.response_time
+        parts.append((f"[#{request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"), "vw3.pairing"))
+    elif frame.kind is not Kind.REQUEST:
+        parts.append(("[no request]", "vw3.pairing"))
+    if frame.broadcast:
+        parts.append(("[broadcast]", "vw3.pairing"))
+    if frame.unanswered:
+        parts.append(("[no response]", "vw3.warning"))
+    used = 0
+    notes = frame.notes
+    for index, note in enumerate(notes):
+        text = f"[{getattr(note, 'short', note)}]"
+        if used and used + len(text) > NOTES_BUDGET:
+            rest = len(notes) - index
+            parts.append((f"[+{rest} more note{'s' if rest > 1 else ''}]", "vw3.pairing"))
+            break
+        used += len(text)
+        parts.append((text, "vw3.key" if getattr(note, "key", False) else "vw3.note"))
+    parts.extend((f"[warning: {warning}]", "vw3.warning") for warning in frame.warnings)
+    return parts
+
+
 def tail_text(frame: Frame) -> str:
     """Pairing and findings appended to the info column."""
     request = frame.request
@@ -35,19 +68,7 @@ def tail_text(frame: Frame) -> str:
                 return ""
         elif frame.time is None:
             return f"[#{request.number}]"  # the common cases, kept cheap
-    parts = []
-    if frame.request is not None:
-        rt = frame.response_time
-        parts.append(f"[#{frame.request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"))
-    elif frame.kind is not Kind.REQUEST:
-        parts.append("[no request]")
-    if frame.broadcast:
-        parts.append("[broadcast]")
-    if frame.unanswered:
-        parts.append("[no response]")
-    parts.extend(f"[{note}]" for note in frame.notes)
-    parts.extend(f"[warning: {warning}]" for warning in frame.warnings)
-    return " ".join(parts)
+    return " ".join(text for text, _ in tail_parts(frame))
 
 
 def noise_info(noise: Noise) -> str:
@@ -100,10 +121,9 @@ def summary_text(item: Item, base: float | None = None, column: str | None = Non
     text.append(f"{frame.slave:>3} ", "vw3.slave")
     text.append(f"{frame.kind.value:<9} ", _KIND_STYLE[frame.kind])
     text.append(info_text(frame))
-    tail = tail_text(frame)
-    if tail:
-        style = "vw3.warning" if frame.warnings or frame.unanswered else "vw3.pairing"
-        text.append(" " + tail, style)
+    for part, style in tail_parts(frame):
+        text.append(" ")
+        text.append(part, style)
     text.append("  ")
     text.append(crc_text(frame), "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad")
     return text

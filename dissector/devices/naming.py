@@ -1,0 +1,40 @@
+"""Register naming: the address a screen shows (protocol or PLC style) and a register named and read
+from its map row. One job: what a register is called and what its value means."""
+from __future__ import annotations
+
+from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
+from dissector.model import Register
+
+
+def plc_label(base: int, address: int) -> str:
+    """`40001 + address` up to 49999, then 6-digit references (`400001 + address`); 00001 for coils."""
+    digits = len(str(base))
+    top = (base // 10 ** (digits - 1) + 1) * 10 ** (digits - 1) - 1
+    number = base + address
+    if number > top:
+        number = base * 10 - 9 + address
+    # Coil references start at 00001: a plain int would lose the leading zeros the PLC world writes.
+    width = 5 if number < 100000 else 6
+    return f"{number:0{width}d}"
+
+
+def address_name(row: RegisterDef | None, address: int, label: str | None = None) -> str:
+    """`CHCF (8401)` for a mapped register, `8400` otherwise (`label`: the address as the screen shows it)."""
+    shown = label if label is not None else str(address)
+    return f"{row.code} ({shown})" if row is not None else shown
+
+
+def name_register(register: Register, row: RegisterDef, used: RegisterDef) -> None:
+    """Name and read a register from its map row (`used`: the row, or its plain form under bits_depend)."""
+    register.code = row.code
+    register.name = row.name
+    register.unit = row.unit
+    register.source = row.source
+    value = register.value
+    memo = used.memo
+    reading = memo.get(value)
+    if reading is None:
+        reading = interpret(used, value)
+        if len(memo) < MEMO_LIMIT:
+            memo[value] = reading
+    register.scaled, register.text = reading
