@@ -130,7 +130,16 @@ def _diagnostics(frame: Frame, request: bool) -> str:
     if len(data) == 2:
         value = int.from_bytes(data, "big")
         return f"{sub:02X}h {sub_name} = {value}"
-    return f"{sub:02X}h {sub_name}" + (f" data {data.hex()}" if data else "")
+    return f"{sub:02X}h {sub_name}" + (f" data {_hex_preview(data)}" if data else "")
+
+
+MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
+
+
+def _hex_preview(data: bytes) -> str:
+    if len(data) <= MAX_DATA_BYTES:
+        return data.hex()
+    return f"{data[:MAX_DATA_BYTES].hex()}… (+{len(data) - MAX_DATA_BYTES} bytes)"
 
 
 def _write_multiple(frame: Frame, request: bool) -> str:

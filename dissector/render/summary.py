@@ -26,7 +26,8 @@ def crc_text(frame: Frame) -> str:
     return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
 
 
-NOTES_BUDGET = 200  # characters of notes a summary line shows; the rest is counted (all in -V, JSON)
+NOTES_BUDGET = 240  # characters of notes (and of warnings) a summary line shows; the rest is counted
+# (-V and JSON have them all)
 
 
 def tail_parts(frame: Frame) -> list[tuple[str, str]]:
@@ -45,18 +46,24 @@ def tail_parts(frame: Frame) -> list[tuple[str, str]]:
         parts.append(("[broadcast]", "vw3.pairing"))
     if frame.unanswered:
         parts.append(("[no response]", "vw3.warning"))
-    used = 0
-    notes = frame.notes
-    for index, note in enumerate(notes):
-        text = f"[{getattr(note, 'short', note)}]"
-        if used and used + len(text) > NOTES_BUDGET:
-            rest = len(notes) - index
-            parts.append((f"[+{rest} more note{'s' if rest > 1 else ''}]", "vw3.pairing"))
-            break
-        used += len(text)
-        parts.append((text, "vw3.key" if getattr(note, "key", False) else "vw3.note"))
-    parts.extend((f"[warning: {warning}]", "vw3.warning") for warning in frame.warnings)
+    _budgeted(parts, [(f"[{getattr(note, 'short', note)}]", note) for note in frame.notes], "note")
+    _budgeted(parts, [(f"[warning: {warning}]", warning) for warning in frame.warnings], "warning")
     return parts
+
+
+def _budgeted(parts: list[tuple[str, str]], texts: list[tuple[str, str]], what: str) -> None:
+    """The first text always, more while they fit in NOTES_BUDGET characters, then their number."""
+    used = 0
+    for index, (text, item) in enumerate(texts):
+        if used and used + len(text) > NOTES_BUDGET:
+            rest = len(texts) - index
+            parts.append((f"[+{rest} more {what}{'s' if rest > 1 else ''}]", "vw3.pairing"))
+            return
+        used += len(text)
+        if what == "warning":
+            parts.append((text, "vw3.warning"))
+        else:
+            parts.append((text, "vw3.key" if getattr(item, "key", False) else "vw3.note"))
 
 
 def tail_text(frame: Frame) -> str:
