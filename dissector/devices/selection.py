@@ -20,6 +20,7 @@ from dissector.devices.profiles import Profile
 from dissector.model import Frame, Kind
 
 FIT_ANSWERS = 8  # answers of a slave its traffic is judged on
+FIT_FRAMES = 4 * FIT_ANSWERS  # frames of a slave that seldom answers, the same
 _PRODUCT_CODE = 1  # FC43 object 01h ProductCode
 
 
@@ -40,6 +41,7 @@ class ProfileChoice:
 @dataclass(slots=True)
 class _Judged:
     answers: int = 0
+    frames: int = 0
     choice: ProfileChoice | None = None
 
 
@@ -54,7 +56,11 @@ class Selector:
     def settled(self, slave: int) -> bool:
         """No later frame can change this slave's profile unless it is handed to observe()."""
         judged = self._slaves.get(slave)
-        return judged is not None and (judged.answers >= FIT_ANSWERS or (judged.choice is not None and judged.choice.final))
+        return judged is not None and (
+            judged.answers >= FIT_ANSWERS
+            or judged.frames >= FIT_FRAMES
+            or (judged.choice is not None and judged.choice.final)
+        )
 
     def choice(self, slave: int) -> ProfileChoice | None:
         judged = self._slaves.get(slave)
@@ -71,6 +77,10 @@ class Selector:
         current = judged.choice
         if current is not None and current.final:
             return None
+        # Once settled, traffic decides nothing more: the compiled path shows the slave's plain
+        # transactions itself from then on, and must agree with what this would have said.
+        judging = not self.settled(slave)
+        judged.frames += 1
         found = self._identified(frame)
         if found is not None:
             judged.choice = found
@@ -88,7 +98,7 @@ class Selector:
                 )
                 return judged.choice
             return None
-        if judged.answers > FIT_ANSWERS:
+        if not judging:
             return None
         fits = [profile for profile, rows in self.candidates if _fits(frame, profile, rows)]
         if len(fits) == 1:
