@@ -22,11 +22,12 @@ from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 __all__ = ["Annotator", "MapLayer", "ProfileChoice"]
 
-_READS = frozenset([3, 4, 23])  # functions whose response registers are values read from the device
+_READS = table.register_reads()  # functions whose response registers are values read from the device
 _HAS_LABEL = "label" in Register.__dataclass_fields__
 _REQUEST = Kind.REQUEST
 _RESPONSE = Kind.RESPONSE

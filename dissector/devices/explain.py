@@ -9,10 +9,11 @@ from dissector.devices.naming import address_name, plc_label
 from dissector.devices.profiles import ExceptionCause, Profile
 from dissector.devices.story import Event, listed
 from dissector.model import Frame, Note
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 # Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
-PLAIN_READS = frozenset([3, 4])
+PLAIN_READS = table.plain_register_reads()
 SHORT_PARTS = 6  # runs of parameters a summary line names in an exception explanation
 READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 _EXPLAINED_LIMIT = 4096  # explanations kept per device: memory stays bounded whatever the capture

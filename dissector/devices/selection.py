@@ -18,7 +18,9 @@ from dataclasses import dataclass
 from dissector.devices.maps import RegisterMap
 from dissector.devices.profiles import Profile
 from dissector.model import Frame, Kind
+from dissector.protocol import table
 
+_READS = table.register_reads()  # answers whose registers are values read (16#8000 can mean non-existent)
 FIT_ANSWERS = 8  # answers of a slave its traffic is judged on
 FIT_FRAMES = 4 * FIT_ANSWERS  # frames of a slave that seldom answers, the same
 _PRODUCT_CODE = 1  # FC43 object 01h ProductCode
@@ -155,7 +157,7 @@ def _fits(frame: Frame, profile: Profile, rows: RegisterMap) -> bool:
             return False
         if address in rows:
             known += 1
-        elif register.value != profile.protected_value or frame.function not in (3, 4, 23):
+        elif register.value != profile.protected_value or frame.function not in _READS:
             return False
     return known > 0
 
