@@ -85,6 +85,9 @@ class Register:
     status: str | None = None
     source: str | None = None
     label: str | None = None  # display address (e.g. `40101` in PLC style); None: the number itself
+    # A 32-bit map row spans two registers: its value is read on the first (`words` 2, `scaled`/`text`
+    # of both words), the second says it continues it (`words` 0). 1: a register on its own.
+    words: int = 1
 
 
 @dataclass(slots=True)

@@ -59,9 +59,9 @@ def make_engine(annotator: Any | None) -> Any:
             return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
             return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
-        if not annotator.settled(slave):
-            # Profile `auto` still judges this slave's traffic: its frames go through the annotator
-            # until it is settled (SummaryPath.forget_changed asks again then).
+        if not annotator.compilable(slave):
+            # Profile `auto` still judges this slave's traffic (SummaryPath.forget_changed asks again
+            # once it is settled), or its map has 32-bit values: its frames go through the annotator.
             return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {

@@ -17,7 +17,7 @@ from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import explain_exception
 from dissector.devices.maps import RegisterDef
 from dissector.devices.memory import readable_again, remember_writes, unreadable
-from dissector.devices.naming import name_register, plc_label
+from dissector.devices.naming import name_register, name_wide, plc_label
 from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
@@ -118,6 +118,11 @@ class Annotator:
     def settled(self, slave: int) -> bool:
         """The profile of this slave can change only through frames the compiled path hands over."""
         return self.selector is None or slave in self.per_slave or self.selector.settled(slave)
+
+    def compilable(self, slave: int) -> bool:
+        """The compiled path may show this slave's plain transactions: its profile is settled, and its
+        map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
+        return self.settled(slave) and not self.device(slave).wide
 
     # -- setup ----------------------------------------------------------------------------------------
     def device(self, slave: int) -> Device:
@@ -252,7 +257,7 @@ class Annotator:
         multi = len(registers) > 1
         seen = device.seen
         number = frame.number
-        for register in registers:
+        for index, register in enumerate(registers):
             address = register.address
             if address is None:
                 continue
@@ -264,13 +269,16 @@ class Annotator:
             row = rows.get(address)
             value = register.value
             if row is not None:
-                used = row
-                if depend and address in depend:
-                    used = _depend(frame, device, address)
-                name_register(register, row, used)
+                if row.words == 2:
+                    name_wide(registers, index, row)
+                else:
+                    used = row
+                    if depend and address in depend:
+                        used = _depend(frame, device, address)
+                    name_register(register, row, used)
             if protected is None:
                 continue
-            if value == protected and multi:
+            if value == protected and multi and register.words == 1:
                 unreadable(frame, device, register, row, events)
                 continue
             register.status = "ok"

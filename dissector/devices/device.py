@@ -40,6 +40,7 @@ class Device:
     unchecked: frozenset[int]
     # Supported functions with a device limit: checked inline before the full (slower) check.
     limited: dict[int, tuple[int, ...]]
+    wide: bool = False  # the map has 32-bit rows
     seen: dict[int, Seen] = field(default_factory=dict)
     labels: dict[int, dict[int, str]] = field(default_factory=dict)
     # Exception explanations depend on the request's bytes alone: a PLC that polls a protected block
@@ -89,6 +90,7 @@ class DeviceBuilder:
             plc_default=profile.plc_base_default,
             track=profile.protected_value is not None or bool(depend),
             unchecked=frozenset(supported - profile.inner_only - set(profile.limits)),
+            wide=any(row.words == 2 for row in rows.values()),
             limited={
                 function: limits
                 for function, limits in profile.limits.items()

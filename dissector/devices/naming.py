@@ -2,7 +2,7 @@
 from its map row. One job: what a register is called and what its value means."""
 from __future__ import annotations
 
-from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
+from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret, interpret_wide
 from dissector.model import Register
 
 
@@ -38,3 +38,24 @@ def name_register(register: Register, row: RegisterDef, used: RegisterDef) -> No
         if len(memo) < MEMO_LIMIT:
             memo[value] = reading
     register.scaled, register.text = reading
+
+
+def name_wide(registers: list[Register], index: int, row: RegisterDef) -> None:
+    """A 32-bit row over registers[index] and the next: one value, read on the first register."""
+    first = registers[index]
+    first.code = row.code
+    first.name = row.name
+    first.unit = row.unit
+    first.source = row.source
+    second = registers[index + 1] if index + 1 < len(registers) else None
+    if second is None or second.address != (first.address + 1) & 0xFFFF:  # type: ignore[operator]
+        first.text = f"first word of a {row.kind}, the second is not in this frame"
+        return
+    first.scaled, first.text = interpret_wide(row, first.value, second.value)
+    first.words = 2
+    second.code = row.code
+    second.name = row.name
+    second.unit = row.unit
+    second.source = row.source
+    second.text = f"second word of {row.code}"
+    second.words = 0

@@ -66,6 +66,9 @@ def register_text(register: Register, index: int = 0) -> str:
 
 def values_text(frame: Frame) -> str:
     registers = frame.registers or []
+    if any(register.words == 0 for register in registers):
+        # A 32-bit value is one value over two registers: its second register is not listed again.
+        registers = [register for register in registers if register.words != 0]
     parts = [register_text(register, index) for index, register in enumerate(registers[:MAX_VALUES])]
     if len(registers) > MAX_VALUES:
         parts.append(f"… (+{len(registers) - MAX_VALUES})")

@@ -48,6 +48,8 @@ def _register_node(parent: Node, register: Register) -> None:
     node = parent.add(head, style)
     if register.text is not None:
         node.add(f"Value: {register.text}")
+    if register.words == 2:
+        node.add("32-bit value: this register and the next")
     if register.status is not None:
         node.add(f"Status: {register.status}", style)
     if register.unit:

@@ -19,6 +19,8 @@ def register_to_dict(register: Register) -> dict[str, Any]:
         value = getattr(register, key, None)
         if value is not None:
             out[key] = value
+    if register.words != 1:
+        out["words"] = register.words  # 2: a 32-bit value read on this register and the next; 0: that next
     return out
 
 
