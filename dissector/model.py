@@ -76,7 +76,7 @@ class Register:
     """
 
     address: int | None
-    value: int
+    value: int  # None only on an exception whose meaning tells the registers' status (p.38 exception 02)
     code: str | None = None
     name: str | None = None
     unit: str | None = None

@@ -8,7 +8,7 @@ from dissector.devices.memory import lost
 from dissector.devices.naming import address_name, plc_label
 from dissector.devices.profiles import ExceptionCause, Profile
 from dissector.devices.story import Event, listed
-from dissector.model import Frame, Note
+from dissector.model import Frame, Note, Register
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
@@ -92,8 +92,18 @@ def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[E
     note, lost_ = known  # type: ignore[misc]
     frame.notes.append(note)
     now = f"exception {frame.exception_code:02X} now"
+    # The registers the story is about, with the status it infers and no value (none was sent), so
+    # that `status == "protected"` finds this frame as it finds a 16#8000 read.
+    inferred = f"no value: exception {frame.exception_code:02X}"
+    registers = []
     for address, row, label in lost_:
-        lost(frame, device, address, row, "non-existent" if row is None else "protected", now, label, events)
+        status = "non-existent" if row is None else "protected"
+        lost(frame, device, address, row, status, now, label, events)
+        register = Register(address, None, status=status, text=inferred, label=label)  # type: ignore[arg-type]
+        if row is not None:
+            register.code, register.name, register.unit, register.source = row.code, row.name, row.unit, row.source
+        registers.append(register)
+    frame.registers = registers
 
 
 def _part(run: list[tuple[int, object, str | None]]) -> tuple[str, int]:

@@ -39,7 +39,10 @@ def _utc(seconds: float) -> str:
 
 def _register_node(parent: Node, register: Register) -> None:
     address = register.label or ("?" if register.address is None else str(register.address))
-    head = f"Register {address}: {register.value} (0x{register.value:04X})"
+    if register.value is None:  # a status an exception tells, no value on the wire
+        head = f"Register {address}: no value"
+    else:
+        head = f"Register {address}: {register.value} (0x{register.value:04X})"
     if register.code:
         head += f"  {register.code}"
         if register.name:
