@@ -376,7 +376,13 @@ local DATA = {
         },
       },
       ["function_names"] = {},
-      ["plc_base"] = {},
+      ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
+        [4] = 30001,
+        [5] = 1,
+        [15] = 1,
+      },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {
         {
@@ -986,7 +992,13 @@ local DATA = {
         [125] = "Encapsulated Packet With Control",
         [126] = "NOP",
       },
-      ["plc_base"] = {},
+      ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
+        [4] = 40001,
+        [5] = 1,
+        [15] = 1,
+      },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
       ["map"] = {},
@@ -1010,7 +1022,11 @@ local DATA = {
       ["objects"] = {},
       ["function_names"] = {},
       ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
         [4] = 30001,
+        [5] = 1,
+        [15] = 1,
       },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
@@ -2233,18 +2249,23 @@ local plc_label
 do
 local PLC_TOP = {} -- the highest reference of each base's digit count
 plc_label = function(base, address)
-  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
+  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
+  -- references keep their zeros (00001), as naming.plc_label.
+  local digits = #format("%d", base)
+  if digits < 5 then digits = 5 end
   local top = PLC_TOP[base]
   if top == nil then
-    local digits = #format("%d", base)
     local power = 1
     for _ = 2, digits do power = power * 10 end
     top = (floor(base / power) + 1) * power - 1
     PLC_TOP[base] = top
   end
   local number = base + address
-  if number > top then number = base * 10 - 9 + address end
-  return format("%d", number)
+  if number > top then
+    number = base * 10 - 9 + address
+    digits = digits + 1
+  end
+  return format("%0" .. digits .. "d", number)
 end
 end
 

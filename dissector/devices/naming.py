@@ -7,15 +7,15 @@ from dissector.model import Register
 
 
 def plc_label(base: int, address: int) -> str:
-    """`40001 + address` up to 49999, then 6-digit references (`400001 + address`); 00001 for coils."""
-    digits = len(str(base))
-    top = (base // 10 ** (digits - 1) + 1) * 10 ** (digits - 1) - 1
+    """`40001 + address` up to 49999, then 6-digit references (`400001 + address`); coils as 00001."""
+    digits = max(5, len(str(base)))  # coil references (base 1) are written with their zeros: 00001
+    power = 10 ** (digits - 1)
+    top = (base // power + 1) * power - 1
     number = base + address
     if number > top:
         number = base * 10 - 9 + address
-    # Coil references start at 00001: a plain int would lose the leading zeros the PLC world writes.
-    width = 5 if number < 100000 else 6
-    return f"{number:0{width}d}"
+        digits += 1
+    return f"{number:0{digits}d}"
 
 
 def address_name(row: RegisterDef | None, address: int, label: str | None = None) -> str:

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from dissector.devices.maps import ProfileError, RegisterMap, load_builtin_map, load_map_file
+from dissector.protocol.spec import SPEC
 
 
 __all__ = [
@@ -233,11 +234,13 @@ def parse_profile(text: str, origin: str) -> Profile:
         raise reader.fail(f"address_style {style!r} is not one of {', '.join(ADDRESS_STYLES)}")
     plc = reader.table(data, "plc_base")
     plc_default = reader.integer(plc.get("default", 40001), "[plc_base] default", 0, 999999)
-    plc_base = {
-        reader.integer(key, "[plc_base] key", 1, 255): reader.integer(value, f"[plc_base] {key}", 0, 999999)
+    # The Modbus convention (0X coils, 1X inputs, 3X input registers) unless the profile says otherwise.
+    plc_base = dict(SPEC.plc_references)
+    plc_base.update(
+        (reader.integer(key, "[plc_base] key", 1, 255), reader.integer(value, f"[plc_base] {key}", 0, 999999))
         for key, value in plc.items()
         if key != "default"
-    }
+    )
     identify = reader.table(data, "identify")
     unknown = sorted(set(identify) - {"product_codes", "functions", "traffic_fit"})
     if unknown:
