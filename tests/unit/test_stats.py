@@ -216,7 +216,7 @@ def test_plain_tables_are_the_same_numbers_at_full_width() -> None:
         "Ready to switch on, Voltage enabled, Quick stop inactive, Remote        4"
     ) in lines
     assert "    2       3104  HSP       1           0       1        0  55.0 Hz" + " " * 65 + "1" in lines
-    assert "    2  23 Read/Write Multiple Registers  read 3201..3202 (2), write 8501..8502 (2)     40    50.4     6.5       1" in lines
+    assert "    2  23 Read/Write Multiple Registers  read 3201..3202 (2), write 8501..8502 (2)     40    50.4     6.4       1" in lines
 
 
 def test_parameter_ranges_with_the_same_story_and_the_cap() -> None:
