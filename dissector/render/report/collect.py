@@ -230,10 +230,12 @@ class ReportCollector:
             return
         slave = frame.slave
         col = self._col(x)
+        all_series = self.series
         for register in registers:
-            if register.address is None:
+            address = register.address
+            if address is None:
                 continue
-            series = self.series.get((slave, register.address))
+            series = all_series.get((slave, address))
             if series is None:
                 series = self._series(slave, register)
                 if series is None:
@@ -262,7 +264,22 @@ class ReportCollector:
                 self._event(x, "protection", slave, f"{_name(series)} readable again")
                 series.status = None
             series.values += 1
-            series.columns.add(col, x, y)
+            # Columns.add inlined: this runs once per register value of the capture.
+            columns = series.columns
+            done = columns.done
+            if col != columns.col:
+                columns.col = col
+                done.extend((x, y, x, y, x, y, x, y))
+                continue
+            base = len(done) - 8
+            if y < done[base + 3]:
+                done[base + 2] = x
+                done[base + 3] = y
+            elif y > done[base + 5]:
+                done[base + 4] = x
+                done[base + 5] = y
+            done[base + 6] = x
+            done[base + 7] = y
 
     def _unreadable(self, x: float, frame: Frame, series: Series, status: str) -> None:
         if series.status == status:
