@@ -90,6 +90,12 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
     )
     # -- slaves
     parts.append('<h2 id="slaves">Slaves</h2>')
+    if summary["profiles"]:
+        parts.append("<h3>Device profiles</h3>" + _table(["slave", "profile", "why"], [
+            [choice["slave"], choice["profile"],
+             choice["reason"] + (f" (frame #{choice['frame']})" if choice["frame"] is not None else "")]
+            for choice in summary["profiles"]
+        ]))
     rows = []
     for entry in slaves:
         exceptions = " ".join(f"{code:02X}:{count}" if code >= 0 else f"?:{count}"
