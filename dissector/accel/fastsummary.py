@@ -23,6 +23,7 @@ from typing import Any
 from dissector.model import Chunk, Item
 from dissector.pipeline import Dissector
 from dissector.render.describe import function_label, register_text
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 try:
@@ -30,7 +31,7 @@ try:
 except ImportError:  # built without a C compiler: the Python stages do everything
     _summary = None  # type: ignore[assignment]
 
-HANDLED = (3, 4, 6, 16, 23)  # function codes the compiled path decodes (_summary.c)
+HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c, through _tables.h)
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
@@ -45,7 +46,7 @@ def available() -> bool:
 
 
 def _limits() -> tuple[tuple[int, int], ...]:
-    names = ("read_registers", "write_registers", "rw_read", "rw_write")
+    names = table.compiled_limits()  # the order of LIMIT_* in _tables.h
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
 
 
