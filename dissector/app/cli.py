@@ -218,7 +218,7 @@ class Sinks:
         if args.stats:
             from dissector.render.stats import StatsCollector
 
-            self.stats = StatsCollector()
+            self.stats = StatsCollector(getattr(annotate, "choices", None))
         self.stats_shown = args.stats
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
@@ -296,7 +296,7 @@ class Sinks:
         if self.report is not None:
             self.report.collector.add_items(items)
         if self.show:
-            if self.clock.format == "d":
+            if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
             self.output.write(items, self.extra, records)
 
