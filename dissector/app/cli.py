@@ -460,9 +460,11 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
-        # Profile `auto`: which device each slave was taken for, and why.
-        for line in getattr(annotate, "profile_report", lambda: [])():
-            env.stderr.write(f"{PROG}: {line}\n")
+        # Profile `auto`: which device each slave was taken for, and why, for the person at the
+        # terminal (a script reads it from --stats; redirected stderr stays free of it).
+        if env.stderr_isatty:
+            for line in getattr(annotate, "profile_report", lambda: [])():
+                env.stderr.write(f"{PROG}: {line}\n")
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly

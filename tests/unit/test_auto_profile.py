@@ -2,6 +2,7 @@
 no device claims are made about a slave before (or without) evidence."""
 from __future__ import annotations
 
+import io
 import json
 import os
 import re
@@ -11,6 +12,7 @@ from pathlib import Path
 
 from helpers import rtu, run_cli
 
+from dissector.app.cli import Environment, run
 from dissector.devices.build import build_annotator
 from dissector.devices.selection import FIT_ANSWERS, ProfileChoice
 from dissector.pipeline import dissect_bytes
@@ -34,8 +36,11 @@ LIBMODBUS = b"".join(
 )
 
 
-def cli(*args: str) -> tuple[int, str, str]:
-    return run_cli(list(args))
+def cli(*args: str, stdin: bytes = b"") -> tuple[int, str, str]:
+    """vw3-decode with stderr on a terminal, where the profile lines are written."""
+    out, err = io.StringIO(), io.StringIO()
+    env = Environment(io.BytesIO(stdin), out, err, stdout_isatty=False, stderr_isatty=True)
+    return run(list(args), env), out.getvalue(), err.getvalue()
 
 
 def test_p38_is_told_as_with_the_atv71_profile_by_traffic_fit() -> None:
@@ -65,7 +70,7 @@ def test_no_vw3_text_about_the_sel_relay_under_the_default_profile() -> None:
 
 
 def test_no_vw3_text_about_a_libmodbus_slave() -> None:
-    status, out, err = run_cli(["-"], stdin=LIBMODBUS)
+    status, out, err = cli("-", stdin=LIBMODBUS)
     assert status == 0
     assert "VW3" not in out and "warning" not in out
     assert out.splitlines()[1] == (
@@ -112,6 +117,12 @@ def test_a_traffic_choice_is_taken_back_by_an_answer_the_device_cannot_give() ->
     ]
 
 
+def test_the_profile_lines_are_for_a_terminal_only() -> None:
+    # Redirected stderr (a script, a log) stays free of them; --stats carries the choices.
+    status, out, err = run_cli([str(P38)])
+    assert status == 0 and err == "" and out == cli(str(P38))[1]
+
+
 def test_choices_name_forced_profiles() -> None:
     annotate = build_annotator(["atv71", "3=sel749m"], [])
     dissect_bytes(rtu("0C 03 0C 1E 00 01") + rtu("03 03 00 00 00 01"), annotate=annotate)
@@ -134,7 +145,7 @@ def _late_identification() -> bytes:
 
 def test_compiled_path_follows_a_late_choice() -> None:
     data = _late_identification()
-    compiled = run_cli(["-"], stdin=data)
+    compiled = cli("-", stdin=data)
     env = dict(os.environ, VW3_PURE_PYTHON="1")
     pure = subprocess.run([sys.executable, "-m", "dissector", "-"], input=data, capture_output=True, cwd=ROOT,
                           env=env, check=True)

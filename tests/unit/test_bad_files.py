@@ -336,7 +336,7 @@ def test_a_closed_standard_stream_is_no_traceback(closed: str) -> None:
                            stdout=subprocess.DEVNULL if closed == "<&-" else None)
     assert "Traceback" not in err
     if closed == "<&-":
-        assert (status, err) == (0, "vw3-decode: profile slave 12: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #2)\n")
+        assert (status, err) == (0, "")
     else:
         (line,) = err.splitlines()
         assert status == 1 and line.startswith(PROG)
