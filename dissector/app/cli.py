@@ -26,7 +26,7 @@ from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.profile_options import add_profile_arguments, annotator_from_args
+from dissector.app.profile_options import add_profile_arguments, annotator_from_args, report_profiles
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.fields import FieldsOptions, parse_fields_options
@@ -460,11 +460,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
-        # Profile `auto`: which device each slave was taken for, and why, for the person at the
-        # terminal (a script reads it from --stats; redirected stderr stays free of it).
-        if env.stderr_isatty:
-            for line in getattr(annotate, "profile_report", lambda: [])():
-                env.stderr.write(f"{PROG}: {line}\n")
+        report_profiles(annotate, env.stderr, env.stderr_isatty)
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly
