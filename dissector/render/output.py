@@ -9,9 +9,9 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
-from dissector.render.detail import detail_tree, render_plain, render_rich
+from dissector.render.detail import detail_text, detail_tree, render_rich
 from dissector.render.hexdump import hexdump
-from dissector.render.jsonout import item_to_dict
+from dissector.render.jsonout import item_to_json
 from dissector.render.summary import summary_line, summary_text
 
 if TYPE_CHECKING:
@@ -72,7 +72,10 @@ class Output:
             if self.base is None and item.time is not None:
                 self.base = item.time
             if options.json:
-                record = records[index] if records is not None else item_to_dict(item)
+                if records is None:
+                    out.append(item_to_json(item, extra))
+                    continue
+                record = records[index]
                 if extra:
                     record.update(extra)
                 out.append(json.dumps(record))
@@ -81,7 +84,7 @@ class Output:
                 self._write_rich(item)
                 continue
             if options.detail:
-                out.append(render_plain(detail_tree(item, self.base)))
+                out.append(detail_text(item, self.base))
             else:
                 out.append(summary_line(item, self.base))
             if options.hexdump:
