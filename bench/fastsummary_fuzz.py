@@ -2,8 +2,9 @@
 
     python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
 
-Random sessions of FC3/4/6/16/23 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD bits_depend
-case, retries, unanswered requests, exceptions, other function codes, noise, bit flips, dropped and
+Random sessions of FC1/2/3/4/5/6/15/16/23 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD
+bits_depend case, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
+requests, exceptions to every code the compiled path shows, other function codes, noise, bit flips, dropped and
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
 with none and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
 reduced to a minimal reproducer; one where the Python framer alone disagrees with itself when the stream
@@ -17,7 +18,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
+sys.path[:0] = [str(ROOT), str(ROOT / "tests"), str(ROOT / "tests" / "support"), str(ROOT / "tests" / "differential")]
 
 from dissector.model import Chunk  # noqa: E402
 from dissector.pipeline import Dissector  # noqa: E402
@@ -66,9 +67,19 @@ def qty(rng):
     return rng.choice([0, 1, 2, 3, 20, 21, 61, 62, 63, 64, 100, 121, 122, 123, 124, 125, 126])
 
 
+def bit_qty(rng, limit):
+    if rng.random() < 0.9:
+        return rng.randint(1, 40)
+    return rng.choice([0, 1, 7, 8, 9, 31, 32, 33, limit - 1, limit, limit + 1])
+
+
+def packed(rng, n):
+    return "".join(f"{rng.randrange(256):02x}" for _ in range(n))
+
+
 def transaction(rng):
     s = rng.choice(SLAVES)
-    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10]) if rng.random() < CLEAN else rng.randrange(12)
+    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15]) if rng.random() < CLEAN else rng.randrange(16)
     a = rng.choice(ADDR) if rng.random() < 0.9 else rng.randrange(65536)
     q = qty(rng)
     frames = []
@@ -132,6 +143,47 @@ def transaction(rng):
         frames += [f, f]
     elif kind == 10:  # unanswered read
         frames.append(rtu(f"{s:02x}03{w(a)}{w(q)}"))
+    elif kind == 12:  # FC1/FC2 read bits
+        fc = rng.choice([1, 2])
+        qb = bit_qty(rng, 2000)
+        frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(qb)}"))
+        if rng.random() < 0.9:
+            n = (qb + 7) // 8 if rng.random() < 0.95 else rng.randrange(0, 260)
+            frames.append(rtu(f"{s:02x}{fc:02x}{n & 0xff:02x}{packed(rng, min(n, 250))}"))
+    elif kind == 13:  # FC5 write single coil
+        v = rng.choice([0xFF00, 0, 0xFF00, 0, 0x1234, 0x00FF])
+        f = rtu(f"{s:02x}05{w(a)}{w(v)}")
+        frames.append(f)
+        r = rng.random()
+        if r < 0.85:
+            frames.append(f)
+        elif r < 0.92:
+            frames.append(rtu(f"{s:02x}05{w(a + 1)}{w(rng.choice([0xFF00, 0, 7]))}"))
+    elif kind == 14:  # FC15 write multiple coils
+        qb = bit_qty(rng, 1968)
+        n = (qb + 7) // 8 if rng.random() < 0.95 else rng.randrange(0, 250)
+        frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb)}{n & 0xff:02x}{packed(rng, min(n, 246))}"))
+        r = rng.random()
+        if r < 0.85:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb)}"))
+        elif r < 0.92:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb + 1)}"))
+    elif kind == 15:  # an exception to any code the compiled path shows
+        fc = rng.choice([1, 2, 3, 4, 5, 6, 15, 16, 23])
+        if fc in (1, 2, 3, 4):
+            frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(q)}"))
+        elif fc in (5, 6):
+            frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(rng.choice([0xFF00, 0, 3]))}"))
+        elif fc == 15:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(q)}{(q + 7) // 8:02x}{packed(rng, (q + 7) // 8)}"))
+        elif fc == 16:
+            body = "".join(map(w, words(rng, min(q, 123))))
+            frames.append(rtu(f"{s:02x}10{w(a)}{w(q)}{len(body) // 2:02x}{body}"))
+        else:
+            body = "".join(map(w, words(rng, 2)))
+            frames.append(rtu(f"{s:02x}17{w(a)}{w(q)}{w(8501)}0002{len(body) // 2:02x}{body}"))
+        code = rng.choice([1, 2, 2, 3, 4, 6, 7, 7, 9, 11, 0x80])
+        frames.append(rtu(f"{s:02x}{fc | 0x80:02x}{code:02x}"))
     else:  # retry: same request twice then answer
         f = rtu(f"{s:02x}03{w(a)}{w(q)}")
         body = "".join(map(w, words(rng, min(q, 125))))

@@ -27,7 +27,7 @@
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
-enum { KIND_REQUEST = 1, KIND_RESPONSE = 2 };
+enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
 static uint16_t crc_table[256];
@@ -110,8 +110,8 @@ static void out_label(Out *o, long long base, unsigned address) {
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
-#define HANDLED 5
-static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
+#define HANDLED 9
+static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23, 1, 2, 5, 15};
 
 static int handled_index(int function) {
     switch (function) {
@@ -120,6 +120,10 @@ static int handled_index(int function) {
     case 6: return 2;
     case 16: return 3;
     case 23: return 4;
+    case 1: return 5;
+    case 2: return 6;
+    case 5: return 7;
+    case 15: return 8;
     default: return -1;
     }
 }
@@ -167,11 +171,12 @@ typedef struct {
     int expect_slave, expect_function; /* -1: no answer awaited */
     PyObject *slave_info;
     PyObject *piece;
+    PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
-    long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
+    long limits[6][2]; /* read_registers, write_registers, rw_read, rw_write, read_bits, write_coils */
     Slave slaves[256];
     Out out;
     Remembered *log;
@@ -309,17 +314,18 @@ typedef struct {
 /* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
 static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
     int position, extra;
+    if (kind == KIND_EXCEPTION) return 5;
     if (kind == KIND_REQUEST) {
         switch (function) {
-        case 3: case 4: case 6: return 8;
-        case 16: position = 6; extra = 9; break;
+        case 1: case 2: case 3: case 4: case 5: case 6: return 8;
+        case 15: case 16: position = 6; extra = 9; break;
         case 23: position = 10; extra = 13; break;
         default: return FRAME_HANDOVER;
         }
     } else {
         switch (function) {
-        case 6: case 16: return 8;
-        case 3: case 4: case 23: position = 2; extra = 5; break;
+        case 5: case 6: case 15: case 16: return 8;
+        case 1: case 2: case 3: case 4: case 23: position = 2; extra = 5; break;
         default: return FRAME_HANDOVER;
         }
     }
@@ -331,8 +337,16 @@ static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int
 static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
     if (n - i < MIN_ADU) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
-    if (slave > MAX_SLAVE || handled_index(function) < 0) return FRAME_HANDOVER;
-    int kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    if (slave > MAX_SLAVE) return FRAME_HANDOVER;
+    int kind;
+    if (function & 0x80) {
+        /* An exception: taken on the fast path only as the answer awaited (framer.py _run). */
+        if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
+        kind = KIND_EXCEPTION;
+    } else {
+        if (handled_index(function) < 0) return FRAME_HANDOVER;
+        kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    }
     Py_ssize_t length = first_length(b, i, n, function, kind);
     if (length < 0) return (int)length;
     /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
@@ -583,7 +597,21 @@ typedef struct {
     unsigned start, quantity;   /* FC23: the read part */
     Words writes;               /* FC6, FC16, FC23 */
     int has_writes;
+    unsigned value;             /* FC5: 0xFF00 or 0 */
+    const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
 } Request;
+
+/* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
+static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
+    unsigned shown = count < 32 ? count : 32;
+    if (out_reserve(o, shown) < 0) return;
+    for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
+    if (count > 32) {
+        out_cstr(o, "\xe2\x80\xa6 (+");
+        out_uint(o, count - 32, 0);
+        out_put(o, ")", 1);
+    }
+}
 
 static int in_range(const long range[2], unsigned value) {
     return range[0] <= (long)value && (long)value <= range[1];
@@ -619,6 +647,27 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
         if (f[6] != 2 * r->quantity) return 0;
         r->writes = (Words){r->start, r->quantity, f + 7};
         r->has_writes = 1;
+        device_quantity = r->quantity;
+        break;
+    case 1: case 2:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[4], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        device_quantity = r->quantity;
+        break;
+    case 5: /* decode._write_single_coil warns of any value but ON and OFF */
+        r->start = word(f + 2);
+        r->quantity = 1;
+        r->value = word(f + 4);
+        if (r->value != 0xFF00 && r->value != 0) return 0;
+        device_quantity = 1;
+        break;
+    case 15:
+        r->start = word(f + 2);
+        r->quantity = word(f + 4);
+        if (!in_range(e->limits[5], r->quantity) || r->start + r->quantity > 0x10000) return 0;
+        if (f[6] != (r->quantity + 7) / 8) return 0;
+        r->packed = f + 7;
         device_quantity = r->quantity;
         break;
     case 23:
@@ -678,8 +727,17 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
     long long base = s->base[handled_index(function)];
     if (line_start(e, s, f, number, " request   ") < 0) return -1;
     switch (function) {
-    case 3: case 4:
+    case 1: case 2: case 3: case 4:
         span_text(&e->out, base, r->start, r->quantity);
+        break;
+    case 5:
+        span_text(&e->out, base, r->start, 1);
+        out_cstr(&e->out, r->value == 0xFF00 ? " = ON" : " = OFF");
+        break;
+    case 15:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        bits_text(&e->out, r->packed, r->quantity);
         break;
     case 6:
         if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
@@ -720,7 +778,13 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
         Words echo = {word(f + 2), 1, f + 4};
         return words_are_plain(s, e->run_number, &echo);
     }
-    case 16:
+    case 1: case 2:
+        return f[2] == (r->quantity + 7) / 8;
+    case 5: {
+        unsigned value = word(f + 4);
+        return value == 0xFF00 || value == 0;
+    }
+    case 15: case 16:
         return word(f + 2) == r->start && word(f + 4) == r->quantity;
     default:
         return 0;
@@ -744,7 +808,16 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     case 6:
         if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
         break;
-    case 16:
+    case 1: case 2:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        bits_text(&e->out, f + 3, r->quantity);
+        break;
+    case 5:
+        span_text(&e->out, base, word(f + 2), 1);
+        out_cstr(&e->out, word(f + 4) == 0xFF00 ? " = ON" : " = OFF");
+        break;
+    case 15: case 16:
         span_text(&e->out, base, word(f + 2), word(f + 4));
         out_cstr(&e->out, " written");
         break;
@@ -755,6 +828,42 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     out_uint(&e->out, request_number, 0);
     out_cstr(&e->out, "]  CRC ok\n");
     return 1;
+}
+
+/* An exception answering a shown request: its info and tail (notes, warnings) come from the Python
+ * stages themselves (fastsummary.exception_texts), which say None when the annotator would change
+ * its state or the text would not be plain; 1 written, 0 hand over, -1 error. */
+static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, const uint8_t *a,
+                          unsigned long long number, unsigned long long request_number) {
+    if (e->exception == NULL || e->exception == Py_None) return 0;
+    PyObject *texts = PyObject_CallFunction(e->exception, "iy#y#", q[0], (const char *)q, q_length,
+                                            (const char *)a, (Py_ssize_t)5);
+    if (texts == NULL) return -1;
+    if (texts == Py_None) {
+        Py_DECREF(texts);
+        return 0;
+    }
+    if (!PyTuple_Check(texts) || PyTuple_GET_SIZE(texts) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(texts, 0)) ||
+        !PyUnicode_Check(PyTuple_GET_ITEM(texts, 1))) {
+        Py_DECREF(texts);
+        PyErr_SetString(PyExc_TypeError, "exception must return (str, str) or None");
+        return -1;
+    }
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, a[0], 3);
+    out_cstr(&e->out, " exception ");
+    int status = out_str(&e->out, PyTuple_GET_ITEM(texts, 0));
+    if (status == 0) {
+        out_cstr(&e->out, " [#");
+        out_uint(&e->out, request_number, 0);
+        out_put(&e->out, "]", 1);
+        status = out_str(&e->out, PyTuple_GET_ITEM(texts, 1));
+    }
+    Py_DECREF(texts);
+    if (status < 0) return -1;
+    out_cstr(&e->out, "  CRC ok\n");
+    return e->out.failed ? -1 : 1;
 }
 
 /* Annotator state after an answered transaction: what was written, then what was read. */
@@ -800,6 +909,16 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         if (written > 0) {
             e->count += 1;
             *pos = a.at;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
+        written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+        if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
+        if (written > 0) {
+            e->count += 2;
+            e->expect_slave = e->expect_function = -1;
+            *pos = a.at + a.length;
             return STEP_DONE;
         }
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -900,22 +1019,27 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 }
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn;
-    static char *keywords[] = {"slave_info", "piece", "limits", NULL};
+    PyObject *slave_info, *piece_fn, *exception_fn = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "limits", "exception", NULL};
     PyObject *limits;
     if (e->running) {
         PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO", keywords, &slave_info, &piece_fn, &limits)) return -1;
-    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|O", keywords, &slave_info, &piece_fn, &limits,
+                                     &exception_fn))
+        return -1;
+    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
                           &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
-                          &e->limits[3][1]))
+                          &e->limits[3][1], &e->limits[4][0], &e->limits[4][1], &e->limits[5][0],
+                          &e->limits[5][1]))
         return -1;
     Py_INCREF(slave_info);
     Py_XSETREF(e->slave_info, slave_info);
     Py_INCREF(piece_fn);
     Py_XSETREF(e->piece, piece_fn);
+    Py_INCREF(exception_fn);
+    Py_XSETREF(e->exception, exception_fn);
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -929,6 +1053,7 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
 static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->slave_info);
     Py_VISIT(e->piece);
+    Py_VISIT(e->exception);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     return 0;
 }
@@ -936,6 +1061,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
 static int engine_clear(Engine *e) {
     Py_CLEAR(e->slave_info);
     Py_CLEAR(e->piece);
+    Py_CLEAR(e->exception);
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);

@@ -20,9 +20,10 @@ import os
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from dissector.model import Chunk, Item
+from dissector.decode.fields import decode_frame
+from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
-from dissector.render.describe import function_label, register_text
+from dissector.render.describe import function_label, info_text, register_text
 from dissector.protocol.spec import SPEC
 
 try:
@@ -30,7 +31,8 @@ try:
 except ImportError:  # built without a C compiler: the Python stages do everything
     _summary = None  # type: ignore[assignment]
 
-HANDLED = (3, 4, 6, 16, 23)  # function codes the compiled path decodes (_summary.c)
+HANDLED = (3, 4, 6, 16, 23, 1, 2, 5, 15)  # function codes the compiled path decodes (_summary.c), and their exceptions
+EXPLAINED_MAX = 4096  # exception texts kept (bounded: memory stays flat)
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
@@ -45,7 +47,7 @@ def available() -> bool:
 
 
 def _limits() -> tuple[tuple[int, int], ...]:
-    names = ("read_registers", "write_registers", "rw_read", "rw_write")
+    names = ("read_registers", "write_registers", "rw_read", "rw_write", "read_bits", "write_coils")
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
 
 
@@ -69,7 +71,55 @@ def make_engine(annotator: Any | None) -> Any:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, _limits())
+    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator))
+
+
+def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
+    """The engine's `exception` callback: (info, tail) of an exception answering a request it shows.
+
+    The Python stages make the texts themselves (decoder, annotator with the profile's explanations,
+    summary renderer) on a scratch pair of frames, so both paths say the same; the texts depend on the
+    request's bytes and the answer only, and are kept by them. None, and the engine hands the
+    transaction over, where the annotator would change its state: exception 2 to a read on a device
+    that protects parameters (p.38) makes it forget the values of every parameter read.
+    """
+    known: dict[tuple[int, bytes, bytes], tuple[str, str] | None] = {}
+
+    def texts(slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
+        key = (slave, request_raw, answer_raw)
+        if key in known:
+            return known[key]
+        found = _exception_texts(annotator, slave, request_raw, answer_raw)
+        if len(known) >= EXPLAINED_MAX:
+            known.clear()
+        known[key] = found
+        return found
+
+    return texts
+
+
+def _exception_texts(annotator: Any | None, slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
+    function = request_raw[1]
+    if annotator is not None:
+        if not hasattr(annotator, "profile_for"):
+            return None
+        profile = annotator.profile_for(slave)
+        if answer_raw[2] == profile.all_protected_exception and function in (3, 4):
+            return None
+    crc = int.from_bytes(request_raw[-2:], "little")
+    request = Frame(0, request_raw, None, Kind.REQUEST, slave, function, crc, crc)
+    crc = int.from_bytes(answer_raw[-2:], "little")
+    answer = Frame(len(request_raw), answer_raw, None, Kind.EXCEPTION, slave, function, crc, crc, request=request)
+    decode_frame(request)
+    decode_frame(answer)
+    if annotator is not None:
+        annotator(request)
+        annotator(answer)
+    info = info_text(answer)
+    if not info or not 0x20 < ord(info[-1]) < 0x7F:
+        return None  # as the engine's own lines: a plain last character, else Python
+    tail = "".join(f" [{note}]" for note in answer.notes) + "".join(f" [warning: {w}]" for w in answer.warnings)
+    return info, tail
 
 
 class SummaryPath:

@@ -325,7 +325,7 @@ def test_split_invariance_regressions(data: bytes, splits: list[int]) -> None:
     assert [summary_line(item) for item in items] == expected
 
 
-LIMITS = ((1, 125), (1, 123), (1, 125), (1, 121))
+LIMITS = ((1, 125), (1, 123), (1, 125), (1, 121), (1, 2000), (1, 1968))
 FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
 
 
@@ -378,3 +378,59 @@ def test_crc_lengths_compiled_and_python_agree() -> None:
             for length in range(max(minimum, 2), min(maximum, len(data) - start) + 1)
             if crc.crc16_reference(data[start : start + length - 2]) == int.from_bytes(data[start + length - 2 : start + length], "little")
         ]
+
+
+# -- coils, inputs and exceptions (issue 12) --------------------------------------------------------
+
+
+def test_bit_codes_and_exceptions_exact_lines_from_the_engine() -> None:
+    data = (
+        rtu("1401000000 0c".replace(" ", "")) + rtu("140102cd01")  # 12 coils: 1011 0011 1000
+        + rtu("1402000a0028") + rtu("140205ffffffff0f")  # 40 inputs: 36 set, then 4 clear
+        + rtu("14050003ff00") + rtu("14050003ff00")
+        + rtu("140100000010") + rtu("148102")  # exception 2 to a coil read
+        + rtu("140f0010000a02a501") + rtu("140f0010000a")
+    )
+    got = fast_lines(data, None)
+    assert got.engine_lines == 8  # all but the last pair: its end is only known at the end of the input
+    assert got.lines == python_lines(data, None)
+    info = [line.split(None, 3)[3].rsplit("  CRC ok", 1)[0] for line in got.lines]
+    assert info == [
+        "request   Read Coils 0..11 (12)",
+        "response  Read Coils 0..11 (12): 101100111000 [#1]",
+        "request   Read Discrete Inputs 10..49 (40)",
+        "response  Read Discrete Inputs 10..49 (40): 11111111111111111111111111111111… (+8) [#3]",
+        "request   Write Single Coil 3 = ON",
+        "response  Write Single Coil 3 = ON [#5]",
+        "request   Read Coils 0..15 (16)",
+        "exception Read Coils: exception 2 (Illegal Data Address) [#7]",
+        "request   Write Multiple Coils 16..25 (10): 1010010110",
+        "response  Write Multiple Coils 16..25 (10) written [#9]",
+    ]
+
+
+def test_exceptions_carry_the_device_explanations_from_the_engine() -> None:
+    # ATV71: exception 7 to a configuration write while running, 2 to a write of a read-only word;
+    # exception 2 to a read (every parameter protected) changes the parameter memory: Python shows it.
+    data = (
+        rtu("0c0620010002") + rtu("0c8607")
+        + rtu("0c060c810001") + rtu("0c8602")
+        + rtu("0c0320d00001") + rtu("0c8302")
+        + rtu("0c0320d00001") + rtu("0c8302")
+    )
+    got = assert_same(data + rtu("0c0320d00001"), atv71)
+    assert got.engine_lines == 4
+    assert "exception 07 from the" in got.lines[1] and got.lines[1].endswith("[#1] [" + got.lines[1].split("[#1] [", 1)[1])
+    sel = assert_same(rtu("010300000004") + rtu("018302") + rtu("011000000001020001") + rtu("019003") + b"\x01",
+                      lambda: build_annotator(["sel749m"], [], None))
+    assert sel.engine_lines == 4
+    assert all("exception 0" in line for line in sel.lines[1::2])
+
+
+def test_plant_mix_comes_from_the_engine_nearly_whole() -> None:
+    from dissector.sim.mixes import PLANT_PROFILES, plant_mix
+
+    data = b"".join(raw for raw, _time in plant_mix(6000, seed=2))
+    factory = lambda: build_annotator(["atv71", *PLANT_PROFILES], [], None)  # noqa: E731
+    got = assert_same(data, factory, [1000, 20000, 55555])
+    assert got.engine_lines > 0.99 * len(got.lines)
