@@ -1,16 +1,28 @@
 /* The compiled summary path of vw3-decode: raw Modbus RTU bytes in, summary lines out.
  *
- * It does, for the transactions that make up nearly all of a polling bus (FC3, FC4, FC6, FC16, FC23
- * requests and their normal responses, unanswered requests), exactly what the Python stages do:
- * the framer's fast path (framer.py, _run), pairing, the decoder's spec checks, the annotator's
- * naming (PLC-style addresses included) and parameter tracking, and the summary line
- * (render/summary.py). Anything else (noise, a damaged frame, an exception, a warning or a note to
- * give) it hands back, before touching any state, at the start of the transaction: the Python stages
- * then take that part of the stream, and give it back at their next idle point
- * (dissector/accel/fastsummary.py). tests/differential/test_fastsummary.py holds the output of both paths equal.
+ * It does, for the transactions that make up nearly all of a bus (FC1, FC2, FC3, FC4, FC5, FC6, FC15,
+ * FC16 and FC23 requests, their normal responses and their exceptions, unanswered requests), exactly
+ * what the Python stages do: the framer's fast path (framing/rtu.py, _run), pairing, the decoder's spec
+ * checks, the annotator's naming (PLC-style addresses included) and parameter tracking, and the summary
+ * line (render/summary.py). What it hands back, before touching any state, at the start of the
+ * transaction, and why:
+ *   - noise, a damaged frame, a frame followed by a 00 byte: the framer's careful path decides those;
+ *   - other function codes (FC7, FC8, FC11, FC12, FC17, FC20-22, FC24, FC43, user-defined ones): their
+ *     texts are the Python describers' alone;
+ *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
+ *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
+ *     ON/OFF, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
+ *     read, a parameter readable again, a bits_depend switch;
+ *   - exception 2 to an FC3/FC4 read on a device that protects parameters (ATV71, p.38): the
+ *     annotator then forgets the values of every parameter read, a change of state;
+ *   - a slave whose annotator the engine knows nothing of, or whose PLC-style base is odd.
+ * The Python stages then take that part of the stream, and give it back at their next idle point
+ * (dissector/accel/fastsummary.py). tests/differential/test_fastsummary.py holds the output of both
+ * paths equal; bench/fastsummary_fuzz.py runs the same comparison for as long as asked.
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
- * summary renderer themselves), cached here by (slave, function, address, value).
+ * summary renderer themselves), cached here by (slave, function, address, value); an exception's
+ * texts (with the device's explanation) come from another, cached there by request and answer.
  *
  * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
  * (CRC, words, output) into the transaction loop without link-time optimisation.
@@ -131,7 +143,7 @@ static int handled_index(int function) {
 typedef struct {
     int loaded;
     int usable;               /* 0: every transaction of this slave goes to Python */
-    PyObject *info;           /* the tuple, which keeps the objects below alive */
+    PyObject *info;           /* the SlaveFacts' items as a tuple, which keeps the objects below alive */
     PyObject *name[HANDLED];  /* function names as shown */
     int check[HANDLED];       /* -1: hand over; 0: no device limit; 1, 2: limits below */
     long limit[HANDLED][2];
@@ -214,10 +226,14 @@ static int fill_bitmap(uint8_t *bitmap, PyObject *addresses) {
 }
 
 static int fill_slave(Slave *s, PyObject *info);
+static PyObject *read_facts(PyObject *info);
 
 static int load_slave(Engine *e, int address) {
     Slave *s = &e->slaves[address];
-    PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
+    PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
+    if (answer == NULL) return -1;
+    PyObject *info = read_facts(answer);
+    Py_DECREF(answer);
     if (info == NULL) return -1;
     slave_clear(s); /* the callback may have loaded it already */
     s->info = info;
@@ -234,17 +250,44 @@ static int bad_info(const char *what) {
     return -1;
 }
 
+/* The facts are a fastsummary.SlaveFacts (frozen): read by name, borrowed while `info` lives. */
+enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES,
+       FACTS };
+static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen",
+                                             "protected", "bases"};
+
+/* The facts by name, into a tuple the slave keeps (its items are borrowed below). */
+static PyObject *read_facts(PyObject *info) {
+    PyObject *tuple = PyTuple_New(FACTS);
+    if (tuple == NULL) return NULL;
+    for (int k = 0; k < FACTS; k++) {
+        PyObject *value = PyObject_GetAttrString(info, fact_names[k]);
+        if (value == NULL) {
+            if (PyErr_ExceptionMatches(PyExc_AttributeError)) {
+                PyErr_Clear();
+                PyErr_Format(PyExc_TypeError, "slave_info: no %s (a fastsummary.SlaveFacts is expected)",
+                             fact_names[k]);
+            }
+            Py_DECREF(tuple);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(tuple, k, value);
+    }
+    return tuple;
+}
+
 static int fill_slave(Slave *s, PyObject *info) {
-    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) return bad_info("not an 8-tuple");
-    s->usable = PyObject_IsTrue(PyTuple_GET_ITEM(info, 0));
+    PyObject *facts[FACTS];
+    for (int k = 0; k < FACTS; k++) facts[k] = PyTuple_GET_ITEM(info, k);
+    s->usable = PyObject_IsTrue(facts[FACT_USABLE]);
     if (s->usable <= 0) return s->usable;
-    PyObject *functions = PyTuple_GET_ITEM(info, 1);
-    PyObject *seen = PyTuple_GET_ITEM(info, 5);
-    PyObject *bases = PyTuple_GET_ITEM(info, 7);
-    if (!PyDict_Check(functions) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 2)) ||
-        !PyDict_Check(PyTuple_GET_ITEM(info, 3)) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 4)) ||
-        (seen != Py_None && !PyDict_Check(seen)) || (bases != Py_None && !PyDict_Check(bases)))
-        return bad_info("items of the wrong type");
+    PyObject *functions = facts[FACT_FUNCTIONS];
+    PyObject *seen = facts[FACT_SEEN];
+    PyObject *bases = facts[FACT_BASES];
+    if (!PyDict_Check(functions) || !PyAnySet_Check(facts[FACT_MAPPED]) || !PyDict_Check(facts[FACT_DEPEND]) ||
+        !PyAnySet_Check(facts[FACT_SOURCES]) || (seen != Py_None && !PyDict_Check(seen)) ||
+        (bases != Py_None && !PyDict_Check(bases)))
+        return bad_info("facts of the wrong type");
     for (int k = 0; k < HANDLED; k++) {
         PyObject *code = PyLong_FromLong(handled_codes[k]);
         PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
@@ -267,7 +310,7 @@ static int fill_slave(Slave *s, PyObject *info) {
             if (PyErr_Occurred()) return -1;
         }
     }
-    s->depend = PyTuple_GET_ITEM(info, 3);
+    s->depend = facts[FACT_DEPEND];
     s->mapped = PyMem_Calloc(4, BITMAP_BYTES);
     if (s->mapped == NULL) {
         PyErr_NoMemory();
@@ -276,11 +319,11 @@ static int fill_slave(Slave *s, PyObject *info) {
     s->dependent = s->mapped + BITMAP_BYTES;
     s->sources = s->mapped + 2 * BITMAP_BYTES;
     s->pending = s->mapped + 3 * BITMAP_BYTES;
-    if (fill_bitmap(s->mapped, PyTuple_GET_ITEM(info, 2)) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
-        fill_bitmap(s->sources, PyTuple_GET_ITEM(info, 4)) < 0)
+    if (fill_bitmap(s->mapped, facts[FACT_MAPPED]) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
+        fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0)
         return -1;
     s->seen = seen == Py_None ? NULL : seen;
-    s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
+    s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
     if (PyErr_Occurred()) return -1;
     for (int k = 0; k < HANDLED; k++) {
         s->base[k] = -1;

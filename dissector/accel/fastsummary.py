@@ -3,12 +3,17 @@
 Profiling the Python stages (README, Performance) showed ~15 us a frame spread over every stage:
 framing, pairing, decoding, annotation and the summary text each cost a few, and no hot spot was
 left. What tshark does in 4 us a frame could only be matched by doing all of it in compiled code for
-the transactions that make up a polling bus, so dissector/accel/_summary.c does exactly that, and hands the
-stream over to the Python stages, untouched, for everything else (noise, damage, exceptions, anything
-with a warning or a note, other function codes). The Python stages stay the
-reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for
-every text it shows (register readings, function names) and keeps the annotator's parameter memory
-up to date. tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+the transactions that make up a bus, so dissector/accel/_summary.c does exactly that for FC1, FC2,
+FC3, FC4, FC5, FC6, FC15, FC16 and FC23 (both ways, and their exceptions), and hands the stream over
+to the Python stages, untouched, for everything else; the list of what it hands back, and why, heads
+_summary.c (noise, damage, other codes, anything with a warning or a note, an exception that changes
+the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
+and the renderer; the compiled path asks them for every text it shows (register readings, function
+names, exception explanations) and keeps the annotator's parameter memory up to date.
+tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+
+The engine and this module exchange typed objects: `SlaveFacts` (read by attribute name in C), a
+register's text and whether the annotator named it, an exception's (info, tail) texts.
 
 Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
 statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at
@@ -18,6 +23,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.decode.fields import decode_frame
@@ -51,21 +57,38 @@ def _limits() -> tuple[tuple[int, int], ...]:
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
 
 
+@dataclass(frozen=True, slots=True)
+class SlaveFacts:
+    """What the engine must know of a slave to give the annotator's answers itself (read by name in C)."""
+
+    usable: bool  # False: every transaction of this slave goes to the Python stages
+    # Per handled function: its name as shown, and the request check: () none, the device's limits
+    # (read quantity[, write quantity]), or None when every request must go to the annotator.
+    functions: dict[int, tuple[str, tuple[int, ...] | None]] = field(default_factory=dict)
+    mapped: frozenset[int] = frozenset()  # addresses the annotator names (asked of `piece`)
+    depend: dict[int, tuple[int, frozenset[int]]] = field(default_factory=dict)  # bits_depend: (on, plain_when)
+    sources: frozenset[int] = frozenset()  # the addresses bits_depend rules look at
+    seen: dict[int, tuple[Any, ...]] | None = None  # the annotator's parameter memory, None: not tracked
+    protected: int = -1  # the value a device reads for a protected parameter (16#8000), -1: none
+    bases: dict[int, int] | None = None  # PLC-style display base per function, None: protocol addresses
+
+
 def make_engine(annotator: Any | None) -> Any:
     """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n)."""
-    plain_functions = {function: (function_label(function, None), ()) for function in HANDLED}
+    plain = SlaveFacts(True, {function: (function_label(function, None), ()) for function in HANDLED})
+    unknown = SlaveFacts(False)
 
-    def slave_info(slave: int) -> tuple[object, ...]:
+    def slave_info(slave: int) -> SlaveFacts:
         if annotator is None:
-            return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
+            return plain
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
-            return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
+            return unknown
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
             function: (function_label(function, special), check)
             for function, (special, check) in checks.items()
         }
-        return (True, functions, mapped, depend, sources, seen, protected, bases)
+        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases)
 
     def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
         register = annotator.plain_register(slave, function, address, value)

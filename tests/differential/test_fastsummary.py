@@ -331,7 +331,7 @@ FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
 
 def test_engine_refuses_bad_callbacks_without_crashing() -> None:
     engine = fastsummary._summary.Engine(
-        lambda slave: (True, {3: ("Read Holding Registers", ())}, frozenset(), {}, frozenset(), None, -1, None),
+        lambda slave: fastsummary.SlaveFacts(True, {3: ("Read Holding Registers", ())}),
         lambda *args: ("x", False),
         LIMITS,
     )
@@ -344,7 +344,10 @@ def test_engine_refuses_bad_callbacks_without_crashing() -> None:
         def __bool__(self) -> bool:
             raise ValueError("no truth")
 
-    info = (True, FUNCTIONS, frozenset([5]), {}, frozenset(), None, -1, None)
+    with pytest.raises(TypeError, match="no usable"):  # the facts are read by name, not by position
+        fastsummary._summary.Engine(lambda slave: (True, FUNCTIONS), lambda *args: ("x", False), LIMITS).run(
+            rtu("0c0300000001") + rtu("0c03020005") + b"\x01", 0)
+    info = fastsummary.SlaveFacts(True, FUNCTIONS, frozenset([5]))
     engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()), LIMITS)
     with pytest.raises(ValueError, match="no truth"):
         engine.run(rtu("0c0600050001") * 2 + b"\x01", 0)
