@@ -129,16 +129,27 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
         add((1, f"Reason: {item.reason}", None))
         return out
     frame: Frame = item
-    mode = frame.mode.upper()
-    add((0, f"Frame {frame.number}: {frame.length} bytes at offset {frame.offset}, {frame.kind.value} ({mode})", None))
+    kind = frame.kind
+    rtu = frame.mode == "rtu"
+    mode = "RTU" if rtu else frame.mode.upper()
+    add((0, f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})", None))
     if frame.time is not None:
         add((1, f"Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)", None))
-    add((1, f"Modbus {mode}", None))
-    add((2, f"Slave: {frame.slave}" + (" (broadcast)" if frame.broadcast else ""), None))
-    code = frame.function | (0x80 if frame.kind is Kind.EXCEPTION else 0)
-    function_name = frame.function_text or SPEC.function_name(frame.function)
-    add((2, f"Function: {code} (0x{code:02X}) {function_name}", None))
-    if frame.kind is Kind.EXCEPTION:
+    add(_MODBUS_RTU if rtu else (1, f"Modbus {mode}", None))
+    add((2, f"Slave: {frame.slave} (broadcast)" if frame.broadcast else f"Slave: {frame.slave}", None))
+    function = frame.function
+    function_text = frame.function_text
+    if kind is _EXCEPTION:
+        code = function | 0x80
+        add((2, f"Function: {code} (0x{code:02X}) {function_text or SPEC.function_name(function)}", None))
+    elif function_text is None:
+        line = _FUNCTION_LINES.get(function)
+        if line is None:
+            line = _FUNCTION_LINES[function] = (2, f"Function: {function} (0x{function:02X}) {SPEC.function_name(function)}", None)
+        add(line)
+    else:
+        add((2, f"Function: {function} (0x{function:02X}) {function_text}", None))
+    if kind is _EXCEPTION:
         exception = frame.exception_code
         add((2, f"Exception: {exception} {SPEC.exception_name(exception)}", "vw3.exception"))
         if frame.exception_text is not None:
@@ -146,7 +157,13 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
     elif frame.fields is not None:
         registers = frame.registers
         for key, value in frame.fields.items():
-            if key.startswith("_") or value is None or key in ("values", "status") and registers:
+            if value is None or key[0] == "_" or key in ("values", "status") and registers:
+                continue
+            if type(value) is int:  # the common case, inline: `Start: 8400 (0x20D0)`
+                label = _FIELD_LABELS.get(key)
+                if label is None:
+                    label = _FIELD_LABELS[key] = key.replace("_", " ").capitalize()
+                add((2, f"{label}: {value} (0x{value:X})", None))
                 continue
             if key == "trailing" and not value:
                 continue
@@ -162,12 +179,17 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
         out.extend([(3, f"{'?' if bit.address is None else bit.address}: {bit.value}", None) for bit in bits])
     for obj in frame.objects or ():
         add((2, f"Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""), None))
-    style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
-    add((2, f"{'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style))
-    if frame.request is not None:
-        add((1, f"Request in frame: {frame.request.number}", None))
-        if frame.response_time is not None:
-            add((1, f"Response time: {frame.response_time * 1000:.3f} ms", None))
+    if rtu and frame.crc == frame.crc_expected:
+        add((2, f"CRC: 0x{frame.crc:04X} [CRC ok]", "vw3.crc.ok"))
+    else:
+        style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
+        add((2, f"{'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style))
+    request = frame.request
+    if request is not None:
+        add((1, f"Request in frame: {request.number}", None))
+        if frame.time is not None and request.time is not None:
+            response_time = frame.response_time
+            add((1, f"Response time: {response_time * 1000:.3f} ms", None))
     response = frame.response
     if response is not None:
         add((1, f"Response in frame: {response.number}", None))
@@ -181,6 +203,11 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
 
 
 _INDENT = ["    " * depth for depth in range(32)]
+_KIND_TEXT = {kind: kind.value for kind in Kind}
+_EXCEPTION = Kind.EXCEPTION
+_MODBUS_RTU: Line = (1, "Modbus RTU", None)
+_FUNCTION_LINES: dict[int, Line] = {}  # spec names only: a profile's names vary per slave
+_FIELD_LABELS: dict[str, str] = {}
 
 
 def detail_text(item: Item, base: float | None = None) -> str:
