@@ -122,23 +122,9 @@ static void out_label(Out *o, long long base, unsigned address) {
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
-#define HANDLED 9
-static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23, 1, 2, 5, 15};
-
-static int handled_index(int function) {
-    switch (function) {
-    case 3: return 0;
-    case 4: return 1;
-    case 6: return 2;
-    case 16: return 3;
-    case 23: return 4;
-    case 1: return 5;
-    case 2: return 6;
-    case 5: return 7;
-    case 15: return 8;
-    default: return -1;
-    }
-}
+/* handled_codes, handled_index, length rules, request layouts, limits: generated from the protocol
+ * table (python3 -m dissector.codegen). */
+#include "_tables.h"
 
 typedef struct {
     int loaded;
@@ -188,7 +174,7 @@ typedef struct {
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
-    long limits[6][2]; /* read_registers, write_registers, rw_read, rw_write, read_bits, write_coils */
+    long limits[LIMIT_COUNT][2]; /* LIMIT_* (_tables.h) */
     Slave slaves[256];
     Out out;
     Remembered *log;
@@ -356,24 +342,13 @@ typedef struct {
 
 /* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
 static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
-    int position, extra;
     if (kind == KIND_EXCEPTION) return 5;
-    if (kind == KIND_REQUEST) {
-        switch (function) {
-        case 1: case 2: case 3: case 4: case 5: case 6: return 8;
-        case 15: case 16: position = 6; extra = 9; break;
-        case 23: position = 10; extra = 13; break;
-        default: return FRAME_HANDOVER;
-        }
-    } else {
-        switch (function) {
-        case 5: case 6: case 15: case 16: return 8;
-        case 1: case 2: case 3: case 4: case 23: position = 2; extra = 5; break;
-        default: return FRAME_HANDOVER;
-        }
-    }
-    if (i + position >= n) return FRAME_NEED;
-    int length = extra + b[i + position];
+    int k = handled_index(function);
+    if (k < 0) return FRAME_HANDOVER;
+    const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
+    if (rule->fixed) return rule->fixed;
+    if (i + rule->position >= n) return FRAME_NEED;
+    int length = rule->extra + b[i + rule->position];
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
 }
 
@@ -668,67 +643,32 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
     int check = s->check[k];
     if (check < 0) return 0;
     r->has_writes = 0;
-    unsigned device_quantity = 0, write_quantity = 0;
-    switch (function) {
-    case 3: case 4:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[0], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        device_quantity = r->quantity;
-        break;
-    case 6:
-        r->start = word(f + 2);
-        r->quantity = 1;
-        r->writes = (Words){r->start, 1, f + 4};
+    const RequestLayout *L = &request_layout[k];
+    unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
+    r->start = word(f + L->start_at);
+    r->quantity = L->quantity_at ? word(f + L->quantity_at) : 1;
+    if (L->limit >= 0 && !in_range(e->limits[L->limit], r->quantity)) return 0;
+    if (L->span && r->start + r->quantity > 0x10000) return 0;
+    if (L->values_at) {
+        unsigned written = r->quantity;
+        if (L->write_quantity_at) written = write_quantity = word(f + L->write_quantity_at);
+        if (L->write_limit >= 0 && !in_range(e->limits[L->write_limit], written)) return 0;
+        if (L->count_at && f[L->count_at] != 2 * written) return 0;
+        r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
         r->has_writes = 1;
-        device_quantity = 1;
-        break;
-    case 16:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[1], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        if (f[6] != 2 * r->quantity) return 0;
-        r->writes = (Words){r->start, r->quantity, f + 7};
-        r->has_writes = 1;
-        device_quantity = r->quantity;
-        break;
-    case 1: case 2:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[4], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        device_quantity = r->quantity;
-        break;
-    case 5: /* decode._write_single_coil warns of any value but ON and OFF */
-        r->start = word(f + 2);
-        r->quantity = 1;
-        r->value = word(f + 4);
-        if (r->value != 0xFF00 && r->value != 0) return 0;
-        device_quantity = 1;
-        break;
-    case 15:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[5], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        if (f[6] != (r->quantity + 7) / 8) return 0;
-        r->packed = f + 7;
-        device_quantity = r->quantity;
-        break;
-    case 23:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        write_quantity = word(f + 8);
-        if (!in_range(e->limits[2], r->quantity) || !in_range(e->limits[3], write_quantity)) return 0;
-        if (f[10] != 2 * write_quantity) return 0;
-        r->writes = (Words){word(f + 6), write_quantity, f + 11};
-        r->has_writes = 1;
-        device_quantity = r->quantity;
-        break;
-    default:
-        return 0;
     }
+    if (L->coil_at) { /* decode._write_single_coil warns of any value but ON and OFF */
+        r->value = word(f + L->coil_at);
+        if (r->value != 0xFF00 && r->value != 0) return 0;
+    }
+    if (L->coils_at) {
+        if (f[L->coils_count_at] != (r->quantity + 7) / 8) return 0;
+        r->packed = f + L->coils_at;
+    }
+    unsigned device_quantity = r->quantity;
     /* Annotator._within_limits */
     if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
-    if (check == 2 && (function != 23 || (long)write_quantity > s->limit[k][1])) return 0;
+    if (check == 2 && (!L->write_quantity_at || (long)write_quantity > s->limit[k][1])) return 0;
     return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
 }
 
@@ -1072,11 +1012,12 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|O", keywords, &slave_info, &piece_fn, &limits,
                                      &exception_fn))
         return -1;
-    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
-                          &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
-                          &e->limits[3][1], &e->limits[4][0], &e->limits[4][1], &e->limits[5][0],
-                          &e->limits[5][1]))
+    if (!PyTuple_Check(limits) || PyTuple_GET_SIZE(limits) != LIMIT_COUNT) {
+        PyErr_Format(PyExc_TypeError, "limits: a tuple of %d (low, high) pairs", LIMIT_COUNT);
         return -1;
+    }
+    for (int k = 0; k < LIMIT_COUNT; k++)
+        if (!PyArg_ParseTuple(PyTuple_GET_ITEM(limits, k), "ll", &e->limits[k][0], &e->limits[k][1])) return -1;
     Py_INCREF(slave_info);
     Py_XSETREF(e->slave_info, slave_info);
     Py_INCREF(piece_fn);

@@ -30,6 +30,7 @@ from dissector.decode.fields import decode_frame
 from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
 from dissector.render.describe import function_label, info_text, register_text
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 try:
@@ -37,8 +38,9 @@ try:
 except ImportError:  # built without a C compiler: the Python stages do everything
     _summary = None  # type: ignore[assignment]
 
-HANDLED = (3, 4, 6, 16, 23, 1, 2, 5, 15)  # function codes the compiled path decodes (_summary.c), and their exceptions
+HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c, through _tables.h), and their exceptions
 EXPLAINED_MAX = 4096  # exception texts kept (bounded: memory stays flat)
+_PLAIN_READS = table.plain_register_reads()  # an exception 2 to these may change the annotator's memory
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
@@ -53,7 +55,7 @@ def available() -> bool:
 
 
 def _limits() -> tuple[tuple[int, int], ...]:
-    names = ("read_registers", "write_registers", "rw_read", "rw_write", "read_bits", "write_coils")
+    names = table.compiled_limits()  # the order of LIMIT_* in _tables.h
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
 
 
@@ -127,7 +129,7 @@ def _exception_texts(annotator: Any | None, slave: int, request_raw: bytes, answ
         if not hasattr(annotator, "profile_for"):
             return None
         profile = annotator.profile_for(slave)
-        if answer_raw[2] == profile.all_protected_exception and function in (3, 4):
+        if answer_raw[2] == profile.all_protected_exception and function in _PLAIN_READS:
             return None
     crc = int.from_bytes(request_raw[-2:], "little")
     request = Frame(0, request_raw, None, Kind.REQUEST, slave, function, crc, crc)

@@ -37,7 +37,7 @@ from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 PROG = "vw3-decode"
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
@@ -322,10 +322,8 @@ class Sinks:
                 self.output.flush()
                 if self.output.console is not None:
                     self.output.console.print(self.stats.render())
-                else:
-                    from rich.console import Console
-
-                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+                else:  # piped: plain tables at full width, no rich layout cost
+                    self.env.stdout.write(self.stats.render_plain())
         self.output.flush()
 
 

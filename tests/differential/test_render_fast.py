@@ -77,3 +77,8 @@ def test_bitlist_holds_the_bits_one_per_coil(start: int | None, packed: bytes, d
         assert bits[index] == reference[index]
     with pytest.raises(IndexError):
         bits[count]
+
+
+def test_frames_of_the_max_size_mix_carry_bitlists_after_decoding() -> None:
+    frames = [item for item in dissect_bytes(b"".join(raw for raw, _t in max_size_mix(400))) if isinstance(item, Frame)]
+    assert any(isinstance(frame.bits, BitList) and len(frame.bits) > 100 for frame in frames)
