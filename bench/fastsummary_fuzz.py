@@ -2,7 +2,7 @@
 
     python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
 
-Random sessions of FC1/2/3/4/5/6/15/16/23 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD
+Random sessions of FC1/2/3/4/5/6/7/11/12/15/16/22/23/24 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD
 bits_depend case, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
 requests, exceptions to every code the compiled path shows, other function codes, noise, bit flips, dropped and
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
@@ -79,7 +79,7 @@ def packed(rng, n):
 
 def transaction(rng):
     s = rng.choice(SLAVES)
-    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15]) if rng.random() < CLEAN else rng.randrange(16)
+    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16]) if rng.random() < CLEAN else rng.randrange(17)
     a = rng.choice(ADDR) if rng.random() < 0.9 else rng.randrange(65536)
     q = qty(rng)
     frames = []
@@ -184,6 +184,25 @@ def transaction(rng):
             frames.append(rtu(f"{s:02x}17{w(a)}{w(q)}{w(8501)}0002{len(body) // 2:02x}{body}"))
         code = rng.choice([1, 2, 2, 3, 4, 6, 7, 7, 9, 11, 0x80])
         frames.append(rtu(f"{s:02x}{fc | 0x80:02x}{code:02x}"))
+    elif kind == 16:  # FC7, FC11, FC12, FC22, FC24, sometimes with counts that disagree
+        fc = rng.choice([7, 11, 12, 22, 24])
+        odd = rng.random() < 0.1
+        if fc == 7:
+            frames += [rtu(f"{s:02x}07"), rtu(f"{s:02x}07{rng.randrange(256):02x}")]
+        elif fc == 11:
+            frames += [rtu(f"{s:02x}0b"), rtu(f"{s:02x}0b{w(rng.choice([0, 0xFFFF, 5]))}{w(rng.randrange(65536))}")]
+        elif fc == 12:
+            events = packed(rng, rng.randint(0, 64))
+            count = len(events) // 2 + 6 if not odd else rng.randrange(6)
+            frames += [rtu(f"{s:02x}0c"), rtu(f"{s:02x}0c{count:02x}{w(rng.choice([0, 0xFFFF, 0x12]))}{w(7)}{w(9)}{events}")]
+        elif fc == 22:
+            f = rtu(f"{s:02x}16{w(a)}{w(rng.randrange(65536))}{w(rng.randrange(65536))}")
+            frames += [f, f]
+        else:
+            count = rng.choice([0, 1, 5, 8, 9, 31]) if not odd else 32
+            values = "".join(w(rng.randrange(65536)) for _ in range(count))
+            size = 2 + 2 * count + (rng.choice([-2, 2]) if odd and rng.random() < 0.5 else 0)
+            frames += [rtu(f"{s:02x}18{w(a)}"), rtu(f"{s:02x}18{w(size)}{w(count)}{values}")]
     else:  # retry: same request twice then answer
         f = rtu(f"{s:02x}03{w(a)}{w(q)}")
         body = "".join(map(w, words(rng, min(q, 125))))

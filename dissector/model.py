@@ -123,8 +123,12 @@ class BitList(Sequence[Bit]):
     @overload
     def __getitem__(self, index: slice) -> list[Bit]: ...
     def __getitem__(self, index: int | slice) -> Bit | list[Bit]:
-        if isinstance(index, slice):
-            return [self[position] for position in range(*index.indices(self.count))]
+        if isinstance(index, slice):  # the summary's first 32: no more Bits than asked for
+            start, packed = self.start, self.packed
+            return [
+                Bit(None if start is None else (start + position) & 0xFFFF, packed[position >> 3] >> (position & 7) & 1)
+                for position in range(*index.indices(self.count))
+            ]
         if index < 0:
             index += self.count
         if not 0 <= index < self.count:

@@ -99,6 +99,16 @@ static void out_uint(Out *o, unsigned long long v, int width) {
     while (n) o->data[o->len++] = digits[--n];
 }
 
+/* Python's f"{v:0{width}X}" */
+static void out_hex(Out *o, unsigned long v, int width) {
+    char digits[16];
+    int n = 0;
+    do { digits[n++] = "0123456789ABCDEF"[v & 15]; v >>= 4; } while (v);
+    if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
+    while (n) o->data[o->len++] = digits[--n];
+}
+
 static int out_str(Out *o, PyObject *text) {
     Py_ssize_t n;
     const char *s = PyUnicode_AsUTF8AndSize(text, &n);
@@ -347,8 +357,8 @@ static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int
     if (k < 0) return FRAME_HANDOVER;
     const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
     if (rule->fixed) return rule->fixed;
-    if (i + rule->position >= n) return FRAME_NEED;
-    int length = rule->extra + b[i + rule->position];
+    if (i + rule->position + rule->width - 1 >= n) return FRAME_NEED;
+    Py_ssize_t length = rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position) : b[i + rule->position]);
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
 }
 
@@ -645,7 +655,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
     r->has_writes = 0;
     const RequestLayout *L = &request_layout[k];
     unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
-    r->start = word(f + L->start_at);
+    r->start = L->start_at ? word(f + L->start_at) : 0;
     r->quantity = L->quantity_at ? word(f + L->quantity_at) : 1;
     if (L->limit >= 0 && !in_range(e->limits[L->limit], r->quantity)) return 0;
     if (L->span && r->start + r->quantity > 0x10000) return 0;
@@ -704,6 +714,15 @@ static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, u
     return 0;
 }
 
+/* describe._mask_write: the address as sent, even PLC style */
+static void mask_write_text(Out *o, const uint8_t *f) {
+    out_uint(o, word(f + 2), 0);
+    out_cstr(o, " AND 0x");
+    out_hex(o, word(f + 4), 4);
+    out_cstr(o, " OR 0x");
+    out_hex(o, word(f + 6), 4);
+}
+
 static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
                         int unanswered) {
     int slave = f[0], function = f[1];
@@ -724,6 +743,16 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         break;
     case 6:
         if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
+        break;
+    case 7: case 11: case 12: /* describe._simple, _comm_event_counter: the name alone */
+        e->out.len -= 1;
+        break;
+    case 22:
+        mask_write_text(&e->out, f);
+        break;
+    case 24:
+        out_cstr(&e->out, "pointer ");
+        out_uint(&e->out, r->start, 0);
         break;
     case 16:
         span_text(&e->out, base, r->start, r->quantity);
@@ -769,6 +798,12 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
     }
     case 15: case 16:
         return word(f + 2) == r->start && word(f + 4) == r->quantity;
+    case 7: case 11: case 22:
+        return 1;
+    case 12: /* events are byte count - 6 bytes: a shorter count is malformed */
+        return f[2] >= 6;
+    case 24: /* decode._fifo_response: at most 31 values, byte count 2 + 2 x count */
+        return word(f + 4) <= 31 && word(f + 2) == 2 + 2 * word(f + 4);
     default:
         return 0;
     }
@@ -804,6 +839,34 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
         span_text(&e->out, base, word(f + 2), word(f + 4));
         out_cstr(&e->out, " written");
         break;
+    case 7: /* describe._simple */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, f[2], 2);
+        break;
+    case 11: /* describe._comm_event_counter */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, word(f + 2), 4);
+        out_cstr(&e->out, ", ");
+        out_uint(&e->out, word(f + 4), 0);
+        out_cstr(&e->out, " events");
+        break;
+    case 12: /* describe._simple: the 16-bit status, at least two digits */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, word(f + 3), 2);
+        break;
+    case 22:
+        mask_write_text(&e->out, f);
+        break;
+    case 24: { /* describe._fifo: the count, then at most 8 values (rstrip: no space after none) */
+        unsigned count = word(f + 4);
+        out_uint(&e->out, count, 0);
+        out_cstr(&e->out, " values:");
+        for (unsigned k = 0; k < count && k < 8; k++) {
+            out_put(&e->out, " ", 1);
+            out_uint(&e->out, word(f + 6 + 2 * k), 0);
+        }
+        break;
+    }
     }
     if (e->out.failed) return -1;
     if (!info_end_is_plain(&e->out)) return 0;

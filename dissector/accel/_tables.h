@@ -3,13 +3,13 @@
 #ifndef VW3_TABLES_H
 #define VW3_TABLES_H
 
-#define HANDLED 9
-static const int handled_codes[HANDLED] = {1, 2, 3, 4, 5, 6, 15, 16, 23};
+#define HANDLED 14
+static const int handled_codes[HANDLED] = {1, 2, 3, 4, 5, 6, 7, 11, 12, 15, 16, 22, 23, 24};
 
 /* Index of a function code in the tables below; -1: not shown here (handed over). */
 static const signed char handled_slot[256] = {
-    -1,  0,  1,  2,  3,  4,  5, -1, -1, -1, -1, -1, -1, -1, -1,  6,
-     7, -1, -1, -1, -1, -1, -1,  8, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1,  0,  1,  2,  3,  4,  5,  6, -1, -1, -1,  7,  8, -1, -1,  9,
+    10, -1, -1, -1, -1, -1, 11, 12, 13, -1, -1, -1, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
@@ -39,10 +39,11 @@ static int handled_index(int function) {
 #define LIMIT_RW_READ 4
 #define LIMIT_RW_WRITE 5
 
-/* Frame length, CRC included: `fixed` when not 0, else `extra` + the byte at `position`. */
-typedef struct { int fixed, position, extra; } LengthRule;
-static const LengthRule request_rule[HANDLED] = {{8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {0, 6, 9}, {0, 6, 9}, {0, 10, 13}};
-static const LengthRule response_rule[HANDLED] = {{0, 2, 5}, {0, 2, 5}, {0, 2, 5}, {0, 2, 5}, {8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {0, 2, 5}};
+/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`
+ * 1: a byte, 2: a big-endian word). */
+typedef struct { int fixed, position, extra, width; } LengthRule;
+static const LengthRule request_rule[HANDLED] = {{8, 0, 0, 0}, {8, 0, 0, 0}, {8, 0, 0, 0}, {8, 0, 0, 0}, {8, 0, 0, 0}, {8, 0, 0, 0}, {4, 0, 0, 0}, {4, 0, 0, 0}, {4, 0, 0, 0}, {0, 6, 9, 1}, {0, 6, 9, 1}, {10, 0, 0, 0}, {0, 10, 13, 1}, {6, 0, 0, 0}};
+static const LengthRule response_rule[HANDLED] = {{0, 2, 5, 1}, {0, 2, 5, 1}, {0, 2, 5, 1}, {0, 2, 5, 1}, {8, 0, 0, 0}, {8, 0, 0, 0}, {5, 0, 0, 0}, {8, 0, 0, 0}, {0, 2, 5, 1}, {8, 0, 0, 0}, {8, 0, 0, 0}, {10, 0, 0, 0}, {0, 2, 5, 1}, {0, 2, 6, 2}};
 
 /* Where a request's fields are, as offsets from the frame's first byte (0: absent). The quantity
  * defaults to one register; the written registers' start and quantity default to the request's. */
@@ -58,9 +59,14 @@ static const RequestLayout request_layout[HANDLED] = {
     {2, 4, 1, 1, 0, 0, 0, 0, 0, 0, -1, 0}, /* 4 */
     {2, 0, -1, 0, 4, 0, 0, 0, 0, 0, -1, 0}, /* 5 */
     {2, 0, -1, 0, 0, 0, 0, 4, 0, 0, -1, 0}, /* 6 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0}, /* 7 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0}, /* 11 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0}, /* 12 */
     {2, 4, 2, 1, 0, 7, 6, 0, 0, 0, -1, 0}, /* 15 */
     {2, 4, 3, 1, 0, 0, 0, 7, 0, 0, -1, 6}, /* 16 */
+    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0}, /* 22 */
     {2, 4, 4, 0, 0, 0, 0, 11, 6, 8, 5, 10}, /* 23 */
+    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0}, /* 24 */
 };
 
 #endif

@@ -45,7 +45,7 @@ WINDOW = 512  # bytes handed to the Python stages at a time while they have the 
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
 SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
-SHORT_STRETCHES = 4  # short stretches in a row before the runs start (exceptions come in clusters)
+SHORT_STRETCHES = 1000000  # short stretches in a row before the runs start (exceptions come in clusters)
 MAX_RUN = 16384
 NEED, HANDOVER = 0, 1
 

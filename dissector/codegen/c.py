@@ -21,10 +21,10 @@ _ADU_HEAD = 2  # slave and function code before the grammar's data
 def _rule(layout: Layout, code: int) -> str:
     rule = layout.length
     if isinstance(rule, Fixed):
-        return f"{{{rule.length}, 0, 0}}"
-    if isinstance(rule, Counted) and rule.width == 1:
-        return f"{{0, {rule.position}, {rule.extra}}}"
-    raise GenerateError(f"function {code}: the compiled path handles fixed and one-byte counted lengths only, not {rule}")
+        return f"{{{rule.length}, 0, 0, 0}}"
+    if isinstance(rule, Counted) and rule.width in (1, 2):
+        return f"{{0, {rule.position}, {rule.extra}, {rule.width}}}"
+    raise GenerateError(f"function {code}: the compiled path handles fixed and counted lengths only, not {rule}")
 
 
 def _offset(layout: Layout, field: str | None, code: int) -> int:
@@ -93,8 +93,9 @@ def render_header() -> str:
         f"#define LIMIT_COUNT {len(limits)}",
         *(f"#define LIMIT_{name.upper()} {index}" for index, name in enumerate(limits)),
         "",
-        "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the byte at `position`. */",
-        "typedef struct { int fixed, position, extra; } LengthRule;",
+        "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
+        " * 1: a byte, 2: a big-endian word). */",
+        "typedef struct { int fixed, position, extra, width; } LengthRule;",
         "static const LengthRule request_rule[HANDLED] = {"
         + ", ".join(_rule(entry.request, entry.code) for entry in entries) + "};",
         "static const LengthRule response_rule[HANDLED] = {"

@@ -100,7 +100,7 @@ class Coils:
 class Compiled:
     """How the compiled summary path reads the request, by field names of its grammar."""
 
-    start: str
+    start: str | None = None  # None: no address (FC7, FC11, FC12)
     quantity: str | None = None  # None: one register
     limit: str | None = None
     span: bool = False  # start + quantity must stay within 65536
@@ -166,15 +166,24 @@ FUNCTIONS: tuple[Function, ...] = (
         Access.WRITE, Data.REGISTERS, echo=True,
         compiled=Compiled("address", writes=Writes("value", "address")),
     ),
-    Function(7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC),
+    Function(
+        7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
     Function(
         8,
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         Access.DIAGNOSTIC, echo=True,
     ),
-    Function(11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC),
-    Function(12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC),
+    Function(
+        11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
+    Function(
+        12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
     Function(
         15,
         _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils"),
@@ -202,6 +211,7 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("mask_write", Fixed(10), "mask_write"),
         _layout("mask_write", Fixed(10), "mask_write"),
         Access.WRITE, echo=True,
+        compiled=Compiled("address"),
     ),
     Function(
         23,
@@ -219,6 +229,7 @@ FUNCTIONS: tuple[Function, ...] = (
         # The FIFO's values have no addresses of their own: Data.NONE.
         _layout("fifo_response", Counted(2, 6, width=2), "fifo_response", "fifo_count"),
         Access.READ,
+        compiled=Compiled("address"),
     ),
     Function(
         43,

@@ -22,7 +22,9 @@ from dissector.devices.annotator import MapLayer
 from dissector.devices.build import build_annotator
 from dissector.render.summary import summary_line
 from dissector.sim.simulate import generate_session
+import strategies
 from helpers import rtu
+from strategies import adu
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
@@ -437,3 +439,44 @@ def test_plant_mix_comes_from_the_engine_nearly_whole() -> None:
     factory = lambda: build_annotator(["atv71", *PLANT_PROFILES], [], None)  # noqa: E731
     got = assert_same(data, factory, [1000, 20000, 55555])
     assert got.engine_lines > 0.99 * len(got.lines)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.lists(st.tuples(st.sampled_from([1, 12, 20, 247]), strategies.transactions()), min_size=1, max_size=10),
+    st.lists(st.integers(0, 600), max_size=3),
+    st.sampled_from(["generic", "atv71", "sel749m", None]),
+)
+def test_every_public_code_same_lines(exchanges: list, splits: list[int], profile: str | None) -> None:
+    """Transactions of every public code (tests/support/strategies.py), each profile."""
+    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    factory = (lambda: None) if profile is None else (lambda: build_annotator([profile], [], None))
+    assert_same(data + b"\x01", factory, [cut for cut in splits if cut < len(data)])
+
+
+def test_simple_codes_exact_lines_from_the_engine() -> None:
+    data = (
+        rtu("1407") + rtu("14075a")
+        + rtu("140b") + rtu("140bffff0102")
+        + rtu("140c") + rtu("140c080012000700090a0b")
+        + rtu("141600040ff000a5") + rtu("141600040ff000a5")
+        + rtu("14180100") + rtu("1418000600020102ffff")
+        + rtu("14180100") + rtu("141800020000")
+    )
+    got = assert_same(data + b"\x01", lambda: build_annotator(["generic"], [], None))
+    assert got.engine_lines == 12
+    info = [line.split(None, 3)[3].rsplit("  CRC ok", 1)[0] for line in got.lines[:12]]
+    assert info == [
+        "request   Read Exception Status",
+        "response  Read Exception Status status 0x5A [#1]",
+        "request   Get Comm Event Counter",
+        "response  Get Comm Event Counter status 0xFFFF, 258 events [#3]",
+        "request   Get Comm Event Log",
+        "response  Get Comm Event Log status 0x12 [#5]",
+        "request   Mask Write Register 4 AND 0x0FF0 OR 0x00A5",
+        "response  Mask Write Register 4 AND 0x0FF0 OR 0x00A5 [#7]",
+        "request   Read FIFO Queue pointer 256",
+        "response  Read FIFO Queue 2 values: 258 65535 [#9]",
+        "request   Read FIFO Queue pointer 256",
+        "response  Read FIFO Queue 0 values: [#11]",
+    ]
