@@ -2,7 +2,7 @@
 
     python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
 
-Random sessions of FC1/2/3/4/5/6/7/11/12/15/16/22/23/24 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD
+Random sessions of transactions of every public code but FC8 (ATV71 addresses, 16#8000 values, the CHCF/CMD
 bits_depend case, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
 requests, exceptions to every code the compiled path shows, other function codes, noise, bit flips, dropped and
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
@@ -79,7 +79,7 @@ def packed(rng, n):
 
 def transaction(rng):
     s = rng.choice(SLAVES)
-    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16]) if rng.random() < CLEAN else rng.randrange(17)
+    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16,17,17]) if rng.random() < CLEAN else rng.randrange(18)
     a = rng.choice(ADDR) if rng.random() < 0.9 else rng.randrange(65536)
     q = qty(rng)
     frames = []
@@ -203,6 +203,28 @@ def transaction(rng):
             values = "".join(w(rng.randrange(65536)) for _ in range(count))
             size = 2 + 2 * count + (rng.choice([-2, 2]) if odd and rng.random() < 0.5 else 0)
             frames += [rtu(f"{s:02x}18{w(a)}"), rtu(f"{s:02x}18{w(size)}{w(count)}{values}")]
+    elif kind == 17:  # FC17, FC20, FC21, FC43: texts from the Python stages, answered or not
+        fc = rng.choice([17, 20, 21, 43])
+        if fc == 17:
+            text = "".join(f"{ord(c):02x}" for c in rng.choice(["LMB3.1.6", "ATV71", "", "x\ty"]))
+            frames.append(rtu(f"{s:02x}11"))
+            answer = rtu(f"{s:02x}11{len(text) // 2 + 2:02x}{rng.randrange(256):02x}{rng.choice(['00', 'ff', '7f'])}{text}")
+        elif fc == 20:
+            groups = "".join(f"06{w(rng.randrange(10))}{w(rng.randrange(9999))}{w(rng.randint(1, 4))}" for _ in range(rng.randint(1, 3)))
+            frames.append(rtu(f"{s:02x}14{len(groups) // 2:02x}{groups}"))
+            body = "".join(f"{2 * k + 1:02x}06" + "".join(w(rng.randrange(65536)) for _ in range(k)) for k in (1, 2))
+            answer = rtu(f"{s:02x}14{len(body) // 2:02x}{body}")
+        elif fc == 21:
+            body = f"06{w(1)}{w(2)}{w(2)}{w(7)}{w(8)}"
+            frames.append(rtu(f"{s:02x}15{len(body) // 2:02x}{body}"))
+            answer = frames[-1]
+        else:
+            frames.append(rtu(f"{s:02x}2b0e01{rng.choice(['00', '02'])}"))
+            objects = [rng.choice(["Schneider", "ATV71H", "0201", "a'b\"c", "\u00e9t\u00e9"]) for _ in range(rng.randint(0, 3))]
+            encoded = "".join(f"{k:02x}{len(o.encode('latin-1')):02x}{o.encode('latin-1').hex()}" for k, o in enumerate(objects))
+            answer = rtu(f"{s:02x}2b0e0102{rng.choice(['00', 'ff'])}00{len(objects):02x}{encoded}")
+        if rng.random() < 0.85:
+            frames.append(answer)
     else:  # retry: same request twice then answer
         f = rtu(f"{s:02x}03{w(a)}{w(q)}")
         body = "".join(map(w, words(rng, min(q, 125))))

@@ -180,6 +180,7 @@ typedef struct {
     PyObject *slave_info;
     PyObject *piece;
     PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
+    PyObject *texts;     /* texts(slave, request, response or None) -> Texts or None (table.Compiled.texts) */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
@@ -350,6 +351,21 @@ typedef struct {
     int kind, slave, function;
 } FrameRef;
 
+/* framing/rtu.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
+static Py_ssize_t special_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int special) {
+    if (i + 2 >= n) return FRAME_NEED;
+    if (b[i + 2] != 14) return FRAME_HANDOVER;
+    if (special == 1) return 7;
+    if (i + 7 >= n) return FRAME_NEED;
+    Py_ssize_t position = 8;
+    for (int k = b[i + 7]; k > 0; k--) {
+        if (i + position + 1 >= n) return FRAME_NEED;
+        position += 2 + b[i + position + 1];
+        if (position > MAX_ADU) return FRAME_HANDOVER;
+    }
+    return position + 2;
+}
+
 /* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
 static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
     if (kind == KIND_EXCEPTION) return 5;
@@ -357,6 +373,7 @@ static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int
     if (k < 0) return FRAME_HANDOVER;
     const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
     if (rule->fixed) return rule->fixed;
+    if (rule->special) return special_length(b, i, n, rule->special);
     if (i + rule->position + rule->width - 1 >= n) return FRAME_NEED;
     Py_ssize_t length = rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position) : b[i + rule->position]);
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
@@ -912,6 +929,68 @@ static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, cons
     return e->out.failed ? -1 : 1;
 }
 
+/* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
+static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
+                      const char *pairing, unsigned long long request_number, PyObject *tail) {
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, f[0], 3);
+    out_cstr(&e->out, kind);
+    if (out_str(&e->out, info) < 0) return -1;
+    if (pairing != NULL) out_cstr(&e->out, pairing);
+    if (request_number) {
+        out_cstr(&e->out, " [#");
+        out_uint(&e->out, request_number, 0);
+        out_put(&e->out, "]", 1);
+    }
+    if (out_str(&e->out, tail) < 0) return -1;
+    out_cstr(&e->out, "  CRC ok\n");
+    return e->out.failed ? -1 : 1;
+}
+
+static PyObject *texts_item(PyObject *texts, const char *name) {
+    PyObject *value = PyObject_GetAttrString(texts, name);
+    if (value != NULL && !PyUnicode_Check(value)) {
+        Py_DECREF(value);
+        PyErr_Format(PyExc_TypeError, "texts: %s must be a str", name);
+        return NULL;
+    }
+    return value;
+}
+
+/* A transaction of a code whose texts come from the Python stages (fastsummary.transaction_texts):
+ * the request and its response (a NULL response: unanswered). 1 written, 0 hand over, -1 error. */
+static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const FrameRef *a, unsigned long long number) {
+    if (e->texts == NULL || e->texts == Py_None) return 0;
+    PyObject *texts = a != NULL
+        ? PyObject_CallFunction(e->texts, "iy#y#", q->slave, (const char *)b + q->at, q->length,
+                                (const char *)b + a->at, a->length)
+        : PyObject_CallFunction(e->texts, "iy#O", q->slave, (const char *)b + q->at, q->length, Py_None);
+    if (texts == NULL) return -1;
+    if (texts == Py_None) {
+        Py_DECREF(texts);
+        return 0;
+    }
+    int status = -1;
+    PyObject *request_info = texts_item(texts, "request_info");
+    PyObject *request_tail = request_info ? texts_item(texts, "request_tail") : NULL;
+    PyObject *response_info = request_tail ? texts_item(texts, "response_info") : NULL;
+    PyObject *response_tail = response_info ? texts_item(texts, "response_tail") : NULL;
+    if (response_tail != NULL) {
+        status = texts_line(e, b + q->at, number, " request   ", request_info, a == NULL ? " [no response]" : NULL,
+                            0, request_tail);
+        if (status > 0 && a != NULL)
+            status = texts_line(e, b + a->at, number + 1, " response  ", response_info, NULL, number,
+                                response_tail);
+    }
+    Py_XDECREF(request_info);
+    Py_XDECREF(request_tail);
+    Py_XDECREF(response_info);
+    Py_XDECREF(response_tail);
+    Py_DECREF(texts);
+    return status;
+}
+
 /* Annotator state after an answered transaction: what was written, then what was read. */
 static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
                  unsigned long long number) {
@@ -949,7 +1028,17 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->expect_function = q.function;
     int step, written;
     found = frame_at(e, b, q.at + q.length, n, &a);
-    if (found == FRAME_OK && a.kind == KIND_REQUEST) {
+    if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
+        int unanswered = a.kind == KIND_REQUEST;
+        written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
+        if (written > 0) {
+            e->count += unanswered ? 1 : 2;
+            if (!unanswered) e->expect_slave = e->expect_function = -1;
+            *pos = unanswered ? a.at : a.at + a.length;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else if (found == FRAME_OK && a.kind == KIND_REQUEST) {
         /* The next frame is a request: this one was not answered (pairing.py). */
         written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
         if (written > 0) {
@@ -1065,15 +1154,15 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 }
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn, *exception_fn = Py_None;
-    static char *keywords[] = {"slave_info", "piece", "limits", "exception", NULL};
+    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", NULL};
     PyObject *limits;
     if (e->running) {
         PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|O", keywords, &slave_info, &piece_fn, &limits,
-                                     &exception_fn))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OO", keywords, &slave_info, &piece_fn, &limits,
+                                     &exception_fn, &texts_fn))
         return -1;
     if (!PyTuple_Check(limits) || PyTuple_GET_SIZE(limits) != LIMIT_COUNT) {
         PyErr_Format(PyExc_TypeError, "limits: a tuple of %d (low, high) pairs", LIMIT_COUNT);
@@ -1087,6 +1176,8 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     Py_XSETREF(e->piece, piece_fn);
     Py_INCREF(exception_fn);
     Py_XSETREF(e->exception, exception_fn);
+    Py_INCREF(texts_fn);
+    Py_XSETREF(e->texts, texts_fn);
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -1101,6 +1192,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->slave_info);
     Py_VISIT(e->piece);
     Py_VISIT(e->exception);
+    Py_VISIT(e->texts);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     return 0;
 }
@@ -1109,6 +1201,7 @@ static int engine_clear(Engine *e) {
     Py_CLEAR(e->slave_info);
     Py_CLEAR(e->piece);
     Py_CLEAR(e->exception);
+    Py_CLEAR(e->texts);
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);

@@ -96,7 +96,64 @@ def make_engine(annotator: Any | None) -> Any:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator))
+    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator), transaction_texts(annotator))
+
+
+@dataclass(frozen=True, slots=True)
+class Texts:
+    """What the summary shows of a transaction, apart from numbers and pairing (read by name in C)."""
+
+    request_info: str
+    request_tail: str  # its notes and warnings, each ` [...]`
+    response_info: str = ""
+    response_tail: str = ""
+
+
+def _tail(frame: Frame) -> str:
+    return "".join(f" [{note}]" for note in frame.notes) + "".join(f" [warning: {w}]" for w in frame.warnings)
+
+
+def _plain_end(info: str) -> bool:
+    return bool(info) and 0x20 < ord(info[-1]) < 0x7F  # as the engine's own lines; else Python
+
+
+def _scratch(raw: bytes, kind: Kind, offset: int = 0, request: Frame | None = None) -> Frame:
+    crc = int.from_bytes(raw[-2:], "little")
+    return Frame(offset, raw, None, kind, raw[0], raw[1] & 0x7F, crc, crc, request=request)
+
+
+def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
+    """The engine's `texts` callback, for the codes whose texts it does not make itself
+    (table.Compiled.texts): the Python stages decode and annotate a scratch pair of frames; the
+    annotator keeps no state for these codes, so the texts depend on the frames' bytes alone and are
+    kept by them (bounded)."""
+    known: dict[tuple[bytes, bytes | None], Texts | None] = {}
+
+    def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+        key = (request_raw, response_raw)
+        if key in known:
+            return known[key]
+        request = _scratch(request_raw, Kind.REQUEST)
+        decode_frame(request)
+        response = None
+        if response_raw is not None:
+            response = _scratch(response_raw, Kind.RESPONSE, len(request_raw), request)
+            decode_frame(response)
+        if annotator is not None:
+            annotator(request)
+            if response is not None:
+                annotator(response)
+        found: Texts | None = Texts(info_text(request), _tail(request))
+        if response is not None:
+            found = Texts(found.request_info, found.request_tail, info_text(response), _tail(response))
+        if not _plain_end(found.request_info) or (response is not None and not _plain_end(found.response_info)):
+            found = None
+        if len(known) >= EXPLAINED_MAX:
+            known.clear()
+        known[key] = found
+        return found
+
+    return texts
 
 
 def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
@@ -131,20 +188,15 @@ def _exception_texts(annotator: Any | None, slave: int, request_raw: bytes, answ
         profile = annotator.profile_for(slave)
         if answer_raw[2] == profile.all_protected_exception and function in _PLAIN_READS:
             return None
-    crc = int.from_bytes(request_raw[-2:], "little")
-    request = Frame(0, request_raw, None, Kind.REQUEST, slave, function, crc, crc)
-    crc = int.from_bytes(answer_raw[-2:], "little")
-    answer = Frame(len(request_raw), answer_raw, None, Kind.EXCEPTION, slave, function, crc, crc, request=request)
+    request = _scratch(request_raw, Kind.REQUEST)
+    answer = _scratch(answer_raw, Kind.EXCEPTION, len(request_raw), request)
     decode_frame(request)
     decode_frame(answer)
     if annotator is not None:
         annotator(request)
         annotator(answer)
     info = info_text(answer)
-    if not info or not 0x20 < ord(info[-1]) < 0x7F:
-        return None  # as the engine's own lines: a plain last character, else Python
-    tail = "".join(f" [{note}]" for note in answer.notes) + "".join(f" [warning: {w}]" for w in answer.warnings)
-    return info, tail
+    return (info, _tail(answer)) if _plain_end(info) else None
 
 
 class SummaryPath:

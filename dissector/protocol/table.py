@@ -107,6 +107,10 @@ class Compiled:
     writes: Writes | None = None
     coil: str | None = None  # FC5: the value, ON (0xFF00) or OFF (0000); any other draws a warning
     coils: Coils | None = None
+    # The engine frames and pairs the transaction, and its texts come from the Python stages (kept by
+    # the frames' bytes): for layouts whose decoding and annotation change no state and whose texts
+    # are not worth porting (file records, identification objects, the server ID).
+    texts: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -201,11 +205,18 @@ FUNCTIONS: tuple[Function, ...] = (
             writes=Writes("values", "start", "quantity", count="byte_count"),
         ),
     ),
-    Function(17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC),
     Function(
-        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ
+        17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
     ),
-    Function(21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True),
+    Function(
+        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ,
+        compiled=Compiled(texts=True),
+    ),
+    Function(
+        21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True,
+        compiled=Compiled(texts=True),
+    ),
     Function(
         22,
         _layout("mask_write", Fixed(10), "mask_write"),
@@ -236,6 +247,7 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("mei_request", Special("mei_request")),
         _layout("mei_response", Special("mei_response"), "mei_response"),
         Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
     ),
 )
 

@@ -480,3 +480,20 @@ def test_simple_codes_exact_lines_from_the_engine() -> None:
         "request   Read FIFO Queue pointer 256",
         "response  Read FIFO Queue 0 values: [#11]",
     ]
+
+
+def test_texts_codes_come_from_the_engine_with_the_python_stages_texts() -> None:
+    # The libmodbus slave's answer to Report Server ID (issue 11), file records, identification.
+    data = (
+        rtu("1111") + rtu("11110ab4ff4c4d42332e312e36")
+        + rtu("11140e0600010002000206000300040001") + rtu("11140a06060001000203060007")
+        + rtu("11150d06000100020002000700080000") + rtu("11150d06000100020002000700080000")
+        + rtu("112b0e0100") + rtu("112b0e01020000020005415456373101044f27456e")
+        + rtu("1111")  # unanswered
+        + rtu("112b0e0100") + rtu("11ab02")  # an exception to it: Python's
+    )
+    for profile in ("generic", "atv71"):
+        got = assert_same(data + b"\x01", lambda: build_annotator([profile], [], None))
+        assert got.engine_lines == (9 if profile == "generic" else 2)  # FC17/20/21 to an ATV71: warnings
+    assert "Report Server ID" in got.lines[1]
+    assert "11 11 0a b4 ff 4c 4d 42 33 2e 31 2e 36 76 3e" == rtu("11110ab4ff4c4d42332e312e36").hex(" ")
