@@ -1,14 +1,16 @@
 /* The compiled summary path of vw3-decode: raw Modbus RTU bytes in, summary lines out.
  *
- * It does, for the transactions that make up nearly all of a bus (FC1, FC2, FC3, FC4, FC5, FC6, FC15,
- * FC16 and FC23 requests, their normal responses and their exceptions, unanswered requests), exactly
- * what the Python stages do: the framer's fast path (framing/rtu.py, _run), pairing, the decoder's spec
- * checks, the annotator's naming (PLC-style addresses included) and parameter tracking, and the summary
- * line (render/summary.py). What it hands back, before touching any state, at the start of the
- * transaction, and why:
- *   - noise, a damaged frame, a frame followed by a 00 byte: the framer's careful path decides those;
- *   - other function codes (FC7, FC8, FC11, FC12, FC17, FC20-22, FC24, FC43, user-defined ones): their
- *     texts are the Python describers' alone;
+ * It does, for the transactions of every public function code the protocol table marks compiled
+ * (protocol/table.py, through _tables.h: requests, their normal responses, unanswered requests and
+ * exceptions), exactly what the Python stages do: the framer's fast path (framing/rtu.py, _run),
+ * pairing, the decoder's spec checks, the annotator's naming (PLC-style addresses included) and
+ * parameter tracking, and the summary line (render/summary.py). For FC17, FC20, FC21 and FC43
+ * (table.Compiled.texts) it frames and pairs, and the texts come from the Python stages by the frames'
+ * bytes. What it hands back, before touching any state, at the start of the transaction, and why:
+ *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC8's
+ *     Return Query Data, FC43 other than 14): the framer's careful path decides those;
+ *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;
+ *   - an exception to FC17, FC20, FC21 or FC43;
  *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
  *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
  *     ON/OFF, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word

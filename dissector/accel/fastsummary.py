@@ -3,17 +3,18 @@
 Profiling the Python stages (README, Performance) showed ~15 us a frame spread over every stage:
 framing, pairing, decoding, annotation and the summary text each cost a few, and no hot spot was
 left. What tshark does in 4 us a frame could only be matched by doing all of it in compiled code for
-the transactions that make up a bus, so dissector/accel/_summary.c does exactly that for FC1, FC2,
-FC3, FC4, FC5, FC6, FC15, FC16 and FC23 (both ways, and their exceptions), and hands the stream over
-to the Python stages, untouched, for everything else; the list of what it hands back, and why, heads
-_summary.c (noise, damage, other codes, anything with a warning or a note, an exception that changes
+the transactions of a bus, so dissector/accel/_summary.c does exactly that for every public code the
+protocol table marks compiled (both ways, and their exceptions; for FC17, FC20, FC21 and FC43 with
+texts made here, `transaction_texts`), and hands the stream over to the Python stages, untouched, for
+everything else; the list of what it hands back, and why, heads _summary.c (noise, damage, lengths
+only a CRC scan finds, vendor codes, anything with a warning or a note, an exception that changes
 the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
 and the renderer; the compiled path asks them for every text it shows (register readings, function
 names, exception explanations) and keeps the annotator's parameter memory up to date.
 tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
 
-The engine and this module exchange typed objects: `SlaveFacts` (read by attribute name in C), a
-register's text and whether the annotator named it, an exception's (info, tail) texts.
+The engine and this module exchange typed objects: `SlaveFacts` and `Texts` (read by attribute name
+in C), a register's text and whether the annotator named it, an exception's (info, tail) texts.
 
 Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
 statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at
