@@ -197,16 +197,30 @@ class StatsCollector:
             for register in frame.request.registers or ():
                 if register.address is not None:
                     self._confirm(slave, register)
-        if function in READ_FUNCTIONS:
-            for register in frame.registers or ():
-                parameter = self._parameter(slave, register)
-                if parameter is None:
+        if function in READ_FUNCTIONS and frame.registers:
+            # The hot loop of --stats: _parameter and observe() inlined (the same rules).
+            parameters = self.parameters
+            for register in frame.registers:
+                address = register.address
+                if address is None:
+                    self.registers_without_address += 1
                     continue
+                parameter = parameters.get((slave, address))
+                if parameter is None:
+                    parameter = parameters[(slave, address)] = ParameterStats()
+                code = register.code
+                if code is not None:
+                    parameter.code = code
                 if register.status in UNREADABLE:
                     parameter.unreadable += 1  # 16#8000 stands for "no value", not a value
-                else:
-                    parameter.reads += 1
-                    parameter.observe(register.value, register.text)
+                    continue
+                parameter.reads += 1
+                value = register.value
+                last = parameter.last
+                if last is not None and value != last:
+                    parameter.changes += 1
+                parameter.last = value
+                parameter.last_text = register.text
 
     def _confirm(self, slave: int, register: Register) -> None:
         key = (slave, register.address)
