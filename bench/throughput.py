@@ -163,6 +163,7 @@ def main() -> int:
     parser.add_argument("--mix", action="append", choices=[mix.name for mix in MIXES], help="only these mixes")
     parser.add_argument("--memory", action="store_true", help="also peak RSS on each mix repeated tenfold")
     parser.add_argument("--gigabyte", action="store_true", help="with --memory: also peak RSS at 1 GB")
+    parser.add_argument("--memory-only", action="store_true", help="with --memory: no timings, only peak RSS")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
     args = parser.parse_args()
     tshark = shutil.which("tshark")
@@ -173,6 +174,13 @@ def main() -> int:
     # this machine) every run would otherwise compile its modules from source again (~60 ms).
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "dissector")], check=True)
     chosen = [mix for mix in MIXES if not args.mix or mix.name in args.mix]
+    if args.memory_only:
+        for mix in chosen:
+            write_capture(mix.records(args.frames), args.out / mix.name)
+        print("peak RSS:")
+        for mix in chosen:
+            memory_runs(mix, args.out, args.gigabyte)
+        return 0
     results = {mix.name: measure(mix, args.frames, args.repeat, args.out, tshark) for mix in chosen}
     print()
     print(ratio_table(results))

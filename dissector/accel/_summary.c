@@ -375,7 +375,10 @@ static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int
     if (k < 0) return FRAME_HANDOVER;
     const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
     if (rule->fixed) return rule->fixed;
-    if (rule->special) return special_length(b, i, n, rule->special);
+    if (rule->special) {
+        Py_ssize_t length = special_length(b, i, n, rule->special);
+        return length > MAX_ADU ? FRAME_HANDOVER : length; /* the framer's fast path takes none longer */
+    }
     if (i + rule->position + rule->width - 1 >= n) return FRAME_NEED;
     Py_ssize_t length = rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position) : b[i + rule->position]);
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */

@@ -497,3 +497,12 @@ def test_texts_codes_come_from_the_engine_with_the_python_stages_texts() -> None
         assert got.engine_lines == (9 if profile == "generic" else 2)  # FC17/20/21 to an ATV71: warnings
     assert "Report Server ID" in got.lines[1]
     assert "11 11 0a b4 ff 4c 4d 42 33 2e 31 2e 36 76 3e" == rtu("11110ab4ff4c4d42332e312e36").hex(" ")
+
+
+def test_identification_longer_than_any_rtu_frame_is_left_to_the_framer() -> None:
+    # The object list walks to 257 bytes: the framer's fast path takes no frame that long.
+    response = rtu("112b0e01020000" + "01" + "00f5" + "41" * 245)
+    assert len(response) == 257
+    data = rtu("112b0e0100") + response + rtu("1111") + rtu("11110ab4ff4c4d42332e312e36") + b"\x01"
+    for profile in ("generic", "atv71"):
+        assert_same(data, lambda: build_annotator([profile], [], None))
