@@ -296,7 +296,7 @@ class Sinks:
         if self.report is not None:
             self.report.collector.add_items(items)
         if self.show:
-            if self.clock.format == "d":
+            if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
             self.output.write(items, self.extra, records)
 

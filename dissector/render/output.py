@@ -55,9 +55,10 @@ class Output:
                 highlight=False,
                 soft_wrap=False,
             )
-        self.clock = Clock(options.time_format)
         self._buffer: list[str] = []
         self.fields = FieldsWriter(options.fields) if options.fields is not None else None
+        time_keys = self.fields.time_keys if self.fields is not None else ()
+        self.clock = Clock(options.time_format, deltas="time_delta" in time_keys)
         self._prefix = ""  # written before the first line (-E bom=y)
         if self.fields is not None:
             header, self._prefix = self.fields.preamble()
@@ -95,7 +96,12 @@ class Output:
                 record = records[index] if records is not None else item_to_dict(item)
                 if extra:
                     record.update(extra)
-                out.append(json.dumps(record) if self.fields is None else self.fields.line(record))
+                if self.fields is None:
+                    out.append(json.dumps(record))
+                    continue
+                for key in self.fields.time_keys:
+                    record[key] = clock.seconds(item, key)
+                out.append(self.fields.line(record))
                 continue
             if self.console is not None:
                 self._write_rich(item)
