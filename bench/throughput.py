@@ -12,7 +12,7 @@ Mixes (each generated reproducibly, written raw for vw3-decode and as a USER0 pc
   ATV71 one apart).
 For each mix it times, best of --repeat interleaved rounds: vw3-decode's summary, --json, -V and
 --stats, and tshark's summary, -T json and -V with CRC verification on; peak RSS of every vw3-decode run
-comes from the same runs (os.wait4). Sub-second commands run SHORT_RUNS times a round. The package is
+comes from the same runs (timed from a small probe process). Sub-second commands run SHORT_RUNS times a round. The package is
 byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
 this one run. With --memory, peak RSS on each mix repeated tenfold; with --gigabyte, also at 1 GB.
 """
@@ -60,18 +60,27 @@ MIXES = [
 ]
 
 
+# Runs a command from a small process that times it and reads its peak RSS: Linux counts the memory
+# of the process a child was forked from before exec in the child's ru_maxrss, so a command started
+# from this script (which holds the mix's records) would report this script's size.
+PROBE = """
+import resource, subprocess, sys, time
+with open(sys.argv[1], "wb") as sink:
+    start = time.perf_counter()
+    result = subprocess.run(sys.argv[2:], stdout=sink, stderr=subprocess.PIPE)
+    elapsed = time.perf_counter() - start
+sys.stderr.buffer.write(result.stderr[-2000:])
+print(result.returncode, elapsed, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+"""
+
+
 def run_once(command: list[str], output: Path) -> tuple[float, float]:
     """Wall time and peak RSS (MB) of one run of `command`, stdout to `output`."""
-    with output.open("wb") as sink:
-        start = time.perf_counter()
-        process = subprocess.Popen(command, stdout=sink, stderr=subprocess.PIPE, cwd=ROOT)
-        stderr = process.stderr.read() if process.stderr else b""
-        _pid, status, usage = os.wait4(process.pid, 0)
-        elapsed = time.perf_counter() - start
-    process.returncode = os.waitstatus_to_exitcode(status)
-    if process.returncode != 0:
-        sys.exit(f"failed ({process.returncode}): {' '.join(command)}\n{stderr.decode()[-2000:]}")
-    return elapsed, usage.ru_maxrss / 1024
+    probe = subprocess.run([sys.executable, "-c", PROBE, str(output), *command], capture_output=True, cwd=ROOT)
+    returncode, elapsed, rss = probe.stdout.split()
+    if probe.returncode != 0 or int(returncode) != 0:
+        sys.exit(f"failed ({returncode.decode()}): {' '.join(command)}\n{probe.stderr.decode()[-2000:]}")
+    return float(elapsed), int(rss) / 1024
 
 
 def timed(command: list[str], output: Path, repeat: int) -> float:
