@@ -218,7 +218,7 @@ class Sinks:
         if args.stats:
             from dissector.render.stats import StatsCollector
 
-            self.stats = StatsCollector()
+            self.stats = StatsCollector(getattr(annotate, "choices", None))
         self.stats_shown = args.stats
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
