@@ -119,6 +119,13 @@ class Annotator:
         """The profile of this slave can change only through frames the compiled path hands over."""
         return self.selector is None or slave in self.per_slave or self.selector.settled(slave)
 
+    def final(self, slave: int) -> bool:
+        """No frame can change this slave's profile any more (forced, or identified)."""
+        if self.selector is None or slave in self.per_slave:
+            return True
+        choice = self.selector.choice(slave)
+        return choice is not None and choice.final
+
     def compilable(self, slave: int) -> bool:
         """The compiled path may show this slave's plain transactions: its profile is settled, and its
         map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
