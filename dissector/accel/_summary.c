@@ -125,12 +125,32 @@ static void out_label(Out *o, long long base, unsigned address) {
         out_uint(o, address, 0);
         return;
     }
+    /* naming.plc_label: five digits at least, zero-padded (coil references: 00001), one more past the
+     * top of the base's range (49999 -> 410000). */
+    int digits = 1;
     long long scale = 1;
-    while (scale * 10 <= base) scale *= 10;
+    while (scale * 10 <= base) {
+        scale *= 10;
+        digits++;
+    }
+    if (digits < 5) {
+        digits = 5;
+        scale = 10000;
+    }
     long long top = (base / scale + 1) * scale - 1;
     long long number = base + address;
-    if (number > top) number = base * 10 - 9 + address;
-    out_uint(o, (unsigned long long)number, 0);
+    if (number > top) {
+        number = base * 10 - 9 + address;
+        digits++;
+    }
+    char buffer[24];
+    int n = 0;
+    unsigned long long v = (unsigned long long)number;
+    do { buffer[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    int width = n > digits ? n : digits;
+    if (out_reserve(o, (size_t)width) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
+    while (n) o->data[o->len++] = buffer[--n];
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
@@ -336,8 +356,7 @@ static int fill_slave(Slave *s, PyObject *info) {
         }
         s->base[k] = PyLong_AsLongLong(base);
         if (PyErr_Occurred()) return -1;
-        /* odd labels (and zero-padded 0X/1X references): leave them to Python */
-        if (s->base[k] < 10000 || s->base[k] > 999999999) s->usable = 0;
+        if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
     }
     return 0;
 }
