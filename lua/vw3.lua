@@ -2379,16 +2379,16 @@ end
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
-local function event(f, what, address, row, label, before, how, frame, now, shared)
+local story = {} -- event(), tell(): one table, for the main chunk's 200 locals
+function story.event(f, what, address, row, label, before, how, frame, now, shared)
   local events = f.events
   if events == nil then events = {}; f.events = events end
   events[#events + 1] = { what = what, address = address, row = row, label = label, before = before,
     how = how, frame = frame, now = now, shared = shared }
 end
 
-local function event_name(e) return address_name(e.row, e.address, e.label) end
-
-local function tell(f)
+function story.tell(f)
+  local function event_name(e) return address_name(e.row, e.address, e.label) end
   local events = f.events
   if events == nil then return end
   f.events = nil
@@ -2432,7 +2432,7 @@ local function track(st, f, address, row, value, status, now, label)
   local last = st.seen[key]
   if status == "ok" then
     if last ~= nil and last.value == nil then
-      event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
+      story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
     end
     if last ~= nil then
       last.value, last.frame, last.how = value, f.number, "read"
@@ -2443,7 +2443,7 @@ local function track(st, f, address, row, value, status, now, label)
     if last ~= nil and last.value ~= nil then
       local became = "non-existent or protected"
       if row ~= nil then became = "protected" end
-      event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
+      story.event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
         last.frame, now, now)
     end
     if last ~= nil then
@@ -2513,7 +2513,7 @@ local function annotate_registers(st, f, device, registers, read)
       end
     end
   end
-  tell(f)
+  story.tell(f)
 end
 
 local function profile_function_name(profile, code)
@@ -2654,7 +2654,7 @@ local function explain_exception(st, f, device)
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(st, f, device)
-    tell(f)
+    story.tell(f)
   elseif meanings[code] ~= nil then
     note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
   elseif next(meanings) ~= nil then
