@@ -9,10 +9,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
-from dissector.render.detail import detail_tree, render_plain, render_rich
+from dissector.render.detail import detail_text, detail_tree, render_rich
 from dissector.render.fields import FieldsOptions, FieldsWriter
 from dissector.render.hexdump import hexdump
-from dissector.render.jsonout import item_to_dict
+from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
 
@@ -90,6 +90,9 @@ class Output:
         clock = self.clock
         for index, item in enumerate(items):
             if options.records:
+                if records is None and self.fields is None:
+                    out.append(item_to_json(item, extra))  # json.dumps(item_to_dict(item)), faster
+                    continue
                 record = records[index] if records is not None else item_to_dict(item)
                 if extra:
                     record.update(extra)
@@ -104,7 +107,7 @@ class Output:
                 self._write_rich(item)
                 continue
             if options.detail:
-                out.append(render_plain(detail_tree(item, clock.first)))
+                out.append(detail_text(item, clock.first))
             else:
                 out.append(summary_line(item, column=clock.text(item)))
             if options.hexdump:
