@@ -336,6 +336,8 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--detect needs --live PORT")
             if args.files or args.hex:
                 raise UsageError("--live takes no FILE or --hex")
+            if args.report is not None or args.stats:
+                raise UsageError("--report and --stats read files: capture with -w FILE, then report on it")
             return _live(args, env)
         if not args.files and not args.hex:
             raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")
