@@ -111,7 +111,9 @@ def test_fc16_write_multiple_registers() -> None:
 
 def test_fc17_report_server_id() -> None:
     _, response = pair("01 11", "01 11 03 0A FF 01")
-    assert response["fields"] == {"byte_count": 3, "data": "0aff01"}
+    # server id 0x0A, run indicator ON, one byte of device data (not printable: hex)
+    assert response["fields"] == {"byte_count": 3, "server_id": 10, "run_indicator": "ON", "additional_data": "01"}
+    assert response["warnings"] == []
 
 
 def test_fc20_read_file_record() -> None:
