@@ -3,14 +3,14 @@
 #ifndef VW3_TABLES_H
 #define VW3_TABLES_H
 
-#define HANDLED 5
-static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
+#define HANDLED 18
+static const int handled_codes[HANDLED] = {1, 2, 3, 4, 5, 6, 7, 11, 12, 15, 16, 17, 20, 21, 22, 23, 24, 43};
 
 /* Index of a function code in the tables below; -1: not shown here (handed over). */
 static const signed char handled_slot[256] = {
-    -1, -1, -1,  0,  1, -1,  2, -1, -1, -1, -1, -1, -1, -1, -1, -1,
-     3, -1, -1, -1, -1, -1, -1,  4, -1, -1, -1, -1, -1, -1, -1, -1,
-    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
+    -1,  0,  1,  2,  3,  4,  5,  6, -1, -1, -1,  7,  8, -1, -1,  9,
+    10, 11, -1, -1, 12, 13, 14, 15, 16, -1, -1, -1, -1, -1, -1, -1,
+    -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, 17, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
     -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1,
@@ -31,29 +31,47 @@ static int handled_index(int function) {
 }
 
 /* Spec limits (data/modbus.toml), in the order of the engine's `limits` argument. */
-#define LIMIT_COUNT 4
-#define LIMIT_READ_REGISTERS 0
-#define LIMIT_WRITE_REGISTERS 1
-#define LIMIT_RW_READ 2
-#define LIMIT_RW_WRITE 3
+#define LIMIT_COUNT 6
+#define LIMIT_READ_BITS 0
+#define LIMIT_READ_REGISTERS 1
+#define LIMIT_WRITE_COILS 2
+#define LIMIT_WRITE_REGISTERS 3
+#define LIMIT_RW_READ 4
+#define LIMIT_RW_WRITE 5
 
-/* Frame length, CRC included: `fixed` when not 0, else `extra` + the byte at `position`. */
-typedef struct { int fixed, position, extra; } LengthRule;
-static const LengthRule request_rule[HANDLED] = {{8, 0, 0}, {8, 0, 0}, {8, 0, 0}, {0, 6, 9}, {0, 10, 13}};
-static const LengthRule response_rule[HANDLED] = {{0, 2, 5}, {0, 2, 5}, {8, 0, 0}, {8, 0, 0}, {0, 2, 5}};
+/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`
+ * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response). */
+typedef struct { int fixed, position, extra, width, special; } LengthRule;
+static const LengthRule request_rule[HANDLED] = {{8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {0, 6, 9, 1, 0}, {0, 6, 9, 1, 0}, {4, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 10, 13, 1, 0}, {6, 0, 0, 0, 0}, {0, 0, 0, 0, 1}};
+static const LengthRule response_rule[HANDLED] = {{0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {5, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 6, 2, 0}, {0, 0, 0, 0, 2}};
 
 /* Where a request's fields are, as offsets from the frame's first byte (0: absent). The quantity
  * defaults to one register; the written registers' start and quantity default to the request's. */
 typedef struct {
     int start_at, quantity_at, limit, span; /* limit: LIMIT_* or -1; span: start + quantity <= 65536 */
+    int coil_at, coils_at, coils_count_at; /* FC5's ON/OFF value; FC15's packed coils, ceil(quantity / 8) */
     int values_at, write_start_at, write_quantity_at, write_limit, count_at; /* count: 2 x quantity */
+    int texts; /* 1: the texts come from the Python stages (table.Compiled.texts) */
 } RequestLayout;
 static const RequestLayout request_layout[HANDLED] = {
-    {2, 4, 0, 1, 0, 0, 0, -1, 0}, /* 3 */
-    {2, 4, 0, 1, 0, 0, 0, -1, 0}, /* 4 */
-    {2, 0, -1, 0, 4, 0, 0, -1, 0}, /* 6 */
-    {2, 4, 1, 1, 7, 0, 0, -1, 6}, /* 16 */
-    {2, 4, 2, 0, 11, 6, 8, 3, 10}, /* 23 */
+    {2, 4, 0, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 1 */
+    {2, 4, 0, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 2 */
+    {2, 4, 1, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 3 */
+    {2, 4, 1, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 4 */
+    {2, 0, -1, 0, 4, 0, 0, 0, 0, 0, -1, 0, 0}, /* 5 */
+    {2, 0, -1, 0, 0, 0, 0, 4, 0, 0, -1, 0, 0}, /* 6 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 7 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 11 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 12 */
+    {2, 4, 2, 1, 0, 7, 6, 0, 0, 0, -1, 0, 0}, /* 15 */
+    {2, 4, 3, 1, 0, 0, 0, 7, 0, 0, -1, 6, 0}, /* 16 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 17 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 20 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 21 */
+    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 22 */
+    {2, 4, 4, 0, 0, 0, 0, 11, 6, 8, 5, 10, 0}, /* 23 */
+    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 24 */
+    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 43 */
 };
 
 #endif

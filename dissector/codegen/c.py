@@ -12,19 +12,23 @@ from pathlib import Path
 
 from dissector.errors import GenerateError
 from dissector.protocol import table
-from dissector.protocol.table import Compiled, Counted, Fixed, Layout
+from dissector.protocol.table import Compiled, Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
 _ADU_HEAD = 2  # slave and function code before the grammar's data
+# Special length rules the engine implements (framing/rtu.py's functions of the same names).
+_SPECIAL_RULES = {"mei_request": 1, "mei_response": 2}
 
 
 def _rule(layout: Layout, code: int) -> str:
     rule = layout.length
     if isinstance(rule, Fixed):
-        return f"{{{rule.length}, 0, 0}}"
-    if isinstance(rule, Counted) and rule.width == 1:
-        return f"{{0, {rule.position}, {rule.extra}}}"
-    raise GenerateError(f"function {code}: the compiled path handles fixed and one-byte counted lengths only, not {rule}")
+        return f"{{{rule.length}, 0, 0, 0, 0}}"
+    if isinstance(rule, Counted) and rule.width in (1, 2):
+        return f"{{0, {rule.position}, {rule.extra}, {rule.width}, 0}}"
+    if isinstance(rule, Special) and rule.name in _SPECIAL_RULES:
+        return f"{{0, 0, 0, 0, {_SPECIAL_RULES[rule.name]}}}"
+    raise GenerateError(f"function {code}: the compiled path handles fixed and counted lengths only, not {rule}")
 
 
 def _offset(layout: Layout, field: str | None, code: int) -> int:
@@ -44,6 +48,12 @@ def _request_layout(code: int, layout: Layout, compiled: Compiled, limits: tuple
         limits.index(compiled.limit) if compiled.limit else -1,
         int(compiled.span),
     ]
+    coils = compiled.coils
+    values += [
+        _offset(layout, compiled.coil, code),
+        _offset(layout, coils.status if coils else None, code),
+        _offset(layout, coils.count if coils else None, code),
+    ]
     if writes is None:
         values += [0, 0, 0, -1, 0]
     else:
@@ -55,6 +65,7 @@ def _request_layout(code: int, layout: Layout, compiled: Compiled, limits: tuple
             limits.index(writes.limit) if writes.limit else -1,
             _offset(layout, writes.count, code),
         ]
+    values.append(int(compiled.texts))
     return "{" + ", ".join(map(str, values)) + "}"
 
 
@@ -87,8 +98,9 @@ def render_header() -> str:
         f"#define LIMIT_COUNT {len(limits)}",
         *(f"#define LIMIT_{name.upper()} {index}" for index, name in enumerate(limits)),
         "",
-        "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the byte at `position`. */",
-        "typedef struct { int fixed, position, extra; } LengthRule;",
+        "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
+        " * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response). */",
+        "typedef struct { int fixed, position, extra, width, special; } LengthRule;",
         "static const LengthRule request_rule[HANDLED] = {"
         + ", ".join(_rule(entry.request, entry.code) for entry in entries) + "};",
         "static const LengthRule response_rule[HANDLED] = {"
@@ -98,7 +110,9 @@ def render_header() -> str:
         " * defaults to one register; the written registers' start and quantity default to the request's. */",
         "typedef struct {",
         "    int start_at, quantity_at, limit, span; /* limit: LIMIT_* or -1; span: start + quantity <= 65536 */",
+        "    int coil_at, coils_at, coils_count_at; /* FC5's ON/OFF value; FC15's packed coils, ceil(quantity / 8) */",
         "    int values_at, write_start_at, write_quantity_at, write_limit, count_at; /* count: 2 x quantity */",
+        "    int texts; /* 1: the texts come from the Python stages (table.Compiled.texts) */",
         "} RequestLayout;",
         "static const RequestLayout request_layout[HANDLED] = {",
         *(

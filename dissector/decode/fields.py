@@ -10,7 +10,7 @@ from construct import Container
 from dissector.decode.fastpath import fast_parse
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
-from dissector.model import Bit, DeviceObject, Frame, Kind, Register
+from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register
 from dissector.protocol.spec import SPEC
 
 _LIMITS = SPEC.limits
@@ -36,13 +36,10 @@ def _registers(start: int | None, values: list[int]) -> list[Register]:
     return [Register((start + index) & 0xFFFF, value) for index, value in enumerate(values)]
 
 
-def _bits(start: int | None, packed: bytes, quantity: int | None) -> list[Bit]:
+def _bits(start: int | None, packed: bytes, quantity: int | None) -> BitList:
+    # In bulk: a 2000-coil read makes no Bit object until a view asks for one (model.BitList).
     count = len(packed) * 8 if quantity is None else min(quantity, len(packed) * 8)
-    bits = []
-    for index in range(count):
-        value = packed[index >> 3] >> (index & 7) & 1
-        bits.append(Bit(None if start is None else (start + index) & 0xFFFF, value))
-    return bits
+    return BitList(start, packed, count)
 
 
 def _ceil_bytes(bits: int) -> int:

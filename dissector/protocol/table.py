@@ -89,14 +89,28 @@ class Writes:
 
 
 @dataclass(frozen=True, slots=True)
+class Coils:
+    """Where a request's written coils are (FC15), by field names of its grammar."""
+
+    status: str  # the coils, packed 8 to a byte
+    count: str  # byte count that must be ceil(quantity / 8)
+
+
+@dataclass(frozen=True, slots=True)
 class Compiled:
     """How the compiled summary path reads the request, by field names of its grammar."""
 
-    start: str
+    start: str | None = None  # None: no address (FC7, FC11, FC12)
     quantity: str | None = None  # None: one register
     limit: str | None = None
     span: bool = False  # start + quantity must stay within 65536
     writes: Writes | None = None
+    coil: str | None = None  # FC5: the value, ON (0xFF00) or OFF (0000); any other draws a warning
+    coils: Coils | None = None
+    # The engine frames and pairs the transaction, and its texts come from the Python stages (kept by
+    # the frames' bytes): for layouts whose decoding and annotation change no state and whose texts
+    # are not worth porting (file records, identification objects, the server ID).
+    texts: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -133,7 +147,7 @@ def _read(code: int, bits: bool) -> Function:
         ),
         Access.READ,
         Data.BITS if bits else Data.REGISTERS,
-        compiled=None if bits else Compiled("start", "quantity", "read_registers", span=True),
+        compiled=Compiled("start", "quantity", request_limit, span=True),
     )
 
 
@@ -147,6 +161,7 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("write_single", _EIGHT, "write_single_coil"),
         _layout("write_single", _EIGHT, "write_single_coil"),
         Access.WRITE, Data.BITS, echo=True,
+        compiled=Compiled("address", coil="value"),
     ),
     Function(
         6,
@@ -155,20 +170,30 @@ FUNCTIONS: tuple[Function, ...] = (
         Access.WRITE, Data.REGISTERS, echo=True,
         compiled=Compiled("address", writes=Writes("value", "address")),
     ),
-    Function(7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC),
+    Function(
+        7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
     Function(
         8,
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         Access.DIAGNOSTIC, echo=True,
     ),
-    Function(11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC),
-    Function(12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC),
+    Function(
+        11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
+    Function(
+        12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
     Function(
         15,
         _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils"),
         _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
         Access.WRITE, Data.BITS, echo=True,
+        compiled=Compiled("start", "quantity", "write_coils", span=True, coils=Coils("status", "byte_count")),
     ),
     Function(
         16,
@@ -180,16 +205,24 @@ FUNCTIONS: tuple[Function, ...] = (
             writes=Writes("values", "start", "quantity", count="byte_count"),
         ),
     ),
-    Function(17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC),
     Function(
-        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ
+        17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
     ),
-    Function(21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True),
+    Function(
+        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ,
+        compiled=Compiled(texts=True),
+    ),
+    Function(
+        21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True,
+        compiled=Compiled(texts=True),
+    ),
     Function(
         22,
         _layout("mask_write", Fixed(10), "mask_write"),
         _layout("mask_write", Fixed(10), "mask_write"),
         Access.WRITE, echo=True,
+        compiled=Compiled("address"),
     ),
     Function(
         23,
@@ -207,12 +240,14 @@ FUNCTIONS: tuple[Function, ...] = (
         # The FIFO's values have no addresses of their own: Data.NONE.
         _layout("fifo_response", Counted(2, 6, width=2), "fifo_response", "fifo_count"),
         Access.READ,
+        compiled=Compiled("address"),
     ),
     Function(
         43,
         _layout("mei_request", Special("mei_request")),
         _layout("mei_response", Special("mei_response"), "mei_response"),
         Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
     ),
 )
 
