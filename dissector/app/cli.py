@@ -25,7 +25,7 @@ from dissector.app.options import PROG, DecodeOptions, build_parser, decode_opti
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.profile_options import annotator_from_args
+from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output
@@ -252,6 +252,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
+        report_profiles(annotate, env.stderr, env.stderr_isatty)
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly
