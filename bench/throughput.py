@@ -1,32 +1,37 @@
-"""Throughput of vw3-decode against tshark on the same frames, measured in one run.
+"""Throughput of vw3-decode against tshark on the same frames, three traffic mixes, one run.
 
-    python3 bench/throughput.py [--frames 200000] [--repeat 3] [--memory]
+    python3 bench/throughput.py [--frames 100000] [--repeat 3] [--mix NAME] [--memory] [--gigabyte]
 
-Builds a simulated session (dissector.sim.simulate.generate_session: ATV71 I/O scanning, SEL-749M polls,
-exceptions, unanswered requests), writes it raw (for vw3-decode) and as a USER0 pcap (for tshark's
-mbrtu dissector), then times, best of --repeat:
-- vw3-decode summary to a file, with the ATV71 annotator (the default) and without it (-n);
-- vw3-decode --json to a file;
-- tshark's one-line summary, and tshark -T json, with CRC verification on.
-The rounds interleave the commands (best of --repeat rounds each; commands under a second, the
-summaries of both tools, run 4 times a round). The package is byte-compiled first, as pip does.
-With --memory, peak RSS of vw3-decode on the session and on a tenfold session; with --gigabyte, also on
-the session repeated to 1 GB (a few minutes).
-Figures are frames per second and ratios against tshark from this one run.
+Mixes (each generated reproducibly, written raw for vw3-decode and as a USER0 pcap for tshark's mbrtu):
+- polling: the cyclic ATV71 I/O scan with SEL-749M polls (dissector.sim.simulate.generate_session);
+- plant: 4 drives, 2 relays polled for 40-register blocks, a coil/input module (FC1/2/5/15), an energy
+  meter (FC4), changing values, ~1 % exceptions (dissector.sim.mixes.plant_mix), decoded with the
+  profiles its user would give (relays sel749m, module and meter generic);
+- max-size: every public function code at random quantities up to the spec limits
+  (dissector.sim.mixes.max_size_mix).
+For each mix it times, best of --repeat interleaved rounds: vw3-decode's summary, --json, -V and
+--stats, and tshark's summary, -T json and -V with CRC verification on; peak RSS of every vw3-decode run
+comes from the same runs (os.wait4). Sub-second commands run SHORT_RUNS times a round. The package is
+byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
+this one run. With --memory, peak RSS on each mix repeated tenfold; with --gigabyte, also at 1 GB.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import shutil
 import subprocess
 import sys
 import time
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from dissector.sim.simulate import generate_session, write_capture  # noqa: E402
+from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix  # noqa: E402
+from dissector.sim.simulate import Record, generate_session, write_capture  # noqa: E402
 
 TSHARK_OPTIONS = [
     "-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""',
@@ -36,37 +41,122 @@ VW3 = [sys.executable, "-m", "dissector"]
 SHORT_RUNS = 4
 
 
+@dataclass(frozen=True)
+class Mix:
+    name: str
+    records: Callable[[int], list[Record]]
+    options: list[str]  # vw3-decode options a user of that bus gives (profiles)
+
+
+MIXES = [
+    Mix("polling", lambda frames: generate_session(frames // 2 + frames // 20, seed=1)[:frames], []),
+    Mix("plant", lambda frames: plant_mix(frames, seed=1),
+        [option for profile in PLANT_PROFILES for option in ("--profile", profile)]),
+    Mix("max-size", lambda frames: max_size_mix(frames, seed=1), []),
+]
+
+
+def run_once(command: list[str], output: Path) -> tuple[float, float]:
+    """Wall time and peak RSS (MB) of one run of `command`, stdout to `output`."""
+    with output.open("wb") as sink:
+        start = time.perf_counter()
+        process = subprocess.Popen(command, stdout=sink, stderr=subprocess.PIPE, cwd=ROOT)
+        stderr = process.stderr.read() if process.stderr else b""
+        _pid, status, usage = os.wait4(process.pid, 0)
+        elapsed = time.perf_counter() - start
+    process.returncode = os.waitstatus_to_exitcode(status)
+    if process.returncode != 0:
+        sys.exit(f"failed ({process.returncode}): {' '.join(command)}\n{stderr.decode()[-2000:]}")
+    return elapsed, usage.ru_maxrss / 1024
+
+
 def timed(command: list[str], output: Path, repeat: int) -> float:
-    """Best wall time of `repeat` runs, stdout to `output`."""
-    best = float("inf")
-    for _ in range(repeat):
-        with output.open("wb") as sink:
-            start = time.perf_counter()
-            result = subprocess.run(command, stdout=sink, stderr=subprocess.PIPE, cwd=ROOT)
-            elapsed = time.perf_counter() - start
-        if result.returncode != 0:
-            sys.exit(f"failed ({result.returncode}): {' '.join(command)}\n{result.stderr.decode()[-2000:]}")
-        best = min(best, elapsed)
-    return best
+    """Best wall time of `repeat` runs, stdout to `output` (bench/lua_throughput.py uses it too)."""
+    return min(run_once(command, output)[0] for _ in range(repeat))
 
 
 def peak_rss_mb(command: list[str]) -> float:
-    """Peak resident memory of one run of `command`, measured in a fresh wrapper process."""
-    probe = (
-        "import resource, subprocess, sys\n"
-        "subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, check=True)\n"
-        "print(resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)\n"
-    )
-    result = subprocess.run([sys.executable, "-c", probe, *command], capture_output=True, text=True, cwd=ROOT, check=True)
-    return int(result.stdout.strip()) / 1024
+    return run_once(command, Path(os.devnull))[1]
+
+
+def measure(mix: Mix, frames: int, repeat: int, out: Path, tshark: str) -> dict[str, tuple[float, float]]:
+    records = mix.records(frames)
+    raw, pcap = write_capture(records, out / mix.name)
+    print(f"{mix.name}: {len(records)} frames, {raw.stat().st_size:,} bytes raw", flush=True)
+    vw3 = VW3 + [str(raw), *mix.options]
+    runs = {
+        "summary": vw3,
+        "--json": vw3 + ["--json"],
+        "-V": vw3 + ["-V"],
+        "--stats": vw3 + ["--stats"],
+        "tshark summary": [tshark, "-r", str(pcap), *TSHARK_OPTIONS],
+        "tshark -T json": [tshark, "-r", str(pcap), "-T", "json", *TSHARK_OPTIONS],
+        "tshark -V": [tshark, "-r", str(pcap), "-V", *TSHARK_OPTIONS],
+    }
+    if mix.name == "polling":
+        runs["summary -n"] = vw3 + ["-n"]
+    # Rounds interleave the commands, so a slow spell of a shared machine hits them all alike; a 30 ms
+    # hiccup would move the ratio of two 0.3 s runs by 10%, hence several runs of the short ones.
+    best = {name: (float("inf"), 0.0) for name in runs}
+    for _round in range(repeat):
+        for name, command in runs.items():
+            for _ in range(SHORT_RUNS if best[name][0] < 1.0 else 1):
+                seconds, rss = run_once(command, out / "output.txt")
+                best[name] = (min(best[name][0], seconds), max(best[name][1], rss))
+    for name, (seconds, rss) in best.items():
+        rss_text = f"{rss:6.1f} MB" if not name.startswith("tshark") else ""
+        print(f"  {name:<16} {seconds:8.3f} s {len(records) / seconds:>11,.0f} frames/s  {rss_text}")
+    return {**best, "frames": (float(len(records)), 0.0)}
+
+
+def ratio_table(results: dict[str, dict[str, tuple[float, float]]]) -> str:
+    lines = [
+        "| mix | frames | summary vs tshark | `--json` vs `tshark -T json` | `-V` vs `tshark -V` "
+        "| `--stats` time / summary time | peak RSS |",
+        "|---|---:|---:|---:|---:|---:|---:|",
+    ]
+    for name, best in results.items():
+        seconds = {run: value[0] for run, value in best.items()}
+        rss = max(value[1] for run, value in best.items() if not run.startswith("tshark"))
+        lines.append(
+            f"| {name} | {int(seconds['frames']):,} "
+            f"| {seconds['tshark summary'] / seconds['summary']:.2f}x "
+            f"| {seconds['tshark -T json'] / seconds['--json']:.2f}x "
+            f"| {seconds['tshark -V'] / seconds['-V']:.2f}x "
+            f"| {seconds['--stats'] / seconds['summary']:.2f} "
+            f"| {rss:.1f} MB |"
+        )
+    return "\n".join(lines)
+
+
+def memory_runs(mix: Mix, out: Path, gigabyte: bool) -> None:
+    raw = out / f"{mix.name}.bin"
+    data = raw.read_bytes()
+    sizes = [("x10", 10)] + ([("1 GB", -(-10**9 // len(data)))] if gigabyte else [])
+    for label, times in sizes:
+        big = out / f"{mix.name}-big.bin"
+        with big.open("wb") as sink:
+            for _ in range(times):
+                sink.write(data)
+        vw3 = VW3 + [str(big), *mix.options]
+        start = time.perf_counter()
+        summary_mb = peak_rss_mb(vw3)
+        seconds = time.perf_counter() - start
+        extra = ""
+        if label == "x10":
+            extra = f", --json {peak_rss_mb(vw3 + ['--json']):.1f} MB, -V {peak_rss_mb(vw3 + ['-V']):.1f} MB"
+        print(f"  {mix.name} {label} ({big.stat().st_size / 1e6:,.0f} MB): summary {summary_mb:.1f} MB "
+              f"({seconds:.0f} s){extra}", flush=True)
+        big.unlink()
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--frames", type=int, default=200_000)
+    parser.add_argument("--frames", type=int, default=100_000, help="frames of each mix")
     parser.add_argument("--repeat", type=int, default=3)
-    parser.add_argument("--memory", action="store_true", help="also measure peak RSS at 1x and 10x")
-    parser.add_argument("--gigabyte", action="store_true", help="with --memory: also peak RSS on 1 GB of input")
+    parser.add_argument("--mix", action="append", choices=[mix.name for mix in MIXES], help="only these mixes")
+    parser.add_argument("--memory", action="store_true", help="also peak RSS on each mix repeated tenfold")
+    parser.add_argument("--gigabyte", action="store_true", help="with --memory: also peak RSS at 1 GB")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
     args = parser.parse_args()
     tshark = shutil.which("tshark")
@@ -76,62 +166,18 @@ def main() -> int:
     # Byte-compile the package as pip does when it installs it: with PYTHONDONTWRITEBYTECODE set (as on
     # this machine) every run would otherwise compile its modules from source again (~60 ms).
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(ROOT / "dissector")], check=True)
-
-    records = generate_session(args.frames // 2 + args.frames // 20, seed=1)[: args.frames]
-    frames = len(records)
-    raw, pcap = write_capture(records, args.out / "session")
-    print(f"session: {frames} frames, {raw.stat().st_size} bytes raw, {pcap.stat().st_size} bytes pcap")
-
-    runs = {
-        "vw3-decode summary (atv71 annotator)": VW3 + [str(raw)],
-        "vw3-decode summary (-n, no annotator)": VW3 + [str(raw), "-n"],
-        "vw3-decode --json": VW3 + [str(raw), "--json"],
-        "tshark summary": [tshark, "-r", str(pcap), *TSHARK_OPTIONS],
-        "tshark -T json": [tshark, "-r", str(pcap), "-T", "json", *TSHARK_OPTIONS],
-    }
-    # Rounds interleave the commands, so a slow spell of a shared machine hits them all alike. Commands
-    # under a second (the summaries, vw3-decode's and tshark's alike) run SHORT_RUNS times a round: at
-    # 0.2-0.7 s a run, a 30 ms hiccup would otherwise move their ratio by 10%.
-    best: dict[str, float] = {name: float("inf") for name in runs}
-    for _round in range(args.repeat):
-        for name, command in runs.items():
-            times = SHORT_RUNS if best[name] < 1.0 else 1
-            best[name] = min(best[name], timed(command, args.out / "output.txt", times))
-    rates: dict[str, float] = {}
-    for name, seconds in best.items():
-        rates[name] = frames / seconds
-        print(f"{name:<40} {seconds:7.3f} s  {rates[name]:>10,.0f} frames/s")
-
-    summary = rates["vw3-decode summary (atv71 annotator)"]
-    bare = rates["vw3-decode summary (-n, no annotator)"]
+    chosen = [mix for mix in MIXES if not args.mix or mix.name in args.mix]
+    results = {mix.name: measure(mix, args.frames, args.repeat, args.out, tshark) for mix in chosen}
     print()
-    print(f"summary vs tshark summary:      {summary / rates['tshark summary']:.2f}x")
-    print(f"json vs tshark -T json:         {rates['vw3-decode --json'] / rates['tshark -T json']:.2f}x")
-    print(f"annotation cost:                {(1 - summary / bare) * 100:.1f}% of decode throughput")
-
+    print(ratio_table(results))
+    if "polling" in results:
+        polling = results["polling"]
+        print(f"\nannotation cost (polling): {(1 - polling['summary -n'][0] / polling['summary'][0]) * 100:.1f}% "
+              "of decode throughput")
     if args.memory:
-        big = args.out / "session10.bin"
-        with big.open("wb") as sink:
-            for _ in range(10):
-                sink.write(raw.read_bytes())
-        small_mb = peak_rss_mb(VW3 + [str(raw)])
-        big_mb = peak_rss_mb(VW3 + [str(big)])
-        json_mb = peak_rss_mb(VW3 + [str(big), "--json"])
-        print(f"peak RSS: {small_mb:.1f} MB at {raw.stat().st_size / 1e6:.1f} MB input, "
-              f"{big_mb:.1f} MB at {big.stat().st_size / 1e6:.1f} MB input (x{big_mb / small_mb:.2f}); "
-              f"--json {json_mb:.1f} MB at {big.stat().st_size / 1e6:.1f} MB")
-        big.unlink()
-        if args.gigabyte:
-            huge = args.out / "session1g.bin"
-            data = raw.read_bytes()
-            with huge.open("wb") as sink:
-                for _ in range(-(-10**9 // len(data))):
-                    sink.write(data)
-            start = time.perf_counter()
-            huge_mb = peak_rss_mb(VW3 + [str(huge)])
-            seconds = time.perf_counter() - start
-            print(f"peak RSS: {huge_mb:.1f} MB at {huge.stat().st_size / 1e9:.2f} GB input ({seconds:.0f} s)")
-            huge.unlink()
+        print("\npeak RSS:")
+        for mix in chosen:
+            memory_runs(mix, args.out, args.gigabyte)
     return 0
 
 

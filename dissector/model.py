@@ -11,6 +11,35 @@ from enum import StrEnum
 from typing import Any
 
 
+class Stamp(float):
+    """A time in seconds since the epoch that keeps the integer nanoseconds its source wrote.
+
+    pcap and pcapng store integer (micro/nano)seconds; as floats near 1.7e9 s their differences pick
+    up noise (0.010157108306884766 for 10157 us). Two stamps subtract exactly from the integers, so
+    response times and the time column show what the capture says. It is a float everywhere else.
+    """
+
+    ns: int
+
+    def __new__(cls, ns: int) -> Stamp:
+        stamp = super().__new__(cls, ns / 1_000_000_000)  # int / int rounds once, correctly
+        stamp.ns = ns
+        return stamp
+
+    @classmethod
+    def from_parts(cls, seconds: int, fraction: int, units: int) -> Stamp:
+        """`fraction` in 1/`units` of a second, as pcap and pcapng store times."""
+        return cls(seconds * 1_000_000_000 + fraction * 1_000_000_000 // units)
+
+    def __sub__(self, other: object) -> float:
+        if isinstance(other, Stamp):
+            return (self.ns - other.ns) / 1_000_000_000
+        return float.__sub__(self, other)  # type: ignore[operator]
+
+    def __reduce__(self) -> tuple[type, tuple[int]]:
+        return Stamp, (self.ns,)
+
+
 class Kind(StrEnum):
     REQUEST = "request"
     RESPONSE = "response"

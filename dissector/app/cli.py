@@ -28,7 +28,9 @@ from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import add_profile_arguments, annotator_from_args
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
+from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import Output, OutputOptions
+from dissector.render.timefmt import TIME_FORMATS
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
@@ -59,8 +61,33 @@ class Environment:
         )
 
 
+class Parser(argparse.ArgumentParser):
+    """argparse that reports a bad command line as one UsageError line, not the usage text."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        raise UsageError(f"{message} (see {PROG} --help)")
+
+
+@dataclass(frozen=True, slots=True)
+class DecodeOptions:
+    """What decoding files needs from the command line, checked and typed once (issue 11)."""
+
+    files: tuple[str, ...] = ()
+    hex: tuple[str, ...] = ()
+    format: str | None = None
+    mode: str | None = None
+    timeout: float = 1.0
+    baud: int = 19200
+    filter: str | None = None
+    count: int | None = None
+    write: str | None = None
+    print_too: bool = False
+    stats: bool = False
+    output: OutputOptions = OutputOptions()
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog=PROG,
         description="Decode Modbus RTU/ASCII serial captures (Altivar 71 VW3 A3 303, SEL-749M) "
         "frame by frame, the way tshark shows packets.",
@@ -91,7 +118,28 @@ def build_parser() -> argparse.ArgumentParser:
         "--json", action="store_true", help="NDJSON, one object per item (with --stats: the statistics)"
     )
     output.add_argument(
-        "-Y", dest="filter", metavar="EXPR", help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'"
+        "-T",
+        dest="output_format",
+        choices=["text", "fields", "json"],
+        help="as tshark -T: text (the default), fields (with -e and -E) or json (NDJSON, as --json)",
+    )
+    output.add_argument(
+        "-e", dest="fields", action="append", default=[], metavar="KEY",
+        help="with -T fields: a JSON key (frame, time, slave, response_time, ...), fields.KEY or a "
+        "register key (address, value, code, scaled, status, ...); repeatable, in column order",
+    )
+    output.add_argument(
+        "-E", dest="field_options", action="append", default=[], metavar="NAME=VALUE",
+        help="with -T fields, as tshark: header=y|n, separator=/t|/s|C, quote=d|s|n, "
+        "occurrence=f|l|a, aggregator=,|/s|C, bom=y|n",
+    )
+    output.add_argument(
+        "-t", dest="time_format", choices=list(TIME_FORMATS), default="r",
+        help="time column as tshark -t: " + ", ".join(f"{key} {text}" for key, text in TIME_FORMATS.items()),
+    )
+    output.add_argument(
+        "-Y", dest="filter", action="append", default=[], metavar="EXPR",
+        help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'",
     )
     output.add_argument(
         "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
@@ -144,9 +192,10 @@ def _hex_chunk(text: str) -> Chunk:
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
-    def __init__(self, args: argparse.Namespace, env: Environment) -> None:
+    def __init__(self, options: DecodeOptions, env: Environment) -> None:
+        args = options
         self.env = env
-        self.json = args.json
+        self.json = args.output.json
         self.predicate: Callable[[dict], bool] | None = None
         if args.filter is not None:
             from dissector.render.filters import compile_filter
@@ -158,8 +207,8 @@ class Sinks:
 
             self.stats = StatsCollector()
         self.show = not args.stats and (args.write is None or args.print_too)
-        options = OutputOptions(detail=args.detail, hexdump=args.hexdump, json=args.json, color=args.color)
-        self.output = Output(options, env.stdout, env.stdout_isatty)
+        self.output = Output(args.output, env.stdout, env.stdout_isatty)
+        self.clock = self.output.clock
         self.pcap: PcapWriter | None = None
         self.write_path = args.write
         if args.write is not None:
@@ -186,6 +235,8 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
+        if self.show:
+            self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if predicate is not None:
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
@@ -205,6 +256,8 @@ class Sinks:
             for item in items:
                 self.stats.add(item)
         if self.show:
+            if self.clock.format == "d":
+                self.clock.keep(items)
             self.output.write(items, self.extra, records)
 
     def _up_to_count(self, items: list[Item]) -> list[Item]:
@@ -269,10 +322,66 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
     return annotator_from_args(args)
 
 
+def decode_options(args: argparse.Namespace) -> DecodeOptions:
+    """The typed options of a file decode; UsageError for options that contradict each other."""
+    _refuse_conflicts(args)
+    output_format = args.output_format or ("json" if args.json else "text")
+    fields: FieldsOptions | None = None
+    if output_format == "fields":
+        fields = parse_fields_options(args.fields, args.field_options)
+    return DecodeOptions(
+        files=tuple(args.files),
+        hex=tuple(args.hex),
+        format=args.format,
+        mode=args.mode,
+        timeout=args.timeout,
+        baud=args.baud,
+        filter=args.filter[0] if args.filter else None,
+        count=args.count,
+        write=args.write,
+        print_too=args.print_too,
+        stats=args.stats,
+        output=OutputOptions(
+            detail=args.detail,
+            hexdump=args.hexdump,
+            json=output_format == "json",
+            color=args.color,
+            time_format=args.time_format,
+            fields=fields,
+        ),
+    )
+
+
+def _refuse_conflicts(args: argparse.Namespace) -> None:
+    """Options that cannot both be meant are refused, never silently dropped."""
+    json_given = args.json or args.output_format == "json"
+    conflicts = [
+        (args.no_profile and bool(args.profile), "-n (no device profile) contradicts --profile"),
+        (args.no_profile and bool(args.map), "-n (no device profile) contradicts --map"),
+        (args.detail and json_given, "-V (detail tree) and --json are two outputs: choose one"),
+        (args.json and args.output_format not in (None, "json"), f"--json contradicts -T {args.output_format}"),
+        (args.output_format == "fields" and args.detail, "-V (detail tree) contradicts -T fields"),
+        (args.output_format == "fields" and args.hexdump, "-x (hex dump) contradicts -T fields"),
+        (args.output_format == "fields" and not args.fields, "-T fields needs at least one -e KEY"),
+        (bool(args.fields) and args.output_format != "fields", "-e KEY needs -T fields"),
+        (bool(args.field_options) and args.output_format != "fields", "-E NAME=VALUE needs -T fields"),
+        (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
+        (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
+        (args.duration is not None, "--duration needs --live PORT"),
+        (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
+        (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
+        (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
+        (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
+    ]
+    for contradiction, message in conflicts:
+        if contradiction:
+            raise UsageError(message)
+
+
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
 
 
-def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
+def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
     """(title, chunks, mode, take_warnings, timed) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
@@ -283,19 +392,21 @@ def _inputs(args: argparse.Namespace, env: Environment) -> Iterator[Input]:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
         chunks: Iterable[Chunk] = source
-        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.json:
+        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.output.records:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
             chunks = progress_for(source, path, env.stderr)
         yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
 
 
-def decode_files(args: argparse.Namespace, env: Environment) -> int:
-    annotate = _annotator(args)
+def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
     sinks = Sinks(args, env)
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
+    except BrokenPipeError:
+        sinks.abandon()
+        raise  # the reader went away: main() ends quietly
     except OSError as error:
         sinks.abandon()
         raise OutputError(f"standard output: {error.strerror or error}") from None
@@ -303,7 +414,7 @@ def decode_files(args: argparse.Namespace, env: Environment) -> int:
 
 
 def _decode_inputs(
-    args: argparse.Namespace, env: Environment, sinks: Sinks, annotate: Annotator | None
+    args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     try:
         for title, chunks, mode, take_warnings, timed in _inputs(args, env):
@@ -366,6 +477,9 @@ def run(argv: list[str] | None, env: Environment) -> int:
             args = parser.parse_args(argv)
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
+    except UsageError as error:
+        env.stderr.write(f"{PROG}: {error}\n")
+        return ExitStatus.BAD_INPUT
     args.files = [*args.read, *args.files]
     try:
         if args.live or args.detect is not None:
@@ -375,9 +489,9 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--live takes no FILE or --hex")
             return _live(args, env)
         if not args.files and not args.hex:
-            parser.print_usage(env.stderr)
-            raise UsageError("give a capture FILE, - for stdin, --hex BYTES or --live PORT")
-        return decode_files(args, env)
+            raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")
+        options = decode_options(args)
+        return decode_files(options, env, _annotator(args))
     except (UsageError, SourceError, ProfileError, FilterError) as error:
         _flush_quietly(env.stdout)
         env.stderr.write(f"{PROG}: {error}\n")

@@ -10,9 +10,11 @@ from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
 from dissector.render.detail import detail_tree, render_plain, render_rich
+from dissector.render.fields import FieldsOptions, FieldsWriter
 from dissector.render.hexdump import hexdump
 from dissector.render.jsonout import item_to_dict
 from dissector.render.summary import summary_line, summary_text
+from dissector.render.timefmt import Clock
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -26,6 +28,13 @@ class OutputOptions:
     hexdump: bool = False
     json: bool = False
     color: str = "auto"  # auto | always | never
+    time_format: str = "r"  # tshark -t: r a ad d dd e u ud (render.timefmt)
+    fields: FieldsOptions | None = None  # -T fields
+
+    @property
+    def records(self) -> bool:
+        """Items are written from their NDJSON dicts (--json, -T fields)."""
+        return self.json or self.fields is not None
 
 
 class Output:
@@ -34,7 +43,7 @@ class Output:
         self.stream = stream
         use_rich = options.color == "always" or (options.color == "auto" and isatty)
         self.console: Console | None = None
-        if use_rich and not options.json:
+        if use_rich and not options.records:
             from rich.console import Console as RichConsole  # only a terminal needs rich
 
             from dissector.render.theme import THEME
@@ -46,17 +55,23 @@ class Output:
                 highlight=False,
                 soft_wrap=False,
             )
-        self.base: float | None = None
+        self.clock = Clock(options.time_format)
         self._buffer: list[str] = []
+        self.fields = FieldsWriter(options.fields) if options.fields is not None else None
+        self._prefix = ""  # written before the first line (-E bom=y)
+        if self.fields is not None:
+            header, self._prefix = self.fields.preamble()
+            if header is not None:
+                self._buffer.append(header)
 
     def new_input(self, title: str | None = None) -> None:
         """Times restart at each input; several inputs are announced as tail(1) does."""
-        self.base = None
+        self.clock.reset()
         if title is None:
             return
         if self.console is not None:
             self.console.rule(title)
-        elif not self.options.json:
+        elif not self.options.records:
             self._buffer.append(f"==> {title} <==")
 
     def write(
@@ -65,25 +80,27 @@ class Output:
         extra: dict[str, object] | None = None,
         records: list[dict] | None = None,
     ) -> None:
-        """Show items; `records` are their NDJSON dicts when the caller has them already."""
+        """Show items; `records` are their NDJSON dicts when the caller has them already.
+
+        The clock must have observed them (and every item the filter dropped) before.
+        """
         options = self.options
         out = self._buffer
+        clock = self.clock
         for index, item in enumerate(items):
-            if self.base is None and item.time is not None:
-                self.base = item.time
-            if options.json:
+            if options.records:
                 record = records[index] if records is not None else item_to_dict(item)
                 if extra:
                     record.update(extra)
-                out.append(json.dumps(record))
+                out.append(json.dumps(record) if self.fields is None else self.fields.line(record))
                 continue
             if self.console is not None:
                 self._write_rich(item)
                 continue
             if options.detail:
-                out.append(render_plain(detail_tree(item, self.base)))
+                out.append(render_plain(detail_tree(item, clock.first)))
             else:
-                out.append(summary_line(item, self.base))
+                out.append(summary_line(item, column=clock.text(item)))
             if options.hexdump:
                 out.append(hexdump(item.raw))
             if options.detail or options.hexdump:
@@ -95,7 +112,7 @@ class Output:
     def plain_summary(self) -> bool:
         """One plain summary line per item and nothing else (what write_encoded may add to)."""
         options = self.options
-        return self.console is None and not (options.detail or options.hexdump or options.json)
+        return self.console is None and not (options.detail or options.hexdump or options.records)
 
     def write_encoded(self, lines: bytes) -> None:
         """Summary lines made elsewhere (the compiled path), UTF-8, each ending in a newline."""
@@ -113,9 +130,9 @@ class Output:
         console = self.console
         assert console is not None
         if self.options.detail:
-            console.print(render_rich(detail_tree(item, self.base)))
+            console.print(render_rich(detail_tree(item, self.clock.first)))
         else:
-            console.print(summary_text(item, self.base))
+            console.print(summary_text(item, column=self.clock.text(item)))
         if self.options.hexdump:
             console.print(hexdump(item.raw), style="vw3.hex", highlight=False)
         if self.options.detail or self.options.hexdump:
@@ -123,6 +140,7 @@ class Output:
 
     def flush(self) -> None:
         if self._buffer:
-            self.stream.write("\n".join(self._buffer) + "\n")
+            self.stream.write(self._prefix + "\n".join(self._buffer) + "\n")
+            self._prefix = ""
             self._buffer.clear()
         self.stream.flush()

@@ -59,9 +59,12 @@ def noise_info(noise: Noise) -> str:
 _KIND_COLUMN = {kind: f"{kind.value:<9}" for kind in Kind}
 
 
-def summary_line(item: Item, base: float | None = None) -> str:
+def summary_line(item: Item, base: float | None = None, column: str | None = None) -> str:
+    """`column`: the time column already formatted (render.timefmt.Clock); else relative to `base`."""
     time = item.time
-    if time is None:
+    if column is not None:
+        head = f"{item.number:>6} {column:>12}"
+    elif time is None:
         head = f"{item.number:>6}            -"
     else:
         head = f"{item.number:>6} {time - (base or 0.0):>12.6f}"
@@ -83,12 +86,12 @@ _KIND_STYLE = {
 }
 
 
-def summary_text(item: Item, base: float | None = None) -> Text:
+def summary_text(item: Item, base: float | None = None, column: str | None = None) -> Text:
     """The same line as summary_line, styled for a terminal."""
     from rich.text import Text  # only a terminal needs rich: piped output starts faster without it
     text = Text(no_wrap=True, overflow="ellipsis")
     text.append(f"{item.number:>6} ", "vw3.number")
-    text.append(f"{time_text(item, base):>12} ", "vw3.time")
+    text.append(f"{column if column is not None else time_text(item, base):>12} ", "vw3.time")
     if isinstance(item, Noise):
         text.append("  - noise     ", "vw3.noise")
         text.append(noise_info(item), "vw3.noise")

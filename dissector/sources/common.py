@@ -8,7 +8,7 @@ from collections.abc import Iterator
 from typing import BinaryIO
 
 from dissector.errors import SourceError
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 
 LINKTYPE_USER0 = 147
 LINKTYPE_RTAC_SERIAL = 250
@@ -126,7 +126,7 @@ def check_linktype(name: str, linktype: int, where: str = "") -> None:
 
 def rtac_header(
     head: bytes, record: int, log: WarningLog
-) -> tuple[float, int] | None:
+) -> tuple[Stamp, int] | None:
     """(time, header length) from an RTAC serial record's start; None when the header is cut.
 
     The RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian) is when the device saw
@@ -143,7 +143,7 @@ def rtac_header(
     trouble = RTAC_TROUBLE_EVENTS.get(event)
     if trouble is not None:
         log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
-    return seconds + micros / 1_000_000, RTAC_HEADER.size
+    return Stamp.from_parts(seconds, micros, 1_000_000), RTAC_HEADER.size
 
 
 def record_chunks(

@@ -9,7 +9,7 @@ from __future__ import annotations
 import struct
 from collections.abc import Iterator
 
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog, check_linktype, record_chunks
 
 # Magic as the first four bytes of the file -> (struct byte order, timestamp fraction units).
@@ -61,5 +61,5 @@ def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
                 f"record {record}: only {captured} of its {original} bytes were captured",
             )
         # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
-        time = seconds + fraction / units if seconds or fraction else None
+        time = Stamp.from_parts(seconds, fraction, units) if seconds or fraction else None
         yield from record_chunks(inp, captured, time, linktype, record, log, chunk_size)

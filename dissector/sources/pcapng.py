@@ -12,7 +12,7 @@ import struct
 from collections.abc import Iterator
 from dataclasses import dataclass
 
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
     Input,
     SourceError,
@@ -199,7 +199,7 @@ class _Reader:
             )
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
-        time = interface.offset + seconds + fraction / interface.units
+        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
         yield from self._data(captured, original, time, interface, body_length - 20, start)
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:

@@ -1,0 +1,149 @@
+"""`-T fields -e KEY ... -E option=value`: one line of chosen fields per item, as tshark writes them.
+
+A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`, ...), a key inside
+`fields` as `fields.KEY`, or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
+...), which has one occurrence per register (and bit) the frame carries. Lists (`warnings`, `notes`)
+have one occurrence per element. As tshark: `-E occurrence=f|l|a` picks the first, last or all
+occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
+goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
+`-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
+With quote=d a double quote inside a value is doubled (RFC 4180), so a spreadsheet reads it back.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any
+
+from dissector.errors import UsageError
+from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
+
+# Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).
+EXTRA_FRAME_KEYS = ("span_label", "exception_meaning", "objects", "fields", "bits", "registers", "file")
+SWITCHES = ("y", "n")
+QUOTES = {"d": '"', "s": "'", "n": ""}
+OCCURRENCES = ("f", "l", "a")
+
+
+@dataclass(frozen=True, slots=True)
+class FieldsOptions:
+    fields: tuple[str, ...]
+    separator: str = "\t"
+    aggregator: str = ","
+    quote: str = "n"  # d | s | n
+    occurrence: str = "a"  # f | l | a
+    header: bool = False
+    bom: bool = False
+
+
+def _character(text: str, option: str) -> str:
+    if text == "/t":
+        return "\t"
+    if text == "/s":
+        return " "
+    if not text:
+        raise UsageError(f"-E {option}= needs a character (/t tab, /s space, or the character)")
+    return text
+
+
+def parse_fields_options(fields: list[str], settings: list[str]) -> FieldsOptions:
+    """FieldsOptions from the -e KEY and -E name=value arguments; UsageError names what is wrong."""
+    for key in fields:
+        check_field(key)
+    values: dict[str, Any] = {}
+    for setting in settings:
+        name, equals, value = setting.partition("=")
+        if not equals:
+            raise UsageError(f"-E {setting}: expected name=value, e.g. -E separator=,")
+        if name == "separator" or name == "aggregator":
+            values[name] = _character(value, name)
+        elif name in ("header", "bom"):
+            if value not in SWITCHES:
+                raise UsageError(f"-E {name}={value}: expected y or n")
+            values[name] = value == "y"
+        elif name == "quote":
+            if value not in QUOTES:
+                raise UsageError(f"-E quote={value}: expected d (double), s (single) or n (none)")
+            values[name] = value
+        elif name == "occurrence":
+            if value not in OCCURRENCES:
+                raise UsageError(f"-E occurrence={value}: expected f (first), l (last) or a (all)")
+            values[name] = value
+        else:
+            raise UsageError(
+                f"-E {name}: unknown option; use header, separator, quote, occurrence, aggregator or bom"
+            )
+    return FieldsOptions(tuple(fields), **values)
+
+
+def check_field(key: str) -> None:
+    head = key.split(".", 1)[0]
+    if head in FRAME_FIELDS or head in REGISTER_FIELDS or head in EXTRA_FRAME_KEYS:
+        if "." in key and head != "fields":
+            raise UsageError(f"-e {key}: only fields.KEY names a key inside a value")
+        return
+    import difflib
+
+    names = [*FRAME_FIELDS, *REGISTER_FIELDS, *EXTRA_FRAME_KEYS]
+    close = difflib.get_close_matches(key, names, n=1)
+    hint = f" (did you mean {close[0]}?)" if close else " (see the NDJSON keys in the README)"
+    raise UsageError(f"-e {key}: not a field{hint}")
+
+
+def _text(value: Any) -> str:
+    if value is None:
+        return ""
+    if value is True or value is False:
+        return "1" if value else "0"  # as tshark 4.0 prints booleans
+    if isinstance(value, (dict, list)):
+        return json.dumps(value, separators=(",", ":"))
+    return str(value)
+
+
+def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
+    head, _dot, rest = key.partition(".")
+    if head in REGISTER_FIELDS:
+        elements = (record.get("registers") or []) + (record.get("bits") or [])
+        return [element[head] for element in elements if element.get(head) is not None]
+    value = record.get(head)
+    if rest:
+        for part in rest.split("."):
+            value = value.get(part) if isinstance(value, dict) else None
+    if value is None:
+        return []
+    if isinstance(value, list) and head in ("warnings", "notes"):
+        return value
+    return [value]
+
+
+class FieldsWriter:
+    """Formats records as lines of fields."""
+
+    def __init__(self, options: FieldsOptions) -> None:
+        self.options = options
+        self._quote = QUOTES[options.quote]
+
+    def header(self) -> str:
+        return self.options.separator.join(self.options.fields)
+
+    def line(self, record: dict[str, Any]) -> str:
+        options = self.options
+        quote = self._quote
+        out = []
+        for key in options.fields:
+            values = _occurrences(record, key)
+            if values and options.occurrence == "f":
+                values = values[:1]
+            elif values and options.occurrence == "l":
+                values = values[-1:]
+            text = options.aggregator.join(_text(value) for value in values)
+            if quote:
+                out.append(quote + text.replace(quote, quote + quote) + quote)
+            else:
+                out.append(text)
+        return options.separator.join(out)
+
+    def preamble(self) -> tuple[str | None, str]:
+        """(the header line or None, what the first line starts with: the BOM or nothing)."""
+        bom = "\ufeff" if self.options.bom else ""
+        return (self.header() if self.options.header else None), bom

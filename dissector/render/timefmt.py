@@ -1,0 +1,87 @@
+"""The time column, in tshark's `-t` formats.
+
+Reference points come from the capture, never from what the display filter lets through: relative
+time (`r`) counts from the first item of the input and `d` from the item captured just before, as
+tshark does; only `dd` (delta displayed) looks at what was shown.
+"""
+from __future__ import annotations
+
+import time as _time
+from dataclasses import dataclass, field
+
+from dissector.model import Item
+
+# -t value -> what tshark calls it (for --help and error messages)
+TIME_FORMATS: dict[str, str] = {
+    "r": "relative to the first item",
+    "a": "local time of day",
+    "ad": "local date and time",
+    "d": "delta from the previous item captured",
+    "dd": "delta from the previous item displayed",
+    "e": "seconds since the epoch",
+    "u": "UTC time of day",
+    "ud": "UTC date and time",
+}
+UNTIMED = "-"
+
+
+def _clock_text(seconds: float, utc: bool, date: bool) -> str:
+    whole = int(seconds // 1)
+    micros = round((seconds - whole) * 1_000_000)
+    if micros == 1_000_000:  # 0.9999996 rounds up into the next second
+        whole, micros = whole + 1, 0
+    parts = _time.gmtime(whole) if utc else _time.localtime(whole)
+    shape = "%Y-%m-%d %H:%M:%S" if date else "%H:%M:%S"
+    return f"{_time.strftime(shape, parts)}.{micros:06d}"
+
+
+@dataclass(slots=True)
+class Clock:
+    """Turns item times into the text of the time column; one per input (times restart per input)."""
+
+    format: str = "r"
+    first: float | None = None  # time of the first timed item captured
+    _previous_captured: float | None = None
+    _previous_shown: float | None = None
+    _before: dict[int, float | None] = field(default_factory=dict)  # id(item) -> previous captured time
+
+    def reset(self) -> None:
+        self.first = self._previous_captured = self._previous_shown = None
+        self._before.clear()
+
+    def observe(self, items: list[Item]) -> None:
+        """See items as captured, before any display filter (call for every item, in order)."""
+        track = self.format == "d"
+        for item in items:
+            time = item.time
+            if time is None:
+                continue
+            if self.first is None:
+                self.first = time
+            if track:
+                self._before[id(item)] = self._previous_captured
+            self._previous_captured = time
+
+    def text(self, item: Item) -> str:
+        """The column for an item being shown (call in display order)."""
+        time = item.time
+        if time is None:
+            return UNTIMED
+        fmt = self.format
+        if fmt == "r":
+            return f"{time - (self.first if self.first is not None else time):.6f}"
+        if fmt == "d":
+            previous = self._before.pop(id(item), None)
+            return f"{time - previous:.6f}" if previous is not None else "0.000000"
+        if fmt == "dd":
+            previous, self._previous_shown = self._previous_shown, time
+            return f"{time - previous:.6f}" if previous is not None else "0.000000"
+        if fmt == "e":
+            return f"{time:.6f}"
+        return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"))
+
+    def keep(self, items: list[Item]) -> None:
+        """Only `items` of those observed will be shown (the rest were filtered out or cut by -c)."""
+        before = self._before
+        if before:
+            self._before = {id(item): before[id(item)] for item in items if id(item) in before}

@@ -1,0 +1,209 @@
+"""tshark's habits (issue 15): -T fields / -e / -E, -t time formats, a reader that goes away, usage
+errors on one line, contradicting options refused, times from the capture's integer microseconds."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from helpers import run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+P38 = str(ROOT / "captures" / "p38_protection.pcap")
+PROG = "vw3-decode"
+
+
+def _cli(*argv: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "dissector", *argv], cwd=ROOT, capture_output=True, text=True, timeout=120,
+        env=None if env is None else dict(os.environ, **env),
+    )
+
+
+# -- -T fields ------------------------------------------------------------------------------------
+
+def test_fields_csv_with_header_and_double_quotes() -> None:
+    status, out, err = run_cli(
+        ["-T", "fields", "-e", "frame", "-e", "kind", "-e", "response_time", "-e", "code", "-e", "value",
+         "-E", "header=y", "-E", "separator=,", "-E", "quote=d", "-c", "2", P38]
+    )
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "frame,kind,response_time,code,value",  # the header is never quoted, as tshark
+        '"1","request","","",""',
+        '"2","response","0.010157","CHCF,COP","32768,3,2"',
+    ]
+
+
+def test_fields_default_tab_separator_and_occurrences() -> None:
+    argv = ["-T", "fields", "-e", "frame", "-e", "address", "-Y", "frame == 2", P38]
+    assert run_cli(argv)[1] == "2\t8400,8401,8402\n"
+    assert run_cli([*argv, "-E", "occurrence=f"])[1] == "2\t8400\n"
+    assert run_cli([*argv, "-E", "occurrence=l"])[1] == "2\t8402\n"
+    assert run_cli([*argv, "-E", "aggregator=/s", "-E", "separator=;"])[1] == "2;8400 8401 8402\n"
+    assert run_cli([*argv, "-E", "quote=s", "-E", "separator=/s"])[1] == "'2' '8400,8401,8402'\n"
+
+
+def test_fields_lists_nested_keys_booleans_and_quotes_doubled() -> None:
+    status, out, _err = run_cli(
+        ["-T", "fields", "-e", "frame", "-e", "crc_ok", "-e", "fields.start", "-e", "exception_name",
+         "-e", "notes", "-E", "quote=d", "-E", "occurrence=f", "-Y", "frame == 9 or frame == 10", P38]
+    )
+    lines = out.splitlines()
+    assert lines[0] == '"9"\t"1"\t"8400"\t""\t""'
+    assert lines[1].startswith('"10"\t"1"\t""\t"Illegal Data Address"\t"')
+
+
+def test_fields_quote_inside_a_value_is_doubled_as_a_spreadsheet_expects(tmp_path: Path) -> None:
+    from dissector.render.fields import FieldsWriter, parse_fields_options
+
+    writer = FieldsWriter(parse_fields_options(["text"], ["quote=d", "separator=,"]))
+    assert writer.line({"registers": [{"address": 1, "value": 2, "text": 'say "hi", twice'}]}) == (
+        '"say ""hi"", twice"'
+    )
+
+
+def test_fields_bom_and_json_alias() -> None:
+    _status, out, _err = run_cli(["-T", "fields", "-e", "frame", "-E", "bom=y", "-c", "1", P38])
+    assert out == "\ufeff1\n"
+    _status, json_out, _err = run_cli(["-T", "json", "-c", "1", P38])
+    assert json_out == run_cli(["--json", "-c", "1", P38])[1]
+    assert json.loads(json_out)["frame"] == 1
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["-T", "fields"], "-T fields needs at least one -e KEY"),
+        (["-e", "frame"], "-e KEY needs -T fields"),
+        (["-T", "fields", "-e", "frame", "-E", "quote=x"], "-E quote=x: expected d (double), s (single) or n (none)"),
+        (["-T", "fields", "-e", "frame", "-E", "occurrence=2"], "-E occurrence=2: expected f (first), l (last) or a (all)"),
+        (["-T", "fields", "-e", "frame", "-E", "header"], "-E header: expected name=value, e.g. -E separator=,"),
+        (["-T", "fields", "-e", "frame", "-E", "colour=y"],
+         "-E colour: unknown option; use header, separator, quote, occurrence, aggregator or bom"),
+        (["-T", "fields", "-e", "slvae"], "-e slvae: not a field (did you mean slave?)"),
+        (["-T", "fields", "-e", "frame", "-V"], "-V (detail tree) contradicts -T fields"),
+        (["-V", "--json"], "-V (detail tree) and --json are two outputs: choose one"),
+        (["-n", "--profile", "atv71"], "-n (no device profile) contradicts --profile"),
+        (["-n", "--map", "x.csv"], "-n (no device profile) contradicts --map"),
+        (["--raw", "out.bin"], "--raw (write the bytes heard) needs --live PORT"),
+        (["-Y", "slave == 1", "-Y", "slave == 2"], "-Y given twice: combine the filters with and / or in one -Y"),
+        (["-P"], "-P (print as well) needs -w FILE"),
+        (["--stats", "-V"], "--stats replaces the items: -V and -x show none"),
+    ],
+)
+def test_contradicting_options_are_refused_with_one_line(argv: list[str], message: str) -> None:
+    status, out, err = run_cli([*argv, P38])
+    assert (status, out, err) == (2, "", f"{PROG}: {message}\n")
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--bogus"], "unrecognized arguments: --bogus"),
+        (["-c", "0"], "argument -c/--count: '0' must be more than 0"),
+        (["--color", "maybe"], "argument --color: invalid choice: 'maybe' (choose from 'auto', 'always', 'never')"),
+        (["-t", "x"], "argument -t: invalid choice: 'x' (choose from 'r', 'a', 'ad', 'd', 'dd', 'e', 'u', 'ud')"),
+    ],
+)
+def test_usage_errors_are_one_line_with_status_2(argv: list[str], message: str) -> None:
+    done = _cli(*argv, P38)
+    assert (done.returncode, done.stdout, done.stderr) == (2, "", f"{PROG}: {message} (see {PROG} --help)\n")
+
+
+def test_no_input_is_one_line() -> None:
+    done = _cli()
+    assert (done.returncode, done.stderr) == (
+        2, f"{PROG}: give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)\n"
+    )
+
+
+# -- -t -------------------------------------------------------------------------------------------
+
+def _time_column(out: str) -> list[str]:
+    # number, then the time (dates have a space inside: take what lies before the slave column)
+    return [line[7:line.index("  12 ")].strip() for line in out.splitlines()]
+
+
+@pytest.mark.parametrize(
+    ("fmt", "expected"),
+    [
+        ("r", ["0.010157", "0.526253"]),  # from frame 1, which the filter hides
+        ("d", ["0.010157", "0.516096"]),  # from the previous frame captured
+        ("dd", ["0.000000", "0.516096"]),  # from the previous frame displayed
+        ("e", ["1767225600.019272", "1767225600.535368"]),
+        ("u", ["00:00:00.019272", "00:00:00.535368"]),
+        ("ud", ["2026-01-01 00:00:00.019272", "2026-01-01 00:00:00.535368"]),
+        ("a", ["01:00:00.019272", "01:00:00.535368"]),  # local time: Paris is UTC+1 in January
+        ("ad", ["2026-01-01 01:00:00.019272", "2026-01-01 01:00:00.535368"]),
+    ],
+)
+def test_time_formats_as_tshark_and_independent_of_the_filter(fmt: str, expected: list[str]) -> None:
+    done = _cli("-t", fmt, "-Y", "frame >= 2 and frame <= 3", P38, env={"TZ": "Europe/Paris"})
+    assert (done.returncode, done.stderr) == (0, "")
+    assert _time_column(done.stdout) == expected
+
+
+def test_relative_time_of_frame_17_does_not_depend_on_the_filter() -> None:
+    sel = str(ROOT / "captures" / "sel749m_polling.pcap")
+    shown = run_cli(["-Y", "frame >= 17", "-c", "1", sel])[1]
+    whole = run_cli([sel])[1].splitlines()[16]
+    assert shown.splitlines()[0] == whole
+    assert shown.split()[1] != "0.000000"
+
+
+def test_untimed_input_shows_a_dash_in_every_format() -> None:
+    for fmt in ("r", "d", "dd", "e", "ud"):
+        out = run_cli(["-t", fmt, "--hex", "0C 03 20 D0 00 03 0E EF"])[1]
+        assert out.split()[1] == "-"
+
+
+# -- a reader that goes away ---------------------------------------------------------------------
+
+@pytest.mark.parametrize("view", [[], ["-V"], ["--json"], ["-T", "fields", "-e", "frame"]])
+def test_a_reader_that_goes_away_ends_quietly(tmp_path: Path, view: list[str]) -> None:
+    capture = tmp_path / "big.bin"
+    capture.write_bytes((ROOT / "captures" / "atv71_commissioning.bin").read_bytes() * 300)
+    producer = subprocess.Popen(
+        [sys.executable, "-m", "dissector", *view, str(capture)], cwd=ROOT,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+    )
+    assert producer.stdout is not None
+    first = producer.stdout.readline()  # like head -1: read one line, then close the pipe
+    producer.stdout.close()
+    _out, err = producer.communicate(timeout=120)
+    assert first
+    assert (producer.returncode, err) == (0, b"")
+
+
+# -- integer microseconds ---------------------------------------------------------------------------
+
+def test_response_times_from_integer_microseconds() -> None:
+    out = run_cli(["--json", "-c", "4", P38])[1]
+    times = [json.loads(line).get("response_time") for line in out.splitlines()]
+    assert times == [None, 0.010157, None, 0.00798]
+    assert '"response_time": 0.010157,' in out
+
+
+def test_nanosecond_pcap_keeps_its_nanoseconds(tmp_path: Path) -> None:
+    import struct
+
+    from helpers import hx
+
+    def record(seconds: int, nanos: int, data: bytes) -> bytes:
+        return struct.pack("<IIII", seconds, nanos, len(data), len(data)) + data
+
+    header = struct.pack("<IHHiIII", 0xA1B23C4D, 2, 4, 0, 0, 65535, 147)
+    path = tmp_path / "ns.pcap"
+    path.write_bytes(
+        header
+        + record(1767225600, 123456789, hx("0C 03 20 D0 00 03 0E EF"))
+        + record(1767225600, 133614897, hx("0C 03 06 80 00 00 03 00 02 17 E4"))
+    )
+    records = [json.loads(line) for line in run_cli(["--json", str(path)])[1].splitlines()]
+    assert records[1]["response_time"] == 0.010158108
+    assert run_cli(["-t", "d", str(path)])[1].splitlines()[1].split()[1] == "0.010158"
