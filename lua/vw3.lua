@@ -1523,28 +1523,34 @@ end
 
 local function warn(frame, text) frame.warnings[#frame.warnings + 1] = text end
 
+-- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
+-- address. A value is read from the bytes each time it is needed (the first pass reads them from the
+-- frame's byte table, .b, dropped once the frame is done with; the display from the tvb), so a record
+-- keeps one small table for a read of 125 registers, not 125.
 local function make_registers(b, first, count, start)
-  local registers = {}
-  for index = 0, count - 1 do
-    local address = nil
-    if start ~= nil then address = (start + index) % 0x10000 end
-    registers[#registers + 1] = { address = address, value = u16(b, first + 2 * index), offset = first + 2 * index }
-  end
-  return registers
+  return { b = b, first = first, count = count, start = start }
 end
 
 local function make_bits(b, first, byte_count, start, quantity)
   local count = byte_count * 8
   if quantity ~= nil and quantity < count then count = quantity end
-  local bits = {}
-  for index = 0, count - 1 do
-    local byte = b[first + floor(index / 8)]
-    local value = floor(byte / 2 ^ (index % 8)) % 2
-    local address = nil
-    if start ~= nil then address = (start + index) % 0x10000 end
-    bits[#bits + 1] = { address = address, value = floor(value), offset = first + floor(index / 8) }
-  end
-  return bits
+  return { b = b, first = first, count = count, start = start }
+end
+
+-- The index-th (0-based) register of a run: address (nil when unknown), value, and its index in b.
+local function register_at(run, b, index)
+  local k = run.first + 2 * index
+  local address = nil
+  if run.start ~= nil then address = (run.start + index) % 0x10000 end
+  return address, b[k] * 256 + b[k + 1], k
+end
+
+local function bit_at(run, b, index)
+  local k = run.first + floor(index / 8)
+  local address = nil
+  if run.start ~= nil then address = (run.start + index) % 0x10000 end
+  if run.single ~= nil then return address, run.single, k end
+  return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
 
 local function ceil_bytes(bits) return floor((bits + 7) / 8) end
@@ -1780,13 +1786,13 @@ local function write_single_coil_handler(f, b)
   end
   local value = 0
   if fields.value == 0xFF00 then value = 1 end
-  f.bits = { { address = fields.address, value = value, offset = f.data_at + 2 } }
+  f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
 end
 
 local function write_single_register_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.address, 1
-  f.registers = { { address = fields.address, value = fields.value, offset = f.data_at + 2 } }
+  f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
 end
 
 local function diagnostics_handler(f, b)
@@ -1932,6 +1938,7 @@ local function pair(st, f)
     if pending ~= nil then
       pending.unanswered = true
       pending.fields = nil -- no answer can ask for them any more
+      if pending.registers ~= nil then pending.registers.b = nil end
     end
     st.pending = nil
     if f.slave == 0 then
@@ -2354,63 +2361,112 @@ local function track(st, f, address, row, value, status, now)
   end
 end
 
-local function remember_writes(st, f, registers)
-  for _, reg in ipairs(registers) do
-    if reg.address ~= nil then
-      local key = f.slave * 65536 + reg.address
-      local last = st.seen[key]
-      if last ~= nil then
-        last.value, last.frame, last.how = reg.value, f.number, "written"
-      else
-        st.seen[key] = { value = reg.value, frame = f.number, how = "written" }
-      end
+local function remember_writes(st, f, run, b)
+  if run.start == nil then return end
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    local key = f.slave * 65536 + address
+    local last = st.seen[key]
+    if last ~= nil then
+      last.value, last.frame, last.how = value, f.number, "written"
+    else
+      st.seen[key] = { value = value, frame = f.number, how = "written" }
     end
   end
 end
 
-local function annotate_registers(st, f, device, registers, read)
-  local rows, depend = device.rows, device.depend
-  local base = nil
-  if device.plc ~= nil then base = device.plc[f.fn] or device.plc_default end
+-- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
+-- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
+local function annotate_one(st, f, device, address, value, protected, multi)
+  local row = device.rows[address]
+  local plain = false
+  if row ~= nil then
+    local rule = device.depend[address]
+    if rule ~= nil then
+      local last = st.seen[f.slave * 65536 + rule.on]
+      if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
+        plain = true
+        if not has_note(f, rule.reason) then note(f, rule.reason) end
+      end
+    end
+  end
+  local status = nil
+  if protected ~= nil then
+    status = "ok"
+    if value == protected and multi then
+      if row == nil then
+        status = "non-existent"
+      elseif row.ambiguous_8000 then
+        status = "ambiguous"
+      else
+        status = "protected"
+      end
+    end
+    track(st, f, address, row, value, status, "16#8000 now")
+  end
+  return plain, status
+end
+
+-- What a register says: its map row, scaled value and text, from its value, the plain layout flag
+-- and its status (maps.interpret, then the 16#8000 texts).
+local function describe(device, address, value, plain, status)
+  local row = device.rows[address]
+  local scaled, text = nil, nil
+  if row ~= nil then
+    local used = row
+    if plain then used = device.plain[address] end
+    scaled, text = interpret(used, value)
+  end
+  if status == "non-existent" then
+    text = "16#8000: non-existent (address not in the map)"
+  elseif status == "protected" then
+    scaled, text = nil, "16#8000: protected"
+  end
+  return row, scaled, text
+end
+
+local function plc_base(device, f)
+  if device.plc == nil then return nil end
+  return device.plc[f.fn] or device.plc_default
+end
+
+-- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
+-- not the usual: the statuses other than ok, the registers read with their plain layout.
+local function annotate_registers(st, f, device, run, b, read)
+  if run.start == nil then return end
   local protected = nil
   if read then protected = device.profile.protected_value end
+  local multi = run.count > 1
+  run.device = device
+  run.checked = protected ~= nil
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    local plain, status = annotate_one(st, f, device, address, value, protected, multi)
+    if plain then
+      run.plain = run.plain or {}
+      run.plain[index] = true
+    end
+    if status ~= nil and status ~= "ok" then
+      run.status = run.status or {}
+      run.status[index] = status
+    end
+  end
+end
+
+-- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
+-- gets its row, label, scaled value, text and status.
+local function annotate_list(st, f, device, registers, read)
+  local protected = nil
+  if read then protected = device.profile.protected_value end
+  local base = plc_base(device, f)
   local multi = #registers > 1
   for _, reg in ipairs(registers) do
     local address = reg.address
     if address ~= nil then
       if base ~= nil then reg.label = plc_label(base, address) end
-      local row = rows[address]
-      local value = reg.value
-      if row ~= nil then
-        local used = row
-        local rule = depend[address]
-        if rule ~= nil then
-          local last = st.seen[f.slave * 65536 + rule.on]
-          if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
-            used = device.plain[address]
-            if not has_note(f, rule.reason) then note(f, rule.reason) end
-          end
-        end
-        reg.row = row -- code, name, unit and source (kept as the row: four fields fewer a register)
-        reg.scaled, reg.text = interpret(used, value)
-      end
-      if protected ~= nil then
-        local status = "ok"
-        if value == protected and multi then
-          if row == nil then
-            status = "non-existent"
-            reg.text = "16#8000: non-existent (address not in the map)"
-          elseif row.ambiguous_8000 then
-            status = "ambiguous"
-          else
-            status = "protected"
-            reg.scaled = nil
-            reg.text = "16#8000: protected"
-          end
-        end
-        reg.status = status
-        track(st, f, address, row, value, status, "16#8000 now")
-      end
+      local plain, status = annotate_one(st, f, device, address, reg.value, protected, multi)
+      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status)
+      reg.status = status
     end
   end
 end
@@ -2625,14 +2681,14 @@ annotate = function(st, f, b)
   end
   local request = f.request
   if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
-      and request.registers ~= nil and #request.registers > 0 then
+      and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-    remember_writes(st, f, request.registers)
+    remember_writes(st, f, request.registers, request.registers.b)
   end
   local registers = f.registers
-  if registers ~= nil and #registers > 0 then
-    annotate_registers(st, f, device, registers, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers) end
+  if registers ~= nil and registers.count > 0 then
+    annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers, b) end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
@@ -2677,20 +2733,26 @@ local function new_state(timeout, mode)
   }
 end
 
--- Number, pair, decode and annotate the items the framer gave out while `record` was fed; each is shown
--- in that record: through the record's own bytes when they hold it whole, else through its own bytes
--- (a frame or noise run that began in earlier records, which say where it went).
+-- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
+-- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
+-- later passes show it there): through that record's bytes when they hold it whole, else through its
+-- own bytes (a frame or noise run that began in earlier records, which say where it went).
 local function take_items(st, items, record)
-  local first, stop = record.start, record.start + record.length
-  local frames = record.frames
-  local list = record.items
   for _, item in ipairs(items) do
     st.count = st.count + 1
     item.number = st.count
-    item.record = record.number
-    list[#list + 1] = item
     local offset, length = item.offset, item.length
-    if offset >= first and offset + length <= stop then
+    local home = record
+    for _, earlier in ipairs(st.open) do
+      if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
+        home = earlier
+      end
+    end
+    item.record = home.number
+    home.items[#home.items + 1] = item
+    home.info = nil
+    local first = home.start
+    if offset >= first and offset + length <= first + home.length then
       item.at = offset - first
     else
       item.at = 0
@@ -2703,17 +2765,17 @@ local function take_items(st, items, record)
       end
       for _, earlier in ipairs(st.open) do
         local from, to = earlier.start, earlier.start + earlier.length
-        if earlier ~= record and from < offset + length and offset < to then
+        if earlier ~= home and from < offset + length and offset < to then
           earlier.continued = earlier.continued or {}
           earlier.continued[#earlier.continued + 1] = {
-            item = item.number, record = record.number, count = math.min(to, offset + length) - math.max(from, offset),
+            item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
           }
         end
       end
     end
     item.bytes, item.src = nil, nil
     if item.kind ~= NOISE then
-      frames = frames + 1
+      home.frames = home.frames + 1
       pair(st, item)
       decode_frame(item)
       annotate(st, item, item.b)
@@ -2723,26 +2785,35 @@ local function take_items(st, items, record)
       item.b = nil
       if #item.warnings == 0 then item.warnings = NO_INTERPRETATION end
       if #item.notes == 0 then item.notes = NO_INTERPRETATION end
+      if item.bits ~= nil then item.bits.b = nil end
       if item.kind ~= REQUEST then
         item.fields = nil
-        if item.request ~= nil then item.request.fields = nil end
+        if item.registers ~= nil then item.registers.b = nil end
+        local request = item.request
+        if request ~= nil then
+          request.fields = nil
+          if request.registers ~= nil then request.registers.b = nil end
+        end
       elseif st.pending ~= item then
         item.fields = nil
+        if item.registers ~= nil then item.registers.b = nil end
       end
     end
   end
-  record.frames = frames
-  record.info = nil
-  -- Records all of whose bytes are framed are done with; the newest says how many bytes wait.
+  -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
   local open = {}
   for _, earlier in ipairs(st.open) do
-    if earlier.start + earlier.length > waiting_from then open[#open + 1] = earlier end
+    local waiting = earlier.start + earlier.length - waiting_from
+    if waiting > 0 then
+      open[#open + 1] = earlier
+      earlier.waiting = math.min(waiting, earlier.length)
+    else
+      earlier.waiting = nil
+    end
   end
   st.open = open
-  record.waiting = math.max(0, stop - waiting_from)
-  if record.waiting > record.length then record.waiting = record.length end
 end
 
 local function dissect_record(st, bytes, time, number)
@@ -2763,7 +2834,6 @@ local function finish(st)
   local record = st.last
   if record == nil then return end
   take_items(st, feed(st, "", nil, false, true), record)
-  record.waiting = 0
 end
 
 local vw3 = {
@@ -2851,9 +2921,6 @@ local pf = {
   note = ProtoField.string("vw3.note", "Note"),
   data = ProtoField.bytes("vw3.data", "Data"),
 }
-local field_list = {}
-for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-proto.fields = field_list
 
 local ex = {
   crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
@@ -2998,6 +3065,70 @@ local function register_expert(reg)
   return format("Register %s%s: %s", label, code and (" " .. code) or "", reg.text or reg.status)
 end
 
+-- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
+local function frame_bytes(f, tvb)
+  local b = {}
+  if f.ascii then
+    local raw = tvb:raw(f.at + 1, f.length - 3)
+    for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
+  else
+    local raw = tvb:raw(f.at, f.length)
+    local bi, byte = f.bi - 1, string.byte
+    for k = 1, #raw do b[bi + k] = byte(raw, k) end
+  end
+  return b
+end
+
+-- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
+-- (its value is the profile's 16#8000, no bytes needed).
+local function register_view(f, run, b, index)
+  local address, value, offset
+  if b ~= nil then
+    address, value, offset = register_at(run, b, index)
+  else
+    address, value, offset = (run.start + index) % 0x10000, run.device.profile.protected_value, -1
+  end
+  local view = { address = address, value = value, offset = offset }
+  local device = run.device
+  if device ~= nil and address ~= nil then
+    local status = run.status and run.status[index]
+    if status == nil and run.checked then status = "ok" end
+    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status)
+    view.status = status
+    local base = plc_base(device, f)
+    if base ~= nil then view.label = plc_label(base, address) end
+  end
+  return view
+end
+
+-- Per-parameter fields (vw3.atv71.rfr, vw3.sel749m.ia, ...): one per row of the built-in register maps,
+-- its scaled value (or its value where the map gives no scale), so that an IO graph or a column can
+-- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
+-- is read).
+local PARAMETER_FIELDS = {}
+do
+  local taken = {}
+  for profile_name, profile in pairs(PROFILES) do
+    for _, row in pairs(profile.map or {}) do
+      local code = row.code and row.code:lower():gsub("[^%w_]", "_")
+      if code ~= nil and code ~= "" then
+        local abbr = format("vw3.%s.%s", profile_name, code)
+        if not taken[abbr] then
+          taken[abbr] = true
+          local title = row.name and format("%s (%s)", row.name, row.code) or row.code
+          if row.unit then title = title .. ", " .. row.unit end
+          local field = ProtoField.double(abbr, title)
+          PARAMETER_FIELDS[row] = field
+        end
+      end
+    end
+  end
+  local field_list = {}
+  for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+  for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
+  proto.fields = field_list
+end
+
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
@@ -3019,6 +3150,10 @@ local function add_register(tree, tvb, f, reg, range, full)
     if row.name then unseen.add(sub, pf.reg_name, row.name, true) end
     if row.unit then unseen.add(sub, pf.reg_unit, row.unit, true) end
     if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
+    local parameter = PARAMETER_FIELDS[row]
+    if parameter ~= nil and reg.status ~= "protected" then
+      unseen.add(sub, parameter, reg.scaled or reg.value, true)
+    end
     if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
     if row.source then unseen.add(sub, pf.reg_source, row.source, true) end
     if reg.status then
@@ -3029,7 +3164,7 @@ local function add_register(tree, tvb, f, reg, range, full)
   end
   local r = range or frame_range(tvb, f, reg.offset or -1, 2)
   local sub = tree:add(pf.reg, r)
-  sub:set_text(register_title(reg))
+  sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
   if reg.address ~= nil then
     local item = sub:add(pf.reg_address, r, reg.address)
     if r ~= nil then item:set_generated() end
@@ -3041,6 +3176,10 @@ local function add_register(tree, tvb, f, reg, range, full)
   if row.name then sub:add(pf.reg_name, r, row.name):set_generated() end
   if row.unit then sub:add(pf.reg_unit, r, row.unit):set_generated() end
   if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
+  local parameter = PARAMETER_FIELDS[row]
+  if parameter ~= nil and reg.status ~= "protected" then
+    sub:add(parameter, r, reg.scaled or reg.value):set_generated()
+  end
   if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
   if row.source then sub:add(pf.reg_source, r, row.source):set_generated() end
   if reg.status then
@@ -3114,31 +3253,47 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
   end
   local registers = f.registers
-  if registers then
-    -- (checking which fields are faked pays from the second register on)
-    local mode = full
-    if full == "unseen" and #registers < 2 then mode = true end
-    for index = 1, #registers do add_register(t, tvb, f, registers[index], nil, mode) end
+  if registers and registers.count > 0 then
+    if not full then
+      -- Only the expert infos of the registers that are not ok: no value needed (it is 16#8000).
+      local statuses = registers.status
+      if statuses ~= nil then
+        for index = 0, registers.count - 1 do
+          if statuses[index] ~= nil then
+            add_text(t, ex.protected, register_expert(register_view(f, registers, nil, index)))
+          end
+        end
+      end
+    else
+      local b = frame_bytes(f, tvb)
+      -- (checking which fields are faked pays from the second register on)
+      local mode = full
+      if full == "unseen" and registers.count < 2 then mode = true end
+      for index = 0, registers.count - 1 do
+        add_register(t, tvb, f, register_view(f, registers, b, index), nil, mode)
+      end
+    end
   end
   if full then
     local bits = f.bits
-    if bits then
-      local checked = full == "unseen" and #bits > 1
-      for index = 1, #bits do
-        local bit_ = bits[index]
-        local title = format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value)
+    if bits and bits.count > 0 then
+      local b = bits.single == nil and frame_bytes(f, tvb) or nil
+      local checked = full == "unseen" and bits.count > 1
+      for index = 0, bits.count - 1 do
+        local address, value, k = bit_at(bits, b, index)
+        local title = format("Bit %s = %d", address and tostring(address) or "?", value)
         if checked then
-          unseen.at(tvb, f, bit_.offset, 1)
+          unseen.at(tvb, f, k, 1)
           local sub = unseen.add(t, pf.bit)
           sub:set_text(title)
-          if bit_.address ~= nil then unseen.add(sub, pf.bit_address, bit_.address, true) end
-          unseen.add(sub, pf.bit_value, bit_.value, true)
+          if address ~= nil then unseen.add(sub, pf.bit_address, address, true) end
+          unseen.add(sub, pf.bit_value, value, true)
         else
-          local r = frame_range(tvb, f, bit_.offset, 1)
+          local r = frame_range(tvb, f, k, 1)
           local sub = t:add(pf.bit, r)
           sub:set_text(title)
-          if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
-          sub:add(pf.bit_value, r, bit_.value):set_generated()
+          if address ~= nil then sub:add(pf.bit_address, r, address):set_generated() end
+          sub:add(pf.bit_value, r, value):set_generated()
         end
       end
     end
@@ -3393,7 +3548,7 @@ DissectorTable.get("tcp.port"):add_for_decode_as(proto)
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
-  new_state = new_state, device_for = device_for, annotate_registers = annotate_registers, reads = READS,
+  new_state = new_state, device_for = device_for, annotate_registers = annotate_list, reads = READS,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 
