@@ -47,6 +47,10 @@ class Kind(StrEnum):
     NOISE = "noise"
 
 
+# What a device profile says about a register it read (Register.status); filters name these.
+REGISTER_STATUSES = ("ok", "protected", "non-existent", "ambiguous")
+
+
 @dataclass(slots=True)
 class Register:
     """One 16-bit register value a frame carries, numbered from the request where needed.

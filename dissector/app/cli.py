@@ -21,6 +21,7 @@ from dissector import __version__
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filters import FilterError
 from dissector.framing.rtu import RtuFramer
+from dissector.app.hexinput import HexInput
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
 from dissector.render.pcapwriter import PcapWriter
@@ -36,7 +37,7 @@ from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 PROG = "vw3-decode"
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump"])  # formats whose records may carry times
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
@@ -83,6 +84,8 @@ class DecodeOptions:
     write: str | None = None
     print_too: bool = False
     stats: bool = False
+    watch: str | None = None
+    report: str | None = None
     output: OutputOptions = OutputOptions()
 
 
@@ -149,6 +152,17 @@ def build_parser() -> argparse.ArgumentParser:
         "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
     )
     output.add_argument(
+        "--watch",
+        metavar="CODES",
+        help="one line per change of these parameters (codes or addresses, e.g. CHCF,HSP,3201) "
+        "instead of items",
+    )
+    output.add_argument(
+        "--report",
+        metavar="FILE",
+        help="write a self-contained HTML report (traffic, poll cycle, trends, events) to FILE",
+    )
+    output.add_argument(
         "--color",
         choices=["auto", "always", "never"],
         default="auto",
@@ -176,23 +190,10 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _hex_chunk(text: str) -> Chunk:
-    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
-    (`:02062329000AA2`; the CR LF may be left out)."""
-    stripped = text.strip()
-    if stripped.startswith(":"):
-        return Chunk(stripped.encode("ascii", "replace") + b"\r\n")
-    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
-    try:
-        return Chunk(bytes.fromhex(cleaned))
-    except ValueError:
-        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
-
-
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
-    def __init__(self, options: DecodeOptions, env: Environment) -> None:
+    def __init__(self, options: DecodeOptions, env: Environment, annotate: Annotator | None = None) -> None:
         args = options
         self.env = env
         self.json = args.output.json
@@ -206,7 +207,21 @@ class Sinks:
             from dissector.render.stats import StatsCollector
 
             self.stats = StatsCollector()
-        self.show = not args.stats and (args.write is None or args.print_too)
+        self.stats_shown = args.stats
+        self.watch = None
+        if args.watch is not None:
+            from dissector.render.watch import watcher
+
+            self.watch = watcher(args.watch, env.stdout.write, self.json, annotate)
+        self.report = None
+        if args.report is not None:
+            from dissector.render.report import ReportFile
+
+            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []))
+            self.stats = self.stats or self.report.stats  # the report's counts are --stats' numbers
+        self.show = not args.stats and self.watch is None and self.report is None and (
+            args.write is None or args.print_too
+        )
         self.output = Output(args.output, env.stdout, env.stdout_isatty)
         self.clock = self.output.clock
         self.pcap: PcapWriter | None = None
@@ -235,6 +250,8 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
+        if self.watch is not None and items:
+            self.watch.set_base(items[0])  # the time column never depends on -Y
         if self.show:
             self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if predicate is not None:
@@ -255,6 +272,11 @@ class Sinks:
         if self.stats is not None:
             for item in items:
                 self.stats.add(item)
+        if self.watch is not None:
+            for item in items:
+                self.watch.add(item)
+        if self.report is not None:
+            self.report.collector.add_items(items)
         if self.show:
             if self.clock.format == "d":
                 self.clock.keep(items)
@@ -273,6 +295,9 @@ class Sinks:
 
     def abandon(self) -> None:
         """Close the files after a failure, keeping what was written; errors are the caller's."""
+        if self.report is not None:
+            self.report, report = None, self.report
+            report.abandon()
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -287,7 +312,10 @@ class Sinks:
                 pcap.close()
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
-        if self.stats is not None:
+        if self.report is not None:
+            report, self.report = self.report, None
+            report.write(self.stats)  # type: ignore[arg-type]
+        if self.stats is not None and self.stats_shown:
             if self.json:
                 self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
             else:
@@ -306,13 +334,14 @@ def decode_chunks(
     dissector: Dissector,
     sinks: Sinks,
     warn: Callable[[], None] = lambda: None,
+    fix: Callable[[list[Item]], list[Item]] = lambda items: items,
 ) -> None:
     for chunk in chunks:
-        sinks.accept(dissector.feed(chunk))
+        sinks.accept(fix(dissector.feed(chunk)))
         warn()
         if sinks.done:
             return
-    sinks.accept(dissector.finish())
+    sinks.accept(fix(dissector.finish()))
     warn()
 
 
@@ -341,6 +370,8 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         write=args.write,
         print_too=args.print_too,
         stats=args.stats,
+        watch=args.watch,
+        report=args.report,
         output=OutputOptions(
             detail=args.detail,
             hexdump=args.hexdump,
@@ -378,16 +409,17 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
             raise UsageError(message)
 
 
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool]
+Fix = Callable[[list[Item]], list[Item]] | None
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix]
 
 
 def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed) per input."""
+    """(title, chunks, mode, take_warnings, timed, fix) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
-        chunks = [_hex_chunk(text) for text in args.hex]
-        mode = args.mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
-        yield ("--hex" if several else None), chunks, mode, list, False
+        typed = HexInput(args.hex, args.mode)
+        fix = typed.fix if typed.repairs else None
+        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix
     for path in args.files:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
@@ -396,11 +428,12 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
             chunks = progress_for(source, path, env.stderr)
-        yield (path if several else None), chunks, source.mode, source.take_warnings, source.format in TIMED_FORMATS
+        timed = source.format in TIMED_FORMATS
+        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None
 
 
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
-    sinks = Sinks(args, env)
+    sinks = Sinks(args, env, annotate)
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
@@ -417,7 +450,7 @@ def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     try:
-        for title, chunks, mode, take_warnings, timed in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed, fix in _inputs(args, env):
             if sinks.done:
                 break
             sinks.output.new_input(title)
@@ -434,14 +467,14 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
-            if mode == "rtu" and not timed and sinks.plain_summary_only:
+            if mode == "rtu" and not timed and fix is None and sinks.plain_summary_only:
                 from dissector.accel import fastsummary
 
                 if fastsummary.available():
                     path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
                     fastsummary.summarize(chunks, path, warn)
                     continue
-            decode_chunks(chunks, dissector, sinks, warn)
+            decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
     except BaseException:
         sinks.abandon()
         raise

@@ -5,9 +5,12 @@ Syntax, close to Wireshark's:
     slave == 12 and code == "CHCF"          comparisons: == != < <= > >= (also eq ne lt le gt ge)
     function in {3 4 23}   address in 8400..8402   address in {3201..3202 8501}
     warnings contains "byte count"          substring of a string, or of any element of a list
+    notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
+                                            as Wireshark's; (?-i) at the start makes it case-sensitive
+    value & 0x8000                          bit test: some bit of the mask is set
     crc_ok   not unanswered   exception     a bare field: present and not false (0 counts as present)
     not / !   and / &&   or / ||   ( )      strings in double quotes (\\" and \\\\ escapes), 0x.. hex,
-                                            true / false
+                                            16#8000 (IEC, as the notes print values), true / false
 
 Field names are the JSON keys. Frame fields: frame, kind, offset, length, time, raw, mode, slave,
 function, function_name, crc_ok, crc, crc_expected, broadcast, start, quantity, subfunction,
@@ -27,18 +30,34 @@ scope), while `code != "CHCF"` is "some register is not CHCF": use `not` to excl
 frame are its `registers` and `bits` (whose address and value these fields test too), plus the
 addresses a frame names without carrying a value (a read request's start..start+quantity-1, a FC16
 confirmation): `address == 8401` matches the read request, its response and writes of 8401; those
-address-only entries have no value, code or status.
+address-only entries have no value, code or status. Where a profile shows PLC-style references
+(`40001`), `address` also takes the number shown: `address == 40001` matches the register sent as 0.
 
 A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=`
 included. Errors raise FilterError, whose message shows the expression with a caret under the token.
 """
 from __future__ import annotations
 
-from dissector.errors import MalformedInput
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+from dissector.errors import MalformedInput
+from dissector.model import REGISTER_STATUSES
+from dissector.render.filter_match import (
+    address_of,
+    address_test,
+    address_values,
+    any_bit,
+    contains_text,
+    in_members,
+    label_number,
+    match_op,
+    is_number,
+    is_present,
+    search,
+)
 
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
@@ -88,6 +107,7 @@ ALIASES = {"exception": "exception_code"}
 CHOICES = {
     "kind": ("request", "response", "exception", "noise"),
     "mode": ("rtu", "ascii"),
+    "status": REGISTER_STATUSES,
 }
 MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
@@ -118,16 +138,16 @@ class Token:
 _TOKEN = re.compile(
     r"""
     (?P<space>\s+)
-  | (?P<number>0[xX][0-9A-Fa-f]+|-?\d+(?:\.\d+)?(?![0-9A-Za-z_]))
+  | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?)(?![0-9A-Za-z_#]))
   | (?P<string>")
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
-  | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!)
+  | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!|&|~)
   | (?P<punct>\.\.|[(){},])
     """,
     re.VERBOSE,
 )
 _WORD_OPS = {"eq": "==", "ne": "!=", "lt": "<", "le": "<=", "gt": ">", "ge": ">="}
-_KEYWORDS = {"and", "or", "not", "in", "contains", "true", "false"}
+_KEYWORDS = {"and", "or", "not", "in", "contains", "matches", "true", "false"}
 _ESCAPES = {'"': '"', "\\": "\\", "n": "\n", "t": "\t"}
 
 
@@ -152,6 +172,21 @@ def _string(text: str, start: int) -> tuple[str, int]:
     raise FilterError("string not closed (a \" is missing)", text, start)
 
 
+def _number(word: str, text: str, position: int) -> int | float:
+    """0x8000, 16#8000 (IEC 61131-3 radix#digits, as the notes print values), 12 or 1.5."""
+    if word[:2] in ("0x", "0X"):
+        return int(word, 16)
+    if "#" in word:
+        radix, digits = word.split("#", 1)
+        if radix not in ("2", "8", "16"):
+            raise FilterError(f"{word}: the radix before # is 2, 8 or 16", text, position)
+        try:
+            return int(digits.replace("_", ""), int(radix))
+        except ValueError:
+            raise FilterError(f"{word}: {digits!r} are not base-{radix} digits", text, position) from None
+    return float(word) if "." in word else int(word)
+
+
 def tokenize(text: str) -> list[Token]:
     tokens: list[Token] = []
     i = 0
@@ -171,9 +206,7 @@ def tokenize(text: str) -> list[Token]:
         if group == "number":
             if len(word) > 40:  # also keeps int() below Python's digit limit
                 raise FilterError("number too long", text, i)
-            number: int | float = int(word, 16) if word[:2] in ("0x", "0X") else (
-                float(word) if "." in word else int(word)
-            )
+            number = _number(word, text, i)
             tokens.append(Token("number", word, number, i))
         elif group == "name":
             lowered = word.lower()
@@ -190,44 +223,23 @@ def tokenize(text: str) -> list[Token]:
     return tokens
 
 
-def _present(value: Any) -> bool:
-    return value is not None and value is not False and value != "" and value != []
-
-
-def _compare(op: str, left: Any, right: Any) -> bool:
-    try:
-        if op == "==":
-            return bool(left == right)
-        if op == "!=":
-            return bool(left != right)
-        if op == "<":
-            return bool(left < right)
-        if op == "<=":
-            return bool(left <= right)
-        if op == ">":
-            return bool(left > right)
-        return bool(left >= right)
-    except TypeError:  # a value of an unexpected type in the item: not a match
-        return False
-
-
-def _numeric(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
-
-
 def _elements(item: Item) -> list[dict[str, Any]]:
     """The registers and bits of an item, plus address-only entries for addresses it names."""
     registers = item.get("registers") or []
     bits = item.get("bits")
     elements: list[dict[str, Any]] = registers + bits if bits else registers
     start, quantity = item.get("start"), item.get("quantity")
-    if not (_numeric(start) and _numeric(quantity)) or item.get("kind") == "exception":
+    if not (is_number(start) and is_number(quantity)) or item.get("kind") == "exception":
         return elements
     if len(elements) == quantity and elements[0].get("address") == start:
         return elements  # a read response: its values already cover start..start+quantity-1
     known = {element.get("address") for element in elements}
+    span = item.get("span_label")
+    first = label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
     synthesized = [
         {"address": address & 0xFFFF}
+        if first is None
+        else {"address": address & 0xFFFF, "label": str(first + address - int(start))}
         for address in range(int(start), int(start) + min(int(quantity), MAX_SYNTHESIZED))
         if address & 0xFFFF not in known
     ]
@@ -342,6 +354,28 @@ class _Parser:
             return item.get(field)
 
         token = self.token
+        if self.at("op", "&"):
+            self.advance()
+            if ftype != "number":
+                raise self.error(f"& tests bits of a number; {field} is a {_TYPE_WORDS[ftype]}", token)
+            mask_token = self.token
+            mask = self.parse_value(field, ftype)
+            if not isinstance(mask, int):
+                raise self.error("& needs a whole-number mask such as 0x8000", mask_token)
+            return (lambda item, reg: any_bit(get(item, reg), mask)), register
+        if self.at("keyword", "matches") or self.at("op", "~"):
+            self.advance()
+            if ftype not in ("str", "list"):
+                raise self.error(f"matches needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
+            pattern_token = self.token
+            pattern = _regex(self.parse_value(field, "str"), self.text, pattern_token.position)
+            if ftype == "list":
+                return (
+                    lambda item, reg: any(isinstance(v, str) and pattern.search(v) for v in get(item, reg) or ())
+                ), register
+            return (lambda item, reg: search(pattern, get(item, reg))), register
+        if field == "address":
+            get = address_of
         if token.kind == "op" and token.value != "!":
             self.advance()
             op = token.value
@@ -354,7 +388,9 @@ class _Parser:
                     raise self.error(f"{field} is a list of texts: use == or contains", token)
                 return (lambda item, reg: any(v == value for v in get(item, reg) or ())), register
             self._check_choice(field, value, value_token)
-            return (lambda item, reg: _match_op(op, get(item, reg), value)), register
+            if field == "address":
+                return address_test(op, value), register
+            return (lambda item, reg: match_op(op, get(item, reg), value)), register
         if self.at("keyword", "contains"):
             self.advance()
             if ftype not in ("str", "list"):
@@ -364,14 +400,16 @@ class _Parser:
                 return (
                     lambda item, reg: any(isinstance(v, str) and value in v for v in get(item, reg) or ())
                 ), register
-            return (lambda item, reg: _contains(get(item, reg), value)), register
+            return (lambda item, reg: contains_text(get(item, reg), value)), register
         if self.at("keyword", "in"):
             self.advance()
             members = self.parse_set(field, ftype)
-            return (lambda item, reg: _in(get(item, reg), members)), register
+            if field == "address":
+                return (lambda item, reg: any(in_members(v, members) for v in address_values(reg))), register
+            return (lambda item, reg: in_members(get(item, reg), members)), register
         if token.kind in ("number", "string", "name") or self.at("keyword", "true", "false"):
-            raise self.error(f"expected an operator (== != < <= > >= in contains) after {field}")
-        return (lambda item, reg: _present(get(item, reg))), register
+            raise self.error(f"expected an operator (== != < <= > >= & in contains matches) after {field}")
+        return (lambda item, reg: is_present(get(item, reg))), register
 
     def parse_value(self, field: str, ftype: str) -> Any:
         token = self.token
@@ -432,7 +470,11 @@ class _Parser:
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
         choices = CHOICES.get(field)
         if choices and value not in choices:
-            raise self.error(f"{field} is one of {', '.join(choices)}", token)
+            import difflib
+
+            close = difflib.get_close_matches(str(value), choices, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise self.error(f"{field} {value!r} does not exist{hint}: {field} is one of {', '.join(choices)}", token)
 
     @staticmethod
     def _describe(token: Token) -> str:
@@ -452,32 +494,15 @@ class _Parser:
 _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
 
 
-def _match_op(op: str, actual: Any, value: Any) -> bool:
-    if actual is None:
-        return False
-    if isinstance(value, str) != isinstance(actual, str):
-        return False
-    if isinstance(value, bool) != isinstance(actual, bool):
-        return False
-    return _compare(op, actual, value)
-
-
-def _contains(actual: Any, value: str) -> bool:
-    return isinstance(actual, str) and value in actual
-
-
-def _in(actual: Any, members: list[tuple[Any, Any]]) -> bool:
-    if actual is None or isinstance(actual, bool):
-        return False
-    for low, high in members:
-        if isinstance(low, str) != isinstance(actual, str):
-            continue
-        if low == high:
-            if actual == low:
-                return True
-        elif _compare("<=", low, actual) and _compare("<=", actual, high):
-            return True
-    return False
+def _regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
+    """Case-insensitive as Wireshark's matches; a leading (?-i) asks for case."""
+    flags = re.IGNORECASE
+    if pattern.startswith("(?-i)"):
+        pattern, flags = pattern[5:], 0
+    try:
+        return re.compile(pattern, flags)
+    except re.error as error:
+        raise FilterError(f"not a regular expression: {error}", text, position) from None
 
 
 class _And:

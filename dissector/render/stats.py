@@ -35,6 +35,7 @@ from rich.table import Table
 from rich.text import Text
 
 from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.render.pollcycle import PollCycle
 from dissector.protocol.spec import SPEC
 
 READ_FUNCTIONS = frozenset([3, 4, 23])
@@ -70,6 +71,34 @@ class ParameterStats:
         self.last = value
 
 
+PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
+
+
+def wire_values(frame: Frame) -> list[tuple[list[Register], bool]]:
+    """The parameter values a good frame establishes, as (registers, written), writes first (FC23
+    writes before it reads): a broadcast write request (nothing will confirm it), an FC6 echo, the
+    request of an FC16/23 normal answer, and the values of a read answer."""
+    kind = frame.kind
+    function = frame.function
+    if kind is Kind.REQUEST:
+        if frame.broadcast and function in WRITE_FUNCTIONS and frame.registers:
+            return [(frame.registers, True)]
+        return []
+    if kind is not Kind.RESPONSE:
+        return []
+    found: list[tuple[list[Register], bool]] = []
+    if function == 6:
+        if frame.registers:
+            found.append((frame.registers, True))
+    elif function in (16, 23):
+        request = frame.request
+        if request is not None and request.crc_ok and request.registers:
+            found.append((request.registers, True))
+    if function in READ_FUNCTIONS and frame.registers:
+        found.append((frame.registers, False))
+    return found
+
+
 def percentile(sorted_values: list[float], fraction: float) -> float:
     """Nearest rank: the smallest value with at least `fraction` of the values <= it."""
     rank = max(1, math.ceil(fraction * len(sorted_values)))
@@ -86,6 +115,7 @@ class StatsCollector:
         self.registers_without_address = 0
         self.first_time: float | None = None
         self.last_time: float | None = None
+        self.poll = PollCycle()
 
     # -- collecting ---------------------------------------------------------------------------
     def _function(self, slave: int, function: int) -> FunctionStats:
@@ -127,6 +157,7 @@ class StatsCollector:
         if item.kind is Kind.EXCEPTION:
             code = item.exception_code if item.exception_code is not None else -1
             stats.exceptions[code] = stats.exceptions.get(code, 0) + 1
+            self.poll.add_answer(item)
             request = item.request
             if request is not None and request.function in WRITE_FUNCTIONS and request.crc_ok:
                 for register in request.registers or ():
@@ -141,6 +172,7 @@ class StatsCollector:
 
     def _add_request(self, frame: Frame, stats: FunctionStats) -> None:
         stats.requests += 1
+        self.poll.add_request(frame)
         if frame.broadcast:
             stats.broadcasts += 1
         if frame.unanswered:

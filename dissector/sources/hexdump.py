@@ -15,13 +15,14 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterator
-from datetime import datetime, timezone
+from datetime import datetime, timedelta, timezone
 
 from dissector.errors import MalformedInput
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog
 
 MAX_LINE = 1 << 16
+_EPOCH = datetime(1970, 1, 1, tzinfo=timezone.utc)
 
 _SECONDS = re.compile(r"\d+\.\d+")
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}")
@@ -48,10 +49,9 @@ def _timestamp(tokens: list[str]) -> tuple[float | None, int]:
         return None, 0
     first = _strip_stamp(tokens[0])
     if _SECONDS.fullmatch(first):
-        seconds = float(first)
-        if not math.isfinite(seconds):  # 400 digits make inf: no time (and no JSON) can hold it
+        if not math.isfinite(float(first)):  # 400 digits make inf: no time (and no JSON) can hold it
             raise HexLineError(f"timestamp {first[:24]}... is out of range")
-        return seconds, 1
+        return Stamp(_nanoseconds(first)), 1
     if _DATETIME.fullmatch(first):
         return _epoch(first), 1
     if _DATE.fullmatch(first.lstrip("[")) and len(tokens) > 1:
@@ -61,18 +61,24 @@ def _timestamp(tokens: list[str]) -> tuple[float | None, int]:
     match = _TIME_OF_DAY.fullmatch(first)
     if match:
         hours, minutes, seconds = match.groups()
-        return int(hours) * 3600 + int(minutes) * 60 + float(seconds), 1
+        return Stamp((int(hours) * 3600 + int(minutes) * 60) * 1_000_000_000 + _nanoseconds(seconds)), 1
     return None, 0
 
 
-def _epoch(text: str) -> float:
+def _nanoseconds(decimal: str) -> int:
+    """`12.5` -> 12_500_000_000, exactly (digits past the ninth are dropped)."""
+    whole, _dot, fraction = decimal.partition(".")
+    return int(whole) * 1_000_000_000 + int((fraction + "000000000")[:9])
+
+
+def _epoch(text: str) -> Stamp:
     try:
         moment = datetime.fromisoformat(text)
     except ValueError as error:
         raise HexLineError(f"bad timestamp {text!r}: {error}") from None
     if moment.tzinfo is None:
         moment = moment.replace(tzinfo=timezone.utc)
-    return moment.timestamp()
+    return Stamp((moment - _EPOCH) // timedelta(microseconds=1) * 1000)
 
 
 def parse_line(line: str) -> tuple[float | None, bytes] | None:
@@ -126,13 +132,19 @@ def _lines(inp: Input, chunk_size: int) -> Iterator[bytes]:
         yield from lines
 
 
-def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
+    """(line number, text) of a text input; SourceError at the first line that is not ASCII."""
     for number, raw in enumerate(_lines(inp, chunk_size), start=1):
         try:
-            line = raw.decode("ascii")
-            parsed = parse_line(line)
+            yield number, raw.decode("ascii")
         except UnicodeDecodeError:
             raise SourceError(f"{inp.name} line {number}: binary data in a hex dump") from None
+
+
+def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    for number, line in text_lines(inp, chunk_size):
+        try:
+            parsed = parse_line(line)
         except HexLineError as error:
             raise SourceError(f"{inp.name} line {number}: {error}") from None
         if parsed is not None:

@@ -20,16 +20,18 @@ from typing import BinaryIO
 
 from dissector.protocol.ascii import detect_mode
 from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.hexdump import looks_like_hexdump, read_hexdump
 from dissector.sources.pcap import is_pcap, read_pcap
 from dissector.sources.pcapng import is_pcapng, read_pcapng
+from dissector.sources.traffic import looks_like_traffic, read_traffic
 from dissector.model import Chunk
 
 __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
-           "ascii": "ascii"}
+           "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic"}
 MODES = ("rtu", "ascii")
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
@@ -56,6 +58,9 @@ READERS: dict[str, Reader] = {
     "pcap": read_pcap,
     "pcapng": read_pcapng,
     "hexdump": read_hexdump,
+    "xxd": read_dump("xxd"),
+    "hexdump-C": read_dump("hexdump-C"),
+    "traffic": read_traffic,  # Modbus Poll / Modbus Slave traffic logs
 }
 
 
@@ -76,6 +81,11 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
     text = sample.decode("ascii")
     if text.lstrip().startswith(":"):
         return "ascii", None
+    if looks_like_traffic(text, complete):
+        return "traffic", None
+    tool = dump_tool(text, complete)
+    if tool is not None:
+        return tool, None
     if looks_like_hexdump(text, complete):
         return "hexdump", None
     return "raw", "the input is text, but neither a hex dump nor Modbus ASCII: decoded as raw bytes"

@@ -126,9 +126,9 @@ ERRORS = [
     ),
     ("(slave == 3", "expected ) to close the ( at column 1 (column 12)\n  (slave == 3\n             ^"),
     ("crc_ok > true", "crc_ok is true or false: only == and != compare it (column 8)\n  crc_ok > true\n         ^"),
-    ('kind == "req"', "kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
+    ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
-    ("slave 3", "expected an operator (== != < <= > >= in contains) after slave (column 7)\n  slave 3\n        ^"),
+    ("slave 3", "expected an operator (== != < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
     ("address in 8400", "expected .. (a range such as 8400..8402) or a set in { } (column 16)\n  address in 8400\n                 ^"),
     (
         "slave == 1 slave",

@@ -1,0 +1,106 @@
+"""`--hex`: frames typed from a manual, one frame per argument.
+
+Because the user says where each frame ends, a typed RTU frame that fails its CRC is most likely a
+typo (or a frame written without its CRC, as manuals print them): rather than calling it noise, the
+frame is decoded and the check is spelled out:
+
+    0C 03 20 D0 00 03 0E EE   -> decoded; "CRC bad: received 0xEE0E, expected 0xEF0E (on the wire
+                                 0E EE typed, 0E EF expected)" and the summary's CRC BAD column
+    0C 03 20 D0 00 03         -> decoded with the CRC computed; "no CRC typed: append 0E EF"
+
+A frame is only taken that way when the framer, shown the bytes with the right CRC, finds exactly
+that one frame in them; anything else is fed as typed (and shows up as noise).
+"""
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from dissector.errors import UsageError
+from dissector.framing.rtu import RtuFramer
+from dissector.model import Chunk, Frame, Item
+from dissector.protocol.crc import crc16
+
+
+@dataclass(frozen=True, slots=True)
+class Repair:
+    typed: bytes | None  # the bytes as typed, when they differ from the frame fed only by the CRC
+    note: str
+
+
+def hex_chunk(text: str) -> Chunk:
+    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
+    (`:02062329000AA2`; the CR LF may be left out). One argument is one frame: a boundary follows."""
+    stripped = text.strip()
+    if stripped.startswith(":"):
+        return Chunk(stripped.encode("ascii", "replace") + b"\r\n", None, True)
+    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
+    try:
+        return Chunk(bytes.fromhex(cleaned), None, True)
+    except ValueError:
+        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
+
+
+def _one_frame(data: bytes) -> bool:
+    """Does the RTU framer find exactly one frame, with a good CRC, covering all of `data`?"""
+    framer = RtuFramer()
+    items = framer.feed(Chunk(data, None, True)) + framer.finish()
+    return len(items) == 1 and isinstance(items[0], Frame) and items[0].crc_ok and items[0].length == len(data)
+
+
+def _wire(crc: int) -> str:
+    return f"{crc & 0xFF:02X} {crc >> 8:02X}"
+
+
+class HexInput:
+    """The chunks of the --hex arguments, and the notes their frames get once decoded."""
+
+    def __init__(self, texts: Sequence[str], mode: str | None) -> None:
+        chunks = [hex_chunk(text) for text in texts]
+        self.mode = mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
+        self.repairs: dict[int, Repair] = {}
+        self.chunks: list[Chunk] = []
+        offset = 0
+        for chunk in chunks:
+            if self.mode == "rtu":
+                chunk = self._mend(chunk, offset)
+            self.chunks.append(chunk)
+            offset += len(chunk.data)
+
+    def _mend(self, chunk: Chunk, offset: int) -> Chunk:
+        data = chunk.data
+        if len(data) >= 4:
+            body, typed = data[:-2], data[-2] | data[-1] << 8
+            expected = crc16(body)
+            if typed == expected:
+                return chunk
+            fixed = body + expected.to_bytes(2, "little")
+            if _one_frame(fixed):
+                self.repairs[offset] = Repair(
+                    data,
+                    f"CRC bad: received 0x{typed:04X}, expected 0x{expected:04X} "
+                    f"(on the wire {_wire(typed)} typed, {_wire(expected)} expected)",
+                )
+                return Chunk(fixed, None, True)
+        if len(data) >= 2:
+            crc = crc16(data)
+            whole = data + crc.to_bytes(2, "little")
+            if _one_frame(whole):
+                self.repairs[offset] = Repair(None, f"no CRC typed: append {_wire(crc)} (CRC 0x{crc:04X})")
+                return Chunk(whole, None, True)
+        return chunk
+
+    def fix(self, items: list[Item]) -> list[Item]:
+        """Put the typed bytes back in the frames decoded from mended ones, with their note."""
+        if self.repairs:
+            for item in items:
+                repair = self.repairs.get(item.offset) if isinstance(item, Frame) else None
+                if repair is None:
+                    continue
+                if repair.typed is not None:
+                    item.raw = repair.typed
+                    item.crc = repair.typed[-2] | repair.typed[-1] << 8
+                    item.warnings.append(repair.note)
+                else:
+                    item.notes.append(repair.note)
+        return items

@@ -1,0 +1,161 @@
+"""The poll cycle: each request a master repeats (same slave, function and addresses), its period,
+jitter and misses. Shared by `--stats` and `--report`.
+
+A request's key is its bytes without the check (the same slave, function, addresses and, for a
+write, the same values would be too strict: a PLC writes a changing setpoint in a fixed slot), so
+the key is (slave, function, start, quantity) and for FC23 the write window too. Only good requests
+count; broadcasts are cycles as well.
+
+Rules (the table captions say the same):
+- period: the median interval between consecutive occurrences (timestamps needed);
+- an interval of 1.5 periods or more skipped cycles: round(interval / period) - 1 of them;
+- jitter: the largest deviation from the period of the intervals that skipped nothing, and its
+  standard deviation (JSON);
+- misses: skipped cycles plus occurrences that got no normal answer (unanswered, exception, bad CRC).
+Intervals are kept as a histogram of 10 us steps, so memory does not grow with the capture (a PLC
+polls at a few distinct intervals); keys beyond MAX_KEYS are counted, not followed.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from dissector.model import Frame
+
+MIN_REPEATS = 3  # fewer occurrences are not a cycle
+MAX_KEYS = 50_000
+STEP = 1e-5  # interval histogram resolution: 10 us
+SKIP_FACTOR = 1.5
+
+Key = tuple[int, ...]
+
+
+@dataclass(slots=True)
+class _Poll:
+    first_number: int
+    count: int = 0
+    last_time: float | None = None
+    failed: int = 0  # occurrences without a normal answer
+    intervals: dict[int, int] = field(default_factory=dict)  # interval in STEP units -> count
+
+
+class PollCycle:
+    def __init__(self) -> None:
+        self._polls: dict[Key, _Poll] = {}
+        self.untracked = 0  # requests of keys beyond MAX_KEYS
+
+    def add_request(self, frame: Frame) -> None:
+        """A good request (CRC ok); its pairing (unanswered) must be final, as the sinks see it."""
+        key = request_key(frame)
+        poll = self._polls.get(key)
+        if poll is None:
+            if len(self._polls) >= MAX_KEYS:
+                self.untracked += 1
+                return
+            poll = self._polls[key] = _Poll(frame.number)
+        poll.count += 1
+        if frame.unanswered:
+            poll.failed += 1
+        time = frame.time
+        if time is not None:
+            if poll.last_time is not None:
+                step = round((time - poll.last_time) / STEP)
+                poll.intervals[step] = poll.intervals.get(step, 0) + 1
+            poll.last_time = time
+
+    def add_answer(self, frame: Frame) -> None:
+        """An exception (or a damaged answer) to a request: that cycle missed."""
+        request = frame.request
+        if request is None or not request.crc_ok:
+            return
+        poll = self._polls.get(request_key(request))
+        if poll is not None:
+            poll.failed += 1
+
+    def report(self) -> list[dict[str, Any]]:
+        rows = []
+        for key, poll in sorted(self._polls.items(), key=lambda entry: entry[1].first_number):
+            if poll.count < MIN_REPEATS:
+                continue
+            row: dict[str, Any] = {
+                "slave": key[0],
+                "function": key[1],
+                "start": key[2] if len(key) > 2 else None,
+                "quantity": key[3] if len(key) > 3 else None,
+                "write_start": key[4] if len(key) > 4 else None,
+                "write_quantity": key[5] if len(key) > 5 else None,
+                "count": poll.count,
+                "no_answer": poll.failed,
+                "period": None,
+                "jitter": None,
+                "jitter_sd": None,
+                "skipped": 0,
+            }
+            row.update(_timing(poll.intervals))
+            row["misses"] = row["skipped"] + poll.failed
+            rows.append(row)
+        return rows
+
+
+def request_key(frame: Frame) -> Key:
+    if frame.function == 23:
+        try:
+            fields = frame.fields
+            return (frame.slave, 23, frame.start, frame.quantity, fields["write_start"], fields["write_quantity"])
+        except (KeyError, TypeError):
+            pass
+    if frame.start is not None:
+        return (frame.slave, frame.function, frame.start, frame.quantity if frame.quantity is not None else 1)
+    if frame.subfunction is not None:
+        return (frame.slave, frame.function, frame.subfunction)
+    return (frame.slave, frame.function)
+
+
+def _timing(intervals: dict[int, int]) -> dict[str, Any]:
+    total = sum(intervals.values())
+    if not total:
+        return {}
+    ordered = sorted(intervals.items())
+    # The median interval: with skipped cycles a minority, it is the cycle.
+    half, seen, median = (total + 1) // 2, 0, ordered[-1][0]
+    for step, count in ordered:
+        seen += count
+        if seen >= half:
+            median = step
+            break
+    if median <= 0:
+        return {"period": 0.0}
+    skipped = 0
+    deviations: list[tuple[int, int]] = []
+    for step, count in ordered:
+        if step >= SKIP_FACTOR * median:
+            skipped += (round(step / median) - 1) * count
+        else:
+            deviations.append((step - median, count))
+    kept = sum(count for _, count in deviations)
+    jitter = max(abs(deviation) for deviation, _ in deviations) * STEP if deviations else 0.0
+    variance = sum(deviation * deviation * count for deviation, count in deviations) / kept if kept else 0.0
+    return {
+        "period": median * STEP,
+        "jitter": jitter,
+        "jitter_sd": math.sqrt(variance) * STEP,
+        "skipped": skipped,
+    }
+
+
+def describe_key(row: dict[str, Any]) -> str:
+    """`3102..3105 (4)`, `read 3201..3202, write 8501..8502`, or '' for a request without addresses."""
+    start, quantity = row.get("start"), row.get("quantity")
+    if start is None:
+        return ""
+    text = _span(start, quantity)
+    if row.get("write_start") is not None:
+        return f"read {text}, write {_span(row['write_start'], row['write_quantity'])}"
+    return text
+
+
+def _span(start: int, quantity: int | None) -> str:
+    if not quantity or quantity == 1:
+        return str(start)
+    return f"{start}..{start + quantity - 1} ({quantity})"

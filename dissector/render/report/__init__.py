@@ -1,0 +1,33 @@
+"""`--report FILE`: one self-contained HTML page of a capture (see collect.py and html.py)."""
+from __future__ import annotations
+
+from dissector.errors import UsageError
+from dissector.render.report.collect import ReportCollector
+from dissector.render.report.html import render_report, write_report
+from dissector.render.stats import StatsCollector
+
+__all__ = ["ReportCollector", "ReportFile", "render_report", "write_report"]
+
+
+class ReportFile:
+    """The report being collected and the file it goes to, opened first so that a bad path fails
+    before the capture is decoded (as -w does)."""
+
+    def __init__(self, path: str, annotate: object, titles: list[str]) -> None:
+        self.path = path
+        self.collector = ReportCollector(annotate)
+        self.stats = StatsCollector()
+        self.title = "vw3-decode report: " + ", ".join(titles) if titles else None
+        try:
+            self.stream = open(path, "w", encoding="utf-8")
+        except OSError as error:
+            raise UsageError(f"--report {path}: {error.strerror or error}") from None
+
+    def write(self, stats: StatsCollector) -> None:
+        write_report(self.stream, self.path, self.collector, stats, self.title)
+
+    def abandon(self) -> None:
+        try:
+            self.stream.close()
+        except OSError:
+            pass

@@ -1,0 +1,353 @@
+"""What the HTML report draws, collected in one pass over the decoded items with bounded memory.
+
+- Parameter trends: every value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23
+  request with a normal answer), as the device profile scaled it (`Register.scaled`, its unit), or the
+  raw word for enumerations and bit fields (drawn as steps, with the profile's texts as labels), or
+  the raw word when the map gives no scale. A status (`protected`, `non-existent`, or an exception the
+  profile explains so) is no value: it opens an unreadable span, which the next value closes
+  ("readable again"); both moments are marks on the chart and events on the timeline.
+- Points are downsampled per pixel column: each of at most COLUMNS columns of the capture's span
+  keeps its first, lowest, highest and last point, so a spike or a dip of one sample survives, and a
+  1 GB capture draws as fast as a small one. The span is not known while streaming: columns start
+  narrow and double in width (merging pairs) whenever the capture outgrows 2 x COLUMNS of them.
+- Events: exceptions, protections, CRC errors, noise bursts, silences inside frames (the timing
+  warnings), unanswered requests; counted per column for the timeline, the first MAX_EVENTS listed.
+The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from dissector.model import Frame, Item, Kind, Register
+from dissector.render.stats import PLAIN_READS, UNREADABLE, wire_values
+
+COLUMNS = 800
+MAX_SERIES = 400
+MAX_MARKS = 200
+MAX_EVENTS = 1000
+MAX_LABELS = 64
+EVENT_KINDS = ("exception", "protection", "crc", "noise", "silence", "unanswered")
+
+# A finished column: first x, first y, min x, min y, max x, max y, last x, last y.
+Column = tuple[float, float, float, float, float, float, float, float]
+
+
+class Columns:
+    """Per-column first/min/max/last of one series; `index` maps x to a column, shared by all."""
+
+    __slots__ = ("done", "col", "fx", "fy", "nx", "ny", "mx", "my", "lx", "ly")
+
+    def __init__(self) -> None:
+        self.done: list[tuple[int, Column]] = []
+        self.col = -1
+
+    def add(self, col: int, x: float, y: float) -> None:
+        if col != self.col:
+            if self.col >= 0:
+                self.done.append((self.col, (self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly)))
+            self.col = col
+            self.fx = self.nx = self.mx = self.lx = x
+            self.fy = self.ny = self.my = self.ly = y
+            return
+        if y < self.ny:
+            self.nx, self.ny = x, y
+        elif y > self.my:
+            self.mx, self.my = x, y
+        self.lx, self.ly = x, y
+
+    def halve(self) -> None:
+        """Columns twice as wide: merge neighbours (col // 2)."""
+        merged: list[tuple[int, Column]] = []
+        for col, column in self.done:
+            col //= 2
+            if merged and merged[-1][0] == col:
+                merged[-1] = (col, _merge(merged[-1][1], column))
+            else:
+                merged.append((col, column))
+        self.done = merged
+        if self.col >= 0:
+            current = (self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly)
+            col = self.col // 2
+            if merged and merged[-1][0] == col:
+                current = _merge(merged.pop()[1], current)
+            self.col = col
+            self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly = current
+
+    def points(self) -> tuple[list[float], list[float]]:
+        columns = [column for _, column in self.done]
+        if self.col >= 0:
+            columns.append((self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly))
+        xs: list[float] = []
+        ys: list[float] = []
+        for fx, fy, nx, ny, mx, my, lx, ly in columns:
+            for x, y in sorted({(fx, fy), (nx, ny), (mx, my), (lx, ly)}):
+                if xs and x <= xs[-1]:
+                    continue
+                # A run of equal values needs only its ends.
+                if len(ys) >= 2 and ys[-1] == y and ys[-2] == y:
+                    xs[-1] = x
+                    continue
+                xs.append(x)
+                ys.append(y)
+        return xs, ys
+
+
+def _merge(a: Column, b: Column) -> Column:
+    low = (a[2], a[3]) if a[3] <= b[3] else (b[2], b[3])
+    high = (a[4], a[5]) if a[5] >= b[5] else (b[4], b[5])
+    return (a[0], a[1], low[0], low[1], high[0], high[1], b[6], b[7])
+
+
+@dataclass(slots=True)
+class Series:
+    slave: int
+    address: int
+    code: str | None = None
+    name: str | None = None
+    unit: str | None = None
+    step: bool = False  # an enumeration or a bit field: the raw word, drawn as steps
+    labels: dict[int, str] = field(default_factory=dict)
+    columns: Columns = field(default_factory=Columns)
+    values: int = 0
+    status: str | None = None  # the open unreadable span's status, None when readable
+    marks: list[tuple[float, str]] = field(default_factory=list)
+    marks_dropped: int = 0
+
+
+class ReportCollector:
+    def __init__(self, annotate: object = None) -> None:
+        profile_for = getattr(annotate, "profile_for", None)
+        self._profile_for = profile_for
+        self.timed: bool | None = None
+        self.origin: float | None = None
+        self.width = 0.0
+        self.limit = 0.0  # x beyond which the columns double
+        self.series: dict[tuple[int, int], Series] = {}
+        self.series_dropped = 0
+        self.events: list[tuple[float, str, int | None, str]] = []
+        self.events_dropped = 0
+        self.event_columns: dict[str, dict[int, int]] = {kind: {} for kind in EVENT_KINDS}
+        self.event_counts: dict[str, int] = {kind: 0 for kind in EVENT_KINDS}
+        self.first_x: float | None = None
+        self.last_x: float | None = None
+
+    # -- the x axis -------------------------------------------------------------------------------
+    def _double(self) -> None:
+        """Columns twice as wide, for every series and event count."""
+        self.width *= 2
+        self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
+        for series in self.series.values():
+            series.columns.halve()
+        for counts in self.event_columns.values():
+            merged: dict[int, int] = {}
+            for col, count in counts.items():
+                merged[col // 2] = merged.get(col // 2, 0) + count
+            counts.clear()
+            counts.update(merged)
+
+    def _x(self, item: Item) -> float:
+        if self.timed is None:
+            self.timed = item.time is not None
+            self.width = 1e-3 if self.timed else 1.0
+        x = (item.time if item.time is not None else 0.0) if self.timed else float(item.number)
+        if self.origin is None:
+            self.origin = x
+            self.limit = x + 2 * COLUMNS * self.width
+        while x >= self.limit:
+            self._double()
+        if self.first_x is None:
+            self.first_x = x
+        self.last_x = x
+        return x
+
+    def _col(self, x: float) -> int:
+        return max(0, int((x - self.origin) / self.width))  # type: ignore[operator]
+
+    # -- collecting -------------------------------------------------------------------------------
+    def add_items(self, items: list[Item]) -> None:
+        for item in items:
+            self.add(item)
+
+    def add(self, item: Item) -> None:
+        x = self._x(item)
+        for warning in item.warnings:
+            if warning.startswith("silence"):
+                self._event(x, "silence", getattr(item, "slave", None), warning)
+        if item.kind is Kind.NOISE:
+            self._event(x, "noise", None, f"{item.length} bytes of noise at offset {item.offset}")
+            return
+        frame: Frame = item  # type: ignore[assignment]
+        if not frame.crc_ok:
+            self._event(x, "crc", frame.slave, f"bad CRC, function {frame.function}, {frame.length} bytes")
+            return
+        kind = frame.kind
+        if kind is Kind.REQUEST:
+            if frame.unanswered and not frame.broadcast:
+                self._event(x, "unanswered", frame.slave, f"function {frame.function} unanswered")
+        elif kind is Kind.EXCEPTION:
+            code = frame.exception_code
+            text = frame.exception_text or ""
+            self._event(
+                x, "exception", frame.slave,
+                f"exception {code:02X} to function {frame.function & 0x7F}" + (f": {text}" if text else "")
+                if code is not None else "exception",
+            )
+            self._exception(x, frame, code)
+            return
+        for registers, written in wire_values(frame):
+            self._values(x, frame, registers, written)
+
+    def _event(self, x: float, kind: str, slave: int | None, text: str) -> None:
+        self.event_counts[kind] += 1
+        counts = self.event_columns[kind]
+        col = self._col(x)
+        counts[col] = counts.get(col, 0) + 1
+        if len(self.events) < MAX_EVENTS:
+            self.events.append((x, kind, slave, text))
+        else:
+            self.events_dropped += 1
+
+    def _series(self, slave: int, register: Register) -> Series | None:
+        key = (slave, register.address)
+        series = self.series.get(key)  # type: ignore[arg-type]
+        if series is None:
+            if len(self.series) >= MAX_SERIES:
+                self.series_dropped += 1
+                return None
+            series = self.series[key] = Series(slave, register.address)  # type: ignore[index, arg-type]
+        return series
+
+    def _values(self, x: float, frame: Frame, registers: list[Register] | None, written: bool) -> None:
+        if not registers:
+            return
+        slave = frame.slave
+        col = self._col(x)
+        for register in registers:
+            if register.address is None:
+                continue
+            series = self.series.get((slave, register.address))
+            if series is None:
+                series = self._series(slave, register)
+                if series is None:
+                    continue
+            if series.code is None and register.code is not None:
+                series.code, series.name = register.code, register.name
+            status = None if written else register.status
+            if status in UNREADABLE:
+                self._unreadable(x, frame, series, status)  # type: ignore[arg-type]
+                continue
+            scaled = register.scaled
+            if scaled is not None:
+                y = float(scaled)
+                if series.unit is None:
+                    series.unit = register.unit
+            else:
+                y = float(register.value)
+                text = register.text
+                if text is not None:  # an enumeration or a bit field: the profile names the word
+                    series.step = True
+                    labels = series.labels
+                    if register.value not in labels and len(labels) < MAX_LABELS:
+                        labels[register.value] = text  # type: ignore[assignment]
+            if series.status is not None:
+                self._mark(series, x, f"readable again ({series.status} before)")
+                self._event(x, "protection", slave, f"{_name(series)} readable again")
+                series.status = None
+            series.values += 1
+            series.columns.add(col, x, y)
+
+    def _unreadable(self, x: float, frame: Frame, series: Series, status: str) -> None:
+        if series.status == status:
+            return
+        series.status = status
+        self._mark(series, x, status)
+        self._event(x, "protection", frame.slave, f"{_name(series)} {status}")
+
+    def _exception(self, x: float, frame: Frame, code: int | None) -> None:
+        """An exception the profile reads as "every parameter read is non-existent or protected"."""
+        request = frame.request
+        if request is None or request.function not in PLAIN_READS or request.start is None:
+            return
+        if self._profile_for is None or code is None:
+            return
+        if code != getattr(self._profile_for(frame.slave), "all_protected_exception", None):
+            return
+        start, quantity = request.start, request.quantity or 1
+        for address in range(start, start + quantity):
+            series = self.series.get((frame.slave, address & 0xFFFF))
+            if series is None:
+                continue
+            status = "protected" if series.code is not None else "non-existent"
+            label = f"{status} (exception {code:02X})"
+            if series.status != label:
+                series.status = label
+                self._mark(series, x, label)
+                self._event(x, "protection", frame.slave, f"{_name(series)} {label}")
+
+    @staticmethod
+    def _mark(series: Series, x: float, text: str) -> None:
+        if len(series.marks) < MAX_MARKS:
+            series.marks.append((x, text))
+        else:
+            series.marks_dropped += 1
+
+    # -- results ----------------------------------------------------------------------------------
+    def data(self) -> dict[str, Any]:
+        """Everything the page's script draws, JSON-ready, x relative to `origin`."""
+        origin = self.origin or 0.0
+        if self.last_x is not None:
+            while (self.last_x - origin) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
+                self._double()
+        digits = 6 if self.timed else 0
+
+        def rel(x: float) -> float:
+            return round(x - origin, digits)
+
+        parameters = []
+        for (slave, address), series in sorted(self.series.items()):
+            if not series.values and not series.marks:
+                continue
+            xs, ys = series.columns.points()
+            parameters.append(
+                {
+                    "slave": slave,
+                    "address": address,
+                    "code": series.code,
+                    "name": series.name,
+                    "unit": series.unit,
+                    "step": series.step,
+                    "labels": {str(value): text for value, text in sorted(series.labels.items())},
+                    "x": [rel(x) for x in xs],
+                    "y": [_number(y) for y in ys],
+                    "values": series.values,
+                    "marks": [[rel(x), text] for x, text in series.marks],
+                    "marks_dropped": series.marks_dropped,
+                }
+            )
+        columns = []
+        width = self.width
+        for kind in EVENT_KINDS:
+            counts = self.event_columns[kind]
+            columns.append({"kind": kind, "x": [round(col * width, digits) for col in sorted(counts)],
+                            "n": [counts[col] for col in sorted(counts)]})
+        return {
+            "timed": bool(self.timed),
+            "origin": origin,
+            "span": 0.0 if self.first_x is None or self.last_x is None else rel(self.last_x),
+            "column_width": width,
+            "parameters": parameters,
+            "parameters_dropped": self.series_dropped,
+            "events": [[rel(x), kind, slave, text] for x, kind, slave, text in self.events],
+            "events_dropped": self.events_dropped,
+            "event_counts": self.event_counts,
+            "event_columns": columns,
+        }
+
+
+def _name(series: Series) -> str:
+    return f"{series.code} ({series.address})" if series.code else str(series.address)
+
+
+def _number(y: float) -> float | int:
+    return int(y) if y.is_integer() else round(y, 6)

@@ -1,0 +1,197 @@
+"""The report page: tables written here (readable without script), charts drawn by uPlot from one JSON
+block. Everything is inline (uPlot 1.6.31, MIT, vendored in static/ from npm `uplot`), so the file opens
+on an offline laptop and holds no http(s) reference.
+"""
+from __future__ import annotations
+
+import html
+import json
+from importlib import resources
+from typing import Any, TextIO
+
+from dissector.errors import OutputError
+from dissector.render.pollcycle import describe_key
+from dissector.render.report.collect import EVENT_KINDS, ReportCollector
+from dissector.render.stats import StatsCollector, percentile
+from dissector.protocol.spec import SPEC
+
+HISTOGRAM_BINS = 40
+
+
+def _static(name: str) -> str:
+    return resources.files("dissector.render.report").joinpath("static", name).read_text("utf-8")
+
+
+def _esc(value: object) -> str:
+    return html.escape("" if value is None else str(value))
+
+
+def _ms(seconds: float | None) -> str:
+    return "" if seconds is None else f"{seconds * 1000:.1f}"
+
+
+def _table(headers: list[str], rows: list[list[object]], cls: str = "") -> str:
+    head = "".join(f"<th>{_esc(header)}</th>" for header in headers)
+    body = "".join("<tr>" + "".join(f"<td>{_esc(cell)}</td>" for cell in row) + "</tr>" for row in rows)
+    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
+    """Per slave: the --stats counts summed over its functions, and its response-time histogram."""
+    slaves: dict[int, dict[str, Any]] = {}
+    for (slave, _function), row in sorted(stats.functions.items()):
+        entry = slaves.setdefault(
+            slave,
+            {"slave": slave, "requests": 0, "responses": 0, "exceptions": {}, "unanswered": 0,
+             "crc_errors": 0, "times": []},
+        )
+        entry["requests"] += row.requests
+        entry["responses"] += row.responses
+        entry["unanswered"] += row.unanswered
+        entry["crc_errors"] += row.crc_errors
+        for code, count in row.exceptions.items():
+            entry["exceptions"][code] = entry["exceptions"].get(code, 0) + count
+        entry["times"].extend(row.times)
+    result = []
+    for entry in slaves.values():
+        times = sorted(entry.pop("times"))
+        entry["time"] = None
+        if times:
+            low, high = times[0], times[-1]
+            width = (high - low) / HISTOGRAM_BINS or 1e-4
+            counts = [0] * HISTOGRAM_BINS
+            for time in times:
+                counts[min(HISTOGRAM_BINS - 1, int((time - low) / width))] += 1
+            middle = len(times) // 2
+            median = times[middle] if len(times) % 2 else (times[middle - 1] + times[middle]) / 2
+            entry["time"] = {
+                "count": len(times), "min": low, "median": median, "p95": percentile(times, 0.95), "max": high,
+                "bins": [round((low + (index + 0.5) * width) * 1000, 4) for index in range(HISTOGRAM_BINS)],
+                "counts": counts,
+            }
+        result.append(entry)
+    return result
+
+
+def render_report(collector: ReportCollector, stats: StatsCollector, title: str = "vw3-decode report") -> str:
+    data = collector.data()
+    summary = stats.report()
+    slaves = _slaves(stats)
+    data["slaves"] = [
+        {"slave": entry["slave"], "time": entry["time"]} for entry in slaves
+    ]
+    parts: list[str] = []
+    duration = summary["duration"]
+    parts.append(
+        f"<p class=\"summary\">{summary['frames']} frames, {summary['noise']['bytes']} noise bytes in "
+        f"{summary['noise']['items']} runs"
+        + (f", {duration:.3f} s" if duration is not None else ", no timestamps (x axis: frame number)")
+        + "</p>"
+    )
+    # -- slaves
+    parts.append('<h2 id="slaves">Slaves</h2>')
+    rows = []
+    for entry in slaves:
+        exceptions = " ".join(f"{code:02X}:{count}" if code >= 0 else f"?:{count}"
+                              for code, count in sorted(entry["exceptions"].items()))
+        time = entry["time"] or {}
+        rows.append([entry["slave"], entry["requests"], entry["responses"], exceptions, entry["unanswered"],
+                     entry["crc_errors"], _ms(time.get("min")), _ms(time.get("median")),
+                     _ms(time.get("p95")), _ms(time.get("max"))])
+    parts.append(_table(["slave", "requests", "responses", "exceptions (code:count)", "unanswered",
+                         "CRC errors", "min ms", "median ms", "p95 ms", "max ms"], rows, "numbers"))
+    for entry in slaves:
+        if entry["time"] is not None:
+            parts.append(
+                f'<div class="chart rt" data-slave="{entry["slave"]}"><h3>Slave {entry["slave"]}: response '
+                f'times (ms), {entry["time"]["count"]} answers</h3></div>'
+            )
+    function_rows = [
+        [row["slave"], f"{row['function']} {row['function_name']}", row["requests"], row["responses"],
+         " ".join(f"{code}:{count}" for code, count in row["exceptions"].items()), row["unanswered"],
+         row["crc_errors"]]
+        for row in summary["functions"]
+    ]
+    parts.append("<details><summary>per function</summary>" + _table(
+        ["slave", "function", "requests", "responses", "exceptions", "unanswered", "CRC errors"],
+        function_rows, "numbers") + "</details>")
+    # -- poll cycle
+    parts.append('<h2 id="poll">Poll cycle</h2>')
+    poll = stats.poll.report()
+    if poll:
+        parts.append(_table(
+            ["slave", "function", "addresses", "count", "period ms", "jitter ms", "skipped", "no answer", "misses"],
+            [[row["slave"], f"{row['function']} {SPEC.function_name(row['function'])}", describe_key(row),
+              row["count"], _ms(row["period"]), _ms(row["jitter"]), row["skipped"], row["no_answer"],
+              row["misses"]] for row in poll],
+            "numbers",
+        ))
+        parts.append('<p class="note">Requests repeated 3 times or more. period: median interval; jitter: '
+                     'largest deviation from it; skipped: cycles missing (intervals of 1.5 periods or more); '
+                     'no answer: unanswered or refused; misses: both.</p>')
+    else:
+        parts.append("<p>No request repeats 3 times or more.</p>")
+    # -- events
+    parts.append('<h2 id="events">Events</h2>')
+    counts = data["event_counts"]
+    parts.append("<p>" + ", ".join(f"{kind}: {counts[kind]}" for kind in EVENT_KINDS) + "</p>")
+    parts.append('<div class="chart timeline"></div>')
+    event_rows = [[_when(x, data["timed"]), kind, "" if slave is None else slave, text]
+                  for x, kind, slave, text in data["events"]]
+    if event_rows:
+        parts.append(_table(["time" if data["timed"] else "frame", "kind", "slave", "event"], event_rows, "events"))
+    if data["events_dropped"]:
+        parts.append(f"<p class=\"note\">… {data['events_dropped']} more events (counted in the timeline)</p>")
+    # -- parameters
+    parts.append('<h2 id="parameters">Parameters</h2>')
+    for index, parameter in enumerate(data["parameters"]):
+        code = parameter["code"]
+        head = f"{code} ({parameter['address']})" if code else str(parameter["address"])
+        extra = ", ".join(filter(None, [parameter["name"], parameter["unit"] and f"in {parameter['unit']}",
+                                         "steps" if parameter["step"] else None]))
+        marks = "".join(
+            f'<li class="mark" data-x="{x}">{_esc(_when(x, data["timed"]))}: {_esc(text)}</li>'
+            for x, text in parameter["marks"]
+        )
+        if parameter["marks_dropped"]:
+            marks += f"<li>… {parameter['marks_dropped']} more</li>"
+        parts.append(
+            f'<div class="chart trend" data-index="{index}" data-code="{_esc(code or "")}">'
+            f'<h3>Slave {parameter["slave"]}: <span class="code">{_esc(head)}</span> '
+            f'<small>{_esc("; ".join(filter(None, [extra, str(parameter["values"]) + " values"])))}</small></h3>'
+            + (f'<ul class="marks">{marks}</ul>' if marks else "")
+            + "</div>"
+        )
+    if data["parameters_dropped"]:
+        parts.append(f"<p class=\"note\">Only the first {len(data['parameters'])} parameters are drawn; "
+                     f"{data['parameters_dropped']} values of others are in --stats.</p>")
+    payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
+    return (
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+        f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"
+        "<script>window.reportErrors=[];window.onerror=function(m,s,l,c,e){window.reportErrors.push(String(m));"
+        "var d=document.getElementById('errors');if(d){d.textContent=window.reportErrors.join('\\n');}};</script>\n"
+        f"</head><body><h1>{_esc(title)}</h1><pre id=\"errors\"></pre>"
+        '<nav><a href="#slaves">slaves</a> <a href="#poll">poll cycle</a> <a href="#events">events</a> '
+        '<a href="#parameters">parameters</a></nav>\n'
+        + "\n".join(parts)
+        + f'\n<script type="application/json" id="report-data">{payload}</script>\n'
+        f"<script>/* uPlot 1.6.31, (c) Leon Sorokin, MIT licence */\n{_static('uPlot.iife.min.js')}</script>\n"
+        f"<script>{_static('report.js')}</script>\n</body></html>\n"
+    )
+
+
+def _when(x: float, timed: bool) -> str:
+    return f"{x:.6f}" if timed else f"#{int(x)}"
+
+
+def write_report(
+    stream: TextIO, path: str, collector: ReportCollector, stats: StatsCollector, title: str | None = None
+) -> None:
+    """Write and close the report (opened by the caller before decoding, so a bad path fails first)."""
+    text = render_report(collector, stats, title or "vw3-decode report")
+    try:
+        with stream:
+            stream.write(text)
+    except OSError as error:
+        raise OutputError(f"--report {path}: {error.strerror or error}") from None

@@ -1,0 +1,92 @@
+"""Dumps of a raw byte stream made by `xxd` and `hexdump -C` (also `xxd -u`, `-g N`, `-a`).
+
+    00000000: 0c03 20d0 0003 0eef 0c03 0680 0000 0300  .. .............        xxd
+    00000000  0c 03 20 d0 00 03 0e ef  0c 03 06 80 00 00 03 00  |.. .............|   hexdump -C
+    *                                                    the line above repeats up to the next offset
+    00000013                                             hexdump -C: the length, on a line of its own
+
+The offset column says where each line's bytes belong: a `*` (both tools squeeze repeated lines)
+is expanded, and a line that does not continue where the previous one ended is an error, since
+bytes would be missing or doubled. The character column is ignored. The bytes are a stream, not one
+frame a line: chunks carry no boundary and no time.
+"""
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterator
+
+from dissector.model import Chunk
+from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.hexdump import text_lines
+
+_XXD = re.compile(r"([0-9a-fA-F]{6,16}): ((?:[0-9a-fA-F]{2})+(?: (?:[0-9a-fA-F]{2})+)*)(?:  .*)?")
+_HEXDUMP_C = re.compile(r"([0-9a-fA-F]{8,16})  ((?:[0-9a-fA-F]{2} {1,2})*[0-9a-fA-F]{2}) *(?:\|.*\|)?")
+_OFFSET_ONLY = re.compile(r"[0-9a-fA-F]{8,16}")
+MAX_REPEAT = 1 << 26  # bytes a `*` may stand for: beyond, the dump is not what it claims
+
+
+def _parse(line: str, tool: str) -> tuple[int, bytes] | None:
+    """(offset, bytes) of a dump line; (offset, b"") for an offset alone; None for `*`."""
+    text = line.rstrip("\r\n")
+    if text.strip() == "*":
+        return None
+    match = (_XXD if tool == "xxd" else _HEXDUMP_C).fullmatch(text)
+    if match is None:
+        if tool == "hexdump-C" and _OFFSET_ONLY.fullmatch(text.strip()):
+            return int(text.strip(), 16), b""
+        raise ValueError(f"not a {tool} line: {text[:60]!r}")
+    return int(match.group(1), 16), bytes.fromhex(match.group(2).replace(" ", ""))
+
+
+def dump_tool(text: str, complete: bool) -> str | None:
+    """"xxd" or "hexdump-C" when every line of the sample is one of that tool's lines, else None."""
+    lines = text.splitlines()
+    if not complete and not text.endswith(("\n", "\r")):
+        lines = lines[:-1]
+    lines = [line for line in lines if line.strip()]
+    if not lines:
+        return None
+    for tool in ("xxd", "hexdump-C"):
+        try:
+            parsed = [_parse(line, tool) for line in lines]
+        except ValueError:
+            continue
+        if parsed[0] is not None and parsed[0][0] == 0 and parsed[0][1]:
+            return tool
+    return None
+
+
+def read_dump(tool: str) -> Callable[[Input, WarningLog, int], Iterator[Chunk]]:
+    def read(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+        position = 0
+        repeat: bytes | None = None  # the line a `*` repeats
+        squeezed = False
+        for number, line in text_lines(inp, chunk_size):
+            if not line.strip():
+                continue
+            try:
+                parsed = _parse(line, tool)
+            except ValueError as error:
+                raise SourceError(f"{inp.name} line {number}: {error}") from None
+            if parsed is None:
+                squeezed = True
+                continue
+            offset, data = parsed
+            if squeezed and repeat:
+                gap = offset - position
+                if gap < 0 or gap % len(repeat) or gap > MAX_REPEAT:
+                    raise SourceError(f"{inp.name} line {number}: offset {offset:#x} does not follow the * above")
+                yield from (Chunk(repeat) for _ in range(gap // len(repeat)))
+                position = offset
+            squeezed = False
+            if offset != position:
+                raise SourceError(
+                    f"{inp.name} line {number}: offset {offset:#x} where {position:#x} was expected "
+                    "(bytes missing or repeated)"
+                )
+            if data:
+                yield Chunk(data)
+                position += len(data)
+                repeat = data
+
+    return read

@@ -1,0 +1,109 @@
+"""The HTML report in a real browser (Debian's chromium, headless): it loads without a script error and
+draws what the capture holds. Installed with apt-get when missing, never skipped."""
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+CAPTURES = ROOT / "captures"
+
+
+def chromium() -> str:
+    path = shutil.which("chromium")
+    if path is not None:
+        return path
+    if os.geteuid() != 0:
+        pytest.fail("chromium is missing and we are not root to install it")
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    for args in (["apt-get", "update"], ["apt-get", "install", "-y", "chromium"]):
+        # One apt at a time on a shared machine.
+        result = subprocess.run(["flock", "/tmp/apt.lock", *args], capture_output=True, text=True, env=env, timeout=1800)
+        if result.returncode != 0:
+            pytest.fail(f"{' '.join(args)} failed: {result.stderr[-2000:]}")
+    path = shutil.which("chromium")
+    if path is None:
+        pytest.fail("chromium installed but not on PATH")
+    return path
+
+
+def report(tmp_path: Path, capture: str) -> Path:
+    out = tmp_path / (Path(capture).stem + ".html")
+    result = subprocess.run(
+        [sys.executable, "-m", "dissector", str(CAPTURES / capture), "--report", str(out)],
+        cwd=ROOT, capture_output=True, text=True, timeout=120,
+    )
+    assert (result.returncode, result.stderr) == (0, "")
+    return out
+
+
+def dump_dom(tmp_path: Path, page: Path) -> str:
+    profile = tmp_path / f"profile-{page.stem}"
+    profile.mkdir()
+    command = [
+        chromium(), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync",
+        f"--user-data-dir={profile}", "--window-size=1200,900", "--dump-dom", page.as_uri(),
+    ]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr[-2000:]
+    return result.stdout
+
+
+def errors(dom: str) -> str:
+    match = re.search(r'<pre id="errors">(.*?)</pre>', dom, re.S)
+    assert match is not None, "the page has no error hook"
+    return match.group(1)
+
+
+def charts(dom: str, kind: str) -> list[str]:
+    """The opening tags of the chart containers of one kind."""
+    return re.findall(rf'<div class="chart {kind}"[^>]*>', dom)
+
+
+def test_commissioning_report_draws_every_slave_and_parameter(tmp_path: Path) -> None:
+    page = report(tmp_path, "atv71_commissioning.pcap")
+    text = page.read_text()
+    assert not re.search(r"https?://", text)  # nothing to fetch on an offline laptop
+    assert not re.search(r"<(script|link|img)[^>]+(src|href)=", text)
+    dom = dump_dom(tmp_path, page)
+    assert errors(dom) == ""
+    (histogram,) = charts(dom, "rt")
+    assert 'data-slave="2"' in histogram and 'data-drawn="uplot"' in histogram
+    trends = charts(dom, "trend")
+    codes = [re.search(r'data-code="([^"]*)"', tag).group(1) for tag in trends]
+    # Every parameter the capture reads or writes, with its code from the ATV71 map.
+    assert codes == ["SFR", "TFR", "HSP", "LSP", "ETA", "RFR", "CHCF", "COP", "FR1", "CD1", "CMD", "LFR",
+                     "ACC", "DEC"]
+    assert all('data-drawn="uplot"' in tag for tag in trends)
+    (timeline,) = charts(dom, "timeline")
+    assert 'data-drawn="uplot"' in timeline
+    assert dom.count('class="uplot') == len(trends) + 2  # one canvas chart each
+    assert "exception 07 to function 6" in dom  # the refused CHCF write, on the timeline's list
+
+
+def test_p38_protection_events_are_marked(tmp_path: Path) -> None:
+    dom = dump_dom(tmp_path, report(tmp_path, "p38_protection.pcap"))
+    assert errors(dom) == ""
+    chcf = re.search(r'data-code="CHCF".*?</ul>', dom, re.S).group(0)
+    marks = re.findall(r'<li class="mark" data-x="([^"]+)">([^<]*)</li>', chcf)
+    assert marks == [
+        ("1.059949", "1.059949: protected"),  # frame 6: 16#8000 at a known parameter
+        ("2.10596", "2.105960: protected (exception 02)"),  # frame 10: the read refused
+    ]
+    assert re.search(r"<td>1.059949</td><td>protection</td><td>12</td><td>CHCF \(8401\) protected</td>", dom)
+
+
+def test_a_script_error_shows_in_the_page(tmp_path: Path) -> None:
+    # The hook the tests rely on does catch errors: a report with a failing script says so.
+    page = report(tmp_path, "p38_protection.pcap")
+    broken = tmp_path / "broken.html"
+    broken.write_text(page.read_text().replace("</body>", "<script>undefinedFunction()</script></body>"))
+    assert "undefinedFunction" in errors(dump_dom(tmp_path, broken))

@@ -1,0 +1,44 @@
+"""--hex: one frame per argument, so a CRC typo or a frame typed without its CRC is decoded and the
+check spelled out, instead of noise (issue 15). Vectors: the p.38 seed (0C 03 20 D0 00 03 0E EF)."""
+from __future__ import annotations
+
+import json
+
+from helpers import run_cli
+
+
+def test_a_crc_typo_is_decoded_and_the_crc_spelled_out() -> None:
+    status, out, err = run_cli(["--hex", "0C 03 20 D0 00 03 0E EE"])
+    assert (status, err) == (0, "")
+    assert out == (
+        "     1            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
+        "[the capture ends before any response] [warning: CRC bad: received 0xEE0E, expected 0xEF0E "
+        "(on the wire 0E EE typed, 0E EF expected)]  CRC BAD (received 0xEE0E, expected 0xEF0E)\n"
+    )
+    record = json.loads(run_cli(["--json", "--hex", "0C 03 20 D0 00 03 0E EE"])[1])
+    # every typed byte shows up, as typed
+    assert (record["raw"], record["crc_ok"], record["crc"], record["crc_expected"]) == (
+        "0c0320d000030eee", False, 0xEE0E, 0xEF0E
+    )
+
+
+def test_a_frame_typed_without_its_crc_gets_the_crc_to_append() -> None:
+    status, out, err = run_cli(["--hex", "0C 03 20 D0 00 03", "--hex", "0C 03 06 80 00 00 03 00 02"])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "     1            -  12 request   Read Holding Registers 8400..8402 (3) "
+        "[no CRC typed: append 0E EF (CRC 0xEF0E)]  CRC ok",
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
+        "CHCF=IO (I/O profile) COP=Cd (command) [#1] [no CRC typed: append 17 E4 (CRC 0xE417)]  CRC ok",
+    ]
+
+
+def test_bytes_that_are_no_frame_either_way_stay_noise() -> None:
+    status, out, _err = run_cli(["--hex", "0C 03 20"])
+    assert status == 0
+    assert out == "     1            -   - noise     3 bytes of noise at offset 0: 0c 03 20\n"
+
+
+def test_a_good_frame_is_untouched() -> None:
+    out = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF"])[1]
+    assert out.endswith("(3) [no response] [the capture ends before any response]  CRC ok\n")
