@@ -1014,7 +1014,7 @@ end
 
 -- (one block: the main chunk of a Lua file may hold at most 200 locals)
 local MODE_SAMPLE = 64
-local feed, detect_mode
+local feed, detect_mode, flush_noise_of
 do
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
@@ -1454,6 +1454,8 @@ end
 
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
 -- framed; final: nothing more will come. Returns the items in stream order.
+flush_noise_of = function(s, items) flush_noise(s, items) end
+
 feed = function(s, bytes, time, boundary, final)
   local n = #bytes
   if n > 0 then
@@ -2005,6 +2007,8 @@ local function parse_profile_choice(text)
   return default, per_slave, errors
 end
 
+local parse_map_choice
+do -- (a block: the main chunk may hold at most 200 locals)
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
 local MAP_COLUMNS = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source" }
@@ -2169,7 +2173,7 @@ local function load_map(path)
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
-local function parse_map_choice(text, profile_names)
+parse_map_choice = function(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
     spec = strip(spec)
@@ -2206,7 +2210,7 @@ local function parse_map_choice(text, profile_names)
   end
   return layers, errors
 end
-
+end
 
 local plc_label
 do
@@ -2471,6 +2475,7 @@ local function annotate_list(st, f, device, registers, read)
   end
 end
 
+do -- (a block: the main chunk may hold at most 200 locals)
 local function profile_function_name(profile, code)
   return (profile.function_names or {})[code] or function_name(code)
 end
@@ -2692,6 +2697,7 @@ annotate = function(st, f, b)
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
+end
 end
 
 local function configure(profiles_text, style, maps_text)
@@ -2960,6 +2966,7 @@ proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
 proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
   "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
+proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
 proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
   "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
     .. "Protocols > DLT_USER, payload protocol vw3)")
@@ -2981,10 +2988,13 @@ local function timeout_pref()
   return proto.prefs.timeout_ms / 1000
 end
 
+local udp_states, tcp_states, tcp_records, tcp_call -- (defined with the dissector below)
+
 function proto.init()
   rtac_times = {}
   apply_prefs()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+  udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
 local function add_text(tree, expert_info, text)
@@ -3492,15 +3502,28 @@ local function show_record(st, record, tvb, pinfo, tree, n)
   cols.info = info
 end
 
-local function dissect_serial(tvb, pinfo, tree)
+-- Streams of records: the serial capture's (state), and one per UDP conversation.
+udp_states = {}
+
+-- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
+local function finish_all()
+  for _, st in pairs(udp_states) do
+    if not st.finished then
+      local ok, problem = pcall(finish, st)
+      if not ok and st.last ~= nil then st.last.error = tostring(problem) end
+    end
+  end
+  if not state.finished then
+    local ok, problem = pcall(finish, state)
+    if not ok and state.last ~= nil then state.last.error = tostring(problem) end
+  end
+end
+
+-- Each record (serial record, UDP datagram) is a chunk of its stream.
+local function dissect_records(st, tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
-  local st = state
-  if pinfo.visited and not st.finished then
-    -- The first pass is over: what still waits at the end of the capture is framed now.
-    local ok, problem = pcall(finish, st)
-    if not ok and st.last ~= nil then st.last.error = tostring(problem) end
-  end
+  if pinfo.visited and not state.finished then finish_all() end
   local record = st.records[pinfo.number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
@@ -3517,8 +3540,91 @@ local function dissect_serial(tvb, pinfo, tree)
   return n
 end
 
+do -- (a block: the main chunk may hold at most 200 locals)
+-- A connection or conversation by its two ends, the same both ways.
+local function conversation_key(pinfo)
+  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
+  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
+  if a < b then return a .. " " .. b end
+  return b .. " " .. a
+end
+
+-- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
+-- reassembly for a frame split over segments: the framer frames what it can; where it needs more bytes,
+-- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
+-- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
+-- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
+tcp_states, tcp_records, tcp_call = {}, {}, { number = -1, index = 0 }
+local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
+
+local function dissect_tcp_now(st, tvb, pinfo, n)
+  if st.mode == nil then st.mode = detect_mode(tvb:raw(0, math.min(n, MODE_SAMPLE))) end
+  -- A new buffer each call: what was left over last time comes back at the start of this tvb.
+  st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
+  local record = { number = pinfo.number, start = 0, length = n, items = {}, frames = 0 }
+  st.open = { record }
+  local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
+  flush_noise_of(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  local used = st.base
+  take_items(st, items, record)
+  if used < n and pinfo.can_desegment > 0 then
+    record.desegment_offset = used
+  end
+  record.waiting = nil
+  return record
+end
+
+local function dissect_tcp(tvb, pinfo, tree)
+  local n = tvb:len()
+  if n == 0 then return 0 end
+  if tcp_call.number ~= pinfo.number then tcp_call.number, tcp_call.index = pinfo.number, 0 end
+  tcp_call.index = tcp_call.index + 1
+  local calls = tcp_records[pinfo.number]
+  if calls == nil then
+    calls = {}
+    tcp_records[pinfo.number] = calls
+  end
+  local key = conversation_key(pinfo)
+  local st = tcp_states[key]
+  if st == nil then
+    st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+    tcp_states[key] = st
+  end
+  local record = calls[tcp_call.index]
+  if record == nil then
+    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
+    if ok then
+      record = result
+    else
+      record = { items = {}, frames = 0, length = n, error = tostring(result) }
+    end
+    calls[tcp_call.index] = record
+  end
+  if record.desegment_offset ~= nil then
+    pinfo.desegment_offset = record.desegment_offset
+    pinfo.desegment_len = DESEGMENT_ONE_MORE
+  end
+  show_record(st, record, tvb, pinfo, tree, n)
+  return n
+end
+
+-- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
+local PT_TCP, PT_UDP = 2, 3
+
 function proto.dissector(tvb, pinfo, tree)
-  return dissect_serial(tvb, pinfo, tree)
+  local port_type = pinfo.port_type
+  if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
+  if port_type == PT_UDP then
+    local key = conversation_key(pinfo)
+    local st = udp_states[key]
+    if st == nil then
+      st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+      udp_states[key] = st
+    end
+    return dissect_records(st, tvb, pinfo, tree)
+  end
+  return dissect_records(state, tvb, pinfo, tree)
+end
 end
 
 -- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)
@@ -3543,6 +3649,7 @@ if ok_original and rtac_original ~= nil then
   wtap_encap:add(RTAC_ENCAP, rtac_time)
 end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
+DissectorTable.get("udp.port"):add_for_decode_as(proto)
 
 -- What the optional Modbus/TCP naming file (vw3_modbus.lua, loaded after this one) builds on. It is a
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
@@ -3552,9 +3659,15 @@ package.loaded.vw3_plugin = {
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 
-local current_port = 0
+local current_port, current_udp_port = 0, 0
 local claimed_user0 = false
 function proto.prefs_changed()
+  if proto.prefs.udp_port ~= current_udp_port then
+    local udp = DissectorTable.get("udp.port")
+    if current_udp_port ~= 0 then udp:remove(current_udp_port, proto) end
+    if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
+    current_udp_port = proto.prefs.udp_port
+  end
   if proto.prefs.user0 ~= claimed_user0 then
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
     claimed_user0 = proto.prefs.user0
