@@ -875,14 +875,19 @@ for byte = 0, 255 do
   CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
   for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
 end
+-- The table bytes of (lo XOR byte), keyed by lo * 256 + byte: one lookup fewer a byte on the hot path.
+local CRC_LO2, CRC_HI2 = {}, {}
+for key = 0, 65535 do
+  local index = XOR8[key]
+  CRC_LO2[key], CRC_HI2[key] = CRC_LO[index], CRC_HI[index]
+end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table).
 local function crc16(b, from, to)
   local lo, hi = 0xFF, 0xFF
   for k = from, to - 1 do
-    local index = XOR8[lo * 256 + b[k]]
-    lo = XOR8[hi * 256 + CRC_LO[index]]
-    hi = CRC_HI[index]
+    local key = lo * 256 + b[k]
+    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
   end
   return hi * 256 + lo
 end
@@ -892,9 +897,21 @@ local function crc_step(crc, byte)
   return CRC_HI[index] * 256 + XOR8[floor(crc / 256) * 256 + CRC_LO[index]]
 end
 
+-- Does the frame of `length` bytes at i carry a good CRC? The running CRC of the last frame start is
+-- kept: the layouts tried at one start (a request of 8 bytes, then a response of 5 + byte count, then the
+-- frame that follows...) share their first bytes, and the CRC costs most of the framing. (Byte tables
+-- are never changed below their end, so a CRC once computed stays right.)
+local crc_b, crc_i, crc_to, crc_lo, crc_hi = nil, -1, -1, 0xFF, 0xFF
 local function crc_ok_at(b, i, length)
   local stop = i + length - 2
-  return crc16(b, i, stop) == b[stop] + b[stop + 1] * 256
+  local lo, hi, k = 0xFF, 0xFF, i
+  if b == crc_b and i == crc_i and stop >= crc_to then lo, hi, k = crc_lo, crc_hi, crc_to end
+  for j = k, stop - 1 do
+    local key = lo * 256 + b[j]
+    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
+  end
+  crc_b, crc_i, crc_to, crc_lo, crc_hi = b, i, stop, lo, hi
+  return hi * 256 + lo == b[stop] + b[stop + 1] * 256
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -1539,16 +1556,28 @@ local function make_bits(b, first, byte_count, start, quantity)
   return { b = b, first = first, count = count, start = start }
 end
 
+-- A run is done with its frame's byte table (the display reads the tvb): its indices become the
+-- frame's own (shift: the frame's first byte in the table it was read from).
+local function release_run(run)
+  if run == nil then return end
+  run.b = nil
+  if run.shift ~= nil then
+    run.first = run.first - run.shift
+    run.shift = nil
+  end
+end
+
 -- The index-th (0-based) register of a run: address (nil when unknown), value, and its index in b.
-local function register_at(run, b, index)
-  local k = run.first + 2 * index
+local function register_at(run, b, index, shift)
+  -- shift: the display's tables hold the frame's own bytes; a run not released yet is 0-based elsewhere
+  local k = run.first - (shift and run.shift or 0) + 2 * index
   local address = nil
   if run.start ~= nil then address = (run.start + index) % 0x10000 end
   return address, b[k] * 256 + b[k + 1], k
 end
 
-local function bit_at(run, b, index)
-  local k = run.first + floor(index / 8)
+local function bit_at(run, b, index, shift)
+  local k = run.first - (shift and run.shift or 0) + floor(index / 8)
   local address = nil
   if run.start ~= nil then address = (run.start + index) % 0x10000 end
   if run.single ~= nil then return address, run.single, k end
@@ -1940,7 +1969,7 @@ local function pair(st, f)
     if pending ~= nil then
       pending.unanswered = true
       pending.fields = nil -- no answer can ask for them any more
-      if pending.registers ~= nil then pending.registers.b = nil end
+      release_run(pending.registers)
     end
     st.pending = nil
     if f.slave == 0 then
@@ -2437,15 +2466,20 @@ end
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
 -- not the usual: the statuses other than ok, the registers read with their plain layout.
 local function annotate_registers(st, f, device, run, b, read)
-  if run.start == nil then return end
+  local start = run.start
+  if start == nil then return end
   local protected = nil
   if read then protected = device.profile.protected_value end
   local multi = run.count > 1
   run.device = device
   run.checked = protected ~= nil
+  -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
+  if protected == nil and next(device.depend) == nil then return end
+  local first = run.first
   for index = 0, run.count - 1 do
-    local address, value = register_at(run, b, index)
-    local plain, status = annotate_one(st, f, device, address, value, protected, multi)
+    local k = first + 2 * index
+    local plain, status = annotate_one(st, f, device, (start + index) % 0x10000, b[k] * 256 + b[k + 1],
+      protected, multi)
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
@@ -2757,8 +2791,8 @@ local function take_items(st, items, record)
     item.record = home.number
     home.items[#home.items + 1] = item
     home.info = nil
-    local first = home.start
-    if offset >= first and offset + length <= first + home.length then
+    local first = home.start or offset -- (a closed record holds no bytes still to frame)
+    if offset >= first and offset + length <= first + (home.length or length) then
       item.at = offset - first
     else
       item.at = 0
@@ -2789,20 +2823,30 @@ local function take_items(st, items, record)
       -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
       -- ask for them (a request's, until its answer is decoded or it can have none).
       item.b = nil
-      if #item.warnings == 0 then item.warnings = NO_INTERPRETATION end
-      if #item.notes == 0 then item.notes = NO_INTERPRETATION end
-      if item.bits ~= nil then item.bits.b = nil end
+      if #item.warnings == 0 then item.warnings = nil end
+      if #item.notes == 0 then item.notes = nil end
+      -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
+      -- pending request's registers once its answer has been read), and what is known from the kind of
+      -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
+      local bi = item.bi
+      if item.registers ~= nil then item.registers.shift = bi end
+      if item.bits ~= nil then
+        item.bits.shift = bi
+        release_run(item.bits)
+      end
+      for _, object in ipairs(item.objects or NO_INTERPRETATION) do object.offset = object.offset - bi end
+      item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
       if item.kind ~= REQUEST then
         item.fields = nil
-        if item.registers ~= nil then item.registers.b = nil end
+        release_run(item.registers)
         local request = item.request
         if request ~= nil then
           request.fields = nil
-          if request.registers ~= nil then request.registers.b = nil end
+          release_run(request.registers)
         end
       elseif st.pending ~= item then
         item.fields = nil
-        if item.registers ~= nil then item.registers.b = nil end
+        release_run(item.registers)
       end
     end
   end
@@ -2816,7 +2860,8 @@ local function take_items(st, items, record)
       open[#open + 1] = earlier
       earlier.waiting = math.min(waiting, earlier.length)
     else
-      earlier.waiting = nil
+      -- closed: all its bytes are framed (kept: its items and frame count)
+      earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
     end
   end
   st.open = open
@@ -2840,6 +2885,7 @@ local function finish(st)
   local record = st.last
   if record == nil then return end
   take_items(st, feed(st, "", nil, false, true), record)
+  if st.pending ~= nil then release_run(st.pending.registers) end
 end
 
 local vw3 = {
@@ -3005,7 +3051,7 @@ end
 -- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
 local function frame_span(f, at, size)
   -- f.at: where the frame starts in the tvb it is shown from; f.bi: its slave byte's index in its byte table
-  local offset, length = at - f.bi + f.at, size
+  local offset, length = at + f.at, size
   if f.ascii then offset, length = f.at + 1 + 2 * at, 2 * size end
   if length <= 0 or offset < f.at or offset + length > f.at + f.length then
     return f.at, f.length
@@ -3083,8 +3129,8 @@ local function frame_bytes(f, tvb)
     for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
   else
     local raw = tvb:raw(f.at, f.length)
-    local bi, byte = f.bi - 1, string.byte
-    for k = 1, #raw do b[bi + k] = byte(raw, k) end
+    local byte = string.byte
+    for k = 1, #raw do b[k - 1] = byte(raw, k) end
   end
   return b
 end
@@ -3094,7 +3140,7 @@ end
 local function register_view(f, run, b, index)
   local address, value, offset
   if b ~= nil then
-    address, value, offset = register_at(run, b, index)
+    address, value, offset = register_at(run, b, index, true)
   else
     address, value, offset = (run.start + index) % 0x10000, run.device.profile.protected_value, -1
   end
@@ -3222,12 +3268,14 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
-    local base = f.data_at - 2 -- the slave byte in the frame's byte table
-    t:add(pf.mode, whole, f.mode):set_generated()
+    local base = 0 -- the slave byte in the frame's byte table
+    t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
     t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
     t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
-    local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
+    local crc_at = f.length - 2
+    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     t:add(pf.crc, crc_range, f.crc)
     t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
     t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
@@ -3241,7 +3289,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    if full then t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code) end
+    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
     add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
@@ -3249,7 +3297,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
   end
   if full then
-    local data_range = frame_range(tvb, f, f.data_at, 2)
+    local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
       if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
@@ -3290,7 +3338,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       local b = bits.single == nil and frame_bytes(f, tvb) or nil
       local checked = full == "unseen" and bits.count > 1
       for index = 0, bits.count - 1 do
-        local address, value, k = bit_at(bits, b, index)
+        local address, value, k = bit_at(bits, b, index, true)
         local title = format("Bit %s = %d", address and tostring(address) or "?", value)
         if checked then
           unseen.at(tvb, f, k, 1)
@@ -3345,7 +3393,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
-  local warnings = f.warnings
+  local warnings = f.warnings or NO_INTERPRETATION
   for index = 1, #warnings do
     local text = warnings[index]
     local item = t
@@ -3356,7 +3404,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       add_text(item, ex.warning, text)
     end
   end
-  local notes = f.notes
+  local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
     local text = "the capture ends before any response"
