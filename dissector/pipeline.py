@@ -58,6 +58,14 @@ class Dissector:
             self.gaps.observe(chunk)
         return self._finish_items(self.pairer.push(self.framer.feed(chunk)))
 
+    def push(self, items: list[Item]) -> list[Item]:
+        """Items a framer gave out elsewhere (the live capture thread): pair, decode, annotate."""
+        return self._finish_items(self.pairer.push(items))
+
+    def expire(self, now: float) -> list[Item]:
+        """Live: no frame earlier than `now` is still to come; a request past its timeout is final."""
+        return self._finish_items(self.pairer.expire(now))
+
     def flush_idle(self) -> list[Item]:
         """After a silence on a live line: what the framer holds is complete, or noise.
 

@@ -1963,8 +1963,17 @@ end
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
+-- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
 local function pair(st, f)
   local pending = st.pending
+  local timeout = st.timeout
+  local late = nil
+  if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
+    and f.time - pending.time > timeout then
+    pending.unanswered = true
+    pending.fields = nil
+    late, pending, st.pending = pending, nil, nil
+  end
   if f.kind == REQUEST then
     if pending ~= nil then
       pending.unanswered = true
@@ -1983,11 +1992,9 @@ local function pair(st, f)
     f.request = pending
     pending.response = f
     st.pending = nil
-    local timeout = st.timeout
-    if timeout ~= nil and f.time ~= nil and pending.time ~= nil and f.time - pending.time > timeout then
-      warn(f, format("response after %.1f ms, later than the %.0f ms timeout", (f.time - pending.time) * 1000,
-        timeout * 1000))
-    end
+  elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
+    warn(f, format("response %.1f ms after request #%d, later than the %.0f ms timeout: not its answer",
+      (f.time - late.time) * 1000, late.number, timeout * 1000))
   else
     if pending ~= nil then
       pending.unanswered = true

@@ -24,14 +24,14 @@ from dissector.framing.rtu import RtuFramer
 from dissector.app.hexinput import HexInput
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.model import Chunk, Frame, Item
-from dissector.render.pcapwriter import PcapWriter
+from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import add_profile_arguments, annotator_from_args
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import Output, OutputOptions
-from dissector.render.timefmt import TIME_FORMATS
+from dissector.render.timefmt import TIME_FORMATS, Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
 from dissector.framing.timing import GapChecker
@@ -82,6 +82,8 @@ class DecodeOptions:
     filter: str | None = None
     count: int | None = None
     write: str | None = None
+    file_format: str | None = None  # -F
+    ring: tuple[str, ...] = ()  # -b
     print_too: bool = False
     stats: bool = False
     watch: str | None = None
@@ -145,7 +147,16 @@ def build_parser() -> argparse.ArgumentParser:
         help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'",
     )
     output.add_argument(
-        "-w", dest="write", metavar="FILE", help="write the items shown to a pcap (linktype 147, USER0)"
+        "-w", dest="write", metavar="FILE",
+        help="write the items shown to a pcap (linktype 147, USER0); - for standard output",
+    )
+    output.add_argument(
+        "-F", dest="file_format", choices=["pcap", "pcapng"],
+        help="-w file format (default: pcapng for a .pcapng name, else pcap)",
+    )
+    output.add_argument(
+        "-b", dest="ring", action="append", metavar="filesize:KB|duration:S|files:N",
+        help="-w ring buffer, as dumpcap: a new file every KB kB or S seconds, keeping the last N",
     )
     output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
     output.add_argument(
@@ -180,7 +191,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=positive_seconds,
         default=1.0,
         metavar="SECONDS",
-        help="flag responses later than this (needs timestamps; default 1 s)",
+        help="a response later than this after its request does not answer it (needs timestamps; "
+        "default 1 s); live, a request's line waits at most this for its answer",
     )
     decoding.add_argument(
         "-n", dest="no_profile", action="store_true", help="no device profile: Modbus spec semantics only"
@@ -208,11 +220,14 @@ class Sinks:
 
             self.stats = StatsCollector()
         self.stats_shown = args.stats
+        # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
+        self.text_out = env.stderr if args.write == STDOUT else env.stdout
+        text_isatty = env.stderr_isatty if args.write == STDOUT else env.stdout_isatty
         self.watch = None
         if args.watch is not None:
             from dissector.render.watch import watcher
 
-            self.watch = watcher(args.watch, env.stdout.write, self.json, annotate)
+            self.watch = watcher(args.watch, self.text_out.write, self.json, annotate)
         self.report = None
         if args.report is not None:
             from dissector.render.report import ReportFile
@@ -222,13 +237,16 @@ class Sinks:
         self.show = not args.stats and self.watch is None and self.report is None and (
             args.write is None or args.print_too
         )
-        self.output = Output(args.output, env.stdout, env.stdout_isatty)
+        self.output = Output(args.output, self.text_out, text_isatty)
         self.clock = self.output.clock
-        self.pcap: PcapWriter | None = None
+        self.pcap: CaptureOutput | None = None
         self.write_path = args.write
         if args.write is not None:
             try:
-                self.pcap = PcapWriter(open(args.write, "wb"), flush=False)
+                stdout = getattr(env.stdout, "buffer", None)
+                self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout)
+            except ValueError as error:
+                raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
         self.extra: dict[str, object] | None = None
@@ -266,7 +284,7 @@ class Sinks:
         if self.pcap is not None:
             try:
                 for item in items:
-                    self.pcap.write(item.raw, item.time)
+                    self.pcap.write(item.raw, item.time, noise_comment(item))
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
@@ -317,15 +335,13 @@ class Sinks:
             report.write(self.stats)  # type: ignore[arg-type]
         if self.stats is not None and self.stats_shown:
             if self.json:
-                self.env.stdout.write(json.dumps(self.stats.report()) + "\n")
+                self.text_out.write(json.dumps(self.stats.report()) + "\n")
             else:
                 self.output.flush()
                 if self.output.console is not None:
                     self.output.console.print(self.stats.render())
-                else:
-                    from rich.console import Console
-
-                    Console(file=self.env.stdout, width=160, color_system=None).print(self.stats.render())
+                else:  # piped: plain tables at full width, no rich layout cost
+                    self.text_out.write(self.stats.render_plain())
         self.output.flush()
 
 
@@ -368,6 +384,8 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         filter=args.filter[0] if args.filter else None,
         count=args.count,
         write=args.write,
+        file_format=args.file_format,
+        ring=tuple(args.ring or ()),
         print_too=args.print_too,
         stats=args.stats,
         watch=args.watch,
@@ -400,9 +418,14 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
         (args.duration is not None, "--duration needs --live PORT"),
         (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
+        (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
+        (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
         (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
         (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
+        (args.watch is not None and (args.detail or args.hexdump or args.output_format == "fields"),
+         "--watch replaces the items: -V, -x and -T fields show none"),
+        (args.watch is not None and args.stats, "--watch and --stats are two outputs: choose one"),
     ]
     for contradiction, message in conflicts:
         if contradiction:
@@ -481,12 +504,12 @@ def _decode_inputs(
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:
-    first_time: list[float] = []  # the time column starts at the first item heard, as for files
+    # The time column as for files (-t): from the first item heard, or the one heard before.
+    clock = Clock(args.time_format)
 
-    def base(item: Item) -> float | None:
-        if not first_time and item.time is not None:
-            first_time.append(item.time)
-        return first_time[0] if first_time else None
+    def column(item: Item) -> str:
+        clock.observe([item])
+        return clock.text(item)
 
     from dissector.app.live import run_live  # pyserial is loaded only for a live capture
 
@@ -496,9 +519,9 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
         env.stdout,
         env.stderr,
         is_terminal,
-        lambda item: summary_line(item, base(item)),
+        lambda item: summary_line(item, column=column(item)),
         _annotator(args),
-        lambda item: summary_text(item, base(item)),
+        lambda item: summary_text(item, column=column(item)),
     )
 
 

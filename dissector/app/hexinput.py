@@ -7,6 +7,7 @@ frame is decoded and the check is spelled out:
     0C 03 20 D0 00 03 0E EE   -> decoded; "CRC bad: received 0xEE0E, expected 0xEF0E (on the wire
                                  0E EE typed, 0E EF expected)" and the summary's CRC BAD column
     0C 03 20 D0 00 03         -> decoded with the CRC computed; "no CRC typed: append 0E EF"
+    :02062329000A             -> decoded with the LRC computed; "no LRC typed: append A2"
 
 A frame is only taken that way when the framer, shown the bytes with the right CRC, finds exactly
 that one frame in them; anything else is fed as typed (and shows up as noise).
@@ -17,9 +18,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dissector.errors import UsageError
+from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk, Frame, Item
-from dissector.protocol.crc import crc16
+from dissector.protocol.crc import crc16, lrc
 
 
 @dataclass(frozen=True, slots=True)
@@ -41,9 +43,9 @@ def hex_chunk(text: str) -> Chunk:
         raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
 
 
-def _one_frame(data: bytes) -> bool:
-    """Does the RTU framer find exactly one frame, with a good CRC, covering all of `data`?"""
-    framer = RtuFramer()
+def _one_frame(data: bytes, ascii: bool = False) -> bool:
+    """Does the framer find exactly one frame, with a good check, covering all of `data`?"""
+    framer = AsciiFramer() if ascii else RtuFramer()
     items = framer.feed(Chunk(data, None, True)) + framer.finish()
     return len(items) == 1 and isinstance(items[0], Frame) and items[0].crc_ok and items[0].length == len(data)
 
@@ -64,6 +66,8 @@ class HexInput:
         for chunk in chunks:
             if self.mode == "rtu":
                 chunk = self._mend(chunk, offset)
+            elif chunk.data[:1] == b":":
+                chunk = self._mend_ascii(chunk, offset)
             self.chunks.append(chunk)
             offset += len(chunk.data)
 
@@ -89,6 +93,21 @@ class HexInput:
                 self.repairs[offset] = Repair(None, f"no CRC typed: append {_wire(crc)} (CRC 0x{crc:04X})")
                 return Chunk(whole, None, True)
         return chunk
+
+    def _mend_ascii(self, chunk: Chunk, offset: int) -> Chunk:
+        """An ASCII frame typed without its LRC (a bad LRC the framer shows by itself)."""
+        body = chunk.data[1:-2]
+        if _one_frame(chunk.data, ascii=True) or len(body) % 2:
+            return chunk
+        try:
+            check = lrc(bytes.fromhex(body.decode("ascii")))
+        except ValueError:
+            return chunk
+        whole = b":" + body + f"{check:02X}".encode() + b"\r\n"
+        if not _one_frame(whole, ascii=True):
+            return chunk
+        self.repairs[offset] = Repair(None, f"no LRC typed: append {check:02X}")
+        return Chunk(whole, None, True)
 
     def fix(self, items: list[Item]) -> list[Item]:
         """Put the typed bytes back in the frames decoded from mended ones, with their note."""

@@ -3,110 +3,78 @@
 The port is opened for listening only: nothing is ever written to it, and RTS is left deasserted
 because RS-485 adapters that steer their driver with RTS would otherwise drive the bus.
 
-Reads are short (READ_TIMEOUT), and each read becomes a Chunk stamped with the time the read
-returned. The framer decides where frames end from lengths and CRCs, so a read holding a request
-and its response, or half a frame, is fine. A frame the framer cannot close yet (it waits for
-bytes that would make a longer reading possible, or for what follows a damaged frame) is closed
-once the line has been silent for IDLE_FLUSH (or t3.5 if longer): on the wire, that silence ends
-every RTU frame. But a gateway (socket://) or a stalled adapter may also pause inside a frame, and
-a flush there would cut it into noise; so at IDLE_FLUSH the flush is first tried on a copy of the
-framer, and done only if it closes a CRC-valid frame. Anything else (a damaged frame, noise, a
-partial frame) waits for IDLE_FLUSH_LONG of silence.
+Capture and display are apart (dumpcap and tshark): the capture thread (live_capture.py) reads, frames
+and writes the files; this module, on the main thread, pairs, decodes, annotates and shows what it
+hands on, and an output thread writes the lines (live_view.py). Neither can slow the capture.
 
-What is heard is teed as it is heard: raw bytes to --raw (one unbuffered write per read), and each
-item to the -w pcap (one record a frame or noise run, flushed) before it is displayed. So whatever
-was shown is on disk, whatever stops the capture (Ctrl-C, SIGKILL, an unplugged adapter).
+Every line is final: a request's line waits for its answer, or for its --timeout to pass (pairing.py
+states the rule), so the line shown live is the line the decode of the -w file gives, pairing,
+response time and unanswered included. On a healthy bus a request is shown when its response comes.
 """
 from __future__ import annotations
 
 import argparse
-import copy
 import signal
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import BinaryIO, TextIO
 
-import serial
 from rich.console import Console
 from rich.text import Text
 
-from dissector.errors import ExitStatus, LiveError, PortVanished
-from dissector.framing.ascii import AsciiFramer
-from dissector.sources.serial_port import PARITIES, PortSettings, open_port, reason
-from dissector.model import Chunk, Frame, Item
-from dissector.render.pcapwriter import PcapWriter
+from dissector.app.live_capture import (
+    IDLE_FLUSH,
+    IDLE_FLUSH_LONG,
+    CaptureFiles,
+    CaptureThread,
+    Handoff,
+    silence_threshold,
+)
 from dissector.app.live_options import PARITY_CHOICES
+from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
+from dissector.errors import ExitStatus, LiveError
+from dissector.framing.ascii import AsciiFramer
+from dissector.framing.rtu import RtuFramer
+from dissector.model import Item
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.live_view import LineSink, LiveStats, RichSink, Sink, json_line
+from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
+from dissector.sources.serial_port import PARITIES, PortSettings, open_port
 
 PROG = "vw3-decode"
-IDLE_FLUSH = 0.020
-IDLE_FLUSH_LONG = 0.250
 assert set(PARITIES) == set(PARITY_CHOICES)
-
-
-def silence_threshold(baud: int) -> float:
-    """max(t3.5, IDLE_FLUSH); t3.5 is fixed at 1.75 ms above 19200 baud (Serial Line Guide)."""
-    t35 = 3.5 * 11 / baud if baud <= 19200 else 0.00175
-    return max(t35, IDLE_FLUSH)
+__all__ = ["IDLE_FLUSH", "IDLE_FLUSH_LONG", "run_live", "silence_threshold"]
+WAIT = 0.02  # the display wakes at least this often (timeouts, the stop flag, redraws)
 
 
 def port_settings(args: argparse.Namespace) -> PortSettings:
     return PortSettings(args.live, args.baud, args.parity, args.stopbits, args.bytesize)
 
 
-class Tee:
-    """The capture files: raw bytes per read, one pcap record per item, both on disk at once."""
+def interface_description(settings: PortSettings) -> str:
+    """pcapng if_description: the serial settings, spelled out and as a manual writes them."""
+    parity = {"E": "even", "O": "odd", "N": "no"}[settings.parity]
+    stop = int(settings.stopbits) if settings.stopbits == int(settings.stopbits) else settings.stopbits
+    return (
+        f"serial port {settings.port}, {settings.baud} baud, {settings.bytesize} data bits, {parity} "
+        f"parity, {stop} stop bit{'' if stop == 1 else 's'} ({settings.text()})"
+    )
 
-    def __init__(self, pcap_path: str | None, raw_path: str | None) -> None:
-        self.paths = [path for path in (pcap_path, raw_path) if path]
-        self._pcap_path, self._raw_path = pcap_path, raw_path
-        self._pcap_file: BinaryIO | None = None
-        self._pcap: PcapWriter | None = None
-        self._raw: BinaryIO | None = None
-        path = pcap_path
-        try:
-            if pcap_path:
-                self._pcap_file = open(pcap_path, "wb")
-                self._pcap = PcapWriter(self._pcap_file)
-            path = raw_path
-            if raw_path:
-                # Unbuffered: each read is one write(2), on disk before its frames are shown.
-                self._raw = open(raw_path, "wb", buffering=0)
-        except OSError as error:
-            self.close()
-            raise LiveError(f"cannot write {path}: {error.strerror or error}", ExitStatus.BAD_INPUT) from None
 
-    def raw(self, data: bytes) -> None:
-        if self._raw is not None:
-            try:
-                self._raw.write(data)
-            except OSError as error:
-                self._failed(self._raw_path, error)
-
-    def items(self, items: list[Item]) -> None:
-        if self._pcap is not None:
-            try:
-                for item in items:
-                    self._pcap.write(item.raw, item.time)
-            except OSError as error:
-                self._failed(self._pcap_path, error)
-
-    def _failed(self, path: str | None, error: OSError) -> None:
-        # A full disk or a vanished mount: stop writing (files keep every whole record) and say so.
-        self.close()
-        raise LiveError(f"cannot write {path}: {error.strerror or error}", ExitStatus.ERROR)
-
-    def close(self) -> None:
-        streams = (self._pcap_file, self._raw)
-        self._pcap_file = self._pcap = self._raw = None
-        for stream in streams:
-            if stream is not None:
-                try:
-                    stream.close()
-                except OSError:
-                    pass  # what could not be written was already reported
+def capture_output(args: argparse.Namespace, stdout: BinaryIO | None) -> CaptureOutput | None:
+    """The -w output of a live capture; LiveError when it cannot be created."""
+    path = getattr(args, "write", None)
+    if not path:
+        return None
+    settings = port_settings(args)
+    try:
+        return open_output(
+            path, getattr(args, "file_format", None), getattr(args, "ring", None) or (), True, stdout,
+            (settings.port, interface_description(settings)),
+        )
+    except ValueError as error:
+        raise LiveError(str(error)) from None
+    except OSError as error:
+        raise LiveError(f"cannot write {path}: {error.strerror or error}") from None
 
 
 class StopFlag:
@@ -132,82 +100,10 @@ class StopFlag:
             signal.signal(signum, handler)  # type: ignore[arg-type]
 
 
-@dataclass
-class Capture:
-    """The read loop and what it needs; `run` returns why it stopped."""
-
-    port: serial.SerialBase
-    dissector: Dissector
-    tee: Tee
-    sink: Sink
-    stats: LiveStats
-    silence: float
-    duration: float | None = None
-    count: int | None = None
-    silence_long: float = IDLE_FLUSH_LONG
-
-    def flush_due(self, silent: float, tried: bool) -> bool:
-        """Whether to close what the framer holds after `silent` seconds without bytes."""
-        if silent >= self.silence_long:
-            return True
-        if tried or silent < self.silence:
-            return False
-        trial = copy.deepcopy(self.dissector.framer).finish()
-        return any(isinstance(item, Frame) and item.crc_ok for item in trial)
-
-    def deliver(self, items: list[Item]) -> bool:
-        """Tee, count and show items; False once --count is reached."""
-        if self.count is not None:
-            room = self.count - self.stats.frames
-            kept: list[Item] = []
-            for item in items:
-                if room <= 0:
-                    break
-                kept.append(item)
-                room -= isinstance(item, Frame)
-            items = kept
-        self.tee.items(items)
-        for item in items:
-            self.stats.add(item)
-        self.sink.show(items)
-        return self.count is None or self.stats.frames < self.count
-
-    def run(self, stop: StopFlag) -> str:
-        port, dissector = self.port, self.dissector
-        deadline = None if self.duration is None else time.monotonic() + self.duration
-        last_data = time.monotonic()
-        pending = False  # bytes fed since the last idle flush
-        tried = False  # flush_due already tried a copy of the framer during this silence
-        while True:
-            if stop.signal is not None:
-                return "interrupted"
-            now = time.monotonic()
-            if deadline is not None and now >= deadline:
-                return "duration"
-            try:
-                data = port.read(max(1, port.in_waiting))
-                if data and port.in_waiting:
-                    data += port.read(port.in_waiting)
-            except (serial.SerialException, OSError) as error:
-                raise PortVanished(reason(error)) from None
-            if data:
-                stamp = time.time()
-                last_data = time.monotonic()
-                pending, tried = True, False
-                self.tee.raw(data)
-                if not self.deliver(dissector.feed(Chunk(data, time=stamp))):
-                    return "count"
-            elif pending:
-                silent = time.monotonic() - last_data
-                if self.flush_due(silent, tried):
-                    pending = False
-                    if not self.deliver(dissector.flush_idle()):
-                        return "count"
-                tried = tried or silent >= self.silence
-            self.sink.tick()
-
-
 class NullSink:
+    failed: BaseException | None = None
+    dropped = 0
+
     def show(self, items: list[Item]) -> None:
         pass
 
@@ -221,11 +117,22 @@ class NullSink:
 def _make_sink(
     args: argparse.Namespace,
     out: TextIO,
+    err: TextIO,
     is_terminal: bool,
     render_line: Callable[[Item], str],
     render_text: Callable[[Item], Text] | None,
     stats: LiveStats,
+    annotate: Annotator | None = None,
 ) -> Sink:
+    if getattr(args, "write", None) == STDOUT:
+        # Standard output is the pcap: lines only with -P, on standard error (as tshark -w - -P).
+        if not getattr(args, "print_too", False):
+            return NullSink()
+        out, is_terminal = err, False
+    if getattr(args, "watch", None) is not None:
+        from dissector.render.watch import WatchSink
+
+        return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
@@ -236,6 +143,32 @@ def _make_sink(
         title = f"{args.live} at {port_settings(args).text()} (Ctrl-C to stop)"
         return RichSink(console, title, stats, render)
     return LineSink(out, render_line)
+
+
+def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
+            stop: StopFlag) -> str | None:
+    """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it."""
+    while True:
+        if stop.signal is not None:
+            capture.stop.set()
+        items, safe, closed = handoff.take(WAIT)
+        shown = dissector.push(items) if items else []
+        if closed:
+            shown += dissector.finish()
+        elif safe is not None:
+            shown += dissector.expire(safe)
+        for item in shown:
+            stats.add(item)
+        stats.not_shown = handoff.dropped + sink.dropped
+        sink.show(shown)
+        sink.tick()
+        if sink.failed is not None:
+            # The reader of our output (head, less) went away: stop, keep the files whole.
+            capture.stop.set()
+            capture.done.wait()
+            return "output closed"
+        if closed:
+            return None
 
 
 def run_live(
@@ -258,7 +191,7 @@ def run_live(
         err.write(f"{PROG}: {error}\n")
         return error.status
     try:
-        tee = Tee(getattr(args, "write", None), args.raw)
+        files = CaptureFiles(capture_output(args, getattr(out, "buffer", None)), args.raw)
     except LiveError as error:
         port.close()
         err.write(f"{PROG}: {error}\n")
@@ -267,44 +200,38 @@ def run_live(
     err.write(f"{PROG}: listening on {args.live} at {port_settings(args).text()}\n")
     err.flush()
     # Modbus ASCII on the line only with --mode ascii: a live stream cannot be sniffed before it starts.
-    framer = AsciiFramer() if getattr(args, "mode", None) == "ascii" else None
-    dissector = Dissector(
-        framer=framer, hold=False, annotate=annotate, timeout=getattr(args, "timeout", None)
-    )
-    sink = _make_sink(args, out, is_terminal, render_line, render_text, stats)
-    capture = Capture(
-        port, dissector, tee, sink, stats, silence_threshold(args.baud), args.duration, args.count
+    framer = AsciiFramer() if getattr(args, "mode", None) == "ascii" else RtuFramer()
+    # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
+    dissector = Dissector(hold=True, annotate=annotate, timeout=getattr(args, "timeout", None))
+    handoff = Handoff()
+    capture = CaptureThread(
+        port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,
+        port_name=args.live,
     )
     started = time.monotonic()
-    status = ExitStatus.OK
-    reason = ""
+    sink: Sink = NullSink()
     try:
         with StopFlag() as stop:
-            try:
-                reason = capture.run(stop)
-            except PortVanished as error:
-                reason = f"{args.live} went away ({error})"
-                status = ExitStatus.ERROR
-            except LiveError as error:
-                reason, status = str(error), error.status
-            except BrokenPipeError:
-                # The reader of our output (head, less) went away: stop, keep the files whole.
-                reason = "output closed"
-                capture.sink = sink = NullSink()
-            if reason != "count":
-                capture.deliver(dissector.finish())
+            sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
+            capture.start()
+            display(capture, handoff, dissector, sink, stats, stop)
     finally:
-        tee.close()
+        capture.stop.set()
+        capture.done.wait()
         port.close()
         stats.finish()
         try:
             sink.close()
-        except BrokenPipeError:
+        except (BrokenPipeError, OSError):
             pass
+    stats.not_shown = handoff.dropped + sink.dropped
     seconds = time.monotonic() - started
-    files = f"; wrote {', '.join(tee.paths)}" if tee.paths else ""
+    names = files.names
+    written = f"; wrote {', '.join(names)}" if names else ""
+    status = capture.status
     if status != ExitStatus.OK:
-        err.write(f"{PROG}: error: {reason}; capture files closed\n")
-    err.write(f"{PROG}: {stats.summary(seconds)}{files}\n")
+        err.write(f"{PROG}: error: {capture.reason}; capture files closed\n")
+    hidden = stats.not_shown_text(bool(names))
+    err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()
     return status

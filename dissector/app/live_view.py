@@ -4,10 +4,15 @@
 time); it is plain data so tests compare exact numbers. The sinks write items as they come:
 plain lines when the output is a pipe, NDJSON with --json, and a rich live view on a terminal
 (a header of counters above the last frames, which scroll).
+
+Lines go through an `OutputPump`: a thread that writes them, behind a bounded queue. A reader that
+stops reading (a paused terminal, a slow pipe) blocks only that thread; once the queue is full, lines
+are dropped and counted, and the counters and the final summary say how many were not shown.
 """
 from __future__ import annotations
 
 import json
+import threading
 import time
 from collections import deque
 from collections.abc import Callable
@@ -43,6 +48,7 @@ class LiveStats:
     crc_errors: int = 0
     unanswered: int = 0
     last_response_time: float | None = None
+    not_shown: int = 0  # items the display dropped because it fell behind (the files hold them)
     slaves: dict[int, SlaveCounts] = field(default_factory=dict)
     # Requests not yet known to be answered or unanswered: the pairer decides later (hold=False),
     # by setting `response` or `unanswered` on the request object we keep here.
@@ -96,12 +102,22 @@ class LiveStats:
             f"{self.unanswered} unanswered, {_count(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
         )
 
+    def not_shown_text(self, files: bool) -> str:
+        """Why some lines are missing, and where they are; empty when none is."""
+        if not self.not_shown:
+            return ""
+        where = ", the capture files hold them" if files else ", no capture file holds them (-w, --raw)"
+        return f"{_count(self.not_shown, 'item')} not shown (the display fell behind){where}"
+
 
 def _count(number: int, noun: str) -> str:
     return f"{number} {noun}{'' if number == 1 else 's'}"
 
 
 class Sink(Protocol):
+    failed: BaseException | None  # the output could not be written (BrokenPipeError: reader gone)
+    dropped: int  # lines not shown because the output fell behind
+
     def show(self, items: list[Item]) -> None: ...
 
     def tick(self) -> None: ...
@@ -109,23 +125,84 @@ class Sink(Protocol):
     def close(self) -> None: ...
 
 
+PUMP_LIMIT = 20_000  # lines waiting to be written; beyond, lines are dropped (and counted)
+
+
+class OutputPump:
+    """Writes lines on its own thread, each batch flushed; `put` never blocks."""
+
+    def __init__(self, out: TextIO, limit: int | None = None) -> None:
+        self._out = out
+        self._limit = PUMP_LIMIT if limit is None else limit
+        self._lines: deque[str] = deque()
+        self._cond = threading.Condition()
+        self._closing = False
+        self.dropped = 0
+        self.failed: BaseException | None = None  # BrokenPipeError when the reader went away
+        self._thread = threading.Thread(target=self._run, name="output", daemon=True)
+        self._thread.start()
+
+    def put(self, lines: list[str]) -> None:
+        with self._cond:
+            room = self._limit - len(self._lines)
+            if self.failed is not None:
+                return
+            if len(lines) > room:
+                self.dropped += len(lines) - max(room, 0)
+                lines = lines[: max(room, 0)]
+            self._lines.extend(lines)
+            self._cond.notify()
+
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                while not self._lines and not self._closing:
+                    self._cond.wait()
+                if not self._lines:
+                    return
+                batch = "".join(line + "\n" for line in self._lines)
+                self._lines.clear()
+            try:
+                self._out.write(batch)
+                self._out.flush()
+            except (OSError, ValueError) as error:
+                with self._cond:
+                    self.failed = error
+                    self._lines.clear()
+                return
+
+    def close(self) -> None:
+        """Write what is queued (blocks while the reader does not read, as any writer would)."""
+        with self._cond:
+            self._closing = True
+            self._cond.notify()
+        self._thread.join()
+
+
 class LineSink:
-    """One line per item (plain or NDJSON), flushed per batch so a pipe reader sees it at once."""
+    """One line per item (plain or NDJSON), written by an OutputPump."""
 
     def __init__(self, out: TextIO, render: Callable[[Item], str]) -> None:
-        self._out = out
+        self._pump = OutputPump(out)
         self._render = render
+
+    @property
+    def failed(self) -> BaseException | None:
+        return self._pump.failed
+
+    @property
+    def dropped(self) -> int:
+        return self._pump.dropped
 
     def show(self, items: list[Item]) -> None:
         if items:
-            self._out.write("".join(self._render(item) + "\n" for item in items))
-            self._out.flush()
+            self._pump.put([self._render(item) for item in items])
 
     def tick(self) -> None:
         pass
 
     def close(self) -> None:
-        self._out.flush()
+        self._pump.close()
 
 
 def json_line(item: Item) -> str:
@@ -151,6 +228,7 @@ def totals_text(stats: LiveStats) -> str:
         f"{stats.frames} frames, {stats.crc_errors} CRC errors, {stats.unanswered} unanswered, "
         f"{stats.noise_bytes} noise bytes, last response time "
         + (f"{last * 1000:.1f} ms" if last is not None else "-")
+        + (f", {stats.not_shown} not shown (in the capture files)" if stats.not_shown else "")
     )
 
 
@@ -189,6 +267,8 @@ class RichSink:
         self._live.start()
         self._dirty = True
         self._drawn = 0.0
+        self.failed: BaseException | None = None
+        self.dropped = 0  # the view keeps the last lines: a slow terminal delays it, drops nothing
 
     def show(self, items: list[Item]) -> None:
         for item in items:

@@ -3,8 +3,14 @@
 Runs after the framer, which has already classified every frame. A request to slave 0 is a broadcast
 and expects no answer. A request followed by another request (or by the end of the capture) was not
 answered. With `hold=True` (files), a request is held back until the next frame tells whether it was
-answered, so its own line can say so, as tshark's second pass would. With `hold=False` (live), every
-item is released at once, and the next request carries the note instead.
+answered, so its own line can say so, as tshark's second pass would. With `hold=False`, every item
+is released at once, and the next request carries the note instead.
+
+The timeout rule (with timestamps and a timeout): a request is answered only by a response whose first
+byte came at most `timeout` seconds after the request's, as a Modbus master gives up at its response
+timeout; a later frame ends the wait, the request is unanswered and a late response is shown as such.
+So whether a request was answered is known `timeout` seconds after it at the latest: a live capture
+calls `expire(now)` to release it then, and shows the line the decode of its capture file gives.
 """
 from __future__ import annotations
 
@@ -44,6 +50,25 @@ class Pairer:
             self._push_one(item, out)
         return out
 
+    def expire(self, now: float) -> list[Item]:
+        """Release the open request if no frame from `now` on can answer it (live: `now` is a time
+        before which every byte has been framed)."""
+        out: list[Item] = []
+        pending = self._pending
+        if pending is not None and self._late(pending, now):
+            pending.unanswered = True
+            self._pending = None
+            self._release(out)
+        return out
+
+    def _late(self, pending: Frame, time: float | None) -> bool:
+        return (
+            self._timeout is not None
+            and time is not None
+            and pending.time is not None
+            and time - pending.time > self._timeout
+        )
+
     def finish(self) -> list[Item]:
         out: list[Item] = []
         pending = self._pending
@@ -72,6 +97,13 @@ class Pairer:
             self._enqueue(item, out)
             return
         pending = self._pending
+        late: Frame | None = None
+        if pending is not None and self._late(pending, item.time):
+            # Past the timeout: the master gave up, this frame cannot be the answer.
+            late, pending = pending, None
+            late.unanswered = True
+            self._pending = None
+            self._release(out)
         if item.kind is Kind.REQUEST:
             if pending is not None:
                 pending.unanswered = True
@@ -94,12 +126,12 @@ class Pairer:
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
-            if self._timeout is not None and item.time is not None and pending.time is not None:
-                if item.time - pending.time > self._timeout:
-                    item.warnings.append(
-                        f"response after {item.response_time * 1000:.1f} ms, later than the "
-                        f"{self._timeout * 1000:.0f} ms timeout"
-                    )
+        elif late is not None and late.slave == item.slave and late.function == item.function:
+            assert self._timeout is not None and item.time is not None and late.time is not None
+            item.warnings.append(
+                f"response {(item.time - late.time) * 1000:.1f} ms after request #{late.number}, later "
+                f"than the {self._timeout * 1000:.0f} ms timeout: not its answer"
+            )
         else:
             if pending is not None:
                 pending.unanswered = True

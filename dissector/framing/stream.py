@@ -59,6 +59,11 @@ class StreamFramer(ABC):
         """No noise run is being built: what was framed so far has all been given out."""
         return not self._noise
 
+    @property
+    def held_since(self) -> float | None:
+        """Time of the first byte not framed yet (None: none held): no frame to come is earlier."""
+        return self._time_at(self._base) if self._buf else None
+
     def pause_at(self, offset: int | None) -> None:
         """Start no frame at or after `offset` (None: no pause): lets a caller take items one frame
         at a time, to find the points where the stream can change hands."""

@@ -17,27 +17,38 @@ _RECORD_HEADER = struct.Struct("<IIII")
 PCAP_MAGIC = 0xA1B2C3D4
 
 
+def split_time(timestamp: float) -> tuple[int, int]:
+    """(seconds, microseconds) as pcap stores them; the reader's seconds + micros / 1e6 gives it back."""
+    ns = getattr(timestamp, "ns", None)  # a Stamp keeps its source's integer nanoseconds
+    if ns is not None:
+        return divmod(int(ns) // 1000, 1_000_000)  # type: ignore[return-value]
+    seconds = int(timestamp)
+    micros = int(round((timestamp - seconds) * 1_000_000))
+    if micros >= 1_000_000:
+        seconds, micros = seconds + 1, micros - 1_000_000
+    return seconds, micros
+
+
 class PcapWriter:
     def __init__(self, stream: BinaryIO, linktype: int = LINKTYPE_USER0, flush: bool = True) -> None:
         self._stream = stream
         self._flush = flush
         self._last_time = 0.0
+        self.size = _GLOBAL_HEADER.size  # bytes written so far (ring buffer limits)
         stream.write(_GLOBAL_HEADER.pack(PCAP_MAGIC, 2, 4, 0, 0, SNAPLEN, linktype))
         if flush:
             stream.flush()
 
-    def write(self, data: bytes, timestamp: float | None = None) -> None:
-        """Append one record. Without a timestamp, the previous one is reused (0 at first)."""
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
+        """Append one record. Without a timestamp, the previous one is reused (0 at first).
+        pcap has no place for a comment: it is for pcapng's sake."""
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
-        seconds = int(timestamp)
-        micros = int(round((timestamp - seconds) * 1_000_000))
-        if micros >= 1_000_000:
-            seconds, micros = seconds + 1, micros - 1_000_000
-        self._stream.write(
-            _RECORD_HEADER.pack(seconds, micros, len(data), len(data)) + data
-        )
+        seconds, micros = split_time(timestamp)
+        # One write(2) a record (unbuffered streams): a reader never sees a header without its bytes.
+        self._stream.write(_RECORD_HEADER.pack(seconds, micros, len(data), len(data)) + data)
+        self.size += _RECORD_HEADER.size + len(data)
         if self._flush:
             self._stream.flush()
 

@@ -29,13 +29,12 @@ import statistics
 from dataclasses import dataclass, field
 from typing import Any
 
-from rich import box
-from rich.console import Group, RenderableType
-from rich.table import Table
-from rich.text import Text
+from rich.console import RenderableType
 
 from dissector.model import Frame, Item, Kind, Noise, Register
-from dissector.render.pollcycle import PollCycle
+from dissector.render import tables
+from dissector.render.pollcycle import PollCycle, describe_key
+from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
 READ_FUNCTIONS = frozenset([3, 4, 23])
@@ -63,12 +62,14 @@ class ParameterStats:
     writes: int = 0
     refused: int = 0
     last: int | None = None
+    last_text: str | None = None  # as the summary names it (scaled with its unit, enumeration text)
     changes: int = 0
 
-    def observe(self, value: int) -> None:
+    def observe(self, value: int, text: str | None) -> None:
         if self.last is not None and value != self.last:
             self.changes += 1
         self.last = value
+        self.last_text = text
 
 
 PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
@@ -183,7 +184,7 @@ class StatsCollector:
                 if parameter is not None:
                     parameter.writes += 1
                     if frame.broadcast:  # no answer will confirm it: the request is all there is
-                        parameter.observe(register.value)
+                        parameter.observe(register.value, register.text)
 
     def _add_response_values(self, frame: Frame) -> None:
         slave, function = frame.slave, frame.function
@@ -196,23 +197,37 @@ class StatsCollector:
             for register in frame.request.registers or ():
                 if register.address is not None:
                     self._confirm(slave, register)
-        if function in READ_FUNCTIONS:
-            for register in frame.registers or ():
-                parameter = self._parameter(slave, register)
-                if parameter is None:
+        if function in READ_FUNCTIONS and frame.registers:
+            # The hot loop of --stats: _parameter and observe() inlined (the same rules).
+            parameters = self.parameters
+            for register in frame.registers:
+                address = register.address
+                if address is None:
+                    self.registers_without_address += 1
                     continue
+                parameter = parameters.get((slave, address))
+                if parameter is None:
+                    parameter = parameters[(slave, address)] = ParameterStats()
+                code = register.code
+                if code is not None:
+                    parameter.code = code
                 if register.status in UNREADABLE:
                     parameter.unreadable += 1  # 16#8000 stands for "no value", not a value
-                else:
-                    parameter.reads += 1
-                    parameter.observe(register.value)
+                    continue
+                parameter.reads += 1
+                value = register.value
+                last = parameter.last
+                if last is not None and value != last:
+                    parameter.changes += 1
+                parameter.last = value
+                parameter.last_text = register.text
 
     def _confirm(self, slave: int, register: Register) -> None:
         key = (slave, register.address)
         parameter = self.parameters.get(key)  # type: ignore[arg-type]
         if parameter is None:
             parameter = self.parameters[key] = ParameterStats(code=register.code)  # type: ignore[index]
-        parameter.observe(register.value)
+        parameter.observe(register.value, register.text)
 
     # -- results ------------------------------------------------------------------------------
     def report(self) -> dict[str, Any]:
@@ -242,6 +257,9 @@ class StatsCollector:
                 "writes": stats.writes,
                 "refused": stats.refused,
                 "last": stats.last,
+                "last_text": stats.last_text if stats.last_text is not None else (
+                    None if stats.last is None else str(stats.last)
+                ),
                 "changes": stats.changes,
             }
             for (slave, address), stats in sorted(self.parameters.items())
@@ -257,79 +275,143 @@ class StatsCollector:
             "registers_without_address": self.registers_without_address,
             "functions": functions,
             "parameters": parameters,
+            "poll_cycle": self.poll.report(),
         }
 
-    def render(self) -> RenderableType:
-        """Summary line, traffic, response times and parameters: each table fits 80 columns."""
+    def blocks(self) -> list[str | TableSpec]:
+        """The summary line and the tables, for the rich or the plain writer."""
         report = self.report()
-        traffic = _table("Traffic per slave and function")
-        times = _table("Response times (ms)")
-        for table in (traffic, times):
-            # Short headers and a 28-column function name keep each table within 80 columns.
-            table.add_column("slave", justify="right", no_wrap=True)
-            table.add_column("function", no_wrap=True, max_width=28, overflow="ellipsis")
-        for header in ("req", "resp"):
-            traffic.add_column(header, justify="right", no_wrap=True)
-        traffic.add_column("exceptions")
-        for header in ("no reply", "bad CRC"):
-            traffic.add_column(header, justify="right", no_wrap=True)
-        traffic.caption = "req: requests, resp: normal responses, exceptions: code:count"
-        traffic.caption_justify = "left"
-        for header in ("count", "min", "median", "p95", "max"):
-            times.add_column(header, justify="right", no_wrap=True)
+        blocks: list[str | TableSpec] = []
+        summary = (
+            f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in {report['noise']['items']} runs"
+        )
+        if report["registers_without_address"]:
+            summary += f", {report['registers_without_address']} register values without an address"
+        blocks += [summary, ""]
+        traffic = TableSpec(
+            "Traffic per slave and function",
+            ["slave", "function", "req", "resp", "exceptions", "no reply", "bad CRC"],
+            [True, False, True, True, False, True, True],
+            caption="req: requests, resp: normal responses, exceptions: code:count",
+            squeeze={1: 28},  # keeps the table within 80 columns on a terminal
+        )
+        times = TableSpec(
+            "Response times (ms)", ["slave", "function", "count", "min", "median", "p95", "max"],
+            [True, False, True, True, True, True, True], squeeze={1: 28},
+        )
         for row in report["functions"]:
             function = f"{row['function']} {row['function_name']}"
             exceptions = " ".join(f"{code}:{count}" for code, count in row["exceptions"].items())
-            traffic.add_row(
-                str(row["slave"]),
-                function,
-                _count(row["requests"], row["broadcasts"]),
-                str(row["responses"]),
-                Text(exceptions, style="vw3.exception") if exceptions else "",
-                Text(str(row["unanswered"]), style="vw3.warning") if row["unanswered"] else "0",
-                Text(str(row["crc_errors"]), style="vw3.crc.bad") if row["crc_errors"] else "0",
-            )
+            traffic.rows.append([
+                str(row["slave"]), function, _count(row["requests"], row["broadcasts"]), str(row["responses"]),
+                (exceptions, "vw3.exception") if exceptions else "",
+                (str(row["unanswered"]), "vw3.warning") if row["unanswered"] else "0",
+                (str(row["crc_errors"]), "vw3.crc.bad") if row["crc_errors"] else "0",
+            ])
             timing = row["response_time"]
             if timing is not None:
-                times.add_row(
-                    str(row["slave"]),
-                    function,
-                    str(timing["count"]),
-                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max")),
-                )
-        parameters = _table("Parameters")
-        headers = ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes")
-        for header in headers:
-            parameters.add_column(header, justify="left" if header == "code" else "right", no_wrap=True)
-        for row in report["parameters"]:
-            parameters.add_row(
-                str(row["slave"]),
-                str(row["address"]),
-                row["code"] or "",
-                str(row["reads"]),
-                str(row["unreadable"]),
-                str(row["writes"]),
-                str(row["refused"]),
-                "" if row["last"] is None else str(row["last"]),
-                str(row["changes"]),
-            )
-        summary = Text(
-            f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in "
-            f"{report['noise']['items']} runs"
-            + (
-                f", {report['registers_without_address']} register values without an address"
-                if report["registers_without_address"]
-                else ""
-            )
-        )
-        blank = Text("")
-        return Group(summary, blank, traffic, blank, times, blank, parameters)
+                times.rows.append([str(row["slave"]), function, str(timing["count"]),
+                                   *(_ms(timing[key]) for key in ("min", "median", "p95", "max"))])
+        blocks += [traffic, "", times, ""]
+        if report["poll_cycle"]:
+            blocks += [_poll_table(report["poll_cycle"]), ""]
+        blocks.append(_parameter_table(report["parameters"]))
+        return blocks
+
+    def render(self) -> RenderableType:
+        """For a terminal: rich tables, each within 80 columns."""
+        return tables.rich(self.blocks())
+
+    def render_plain(self) -> str:
+        """For a pipe or a file: the same tables as plain text, full width."""
+        return tables.plain(self.blocks())
 
 
-def _table(title: str) -> Table:
-    return Table(
-        title=title, title_justify="left", box=box.SIMPLE_HEAD, show_edge=False, collapse_padding=True
+GROUP_MIN = 3  # neighbouring addresses with the same story shown as one row from this many on
+MAX_PARAMETER_ROWS = 60
+MAX_POLL_ROWS = 60
+
+
+def _poll_table(rows: list[dict[str, Any]]) -> TableSpec:
+    table = TableSpec(
+        "Poll cycle (requests repeated 3 times or more)",
+        ["slave", "function", "addresses", "count", "period", "jitter", "misses"],
+        [True, False, False, True, True, True, True],
+        caption="period: median interval (ms); jitter: largest deviation from it (ms); misses: cycles "
+        "skipped (intervals of 1.5 periods or more) + requests without a normal answer",
+        squeeze={1: 28, 2: 24},
     )
+    for row in rows[:MAX_POLL_ROWS]:
+        misses = str(row["misses"])
+        table.rows.append([
+            str(row["slave"]), f"{row['function']} {SPEC.function_name(row['function'])}", describe_key(row),
+            str(row["count"]),
+            "-" if row["period"] is None else _ms(row["period"]),
+            "-" if row["jitter"] is None else _ms(row["jitter"]),
+            (misses, "vw3.warning") if row["misses"] else misses,
+        ])
+    if len(rows) > MAX_POLL_ROWS:
+        table.rows.append(["", f"... (+{len(rows) - MAX_POLL_ROWS} more)", "", "", "", "", ""])
+    return table
+
+
+_STORY = ("reads", "unreadable", "writes", "refused", "changes")
+
+
+def _parameter_table(parameters: list[dict[str, Any]]) -> TableSpec:
+    """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
+    all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all."""
+    table = TableSpec(
+        "Parameters",
+        ["slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes"],
+        [True, True, False, True, True, True, True, False, True],
+        squeeze={7: 24},  # long enumeration texts and bit lists are cut on a terminal only
+    )
+    groups: list[list[dict[str, Any]]] = []
+    for row in parameters:
+        if groups:
+            group = groups[-1]
+            previous = group[-1]
+            if (
+                row["slave"] == previous["slave"]
+                and row["address"] == previous["address"] + 1
+                and (row["code"] is None) == (previous["code"] is None)
+                and all(row[key] == previous[key] for key in _STORY)
+            ):
+                group.append(row)
+                continue
+        groups.append([row])
+    shown = 0
+    for group in groups:
+        if len(group) < GROUP_MIN:
+            rows = [[row] for row in group]
+        else:
+            rows = [group]
+        for members in rows:
+            if shown == MAX_PARAMETER_ROWS:
+                break
+            shown += 1
+            table.rows.append(_parameter_row(members))
+    expanded = sum(1 if len(group) >= GROUP_MIN else len(group) for group in groups)
+    if expanded > shown:
+        table.rows.append(["", f"... (+{expanded - shown} more rows)", "", "", "", "", "", "", ""])
+    if len(parameters) > 1:
+        totals = [str(sum(row[key] for row in parameters)) for key in _STORY]
+        table.rows.append(["all", f"{len(parameters)} params", "", *totals[:4], "", totals[4]])
+    return table
+
+
+def _parameter_row(members: list[dict[str, Any]]) -> list[Cell]:
+    first, last = members[0], members[-1]
+    if len(members) == 1:
+        address, code = str(first["address"]), first["code"] or ""
+    else:
+        address = f"{first['address']}..{last['address']} ({len(members)})"
+        code = f"{first['code']}..{last['code']}" if first["code"] else ""
+    texts = {row["last_text"] for row in members}
+    last_value = texts.pop() if len(texts) == 1 else "(various)"
+    return [str(first["slave"]), address, code, *(str(first[key]) for key in _STORY[:4]),
+            last_value or "", str(first["changes"])]
 
 
 def _times(times: list[float]) -> dict[str, float | int] | None:

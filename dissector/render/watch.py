@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from typing import Any
 from dataclasses import dataclass
 
 from dissector.errors import UsageError
@@ -190,6 +191,37 @@ def profile_statuses(annotate: object) -> Callable[[int, bool, int | None], str 
 def watcher(text: str, write: Callable[[str], None], as_json: bool, annotate: object) -> Watcher:
     codes, addresses = parse_watch(text)
     return Watcher(codes, addresses, printer(write, as_json), profile_statuses(annotate))
+
+
+class WatchSink:
+    """The live capture's sink under --watch: change lines instead of items, handed to a line pump
+    (the live view's OutputPump: put(lines), close(), failed, dropped) as their frames arrive."""
+
+    def __init__(self, text: str, pump: Any, as_json: bool, annotate: object) -> None:
+        self._pump = pump
+        self._lines: list[str] = []
+        self.watcher = watcher(text, lambda line: self._lines.append(line.rstrip("\n")), as_json, annotate)
+
+    @property
+    def failed(self) -> BaseException | None:
+        return self._pump.failed
+
+    @property
+    def dropped(self) -> int:
+        return self._pump.dropped
+
+    def show(self, items: list[Item]) -> None:
+        for item in items:
+            self.watcher.add(item)
+        if self._lines:
+            self._pump.put(self._lines)
+            self._lines = []
+
+    def tick(self) -> None:
+        pass
+
+    def close(self) -> None:
+        self._pump.close()
 
 
 def printer(write: Callable[[str], None], as_json: bool) -> Callable[[Change], None]:

@@ -199,7 +199,8 @@ class _Reader:
             )
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
-        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
+        # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
+        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units) if high or low else None
         yield from self._data(captured, original, time, interface, body_length - 20, start)
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:

@@ -352,9 +352,10 @@ def test_rich_live_view_on_a_terminal() -> None:
 
 def test_pause_inside_a_frame_does_not_cut_it() -> None:
     """A gateway or stalled adapter pausing 100 ms mid-frame: the frame still comes out whole.
-    Bytes that make no CRC-valid frame are shown after the long silence (IDLE_FLUSH_LONG)."""
+    Bytes that make no CRC-valid frame are shown after the long silence (IDLE_FLUSH_LONG); a damaged
+    request is then still a request, whose line waits for its --timeout (here shorter than the silence)."""
     bus = Bus()
-    sniffer = Sniffer.start(bus.c_path, "--baud", "115200", "--json")
+    sniffer = Sniffer.start(bus.c_path, "--baud", "115200", "--json", "--timeout", "0.1")
     request = with_crc(bytes.fromhex("011000180002040001000a"))
     damaged = request[:-1] + bytes([request[-1] ^ 0xFF])
     try:

@@ -220,20 +220,24 @@ class Sniffer:
 
 
 class Bus:
-    def __init__(self, baud: int = 115200, seed: int = 1) -> None:
+    """With `slave=False`, side B (b_path) is free for another slave (pymodbus_slave)."""
+
+    def __init__(self, baud: int = 115200, seed: int = 1, slave: bool = True) -> None:
         self.a, self.a_slave, self.a_path = open_pty()
-        self.b, self.b_slave, _ = open_pty()
+        self.b, self.b_slave, self.b_path = open_pty()
         self.c, self.c_slave, self.c_path = open_pty()
         self.relay = Relay(self.a, self.b, self.c, baud, seed)
         self.slave = Slave(self.b_slave)
         self.relay.start()
-        self.slave.start()
+        if slave:
+            self.slave.start()
 
     def close(self) -> None:
         self.relay.stop.set()
         self.slave.stop.set()
         self.relay.join(2)
-        self.slave.join(2)
+        if self.slave.ident is not None:
+            self.slave.join(2)
         fds = [self.a, self.a_slave, self.b, self.b_slave, self.c_slave]
         if self.relay.c_open:
             fds.append(self.c)
@@ -258,3 +262,101 @@ def read_pcap(path: Path) -> list[tuple[float, bytes]]:
         records.append((seconds + micros / 1e6, data[offset + 16 : offset + 16 + length]))
         offset += 16 + length
     return records
+
+
+class PymodbusSlave(threading.Thread):
+    """pymodbus's RTU server on `path` for `devices` (holding registers 0..299); requests to other
+    slaves go unanswered, as on a bus where that slave is absent."""
+
+    def __init__(self, path: str, devices: tuple[int, ...] = (1, 2, 3), baud: int = 115200) -> None:
+        super().__init__(daemon=True)
+        self.path, self.devices, self.baud = path, devices, baud
+        self.ready = threading.Event()
+        self._loop: object = None
+        self._server: object = None
+
+    def run(self) -> None:
+        import asyncio
+
+        from pymodbus.datastore import ModbusDeviceContext, ModbusSequentialDataBlock, ModbusServerContext
+        from pymodbus.server import ModbusSerialServer
+
+        context = ModbusServerContext(
+            devices={d: ModbusDeviceContext(hr=ModbusSequentialDataBlock(1, [0] * 300)) for d in self.devices},
+            single=False,
+        )
+
+        async def serve() -> None:
+            # pymodbus builds its transport on the running loop.
+            self._loop = asyncio.get_running_loop()
+            server = ModbusSerialServer(
+                context, port=self.path, baudrate=self.baud, parity="N", ignore_missing_devices=True,
+                trace_packet=self._absent,
+            )
+            self._server = server
+            self._loop.call_soon(self.ready.set)
+            await server.serve_forever()
+
+        try:
+            asyncio.run(serve())
+        except Exception:  # noqa: BLE001  (stopped by close())
+            pass
+
+    def _absent(self, sending: bool, data: bytes) -> bytes:
+        # pymodbus 3.16 answers a missing device with an exception despite ignore_missing_devices:
+        # what it would send for a slave that is not on the bus is not sent.
+        return b"" if sending and data and data[0] not in self.devices else data
+
+    def close(self) -> None:
+        import asyncio
+
+        loop, server = self._loop, self._server
+        if loop is not None and server is not None:
+            future = asyncio.run_coroutine_threadsafe(server.shutdown(), loop)  # type: ignore[arg-type]
+            try:
+                future.result(5)
+            except Exception:  # noqa: BLE001
+                pass
+        self.join(5)
+
+
+def paced_writer(fd: int, data: bytes, baud: int, piece: int = 32) -> int:
+    """Write `data` to a pty at line rate (11 bits a byte), never blocking: bytes the terminal does
+    not take (its reader stopped reading) are counted, as a UART overrun would lose them."""
+    flags = fcntl.fcntl(fd, fcntl.F_GETFL)
+    fcntl.fcntl(fd, fcntl.F_SETFL, flags | os.O_NONBLOCK)
+    lost = 0
+    byte_time = 11 / baud
+    start = time.perf_counter()
+    for offset in range(0, len(data), piece):
+        chunk = data[offset : offset + piece]
+        due = start + (offset + len(chunk)) * byte_time
+        while time.perf_counter() < due:
+            time.sleep(min(0.0005, max(0.0, due - time.perf_counter())))
+        try:
+            written = os.write(fd, chunk)
+        except BlockingIOError:
+            written = 0
+        lost += len(chunk) - written
+    fcntl.fcntl(fd, fcntl.F_SETFL, flags)
+    return lost
+
+
+def transactions(count: int, seed: int) -> bytes:
+    """A plant-floor-like stream: FC3/FC6/FC16 requests to slaves 1..3, each with its response."""
+    rng = random.Random(seed)
+    out = bytearray()
+    slave = Slave(-1)
+    for _ in range(count):
+        unit, function = rng.randint(1, 3), rng.choice([3, 3, 6, 16])
+        start, quantity = rng.randrange(0, 200), rng.randint(1, 30)
+        if function == 3:
+            request = struct.pack(">BBHH", unit, 3, start, quantity)
+        elif function == 6:
+            request = struct.pack(">BBHH", unit, 6, start, rng.randrange(0x10000))
+        else:
+            values = [rng.randrange(0x10000) for _ in range(quantity)]
+            request = struct.pack(f">BBHHB{quantity}H", unit, 16, start, quantity, 2 * quantity, *values)
+        request = with_crc(request)
+        out += request + slave.answer(request)
+    return bytes(out)

@@ -42,3 +42,19 @@ def test_bytes_that_are_no_frame_either_way_stay_noise() -> None:
 def test_a_good_frame_is_untouched() -> None:
     out = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF"])[1]
     assert out.endswith("(3) [no response] [the capture ends before any response]  CRC ok\n")
+
+
+def test_an_ascii_frame_typed_without_its_lrc_gets_the_lrc_to_append() -> None:
+    # the VW3 A3 303 manual's Write Single Register 9001 = 10 (:02062329000AA2)
+    out = run_cli(["--hex", ":02062329000A"])[1]
+    assert out == (
+        "     1            -   2 request   Write Single Register 9001 ACC=10 [no response] "
+        "[the capture ends before any response] [no LRC typed: append A2]  LRC ok\n"
+    )
+    assert run_cli(["--hex", ":02062329000AA3"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
+
+
+def test_two_good_frames_in_one_argument_are_left_alone() -> None:
+    out = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 00 03 00 02 17 E4"])[1]
+    lines = out.splitlines()
+    assert len(lines) == 2 and all(line.endswith("CRC ok") and "typed" not in line for line in lines)

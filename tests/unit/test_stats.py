@@ -188,13 +188,61 @@ def test_render_p38() -> None:
         "─" * 65,
         "    12  3 Read Holding Registers      6  8.0     9.5  11.9  11.9",
         "",
+        "Poll cycle (requests repeated 3 times or more)",
+        " slave  function                  addresses       count  period  jitter  misses",
+        "─" * 80,
+        "    12  3 Read Holding Registers  8400..8402 (3)      6   523.9     5.2       2",
+        "period: median interval (ms); jitter: largest deviation from it (ms); misses:",
+        "cycles skipped (intervals of 1.5 periods or more) + requests without a normal",
+        "answer",
+        "",
         "Parameters",
-        " slave  address  code  reads  unreadable  writes  refused  last  changes",
-        "─" * 73,
-        "    12     8400            0           4       0        0              0",
-        "    12     8401  CHCF      2           2       0        0     3        0",
-        "    12     8402  COP       4           0       0        0     2        0",
+        " slave   address  code  reads  unreadable  writes  refused  last              changes",
+        "─" * 86,
+        "    12      8400            0           4       0        0                          0",
+        "    12      8401  CHCF      2           2       0        0  IO (I/O profile)        0",
+        "    12      8402  COP       4           0       0        0  Cd (command)            0",
+        "   all  3 params            6           6       0        0                          0",
     ]
+
+
+def test_plain_tables_are_the_same_numbers_at_full_width() -> None:
+    # Piped output: no rich layout, nothing cut (a 35-character function name, a 64-character ETA text).
+    text = collect("atv71_commissioning.pcap").render_plain()
+    lines = text.splitlines()
+    assert "    2  43 Encapsulated Interface Transport    1     1                     0        0" in lines
+    assert (
+        "    2       3201  ETA      40           0       0        0  "
+        "Ready to switch on, Voltage enabled, Quick stop inactive, Remote        4"
+    ) in lines
+    assert "    2       3104  HSP       1           0       1        0  55.0 Hz" + " " * 65 + "1" in lines
+    assert "    2  23 Read/Write Multiple Registers  read 3201..3202 (2), write 8501..8502 (2)     40    50.4     6.5       1" in lines
+
+
+def test_parameter_ranges_with_the_same_story_and_the_cap() -> None:
+    from dissector.render.stats import MAX_PARAMETER_ROWS
+
+    stats = StatsCollector()
+    # Slave 9: 100 unnamed registers read twice (the same story), then a lone one read once; slave 10: MAX_PARAMETER_ROWS + 5 scattered single registers.
+    frames = []
+    for _ in range(2):
+        frames += [rtu("09 03 03 E8 00 64"), rtu("09 03 C8" + " 00 07" * 100)]
+    frames += [rtu("09 03 07 D0 00 01"), rtu("09 03 02 00 01")]
+    for index in range(MAX_PARAMETER_ROWS + 5):
+        address = 10 * index
+        frames += [rtu(f"0A 03 {address >> 8:02X} {address & 255:02X} 00 01"), rtu("0A 03 02 00 05")]
+    for item in dissect_bytes(b"".join(frames), annotate=build_annotator(["generic"], [])):
+        stats.add(item)
+    report = stats.report()
+    assert len(report["parameters"]) == 100 + 1 + MAX_PARAMETER_ROWS + 5  # JSON stays per address
+    lines = stats.render_plain().splitlines()
+    table = lines[lines.index("Parameters") + 3 :]
+    assert table[0] == "    9    1000..1099 (100)            2           0       0        0  7           0"
+    assert table[1] == "    9                2000            1           0       0        0  1           0"
+    assert table[2] == "   10                   0            1           0       0        0  5           0"
+    assert len(table) == MAX_PARAMETER_ROWS + 2
+    assert table[-2].strip() == "... (+7 more rows)"
+    assert table[-1] == "  all          166 params          266           0       0        0              0"
 
 
 @pytest.mark.parametrize("width", [60, 80, 120])

@@ -67,3 +67,12 @@ def test_bad_watch_lists_are_one_line_errors() -> None:
         status, out, err = run_cli([str(CAPTURES / "p38_protection.pcap"), "--watch", value])
         assert status == 2 and out == "" and err.startswith(f"vw3-decode: {message}"), (value, err)
         assert len(err.splitlines()) == 1
+
+
+def test_watch_contradictions_are_refused() -> None:
+    capture = str(CAPTURES / "p38_protection.bin")
+    for extra, message in [
+        (["-V"], "--watch replaces the items: -V, -x and -T fields show none"),
+        (["--stats"], "--watch and --stats are two outputs: choose one"),
+    ]:
+        assert run_cli([capture, "--watch", "CHCF", *extra]) == (2, "", f"vw3-decode: {message}\n")

@@ -16,6 +16,7 @@ The x axis is the capture time (Unix seconds) when items are time-stamped, the f
 """
 from __future__ import annotations
 
+from array import array
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -29,59 +30,66 @@ MAX_EVENTS = 1000
 MAX_LABELS = 64
 EVENT_KINDS = ("exception", "protection", "crc", "noise", "silence", "unanswered")
 
-# A finished column: first x, first y, min x, min y, max x, max y, last x, last y.
-Column = tuple[float, float, float, float, float, float, float, float]
-
-
 class Columns:
-    """Per-column first/min/max/last of one series; `index` maps x to a column, shared by all."""
+    """Per-column first/min/max/last points of one series, 8 doubles a column (fx fy nx ny mx my lx ly)
+    in a flat array: a few hundred series of 1,600 columns stay within a few tens of MB."""
 
-    __slots__ = ("done", "col", "fx", "fy", "nx", "ny", "mx", "my", "lx", "ly")
+    __slots__ = ("done", "col")
 
     def __init__(self) -> None:
-        self.done: list[tuple[int, Column]] = []
-        self.col = -1
+        self.done = array("d")
+        self.col = -1  # the column the last 8 doubles are, while it is open; -1 once closed
 
     def add(self, col: int, x: float, y: float) -> None:
+        done = self.done
         if col != self.col:
-            if self.col >= 0:
-                self.done.append((self.col, (self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly)))
             self.col = col
-            self.fx = self.nx = self.mx = self.lx = x
-            self.fy = self.ny = self.my = self.ly = y
+            done.extend((x, y, x, y, x, y, x, y))
             return
-        if y < self.ny:
-            self.nx, self.ny = x, y
-        elif y > self.my:
-            self.mx, self.my = x, y
-        self.lx, self.ly = x, y
+        base = len(done) - 8
+        if y < done[base + 3]:
+            done[base + 2] = x
+            done[base + 3] = y
+        elif y > done[base + 5]:
+            done[base + 4] = x
+            done[base + 5] = y
+        done[base + 6] = x
+        done[base + 7] = y
 
-    def halve(self) -> None:
-        """Columns twice as wide: merge neighbours (col // 2)."""
-        merged: list[tuple[int, Column]] = []
-        for col, column in self.done:
-            col //= 2
-            if merged and merged[-1][0] == col:
-                merged[-1] = (col, _merge(merged[-1][1], column))
-            else:
-                merged.append((col, column))
-        self.done = merged
-        if self.col >= 0:
-            current = (self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly)
-            col = self.col // 2
-            if merged and merged[-1][0] == col:
-                current = _merge(merged.pop()[1], current)
-            self.col = col
-            self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly = current
+    def close(self) -> None:
+        """End the current column (the column width is about to change)."""
+        self.col = -1
+
+    def __len__(self) -> int:
+        return len(self.done) // 8
+
+    def compact(self, origin: float, width: float) -> None:
+        """Merge the finished columns that fall in one column of `width` (widths only grow by
+        doubling, so each old column lies within one new column)."""
+        done, out = self.done, array("d")
+        last = None
+        for index in range(0, len(done), 8):
+            col = int((done[index] - origin) / width)
+            if col != last:
+                out.extend(done[index : index + 8])
+                last = col
+                continue
+            base = len(out) - 8
+            if done[index + 3] < out[base + 3]:
+                out[base + 2], out[base + 3] = done[index + 2], done[index + 3]
+            if done[index + 5] > out[base + 5]:
+                out[base + 4], out[base + 5] = done[index + 4], done[index + 5]
+            out[base + 6], out[base + 7] = done[index + 6], done[index + 7]
+        self.done = out
 
     def points(self) -> tuple[list[float], list[float]]:
-        columns = [column for _, column in self.done]
-        if self.col >= 0:
-            columns.append((self.fx, self.fy, self.nx, self.ny, self.mx, self.my, self.lx, self.ly))
+        done = self.done
         xs: list[float] = []
         ys: list[float] = []
-        for fx, fy, nx, ny, mx, my, lx, ly in columns:
-            for x, y in sorted({(fx, fy), (nx, ny), (mx, my), (lx, ly)}):
+        for index in range(0, len(done), 8):
+            fx, fy, nx, ny, mx, my, lx, ly = done[index : index + 8]
+            ends = ((fx, fy),) if fx == lx else sorted({(fx, fy), (nx, ny), (mx, my), (lx, ly)})
+            for x, y in ends:
                 if xs and x <= xs[-1]:
                     continue
                 # A run of equal values needs only its ends.
@@ -91,12 +99,6 @@ class Columns:
                 xs.append(x)
                 ys.append(y)
         return xs, ys
-
-
-def _merge(a: Column, b: Column) -> Column:
-    low = (a[2], a[3]) if a[3] <= b[3] else (b[2], b[3])
-    high = (a[4], a[5]) if a[5] >= b[5] else (b[4], b[5])
-    return (a[0], a[1], low[0], low[1], high[0], high[1], b[6], b[7])
 
 
 @dataclass(slots=True)
@@ -134,11 +136,15 @@ class ReportCollector:
 
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
-        """Columns twice as wide, for every series and event count."""
+        """Columns twice as wide. Finished columns are merged only when a series holds more than
+        3 x COLUMNS of them (and once at the end), not at every doubling."""
         self.width *= 2
         self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
         for series in self.series.values():
-            series.columns.halve()
+            columns = series.columns
+            columns.close()
+            if len(columns) > 3 * COLUMNS:
+                columns.compact(self.origin, self.width)  # type: ignore[arg-type]
         for counts in self.event_columns.values():
             merged: dict[int, int] = {}
             for col, count in counts.items():
@@ -308,6 +314,8 @@ class ReportCollector:
         for (slave, address), series in sorted(self.series.items()):
             if not series.values and not series.marks:
                 continue
+            series.columns.close()
+            series.columns.compact(origin, self.width)
             xs, ys = series.columns.points()
             parameters.append(
                 {

@@ -1,0 +1,261 @@
+"""The capture side of a live capture, apart from the display as dumpcap is apart from tshark.
+
+One thread only reads the port, stamps each read, writes it to --raw (one unbuffered write), frames it
+(lengths and CRCs: microseconds a frame, no decoding) and writes each frame or noise run to -w (one
+record, one write) before handing the items on. It never waits for anyone: the hand-off to the
+display is bounded, and when the display falls behind, display items are dropped and counted, never
+capture bytes. So whatever stops the capture (Ctrl-C, SIGKILL, an unplugged adapter) and however slow
+the reader of our output is, the files hold every byte read.
+
+A frame the framer cannot close yet (it waits for bytes that would make a longer reading possible, or
+for what follows a damaged frame) is closed once the line has been silent for IDLE_FLUSH (or t3.5 if
+longer): on the wire, that silence ends every RTU frame. But a gateway (socket://) or a stalled
+adapter may also pause inside a frame, and a flush there would cut it into noise; so at IDLE_FLUSH
+the flush is first tried on a copy of the framer, and done only if it closes a CRC-valid frame.
+Anything else (a damaged frame, noise, a partial frame) waits for IDLE_FLUSH_LONG of silence.
+
+Reads are stamped to the microsecond, as the pcap stores them, so that the decode of the -w file
+computes the same response times, to the last bit, as the live display.
+"""
+from __future__ import annotations
+
+import copy
+import threading
+import time
+from collections import deque
+from dataclasses import dataclass, field
+from typing import BinaryIO
+
+import serial
+
+from dissector.errors import ExitStatus, LiveError, PortVanished
+from dissector.model import Chunk, Frame, Item, Stamp
+from dissector.pipeline import Framer
+from dissector.render.capturefile import CaptureOutput, noise_comment
+from dissector.sources.serial_port import reason
+
+IDLE_FLUSH = 0.020
+IDLE_FLUSH_LONG = 0.250
+HANDOFF_LIMIT = 100_000  # items waiting for the display; beyond, display items are dropped
+
+
+def silence_threshold(baud: int) -> float:
+    """max(t3.5, IDLE_FLUSH); t3.5 is fixed at 1.75 ms above 19200 baud (Serial Line Guide)."""
+    t35 = 3.5 * 11 / baud if baud <= 19200 else 0.00175
+    return max(t35, IDLE_FLUSH)
+
+
+def stamp_now() -> Stamp:
+    """The time now, to the microsecond: the Stamp the pcap reader makes of the record written."""
+    return Stamp(time.time_ns() // 1000 * 1000)
+
+
+class CaptureFiles:
+    """--raw (bytes as read) and -w (one record an item), both written before anything is shown."""
+
+    def __init__(self, output: CaptureOutput | None, raw_path: str | None) -> None:
+        self.output = output
+        self._raw_path = raw_path
+        self._raw: BinaryIO | None = None
+        if raw_path:
+            try:
+                # Unbuffered: each read is one write(2), on disk before its frames are shown.
+                self._raw = open(raw_path, "wb", buffering=0)  # noqa: SIM115
+            except OSError as error:
+                self.close()
+                raise LiveError(f"cannot write {raw_path}: {error.strerror or error}") from None
+
+    @property
+    def names(self) -> list[str]:
+        return [name for name in (self.output and self.output.name, self._raw_path) if name]
+
+    def raw(self, data: bytes) -> None:
+        if self._raw is not None:
+            try:
+                self._raw.write(data)
+            except OSError as error:
+                self._failed(self._raw_path, error)
+
+    def items(self, items: list[Item]) -> None:
+        if self.output is not None:
+            try:
+                for item in items:
+                    self.output.write(item.raw, item.time, noise_comment(item))
+            except OSError as error:
+                self._failed(self.output.name, error)
+
+    def tick(self) -> None:
+        if self.output is not None:
+            try:
+                self.output.tick()
+            except OSError as error:
+                self._failed(self.output.name, error)
+
+    def _failed(self, path: str | None, error: OSError) -> None:
+        # A full disk or a vanished mount: stop writing (files keep every whole record) and say so.
+        self.close()
+        raise LiveError(f"cannot write {path}: {error.strerror or error}", ExitStatus.ERROR)
+
+    def close(self) -> None:
+        output, raw = self.output, self._raw
+        self._raw = None
+        for stream in (output, raw):
+            if stream is not None:
+                try:
+                    stream.close()
+                except OSError:
+                    pass  # what could not be written was already reported
+
+
+@dataclass
+class Handoff:
+    """Capture thread -> display: batches of framed items and the time before which all is framed.
+
+    `put` never blocks: beyond `limit` waiting items, a batch is dropped and counted."""
+
+    limit: int = HANDOFF_LIMIT
+    dropped: int = 0
+    _batches: deque[list[Item]] = field(default_factory=deque)
+    _waiting: int = 0
+    _safe: float | None = None
+    _closed: bool = False
+    _cond: threading.Condition = field(default_factory=threading.Condition)
+
+    def put(self, items: list[Item], safe: float | None) -> None:
+        with self._cond:
+            if items:
+                if self._waiting + len(items) > self.limit:
+                    self.dropped += len(items)
+                else:
+                    self._batches.append(items)
+                    self._waiting += len(items)
+            if safe is not None:
+                self._safe = safe
+            if items or safe is not None:
+                self._cond.notify()
+
+    def close(self) -> None:
+        with self._cond:
+            self._closed = True
+            self._cond.notify()
+
+    def take(self, timeout: float) -> tuple[list[Item], float | None, bool]:
+        """(items in order, safe time, closed); waits up to `timeout` for anything new."""
+        with self._cond:
+            if not self._batches and not self._closed:
+                self._cond.wait(timeout)
+            items = [item for batch in self._batches for item in batch]
+            self._batches.clear()
+            self._waiting = 0
+            return items, self._safe, self._closed and not self._batches
+
+
+@dataclass
+class CaptureThread:
+    """Reads until stopped, --duration, --count or a failure; `reason` and `status` say which."""
+
+    port: serial.SerialBase
+    framer: Framer
+    files: CaptureFiles
+    handoff: Handoff
+    silence: float
+    duration: float | None = None
+    count: int | None = None
+    silence_long: float = IDLE_FLUSH_LONG
+    port_name: str = ""
+    reason: str = "interrupted"
+    status: ExitStatus = ExitStatus.OK
+    frames: int = 0
+    stop: threading.Event = field(default_factory=threading.Event)
+    done: threading.Event = field(default_factory=threading.Event)
+
+    def start(self) -> None:
+        threading.Thread(target=self._run, name="capture", daemon=True).start()
+
+    def flush_due(self, silent: float, tried: bool) -> bool:
+        """Whether to close what the framer holds after `silent` seconds without bytes."""
+        if silent >= self.silence_long:
+            return True
+        if tried or silent < self.silence:
+            return False
+        trial = copy.deepcopy(self.framer).finish()
+        return any(isinstance(item, Frame) and item.crc_ok for item in trial)
+
+    def deliver(self, items: list[Item], safe: float | None) -> bool:
+        """Write, then hand on; False once --count frames are written."""
+        if self.count is not None:
+            room = self.count - self.frames
+            kept: list[Item] = []
+            for item in items:
+                if room <= 0:
+                    break
+                kept.append(item)
+                room -= isinstance(item, Frame)
+            items = kept
+        self.files.items(items)
+        self.frames += sum(isinstance(item, Frame) for item in items)
+        self.handoff.put(items, safe)
+        return self.count is None or self.frames < self.count
+
+    def safe_time(self, now: float) -> float:
+        """No frame still to come starts before this: the held bytes' time, or now."""
+        held = getattr(self.framer, "held_since", None)
+        return now if held is None else min(now, held)
+
+    def _run(self) -> None:
+        try:
+            self._loop()
+        except PortVanished as error:
+            self.reason, self.status = f"{self.port_name} went away ({error})", ExitStatus.ERROR
+        except LiveError as error:
+            self.reason, self.status = str(error), error.status
+        finally:
+            try:
+                if self.reason != "count" and self.status == ExitStatus.OK:
+                    self.deliver(self.framer.finish(), None)
+                elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
+                    self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
+            except LiveError as error:
+                self.reason, self.status = str(error), error.status
+            finally:
+                self.files.close()
+                self.handoff.close()
+                self.done.set()
+
+    def _loop(self) -> None:
+        port, framer = self.port, self.framer
+        deadline = None if self.duration is None else time.monotonic() + self.duration
+        last_data = time.monotonic()
+        pending = False  # bytes fed since the last idle flush
+        tried = False  # flush_due already tried a copy of the framer during this silence
+        while not self.stop.is_set():
+            if deadline is not None and time.monotonic() >= deadline:
+                self.reason = "duration"
+                return
+            try:
+                data = port.read(max(1, port.in_waiting))
+                if data and port.in_waiting:
+                    data += port.read(port.in_waiting)
+            except (serial.SerialException, OSError) as error:
+                raise PortVanished(reason(error)) from None
+            stamp = stamp_now()
+            if data:
+                last_data = time.monotonic()
+                pending, tried = True, False
+                self.files.raw(data)
+                if not self.deliver(framer.feed(Chunk(data, time=stamp)), self.safe_time(stamp)):
+                    self.reason = "count"
+                    return
+            elif pending:
+                silent = time.monotonic() - last_data
+                if self.flush_due(silent, tried):
+                    pending = False
+                    if not self.deliver(framer.finish(), stamp):
+                        self.reason = "count"
+                        return
+                else:
+                    self.handoff.put([], self.safe_time(stamp))
+                tried = tried or silent >= self.silence
+            else:
+                self.handoff.put([], stamp)
+            self.files.tick()

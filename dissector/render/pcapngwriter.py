@@ -1,0 +1,81 @@
+"""Writing pcapng files: one section, one interface (the serial port), one packet block a record.
+
+Beside what classic pcap holds, the interface says what the port was (`if_name`, and the serial
+settings in `if_description`: `/dev/ttyUSB0 19200 8E1`) and each record may carry a comment
+(`opt_comment`): vw3-decode comments noise runs, so Wireshark's packet list says why bytes are not a
+frame. Timestamps are in microseconds (the default if_tsresol), as the classic pcap writer's.
+Each block is written (and flushed) in one write, so the file is valid at any instant.
+"""
+from __future__ import annotations
+
+import struct
+from typing import BinaryIO
+
+from dissector.render.pcapwriter import LINKTYPE_USER0, SNAPLEN, split_time
+
+SHB, IDB, EPB = 0x0A0D0D0A, 0x00000001, 0x00000006
+BYTE_ORDER_MAGIC = 0x1A2B3C4D
+OPT_ENDOFOPT, OPT_COMMENT = 0, 1
+SHB_USERAPPL = 4
+IF_NAME, IF_DESCRIPTION = 2, 3
+
+
+def _option(code: int, value: bytes) -> bytes:
+    return struct.pack("<HH", code, len(value)) + value + b"\0" * (-len(value) % 4)
+
+
+def _options(options: list[tuple[int, str]]) -> bytes:
+    if not options:
+        return b""
+    return b"".join(_option(code, text.encode("utf-8")) for code, text in options) + _option(OPT_ENDOFOPT, b"")
+
+
+def _block(block_type: int, body: bytes) -> bytes:
+    total = 12 + len(body)
+    return struct.pack("<II", block_type, total) + body + struct.pack("<I", total)
+
+
+class PcapngWriter:
+    def __init__(
+        self,
+        stream: BinaryIO,
+        linktype: int = LINKTYPE_USER0,
+        flush: bool = True,
+        if_name: str | None = None,
+        if_description: str | None = None,
+        application: str = "vw3-decode",
+    ) -> None:
+        self._stream = stream
+        self._flush = flush
+        self._last_time = 0.0
+        section = struct.pack("<IHHq", BYTE_ORDER_MAGIC, 1, 0, -1) + _options([(SHB_USERAPPL, application)])
+        interface_options = [(IF_NAME, if_name)] if if_name else []
+        if if_description:
+            interface_options.append((IF_DESCRIPTION, if_description))
+        interface = struct.pack("<HHI", linktype, 0, SNAPLEN) + _options(interface_options)
+        head = _block(SHB, section) + _block(IDB, interface)
+        self.size = len(head)
+        stream.write(head)
+        if flush:
+            stream.flush()
+
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
+        if timestamp is None:
+            timestamp = self._last_time
+        self._last_time = timestamp
+        seconds, micros = split_time(timestamp)
+        units = seconds * 1_000_000 + micros
+        body = (
+            struct.pack("<IIIII", 0, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
+            + data
+            + b"\0" * (-len(data) % 4)
+            + _options([(OPT_COMMENT, comment)] if comment else [])
+        )
+        block = _block(EPB, body)
+        self._stream.write(block)
+        self.size += len(block)
+        if self._flush:
+            self._stream.flush()
+
+    def close(self) -> None:
+        self._stream.close()
