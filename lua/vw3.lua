@@ -1972,6 +1972,7 @@ local function pair(st, f)
     and f.time - pending.time > timeout then
     pending.unanswered = true
     pending.fields = nil
+    release_run(pending.registers)
     late, pending, st.pending = pending, nil, nil
   end
   if f.kind == REQUEST then
@@ -1998,6 +1999,7 @@ local function pair(st, f)
   else
     if pending ~= nil then
       pending.unanswered = true
+      release_run(pending.registers)
       st.pending = nil
     end
     f.no_request = true
