@@ -1275,8 +1275,11 @@ local function run_rtu(s, final, items)
       -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
       -- belong to a longer frame, see match): nearly every frame of a clean bus.
       if s.noise == nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then
+        -- (or the frame ends where the record does: a record boundary settles what match would weigh,
+        -- and this is every frame of a capture with one frame a record)
         local length, is_scan = first[2](b, i, n)
-        if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length < n and b[i + length] ~= 0
+        if not is_scan and length >= MIN_ADU and length <= MAX_ADU
+            and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
             and crc_ok_at(b, i, length) then
           emit(s, rtu_frame(s, i, first[1], length, true), items)
           i = i + length
