@@ -2483,8 +2483,6 @@ local function annotate_registers(st, f, device, run, b, read)
   local protected = nil
   if read then protected = device.profile.protected_value end
   local multi = run.count > 1
-  run.device = device
-  run.checked = protected ~= nil
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
@@ -2801,8 +2799,7 @@ local function take_items(st, items, record)
       end
     end
     item.record = home.number
-    home.items[#home.items + 1] = item
-    home.info = nil
+    home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
     local first = home.start or offset -- (a closed record holds no bytes still to frame)
     if offset >= first and offset + length <= first + (home.length or length) then
       item.at = offset - first
@@ -2882,7 +2879,7 @@ end
 local function dissect_record(st, bytes, time, number)
   local n = #bytes
   if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
-  local record = { number = number, start = st.base + st.n, length = n, items = {}, frames = 0 }
+  local record = { number = number, start = st.base + st.n, length = n, frames = 0 }
   st.open[#st.open + 1] = record
   st.last = record
   take_items(st, feed(st, bytes, time, true, false), record)
@@ -3149,18 +3146,21 @@ end
 
 -- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
 -- (its value is the profile's 16#8000, no bytes needed).
-local function register_view(f, run, b, index)
+local function register_view(st, f, run, b, index)
+  -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
+  local device = device_for(st, f.slave)
   local address, value, offset
   if b ~= nil then
     address, value, offset = register_at(run, b, index, true)
   else
-    address, value, offset = (run.start + index) % 0x10000, run.device.profile.protected_value, -1
+    address, value, offset = (run.start + index) % 0x10000, device.profile.protected_value, -1
   end
   local view = { address = address, value = value, offset = offset }
-  local device = run.device
-  if device ~= nil and address ~= nil then
+  if device and address ~= nil then
     local status = run.status and run.status[index]
-    if status == nil and run.checked then status = "ok" end
+    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+      status = "ok"
+    end
     view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status)
     view.status = status
     local base = plc_base(device, f)
@@ -3330,7 +3330,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       if statuses ~= nil then
         for index = 0, registers.count - 1 do
           if statuses[index] ~= nil then
-            add_text(t, ex.protected, register_expert(register_view(f, registers, nil, index)))
+            add_text(t, ex.protected, register_expert(register_view(st, f, registers, nil, index)))
           end
         end
       end
@@ -3340,7 +3340,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       local mode = full
       if full == "unseen" and registers.count < 2 then mode = true end
       for index = 0, registers.count - 1 do
-        add_register(t, tvb, f, register_view(f, registers, b, index), nil, mode)
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
       end
     end
   end
@@ -3510,9 +3510,8 @@ local function show_record(st, record, tvb, pinfo, tree, n)
     add_text(anchor, ex.internal, "Lua Error in vw3.lua: " .. record.error)
   end
   local continued = record.continued
-  local summaries = nil
-  local info = record.info
-  if info == nil then summaries = {} end
+  -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
+  local summaries = {}
   if continued ~= nil then
     for _, part in ipairs(continued) do
       local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
@@ -3521,20 +3520,19 @@ local function show_record(st, record, tvb, pinfo, tree, n)
         t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
         anchor = anchor or t
       end
-      if summaries then summaries[#summaries + 1] = format("(%d bytes continue in #%d)", part.count, part.record) end
+      summaries[#summaries + 1] = format("(%d bytes continue in #%d)", part.count, part.record)
     end
   end
-  local items = record.items
-  for index = 1, #items do
-    local item = items[index]
+  for index = 1, #record do
+    local item = record[index]
     local shown_from = item_tvb(item, tvb)
     local t
     if item.kind == NOISE then
       t = show_noise(item, shown_from, tree, full)
-      if summaries then summaries[#summaries + 1] = format("noise (%d bytes)", item.length) end
+      summaries[#summaries + 1] = format("noise (%d bytes)", item.length)
     else
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      if summaries then summaries[#summaries + 1] = summary(item) end
+      summaries[#summaries + 1] = summary(item)
     end
     anchor = anchor or t
   end
@@ -3553,13 +3551,9 @@ local function show_record(st, record, tvb, pinfo, tree, n)
     local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
       record.waiting)
     add_text(anchored(), ex.partial, text)
-    if summaries then summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting) end
+    summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting)
   end
-  if info == nil then
-    info = concat(summaries, "; ")
-    record.info = info
-  end
-  cols.info = info
+  cols.info = concat(summaries, "; ")
 end
 
 -- Streams of records: the serial capture's (state), and one per UDP conversation.
@@ -3592,7 +3586,7 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
-      record = { items = {}, frames = 0, length = n, error = tostring(result) }
+      record = { frames = 0, length = n, error = tostring(result) }
     end
     st.records[pinfo.number] = record
   end
@@ -3621,7 +3615,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   if st.mode == nil then st.mode = detect_mode(tvb:raw(0, math.min(n, MODE_SAMPLE))) end
   -- A new buffer each call: what was left over last time comes back at the start of this tvb.
   st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
-  local record = { number = pinfo.number, start = 0, length = n, items = {}, frames = 0 }
+  local record = { number = pinfo.number, start = 0, length = n, frames = 0 }
   st.open = { record }
   local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
   flush_noise_of(st, items) -- (a noise run ends with the call: its bytes are not handed back)
@@ -3656,7 +3650,7 @@ local function dissect_tcp(tvb, pinfo, tree)
     if ok then
       record = result
     else
-      record = { items = {}, frames = 0, length = n, error = tostring(result) }
+      record = { frames = 0, length = n, error = tostring(result) }
     end
     calls[tcp_call.index] = record
   end
