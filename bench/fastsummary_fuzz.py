@@ -2,8 +2,9 @@
 
     python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
 
-Random sessions of FC3/4/6/16/23 transactions (ATV71 addresses, 16#8000 values, the CHCF/CMD bits_depend
-case, retries, unanswered requests, exceptions, other function codes, noise, bit flips, dropped and
+Random sessions of transactions of every public code but FC8 (ATV71 addresses, 16#8000 values, the CHCF/CMD
+bits_depend case, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
+requests, exceptions to every code the compiled path shows, other function codes, noise, bit flips, dropped and
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
 with none and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
 reduced to a minimal reproducer; one where the Python framer alone disagrees with itself when the stream
@@ -17,7 +18,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
-sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
+sys.path[:0] = [str(ROOT), str(ROOT / "tests"), str(ROOT / "tests" / "support"), str(ROOT / "tests" / "differential")]
 
 from dissector.model import Chunk  # noqa: E402
 from dissector.pipeline import Dissector  # noqa: E402
@@ -66,9 +67,19 @@ def qty(rng):
     return rng.choice([0, 1, 2, 3, 20, 21, 61, 62, 63, 64, 100, 121, 122, 123, 124, 125, 126])
 
 
+def bit_qty(rng, limit):
+    if rng.random() < 0.9:
+        return rng.randint(1, 40)
+    return rng.choice([0, 1, 7, 8, 9, 31, 32, 33, limit - 1, limit, limit + 1])
+
+
+def packed(rng, n):
+    return "".join(f"{rng.randrange(256):02x}" for _ in range(n))
+
+
 def transaction(rng):
     s = rng.choice(SLAVES)
-    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10]) if rng.random() < CLEAN else rng.randrange(12)
+    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16,17,17]) if rng.random() < CLEAN else rng.randrange(18)
     a = rng.choice(ADDR) if rng.random() < 0.9 else rng.randrange(65536)
     q = qty(rng)
     frames = []
@@ -132,6 +143,88 @@ def transaction(rng):
         frames += [f, f]
     elif kind == 10:  # unanswered read
         frames.append(rtu(f"{s:02x}03{w(a)}{w(q)}"))
+    elif kind == 12:  # FC1/FC2 read bits
+        fc = rng.choice([1, 2])
+        qb = bit_qty(rng, 2000)
+        frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(qb)}"))
+        if rng.random() < 0.9:
+            n = (qb + 7) // 8 if rng.random() < 0.95 else rng.randrange(0, 260)
+            frames.append(rtu(f"{s:02x}{fc:02x}{n & 0xff:02x}{packed(rng, min(n, 250))}"))
+    elif kind == 13:  # FC5 write single coil
+        v = rng.choice([0xFF00, 0, 0xFF00, 0, 0x1234, 0x00FF])
+        f = rtu(f"{s:02x}05{w(a)}{w(v)}")
+        frames.append(f)
+        r = rng.random()
+        if r < 0.85:
+            frames.append(f)
+        elif r < 0.92:
+            frames.append(rtu(f"{s:02x}05{w(a + 1)}{w(rng.choice([0xFF00, 0, 7]))}"))
+    elif kind == 14:  # FC15 write multiple coils
+        qb = bit_qty(rng, 1968)
+        n = (qb + 7) // 8 if rng.random() < 0.95 else rng.randrange(0, 250)
+        frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb)}{n & 0xff:02x}{packed(rng, min(n, 246))}"))
+        r = rng.random()
+        if r < 0.85:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb)}"))
+        elif r < 0.92:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(qb + 1)}"))
+    elif kind == 15:  # an exception to any code the compiled path shows
+        fc = rng.choice([1, 2, 3, 4, 5, 6, 15, 16, 23])
+        if fc in (1, 2, 3, 4):
+            frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(q)}"))
+        elif fc in (5, 6):
+            frames.append(rtu(f"{s:02x}{fc:02x}{w(a)}{w(rng.choice([0xFF00, 0, 3]))}"))
+        elif fc == 15:
+            frames.append(rtu(f"{s:02x}0f{w(a)}{w(q)}{(q + 7) // 8:02x}{packed(rng, (q + 7) // 8)}"))
+        elif fc == 16:
+            body = "".join(map(w, words(rng, min(q, 123))))
+            frames.append(rtu(f"{s:02x}10{w(a)}{w(q)}{len(body) // 2:02x}{body}"))
+        else:
+            body = "".join(map(w, words(rng, 2)))
+            frames.append(rtu(f"{s:02x}17{w(a)}{w(q)}{w(8501)}0002{len(body) // 2:02x}{body}"))
+        code = rng.choice([1, 2, 2, 3, 4, 6, 7, 7, 9, 11, 0x80])
+        frames.append(rtu(f"{s:02x}{fc | 0x80:02x}{code:02x}"))
+    elif kind == 16:  # FC7, FC11, FC12, FC22, FC24, sometimes with counts that disagree
+        fc = rng.choice([7, 11, 12, 22, 24])
+        odd = rng.random() < 0.1
+        if fc == 7:
+            frames += [rtu(f"{s:02x}07"), rtu(f"{s:02x}07{rng.randrange(256):02x}")]
+        elif fc == 11:
+            frames += [rtu(f"{s:02x}0b"), rtu(f"{s:02x}0b{w(rng.choice([0, 0xFFFF, 5]))}{w(rng.randrange(65536))}")]
+        elif fc == 12:
+            events = packed(rng, rng.randint(0, 64))
+            count = len(events) // 2 + 6 if not odd else rng.randrange(6)
+            frames += [rtu(f"{s:02x}0c"), rtu(f"{s:02x}0c{count:02x}{w(rng.choice([0, 0xFFFF, 0x12]))}{w(7)}{w(9)}{events}")]
+        elif fc == 22:
+            f = rtu(f"{s:02x}16{w(a)}{w(rng.randrange(65536))}{w(rng.randrange(65536))}")
+            frames += [f, f]
+        else:
+            count = rng.choice([0, 1, 5, 8, 9, 31]) if not odd else 32
+            values = "".join(w(rng.randrange(65536)) for _ in range(count))
+            size = 2 + 2 * count + (rng.choice([-2, 2]) if odd and rng.random() < 0.5 else 0)
+            frames += [rtu(f"{s:02x}18{w(a)}"), rtu(f"{s:02x}18{w(size)}{w(count)}{values}")]
+    elif kind == 17:  # FC17, FC20, FC21, FC43: texts from the Python stages, answered or not
+        fc = rng.choice([17, 20, 21, 43])
+        if fc == 17:
+            text = "".join(f"{ord(c):02x}" for c in rng.choice(["LMB3.1.6", "ATV71", "", "x\ty"]))
+            frames.append(rtu(f"{s:02x}11"))
+            answer = rtu(f"{s:02x}11{len(text) // 2 + 2:02x}{rng.randrange(256):02x}{rng.choice(['00', 'ff', '7f'])}{text}")
+        elif fc == 20:
+            groups = "".join(f"06{w(rng.randrange(10))}{w(rng.randrange(9999))}{w(rng.randint(1, 4))}" for _ in range(rng.randint(1, 3)))
+            frames.append(rtu(f"{s:02x}14{len(groups) // 2:02x}{groups}"))
+            body = "".join(f"{2 * k + 1:02x}06" + "".join(w(rng.randrange(65536)) for _ in range(k)) for k in (1, 2))
+            answer = rtu(f"{s:02x}14{len(body) // 2:02x}{body}")
+        elif fc == 21:
+            body = f"06{w(1)}{w(2)}{w(2)}{w(7)}{w(8)}"
+            frames.append(rtu(f"{s:02x}15{len(body) // 2:02x}{body}"))
+            answer = frames[-1]
+        else:
+            frames.append(rtu(f"{s:02x}2b0e01{rng.choice(['00', '02'])}"))
+            objects = [rng.choice(["Schneider", "ATV71H", "0201", "a'b\"c", "\u00e9t\u00e9"]) for _ in range(rng.randint(0, 3))]
+            encoded = "".join(f"{k:02x}{len(o.encode('latin-1')):02x}{o.encode('latin-1').hex()}" for k, o in enumerate(objects))
+            answer = rtu(f"{s:02x}2b0e0102{rng.choice(['00', 'ff'])}00{len(objects):02x}{encoded}")
+        if rng.random() < 0.85:
+            frames.append(answer)
     else:  # retry: same request twice then answer
         f = rtu(f"{s:02x}03{w(a)}{w(q)}")
         body = "".join(map(w, words(rng, min(q, 125))))

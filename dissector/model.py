@@ -6,9 +6,11 @@ frame). Every byte of an input ends up in exactly one item.
 from __future__ import annotations
 
 import weakref
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any
+from itertools import chain, islice
+from typing import Any, overload
 
 
 class Stamp(float):
@@ -76,6 +78,78 @@ class Bit:
     value: int
 
 
+# The 8 bits of each byte value, least significant first (Modbus packs coil N+0 in bit 0).
+_BYTE_BITS = [tuple(byte >> index & 1 for index in range(8)) for byte in range(256)]
+
+
+class BitList(Sequence[Bit]):
+    """The bits of a packed status field, read in bulk: no `Bit` object until one is asked for.
+
+    A 2000-coil read costs one table lookup per byte for `values`, and nothing at all when a view
+    shows only the first few bits (the summary slices 32); `Bit` objects are made per item asked.
+    """
+
+    __slots__ = ("start", "packed", "count", "_values")
+
+    def __init__(self, start: int | None, packed: bytes, count: int) -> None:
+        self.start = start
+        self.packed = packed
+        self.count = count
+        self._values: list[int] | None = None
+
+    @property
+    def values(self) -> list[int]:
+        """Every bit value (0/1), in order."""
+        values = self._values
+        if values is None:
+            values = self._values = list(islice(chain.from_iterable(map(_BYTE_BITS.__getitem__, self.packed)), self.count))
+        return values
+
+    @property
+    def addresses(self) -> Sequence[int | None]:
+        """Every bit's address (wrapping past 65535), or None each when the start is unknown."""
+        start, count = self.start, self.count
+        if start is None:
+            return [None] * count
+        if start + count <= 0x10000:
+            return range(start, start + count)
+        return [(start + index) & 0xFFFF for index in range(count)]
+
+    def __len__(self) -> int:
+        return self.count
+
+    @overload
+    def __getitem__(self, index: int) -> Bit: ...
+    @overload
+    def __getitem__(self, index: slice) -> list[Bit]: ...
+    def __getitem__(self, index: int | slice) -> Bit | list[Bit]:
+        if isinstance(index, slice):  # the summary's first 32: no more Bits than asked for
+            start, packed = self.start, self.packed
+            return [
+                Bit(None if start is None else (start + position) & 0xFFFF, packed[position >> 3] >> (position & 7) & 1)
+                for position in range(*index.indices(self.count))
+            ]
+        if index < 0:
+            index += self.count
+        if not 0 <= index < self.count:
+            raise IndexError("bit index out of range")
+        address = None if self.start is None else (self.start + index) & 0xFFFF
+        return Bit(address, self.packed[index >> 3] >> (index & 7) & 1)
+
+    def __iter__(self) -> Iterator[Bit]:
+        return map(Bit, self.addresses, self.values)
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, BitList):
+            return list(self.addresses) == list(other.addresses) and self.values == other.values
+        if isinstance(other, list):
+            return list(self) == other
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        return f"BitList(start={self.start}, count={self.count})"
+
+
 @dataclass(slots=True)
 class DeviceObject:
     """A FC43/14 device identification object."""
@@ -112,7 +186,7 @@ class Frame:
     quantity: int | None = None
     subfunction: int | None = None
     registers: list[Register] | None = None
-    bits: list[Bit] | None = None
+    bits: Sequence[Bit] | None = None  # a BitList for packed status fields
     objects: list[DeviceObject] | None = None
     notes: list[str] = field(default_factory=list)
     # Filled by a device profile where the device's words differ from the spec's.

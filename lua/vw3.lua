@@ -136,6 +136,184 @@ local DATA = {
     [24] = true,
     [43] = true,
   },
+  ["protocol"] = {
+    ["rules"] = {
+      [1] = {
+        { "fixed", 8 },
+        { "count8", 2, 5 },
+      },
+      [2] = {
+        { "fixed", 8 },
+        { "count8", 2, 5 },
+      },
+      [3] = {
+        { "fixed", 8 },
+        { "count8", 2, 5 },
+      },
+      [4] = {
+        { "fixed", 8 },
+        { "count8", 2, 5 },
+      },
+      [5] = {
+        { "fixed", 8 },
+        { "fixed", 8 },
+      },
+      [6] = {
+        { "fixed", 8 },
+        { "fixed", 8 },
+      },
+      [7] = {
+        { "fixed", 4 },
+        { "fixed", 5 },
+      },
+      [8] = {
+        { "diagnostics" },
+        { "diagnostics" },
+      },
+      [11] = {
+        { "fixed", 4 },
+        { "fixed", 8 },
+      },
+      [12] = {
+        { "fixed", 4 },
+        { "count8", 2, 5 },
+      },
+      [15] = {
+        { "count8", 6, 9 },
+        { "fixed", 8 },
+      },
+      [16] = {
+        { "count8", 6, 9 },
+        { "fixed", 8 },
+      },
+      [17] = {
+        { "fixed", 4 },
+        { "count8", 2, 5 },
+      },
+      [20] = {
+        { "count8", 2, 5 },
+        { "count8", 2, 5 },
+      },
+      [21] = {
+        { "count8", 2, 5 },
+        { "count8", 2, 5 },
+      },
+      [22] = {
+        { "fixed", 10 },
+        { "fixed", 10 },
+      },
+      [23] = {
+        { "count8", 10, 13 },
+        { "count8", 2, 5 },
+      },
+      [24] = {
+        { "fixed", 6 },
+        { "count16", 2, 6 },
+      },
+      [43] = {
+        { "mei_request" },
+        { "mei_response" },
+      },
+    },
+    ["exception_rule"] = { "fixed", 5 },
+    ["parsers"] = {
+      ["request"] = {
+        [1] = "read_request",
+        [2] = "read_request",
+        [3] = "read_request",
+        [4] = "read_request",
+        [5] = "write_single",
+        [6] = "write_single",
+        [7] = "empty",
+        [8] = "diagnostics",
+        [11] = "empty",
+        [12] = "empty",
+        [15] = "write_coils_request",
+        [16] = "write_registers_request",
+        [17] = "empty",
+        [20] = "read_file_request",
+        [21] = "write_file",
+        [22] = "mask_write",
+        [23] = "read_write_request",
+        [24] = "fifo_request",
+        [43] = "mei_request",
+      },
+      ["response"] = {
+        [1] = "read_bits_response",
+        [2] = "read_bits_response",
+        [3] = "read_registers_response",
+        [4] = "read_registers_response",
+        [5] = "write_single",
+        [6] = "write_single",
+        [7] = "exception_status_response",
+        [8] = "diagnostics",
+        [11] = "comm_event_counter_response",
+        [12] = "comm_event_log_response",
+        [15] = "write_multiple_response",
+        [16] = "write_multiple_response",
+        [17] = "byte_counted",
+        [20] = "read_file_response",
+        [21] = "write_file",
+        [22] = "mask_write",
+        [23] = "read_registers_response",
+        [24] = "fifo_response",
+        [43] = "mei_response",
+      },
+    },
+    ["handlers"] = {
+      ["request"] = {
+        [1] = "read_request",
+        [2] = "read_request",
+        [3] = "read_request",
+        [4] = "read_request",
+        [5] = "write_single_coil",
+        [6] = "write_single_register",
+        [8] = "diagnostics",
+        [15] = "write_coils_request",
+        [16] = "write_registers_request",
+        [22] = "mask_write",
+        [23] = "read_write_request",
+        [24] = "fifo_request",
+      },
+      ["response"] = {
+        [1] = "read_bits_response",
+        [2] = "read_bits_response",
+        [3] = "read_registers_response",
+        [4] = "read_registers_response",
+        [5] = "write_single_coil",
+        [6] = "write_single_register",
+        [8] = "diagnostics",
+        [15] = "write_multiple_response",
+        [16] = "write_multiple_response",
+        [22] = "mask_write",
+        [23] = "read_registers_response",
+        [24] = "fifo_response",
+        [43] = "mei_response",
+      },
+    },
+    ["limits"] = {
+      ["request"] = {
+        [1] = "read_bits",
+        [2] = "read_bits",
+        [3] = "read_registers",
+        [4] = "read_registers",
+        [15] = "write_coils",
+        [16] = "write_registers",
+      },
+      ["response"] = {
+        [24] = "fifo_count",
+      },
+    },
+    ["reads"] = {
+      [3] = true,
+      [4] = true,
+      [23] = true,
+    },
+    ["plain_reads"] = {
+      [3] = true,
+      [4] = true,
+    },
+  },
   ["profiles"] = {
     ["atv71"] = {
       ["name"] = "atv71",
@@ -971,27 +1149,22 @@ end
 
 local function scan_any() return MIN_ADU, true end
 
-local RULES = {
-  [1] = { fixed(8), count8(2, 5) },
-  [2] = { fixed(8), count8(2, 5) },
-  [3] = { fixed(8), count8(2, 5) },
-  [4] = { fixed(8), count8(2, 5) },
-  [5] = { fixed(8), fixed(8) },
-  [6] = { fixed(8), fixed(8) },
-  [7] = { fixed(4), fixed(5) },
-  [8] = { diagnostics_rule, diagnostics_rule },
-  [11] = { fixed(4), fixed(8) },
-  [12] = { fixed(4), count8(2, 5) },
-  [15] = { count8(6, 9), fixed(8) },
-  [16] = { count8(6, 9), fixed(8) },
-  [17] = { fixed(4), count8(2, 5) },
-  [20] = { count8(2, 5), count8(2, 5) },
-  [21] = { count8(2, 5), count8(2, 5) },
-  [22] = { fixed(10), fixed(10) },
-  [23] = { count8(10, 13), count8(2, 5) },
-  [24] = { fixed(6), count16(2, 6) },
-  [43] = { mei_request_rule, mei_response_rule },
-}
+-- Length rules per function code (request, response): generated from dissector/protocol/table.py.
+local RULES, AS_EXCEPTION = {}, nil
+do
+  local makers = {
+    fixed = fixed, count8 = count8, count16 = count16,
+    diagnostics = function() return diagnostics_rule end,
+    mei_request = function() return mei_request_rule end,
+    mei_response = function() return mei_response_rule end,
+    scan = function() return scan_any end,
+  }
+  local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
+  for code, rules in pairs(DATA.protocol.rules) do
+    RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+  end
+  AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
+end
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
@@ -1002,7 +1175,6 @@ for code, rules in pairs(RULES) do
   AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] } }
   AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] } }
 end
-local AS_EXCEPTION = { { EXCEPTION, fixed(5) } }
 local NO_INTERPRETATION = {}
 
 local function interpretations(st, slave, code)
@@ -1737,24 +1909,24 @@ local function raw(f, b, d, len)
   return len
 end
 
-local GRAMMARS = {
-  [REQUEST] = {
-    [1] = read_request, [2] = read_request, [3] = read_request, [4] = read_request,
-    [5] = write_single, [6] = write_single, [7] = empty, [8] = diagnostics, [11] = empty, [12] = empty,
-    [15] = write_coils_request, [16] = write_registers_request, [17] = empty,
-    [20] = byte_counted, [21] = byte_counted, [22] = mask_write, [23] = read_write_request,
-    [24] = fifo_request, [43] = mei_request,
-  },
-  [RESPONSE] = {
-    [1] = read_bits_response, [2] = read_bits_response, [3] = read_registers_response,
-    [4] = read_registers_response, [5] = write_single, [6] = write_single,
-    [7] = fixed_size(1, "too short for a status"), [8] = diagnostics,
-    [11] = fixed_size(4, "too short for status and event count"), [12] = comm_event_log_response,
-    [15] = read_request, [16] = read_request, [17] = byte_counted, [20] = byte_counted,
-    [21] = byte_counted, [22] = mask_write, [23] = read_registers_response, [24] = fifo_response,
-    [43] = mei_response,
-  },
-}
+-- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
+local GRAMMARS = { [REQUEST] = {}, [RESPONSE] = {} }
+do
+  local PARSERS = {
+    read_request = read_request, write_multiple_response = read_request,
+    read_bits_response = read_bits_response, read_registers_response = read_registers_response,
+    write_single = write_single, empty = empty, diagnostics = diagnostics,
+    write_coils_request = write_coils_request, write_registers_request = write_registers_request,
+    exception_status_response = fixed_size(1, "too short for a status"),
+    comm_event_counter_response = fixed_size(4, "too short for status and event count"),
+    comm_event_log_response = comm_event_log_response, byte_counted = byte_counted,
+    read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
+    mask_write = mask_write, read_write_request = read_write_request, fifo_request = fifo_request,
+    fifo_response = fifo_response, mei_request = mei_request, mei_response = mei_response,
+  }
+  for code, name in pairs(DATA.protocol.parsers.request) do GRAMMARS[REQUEST][code] = PARSERS[name] end
+  for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
+end
 
 -- Handlers (decode.py): lift out start, quantity, registers, bits, objects; check the spec.
 local H = { [REQUEST] = {}, [RESPONSE] = {} }
@@ -1762,9 +1934,7 @@ local H = { [REQUEST] = {}, [RESPONSE] = {} }
 local function read_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  local limit = "read_registers"
-  if f.fn == 1 or f.fn == 2 then limit = "read_bits" end
-  check_range(f, "quantity", fields.quantity, limit)
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
 end
 
@@ -1841,7 +2011,7 @@ end
 local function write_coils_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, "write_coils")
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= ceil_bytes(fields.quantity) then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -1852,7 +2022,7 @@ end
 local function write_registers_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, "write_registers")
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= 2 * fields.quantity then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -1913,30 +2083,20 @@ local function mei_response_handler(f, b)
   f.objects = objects
 end
 
-for code = 1, 4 do
-  H[REQUEST][code] = read_request_handler
+-- Handlers by name (dissector/decode/fields.py); which code uses which: the generated table.
+do
+  local HANDLERS = {
+    read_request = read_request_handler, read_bits_response = read_bits_response_handler,
+    read_registers_response = read_registers_response_handler, write_single_coil = write_single_coil_handler,
+    write_single_register = write_single_register_handler, diagnostics = diagnostics_handler,
+    write_coils_request = write_coils_request_handler, write_registers_request = write_registers_request_handler,
+    write_multiple_response = write_multiple_response_handler, mask_write = mask_write_handler,
+    read_write_request = read_write_request_handler, fifo_request = fifo_request_handler,
+    fifo_response = fifo_response_handler, mei_response = mei_response_handler,
+  }
+  for code, name in pairs(DATA.protocol.handlers.request) do H[REQUEST][code] = HANDLERS[name] end
+  for code, name in pairs(DATA.protocol.handlers.response) do H[RESPONSE][code] = HANDLERS[name] end
 end
-H[RESPONSE][1] = read_bits_response_handler
-H[RESPONSE][2] = read_bits_response_handler
-H[RESPONSE][3] = read_registers_response_handler
-H[RESPONSE][4] = read_registers_response_handler
-H[REQUEST][5] = write_single_coil_handler
-H[RESPONSE][5] = write_single_coil_handler
-H[REQUEST][6] = write_single_register_handler
-H[RESPONSE][6] = write_single_register_handler
-H[REQUEST][8] = diagnostics_handler
-H[RESPONSE][8] = diagnostics_handler
-H[REQUEST][15] = write_coils_request_handler
-H[RESPONSE][15] = write_multiple_response_handler
-H[REQUEST][16] = write_registers_request_handler
-H[RESPONSE][16] = write_multiple_response_handler
-H[REQUEST][22] = mask_write_handler
-H[RESPONSE][22] = mask_write_handler
-H[REQUEST][23] = read_write_request_handler
-H[RESPONSE][23] = read_registers_response_handler
-H[REQUEST][24] = fifo_request_handler
-H[RESPONSE][24] = fifo_response_handler
-H[RESPONSE][43] = mei_response_handler
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
@@ -2016,9 +2176,9 @@ local annotate -- defined with the device profiles below
 -- Device profiles and register maps (profiles.py, maps.py, profile_annotator.py): names, scaling, the
 -- 16#8000 semantics, exception explanations, device limits. Profile data come from the generated block.
 local PROFILES = DATA.profiles or {}
-local READS = { [3] = true, [4] = true, [23] = true }
+local READS = DATA.protocol.reads
 -- Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
-local PLAIN_READS = { [3] = true, [4] = true }
+local PLAIN_READS = DATA.protocol.plain_reads
 local MAX_LISTED = 8
 local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
 local ELLIPSIS = "\226\128\166"

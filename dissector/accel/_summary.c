@@ -1,16 +1,30 @@
 /* The compiled summary path of vw3-decode: raw Modbus RTU bytes in, summary lines out.
  *
- * It does, for the transactions that make up nearly all of a polling bus (FC3, FC4, FC6, FC16, FC23
- * requests and their normal responses, unanswered requests), exactly what the Python stages do:
- * the framer's fast path (framer.py, _run), pairing, the decoder's spec checks, the annotator's
- * naming (PLC-style addresses included) and parameter tracking, and the summary line
- * (render/summary.py). Anything else (noise, a damaged frame, an exception, a warning or a note to
- * give) it hands back, before touching any state, at the start of the transaction: the Python stages
- * then take that part of the stream, and give it back at their next idle point
- * (dissector/accel/fastsummary.py). tests/differential/test_fastsummary.py holds the output of both paths equal.
+ * It does, for the transactions of every public function code the protocol table marks compiled
+ * (protocol/table.py, through _tables.h: requests, their normal responses, unanswered requests and
+ * exceptions), exactly what the Python stages do: the framer's fast path (framing/rtu.py, _run),
+ * pairing, the decoder's spec checks, the annotator's naming (PLC-style addresses included) and
+ * parameter tracking, and the summary line (render/summary.py). For FC17, FC20, FC21 and FC43
+ * (table.Compiled.texts) it frames and pairs, and the texts come from the Python stages by the frames'
+ * bytes. What it hands back, before touching any state, at the start of the transaction, and why:
+ *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC8's
+ *     Return Query Data, FC43 other than 14): the framer's careful path decides those;
+ *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;
+ *   - an exception to FC17, FC20, FC21 or FC43;
+ *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
+ *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
+ *     ON/OFF, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
+ *     read, a parameter readable again, a bits_depend switch;
+ *   - exception 2 to an FC3/FC4 read on a device that protects parameters (ATV71, p.38): the
+ *     annotator then forgets the values of every parameter read, a change of state;
+ *   - a slave whose annotator the engine knows nothing of, or whose PLC-style base is odd.
+ * The Python stages then take that part of the stream, and give it back at their next idle point
+ * (dissector/accel/fastsummary.py). tests/differential/test_fastsummary.py holds the output of both
+ * paths equal; bench/fastsummary_fuzz.py runs the same comparison for as long as asked.
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
- * summary renderer themselves), cached here by (slave, function, address, value).
+ * summary renderer themselves), cached here by (slave, function, address, value); an exception's
+ * texts (with the device's explanation) come from another, cached there by request and answer.
  *
  * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
  * (CRC, words, output) into the transaction loop without link-time optimisation.
@@ -27,7 +41,7 @@
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
-enum { KIND_REQUEST = 1, KIND_RESPONSE = 2 };
+enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
 static uint16_t crc_table[256];
@@ -87,6 +101,16 @@ static void out_uint(Out *o, unsigned long long v, int width) {
     while (n) o->data[o->len++] = digits[--n];
 }
 
+/* Python's f"{v:0{width}X}" */
+static void out_hex(Out *o, unsigned long v, int width) {
+    char digits[16];
+    int n = 0;
+    do { digits[n++] = "0123456789ABCDEF"[v & 15]; v >>= 4; } while (v);
+    if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
+    while (n) o->data[o->len++] = digits[--n];
+}
+
 static int out_str(Out *o, PyObject *text) {
     Py_ssize_t n;
     const char *s = PyUnicode_AsUTF8AndSize(text, &n);
@@ -110,24 +134,14 @@ static void out_label(Out *o, long long base, unsigned address) {
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
-#define HANDLED 5
-static const int handled_codes[HANDLED] = {3, 4, 6, 16, 23};
-
-static int handled_index(int function) {
-    switch (function) {
-    case 3: return 0;
-    case 4: return 1;
-    case 6: return 2;
-    case 16: return 3;
-    case 23: return 4;
-    default: return -1;
-    }
-}
+/* handled_codes, handled_index, length rules, request layouts, limits: generated from the protocol
+ * table (python3 -m dissector.codegen). */
+#include "_tables.h"
 
 typedef struct {
     int loaded;
     int usable;               /* 0: every transaction of this slave goes to Python */
-    PyObject *info;           /* the tuple, which keeps the objects below alive */
+    PyObject *info;           /* the SlaveFacts' items as a tuple, which keeps the objects below alive */
     PyObject *name[HANDLED];  /* function names as shown */
     int check[HANDLED];       /* -1: hand over; 0: no device limit; 1, 2: limits below */
     long limit[HANDLED][2];
@@ -167,11 +181,13 @@ typedef struct {
     int expect_slave, expect_function; /* -1: no answer awaited */
     PyObject *slave_info;
     PyObject *piece;
+    PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
+    PyObject *texts;     /* texts(slave, request, response or None) -> Texts or None (table.Compiled.texts) */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
-    long limits[4][2]; /* read_registers, write_registers, rw_read, rw_write */
+    long limits[LIMIT_COUNT][2]; /* LIMIT_* (_tables.h) */
     Slave slaves[256];
     Out out;
     Remembered *log;
@@ -209,10 +225,14 @@ static int fill_bitmap(uint8_t *bitmap, PyObject *addresses) {
 }
 
 static int fill_slave(Slave *s, PyObject *info);
+static PyObject *read_facts(PyObject *info);
 
 static int load_slave(Engine *e, int address) {
     Slave *s = &e->slaves[address];
-    PyObject *info = PyObject_CallFunction(e->slave_info, "i", address);
+    PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
+    if (answer == NULL) return -1;
+    PyObject *info = read_facts(answer);
+    Py_DECREF(answer);
     if (info == NULL) return -1;
     slave_clear(s); /* the callback may have loaded it already */
     s->info = info;
@@ -229,17 +249,44 @@ static int bad_info(const char *what) {
     return -1;
 }
 
+/* The facts are a fastsummary.SlaveFacts (frozen): read by name, borrowed while `info` lives. */
+enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES,
+       FACTS };
+static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen",
+                                             "protected", "bases"};
+
+/* The facts by name, into a tuple the slave keeps (its items are borrowed below). */
+static PyObject *read_facts(PyObject *info) {
+    PyObject *tuple = PyTuple_New(FACTS);
+    if (tuple == NULL) return NULL;
+    for (int k = 0; k < FACTS; k++) {
+        PyObject *value = PyObject_GetAttrString(info, fact_names[k]);
+        if (value == NULL) {
+            if (PyErr_ExceptionMatches(PyExc_AttributeError)) {
+                PyErr_Clear();
+                PyErr_Format(PyExc_TypeError, "slave_info: no %s (a fastsummary.SlaveFacts is expected)",
+                             fact_names[k]);
+            }
+            Py_DECREF(tuple);
+            return NULL;
+        }
+        PyTuple_SET_ITEM(tuple, k, value);
+    }
+    return tuple;
+}
+
 static int fill_slave(Slave *s, PyObject *info) {
-    if (!PyTuple_Check(info) || PyTuple_GET_SIZE(info) != 8) return bad_info("not an 8-tuple");
-    s->usable = PyObject_IsTrue(PyTuple_GET_ITEM(info, 0));
+    PyObject *facts[FACTS];
+    for (int k = 0; k < FACTS; k++) facts[k] = PyTuple_GET_ITEM(info, k);
+    s->usable = PyObject_IsTrue(facts[FACT_USABLE]);
     if (s->usable <= 0) return s->usable;
-    PyObject *functions = PyTuple_GET_ITEM(info, 1);
-    PyObject *seen = PyTuple_GET_ITEM(info, 5);
-    PyObject *bases = PyTuple_GET_ITEM(info, 7);
-    if (!PyDict_Check(functions) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 2)) ||
-        !PyDict_Check(PyTuple_GET_ITEM(info, 3)) || !PyAnySet_Check(PyTuple_GET_ITEM(info, 4)) ||
-        (seen != Py_None && !PyDict_Check(seen)) || (bases != Py_None && !PyDict_Check(bases)))
-        return bad_info("items of the wrong type");
+    PyObject *functions = facts[FACT_FUNCTIONS];
+    PyObject *seen = facts[FACT_SEEN];
+    PyObject *bases = facts[FACT_BASES];
+    if (!PyDict_Check(functions) || !PyAnySet_Check(facts[FACT_MAPPED]) || !PyDict_Check(facts[FACT_DEPEND]) ||
+        !PyAnySet_Check(facts[FACT_SOURCES]) || (seen != Py_None && !PyDict_Check(seen)) ||
+        (bases != Py_None && !PyDict_Check(bases)))
+        return bad_info("facts of the wrong type");
     for (int k = 0; k < HANDLED; k++) {
         PyObject *code = PyLong_FromLong(handled_codes[k]);
         PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
@@ -262,7 +309,7 @@ static int fill_slave(Slave *s, PyObject *info) {
             if (PyErr_Occurred()) return -1;
         }
     }
-    s->depend = PyTuple_GET_ITEM(info, 3);
+    s->depend = facts[FACT_DEPEND];
     s->mapped = PyMem_Calloc(4, BITMAP_BYTES);
     if (s->mapped == NULL) {
         PyErr_NoMemory();
@@ -271,11 +318,11 @@ static int fill_slave(Slave *s, PyObject *info) {
     s->dependent = s->mapped + BITMAP_BYTES;
     s->sources = s->mapped + 2 * BITMAP_BYTES;
     s->pending = s->mapped + 3 * BITMAP_BYTES;
-    if (fill_bitmap(s->mapped, PyTuple_GET_ITEM(info, 2)) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
-        fill_bitmap(s->sources, PyTuple_GET_ITEM(info, 4)) < 0)
+    if (fill_bitmap(s->mapped, facts[FACT_MAPPED]) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
+        fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0)
         return -1;
     s->seen = seen == Py_None ? NULL : seen;
-    s->protected_value = PyLong_AsLong(PyTuple_GET_ITEM(info, 6));
+    s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
     if (PyErr_Occurred()) return -1;
     for (int k = 0; k < HANDLED; k++) {
         s->base[k] = -1;
@@ -306,33 +353,50 @@ typedef struct {
     int kind, slave, function;
 } FrameRef;
 
+/* framing/rtu.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
+static Py_ssize_t special_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int special) {
+    if (i + 2 >= n) return FRAME_NEED;
+    if (b[i + 2] != 14) return FRAME_HANDOVER;
+    if (special == 1) return 7;
+    if (i + 7 >= n) return FRAME_NEED;
+    Py_ssize_t position = 8;
+    for (int k = b[i + 7]; k > 0; k--) {
+        if (i + position + 1 >= n) return FRAME_NEED;
+        position += 2 + b[i + position + 1];
+        if (position > MAX_ADU) return FRAME_HANDOVER;
+    }
+    return position + 2;
+}
+
 /* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
 static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
-    int position, extra;
-    if (kind == KIND_REQUEST) {
-        switch (function) {
-        case 3: case 4: case 6: return 8;
-        case 16: position = 6; extra = 9; break;
-        case 23: position = 10; extra = 13; break;
-        default: return FRAME_HANDOVER;
-        }
-    } else {
-        switch (function) {
-        case 6: case 16: return 8;
-        case 3: case 4: case 23: position = 2; extra = 5; break;
-        default: return FRAME_HANDOVER;
-        }
+    if (kind == KIND_EXCEPTION) return 5;
+    int k = handled_index(function);
+    if (k < 0) return FRAME_HANDOVER;
+    const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
+    if (rule->fixed) return rule->fixed;
+    if (rule->special) {
+        Py_ssize_t length = special_length(b, i, n, rule->special);
+        return length > MAX_ADU ? FRAME_HANDOVER : length; /* the framer's fast path takes none longer */
     }
-    if (i + position >= n) return FRAME_NEED;
-    int length = extra + b[i + position];
+    if (i + rule->position + rule->width - 1 >= n) return FRAME_NEED;
+    Py_ssize_t length = rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position) : b[i + rule->position]);
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
 }
 
 static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
     if (n - i < MIN_ADU) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
-    if (slave > MAX_SLAVE || handled_index(function) < 0) return FRAME_HANDOVER;
-    int kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    if (slave > MAX_SLAVE) return FRAME_HANDOVER;
+    int kind;
+    if (function & 0x80) {
+        /* An exception: taken on the fast path only as the answer awaited (framer.py _run). */
+        if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
+        kind = KIND_EXCEPTION;
+    } else {
+        if (handled_index(function) < 0) return FRAME_HANDOVER;
+        kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+    }
     Py_ssize_t length = first_length(b, i, n, function, kind);
     if (length < 0) return (int)length;
     /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
@@ -583,7 +647,21 @@ typedef struct {
     unsigned start, quantity;   /* FC23: the read part */
     Words writes;               /* FC6, FC16, FC23 */
     int has_writes;
+    unsigned value;             /* FC5: 0xFF00 or 0 */
+    const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
 } Request;
+
+/* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
+static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
+    unsigned shown = count < 32 ? count : 32;
+    if (out_reserve(o, shown) < 0) return;
+    for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
+    if (count > 32) {
+        out_cstr(o, "\xe2\x80\xa6 (+");
+        out_uint(o, count - 32, 0);
+        out_put(o, ")", 1);
+    }
+}
 
 static int in_range(const long range[2], unsigned value) {
     return range[0] <= (long)value && (long)value <= range[1];
@@ -597,46 +675,32 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
     int check = s->check[k];
     if (check < 0) return 0;
     r->has_writes = 0;
-    unsigned device_quantity = 0, write_quantity = 0;
-    switch (function) {
-    case 3: case 4:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[0], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        device_quantity = r->quantity;
-        break;
-    case 6:
-        r->start = word(f + 2);
-        r->quantity = 1;
-        r->writes = (Words){r->start, 1, f + 4};
+    const RequestLayout *L = &request_layout[k];
+    unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
+    r->start = L->start_at ? word(f + L->start_at) : 0;
+    r->quantity = L->quantity_at ? word(f + L->quantity_at) : 1;
+    if (L->limit >= 0 && !in_range(e->limits[L->limit], r->quantity)) return 0;
+    if (L->span && r->start + r->quantity > 0x10000) return 0;
+    if (L->values_at) {
+        unsigned written = r->quantity;
+        if (L->write_quantity_at) written = write_quantity = word(f + L->write_quantity_at);
+        if (L->write_limit >= 0 && !in_range(e->limits[L->write_limit], written)) return 0;
+        if (L->count_at && f[L->count_at] != 2 * written) return 0;
+        r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
         r->has_writes = 1;
-        device_quantity = 1;
-        break;
-    case 16:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        if (!in_range(e->limits[1], r->quantity) || r->start + r->quantity > 0x10000) return 0;
-        if (f[6] != 2 * r->quantity) return 0;
-        r->writes = (Words){r->start, r->quantity, f + 7};
-        r->has_writes = 1;
-        device_quantity = r->quantity;
-        break;
-    case 23:
-        r->start = word(f + 2);
-        r->quantity = word(f + 4);
-        write_quantity = word(f + 8);
-        if (!in_range(e->limits[2], r->quantity) || !in_range(e->limits[3], write_quantity)) return 0;
-        if (f[10] != 2 * write_quantity) return 0;
-        r->writes = (Words){word(f + 6), write_quantity, f + 11};
-        r->has_writes = 1;
-        device_quantity = r->quantity;
-        break;
-    default:
-        return 0;
     }
+    if (L->coil_at) { /* decode._write_single_coil warns of any value but ON and OFF */
+        r->value = word(f + L->coil_at);
+        if (r->value != 0xFF00 && r->value != 0) return 0;
+    }
+    if (L->coils_at) {
+        if (f[L->coils_count_at] != (r->quantity + 7) / 8) return 0;
+        r->packed = f + L->coils_at;
+    }
+    unsigned device_quantity = r->quantity;
     /* Annotator._within_limits */
     if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
-    if (check == 2 && (function != 23 || (long)write_quantity > s->limit[k][1])) return 0;
+    if (check == 2 && (!L->write_quantity_at || (long)write_quantity > s->limit[k][1])) return 0;
     return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
 }
 
@@ -672,17 +736,45 @@ static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, u
     return 0;
 }
 
+/* describe._mask_write: the address as sent, even PLC style */
+static void mask_write_text(Out *o, const uint8_t *f) {
+    out_uint(o, word(f + 2), 0);
+    out_cstr(o, " AND 0x");
+    out_hex(o, word(f + 4), 4);
+    out_cstr(o, " OR 0x");
+    out_hex(o, word(f + 6), 4);
+}
+
 static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
                         int unanswered) {
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
     if (line_start(e, s, f, number, " request   ") < 0) return -1;
     switch (function) {
-    case 3: case 4:
+    case 1: case 2: case 3: case 4:
         span_text(&e->out, base, r->start, r->quantity);
+        break;
+    case 5:
+        span_text(&e->out, base, r->start, 1);
+        out_cstr(&e->out, r->value == 0xFF00 ? " = ON" : " = OFF");
+        break;
+    case 15:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        bits_text(&e->out, r->packed, r->quantity);
         break;
     case 6:
         if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
+        break;
+    case 7: case 11: case 12: /* describe._simple, _comm_event_counter: the name alone */
+        e->out.len -= 1;
+        break;
+    case 22:
+        mask_write_text(&e->out, f);
+        break;
+    case 24:
+        out_cstr(&e->out, "pointer ");
+        out_uint(&e->out, r->start, 0);
         break;
     case 16:
         span_text(&e->out, base, r->start, r->quantity);
@@ -720,8 +812,20 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
         Words echo = {word(f + 2), 1, f + 4};
         return words_are_plain(s, e->run_number, &echo);
     }
-    case 16:
+    case 1: case 2:
+        return f[2] == (r->quantity + 7) / 8;
+    case 5: {
+        unsigned value = word(f + 4);
+        return value == 0xFF00 || value == 0;
+    }
+    case 15: case 16:
         return word(f + 2) == r->start && word(f + 4) == r->quantity;
+    case 7: case 11: case 22:
+        return 1;
+    case 12: /* events are byte count - 6 bytes: a shorter count is malformed */
+        return f[2] >= 6;
+    case 24: /* decode._fifo_response: at most 31 values, byte count 2 + 2 x count */
+        return word(f + 4) <= 31 && word(f + 2) == 2 + 2 * word(f + 4);
     default:
         return 0;
     }
@@ -744,10 +848,47 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     case 6:
         if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
         break;
-    case 16:
+    case 1: case 2:
+        span_text(&e->out, base, r->start, r->quantity);
+        out_put(&e->out, ": ", 2);
+        bits_text(&e->out, f + 3, r->quantity);
+        break;
+    case 5:
+        span_text(&e->out, base, word(f + 2), 1);
+        out_cstr(&e->out, word(f + 4) == 0xFF00 ? " = ON" : " = OFF");
+        break;
+    case 15: case 16:
         span_text(&e->out, base, word(f + 2), word(f + 4));
         out_cstr(&e->out, " written");
         break;
+    case 7: /* describe._simple */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, f[2], 2);
+        break;
+    case 11: /* describe._comm_event_counter */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, word(f + 2), 4);
+        out_cstr(&e->out, ", ");
+        out_uint(&e->out, word(f + 4), 0);
+        out_cstr(&e->out, " events");
+        break;
+    case 12: /* describe._simple: the 16-bit status, at least two digits */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, word(f + 3), 2);
+        break;
+    case 22:
+        mask_write_text(&e->out, f);
+        break;
+    case 24: { /* describe._fifo: the count, then at most 8 values (rstrip: no space after none) */
+        unsigned count = word(f + 4);
+        out_uint(&e->out, count, 0);
+        out_cstr(&e->out, " values:");
+        for (unsigned k = 0; k < count && k < 8; k++) {
+            out_put(&e->out, " ", 1);
+            out_uint(&e->out, word(f + 6 + 2 * k), 0);
+        }
+        break;
+    }
     }
     if (e->out.failed) return -1;
     if (!info_end_is_plain(&e->out)) return 0;
@@ -755,6 +896,104 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     out_uint(&e->out, request_number, 0);
     out_cstr(&e->out, "]  CRC ok\n");
     return 1;
+}
+
+/* An exception answering a shown request: its info and tail (notes, warnings) come from the Python
+ * stages themselves (fastsummary.exception_texts), which say None when the annotator would change
+ * its state or the text would not be plain; 1 written, 0 hand over, -1 error. */
+static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, const uint8_t *a,
+                          unsigned long long number, unsigned long long request_number) {
+    if (e->exception == NULL || e->exception == Py_None) return 0;
+    PyObject *texts = PyObject_CallFunction(e->exception, "iy#y#", q[0], (const char *)q, q_length,
+                                            (const char *)a, (Py_ssize_t)5);
+    if (texts == NULL) return -1;
+    if (texts == Py_None) {
+        Py_DECREF(texts);
+        return 0;
+    }
+    if (!PyTuple_Check(texts) || PyTuple_GET_SIZE(texts) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(texts, 0)) ||
+        !PyUnicode_Check(PyTuple_GET_ITEM(texts, 1))) {
+        Py_DECREF(texts);
+        PyErr_SetString(PyExc_TypeError, "exception must return (str, str) or None");
+        return -1;
+    }
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, a[0], 3);
+    out_cstr(&e->out, " exception ");
+    int status = out_str(&e->out, PyTuple_GET_ITEM(texts, 0));
+    if (status == 0) {
+        out_cstr(&e->out, " [#");
+        out_uint(&e->out, request_number, 0);
+        out_put(&e->out, "]", 1);
+        status = out_str(&e->out, PyTuple_GET_ITEM(texts, 1));
+    }
+    Py_DECREF(texts);
+    if (status < 0) return -1;
+    out_cstr(&e->out, "  CRC ok\n");
+    return e->out.failed ? -1 : 1;
+}
+
+/* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
+static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
+                      const char *pairing, unsigned long long request_number, PyObject *tail) {
+    out_uint(&e->out, number, 6);
+    out_put(&e->out, "            - ", 14);
+    out_uint(&e->out, f[0], 3);
+    out_cstr(&e->out, kind);
+    if (out_str(&e->out, info) < 0) return -1;
+    if (pairing != NULL) out_cstr(&e->out, pairing);
+    if (request_number) {
+        out_cstr(&e->out, " [#");
+        out_uint(&e->out, request_number, 0);
+        out_put(&e->out, "]", 1);
+    }
+    if (out_str(&e->out, tail) < 0) return -1;
+    out_cstr(&e->out, "  CRC ok\n");
+    return e->out.failed ? -1 : 1;
+}
+
+static PyObject *texts_item(PyObject *texts, const char *name) {
+    PyObject *value = PyObject_GetAttrString(texts, name);
+    if (value != NULL && !PyUnicode_Check(value)) {
+        Py_DECREF(value);
+        PyErr_Format(PyExc_TypeError, "texts: %s must be a str", name);
+        return NULL;
+    }
+    return value;
+}
+
+/* A transaction of a code whose texts come from the Python stages (fastsummary.transaction_texts):
+ * the request and its response (a NULL response: unanswered). 1 written, 0 hand over, -1 error. */
+static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const FrameRef *a, unsigned long long number) {
+    if (e->texts == NULL || e->texts == Py_None) return 0;
+    PyObject *texts = a != NULL
+        ? PyObject_CallFunction(e->texts, "iy#y#", q->slave, (const char *)b + q->at, q->length,
+                                (const char *)b + a->at, a->length)
+        : PyObject_CallFunction(e->texts, "iy#O", q->slave, (const char *)b + q->at, q->length, Py_None);
+    if (texts == NULL) return -1;
+    if (texts == Py_None) {
+        Py_DECREF(texts);
+        return 0;
+    }
+    int status = -1;
+    PyObject *request_info = texts_item(texts, "request_info");
+    PyObject *request_tail = request_info ? texts_item(texts, "request_tail") : NULL;
+    PyObject *response_info = request_tail ? texts_item(texts, "response_info") : NULL;
+    PyObject *response_tail = response_info ? texts_item(texts, "response_tail") : NULL;
+    if (response_tail != NULL) {
+        status = texts_line(e, b + q->at, number, " request   ", request_info, a == NULL ? " [no response]" : NULL,
+                            0, request_tail);
+        if (status > 0 && a != NULL)
+            status = texts_line(e, b + a->at, number + 1, " response  ", response_info, NULL, number,
+                                response_tail);
+    }
+    Py_XDECREF(request_info);
+    Py_XDECREF(request_tail);
+    Py_XDECREF(response_info);
+    Py_XDECREF(response_tail);
+    Py_DECREF(texts);
+    return status;
 }
 
 /* Annotator state after an answered transaction: what was written, then what was read. */
@@ -794,12 +1033,32 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->expect_function = q.function;
     int step, written;
     found = frame_at(e, b, q.at + q.length, n, &a);
-    if (found == FRAME_OK && a.kind == KIND_REQUEST) {
+    if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
+        int unanswered = a.kind == KIND_REQUEST;
+        written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
+        if (written > 0) {
+            e->count += unanswered ? 1 : 2;
+            if (!unanswered) e->expect_slave = e->expect_function = -1;
+            *pos = unanswered ? a.at : a.at + a.length;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else if (found == FRAME_OK && a.kind == KIND_REQUEST) {
         /* The next frame is a request: this one was not answered (pairing.py). */
         written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
         if (written > 0) {
             e->count += 1;
             *pos = a.at;
+            return STEP_DONE;
+        }
+        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+    } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
+        written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+        if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
+        if (written > 0) {
+            e->count += 2;
+            e->expect_slave = e->expect_function = -1;
+            *pos = a.at + a.length;
             return STEP_DONE;
         }
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -900,22 +1159,30 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 }
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn;
-    static char *keywords[] = {"slave_info", "piece", "limits", NULL};
+    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", NULL};
     PyObject *limits;
     if (e->running) {
         PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO", keywords, &slave_info, &piece_fn, &limits)) return -1;
-    if (!PyArg_ParseTuple(limits, "(ll)(ll)(ll)(ll)", &e->limits[0][0], &e->limits[0][1], &e->limits[1][0],
-                          &e->limits[1][1], &e->limits[2][0], &e->limits[2][1], &e->limits[3][0],
-                          &e->limits[3][1]))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OO", keywords, &slave_info, &piece_fn, &limits,
+                                     &exception_fn, &texts_fn))
         return -1;
+    if (!PyTuple_Check(limits) || PyTuple_GET_SIZE(limits) != LIMIT_COUNT) {
+        PyErr_Format(PyExc_TypeError, "limits: a tuple of %d (low, high) pairs", LIMIT_COUNT);
+        return -1;
+    }
+    for (int k = 0; k < LIMIT_COUNT; k++)
+        if (!PyArg_ParseTuple(PyTuple_GET_ITEM(limits, k), "ll", &e->limits[k][0], &e->limits[k][1])) return -1;
     Py_INCREF(slave_info);
     Py_XSETREF(e->slave_info, slave_info);
     Py_INCREF(piece_fn);
     Py_XSETREF(e->piece, piece_fn);
+    Py_INCREF(exception_fn);
+    Py_XSETREF(e->exception, exception_fn);
+    Py_INCREF(texts_fn);
+    Py_XSETREF(e->texts, texts_fn);
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -929,6 +1196,8 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
 static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->slave_info);
     Py_VISIT(e->piece);
+    Py_VISIT(e->exception);
+    Py_VISIT(e->texts);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     return 0;
 }
@@ -936,6 +1205,8 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
 static int engine_clear(Engine *e) {
     Py_CLEAR(e->slave_info);
     Py_CLEAR(e->piece);
+    Py_CLEAR(e->exception);
+    Py_CLEAR(e->texts);
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);

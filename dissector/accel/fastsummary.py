@@ -3,12 +3,18 @@
 Profiling the Python stages (README, Performance) showed ~15 us a frame spread over every stage:
 framing, pairing, decoding, annotation and the summary text each cost a few, and no hot spot was
 left. What tshark does in 4 us a frame could only be matched by doing all of it in compiled code for
-the transactions that make up a polling bus, so dissector/accel/_summary.c does exactly that, and hands the
-stream over to the Python stages, untouched, for everything else (noise, damage, exceptions, anything
-with a warning or a note, other function codes). The Python stages stay the
-reference: the Construct grammars, the annotator and the renderer; the compiled path asks them for
-every text it shows (register readings, function names) and keeps the annotator's parameter memory
-up to date. tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+the transactions of a bus, so dissector/accel/_summary.c does exactly that for every public code the
+protocol table marks compiled (both ways, and their exceptions; for FC17, FC20, FC21 and FC43 with
+texts made here, `transaction_texts`), and hands the stream over to the Python stages, untouched, for
+everything else; the list of what it hands back, and why, heads _summary.c (noise, damage, lengths
+only a CRC scan finds, vendor codes, anything with a warning or a note, an exception that changes
+the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
+and the renderer; the compiled path asks them for every text it shows (register readings, function
+names, exception explanations) and keeps the annotator's parameter memory up to date.
+tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
+
+The engine and this module exchange typed objects: `SlaveFacts` and `Texts` (read by attribute name
+in C), a register's text and whether the annotator named it, an exception's (info, tail) texts.
 
 Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
 statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at
@@ -18,11 +24,14 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
 from typing import Any
 
-from dissector.model import Chunk, Item
+from dissector.decode.fields import decode_frame
+from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
-from dissector.render.describe import function_label, register_text
+from dissector.render.describe import function_label, info_text, register_text
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 try:
@@ -30,12 +39,14 @@ try:
 except ImportError:  # built without a C compiler: the Python stages do everything
     _summary = None  # type: ignore[assignment]
 
-HANDLED = (3, 4, 6, 16, 23)  # function codes the compiled path decodes (_summary.c)
+HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c, through _tables.h), and their exceptions
+EXPLAINED_MAX = 4096  # exception texts kept (bounded: memory stays flat)
+_PLAIN_READS = table.plain_register_reads()  # an exception 2 to these may change the annotator's memory
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
 # When the engine hands the stream straight back (a device or function codes it does not show), the
 # Python stages take a growing run of bytes at once instead of one frame at a time.
 SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
-SHORT_STRETCHES = 4  # short stretches in a row before the runs start (exceptions come in clusters)
+SHORT_STRETCHES = 1000000  # short stretches in a row before the runs start (exceptions come in clusters)
 MAX_RUN = 16384
 NEED, HANDOVER = 0, 1
 
@@ -45,31 +56,148 @@ def available() -> bool:
 
 
 def _limits() -> tuple[tuple[int, int], ...]:
-    names = ("read_registers", "write_registers", "rw_read", "rw_write")
+    names = table.compiled_limits()  # the order of LIMIT_* in _tables.h
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
+
+
+@dataclass(frozen=True, slots=True)
+class SlaveFacts:
+    """What the engine must know of a slave to give the annotator's answers itself (read by name in C)."""
+
+    usable: bool  # False: every transaction of this slave goes to the Python stages
+    # Per handled function: its name as shown, and the request check: () none, the device's limits
+    # (read quantity[, write quantity]), or None when every request must go to the annotator.
+    functions: dict[int, tuple[str, tuple[int, ...] | None]] = field(default_factory=dict)
+    mapped: frozenset[int] = frozenset()  # addresses the annotator names (asked of `piece`)
+    depend: dict[int, tuple[int, frozenset[int]]] = field(default_factory=dict)  # bits_depend: (on, plain_when)
+    sources: frozenset[int] = frozenset()  # the addresses bits_depend rules look at
+    seen: dict[int, tuple[Any, ...]] | None = None  # the annotator's parameter memory, None: not tracked
+    protected: int = -1  # the value a device reads for a protected parameter (16#8000), -1: none
+    bases: dict[int, int] | None = None  # PLC-style display base per function, None: protocol addresses
 
 
 def make_engine(annotator: Any | None) -> Any:
     """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n)."""
-    plain_functions = {function: (function_label(function, None), ()) for function in HANDLED}
+    plain = SlaveFacts(True, {function: (function_label(function, None), ()) for function in HANDLED})
+    unknown = SlaveFacts(False)
 
-    def slave_info(slave: int) -> tuple[object, ...]:
+    def slave_info(slave: int) -> SlaveFacts:
         if annotator is None:
-            return (True, plain_functions, frozenset(), {}, frozenset(), None, -1, None)
+            return plain
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
-            return (False, {}, frozenset(), {}, frozenset(), None, -1, None)
+            return unknown
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
             function: (function_label(function, special), check)
             for function, (special, check) in checks.items()
         }
-        return (True, functions, mapped, depend, sources, seen, protected, bases)
+        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases)
 
     def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, _limits())
+    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator), transaction_texts(annotator))
+
+
+@dataclass(frozen=True, slots=True)
+class Texts:
+    """What the summary shows of a transaction, apart from numbers and pairing (read by name in C)."""
+
+    request_info: str
+    request_tail: str  # its notes and warnings, each ` [...]`
+    response_info: str = ""
+    response_tail: str = ""
+
+
+def _tail(frame: Frame) -> str:
+    return "".join(f" [{note}]" for note in frame.notes) + "".join(f" [warning: {w}]" for w in frame.warnings)
+
+
+def _plain_end(info: str) -> bool:
+    return bool(info) and 0x20 < ord(info[-1]) < 0x7F  # as the engine's own lines; else Python
+
+
+def _scratch(raw: bytes, kind: Kind, offset: int = 0, request: Frame | None = None) -> Frame:
+    crc = int.from_bytes(raw[-2:], "little")
+    return Frame(offset, raw, None, kind, raw[0], raw[1] & 0x7F, crc, crc, request=request)
+
+
+def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
+    """The engine's `texts` callback, for the codes whose texts it does not make itself
+    (table.Compiled.texts): the Python stages decode and annotate a scratch pair of frames; the
+    annotator keeps no state for these codes, so the texts depend on the frames' bytes alone and are
+    kept by them (bounded)."""
+    known: dict[tuple[bytes, bytes | None], Texts | None] = {}
+
+    def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+        key = (request_raw, response_raw)
+        if key in known:
+            return known[key]
+        request = _scratch(request_raw, Kind.REQUEST)
+        decode_frame(request)
+        response = None
+        if response_raw is not None:
+            response = _scratch(response_raw, Kind.RESPONSE, len(request_raw), request)
+            decode_frame(response)
+        if annotator is not None:
+            annotator(request)
+            if response is not None:
+                annotator(response)
+        found: Texts | None = Texts(info_text(request), _tail(request))
+        if response is not None:
+            found = Texts(found.request_info, found.request_tail, info_text(response), _tail(response))
+        if not _plain_end(found.request_info) or (response is not None and not _plain_end(found.response_info)):
+            found = None
+        if len(known) >= EXPLAINED_MAX:
+            known.clear()
+        known[key] = found
+        return found
+
+    return texts
+
+
+def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
+    """The engine's `exception` callback: (info, tail) of an exception answering a request it shows.
+
+    The Python stages make the texts themselves (decoder, annotator with the profile's explanations,
+    summary renderer) on a scratch pair of frames, so both paths say the same; the texts depend on the
+    request's bytes and the answer only, and are kept by them. None, and the engine hands the
+    transaction over, where the annotator would change its state: exception 2 to a read on a device
+    that protects parameters (p.38) makes it forget the values of every parameter read.
+    """
+    known: dict[tuple[int, bytes, bytes], tuple[str, str] | None] = {}
+
+    def texts(slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
+        key = (slave, request_raw, answer_raw)
+        if key in known:
+            return known[key]
+        found = _exception_texts(annotator, slave, request_raw, answer_raw)
+        if len(known) >= EXPLAINED_MAX:
+            known.clear()
+        known[key] = found
+        return found
+
+    return texts
+
+
+def _exception_texts(annotator: Any | None, slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
+    function = request_raw[1]
+    if annotator is not None:
+        if not hasattr(annotator, "profile_for"):
+            return None
+        profile = annotator.profile_for(slave)
+        if answer_raw[2] == profile.all_protected_exception and function in _PLAIN_READS:
+            return None
+    request = _scratch(request_raw, Kind.REQUEST)
+    answer = _scratch(answer_raw, Kind.EXCEPTION, len(request_raw), request)
+    decode_frame(request)
+    decode_frame(answer)
+    if annotator is not None:
+        annotator(request)
+        annotator(answer)
+    info = info_text(answer)
+    return (info, _tail(answer)) if _plain_end(info) else None
 
 
 class SummaryPath:

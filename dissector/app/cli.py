@@ -17,26 +17,23 @@ from dataclasses import dataclass
 from typing import BinaryIO, TextIO
 
 from dissector.errors import ExitStatus, OutputError, UsageError
-from dissector import __version__
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filters import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.hexinput import HexInput
-from dissector.app.live_options import add_live_arguments, positive_seconds
+from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.profile_options import add_profile_arguments, annotator_from_args
+from dissector.app.profile_options import annotator_from_args
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
-from dissector.render.fields import FieldsOptions, parse_fields_options
-from dissector.render.output import Output, OutputOptions
-from dissector.render.timefmt import TIME_FORMATS, Clock
+from dissector.render.output import Output
+from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
-from dissector.sources.reader import FORMATS, MODES, SourceError, open_source
+from dissector.sources.reader import SourceError, open_source
 from dissector.framing.timing import GapChecker
 
-PROG = "vw3-decode"
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
@@ -62,146 +59,6 @@ class Environment:
         )
 
 
-class Parser(argparse.ArgumentParser):
-    """argparse that reports a bad command line as one UsageError line, not the usage text."""
-
-    def error(self, message: str) -> None:  # type: ignore[override]
-        raise UsageError(f"{message} (see {PROG} --help)")
-
-
-@dataclass(frozen=True, slots=True)
-class DecodeOptions:
-    """What decoding files needs from the command line, checked and typed once (issue 11)."""
-
-    files: tuple[str, ...] = ()
-    hex: tuple[str, ...] = ()
-    format: str | None = None
-    mode: str | None = None
-    timeout: float = 1.0
-    baud: int = 19200
-    filter: str | None = None
-    count: int | None = None
-    write: str | None = None
-    file_format: str | None = None  # -F
-    ring: tuple[str, ...] = ()  # -b
-    print_too: bool = False
-    stats: bool = False
-    watch: str | None = None
-    report: str | None = None
-    output: OutputOptions = OutputOptions()
-
-
-def build_parser() -> argparse.ArgumentParser:
-    parser = Parser(
-        prog=PROG,
-        description="Decode Modbus RTU/ASCII serial captures (Altivar 71 VW3 A3 303, SEL-749M) "
-        "frame by frame, the way tshark shows packets.",
-    )
-    parser.add_argument(
-        "files",
-        nargs="*",
-        metavar="FILE",
-        help="captures: raw bytes, pcap/pcapng (linktype 147 or 250), hex dump or Modbus ASCII; "
-        "- reads stdin",
-    )
-    parser.add_argument(
-        "-r", dest="read", action="append", default=[], metavar="FILE", help="a capture to read, as tshark -r"
-    )
-    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
-    parser.add_argument(
-        "--hex",
-        action="append",
-        default=[],
-        metavar="BYTES",
-        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" or an ASCII '
-        'frame --hex ":02062329000AA2" (all --hex arguments form one stream)',
-    )
-    output = parser.add_argument_group("output")
-    output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")
-    output.add_argument("-x", dest="hexdump", action="store_true", help="hex dump of every item")
-    output.add_argument(
-        "--json", action="store_true", help="NDJSON, one object per item (with --stats: the statistics)"
-    )
-    output.add_argument(
-        "-T",
-        dest="output_format",
-        choices=["text", "fields", "json"],
-        help="as tshark -T: text (the default), fields (with -e and -E) or json (NDJSON, as --json)",
-    )
-    output.add_argument(
-        "-e", dest="fields", action="append", default=[], metavar="KEY",
-        help="with -T fields: a JSON key (frame, time, slave, response_time, ...), fields.KEY or a "
-        "register key (address, value, code, scaled, status, ...); repeatable, in column order",
-    )
-    output.add_argument(
-        "-E", dest="field_options", action="append", default=[], metavar="NAME=VALUE",
-        help="with -T fields, as tshark: header=y|n, separator=/t|/s|C, quote=d|s|n, "
-        "occurrence=f|l|a, aggregator=,|/s|C, bom=y|n",
-    )
-    output.add_argument(
-        "-t", dest="time_format", choices=list(TIME_FORMATS), default="r",
-        help="time column as tshark -t: " + ", ".join(f"{key} {text}" for key, text in TIME_FORMATS.items()),
-    )
-    output.add_argument(
-        "-Y", dest="filter", action="append", default=[], metavar="EXPR",
-        help="display filter, e.g. -Y 'slave == 12 and code == \"CHCF\"'",
-    )
-    output.add_argument(
-        "-w", dest="write", metavar="FILE",
-        help="write the items shown to a pcap (linktype 147, USER0); - for standard output",
-    )
-    output.add_argument(
-        "-F", dest="file_format", choices=["pcap", "pcapng"],
-        help="-w file format (default: pcapng for a .pcapng name, else pcap)",
-    )
-    output.add_argument(
-        "-b", dest="ring", action="append", metavar="filesize:KB|duration:S|files:N",
-        help="-w ring buffer, as dumpcap: a new file every KB kB or S seconds, keeping the last N",
-    )
-    output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
-    output.add_argument(
-        "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
-    )
-    output.add_argument(
-        "--watch",
-        metavar="CODES",
-        help="one line per change of these parameters (codes or addresses, e.g. CHCF,HSP,3201) "
-        "instead of items",
-    )
-    output.add_argument(
-        "--report",
-        metavar="FILE",
-        help="write a self-contained HTML report (traffic, poll cycle, trends, events) to FILE",
-    )
-    output.add_argument(
-        "--color",
-        choices=["auto", "always", "never"],
-        default="auto",
-        help="colour and layout with rich (auto: only on a terminal)",
-    )
-    decoding = parser.add_argument_group("decoding")
-    decoding.add_argument(
-        "--format",
-        choices=sorted(FORMATS),
-        help="input format instead of detecting it from the content",
-    )
-    decoding.add_argument("--mode", choices=MODES, help="rtu or ascii framing instead of detecting it")
-    decoding.add_argument(
-        "--timeout",
-        type=positive_seconds,
-        default=1.0,
-        metavar="SECONDS",
-        help="a response later than this after its request does not answer it (needs timestamps; "
-        "default 1 s); live, a request's line waits at most this for its answer",
-    )
-    decoding.add_argument(
-        "-n", dest="no_profile", action="store_true", help="no device profile: Modbus spec semantics only"
-    )
-    add_profile_arguments(parser)
-    add_live_arguments(parser)
-    return parser
-
-
 class Sinks:
     """Where decoded items go: the display filter, then the printer, the pcap and the statistics."""
 
@@ -218,7 +75,7 @@ class Sinks:
         if args.stats:
             from dissector.render.stats import StatsCollector
 
-            self.stats = StatsCollector()
+            self.stats = StatsCollector(getattr(annotate, "choices", None))
         self.stats_shown = args.stats
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
@@ -296,7 +153,7 @@ class Sinks:
         if self.report is not None:
             self.report.collector.add_items(items)
         if self.show:
-            if self.clock.format == "d":
+            if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
             self.output.write(items, self.extra, records)
 
@@ -365,71 +222,6 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
     if args.no_profile:
         return None
     return annotator_from_args(args)
-
-
-def decode_options(args: argparse.Namespace) -> DecodeOptions:
-    """The typed options of a file decode; UsageError for options that contradict each other."""
-    _refuse_conflicts(args)
-    output_format = args.output_format or ("json" if args.json else "text")
-    fields: FieldsOptions | None = None
-    if output_format == "fields":
-        fields = parse_fields_options(args.fields, args.field_options)
-    return DecodeOptions(
-        files=tuple(args.files),
-        hex=tuple(args.hex),
-        format=args.format,
-        mode=args.mode,
-        timeout=args.timeout,
-        baud=args.baud,
-        filter=args.filter[0] if args.filter else None,
-        count=args.count,
-        write=args.write,
-        file_format=args.file_format,
-        ring=tuple(args.ring or ()),
-        print_too=args.print_too,
-        stats=args.stats,
-        watch=args.watch,
-        report=args.report,
-        output=OutputOptions(
-            detail=args.detail,
-            hexdump=args.hexdump,
-            json=output_format == "json",
-            color=args.color,
-            time_format=args.time_format,
-            fields=fields,
-        ),
-    )
-
-
-def _refuse_conflicts(args: argparse.Namespace) -> None:
-    """Options that cannot both be meant are refused, never silently dropped."""
-    json_given = args.json or args.output_format == "json"
-    conflicts = [
-        (args.no_profile and bool(args.profile), "-n (no device profile) contradicts --profile"),
-        (args.no_profile and bool(args.map), "-n (no device profile) contradicts --map"),
-        (args.detail and json_given, "-V (detail tree) and --json are two outputs: choose one"),
-        (args.json and args.output_format not in (None, "json"), f"--json contradicts -T {args.output_format}"),
-        (args.output_format == "fields" and args.detail, "-V (detail tree) contradicts -T fields"),
-        (args.output_format == "fields" and args.hexdump, "-x (hex dump) contradicts -T fields"),
-        (args.output_format == "fields" and not args.fields, "-T fields needs at least one -e KEY"),
-        (bool(args.fields) and args.output_format != "fields", "-e KEY needs -T fields"),
-        (bool(args.field_options) and args.output_format != "fields", "-E NAME=VALUE needs -T fields"),
-        (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
-        (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
-        (args.duration is not None, "--duration needs --live PORT"),
-        (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
-        (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
-        (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
-        (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
-        (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
-        (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
-        (args.watch is not None and (args.detail or args.hexdump or args.output_format == "fields"),
-         "--watch replaces the items: -V, -x and -T fields show none"),
-        (args.watch is not None and args.stats, "--watch and --stats are two outputs: choose one"),
-    ]
-    for contradiction, message in conflicts:
-        if contradiction:
-            raise UsageError(message)
 
 
 Fix = Callable[[list[Item]], list[Item]] | None

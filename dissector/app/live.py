@@ -196,7 +196,7 @@ def run_live(
         port.close()
         err.write(f"{PROG}: {error}\n")
         return error.status
-    stats = LiveStats()
+    stats = LiveStats(files=bool(files.names))
     err.write(f"{PROG}: listening on {args.live} at {port_settings(args).text()}\n")
     err.flush()
     # Modbus ASCII on the line only with --mode ascii: a live stream cannot be sniffed before it starts.
@@ -231,7 +231,7 @@ def run_live(
     status = capture.status
     if status != ExitStatus.OK:
         err.write(f"{PROG}: error: {capture.reason}; capture files closed\n")
-    hidden = stats.not_shown_text(bool(names))
+    hidden = stats.not_shown_text()
     err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()
     return status

@@ -36,7 +36,7 @@ from dissector.sources.serial_port import reason
 
 IDLE_FLUSH = 0.020
 IDLE_FLUSH_LONG = 0.250
-HANDOFF_LIMIT = 100_000  # items waiting for the display; beyond, display items are dropped
+HANDOFF_LIMIT = 20_000  # items waiting for decoding and display; beyond, they are dropped (counted)
 
 
 def silence_threshold(baud: int) -> float:

@@ -48,7 +48,8 @@ class LiveStats:
     crc_errors: int = 0
     unanswered: int = 0
     last_response_time: float | None = None
-    not_shown: int = 0  # items the display dropped because it fell behind (the files hold them)
+    not_shown: int = 0  # items the display dropped because it fell behind
+    files: bool = False  # -w or --raw: the files hold what was not shown
     slaves: dict[int, SlaveCounts] = field(default_factory=dict)
     # Requests not yet known to be answered or unanswered: the pairer decides later (hold=False),
     # by setting `response` or `unanswered` on the request object we keep here.
@@ -102,11 +103,11 @@ class LiveStats:
             f"{self.unanswered} unanswered, {_count(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
         )
 
-    def not_shown_text(self, files: bool) -> str:
+    def not_shown_text(self) -> str:
         """Why some lines are missing, and where they are; empty when none is."""
         if not self.not_shown:
             return ""
-        where = ", the capture files hold them" if files else ", no capture file holds them (-w, --raw)"
+        where = ", the capture files hold them" if self.files else ", no capture file holds them (-w, --raw)"
         return f"{_count(self.not_shown, 'item')} not shown (the display fell behind){where}"
 
 
@@ -228,7 +229,7 @@ def totals_text(stats: LiveStats) -> str:
         f"{stats.frames} frames, {stats.crc_errors} CRC errors, {stats.unanswered} unanswered, "
         f"{stats.noise_bytes} noise bytes, last response time "
         + (f"{last * 1000:.1f} ms" if last is not None else "-")
-        + (f", {stats.not_shown} not shown (in the capture files)" if stats.not_shown else "")
+        + (f"; {stats.not_shown_text()}" if stats.not_shown else "")
     )
 
 

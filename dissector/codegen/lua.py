@@ -17,6 +17,8 @@ from typing import Any
 
 from dissector.errors import GenerateError
 from dissector.framing import rtu as framer, stream as streambuf
+from dissector.model import Kind
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)"
@@ -87,9 +89,36 @@ def plugin_data() -> dict[str, Any]:
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,
+        "protocol": protocol_tables(),
     }
     data.update(_profile_data())
     return data
+
+
+def _length_rule(rule: table.LengthRule) -> list[Any]:
+    if isinstance(rule, table.Fixed):
+        return ["fixed", rule.length]
+    if isinstance(rule, table.Counted):
+        return ["count8" if rule.width == 1 else "count16", rule.position, rule.extra]
+    return [rule.name]
+
+
+def protocol_tables() -> dict[str, Any]:
+    """The protocol table as the plugin uses it: per code, the length rules (request, response), and
+    per direction the parser (by layout name), the handler and the spec limit; the read classes."""
+    directions = {"request": Kind.REQUEST, "response": Kind.RESPONSE}
+    return {
+        "rules": {
+            entry.code: [_length_rule(entry.request.length), _length_rule(entry.response.length)]
+            for entry in table.FUNCTIONS
+        },
+        "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
+        "parsers": {name: table.by_kind("name")[kind] for name, kind in directions.items()},
+        "handlers": {name: table.by_kind("handler")[kind] for name, kind in directions.items()},
+        "limits": {name: table.by_kind("limit")[kind] for name, kind in directions.items()},
+        "reads": table.register_reads(),
+        "plain_reads": table.plain_register_reads(),
+    }
 
 
 def _profile_data() -> dict[str, Any]:

@@ -4,7 +4,8 @@ The Construct grammars in grammar.py are the reference; this module returns the 
 (same keys, same values) for the frames that make up nearly all of a polling bus's traffic (FC1-6,
 15, 16, 23 and exceptions), about ten times faster. Anything it does not recognise as well formed it
 leaves to the grammar (returns None), so malformed frames get the grammar's precise error messages.
-tests/unit/test_fastpath.py holds the two against each other.
+tests/unit/test_fastpath.py holds the two against each other; the protocol table says which
+function codes use which layout.
 """
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from struct import Struct
 from construct import Container, ListContainer
 
 from dissector.model import Kind
+from dissector.protocol import table
 
 _TWO_WORDS = Struct(">HH")
 _FOUR_WORDS = Struct(">HHHH")
@@ -103,31 +105,21 @@ def _exception(pdu: bytes) -> Container | None:
     return Container(exception_code=pdu[1], trailing=b"")
 
 
-_FAST = {
-    (1, Kind.REQUEST): _read_request,
-    (2, Kind.REQUEST): _read_request,
-    (3, Kind.REQUEST): _read_request,
-    (4, Kind.REQUEST): _read_request,
-    (1, Kind.RESPONSE): _bits_response,
-    (2, Kind.RESPONSE): _bits_response,
-    (3, Kind.RESPONSE): _registers_response,
-    (4, Kind.RESPONSE): _registers_response,
-    (23, Kind.RESPONSE): _registers_response,
-    (5, Kind.REQUEST): _write_single,
-    (5, Kind.RESPONSE): _write_single,
-    (6, Kind.REQUEST): _write_single,
-    (6, Kind.RESPONSE): _write_single,
-    (15, Kind.REQUEST): _write_coils_request,
-    (15, Kind.RESPONSE): _read_request,
-    (16, Kind.REQUEST): _write_registers_request,
-    (16, Kind.RESPONSE): _read_request,
-    (23, Kind.REQUEST): _read_write_request,
+# Fast parsers by layout name (protocol/table.py); the table says which codes use which layout.
+_BY_LAYOUT = {
+    "read_request": _read_request,
+    "write_multiple_response": _read_request,
+    "read_bits_response": _bits_response,
+    "read_registers_response": _registers_response,
+    "write_single": _write_single,
+    "write_coils_request": _write_coils_request,
+    "write_registers_request": _write_registers_request,
+    "read_write_request": _read_write_request,
 }
 
-
 _FAST_BY_KIND = {
-    kind: {function: parser for (function, of_kind), parser in _FAST.items() if of_kind is kind}
-    for kind in (Kind.REQUEST, Kind.RESPONSE)
+    kind: {code: _BY_LAYOUT[name] for code, name in names.items() if name in _BY_LAYOUT}
+    for kind, names in table.by_kind("name").items()
 }
 
 

@@ -8,8 +8,9 @@ from __future__ import annotations
 from construct import Container
 
 from dissector.decode.fastpath import fast_parse
+from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
-from dissector.model import Bit, DeviceObject, Frame, Kind, Register
+from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register
 from dissector.protocol.spec import SPEC
 
 _LIMITS = SPEC.limits
@@ -35,13 +36,10 @@ def _registers(start: int | None, values: list[int]) -> list[Register]:
     return [Register((start + index) & 0xFFFF, value) for index, value in enumerate(values)]
 
 
-def _bits(start: int | None, packed: bytes, quantity: int | None) -> list[Bit]:
+def _bits(start: int | None, packed: bytes, quantity: int | None) -> BitList:
+    # In bulk: a 2000-coil read makes no Bit object until a view asks for one (model.BitList).
     count = len(packed) * 8 if quantity is None else min(quantity, len(packed) * 8)
-    bits = []
-    for index in range(count):
-        value = packed[index >> 3] >> (index & 7) & 1
-        bits.append(Bit(None if start is None else (start + index) & 0xFFFF, value))
-    return bits
+    return BitList(start, packed, count)
 
 
 def _ceil_bytes(bits: int) -> int:
@@ -92,8 +90,7 @@ def _request_fields(frame: Frame) -> Container | None:
 
 def _read_request(frame: Frame, fields: Container) -> None:
     frame.start, frame.quantity = fields["start"], fields["quantity"]
-    limit = "read_bits" if frame.function in (1, 2) else "read_registers"
-    _check_range(frame, "quantity", fields["quantity"], limit)
+    _check_range(frame, "quantity", fields["quantity"], _LIMIT_BY_KIND[Kind.REQUEST][frame.function])
     _check_span(frame, fields["start"], fields["quantity"])
 
 
@@ -153,7 +150,7 @@ def _diagnostics(frame: Frame, fields: Container) -> None:
 
 def _write_coils_request(frame: Frame, fields: Container) -> None:
     frame.start, frame.quantity = fields["start"], fields["quantity"]
-    _check_range(frame, "quantity", fields["quantity"], "write_coils")
+    _check_range(frame, "quantity", fields["quantity"], _LIMIT_BY_KIND[Kind.REQUEST][frame.function])
     _check_span(frame, fields["start"], fields["quantity"])
     if fields["byte_count"] != _ceil_bytes(fields["quantity"]):
         frame.warnings.append(
@@ -164,7 +161,7 @@ def _write_coils_request(frame: Frame, fields: Container) -> None:
 
 def _write_registers_request(frame: Frame, fields: Container) -> None:
     frame.start, frame.quantity = fields["start"], fields["quantity"]
-    _check_range(frame, "quantity", fields["quantity"], "write_registers")
+    _check_range(frame, "quantity", fields["quantity"], _LIMIT_BY_KIND[Kind.REQUEST][frame.function])
     _check_span(frame, fields["start"], fields["quantity"])
     if fields["byte_count"] != 2 * fields["quantity"]:
         frame.warnings.append(
@@ -223,35 +220,27 @@ def _mei_response(frame: Frame, fields: Container) -> None:
     ]
 
 
-_HANDLERS = {
-    (1, Kind.REQUEST): _read_request,
-    (2, Kind.REQUEST): _read_request,
-    (3, Kind.REQUEST): _read_request,
-    (4, Kind.REQUEST): _read_request,
-    (1, Kind.RESPONSE): _read_bits_response,
-    (2, Kind.RESPONSE): _read_bits_response,
-    (3, Kind.RESPONSE): _read_registers_response,
-    (4, Kind.RESPONSE): _read_registers_response,
-    (5, Kind.REQUEST): _write_single_coil,
-    (5, Kind.RESPONSE): _write_single_coil,
-    (6, Kind.REQUEST): _write_single_register,
-    (6, Kind.RESPONSE): _write_single_register,
-    (8, Kind.REQUEST): _diagnostics,
-    (8, Kind.RESPONSE): _diagnostics,
-    (15, Kind.REQUEST): _write_coils_request,
-    (15, Kind.RESPONSE): _write_multiple_response,
-    (16, Kind.REQUEST): _write_registers_request,
-    (16, Kind.RESPONSE): _write_multiple_response,
-    (22, Kind.REQUEST): _mask_write,
-    (22, Kind.RESPONSE): _mask_write,
-    (23, Kind.REQUEST): _read_write_request,
-    (23, Kind.RESPONSE): _read_registers_response,
-    (24, Kind.REQUEST): _fifo_request,
-    (24, Kind.RESPONSE): _fifo_response,
-    (43, Kind.RESPONSE): _mei_response,
+# Handlers by name; the protocol table says which (function code, direction) uses which.
+HANDLERS = {
+    "read_request": _read_request,
+    "read_bits_response": _read_bits_response,
+    "read_registers_response": _read_registers_response,
+    "write_single_coil": _write_single_coil,
+    "write_single_register": _write_single_register,
+    "diagnostics": _diagnostics,
+    "write_coils_request": _write_coils_request,
+    "write_registers_request": _write_registers_request,
+    "write_multiple_response": _write_multiple_response,
+    "mask_write": _mask_write,
+    "read_write_request": _read_write_request,
+    "fifo_request": _fifo_request,
+    "fifo_response": _fifo_response,
+    "mei_response": _mei_response,
 }
 
 _HANDLERS_BY_KIND: dict[Kind, dict[int, object]] = {
-    kind: {function: handler for (function, of_kind), handler in _HANDLERS.items() if of_kind is kind}
-    for kind in (Kind.REQUEST, Kind.RESPONSE)
+    kind: {code: HANDLERS[name] for code, name in names.items()}  # type: ignore[index]
+    for kind, names in table.by_kind("handler").items()
 }
+# The spec limit each handler checks a quantity against, from the table.
+_LIMIT_BY_KIND = table.by_kind("limit")

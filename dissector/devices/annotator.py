@@ -16,11 +16,12 @@ from dataclasses import dataclass, field
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, RegisterMap, interpret
 from dissector.model import DeviceObject, Frame, Kind, Register
 from dissector.devices.profiles import BitsDepend, ExceptionCause, Profile, load_profile_map
+from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
-_READS = frozenset([3, 4, 23])  # functions whose response registers are values read from the device
+_READS = table.register_reads()  # functions whose response registers are values read from the device
 # Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
-_PLAIN_READS = frozenset([3, 4])
+_PLAIN_READS = table.plain_register_reads()
 _MAX_LISTED = 8  # registers named one by one in an exception explanation
 _READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 # decode_frame already warns when the spec forbids a broadcast; the profile adds device rules only.

@@ -37,6 +37,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 
+from dissector.protocol import table
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
 from dissector.framing.stream import StreamFramer
@@ -125,35 +126,36 @@ def _scan_any(buf: bytes | bytearray, i: int, n: int) -> int:
     return Scan(MIN_ADU)
 
 
-# (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
-RULES: dict[int, tuple[LengthRule, LengthRule]] = {
-    1: (_fixed(8), _count8(2, 5)),
-    2: (_fixed(8), _count8(2, 5)),
-    3: (_fixed(8), _count8(2, 5)),
-    4: (_fixed(8), _count8(2, 5)),
-    5: (_fixed(8), _fixed(8)),
-    6: (_fixed(8), _fixed(8)),
-    7: (_fixed(4), _fixed(5)),
-    8: (_diagnostics, _diagnostics),
-    11: (_fixed(4), _fixed(8)),
-    12: (_fixed(4), _count8(2, 5)),
-    15: (_count8(6, 9), _fixed(8)),
-    16: (_count8(6, 9), _fixed(8)),
-    17: (_fixed(4), _count8(2, 5)),
-    20: (_count8(2, 5), _count8(2, 5)),
-    21: (_count8(2, 5), _count8(2, 5)),
-    22: (_fixed(10), _fixed(10)),
-    23: (_count8(10, 13), _count8(2, 5)),
-    24: (_fixed(6), _count16(2, 6)),
-    43: (_mei_request, _mei_response),
+_SPECIAL: dict[str, LengthRule] = {
+    "diagnostics": _diagnostics,
+    "mei_request": _mei_request,
+    "mei_response": _mei_response,
+    "scan": _scan_any,
 }
 
-# Codes with no public layout: user-defined (65-72, 100-110) and SEL-749M (60h-62h, 7Dh, 7Eh).
-OTHER_FUNCTIONS = frozenset([*range(65, 73), *range(100, 111), 0x60, 0x61, 0x62, 0x7D, 0x7E])
+
+def length_rule(rule: table.LengthRule) -> LengthRule:
+    """The framer's function for a length rule of the protocol table."""
+    if isinstance(rule, table.Fixed):
+        return _fixed(rule.length)
+    if isinstance(rule, table.Counted):
+        return (_count8 if rule.width == 1 else _count16)(rule.position, rule.extra)
+    return _SPECIAL[rule.name]
+
+
+# (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
+RULES: dict[int, tuple[LengthRule, LengthRule]] = {
+    entry.code: (length_rule(entry.request.length), length_rule(entry.response.length))
+    for entry in table.FUNCTIONS
+}
+OTHER_FUNCTIONS = table.OTHER_FUNCTIONS
 for _code in OTHER_FUNCTIONS:
     RULES.setdefault(_code, (_scan_any, _scan_any))
 
 KNOWN_FUNCTIONS = frozenset(RULES)
+
+_EXCEPTION_LENGTH = table.EXCEPTION_LAYOUT.length.length  # type: ignore[union-attr]
+_EXCEPTION_RULE = _fixed(_EXCEPTION_LENGTH)
 
 # Interpretations to try at a frame start, in order: the expected direction first.
 REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
@@ -161,7 +163,7 @@ RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
 for _code, (_request_rule, _response_rule) in RULES.items():
     REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
     RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
-    REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _fixed(5)),)
+    REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _EXCEPTION_RULE),)
 
 
 
@@ -183,17 +185,19 @@ _POSSIBLE_START = re.compile(
 
 
 # The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
-_FIXED_LENGTHS = {8: (1, 2, 3, 4, 5, 6), 4: (7, 11, 12, 17), 10: (22,), 6: (24,)}
+def _fixed_lengths(kind: Kind) -> dict[int, int]:
+    rules = ((entry.code, entry.layout(kind).length) for entry in table.FUNCTIONS)
+    return {code: rule.length for code, rule in rules if isinstance(rule, table.Fixed)}
 
 
-def _first_choice(table: dict[int, tuple[tuple[Kind, LengthRule], ...]]) -> dict[int, tuple[Kind, int, LengthRule]]:
-    fixed_requests = {code: length for length, codes in _FIXED_LENGTHS.items() for code in codes}
-    fixed_responses = {5: 8, 6: 8, 7: 5, 11: 8, 15: 8, 16: 8, 22: 10}
+def _first_choice(orders: dict[int, tuple[tuple[Kind, LengthRule], ...]]) -> dict[int, tuple[Kind, int, LengthRule]]:
+    fixed_requests = _fixed_lengths(Kind.REQUEST)
+    fixed_responses = _fixed_lengths(Kind.RESPONSE)
     first = {}
-    for code, choices in table.items():
+    for code, choices in orders.items():
         kind, rule = choices[0]
         if kind is Kind.EXCEPTION:
-            fixed = 5
+            fixed = _EXCEPTION_LENGTH
         elif kind is Kind.REQUEST:
             fixed = fixed_requests.get(code, 0)
         else:

@@ -1,7 +1,8 @@
 """`-T fields -e KEY ... -E option=value`: one line of chosen fields per item, as tshark writes them.
 
 A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`, ...), a key inside
-`fields` as `fields.KEY`, or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
+`fields` as `fields.KEY`, `time_relative`, `time_delta` or `time_delta_displayed` (seconds, as tshark's
+frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
 ...), which has one occurrence per register (and bit) the frame carries. Lists (`warnings`, `notes`)
 have one occurrence per element. As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
@@ -17,6 +18,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
+from dissector.render.timefmt import TIME_FIELDS
 
 # Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).
 EXTRA_FRAME_KEYS = ("span_label", "exception_meaning", "objects", "fields", "bits", "registers", "file")
@@ -78,13 +80,15 @@ def parse_fields_options(fields: list[str], settings: list[str]) -> FieldsOption
 
 def check_field(key: str) -> None:
     head = key.split(".", 1)[0]
+    if key in TIME_FIELDS:
+        return
     if head in FRAME_FIELDS or head in REGISTER_FIELDS or head in EXTRA_FRAME_KEYS:
         if "." in key and head != "fields":
             raise UsageError(f"-e {key}: only fields.KEY names a key inside a value")
         return
     import difflib
 
-    names = [*FRAME_FIELDS, *REGISTER_FIELDS, *EXTRA_FRAME_KEYS]
+    names = [*FRAME_FIELDS, *REGISTER_FIELDS, *EXTRA_FRAME_KEYS, *TIME_FIELDS]
     close = difflib.get_close_matches(key, names, n=1)
     hint = f" (did you mean {close[0]}?)" if close else " (see the NDJSON keys in the README)"
     raise UsageError(f"-e {key}: not a field{hint}")
@@ -122,6 +126,7 @@ class FieldsWriter:
     def __init__(self, options: FieldsOptions) -> None:
         self.options = options
         self._quote = QUOTES[options.quote]
+        self.time_keys = tuple(key for key in TIME_FIELDS if key in options.fields)  # from the Clock
 
     def header(self) -> str:
         return self.options.separator.join(self.options.fields)

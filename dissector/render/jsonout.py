@@ -5,20 +5,32 @@ Later stages only add keys; the keys below are stable.
 from __future__ import annotations
 
 import json
+from json.encoder import encode_basestring_ascii as _json_string  # what json.dumps uses for str
 from typing import Any, TextIO
 
-from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.model import BitList, Frame, Item, Kind, Noise, Register
 from dissector.protocol.spec import SPEC
-
-_REGISTER_EXTRA = ("code", "name", "unit", "scaled", "text", "status", "source", "label")
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
+    # Spelled out rather than a loop over getattr: this runs once per register of every frame.
     out: dict[str, Any] = {"address": register.address, "value": register.value}
-    for key in _REGISTER_EXTRA:
-        value = getattr(register, key, None)
-        if value is not None:
-            out[key] = value
+    if register.code is not None:
+        out["code"] = register.code
+    if register.name is not None:
+        out["name"] = register.name
+    if register.unit is not None:
+        out["unit"] = register.unit
+    if register.scaled is not None:
+        out["scaled"] = register.scaled
+    if register.text is not None:
+        out["text"] = register.text
+    if register.status is not None:
+        out["status"] = register.status
+    if register.source is not None:
+        out["source"] = register.source
+    if register.label is not None:
+        out["label"] = register.label
     return out
 
 
@@ -35,10 +47,8 @@ def _noise_to_dict(noise: Noise) -> dict[str, Any]:
     }
 
 
-def item_to_dict(item: Item) -> dict[str, Any]:
-    if isinstance(item, Noise):
-        return _noise_to_dict(item)
-    frame: Frame = item
+def _head(frame: Frame) -> dict[str, Any]:
+    """The keys before `registers`."""
     out: dict[str, Any] = {
         "frame": frame.number,
         "kind": str(frame.kind),
@@ -64,10 +74,17 @@ def item_to_dict(item: Item) -> dict[str, Any]:
     if frame.subfunction is not None:
         out["subfunction"] = frame.subfunction
         out["subfunction_name"] = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
-    if frame.registers is not None:
-        out["registers"] = [register_to_dict(register) for register in frame.registers]
-    if frame.bits is not None:
-        out["bits"] = [{"address": bit.address, "value": bit.value} for bit in frame.bits]
+    return out
+
+
+def _tail(frame: Frame, out: dict[str, Any]) -> dict[str, Any]:
+    """The keys after `registers`, added to `out`."""
+    bits = frame.bits
+    if bits is not None:
+        if isinstance(bits, BitList):  # in bulk: no Bit object per coil
+            out["bits"] = [{"address": address, "value": value} for address, value in zip(bits.addresses, bits.values)]
+        else:
+            out["bits"] = [{"address": bit.address, "value": bit.value} for bit in bits]
     if frame.objects is not None:
         out["objects"] = [
             {"id": obj.id, "name": obj.name, "value": obj.value}
@@ -83,8 +100,9 @@ def item_to_dict(item: Item) -> dict[str, Any]:
     if frame.request is not None:
         out["request_frame"] = frame.request.number
         out["response_time"] = frame.response_time
-    if frame.response is not None:
-        out["response_frame"] = frame.response.number
+    response = frame.response
+    if response is not None:
+        out["response_frame"] = response.number
     if frame.kind is Kind.REQUEST:
         out["unanswered"] = frame.unanswered
     if frame.fields is not None:
@@ -92,6 +110,74 @@ def item_to_dict(item: Item) -> dict[str, Any]:
     out["warnings"] = list(frame.warnings)
     out["notes"] = list(frame.notes)
     return out
+
+
+def item_to_dict(item: Item) -> dict[str, Any]:
+    if isinstance(item, Noise):
+        return _noise_to_dict(item)
+    frame: Frame = item
+    out = _head(frame)
+    if frame.registers is not None:
+        out["registers"] = [register_to_dict(register) for register in frame.registers]
+    return _tail(frame, out)
+
+
+# Registers repeat (a polled block, the same status word): their JSON text is kept by content, so a
+# repeated register costs a tuple and a lookup instead of a dict and its encoding. Bounded: cleared
+# when full, so memory stays flat on values that never repeat.
+_REGISTER_TEXTS: dict[tuple[Any, ...], str] = {}
+_REGISTER_TEXTS_MAX = 1 << 16
+
+
+def _register_json(register: Register) -> str:
+    if (
+        register.code is None and register.name is None and register.unit is None and register.scaled is None
+        and register.text is None and register.status is None and register.source is None
+    ):
+        # No annotation (a relay's block, a meter's readings): formatted directly, as json.dumps would.
+        address = "null" if register.address is None else register.address
+        label = register.label
+        if label is None:
+            return f'{{"address": {address}, "value": {register.value}}}'
+        return f'{{"address": {address}, "value": {register.value}, "label": {_json_string(label)}}}'
+    key = (
+        register.address, register.value, register.code, register.name, register.unit,
+        register.scaled, type(register.scaled), register.text, register.status, register.source, register.label,
+    )
+    text = _REGISTER_TEXTS.get(key)
+    if text is None:
+        if len(_REGISTER_TEXTS) >= _REGISTER_TEXTS_MAX:
+            _REGISTER_TEXTS.clear()
+        text = _REGISTER_TEXTS[key] = json.dumps(register_to_dict(register))
+    return text
+
+
+def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
+    """json.dumps(item_to_dict(item) | extra), byte for byte, with registers' texts reused."""
+    if isinstance(item, Noise):
+        record = _noise_to_dict(item)
+        if extra:
+            record.update(extra)
+        return json.dumps(record)
+    frame: Frame = item
+    registers = frame.registers
+    if registers is None:
+        record = _tail(frame, _head(frame))
+        if extra:
+            record.update(extra)
+        return json.dumps(record)
+    tail = _tail(frame, {})
+    if extra:
+        tail.update(extra)
+    # The head is never empty and the tail always holds warnings and notes, so the splice is exact
+    # with json.dumps' default separators (", " and ": ").
+    return (
+        json.dumps(_head(frame))[:-1]
+        + ', "registers": ['
+        + ", ".join([_register_json(register) for register in registers])
+        + "], "
+        + json.dumps(tail)[1:]
+    )
 
 
 def _plain(value: Any) -> Any:
@@ -103,6 +189,8 @@ def _plain(value: Any) -> Any:
             if not key.startswith("_") and not (key == "trailing" and not inner) and inner is not None
         }
     if isinstance(value, list):
+        if value and type(value[0]) is int:  # register values: a list of ints, nothing to convert
+            return list(value)
         return [_plain(inner) for inner in value]
     if isinstance(value, bytes):
         return value.hex()
@@ -110,5 +198,4 @@ def _plain(value: Any) -> Any:
 
 
 def write_json(items: list[Item], stream: TextIO) -> None:
-    dumps = json.dumps
-    stream.write("".join(dumps(item_to_dict(item)) + "\n" for item in items))
+    stream.write("".join(item_to_json(item) + "\n" for item in items))

@@ -9,10 +9,10 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
-from dissector.render.detail import detail_tree, render_plain, render_rich
+from dissector.render.detail import detail_text, detail_tree, render_rich
 from dissector.render.fields import FieldsOptions, FieldsWriter
 from dissector.render.hexdump import hexdump
-from dissector.render.jsonout import item_to_dict
+from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
 
@@ -55,9 +55,10 @@ class Output:
                 highlight=False,
                 soft_wrap=False,
             )
-        self.clock = Clock(options.time_format)
         self._buffer: list[str] = []
         self.fields = FieldsWriter(options.fields) if options.fields is not None else None
+        time_keys = self.fields.time_keys if self.fields is not None else ()
+        self.clock = Clock(options.time_format, deltas="time_delta" in time_keys)
         self._prefix = ""  # written before the first line (-E bom=y)
         if self.fields is not None:
             header, self._prefix = self.fields.preamble()
@@ -89,16 +90,24 @@ class Output:
         clock = self.clock
         for index, item in enumerate(items):
             if options.records:
+                if records is None and self.fields is None:
+                    out.append(item_to_json(item, extra))  # json.dumps(item_to_dict(item)), faster
+                    continue
                 record = records[index] if records is not None else item_to_dict(item)
                 if extra:
                     record.update(extra)
-                out.append(json.dumps(record) if self.fields is None else self.fields.line(record))
+                if self.fields is None:
+                    out.append(json.dumps(record))
+                    continue
+                for key in self.fields.time_keys:
+                    record[key] = clock.seconds(item, key)
+                out.append(self.fields.line(record))
                 continue
             if self.console is not None:
                 self._write_rich(item)
                 continue
             if options.detail:
-                out.append(render_plain(detail_tree(item, clock.first)))
+                out.append(detail_text(item, clock.first))
             else:
                 out.append(summary_line(item, column=clock.text(item)))
             if options.hexdump:

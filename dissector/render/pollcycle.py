@@ -12,7 +12,7 @@ Rules (the table captions say the same):
 - jitter: the largest deviation from the period of the intervals that skipped nothing, and its
   standard deviation (JSON);
 - misses: skipped cycles plus occurrences that got no normal answer (unanswered, exception, bad CRC).
-Intervals are kept as a histogram of 10 us steps, so memory does not grow with the capture (a PLC
+Intervals are kept as a histogram of 100 us steps, so memory does not grow with the capture (a PLC
 polls at a few distinct intervals); keys beyond MAX_KEYS are counted, not followed.
 """
 from __future__ import annotations
@@ -25,7 +25,7 @@ from dissector.model import Frame
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
 MAX_KEYS = 50_000
-STEP = 1e-5  # interval histogram resolution: 10 us
+STEP = 1e-4  # interval histogram resolution: 100 us (a few thousand entries at most)
 SKIP_FACTOR = 1.5
 
 Key = tuple[int, ...]

@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 import statistics
 from dataclasses import dataclass, field
+from collections.abc import Callable
 from typing import Any
 
 from rich.console import RenderableType
@@ -107,7 +108,10 @@ def percentile(sorted_values: list[float], fraction: float) -> float:
 
 
 class StatsCollector:
-    def __init__(self) -> None:
+    def __init__(self, profiles: Callable[[], list[Any]] | None = None) -> None:
+        # Which slave got which device profile and why (the annotator's choices(): objects with
+        # slave, profile, reason, frame), asked once at the end; None without an annotator that says.
+        self.profiles = profiles
         self.functions: dict[tuple[int, int], FunctionStats] = {}
         self.parameters: dict[tuple[int, int], ParameterStats] = {}
         self.frames = 0
@@ -276,6 +280,10 @@ class StatsCollector:
             "functions": functions,
             "parameters": parameters,
             "poll_cycle": self.poll.report(),
+            "profiles": [
+                {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame}
+                for choice in (self.profiles() if self.profiles is not None else [])
+            ],
         }
 
     def blocks(self) -> list[str | TableSpec]:
@@ -312,6 +320,12 @@ class StatsCollector:
             if timing is not None:
                 times.rows.append([str(row["slave"]), function, str(timing["count"]),
                                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max"))])
+        if report["profiles"]:
+            profiles = TableSpec("Device profiles", ["slave", "profile", "why"], [True, False, False])
+            for choice in report["profiles"]:
+                why = choice["reason"] + (f" (frame #{choice['frame']})" if choice["frame"] is not None else "")
+                profiles.rows.append([str(choice["slave"]), choice["profile"], why])
+            blocks += [profiles, ""]
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
             blocks += [_poll_table(report["poll_cycle"]), ""]

@@ -23,6 +23,8 @@ TIME_FORMATS: dict[str, str] = {
     "ud": "UTC date and time",
 }
 UNTIMED = "-"
+# Keys -T fields takes besides the NDJSON ones (tshark's frame.time_relative, time_delta, ..._displayed).
+TIME_FIELDS = ("time_relative", "time_delta", "time_delta_displayed")
 
 
 def _clock_text(seconds: float, utc: bool, date: bool) -> str:
@@ -40,6 +42,7 @@ class Clock:
     """Turns item times into the text of the time column; one per input (times restart per input)."""
 
     format: str = "r"
+    deltas: bool = False  # keep each item's previous captured time even when -t is not d (-e time_delta)
     first: float | None = None  # time of the first timed item captured
     _previous_captured: float | None = None
     _previous_shown: float | None = None
@@ -51,7 +54,7 @@ class Clock:
 
     def observe(self, items: list[Item]) -> None:
         """See items as captured, before any display filter (call for every item, in order)."""
-        track = self.format == "d"
+        track = self.deltas or self.format == "d"
         for item in items:
             time = item.time
             if time is None:
@@ -79,6 +82,20 @@ class Clock:
         if fmt == "e":
             return f"{time:.6f}"
         return _clock_text(time, utc=fmt.startswith("u"), date=fmt.endswith("d"))
+
+    def seconds(self, item: Item, key: str) -> str | None:
+        """TIME_FIELDS values for an item being shown, 9 decimals as tshark prints them (call in
+        display order)."""
+        time = item.time
+        if time is None:
+            return None
+        if key == "time_relative":
+            reference = self.first
+        elif key == "time_delta":
+            reference = self._before.pop(id(item), None)
+        else:
+            reference, self._previous_shown = self._previous_shown, time
+        return f"{0.0 if reference is None else time - reference:.9f}"
 
     def keep(self, items: list[Item]) -> None:
         """Only `items` of those observed will be shown (the rest were filtered out or cut by -c)."""

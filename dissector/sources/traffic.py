@@ -19,30 +19,51 @@ from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.hexdump import HexLineError, _timestamp, text_lines
 
-_LINE = re.compile(
-    r"\s*(?:(?P<before>\d{1,10})-)?(?P<stamp1>[^TR]*?)-?\s*(?P<direction>[TR]x)\s*:\s*"
-    r"(?:(?P<after>\d{1,10})-)?(?:(?P<stamp2>.*?)-)?(?P<hex>(?:[0-9A-Fa-f]{2}\s*)*)\s*",
-    re.IGNORECASE,
-)
+# Found with search(), then the line is cut in plain steps: one regular expression with optional
+# parts on both sides backtracked exponentially on lines of spaces (50 s for 400 characters).
+_DIRECTION = re.compile(r"([TR]x)\s?:", re.IGNORECASE)
+_COUNTER = re.compile(r"\d{1,10}-")
+_BYTES = re.compile(r"(?:[0-9A-Fa-f]{2})+")
+
+
+def _time(text: str) -> Stamp | None:
+    text = text.strip().strip("-").strip()
+    if not text:
+        return None
+    tokens = text.replace("T", " ").split()
+    try:
+        time, used = _timestamp(tokens)
+    except HexLineError as error:
+        raise ValueError(str(error)) from None
+    if time is None or used != len(tokens):
+        raise ValueError(f"not a time stamp: {text[:40]!r}")
+    return time
 
 
 def parse_traffic_line(line: str) -> tuple[Stamp | None, bytes] | None:
     """(time, bytes) of a traffic line; None when it carries no bytes; ValueError if not one."""
-    if not line.strip():
+    text = line.strip()
+    if not text:
         return None
-    match = _LINE.fullmatch(line.rstrip("\r\n"))
-    if match is None:
-        raise ValueError(f"not a Tx:/Rx: traffic line: {line.strip()[:60]!r}")
-    stamp_text = (match.group("stamp1") or match.group("stamp2") or "").strip().strip("-").strip()
-    time = None
-    if stamp_text:
-        try:
-            time, used = _timestamp(stamp_text.replace("T", " ").split())
-        except HexLineError as error:
-            raise ValueError(str(error)) from None
-        if not used or used != len(stamp_text.split()):
-            raise ValueError(f"not a time stamp: {stamp_text[:40]!r}")
-    data = bytes.fromhex("".join(match.group("hex").split()))
+    marker = _DIRECTION.search(text)
+    if marker is None:
+        raise ValueError(f"not a Tx:/Rx: traffic line: {text[:60]!r}")
+    before = text[: marker.start()].strip()
+    after = text[marker.end() :].strip()
+    counter = _COUNTER.match(before)
+    if counter is not None:
+        before = before[counter.end() :]
+    counter = _COUNTER.match(after)
+    if counter is not None:
+        after = after[counter.end() :]
+    stamp, _dash, hex_text = after.rpartition("-")  # a time stamp between counter and bytes
+    groups = hex_text.split()
+    if not all(_BYTES.fullmatch(group) for group in groups):
+        raise ValueError(f"not a Tx:/Rx: traffic line: {text[:60]!r}")
+    time = _time(before)
+    if time is None:
+        time = _time(stamp)
+    data = bytes.fromhex("".join(groups))
     return (time, data) if data else None
 
 

@@ -22,7 +22,9 @@ from dissector.devices.annotator import MapLayer
 from dissector.devices.build import build_annotator
 from dissector.render.summary import summary_line
 from dissector.sim.simulate import generate_session
+import strategies
 from helpers import rtu
+from strategies import adu
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
@@ -325,13 +327,13 @@ def test_split_invariance_regressions(data: bytes, splits: list[int]) -> None:
     assert [summary_line(item) for item in items] == expected
 
 
-LIMITS = ((1, 125), (1, 123), (1, 125), (1, 121))
+LIMITS = fastsummary._limits()
 FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
 
 
 def test_engine_refuses_bad_callbacks_without_crashing() -> None:
     engine = fastsummary._summary.Engine(
-        lambda slave: (True, {3: ("Read Holding Registers", ())}, frozenset(), {}, frozenset(), None, -1, None),
+        lambda slave: fastsummary.SlaveFacts(True, {3: ("Read Holding Registers", ())}),
         lambda *args: ("x", False),
         LIMITS,
     )
@@ -344,7 +346,10 @@ def test_engine_refuses_bad_callbacks_without_crashing() -> None:
         def __bool__(self) -> bool:
             raise ValueError("no truth")
 
-    info = (True, FUNCTIONS, frozenset([5]), {}, frozenset(), None, -1, None)
+    with pytest.raises(TypeError, match="no usable"):  # the facts are read by name, not by position
+        fastsummary._summary.Engine(lambda slave: (True, FUNCTIONS), lambda *args: ("x", False), LIMITS).run(
+            rtu("0c0300000001") + rtu("0c03020005") + b"\x01", 0)
+    info = fastsummary.SlaveFacts(True, FUNCTIONS, frozenset([5]))
     engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()), LIMITS)
     with pytest.raises(ValueError, match="no truth"):
         engine.run(rtu("0c0600050001") * 2 + b"\x01", 0)
@@ -378,3 +383,126 @@ def test_crc_lengths_compiled_and_python_agree() -> None:
             for length in range(max(minimum, 2), min(maximum, len(data) - start) + 1)
             if crc.crc16_reference(data[start : start + length - 2]) == int.from_bytes(data[start + length - 2 : start + length], "little")
         ]
+
+
+# -- coils, inputs and exceptions (issue 12) --------------------------------------------------------
+
+
+def test_bit_codes_and_exceptions_exact_lines_from_the_engine() -> None:
+    data = (
+        rtu("1401000000 0c".replace(" ", "")) + rtu("140102cd01")  # 12 coils: 1011 0011 1000
+        + rtu("1402000a0028") + rtu("140205ffffffff0f")  # 40 inputs: 36 set, then 4 clear
+        + rtu("14050003ff00") + rtu("14050003ff00")
+        + rtu("140100000010") + rtu("148102")  # exception 2 to a coil read
+        + rtu("140f0010000a02a501") + rtu("140f0010000a")
+    )
+    got = fast_lines(data, None)
+    assert got.engine_lines == 8  # all but the last pair: its end is only known at the end of the input
+    assert got.lines == python_lines(data, None)
+    info = [line.split(None, 3)[3].rsplit("  CRC ok", 1)[0] for line in got.lines]
+    assert info == [
+        "request   Read Coils 0..11 (12)",
+        "response  Read Coils 0..11 (12): 101100111000 [#1]",
+        "request   Read Discrete Inputs 10..49 (40)",
+        "response  Read Discrete Inputs 10..49 (40): 11111111111111111111111111111111… (+8) [#3]",
+        "request   Write Single Coil 3 = ON",
+        "response  Write Single Coil 3 = ON [#5]",
+        "request   Read Coils 0..15 (16)",
+        "exception Read Coils: exception 2 (Illegal Data Address) [#7]",
+        "request   Write Multiple Coils 16..25 (10): 1010010110",
+        "response  Write Multiple Coils 16..25 (10) written [#9]",
+    ]
+
+
+def test_exceptions_carry_the_device_explanations_from_the_engine() -> None:
+    # ATV71: exception 7 to a configuration write while running, 2 to a write of a read-only word;
+    # exception 2 to a read (every parameter protected) changes the parameter memory: Python shows it.
+    data = (
+        rtu("0c0620010002") + rtu("0c8607")
+        + rtu("0c060c810001") + rtu("0c8602")
+        + rtu("0c0320d00001") + rtu("0c8302")
+        + rtu("0c0320d00001") + rtu("0c8302")
+    )
+    got = assert_same(data + rtu("0c0320d00001"), atv71)
+    assert got.engine_lines == 4
+    assert "exception 07 from the" in got.lines[1] and got.lines[1].endswith("[#1] [" + got.lines[1].split("[#1] [", 1)[1])
+    sel = assert_same(rtu("010300000004") + rtu("018302") + rtu("011000000001020001") + rtu("019003") + b"\x01",
+                      lambda: build_annotator(["sel749m"], [], None))
+    assert sel.engine_lines == 4
+    assert all("exception 0" in line for line in sel.lines[1::2])
+
+
+def test_plant_mix_comes_from_the_engine_nearly_whole() -> None:
+    from dissector.sim.mixes import PLANT_PROFILES, plant_mix
+
+    data = b"".join(raw for raw, _time in plant_mix(6000, seed=2))
+    factory = lambda: build_annotator(["atv71", *PLANT_PROFILES], [], None)  # noqa: E731
+    got = assert_same(data, factory, [1000, 20000, 55555])
+    assert got.engine_lines > 0.99 * len(got.lines)
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.lists(st.tuples(st.sampled_from([1, 12, 20, 247]), strategies.transactions()), min_size=1, max_size=10),
+    st.lists(st.integers(0, 600), max_size=3),
+    st.sampled_from(["generic", "atv71", "sel749m", None]),
+)
+def test_every_public_code_same_lines(exchanges: list, splits: list[int], profile: str | None) -> None:
+    """Transactions of every public code (tests/support/strategies.py), each profile."""
+    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    factory = (lambda: None) if profile is None else (lambda: build_annotator([profile], [], None))
+    assert_same(data + b"\x01", factory, [cut for cut in splits if cut < len(data)])
+
+
+def test_simple_codes_exact_lines_from_the_engine() -> None:
+    data = (
+        rtu("1407") + rtu("14075a")
+        + rtu("140b") + rtu("140bffff0102")
+        + rtu("140c") + rtu("140c080012000700090a0b")
+        + rtu("141600040ff000a5") + rtu("141600040ff000a5")
+        + rtu("14180100") + rtu("1418000600020102ffff")
+        + rtu("14180100") + rtu("141800020000")
+    )
+    got = assert_same(data + b"\x01", lambda: build_annotator(["generic"], [], None))
+    assert got.engine_lines == 12
+    info = [line.split(None, 3)[3].rsplit("  CRC ok", 1)[0] for line in got.lines[:12]]
+    assert info == [
+        "request   Read Exception Status",
+        "response  Read Exception Status status 0x5A [#1]",
+        "request   Get Comm Event Counter",
+        "response  Get Comm Event Counter status 0xFFFF, 258 events [#3]",
+        "request   Get Comm Event Log",
+        "response  Get Comm Event Log status 0x12 [#5]",
+        "request   Mask Write Register 4 AND 0x0FF0 OR 0x00A5",
+        "response  Mask Write Register 4 AND 0x0FF0 OR 0x00A5 [#7]",
+        "request   Read FIFO Queue pointer 256",
+        "response  Read FIFO Queue 2 values: 258 65535 [#9]",
+        "request   Read FIFO Queue pointer 256",
+        "response  Read FIFO Queue 0 values: [#11]",
+    ]
+
+
+def test_texts_codes_come_from_the_engine_with_the_python_stages_texts() -> None:
+    # The libmodbus slave's answer to Report Server ID (issue 11), file records, identification.
+    data = (
+        rtu("1111") + rtu("11110ab4ff4c4d42332e312e36")
+        + rtu("11140e0600010002000206000300040001") + rtu("11140a06060001000203060007")
+        + rtu("11150d06000100020002000700080000") + rtu("11150d06000100020002000700080000")
+        + rtu("112b0e0100") + rtu("112b0e01020000020005415456373101044f27456e")
+        + rtu("1111")  # unanswered
+        + rtu("112b0e0100") + rtu("11ab02")  # an exception to it: Python's
+    )
+    for profile in ("generic", "atv71"):
+        got = assert_same(data + b"\x01", lambda: build_annotator([profile], [], None))
+        assert got.engine_lines == (9 if profile == "generic" else 2)  # FC17/20/21 to an ATV71: warnings
+    assert "Report Server ID" in got.lines[1]
+    assert "11 11 0a b4 ff 4c 4d 42 33 2e 31 2e 36 76 3e" == rtu("11110ab4ff4c4d42332e312e36").hex(" ")
+
+
+def test_identification_longer_than_any_rtu_frame_is_left_to_the_framer() -> None:
+    # The object list walks to 257 bytes: the framer's fast path takes no frame that long.
+    response = rtu("112b0e01020000" + "01" + "00f5" + "41" * 245)
+    assert len(response) == 257
+    data = rtu("112b0e0100") + response + rtu("1111") + rtu("11110ab4ff4c4d42332e312e36") + b"\x01"
+    for profile in ("generic", "atv71"):
+        assert_same(data, lambda: build_annotator([profile], [], None))

@@ -304,6 +304,13 @@ def test_stats_and_live_view_text() -> None:
         "4 frames, 0 CRC errors, 2 unanswered, 4 noise bytes, last response time 0.0 ms",
     ]
     assert len(text.splitlines()) == 8  # header, a spacer and the last 2 items
+    stats.not_shown, stats.files = 3, True
+    console = Console(file=io.StringIO(), width=200, color_system=None)
+    console.print(view)
+    assert console.file.getvalue().splitlines()[4] == (  # type: ignore[attr-defined]
+        "4 frames, 0 CRC errors, 2 unanswered, 4 noise bytes, last response time 0.0 ms; 3 items not shown "
+        "(the display fell behind), the capture files hold them"
+    )
 
 
 def test_run_live_on_loop_url_writes_nothing() -> None:

@@ -389,3 +389,51 @@ def test_file_decode_writes_pcapng_ring_and_stdout(tmp_path: Path) -> None:
     subprocess.run([sys.executable, "-m", "dissector", str(capture), "-w", str(tmp_path / "p38.pcapng")],
                    cwd=ROOT, check=True, timeout=60)
     assert decode_file(tmp_path / "p38.pcapng") == expected
+
+
+def test_timeout_rule_in_files_and_in_the_lua_plugin(tmp_path: Path) -> None:
+    """The rule a live line waits for, as the decode of a file applies it, and vw3.lua alike: a
+    response later than --timeout (1 s) after its request does not answer it."""
+    from lua_compare import compare
+    from lua_harness import lua_items, python_items, write_pcap
+
+    read = with_crc(bytes.fromhex("010300000001"))
+    answer = with_crc(bytes.fromhex("0103020007"))
+    records = [(read, 10.0), (answer, 11.5), (read, 12.0), (answer, 12.9), (read, 14.0), (read, 14.2),
+               (answer, 14.3)]
+    pcap = write_pcap(tmp_path / "late.pcap", records)
+    items = decode_file(pcap)
+    assert [(item["kind"], item.get("request_frame"), item.get("unanswered")) for item in items] == [
+        ("request", None, True), ("response", None, None), ("request", None, False),
+        ("response", 3, None), ("request", None, True), ("request", None, False), ("response", 6, None),
+    ]
+    assert items[1]["warnings"] == ["response 1500.0 ms after request #1, later than the 1000 ms timeout: not its answer"]
+    assert items[3]["response_time"] == 0.9
+    assert decode_file(pcap, "--timeout", "2")[1]["response_time"] == 1.5
+    python = python_items(pcap)
+    differences = compare(python, lua_items(pcap)[0], frozenset())
+    assert not differences, "\n".join(differences[:20])
+
+
+def test_live_summary_lines_equal_the_decode_of_the_file(tmp_path: Path) -> None:
+    """The plain lines too: numbers, time column, pairing [#N, ms], [no response], noise."""
+    bus = Bus(seed=11)
+    pcap = tmp_path / "lines.pcap"
+    sniffer = Sniffer.start(bus.c_path, "--baud", str(BAUD), "-w", str(pcap), "--timeout", "0.2")
+    try:
+        our_master(bus.a_slave, 30, seed=18)
+        os.write(bus.c, with_crc(bytes.fromhex("090300000001")))  # nobody answers slave 9
+        time.sleep(0.4)
+        os.write(bus.c, bytes.fromhex("00ff00"))
+        time.sleep(0.4)
+        our_master(bus.a_slave, 30, seed=19)
+        sniffer.wait_lines(122)
+        status, stderr = sniffer.interrupt()
+    finally:
+        bus.close()
+    assert status == 0, stderr
+    done = subprocess.run([sys.executable, "-m", "dissector", "-n", "--timeout", "0.2", str(pcap)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=60)
+    lines = [line for _, line in sniffer.lines]
+    assert lines == done.stdout.splitlines()
+    assert "[no response]" in lines[60] and lines[61].split()[3] == "noise"

@@ -58,3 +58,21 @@ def test_fields_layout_equals_tsharks(options: list[str]) -> None:
         assert lines[0] == "frame,length" and expected[0] == "frame.number,frame.len"
         lines, expected = lines[1:], expected[1:]
     assert lines == expected
+
+
+@pytest.mark.parametrize("capture", CAPTURES, ids=lambda path: path.stem)
+def test_time_fields_equal_tsharks_frame_time_fields(capture: Path) -> None:
+    expected = _tshark("-r", str(capture), "-Y", "frame.number >= 3 && frame.number <= 12", "-T", "fields",
+                       "-e", "frame.number", "-e", "frame.time_relative", "-e", "frame.time_delta",
+                       "-e", "frame.time_delta_displayed", "-e", "frame.time_epoch")
+    status, out, err = run_cli(["-Y", "frame >= 3 and frame <= 12", "-T", "fields", "-e", "frame",
+                                "-e", "time_relative", "-e", "time_delta", "-e", "time_delta_displayed",
+                                "-e", "time", str(capture)])
+    assert (status, err) == (0, "")
+    # tshark prints the epoch with 9 decimals; ours is the NDJSON number
+    assert [line.rsplit("\t", 1)[0] for line in out.splitlines()] == [
+        line.rsplit("\t", 1)[0] for line in expected
+    ]
+    assert [float(line.rsplit("\t", 1)[1]) for line in out.splitlines()] == [
+        float(line.rsplit("\t", 1)[1]) for line in expected
+    ]

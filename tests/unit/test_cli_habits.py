@@ -207,3 +207,17 @@ def test_nanosecond_pcap_keeps_its_nanoseconds(tmp_path: Path) -> None:
     records = [json.loads(line) for line in run_cli(["--json", str(path)])[1].splitlines()]
     assert records[1]["response_time"] == 0.010158108
     assert run_cli(["-t", "d", str(path)])[1].splitlines()[1].split()[1] == "0.010158"
+
+
+def test_time_fields_follow_the_capture_and_the_display() -> None:
+    status, out, err = run_cli(["-T", "fields", "-e", "frame", "-e", "time_relative", "-e", "time_delta",
+                                "-e", "time_delta_displayed", "-E", "header=y", "-Y", "frame >= 3 and frame <= 5", P38])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "frame\ttime_relative\ttime_delta\ttime_delta_displayed",
+        "3\t0.526253000\t0.516096000\t0.000000000",
+        "4\t0.534233000\t0.007980000\t0.007980000",
+        "5\t1.050117000\t0.515884000\t0.515884000",
+    ]
+    untimed = run_cli(["-T", "fields", "-e", "frame", "-e", "time_relative", "--hex", "0C 03 20 D0 00 03 0E EF"])
+    assert untimed[1] == "1\t\n"

@@ -107,3 +107,18 @@ def test_a_bad_traffic_line_is_named(tmp_path: Path) -> None:
     status, out, err = run_cli(["--format", "traffic", str(path)])
     assert status == 2
     assert err.endswith(f"vw3-decode: {path} line 3: not a Tx:/Rx: traffic line: 'Rx:000002-0C 03 0'\n")
+
+
+def test_a_midnight_time_stamp_is_a_time(tmp_path: Path) -> None:
+    path = tmp_path / "midnight.txt"
+    path.write_text(f"000000-Tx:00:00:00.000-{REQUEST}\n000001-Rx:00:00:00.011-{RESPONSE}\n")
+    assert _decoded(path).splitlines()[1].endswith("[#1, 11.0 ms]  CRC ok")
+
+
+def test_lines_of_spaces_are_refused_at_once(tmp_path: Path) -> None:
+    # Regression: one regular expression with optional parts on both sides of Tx: backtracked
+    # exponentially on such a line (51 s at 200 spaces); the reader now cuts the line in steps.
+    path = tmp_path / "spaces.txt"
+    path.write_text(f"Tx:000000-{REQUEST}\n" + " " * 2000 + "Tx:" + " " * 2000 + "0\n")
+    status, _out, err = run_cli(["--format", "traffic", str(path)])
+    assert status == 2 and "line 2: not a Tx:/Rx: traffic line" in err

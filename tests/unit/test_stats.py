@@ -216,7 +216,7 @@ def test_plain_tables_are_the_same_numbers_at_full_width() -> None:
         "Ready to switch on, Voltage enabled, Quick stop inactive, Remote        4"
     ) in lines
     assert "    2       3104  HSP       1           0       1        0  55.0 Hz" + " " * 65 + "1" in lines
-    assert "    2  23 Read/Write Multiple Registers  read 3201..3202 (2), write 8501..8502 (2)     40    50.4     6.5       1" in lines
+    assert "    2  23 Read/Write Multiple Registers  read 3201..3202 (2), write 8501..8502 (2)     40    50.4     6.4       1" in lines
 
 
 def test_parameter_ranges_with_the_same_story_and_the_cap() -> None:
@@ -250,3 +250,34 @@ def test_render_never_fails_at_any_width(width: int) -> None:
     console = Console(file=StringIO(), width=width, color_system=None)
     console.print(collect("sel749m_polling.pcap").render())
     assert "Write Multiple" in console.file.getvalue() or width < 80
+
+
+def test_profile_rows_say_which_slave_got_which_profile_and_why() -> None:
+    from types import SimpleNamespace
+
+    from dissector.render.report.html import render_report
+    from dissector.render.report import ReportCollector
+
+    # The annotator's choices() (profile `auto`): asked once, at the end.
+    choices = [
+        SimpleNamespace(slave=2, profile="atv71", reason="ProductCode ATV71HU15M3", frame=2),
+        SimpleNamespace(slave=5, profile="generic", reason="no evidence of a device: spec semantics only", frame=None),
+    ]
+    stats = StatsCollector(lambda: choices)
+    for item in dissect(open_source(str(CAPTURES / "atv71_commissioning.pcap")), annotate=build_annotator(["atv71"], [])):
+        stats.add(item)
+    assert stats.report()["profiles"] == [
+        {"slave": 2, "profile": "atv71", "reason": "ProductCode ATV71HU15M3", "frame": 2},
+        {"slave": 5, "profile": "generic", "reason": "no evidence of a device: spec semantics only", "frame": None},
+    ]
+    lines = stats.render_plain().splitlines()
+    start = lines.index("Device profiles")
+    assert lines[start : start + 5] == [
+        "Device profiles",
+        "slave  profile  why",
+        "-" * 60,
+        "    2  atv71    ProductCode ATV71HU15M3 (frame #2)",
+        "    5  generic  no evidence of a device: spec semantics only",
+    ]
+    assert "<td>2</td><td>atv71</td><td>ProductCode ATV71HU15M3 (frame #2)</td>" in render_report(ReportCollector(), stats)
+    assert "Device profiles" not in collect("p38_protection.pcap").render_plain()  # no choices(): no table

@@ -16,7 +16,7 @@ class ReportFile:
     def __init__(self, path: str, annotate: object, titles: list[str]) -> None:
         self.path = path
         self.collector = ReportCollector(annotate)
-        self.stats = StatsCollector()
+        self.stats = StatsCollector(getattr(annotate, "choices", None))
         self.title = "vw3-decode report: " + ", ".join(titles) if titles else None
         try:
             self.stream = open(path, "w", encoding="utf-8")

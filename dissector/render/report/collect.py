@@ -16,6 +16,7 @@ The x axis is the capture time (Unix seconds) when items are time-stamped, the f
 """
 from __future__ import annotations
 
+import json
 from array import array
 from dataclasses import dataclass, field
 from typing import Any
@@ -23,7 +24,7 @@ from typing import Any
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.stats import PLAIN_READS, UNREADABLE, wire_values
 
-COLUMNS = 800
+COLUMNS = 600
 MAX_SERIES = 400
 MAX_MARKS = 200
 MAX_EVENTS = 1000
@@ -137,13 +138,13 @@ class ReportCollector:
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
         """Columns twice as wide. Finished columns are merged only when a series holds more than
-        3 x COLUMNS of them (and once at the end), not at every doubling."""
+        2 x COLUMNS of them (and once at the end), not at every doubling: 3 x COLUMNS at most."""
         self.width *= 2
         self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
         for series in self.series.values():
             columns = series.columns
             columns.close()
-            if len(columns) > 3 * COLUMNS:
+            if len(columns) > 2 * COLUMNS:
                 columns.compact(self.origin, self.width)  # type: ignore[arg-type]
         for counts in self.event_columns.values():
             merged: dict[int, int] = {}
@@ -229,10 +230,12 @@ class ReportCollector:
             return
         slave = frame.slave
         col = self._col(x)
+        all_series = self.series
         for register in registers:
-            if register.address is None:
+            address = register.address
+            if address is None:
                 continue
-            series = self.series.get((slave, register.address))
+            series = all_series.get((slave, address))
             if series is None:
                 series = self._series(slave, register)
                 if series is None:
@@ -261,7 +264,22 @@ class ReportCollector:
                 self._event(x, "protection", slave, f"{_name(series)} readable again")
                 series.status = None
             series.values += 1
-            series.columns.add(col, x, y)
+            # Columns.add inlined: this runs once per register value of the capture.
+            columns = series.columns
+            done = columns.done
+            if col != columns.col:
+                columns.col = col
+                done.extend((x, y, x, y, x, y, x, y))
+                continue
+            base = len(done) - 8
+            if y < done[base + 3]:
+                done[base + 2] = x
+                done[base + 3] = y
+            elif y > done[base + 5]:
+                done[base + 4] = x
+                done[base + 5] = y
+            done[base + 6] = x
+            done[base + 7] = y
 
     def _unreadable(self, x: float, frame: Frame, series: Series, status: str) -> None:
         if series.status == status:
@@ -299,40 +317,16 @@ class ReportCollector:
             series.marks_dropped += 1
 
     # -- results ----------------------------------------------------------------------------------
-    def data(self) -> dict[str, Any]:
-        """Everything the page's script draws, JSON-ready, x relative to `origin`."""
+    def data(self, points: bool = True) -> dict[str, Any]:
+        """Everything the page's script draws, JSON-ready, x relative to `origin`. With points=False
+        the parameters come without their x/y lists: `parameters_json` writes those one series at a
+        time, so that the points of a large report are never all Python objects at once."""
         origin = self.origin or 0.0
         if self.last_x is not None:
             while (self.last_x - origin) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
                 self._double()
-        digits = 6 if self.timed else 0
-
-        def rel(x: float) -> float:
-            return round(x - origin, digits)
-
-        parameters = []
-        for (slave, address), series in sorted(self.series.items()):
-            if not series.values and not series.marks:
-                continue
-            series.columns.close()
-            series.columns.compact(origin, self.width)
-            xs, ys = series.columns.points()
-            parameters.append(
-                {
-                    "slave": slave,
-                    "address": address,
-                    "code": series.code,
-                    "name": series.name,
-                    "unit": series.unit,
-                    "step": series.step,
-                    "labels": {str(value): text for value, text in sorted(series.labels.items())},
-                    "x": [rel(x) for x in xs],
-                    "y": [_number(y) for y in ys],
-                    "values": series.values,
-                    "marks": [[rel(x), text] for x, text in series.marks],
-                    "marks_dropped": series.marks_dropped,
-                }
-            )
+        digits = self._digits()
+        parameters = [self._parameter(key, series, points) for key, series in self._drawn()]
         columns = []
         width = self.width
         for kind in EVENT_KINDS:
@@ -342,15 +336,51 @@ class ReportCollector:
         return {
             "timed": bool(self.timed),
             "origin": origin,
-            "span": 0.0 if self.first_x is None or self.last_x is None else rel(self.last_x),
+            "span": 0.0 if self.first_x is None or self.last_x is None else round(self.last_x - origin, digits),
             "column_width": width,
             "parameters": parameters,
             "parameters_dropped": self.series_dropped,
-            "events": [[rel(x), kind, slave, text] for x, kind, slave, text in self.events],
+            "events": [[round(x - origin, digits), kind, slave, text] for x, kind, slave, text in self.events],
             "events_dropped": self.events_dropped,
             "event_counts": self.event_counts,
             "event_columns": columns,
         }
+
+    def parameters_json(self) -> str:
+        """The parameters with their points as a JSON array, encoded series by series (call data first)."""
+        return "[" + ",".join(
+            json.dumps(self._parameter(key, series, True), separators=(",", ":"), allow_nan=False)
+            for key, series in self._drawn()
+        ) + "]"
+
+    def _digits(self) -> int:
+        return 6 if self.timed else 0
+
+    def _drawn(self) -> list[tuple[tuple[int, int], Series]]:
+        return [(key, series) for key, series in sorted(self.series.items()) if series.values or series.marks]
+
+    def _parameter(self, key: tuple[int, int], series: Series, points: bool) -> dict[str, Any]:
+        origin, digits = self.origin or 0.0, self._digits()
+        entry: dict[str, Any] = {
+            "slave": key[0],
+            "address": key[1],
+            "code": series.code,
+            "name": series.name,
+            "unit": series.unit,
+            "step": series.step,
+            "labels": {str(value): text for value, text in sorted(series.labels.items())},
+            "values": series.values,
+            "marks": [[round(x - origin, digits), text] for x, text in series.marks],
+            "marks_dropped": series.marks_dropped,
+        }
+        if points:
+            columns = series.columns
+            columns.close()
+            columns.compact(origin, self.width)
+            xs, ys = columns.points()
+            entry["x"] = [round(x - origin, digits) for x in xs]
+            entry["y"] = [_number(y) for y in ys]
+        return entry
 
 
 def _name(series: Series) -> str:

@@ -74,7 +74,7 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
 
 
 def render_report(collector: ReportCollector, stats: StatsCollector, title: str = "vw3-decode report") -> str:
-    data = collector.data()
+    data = collector.data(points=False)
     summary = stats.report()
     slaves = _slaves(stats)
     data["slaves"] = [
@@ -90,6 +90,12 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
     )
     # -- slaves
     parts.append('<h2 id="slaves">Slaves</h2>')
+    if summary["profiles"]:
+        parts.append("<h3>Device profiles</h3>" + _table(["slave", "profile", "why"], [
+            [choice["slave"], choice["profile"],
+             choice["reason"] + (f" (frame #{choice['frame']})" if choice["frame"] is not None else "")]
+            for choice in summary["profiles"]
+        ]))
     rows = []
     for entry in slaves:
         exceptions = " ".join(f"{code:02X}:{count}" if code >= 0 else f"?:{count}"
@@ -165,7 +171,9 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
     if data["parameters_dropped"]:
         parts.append(f"<p class=\"note\">Only the first {len(data['parameters'])} parameters are drawn; "
                      f"{data['parameters_dropped']} values of others are in --stats.</p>")
-    payload = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
+    del data["parameters"]  # their points are written series by series
+    head = json.dumps(data, separators=(",", ":"), allow_nan=False)
+    payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("</", "<\\/")
     return (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"

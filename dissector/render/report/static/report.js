@@ -70,7 +70,8 @@
     var t = slave.time;
     new uPlot({
       width: width(el), height: 160,
-      scales: { x: { time: false } },
+      scales: { x: { time: false }, y: { range: function (u, min, max) { return [0, Math.max(1, max)]; } } },
+      legend: { show: false },
       axes: [{ label: "ms" }, { label: "answers" }],
       series: [{ label: "ms" }, { label: "answers", fill: "rgba(31,119,180,0.4)", stroke: "#1f77b4",
                  paths: uPlot.paths.bars({ size: [0.9, 60] }), points: { show: false } }]

@@ -1,0 +1,317 @@
+"""The protocol table: one entry per function code, the one place its rules are stated.
+
+Each entry gives, per direction, the Construct layout of the data (protocol/layouts.py), the length
+rule of the whole RTU frame, the decoder's handler and the spec limit it checks; and per code whether
+the response echoes the request, what it accesses (read, write) and whether the compiled summary path
+(accel/_summary.c) shows it. Everything else derives from here: the framer's length rules
+(framing/rtu.py), the grammars (protocol/grammar.py), the fast parser and the handlers (decode/), the
+annotator's read classes, and, through `python3 -m dissector.codegen`, the C header
+accel/_tables.h and the rule tables of the Wireshark plugin (lua/vw3.lua).
+
+Only stage-0 names are imported (model): the later stages look the names given here up in their own
+registries (a handler name in decode/fields.py, a rule name in framing/rtu.py, a parser name in the
+plugin), and a unit test holds every name to an implementation.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import StrEnum
+
+from construct import Construct, Struct
+
+from dissector.model import Kind
+from dissector.protocol import layouts as L
+
+
+@dataclass(frozen=True, slots=True)
+class Fixed:
+    """The frame is `length` bytes long, CRC included."""
+
+    length: int
+
+
+@dataclass(frozen=True, slots=True)
+class Counted:
+    """The frame is `extra` + the byte count at `position` (`width` 1: one byte, 2: a big-endian word)."""
+
+    position: int
+    extra: int
+    width: int = 1
+
+
+@dataclass(frozen=True, slots=True)
+class Special:
+    """A rule too irregular for data (FC8 sub-function 0, FC43's object list), implemented by name in
+    the framers; "scan": no length at all, the frame is found by a CRC scan."""
+
+    name: str
+
+
+LengthRule = Fixed | Counted | Special
+SCAN = Special("scan")
+
+
+class Access(StrEnum):
+    READ = "read"
+    WRITE = "write"
+    READ_WRITE = "read_write"
+    DIAGNOSTIC = "diagnostic"  # the device's state, counters, identity: neither reads nor writes data
+
+
+class Data(StrEnum):
+    """What the decoder lifts out of a frame's data: addressed registers, addressed bits, or neither."""
+
+    REGISTERS = "registers"
+    BITS = "bits"
+    NONE = "none"
+
+
+@dataclass(frozen=True, slots=True)
+class Layout:
+    """One direction of one function code."""
+
+    name: str  # the layout's name: keys the fast parser (decode/fastpath.py) and the plugin's parser
+    grammar: Construct
+    length: LengthRule
+    handler: str | None = None  # decode/fields.py handler (the plugin's `<name>_handler`)
+    limit: str | None = None  # data/modbus.toml [limits] entry the handler checks the quantity against
+
+
+@dataclass(frozen=True, slots=True)
+class Writes:
+    """Where a request's written registers are, by field names of its grammar."""
+
+    values: str
+    start: str
+    quantity: str | None = None  # None: one register
+    count: str | None = None  # byte count that must be 2 x quantity
+    limit: str | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Coils:
+    """Where a request's written coils are (FC15), by field names of its grammar."""
+
+    status: str  # the coils, packed 8 to a byte
+    count: str  # byte count that must be ceil(quantity / 8)
+
+
+@dataclass(frozen=True, slots=True)
+class Compiled:
+    """How the compiled summary path reads the request, by field names of its grammar."""
+
+    start: str | None = None  # None: no address (FC7, FC11, FC12)
+    quantity: str | None = None  # None: one register
+    limit: str | None = None
+    span: bool = False  # start + quantity must stay within 65536
+    writes: Writes | None = None
+    coil: str | None = None  # FC5: the value, ON (0xFF00) or OFF (0000); any other draws a warning
+    coils: Coils | None = None
+    # The engine frames and pairs the transaction, and its texts come from the Python stages (kept by
+    # the frames' bytes): for layouts whose decoding and annotation change no state and whose texts
+    # are not worth porting (file records, identification objects, the server ID).
+    texts: bool = False
+
+
+@dataclass(frozen=True, slots=True)
+class Function:
+    code: int
+    request: Layout
+    response: Layout
+    access: Access
+    data: Data = Data.NONE
+    echo: bool = False  # the response repeats the request (or its first fields)
+    compiled: Compiled | None = None
+
+    def layout(self, kind: Kind) -> Layout:
+        return self.request if kind is Kind.REQUEST else self.response
+
+
+def _layout(name: str, length: LengthRule, handler: str | None = None, limit: str | None = None) -> Layout:
+    return Layout(name, getattr(L, name.upper()), length, handler, limit)
+
+
+_EIGHT = Fixed(8)
+_BYTE_COUNT = Counted(2, 5)  # slave, function, byte count, data, CRC
+
+
+def _read(code: int, bits: bool) -> Function:
+    request_limit = "read_bits" if bits else "read_registers"
+    return Function(
+        code,
+        _layout("read_request", _EIGHT, "read_request", request_limit),
+        _layout(
+            "read_bits_response" if bits else "read_registers_response",
+            _BYTE_COUNT,
+            "read_bits_response" if bits else "read_registers_response",
+        ),
+        Access.READ,
+        Data.BITS if bits else Data.REGISTERS,
+        compiled=Compiled("start", "quantity", request_limit, span=True),
+    )
+
+
+FUNCTIONS: tuple[Function, ...] = (
+    _read(1, bits=True),
+    _read(2, bits=True),
+    _read(3, bits=False),
+    _read(4, bits=False),
+    Function(
+        5,
+        _layout("write_single", _EIGHT, "write_single_coil"),
+        _layout("write_single", _EIGHT, "write_single_coil"),
+        Access.WRITE, Data.BITS, echo=True,
+        compiled=Compiled("address", coil="value"),
+    ),
+    Function(
+        6,
+        _layout("write_single", _EIGHT, "write_single_register"),
+        _layout("write_single", _EIGHT, "write_single_register"),
+        Access.WRITE, Data.REGISTERS, echo=True,
+        compiled=Compiled("address", writes=Writes("value", "address")),
+    ),
+    Function(
+        7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
+    Function(
+        8,
+        _layout("diagnostics", Special("diagnostics"), "diagnostics"),
+        _layout("diagnostics", Special("diagnostics"), "diagnostics"),
+        Access.DIAGNOSTIC, echo=True,
+    ),
+    Function(
+        11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
+    Function(
+        12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(),
+    ),
+    Function(
+        15,
+        _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils"),
+        _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
+        Access.WRITE, Data.BITS, echo=True,
+        compiled=Compiled("start", "quantity", "write_coils", span=True, coils=Coils("status", "byte_count")),
+    ),
+    Function(
+        16,
+        _layout("write_registers_request", Counted(6, 9), "write_registers_request", "write_registers"),
+        _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
+        Access.WRITE, Data.REGISTERS, echo=True,
+        compiled=Compiled(
+            "start", "quantity", "write_registers", span=True,
+            writes=Writes("values", "start", "quantity", count="byte_count"),
+        ),
+    ),
+    Function(
+        17, _layout("empty", Fixed(4)), _layout("byte_counted", _BYTE_COUNT), Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
+    ),
+    Function(
+        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ,
+        compiled=Compiled(texts=True),
+    ),
+    Function(
+        21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True,
+        compiled=Compiled(texts=True),
+    ),
+    Function(
+        22,
+        _layout("mask_write", Fixed(10), "mask_write"),
+        _layout("mask_write", Fixed(10), "mask_write"),
+        Access.WRITE, echo=True,
+        compiled=Compiled("address"),
+    ),
+    Function(
+        23,
+        _layout("read_write_request", Counted(10, 13), "read_write_request"),
+        _layout("read_registers_response", _BYTE_COUNT, "read_registers_response"),
+        Access.READ_WRITE, Data.REGISTERS,
+        compiled=Compiled(
+            "read_start", "read_quantity", "rw_read",
+            writes=Writes("values", "write_start", "write_quantity", count="byte_count", limit="rw_write"),
+        ),
+    ),
+    Function(
+        24,
+        _layout("fifo_request", Fixed(6), "fifo_request"),
+        # The FIFO's values have no addresses of their own: Data.NONE.
+        _layout("fifo_response", Counted(2, 6, width=2), "fifo_response", "fifo_count"),
+        Access.READ,
+        compiled=Compiled("address"),
+    ),
+    Function(
+        43,
+        _layout("mei_request", Special("mei_request")),
+        _layout("mei_response", Special("mei_response"), "mei_response"),
+        Access.DIAGNOSTIC,
+        compiled=Compiled(texts=True),
+    ),
+)
+
+TABLE: dict[int, Function] = {entry.code: entry for entry in FUNCTIONS}
+
+# Codes with no public layout, found by a CRC scan: user-defined (65-72, 100-110) and the SEL-749M's
+# (60h-62h, 7Dh, 7Eh).
+OTHER_FUNCTIONS = frozenset([*range(65, 73), *range(100, 111), 0x60, 0x61, 0x62, 0x7D, 0x7E])
+
+EXCEPTION_LAYOUT = Layout("exception", L.EXCEPTION, Fixed(5))
+RAW_LAYOUT = Layout("raw", L.RAW, SCAN)
+
+# Codes the compiled summary path shows (accel/_summary.c through accel/_tables.h), in table order.
+COMPILED = tuple(entry.code for entry in FUNCTIONS if entry.compiled is not None)
+
+
+def compiled_limits() -> tuple[str, ...]:
+    """The spec limits the engine checks, in the order of its `limits` argument (and LIMIT_* below)."""
+    names: list[str] = []
+    for entry in FUNCTIONS:
+        compiled = entry.compiled
+        if compiled is None:
+            continue
+        for name in (compiled.limit, compiled.writes.limit if compiled.writes else None):
+            if name is not None and name not in names:
+                names.append(name)
+    return tuple(names)
+
+
+def layout_for(function: int, kind: Kind) -> Layout:
+    """The layout of a frame's data; unknown codes: raw bytes."""
+    if kind is Kind.EXCEPTION:
+        return EXCEPTION_LAYOUT
+    entry = TABLE.get(function)
+    return entry.layout(kind) if entry is not None else RAW_LAYOUT
+
+
+def by_kind(attribute: str) -> dict[Kind, dict[int, object]]:
+    """{kind: {code: layout.attribute}} for both directions, leaving out codes where it is None."""
+    out: dict[Kind, dict[int, object]] = {}
+    for kind in (Kind.REQUEST, Kind.RESPONSE):
+        values = ((entry.code, getattr(entry.layout(kind), attribute)) for entry in FUNCTIONS)
+        out[kind] = {code: value for code, value in values if value is not None}
+    return out
+
+
+def register_reads() -> frozenset[int]:
+    """Codes whose response registers are values read from the device (the annotator's reads)."""
+    return frozenset(
+        entry.code for entry in FUNCTIONS
+        if entry.data is Data.REGISTERS and entry.access in (Access.READ, Access.READ_WRITE)
+    )
+
+
+def plain_register_reads() -> frozenset[int]:
+    """Reads with no write part: an exception to them concerns the registers read alone."""
+    return frozenset(entry.code for entry in FUNCTIONS if entry.data is Data.REGISTERS and entry.access is Access.READ)
+
+
+def field_offset(grammar: Construct, name: str) -> int:
+    """Offset of a field in a grammar's data, counted over the fixed-size fields before it."""
+    offset = 0
+    for sub in grammar.subcons if isinstance(grammar, Struct) else ():
+        if sub.name == name:
+            return offset
+        offset += sub.sizeof()  # raises for a variable-size field: no fixed offset then
+    raise KeyError(f"no field {name!r} at a fixed offset")

@@ -1,0 +1,84 @@
+"""The fast -V and --json writers held equal to their reference forms.
+
+`item_to_json` splices cached register texts into json.dumps' output; it must give json.dumps(item_to_dict)
+byte for byte. `detail_text` joins the flat detail lines without a tree; it must give the tree's plain
+rendering. `BitList` decodes packed bits in bulk; it must hold the bits one `Bit` per coil would.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from dissector.devices.build import build_annotator
+from dissector.model import Bit, BitList, Frame
+from dissector.pipeline import dissect_bytes
+from dissector.render.detail import detail_text, detail_tree, render_plain
+from dissector.render.jsonout import item_to_dict, item_to_json
+from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
+from strategies import adu, transactions
+
+from conftest import ROOT
+
+PROFILES = [["atv71"], ["sel749m"], ["generic"], PLANT_PROFILES, ["atv71", "1=sel749m"]]
+
+
+def _check(items: list, extra: dict | None = None) -> None:
+    for item in items:
+        record = item_to_dict(item)
+        if extra:
+            record.update(extra)
+        assert item_to_json(item, extra) == json.dumps(record)
+        assert detail_text(item, 0.5) == render_plain(detail_tree(item, 0.5))
+
+
+@pytest.mark.parametrize("path", sorted((ROOT / "captures").glob("*.bin")), ids=lambda path: path.name)
+@pytest.mark.parametrize("profiles", PROFILES, ids=lambda profiles: ",".join(profiles))
+def test_captures(path: Path, profiles: list[str]) -> None:
+    items = dissect_bytes(path.read_bytes(), annotate=build_annotator(profiles, []))
+    _check(items)
+    _check(items, {"file": "x.bin"})  # repeated: every register text now comes from the cache
+
+
+@pytest.mark.parametrize("profiles", PROFILES, ids=lambda profiles: ",".join(profiles))
+def test_mixes(profiles: list[str]) -> None:
+    data = b"".join(raw for raw, _time in plant_mix(3000, seed=5) + max_size_mix(1500, seed=5))
+    _check(dissect_bytes(data, annotate=build_annotator(profiles, [])))
+
+
+@settings(deadline=None, max_examples=150, suppress_health_check=list(HealthCheck))
+@given(st.lists(st.tuples(st.integers(0, 247), transactions()), min_size=1, max_size=6), st.sampled_from(PROFILES))
+def test_random_transactions(exchanges: list, profiles: list[str]) -> None:
+    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    _check(dissect_bytes(data, annotate=build_annotator(profiles, [])))
+
+
+def _reference_bits(start: int | None, packed: bytes, count: int) -> list[Bit]:
+    """What decoding made before BitList: one Bit per coil."""
+    return [
+        Bit(None if start is None else (start + index) & 0xFFFF, packed[index >> 3] >> (index & 7) & 1)
+        for index in range(count)
+    ]
+
+
+@given(st.one_of(st.none(), st.integers(0, 0xFFFF)), st.binary(max_size=260), st.data())
+def test_bitlist_holds_the_bits_one_per_coil(start: int | None, packed: bytes, data: st.DataObject) -> None:
+    count = data.draw(st.integers(0, len(packed) * 8))
+    bits, reference = BitList(start, packed, count), _reference_bits(start, packed, count)
+    assert len(bits) == count and list(bits) == reference and bits == reference
+    assert bits.values == [bit.value for bit in reference]
+    assert list(bits.addresses) == [bit.address for bit in reference]
+    assert bits[:32] == reference[:32] and bits[3:-2] == reference[3:-2]
+    if count:
+        index = data.draw(st.integers(-count, count - 1))
+        assert bits[index] == reference[index]
+    with pytest.raises(IndexError):
+        bits[count]
+
+
+def test_frames_of_the_max_size_mix_carry_bitlists_after_decoding() -> None:
+    frames = [item for item in dissect_bytes(b"".join(raw for raw, _t in max_size_mix(400))) if isinstance(item, Frame)]
+    assert any(isinstance(frame.bits, BitList) and len(frame.bits) > 100 for frame in frames)
