@@ -11,9 +11,9 @@ Mixes (each generated reproducibly, written raw for vw3-decode and as a USER0 pc
   (dissector.sim.mixes.max_size_mix), decoded with the generic profile (and timed with the default
   ATV71 one apart).
 For each mix it times, best of --repeat interleaved rounds: vw3-decode's summary, --json, -V and
---stats, and tshark's summary, -T json and -V with CRC verification on; peak RSS of every vw3-decode run
-comes from the same runs (timed from a small probe process). Sub-second commands run SHORT_RUNS times a round. The package is
-byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
+--stats, and tshark's summary, -T json and -V with CRC verification on; peak RSS of every vw3-decode
+run comes from the same runs (timed from a small probe process). Sub-second commands run SHORT_RUNS
+times a round. The package is byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
 this one run. With --memory, peak RSS on each mix repeated tenfold; with --gigabyte, also at 1 GB.
 """
 from __future__ import annotations

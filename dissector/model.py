@@ -49,6 +49,23 @@ class Kind(StrEnum):
     NOISE = "noise"
 
 
+class Note(str):
+    """A note as JSON and -V keep it (the whole text), with the short form a summary line shows and
+    whether it is a key event (a parameter that became protected or non-existent: highlighted)."""
+
+    short: str
+    key: bool
+
+    def __new__(cls, text: str, short: str | None = None, key: bool = False) -> Note:
+        note = super().__new__(cls, text)
+        note.short = text if short is None else short
+        note.key = key
+        return note
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, bool]]:
+        return Note, (str(self), self.short, self.key)
+
+
 # What a device profile says about a register it read (Register.status); filters name these.
 REGISTER_STATUSES = ("ok", "protected", "non-existent", "ambiguous")
 
@@ -61,7 +78,7 @@ class Register:
     """
 
     address: int | None
-    value: int
+    value: int  # None only on an exception whose meaning tells the registers' status (p.38 exception 02)
     code: str | None = None
     name: str | None = None
     unit: str | None = None
@@ -70,6 +87,9 @@ class Register:
     status: str | None = None
     source: str | None = None
     label: str | None = None  # display address (e.g. `40101` in PLC style); None: the number itself
+    # A 32-bit map row spans two registers: its value is read on the first (`words` 2, `scaled`/`text`
+    # of both words), the second says it continues it (`words` 0). 1: a register on its own.
+    words: int = 1
 
 
 @dataclass(slots=True)

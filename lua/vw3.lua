@@ -376,7 +376,13 @@ local DATA = {
         },
       },
       ["function_names"] = {},
-      ["plc_base"] = {},
+      ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
+        [4] = 30001,
+        [5] = 1,
+        [15] = 1,
+      },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {
         {
@@ -986,7 +992,13 @@ local DATA = {
         [125] = "Encapsulated Packet With Control",
         [126] = "NOP",
       },
-      ["plc_base"] = {},
+      ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
+        [4] = 40001,
+        [5] = 1,
+        [15] = 1,
+      },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
       ["map"] = {},
@@ -1010,7 +1022,11 @@ local DATA = {
       ["objects"] = {},
       ["function_names"] = {},
       ["plc_base"] = {
+        [1] = 1,
+        [2] = 10001,
         [4] = 30001,
+        [5] = 1,
+        [15] = 1,
       },
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
@@ -2417,24 +2433,30 @@ local plc_label
 do
 local PLC_TOP = {} -- the highest reference of each base's digit count
 plc_label = function(base, address)
-  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address).
+  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
+  -- references keep their zeros (00001), as naming.plc_label.
+  local digits = #format("%d", base)
+  if digits < 5 then digits = 5 end
   local top = PLC_TOP[base]
   if top == nil then
-    local digits = #format("%d", base)
     local power = 1
     for _ = 2, digits do power = power * 10 end
     top = (floor(base / power) + 1) * power - 1
     PLC_TOP[base] = top
   end
   local number = base + address
-  if number > top then number = base * 10 - 9 + address end
-  return format("%d", number)
+  if number > top then
+    number = base * 10 - 9 + address
+    digits = digits + 1
+  end
+  return format("%0" .. digits .. "d", number)
 end
 end
 
-local function address_name(row, address)
-  if row ~= nil then return format("%s (%d)", row.code, address) end
-  return format("%d", address)
+local function address_name(row, address, label)
+  local shown = label or format("%d", address)
+  if row ~= nil then return format("%s (%s)", row.code, shown) end
+  return shown
 end
 
 local function sorted_keys(set)
@@ -2539,12 +2561,62 @@ interpret = function(row, value)
 end
 end
 
-local function track(st, f, address, row, value, status, now)
+-- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
+-- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
+local story = {} -- event(), tell(): one table, for the main chunk's 200 locals
+function story.event(f, what, address, row, label, before, how, frame, now, shared)
+  local events = f.events
+  if events == nil then events = {}; f.events = events end
+  events[#events + 1] = { what = what, address = address, row = row, label = label, before = before,
+    how = how, frame = frame, now = now, shared = shared }
+end
+
+function story.tell(f)
+  local function event_name(e) return address_name(e.row, e.address, e.label) end
+  local events = f.events
+  if events == nil then return end
+  f.events = nil
+  local groups, order = {}, {}
+  for _, e in ipairs(events) do
+    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.shared or "")
+    local group = groups[key]
+    if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
+    group[#group + 1] = e
+  end
+  for _, key in ipairs(order) do
+    local group = groups[key]
+    local first = group[1]
+    if #group == 1 then
+      note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
+    else
+      table.sort(group, function(a, b) return a.address < b.address end)
+      local parts, run = {}, { group[1] }
+      local function flush()
+        if #run == 1 then parts[#parts + 1] = event_name(run[1])
+        else
+          local a, b = run[1], run[#run]
+          parts[#parts + 1] = (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
+        end
+      end
+      for index = 2, #group do
+        local e = group[index]
+        if e.address == run[#run].address + 1 then run[#run + 1] = e
+        else flush(); run = { e } end
+      end
+      flush()
+      local tail = format(": %s in frame #%d", first.how, first.frame)
+      if first.shared ~= nil then tail = tail .. ", " .. first.shared end
+      note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))
+    end
+  end
+end
+
+local function track(st, f, address, row, value, status, now, label)
   local key = f.slave * 65536 + address
   local last = st.seen[key]
   if status == "ok" then
     if last ~= nil and last.value == nil then
-      note(f, format("%s readable again: %s in frame #%d, %d now", address_name(row, address), last.how, last.frame, value))
+      story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
     end
     if last ~= nil then
       last.value, last.frame, last.how = value, f.number, "read"
@@ -2555,8 +2627,8 @@ local function track(st, f, address, row, value, status, now)
     if last ~= nil and last.value ~= nil then
       local became = "non-existent or protected"
       if row ~= nil then became = "protected" end
-      note(f, format("%s became %s: %s %d in frame #%d, %s", address_name(row, address), became, last.how,
-        last.value, last.frame, now))
+      story.event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
+        last.frame, now, now)
     end
     if last ~= nil then
       last.value, last.frame, last.how = nil, f.number, status
@@ -2582,7 +2654,7 @@ end
 
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
-local function annotate_one(st, f, device, address, value, protected, multi)
+local function annotate_one(st, f, device, address, value, protected, multi, label)
   local row = device.rows[address]
   local plain = false
   if row ~= nil then
@@ -2607,7 +2679,7 @@ local function annotate_one(st, f, device, address, value, protected, multi)
         status = "protected"
       end
     end
-    track(st, f, address, row, value, status, "16#8000 now")
+    track(st, f, address, row, value, status, "16#8000 now", label)
   end
   return plain, status
 end
@@ -2646,10 +2718,13 @@ local function annotate_registers(st, f, device, run, b, read)
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
+  local base = plc_base(device, f)
   for index = 0, run.count - 1 do
     local k = first + 2 * index
-    local plain, status = annotate_one(st, f, device, (start + index) % 0x10000, b[k] * 256 + b[k + 1],
-      protected, multi)
+    local address = (start + index) % 0x10000
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    local plain, status = annotate_one(st, f, device, address, b[k] * 256 + b[k + 1], protected, multi, label)
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
@@ -2659,6 +2734,7 @@ local function annotate_registers(st, f, device, run, b, read)
       run.status[index] = status
     end
   end
+  story.tell(f)
 end
 
 -- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
@@ -2672,11 +2748,12 @@ local function annotate_list(st, f, device, registers, read)
     local address = reg.address
     if address ~= nil then
       if base ~= nil then reg.label = plc_label(base, address) end
-      local plain, status = annotate_one(st, f, device, address, reg.value, protected, multi)
+      local plain, status = annotate_one(st, f, device, address, reg.value, protected, multi, reg.label)
       reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status)
       reg.status = status
     end
   end
+  story.tell(f)
 end
 
 do -- (a block: the main chunk may hold at most 200 locals)
@@ -2759,29 +2836,46 @@ local function cause_text(cause)
 end
 
 local function all_unreadable(st, f, device)
+  -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
+  -- a range), then each parameter's story (devices/explain.py).
   local request = f.request
-  if request == nil or request.start == nil or request.quantity == nil or request.quantity == 0 then
-    note(f, "on a read, this exception means every parameter read is non-existent or protected")
-    return
-  end
   local rows = device.rows
-  local addresses, parts = {}, {}
+  local base = nil
+  if device.plc ~= nil then base = device.plc[request.fn] or device.plc_default end
+  local entries, parts = {}, {}
   for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
     local address = (request.start + index) % 0x10000
-    addresses[#addresses + 1] = address
-    local row = rows[address]
-    parts[#parts + 1] = address_name(row, address) .. (row == nil and " non-existent" or " protected")
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    entries[#entries + 1] = { address = address, row = rows[address], label = label }
   end
-  if #parts > MAX_LISTED then
-    local more = #parts - MAX_LISTED
-    for index = #parts, MAX_LISTED + 1, -1 do parts[index] = nil end
-    parts[#parts + 1] = format("%s (+%d)", ELLIPSIS, more)
+  local run = {}
+  local function flush()
+    local first = run[1]
+    if #run == 1 then
+      parts[#parts + 1] = address_name(first.row, first.address, first.label)
+        .. (first.row == nil and " non-existent" or " protected")
+    else
+      local last = run[#run]
+      parts[#parts + 1] = format("%s..%s non-existent (%d)", first.label or format("%d", first.address),
+        last.label or format("%d", last.address), #run)
+    end
   end
-  note(f, "every parameter of this read is non-existent or protected: " .. concat(parts, ", "))
+  for _, entry in ipairs(entries) do
+    local previous = run[#run]
+    if previous ~= nil and previous.row == nil and entry.row == nil and entry.address == previous.address + 1 then
+      run[#run + 1] = entry
+    else
+      if previous ~= nil then flush() end
+      run = { entry }
+    end
+  end
+  flush()
+  note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
+    f.exception_code, device.profile.device, concat(parts, ", ")))
   local now = format("exception %02X now", f.exception_code)
-  for _, address in ipairs(addresses) do
-    local row = rows[address]
-    track(st, f, address, row, 0, row == nil and "non-existent" or "protected", now)
+  for _, entry in ipairs(entries) do
+    track(st, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
   end
 end
 
@@ -2793,10 +2887,15 @@ local function explain_exception(st, f, device)
   local causes = (profile.exception_causes or {})[f.fn * 256 + code]
   local meanings = profile.exceptions or {}
   f.exception_meaning = meanings[code]
+  local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
     note(f, format("exception %02X from the %s to %s: %s", code, profile.device, name, concat(texts, " or ")))
+  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
+      and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
+    all_unreadable(st, f, device)
+    story.tell(f)
   elseif meanings[code] ~= nil then
     note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
   elseif next(meanings) ~= nil then
@@ -2804,7 +2903,6 @@ local function explain_exception(st, f, device)
     for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
     note(f, format("exception %02X is not one the %s documents (%s)", code, profile.device, concat(known, ", ")))
   end
-  if code == profile.all_protected_exception and PLAIN_READS[f.fn] then all_unreadable(st, f, device) end
 end
 
 local function python_repr(text)

@@ -125,12 +125,32 @@ static void out_label(Out *o, long long base, unsigned address) {
         out_uint(o, address, 0);
         return;
     }
+    /* naming.plc_label: five digits at least, zero-padded (coil references: 00001), one more past the
+     * top of the base's range (49999 -> 410000). */
+    int digits = 1;
     long long scale = 1;
-    while (scale * 10 <= base) scale *= 10;
+    while (scale * 10 <= base) {
+        scale *= 10;
+        digits++;
+    }
+    if (digits < 5) {
+        digits = 5;
+        scale = 10000;
+    }
     long long top = (base / scale + 1) * scale - 1;
     long long number = base + address;
-    if (number > top) number = base * 10 - 9 + address;
-    out_uint(o, (unsigned long long)number, 0);
+    if (number > top) {
+        number = base * 10 - 9 + address;
+        digits++;
+    }
+    char buffer[24];
+    int n = 0;
+    unsigned long long v = (unsigned long long)number;
+    do { buffer[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    int width = n > digits ? n : digits;
+    if (out_reserve(o, (size_t)width) < 0) return;
+    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
+    while (n) o->data[o->len++] = buffer[--n];
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
@@ -1222,7 +1242,26 @@ static void engine_dealloc(Engine *e) {
     Py_TYPE(e)->tp_free((PyObject *)e);
 }
 
+/* forget(slave): ask slave_info again on the slave's next transaction (its device profile changed). */
+static PyObject *engine_forget(Engine *e, PyObject *args) {
+    int address;
+    if (!PyArg_ParseTuple(args, "i", &address)) return NULL;
+    if (address < 0 || address > 255) {
+        PyErr_SetString(PyExc_ValueError, "forget: slave outside 0..255");
+        return NULL;
+    }
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "forget: not while run() is running");
+        return NULL;
+    }
+    slave_clear(&e->slaves[address]);
+    pieces_clear(e); /* register texts of the old profile (rare: a profile changes a few times a run) */
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef engine_methods[] = {
+    {"forget", (PyCFunction)engine_forget, METH_VARARGS,
+     "forget(slave): ask slave_info again on the slave's next transaction (its profile changed)."},
     {"run", (PyCFunction)engine_run, METH_VARARGS,
      "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
      "position on; status 0: needs more bytes, 1: hand the stream over at position."},

@@ -86,6 +86,10 @@ def make_engine(annotator: Any | None) -> Any:
             return plain
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
             return unknown
+        if not annotator.compilable(slave):
+            # Profile `auto` still judges this slave's traffic (SummaryPath.forget_changed asks again
+            # once it is settled), or its map has 32-bit values: its frames go through the annotator.
+            return unknown
         checks, mapped, depend, sources, seen, protected, bases = annotator.summary_facts(slave, HANDLED)
         functions = {
             function: (function_label(function, special), check)
@@ -131,6 +135,8 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
     known: dict[tuple[bytes, bytes | None], Texts | None] = {}
 
     def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+        if _may_choose(annotator, slave):
+            return None
         key = (request_raw, response_raw)
         if key in known:
             return known[key]
@@ -157,6 +163,14 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
     return texts
 
 
+def _may_choose(annotator: Any | None, slave: int) -> bool:
+    """Profile `auto` may still change this slave's profile (an identification, an answer its device
+    cannot give): the transaction goes to the Python stages, which see every frame that can, and the
+    texts of a slave whose profile is final are the only ones kept by bytes."""
+    final = getattr(annotator, "final", None)
+    return final is not None and not final(slave)
+
+
 def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
     """The engine's `exception` callback: (info, tail) of an exception answering a request it shows.
 
@@ -169,6 +183,8 @@ def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tupl
     known: dict[tuple[int, bytes, bytes], tuple[str, str] | None] = {}
 
     def texts(slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
+        if _may_choose(annotator, slave):
+            return None
         key = (slave, request_raw, answer_raw)
         if key in known:
             return known[key]
@@ -214,6 +230,7 @@ class SummaryPath:
         self.framer = dissector.framer
         self.pairer = dissector.pairer
         self.engine = make_engine(annotator)
+        self.annotator = annotator
         self.write_items = write_items
         self.write_lines = write_lines
         self.buf = b""  # bytes not given to either side yet start at buf[pos], absolute offset base+pos
@@ -271,6 +288,16 @@ class SummaryPath:
         self.run_left = self.run_size
         self.python = True
 
+    def forget_changed(self) -> None:
+        """Slaves whose device profile changed (or settled) while the Python stages had the stream are
+        asked about again: the engine shows them from then on."""
+        annotator = self.annotator
+        changed = getattr(annotator, "changed", None)
+        if changed:
+            for slave in changed:
+                self.engine.forget(slave)
+            changed.clear()
+
     def _python_frames(self) -> None:
         framer = self.framer
         if self.run_left:
@@ -283,6 +310,7 @@ class SummaryPath:
                 return  # the run goes on with the next chunk
         while True:
             if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+                self.forget_changed()
                 offset, rest, expect = framer.hand_back()
                 self.buf = rest + self.buf[self.pos :]
                 self.base, self.pos = offset, 0

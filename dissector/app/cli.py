@@ -25,7 +25,7 @@ from dissector.app.options import PROG, DecodeOptions, build_parser, decode_opti
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.profile_options import annotator_from_args
+from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output
@@ -252,6 +252,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
+        report_profiles(annotate, env.stderr, env.stderr_isatty)
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly
@@ -335,6 +336,8 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--detect needs --live PORT")
             if args.files or args.hex:
                 raise UsageError("--live takes no FILE or --hex")
+            if args.report is not None or args.stats:
+                raise UsageError("--report and --stats read files: capture with -w FILE, then report on it")
             return _live(args, env)
         if not args.files and not args.hex:
             raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")

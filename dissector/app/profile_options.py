@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+from typing import TextIO
 
 from dissector.devices.annotator import Annotator
 from dissector.devices.build import build_annotator
@@ -17,7 +18,8 @@ def add_profile_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="[SLAVE=]NAME",
         help=(
             "device profile for every slave (NAME) or one slave (SLAVE=NAME); repeatable. "
-            f"Built-in: {', '.join(BUILTIN_PROFILES)} (default {DEFAULT_PROFILE}), or a .toml file"
+            f"Built-in: {', '.join(BUILTIN_PROFILES)}, or a .toml file; default {DEFAULT_PROFILE}: each slave "
+            "gets one from evidence in the capture (identification, function codes, registers read)"
         ),
     )
     group.add_argument(
@@ -31,7 +33,7 @@ def add_profile_arguments(parser: argparse.ArgumentParser) -> None:
         "--address-style",
         choices=ADDRESS_STYLES,
         default=None,
-        help="show register addresses as sent (protocol) or as 4X references (plc); default per profile",
+        help="show addresses as sent (protocol) or as PLC references, 0X/1X/3X/4X (plc); default per profile",
     )
 
 
@@ -41,3 +43,12 @@ def annotator_from_args(args: argparse.Namespace) -> Annotator:
         list(getattr(args, "map", None) or []),
         getattr(args, "address_style", None),
     )
+
+
+def report_profiles(annotate: object, stderr: TextIO, is_terminal: bool) -> None:
+    """Profile `auto`: one line per slave saying which device it was taken for and why, for the person
+    at the terminal (scripts read the choices from --stats; a redirected stderr stays free of them)."""
+    if not is_terminal:
+        return
+    for line in getattr(annotate, "profile_report", lambda: [])():
+        stderr.write(f"vw3-decode: {line}\n")

@@ -129,7 +129,8 @@ def _profile_data() -> dict[str, Any]:
     for name in BUILTIN_PROFILES:
         profile = load_profile(name)
         profiles[profile.name] = _profile_table(profile, load_profile_map(profile))
-    return {"profiles": profiles, "default_profile": DEFAULT_PROFILE}
+    # The plugin has no `auto` selection yet: its default stays the ATV71 profile.
+    return {"profiles": profiles, "default_profile": "atv71" if DEFAULT_PROFILE == "auto" else DEFAULT_PROFILE}
 
 
 def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:

@@ -6,7 +6,12 @@ from pathlib import Path
 
 from dissector.devices.annotator import Annotator, MapLayer
 from dissector.devices.maps import load_map_file
-from dissector.devices.profiles import ADDRESS_STYLES, DEFAULT_PROFILE, Profile, load_profile
+from dissector.devices.maps import RegisterMap
+from dissector.devices.profiles import (
+    ADDRESS_STYLES, AUTO, BUILTIN_PROFILES, DEFAULT_PROFILE, FALLBACK_PROFILE, Profile, load_profile,
+    load_profile_map,
+)
+from dissector.devices.selection import Selector
 from dissector.errors import ProfileError
 
 
@@ -38,25 +43,45 @@ def build_annotator(
     if address_style is not None and address_style not in ADDRESS_STYLES:
         raise ProfileError(f"--address-style {address_style!r}: use {' or '.join(ADDRESS_STYLES)}")
     default: Profile | None = None
+    auto = False
     per_slave: dict[int, Profile] = {}
     loaded: dict[str, Profile] = {}
     for spec in profiles:
         target, name = _split_target(spec, "--profile")
+        if name == AUTO:
+            if target is not None:
+                raise ProfileError(f"--profile {spec!r}: auto is for every slave (--profile auto)")
+            if default is not None or auto:
+                raise ProfileError(
+                    f"--profile {spec!r}: a default profile ({default.name if default else AUTO}) is already set"
+                )
+            auto = True
+            continue
         profile = loaded.get(name)
         if profile is None:
             profile = loaded[name] = load_profile(name)
         if target is None:
-            if default is not None:
-                raise ProfileError(f"--profile {spec!r}: a default profile ({default.name}) is already set")
+            if default is not None or auto:
+                raise ProfileError(
+                    f"--profile {spec!r}: a default profile ({default.name if default else AUTO}) is already set"
+                )
             default = profile
             continue
         slave = _slave(target, "--profile", spec)
         if slave in per_slave:
             raise ProfileError(f"--profile {spec!r}: slave {slave} already has a profile")
         per_slave[slave] = profile
-    if default is None:
+    selector = None
+    if default is None and (auto or DEFAULT_PROFILE == AUTO):
+        default = loaded.get(FALLBACK_PROFILE) or load_profile(FALLBACK_PROFILE)
+        candidates = [loaded.get(name) or load_profile(name) for name in BUILTIN_PROFILES]
+        selector = Selector([], default)
+        auto_candidates = [profile for profile in candidates if profile.name != default.name]
+    elif default is None:
         default = loaded.get(DEFAULT_PROFILE) or load_profile(DEFAULT_PROFILE)
     names = {profile.name for profile in [default, *per_slave.values()]}
+    if selector is not None:
+        names |= {profile.name for profile in auto_candidates}
     layers: list[MapLayer] = []
     for spec in maps:
         target, path = _split_target(spec, "--map")
@@ -74,4 +99,12 @@ def build_annotator(
                 f"--map {spec!r}: {target!r} is neither a slave address nor a profile in use "
                 f"({', '.join(sorted(names))})"
             )
-    return Annotator(default, per_slave, layers, address_style)
+    if selector is not None:
+        # A profile's map as traffic is judged against it: its own rows and the --map rows given for it.
+        for profile in auto_candidates:
+            rows: RegisterMap = dict(load_profile_map(profile))
+            for layer in layers:
+                if layer.profile == profile.name:
+                    rows.update(layer.rows)
+            selector.candidates.append((profile, rows))
+    return Annotator(default, per_slave, layers, address_style, selector)

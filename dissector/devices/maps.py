@@ -13,7 +13,13 @@ row per register. Lines starting with `#` are comments (the source legend lives 
     bits     bit labels for status and control words: `bit=Label;bit=Label` (bits 0..15)
     signed   `1` when the raw word is a two's complement signed value, empty (or 0) otherwise
     source   where the row comes from (a letter explained in the file's legend comment)
+    type     uint16 (the default), int16 (as signed = 1), or a 32-bit value over this register and the
+             next: uint32, int32, float32
+    order    word order of a 32-bit value: ABCD (the first register holds the high word, the default) or
+             CDAB (the low word first, as many PLCs and meters send it)
 
+Maps come as spreadsheets save them: UTF-8 with or without a BOM, separated by `,` or, as European
+Excel writes CSV, `;` (or a tab), told from the header line (cells holding the separator are quoted).
 Only `address` and `code` are required in a user's map; the other columns may be left out of the header.
 Every malformed line is reported as `file:line: what is wrong`, never skipped.
 """
@@ -21,12 +27,19 @@ from __future__ import annotations
 
 from dissector.errors import ProfileError
 import csv
+import math
+import re
+import struct
 from dataclasses import dataclass, field
 from decimal import Decimal, InvalidOperation
 from importlib import resources
 from pathlib import Path
 
-COLUMNS = ("address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source")
+COLUMNS = (
+    "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
+)
+TYPES = ("uint16", "int16", "uint32", "int32", "float32")
+ORDERS = ("ABCD", "CDAB")  # ABCD: the first register holds the high word (Modbus' big-endian); CDAB: swapped
 REQUIRED = ("address", "code")
 ACCESS = frozenset(["R", "W", "RW"])
 MEMO_LIMIT = 4096
@@ -52,6 +65,9 @@ class RegisterDef:
     # 16#8000 is a value this register can really hold (signed, bit 15 labelled, or enumerated),
     # so a read of 16#8000 cannot be called protected with certainty.
     ambiguous_8000: bool = False
+    words: int = 1  # registers the value spans (2: type uint32, int32, float32)
+    kind: str = "uint16"  # the type column
+    swapped: bool = False  # order CDAB
     # interpret() results by raw value, filled by the annotator: captures repeat values, and this makes
     # annotation a dictionary lookup per register. Bounded by MEMO_LIMIT.
     memo: dict[int, tuple[float | int | None, str | None]] = field(
@@ -126,6 +142,18 @@ def _row(values: dict[str, str]) -> RegisterDef:
     if signed_text not in ("", "0", "1"):
         raise ValueError(f"signed {signed_text!r} is not 1, 0 or empty")
     signed = signed_text == "1"
+    kind = values.get("type", "").strip().lower() or ("int16" if signed else "uint16")
+    if kind not in TYPES:
+        raise ValueError(f"type {kind!r} is not one of {', '.join(TYPES)}")
+    signed = signed or kind in ("int16", "int32")
+    words = 2 if kind.endswith("32") else 1
+    order = values.get("order", "").strip().upper() or "ABCD"
+    if order not in ORDERS:
+        raise ValueError(f"order {order!r} is not ABCD or CDAB")
+    if words == 2 and (enum or bits):
+        raise ValueError(f"a {kind} value cannot carry enum or bit labels")
+    if words == 2 and address == 0xFFFF:
+        raise ValueError(f"a {kind} value needs two registers: {address} is the last address")
     if signed and enum:
         # Enumerations are listed as unsigned words; a signed register with labels is a map error.
         raise ValueError("a signed register cannot carry enum labels")
@@ -141,21 +169,39 @@ def _row(values: dict[str, str]) -> RegisterDef:
         signed=signed,
         source=values.get("source", "").strip() or None,
         decimals=decimals,
-        ambiguous_8000=signed or 15 in bits or 0x8000 in enum,
+        ambiguous_8000=signed or 15 in bits or 0x8000 in enum or words == 2,
+        words=words,
+        kind=kind,
+        swapped=order == "CDAB",
     )
+
+
+_DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
+
+
+def _sniff(header: str) -> str:
+    """The separator of a map from its header line: the one of `,`, `;`, tab that splits it most."""
+    counts = {separator: header.count(separator) for separator in (",", ";", "\t")}
+    best = max(counts, key=lambda separator: counts[separator])
+    return best if counts[best] else ","
 
 
 def parse_map(text: str, origin: str) -> RegisterMap:
     """Parse map text; `origin` names the file in error messages."""
     header: list[str] | None = None
+    text = text.removeprefix("\ufeff")  # the BOM Excel writes in "CSV UTF-8"
+    delimiter = ","
     rows: RegisterMap = {}
     first_line: dict[int, int] = {}
+    wide: dict[int, int] = {}  # second register of a 32-bit row -> its first
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
         if not stripped or stripped.startswith("#"):
             continue
+        if header is None:
+            delimiter = _sniff(line)
         try:
-            cells = next(csv.reader([line]))
+            cells = next(csv.reader([line], delimiter=delimiter))
         except csv.Error as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
@@ -174,10 +220,14 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         if len(cells) != len(header):
             raise ProfileError(
                 f"{origin}:{number}: {len(cells)} fields, the header has {len(header)} "
-                "(quote a field that holds a comma)"
+                f"(quote a field that holds a {'comma' if delimiter == ',' else repr(delimiter)})"
             )
+        values = dict(zip(header, cells))
+        scale = values.get("scale", "")
+        if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip()):
+            values["scale"] = scale.replace(",", ".")  # `0,1`: the decimal comma of the same spreadsheets
         try:
-            row = _row(dict(zip(header, cells)))
+            row = _row(values)
         except ValueError as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if row.address in rows:
@@ -187,6 +237,14 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             )
         rows[row.address] = row
         first_line[row.address] = number
+        if row.words == 2:
+            wide[row.address + 1] = row.address
+    for second, first in wide.items():
+        if second in rows:
+            raise ProfileError(
+                f"{origin}:{first_line[second]}: address {second} is the second register of "
+                f"{rows[first].code} ({rows[first].kind}, line {first_line[first]})"
+            )
     if header is None:
         raise ProfileError(f"{origin}: no header line (expected: {','.join(COLUMNS)})")
     return rows
@@ -217,6 +275,33 @@ def load_builtin_map(name: str) -> RegisterMap:
     except (OSError, FileNotFoundError):
         raise ProfileError(f"data/maps/{name}: no such built-in map") from None
     return parse_map(text, f"data/maps/{name}")
+
+
+def interpret_wide(definition: RegisterDef, first: int, second: int) -> tuple[float | int | None, str]:
+    """A 32-bit value from the words of its two registers, in the order they come on the wire."""
+    high, low = (second, first) if definition.swapped else (first, second)
+    raw32 = high << 16 | low
+    value: float | int
+    if definition.kind == "float32":
+        value = struct.unpack(">f", raw32.to_bytes(4, "big"))[0]
+        if not math.isfinite(value):
+            return None, str(value)  # nan, inf: no number JSON can hold
+    elif definition.kind == "int32" and raw32 & 0x80000000:
+        value = raw32 - 0x100000000
+    else:
+        value = raw32
+    scale = definition.scale
+    if scale is not None:
+        value = round(value * scale, definition.decimals)
+        if not definition.decimals:
+            value = int(value)
+        text = f"{value:.{definition.decimals}f}"
+    elif isinstance(value, float):
+        text = "nan" if value != value else f"{value:.7g}"  # float32 holds about 7 significant digits
+    else:
+        text = str(value)
+    unit = definition.unit
+    return value, text if unit is None else f"{text} {unit}"
 
 
 def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, str | None]:

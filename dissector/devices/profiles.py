@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from dissector.devices.maps import ProfileError, RegisterMap, load_builtin_map, load_map_file
+from dissector.protocol.spec import SPEC
 
 
 __all__ = [
@@ -29,7 +30,9 @@ __all__ = [
 ]
 
 BUILTIN_PROFILES = ("atv71", "sel749m", "generic")
-DEFAULT_PROFILE = "atv71"
+AUTO = "auto"  # not a profile: each slave gets one from evidence in the capture (devices/selection.py)
+DEFAULT_PROFILE = AUTO
+FALLBACK_PROFILE = "generic"  # what `auto` gives a slave until evidence arrives
 ADDRESS_STYLES = ("plc", "protocol")
 _WHEN = ("quantity", "byte_count")
 
@@ -77,6 +80,10 @@ class Profile:
     plc_base: dict[int, int] = field(default_factory=dict)
     plc_base_default: int = 40001
     bits_depend: tuple[BitsDepend, ...] = ()
+    # [identify]: what tells profile `auto` a slave is this device (devices/selection.py).
+    product_codes: tuple[str, ...] = ()  # FC43 ProductCode prefixes
+    identifying_functions: frozenset[int] = frozenset()  # function codes only this device speaks
+    traffic_fit: bool = False  # may be chosen because the traffic fits its map alone
 
 
 # -- loading ------------------------------------------------------------------------------------------
@@ -205,7 +212,7 @@ _KNOWN_KEYS = frozenset(
     [
         "name", "title", "device", "map", "address_style", "functions", "inner_only", "broadcast",
         "protected_value", "all_protected_exception", "limits", "exceptions", "exception_causes",
-        "diagnostics", "objects", "function_names", "plc_base", "bits_depend",
+        "diagnostics", "objects", "function_names", "plc_base", "bits_depend", "identify",
     ]
 )
 
@@ -227,11 +234,23 @@ def parse_profile(text: str, origin: str) -> Profile:
         raise reader.fail(f"address_style {style!r} is not one of {', '.join(ADDRESS_STYLES)}")
     plc = reader.table(data, "plc_base")
     plc_default = reader.integer(plc.get("default", 40001), "[plc_base] default", 0, 999999)
-    plc_base = {
-        reader.integer(key, "[plc_base] key", 1, 255): reader.integer(value, f"[plc_base] {key}", 0, 999999)
+    # The Modbus convention (0X coils, 1X inputs, 3X input registers) unless the profile says otherwise.
+    plc_base = dict(SPEC.plc_references)
+    plc_base.update(
+        (reader.integer(key, "[plc_base] key", 1, 255), reader.integer(value, f"[plc_base] {key}", 0, 999999))
         for key, value in plc.items()
         if key != "default"
-    }
+    )
+    identify = reader.table(data, "identify")
+    unknown = sorted(set(identify) - {"product_codes", "functions", "traffic_fit"})
+    if unknown:
+        raise reader.fail(f"unknown key {unknown[0]!r} in [identify]")
+    product_codes = identify.get("product_codes", [])
+    if not isinstance(product_codes, list) or not all(isinstance(code, str) and code for code in product_codes):
+        raise reader.fail("[identify] product_codes must be a list of strings")
+    traffic_fit = identify.get("traffic_fit", False)
+    if not isinstance(traffic_fit, bool):
+        raise reader.fail("[identify] traffic_fit must be true or false")
     protected = data.get("protected_value")
     all_protected = data.get("all_protected_exception")
     return Profile(
@@ -258,6 +277,9 @@ def parse_profile(text: str, origin: str) -> Profile:
         plc_base=plc_base,
         plc_base_default=plc_default,
         bits_depend=_bits_depend(reader, data),
+        product_codes=tuple(product_codes),
+        identifying_functions=reader.codes(identify, "functions") or frozenset(),
+        traffic_fit=traffic_fit,
     )
 
 

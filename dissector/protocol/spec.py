@@ -20,6 +20,7 @@ class Spec:
     device_id_objects: dict[int, str]
     limits: dict[str, object]
     not_broadcast: frozenset[int]
+    plc_references: dict[int, int]  # function -> PLC reference base (1: 00001, 10001, 30001)
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -47,6 +48,7 @@ def load_spec() -> Spec:
         device_id_objects=_int_keys(data["device_id_objects"]),
         limits=data["limits"],
         not_broadcast=frozenset(data["not_broadcast"]),
+        plc_references={int(key): int(value) for key, value in data.get("plc_references", {}).items()},
     )
 
 

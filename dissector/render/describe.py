@@ -66,6 +66,9 @@ def register_text(register: Register, index: int = 0) -> str:
 
 def values_text(frame: Frame) -> str:
     registers = frame.registers or []
+    if any(register.words == 0 for register in registers):
+        # A 32-bit value is one value over two registers: its second register is not listed again.
+        registers = [register for register in registers if register.words != 0]
     parts = [register_text(register, index) for index, register in enumerate(registers[:MAX_VALUES])]
     if len(registers) > MAX_VALUES:
         parts.append(f"… (+{len(registers) - MAX_VALUES})")
@@ -91,8 +94,8 @@ def info_text(frame: Frame) -> str:
     name = function_label(function, frame.function_text)
     if frame.kind is Kind.EXCEPTION:
         code = frame.exception_code
-        meaning = frame.exception_text or SPEC.exception_name(code)
-        return f"{name}: exception {code if code is not None else '?'} ({meaning})"
+        # The spec's name always; what it means on the device is said once, in a note.
+        return f"{name}: exception {code if code is not None else '?'} ({SPEC.exception_name(code)})"
     fields = frame.fields
     if fields is None:
         return f"{name} (malformed)"
@@ -130,7 +133,16 @@ def _diagnostics(frame: Frame, request: bool) -> str:
     if len(data) == 2:
         value = int.from_bytes(data, "big")
         return f"{sub:02X}h {sub_name} = {value}"
-    return f"{sub:02X}h {sub_name}" + (f" data {data.hex()}" if data else "")
+    return f"{sub:02X}h {sub_name}" + (f" data {_hex_preview(data)}" if data else "")
+
+
+MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
+
+
+def _hex_preview(data: bytes) -> str:
+    if len(data) <= MAX_DATA_BYTES:
+        return data.hex()
+    return f"{data[:MAX_DATA_BYTES].hex()}… (+{len(data) - MAX_DATA_BYTES} bytes)"
 
 
 def _write_multiple(frame: Frame, request: bool) -> str:

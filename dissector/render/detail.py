@@ -62,18 +62,22 @@ def _register_block(register: Register) -> tuple[Line, ...]:
     if address is None:
         address = "?" if register.address is None else register.address
     value = register.value
+    # No value: a status an exception tells (p.38 exception 02 to a read).
+    shown = "no value" if value is None else f"{value} (0x{value:04X})"
     code = register.code
     if code:
         name = register.name
-        head = (f"        Register {address}: {value} (0x{value:04X})  {code} [{name}]" if name
-                else f"        Register {address}: {value} (0x{value:04X})  {code}")
+        head = (f"        Register {address}: {shown}  {code} [{name}]" if name
+                else f"        Register {address}: {shown}  {code}")
     else:
-        head = f"        Register {address}: {value} (0x{value:04X})"
+        head = f"        Register {address}: {shown}"
     status = register.status
     style = "vw3.protected" if status in _PROTECTED else None
     lines: list[Line] = [(2, head, style)]
     if register.text is not None:
         lines.append((3, f"            Value: {register.text}", None))
+    if register.words == 2:
+        lines.append((3, "            32-bit value: this register and the next", None))
     if status is not None:
         lines.append((3, f"            Status: {status}", style))
     if register.unit:
@@ -99,7 +103,7 @@ def _register_lines(out: list[Line], registers: list[Register]) -> None:
             append((2, f"        Register {address}: {value} (0x{value:04X})", None))
             continue
         key = (register.address, register.value, register.code, register.name, register.text,
-               register.status, register.unit, register.source, register.label)
+               register.status, register.unit, register.source, register.label, register.words)
         block = blocks.get(key)
         if block is None:
             if len(blocks) >= _REGISTER_BLOCKS_MAX:
@@ -211,7 +215,7 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
     if frame.unanswered:
         add((1, "    No response", "vw3.warning"))
     for note in frame.notes:
-        add((1, f"    Note: {note}", "vw3.protected"))
+        add((1, f"    Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note"))
     for warning in frame.warnings:
         add((1, f"    Warning: {warning}", "vw3.warning"))
     return out

@@ -31,6 +31,8 @@ def register_to_dict(register: Register) -> dict[str, Any]:
         out["source"] = register.source
     if register.label is not None:
         out["label"] = register.label
+    if register.words != 1:
+        out["words"] = register.words  # 2: a 32-bit value read on this register and the next; 0: that next
     return out
 
 

@@ -26,6 +26,46 @@ def crc_text(frame: Frame) -> str:
     return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
 
 
+NOTES_BUDGET = 240  # characters of notes (and of warnings) a summary line shows; the rest is counted
+# (-V and JSON have them all)
+
+
+def tail_parts(frame: Frame) -> list[tuple[str, str]]:
+    """Pairing and findings appended to the info column, as (text, style name) pieces.
+
+    Notes show their short form (devices/story.py) and, past NOTES_BUDGET characters, only their
+    number; key events (a parameter that became protected) are styled apart from the dim pairing."""
+    parts: list[tuple[str, str]] = []
+    request = frame.request
+    if request is not None:
+        rt = frame.response_time
+        parts.append((f"[#{request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"), "vw3.pairing"))
+    elif frame.kind is not Kind.REQUEST:
+        parts.append(("[no request]", "vw3.pairing"))
+    if frame.broadcast:
+        parts.append(("[broadcast]", "vw3.pairing"))
+    if frame.unanswered:
+        parts.append(("[no response]", "vw3.warning"))
+    _budgeted(parts, [(f"[{getattr(note, 'short', note)}]", note) for note in frame.notes], "note")
+    _budgeted(parts, [(f"[warning: {warning}]", warning) for warning in frame.warnings], "warning")
+    return parts
+
+
+def _budgeted(parts: list[tuple[str, str]], texts: list[tuple[str, str]], what: str) -> None:
+    """The first text always, more while they fit in NOTES_BUDGET characters, then their number."""
+    used = 0
+    for index, (text, item) in enumerate(texts):
+        if used and used + len(text) > NOTES_BUDGET:
+            rest = len(texts) - index
+            parts.append((f"[+{rest} more {what}{'s' if rest > 1 else ''}]", "vw3.pairing"))
+            return
+        used += len(text)
+        if what == "warning":
+            parts.append((text, "vw3.warning"))
+        else:
+            parts.append((text, "vw3.key" if getattr(item, "key", False) else "vw3.note"))
+
+
 def tail_text(frame: Frame) -> str:
     """Pairing and findings appended to the info column."""
     request = frame.request
@@ -35,19 +75,7 @@ def tail_text(frame: Frame) -> str:
                 return ""
         elif frame.time is None:
             return f"[#{request.number}]"  # the common cases, kept cheap
-    parts = []
-    if frame.request is not None:
-        rt = frame.response_time
-        parts.append(f"[#{frame.request.number}" + (f", {rt * 1000:.1f} ms]" if rt is not None else "]"))
-    elif frame.kind is not Kind.REQUEST:
-        parts.append("[no request]")
-    if frame.broadcast:
-        parts.append("[broadcast]")
-    if frame.unanswered:
-        parts.append("[no response]")
-    parts.extend(f"[{note}]" for note in frame.notes)
-    parts.extend(f"[warning: {warning}]" for warning in frame.warnings)
-    return " ".join(parts)
+    return " ".join(text for text, _ in tail_parts(frame))
 
 
 def noise_info(noise: Noise) -> str:
@@ -100,10 +128,9 @@ def summary_text(item: Item, base: float | None = None, column: str | None = Non
     text.append(f"{frame.slave:>3} ", "vw3.slave")
     text.append(f"{frame.kind.value:<9} ", _KIND_STYLE[frame.kind])
     text.append(info_text(frame))
-    tail = tail_text(frame)
-    if tail:
-        style = "vw3.warning" if frame.warnings or frame.unanswered else "vw3.pairing"
-        text.append(" " + tail, style)
+    for part, style in tail_parts(frame):
+        text.append(" ")
+        text.append(part, style)
     text.append("  ")
     text.append(crc_text(frame), "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad")
     return text

@@ -15,6 +15,8 @@ STYLES = {
     "vw3.crc.bad": "bold red",
     "vw3.warning": "yellow",
     "vw3.pairing": "dim",
+    "vw3.note": "",  # explanations: plain, not dim (they are what the line is for)
+    "vw3.key": "bold yellow",  # key events: a parameter became protected or non-existent
     "vw3.protected": "bold yellow",
     "vw3.field": "bold",
     "vw3.hex": "",

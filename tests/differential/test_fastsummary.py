@@ -70,6 +70,11 @@ def fast_lines(data: bytes, annotator: object | None, splits: list[int] | None =
 
 
 def atv71() -> object:
+    return build_annotator(["atv71"], [], None)
+
+
+def auto() -> object:
+    """Profile `auto` (the default): slaves change profile as evidence arrives."""
     return build_annotator([], [], None)
 
 
@@ -87,7 +92,7 @@ def test_the_extension_is_built() -> None:
 
 
 @pytest.mark.parametrize("capture", sorted(p.name for p in (ROOT / "captures").glob("*.bin")))
-@pytest.mark.parametrize("profile", [None, "atv71", "sel749m"])
+@pytest.mark.parametrize("profile", [None, "auto", "atv71", "sel749m"])
 def test_shipped_captures_same_lines(capture: str, profile: str | None) -> None:
     data = (ROOT / "captures" / capture).read_bytes()
     if profile is None:
@@ -185,7 +190,7 @@ STORY = b"".join(
 )
 
 
-@pytest.mark.parametrize("annotator", ["atv71", "none", "map"])
+@pytest.mark.parametrize("annotator", ["atv71", "auto", "none", "map"])
 def test_device_semantics_same_lines(annotator: str, tmp_path: Path) -> None:
     if annotator == "map":
         path = tmp_path / "user.csv"
@@ -196,7 +201,7 @@ def test_device_semantics_same_lines(annotator: str, tmp_path: Path) -> None:
             return _with_layer(rows)
 
     else:
-        factory = atv71 if annotator == "atv71" else (lambda: None)
+        factory = {"atv71": atv71, "auto": auto}.get(annotator, lambda: None)
     for step in (0, 3, 17):
         splits = list(range(step, len(STORY), step)) if step else None
         assert_same(STORY, factory, splits)
@@ -445,7 +450,7 @@ def test_plant_mix_comes_from_the_engine_nearly_whole() -> None:
 @given(
     st.lists(st.tuples(st.sampled_from([1, 12, 20, 247]), strategies.transactions()), min_size=1, max_size=10),
     st.lists(st.integers(0, 600), max_size=3),
-    st.sampled_from(["generic", "atv71", "sel749m", None]),
+    st.sampled_from(["generic", "atv71", "sel749m", "auto", None]),
 )
 def test_every_public_code_same_lines(exchanges: list, splits: list[int], profile: str | None) -> None:
     """Transactions of every public code (tests/support/strategies.py), each profile."""

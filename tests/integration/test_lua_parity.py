@@ -136,7 +136,9 @@ def test_raw_capture_written_with_w_opens_the_same_in_wireshark(tmp_path: Path, 
     written = tmp_path / "written.pcap"
     subprocess.run([sys.executable, "-m", "dissector", str(capture), "-w", str(written)], cwd=ROOT, check=True,
                    capture_output=True, timeout=300)
-    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--json"], cwd=ROOT, check=True,
+    # The plugin's default profile is the ATV71 (it has no `auto`): vw3-decode is told the same.
+    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--json", "--profile", "atv71"],
+                            cwd=ROOT, check=True,
                             capture_output=True, text=True, timeout=300)
     python = place_items([json.loads(line) for line in result.stdout.splitlines()], record_lengths(written))
     # A raw capture has no times; the pcap written from it has records at the epoch, read as untimed.

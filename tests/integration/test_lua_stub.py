@@ -72,7 +72,8 @@ def test_p38_protection_story_under_lua54() -> None:
     assert "vw3.exception_code=2" in exception
     assert "vw3.request_frame=5" in exception
     assert (
-        "vw3.note=every parameter of this read is non-existent or protected: 8400 non-existent, "
+        "vw3.note=exception 02 from the VW3 A3 303: every parameter of this read is non-existent or "
+        "protected: 8400 non-existent, "
         "CHCF (8401) protected, COP (8402) protected" in exception
     )
     assert "vw3.note=COP (8402) became protected: read 2 in frame #4, exception 02 now" in exception

@@ -81,6 +81,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
             (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"),
              reg.get("name"), reg.get("unit"), reg.get("source"), _scaled(reg.get("scaled")))
             for reg in data.get("registers", [])
+            # The statuses an exception 02 tells (p.38, no value on the wire) are not in the plugin yet.
+            if reg["value"] is not None or data["kind"] != "exception"
         ],
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
         "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],

@@ -192,12 +192,21 @@ def record_lengths(pcap: Path) -> list[int]:
     return lengths
 
 
+def plugin_profiles(profiles: list[str] | None) -> list[str]:
+    """vw3-decode's profiles as the plugin takes them: the plugin has no profile `auto`, its default is
+    the ATV71, so vw3-decode is given the same default."""
+    chosen = list(profiles or [])
+    if all("=" in profile for profile in chosen):
+        chosen.append("atv71")
+    return chosen
+
+
 def python_items(
     pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0
 ) -> list[PythonItem]:
     """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records."""
     command = [sys.executable, "-m", "dissector", str(pcap), "--json", *options]
-    for profile in profiles or []:
+    for profile in plugin_profiles(profiles):
         command += ["--profile", profile]
     result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=900)
     if result.returncode != 0:
@@ -211,7 +220,7 @@ def python_items_library(pcap: Path, profiles: list[str] | None = None) -> list[
     items = []
     with open_source(str(pcap)) as source:
         framer = AsciiFramer() if source.mode == "ascii" else RtuFramer()
-        annotate = build_annotator(list(profiles or []), [])
+        annotate = build_annotator(plugin_profiles(profiles), [])
         dissector = Dissector(framer=framer, annotate=annotate, timeout=CLI_TIMEOUT)
         for chunk in source:
             items += dissector.feed(chunk)

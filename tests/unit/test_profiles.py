@@ -35,7 +35,12 @@ FC43_RESPONSE = (
 
 def frames(hex_text: str, profiles: list[str] | None = None, maps: list[str] | None = None,
            style: str | None = None) -> list[Frame]:
-    annotate = build_annotator(profiles or [], maps or [], style)
+    chosen = list(profiles or [])
+    if all("=" in profile for profile in chosen):
+        # These tests are about a profile's semantics: the ATV71 as every slave's default, as before
+        # profile `auto` (tests/unit/test_auto_profile.py) became the default.
+        chosen.append("atv71")
+    annotate = build_annotator(chosen, maps or [], style)
     items = dissect_bytes(bytes.fromhex(hex_text), annotate=annotate)
     assert all(isinstance(item, Frame) for item in items), items
     return items  # type: ignore[return-value]
@@ -68,10 +73,9 @@ def test_p38_three_scenarios_in_one_capture() -> None:
     assert two.notes == ["CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"]
     # Scenario 3: everything non-existent or protected -> exception 02, explained.
     assert three.exception_code == 2
+    # The device meaning once, with the parameters it is about (the spec name is in the Info column).
     assert three.notes == [
-        "exception 02 from the VW3 A3 303: address does not exist "
-        "(also: every parameter read is non-existent or protected)",
-        "every parameter of this read is non-existent or protected: "
+        "exception 02 from the VW3 A3 303: every parameter of this read is non-existent or protected: "
         "8400 non-existent, CHCF (8401) protected, COP (8402) protected",
         "COP (8402) became protected: read 2 in frame #4, exception 02 now",
     ]
@@ -310,11 +314,15 @@ def test_bad_map_line_is_reported_through_build_annotator(tmp_path: Path) -> Non
     ("profiles", "maps", "message"),
     [
         (["atv7"], [], "unknown profile 'atv7' (built-in: atv71, sel749m, generic; or a .toml file)"),
+        (["atv71", "auto"], [], "--profile 'auto': a default profile (atv71) is already set"),
+        (["3=auto"], [], "--profile '3=auto': auto is for every slave (--profile auto)"),
         (["300=atv71"], [], "--profile '300=atv71': slave 300 is outside 0..247"),
         (["x=atv71"], [], "--profile 'x=atv71': 'x' is not a slave address"),
         (["atv71", "generic"], [], "--profile 'generic': a default profile (atv71) is already set"),
         (["3=atv71", "3=generic"], [], "--profile '3=generic': slave 3 already has a profile"),
         ([], ["foo=x.csv"],
+         "--map 'foo=x.csv': 'foo' is neither a slave address nor a profile in use (atv71, generic, sel749m)"),
+        (["atv71"], ["foo=x.csv"],
          "--map 'foo=x.csv': 'foo' is neither a slave address nor a profile in use (atv71)"),
     ],
 )
@@ -363,7 +371,7 @@ def test_command_line_arguments() -> None:
 
 
 def test_names_for_renderers() -> None:
-    annotate = build_annotator(["1=sel749m"], [], None)
+    annotate = build_annotator(["1=sel749m", "atv71"], [], None)
     assert annotate.exception_name(2, 6) == "write refused: the drive is in Forced local mode"
     assert annotate.exception_name(2, 8) == "Memory Parity Error"  # not documented by the card: spec name
     assert annotate.function_name(1, 0x60) == "Read Parameter Information"
@@ -382,7 +390,7 @@ def test_a_revision_with_non_ascii_digits_is_not_read_as_a_version() -> None:
     from helpers import rtu
 
     response = rtu("02 2B 0E 01 02 00 00 01 02 04 30 B2 30 31")
-    items = dissect_bytes(rtu("02 2B 0E 01 00") + response, annotate=build_annotator([], []))
+    items = dissect_bytes(rtu("02 2B 0E 01 00") + response, annotate=build_annotator(["atv71"], []))
     (obj,) = items[1].objects
     assert (obj.name, obj.value) == ("MajorMinorRevision", "0\xb201")
     assert obj.text != "V0.1" and not (obj.text or "").startswith("V")

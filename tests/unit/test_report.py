@@ -100,3 +100,12 @@ def test_unwritable_report_is_one_line(tmp_path) -> None:
     status, out, err = run_cli([str(CAPTURES / "p38_protection.bin"), "--report", str(tmp_path / "no" / "r.html")])
     assert (status, out) == (2, "")  # refused before decoding, as -w
     assert err == f"vw3-decode: --report {tmp_path / 'no' / 'r.html'}: No such file or directory\n"
+
+
+def test_report_of_a_live_line_is_refused() -> None:
+    from helpers import run_cli
+
+    for option in (["--report", "r.html"], ["--stats"]):
+        assert run_cli(["--live", "loop://", *option]) == (
+            2, "", "vw3-decode: --report and --stats read files: capture with -w FILE, then report on it\n"
+        )

@@ -1,0 +1,62 @@
+"""Device limits: requests a device does not support, beyond its word limits, or broadcast against
+its rules, as warnings. One job: what a request asks that this device will refuse."""
+from __future__ import annotations
+
+from dissector.devices.device import Device
+from dissector.devices.profiles import Profile
+from dissector.model import Frame
+from dissector.protocol.spec import SPEC
+
+
+def within_limits(frame: Frame, device: Device) -> bool:
+    """True when a supported request is within the device's limits (nothing to report)."""
+    limits = device.limited.get(frame.function)
+    if limits is None:
+        return False
+    quantity = frame.quantity
+    if quantity is None or quantity > limits[0]:
+        return False
+    if len(limits) > 1:
+        fields = frame.fields
+        return fields is not None and fields.write_quantity <= limits[1]
+    return True
+
+
+def check_request(frame: Frame, device: Device) -> None:
+    profile = device.profile
+    function = frame.function
+    name = profile.function_names.get(function) or SPEC.function_name(function)
+    if profile.functions is not None and function not in profile.functions:
+        frame.warnings.append(f"{name} ({function}) is not supported by the {profile.device}")
+    elif function in profile.inner_only:
+        frame.warnings.append(
+            f"{name} ({function}) is only valid inside an encapsulated packet on the {profile.device}"
+        )
+    limits = profile.limits.get(function)
+    if limits is not None:
+        _check_limits(frame, profile, name, limits)
+    if (
+        frame.broadcast
+        and profile.broadcast is not None
+        and function not in profile.broadcast
+        and function not in SPEC.not_broadcast  # decode.py already warned with the spec's rule
+    ):
+        allowed = ", ".join(str(code) for code in sorted(profile.broadcast)) or "none"
+        frame.warnings.append(
+            f"{name} cannot be broadcast to the {profile.device} (broadcast functions: {allowed})"
+        )
+
+
+def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, ...]) -> None:
+    if frame.function == 23:
+        fields = frame.fields
+        if fields is None:
+            return
+        checks = [("read quantity", fields.read_quantity), ("write quantity", fields.write_quantity)]
+    else:
+        checks = [("quantity", frame.quantity)]
+    for (what, quantity), limit in zip(checks, limits):
+        if quantity is not None and quantity > limit:
+            frame.warnings.append(
+                f"{what} {quantity} is beyond the {profile.device}'s limit of {limit} words for {name}"
+            )

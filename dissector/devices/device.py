@@ -1,0 +1,99 @@
+"""What the annotator knows of one slave: its profile, merged register map and precomputed checks.
+
+Built on a slave's first frame (or when its profile is chosen), so the per-frame work is lookups.
+"""
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+
+from dissector.devices.maps import RegisterDef, RegisterMap
+from dissector.devices.profiles import BitsDepend, Profile, load_profile_map
+
+# What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
+# (how is then its status); how "read" or "written" otherwise. Plain tuples: this is the hot path.
+Seen = tuple[int | None, int, str]
+
+
+@dataclass(frozen=True, slots=True)
+class MapLayer:
+    """Rows from a --map file, for every slave, one slave, or the slaves of one profile."""
+
+    rows: RegisterMap
+    slave: int | None = None
+    profile: str | None = None
+
+
+@dataclass(slots=True)
+class Device:
+    """Everything one slave needs, computed once."""
+
+    profile: Profile
+    rows: RegisterMap
+    plain: dict[int, RegisterDef]  # rows without bit labels, for bits_depend
+    depend: dict[int, BitsDepend]
+    plc: dict[int, int] | None  # PLC base per function (None: protocol addresses)
+    plc_default: int
+    # Parameters are followed only where it tells something: protection, or bits that depend on a value.
+    track: bool
+    # Requests that need no check at all (supported, no device limit): the common case costs one lookup.
+    unchecked: frozenset[int]
+    # Supported functions with a device limit: checked inline before the full (slower) check.
+    limited: dict[int, tuple[int, ...]]
+    wide: bool = False  # the map has 32-bit rows
+    seen: dict[int, Seen] = field(default_factory=dict)
+    labels: dict[int, dict[int, str]] = field(default_factory=dict)
+    # Exception explanations depend on the request's bytes alone: a PLC that polls a protected block
+    # draws the same exception again and again.
+    explained: dict[object, object] = field(default_factory=dict)
+
+    def base(self, function: int) -> int:
+        return self.plc.get(function, self.plc_default)  # type: ignore[union-attr]
+
+
+class DeviceBuilder:
+    """Devices from profiles and --map layers; each profile's map is read once."""
+
+    def __init__(self, layers: list[MapLayer], address_style: str | None) -> None:
+        self.layers = list(layers)
+        self.address_style = address_style
+        self._base_maps: dict[str, RegisterMap] = {}
+
+    def build(self, profile: Profile, slave: int | None) -> Device:
+        base = self._base_maps.get(profile.name)
+        if base is None:
+            base = self._base_maps[profile.name] = load_profile_map(profile)
+        rows = base
+        for layer in self.layers:
+            if layer.slave is not None and layer.slave != slave:
+                continue
+            if layer.profile is not None and layer.profile != profile.name:
+                continue
+            if rows is base:
+                rows = dict(base)
+            rows.update(layer.rows)
+        depend: dict[int, BitsDepend] = {}
+        plain: dict[int, RegisterDef] = {}
+        for rule in profile.bits_depend:
+            for address in rule.registers:
+                if address in rows:
+                    depend[address] = rule
+                    plain[address] = dataclasses.replace(rows[address], bits={}, memo={})
+        style = self.address_style or profile.address_style
+        supported = profile.functions if profile.functions is not None else frozenset(range(256))
+        return Device(
+            profile=profile,
+            rows=rows,
+            plain=plain,
+            depend=depend,
+            plc=dict(profile.plc_base) if style == "plc" else None,
+            plc_default=profile.plc_base_default,
+            track=profile.protected_value is not None or bool(depend),
+            unchecked=frozenset(supported - profile.inner_only - set(profile.limits)),
+            wide=any(row.words == 2 for row in rows.values()),
+            limited={
+                function: limits
+                for function, limits in profile.limits.items()
+                if function in supported and function not in profile.inner_only
+            },
+        )

@@ -1,0 +1,145 @@
+"""Exceptions in the device's own terms: the spec's name stays in the Info column, the device's
+meaning is said once, in one note (with the relay counters an error increments, or the parameters a
+refused read was made of). One job: what an exception means on this device."""
+from __future__ import annotations
+
+from dissector.devices.device import Device
+from dissector.devices.memory import lost
+from dissector.devices.naming import address_name, plc_label
+from dissector.devices.profiles import ExceptionCause, Profile
+from dissector.devices.story import Event, listed
+from dissector.model import Frame, Note, Register
+from dissector.protocol import table
+from dissector.protocol.spec import SPEC
+
+# Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
+PLAIN_READS = table.plain_register_reads()
+SHORT_PARTS = 6  # runs of parameters a summary line names in an exception explanation
+READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
+_EXPLAINED_LIMIT = 4096  # explanations kept per device: memory stays bounded whatever the capture
+
+
+def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None:
+    profile = device.profile
+    code = frame.exception_code
+    if code is None:
+        return
+    function = frame.function
+    name = profile.function_names.get(function) or SPEC.function_name(function)
+    causes = profile.exception_causes.get((function, code))
+    all_unreadable = code == profile.all_protected_exception and function in PLAIN_READS
+    request = frame.request
+    if causes:
+        key = (function, code, None if request is None else request.raw)
+        note = device.explained.get(key)
+        if note is None:
+            chosen = _pick_causes(request, profile, causes)
+            note = f"exception {code:02X} from the {profile.device} to {name}: " + " or ".join(
+                _cause_text(cause) for cause in chosen
+            )
+            _remember(device.explained, key, note)
+        frame.notes.append(note)  # type: ignore[arg-type]
+    elif all_unreadable and request is not None and request.start is not None and request.quantity:
+        _all_unreadable(frame, device, request, events)
+    elif code in profile.exceptions:
+        frame.notes.append(f"exception {code:02X} from the {profile.device}: {profile.exceptions[code]}")
+    elif profile.exceptions:
+        known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
+        frame.notes.append(f"exception {code:02X} is not one the {profile.device} documents ({known})")
+    frame.exception_text = profile.exceptions.get(code)
+
+
+def _pick_causes(
+    request: Frame | None, profile: Profile, causes: tuple[ExceptionCause, ...]
+) -> tuple[ExceptionCause, ...]:
+    if request is None:
+        return causes
+    hits = tuple(cause for cause in causes if cause.when and _holds(cause.when, request, profile))
+    if hits:
+        return hits
+    return tuple(cause for cause in causes if cause.when is None) or causes
+
+
+def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[Event]) -> None:
+    """Exception 02 to a read on a device whose reads fail only when every parameter is unreadable."""
+    key = (request.function, request.start, request.quantity)
+    known = device.explained.get(key)
+    if known is None:
+        rows = device.rows
+        base = device.base(request.function) if device.plc is not None else None
+        addresses = [
+            (request.start + index) & 0xFFFF  # type: ignore[operator]
+            for index in range(min(request.quantity, READ_LIMIT))  # type: ignore[type-var]
+        ]
+        lost_ = [
+            (address, rows.get(address), None if base is None else plc_label(base, address))
+            for address in addresses
+        ]
+        parts: list[tuple[str, int]] = []
+        run: list[tuple[int, object, str | None]] = []
+        for entry in lost_:
+            if run and (entry[1] is None) == (run[-1][1] is None) and entry[1] is None and entry[0] == run[-1][0] + 1:
+                run.append(entry)
+                continue
+            if run:
+                parts.append(_part(run))
+            run = [entry]
+        parts.append(_part(run))
+        head = f"exception {frame.exception_code:02X} from the {device.profile.device}: every parameter of this read is non-existent or protected: "
+        full, short = listed(parts, SHORT_PARTS)
+        known = (Note(head + full, head + short, key=True), lost_)
+        _remember(device.explained, key, known)
+    note, lost_ = known  # type: ignore[misc]
+    frame.notes.append(note)
+    now = f"exception {frame.exception_code:02X} now"
+    # The registers the story is about, with the status it infers and no value (none was sent), so
+    # that `status == "protected"` finds this frame as it finds a 16#8000 read.
+    inferred = f"no value: exception {frame.exception_code:02X}"
+    registers = []
+    for address, row, label in lost_:
+        status = "non-existent" if row is None else "protected"
+        lost(frame, device, address, row, status, now, label, events)
+        register = Register(address, None, status=status, text=inferred, label=label)  # type: ignore[arg-type]
+        if row is not None:
+            register.code, register.name, register.unit, register.source = row.code, row.name, row.unit, row.source
+        registers.append(register)
+    frame.registers = registers
+
+
+def _part(run: list[tuple[int, object, str | None]]) -> tuple[str, int]:
+    """`CHCF (8401) protected`, or neighbouring unmapped addresses as one range."""
+    address, row, label = run[0]
+    if len(run) == 1:
+        status = "non-existent" if row is None else "protected"
+        return f"{address_name(row, address, label)} {status}", 1  # type: ignore[arg-type]
+    last_address, _, last_label = run[-1]
+    return f"{label or address}..{last_label or last_address} non-existent ({len(run)})", len(run)
+
+
+def _remember(cache: dict[object, object], key: object, value: object) -> None:
+    if len(cache) >= _EXPLAINED_LIMIT:
+        cache.clear()
+    cache[key] = value
+
+
+def _holds(when: str, request: Frame, profile: Profile) -> bool:
+    fields = request.fields
+    if when == "quantity":
+        quantity = request.quantity
+        limits = profile.limits.get(request.function)
+        limit = limits[0] if limits else READ_LIMIT
+        return quantity is not None and not 1 <= quantity <= limit
+    if when == "byte_count":
+        if fields is None or "byte_count" not in fields or "quantity" not in fields:
+            return False
+        return bool(fields.byte_count != 2 * fields.quantity)
+    return False
+
+
+def _cause_text(cause: ExceptionCause) -> str:
+    if not cause.counters:
+        return cause.error
+    counters = cause.counters
+    names = " and ".join(counters)
+    plural = "counters" if len(counters) > 1 else "counter"
+    return f"{cause.error} (increments the {names} {plural})"

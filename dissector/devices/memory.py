@@ -1,0 +1,59 @@
+"""Parameter memory: each parameter followed across the capture (VW3 A3 303 manual p.38).
+
+A multi-register read returns 16#8000 for a non-existent or protected parameter; a parameter read (or
+written) earlier and unreadable now "became protected", one unreadable before and read now is
+"readable again". One job: the story of each parameter, told as events (devices/story.py tells them).
+The memory is the Device's `seen` dict, which the compiled summary path also keeps up to date.
+"""
+from __future__ import annotations
+
+from dissector.devices.device import Device
+from dissector.devices.maps import RegisterDef
+from dissector.devices.story import Event
+from dissector.model import Frame, Register
+
+
+def unreadable(frame: Frame, device: Device, register: Register, row: RegisterDef | None, events: list[Event]) -> None:
+    """16#8000 in a multi-register read: non-existent, protected, or (if it can be real) ambiguous."""
+    if row is None:
+        status = "non-existent"
+        register.text = "16#8000: non-existent (address not in the map)"
+    elif row.ambiguous_8000:
+        # The value may be real: keep its own reading, and what was known of the parameter.
+        register.status = "ambiguous"
+        return
+    else:
+        status = "protected"
+        register.scaled = None
+        register.text = "16#8000: protected"
+    register.status = status
+    lost(frame, device, register.address, row, status, "16#8000 now", register.label, events)  # type: ignore[arg-type]
+
+
+def lost(
+    frame: Frame, device: Device, address: int, row: RegisterDef | None, status: str, now: str,
+    label: str | None, events: list[Event],
+) -> None:
+    """Record a parameter as unreadable, telling the story if it was readable before."""
+    last = device.seen.get(address)
+    if last is not None and last[0] is not None:
+        became = "protected" if row is not None else "non-existent or protected"
+        events.append(
+            Event(f"became {became}", address, row, label, f"{last[2]} {last[0]}", last[2], last[1], now, now)
+        )
+    device.seen[address] = (None, frame.number, status)
+
+
+def readable_again(
+    address: int, row: RegisterDef | None, label: str | None, last: tuple[int | None, int, str], value: int,
+    events: list[Event],
+) -> None:
+    events.append(Event("readable again", address, row, label, last[2], last[2], last[1], f"{value} now", None))
+
+
+def remember_writes(frame: Frame, device: Device, registers: list[Register]) -> None:
+    seen = device.seen
+    number = frame.number
+    for register in registers:
+        if register.address is not None:
+            seen[register.address] = (register.value, number, "written")

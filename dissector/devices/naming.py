@@ -1,0 +1,61 @@
+"""Register naming: the address a screen shows (protocol or PLC style) and a register named and read
+from its map row. One job: what a register is called and what its value means."""
+from __future__ import annotations
+
+from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret, interpret_wide
+from dissector.model import Register
+
+
+def plc_label(base: int, address: int) -> str:
+    """`40001 + address` up to 49999, then 6-digit references (`400001 + address`); coils as 00001."""
+    digits = max(5, len(str(base)))  # coil references (base 1) are written with their zeros: 00001
+    power = 10 ** (digits - 1)
+    top = (base // power + 1) * power - 1
+    number = base + address
+    if number > top:
+        number = base * 10 - 9 + address
+        digits += 1
+    return f"{number:0{digits}d}"
+
+
+def address_name(row: RegisterDef | None, address: int, label: str | None = None) -> str:
+    """`CHCF (8401)` for a mapped register, `8400` otherwise (`label`: the address as the screen shows it)."""
+    shown = label if label is not None else str(address)
+    return f"{row.code} ({shown})" if row is not None else shown
+
+
+def name_register(register: Register, row: RegisterDef, used: RegisterDef) -> None:
+    """Name and read a register from its map row (`used`: the row, or its plain form under bits_depend)."""
+    register.code = row.code
+    register.name = row.name
+    register.unit = row.unit
+    register.source = row.source
+    value = register.value
+    memo = used.memo
+    reading = memo.get(value)
+    if reading is None:
+        reading = interpret(used, value)
+        if len(memo) < MEMO_LIMIT:
+            memo[value] = reading
+    register.scaled, register.text = reading
+
+
+def name_wide(registers: list[Register], index: int, row: RegisterDef) -> None:
+    """A 32-bit row over registers[index] and the next: one value, read on the first register."""
+    first = registers[index]
+    first.code = row.code
+    first.name = row.name
+    first.unit = row.unit
+    first.source = row.source
+    second = registers[index + 1] if index + 1 < len(registers) else None
+    if second is None or second.address != (first.address + 1) & 0xFFFF:  # type: ignore[operator]
+        first.text = f"first word of a {row.kind}, the second is not in this frame"
+        return
+    first.scaled, first.text = interpret_wide(row, first.value, second.value)
+    first.words = 2
+    second.code = row.code
+    second.name = row.name
+    second.unit = row.unit
+    second.source = row.source
+    second.text = f"second word of {row.code}"
+    second.words = 0
