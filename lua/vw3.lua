@@ -1070,14 +1070,19 @@ for byte = 0, 255 do
   CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
   for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
 end
+-- The table bytes of (lo XOR byte), keyed by lo * 256 + byte: one lookup fewer a byte on the hot path.
+local CRC_LO2, CRC_HI2 = {}, {}
+for key = 0, 65535 do
+  local index = XOR8[key]
+  CRC_LO2[key], CRC_HI2[key] = CRC_LO[index], CRC_HI[index]
+end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table).
 local function crc16(b, from, to)
   local lo, hi = 0xFF, 0xFF
   for k = from, to - 1 do
-    local index = XOR8[lo * 256 + b[k]]
-    lo = XOR8[hi * 256 + CRC_LO[index]]
-    hi = CRC_HI[index]
+    local key = lo * 256 + b[k]
+    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
   end
   return hi * 256 + lo
 end
@@ -1087,9 +1092,21 @@ local function crc_step(crc, byte)
   return CRC_HI[index] * 256 + XOR8[floor(crc / 256) * 256 + CRC_LO[index]]
 end
 
+-- Does the frame of `length` bytes at i carry a good CRC? The running CRC of the last frame start is
+-- kept: the layouts tried at one start (a request of 8 bytes, then a response of 5 + byte count, then the
+-- frame that follows...) share their first bytes, and the CRC costs most of the framing. (Byte tables
+-- are never changed below their end, so a CRC once computed stays right.)
+local crc_b, crc_i, crc_to, crc_lo, crc_hi = nil, -1, -1, 0xFF, 0xFF
 local function crc_ok_at(b, i, length)
   local stop = i + length - 2
-  return crc16(b, i, stop) == b[stop] + b[stop + 1] * 256
+  local lo, hi, k = 0xFF, 0xFF, i
+  if b == crc_b and i == crc_i and stop >= crc_to then lo, hi, k = crc_lo, crc_hi, crc_to end
+  for j = k, stop - 1 do
+    local key = lo * 256 + b[j]
+    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
+  end
+  crc_b, crc_i, crc_to, crc_lo, crc_hi = b, i, stop, lo, hi
+  return hi * 256 + lo == b[stop] + b[stop + 1] * 256
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -1201,172 +1218,286 @@ local function shortest_crc(b, i, n, minimum)
   return 0
 end
 
--- Does an intact frame start at i? The end of the record counts as a frame boundary. With scan false,
--- only layouts with a length rule count.
-local function valid_frame_at(st, b, i, n, scan)
-  if n - i < MIN_ADU then return i == n end
+-- (one block: the main chunk of a Lua file may hold at most 200 locals)
+local MODE_SAMPLE = 64
+local feed, detect_mode, flush_noise_of
+do
+-- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
+-- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
+-- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
+-- are chunks with boundary=True), yet it is no end of data: a frame cut by it waits for the next
+-- record, and the end of the capture (finish) decides what is still waiting.
+local function boundary_at(s, i)
+  return s.boundaries[s.base + i] == true
+end
+
+-- The stream offset's time: the time of the record its byte came in (stream.py _time_at).
+local function time_at(s, offset)
+  local times = s.times
+  for index = #times, 1, -1 do
+    local entry = times[index]
+    if entry[1] <= offset then return entry[2] end
+  end
+  return nil
+end
+
+-- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
+-- (and buffers) it came from, and is shown in one piece.
+local function flush_noise(s, items)
+  local noise = s.noise
+  if noise ~= nil then
+    items[#items + 1] = noise
+    s.noise = nil
+  end
+end
+
+local function add_noise(s, start, stop, reason, items)
+  local b = s.b
+  while start < stop do
+    local noise = s.noise
+    if noise == nil then
+      local offset = s.base + start
+      noise = { kind = NOISE, offset = offset, length = 0, reason = reason, time = time_at(s, offset), bytes = {} }
+      s.noise = noise
+    end
+    local take = math.min(stop - start, NOISE_ITEM_MAX - noise.length)
+    local bytes_, length = noise.bytes, noise.length
+    for k = 0, take - 1 do bytes_[length + k + 1] = b[start + k] end
+    noise.length = length + take
+    start = start + take
+    if noise.length >= NOISE_ITEM_MAX then flush_noise(s, items) end
+  end
+end
+
+local function emit(s, frame, items)
+  flush_noise(s, items)
+  items[#items + 1] = frame
+  if frame.kind == REQUEST and frame.slave ~= 0 then
+    s.expect = frame.slave * 256 + frame.code
+  else
+    s.expect = nil
+  end
+end
+
+-- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
+-- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
+local function valid_frame_at(s, b, i, n, final, scan)
+  if n - i < MIN_ADU then
+    if final then return i == n end
+    return nil
+  end
   local slave = b[i]
   if slave > MAX_SLAVE then return false end
-  for _, interpretation in ipairs(interpretations(st, slave, b[i + 1])) do
-    local length, is_scan = interpretation[2](b, i, n)
+  local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
+  local list = interpretations(s, slave, b[i + 1])
+  for index = 1, #list do
+    local length, is_scan = list[index][2](b, i, n)
     if is_scan then
-      if scan ~= false and shortest_crc(b, i, n, length) > 0 then return true end
+      if scan ~= false then
+        if shortest_crc(b, i, n, length) > 0 then return true end
+        undecided = undecided or (not final and n - i < MAX_ADU)
+      end
     elseif length == NEED then
-      return false
-    elseif length >= MIN_ADU and length <= MAX_ADU and i + length <= n and crc_ok_at(b, i, length) then
-      return true
+      if final then return false end
+      return nil
+    elseif length >= MIN_ADU and length <= MAX_ADU then
+      if i + length > n then
+        if not final then return nil end
+      elseif crc_ok_at(b, i, length) then
+        return true
+      end
     end
   end
+  if undecided then return nil end
   return false
 end
 
 -- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1?
-local function intact_inside(st, b, i, length, n)
+local function intact_inside(s, b, i, length, n)
   for j = i + 1, i + length - 1 do
-    if valid_frame_at(st, b, j, n, false) then return true end
+    if valid_frame_at(s, b, j, n, true, false) then return true end
   end
   return false
 end
 
--- A frame without a length rule: the shortest CRC match that an intact frame (or the end) follows and
--- that holds no intact frame inside (a CRC scan alone would take noise for frames).
-local function scan_match(st, b, i, n, minimum)
+-- A frame without a length rule: the shortest CRC match that an intact frame (or the end) follows. In
+-- step a scanned frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
+local function scan_match(s, b, i, n, minimum, final)
   local last = math.min(n - i, MAX_ADU)
-  if minimum > last then return NONE end
-  -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
-  local crc = 0xFFFF
-  for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
-  for length = minimum, last do
-    local stop = i + length - 2
-    if crc == b[stop] + b[stop + 1] * 256 and valid_frame_at(st, b, i + length, n)
-        and not intact_inside(st, b, i, length, n) then
-      return length
+  if minimum < 2 then minimum = 2 end
+  if minimum <= last then
+    -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
+    local crc = 0xFFFF
+    for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
+    for length = minimum, last do
+      local stop = i + length - 2
+      if crc == b[stop] + b[stop + 1] * 256 then
+        local following = valid_frame_at(s, b, i + length, n, final)
+        if following == nil then return NEED end
+        if following and not (s.noise ~= nil and intact_inside(s, b, i, length, n)) then return length end
+      end
+      crc = crc_step(crc, b[stop])
     end
-    crc = crc_step(crc, b[stop])
   end
+  if n - i < MAX_ADU and not final then return NEED end
   return NONE
 end
 
--- kind, length, crc_ok for a frame at i, or nil when i starts no frame.
-local function match(st, b, i, n)
+-- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
+local function match(s, b, i, n, final)
   local slave, code = b[i], b[i + 1]
-  if slave > MAX_SLAVE then return nil end
-  -- The first layout that checks out is held in locals: tables only when a second one does, or none does.
-  local first_kind, first_length, valid, damaged = nil, nil, nil, nil
-  local list = interpretations(st, slave, code)
+  if slave > MAX_SLAVE then return NONE end
+  local valid, damaged, waiting = nil, nil, nil
+  local list = interpretations(s, slave, code)
   for index = 1, #list do
-    local interpretation = list[index]
-    local kind = interpretation[1]
-    local length, is_scan = interpretation[2](b, i, n)
-    local ok_length = nil
+    local kind = list[index][1]
+    local length, is_scan = list[index][2](b, i, n)
     if is_scan then
-      local found = scan_match(st, b, i, n, length)
-      if found > 0 then ok_length = found end
-    elseif length ~= NEED and length >= MIN_ADU and length <= MAX_ADU and i + length <= n then
-      if crc_ok_at(b, i, length) then
-        ok_length = length
+      local found = scan_match(s, b, i, n, length, final)
+      if found == NEED then
+        waiting = waiting or {}
+        waiting[#waiting + 1] = NEED
+      elseif found > 0 then
+        valid = valid or {}
+        valid[#valid + 1] = { kind, found }
+      end
+    elseif length == NEED then
+      if not final then
+        waiting = waiting or {}
+        waiting[#waiting + 1] = NEED
+      end
+    elseif length >= MIN_ADU and length <= MAX_ADU then
+      if i + length > n then
+        if not final then
+          waiting = waiting or {}
+          waiting[#waiting + 1] = length
+        end
+      elseif crc_ok_at(b, i, length) then
+        valid = valid or {}
+        valid[#valid + 1] = { kind, length }
       else
         damaged = damaged or {}
         damaged[#damaged + 1] = { kind, length }
       end
     end
-    if ok_length ~= nil then
-      if first_kind == nil then
-        first_kind, first_length = kind, ok_length
-      else
-        valid = valid or { { first_kind, first_length } }
-        valid[#valid + 1] = { kind, ok_length }
+  end
+  if valid ~= nil and #valid == 1 then
+    local kind, length = valid[1][1], valid[1][2]
+    -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
+    -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
+    local expected = kind == RESPONSE and s.expect == slave * 256 + code
+    if not expected and not boundary_at(s, i + length) and waiting ~= nil then
+      for index = 1, #waiting do
+        if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
       end
     end
+    return kind, length, true
   end
-  if first_kind ~= nil and valid == nil then return first_kind, first_length, true end
   if valid ~= nil then
-    -- Two layouts check out (CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks
-    -- as a frame one byte longer): the end of the record, then the answer awaited, then what follows
-    -- decides (framer.py _match).
-    for _, candidate in ipairs(valid) do
-      if i + candidate[2] == n then return candidate[1], candidate[2], true end
+    -- Two layouts check out: a record boundary, the answer awaited, then what follows decides.
+    for index = 1, #valid do
+      if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
     end
-    if st.expect == slave * 256 + code and valid[1][1] == RESPONSE then
-      return valid[1][1], valid[1][2], true
-    end
-    for _, candidate in ipairs(valid) do
-      if valid_frame_at(st, b, i + candidate[2], n) then return candidate[1], candidate[2], true end
+    if s.expect == slave * 256 + code and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
+    for index = 1, #valid do
+      local following = valid_frame_at(s, b, i + valid[index][2], n, final)
+      if following == nil then return NEED end
+      if following then return valid[index][1], valid[index][2], true end
     end
     return valid[1][1], valid[1][2], true
   end
-  -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins (a record
-  -- boundary counts: a capture tool cut the record there) and holds none inside.
-  for _, candidate in ipairs(damaged or NO_INTERPRETATION) do
-    local length = candidate[2]
-    if valid_frame_at(st, b, i + length, n) and not intact_inside(st, b, i, length, n) then
-      return candidate[1], length, false
+  if waiting ~= nil then return NEED end
+  -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins and holds
+  -- none inside (a cut frame must not swallow the intact frame that follows it).
+  for index = 1, #(damaged or NO_INTERPRETATION) do
+    local kind, length = damaged[index][1], damaged[index][2]
+    local following = valid_frame_at(s, b, i + length, n, final)
+    if following == nil then return NEED end
+    if following and (i + length < n or s.expect == slave * 256 + code % 128) then
+      if not intact_inside(s, b, i, length, n) then return kind, length, false end
     end
   end
-  return nil
+  return NONE
 end
 
--- Split one record into frames and noise runs, in order. st carries the expectation across records,
--- and whether the byte stream was in noise when the record began (the Python framer's pending noise).
--- (No closures here: this runs once a record, and they cost more to make and collect than the framing.)
-local function frame_record(st, b, n)
-  local items = {}
-  local noise_start, noise_length, noise_reason = nil, 0, nil
-  local carried = st.noise_carry
+-- Can a frame start with these two bytes (a slave address, then a function code with a layout)?
+local function possible_start(slave, code)
+  return slave <= MAX_SLAVE and (RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil))
+end
+
+local function rtu_frame(s, i, kind, length, crc_ok)
+  local b = s.b
+  local offset = s.base + i
+  local stop = i + length - 2
+  local crc = b[stop] + b[stop + 1] * 256
+  local code = b[i + 1]
+  -- (a frame that checks out has the CRC it carries: no need to compute it again)
+  return {
+    kind = kind, offset = offset, length = length, slave = b[i], code = code, fn = code % 128,
+    crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time_at(s, offset),
+    warnings = {}, notes = {}, mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
+  }
+end
+
+-- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
+local function run_rtu(s, final, items)
+  local b, n = s.b, s.n
   local i = 0
-  while i < n do
-    local kind, length, crc_ok, slave, code
-    local reason = "too short for a frame"
-    if n - i >= MIN_ADU then
-      reason = "no valid frame"
-      kind, length, crc_ok = match(st, b, i, n)
-      slave, code = b[i], b[i + 1]
-      if kind ~= nil and crc_ok and (noise_start ~= nil or carried
-          or (kind ~= REQUEST and st.expect ~= slave * 256 + code % 128)) then
-        -- Resynchronising inside noise, or an answer nobody asked for: random bytes pass a CRC 1 time in
-        -- 65,536 per layout tried, so such a frame counts only when an intact frame (or the end) follows.
-        if not valid_frame_at(st, b, i + length, n) then kind = nil end
-      end
+  while n - i >= MIN_ADU or (final and i < n) do
+    if n - i < MIN_ADU then
+      add_noise(s, i, n, "too short for a frame", items)
+      i = n
+      break
     end
-    if kind == nil then
-      -- noise: one byte, or the rest of a record too short for a frame
-      local count = 1
-      if n - i < MIN_ADU then count = n - i end
-      if noise_start == nil then noise_start, noise_reason = i, reason end
-      carried = false
-      noise_length = noise_length + count
-      if noise_length >= NOISE_ITEM_MAX then
-        items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
-        noise_start, noise_length = nil, 0
-      end
-      i = i + count
+    local slave, code = b[i], b[i + 1]
+    local list = interpretations(s, slave, code)
+    local first = list[1]
+    if first == nil or slave > MAX_SLAVE then
+      -- No frame starts here: skip to the next byte pair that could start one.
+      local stop = i + 1
+      while stop < n - 1 and not possible_start(b[stop], b[stop + 1]) do stop = stop + 1 end
+      if stop >= n - 1 then stop = final and n or n - 1 end
+      add_noise(s, i, stop, "no valid frame", items)
+      i = stop
     else
-      if noise_start ~= nil then
-        items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
-        noise_start, noise_length = nil, 0
+      local done = false
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
+      -- belong to a longer frame, see match): nearly every frame of a clean bus.
+      if s.noise == nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then
+        -- (or the frame ends where the record does: a record boundary settles what match would weigh,
+        -- and this is every frame of a capture with one frame a record)
+        local length, is_scan = first[2](b, i, n)
+        if not is_scan and length >= MIN_ADU and length <= MAX_ADU
+            and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
+            and crc_ok_at(b, i, length) then
+          emit(s, rtu_frame(s, i, first[1], length, true), items)
+          i = i + length
+          done = true
+        end
       end
-      carried = false
-      local stop = i + length - 2
-      local crc = b[stop] + b[stop + 1] * 256
-      -- (a frame that checks out has the CRC it carries: no need to compute it again)
-      items[#items + 1] = {
-        kind = kind, offset = i, length = length, slave = slave, code = code, fn = code % 128,
-        crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop),
-        warnings = {}, notes = {}, mode = "rtu", b = b, data_at = i + 2, data_len = length - 4,
-      }
-      if kind == REQUEST and slave ~= 0 then
-        st.expect = slave * 256 + code
-      else
-        st.expect = nil
+      if not done then
+        local kind, length, crc_ok = match(s, b, i, n, final)
+        if kind == NEED then break end
+        if kind ~= NONE and crc_ok and (s.noise ~= nil
+            or (kind ~= REQUEST and s.expect ~= slave * 256 + code % 128)) then
+          -- Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC 1 time
+          -- in 65,536 per layout tried, so such a frame counts only when an intact frame, the end, or
+          -- the end of a record follows it.
+          local following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
+          if following == nil then break end
+          if not following then kind = NONE end
+        end
+        if kind == NONE then
+          add_noise(s, i, i + 1, "no valid frame", items)
+          i = i + 1
+        else
+          emit(s, rtu_frame(s, i, kind, length, crc_ok), items)
+          i = i + length
+        end
       end
-      i = i + length
     end
   end
-  st.noise_carry = carried or noise_start ~= nil
-  if noise_start ~= nil then
-    items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = noise_reason }
-  end
-  return items
+  return i
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -1376,14 +1507,13 @@ local COLON, CR, LF = 0x3A, 0x0D, 0x0A
 local MAX_BINARY = 255
 local MAX_ASCII = 1 + 2 * MAX_BINARY + 2
 local MIN_BINARY = 3
-local MODE_SAMPLE = 64
 local ASCII_SHARE = 0.9
 
 local function is_hex(byte)
   return (byte >= 48 and byte <= 57) or (byte >= 65 and byte <= 70) or (byte >= 97 and byte <= 102)
 end
 
-local function detect_mode(sample)
+detect_mode = function(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
   local colon = sample:find(":", 1, true)
   if colon == nil then return "rtu" end
@@ -1414,7 +1544,7 @@ local function find_byte(b, value, from, to)
   return nil
 end
 
-local function classify_ascii(st, adu, count)
+local function classify_ascii(s, adu, count)
   -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
   local slave, code = adu[0], adu[1]
   local crc = crc16(adu, 0, count)
@@ -1423,15 +1553,7 @@ local function classify_ascii(st, adu, count)
   equivalent[count] = crc % 256
   equivalent[count + 1] = floor(crc / 256)
   local length = count + 2
-  if code >= 128 then
-    if RULES[code - 128] and length == 5 then return EXCEPTION end
-    return nil
-  end
-  local rules = RULES[code]
-  if rules == nil then return nil end
-  local order = AS_REQUEST[code]
-  if st.expect == slave * 256 + code then order = AS_RESPONSE[code] end
-  for _, interpretation in ipairs(order) do
+  for _, interpretation in ipairs(interpretations(s, slave, code)) do
     -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
     local found, is_scan = interpretation[2](equivalent, 0, length)
     if found == length or (is_scan and length >= found) then return interpretation[1] end
@@ -1439,95 +1561,134 @@ local function classify_ascii(st, adu, count)
   return nil
 end
 
-local function frame_ascii_record(st, b, n)
-  local items = {}
-  local noise_start, noise_length = nil, 0
-  local function flush_noise()
-    if noise_start ~= nil then
-      items[#items + 1] = { kind = NOISE, offset = noise_start, length = noise_length, reason = "outside an ASCII frame" }
-      noise_start, noise_length = nil, 0
-    end
+-- A run of ASCII bytes that is no frame, with the reason: a noise item of its own.
+local function reject(s, at, length, reason, items)
+  flush_noise(s, items)
+  add_noise(s, at, at + length, reason, items)
+  flush_noise(s, items)
+end
+
+local function ascii_candidate(s, at, length, items)
+  -- b[at .. at + length - 1]: ':' digits CR LF
+  local b = s.b
+  if length < 3 or b[at + length - 2] ~= CR then
+    return reject(s, at, length, "ASCII frame ends with LF without CR", items)
   end
-  local function add_noise(start, stop)
-    while start < stop do
-      if noise_start == nil then noise_start = start end
-      local take = math.min(stop - start, NOISE_ITEM_MAX - noise_length)
-      noise_length = noise_length + take
-      start = start + take
-      if noise_length >= NOISE_ITEM_MAX then flush_noise() end
-    end
+  local digits = length - 3
+  local lower = false
+  if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+  for k = at + 1, at + digits do
+    if not is_hex(b[k]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if b[k] >= 97 then lower = true end
   end
-  local function reject(at, length, reason)
-    flush_noise()
-    items[#items + 1] = { kind = NOISE, offset = at, length = length, reason = reason }
+  local bin, count = {}, floor(digits / 2)
+  for k = 0, count - 1 do
+    bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
   end
-  local function candidate(at, length)
-    -- raw = b[at .. at + length - 1]: ':' digits CR LF
-    if length < 3 or b[at + length - 2] ~= CR then
-      return reject(at, length, "ASCII frame ends with LF without CR")
-    end
-    local digits = length - 3
-    local lower = false
-    if digits % 2 == 1 then return reject(at, length, "ASCII frame is not made of hex pairs") end
-    for k = at + 1, at + digits do
-      if not is_hex(b[k]) then return reject(at, length, "ASCII frame is not made of hex pairs") end
-      if b[k] >= 97 then lower = true end
-    end
-    local bin, count = {}, floor(digits / 2)
-    for k = 0, count - 1 do
-      bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
-    end
-    if count < MIN_BINARY then return reject(at, length, "ASCII frame too short") end
-    local slave, code = bin[0], bin[1]
-    local received, expected = bin[count - 1], lrc(bin, count - 1)
-    local check = "LRC ok"
-    if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
-    if slave > MAX_SLAVE then return reject(at, length, format("slave %d out of range (%s)", slave, check)) end
-    local kind = classify_ascii(st, bin, count - 1)
-    if kind == nil then
-      return reject(at, length, format("no Modbus layout fits function %d (%s)", code, check))
-    end
-    flush_noise()
-    local frame = {
-      kind = kind, offset = at, length = length, slave = slave, code = code, fn = code % 128,
-      crc = received, crc_expected = expected, warnings = {}, notes = {}, mode = "ascii", ascii = true,
-      b = bin, data_at = 2, data_len = count - 3,
-    }
-    if lower then frame.warnings[1] = "lower-case hex digits (the spec wants upper case)" end
-    if kind == REQUEST and slave ~= 0 then
-      st.expect = slave * 256 + code
-    else
-      st.expect = nil
-    end
-    items[#items + 1] = frame
+  if count < MIN_BINARY then return reject(s, at, length, "ASCII frame too short", items) end
+  local slave, code = bin[0], bin[1]
+  local received, expected = bin[count - 1], lrc(bin, count - 1)
+  local check = "LRC ok"
+  if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
+  if slave > MAX_SLAVE then return reject(s, at, length, format("slave %d out of range (%s)", slave, check), items) end
+  local kind = classify_ascii(s, bin, count - 1)
+  if kind == nil then
+    return reject(s, at, length, format("no Modbus layout fits function %d (%s)", code, check), items)
   end
+  local offset = s.base + at
+  local frame = {
+    kind = kind, offset = offset, length = length, slave = slave, code = code, fn = code % 128,
+    crc = received, crc_expected = expected, warnings = {}, notes = {}, mode = "ascii", ascii = true,
+    b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
+  }
+  if lower then frame.warnings[1] = "lower-case hex digits (the spec wants upper case)" end
+  emit(s, frame, items)
+end
+
+local function run_ascii(s, final, items)
+  local b, n = s.b, s.n
   local i = 0
   while i < n do
     if b[i] ~= COLON then
       local stop = find_byte(b, COLON, i, n) or n
-      add_noise(i, stop)
+      add_noise(s, i, stop, "outside an ASCII frame", items)
       i = stop
     else
       local limit = math.min(n, i + MAX_ASCII)
       local lf = find_byte(b, LF, i + 1, limit)
       local colon = find_byte(b, COLON, i + 1, limit)
       if colon ~= nil and (lf == nil or colon < lf) then
-        reject(i, colon - i, "ASCII frame cut short by the next ':'")
+        reject(s, i, colon - i, "ASCII frame cut short by the next ':'", items)
         i = colon
       elseif lf ~= nil then
-        candidate(i, lf + 1 - i)
+        ascii_candidate(s, i, lf + 1 - i, items)
         i = lf + 1
       elseif n - i >= MAX_ASCII then
-        reject(i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII))
+        reject(s, i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII), items)
         i = i + MAX_ASCII
-      else
-        reject(i, n - i, "ASCII frame cut off by the end of the record")
+      elseif final then
+        reject(s, i, n - i, "ASCII frame cut off by the end of the capture", items)
         i = n
+      else
+        break -- wait for the rest of the frame
       end
     end
   end
-  flush_noise()
+  return i
+end
+
+-- Drop the first `count` buffered bytes (framed or noise). The old table stays as it is: the frames
+-- just found still read their bytes from it until they are decoded.
+local function consume(s, count)
+  if count == 0 then return end
+  local b, n = s.b, s.n
+  local rest = {}
+  for k = count, n - 1 do rest[k - count] = b[k] end
+  s.b, s.n, s.base = rest, n - count, s.base + count
+  local base = s.base
+  local times = s.times
+  local keep = 1
+  for index = 1, #times do
+    if times[index][1] <= base then keep = index end
+  end
+  if keep > 1 then
+    local kept = {}
+    for index = keep, #times do kept[#kept + 1] = times[index] end
+    s.times = kept
+  end
+  for offset in pairs(s.boundaries) do
+    if offset <= base then s.boundaries[offset] = nil end
+  end
+end
+
+-- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
+-- framed; final: nothing more will come. Returns the items in stream order.
+flush_noise_of = function(s, items) flush_noise(s, items) end
+
+feed = function(s, bytes, time, boundary, final)
+  local n = #bytes
+  if n > 0 then
+    local b, at = s.b, s.n
+    local byte = string.byte
+    local k = 1
+    while k + 7 <= n do
+      b[at + k - 1], b[at + k], b[at + k + 1], b[at + k + 2], b[at + k + 3], b[at + k + 4], b[at + k + 5],
+        b[at + k + 6] = byte(bytes, k, k + 7)
+      k = k + 8
+    end
+    for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
+    local times = s.times
+    times[#times + 1] = { s.base + at, time }
+    s.n = at + n
+    if boundary then s.boundaries[s.base + s.n] = true end
+  end
+  local items = {}
+  local used
+  if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
+  consume(s, used)
+  if final then flush_noise(s, items) end
   return items
+end
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -1573,28 +1734,46 @@ end
 
 local function warn(frame, text) frame.warnings[#frame.warnings + 1] = text end
 
+-- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
+-- address. A value is read from the bytes each time it is needed (the first pass reads them from the
+-- frame's byte table, .b, dropped once the frame is done with; the display from the tvb), so a record
+-- keeps one small table for a read of 125 registers, not 125.
 local function make_registers(b, first, count, start)
-  local registers = {}
-  for index = 0, count - 1 do
-    local address = nil
-    if start ~= nil then address = (start + index) % 0x10000 end
-    registers[#registers + 1] = { address = address, value = u16(b, first + 2 * index), offset = first + 2 * index }
-  end
-  return registers
+  return { b = b, first = first, count = count, start = start }
 end
 
 local function make_bits(b, first, byte_count, start, quantity)
   local count = byte_count * 8
   if quantity ~= nil and quantity < count then count = quantity end
-  local bits = {}
-  for index = 0, count - 1 do
-    local byte = b[first + floor(index / 8)]
-    local value = floor(byte / 2 ^ (index % 8)) % 2
-    local address = nil
-    if start ~= nil then address = (start + index) % 0x10000 end
-    bits[#bits + 1] = { address = address, value = floor(value), offset = first + floor(index / 8) }
+  return { b = b, first = first, count = count, start = start }
+end
+
+-- A run is done with its frame's byte table (the display reads the tvb): its indices become the
+-- frame's own (shift: the frame's first byte in the table it was read from).
+local function release_run(run)
+  if run == nil then return end
+  run.b = nil
+  if run.shift ~= nil then
+    run.first = run.first - run.shift
+    run.shift = nil
   end
-  return bits
+end
+
+-- The index-th (0-based) register of a run: address (nil when unknown), value, and its index in b.
+local function register_at(run, b, index, shift)
+  -- shift: the display's tables hold the frame's own bytes; a run not released yet is 0-based elsewhere
+  local k = run.first - (shift and run.shift or 0) + 2 * index
+  local address = nil
+  if run.start ~= nil then address = (run.start + index) % 0x10000 end
+  return address, b[k] * 256 + b[k + 1], k
+end
+
+local function bit_at(run, b, index, shift)
+  local k = run.first - (shift and run.shift or 0) + floor(index / 8)
+  local address = nil
+  if run.start ~= nil then address = (run.start + index) % 0x10000 end
+  if run.single ~= nil then return address, run.single, k end
+  return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
 
 local function ceil_bytes(bits) return floor((bits + 7) / 8) end
@@ -1833,13 +2012,13 @@ local function write_single_coil_handler(f, b)
   end
   local value = 0
   if fields.value == 0xFF00 then value = 1 end
-  f.bits = { { address = fields.address, value = value, offset = f.data_at + 2 } }
+  f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
 end
 
 local function write_single_register_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.address, 1
-  f.registers = { { address = fields.address, value = fields.value, offset = f.data_at + 2 } }
+  f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
 end
 
 local function diagnostics_handler(f, b)
@@ -1993,12 +2172,14 @@ local function pair(st, f)
     and f.time - pending.time > timeout then
     pending.unanswered = true
     pending.fields = nil
+    release_run(pending.registers)
     late, pending, st.pending = pending, nil, nil
   end
   if f.kind == REQUEST then
     if pending ~= nil then
       pending.unanswered = true
       pending.fields = nil -- no answer can ask for them any more
+      release_run(pending.registers)
     end
     st.pending = nil
     if f.slave == 0 then
@@ -2018,6 +2199,7 @@ local function pair(st, f)
   else
     if pending ~= nil then
       pending.unanswered = true
+      release_run(pending.registers)
       st.pending = nil
     end
     f.no_request = true
@@ -2063,6 +2245,8 @@ local function parse_profile_choice(text)
   return default, per_slave, errors
 end
 
+local parse_map_choice
+do -- (a block: the main chunk may hold at most 200 locals)
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
 local MAP_COLUMNS = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source" }
@@ -2227,7 +2411,7 @@ local function load_map(path)
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
-local function parse_map_choice(text, profile_names)
+parse_map_choice = function(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
     spec = strip(spec)
@@ -2264,7 +2448,7 @@ local function parse_map_choice(text, profile_names)
   end
   return layers, errors
 end
-
+end
 
 local plc_label
 do
@@ -2475,68 +2659,125 @@ local function track(st, f, address, row, value, status, now, label)
   end
 end
 
-local function remember_writes(st, f, registers)
-  for _, reg in ipairs(registers) do
-    if reg.address ~= nil then
-      local key = f.slave * 65536 + reg.address
-      local last = st.seen[key]
-      if last ~= nil then
-        last.value, last.frame, last.how = reg.value, f.number, "written"
-      else
-        st.seen[key] = { value = reg.value, frame = f.number, how = "written" }
-      end
+local function remember_writes(st, f, run, b)
+  if run.start == nil then return end
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    local key = f.slave * 65536 + address
+    local last = st.seen[key]
+    if last ~= nil then
+      last.value, last.frame, last.how = value, f.number, "written"
+    else
+      st.seen[key] = { value = value, frame = f.number, how = "written" }
     end
   end
 end
 
-local function annotate_registers(st, f, device, registers, read)
-  local rows, depend = device.rows, device.depend
-  local base = nil
-  if device.plc ~= nil then base = device.plc[f.fn] or device.plc_default end
+-- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
+-- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
+local function annotate_one(st, f, device, address, value, protected, multi, label)
+  local row = device.rows[address]
+  local plain = false
+  if row ~= nil then
+    local rule = device.depend[address]
+    if rule ~= nil then
+      local last = st.seen[f.slave * 65536 + rule.on]
+      if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
+        plain = true
+        if not has_note(f, rule.reason) then note(f, rule.reason) end
+      end
+    end
+  end
+  local status = nil
+  if protected ~= nil then
+    status = "ok"
+    if value == protected and multi then
+      if row == nil then
+        status = "non-existent"
+      elseif row.ambiguous_8000 then
+        status = "ambiguous"
+      else
+        status = "protected"
+      end
+    end
+    track(st, f, address, row, value, status, "16#8000 now", label)
+  end
+  return plain, status
+end
+
+-- What a register says: its map row, scaled value and text, from its value, the plain layout flag
+-- and its status (maps.interpret, then the 16#8000 texts).
+local function describe(device, address, value, plain, status)
+  local row = device.rows[address]
+  local scaled, text = nil, nil
+  if row ~= nil then
+    local used = row
+    if plain then used = device.plain[address] end
+    scaled, text = interpret(used, value)
+  end
+  if status == "non-existent" then
+    text = "16#8000: non-existent (address not in the map)"
+  elseif status == "protected" then
+    scaled, text = nil, "16#8000: protected"
+  end
+  return row, scaled, text
+end
+
+local function plc_base(device, f)
+  if device.plc == nil then return nil end
+  return device.plc[f.fn] or device.plc_default
+end
+
+-- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
+-- not the usual: the statuses other than ok, the registers read with their plain layout.
+local function annotate_registers(st, f, device, run, b, read)
+  local start = run.start
+  if start == nil then return end
   local protected = nil
   if read then protected = device.profile.protected_value end
-  local multi = #registers > 1
-  for _, reg in ipairs(registers) do
-    local address = reg.address
-    if address ~= nil then
-      if base ~= nil then reg.label = plc_label(base, address) end
-      local row = rows[address]
-      local value = reg.value
-      if row ~= nil then
-        local used = row
-        local rule = depend[address]
-        if rule ~= nil then
-          local last = st.seen[f.slave * 65536 + rule.on]
-          if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
-            used = device.plain[address]
-            if not has_note(f, rule.reason) then note(f, rule.reason) end
-          end
-        end
-        reg.row = row -- code, name, unit and source (kept as the row: four fields fewer a register)
-        reg.scaled, reg.text = interpret(used, value)
-      end
-      if protected ~= nil then
-        local status = "ok"
-        if value == protected and multi then
-          if row == nil then
-            status = "non-existent"
-            reg.text = "16#8000: non-existent (address not in the map)"
-          elseif row.ambiguous_8000 then
-            status = "ambiguous"
-          else
-            status = "protected"
-            reg.scaled = nil
-            reg.text = "16#8000: protected"
-          end
-        end
-        reg.status = status
-        track(st, f, address, row, value, status, "16#8000 now", reg.label)
-      end
+  local multi = run.count > 1
+  -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
+  if protected == nil and next(device.depend) == nil then return end
+  local first = run.first
+  local base = plc_base(device, f)
+  for index = 0, run.count - 1 do
+    local k = first + 2 * index
+    local address = (start + index) % 0x10000
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    local plain, status = annotate_one(st, f, device, address, b[k] * 256 + b[k + 1], protected, multi, label)
+    if plain then
+      run.plain = run.plain or {}
+      run.plain[index] = true
+    end
+    if status ~= nil and status ~= "ok" then
+      run.status = run.status or {}
+      run.status[index] = status
     end
   end
   story.tell(f)
 end
 
+-- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
+-- gets its row, label, scaled value, text and status.
+local function annotate_list(st, f, device, registers, read)
+  local protected = nil
+  if read then protected = device.profile.protected_value end
+  local base = plc_base(device, f)
+  local multi = #registers > 1
+  for _, reg in ipairs(registers) do
+    local address = reg.address
+    if address ~= nil then
+      if base ~= nil then reg.label = plc_label(base, address) end
+      local plain, status = annotate_one(st, f, device, address, reg.value, protected, multi, reg.label)
+      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status)
+      reg.status = status
+    end
+  end
+  story.tell(f)
+end
+
+do -- (a block: the main chunk may hold at most 200 locals)
 local function profile_function_name(profile, code)
   return (profile.function_names or {})[code] or function_name(code)
 end
@@ -2768,17 +3009,18 @@ annotate = function(st, f, b)
   end
   local request = f.request
   if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
-      and request.registers ~= nil and #request.registers > 0 then
+      and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-    remember_writes(st, f, request.registers)
+    remember_writes(st, f, request.registers, request.registers.b)
   end
   local registers = f.registers
-  if registers ~= nil and #registers > 0 then
-    annotate_registers(st, f, device, registers, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers) end
+  if registers ~= nil and registers.count > 0 then
+    annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers, b) end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
+end
 end
 
 local function configure(profiles_text, style, maps_text)
@@ -2793,40 +3035,75 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
+local unpack = table.unpack or unpack
+
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  local parts = {}
+  local k = 0
+  while k < count do
+    local take = math.min(count - k, 200)
+    parts[#parts + 1] = string.char(unpack(b, first + k, first + k + take - 1))
+    k = k + take
+  end
+  return concat(parts)
+end
+
 local function new_state(timeout, mode)
   -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
   -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.
   return {
     expect = nil, pending = nil, count = 0, records = {}, devices = {}, seen = {}, timeout = timeout,
     mode = mode,
+    -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
+    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil,
+    open = {}, -- records some of whose bytes are not framed yet (oldest first)
+    last = nil, -- the last record fed
   }
 end
 
-local function dissect_record(st, bytes, time, number)
-  local n = #bytes
-  local b = {}
-  local byte = string.byte
-  local k = 1
-  while k + 7 <= n do
-    b[k - 1], b[k], b[k + 1], b[k + 2], b[k + 3], b[k + 4], b[k + 5], b[k + 6] = byte(bytes, k, k + 7)
-    k = k + 8
-  end
-  for rest = k, n do b[rest - 1] = byte(bytes, rest) end
-  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
-  local items
-  if st.mode == "ascii" then
-    items = frame_ascii_record(st, b, n)
-  else
-    items = frame_record(st, b, n)
-  end
-  local frames = 0
+-- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
+-- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
+-- later passes show it there): through that record's bytes when they hold it whole, else through its
+-- own bytes (a frame or noise run that began in earlier records, which say where it went).
+local function take_items(st, items, record)
   for _, item in ipairs(items) do
     st.count = st.count + 1
     item.number = st.count
-    item.record = number
-    item.time = time
+    local offset, length = item.offset, item.length
+    local home = record
+    for _, earlier in ipairs(st.open) do
+      if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
+        home = earlier
+      end
+    end
+    item.record = home.number
+    home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
+    local first = home.start or offset -- (a closed record holds no bytes still to frame)
+    if offset >= first and offset + length <= first + (home.length or length) then
+      item.at = offset - first
+    else
+      item.at = 0
+      if item.kind == NOISE then
+        item.raw = string_of(item.bytes, 1, length)
+      elseif item.ascii then
+        item.raw = string_of(item.src, item.src_at, length)
+      else
+        item.raw = string_of(item.b, item.bi, length)
+      end
+      for _, earlier in ipairs(st.open) do
+        local from, to = earlier.start, earlier.start + earlier.length
+        if earlier ~= home and from < offset + length and offset < to then
+          earlier.continued = earlier.continued or {}
+          earlier.continued[#earlier.continued + 1] = {
+            item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
+          }
+        end
+      end
+    end
+    item.bytes, item.src = nil, nil
     if item.kind ~= NOISE then
-      frames = frames + 1
+      home.frames = home.frames + 1
       pair(st, item)
       decode_frame(item)
       annotate(st, item, item.b)
@@ -2834,29 +3111,73 @@ local function dissect_record(st, bytes, time, number)
       -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
       -- ask for them (a request's, until its answer is decoded or it can have none).
       item.b = nil
-      if #item.warnings == 0 then item.warnings = NO_INTERPRETATION end
-      if #item.notes == 0 then item.notes = NO_INTERPRETATION end
+      if #item.warnings == 0 then item.warnings = nil end
+      if #item.notes == 0 then item.notes = nil end
+      -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
+      -- pending request's registers once its answer has been read), and what is known from the kind of
+      -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
+      local bi = item.bi
+      if item.registers ~= nil then item.registers.shift = bi end
+      if item.bits ~= nil then
+        item.bits.shift = bi
+        release_run(item.bits)
+      end
+      for _, object in ipairs(item.objects or NO_INTERPRETATION) do object.offset = object.offset - bi end
+      item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
       if item.kind ~= REQUEST then
         item.fields = nil
-        if item.request ~= nil then item.request.fields = nil end
+        release_run(item.registers)
+        local request = item.request
+        if request ~= nil then
+          request.fields = nil
+          release_run(request.registers)
+        end
       elseif st.pending ~= item then
         item.fields = nil
+        release_run(item.registers)
       end
     end
   end
-  local record = { items = items, frames = frames, length = n }
-  -- A record that ends in noise which starts like a frame was most likely cut inside that frame.
-  local last = items[#items]
-  if st.mode ~= "ascii" and last ~= nil and last.kind == NOISE and last.offset + last.length == n
-      and n - last.offset >= 2 then
-    local slave, code = b[last.offset], b[last.offset + 1]
-    if slave <= MAX_SLAVE and (RULES[code] or RULES[code - 128]) then record.partial = true end
+  -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
+  local waiting_from = st.base
+  if st.noise ~= nil then waiting_from = st.noise.offset end
+  local open = {}
+  for _, earlier in ipairs(st.open) do
+    local waiting = earlier.start + earlier.length - waiting_from
+    if waiting > 0 then
+      open[#open + 1] = earlier
+      earlier.waiting = math.min(waiting, earlier.length)
+    else
+      -- closed: all its bytes are framed (kept: its items and frame count)
+      earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
+    end
   end
+  st.open = open
+end
+
+local function dissect_record(st, bytes, time, number)
+  local n = #bytes
+  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  local record = { number = number, start = st.base + st.n, length = n, frames = 0 }
+  st.open[#st.open + 1] = record
+  st.last = record
+  take_items(st, feed(st, bytes, time, true, false), record)
   return record
 end
 
+-- The end of the capture: frame what still waits (as vw3-decode does at the end of its input), shown in
+-- the last record. Called once, when the first pass is over.
+local function finish(st)
+  if st.finished then return end
+  st.finished = true
+  local record = st.last
+  if record == nil then return end
+  take_items(st, feed(st, "", nil, false, true), record)
+  if st.pending ~= nil then release_run(st.pending.registers) end
+end
+
 local vw3 = {
-  DATA = DATA, new_state = new_state, dissect_record = dissect_record, crc16 = crc16,
+  DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,
   function_name = function_name, exception_name = exception_name, configure = configure,
   config = function() return config end,
 }
@@ -2883,9 +3204,16 @@ local function names(table_)
   return out
 end
 
+-- Kind and register status are integers with value strings: `vw3.kind == "request"` filters by name,
+-- and an integer costs less than a string to add and to compare.
+local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
+local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+local STATUS_NAMES = { [0] = "ok", [1] = "protected", [2] = "non-existent", [3] = "ambiguous" }
+local STATUS_VALUES = { ok = 0, protected = 1, ["non-existent"] = 2, ambiguous = 3 }
+
 local pf = {
   item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
-  kind = ProtoField.string("vw3.kind", "Kind"),
+  kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
   mode = ProtoField.string("vw3.mode", "Mode"),
   slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
   ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, names(FUNCTIONS)),
@@ -2909,9 +3237,9 @@ local pf = {
   reg_code = ProtoField.string("vw3.reg.code", "Code"),
   reg_name = ProtoField.string("vw3.reg.name", "Name"),
   reg_unit = ProtoField.string("vw3.reg.unit", "Unit"),
-  reg_scaled = ProtoField.string("vw3.reg.scaled", "Scaled value"),
+  reg_scaled = ProtoField.double("vw3.reg.scaled", "Scaled value"),
   reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
-  reg_status = ProtoField.string("vw3.reg.status", "Status"),
+  reg_status = ProtoField.uint8("vw3.reg.status", "Status", base.DEC, STATUS_NAMES),
   reg_source = ProtoField.string("vw3.reg.source", "Source"),
   bit = ProtoField.none("vw3.bit", "Bit"),
   bit_address = ProtoField.uint16("vw3.bit.address", "Address", base.DEC),
@@ -2924,6 +3252,9 @@ local pf = {
   request_frame = ProtoField.framenum("vw3.request_frame", "Request in frame", base.NONE, frametype and frametype.REQUEST),
   response_frame = ProtoField.framenum("vw3.response_frame", "Response in frame", base.NONE, frametype and frametype.RESPONSE),
   response_time = ProtoField.relative_time("vw3.response_time", "Time since request"),
+  offset = ProtoField.uint32("vw3.offset", "Stream offset", base.DEC, nil, nil,
+    "Where the item starts in the byte stream, as vw3-decode --json's offset"),
+  continued_in = ProtoField.framenum("vw3.continued_in", "Continued in record"),
   unanswered = ProtoField.bool("vw3.unanswered", "Unanswered"),
   noise_reason = ProtoField.string("vw3.noise.reason", "Why noise"),
   warning = ProtoField.string("vw3.warning", "Warning"),
@@ -2935,9 +3266,6 @@ local pf = {
   additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
   additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
 }
-local field_list = {}
-for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-proto.fields = field_list
 
 local ex = {
   crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
@@ -2977,6 +3305,10 @@ proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
 proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
   "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
+proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
+proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
+  "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
+    .. "Protocols > DLT_USER, payload protocol vw3)")
 
 local state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
@@ -2995,10 +3327,13 @@ local function timeout_pref()
   return proto.prefs.timeout_ms / 1000
 end
 
+local udp_states, tcp_states, tcp_records, tcp_call -- (defined with the dissector below)
+
 function proto.init()
   rtac_times = {}
   apply_prefs()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+  udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
 local function add_text(tree, expert_info, text)
@@ -3008,10 +3343,11 @@ end
 -- The tvb range of `size` bytes at `at` in the frame's byte table (ASCII: hex pairs in the record);
 -- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
 local function frame_span(f, at, size)
-  local offset, length = at, size
-  if f.ascii then offset, length = f.offset + 1 + 2 * at, 2 * size end
-  if length <= 0 or offset < f.offset or offset + length > f.offset + f.length then
-    return f.offset, f.length
+  -- f.at: where the frame starts in the tvb it is shown from; f.bi: its slave byte's index in its byte table
+  local offset, length = at + f.at, size
+  if f.ascii then offset, length = f.at + 1 + 2 * at, 2 * size end
+  if length <= 0 or offset < f.at or offset + length > f.at + f.length then
+    return f.at, f.length
   end
   return offset, length
 end
@@ -3078,6 +3414,73 @@ local function register_expert(reg)
   return format("Register %s%s: %s", label, code and (" " .. code) or "", reg.text or reg.status)
 end
 
+-- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
+local function frame_bytes(f, tvb)
+  local b = {}
+  if f.ascii then
+    local raw = tvb:raw(f.at + 1, f.length - 3)
+    for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
+  else
+    local raw = tvb:raw(f.at, f.length)
+    local byte = string.byte
+    for k = 1, #raw do b[k - 1] = byte(raw, k) end
+  end
+  return b
+end
+
+-- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
+-- (its value is the profile's 16#8000, no bytes needed).
+local function register_view(st, f, run, b, index)
+  -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
+  local device = device_for(st, f.slave)
+  local address, value, offset
+  if b ~= nil then
+    address, value, offset = register_at(run, b, index, true)
+  else
+    address, value, offset = (run.start + index) % 0x10000, device.profile.protected_value, -1
+  end
+  local view = { address = address, value = value, offset = offset }
+  if device and address ~= nil then
+    local status = run.status and run.status[index]
+    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+      status = "ok"
+    end
+    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status)
+    view.status = status
+    local base = plc_base(device, f)
+    if base ~= nil then view.label = plc_label(base, address) end
+  end
+  return view
+end
+
+-- Per-parameter fields (vw3.atv71.rfr, vw3.sel749m.ia, ...): one per row of the built-in register maps,
+-- its scaled value (or its value where the map gives no scale), so that an IO graph or a column can
+-- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
+-- is read).
+local PARAMETER_FIELDS = {}
+do
+  local taken = {}
+  for profile_name, profile in pairs(PROFILES) do
+    for _, row in pairs(profile.map or {}) do
+      local code = row.code and row.code:lower():gsub("[^%w_]", "_")
+      if code ~= nil and code ~= "" then
+        local abbr = format("vw3.%s.%s", profile_name, code)
+        if not taken[abbr] then
+          taken[abbr] = true
+          local title = row.name and format("%s (%s)", row.name, row.code) or row.code
+          if row.unit then title = title .. ", " .. row.unit end
+          local field = ProtoField.double(abbr, title)
+          PARAMETER_FIELDS[row] = field
+        end
+      end
+    end
+  end
+  local field_list = {}
+  for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+  for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
+  proto.fields = field_list
+end
+
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
@@ -3088,7 +3491,7 @@ local function add_register(tree, tvb, f, reg, range, full)
   end
   if full == "unseen" then
     -- tree is the frame's item, in an invisible tree (see unseen.add).
-    unseen.at(tvb, f, reg.offset or f.offset, 2)
+    unseen.at(tvb, f, reg.offset or -1, 2)
     local sub = unseen.add(tree, pf.reg)
     sub:set_text(register_title(reg))
     if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
@@ -3098,18 +3501,22 @@ local function add_register(tree, tvb, f, reg, range, full)
     if row.code then unseen.add(sub, pf.reg_code, row.code, true) end
     if row.name then unseen.add(sub, pf.reg_name, row.name, true) end
     if row.unit then unseen.add(sub, pf.reg_unit, row.unit, true) end
-    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, tostring(reg.scaled), true) end
+    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
+    local parameter = PARAMETER_FIELDS[row]
+    if parameter ~= nil and reg.status ~= "protected" then
+      unseen.add(sub, parameter, reg.scaled or reg.value, true)
+    end
     if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
     if row.source then unseen.add(sub, pf.reg_source, row.source, true) end
     if reg.status then
-      unseen.add(sub, pf.reg_status, reg.status, true)
+      unseen.add(sub, pf.reg_status, STATUS_VALUES[reg.status], true)
       if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
     end
     return
   end
-  local r = range or frame_range(tvb, f, reg.offset or f.offset, 2)
+  local r = range or frame_range(tvb, f, reg.offset or -1, 2)
   local sub = tree:add(pf.reg, r)
-  sub:set_text(register_title(reg))
+  sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
   if reg.address ~= nil then
     local item = sub:add(pf.reg_address, r, reg.address)
     if r ~= nil then item:set_generated() end
@@ -3120,11 +3527,15 @@ local function add_register(tree, tvb, f, reg, range, full)
   if row.code then sub:add(pf.reg_code, r, row.code):set_generated() end
   if row.name then sub:add(pf.reg_name, r, row.name):set_generated() end
   if row.unit then sub:add(pf.reg_unit, r, row.unit):set_generated() end
-  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, tostring(reg.scaled)):set_generated() end
+  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
+  local parameter = PARAMETER_FIELDS[row]
+  if parameter ~= nil and reg.status ~= "protected" then
+    sub:add(parameter, r, reg.scaled or reg.value):set_generated()
+  end
   if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
   if row.source then sub:add(pf.reg_source, r, row.source):set_generated() end
   if reg.status then
-    sub:add(pf.reg_status, r, reg.status):set_generated()
+    sub:add(pf.reg_status, r, STATUS_VALUES[reg.status]):set_generated()
     if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
   end
 end
@@ -3143,21 +3554,24 @@ local function summary(f)
   return concat(parts, " ")
 end
 
-local function show_frame(f, tvb, tree, pinfo, full)
+local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
   local t, whole = tree, nil
   if full then
-    whole = tvb:range(f.offset, f.length)
+    whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
     t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
     t:add(pf.item, whole, f.number):set_generated()
-    t:add(pf.kind, whole, f.kind):set_generated()
-    local base = f.data_at - 2 -- the slave byte in the frame's byte table
-    t:add(pf.mode, whole, f.mode):set_generated()
+    t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
+    t:add(pf.offset, whole, f.offset):set_generated()
+    local base = 0 -- the slave byte in the frame's byte table
+    t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
     t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
     t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
-    local crc_range = frame_range(tvb, f, f.data_at + f.data_len, f.ascii and 1 or 2)
+    local crc_at = f.length - 2
+    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     t:add(pf.crc, crc_range, f.crc)
     t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
     t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
@@ -3171,7 +3585,7 @@ local function show_frame(f, tvb, tree, pinfo, full)
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    if full then t:add(pf.exception_code, frame_range(tvb, f, f.data_at, 1), f.exception_code) end
+    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
     add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
@@ -3179,7 +3593,7 @@ local function show_frame(f, tvb, tree, pinfo, full)
     end
   end
   if full then
-    local data_range = frame_range(tvb, f, f.data_at, 2)
+    local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
       if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
@@ -3193,31 +3607,47 @@ local function show_frame(f, tvb, tree, pinfo, full)
     end
   end
   local registers = f.registers
-  if registers then
-    -- (checking which fields are faked pays from the second register on)
-    local mode = full
-    if full == "unseen" and #registers < 2 then mode = true end
-    for index = 1, #registers do add_register(t, tvb, f, registers[index], nil, mode) end
+  if registers and registers.count > 0 then
+    if not full then
+      -- Only the expert infos of the registers that are not ok: no value needed (it is 16#8000).
+      local statuses = registers.status
+      if statuses ~= nil then
+        for index = 0, registers.count - 1 do
+          if statuses[index] ~= nil then
+            add_text(t, ex.protected, register_expert(register_view(st, f, registers, nil, index)))
+          end
+        end
+      end
+    else
+      local b = frame_bytes(f, tvb)
+      -- (checking which fields are faked pays from the second register on)
+      local mode = full
+      if full == "unseen" and registers.count < 2 then mode = true end
+      for index = 0, registers.count - 1 do
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
+      end
+    end
   end
   if full then
     local bits = f.bits
-    if bits then
-      local checked = full == "unseen" and #bits > 1
-      for index = 1, #bits do
-        local bit_ = bits[index]
-        local title = format("Bit %s = %d", bit_.address and tostring(bit_.address) or "?", bit_.value)
+    if bits and bits.count > 0 then
+      local b = bits.single == nil and frame_bytes(f, tvb) or nil
+      local checked = full == "unseen" and bits.count > 1
+      for index = 0, bits.count - 1 do
+        local address, value, k = bit_at(bits, b, index, true)
+        local title = format("Bit %s = %d", address and tostring(address) or "?", value)
         if checked then
-          unseen.at(tvb, f, bit_.offset, 1)
+          unseen.at(tvb, f, k, 1)
           local sub = unseen.add(t, pf.bit)
           sub:set_text(title)
-          if bit_.address ~= nil then unseen.add(sub, pf.bit_address, bit_.address, true) end
-          unseen.add(sub, pf.bit_value, bit_.value, true)
+          if address ~= nil then unseen.add(sub, pf.bit_address, address, true) end
+          unseen.add(sub, pf.bit_value, value, true)
         else
-          local r = frame_range(tvb, f, bit_.offset, 1)
+          local r = frame_range(tvb, f, k, 1)
           local sub = t:add(pf.bit, r)
           sub:set_text(title)
-          if bit_.address ~= nil then sub:add(pf.bit_address, r, bit_.address):set_generated() end
-          sub:add(pf.bit_value, r, bit_.value):set_generated()
+          if address ~= nil then sub:add(pf.bit_address, r, address):set_generated() end
+          sub:add(pf.bit_value, r, value):set_generated()
         end
       end
     end
@@ -3258,15 +3688,18 @@ local function show_frame(f, tvb, tree, pinfo, full)
     if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
   end
   -- Known only once the whole capture has been read (second pass).
-  local ends_unanswered = f.kind == REQUEST and state.pending == f and pinfo.visited
+  local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo.visited
   if f.kind == REQUEST then
-    local unanswered = f.unanswered or ends_unanswered
-    if full then t:add(pf.unanswered, whole, unanswered and true or false):set_generated() end
-    if unanswered then add_text(t, ex.unanswered, "Request not answered") end
+    -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
+    if f.unanswered or ends_unanswered then
+      local item = t
+      if full then item = t:add(pf.unanswered, whole, true):set_generated() end
+      add_text(item, ex.unanswered, "Request not answered")
+    end
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
-  local warnings = f.warnings
+  local warnings = f.warnings or NO_INTERPRETATION
   for index = 1, #warnings do
     local text = warnings[index]
     local item = t
@@ -3277,7 +3710,7 @@ local function show_frame(f, tvb, tree, pinfo, full)
       add_text(item, ex.warning, text)
     end
   end
-  local notes = f.notes
+  local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
     local text = "the capture ends before any response"
@@ -3290,25 +3723,25 @@ local function show_frame(f, tvb, tree, pinfo, full)
       add_text(item, ex.note, text)
     end
   end
+if full then return t end
+  return nil
 end
 
 local function show_noise(item, tvb, tree, full)
-  if item.title == nil then
-    item.title = format("VW3 noise, %d bytes: %s", item.length, item.reason)
-    item.expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
-  end
+  local expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
   if not full then
-    add_text(tree, ex.noise, item.expert_text)
-    return
+    add_text(tree, ex.noise, expert_text)
+    return nil
   end
-  local r = tvb:range(item.offset, item.length)
-  local t = tree:add(proto, r)
-  t:set_text(item.title)
+  local r = tvb:range(item.at, item.length)
+  local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", item.length, item.reason))
   t:add(pf.item, r, item.number):set_generated()
-  t:add(pf.kind, r, NOISE):set_generated()
+  t:add(pf.kind, r, KIND_VALUES[NOISE]):set_generated()
+  t:add(pf.offset, r, item.offset):set_generated()
   t:add(pf.noise_reason, r, item.reason):set_generated()
   t:add(pf.data, r)
-  add_text(t, ex.noise, item.expert_text)
+  add_text(t, ex.noise, expert_text)
+  return t
 end
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
@@ -3346,65 +3779,206 @@ do
   end
 end
 
-local function dissect_now(tvb, pinfo, n)
-  return dissect_record(state, tvb:raw(0, n), record_time(pinfo), pinfo.number)
+local function dissect_now(st, tvb, pinfo, n)
+  return dissect_record(st, tvb:raw(0, n), record_time(pinfo), pinfo.number)
 end
 
-function proto.dissector(tvb, pinfo, tree)
-  local n = tvb:len()
-  if n == 0 then return 0 end
-  local record = state.records[pinfo.number]
-  if record == nil then
-    -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    local ok, result = pcall(dissect_now, tvb, pinfo, n)
-    if ok then
-      record = result
-    else
-      -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
-      record = { items = {}, frames = 0, length = n, error = tostring(result) }
-    end
-    state.records[pinfo.number] = record
-  end
+-- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
+-- in earlier records (a frame the capture tool cut across records).
+local function item_tvb(item, tvb)
+  if item.raw == nil then return tvb end
+  return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
+end
+
+-- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
+-- so that they show in the details, not under a hidden item.
+local function show_record(st, record, tvb, pinfo, tree, n)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
   unseen.serial = unseen.serial + 1
   unseen.generated = false
+  local anchor = nil
   if record.error then
-    add_text(full and tree:add(proto, tvb:range(0, n)) or tree, ex.internal, "Lua Error in vw3.lua: " .. record.error)
+    anchor = full and tree:add(proto, tvb:range(0, n)) or tree
+    add_text(anchor, ex.internal, "Lua Error in vw3.lua: " .. record.error)
   end
-  local items = record.items
-  local info = record.info
-  local summaries = nil
-  if info == nil then summaries = {} end
-  for index = 1, #items do
-    local item = items[index]
-    if item.kind == NOISE then
-      show_noise(item, tvb, tree, full)
-      if summaries then summaries[index] = format("noise (%d bytes)", item.length) end
-    else
-      show_frame(item, tvb, tree, pinfo, full)
-      if summaries then summaries[index] = summary(item) end
+  local continued = record.continued
+  -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
+  local summaries = {}
+  if continued ~= nil then
+    for _, part in ipairs(continued) do
+      local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
+      if full then
+        local t = tree:add(proto, tvb:range(0, n), "VW3 bytes of a frame shown in a later record: " .. text)
+        t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
+        anchor = anchor or t
+      end
+      summaries[#summaries + 1] = format("(%d bytes continue in #%d)", part.count, part.record)
     end
   end
+  for index = 1, #record do
+    local item = record[index]
+    local shown_from = item_tvb(item, tvb)
+    local t
+    if item.kind == NOISE then
+      t = show_noise(item, shown_from, tree, full)
+      summaries[#summaries + 1] = format("noise (%d bytes)", item.length)
+    else
+      t = show_frame(st, item, shown_from, tree, pinfo, full)
+      summaries[#summaries + 1] = summary(item)
+    end
+    anchor = anchor or t
+  end
+  local function anchored()
+    if anchor == nil then
+      anchor = tree
+      if full then anchor = tree:add(proto, tvb:range(0, n), "VW3 record") end
+    end
+    return anchor
+  end
   if record.frames > 1 then
-    add_text(tree, ex.multiple, format("This record holds %d frames", record.frames))
+    add_text(anchored(), ex.multiple, format("This record holds %d frames", record.frames))
   end
-  for _, text in ipairs(config.errors) do add_text(tree, ex.preference, "Preferences: " .. text) end
-  if record.partial then
-    add_text(tree, ex.partial, "The record ends inside a frame; its bytes are shown as noise")
+  for _, text in ipairs(config.errors) do add_text(anchored(), ex.preference, "Preferences: " .. text) end
+  if record.waiting ~= nil and record.waiting > 0 then
+    local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
+      record.waiting)
+    add_text(anchored(), ex.partial, text)
+    summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting)
   end
-  if info == nil then
-    info = concat(summaries, "; ")
-    record.info = info
+  cols.info = concat(summaries, "; ")
+end
+
+-- Streams of records: the serial capture's (state), and one per UDP conversation.
+udp_states = {}
+
+-- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
+local function finish_all()
+  for _, st in pairs(udp_states) do
+    if not st.finished then
+      local ok, problem = pcall(finish, st)
+      if not ok and st.last ~= nil then st.last.error = tostring(problem) end
+    end
   end
-  cols.info = info
+  if not state.finished then
+    local ok, problem = pcall(finish, state)
+    if not ok and state.last ~= nil then state.last.error = tostring(problem) end
+  end
+end
+
+-- Each record (serial record, UDP datagram) is a chunk of its stream.
+local function dissect_records(st, tvb, pinfo, tree)
+  local n = tvb:len()
+  if n == 0 then return 0 end
+  if pinfo.visited and not state.finished then finish_all() end
+  local record = st.records[pinfo.number]
+  if record == nil then
+    -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
+    local ok, result = pcall(dissect_now, st, tvb, pinfo, n)
+    if ok then
+      record = result
+    else
+      -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
+      record = { frames = 0, length = n, error = tostring(result) }
+    end
+    st.records[pinfo.number] = record
+  end
+  show_record(st, record, tvb, pinfo, tree, n)
   return n
 end
 
--- Registration: linktype 147 (USER0), Decode As for RTAC serial records, and an optional TCP port.
+do -- (a block: the main chunk may hold at most 200 locals)
+-- A connection or conversation by its two ends, the same both ways.
+local function conversation_key(pinfo)
+  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
+  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
+  if a < b then return a .. " " .. b end
+  return b .. " " .. a
+end
+
+-- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
+-- reassembly for a frame split over segments: the framer frames what it can; where it needs more bytes,
+-- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
+-- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
+-- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
+tcp_states, tcp_records, tcp_call = {}, {}, { number = -1, index = 0 }
+local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
+
+local function dissect_tcp_now(st, tvb, pinfo, n)
+  if st.mode == nil then st.mode = detect_mode(tvb:raw(0, math.min(n, MODE_SAMPLE))) end
+  -- A new buffer each call: what was left over last time comes back at the start of this tvb.
+  st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
+  local record = { number = pinfo.number, start = 0, length = n, frames = 0 }
+  st.open = { record }
+  local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
+  flush_noise_of(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  local used = st.base
+  take_items(st, items, record)
+  if used < n and pinfo.can_desegment > 0 then
+    record.desegment_offset = used
+  end
+  record.waiting = nil
+  return record
+end
+
+local function dissect_tcp(tvb, pinfo, tree)
+  local n = tvb:len()
+  if n == 0 then return 0 end
+  if tcp_call.number ~= pinfo.number then tcp_call.number, tcp_call.index = pinfo.number, 0 end
+  tcp_call.index = tcp_call.index + 1
+  local calls = tcp_records[pinfo.number]
+  if calls == nil then
+    calls = {}
+    tcp_records[pinfo.number] = calls
+  end
+  local key = conversation_key(pinfo)
+  local st = tcp_states[key]
+  if st == nil then
+    st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+    tcp_states[key] = st
+  end
+  local record = calls[tcp_call.index]
+  if record == nil then
+    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
+    if ok then
+      record = result
+    else
+      record = { frames = 0, length = n, error = tostring(result) }
+    end
+    calls[tcp_call.index] = record
+  end
+  if record.desegment_offset ~= nil then
+    pinfo.desegment_offset = record.desegment_offset
+    pinfo.desegment_len = DESEGMENT_ONE_MORE
+  end
+  show_record(st, record, tvb, pinfo, tree, n)
+  return n
+end
+
+-- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
+local PT_TCP, PT_UDP = 2, 3
+
+function proto.dissector(tvb, pinfo, tree)
+  local port_type = pinfo.port_type
+  if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
+  if port_type == PT_UDP then
+    local key = conversation_key(pinfo)
+    local st = udp_states[key]
+    if st == nil then
+      st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+      udp_states[key] = st
+    end
+    return dissect_records(st, tvb, pinfo, tree)
+  end
+  return dissect_records(state, tvb, pinfo, tree)
+end
+end
+
+-- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)
+-- is the user's to map (Preferences > Protocols > DLT_USER: payload protocol "vw3"): a plugin that took
+-- it over would override a user who mapped it to mbrtu. The "user0" preference does it for one session.
 local wtap_encap = DissectorTable.get("wtap_encap")
-wtap_encap:add(wtap.USER0, proto)
 local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
 if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 
@@ -3423,76 +3997,29 @@ if ok_original and rtac_original ~= nil then
   wtap_encap:add(RTAC_ENCAP, rtac_time)
 end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
+DissectorTable.get("udp.port"):add_for_decode_as(proto)
 
--- ---------------------------------------------------------------------------------------------------
--- Post-dissector: names the registers of Wireshark's own Modbus dissection (Modbus/TCP to the same drives
--- behind an Ethernet card uses the same logic addresses; the unit id picks the profile as the slave does).
-local names_proto = Proto("vw3names", "VW3 register names for Wireshark's Modbus dissection")
-proto.prefs.name_modbus = Pref.bool("Name registers in Wireshark's Modbus dissection", true,
-  "Add the register names, values and 16#8000 status of the device profiles to modbus packets")
-local modbus_fields = {}
-for key, name in pairs({ unit = "mbtcp.unit_id", code = "modbus.func_code", number = "modbus.regnum16",
-  value = "modbus.regval_uint16", request = "modbus.request_frame" }) do
-  local ok, field = pcall(Field.new, name)
-  if ok then modbus_fields[key] = field end
-end
-local names_state = new_state(nil)
+-- What the optional Modbus/TCP naming file (vw3_modbus.lua, loaded after this one) builds on. It is a
+-- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
+-- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
+package.loaded.vw3_plugin = {
+  new_state = new_state, device_for = device_for, annotate_registers = annotate_list, reads = READS,
+  add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
+}
 
-function names_proto.init()
-  names_state = new_state(nil)
-end
-
-function names_proto.dissector(tvb, pinfo, tree)
-  if modbus_fields.number == nil or modbus_fields.value == nil then return end
-  -- Every packet comes here: the cheapest test first (no register numbers, no table made).
-  if modbus_fields.number() == nil then return end
-  if not proto.prefs.name_modbus then return end
-  if tvb:len() == 0 then return end
-  local numbers = { modbus_fields.number() }
-  if #numbers == 0 then return end
-  local values = { modbus_fields.value() }
-  local codes = modbus_fields.code and { modbus_fields.code() } or {}
-  local units = modbus_fields.unit and { modbus_fields.unit() } or {}
-  local requests = modbus_fields.request and { modbus_fields.request() } or {}
-  local registers = {}
-  for index = 1, math.min(#numbers, #values) do
-    registers[index] = { address = numbers[index].value, value = values[index].value, field = values[index] }
-  end
-  local code = codes[1] and codes[1].value or 3
-  local f = {
-    slave = units[1] and units[1].value or 0, fn = code % 128, kind = (#requests > 0) and RESPONSE or REQUEST,
-    registers = registers, notes = {}, warnings = {}, number = pinfo.number,
-  }
-  local device = device_for(names_state, f.slave)
-  if not device then return end
-  -- The protection story follows the capture order: computed once, on the first pass, then reused.
-  local done = names_state.records[pinfo.number]
-  if done == nil then
-    annotate_registers(names_state, f, device, registers, f.kind == RESPONSE and READS[f.fn] ~= nil)
-    names_state.records[pinfo.number] = { registers = registers, notes = f.notes }
-  else
-    for index, reg in ipairs(done.registers) do
-      if registers[index] ~= nil then done.registers[index].field = registers[index].field end
-    end
-    registers, f.notes = done.registers, done.notes
-  end
-  local t = tree:add(names_proto, tvb:range(0, tvb:len()))
-  t:set_text(format("VW3 register names (%s, unit %d)", device.profile.title, f.slave))
-  for _, reg in ipairs(registers) do
-    local range = reg.field.range
-    local fake = { offset = 0, length = tvb:len(), data_at = 2, data_len = 0 }
-    if range ~= nil then
-      add_register(t, tvb, fake, reg, range)
-    else
-      add_register(t, tvb, fake, reg)
-    end
-  end
-  for _, text in ipairs(f.notes) do add_text(t:add(pf.note, tvb:range(0, tvb:len()), text), ex.note, text) end
-end
-register_postdissector(names_proto)
-
-local current_port = 0
+local current_port, current_udp_port = 0, 0
+local claimed_user0 = false
 function proto.prefs_changed()
+  if proto.prefs.udp_port ~= current_udp_port then
+    local udp = DissectorTable.get("udp.port")
+    if current_udp_port ~= 0 then udp:remove(current_udp_port, proto) end
+    if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
+    current_udp_port = proto.prefs.udp_port
+  end
+  if proto.prefs.user0 ~= claimed_user0 then
+    if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
+    claimed_user0 = proto.prefs.user0
+  end
   local port = proto.prefs.tcp_port
   if port ~= current_port then
     local tcp = DissectorTable.get("tcp.port")

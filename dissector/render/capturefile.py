@@ -201,4 +201,7 @@ def open_output(
     ring = Ring.parse(list(ring_specs)) if ring_specs else None
     if ring is not None and path == STDOUT:
         raise ValueError("-b needs -w FILE, not standard output")
+    if path == STDOUT and stdout is not None and stdout.isatty():
+        # Binary records would garble the terminal (tshark and dumpcap refuse it too).
+        raise ValueError("-w -: standard output is a terminal; pipe it (| wireshark -k -i -) or give a file")
     return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface)

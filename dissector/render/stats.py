@@ -1,9 +1,10 @@
 """Capture statistics (`--stats`): traffic per slave and function, and what happened to each parameter.
 
 `StatsCollector.add(item)` takes the decoded items in stream order; `report()` gives a JSON-ready dict
-(`--stats --json`) and `render()` rich tables. Memory stays bounded by the number of distinct
-(slave, function) pairs and (slave, address) parameters, except the response times, kept whole for the
-median and the 95th percentile.
+(`--stats --json`), `render()` rich tables and `render_plain()` plain ones. Memory stays bounded by the
+number of distinct (slave, function) pairs and (slave, address) parameters: response times are kept as
+a histogram of nanoseconds (exact for the micro- and nanosecond stamps of pcap and pcapng, and a few
+thousand entries where a capture has millions of answers).
 
 Counting rules (the table headers say the same):
 - A frame whose CRC/LRC fails counts only as a CRC error of the (slave, function) its bytes name: its
@@ -25,7 +26,6 @@ Counting rules (the table headers say the same):
 from __future__ import annotations
 
 import math
-import statistics
 from dataclasses import dataclass, field
 from collections.abc import Callable
 from typing import Any
@@ -52,7 +52,7 @@ class FunctionStats:
     exceptions: dict[int, int] = field(default_factory=dict)
     unanswered: int = 0
     crc_errors: int = 0
-    times: list[float] = field(default_factory=list)
+    times: dict[int, int] = field(default_factory=dict)  # response time in ns -> how many
 
 
 @dataclass(slots=True)
@@ -173,7 +173,9 @@ class StatsCollector:
             stats.responses += 1
             self._add_response_values(item)
         if item.response_time is not None:
-            stats.times.append(item.response_time)
+            key = round(item.response_time * 1e9)
+            times = stats.times
+            times[key] = times.get(key, 0) + 1
 
     def _add_request(self, frame: Frame, stats: FunctionStats) -> None:
         stats.requests += 1
@@ -248,7 +250,7 @@ class StatsCollector:
                     "exceptions": {str(code): count for code, count in sorted(stats.exceptions.items())},
                     "unanswered": stats.unanswered,
                     "crc_errors": stats.crc_errors,
-                    "response_time": _times(stats.times),
+                    "response_time": time_summary(stats.times),
                 }
             )
         parameters = [
@@ -428,16 +430,29 @@ def _parameter_row(members: list[dict[str, Any]]) -> list[Cell]:
             last_value or "", str(first["changes"])]
 
 
-def _times(times: list[float]) -> dict[str, float | int] | None:
+def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:
+    """count, min, median, p95 (nearest rank) and max, in seconds, of a histogram of ns."""
     if not times:
         return None
-    ordered = sorted(times)
+    ordered = sorted(times.items())
+    count = sum(number for _value, number in ordered)
+
+    def nth(rank: int) -> int:  # the rank-th smallest time (1-based)
+        seen = 0
+        for value, number in ordered:
+            seen += number
+            if seen >= rank:
+                return value
+        return ordered[-1][0]
+
+    half = count // 2
+    median = nth(half + 1) if count % 2 else (nth(half) + nth(half + 1)) / 2
     return {
-        "count": len(ordered),
-        "min": ordered[0],
-        "median": statistics.median(ordered),
-        "p95": percentile(ordered, 0.95),
-        "max": ordered[-1],
+        "count": count,
+        "min": ordered[0][0] / 1e9,
+        "median": median / 1e9,
+        "p95": nth(max(1, math.ceil(0.95 * count))) / 1e9,
+        "max": ordered[-1][0] / 1e9,
     }
 
 

@@ -32,15 +32,20 @@ while index <= #arg do
 end
 
 dofile(plugin)
+-- the optional Modbus/TCP naming file beside it (it builds on what vw3.lua left in package.loaded)
+dofile((plugin:gsub("vw3%.lua$", "vw3_modbus.lua")))
 local proto = stub.protos.vw3
-assert(stub.tables.wtap_encap.entries[wtap.USER0] == proto, "registered for linktype 147")
+assert(stub.tables.wtap_encap.entries[wtap.USER0] == nil, "USER0 is the user's to map (DLT_USER)")
+proto.set_pref("user0", true) -- the preference that maps it for a session
 for _, option in ipairs(options) do
   local value = option[2]
   if tonumber(value) then value = tonumber(value) end
   proto.set_pref(option[1], value)
 end
 if proto.prefs_changed then proto.prefs_changed() end
+assert(stub.tables.wtap_encap.entries[wtap.USER0] == proto, "registered for linktype 147 by the preference")
 proto.init()
+if stub.protos.vw3names then stub.protos.vw3names.init() end
 local function tvb_of(record)
   local tvb = stub.tvb(record.bytes)
   if record.broken then tvb.raw = function() error("unreadable bytes") end end

@@ -98,6 +98,14 @@ function stub.tvb(bytes)
   return tvb
 end
 
+-- ByteArray: only what a reassembled frame needs (raw bytes in, a tvb out).
+ByteArray = {
+  new = function(bytes, raw)
+    assert(raw == true, "stub: ByteArray.new only with raw bytes")
+    return { tvb = function(_, name) return stub.tvb(bytes) end }
+  end,
+}
+
 -- Tree items: { label, field, value, range, generated, children }.
 local TreeItem = {}
 TreeItem.__index = TreeItem
@@ -113,6 +121,7 @@ function TreeItem:add(field, range, value, ...)
     assert(value ~= nil, "stub: no value for " .. field.abbr)
   end
   local child = new_item(field, range, value)
+  if field.kind == "proto" and type(value) == "string" then child.value, child.text = nil, value end
   self.children[#self.children + 1] = child
   return child
 end

@@ -437,3 +437,46 @@ def test_live_summary_lines_equal_the_decode_of_the_file(tmp_path: Path) -> None
     lines = [line for _, line in sniffer.lines]
     assert lines == done.stdout.splitlines()
     assert "[no response]" in lines[60] and lines[61].split()[3] == "noise"
+
+
+def test_pcap_to_a_terminal_is_refused(tmp_path: Path) -> None:
+    import pty
+
+    capture = ROOT / "captures" / "p38_protection.bin"
+    for command in ([str(capture)], ["--live", "loop://", "--duration", "0.2"]):
+        leader, follower = pty.openpty()
+        done = subprocess.run([sys.executable, "-m", "dissector", *command, "-w", "-"], cwd=ROOT,
+                              stdout=follower, stderr=subprocess.PIPE, text=True, timeout=60)
+        os.close(follower)
+        os.close(leader)
+        assert done.returncode == 2, done.stderr
+        assert done.stderr.splitlines()[-1] == (
+            "vw3-decode: -w -: standard output is a terminal; pipe it (| wireshark -k -i -) or give a file"
+        )
+
+
+def test_vanishing_port_leaves_valid_pcapng_and_ring_files(tmp_path: Path) -> None:
+    pcapng, ring = tmp_path / "gone.pcapng", tmp_path / "gone.pcap"
+    for seed, options in enumerate((("-w", str(pcapng)), ("-w", str(ring), "-b", "filesize:1"))):
+        bus = Bus(seed=12 + seed)
+        sniffer = Sniffer.start(bus.c_path, "--baud", str(BAUD), "--json", *options)
+        stop = threading.Event()
+        master = threading.Thread(target=our_master, args=(bus.a_slave, 5000, 20 + seed, stop), daemon=True)
+        master.start()
+        while bus.slave.transactions < 100:
+            time.sleep(0.001)
+        bus.relay.close_c()
+        status, stderr = sniffer.wait()
+        stop.set()
+        master.join(5)
+        bus.close()
+        assert status == 1 and "went away" in stderr and "Traceback" not in stderr
+        shown = [json.loads(line)["raw"] for _, line in sniffer.lines]
+        if seed == 0:
+            kept = [item["raw"] for item in decode_file(pcapng)]
+            assert len(tshark("-r", str(pcapng))) == len(kept)
+        else:
+            files = sorted(tmp_path.glob("gone_*.pcap"))
+            assert len(files) >= 2 and all(len(tshark("-r", str(path))) == len(read_pcap(path)) for path in files)
+            kept = [record.hex() for path in files for _, record in read_pcap(path)]
+        assert kept == shown and len(kept) >= 150  # every line shown is on disk, and nothing else

@@ -26,6 +26,26 @@ def test_fuzzed_rtu_records(tmp_path: Path) -> None:
     _check_no_lua_error(write_pcap(tmp_path / "fuzz.pcap", records), len(records))
 
 
+def test_fuzzed_stream_cut_into_small_records(tmp_path: Path) -> None:
+    # The fuzzed records' bytes as one stream cut anew into records of 1 to 16 bytes (a sniffer writing
+    # each serial read): frames and noise runs span records, the framer carries them over.
+    rng = random.Random(16)
+    stream = b"".join(data for data, _ in random_records(seed=16, count=3000))
+    records, position = [], 0
+    while position < len(stream) and len(records) < 10_000:
+        size = rng.randint(1, 16)
+        records.append((stream[position : position + size], len(records) * 0.001))
+        position += size
+    assert len(records) == 10_000
+    result = run_tshark(write_pcap(tmp_path / "cut.pcap", records), "-V")
+    assert result.returncode == 0, result.stderr[-3000:]
+    errors = lua_errors(result.stdout + result.stderr)
+    assert not errors, f"{len(errors)} Lua errors, first: {errors[:5]}"
+    assert "Plugin error" not in result.stdout
+    assert result.stdout.count("VW3 bytes of a frame shown in a later record") > 1000
+    assert result.stdout.count("VW3 Modbus RTU") > 100
+
+
 def test_fuzzed_ascii_records(tmp_path: Path) -> None:
     rng = random.Random(7)
     records = [(b":02062329000AA2\r\n", 0.0)]  # the first record puts the capture in ASCII mode

@@ -6,7 +6,7 @@ import struct
 from pathlib import Path
 
 from dissector.render.pcapwriter import LINKTYPE_RTAC_SERIAL, PcapWriter
-from lua_harness import lua_items, run_tshark
+from lua_harness import PLUGIN, lua_items, run_tshark
 from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
 
 LINKTYPE_ETHERNET = 1
@@ -54,7 +54,8 @@ def test_rtu_over_tcp_port_preference_and_decode_as(tmp_path: Path) -> None:
     writer.send(True, 5020, SCENARIO_REQUEST, 1.0)
     writer.send(False, 5020, SCENARIO_1, 1.01)
     writer.close()
-    expected = [["request", "", "", ""], ["response", "1", "CHCF,COP", "non-existent,ok,ok"]]
+    # (kind and status are integers with value strings: 1 request, 2 response; 0 ok, 1 protected, 2 non-existent)
+    expected = [["1", "", "", ""], ["2", "1", "CHCF,COP", "2,0,0"]]
     assert _fields(tmp_path / "rtu-tcp.pcap", "-o", "vw3.tcp_port:5020") == expected
     assert _fields(tmp_path / "rtu-tcp.pcap", "-d", "tcp.port==5020,vw3") == expected
     # Without either, the port is not ours.
@@ -69,7 +70,7 @@ def test_rtac_serial_decode_as(tmp_path: Path) -> None:
             header = struct.pack(">IIBBH", 100, index * 10_000, 0, 0, 0)
             writer.write(header + frame, 100 + index * 0.01)
     rows = _fields(pcap, "-d", "rtacser.data,vw3")
-    assert rows == [["request", "", "", ""], ["response", "1", "CHCF,COP", "non-existent,protected,ok"]]
+    assert rows == [["1", "", "", ""], ["2", "1", "CHCF,COP", "2,1,0"]]
     items, _, _ = lua_items(pcap, "-d", "rtacser.data,vw3")
     assert [(item.record, item.offset) for item in items] == [(1, 12), (2, 12)]
 
@@ -87,18 +88,23 @@ def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
             writer.send(to_server, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 0) + pdu, time)
             time += 0.01
     writer.close()
-    result = run_tshark(tmp_path / "mbtcp.pcap", "-T", "fields", "-E", "separator=|", "-e", "modbus.regnum16",
+    names = ("-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}")
+    result = run_tshark(tmp_path / "mbtcp.pcap", *names, "-T", "fields", "-E", "separator=|", "-e", "modbus.regnum16",
                         "-e", "vw3.reg.code", "-e", "vw3.reg.status", "-e", "vw3.reg.text", "-e", "vw3.note")
     assert result.returncode == 0, result.stderr
     rows = [line.split("|") for line in result.stdout.splitlines()]
-    assert rows[1] == ["8400,8401,8402", "CHCF,COP", "non-existent,ok,ok",
+    assert rows[1] == ["8400,8401,8402", "CHCF,COP", "2,0,0",
                        "16#8000: non-existent (address not in the map),IO (I/O profile),Cd (command)", ""]
-    assert rows[3][:3] == ["8400,8401,8402", "CHCF,COP", "non-existent,protected,ok"]
+    assert rows[3][:3] == ["8400,8401,8402", "CHCF,COP", "2,1,0"]
     assert rows[3][4] == "CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"
-    assert rows[5][:4] == ["3102,3103,3104,3105", "SFR,TFR,HSP,LSP", "ok,ok,ok,ok",
+    assert rows[5][:4] == ["3102,3103,3104,3105", "SFR,TFR,HSP,LSP", "0,0,0,0",
                            "4.0 kHz,60.0 Hz,50.0 Hz,0.0 Hz"]
-    off = run_tshark(tmp_path / "mbtcp.pcap", "-o", "vw3.name_modbus:FALSE", "-T", "fields", "-e", "vw3.reg.code")
+    off = run_tshark(tmp_path / "mbtcp.pcap", *names, "-o", "vw3names.enabled:FALSE", "-T", "fields",
+                     "-e", "vw3.reg.code")
     assert off.stdout.split() == []
+    # Without the optional file, nothing is named (and serial captures build no tree for it).
+    alone = run_tshark(tmp_path / "mbtcp.pcap", "-T", "fields", "-e", "vw3.reg.code")
+    assert alone.returncode == 0 and alone.stdout.split() == []
 
 
 def test_installed_by_copying_into_the_personal_plugins_folder(tmp_path: Path) -> None:
@@ -111,12 +117,18 @@ def test_installed_by_copying_into_the_personal_plugins_folder(tmp_path: Path) -
     folder = tmp_path / ".local" / "lib" / "wireshark" / "plugins"
     folder.mkdir(parents=True)
     shutil.copy(PLUGIN, folder / "vw3.lua")
+    shutil.copy(PLUGIN.parent / "vw3_modbus.lua", folder / "vw3_modbus.lua")
+    # What Preferences > Protocols > DLT_USER writes when USER0 (linktype 147) is mapped to vw3.
+    config = tmp_path / ".config" / "wireshark"
+    config.mkdir(parents=True)
+    (config / "user_dlts").write_text('"User 0 (DLT=147)","vw3","0","","0",""\n')
     tshark = ensure_tool("tshark", "tshark")
     env = {"HOME": str(tmp_path), "PATH": "/usr/bin:/bin"}
     plugins = subprocess.run([tshark, "-G", "plugins"], capture_output=True, text=True, env=env)
-    listed = [line.split("\t") for line in plugins.stdout.splitlines() if line.startswith("vw3.lua")]
+    listed = [line.split("\t") for line in plugins.stdout.splitlines() if line.startswith("vw3")]
     assert [[part.strip() for part in line] for line in listed] == [
-        ["vw3.lua", "1.0.0", "lua script", str(folder / "vw3.lua")]
+        ["vw3.lua", "1.0.0", "lua script", str(folder / "vw3.lua")],
+        ["vw3_modbus.lua", "1.0.0", "lua script", str(folder / "vw3_modbus.lua")],
     ]
     capture = ROOT / "captures" / "p38_protection.pcap"
     result = subprocess.run([tshark, "-n", "-r", str(capture)], capture_output=True, text=True, env=env)

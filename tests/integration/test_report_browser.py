@@ -107,3 +107,26 @@ def test_a_script_error_shows_in_the_page(tmp_path: Path) -> None:
     broken = tmp_path / "broken.html"
     broken.write_text(page.read_text().replace("</body>", "<script>undefinedFunction()</script></body>"))
     assert "undefinedFunction" in errors(dump_dom(tmp_path, broken))
+
+
+@pytest.mark.parametrize(
+    "capture", ["noisy_bus.pcap", "sel749m_polling.pcap", "ascii_session.pcap", "p38_protection.bin"]
+)
+def test_every_shipped_capture_renders_without_script_error(tmp_path: Path, capture: str) -> None:
+    dom = dump_dom(tmp_path, report(tmp_path, capture))
+    assert errors(dom) == ""
+    drawn = re.findall(r'<div class="chart [a-z]+"[^>]*data-drawn="uplot"', dom)
+    assert len(drawn) == len(re.findall(r'<div class="chart [a-z]+"', dom)) > 1
+
+
+def test_empty_capture_gives_an_empty_report(tmp_path: Path) -> None:
+    empty = tmp_path / "empty.bin"
+    empty.write_bytes(b"")
+    page = tmp_path / "empty.html"
+    result = subprocess.run(
+        [sys.executable, "-m", "dissector", str(empty), "--report", str(page)],
+        cwd=ROOT, capture_output=True, text=True, timeout=60,
+    )
+    assert result.returncode == 0
+    dom = dump_dom(tmp_path, page)
+    assert errors(dom) == "" and "0 frames, 0 noise bytes in 0 runs" in dom and "No events." in dom

@@ -117,7 +117,7 @@ def _bool(text: str | None) -> bool | None:
 
 def lua_frame(item: LuaItem) -> dict[str, Any]:
     fields = item.fields
-    kind = fields.get("kind")
+    kind = lua_kind(item)
     return {
         "item": _int(fields.get("item")),
         "length": item.length,
@@ -139,10 +139,12 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "exception_code": _int(fields.get("exception_code")),
         "request_frame": _int(fields.get("request_frame")),
         "response_frame": _int(fields.get("response_frame")),
-        "unanswered": _bool(fields.get("unanswered")) if kind == "request" else None,
+        # (present only when true)
+        "unanswered": bool(_bool(fields.get("unanswered"))) if kind == "request" else None,
         "response_time": None if fields.get("response_time") is None else round(float(fields["response_time"]), 6),
         "registers": [
-            (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"), reg.get("status"),
+            (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"),
+             STATUS_NAMES.get(reg.get("status"), reg.get("status")),
              reg.get("text"), reg.get("label"), reg.get("name"), reg.get("unit"), reg.get("source"),
              _scaled(reg.get("scaled")))
             for reg in item.registers
@@ -157,39 +159,66 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
     }
 
 
+KIND_NAMES = {"1": "request", "2": "response", "3": "exception", "4": "noise"}
+STATUS_NAMES = {"0": "ok", "1": "protected", "2": "non-existent", "3": "ambiguous"}
+
+
+def lua_kind(item: LuaItem) -> str | None:
+    """The item's kind by name (vw3.kind is an integer with value strings); None: no item (a record note)."""
+    kind = item.fields.get("kind")
+    return KIND_NAMES.get(kind, kind)
+
+
+def lua_shown(lua: list[LuaItem]) -> list[LuaItem]:
+    """The plugin's frames and noise runs (not the trees that only say where a record's bytes went)."""
+    return [item for item in lua if lua_kind(item) is not None]
+
+
 def compare(python: list[PythonItem], lua: list[LuaItem], ignore: frozenset[str] = frozenset()) -> list[str]:
-    """Every difference, as one line each; empty when the two sides agree. `ignore`: keys not compared."""
-    records = {item.data["frame"]: item.record for item in python}
+    """Every difference, as one line each; empty when the two sides agree. `ignore`: keys not compared.
+
+    Items are matched by their offset in the byte stream (vw3.offset, vw3-decode's "offset"): a frame
+    that a capture tool cut across records is shown in the record that completes it, from its own bytes.
+    Links (request and response frames) are compared as the records the plugin shows the linked items in.
+    """
+    lua = lua_shown(lua)
+    shown_in = {_int(item.fields.get("item")): item.record for item in lua}
+    records = {item.data["frame"]: shown_in.get(item.data["frame"]) for item in python}
     differences: list[str] = [f"vw3-decode --json has a key the plugin lacks: {key}" for key in
                               sorted(unknown_keys(python))]
-    py_frames = {(item.record, item.offset): item for item in python if item.data["kind"] != "noise"}
-    lua_frames = {(item.record, item.offset): item for item in lua if item.fields.get("kind") != "noise"}
+    py_frames = {item.data["offset"]: item for item in python if item.data["kind"] != "noise"}
+    lua_frames = {_int(item.fields.get("offset")): item for item in lua if lua_kind(item) != "noise"}
     for key in sorted(set(py_frames) | set(lua_frames)):
-        where = f"record {key[0]} offset {key[1]}"
+        where = f"stream offset {key}"
         if key not in lua_frames:
             differences.append(f"{where}: only Python has a frame: {py_frames[key].data['raw']}")
             continue
         if key not in py_frames:
-            differences.append(f"{where}: only Lua has a frame ({lua_frames[key].fields.get('kind')})")
+            differences.append(f"{where} (record {lua_frames[key].record}): only Lua has a frame "
+                               f"({lua_kind(lua_frames[key])})")
             continue
         expected = python_frame(py_frames[key], records)
         got = lua_frame(lua_frames[key])
         for name, value in expected.items():
             if name not in ignore and got.get(name) != value:
-                differences.append(f"{where} {name}: Python {value!r}, Lua {got.get(name)!r}")
+                differences.append(f"{where} (record {lua_frames[key].record}) {name}: Python {value!r}, "
+                                   f"Lua {got.get(name)!r}")
     py_noise = {
-        (item.record, item.offset + index)
+        item.stream_offset + index
         for item in python
         if item.data["kind"] == "noise"
         for index in range(item.data["length"])
     }
     lua_noise = {
-        (item.record, item.offset + index)
+        _int(item.fields.get("offset")) + index
         for item in lua
-        if item.fields.get("kind") == "noise"
+        if lua_kind(item) == "noise"
         for index in range(item.length)
     }
-    for record, offset in sorted(py_noise ^ lua_noise)[:20]:
-        side = "Python" if (record, offset) in py_noise else "Lua"
-        differences.append(f"record {record} offset {offset}: noise only in {side}")
+    for offset in sorted(py_noise ^ lua_noise)[:20]:
+        side = "Python" if offset in py_noise else "Lua"
+        differences.append(f"stream offset {offset}: noise only in {side}")
+    python_count = len({item.data["frame"] for item in python})
+    if python_count != len(lua):
+        differences.append(f"{python_count} items in vw3-decode --json, {len(lua)} shown by the plugin")
     return differences

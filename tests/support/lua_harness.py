@@ -32,6 +32,9 @@ from dissector.sources.reader import open_source
 ROOT = Path(__file__).resolve().parents[2]
 PLUGIN = ROOT / "lua" / "vw3.lua"
 CLI_TIMEOUT = 1.0  # vw3-decode's --timeout default, and the plugin's preference default
+# Linktype 147 mapped to the plugin as a user does it (Preferences > Protocols > DLT_USER): the plugin
+# does not take USER0 over.
+USER_DLT = 'uat:user_dlts:"User 0 (DLT=147)","vw3","0","","0",""'
 
 
 def ensure_tool(command: str, package: str) -> str:
@@ -62,7 +65,7 @@ def write_pcap(path: Path, records: Iterable[tuple[bytes, float]]) -> Path:
 
 def run_tshark(pcap: Path, *args: str, timeout: float = 900) -> subprocess.CompletedProcess[str]:
     tshark = ensure_tool("tshark", "tshark")
-    command = [tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-r", str(pcap), *args]
+    command = [tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap), *args]
     # Replacement characters, not an exception, should tshark ever print bytes that are not UTF-8.
     return subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=timeout)
 
@@ -168,6 +171,7 @@ class PythonItem:
     record: int
     offset: int
     data: dict[str, Any]
+    stream_offset: int = 0  # where this item (or this record's piece of a noise run) starts in the stream
 
 
 def record_lengths(pcap: Path) -> list[int]:
@@ -232,14 +236,14 @@ def place_items(dicts: list[dict[str, Any]], lengths: list[int]) -> list[PythonI
     for data in dicts:
         record = _record_of(starts, data["offset"])
         if data["kind"] != "noise":
-            out.append(PythonItem(record + 1, data["offset"] - starts[record], data))
+            out.append(PythonItem(record + 1, data["offset"] - starts[record], data, data["offset"]))
             continue
         # A noise run of the byte stream may cross records; Wireshark shows it record by record.
         offset, end = data["offset"], data["offset"] + data["length"]
         while offset < end:
             record = _record_of(starts, offset)
             stop = min(end, starts[record + 1])
-            out.append(PythonItem(record + 1, offset - starts[record], data | {"length": stop - offset}))
+            out.append(PythonItem(record + 1, offset - starts[record], data | {"length": stop - offset}, offset))
             offset = stop
     return out
 

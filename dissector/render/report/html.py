@@ -12,7 +12,7 @@ from typing import Any, TextIO
 from dissector.errors import OutputError
 from dissector.render.pollcycle import describe_key
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
-from dissector.render.stats import StatsCollector, percentile
+from dissector.render.stats import StatsCollector, time_summary
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
@@ -43,7 +43,7 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
         entry = slaves.setdefault(
             slave,
             {"slave": slave, "requests": 0, "responses": 0, "exceptions": {}, "unanswered": 0,
-             "crc_errors": 0, "times": []},
+             "crc_errors": 0, "times": {}},
         )
         entry["requests"] += row.requests
         entry["responses"] += row.responses
@@ -51,24 +51,21 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
         entry["crc_errors"] += row.crc_errors
         for code, count in row.exceptions.items():
             entry["exceptions"][code] = entry["exceptions"].get(code, 0) + count
-        entry["times"].extend(row.times)
+        times = entry["times"]
+        for value, count in row.times.items():
+            times[value] = times.get(value, 0) + count
     result = []
     for entry in slaves.values():
-        times = sorted(entry.pop("times"))
-        entry["time"] = None
-        if times:
-            low, high = times[0], times[-1]
+        times = entry.pop("times")
+        entry["time"] = summary = time_summary(times)
+        if summary is not None:
+            low, high = summary["min"], summary["max"]
             width = (high - low) / HISTOGRAM_BINS or 1e-4
             counts = [0] * HISTOGRAM_BINS
-            for time in times:
-                counts[min(HISTOGRAM_BINS - 1, int((time - low) / width))] += 1
-            middle = len(times) // 2
-            median = times[middle] if len(times) % 2 else (times[middle - 1] + times[middle]) / 2
-            entry["time"] = {
-                "count": len(times), "min": low, "median": median, "p95": percentile(times, 0.95), "max": high,
-                "bins": [round((low + (index + 0.5) * width) * 1000, 4) for index in range(HISTOGRAM_BINS)],
-                "counts": counts,
-            }
+            for value, count in times.items():
+                counts[min(HISTOGRAM_BINS - 1, int((value / 1e9 - low) / width))] += count
+            summary["bins"] = [round((low + (index + 0.5) * width) * 1000, 4) for index in range(HISTOGRAM_BINS)]
+            summary["counts"] = counts
         result.append(entry)
     return result
 
