@@ -7,40 +7,8 @@ from pathlib import Path
 
 from dissector.render.pcapwriter import LINKTYPE_RTAC_SERIAL, PcapWriter
 from lua_harness import PLUGIN, lua_items, run_tshark
+from lua_net import NetWriter
 from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
-
-LINKTYPE_ETHERNET = 1
-CLIENT, SERVER = bytes([10, 0, 0, 1]), bytes([10, 0, 0, 2])
-
-
-def _checksum(header: bytes) -> int:
-    total = sum(struct.unpack(f"!{len(header) // 2}H", header))
-    total = (total >> 16) + (total & 0xFFFF)
-    return ~(total + (total >> 16)) & 0xFFFF
-
-
-class TcpWriter:
-    """Ethernet/IPv4/TCP packets with one payload each, sequence numbers kept per direction."""
-
-    def __init__(self, path: Path) -> None:
-        self._stream = path.open("wb")
-        self._writer = PcapWriter(self._stream, linktype=LINKTYPE_ETHERNET, flush=False)
-        self._seq: dict[tuple[int, int], int] = {}
-
-    def send(self, to_server: bool, port: int, payload: bytes, time: float) -> None:
-        source, destination = (CLIENT, SERVER) if to_server else (SERVER, CLIENT)
-        sport, dport = (40000, port) if to_server else (port, 40000)
-        seq = self._seq.get((sport, dport), 1000)
-        self._seq[(sport, dport)] = seq + len(payload)
-        tcp = struct.pack("!HHIIBBHHH", sport, dport, seq, 0, 5 << 4, 0x18, 8192, 0, 0)
-        ip = struct.pack("!BBHHHBBH4s4s", 0x45, 0, 40 + len(payload), 1, 0, 64, 6, 0, source, destination)
-        ip = ip[:10] + struct.pack("!H", _checksum(ip)) + ip[12:]
-        ethernet = bytes.fromhex("001122334455 66778899aabb 0800")
-        self._writer.write(ethernet + ip + tcp + payload, time)
-
-    def close(self) -> None:
-        self._stream.close()
-
 
 def _fields(pcap: Path, *args: str) -> list[list[str]]:
     result = run_tshark(pcap, *args, "-T", "fields", "-E", "separator=|", "-e", "vw3.kind",
@@ -50,9 +18,9 @@ def _fields(pcap: Path, *args: str) -> list[list[str]]:
 
 
 def test_rtu_over_tcp_port_preference_and_decode_as(tmp_path: Path) -> None:
-    writer = TcpWriter(tmp_path / "rtu-tcp.pcap")
-    writer.send(True, 5020, SCENARIO_REQUEST, 1.0)
-    writer.send(False, 5020, SCENARIO_1, 1.01)
+    writer = NetWriter(tmp_path / "rtu-tcp.pcap")
+    writer.tcp(True, 40000, 5020, SCENARIO_REQUEST, 1.0)
+    writer.tcp(False, 40000, 5020, SCENARIO_1, 1.01)
     writer.close()
     # (kind and status are integers with value strings: 1 request, 2 response; 0 ok, 1 protected, 2 non-existent)
     expected = [["1", "", "", ""], ["2", "1", "CHCF,COP", "2,0,0"]]
@@ -76,7 +44,7 @@ def test_rtac_serial_decode_as(tmp_path: Path) -> None:
 
 
 def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
-    writer = TcpWriter(tmp_path / "mbtcp.pcap")
+    writer = NetWriter(tmp_path / "mbtcp.pcap")
     pairs = [
         (bytes.fromhex("0320D00003"), bytes.fromhex("0306 8000 0003 0002")),
         (bytes.fromhex("0320D00003"), bytes.fromhex("0306 8000 8000 0002")),
@@ -85,7 +53,7 @@ def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
     time = 1.0
     for transaction, (request, response) in enumerate(pairs, start=1):
         for to_server, pdu in ((True, request), (False, response)):
-            writer.send(to_server, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 0) + pdu, time)
+            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 0) + pdu, time)
             time += 0.01
     writer.close()
     names = ("-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}")
