@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from datetime import datetime, timedelta, timezone
 
 from dissector.errors import MalformedInput
@@ -141,12 +141,18 @@ def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
             raise SourceError(f"{inp.name} line {number}: binary data in a hex dump") from None
 
 
-def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object, bytes] | None]) -> Iterator[Chunk]:
+    """One chunk per line that `parse` finds bytes in; a line it refuses (ValueError) ends the read
+    with the line's number."""
     for number, line in text_lines(inp, chunk_size):
         try:
-            parsed = parse_line(line)
-        except HexLineError as error:
+            parsed = parse(line)
+        except ValueError as error:
             raise SourceError(f"{inp.name} line {number}: {error}") from None
         if parsed is not None:
             time, data = parsed
             yield Chunk(data, time, True)
+
+
+def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    return read_lines(inp, chunk_size, parse_line)

@@ -16,8 +16,8 @@ import re
 from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
-from dissector.sources.common import Input, SourceError, WarningLog
-from dissector.sources.hexdump import HexLineError, _timestamp, text_lines
+from dissector.sources.common import Input, WarningLog
+from dissector.sources.hexdump import HexLineError, _timestamp, read_lines
 
 # Found with search(), then the line is cut in plain steps: one regular expression with optional
 # parts on both sides backtracked exponentially on lines of spaces (50 s for 400 characters).
@@ -81,11 +81,4 @@ def looks_like_traffic(text: str, complete: bool) -> bool:
 
 
 def read_traffic(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    for number, line in text_lines(inp, chunk_size):
-        try:
-            parsed = parse_traffic_line(line)
-        except ValueError as error:
-            raise SourceError(f"{inp.name} line {number}: {error}") from None
-        if parsed is not None:
-            time, data = parsed
-            yield Chunk(data, time, True)
+    return read_lines(inp, chunk_size, parse_traffic_line)
