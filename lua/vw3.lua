@@ -1054,10 +1054,11 @@ else
   bxor = load("return function(a, b) return a ~ b end")()
 end
 
--- The CRC runs on table lookups only, one byte at a time on its two bytes (lo, hi): a call of `bxor` per
--- byte (a C function on Lua 5.2) cost more than all the rest of the framing. XOR8[a * 256 + b] = a XOR b;
--- CRC_LO and CRC_HI are the two bytes of the CRC-16/MODBUS table.
-local XOR8, CRC_LO, CRC_HI = {}, {}, {}
+-- The CRC runs on table lookups only (a call of `bxor` per byte, a C function on Lua 5.2, cost more than
+-- all the rest of the framing), two bytes a step: the register is 16 bits wide, so after two bytes it
+-- depends only on (register XOR the two bytes), and one 65,536-entry table (TWO_LO, TWO_HI: its two
+-- bytes) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the one-byte table.
+local XOR8, CRC_LO, CRC_HI, TWO_LO, TWO_HI = {}, {}, {}, {}, {}
 for byte = 0, 255 do
   local crc = byte
   for _ = 1, 8 do
@@ -1070,20 +1071,33 @@ for byte = 0, 255 do
   CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
   for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
 end
--- The table bytes of (lo XOR byte), keyed by lo * 256 + byte: one lookup fewer a byte on the hot path.
-local CRC_LO2, CRC_HI2 = {}, {}
-for key = 0, 65535 do
-  local index = XOR8[key]
-  CRC_LO2[key], CRC_HI2[key] = CRC_LO[index], CRC_HI[index]
+-- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
+for lo = 0, 255 do
+  for hi = 0, 255 do
+    local index = lo -- the first byte in: lo XOR 0, then the second byte (0) into the result
+    local lo1, hi1 = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+    TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]], CRC_HI[lo1]
+  end
 end
 
--- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table).
-local function crc16(b, from, to)
-  local lo, hi = 0xFF, 0xFF
-  for k = from, to - 1 do
-    local key = lo * 256 + b[k]
-    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
+-- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
+-- 0xFF: a new CRC); returns the register's two bytes.
+local function crc_bytes(b, from, to, lo, hi)
+  local k = from
+  while k + 1 < to do
+    local w = XOR8[hi * 256 + b[k + 1]] * 256 + XOR8[lo * 256 + b[k]]
+    lo, hi = TWO_LO[w], TWO_HI[w]
+    k = k + 2
   end
+  if k < to then
+    local index = XOR8[lo * 256 + b[k]]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+  end
+  return lo, hi
+end
+
+local function crc16(b, from, to)
+  local lo, hi = crc_bytes(b, from, to, 0xFF, 0xFF)
   return hi * 256 + lo
 end
 
@@ -1099,11 +1113,11 @@ end
 local crc_b, crc_i, crc_to, crc_lo, crc_hi = nil, -1, -1, 0xFF, 0xFF
 local function crc_ok_at(b, i, length)
   local stop = i + length - 2
-  local lo, hi, k = 0xFF, 0xFF, i
-  if b == crc_b and i == crc_i and stop >= crc_to then lo, hi, k = crc_lo, crc_hi, crc_to end
-  for j = k, stop - 1 do
-    local key = lo * 256 + b[j]
-    lo, hi = XOR8[hi * 256 + CRC_LO2[key]], CRC_HI2[key]
+  local lo, hi
+  if b == crc_b and i == crc_i and stop >= crc_to then
+    lo, hi = crc_bytes(b, crc_to, stop, crc_lo, crc_hi)
+  else
+    lo, hi = crc_bytes(b, i, stop, 0xFF, 0xFF)
   end
   crc_b, crc_i, crc_to, crc_lo, crc_hi = b, i, stop, lo, hi
   return hi * 256 + lo == b[stop] + b[stop + 1] * 256
