@@ -159,6 +159,52 @@ def _register_json(register: Register) -> str:
     return text
 
 
+def _scalar(value: Any) -> str:
+    """json.dumps of a None, bool, int, float or str."""
+    kind = type(value)
+    if kind is int:
+        return str(value)
+    if kind is str:
+        return _json_string(value)
+    if value is None:
+        return "null"
+    if value is True:
+        return "true"
+    if value is False:
+        return "false"
+    if isinstance(value, float) and value == value and value not in (_INF, -_INF):
+        return float.__repr__(value)  # what json writes for a float (a Stamp too)
+    return json.dumps(value)
+
+
+_INF = float("inf")
+_KIND_JSON = {kind: _json_string(kind.value) for kind in Kind}
+
+
+def _head_json(frame: Frame) -> str:
+    """json.dumps(_head(frame)) without its braces, formatted directly (held equal by the tests)."""
+    raw = frame.raw
+    crc, expected = frame.crc, frame.crc_expected
+    text = (
+        f'"frame": {frame.number}, "kind": {_KIND_JSON[frame.kind]}, "offset": {frame.offset}, '
+        f'"length": {len(raw)}, "time": {_scalar(frame.time)}, "raw": "{raw.hex()}", '
+        f'"mode": {_scalar(frame.mode)}, "slave": {frame.slave}, "function": {frame.function}, '
+        f'"function_name": {_scalar(frame.function_text or SPEC.function_name(frame.function))}, '
+        f'"crc_ok": {"true" if crc == expected else "false"}, "crc": {crc}, "crc_expected": {expected}, '
+        f'"broadcast": {"true" if frame.broadcast else "false"}'
+    )
+    if frame.start is not None:
+        text += f', "start": {_scalar(frame.start)}'
+    if frame.span_label is not None:
+        text += f', "span_label": {_scalar(frame.span_label)}'
+    if frame.quantity is not None:
+        text += f', "quantity": {_scalar(frame.quantity)}'
+    if frame.subfunction is not None:
+        name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
+        text += f', "subfunction": {_scalar(frame.subfunction)}, "subfunction_name": {_scalar(name)}'
+    return text
+
+
 def _bits_json(bits: Sequence[Bit]) -> str:
     """json.dumps of the `bits` list, formatted in bulk (a 2000-coil read is one format call)."""
     if isinstance(bits, BitList):
@@ -217,20 +263,35 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
     # Spliced from json.dumps' texts of the parts in the order item_to_dict gives them; with its
     # default separators (", " and ": ") the result is exact. The head is never empty and the last part
     # always holds warnings and notes.
-    parts = [json.dumps(_head(frame))[1:-1]]
+    parts = [_head_json(frame)]
     if registers is not None:
         parts.append('"registers": [' + ", ".join([_register_json(register) for register in registers]) + "]")
     if bits is not None:
         parts.append('"bits": ' + _bits_json(bits))
-    middle = _tail(frame, {}, with_bits=False, lists=False)
-    if middle:
-        parts.append(json.dumps(middle)[1:-1])
+    if frame.objects is not None or frame.kind is Kind.EXCEPTION:
+        middle = _tail(frame, {}, with_bits=False, lists=False)
+        if middle:
+            parts.append(json.dumps(middle)[1:-1])
+    else:  # the common case, directly: the pairing keys
+        request = frame.request
+        if request is not None:
+            parts.append(f'"request_frame": {request.number}, "response_time": {_scalar(frame.response_time)}')
+        response = frame.response
+        if response is not None:
+            parts.append(f'"response_frame": {response.number}')
+        if frame.kind is Kind.REQUEST:
+            parts.append('"unanswered": true' if frame.unanswered else '"unanswered": false')
     if fields is not None:
         parts.append('"fields": ' + _fields_json(fields))
-    last: dict[str, Any] = {"warnings": list(frame.warnings), "notes": list(frame.notes)}
     if extra:
+        last: dict[str, Any] = {"warnings": list(frame.warnings), "notes": list(frame.notes)}
         last.update(extra)
-    parts.append(json.dumps(last)[1:-1])
+        parts.append(json.dumps(last)[1:-1])
+    else:
+        parts.append(
+            f'"warnings": [{", ".join(map(_json_string, frame.warnings))}], '
+            f'"notes": [{", ".join(map(_json_string, frame.notes))}]'
+        )
     return "{" + ", ".join(parts) + "}"
 
 
