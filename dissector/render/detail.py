@@ -5,11 +5,12 @@ is decided once and a terminal only adds colour.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
-from dissector.model import BitList, Frame, Item, Kind, Noise, Register
+from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.summary import crc_text, noise_info
 
@@ -117,7 +118,15 @@ def _register_block(register: Register) -> Block:
     return tuple(lines), tuple(styles)
 
 
-def _register_lines(detail: _Detail, registers: list[Register]) -> None:
+def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
+    if type(registers) is RegisterList and registers.plain:  # straight from the columns
+        values = registers.values
+        if registers.start is None:
+            detail.run([f"        Register ?: {value} (0x{value:04X})" for value in values])
+        else:
+            shown = registers.labels or registers.addresses
+            detail.run([f"        Register {address}: {value} (0x{value:04X})" for address, value in zip(shown, values)])
+        return
     blocks = _REGISTER_BLOCKS
     texts = detail.texts
     run: list[str] = []  # unannotated registers in a row (a relay's block, a meter's readings)

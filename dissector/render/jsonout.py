@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from itertools import chain
 from typing import Any, TextIO
 
-from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register
+from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 
 
@@ -205,6 +205,22 @@ def _head_json(frame: Frame) -> str:
     return text
 
 
+def _plain_registers_json(registers: RegisterList) -> str:
+    """The `registers` list of a block no profile annotated beyond labels, straight from its columns."""
+    values = registers.values
+    if not values:
+        return "[]"
+    labels = registers.labels
+    if registers.start is None:
+        template = ", ".join(['{"address": null, "value": %d}'] * len(values))
+        return "[" + template % tuple(values) + "]"
+    if labels is None:
+        template = ", ".join(['{"address": %d, "value": %d}'] * len(values))
+        return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values))) + "]"
+    template = ", ".join(['{"address": %d, "value": %d, "label": %s}'] * len(values))
+    return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values, map(_json_string, labels)))) + "]"
+
+
 def _bits_json(bits: Sequence[Bit]) -> str:
     """json.dumps of the `bits` list, formatted in bulk (a 2000-coil read is one format call)."""
     if isinstance(bits, BitList):
@@ -265,7 +281,10 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
     # always holds warnings and notes.
     parts = [_head_json(frame)]
     if registers is not None:
-        parts.append('"registers": [' + ", ".join([_register_json(register) for register in registers]) + "]")
+        if type(registers) is RegisterList and registers.plain:
+            parts.append('"registers": ' + _plain_registers_json(registers))
+        else:
+            parts.append('"registers": [' + ", ".join([_register_json(register) for register in registers]) + "]")
     if bits is not None:
         parts.append('"bits": ' + _bits_json(bits))
     if frame.objects is not None or frame.kind is Kind.EXCEPTION:
