@@ -2726,8 +2726,8 @@ interpret_wide = function(row, first, second)
   local value
   if row.kind == "float32" then
     -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
-    local sign = 1
-    if high >= 0x8000 then sign = -1 end
+    local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
+    if high >= 0x8000 then sign = -1.0 end
     local exponent = floor(high / 128) % 256
     local fraction = (high % 128) * 65536 + low
     if exponent == 255 then

@@ -138,3 +138,34 @@ def test_wide_row_errors_are_shown_as_vw3_decode_says_them(tmp_path: Path, rows:
     assert cli.returncode != 0 and cli.stderr.strip().endswith(message), cli.stderr
     _, record_experts, _ = lua_items(pcap, "-o", f"vw3.maps:{bad}")
     assert any(text.endswith(message) for _, text in record_experts), (message, record_experts)
+
+
+def test_wide_values_under_lua54(tmp_path: Path) -> None:
+    # Wireshark 4.4+ runs Lua 5.4, where 32-bit sums are integers and `/` gives floats: the texts and
+    # words and scaled values of every register are those vw3-decode gives (the plugin on the stub of lua/tests).
+    import json
+
+    from test_lua_stub import run
+
+    wide = tmp_path / "meter.csv"
+    wide.write_text(WIDE_MAP, encoding="utf-8")
+    records = wide_session(20)
+    pcap = write_pcap(tmp_path / "wide.pcap", records)
+    cli = subprocess.run([sys.executable, "-m", "dissector", str(pcap), "--json", "--map", str(wide)], cwd=ROOT,
+                         capture_output=True, text=True, timeout=120, check=True)
+    expected = [(reg.get("text"), reg.get("words", 1), reg.get("scaled")) for line in cli.stdout.splitlines()
+                for reg in json.loads(line).get("registers", [])]
+    got: list[list] = []
+    for line in (line.strip() for line in run(records, f"maps={wide}")):
+        # a register's line, then its own fields (text, words) before the next register's line
+        if line.startswith("vw3.reg="):
+            got.append([None, 1, None])
+        elif line.startswith("vw3.reg.text="):
+            got[-1][0] = line.split("=", 1)[1]
+        elif line.startswith("vw3.reg.words="):
+            got[-1][1] = int(line.split("=", 1)[1])
+        elif line.startswith("vw3.reg.scaled="):
+            got[-1][2] = pytest.approx(float(line.split("=", 1)[1]))
+    got = [tuple(reg) for reg in got]
+    assert got == expected and len(expected) > 40
+    assert sum(reg[2] is not None for reg in expected) > 15
