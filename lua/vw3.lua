@@ -3546,9 +3546,12 @@ do
     if request ~= nil then request_record, request_time = request.record, request.time end
     if response ~= nil then response_record = response.record end
     -- (one constructor: the array is made at its size, 19 slots)
-    return { f.kind, f.at, f.length, f.number, f.offset, f.record, f.time, f.slave, f.fn, f.crc,
+    local p = { f.kind, f.at, f.length, f.number, f.offset, f.record, f.time, f.slave, f.fn, f.crc,
       f.crc_expected, f.start, f.quantity, pack_run(f.registers), pack_run(f.bits), request_record,
       request_time, response_record, rare(f, RARE) }
+    -- An exception 02's inferred registers are listed from its request's start and quantity.
+    if f.inferred and request ~= nil then p[19].inferred = { request.start, request.quantity } end
+    return p
   end
 
   -- The item as the display reads it: a new table (an item never packed is itself).
@@ -3561,6 +3564,10 @@ do
     if p[18] ~= nil then f.response = { record = p[18] } end
     if p[19] ~= nil then
       for key, value in pairs(p[19]) do f[key] = value end
+      local inferred = f.inferred
+      if inferred ~= nil and f.request ~= nil then
+        f.request.start, f.request.quantity, f.request.fn, f.inferred = inferred[1], inferred[2], f.fn, true
+      end
     end
     return f
   end
