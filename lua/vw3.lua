@@ -136,6 +136,27 @@ local DATA = {
     [24] = true,
     [43] = true,
   },
+  ["user_defined"] = {
+    [65] = true,
+    [66] = true,
+    [67] = true,
+    [68] = true,
+    [69] = true,
+    [70] = true,
+    [71] = true,
+    [72] = true,
+    [100] = true,
+    [101] = true,
+    [102] = true,
+    [103] = true,
+    [104] = true,
+    [105] = true,
+    [106] = true,
+    [107] = true,
+    [108] = true,
+    [109] = true,
+    [110] = true,
+  },
   ["protocol"] = {
     ["rules"] = {
       [1] = {
@@ -1703,7 +1724,7 @@ local NOT_BROADCAST = DATA.not_broadcast or {}
 local function function_name(code)
   local name = FUNCTIONS[code]
   if name then return name end
-  if (code >= 65 and code <= 72) or (code >= 100 and code <= 110) then
+  if (DATA.user_defined or {})[code] then
     return format("User-defined function %d", code)
   end
   return format("Function %d", code)

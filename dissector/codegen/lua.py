@@ -89,6 +89,7 @@ def plugin_data() -> dict[str, Any]:
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,
+        "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
     }
     data.update(_profile_data())

@@ -21,12 +21,15 @@ class Spec:
     limits: dict[str, object]
     not_broadcast: frozenset[int]
     plc_references: dict[int, int]  # function -> PLC reference base (1: 00001, 10001, 30001)
+    user_defined: frozenset[int]  # function codes the spec leaves to users
+    # Codes with no public layout that a shipped device profile speaks (data/profiles/*.toml `functions`)
+    vendor_functions: frozenset[int]
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
         if name is not None:
             return name
-        if 65 <= code <= 72 or 100 <= code <= 110:
+        if code in self.user_defined:
             return f"User-defined function {code}"
         return f"Function {code}"
 
@@ -49,7 +52,19 @@ def load_spec() -> Spec:
         limits=data["limits"],
         not_broadcast=frozenset(data["not_broadcast"]),
         plc_references={int(key): int(value) for key, value in data.get("plc_references", {}).items()},
+        user_defined=frozenset(code for low, high in data["user_defined"] for code in range(low, high + 1)),
+        vendor_functions=_vendor_functions(frozenset(_int_keys(data["functions"]))),
     )
+
+
+def _vendor_functions(public: frozenset[int]) -> frozenset[int]:
+    """The codes shipped profiles list beyond the public ones: the framer must know their frames exist
+    before any profile is chosen (a relay's 60h answer on a bus that also carries drives)."""
+    codes: set[int] = set()
+    for entry in resources.files("dissector").joinpath("data/profiles").iterdir():
+        if entry.name.endswith(".toml"):
+            codes.update(tomllib.loads(entry.read_text(encoding="utf-8")).get("functions", []))
+    return frozenset(codes - public)
 
 
 SPEC = load_spec()

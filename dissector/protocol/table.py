@@ -21,6 +21,7 @@ from construct import Construct, Struct
 
 from dissector.model import Kind
 from dissector.protocol import layouts as L
+from dissector.protocol.spec import SPEC
 
 
 @dataclass(frozen=True, slots=True)
@@ -257,9 +258,9 @@ FUNCTIONS: tuple[Function, ...] = (
 
 TABLE: dict[int, Function] = {entry.code: entry for entry in FUNCTIONS}
 
-# Codes with no public layout, found by a CRC scan: user-defined (65-72, 100-110) and the SEL-749M's
-# (60h-62h, 7Dh, 7Eh).
-OTHER_FUNCTIONS = frozenset([*range(65, 73), *range(100, 111), 0x60, 0x61, 0x62, 0x7D, 0x7E])
+# Codes with no public layout, found by a CRC scan: the spec's user-defined ranges and the codes device
+# profiles speak (both from data files).
+OTHER_FUNCTIONS = SPEC.user_defined | SPEC.vendor_functions
 
 EXCEPTION_LAYOUT = Layout("exception", L.EXCEPTION, Fixed(5))
 RAW_LAYOUT = Layout("raw", L.RAW, SCAN)
