@@ -92,6 +92,75 @@ class Register:
     words: int = 1
 
 
+class RegisterList(Sequence[Register]):
+    """The registers of a block of values, read in bulk: no `Register` object until one is asked for.
+
+    Decoding keeps the start and the values; a profile that only labels them (PLC-style addresses,
+    no map row in the block) sets `labels` in bulk; -V and --json write such a block straight from
+    these columns. Any other access makes the `Register` objects once and keeps them, so what a
+    caller changes on one stays.
+    """
+
+    __slots__ = ("start", "values", "labels", "_registers")
+
+    def __init__(self, start: int | None, values: list[int]) -> None:
+        self.start = start
+        self.values = values
+        self.labels: list[str] | None = None  # display addresses, when a profile set them in bulk
+        self._registers: list[Register] | None = None
+
+    @property
+    def plain(self) -> bool:
+        """No Register object was made: the block is its address, value and label columns."""
+        return self._registers is None
+
+    @property
+    def addresses(self) -> Sequence[int | None]:
+        """Every register's address (wrapping past 65535), or None each when the start is unknown."""
+        start, count = self.start, len(self.values)
+        if start is None:
+            return [None] * count
+        if start + count <= 0x10000:
+            return range(start, start + count)
+        return [(start + index) & 0xFFFF for index in range(count)]
+
+    def registers(self) -> list[Register]:
+        """The Register objects, made on first use and kept."""
+        registers = self._registers
+        if registers is None:
+            labels = self.labels
+            if labels is None:
+                registers = list(map(Register, self.addresses, self.values))
+            else:
+                registers = [
+                    Register(address, value, label=label)
+                    for address, value, label in zip(self.addresses, self.values, labels)
+                ]
+            self._registers = registers
+        return registers
+
+    def __len__(self) -> int:
+        return len(self.values)
+
+    @overload
+    def __getitem__(self, index: int) -> Register: ...
+    @overload
+    def __getitem__(self, index: slice) -> list[Register]: ...
+    def __getitem__(self, index: int | slice) -> Register | list[Register]:
+        return self.registers()[index]
+
+    def __iter__(self) -> Iterator[Register]:
+        return iter(self.registers())
+
+    def __eq__(self, other: object) -> bool:
+        if isinstance(other, (RegisterList, list)):
+            return self.registers() == list(other)
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        return f"RegisterList(start={self.start}, count={len(self.values)})"
+
+
 @dataclass(slots=True)
 class Bit:
     address: int | None
@@ -205,7 +274,7 @@ class Frame:
     start: int | None = None
     quantity: int | None = None
     subfunction: int | None = None
-    registers: list[Register] | None = None
+    registers: Sequence[Register] | None = None  # a RegisterList for blocks of values
     bits: Sequence[Bit] | None = None  # a BitList for packed status fields
     objects: list[DeviceObject] | None = None
     notes: list[str] = field(default_factory=list)

@@ -10,7 +10,7 @@ from construct import Container
 from dissector.decode.fastpath import fast_parse
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
-from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register
+from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol.spec import SPEC
 
 _LIMITS = SPEC.limits
@@ -27,13 +27,9 @@ def _check_span(frame: Frame, start: int, quantity: int) -> None:
         frame.warnings.append(f"addresses {start}..{start + quantity - 1} run past 65535")
 
 
-def _registers(start: int | None, values: list[int]) -> list[Register]:
-    if start is None:
-        return [Register(None, value) for value in values]
-    end = start + len(values)
-    if end <= 0x10000:
-        return list(map(Register, range(start, end), values))
-    return [Register((start + index) & 0xFFFF, value) for index, value in enumerate(values)]
+def _registers(start: int | None, values: list[int]) -> RegisterList:
+    # In bulk: a 125-register block makes no Register object until a view asks for one (model.RegisterList).
+    return RegisterList(start, values)
 
 
 def _bits(start: int | None, packed: bytes, quantity: int | None) -> BitList:

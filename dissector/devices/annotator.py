@@ -12,6 +12,8 @@ per frame is a few dictionary lookups per register.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import explain_exception
@@ -21,7 +23,7 @@ from dissector.devices.naming import name_register, name_wide, plc_label
 from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
-from dissector.model import DeviceObject, Frame, Kind, Register
+from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
@@ -250,7 +252,7 @@ class Annotator:
             _objects(frame, device.profile, frame.objects)
 
     def _annotate(
-        self, frame: Frame, device: Device, registers: list[Register], read: bool, events: list[Event]
+        self, frame: Frame, device: Device, registers: Sequence[Register], read: bool, events: list[Event]
     ) -> None:
         rows = device.rows
         depend = device.depend
@@ -260,6 +262,15 @@ class Annotator:
             base = device.base(frame.function)
             labels = device.labels.setdefault(base, {})
         protected = device.profile.protected_value if read else None
+        if type(registers) is RegisterList and registers.plain and protected is None:
+            if registers.start is None:
+                return  # no addresses: nothing to name or label
+            addresses = registers.addresses
+            if not rows or rows.keys().isdisjoint(addresses):
+                # No map row in the block and no 16#8000 to check: at most labels, set in bulk.
+                if labels is not None:
+                    registers.labels = _labels(labels, base, addresses)
+                return
         # A single-register read of an unreadable parameter draws an exception, not 16#8000 (p.38).
         multi = len(registers) > 1
         seen = device.seen
@@ -293,6 +304,17 @@ class Annotator:
             if last is not None and last[0] is None:
                 readable_again(address, row, register.label, last, value, events)
             seen[address] = (value, number, "read")
+
+
+def _labels(labels: dict[int, str], base: int, addresses: Sequence[int]) -> list[str]:
+    """The display addresses of a block, from the device's cache (filled on first sight)."""
+    try:
+        return list(map(labels.__getitem__, addresses))
+    except KeyError:
+        for address in addresses:
+            if address not in labels:
+                labels[address] = plc_label(base, address)
+        return list(map(labels.__getitem__, addresses))
 
 
 def _span_label(frame: Frame, device: Device) -> None:

@@ -7,6 +7,8 @@ The memory is the Device's `seen` dict, which the compiled summary path also kee
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from dissector.devices.device import Device
 from dissector.devices.maps import RegisterDef
 from dissector.devices.story import Event
@@ -51,7 +53,7 @@ def readable_again(
     events.append(Event("readable again", address, row, label, last[2], last[2], last[1], f"{value} now", None))
 
 
-def remember_writes(frame: Frame, device: Device, registers: list[Register]) -> None:
+def remember_writes(frame: Frame, device: Device, registers: Sequence[Register]) -> None:
     seen = device.seen
     number = frame.number
     for register in registers:

@@ -2,6 +2,8 @@
 from its map row. One job: what a register is called and what its value means."""
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret, interpret_wide
 from dissector.model import Register
 
@@ -40,7 +42,7 @@ def name_register(register: Register, row: RegisterDef, used: RegisterDef) -> No
     register.scaled, register.text = reading
 
 
-def name_wide(registers: list[Register], index: int, row: RegisterDef) -> None:
+def name_wide(registers: Sequence[Register], index: int, row: RegisterDef) -> None:
     """A 32-bit row over registers[index] and the next: one value, read on the first register."""
     first = registers[index]
     first.code = row.code

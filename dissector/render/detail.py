@@ -5,12 +5,12 @@ is decided once and a terminal only adds colour.
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
-from operator import itemgetter
 from typing import TYPE_CHECKING, Any
 
-from dissector.model import BitList, Frame, Item, Kind, Noise, Register
+from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.summary import crc_text, noise_info
 
@@ -38,25 +38,51 @@ def _utc(seconds: float) -> str:
     return moment.strftime("%Y-%m-%d %H:%M:%S.%f UTC")
 
 
-# A detail is laid out once, as a flat list of (depth, text, style) lines whose text carries its
-# indentation (four spaces a level): plain output only joins the texts, never building a tree (a Node
-# per line cost -V half its time); a terminal builds rich's Tree from the same lines.
+# A detail is laid out once, as a flat list of texts that carry their indentation (four spaces a
+# level) and the styles of the few lines that have one (by index): plain output only joins the texts,
+# never building a tree (a Node per line cost -V half its time); a terminal builds rich's Tree from the
+# same texts, a line's depth read back from its indentation.
 Line = tuple[int, str, "str | None"]
 _PROTECTED = frozenset(("protected", "non-existent", "ambiguous"))
 _INDENT = ["    " * depth for depth in range(32)]
 _KIND_TEXT = {kind: kind.value for kind in Kind}
 _EXCEPTION = Kind.EXCEPTION
-_MODBUS_RTU: Line = (1, "    Modbus RTU", None)
-_FUNCTION_LINES: dict[int, Line] = {}  # spec names only: a profile's names vary per slave
+_MODBUS_RTU = "    Modbus RTU"
+_FUNCTION_LINES: dict[int, str] = {}  # spec names only: a profile's names vary per slave
 _FIELD_LABELS: dict[str, str] = {}
 
 # A register's lines depend on its fields only; polled blocks repeat them, so they are kept by
-# content (bounded: cleared when full, so memory stays flat on values that never repeat).
-_REGISTER_BLOCKS: dict[tuple[Any, ...], tuple[Line, ...]] = {}
+# content (bounded: cleared when full, so memory stays flat on values that never repeat): the texts,
+# and the style of the lines that have one (offset in the block, style).
+Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...]]
+_REGISTER_BLOCKS: dict[tuple[Any, ...], Block] = {}
 _REGISTER_BLOCKS_MAX = 1 << 16
 
 
-def _register_block(register: Register) -> tuple[Line, ...]:
+class _Detail:
+    """The texts of one detail and the styles of its styled lines, by index."""
+
+    __slots__ = ("texts", "styles", "joined")
+
+    def __init__(self, joined: bool) -> None:
+        self.texts: list[str] = []
+        self.styles: dict[int, str] = {}
+        # Plain output: a long run of lines (a 2000-coil read) may be one text holding newlines.
+        self.joined = joined
+
+    def styled(self, text: str, style: str) -> None:
+        self.styles[len(self.texts)] = style
+        self.texts.append(text)
+
+    def run(self, texts: list[str]) -> None:
+        if self.joined:
+            if texts:
+                self.texts.append("\n".join(texts))
+        else:
+            self.texts.extend(texts)
+
+
+def _register_block(register: Register) -> Block:
     """The lines of one register under the Modbus node (depth 2)."""
     address = register.label
     if address is None:
@@ -73,35 +99,51 @@ def _register_block(register: Register) -> tuple[Line, ...]:
         head = f"        Register {address}: {shown}"
     status = register.status
     style = "vw3.protected" if status in _PROTECTED else None
-    lines: list[Line] = [(2, head, style)]
+    lines = [head]
+    styles: list[tuple[int, str]] = []
+    if style is not None:
+        styles.append((0, style))
     if register.text is not None:
-        lines.append((3, f"            Value: {register.text}", None))
+        lines.append(f"            Value: {register.text}")
     if register.words == 2:
-        lines.append((3, "            32-bit value: this register and the next", None))
+        lines.append("            32-bit value: this register and the next")
     if status is not None:
-        lines.append((3, f"            Status: {status}", style))
+        if style is not None:
+            styles.append((len(lines), style))
+        lines.append(f"            Status: {status}")
     if register.unit:
-        lines.append((3, f"            Unit: {register.unit}", None))
+        lines.append(f"            Unit: {register.unit}")
     if register.source:
-        lines.append((3, f"            Source: {register.source}", None))
-    return tuple(lines)
+        lines.append(f"            Source: {register.source}")
+    return tuple(lines), tuple(styles)
 
 
-def _register_lines(out: list[Line], registers: list[Register]) -> None:
+def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
+    if type(registers) is RegisterList and registers.plain:  # straight from the columns
+        values = registers.values
+        if registers.start is None:
+            detail.run([f"        Register ?: {value} (0x{value:04X})" for value in values])
+        else:
+            shown = registers.labels or registers.addresses
+            detail.run([f"        Register {address}: {value} (0x{value:04X})" for address, value in zip(shown, values)])
+        return
     blocks = _REGISTER_BLOCKS
-    append = out.append
+    texts = detail.texts
+    run: list[str] = []  # unannotated registers in a row (a relay's block, a meter's readings)
     for register in registers:
         if (
             register.code is None and register.text is None and register.status is None
             and not register.unit and not register.source
         ):
-            # Unannotated (a relay's block, a meter's readings): one line, formatted directly.
             address = register.label
             if address is None:
                 address = "?" if register.address is None else register.address
             value = register.value
-            append((2, f"        Register {address}: {value} (0x{value:04X})", None))
+            run.append(f"        Register {address}: {value} (0x{value:04X})")
             continue
+        if run:
+            detail.run(run)
+            run = []
         key = (register.address, register.value, register.code, register.name, register.text,
                register.status, register.unit, register.source, register.label, register.words)
         block = blocks.get(key)
@@ -109,65 +151,76 @@ def _register_lines(out: list[Line], registers: list[Register]) -> None:
             if len(blocks) >= _REGISTER_BLOCKS_MAX:
                 blocks.clear()
             block = blocks[key] = _register_block(register)
-        out.extend(block)
+        lines, styles = block
+        for offset, style in styles:
+            detail.styles[len(texts) + offset] = style
+        texts.extend(lines)
+    if run:
+        detail.run(run)
 
 
-def _field_lines(out: list[Line], depth: int, name: str, value: Any) -> None:
+def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
     label = _INDENT[depth] + name.replace("_", " ").capitalize()
+    texts = detail.texts
     if isinstance(value, dict):
-        out.append((depth, label, None))
+        texts.append(label)
         for key, inner in value.items():
             if key.startswith("_") or inner is None or (key == "trailing" and not inner):
                 continue
-            _field_lines(out, depth + 1, key, inner)
+            _field_lines(detail, depth + 1, key, inner)
     elif isinstance(value, list):
-        out.append((depth, f"{label} ({len(value)})", None))
+        texts.append(f"{label} ({len(value)})")
+        indent = _INDENT[depth + 1]
+        if all(type(inner) is int for inner in value):  # words (file records, FIFO): formatted in bulk
+            detail.run([f"{indent}[{index}]: {inner} (0x{inner:X})" for index, inner in enumerate(value)])
+            return
         for index, inner in enumerate(value):
-            _field_lines(out, depth + 1, f"[{index}]", inner)
+            _field_lines(detail, depth + 1, f"[{index}]", inner)
     elif isinstance(value, bytes):
-        out.append((depth, f"{label}: {value.hex(' ') or '(empty)'}", None))
+        texts.append(f"{label}: {value.hex(' ') or '(empty)'}")
     elif isinstance(value, int) and not isinstance(value, bool):
-        out.append((depth, f"{label}: {value} (0x{value:X})", None))
+        texts.append(f"{label}: {value} (0x{value:X})")
     else:
-        out.append((depth, f"{label}: {value}", None))
+        texts.append(f"{label}: {value}")
 
 
-def detail_lines(item: Item, base: float | None = None) -> list[Line]:
-    """The detail of one item as (depth, text, style) lines, the root at depth 0; texts are indented."""
-    out: list[Line] = []
+def _build(item: Item, base: float | None, joined: bool) -> _Detail:
+    """The detail of one item; the root has no indentation."""
+    detail = _Detail(joined)
+    out = detail.texts
     add = out.append
     if isinstance(item, Noise):
-        add((0, f"Item {item.number}: noise, {item.length} bytes at offset {item.offset}", "vw3.noise"))
-        add((1, f"    {noise_info(item)}", None))
-        add((1, f"    Reason: {item.reason}", None))
-        return out
+        detail.styled(f"Item {item.number}: noise, {item.length} bytes at offset {item.offset}", "vw3.noise")
+        add(f"    {noise_info(item)}")
+        add(f"    Reason: {item.reason}")
+        return detail
     frame: Frame = item
     kind = frame.kind
     rtu = frame.mode == "rtu"
     mode = "RTU" if rtu else frame.mode.upper()
-    add((0, f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})", None))
+    add(f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})")
     if frame.time is not None:
-        add((1, f"    Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)", None))
-    add(_MODBUS_RTU if rtu else (1, f"    Modbus {mode}", None))
-    add((2, f"        Slave: {frame.slave} (broadcast)" if frame.broadcast else f"        Slave: {frame.slave}", None))
+        add(f"    Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)")
+    add(_MODBUS_RTU if rtu else f"    Modbus {mode}")
+    add(f"        Slave: {frame.slave} (broadcast)" if frame.broadcast else f"        Slave: {frame.slave}")
     function = frame.function
     function_text = frame.function_text
     if kind is _EXCEPTION:
         code = function | 0x80
-        add((2, f"        Function: {code} (0x{code:02X}) {function_text or SPEC.function_name(function)}", None))
+        add(f"        Function: {code} (0x{code:02X}) {function_text or SPEC.function_name(function)}")
     elif function_text is None:
         line = _FUNCTION_LINES.get(function)
         if line is None:
             name = SPEC.function_name(function)
-            line = _FUNCTION_LINES[function] = (2, f"        Function: {function} (0x{function:02X}) {name}", None)
+            line = _FUNCTION_LINES[function] = f"        Function: {function} (0x{function:02X}) {name}"
         add(line)
     else:
-        add((2, f"        Function: {function} (0x{function:02X}) {function_text}", None))
+        add(f"        Function: {function} (0x{function:02X}) {function_text}")
     if kind is _EXCEPTION:
         exception = frame.exception_code
-        add((2, f"        Exception: {exception} {SPEC.exception_name(exception)}", "vw3.exception"))
+        detail.styled(f"        Exception: {exception} {SPEC.exception_name(exception)}", "vw3.exception")
         if frame.exception_text is not None:
-            add((2, f"        Meaning on this device: {frame.exception_text}", "vw3.exception"))
+            detail.styled(f"        Meaning on this device: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:
         registers = frame.registers
         for key, value in frame.fields.items():
@@ -177,62 +230,71 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
                 label = _FIELD_LABELS.get(key)
                 if label is None:
                     label = _FIELD_LABELS[key] = "        " + key.replace("_", " ").capitalize()
-                add((2, f"{label}: {value} (0x{value:X})", None))
+                add(f"{label}: {value} (0x{value:X})")
                 continue
             if key == "trailing" and not value:
                 continue
-            _field_lines(out, 2, key, value)
+            _field_lines(detail, 2, key, value)
     if frame.subfunction is not None:
         sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, "unknown")
-        add((2, f"        Sub-function name: {sub_name}", None))
+        add(f"        Sub-function name: {sub_name}")
     if frame.registers:
-        _register_lines(out, frame.registers)
+        _register_lines(detail, frame.registers)
     bits = frame.bits
     if bits is not None:
-        add((2, f"        Bits ({len(bits)})", None))
+        add(f"        Bits ({len(bits)})")
         if isinstance(bits, BitList):  # in bulk: no Bit object per coil
-            out.extend([(3, f"            {'?' if address is None else address}: {value}", None)
-                        for address, value in zip(bits.addresses, bits.values)])
+            if bits.start is None:
+                detail.run([f"            ?: {value}" for value in bits.values])
+            else:
+                detail.run([f"            {address}: {value}" for address, value in zip(bits.addresses, bits.values)])
         else:
-            out.extend([(3, f"            {'?' if bit.address is None else bit.address}: {bit.value}", None)
-                        for bit in bits])
+            detail.run([f"            {'?' if bit.address is None else bit.address}: {bit.value}" for bit in bits])
     for obj in frame.objects or ():
-        add((2, f"        Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""), None))
+        add(f"        Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
     if rtu and frame.crc == frame.crc_expected:
-        add((2, f"        CRC: 0x{frame.crc:04X} [CRC ok]", "vw3.crc.ok"))
+        detail.styled(f"        CRC: 0x{frame.crc:04X} [CRC ok]", "vw3.crc.ok")
     else:
         style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
-        add((2, f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style))
+        detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style)
     request = frame.request
     if request is not None:
-        add((1, f"    Request in frame: {request.number}", None))
+        add(f"    Request in frame: {request.number}")
         if frame.time is not None and request.time is not None:
             response_time = frame.response_time
-            add((1, f"    Response time: {response_time * 1000:.3f} ms", None))
+            add(f"    Response time: {response_time * 1000:.3f} ms")
     response = frame.response
     if response is not None:
-        add((1, f"    Response in frame: {response.number}", None))
+        add(f"    Response in frame: {response.number}")
     if frame.unanswered:
-        add((1, "    No response", "vw3.warning"))
+        detail.styled("    No response", "vw3.warning")
     for note in frame.notes:
-        add((1, f"    Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note"))
+        detail.styled(f"    Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note")
     for warning in frame.warnings:
-        add((1, f"    Warning: {warning}", "vw3.warning"))
-    return out
+        detail.styled(f"    Warning: {warning}", "vw3.warning")
+    return detail
 
 
-_TEXT = itemgetter(1)
+def _depth(text: str) -> int:
+    return (len(text) - len(text.lstrip(" "))) // 4
+
+
+def detail_lines(item: Item, base: float | None = None) -> list[Line]:
+    """The detail of one item as (depth, text, style) lines, the root at depth 0; texts are indented."""
+    detail = _build(item, base, joined=False)
+    styles = detail.styles
+    return [(_depth(text), text, styles.get(index)) for index, text in enumerate(detail.texts)]
 
 
 def detail_text(item: Item, base: float | None = None) -> str:
     """The plain -V text of one item (render_plain(detail_tree(...)), without the tree)."""
-    return "\n".join(map(_TEXT, detail_lines(item, base)))
+    return "\n".join(_build(item, base, joined=True).texts)
 
 
 def detail_tree(item: Item, base: float | None = None) -> Node:
     """The detail as a tree of Nodes (what a terminal draws)."""
     lines = detail_lines(item, base)
-    _depth, label, style = lines[0]
+    _depth0, label, style = lines[0]
     root = Node(label, style=style)
     path = [root]
     for depth, text, style in lines[1:]:

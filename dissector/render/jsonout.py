@@ -6,9 +6,11 @@ from __future__ import annotations
 
 import json
 from json.encoder import encode_basestring_ascii as _json_string  # what json.dumps uses for str
+from collections.abc import Sequence
+from itertools import chain
 from typing import Any, TextIO
 
-from dissector.model import BitList, Frame, Item, Kind, Noise, Register
+from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 
 
@@ -79,9 +81,10 @@ def _head(frame: Frame) -> dict[str, Any]:
     return out
 
 
-def _tail(frame: Frame, out: dict[str, Any]) -> dict[str, Any]:
-    """The keys after `registers`, added to `out`."""
-    bits = frame.bits
+def _tail(frame: Frame, out: dict[str, Any], with_bits: bool = True, lists: bool = True) -> dict[str, Any]:
+    """The keys after `registers`, added to `out` (without `bits`, or `fields`, `warnings` and `notes`,
+    when item_to_json writes those itself)."""
+    bits = frame.bits if with_bits else None
     if bits is not None:
         if isinstance(bits, BitList):  # in bulk: no Bit object per coil
             out["bits"] = [{"address": address, "value": value} for address, value in zip(bits.addresses, bits.values)]
@@ -107,6 +110,8 @@ def _tail(frame: Frame, out: dict[str, Any]) -> dict[str, Any]:
         out["response_frame"] = response.number
     if frame.kind is Kind.REQUEST:
         out["unanswered"] = frame.unanswered
+    if not lists:
+        return out
     if frame.fields is not None:
         out["fields"] = _plain(frame.fields)
     out["warnings"] = list(frame.warnings)
@@ -154,8 +159,109 @@ def _register_json(register: Register) -> str:
     return text
 
 
+def _scalar(value: Any) -> str:
+    """json.dumps of a None, bool, int, float or str."""
+    kind = type(value)
+    if kind is int:
+        return str(value)
+    if kind is str:
+        return _json_string(value)
+    if value is None:
+        return "null"
+    if value is True:
+        return "true"
+    if value is False:
+        return "false"
+    if isinstance(value, float) and value == value and value not in (_INF, -_INF):
+        return float.__repr__(value)  # what json writes for a float (a Stamp too)
+    return json.dumps(value)
+
+
+_INF = float("inf")
+_KIND_JSON = {kind: _json_string(kind.value) for kind in Kind}
+
+
+def _head_json(frame: Frame) -> str:
+    """json.dumps(_head(frame)) without its braces, formatted directly (held equal by the tests)."""
+    raw = frame.raw
+    crc, expected = frame.crc, frame.crc_expected
+    text = (
+        f'"frame": {frame.number}, "kind": {_KIND_JSON[frame.kind]}, "offset": {frame.offset}, '
+        f'"length": {len(raw)}, "time": {_scalar(frame.time)}, "raw": "{raw.hex()}", '
+        f'"mode": {_scalar(frame.mode)}, "slave": {frame.slave}, "function": {frame.function}, '
+        f'"function_name": {_scalar(frame.function_text or SPEC.function_name(frame.function))}, '
+        f'"crc_ok": {"true" if crc == expected else "false"}, "crc": {crc}, "crc_expected": {expected}, '
+        f'"broadcast": {"true" if frame.broadcast else "false"}'
+    )
+    if frame.start is not None:
+        text += f', "start": {_scalar(frame.start)}'
+    if frame.span_label is not None:
+        text += f', "span_label": {_scalar(frame.span_label)}'
+    if frame.quantity is not None:
+        text += f', "quantity": {_scalar(frame.quantity)}'
+    if frame.subfunction is not None:
+        name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
+        text += f', "subfunction": {_scalar(frame.subfunction)}, "subfunction_name": {_scalar(name)}'
+    return text
+
+
+def _plain_registers_json(registers: RegisterList) -> str:
+    """The `registers` list of a block no profile annotated beyond labels, straight from its columns."""
+    values = registers.values
+    if not values:
+        return "[]"
+    labels = registers.labels
+    if registers.start is None:
+        template = ", ".join(['{"address": null, "value": %d}'] * len(values))
+        return "[" + template % tuple(values) + "]"
+    if labels is None:
+        template = ", ".join(['{"address": %d, "value": %d}'] * len(values))
+        return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values))) + "]"
+    template = ", ".join(['{"address": %d, "value": %d, "label": %s}'] * len(values))
+    return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values, map(_json_string, labels)))) + "]"
+
+
+def _bits_json(bits: Sequence[Bit]) -> str:
+    """json.dumps of the `bits` list, formatted in bulk (a 2000-coil read is one format call)."""
+    if isinstance(bits, BitList):
+        addresses, values, known = bits.addresses, bits.values, bits.start is not None
+    else:
+        addresses, values = [bit.address for bit in bits], [bit.value for bit in bits]
+        known = None not in addresses
+    if not values:
+        return "[]"
+    if not known:
+        return json.dumps([{"address": address, "value": value} for address, value in zip(addresses, values)])
+    template = ", ".join(['{"address": %d, "value": %d}'] * len(values))
+    return "[" + template % tuple(chain.from_iterable(zip(addresses, values))) + "]"
+
+
+def _json_value(value: Any) -> str:
+    """json.dumps(_plain(value)), with the common field values (ints, bytes, lists of words) formatted directly."""
+    kind = type(value)
+    if kind is int:
+        return str(value)
+    if kind is bytes:
+        return f'"{value.hex()}"'
+    if kind is str:
+        return _json_string(value)
+    if kind is list and value and all(type(inner) is int for inner in value):
+        return "[" + ", ".join(map(str, value)) + "]"
+    return json.dumps(_plain(value))
+
+
+def _fields_json(fields: dict[str, Any]) -> str:
+    """json.dumps(_plain(fields)) for a frame's fields, without building the plain copy."""
+    return "{" + ", ".join([
+        f"{_json_string(key)}: {_json_value(inner)}"
+        for key, inner in fields.items()
+        if not key.startswith("_") and not (key == "trailing" and not inner) and inner is not None
+    ]) + "}"
+
+
 def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
-    """json.dumps(item_to_dict(item) | extra), byte for byte, with registers' texts reused."""
+    """json.dumps(item_to_dict(item) | extra), byte for byte, with registers', bits' and fields' texts
+    made directly (registers' reused) instead of through dicts."""
     if isinstance(item, Noise):
         record = _noise_to_dict(item)
         if extra:
@@ -163,23 +269,49 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
         return json.dumps(record)
     frame: Frame = item
     registers = frame.registers
-    if registers is None:
+    bits = frame.bits
+    fields = frame.fields
+    if registers is None and bits is None and fields is None:
         record = _tail(frame, _head(frame))
         if extra:
             record.update(extra)
         return json.dumps(record)
-    tail = _tail(frame, {})
+    # Spliced from json.dumps' texts of the parts in the order item_to_dict gives them; with its
+    # default separators (", " and ": ") the result is exact. The head is never empty and the last part
+    # always holds warnings and notes.
+    parts = [_head_json(frame)]
+    if registers is not None:
+        if type(registers) is RegisterList and registers.plain:
+            parts.append('"registers": ' + _plain_registers_json(registers))
+        else:
+            parts.append('"registers": [' + ", ".join([_register_json(register) for register in registers]) + "]")
+    if bits is not None:
+        parts.append('"bits": ' + _bits_json(bits))
+    if frame.objects is not None or frame.kind is Kind.EXCEPTION:
+        middle = _tail(frame, {}, with_bits=False, lists=False)
+        if middle:
+            parts.append(json.dumps(middle)[1:-1])
+    else:  # the common case, directly: the pairing keys
+        request = frame.request
+        if request is not None:
+            parts.append(f'"request_frame": {request.number}, "response_time": {_scalar(frame.response_time)}')
+        response = frame.response
+        if response is not None:
+            parts.append(f'"response_frame": {response.number}')
+        if frame.kind is Kind.REQUEST:
+            parts.append('"unanswered": true' if frame.unanswered else '"unanswered": false')
+    if fields is not None:
+        parts.append('"fields": ' + _fields_json(fields))
     if extra:
-        tail.update(extra)
-    # The head is never empty and the tail always holds warnings and notes, so the splice is exact
-    # with json.dumps' default separators (", " and ": ").
-    return (
-        json.dumps(_head(frame))[:-1]
-        + ', "registers": ['
-        + ", ".join([_register_json(register) for register in registers])
-        + "], "
-        + json.dumps(tail)[1:]
-    )
+        last: dict[str, Any] = {"warnings": list(frame.warnings), "notes": list(frame.notes)}
+        last.update(extra)
+        parts.append(json.dumps(last)[1:-1])
+    else:
+        parts.append(
+            f'"warnings": [{", ".join(map(_json_string, frame.warnings))}], '
+            f'"notes": [{", ".join(map(_json_string, frame.notes))}]'
+        )
+    return "{" + ", ".join(parts) + "}"
 
 
 def _plain(value: Any) -> Any:

@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dissector.devices.build import build_annotator
-from dissector.model import Bit, BitList, Frame
+from dissector.model import Bit, BitList, Frame, Register, RegisterList
 from dissector.pipeline import dissect_bytes
 from dissector.render.detail import detail_text, detail_tree, render_plain
 from dissector.render.jsonout import item_to_dict, item_to_json
@@ -27,12 +27,15 @@ PROFILES = [["atv71"], ["sel749m"], ["generic"], PLANT_PROFILES, ["atv71", "1=se
 
 
 def _check(items: list, extra: dict | None = None) -> None:
-    for item in items:
+    # The fast writers first, while register blocks are still columns (RegisterList.plain); the
+    # references then make every Register object.
+    fast = [(item_to_json(item, extra), detail_text(item, 0.5)) for item in items]
+    for item, (json_text, text) in zip(items, fast):
         record = item_to_dict(item)
         if extra:
             record.update(extra)
-        assert item_to_json(item, extra) == json.dumps(record)
-        assert detail_text(item, 0.5) == render_plain(detail_tree(item, 0.5))
+        assert json_text == json.dumps(record)
+        assert text == render_plain(detail_tree(item, 0.5))
 
 
 @pytest.mark.parametrize("path", sorted((ROOT / "captures").glob("*.bin")), ids=lambda path: path.name)
@@ -82,3 +85,38 @@ def test_bitlist_holds_the_bits_one_per_coil(start: int | None, packed: bytes, d
 def test_frames_of_the_max_size_mix_carry_bitlists_after_decoding() -> None:
     frames = [item for item in dissect_bytes(b"".join(raw for raw, _t in max_size_mix(400))) if isinstance(item, Frame)]
     assert any(isinstance(frame.bits, BitList) and len(frame.bits) > 100 for frame in frames)
+
+
+@given(st.one_of(st.none(), st.integers(0, 0xFFFF)), st.lists(st.integers(0, 0xFFFF), max_size=130), st.booleans())
+def test_registerlist_holds_one_register_per_value(start: int | None, values: list[int], labelled: bool) -> None:
+    registers = RegisterList(start, values)
+    labels = [f"4{index:04d}" for index in range(len(values))] if labelled else None
+    registers.labels = labels
+    reference = [
+        Register(None if start is None else (start + index) & 0xFFFF, value, label=None if labels is None else labels[index])
+        for index, value in enumerate(values)
+    ]
+    assert list(registers.addresses) == [register.address for register in reference]
+    assert registers.plain and len(registers) == len(values)
+    assert list(registers) == reference and registers == reference and not registers.plain
+    if values:
+        registers[0].status = "ok"  # made once and kept: a change stays
+        assert registers[0].status == "ok" and registers[:1] == [registers[0]]
+
+
+@pytest.mark.parametrize("profiles", PROFILES, ids=lambda profiles: ",".join(profiles))
+def test_bulk_annotation_is_the_per_register_one(profiles: list[str]) -> None:
+    """The annotator labels a block without map rows in bulk; as Register objects it gives the same."""
+    data = b"".join(raw for raw, _time in plant_mix(3000, seed=7) + max_size_mix(800, seed=7))
+    captures = [path.read_bytes() for path in sorted((ROOT / "captures").glob("*.bin"))]
+    for capture in [data, *captures]:
+        bulk = build_annotator(profiles, [])
+        per_register = build_annotator(profiles, [])
+
+        def as_objects(frame: Frame) -> None:
+            if isinstance(frame.registers, RegisterList):
+                frame.registers = list(frame.registers)
+            per_register(frame)
+
+        fast = [item_to_dict(item) for item in dissect_bytes(capture, annotate=bulk)]
+        assert fast == [item_to_dict(item) for item in dissect_bytes(capture, annotate=as_objects)]
