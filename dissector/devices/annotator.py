@@ -320,13 +320,20 @@ def _labels(labels: dict[int, str], base: int, addresses: Sequence[int]) -> list
 def _span_label(frame: Frame, device: Device) -> None:
     """`40501..40504` for a PLC-style device, so requests without registers show 4X numbers too."""
     base = device.base(frame.function)
-    start = frame.start
+    labels = device.labels.setdefault(base, {})  # the cache _annotate fills too
+    start: int = frame.start  # type: ignore[assignment]
     quantity = frame.quantity or 1
-    first = plc_label(base, start)  # type: ignore[arg-type]
+    first = labels.get(start)
+    if first is None:
+        first = labels[start] = plc_label(base, start)
     if quantity == 1:
         frame.span_label = first
-    else:
-        frame.span_label = f"{first}..{plc_label(base, (start + quantity - 1) & 0xFFFF)}"  # type: ignore[operator]
+        return
+    end = (start + quantity - 1) & 0xFFFF
+    last = labels.get(end)
+    if last is None:
+        last = labels[end] = plc_label(base, end)
+    frame.span_label = f"{first}..{last}"
 
 
 def _depend(frame: Frame, device: Device, address: int) -> RegisterDef:

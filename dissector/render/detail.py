@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
+from dissector.render.runs import Pieces, bit_texts, byte_table, interleave
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
@@ -57,6 +58,14 @@ _FIELD_LABELS: dict[str, str] = {}
 Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...]]
 _REGISTER_BLOCKS: dict[tuple[Any, ...], Block] = {}
 _REGISTER_BLOCKS_MAX = 1 << 16
+_MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames without values, by bytes
+_MIDDLES_MAX = 1 << 14
+
+# Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
+_BIT_HEADS = Pieces("            %d: ")
+_BIT_TAILS = byte_table("0\n", "1\n")
+_REGISTER_HEADS = Pieces("        Register %s: ")
+_WORD_TAILS = Pieces("%d (0x%04X)\n", twice=True)
 
 
 class _Detail:
@@ -123,6 +132,9 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
         values = registers.values
         if registers.start is None:
             detail.run([f"        Register ?: {value} (0x{value:04X})" for value in values])
+        elif detail.joined and values:
+            heads = _REGISTER_HEADS(registers.labels or registers.addresses)
+            detail.texts.append(interleave((heads, _WORD_TAILS(values)), len(values))[:-1])
         else:
             shown = registers.labels or registers.addresses
             detail.run([f"        Register {address}: {value} (0x{value:04X})" for address, value in zip(shown, values)])
@@ -184,24 +196,12 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label}: {value}")
 
 
-def _build(item: Item, base: float | None, joined: bool) -> _Detail:
-    """The detail of one item; the root has no indentation."""
-    detail = _Detail(joined)
+def _middle(detail: _Detail, frame: Frame) -> None:
+    """The lines from Slave to the CRC (depth 2)."""
     out = detail.texts
     add = out.append
-    if isinstance(item, Noise):
-        detail.styled(f"Item {item.number}: noise, {item.length} bytes at offset {item.offset}", "vw3.noise")
-        add(f"    {noise_info(item)}")
-        add(f"    Reason: {item.reason}")
-        return detail
-    frame: Frame = item
     kind = frame.kind
     rtu = frame.mode == "rtu"
-    mode = "RTU" if rtu else frame.mode.upper()
-    add(f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})")
-    if frame.time is not None:
-        add(f"    Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)")
-    add(_MODBUS_RTU if rtu else f"    Modbus {mode}")
     add(f"        Slave: {frame.slave} (broadcast)" if frame.broadcast else f"        Slave: {frame.slave}")
     function = frame.function
     function_text = frame.function_text
@@ -244,7 +244,10 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     if bits is not None:
         add(f"        Bits ({len(bits)})")
         if isinstance(bits, BitList):  # in bulk: no Bit object per coil
-            if bits.start is None:
+            if detail.joined and bits.start is not None and bits.count:
+                tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
+                add(interleave((_BIT_HEADS(bits.addresses), tails), bits.count)[:-1])
+            elif bits.start is None:
                 detail.run([f"            ?: {value}" for value in bits.values])
             else:
                 detail.run([f"            {address}: {value}" for address, value in zip(bits.addresses, bits.values)])
@@ -257,6 +260,41 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     else:
         style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
         detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style)
+
+
+def _build(item: Item, base: float | None, joined: bool) -> _Detail:
+    """The detail of one item; the root has no indentation."""
+    detail = _Detail(joined)
+    out = detail.texts
+    add = out.append
+    if isinstance(item, Noise):
+        detail.styled(f"Item {item.number}: noise, {item.length} bytes at offset {item.offset}", "vw3.noise")
+        add(f"    {noise_info(item)}")
+        add(f"    Reason: {item.reason}")
+        return detail
+    frame: Frame = item
+    kind = frame.kind
+    rtu = frame.mode == "rtu"
+    mode = "RTU" if rtu else frame.mode.upper()
+    add(f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}, {_KIND_TEXT[kind]} ({mode})")
+    if frame.time is not None:
+        add(f"    Arrival time: {_utc(frame.time)} ({frame.time - (base or 0.0):.6f} s since the first item)")
+    add(_MODBUS_RTU if rtu else f"    Modbus {mode}")
+    if (
+        joined and kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None
+    ):
+        # Slave to CRC depend on the bytes and the profile's words only: a polled request repeats them.
+        key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text)
+        text = _MIDDLES.get(key)
+        if text is None:
+            if len(_MIDDLES) >= _MIDDLES_MAX:
+                _MIDDLES.clear()
+            part = _Detail(joined=True)
+            _middle(part, frame)
+            text = _MIDDLES[key] = "\n".join(part.texts)
+        add(text)
+    else:
+        _middle(detail, frame)
     request = frame.request
     if request is not None:
         add(f"    Request in frame: {request.number}")

@@ -12,6 +12,7 @@ from typing import Any, TextIO
 
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
+from dissector.render.runs import Pieces, bit_texts, byte_table, interleave
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -205,6 +206,14 @@ def _head_json(frame: Frame) -> str:
     return text
 
 
+# Long lists from cached pieces (runs.py): `{"address": N, "value": ` by address, `V}, ` by value.
+_ADDRESS_HEADS = Pieces('{"address": %d, "value": ')
+_VALUE_TAILS = Pieces("%d}, ")
+_LABELLED_VALUES = Pieces('%d, "label": ')
+_LABEL_TAILS = Pieces("%s}, ")
+_BIT_TAILS = byte_table("0}, ", "1}, ")
+
+
 def _plain_registers_json(registers: RegisterList) -> str:
     """The `registers` list of a block no profile annotated beyond labels, straight from its columns."""
     values = registers.values
@@ -214,17 +223,22 @@ def _plain_registers_json(registers: RegisterList) -> str:
     if registers.start is None:
         template = ", ".join(['{"address": null, "value": %d}'] * len(values))
         return "[" + template % tuple(values) + "]"
+    heads = _ADDRESS_HEADS(registers.addresses)
     if labels is None:
-        template = ", ".join(['{"address": %d, "value": %d}'] * len(values))
-        return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values))) + "]"
-    template = ", ".join(['{"address": %d, "value": %d, "label": %s}'] * len(values))
-    return "[" + template % tuple(chain.from_iterable(zip(registers.addresses, values, map(_json_string, labels)))) + "]"
+        return "[" + interleave((heads, _VALUE_TAILS(values)), len(values))[:-2] + "]"
+    tails = _LABEL_TAILS(list(map(_json_string, labels)))
+    return "[" + interleave((heads, _LABELLED_VALUES(values), tails), len(values))[:-2] + "]"
 
 
 def _bits_json(bits: Sequence[Bit]) -> str:
-    """json.dumps of the `bits` list, formatted in bulk (a 2000-coil read is one format call)."""
+    """json.dumps of the `bits` list, formatted in bulk (a 2000-coil read is one join)."""
     if isinstance(bits, BitList):
-        addresses, values, known = bits.addresses, bits.values, bits.start is not None
+        if not bits.count:
+            return "[]"
+        if bits.start is not None:
+            tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
+            return "[" + interleave((_ADDRESS_HEADS(bits.addresses), tails), bits.count)[:-2] + "]"
+        addresses, values, known = bits.addresses, bits.values, False
     else:
         addresses, values = [bit.address for bit in bits], [bit.value for bit in bits]
         known = None not in addresses
@@ -245,7 +259,7 @@ def _json_value(value: Any) -> str:
         return f'"{value.hex()}"'
     if kind is str:
         return _json_string(value)
-    if kind is list and value and all(type(inner) is int for inner in value):
+    if isinstance(value, list) and value and all(type(inner) is int for inner in value):  # a ListContainer too
         return "[" + ", ".join(map(str, value)) + "]"
     return json.dumps(_plain(value))
 
