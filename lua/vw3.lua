@@ -892,6 +892,11 @@ local DATA = {
           ["source"] = "A",
         },
       },
+      ["identify"] = {
+        ["product_codes"] = { "ATV71" },
+        ["functions"] = {},
+        ["traffic_fit"] = true,
+      },
     },
     ["sel749m"] = {
       ["name"] = "sel749m",
@@ -1024,6 +1029,16 @@ local DATA = {
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
       ["map"] = {},
+      ["identify"] = {
+        ["product_codes"] = { "SEL-749M" },
+        ["functions"] = {
+          [96] = true,
+          [97] = true,
+          [98] = true,
+          [125] = true,
+        },
+        ["traffic_fit"] = true,
+      },
     },
     ["generic"] = {
       ["name"] = "generic",
@@ -1053,9 +1068,22 @@ local DATA = {
       ["plc_base_default"] = 40001,
       ["bits_depend"] = {},
       ["map"] = {},
+      ["identify"] = {
+        ["product_codes"] = {},
+        ["functions"] = {},
+        ["traffic_fit"] = false,
+      },
     },
   },
-  ["default_profile"] = "atv71",
+  ["default_profile"] = "auto",
+  ["selection"] = {
+    ["auto"] = "auto",
+    ["fallback"] = "generic",
+    ["candidates"] = { "atv71", "sel749m" },
+    ["fit_answers"] = 8,
+    ["fit_frames"] = 32,
+    ["product_code_object"] = 1,
+  },
 }
 -- END GENERATED DATA
 
@@ -2229,6 +2257,7 @@ local function pair(st, f)
 end
 
 local annotate -- defined with the device profiles below
+local device_now -- (the device a frame is annotated with: profile auto chooses it)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Device profiles and register maps (profiles.py, maps.py, profile_annotator.py): names, scaling, the
@@ -2241,43 +2270,58 @@ local MAX_LISTED = 8
 local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
 local ELLIPSIS = "\226\128\166"
 
--- The choices the preferences make: default profile, profile per slave, address style override.
+-- The choices the preferences make: default profile (`auto`: one per slave from evidence, devices/
+-- selection.py), profile per slave, address style override, map layers.
+local SELECTION = DATA.selection
+local AUTO = SELECTION.auto
 local config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {}, layers = {} }
 
 local function parse_profile_choice(text)
-  local default, per_slave, errors = DATA.default_profile, {}, {}
+  -- as build_annotator reads `--profile` options: one default (a profile or auto), SLAVE=PROFILE entries
+  local default, per_slave, errors = nil, {}, {}
   for part in string.gmatch(text or "", "[^,;%s]+") do
     local slave, name = string.match(part, "^(%d+)=(.+)$")
     if slave ~= nil then
       slave = tonumber(slave)
-      if PROFILES[name] == nil then
+      if name == AUTO then
+        errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
+      elseif PROFILES[name] == nil then
         errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
       elseif slave > 247 then
         errors[#errors + 1] = format("slave %d is outside 0..247", slave)
+      elseif per_slave[slave] ~= nil then
+        errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
       else
         per_slave[slave] = name
       end
-    elseif PROFILES[part] ~= nil then
-      default = part
+    elseif PROFILES[part] ~= nil or part == AUTO then
+      if default ~= nil then
+        errors[#errors + 1] = format("%q: a default profile (%s) is already set", part, default)
+      else
+        default = part
+      end
     else
-      errors[#errors + 1] = format("%q is neither a built-in profile nor SLAVE=PROFILE", part)
+      errors[#errors + 1] = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
     end
   end
-  return default, per_slave, errors
+  return default or DATA.default_profile, per_slave, errors
 end
 
 local parse_map_choice
 do -- (a block: the main chunk may hold at most 200 locals)
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
-local MAP_COLUMNS = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source" }
+local MAP_COLUMNS = {
+  "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
+}
+local MAP_TYPES = { uint16 = 1, int16 = 1, uint32 = 2, int32 = 2, float32 = 2 } -- words each type spans
 local KNOWN_COLUMN = {}
 for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
-local function csv_cells(line)
+local function csv_cells(line, delimiter)
   local cells, cell, k, quoted = {}, {}, 1, false
   while k <= #line do
     local char = line:sub(k, k)
@@ -2294,7 +2338,7 @@ local function csv_cells(line)
       end
     elseif char == '"' and #cell == 0 then
       quoted = true
-    elseif char == "," then
+    elseif char == delimiter then
       cells[#cells + 1] = concat(cell)
       cell = {}
     else
@@ -2376,24 +2420,54 @@ local function map_row(values)
   if problem then return nil, problem end
   local signed = strip(values.signed or "")
   if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, format("signed %q is not 1, 0 or empty", signed) end
-  row.signed = signed == "1" or nil
+  local kind = strip(values.type or ""):lower()
+  if kind == "" then kind = signed == "1" and "int16" or "uint16" end
+  local words = MAP_TYPES[kind]
+  if words == nil then return nil, format("type '%s' is not one of uint16, int16, uint32, int32, float32", kind) end
+  row.signed = (signed == "1" or kind == "int16" or kind == "int32") or nil
+  local order = strip(values.order or ""):upper()
+  if order == "" then order = "ABCD" end
+  if order ~= "ABCD" and order ~= "CDAB" then return nil, format("order '%s' is not ABCD or CDAB", order) end
+  if words == 2 then
+    -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
+    if row.enum or row.bits then return nil, format("a %s value cannot carry enum or bit labels", kind) end
+    if address == 0xFFFF then return nil, format("a %s value needs two registers: %d is the last address", kind, address) end
+    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
+  end
   if row.signed and row.enum then return nil, "a signed register cannot carry enum labels" end
-  row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000])) and true or nil
+  row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
+    and true or nil
   return address, row
 end
 
--- The rows of a map file, or nil and `file:line: what is wrong`.
+-- The separator of a map from its header line: the one of `,`, `;`, tab that splits it most (maps.py).
+local function sniff(header)
+  local best, most = ",", 0
+  for _, separator in ipairs({ ",", ";", "\t" }) do
+    local count = select(2, header:gsub(separator, ""))
+    if count > most then best, most = separator, count end
+  end
+  return best
+end
+
+local SEPARATOR_NAMES = { [","] = "comma", [";"] = "';'", ["\t"] = "'\\t'" }
+
+-- The rows of a map file, or nil and `file:line: what is wrong` (maps.parse_map, message for message):
+-- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
 local function load_map(path)
   local handle, open_error = io.open(path, "rb")
   if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
   local text = handle:read("*a")
   handle:close()
-  local header, rows, first_line, number = nil, {}, {}, 0
-  for line in (text:gsub("\r\n", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+  if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
+  local header, rows, first_line, number, delimiter = nil, {}, {}, 0, ","
+  local wide, wide_order = {}, {} -- second register of a 32-bit row -> its first
+  for line in (text:gsub("\r\n", "\n"):gsub("\r", "\n") .. "\n"):gmatch("([^\n]*)\n") do
     number = number + 1
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
-      local cells, problem = csv_cells(line)
+      if header == nil then delimiter = sniff(line) end
+      local cells, problem = csv_cells(line, delimiter)
       if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
       if header == nil then
         header = {}
@@ -2403,28 +2477,47 @@ local function load_map(path)
           if not KNOWN_COLUMN[name] then
             return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
           end
-          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
-          seen[name], header[index] = true, name
+          header[index] = name
         end
         for _, required in ipairs({ "address", "code" }) do
-          if not seen[required] then
+          local found = false
+          for _, name in ipairs(header) do found = found or name == required end
+          if not found then
             return nil, format("%s:%d: the header lacks the %q column", path, number, required)
           end
         end
+        for _, name in ipairs(header) do
+          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
+          seen[name] = true
+        end
       else
         if #cells ~= #header then
-          return nil, format("%s:%d: %d fields, the header has %d (quote a field that holds a comma)", path, number,
-            #cells, #header)
+          return nil, format("%s:%d: %d fields, the header has %d (quote a field that holds a %s)", path, number,
+            #cells, #header, SEPARATOR_NAMES[delimiter])
         end
         local values = {}
         for index, name in ipairs(header) do values[name] = cells[index] end
+        if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
+          values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
+        end
         local address, row = map_row(values)
         if address == nil then return nil, format("%s:%d: %s", path, number, row) end
         if rows[address] ~= nil then
           return nil, format("%s:%d: address %d already defined on line %d", path, number, address, first_line[address])
         end
         rows[address], first_line[address] = row, number
+        if row.words == 2 and wide[address + 1] == nil then
+          wide[address + 1] = address
+          wide_order[#wide_order + 1] = address + 1
+        end
       end
+    end
+  end
+  for _, second in ipairs(wide_order) do
+    local first = wide[second]
+    if rows[second] ~= nil then
+      return nil, format("%s:%d: address %d is the second register of %s (%s, line %d)", path, first_line[second],
+        second, rows[first].code, rows[first].kind, first_line[first])
     end
   end
   if header == nil then return nil, format("%s: no header line (expected: %s)", path, concat(MAP_COLUMNS, ",")) end
@@ -2508,14 +2601,9 @@ local function sorted_keys(set)
   return keys
 end
 
-local function device_for(st, slave)
-  local device = st.devices[slave]
-  if device ~= nil then return device end
-  local profile = PROFILES[config.per_slave[slave] or config.default]
-  if profile == nil then
-    st.devices[slave] = false
-    return false
-  end
+-- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
+-- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
+local function build_device(profile, slave)
   local rows = profile.map or {}
   if #config.layers > 0 then
     local merged = {}
@@ -2541,12 +2629,41 @@ local function device_for(st, slave)
     end
   end
   local style = config.style or profile.address_style
-  device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default }
+  local device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default,
+    seen = {} }
   -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
   device.track = profile.protected_value ~= nil or next(depend) ~= nil
   if style == "plc" then device.plc = profile.plc_base or {} end
+  return device
+end
+
+-- The profile a slave has now: forced per slave, chosen by `auto`, or the default (auto: the fallback).
+local function profile_name(st, slave)
+  local name = config.per_slave[slave]
+  if name ~= nil then return name end
+  if config.default == AUTO then return (st.chosen and st.chosen[slave]) or SELECTION.fallback end
+  return config.default
+end
+
+local function device_for(st, slave)
+  local device = st.devices[slave]
+  if device ~= nil then return device end
+  local profile = PROFILES[profile_name(st, slave)]
+  device = profile ~= nil and build_device(profile, slave) or false
   st.devices[slave] = device
   return device
+end
+
+-- The device a frame was annotated with: a slave's device changes only when `auto` chooses (rarely), so
+-- the changes are kept per slave, { item number from which on, device }, rather than a key per frame.
+local function device_of(st, f)
+  local history = st.history and st.history[f.slave]
+  if history ~= nil then
+    for k = #history, 1, -1 do
+      if history[k].number <= f.number then return history[k].device end
+    end
+  end
+  return device_for(st, f.slave)
 end
 
 local function note(f, text) f.notes[#f.notes + 1] = text end
@@ -2559,7 +2676,7 @@ local function has_note(f, text)
 end
 
 -- maps.interpret: the scaled value and its display text.
-local interpret
+local interpret, interpret_wide
 do
 local FIXED = setmetatable({}, { __index = function(formats, decimals)
   local text = "%." .. decimals .. "f"
@@ -2600,6 +2717,44 @@ interpret = function(row, value)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
   if row.unit ~= nil then return scaled, text .. " " .. row.unit end
   return scaled, text
+end
+
+-- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
+interpret_wide = function(row, first, second)
+  local high, low = first, second
+  if row.swapped then high, low = second, first end
+  local value
+  if row.kind == "float32" then
+    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
+    local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
+    if high >= 0x8000 then sign = -1.0 end
+    local exponent = floor(high / 128) % 256
+    local fraction = (high % 128) * 65536 + low
+    if exponent == 255 then
+      if fraction ~= 0 then return nil, "nan" end
+      return nil, sign > 0 and "inf" or "-inf" -- (no number JSON can hold)
+    elseif exponent == 0 then
+      value = sign * fraction * 2 ^ -149
+    else
+      value = sign * (8388608 + fraction) * 2 ^ (exponent - 150)
+    end
+  else
+    value = high * 65536 + low
+    if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
+  end
+  local text
+  if row.scale ~= nil then
+    local decimals = row.decimals or 0
+    text = format(FIXED[decimals], value * row.scale)
+    value = tonumber(text)
+    if decimals == 0 then value = floor(value + 0.5) end
+  elseif row.kind == "float32" then
+    text = format("%.7g", value) -- float32 holds about 7 significant digits
+  else
+    text = format("%d", value)
+  end
+  if row.unit ~= nil then text = text .. " " .. row.unit end
+  return value, text
 end
 end
 
@@ -2653,9 +2808,8 @@ function story.tell(f)
   end
 end
 
-local function track(st, f, address, row, value, status, now, label)
-  local key = f.slave * 65536 + address
-  local last = st.seen[key]
+local function track(seen, f, address, row, value, status, now, label)
+  local last = seen[address]
   if status == "ok" then
     if last ~= nil and last.value == nil then
       story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
@@ -2663,7 +2817,7 @@ local function track(st, f, address, row, value, status, now, label)
     if last ~= nil then
       last.value, last.frame, last.how = value, f.number, "read"
     else
-      st.seen[key] = { value = value, frame = f.number, how = "read" }
+      seen[address] = { value = value, frame = f.number, how = "read" }
     end
   elseif status == "protected" or status == "non-existent" then
     if last ~= nil and last.value ~= nil then
@@ -2675,34 +2829,46 @@ local function track(st, f, address, row, value, status, now, label)
     if last ~= nil then
       last.value, last.frame, last.how = nil, f.number, status
     else
-      st.seen[key] = { value = nil, frame = f.number, how = status }
+      seen[address] = { value = nil, frame = f.number, how = status }
     end
   end
 end
 
-local function remember_writes(st, f, run, b)
+local function remember_writes(seen, f, run, b)
   if run.start == nil then return end
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
-    local key = f.slave * 65536 + address
-    local last = st.seen[key]
+    local last = seen[address]
     if last ~= nil then
       last.value, last.frame, last.how = value, f.number, "written"
     else
-      st.seen[key] = { value = value, frame = f.number, how = "written" }
+      seen[address] = { value = value, frame = f.number, how = "written" }
     end
   end
+end
+
+-- What register `index` of a frame's consecutive registers is of a 32-bit map row (naming.name_wide):
+-- 2 its first word (the value is read here), 0 its second word, 1 a register on its own.
+local function words_at(rows, address, index, count)
+  local words = 1
+  if index > 0 then
+    local before = rows[(address + 0xFFFF) % 0x10000]
+    if before ~= nil and before.words == 2 then words = 0 end
+  end
+  local row = rows[address]
+  if row ~= nil and row.words == 2 and index + 1 < count then words = 2 end
+  return words
 end
 
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
-local function annotate_one(st, f, device, address, value, protected, multi, label)
+local function annotate_one(f, device, address, value, protected, multi, label, words)
   local row = device.rows[address]
   local plain = false
-  if row ~= nil then
+  if row ~= nil and row.words ~= 2 then
     local rule = device.depend[address]
     if rule ~= nil then
-      local last = st.seen[f.slave * 65536 + rule.on]
+      local last = device.seen[rule.on]
       if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
         plain = true
         if not has_note(f, rule.reason) then note(f, rule.reason) end
@@ -2712,7 +2878,8 @@ local function annotate_one(st, f, device, address, value, protected, multi, lab
   local status = nil
   if protected ~= nil then
     status = "ok"
-    if value == protected and multi then
+    -- (a word of a 32-bit value is no parameter on its own)
+    if value == protected and multi and words == 1 then
       if row == nil then
         status = "non-existent"
       elseif row.ambiguous_8000 then
@@ -2721,27 +2888,42 @@ local function annotate_one(st, f, device, address, value, protected, multi, lab
         status = "protected"
       end
     end
-    track(st, f, address, row, value, status, "16#8000 now", label)
+    track(device.seen, f, address, row, value, status, "16#8000 now", label)
   end
   return plain, status
 end
 
--- What a register says: its map row, scaled value and text, from its value, the plain layout flag
--- and its status (maps.interpret, then the 16#8000 texts).
-local function describe(device, address, value, plain, status)
-  local row = device.rows[address]
-  local scaled, text = nil, nil
+-- What a register says: the map row that names it, its scaled value and text, from its value, the plain
+-- layout flag, its status and its part of a 32-bit value (`second`: the next word, when words is 2):
+-- maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, address, value, plain, status, words, second)
+  local rows = device.rows
+  local row = rows[address]
+  local named, scaled, text = row, nil, nil
+  if words == 0 then
+    named = rows[(address + 0xFFFF) % 0x10000]
+    text = "second word of " .. named.code
+  end
   if row ~= nil then
-    local used = row
-    if plain then used = device.plain[address] end
-    scaled, text = interpret(used, value)
+    named = row
+    if row.words == 2 then
+      if words == 2 then
+        scaled, text = interpret_wide(row, value, second)
+      else
+        text = format("first word of a %s, the second is not in this frame", row.kind)
+      end
+    else
+      local used = row
+      if plain then used = device.plain[address] end
+      scaled, text = interpret(used, value)
+    end
   end
   if status == "non-existent" then
     text = "16#8000: non-existent (address not in the map)"
   elseif status == "protected" then
     scaled, text = nil, "16#8000: protected"
   end
-  return row, scaled, text
+  return named, scaled, text
 end
 
 local function plc_base(device, f)
@@ -2756,17 +2938,20 @@ local function annotate_registers(st, f, device, run, b, read)
   if start == nil then return end
   local protected = nil
   if read then protected = device.profile.protected_value end
-  local multi = run.count > 1
+  local count = run.count
+  local multi = count > 1
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
   local base = plc_base(device, f)
-  for index = 0, run.count - 1 do
+  local rows = device.rows
+  for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
     local label = nil
     if base ~= nil then label = plc_label(base, address) end
-    local plain, status = annotate_one(st, f, device, address, b[k] * 256 + b[k + 1], protected, multi, label)
+    local words = words_at(rows, address, index, count)
+    local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label, words)
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
@@ -2780,19 +2965,25 @@ local function annotate_registers(st, f, device, run, b, read)
 end
 
 -- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
--- gets its row, label, scaled value, text and status.
+-- gets its row, label, scaled value, text, status and words.
 local function annotate_list(st, f, device, registers, read)
   local protected = nil
   if read then protected = device.profile.protected_value end
   local base = plc_base(device, f)
-  local multi = #registers > 1
-  for _, reg in ipairs(registers) do
+  local count = #registers
+  local multi = count > 1
+  for index, reg in ipairs(registers) do
     local address = reg.address
     if address ~= nil then
       if base ~= nil then reg.label = plc_label(base, address) end
-      local plain, status = annotate_one(st, f, device, address, reg.value, protected, multi, reg.label)
-      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status)
-      reg.status = status
+      local words = words_at(device.rows, address, index - 1, count)
+      local next_reg = registers[index + 1]
+      if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
+      if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
+      local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
+      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status, words,
+        next_reg and next_reg.value)
+      reg.status, reg.words = status, words
     end
   end
   story.tell(f)
@@ -2917,7 +3108,7 @@ local function all_unreadable(st, f, device)
     f.exception_code, device.profile.device, concat(parts, ", ")))
   local now = format("exception %02X now", f.exception_code)
   for _, entry in ipairs(entries) do
-    track(st, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
+    track(device.seen, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
   end
 end
 
@@ -2938,6 +3129,9 @@ local function explain_exception(st, f, device)
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(st, f, device)
     story.tell(f)
+    -- The registers of the refused read, with the status this tells and no value (the display lists
+    -- them from the request and the device: inferred_registers), as vw3-decode lists them.
+    f.inferred = true
   elseif meanings[code] ~= nil then
     note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
   elseif next(meanings) ~= nil then
@@ -3015,8 +3209,182 @@ local function span_label(f, device)
   end
 end
 
+-- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
+-- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
+-- code only that device speaks (final), else its first answers fitting one candidate's map alone (its
+-- rows and the maps given for it; 16#8000 where it has none); an answer to a function the chosen device
+-- does not support takes the choice back. Until then the fallback: spec semantics only. What a later
+-- frame says changes nothing before it, in one pass as with -2: the frames before the evidence are shown
+-- as vw3-decode shows them.
+local select_device
+do
+local CANDIDATES = SELECTION.candidates
+local FIT_ANSWERS, FIT_FRAMES = SELECTION.fit_answers, SELECTION.fit_frames
+
+local function settled(judged)
+  return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
+    or (judged.choice ~= nil and judged.choice.final)
+end
+
+local function candidate_rows(name)
+  -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
+  config.fit_rows = config.fit_rows or {}
+  local rows = config.fit_rows[name]
+  if rows == nil then
+    rows = {}
+    for address, row in pairs(PROFILES[name].map or {}) do rows[address] = row end
+    for _, layer in ipairs(config.layers) do
+      if layer.profile == name then
+        for address, row in pairs(layer.rows) do rows[address] = row end
+      end
+    end
+    config.fit_rows[name] = rows
+  end
+  return rows
+end
+
+local function identified(f)
+  if f.objects ~= nil and f.kind == RESPONSE then
+    for _, object in ipairs(f.objects) do
+      if object.id == SELECTION.product_code_object then
+        for _, name in ipairs(CANDIDATES) do
+          for _, code in ipairs(PROFILES[name].identify.product_codes) do
+            if object.value:sub(1, #code) == code then
+              return { profile = name, final = true, reason = format(
+                "Read Device Identification in frame #%d: ProductCode %s", f.number, python_repr(object.value)) }
+            end
+          end
+        end
+      end
+    end
+  end
+  if f.kind ~= NOISE and f.crc == f.crc_expected then
+    for _, name in ipairs(CANDIDATES) do
+      local profile = PROFILES[name]
+      if profile.identify.functions[f.fn] then
+        local called = (profile.function_names or {})[f.fn] or format("%d", f.fn)
+        return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
+          f.number) }
+      end
+    end
+  end
+  return nil
+end
+
+-- The registers of an answer as { address, value } pairs (a run read from b, or vw3_modbus.lua's list).
+local function register_list(f, b)
+  local run = f.registers
+  if run == nil or run.count == nil then return run or {} end
+  local out = {}
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    out[index + 1] = { address = address, value = value }
+  end
+  return out
+end
+
+local function fits(f, name, registers)
+  local profile = PROFILES[name]
+  local rows = candidate_rows(name)
+  if not profile.identify.traffic_fit or next(rows) == nil then return false end
+  if profile.functions ~= nil and not profile.functions[f.fn] then return false end
+  if #registers == 0 then return false end
+  local known = 0
+  for _, reg in ipairs(registers) do
+    if reg.address == nil then return false end
+    if rows[reg.address] ~= nil then
+      known = known + 1
+    elseif reg.value ~= profile.protected_value or READS[f.fn] == nil then
+      return false
+    end
+  end
+  return known > 0
+end
+
+local function what(f, registers)
+  local first, last = registers[1].address, registers[#registers].address
+  if #registers == 1 then return format("function %d at %d", f.fn, first) end
+  return format("function %d at %d..%d", f.fn, first, last)
+end
+
+-- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
+local function observe(st, f, b)
+  local slave = f.slave
+  -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
+  if slave == 0 and not f.unit_zero then return nil end
+  st.judged = st.judged or {}
+  local judged = st.judged[slave]
+  if judged == nil then
+    judged = { answers = 0, frames = 0 }
+    st.judged[slave] = judged
+  end
+  local current = judged.choice
+  if current ~= nil and current.final then return nil end
+  local judging = not settled(judged)
+  judged.frames = judged.frames + 1
+  local found = identified(f)
+  if found ~= nil then
+    judged.choice = found
+    if current == nil or current.profile ~= found.profile then return found end
+    return nil
+  end
+  if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
+  judged.answers = judged.answers + 1
+  if current ~= nil then
+    local profile = PROFILES[current.profile]
+    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[f.fn] then
+      judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
+        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number, profile.device) }
+      return judged.choice
+    end
+    return nil
+  end
+  if not judging then return nil end
+  local registers = register_list(f, b)
+  local fit = nil
+  for _, name in ipairs(CANDIDATES) do
+    if fits(f, name, registers) then
+      if fit ~= nil then return nil end
+      fit = name
+    end
+  end
+  if fit == nil then return nil end
+  judged.choice = { profile = fit, final = false, reason = format("traffic fits its map: %s in frame #%d",
+    what(f, registers), f.number) }
+  return judged.choice
+end
+
+-- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
+select_device = function(st, f, b)
+  local choice = observe(st, f, b)
+  if choice == nil then return device_for(st, f.slave) end
+  local slave = f.slave
+  st.chosen = st.chosen or {}
+  st.history = st.history or {}
+  st.chosen[slave] = choice.profile
+  local old = st.devices[slave]
+  local device = build_device(PROFILES[choice.profile], slave)
+  local history = st.history[slave]
+  if history == nil then
+    history = {}
+    st.history[slave] = history
+    if old then history[1] = { number = 0, device = old } end
+  end
+  history[#history + 1] = { number = f.number, device = device }
+  st.devices[slave] = device
+  f.profile_choice = choice.reason
+  return device
+end
+end
+
+device_now = function(st, f, b)
+  if config.default == AUTO and config.per_slave[f.slave] == nil then return select_device(st, f, b) end
+  return device_for(st, f.slave)
+end
+
 annotate = function(st, f, b)
-  local device = device_for(st, f.slave)
+  local device = device_now(st, f, b)
   if not device then return end
   local special_name = (device.profile.function_names or {})[f.fn]
   if special_name ~= nil then f.function_text = special_name end
@@ -3032,21 +3400,44 @@ annotate = function(st, f, b)
   if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-    remember_writes(st, f, request.registers, request.registers.b)
+    remember_writes(device.seen, f, request.registers, request.registers.b)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
     annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(st, f, registers, b) end
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f, registers, b) end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 end
 
+-- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
+-- its status, no value. Made when shown, from the request and the device, rather than kept.
+local function inferred_registers(st, f)
+  local request = f.request
+  local device = device_of(st, f)
+  local base = plc_base(device, request)
+  local text = format("no value: exception %02X", f.exception_code)
+  local out = {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    local row = device.rows[address]
+    out[index + 1] = { address = address, row = row, text = text, offset = -1,
+      status = row == nil and "non-existent" or "protected", label = base and plc_label(base, address) or nil }
+  end
+  return out
+end
+
 local function configure(profiles_text, style, maps_text)
   local default, per_slave, errors = parse_profile_choice(profiles_text)
-  local in_use = { [default or ""] = true }
+  local in_use = {}
+  if default ~= AUTO then in_use[default] = true end
+  if default == AUTO then
+    -- (auto: the fallback and every candidate are profiles in use, as build_annotator names them)
+    in_use[SELECTION.fallback] = true
+    for _, name in ipairs(SELECTION.candidates) do in_use[name] = true end
+  end
   for _, name in pairs(per_slave) do in_use[name] = true end
   local layers, map_errors = parse_map_choice(maps_text, in_use)
   for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end
@@ -3074,7 +3465,7 @@ local function new_state(timeout, mode)
   -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
   -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.
   return {
-    expect = nil, pending = nil, count = 0, records = {}, devices = {}, seen = {}, timeout = timeout,
+    expect = nil, pending = nil, count = 0, records = {}, devices = {}, timeout = timeout,
     mode = mode,
     -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
     b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil,
@@ -3262,6 +3653,11 @@ local pf = {
   reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
   reg_status = ProtoField.uint8("vw3.reg.status", "Status", base.DEC, STATUS_NAMES),
   reg_source = ProtoField.string("vw3.reg.source", "Source"),
+  reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
+    { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
+  profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
+  profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
+    "Profile auto: why this frame decides the slave's profile"),
   bit = ProtoField.none("vw3.bit", "Bit"),
   bit_address = ProtoField.uint16("vw3.bit.address", "Address", base.DEC),
   bit_value = ProtoField.uint8("vw3.bit.value", "Value", base.DEC),
@@ -3302,9 +3698,10 @@ local ex = {
   partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
   internal = ProtoExpert.new("vw3.expert.internal", "Plugin error (please report it)", expert.group.UNDECODED, expert.severity.ERROR),
   preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
+  profile = ProtoExpert.new("vw3.expert.profile", "Device profile chosen (profile auto)", expert.group.COMMENTS_GROUP, expert.severity.CHAT),
 }
 proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
-  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal }
+  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal, ex.profile }
 vw3.experts = ex
 
 local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
@@ -3422,7 +3819,7 @@ local function register_title(reg)
   local code = reg.row and reg.row.code
   local parts = { "Register ", label }
   if code then parts[#parts + 1] = " " .. code end
-  parts[#parts + 1] = format(" = %d", reg.value)
+  if reg.value ~= nil then parts[#parts + 1] = format(" = %d", reg.value) end
   if reg.text then parts[#parts + 1] = ": " .. reg.text end
   if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
   return concat(parts)
@@ -3453,7 +3850,7 @@ end
 -- (its value is the profile's 16#8000, no bytes needed).
 local function register_view(st, f, run, b, index)
   -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
-  local device = device_for(st, f.slave)
+  local device = device_of(st, f)
   local address, value, offset
   if b ~= nil then
     address, value, offset = register_at(run, b, index, true)
@@ -3466,8 +3863,14 @@ local function register_view(st, f, run, b, index)
     if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
       status = "ok"
     end
-    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status)
-    view.status = status
+    local words, second = words_at(device.rows, address, index, run.count), nil
+    if words == 2 and b ~= nil then
+      local _
+      _, second = register_at(run, b, index + 1, true)
+    end
+    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
+      second)
+    view.status, view.words = status, words
     local base = plc_base(device, f)
     if base ~= nil then view.label = plc_label(base, address) end
   end
@@ -3517,18 +3920,19 @@ local function add_register(tree, tvb, f, reg, range, full)
     sub:set_text(register_title(reg))
     if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
     if reg.label then unseen.add(sub, pf.reg_label, reg.label, true) end
-    unseen.add(sub, pf.reg_value, reg.value, false)
+    if reg.value ~= nil then unseen.add(sub, pf.reg_value, reg.value, false) end
     local row = reg.row or unseen.no_row
     if row.code then unseen.add(sub, pf.reg_code, row.code, true) end
     if row.name then unseen.add(sub, pf.reg_name, row.name, true) end
     if row.unit then unseen.add(sub, pf.reg_unit, row.unit, true) end
     if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
     local parameter = PARAMETER_FIELDS[row]
-    if parameter ~= nil and reg.status ~= "protected" then
+    if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
       unseen.add(sub, parameter, reg.scaled or reg.value, true)
     end
     if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
     if row.source then unseen.add(sub, pf.reg_source, row.source, true) end
+    if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
     if reg.status then
       unseen.add(sub, pf.reg_status, STATUS_VALUES[reg.status], true)
       if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
@@ -3543,18 +3947,19 @@ local function add_register(tree, tvb, f, reg, range, full)
     if r ~= nil then item:set_generated() end
   end
   if reg.label then sub:add(pf.reg_label, r, reg.label):set_generated() end
-  sub:add(pf.reg_value, r, reg.value)
+  if reg.value ~= nil then sub:add(pf.reg_value, r, reg.value) end -- (none: an exception 02's inferred status)
   local row = reg.row or unseen.no_row
   if row.code then sub:add(pf.reg_code, r, row.code):set_generated() end
   if row.name then sub:add(pf.reg_name, r, row.name):set_generated() end
   if row.unit then sub:add(pf.reg_unit, r, row.unit):set_generated() end
   if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
   local parameter = PARAMETER_FIELDS[row]
-  if parameter ~= nil and reg.status ~= "protected" then
+  if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
     sub:add(parameter, r, reg.scaled or reg.value):set_generated()
   end
   if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
   if row.source then sub:add(pf.reg_source, r, row.source):set_generated() end
+  if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
   if reg.status then
     sub:add(pf.reg_status, r, STATUS_VALUES[reg.status]):set_generated()
     if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
@@ -3590,6 +3995,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
     t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
+    local device = device_of(st, f)
+    if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
     local crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
@@ -3648,6 +4055,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
       end
     end
+  end
+  if f.inferred then
+    for _, reg in ipairs(inferred_registers(st, f)) do add_register(t, tvb, f, reg, nil, full and true) end
   end
   if full then
     local bits = f.bits
@@ -3717,6 +4127,12 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       if full then item = t:add(pf.unanswered, whole, true):set_generated() end
       add_text(item, ex.unanswered, "Request not answered")
     end
+  end
+  if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
+    local text = format("slave %d: %s (%s)", f.slave, device_of(st, f).profile.name, f.profile_choice)
+    local item = t
+    if full then item = t:add(pf.profile_choice, whole, text):set_generated() end
+    add_text(item, ex.profile, text)
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
@@ -4024,7 +4440,8 @@ DissectorTable.get("udp.port"):add_for_decode_as(proto)
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
-  new_state = new_state, device_for = device_for, annotate_registers = annotate_list, reads = READS,
+  new_state = new_state, device_for = device_for, device_now = device_now, annotate_registers = annotate_list,
+  reads = READS,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 

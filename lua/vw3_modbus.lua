@@ -58,16 +58,19 @@ function names_proto.dissector(tvb, pinfo, tree)
   local f = {
     slave = units[1] and units[1].value or 0, fn = code % 128,
     kind = (#requests > 0) and vw3.RESPONSE or vw3.REQUEST,
-    registers = registers, notes = {}, warnings = {}, number = pinfo.number,
+    registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true,
   }
-  local device = vw3.device_for(names_state, f.slave)
-  if not device then return end
-  -- The protection story follows the capture order: computed once, on the first pass, then reused.
+  -- The protection story and profile auto follow the capture order: computed once, on the first pass,
+  -- then reused.
   local done = names_state.records[pinfo.number]
+  local device
   if done == nil then
+    device = vw3.device_now(names_state, f)
+    if not device then return end
     vw3.annotate_registers(names_state, f, device, registers, f.kind == vw3.RESPONSE and vw3.reads[f.fn] ~= nil)
-    names_state.records[pinfo.number] = { registers = registers, notes = f.notes }
+    names_state.records[pinfo.number] = { registers = registers, notes = f.notes, device = device }
   else
+    device = done.device
     for index, reg in ipairs(done.registers) do
       if registers[index] ~= nil then done.registers[index].field = registers[index].field end
     end

@@ -124,14 +124,29 @@ def protocol_tables() -> dict[str, Any]:
 
 def _profile_data() -> dict[str, Any]:
     """Built-in device profiles with their register maps, as the Python annotator loads them."""
-    from dissector.devices.profiles import BUILTIN_PROFILES, DEFAULT_PROFILE, load_profile, load_profile_map
+    from dissector.devices import selection
+    from dissector.devices.profiles import (
+        AUTO, BUILTIN_PROFILES, DEFAULT_PROFILE, FALLBACK_PROFILE, load_profile, load_profile_map,
+    )
 
     profiles = {}
     for name in BUILTIN_PROFILES:
         profile = load_profile(name)
         profiles[profile.name] = _profile_table(profile, load_profile_map(profile))
-    # The plugin has no `auto` selection yet: its default stays the ATV71 profile.
-    return {"profiles": profiles, "default_profile": "atv71" if DEFAULT_PROFILE == "auto" else DEFAULT_PROFILE}
+    return {
+        "profiles": profiles,
+        "default_profile": DEFAULT_PROFILE,
+        # Profile `auto` (devices/selection.py): the fallback until evidence, the candidates in the order
+        # build_annotator judges them, and how many of a slave's answers (frames) its traffic is judged on.
+        "selection": {
+            "auto": AUTO,
+            "fallback": FALLBACK_PROFILE,
+            "candidates": [name for name in BUILTIN_PROFILES if name != FALLBACK_PROFILE],
+            "fit_answers": selection.FIT_ANSWERS,
+            "fit_frames": selection.FIT_FRAMES,
+            "product_code_object": selection.PRODUCT_CODE,
+        },
+    }
 
 
 def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
@@ -174,6 +189,11 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
             for rule in profile.bits_depend
         ],
         "map": {address: _row_table(row) for address, row in sorted(rows.items())},
+        "identify": {
+            "product_codes": list(profile.product_codes),
+            "functions": profile.identifying_functions,
+            "traffic_fit": profile.traffic_fit,
+        },
     }
 
 
@@ -192,6 +212,10 @@ def _row_table(row: Any) -> dict[str, Any]:
         out["decimals"] = row.decimals
     if row.ambiguous_8000:
         out["ambiguous_8000"] = True
+    if row.words != 1:
+        out["words"], out["kind"] = row.words, row.kind
+    if row.swapped:
+        out["swapped"] = True
     return out
 
 

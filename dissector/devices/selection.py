@@ -23,7 +23,7 @@ from dissector.protocol import table
 _READS = table.register_reads()  # answers whose registers are values read (16#8000 can mean non-existent)
 FIT_ANSWERS = 8  # answers of a slave its traffic is judged on
 FIT_FRAMES = 4 * FIT_ANSWERS  # frames of a slave that seldom answers, the same
-_PRODUCT_CODE = 1  # FC43 object 01h ProductCode
+PRODUCT_CODE = 1  # FC43 object 01h ProductCode
 
 
 @dataclass(frozen=True, slots=True)
@@ -125,7 +125,7 @@ class Selector:
     def _identified(self, frame: Frame) -> ProfileChoice | None:
         if frame.objects and frame.kind is Kind.RESPONSE:
             for obj in frame.objects:
-                if obj.id != _PRODUCT_CODE:
+                if obj.id != PRODUCT_CODE:
                     continue
                 for profile, _ in self.candidates:
                     if any(obj.value.startswith(code) for code in profile.product_codes):

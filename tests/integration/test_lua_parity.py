@@ -103,7 +103,7 @@ def test_preference_errors_are_shown(tmp_path: Path) -> None:
     _, record_experts, _ = lua_items(pcap, "-o", "vw3.profiles:12=atv99,nonsense")
     texts = [text for _, text in record_experts]
     assert any('profile "atv99" for slave 12 is not built in' in text for text in texts), texts
-    assert any('"nonsense" is neither a built-in profile nor SLAVE=PROFILE' in text for text in texts), texts
+    assert any('"nonsense" is neither a built-in profile, auto, nor SLAVE=PROFILE' in text for text in texts), texts
 
 
 def test_random_ascii_session_parity(tmp_path: Path) -> None:
@@ -136,9 +136,8 @@ def test_raw_capture_written_with_w_opens_the_same_in_wireshark(tmp_path: Path, 
     written = tmp_path / "written.pcap"
     subprocess.run([sys.executable, "-m", "dissector", str(capture), "-w", str(written)], cwd=ROOT, check=True,
                    capture_output=True, timeout=300)
-    # The plugin's default profile is the ATV71 (it has no `auto`): vw3-decode is told the same.
-    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--json", "--profile", "atv71"],
-                            cwd=ROOT, check=True,
+    # Both with their default profile, auto.
+    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), "--json"], cwd=ROOT, check=True,
                             capture_output=True, text=True, timeout=300)
     python = place_items([json.loads(line) for line in result.stdout.splitlines()], record_lengths(written))
     # A raw capture has no times; the pcap written from it has records at the epoch, read as untimed.

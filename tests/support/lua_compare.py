@@ -30,7 +30,7 @@ FRAME_KEYS = frozenset([
 ])
 NOISE_KEYS = frozenset(["frame", "kind", "offset", "length", "time", "raw", "reason", "warnings"])
 REGISTER_KEYS = frozenset(["address", "value", "code", "name", "unit", "scaled", "text", "status", "source",
-                           "label"])
+                           "label", "words"])
 OBJECT_KEYS = frozenset(["id", "name", "value", "text"])
 
 
@@ -48,7 +48,9 @@ def unknown_keys(python: list[PythonItem]) -> set[str]:
 
 
 def _scaled(value: Any) -> float | None:
-    return None if value is None else round(float(value), 9)
+    # Wireshark shows a double with 15 significant digits (a float32 read as 3.4028234663852886e+38 shows
+    # as 3.40282346638529e+38): both sides are compared at that precision.
+    return None if value is None else float(f"{round(float(value), 9):.15g}")
 
 
 def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
@@ -79,10 +81,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "response_time": None if data.get("response_time") is None else round(data["response_time"], 6),
         "registers": [
             (reg["address"], reg["value"], reg.get("code"), reg.get("status"), reg.get("text"), reg.get("label"),
-             reg.get("name"), reg.get("unit"), reg.get("source"), _scaled(reg.get("scaled")))
+             reg.get("name"), reg.get("unit"), reg.get("source"), _scaled(reg.get("scaled")), reg.get("words", 1))
             for reg in data.get("registers", [])
-            # The statuses an exception 02 tells (p.38, no value on the wire) are not in the plugin yet.
-            if reg["value"] is not None or data["kind"] != "exception"
         ],
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
         "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
@@ -146,7 +146,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
             (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"),
              STATUS_NAMES.get(reg.get("status"), reg.get("status")),
              reg.get("text"), reg.get("label"), reg.get("name"), reg.get("unit"), reg.get("source"),
-             _scaled(reg.get("scaled")))
+             _scaled(reg.get("scaled")), _int(reg.get("words")) if "words" in reg else 1)
             for reg in item.registers
         ],
         "bits": [(_int(bit.get("address")), _int(bit.get("value"))) for bit in item.bits],

@@ -193,12 +193,9 @@ def record_lengths(pcap: Path) -> list[int]:
 
 
 def plugin_profiles(profiles: list[str] | None) -> list[str]:
-    """vw3-decode's profiles as the plugin takes them: the plugin has no profile `auto`, its default is
-    the ATV71, so vw3-decode is given the same default."""
-    chosen = list(profiles or [])
-    if all("=" in profile for profile in chosen):
-        chosen.append("atv71")
-    return chosen
+    """vw3-decode's profiles as the plugin's `profiles` preference gives them: the same words, and the
+    same default (profile `auto`) when no default is given."""
+    return list(profiles or [])
 
 
 def python_items(

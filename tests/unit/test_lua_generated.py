@@ -50,4 +50,6 @@ def test_data_comes_from_the_package() -> None:
     assert atv71["map"][8401]["code"] == "CHCF"
     assert atv71["map"][3102] == {"code": "SFR", "name": "Switching frequency", "unit": "kHz", "scale": 0.1,
                                   "source": "A", "decimals": 1}
-    assert data["default_profile"] == "atv71"
+    assert data["default_profile"] == "auto"  # as vw3-decode's
+    assert data["selection"]["fallback"] == "generic" and data["selection"]["candidates"] == ["atv71", "sel749m"]
+    assert data["profiles"]["atv71"]["identify"]["product_codes"] == ["ATV71"]

@@ -1,0 +1,206 @@
+"""Profile `auto` in the Wireshark plugin: the same device per slave as `vw3-decode` (its default), from
+the same evidence in the same order: identification (FC43 ProductCode), SEL function codes, traffic that
+fits one map, the choice taken back by an unsupported function, slaves judged long enough (settled).
+
+Real tshark 4.0.17 with lua/vw3.lua against `vw3-decode --json`, item by item (tests/support/lua_compare),
+and the plugin's `vw3.profile_choice` against the choices vw3-decode reports (Annotator.choices()).
+"""
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+from lua_compare import compare, lua_shown
+from lua_harness import (
+    CLI_TIMEOUT, PLUGIN, USER_DLT, ensure_tool, lua_errors, lua_items, parse_pdml, python_items, write_pcap,
+)
+from lua_session import SessionBuilder, exception, frame
+
+from dissector.devices.build import build_annotator
+from dissector.framing.rtu import RtuFramer
+from dissector.model import Kind
+from dissector.pipeline import Dissector
+from dissector.sources.reader import open_source
+
+
+def _read(slave: int, start: int, values: list[int], function: int = 3) -> list[bytes]:
+    request = frame(slave, function, Kind.REQUEST, start=start, quantity=len(values))
+    return [request, frame(slave, function, Kind.RESPONSE, byte_count=2 * len(values), values=values)]
+
+
+def _coils(slave: int) -> list[bytes]:
+    return [frame(slave, 1, Kind.REQUEST, start=0, quantity=8), frame(slave, 1, Kind.RESPONSE, byte_count=1,
+                                                                       status=b"\x05")]
+
+
+def _identification(slave: int, product: bytes) -> list[bytes]:
+    objects = [(0, b"Schneider Electric"), (1, product), (2, b"0201")]
+    request = frame(slave, 43, Kind.REQUEST, mei_type=14, body={"read_code": 1, "object_id": 0})
+    response = frame(slave, 43, Kind.RESPONSE, mei_type=14, body={
+        "read_code": 1, "conformity": 1, "more_follows": 0, "next_object_id": 0, "object_count": len(objects),
+        "objects": [{"id": key, "length": len(value), "value": value} for key, value in objects],
+    })
+    return [request, response]
+
+
+def evidence_session() -> list[tuple[bytes, float]]:
+    """One frame a record; every kind of evidence profile auto weighs, and what it must not be fooled by."""
+    sel = SessionBuilder(seed=4)
+    frames: list[bytes] = []
+    # slave 3: its first answer fits the ATV71 map (8400 reads 16#8000: non-existent, CHCF and COP known)
+    frames += _read(3, 8400, [0x8000, 3, 2])
+    frames += _read(3, 3202, [500, 0x8000])
+    # slave 4: a read no map knows, then its identification: ATV71 from the ProductCode (final)
+    frames += _read(4, 0, [1, 2])
+    frames += _identification(4, b"ATV71HU15M3")
+    frames += _coils(4)  # (final: an unsupported function takes nothing back)
+    # slave 7: a SEL-749M function code (60h, Read Parameter Information): final
+    frames += _read(7, 3100, [40, 600])  # fits the ATV71 first...
+    frames += [sel._scanned(7, 0x60, 10), sel._scanned(7, 0x60, 24)]  # ...then says what it is
+    frames += [frame(7, 3, Kind.REQUEST, start=0, quantity=200), exception(7, 3, 3)]  # Table D.5, quantity
+    # slave 9: fits the ATV71, then answers a function the VW3 A3 303 does not support: back to generic
+    frames += _read(9, 8401, [3, 2])
+    frames += _coils(9)
+    frames += _read(9, 8400, [0x8000, 0x8000, 2])  # generic now: no 16#8000 status
+    # slave 11: no evidence at all (spec semantics only)
+    frames += _coils(11) + _read(11, 0, [7])
+    # slave 12: chosen from its traffic, then every parameter of a read unreadable: exception 02 (p.38)
+    frames += _read(12, 8400, [0x8000, 3, 2])
+    frames += [frame(12, 3, Kind.REQUEST, start=8400, quantity=3), exception(12, 3, 2)]
+    frames += [frame(12, 3, Kind.REQUEST, start=8401, quantity=1), exception(12, 3, 2)]
+    # slave 13: judged on its first 8 answers (FIT_ANSWERS), none fits: settled, a later fit changes nothing
+    for _ in range(8):
+        frames += _coils(13)
+    frames += _read(13, 8400, [0x8000, 3, 2])
+    # slave 14: 32 frames (FIT_FRAMES) without an answer that fits: settled as well
+    for index in range(32):
+        frames.append(frame(14, 3, Kind.REQUEST, start=index, quantity=1))
+    frames += _read(14, 8400, [0x8000, 3, 2])
+    # a broadcast write (slave 0 is never chosen for)
+    frames.append(frame(0, 6, Kind.REQUEST, address=8501, value=6))
+    frames += _read(3, 8400, [0x8000, 0x8000, 2])  # slave 3 kept the ATV71: CHCF protected now
+    return [(data, 1767225600.0 + 0.02 * index) for index, data in enumerate(frames)]
+
+
+def cli_choices(pcap: Path, profiles: list[str]) -> list[str]:
+    """What vw3-decode says of its choices (the stderr lines on a terminal, the --stats table): one per
+    slave that evidence decided, `slave 12: atv71 (traffic fits its map: ...)`."""
+    with open_source(str(pcap)) as source:
+        annotate = build_annotator(profiles, [])
+        dissector = Dissector(framer=RtuFramer(), annotate=annotate, timeout=CLI_TIMEOUT)
+        for chunk in source:
+            dissector.feed(chunk)
+        dissector.finish()
+    return [choice.text() for choice in annotate.choices() if choice.frame is not None]
+
+
+def lua_choices(lua: list) -> list[str]:
+    """The plugin's last `vw3.profile_choice` per slave (each decision is said on the frame that made it)."""
+    last: dict[str, str] = {}
+    for item in lua_shown(lua):
+        text = item.fields.get("profile_choice")
+        if text is not None:
+            last[text.split(":", 1)[0]] = text
+    return sorted(last.values(), key=lambda text: int(text.split(":")[0].split()[1]))
+
+
+def _profiles_by_item(lua: list) -> dict[int, tuple[str | None, str | None]]:
+    return {int(item.fields["item"]): (item.fields.get("slave"), item.fields.get("profile"))
+            for item in lua_shown(lua) if item.fields.get("kind") != "4"}
+
+
+def test_auto_is_the_default_and_chooses_as_vw3_decode(tmp_path: Path) -> None:
+    pcap = write_pcap(tmp_path / "evidence.pcap", evidence_session())
+    python = python_items(pcap)  # vw3-decode's default: profile auto
+    lua, record_experts, _ = lua_items(pcap)  # the plugin's default
+    differences = compare(python, lua)
+    assert not differences, "\n".join(differences[:40])
+    assert not any("Preferences" in text for _, text in record_experts)
+    choices = cli_choices(pcap, [])
+    assert lua_choices(lua) == choices
+    assert choices == [
+        "slave 3: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #2)",
+        "slave 4: atv71 (Read Device Identification in frame #8: ProductCode 'ATV71HU15M3')",
+        "slave 7: sel749m (function 60h (Read Parameter Information) in frame #13)",
+        "slave 9: generic (function 1 answered in frame #20, which the VW3 A3 303 does not support)",
+        "slave 12: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #28)",
+    ]
+    # Slave 9's choice was made, then taken back: both said where they happened.
+    said = [item.fields["profile_choice"] for item in lua_shown(lua) if "profile_choice" in item.fields]
+    assert "slave 9: atv71 (traffic fits its map: function 3 at 8401..8402 in frame #18)" in said
+    # The evidence shows in what is decoded: names and 16#8000 statuses only where a device was chosen.
+    frames = {item.data["frame"]: item.data for item in python}
+    profiles = _profiles_by_item(lua)
+    assert profiles[1] == ("3", "generic") and profiles[2] == ("3", "atv71")  # the answer decides, for itself
+    assert [reg.get("status") for reg in frames[4]["registers"]] == ["ok", "protected"]
+    assert profiles[7] == ("4", "generic") and profiles[8] == ("4", "atv71") and profiles[10] == ("4", "atv71")
+    assert frames[13]["function_name"] == "Read Parameter Information"
+    assert "illegal number of registers to read" in frames[16]["notes"][0]
+    assert [reg.get("status") for reg in frames[22]["registers"]] == [None, None, None]
+    assert profiles[22] == ("9", "generic")
+    # p.38 on a chosen slave: the statuses an exception 02 tells, listed as vw3-decode lists them.
+    inferred = frames[30]["registers"]
+    assert [(reg["address"], reg["value"], reg.get("code"), reg["status"], reg["text"]) for reg in inferred] == [
+        (8400, None, None, "non-existent", "no value: exception 02"),
+        (8401, None, "CHCF", "protected", "no value: exception 02"),
+        (8402, None, "COP", "protected", "no value: exception 02"),
+    ]
+    # Settled slaves 13 and 14 stay generic although their last read fits.
+    last_13 = max(number for number, (slave, _) in profiles.items() if slave == "13")
+    last_14 = max(number for number, (slave, _) in profiles.items() if slave == "14")
+    assert profiles[last_13][1] == "generic" and profiles[last_14][1] == "generic"
+    assert "status" not in frames[last_14]["registers"][0]
+
+
+def test_one_pass_shows_what_two_passes_show(tmp_path: Path) -> None:
+    # The choice rests on earlier frames only (as vw3-decode reads its input): tshark without -2 (what
+    # Wireshark does when opening a file) gives every item the same profile, names, statuses and notes.
+    records = evidence_session()
+    pcap = write_pcap(tmp_path / "evidence.pcap", records)
+    tshark = ensure_tool("tshark", "tshark")
+    shown = []
+    for passes in ([], ["-2"]):
+        command = [tshark, "-n", *passes, "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap), "-T", "pdml"]
+        result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+        assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr
+        items = lua_shown(parse_pdml(result.stdout)[0])
+        shown.append({
+            item.fields["item"]: (item.fields.get("profile"), item.fields.get("profile_choice"), item.registers,
+                                  item.texts.get("note"))
+            for item in items
+        })
+    one, two = shown
+    assert len(two) == len(records)  # one frame a record
+    # (One pass cannot show the two SEL frames: a code without a length rule is framed by a CRC scan that
+    # the next record settles, and one pass has gone past their record by then; -2 shows them there.)
+    assert set(two) - set(one) == {"13", "14"}
+    assert one == {item: two[item] for item in one}
+    assert sum(choice is not None and "atv71 (" in choice for _, choice, _, _ in one.values()) == 4
+
+
+def test_auto_with_forced_slaves_and_plc_addresses(tmp_path: Path) -> None:
+    # `--profile auto --profile 9=atv71 --profile 3=generic --address-style plc` = the same preferences.
+    records = evidence_session() + SessionBuilder(seed=11).session(600, start_time=1767226000.0)
+    pcap = write_pcap(tmp_path / "forced.pcap", records)
+    python = python_items(pcap, ["auto", "9=atv71", "3=generic"], "--address-style", "plc")
+    lua, record_experts, _ = lua_items(pcap, "-o", "vw3.profiles:auto,9=atv71,3=generic",
+                                       "-o", "vw3.address_style:plc")
+    differences = compare(python, lua)
+    assert not differences, "\n".join(differences[:40])
+    assert not any("Preferences" in text for _, text in record_experts)
+    profiles = _profiles_by_item(lua)
+    assert {profile for slave, profile in profiles.values() if slave == "9"} == {"atv71"}
+    assert {profile for slave, profile in profiles.values() if slave == "3"} == {"generic"}
+    labels = [reg.get("label") for item in python for reg in item.data.get("registers", [])]
+    assert "48402" in labels  # CHCF of an ATV71 slave as a 4X reference
+    assert lua_choices(lua) == [text for text in cli_choices(pcap, ["auto", "9=atv71", "3=generic"])
+                                if not text.startswith(("slave 9:", "slave 3:"))]
+
+
+def test_auto_preference_errors(tmp_path: Path) -> None:
+    pcap = write_pcap(tmp_path / "one.pcap", evidence_session()[:2])
+    _, record_experts, _ = lua_items(pcap, "-o", "vw3.profiles:12=auto,atv71,auto,12=sel749m,12=generic")
+    texts = [text for _, text in record_experts]
+    for phrase in ('"12=auto": auto is for every slave', '"auto": a default profile (atv71) is already set',
+                   '"12=generic": slave 12 already has a profile'):
+        assert any(phrase in text for text in texts), (phrase, texts)
