@@ -2,11 +2,11 @@
 
     python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
 
-Random sessions of transactions of every public code but FC8 (ATV71 addresses, 16#8000 values, the CHCF/CMD
-bits_depend case, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
+Random sessions of transactions of every public code (ATV71 addresses, 16#8000 values, the CHCF/CMD
+bits_depend case, FC8 Return Query Data echoes of any size (found by a CRC scan) and other sub-functions, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
 requests, exceptions to every code the compiled path shows, other function codes, noise, bit flips, dropped and
 inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths with the ATV71 annotator,
-with none and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
+with none, with profile `auto` and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
 reduced to a minimal reproducer; one where the Python framer alone disagrees with itself when the stream
 is cut differently is reported as such. tests/differential/test_fastsummary.py holds a bounded version of this.
 """
@@ -49,6 +49,7 @@ FACTORIES = {
     "atv71": lambda: build_annotator([], [], None),
     "none": lambda: None,
     "sel749m": lambda: build_annotator(["sel749m"], [], None),
+    "auto": lambda: build_annotator([], [], None),  # the default: profiles chosen from the traffic
 }
 
 
@@ -79,7 +80,7 @@ def packed(rng, n):
 
 def transaction(rng):
     s = rng.choice(SLAVES)
-    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16,17,17]) if rng.random() < CLEAN else rng.randrange(18)
+    kind = rng.choice([0,0,0,0,1,2,2,3,3,4,4,8,8,9,10,12,12,13,14,15,16,16,17,17,18,18]) if rng.random() < CLEAN else rng.randrange(19)
     a = rng.choice(ADDR) if rng.random() < 0.9 else rng.randrange(65536)
     q = qty(rng)
     frames = []
@@ -225,6 +226,22 @@ def transaction(rng):
             answer = rtu(f"{s:02x}2b0e0102{rng.choice(['00', 'ff'])}00{len(objects):02x}{encoded}")
         if rng.random() < 0.85:
             frames.append(answer)
+    elif kind == 18:  # FC8: Return Query Data echoes (a CRC scan finds their end), other sub-functions
+        sub = rng.choice([0, 0, 0, 0, 1, 2, 4, 10, 11, 15, 15, 20, 5, 99, 0x1234])
+        if sub == 0:
+            size = rng.choice([0, 1, 2, 3, 4, 16, 17, 18, rng.randint(0, 40), rng.randint(0, 250)])
+            data = packed(rng, size) if rng.random() < 0.8 else "00" * size
+        else:
+            data = w(rng.choice([0, 0xFF00, 7, rng.randrange(65536)]))
+        frame = rtu(f"{s:02x}08{w(sub)}{data}")
+        frames.append(frame)
+        r = rng.random()
+        if r < 0.75:
+            frames.append(frame)  # the echo
+        elif r < 0.85:
+            frames.append(rtu(f"{s:02x}08{w(sub)}{packed(rng, rng.choice([0, 2, 4]))}"))
+        elif r < 0.92:
+            frames.append(rtu(f"{s:02x}88{rng.choice([1, 2, 3, 4, 11]):02x}"))
     else:  # retry: same request twice then answer
         f = rtu(f"{s:02x}03{w(a)}{w(q)}")
         body = "".join(map(w, words(rng, min(q, 125))))

@@ -4,16 +4,19 @@
  * (protocol/table.py, through _tables.h: requests, their normal responses, unanswered requests and
  * exceptions), exactly what the Python stages do: the framer's fast path (framing/rtu.py, _run),
  * pairing, the decoder's spec checks, the annotator's naming (PLC-style addresses included) and
- * parameter tracking, and the summary line (render/summary.py). For FC17, FC20, FC21 and FC43
+ * parameter tracking, and the summary line (render/summary.py); FC8's texts too (the spec's
+ * sub-function names, given at init). For FC17, FC20, FC21 and FC43
  * (table.Compiled.texts) it frames and pairs, and the texts come from the Python stages by the frames'
  * bytes. What it hands back, before touching any state, at the start of the transaction, and why:
- *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC8's
- *     Return Query Data, FC43 other than 14): the framer's careful path decides those;
+ *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC43
+ *     other than 14): the framer's careful path decides those. FC8's Return Query Data, whose echo
+ *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
+ *     match an intact frame follows, checked with the framer's rules for every code it knows);
  *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;
  *   - an exception to FC17, FC20, FC21 or FC43;
  *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
  *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
- *     ON/OFF, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
+ *     ON/OFF, FC8 sub-functions the spec does not define or the device explains, odd FC8 data, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
  *     read, a parameter readable again, a bits_depend switch;
  *   - exception 2 to an FC3/FC4 read on a device that protects parameters (ATV71, p.38): the
  *     annotator then forgets the values of every parameter read, a change of state;
@@ -171,6 +174,7 @@ typedef struct {
     uint8_t *dependent;       /* addresses with a bits_depend rule */
     uint8_t *sources;         /* the addresses those rules depend on */
     uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
+    uint8_t *explained;       /* FC8 sub-functions the device profile explains (a note: Python's) */
     long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
     unsigned long depend_run; /* the run() the answer below was found in */
     unsigned depend_address;
@@ -203,6 +207,7 @@ typedef struct {
     PyObject *piece;
     PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
     PyObject *texts;     /* texts(slave, request, response or None) -> Texts or None (table.Compiled.texts) */
+    PyObject *subfunctions; /* the spec's FC8 sub-function names, {number: name} */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
@@ -220,7 +225,7 @@ typedef struct {
 static void slave_clear(Slave *s) {
     Py_CLEAR(s->info);
     PyMem_Free(s->mapped);
-    s->mapped = s->dependent = s->sources = s->pending = NULL;
+    s->mapped = s->dependent = s->sources = s->pending = s->explained = NULL;
     s->depend_run = 0;
     s->loaded = 0;
 }
@@ -271,9 +276,9 @@ static int bad_info(const char *what) {
 
 /* The facts are a fastsummary.SlaveFacts (frozen): read by name, borrowed while `info` lives. */
 enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES,
-       FACTS };
+       FACT_DIAGNOSTICS, FACTS };
 static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen",
-                                             "protected", "bases"};
+                                             "protected", "bases", "diagnostics"};
 
 /* The facts by name, into a tuple the slave keeps (its items are borrowed below). */
 static PyObject *read_facts(PyObject *info) {
@@ -304,7 +309,8 @@ static int fill_slave(Slave *s, PyObject *info) {
     PyObject *seen = facts[FACT_SEEN];
     PyObject *bases = facts[FACT_BASES];
     if (!PyDict_Check(functions) || !PyAnySet_Check(facts[FACT_MAPPED]) || !PyDict_Check(facts[FACT_DEPEND]) ||
-        !PyAnySet_Check(facts[FACT_SOURCES]) || (seen != Py_None && !PyDict_Check(seen)) ||
+        !PyAnySet_Check(facts[FACT_SOURCES]) || !PyAnySet_Check(facts[FACT_DIAGNOSTICS]) ||
+        (seen != Py_None && !PyDict_Check(seen)) ||
         (bases != Py_None && !PyDict_Check(bases)))
         return bad_info("facts of the wrong type");
     for (int k = 0; k < HANDLED; k++) {
@@ -330,7 +336,7 @@ static int fill_slave(Slave *s, PyObject *info) {
         }
     }
     s->depend = facts[FACT_DEPEND];
-    s->mapped = PyMem_Calloc(4, BITMAP_BYTES);
+    s->mapped = PyMem_Calloc(5, BITMAP_BYTES);
     if (s->mapped == NULL) {
         PyErr_NoMemory();
         return -1;
@@ -338,8 +344,9 @@ static int fill_slave(Slave *s, PyObject *info) {
     s->dependent = s->mapped + BITMAP_BYTES;
     s->sources = s->mapped + 2 * BITMAP_BYTES;
     s->pending = s->mapped + 3 * BITMAP_BYTES;
+    s->explained = s->mapped + 4 * BITMAP_BYTES;
     if (fill_bitmap(s->mapped, facts[FACT_MAPPED]) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
-        fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0)
+        fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0 || fill_bitmap(s->explained, facts[FACT_DIAGNOSTICS]) < 0)
         return -1;
     s->seen = seen == Py_None ? NULL : seen;
     s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
@@ -388,13 +395,130 @@ static Py_ssize_t special_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, i
     return position + 2;
 }
 
-/* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST). */
-static Py_ssize_t first_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function, int kind) {
+/* A length rule's answer as framing/rtu.py gives it: a length (0: the layout cannot apply), more
+ * bytes needed, or a CRC scan from a minimum length (its Scan). */
+enum { LENGTH_OK, LENGTH_NEED, LENGTH_SCAN };
+typedef struct { int what; Py_ssize_t value; } Length;
+
+static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
+    const Length need = {LENGTH_NEED, 0};
+    if (rule->fixed) return (Length){LENGTH_OK, rule->fixed};
+    switch (rule->special) {
+    case 0:
+        if (i + rule->position + rule->width - 1 >= n) return need;
+        return (Length){LENGTH_OK, rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position)
+                                                                    : b[i + rule->position])};
+    case 1: /* _mei_request */
+        if (i + 2 >= n) return need;
+        return b[i + 2] == 14 ? (Length){LENGTH_OK, 7} : (Length){LENGTH_SCAN, 5};
+    case 2: { /* _mei_response */
+        if (i + 2 >= n) return need;
+        if (b[i + 2] != 14) return (Length){LENGTH_SCAN, 5};
+        if (i + 7 >= n) return need;
+        Py_ssize_t position = 8;
+        for (int k = b[i + 7]; k > 0; k--) {
+            if (i + position + 1 >= n) return need;
+            position += 2 + b[i + position + 1];
+            if (position > MAX_ADU) return (Length){LENGTH_OK, 0};
+        }
+        return (Length){LENGTH_OK, position + 2};
+    }
+    case 3: /* _diagnostics: Return Query Data (sub-function 0) echoes any amount of data */
+        if (i + 3 >= n) return need;
+        return b[i + 2] == 0 && b[i + 3] == 0 ? (Length){LENGTH_SCAN, 6} : (Length){LENGTH_OK, 8};
+    default: /* _scan_any */
+        return (Length){LENGTH_SCAN, MIN_ADU};
+    }
+}
+
+/* RtuFramer._shortest_crc: the shortest length from `minimum` whose last two bytes are the CRC of the
+ * bytes before them, 0: none. */
+static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
+    Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
+    if (minimum < 2) minimum = 2;
+    if (minimum > maximum) return 0;
+    uint16_t crc = crc16(b + i, minimum - 2);
+    for (Py_ssize_t length = minimum; length <= maximum; length++) {
+        Py_ssize_t stop = i + length - 2;
+        if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) return length;
+        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+    }
+    return 0;
+}
+
+/* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
+ * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
+static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
+    if (n - j < MIN_ADU) return -1;
+    int slave = b[j], function = b[j + 1];
+    if (slave > MAX_SLAVE) return 0;
+    const LengthRule exception = {5, 0, 0, 0, 0};
+    const LengthRule *rules[2];
+    int count = 2;
+    if (function & 0x80) {
+        if (known_slot[function & 0x7F] < 0) return 0;
+        rules[0] = &exception;
+        count = 1;
+    } else {
+        int k = known_slot[function];
+        if (k < 0) return 0;
+        int expected = slave == e->expect_slave && function == e->expect_function;
+        rules[0] = expected ? &known_response_rule[k] : &known_request_rule[k];
+        rules[1] = expected ? &known_request_rule[k] : &known_response_rule[k];
+    }
+    int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
+    for (int r = 0; r < count; r++) {
+        Length length = rule_length(rules[r], b, j, n);
+        if (length.what == LENGTH_SCAN) {
+            if (shortest_crc(b, j, n, length.value)) return 1;
+            undecided = undecided || n - j < MAX_ADU;
+            continue;
+        }
+        if (length.what == LENGTH_NEED) return -1;
+        if (length.value < MIN_ADU || length.value > MAX_ADU) continue;
+        if (j + length.value > n) return -1;
+        Py_ssize_t stop = j + length.value - 2;
+        if (crc16(b + j, stop - j) == (uint16_t)(b[stop] | b[stop + 1] << 8)) return 1;
+    }
+    return undecided ? -1 : 0;
+}
+
+/* RtuFramer._scan in step (no noise open): the shortest CRC match that an intact frame follows.
+ * Both of the framer's interpretations scan alike, so the first one's kind stands. */
+static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
+    Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
+    if (minimum <= maximum) {
+        uint16_t crc = crc16(b + i, minimum - 2);
+        for (Py_ssize_t length = minimum; length <= maximum; length++) {
+            Py_ssize_t stop = i + length - 2;
+            if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
+                int following = valid_frame_at(e, b, i + length, n);
+                if (following < 0) return FRAME_NEED;
+                if (following) return length;
+            }
+            crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+        }
+    }
+    return n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER; /* nothing: noise, the careful path's */
+}
+
+/* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
+ * *scanned: found by a CRC scan (FC8's Return Query Data), CRC and what follows checked already. */
+static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function,
+                               int kind, int *scanned) {
+    *scanned = 0;
     if (kind == KIND_EXCEPTION) return 5;
     int k = handled_index(function);
     if (k < 0) return FRAME_HANDOVER;
     const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
     if (rule->fixed) return rule->fixed;
+    if (rule->special == 3) {
+        Length length = rule_length(rule, b, i, n);
+        if (length.what == LENGTH_NEED) return FRAME_NEED;
+        if (length.what == LENGTH_OK) return length.value;
+        *scanned = 1;
+        return scan_length(e, b, i, n, length.value);
+    }
     if (rule->special) {
         Py_ssize_t length = special_length(b, i, n, rule->special);
         return length > MAX_ADU ? FRAME_HANDOVER : length; /* the framer's fast path takes none longer */
@@ -417,13 +541,16 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
         if (handled_index(function) < 0) return FRAME_HANDOVER;
         kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
     }
-    Py_ssize_t length = first_length(b, i, n, function, kind);
+    int scanned;
+    Py_ssize_t length = first_length(e, b, i, n, function, kind, &scanned);
     if (length < 0) return (int)length;
-    /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
-    if (i + length >= n) return FRAME_NEED;
-    if (b[i + length] == 0) return FRAME_HANDOVER;
-    Py_ssize_t stop = i + length - 2;
-    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
+    if (!scanned) {
+        /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
+        if (i + length >= n) return FRAME_NEED;
+        if (b[i + length] == 0) return FRAME_HANDOVER;
+        Py_ssize_t stop = i + length - 2;
+        if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
+    }
     f->at = i;
     f->length = length;
     f->kind = kind;
@@ -669,7 +796,63 @@ typedef struct {
     int has_writes;
     unsigned value;             /* FC5: 0xFF00 or 0 */
     const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
+    Py_ssize_t length;          /* the frame's, CRC included */
 } Request;
+
+/* The spec's name of an FC8 sub-function (borrowed), NULL with no error: not defined by the spec. */
+static PyObject *subfunction_name(Engine *e, unsigned sub) {
+    if (e->subfunctions == NULL || !PyDict_Check(e->subfunctions)) return NULL;
+    PyObject *key = PyLong_FromUnsignedLong(sub);
+    if (key == NULL) return NULL;
+    PyObject *name = PyDict_GetItemWithError(e->subfunctions, key);
+    Py_DECREF(key);
+    if (name != NULL && !PyUnicode_Check(name)) {
+        PyErr_SetString(PyExc_TypeError, "subfunctions: names must be str");
+        return NULL;
+    }
+    return name;
+}
+
+/* decode._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
+ * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over, -1 error. */
+static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length) {
+    unsigned sub = word(f + 2);
+    if ((length - 6) & 1 || bit(s->explained, sub)) return 0;
+    if (subfunction_name(e, sub) == NULL) return PyErr_Occurred() ? -1 : 0;
+    return 1;
+}
+
+#define MAX_DATA_BYTES 16 /* describe.MAX_DATA_BYTES */
+
+/* describe._diagnostics: `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7` */
+static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
+    unsigned sub = word(f + 2);
+    PyObject *name = subfunction_name(e, sub);
+    if (name == NULL) return -1; /* checked before: only an error leaves it NULL now */
+    out_hex(&e->out, sub, 2);
+    out_put(&e->out, "h ", 2);
+    if (out_str(&e->out, name) < 0) return -1;
+    const uint8_t *data = f + 4;
+    Py_ssize_t size = length - 6;
+    if (size == 2) {
+        out_put(&e->out, " = ", 3);
+        out_uint(&e->out, word(data), 0);
+    } else if (size > 0) {
+        out_cstr(&e->out, " data ");
+        Py_ssize_t shown = size < MAX_DATA_BYTES ? size : MAX_DATA_BYTES;
+        if (out_reserve(&e->out, (size_t)(2 * shown)) < 0) return -1;
+        for (Py_ssize_t k = 0; k < shown; k++) {
+            e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
+            e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
+        }
+        if (size > MAX_DATA_BYTES) {
+            out_cstr(&e->out, "\xe2\x80\xa6 (+");
+            out_uint(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), 0);
+            out_cstr(&e->out, " bytes)");
+        }
+    }
+    return e->out.failed ? -1 : 0;
+}
 
 /* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
 static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
@@ -688,13 +871,15 @@ static int in_range(const long range[2], unsigned value) {
 }
 
 /* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
-static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Request *r) {
+static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Request *r) {
     int function = f[1];
     int k = handled_index(function);
     if (k < 0) return 0;
     int check = s->check[k];
     if (check < 0) return 0;
     r->has_writes = 0;
+    r->length = length;
+    if (function == 8) return diagnostics_are_plain(e, s, f, length);
     const RequestLayout *L = &request_layout[k];
     unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
     r->start = L->start_at ? word(f + L->start_at) : 0;
@@ -789,6 +974,9 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
     case 7: case 11: case 12: /* describe._simple, _comm_event_counter: the name alone */
         e->out.len -= 1;
         break;
+    case 8:
+        if (diagnostics_text(e, f, r->length) < 0) return -1;
+        break;
     case 22:
         mask_write_text(&e->out, f);
         break;
@@ -820,10 +1008,13 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
 }
 
 /* The response's checks (decoder and annotator); fills its registers. 1 quiet, 0 hand over. */
-static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Request *r, Words *reads) {
+static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
+                             Words *reads) {
     int function = f[1];
     reads->count = 0;
     switch (function) {
+    case 8:
+        return diagnostics_are_plain(e, s, f, length);
     case 3: case 4: case 23:
         if (f[2] != 2 * r->quantity) return 0;
         *reads = (Words){r->start, r->quantity, f + 3};
@@ -854,8 +1045,8 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, const Reques
     return reads_are_quiet(s, reads, function == 23 ? &r->writes : NULL);
 }
 
-static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
-                         unsigned long long number, unsigned long long request_number) {
+static int response_line(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
+                         const Words *reads, unsigned long long number, unsigned long long request_number) {
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
     if (line_start(e, s, f, number, " response  ") < 0) return -1;
@@ -884,6 +1075,9 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, const Request *r
     case 7: /* describe._simple */
         out_cstr(&e->out, "status 0x");
         out_hex(&e->out, f[2], 2);
+        break;
+    case 8:
+        if (diagnostics_text(e, f, length) < 0) return -1;
         break;
     case 11: /* describe._comm_event_counter */
         out_cstr(&e->out, "status 0x");
@@ -1045,7 +1239,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (s == NULL) return STEP_ERROR;
     if (!s->usable) return STEP_HANDOVER;
     Request r;
-    int quiet = request_is_quiet(e, s, b + q.at, &r);
+    int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
     if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
     size_t mark = e->out.len;
@@ -1084,10 +1278,11 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
     } else {
         Words reads;
-        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, &r, &reads) : 0;
+        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &reads) : 0;
         if (quiet > 0) {
             written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
-            if (written > 0) written = response_line(e, s, b + a.at, &r, &reads, e->count + 2, e->count + 1);
+            if (written > 0)
+                written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
             if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
             if (written > 0) {
                 e->count += 2;
@@ -1179,16 +1374,20 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 }
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
-    static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", NULL};
+    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None, *subfunctions = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", "subfunctions", NULL};
     PyObject *limits;
     if (e->running) {
         PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OO", keywords, &slave_info, &piece_fn, &limits,
-                                     &exception_fn, &texts_fn))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OOO", keywords, &slave_info, &piece_fn, &limits,
+                                     &exception_fn, &texts_fn, &subfunctions))
         return -1;
+    if (subfunctions != Py_None && !PyDict_Check(subfunctions)) {
+        PyErr_SetString(PyExc_TypeError, "subfunctions: a dict {number: name}");
+        return -1;
+    }
     if (!PyTuple_Check(limits) || PyTuple_GET_SIZE(limits) != LIMIT_COUNT) {
         PyErr_Format(PyExc_TypeError, "limits: a tuple of %d (low, high) pairs", LIMIT_COUNT);
         return -1;
@@ -1203,6 +1402,8 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     Py_XSETREF(e->exception, exception_fn);
     Py_INCREF(texts_fn);
     Py_XSETREF(e->texts, texts_fn);
+    Py_INCREF(subfunctions);
+    Py_XSETREF(e->subfunctions, subfunctions);
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -1218,6 +1419,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->piece);
     Py_VISIT(e->exception);
     Py_VISIT(e->texts);
+    Py_VISIT(e->subfunctions);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     return 0;
 }
@@ -1227,6 +1429,7 @@ static int engine_clear(Engine *e) {
     Py_CLEAR(e->piece);
     Py_CLEAR(e->exception);
     Py_CLEAR(e->texts);
+    Py_CLEAR(e->subfunctions);
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);

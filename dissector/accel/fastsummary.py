@@ -7,7 +7,7 @@ the transactions of a bus, so dissector/accel/_summary.c does exactly that for e
 protocol table marks compiled (both ways, and their exceptions; for FC17, FC20, FC21 and FC43 with
 texts made here, `transaction_texts`), and hands the stream over to the Python stages, untouched, for
 everything else; the list of what it hands back, and why, heads _summary.c (noise, damage, lengths
-only a CRC scan finds, vendor codes, anything with a warning or a note, an exception that changes
+only a CRC scan finds but FC8's echoes, vendor codes, anything with a warning or a note, an exception that changes
 the annotator's memory). The Python stages stay the reference: the Construct grammars, the annotator
 and the renderer; the compiled path asks them for every text it shows (register readings, function
 names, exception explanations) and keeps the annotator's parameter memory up to date.
@@ -74,6 +74,7 @@ class SlaveFacts:
     seen: dict[int, tuple[Any, ...]] | None = None  # the annotator's parameter memory, None: not tracked
     protected: int = -1  # the value a device reads for a protected parameter (16#8000), -1: none
     bases: dict[int, int] | None = None  # PLC-style display base per function, None: protocol addresses
+    diagnostics: frozenset[int] = frozenset()  # FC8 sub-functions the profile explains (a note: Python's)
 
 
 def make_engine(annotator: Any | None) -> Any:
@@ -95,13 +96,15 @@ def make_engine(annotator: Any | None) -> Any:
             function: (function_label(function, special), check)
             for function, (special, check) in checks.items()
         }
-        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases)
+        explained = frozenset(annotator.device(slave).profile.diagnostics)
+        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases, explained)
 
     def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator), transaction_texts(annotator))
+    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator), transaction_texts(annotator),
+                           subfunctions=dict(SPEC.diagnostics))
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,14 +133,15 @@ def _scratch(raw: bytes, kind: Kind, offset: int = 0, request: Frame | None = No
 def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
     """The engine's `texts` callback, for the codes whose texts it does not make itself
     (table.Compiled.texts): the Python stages decode and annotate a scratch pair of frames; the
-    annotator keeps no state for these codes, so the texts depend on the frames' bytes alone and are
-    kept by them (bounded)."""
-    known: dict[tuple[bytes, bytes | None], Texts | None] = {}
+    annotator keeps no state for these codes, so the texts depend on the frames' bytes and the slave's
+    profile alone and are kept by them (bounded)."""
+    known: dict[tuple[str | None, bytes, bytes | None], Texts | None] = {}
+    choosing = _choosing(annotator, objects=True)
 
     def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
-        if _may_choose(annotator, slave):
+        if _may_choose(annotator, slave, request_raw[1], choosing):
             return None
-        key = (request_raw, response_raw)
+        key = (_profile_name(annotator, slave), request_raw, response_raw)
         if key in known:
             return known[key]
         request = _scratch(request_raw, Kind.REQUEST)
@@ -163,12 +167,31 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
     return texts
 
 
-def _may_choose(annotator: Any | None, slave: int) -> bool:
-    """Profile `auto` may still change this slave's profile (an identification, an answer its device
-    cannot give): the transaction goes to the Python stages, which see every frame that can, and the
-    texts of a slave whose profile is final are the only ones kept by bytes."""
+def _may_choose(annotator: Any | None, slave: int, function: int, choosing: frozenset[int]) -> bool:
+    """Profile `auto` may still change this slave's profile through this transaction: it goes to the
+    Python stages, which see every frame that can. The engine shows only settled slaves, whose profile
+    changes by an identification alone (selection.Selector._identified: `choosing`) or by an answer
+    to a function their profile does not support, which the engine hands over before asking."""
     final = getattr(annotator, "final", None)
-    return final is not None and not final(slave)
+    return final is not None and function in choosing and not final(slave)
+
+
+def _choosing(annotator: Any | None, objects: bool) -> frozenset[int]:
+    """Function codes whose frames can identify a device: those only one device speaks, and with
+    `objects` Read Device Identification, whose answer names the product (the table's mei_response)."""
+    selector = getattr(annotator, "selector", None)
+    codes: set[int] = set()
+    for profile, _rows in getattr(selector, "candidates", ()):
+        codes |= profile.identifying_functions
+    if objects:
+        codes |= {entry.code for entry in table.FUNCTIONS if entry.response.name == "mei_response"}
+    return frozenset(codes)
+
+
+def _profile_name(annotator: Any | None, slave: int) -> str | None:
+    """The slave's profile: texts kept by bytes are kept per profile (profile `auto` may change it)."""
+    profile_for = getattr(annotator, "profile_for", None)
+    return None if profile_for is None else profile_for(slave).name
 
 
 def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
@@ -180,12 +203,13 @@ def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tupl
     transaction over, where the annotator would change its state: exception 2 to a read on a device
     that protects parameters (p.38) makes it forget the values of every parameter read.
     """
-    known: dict[tuple[int, bytes, bytes], tuple[str, str] | None] = {}
+    known: dict[tuple[str | None, bytes, bytes], tuple[str, str] | None] = {}
+    choosing = _choosing(annotator, objects=False)  # an exception carries no identification objects
 
     def texts(slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
-        if _may_choose(annotator, slave):
+        if _may_choose(annotator, slave, request_raw[1], choosing):
             return None
-        key = (slave, request_raw, answer_raw)
+        key = (_profile_name(annotator, slave), request_raw, answer_raw)
         if key in known:
             return known[key]
         found = _exception_texts(annotator, slave, request_raw, answer_raw)
@@ -312,8 +336,12 @@ class SummaryPath:
             if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
                 self.forget_changed()
                 offset, rest, expect = framer.hand_back()
-                self.buf = rest + self.buf[self.pos :]
-                self.base, self.pos = offset, 0
+                start = offset - self.base
+                if start >= 0 and start + len(rest) == self.pos:
+                    self.pos = start  # the bytes not framed are still in buf: no copy of what follows
+                else:
+                    self.buf = rest + self.buf[self.pos :]
+                    self.base, self.pos = offset, 0
                 self.engine.count = self.stretch_start = self.pairer.count
                 self.engine.expect = expect
                 self.python = False

@@ -54,6 +54,10 @@ class Selector:
         self.candidates = candidates
         self.fallback = fallback
         self._slaves: dict[int, _Judged] = {}
+        # The first candidate that a function code identifies, by code: one lookup a frame (made again
+        # when candidates are added).
+        self._identifying: dict[int, Profile] = {}
+        self._identifying_from = -1
 
     def settled(self, slave: int) -> bool:
         """No later frame can change this slave's profile unless it is handed to observe()."""
@@ -81,7 +85,7 @@ class Selector:
             return None
         # Once settled, traffic decides nothing more: the compiled path shows the slave's plain
         # transactions itself from then on, and must agree with what this would have said.
-        judging = not self.settled(slave)
+        judging = not (judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES)  # settled(), inline
         judged.frames += 1
         found = self._identified(frame)
         if found is not None:
@@ -130,14 +134,18 @@ class Selector:
                             f"Read Device Identification in frame #{frame.number}: ProductCode {obj.value!r}",
                             frame.number, True,
                         )
-        if frame.kind is not Kind.NOISE and frame.crc_ok:
-            for profile, _ in self.candidates:
-                if frame.function in profile.identifying_functions:
-                    name = profile.function_names.get(frame.function, str(frame.function))
-                    return ProfileChoice(
-                        frame.slave, profile.name,
-                        f"function {frame.function:02X}h ({name}) in frame #{frame.number}", frame.number, True,
-                    )
+        if self._identifying_from != len(self.candidates):
+            self._identifying = {}
+            for candidate, _ in reversed(self.candidates):
+                self._identifying.update(dict.fromkeys(candidate.identifying_functions, candidate))
+            self._identifying_from = len(self.candidates)
+        profile = self._identifying.get(frame.function)
+        if profile is not None and frame.kind is not Kind.NOISE and frame.crc_ok:
+            name = profile.function_names.get(frame.function, str(frame.function))
+            return ProfileChoice(
+                frame.slave, profile.name,
+                f"function {frame.function:02X}h ({name}) in frame #{frame.number}", frame.number, True,
+            )
         return None
 
 

@@ -180,6 +180,7 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         Access.DIAGNOSTIC, echo=True,
+        compiled=Compiled(),
     ),
     Function(
         11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC,

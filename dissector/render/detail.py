@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
@@ -50,7 +50,10 @@ _KIND_TEXT = {kind: kind.value for kind in Kind}
 _EXCEPTION = Kind.EXCEPTION
 _MODBUS_RTU = "    Modbus RTU"
 _FUNCTION_LINES: dict[int, str] = {}  # spec names only: a profile's names vary per slave
-_FIELD_LABELS: dict[str, str] = {}
+_SLAVE_LINES: dict[int, str] = {}
+_CRC_OK_LINES: dict[int, str] = {}
+_INT_FIELD_LINES: dict[tuple[str, int], str] = {}  # `        Start: 8400 (0x20D0)` by (key, value)
+_INT_FIELD_LINES_MAX = 1 << 16
 
 # A register's lines depend on its fields only; polled blocks repeat them, so they are kept by
 # content (bounded: cleared when full, so memory stays flat on values that never repeat): the texts,
@@ -62,9 +65,10 @@ _MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames wi
 _MIDDLES_MAX = 1 << 14
 
 # Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
-_BIT_HEADS = Pieces("            %d: ")
+_BIT_HEADS = AddressPieces("            %d: ")
 _BIT_TAILS = byte_table("0\n", "1\n")
-_REGISTER_HEADS = Pieces("        Register %s: ")
+_REGISTER_HEADS = Pieces("        Register %s: ")  # labels
+_REGISTER_ADDRESS_HEADS = AddressPieces("        Register %d: ")
 _WORD_TAILS = Pieces("%d (0x%04X)\n", twice=True)
 
 
@@ -133,7 +137,8 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
         if registers.start is None:
             detail.run([f"        Register ?: {value} (0x{value:04X})" for value in values])
         elif detail.joined and values:
-            heads = _REGISTER_HEADS(registers.labels or registers.addresses)
+            labels = registers.labels
+            heads = _REGISTER_ADDRESS_HEADS(registers.addresses) if labels is None else _REGISTER_HEADS(labels)
             detail.texts.append(interleave((heads, _WORD_TAILS(values)), len(values))[:-1])
         else:
             shown = registers.labels or registers.addresses
@@ -202,7 +207,14 @@ def _middle(detail: _Detail, frame: Frame) -> None:
     add = out.append
     kind = frame.kind
     rtu = frame.mode == "rtu"
-    add(f"        Slave: {frame.slave} (broadcast)" if frame.broadcast else f"        Slave: {frame.slave}")
+    slave = frame.slave
+    if frame.broadcast:
+        add(f"        Slave: {slave} (broadcast)")
+    else:
+        line = _SLAVE_LINES.get(slave)
+        if line is None:
+            line = _SLAVE_LINES[slave] = f"        Slave: {slave}"
+        add(line)
     function = frame.function
     function_text = frame.function_text
     if kind is _EXCEPTION:
@@ -223,14 +235,18 @@ def _middle(detail: _Detail, frame: Frame) -> None:
             detail.styled(f"        Meaning on this device: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:
         registers = frame.registers
+        lines = _INT_FIELD_LINES
         for key, value in frame.fields.items():
             if value is None or key[0] == "_" or key in ("values", "status") and registers:
                 continue
-            if type(value) is int:  # the common case, inline: `Start: 8400 (0x20D0)`
-                label = _FIELD_LABELS.get(key)
-                if label is None:
-                    label = _FIELD_LABELS[key] = "        " + key.replace("_", " ").capitalize()
-                add(f"{label}: {value} (0x{value:X})")
+            if type(value) is int:  # the common case, inline and kept: `Start: 8400 (0x20D0)`
+                line = lines.get((key, value))
+                if line is None:
+                    if len(lines) >= _INT_FIELD_LINES_MAX:
+                        lines.clear()
+                    label = "        " + key.replace("_", " ").capitalize()
+                    line = lines[key, value] = f"{label}: {value} (0x{value:X})"
+                add(line)
                 continue
             if key == "trailing" and not value:
                 continue
@@ -255,8 +271,13 @@ def _middle(detail: _Detail, frame: Frame) -> None:
             detail.run([f"            {'?' if bit.address is None else bit.address}: {bit.value}" for bit in bits])
     for obj in frame.objects or ():
         add(f"        Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
-    if rtu and frame.crc == frame.crc_expected:
-        detail.styled(f"        CRC: 0x{frame.crc:04X} [CRC ok]", "vw3.crc.ok")
+    crc = frame.crc
+    if rtu and crc == frame.crc_expected:
+        line = _CRC_OK_LINES.get(crc)
+        if line is None:
+            line = _CRC_OK_LINES[crc] = f"        CRC: 0x{crc:04X} [CRC ok]"  # 16-bit keys: bounded
+        detail.styles[len(out)] = "vw3.crc.ok"
+        add(line)
     else:
         style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
         detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style)

@@ -12,7 +12,7 @@ from typing import Any, TextIO
 
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -182,32 +182,49 @@ _INF = float("inf")
 _KIND_JSON = {kind: _json_string(kind.value) for kind in Kind}
 
 
+_FUNCTION_NAMES_JSON: dict[int, str] = {}  # spec names only: a profile's names vary per slave
+
+
 def _head_json(frame: Frame) -> str:
     """json.dumps(_head(frame)) without its braces, formatted directly (held equal by the tests)."""
     raw = frame.raw
     crc, expected = frame.crc, frame.crc_expected
+    time = frame.time
+    function = frame.function
+    if frame.function_text is None:
+        name = _FUNCTION_NAMES_JSON.get(function)
+        if name is None:
+            name = _FUNCTION_NAMES_JSON[function] = _json_string(SPEC.function_name(function))
+    else:
+        name = _json_string(frame.function_text)
+    mode = frame.mode
     text = (
         f'"frame": {frame.number}, "kind": {_KIND_JSON[frame.kind]}, "offset": {frame.offset}, '
-        f'"length": {len(raw)}, "time": {_scalar(frame.time)}, "raw": "{raw.hex()}", '
-        f'"mode": {_scalar(frame.mode)}, "slave": {frame.slave}, "function": {frame.function}, '
-        f'"function_name": {_scalar(frame.function_text or SPEC.function_name(frame.function))}, '
+        f'"length": {len(raw)}, "time": {"null" if time is None else _scalar(time)}, "raw": "{raw.hex()}", '
+        f'"mode": {_MODE_JSON.get(mode) or _scalar(mode)}, "slave": {frame.slave}, "function": {function}, '
+        f'"function_name": {name}, '
         f'"crc_ok": {"true" if crc == expected else "false"}, "crc": {crc}, "crc_expected": {expected}, '
         f'"broadcast": {"true" if frame.broadcast else "false"}'
     )
-    if frame.start is not None:
-        text += f', "start": {_scalar(frame.start)}'
+    start = frame.start
+    if start is not None:
+        text += f', "start": {start}' if type(start) is int else f', "start": {_scalar(start)}'
     if frame.span_label is not None:
-        text += f', "span_label": {_scalar(frame.span_label)}'
-    if frame.quantity is not None:
-        text += f', "quantity": {_scalar(frame.quantity)}'
+        text += f', "span_label": {_json_string(frame.span_label)}'
+    quantity = frame.quantity
+    if quantity is not None:
+        text += f', "quantity": {quantity}' if type(quantity) is int else f', "quantity": {_scalar(quantity)}'
     if frame.subfunction is not None:
         name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
         text += f', "subfunction": {_scalar(frame.subfunction)}, "subfunction_name": {_scalar(name)}'
     return text
 
 
+_MODE_JSON = {"rtu": '"rtu"', "ascii": '"ascii"'}
+
+
 # Long lists from cached pieces (runs.py): `{"address": N, "value": ` by address, `V}, ` by value.
-_ADDRESS_HEADS = Pieces('{"address": %d, "value": ')
+_ADDRESS_HEADS = AddressPieces('{"address": %d, "value": ')
 _VALUE_TAILS = Pieces("%d}, ")
 _LABELLED_VALUES = Pieces('%d, "label": ')
 _LABEL_TAILS = Pieces("%s}, ")
@@ -266,11 +283,23 @@ def _json_value(value: Any) -> str:
 
 def _fields_json(fields: dict[str, Any]) -> str:
     """json.dumps(_plain(fields)) for a frame's fields, without building the plain copy."""
-    return "{" + ", ".join([
-        f"{_json_string(key)}: {_json_value(inner)}"
-        for key, inner in fields.items()
-        if not key.startswith("_") and not (key == "trailing" and not inner) and inner is not None
-    ]) + "}"
+    texts = []
+    add = texts.append
+    keys = _KEYS_JSON
+    for key, inner in fields.items():
+        if inner is None or key[0] == "_":
+            continue
+        name = keys.get(key)
+        if name is None:
+            name = keys[key] = _json_string(key) + ": "
+        if type(inner) is int:  # the common case, inline
+            add(f"{name}{inner}")
+        elif key != "trailing" or inner:
+            add(name + _json_value(inner))
+    return "{" + ", ".join(texts) + "}"
+
+
+_KEYS_JSON: dict[str, str] = {}  # `"start": ` by key (a grammar's names: few)
 
 
 def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:

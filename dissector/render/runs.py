@@ -40,6 +40,36 @@ class Pieces:
             return list(map(cache.__getitem__, keys))
 
 
+class AddressPieces:
+    """template % address for 16-bit addresses, from a table filled 256 addresses at a time: a run of
+    consecutive addresses is one slice of it."""
+
+    __slots__ = ("template", "table", "filled")
+
+    def __init__(self, template: str) -> None:
+        self.template = template
+        self.table: list[str] = [""] * 0x10000
+        self.filled = bytearray(0x100)
+
+    def _fill(self, blocks: Iterable[int]) -> None:
+        filled, template = self.filled, self.template
+        for block in blocks:
+            if not filled[block]:
+                base = block << 8
+                self.table[base : base + 0x100] = [template % address for address in range(base, base + 0x100)]
+                filled[block] = 1
+
+    def __call__(self, addresses: Sequence[int]) -> list[str]:
+        if type(addresses) is range and addresses.step == 1:  # a block that does not wrap: one slice
+            start, stop = addresses.start, addresses.stop
+            if start >= stop:
+                return []
+            self._fill(range(start >> 8, ((stop - 1) >> 8) + 1))
+            return self.table[start:stop]
+        self._fill({address >> 8 for address in addresses})
+        return list(map(self.table.__getitem__, addresses))
+
+
 def interleave(columns: Sequence[Iterable[str]], count: int) -> str:
     """columns[0][0] + columns[1][0] + ... + columns[0][1] + ...: `count` items of one piece per column."""
     width = len(columns)

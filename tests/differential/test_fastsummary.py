@@ -511,3 +511,61 @@ def test_identification_longer_than_any_rtu_frame_is_left_to_the_framer() -> Non
     data = rtu("112b0e0100") + response + rtu("1111") + rtu("11110ab4ff4c4d42332e312e36") + b"\x01"
     for profile in ("generic", "atv71"):
         assert_same(data, lambda: build_annotator([profile], [], None))
+
+
+def test_diagnostics_exact_lines_from_the_engine() -> None:
+    """FC8: Return Query Data echoes of any size, whose end only a CRC scan finds, and the one-word
+    sub-functions come from the engine; what draws a warning or a note stays Python's."""
+    echo = rtu("1408000001020304")
+    long_echo = rtu("14080000" + bytes(range(20)).hex())
+    data = (
+        echo + echo
+        + long_echo + long_echo
+        + rtu("140800001234") + rtu("140800001234")  # two bytes of data: one value
+        + rtu("14080000") + rtu("14080000")  # no data at all
+        + rtu("1408000b0000") + rtu("1408000b0007")  # Return Bus Message Count = 7
+        + echo  # unanswered: the next request (from another slave) says so
+        + rtu("150800010000") + rtu("158801")  # an exception: its texts come from the Python stages
+        + rtu("14080000010203") * 2  # odd data: a warning, Python's
+        + rtu("14080005ff00") * 2  # sub-function 5 is not in the spec: a warning
+    )
+    got = assert_same(data + b"\x01", lambda: build_annotator(["generic"], [], None))
+    assert got.engine_lines == 13
+    info = [line.split(None, 3)[3].rsplit("  CRC ok", 1)[0] for line in got.lines[:13]]
+    assert info == [
+        "request   Diagnostics 00h Return Query Data data 01020304",
+        "response  Diagnostics 00h Return Query Data data 01020304 [#1]",
+        "request   Diagnostics 00h Return Query Data data 000102030405060708090a0b0c0d0e0f… (+4 bytes)",
+        "response  Diagnostics 00h Return Query Data data 000102030405060708090a0b0c0d0e0f… (+4 bytes) [#3]",
+        "request   Diagnostics 00h Return Query Data = 4660",
+        "response  Diagnostics 00h Return Query Data = 4660 [#5]",
+        "request   Diagnostics 00h Return Query Data",
+        "response  Diagnostics 00h Return Query Data [#7]",
+        "request   Diagnostics 0Bh Return Bus Message Count = 0",
+        "response  Diagnostics 0Bh Return Bus Message Count = 7 [#9]",
+        "request   Diagnostics 00h Return Query Data data 01020304 [no response]",
+        "request   Diagnostics 01h Restart Communications Option = 0",
+        "exception Diagnostics: exception 1 (Illegal Function) [#12]",
+    ]
+    # The ATV71's card gives sub-function 0F a meaning of its own: a note, from the annotator.
+    card = rtu("1408000f0000") + rtu("1408000f0003")
+    # (An echo's end is known once an intact frame follows it: the last request settles it.)
+    assert assert_same(card + echo + echo + rtu("1403000a0001") + b"\x01", atv71).engine_lines == 2
+
+
+def test_settled_auto_slaves_texts_codes_come_from_the_engine() -> None:
+    """Profile `auto`: once a slave is settled, only an identification can change its profile; its
+    file records and server ID come from the engine, an identification answer from the Python stages,
+    and after it the slave is the device it named (FC17 is then not supported: a warning)."""
+    reads = b"".join(rtu(f"1403{k:04x}0001") + rtu("1403020007") for k in range(10))
+    texts = (
+        rtu("1411") + rtu("14110ab4ff4c4d42332e312e36")
+        + rtu("14140e0600010002000206000300040001") + rtu("14140a06060001000203060007")
+        + rtu("14150d06000100020002000700080000") + rtu("14150d06000100020002000700080000")
+    )
+    other = rtu("142b0e0100") + rtu("142b0e01020000020005415456373101044f27456e")  # not a known product
+    named = rtu("142b0e0100") + rtu("142b0e010200000101" + "0b" + b"ATV71HU15M3".hex())
+    data = reads + texts + other + texts + named + texts + rtu("1403000a0001") + b"\x01"
+    got = assert_same(data, auto)
+    assert got.engine_lines >= 2 * 3 + 2 + 2 * 3  # the texts before and after the unknown product
+    assert "[warning: Report Server ID (17) is not supported by the VW3 A3 303]" in got.lines[36]

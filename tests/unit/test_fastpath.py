@@ -9,7 +9,7 @@ from dissector.protocol.grammar import GrammarError, parse_pdu
 from dissector.model import Kind
 from strategies import transactions
 
-FUNCTIONS = [1, 2, 3, 4, 5, 6, 15, 16, 23]
+FUNCTIONS = [1, 2, 3, 4, 5, 6, 7, 8, 11, 12, 15, 16, 17, 20, 21, 22, 23, 24, 43]
 
 
 def grammar_result(function: int, kind: Kind, pdu: bytes):
