@@ -181,6 +181,7 @@ typedef struct {
     int depend_plain;
     PyObject *seen;           /* the annotator's dict, or NULL when it tracks nothing */
     long protected_value;     /* -1: none */
+    PyObject *namer;          /* (address, value) -> (text, code) with this slave's device, for --stats */
 } Slave;
 
 /* One entry of the annotator's parameter memory, kept here until the end of run(): a polled register
@@ -218,6 +219,7 @@ typedef struct {
     Remembered *log;
     size_t log_len, log_cap;
     int running; /* inside run(): callbacks must not re-enter */
+    PyObject *stats; /* a Stats (_stats.h) counting what is shown here, or NULL: summary only */
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -276,9 +278,9 @@ static int bad_info(const char *what) {
 
 /* The facts are a fastsummary.SlaveFacts (frozen): read by name, borrowed while `info` lives. */
 enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES,
-       FACT_DIAGNOSTICS, FACTS };
+       FACT_DIAGNOSTICS, FACT_NAMER, FACTS };
 static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen",
-                                             "protected", "bases", "diagnostics"};
+                                             "protected", "bases", "diagnostics", "namer"};
 
 /* The facts by name, into a tuple the slave keeps (its items are borrowed below). */
 static PyObject *read_facts(PyObject *info) {
@@ -349,6 +351,7 @@ static int fill_slave(Slave *s, PyObject *info) {
         fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0 || fill_bitmap(s->explained, facts[FACT_DIAGNOSTICS]) < 0)
         return -1;
     s->seen = seen == Py_None ? NULL : seen;
+    s->namer = facts[FACT_NAMER];
     s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
     if (PyErr_Occurred()) return -1;
     for (int k = 0; k < HANDLED; k++) {
@@ -788,6 +791,8 @@ static void span_text(Out *o, long long base, unsigned start, unsigned quantity)
     out_uint(o, quantity, 0);
     out_put(o, ")", 1);
 }
+
+#include "_stats.h"
 
 /* ---- one transaction ---------------------------------------------------------------------------- */
 typedef struct {
@@ -1250,6 +1255,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
         int unanswered = a.kind == KIND_REQUEST;
         written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
+        if (written > 0 && e->stats != NULL &&
+            count_transaction((Stats *)e->stats, s, b + q.at, unanswered ? NULL : b + a.at, NULL, NULL,
+                              e->count + 1) < 0)
+            written = -1;
         if (written > 0) {
             e->count += unanswered ? 1 : 2;
             if (!unanswered) e->expect_slave = e->expect_function = -1;
@@ -1260,6 +1269,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     } else if (found == FRAME_OK && a.kind == KIND_REQUEST) {
         /* The next frame is a request: this one was not answered (pairing.py). */
         written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
+        if (written > 0 && e->stats != NULL &&
+            count_transaction((Stats *)e->stats, s, b + q.at, NULL, r.has_writes ? &r.writes : NULL, NULL,
+                              e->count + 1) < 0)
+            written = -1;
         if (written > 0) {
             e->count += 1;
             *pos = a.at;
@@ -1269,6 +1282,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
         written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
+        if (written > 0 && e->stats != NULL &&
+            count_transaction((Stats *)e->stats, s, b + q.at, b + a.at, r.has_writes ? &r.writes : NULL, NULL,
+                              e->count + 1) < 0)
+            written = -1;
         if (written > 0) {
             e->count += 2;
             e->expect_slave = e->expect_function = -1;
@@ -1284,6 +1301,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
             if (written > 0)
                 written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
             if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
+            if (written > 0 && e->stats != NULL &&
+                count_transaction((Stats *)e->stats, s, b + q.at, b + a.at, r.has_writes ? &r.writes : NULL,
+                                  &reads, e->count + 1) < 0)
+                written = -1;
             if (written > 0) {
                 e->count += 2;
                 e->expect_slave = e->expect_function = -1;
@@ -1421,6 +1442,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->texts);
     Py_VISIT(e->subfunctions);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
+    Py_VISIT(e->stats);
     return 0;
 }
 
@@ -1433,6 +1455,7 @@ static int engine_clear(Engine *e) {
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);
+    Py_CLEAR(e->stats);
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     return 0;
 }
@@ -1471,7 +1494,30 @@ static PyMethodDef engine_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
+static PyObject *engine_get_stats(Engine *e, void *closure) {
+    if (e->stats == NULL) Py_RETURN_NONE;
+    Py_INCREF(e->stats);
+    return e->stats;
+}
+
+static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "stats: not while run() is running");
+        return -1;
+    }
+    if (value != NULL && value != Py_None && !PyObject_TypeCheck(value, &StatsType)) {
+        PyErr_SetString(PyExc_TypeError, "stats: a Stats or None");
+        return -1;
+    }
+    if (value == Py_None) value = NULL;
+    Py_XINCREF(value);
+    Py_XSETREF(e->stats, value);
+    return 0;
+}
+
 static PyGetSetDef engine_getset[] = {
+    {"stats", (getter)engine_get_stats, (setter)engine_set_stats,
+     "a Stats that counts every transaction shown here (--stats), or None", NULL},
     {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
@@ -1548,12 +1594,18 @@ static struct PyModuleDef summary_module = {
 
 PyMODINIT_FUNC PyInit__summary(void) {
     crc_init();
-    if (PyType_Ready(&EngineType) < 0) return NULL;
+    if (PyType_Ready(&EngineType) < 0 || PyType_Ready(&StatsType) < 0) return NULL;
     PyObject *module = PyModule_Create(&summary_module);
     if (module == NULL) return NULL;
     Py_INCREF(&EngineType);
     if (PyModule_AddObject(module, "Engine", (PyObject *)&EngineType) < 0) {
         Py_DECREF(&EngineType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    Py_INCREF(&StatsType);
+    if (PyModule_AddObject(module, "Stats", (PyObject *)&StatsType) < 0) {
+        Py_DECREF(&StatsType);
         Py_DECREF(module);
         return NULL;
     }

@@ -75,6 +75,9 @@ class SlaveFacts:
     protected: int = -1  # the value a device reads for a protected parameter (16#8000), -1: none
     bases: dict[int, int] | None = None  # PLC-style display base per function, None: protocol addresses
     diagnostics: frozenset[int] = frozenset()  # FC8 sub-functions the profile explains (a note: Python's)
+    # --stats: (address, value) -> (text, code) of a register as this slave's device names it now (a
+    # profile change gives a new one); the engine asks it once per parameter, not once per value.
+    namer: Callable[[int, int], tuple[str | None, str | None]] | None = None
 
 
 def make_engine(annotator: Any | None) -> Any:
@@ -96,8 +99,10 @@ def make_engine(annotator: Any | None) -> Any:
             function: (function_label(function, special), check)
             for function, (special, check) in checks.items()
         }
-        explained = frozenset(annotator.device(slave).profile.diagnostics)
-        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases, explained)
+        device = annotator.device(slave)
+        explained = frozenset(device.profile.diagnostics)
+        return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases, explained,
+                          annotator.namer(slave))
 
     def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
         register = annotator.plain_register(slave, function, address, value)
@@ -249,11 +254,14 @@ class SummaryPath:
     """
 
     def __init__(self, dissector: Dissector, annotator: Any | None, write_items: Callable[[list[Item]], None],
-                 write_lines: Callable[[bytes], None]) -> None:
+                 write_lines: Callable[[bytes], None], stats: Any | None = None) -> None:
+        """`stats`: a compiled store (render/stats.py StatsCollector.engine_store) that the engine
+        counts the transactions it shows into (--stats); the lines are then the caller's to drop."""
         self.dissector = dissector
         self.framer = dissector.framer
         self.pairer = dissector.pairer
         self.engine = make_engine(annotator)
+        self.engine.stats = stats
         self.annotator = annotator
         self.write_items = write_items
         self.write_lines = write_lines

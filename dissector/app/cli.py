@@ -122,6 +122,20 @@ class Sinks:
             and self.output.plain_summary
         )
 
+    @property
+    def stats_only(self) -> bool:
+        """--stats (or --stats --json) is all that reads the items: the compiled path may count them."""
+        return (
+            self.stats is not None
+            and self.stats_shown
+            and not self.show
+            and self.predicate is None
+            and self.watch is None
+            and self.report is None
+            and self.pcap is None
+            and self.frames_left is None
+        )
+
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
@@ -218,6 +232,10 @@ def decode_chunks(
     warn()
 
 
+def _drop(lines: bytes) -> None:
+    """The summary lines of --stats' compiled path: only its counts are shown."""
+
+
 def _annotator(args: argparse.Namespace) -> Annotator | None:
     if args.no_profile:
         return None
@@ -283,13 +301,19 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
-            if mode == "rtu" and not timed and fix is None and sinks.plain_summary_only:
+            if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
                 from dissector.accel import fastsummary
 
                 if fastsummary.available():
-                    path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
-                    fastsummary.summarize(chunks, path, warn)
-                    continue
+                    if sinks.plain_summary_only:
+                        path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
+                        fastsummary.summarize(chunks, path, warn)
+                        continue
+                    store = sinks.stats.engine_store()  # type: ignore[union-attr]
+                    if store is not None:  # the engine counts what it shows; its lines are not wanted
+                        path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, _drop, store)
+                        fastsummary.summarize(chunks, path, warn)
+                        continue
             decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
     except BaseException:
         sinks.abandon()

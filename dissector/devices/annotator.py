@@ -12,7 +12,7 @@ per frame is a few dictionary lookups per register.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
@@ -177,6 +177,20 @@ class Annotator:
         if row is not None:
             name_register(register, row, row)
         return register
+
+    def namer(self, slave: int) -> Callable[[int, int], tuple[str | None, str | None]]:
+        """(address, value) -> (text, code) of a register as the slave's device names it now, as
+        plain_register does (--stats asks it for the last value of a parameter, at the end)."""
+        rows = self.device(slave).rows
+
+        def name(address: int, value: int) -> tuple[str | None, str | None]:
+            register = Register(address, value)
+            row = rows.get(address)
+            if row is not None:
+                name_register(register, row, row)
+            return register.text, register.code
+
+        return name
 
     def summary_facts(self, slave: int, functions: tuple[int, ...]) -> tuple[object, ...]:
         """What the compiled path must know of a slave to give the annotator's answers itself:

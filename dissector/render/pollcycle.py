@@ -41,13 +41,25 @@ class _Poll:
 
 
 class PollCycle:
-    def __init__(self) -> None:
+    def __init__(self, store: Any | None = None) -> None:
+        # The compiled store (_summary.Stats) when the compiled path counts untimed input: keys,
+        # counts and misses are kept there, where the engine counts the requests it shows itself.
+        self.store = store
         self._polls: dict[Key, _Poll] = {}
         self.untracked = 0  # requests of keys beyond MAX_KEYS
+
+    @property
+    def empty(self) -> bool:
+        return not self._polls and not self.untracked
 
     def add_request(self, frame: Frame) -> None:
         """A good request (CRC ok); its pairing (unanswered) must be final, as the sinks see it."""
         key = request_key(frame)
+        if self.store is not None:
+            if frame.time is None:
+                self.store.poll(key, frame.number, frame.unanswered)
+                return
+            self._take_back()
         poll = self._polls.get(key)
         if poll is None:
             if len(self._polls) >= MAX_KEYS:
@@ -64,10 +76,21 @@ class PollCycle:
                 poll.intervals[step] = poll.intervals.get(step, 0) + 1
             poll.last_time = time
 
+    def _take_back(self) -> None:
+        """A timed request after the compiled store counted untimed input (a pcap after a raw file):
+        its keys come back here, where intervals are kept, for the rest of the run."""
+        store, self.store = self.store, None
+        for key, first, count, failed in store.polls():  # type: ignore[union-attr]
+            self._polls[key] = _Poll(first, count, None, failed)
+        self.untracked += store.untracked  # type: ignore[union-attr]
+
     def add_answer(self, frame: Frame) -> None:
         """An exception (or a damaged answer) to a request: that cycle missed."""
         request = frame.request
         if request is None or not request.crc_ok:
+            return
+        if self.store is not None:
+            self.store.poll_fail(request_key(request))
             return
         poll = self._polls.get(request_key(request))
         if poll is not None:
@@ -75,7 +98,10 @@ class PollCycle:
 
     def report(self) -> list[dict[str, Any]]:
         rows = []
-        for key, poll in sorted(self._polls.items(), key=lambda entry: entry[1].first_number):
+        polls = self._polls
+        if self.store is not None:
+            polls = {key: _Poll(first, count, None, failed) for key, first, count, failed in self.store.polls()}
+        for key, poll in sorted(polls.items(), key=lambda entry: entry[1].first_number):
             if poll.count < MIN_REPEATS:
                 continue
             row: dict[str, Any] = {

@@ -35,6 +35,9 @@ from rich.console import RenderableType
 from dissector.model import Frame, Item, Kind, Noise, Register
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
+from dissector.render.stats_store import (
+    CONFIRM, READ, REFUSED, UNREADABLE as UNREADABLE_READ, WRITE, WRITE_OBSERVED, ParameterRow, new_store,
+)
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -53,24 +56,6 @@ class FunctionStats:
     unanswered: int = 0
     crc_errors: int = 0
     times: dict[int, int] = field(default_factory=dict)  # response time in ns -> how many
-
-
-@dataclass(slots=True)
-class ParameterStats:
-    code: str | None = None
-    reads: int = 0
-    unreadable: int = 0
-    writes: int = 0
-    refused: int = 0
-    last: int | None = None
-    last_text: str | None = None  # as the summary names it (scaled with its unit, enumeration text)
-    changes: int = 0
-
-    def observe(self, value: int, text: str | None) -> None:
-        if self.last is not None and value != self.last:
-            self.changes += 1
-        self.last = value
-        self.last_text = text
 
 
 PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
@@ -112,8 +97,9 @@ class StatsCollector:
         # Which slave got which device profile and why (the annotator's choices(): objects with
         # slave, profile, reason, frame), asked once at the end; None without an annotator that says.
         self.profiles = profiles
-        self.functions: dict[tuple[int, int], FunctionStats] = {}
-        self.parameters: dict[tuple[int, int], ParameterStats] = {}
+        self.functions: dict[tuple[int, int], FunctionStats] = {}  # the Python stages' frames
+        # Per (slave, address): the compiled store (C) or its Python twin, in stream order (stats_store).
+        self.store = new_store()
         self.frames = 0
         self.noise_items = 0
         self.noise_bytes = 0
@@ -121,6 +107,18 @@ class StatsCollector:
         self.first_time: float | None = None
         self.last_time: float | None = None
         self.poll = PollCycle()
+
+    def engine_store(self) -> Any | None:
+        """The compiled store, for the engine to count the transactions it shows itself (the compiled
+        path of --stats), with the poll cycle kept there too; None when the store is not compiled or
+        the poll cycle has timed requests already (the engine sees untimed input only)."""
+        if not hasattr(self.store, "poll"):
+            return None
+        if self.poll.store is None:
+            if not self.poll.empty:
+                return None
+            self.poll = PollCycle(self.store)
+        return self.store
 
     # -- collecting ---------------------------------------------------------------------------
     def _function(self, slave: int, function: int) -> FunctionStats:
@@ -130,17 +128,11 @@ class StatsCollector:
             stats = self.functions[key] = FunctionStats()
         return stats
 
-    def _parameter(self, slave: int, register: Register) -> ParameterStats | None:
+    def _event(self, slave: int, register: Register, event: int) -> None:
         if register.address is None:
             self.registers_without_address += 1
-            return None
-        key = (slave, register.address)
-        stats = self.parameters.get(key)
-        if stats is None:
-            stats = self.parameters[key] = ParameterStats()
-        if register.code is not None:
-            stats.code = register.code
-        return stats
+            return
+        self.store.param(slave, register.address, event, register.value, register.code, register.text)
 
     def add(self, item: Item) -> None:
         if item.time is not None:
@@ -166,9 +158,7 @@ class StatsCollector:
             request = item.request
             if request is not None and request.function in WRITE_FUNCTIONS and request.crc_ok:
                 for register in request.registers or ():
-                    parameter = self._parameter(item.slave, register)
-                    if parameter is not None:
-                        parameter.refused += 1
+                    self._event(item.slave, register, REFUSED)
         else:
             stats.responses += 1
             self._add_response_values(item)
@@ -185,60 +175,61 @@ class StatsCollector:
         if frame.unanswered:
             stats.unanswered += 1
         if frame.function in WRITE_FUNCTIONS:
+            # A broadcast write: no answer will confirm it, the request is all there is.
+            event = WRITE_OBSERVED if frame.broadcast else WRITE
             for register in frame.registers or ():
-                parameter = self._parameter(frame.slave, register)
-                if parameter is not None:
-                    parameter.writes += 1
-                    if frame.broadcast:  # no answer will confirm it: the request is all there is
-                        parameter.observe(register.value, register.text)
+                self._event(frame.slave, register, event)
 
     def _add_response_values(self, frame: Frame) -> None:
         slave, function = frame.slave, frame.function
+        param = self.store.param
         # Writes first: FC23 performs its write before its read.
+        written = None
         if function == 6:
-            for register in frame.registers or ():
-                if register.address is not None:
-                    self._confirm(slave, register)
+            written = frame.registers
         elif function in (16, 23) and frame.request is not None and frame.request.crc_ok:
-            for register in frame.request.registers or ():
-                if register.address is not None:
-                    self._confirm(slave, register)
+            written = frame.request.registers
+        for register in written or ():
+            if register.address is not None:  # an answer without its request confirms nothing
+                param(slave, register.address, CONFIRM, register.value, register.code, register.text)
         if function in READ_FUNCTIONS and frame.registers:
-            # The hot loop of --stats: _parameter and observe() inlined (the same rules).
-            parameters = self.parameters
+            # The hot loop of --stats: one store call a register (the rules are the store's).
             for register in frame.registers:
                 address = register.address
                 if address is None:
                     self.registers_without_address += 1
                     continue
-                parameter = parameters.get((slave, address))
-                if parameter is None:
-                    parameter = parameters[(slave, address)] = ParameterStats()
-                code = register.code
-                if code is not None:
-                    parameter.code = code
-                if register.status in UNREADABLE:
-                    parameter.unreadable += 1  # 16#8000 stands for "no value", not a value
-                    continue
-                parameter.reads += 1
-                value = register.value
-                last = parameter.last
-                if last is not None and value != last:
-                    parameter.changes += 1
-                parameter.last = value
-                parameter.last_text = register.text
-
-    def _confirm(self, slave: int, register: Register) -> None:
-        key = (slave, register.address)
-        parameter = self.parameters.get(key)  # type: ignore[arg-type]
-        if parameter is None:
-            parameter = self.parameters[key] = ParameterStats(code=register.code)  # type: ignore[index]
-        parameter.observe(register.value, register.text)
+                event = UNREADABLE_READ if register.status in UNREADABLE else READ
+                param(slave, address, event, register.value, register.code, register.text)
 
     # -- results ------------------------------------------------------------------------------
-    def report(self) -> dict[str, Any]:
+    def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
+        """The Python stages' counts plus the engine's (sums: the order of frames does not matter)."""
+        merged = dict(self.functions)
+        for slave, function, requests, responses, unanswered, exceptions in self.store.functions():
+            own = merged.get((slave, function))
+            stats = FunctionStats(requests=requests, responses=responses, unanswered=unanswered,
+                                  exceptions=dict(exceptions))
+            if own is not None:
+                stats.requests += own.requests
+                stats.responses += own.responses
+                stats.unanswered += own.unanswered
+                stats.broadcasts, stats.crc_errors, stats.times = own.broadcasts, own.crc_errors, own.times
+                for code, count in own.exceptions.items():
+                    stats.exceptions[code] = stats.exceptions.get(code, 0) + count
+            merged[(slave, function)] = stats
+        return merged
+
+    def parameter_rows(self) -> list[ParameterRow]:
+        """(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes) by
+        (slave, address); last_text as the summary names the value, its number when nothing does."""
+        return self.store.parameters()
+
+    def report(self, with_parameters: bool = True) -> dict[str, Any]:
+        """The JSON form (--stats --json); without parameters for the tables, which show a few rows
+        of parameter_rows() instead of a dict per parameter."""
         functions = []
-        for (slave, function), stats in sorted(self.functions.items()):
+        for (slave, function), stats in sorted(self._all_functions().items()):
             functions.append(
                 {
                     "slave": slave,
@@ -253,25 +244,26 @@ class StatsCollector:
                     "response_time": time_summary(stats.times),
                 }
             )
-        parameters = [
-            {
-                "slave": slave,
-                "address": address,
-                "code": stats.code,
-                "reads": stats.reads,
-                "unreadable": stats.unreadable,
-                "writes": stats.writes,
-                "refused": stats.refused,
-                "last": stats.last,
-                "last_text": stats.last_text if stats.last_text is not None else (
-                    None if stats.last is None else str(stats.last)
-                ),
-                "changes": stats.changes,
-            }
-            for (slave, address), stats in sorted(self.parameters.items())
-        ]
+        parameters: list[dict[str, Any]] | None = None
+        if with_parameters:
+            parameters = [
+                {
+                    "slave": slave,
+                    "address": address,
+                    "code": code,
+                    "reads": reads,
+                    "unreadable": unreadable,
+                    "writes": writes,
+                    "refused": refused,
+                    "last": last,
+                    "last_text": last_text,
+                    "changes": changes,
+                }
+                for slave, address, code, reads, unreadable, writes, refused, last, last_text, changes
+                in self.store.parameters()
+            ]
         return {
-            "frames": self.frames,
+            "frames": self.frames + self.store.frames,
             "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
             "duration": (
                 None
@@ -290,7 +282,8 @@ class StatsCollector:
 
     def blocks(self) -> list[str | TableSpec]:
         """The summary line and the tables, for the rich or the plain writer."""
-        report = self.report()
+        parameter_rows = self.parameter_rows()  # tuples: a table shows a few rows of them
+        report = self.report(with_parameters=False)
         blocks: list[str | TableSpec] = []
         summary = (
             f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in {report['noise']['items']} runs"
@@ -331,7 +324,7 @@ class StatsCollector:
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
             blocks += [_poll_table(report["poll_cycle"]), ""]
-        blocks.append(_parameter_table(report["parameters"]))
+        blocks.append(_parameter_table(parameter_rows))
         return blocks
 
     def render(self) -> RenderableType:
@@ -371,10 +364,7 @@ def _poll_table(rows: list[dict[str, Any]]) -> TableSpec:
     return table
 
 
-_STORY = ("reads", "unreadable", "writes", "refused", "changes")
-
-
-def _parameter_table(parameters: list[dict[str, Any]]) -> TableSpec:
+def _parameter_table(parameters: list[ParameterRow]) -> TableSpec:
     """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
     all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all."""
     table = TableSpec(
@@ -383,51 +373,57 @@ def _parameter_table(parameters: list[dict[str, Any]]) -> TableSpec:
         [True, True, False, True, True, True, True, False, True],
         squeeze={7: 24},  # long enumeration texts and bit lists are cut on a terminal only
     )
-    groups: list[list[dict[str, Any]]] = []
-    for row in parameters:
-        if groups:
-            group = groups[-1]
-            previous = group[-1]
-            if (
-                row["slave"] == previous["slave"]
-                and row["address"] == previous["address"] + 1
-                and (row["code"] is None) == (previous["code"] is None)
-                and all(row[key] == previous[key] for key in _STORY)
-            ):
-                group.append(row)
-                continue
-        groups.append([row])
-    shown = 0
-    for group in groups:
-        if len(group) < GROUP_MIN:
-            rows = [[row] for row in group]
-        else:
-            rows = [group]
-        for members in rows:
-            if shown == MAX_PARAMETER_ROWS:
-                break
-            shown += 1
-            table.rows.append(_parameter_row(members))
-    expanded = sum(1 if len(group) >= GROUP_MIN else len(group) for group in groups)
+    # Runs of neighbouring rows with the same story, and the totals, in one pass.
+    shown = expanded = 0
+    reads = unreadable = writes = refused = changes = 0
+    count = len(parameters)
+    first = 0
+    for index in range(count):
+        row = parameters[index]
+        reads += row[3]
+        unreadable += row[4]
+        writes += row[5]
+        refused += row[6]
+        changes += row[9]
+        following = parameters[index + 1] if index + 1 < count else None
+        if (
+            following is not None
+            and following[1] == row[1] + 1
+            and following[0] == row[0]
+            and following[3] == row[3]
+            and following[5] == row[5]
+            and following[9] == row[9]
+            and following[4] == row[4]
+            and following[6] == row[6]
+            and (following[2] is None) == (row[2] is None)
+        ):
+            continue
+        end = index + 1
+        pieces = [(first, end)] if end - first >= GROUP_MIN else [(k, k + 1) for k in range(first, end)]
+        first = end
+        expanded += len(pieces)
+        for start, stop in pieces:
+            if shown < MAX_PARAMETER_ROWS:
+                shown += 1
+                table.rows.append(_parameter_row(parameters[start:stop]))
     if expanded > shown:
         table.rows.append(["", f"... (+{expanded - shown} more rows)", "", "", "", "", "", "", ""])
-    if len(parameters) > 1:
-        totals = [str(sum(row[key] for row in parameters)) for key in _STORY]
-        table.rows.append(["all", f"{len(parameters)} params", "", *totals[:4], "", totals[4]])
+    if count > 1:
+        table.rows.append(["all", f"{count} params", "", str(reads), str(unreadable), str(writes), str(refused), "",
+                           str(changes)])
     return table
 
 
-def _parameter_row(members: list[dict[str, Any]]) -> list[Cell]:
+def _parameter_row(members: list[ParameterRow]) -> list[Cell]:
     first, last = members[0], members[-1]
     if len(members) == 1:
-        address, code = str(first["address"]), first["code"] or ""
+        address, code = str(first[1]), first[2] or ""
     else:
-        address = f"{first['address']}..{last['address']} ({len(members)})"
-        code = f"{first['code']}..{last['code']}" if first["code"] else ""
-    texts = {row["last_text"] for row in members}
+        address = f"{first[1]}..{last[1]} ({len(members)})"
+        code = f"{first[2]}..{last[2]}" if first[2] else ""
+    texts = {row[8] for row in members}
     last_value = texts.pop() if len(texts) == 1 else "(various)"
-    return [str(first["slave"]), address, code, *(str(first[key]) for key in _STORY[:4]),
-            last_value or "", str(first["changes"])]
+    return [str(first[0]), address, code, *(str(value) for value in first[3:7]), last_value or "", str(first[9])]
 
 
 def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:

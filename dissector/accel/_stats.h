@@ -1,0 +1,573 @@
+/* --stats counted in the engine: the counts of render/stats.py's StatsCollector for the transactions
+ * the engine shows, in one store that the Python stages' frames update too (render/stats.py calls
+ * Stats.param/poll/poll_fail for theirs), so that a parameter's last value and its changes follow
+ * the stream's order whichever side saw each frame. Included by _summary.c: one translation unit.
+ *
+ * What lives here: per (slave, address) the StatsCollector's ParameterStats (counts, last value, its
+ * text, the code), per request key the PollCycle's count/misses/first frame (untimed input only: the
+ * engine never sees timestamps), and per (slave, function) the engine's own counts, which the
+ * collector adds to its own (sums: order does not matter). A last value seen here keeps the slave's
+ * `namer` (SlaveFacts.namer: the device it was read with), asked for its text when the report is
+ * made: a register's text is asked once per parameter, not once per value.
+ *
+ * Not tracked by the collector (GC): it holds texts, codes and namers (closures over a device),
+ * none of which refer back to it.
+ */
+
+#define POLL_MAX_KEYS 50000 /* render/pollcycle.py MAX_KEYS */
+
+enum { EVENT_READ, EVENT_UNREADABLE, EVENT_WRITE, EVENT_WRITE_OBSERVED, EVENT_REFUSED, EVENT_CONFIRM, EVENTS };
+
+typedef struct {
+    uint32_t key; /* 1 << 24 | slave << 16 | address; 0: empty */
+    uint32_t reads, unreadable, writes, refused, changes;
+    uint16_t last;
+    uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
+    PyObject *text;       /* owned: the Python stages' text of the last value (maybe None); NULL: the namer's */
+    PyObject *namer;      /* owned: the namer of the last value when text is NULL */
+    PyObject *code;       /* owned, NULL: none yet */
+    PyObject *code_namer; /* owned: the namer the code was last asked of */
+} Param;
+
+typedef struct {
+    uint64_t hash; /* 0: empty */
+    uint32_t fields[6];
+    uint8_t size; /* fields used: 2, 3, 4 or 6, as pollcycle.request_key's tuple */
+    unsigned long long first, count, failed;
+    size_t order; /* keys in the order first seen, as PollCycle's dict keeps them */
+} Poll;
+
+typedef struct {
+    unsigned long long requests, responses, unanswered;
+    unsigned long long *exceptions; /* by code, 256 of them, allocated on the first */
+} Counted;
+
+typedef struct {
+    PyObject_HEAD
+    Param *params;
+    size_t param_slots, param_count; /* slots: a power of two, at most half full */
+    Poll *polls;
+    size_t poll_slots, poll_count;
+    unsigned long long untracked; /* requests of keys beyond POLL_MAX_KEYS */
+    unsigned long long frames;    /* counted here (the engine's) */
+    Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
+} Stats;
+
+static PyTypeObject StatsType;
+
+static int grow_params(Stats *st) {
+    size_t slots = st->param_slots ? 2 * st->param_slots : 4096;
+    Param *table = PyMem_Calloc(slots, sizeof *table);
+    if (table == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (size_t k = 0; k < st->param_slots; k++) {
+        if (!st->params[k].key) continue;
+        size_t slot = (size_t)mix(st->params[k].key) & (slots - 1);
+        while (table[slot].key) slot = (slot + 1) & (slots - 1);
+        table[slot] = st->params[k];
+    }
+    PyMem_Free(st->params);
+    st->params = table;
+    st->param_slots = slots;
+    return 0;
+}
+
+/* The parameter of (slave, address), made on first sight; *created says so. */
+static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
+    if (2 * (st->param_count + 1) > st->param_slots && grow_params(st) < 0) return NULL;
+    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
+    size_t slot = (size_t)mix(key) & (st->param_slots - 1);
+    while (st->params[slot].key) {
+        if (st->params[slot].key == key) {
+            *created = 0;
+            return &st->params[slot];
+        }
+        slot = (slot + 1) & (st->param_slots - 1);
+    }
+    Param *p = &st->params[slot];
+    p->key = key;
+    st->param_count++;
+    *created = 1;
+    return p;
+}
+
+/* ParameterStats.observe: a change counts against the last value, whoever saw it. */
+static inline void param_observe(Param *p, unsigned value) {
+    if (p->has_last && value != p->last) p->changes++;
+    p->last = (uint16_t)value;
+    p->has_last = 1;
+}
+
+/* One register's event, from a transaction the engine shows: texts and codes from `namer` (the slave's
+ * device). The code is asked once per parameter and namer, only where the device names the address;
+ * CONFIRM sets it only on a parameter's first sight (StatsCollector._confirm). */
+static int param_event(Stats *st, int slave, unsigned address, unsigned value, int event, PyObject *namer,
+                       int mapped) {
+    int created;
+    Param *p = param_get(st, slave, address, &created);
+    if (p == NULL) return -1;
+    if (mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
+        (event != EVENT_CONFIRM || created)) {
+        PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
+        if (answer == NULL) return -1;
+        if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
+            Py_DECREF(answer);
+            PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
+            return -1;
+        }
+        PyObject *code = PyTuple_GET_ITEM(answer, 1);
+        if (code != Py_None) {
+            Py_INCREF(code);
+            Py_XSETREF(p->code, code);
+        }
+        Py_DECREF(answer);
+        Py_INCREF(namer);
+        Py_XSETREF(p->code_namer, namer);
+    }
+    switch (event) {
+    case EVENT_WRITE: p->writes++; return 0;
+    case EVENT_REFUSED: p->refused++; return 0;
+    case EVENT_READ: p->reads++; break;
+    default: break; /* CONFIRM, WRITE_OBSERVED: a value seen */
+    }
+    if (event == EVENT_WRITE_OBSERVED) p->writes++;
+    param_observe(p, value);
+    p->last_mapped = (uint8_t)mapped;
+    Py_CLEAR(p->text);
+    if (p->namer != namer) {
+        Py_XINCREF(namer);
+        Py_XSETREF(p->namer, namer);
+    }
+    return 0;
+}
+
+static int words_event(Stats *st, Slave *s, int slave, const Words *w, int event) {
+    for (unsigned k = 0; k < w->count; k++) {
+        unsigned address = words_address(w, k);
+        if (param_event(st, slave, address, words_value(w, k), event, s->namer, bit(s->mapped, address)) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+/* ---- poll keys: pollcycle.request_key ---------------------------------------------------------- */
+static uint64_t poll_hash(const uint32_t *fields, int size) {
+    uint64_t h = (uint64_t)size;
+    for (int k = 0; k < size; k++) h = mix(h * 0x100000001b3ULL ^ fields[k]);
+    return h | 1; /* never 0 */
+}
+
+static Poll *poll_find(Stats *st, const uint32_t *fields, int size, int make) {
+    if (make && 2 * (st->poll_count + 1) > st->poll_slots) {
+        size_t slots = st->poll_slots ? 2 * st->poll_slots : 1024;
+        Poll *table = PyMem_Calloc(slots, sizeof *table);
+        if (table == NULL) {
+            PyErr_NoMemory();
+            return NULL;
+        }
+        for (size_t k = 0; k < st->poll_slots; k++) {
+            if (!st->polls[k].hash) continue;
+            size_t slot = (size_t)st->polls[k].hash & (slots - 1);
+            while (table[slot].hash) slot = (slot + 1) & (slots - 1);
+            table[slot] = st->polls[k];
+        }
+        PyMem_Free(st->polls);
+        st->polls = table;
+        st->poll_slots = slots;
+    }
+    if (st->poll_slots == 0) return NULL;
+    uint64_t hash = poll_hash(fields, size);
+    size_t slot = (size_t)hash & (st->poll_slots - 1);
+    while (st->polls[slot].hash) {
+        Poll *p = &st->polls[slot];
+        if (p->hash == hash && p->size == size && memcmp(p->fields, fields, (size_t)size * sizeof *fields) == 0)
+            return p;
+        slot = (slot + 1) & (st->poll_slots - 1);
+    }
+    if (!make) return NULL;
+    Poll *p = &st->polls[slot];
+    p->hash = hash;
+    p->size = (uint8_t)size;
+    memcpy(p->fields, fields, (size_t)size * sizeof *fields);
+    p->order = st->poll_count++;
+    return p;
+}
+
+/* PollCycle.add_request (untimed): 0 or -1 (no memory). */
+static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned long long number, int failed) {
+    Poll *p = poll_find(st, fields, size, 0);
+    if (p == NULL) {
+        if (PyErr_Occurred()) return -1;
+        if (st->poll_count >= POLL_MAX_KEYS) {
+            st->untracked++;
+            return 0;
+        }
+        p = poll_find(st, fields, size, 1);
+        if (p == NULL) return -1;
+        p->first = number;
+    }
+    p->count++;
+    if (failed) p->failed++;
+    return 0;
+}
+
+/* PollCycle.add_answer: an exception (or a damaged answer) to a request: that cycle missed. */
+static void poll_fail(Stats *st, const uint32_t *fields, int size) {
+    Poll *p = poll_find(st, fields, size, 0);
+    if (p != NULL) p->failed++;
+}
+
+/* pollcycle.request_key of a request the engine shows, from its bytes. */
+static int request_key(const uint8_t *f, uint32_t *fields) {
+    int function = f[1];
+    fields[0] = f[0];
+    fields[1] = (uint32_t)function;
+    switch (function) {
+    case 1: case 2: case 3: case 4: case 15: case 16:
+        fields[2] = word(f + 2);
+        fields[3] = word(f + 4);
+        return 4;
+    case 5: case 6: case 22: case 24: /* start and a quantity of 1 (FIFO: no quantity in the request) */
+        fields[2] = word(f + 2);
+        fields[3] = 1;
+        return 4;
+    case 23:
+        fields[2] = word(f + 2);
+        fields[3] = word(f + 4);
+        fields[4] = word(f + 6);
+        fields[5] = word(f + 8);
+        return 6;
+    case 8:
+        fields[2] = word(f + 2);
+        return 3;
+    default:
+        return 2;
+    }
+}
+
+static Counted *counted_for(Stats *st, int slave, int function) {
+    Counted *row = st->counted[slave];
+    if (row == NULL) {
+        row = st->counted[slave] = PyMem_Calloc(HANDLED, sizeof *row);
+        if (row == NULL) {
+            PyErr_NoMemory();
+            return NULL;
+        }
+    }
+    return &row[handled_index(function)];
+}
+
+/* What StatsCollector.add does with a transaction the engine shows: the request (unanswered when
+ * `answer` is NULL), then its normal answer or exception. `writes`: the request's registers (FC6, 16,
+ * 23), `reads`: the answer's values (FC3, 4, 23). */
+static int count_transaction(Stats *st, Slave *s, const uint8_t *q, const uint8_t *answer, const Words *writes,
+                             const Words *reads, unsigned long long number) {
+    int slave = q[0], function = q[1];
+    Counted *c = counted_for(st, slave, function);
+    if (c == NULL) return -1;
+    uint32_t key[6];
+    int size = request_key(q, key);
+    int exception = answer != NULL && (answer[1] & 0x80);
+    c->requests++;
+    st->frames += answer != NULL ? 2 : 1;
+    if (answer == NULL) c->unanswered++;
+    if (poll_request(st, key, size, number, answer == NULL) < 0) return -1;
+    if (writes != NULL && words_event(st, s, slave, writes, EVENT_WRITE) < 0) return -1;
+    if (answer == NULL) return 0;
+    if (exception) {
+        if (c->exceptions == NULL && (c->exceptions = PyMem_Calloc(256, sizeof *c->exceptions)) == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        c->exceptions[answer[2]]++;
+        poll_fail(st, key, size);
+        return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
+    }
+    c->responses++;
+    if (function == 6) {
+        Words echo = {word(answer + 2), 1, answer + 4};
+        if (words_event(st, s, slave, &echo, EVENT_CONFIRM) < 0) return -1;
+    } else if (writes != NULL && words_event(st, s, slave, writes, EVENT_CONFIRM) < 0) {
+        return -1;
+    }
+    return reads != NULL && reads->count ? words_event(st, s, slave, reads, EVENT_READ) : 0;
+}
+
+/* ---- the Python object ------------------------------------------------------------------------- */
+static void stats_dealloc(Stats *st) {
+    for (size_t k = 0; k < st->param_slots; k++) {
+        Param *p = &st->params[k];
+        if (!p->key) continue;
+        Py_XDECREF(p->text);
+        Py_XDECREF(p->namer);
+        Py_XDECREF(p->code);
+        Py_XDECREF(p->code_namer);
+    }
+    PyMem_Free(st->params);
+    PyMem_Free(st->polls);
+    for (int k = 0; k < 256; k++) {
+        if (st->counted[k] == NULL) continue;
+        for (int j = 0; j < HANDLED; j++) PyMem_Free(st->counted[k][j].exceptions);
+        PyMem_Free(st->counted[k]);
+    }
+    Py_TYPE(st)->tp_free((PyObject *)st);
+}
+
+/* param(slave, address, event, value, code, text): a register of a frame the Python stages showed. */
+static PyObject *stats_param(Stats *st, PyObject *args) {
+    int slave, event;
+    unsigned address, value;
+    PyObject *code, *text;
+    if (!PyArg_ParseTuple(args, "iIiIOO", &slave, &address, &event, &value, &code, &text)) return NULL;
+    if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF) {
+        PyErr_SetString(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event");
+        return NULL;
+    }
+    int created;
+    Param *p = param_get(st, slave, address, &created);
+    if (p == NULL) return NULL;
+    if (code != Py_None && (event != EVENT_CONFIRM || created)) {
+        Py_INCREF(code);
+        Py_XSETREF(p->code, code);
+    }
+    switch (event) {
+    case EVENT_WRITE: p->writes++; Py_RETURN_NONE;
+    case EVENT_REFUSED: p->refused++; Py_RETURN_NONE;
+    case EVENT_UNREADABLE: p->unreadable++; Py_RETURN_NONE;
+    case EVENT_READ: p->reads++; break;
+    case EVENT_WRITE_OBSERVED: p->writes++; break;
+    default: break;
+    }
+    param_observe(p, value);
+    Py_INCREF(text);
+    Py_XSETREF(p->text, text);
+    Py_CLEAR(p->namer);
+    Py_RETURN_NONE;
+}
+
+/* A request key tuple (slave, function[, ...]) of up to 6 ints into fields; its size or -1. */
+static int key_fields(PyObject *key, uint32_t *fields) {
+    if (!PyTuple_Check(key) || PyTuple_GET_SIZE(key) < 2 || PyTuple_GET_SIZE(key) > 6) {
+        PyErr_SetString(PyExc_TypeError, "a request key: a tuple of 2 to 6 ints");
+        return -1;
+    }
+    int size = (int)PyTuple_GET_SIZE(key);
+    for (int k = 0; k < size; k++) {
+        unsigned long v = PyLong_AsUnsignedLong(PyTuple_GET_ITEM(key, k));
+        if (v == (unsigned long)-1 && PyErr_Occurred()) return -1;
+        if (v > 0xFFFFFFFFUL) {
+            PyErr_SetString(PyExc_ValueError, "a request key's fields are 32-bit");
+            return -1;
+        }
+        fields[k] = (uint32_t)v;
+    }
+    return size;
+}
+
+static PyObject *stats_poll(Stats *st, PyObject *args) {
+    PyObject *key;
+    unsigned long long number;
+    int failed;
+    if (!PyArg_ParseTuple(args, "OKp", &key, &number, &failed)) return NULL;
+    uint32_t fields[6];
+    int size = key_fields(key, fields);
+    if (size < 0 || poll_request(st, fields, size, number, failed) < 0) return NULL;
+    Py_RETURN_NONE;
+}
+
+static PyObject *stats_poll_fail(Stats *st, PyObject *args) {
+    PyObject *key;
+    if (!PyArg_ParseTuple(args, "O", &key)) return NULL;
+    uint32_t fields[6];
+    int size = key_fields(key, fields);
+    if (size < 0) return NULL;
+    poll_fail(st, fields, size);
+    Py_RETURN_NONE;
+}
+
+static int param_order(const void *a, const void *b) {
+    uint32_t x = (*(Param *const *)a)->key, y = (*(Param *const *)b)->key;
+    return x < y ? -1 : x > y;
+}
+
+/* The last value's text: the Python stages' (maybe None), else the namer's where the device names
+ * the address; None for no text. A new reference. */
+static PyObject *param_text(const Param *p) {
+    if (p->text != NULL) {
+        Py_INCREF(p->text);
+        return p->text;
+    }
+    if (!p->has_last || !p->last_mapped || p->namer == NULL || p->namer == Py_None) Py_RETURN_NONE;
+    PyObject *answer = PyObject_CallFunction(p->namer, "II", p->key & 0xFFFF, (unsigned)p->last);
+    if (answer == NULL) return NULL;
+    if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
+        Py_DECREF(answer);
+        PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
+        return NULL;
+    }
+    PyObject *text = PyTuple_GET_ITEM(answer, 0);
+    Py_INCREF(text);
+    Py_DECREF(answer);
+    return text;
+}
+
+/* parameters() -> [(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]
+ * by (slave, address); last_text the text of the last value, or its number when nothing names it. */
+static PyObject *stats_parameters(Stats *st, PyObject *unused) {
+    Param **order = PyMem_Malloc((st->param_count ? st->param_count : 1) * sizeof *order);
+    if (order == NULL) return PyErr_NoMemory();
+    size_t n = 0;
+    for (size_t k = 0; k < st->param_slots; k++)
+        if (st->params[k].key) order[n++] = &st->params[k];
+    qsort(order, n, sizeof *order, param_order);
+    PyObject *rows = PyList_New((Py_ssize_t)n);
+    if (rows == NULL) goto fail;
+    for (size_t k = 0; k < n; k++) {
+        const Param *p = order[k];
+        PyObject *text = param_text(p);
+        if (text == NULL) goto fail;
+        PyObject *last;
+        if (!p->has_last) {
+            last = Py_None;
+            Py_INCREF(last);
+        } else {
+            last = PyLong_FromUnsignedLong(p->last);
+            if (last != NULL && text == Py_None) {
+                Py_DECREF(text);
+                text = PyObject_Str(last);
+            }
+        }
+        PyObject *row = last && text ? Py_BuildValue("(IIOIIIIOOI)", (p->key >> 16) & 0xFF, p->key & 0xFFFF,
+                                                     p->code ? p->code : Py_None, p->reads, p->unreadable,
+                                                     p->writes, p->refused, last, text, p->changes)
+                                     : NULL;
+        Py_XDECREF(last);
+        Py_XDECREF(text);
+        if (row == NULL) goto fail;
+        PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
+    }
+    PyMem_Free(order);
+    return rows;
+fail:
+    PyMem_Free(order);
+    Py_XDECREF(rows);
+    return NULL;
+}
+
+static int poll_order(const void *a, const void *b) {
+    size_t x = (*(Poll *const *)a)->order, y = (*(Poll *const *)b)->order;
+    return x < y ? -1 : x > y;
+}
+
+/* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
+static PyObject *stats_polls(Stats *st, PyObject *unused) {
+    Poll **order = PyMem_Malloc((st->poll_count ? st->poll_count : 1) * sizeof *order);
+    if (order == NULL) return PyErr_NoMemory();
+    size_t n = 0;
+    for (size_t k = 0; k < st->poll_slots; k++)
+        if (st->polls[k].hash) order[n++] = &st->polls[k];
+    qsort(order, n, sizeof *order, poll_order);
+    PyObject *rows = PyList_New((Py_ssize_t)n);
+    if (rows == NULL) goto fail;
+    for (size_t k = 0; k < n; k++) {
+        const Poll *p = order[k];
+        PyObject *key = PyTuple_New(p->size);
+        if (key == NULL) goto fail;
+        for (int j = 0; j < p->size; j++) {
+            PyObject *v = PyLong_FromUnsignedLong(p->fields[j]);
+            if (v == NULL) {
+                Py_DECREF(key);
+                goto fail;
+            }
+            PyTuple_SET_ITEM(key, j, v);
+        }
+        PyObject *row = Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed);
+        if (row == NULL) goto fail;
+        PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
+    }
+    PyMem_Free(order);
+    return rows;
+fail:
+    PyMem_Free(order);
+    Py_XDECREF(rows);
+    return NULL;
+}
+
+/* functions() -> [(slave, function, requests, responses, unanswered, {code: count})]: the engine's. */
+static PyObject *stats_functions(Stats *st, PyObject *unused) {
+    PyObject *rows = PyList_New(0);
+    if (rows == NULL) return NULL;
+    for (int slave = 0; slave < 256; slave++) {
+        if (st->counted[slave] == NULL) continue;
+        for (int k = 0; k < HANDLED; k++) {
+            Counted *c = &st->counted[slave][k];
+            if (!c->requests) continue;
+            PyObject *exceptions = PyDict_New();
+            if (exceptions == NULL) goto fail;
+            for (int code = 0; code < 256 && c->exceptions != NULL; code++) {
+                if (!c->exceptions[code]) continue;
+                PyObject *key = PyLong_FromLong(code);
+                PyObject *count = PyLong_FromUnsignedLongLong(c->exceptions[code]);
+                int status = key && count ? PyDict_SetItem(exceptions, key, count) : -1;
+                Py_XDECREF(key);
+                Py_XDECREF(count);
+                if (status < 0) {
+                    Py_DECREF(exceptions);
+                    goto fail;
+                }
+            }
+            PyObject *row = Py_BuildValue("(iiKKKN)", slave, handled_codes[k], c->requests, c->responses,
+                                          c->unanswered, exceptions);
+            if (row == NULL || PyList_Append(rows, row) < 0) {
+                Py_XDECREF(row);
+                goto fail;
+            }
+            Py_DECREF(row);
+        }
+    }
+    return rows;
+fail:
+    Py_DECREF(rows);
+    return NULL;
+}
+
+static PyObject *stats_get_frames(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->frames); }
+static PyObject *stats_get_untracked(Stats *st, void *closure) {
+    return PyLong_FromUnsignedLongLong(st->untracked);
+}
+static PyObject *stats_get_parameter_count(Stats *st, void *closure) { return PyLong_FromSize_t(st->param_count); }
+
+static PyMethodDef stats_methods[] = {
+    {"param", (PyCFunction)stats_param, METH_VARARGS,
+     "param(slave, address, event, value, code, text): a register of a frame the Python stages showed\n"
+     "(event: READ 0, UNREADABLE 1, WRITE 2, WRITE_OBSERVED 3, REFUSED 4, CONFIRM 5)."},
+    {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed): a good request."},
+    {"poll_fail", (PyCFunction)stats_poll_fail, METH_VARARGS, "poll_fail(key): its answer was an exception."},
+    {"parameters", (PyCFunction)stats_parameters, METH_NOARGS,
+     "[(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]"},
+    {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
+    {"functions", (PyCFunction)stats_functions, METH_NOARGS,
+     "the engine's [(slave, function, requests, responses, unanswered, {code: count})]"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyGetSetDef stats_getset[] = {
+    {"frames", (getter)stats_get_frames, NULL, "frames the engine counted", NULL},
+    {"untracked", (getter)stats_get_untracked, NULL, "requests of keys beyond the poll table's size", NULL},
+    {"parameter_count", (getter)stats_get_parameter_count, NULL, "parameters kept", NULL},
+    {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyTypeObject StatsType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "dissector.accel._summary.Stats",
+    .tp_basicsize = sizeof(Stats),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "--stats counts kept in C (see render/stats.py, EngineStore).",
+    .tp_new = PyType_GenericNew,
+    .tp_dealloc = (destructor)stats_dealloc,
+    .tp_methods = stats_methods,
+    .tp_getset = stats_getset,
+};

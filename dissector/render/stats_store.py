@@ -1,0 +1,100 @@
+"""Where `--stats` keeps its per-parameter counts: the compiled store (`_summary.Stats`, written in C
+in dissector/accel/_stats.h) when the extension is built, this module's `ParameterTable` otherwise.
+
+Both take the same events in stream order, one per register a frame carries, so that the compiled
+summary path (which counts the transactions it shows inside the engine) and the Python stages (which
+count the frames they show through `param`) update one parameter table: a parameter's last value and
+its changes follow the order of the stream whichever side saw each frame.
+
+Events (StatsCollector's rules, render/stats.py):
+- READ: a value read (FC3/4/23 answer): reads + 1, a value seen;
+- UNREADABLE: a read the profile marked protected or non-existent: unreadable + 1, no value;
+- WRITE: a value a request asks to write: writes + 1;
+- WRITE_OBSERVED: a broadcast write, which nothing will confirm: writes + 1, a value seen;
+- REFUSED: a write whose request got an exception: refused + 1;
+- CONFIRM: a value written and confirmed (FC6 echo, FC16/23 request of a normal answer): a value seen.
+A register's code is kept when it has one; CONFIRM sets it on a parameter's first sight only.
+"""
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any
+
+try:
+    from dissector.accel._summary import Stats as CompiledStore
+except ImportError:  # built without a C compiler
+    CompiledStore = None
+
+READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(6)
+
+ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int]
+
+
+@dataclass(slots=True)
+class ParameterStats:
+    code: str | None = None
+    reads: int = 0
+    unreadable: int = 0
+    writes: int = 0
+    refused: int = 0
+    last: int | None = None
+    last_text: str | None = None  # as the summary names it (scaled with its unit, enumeration text)
+    changes: int = 0
+
+
+class ParameterTable:
+    """The pure-Python store (no C extension): the same events and rows as `_summary.Stats`."""
+
+    frames = 0  # frames counted by the compiled engine: none here
+
+    def __init__(self) -> None:
+        self._parameters: dict[tuple[int, int], ParameterStats] = {}
+
+    def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None) -> None:
+        key = (slave, address)
+        stats = self._parameters.get(key)
+        created = stats is None
+        if stats is None:
+            stats = self._parameters[key] = ParameterStats()
+        if code is not None and (event != CONFIRM or created):
+            stats.code = code
+        if event == WRITE:
+            stats.writes += 1
+            return
+        if event == REFUSED:
+            stats.refused += 1
+            return
+        if event == UNREADABLE:
+            stats.unreadable += 1  # 16#8000 stands for "no value", not a value
+            return
+        if event == READ:
+            stats.reads += 1
+        elif event == WRITE_OBSERVED:
+            stats.writes += 1
+        if stats.last is not None and value != stats.last:
+            stats.changes += 1
+        stats.last = value
+        stats.last_text = text
+
+    def parameters(self) -> list[ParameterRow]:
+        """By (slave, address); last_text the last value's text, or its number when nothing names it."""
+        return [
+            (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused, s.last,
+             s.last_text if s.last_text is not None or s.last is None else str(s.last), s.changes)
+            for (slave, address), s in sorted(self._parameters.items())
+        ]
+
+    def functions(self) -> list[tuple[int, int, int, int, int, dict[int, int]]]:
+        return []
+
+    @property
+    def parameter_count(self) -> int:
+        return len(self._parameters)
+
+
+def new_store() -> Any:
+    """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set)."""
+    if CompiledStore is not None and not os.environ.get("VW3_PURE_PYTHON"):
+        return CompiledStore()
+    return ParameterTable()
