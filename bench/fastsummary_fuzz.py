@@ -1,6 +1,6 @@
 """Differential fuzz of the compiled summary path against the Python stages.
 
-    python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED]
+    python3 bench/fastsummary_fuzz.py [SECONDS] [FIRST_SEED] [--stats]
 
 Random sessions of transactions of every public code (ATV71 addresses, 16#8000 values, the CHCF/CMD
 bits_depend case, FC8 Return Query Data echoes of any size (found by a CRC scan) and other sub-functions, coils up to and past the spec limits, ON/OFF and other coil values, retries, unanswered
@@ -9,6 +9,8 @@ inserted bytes, stray 00 bytes), cut into random chunks, decoded by both paths w
 with none, with profile `auto` and with the SEL-749M profile (PLC-style addresses): every line must be equal. A mismatch is
 reduced to a minimal reproducer; one where the Python framer alone disagrees with itself when the stream
 is cut differently is reported as such. tests/differential/test_fastsummary.py holds a bounded version of this.
+With --stats it compares --stats instead: the report and the tables counted by the engine (and the
+Python stages for what it hands back) against the Python stages' alone (tests/differential/test_fast_stats.py).
 """
 from __future__ import annotations
 
@@ -26,6 +28,9 @@ from dissector.devices.build import build_annotator  # noqa: E402
 from dissector.render.summary import summary_line  # noqa: E402
 from helpers import rtu  # noqa: E402
 from test_fastsummary import fast_lines, python_lines  # noqa: E402
+from test_fast_stats import compiled_stats, python_stats  # noqa: E402
+
+STATS = "--stats" in sys.argv
 
 
 def py_split(data: bytes, annotator: object, splits: list[int]) -> list[str]:
@@ -279,9 +284,21 @@ def splits_for(rng, n):
     return sorted({rng.randrange(n) for _ in range(rng.randint(1, 12))})
 
 
+class StatsLines:
+    """--stats compared as lines: the JSON report, then the tables; the frames the engine counted."""
+
+    def __init__(self, collector) -> None:
+        self.lines = [repr(collector.report()), *collector.render_plain().splitlines()]
+        self.engine_lines = collector.store.frames
+
+
 def check(parts, name, splits):
     data = b"".join(parts)
     splits = [c for c in splits if c < len(data)]
+    if STATS:
+        got = StatsLines(compiled_stats(data, FACTORIES[name](), splits))
+        exp = StatsLines(python_stats(data, FACTORIES[name]())).lines
+        return got.lines == exp, got, exp
     exp = python_lines(data, FACTORIES[name]())
     got = fast_lines(data, FACTORIES[name](), splits)
     return got.lines == exp, got, exp
@@ -306,8 +323,9 @@ def minimize(parts, name, splits):
 
 
 def main():
-    budget = float(sys.argv[1]) if len(sys.argv) > 1 else 300
-    seed0 = int(sys.argv[2]) if len(sys.argv) > 2 else 0
+    numbers = [argument for argument in sys.argv[1:] if argument != "--stats"]
+    budget = float(numbers[0]) if numbers else 300
+    seed0 = int(numbers[1]) if len(numbers) > 1 else 0
     end = time.time() + budget
     seed = seed0
     runs = engine = total = 0
@@ -325,7 +343,7 @@ def main():
             total += len(exp)
             if not ok:
                 data = b"".join(parts)
-                cls = "pysplit" if py_split(data, FACTORIES[name](), [c for c in splits if c < len(data)]) != exp else "C?"
+                cls = "pysplit" if not STATS and py_split(data, FACTORIES[name](), [c for c in splits if c < len(data)]) != exp else "C?"
                 if cls == "pysplit":
                     pysplit_count[0] += 1
                     if pysplit_count[0] <= 2:
