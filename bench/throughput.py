@@ -159,7 +159,8 @@ def memory_runs(mix: Mix, out: Path, gigabyte: bool) -> None:
         seconds = time.perf_counter() - start
         extra = ""
         if label == "x10":
-            extra = f", --json {peak_rss_mb(vw3 + ['--json']):.1f} MB, -V {peak_rss_mb(vw3 + ['-V']):.1f} MB"
+            extra = (f", --json {peak_rss_mb(vw3 + ['--json']):.1f} MB, -V {peak_rss_mb(vw3 + ['-V']):.1f} MB, "
+                     f"--stats {peak_rss_mb(vw3 + ['--stats']):.1f} MB")
         print(f"  {mix.name} {label} ({big.stat().st_size / 1e6:,.0f} MB): summary {summary_mb:.1f} MB "
               f"({seconds:.0f} s){extra}", flush=True)
         big.unlink()
