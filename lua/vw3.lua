@@ -1506,7 +1506,7 @@ local function rtu_frame(s, i, kind, length, crc_ok)
   return {
     kind = kind, offset = offset, length = length, slave = b[i], code = code, fn = code % 128,
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time_at(s, offset),
-    warnings = {}, notes = {}, mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
+    mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
   }
 end
 
@@ -1669,10 +1669,10 @@ local function ascii_candidate(s, at, length, items)
   local offset = s.base + at
   local frame = {
     kind = kind, offset = offset, length = length, slave = slave, code = code, fn = code % 128,
-    crc = received, crc_expected = expected, warnings = {}, notes = {}, mode = "ascii", ascii = true,
+    crc = received, crc_expected = expected, mode = "ascii", ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lower then frame.warnings[1] = "lower-case hex digits (the spec wants upper case)" end
+  if lower then frame.warnings = { "lower-case hex digits (the spec wants upper case)" } end
   emit(s, frame, items)
 end
 
@@ -1742,6 +1742,13 @@ feed = function(s, bytes, time, boundary, final)
     local b, at = s.b, s.n
     local byte = string.byte
     local k = 1
+    if at == 0 and n <= 4096 then
+      -- Nothing left over (the usual case): the record's bytes in one constructor, b[0] in its hash
+      -- part, the rest in its array part. (Frames already found keep the old table.)
+      b = { [0] = byte(bytes, 1), byte(bytes, 2, n) }
+      s.b = b
+      k = n + 1
+    end
     while k + 7 <= n do
       b[at + k - 1], b[at + k], b[at + k + 1], b[at + k + 2], b[at + k + 3], b[at + k + 4], b[at + k + 5],
         b[at + k + 6] = byte(bytes, k, k + 7)
@@ -1789,21 +1796,24 @@ end
 -- Decoding (dissector/protocol/grammar.py + decode.py): PDU data after the function code, then the handlers.
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
+-- A frame's warnings and notes lists are made with their first entry (most frames have none).
+local function warn(frame, text)
+  local warnings = frame.warnings
+  if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+end
+
 local function check_range(frame, what, value, limit_name)
   local limit = LIMITS[limit_name]
   if limit and (value < limit[1] or value > limit[2]) then
-    frame.warnings[#frame.warnings + 1] = format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2])
+    warn(frame, format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2]))
   end
 end
 
 local function check_span(frame, start, quantity)
   if start + quantity > 0x10000 then
-    frame.warnings[#frame.warnings + 1] =
-      format("addresses %d..%d run past 65535", start, start + quantity - 1)
+    warn(frame, format("addresses %d..%d run past 65535", start, start + quantity - 1))
   end
 end
-
-local function warn(frame, text) frame.warnings[#frame.warnings + 1] = text end
 
 -- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
 -- address. A value is read from the bytes each time it is needed (the first pass reads them from the
@@ -2274,7 +2284,9 @@ local function pair(st, f)
       st.pending = nil
     end
     f.no_request = true
-    f.notes[#f.notes + 1] = "response without a matching request in the capture"
+    local notes = f.notes
+    if notes == nil then notes = {}; f.notes = notes end
+    notes[#notes + 1] = "response without a matching request in the capture"
   end
 end
 
@@ -2688,10 +2700,13 @@ local function device_of(st, f)
   return device_for(st, f.slave)
 end
 
-local function note(f, text) f.notes[#f.notes + 1] = text end
+local function note(f, text)
+  local notes = f.notes
+  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+end
 
 local function has_note(f, text)
-  for _, existing in ipairs(f.notes) do
+  for _, existing in ipairs(f.notes or NO_INTERPRETATION) do
     if existing == text then return true end
   end
   return false
@@ -3641,8 +3656,8 @@ local function take_items(st, items, record)
       -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
       -- ask for them (a request's, until its answer is decoded or it can have none).
       item.b = nil
-      if #item.warnings == 0 then item.warnings = nil end
-      if #item.notes == 0 then item.notes = nil end
+      if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
+      if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
       -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
       -- pending request's registers once its answer has been read), and what is known from the kind of
       -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
