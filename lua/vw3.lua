@@ -1506,8 +1506,27 @@ local function rtu_frame(s, i, kind, length, crc_ok)
   return {
     kind = kind, offset = offset, length = length, slave = b[i], code = code, fn = code % 128,
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time_at(s, offset),
-    warnings = {}, notes = {}, mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
+    mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
+    number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
   }
+end
+
+-- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
+-- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
+-- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
+local CRC_SEEN_MAX = 4096
+local crc_seen, crc_seen_count = {}, 0
+
+-- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
+local function crc_good(s, b, i, length, n)
+  local whole = s.whole
+  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
+  if crc_seen[whole] then return true end
+  if not crc_ok_at(b, i, length) then return false end
+  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
+  crc_seen[whole] = true
+  crc_seen_count = crc_seen_count + 1
+  return true
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -1540,7 +1559,7 @@ local function run_rtu(s, final, items)
         local length, is_scan = first[2](b, i, n)
         if not is_scan and length >= MIN_ADU and length <= MAX_ADU
             and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
-            and crc_ok_at(b, i, length) then
+            and crc_good(s, b, i, length, n) then
           emit(s, rtu_frame(s, i, first[1], length, true), items)
           i = i + length
           done = true
@@ -1669,10 +1688,10 @@ local function ascii_candidate(s, at, length, items)
   local offset = s.base + at
   local frame = {
     kind = kind, offset = offset, length = length, slave = slave, code = code, fn = code % 128,
-    crc = received, crc_expected = expected, warnings = {}, notes = {}, mode = "ascii", ascii = true,
+    crc = received, crc_expected = expected, mode = "ascii", ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lower then frame.warnings[1] = "lower-case hex digits (the spec wants upper case)" end
+  if lower then frame.warnings = { "lower-case hex digits (the spec wants upper case)" } end
   emit(s, frame, items)
 end
 
@@ -1722,7 +1741,11 @@ local function consume(s, count)
   for index = 1, #times do
     if times[index][1] <= base then keep = index end
   end
-  if keep > 1 then
+  if keep > 1 and keep == #times then
+    -- (the usual case, every byte framed: the last record's entry moved down, no new list)
+    times[1] = times[keep]
+    for index = keep, 2, -1 do times[index] = nil end
+  elseif keep > 1 then
     local kept = {}
     for index = keep, #times do kept[#kept + 1] = times[index] end
     s.times = kept
@@ -1742,6 +1765,14 @@ feed = function(s, bytes, time, boundary, final)
     local b, at = s.b, s.n
     local byte = string.byte
     local k = 1
+    if at == 0 and n <= 4096 then
+      -- Nothing left over (the usual case): the record's bytes in one constructor, b[0] in its hash
+      -- part, the rest in its array part. (Frames already found keep the old table.)
+      b = { [0] = byte(bytes, 1), byte(bytes, 2, n) }
+      s.b = b
+      k = n + 1
+      s.whole = bytes -- (the buffer holds this record alone: see crc_good)
+    end
     while k + 7 <= n do
       b[at + k - 1], b[at + k], b[at + k + 1], b[at + k + 2], b[at + k + 3], b[at + k + 4], b[at + k + 5],
         b[at + k + 6] = byte(bytes, k, k + 7)
@@ -1756,6 +1787,7 @@ feed = function(s, bytes, time, boundary, final)
   local items = {}
   local used
   if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
+  s.whole = nil
   consume(s, used)
   if final then flush_noise(s, items) end
   return items
@@ -1789,21 +1821,24 @@ end
 -- Decoding (dissector/protocol/grammar.py + decode.py): PDU data after the function code, then the handlers.
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
+-- A frame's warnings and notes lists are made with their first entry (most frames have none).
+local function warn(frame, text)
+  local warnings = frame.warnings
+  if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+end
+
 local function check_range(frame, what, value, limit_name)
   local limit = LIMITS[limit_name]
   if limit and (value < limit[1] or value > limit[2]) then
-    frame.warnings[#frame.warnings + 1] = format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2])
+    warn(frame, format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2]))
   end
 end
 
 local function check_span(frame, start, quantity)
   if start + quantity > 0x10000 then
-    frame.warnings[#frame.warnings + 1] =
-      format("addresses %d..%d run past 65535", start, start + quantity - 1)
+    warn(frame, format("addresses %d..%d run past 65535", start, start + quantity - 1))
   end
 end
-
-local function warn(frame, text) frame.warnings[#frame.warnings + 1] = text end
 
 -- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
 -- address. A value is read from the bytes each time it is needed (the first pass reads them from the
@@ -2274,7 +2309,9 @@ local function pair(st, f)
       st.pending = nil
     end
     f.no_request = true
-    f.notes[#f.notes + 1] = "response without a matching request in the capture"
+    local notes = f.notes
+    if notes == nil then notes = {}; f.notes = notes end
+    notes[#notes + 1] = "response without a matching request in the capture"
   end
 end
 
@@ -2688,10 +2725,13 @@ local function device_of(st, f)
   return device_for(st, f.slave)
 end
 
-local function note(f, text) f.notes[#f.notes + 1] = text end
+local function note(f, text)
+  local notes = f.notes
+  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+end
 
 local function has_note(f, text)
-  for _, existing in ipairs(f.notes) do
+  for _, existing in ipairs(f.notes or NO_INTERPRETATION) do
     if existing == text then return true end
   end
   return false
@@ -3641,8 +3681,8 @@ local function take_items(st, items, record)
       -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
       -- ask for them (a request's, until its answer is decoded or it can have none).
       item.b = nil
-      if #item.warnings == 0 then item.warnings = nil end
-      if #item.notes == 0 then item.notes = nil end
+      if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
+      if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
       -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
       -- pending request's registers once its answer has been read), and what is known from the kind of
       -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
@@ -3671,18 +3711,21 @@ local function take_items(st, items, record)
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
-  local open = {}
-  for _, earlier in ipairs(st.open) do
+  local open = st.open -- (compacted in place: no new list a record)
+  local count, kept = #open, 0
+  for index = 1, count do
+    local earlier = open[index]
     local waiting = earlier.start + earlier.length - waiting_from
     if waiting > 0 then
-      open[#open + 1] = earlier
+      kept = kept + 1
+      open[kept] = earlier
       earlier.waiting = math.min(waiting, earlier.length)
     else
       -- closed: all its bytes are framed (kept: its items and frame count)
       earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
     end
   end
-  st.open = open
+  for index = count, kept + 1, -1 do open[index] = nil end
 end
 
 local function dissect_record(st, bytes, time, number)
@@ -4086,18 +4129,32 @@ local function add_register(tree, tvb, f, reg, range, full)
   end
 end
 
-local function summary(f)
-  local parts = { format("%d", f.slave), f.function_text or function_name(f.fn), f.kind }
-  if f.kind == EXCEPTION then parts[#parts + 1] = f.exception_meaning or exception_name(f.exception_code) end
+local summary
+do -- (a block: the main chunk may hold at most 200 locals)
+-- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
+-- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
+local DECIMAL = setmetatable({}, { __index = function(texts, number)
+  local text = format("%d", number)
+  texts[number] = text
+  return text
+end })
+
+summary = function(f)
+  -- (one string built up: no table of parts, the Info text is made for every record shown)
+  local kind = f.kind
+  local text = DECIMAL[f.slave] .. " " .. (f.function_text or function_name(f.fn)) .. " " .. kind
+  if kind == EXCEPTION then text = text .. " " .. (f.exception_meaning or exception_name(f.exception_code)) end
+  local start, quantity = f.start, f.quantity
   if f.span_label ~= nil then
-    parts[#parts + 1] = f.span_label
-  elseif f.start ~= nil and f.quantity ~= nil and f.quantity > 1 then
-    parts[#parts + 1] = format("%d..%d", f.start, (f.start + f.quantity - 1) % 0x10000)
-  elseif f.start ~= nil then
-    parts[#parts + 1] = format("%d", f.start)
+    text = text .. " " .. f.span_label
+  elseif start ~= nil and quantity ~= nil and quantity > 1 then
+    text = text .. " " .. DECIMAL[start] .. ".." .. DECIMAL[(start + quantity - 1) % 0x10000]
+  elseif start ~= nil then
+    text = text .. " " .. DECIMAL[start]
   end
-  if not (f.crc == f.crc_expected) then parts[#parts + 1] = "BAD CRC" end
-  return concat(parts, " ")
+  if not (f.crc == f.crc_expected) then text = text .. " BAD CRC" end
+  return text
+end
 end
 
 local function show_frame(st, f, tvb, tree, pinfo, full)
@@ -4347,9 +4404,20 @@ local function item_tvb(item, tvb)
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
 end
 
+local show_record
+do -- (a block: the main chunk may hold at most 200 locals)
+-- The item the record-level notes go on: the first item shown, else one of their own.
+local function anchored(anchor, tree, full, tvb, n)
+  if anchor == nil then
+    anchor = tree
+    if full then anchor = tree:add(proto, tvb:range(0, n), "VW3 record") end
+  end
+  return anchor
+end
+
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
 -- so that they show in the details, not under a hidden item.
-local function show_record(st, record, tvb, pinfo, tree, n)
+show_record = function(st, record, tvb, pinfo, tree, n)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
@@ -4389,24 +4457,24 @@ local function show_record(st, record, tvb, pinfo, tree, n)
     end
     anchor = anchor or t
   end
-  local function anchored()
-    if anchor == nil then
-      anchor = tree
-      if full then anchor = tree:add(proto, tvb:range(0, n), "VW3 record") end
-    end
-    return anchor
-  end
   if frames > 1 then
-    add_text(anchored(), ex.multiple, format("This record holds %d frames", frames))
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.multiple, format("This record holds %d frames", frames))
   end
-  for _, text in ipairs(config.errors) do add_text(anchored(), ex.preference, "Preferences: " .. text) end
+  local errors = config.errors
+  for index = 1, #errors do
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.preference, "Preferences: " .. errors[index])
+  end
   if record.waiting ~= nil and record.waiting > 0 then
     local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
       record.waiting)
-    add_text(anchored(), ex.partial, text)
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.partial, text)
     summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting)
   end
-  cols.info = concat(summaries, "; ")
+  if #summaries == 1 then cols.info = summaries[1] else cols.info = concat(summaries, "; ") end
+end
 end
 
 -- Streams of records: the serial capture's (state), and one per UDP conversation.

@@ -70,3 +70,34 @@ def test_frame_parts_say_where_the_frame_is_shown(tmp_path: Path) -> None:
     # filtering by the kind's name works on the integer field
     named = run_tshark(pcap, "-Y", 'vw3.kind == "response"', "-T", "fields", "-e", "frame.number")
     assert named.stdout.split() == ["4"], named.stdout + named.stderr
+
+
+def test_repeated_records_in_other_contexts_frame_as_vw3_decode(tmp_path: Path) -> None:
+    # The plugin remembers which whole records were one frame with a good CRC (polling repeats them):
+    # the same bytes must still frame as vw3-decode frames them wherever they come again: after leftover
+    # bytes of a cut record, in a record of two frames, with one byte changed (a bad CRC), as a response
+    # awaited and as one nobody asked for, and right after noise.
+    request = bytes.fromhex("02030c8100029740")
+    response = bytes.fromhex("020304000000038932")
+    bad = request[:-1] + bytes([request[-1] ^ 0x01])
+    sequence = [
+        request, response, request, response,  # cached as whole records
+        request[:3], request[3:] + response,  # the request's end and the response in one record
+        request + response,  # two frames in one record
+        bad, response,  # the request's bytes but one: BAD CRC, the response then answers nothing
+        response,  # a response nobody asked for, bytes seen before as an answer
+        b"\x00\xff\x13", request, response,  # after noise
+        request, request, response,
+    ]
+    # (0.5 ms apart: a longer silence inside the cut request is a timing warning the plugin does not give)
+    records = [(data, 1_700_000_000 + index * 0.0005) for index, data in enumerate(sequence)]
+    pcap = write_pcap(tmp_path / "repeated.pcap", records)
+    python = python_items(pcap, [])
+    lua, _, _ = lua_items(pcap)
+    differences = compare(python, lua)
+    assert not differences, "\n".join(differences[:40])
+    kinds = [lua_kind(item) for item in lua_shown(lua)]
+    assert kinds.count("noise") >= 1 and kinds.count("request") >= 8, kinds
+    summary = run_tshark(pcap)
+    assert summary.returncode == 0 and "Lua Error" not in summary.stdout + summary.stderr
+    assert sum("BAD CRC" in line for line in summary.stdout.splitlines()) == 1, summary.stdout
