@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
@@ -65,8 +65,7 @@ _MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames wi
 _MIDDLES_MAX = 1 << 14
 
 # Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
-_BIT_HEADS = AddressPieces("            %d: ")
-_BIT_TAILS = byte_table("0\n", "1\n")
+_BIT_RUNS = BitRuns("            %d: ", "0\n", "1\n")
 _REGISTER_HEADS = Pieces("        Register %s: ")  # labels
 _REGISTER_ADDRESS_HEADS = AddressPieces("        Register %d: ")
 _WORD_TAILS = Pieces("%d (0x%04X)\n", twice=True)
@@ -260,9 +259,8 @@ def _middle(detail: _Detail, frame: Frame) -> None:
     if bits is not None:
         add(f"        Bits ({len(bits)})")
         if isinstance(bits, BitList):  # in bulk: no Bit object per coil
-            if detail.joined and bits.start is not None and bits.count:
-                tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
-                add(interleave((_BIT_HEADS(bits.addresses), tails), bits.count)[:-1])
+            if detail.joined and bits.start is not None and bits.count and bits.start + bits.count <= 0x10000:
+                add(_BIT_RUNS(bits.start, bits.packed, bits.count)[:-1])
             elif bits.start is None:
                 detail.run([f"            ?: {value}" for value in bits.values])
             else:

@@ -12,7 +12,7 @@ from typing import Any, TextIO
 
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -228,7 +228,7 @@ _ADDRESS_HEADS = AddressPieces('{"address": %d, "value": ')
 _VALUE_TAILS = Pieces("%d}, ")
 _LABELLED_VALUES = Pieces('%d, "label": ')
 _LABEL_TAILS = Pieces("%s}, ")
-_BIT_TAILS = byte_table("0}, ", "1}, ")
+_BIT_RUNS = BitRuns('{"address": %d, "value": ', "0}, ", "1}, ")
 
 
 def _plain_registers_json(registers: RegisterList) -> str:
@@ -252,9 +252,8 @@ def _bits_json(bits: Sequence[Bit]) -> str:
     if isinstance(bits, BitList):
         if not bits.count:
             return "[]"
-        if bits.start is not None:
-            tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
-            return "[" + interleave((_ADDRESS_HEADS(bits.addresses), tails), bits.count)[:-2] + "]"
+        if bits.start is not None and bits.start + bits.count <= 0x10000:
+            return "[" + _BIT_RUNS(bits.start, bits.packed, bits.count)[:-2] + "]"
         addresses, values, known = bits.addresses, bits.values, False
     else:
         addresses, values = [bit.address for bit in bits], [bit.value for bit in bits]
