@@ -10,6 +10,8 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
+from construct import ListContainer
+
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
@@ -58,11 +60,13 @@ _INT_FIELD_LINES_MAX = 1 << 16
 # A register's lines depend on its fields only; polled blocks repeat them, so they are kept by
 # content (bounded: cleared when full, so memory stays flat on values that never repeat): the texts,
 # and the style of the lines that have one (offset in the block, style).
-Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...]]
+# The joined text is what plain output appends: one text per register instead of its lines.
+Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...], str]
 _REGISTER_BLOCKS: dict[tuple[Any, ...], Block] = {}
 _REGISTER_BLOCKS_MAX = 1 << 16
 _MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames without values, by bytes
 _MIDDLES_MAX = 1 << 14
+_HEADS: dict[tuple[Any, ...], str] = {}  # Slave..fields texts of frames of values, by their header bytes
 
 # Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
 _BIT_RUNS = BitRuns("            %d: ", "0\n", "1\n")
@@ -127,7 +131,7 @@ def _register_block(register: Register) -> Block:
         lines.append(f"            Unit: {register.unit}")
     if register.source:
         lines.append(f"            Source: {register.source}")
-    return tuple(lines), tuple(styles)
+    return tuple(lines), tuple(styles), "\n".join(lines)
 
 
 def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
@@ -167,7 +171,10 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
             if len(blocks) >= _REGISTER_BLOCKS_MAX:
                 blocks.clear()
             block = blocks[key] = _register_block(register)
-        lines, styles = block
+        if detail.joined:
+            texts.append(block[2])
+            continue
+        lines, styles, _text = block
         for offset, style in styles:
             detail.styles[len(texts) + offset] = style
         texts.extend(lines)
@@ -200,12 +207,47 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label}: {value}")
 
 
+def _head_key(frame: Frame) -> tuple[Any, ...] | None:
+    """What the Slave..Sub-function lines of a frame of values depend on, when that is the bytes before
+    the values (a read's answer, FC16 and FC23 requests: `values` end the PDU), else None."""
+    fields = frame.fields
+    if frame.mode != "rtu" or not isinstance(fields, dict):
+        return None
+    values = fields.get("values")
+    if type(values) is not ListContainer or fields.get("trailing") != b"" or fields.get("odd_byte") is not None:
+        return None
+    raw = frame.raw
+    cut = len(raw) - 2 - 2 * len(values)
+    if cut < 2:
+        return None
+    return (raw[:cut], frame.kind, frame.function_text, frame.subfunction_text)
+
+
 def _middle(detail: _Detail, frame: Frame) -> None:
     """The lines from Slave to the CRC (depth 2)."""
+    if detail.joined and frame.registers and frame.kind is not _EXCEPTION:
+        # Polled blocks repeat their head (Slave, Function, Byte count) with new values: kept by bytes.
+        key = _head_key(frame)
+        if key is not None:
+            text = _HEADS.get(key)
+            if text is None:
+                if len(_HEADS) >= _MIDDLES_MAX:
+                    _HEADS.clear()
+                part = _Detail(joined=True)
+                _head_lines(part, frame)
+                text = _HEADS[key] = "\n".join(part.texts)
+            detail.texts.append(text)
+            _body_lines(detail, frame)
+            return
+    _head_lines(detail, frame)
+    _body_lines(detail, frame)
+
+
+def _head_lines(detail: _Detail, frame: Frame) -> None:
+    """Slave to the sub-function name: what the frame's header bytes and its profile's words say."""
     out = detail.texts
     add = out.append
     kind = frame.kind
-    rtu = frame.mode == "rtu"
     slave = frame.slave
     if frame.broadcast:
         add(f"        Slave: {slave} (broadcast)")
@@ -253,6 +295,13 @@ def _middle(detail: _Detail, frame: Frame) -> None:
     if frame.subfunction is not None:
         sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, "unknown")
         add(f"        Sub-function name: {sub_name}")
+
+
+def _body_lines(detail: _Detail, frame: Frame) -> None:
+    """Registers, bits and objects, then the check."""
+    out = detail.texts
+    add = out.append
+    rtu = frame.mode == "rtu"
     if frame.registers:
         _register_lines(detail, frame.registers)
     bits = frame.bits
