@@ -394,7 +394,65 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
 
 def detail_text(item: Item, base: float | None = None) -> str:
     """The plain -V text of one item (render_plain(detail_tree(...)), without the tree)."""
+    if type(item) is Frame:
+        return _plain_frame(item, base)
     return "\n".join(_build(item, base, joined=True).texts)
+
+
+# `, request (RTU)` and `\n    Modbus RTU` by (kind, mode): the fixed words of a frame's first lines.
+_FRAME_WORDS: dict[tuple[Kind, str], tuple[str, str]] = {}
+
+
+def _plain_frame(frame: Frame, base: float | None) -> str:
+    """_build(frame, base, joined=True), joined, with no _Detail for what needs none: every frame
+    pays this, so its fixed lines are one f-string and a polled request's middle one lookup."""
+    kind = frame.kind
+    mode = frame.mode
+    words = _FRAME_WORDS.get((kind, mode))
+    if words is None:
+        shown = mode.upper()
+        words = _FRAME_WORDS[kind, mode] = (f", {_KIND_TEXT[kind]} ({shown})", f"\n    Modbus {shown}")
+    time = frame.time
+    if time is None:
+        head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
+    else:
+        head = (
+            f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
+            f"    Arrival time: {_utc(time)} ({time - (base or 0.0):.6f} s since the first item){words[1]}"
+        )
+    if kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None:
+        key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text)  # as _build keeps it
+        text = _MIDDLES.get(key)
+        if text is None:
+            if len(_MIDDLES) >= _MIDDLES_MAX:
+                _MIDDLES.clear()
+            part = _Detail(joined=True)
+            _middle(part, frame)
+            text = _MIDDLES[key] = "\n".join(part.texts)
+        texts = [head, text]
+    else:
+        detail = _Detail(joined=True)
+        texts = detail.texts
+        texts.append(head)
+        _middle(detail, frame)
+    add = texts.append
+    request = frame.request
+    if request is not None:
+        add(f"    Request in frame: {request.number}")
+        if time is not None and request.time is not None:
+            add(f"    Response time: {frame.response_time * 1000:.3f} ms")  # type: ignore[operator]
+    ref = frame.response_ref
+    if ref is not None:
+        response = ref()
+        if response is not None:
+            add(f"    Response in frame: {response.number}")
+    if frame.unanswered:
+        add("    No response")
+    if frame.notes:
+        texts.extend([f"    Note: {note}" for note in frame.notes])
+    if frame.warnings:
+        texts.extend([f"    Warning: {warning}" for warning in frame.warnings])
+    return "\n".join(texts)
 
 
 def detail_tree(item: Item, base: float | None = None) -> Node:

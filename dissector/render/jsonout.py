@@ -227,7 +227,7 @@ _MODE_JSON = {"rtu": '"rtu"', "ascii": '"ascii"'}
 _ADDRESS_HEADS = AddressPieces('{"address": %d, "value": ')
 _VALUE_TAILS = Pieces("%d}, ")
 _LABELLED_VALUES = Pieces('%d, "label": ')
-_LABEL_TAILS = Pieces("%s}, ")
+_LABEL_TAILS = Pieces("%s}, ", convert=_json_string)  # by label, its JSON string made once
 _BIT_RUNS = BitRuns('{"address": %d, "value": ', "0}, ", "1}, ")
 
 
@@ -243,7 +243,7 @@ def _plain_registers_json(registers: RegisterList) -> str:
     heads = _ADDRESS_HEADS(registers.addresses)
     if labels is None:
         return "[" + interleave((heads, _VALUE_TAILS(values)), len(values))[:-2] + "]"
-    tails = _LABEL_TAILS(list(map(_json_string, labels)))
+    tails = _LABEL_TAILS(labels)
     return "[" + interleave((heads, _LABELLED_VALUES(values), tails), len(values))[:-2] + "]"
 
 
@@ -266,6 +266,9 @@ def _bits_json(bits: Sequence[Bit]) -> str:
     return "[" + template % tuple(chain.from_iterable(zip(addresses, values))) + "]"
 
 
+_INTS = {int}
+
+
 def _json_value(value: Any) -> str:
     """json.dumps(_plain(value)), with the common field values (ints, bytes, lists of words) formatted directly."""
     kind = type(value)
@@ -275,7 +278,7 @@ def _json_value(value: Any) -> str:
         return f'"{value.hex()}"'
     if kind is str:
         return _json_string(value)
-    if isinstance(value, list) and value and all(type(inner) is int for inner in value):  # a ListContainer too
+    if isinstance(value, list) and value and set(map(type, value)) == _INTS:  # a ListContainer too; no bools
         return "[" + ", ".join(map(str, value)) + "]"
     return json.dumps(_plain(value))
 

@@ -7,7 +7,7 @@ cleared when full all the same.
 """
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from itertools import chain, islice
 from typing import Any
 
@@ -15,13 +15,14 @@ _MAX = 1 << 18
 
 
 class Pieces:
-    """template % key (or % (key, key)) by key, made on first sight."""
+    """template % key (or % (key, key), or % convert(key)) by key, made on first sight."""
 
-    __slots__ = ("template", "twice", "cache")
+    __slots__ = ("template", "twice", "convert", "cache")
 
-    def __init__(self, template: str, twice: bool = False) -> None:
+    def __init__(self, template: str, twice: bool = False, convert: Callable[[Any], Any] | None = None) -> None:
         self.template = template
         self.twice = twice
+        self.convert = convert
         self.cache: dict[Any, str] = {}
 
     def __call__(self, keys: Iterable[Any]) -> list[str]:
@@ -35,6 +36,9 @@ class Pieces:
             missing = set(keys).difference(cache)
             if self.twice:
                 cache.update({key: template % (key, key) for key in missing})
+            elif self.convert is not None:
+                convert = self.convert
+                cache.update({key: template % convert(key) for key in missing})
             else:
                 cache.update({key: template % key for key in missing})
             return list(map(cache.__getitem__, keys))
