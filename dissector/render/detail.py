@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from operator import attrgetter
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
@@ -64,6 +65,7 @@ _INT_FIELD_LINES_MAX = 1 << 16
 Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...], str]
 _REGISTER_BLOCKS: dict[tuple[Any, ...], Block] = {}
 _REGISTER_BLOCKS_MAX = 1 << 16
+_REGISTER_KEY = attrgetter("address", "value", "code", "name", "text", "status", "unit", "source", "label", "words")
 _MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames without values, by bytes
 _MIDDLES_MAX = 1 << 14
 _HEADS: dict[tuple[Any, ...], str] = {}  # Slave..fields texts of frames of values, by their header bytes
@@ -164,8 +166,7 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
         if run:
             detail.run(run)
             run = []
-        key = (register.address, register.value, register.code, register.name, register.text,
-               register.status, register.unit, register.source, register.label, register.words)
+        key = _REGISTER_KEY(register)  # what its lines depend on, read in C
         block = blocks.get(key)
         if block is None:
             if len(blocks) >= _REGISTER_BLOCKS_MAX:

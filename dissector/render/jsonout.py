@@ -8,6 +8,7 @@ import json
 from json.encoder import encode_basestring_ascii as _json_string  # what json.dumps uses for str
 from collections.abc import Sequence
 from itertools import chain
+from operator import attrgetter
 from typing import Any, TextIO
 
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
@@ -135,6 +136,9 @@ def item_to_dict(item: Item) -> dict[str, Any]:
 # when full, so memory stays flat on values that never repeat.
 _REGISTER_TEXTS: dict[tuple[Any, ...], str] = {}
 _REGISTER_TEXTS_MAX = 1 << 16
+_REGISTER_KEY = attrgetter(
+    "address", "value", "code", "name", "unit", "scaled", "text", "status", "source", "label", "words"
+)
 
 
 def _register_json(register: Register) -> str:
@@ -148,10 +152,8 @@ def _register_json(register: Register) -> str:
         if label is None:
             return f'{{"address": {address}, "value": {register.value}}}'
         return f'{{"address": {address}, "value": {register.value}, "label": {_json_string(label)}}}'
-    key = (
-        register.address, register.value, register.code, register.name, register.unit,
-        register.scaled, type(register.scaled), register.text, register.status, register.source, register.label,
-    )
+    key = _REGISTER_KEY(register)  # read in C; the type of `scaled` too: 1 and 1.0 write differently
+    key = (key, type(key[5]))
     text = _REGISTER_TEXTS.get(key)
     if text is None:
         if len(_REGISTER_TEXTS) >= _REGISTER_TEXTS_MAX:
