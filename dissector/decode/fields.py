@@ -49,7 +49,35 @@ def decode_frame(frame: Frame) -> Frame:
     frame.decoded = True
     function = frame.function
     kind = frame.kind
-    pdu = frame.raw[1:-2] if frame.mode == "rtu" else frame.pdu
+    rtu = frame.mode == "rtu"
+    if kind is _REQUEST and rtu and not frame.broadcast:
+        known = _REQUESTS.get(frame.raw)
+        if known is not None:  # a polled request: what its bytes decoded to last time
+            frame.fields, frame.start, frame.quantity, frame.subfunction, warnings = known
+            if warnings:
+                frame.warnings.extend(warnings)
+            return frame
+        before = len(frame.warnings)
+        _decode(frame, function, kind, frame.raw[1:-2])
+        if frame.fields is not None and frame.registers is None and frame.bits is None and frame.objects is None:
+            if len(_REQUESTS) >= _REQUESTS_MAX:
+                _REQUESTS.clear()
+            _REQUESTS[frame.raw] = (
+                frame.fields, frame.start, frame.quantity, frame.subfunction, tuple(frame.warnings[before:])
+            )
+        return frame
+    return _decode(frame, function, kind, frame.raw[1:-2] if rtu else frame.pdu)
+
+
+# Requests without values (reads, diagnostics) repeat on a polled bus: what a request's bytes decode
+# to is kept by those bytes (fields are never changed after decoding, so frames may share them).
+# Bounded: cleared when full.
+_REQUEST = Kind.REQUEST
+_REQUESTS: dict[bytes, tuple[Container, int | None, int | None, int | None, tuple[str, ...]]] = {}
+_REQUESTS_MAX = 1 << 14
+
+
+def _decode(frame: Frame, function: int, kind: Kind, pdu: bytes) -> Frame:
     fields = fast_parse(function, kind, pdu)
     if fields is None:
         try:

@@ -17,7 +17,7 @@ from collections.abc import Callable, Sequence
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import explain_exception
-from dissector.devices.maps import RegisterDef
+from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable
 from dissector.devices.naming import name_register, name_wide, plc_label
 from dissector.devices.profiles import Profile
@@ -303,11 +303,20 @@ class Annotator:
             if row is not None:
                 if row.words == 2:
                     name_wide(registers, index, row)
-                else:
-                    used = row
-                    if depend and address in depend:
-                        used = _depend(frame, device, address)
-                    name_register(register, row, used)
+                elif depend and address in depend:
+                    name_register(register, row, _depend(frame, device, address))
+                else:  # name_register(register, row, row), inline: this runs for every mapped register
+                    register.code = row.code
+                    register.name = row.name
+                    register.unit = row.unit
+                    register.source = row.source
+                    memo = row.memo
+                    reading = memo.get(value)
+                    if reading is None:
+                        reading = interpret(row, value)
+                        if len(memo) < MEMO_LIMIT:
+                            memo[value] = reading
+                    register.scaled, register.text = reading
             if protected is None:
                 continue
             if value == protected and multi and register.words == 1:

@@ -18,7 +18,7 @@ def within_limits(frame: Frame, device: Device) -> bool:
         return False
     if len(limits) > 1:
         fields = frame.fields
-        return fields is not None and fields.write_quantity <= limits[1]
+        return fields is not None and fields["write_quantity"] <= limits[1]  # a key, not Container.__getattr__
     return True
 
 

@@ -7,12 +7,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from operator import attrgetter
 from datetime import datetime, timezone
 from typing import TYPE_CHECKING, Any
 
+from construct import ListContainer
+
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
@@ -58,15 +61,17 @@ _INT_FIELD_LINES_MAX = 1 << 16
 # A register's lines depend on its fields only; polled blocks repeat them, so they are kept by
 # content (bounded: cleared when full, so memory stays flat on values that never repeat): the texts,
 # and the style of the lines that have one (offset in the block, style).
-Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...]]
+# The joined text is what plain output appends: one text per register instead of its lines.
+Block = tuple[tuple[str, ...], tuple[tuple[int, str], ...], str]
 _REGISTER_BLOCKS: dict[tuple[Any, ...], Block] = {}
 _REGISTER_BLOCKS_MAX = 1 << 16
+_REGISTER_KEY = attrgetter("address", "value", "code", "name", "text", "status", "unit", "source", "label", "words")
 _MIDDLES: dict[tuple[Any, ...], str] = {}  # plain Slave..CRC texts of frames without values, by bytes
 _MIDDLES_MAX = 1 << 14
+_HEADS: dict[tuple[Any, ...], str] = {}  # Slave..fields texts of frames of values, by their header bytes
 
 # Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
-_BIT_HEADS = AddressPieces("            %d: ")
-_BIT_TAILS = byte_table("0\n", "1\n")
+_BIT_RUNS = BitRuns("            %d: ", "0\n", "1\n")
 _REGISTER_HEADS = Pieces("        Register %s: ")  # labels
 _REGISTER_ADDRESS_HEADS = AddressPieces("        Register %d: ")
 _WORD_TAILS = Pieces("%d (0x%04X)\n", twice=True)
@@ -128,7 +133,7 @@ def _register_block(register: Register) -> Block:
         lines.append(f"            Unit: {register.unit}")
     if register.source:
         lines.append(f"            Source: {register.source}")
-    return tuple(lines), tuple(styles)
+    return tuple(lines), tuple(styles), "\n".join(lines)
 
 
 def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
@@ -161,14 +166,16 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
         if run:
             detail.run(run)
             run = []
-        key = (register.address, register.value, register.code, register.name, register.text,
-               register.status, register.unit, register.source, register.label, register.words)
+        key = _REGISTER_KEY(register)  # what its lines depend on, read in C
         block = blocks.get(key)
         if block is None:
             if len(blocks) >= _REGISTER_BLOCKS_MAX:
                 blocks.clear()
             block = blocks[key] = _register_block(register)
-        lines, styles = block
+        if detail.joined:
+            texts.append(block[2])
+            continue
+        lines, styles, _text = block
         for offset, style in styles:
             detail.styles[len(texts) + offset] = style
         texts.extend(lines)
@@ -201,12 +208,47 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label}: {value}")
 
 
+def _head_key(frame: Frame) -> tuple[Any, ...] | None:
+    """What the Slave..Sub-function lines of a frame of values depend on, when that is the bytes before
+    the values (a read's answer, FC16 and FC23 requests: `values` end the PDU), else None."""
+    fields = frame.fields
+    if frame.mode != "rtu" or not isinstance(fields, dict):
+        return None
+    values = fields.get("values")
+    if type(values) is not ListContainer or fields.get("trailing") != b"" or fields.get("odd_byte") is not None:
+        return None
+    raw = frame.raw
+    cut = len(raw) - 2 - 2 * len(values)
+    if cut < 2:
+        return None
+    return (raw[:cut], frame.kind, frame.function_text, frame.subfunction_text)
+
+
 def _middle(detail: _Detail, frame: Frame) -> None:
     """The lines from Slave to the CRC (depth 2)."""
+    if detail.joined and frame.registers and frame.kind is not _EXCEPTION:
+        # Polled blocks repeat their head (Slave, Function, Byte count) with new values: kept by bytes.
+        key = _head_key(frame)
+        if key is not None:
+            text = _HEADS.get(key)
+            if text is None:
+                if len(_HEADS) >= _MIDDLES_MAX:
+                    _HEADS.clear()
+                part = _Detail(joined=True)
+                _head_lines(part, frame)
+                text = _HEADS[key] = "\n".join(part.texts)
+            detail.texts.append(text)
+            _body_lines(detail, frame)
+            return
+    _head_lines(detail, frame)
+    _body_lines(detail, frame)
+
+
+def _head_lines(detail: _Detail, frame: Frame) -> None:
+    """Slave to the sub-function name: what the frame's header bytes and its profile's words say."""
     out = detail.texts
     add = out.append
     kind = frame.kind
-    rtu = frame.mode == "rtu"
     slave = frame.slave
     if frame.broadcast:
         add(f"        Slave: {slave} (broadcast)")
@@ -254,15 +296,21 @@ def _middle(detail: _Detail, frame: Frame) -> None:
     if frame.subfunction is not None:
         sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, "unknown")
         add(f"        Sub-function name: {sub_name}")
+
+
+def _body_lines(detail: _Detail, frame: Frame) -> None:
+    """Registers, bits and objects, then the check."""
+    out = detail.texts
+    add = out.append
+    rtu = frame.mode == "rtu"
     if frame.registers:
         _register_lines(detail, frame.registers)
     bits = frame.bits
     if bits is not None:
         add(f"        Bits ({len(bits)})")
         if isinstance(bits, BitList):  # in bulk: no Bit object per coil
-            if detail.joined and bits.start is not None and bits.count:
-                tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
-                add(interleave((_BIT_HEADS(bits.addresses), tails), bits.count)[:-1])
+            if detail.joined and bits.start is not None and bits.count and bits.start + bits.count <= 0x10000:
+                add(_BIT_RUNS(bits.start, bits.packed, bits.count)[:-1])
             elif bits.start is None:
                 detail.run([f"            ?: {value}" for value in bits.values])
             else:
@@ -347,7 +395,65 @@ def detail_lines(item: Item, base: float | None = None) -> list[Line]:
 
 def detail_text(item: Item, base: float | None = None) -> str:
     """The plain -V text of one item (render_plain(detail_tree(...)), without the tree)."""
+    if type(item) is Frame:
+        return _plain_frame(item, base)
     return "\n".join(_build(item, base, joined=True).texts)
+
+
+# `, request (RTU)` and `\n    Modbus RTU` by (kind, mode): the fixed words of a frame's first lines.
+_FRAME_WORDS: dict[tuple[Kind, str], tuple[str, str]] = {}
+
+
+def _plain_frame(frame: Frame, base: float | None) -> str:
+    """_build(frame, base, joined=True), joined, with no _Detail for what needs none: every frame
+    pays this, so its fixed lines are one f-string and a polled request's middle one lookup."""
+    kind = frame.kind
+    mode = frame.mode
+    words = _FRAME_WORDS.get((kind, mode))
+    if words is None:
+        shown = mode.upper()
+        words = _FRAME_WORDS[kind, mode] = (f", {_KIND_TEXT[kind]} ({shown})", f"\n    Modbus {shown}")
+    time = frame.time
+    if time is None:
+        head = f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}{words[1]}"
+    else:
+        head = (
+            f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
+            f"    Arrival time: {_utc(time)} ({time - (base or 0.0):.6f} s since the first item){words[1]}"
+        )
+    if kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None:
+        key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text)  # as _build keeps it
+        text = _MIDDLES.get(key)
+        if text is None:
+            if len(_MIDDLES) >= _MIDDLES_MAX:
+                _MIDDLES.clear()
+            part = _Detail(joined=True)
+            _middle(part, frame)
+            text = _MIDDLES[key] = "\n".join(part.texts)
+        texts = [head, text]
+    else:
+        detail = _Detail(joined=True)
+        texts = detail.texts
+        texts.append(head)
+        _middle(detail, frame)
+    add = texts.append
+    request = frame.request
+    if request is not None:
+        add(f"    Request in frame: {request.number}")
+        if time is not None and request.time is not None:
+            add(f"    Response time: {frame.response_time * 1000:.3f} ms")  # type: ignore[operator]
+    ref = frame.response_ref
+    if ref is not None:
+        response = ref()
+        if response is not None:
+            add(f"    Response in frame: {response.number}")
+    if frame.unanswered:
+        add("    No response")
+    if frame.notes:
+        texts.extend([f"    Note: {note}" for note in frame.notes])
+    if frame.warnings:
+        texts.extend([f"    Warning: {warning}" for warning in frame.warnings])
+    return "\n".join(texts)
 
 
 def detail_tree(item: Item, base: float | None = None) -> Node:

@@ -8,11 +8,12 @@ import json
 from json.encoder import encode_basestring_ascii as _json_string  # what json.dumps uses for str
 from collections.abc import Sequence
 from itertools import chain
+from operator import attrgetter
 from typing import Any, TextIO
 
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
-from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -135,6 +136,9 @@ def item_to_dict(item: Item) -> dict[str, Any]:
 # when full, so memory stays flat on values that never repeat.
 _REGISTER_TEXTS: dict[tuple[Any, ...], str] = {}
 _REGISTER_TEXTS_MAX = 1 << 16
+_REGISTER_KEY = attrgetter(
+    "address", "value", "code", "name", "unit", "scaled", "text", "status", "source", "label", "words"
+)
 
 
 def _register_json(register: Register) -> str:
@@ -148,10 +152,8 @@ def _register_json(register: Register) -> str:
         if label is None:
             return f'{{"address": {address}, "value": {register.value}}}'
         return f'{{"address": {address}, "value": {register.value}, "label": {_json_string(label)}}}'
-    key = (
-        register.address, register.value, register.code, register.name, register.unit,
-        register.scaled, type(register.scaled), register.text, register.status, register.source, register.label,
-    )
+    key = _REGISTER_KEY(register)  # read in C; the type of `scaled` too: 1 and 1.0 write differently
+    key = (key, type(key[5]))
     text = _REGISTER_TEXTS.get(key)
     if text is None:
         if len(_REGISTER_TEXTS) >= _REGISTER_TEXTS_MAX:
@@ -227,8 +229,8 @@ _MODE_JSON = {"rtu": '"rtu"', "ascii": '"ascii"'}
 _ADDRESS_HEADS = AddressPieces('{"address": %d, "value": ')
 _VALUE_TAILS = Pieces("%d}, ")
 _LABELLED_VALUES = Pieces('%d, "label": ')
-_LABEL_TAILS = Pieces("%s}, ")
-_BIT_TAILS = byte_table("0}, ", "1}, ")
+_LABEL_TAILS = Pieces("%s}, ", convert=_json_string)  # by label, its JSON string made once
+_BIT_RUNS = BitRuns('{"address": %d, "value": ', "0}, ", "1}, ")
 
 
 def _plain_registers_json(registers: RegisterList) -> str:
@@ -243,7 +245,7 @@ def _plain_registers_json(registers: RegisterList) -> str:
     heads = _ADDRESS_HEADS(registers.addresses)
     if labels is None:
         return "[" + interleave((heads, _VALUE_TAILS(values)), len(values))[:-2] + "]"
-    tails = _LABEL_TAILS(list(map(_json_string, labels)))
+    tails = _LABEL_TAILS(labels)
     return "[" + interleave((heads, _LABELLED_VALUES(values), tails), len(values))[:-2] + "]"
 
 
@@ -252,9 +254,8 @@ def _bits_json(bits: Sequence[Bit]) -> str:
     if isinstance(bits, BitList):
         if not bits.count:
             return "[]"
-        if bits.start is not None:
-            tails = bit_texts(_BIT_TAILS, bits.packed, bits.count)
-            return "[" + interleave((_ADDRESS_HEADS(bits.addresses), tails), bits.count)[:-2] + "]"
+        if bits.start is not None and bits.start + bits.count <= 0x10000:
+            return "[" + _BIT_RUNS(bits.start, bits.packed, bits.count)[:-2] + "]"
         addresses, values, known = bits.addresses, bits.values, False
     else:
         addresses, values = [bit.address for bit in bits], [bit.value for bit in bits]
@@ -267,6 +268,9 @@ def _bits_json(bits: Sequence[Bit]) -> str:
     return "[" + template % tuple(chain.from_iterable(zip(addresses, values))) + "]"
 
 
+_INTS = {int}
+
+
 def _json_value(value: Any) -> str:
     """json.dumps(_plain(value)), with the common field values (ints, bytes, lists of words) formatted directly."""
     kind = type(value)
@@ -276,7 +280,7 @@ def _json_value(value: Any) -> str:
         return f'"{value.hex()}"'
     if kind is str:
         return _json_string(value)
-    if isinstance(value, list) and value and all(type(inner) is int for inner in value):  # a ListContainer too
+    if isinstance(value, list) and value and set(map(type, value)) == _INTS:  # a ListContainer too; no bools
         return "[" + ", ".join(map(str, value)) + "]"
     return json.dumps(_plain(value))
 

@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from dissector.model import BitList, RegisterList
 from dissector.render.detail import detail_text
-from dissector.render.runs import AddressPieces, Pieces, bit_texts, byte_table, interleave
+from dissector.render.runs import AddressPieces, BitRuns, Pieces, bit_texts, byte_table, interleave
 
 
 @given(st.integers(0, 0xFFFF), st.integers(0, 2100))
@@ -29,6 +29,15 @@ def test_bit_texts_are_the_bits_least_significant_first(packed: bytes, data: st.
     count = data.draw(st.integers(0, len(packed) * 8))
     texts = list(bit_texts(byte_table("0", "1"), packed, count))
     assert texts == [str(packed[index >> 3] >> (index & 7) & 1) for index in range(count)]
+
+
+@given(st.integers(0, 0xFFFF), st.binary(max_size=260), st.data())
+def test_bit_runs_are_one_text_per_bit_at_its_address(start: int, packed: bytes, data: st.DataObject) -> None:
+    count = data.draw(st.integers(0, min(len(packed) * 8, 0x10000 - start)))
+    runs = BitRuns("B%d=", "0;", "1;")
+    expected = "".join(f"B{start + index}={packed[index >> 3] >> (index & 7) & 1};" for index in range(count))
+    assert runs(start, packed, count) == expected
+    assert runs(start, packed, count) == expected  # from the kept bytes
 
 
 def test_interleave_takes_one_piece_per_column_in_turn() -> None:
