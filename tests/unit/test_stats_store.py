@@ -1,0 +1,112 @@
+"""The two stores of --stats' per-parameter counts (render/stats_store.py): the compiled one
+(`_summary.Stats`, accel/_stats.h) and the pure-Python `ParameterTable` take the same events and give
+the same rows; the compiled one refuses bad arguments with an exception, never a crash.
+"""
+from __future__ import annotations
+
+import random
+
+import pytest
+
+from dissector.accel import _summary
+from dissector.render.stats_store import (
+    CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store,
+)
+
+
+def test_the_compiled_store_is_the_default(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+    assert isinstance(new_store(), _summary.Stats)
+    monkeypatch.setenv("VW3_PURE_PYTHON", "1")
+    assert isinstance(new_store(), ParameterTable)
+
+
+def test_one_story_in_both_stores() -> None:
+    events = [
+        (12, 3104, READ, 500, "HSP", "50.0 Hz"),
+        (12, 3104, UNREADABLE, 0x8000, "HSP", None),
+        (12, 3104, READ, 500, None, "50.0 Hz"),
+        (12, 3104, WRITE, 510, "HSP", "51.0 Hz"),
+        (12, 3104, CONFIRM, 510, "HSP", "51.0 Hz"),
+        (12, 3104, WRITE, 520, "HSP", "52.0 Hz"),
+        (12, 3104, REFUSED, 520, "HSP", "52.0 Hz"),
+        (0, 9001, WRITE_OBSERVED, 10, None, None),
+        (1, 7, CONFIRM, 3, "NEW", None),  # a code on first sight
+        (1, 7, CONFIRM, 4, "LATER", "4 things"),  # CONFIRM keeps the first code
+        (1, 7, READ, 4, "READ", None),  # a read sets it
+    ]
+    compiled, python = _summary.Stats(), ParameterTable()
+    for event in events:
+        compiled.param(*event)
+        python.param(*event)
+    assert compiled.parameters() == python.parameters() == [
+        (0, 9001, None, 0, 0, 1, 0, 10, "10", 0),
+        (1, 7, "READ", 1, 0, 0, 0, 4, "4", 1),
+        (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 1),
+    ]
+
+
+def test_random_events_same_rows() -> None:
+    rng = random.Random(3)
+    compiled, python = _summary.Stats(), ParameterTable()
+    for _ in range(20_000):
+        event = (
+            rng.choice([1, 2, 247]), rng.randrange(40), rng.randrange(6), rng.choice([0, 1, 2, 0x8000, 65535]),
+            rng.choice([None, "A", "B"]), rng.choice([None, "x", "y"]),
+        )
+        compiled.param(*event)
+        python.param(*event)
+    assert compiled.parameters() == python.parameters()
+    assert compiled.parameter_count == python.parameter_count == len(python.parameters())
+
+
+def test_poll_keys_in_the_order_first_seen() -> None:
+    store = _summary.Stats()
+    store.poll((12, 3, 8400, 3), 5, False)
+    store.poll((1, 23, 3201, 2, 8501, 2), 2, False)
+    store.poll((12, 3, 8400, 3), 9, True)
+    store.poll((12, 8, 0), 11, False)
+    store.poll_fail((1, 23, 3201, 2, 8501, 2))
+    store.poll_fail((7, 7))  # never seen: nothing to miss
+    assert store.polls() == [
+        ((12, 3, 8400, 3), 5, 2, 1),
+        ((1, 23, 3201, 2, 8501, 2), 2, 1, 1),
+        ((12, 8, 0), 11, 1, 0),
+    ]
+
+
+@pytest.mark.parametrize(
+    "arguments",
+    [
+        (256, 1, READ, 1, None, None),
+        (1, 65536, READ, 1, None, None),
+        (1, 1, 6, 1, None, None),
+        (1, 1, READ, 70000, None, None),
+        (1, 1, READ, -1, None, None),
+        ("1", 1, READ, 1, None, None),
+    ],
+)
+def test_bad_events_are_refused(arguments: tuple) -> None:
+    with pytest.raises((ValueError, TypeError, OverflowError)):
+        _summary.Stats().param(*arguments)
+
+
+@pytest.mark.parametrize("key", [(), (1,), (1, 2, 3, 4, 5, 6, 7), [1, 3], (1, "3"), (1, -3), (1, 2**40)])
+def test_bad_poll_keys_are_refused(key: object) -> None:
+    store = _summary.Stats()
+    with pytest.raises((ValueError, TypeError, OverflowError)):
+        store.poll(key, 1, False)
+    with pytest.raises((ValueError, TypeError, OverflowError)):
+        store.poll_fail(key)
+
+
+def test_an_engine_takes_only_a_store() -> None:
+    from dissector.accel import fastsummary
+
+    engine = fastsummary.make_engine(None)
+    with pytest.raises(TypeError):
+        engine.stats = object()
+    engine.stats = store = _summary.Stats()
+    assert engine.stats is store
+    engine.stats = None
+    assert engine.stats is None
