@@ -222,7 +222,7 @@ class StatsCollector:
 
     def parameter_rows(self) -> list[ParameterRow]:
         """(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes) by
-        (slave, address); last_text as the summary names the value, its number when nothing does."""
+        (slave, address); last_text as the summary names the value, None when nothing does."""
         return self.store.parameters()
 
     def report(self, with_parameters: bool = True) -> dict[str, Any]:
@@ -256,7 +256,7 @@ class StatsCollector:
                     "writes": writes,
                     "refused": refused,
                     "last": last,
-                    "last_text": last_text,
+                    "last_text": last_text if last_text is not None or last is None else str(last),
                     "changes": changes,
                 }
                 for slave, address, code, reads, unreadable, writes, refused, last, last_text, changes
@@ -421,7 +421,7 @@ def _parameter_row(members: list[ParameterRow]) -> list[Cell]:
     else:
         address = f"{first[1]}..{last[1]} ({len(members)})"
         code = f"{first[2]}..{last[2]}" if first[2] else ""
-    texts = {row[8] for row in members}
+    texts = {row[8] if row[8] is not None or row[7] is None else str(row[7]) for row in members}
     last_value = texts.pop() if len(texts) == 1 else "(various)"
     return [str(first[0]), address, code, *(str(value) for value in first[3:7]), last_value or "", str(first[9])]
 

@@ -78,10 +78,9 @@ class ParameterTable:
         stats.last_text = text
 
     def parameters(self) -> list[ParameterRow]:
-        """By (slave, address); last_text the last value's text, or its number when nothing names it."""
+        """By (slave, address); last_text the last value's text, None when nothing names it."""
         return [
-            (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused, s.last,
-             s.last_text if s.last_text is not None or s.last is None else str(s.last), s.changes)
+            (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused, s.last, s.last_text, s.changes)
             for (slave, address), s in sorted(self._parameters.items())
         ]
 
