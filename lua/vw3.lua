@@ -3534,6 +3534,7 @@ local function new_state(timeout, mode)
     open = {}, -- records some of whose bytes are not framed yet (oldest first)
     last = nil, -- the last record fed
     unpacked = {}, -- record, index of each item not packed yet (pack.settle)
+    flat = {}, flat_n = 0, -- the items packed as numbers (pack.settle)
   }
 end
 
@@ -3594,8 +3595,94 @@ do
     return p
   end
 
+  -- Most frames are kept as numbers instead: ITEM slots of one flat array per stream (st.flat), the item
+  -- being the number of its first slot. Numbers are no objects: the collector goes over the array's
+  -- slots in one sweep instead of following a table (or two, or three) a frame, and the slots take a
+  -- third of the bytes. That is a request, response or exception whose only rare key is span_label and
+  -- whose runs hold no rare key but a single coil's value; a missing value is false.
+  local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
+  local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
+  local ITEM = 24
+  -- Does the frame hold a rare key but span_label? (one expression, made from RARE: no loop a frame)
+  local tests = {}
+  for index = 1, #RARE do
+    if RARE[index] ~= "span_label" then tests[#tests + 1] = format("f.%s ~= nil", RARE[index]) end
+  end
+  local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
+
+  -- The item's first slot in st.flat, or nil when it is to be packed as a table.
+  local function packed_flat(st, f)
+    local kind = KIND_NUMBER[f.kind]
+    if kind == nil or has_rare(f) then return nil end
+    local rf, rc, rs, bf, bc, bs, single = false, false, false, false, false, false, false
+    local registers, bits = f.registers, f.bits
+    if registers ~= nil then
+      if registers.status ~= nil or registers.plain ~= nil or registers.single ~= nil then return nil end
+      rf, rc, rs = registers.first, registers.count, registers.start
+      if rs == nil then rs = false end
+    end
+    if bits ~= nil then
+      if bits.status ~= nil or bits.plain ~= nil then return nil end
+      bf, bc, bs, single = bits.first, bits.count, bits.start, bits.single
+      if bs == nil then bs = false end
+      if single == nil then single = false end
+    end
+    local request, response = f.request, f.response
+    local request_record, request_time, response_record = false, false, false
+    if request ~= nil then
+      request_record, request_time = request.record, request.time
+      if request_time == nil then request_time = false end
+    end
+    if response ~= nil then response_record = response.record end
+    local time, start, quantity, label = f.time, f.start, f.quantity, f.span_label
+    if time == nil then time = false end
+    if start == nil then start = false end
+    if quantity == nil then quantity = false end
+    if label == nil then label = false end
+    local flat, k = st.flat, st.flat_n
+    flat[k + 1], flat[k + 2], flat[k + 3], flat[k + 4], flat[k + 5], flat[k + 6], flat[k + 7], flat[k + 8],
+      flat[k + 9], flat[k + 10], flat[k + 11], flat[k + 12] = kind, f.at, f.length, f.number, f.offset, f.record,
+      time, f.slave, f.fn, f.crc, f.crc_expected, start
+    flat[k + 13], flat[k + 14], flat[k + 15], flat[k + 16], flat[k + 17], flat[k + 18], flat[k + 19],
+      flat[k + 20], flat[k + 21], flat[k + 22], flat[k + 23], flat[k + 24] = quantity, rf, rc, rs, bf, bc, bs,
+      single, request_record, request_time, response_record, label
+    st.flat_n = k + ITEM
+    return k
+  end
+
+  local function value(x)
+    if x == false then return nil end
+    return x
+  end
+
+  local function expand_flat(st, k)
+    local flat = st.flat
+    local f = { kind = NUMBER_KIND[flat[k + 1]], at = flat[k + 2], length = flat[k + 3], number = flat[k + 4],
+      offset = flat[k + 5], record = flat[k + 6], time = value(flat[k + 7]), slave = flat[k + 8],
+      fn = flat[k + 9], crc = flat[k + 10], crc_expected = flat[k + 11], start = value(flat[k + 12]),
+      quantity = value(flat[k + 13]), span_label = value(flat[k + 24]) }
+    if flat[k + 14] ~= false then
+      f.registers = { first = flat[k + 14], count = flat[k + 15], start = value(flat[k + 16]) }
+    end
+    if flat[k + 17] ~= false then
+      f.bits = { first = flat[k + 17], count = flat[k + 18], start = value(flat[k + 19]), single = value(flat[k + 20]) }
+    end
+    if flat[k + 21] ~= false then f.request = { record = flat[k + 21], time = value(flat[k + 22]) } end
+    if flat[k + 23] ~= false then f.response = { record = flat[k + 23] } end
+    return f
+  end
+
+  -- A closed record that is one packed frame and nothing else is kept as that number itself.
+  local function as_number(st, record, number)
+    local packed = record[1]
+    if type(packed) == "number" and record[2] == nil and next(record, 1) == nil and st.records[number] == record then
+      st.records[number] = packed
+    end
+  end
+
   -- The item as the display reads it: a new table (an item never packed is itself).
-  function pack.expand(p)
+  function pack.expand(p, st)
+    if type(p) == "number" then return expand_flat(st, p) end
     if p.kind ~= nil then return p end
     local f = { kind = p[1], at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
       slave = p[8], fn = p[9], crc = p[10], crc_expected = p[11], start = p[12], quantity = p[13],
@@ -3615,6 +3702,11 @@ do
   -- After a record is shown on the first pass: pack the items taken since, but the request still
   -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
   function pack.settle(st)
+    local held = st.held
+    if held ~= nil and held ~= st.last then
+      as_number(st, held, st.held_number)
+      st.held, st.held_number = nil, nil
+    end
     local list = st.unpacked
     local kept = 0
     for index = 1, #list, 2 do
@@ -3624,7 +3716,18 @@ do
         list[kept + 1], list[kept + 2] = record, at
         kept = kept + 2
       else
-        record[at] = pack.item(item)
+        local packed = packed_flat(st, item)
+        if packed == nil then
+          record[at] = pack.item(item)
+        else
+          record[at] = packed
+          if record == st.last then
+            -- (the end of the capture may still add to it: it is looked at again once a record follows)
+            st.held, st.held_number = record, item.record
+          else
+            as_number(st, record, item.record)
+          end
+        end
       end
     end
     for index = #list, kept + 1, -1 do list[index] = nil end
@@ -4444,7 +4547,7 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   end
   local frames = 0
   for index = 1, #record do
-    local item = pack.expand(record[index])
+    local item = pack.expand(record[index], st)
     local shown_from = item_tvb(item, tvb)
     local t
     if item.kind == NOISE then
@@ -4500,6 +4603,7 @@ local function dissect_records(st, tvb, pinfo, tree)
   if n == 0 then return 0 end
   if pinfo.visited and not state.finished then finish_all() end
   local record = st.records[pinfo.number]
+  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     local ok, result = pcall(dissect_now, st, tvb, pinfo, n)
