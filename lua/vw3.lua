@@ -3739,12 +3739,15 @@ end
 -- later passes show it there): through that record's bytes when they hold it whole, else through its
 -- own bytes (a frame or noise run that began in earlier records, which say where it went).
 local function take_items(st, items, record)
-  for _, item in ipairs(items) do
+  local open = st.open
+  for index = 1, #items do
+    local item = items[index]
     st.count = st.count + 1
     item.number = st.count
     local offset, length = item.offset, item.length
     local home = record
-    for _, earlier in ipairs(st.open) do
+    for at = 1, #open do
+      local earlier = open[at]
       if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
         home = earlier
       end
@@ -3795,7 +3798,10 @@ local function take_items(st, items, record)
         item.bits.shift = bi
         release_run(item.bits)
       end
-      for _, object in ipairs(item.objects or NO_INTERPRETATION) do object.offset = object.offset - bi end
+      local objects = item.objects
+      if objects ~= nil then
+        for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
+      end
       item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
       if item.kind ~= REQUEST then
         item.fields = nil
@@ -4464,8 +4470,8 @@ end
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
 -- the record's time otherwise.
-local function record_time(pinfo)
-  local rtac = rtac_times[pinfo.number]
+local function record_time(pinfo, number)
+  local rtac = rtac_times[number or pinfo.number]
   if rtac ~= nil then return rtac end
   local time = pinfo.abs_ts
   if time == 0 then return nil end
@@ -4496,8 +4502,8 @@ do
   end
 end
 
-local function dissect_now(st, tvb, pinfo, n)
-  return dissect_record(st, tvb:raw(0, n), record_time(pinfo), pinfo.number)
+local function dissect_now(st, tvb, pinfo, n, number)
+  return dissect_record(st, tvb:raw(0, n), record_time(pinfo, number), number)
 end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
@@ -4601,19 +4607,20 @@ end
 local function dissect_records(st, tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
-  if pinfo.visited and not state.finished then finish_all() end
-  local record = st.records[pinfo.number]
+  if not state.finished and pinfo.visited then finish_all() end
+  local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
+  local record = st.records[number]
   if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    local ok, result = pcall(dissect_now, st, tvb, pinfo, n)
+    local ok, result = pcall(dissect_now, st, tvb, pinfo, n, number)
     if ok then
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
       record = { length = n, error = tostring(result) }
     end
-    st.records[pinfo.number] = record
+    st.records[number] = record
     show_record(st, record, tvb, pinfo, tree, n)
     pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
     return n
