@@ -1727,14 +1727,21 @@ local function run_ascii(s, final, items)
   return i
 end
 
+local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
+
 -- Drop the first `count` buffered bytes (framed or noise). The old table stays as it is: the frames
 -- just found still read their bytes from it until they are decoded.
 local function consume(s, count)
   if count == 0 then return end
   local b, n = s.b, s.n
-  local rest = {}
-  for k = count, n - 1 do rest[k - count] = b[k] end
-  s.b, s.n, s.base = rest, n - count, s.base + count
+  if count == n then
+    -- (every byte framed, the usual case: no bytes to move; feed makes the next record's table)
+    s.b, s.n, s.base = NO_BYTES, 0, s.base + count
+  else
+    local rest = {}
+    for k = count, n - 1 do rest[k - count] = b[k] end
+    s.b, s.n, s.base = rest, n - count, s.base + count
+  end
   local base = s.base
   local times = s.times
   local keep = 1
@@ -1750,8 +1757,12 @@ local function consume(s, count)
     for index = keep, #times do kept[#kept + 1] = times[index] end
     s.times = kept
   end
-  for offset in pairs(s.boundaries) do
-    if offset <= base then s.boundaries[offset] = nil end
+  local boundaries = s.boundaries
+  boundaries[base] = nil -- (the usual case: the one boundary, the end of the record just framed)
+  if next(boundaries) ~= nil then
+    for offset in pairs(boundaries) do
+      if offset <= base then boundaries[offset] = nil end
+    end
   end
 end
 
@@ -1772,6 +1783,9 @@ feed = function(s, bytes, time, boundary, final)
       s.b = b
       k = n + 1
       s.whole = bytes -- (the buffer holds this record alone: see crc_good)
+    elseif at == 0 then
+      b = {} -- (never NO_BYTES, which stays empty)
+      s.b = b
     end
     while k + 7 <= n do
       b[at + k - 1], b[at + k], b[at + k + 1], b[at + k + 2], b[at + k + 3], b[at + k + 4], b[at + k + 5],
@@ -4539,8 +4553,10 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   end
   local continued = record.continued
   -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
-  local summaries = {}
+  -- (the Info text: one part as it is, a list of parts only when there are more)
+  local info, summaries = nil, nil
   if continued ~= nil then
+    summaries = {}
     for _, part in ipairs(continued) do
       local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
       if full then
@@ -4558,11 +4574,25 @@ show_record = function(st, record, tvb, pinfo, tree, n)
     local t
     if item.kind == NOISE then
       t = show_noise(item, shown_from, tree, full)
-      summaries[#summaries + 1] = format("noise (%d bytes)", item.length)
+      local text = format("noise (%d bytes)", item.length)
+      if summaries ~= nil then
+        summaries[#summaries + 1] = text
+      elseif info == nil then
+        info = text
+      else
+        summaries, info = { info, text }, nil
+      end
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries[#summaries + 1] = summary(item)
+      local text = summary(item)
+      if summaries ~= nil then
+        summaries[#summaries + 1] = text
+      elseif info == nil then
+        info = text
+      else
+        summaries, info = { info, text }, nil
+      end
     end
     anchor = anchor or t
   end
@@ -4580,9 +4610,24 @@ show_record = function(st, record, tvb, pinfo, tree, n)
       record.waiting)
     anchor = anchored(anchor, tree, full, tvb, n)
     add_text(anchor, ex.partial, text)
-    summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting)
+    local text = format("(%d bytes continue)", record.waiting)
+    if summaries ~= nil then
+      summaries[#summaries + 1] = text
+    elseif info == nil then
+      info = text
+    else
+      summaries, info = { info, text }, nil
+    end
   end
-  if #summaries == 1 then cols.info = summaries[1] else cols.info = concat(summaries, "; ") end
+  if info ~= nil then
+    cols.info = info
+  elseif summaries == nil then
+    cols.info = ""
+  elseif #summaries == 1 then
+    cols.info = summaries[1]
+  else
+    cols.info = concat(summaries, "; ")
+  end
 end
 end
 
