@@ -1114,7 +1114,8 @@ end
 -- The CRC runs on table lookups only (a call of `bxor` per byte, a C function on Lua 5.2, cost more than
 -- all the rest of the framing), two bytes a step: the register is 16 bits wide, so after two bytes it
 -- depends only on (register XOR the two bytes), and one 65,536-entry table (TWO_LO, TWO_HI: its two
--- bytes) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the one-byte table.
+-- bytes, times 256) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the
+-- one-byte table.
 local XOR8, CRC_LO, CRC_HI, TWO_LO, TWO_HI = {}, {}, {}, {}, {}
 for byte = 0, 255 do
   local crc = byte
@@ -1133,18 +1134,30 @@ for lo = 0, 255 do
   for hi = 0, 255 do
     local index = lo -- the first byte in: lo XOR 0, then the second byte (0) into the result
     local lo1, hi1 = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-    TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]], CRC_HI[lo1]
+    TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]] * 256, CRC_HI[lo1] * 256
   end
 end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
--- 0xFF: a new CRC); returns the register's two bytes.
+-- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
+-- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
 local function crc_bytes(b, from, to, lo, hi)
   local k = from
-  while k + 1 < to do
-    local w = XOR8[hi * 256 + b[k + 1]] * 256 + XOR8[lo * 256 + b[k]]
-    lo, hi = TWO_LO[w], TWO_HI[w]
-    k = k + 2
+  if k + 1 < to then
+    local l, h = lo * 256, hi * 256
+    while k + 3 < to do
+      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      k = k + 4
+    end
+    if k + 1 < to then
+      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      k = k + 2
+    end
+    lo, hi = floor(l / 256), floor(h / 256)
   end
   if k < to then
     local index = XOR8[lo * 256 + b[k]]
