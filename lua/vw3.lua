@@ -1315,12 +1315,16 @@ local function boundary_at(s, i)
   return s.boundaries[s.base + i] == true
 end
 
--- The stream offset's time: the time of the record its byte came in (stream.py _time_at).
+-- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
+-- holds (stream offset, time) pairs flat, oldest first, false for a record without a time.
 local function time_at(s, offset)
   local times = s.times
-  for index = #times, 1, -1 do
-    local entry = times[index]
-    if entry[1] <= offset then return entry[2] end
+  for index = #times - 1, 1, -2 do
+    if times[index] <= offset then
+      local time = times[index + 1]
+      if time == false then return nil end
+      return time
+    end
   end
   return nil
 end
@@ -1757,18 +1761,15 @@ local function consume(s, count)
   end
   local base = s.base
   local times = s.times
-  local keep = 1
-  for index = 1, #times do
-    if times[index][1] <= base then keep = index end
+  local count, keep = #times, 1
+  for index = 1, count, 2 do
+    if times[index] <= base then keep = index end
   end
-  if keep > 1 and keep == #times then
-    -- (the usual case, every byte framed: the last record's entry moved down, no new list)
-    times[1] = times[keep]
-    for index = keep, 2, -1 do times[index] = nil end
-  elseif keep > 1 then
-    local kept = {}
-    for index = keep, #times do kept[#kept + 1] = times[index] end
-    s.times = kept
+  if keep > 1 then
+    -- (moved down in place: no new list)
+    local shift = keep - 1
+    for index = keep, count do times[index - shift] = times[index] end
+    for index = count, count - shift + 1, -1 do times[index] = nil end
   end
   local boundaries = s.boundaries
   boundaries[base] = nil -- (the usual case: the one boundary, the end of the record just framed)
@@ -1807,11 +1808,14 @@ feed = function(s, bytes, time, boundary, final)
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
     local times = s.times
-    times[#times + 1] = { s.base + at, time }
+    local count = #times
+    times[count + 1] = s.base + at
+    if time == nil then times[count + 2] = false else times[count + 2] = time end
     s.n = at + n
     if boundary then s.boundaries[s.base + s.n] = true end
   end
-  local items = {}
+  local items = s.items -- (one list a stream, emptied each time: its items are taken before the next feed)
+  for index = #items, 1, -1 do items[index] = nil end
   local used
   if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
   s.whole = nil
@@ -3557,7 +3561,7 @@ local function new_state(timeout, mode)
     expect = nil, pending = nil, count = 0, records = {}, devices = {}, timeout = timeout,
     mode = mode,
     -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
-    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil,
+    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil, items = {},
     open = {}, -- records some of whose bytes are not framed yet (oldest first)
     last = nil, -- the last record fed
     unpacked = {}, -- record, index of each item not packed yet (pack.settle)
