@@ -1114,7 +1114,8 @@ end
 -- The CRC runs on table lookups only (a call of `bxor` per byte, a C function on Lua 5.2, cost more than
 -- all the rest of the framing), two bytes a step: the register is 16 bits wide, so after two bytes it
 -- depends only on (register XOR the two bytes), and one 65,536-entry table (TWO_LO, TWO_HI: its two
--- bytes) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the one-byte table.
+-- bytes, times 256) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the
+-- one-byte table.
 local XOR8, CRC_LO, CRC_HI, TWO_LO, TWO_HI = {}, {}, {}, {}, {}
 for byte = 0, 255 do
   local crc = byte
@@ -1133,18 +1134,30 @@ for lo = 0, 255 do
   for hi = 0, 255 do
     local index = lo -- the first byte in: lo XOR 0, then the second byte (0) into the result
     local lo1, hi1 = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-    TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]], CRC_HI[lo1]
+    TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]] * 256, CRC_HI[lo1] * 256
   end
 end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
--- 0xFF: a new CRC); returns the register's two bytes.
+-- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
+-- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
 local function crc_bytes(b, from, to, lo, hi)
   local k = from
-  while k + 1 < to do
-    local w = XOR8[hi * 256 + b[k + 1]] * 256 + XOR8[lo * 256 + b[k]]
-    lo, hi = TWO_LO[w], TWO_HI[w]
-    k = k + 2
+  if k + 1 < to then
+    local l, h = lo * 256, hi * 256
+    while k + 3 < to do
+      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      k = k + 4
+    end
+    if k + 1 < to then
+      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      k = k + 2
+    end
+    lo, hi = floor(l / 256), floor(h / 256)
   end
   if k < to then
     local index = XOR8[lo * 256 + b[k]]
@@ -1302,12 +1315,16 @@ local function boundary_at(s, i)
   return s.boundaries[s.base + i] == true
 end
 
--- The stream offset's time: the time of the record its byte came in (stream.py _time_at).
+-- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
+-- holds (stream offset, time) pairs flat, oldest first, false for a record without a time.
 local function time_at(s, offset)
   local times = s.times
-  for index = #times, 1, -1 do
-    local entry = times[index]
-    if entry[1] <= offset then return entry[2] end
+  for index = #times - 1, 1, -2 do
+    if times[index] <= offset then
+      local time = times[index + 1]
+      if time == false then return nil end
+      return time
+    end
   end
   return nil
 end
@@ -1727,31 +1744,39 @@ local function run_ascii(s, final, items)
   return i
 end
 
+local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
+
 -- Drop the first `count` buffered bytes (framed or noise). The old table stays as it is: the frames
 -- just found still read their bytes from it until they are decoded.
 local function consume(s, count)
   if count == 0 then return end
   local b, n = s.b, s.n
-  local rest = {}
-  for k = count, n - 1 do rest[k - count] = b[k] end
-  s.b, s.n, s.base = rest, n - count, s.base + count
+  if count == n then
+    -- (every byte framed, the usual case: no bytes to move; feed makes the next record's table)
+    s.b, s.n, s.base = NO_BYTES, 0, s.base + count
+  else
+    local rest = {}
+    for k = count, n - 1 do rest[k - count] = b[k] end
+    s.b, s.n, s.base = rest, n - count, s.base + count
+  end
   local base = s.base
   local times = s.times
-  local keep = 1
-  for index = 1, #times do
-    if times[index][1] <= base then keep = index end
+  local count, keep = #times, 1
+  for index = 1, count, 2 do
+    if times[index] <= base then keep = index end
   end
-  if keep > 1 and keep == #times then
-    -- (the usual case, every byte framed: the last record's entry moved down, no new list)
-    times[1] = times[keep]
-    for index = keep, 2, -1 do times[index] = nil end
-  elseif keep > 1 then
-    local kept = {}
-    for index = keep, #times do kept[#kept + 1] = times[index] end
-    s.times = kept
+  if keep > 1 then
+    -- (moved down in place: no new list)
+    local shift = keep - 1
+    for index = keep, count do times[index - shift] = times[index] end
+    for index = count, count - shift + 1, -1 do times[index] = nil end
   end
-  for offset in pairs(s.boundaries) do
-    if offset <= base then s.boundaries[offset] = nil end
+  local boundaries = s.boundaries
+  boundaries[base] = nil -- (the usual case: the one boundary, the end of the record just framed)
+  if next(boundaries) ~= nil then
+    for offset in pairs(boundaries) do
+      if offset <= base then boundaries[offset] = nil end
+    end
   end
 end
 
@@ -1772,6 +1797,9 @@ feed = function(s, bytes, time, boundary, final)
       s.b = b
       k = n + 1
       s.whole = bytes -- (the buffer holds this record alone: see crc_good)
+    elseif at == 0 then
+      b = {} -- (never NO_BYTES, which stays empty)
+      s.b = b
     end
     while k + 7 <= n do
       b[at + k - 1], b[at + k], b[at + k + 1], b[at + k + 2], b[at + k + 3], b[at + k + 4], b[at + k + 5],
@@ -1780,11 +1808,14 @@ feed = function(s, bytes, time, boundary, final)
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
     local times = s.times
-    times[#times + 1] = { s.base + at, time }
+    local count = #times
+    times[count + 1] = s.base + at
+    if time == nil then times[count + 2] = false else times[count + 2] = time end
     s.n = at + n
     if boundary then s.boundaries[s.base + s.n] = true end
   end
-  local items = {}
+  local items = s.items -- (one list a stream, emptied each time: its items are taken before the next feed)
+  for index = #items, 1, -1 do items[index] = nil end
   local used
   if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
   s.whole = nil
@@ -3530,10 +3561,11 @@ local function new_state(timeout, mode)
     expect = nil, pending = nil, count = 0, records = {}, devices = {}, timeout = timeout,
     mode = mode,
     -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
-    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil,
+    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil, items = {},
     open = {}, -- records some of whose bytes are not framed yet (oldest first)
     last = nil, -- the last record fed
     unpacked = {}, -- record, index of each item not packed yet (pack.settle)
+    flat = {}, flat_n = 0, -- the items packed as numbers (pack.settle)
   }
 end
 
@@ -3594,8 +3626,94 @@ do
     return p
   end
 
+  -- Most frames are kept as numbers instead: ITEM slots of one flat array per stream (st.flat), the item
+  -- being the number of its first slot. Numbers are no objects: the collector goes over the array's
+  -- slots in one sweep instead of following a table (or two, or three) a frame, and the slots take a
+  -- third of the bytes. That is a request, response or exception whose only rare key is span_label and
+  -- whose runs hold no rare key but a single coil's value; a missing value is false.
+  local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
+  local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
+  local ITEM = 24
+  -- Does the frame hold a rare key but span_label? (one expression, made from RARE: no loop a frame)
+  local tests = {}
+  for index = 1, #RARE do
+    if RARE[index] ~= "span_label" then tests[#tests + 1] = format("f.%s ~= nil", RARE[index]) end
+  end
+  local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
+
+  -- The item's first slot in st.flat, or nil when it is to be packed as a table.
+  local function packed_flat(st, f)
+    local kind = KIND_NUMBER[f.kind]
+    if kind == nil or has_rare(f) then return nil end
+    local rf, rc, rs, bf, bc, bs, single = false, false, false, false, false, false, false
+    local registers, bits = f.registers, f.bits
+    if registers ~= nil then
+      if registers.status ~= nil or registers.plain ~= nil or registers.single ~= nil then return nil end
+      rf, rc, rs = registers.first, registers.count, registers.start
+      if rs == nil then rs = false end
+    end
+    if bits ~= nil then
+      if bits.status ~= nil or bits.plain ~= nil then return nil end
+      bf, bc, bs, single = bits.first, bits.count, bits.start, bits.single
+      if bs == nil then bs = false end
+      if single == nil then single = false end
+    end
+    local request, response = f.request, f.response
+    local request_record, request_time, response_record = false, false, false
+    if request ~= nil then
+      request_record, request_time = request.record, request.time
+      if request_time == nil then request_time = false end
+    end
+    if response ~= nil then response_record = response.record end
+    local time, start, quantity, label = f.time, f.start, f.quantity, f.span_label
+    if time == nil then time = false end
+    if start == nil then start = false end
+    if quantity == nil then quantity = false end
+    if label == nil then label = false end
+    local flat, k = st.flat, st.flat_n
+    flat[k + 1], flat[k + 2], flat[k + 3], flat[k + 4], flat[k + 5], flat[k + 6], flat[k + 7], flat[k + 8],
+      flat[k + 9], flat[k + 10], flat[k + 11], flat[k + 12] = kind, f.at, f.length, f.number, f.offset, f.record,
+      time, f.slave, f.fn, f.crc, f.crc_expected, start
+    flat[k + 13], flat[k + 14], flat[k + 15], flat[k + 16], flat[k + 17], flat[k + 18], flat[k + 19],
+      flat[k + 20], flat[k + 21], flat[k + 22], flat[k + 23], flat[k + 24] = quantity, rf, rc, rs, bf, bc, bs,
+      single, request_record, request_time, response_record, label
+    st.flat_n = k + ITEM
+    return k
+  end
+
+  local function value(x)
+    if x == false then return nil end
+    return x
+  end
+
+  local function expand_flat(st, k)
+    local flat = st.flat
+    local f = { kind = NUMBER_KIND[flat[k + 1]], at = flat[k + 2], length = flat[k + 3], number = flat[k + 4],
+      offset = flat[k + 5], record = flat[k + 6], time = value(flat[k + 7]), slave = flat[k + 8],
+      fn = flat[k + 9], crc = flat[k + 10], crc_expected = flat[k + 11], start = value(flat[k + 12]),
+      quantity = value(flat[k + 13]), span_label = value(flat[k + 24]) }
+    if flat[k + 14] ~= false then
+      f.registers = { first = flat[k + 14], count = flat[k + 15], start = value(flat[k + 16]) }
+    end
+    if flat[k + 17] ~= false then
+      f.bits = { first = flat[k + 17], count = flat[k + 18], start = value(flat[k + 19]), single = value(flat[k + 20]) }
+    end
+    if flat[k + 21] ~= false then f.request = { record = flat[k + 21], time = value(flat[k + 22]) } end
+    if flat[k + 23] ~= false then f.response = { record = flat[k + 23] } end
+    return f
+  end
+
+  -- A closed record that is one packed frame and nothing else is kept as that number itself.
+  local function as_number(st, record, number)
+    local packed = record[1]
+    if type(packed) == "number" and record[2] == nil and next(record, 1) == nil and st.records[number] == record then
+      st.records[number] = packed
+    end
+  end
+
   -- The item as the display reads it: a new table (an item never packed is itself).
-  function pack.expand(p)
+  function pack.expand(p, st)
+    if type(p) == "number" then return expand_flat(st, p) end
     if p.kind ~= nil then return p end
     local f = { kind = p[1], at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
       slave = p[8], fn = p[9], crc = p[10], crc_expected = p[11], start = p[12], quantity = p[13],
@@ -3615,6 +3733,11 @@ do
   -- After a record is shown on the first pass: pack the items taken since, but the request still
   -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
   function pack.settle(st)
+    local held = st.held
+    if held ~= nil and held ~= st.last then
+      as_number(st, held, st.held_number)
+      st.held, st.held_number = nil, nil
+    end
     local list = st.unpacked
     local kept = 0
     for index = 1, #list, 2 do
@@ -3624,7 +3747,18 @@ do
         list[kept + 1], list[kept + 2] = record, at
         kept = kept + 2
       else
-        record[at] = pack.item(item)
+        local packed = packed_flat(st, item)
+        if packed == nil then
+          record[at] = pack.item(item)
+        else
+          record[at] = packed
+          if record == st.last then
+            -- (the end of the capture may still add to it: it is looked at again once a record follows)
+            st.held, st.held_number = record, item.record
+          else
+            as_number(st, record, item.record)
+          end
+        end
       end
     end
     for index = #list, kept + 1, -1 do list[index] = nil end
@@ -3636,12 +3770,15 @@ end
 -- later passes show it there): through that record's bytes when they hold it whole, else through its
 -- own bytes (a frame or noise run that began in earlier records, which say where it went).
 local function take_items(st, items, record)
-  for _, item in ipairs(items) do
+  local open = st.open
+  for index = 1, #items do
+    local item = items[index]
     st.count = st.count + 1
     item.number = st.count
     local offset, length = item.offset, item.length
     local home = record
-    for _, earlier in ipairs(st.open) do
+    for at = 1, #open do
+      local earlier = open[at]
       if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
         home = earlier
       end
@@ -3692,7 +3829,10 @@ local function take_items(st, items, record)
         item.bits.shift = bi
         release_run(item.bits)
       end
-      for _, object in ipairs(item.objects or NO_INTERPRETATION) do object.offset = object.offset - bi end
+      local objects = item.objects
+      if objects ~= nil then
+        for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
+      end
       item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
       if item.kind ~= REQUEST then
         item.fields = nil
@@ -4361,8 +4501,8 @@ end
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
 -- the record's time otherwise.
-local function record_time(pinfo)
-  local rtac = rtac_times[pinfo.number]
+local function record_time(pinfo, number)
+  local rtac = rtac_times[number or pinfo.number]
   if rtac ~= nil then return rtac end
   local time = pinfo.abs_ts
   if time == 0 then return nil end
@@ -4393,8 +4533,8 @@ do
   end
 end
 
-local function dissect_now(st, tvb, pinfo, n)
-  return dissect_record(st, tvb:raw(0, n), record_time(pinfo), pinfo.number)
+local function dissect_now(st, tvb, pinfo, n, number)
+  return dissect_record(st, tvb:raw(0, n), record_time(pinfo, number), number)
 end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
@@ -4430,8 +4570,10 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   end
   local continued = record.continued
   -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
-  local summaries = {}
+  -- (the Info text: one part as it is, a list of parts only when there are more)
+  local info, summaries = nil, nil
   if continued ~= nil then
+    summaries = {}
     for _, part in ipairs(continued) do
       local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
       if full then
@@ -4444,16 +4586,30 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   end
   local frames = 0
   for index = 1, #record do
-    local item = pack.expand(record[index])
+    local item = pack.expand(record[index], st)
     local shown_from = item_tvb(item, tvb)
     local t
     if item.kind == NOISE then
       t = show_noise(item, shown_from, tree, full)
-      summaries[#summaries + 1] = format("noise (%d bytes)", item.length)
+      local text = format("noise (%d bytes)", item.length)
+      if summaries ~= nil then
+        summaries[#summaries + 1] = text
+      elseif info == nil then
+        info = text
+      else
+        summaries, info = { info, text }, nil
+      end
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries[#summaries + 1] = summary(item)
+      local text = summary(item)
+      if summaries ~= nil then
+        summaries[#summaries + 1] = text
+      elseif info == nil then
+        info = text
+      else
+        summaries, info = { info, text }, nil
+      end
     end
     anchor = anchor or t
   end
@@ -4471,9 +4627,24 @@ show_record = function(st, record, tvb, pinfo, tree, n)
       record.waiting)
     anchor = anchored(anchor, tree, full, tvb, n)
     add_text(anchor, ex.partial, text)
-    summaries[#summaries + 1] = format("(%d bytes continue)", record.waiting)
+    local text = format("(%d bytes continue)", record.waiting)
+    if summaries ~= nil then
+      summaries[#summaries + 1] = text
+    elseif info == nil then
+      info = text
+    else
+      summaries, info = { info, text }, nil
+    end
   end
-  if #summaries == 1 then cols.info = summaries[1] else cols.info = concat(summaries, "; ") end
+  if info ~= nil then
+    cols.info = info
+  elseif summaries == nil then
+    cols.info = ""
+  elseif #summaries == 1 then
+    cols.info = summaries[1]
+  else
+    cols.info = concat(summaries, "; ")
+  end
 end
 end
 
@@ -4498,18 +4669,20 @@ end
 local function dissect_records(st, tvb, pinfo, tree)
   local n = tvb:len()
   if n == 0 then return 0 end
-  if pinfo.visited and not state.finished then finish_all() end
-  local record = st.records[pinfo.number]
+  if not state.finished and pinfo.visited then finish_all() end
+  local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
+  local record = st.records[number]
+  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    local ok, result = pcall(dissect_now, st, tvb, pinfo, n)
+    local ok, result = pcall(dissect_now, st, tvb, pinfo, n, number)
     if ok then
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
       record = { length = n, error = tostring(result) }
     end
-    st.records[pinfo.number] = record
+    st.records[number] = record
     show_record(st, record, tvb, pinfo, tree, n)
     pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
     return n
