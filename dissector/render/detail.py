@@ -5,7 +5,7 @@ is decided once and a terminal only adds colour.
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
 from datetime import datetime, timezone
@@ -208,6 +208,19 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
         texts.append(f"{label}: {value}")
 
 
+def _kept_text(cache: dict[tuple[Any, ...], str], key: tuple[Any, ...],
+               lines: Callable[[_Detail, Frame], None], frame: Frame) -> str:
+    """The joined text `lines` writes for `frame`, kept in `cache` by `key` (bounded: cleared when full)."""
+    text = cache.get(key)
+    if text is None:
+        if len(cache) >= _MIDDLES_MAX:
+            cache.clear()
+        part = _Detail(joined=True)
+        lines(part, frame)
+        text = cache[key] = "\n".join(part.texts)
+    return text
+
+
 def _head_key(frame: Frame) -> tuple[Any, ...] | None:
     """What the Slave..Sub-function lines of a frame of values depend on, when that is the bytes before
     the values (a read's answer, FC16 and FC23 requests: `values` end the PDU), else None."""
@@ -230,14 +243,7 @@ def _middle(detail: _Detail, frame: Frame) -> None:
         # Polled blocks repeat their head (Slave, Function, Byte count) with new values: kept by bytes.
         key = _head_key(frame)
         if key is not None:
-            text = _HEADS.get(key)
-            if text is None:
-                if len(_HEADS) >= _MIDDLES_MAX:
-                    _HEADS.clear()
-                part = _Detail(joined=True)
-                _head_lines(part, frame)
-                text = _HEADS[key] = "\n".join(part.texts)
-            detail.texts.append(text)
+            detail.texts.append(_kept_text(_HEADS, key, _head_lines, frame))
             _body_lines(detail, frame)
             return
     _head_lines(detail, frame)
@@ -354,14 +360,7 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     ):
         # Slave to CRC depend on the bytes and the profile's words only: a polled request repeats them.
         key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text)
-        text = _MIDDLES.get(key)
-        if text is None:
-            if len(_MIDDLES) >= _MIDDLES_MAX:
-                _MIDDLES.clear()
-            part = _Detail(joined=True)
-            _middle(part, frame)
-            text = _MIDDLES[key] = "\n".join(part.texts)
-        add(text)
+        add(_kept_text(_MIDDLES, key, _middle, frame))
     else:
         _middle(detail, frame)
     request = frame.request
