@@ -4557,6 +4557,17 @@ end
 
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
 -- so that they show in the details, not under a hidden item.
+do
+-- One more part of a record's Info text: a single part stays a string, a list is made from the second.
+local function add_part(summaries, info, text)
+  if summaries ~= nil then
+    summaries[#summaries + 1] = text
+    return summaries, nil
+  end
+  if info == nil then return nil, text end
+  return { info, text }, nil
+end
+
 show_record = function(st, record, tvb, pinfo, tree, n)
   local cols = pinfo.cols
   cols.protocol = "VW3"
@@ -4592,24 +4603,12 @@ show_record = function(st, record, tvb, pinfo, tree, n)
     if item.kind == NOISE then
       t = show_noise(item, shown_from, tree, full)
       local text = format("noise (%d bytes)", item.length)
-      if summaries ~= nil then
-        summaries[#summaries + 1] = text
-      elseif info == nil then
-        info = text
-      else
-        summaries, info = { info, text }, nil
-      end
+      summaries, info = add_part(summaries, info, text)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
       local text = summary(item)
-      if summaries ~= nil then
-        summaries[#summaries + 1] = text
-      elseif info == nil then
-        info = text
-      else
-        summaries, info = { info, text }, nil
-      end
+      summaries, info = add_part(summaries, info, text)
     end
     anchor = anchor or t
   end
@@ -4628,13 +4627,7 @@ show_record = function(st, record, tvb, pinfo, tree, n)
     anchor = anchored(anchor, tree, full, tvb, n)
     add_text(anchor, ex.partial, text)
     local text = format("(%d bytes continue)", record.waiting)
-    if summaries ~= nil then
-      summaries[#summaries + 1] = text
-    elseif info == nil then
-      info = text
-    else
-      summaries, info = { info, text }, nil
-    end
+    summaries, info = add_part(summaries, info, text)
   end
   if info ~= nil then
     cols.info = info
@@ -4645,6 +4638,7 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   else
     cols.info = concat(summaries, "; ")
   end
+end
 end
 end
 

@@ -14,8 +14,6 @@
  * none of which refer back to it.
  */
 
-#define POLL_MAX_KEYS 50000 /* render/pollcycle.py MAX_KEYS */
-
 enum { EVENT_READ, EVENT_UNREADABLE, EVENT_WRITE, EVENT_WRITE_OBSERVED, EVENT_REFUSED, EVENT_CONFIRM, EVENTS };
 
 typedef struct {
@@ -48,7 +46,8 @@ typedef struct {
     size_t param_slots, param_count; /* slots: a power of two, at most half full */
     Poll *polls;
     size_t poll_slots, poll_count;
-    unsigned long long untracked; /* requests of keys beyond POLL_MAX_KEYS */
+    size_t max_keys;              /* pollcycle.MAX_KEYS, given at creation */
+    unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
     Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
 } Stats;
@@ -200,7 +199,7 @@ static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned lo
     Poll *p = poll_find(st, fields, size, 0);
     if (p == NULL) {
         if (PyErr_Occurred()) return -1;
-        if (st->poll_count >= POLL_MAX_KEYS) {
+        if (st->poll_count >= st->max_keys) {
             st->untracked++;
             return 0;
         }
@@ -219,32 +218,26 @@ static void poll_fail(Stats *st, const uint32_t *fields, int size) {
     if (p != NULL) p->failed++;
 }
 
-/* pollcycle.request_key of a request the engine shows, from its bytes. */
+/* pollcycle.request_key of a request the engine shows, from its bytes where the protocol table's
+ * request layout (_tables.h) puts its start, quantity and write window; FC8 by its sub-function. */
 static int request_key(const uint8_t *f, uint32_t *fields) {
     int function = f[1];
+    const RequestLayout *L = &request_layout[handled_index(function)];
     fields[0] = f[0];
     fields[1] = (uint32_t)function;
-    switch (function) {
-    case 1: case 2: case 3: case 4: case 15: case 16:
-        fields[2] = word(f + 2);
-        fields[3] = word(f + 4);
-        return 4;
-    case 5: case 6: case 22: case 24: /* start and a quantity of 1 (FIFO: no quantity in the request) */
-        fields[2] = word(f + 2);
-        fields[3] = 1;
-        return 4;
-    case 23:
-        fields[2] = word(f + 2);
-        fields[3] = word(f + 4);
-        fields[4] = word(f + 6);
-        fields[5] = word(f + 8);
+    if (L->start_at) {
+        fields[2] = word(f + L->start_at);
+        fields[3] = L->quantity_at ? word(f + L->quantity_at) : 1;
+        if (!L->write_quantity_at) return 4;
+        fields[4] = word(f + L->write_start_at);
+        fields[5] = word(f + L->write_quantity_at);
         return 6;
-    case 8:
+    }
+    if (function == 8) {
         fields[2] = word(f + 2);
         return 3;
-    default:
-        return 2;
     }
+    return 2;
 }
 
 static Counted *counted_for(Stats *st, int slave, int function) {
@@ -541,6 +534,19 @@ fail:
     return NULL;
 }
 
+/* Stats(max_keys): the poll table follows at most max_keys request keys (pollcycle.MAX_KEYS). */
+static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
+    static char *keywords[] = {"max_keys", NULL};
+    Py_ssize_t max_keys;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n", keywords, &max_keys)) return -1;
+    if (max_keys < 0) {
+        PyErr_SetString(PyExc_ValueError, "max_keys must be >= 0");
+        return -1;
+    }
+    st->max_keys = (size_t)max_keys;
+    return 0;
+}
+
 static PyObject *stats_get_frames(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->frames); }
 static PyObject *stats_get_untracked(Stats *st, void *closure) {
     return PyLong_FromUnsignedLongLong(st->untracked);
@@ -575,6 +581,7 @@ static PyTypeObject StatsType = {
     .tp_flags = Py_TPFLAGS_DEFAULT,
     .tp_doc = "--stats counts kept in C (see render/stats.py, EngineStore).",
     .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)stats_init,
     .tp_dealloc = (destructor)stats_dealloc,
     .tp_methods = stats_methods,
     .tp_getset = stats_getset,

@@ -422,14 +422,7 @@ def _plain_frame(frame: Frame, base: float | None) -> str:
         )
     if kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None:
         key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text)  # as _build keeps it
-        text = _MIDDLES.get(key)
-        if text is None:
-            if len(_MIDDLES) >= _MIDDLES_MAX:
-                _MIDDLES.clear()
-            part = _Detail(joined=True)
-            _middle(part, frame)
-            text = _MIDDLES[key] = "\n".join(part.texts)
-        texts = [head, text]
+        texts = [head, _kept_text(_MIDDLES, key, _middle, frame)]
     else:
         detail = _Detail(joined=True)
         texts = detail.texts

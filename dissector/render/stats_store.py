@@ -21,6 +21,8 @@ import os
 from dataclasses import dataclass
 from typing import Any
 
+from dissector.render.pollcycle import MAX_KEYS
+
 try:
     from dissector.accel._summary import Stats as CompiledStore
 except ImportError:  # built without a C compiler
@@ -95,5 +97,5 @@ class ParameterTable:
 def new_store() -> Any:
     """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set)."""
     if CompiledStore is not None and not os.environ.get("VW3_PURE_PYTHON"):
-        return CompiledStore()
+        return CompiledStore(MAX_KEYS)
     return ParameterTable()

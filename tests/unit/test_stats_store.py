@@ -9,6 +9,7 @@ import random
 import pytest
 
 from dissector.accel import _summary
+from dissector.render.pollcycle import MAX_KEYS
 from dissector.render.stats_store import (
     CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store,
 )
@@ -35,7 +36,7 @@ def test_one_story_in_both_stores() -> None:
         (1, 7, CONFIRM, 4, "LATER", "4 things"),  # CONFIRM keeps the first code
         (1, 7, READ, 4, "READ", None),  # a read sets it
     ]
-    compiled, python = _summary.Stats(), ParameterTable()
+    compiled, python = _summary.Stats(MAX_KEYS), ParameterTable()
     for event in events:
         compiled.param(*event)
         python.param(*event)
@@ -48,7 +49,7 @@ def test_one_story_in_both_stores() -> None:
 
 def test_random_events_same_rows() -> None:
     rng = random.Random(3)
-    compiled, python = _summary.Stats(), ParameterTable()
+    compiled, python = _summary.Stats(MAX_KEYS), ParameterTable()
     for _ in range(20_000):
         event = (
             rng.choice([1, 2, 247]), rng.randrange(40), rng.randrange(6), rng.choice([0, 1, 2, 0x8000, 65535]),
@@ -61,7 +62,7 @@ def test_random_events_same_rows() -> None:
 
 
 def test_poll_keys_in_the_order_first_seen() -> None:
-    store = _summary.Stats()
+    store = _summary.Stats(MAX_KEYS)
     store.poll((12, 3, 8400, 3), 5, False)
     store.poll((1, 23, 3201, 2, 8501, 2), 2, False)
     store.poll((12, 3, 8400, 3), 9, True)
@@ -88,12 +89,12 @@ def test_poll_keys_in_the_order_first_seen() -> None:
 )
 def test_bad_events_are_refused(arguments: tuple) -> None:
     with pytest.raises((ValueError, TypeError, OverflowError)):
-        _summary.Stats().param(*arguments)
+        _summary.Stats(MAX_KEYS).param(*arguments)
 
 
 @pytest.mark.parametrize("key", [(), (1,), (1, 2, 3, 4, 5, 6, 7), [1, 3], (1, "3"), (1, -3), (1, 2**40)])
 def test_bad_poll_keys_are_refused(key: object) -> None:
-    store = _summary.Stats()
+    store = _summary.Stats(MAX_KEYS)
     with pytest.raises((ValueError, TypeError, OverflowError)):
         store.poll(key, 1, False)
     with pytest.raises((ValueError, TypeError, OverflowError)):
@@ -106,7 +107,7 @@ def test_an_engine_takes_only_a_store() -> None:
     engine = fastsummary.make_engine(None)
     with pytest.raises(TypeError):
         engine.stats = object()
-    engine.stats = store = _summary.Stats()
+    engine.stats = store = _summary.Stats(MAX_KEYS)
     assert engine.stats is store
     engine.stats = None
     assert engine.stats is None
