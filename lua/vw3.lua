@@ -1304,7 +1304,7 @@ end
 
 -- (one block: the main chunk of a Lua file may hold at most 200 locals)
 local MODE_SAMPLE = 64
-local feed, detect_mode, flush_noise_of
+local feed, feed_whole, detect_mode, flush_noise_of
 do
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
@@ -1357,14 +1357,19 @@ local function add_noise(s, start, stop, reason, items)
   end
 end
 
-local function emit(s, frame, items)
-  flush_noise(s, items)
-  items[#items + 1] = frame
+-- What the framer expects after a frame: the answer to a request (not to a broadcast), else nothing.
+local function expect_after(s, frame)
   if frame.kind == REQUEST and frame.slave ~= 0 then
     s.expect = frame.slave * 256 + frame.code
   else
     s.expect = nil
   end
+end
+
+local function emit(s, frame, items)
+  flush_noise(s, items)
+  items[#items + 1] = frame
+  expect_after(s, frame)
 end
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
@@ -1513,16 +1518,15 @@ local function possible_start(slave, code)
   return slave <= MAX_SLAVE and (RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil))
 end
 
-local function rtu_frame(s, i, kind, length, crc_ok)
-  local b = s.b
-  local offset = s.base + i
+-- The frame of `length` bytes at b[i], its first byte at stream offset `offset`, received at `time`.
+local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   local stop = i + length - 2
   local crc = b[stop] + b[stop + 1] * 256
   local code = b[i + 1]
   -- (a frame that checks out has the CRC it carries: no need to compute it again)
   return {
     kind = kind, offset = offset, length = length, slave = b[i], code = code, fn = code % 128,
-    crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time_at(s, offset),
+    crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
     mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
   }
@@ -1535,15 +1539,19 @@ local CRC_SEEN_MAX = 4096
 local crc_seen, crc_seen_count = {}, 0
 
 -- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
-local function crc_good(s, b, i, length, n)
-  local whole = s.whole
-  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
+local function whole_crc_good(b, n, whole)
   if crc_seen[whole] then return true end
-  if not crc_ok_at(b, i, length) then return false end
+  if not crc_ok_at(b, 0, n) then return false end
   if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
   crc_seen[whole] = true
   crc_seen_count = crc_seen_count + 1
   return true
+end
+
+local function crc_good(s, b, i, length, n)
+  local whole = s.whole
+  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
+  return whole_crc_good(b, n, whole)
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -1577,7 +1585,8 @@ local function run_rtu(s, final, items)
         if not is_scan and length >= MIN_ADU and length <= MAX_ADU
             and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
             and crc_good(s, b, i, length, n) then
-          emit(s, rtu_frame(s, i, first[1], length, true), items)
+          local offset = s.base + i
+          emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
           i = i + length
           done = true
         end
@@ -1598,7 +1607,8 @@ local function run_rtu(s, final, items)
           add_noise(s, i, i + 1, "no valid frame", items)
           i = i + 1
         else
-          emit(s, rtu_frame(s, i, kind, length, crc_ok), items)
+          local offset = s.base + i
+          emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
           i = i + length
         end
       end
@@ -1781,10 +1791,37 @@ local function consume(s, count)
 end
 
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
--- framed; final: nothing more will come. Returns the items in stream order.
+-- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
+-- table when feed_whole made it.
 flush_noise_of = function(s, items) flush_noise(s, items) end
 
-feed = function(s, bytes, time, boundary, final)
+-- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
+-- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
+-- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
+-- record's time is the last one kept, no record end (its end is the stream's end).
+feed_whole = function(s, bytes, time)
+  local n = #bytes
+  if s.n ~= 0 or s.noise ~= nil or s.mode == "ascii" or n < MIN_ADU or n > MAX_ADU then return nil end
+  local times = s.times
+  if times[3] ~= nil then return nil end
+  local byte = string.byte
+  local slave, code = byte(bytes, 1, 2)
+  if slave > MAX_SLAVE then return nil end
+  local first = interpretations(s, slave, code)[1]
+  if first == nil or (first[1] == EXCEPTION and s.expect ~= slave * 256 + code % 128) then return nil end
+  local b = { [0] = slave, byte(bytes, 2, n) }
+  local length, is_scan = first[2](b, 0, n)
+  if is_scan or length ~= n or not whole_crc_good(b, n, bytes) then return nil, b end
+  local offset = s.base
+  local frame = rtu_frame(b, 0, offset, time, first[1], n, true)
+  expect_after(s, frame)
+  s.base = offset + n
+  times[1] = offset
+  if time == nil then times[2] = false else times[2] = time end
+  return frame
+end
+
+feed = function(s, bytes, time, boundary, final, built)
   local n = #bytes
   if n > 0 then
     local b, at = s.b, s.n
@@ -1793,7 +1830,7 @@ feed = function(s, bytes, time, boundary, final)
     if at == 0 and n <= 4096 then
       -- Nothing left over (the usual case): the record's bytes in one constructor, b[0] in its hash
       -- part, the rest in its array part. (Frames already found keep the old table.)
-      b = { [0] = byte(bytes, 1), byte(bytes, 2, n) }
+      b = built or { [0] = byte(bytes, 1), byte(bytes, 2, n) }
       s.b = b
       k = n + 1
       s.whole = bytes -- (the buffer holds this record alone: see crc_good)
@@ -3635,9 +3672,10 @@ do
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
   local ITEM = 24
   -- Does the frame hold a rare key but span_label? (one expression, made from RARE: no loop a frame)
+  -- (a rare key is never false: its truth is the test)
   local tests = {}
   for index = 1, #RARE do
-    if RARE[index] ~= "span_label" then tests[#tests + 1] = format("f.%s ~= nil", RARE[index]) end
+    if RARE[index] ~= "span_label" then tests[#tests + 1] = "f." .. RARE[index] end
   end
   local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
 
@@ -3703,10 +3741,10 @@ do
     return f
   end
 
-  -- A closed record that is one packed frame and nothing else is kept as that number itself.
-  local function as_number(st, record, number)
-    local packed = record[1]
-    if type(packed) == "number" and record[2] == nil and next(record, 1) == nil and st.records[number] == record then
+  -- A closed record that is one packed frame and nothing else is kept as that number itself. (A closed
+  -- record has no byte left to frame: the end of the capture adds nothing to it.)
+  local function as_number(st, record, number, packed)
+    if record[2] == nil and next(record, 1) == nil and st.records[number] == record then
       st.records[number] = packed
     end
   end
@@ -3733,11 +3771,6 @@ do
   -- After a record is shown on the first pass: pack the items taken since, but the request still
   -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
   function pack.settle(st)
-    local held = st.held
-    if held ~= nil and held ~= st.last then
-      as_number(st, held, st.held_number)
-      st.held, st.held_number = nil, nil
-    end
     local list = st.unpacked
     local kept = 0
     for index = 1, #list, 2 do
@@ -3752,12 +3785,7 @@ do
           record[at] = pack.item(item)
         else
           record[at] = packed
-          if record == st.last then
-            -- (the end of the capture may still add to it: it is looked at again once a record follows)
-            st.held, st.held_number = record, item.record
-          else
-            as_number(st, record, item.record)
-          end
+          as_number(st, record, item.record, packed)
         end
       end
     end
@@ -3765,11 +3793,52 @@ do
   end
 end
 
+local take_items, dissect_record
+do -- (a block: the main chunk may hold at most 200 locals)
+-- Pair, decode and annotate a frame just numbered.
+local function take_frame(st, item)
+  pair(st, item)
+  decode_frame(item)
+  annotate(st, item, item.b)
+  -- What the display does not need is dropped (the record is kept for every later pass): the byte
+  -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
+  -- ask for them (a request's, until its answer is decoded or it can have none).
+  item.b = nil
+  if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
+  if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
+  -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
+  -- pending request's registers once its answer has been read), and what is known from the kind of
+  -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
+  local bi = item.bi
+  if item.registers ~= nil then item.registers.shift = bi end
+  if item.bits ~= nil then
+    item.bits.shift = bi
+    release_run(item.bits)
+  end
+  local objects = item.objects
+  if objects ~= nil then
+    for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
+  end
+  item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
+  if item.kind ~= REQUEST then
+    item.fields = nil
+    release_run(item.registers)
+    local request = item.request
+    if request ~= nil then
+      request.fields = nil
+      release_run(request.registers)
+    end
+  elseif st.pending ~= item then
+    item.fields = nil
+    release_run(item.registers)
+  end
+end
+
 -- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
 -- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
 -- later passes show it there): through that record's bytes when they hold it whole, else through its
 -- own bytes (a frame or noise run that began in earlier records, which say where it went).
-local function take_items(st, items, record)
+take_items = function(st, items, record)
   local open = st.open
   for index = 1, #items do
     local item = items[index]
@@ -3810,43 +3879,7 @@ local function take_items(st, items, record)
       end
     end
     item.bytes, item.src = nil, nil
-    if item.kind ~= NOISE then
-      pair(st, item)
-      decode_frame(item)
-      annotate(st, item, item.b)
-      -- What the display does not need is dropped (the record is kept for every later pass): the byte
-      -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
-      -- ask for them (a request's, until its answer is decoded or it can have none).
-      item.b = nil
-      if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
-      if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
-      -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
-      -- pending request's registers once its answer has been read), and what is known from the kind of
-      -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
-      local bi = item.bi
-      if item.registers ~= nil then item.registers.shift = bi end
-      if item.bits ~= nil then
-        item.bits.shift = bi
-        release_run(item.bits)
-      end
-      local objects = item.objects
-      if objects ~= nil then
-        for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
-      end
-      item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
-      if item.kind ~= REQUEST then
-        item.fields = nil
-        release_run(item.registers)
-        local request = item.request
-        if request ~= nil then
-          request.fields = nil
-          release_run(request.registers)
-        end
-      elseif st.pending ~= item then
-        item.fields = nil
-        release_run(item.registers)
-      end
-    end
+    if item.kind ~= NOISE then take_frame(st, item) end
   end
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
@@ -3868,15 +3901,33 @@ local function take_items(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
-local function dissect_record(st, bytes, time, number)
+dissect_record = function(st, bytes, time, number)
   local n = #bytes
   if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  local built = nil
+  if st.open[1] == nil then
+    -- A record that is one frame (take_items's work for it: the record closed, the frame at 0 in it)
+    local frame
+    frame, built = feed_whole(st, bytes, time)
+    if frame ~= nil then
+      local record = { frame }
+      st.last = record
+      local count = st.count + 1
+      st.count = count
+      frame.number, frame.record = count, number
+      local unpacked = st.unpacked
+      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = record, 1
+      take_frame(st, frame)
+      return record
+    end
+  end
   -- (four keys: a fifth would double the table's hash, and records stay for the whole capture)
   local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
   st.open[#st.open + 1] = record
   st.last = record
-  take_items(st, feed(st, bytes, time, true, false), record)
+  take_items(st, feed(st, bytes, time, true, false, built), record)
   return record
+end
 end
 
 -- The end of the capture: frame what still waits (as vw3-decode does at the end of its input), shown in
@@ -4810,25 +4861,25 @@ package.loaded.vw3_plugin = {
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
 
-local current_port, current_udp_port = 0, 0
-local claimed_user0 = false
+-- What the preferences registered: TCP and UDP ports (0: none), USER0 taken over.
+local registered = { tcp = 0, udp = 0, user0 = false }
 function proto.prefs_changed()
-  if proto.prefs.udp_port ~= current_udp_port then
+  if proto.prefs.udp_port ~= registered.udp then
     local udp = DissectorTable.get("udp.port")
-    if current_udp_port ~= 0 then udp:remove(current_udp_port, proto) end
+    if registered.udp ~= 0 then udp:remove(registered.udp, proto) end
     if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
-    current_udp_port = proto.prefs.udp_port
+    registered.udp = proto.prefs.udp_port
   end
-  if proto.prefs.user0 ~= claimed_user0 then
+  if proto.prefs.user0 ~= registered.user0 then
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
-    claimed_user0 = proto.prefs.user0
+    registered.user0 = proto.prefs.user0
   end
   local port = proto.prefs.tcp_port
-  if port ~= current_port then
+  if port ~= registered.tcp then
     local tcp = DissectorTable.get("tcp.port")
-    if current_port ~= 0 then tcp:remove(current_port, proto) end
+    if registered.tcp ~= 0 then tcp:remove(registered.tcp, proto) end
     if port ~= 0 then tcp:add(port, proto) end
-    current_port = port
+    registered.tcp = port
   end
   apply_prefs()
 end
