@@ -2694,7 +2694,8 @@ end
 local plc_label
 do
 local PLC_TOP = {} -- the highest reference of each base's digit count
-plc_label = function(base, address)
+local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
+local function make_plc_label(base, address)
   -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
   -- references keep their zeros (00001), as naming.plc_label.
   local digits = #format("%d", base)
@@ -2712,6 +2713,20 @@ plc_label = function(base, address)
     digits = digits + 1
   end
   return format("%0" .. digits .. "d", number)
+end
+
+plc_label = function(base, address)
+  local labels = PLC_LABELS[base]
+  if labels == nil then
+    labels = {}
+    PLC_LABELS[base] = labels
+  end
+  local label = labels[address]
+  if label == nil then
+    label = make_plc_label(base, address)
+    labels[address] = label
+  end
+  return label
 end
 end
 
@@ -3121,38 +3136,40 @@ end
 
 do -- (a block: the main chunk may hold at most 200 locals)
 local function profile_function_name(profile, code)
-  return (profile.function_names or {})[code] or function_name(code)
+  return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
+end
+
+-- A quantity above the device's limit for the function (limit: nil when the device gives none).
+local function check_limit(f, profile, what, quantity, limit)
+  if limit ~= nil and quantity ~= nil and quantity > limit then
+    warn(f, format("%s %d is beyond the %s's limit of %d words for %s", what, quantity, profile.device, limit,
+      profile_function_name(profile, f.fn)))
+  end
 end
 
 local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
-  local name = profile_function_name(profile, code)
   if profile.functions ~= nil and not profile.functions[code] then
-    warn(f, format("%s (%d) is not supported by the %s", name, code, profile.device))
+    warn(f, format("%s (%d) is not supported by the %s", profile_function_name(profile, code), code, profile.device))
   elseif profile.inner_only and profile.inner_only[code] then
-    warn(f, format("%s (%d) is only valid inside an encapsulated packet on the %s", name, code, profile.device))
+    warn(f, format("%s (%d) is only valid inside an encapsulated packet on the %s", profile_function_name(profile, code),
+      code, profile.device))
   end
-  local limits = (profile.limits or {})[code]
+  local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
-    local checks
-    if code == 23 then
-      if f.fields ~= nil then
-        checks = { { "read quantity", f.fields.read_quantity }, { "write quantity", f.fields.write_quantity } }
-      end
-    else
-      checks = { { "quantity", f.quantity } }
-    end
-    for index = 1, math.min(#(checks or {}), #limits) do
-      local what, quantity, limit = checks[index][1], checks[index][2], limits[index]
-      if quantity ~= nil and quantity > limit then
-        warn(f, format("%s %d is beyond the %s's limit of %d words for %s", what, quantity, profile.device, limit, name))
-      end
+    -- (no tables: this runs for every request)
+    if code ~= 23 then
+      check_limit(f, profile, "quantity", f.quantity, limits[1])
+    elseif f.fields ~= nil then
+      check_limit(f, profile, "read quantity", f.fields.read_quantity, limits[1])
+      check_limit(f, profile, "write quantity", f.fields.write_quantity, limits[2])
     end
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
     do
+      local name = profile_function_name(profile, code)
       local allowed = {}
       for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
       local list = concat(allowed, ", ")
@@ -3349,6 +3366,11 @@ end
 local select_device
 do
 local CANDIDATES = SELECTION.candidates
+-- The candidate a function code identifies (the first, in the candidates' order, that claims it).
+local IDENTIFYING = {}
+for index = #CANDIDATES, 1, -1 do
+  for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
+end
 local FIT_ANSWERS, FIT_FRAMES = SELECTION.fit_answers, SELECTION.fit_frames
 
 local function settled(judged)
@@ -3389,13 +3411,12 @@ local function identified(f)
     end
   end
   if f.kind ~= NOISE and f.crc == f.crc_expected then
-    for _, name in ipairs(CANDIDATES) do
+    local name = IDENTIFYING[f.fn]
+    if name ~= nil then
       local profile = PROFILES[name]
-      if profile.identify.functions[f.fn] then
-        local called = (profile.function_names or {})[f.fn] or format("%d", f.fn)
-        return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
-          f.number) }
-      end
+      local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
+      return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
+        f.number) }
     end
   end
   return nil
@@ -3516,7 +3537,7 @@ end
 annotate = function(st, f, b)
   local device = device_now(st, f, b)
   if not device then return end
-  local special_name = (device.profile.function_names or {})[f.fn]
+  local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
   if special_name ~= nil then f.function_text = special_name end
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
