@@ -4592,10 +4592,11 @@ do
   local function tree_visible(tree) return tree.visible end
   local function tree_len(tree) return tree.len end
   local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
+  local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
   tree_mode = function(tree)
     if type(tree) ~= "userdata" then return true end
-    local ok, text = pcall(tree_text, tree)
-    if ok and text == nil then return false end
+    if has_text == nil then has_text = pcall(tree_text, tree) end
+    if has_text and tree.text == nil then return false end
     local known, visible = pcall(tree_visible, tree)
     if known and visible == false then
       if has_len == nil then has_len = pcall(tree_len, tree) end
@@ -4605,8 +4606,8 @@ do
   end
 end
 
-local function dissect_now(st, tvb, pinfo, n, number)
-  return dissect_record(st, tvb:raw(0, n), record_time(pinfo, number), number)
+local function dissect_now(st, bytes, pinfo, number)
+  return dissect_record(st, bytes, record_time(pinfo, number), number)
 end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
@@ -4644,6 +4645,15 @@ show_record = function(st, record, tvb, pinfo, tree, n)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
+  local item = record[1]
+  if not full and record[2] == nil and type(item) == "table" and item.kind ~= nil and item.kind ~= NOISE
+      and item.raw == nil and record.error == nil and record.continued == nil and record.waiting == nil
+      and config.errors[1] == nil then
+    -- One frame of its own record, no tree (a summary's first pass): its expert infos and its Info text.
+    show_frame(st, item, tvb, tree, pinfo, false)
+    cols.info = summary(item)
+    return
+  end
   unseen.serial = unseen.serial + 1
   unseen.generated = false
   local anchor = nil
@@ -4733,15 +4743,15 @@ end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
 local function dissect_records(st, tvb, pinfo, tree)
-  local n = tvb:len()
-  if n == 0 then return 0 end
-  if not state.finished and pinfo.visited then finish_all() end
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
-  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
-    local ok, result = pcall(dissect_now, st, tvb, pinfo, n, number)
+    -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
+    local bytes = tvb:raw()
+    local n = #bytes
+    if n == 0 then return 0 end
+    local ok, result = pcall(dissect_now, st, bytes, pinfo, number)
     if ok then
       record = result
     else
@@ -4753,6 +4763,9 @@ local function dissect_records(st, tvb, pinfo, tree)
     pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
     return n
   end
+  if not state.finished and pinfo.visited then finish_all() end
+  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
+  local n = tvb:len()
   show_record(st, record, tvb, pinfo, tree, n)
   return n
 end
