@@ -3689,21 +3689,27 @@ do
   -- slots in one sweep instead of following a table (or two, or three) a frame, and the slots take a
   -- third of the bytes. That is a request, response or exception whose only rare key is span_label and
   -- whose runs hold no rare key but a single coil's value; a missing value is false.
-  local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
+  local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 } -- (3: never packed flat, see below)
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
   local ITEM = 24
-  -- Does the frame hold a rare key but span_label? (one expression, made from RARE: no loop a frame)
-  -- (a rare key is never false: its truth is the test)
+  -- Frames packed as tables whatever they hold: exceptions (they hold their code) and the functions
+  -- whose handlers keep what they decoded (8: sub-function, 17: server id, 43: objects); noise has a
+  -- kind of its own. The rare keys only those hold need no test on the others.
+  local TABLE_FUNCTIONS = { [8] = true, [17] = true, [43] = true }
+  local NOT_TESTED = { span_label = true, exception_code = true, exception_meaning = true, inferred = true,
+    subfunction = true, subfunction_text = true, server = true, objects = true, reason = true }
+  -- Does the frame hold a rare key? (one expression, made from RARE: no loop a frame; a rare key is
+  -- never false: its truth is the test)
   local tests = {}
   for index = 1, #RARE do
-    if RARE[index] ~= "span_label" then tests[#tests + 1] = "f." .. RARE[index] end
+    if not NOT_TESTED[RARE[index]] then tests[#tests + 1] = "f." .. RARE[index] end
   end
   local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
 
   -- The item's first slot in st.flat, or nil when it is to be packed as a table.
   local function packed_flat(st, f)
     local kind = KIND_NUMBER[f.kind]
-    if kind == nil or has_rare(f) then return nil end
+    if kind == nil or kind == 3 or TABLE_FUNCTIONS[f.fn] or has_rare(f) then return nil end
     local rf, rc, rs, bf, bc, bs, single = false, false, false, false, false, false, false
     local registers, bits = f.registers, f.bits
     if registers ~= nil then
