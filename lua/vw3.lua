@@ -3089,14 +3089,32 @@ local function annotate_registers(st, f, device, run, b, read)
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
   local base = plc_base(device, f)
-  local rows = device.rows
+  local rows, depend, seen, number = device.rows, device.depend, device.seen, f.number
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local label = nil
-    if base ~= nil then label = plc_label(base, address) end
-    local words = words_at(rows, address, index, count)
-    local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label, words)
+    local value = b[k] * 256 + b[k + 1]
+    local last = nil
+    -- The usual register: no layout rule, not 16#8000, and read before with a value (or nothing to
+    -- follow): what annotate_one would do comes down to noting the value read.
+    if value ~= protected and depend[address] == nil then
+      if protected == nil then
+        last = false
+      else
+        last = seen[address]
+        if last ~= nil and last.value ~= nil then
+          last.value, last.frame, last.how = value, number, "read"
+        else
+          last = nil
+        end
+      end
+    end
+    local plain, status = false, nil
+    if last == nil then
+      local label = nil
+      if base ~= nil then label = plc_label(base, address) end
+      plain, status = annotate_one(f, device, address, value, protected, multi, label, words_at(rows, address, index, count))
+    end
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
