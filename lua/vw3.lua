@@ -1140,11 +1140,22 @@ end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
 -- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
--- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
+-- TWO_HI hold them, and takes eight bytes a turn: fewer operations a byte.)
 local function crc_bytes(b, from, to, lo, hi)
   local k = from
   if k + 1 < to then
     local l, h = lo * 256, hi * 256
+    while k + 7 < to do
+      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      w = XOR8[h + b[k + 5]] * 256 + XOR8[l + b[k + 4]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      w = XOR8[h + b[k + 7]] * 256 + XOR8[l + b[k + 6]]
+      l, h = TWO_LO[w], TWO_HI[w]
+      k = k + 8
+    end
     while k + 3 < to do
       local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
       l, h = TWO_LO[w], TWO_HI[w]
@@ -3817,6 +3828,24 @@ do
   -- awaiting its answer (pairing and the end of the capture change it; the display knows it as itself).
   function pack.settle(st)
     local list = st.unpacked
+    local whole = st.whole_record -- a record of one frame (dissect_record's fast lane)
+    if whole ~= nil then
+      st.whole_record = nil
+      local item = whole[1]
+      if item == st.pending then
+        list[#list + 1], list[#list + 2] = whole, 1 -- (packed once answered, with the others)
+      else
+        local packed = packed_flat(st, item)
+        if packed == nil then
+          whole[1] = pack.item(item)
+        elseif st.records[item.record] == whole then
+          st.records[item.record] = packed -- (the record is closed and holds this frame alone)
+        else
+          whole[1] = packed
+        end
+      end
+      if list[1] == nil then return end
+    end
     local kept = 0
     for index = 1, #list, 2 do
       local record, at = list[index], list[index + 1]
@@ -3960,8 +3989,7 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      local unpacked = st.unpacked
-      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = record, 1
+      st.whole_record = record -- (packed by pack.settle)
       take_frame(st, frame)
       return record
     end
@@ -4376,20 +4404,22 @@ local DECIMAL = setmetatable({}, { __index = function(texts, number)
 end })
 
 summary = function(f)
-  -- (one string built up: no table of parts, the Info text is made for every record shown)
-  local kind = f.kind
-  local text = DECIMAL[f.slave] .. " " .. (f.function_text or function_name(f.fn)) .. " " .. kind
-  if kind == EXCEPTION then text = text .. " " .. (f.exception_meaning or exception_name(f.exception_code)) end
-  local start, quantity = f.start, f.quantity
-  if f.span_label ~= nil then
-    text = text .. " " .. f.span_label
-  elseif start ~= nil and quantity ~= nil and quantity > 1 then
-    text = text .. " " .. DECIMAL[start] .. ".." .. DECIMAL[(start + quantity - 1) % 0x10000]
-  elseif start ~= nil then
-    text = text .. " " .. DECIMAL[start]
+  -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
+  local kind, fn = f.kind, f.fn
+  local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
+  if kind == EXCEPTION then
+    kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
   end
-  if not (f.crc == f.crc_expected) then text = text .. " BAD CRC" end
-  return text
+  local tail = ""
+  if f.crc ~= f.crc_expected then tail = " BAD CRC" end
+  local start, quantity, label = f.start, f.quantity, f.span_label
+  if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
+  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
+  if quantity ~= nil and quantity > 1 then
+    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[(start + quantity - 1) % 0x10000]
+      .. tail
+  end
+  return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
 end
 
@@ -4630,9 +4660,6 @@ do
   end
 end
 
-local function dissect_now(st, bytes, pinfo, number)
-  return dissect_record(st, bytes, record_time(pinfo, number), number)
-end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
 -- in earlier records (a frame the capture tool cut across records).
@@ -4766,20 +4793,27 @@ local function finish_all()
 end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
+-- The record's first dissection: nil for an empty record, else the record and its length.
+local function dissect_now(st, tvb, pinfo, number)
+  local bytes = tvb:raw()
+  local n = #bytes
+  if n == 0 then return nil end
+  return dissect_record(st, bytes, record_time(pinfo, number), number), n
+end
+
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
-    local bytes = tvb:raw()
-    local n = #bytes
-    if n == 0 then return 0 end
-    local ok, result = pcall(dissect_now, st, bytes, pinfo, number)
+    local ok, result, n = pcall(dissect_now, st, tvb, pinfo, number)
     if ok then
+      if result == nil then return 0 end
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
+      n = tvb:len()
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
