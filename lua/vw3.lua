@@ -1371,7 +1371,7 @@ end
 -- What the framer expects after a frame: the answer to a request (not to a broadcast), else nothing.
 local function expect_after(s, frame)
   if frame.kind == REQUEST and frame.slave ~= 0 then
-    s.expect = frame.slave * 256 + frame.code
+    s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
   else
     s.expect = nil
   end
@@ -1536,9 +1536,9 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   local code = b[i + 1]
   -- (a frame that checks out has the CRC it carries: no need to compute it again)
   return {
-    kind = kind, offset = offset, length = length, slave = b[i], code = code, fn = code % 128,
+    kind = kind, offset = offset, length = length, slave = b[i], fn = code % 128,
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
-    mode = "rtu", b = b, bi = i, data_at = i + 2, data_len = length - 4,
+    b = b, bi = i, data_at = i + 2, data_len = length - 4,
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
   }
 end
@@ -1546,7 +1546,7 @@ end
 -- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
 -- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
 -- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
-local CRC_SEEN_MAX = 4096
+local CRC_SEEN_MAX = 16384
 local crc_seen, crc_seen_count = {}, 0
 
 -- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
@@ -1725,8 +1725,8 @@ local function ascii_candidate(s, at, length, items)
   end
   local offset = s.base + at
   local frame = {
-    kind = kind, offset = offset, length = length, slave = slave, code = code, fn = code % 128,
-    crc = received, crc_expected = expected, mode = "ascii", ascii = true,
+    kind = kind, offset = offset, length = length, slave = slave, fn = code % 128,
+    crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
   if lower then frame.warnings = { "lower-case hex digits (the spec wants upper case)" } end
@@ -3893,7 +3893,7 @@ local function take_frame(st, item)
   if objects ~= nil then
     for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
   end
-  item.bi, item.data_at, item.data_len, item.code, item.mode = nil, nil, nil, nil, nil
+  item.bi, item.data_at, item.data_len = nil, nil, nil
   if item.kind ~= REQUEST then
     item.fields = nil
     release_run(item.registers)
