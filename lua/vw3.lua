@@ -1182,10 +1182,6 @@ local function crc16(b, from, to)
   return hi * 256 + lo
 end
 
-local function crc_step(crc, byte)
-  local index = XOR8[(crc % 256) * 256 + byte]
-  return CRC_HI[index] * 256 + XOR8[floor(crc / 256) * 256 + CRC_LO[index]]
-end
 
 -- Does the frame of `length` bytes at i carry a good CRC? The running CRC of the last frame start is
 -- kept: the layouts tried at one start (a request of 8 bytes, then a response of 5 + byte count, then the
@@ -1303,12 +1299,14 @@ end
 local function shortest_crc(b, i, n, minimum)
   local last = math.min(n - i, MAX_ADU)
   if minimum > last then return 0 end
-  local crc = 0xFFFF
-  for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
+  -- (the register's two bytes, one byte more a length: see scan_match)
+  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
   for length = minimum, last do
     local stop = i + length - 2
-    if crc == b[stop] + b[stop + 1] * 256 then return length end
-    crc = crc_step(crc, b[stop])
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then return length end
+    local index = XOR8[lo * 256 + byte]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
   end
   return 0
 end
@@ -1430,17 +1428,20 @@ local function scan_match(s, b, i, n, minimum, final)
   local last = math.min(n - i, MAX_ADU)
   if minimum < 2 then minimum = 2 end
   if minimum <= last then
-    -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
-    local crc = 0xFFFF
-    for k = i, i + minimum - 3 do crc = crc_step(crc, b[k]) end
+    -- One running CRC over the growing frame: each length costs one byte, not a new CRC. (Its two
+    -- bytes, lo and hi, stepped here rather than by a call a byte: this loop runs for every byte of
+    -- every frame without a length rule.)
+    local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
     for length = minimum, last do
       local stop = i + length - 2
-      if crc == b[stop] + b[stop + 1] * 256 then
+      local byte = b[stop]
+      if lo == byte and hi == b[stop + 1] then
         local following = valid_frame_at(s, b, i + length, n, final)
         if following == nil then return NEED end
         if following and not (s.noise ~= nil and intact_inside(s, b, i, length, n)) then return length end
       end
-      crc = crc_step(crc, b[stop])
+      local index = XOR8[lo * 256 + byte]
+      lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
     end
   end
   if n - i < MAX_ADU and not final then return NEED end
