@@ -3990,8 +3990,8 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      st.whole_record = record -- (packed by pack.settle)
       take_frame(st, frame)
+      st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
     end
   end
@@ -4693,15 +4693,14 @@ local function add_part(summaries, info, text)
   return { info, text }, nil
 end
 
-show_record = function(st, record, tvb, pinfo, tree, n)
+-- whole: the record is one frame just taken by dissect_record's fast lane (not packed yet).
+show_record = function(st, record, tvb, pinfo, tree, n, whole)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
-  local item = record[1]
-  if not full and record[2] == nil and type(item) == "table" and item.kind ~= nil and item.kind ~= NOISE
-      and item.raw == nil and record.error == nil and record.continued == nil and record.waiting == nil
-      and config.errors[1] == nil then
-    -- One frame of its own record, no tree (a summary's first pass): its expert infos and its Info text.
+  if whole and not full and config.errors[1] == nil then
+    -- No tree (a summary's first pass): the frame's expert infos and its Info text, nothing else to say.
+    local item = record[1]
     show_frame(st, item, tvb, tree, pinfo, false)
     cols.info = summary(item)
     return
@@ -4818,7 +4817,7 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    show_record(st, record, tvb, pinfo, tree, n)
+    show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
     pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
     return n
   end
