@@ -13,10 +13,16 @@ profiles), `max-size` (every public function code at quantities up to the spec's
   and the RSS ratio.
 --pcap times one capture instead of the mixes; --plugin another copy of the plugin (an older commit's,
 `git show REV:lua/vw3.lua > old.lua`).
+
+--instructions counts instead of timing: the machine instructions of one pass of each (valgrind's
+callgrind, which a shared machine's load does not move), of the capture and of an empty one (tshark's
+start-up, with the plugin's tables and fields), so that the ratio per record is told apart from the
+start-up's share. Slow (some 50 times a run): use it with --frames 20000.
 """
 from __future__ import annotations
 
 import argparse
+import re
 import shutil
 import struct
 import subprocess
@@ -87,6 +93,35 @@ def measure(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str
     return {"speed": speed, "memory": memory}
 
 
+def instructions(command: list[str]) -> int:
+    """Machine instructions of one run of `command` under callgrind (its output thrown away)."""
+    probe = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", *command],
+                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=ROOT)
+    found = re.search(r"Collected : (\d+)", probe.stderr)
+    if probe.returncode != 0 or found is None:
+        sys.exit(f"failed under valgrind ({probe.returncode}): {' '.join(command)}\n{probe.stderr[-2000:]}")
+    return int(found.group(1))
+
+
+def count(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str, out: Path) -> float:
+    """One pass of the plugin and of mbrtu in instructions; the per-record ratio (start-up apart)."""
+    frames = pcap_records(pcap)
+    empty = out / "lua-empty.pcap"
+    empty.write_bytes(pcap.read_bytes()[:24])  # the pcap header alone: tshark's start-up and end
+    lua = [tshark, "-X", f"lua_script:{plugin}", "-o", USER_DLT, *options, "-r"]
+    mbrtu = [tshark, *MBRTU_OPTIONS, "-r"]
+    plugin_total, plugin_start = instructions(lua + [str(pcap)]), instructions(lua + [str(empty)])
+    mbrtu_total, mbrtu_start = instructions(mbrtu + [str(pcap)]), instructions(mbrtu + [str(empty)])
+    per_plugin = (plugin_total - plugin_start) / frames
+    per_mbrtu = (mbrtu_total - mbrtu_start) / frames
+    print(f"{name}: {pcap.name}, {frames} records (instructions, one pass)")
+    print(f"  vw3.lua {plugin_total / 1e9:7.3f} G, start-up {plugin_start / 1e9:.3f} G, {per_plugin:,.0f} a record")
+    print(f"  mbrtu   {mbrtu_total / 1e9:7.3f} G, start-up {mbrtu_start / 1e9:.3f} G, {per_mbrtu:,.0f} a record")
+    print(f"  vw3.lua at {mbrtu_total / plugin_total:.2f}x mbrtu's instructions on this capture, "
+          f"{per_mbrtu / per_plugin:.2f}x a record")
+    return per_mbrtu / per_plugin
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--frames", type=int, default=100_000, help="records of each mix (default 100,000)")
@@ -96,6 +131,8 @@ def main() -> int:
     parser.add_argument("--pcap", type=Path, help="time this capture instead of the mixes")
     parser.add_argument("--plugin", type=Path, default=PLUGIN, help="the plugin file (default lua/vw3.lua)")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
+    parser.add_argument("--instructions", action="store_true",
+                        help="count machine instructions under valgrind instead of timing")
     args = parser.parse_args()
     tshark = shutil.which("tshark")
     if tshark is None:
@@ -104,13 +141,21 @@ def main() -> int:
     plugin = args.plugin.resolve()
     print(f"{version}\nplugin: {plugin}")
     args.out.mkdir(parents=True, exist_ok=True)
+    if args.instructions and shutil.which("valgrind") is None:
+        sys.exit("valgrind is not installed: apt-get install -y valgrind")
     if args.pcap:
-        measure(args.pcap.name, args.pcap.resolve(), [], plugin, tshark, args.repeat, args.out)
+        if args.instructions:
+            count(args.pcap.name, args.pcap.resolve(), [], plugin, tshark, args.out)
+        else:
+            measure(args.pcap.name, args.pcap.resolve(), [], plugin, tshark, args.repeat, args.out)
         return 0
     chosen = [mix for mix in MIXES if (mix.name in args.mix if args.mix else mix.name != "polling")]
     for mix in chosen:
         _raw, pcap = write_capture(mix.records(args.frames), args.out / f"lua-{mix.name}")
-        measure(mix.name, pcap, plugin_options(mix.options), plugin, tshark, args.repeat, args.out)
+        if args.instructions:
+            count(mix.name, pcap, plugin_options(mix.options), plugin, tshark, args.out)
+        else:
+            measure(mix.name, pcap, plugin_options(mix.options), plugin, tshark, args.repeat, args.out)
     return 0
 
 
