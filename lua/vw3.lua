@@ -1140,22 +1140,11 @@ end
 
 -- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
 -- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
--- TWO_HI hold them, and takes eight bytes a turn: fewer operations a byte.)
+-- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
 local function crc_bytes(b, from, to, lo, hi)
   local k = from
   if k + 1 < to then
     local l, h = lo * 256, hi * 256
-    while k + 7 < to do
-      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      w = XOR8[h + b[k + 5]] * 256 + XOR8[l + b[k + 4]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      w = XOR8[h + b[k + 7]] * 256 + XOR8[l + b[k + 6]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      k = k + 8
-    end
     while k + 3 < to do
       local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
       l, h = TWO_LO[w], TWO_HI[w]
@@ -1544,6 +1533,13 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   }
 end
 
+-- The interpretation the fast paths try at a frame start: the likeliest, unless it is an exception
+-- nobody awaits (those are weighed by match). nil: no fast path here.
+local function fast_interpretation(s, first, slave, code)
+  if first ~= nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then return first end
+  return nil
+end
+
 -- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
 -- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
 -- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
@@ -1590,7 +1586,7 @@ local function run_rtu(s, final, items)
       local done = false
       -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
       -- belong to a longer frame, see match): nearly every frame of a clean bus.
-      if s.noise == nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then
+      if s.noise == nil and fast_interpretation(s, first, slave, code) then
         -- (or the frame ends where the record does: a record boundary settles what match would weigh,
         -- and this is every frame of a capture with one frame a record)
         local length, is_scan = first[2](b, i, n)
@@ -1819,8 +1815,8 @@ feed_whole = function(s, bytes, time)
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
   if slave > MAX_SLAVE then return nil end
-  local first = interpretations(s, slave, code)[1]
-  if first == nil or (first[1] == EXCEPTION and s.expect ~= slave * 256 + code % 128) then return nil end
+  local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
+  if first == nil then return nil end
   local b = { [0] = slave, byte(bytes, 2, n) }
   local length, is_scan = first[2](b, 0, n)
   if is_scan or length ~= n or not whole_crc_good(b, n, bytes) then return nil, b end
@@ -3723,9 +3719,16 @@ do
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
   local ITEM = 24
   -- Frames packed as tables whatever they hold: exceptions (they hold their code) and the functions
-  -- whose handlers keep what they decoded (8: sub-function, 17: server id, 43: objects); noise has a
+  -- whose handlers keep what they decoded (by the protocol table: FC8's sub-function, FC17's server id,
+  -- FC43's objects); noise has a
   -- kind of its own. The rare keys only those hold need no test on the others.
-  local TABLE_FUNCTIONS = { [8] = true, [17] = true, [43] = true }
+  local TABLE_FUNCTIONS = {}
+  local KEEPING = { diagnostics = true, report_server_id_response = true, mei_response = true }
+  for _, direction in pairs(DATA.protocol.handlers) do
+    for code, name in pairs(direction) do
+      if KEEPING[name] then TABLE_FUNCTIONS[code] = true end
+    end
+  end
   local NOT_TESTED = { span_label = true, exception_code = true, exception_meaning = true, inferred = true,
     subfunction = true, subfunction_text = true, server = true, objects = true, reason = true }
   -- Does the frame hold a rare key? (one expression, made from RARE: no loop a frame; a rare key is

@@ -197,12 +197,12 @@ def test_random_register_sessions_same_stats(parts: list[bytes], splits: list[in
 
 @settings(max_examples=150, deadline=None)
 @given(
-    st.lists(st.tuples(st.sampled_from([1, 12, 20, 247]), strategies.transactions()), min_size=1, max_size=10),
+    st.lists(strategies.transactions(strategies.named_slaves), min_size=1, max_size=10),
     st.lists(st.integers(0, 600), max_size=3),
     st.sampled_from(["generic", "atv71", "sel749m", "auto", None]),
 )
 def test_every_public_code_same_stats(exchanges: list, splits: list[int], profile: str | None) -> None:
-    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    data = strategies.session_bytes(exchanges)
     assert_same(data + b"\x01", annotator(profile), [cut for cut in splits if cut < len(data)])
 
 

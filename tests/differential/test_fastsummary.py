@@ -24,7 +24,6 @@ from dissector.render.summary import summary_line
 from dissector.sim.simulate import generate_session
 import strategies
 from helpers import rtu
-from strategies import adu
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "bench"))
@@ -448,13 +447,13 @@ def test_plant_mix_comes_from_the_engine_nearly_whole() -> None:
 
 @settings(max_examples=200, deadline=None)
 @given(
-    st.lists(st.tuples(st.sampled_from([1, 12, 20, 247]), strategies.transactions()), min_size=1, max_size=10),
+    st.lists(strategies.transactions(strategies.named_slaves), min_size=1, max_size=10),
     st.lists(st.integers(0, 600), max_size=3),
     st.sampled_from(["generic", "atv71", "sel749m", "auto", None]),
 )
 def test_every_public_code_same_lines(exchanges: list, splits: list[int], profile: str | None) -> None:
     """Transactions of every public code (tests/support/strategies.py), each profile."""
-    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    data = strategies.session_bytes(exchanges)
     factory = (lambda: None) if profile is None else (lambda: build_annotator([profile], [], None))
     assert_same(data + b"\x01", factory, [cut for cut in splits if cut < len(data)])
 

@@ -19,7 +19,7 @@ from dissector.pipeline import dissect_bytes
 from dissector.render.detail import detail_text, detail_tree, render_plain
 from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
-from strategies import adu, transactions
+from strategies import session_bytes, transactions
 
 from conftest import ROOT
 
@@ -53,9 +53,9 @@ def test_mixes(profiles: list[str]) -> None:
 
 
 @settings(deadline=None, max_examples=150, suppress_health_check=list(HealthCheck))
-@given(st.lists(st.tuples(st.integers(0, 247), transactions()), min_size=1, max_size=6), st.sampled_from(PROFILES))
+@given(st.lists(transactions(st.integers(0, 247)), min_size=1, max_size=6), st.sampled_from(PROFILES))
 def test_random_transactions(exchanges: list, profiles: list[str]) -> None:
-    data = b"".join(adu(slave, request) + adu(slave, response) for slave, (request, response, _f) in exchanges)
+    data = session_bytes(exchanges)
     _check(dissect_bytes(data, annotate=build_annotator(profiles, [])))
 
 

@@ -142,8 +142,17 @@ pdu_pairs = st.one_of(
 
 
 @st.composite
-def transactions(draw: st.DrawFn) -> tuple[bytes, bytes, dict]:
+def transactions(draw: st.DrawFn, slave_numbers: st.SearchStrategy[int] = slaves) -> tuple[bytes, bytes, dict]:
     """(request ADU, response ADU, expected fields) for one slave."""
-    slave = draw(slaves)
+    slave = draw(slave_numbers)
     request, response, expected = draw(pdu_pairs)
     return adu(slave, request), adu(slave, response), expected
+
+
+# A few slaves, the highest address among them: sessions where the same slaves come back.
+named_slaves = st.sampled_from([1, 12, 20, 247])
+
+
+def session_bytes(exchanges: list[tuple[bytes, bytes, dict]]) -> bytes:
+    """The bytes of transactions() one after another: each request, then its response."""
+    return b"".join(request + response for request, response, _expected in exchanges)
