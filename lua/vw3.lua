@@ -1530,6 +1530,8 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
     crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
     b = b, bi = i, data_at = i + 2, data_len = length - 4,
     number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
+    -- (and the keys decoding adds: a table that outgrows its hash is rebuilt, each key inserted again)
+    fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
   }
 end
 
@@ -1921,13 +1923,13 @@ end
 -- frame's byte table, .b, dropped once the frame is done with; the display from the tvb), so a record
 -- keeps one small table for a read of 125 registers, not 125.
 local function make_registers(b, first, count, start)
-  return { b = b, first = first, count = count, start = start }
+  return { b = b, first = first, count = count, start = start, shift = nil } -- (shift: see release_run)
 end
 
 local function make_bits(b, first, byte_count, start, quantity)
   local count = byte_count * 8
   if quantity ~= nil and quantity < count then count = quantity end
-  return { b = b, first = first, count = count, start = start }
+  return { b = b, first = first, count = count, start = start, shift = nil }
 end
 
 -- A run is done with its frame's byte table (the display reads the tvb): its indices become the
@@ -1967,7 +1969,7 @@ local P = {}
 
 local function read_request(f, b, d, len)
   if len < 4 then return nil, "too short for start and quantity" end
-  f.fields = { start = u16(b, d), quantity = u16(b, d + 2) }
+  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3] }
   return 4
 end
 
@@ -1979,13 +1981,13 @@ end
 
 local function read_registers_response(f, b, d, len)
   if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = { byte_count = b[d], values_at = d + 1, count = floor(b[d] / 2) }
+  f.fields = { byte_count = b[d], values_at = d + 1, count = (b[d] - b[d] % 2) / 2 }
   return 1 + b[d]
 end
 
 local function write_single(f, b, d, len)
   if len < 4 then return nil, "too short for address and value" end
-  f.fields = { address = u16(b, d), value = u16(b, d + 2) }
+  f.fields = { address = b[d] * 256 + b[d + 1], value = b[d + 2] * 256 + b[d + 3] }
   return 4
 end
 
@@ -1996,21 +1998,21 @@ end
 
 local function diagnostics(f, b, d, len)
   if len < 2 then return nil, "too short for a sub-function" end
-  f.fields = { subfunction = u16(b, d), data_length = len - 2 }
+  f.fields = { subfunction = b[d] * 256 + b[d + 1], data_length = len - 2 }
   return len
 end
 
 local function write_coils_request(f, b, d, len)
   if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
-  f.fields = { start = u16(b, d), quantity = u16(b, d + 2), byte_count = b[d + 4], status_at = d + 5 }
+  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], status_at = d + 5 }
   return 5 + b[d + 4]
 end
 
 local function write_registers_request(f, b, d, len)
   if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
   f.fields = {
-    start = u16(b, d), quantity = u16(b, d + 2), byte_count = b[d + 4], values_at = d + 5,
-    count = floor(b[d + 4] / 2),
+    start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], values_at = d + 5,
+    count = (b[d + 4] - b[d + 4] % 2) / 2,
   }
   return 5 + b[d + 4]
 end
@@ -2037,29 +2039,29 @@ end
 
 local function mask_write(f, b, d, len)
   if len < 6 then return nil, "too short for address and masks" end
-  f.fields = { address = u16(b, d) }
+  f.fields = { address = b[d] * 256 + b[d + 1] }
   return 6
 end
 
 local function read_write_request(f, b, d, len)
   if len < 9 or len < 9 + b[d + 8] then return nil, "byte count past the end" end
   f.fields = {
-    read_start = u16(b, d), read_quantity = u16(b, d + 2), write_start = u16(b, d + 4),
-    write_quantity = u16(b, d + 6), byte_count = b[d + 8], values_at = d + 9, count = floor(b[d + 8] / 2),
+    read_start = b[d] * 256 + b[d + 1], read_quantity = b[d + 2] * 256 + b[d + 3], write_start = b[d + 4] * 256 + b[d + 5],
+    write_quantity = b[d + 6] * 256 + b[d + 7], byte_count = b[d + 8], values_at = d + 9, count = (b[d + 8] - b[d + 8] % 2) / 2,
   }
   return 9 + b[d + 8]
 end
 
 local function fifo_request(f, b, d, len)
   if len < 2 then return nil, "too short for an address" end
-  f.fields = { address = u16(b, d) }
+  f.fields = { address = b[d] * 256 + b[d + 1] }
   return 2
 end
 
 local function fifo_response(f, b, d, len)
-  if len < 4 or len < 4 + 2 * u16(b, d + 2) then return nil, "FIFO count past the end" end
-  f.fields = { byte_count = u16(b, d), fifo_count = u16(b, d + 2) }
-  return 4 + 2 * u16(b, d + 2)
+  if len < 4 or len < 4 + 2 * (b[d + 2] * 256 + b[d + 3]) then return nil, "FIFO count past the end" end
+  f.fields = { byte_count = b[d] * 256 + b[d + 1], fifo_count = b[d + 2] * 256 + b[d + 3] }
+  return 4 + 2 * (b[d + 2] * 256 + b[d + 3])
 end
 
 local function mei_request(f, b, d, len)
@@ -2134,11 +2136,12 @@ end
 
 -- Handlers (decode.py): lift out start, quantity, registers, bits, objects; check the spec.
 local H = { [REQUEST] = {}, [RESPONSE] = {} }
+local REQUEST_LIMITS = DATA.protocol.limits.request
 
 local function read_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
+  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
   check_span(f, fields.start, fields.quantity)
 end
 
@@ -2215,7 +2218,7 @@ end
 local function write_coils_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
+  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= ceil_bytes(fields.quantity) then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -2226,7 +2229,7 @@ end
 local function write_registers_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
+  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= 2 * fields.quantity then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -2922,9 +2925,9 @@ function story.event(f, what, address, row, label, before, how, frame, now, shar
 end
 
 function story.tell(f)
-  local function event_name(e) return address_name(e.row, e.address, e.label) end
   local events = f.events
-  if events == nil then return end
+  if events == nil then return end -- (most frames: before the closure below is made)
+  local function event_name(e) return address_name(e.row, e.address, e.label) end
   f.events = nil
   local groups, order = {}, {}
   for _, e in ipairs(events) do
@@ -3874,16 +3877,24 @@ end
 local take_items, dissect_record
 do -- (a block: the main chunk may hold at most 200 locals)
 -- Pair, decode and annotate a frame just numbered.
-local function take_frame(st, item)
+local function take_frame(st, item, whole)
   pair(st, item)
   decode_frame(item)
   annotate(st, item, item.b)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
   -- ask for them (a request's, until its answer is decoded or it can have none).
-  item.b = nil
   if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
   if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
+  -- A record's one frame (whole) is copied by pack.settle, which takes none of these keys (and its
+  -- indices are the frame's own already); a request awaiting its answer keeps its byte table until then.
+  -- The request it answers may have come through the stream's buffer: its registers are released.
+  if whole then
+    local request = item.request
+    if request ~= nil then release_run(request.registers) end
+    return
+  end
+  item.b = nil
   -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
   -- pending request's registers once its answer has been read), and what is known from the kind of
   -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
@@ -3993,7 +4004,7 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      take_frame(st, frame)
+      take_frame(st, frame, true)
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
     end
