@@ -4576,8 +4576,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
     if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
   end
-  -- Known only once the whole capture has been read (second pass).
-  local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo.visited
+  -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
+  -- dissection, which is never a later pass's, and asks pinfo nothing).
+  local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo ~= nil and pinfo.visited
   if f.kind == REQUEST then
     -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
     if f.unanswered or ends_unanswered then
@@ -4715,7 +4716,7 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
   if whole and not full and config.errors[1] == nil then
     -- No tree (a summary's first pass): the frame's expert infos and its Info text, nothing else to say.
     local item = record[1]
-    show_frame(st, item, tvb, tree, pinfo, false)
+    show_frame(st, item, tvb, tree, nil, false)
     cols.info = summary(item)
     return
   end
