@@ -17,7 +17,10 @@ profiles), `max-size` (every public function code at quantities up to the spec's
 --instructions counts instead of timing: the machine instructions of one pass of each (valgrind's
 callgrind, which a shared machine's load does not move), of the capture and of an empty one (tshark's
 start-up, with the plugin's tables and fields), so that the ratio per record is told apart from the
-start-up's share. Slow (some 50 times a run): use it with --frames 20000.
+start-up's share. It counts a third dissector too, the floor: a Lua dissector that does only what any
+Lua dissector of records must (read the record's number, bytes and time, look at the tree, set the
+Protocol and Info columns), so that what the plugin's own work costs is told apart from what calling
+Lua from Wireshark costs. Slow (some 50 times a run): use it with --frames 20000.
 """
 from __future__ import annotations
 
@@ -103,20 +106,42 @@ def instructions(command: list[str]) -> int:
     return int(found.group(1))
 
 
+# The floor (see --instructions): named vw3, so that the same DLT_USER entry hands it the records.
+FLOOR_DISSECTOR = """local proto = Proto("vw3", "Lua dissector floor")
+function proto.dissector(tvb, pinfo, tree)
+  local number, bytes, time, text = pinfo.number, tvb:raw(), pinfo.abs_ts, tree.text
+  local cols = pinfo.cols
+  cols.protocol = "VW3"
+  cols.info = "1 Read Holding Registers request 3201..3210"
+  return #bytes
+end
+"""
+
+
+def per_record(command: list[str], pcap: Path, empty: Path, frames: int) -> tuple[int, int, float]:
+    """Instructions of one pass over `pcap`, over the empty capture, and their difference a record."""
+    total, start = instructions(command + [str(pcap)]), instructions(command + [str(empty)])
+    return total, start, (total - start) / frames
+
+
 def count(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str, out: Path) -> float:
-    """One pass of the plugin and of mbrtu in instructions; the per-record ratio (start-up apart)."""
+    """One pass of the plugin, of mbrtu and of the floor in instructions; the per-record ratio (start-up apart)."""
     frames = pcap_records(pcap)
     empty = out / "lua-empty.pcap"
     empty.write_bytes(pcap.read_bytes()[:24])  # the pcap header alone: tshark's start-up and end
+    floor_script = out / "lua-floor.lua"
+    floor_script.write_text(FLOOR_DISSECTOR)
     lua = [tshark, "-X", f"lua_script:{plugin}", "-o", USER_DLT, *options, "-r"]
     mbrtu = [tshark, *MBRTU_OPTIONS, "-r"]
-    plugin_total, plugin_start = instructions(lua + [str(pcap)]), instructions(lua + [str(empty)])
-    mbrtu_total, mbrtu_start = instructions(mbrtu + [str(pcap)]), instructions(mbrtu + [str(empty)])
-    per_plugin = (plugin_total - plugin_start) / frames
-    per_mbrtu = (mbrtu_total - mbrtu_start) / frames
+    floor = [tshark, "-X", f"lua_script:{floor_script}", "-o", USER_DLT, "-r"]
+    plugin_total, plugin_start, per_plugin = per_record(lua, pcap, empty, frames)
+    mbrtu_total, mbrtu_start, per_mbrtu = per_record(mbrtu, pcap, empty, frames)
+    _floor_total, _floor_start, per_floor = per_record(floor, pcap, empty, frames)
     print(f"{name}: {pcap.name}, {frames} records (instructions, one pass)")
     print(f"  vw3.lua {plugin_total / 1e9:7.3f} G, start-up {plugin_start / 1e9:.3f} G, {per_plugin:,.0f} a record")
     print(f"  mbrtu   {mbrtu_total / 1e9:7.3f} G, start-up {mbrtu_start / 1e9:.3f} G, {per_mbrtu:,.0f} a record")
+    print(f"  floor   {per_floor:,.0f} a record (a Lua dissector that reads the record and sets its columns): "
+          f"the plugin's own work {per_plugin - per_floor:,.0f} a record")
     print(f"  vw3.lua at {mbrtu_total / plugin_total:.2f}x mbrtu's instructions on this capture, "
           f"{per_mbrtu / per_plugin:.2f}x a record")
     return per_mbrtu / per_plugin

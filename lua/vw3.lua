@@ -4715,8 +4715,13 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
   local full = tree_mode(tree)
   if whole and not full and config.errors[1] == nil then
     -- No tree (a summary's first pass): the frame's expert infos and its Info text, nothing else to say.
+    -- (show_frame only adds expert infos here: asked only when the frame has one to add)
     local item = record[1]
-    show_frame(st, item, tvb, tree, nil, false)
+    local registers = item.registers
+    if item.crc ~= item.crc_expected or item.kind == EXCEPTION or item.warnings or item.notes or item.unanswered
+        or item.profile_choice or item.inferred or (registers ~= nil and registers.status ~= nil) then
+      show_frame(st, item, tvb, tree, nil, false)
+    end
     cols.info = summary(item)
     return
   end
