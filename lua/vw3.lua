@@ -3807,12 +3807,14 @@ do
     if quantity == nil then quantity = false end
     if label == nil then label = false end
     local flat, k = st.flat, st.flat_n
-    flat[k + 1], flat[k + 2], flat[k + 3], flat[k + 4], flat[k + 5], flat[k + 6], flat[k + 7], flat[k + 8],
-      flat[k + 9], flat[k + 10], flat[k + 11], flat[k + 12] = kind, f.at, f.length, f.number, f.offset, f.record,
-      time, f.slave, f.fn, f.crc, f.crc_expected, start
-    flat[k + 13], flat[k + 14], flat[k + 15], flat[k + 16], flat[k + 17], flat[k + 18], flat[k + 19],
-      flat[k + 20], flat[k + 21], flat[k + 22], flat[k + 23], flat[k + 24] = quantity, rf, rc, rs, bf, bc, bs,
-      single, request_record, request_time, response_record, label
+    -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
+    -- of the array part, where the key goes to the hash part until the table is rebuilt)
+    flat[k + 1] = kind; flat[k + 2] = f.at; flat[k + 3] = f.length; flat[k + 4] = f.number
+    flat[k + 5] = f.offset; flat[k + 6] = f.record; flat[k + 7] = time; flat[k + 8] = f.slave
+    flat[k + 9] = f.fn; flat[k + 10] = f.crc; flat[k + 11] = f.crc_expected; flat[k + 12] = start
+    flat[k + 13] = quantity; flat[k + 14] = rf; flat[k + 15] = rc; flat[k + 16] = rs
+    flat[k + 17] = bf; flat[k + 18] = bc; flat[k + 19] = bs; flat[k + 20] = single
+    flat[k + 21] = request_record; flat[k + 22] = request_time; flat[k + 23] = response_record; flat[k + 24] = label
     st.flat_n = k + ITEM
     return k
   end
