@@ -1338,6 +1338,7 @@ end
 -- (one block: the main chunk of a Lua file may hold at most 200 locals)
 local MODE_SAMPLE = 64
 local feed, feed_whole, detect_mode, flush_noise_of
+local known_requests -- (see below: requests met before)
 do
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
@@ -1580,8 +1581,14 @@ end
 -- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
 -- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
 -- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
-local CRC_SEEN_MAX = 16384
+local CRC_SEEN_MAX = 32768
 local crc_seen, crc_seen_count = {}, 0
+
+-- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
+-- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
+-- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
+-- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
+known_requests = { entries = {}, count = 0, MAX = 4096 }
 
 -- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
 local function whole_crc_good(b, n, whole)
@@ -1852,6 +1859,25 @@ feed_whole = function(s, bytes, time)
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
   if slave > MAX_SLAVE then return nil end
+  local known = known_requests.entries[bytes]
+  if known ~= nil and s.expect ~= slave * 256 + code then
+    -- A request met before, where no answer of its slave and function is awaited: the frame the lines
+    -- below would find (the request's layout is the likeliest; its length and CRC checked when it was
+    -- met), and the stream left as they leave it (expect_after: a request's code is its function).
+    local offset = s.base
+    local frame = {
+      kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
+      crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
+      number = 0, record = 0, at = 0,
+      fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
+      known = known, -- (take_frame decodes it from the entry)
+    }
+    s.expect = slave * 256 + code
+    s.base = offset + n
+    times[1] = offset
+    if time == nil then times[2] = false else times[2] = time end
+    return frame
+  end
   local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
   if first == nil then return nil end
   local b = { [0] = slave, byte(bytes, 2, n) }
@@ -2171,12 +2197,11 @@ end
 
 -- Handlers (decode.py): lift out start, quantity, registers, bits, objects; check the spec.
 local H = { [REQUEST] = {}, [RESPONSE] = {} }
-local REQUEST_LIMITS = DATA.protocol.limits.request
 
 local function read_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
 end
 
@@ -2253,7 +2278,7 @@ end
 local function write_coils_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= ceil_bytes(fields.quantity) then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -2264,7 +2289,7 @@ end
 local function write_registers_request_handler(f, b)
   local fields = f.fields
   f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, REQUEST_LIMITS[f.fn])
+  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
   check_span(f, fields.start, fields.quantity)
   if fields.byte_count ~= 2 * fields.quantity then
     warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
@@ -2429,8 +2454,9 @@ local function pair(st, f)
   end
 end
 
-local annotate -- defined with the device profiles below
+local annotate_with -- defined with the device profiles below: annotate a frame for its device
 local device_now -- (the device a frame is annotated with: profile auto chooses it)
+local summary -- (the Info text of a frame: defined with the display)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Device profiles and register maps (profiles.py, maps.py, profile_annotator.py): names, scaling, the
@@ -3598,8 +3624,7 @@ device_now = function(st, f, b)
   return device_for(st, f.slave)
 end
 
-annotate = function(st, f, b)
-  local device = device_now(st, f, b)
+annotate_with = function(st, f, b, device)
   if not device then return end
   local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
   if special_name ~= nil then f.function_text = special_name end
@@ -3913,11 +3938,33 @@ end
 
 local take_items, dissect_record
 do -- (a block: the main chunk may hold at most 200 locals)
--- Pair, decode and annotate a frame just numbered.
+-- A run of a known request, for one frame (runs change with their frame: released, packed).
+local function copy_run(run)
+  if run == nil then return nil end
+  return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
+end
+
+-- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
-  decode_frame(item)
-  annotate(st, item, item.b)
+  local known = item.known
+  local device
+  if known ~= nil then
+    -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
+    item.known = nil
+    item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
+    item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
+    device = device_now(st, item, item.b)
+    if device == known.device and item.profile_choice == nil then
+      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
+    else
+      annotate_with(st, item, item.b, device)
+    end
+  else
+    decode_frame(item)
+    device = device_now(st, item, item.b)
+    annotate_with(st, item, item.b, device)
+  end
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
   -- ask for them (a request's, until its answer is decoded or it can have none).
@@ -3929,7 +3976,7 @@ local function take_frame(st, item, whole)
   if whole then
     local request = item.request
     if request ~= nil then release_run(request.registers) end
-    return
+    return device
   end
   item.b = nil
   -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
@@ -3958,6 +4005,28 @@ local function take_frame(st, item, whole)
     item.fields = nil
     release_run(item.registers)
   end
+  return device
+end
+
+-- Keep a request of one record for the next time its bytes come (see known_requests): one whose
+-- decoding and annotation said nothing but its fields and device texts, which nothing else than its
+-- bytes and device made (no registers annotated: a device with layout rules may note them).
+local function remember_request(bytes, item, device)
+  if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
+      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
+      or (item.registers ~= nil and next(device.depend) ~= nil) then
+    return
+  end
+  if known_requests.count >= known_requests.MAX then known_requests.entries, known_requests.count = {}, 0 end
+  known_requests.count = known_requests.count + 1
+  local info = item.info
+  if info == nil and summary ~= nil then info = summary(item) end -- (nil: loaded without Wireshark)
+  item.info = info
+  known_requests.entries[bytes] = {
+    device = device, crc = item.crc, b = item.b, fields = item.fields, start = item.start,
+    quantity = item.quantity, registers = copy_run(item.registers), bits = copy_run(item.bits),
+    function_text = item.function_text, span_label = item.span_label, info = info,
+  }
 end
 
 -- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
@@ -4041,7 +4110,9 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      take_frame(st, frame, true)
+      local known = frame.known
+      local device = take_frame(st, frame, true)
+      if known == nil then remember_request(bytes, frame, device) end
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
     end
@@ -4445,7 +4516,6 @@ local function add_register(tree, tvb, f, reg, range, full)
   end
 end
 
-local summary
 do -- (a block: the main chunk may hold at most 200 locals)
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
@@ -4759,7 +4829,7 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
         or item.profile_choice or item.inferred or (registers ~= nil and registers.status ~= nil) then
       show_frame(st, item, tvb, tree, nil, false)
     end
-    cols.info = summary(item)
+    cols.info = item.info or summary(item) -- (info: a known request's, see known_requests)
     return
   end
   unseen.serial = unseen.serial + 1
