@@ -4008,13 +4008,25 @@ local function take_frame(st, item, whole)
   return device
 end
 
+-- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
+-- layout rule, which may be noted)?
+local function follows_registers(device, run)
+  if run == nil or run.start == nil then return false end
+  local depend = device.depend
+  if next(depend) == nil then return false end
+  for index = 0, run.count - 1 do
+    if depend[(run.start + index) % 0x10000] ~= nil then return true end
+  end
+  return false
+end
+
 -- Keep a request of one record for the next time its bytes come (see known_requests): one whose
 -- decoding and annotation said nothing but its fields and device texts, which nothing else than its
--- bytes and device made (no registers annotated: a device with layout rules may note them).
+-- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
       or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
-      or (item.registers ~= nil and next(device.depend) ~= nil) then
+      or follows_registers(device, item.registers) then
     return
   end
   if known_requests.count >= known_requests.MAX then known_requests.entries, known_requests.count = {}, 0 end
