@@ -1587,9 +1587,8 @@ local crc_seen, crc_seen_count = {}, 0
 -- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
 -- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
 -- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
--- (dissect_record makes them, take_frame uses them), for a request met twice (`once`: those met once; a
--- capture of large reads has few requests alike). Bounded: new tables after MAX requests.
-known_requests = { entries = {}, once = {}, count = 0, MAX = 4096 }
+-- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
+known_requests = { entries = {}, count = 0, MAX = 4096 }
 
 -- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
 local function whole_crc_good(b, n, whole)
@@ -4030,14 +4029,8 @@ local function remember_request(bytes, item, device)
       or follows_registers(device, item.registers) then
     return
   end
-  if not known_requests.once[bytes] then
-    if known_requests.count >= known_requests.MAX then
-      known_requests.entries, known_requests.once, known_requests.count = {}, {}, 0
-    end
-    known_requests.count = known_requests.count + 1
-    known_requests.once[bytes] = true
-    return
-  end
+  if known_requests.count >= known_requests.MAX then known_requests.entries, known_requests.count = {}, 0 end
+  known_requests.count = known_requests.count + 1
   local info = item.info
   if info == nil and summary ~= nil then info = summary(item) end -- (nil: loaded without Wireshark)
   item.info = info
