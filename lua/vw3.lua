@@ -1130,8 +1130,10 @@ for byte = 0, 255 do
   for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
 end
 -- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
-for lo = 0, 255 do
-  for hi = 0, 255 do
+-- (filled in index order: a table filled out of order keeps its keys in the hash part, rebuilt again and
+-- again, until half of them are there: that tripled the plugin's start-up)
+for hi = 0, 255 do
+  for lo = 0, 255 do
     local index = lo -- the first byte in: lo XOR 0, then the second byte (0) into the result
     local lo1, hi1 = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
     TWO_LO[hi * 256 + lo], TWO_HI[hi * 256 + lo] = XOR8[hi1 * 256 + CRC_LO[lo1]] * 256, CRC_HI[lo1] * 256
@@ -3777,10 +3779,11 @@ do
   -- being the number of its first slot. Numbers are no objects: the collector goes over the array's
   -- slots in one sweep instead of following a table (or two, or three) a frame, and the slots take a
   -- third of the bytes. That is a request, response or exception whose only rare key is span_label and
-  -- whose runs hold no rare key but a single coil's value; a missing value is false.
+  -- whose runs hold no rare key but a single coil's value; a missing value is false. Small numbers share
+  -- a slot (a double holds 53 bits exactly): a slot written costs more than the arithmetic that fills it.
   local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 } -- (3: never packed flat, see below)
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
-  local ITEM = 24
+  local ITEM = 13
   -- Frames packed as tables whatever they hold: exceptions (they hold their code) and the functions
   -- whose handlers keep what they decoded (by the protocol table: FC8's sub-function, FC17's server id,
   -- FC43's objects); noise has a
@@ -3802,44 +3805,53 @@ do
   end
   local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
 
-  -- The item's first slot in st.flat, or nil when it is to be packed as a table.
+  -- The item's first slot in st.flat, or nil when it is to be packed as a table. Slots: kind, slave,
+  -- function and length; at; number; offset; record; time; CRC and expected CRC; start and quantity;
+  -- the register run; the bit run; the request's record (or minus the response's); the request's time;
+  -- span label. A missing start, quantity or run start is 0 and the others are one more than they are.
+  local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
   local function packed_flat(st, f)
     local kind = KIND_NUMBER[f.kind]
     if kind == nil or kind == 3 or TABLE_FUNCTIONS[f.fn] or has_rare(f) then return nil end
-    local rf, rc, rs, bf, bc, bs, single = false, false, false, false, false, false, false
+    local regs, bits_slot = false, false
     local registers, bits = f.registers, f.bits
     if registers ~= nil then
       if registers.status ~= nil or registers.plain ~= nil or registers.single ~= nil then return nil end
-      rf, rc, rs = registers.first, registers.count, registers.start
-      if rs == nil then rs = false end
+      local rf, rc, rs = registers.first, registers.count, registers.start
+      if rf >= SHORT or rc >= SHORT then return nil end
+      if rs == nil then rs = 0 else rs = rs + 1 end
+      regs = rf + SHORT * (rc + SHORT * rs)
     end
     if bits ~= nil then
       if bits.status ~= nil or bits.plain ~= nil then return nil end
-      bf, bc, bs, single = bits.first, bits.count, bits.start, bits.single
-      if bs == nil then bs = false end
-      if single == nil then single = false end
+      local bf, bc, bs, single = bits.first, bits.count, bits.start, bits.single
+      if bf >= SHORT or bc >= SHORT then return nil end
+      if bs == nil then bs = 0 else bs = bs + 1 end
+      if single == nil then single = 0 else single = single + 1 end
+      bits_slot = bf + SHORT * (bc + SHORT * (bs + 65537 * single))
     end
     local request, response = f.request, f.response
-    local request_record, request_time, response_record = false, false, false
+    local link, request_time = false, false
     if request ~= nil then
-      request_record, request_time = request.record, request.time
+      if response ~= nil then return nil end
+      link, request_time = request.record, request.time
       if request_time == nil then request_time = false end
+    elseif response ~= nil then
+      link = -response.record
     end
-    if response ~= nil then response_record = response.record end
     local time, start, quantity, label = f.time, f.start, f.quantity, f.span_label
     if time == nil then time = false end
-    if start == nil then start = false end
-    if quantity == nil then quantity = false end
+    if start == nil then start = 0 else start = start + 1 end
+    if quantity == nil then quantity = 0 else quantity = quantity + 1 end
     if label == nil then label = false end
     local flat, k = st.flat, st.flat_n
     -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
     -- of the array part, where the key goes to the hash part until the table is rebuilt)
-    flat[k + 1] = kind; flat[k + 2] = f.at; flat[k + 3] = f.length; flat[k + 4] = f.number
-    flat[k + 5] = f.offset; flat[k + 6] = f.record; flat[k + 7] = time; flat[k + 8] = f.slave
-    flat[k + 9] = f.fn; flat[k + 10] = f.crc; flat[k + 11] = f.crc_expected; flat[k + 12] = start
-    flat[k + 13] = quantity; flat[k + 14] = rf; flat[k + 15] = rc; flat[k + 16] = rs
-    flat[k + 17] = bf; flat[k + 18] = bc; flat[k + 19] = bs; flat[k + 20] = single
-    flat[k + 21] = request_record; flat[k + 22] = request_time; flat[k + 23] = response_record; flat[k + 24] = label
+    flat[k + 1] = kind + 4 * (f.slave + 256 * (f.fn + 256 * f.length)); flat[k + 2] = f.at
+    flat[k + 3] = f.number; flat[k + 4] = f.offset; flat[k + 5] = f.record; flat[k + 6] = time
+    flat[k + 7] = f.crc * SHORT + f.crc_expected; flat[k + 8] = start * 65537 + quantity
+    flat[k + 9] = regs; flat[k + 10] = bits_slot; flat[k + 11] = link; flat[k + 12] = request_time
+    flat[k + 13] = label
     st.flat_n = k + ITEM
     return k
   end
@@ -3849,20 +3861,54 @@ do
     return x
   end
 
+  -- n split into its low part (below `base`) and the rest
+  local function split(n, base)
+    local low = n % base
+    return low, (n - low) / base
+  end
+
+  -- one more than a value, or 0: the value, or nil
+  local function less_one(n)
+    if n == 0 then return nil end
+    return n - 1
+  end
+
   local function expand_flat(st, k)
     local flat = st.flat
-    local f = { kind = NUMBER_KIND[flat[k + 1]], at = flat[k + 2], length = flat[k + 3], number = flat[k + 4],
-      offset = flat[k + 5], record = flat[k + 6], time = value(flat[k + 7]), slave = flat[k + 8],
-      fn = flat[k + 9], crc = flat[k + 10], crc_expected = flat[k + 11], start = value(flat[k + 12]),
-      quantity = value(flat[k + 13]), span_label = value(flat[k + 24]) }
-    if flat[k + 14] ~= false then
-      f.registers = { first = flat[k + 14], count = flat[k + 15], start = value(flat[k + 16]) }
+    local kind, rest = split(flat[k + 1], 4)
+    local slave, fn
+    slave, rest = split(rest, 256)
+    fn, rest = split(rest, 256)
+    local crc, crc_expected = flat[k + 7], nil
+    crc_expected, crc = split(crc, SHORT)
+    local quantity, start = split(flat[k + 8], 65537)
+    local f = { kind = NUMBER_KIND[kind], at = flat[k + 2], length = rest, number = flat[k + 3],
+      offset = flat[k + 4], record = flat[k + 5], time = value(flat[k + 6]), slave = slave,
+      fn = fn, crc = crc, crc_expected = crc_expected, start = less_one(start),
+      quantity = less_one(quantity), span_label = value(flat[k + 13]) }
+    local regs = flat[k + 9]
+    if regs ~= false then
+      local first, count, run_start
+      first, rest = split(regs, SHORT)
+      count, run_start = split(rest, SHORT)
+      f.registers = { first = first, count = count, start = less_one(run_start) }
     end
-    if flat[k + 17] ~= false then
-      f.bits = { first = flat[k + 17], count = flat[k + 18], start = value(flat[k + 19]), single = value(flat[k + 20]) }
+    local bits = flat[k + 10]
+    if bits ~= false then
+      local first, count, run_start, single
+      first, rest = split(bits, SHORT)
+      count, rest = split(rest, SHORT)
+      run_start, single = split(rest, 65537)
+      f.bits = { first = first, count = count, start = less_one(run_start), single = less_one(single) }
     end
-    if flat[k + 21] ~= false then f.request = { record = flat[k + 21], time = value(flat[k + 22]) } end
-    if flat[k + 23] ~= false then f.response = { record = flat[k + 23] } end
+    local link = flat[k + 11]
+    if link ~= false then
+      if link > 0 then
+        f.request = { record = link, time = value(flat[k + 12]) }
+      else
+        f.response = { record = -link }
+      end
+    end
     return f
   end
 
