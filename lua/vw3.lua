@@ -3843,6 +3843,7 @@ do
     if time == nil then time = false end
     if start == nil then start = 0 else start = start + 1 end
     if quantity == nil then quantity = 0 else quantity = quantity + 1 end
+    if start > SHORT or quantity > SHORT then return nil end -- (16-bit fields: never, but a slot must not lie)
     if label == nil then label = false end
     local flat, k = st.flat, st.flat_n
     -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
