@@ -1339,8 +1339,13 @@ end
 
 -- (one block: the main chunk of a Lua file may hold at most 200 locals)
 local MODE_SAMPLE = 64
-local feed, feed_whole, detect_mode, flush_noise_of
+local feed, feed_whole, detect_mode
 local known_requests -- (see below: requests met before)
+-- Functions one block hands to another (one table: the main chunk may hold at most 200 locals). Among
+-- them the quick lane of answers (lane.answer): a record that is the usual answer to the request awaited,
+-- framed, paired, annotated and kept in one step, with no frame table; its parts are defined beside the
+-- rules they follow.
+local lane = {}
 do
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
@@ -1847,7 +1852,7 @@ end
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
 -- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
 -- table when feed_whole made it.
-flush_noise_of = function(s, items) flush_noise(s, items) end
+lane.flush_noise = flush_noise
 
 -- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
@@ -1892,6 +1897,37 @@ feed_whole = function(s, bytes, time)
   times[1] = offset
   if time == nil then times[2] = false else times[2] = time end
   return frame
+end
+
+-- The quick lane's framing (lane.answer): would feed_whole take the record (n bytes, its first two the
+-- slave and function awaited) as one whole answer, by the function's length rule, with a good CRC? Only
+-- for the functions whose answer's length is a byte count (count8: the rule's byte, plus its extra).
+-- Changes nothing but the CRC verdicts kept. lane.advance then leaves the stream as feed_whole leaves it.
+local COUNTED_ANSWERS = {}
+for code, rules in pairs(DATA.protocol.rules) do
+  if rules[2][1] == "count8" then COUNTED_ANSWERS[code] = { rules[2][2], rules[2][3] } end
+end
+
+function lane.frames_answer(s, bytes, n, slave, code)
+  if s.n ~= 0 or s.noise ~= nil or s.mode ~= "rtu" or n < MIN_ADU or n > MAX_ADU or s.times[3] ~= nil
+      or slave > MAX_SLAVE or s.expect ~= slave * 256 + code then
+    return false
+  end
+  local counted = COUNTED_ANSWERS[code]
+  if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
+    return false
+  end
+  return whole_crc_good(nil, n, bytes)
+end
+
+function lane.advance(s, n, time)
+  local offset = s.base
+  s.expect = nil -- (expect_after: an answer awaits nothing)
+  s.base = offset + n
+  local times = s.times
+  times[1] = offset
+  if time == nil then times[2] = false else times[2] = time end
+  return offset
 end
 
 feed = function(s, bytes, time, boundary, final, built)
@@ -3053,15 +3089,15 @@ local function track(seen, f, address, row, value, status, now, label)
   end
 end
 
-local function remember_writes(seen, f, run, b)
+local function remember_writes(seen, number, run, b)
   if run.start == nil then return end
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
     local last = seen[address]
     if last ~= nil then
-      last.value, last.frame, last.how = value, f.number, "written"
+      last.value, last.frame, last.how = value, number, "written"
     else
-      seen[address] = { value = value, frame = f.number, how = "written" }
+      seen[address] = { value = value, frame = number, how = "written" }
     end
   end
 end
@@ -3447,6 +3483,7 @@ local function span_label(f, device)
     f.span_label = first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
   end
 end
+lane.span_label = span_label
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -3597,6 +3634,28 @@ local function observe(st, f, b)
   return judged.choice
 end
 
+-- What observe does with a good answer of slave's function fn (no device objects in it) when it decides
+-- nothing: true, and the answer counted (count) for a slave already judged. false, with nothing counted,
+-- when observe is to weigh the answer (a function that identifies a device, a slave still judged or not
+-- met, a function its device does not support). (The quick lane of answers, lane.answer, asks this.)
+function lane.quiet_answer(st, slave, fn, count)
+  if IDENTIFYING[fn] ~= nil then return false end
+  local all = st.judged
+  local judged = all and all[slave]
+  if judged == nil then return false end
+  local current = judged.choice
+  if current ~= nil and current.final then return true end
+  if not settled(judged) then return false end
+  if current ~= nil then
+    local profile = PROFILES[current.profile]
+    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
+      return false
+    end
+  end
+  if count then judged.frames, judged.answers = judged.frames + 1, judged.answers + 1 end
+  return true
+end
+
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 select_device = function(st, f, b)
@@ -3642,12 +3701,12 @@ annotate_with = function(st, f, b, device)
   if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
-    remember_writes(device.seen, f, request.registers, request.registers.b)
+    remember_writes(device.seen, f.number, request.registers, request.registers.b)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
     annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f, registers, b) end
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f.number, registers, b) end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
@@ -3810,6 +3869,40 @@ do
   -- the register run; the bit run; the request's record (or minus the response's); the request's time;
   -- span label. A missing start, quantity or run start is 0 and the others are one more than they are.
   local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
+
+  -- A register run's slot: its first byte, count and start (nil: none).
+  local function run_slot(first, count, start)
+    if start == nil then start = 0 else start = start + 1 end
+    return first + SHORT * (count + SHORT * start)
+  end
+
+  -- Write a frame's slots; start and quantity are one more than they are (0: none), time, link,
+  -- request_time and label false when missing, regs and bits a run's slot or false.
+  local function put_flat(st, kind, slave, fn, length, at, number, offset, record, time, crc, crc_expected,
+      start, quantity, regs, bits, link, request_time, label)
+    local flat, k = st.flat, st.flat_n
+    -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
+    -- of the array part, where the key goes to the hash part until the table is rebuilt)
+    flat[k + 1] = kind + 4 * (slave + 256 * (fn + 256 * length)); flat[k + 2] = at
+    flat[k + 3] = number; flat[k + 4] = offset; flat[k + 5] = record; flat[k + 6] = time
+    flat[k + 7] = crc * SHORT + crc_expected; flat[k + 8] = start * 65537 + quantity
+    flat[k + 9] = regs; flat[k + 10] = bits; flat[k + 11] = link; flat[k + 12] = request_time
+    flat[k + 13] = label
+    st.flat_n = k + ITEM
+    return k
+  end
+
+  -- An answer of the quick lane (lean_response): a response with a good CRC, at the start of its own
+  -- record, whose registers are a run from its fourth byte and whose request is in record `link`.
+  function pack.answer(st, slave, fn, length, number, offset, record, time, crc, start, quantity, count, link,
+      request_time, label)
+    if time == nil then time = false end
+    if request_time == nil then request_time = false end
+    if label == nil then label = false end
+    return put_flat(st, 2, slave, fn, length, 0, number, offset, record, time, crc, crc, start + 1, quantity + 1,
+      run_slot(3, count, start), false, link, request_time, label)
+  end
+
   local function packed_flat(st, f)
     local kind = KIND_NUMBER[f.kind]
     if kind == nil or kind == 3 or TABLE_FUNCTIONS[f.fn] or has_rare(f) then return nil end
@@ -3817,10 +3910,9 @@ do
     local registers, bits = f.registers, f.bits
     if registers ~= nil then
       if registers.status ~= nil or registers.plain ~= nil or registers.single ~= nil then return nil end
-      local rf, rc, rs = registers.first, registers.count, registers.start
+      local rf, rc = registers.first, registers.count
       if rf >= SHORT or rc >= SHORT then return nil end
-      if rs == nil then rs = 0 else rs = rs + 1 end
-      regs = rf + SHORT * (rc + SHORT * rs)
+      regs = run_slot(rf, rc, registers.start)
     end
     if bits ~= nil then
       if bits.status ~= nil or bits.plain ~= nil then return nil end
@@ -3845,16 +3937,8 @@ do
     if quantity == nil then quantity = 0 else quantity = quantity + 1 end
     if start > SHORT or quantity > SHORT then return nil end -- (16-bit fields: never, but a slot must not lie)
     if label == nil then label = false end
-    local flat, k = st.flat, st.flat_n
-    -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
-    -- of the array part, where the key goes to the hash part until the table is rebuilt)
-    flat[k + 1] = kind + 4 * (f.slave + 256 * (f.fn + 256 * f.length)); flat[k + 2] = f.at
-    flat[k + 3] = f.number; flat[k + 4] = f.offset; flat[k + 5] = f.record; flat[k + 6] = time
-    flat[k + 7] = f.crc * SHORT + f.crc_expected; flat[k + 8] = start * 65537 + quantity
-    flat[k + 9] = regs; flat[k + 10] = bits_slot; flat[k + 11] = link; flat[k + 12] = request_time
-    flat[k + 13] = label
-    st.flat_n = k + ITEM
-    return k
+    return put_flat(st, kind, f.slave, f.fn, f.length, f.at, f.number, f.offset, f.record, time, f.crc,
+      f.crc_expected, start, quantity, regs, bits_slot, link, request_time, label)
   end
 
   local function value(x)
@@ -4153,6 +4237,91 @@ take_items = function(st, items, record)
     end
   end
   for index = count, kept + 1, -1 do open[index] = nil end
+end
+
+-- The functions whose answer is a run of registers from its fourth byte (by the protocol table: the
+-- read_registers_response grammar and handler), and the frame the Info text of a quick answer is made from.
+local REGISTER_ANSWERS = {}
+for code, name in pairs(DATA.protocol.handlers.response) do
+  if name == "read_registers_response" and DATA.protocol.parsers.response[code] == "read_registers_response" then
+    REGISTER_ANSWERS[code] = true
+  end
+end
+local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
+
+-- The quick lane: a record that is the usual answer to the request awaited (a run of registers whose byte
+-- count agrees with the request, on time, from a device that notes nothing about them and has no name of
+-- its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
+-- pack.settle would do it, without a byte table, frame table or fields. Returns the item kept and its Info
+-- text; nil, with nothing changed, for any other record (the general path takes it).
+function lane.answer(st, bytes, n, time, number)
+  local byte = string.byte
+  local pending = st.pending
+  if pending == nil or st.open[1] ~= nil then return nil end
+  local slave, code, count = byte(bytes, 1, 3)
+  if pending.slave ~= slave or pending.fn ~= code or not REGISTER_ANSWERS[code] then return nil end
+  if not lane.frames_answer(st, bytes, n, slave, code) then return nil end
+  -- pair: on time (else the request went unanswered)
+  local timeout, asked = st.timeout, pending.time
+  if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
+  -- read_registers_response_handler: the request's start and quantity, its byte count agreeing
+  local fields = pending.fields
+  if fields == nil then return nil end
+  local start, quantity
+  if code == 23 then start, quantity = fields.read_start, fields.read_quantity else start, quantity = fields.start, fields.quantity end
+  if start == nil or quantity == nil or count ~= 2 * quantity then return nil end
+  -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
+  local auto = config.default == AUTO and config.per_slave[slave] == nil
+  if auto and not lane.quiet_answer(st, slave, code, false) then return nil end
+  local device = device_for(st, slave)
+  if not device then return nil end
+  local profile = device.profile
+  if profile.function_names ~= nil and profile.function_names[code] ~= nil then return nil end
+  -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
+  -- value where 16#8000 is followed), which is only noted as read
+  local protected = nil
+  if READS[code] ~= nil then protected = profile.protected_value end
+  local depend, seen = device.depend, device.seen
+  local follow = quantity > 0 and (protected ~= nil or next(depend) ~= nil)
+  if follow then
+    for index = 0, quantity - 1 do
+      local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
+      local address = (start + index) % 0x10000
+      if high * 256 + low == protected or depend[address] ~= nil then return nil end
+      if protected ~= nil then
+        local last = seen[address]
+        if last == nil or last.value == nil then return nil end
+      end
+    end
+  end
+  -- From here on the answer is taken: the same changes, in the same order, as the general path's.
+  if auto then lane.quiet_answer(st, slave, code, true) end
+  local offset = lane.advance(st, n, time)
+  local item = st.count + 1
+  st.count = item
+  local record = { false }
+  st.last = record
+  pending.response = { record = number }
+  st.pending = nil
+  local writes = pending.registers
+  if device.track and (code == 16 or code == 23) and writes ~= nil and writes.count > 0 and writes.b ~= nil then
+    remember_writes(seen, item, writes, writes.b)
+  end
+  if follow and protected ~= nil then
+    for index = 0, quantity - 1 do
+      local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
+      local last = seen[(start + index) % 0x10000]
+      last.value, last.frame, last.how = high * 256 + low, item, "read"
+    end
+  end
+  release_run(writes)
+  ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
+  if device.plc ~= nil then lane.span_label(ANSWER, device) end -- (PLC-style devices: 4X numbers)
+  local crc_low, crc_high = byte(bytes, n - 1, n)
+  local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
+    quantity, pending.record, asked, ANSWER.span_label)
+  record[1] = kept
+  return kept, summary(ANSWER)
 end
 
 dissect_record = function(st, bytes, time, number)
@@ -4984,7 +5153,10 @@ local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
   if n == 0 then return nil end
-  return dissect_record(st, bytes, record_time(pinfo, number), number), n
+  local time = record_time(pinfo, number)
+  local kept, info = lane.answer(st, bytes, n, time, number)
+  if kept ~= nil then return kept, n, info end
+  return dissect_record(st, bytes, time, number), n
 end
 
 local function dissect_records(st, tvb, pinfo, tree)
@@ -4993,7 +5165,7 @@ local function dissect_records(st, tvb, pinfo, tree)
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
-    local ok, result, n = pcall(dissect_now, st, tvb, pinfo, number)
+    local ok, result, n, info = pcall(dissect_now, st, tvb, pinfo, number)
     if ok then
       if result == nil then return 0 end
       record = result
@@ -5003,7 +5175,19 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
+    if info ~= nil then
+      -- The quick lane's answer (lane.answer), kept already: shown as show_record shows a record of one
+      -- frame, from what was kept where a tree is wanted.
+      local cols = pinfo.cols
+      if not tree_mode(tree) and config.errors[1] == nil then
+        cols.protocol = "VW3"
+        cols.info = info
+      else
+        show_record(st, { record }, tvb, pinfo, tree, n)
+      end
+    else
+      show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
+    end
     pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
     return n
   end
@@ -5038,7 +5222,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   local record = { number = pinfo.number, start = 0, length = n }
   st.open = { record }
   local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
-  flush_noise_of(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  lane.flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
   local used = st.base
   take_items(st, items, record)
   if used < n and pinfo.can_desegment > 0 then
@@ -5110,6 +5294,7 @@ end
 -- is the user's to map (Preferences > Protocols > DLT_USER: payload protocol "vw3"): a plugin that took
 -- it over would override a user who mapped it to mbrtu. The "user0" preference does it for one session.
 local wtap_encap = DissectorTable.get("wtap_encap")
+do -- (a block: the main chunk may hold at most 200 locals)
 local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
 if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 
@@ -5126,6 +5311,7 @@ if ok_original and rtac_original ~= nil then
     return rtac_original:call(tvb, pinfo, tree)
   end
   wtap_encap:add(RTAC_ENCAP, rtac_time)
+end
 end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
 DissectorTable.get("udp.port"):add_for_decode_as(proto)
