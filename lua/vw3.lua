@@ -3876,6 +3876,13 @@ do
     return first + SHORT * (count + SHORT * start)
   end
 
+  -- A bit run's slot: its first byte, count, start and single coil's value (nil: none).
+  local function bit_slot(first, count, start, single)
+    if start == nil then start = 0 else start = start + 1 end
+    if single == nil then single = 0 else single = single + 1 end
+    return first + SHORT * (count + SHORT * (start + 65537 * single))
+  end
+
   -- Write a frame's slots; start and quantity are one more than they are (0: none), time, link,
   -- request_time and label false when missing, regs and bits a run's slot or false.
   local function put_flat(st, kind, slave, fn, length, at, number, offset, record, time, crc, crc_expected,
@@ -3892,15 +3899,17 @@ do
     return k
   end
 
-  -- An answer of the quick lane (lean_response): a response with a good CRC, at the start of its own
-  -- record, whose registers are a run from its fourth byte and whose request is in record `link`.
+  -- An answer of the quick lane (lane.answer): a response with a good CRC, at the start of its own
+  -- record, whose registers (or bits) are a run from its fourth byte and whose request is in record `link`.
   function pack.answer(st, slave, fn, length, number, offset, record, time, crc, start, quantity, count, link,
-      request_time, label)
+      request_time, label, bits)
     if time == nil then time = false end
     if request_time == nil then request_time = false end
     if label == nil then label = false end
+    local registers, coils = false, false
+    if bits then coils = bit_slot(3, count, start, nil) else registers = run_slot(3, count, start) end
     return put_flat(st, 2, slave, fn, length, 0, number, offset, record, time, crc, crc, start + 1, quantity + 1,
-      run_slot(3, count, start), false, link, request_time, label)
+      registers, coils, link, request_time, label)
   end
 
   local function packed_flat(st, f)
@@ -3916,11 +3925,9 @@ do
     end
     if bits ~= nil then
       if bits.status ~= nil or bits.plain ~= nil then return nil end
-      local bf, bc, bs, single = bits.first, bits.count, bits.start, bits.single
+      local bf, bc = bits.first, bits.count
       if bf >= SHORT or bc >= SHORT then return nil end
-      if bs == nil then bs = 0 else bs = bs + 1 end
-      if single == nil then single = 0 else single = single + 1 end
-      bits_slot = bf + SHORT * (bc + SHORT * (bs + 65537 * single))
+      bits_slot = bit_slot(bf, bc, bits.start, bits.single)
     end
     local request, response = f.request, f.response
     local link, request_time = false, false
@@ -4239,19 +4246,21 @@ take_items = function(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
--- The functions whose answer is a run of registers from its fourth byte (by the protocol table: the
--- read_registers_response grammar and handler), and the frame the Info text of a quick answer is made from.
-local REGISTER_ANSWERS = {}
+-- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
+-- the read_registers_response or read_bits_response grammar and handler), and the frame the Info text of
+-- a quick answer is made from.
+local RUN_ANSWERS = {}
 for code, name in pairs(DATA.protocol.handlers.response) do
-  if name == "read_registers_response" and DATA.protocol.parsers.response[code] == "read_registers_response" then
-    REGISTER_ANSWERS[code] = true
+  if (name == "read_registers_response" or name == "read_bits_response")
+      and DATA.protocol.parsers.response[code] == name then
+    RUN_ANSWERS[code] = name
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
 
--- The quick lane: a record that is the usual answer to the request awaited (a run of registers whose byte
--- count agrees with the request, on time, from a device that notes nothing about them and has no name of
--- its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
+-- The quick lane: a record that is the usual answer to the request awaited (a run of registers or bits
+-- whose byte count agrees with the request, on time, from a device that notes nothing about them and has
+-- no name of its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
 -- pack.settle would do it, without a byte table, frame table or fields. Returns the item kept and its Info
 -- text; nil, with nothing changed, for any other record (the general path takes it).
 function lane.answer(st, bytes, n, time, number)
@@ -4259,17 +4268,25 @@ function lane.answer(st, bytes, n, time, number)
   local pending = st.pending
   if pending == nil or st.open[1] ~= nil then return nil end
   local slave, code, count = byte(bytes, 1, 3)
-  if pending.slave ~= slave or pending.fn ~= code or not REGISTER_ANSWERS[code] then return nil end
+  local run = RUN_ANSWERS[code]
+  if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
   if not lane.frames_answer(st, bytes, n, slave, code) then return nil end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
-  -- read_registers_response_handler: the request's start and quantity, its byte count agreeing
+  -- read_registers_response_handler, read_bits_response_handler: the request's start and quantity, its
+  -- byte count agreeing
   local fields = pending.fields
   if fields == nil then return nil end
   local start, quantity
   if code == 23 then start, quantity = fields.read_start, fields.read_quantity else start, quantity = fields.start, fields.quantity end
-  if start == nil or quantity == nil or count ~= 2 * quantity then return nil end
+  if start == nil or quantity == nil then return nil end
+  local bits = run == "read_bits_response"
+  if bits then
+    if count ~= ceil_bytes(quantity) then return nil end
+  elseif count ~= 2 * quantity then
+    return nil
+  end
   -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
   local auto = config.default == AUTO and config.per_slave[slave] == nil
   if auto and not lane.quiet_answer(st, slave, code, false) then return nil end
@@ -4282,7 +4299,7 @@ function lane.answer(st, bytes, n, time, number)
   local protected = nil
   if READS[code] ~= nil then protected = profile.protected_value end
   local depend, seen = device.depend, device.seen
-  local follow = quantity > 0 and (protected ~= nil or next(depend) ~= nil)
+  local follow = not bits and quantity > 0 and (protected ~= nil or next(depend) ~= nil)
   if follow then
     for index = 0, quantity - 1 do
       local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
@@ -4319,7 +4336,7 @@ function lane.answer(st, bytes, n, time, number)
   if device.plc ~= nil then lane.span_label(ANSWER, device) end -- (PLC-style devices: 4X numbers)
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
-    quantity, pending.record, asked, ANSWER.span_label)
+    quantity, pending.record, asked, ANSWER.span_label, bits)
   record[1] = kept
   return kept, summary(ANSWER)
 end
