@@ -1920,9 +1920,16 @@ function lane.frames_answer(s, bytes, n, slave, code)
   return whole_crc_good(nil, n, bytes)
 end
 
-function lane.advance(s, n, time)
+-- Would feed_whole take the record as a request met before (the slave and function of its first two
+-- bytes; known_requests)? lane.advance(s, n, time, expect) then leaves the stream as it does.
+function lane.frames_known(s, n, slave, code)
+  return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
+    and slave <= MAX_SLAVE and s.expect ~= slave * 256 + code
+end
+
+function lane.advance(s, n, time, expect)
   local offset = s.base
-  s.expect = nil -- (expect_after: an answer awaits nothing)
+  s.expect = expect -- (expect_after: an answer awaits nothing, a request its answer)
   s.base = offset + n
   local times = s.times
   times[1] = offset
@@ -3656,6 +3663,19 @@ function lane.quiet_answer(st, slave, fn, count)
   return true
 end
 
+-- What observe does with a good request of slave's function fn that decides nothing: true, and the frame
+-- counted (count) for a slave met before; false, with nothing counted, when observe is to weigh it (a
+-- function that identifies a device, a slave not met). (The quick lane of requests, lane.request, asks.)
+function lane.quiet_request(st, slave, fn, count)
+  if IDENTIFYING[fn] ~= nil then return false end
+  local all = st.judged
+  local judged = all and all[slave]
+  if judged == nil then return false end
+  local current = judged.choice
+  if count and (current == nil or not current.final) then judged.frames = judged.frames + 1 end
+  return true
+end
+
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 select_device = function(st, f, b)
@@ -4313,7 +4333,7 @@ function lane.answer(st, bytes, n, time, number)
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
   if auto then lane.quiet_answer(st, slave, code, true) end
-  local offset = lane.advance(st, n, time)
+  local offset = lane.advance(st, n, time, nil)
   local item = st.count + 1
   st.count = item
   local record = { false }
@@ -4339,6 +4359,39 @@ function lane.answer(st, bytes, n, time, number)
     quantity, pending.record, asked, ANSWER.span_label, bits)
   record[1] = kept
   return kept, summary(ANSWER)
+end
+
+-- The quick lane of requests: a record that is a request met before (known_requests) with no request
+-- awaiting its answer, for the device it was met with, is framed, paired and decoded as feed_whole,
+-- dissect_record and take_frame would do it, in one table. Returns the record, as dissect_record does
+-- (shown and kept by dissect_records as such); nil, with nothing changed, for any other record.
+function lane.request(st, bytes, n, time, number)
+  if st.pending ~= nil or st.open[1] ~= nil then return nil end
+  local known = known_requests.entries[bytes]
+  if known == nil then return nil end
+  local slave, code = string.byte(bytes, 1, 2)
+  if not lane.frames_known(st, n, slave, code) then return nil end
+  local auto = config.default == AUTO and config.per_slave[slave] == nil
+  if auto and not lane.quiet_request(st, slave, code, false) then return nil end
+  if device_for(st, slave) ~= known.device then return nil end
+  -- From here on the request is taken: the same changes as the general path's.
+  if auto then lane.quiet_request(st, slave, code, true) end
+  local offset = lane.advance(st, n, time, slave * 256 + code)
+  local count = st.count + 1
+  st.count = count
+  local frame = {
+    kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
+    crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
+    number = count, record = number, at = 0,
+    fields = known.fields, start = known.start, quantity = known.quantity, registers = copy_run(known.registers),
+    bits = copy_run(known.bits), request = nil, response = nil,
+    function_text = known.function_text, span_label = known.span_label, info = known.info,
+  }
+  st.pending = frame
+  local record = { frame }
+  st.last = record
+  st.whole_record = record -- (packed by pack.settle)
+  return record
 end
 
 dissect_record = function(st, bytes, time, number)
@@ -5173,6 +5226,8 @@ local function dissect_now(st, tvb, pinfo, number)
   local time = record_time(pinfo, number)
   local kept, info = lane.answer(st, bytes, n, time, number)
   if kept ~= nil then return kept, n, info end
+  local record = lane.request(st, bytes, n, time, number)
+  if record ~= nil then return record, n end
   return dissect_record(st, bytes, time, number), n
 end
 
