@@ -3641,38 +3641,29 @@ local function observe(st, f, b)
   return judged.choice
 end
 
--- What observe does with a good answer of slave's function fn (no device objects in it) when it decides
--- nothing: true, and the answer counted (count) for a slave already judged. false, with nothing counted,
--- when observe is to weigh the answer (a function that identifies a device, a slave still judged or not
--- met, a function its device does not support). (The quick lane of answers, lane.answer, asks this.)
-function lane.quiet_answer(st, slave, fn, count)
+-- What observe does with a good frame of slave's function fn, an answer (answer true: no device objects in
+-- it) or a request, when it decides nothing: true, and the frame counted (count), for a slave met before
+-- (and judged, for an answer). false, with nothing counted, when observe is to weigh the frame (a function
+-- that identifies a device, a slave not met or still judged, an answer its device does not support).
+-- (The quick lanes, lane.answer and lane.request, ask this instead.)
+function lane.quiet(st, slave, fn, answer, count)
   if IDENTIFYING[fn] ~= nil then return false end
   local all = st.judged
   local judged = all and all[slave]
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
-  if not settled(judged) then return false end
-  if current ~= nil then
-    local profile = PROFILES[current.profile]
-    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
-      return false
+  if answer then
+    if not settled(judged) then return false end
+    if current ~= nil then
+      local profile = PROFILES[current.profile]
+      if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
+        return false
+      end
     end
+    if count then judged.answers = judged.answers + 1 end
   end
-  if count then judged.frames, judged.answers = judged.frames + 1, judged.answers + 1 end
-  return true
-end
-
--- What observe does with a good request of slave's function fn that decides nothing: true, and the frame
--- counted (count) for a slave met before; false, with nothing counted, when observe is to weigh it (a
--- function that identifies a device, a slave not met). (The quick lane of requests, lane.request, asks.)
-function lane.quiet_request(st, slave, fn, count)
-  if IDENTIFYING[fn] ~= nil then return false end
-  local all = st.judged
-  local judged = all and all[slave]
-  if judged == nil then return false end
-  local current = judged.choice
-  if count and (current == nil or not current.final) then judged.frames = judged.frames + 1 end
+  if count then judged.frames = judged.frames + 1 end
   return true
 end
 
@@ -4309,7 +4300,7 @@ function lane.answer(st, bytes, n, time, number)
   end
   -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
   local auto = config.default == AUTO and config.per_slave[slave] == nil
-  if auto and not lane.quiet_answer(st, slave, code, false) then return nil end
+  if auto and not lane.quiet(st, slave, code, true, false) then return nil end
   local device = device_for(st, slave)
   if not device then return nil end
   local profile = device.profile
@@ -4332,7 +4323,7 @@ function lane.answer(st, bytes, n, time, number)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if auto then lane.quiet_answer(st, slave, code, true) end
+  if auto then lane.quiet(st, slave, code, true, true) end
   local offset = lane.advance(st, n, time, nil)
   local item = st.count + 1
   st.count = item
@@ -4372,10 +4363,10 @@ function lane.request(st, bytes, n, time, number)
   local slave, code = string.byte(bytes, 1, 2)
   if not lane.frames_known(st, n, slave, code) then return nil end
   local auto = config.default == AUTO and config.per_slave[slave] == nil
-  if auto and not lane.quiet_request(st, slave, code, false) then return nil end
+  if auto and not lane.quiet(st, slave, code, false, false) then return nil end
   if device_for(st, slave) ~= known.device then return nil end
   -- From here on the request is taken: the same changes as the general path's.
-  if auto then lane.quiet_request(st, slave, code, true) end
+  if auto then lane.quiet(st, slave, code, false, true) end
   local offset = lane.advance(st, n, time, slave * 256 + code)
   local count = st.count + 1
   st.count = count
