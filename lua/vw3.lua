@@ -3923,6 +3923,41 @@ do
       registers, coils, link, request_time, label)
   end
 
+  -- A request of the quick lane (lane.request), answered in the quick lane (lane.answer): its slots but
+  -- its number, offset, record and time come from its entry in known_requests (the same for every request
+  -- with its bytes), made once; false when such a request is kept as a table (a function kept as a table,
+  -- a name of the device's own). The request's flat item, or nil when it is packed as usual.
+  local function entry_slots(known, n, slave, fn)
+    local slots = known.slots
+    if slots ~= nil then return slots end
+    slots = false
+    local registers, bits, start, quantity = known.registers, known.bits, known.start, known.quantity
+    if not TABLE_FUNCTIONS[fn] and known.function_text == nil and (registers == nil or (registers.single == nil
+        and registers.first < SHORT and registers.count < SHORT)) and (bits == nil or (bits.first < SHORT and bits.count < SHORT))
+        and (start == nil or start < SHORT) and (quantity == nil or quantity < SHORT) then
+      slots = { 1 + 4 * (slave + 256 * (fn + 256 * n)), known.crc * SHORT + known.crc,
+        (start == nil and 0 or start + 1) * 65537 + (quantity == nil and 0 or quantity + 1),
+        registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
+        bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
+        known.span_label or false }
+    end
+    known.slots = slots
+    return slots
+  end
+  pack.entry_slots = entry_slots
+
+  function pack.answered_request(st, f, slots, response_record)
+    local time = f.time
+    if time == nil then time = false end
+    local flat, k = st.flat, st.flat_n
+    flat[k + 1] = slots[1]; flat[k + 2] = 0; flat[k + 3] = f.number; flat[k + 4] = f.offset
+    flat[k + 5] = f.record; flat[k + 6] = time; flat[k + 7] = slots[2]; flat[k + 8] = slots[3]
+    flat[k + 9] = slots[4]; flat[k + 10] = slots[5]; flat[k + 11] = -response_record; flat[k + 12] = false
+    flat[k + 13] = slots[6]
+    st.flat_n = k + ITEM
+    return k
+  end
+
   local function packed_flat(st, f)
     local kind = KIND_NUMBER[f.kind]
     if kind == nil or kind == 3 or TABLE_FUNCTIONS[f.fn] or has_rare(f) then return nil end
@@ -4343,6 +4378,21 @@ function lane.answer(st, bytes, n, time, number)
     end
   end
   release_run(writes)
+  -- The request, packed now where it came through the quick lane and waits at the end of the list
+  -- pack.settle packs (as_number: its record holds it alone).
+  local slots = pending.slots
+  if slots then
+    local list = st.unpacked
+    local last = #list
+    local request_record = list[last - 1]
+    if last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
+        and st.records[pending.record] == request_record then
+      local packed = pack.answered_request(st, pending, slots, number)
+      list[last], list[last - 1] = nil, nil
+      request_record[1] = packed
+      st.records[pending.record] = packed
+    end
+  end
   ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
   if device.plc ~= nil then lane.span_label(ANSWER, device) end -- (PLC-style devices: 4X numbers)
   local crc_low, crc_high = byte(bytes, n - 1, n)
@@ -4377,6 +4427,7 @@ function lane.request(st, bytes, n, time, number)
     fields = known.fields, start = known.start, quantity = known.quantity, registers = copy_run(known.registers),
     bits = copy_run(known.bits), request = nil, response = nil,
     function_text = known.function_text, span_label = known.span_label, info = known.info,
+    slots = pack.entry_slots(known, n, slave, code),
   }
   st.pending = frame
   local record = { frame }
