@@ -1446,11 +1446,17 @@ local function valid_frame_at(s, b, i, n, final, scan)
   return false
 end
 
--- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1?
-local function intact_inside(s, b, i, length, n)
+-- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
+-- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
+-- the input was cut.
+local function intact_inside(s, b, i, length, n, final)
+  local undecided = false
   for j = i + 1, i + length - 1 do
-    if valid_frame_at(s, b, j, n, true, false) then return true end
+    local found = valid_frame_at(s, b, j, n, final, false)
+    if found then return true end
+    if found == nil then undecided = true end
   end
+  if undecided then return nil end
   return false
 end
 
@@ -1470,7 +1476,11 @@ local function scan_match(s, b, i, n, minimum, final)
       if lo == byte and hi == b[stop + 1] then
         local following = valid_frame_at(s, b, i + length, n, final)
         if following == nil then return NEED end
-        if following and not (s.noise ~= nil and intact_inside(s, b, i, length, n)) then return length end
+        if following then
+          local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
+          if inside == nil then return NEED end
+          if not inside then return length end
+        end
       end
       local index = XOR8[lo * 256 + byte]
       lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
@@ -1551,7 +1561,9 @@ local function match(s, b, i, n, final)
     local following = valid_frame_at(s, b, i + length, n, final)
     if following == nil then return NEED end
     if following and (i + length < n or s.expect == slave * 256 + code % 128) then
-      if not intact_inside(s, b, i, length, n) then return kind, length, false end
+      local inside = intact_inside(s, b, i, length, n, final)
+      if inside == nil then return NEED end
+      if not inside then return kind, length, false end
     end
   end
   return NONE

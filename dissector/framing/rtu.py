@@ -256,11 +256,17 @@ class RtuFramer(StreamFramer):
         lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
         return lengths[0] if lengths else 0
 
-    def _intact_inside(self, buf: bytearray, i: int, length: int, n: int) -> bool:
-        """Does a frame with a length rule and a good CRC start inside bytes i..i+length?"""
-        return any(
-            self._valid_frame_at(buf, j, n, final=True, scan=False) for j in range(i + 1, i + length)
-        )
+    def _intact_inside(self, buf: bytearray, i: int, length: int, n: int, final: bool) -> bool | None:
+        """Does a frame with a length rule and a good CRC start inside bytes i..i+length? None when
+        bytes still to come may tell: a layout starting inside ends past the bytes buffered (deciding
+        before they come made the answer depend on where the input was cut)."""
+        undecided = False
+        for j in range(i + 1, i + length):
+            found = self._valid_frame_at(buf, j, n, final, scan=False)
+            if found:
+                return True
+            undecided = undecided or found is None
+        return None if undecided else False
 
     def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
         """A frame without a length rule: the shortest CRC match that an intact frame (or the end)
@@ -273,8 +279,12 @@ class RtuFramer(StreamFramer):
                 return NEED
             # In step (right after a frame) a scanned frame is trusted over a short frame that may
             # check by chance inside it; while resynchronising, an intact frame inside wins.
-            if following and not (self._noise and self._intact_inside(buf, i, length, n)):
-                return length
+            if following:
+                inside = self._noise and self._intact_inside(buf, i, length, n, final)
+                if inside is None:
+                    return NEED
+                if not inside:
+                    return length
         return NEED if n - i < MAX_ADU and not final else NONE
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
@@ -344,7 +354,10 @@ class RtuFramer(StreamFramer):
             if following is None:
                 return NEED
             if following and (i + length < n or self._expect == (slave, function & 0x7F)):
-                if self._intact_inside(buf, i, length, n):
+                inside = self._intact_inside(buf, i, length, n, final)
+                if inside is None:
+                    return NEED
+                if inside:
                     continue
                 return (kind, length, False)
         return NONE

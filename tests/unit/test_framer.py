@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from dissector.framing.rtu import RtuFramer
 from dissector.framing.stream import NOISE_ITEM_MAX
-from dissector.model import Chunk
+from dissector.model import Chunk, Kind
 from dissector.pipeline import Dissector, dissect
 from helpers import decode, hx, rtu
 from strategies import transactions
@@ -153,3 +153,33 @@ def test_a_record_boundary_breaks_the_00_tie() -> None:
     assert RtuFramer().feed(Chunk(response, 1.0)) == []
     (frame,) = RtuFramer().feed(Chunk(response, 1.0, boundary=True))
     assert (frame.kind.value, frame.raw.hex(" "), frame.crc_ok) == ("response", "01 07 41 e2 00", True)
+
+
+# Found by test_fuzz's split property: a damaged answer candidate (offset 249) was shown when the input
+# was cut at 378 (an intact layout starting inside it ends past the cut) and not when it was whole.
+SPLIT_DEPENDENT = bytes.fromhex(
+    "11170000003a00620077ee00000000000000000000000000000000000000000000000000000000000000000000000000"
+    "00000000008d3fdb00000000000000000000000000000000000000000000000000000000000000000000000000000000"
+    "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+    "00000000000000000000000000000000000000000000000000000000c21d000000000000000000000000000000000000"
+    "000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+    "000000000000009f8f111774a1dc017d0a4affffa8af00133c890cdd05a068c70cfe03e342fa00f00497ffff01f3062e"
+    "02b000000000000000000000000000000000000002000000000000000000000000000000000000000000000000000000"
+    "0000000000000000000000000000000000000000000000000000000000000000eb81ed020000065b2cfded02ccb528ac"
+    "b355e8215f5fa5a333caed27570aea00645632ae58990e8b5b662b3cdcc766b256b299a317f46682e479fb5280c9608e"
+    "ef3c8fc53c0f6be922623a17f4580df29a16b7b256b4a26727073fddb508f2c59f551f0f0000070b0d101213161b1e1f"
+    "21232a00002f30313334393a3f4041424547484f0000565c00000061626566000000006b000000707475767d7e000000"
+    "008b0000008e8f9094959fa2a4a6a8abadb2b4b5ba0000bdbe0000c1c3c8ca000000ced1d4d70000dcdc0000e3e6e7e8"
+    "e8e8eaeceefafbfeff31ba01050000ff008c3a01050000ff008c3a"
+)
+
+
+def test_a_damaged_frame_is_weighed_only_once_the_frames_inside_it_can_be_known():
+    whole = RtuFramer()
+    reference = whole.feed(Chunk(SPLIT_DEPENDENT)) + whole.finish()
+    cut = RtuFramer()
+    items = cut.feed(Chunk(SPLIT_DEPENDENT[:378])) + cut.feed(Chunk(SPLIT_DEPENDENT[378:])) + cut.finish()
+    signature = [(item.offset, item.kind, item.raw) for item in reference]
+    assert [(item.offset, item.kind, item.raw) for item in items] == signature
+    assert [(offset, kind) for offset, kind, _raw in signature[:4]] == [
+        (0, Kind.NOISE), (279, Kind.REQUEST), (287, Kind.NOISE), (370, Kind.REQUEST)]
