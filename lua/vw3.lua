@@ -1870,31 +1870,48 @@ lane.flush_noise = flush_noise
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
 -- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
 -- record's time is the last one kept, no record end (its end is the stream's end).
+-- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
+local function takes_whole(s, n, slave)
+  return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
+    and slave <= MAX_SLAVE
+end
+
+-- The stream after a whole record of n bytes is framed (its expectation set by the caller): no byte
+-- waits, the record's time is the last one kept, no record end (its end is the stream's end).
+function lane.advance(s, n, time)
+  local offset = s.base
+  s.base = offset + n
+  local times = s.times
+  times[1] = offset
+  if time == nil then times[2] = false else times[2] = time end
+  return offset
+end
+
+-- The frame of a request met before (known_requests), its stream offset and time given: what framing
+-- finds (the request's layout is the likeliest; its length and CRC checked when it was met).
+function lane.known_frame(known, offset, n, slave, code, time)
+  return {
+    kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
+    crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
+    number = 0, record = 0, at = 0,
+    fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
+    known = nil, function_text = nil, span_label = nil, info = nil, slots = nil,
+  }
+end
+
 feed_whole = function(s, bytes, time)
   local n = #bytes
-  if s.n ~= 0 or s.noise ~= nil or s.mode == "ascii" or n < MIN_ADU or n > MAX_ADU then return nil end
-  local times = s.times
-  if times[3] ~= nil then return nil end
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
-  if slave > MAX_SLAVE then return nil end
+  if n < MIN_ADU or not takes_whole(s, n, slave) then return nil end
   local known = known_requests.entries[bytes]
   if known ~= nil and s.expect ~= slave * 256 + code then
-    -- A request met before, where no answer of its slave and function is awaited: the frame the lines
-    -- below would find (the request's layout is the likeliest; its length and CRC checked when it was
-    -- met), and the stream left as they leave it (expect_after: a request's code is its function).
-    local offset = s.base
-    local frame = {
-      kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
-      crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
-      number = 0, record = 0, at = 0,
-      fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
-      known = known, -- (take_frame decodes it from the entry)
-    }
+    -- A request met before, where no answer of its slave and function is awaited, and the stream left as
+    -- the lines below leave it (expect_after: a request's code is its function).
+    local frame = lane.known_frame(known, s.base, n, slave, code, time)
+    frame.known = known -- (take_frame decodes it from the entry)
     s.expect = slave * 256 + code
-    s.base = offset + n
-    times[1] = offset
-    if time == nil then times[2] = false else times[2] = time end
+    lane.advance(s, n, time)
     return frame
   end
   local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
@@ -1902,12 +1919,9 @@ feed_whole = function(s, bytes, time)
   local b = { [0] = slave, byte(bytes, 2, n) }
   local length, is_scan = first[2](b, 0, n)
   if is_scan or length ~= n or not whole_crc_good(b, n, bytes) then return nil, b end
-  local offset = s.base
-  local frame = rtu_frame(b, 0, offset, time, first[1], n, true)
+  local frame = rtu_frame(b, 0, s.base, time, first[1], n, true)
   expect_after(s, frame)
-  s.base = offset + n
-  times[1] = offset
-  if time == nil then times[2] = false else times[2] = time end
+  lane.advance(s, n, time)
   return frame
 end
 
@@ -1921,10 +1935,7 @@ for code, rules in pairs(DATA.protocol.rules) do
 end
 
 function lane.frames_answer(s, bytes, n, slave, code)
-  if s.n ~= 0 or s.noise ~= nil or s.mode ~= "rtu" or n < MIN_ADU or n > MAX_ADU or s.times[3] ~= nil
-      or slave > MAX_SLAVE or s.expect ~= slave * 256 + code then
-    return false
-  end
+  if not takes_whole(s, n, slave) or s.expect ~= slave * 256 + code then return false end
   local counted = COUNTED_ANSWERS[code]
   if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
     return false
@@ -1933,20 +1944,9 @@ function lane.frames_answer(s, bytes, n, slave, code)
 end
 
 -- Would feed_whole take the record as a request met before (the slave and function of its first two
--- bytes; known_requests)? lane.advance(s, n, time, expect) then leaves the stream as it does.
+-- bytes; known_requests)?
 function lane.frames_known(s, n, slave, code)
-  return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
-    and slave <= MAX_SLAVE and s.expect ~= slave * 256 + code
-end
-
-function lane.advance(s, n, time, expect)
-  local offset = s.base
-  s.expect = expect -- (expect_after: an answer awaits nothing, a request its answer)
-  s.base = offset + n
-  local times = s.times
-  times[1] = offset
-  if time == nil then times[2] = false else times[2] = time end
-  return offset
+  return takes_whole(s, n, slave) and s.expect ~= slave * 256 + code
 end
 
 feed = function(s, bytes, time, boundary, final, built)
@@ -2281,17 +2281,19 @@ local function read_bits_response_handler(f, b)
   f.bits = make_bits(b, fields.status_at, fields.byte_count, start, quantity)
 end
 
+-- The registers an answer of function fn reads, from its request's fields: FC23 reads its read window.
+function lane.asked_window(fn, request)
+  if fn == 23 then return request.read_start, request.read_quantity end
+  return request.start, request.quantity
+end
+
 local function read_registers_response_handler(f, b)
   local fields = f.fields
   local request = request_fields(f)
   local start = nil
   if request ~= nil then
     local quantity
-    if f.fn == 23 then
-      start, quantity = request.read_start, request.read_quantity
-    else
-      start, quantity = request.start, request.quantity
-    end
+    start, quantity = lane.asked_window(f.fn, request)
     if fields.byte_count ~= 2 * quantity then
       warn(f, format("byte count %d disagrees with the %d registers asked", fields.byte_count, quantity))
     end
@@ -3906,18 +3908,29 @@ do
     return first + SHORT * (count + SHORT * (start + 65537 * single))
   end
 
-  -- Write a frame's slots; start and quantity are one more than they are (0: none), time, link,
-  -- request_time and label false when missing, regs and bits a run's slot or false.
-  local function put_flat(st, kind, slave, fn, length, at, number, offset, record, time, crc, crc_expected,
-      start, quantity, regs, bits, link, request_time, label)
+  -- The shared slots: kind, slave, function and length; the CRC and the expected CRC; start and quantity
+  -- (each one more than it is, 0 for none: 16-bit fields).
+  local function head_slot(kind, slave, fn, length) return kind + 4 * (slave + 256 * (fn + 256 * length)) end
+  local function crc_slot(crc, expected) return crc * SHORT + expected end
+  local function span_slot(start, quantity)
+    if start == nil then start = 0 else start = start + 1 end
+    if quantity == nil then quantity = 0 else quantity = quantity + 1 end
+    return start * 65537 + quantity
+  end
+
+  -- Write a frame's 13 slots (the order expand_flat reads them in); time, request_time and label nil when
+  -- missing, regs and bits a run's slot or false, link the request's record, minus the response's, or false.
+  local function put_flat(st, head, at, number, offset, record, time, crcs, span, regs, bits, link, request_time,
+      label)
+    if time == nil then time = false end
+    if request_time == nil then request_time = false end
+    if label == nil then label = false end
     local flat, k = st.flat, st.flat_n
     -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
     -- of the array part, where the key goes to the hash part until the table is rebuilt)
-    flat[k + 1] = kind + 4 * (slave + 256 * (fn + 256 * length)); flat[k + 2] = at
-    flat[k + 3] = number; flat[k + 4] = offset; flat[k + 5] = record; flat[k + 6] = time
-    flat[k + 7] = crc * SHORT + crc_expected; flat[k + 8] = start * 65537 + quantity
-    flat[k + 9] = regs; flat[k + 10] = bits; flat[k + 11] = link; flat[k + 12] = request_time
-    flat[k + 13] = label
+    flat[k + 1] = head; flat[k + 2] = at; flat[k + 3] = number; flat[k + 4] = offset; flat[k + 5] = record
+    flat[k + 6] = time; flat[k + 7] = crcs; flat[k + 8] = span; flat[k + 9] = regs; flat[k + 10] = bits
+    flat[k + 11] = link; flat[k + 12] = request_time; flat[k + 13] = label
     st.flat_n = k + ITEM
     return k
   end
@@ -3926,13 +3939,10 @@ do
   -- record, whose registers (or bits) are a run from its fourth byte and whose request is in record `link`.
   function pack.answer(st, slave, fn, length, number, offset, record, time, crc, start, quantity, count, link,
       request_time, label, bits)
-    if time == nil then time = false end
-    if request_time == nil then request_time = false end
-    if label == nil then label = false end
     local registers, coils = false, false
     if bits then coils = bit_slot(3, count, start, nil) else registers = run_slot(3, count, start) end
-    return put_flat(st, 2, slave, fn, length, 0, number, offset, record, time, crc, crc, start + 1, quantity + 1,
-      registers, coils, link, request_time, label)
+    return put_flat(st, head_slot(2, slave, fn, length), 0, number, offset, record, time, crc_slot(crc, crc),
+      span_slot(start, quantity), registers, coils, link, request_time, label)
   end
 
   -- A request of the quick lane (lane.request), answered in the quick lane (lane.answer): its slots but
@@ -3947,8 +3957,7 @@ do
     if not TABLE_FUNCTIONS[fn] and known.function_text == nil and (registers == nil or (registers.single == nil
         and registers.first < SHORT and registers.count < SHORT)) and (bits == nil or (bits.first < SHORT and bits.count < SHORT))
         and (start == nil or start < SHORT) and (quantity == nil or quantity < SHORT) then
-      slots = { 1 + 4 * (slave + 256 * (fn + 256 * n)), known.crc * SHORT + known.crc,
-        (start == nil and 0 or start + 1) * 65537 + (quantity == nil and 0 or quantity + 1),
+      slots = { head_slot(1, slave, fn, n), crc_slot(known.crc, known.crc), span_slot(start, quantity),
         registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
         bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
         known.span_label or false }
@@ -3959,15 +3968,8 @@ do
   pack.entry_slots = entry_slots
 
   function pack.answered_request(st, f, slots, response_record)
-    local time = f.time
-    if time == nil then time = false end
-    local flat, k = st.flat, st.flat_n
-    flat[k + 1] = slots[1]; flat[k + 2] = 0; flat[k + 3] = f.number; flat[k + 4] = f.offset
-    flat[k + 5] = f.record; flat[k + 6] = time; flat[k + 7] = slots[2]; flat[k + 8] = slots[3]
-    flat[k + 9] = slots[4]; flat[k + 10] = slots[5]; flat[k + 11] = -response_record; flat[k + 12] = false
-    flat[k + 13] = slots[6]
-    st.flat_n = k + ITEM
-    return k
+    return put_flat(st, slots[1], 0, f.number, f.offset, f.record, f.time, slots[2], slots[3], slots[4], slots[5],
+      -response_record, nil, slots[6])
   end
 
   local function packed_flat(st, f)
@@ -3988,22 +3990,17 @@ do
       bits_slot = bit_slot(bf, bc, bits.start, bits.single)
     end
     local request, response = f.request, f.response
-    local link, request_time = false, false
+    local link, request_time = false, nil
     if request ~= nil then
       if response ~= nil then return nil end
       link, request_time = request.record, request.time
-      if request_time == nil then request_time = false end
     elseif response ~= nil then
       link = -response.record
     end
-    local time, start, quantity, label = f.time, f.start, f.quantity, f.span_label
-    if time == nil then time = false end
-    if start == nil then start = 0 else start = start + 1 end
-    if quantity == nil then quantity = 0 else quantity = quantity + 1 end
-    if start > SHORT or quantity > SHORT then return nil end -- (16-bit fields: never, but a slot must not lie)
-    if label == nil then label = false end
-    return put_flat(st, kind, f.slave, f.fn, f.length, f.at, f.number, f.offset, f.record, time, f.crc,
-      f.crc_expected, start, quantity, regs, bits_slot, link, request_time, label)
+    local start, quantity = f.start, f.quantity
+    if (start or 0) >= SHORT or (quantity or 0) >= SHORT then return nil end -- (16-bit fields: a guard)
+    return put_flat(st, head_slot(kind, f.slave, f.fn, f.length), f.at, f.number, f.offset, f.record, f.time,
+      crc_slot(f.crc, f.crc_expected), span_slot(start, quantity), regs, bits_slot, link, request_time, f.span_label)
   end
 
   local function value(x)
@@ -4141,6 +4138,13 @@ local function copy_run(run)
 end
 
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
+-- A request decoded as when it was met (its entry in known_requests); texts: annotated so too.
+local function adopt_known(item, known, texts)
+  item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
+  item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
+  if texts then item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info end
+end
+
 local function take_frame(st, item, whole)
   pair(st, item)
   local known = item.known
@@ -4148,11 +4152,10 @@ local function take_frame(st, item, whole)
   if known ~= nil then
     -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
     item.known = nil
-    item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
-    item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
+    adopt_known(item, known, false)
     device = device_now(st, item, item.b)
     if device == known.device and item.profile_choice == nil then
-      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
+      adopt_known(item, known, true)
     else
       annotate_with(st, item, item.b, device)
     end
@@ -4336,8 +4339,7 @@ function lane.answer(st, bytes, n, time, number)
   -- byte count agreeing
   local fields = pending.fields
   if fields == nil then return nil end
-  local start, quantity
-  if code == 23 then start, quantity = fields.read_start, fields.read_quantity else start, quantity = fields.start, fields.quantity end
+  local start, quantity = lane.asked_window(code, fields)
   if start == nil or quantity == nil then return nil end
   local bits = run == "read_bits_response"
   if bits then
@@ -4371,7 +4373,8 @@ function lane.answer(st, bytes, n, time, number)
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
   if auto then lane.quiet(st, slave, code, true, true) end
-  local offset = lane.advance(st, n, time, nil)
+  st.expect = nil -- (expect_after: an answer awaits nothing)
+  local offset = lane.advance(st, n, time)
   local item = st.count + 1
   st.count = item
   local record = { false }
@@ -4429,18 +4432,14 @@ function lane.request(st, bytes, n, time, number)
   if device_for(st, slave) ~= known.device then return nil end
   -- From here on the request is taken: the same changes as the general path's.
   if auto then lane.quiet(st, slave, code, false, true) end
-  local offset = lane.advance(st, n, time, slave * 256 + code)
+  local frame = lane.known_frame(known, st.base, n, slave, code, time)
+  st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
+  lane.advance(st, n, time)
   local count = st.count + 1
   st.count = count
-  local frame = {
-    kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
-    crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
-    number = count, record = number, at = 0,
-    fields = known.fields, start = known.start, quantity = known.quantity, registers = copy_run(known.registers),
-    bits = copy_run(known.bits), request = nil, response = nil,
-    function_text = known.function_text, span_label = known.span_label, info = known.info,
-    slots = pack.entry_slots(known, n, slave, code),
-  }
+  frame.number, frame.record = count, number
+  adopt_known(frame, known, true)
+  frame.slots = pack.entry_slots(known, n, slave, code)
   st.pending = frame
   local record = { frame }
   st.last = record
