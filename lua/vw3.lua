@@ -4138,11 +4138,10 @@ local function copy_run(run)
 end
 
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
--- A request decoded as when it was met (its entry in known_requests); texts: annotated so too.
-local function adopt_known(item, known, texts)
+-- A request decoded as when it was met (its entry in known_requests).
+local function adopt_known(item, known)
   item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
   item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
-  if texts then item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info end
 end
 
 local function take_frame(st, item, whole)
@@ -4152,10 +4151,10 @@ local function take_frame(st, item, whole)
   if known ~= nil then
     -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
     item.known = nil
-    adopt_known(item, known, false)
+    adopt_known(item, known)
     device = device_now(st, item, item.b)
     if device == known.device and item.profile_choice == nil then
-      adopt_known(item, known, true)
+      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
     else
       annotate_with(st, item, item.b, device)
     end
@@ -4438,7 +4437,8 @@ function lane.request(st, bytes, n, time, number)
   local count = st.count + 1
   st.count = count
   frame.number, frame.record = count, number
-  adopt_known(frame, known, true)
+  adopt_known(frame, known)
+  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
   frame.slots = pack.entry_slots(known, n, slave, code)
   st.pending = frame
   local record = { frame }
