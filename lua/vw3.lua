@@ -1607,7 +1607,20 @@ local crc_seen, crc_seen_count = {}, 0
 -- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
 -- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
 -- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
-known_requests = { entries = {}, count = 0, MAX = 4096 }
+known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
+
+-- Requests that write, by the length of their bytes before the values (slave, function, addresses,
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): the
+-- handlers that decode such a request from those bytes alone (the values are a run read when shown).
+-- A master writes its setpoints every cycle with new values (lane.write).
+known_requests.header_lengths = {}
+do
+  local FROM_HEADER = { write_coils_request = true, write_registers_request = true, read_write_request = true }
+  for code, name in pairs(DATA.protocol.handlers.request) do
+    local rule = DATA.protocol.rules[code][1]
+    if FROM_HEADER[name] and rule[1] == "count8" then known_requests.header_lengths[code] = rule[2] + 1 end
+  end
+end
 
 -- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
 local function whole_crc_good(b, n, whole)
@@ -3036,7 +3049,7 @@ end
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
-local story = {} -- event(), tell(): one table, for the main chunk's 200 locals
+local story = {} -- event(), tell(), plain_rule(): one table, for the main chunk's 200 locals
 function story.event(f, what, address, row, label, before, how, frame, now, shared)
   local events = f.events
   if events == nil then events = {}; f.events = events end
@@ -3138,18 +3151,24 @@ end
 
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
+-- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
+-- layout now (the register it depends on last held a value that says so), or nil.
+function story.plain_rule(device, address, row)
+  if row == nil or row.words == 2 then return nil end
+  local rule = device.depend[address]
+  if rule == nil then return nil end
+  local last = device.seen[rule.on]
+  if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then return rule end
+  return nil
+end
+
 local function annotate_one(f, device, address, value, protected, multi, label, words)
   local row = device.rows[address]
   local plain = false
-  if row ~= nil and row.words ~= 2 then
-    local rule = device.depend[address]
-    if rule ~= nil then
-      local last = device.seen[rule.on]
-      if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then
-        plain = true
-        if not has_note(f, rule.reason) then note(f, rule.reason) end
-      end
-    end
+  local rule = story.plain_rule(device, address, row)
+  if rule ~= nil then
+    plain = true
+    if not has_note(f, rule.reason) then note(f, rule.reason) end
   end
   local status = nil
   if protected ~= nil then
@@ -3945,10 +3964,10 @@ do
       span_slot(start, quantity), registers, coils, link, request_time, label)
   end
 
-  -- A request of the quick lane (lane.request), answered in the quick lane (lane.answer): its slots but
-  -- its number, offset, record and time come from its entry in known_requests (the same for every request
-  -- with its bytes), made once; false when such a request is kept as a table (a function kept as a table,
-  -- a name of the device's own). The request's flat item, or nil when it is packed as usual.
+  -- A request of the quick lanes (lane.request, lane.write), answered in the quick lane (lane.answer): its
+  -- slots but its number, offset, record, time and CRC come from its entry in known_requests (the same for
+  -- every request with its bytes, or its bytes before the values), made once; false when such a request is
+  -- kept as a table (a function kept as a table, a name of the device's own).
   local function entry_slots(known, n, slave, fn)
     local slots = known.slots
     if slots ~= nil then return slots end
@@ -3957,7 +3976,7 @@ do
     if not TABLE_FUNCTIONS[fn] and known.function_text == nil and (registers == nil or (registers.single == nil
         and registers.first < SHORT and registers.count < SHORT)) and (bits == nil or (bits.first < SHORT and bits.count < SHORT))
         and (start == nil or start < SHORT) and (quantity == nil or quantity < SHORT) then
-      slots = { head_slot(1, slave, fn, n), crc_slot(known.crc, known.crc), span_slot(start, quantity),
+      slots = { head_slot(1, slave, fn, n), span_slot(start, quantity),
         registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
         bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
         known.span_label or false }
@@ -3967,9 +3986,10 @@ do
   end
   pack.entry_slots = entry_slots
 
+  -- The request's flat item.
   function pack.answered_request(st, f, slots, response_record)
-    return put_flat(st, slots[1], 0, f.number, f.offset, f.record, f.time, slots[2], slots[3], slots[4], slots[5],
-      -response_record, nil, slots[6])
+    return put_flat(st, slots[1], 0, f.number, f.offset, f.record, f.time, crc_slot(f.crc, f.crc_expected), slots[2],
+      slots[3], slots[4], -response_record, nil, slots[5])
   end
 
   local function packed_flat(st, f)
@@ -4221,22 +4241,40 @@ end
 -- Keep a request of one record for the next time its bytes come (see known_requests): one whose
 -- decoding and annotation said nothing but its fields and device texts, which nothing else than its
 -- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
+-- A request that writes is kept by its bytes before the values too (known_requests.headers, for
+-- lane.write, which looks at the layout rules again), even where it writes registers under one.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
-      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
-      or follows_registers(device, item.registers) then
+      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected then
     return
   end
-  if known_requests.count >= known_requests.MAX then known_requests.entries, known_requests.count = {}, 0 end
-  known_requests.count = known_requests.count + 1
+  local header = known_requests.header_lengths[item.fn]
+  if header ~= nil and #bytes <= header then header = nil end
+  local by_bytes = not follows_registers(device, item.registers)
+  if header == nil and not by_bytes then return end
+  if known_requests.count >= known_requests.MAX then
+    known_requests.entries, known_requests.headers, known_requests.count = {}, {}, 0
+  end
   local info = item.info
   if info == nil and summary ~= nil then info = summary(item) end -- (nil: loaded without Wireshark)
   item.info = info
-  known_requests.entries[bytes] = {
+  local entry = {
     device = device, crc = item.crc, b = item.b, fields = item.fields, start = item.start,
     quantity = item.quantity, registers = copy_run(item.registers), bits = copy_run(item.bits),
-    function_text = item.function_text, span_label = item.span_label, info = info,
+    function_text = item.function_text, span_label = item.span_label, info = info, length = #bytes,
   }
+  if by_bytes then
+    known_requests.count = known_requests.count + 1
+    known_requests.entries[bytes] = entry
+  end
+  if header ~= nil then
+    local key = bytes:sub(1, header)
+    local known = known_requests.headers[key]
+    if known == nil or known.device ~= device then
+      known_requests.count = known_requests.count + 1
+      known_requests.headers[key] = entry
+    end
+  end
 end
 
 -- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
@@ -4438,6 +4476,56 @@ function lane.request(st, bytes, n, time, number)
   st.count = count
   frame.number, frame.record = count, number
   adopt_known(frame, known)
+  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
+  frame.slots = pack.entry_slots(known, n, slave, code)
+  st.pending = frame
+  local record = { frame }
+  st.last = record
+  st.whole_record = record -- (packed by pack.settle)
+  return record
+end
+
+-- The quick lane of requests that write (FC15, FC16, FC23 by the protocol table): a record whose bytes
+-- before the values are a request met before (known_requests.headers), with no request awaiting its
+-- answer, for the device it was met with, and no register it writes under a layout rule that holds now
+-- (annotate_one would note it), is framed, paired and decoded as feed_whole, dissect_record and take_frame
+-- would do it: its CRC checked, its runs read from its own bytes. Returns the record as lane.request does;
+-- nil, with nothing changed, for any other record.
+function lane.write(st, bytes, n, time, number)
+  if st.pending ~= nil or st.open[1] ~= nil then return nil end
+  local byte = string.byte
+  local slave, code = byte(bytes, 1, 2)
+  local header = known_requests.header_lengths[code]
+  if header == nil or n <= header then return nil end
+  local known = known_requests.headers[bytes:sub(1, header)]
+  if known == nil or known.length ~= n or not lane.frames_known(st, n, slave, code) then return nil end
+  local auto = config.default == AUTO and config.per_slave[slave] == nil
+  if auto and not lane.quiet(st, slave, code, false, false) then return nil end
+  local device = device_for(st, slave)
+  if device ~= known.device then return nil end
+  local registers = known.registers
+  if registers ~= nil and next(device.depend) ~= nil then
+    local rows, plain_rule = device.rows, story.plain_rule
+    for index = 0, registers.count - 1 do
+      local address = (registers.start + index) % 0x10000
+      if plain_rule(device, address, rows[address]) ~= nil then return nil end
+    end
+  end
+  if not crc_string_ok(bytes, n) then return nil end
+  -- From here on the request is taken: the same changes as the general path's.
+  if auto then lane.quiet(st, slave, code, false, true) end
+  local frame = lane.known_frame(known, st.base, n, slave, code, time)
+  local crc_low, crc_high = byte(bytes, n - 1, n)
+  local b = { [0] = slave, byte(bytes, 2, n) }
+  frame.b, frame.crc, frame.crc_expected = b, crc_low + crc_high * 256, crc_low + crc_high * 256
+  st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
+  lane.advance(st, n, time)
+  local count = st.count + 1
+  st.count = count
+  frame.number, frame.record = count, number
+  adopt_known(frame, known)
+  if frame.registers ~= nil then frame.registers.b = b end
+  if frame.bits ~= nil then frame.bits.b = b end
   frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
   frame.slots = pack.entry_slots(known, n, slave, code)
   st.pending = frame
@@ -5279,7 +5367,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local time = record_time(pinfo, number)
   local kept, info = lane.answer(st, bytes, n, time, number)
   if kept ~= nil then return kept, n, info end
-  local record = lane.request(st, bytes, n, time, number)
+  local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
   if record ~= nil then return record, n end
   return dissect_record(st, bytes, time, number), n
 end
