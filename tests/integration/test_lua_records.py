@@ -13,6 +13,8 @@ import pytest
 from lua_compare import compare, lua_kind, lua_shown
 from lua_harness import ROOT, lua_items, python_items, run_tshark, write_pcap
 
+from dissector.protocol.crc import with_crc
+
 BINS = sorted((ROOT / "captures").glob("*.bin"))
 
 
@@ -101,3 +103,45 @@ def test_repeated_records_in_other_contexts_frame_as_vw3_decode(tmp_path: Path) 
     summary = run_tshark(pcap)
     assert summary.returncode == 0 and "Lua Error" not in summary.stdout + summary.stderr
     assert sum("BAD CRC" in line for line in summary.stdout.splitlines()) == 1, summary.stdout
+
+
+def test_setpoint_writes_with_new_values_decode_as_vw3_decode(tmp_path: Path) -> None:
+    # A master writes setpoints every cycle with new values (FC23 and FC16 to the ATV71's CMD, 8501):
+    # the plugin decodes such a request from its bytes before the values once met, and must still check
+    # each one's CRC, read its own values (CHCF, 8401, written as 0 then 3 by the same FC16 header), and
+    # note the CMD's layout once CHCF is 3 (I/O profile), as vw3-decode does.
+    def rtu(hex_text: str) -> bytes:
+        return with_crc(bytes.fromhex(hex_text))
+
+    def rw_request(cmd: int, speed: int) -> bytes:  # read 3201..3202, write 8501..8502
+        return rtu(f"02170c8100022135000204{cmd:04x}{speed:04x}")
+
+    def rw_response(eta: int, rfr: int) -> bytes:
+        return rtu(f"021704{eta:04x}{rfr:04x}")
+
+    cycles = []
+    for cycle in range(4):
+        cycles += [rw_request(0x000F, 100 * cycle), rw_response(0x0637, 10 * cycle)]
+        cycles += [rtu(f"0210213500010200{cycle:02x}"), rtu("021021350001")]
+    chcf_written = [rtu(f"0210{0x20D1:04x}0001020{chcf:03x}") for chcf in (0, 3)]
+    chcf_answer = rtu(f"0210{0x20D1:04x}0001")
+    noted = cycles + [chcf_written[0], chcf_answer, chcf_written[1], chcf_answer]
+    noted += [rw_request(0x0001, 55), rw_response(0x0637, 1), rw_request(0x0000, 0), rw_response(0x0637, 2)]
+    bad = bytearray(rw_request(0x000F, 777))
+    bad[-1] ^= 0x40  # BAD CRC, whatever its bytes before the values
+    damaged = cycles + [bytes(bad), rw_request(0x0007, 5), rw_response(0x0633, 0)]
+    for name, sequence in (("noted", noted), ("damaged", damaged)):
+        records = [(data, 1_700_000_000 + index * 0.02) for index, data in enumerate(sequence)]
+        pcap = write_pcap(tmp_path / f"{name}.pcap", records)
+        python = python_items(pcap, [])
+        lua, _, _ = lua_items(pcap)
+        differences = compare(python, lua)
+        assert not differences, f"{name}:\n" + "\n".join(differences[:40])
+        summary = run_tshark(pcap)
+        assert summary.returncode == 0 and "Lua Error" not in summary.stdout + summary.stderr
+        lines = summary.stdout.splitlines()
+        if name == "noted":  # the two requests after CHCF = 3
+            notes = [note for item in python for note in item.data.get("notes", [])]
+            assert sum("CHCF = 3" in note for note in notes) == 2, notes
+        else:
+            assert sum("BAD CRC" in line for line in lines) == 1, summary.stdout
