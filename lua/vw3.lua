@@ -1174,14 +1174,34 @@ local function crc16(b, from, to)
 end
 
 -- Does a record's string (the whole frame, `n` bytes) end in its CRC? The same steps as crc_bytes, the
--- bytes read eight a call from the string: a record of one frame is checked before its byte table is
--- needed, and string.byte costs less than eight table reads.
+-- bytes read sixteen a call from the string (then 8, 4, 2, 1): a record of one frame is checked before its
+-- byte table is needed, and a call of string.byte costs less than the table reads it saves.
 local function crc_string_ok(bytes, n)
   local byte = string.byte
   local stop = n - 2 -- (the bytes 1 .. stop are covered; then the CRC, low byte first)
   local l, h = 0xFF00, 0xFF00
   local k = 1
-  while k + 7 <= stop do
+  while k + 15 <= stop do
+    local a, b, c, d, e, f, g, i, a2, b2, c2, d2, e2, f2, g2, i2 = byte(bytes, k, k + 15)
+    local w = XOR8[h + b] * 256 + XOR8[l + a]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + d] * 256 + XOR8[l + c]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + f] * 256 + XOR8[l + e]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + i] * 256 + XOR8[l + g]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + b2] * 256 + XOR8[l + a2]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + d2] * 256 + XOR8[l + c2]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + f2] * 256 + XOR8[l + e2]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + i2] * 256 + XOR8[l + g2]
+    l, h = TWO_LO[w], TWO_HI[w]
+    k = k + 16
+  end
+  if k + 7 <= stop then
     local a, b, c, d, e, f, g, i = byte(bytes, k, k + 7)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
@@ -1193,7 +1213,15 @@ local function crc_string_ok(bytes, n)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 8
   end
-  while k + 1 <= stop do
+  if k + 3 <= stop then
+    local a, b, c, d = byte(bytes, k, k + 3)
+    local w = XOR8[h + b] * 256 + XOR8[l + a]
+    l, h = TWO_LO[w], TWO_HI[w]
+    w = XOR8[h + d] * 256 + XOR8[l + c]
+    l, h = TWO_LO[w], TWO_HI[w]
+    k = k + 4
+  end
+  if k + 1 <= stop then
     local a, b = byte(bytes, k, k + 1)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
@@ -4355,6 +4383,7 @@ for code, name in pairs(DATA.protocol.handlers.response) do
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
+local LANE_VALUES, LANE_LASTS = {}, {}
 
 -- The quick lane: a record that is the usual answer to the request awaited (a run of registers or bits
 -- whose byte count agrees with the request, on time, from a device that notes nothing about them and has
@@ -4397,14 +4426,16 @@ function lane.answer(st, bytes, n, time, number)
   if READS[code] ~= nil then protected = profile.protected_value end
   local depend, seen = device.depend, device.seen
   local follow = not bits and quantity > 0 and (protected ~= nil or next(depend) ~= nil)
+  local values, lasts = LANE_VALUES, LANE_LASTS -- (each register's value and history, for the changes below)
   if follow then
     for index = 0, quantity - 1 do
       local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
-      local address = (start + index) % 0x10000
-      if high * 256 + low == protected or depend[address] ~= nil then return nil end
+      local address, value = (start + index) % 0x10000, high * 256 + low
+      if value == protected or depend[address] ~= nil then return nil end
       if protected ~= nil then
         local last = seen[address]
         if last == nil or last.value == nil then return nil end
+        values[index], lasts[index] = value, last
       end
     end
   end
@@ -4414,44 +4445,55 @@ function lane.answer(st, bytes, n, time, number)
   local offset = lane.advance(st, n, time)
   local item = st.count + 1
   st.count = item
-  local record = { false }
-  st.last = record
-  pending.response = { record = number }
+  -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
+  st.last = nil
   st.pending = nil
   local writes = pending.registers
   if device.track and (code == 16 or code == 23) and writes ~= nil and writes.count > 0 and writes.b ~= nil then
     remember_writes(seen, item, writes, writes.b)
   end
   if follow and protected ~= nil then
+    -- (remember_writes changed these tables in place, if any: none was missing)
     for index = 0, quantity - 1 do
-      local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
-      local last = seen[(start + index) % 0x10000]
-      last.value, last.frame, last.how = high * 256 + low, item, "read"
+      local last = lasts[index]
+      last.value, last.frame, last.how = values[index], item, "read"
     end
   end
   release_run(writes)
   -- The request, packed now where it came through the quick lane and waits at the end of the list
-  -- pack.settle packs (as_number: its record holds it alone).
+  -- pack.settle packs (as_number: its record holds it alone); else it is linked to this record.
   local slots = pending.slots
-  if slots then
-    local list = st.unpacked
-    local last = #list
-    local request_record = list[last - 1]
-    if last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
-        and st.records[pending.record] == request_record then
-      local packed = pack.answered_request(st, pending, slots, number)
-      list[last], list[last - 1] = nil, nil
-      request_record[1] = packed
-      st.records[pending.record] = packed
-    end
+  local list = st.unpacked
+  local last = #list
+  local request_record = list[last - 1]
+  if slots and last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
+      and st.records[pending.record] == request_record then
+    local packed = pack.answered_request(st, pending, slots, number)
+    list[last], list[last - 1] = nil, nil
+    request_record[1] = packed
+    st.records[pending.record] = packed
+  else
+    pending.response = { record = number }
   end
-  ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
-  if device.plc ~= nil then lane.span_label(ANSWER, device) end -- (PLC-style devices: 4X numbers)
+  -- The Info text and span label (PLC-style devices: 4X numbers), the same for every answer of the
+  -- device's function and read window: made once (summary, span_label), bounded.
+  local key = (code * 65536 + start) * 65536 + quantity
+  local infos = device.lane_infos
+  if infos == nil or infos.count >= 256 then
+    infos = { count = 0, labels = {} }
+    device.lane_infos = infos
+  end
+  local info = infos[key]
+  if info == nil then
+    ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
+    if device.plc ~= nil then lane.span_label(ANSWER, device) end
+    info = summary(ANSWER)
+    infos[key], infos.labels[key], infos.count = info, ANSWER.span_label, infos.count + 1
+  end
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
-    quantity, pending.record, asked, ANSWER.span_label, bits)
-  record[1] = kept
-  return kept, summary(ANSWER)
+    quantity, pending.record, asked, infos.labels[key], bits)
+  return kept, info
 end
 
 -- The quick lane of requests: a record that is a request met before (known_requests) with no request
