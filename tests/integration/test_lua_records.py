@@ -145,3 +145,29 @@ def test_setpoint_writes_with_new_values_decode_as_vw3_decode(tmp_path: Path) ->
             assert sum("CHCF = 3" in note for note in notes) == 2, notes
         else:
             assert sum("BAD CRC" in line for line in lines) == 1, summary.stdout
+
+
+def test_answers_of_every_length_check_their_crc_as_vw3_decode(tmp_path: Path) -> None:
+    # The plugin checks a whole record's CRC 16, 8, 4, 2 and 1 bytes at a time: every length of a Read
+    # Coils answer (6 to 255 bytes), good, and every seventh also with a bit of its CRC flipped.
+    def rtu(hex_text: str) -> bytes:
+        return with_crc(bytes.fromhex(hex_text))
+
+    sequence = []
+    for count in range(1, 251):
+        request = rtu(f"1401{0:04x}{8 * count:04x}")
+        data = bytes((count * 37 + index * 11) % 256 for index in range(count))
+        answer = with_crc(bytes([0x14, 0x01, count]) + data)
+        sequence += [request, answer]
+        if count % 7 == 0:
+            damaged = bytearray(answer)
+            damaged[-1 - count % 2] ^= 1 << count % 8
+            sequence += [request, bytes(damaged), request, answer]
+    records = [(data, 1_700_000_000 + index * 0.05) for index, data in enumerate(sequence)]
+    pcap = write_pcap(tmp_path / "lengths.pcap", records)
+    python = python_items(pcap, [])
+    lua, _, _ = lua_items(pcap)
+    differences = compare(python, lua)
+    assert not differences, "\n".join(differences[:40])
+    bad = [item for item in python if item.data["kind"] != "noise" and not item.data["crc_ok"]]
+    assert len(bad) == 250 // 7, [item.data for item in bad[:3]]
