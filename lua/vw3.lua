@@ -1929,15 +1929,28 @@ function lane.advance(s, n, time)
 end
 
 -- The frame of a request met before (known_requests), its stream offset and time given: what framing
--- finds (the request's layout is the likeliest; its length and CRC checked when it was met).
+-- finds (the request's layout is the likeliest; its length and CRC checked when it was met). A frame of
+-- the quick lanes packed once answered (lane.answer) is held by nothing else: it is taken again here, every
+-- key set anew, so that a polling bus makes no table a request (lane.spare, a few at most).
+lane.spare = {}
 function lane.known_frame(known, offset, n, slave, code, time)
-  return {
-    kind = REQUEST, offset = offset, length = n, slave = slave, fn = code, crc = known.crc,
-    crc_expected = known.crc, time = time, b = known.b, bi = 0, data_at = 2, data_len = n - 4,
-    number = 0, record = 0, at = 0,
-    fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
-    known = nil, function_text = nil, span_label = nil, info = nil, slots = nil,
-  }
+  local spare = lane.spare
+  local count = #spare
+  local f = spare[count]
+  if f == nil then
+    -- (the keys below made at once, as the constructor sizes them)
+    f = { kind = 0, offset = 0, length = 0, slave = 0, fn = 0, crc = 0, crc_expected = 0, time = 0, b = 0, bi = 0,
+      data_at = 0, data_len = 0, number = 0, record = 0, at = 0, fields = 0, start = 0, quantity = 0, registers = 0,
+      bits = 0, request = 0, response = 0, known = 0, function_text = 0, span_label = 0, info = 0, slots = 0 }
+  else
+    spare[count] = nil
+  end
+  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
+    known.crc, time
+  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, 0, 0, 0
+  f.fields, f.start, f.quantity, f.registers, f.bits, f.request, f.response = nil, nil, nil, nil, nil, nil, nil
+  f.known, f.function_text, f.span_label, f.info, f.slots = nil, nil, nil, nil, nil
+  return f
 end
 
 feed_whole = function(s, bytes, time)
@@ -4472,6 +4485,8 @@ function lane.answer(st, bytes, n, time, number)
     list[last], list[last - 1] = nil, nil
     request_record[1] = packed
     st.records[pending.record] = packed
+    local spare = lane.spare
+    if #spare < 4 then spare[#spare + 1] = pending end
   else
     pending.response = { record = number }
   end
