@@ -1370,9 +1370,9 @@ local MODE_SAMPLE = 64
 local feed, feed_whole, detect_mode
 local known_requests -- (see below: requests met before)
 -- Functions one block hands to another (one table: the main chunk may hold at most 200 locals). Among
--- them the quick lane of answers (lane.answer): a record that is the usual answer to the request awaited,
--- framed, paired, annotated and kept in one step, with no frame table; its parts are defined beside the
--- rules they follow.
+-- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
+-- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
+-- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
 do
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
