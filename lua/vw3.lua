@@ -1127,7 +1127,20 @@ for byte = 0, 255 do
     end
   end
   CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
-  for other = 0, 255 do XOR8[byte * 256 + other] = bxor(byte, other) end
+end
+-- XOR8 row by row, each from an earlier one: a XOR b is (a - top) XOR b plus top where b lacks the bit
+-- top (a's highest), minus top where b has it (65,536 calls of bxor were most of the plugin's start-up).
+for b = 0, 255 do XOR8[b] = b end
+do
+  local top = 1
+  for a = 1, 255 do
+    if a == top * 2 then top = a end
+    local row, base = a * 256, (a - top) * 256
+    for block = 0, 255, 2 * top do
+      for b = block, block + top - 1 do XOR8[row + b] = XOR8[base + b] + top end
+      for b = block + top, block + 2 * top - 1 do XOR8[row + b] = XOR8[base + b] - top end
+    end
+  end
 end
 -- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
 -- (filled in index order: a table filled out of order keeps its keys in the hash part, rebuilt again and
@@ -3715,12 +3728,12 @@ local function observe(st, f, b)
   return judged.choice
 end
 
--- What observe does with a good frame of slave's function fn, an answer (answer true: no device objects in
--- it) or a request, when it decides nothing: true, and the frame counted (count), for a slave met before
--- (and judged, for an answer). false, with nothing counted, when observe is to weigh the frame (a function
--- that identifies a device, a slave not met or still judged, an answer its device does not support).
--- (The quick lanes, lane.answer and lane.request, ask this instead.)
-function lane.quiet(st, slave, fn, answer, count)
+-- Would observe decide nothing with a good frame of slave's function fn, an answer (answer true: no device
+-- objects in it) or a request? For a slave met before (and judged, for an answer): what lane.counted
+-- counts the frame in (the slave's judged table; true where its choice is final: observe counts nothing).
+-- false when observe is to weigh the frame (a function that identifies a device, a slave not met or still
+-- judged, an answer its device does not support). Changes nothing. (The quick lanes ask this instead.)
+function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local all = st.judged
   local judged = all and all[slave]
@@ -3735,10 +3748,15 @@ function lane.quiet(st, slave, fn, answer, count)
         return false
       end
     end
-    if count then judged.answers = judged.answers + 1 end
   end
-  if count then judged.frames = judged.frames + 1 end
-  return true
+  return judged
+end
+
+-- Count the frame as observe does, once the lane takes it (judged: what lane.quiet returned).
+function lane.counted(judged, answer)
+  if judged == true then return end
+  if answer then judged.answers = judged.answers + 1 end
+  judged.frames = judged.frames + 1
 end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
@@ -4156,7 +4174,9 @@ do
       st.whole_record = nil
       local item = whole[1]
       if item == st.pending then
-        list[#list + 1], list[#list + 2] = whole, 1 -- (packed once answered, with the others)
+        local count = #list
+        list[count + 1], list[count + 2] = whole, 1 -- (packed once answered, with the others)
+        if count == 0 then return end -- (nothing else waits: the pending request stays)
       else
         local packed = packed_flat(st, item)
         if packed == nil then
@@ -4167,8 +4187,8 @@ do
           whole[1] = packed
         end
       end
-      if list[1] == nil then return end
     end
+    if list[1] == nil then return end
     local kept = 0
     for index = 1, #list, 2 do
       local record, at = list[index], list[index + 1]
@@ -4428,7 +4448,8 @@ function lane.answer(st, bytes, n, time, number)
   end
   -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
   local auto = config.default == AUTO and config.per_slave[slave] == nil
-  if auto and not lane.quiet(st, slave, code, true, false) then return nil end
+  local quiet = auto and lane.quiet(st, slave, code, true)
+  if auto and not quiet then return nil end
   local device = device_for(st, slave)
   if not device then return nil end
   local profile = device.profile
@@ -4453,7 +4474,7 @@ function lane.answer(st, bytes, n, time, number)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if auto then lane.quiet(st, slave, code, true, true) end
+  if auto then lane.counted(quiet, true) end
   st.expect = nil -- (expect_after: an answer awaits nothing)
   local offset = lane.advance(st, n, time)
   local item = st.count + 1
@@ -4522,10 +4543,11 @@ function lane.request(st, bytes, n, time, number)
   local slave, code = string.byte(bytes, 1, 2)
   if not lane.frames_known(st, n, slave, code) then return nil end
   local auto = config.default == AUTO and config.per_slave[slave] == nil
-  if auto and not lane.quiet(st, slave, code, false, false) then return nil end
+  local quiet = auto and lane.quiet(st, slave, code, false)
+  if auto and not quiet then return nil end
   if device_for(st, slave) ~= known.device then return nil end
   -- From here on the request is taken: the same changes as the general path's.
-  if auto then lane.quiet(st, slave, code, false, true) end
+  if auto then lane.counted(quiet, false) end
   local frame = lane.known_frame(known, st.base, n, slave, code, time)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   lane.advance(st, n, time)
@@ -4557,7 +4579,8 @@ function lane.write(st, bytes, n, time, number)
   local known = known_requests.headers[bytes:sub(1, header)]
   if known == nil or known.length ~= n or not lane.frames_known(st, n, slave, code) then return nil end
   local auto = config.default == AUTO and config.per_slave[slave] == nil
-  if auto and not lane.quiet(st, slave, code, false, false) then return nil end
+  local quiet = auto and lane.quiet(st, slave, code, false)
+  if auto and not quiet then return nil end
   local device = device_for(st, slave)
   if device ~= known.device then return nil end
   local registers = known.registers
@@ -4570,7 +4593,7 @@ function lane.write(st, bytes, n, time, number)
   end
   if not crc_string_ok(bytes, n) then return nil end
   -- From here on the request is taken: the same changes as the general path's.
-  if auto then lane.quiet(st, slave, code, false, true) end
+  if auto then lane.counted(quiet, false) end
   local frame = lane.known_frame(known, st.base, n, slave, code, time)
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local b = { [0] = slave, byte(bytes, 2, n) }
@@ -5416,7 +5439,8 @@ local function finish_all()
 end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
--- The record's first dissection: nil for an empty record, else the record and its length.
+-- The record's first dissection: nil for an empty record, else the record and its length, and the Info
+-- text of a record the quick lanes took (its one frame has nothing else to say where no tree is wanted).
 local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
@@ -5425,7 +5449,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local kept, info = lane.answer(st, bytes, n, time, number)
   if kept ~= nil then return kept, n, info end
   local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
-  if record ~= nil then return record, n end
+  if record ~= nil then return record, n, record[1].info end
   return dissect_record(st, bytes, time, number), n
 end
 
@@ -5446,14 +5470,16 @@ local function dissect_records(st, tvb, pinfo, tree)
     end
     st.records[number] = record
     if info ~= nil then
-      -- The quick lane's answer (lane.answer), kept already: shown as show_record shows a record of one
-      -- frame, from what was kept where a tree is wanted.
+      -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
+      -- say but its Info text where no tree is wanted; else shown as show_record shows a record.
       local cols = pinfo.cols
       if not tree_mode(tree) and config.errors[1] == nil then
         cols.protocol = "VW3"
         cols.info = info
-      else
+      elseif type(record) == "number" then
         show_record(st, { record }, tvb, pinfo, tree, n)
+      else
+        show_record(st, record, tvb, pinfo, tree, n)
       end
     else
       show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
