@@ -8,7 +8,9 @@ profiles), `max-size` (every public function code at quantities up to the spec's
 (the simulator's polling loop). For each mix, best of --repeat interleaved rounds:
 - one pass (`tshark -r`, what Wireshark does on opening a file), the one-line summary to a file: the
   plugin and mbrtu (USER0 mapped to each through the DLT_USER table, CRC verification on), and their
-  frames per second and ratio;
+  frames per second and ratio; and each round's own ratio, with their median (the two one passes of a
+  round run seconds apart, so a slow spell of the machine hits both, where the best times may pair a
+  lucky run of one with an unlucky run of the other);
 - `tshark -2` (two passes, the plugin's documented way to run tshark): wall time and peak RSS of both,
   and the RSS ratio.
 --pcap times one capture instead of the mixes; --plugin another copy of the plugin (an older commit's,
@@ -28,6 +30,7 @@ from __future__ import annotations
 import argparse
 import re
 import shutil
+import statistics
 import struct
 import subprocess
 import sys
@@ -83,18 +86,26 @@ def measure(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str
         "mbrtu -2": mbrtu[:1] + ["-2"] + mbrtu[1:],
     }
     best = {run: (float("inf"), 0.0) for run in runs}
+    round_ratios = []
     # Rounds interleave the commands, so a slow spell of the shared machine hits them all alike.
     for _round in range(repeat):
+        this_round = {}
         for run, command in runs.items():
             seconds, rss = run_once(command, out / "lua_output.txt")
+            this_round[run] = seconds
             best[run] = (min(best[run][0], seconds), max(best[run][1], rss))
+        round_ratios.append(this_round["mbrtu one pass"] / this_round["vw3.lua one pass"])
     print(f"{name}: {pcap.name}, {frames} records")
     for run, (seconds, rss) in best.items():
         print(f"  {run:<18} {seconds:8.3f} s {frames / seconds:>10,.0f} frames/s  peak RSS {rss:7.1f} MB")
     speed = best["mbrtu one pass"][0] / best["vw3.lua one pass"][0]
     memory = best["vw3.lua -2"][1] / best["mbrtu -2"][1]
     print(f"  one pass: vw3.lua at {speed:.2f}x mbrtu's speed; -2: vw3.lua's peak RSS {memory:.2f}x mbrtu's")
-    return {"speed": speed, "memory": memory}
+    # The best times can pair a lucky run of one with an unlucky run of the other; the two one passes of
+    # a round ran seconds apart, under the same load.
+    rounds = ", ".join(f"{ratio:.2f}x" for ratio in round_ratios)
+    print(f"  one pass, each round's ratio: {rounds} (median {statistics.median(round_ratios):.2f}x)")
+    return {"speed": speed, "memory": memory, "round_median": statistics.median(round_ratios)}
 
 
 def instructions(command: list[str]) -> int:
