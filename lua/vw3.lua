@@ -4556,7 +4556,7 @@ function lane.request(st, bytes, n, time, number)
   frame.number, frame.record = count, number
   adopt_known(frame, known)
   frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
-  frame.slots = pack.entry_slots(known, n, slave, code)
+  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
   st.pending = frame
   local record = { frame }
   st.last = record
@@ -4607,7 +4607,7 @@ function lane.write(st, bytes, n, time, number)
   if frame.registers ~= nil then frame.registers.b = b end
   if frame.bits ~= nil then frame.bits.b = b end
   frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
-  frame.slots = pack.entry_slots(known, n, slave, code)
+  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
   st.pending = frame
   local record = { frame }
   st.last = record
@@ -5484,7 +5484,8 @@ local function dissect_records(st, tvb, pinfo, tree)
     else
       show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
     end
-    pack.settle(st) -- (after the first showing, which reads the items as they were decoded)
+    -- (after the first showing, which reads the items as they were decoded; asked only when some wait)
+    if st.whole_record ~= nil or st.unpacked[1] ~= nil then pack.settle(st) end
     return n
   end
   if not state.finished and pinfo.visited then finish_all() end
