@@ -1187,8 +1187,8 @@ local function crc16(b, from, to)
 end
 
 -- Does a record's string (the whole frame, `n` bytes) end in its CRC? The same steps as crc_bytes, the
--- bytes read sixteen a call from the string (then 8, 4, 2, 1): a record of one frame is checked before its
--- byte table is needed, and a call of string.byte costs less than the table reads it saves.
+-- bytes read sixteen a call from the string (then four, two, one): a record of one frame is checked
+-- before its byte table is needed, and a call of string.byte costs less than the table reads it saves.
 local function crc_string_ok(bytes, n)
   local byte = string.byte
   local stop = n - 2 -- (the bytes 1 .. stop are covered; then the CRC, low byte first)
@@ -1214,19 +1214,7 @@ local function crc_string_ok(bytes, n)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 16
   end
-  if k + 7 <= stop then
-    local a, b, c, d, e, f, g, i = byte(bytes, k, k + 7)
-    local w = XOR8[h + b] * 256 + XOR8[l + a]
-    l, h = TWO_LO[w], TWO_HI[w]
-    w = XOR8[h + d] * 256 + XOR8[l + c]
-    l, h = TWO_LO[w], TWO_HI[w]
-    w = XOR8[h + f] * 256 + XOR8[l + e]
-    l, h = TWO_LO[w], TWO_HI[w]
-    w = XOR8[h + i] * 256 + XOR8[l + g]
-    l, h = TWO_LO[w], TWO_HI[w]
-    k = k + 8
-  end
-  if k + 3 <= stop then
+  while k + 3 <= stop do
     local a, b, c, d = byte(bytes, k, k + 3)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
@@ -4541,13 +4529,31 @@ function lane.request(st, bytes, n, time, number)
   local known = known_requests.entries[bytes]
   if known == nil then return nil end
   local slave, code = string.byte(bytes, 1, 2)
+  local quiet = lane.takes_known(st, known, n, slave, code)
+  if quiet == nil then return nil end
+  return lane.hold_known(st, known, quiet, n, slave, code, time, number)
+end
+
+-- Would the quick lanes take a request met before (its entry `known`) of slave's function code, n bytes:
+-- framed whole where no answer of its slave and function is awaited (feed_whole), profile auto settled
+-- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
+-- in use for the slave), or nil. Changes nothing.
+function lane.takes_known(st, known, n, slave, code)
   if not lane.frames_known(st, n, slave, code) then return nil end
-  local auto = config.default == AUTO and config.per_slave[slave] == nil
-  local quiet = auto and lane.quiet(st, slave, code, false)
-  if auto and not quiet then return nil end
+  local quiet = false
+  if config.default == AUTO and config.per_slave[slave] == nil then
+    quiet = lane.quiet(st, slave, code, false)
+    if not quiet then return nil end
+  end
   if device_for(st, slave) ~= known.device then return nil end
-  -- From here on the request is taken: the same changes as the general path's.
-  if auto then lane.counted(quiet, false) end
+  return quiet
+end
+
+-- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
+-- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
+-- pack.settle). Returns the record.
+function lane.hold_known(st, known, quiet, n, slave, code, time, number)
+  if quiet then lane.counted(quiet, false) end
   local frame = lane.known_frame(known, st.base, n, slave, code, time)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   lane.advance(st, n, time)
@@ -4560,7 +4566,7 @@ function lane.request(st, bytes, n, time, number)
   st.pending = frame
   local record = { frame }
   st.last = record
-  st.whole_record = record -- (packed by pack.settle)
+  st.whole_record = record
   return record
 end
 
@@ -4577,13 +4583,10 @@ function lane.write(st, bytes, n, time, number)
   local header = known_requests.header_lengths[code]
   if header == nil or n <= header then return nil end
   local known = known_requests.headers[bytes:sub(1, header)]
-  if known == nil or known.length ~= n or not lane.frames_known(st, n, slave, code) then return nil end
-  local auto = config.default == AUTO and config.per_slave[slave] == nil
-  local quiet = auto and lane.quiet(st, slave, code, false)
-  if auto and not quiet then return nil end
-  local device = device_for(st, slave)
-  if device ~= known.device then return nil end
-  local registers = known.registers
+  if known == nil or known.length ~= n then return nil end
+  local quiet = lane.takes_known(st, known, n, slave, code)
+  if quiet == nil then return nil end
+  local device, registers = known.device, known.registers
   if registers ~= nil and next(device.depend) ~= nil then
     local rows, plain_rule = device.rows, story.plain_rule
     for index = 0, registers.count - 1 do
@@ -4592,26 +4595,14 @@ function lane.write(st, bytes, n, time, number)
     end
   end
   if not crc_string_ok(bytes, n) then return nil end
-  -- From here on the request is taken: the same changes as the general path's.
-  if auto then lane.counted(quiet, false) end
-  local frame = lane.known_frame(known, st.base, n, slave, code, time)
+  -- Taken: as lane.request takes a request, with this record's own bytes and CRC.
+  local record = lane.hold_known(st, known, quiet, n, slave, code, time, number)
+  local frame = record[1]
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local b = { [0] = slave, byte(bytes, 2, n) }
   frame.b, frame.crc, frame.crc_expected = b, crc_low + crc_high * 256, crc_low + crc_high * 256
-  st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
-  lane.advance(st, n, time)
-  local count = st.count + 1
-  st.count = count
-  frame.number, frame.record = count, number
-  adopt_known(frame, known)
   if frame.registers ~= nil then frame.registers.b = b end
   if frame.bits ~= nil then frame.bits.b = b end
-  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
-  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
-  st.pending = frame
-  local record = { frame }
-  st.last = record
-  st.whole_record = record -- (packed by pack.settle)
   return record
 end
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from lua_compare import compare, lua_kind, lua_shown
-from lua_harness import ROOT, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import ROOT, LuaItem, PythonItem, lua_items, python_items, run_tshark, write_pcap
 
 from dissector.protocol.crc import with_crc
 
@@ -27,6 +27,23 @@ def cut(data: bytes, seed: int, smallest: int = 1, largest: int = 16) -> list[tu
         records.append((data[position : position + size], 1_700_000_000 + len(records) * 0.001))
         position += size
     return records
+
+
+def rtu(hex_text: str) -> bytes:
+    """An RTU frame: the hex bytes and their CRC."""
+    return with_crc(bytes.fromhex(hex_text))
+
+
+def decode_both(path: Path, sequence: list[bytes], spacing: float) -> tuple[Path, list[PythonItem], list[LuaItem]]:
+    """Write the records `spacing` seconds apart, decode them with vw3-decode and the plugin, and assert
+    that both agree item by item; the pcap and both sides' items."""
+    records = [(data, 1_700_000_000 + index * spacing) for index, data in enumerate(sequence)]
+    pcap = write_pcap(path, records)
+    python = python_items(pcap, [])
+    lua, _, _ = lua_items(pcap)
+    differences = compare(python, lua)
+    assert not differences, f"{path.name}:\n" + "\n".join(differences[:40])
+    return pcap, python, lua
 
 
 @pytest.mark.parametrize("capture", BINS, ids=[path.name for path in BINS])
@@ -92,12 +109,7 @@ def test_repeated_records_in_other_contexts_frame_as_vw3_decode(tmp_path: Path) 
         request, request, response,
     ]
     # (0.5 ms apart: a longer silence inside the cut request is a timing warning the plugin does not give)
-    records = [(data, 1_700_000_000 + index * 0.0005) for index, data in enumerate(sequence)]
-    pcap = write_pcap(tmp_path / "repeated.pcap", records)
-    python = python_items(pcap, [])
-    lua, _, _ = lua_items(pcap)
-    differences = compare(python, lua)
-    assert not differences, "\n".join(differences[:40])
+    pcap, _, lua = decode_both(tmp_path / "repeated.pcap", sequence, 0.0005)
     kinds = [lua_kind(item) for item in lua_shown(lua)]
     assert kinds.count("noise") >= 1 and kinds.count("request") >= 8, kinds
     summary = run_tshark(pcap)
@@ -110,9 +122,6 @@ def test_setpoint_writes_with_new_values_decode_as_vw3_decode(tmp_path: Path) ->
     # the plugin decodes such a request from its bytes before the values once met, and must still check
     # each one's CRC, read its own values (CHCF, 8401, written as 0 then 3 by the same FC16 header), and
     # note the CMD's layout once CHCF is 3 (I/O profile), as vw3-decode does.
-    def rtu(hex_text: str) -> bytes:
-        return with_crc(bytes.fromhex(hex_text))
-
     def rw_request(cmd: int, speed: int) -> bytes:  # read 3201..3202, write 8501..8502
         return rtu(f"02170c8100022135000204{cmd:04x}{speed:04x}")
 
@@ -131,12 +140,7 @@ def test_setpoint_writes_with_new_values_decode_as_vw3_decode(tmp_path: Path) ->
     bad[-1] ^= 0x40  # BAD CRC, whatever its bytes before the values
     damaged = cycles + [bytes(bad), rw_request(0x0007, 5), rw_response(0x0633, 0)]
     for name, sequence in (("noted", noted), ("damaged", damaged)):
-        records = [(data, 1_700_000_000 + index * 0.02) for index, data in enumerate(sequence)]
-        pcap = write_pcap(tmp_path / f"{name}.pcap", records)
-        python = python_items(pcap, [])
-        lua, _, _ = lua_items(pcap)
-        differences = compare(python, lua)
-        assert not differences, f"{name}:\n" + "\n".join(differences[:40])
+        pcap, python, _ = decode_both(tmp_path / f"{name}.pcap", sequence, 0.02)
         summary = run_tshark(pcap)
         assert summary.returncode == 0 and "Lua Error" not in summary.stdout + summary.stderr
         lines = summary.stdout.splitlines()
@@ -148,11 +152,8 @@ def test_setpoint_writes_with_new_values_decode_as_vw3_decode(tmp_path: Path) ->
 
 
 def test_answers_of_every_length_check_their_crc_as_vw3_decode(tmp_path: Path) -> None:
-    # The plugin checks a whole record's CRC 16, 8, 4, 2 and 1 bytes at a time: every length of a Read
+    # The plugin checks a whole record's CRC 16, 4, 2 and 1 bytes at a time: every length of a Read
     # Coils answer (6 to 255 bytes), good, and every seventh also with a bit of its CRC flipped.
-    def rtu(hex_text: str) -> bytes:
-        return with_crc(bytes.fromhex(hex_text))
-
     sequence = []
     for count in range(1, 251):
         request = rtu(f"1401{0:04x}{8 * count:04x}")
@@ -163,11 +164,6 @@ def test_answers_of_every_length_check_their_crc_as_vw3_decode(tmp_path: Path) -
             damaged = bytearray(answer)
             damaged[-1 - count % 2] ^= 1 << count % 8
             sequence += [request, bytes(damaged), request, answer]
-    records = [(data, 1_700_000_000 + index * 0.05) for index, data in enumerate(sequence)]
-    pcap = write_pcap(tmp_path / "lengths.pcap", records)
-    python = python_items(pcap, [])
-    lua, _, _ = lua_items(pcap)
-    differences = compare(python, lua)
-    assert not differences, "\n".join(differences[:40])
+    _, python, _ = decode_both(tmp_path / "lengths.pcap", sequence, 0.05)
     bad = [item for item in python if item.data["kind"] != "noise" and not item.data["crc_ok"]]
     assert len(bad) == 250 // 7, [item.data for item in bad[:3]]
