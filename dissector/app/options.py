@@ -14,6 +14,7 @@ from dissector.app.profile_options import add_profile_arguments
 from dissector.errors import UsageError
 from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import OutputOptions
+from dissector.render.registers import parse_registers_options
 from dissector.render.timefmt import TIME_FORMATS
 from dissector.sources.reader import FORMATS, MODES
 
@@ -82,8 +83,10 @@ def build_parser() -> argparse.ArgumentParser:
     output.add_argument(
         "-T",
         dest="output_format",
-        choices=["text", "fields", "json"],
-        help="as tshark -T: text (the default), fields (with -e and -E) or json (NDJSON, as --json)",
+        choices=["text", "fields", "json", "registers"],
+        help="as tshark -T: text (the default), fields (with -e and -E) or json (NDJSON, as --json); "
+        "registers: one line per register value (frame, time, slave, function, access, address, label, "
+        "code, name, value, scaled, unit, status, text), -E as for fields",
     )
     output.add_argument(
         "-e", dest="fields", action="append", default=[], metavar="KEY",
@@ -166,6 +169,9 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
     fields: FieldsOptions | None = None
     if output_format == "fields":
         fields = parse_fields_options(args.fields, args.field_options)
+    registers = None
+    if output_format == "registers":
+        registers = parse_registers_options(args.field_options, len(args.files) + bool(args.hex) > 1)
     return DecodeOptions(
         files=tuple(args.files),
         hex=tuple(args.hex),
@@ -189,6 +195,7 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
             color=args.color,
             time_format=args.time_format,
             fields=fields,
+            registers=registers,
         ),
     )
 
@@ -205,7 +212,11 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.output_format == "fields" and args.hexdump, "-x (hex dump) contradicts -T fields"),
         (args.output_format == "fields" and not args.fields, "-T fields needs at least one -e KEY"),
         (bool(args.fields) and args.output_format != "fields", "-e KEY needs -T fields"),
-        (bool(args.field_options) and args.output_format != "fields", "-E NAME=VALUE needs -T fields"),
+        (bool(args.field_options) and args.output_format not in ("fields", "registers"),
+         "-E NAME=VALUE needs -T fields or -T registers"),
+        (args.output_format == "registers" and (args.detail or args.hexdump),
+         "-V and -x contradict -T registers: one line per register"),
+        (args.stats and args.output_format == "registers", "--stats replaces the items: -T registers shows none"),
         (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
         (args.duration is not None, "--duration needs --live PORT"),
@@ -217,6 +228,7 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
         (args.watch is not None and (args.detail or args.hexdump or args.output_format == "fields"),
          "--watch replaces the items: -V, -x and -T fields show none"),
+        (args.watch is not None and args.output_format == "registers", "--watch replaces the items: -T registers shows none"),
         (args.watch is not None and args.stats, "--watch and --stats are two outputs: choose one"),
     ]
     for contradiction, message in conflicts:

@@ -13,6 +13,7 @@ from dissector.render.detail import detail_text, detail_tree, render_rich
 from dissector.render.fields import FieldsOptions, FieldsWriter
 from dissector.render.hexdump import hexdump
 from dissector.render.jsonout import item_to_dict, item_to_json
+from dissector.render.registers import RegistersWriter
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
 
@@ -34,11 +35,12 @@ class OutputOptions:
     color: str = "auto"  # auto | always | never
     time_format: str = "r"  # tshark -t: r a ad d dd e u ud (render.timefmt)
     fields: FieldsOptions | None = None  # -T fields
+    registers: RegistersWriter | None = None  # -T registers
 
     @property
     def records(self) -> bool:
-        """Items are written from their NDJSON dicts (--json, -T fields)."""
-        return self.json or self.fields is not None
+        """Items are written from their NDJSON dicts (--json, -T fields, -T registers)."""
+        return self.json or self.fields is not None or self.registers is not None
 
 
 class Output:
@@ -64,8 +66,10 @@ class Output:
         time_keys = self.fields.time_keys if self.fields is not None else ()
         self.clock = Clock(options.time_format, deltas="time_delta" in time_keys)
         self._prefix = ""  # written before the first line (-E bom=y)
-        if self.fields is not None:
-            header, self._prefix = self.fields.preamble()
+        self.registers = options.registers
+        preamble = self.fields or self.registers
+        if preamble is not None:
+            header, self._prefix = preamble.preamble()
             if header is not None:
                 self._buffer.append(header)
 
@@ -95,6 +99,14 @@ class Output:
         size = 0  # characters appended since the last flush (by this call)
         for index, item in enumerate(items):
             if options.records:
+                if self.registers is not None:
+                    record = records[index] if records is not None else item_to_dict(item)
+                    if extra:
+                        record.update(extra)
+                    lines = self.registers.lines(record, None if item.time is None else clock.text(item))
+                    out.extend(lines)
+                    size += sum(map(len, lines))
+                    continue
                 if records is None and self.fields is None:
                     text = item_to_json(item, extra)  # json.dumps(item_to_dict(item)), faster
                 else:

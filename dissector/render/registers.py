@@ -1,0 +1,106 @@
+"""`-T registers`: one line per register (and coil) occurrence, for a spreadsheet or a trend.
+
+Rows are the NDJSON records' `registers` and `bits` lists, flattened: the same item, the same values,
+so `-T registers` cannot disagree with `--json` (and `--parquet`'s registers table is made by the same
+`register_rows`). `access` says what the occurrence is:
+- `read`: a value a read answered (FC1-4, the read half of FC23), its `status` as the profile judged it
+  (`ok`, `protected`, `non-existent`, `ambiguous`; empty without a profile);
+- `write`: a value a request writes (FC5/6/15/16, the write half of FC23; a broadcast too);
+- `echo`: the value a write's answer repeats (FC5, FC6): the write confirmed;
+- `exception`: a register an exception tells the status of (ATV71 exception 02 to a read whose every
+  parameter is non-existent or protected, p.38), `value` empty.
+`time` is the time column as `-t` shows it (empty for a capture without timestamps). `text` (last) is
+what the summary shows for the value: an enumeration's or a bit field's words, a scaled value and its
+unit, or the status.
+"""
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+from dissector.protocol.table import FUNCTIONS
+
+COLUMNS = (
+    "frame", "time", "slave", "function", "access", "address", "label", "code", "name", "value", "scaled",
+    "unit", "status", "text",
+)
+# Keys a row takes as they are from the register (or bit) object of the NDJSON record.
+REGISTER_KEYS = ("address", "label", "code", "name", "value", "scaled", "unit", "status", "text")
+ECHOES = frozenset(entry.code for entry in FUNCTIONS if entry.echo)
+
+
+def access_of(record: dict[str, Any]) -> str:
+    kind = record["kind"]
+    if kind == "request":
+        return "write"
+    if kind == "exception":
+        return "exception"
+    return "echo" if record["function"] in ECHOES else "read"
+
+
+def register_rows(record: dict[str, Any]) -> Iterator[dict[str, Any]]:
+    """One dict per register and bit of an NDJSON record (none for noise), keys as COLUMNS but `time`
+    (the record's epoch seconds are the caller's to show)."""
+    elements = (record.get("registers") or []) + (record.get("bits") or [])
+    if not elements:
+        return
+    head = {
+        "frame": record["frame"], "slave": record["slave"], "function": record["function"],
+        "access": access_of(record),
+    }
+    for element in elements:
+        row = dict(head)
+        for key in REGISTER_KEYS:
+            row[key] = element.get(key)
+        yield row
+
+
+def _text(value: Any) -> str:
+    if value is None:
+        return ""
+    if value is True or value is False:
+        return "1" if value else "0"
+    return str(value)
+
+
+class RegistersWriter:
+    """Formats records as register lines with `-E` separator, quote, header and bom (FieldsOptions)."""
+
+    def __init__(self, separator: str = "\t", quote: str = "", header: bool = False, bom: bool = False,
+                 with_file: bool = False) -> None:
+        self.separator = separator
+        self.quote = quote
+        self.header = header
+        self.bom = bom
+        self.columns = (("file",) if with_file else ()) + COLUMNS
+
+    def preamble(self) -> tuple[str | None, str]:
+        """(the header line or None, what the first line starts with: the BOM or nothing)."""
+        return (self.separator.join(self.columns) if self.header else None), ("\ufeff" if self.bom else "")
+
+    def lines(self, record: dict[str, Any], time: str | None) -> list[str]:
+        quote, separator = self.quote, self.separator
+        file = record.get("file")
+        out = []
+        for row in register_rows(record):
+            row["time"] = time
+            if file is not None:
+                row["file"] = file
+            values = [_text(row.get(column)) for column in self.columns]
+            if quote:
+                values = [quote + value.replace(quote, quote + quote) + quote for value in values]
+            out.append(separator.join(values))
+        return out
+
+
+def parse_registers_options(settings: list[str], with_file: bool) -> RegistersWriter:
+    """The writer for `-E` settings; occurrence and aggregator mean nothing with one value a line."""
+    from dissector.errors import UsageError
+    from dissector.render.fields import QUOTES, parse_fields_options
+
+    for setting in settings:
+        name = setting.partition("=")[0]
+        if name in ("occurrence", "aggregator"):
+            raise UsageError(f"-E {name}: -T registers has one value a line; use header, separator, quote or bom")
+    options = parse_fields_options([], settings)
+    return RegistersWriter(options.separator, QUOTES[options.quote], options.header, options.bom, with_file)
