@@ -77,6 +77,11 @@ class Sinks:
 
             self.stats = StatsCollector(getattr(annotate, "choices", None))
         self.stats_shown = args.stats
+        self.bus = None  # bus timing and slave health (render/bustiming.py), from every item heard
+        if args.stats:
+            from dissector.render.bustiming import BusTiming
+
+            self.bus = BusTiming(args.timeout)
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
         text_isatty = env.stderr_isatty if args.write == STDOUT else env.stdout_isatty
@@ -143,6 +148,8 @@ class Sinks:
             self.watch.set_base(items[0])  # the time column never depends on -Y
         if self.show:
             self.clock.observe(items)  # time references are the capture's, whatever the filter shows
+        if self.bus is not None:
+            self.bus.add_items(items)  # the bus as it was, whatever -Y shows
         if predicate is not None:
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
@@ -206,13 +213,20 @@ class Sinks:
             report.write(self.stats)  # type: ignore[arg-type]
         if self.stats is not None and self.stats_shown:
             if self.json:
-                self.text_out.write(json.dumps(self.stats.report()) + "\n")
+                report = self.stats.report()
+                if self.bus is not None:
+                    report["bus"] = self.bus.report()
+                self.text_out.write(json.dumps(report) + "\n")
             else:
                 self.output.flush()
                 if self.output.console is not None:
                     self.output.console.print(self.stats.render())
                 else:  # piped: plain tables at full width, no rich layout cost
                     self.text_out.write(self.stats.render_plain())
+                if self.bus is not None:
+                    from dissector.render.bustiming import time_text
+
+                    self.text_out.write(self.bus.render_plain(time_text(self.clock.format, self.bus.first)))
         self.output.flush()
 
 
@@ -243,16 +257,16 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
 
 
 Fix = Callable[[list[Item]], list[Item]] | None
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix]
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix, tuple[str | None, str | None]]
 
 
 def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed, fix) per input."""
+    """(title, chunks, mode, take_warnings, timed, fix, (path, format)) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
         typed = HexInput(args.hex, args.mode)
         fix = typed.fix if typed.repairs else None
-        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix
+        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix, (None, None)
     for path in args.files:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
@@ -262,7 +276,7 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
 
             chunks = progress_for(source, path, env.stderr)
         timed = source.format in TIMED_FORMATS
-        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None
+        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None, (path, source.format)
 
 
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
@@ -284,9 +298,13 @@ def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
     try:
-        for title, chunks, mode, take_warnings, timed, fix in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed, fix, (path, source_format) in _inputs(args, env):
             if sinks.done:
                 break
+            if sinks.bus is not None:
+                from dissector.render.bustiming import line_settings
+
+                sinks.bus.new_input(mode, line_settings(path, source_format, args.baud if args.baud_given else None))
             sinks.output.new_input(title)
             sinks.extra = {"file": title} if title is not None else None
 

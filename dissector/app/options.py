@@ -37,6 +37,7 @@ class DecodeOptions:
     mode: str | None = None
     timeout: float = 1.0
     baud: int = 19200
+    baud_given: bool = False  # --baud typed (else a pcapng's interface description may say it)
     filter: str | None = None
     count: int | None = None
     write: str | None = None
@@ -159,7 +160,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_profile_arguments(parser)
     add_live_arguments(parser)
+    parser.set_defaults(baud=ASSUMED_BAUD)
     return parser
+
+
+class _Assumed(int):
+    """19200 when --baud was not typed: files may say their speed (pcapng interface description)."""
+
+
+ASSUMED_BAUD = _Assumed(19200)
 
 
 def decode_options(args: argparse.Namespace) -> DecodeOptions:
@@ -179,6 +188,7 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         mode=args.mode,
         timeout=args.timeout,
         baud=args.baud,
+        baud_given=type(args.baud) is not _Assumed,
         filter=args.filter[0] if args.filter else None,
         count=args.count,
         write=args.write,

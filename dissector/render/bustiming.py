@@ -1,0 +1,410 @@
+"""Bus timing and slave health from a time-stamped capture: what an RS-485 troubleshooter measures.
+
+Times are those of each item's first byte (pcap records, hex-dump lines, live reads); an item ends
+`length x character time` later (11 bits a character in RTU, 10 in ASCII, or what the pcapng
+interface description says: `19200 8N2`). From there:
+- load: the fraction of the time the line carries characters (frames and noise), overall and per
+  minute of the capture (the last minute over the time it covers);
+- inter-frame gaps: the silence between the end of one item and the start of the next, as a
+  histogram, with the gaps shorter than t3.5 counted (the Serial Line Guide's frame separator:
+  3.5 character times up to 19200 baud, 1.75 ms above); a negative gap is a timestamp earlier than
+  the previous item's end (an adapter that stamps bursts) and counts as below t3.5;
+- master turnaround: from the end of an answer (response or exception) to the start of the next
+  request: median, p95, max;
+- response times per slave against `--timeout`: the margin is timeout - the slowest response;
+- outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing),
+  from the first such request to the last, with their count and frames.
+Percentiles are nearest-rank over 10 us buckets, so memory does not grow with the capture.
+An input without timestamps has no timing: its `bus` says `timed: false`.
+"""
+from __future__ import annotations
+
+import math
+import re
+import struct
+from dataclasses import dataclass, field
+from typing import Any
+
+from dissector.framing.timing import ASCII_BITS_PER_CHAR, RTU_BITS_PER_CHAR, LineTiming
+from dissector.model import Item, Kind
+
+RESOLUTION = 1e-5  # percentile buckets: 10 us
+GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
+MINUTE = 60.0
+_SETTINGS = re.compile(r"\b(\d{2,7})[ /,]+([5-8])([NEOMS])(1\.5|1|2)\b")
+_BAUD = re.compile(r"\b(\d{2,7}) ?(?:baud|bd|bps)\b", re.I)
+
+
+class Quantiles:
+    """Counts in RESOLUTION buckets; nearest-rank percentiles, exact min and max."""
+
+    __slots__ = ("buckets", "count", "low", "high")
+
+    def __init__(self) -> None:
+        self.buckets: dict[int, int] = {}
+        self.count = 0
+        self.low = math.inf
+        self.high = -math.inf
+
+    def add(self, value: float) -> None:
+        key = round(value / RESOLUTION)
+        self.buckets[key] = self.buckets.get(key, 0) + 1
+        self.count += 1
+        if value < self.low:
+            self.low = value
+        if value > self.high:
+            self.high = value
+
+    def percentile(self, fraction: float) -> float | None:
+        if not self.count:
+            return None
+        rank = max(1, math.ceil(fraction * self.count))
+        seen = 0
+        for key in sorted(self.buckets):
+            seen += self.buckets[key]
+            if seen >= rank:
+                return min(max(key * RESOLUTION, self.low), self.high)
+        return self.high
+
+    def summary(self) -> dict[str, float] | None:
+        if not self.count:
+            return None
+        return {
+            "count": self.count,
+            "min": _round(self.low),
+            "median": _round(self.percentile(0.5)),  # type: ignore[arg-type]
+            "p95": _round(self.percentile(0.95)),  # type: ignore[arg-type]
+            "max": _round(self.high),
+        }
+
+
+def _round(seconds: float) -> float:
+    return round(seconds, 6)
+
+
+@dataclass(slots=True)
+class Outage:
+    slave: int
+    start: float | None  # time of the first unanswered request
+    end: float | None  # time of the last
+    requests: int
+    first_frame: int
+    last_frame: int
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"slave": self.slave, "start": self.start, "end": self.end, "requests": self.requests,
+                "first_frame": self.first_frame, "last_frame": self.last_frame}
+
+
+@dataclass(frozen=True, slots=True)
+class LineSettings:
+    baud: int
+    bits: float | None = None  # bits a character; None: the mode's (11 RTU, 10 ASCII)
+    source: str = "assumed"  # "--baud", "pcapng interface description", "assumed"
+
+    def char_bits(self, mode: str) -> float:
+        if self.bits is not None:
+            return self.bits
+        return ASCII_BITS_PER_CHAR if mode == "ascii" else RTU_BITS_PER_CHAR
+
+
+def settings_from_text(text: str) -> LineSettings | None:
+    """The line settings a pcapng interface description states: `19200 8E1`, or `9600 baud`."""
+    match = _SETTINGS.search(text)
+    if match is not None:
+        baud, data, parity, stop = match.groups()
+        bits = 1 + int(data) + (parity != "N") + float(stop)
+        return LineSettings(int(baud), bits if bits != int(bits) else int(bits), "pcapng interface description")
+    match = _BAUD.search(text)
+    if match is not None:
+        return LineSettings(int(match.group(1)), None, "pcapng interface description")
+    return None
+
+
+def pcapng_description(path: str) -> str | None:
+    """The first interface's if_description (and if_name) of a pcapng file, None when absent."""
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(1 << 16)
+    except OSError:
+        return None
+    if len(head) < 28 or head[:4] != b"\x0a\x0d\x0d\x0a":
+        return None
+    order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
+    position = 0
+    texts: list[str] = []
+    while position + 12 <= len(head):
+        block_type, total = struct.unpack_from(order + "II", head, position)
+        if total < 12 or position + total > len(head):
+            break
+        if block_type == 1:
+            body = head[position + 8 : position + total - 4]
+            option = 8
+            while option + 4 <= len(body):
+                code, length = struct.unpack_from(order + "HH", body, option)
+                if code == 0:
+                    break
+                if code in (2, 3):
+                    texts.append(body[option + 4 : option + 4 + length].decode("utf-8", "replace"))
+                option += 4 + ((length + 3) & ~3)
+            break
+        position += total
+    return " ".join(texts) or None
+
+
+def line_settings(path: str | None, source_format: str | None, baud: int | None) -> LineSettings:
+    """--baud when given, else what a pcapng file says, else 19200 (assumed, as the simulator's)."""
+    if baud is not None:
+        return LineSettings(baud, None, "--baud")
+    if path is not None and source_format == "pcapng":
+        text = pcapng_description(path)
+        settings = settings_from_text(text) if text else None
+        if settings is not None:
+            return settings
+    return LineSettings(19200, None, "assumed: --baud sets it")
+
+
+@dataclass(slots=True)
+class _Run:
+    start: float | None
+    end: float | None
+    requests: int
+    first_frame: int
+    last_frame: int
+
+
+@dataclass(slots=True)
+class BusTiming:
+    timeout: float = 1.0
+    settings: LineSettings = field(default_factory=lambda: LineSettings(19200))
+    mode: str = "rtu"
+    timed: bool = False
+    untimed_items: int = 0
+    first: float | None = None
+    last_end: float | None = None
+    busy: float = 0.0  # seconds of characters on the line
+    minutes: dict[int, float] = field(default_factory=dict)  # minute index -> busy seconds
+    gaps: Quantiles = field(default_factory=Quantiles)
+    gap_histogram: list[int] = field(default_factory=lambda: [0] * (len(GAP_EDGES_MS) + 1))
+    gaps_below_t35: int = 0
+    turnaround: Quantiles = field(default_factory=Quantiles)
+    responses: dict[int, Quantiles] = field(default_factory=dict)
+    close_to_timeout: dict[int, int] = field(default_factory=dict)  # responses later than 90% of it
+    outages: list[Outage] = field(default_factory=list)
+    _runs: dict[int, _Run] = field(default_factory=dict)
+    _answer_end: float | None = None  # end of the last item when it was an answer
+
+    def new_input(self, mode: str, settings: LineSettings | None = None) -> None:
+        """A new file: its gaps do not continue the previous file's (one capture's ring files do)."""
+        self.mode = mode
+        if settings is not None:
+            self.settings = settings
+        self.last_end = None
+        self._answer_end = None
+
+    @property
+    def char_time(self) -> float:
+        return self.settings.char_bits(self.mode) / self.settings.baud
+
+    @property
+    def t35(self) -> float:
+        return LineTiming(self.settings.baud, "rtu").t35
+
+    def add_items(self, items: list[Item]) -> None:
+        for item in items:
+            self.add(item)
+
+    def add(self, item: Item) -> None:
+        time = item.time
+        if time is None:
+            self.untimed_items += 1
+            return
+        self.timed = True
+        duration = item.length * self.char_time
+        end = time + duration
+        if self.first is None:
+            self.first = time
+        self.busy += duration
+        minute = int((time - self.first) // MINUTE)
+        self.minutes[minute] = self.minutes.get(minute, 0.0) + duration
+        previous = self.last_end
+        if previous is not None:
+            gap = time - previous
+            self.gaps.add(gap)
+            if gap < self.t35:
+                self.gaps_below_t35 += 1
+            milliseconds = gap * 1000
+            index = 0
+            while index < len(GAP_EDGES_MS) and milliseconds >= GAP_EDGES_MS[index]:
+                index += 1
+            self.gap_histogram[index] += 1
+        self.last_end = end if previous is None or end > previous else previous
+        kind = item.kind
+        if kind is Kind.NOISE:
+            return
+        frame = item
+        if kind is Kind.REQUEST:
+            if self._answer_end is not None:
+                self.turnaround.add(time - self._answer_end)
+            self._answer_end = None
+            if not frame.broadcast:  # type: ignore[union-attr]
+                self._request(frame, time)
+            return
+        self._answer_end = end
+        response_time = frame.response_time  # type: ignore[union-attr]
+        if response_time is not None and frame.crc_ok:  # type: ignore[union-attr]  # as --stats counts them
+            slave = frame.slave  # type: ignore[union-attr]
+            quantiles = self.responses.get(slave)
+            if quantiles is None:
+                quantiles = self.responses[slave] = Quantiles()
+            quantiles.add(response_time)
+            if response_time > 0.9 * self.timeout:
+                self.close_to_timeout[slave] = self.close_to_timeout.get(slave, 0) + 1
+
+    def _request(self, frame: Any, time: float) -> None:
+        slave = frame.slave
+        run = self._runs.get(slave)
+        if frame.unanswered:
+            if run is None:
+                self._runs[slave] = _Run(time, time, 1, frame.number, frame.number)
+            else:
+                run.end, run.requests, run.last_frame = time, run.requests + 1, frame.number
+            return
+        if run is not None:
+            self._close(slave)
+
+    def _close(self, slave: int) -> None:
+        run = self._runs.pop(slave)
+        if run.requests >= 2:
+            self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame))
+
+    def finish(self) -> None:
+        for slave in sorted(self._runs):
+            self._close(slave)
+        self.outages.sort(key=lambda outage: (outage.first_frame, outage.slave))
+
+    # -- results ------------------------------------------------------------------------------------
+    def span(self) -> float | None:
+        if self.first is None or self.last_end is None:
+            return None
+        return self.last_end - self.first
+
+    def load(self) -> float | None:
+        span = self.span()
+        if not span:
+            return None
+        return min(1.0, self.busy / span)
+
+    def load_per_minute(self) -> list[dict[str, float]]:
+        span = self.span() or 0.0
+        out = []
+        for minute in sorted(self.minutes):
+            covered = min(MINUTE, span - minute * MINUTE)
+            if covered <= 0:
+                continue
+            out.append({"start": _round(self.first + minute * MINUTE),  # type: ignore[operator]
+                        "load": round(min(1.0, self.minutes[minute] / covered), 6)})
+        return out
+
+    def report(self) -> dict[str, Any]:
+        """The `bus` object of --stats --json."""
+        self.finish()
+        settings = self.settings
+        turnaround = self.turnaround.summary()
+        histogram = []
+        edges = (0.0, *GAP_EDGES_MS)
+        for index, count in enumerate(self.gap_histogram):
+            upper = GAP_EDGES_MS[index] if index < len(GAP_EDGES_MS) else None
+            histogram.append({"from_ms": None if index == 0 else edges[index], "to_ms": upper, "count": count})
+        responses = []
+        for slave in sorted(self.responses):
+            summary = self.responses[slave].summary() or {}
+            responses.append({
+                "slave": slave, **summary, "margin": _round(self.timeout - summary["max"]),
+                "close_to_timeout": self.close_to_timeout.get(slave, 0),
+            })
+        return {
+            "timed": self.timed,
+            "baud": settings.baud,
+            "baud_source": settings.source,
+            "bits_per_char": settings.char_bits(self.mode),
+            "t35": _round(self.t35),
+            "timeout": self.timeout,
+            "span": None if self.span() is None else _round(self.span()),  # type: ignore[arg-type]
+            "load": None if self.load() is None else round(self.load(), 6),  # type: ignore[arg-type]
+            "load_per_minute": self.load_per_minute(),
+            "gaps": self.gaps.summary(),
+            "gaps_below_t35": self.gaps_below_t35 if self.timed else None,
+            "gap_histogram": histogram if self.timed else [],
+            "turnaround": None if turnaround is None else
+            {key: turnaround[key] for key in ("count", "median", "p95", "max")},
+            "responses": responses,
+            "outages": [outage.as_dict() for outage in self.outages],
+        }
+
+    def render_plain(self, clock: Any = None) -> str:
+        """The `Bus timing` section of --stats; `clock(seconds)` shows a time as the time column."""
+        data = self.report()
+        show = clock or (lambda seconds: f"{seconds:.6f}")
+        lines = ["", "Bus timing"]
+        source = data["baud_source"]
+        lines.append(f"line: {data['baud']} baud ({source}), {data['bits_per_char']} bits a character, "
+                     f"t3.5 {data['t35'] * 1000:.3f} ms, timeout {data['timeout'] * 1000:g} ms")
+        if not data["timed"]:
+            lines.append("no timestamps in this input: load, gaps, turnaround and outages need a pcap, "
+                         "pcapng or timed dump")
+            return "\n".join(lines) + "\n"
+        minutes = data["load_per_minute"]
+        busiest = max(minutes, key=lambda entry: entry["load"]) if minutes else None
+        load = data["load"]
+        text = "load: " + ("-" if load is None else f"{load * 100:.1f} %")
+        if busiest is not None and len(minutes) > 1:
+            text += f" (busiest minute {busiest['load'] * 100:.1f} % from {show(busiest['start'])})"
+        lines.append(text)
+        gaps = data["gaps"]
+        if gaps is not None:
+            lines.append(
+                f"inter-frame gaps: {gaps['count']}, {data['gaps_below_t35']} below t3.5; min {gaps['min'] * 1000:.3f}"
+                f" median {gaps['median'] * 1000:.3f} p95 {gaps['p95'] * 1000:.3f} max {gaps['max'] * 1000:.3f} ms"
+            )
+            bins = []
+            for entry in data["gap_histogram"]:
+                if not entry["count"]:
+                    continue
+                low, high = entry["from_ms"], entry["to_ms"]
+                label = f"<{high:g}" if low is None else (f">={low:g}" if high is None else f"{low:g}-{high:g}")
+                bins.append(f"{label} ms: {entry['count']}")
+            lines.append("  " + ", ".join(bins))
+        turnaround = data["turnaround"]
+        if turnaround is not None:
+            lines.append(
+                f"master turnaround (answer end to next request, ms): median {turnaround['median'] * 1000:.3f}"
+                f" p95 {turnaround['p95'] * 1000:.3f} max {turnaround['max'] * 1000:.3f} ({turnaround['count']})"
+            )
+        if data["responses"]:
+            lines.append("slave  responses  median ms  p95 ms  max ms  margin to timeout ms  >90% of timeout")
+            for entry in data["responses"]:
+                lines.append(
+                    f"{entry['slave']:>5}  {entry['count']:>9}  {entry['median'] * 1000:>9.1f}  {entry['p95'] * 1000:>6.1f}"
+                    f"  {entry['max'] * 1000:>6.1f}  {entry['margin'] * 1000:>20.1f}  {entry['close_to_timeout']:>15}"
+                )
+        if data["outages"]:
+            lines.append("outages (two or more consecutive requests unanswered)")
+            for outage in data["outages"]:
+                lines.append(
+                    f"  slave {outage['slave']} silent {show(outage['start'])} - {show(outage['end'])}, "
+                    f"{outage['requests']} requests unanswered (frames {outage['first_frame']}..{outage['last_frame']})"
+                )
+        else:
+            lines.append("outages: none")
+        return "\n".join(lines) + "\n"
+
+
+def time_text(time_format: str, first: float | None) -> Any:
+    """Times of the bus section as the time column shows them (-t; deltas read as relative)."""
+    from types import SimpleNamespace
+
+    from dissector.render.timefmt import Clock
+
+    clock = Clock("r" if time_format in ("d", "dd") else time_format, first=first)
+    return lambda seconds: clock.text(SimpleNamespace(time=seconds))  # type: ignore[arg-type]
