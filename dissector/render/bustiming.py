@@ -14,7 +14,8 @@ interface description says: `19200 8N2`). From there:
 - response times per slave against `--timeout`: the margin is timeout - the slowest response;
 - outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing),
   from the first such request to the last, with their count and frames.
-Percentiles are nearest-rank over 10 us buckets, so memory does not grow with the capture.
+Percentiles are nearest-rank (the median of an even count the mean of the middle two, as --stats)
+over 10 us buckets, so memory does not grow with the capture.
 An input without timestamps has no timing: its `bus` says `timed: false`.
 """
 from __future__ import annotations
@@ -55,10 +56,7 @@ class Quantiles:
         if value > self.high:
             self.high = value
 
-    def percentile(self, fraction: float) -> float | None:
-        if not self.count:
-            return None
-        rank = max(1, math.ceil(fraction * self.count))
+    def _nth(self, rank: int) -> float:
         seen = 0
         for key in sorted(self.buckets):
             seen += self.buckets[key]
@@ -66,13 +64,26 @@ class Quantiles:
                 return min(max(key * RESOLUTION, self.low), self.high)
         return self.high
 
+    def percentile(self, fraction: float) -> float | None:
+        if not self.count:
+            return None
+        return self._nth(max(1, math.ceil(fraction * self.count)))
+
+    def median(self) -> float | None:
+        """The middle value, or the mean of the middle two (as --stats' response times)."""
+        count = self.count
+        if not count:
+            return None
+        half = count // 2
+        return self._nth(half + 1) if count % 2 else (self._nth(half) + self._nth(half + 1)) / 2
+
     def summary(self) -> dict[str, float] | None:
         if not self.count:
             return None
         return {
             "count": self.count,
             "min": _round(self.low),
-            "median": _round(self.percentile(0.5)),  # type: ignore[arg-type]
+            "median": _round(self.median()),  # type: ignore[arg-type]
             "p95": _round(self.percentile(0.95)),  # type: ignore[arg-type]
             "max": _round(self.high),
         }

@@ -28,6 +28,8 @@ def _items(path: str) -> list[dict]:
 
 def _nearest(values: list[float], fraction: float) -> float:
     ordered = sorted(values)
+    if fraction == 0.5 and len(ordered) % 2 == 0:
+        return (ordered[len(ordered) // 2 - 1] + ordered[len(ordered) // 2]) / 2
     return ordered[max(1, math.ceil(fraction * len(ordered))) - 1]
 
 
@@ -69,6 +71,10 @@ def test_noisy_bus_lists_slave_5_outage() -> None:
     ]
     assert [entry["slave"] for entry in bus["responses"]] == [1, 12]
     assert bus["responses"][0]["count"] == 8  # the bad-CRC answer of frame 17 is no response time, as --stats says
+    functions = {entry["slave"]: entry["response_time"] for entry in _stats(path)["functions"]}
+    for entry in bus["responses"]:  # one function a slave here: the same figures as the table above it
+        for key in ("count", "min", "median", "p95", "max"):
+            assert abs(entry[key] - functions[entry["slave"]][key]) <= 1e-5, key
     status, out, _err = run_cli(["--stats", path])
     assert status == 0
     assert "  slave 5 silent 0.839570 - 1.050219, 2 requests unanswered (frames 28..29)\n" in out
