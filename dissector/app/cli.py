@@ -31,7 +31,7 @@ from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
-from dissector.sources.reader import SourceError, open_source
+from dissector.sources.reader import NOTATIONS, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
@@ -264,7 +264,7 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
     """(title, chunks, mode, take_warnings, timed, fix, (path, format)) per input."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
-        typed = HexInput(args.hex, args.mode)
+        typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
         fix = typed.fix if typed.repairs else None
         yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix, (None, None)
     for path in args.files:

@@ -22,6 +22,7 @@ from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk, Frame, Item
 from dissector.protocol.crc import crc16, lrc
+from dissector.sources.notation import Notation, NotationError
 
 
 @dataclass(frozen=True, slots=True)
@@ -30,17 +31,21 @@ class Repair:
     note: str
 
 
-def hex_chunk(text: str) -> Chunk:
-    """Bytes typed from a manual: hex pairs (`0C 03 20 D0 ...`), or a Modbus ASCII frame as printed
-    (`:02062329000AA2`; the CR LF may be left out). One argument is one frame: a boundary follows."""
+def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex") -> Chunk:
+    """Bytes typed from a manual or pasted from a log: hex pairs (`0C 03 20 D0 ...`, `0x0C,0x03`,
+    `0C:03:20:D0`), a decimal list (`12, 3, 32, 208`; notation.py says when a list is decimal), or a
+    Modbus ASCII frame as printed (`:02062329000AA2`; the CR LF may be left out). One argument is one
+    frame: a boundary follows. `notation` carries what earlier arguments showed."""
     stripped = text.strip()
     if stripped.startswith(":"):
         return Chunk(stripped.encode("ascii", "replace") + b"\r\n", None, True)
-    cleaned = "".join(text.replace(",", " ").replace("0x", " ").split())
     try:
-        return Chunk(bytes.fromhex(cleaned), None, True)
-    except ValueError:
-        raise UsageError(f"--hex: not a string of hex byte pairs: {text!r}") from None
+        data = (notation if notation is not None else Notation()).read(text, where)
+    except NotationError as error:
+        raise UsageError(f"{where}: {error}") from None
+    if not data:
+        raise UsageError(f"{where}: no bytes in {text!r}")
+    return Chunk(data, None, True)
 
 
 def _one_frame(data: bytes, ascii: bool = False) -> bool:
@@ -57,8 +62,14 @@ def _wire(crc: int) -> str:
 class HexInput:
     """The chunks of the --hex arguments, and the notes their frames get once decoded."""
 
-    def __init__(self, texts: Sequence[str], mode: str | None) -> None:
-        chunks = [hex_chunk(text) for text in texts]
+    def __init__(self, texts: Sequence[str], mode: str | None, notation: str | None = None) -> None:
+        """`notation`: "hex" or "decimal" when --format says so, else learned from the arguments."""
+        known = Notation(notation, fixed=True) if notation is not None else Notation()
+        several = len(texts) > 1
+        chunks = [
+            hex_chunk(text, known, f"--hex argument {number}" if several else "--hex")
+            for number, text in enumerate(texts, start=1)
+        ]
         self.mode = mode or ("ascii" if chunks[0].data[:1] == b":" else "rtu")
         self.repairs: dict[int, Repair] = {}
         self.chunks: list[Chunk] = []

@@ -72,8 +72,9 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=[],
         metavar="BYTES",
-        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" or an ASCII '
-        'frame --hex ":02062329000AA2" (all --hex arguments form one stream)',
+        help='decode bytes typed from a manual, e.g. --hex "0C 03 20 D0 00 03 0E EF" (also 0x0C 0x03 ..., '
+        '0C:03:..., or decimal "12, 3, 32, ...") or an ASCII frame --hex ":02062329000AA2" '
+        '(all --hex arguments form one stream)',
     )
     output = parser.add_argument_group("output")
     output.add_argument("-V", dest="detail", action="store_true", help="detail tree of every field")
@@ -235,7 +236,8 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),
         (args.stats and args.output_format == "fields", "--stats replaces the items: -T fields shows none"),
-        (bool(args.hex) and args.format is not None, "--format reads FILE inputs; --hex takes hex bytes"),
+        (bool(args.hex) and args.format not in (None, "hex", "hexdump", "decimal"),
+         "--format reads FILE inputs; with --hex only --format hex or decimal (how the bytes are written)"),
         (args.watch is not None and (args.detail or args.hexdump or args.output_format == "fields"),
          "--watch replaces the items: -V, -x and -T fields show none"),
         (args.watch is not None and args.output_format == "registers", "--watch replaces the items: -T registers shows none"),

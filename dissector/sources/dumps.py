@@ -22,7 +22,10 @@ from dissector.sources.hexdump import text_lines
 _XXD = re.compile(r"([0-9a-fA-F]{6,16}): ((?:[0-9a-fA-F]{2})+(?: (?:[0-9a-fA-F]{2})+)*)(?:  .*)?")
 _HEXDUMP_C = re.compile(r"([0-9a-fA-F]{8,16})  ((?:[0-9a-fA-F]{2} {1,2})*[0-9a-fA-F]{2}) *(?:\|.*\|)?")
 _OFFSET_ONLY = re.compile(r"[0-9a-fA-F]{8,16}")
-MAX_REPEAT = 1 << 26  # bytes a `*` may stand for: beyond, the dump is not what it claims
+# Bytes all the `*` lines of one dump may stand for. A squeezed run is idle line or one repeated
+# poll; 16 MiB of it is far more than a dump pasted as text holds, and decodes in about a second.
+# Beyond, a few bytes of text would cost minutes (58 bytes claimed 192 MiB), so the dump is refused.
+MAX_EXPANSION = 1 << 24
 
 
 def _parse(line: str, tool: str) -> tuple[int, bytes] | None:
@@ -56,9 +59,20 @@ def dump_tool(text: str, complete: bool) -> str | None:
     return None
 
 
+def _repeated(line: bytes, count: int, chunk_size: int) -> Iterator[Chunk]:
+    """`count` copies of a squeezed line, in chunks of about chunk_size bytes (not one a line)."""
+    per_chunk = max(1, chunk_size // len(line))
+    block = line * min(per_chunk, count)
+    while count >= per_chunk:
+        yield Chunk(block)
+        count -= per_chunk
+    if count:
+        yield Chunk(line * count)
+
+
 def read_dump(tool: str) -> Callable[[Input, WarningLog, int], Iterator[Chunk]]:
     def read(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-        position = 0
+        position = expanded = 0
         repeat: bytes | None = None  # the line a `*` repeats
         squeezed = False
         for number, line in text_lines(inp, chunk_size):
@@ -74,9 +88,16 @@ def read_dump(tool: str) -> Callable[[Input, WarningLog, int], Iterator[Chunk]]:
             offset, data = parsed
             if squeezed and repeat:
                 gap = offset - position
-                if gap < 0 or gap % len(repeat) or gap > MAX_REPEAT:
+                if gap < 0 or gap % len(repeat):
                     raise SourceError(f"{inp.name} line {number}: offset {offset:#x} does not follow the * above")
-                yield from (Chunk(repeat) for _ in range(gap // len(repeat)))
+                expanded += gap
+                if expanded > MAX_EXPANSION:
+                    raise SourceError(
+                        f"{inp.name} line {number}: the * lines stand for {expanded} bytes by offset {offset:#x}, "
+                        f"over the {MAX_EXPANSION >> 20} MiB a dump may expand to: convert it back to bytes "
+                        "and decode those"
+                    )
+                yield from _repeated(repeat, gap // len(repeat), chunk_size)
                 position = offset
             squeezed = False
             if offset != position:

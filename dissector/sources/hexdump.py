@@ -5,10 +5,17 @@
     0C0306800000030002 17E4          spaces are optional, but each group is whole bytes
     1700000000.125  0C 83 02 51 32   optional leading timestamp
 
+    02:04:00:00:00:50:F0:05          colon hex, 0x0C 0x03 ..., or decimal lists: see notation.py
+    TX: 1, 3, 0, 22, 0, 2, 37, 207   a TX:/RX: label (NModbus logs) before the bytes is skipped
+
 A leading timestamp is recognised only in shapes a hex group can never take (a hex group has no
 '.', '-' or ':'): seconds with a decimal point (`12.5`, `1700000000.125`), an ISO 8601 date-time
 (`2024-05-01T10:00:00.125`, `2024-05-01 10:00:00.125`, naive means UTC), or a time of day
-(`10:00:00.125`, seconds since midnight). It may be wrapped in [ ] or followed by ':'.
+(`10:00:00.125`, seconds since midnight). It may be wrapped in [ ] or followed by ':'. A line that is
+only `10:00:00` is the colon-hex bytes 10 00 00, not a time without data.
+
+Whether the input is a hex dump is judged on its first lines; when the first line is longer than the
+sample (a whole capture on one line), on the part of it the sample holds.
 """
 from __future__ import annotations
 
@@ -20,8 +27,9 @@ from datetime import datetime, timedelta, timezone
 from dissector.errors import MalformedInput
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.notation import RefusedList, Notation, NotationError
 
-MAX_LINE = 1 << 16
+MAX_LINE = 1 << 20  # a whole capture pasted on one line is a hex dump too; memory stays bounded
 _EPOCH = datetime(1970, 1, 1, tzinfo=timezone.utc)
 
 _SECONDS = re.compile(r"\d+\.\d+")
@@ -29,6 +37,8 @@ _DATE = re.compile(r"\d{4}-\d{2}-\d{2}")
 _DATETIME = re.compile(r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:?\d{2})?")
 _TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?)")
 _HEX = re.compile(r"(?:[0-9A-Fa-f]{2})+")
+_LABEL = re.compile(r"[TR]X:", re.IGNORECASE)
+_CUT_TOKEN = re.compile(r"[\[{]?(?:0[xX])?[0-9A-Fa-f:]{2,}")
 
 
 class HexLineError(MalformedInput):
@@ -81,39 +91,71 @@ def _epoch(text: str) -> Stamp:
     return Stamp((moment - _EPOCH) // timedelta(microseconds=1) * 1000)
 
 
-def parse_line(line: str) -> tuple[float | None, bytes] | None:
-    """(time, data) for a line, None for a blank or comment line; HexLineError when malformed."""
+def parse_line(line: str, notation: Notation | None = None, where: str = "") -> tuple[float | None, bytes] | None:
+    """(time, data) for a line, None for a blank or comment line; HexLineError when malformed.
+
+    `notation` carries what earlier lines of the same input showed (hex or decimal)."""
     text = line.split("#", 1)[0].strip()
     if not text:
         return None
     tokens = text.split()
     time, used = _timestamp(tokens)
-    groups = tokens[used:]
-    for group in groups:
-        if not _HEX.fullmatch(group):
-            problem = "an odd number of hex digits" if re.fullmatch(r"[0-9A-Fa-f]+", group) else "not hex"
-            raise HexLineError(f"{group!r} is {problem}")
-    if not groups:
+    if used == len(tokens) == 1 and _TIME_OF_DAY.fullmatch(tokens[0]):
+        time, used = None, 0  # `10:00:00` alone: colon hex, not a time without data
+    if used < len(tokens) and _LABEL.fullmatch(tokens[used]):
+        used += 1
+    if used == len(tokens):
         raise HexLineError("a timestamp without data")
-    return time, bytes.fromhex("".join(groups))
+    try:
+        data = (notation if notation is not None else Notation()).read(" ".join(tokens[used:]), where)
+    except RefusedList:
+        raise
+    except NotationError as error:
+        raise HexLineError(str(error)) from None
+    if not data:
+        raise HexLineError("a timestamp without data")
+    return time, data
 
 
 def looks_like_hexdump(text: str, complete: bool) -> bool:
     """Do the lines of `text` (the input's first bytes) all parse, with data on at least one?
 
-    The last line is left out unless `complete`: it may be cut where the sample ends.
+    The last line is left out unless `complete`: it may be cut where the sample ends. When no line
+    is whole, the part of the first one the sample holds is judged, without its last (cut) number.
+    A byte list refused for its meaning (notation.RefusedList) counts: reading it says why.
     """
     lines = text.splitlines()
-    if not complete and not text.endswith(("\n", "\r")):
-        lines = lines[:-1]
+    cut = ""
+    if not complete and not text.endswith(("\n", "\r")) and lines:
+        cut = lines.pop()
+    notation = Notation()
     found = False
-    for line in lines:
+    for number, line in enumerate(lines, start=1):
         try:
-            parsed = parse_line(line)
+            parsed = parse_line(line, notation, f"line {number}")
+        except RefusedList:
+            return True
         except HexLineError:
             return False
         found = found or parsed is not None
-    return found
+    if found or not cut or "#" in cut:
+        return found
+    return _cut_line_is_hex(cut, notation)
+
+
+def _cut_line_is_hex(cut: str, notation: Notation) -> bool:
+    """The first line, cut by the sample's end: its whole numbers parse, and the cut one could."""
+    cut = cut.rstrip()
+    end = max(cut.rfind(" "), cut.rfind(","), cut.rfind("\t"))
+    head, last = cut[: max(end, 0)], cut[end + 1 :]
+    if head.strip(" ,\t"):
+        try:
+            return parse_line(head.rstrip(" ,\t"), notation, "line 1") is not None
+        except RefusedList:
+            return True
+        except HexLineError:
+            return False
+    return bool(_CUT_TOKEN.fullmatch(last))
 
 
 def _lines(inp: Input, chunk_size: int) -> Iterator[bytes]:
@@ -154,5 +196,16 @@ def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object,
             yield Chunk(data, time, True)
 
 
-def read_hexdump(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    return read_lines(inp, chunk_size, parse_line)
+def read_hexdump(
+    inp: Input, log: WarningLog, chunk_size: int, notation: Notation | None = None
+) -> Iterator[Chunk]:
+    """One chunk per line with bytes; `notation` fixes hex or decimal (--format), else learned."""
+    notation = notation if notation is not None else Notation()
+    for number, line in text_lines(inp, chunk_size):
+        try:
+            parsed = parse_line(line, notation, f"line {number}")
+        except ValueError as error:
+            raise SourceError(f"{inp.name} line {number}: {error}") from None
+        if parsed is not None:
+            time, data = parsed
+            yield Chunk(data, time, True)

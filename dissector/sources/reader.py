@@ -22,6 +22,7 @@ from dissector.protocol.ascii import detect_mode
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.hexdump import looks_like_hexdump, read_hexdump
+from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
 from dissector.sources.pcapng import is_pcapng, read_pcapng
 from dissector.sources.traffic import looks_like_traffic, read_traffic
@@ -31,7 +32,9 @@ __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 
 # --format values -> Source.format
 FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "hexdump": "hexdump",
-           "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic"}
+           "decimal": "hexdump", "ascii": "ascii", "xxd": "xxd", "hexdump-C": "hexdump-C", "traffic": "traffic"}
+# A format given for a one-frame-a-line dump also says how its numbers are written.
+NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
@@ -181,7 +184,7 @@ def open_source(
     mode: str | None = None,
     stdin: BinaryIO | None = None,
 ) -> Source:
-    """Open a capture. `fmt`: raw, pcap, pcapng, hex (hexdump) or ascii; `mode`: rtu or ascii.
+    """Open a capture. `fmt`: one of FORMATS (decimal: a hex dump's lines in decimal); `mode`: rtu or ascii.
 
     Raises SourceError with a one-line message for anything that cannot be read.
     """
@@ -218,7 +221,10 @@ def _start(
     if not sample:
         log.warn("empty", f"{name}: the input is empty")
     inp = Input(stream, name, prefix=sample)
-    chunks = READERS[format](inp, log, chunk_size)
+    if fmt in NOTATIONS:
+        chunks = read_hexdump(inp, log, chunk_size, Notation(NOTATIONS[fmt], fixed=True))
+    else:
+        chunks = READERS[format](inp, log, chunk_size)
     # The first payload bytes decide the mode; the chunks read for that are replayed first.
     head: list[Chunk] = []
     if mode is None:

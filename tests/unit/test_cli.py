@@ -102,7 +102,7 @@ def test_empty_file_has_no_frames(tmp_path: Path) -> None:
 
 def test_bad_hex_and_no_input() -> None:
     status, _, err = run_cli(["--hex", "0C 0"])
-    assert status == 2 and err.startswith("vw3-decode: --hex: not a string of hex byte pairs")
+    assert status == 2 and err == "vw3-decode: --hex: '0' is an odd number of hex digits\n"
     status, _, err = run_cli([])
     assert status == 2 and "give a capture FILE" in err
 
