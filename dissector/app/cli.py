@@ -384,6 +384,10 @@ def run(argv: list[str] | None, env: Environment) -> int:
         if not args.files and not args.hex:
             raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")
         options = decode_options(args)
+        if args.parquet is not None:
+            from dissector.app.jobs import parquet_main
+
+            return parquet_main(args, env.stdout, env.stderr, PROG)
         return decode_files(options, env, _annotator(args))
     except (UsageError, SourceError, ProfileError, FilterError) as error:
         _flush_quietly(env.stdout)

@@ -141,6 +141,22 @@ def build_parser() -> argparse.ArgumentParser:
         default="auto",
         help="colour and layout with rich (auto: only on a terminal)",
     )
+    data = parser.add_argument_group("datasets")
+    data.add_argument(
+        "--parquet", metavar="DIR",
+        help="write the captures as Parquet tables DIR/frames, DIR/registers, DIR/events instead of items "
+        "(pip install 'vw3-dissector[data]')",
+    )
+    data.add_argument(
+        "--jobs", type=_jobs, default=1, metavar="N",
+        help="with --parquet: decode N captures at a time in worker processes (the files of one -b ring "
+        "buffer are one capture)",
+    )
+    data.add_argument(
+        "--scheduler", metavar="tcp://HOST:PORT",
+        help="with --parquet: decode the captures on a Dask distributed cluster "
+        "(pip install 'vw3-dissector[cluster]')",
+    )
     decoding = parser.add_argument_group("decoding")
     decoding.add_argument(
         "--format",
@@ -172,9 +188,43 @@ class _Assumed(int):
 ASSUMED_BAUD = _Assumed(19200)
 
 
+def baud_given(args: argparse.Namespace) -> bool:
+    return type(args.baud) is not _Assumed
+
+
+def _jobs(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number of processes (1 or more)")
+    return value
+
+
+def _refuse_parquet_conflicts(args: argparse.Namespace) -> None:
+    """--parquet replaces the items; --jobs and --scheduler only distribute it."""
+    if args.parquet is None:
+        if args.jobs != 1 or args.scheduler is not None:
+            raise UsageError("--jobs and --scheduler decode into --parquet DIR: give --parquet DIR")
+        return
+    others = [
+        ("-V", args.detail), ("-x", args.hexdump), ("--json", args.json), ("-T", args.output_format is not None),
+        ("--stats", args.stats), ("--watch", args.watch is not None), ("--report", args.report is not None),
+        ("-w", args.write is not None), ("-Y", bool(args.filter)), ("-c", args.count is not None),
+        ("--hex", bool(args.hex)),
+    ]
+    for option, given in others:
+        if given:
+            raise UsageError(f"--parquet writes every frame of FILEs as tables: {option} does not apply")
+    if args.scheduler is not None and args.jobs != 1:
+        raise UsageError("--jobs and --scheduler: choose one (the cluster's workers are its processes)")
+
+
 def decode_options(args: argparse.Namespace) -> DecodeOptions:
     """The typed options of a file decode; UsageError for options that contradict each other."""
     _refuse_conflicts(args)
+    _refuse_parquet_conflicts(args)
     output_format = args.output_format or ("json" if args.json else "text")
     fields: FieldsOptions | None = None
     if output_format == "fields":
@@ -189,7 +239,7 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         mode=args.mode,
         timeout=args.timeout,
         baud=args.baud,
-        baud_given=type(args.baud) is not _Assumed,
+        baud_given=baud_given(args),
         filter=args.filter[0] if args.filter else None,
         count=args.count,
         write=args.write,

@@ -101,6 +101,7 @@ class Outage:
     requests: int
     first_frame: int
     last_frame: int
+    offset: int = 0  # the first unanswered request's, in the input stream
 
     def as_dict(self) -> dict[str, Any]:
         return {"slave": self.slave, "start": self.start, "end": self.end, "requests": self.requests,
@@ -182,6 +183,7 @@ class _Run:
     requests: int
     first_frame: int
     last_frame: int
+    offset: int
 
 
 @dataclass(slots=True)
@@ -277,7 +279,7 @@ class BusTiming:
         run = self._runs.get(slave)
         if frame.unanswered:
             if run is None:
-                self._runs[slave] = _Run(time, time, 1, frame.number, frame.number)
+                self._runs[slave] = _Run(time, time, 1, frame.number, frame.number, frame.offset)
             else:
                 run.end, run.requests, run.last_frame = time, run.requests + 1, frame.number
             return
@@ -287,7 +289,7 @@ class BusTiming:
     def _close(self, slave: int) -> None:
         run = self._runs.pop(slave)
         if run.requests >= 2:
-            self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame))
+            self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame, run.offset))
 
     def finish(self) -> None:
         for slave in sorted(self._runs):

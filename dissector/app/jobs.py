@@ -1,0 +1,223 @@
+"""`--parquet DIR [--jobs N | --scheduler tcp://HOST:PORT] FILE...`: captures decoded into a dataset.
+
+The unit of work is a capture: one file, or the files of one `-b` ring buffer (`bus_00001_2026...pcap`,
+`bus_00002_...`), decoded in order as one stream (a transaction cut between two files still pairs, and
+frame numbers go on). Each capture is decoded by `decode_capture` wherever it runs: in this process,
+in N worker processes (`--jobs N`), or on the workers of a Dask distributed cluster (`--scheduler`,
+`pip install 'vw3-dissector[cluster]'`): the same function on the same files gives the same files,
+so the dataset does not depend on how it ran. Each capture writes its own files (export/parquet.py),
+so workers never share one.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+
+from dissector.errors import ExitStatus, ProfileError, UsageError
+from dissector.framing.ascii import AsciiFramer
+from dissector.framing.rtu import RtuFramer
+from dissector.framing.timing import GapChecker
+from dissector.pipeline import Dissector
+from dissector.render.bustiming import BusTiming, line_settings
+from dissector.sources.reader import SourceError, open_source
+
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])
+# dumpcap's ring buffer names: PREFIX_NNNNN_YYYYMMDDHHMMSS.EXT
+RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P<suffix>\.[^./]*)?$")
+
+
+@dataclass(frozen=True, slots=True)
+class Capture:
+    name: str  # the `capture` column: the file's name, or the ring buffer's (`bus.pcap`)
+    files: tuple[str, ...]
+    key: str  # the path its output files are named after
+
+
+@dataclass(frozen=True, slots=True)
+class JobSettings:
+    """What decoding a capture needs, picklable for a worker process or a Dask worker."""
+
+    directory: str
+    format: str | None = None
+    mode: str | None = None
+    timeout: float = 1.0
+    baud: int | None = None  # None: the pcapng description or 19200
+    profile_args: argparse.Namespace | None = None  # None: -n (no device profile)
+
+
+@dataclass(slots=True)
+class CaptureResult:
+    capture: str
+    rows: dict[str, int] = field(default_factory=dict)
+    warnings: list[str] = field(default_factory=list)
+    error: str | None = None  # one line: the capture could not be read
+
+
+def group_captures(paths: list[str]) -> list[Capture]:
+    """Files of one ring buffer (same folder, prefix and suffix) are one capture, by file number."""
+    rings: dict[tuple[str, str, str], list[tuple[int, str]]] = {}
+    order: list[tuple[str, object]] = []
+    for path in paths:
+        folder, base = os.path.split(path)
+        match = RING_NAME.match(base)
+        if match is None:
+            order.append(("file", path))
+            continue
+        key = (folder, match["prefix"], match["suffix"] or "")
+        if key not in rings:
+            rings[key] = []
+            order.append(("ring", key))
+        rings[key].append((int(match["number"]), path))
+    captures = []
+    for what, value in order:
+        if what == "file":
+            path = value  # type: ignore[assignment]
+            captures.append(Capture(os.path.basename(path), (path,), path))  # type: ignore[arg-type]
+            continue
+        folder, prefix, suffix = value  # type: ignore[misc]
+        files = tuple(path for _number, path in sorted(rings[value]))  # type: ignore[index]
+        if len(files) == 1:
+            captures.append(Capture(os.path.basename(files[0]), files, files[0]))
+        else:
+            name = prefix + suffix
+            captures.append(Capture(name, files, os.path.join(folder, name)))
+    return captures
+
+
+def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
+            first: Callable[[str, str, bool], None]) -> Iterator[object]:
+    offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
+    for index, path in enumerate(files):
+        source = open_source(path, settings.format, mode=settings.mode)
+        try:
+            if index == 0:
+                first(source.mode, source.format, source.format in TIMED_FORMATS)
+            tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]
+            for chunk in source:
+                offset += len(chunk.data)
+                yield chunk
+            result.warnings.extend(source.take_warnings())
+        finally:
+            source.close()
+
+
+def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
+    """Decode one capture into DIR/frames, DIR/registers and DIR/events (runs in any process)."""
+    from dissector.app.profile_options import annotator_from_args
+    from dissector.export.parquet import CaptureTables, file_stem
+
+    result = CaptureResult(capture.name)
+    try:
+        annotate = annotator_from_args(settings.profile_args) if settings.profile_args is not None else None
+    except ProfileError as error:
+        result.error = str(error)
+        return result
+    tables = CaptureTables(settings.directory, capture.name, file_stem(capture.key))
+    bus = BusTiming(settings.timeout)
+    state: dict[str, Dissector] = {}
+
+    def first(mode: str, source_format: str, timed: bool) -> None:
+        framer = AsciiFramer() if mode == "ascii" else RtuFramer()
+        line = line_settings(capture.files[0], source_format, settings.baud)
+        bus.new_input(mode, line)
+        baud = settings.baud or 19200
+        state["dissector"] = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
+                                       gaps=GapChecker(baud, mode) if timed else None)
+
+    try:
+        for chunk in _chunks(capture.files, settings, tables, result, first):
+            items = state["dissector"].feed(chunk)  # type: ignore[arg-type]
+            tables.add(items)
+            bus.add_items(items)
+        if "dissector" in state:
+            items = state["dissector"].finish()
+            tables.add(items)
+            bus.add_items(items)
+        bus.finish()
+        tables.outages(bus.outages)
+        result.rows = tables.close()
+    except SourceError as error:
+        tables.abandon()
+        result.error = str(error)
+    except OSError as error:
+        tables.abandon()
+        result.error = f"{settings.directory}: {error.strerror or error}"
+    return result
+
+
+def run_captures(captures: list[Capture], settings: JobSettings, jobs: int, scheduler: str | None,
+                 report: Callable[[CaptureResult], None]) -> None:
+    """Decode every capture here, in `jobs` processes, or on a Dask cluster; results as they end."""
+    if scheduler is not None:
+        try:
+            from distributed import Client, as_completed
+        except ImportError:
+            raise UsageError("--scheduler needs dask distributed: pip install 'vw3-dissector[cluster]'") from None
+        try:
+            client = Client(scheduler, timeout=30)
+        except (OSError, TimeoutError) as error:
+            raise UsageError(f"--scheduler {scheduler}: cannot connect: {error}") from None
+        try:
+            futures = [client.submit(decode_capture, capture, settings, pure=False) for capture in captures]
+            for future in as_completed(futures):
+                report(future.result())
+        finally:
+            client.close()
+        return
+    if jobs <= 1 or len(captures) <= 1:
+        for capture in captures:
+            report(decode_capture(capture, settings))
+        return
+    import concurrent.futures
+    import multiprocessing
+
+    # spawn, not fork: a worker must not inherit a parent's threads or open outputs.
+    context = multiprocessing.get_context("spawn")
+    with concurrent.futures.ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+        futures = [pool.submit(decode_capture, capture, settings) for capture in captures]
+        for future in concurrent.futures.as_completed(futures):
+            report(future.result())
+
+
+def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog: str) -> int:
+    """The --parquet run: one line per capture written, errors one line each; exit 2 if any failed."""
+    from dissector.app.options import baud_given
+    from dissector.export.parquet import need_pyarrow
+
+    need_pyarrow()
+    if not args.files:
+        raise UsageError("--parquet reads capture FILEs (standard input and --hex cannot be shared with workers)")
+    if "-" in args.files:
+        raise UsageError("--parquet reads capture FILEs, not standard input")
+    for path in args.files:
+        if not os.path.isfile(path):
+            raise UsageError(f"{path}: no such file")
+    try:
+        os.makedirs(args.parquet, exist_ok=True)
+    except OSError as error:
+        raise UsageError(f"--parquet {args.parquet}: {error.strerror or error}") from None
+    captures = group_captures(list(args.files))
+    settings = JobSettings(
+        directory=os.path.abspath(args.parquet), format=args.format, mode=args.mode, timeout=args.timeout,
+        baud=args.baud if baud_given(args) else None, profile_args=None if args.no_profile else args,
+    )
+    failed = 0
+
+    def report(result: CaptureResult) -> None:
+        nonlocal failed
+        for warning in result.warnings:
+            stderr.write(f"{prog}: warning: {warning}\n")  # type: ignore[attr-defined]
+        if result.error is not None:
+            failed += 1
+            stderr.write(f"{prog}: {result.error}\n")  # type: ignore[attr-defined]
+            return
+        rows = result.rows
+        stdout.write(  # type: ignore[attr-defined]
+            f"{result.capture}: {rows['frames']} frames, {rows['registers']} registers, {rows['events']} events\n"
+        )
+
+    run_captures(captures, settings, args.jobs, args.scheduler, report)
+    return ExitStatus.BAD_INPUT if failed else ExitStatus.OK

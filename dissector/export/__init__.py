@@ -1,0 +1,1 @@
+"""Datasets written from decoded captures (Parquet)."""

@@ -1,0 +1,244 @@
+"""`--parquet` (issue 29), read back by DuckDB, an engine other than the writer: every shipped capture's
+tables hold what `--json` says, row for row; the README's queries run as they stand; `--jobs 2`, a
+ring buffer and a Dask cluster (a scheduler and two workers on localhost) give the same dataset."""
+from __future__ import annotations
+
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import duckdb
+import pytest
+
+from conftest import ROOT
+from helpers import run_cli
+
+CAPTURES = sorted(path for path in (ROOT / "captures").iterdir() if path.suffix in (".pcap", ".bin"))
+ENV = dict(os.environ, PYTHONPATH=str(ROOT))
+
+
+def _cli(*argv: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run([sys.executable, "-m", "dissector", *argv], cwd=ROOT, capture_output=True, text=True,
+                          timeout=300, env=ENV)
+
+
+def _records(path: Path) -> list[dict]:
+    status, out, err = run_cli(["--json", str(path)])
+    assert (status, err) == (0, "")
+    return [json.loads(line) for line in out.splitlines()]
+
+
+def _query(sql: str) -> list[tuple]:
+    connection = duckdb.connect()
+    connection.execute("SET TimeZone = 'UTC'")
+    return connection.execute(sql).fetchall()
+
+
+def _epoch_us(value: object) -> int | None:
+    return None if value is None else round(value * 1_000_000)  # type: ignore[operator]
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("parquet") / "data"
+    result = _cli("--parquet", str(out), *map(str, CAPTURES))
+    assert (result.returncode, result.stderr) == (0, "")
+    assert result.stdout.splitlines()[0] == "ascii_session.bin: 10 frames, 9 registers, 2 events"
+    return out
+
+
+FRAME_KEYS = ("frame", "kind", "offset", "length", "slave", "function", "crc_ok", "start", "quantity",
+              "exception_code", "request_frame", "response_time", "response_frame", "unanswered", "reason")
+QUOTED_KEYS = ", ".join(f'"{key}"' for key in FRAME_KEYS)  # offset is an SQL keyword
+
+
+@pytest.mark.parametrize("capture", CAPTURES, ids=lambda path: path.name)
+def test_tables_hold_what_json_says(dataset: Path, capture: Path) -> None:
+    records = _records(capture)
+    frames = _query(
+        f"SELECT {QUOTED_KEYS}, epoch_us(time), hex(raw), warnings, notes "
+        f"FROM read_parquet('{dataset}/frames/*.parquet') WHERE capture = '{capture.name}' ORDER BY frame"
+    )
+    assert len(frames) == len(records)
+    for row, record in zip(frames, records):
+        expected = tuple(record.get(key) for key in FRAME_KEYS) + (
+            _epoch_us(record["time"]), record["raw"].upper(), record["warnings"], record.get("notes"))
+        assert row == expected
+
+    registers = _query(
+        "SELECT frame, access, address, value, code, name, unit, scaled, status, text, label, epoch_us(time) "
+        f"FROM read_parquet('{dataset}/registers/**/*.parquet') WHERE capture = '{capture.name}' "
+        "ORDER BY frame, access DESC, address"
+    )
+    expected_registers = []
+    for record in records:
+        for element in (record.get("registers") or []) + (record.get("bits") or []):
+            access = {"request": "write", "exception": "exception"}.get(record["kind"]) or (
+                "echo" if record["function"] in (5, 6) else "read")
+            expected_registers.append((record["frame"], access, *(element.get(key) for key in (
+                "address", "value", "code", "name", "unit", "scaled", "status", "text", "label")),
+                _epoch_us(record["time"])))
+    assert len(registers) == len(expected_registers)
+    assert sorted(registers, key=repr) == sorted(expected_registers, key=repr)
+
+    events = dict(_query(
+        f"SELECT kind, count(*) FROM read_parquet('{dataset}/events/*.parquet') WHERE capture = '{capture.name}' GROUP BY kind"
+    ))
+    assert events.get("exception", 0) == sum(r["kind"] == "exception" and r["crc_ok"] for r in records)
+    assert events.get("crc", 0) == sum(r["kind"] != "noise" and not r["crc_ok"] for r in records)
+    assert events.get("noise", 0) == sum(r["kind"] == "noise" for r in records)
+    silences = sum(w.startswith("silence") for r in records for w in r["warnings"])
+    assert events.get("silence", 0) == silences
+
+
+def test_p38_protections_and_noisy_bus_outage(dataset: Path) -> None:
+    rows = _query(
+        f"SELECT capture, kind, frame, slave, address, code, status FROM read_parquet('{dataset}/events/*.parquet') "
+        "WHERE kind IN ('protected', 'non-existent', 'readable-again') AND capture LIKE 'p38%' ORDER BY capture, frame, address"
+    )
+    for suffix in (".bin", ".pcap"):
+        assert [row[1:] for row in rows if row[0] == "p38_protection" + suffix] == [
+            ("non-existent", 2, 12, 8400, None, "non-existent"),
+            ("protected", 6, 12, 8401, "CHCF", "protected"),
+            ("protected", 10, 12, 8402, "COP", "protected"),
+        ]
+    records = {record["frame"]: record for record in _records(ROOT / "captures" / "noisy_bus.pcap")}
+    outage = _query(
+        f"SELECT slave, frame, last_frame, requests, epoch_us(time), epoch_us(\"end\") FROM read_parquet('{dataset}/events/*.parquet') "
+        "WHERE kind = 'outage'"
+    )
+    assert outage == [(5, 28, 29, 2, _epoch_us(records[28]["time"]), _epoch_us(records[29]["time"]))]
+
+
+def test_readme_queries_run_as_they_stand(dataset: Path) -> None:
+    readme = (ROOT / "README.md").read_text()
+    section = readme[readme.index("## The bus as data"):readme.index("## NDJSON schema")]
+    queries = re.findall(r"```sql\n(.*?)```", section, re.S)
+    assert len(queries) == 2
+    protected = _query(queries[0].replace("DIR", str(dataset)))
+    assert [(row[0], row[2], row[4], row[6]) for row in protected if row[0].endswith(".pcap")] == [
+        ("p38_protection.pcap", "CHCF", "protected", 6), ("p38_protection.pcap", "COP", "protected", 10)]
+    assert str(protected[-1][5]) == "2026-01-01 00:00:02.115075+00:00"
+    hourly = _query(queries[1].replace("DIR", str(dataset)))
+    noisy = [row for row in hourly if row[0] == "noisy_bus.pcap"]
+    assert [(row[1], row[3], row[4], row[6]) for row in noisy] == [(1, 8, 11.7, 13.3), (12, 8, 9.1, 13.5)]
+    for line in re.findall(r"│ (\w+\.pcap) +│ +(\d+) │ [^│]+│ +(\d+) │ +([\d.]+) │ +([\d.]+) │ +([\d.]+) │", section):
+        match = [row for row in hourly if row[0] == line[0] and row[1] == int(line[1])]
+        assert match and match[0][3:] == (int(line[2]), float(line[3]), float(line[4]), float(line[5]))
+
+
+def _everything(directory: Path) -> dict[str, list[tuple]]:
+    """Every row of every table, in a fixed order (the capture files' names hash their path: left out)."""
+    return {
+        table: sorted(_query(f"SELECT * FROM read_parquet('{directory}/{table}/*.parquet')"), key=repr)
+        for table in ("frames", "registers", "events")
+    }
+
+
+def test_jobs_give_the_same_dataset(dataset: Path, tmp_path: Path) -> None:
+    result = _cli("--parquet", str(tmp_path / "jobs"), "--jobs", "2", *map(str, CAPTURES))
+    assert (result.returncode, result.stderr) == (0, "")
+    assert sorted(result.stdout.splitlines()) == sorted(_cli("--parquet", str(tmp_path / "one"), *map(str, CAPTURES)).stdout.splitlines())
+    assert _everything(tmp_path / "jobs") == _everything(dataset)
+    assert sorted(os.listdir(tmp_path / "jobs" / "frames")) == sorted(os.listdir(dataset / "frames"))
+
+
+def test_ring_buffer_files_are_one_capture(tmp_path: Path) -> None:
+    source = ROOT / "captures" / "atv71_commissioning.pcap"
+    ring = tmp_path / "ring"
+    ring.mkdir()
+    result = _cli(str(source), "-w", str(ring / "bus.pcap"), "-b", "filesize:1")
+    assert result.returncode == 0
+    files = sorted(ring.iterdir())
+    assert len(files) >= 2 and all(re.fullmatch(r"bus_\d{5}_\d{14}\.pcap", path.name) for path in files)
+    result = _cli("--parquet", str(tmp_path / "data"), *map(str, reversed(files)), "--jobs", "2")
+    assert (result.returncode, result.stdout) == (0, "bus.pcap: 104 frames, 181 registers, 1 events\n")
+    _cli("--parquet", str(tmp_path / "whole"), str(source))
+    columns = "frame, kind, epoch_us(time), slave, function, request_frame, response_time, raw"
+    ringed = _query(f"SELECT {columns} FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY frame")
+    whole = _query(f"SELECT {columns} FROM read_parquet('{tmp_path}/whole/frames/*.parquet') ORDER BY frame")
+    assert ringed == whole
+    files_seen = _query(f"SELECT DISTINCT capture, file FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY file")
+    # A response at the start of file 2 answers the request at the end of file 1: paired, as in one file.
+    assert files_seen == [("bus.pcap", path.name) for path in files if path.stat().st_size > 24]  # not a bare header
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def test_a_dask_cluster_gives_the_same_dataset(dataset: Path, tmp_path: Path) -> None:
+    port = _free_port()
+    address = f"tcp://127.0.0.1:{port}"
+    dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
+    processes = [subprocess.Popen(
+        [*dask, "--host", "127.0.0.1", "--port", str(port), "--no-dashboard"],
+        cwd=tmp_path, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
+    try:
+        for index in range(2):
+            processes.append(subprocess.Popen(
+                [sys.executable, "-m", "distributed.cli.dask_worker", address, "--nthreads", "1", "--no-dashboard",
+                 "--name", f"worker-{index}", "--local-directory", str(tmp_path / f"w{index}")],
+                cwd=tmp_path, env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL))
+        from distributed import Client
+
+        deadline = time.monotonic() + 120
+        with Client(address, timeout=60) as client:
+            while len(client.scheduler_info()["workers"]) < 2:
+                assert time.monotonic() < deadline, "the two workers never joined"
+                time.sleep(0.2)
+        result = _cli("--parquet", str(tmp_path / "dask"), "--scheduler", address, *map(str, CAPTURES))
+        assert (result.returncode, result.stderr) == (0, "")
+        assert len(result.stdout.splitlines()) == len(CAPTURES)
+        assert _everything(tmp_path / "dask") == _everything(dataset)
+    finally:
+        for process in reversed(processes):
+            process.terminate()
+        for process in processes:
+            try:
+                process.wait(timeout=30)
+            except subprocess.TimeoutExpired:
+                process.kill()
+
+
+def test_missing_extras_are_named(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    capture = str(ROOT / "captures" / "p38_protection.pcap")
+    monkeypatch.setitem(sys.modules, "pyarrow", None)
+    assert run_cli(["--parquet", str(tmp_path), capture]) == (
+        2, "", "vw3-decode: --parquet needs pyarrow: pip install 'vw3-dissector[data]'\n")
+    monkeypatch.undo()
+    monkeypatch.setitem(sys.modules, "distributed", None)
+    assert run_cli(["--parquet", str(tmp_path), "--scheduler", "tcp://127.0.0.1:1", capture]) == (
+        2, "", "vw3-decode: --scheduler needs dask distributed: pip install 'vw3-dissector[cluster]'\n")
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["--jobs", "2"], "--jobs and --scheduler decode into --parquet DIR: give --parquet DIR"),
+        (["--parquet", "D", "--json"], "--parquet writes every frame of FILEs as tables: --json does not apply"),
+        (["--parquet", "D", "-Y", "slave == 1"], "--parquet writes every frame of FILEs as tables: -Y does not apply"),
+        (["--parquet", "D", "--jobs", "2", "--scheduler", "tcp://h:1"],
+         "--jobs and --scheduler: choose one (the cluster's workers are its processes)"),
+        (["--parquet", "D", "--jobs", "x"], "argument --jobs: 'x' is not a number of processes (1 or more) (see vw3-decode --help)"),
+    ],
+)
+def test_contradictions_are_refused(argv: list[str], message: str) -> None:
+    assert run_cli([*argv, str(ROOT / "captures" / "p38_protection.pcap")]) == (2, "", f"vw3-decode: {message}\n")
+
+
+def test_a_bad_capture_is_one_line_and_the_others_are_written(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.pcap"
+    bad.write_bytes(b"\xd4\xc3\xb2\xa1" + b"\x00" * 10)
+    status, out, err = run_cli(["--parquet", str(tmp_path / "d"), str(bad), str(ROOT / "captures" / "p38_protection.pcap")])
+    assert status == 2
+    assert out == "p38_protection.pcap: 12 frames, 18 registers, 5 events\n"
+    assert len(err.splitlines()) == 1 and err.startswith("vw3-decode: ") and "bad.pcap" in err
+    assert sorted(os.listdir(tmp_path / "d" / "frames")) == [f for f in os.listdir(tmp_path / "d" / "frames") if f.startswith("p38")]
