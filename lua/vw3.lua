@@ -2363,21 +2363,41 @@ local function read_registers_response_handler(f, b)
   f.registers = make_registers(b, fields.values_at, fields.count, start)
 end
 
-local function write_single_coil_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.address, 1
-  if fields.value ~= 0xFF00 and fields.value ~= 0 then
-    warn(f, format("coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)", fields.value))
+-- decode._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
+-- In a block of its own: the main chunk is at Lua's 200 locals.
+local write_single_coil_handler, write_single_register_handler
+do
+  local function check_echo(f, fields)
+    local request = request_fields(f)
+    if request == nil then return end
+    local address, value = request.address ~= fields.address, request.value ~= fields.value
+    if address and value then
+      warn(f, "the response's address and value differ from the request's")
+    elseif address then
+      warn(f, "the response's address differs from the request's")
+    elseif value then
+      warn(f, "the response's value differs from the request's")
+    end
   end
-  local value = 0
-  if fields.value == 0xFF00 then value = 1 end
-  f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
-end
 
-local function write_single_register_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.address, 1
-  f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
+  write_single_coil_handler = function(f, b)
+    local fields = f.fields
+    f.start, f.quantity = fields.address, 1
+    if fields.value ~= 0xFF00 and fields.value ~= 0 then
+      warn(f, format("coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)", fields.value))
+    end
+    check_echo(f, fields)
+    local value = 0
+    if fields.value == 0xFF00 then value = 1 end
+    f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
+  end
+
+  write_single_register_handler = function(f, b)
+    local fields = f.fields
+    f.start, f.quantity = fields.address, 1
+    check_echo(f, fields)
+    f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
+  end
 end
 
 local function diagnostics_handler(f, b)

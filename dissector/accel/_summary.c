@@ -16,7 +16,7 @@
  *   - an exception to FC17, FC20, FC21 or FC43;
  *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
  *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
- *     ON/OFF, FC8 sub-functions the spec does not define or the device explains, odd FC8 data, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
+ *     ON/OFF, FC5/FC6 answers that do not echo their request, FC8 sub-functions the spec does not define or the device explains, odd FC8 data, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
  *     read, a parameter readable again, a bits_depend switch;
  *   - exception 2 to an FC3/FC4 read on a device that protects parameters (ATV71, p.38): the
  *     annotator then forgets the values of every parameter read, a change of state;
@@ -1024,7 +1024,8 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         if (f[2] != 2 * r->quantity) return 0;
         *reads = (Words){r->start, r->quantity, f + 3};
         break;
-    case 6: {
+    case 6: {  /* decode._check_echo: an answer that is not the request's echo gets a warning */
+        if (word(f + 2) != r->start || word(f + 4) != word(r->writes.values)) return 0;
         Words echo = {word(f + 2), 1, f + 4};
         return words_are_plain(s, e->run_number, &echo);
     }
@@ -1032,7 +1033,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         return f[2] == (r->quantity + 7) / 8;
     case 5: {
         unsigned value = word(f + 4);
-        return value == 0xFF00 || value == 0;
+        return (value == 0xFF00 || value == 0) && word(f + 2) == r->start && value == r->value;
     }
     case 15: case 16:
         return word(f + 2) == r->start && word(f + 4) == r->quantity;

@@ -152,15 +152,29 @@ def _read_registers_response(frame: Frame, fields: Container) -> None:
     frame.registers = _registers(start, fields["values"])
 
 
+def _check_echo(frame: Frame, fields: Container) -> None:
+    """An FC5/FC6 answer echoes its request: one that does not wrote something else (as FC15/FC16's
+    start and quantity are checked)."""
+    request = _request_fields(frame)
+    if request is None:
+        return
+    differ = [name for name in ("address", "value") if request[name] != fields[name]]
+    if differ:
+        verb = "differs" if len(differ) == 1 else "differ"
+        frame.warnings.append(f"the response's {' and '.join(differ)} {verb} from the request's")
+
+
 def _write_single_coil(frame: Frame, fields: Container) -> None:
     frame.start, frame.quantity = fields["address"], 1
     if fields["value"] not in (0xFF00, 0x0000):
         frame.warnings.append(f"coil value 0x{fields['value']:04X} is neither 0xFF00 (on) nor 0x0000 (off)")
+    _check_echo(frame, fields)
     frame.bits = [Bit(fields["address"], 1 if fields["value"] == 0xFF00 else 0)]
 
 
 def _write_single_register(frame: Frame, fields: Container) -> None:
     frame.start, frame.quantity = fields["address"], 1
+    _check_echo(frame, fields)
     frame.registers = [Register(fields["address"], fields["value"])]
 
 
