@@ -23,7 +23,7 @@ from dissector.model import Item, Stamp
 from dissector.render.jsonout import item_to_dict
 from dissector.render.registers import register_rows
 
-ROWS_PER_GROUP = 1 << 17  # rows kept before a row group is written: memory stays flat
+ROWS_PER_GROUP = 1 << 16  # rows kept before a row group is written: memory stays flat
 TABLES = ("frames", "registers", "events")
 UNREADABLE = frozenset(["protected", "non-existent"])
 
@@ -89,16 +89,15 @@ class _Table:
     def __init__(self, path: str, schema: Any) -> None:
         self.path = path
         self.schema = schema
-        self.columns: dict[str, list[Any]] = {name: [] for name in schema.names}
-        self.pending = 0
+        self.names = tuple(schema.names)
+        self.pending: list[tuple[Any, ...]] = []  # rows in schema order, made into columns per row group
         self.rows = 0
         self.writer: Any = None
 
     def add(self, row: dict[str, Any]) -> None:
-        for name, column in self.columns.items():
-            column.append(row.get(name))
-        self.pending += 1
-        if self.pending >= ROWS_PER_GROUP:
+        pending = self.pending
+        pending.append(tuple(map(row.get, self.names)))  # absent keys: null
+        if len(pending) >= ROWS_PER_GROUP:
             self.flush()
 
     def flush(self) -> None:
@@ -109,12 +108,11 @@ class _Table:
             self.writer = pq.ParquetWriter(self.path + ".part", self.schema, compression="zstd")
         if not self.pending:
             return
-        arrays = [pa.array(self.columns[name], type=self.schema.field(name).type) for name in self.schema.names]
-        self.writer.write_table(pa.Table.from_arrays(arrays, schema=self.schema))
-        self.rows += self.pending
-        self.pending = 0
-        for column in self.columns.values():
-            column.clear()
+        schema = self.schema
+        arrays = [pa.array(column, type=schema.field(index).type) for index, column in enumerate(zip(*self.pending))]
+        self.writer.write_table(pa.Table.from_arrays(arrays, schema=schema))
+        self.rows += len(self.pending)
+        self.pending = []
 
     def close(self) -> None:
         self.flush()  # a table with no row is still a file with its schema: queries find every table
@@ -162,15 +160,16 @@ class CaptureTables:
         for item in items:
             common = {"capture": self.capture, "file": self.file_of(item.offset)}
             self._common = common
-            record = item_to_dict(item)
+            record = item_to_dict(item, fields=False)  # the NDJSON record but its `fields`, not stored
             time = microseconds(item.time)
             row = dict(record, **common, time=time)
             row["raw"] = item.raw
             frames.add(row)
-            for register in register_rows(record):
-                register.update(common, time=time)
-                registers.add(register)
-                self._status(register, time)
+            if "registers" in record or "bits" in record:
+                for register in register_rows(record):
+                    register.update(common, time=time)
+                    registers.add(register)
+                    self._status(register, time)
             self._events(record, time)
 
     def _event(self, kind: str, time: int | None, file: str | None = None, **values: Any) -> None:

@@ -121,14 +121,20 @@ def _tail(frame: Frame, out: dict[str, Any], with_bits: bool = True, lists: bool
     return out
 
 
-def item_to_dict(item: Item) -> dict[str, Any]:
+def item_to_dict(item: Item, fields: bool = True) -> dict[str, Any]:
+    """The NDJSON object; fields=False leaves out `fields` (the PDU as parsed), which --parquet does not keep."""
     if isinstance(item, Noise):
         return _noise_to_dict(item)
     frame: Frame = item
     out = _head(frame)
     if frame.registers is not None:
         out["registers"] = [register_to_dict(register) for register in frame.registers]
-    return _tail(frame, out)
+    if fields:
+        return _tail(frame, out)
+    _tail(frame, out, lists=False)
+    out["warnings"] = list(frame.warnings)
+    out["notes"] = list(frame.notes)
+    return out
 
 
 # Registers repeat (a polled block, the same status word): their JSON text is kept by content, so a
