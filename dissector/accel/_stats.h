@@ -25,6 +25,7 @@ typedef struct {
     PyObject *namer;      /* owned: the namer of the last value when text is NULL */
     PyObject *code;       /* owned, NULL: none yet */
     PyObject *code_namer; /* owned: the namer the code was last asked of */
+    PyObject *status;     /* owned: the last state is this read status (`protected`...), not a value; NULL: a value */
 } Param;
 
 typedef struct {
@@ -92,11 +93,30 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
     return p;
 }
 
-/* ParameterStats.observe: a change counts against the last value, whoever saw it. */
-static inline void param_observe(Param *p, unsigned value) {
-    if (p->has_last && value != p->last) p->changes++;
+/* ParameterTable.observe (render/stats_store.py, render/history.py): the state is a value or a read
+ * status; a change is a state that differs from the last one, whoever saw each. 1: changed. */
+static inline int param_observe(Param *p, unsigned value) {
+    int changed = p->has_last && (p->status != NULL || value != p->last);
+    if (changed) p->changes++;
+    Py_CLEAR(p->status);
     p->last = (uint16_t)value;
     p->has_last = 1;
+    return changed;
+}
+
+/* An unreadable read: the state becomes `status` (a str); 1: changed, -1: error. */
+static inline int param_status(Param *p, PyObject *status) {
+    int same = 0;
+    if (p->status != NULL) {
+        same = PyObject_RichCompareBool(p->status, status, Py_EQ);
+        if (same < 0) return -1;
+    }
+    int changed = p->has_last && !same;
+    if (changed) p->changes++;
+    Py_INCREF(status);
+    Py_XSETREF(p->status, status);
+    p->has_last = 1;
+    return changed;
 }
 
 /* One register's event, from a transaction the engine shows: texts and codes from `namer` (the slave's
@@ -132,7 +152,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
     default: break; /* CONFIRM, WRITE_OBSERVED: a value seen */
     }
     if (event == EVENT_WRITE_OBSERVED) p->writes++;
-    param_observe(p, value);
+    (void)param_observe(p, value);
     p->last_mapped = (uint8_t)mapped;
     Py_CLEAR(p->text);
     if (p->namer != namer) {
@@ -297,6 +317,7 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(p->namer);
         Py_XDECREF(p->code);
         Py_XDECREF(p->code_namer);
+        Py_XDECREF(p->status);
     }
     PyMem_Free(st->params);
     PyMem_Free(st->polls);
@@ -325,18 +346,68 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
         Py_INCREF(code);
         Py_XSETREF(p->code, code);
     }
+    int changed;
     switch (event) {
-    case EVENT_WRITE: p->writes++; Py_RETURN_NONE;
-    case EVENT_REFUSED: p->refused++; Py_RETURN_NONE;
-    case EVENT_UNREADABLE: p->unreadable++; Py_RETURN_NONE;
+    case EVENT_WRITE: p->writes++; Py_RETURN_FALSE;
+    case EVENT_REFUSED: p->refused++; Py_RETURN_FALSE;
+    case EVENT_UNREADABLE: /* 16#8000 or an explained exception: `text` is the status, no value */
+        if (!PyUnicode_Check(text)) {
+            PyErr_SetString(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
+            return NULL;
+        }
+        p->unreadable++;
+        changed = param_status(p, text);
+        if (changed < 0) return NULL;
+        return PyBool_FromLong(changed);
     case EVENT_READ: p->reads++; break;
     case EVENT_WRITE_OBSERVED: p->writes++; break;
     default: break;
     }
-    param_observe(p, value);
+    changed = param_observe(p, value);
     Py_INCREF(text);
     Py_XSETREF(p->text, text);
     Py_CLEAR(p->namer);
+    return PyBool_FromLong(changed);
+}
+
+/* rename({slave: namer}): the values kept of these slaves were read before their profile was chosen:
+ * name them (text and code) as the chosen device does, once (render/history.py, a profile change). */
+static PyObject *stats_rename(Stats *st, PyObject *namers) {
+    if (!PyDict_Check(namers)) {
+        PyErr_SetString(PyExc_TypeError, "rename: a dict {slave: namer}");
+        return NULL;
+    }
+    for (size_t k = 0; k < st->param_slots; k++) {
+        Param *p = &st->params[k];
+        if (!p->key) continue;
+        PyObject *slave = PyLong_FromUnsignedLong((p->key >> 16) & 0xFF);
+        if (slave == NULL) return NULL;
+        PyObject *namer = PyDict_GetItemWithError(namers, slave);
+        Py_DECREF(slave);
+        if (namer == NULL) {
+            if (PyErr_Occurred()) return NULL;
+            continue;
+        }
+        PyObject *answer = PyObject_CallFunction(namer, "II", p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last);
+        if (answer == NULL) return NULL;
+        if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
+            Py_DECREF(answer);
+            PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
+            return NULL;
+        }
+        PyObject *code = PyTuple_GET_ITEM(answer, 1);
+        if (code != Py_None) {
+            Py_INCREF(code);
+            Py_XSETREF(p->code, code);
+        }
+        Py_DECREF(answer);
+        Py_INCREF(namer);
+        Py_XSETREF(p->code_namer, namer);
+        Py_INCREF(namer);
+        Py_XSETREF(p->namer, namer);
+        Py_CLEAR(p->text);
+        p->last_mapped = 1;
+    }
     Py_RETURN_NONE;
 }
 
@@ -388,6 +459,10 @@ static int param_order(const void *a, const void *b) {
 /* The last value's text: the Python stages' (maybe None), else the namer's where the device names
  * the address; None for no text. A new reference. */
 static PyObject *param_text(const Param *p) {
+    if (p->status != NULL) {
+        Py_INCREF(p->status);
+        return p->status;
+    }
     if (p->text != NULL) {
         Py_INCREF(p->text);
         return p->text;
@@ -407,7 +482,8 @@ static PyObject *param_text(const Param *p) {
 }
 
 /* parameters() -> [(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]
- * by (slave, address); last_text the text of the last value, None when nothing names it. */
+ * by (slave, address); last_text the text of the last value, None when nothing names it; when the last
+ * state is a read status, last is None and last_text the status (`protected`). */
 static PyObject *stats_parameters(Stats *st, PyObject *unused) {
     Param **order = PyMem_Malloc((st->param_count ? st->param_count : 1) * sizeof *order);
     if (order == NULL) return PyErr_NoMemory();
@@ -431,7 +507,7 @@ static PyObject *stats_parameters(Stats *st, PyObject *unused) {
         PyObject *code = p->code ? p->code : Py_None;
         Py_INCREF(code);
         PyObject *last = Py_None;
-        if (p->has_last) {
+        if (p->has_last && p->status == NULL) {
             last = PyLong_FromUnsignedLong(p->last);
         } else {
             Py_INCREF(last);
@@ -556,7 +632,10 @@ static PyObject *stats_get_parameter_count(Stats *st, void *closure) { return Py
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
      "param(slave, address, event, value, code, text): a register of a frame the Python stages showed\n"
-     "(event: READ 0, UNREADABLE 1, WRITE 2, WRITE_OBSERVED 3, REFUSED 4, CONFIRM 5)."},
+     "(event: READ 0, UNREADABLE 1, WRITE 2, WRITE_OBSERVED 3, REFUSED 4, CONFIRM 5; UNREADABLE's text is\n"
+     "the status); True when the parameter's state (a value or a status) changed."},
+    {"rename", (PyCFunction)stats_rename, METH_O,
+     "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed): a good request."},
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_VARARGS, "poll_fail(key): its answer was an exception."},
     {"parameters", (PyCFunction)stats_parameters, METH_NOARGS,

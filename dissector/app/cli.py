@@ -72,10 +72,13 @@ class Sinks:
 
             self.predicate = compile_filter(args.filter)
         self.stats = None
-        if args.stats:
+        if args.stats or args.watch is not None or args.report is not None:
+            # One parameter history for --stats, --watch and --report (render/history.py): the
+            # statistics feed it, the watch and the report listen to it.
+            from dissector.render.history import History
             from dissector.render.stats import StatsCollector
 
-            self.stats = StatsCollector(getattr(annotate, "choices", None))
+            self.stats = StatsCollector(getattr(annotate, "choices", None), History(annotate))
         self.stats_shown = args.stats
         self.bus = None  # bus timing and slave health (render/bustiming.py), from every item heard
         if args.stats:
@@ -89,13 +92,15 @@ class Sinks:
         if args.watch is not None:
             from dissector.render.watch import watcher
 
-            self.watch = watcher(args.watch, self.text_out.write, self.json, annotate)
+            self.watch = watcher(args.watch, self.text_out.write, self.json, annotate, self.stats.history,  # type: ignore[union-attr]
+                                 Clock(args.output.time_format))
         self.report = None
         if args.report is not None:
             from dissector.render.report import ReportFile
 
-            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []))
-            self.stats = self.stats or self.report.stats  # the report's counts are --stats' numbers
+            # The report's counts are --stats' numbers, its parameters the same history's.
+            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []),
+                                     self.stats)  # type: ignore[arg-type]
         self.show = not args.stats and self.watch is None and self.report is None and (
             args.write is None or args.print_too
         )
@@ -144,8 +149,8 @@ class Sinks:
     def accept(self, items: list[Item]) -> None:
         predicate = self.predicate
         records: list[dict] | None = None
-        if self.watch is not None and items:
-            self.watch.set_base(items[0])  # the time column never depends on -Y
+        if self.watch is not None:
+            self.watch.observe(items)  # the time column never depends on -Y
         if self.show:
             self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if self.bus is not None:
@@ -166,13 +171,13 @@ class Sinks:
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
         if self.stats is not None:
+            report = self.report.collector if self.report is not None else None
             for item in items:
+                if report is not None:
+                    report.add(item)  # its events first: the history's (through stats) follow
                 self.stats.add(item)
         if self.watch is not None:
-            for item in items:
-                self.watch.add(item)
-        if self.report is not None:
-            self.report.collector.add_items(items)
+            self.watch.done()
         if self.show:
             if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
@@ -208,6 +213,8 @@ class Sinks:
                 pcap.close()
             except OSError as error:
                 raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
+        if self.watch is not None:
+            self.watch.finish()
         if self.report is not None:
             report, self.report = self.report, None
             report.write(self.stats)  # type: ignore[arg-type]

@@ -132,7 +132,8 @@ def _make_sink(
     if getattr(args, "watch", None) is not None:
         from dissector.render.watch import WatchSink
 
-        return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate)
+        return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate,
+                         getattr(args, "time_format", "r"))
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:

@@ -117,6 +117,14 @@ class Annotator:
         self.changed.add(slave)
         return device
 
+    def choice_frame(self, slave: int) -> int | None:
+        """The frame whose evidence gave this slave its profile (None: forced, or no choice yet): frames
+        before it were named with the profile the slave had then."""
+        if self.selector is None or slave in self.per_slave:
+            return None
+        choice = self.selector.choice(slave)
+        return None if choice is None else choice.frame
+
     def settled(self, slave: int) -> bool:
         """The profile of this slave can change only through frames the compiled path hands over."""
         return self.selector is None or slave in self.per_slave or self.selector.settled(slave)
@@ -141,6 +149,21 @@ class Annotator:
         return device
 
     # -- names for renderers ------------------------------------------------------------------------------
+    def codes(self) -> dict[str, frozenset[int]]:
+        """Every parameter code (upper case) a slave may have in this run -> its addresses: the rows of
+        every profile in use or that `auto` may choose, and of the --map files (what --watch may name)."""
+        profiles = [self.default, *self.per_slave.values()]
+        if self.selector is not None:
+            profiles += [profile for profile, _rows in self.selector.candidates]
+        maps = [self._builder.build(profile, None).rows for profile in {p.name: p for p in profiles}.values()]
+        maps += [layer.rows for layer in self.layers]
+        found: dict[str, set[int]] = {}
+        for rows in maps:
+            for address, row in rows.items():
+                if row.code:
+                    found.setdefault(row.code.upper(), set()).add(address)
+        return {code: frozenset(addresses) for code, addresses in found.items()}
+
     def profile_for(self, slave: int) -> Profile:
         profile = self.per_slave.get(slave)
         if profile is None:
@@ -187,6 +210,8 @@ class Annotator:
             register = Register(address, value)
             row = rows.get(address)
             if row is not None:
+                if row.words != 1:  # one word of a 32-bit value: its text needs the other word
+                    return None, row.code
                 name_register(register, row, row)
             return register.text, register.code
 

@@ -13,14 +13,17 @@ Counting rules (the table headers say the same):
   answers; exceptions: exception answers, by code. unanswered: requests the pairing stage found no
   answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
   request and both timed.
-- Per parameter (slave, address, and its code when a profile names it): `reads` counts the values
-  read (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent
-  (16#8000 on the ATV71: a marker, so neither a value nor a change); `writes` the values a master
-  asked to write (FC6/16/23 requests), `refused` those whose request got an exception. `last` is the
-  latest value seen on the wire, read or confirmed written (FC6 echo; FC16/23 values of a request
-  confirmed by a normal answer; a broadcast write, which nothing confirms); `changes` counts when that
-  value differs from the previous one. Registers without an address (an answer whose request is not
-  in the capture) are counted in `registers_without_address`, not attached to a parameter.
+- Per parameter (slave, address, and its code when a profile names it), by the rules of the parameter
+  history (render/history.py, which --watch and --report read too): `reads` counts the values read
+  (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent (16#8000 on
+  the ATV71: a marker, not a value) and the parameters of an exception the profile explains as "every
+  parameter read is non-existent or protected" (p.38); `writes` the values a master asked to write
+  (FC6/16/23 requests), `refused` those whose request got an exception. `last` is the latest state
+  seen on the wire: a value read or confirmed written (FC6 echo; FC16/23 values of a request confirmed
+  by a normal answer; a broadcast write, which nothing confirms), or a read status (`last` null,
+  `last_text` and `last_status` the status); `changes` counts when that state differs from the
+  previous one (the lines --watch prints). Registers without an address (an answer whose request is
+  not in the capture) are counted in `registers_without_address`, not attached to a parameter.
 - p95 is the nearest-rank 95th percentile: the smallest time with at least 95 % of the times <= it.
 """
 from __future__ import annotations
@@ -35,16 +38,14 @@ from rich.console import RenderableType
 from dissector.model import Frame, Item, Kind, Noise, Register
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
-from dissector.render.stats_store import (
-    CONFIRM, READ, REFUSED, UNREADABLE as UNREADABLE_READ, WRITE, WRITE_OBSERVED, ParameterRow, new_store,
-)
+from dissector.render import history
+from dissector.render.history import UNREADABLE_STATUSES, History
+from dissector.render.stats_store import ParameterRow
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
-READ_FUNCTIONS = frozenset([3, 4, 23])
-WRITE_FUNCTIONS = frozenset([6, 16, 23])
-# Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
-UNREADABLE = frozenset(["protected", "non-existent"])
+# The parameter rules live in render/history.py; these names are kept for their readers.
+READ_FUNCTIONS, WRITE_FUNCTIONS, UNREADABLE = history.READ_FUNCTIONS, history.WRITE_FUNCTIONS, UNREADABLE_STATUSES
 
 
 @dataclass(slots=True)
@@ -61,31 +62,6 @@ class FunctionStats:
 PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
 
 
-def wire_values(frame: Frame) -> list[tuple[list[Register], bool]]:
-    """The parameter values a good frame establishes, as (registers, written), writes first (FC23
-    writes before it reads): a broadcast write request (nothing will confirm it), an FC6 echo, the
-    request of an FC16/23 normal answer, and the values of a read answer."""
-    kind = frame.kind
-    function = frame.function
-    if kind is Kind.REQUEST:
-        if frame.broadcast and function in WRITE_FUNCTIONS and frame.registers:
-            return [(frame.registers, True)]
-        return []
-    if kind is not Kind.RESPONSE:
-        return []
-    found: list[tuple[list[Register], bool]] = []
-    if function == 6:
-        if frame.registers:
-            found.append((frame.registers, True))
-    elif function in (16, 23):
-        request = frame.request
-        if request is not None and request.crc_ok and request.registers:
-            found.append((request.registers, True))
-    if function in READ_FUNCTIONS and frame.registers:
-        found.append((frame.registers, False))
-    return found
-
-
 def percentile(sorted_values: list[float], fraction: float) -> float:
     """Nearest rank: the smallest value with at least `fraction` of the values <= it."""
     rank = max(1, math.ceil(fraction * len(sorted_values)))
@@ -93,17 +69,18 @@ def percentile(sorted_values: list[float], fraction: float) -> float:
 
 
 class StatsCollector:
-    def __init__(self, profiles: Callable[[], list[Any]] | None = None) -> None:
+    def __init__(self, profiles: Callable[[], list[Any]] | None = None, history: History | None = None) -> None:
         # Which slave got which device profile and why (the annotator's choices(): objects with
         # slave, profile, reason, frame), asked once at the end; None without an annotator that says.
         self.profiles = profiles
         self.functions: dict[tuple[int, int], FunctionStats] = {}  # the Python stages' frames
-        # Per (slave, address): the compiled store (C) or its Python twin, in stream order (stats_store).
-        self.store = new_store()
+        # The parameter history (render/history.py), shared with --watch and --report: per (slave,
+        # address) the compiled store (C) or its Python twin, in stream order (stats_store).
+        self.history = History() if history is None else history
+        self.store = self.history.store
         self.frames = 0
         self.noise_items = 0
         self.noise_bytes = 0
-        self.registers_without_address = 0
         self.first_time: float | None = None
         self.last_time: float | None = None
         self.poll = PollCycle()
@@ -128,12 +105,6 @@ class StatsCollector:
             stats = self.functions[key] = FunctionStats()
         return stats
 
-    def _event(self, slave: int, register: Register, event: int) -> None:
-        if register.address is None:
-            self.registers_without_address += 1
-            return
-        self.store.param(slave, register.address, event, register.value, register.code, register.text)
-
     def add(self, item: Item) -> None:
         if item.time is not None:
             if self.first_time is None:
@@ -148,6 +119,7 @@ class StatsCollector:
         if not item.crc_ok:
             stats.crc_errors += 1
             return
+        self.history.add(item)
         if item.kind is Kind.REQUEST:
             self._add_request(item, stats)
             return
@@ -155,13 +127,8 @@ class StatsCollector:
             code = item.exception_code if item.exception_code is not None else -1
             stats.exceptions[code] = stats.exceptions.get(code, 0) + 1
             self.poll.add_answer(item)
-            request = item.request
-            if request is not None and request.function in WRITE_FUNCTIONS and request.crc_ok:
-                for register in request.registers or ():
-                    self._event(item.slave, register, REFUSED)
         else:
             stats.responses += 1
-            self._add_response_values(item)
         if item.response_time is not None:
             key = round(item.response_time * 1e9)
             times = stats.times
@@ -174,33 +141,6 @@ class StatsCollector:
             stats.broadcasts += 1
         if frame.unanswered:
             stats.unanswered += 1
-        if frame.function in WRITE_FUNCTIONS:
-            # A broadcast write: no answer will confirm it, the request is all there is.
-            event = WRITE_OBSERVED if frame.broadcast else WRITE
-            for register in frame.registers or ():
-                self._event(frame.slave, register, event)
-
-    def _add_response_values(self, frame: Frame) -> None:
-        slave, function = frame.slave, frame.function
-        param = self.store.param
-        # Writes first: FC23 performs its write before its read.
-        written = None
-        if function == 6:
-            written = frame.registers
-        elif function in (16, 23) and frame.request is not None and frame.request.crc_ok:
-            written = frame.request.registers
-        for register in written or ():
-            if register.address is not None:  # an answer without its request confirms nothing
-                param(slave, register.address, CONFIRM, register.value, register.code, register.text)
-        if function in READ_FUNCTIONS and frame.registers:
-            # The hot loop of --stats: one store call a register (the rules are the store's).
-            for register in frame.registers:
-                address = register.address
-                if address is None:
-                    self.registers_without_address += 1
-                    continue
-                event = UNREADABLE_READ if register.status in UNREADABLE else READ
-                param(slave, address, event, register.value, register.code, register.text)
 
     # -- results ------------------------------------------------------------------------------
     def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
@@ -257,6 +197,8 @@ class StatsCollector:
                     "refused": refused,
                     "last": last,
                     "last_text": last_text if last_text is not None or last is None else str(last),
+                    # The last state was a read status (then last is null and last_text the status).
+                    "last_status": last_text if last is None and last_text in UNREADABLE_STATUSES else None,
                     "changes": changes,
                 }
                 for slave, address, code, reads, unreadable, writes, refused, last, last_text, changes
@@ -270,7 +212,7 @@ class StatsCollector:
                 if self.first_time is None or self.last_time is None
                 else self.last_time - self.first_time
             ),
-            "registers_without_address": self.registers_without_address,
+            "registers_without_address": self.history.registers_without_address,
             "functions": functions,
             "parameters": parameters,
             "poll_cycle": self.poll.report(),

@@ -8,12 +8,16 @@ its changes follow the order of the stream whichever side saw each frame.
 
 Events (StatsCollector's rules, render/stats.py):
 - READ: a value read (FC3/4/23 answer): reads + 1, a value seen;
-- UNREADABLE: a read the profile marked protected or non-existent: unreadable + 1, no value;
+- UNREADABLE: a read the profile marked protected or non-existent (16#8000, or an exception the profile
+  explains so, p.38): unreadable + 1, the state becomes that status (`text` is the status);
 - WRITE: a value a request asks to write: writes + 1;
 - WRITE_OBSERVED: a broadcast write, which nothing will confirm: writes + 1, a value seen;
 - REFUSED: a write whose request got an exception: refused + 1;
 - CONFIRM: a value written and confirmed (FC6 echo, FC16/23 request of a normal answer): a value seen.
 A register's code is kept when it has one; CONFIRM sets it on a parameter's first sight only.
+A parameter's state is its last value or read status; `param` answers whether the state changed (the
+first state is no change), and `changes` counts those: the same changes `--watch` prints.
+`rename({slave: namer})` names the kept values of slaves whose profile was chosen after they were read.
 """
 from __future__ import annotations
 
@@ -43,6 +47,8 @@ class ParameterStats:
     last: int | None = None
     last_text: str | None = None  # as the summary names it (scaled with its unit, enumeration text)
     changes: int = 0
+    status: str | None = None  # the last state is this read status, not a value
+    seen: bool = False  # a state (value or status) was seen
 
 
 class ParameterTable:
@@ -53,7 +59,7 @@ class ParameterTable:
     def __init__(self) -> None:
         self._parameters: dict[tuple[int, int], ParameterStats] = {}
 
-    def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None) -> None:
+    def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None) -> bool:
         key = (slave, address)
         stats = self._parameters.get(key)
         created = stats is None
@@ -63,26 +69,44 @@ class ParameterTable:
             stats.code = code
         if event == WRITE:
             stats.writes += 1
-            return
+            return False
         if event == REFUSED:
             stats.refused += 1
-            return
+            return False
         if event == UNREADABLE:
-            stats.unreadable += 1  # 16#8000 stands for "no value", not a value
-            return
-        if event == READ:
-            stats.reads += 1
-        elif event == WRITE_OBSERVED:
-            stats.writes += 1
-        if stats.last is not None and value != stats.last:
+            stats.unreadable += 1  # 16#8000 stands for "no value", not a value: the state is the status
+            changed = stats.seen and stats.status != text
+            stats.status = text
+        else:
+            if event == READ:
+                stats.reads += 1
+            elif event == WRITE_OBSERVED:
+                stats.writes += 1
+            changed = stats.seen and (stats.status is not None or value != stats.last)
+            stats.status = None
+            stats.last = value
+            stats.last_text = text
+        stats.seen = True
+        if changed:
             stats.changes += 1
-        stats.last = value
-        stats.last_text = text
+        return changed
+
+    def rename(self, namers: dict[int, Any]) -> None:
+        for (slave, address), stats in self._parameters.items():
+            namer = namers.get(slave)
+            if namer is None:
+                continue
+            text, code = namer(address, 0 if stats.status is not None or stats.last is None else stats.last)
+            if code is not None:
+                stats.code = code
+            if stats.status is None and stats.last is not None:
+                stats.last_text = text
 
     def parameters(self) -> list[ParameterRow]:
         """By (slave, address); last_text the last value's text, None when nothing names it."""
         return [
-            (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused, s.last, s.last_text, s.changes)
+            (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused,
+             None if s.status is not None else s.last, s.status if s.status is not None else s.last_text, s.changes)
             for (slave, address), s in sorted(self._parameters.items())
         ]
 

@@ -1,26 +1,38 @@
 """`--watch CODE[,CODE...]`: one line per change of a watched parameter, for files and live.
 
-    time  slave code old -> new (unit)
+    frame  time  slave code old -> new (unit)
 
-A parameter's state is what the wire last said of it: a value read (FC3/4/23 answers) or written and
-confirmed (FC6 echo, FC16/23 request confirmed by a normal answer), or a status a device profile gave
-it: `protected`, `non-existent` (16#8000 in a multi-register read, VW3 A3 303 p.38), or an exception
-to a read that covers it (`exception 02 (protected)`: the profile's reading of that exception for
-this address). The first state seen is not a change; an unchanged state prints nothing; a value
-after a status is the parameter readable again. Watched items are given as codes (case-insensitive)
-or register addresses; the device profile names the codes, the watcher knows no device.
+A watch line is a change of the parameter history (render/history.py): the state `--stats` counts in
+`changes` and `--report` draws, so the three cannot disagree. A parameter's state is what the wire last
+said of it: a value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23 request
+confirmed by a normal answer), or a read status a device profile gave it: `protected`, `non-existent`
+(16#8000 in a multi-register read, VW3 A3 303 p.38; or an exception the profile explains as "every
+parameter read is non-existent or protected", said as `protected (exception 02)`). The first state seen
+is not a change; an unchanged state prints nothing; a value after a status is the parameter readable
+again. Values are named as the summary names them; a bit field (a status word) is shown as the manuals
+write it, `16#0231`, with its bits named.
+
+Names are checked: a code no map of the run knows is an error with the nearest known codes, and codes
+need a profile (`-n` has none). A code is matched with the profile that applies to its slave: a value
+read before profile `auto` chose a slave's device is named by that device once it is chosen. In a file,
+lines of a slave whose device `auto` has not chosen yet (and still may) wait, in order, at most
+MAX_WAITING, and are written with the profile finally chosen; live, they are written at once, marked
+`[provisional]` (JSON `"provisional": true`).
 """
 from __future__ import annotations
 
+import difflib
 import json
 from collections.abc import Callable
-from typing import Any
 from dataclasses import dataclass
+from typing import Any
 
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
-from dissector.render.stats import PLAIN_READS, UNREADABLE, wire_values
+from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, History
+from dissector.render.timefmt import Clock
 
+MAX_WAITING = 10_000  # change lines a file decode holds for slaves whose profile is not settled
 
 
 @dataclass(frozen=True, slots=True)
@@ -33,21 +45,27 @@ class Change:
     old: str
     new: str
     unit: str | None
+    column: str = "-"  # the time column as -t formats it
+    provisional: bool = False  # live: the slave's profile may still change how this reads
 
     def line(self) -> str:
-        when = "-" if self.time is None else f"{self.time:.6f}"
         name = self.code or str(self.address)
         unit = f" ({self.unit})" if self.unit else ""
-        return f"{when:>13} {self.slave:>3} {name} {self.old} -> {self.new}{unit}"
+        mark = " [provisional]" if self.provisional else ""
+        return f"{self.frame:>6} {self.column:>12} {self.slave:>3} {name} {self.old} -> {self.new}{unit}{mark}"
 
     def record(self) -> dict[str, object]:
-        return {
+        record: dict[str, object] = {
             "time": self.time, "frame": self.frame, "slave": self.slave, "address": self.address,
             "code": self.code, "old": self.old, "new": self.new, "unit": self.unit,
         }
+        if self.provisional:
+            record["provisional"] = True
+        return record
 
 
-def parse_watch(text: str) -> tuple[frozenset[str], frozenset[int]]:
+def parse_watch(text: str, known: dict[str, frozenset[int]] | None = None) -> tuple[frozenset[str], frozenset[int]]:
+    """Codes (upper case) and addresses; `known`: every code the run's maps have (None: no profile)."""
     codes: set[str] = set()
     addresses: set[int] = set()
     for token in text.split(","):
@@ -65,142 +83,243 @@ def parse_watch(text: str) -> tuple[frozenset[str], frozenset[int]]:
             raise UsageError(f"--watch: {token!r} is neither a parameter code nor an address")
     if not codes and not addresses:
         raise UsageError("--watch: give parameter codes or addresses, e.g. --watch CHCF,HSP")
+    for code in sorted(codes):
+        if known is None:
+            raise UsageError(f"--watch {code}: codes are the device profiles' names, and -n turns profiles off: "
+                             "give register addresses")
+        if code not in known:
+            close = difflib.get_close_matches(code, list(known), n=3)
+            hint = f" (did you mean {', '.join(close)}?)" if close else ""
+            raise UsageError(f"--watch {code}: no map of this run has that parameter code{hint}")
     return frozenset(codes), frozenset(addresses)
 
 
-def value_text(register: Register) -> tuple[str, str | None]:
-    """A register's value as the summary names it, and its unit (only a scaled value has one)."""
+def value_text(register: Register, bits: bool = False) -> tuple[str, str | None]:
+    """A register's value as the summary names it, and its unit (only a scaled value has one); a bit
+    field as the manuals write a status word, `16#0231 (bit names)`."""
     status = register.status
-    if status in UNREADABLE:
+    if status in UNREADABLE_STATUSES:
         return status, None  # type: ignore[return-value]
+    if register.value is None:
+        return register.text or "no value", None
     if register.scaled is not None:
         text = register.text or str(register.scaled)
         unit = register.unit
         if unit and text.endswith(" " + unit):
             text = text[: -len(unit) - 1]
         return text, unit
+    if bits:
+        return f"16#{register.value:04X} ({register.text})" if register.text else f"16#{register.value:04X}", None
     if register.text is not None:
         return f"{register.value} {register.text}", None
     return str(register.value), None
 
 
+@dataclass(slots=True)
+class _State:
+    """What a watched parameter last was: a value (with the function it came by) or a status."""
+
+    value: int | None
+    function: int
+    text: str
+    unit: str | None
+    profile: object  # the profile it was named with
+
+
+@dataclass(slots=True)
+class _Pending:
+    frame: Frame
+    time: float | None
+    column: str
+    key: tuple[int, int]
+    old: _State
+    new: _State
+
+
 class Watcher:
-    """Follows the watched parameters; `add(item)` in stream order, `on_change` gets each change."""
+    """Follows the watched parameters through a parameter history; `add(item)` in stream order (the
+    history is fed by its owner when shared), `on_change` gets each change, `finish()` at the end."""
 
     def __init__(
         self,
         codes: frozenset[str],
         addresses: frozenset[int],
         on_change: Callable[[Change], None],
-        statuses: Callable[[int, int], str | None] | None = None,
+        annotate: object = None,
+        history: History | None = None,
+        clock: Clock | None = None,
+        live: bool = False,
+        known: dict[str, frozenset[int]] | None = None,
     ) -> None:
         self.codes = codes
         self.addresses = addresses
         self.on_change = on_change
-        # What the profile concluded of an address after an exception (annotator knowledge).
-        self.statuses = statuses
-        self.base: float | None = None
-        self._state: dict[tuple[int, int], str] = {}
-        self._codes: dict[tuple[int, int], str | None] = {}
+        self.annotate = annotate
+        self._profile_for = getattr(annotate, "profile_for", None)
+        self._settled: Callable[[int], bool] | None = getattr(annotate, "settled", None)
+        self._choice_frame: Callable[[int], int | None] | None = getattr(annotate, "choice_frame", None)
+        self._device = getattr(annotate, "device", None)
+        self.owns_history = history is None
+        self.history = History(annotate) if history is None else history
+        self.history.listeners.append(self)
+        self.clock = clock if clock is not None else Clock()
+        self.live = live
+        # Addresses any profile of the run names with a watched code: followed for every slave, shown
+        # when the slave's own profile gives them that code.
+        self._candidates = frozenset(addresses).union(*(known.get(code, ()) for code in codes)) if known else addresses
+        self._state: dict[tuple[int, int], _State] = {}
+        self._waiting: list[_Pending] = []
+        self._column: tuple[Frame | None, str] = (None, "-")
+
+    @property
+    def base(self) -> float | None:
+        return self.clock.first
 
     def set_base(self, item: Item) -> None:
-        if self.base is None and item.time is not None:
-            self.base = item.time
+        """Every item captured, before any display filter (the time column's references)."""
+        self.clock.observe([item])
+
+    def observe(self, items: list[Item]) -> None:
+        self.clock.observe(items)
 
     def add(self, item: Item) -> None:
-        self.set_base(item)
-        if item.kind is Kind.NOISE or not item.crc_ok:  # type: ignore[union-attr]
-            return
-        frame: Frame = item  # type: ignore[assignment]
-        if frame.kind is Kind.EXCEPTION:
-            self._exception(frame)
-            return
-        for registers, written in wire_values(frame):
-            self._registers(frame, registers, written)
+        """An item watched (after -Y); with a shared history its owner feeds the history itself."""
+        if self.owns_history:
+            self.clock.observe([item])
+            self.history.add(item)
+        self.done()
 
-    def _watched(self, register: Register) -> bool:
-        if register.address is None:
+    def done(self) -> None:
+        """The items given so far are handled: write what may be written, forget -t d's references."""
+        self.flush()
+        self.clock.keep([])
+
+    # -- the history's listener --------------------------------------------------------------------
+    def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
+        address = register.address
+        if address not in self._candidates:
+            return
+        key = (frame.slave, address)  # type: ignore[assignment]
+        new = self._read(frame, register, event)
+        old = self._state.get(key)  # type: ignore[arg-type]
+        self._state[key] = new  # type: ignore[index]
+        if not changed or old is None:
+            return
+        if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
+            self._column = (frame, self.clock.text(frame))
+        column = self._column[1]
+        time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
+        pending = _Pending(frame, time, column, key, old, new)  # type: ignore[arg-type]
+        if self.live or not self._unknown(frame.slave):
+            self._emit(pending, provisional=self.live and self._unknown(frame.slave))
+        else:
+            self._waiting.append(pending)
+
+    def _unknown(self, slave: int) -> bool:
+        """Profile `auto` has not chosen this slave's device yet, and still may."""
+        if self._settled is None or self._choice_frame is None:
             return False
-        if register.address in self.addresses:
-            return True
-        return register.code is not None and register.code.upper() in self.codes
+        return self._choice_frame(slave) is None and not self._settled(slave)
 
-    def _registers(self, frame: Frame, registers: list[Register] | None, written: bool) -> None:
-        for register in registers or ():
-            if not self._watched(register):
-                continue
-            key = (frame.slave, register.address)  # type: ignore[assignment]
-            if register.code is not None:
-                self._codes[key] = register.code  # type: ignore[index]
-            text, unit = value_text(register) if not written else value_text(_as_written(register))
-            self._set(frame, key, text, unit)  # type: ignore[arg-type]
+    def renamed(self, slave: int) -> None:
+        pass  # states keep their raw values: they are named again when written
 
-    def _exception(self, frame: Frame) -> None:
-        """An exception to a read: each watched address it covers is unreadable for that reason."""
-        request = frame.request
-        if request is None or request.function not in PLAIN_READS or request.start is None:
+    # -- writing -----------------------------------------------------------------------------------
+    def flush(self) -> None:
+        """Write the waiting lines whose slaves are settled, in order (all beyond MAX_WAITING)."""
+        waiting = self._waiting
+        if not waiting:
             return
-        code = frame.exception_code
-        start, quantity = request.start, request.quantity or 1
-        for (slave, address), name in list(self._codes.items()) + self._plain_addresses(frame.slave):
-            if slave != frame.slave or not 0 <= (address - start) & 0xFFFF < quantity:
-                continue
-            status = self.statuses(slave, name is not None, code) if self.statuses is not None else None
-            text = f"exception {code:02X}" if code is not None else "exception"
-            self._set(frame, (slave, address), f"{text} ({status})" if status else text, None)
+        done = 0
+        for pending in waiting:
+            if len(waiting) - done <= MAX_WAITING and self._unknown(pending.frame.slave):
+                break
+            self._emit(pending)
+            done += 1
+        del waiting[:done]
 
-    def _plain_addresses(self, slave: int) -> list[tuple[tuple[int, int], str | None]]:
-        return [((slave, address), None) for address in self.addresses if (slave, address) not in self._codes]
+    def finish(self) -> None:
+        for pending in self._waiting:
+            self._emit(pending)
+        self._waiting.clear()
 
-    def _set(self, frame: Frame, key: tuple[int, int], text: str, unit: str | None) -> None:
-        old = self._state.get(key)
-        self._state[key] = text
-        if old is None or old == text:
+    def _emit(self, pending: _Pending, provisional: bool = False) -> None:
+        slave, address = pending.key
+        code = self._code(slave, address, pending.new)
+        if address not in self.addresses and (code is None or code.upper() not in self.codes):
             return
-        time = None if frame.time is None or self.base is None else frame.time - self.base
-        self.on_change(
-            Change(time, frame.number, key[0], key[1], self._codes.get(key), old, text, unit)
-        )
+        old_text, _ = self._text(slave, address, pending.old)
+        new_text, unit = self._text(slave, address, pending.new)
+        if old_text == new_text:
+            return  # the same once named by the same device
+        self.on_change(Change(pending.time, pending.frame.number, slave, address, code, old_text, new_text, unit,
+                              pending.column, provisional))
+
+    def _read(self, frame: Frame, register: Register, event: int) -> _State:
+        profile = self.history.named_by(frame)
+        function = frame.function
+        if event == UNREADABLE:
+            status = register.status or "unreadable"
+            if frame.kind is Kind.EXCEPTION and frame.exception_code is not None:
+                status = f"{status} (exception {frame.exception_code:02X})"
+            return _State(None, function, status, None, profile)
+        if event != READ:
+            register = _as_written(register)  # a written value has no read status
+        text, unit = value_text(register, self._bits(frame.slave, register.address))  # type: ignore[arg-type]
+        return _State(register.value, function, text, unit, profile)
+
+    def _bits(self, slave: int, address: int) -> bool:
+        if self._device is None:
+            return False
+        row = self._device(slave).rows.get(address)
+        return row is not None and bool(row.bits) and not row.enum
+
+    def _code(self, slave: int, address: int, state: _State) -> str | None:
+        if self._device is None:
+            return None
+        row = self._device(slave).rows.get(address)
+        return None if row is None else row.code
+
+    def _text(self, slave: int, address: int, state: _State) -> tuple[str, str | None]:
+        """A state as the slave's device names it now (named again when its profile changed since)."""
+        if state.value is None or self._profile_for is None or self._profile_for(slave) is state.profile:
+            return state.text, state.unit
+        register = self.annotate.plain_register(slave, state.function, address, state.value)  # type: ignore[attr-defined]
+        return value_text(register, self._bits(slave, address))
 
 
 def _as_written(register: Register) -> Register:
     """A written register has no read status: its value is what was written."""
     if register.status is None:
         return register
-    copy = Register(register.address, register.value, register.code, register.name, register.unit,
+    return Register(register.address, register.value, register.code, register.name, register.unit,
                     register.scaled, register.text)
-    return copy
 
 
-def profile_statuses(annotate: object) -> Callable[[int, bool, int | None], str | None] | None:
-    """The profile's reading of an exception to a read, per address (p.38: the exception that means
-    every parameter read is non-existent or protected; a named one is protected)."""
-    profile_for = getattr(annotate, "profile_for", None)
-    if profile_for is None:
-        return None
-
-    def status(slave: int, named: bool, code: int | None) -> str | None:
-        meaning = getattr(profile_for(slave), "all_protected_exception", None)
-        if code is None or code != meaning:
-            return None
-        return "protected" if named else "non-existent"
-
-    return status
+def known_codes(annotate: object) -> dict[str, frozenset[int]] | None:
+    """Every code the run's maps name (upper case) -> its addresses; None without profiles (-n)."""
+    codes = getattr(annotate, "codes", None)
+    return None if codes is None else codes()
 
 
-def watcher(text: str, write: Callable[[str], None], as_json: bool, annotate: object) -> Watcher:
-    codes, addresses = parse_watch(text)
-    return Watcher(codes, addresses, printer(write, as_json), profile_statuses(annotate))
+def watcher(
+    text: str, write: Callable[[str], None], as_json: bool, annotate: object, history: History | None = None,
+    clock: Clock | None = None, live: bool = False,
+) -> Watcher:
+    known = known_codes(annotate)
+    codes, addresses = parse_watch(text, known)
+    return Watcher(codes, addresses, printer(write, as_json), annotate, history, clock, live, known)
 
 
 class WatchSink:
     """The live capture's sink under --watch: change lines instead of items, handed to a line pump
     (the live view's OutputPump: put(lines), close(), failed, dropped) as their frames arrive."""
 
-    def __init__(self, text: str, pump: Any, as_json: bool, annotate: object) -> None:
+    def __init__(self, text: str, pump: Any, as_json: bool, annotate: object, time_format: str = "r") -> None:
         self._pump = pump
         self._lines: list[str] = []
-        self.watcher = watcher(text, lambda line: self._lines.append(line.rstrip("\n")), as_json, annotate)
+        self.watcher = watcher(text, lambda line: self._lines.append(line.rstrip("\n")), as_json, annotate,
+                               clock=Clock(time_format), live=True)
 
     @property
     def failed(self) -> BaseException | None:

@@ -20,6 +20,7 @@ from dissector.devices.build import build_annotator
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk
 from dissector.pipeline import Dissector
+from dissector.render.history import History
 from dissector.render.stats import StatsCollector
 from dissector.render.stats_store import ParameterTable
 from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
@@ -34,8 +35,8 @@ import noise_accuracy  # noqa: E402
 
 
 def python_stats(data: bytes, annotator: object | None) -> StatsCollector:
-    collector = StatsCollector(getattr(annotator, "choices", None))
-    collector.store = ParameterTable()  # the pure-Python store: the reference
+    # The pure-Python store: the reference.
+    collector = StatsCollector(getattr(annotator, "choices", None), History(annotator, ParameterTable()))
     dissector = Dissector(annotate=annotator)  # type: ignore[arg-type]
     for item in dissector.feed(Chunk(data)) + dissector.finish():
         collector.add(item)
@@ -43,7 +44,7 @@ def python_stats(data: bytes, annotator: object | None) -> StatsCollector:
 
 
 def compiled_stats(data: bytes, annotator: object | None, splits: list[int] | None = None) -> StatsCollector:
-    collector = StatsCollector(getattr(annotator, "choices", None))
+    collector = StatsCollector(getattr(annotator, "choices", None), History(annotator))
     store = collector.engine_store()
     assert store is not None, "the compiled store is not built"
 
@@ -132,7 +133,8 @@ def test_a_parameter_seen_by_both_sides_keeps_the_streams_order() -> None:
     got = assert_same(data, annotator("atv71"))
     (hsp,) = [row for row in got.report()["parameters"] if row["address"] == 3104]
     assert (hsp["code"], hsp["reads"], hsp["unreadable"], hsp["writes"], hsp["refused"]) == ("HSP", 3, 1, 3, 1)
-    assert (hsp["last"], hsp["last_text"], hsp["changes"]) == (6, "0.6 Hz", 4)
+    # 3 -> protected -> 4 -> 5 -> 3 (FC6) -> 6 (FC16): five changes of state, as --watch prints them.
+    assert (hsp["last"], hsp["last_text"], hsp["changes"]) == (6, "0.6 Hz", 5)
     assert got.store.frames >= 8  # the engine counted the writes and the exception
 
 

@@ -66,11 +66,43 @@ def test_p38_marks_and_steps() -> None:
     chcf = by_code["CHCF"]
     assert chcf["step"] and chcf["labels"] == {"3": "IO (I/O profile)"}
     assert chcf["x"] == [0.010157, 0.534233] and chcf["y"] == [3, 3]
-    assert chcf["marks"] == [[1.059949, "protected"], [2.10596, "protected (exception 02)"]]
+    # One story, as the summary and --watch tell it: CHCF protected from frame 6 (16#8000), COP from
+    # frame 10 (exception 02); staying protected is no new mark.
+    assert chcf["marks"] == [[1.059949, "protected"]]
     assert by_code["COP"]["marks"] == [[2.10596, "protected (exception 02)"]]
     assert data["event_counts"] == {
-        "exception": 2, "protection": 5, "crc": 0, "noise": 0, "silence": 0, "unanswered": 0
+        "exception": 2, "protection": 3, "crc": 0, "noise": 0, "silence": 0, "unanswered": 0
     }
+
+
+def test_untimed_events_are_numbered_by_their_frames() -> None:
+    from helpers import run_cli
+
+    for name in ("p38_protection.bin", "noisy_bus.bin"):
+        path = f"/tmp/vw3-report-{name}.html"
+        status, out, err = run_cli(["--report", path, str(CAPTURES / name)])
+        assert (status, out) == (0, "")
+        page = open(path, encoding="utf-8").read()
+        rows = re.findall(r"<tr><td>(#\d+)</td><td>(\w+)</td><td>(\d*)</td><td>([^<]*)</td></tr>", page)
+        expected = {
+            "p38_protection.bin": [
+                ("#2", "protection", "12", "8400 non-existent"),
+                ("#6", "protection", "12", "CHCF (8401) protected"),
+                ("#10", "exception", "12",
+                 "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"),
+                ("#10", "protection", "12", "COP (8402) protected (exception 02)"),
+                ("#12", "exception", "12",
+                 "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"),
+            ],
+        }
+        if name in expected:
+            assert rows == expected[name]
+        # Every event's number is the frame it happened in, as the summary numbers it.
+        status, summary, _ = run_cli([str(CAPTURES / name)])
+        kinds = {int(line.split()[0]): line.split()[3] for line in summary.splitlines() if line.strip()}
+        for number, kind, _slave, _text in rows:
+            shown = kinds[int(number[1:])]
+            assert {"noise": "noise", "crc": None}.get(kind, shown) in (shown, None), (number, kind, shown)
 
 
 def test_noisy_bus_events() -> None:

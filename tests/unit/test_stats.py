@@ -63,19 +63,41 @@ def parameter(report: dict, slave: int, address: int) -> dict:
 
 
 def test_p38_counts_and_parameters() -> None:
+    # p.38 as the summary tells it: frames 6/8 read 16#8000 at CHCF, frames 10/12 are exception 02
+    # (every parameter of the read non-existent or protected): CHCF 2 reads and 4 unreadable, COP 4
+    # and 2, both last seen protected, each changed once (readable -> protected).
     report = collect("p38_protection.pcap").report()
     assert report["frames"] == 12 and report["noise"] == {"items": 0, "bytes": 0}
     assert [(r["slave"], r["function"]) for r in report["functions"]] == [(12, 3)]
     assert counts(row(report, 12, 3)) == (6, 4, {"2": 2}, 0, 0, 6)
     assert parameter(report, 12, 8400) == {
-        "code": None, "reads": 0, "unreadable": 4, "writes": 0, "refused": 0, "last": None, "changes": 0
+        "code": None, "reads": 0, "unreadable": 6, "writes": 0, "refused": 0, "last": None, "changes": 0
     }
     assert parameter(report, 12, 8401) == {
-        "code": "CHCF", "reads": 2, "unreadable": 2, "writes": 0, "refused": 0, "last": 3, "changes": 0
+        "code": "CHCF", "reads": 2, "unreadable": 4, "writes": 0, "refused": 0, "last": None, "changes": 1
     }
     assert parameter(report, 12, 8402) == {
-        "code": "COP", "reads": 4, "unreadable": 0, "writes": 0, "refused": 0, "last": 2, "changes": 0
+        "code": "COP", "reads": 4, "unreadable": 2, "writes": 0, "refused": 0, "last": None, "changes": 1
     }
+    last = {p["address"]: (p["last_text"], p["last_status"]) for p in report["parameters"]}
+    assert last == {8400: ("non-existent", "non-existent"), 8401: ("protected", "protected"),
+                    8402: ("protected", "protected")}
+
+
+def test_p38_stats_table_as_a_user_sees_it() -> None:
+    from helpers import run_cli
+
+    for name in ("p38_protection.pcap", "p38_protection.bin"):
+        status, out, err = run_cli(["--stats", str(CAPTURES / name)])
+        assert status == 0
+        assert out.split("Parameters\n", 1)[1].splitlines()[:6] == [
+            "slave   address  code  reads  unreadable  writes  refused  last          changes",
+            "--------------------------------------------------------------------------------",
+            "   12      8400            0           6       0        0  non-existent        0",
+            "   12      8401  CHCF      2           4       0        0  protected           1",
+            "   12      8402  COP       4           2       0        0  protected           1",
+            "  all  3 params            6          12       0        0                      2",
+        ]
 
 
 def test_p38_response_times_match_the_pcap_timestamps() -> None:
@@ -197,12 +219,12 @@ def test_render_p38() -> None:
         "answer",
         "",
         "Parameters",
-        " slave   address  code  reads  unreadable  writes  refused  last              changes",
-        "─" * 86,
-        "    12      8400            0           4       0        0                          0",
-        "    12      8401  CHCF      2           2       0        0  IO (I/O profile)        0",
-        "    12      8402  COP       4           0       0        0  Cd (command)            0",
-        "   all  3 params            6           6       0        0                          0",
+        " slave   address  code  reads  unreadable  writes  refused  last          changes",
+        "─" * 82,
+        "    12      8400            0           6       0        0  non-existent        0",
+        "    12      8401  CHCF      2           4       0        0  protected           1",
+        "    12      8402  COP       4           2       0        0  protected           1",
+        "   all  3 params            6          12       0        0                      2",
     ]
 
 

@@ -25,7 +25,7 @@ def test_the_compiled_store_is_the_default(monkeypatch: pytest.MonkeyPatch) -> N
 def test_one_story_in_both_stores() -> None:
     events = [
         (12, 3104, READ, 500, "HSP", "50.0 Hz"),
-        (12, 3104, UNREADABLE, 0x8000, "HSP", None),
+        (12, 3104, UNREADABLE, 0, "HSP", "protected"),  # the state becomes the status: a change
         (12, 3104, READ, 500, None, "50.0 Hz"),
         (12, 3104, WRITE, 510, "HSP", "51.0 Hz"),
         (12, 3104, CONFIRM, 510, "HSP", "51.0 Hz"),
@@ -35,28 +35,43 @@ def test_one_story_in_both_stores() -> None:
         (1, 7, CONFIRM, 3, "NEW", None),  # a code on first sight
         (1, 7, CONFIRM, 4, "LATER", "4 things"),  # CONFIRM keeps the first code
         (1, 7, READ, 4, "READ", None),  # a read sets it
+        (5, 1, READ, 3, "X", "3 x"),
+        (5, 1, UNREADABLE, 0, "X", "protected"),  # last seen protected
+        (5, 1, UNREADABLE, 0, "X", "protected"),  # the same state: no change
+        (5, 2, UNREADABLE, 0, None, "non-existent"),  # a first state is no change
     ]
     compiled, python = _summary.Stats(MAX_KEYS), ParameterTable()
-    for event in events:
-        compiled.param(*event)
-        python.param(*event)
+    changed = [(compiled.param(*event), python.param(*event)) for event in events]
+    assert [a for a, b in changed] == [b for a, b in changed] == [
+        False, True, True, False, True, False, False, False, False, True, False, False, True, False, False,
+    ]
     assert compiled.parameters() == python.parameters() == [
         (0, 9001, None, 0, 0, 1, 0, 10, None, 0),  # no text: the tables and JSON show the number
         (1, 7, "READ", 1, 0, 0, 0, 4, None, 1),
-        (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 1),
+        (5, 1, "X", 1, 2, 0, 0, None, "protected", 1),  # last: the status, no value
+        (5, 2, None, 0, 1, 0, 0, None, "non-existent", 0),
+        (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 3),  # 500 -> protected -> 500 -> 510
     ]
+    # A profile chosen later names the values kept of its slave (and leaves statuses as they are).
+    namers = {1: lambda address, value: (f"{value} named", "NAMED"), 5: lambda address, value: ("never", "Y")}
+    compiled.rename(namers)
+    python.rename(namers)
+    assert compiled.parameters() == python.parameters()
+    assert [row[2] for row in python.parameters()] == [None, "NAMED", "Y", "Y", "HSP"]
+    assert [row[8] for row in python.parameters()] == [None, "4 named", "protected", "non-existent", "51.0 Hz"]
 
 
 def test_random_events_same_rows() -> None:
     rng = random.Random(3)
     compiled, python = _summary.Stats(MAX_KEYS), ParameterTable()
     for _ in range(20_000):
+        kind = rng.randrange(6)
         event = (
-            rng.choice([1, 2, 247]), rng.randrange(40), rng.randrange(6), rng.choice([0, 1, 2, 0x8000, 65535]),
-            rng.choice([None, "A", "B"]), rng.choice([None, "x", "y"]),
+            rng.choice([1, 2, 247]), rng.randrange(40), kind, rng.choice([0, 1, 2, 0x8000, 65535]),
+            rng.choice([None, "A", "B"]),
+            rng.choice(["protected", "non-existent"]) if kind == UNREADABLE else rng.choice([None, "x", "y"]),
         )
-        compiled.param(*event)
-        python.param(*event)
+        assert compiled.param(*event) == python.param(*event)
     assert compiled.parameters() == python.parameters()
     assert compiled.parameter_count == python.parameter_count == len(python.parameters())
 

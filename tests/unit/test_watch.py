@@ -9,13 +9,14 @@ from helpers import run_cli
 CAPTURES = ROOT / "captures"
 
 
-def test_p38_chcf_prints_the_two_changes_only() -> None:
-    # Frames 2/4 read 3, 6/8 read 16#8000 (protected), 10/12 draw exception 02: two changes.
-    status, out, err = run_cli([str(CAPTURES / "p38_protection.pcap"), "--watch", "CHCF"])
+def test_p38_is_one_change_per_parameter() -> None:
+    # Frames 2/4 read CHCF 3, 6/8 read 16#8000 (protected), 10/12 draw exception 02 (still protected):
+    # one change, the one the summary notes in frame 6; COP's in frame 10.
+    status, out, err = run_cli([str(CAPTURES / "p38_protection.pcap"), "--watch", "CHCF,COP"])
     assert (status, err) == (0, "")
     assert out.splitlines() == [
-        "     1.059949  12 CHCF 3 IO (I/O profile) -> protected",
-        "     2.105960  12 CHCF protected -> exception 02 (protected)",
+        "     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected",
+        "    10     2.105960  12 COP 2 Cd (command) -> protected (exception 02)",
     ]
 
 
@@ -25,37 +26,96 @@ def test_untimed_capture_codes_case_and_addresses_json() -> None:
     changes = [json.loads(line) for line in out.splitlines()]
     assert [(c["frame"], c["address"], c["code"], c["old"], c["new"]) for c in changes] == [
         (6, 8401, "CHCF", "3 IO (I/O profile)", "protected"),
-        (10, 8401, "CHCF", "protected", "exception 02 (protected)"),
-        (10, 8402, "COP", "2 Cd (command)", "exception 02 (protected)"),
-        (10, 8400, None, "non-existent", "exception 02 (non-existent)"),
+        (10, 8402, "COP", "2 Cd (command)", "protected (exception 02)"),
     ]
     assert all(c["time"] is None for c in changes)
-
-
-def test_commissioning_writes_and_scaled_reads() -> None:
-    status, out, _ = run_cli([str(CAPTURES / "atv71_commissioning.pcap"), "--watch", "CHCF,HSP"])
-    assert status == 0
+    status, out, _ = run_cli([str(CAPTURES / "p38_protection.bin"), "--watch", "chcf,8400,COP"])
     assert out.splitlines() == [
-        "     0.111429   2 CHCF 3 IO (I/O profile) -> 2 SEP (separate)",  # FC6 echo confirms the write
-        "     1.366757   2 HSP 50.0 -> 55.0 (Hz)",
+        "     6            -  12 CHCF 3 IO (I/O profile) -> protected",
+        "    10            -  12 COP 2 Cd (command) -> protected (exception 02)",
+    ]
+
+
+def test_commissioning_writes_scaled_reads_and_status_words() -> None:
+    status, out, _ = run_cli([str(CAPTURES / "atv71_commissioning.pcap"), "--watch", "CHCF,HSP,ETA"])
+    assert status == 0
+    bits = {
+        0x231: "Ready to switch on, Voltage enabled, Quick stop inactive, Remote",
+        0x233: "Ready to switch on, Switched on, Voltage enabled, Quick stop inactive, Remote",
+        0x237: "Ready to switch on, Switched on, Operation enabled, Voltage enabled, Quick stop inactive, Remote",
+    }
+
+    def eta(old: int, new: int) -> str:  # a status word as the manuals write it: 16#0231
+        return f"2 ETA 16#{old:04X} ({bits[old]}) -> 16#{new:04X} ({bits[new]})"
+
+    assert out.splitlines() == [
+        "     8     0.111429   2 CHCF 3 IO (I/O profile) -> 2 SEP (separate)",  # FC6 echo confirms the write
+        "    26     0.404108   " + eta(0x231, 0x233),
+        "    32     0.549622   " + eta(0x233, 0x237),
+        "    66     1.366757   2 HSP 50.0 -> 55.0 (Hz)",
+        "    76     1.596870   " + eta(0x237, 0x233),
+        "   100     2.193622   " + eta(0x233, 0x231),
         # CHCF = 3 refused with exception 07 while running (frame 64) changes nothing; accepted at the end.
-        "     2.289814   2 CHCF 2 SEP (separate) -> 3 IO (I/O profile)",
+        "   104     2.289814   2 CHCF 2 SEP (separate) -> 3 IO (I/O profile)",
     ]
     status, out, _ = run_cli([str(CAPTURES / "atv71_commissioning.pcap"), "--watch", "RFR"])
     lines = out.splitlines()
-    assert lines[0] == "     0.593146   2 RFR 0.0 -> 2.1 (Hz)" and lines[-1] == "     2.242107   2 RFR 0.7 -> 0.0 (Hz)"
+    assert lines[0] == "    34     0.593146   2 RFR 0.0 -> 2.1 (Hz)" and lines[-1] == "   102     2.242107   2 RFR 0.7 -> 0.0 (Hz)"
     assert len(lines) == 26  # 13 steps up to 30.0 Hz, 13 down to 0.0
 
 
-def test_time_column_ignores_the_display_filter() -> None:
-    status, out, _ = run_cli(
-        [str(CAPTURES / "p38_protection.pcap"), "--watch", "CHCF", "-Y", "frame >= 3"]
-    )
+def test_time_column_follows_t_and_ignores_the_display_filter() -> None:
+    capture = str(CAPTURES / "p38_protection.pcap")
+    status, out, _ = run_cli([capture, "--watch", "CHCF", "-Y", "frame >= 3"])
     # -Y chooses the frames watched (frame 4 is the first CHCF seen); times still count from frame 1.
-    assert status == 0 and out.splitlines() == [
-        "     1.059949  12 CHCF 3 IO (I/O profile) -> protected",
-        "     2.105960  12 CHCF protected -> exception 02 (protected)",
-    ]
+    assert status == 0 and out.splitlines() == ["     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected"]
+    # The same time column as the summary line of frame 6 with the same -t.
+    status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "e"])
+    assert out.splitlines() == ["     6 1767225601.069064  12 CHCF 3 IO (I/O profile) -> protected"]
+    status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "ud"])
+    assert out.splitlines() == ["     6 2026-01-01 00:00:01.069064  12 CHCF 3 IO (I/O profile) -> protected"]
+    status, out, _ = run_cli([capture, "--watch", "CHCF", "-t", "d"])  # from frame 5, captured before
+    assert out.splitlines() == ["     6     0.009832  12 CHCF 3 IO (I/O profile) -> protected"]
+
+
+def test_misspelt_and_unknown_names_are_errors_with_suggestions() -> None:
+    capture = str(CAPTURES / "p38_protection.pcap")
+    for value, message in [
+        ("CHFC", "--watch CHFC: no map of this run has that parameter code (did you mean CHCF?)"),
+        ("FOO", "--watch FOO: no map of this run has that parameter code"),
+        ("CHCF,HPS", "--watch HPS: no map of this run has that parameter code (did you mean HSP"),
+    ]:
+        status, out, err = run_cli([capture, "--watch", value])
+        assert (status, out) == (2, "") and err.startswith(f"vw3-decode: {message}"), (value, err)
+        assert len(err.splitlines()) == 1
+    status, out, err = run_cli([capture, "--watch", "ETA", "-n"])
+    assert (status, out) == (2, "") and err == (
+        "vw3-decode: --watch ETA: codes are the device profiles' names, and -n turns profiles off: "
+        "give register addresses\n"
+    )
+    assert run_cli([capture, "--watch", "8401", "-n"]) == (
+        0, "     6     1.059949  12 8401 3 -> 32768\n", ""
+    )
+
+
+def test_a_value_read_before_the_profile_is_chosen_is_named_by_it(tmp_path) -> None:
+    # Slave 12's first request writes LFR (8502) = 296 before any answer says it is an Altivar; its
+    # answer decides (traffic fits the ATV71 map): the write reads 29.6 Hz, by address and by code.
+    from helpers import rtu
+
+    capture = tmp_path / "late.bin"
+    request = rtu("0C 17 0C 81 00 02 21 35 00 02 04 00 0F 01 28")  # FC23 read 3201..3202, write 8501..8502
+    answer = rtu("0C 17 04 02 31 00 95")
+    request2 = rtu("0C 17 0C 81 00 02 21 35 00 02 04 00 0F 01 CD")  # LFR = 461 -> 46.1 Hz
+    capture.write_bytes(request + answer + request2 + answer)
+    for name in ("8502", "LFR", "lfr"):
+        status, out, err = run_cli([str(capture), "--watch", name])
+        assert (status, err) == (0, ""), err
+        assert out.splitlines() == ["     4            -  12 LFR 29.6 -> 46.1 (Hz)"]  # confirmed by its answer, name
+    # --stats names the value kept from before the choice by the device chosen.
+    status, out, _ = run_cli([str(capture), "--stats", "--json"])
+    (lfr,) = [row for row in json.loads(out)["parameters"] if row["address"] == 8502]
+    assert (lfr["code"], lfr["last"], lfr["last_text"], lfr["changes"]) == ("LFR", 461, "46.1 Hz", 1)
 
 
 def test_bad_watch_lists_are_one_line_errors() -> None:

@@ -13,10 +13,12 @@ class ReportFile:
     """The report being collected and the file it goes to, opened first so that a bad path fails
     before the capture is decoded (as -w does)."""
 
-    def __init__(self, path: str, annotate: object, titles: list[str]) -> None:
+    def __init__(self, path: str, annotate: object, titles: list[str], stats: StatsCollector | None = None) -> None:
         self.path = path
-        self.collector = ReportCollector(annotate)
-        self.stats = StatsCollector(getattr(annotate, "choices", None))
+        # The run's statistics and their parameter history (render/history.py): the report draws
+        # what they count.
+        self.stats = stats if stats is not None else StatsCollector(getattr(annotate, "choices", None))
+        self.collector = ReportCollector(annotate, self.stats.history)
         self.title = "vw3-decode report: " + ", ".join(titles) if titles else None
         try:
             self.stream = open(path, "w", encoding="utf-8")

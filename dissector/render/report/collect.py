@@ -1,18 +1,21 @@
 """What the HTML report draws, collected in one pass over the decoded items with bounded memory.
 
-- Parameter trends: every value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23
+- Parameter trends: the parameter history's states (render/history.py, the one --stats counts and
+  --watch prints): every value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23
   request with a normal answer), as the device profile scaled it (`Register.scaled`, its unit), or the
   raw word for enumerations and bit fields (drawn as steps, with the profile's texts as labels), or
   the raw word when the map gives no scale. A status (`protected`, `non-existent`, or an exception the
   profile explains so) is no value: it opens an unreadable span, which the next value closes
-  ("readable again"); both moments are marks on the chart and events on the timeline.
+  ("readable again"); both moments are marks on the chart and events on the timeline. Values read
+  before profile `auto` chose a slave's device are scaled again by that device once it is chosen.
 - Points are downsampled per pixel column: each of at most COLUMNS columns of the capture's span
   keeps its first, lowest, highest and last point, so a spike or a dip of one sample survives, and a
   1 GB capture draws as fast as a small one. The span is not known while streaming: columns start
   narrow and double in width (merging pairs) whenever the capture outgrows 2 x COLUMNS of them.
 - Events: exceptions, protections, CRC errors, noise bursts, silences inside frames (the timing
   warnings), unanswered requests; counted per column for the timeline, the first MAX_EVENTS listed.
-The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise.
+The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise
+(then `origin` is 0 and every x is the frame number itself: events at frames 2, 6, 10 say #2, #6, #10).
 """
 from __future__ import annotations
 
@@ -21,8 +24,9 @@ from array import array
 from dataclasses import dataclass, field
 from typing import Any
 
+from dissector.devices.maps import interpret
 from dissector.model import Frame, Item, Kind, Register
-from dissector.render.stats import PLAIN_READS, UNREADABLE, wire_values
+from dissector.render.history import UNREADABLE, History
 
 COLUMNS = 600
 MAX_SERIES = 400
@@ -63,6 +67,17 @@ class Columns:
 
     def __len__(self) -> int:
         return len(self.done) // 8
+
+    def remap(self, convert: object) -> None:
+        """Every y through `convert` (a profile chosen later scales raw words); each column's lowest
+        and highest points are found again, since a signed reading reorders them."""
+        done = self.done
+        for index in range(0, len(done), 8):
+            points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]  # type: ignore[operator]
+            low = min(points, key=lambda point: point[1])
+            high = max(points, key=lambda point: point[1])
+            for k, (x, y) in enumerate((points[0], low, high, points[3])):
+                done[index + 2 * k], done[index + 2 * k + 1] = x, y
 
     def compact(self, origin: float, width: float) -> None:
         """Merge the finished columns that fall in one column of `width` (widths only grow by
@@ -119,9 +134,13 @@ class Series:
 
 
 class ReportCollector:
-    def __init__(self, annotate: object = None) -> None:
-        profile_for = getattr(annotate, "profile_for", None)
-        self._profile_for = profile_for
+    def __init__(self, annotate: object = None, history: History | None = None) -> None:
+        """`history`: the run's parameter history, fed by its owner (StatsCollector); None: one of its
+        own, fed by add()."""
+        self._device = getattr(annotate, "device", None)
+        self.owns_history = history is None
+        self.history = History(annotate) if history is None else history
+        self.history.listeners.append(self)
         self.timed: bool | None = None
         self.origin: float | None = None
         self.width = 0.0
@@ -200,10 +219,8 @@ class ReportCollector:
                 f"exception {code:02X} to function {frame.function & 0x7F}" + (f": {text}" if text else "")
                 if code is not None else "exception",
             )
-            self._exception(x, frame, code)
-            return
-        for registers, written in wire_values(frame):
-            self._values(x, frame, registers, written)
+        if self.owns_history:
+            self.history.add(frame)
 
     def _event(self, x: float, kind: str, slave: int | None, text: str) -> None:
         self.event_counts[kind] += 1
@@ -225,89 +242,84 @@ class ReportCollector:
             series = self.series[key] = Series(slave, register.address)  # type: ignore[index, arg-type]
         return series
 
-    def _values(self, x: float, frame: Frame, registers: list[Register] | None, written: bool) -> None:
-        if not registers:
-            return
+    # -- the history's listener --------------------------------------------------------------------
+    def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
+        """A register that set its parameter's state: a point, or an unreadable span's start or end."""
+        x = self._x(frame)  # the item's own x (add() saw it first: idempotent)
         slave = frame.slave
+        series = self.series.get((slave, register.address))  # type: ignore[arg-type]
+        if series is None:
+            series = self._series(slave, register)
+            if series is None:
+                return
+        if series.code is None and register.code is not None:
+            series.code, series.name = register.code, register.name
+        if event == UNREADABLE:
+            status = register.status or "unreadable"
+            if series.status != status:  # a span opens (the first state too: the chart starts unreadable)
+                series.status = status
+                how = f" (exception {frame.exception_code:02X})" if frame.kind is Kind.EXCEPTION else ""
+                self._mark(series, x, status + how)
+                self._event(x, "protection", slave, f"{_name(series)} {status}{how}")
+            return
+        scaled = register.scaled
+        if scaled is not None:
+            y = float(scaled)
+            if series.unit is None:
+                series.unit = register.unit
+        else:
+            y = float(register.value)  # type: ignore[arg-type]
+            text = register.text
+            if text is not None:  # an enumeration or a bit field: the profile names the word
+                series.step = True
+                labels = series.labels
+                if register.value not in labels and len(labels) < MAX_LABELS:
+                    labels[register.value] = text  # type: ignore[index]
+        if series.status is not None:
+            self._mark(series, x, f"readable again ({series.status} before)")
+            self._event(x, "protection", slave, f"{_name(series)} readable again")
+            series.status = None
+        series.values += 1
+        # Columns.add inlined: this runs once per register value of the capture.
         col = self._col(x)
-        all_series = self.series
-        for register in registers:
-            address = register.address
-            if address is None:
-                continue
-            series = all_series.get((slave, address))
-            if series is None:
-                series = self._series(slave, register)
-                if series is None:
-                    continue
-            if series.code is None and register.code is not None:
-                series.code, series.name = register.code, register.name
-            status = None if written else register.status
-            if status in UNREADABLE:
-                self._unreadable(x, frame, series, status)  # type: ignore[arg-type]
-                continue
-            scaled = register.scaled
-            if scaled is not None:
-                y = float(scaled)
-                if series.unit is None:
-                    series.unit = register.unit
-            else:
-                y = float(register.value)
-                text = register.text
-                if text is not None:  # an enumeration or a bit field: the profile names the word
-                    series.step = True
-                    labels = series.labels
-                    if register.value not in labels and len(labels) < MAX_LABELS:
-                        labels[register.value] = text  # type: ignore[assignment]
-            if series.status is not None:
-                self._mark(series, x, f"readable again ({series.status} before)")
-                self._event(x, "protection", slave, f"{_name(series)} readable again")
-                series.status = None
-            series.values += 1
-            # Columns.add inlined: this runs once per register value of the capture.
-            columns = series.columns
-            done = columns.done
-            if col != columns.col:
-                columns.col = col
-                done.extend((x, y, x, y, x, y, x, y))
-                continue
-            base = len(done) - 8
-            if y < done[base + 3]:
-                done[base + 2] = x
-                done[base + 3] = y
-            elif y > done[base + 5]:
-                done[base + 4] = x
-                done[base + 5] = y
-            done[base + 6] = x
-            done[base + 7] = y
+        columns = series.columns
+        done = columns.done
+        if col != columns.col:
+            columns.col = col
+            done.extend((x, y, x, y, x, y, x, y))
+            return
+        base = len(done) - 8
+        if y < done[base + 3]:
+            done[base + 2] = x
+            done[base + 3] = y
+        elif y > done[base + 5]:
+            done[base + 4] = x
+            done[base + 5] = y
+        done[base + 6] = x
+        done[base + 7] = y
 
-    def _unreadable(self, x: float, frame: Frame, series: Series, status: str) -> None:
-        if series.status == status:
+    def renamed(self, slave: int) -> None:
+        """The slave's profile changed: its series are read again as the new device reads them (the
+        raw words kept for unscaled series are scaled, enumerations and bit fields become steps)."""
+        if self._device is None:
             return
-        series.status = status
-        self._mark(series, x, status)
-        self._event(x, "protection", frame.slave, f"{_name(series)} {status}")
-
-    def _exception(self, x: float, frame: Frame, code: int | None) -> None:
-        """An exception the profile reads as "every parameter read is non-existent or protected"."""
-        request = frame.request
-        if request is None or request.function not in PLAIN_READS or request.start is None:
-            return
-        if self._profile_for is None or code is None:
-            return
-        if code != getattr(self._profile_for(frame.slave), "all_protected_exception", None):
-            return
-        start, quantity = request.start, request.quantity or 1
-        for address in range(start, start + quantity):
-            series = self.series.get((frame.slave, address & 0xFFFF))
-            if series is None:
+        rows = self._device(slave).rows
+        for (owner, address), series in self.series.items():
+            if owner != slave or series.unit is not None or series.step:
+                continue  # already read by a device: its points are no raw words
+            row = rows.get(address)
+            if row is None or row.words != 1:
                 continue
-            status = "protected" if series.code is not None else "non-existent"
-            label = f"{status} (exception {code:02X})"
-            if series.status != label:
-                series.status = label
-                self._mark(series, x, label)
-                self._event(x, "protection", frame.slave, f"{_name(series)} {label}")
+            series.code, series.name = row.code, row.name
+            if row.enum or row.bits:
+                series.step = True
+                for y in series.columns.done[1::2]:
+                    value = int(y)
+                    if value not in series.labels and len(series.labels) < MAX_LABELS and 0 <= value <= 0xFFFF:
+                        series.labels[value] = interpret(row, value)[1]  # type: ignore[assignment]
+            elif row.scale is not None or row.signed:
+                series.unit = row.unit
+                series.columns.remap(lambda y, row=row: float(interpret(row, int(y) & 0xFFFF)[0]))  # type: ignore[arg-type]
 
     @staticmethod
     def _mark(series: Series, x: float, text: str) -> None:
@@ -321,17 +333,18 @@ class ReportCollector:
         """Everything the page's script draws, JSON-ready, x relative to `origin`. With points=False
         the parameters come without their x/y lists: `parameters_json` writes those one series at a
         time, so that the points of a large report are never all Python objects at once."""
-        origin = self.origin or 0.0
         if self.last_x is not None:
-            while (self.last_x - origin) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
+            while (self.last_x - (self.origin or 0.0)) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
                 self._double()
         digits = self._digits()
+        origin = self._shift()
         parameters = [self._parameter(key, series, points) for key, series in self._drawn()]
         columns = []
         width = self.width
         for kind in EVENT_KINDS:
             counts = self.event_columns[kind]
-            columns.append({"kind": kind, "x": [round(col * width, digits) for col in sorted(counts)],
+            start = (self.origin or 0.0) - origin  # columns count from the first item's x
+            columns.append({"kind": kind, "x": [round(start + col * width, digits) for col in sorted(counts)],
                             "n": [counts[col] for col in sorted(counts)]})
         return {
             "timed": bool(self.timed),
@@ -356,11 +369,15 @@ class ReportCollector:
     def _digits(self) -> int:
         return 6 if self.timed else 0
 
+    def _shift(self) -> float:
+        """What the data's x are relative to: the first item's time, or 0 (frame numbers as they are)."""
+        return (self.origin or 0.0) if self.timed else 0.0
+
     def _drawn(self) -> list[tuple[tuple[int, int], Series]]:
         return [(key, series) for key, series in sorted(self.series.items()) if series.values or series.marks]
 
     def _parameter(self, key: tuple[int, int], series: Series, points: bool) -> dict[str, Any]:
-        origin, digits = self.origin or 0.0, self._digits()
+        origin, digits = self._shift(), self._digits()
         entry: dict[str, Any] = {
             "slave": key[0],
             "address": key[1],
@@ -376,7 +393,7 @@ class ReportCollector:
         if points:
             columns = series.columns
             columns.close()
-            columns.compact(origin, self.width)
+            columns.compact(self.origin or 0.0, self.width)
             xs, ys = columns.points()
             entry["x"] = [round(x - origin, digits) for x in xs]
             entry["y"] = [_number(y) for y in ys]
