@@ -67,10 +67,14 @@ class Sinks:
         self.env = env
         self.json = args.output.json
         self.predicate: Callable[[dict], bool] | None = None
+        self._last_time: float | None = None
         if args.filter is not None:
-            from dissector.render.filters import compile_filter
+            from dissector.render.filters import FilterContext, compile_filter
 
-            self.predicate = compile_filter(args.filter)
+            # The time column's references (time_relative, time_delta) and the maps' codes.
+            codes = getattr(annotate, "codes", None)
+            self.filter_context = FilterContext(codes=frozenset(codes()) if codes is not None else None)
+            self.predicate = compile_filter(args.filter, self.filter_context)
         self.stats = None
         if args.stats or args.watch is not None or args.report is not None:
             # One parameter history for --stats, --watch and --report (render/history.py): the
@@ -156,6 +160,7 @@ class Sinks:
         if self.bus is not None:
             self.bus.add_items(items)  # the bus as it was, whatever -Y shows
         if predicate is not None:
+            self._filter_times(items)
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
             items = [item for item, _record in pairs]
@@ -182,6 +187,27 @@ class Sinks:
             if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
             self.output.write(items, self.extra, records)
+
+    def restart_times(self) -> None:
+        """A new input: its times count from its own first item (as the time column)."""
+        if self.predicate is not None:
+            self.filter_context.first = None
+            self._last_time = None
+
+    def _filter_times(self, items: list[Item]) -> None:
+        """time_relative and time_delta for -Y: from every item captured, whatever the filter keeps."""
+        context = self.filter_context
+        previous: dict[int, float | None] = {}
+        last = self._last_time
+        for item in items:
+            if item.time is None:
+                continue
+            if context.first is None:
+                context.first = item.time
+            previous[item.number] = last
+            last = item.time
+        self._last_time = last
+        context.previous = previous
 
     def _up_to_count(self, items: list[Item]) -> list[Item]:
         """Items up to and including the frame that reaches -c N; then the decoding stops."""
@@ -313,6 +339,7 @@ def _decode_inputs(
 
                 sinks.bus.new_input(mode, line_settings(path, source_format, args.baud if args.baud_given else None))
             sinks.output.new_input(title)
+            sinks.restart_times()
             sinks.extra = {"file": title} if title is not None else None
 
             def warn() -> None:
@@ -379,6 +406,11 @@ def run(argv: list[str] | None, env: Environment) -> int:
         env.stderr.write(f"{PROG}: {error}\n")
         return ExitStatus.BAD_INPUT
     args.files = [*args.read, *args.files]
+    if getattr(args, "glossary", None) or "help" in (args.filter or []):
+        from dissector.render.filters import field_listing  # -G fields, -Y help: as tshark -G fields
+
+        env.stdout.write(field_listing())
+        return ExitStatus.OK
     try:
         if args.live or args.detect is not None:
             if args.live is None:

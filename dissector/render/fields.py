@@ -3,7 +3,8 @@
 A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`, ...), a key inside
 `fields` as `fields.KEY`, `time_relative`, `time_delta` or `time_delta_displayed` (seconds, as tshark's
 frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
-...), which has one occurrence per register (and bit) the frame carries. Lists (`warnings`, `notes`)
+...), which has one occurrence per register (and bit) the frame carries, empty where that register has
+no such key, so that the register columns of a line stay aligned. Lists (`warnings`, `notes`)
 have one occurrence per element. As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
 goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
@@ -107,8 +108,10 @@ def _text(value: Any) -> str:
 def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
     head, _dot, rest = key.partition(".")
     if head in REGISTER_FIELDS:
+        # One occurrence per register, empty where the register has no such key (8400 has no code):
+        # the columns of one frame line up, and -E occurrence=f names the same register in each.
         elements = (record.get("registers") or []) + (record.get("bits") or [])
-        return [element[head] for element in elements if element.get(head) is not None]
+        return [element.get(head) for element in elements]
     value = record.get(head)
     if rest:
         for part in rest.split("."):

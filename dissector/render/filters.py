@@ -12,10 +12,16 @@ Syntax, close to Wireshark's:
     not / !   and / &&   or / ||   ( )      strings in double quotes (\\" and \\\\ escapes), 0x.. hex,
                                             16#8000 (IEC, as the notes print values), true / false
 
-Field names are the JSON keys. Frame fields: frame, kind, offset, length, time, raw, mode, slave,
-function, function_name, crc_ok, crc, crc_expected, broadcast, start, quantity, subfunction,
-subfunction_name, exception_code (alias: exception), exception_name, request_frame, response_frame,
-response_time, unanswered, reason, warnings, notes.
+Field names are the keys `-T fields` takes (`-Y help` lists them). Frame fields: frame, kind, offset,
+length, time, raw, mode, slave, function, function_name, crc_ok, crc, crc_expected, broadcast, start,
+quantity, subfunction, subfunction_name, exception_code (alias: exception), exception_name,
+exception_meaning, span_label, request_frame, response_frame, response_time, unanswered, reason,
+warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed it (`fields.start`,
+`fields.byte_count`; bytes as hex text); `registers`, `bits`, `objects`, `fields` alone test presence.
+`time` is the JSON's (seconds since the epoch); `time_relative` the seconds since the first item of
+the input, and `time_delta` since the item captured before, as the time column shows them (tshark's
+frame.time_relative and frame.time_delta). A value of an enumerated field that does not exist is an
+error naming the nearest ones: kind, mode, status, and code (the parameter codes of the run's maps).
 
 Register fields: address, value, code, name, unit, scaled, text, status, source, label. A frame carries
 several registers, so these tests ask "is there a register such that...". The rule:
@@ -90,6 +96,39 @@ FRAME_FIELDS: dict[str, str] = {
     "reason": "str",
     "warnings": "list",
     "notes": "list",
+    "exception_meaning": "str",
+    "span_label": "str",
+    "file": "str",
+    "registers": "struct",
+    "bits": "struct",
+    "objects": "struct",
+    "fields": "struct",
+}
+# Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
+TIME_FILTER_FIELDS: dict[str, str] = {"time_relative": "number", "time_delta": "number"}
+FIELD_HELP: dict[str, str] = {
+    "frame": "item number, 1-based", "kind": "request, response, exception or noise",
+    "offset": "byte offset of the item in the input", "length": "bytes in the item",
+    "time": "seconds since the epoch of the item's first byte", "raw": "the item's bytes, lowercase hex",
+    "mode": "rtu or ascii", "slave": "slave address (0: broadcast)", "function": "function code",
+    "function_name": "function name", "crc_ok": "the CRC/LRC checks", "crc": "received check value",
+    "crc_expected": "computed check value", "broadcast": "a request to slave 0",
+    "start": "first address", "quantity": "count", "subfunction": "FC8 sub-function",
+    "subfunction_name": "FC8 sub-function name", "exception_code": "exception code (alias: exception)",
+    "exception_name": "the spec's exception name", "exception_meaning": "what it means on the device",
+    "span_label": "the addresses as shown (PLC style)", "request_frame": "the request a response answers",
+    "response_frame": "the response that answered a request", "response_time": "seconds after the request",
+    "unanswered": "a request no response came to", "reason": "why noise is no frame",
+    "warnings": "warnings (list of texts)", "notes": "notes (list of texts)",
+    "file": "the input, when several are decoded", "registers": "register values (presence)",
+    "bits": "coils and inputs (presence)", "objects": "FC43 objects (presence)",
+    "fields": "the PDU's fields (presence); fields.KEY one of them",
+    "time_relative": "seconds since the first item of the input",
+    "time_delta": "seconds since the item captured before",
+    "address": "register address (also as shown: 40001)", "value": "register value", "code": "parameter code",
+    "name": "parameter name", "unit": "unit", "scaled": "scaled value", "text": "the value's text",
+    "status": "ok, protected, non-existent or ambiguous", "source": "where the map row comes from",
+    "label": "the address as shown (PLC style)",
 }
 REGISTER_FIELDS: dict[str, str] = {
     "address": "number",
@@ -140,7 +179,7 @@ _TOKEN = re.compile(
     (?P<space>\s+)
   | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?)(?![0-9A-Za-z_#]))
   | (?P<string>")
-  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
   | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!|&|~)
   | (?P<punct>\.\.|[(){},])
     """,
@@ -246,8 +285,29 @@ def _elements(item: Item) -> list[dict[str, Any]]:
     return elements + synthesized if synthesized else elements
 
 
+@dataclass(slots=True)
+class FilterContext:
+    """What a filter needs beyond the item: the capture's first time and each item's previous captured
+    time (the time column's references, set by the caller as items are captured, before filtering),
+    and the parameter codes the run's maps know (None: not checked)."""
+
+    first: float | None = None
+    previous: dict[int, float | None] | None = None  # frame -> time of the item captured before
+    codes: frozenset[str] | None = None
+
+    def seconds(self, item: Item, key: str) -> float | None:
+        time = item.get("time")
+        if not isinstance(time, (int, float)):
+            return None
+        if key == "time_relative":
+            return None if self.first is None else time - self.first
+        before = (self.previous or {}).get(item.get("frame"))  # type: ignore[arg-type]
+        return 0.0 if before is None else time - before
+
+
 class _Parser:
-    def __init__(self, text: str) -> None:
+    def __init__(self, text: str, context: FilterContext | None = None) -> None:
+        self.context = context or FilterContext()
         self.text = text
         self.tokens = tokenize(text)
         self.index = 0
@@ -341,22 +401,43 @@ class _Parser:
     def parse_test(self) -> tuple[Test, bool]:
         name_token = self.advance()
         field = ALIASES.get(name_token.value, name_token.value)
-        if field in FRAME_FIELDS:
+        inner = None
+        if field.startswith("fields.") and field.count(".") == 1:
+            register, ftype, inner = False, "any", field[7:]
+        elif "." in field:
+            raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value", name_token)
+        elif field in FRAME_FIELDS:
             register, ftype = False, FRAME_FIELDS[field]
         elif field in REGISTER_FIELDS:
             register, ftype = True, REGISTER_FIELDS[field]
+        elif field in TIME_FILTER_FIELDS:
+            register, ftype = False, TIME_FILTER_FIELDS[field]
+        elif field == "time_delta_displayed":
+            raise self.error("time_delta_displayed depends on what is shown, so it cannot choose it: "
+                             "use time_delta", name_token)
         else:
             raise self.error(f"unknown field {name_token.text!r}{self._suggest(name_token.text)}", name_token)
+        context = self.context
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
                 return None if reg is None else reg.get(field)
+            if inner is not None:
+                fields = item.get("fields")
+                return fields.get(inner) if isinstance(fields, dict) else None
+            if field in TIME_FILTER_FIELDS:
+                return context.seconds(item, field)
             return item.get(field)
 
         token = self.token
+        if ftype == "struct":
+            if not (self.at("end") or self.at("punct", ")") or self.at("keyword", "and", "or") or self.at("op", "&&", "||")):
+                hint = " (fields.KEY tests one of its keys)" if field == "fields" else ""
+                raise self.error(f"{field} is a structure: alone, it tests its presence{hint}", token)
+            return (lambda item, reg: is_present(get(item, reg))), register
         if self.at("op", "&"):
             self.advance()
-            if ftype != "number":
+            if ftype not in ("number", "any"):
                 raise self.error(f"& tests bits of a number; {field} is a {_TYPE_WORDS[ftype]}", token)
             mask_token = self.token
             mask = self.parse_value(field, ftype)
@@ -365,7 +446,7 @@ class _Parser:
             return (lambda item, reg: any_bit(get(item, reg), mask)), register
         if self.at("keyword", "matches") or self.at("op", "~"):
             self.advance()
-            if ftype not in ("str", "list"):
+            if ftype not in ("str", "list", "any"):
                 raise self.error(f"matches needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
             pattern_token = self.token
             pattern = _regex(self.parse_value(field, "str"), self.text, pattern_token.position)
@@ -388,12 +469,16 @@ class _Parser:
                     raise self.error(f"{field} is a list of texts: use == or contains", token)
                 return (lambda item, reg: any(v == value for v in get(item, reg) or ())), register
             self._check_choice(field, value, value_token)
+            if field == "time" and isinstance(value, (int, float)) and 0 <= value < 1e9 and op != "!=":
+                raise self.error(
+                    f"time is seconds since the epoch (as --json prints it), and {value_token.text} is no date: "
+                    "time_relative counts from the first item, as the time column", value_token)
             if field == "address":
                 return address_test(op, value), register
             return (lambda item, reg: match_op(op, get(item, reg), value)), register
         if self.at("keyword", "contains"):
             self.advance()
-            if ftype not in ("str", "list"):
+            if ftype not in ("str", "list", "any"):
                 raise self.error(f"contains needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
             value = self.parse_value(field, "str")
             if ftype == "list":
@@ -425,6 +510,14 @@ class _Parser:
                 raise self.error(f"{field} is a number, not {self._describe(token)}")
             self.advance()
             return token.value
+        if ftype == "any":  # a key of the PDU's fields: a number, a text (bytes as hex), true or false
+            if token.kind == "number" or token.kind == "string":
+                self.advance()
+                return token.value
+            if self.at("keyword", "true", "false"):
+                self.advance()
+                return token.value == "true"
+            raise self.error(f"{field} takes a number or a text in double quotes, not {self._describe(token)}")
         if token.kind != "string":
             hint = ' (strings go in double quotes: "...")' if token.kind in ("name", "number") else ""
             raise self.error(f"{field} is a text, not {self._describe(token)}{hint}")
@@ -469,6 +562,17 @@ class _Parser:
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:
         choices = CHOICES.get(field)
+        if field == "code" and self.context.codes is not None:
+            choices = tuple(sorted(self.context.codes))
+            if isinstance(value, str) and value.upper() in self.context.codes:
+                return  # compared as the maps spell it below
+            if choices and value not in choices:
+                import difflib
+
+                close = difflib.get_close_matches(str(value).upper(), choices, n=3)
+                hint = f" (did you mean {', '.join(map(repr, close))}?)" if close else ""
+                raise self.error(f"code {value!r} is no parameter code of this run's maps{hint}", token)
+            return
         if choices and value not in choices:
             import difflib
 
@@ -486,12 +590,27 @@ class _Parser:
     def _suggest(name: str) -> str:
         import difflib
 
-        names = [*FRAME_FIELDS, *REGISTER_FIELDS, *ALIASES]
+        names = [*FRAME_FIELDS, *REGISTER_FIELDS, *ALIASES, *TIME_FILTER_FIELDS]
         close = difflib.get_close_matches(name.lower(), names, n=1)
         return f" (did you mean {close[0]}?)" if close else ""
 
 
-_TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts"}
+_TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts",
+               "struct": "structure", "any": "value"}
+
+
+def field_listing() -> str:
+    """`-Y help` (and `-G fields`): every field a filter and -T fields know, its type and meaning."""
+    lines = ["Display filter and -T fields keys (-Y EXPR, -e KEY); register keys test one register at a time:"]
+    groups = [("frame", FRAME_FIELDS), ("time", TIME_FILTER_FIELDS), ("register", REGISTER_FIELDS)]
+    for group, fields in groups:
+        for name, ftype in fields.items():
+            lines.append(f"{name:<22} {group:<9} {_TYPE_WORDS[ftype]:<14} {FIELD_HELP.get(name, '')}")
+    lines.append(f"{'fields.KEY':<22} {'frame':<9} {'value':<14} a key of the PDU as parsed (fields.start)")
+    lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
+    lines.append("operators: == != < <= > >= & in {..} a..b contains matches ~ and or not ( ); "
+                 "values: 12 0x8000 16#8000 \"text\" true false")
+    return "\n".join(lines) + "\n"
 
 
 def _regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
@@ -543,11 +662,11 @@ def quantify(test: Test) -> Callable[[Item], bool]:
     return some
 
 
-def compile_filter(text: str) -> Callable[[Item], bool]:
+def compile_filter(text: str, context: FilterContext | None = None) -> Callable[[Item], bool]:
     """Compile a display filter to a predicate on item dicts. Raises FilterError."""
     if not isinstance(text, str):
         raise FilterError("a filter is text", "", 0)
-    test, uses_registers = _Parser(text).parse()
+    test, uses_registers = _Parser(text, context).parse()
     if uses_registers:
         return quantify(test)
     return lambda item: test(item, None)

@@ -35,7 +35,7 @@ def test_fields_csv_with_header_and_double_quotes() -> None:
     assert out.splitlines() == [
         "frame,kind,response_time,code,value",  # the header is never quoted, as tshark
         '"1","request","","",""',
-        '"2","response","0.010157","CHCF,COP","32768,3,2"',
+        '"2","response","0.010157",",CHCF,COP","32768,3,2"',  # 8400 has no code: one occurrence each
     ]
 
 
@@ -46,6 +46,51 @@ def test_fields_default_tab_separator_and_occurrences() -> None:
     assert run_cli([*argv, "-E", "occurrence=l"])[1] == "2\t8402\n"
     assert run_cli([*argv, "-E", "aggregator=/s", "-E", "separator=;"])[1] == "2;8400 8401 8402\n"
     assert run_cli([*argv, "-E", "quote=s", "-E", "separator=/s"])[1] == "'2' '8400,8401,8402'\n"
+
+
+def test_register_keys_have_one_occurrence_per_register() -> None:
+    # Frame 2 reads 8400 (non-existent: no code), CHCF and COP: every register column has three
+    # occurrences, so the columns line up and occurrence=f names the same register everywhere.
+    argv = ["-T", "fields", "-e", "frame", "-e", "address", "-e", "code", "-e", "value", "-e", "status", P38]
+    assert run_cli([*argv, "-Y", "frame == 2"])[1] == "2\t8400,8401,8402\t,CHCF,COP\t32768,3,2\tnon-existent,ok,ok\n"
+    assert run_cli([*argv, "-Y", "frame == 2", "-E", "occurrence=f"])[1] == "2\t8400\t\t32768\tnon-existent\n"
+    assert run_cli([*argv, "-Y", "frame == 2", "-E", "occurrence=l"])[1] == "2\t8402\tCOP\t2\tok\n"
+    # The p.38 exception lists its registers without a value: empty, one per register.
+    assert run_cli([*argv, "-Y", "frame == 10"])[1] == (
+        "10\t8400,8401,8402\t,CHCF,COP\t,,\tnon-existent,protected,protected\n"
+    )
+
+
+def test_filters_know_every_fields_key_and_list_them() -> None:
+    p38 = P38.replace(".bin", ".pcap")
+    status, out, err = run_cli(["-T", "fields", "-e", "frame", "-Y", "time_relative > 2", p38])
+    assert (status, out, err) == (0, "9\n10\n11\n12\n", "")
+    assert run_cli(["-T", "fields", "-e", "frame", "-Y", "time_delta > 0.5", p38])[1] == "3\n5\n7\n9\n11\n"
+    assert run_cli(["-T", "fields", "-e", "frame", "-Y", "fields.start == 8400 and frame < 4", p38])[1] == "1\n3\n"
+    assert run_cli(["-T", "fields", "-e", "frame", "-Y", "fields.byte_count == 6 and frame > 7", p38])[1] == "8\n"
+    assert run_cli(["-T", "fields", "-e", "frame", "-Y", "exception_meaning contains \"protected\"", p38])[1] == "10\n12\n"
+    status, out, err = run_cli(["-Y", "time > 1", p38])
+    assert status == 2 and err.splitlines()[0] == (
+        "vw3-decode: time is seconds since the epoch (as --json prints it), and 1 is no date: "
+        "time_relative counts from the first item, as the time column (column 8)"
+    )
+    status, out, err = run_cli(["-Y", 'code == "CHFC"', p38])
+    assert status == 2 and err.splitlines()[0] == (
+        "vw3-decode: code 'CHFC' is no parameter code of this run's maps (did you mean 'CHCF'?) (column 9)"
+    )
+    status, out, err = run_cli(["-Y", "help"])
+    lines = out.splitlines()
+    assert status == 0 and err == "" and run_cli(["-G", "fields"])[1] == out
+    names = {line.split()[0] for line in lines[1:-1]}
+    from dissector.render.fields import EXTRA_FRAME_KEYS
+    from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
+    from dissector.render.timefmt import TIME_FIELDS
+
+    # Every key -T fields takes is listed, and the filter takes it.
+    keys = {*FRAME_FIELDS, *REGISTER_FIELDS, *TIME_FIELDS, *EXTRA_FRAME_KEYS, "fields.KEY"}
+    assert keys <= names
+    for key in keys - {"time_delta_displayed", "fields.KEY"}:
+        assert run_cli(["-Y", key, "-c", "1", p38])[0] == 0, key
 
 
 def test_fields_lists_nested_keys_booleans_and_quotes_doubled() -> None:
