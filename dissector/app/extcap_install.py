@@ -50,16 +50,29 @@ def personal_folder() -> Path:
     raise LiveError(f"{tshark} -G folders names no personal folder: give one ({NAME} --install DIR)")
 
 
+def installed(root: str) -> bool:
+    """Whether `root` is one of this Python's own site-packages (it then finds the package itself)."""
+    import site
+    import sysconfig
+
+    own = {sysconfig.get_paths()[key] for key in ("purelib", "platlib")}
+    own |= set(site.getsitepackages()) | {site.getusersitepackages()}
+    return any(os.path.exists(path) and os.path.samefile(root, path) for path in own)
+
+
 def launcher_text(windows: bool) -> str:
+    """The launcher: this Python, with the package's folder on PYTHONPATH when it is not installed
+    (a source checkout): never a site-packages folder, which would come before the standard library."""
     python, root = sys.executable, package_root()
+    path = not installed(root)
     if windows:
-        return (f'@echo off\r\nset "PYTHONPATH={root};%PYTHONPATH%"\r\n'
-                f'"{python}" -m dissector.app.extcap %*\r\n')
+        setting = f'set "PYTHONPATH={root};%PYTHONPATH%"\r\n' if path else ""
+        return f'@echo off\r\n{setting}"{python}" -m dissector.app.extcap %*\r\n'
+    setting = f"PYTHONPATH={shlex.quote(root)}${{PYTHONPATH:+:$PYTHONPATH}} " if path else ""
     return (
         "#!/bin/sh\n"
         f"# Wireshark's launcher for the vw3-dissector serial tap (written by {NAME} --install).\n"
-        f"PYTHONPATH={shlex.quote(root)}${{PYTHONPATH:+:$PYTHONPATH}} "
-        f"exec {shlex.quote(python)} -m dissector.app.extcap \"$@\"\n"
+        f"{setting}exec {shlex.quote(python)} -m dissector.app.extcap \"$@\"\n"
     )
 
 

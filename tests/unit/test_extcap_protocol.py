@@ -89,11 +89,31 @@ def test_link_type() -> None:
                                           "display": "Modbus serial bytes as heard (map USER0 to vw3)"}]
 
 
-def test_launchers_name_this_python_and_this_package() -> None:
+def test_launchers_name_this_python_and_this_package(monkeypatch: pytest.MonkeyPatch) -> None:
+    from dissector.app import extcap_install
+
+    root = package_root()
+    assert extcap_install.installed(root) == ("site-packages" in root or "dist-packages" in root)
+    monkeypatch.setattr(extcap_install, "installed", lambda root: False)  # a source checkout
     posix = launcher_text(False)
     assert posix.startswith("#!/bin/sh\n")
-    assert f"exec {sys.executable} -m dissector.app.extcap \"$@\"" in posix
-    assert f"PYTHONPATH={package_root()}${{PYTHONPATH:+:$PYTHONPATH}}" in posix
+    assert posix.endswith(f"PYTHONPATH={package_root()}${{PYTHONPATH:+:$PYTHONPATH}} "
+                          f"exec {sys.executable} -m dissector.app.extcap \"$@\"\n")
     windows = launcher_text(True)
-    assert windows.endswith(f'"{sys.executable}" -m dissector.app.extcap %*\r\n')
-    assert "\n" not in windows.replace("\r\n", "")
+    assert windows == (f'@echo off\r\nset "PYTHONPATH={package_root()};%PYTHONPATH%"\r\n'
+                       f'"{sys.executable}" -m dissector.app.extcap %*\r\n')
+    # Installed in site-packages: no PYTHONPATH, which would put site-packages before the stdlib.
+    monkeypatch.setattr(extcap_install, "installed", lambda root: True)
+    assert launcher_text(False).endswith(f"\nexec {sys.executable} -m dissector.app.extcap \"$@\"\n")
+    assert launcher_text(True) == f'@echo off\r\n"{sys.executable}" -m dissector.app.extcap %*\r\n'
+
+
+def test_pip_installs_the_console_script() -> None:
+    import importlib
+    import tomllib
+    from pathlib import Path
+
+    project = tomllib.loads((Path(__file__).resolve().parents[2] / "pyproject.toml").read_text())
+    target = project["project"]["scripts"]["vw3-extcap"]
+    module, _, function = target.partition(":")
+    assert getattr(importlib.import_module(module), function) is extcap.main
