@@ -308,7 +308,7 @@ class Frame:
     def raw_binary(self) -> bytes:
         """The ADU as binary bytes (for ASCII frames: the hex pairs decoded, LRC included)."""
         if self.mode == "ascii":
-            return bytes.fromhex(self.raw[1:-2].decode("ascii"))
+            return bytes.fromhex(self.raw[1:].rstrip(b"\r\n").decode("ascii"))  # (the CR may be lost)
         return self.raw
 
     @property

@@ -74,17 +74,22 @@ class HexInput:
         self.repairs: dict[int, Repair] = {}
         self.chunks: list[Chunk] = []
         offset = 0
+        awaiting = RtuFramer()  # what the frames typed so far await: a short answer is no typo
         for chunk in chunks:
             if self.mode == "rtu":
-                chunk = self._mend(chunk, offset)
+                chunk = self._mend(chunk, offset, awaiting)
+                awaiting.feed(chunk)
             elif chunk.data[:1] == b":":
                 chunk = self._mend_ascii(chunk, offset)
             self.chunks.append(chunk)
             offset += len(chunk.data)
 
-    def _mend(self, chunk: Chunk, offset: int) -> Chunk:
+    def _mend(self, chunk: Chunk, offset: int, awaiting: RtuFramer) -> Chunk:
         data = chunk.data
-        if len(data) >= 4:
+        # An answer shorter than the request calls for is cut (the capture ends inside it), not mistyped;
+        # unless it is whole once its CRC is appended.
+        cut = awaiting.cut_answer(data) is not None
+        if len(data) >= 4 and not cut:
             body, typed = data[:-2], data[-2] | data[-1] << 8
             expected = crc16(body)
             if typed == expected:
@@ -100,7 +105,7 @@ class HexInput:
         if len(data) >= 2:
             crc = crc16(data)
             whole = data + crc.to_bytes(2, "little")
-            if _one_frame(whole):
+            if _one_frame(whole) and awaiting.cut_answer(whole) is None:
                 self.repairs[offset] = Repair(None, f"no CRC typed: append {_wire(crc)} (CRC 0x{crc:04X})")
                 return Chunk(whole, None, True)
         return chunk

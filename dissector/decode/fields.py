@@ -14,6 +14,7 @@ from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register, R
 from dissector.protocol.spec import SPEC
 
 _LIMITS = SPEC.limits
+_MAX_SLAVE = 247  # Serial Line Guide 2.2: 0 broadcast, 1..247 devices, 248..255 reserved
 
 
 def _check_range(frame: Frame, what: str, value: int, limit_name: str) -> None:
@@ -47,6 +48,8 @@ def decode_frame(frame: Frame) -> Frame:
     if frame.decoded:
         return frame
     frame.decoded = True
+    if frame.slave > _MAX_SLAVE:
+        frame.warnings.append(f"slave address {frame.slave} is reserved (248..255 are no device's)")
     function = frame.function
     kind = frame.kind
     rtu = frame.mode == "rtu"

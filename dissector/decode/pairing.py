@@ -16,8 +16,9 @@ from __future__ import annotations
 
 import weakref
 
-from dissector.model import Frame, Item, Kind
+from dissector.model import Frame, Item, Kind, Noise
 
+CUT_ANSWER = "the capture ends inside the "  # a noise reason of the framers' (RtuFramer._cut_answer)
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 
 
@@ -75,7 +76,13 @@ class Pairer:
         if pending is not None:
             pending.unanswered = True
             if not self._pending_released:
-                pending.notes.append("the capture ends before any response")
+                # The framer names an answer cut by the end of the capture (RtuFramer._cut_answer).
+                cut = next(
+                    (item.reason for item in self._queue
+                     if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
+                    None,
+                )
+                pending.notes.append(cut or "the capture ends before any response")
         self._pending = None
         self._release(out)
         return out

@@ -7,8 +7,9 @@ the RTU frame that would carry the same bytes), so an ASCII frame whose length f
 shown as noise, as it would be in RTU.
 
 A candidate that is cut short (a new ':' before the LF, no LF within the longest legal frame, the
-end of the capture), that is not made of hex pairs, that lacks the CR before the LF or whose
-layout fits nothing becomes a Noise item of its own, with the reason; bytes between frames are
+end of the capture), that is not made of hex pairs or whose layout fits nothing becomes a Noise item
+of its own, with the reason; a line that lost its CR (text files lose them) is a frame with a warning,
+and so is one from a reserved address (248..255, the decoder's warning); bytes between frames are
 noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
 damaged. The answer does not depend on how the stream is split into chunks.
 
@@ -18,7 +19,7 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from dissector.protocol.crc import crc_bytes, lrc
-from dissector.framing.rtu import MAX_SLAVE, Scan, interpretations
+from dissector.framing.rtu import Scan, interpretations
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
@@ -69,10 +70,9 @@ class AsciiFramer(StreamFramer):
     def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
         """A ':' ... LF run: a Frame when it is one, a Noise item saying why not otherwise."""
         body = raw[1:-1]
-        if not body.endswith(b"\r"):
-            self._reject(raw, i, "ASCII frame ends with LF without CR", items)
-            return
-        digits = body[:-1]
+        # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame.
+        lost_cr = not body.endswith(b"\r")
+        digits = body if lost_cr else body[:-1]
         if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
             self._reject(raw, i, "ASCII frame is not made of hex pairs", items)
             return
@@ -83,9 +83,6 @@ class AsciiFramer(StreamFramer):
         slave, function = binary[0], binary[1]
         received, expected = binary[-1], lrc(binary[:-1])
         check = "LRC ok" if received == expected else f"LRC {received:02X}, expected {expected:02X}"
-        if slave > MAX_SLAVE:
-            self._reject(raw, i, f"slave {slave} out of range ({check})", items)
-            return
         kind = self._classify(binary[:-1])
         if kind is None:
             self._reject(raw, i, f"no Modbus layout fits function {function} ({check})", items)
@@ -102,6 +99,8 @@ class AsciiFramer(StreamFramer):
             crc_expected=expected,
             mode="ascii",
         )
+        if lost_cr:
+            frame.warnings.append("line ends with LF without CR (the spec ends a frame with CR LF)")
         if digits != digits.upper():
             frame.warnings.append("lower-case hex digits (the spec wants upper case)")
         self._emit(frame, items)

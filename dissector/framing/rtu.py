@@ -1,36 +1,53 @@
-"""Modbus RTU framer: an untimed byte stream in, frames and noise out.
+"""Modbus RTU framer: a byte stream in, frames and noise out.
 
 An RTU frame is `slave | function | data | CRC-16 (low byte first)`, at most 256 bytes. On the wire,
 frames are separated by a silence of 3.5 character times, but a listen-only tap seldom keeps that
 information: a raw capture has no timestamps at all, and USB serial adapters deliver bytes in bursts
 (FTDI: 16 ms latency timer), so a request and its response may arrive in one read and a long response
-in several. Gaps are therefore never trusted to cut frames here.
+in several. Gaps, record ends and line ends are therefore evidence here, never cuts.
 
-Instead, each function code's length rules are applied in both directions (a read request is 8
-bytes; its response is 5 + byte count; a FC16 request is 9 + byte count...), and the CRC confirms the
-choice. Length rules come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because that
-6-byte prefix of the 7-byte response `01 04 02 03 01 78 00` happens to carry a valid CRC.
-
-Where both a request and a response layout fit, the expectation decides: after a request to slave S
-with function F, a frame from S with F is its response. Function codes whose data has no length
-rule (FC8 sub-function 0 "Return Query Data", FC43 MEI 13, user-defined and vendor codes) are found
-by scanning for the shortest length with a valid CRC.
+Each function code's length rules are applied in both directions (a read request is 8 bytes; its
+response is 5 + byte count; a FC16 request is 9 + byte count, or 9 + 2 x quantity when the two
+disagree, as in the Altivar 212 manual's example...), and the CRC confirms the choice. Length rules
+come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because that 6-byte prefix of the
+7-byte response `01 04 02 03 01 78 00` happens to carry a valid CRC. Where both a request and a
+response layout fit, the expectation decides: after a request to slave S with function F, a frame
+from S with F is its response. Function codes whose data has no length rule (FC8 sub-function 0,
+FC43 MEI 13, user-defined and vendor codes) are found by scanning for the shortest length with a
+valid CRC. Any address is framed: 248..255 are reserved (pymodbus uses 254 and 255), the decoder
+warns.
 
 CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
-without that last byte: when two layouts check out, the one an intact frame follows wins.
+without that last byte, and any frame followed by a 00 checks one byte longer: when two layouts
+check out, a record boundary, else the one an intact frame follows, wins.
 
-When nothing fits, the framer tries to show a damaged frame once, with its bad CRC: an
-interpretation whose length is known, that ends exactly where an intact frame begins and that holds
-no intact frame inside (a cut frame's length rule must not swallow the frames after it). Otherwise
-the byte is noise, and the framer resynchronises on the next valid frame. A random byte string passes
-a CRC once in 65,536 tries, so while resynchronising, and for an answer nobody asked for, a frame
-counts only when an intact frame (or the end) follows it; the same holds for every CRC scan. Measured
-by bench/noise_accuracy.py (100,000 transactions, 2% of frames damaged): 99.92% of intact frames
-recovered exactly, 0 to 2 false frames per run. Noise runs are emitted in items of at most
-NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
+The evidence a real line gives, weighed where a frame with a good CRC is found (the rule):
+- Anchors. Where a frame is expected to start, its CRC is enough: right after a frame (in step), at
+  a record boundary (pcap records, hex-dump lines, --hex arguments) or after a silence of t3.5 or
+  more between timed chunks (live reads), and after nothing but glitch bytes since one of those. A
+  glitch byte is what a short low pulse on an idle line reads as (FF << k: FF FE FC ... 80 00): a bus
+  driver's turn-around leaves one after frames (00 after requests, FE after responses on the
+  sigrok-dumps wizmodbus line), a break reads as 00.
+- The answer awaited (its slave and function) counts on its CRC wherever it starts.
+- Elsewhere (resynchronising inside noise: each position tried is a 1 in 65,536 chance of a random
+  CRC match) a frame counts when the line confirms it: the end of the input, a boundary or silence, or
+  an intact frame right after it or after glitch bytes (at most GLITCH_SKIP); for a request, also a
+  frame of its slave after it (its answer, even damaged: a good request is never lost because its
+  answer is), or fields only a real request has (a read of 1..125 registers, a coil set ON or OFF:
+  evidence.plausible_request). So a CRC-valid frame is never lost to what follows it when an anchor,
+  the expectation or its own fields speak for it; random bytes need two chances in 65,536 at once.
+- A damaged frame (no layout checks out) is shown once, with its bad CRC, when its length is known,
+  the line confirms its end as above (the end of the input only for the answer awaited), its address
+  is a device's (1..247 or 0), and it holds no intact frame inside (a cut frame must not swallow the
+  frames after it). The answer awaited cut by the end of the capture is noise whose reason says so
+  ("the capture ends inside the response (8 of 9 bytes)"), never a frame of another kind.
+Otherwise the byte is noise and the framer resynchronises. Measured by bench/noise_accuracy.py (see
+README.md, Framing real lines): recovery and invented frames per kind of noise. Noise runs are
+emitted in items of at most NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
 
 The framer is a push parser (`feed` / `finish`) with no I/O of its own: files, pcap records and live
-serial reads all drive the same object, and the answer does not depend on how the stream is split.
+serial reads all drive the same object, and the answer does not depend on how the stream is split
+(boundaries and times are part of the input, not of the split).
 """
 from __future__ import annotations
 
@@ -40,7 +57,8 @@ from collections.abc import Callable
 from dissector.protocol import table
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
-from dissector.framing.stream import StreamFramer
+from dissector.framing.evidence import plausible_request as _plausible_request
+from dissector.framing.stream import GLITCH_BYTES, StreamFramer
 
 MAX_ADU = 256
 MIN_ADU = 4
@@ -143,10 +161,28 @@ def length_rule(rule: table.LengthRule) -> LengthRule:
     return _SPECIAL[rule.name]
 
 
+def quantity_rule(alternative: table.ByQuantity, counted: table.Counted) -> LengthRule:
+    """A request's length by its quantity (table.ByQuantity), NONE where it is the byte count's."""
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + max(alternative.position + 1, counted.position) >= n:
+            return NEED
+        length = alternative.length(buf[i + alternative.position] << 8 | buf[i + alternative.position + 1])
+        return NONE if length == counted.extra + buf[i + counted.position] else length
+
+    return rule
+
+
 # (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
 RULES: dict[int, tuple[LengthRule, LengthRule]] = {
     entry.code: (length_rule(entry.request.length), length_rule(entry.response.length))
     for entry in table.FUNCTIONS
+}
+# Requests whose byte count may disagree with their quantity: the quantity's length, tried last.
+BY_QUANTITY: dict[int, LengthRule] = {
+    entry.code: quantity_rule(entry.request.by_quantity, entry.request.length)  # type: ignore[arg-type]
+    for entry in table.FUNCTIONS
+    if entry.request.by_quantity is not None and isinstance(entry.request.length, table.Counted)
 }
 OTHER_FUNCTIONS = table.OTHER_FUNCTIONS
 for _code in OTHER_FUNCTIONS:
@@ -161,8 +197,9 @@ _EXCEPTION_RULE = _fixed(_EXCEPTION_LENGTH)
 REQUEST_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
 RESPONSE_FIRST: dict[int, tuple[tuple[Kind, LengthRule], ...]] = {}
 for _code, (_request_rule, _response_rule) in RULES.items():
-    REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule))
-    RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule))
+    _extra = ((Kind.REQUEST, BY_QUANTITY[_code]),) if _code in BY_QUANTITY else ()
+    REQUEST_FIRST[_code] = ((Kind.REQUEST, _request_rule), (Kind.RESPONSE, _response_rule), *_extra)
+    RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule), *_extra)
     REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _EXCEPTION_RULE),)
 
 
@@ -177,11 +214,14 @@ def interpretations(
     return REQUEST_FIRST.get(function, ())
 
 
-# A byte pair that may start a frame: a slave address, then a function code with a layout.
+# A byte pair that may start a frame: any address (248..255 are reserved, framed with a warning by the
+# decoder: pymodbus uses 254 and 255, tshark decodes them), then a function code with a layout.
 _POSSIBLE_START = re.compile(
-    b"[\\x00-\\x%02x][%s]" % (MAX_SLAVE, b"".join(b"\\x%02x" % code for code in sorted(REQUEST_FIRST))),
+    b".[%s]" % b"".join(b"\\x%02x" % code for code in sorted(REQUEST_FIRST)),
     re.DOTALL,
 )
+
+GLITCH_SKIP = 16  # glitch bytes looked past when asking what follows a frame
 
 
 # The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
@@ -228,8 +268,6 @@ class RtuFramer(StreamFramer):
         if n - i < MIN_ADU:
             return None if not final else (i == n)
         slave, function = buf[i], buf[i + 1]
-        if slave > MAX_SLAVE:
-            return False
         undecided = False  # a CRC scan found nothing yet, but a longer frame may still arrive
         for _kind, rule in self._interpretations(slave, function):
             length = rule(buf, i, n)
@@ -251,6 +289,44 @@ class RtuFramer(StreamFramer):
                 return True
         return None if undecided else False
 
+    def _followed(self, buf: bytearray, end: int, n: int, final: bool, at_end: bool = True) -> bool | None:
+        """Does the line say a frame ends at `end`? The end of the input (unless at_end is False), a
+        record or burst boundary (or a silence), or an intact frame, right there or after a few glitch
+        bytes. None: the bytes that tell have not come yet."""
+        j = end
+        while True:
+            if final and j == n:
+                return at_end
+            if self._boundary_at(j):
+                return True
+            found = self._valid_frame_at(buf, j, n, final)
+            if found or found is None:
+                return found
+            if j < n and buf[j] in GLITCH_BYTES and j - end < GLITCH_SKIP:
+                j += 1
+                continue
+            return False
+
+    def _answered(self, buf: bytearray, i: int, end: int, n: int, final: bool) -> bool | None:
+        """Does a frame of the same slave start at `end` (after glitch bytes), damaged or not: the
+        answer to a request, the next request to a slave? 1 chance in 256 x 16 for random bytes."""
+        slave = buf[i]
+        j = end
+        while j - end <= GLITCH_SKIP:
+            if n - j < 2:
+                return None if not final else False
+            if buf[j] == slave and _POSSIBLE_START.match(buf, j):
+                return True
+            if buf[j] not in GLITCH_BYTES:
+                return False
+            j += 1
+        return False
+
+    def _anchored(self, i: int) -> bool:
+        """Is i where a frame is expected to start: right after a frame (in step), at a record or
+        burst boundary or after a silence, or after nothing but glitch bytes since one of those?"""
+        return not self._noise or self._glitches_only or self._boundary_at(i)
+
     @staticmethod
     def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
         lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
@@ -269,29 +345,35 @@ class RtuFramer(StreamFramer):
         return None if undecided else False
 
     def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
-        """A frame without a length rule: the shortest CRC match that an intact frame (or the end)
-        follows. A CRC scan alone would take noise for frames: each length tried is a 1 in 65,536
-        chance of a match. (The following frame also settles the 00 case of _match.)
+        """A frame without a length rule: the shortest CRC match that the line confirms (_followed:
+        an intact frame, the end, a boundary, after glitch bytes or not). A CRC scan alone would take
+        noise for frames: each length tried is a 1 in 65,536 chance of a match. (The following frame
+        also settles the 00 case of _match.)
         """
-        for length in crc_lengths(buf, i, minimum, min(n - i, MAX_ADU)):
-            following = self._valid_frame_at(buf, i + length, n, final)
-            if following is None:
-                return NEED
-            # In step (right after a frame) a scanned frame is trusted over a short frame that may
-            # check by chance inside it; while resynchronising, an intact frame inside wins.
-            if following:
-                inside = self._noise and self._intact_inside(buf, i, length, n, final)
-                if inside is None:
+        lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
+        # First a frame (or the end) right after it; only then one after glitch bytes: a frame followed
+        # by a 00 checks one byte longer too (no final XOR), and a glitch 00 is no evidence against that.
+        for glitches in (False, True):
+            for length in lengths:
+                if glitches:
+                    following = self._followed(buf, i + length, n, final)
+                else:
+                    following = self._valid_frame_at(buf, i + length, n, final)
+                if following is None:
                     return NEED
-                if not inside:
-                    return length
+                # In step (right after a frame) a scanned frame is trusted over a short frame that may
+                # check by chance inside it; while resynchronising, an intact frame inside wins.
+                if following:
+                    inside = self._noise and self._intact_inside(buf, i, length, n, final)
+                    if inside is None:
+                        return NEED
+                    if not inside:
+                        return length
         return NEED if n - i < MAX_ADU and not final else NONE
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
         slave, function = buf[i], buf[i + 1]
-        if slave > MAX_SLAVE:
-            return NONE
         valid: list[tuple[Kind, int]] = []
         damaged: list[tuple[Kind, int]] = []
         waiting: list[int] = []  # lengths of layouts whose bytes have not all arrived (NEED: unknown)
@@ -345,15 +427,18 @@ class RtuFramer(StreamFramer):
                 if following:
                     return (kind, length, True)
             return (*valid[0], True)
-        if waiting:
-            return NEED
-        # No layout checks out: a damaged frame is shown once if it ends where an intact one begins
-        # and holds none inside (a cut frame must not swallow the intact frame that follows it).
+        if waiting or slave > MAX_SLAVE:
+            # (a reserved address counts with a good CRC only: a glitch byte is one too)
+            return NEED if waiting else NONE
+        # No layout checks out: a damaged frame is shown once if the line says it ends where it would
+        # (an intact frame, a boundary, after glitch bytes or not) and it holds no intact frame inside
+        # (a cut frame must not swallow the intact frame that follows it).
         for kind, length in damaged:
-            following = self._valid_frame_at(buf, i + length, n, final)
+            # (the end of the input says little of a damaged frame: the awaited answer's only)
+            following = self._followed(buf, i + length, n, final, self._expect == (slave, function & 0x7F))
             if following is None:
                 return NEED
-            if following and (i + length < n or self._expect == (slave, function & 0x7F)):
+            if following:
                 inside = self._intact_inside(buf, i, length, n, final)
                 if inside is None:
                     return NEED
@@ -361,6 +446,45 @@ class RtuFramer(StreamFramer):
                     continue
                 return (kind, length, False)
         return NONE
+
+    def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:
+        """At the end of the input: do bytes i..n begin the answer awaited, cut by the end of the
+        capture? The reason to show them with, or None."""
+        if n - i < 2 or self._expect != (buf[i], buf[i + 1] & 0x7F):
+            return None
+        choices = self._interpretations(buf[i], buf[i + 1])
+        if not choices:
+            return None
+        kind, rule = choices[0]
+        length = rule(buf, i, n)
+        if type(length) is Scan or (length != NEED and not n - i < length <= MAX_ADU):
+            return None
+        if self._intact_inside(buf, i, n - i, n, True):
+            return None
+        what = "response" if kind is Kind.RESPONSE else "exception response"
+        size = f"{n - i} of {length} bytes" if length != NEED else f"{n - i} bytes of it"
+        return f"the capture ends inside the {what} ({size})"
+
+    def cut_answer(self, data: bytes) -> str | None:
+        """Would `data`, fed now and ended there, be the answer awaited cut by the end of the capture
+        (`--hex` asks before taking a short answer for a typo)? The reason, or None."""
+        buf = bytearray(data)
+        return self._cut_answer(buf, 0, len(buf)) if not self._buf else None
+
+    def _confirmed(self, buf: bytearray, i: int, kind: Kind, length: int, n: int, final: bool) -> bool | None:
+        """May a CRC-valid frame found away from any anchor (inside noise) count? Random bytes pass a
+        CRC once in 65,536 tries per layout, so it needs the line's word too: what follows it
+        (_followed), or, for a request, a frame of its slave right after it (its answer, even
+        damaged)."""
+        end = i + length
+        following = self._followed(buf, end, n, final)
+        if following is not False:
+            return following
+        if kind is Kind.REQUEST and buf[i] != 0:
+            if _plausible_request(buf, i, length):
+                return True
+            return self._answered(buf, i, end, n, final)
+        return False
 
     def _run(self, final: bool) -> list[Item]:
         buf = self._buf
@@ -372,7 +496,7 @@ class RtuFramer(StreamFramer):
             if i >= paused_from:
                 break
             if n - i < MIN_ADU:
-                self._add_noise(i, n, "too short for a frame", items)
+                self._add_noise(i, n, self._cut_answer(buf, i, n) or "too short for a frame", items)
                 i = n
                 break
             # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
@@ -381,7 +505,7 @@ class RtuFramer(StreamFramer):
             first = (
                 _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
             ).get(function)
-            if first is None or slave > MAX_SLAVE:
+            if first is None:
                 # No frame starts here: skip at C speed to the next byte pair that could start one.
                 found = _POSSIBLE_START.search(buf, i + 1)
                 end = found.start() if found is not None else (n if final else n - 1)
@@ -400,8 +524,6 @@ class RtuFramer(StreamFramer):
                     stop = i + length - 2
                     crc = buf[stop] | buf[stop + 1] << 8
                     if crc16(buf[i:stop]) == crc:
-                        if self._noise:
-                            self._flush_noise(items)
                         offset = self._base + i
                         items.append(
                             Frame(
@@ -419,8 +541,15 @@ class RtuFramer(StreamFramer):
                             self._expect = (slave, function) if slave else None
                         else:
                             self._expect = None
+                        self._noise_cut = False
                         i += length
                         continue
+            if final:
+                cut = self._cut_answer(buf, i, n)
+                if cut is not None:
+                    self._add_noise(i, n, cut, items)
+                    i = n
+                    break
             match = self._match(buf, i, n, final)
             if match == NEED:
                 break
@@ -429,14 +558,11 @@ class RtuFramer(StreamFramer):
                 i += 1
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
-            unasked = kind is not Kind.REQUEST and self._expect != (buf[i], buf[i + 1] & 0x7F)
-            if crc_ok and (self._noise or unasked):
-                # Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC
-                # 1 time in 65,536 per layout tried, so such a frame counts only when an intact frame,
-                # the end, or the end of a record follows it.
-                following = self._boundary_at(i + length) or self._valid_frame_at(
-                    buf, i + length, n, final
-                )
+            awaited = kind is not Kind.REQUEST and self._expect == (slave, function & 0x7F)
+            if crc_ok and not awaited and not self._anchored(i):
+                # Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout
+                # tried, so such a frame counts only when the line confirms it (_confirmed).
+                following = self._confirmed(buf, i, kind, length, n, final)
                 if following is None:
                     break
                 if not following:
@@ -445,7 +571,6 @@ class RtuFramer(StreamFramer):
                     continue
             raw = bytes(buf[i : i + length])
             offset = self._base + i
-            slave, function = raw[0], raw[1]
             frame = Frame(
                 offset=offset,
                 raw=raw,

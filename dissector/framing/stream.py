@@ -4,9 +4,15 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
+from dissector.framing.timing import DEFAULT_BAUD, LineTiming, silence_before
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
+# What a short low pulse on an idle line reads as: a start bit, k zero bits, then ones (FF << k). A bus
+# driver's turn-around leaves one after a frame (the sigrok-dumps wizmodbus line: 00 after requests,
+# FE after responses); a break reads as 00, an idle line's noise as FF.
+GLITCH_BYTES = frozenset((0xFF << k) & 0xFF for k in range(9))
+_GLITCHES = bytes(sorted(GLITCH_BYTES))
 
 
 class StreamFramer(ABC):
@@ -18,7 +24,8 @@ class StreamFramer(ABC):
 
     mode: str
 
-    def __init__(self) -> None:
+    def __init__(self, baud: int = DEFAULT_BAUD) -> None:
+        self._timing = LineTiming(baud, self.mode)  # what a silence between chunks is (silence_before)
         self._buf = bytearray()
         self._base = 0  # absolute offset of _buf[0]
         self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
@@ -29,15 +36,22 @@ class StreamFramer(ABC):
         self._noise_offset = 0
         self._noise_reason = ""
         self._noise_time: float | None = None
+        # Every noise byte since the last frame (or boundary) is a glitch byte (rtu.GLITCH_BYTES): the
+        # next frame start is still where one is expected (RtuFramer._anchored).
+        self._glitches_only = True
+        self._noise_cut = False  # the noise run goes on past an item cut at NOISE_ITEM_MAX bytes
         self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
 
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
+            start = self._base + len(self._buf)
             if chunk.time is not None:
                 self._timed = True
-            self._times.append((self._base + len(self._buf), chunk.time))
+                if self._times and silence_before(self._times[-1], start, chunk.time, self._timing):
+                    self._boundaries.add(start)  # a silence on the line: evidence, like a record's end
+            self._times.append((start, chunk.time))
             self._buf += chunk.data
             if chunk.boundary:
                 self._boundaries.add(self._base + len(self._buf))
@@ -76,6 +90,8 @@ class StreamFramer(ABC):
         self._times = []
         self._boundaries = set()
         self._expect = expect
+        self._glitches_only = True
+        self._noise_cut = False
 
     def hand_back(self) -> tuple[int, bytes, tuple[int, int] | None]:
         """(offset, bytes not framed yet, expectation) for another engine; the buffer is emptied."""
@@ -120,6 +136,17 @@ class StreamFramer(ABC):
     def _add_noise(self, start: int, end: int, reason: str, items: list[Item]) -> None:
         """Bytes start..end of the buffer belong to no frame."""
         buf = self._buf
+        if not self._noise and not self._noise_cut:
+            self._glitches_only = True  # a new run, right after a frame
+        check_from = start
+        if self._boundaries:
+            # A boundary inside the run starts the glitch rule anew: only the bytes after it count.
+            inside = [offset - self._base for offset in self._boundaries if start <= offset - self._base < end]
+            if inside:
+                self._glitches_only = True
+                check_from = max(inside)
+        if self._glitches_only:
+            self._glitches_only = not buf[check_from:end].translate(None, _GLITCHES)
         while start < end:
             if not self._noise:
                 self._noise_offset = self._base + start
@@ -130,10 +157,12 @@ class StreamFramer(ABC):
             start += take
             if len(self._noise) >= NOISE_ITEM_MAX:
                 self._flush_noise(items)
+                self._noise_cut = True
 
     def _emit(self, frame: Frame, items: list[Item]) -> None:
         """A frame is found: close the noise before it, and expect the answer to a request."""
         self._flush_noise(items)
+        self._noise_cut = False
         items.append(frame)
         if frame.kind is Kind.REQUEST:
             self._expect = (frame.slave, frame.function) if frame.slave != 0 else None

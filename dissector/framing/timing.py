@@ -121,3 +121,14 @@ class GapChecker:
         if keep:
             del starts[:keep]
         return warnings
+
+
+def silence_before(previous: tuple[int, float | None], start: int, time: float, timing: LineTiming) -> bool:
+    """Was the line silent for t3.5 or more before the chunk that starts at stream offset `start` and
+    came at `time`, after the chunk (offset, time) `previous`? The framers take it as evidence that a
+    frame may end there (a record boundary's weight), never as a cut: a USB adapter's reads come in
+    bursts whose times say little about the gaps inside them."""
+    offset, before = previous
+    if before is None:
+        return False
+    return time - before - (start - offset) * timing.char_time >= timing.t35

@@ -48,6 +48,21 @@ class Special:
     name: str
 
 
+@dataclass(frozen=True, slots=True)
+class ByQuantity:
+    """A second length for a request whose byte count may disagree with its quantity (the Altivar
+    212 manual's FC16 example, libmodbus's unit test): `extra` + the data the quantity (a big-endian
+    word at `position`) calls for, `unit` bytes an item (2: registers; 0: coils, 8 to a byte). The
+    framer tries it after the byte count's length; the decoder warns about the disagreement."""
+
+    position: int
+    extra: int
+    unit: int
+
+    def length(self, quantity: int) -> int:
+        return self.extra + (quantity * self.unit if self.unit else (quantity + 7) // 8)
+
+
 LengthRule = Fixed | Counted | Special
 SCAN = Special("scan")
 
@@ -76,6 +91,7 @@ class Layout:
     length: LengthRule
     handler: str | None = None  # decode/fields.py handler (the plugin's `<name>_handler`)
     limit: str | None = None  # data/modbus.toml [limits] entry the handler checks the quantity against
+    by_quantity: ByQuantity | None = None  # a request's length by its quantity, when it has a byte count too
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,8 +144,11 @@ class Function:
         return self.request if kind is Kind.REQUEST else self.response
 
 
-def _layout(name: str, length: LengthRule, handler: str | None = None, limit: str | None = None) -> Layout:
-    return Layout(name, getattr(L, name.upper()), length, handler, limit)
+def _layout(
+    name: str, length: LengthRule, handler: str | None = None, limit: str | None = None,
+    by_quantity: ByQuantity | None = None,
+) -> Layout:
+    return Layout(name, getattr(L, name.upper()), length, handler, limit, by_quantity)
 
 
 _EIGHT = Fixed(8)
@@ -192,14 +211,16 @@ FUNCTIONS: tuple[Function, ...] = (
     ),
     Function(
         15,
-        _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils"),
+        _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils", ByQuantity(4, 9, 0)),
         _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
         Access.WRITE, Data.BITS, echo=True,
         compiled=Compiled("start", "quantity", "write_coils", span=True, coils=Coils("status", "byte_count")),
     ),
     Function(
         16,
-        _layout("write_registers_request", Counted(6, 9), "write_registers_request", "write_registers"),
+        _layout(
+            "write_registers_request", Counted(6, 9), "write_registers_request", "write_registers", ByQuantity(4, 9, 2)
+        ),
         _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
         Access.WRITE, Data.REGISTERS, echo=True,
         compiled=Compiled(
@@ -231,7 +252,7 @@ FUNCTIONS: tuple[Function, ...] = (
     ),
     Function(
         23,
-        _layout("read_write_request", Counted(10, 13), "read_write_request"),
+        _layout("read_write_request", Counted(10, 13), "read_write_request", by_quantity=ByQuantity(8, 13, 2)),
         _layout("read_registers_response", _BYTE_COUNT, "read_registers_response"),
         Access.READ_WRITE, Data.REGISTERS,
         compiled=Compiled(

@@ -95,9 +95,9 @@ def test_noise_cases_each_with_its_reason() -> None:
         b":0C0320D0",  # cut short by the next ':'
         good,
         b":0C0320D000030\r\n",  # odd number of digits
-        b":0C0320D00003FE\n",  # LF without CR
+        b":0C0320D00003FE\n",  # LF without CR: a frame, with a warning
         ascii_frame("0C 03 20 D0"),  # a read request needs 4 data bytes
-        ascii_frame("F8 03 20 D0 00 03"),  # slave 248
+        ascii_frame("F8 03 20 D0 00 03"),  # slave 248: a frame (the decoder warns: reserved)
         ascii_frame("0C 03 20 D0 00 03", check=0),
         b":0C03",  # the capture ends
     ]
@@ -109,9 +109,9 @@ def test_noise_cases_each_with_its_reason() -> None:
         (offsets[1], parts[1], "noise", "ASCII frame cut short by the next ':'", 0.0),
         (offsets[2], good, Kind.REQUEST, 12, 3, 0xFE, 0xFE, 0.0),
         (offsets[3], parts[3], "noise", "ASCII frame is not made of hex pairs", 0.0),
-        (offsets[4], parts[4], "noise", "ASCII frame ends with LF without CR", 0.0),
+        (offsets[4], parts[4], Kind.REQUEST, 12, 3, 0xFE, 0xFE, 0.0),
         (offsets[5], parts[5], "noise", "no Modbus layout fits function 3 (LRC ok)", 0.0),
-        (offsets[6], parts[6], "noise", "slave 248 out of range (LRC ok)", 0.0),
+        (offsets[6], parts[6], Kind.REQUEST, 248, 3, 0x12, 0x12, 0.0),
         (offsets[7], parts[7], Kind.REQUEST, 12, 3, 0x00, 0xFE, 0.0),
         (offsets[8], b":0C03", "noise", "ASCII frame cut off by the end of the capture", 0.0),
     ]
@@ -177,3 +177,11 @@ def test_long_noise_is_cut_at_the_same_places_whatever_the_split() -> None:
 )
 def test_detect_mode(sample: bytes, mode: str) -> None:
     assert detect_mode(sample) == mode
+
+
+def test_lines_that_lost_their_cr_are_frames_with_a_warning() -> None:
+    """A Modbus ASCII log copied through a tool that drops CRs: every line still a frame."""
+    request, response = ascii_frame("01 03 00 00 00 02"), ascii_frame("01 03 04 00 0A 00 14")
+    items = run(request.replace(b"\r", b"") + response.replace(b"\r", b""))
+    assert [(item.kind, item.slave, item.crc_ok) for item in items] == [(Kind.REQUEST, 1, True), (Kind.RESPONSE, 1, True)]
+    assert all(item.warnings == ["line ends with LF without CR (the spec ends a frame with CR LF)"] for item in items)
