@@ -13,6 +13,8 @@
  *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
  *     match an intact frame follows, checked with the framer's rules for every code it knows);
  *   - user-defined and vendor codes (SEL-749M 60h...): no layout, nothing to show but bytes;
+ *   - a reserved address (248..255): the decoder's warning; glitch bytes between frames (a real
+ *     line's turn-around): noise, the careful path's, which weighs the evidence around them;
  *   - an exception to FC17, FC20, FC21 or FC43;
  *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
  *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
@@ -453,9 +455,9 @@ static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_
  * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     if (n - j < MIN_ADU) return -1;
-    int slave = b[j], function = b[j + 1];
-    if (slave > MAX_SLAVE) return 0;
+    int slave = b[j], function = b[j + 1]; /* any address: 248..255 are framed too (reserved) */
     const LengthRule exception = {5, 0, 0, 0, 0};
+    const QuantityRule *by_quantity = NULL;
     const LengthRule *rules[2];
     int count = 2;
     if (function & 0x80) {
@@ -468,6 +470,7 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
         int expected = slave == e->expect_slave && function == e->expect_function;
         rules[0] = expected ? &known_response_rule[k] : &known_request_rule[k];
         rules[1] = expected ? &known_request_rule[k] : &known_response_rule[k];
+        if (known_quantity_rule[k].position) by_quantity = &known_quantity_rule[k];
     }
     int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
     for (int r = 0; r < count; r++) {
@@ -483,19 +486,47 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
         Py_ssize_t stop = j + length.value - 2;
         if (crc16(b + j, stop - j) == (uint16_t)(b[stop] | b[stop + 1] << 8)) return 1;
     }
+    if (by_quantity != NULL) {
+        /* The request's length by its quantity, where it differs from the byte count's (rtu.py quantity_rule). */
+        const QuantityRule *q = by_quantity;
+        int need = q->position + 1 > q->count_position ? q->position + 1 : q->count_position;
+        if (j + need >= n) return -1;
+        Py_ssize_t quantity = (Py_ssize_t)word(b + j + q->position);
+        Py_ssize_t length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
+        if (length != q->count_extra + b[j + q->count_position] && length >= MIN_ADU && length <= MAX_ADU) {
+            if (j + length > n) return -1;
+            Py_ssize_t stop = j + length - 2;
+            if (crc16(b + j, stop - j) == (uint16_t)(b[stop] | b[stop + 1] << 8)) return 1;
+        }
+    }
     return undecided ? -1 : 0;
+}
+
+/* rtu.GLITCH_BYTES: what a short low pulse on an idle line reads as, FF << k (a driver's turn-around). */
+static inline int glitch_byte(uint8_t v) { return v == 0 || (uint8_t)(v | (v - 1)) == 0xFF; }
+#define GLITCH_SKIP 16
+
+/* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
+ * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
+static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_t n) {
+    for (Py_ssize_t j = end;; j++) {
+        int found = valid_frame_at(e, b, j, n);
+        if (found != 0) return found;
+        if (!(j < n && glitch_byte(b[j]) && j - end < GLITCH_SKIP)) return 0;
+    }
 }
 
 /* RtuFramer._scan in step (no noise open): the shortest CRC match that an intact frame follows.
  * Both of the framer's interpretations scan alike, so the first one's kind stands. */
 static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
     Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
-    if (minimum <= maximum) {
+    /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer). */
+    for (int glitches = 0; glitches < 2 && minimum <= maximum; glitches++) {
         uint16_t crc = crc16(b + i, minimum - 2);
         for (Py_ssize_t length = minimum; length <= maximum; length++) {
             Py_ssize_t stop = i + length - 2;
             if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
-                int following = valid_frame_at(e, b, i + length, n);
+                int following = glitches ? followed(e, b, i + length, n) : valid_frame_at(e, b, i + length, n);
                 if (following < 0) return FRAME_NEED;
                 if (following) return length;
             }

@@ -85,6 +85,22 @@ def _known_rules() -> tuple[list[int], list[str], list[str]]:
     return slots, requests, responses
 
 
+def _quantity_rules() -> list[str]:
+    """Per known slot (as _known_rules): a request's length by its quantity (table.ByQuantity) as
+    {position, extra, unit, the byte count's position, its extra}; position 0: none."""
+    rules = []
+    for entry in table.FUNCTIONS:
+        alternative, counted = entry.request.by_quantity, entry.request.length
+        if alternative is None or not isinstance(counted, Counted):
+            rules.append("{0, 0, 0, 0, 0}")
+        else:
+            rules.append(
+                f"{{{alternative.position}, {alternative.extra}, {alternative.unit}, {counted.position}, {counted.extra}}}"
+            )
+    others = [code for code in sorted(table.OTHER_FUNCTIONS) if code not in table.TABLE]
+    return rules + ["{0, 0, 0, 0, 0}"] * len(others)
+
+
 def _slot_rows(slots: list[int]) -> list[str]:
     return [", ".join(f"{value:2d}" for value in slots[row : row + 16]) for row in range(0, 256, 16)]
 
@@ -136,6 +152,10 @@ def render_header() -> str:
         "};",
         "static const LengthRule known_request_rule[KNOWN] = {" + ", ".join(known_requests) + "};",
         "static const LengthRule known_response_rule[KNOWN] = {" + ", ".join(known_responses) + "};",
+        "/* A request's length by its quantity when its byte count disagrees (framing/rtu.py BY_QUANTITY):",
+        " * {quantity's position, extra, bytes an item (0: coils, 8 a byte), byte count's position, extra}. */",
+        "typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;",
+        "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",
         "",
         "/* Where a request's fields are, as offsets from the frame's first byte (0: absent). The quantity",
         " * defaults to one register; the written registers' start and quantity default to the request's. */",

@@ -568,3 +568,25 @@ def test_settled_auto_slaves_texts_codes_come_from_the_engine() -> None:
     got = assert_same(data, auto)
     assert got.engine_lines >= 2 * 3 + 2 + 2 * 3  # the texts before and after the unknown product
     assert "[warning: Report Server ID (17) is not supported by the VW3 A3 303]" in got.lines[36]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_glitched_streams_same_lines(seed: int) -> None:
+    """A real line's glitch bytes (FF << k) after frames, on one or both sides, some frames damaged:
+    the engine hands each glitch to the careful path and takes the stream back after it. FC8 echoes
+    and vendor codes (CRC scans) followed by glitches are among the frames."""
+    rng = random.Random(100 + seed)
+    frames = noise_accuracy.session(rng, 400)
+    glitches = [(0xFF << k) & 0xFF for k in range(9)]
+    stream = bytearray()
+    for frame in frames:
+        if rng.random() < 0.03:
+            _how, frame = noise_accuracy.damage(rng, frame)
+        if rng.random() < 0.3:
+            stream.append(rng.choice(glitches))
+        stream += frame
+        stream += bytes(rng.choice(glitches) for _ in range(rng.choice([0, 1, 1, 1, 2])))
+    data = bytes(stream)
+    splits = [rng.randrange(len(data)) for _ in range(rng.choice([0, 5, 200]))]
+    assert_same(data, atv71, splits)
+    assert_same(data, lambda: None, splits)
