@@ -481,7 +481,9 @@ local DATA = {
           ["unit"] = "Hz",
           ["scale"] = 0.1,
           ["source"] = "F",
+          ["signed"] = true,
           ["decimals"] = 1,
+          ["ambiguous_8000"] = true,
         },
         [3203] = {
           ["code"] = "FRH",

@@ -68,6 +68,7 @@ class Sinks:
         self.json = args.output.json
         self.predicate: Callable[[dict], bool] | None = None
         self._last_time: float | None = None
+        self.valid_frames = self.input_bytes = 0  # of the input being decoded
         if args.filter is not None:
             from dissector.render.filters import FilterContext, compile_filter
 
@@ -105,7 +106,10 @@ class Sinks:
             # The report's counts are --stats' numbers, its parameters the same history's.
             self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []),
                                      self.stats)  # type: ignore[arg-type]
-        self.show = not args.stats and self.watch is None and self.report is None and (
+        # --report writes a file: the items are printed too when an item format is asked for
+        # (--report r.html --json), never silently dropped.
+        asked = args.output.records or args.output.detail or args.output.hexdump
+        self.show = not args.stats and self.watch is None and (self.report is None or asked) and (
             args.write is None or args.print_too
         )
         self.output = Output(args.output, self.text_out, text_isatty)
@@ -151,6 +155,10 @@ class Sinks:
         )
 
     def accept(self, items: list[Item]) -> None:
+        for item in items:  # is there any Modbus in this input at all?
+            self.input_bytes += item.length
+            if isinstance(item, Frame) and item.crc_ok:
+                self.valid_frames += 1
         predicate = self.predicate
         records: list[dict] | None = None
         if self.watch is not None:
@@ -353,23 +361,47 @@ def _decode_inputs(
                 timeout=args.timeout,
                 gaps=GapChecker(args.baud, mode) if timed else None,
             )
-            if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
-                from dissector.accel import fastsummary
-
-                if fastsummary.available():
-                    if sinks.plain_summary_only:
-                        path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, sinks.output.write_encoded)
-                        fastsummary.summarize(chunks, path, warn)
-                        continue
-                    store = sinks.stats.engine_store()  # type: ignore[union-attr]
-                    if store is not None:  # the engine counts what it shows; its lines are not wanted
-                        path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, _drop, store)
-                        fastsummary.summarize(chunks, path, warn)
-                        continue
-            decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
+            sinks.valid_frames = sinks.input_bytes = 0
+            _decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
+            if sinks.input_bytes and not sinks.valid_frames and path is not None:
+                # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
+                # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
+                name = path if path != "-" else "standard input"
+                env.stderr.write(
+                    f"{PROG}: warning: {name}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
+                    "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
+                    "or line speed?\n"
+                )
     except BaseException:
         sinks.abandon()
         raise
+
+
+def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissector: Dissector, sinks: Sinks,
+                annotate: Annotator | None, warn: Callable[[], None]) -> None:
+    if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
+        from dissector.accel import fastsummary
+
+        if fastsummary.available():
+            def engine_lines(write: Callable[[bytes], None]) -> Callable[[bytes], None]:
+                def lines(data: bytes) -> None:
+                    sinks.valid_frames += 1  # the engine shows valid transactions only
+                    write(data)
+                return lines
+
+            if sinks.plain_summary_only:
+                path = fastsummary.SummaryPath(dissector, annotate, sinks.accept,
+                                               engine_lines(sinks.output.write_encoded))
+                fastsummary.summarize(chunks, path, warn)
+                return
+            store = sinks.stats.engine_store()  # type: ignore[union-attr]
+            if store is not None:  # the engine counts what it shows; its lines are not wanted
+                frames = store.frames
+                path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, _drop, store)
+                fastsummary.summarize(chunks, path, warn)
+                sinks.valid_frames += store.frames - frames
+                return
+    decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:

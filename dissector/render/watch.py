@@ -210,10 +210,13 @@ class Watcher:
         column = self._column[1]
         time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
         pending = _Pending(frame, time, column, key, old, new)  # type: ignore[arg-type]
-        if self.live or not self._unknown(frame.slave):
-            self._emit(pending, provisional=self.live and self._unknown(frame.slave))
+        if self.live:
+            self._emit(pending, provisional=self._unknown(frame.slave))
+        elif self._waiting or self._unknown(frame.slave):
+            self._waiting.append(pending)  # in order: behind the lines already waiting
+            self.flush()
         else:
-            self._waiting.append(pending)
+            self._emit(pending)
 
     def _unknown(self, slave: int) -> bool:
         """Profile `auto` has not chosen this slave's device yet, and still may."""

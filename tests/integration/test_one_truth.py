@@ -1,0 +1,241 @@
+"""Issue 27: every output of one input says what its frames say.
+
+The consistency test decodes each input once with --json and derives, from those records alone and
+by the rules the README states, what --stats --json counts, what the report lists as events, the
+lines --watch prints and the rows -T fields writes; then runs those outputs and compares. Inputs:
+every shipped capture, and simulator sessions of each traffic mix (polling, plant, max-size).
+"""
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+from helpers import run_cli
+
+from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
+from dissector.sim.simulate import generate_session, write_capture
+
+CAPTURES = ROOT / "captures"
+WRITES = (6, 16, 23)
+READS = (3, 4, 23)
+UNREADABLE = ("protected", "non-existent")
+
+
+def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
+    """(traffic per (slave, function), parameters, state changes, protection events) from --json."""
+    by_frame = {record["frame"]: record for record in records}
+    traffic: dict[tuple[int, int], dict] = {}
+    params: dict[tuple[int, int], dict] = {}
+    changes: list[tuple[int, int, int]] = []  # (frame, slave, address)
+    protections: list[tuple[int, int]] = []  # (frame, slave)
+
+    def param(slave: int, register: dict) -> dict:
+        return params.setdefault((slave, register["address"]), {
+            "reads": 0, "unreadable": 0, "writes": 0, "refused": 0, "state": None, "changes": 0, "status": None,
+        })
+
+    def state(record: dict, register: dict, new: object, unreadable: bool) -> None:
+        entry = param(record["slave"], register)
+        old = entry["state"]
+        if old is not None and old != new:
+            entry["changes"] += 1
+            changes.append((record["frame"], record["slave"], register["address"]))
+        if unreadable and entry["status"] != new:
+            protections.append((record["frame"], record["slave"]))  # an unreadable span opens
+        elif not unreadable and entry["status"] is not None:
+            protections.append((record["frame"], record["slave"]))  # readable again
+        entry["status"] = new if unreadable else None
+        entry["state"] = new
+
+    for record in records:
+        if record["kind"] == "noise":
+            continue
+        row = traffic.setdefault((record["slave"], record["function"]), {
+            "requests": 0, "responses": 0, "exceptions": {}, "unanswered": 0, "crc_errors": 0})
+        if not record["crc_ok"]:
+            row["crc_errors"] += 1
+            continue
+        slave, function = record["slave"], record["function"]
+        registers = [r for r in record.get("registers") or [] if r["address"] is not None]
+        request = by_frame.get(record.get("request_frame"))
+        if record["kind"] == "request":
+            row["requests"] += 1
+            row["unanswered"] += bool(record.get("unanswered"))
+            if function in WRITES:
+                for register in registers:
+                    param(slave, register)["writes"] += 1
+                    if record["broadcast"]:
+                        state(record, register, ("value", register["value"]), False)
+            continue
+        written = []
+        if request is not None and request["crc_ok"] and request["function"] in WRITES:
+            written = [r for r in request.get("registers") or [] if r["address"] is not None]
+        if record["kind"] == "exception":
+            code = str(record["exception_code"])
+            row["exceptions"][code] = row["exceptions"].get(code, 0) + 1
+            for register in written:
+                param(slave, register)["refused"] += 1
+        else:
+            row["responses"] += 1
+            confirmed = registers if function == 6 else written if function in (16, 23) else []
+            for register in confirmed:
+                state(record, register, ("value", register["value"]), False)
+            if function not in READS:
+                continue
+        for register in registers:
+            if register.get("status") in UNREADABLE:
+                param(slave, register)["unreadable"] += 1
+                state(record, register, register["status"], True)
+            else:
+                param(slave, register)["reads"] += 1
+                state(record, register, ("value", register["value"]), False)
+    return traffic, params, changes, protections
+
+
+def inputs(tmp_path: Path) -> list[tuple[str, list[str]]]:
+    found = [(str(path), []) for path in sorted(CAPTURES.iterdir()) if path.suffix in (".bin", ".pcap")]
+    polling = write_capture(generate_session(400, seed=7), tmp_path / "polling")
+    plant = write_capture(plant_mix(1500, seed=3), tmp_path / "plant")
+    big = write_capture(max_size_mix(600, seed=4), tmp_path / "max")
+    plant_profiles = [option for profile in PLANT_PROFILES for option in ("--profile", profile)]
+    for raw, pcap in (polling,):
+        found += [(str(raw), []), (str(pcap), [])]
+    for raw, pcap in (plant,):
+        found += [(str(raw), plant_profiles), (str(pcap), plant_profiles)]
+    for raw, pcap in (big,):
+        found += [(str(raw), ["--profile", "generic"]), (str(pcap), ["--profile", "generic"])]
+    return found
+
+
+def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) -> None:
+    checked = 0
+    for path, options in inputs(tmp_path):
+        status, out, _ = run_cli([path, "--json", *options])
+        assert status == 0, path
+        records = [json.loads(line) for line in out.splitlines()]
+        traffic, params, changes, protections = derive(records)
+
+        # --stats --json
+        status, out, _ = run_cli([path, "--stats", "--json", *options])
+        report = json.loads(out)
+        assert report["frames"] == sum(record["kind"] != "noise" for record in records), path
+        got = {(row["slave"], row["function"]): {key: row[key] for key in
+               ("requests", "responses", "exceptions", "unanswered", "crc_errors")} for row in report["functions"]}
+        assert got == traffic, path
+        got_params = {(row["slave"], row["address"]): row for row in report["parameters"]}
+        assert set(got_params) == set(params), path
+        for key, entry in params.items():
+            row = got_params[key]
+            last = entry["state"]
+            expected_last = last[1] if isinstance(last, tuple) else None
+            assert (row["reads"], row["unreadable"], row["writes"], row["refused"], row["changes"], row["last"],
+                    row["last_status"]) == (
+                entry["reads"], entry["unreadable"], entry["writes"], entry["refused"], entry["changes"],
+                expected_last, last if isinstance(last, str) else None), (path, key)
+
+        # --watch on every address: one line per change of state (of watched registers that changed)
+        addresses = sorted({address for _slave, address in params})
+        if addresses:
+            status, out, err = run_cli([path, "--watch", ",".join(map(str, addresses)), "--json", *options])
+            assert status == 0, err
+            lines = [json.loads(line) for line in out.splitlines()]
+            assert [(c["frame"], c["slave"], c["address"]) for c in lines] == changes, path
+
+        # The report's events: one per protection moment, exception, bad check, noise run, unanswered request
+        page = tmp_path / "report.html"
+        status, _out, err = run_cli([path, "--report", str(page), *options])
+        assert status == 0, err
+        data = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
+        counts = data["event_counts"]
+        assert counts["protection"] == len(protections), path
+        assert counts["exception"] == sum(record["kind"] == "exception" and record["crc_ok"] for record in records)
+        assert counts["crc"] == sum(record["kind"] != "noise" and not record["crc_ok"] for record in records)
+        assert counts["noise"] == sum(record["kind"] == "noise" for record in records)
+        assert counts["unanswered"] == sum(
+            record["kind"] == "request" and record["crc_ok"] and bool(record.get("unanswered"))
+            and not record["broadcast"] for record in records)
+        listed = [event for event in data["events"] if event[1] == "protection"]
+        origin = 0 if not data["timed"] else None
+        if origin == 0 and not data["events_dropped"]:
+            assert [(int(x), slave) for x, _kind, slave, _text in listed] == protections, path
+
+        # -T fields: one row per item, register keys one occurrence per register
+        status, out, _ = run_cli([path, "-T", "fields", "-e", "frame", "-e", "slave", "-e", "address",
+                                  "-e", "value", "-e", "status", "-E", "separator=;", *options])
+
+        def join(record: dict, key: str) -> str:
+            elements = (record.get("registers") or []) + (record.get("bits") or [])
+            return ",".join("" if element.get(key) is None else str(element[key]) for element in elements)
+
+        expected_rows = [
+            ";".join([str(record["frame"]), "" if record.get("slave") is None else str(record["slave"]),
+                      join(record, "address"), join(record, "value"), join(record, "status")])
+            for record in records
+        ]
+        assert out.splitlines() == expected_rows, path
+        checked += 1
+    assert checked == 16
+
+
+def test_p38_story_in_every_output() -> None:
+    p38 = str(CAPTURES / "p38_protection.bin")
+    status, out, _ = run_cli([p38, "--stats", "--json"])
+    rows = {row["code"]: row for row in json.loads(out)["parameters"]}
+    assert [(rows[c]["reads"], rows[c]["unreadable"], rows[c]["last_status"]) for c in ("CHCF", "COP")] == [
+        (2, 4, "protected"), (4, 2, "protected")]
+
+
+def test_reverse_output_frequency_is_signed() -> None:
+    # RFR (3202) reads 16#FFEC when the motor turns in reverse at 2 Hz.
+    status, out, _ = run_cli(["--profile", "atv71", "--hex", "02 03 0C 81 00 02",
+                              "--hex", "02 03 04 02 37 FF EC", "--json"])
+    (rfr,) = [r for r in json.loads(out.splitlines()[1])["registers"] if r["code"] == "RFR"]
+    assert (rfr["value"], rfr["scaled"], rfr["text"], rfr["unit"]) == (65516, -2.0, "-2.0 Hz", "Hz")
+    status, out, _ = run_cli(["--profile", "atv71", "--hex", "02 03 0C 81 00 02",
+                              "--hex", "02 03 04 02 37 FF EC"])
+    assert "RFR=-2.0 Hz" in out.splitlines()[1]
+
+
+def test_a_file_without_any_valid_frame_says_so_once(tmp_path: Path) -> None:
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+
+    png = tmp_path / "photo.png"
+    png.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 4, 4, 8, 2, 0, 0, 0))
+                    + chunk(b"IDAT", zlib.compress(b"\x00" * 52)) + chunk(b"IEND", b""))
+    for extra in ([], ["--stats"], ["--json"]):
+        status, out, err = run_cli([str(png), *extra])
+        assert status == 0
+        assert err == (f"vw3-decode: warning: {png}: no valid Modbus RTU frame in 69 bytes (every item is noise "
+                       "or a frame with a bad check): not a Modbus capture, or another format or line speed?\n")
+    # A capture with frames says nothing of the kind.
+    assert run_cli([str(CAPTURES / "noisy_bus.bin")])[2] == ""
+
+
+def test_report_with_an_item_format_prints_the_items_too(tmp_path: Path) -> None:
+    p38 = str(CAPTURES / "p38_protection.bin")
+    page = str(tmp_path / "r.html")
+    for extra in (["--json"], ["-T", "fields", "-e", "frame"], ["-V"]):
+        alone = run_cli([p38, *extra])
+        assert run_cli([p38, "--report", page, *extra]) == alone
+        assert Path(page).read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+    assert run_cli([p38, "--report", page]) == (0, "", "")
+
+
+@pytest.mark.parametrize("name", ["p38_protection.pcap", "atv71_commissioning.pcap"])
+def test_watch_lines_count_as_stats_changes(name: str) -> None:
+    path = str(CAPTURES / name)
+    status, out, _ = run_cli([path, "--stats", "--json"])
+    report = json.loads(out)
+    for row in report["parameters"]:
+        if row["code"] is None:
+            continue
+        status, out, _ = run_cli([path, "--watch", row["code"], "-Y", f"slave == {row['slave']}"])
+        assert len(out.splitlines()) == row["changes"], row
