@@ -86,10 +86,15 @@ class Sinks:
             self.stats = StatsCollector(getattr(annotate, "choices", None), History(annotate))
         self.stats_shown = args.stats
         self.bus = None  # bus timing and slave health (render/bustiming.py), from every item heard
-        if args.stats:
+        self.health = None  # the report's response times over time and setpoints (report/health.py)
+        if args.stats or args.report is not None:
             from dissector.render.bustiming import BusTiming
 
             self.bus = BusTiming(args.timeout)
+        if args.report is not None:
+            from dissector.render.report.health import Health
+
+            self.health = Health()
         # With -w -, standard output is the pcap: text goes to standard error (as tshark -w - -P).
         self.text_out = env.stderr if args.write == STDOUT else env.stdout
         text_isatty = env.stderr_isatty if args.write == STDOUT else env.stdout_isatty
@@ -126,6 +131,7 @@ class Sinks:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count
+        self.wrote: str | None = None  # the report written (said last, on a terminal)
         self.done = False  # -c N reached
 
     @property
@@ -167,6 +173,8 @@ class Sinks:
             self.clock.observe(items)  # time references are the capture's, whatever the filter shows
         if self.bus is not None:
             self.bus.add_items(items)  # the bus as it was, whatever -Y shows
+        if self.health is not None:
+            self.health.add_items(items)
         if predicate is not None:
             self._filter_times(items)
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
@@ -251,7 +259,9 @@ class Sinks:
             self.watch.finish()
         if self.report is not None:
             report, self.report = self.report, None
-            report.write(self.stats)  # type: ignore[arg-type]
+            extras = {"bus": self.bus, "health": self.health, "time_format": self.clock.format}
+            report.write(self.stats, extras)  # type: ignore[arg-type]
+            self.wrote = report.path
         if self.stats is not None and self.stats_shown:
             if self.json:
                 report = self.stats.report()
@@ -312,7 +322,10 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
         stdin = env.stdin if path == "-" else None
         source = open_source(path, args.format, mode=args.mode, stdin=stdin)
         chunks: Iterable[Chunk] = source
-        if env.stderr_isatty and not env.stdout_isatty and path != "-" and not args.output.records:
+        # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
+        # --watch come at the end.
+        quiet = args.report is not None or args.stats
+        if env.stderr_isatty and (quiet or not env.stdout_isatty) and path != "-" and not args.output.records:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
             chunks = progress_for(source, path, env.stderr)
@@ -326,6 +339,8 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
         report_profiles(annotate, env.stderr, env.stderr_isatty)
+        if sinks.wrote is not None and env.stderr_isatty:
+            env.stderr.write(f"{PROG}: wrote {sinks.wrote}\n")
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly

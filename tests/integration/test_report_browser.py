@@ -2,6 +2,8 @@
 draws what the capture holds. Installed with apt-get when missing, never skipped."""
 from __future__ import annotations
 
+import html
+import json
 import os
 import re
 import shutil
@@ -79,13 +81,29 @@ def test_commissioning_report_draws_every_slave_and_parameter(tmp_path: Path) ->
     assert 'data-slave="2"' in histogram and 'data-drawn="uplot"' in histogram
     trends = charts(dom, "trend")
     codes = [re.search(r'data-code="([^"]*)"', tag).group(1) for tag in trends]
-    # Every parameter the capture reads or writes, with its code from the ATV71 map.
-    assert codes == ["SFR", "TFR", "HSP", "LSP", "ETA", "RFR", "CHCF", "COP", "FR1", "CD1", "CMD", "LFR",
-                     "ACC", "DEC"]
+    # Every parameter the capture reads or writes, with its code from the ATV71 map: a trend when its
+    # value changed, a row of the single-value table when not; the index links them all, named first.
+    assert codes == ["HSP", "ETA", "RFR", "CHCF", "CMD", "LFR"]
+    single = re.search(r'<h3 id="single">.*?</table>', dom, re.S).group(0)
+    assert re.findall(r"<tr><td>2</td><td>\d+</td><td>(\w+)</td>", single) == [
+        "SFR", "TFR", "LSP", "COP", "FR1", "CD1", "ACC", "DEC"]
+    assert "<td>3102</td><td>SFR</td><td>Switching frequency</td><td>4 kHz</td><td>1</td>" in single
+    index = re.search(r'<p class="index">(.*?)</p>', dom).group(1)
+    assert re.findall(r">(\w+)</a>", index) == ["SFR", "TFR", "HSP", "LSP", "ETA", "RFR", "CHCF", "COP", "FR1",
+                                                "CD1", "CMD", "LFR", "ACC", "DEC"]
     assert all('data-drawn="uplot"' in tag for tag in trends)
+    # Setpoints (written: HSP, CHCF, CMD, LFR) and enumerations are steps; RFR, a measurement, is not.
+    assert [code for code, tag in zip(codes, trends) if 'data-step="1"' in tag] == ["HSP", "ETA", "CHCF", "CMD", "LFR"]
+    # Status words that share their first 26 characters are told apart on the axis.
+    eta = json.loads(html.unescape(re.search(r'data-code="ETA"[^>]*data-labels="([^"]*)"', dom).group(1)))
+    assert len(set(eta)) == len(eta) == 3
     (timeline,) = charts(dom, "timeline")
     assert 'data-drawn="uplot"' in timeline
-    assert dom.count('class="uplot') == len(trends) + 2  # one canvas chart each
+    (responses,) = charts(dom, "rtt")
+    assert 'data-slave="2"' in responses and 'data-drawn="uplot"' in responses
+    (load,) = charts(dom, "load")
+    assert 'data-drawn="uplot"' in load
+    assert dom.count('class="uplot') == len(trends) + 4  # one canvas chart each: histogram, response times, load, timeline
     assert "exception 07 to function 6" in dom  # the refused CHCF write, on the timeline's list
 
 
@@ -98,7 +116,10 @@ def test_p38_protection_events_are_marked(tmp_path: Path) -> None:
         ("1.059949", "1.059949: protected"),  # frame 6: 16#8000 at a known parameter
         ("2.10596", "2.105960: protected (exception 02)"),  # frame 10: the read refused
     ]
-    assert re.search(r"<td>1.059949</td><td>protection</td><td>12</td><td>CHCF \(8401\) protected</td>", dom)
+    # Events grouped, with their frame numbers although the capture is timed.
+    assert "<td>protection</td><td>12</td><td>CHCF (8401) protected</td><td>1</td><td>1.059949 #6</td><td></td>" in dom
+    assert ("<td>exception</td><td>12</td><td>exception 02 to function 3: address does not exist (also: every "
+            "parameter read is non-existent or protected)</td><td>2</td><td>2.105960 #10</td><td>2.627401 #12</td>") in dom
 
 
 def test_a_script_error_shows_in_the_page(tmp_path: Path) -> None:
@@ -130,3 +151,32 @@ def test_empty_capture_gives_an_empty_report(tmp_path: Path) -> None:
     assert result.returncode == 0
     dom = dump_dom(tmp_path, page)
     assert errors(dom) == "" and "0 frames, 0 noise bytes in 0 runs" in dom and "No events." in dom
+
+
+def test_a_200000_frame_capture_renders_with_the_health_charts(tmp_path: Path) -> None:
+    """Issue 29: a long polling session (198,061 frames) gives a page of bounded size whose every chart
+    draws: response times against time per slave, bus load, the timeline, trends; events grouped."""
+    subprocess.run([sys.executable, "-m", "dissector.sim.simulate", "--out", str(tmp_path), "--transactions",
+                    "100000", "--seed", "1"], cwd=ROOT, check=True, capture_output=True, timeout=600)
+    capture = tmp_path / "bench-100000-1.pcap"
+    page = tmp_path / "long.html"
+    result = subprocess.run(
+        [sys.executable, "-m", "dissector", str(capture), "--report", str(page), "-t", "ud"],
+        cwd=ROOT, capture_output=True, text=True, timeout=900,
+    )
+    assert (result.returncode, result.stderr) == (0, "")
+    assert page.stat().st_size < 3_000_000  # downsampled: the page does not grow with the capture
+    dom = dump_dom(tmp_path, page)
+    assert errors(dom) == ""
+    assert "198061 frames" in dom
+    responses = charts(dom, "rtt")
+    assert len(responses) >= 2 and all('data-drawn="uplot"' in tag for tag in responses)
+    assert len(charts(dom, "load")) == 1 and 'data-drawn="uplot"' in charts(dom, "load")[0]
+    drawn = re.findall(r'<div class="chart [a-z]+"[^>]*data-drawn="uplot"', dom)
+    assert len(drawn) == len(re.findall(r'<div class="chart [a-z]+"', dom)) > 6
+    # Grouped: a handful of rows, each with its count, its first and last time (-t ud) and frame.
+    table = re.search(r'<table class="events">.*?</table>', dom, re.S).group(0)
+    rows = re.findall(r"<tr><td>(\w+)</td><td>(\d*)</td><td>[^<]*</td><td>(\d+)</td><td>([^<]*)</td>", table)
+    assert 0 < len(rows) < 200 and sum(int(count) for _kind, _slave, count, _first in rows) > len(rows)
+    assert all(re.fullmatch(r"2026-01-01 \d\d:\d\d:\d\d\.\d{6} #\d+", first) for *_rest, first in rows)
+    assert re.search(r'<p class="index">(<a href="#(p\d+|single)"[^>]*>[^<]+</a> ?)+</p>', dom)

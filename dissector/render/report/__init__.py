@@ -25,8 +25,8 @@ class ReportFile:
         except OSError as error:
             raise UsageError(f"--report {path}: {error.strerror or error}") from None
 
-    def write(self, stats: StatsCollector) -> None:
-        write_report(self.stream, self.path, self.collector, stats, self.title)
+    def write(self, stats: StatsCollector, extras: dict | None = None) -> None:
+        write_report(self.stream, self.path, self.collector, stats, self.title, extras)
 
     def abandon(self) -> None:
         try:

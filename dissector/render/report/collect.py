@@ -27,6 +27,7 @@ from typing import Any
 from dissector.devices.maps import interpret
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
+from dissector.render.report.groups import EventGroups
 
 COLUMNS = 600
 MAX_SERIES = 400
@@ -153,6 +154,8 @@ class ReportCollector:
         self.event_counts: dict[str, int] = {kind: 0 for kind in EVENT_KINDS}
         self.first_x: float | None = None
         self.last_x: float | None = None
+        self.number = 0  # the frame number of the item at hand (events name their frame)
+        self.groups = EventGroups()
 
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
@@ -173,6 +176,7 @@ class ReportCollector:
             counts.update(merged)
 
     def _x(self, item: Item) -> float:
+        self.number = item.number
         if self.timed is None:
             self.timed = item.time is not None
             self.width = 1e-3 if self.timed else 1.0
@@ -224,6 +228,7 @@ class ReportCollector:
 
     def _event(self, x: float, kind: str, slave: int | None, text: str) -> None:
         self.event_counts[kind] += 1
+        self.groups.add(kind, slave, text, x, self.number)
         counts = self.event_columns[kind]
         col = self._col(x)
         counts[col] = counts.get(col, 0) + 1

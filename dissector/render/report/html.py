@@ -4,7 +4,6 @@ on an offline laptop and holds no http(s) reference.
 """
 from __future__ import annotations
 
-import html
 import json
 from importlib import resources
 from typing import Any, TextIO
@@ -12,6 +11,8 @@ from typing import Any, TextIO
 from dissector.errors import OutputError
 from dissector.render.pollcycle import describe_key
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
+from dissector.render.report.markup import _esc, _ms, _table
+from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
 from dissector.render.stats import StatsCollector, time_summary
 from dissector.protocol.spec import SPEC
 
@@ -20,20 +21,6 @@ HISTOGRAM_BINS = 40
 
 def _static(name: str) -> str:
     return resources.files("dissector.render.report").joinpath("static", name).read_text("utf-8")
-
-
-def _esc(value: object) -> str:
-    return html.escape("" if value is None else str(value))
-
-
-def _ms(seconds: float | None) -> str:
-    return "" if seconds is None else f"{seconds * 1000:.1f}"
-
-
-def _table(headers: list[str], rows: list[list[object]], cls: str = "") -> str:
-    head = "".join(f"<th>{_esc(header)}</th>" for header in headers)
-    body = "".join("<tr>" + "".join(f"<td>{_esc(cell)}</td>" for cell in row) + "</tr>" for row in rows)
-    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
 def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
@@ -70,8 +57,15 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
     return result
 
 
-def render_report(collector: ReportCollector, stats: StatsCollector, title: str = "vw3-decode report") -> str:
+def render_report(
+    collector: ReportCollector, stats: StatsCollector, title: str = "vw3-decode report",
+    extras: dict[str, Any] | None = None,
+) -> str:
+    """`extras`: `bus` (BusTiming), `health` (report/health.py) and `time_format` (-t) when the CLI has them."""
+    extras = extras or {}
+    bus, health = extras.get("bus"), extras.get("health")
     data = collector.data(points=False)
+    when = _clock(data, extras.get("time_format", "r"))
     summary = stats.report()
     slaves = _slaves(stats)
     data["slaves"] = [
@@ -109,6 +103,7 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
                 f'<div class="chart rt" data-slave="{entry["slave"]}"><h3>Slave {entry["slave"]}: response '
                 f'times (ms), {entry["time"]["count"]} answers</h3></div>'
             )
+    parts.extend(bus_section(data, bus, health, when))
     function_rows = [
         [row["slave"], f"{row['function']} {row['function_name']}", row["requests"], row["responses"],
          " ".join(f"{code}:{count}" for code, count in row["exceptions"].items()), row["unanswered"],
@@ -139,27 +134,26 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
     counts = data["event_counts"]
     parts.append("<p>" + ", ".join(f"{kind}: {counts[kind]}" for kind in EVENT_KINDS) + "</p>")
     parts.append('<div class="chart timeline"></div>')
-    event_rows = [[_when(x, data["timed"]), kind, "" if slave is None else slave, text]
-                  for x, kind, slave, text in data["events"]]
-    if event_rows:
-        parts.append(_table(["time" if data["timed"] else "frame", "kind", "slave", "event"], event_rows, "events"))
-    if data["events_dropped"]:
-        parts.append(f"<p class=\"note\">… {data['events_dropped']} more events (counted in the timeline)</p>")
+    parts.extend(event_groups(collector, data, when))
     # -- parameters
     parts.append('<h2 id="parameters">Parameters</h2>')
+    single = single_values(collector, data)
+    parts.extend(parameter_index(data, single))
     for index, parameter in enumerate(data["parameters"]):
+        if index in single:
+            continue
         code = parameter["code"]
         head = f"{code} ({parameter['address']})" if code else str(parameter["address"])
         extra = ", ".join(filter(None, [parameter["name"], parameter["unit"] and f"in {parameter['unit']}",
                                          "steps" if parameter["step"] else None]))
         marks = "".join(
-            f'<li class="mark" data-x="{x}">{_esc(_when(x, data["timed"]))}: {_esc(text)}</li>'
+            f'<li class="mark" data-x="{x}">{_esc(when(x + data["origin"]))}: {_esc(text)}</li>'
             for x, text in parameter["marks"]
         )
         if parameter["marks_dropped"]:
             marks += f"<li>… {parameter['marks_dropped']} more</li>"
         parts.append(
-            f'<div class="chart trend" data-index="{index}" data-code="{_esc(code or "")}">'
+            f'<div class="chart trend" id="p{index}" data-index="{index}" data-code="{_esc(code or "")}">'
             f'<h3>Slave {parameter["slave"]}: <span class="code">{_esc(head)}</span> '
             f'<small>{_esc("; ".join(filter(None, [extra, str(parameter["values"]) + " values"])))}</small></h3>'
             + (f'<ul class="marks">{marks}</ul>' if marks else "")
@@ -169,6 +163,10 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
         parts.append(f"<p class=\"note\">Only the first {len(data['parameters'])} parameters are drawn; "
                      f"{data['parameters_dropped']} values of others are in --stats.</p>")
     del data["parameters"]  # their points are written series by series
+    data["clock"] = extras.get("time_format", "r")
+    data["first"] = collector.first_x
+    if health is not None:
+        data["written"] = sorted(f"{slave}:{address}" for slave, address in health.written)
     head = json.dumps(data, separators=(",", ":"), allow_nan=False)
     payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("</", "<\\/")
     return (
@@ -177,8 +175,8 @@ def render_report(collector: ReportCollector, stats: StatsCollector, title: str 
         "<script>window.reportErrors=[];window.onerror=function(m,s,l,c,e){window.reportErrors.push(String(m));"
         "var d=document.getElementById('errors');if(d){d.textContent=window.reportErrors.join('\\n');}};</script>\n"
         f"</head><body><h1>{_esc(title)}</h1><pre id=\"errors\"></pre>"
-        '<nav><a href="#slaves">slaves</a> <a href="#poll">poll cycle</a> <a href="#events">events</a> '
-        '<a href="#parameters">parameters</a></nav>\n'
+        '<nav><a href="#slaves">slaves</a> <a href="#bus">bus</a> <a href="#poll">poll cycle</a> '
+        '<a href="#events">events</a> <a href="#parameters">parameters</a></nav>\n'
         + "\n".join(parts)
         + f'\n<script type="application/json" id="report-data">{payload}</script>\n'
         f"<script>/* uPlot 1.6.31, (c) Leon Sorokin, MIT licence */\n{_static('uPlot.iife.min.js')}</script>\n"
@@ -191,10 +189,11 @@ def _when(x: float, timed: bool) -> str:
 
 
 def write_report(
-    stream: TextIO, path: str, collector: ReportCollector, stats: StatsCollector, title: str | None = None
+    stream: TextIO, path: str, collector: ReportCollector, stats: StatsCollector, title: str | None = None,
+    extras: dict[str, Any] | None = None,
 ) -> None:
     """Write and close the report (opened by the caller before decoding, so a bad path fails first)."""
-    text = render_report(collector, stats, title or "vw3-decode report")
+    text = render_report(collector, stats, title or "vw3-decode report", extras)
     try:
         with stream:
             stream.write(text)

@@ -1,0 +1,82 @@
+"""What the report adds for slave health (issue 29), collected from every item heard, bounded memory:
+
+- per slave, its response times against time, downsampled per pixel column (first, lowest, highest and
+  last point of each column, as the parameter trends: a single slow answer survives), drawn with the
+  slave's outages (render/bustiming.py) as bands;
+- the bus load per minute (bustiming);
+- events grouped (groups.py);
+- which parameters were written (setpoints): their trends are drawn as steps, since a setpoint holds
+  until the next write.
+"""
+from __future__ import annotations
+
+from typing import Any
+
+from dissector.model import Item, Kind
+from dissector.protocol.table import FUNCTIONS
+from dissector.render.report.collect import COLUMNS, Columns
+
+# Requests whose registers are values written: setpoints (FC23's write half too).
+WRITES = frozenset(entry.code for entry in FUNCTIONS if str(entry.access) in ("write", "read_write"))
+
+
+class Health:
+    """Response times per slave over time, and the parameters written; fed every item in order."""
+
+    def __init__(self) -> None:
+        self.origin: float | None = None
+        self.width = 1e-3
+        self.limit = 0.0
+        self.series: dict[int, Columns] = {}
+        self.counts: dict[int, int] = {}
+        self.written: set[tuple[int, int]] = set()
+
+    def add_items(self, items: list[Item]) -> None:
+        for item in items:
+            if item.kind is Kind.NOISE:
+                continue
+            frame = item
+            if not frame.crc_ok:  # type: ignore[union-attr]
+                continue
+            if frame.kind is Kind.REQUEST:  # type: ignore[union-attr]
+                if frame.function in WRITES and frame.registers:  # type: ignore[union-attr]
+                    slave = frame.slave  # type: ignore[union-attr]
+                    for register in frame.registers:  # type: ignore[union-attr]
+                        if register.address is not None:
+                            self.written.add((slave, register.address))
+                continue
+            seconds = frame.response_time  # type: ignore[union-attr]
+            if seconds is not None:
+                self._point(frame.slave, frame.time, seconds)  # type: ignore[union-attr, arg-type]
+
+    def _point(self, slave: int, x: float, y: float) -> None:
+        if self.origin is None:
+            self.origin = x
+            self.limit = x + 2 * COLUMNS * self.width
+        while x >= self.limit:
+            self._double()
+        columns = self.series.get(slave)
+        if columns is None:
+            columns = self.series[slave] = Columns()
+        columns.add(max(0, int((x - self.origin) / self.width)), x, y)
+        self.counts[slave] = self.counts.get(slave, 0) + 1
+
+    def _double(self) -> None:
+        self.width *= 2
+        self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
+        for columns in self.series.values():
+            columns.close()
+            if len(columns) > 2 * COLUMNS:
+                columns.compact(self.origin, self.width)  # type: ignore[arg-type]
+
+    def response_series(self, origin: float, width: float) -> list[dict[str, Any]]:
+        """Per slave x (relative to the report's origin) and y (ms), in the report's columns."""
+        out = []
+        for slave in sorted(self.series):
+            columns = self.series[slave]
+            columns.close()
+            columns.compact(origin, max(width, self.width))
+            xs, ys = columns.points()
+            out.append({"slave": slave, "answers": self.counts[slave],
+                        "x": [round(x - origin, 6) for x in xs], "y": [round(y * 1000, 3) for y in ys]})
+        return out

@@ -1,0 +1,18 @@
+"""HTML pieces of the report page: escaped text, numbers in ms, tables (readable without script)."""
+from __future__ import annotations
+
+import html
+
+
+def _esc(value: object) -> str:
+    return html.escape("" if value is None else str(value))
+
+
+def _ms(seconds: float | None) -> str:
+    return "" if seconds is None else f"{seconds * 1000:.1f}"
+
+
+def _table(headers: list[str], rows: list[list[object]], cls: str = "") -> str:
+    head = "".join(f"<th>{_esc(header)}</th>" for header in headers)
+    body = "".join("<tr>" + "".join(f"<td>{_esc(cell)}</td>" for cell in row) + "</tr>" for row in rows)
+    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'

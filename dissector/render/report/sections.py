@@ -1,0 +1,142 @@
+"""The report's sections for bus health and navigation (issue 29): bus timing with the response times of
+each slave against time and its outages as bands, the load per minute; events grouped with counts,
+first and last (time and frame); the parameter index (named parameters first) and the compact table of
+parameters that kept one value. Times are shown as the time column shows them (-t)."""
+from __future__ import annotations
+
+from collections.abc import Callable
+from types import SimpleNamespace
+from typing import Any
+
+from dissector.render.report.collect import ReportCollector
+from dissector.render.report.markup import _esc, _ms, _table
+from dissector.render.timefmt import Clock
+
+MAX_GROUP_ROWS = 1000
+
+
+def _clock(data: dict[str, Any], time_format: str) -> Callable[[float], str]:
+    """An absolute x (epoch seconds, or a frame number without timestamps) as -t shows it."""
+    if not data["timed"]:
+        return lambda x: f"#{int(x)}"
+    clock = Clock("r" if time_format in ("d", "dd") else time_format, first=data["origin"])
+    return lambda x: clock.text(SimpleNamespace(time=x))  # type: ignore[arg-type]
+
+
+def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[float], str]) -> list[str]:
+    """Bus timing (bustiming.py) and the response-time charts; adds their series to `data`."""
+    parts = ['<h2 id="bus">Bus</h2>']
+    if bus is None:
+        return parts + ["<p>No bus timing for this report.</p>"]
+    report = bus.report()
+    origin = data["origin"]
+    data["outages"] = [dict(outage, x0=round(outage["start"] - origin, 6), x1=round(outage["end"] - origin, 6))
+                       for outage in report["outages"] if outage["start"] is not None]
+    minutes = report["load_per_minute"]
+    data["load"] = {"x": [round(entry["start"] - origin, 6) for entry in minutes],
+                    "y": [round(entry["load"] * 100, 3) for entry in minutes]}
+    if minutes:  # the last minute's step runs to its end, or the capture's
+        end = min(minutes[-1]["start"] + 60.0, bus.first + report["span"])
+        data["load"]["x"].append(round(end - origin, 6))
+        data["load"]["y"].append(data["load"]["y"][-1])
+    data["responses"] = health.response_series(origin, data["column_width"]) if health is not None else []
+    answered = {entry["slave"] for entry in data["responses"]}
+    for slave in sorted({outage["slave"] for outage in data["outages"]} - answered):  # silent throughout
+        data["responses"].append({"slave": slave, "answers": 0, "x": [], "y": []})
+    data["responses"].sort(key=lambda entry: entry["slave"])
+    if not report["timed"]:
+        return parts + ["<p>No timestamps in this capture: load, gaps, turnaround and outages need a pcap, "
+                        "pcapng or timed dump.</p>"]
+    line = f"{report['baud']} baud ({report['baud_source']}), {report['bits_per_char']} bits a character"
+    load = report["load"]
+    rows = [
+        ["line", line], ["load", "-" if load is None else f"{load * 100:.1f} %"],
+        ["t3.5", f"{report['t35'] * 1000:.3f} ms"],
+        ["gaps below t3.5", f"{report['gaps_below_t35']} of {(report['gaps'] or {}).get('count', 0)}"],
+    ]
+    turnaround = report["turnaround"]
+    if turnaround is not None:
+        rows.append(["master turnaround", f"median {_ms(turnaround['median'])} ms, p95 {_ms(turnaround['p95'])} ms, "
+                                          f"max {_ms(turnaround['max'])} ms ({turnaround['count']})"])
+    parts.append(_table(["", ""], rows, "bus"))
+    if report["responses"]:
+        parts.append(_table(
+            ["slave", "answers", "median ms", "p95 ms", "max ms", "margin to --timeout ms", "over 90% of it"],
+            [[entry["slave"], entry["count"], _ms(entry["median"]), _ms(entry["p95"]), _ms(entry["max"]),
+              _ms(entry["margin"]), entry["close_to_timeout"]] for entry in report["responses"]], "numbers"))
+    if report["outages"]:
+        parts.append("<h3>Outages (two or more consecutive requests unanswered)</h3>" + _table(
+            ["slave", "from", "to", "requests", "frames"],
+            [[outage["slave"], when(outage["start"]), when(outage["end"]), outage["requests"],
+              f"#{outage['first_frame']}..#{outage['last_frame']}"] for outage in report["outages"]], "numbers"))
+    else:
+        parts.append("<p>No outage: no slave left two consecutive requests unanswered.</p>")
+    for entry in data["responses"]:
+        parts.append(f'<div class="chart rtt" data-slave="{entry["slave"]}"><h3>Slave {entry["slave"]}: response '
+                     f'time against time (ms), {entry["answers"]} answers, outages shaded</h3></div>')
+    if data["load"]["x"]:
+        parts.append('<div class="chart load"><h3>Bus load per minute (%)</h3></div>')
+    return parts
+
+
+def event_groups(collector: ReportCollector, data: dict[str, Any], when: Callable[[float], str]) -> list[str]:
+    groups = collector.groups.rows()
+    if not groups:
+        return []
+    rows = [[group.kind, "" if group.slave is None else group.slave, group.text, group.count,
+             f"{when(group.first_x)} #{group.first_frame}" if data["timed"] else f"#{group.first_frame}",
+             (f"{when(group.last_x)} #{group.last_frame}" if data["timed"] else f"#{group.last_frame}")
+             if group.count > 1 else ""]
+            for group in groups[:MAX_GROUP_ROWS]]
+    parts = [_table(["kind", "slave", "event", "count", "first", "last"], rows, "events")]
+    more = len(groups) - MAX_GROUP_ROWS + collector.groups.ungrouped
+    if more > 0:
+        parts.append(f'<p class="note">… {more} more kinds of events (counted in the timeline)</p>')
+    return parts
+
+
+def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int, float]:
+    """Parameters drawn from one value throughout and never unreadable: index -> the value."""
+    single = {}
+    for index, parameter in enumerate(data["parameters"]):
+        if parameter["marks"] or not parameter["values"]:
+            continue
+        series = collector.series.get((parameter["slave"], parameter["address"]))
+        if series is None:
+            continue
+        ys = series.columns.done[1::2]
+        if ys and min(ys) == max(ys):
+            single[index] = ys[0]
+    return single
+
+
+def _value_text(parameter: dict[str, Any], value: float) -> str:
+    number = int(value) if value.is_integer() else value
+    label = parameter["labels"].get(str(number))
+    if label is not None:
+        return f"{number} {label}"
+    return f"{number} {parameter['unit']}" if parameter["unit"] else str(number)
+
+
+def parameter_index(data: dict[str, Any], single: dict[int, float]) -> list[str]:
+    """Links to every trend, named parameters first; the one-value parameters as a table."""
+    parameters = data["parameters"]
+    if not parameters:
+        return ["<p>No parameter values in this capture.</p>"]
+    order = sorted(range(len(parameters)), key=lambda index: (parameters[index]["code"] is None,
+                                                               parameters[index]["slave"], parameters[index]["address"]))
+    links = []
+    for index in order:
+        parameter = parameters[index]
+        name = parameter["code"] or str(parameter["address"])
+        target = "single" if index in single else f"p{index}"
+        title = _esc(f"slave {parameter['slave']}, {parameter['address']}: {parameter['name'] or ''}")
+        links.append(f'<a href="#{target}" title="{title}">{_esc(name)}</a>')
+    parts = ['<p class="index">' + " ".join(links) + "</p>"]
+    if single:
+        parts.append('<h3 id="single">Parameters with a single value</h3>' + _table(
+            ["slave", "address", "code", "name", "value", "values"],
+            [[parameters[index]["slave"], parameters[index]["address"], parameters[index]["code"] or "",
+              parameters[index]["name"] or "", _value_text(parameters[index], single[index]), parameters[index]["values"]]
+             for index in order if index in single], "single"))
+    return parts
