@@ -83,26 +83,28 @@ def test_untimed_events_are_numbered_by_their_frames() -> None:
         status, out, err = run_cli(["--report", path, str(CAPTURES / name)])
         assert (status, out) == (0, "")
         page = open(path, encoding="utf-8").read()
-        rows = re.findall(r"<tr><td>(#\d+)</td><td>(\w+)</td><td>(\d*)</td><td>([^<]*)</td></tr>", page)
+        # Grouped (issue 29): kind, slave, event, count, first and last frame.
+        rows = re.findall(
+            r"<tr><td>(\w+)</td><td>(\d*)</td><td>([^<]*)</td><td>(\d+)</td><td>(#\d+)</td><td>(#\d+|)</td></tr>", page)
+        exception = "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"
         expected = {
             "p38_protection.bin": [
-                ("#2", "protection", "12", "8400 non-existent"),
-                ("#6", "protection", "12", "CHCF (8401) protected"),
-                ("#10", "exception", "12",
-                 "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"),
-                ("#10", "protection", "12", "COP (8402) protected (exception 02)"),
-                ("#12", "exception", "12",
-                 "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"),
+                ("protection", "12", "8400 non-existent", "1", "#2", ""),
+                ("protection", "12", "CHCF (8401) protected", "1", "#6", ""),
+                ("exception", "12", exception, "2", "#10", "#12"),
+                ("protection", "12", "COP (8402) protected (exception 02)", "1", "#10", ""),
             ],
         }
         if name in expected:
             assert rows == expected[name]
+        assert rows
         # Every event's number is the frame it happened in, as the summary numbers it.
         status, summary, _ = run_cli([str(CAPTURES / name)])
         kinds = {int(line.split()[0]): line.split()[3] for line in summary.splitlines() if line.strip()}
-        for number, kind, _slave, _text in rows:
-            shown = kinds[int(number[1:])]
-            assert {"noise": "noise", "crc": None}.get(kind, shown) in (shown, None), (number, kind, shown)
+        for kind, _slave, _text, _count, first, last in rows:
+            for number in filter(None, (first, last)):
+                shown = kinds[int(number[1:])]
+                assert {"noise": "noise", "crc": None}.get(kind, shown) in (shown, None), (number, kind, shown)
 
 
 def test_noisy_bus_events() -> None:
