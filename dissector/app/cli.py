@@ -324,7 +324,7 @@ def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
         chunks: Iterable[Chunk] = source
         # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
         # --watch come at the end.
-        quiet = args.report is not None or args.stats
+        quiet = (args.report is not None or args.stats) and not (args.output.detail or args.output.hexdump)
         if env.stderr_isatty and (quiet or not env.stdout_isatty) and path != "-" and not args.output.records:
             from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
