@@ -420,11 +420,27 @@ def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, disse
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:
-    # The time column as for files (-t): from the first item heard, or the one heard before.
+    # The display options as a file decode checks and honours them (-Y, -V, -x, -T fields): one
+    # line for a contradiction or a bad filter, before the port is opened.
+    checked = argparse.Namespace(**vars(args))
+    checked.raw = checked.duration = None  # live options, which the file checks refuse
+    options = decode_options(checked)
+    args.display, args.filter_text = options.output, options.filter
+    annotate = _annotator(args)
+    if options.filter is not None:
+        from dissector.render.filters import FilterContext, compile_filter
+
+        codes = getattr(annotate, "codes", None)
+        compile_filter(options.filter, FilterContext(codes=frozenset(codes()) if codes is not None else None))
+    if options.watch is not None:
+        from dissector.render.watch import known_codes, parse_watch
+
+        parse_watch(options.watch, known_codes(annotate))
+    # The time column as for files (-t): from the first item heard, or the one heard before, whatever
+    # -Y shows (live.display observes every item heard).
     clock = Clock(args.time_format)
 
     def column(item: Item) -> str:
-        clock.observe([item])
         return clock.text(item)
 
     from dissector.app.live import run_live  # pyserial is loaded only for a live capture
@@ -436,8 +452,9 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
         env.stderr,
         is_terminal,
         lambda item: summary_line(item, column=column(item)),
-        _annotator(args),
+        annotate,
         lambda item: summary_text(item, column=column(item)),
+        clock.observe,
     )
 
 

@@ -129,11 +129,35 @@ def _make_sink(
         if not getattr(args, "print_too", False):
             return NullSink()
         out, is_terminal = err, False
+    sink = _items_sink(args, out, is_terminal, render_line, render_text, stats, annotate)
+    text = getattr(args, "filter_text", None)
+    if text is not None:
+        from dissector.app.live_display import FilteredSink
+
+        sink = FilteredSink(sink, text, annotate)
+    return sink
+
+
+def _items_sink(
+    args: argparse.Namespace,
+    out: TextIO,
+    is_terminal: bool,
+    render_line: Callable[[Item], str],
+    render_text: Callable[[Item], Text] | None,
+    stats: LiveStats,
+    annotate: Annotator | None = None,
+) -> Sink:
     if getattr(args, "watch", None) is not None:
         from dissector.render.watch import WatchSink
 
         return WatchSink(args.watch, OutputPump(out), getattr(args, "json", False), annotate,
                          getattr(args, "time_format", "r"))
+    display = getattr(args, "display", None)
+    if display is not None and (display.detail or display.hexdump or display.fields is not None
+                                or display.registers is not None):
+        from dissector.app.live_display import TextSink
+
+        return TextSink(out, display)  # as a file decode writes them (plain text, also on a terminal)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
@@ -147,7 +171,7 @@ def _make_sink(
 
 
 def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
-            stop: StopFlag) -> str | None:
+            stop: StopFlag, observe: Callable[[list[Item]], None] | None = None) -> str | None:
     """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it."""
     while True:
         if stop.signal is not None:
@@ -161,6 +185,11 @@ def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink
         for item in shown:
             stats.add(item)
         stats.not_shown = handoff.dropped + sink.dropped
+        if observe is not None:
+            observe(shown)  # the time column's references: every item heard, whatever -Y shows
+        sink_observe = getattr(sink, "observe", None)
+        if sink_observe is not None:
+            sink_observe(shown)
         sink.show(shown)
         sink.tick()
         if sink.failed is not None:
@@ -180,6 +209,7 @@ def run_live(
     render_line: Callable[[Item], str],
     annotate: Annotator | None,
     render_text: Callable[[Item], Text] | None = None,
+    observe: Callable[[list[Item]], None] | None = None,
 ) -> int:
     """Capture from args.live until --duration, --count, Ctrl-C or the port goes away."""
     if getattr(args, "detect", None) is not None:
@@ -215,7 +245,7 @@ def run_live(
         with StopFlag() as stop:
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
             capture.start()
-            display(capture, handoff, dissector, sink, stats, stop)
+            display(capture, handoff, dissector, sink, stats, stop, observe)
     finally:
         capture.stop.set()
         capture.done.wait()

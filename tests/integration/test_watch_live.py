@@ -1,6 +1,7 @@
 """--watch on a live serial line (a pseudo-terminal): the p.38 story told as the frames arrive."""
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -59,3 +60,65 @@ def test_live_watch_prints_each_change_when_it_happens() -> None:
     assert [text.split()[0] for _count, text in lines] == ["6", "10"]  # the frame numbers
     # Each change was printed before the next frame went out: frame 6 and frame 10 (1-based).
     assert [count for count, _text in lines] == [6, 10]
+
+
+def run_live(*options: str, pause: float = 0.1) -> tuple[list[str], str, int]:
+    """The p.38 frames written to a pseudo-terminal one by one; vw3-decode --live on its other end."""
+    line, device_fd, path = open_pty()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
+        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    try:
+        assert process.stderr is not None and process.stdout is not None
+        assert "listening on" in process.stderr.readline()
+        for frame in P38:
+            os.write(line, bytes.fromhex(frame.replace(" ", "")))
+            time.sleep(pause)
+        time.sleep(0.3)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=10)
+    finally:
+        if process.poll() is None:
+            process.kill()
+        os.close(line)
+        os.close(device_fd)
+    return out.splitlines(), err, process.returncode
+
+
+def test_live_filter_json_gives_exactly_the_two_exceptions() -> None:
+    lines, err, _status = run_live("-Y", 'kind == "exception"', "--json")
+    records = [json.loads(text) for text in lines]
+    assert [(r["frame"], r["kind"], r["exception_code"], r["request_frame"]) for r in records] == [
+        (10, "exception", 2, 9), (12, "exception", 2, 11)]
+    assert [[(reg["address"], reg["status"]) for reg in r["registers"]] for r in records] == [
+        [(8400, "non-existent"), (8401, "protected"), (8402, "protected")]] * 2
+
+
+def test_live_honours_detail_hex_and_fields() -> None:
+    lines, _err, _status = run_live("-Y", "frame == 6", "-V")
+    assert lines[0].startswith("Frame 6:") and any("CHCF" in text and "protected" in text for text in lines)
+    lines, _err, _status = run_live("-Y", "frame <= 2", "-x")
+    assert lines[0].startswith("     1 ") and lines[1].startswith("0000  0c 03 20 d0 00 03 0e ef")
+    lines, _err, _status = run_live("-T", "fields", "-e", "frame", "-e", "code", "-e", "status",
+                                    "-Y", "code == \"COP\" and status == \"protected\"", "-E", "header=y")
+    assert lines == ["frame\tcode\tstatus", "10\t,CHCF,COP\tnon-existent,protected,protected",
+                     "12\t,CHCF,COP\tnon-existent,protected,protected"]
+
+
+def test_live_refuses_a_bad_filter_or_watch_name_before_listening() -> None:
+    line, device_fd, path = open_pty()
+    try:
+        for options, message in [
+            (["-Y", 'code == "CHFC"'], "vw3-decode: code 'CHFC' is no parameter code of this run's maps"),
+            (["-Y", "kind ="], "vw3-decode: a single = is not an operator"),
+            (["--watch", "CHFC"], "vw3-decode: --watch CHFC: no map of this run has that parameter code"),
+            (["-V", "--json"], "vw3-decode: -V (detail tree) and --json are two outputs: choose one"),
+        ]:
+            result = subprocess.run([sys.executable, "-m", "dissector", "--live", path, *options], cwd=ROOT,
+                                    capture_output=True, text=True, timeout=30)
+            assert result.returncode == 2 and result.stdout == "", options
+            assert result.stderr.startswith(message) and "listening" not in result.stderr, result.stderr
+    finally:
+        os.close(line)
+        os.close(device_fd)
