@@ -483,6 +483,10 @@ def run(argv: list[str] | None, env: Environment) -> int:
                 raise UsageError("--live takes no FILE or --hex")
             if args.report is not None or args.stats:
                 raise UsageError("--report and --stats read files: capture with -w FILE, then report on it")
+            if args.parquet is not None or args.jobs != 1 or args.scheduler is not None:
+                raise UsageError("--parquet reads files: capture with -w FILE, then --parquet DIR FILE")
+            if args.output_format == "registers":
+                raise UsageError("-T registers reads files: capture with -w FILE, then -T registers FILE")
             return _live(args, env)
         if not args.files and not args.hex:
             raise UsageError(f"give a capture FILE, - for stdin, --hex BYTES or --live PORT (see {PROG} --help)")

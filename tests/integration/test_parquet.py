@@ -94,6 +94,12 @@ def test_tables_hold_what_json_says(dataset: Path, capture: Path) -> None:
     assert events.get("noise", 0) == sum(r["kind"] == "noise" for r in records)
     silences = sum(w.startswith("silence") for r in records for w in r["warnings"])
     assert events.get("silence", 0) == silences
+    # The parameters' status changes are the report's protection events (the one parameter history).
+    page = dataset.parent / f"{capture.name}.html"
+    assert run_cli(["--report", str(page), str(capture)])[0] == 0
+    data = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(), re.S).group(1))
+    report_events = sum(kind == "protection" for _x, kind, _slave, _text in data["events"])
+    assert report_events == sum(events.get(kind, 0) for kind in ("protected", "non-existent", "readable-again"))
 
 
 def test_p38_protections_and_noisy_bus_outage(dataset: Path) -> None:

@@ -104,3 +104,10 @@ def test_rows_are_the_json_registers(capture: str) -> None:
     rows = list(csv.reader(io.StringIO(out)))
     got = [[row[0], row[2], row[3], row[5], row[7], row[9], row[10], row[11], row[12], row[13]] for row in rows]
     assert got == expected and len(got) > 0
+
+
+def test_live_refuses_what_reads_files() -> None:
+    assert run_cli(["--live", "loop://", "-T", "registers"]) == (
+        2, "", "vw3-decode: -T registers reads files: capture with -w FILE, then -T registers FILE\n")
+    assert run_cli(["--live", "loop://", "--parquet", "d"]) == (
+        2, "", "vw3-decode: --parquet reads files: capture with -w FILE, then --parquet DIR FILE\n")
