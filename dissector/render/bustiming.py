@@ -380,14 +380,7 @@ class BusTiming:
                 f"inter-frame gaps: {gaps['count']}, {data['gaps_below_t35']} below t3.5; min {gaps['min'] * 1000:.3f}"
                 f" median {gaps['median'] * 1000:.3f} p95 {gaps['p95'] * 1000:.3f} max {gaps['max'] * 1000:.3f} ms"
             )
-            bins = []
-            for entry in data["gap_histogram"]:
-                if not entry["count"]:
-                    continue
-                low, high = entry["from_ms"], entry["to_ms"]
-                label = f"<{high:g}" if low is None else (f">={low:g}" if high is None else f"{low:g}-{high:g}")
-                bins.append(f"{label} ms: {entry['count']}")
-            lines.append("  " + ", ".join(bins))
+            lines.append("  " + ", ".join(gap_bins(data["gap_histogram"])))
         turnaround = data["turnaround"]
         if turnaround is not None:
             lines.append(
@@ -421,3 +414,14 @@ def time_text(time_format: str, first: float | None) -> Any:
 
     clock = Clock("r" if time_format in ("d", "dd") else time_format, first=first)
     return lambda seconds: clock.text(SimpleNamespace(time=seconds))  # type: ignore[arg-type]
+
+
+def gap_bins(histogram: list[dict[str, Any]]) -> list[str]:
+    """The gap histogram's non-empty bins as text: `2-5 ms: 8`."""
+    bins = []
+    for entry in histogram:
+        if entry["count"]:
+            low, high = entry["from_ms"], entry["to_ms"]
+            label = f"<{high:g}" if low is None else (f">={low:g}" if high is None else f"{low:g}-{high:g}")
+            bins.append(f"{label} ms: {entry['count']}")
+    return bins

@@ -51,6 +51,7 @@ def test_noisy_bus_outage_is_a_band_of_slave_5(tmp_path: Path) -> None:
     assert [(entry["slave"], entry["answers"]) for entry in data["responses"]] == [(1, 8), (5, 0), (12, 8)]
     assert max(data["responses"][0]["y"]) == 13.304 and data["clock"] == "r"
     assert "<td>5</td><td>0.839570</td><td>1.050219</td><td>2</td><td>#28..#29</td>" in page
+    assert "<td>inter-frame gaps</td><td>2-5 ms: 8, 5-10 ms: 19, 10-20 ms: 2, 100-200 ms: 6, 200-500 ms: 2</td>" in page
     # Two noise runs and their different lengths and offsets: one group of 2.
     assert "<td>noise</td><td></td><td>4 bytes of noise at offset 0</td><td>2</td><td>0.000000 #1</td><td>1.407727 #34</td>" in page
 

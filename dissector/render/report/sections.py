@@ -8,6 +8,7 @@ from collections.abc import Callable
 from types import SimpleNamespace
 from typing import Any
 
+from dissector.render.bustiming import gap_bins
 from dissector.render.report.collect import ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.timefmt import Clock
@@ -54,6 +55,9 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
         ["t3.5", f"{report['t35'] * 1000:.3f} ms"],
         ["gaps below t3.5", f"{report['gaps_below_t35']} of {(report['gaps'] or {}).get('count', 0)}"],
     ]
+    bins = gap_bins(report["gap_histogram"])
+    if bins:
+        rows.append(["inter-frame gaps", ", ".join(bins)])
     turnaround = report["turnaround"]
     if turnaround is not None:
         rows.append(["master turnaround", f"median {_ms(turnaround['median'])} ms, p95 {_ms(turnaround['p95'])} ms, "
