@@ -26,9 +26,11 @@ from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
+from dissector.app.samefile import refuse_same_files
 from dissector.errors import ProfileError
 from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output
+from dissector.render.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
@@ -109,8 +111,9 @@ class Sinks:
             from dissector.render.report import ReportFile
 
             # The report's counts are --stats' numbers, its parameters the same history's.
-            self.report = ReportFile(args.report, annotate, [*args.files] + (["--hex"] if args.hex else []),
-                                     self.stats)  # type: ignore[arg-type]
+            # File names are data: a non-UTF-8 name (n\xff.pcap) or an ESC in one is shown escaped.
+            names = [printable(name) for name in args.files] + (["--hex"] if args.hex else [])
+            self.report = ReportFile(args.report, annotate, names, self.stats)  # type: ignore[arg-type]
         # --report writes a file: the items are printed too when an item format is asked for
         # (--report r.html --json), never silently dropped.
         asked = args.output.records or args.output.detail or args.output.hexdump
@@ -190,7 +193,7 @@ class Sinks:
                 for item in items:
                     self.pcap.write(item.raw, item.time, noise_comment(item))
             except OSError as error:
-                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
+                raise self._write_failed(error) from None
         if self.stats is not None:
             report = self.report.collector if self.report is not None else None
             for item in items:
@@ -248,13 +251,25 @@ class Sinks:
                 pass
             self.pcap = None
 
+    def _write_failed(self, error: OSError) -> OutputError:
+        """-w failed (a full disk): the file was cut back to whole records; say what it keeps."""
+        kept = f"; {self.pcap.kept}" if self.pcap is not None else ""
+        return OutputError(f"-w {self.write_path}: {error.strerror or error}{kept}")
+
     def close(self) -> None:
         if self.pcap is not None:
-            pcap, self.pcap = self.pcap, None
             try:
-                pcap.close()
+                self.pcap.close()
             except OSError as error:
-                raise OutputError(f"-w {self.write_path}: {error.strerror or error}") from None
+                raise self._write_failed(error) from None
+            pcap, self.pcap = self.pcap, None
+            if pcap.clamped_total:
+                clamped = pcap.clamped_total
+                whose = "records' times" if clamped > 1 else "record's time"
+                self.env.stderr.write(
+                    f"{PROG}: warning: -w {self.write_path}: {clamped:,} {whose} outside "
+                    f"what {pcap.format} holds, written at the nearest time it holds\n"
+                )
         if self.watch is not None:
             self.watch.finish()
         if self.report is not None:
@@ -476,6 +491,7 @@ def run(argv: list[str] | None, env: Environment) -> int:
         env.stdout.write(field_listing())
         return ExitStatus.OK
     try:
+        refuse_same_files(args)
         if args.live or args.detect is not None:
             if args.live is None:
                 raise UsageError("--detect needs --live PORT")
@@ -520,6 +536,12 @@ def main(argv: list[str] | None = None) -> int:
         if sys.stderr is not None:
             sys.stderr.write(f"{PROG}: standard output is closed\n")
         return ExitStatus.ERROR
+    for stream in (sys.stdout, sys.stderr):
+        # An ASCII-only locale cannot encode `…` or a map's `°C`: written as escapes, not a traceback.
+        reconfigure = getattr(stream, "reconfigure", None)
+        if reconfigure is not None:
+            with contextlib.suppress(ValueError, OSError):
+                reconfigure(errors="backslashreplace")
     env = Environment.from_process()
     try:
         status = run(argv, env)

@@ -98,7 +98,7 @@ def build_parser() -> argparse.ArgumentParser:
     output.add_argument(
         "-E", dest="field_options", action="append", default=[], metavar="NAME=VALUE",
         help="with -T fields, as tshark: header=y|n, separator=/t|/s|C, quote=d|s|n, "
-        "occurrence=f|l|a, aggregator=,|/s|C, bom=y|n",
+        "occurrence=f|l|a, aggregator=,|/s|C, bom=y|n, formulas=y|n (y: keep values a spreadsheet would run as formulas; by default they get a leading ' with a , or ; separator)",
     )
     output.add_argument(
         "-t", dest="time_format", choices=list(TIME_FORMATS), default="r",

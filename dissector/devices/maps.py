@@ -26,6 +26,8 @@ Every malformed line is reported as `file:line: what is wrong`, never skipped.
 from __future__ import annotations
 
 from dissector.errors import ProfileError
+from dissector.devices.readfile import read_capped
+from dissector.render.printable import printable
 import csv
 import math
 import re
@@ -46,6 +48,9 @@ MEMO_LIMIT = 4096
 # 65,536 addresses of a few hundred bytes each at most: anything bigger is not a map, and reading
 # it whole (a 2 GB file given by mistake) would take the memory of the machine.
 MAX_MAP_BYTES = 16 << 20
+# Scales a device could mean (0.001 Hz .. GWh): any 16- or 32-bit raw value times one stays a finite
+# number with a bounded count of digits (1e308 times FFFF is inf; 1e-300 would print 300 decimals).
+SCALE_MIN, SCALE_MAX = 1e-12, 1e12
 
 
 @dataclass(slots=True)
@@ -102,7 +107,7 @@ def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
             raise ValueError(f"{what} entry {part!r}: {number} is outside {low}..{high}")
         if number in out:
             raise ValueError(f"{what} entry {part!r}: {number} given twice")
-        out[number] = label.strip()
+        out[number] = printable(label.strip())
     return out
 
 
@@ -119,7 +124,7 @@ def _row(values: dict[str, str]) -> RegisterDef:
         raise ValueError(f"address {raw_address!r} is not a number") from None
     if not 0 <= address <= 0xFFFF:
         raise ValueError(f"address {address} is outside 0..65535")
-    code = values.get("code", "").strip()
+    code = printable(values.get("code", "").strip())  # a map's texts are shown: control characters escaped
     if not code:
         raise ValueError("code is empty")
     scale: float | None = None
@@ -131,8 +136,8 @@ def _row(values: dict[str, str]) -> RegisterDef:
             decimals = _decimals(raw_scale)
         except (ValueError, InvalidOperation):
             raise ValueError(f"scale {raw_scale!r} is not a number") from None
-        if scale == 0:
-            raise ValueError("scale 0 would hide every value")
+        if not SCALE_MIN <= abs(scale) <= SCALE_MAX:  # also nan, inf (1e999) and 0
+            raise ValueError(f"scale {raw_scale!r} is outside ±{SCALE_MIN:g}..{SCALE_MAX:g} (and not 0)")
     access = values.get("access", "").strip().upper() or None
     if access is not None and access not in ACCESS:
         raise ValueError(f"access {access!r} is not R, W or RW")
@@ -160,14 +165,14 @@ def _row(values: dict[str, str]) -> RegisterDef:
     return RegisterDef(
         address=address,
         code=code,
-        name=values.get("name", "").strip() or None,
-        unit=values.get("unit", "").strip() or None,
+        name=printable(values.get("name", "").strip()) or None,
+        unit=printable(values.get("unit", "").strip()) or None,
         scale=scale,
         access=access,
         enum=enum,
         bits=bits,
         signed=signed,
-        source=values.get("source", "").strip() or None,
+        source=printable(values.get("source", "").strip()) or None,
         decimals=decimals,
         ambiguous_8000=signed or 15 in bits or 0x8000 in enum or words == 2,
         words=words,
@@ -252,13 +257,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
 
 def load_map_file(path: str | Path) -> RegisterMap:
     path = Path(path)
-    try:
-        with path.open("rb") as stream:
-            data = stream.read(MAX_MAP_BYTES + 1)
-    except OSError as error:
-        raise ProfileError(f"{path}: cannot read the map: {error.strerror or error}") from None
-    if len(data) > MAX_MAP_BYTES:
-        raise ProfileError(f"{path}: larger than {MAX_MAP_BYTES >> 20} MiB, not a register map")
+    data = read_capped(path, MAX_MAP_BYTES, "map", "register map")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:

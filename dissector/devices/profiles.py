@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from dissector.devices.maps import ProfileError, RegisterMap, load_builtin_map, load_map_file
+from dissector.devices.readfile import read_capped
 from dissector.protocol.spec import SPEC
 
 
@@ -217,11 +218,17 @@ _KNOWN_KEYS = frozenset(
 )
 
 
+# The shipped profiles are a few kB; a profile file beyond this is not one (`--profile /dev/zero.toml`).
+MAX_PROFILE_BYTES = 1 << 20
+
+
 def parse_profile(text: str, origin: str) -> Profile:
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as error:
         raise ProfileError(f"{origin}: {error}") from None
+    except RecursionError:  # [[[[...]]]] nested thousands deep: tomllib recurses once a level
+        raise ProfileError(f"{origin}: arrays or tables nested too deep for a profile") from None
     reader = _Reader(origin)
     unknown = sorted(set(data) - _KNOWN_KEYS)
     if unknown:
@@ -290,10 +297,11 @@ def load_profile(name: str) -> Profile:
         text = resources.files("dissector").joinpath(origin).read_text(encoding="utf-8")
         return parse_profile(text, origin)
     if name.endswith(".toml"):
+        data = read_capped(name, MAX_PROFILE_BYTES, "profile")
         try:
-            text = Path(name).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as error:
-            raise ProfileError(f"{name}: cannot read the profile: {error}") from None
+            text = data.decode("utf-8")
+        except UnicodeDecodeError:
+            raise ProfileError(f"{name}: cannot read the profile: not UTF-8 text") from None
         return parse_profile(text, name)
     raise ProfileError(
         f"unknown profile {name!r} (built-in: {', '.join(BUILTIN_PROFILES)}; or a .toml file)"

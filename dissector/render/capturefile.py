@@ -8,10 +8,15 @@ The ring buffer follows dumpcap's `-b`: `filesize:N` switches to the next file o
 (1000 bytes), `duration:S` once it has been open S seconds, `files:K` keeps only the newest K files.
 Files are named as dumpcap names them, `prefix_NNNNN_YYYYmmddHHMMSS.suffix` from `-w prefix.suffix`
 (number from 00001, local time of opening). A record is never split: each file is a valid capture.
+
+A record is never torn either: records reach the file through `WholeRecords`, which on a failed write
+(a full disk, a file size limit) cuts the file back to the last whole record and counts what it kept,
+so the error can say so and the file still opens in Wireshark.
 """
 from __future__ import annotations
 
 import os
+import stat
 import time
 from collections import deque
 from dataclasses import dataclass
@@ -32,8 +37,78 @@ def noise_comment(item: Item) -> str | None:
     return None
 
 
+FLUSH_BYTES = 1 << 16  # records are written in batches of about this much when not live
+
+
+class WholeRecords:
+    """A binary stream written a whole record (or file header) per `write`; never leaves part of one.
+
+    Records wait in memory up to FLUSH_BYTES (every one is written at once when `live`); a failed
+    write(2), or a short one, cuts the file back to the end of the last record it held whole
+    (ftruncate, for a regular file this opened) and raises the error. `whole` counts the writes on disk.
+    """
+
+    def __init__(self, stream: BinaryIO, live: bool, truncate: bool) -> None:
+        self._stream = stream
+        self._live = live
+        self._truncate = truncate
+        self._pending = bytearray()
+        self._ends: list[int] = []  # end of each waiting write in _pending
+        self.on_disk = 0  # bytes of whole writes in the file
+        self.whole = 0  # writes wholly in the file
+
+    def write(self, data: bytes) -> int:
+        self._pending += data
+        self._ends.append(len(self._pending))
+        if self._live or len(self._pending) >= FLUSH_BYTES:
+            self.flush()
+        return len(data)
+
+    def flush(self) -> None:
+        pending, ends = self._pending, self._ends
+        if not pending:
+            return
+        self._pending, self._ends = bytearray(), []
+        done = 0
+        try:
+            with memoryview(pending) as view:
+                while done < len(pending):
+                    wrote = self._stream.write(view[done:])
+                    if not wrote:  # a stream that takes nothing and says nothing: as good as full
+                        raise OSError(28, os.strerror(28))
+                    done += wrote
+            flush = getattr(self._stream, "flush", None)
+            if flush is not None:
+                flush()
+        except OSError:
+            kept = [end for end in ends if end <= done]
+            self._cut(self.on_disk + (kept[-1] if kept else 0))
+            self.whole += len(kept)
+            self.on_disk += kept[-1] if kept else 0
+            raise
+        self.whole += len(ends)
+        self.on_disk += len(pending)
+
+    def _cut(self, size: int) -> None:
+        if not self._truncate:
+            return
+        try:
+            fileno = self._stream.fileno()
+            if stat.S_ISREG(os.fstat(fileno).st_mode):
+                os.ftruncate(fileno, size)
+        except (OSError, ValueError):
+            pass  # nothing more can be done; the error being raised says the write failed
+
+    def close(self) -> None:
+        try:
+            self.flush()
+        finally:
+            self._stream.close()
+
+
 class RecordWriter(Protocol):
     size: int
+    clamped: int
 
     def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None: ...
 
@@ -108,6 +183,8 @@ class CaptureOutput:
         self._opened = 0.0
         self.paths: list[str] = []  # every file written, in order (a ring's deleted ones too)
         self._kept: deque[str] = deque()
+        self._records: WholeRecords | None = None
+        self.clamped = 0  # records of closed files whose time the format could not hold
         self._open()
 
     @property
@@ -123,7 +200,7 @@ class CaptureOutput:
         if self.path == STDOUT:
             if self._stdout is None:
                 raise OSError("standard output is not a byte stream")
-            stream: BinaryIO = self._stdout
+            stream = WholeRecords(self._stdout, self._flush, truncate=False)
             target = STDOUT
         else:
             self._opened = time.time()
@@ -131,17 +208,19 @@ class CaptureOutput:
             if self.ring is not None:
                 self._number += 1
                 target = ring_name(self.path, self._number, self._opened)
-            # Unbuffered when live: one record, one write(2), on disk before it is handed on.
-            stream = open(target, "wb", buffering=0 if self._flush else -1)  # noqa: SIM115
+            # Unbuffered: WholeRecords batches whole records itself (one write(2) a record when live,
+            # on disk before it is handed on).
+            stream = WholeRecords(open(target, "wb", buffering=0), self._flush, truncate=True)  # noqa: SIM115
             self.paths.append(target)
             self._kept.append(target)
-        self._stream = stream
+        self._stream = self._records = stream
+        binary: BinaryIO = stream  # type: ignore[assignment]  (write, flush and close are what writers use)
         try:
             if self.format == "pcapng":
                 name, description = self._interface or (None, None)
-                self._writer = PcapngWriter(stream, flush=self._flush, if_name=name, if_description=description)
+                self._writer = PcapngWriter(binary, flush=self._flush, if_name=name, if_description=description)
             else:
-                self._writer = PcapWriter(stream, flush=self._flush)
+                self._writer = PcapWriter(binary, flush=self._flush)
         except OSError:
             self._close_writer()
             raise
@@ -173,11 +252,25 @@ class CaptureOutput:
         self._close_writer()
         self._open()
 
+    @property
+    def kept(self) -> str:
+        """What the file being written holds after a failed write: whole records only."""
+        records = self._records
+        whole = max(0, records.whole - 1) if records is not None else 0  # the first write is the file header
+        size = records.on_disk if records is not None else 0
+        where = "standard output" if self.path == STDOUT else (self.paths[-1] if self.paths else self.path)
+        return f"{where} keeps {whole:,} whole record{'' if whole == 1 else 's'} ({size:,} bytes)"
+
+    @property
+    def clamped_total(self) -> int:
+        return self.clamped + (self._writer.clamped if self._writer is not None else 0)
+
     def _close_writer(self) -> None:
         writer, self._writer = self._writer, None
+        if writer is not None:
+            self.clamped += writer.clamped
         if self.path == STDOUT:
-            if self._stdout is not None:
-                self._stdout.flush()
+            self._stream.flush()
             return
         if writer is not None:
             writer.close()

@@ -16,9 +16,11 @@ from construct import ListContainer
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
+from dissector.render.printable import printable
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:
+    from rich.text import Text
     from rich.tree import Tree
 
 
@@ -476,12 +478,19 @@ def _plain_lines(node: Node, indent: int, lines: list[str]) -> None:
 def render_rich(node: Node) -> Tree:
     from rich.tree import Tree  # only a terminal needs rich
 
-    tree = Tree(node.label, style=node.style or "", guide_style="dim")
+    tree = Tree(_data(node.label), style=node.style or "", guide_style="dim")
     _rich_children(tree, node)
     return tree
 
 
+def _data(label: str) -> Text:
+    """A label as rich Text: never markup ([/x] from the bus, [link=...]) nor emoji codes."""
+    from rich.text import Text
+
+    return Text(printable(label))
+
+
 def _rich_children(tree: Tree, node: Node) -> None:
     for child in node.children:
-        branch = tree.add(child.label, style=child.style or "")
+        branch = tree.add(_data(child.label), style=child.style or "")
         _rich_children(branch, child)

@@ -10,15 +10,22 @@ occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default ta
 goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
 `-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
 With quote=d a double quote inside a value is doubled (RFC 4180), so a spreadsheet reads it back.
+
+Values are data from the bus and from map files: control characters are written as escapes (\x1b),
+and with a `,` or `;` separator (a CSV for a spreadsheet) a value that starts with `=`, `+`, `-`, `@`,
+a tab or a CR and is not a plain number gets a leading `'`, as OWASP advises against CSV injection
+(`=HYPERLINK(...)` from an FC17 answer stays text). `-E formulas=y` keeps such values as they are.
 """
 from __future__ import annotations
 
 import json
+import re
 from dataclasses import dataclass
 from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
+from dissector.render.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
 # Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).
@@ -37,6 +44,19 @@ class FieldsOptions:
     occurrence: str = "a"  # f | l | a
     header: bool = False
     bom: bool = False
+    formulas: bool = False  # -E formulas=y: keep values that a spreadsheet would run as formulas
+
+
+SPREADSHEET_SEPARATORS = (",", ";")
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?")
+
+
+def neutralise(text: str) -> str:
+    """A CSV value a spreadsheet reads as text, never as a formula (numbers such as -12.5 stay)."""
+    if text.startswith(_FORMULA_START) and not _NUMBER.fullmatch(text):
+        return "'" + text
+    return text
 
 
 def _character(text: str, option: str) -> str:
@@ -60,7 +80,7 @@ def parse_fields_options(fields: list[str], settings: list[str]) -> FieldsOption
             raise UsageError(f"-E {setting}: expected name=value, e.g. -E separator=,")
         if name == "separator" or name == "aggregator":
             values[name] = _character(value, name)
-        elif name in ("header", "bom"):
+        elif name in ("header", "bom", "formulas"):
             if value not in SWITCHES:
                 raise UsageError(f"-E {name}={value}: expected y or n")
             values[name] = value == "y"
@@ -74,7 +94,7 @@ def parse_fields_options(fields: list[str], settings: list[str]) -> FieldsOption
             values[name] = value
         else:
             raise UsageError(
-                f"-E {name}: unknown option; use header, separator, quote, occurrence, aggregator or bom"
+                f"-E {name}: unknown option; use header, separator, quote, occurrence, aggregator, bom or formulas"
             )
     return FieldsOptions(tuple(fields), **values)
 
@@ -130,6 +150,7 @@ class FieldsWriter:
         self.options = options
         self._quote = QUOTES[options.quote]
         self.time_keys = tuple(key for key in TIME_FIELDS if key in options.fields)  # from the Clock
+        self._neutralise = options.separator in SPREADSHEET_SEPARATORS and not options.formulas
 
     def header(self) -> str:
         return self.options.separator.join(self.options.fields)
@@ -144,7 +165,9 @@ class FieldsWriter:
                 values = values[:1]
             elif values and options.occurrence == "l":
                 values = values[-1:]
-            text = options.aggregator.join(_text(value) for value in values)
+            text = printable(options.aggregator.join(_text(value) for value in values))
+            if self._neutralise:
+                text = neutralise(text)
             if quote:
                 out.append(quote + text.replace(quote, quote + quote) + quote)
             else:

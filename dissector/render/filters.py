@@ -270,7 +270,7 @@ def _elements(item: Item) -> list[dict[str, Any]]:
     start, quantity = item.get("start"), item.get("quantity")
     if not (is_number(start) and is_number(quantity)) or item.get("kind") == "exception":
         return elements
-    if len(elements) == quantity and elements[0].get("address") == start:
+    if elements and len(elements) == quantity and elements[0].get("address") == start:
         return elements  # a read response: its values already cover start..start+quantity-1
     known = {element.get("address") for element in elements}
     span = item.get("span_label")
@@ -279,7 +279,8 @@ def _elements(item: Item) -> list[dict[str, Any]]:
         {"address": address & 0xFFFF}
         if first is None
         else {"address": address & 0xFFFF, "label": str(first + address - int(start))}
-        for address in range(int(start), int(start) + min(int(quantity), MAX_SYNTHESIZED))
+        # A quantity of 0 (a malformed read) still names its start address, as tshark's reference_num.
+        for address in range(int(start), int(start) + min(max(int(quantity), 1), MAX_SYNTHESIZED))
         if address & 0xFFFF not in known
     ]
     return elements + synthesized if synthesized else elements

@@ -13,6 +13,7 @@ from dissector.render.detail import detail_text, detail_tree, render_rich
 from dissector.render.fields import FieldsOptions, FieldsWriter
 from dissector.render.hexdump import hexdump
 from dissector.render.jsonout import item_to_dict, item_to_json
+from dissector.render.printable import printable
 from dissector.render.registers import RegistersWriter
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
@@ -78,8 +79,11 @@ class Output:
         self.clock.reset()
         if title is None:
             return
+        title = printable(title)  # a file name is data: `mk[/x].bin`, an ESC in a name
         if self.console is not None:
-            self.console.rule(title)
+            from rich.text import Text
+
+            self.console.rule(Text(title))
         elif not self.options.records:
             self._buffer.append(f"==> {title} <==")
 
@@ -172,7 +176,7 @@ class Output:
         else:
             console.print(summary_text(item, column=self.clock.text(item)))
         if self.options.hexdump:
-            console.print(hexdump(item.raw), style="vw3.hex", highlight=False)
+            console.print(hexdump(item.raw), style="vw3.hex", highlight=False, markup=False, emoji=False)
         if self.options.detail or self.options.hexdump:
             console.print()
 

@@ -11,13 +11,14 @@ from __future__ import annotations
 import struct
 from typing import BinaryIO
 
-from dissector.render.pcapwriter import LINKTYPE_USER0, SNAPLEN, split_time
+from dissector.render.pcapwriter import LINKTYPE_USER0, SNAPLEN, clamp_time, split_time
 
 SHB, IDB, EPB = 0x0A0D0D0A, 0x00000001, 0x00000006
 BYTE_ORDER_MAGIC = 0x1A2B3C4D
 OPT_ENDOFOPT, OPT_COMMENT = 0, 1
 SHB_USERAPPL = 4
 IF_NAME, IF_DESCRIPTION = 2, 3
+SECONDS_MAX = (1 << 64) // 1_000_000 - 1  # microseconds in 64 bits: up to the year 586,912
 
 
 def _option(code: int, value: bytes) -> bytes:
@@ -55,6 +56,7 @@ class PcapngWriter:
         interface = struct.pack("<HHI", linktype, 0, SNAPLEN) + _options(interface_options)
         head = _block(SHB, section) + _block(IDB, interface)
         self.size = len(head)
+        self.clamped = 0  # records whose time was before 1970 or past 64 bits of microseconds
         stream.write(head)
         if flush:
             stream.flush()
@@ -63,7 +65,8 @@ class PcapngWriter:
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
-        seconds, micros = split_time(timestamp)
+        seconds, micros, moved = clamp_time(*split_time(timestamp), SECONDS_MAX)
+        self.clamped += moved
         units = seconds * 1_000_000 + micros
         body = (
             struct.pack("<IIIII", 0, units >> 32, units & 0xFFFFFFFF, len(data), len(data))

@@ -29,12 +29,28 @@ def split_time(timestamp: float) -> tuple[int, int]:
     return seconds, micros
 
 
+PCAP_SECONDS_MAX = 0xFFFFFFFF  # classic pcap's u32 seconds: 1970-01-01 .. 2106-02-07
+
+
+def clamp_time(seconds: int, micros: int, most: int) -> tuple[int, int, bool]:
+    """(seconds, micros) within 0 .. `most` seconds (and its last microsecond), and whether it moved.
+
+    A capture's stamps are data (a pcapng if_tsoffset of -2^62, 2^64 units): a record keeps its bytes
+    at the nearest time the format can hold rather than failing half written."""
+    if seconds < 0:
+        return 0, 0, True
+    if seconds > most:
+        return most, 999_999, True
+    return seconds, micros, False
+
+
 class PcapWriter:
     def __init__(self, stream: BinaryIO, linktype: int = LINKTYPE_USER0, flush: bool = True) -> None:
         self._stream = stream
         self._flush = flush
         self._last_time = 0.0
         self.size = _GLOBAL_HEADER.size  # bytes written so far (ring buffer limits)
+        self.clamped = 0  # records whose time was outside 1970..2106
         stream.write(_GLOBAL_HEADER.pack(PCAP_MAGIC, 2, 4, 0, 0, SNAPLEN, linktype))
         if flush:
             stream.flush()
@@ -45,7 +61,8 @@ class PcapWriter:
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
-        seconds, micros = split_time(timestamp)
+        seconds, micros, moved = clamp_time(*split_time(timestamp), PCAP_SECONDS_MAX)
+        self.clamped += moved
         # One write(2) a record (unbuffered streams): a reader never sees a header without its bytes.
         self._stream.write(_RECORD_HEADER.pack(seconds, micros, len(data), len(data)) + data)
         self.size += _RECORD_HEADER.size + len(data)

@@ -27,14 +27,22 @@ UNTIMED = "-"
 TIME_FIELDS = ("time_relative", "time_delta", "time_delta_displayed")
 
 
+# What tshark's time column says of a time the platform's calendar cannot hold (a pcapng stamp of
+# 2^64 units, an if_tsoffset of -2^62 s): the column, not the decode, gives up.
+NOT_REPRESENTABLE = "Not representable"
+
+
 def _clock_text(seconds: float, utc: bool, date: bool) -> str:
     whole = int(seconds // 1)
     micros = round((seconds - whole) * 1_000_000)
     if micros == 1_000_000:  # 0.9999996 rounds up into the next second
         whole, micros = whole + 1, 0
-    parts = _time.gmtime(whole) if utc else _time.localtime(whole)
-    shape = "%Y-%m-%d %H:%M:%S" if date else "%H:%M:%S"
-    return f"{_time.strftime(shape, parts)}.{micros:06d}"
+    try:
+        parts = _time.gmtime(whole) if utc else _time.localtime(whole)
+        shape = "%Y-%m-%d %H:%M:%S" if date else "%H:%M:%S"
+        return f"{_time.strftime(shape, parts)}.{micros:06d}"
+    except (OverflowError, OSError, ValueError):  # outside time_t or the C library's years
+        return NOT_REPRESENTABLE
 
 
 @dataclass(slots=True)

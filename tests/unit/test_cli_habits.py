@@ -129,7 +129,7 @@ def test_fields_bom_and_json_alias() -> None:
         (["-T", "fields", "-e", "frame", "-E", "occurrence=2"], "-E occurrence=2: expected f (first), l (last) or a (all)"),
         (["-T", "fields", "-e", "frame", "-E", "header"], "-E header: expected name=value, e.g. -E separator=,"),
         (["-T", "fields", "-e", "frame", "-E", "colour=y"],
-         "-E colour: unknown option; use header, separator, quote, occurrence, aggregator or bom"),
+         "-E colour: unknown option; use header, separator, quote, occurrence, aggregator, bom or formulas"),
         (["-T", "fields", "-e", "slvae"], "-e slvae: not a field (did you mean slave?)"),
         (["-T", "fields", "-e", "frame", "-V"], "-V (detail tree) contradicts -T fields"),
         (["-V", "--json"], "-V (detail tree) and --json are two outputs: choose one"),

@@ -168,7 +168,9 @@ def render_report(
     if health is not None:
         data["written"] = sorted(f"{slave}:{address}" for slave, address in health.written)
     head = json.dumps(data, separators=(",", ":"), allow_nan=False)
-    payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("</", "<\\/")
+    # Every `<` as \u003c (only JSON strings hold one): neither `</script>` nor `<!--` from a map's
+    # text can end the block or swallow the page's scripts.
+    payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("<", "\\u003c")
     return (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"

@@ -1,0 +1,62 @@
+"""No output may be an input or another output: `vw3-decode same.pcap -w same.pcap` would truncate
+the capture before reading it, `-w X --report X` would leave only the last writer's bytes.
+
+Files are the same when they are the same device and inode (hard links, symlinks followed, `./x` and
+`x`); outputs that do not exist yet are the same when their real paths are.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import stat
+
+from dissector.errors import UsageError
+
+STDIO = "-"
+
+
+def _identity(path: str) -> tuple[object, ...] | None:
+    """What makes two names one file; None for a character device (-w /dev/null --report /dev/null)."""
+    try:
+        info = os.stat(path)  # follows symlinks
+    except (OSError, ValueError):
+        return ("path", os.path.normcase(os.path.realpath(path)))
+    if stat.S_ISCHR(info.st_mode):
+        return None
+    return ("inode", info.st_dev, info.st_ino)
+
+
+def _named_files(values: list[str] | None) -> list[str]:
+    """The files of --profile/--map values ([SLAVE=|PROFILE=]FILE) that exist."""
+    found = []
+    for value in values or []:
+        for candidate in (value, value.partition("=")[2]):
+            if candidate and os.path.isfile(candidate):
+                found.append(candidate)
+                break
+    return found
+
+
+def refuse_same_files(args: argparse.Namespace) -> None:
+    """UsageError (exit 2) when an output is an input or another output; checked before any is opened."""
+    inputs = [(name, path) for name, path in (
+        *(("input", path) for path in args.files if path != STDIO),
+        *(("--profile", path) for path in _named_files(getattr(args, "profile", None))),
+        *(("--map", path) for path in _named_files(getattr(args, "map", None))),
+        *((("--live", args.live),) if getattr(args, "live", None) and os.path.exists(args.live) else ()),
+    )]
+    outputs = []
+    if args.write is not None and args.write != STDIO and not args.ring:
+        outputs.append(("-w", args.write))
+    for option, attribute in (("--report", "report"), ("--raw", "raw")):
+        path = getattr(args, attribute, None)
+        if path is not None and path != STDIO:
+            outputs.append((option, path))
+    seen = {_identity(path): f"the {name} {path}" for name, path in inputs}
+    for option, path in outputs:
+        identity = _identity(path)
+        if identity is None:
+            continue
+        if identity in seen:
+            raise UsageError(f"{option} {path} is {seen[identity]}: it would be overwritten; give another file")
+        seen[identity] = f"the {option} file {path}"

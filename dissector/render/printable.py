@@ -1,0 +1,22 @@
+"""Text from the bus or from a file, made safe to show: control characters as escapes.
+
+Bus bytes and file contents are data: an ESC from an FC43 object or a map cell must not reach a
+terminal as an escape sequence (OSC 8 links, cursor moves, a cleared screen), nor a bidi override
+reorder what is shown. Everything that is not printable (C0, DEL, C1, format characters such as
+U+202E, line and paragraph separators) is written as Python writes it in a string literal.
+"""
+from __future__ import annotations
+
+
+def _escape(char: str) -> str:
+    code = ord(char)
+    if code < 0x100:
+        return f"\\x{code:02x}"
+    return f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+
+def printable(text: str) -> str:
+    """`text` with every non-printable character escaped (most text passes unchanged, fast)."""
+    if text.isprintable():
+        return text
+    return "".join(char if char.isprintable() else _escape(char) for char in text)

@@ -1,0 +1,357 @@
+"""Bus and file data is hostile (issue 32): every reproducer of the review, with what a user must see.
+
+Strings from the bus and from files are data (never rich markup, never a terminal escape, never a
+spreadsheet formula); no option turns odd numbers into a traceback; no output overwrites an input or
+another output; a failed -w keeps whole records only and says how many.
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import resource
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from dissector.app.cli import Environment, run
+from dissector.devices.maps import ProfileError, load_map_file
+from dissector.devices.profiles import load_profile
+from dissector.sources.reader import open_source
+from helpers import rtu, run_cli
+
+ROOT = Path(__file__).resolve().parents[2]
+PROG = "vw3-decode: "
+ESC = "\x1b"
+
+
+def _fc43(value: bytes, slave: int = 1) -> bytes:
+    """A Read Device Identification answer (basic) whose VendorName is `value`."""
+    return rtu(f"{slave:02x}2b0e0101000001" + f"00{len(value):02x}" + value.hex())
+
+
+# An FC43 vendor name that would be an OSC 8 hyperlink, a hidden text and a cleared screen.
+OSC_VENDOR = b"\x1b]8;;http://x\x1b\\LINK\x1b]8;;\x1b\\ [conceal]hid[/x] :smile: \x1b[2J"
+
+
+def _no_escape_but_styles(text: str) -> None:
+    """Only rich's own SGR styles (ESC [ ... m) may be in coloured output: no OSC, no other CSI."""
+    assert re.sub(r"\x1b\[[0-9;]*m", "", text).count(ESC) == 0, text
+
+
+# -- injection ---------------------------------------------------------------------------------------
+def test_registers_spelling_markup_are_text_in_a_coloured_hex_dump() -> None:
+    status, out, err = run_cli(["-x", "--color", "always", "--hex", "01 03 04 5B 2F 78 5D"])
+    assert (status, err) == (0, "")
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", out)
+    assert "0000  01 03 04 5b 2f 78 5d 3b 27" in plain and "...[/x];'" in plain
+    assert "0=23343 1=30813" in plain.replace("?+", "").replace("\n", " ") or "[/x]" in plain
+
+
+@pytest.mark.parametrize("options", [["-V"], ["-x"], [], ["-V", "-x"]])
+def test_an_fc43_vendor_name_is_data_in_coloured_output(tmp_path: Path, options: list[str]) -> None:
+    capture = tmp_path / "fc43.bin"
+    capture.write_bytes(_fc43(OSC_VENDOR))
+    status, out, err = run_cli([*options, "--color", "always", str(capture)])
+    assert (status, err) == (0, "")
+    _no_escape_but_styles(out)
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", out)
+    # Markup and emoji codes literal (rich wraps the line at 80 columns: pieces are checked).
+    assert "[/x] :smile:" in plain
+    if options != ["-x"]:  # the name as the summary writes it, ESC as \x1b
+        assert re.search(r"VendorName(=|: )'\\x1b\]8;;http://x\\x1b\\\\LINK", plain), plain
+        assert "[conceal]hid[/x] :smile: \\x1b[2J'" in plain
+
+
+def test_a_file_name_with_markup_is_text_in_the_rule_between_inputs(tmp_path: Path,
+                                                                   monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    Path("mk[").mkdir()
+    Path("mk[/x].bin").write_bytes(rtu("0103045b2f785d"))
+    Path(f"esc{ESC}[2J.bin").write_bytes(rtu("010300000001"))
+    status, out, err = run_cli(["--color", "always", "mk[/x].bin", f"esc{ESC}[2J.bin"])
+    assert (status, err) == (0, "")
+    _no_escape_but_styles(out)
+    plain = re.sub(r"\x1b\[[0-9;]*m", "", out)
+    assert " mk[/x].bin " in plain and r" esc\x1b[2J.bin " in plain
+    status, out, err = run_cli(["mk[/x].bin", f"esc{ESC}[2J.bin"])  # piped: the tail(1) titles, escaped too
+    assert "==> esc\\x1b[2J.bin <==" in out.splitlines()
+
+
+def _fc17(additional: bytes) -> bytes:
+    """A Report Server ID exchange whose answer's additional data is `additional`."""
+    body = b"\x2a\xff" + additional  # server id 42, run indicator ON
+    return rtu("0111") + rtu("0111" + f"{len(body):02x}" + body.hex())
+
+
+@pytest.mark.parametrize("separator", [",", ";"])
+def test_csv_cells_that_a_spreadsheet_would_run_get_a_quote(tmp_path: Path, separator: str) -> None:
+    capture = tmp_path / "fc17.bin"
+    capture.write_bytes(_fc17(b'=HYPERLINK("http://x","y")'))
+    argv = ["-T", "fields", "-e", "frame", "-e", "fields.additional_data", "-E", f"separator={separator}", str(capture)]
+    status, out, err = run_cli(argv)
+    assert (status, err) == (0, "")
+    assert out.splitlines() == ["1" + separator, f"2{separator}'=HYPERLINK(\"http://x\",\"y\")"]
+    status, out, err = run_cli([*argv, "-E", "quote=d"])
+    assert out.splitlines()[1] == f'"2"{separator}"\'=HYPERLINK(""http://x"",""y"")"'
+    status, out, err = run_cli([*argv, "-E", "formulas=y"])  # the documented way to keep them
+    assert out.splitlines()[1] == f"2{separator}=HYPERLINK(\"http://x\",\"y\")"
+    status, out, err = run_cli(argv[:-3] + ["-E", "separator=/t", str(capture)])  # a tab: as tshark
+    assert out.splitlines()[1] == "2\t=HYPERLINK(\"http://x\",\"y\")"
+
+
+@pytest.mark.parametrize("text, shown", [
+    ("@SUM(A1:A9)", "'@SUM(A1:A9)"), ("+1+1", "'+1+1"), ("-1+cmd|' /C calc'!A0", "'-1+cmd|' /C calc'!A0"),
+    ("-12.5", "-12.5"), ("+3", "+3"), ("1e-3", "1e-3"), ("plain", "plain"),
+])
+def test_map_texts_in_csv_cells(tmp_path: Path, text: str, shown: str) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text(f'address,code,name\n8401,CHCF,"{text}"\n', encoding="utf-8")
+    capture = tmp_path / "read.bin"
+    capture.write_bytes(rtu("0c0320d10001") + rtu("0c03020003"))
+    status, out, err = run_cli(["-n", "--map", str(map_file), "-T", "fields", "-e", "frame", "-e", "name",
+                                "-E", "separator=,", str(capture)])
+    status, out, err = run_cli(["--map", str(map_file), "-T", "fields", "-e", "frame", "-e", "name",
+                                "-E", "separator=,", str(capture)])
+    assert (status, err) == (0, "")
+    assert out.splitlines()[1] == f"2,{shown}"
+
+
+def test_control_characters_of_a_map_are_escaped_everywhere(tmp_path: Path) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text("address,code,name,unit,scale\n8401,C\x1b[2JF,N\x07ame,\u202eHz,0.1\n", encoding="utf-8")
+    capture = tmp_path / "read.bin"
+    capture.write_bytes(rtu("0c0320d10001") + rtu("0c03020003") + rtu("0c0320d10001") + rtu("0c03020005"))
+    for options in ([], ["-V"], ["--json"], ["-T", "fields", "-e", "code", "-e", "name", "-e", "status"],
+                    ["--stats"], ["--watch", "8401"]):
+        status, out, err = run_cli(["--map", str(map_file), *options, str(capture)])
+        assert (status, err) == (0, ""), options
+        assert ESC not in out and "\x07" not in out and "\u202e" not in out, options
+        assert "\\x1b[2J" in out or "\\\\x1b[2J" in out, (options, out)
+
+
+def test_the_reports_json_block_escapes_comment_openers(tmp_path: Path) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text("address,code,name,unit,scale\n8401,HSP,<!-- a </script> b,Hz,0.1\n", encoding="utf-8")
+    capture = tmp_path / "read.bin"
+    capture.write_bytes((rtu("0c0320d10001") + rtu("0c03020003")) * 3)
+    report = tmp_path / "report.html"
+    status, out, err = run_cli(["--map", str(map_file), "--report", str(report), str(capture)])
+    assert (status, err) == (0, "")
+    page = report.read_text(encoding="utf-8")
+    block = page.split('<script type="application/json" id="report-data">', 1)[1].split("</script>", 1)[0]
+    assert "<!--" not in block and "</" not in block
+    assert "<!-- a </script> b" in json.dumps(json.loads(block), ensure_ascii=False)
+
+
+# -- crashes -----------------------------------------------------------------------------------------
+def test_a_filter_on_address_over_a_quantity_0_read() -> None:
+    # It used to be an IndexError; the request names address 0 (tshark's reference_num) and is shown.
+    status, out, err = run_cli(["-Y", "address == 0", "--hex", "01 03 00 00 00 00"])
+    assert (status, err) == (0, "")
+    assert len(out.splitlines()) == 1 and "1 request   Read Holding Registers" in out
+    assert "[warning: quantity 0 outside the spec's 1..125]" in out
+    status, out, err = run_cli(["-Y", "address == 1", "--hex", "01 03 00 00 00 00"])
+    assert (status, out, err) == (0, "", "")
+
+
+def _block(block_type: int, body: bytes) -> bytes:
+    body += b"\0" * (-len(body) % 4)
+    return struct.pack("<II", block_type, len(body) + 12) + body + struct.pack("<I", len(body) + 12)
+
+
+def _pcapng(offset: int | None, units: list[int]) -> bytes:
+    """One interface (if_tsoffset `offset`), one read request a packet at each of `units` microseconds."""
+    out = _block(0x0A0D0D0A, struct.pack("<IHHq", 0x1A2B3C4D, 1, 0, -1))
+    options = struct.pack("<HHq", 14, 8, offset) + b"\0" * 4 if offset is not None else b""
+    out += _block(1, struct.pack("<HHI", 147, 0, 0) + options)
+    frame = rtu("0c0320d00003")
+    for unit in units:
+        out += _block(6, struct.pack("<IIIII", 0, unit >> 32, unit & 0xFFFFFFFF, len(frame), len(frame)) + frame)
+    return out
+
+
+OUT_OF_RANGE = {"late": (None, [2**64 - 1]), "early": (-(2**62), [1_000_000]), "before 1970": (-100, [1_000_000])}
+
+
+@pytest.mark.parametrize("case", sorted(OUT_OF_RANGE))
+@pytest.mark.parametrize("column", ["a", "ad", "u", "ud"])
+def test_times_outside_the_calendar_are_not_representable(tmp_path: Path, case: str, column: str) -> None:
+    capture = tmp_path / "t.pcapng"
+    capture.write_bytes(_pcapng(*OUT_OF_RANGE[case]))
+    status, out, err = run_cli(["-t", column, str(capture)])
+    assert (status, err) == (0, "")
+    if case == "before 1970":
+        assert ("1969-12-31 23:58:21.000000" if column == "ud" else "23:58:21.000000" if column == "u" else "") in out
+    elif case == "late":  # 2^64 - 1 microseconds: the year 586524, which the calendar holds
+        assert ("586524-01-19 08:01:49.5" if column in ("ud", "ad") else ":01:49.5") in out
+    else:
+        # What tshark's time column says of a time its calendar cannot hold (-2^62 s).
+        assert "Not representable  12 request   Read Holding Registers 8400..8402 (3)" in out
+
+
+@pytest.mark.parametrize("case", sorted(OUT_OF_RANGE))
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_w_clamps_times_the_format_cannot_hold_and_says_so(tmp_path: Path, case: str, suffix: str) -> None:
+    capture = tmp_path / "t.pcapng"
+    capture.write_bytes(_pcapng(*OUT_OF_RANGE[case]))
+    written = tmp_path / f"out.{suffix}"
+    status, out, err = run_cli([str(capture), "-w", str(written)])
+    assert status == 0
+    assert err == (f"{PROG}warning: -w {written}: 1 record's time outside what {suffix} holds, "
+                   "written at the nearest time it holds\n")
+    chunks = list(open_source(str(written)))
+    assert [chunk.data for chunk in chunks] == [rtu("0c0320d00003")]
+    data = written.read_bytes()
+    if suffix == "pcap":  # seconds and microseconds of the first record
+        expected = (0xFFFFFFFF, 999_999) if case == "late" else (0, 0)
+        assert struct.unpack_from("<II", data, 24) == expected
+    elif case != "late":  # the packet block's 64-bit microseconds: 0, the earliest pcapng holds
+        assert data.endswith(struct.pack("<IIIII", 0, 0, 0, 8, 8) + rtu("0c0320d00003") + struct.pack("<I", 40))
+
+
+@pytest.mark.parametrize("scale", ["1e308", "1e999", "-1e999", "nan", "inf", "1e-300", "0", "1e13"])
+def test_map_scales_are_finite_and_keep_results_in_range(tmp_path: Path, scale: str) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text(f"address,code,scale\n8401,CHCF,{scale}\n", encoding="utf-8")
+    with pytest.raises(ProfileError) as caught:
+        load_map_file(map_file)
+    why = "is not a number" if scale in ("nan", "inf") else "is outside ±1e-12..1e+12 (and not 0)"
+    assert str(caught.value) == f"{map_file}:2: scale {scale!r} {why}"
+    status, out, err = run_cli(["--map", str(map_file), "--hex", "0C 03 02 FF FF"])
+    assert (status, out, err) == (2, "", f"{PROG}{caught.value}\n")
+
+
+def test_the_largest_scale_with_ffff_on_the_bus(tmp_path: Path) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text("address,code,scale,signed,unit\n8401,A,1e12,,Wh\n8402,B,-1e12,1,Wh\n", encoding="utf-8")
+    status, out, err = run_cli(["--map", str(map_file), "--hex", rtu("0c0320d10002").hex(),
+                                "--hex", rtu("0c0304ffffffff").hex()])
+    assert (status, err) == (0, "")
+    assert "A=65535000000000000 Wh" in out.replace("8401=", "") or "65535000000000000 Wh" in out
+    assert "1000000000000 Wh" in out
+
+
+def test_a_deeply_nested_profile_is_one_line(tmp_path: Path) -> None:
+    profile = tmp_path / "deep.toml"
+    profile.write_text("name = 'x'\nlimits = " + "[" * 5000 + "]" * 5000 + "\n", encoding="utf-8")
+    status, out, err = run_cli(["--profile", str(profile), "--hex", "0C 03 20 D0 00 03"])
+    assert (status, out) == (2, "")
+    assert err == f"{PROG}{profile}: arrays or tables nested too deep for a profile\n"
+
+
+@pytest.mark.parametrize("option, suffix, what", [("--profile", ".toml", "profile"), ("--map", ".csv", "map")])
+def test_profiles_and_maps_refuse_fifos_devices_and_huge_files(tmp_path: Path, option: str, suffix: str,
+                                                               what: str) -> None:
+    fifo = tmp_path / f"fifo{suffix}"
+    os.mkfifo(fifo)
+    status, out, err = run_cli([option, str(fifo), "--hex", "0C 03 20 D0 00 03"])  # used to wait forever
+    assert (status, err) == (2, f"{PROG}{fifo}: a FIFO, not a {what} file\n")
+    zero = tmp_path / f"zero{suffix}"
+    zero.symlink_to("/dev/zero")  # used to read 5 GB in 15 s
+    status, out, err = run_cli([option, str(zero), "--hex", "0C 03 20 D0 00 03"])
+    assert (status, err) == (2, f"{PROG}{zero}: a device, not a {what} file\n")
+    folder = tmp_path / f"dir{suffix}"
+    folder.mkdir()
+    status, out, err = run_cli([option, str(folder), "--hex", "0C 03 20 D0 00 03"])
+    assert status == 2 and err.startswith(f"{PROG}{folder}: ") and err.count("\n") == 1
+    big = tmp_path / f"big{suffix}"
+    with big.open("wb") as stream:
+        stream.truncate(17 << 20)
+    status, out, err = run_cli([option, str(big), "--hex", "0C 03 20 D0 00 03"])
+    limit = "1 MiB, not a profile" if what == "profile" else "16 MiB, not a register map"
+    assert (status, err) == (2, f"{PROG}{big}: larger than {limit}\n")
+
+
+def test_a_non_utf8_file_name_in_a_report(tmp_path: Path) -> None:
+    name = os.fsdecode(bytes(tmp_path) + b"/n\xff.bin")
+    Path(name).write_bytes(rtu("0c0320d00003") + rtu("0c0306000100020003"))
+    report = tmp_path / "report.html"
+    status, out, err = run_cli([name, "--report", str(report)])
+    assert (status, err) == (0, "")
+    assert "n\\udcff.bin" in report.read_text(encoding="utf-8")
+
+
+def _vw3(*argv: str, env: dict[str, str] | None = None, limit: int | None = None) -> subprocess.CompletedProcess[str]:
+    def cap() -> None:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    return subprocess.run([sys.executable, "-m", "dissector", *argv], capture_output=True, text=True,
+                          env={**os.environ, "PYTHONPATH": str(ROOT), **(env or {})}, cwd=ROOT,
+                          preexec_fn=cap if limit is not None else None, timeout=120)
+
+
+def test_noise_previews_under_an_ascii_only_locale(tmp_path: Path) -> None:
+    capture = tmp_path / "noise.bin"
+    capture.write_bytes(bytes(range(256)) * 4)
+    done = _vw3(str(capture), env={"PYTHONIOENCODING": "ascii", "VW3_PURE_PYTHON": "1"})
+    assert (done.returncode, done.stderr) == (0, "")
+    assert "bytes of noise at offset 0: 00 01 02 03 04 05 06 07 08 09 0a 0b 0c 0d 0e 0f\\u2026" in done.stdout
+    done = _vw3(str(capture), env={"PYTHONIOENCODING": "ascii"})  # the compiled path's lines as well
+    assert (done.returncode, done.stderr) == (0, "") and "\\u2026" in done.stdout
+
+
+# -- lost captures -----------------------------------------------------------------------------------
+def _capture(tmp_path: Path, name: str = "same.pcap") -> tuple[Path, bytes]:
+    source = ROOT / "captures" / "atv71_commissioning.pcap"
+    path = tmp_path / name
+    data = source.read_bytes()
+    path.write_bytes(data)
+    return path, data
+
+
+def test_an_output_that_is_the_input_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    capture, data = _capture(tmp_path)
+    link = tmp_path / "link.pcap"
+    link.symlink_to(capture.name)
+    hard = tmp_path / "hard.pcap"
+    os.link(capture, hard)
+    monkeypatch.chdir(tmp_path)
+    cases = [
+        (["same.pcap", "-w", "same.pcap"], "-w same.pcap is the input same.pcap"),
+        (["same.pcap", "-w", "./same.pcap"], "-w ./same.pcap is the input same.pcap"),
+        (["same.pcap", "--report", "link.pcap"], "--report link.pcap is the input same.pcap"),
+        (["link.pcap", "-w", "hard.pcap"], "-w hard.pcap is the input link.pcap"),
+        (["same.pcap", "-w", "x.pcap", "--report", "x.pcap"], "--report x.pcap is the -w file x.pcap"),
+        (["same.pcap", "--map", "m.csv", "-w", "m.csv"], None),
+    ]
+    (tmp_path / "m.csv").write_text("address,code\n1,A\n", encoding="utf-8")
+    cases[-1] = (cases[-1][0], "-w m.csv is the --map m.csv")
+    for argv, message in cases:
+        status, out, err = run_cli(argv)
+        assert (status, out, err) == (2, "", f"{PROG}{message}: it would be overwritten; give another file\n"), argv
+        assert capture.read_bytes() == data
+    assert not (tmp_path / "x.pcap").exists()
+    status, out, err = run_cli(["same.pcap", "-w", "/dev/null", "--report", "/dev/null"])  # a device is no file
+    assert (status, err) == (0, "")
+
+
+def test_live_w_and_raw_to_the_same_file_are_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    status, out, err = run_cli(["--live", "loop://", "-w", "cap.pcap", "--raw", "./cap.pcap", "--duration", "0.1"])
+    assert (status, err) == (2, f"{PROG}--raw ./cap.pcap is the -w file cap.pcap: it would be overwritten; "
+                                "give another file\n")
+    assert not (tmp_path / "cap.pcap").exists()
+
+
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_a_full_disk_keeps_whole_records_and_says_how_many(tmp_path: Path, suffix: str) -> None:
+    # RLIMIT_FSIZE makes the kernel write part of a batch and then fail (EFBIG), as a full disk does.
+    capture = tmp_path / "big.bin"
+    capture.write_bytes((ROOT / "captures" / "atv71_commissioning.bin").read_bytes() * 200)
+    written = tmp_path / f"out.{suffix}"
+    done = _vw3(str(capture), "-w", str(written), limit=100_001)
+    assert done.returncode == 1 and done.stdout == ""
+    match = re.fullmatch(rf"vw3-decode: -w {written}: File too large; {written} keeps ([\d,]+) whole records "
+                         r"\(([\d,]+) bytes\)\n", done.stderr)
+    assert match, done.stderr
+    records, size = (int(group.replace(",", "")) for group in match.groups())
+    assert size == written.stat().st_size and 100_001 - 600 < size <= 100_001
+    chunks = list(open_source(str(written)))  # every record whole: the reader finds no torn one
+    assert len(chunks) == records > 1000
+    source = open_source(str(written))
+    list(source)
+    assert source.warnings == []
