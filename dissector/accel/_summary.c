@@ -1025,14 +1025,19 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         out_put(&e->out, ": ", 2);
         if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
-    case 23: /* describe._read_write: the read part as numbers, even PLC style */
+    case 23: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
         out_cstr(&e->out, "read ");
-        out_uint(&e->out, r->start, 0);
-        out_put(&e->out, "..", 2);
-        out_uint(&e->out, (unsigned long long)r->start + r->quantity - 1, 0);
-        out_put(&e->out, " (", 2);
-        out_uint(&e->out, r->quantity, 0);
-        out_cstr(&e->out, "), write ");
+        if (base >= 0) {
+            span_text(&e->out, base, r->start, r->quantity);
+            out_cstr(&e->out, ", write ");
+        } else {
+            out_uint(&e->out, r->start, 0);
+            out_put(&e->out, "..", 2);
+            out_uint(&e->out, (unsigned long long)r->start + r->quantity - 1, 0);
+            out_put(&e->out, " (", 2);
+            out_uint(&e->out, r->quantity, 0);
+            out_cstr(&e->out, "), write ");
+        }
         if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
     }

@@ -164,6 +164,8 @@ class Sinks:
         )
 
     def accept(self, items: list[Item]) -> None:
+        heard = items  # noqa: F841 -- keeps the items -Y drops alive while these are written: a request's
+        # response is a weak reference, and -V says "Response in frame: 2" of a response not shown
         for item in items:  # is there any Modbus in this input at all?
             self.input_bytes += item.length
             if isinstance(item, Frame) and item.crc_ok:

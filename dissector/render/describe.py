@@ -168,6 +168,8 @@ def _read_write(frame: Frame, request: bool) -> str:
     fields = frame.fields
     if request:
         start, quantity = fields["read_start"], fields["read_quantity"]
+        if frame.span_label is not None:  # PLC style: the read window as its answer shows it (43202..43203)
+            return f"read {span_text(frame)}, write {values_text(frame)}"
         return f"read {start}..{start + quantity - 1} ({quantity}), write {values_text(frame)}"
     return f"{span_text(frame)}: {values_text(frame)}"
 

@@ -61,6 +61,7 @@ class History:
         self._namer: Callable[[int], Any] | None = getattr(annotate, "namer", None)
         self._choice_frame: Callable[[int], int | None] | None = getattr(annotate, "choice_frame", None)
         self._annotate = annotate
+        self.annotate = annotate  # for the outputs' names (PLC-style labels)
         self._renamed: dict[int, int] = {}  # slave -> the choice frame its values were named again for
 
     def add(self, item: Item) -> None:

@@ -62,6 +62,16 @@ class FunctionStats:
 PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
 
 
+def exception_counts(exceptions: dict[Any, int]) -> str:
+    """`02:769 07:1`: codes in hex as the manuals and the notes write them (exception 02), for every
+    table of --stats and --report alike; JSON keeps the numbers."""
+    parts = []
+    for code, count in sorted(exceptions.items(), key=lambda pair: int(pair[0])):
+        code = int(code)
+        parts.append(f"{code:02X}:{count}" if code >= 0 else f"?:{count}")
+    return " ".join(parts)
+
+
 def percentile(sorted_values: list[float], fraction: float) -> float:
     """Nearest rank: the smallest value with at least `fraction` of the values <= it."""
     rank = max(1, math.ceil(fraction * len(sorted_values)))
@@ -237,7 +247,7 @@ class StatsCollector:
             "Traffic per slave and function",
             ["slave", "function", "req", "resp", "exceptions", "no reply", "bad CRC"],
             [True, False, True, True, False, True, True],
-            caption="req: requests, resp: normal responses, exceptions: code:count",
+            caption="req: requests, resp: normal responses, exceptions: code:count (hex code)",
             squeeze={1: 28},  # keeps the table within 80 columns on a terminal
         )
         times = TableSpec(
@@ -246,7 +256,7 @@ class StatsCollector:
         )
         for row in report["functions"]:
             function = f"{row['function']} {row['function_name']}"
-            exceptions = " ".join(f"{code}:{count}" for code, count in row["exceptions"].items())
+            exceptions = exception_counts(row["exceptions"])
             traffic.rows.append([
                 str(row["slave"]), function, _count(row["requests"], row["broadcasts"]), str(row["responses"]),
                 (exceptions, "vw3.exception") if exceptions else "",
@@ -265,9 +275,27 @@ class StatsCollector:
             blocks += [profiles, ""]
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
-            blocks += [_poll_table(report["poll_cycle"]), ""]
+            blocks += [_poll_table(report["poll_cycle"], self.poll_addresses), ""]
         blocks.append(_parameter_table(parameter_rows))
         return blocks
+
+    def poll_addresses(self, row: dict[str, Any]) -> str:
+        """A poll key's addresses as the summary shows them (PLC style: 40001..40016 (16))."""
+        label = getattr(self.history.annotate, "label", None)
+        start = row.get("start")
+        if label is None or start is None or label(row["slave"], row["function"], start) is None:
+            return describe_key(row)
+
+        def span(first: int, quantity: int | None) -> str:
+            text = label(row["slave"], row["function"], first)
+            if not quantity or quantity == 1:
+                return text
+            return f"{text}..{label(row['slave'], row['function'], (first + quantity - 1) & 0xFFFF)} ({quantity})"
+
+        text = span(start, row.get("quantity"))
+        if row.get("write_start") is not None:
+            return f"read {text}, write {span(row['write_start'], row['write_quantity'])}"
+        return text
 
     def render(self) -> RenderableType:
         """For a terminal: rich tables, each within 80 columns."""
@@ -283,7 +311,7 @@ MAX_PARAMETER_ROWS = 60
 MAX_POLL_ROWS = 60
 
 
-def _poll_table(rows: list[dict[str, Any]]) -> TableSpec:
+def _poll_table(rows: list[dict[str, Any]], addresses: Callable[[dict[str, Any]], str] = describe_key) -> TableSpec:
     table = TableSpec(
         "Poll cycle (requests repeated 3 times or more)",
         ["slave", "function", "addresses", "count", "period", "jitter", "misses"],
@@ -295,7 +323,7 @@ def _poll_table(rows: list[dict[str, Any]]) -> TableSpec:
     for row in rows[:MAX_POLL_ROWS]:
         misses = str(row["misses"])
         table.rows.append([
-            str(row["slave"]), f"{row['function']} {SPEC.function_name(row['function'])}", describe_key(row),
+            str(row["slave"]), f"{row['function']} {SPEC.function_name(row['function'])}", addresses(row),
             str(row["count"]),
             "-" if row["period"] is None else _ms(row["period"]),
             "-" if row["jitter"] is None else _ms(row["jitter"]),

@@ -239,3 +239,38 @@ def test_watch_lines_count_as_stats_changes(name: str) -> None:
             continue
         status, out, _ = run_cli([path, "--watch", row["code"], "-Y", f"slave == {row['slave']}"])
         assert len(out.splitlines()) == row["changes"], row
+
+
+def test_detail_of_a_filtered_request_keeps_its_response_frame() -> None:
+    p38 = str(CAPTURES / "p38_protection.bin")
+    alone = run_cli(["-V", "-c", "1", p38])[1]
+    filtered = run_cli(["-V", "-Y", 'kind == "request"', "-c", "1", p38])[1]
+    assert "    Response in frame: 2" in alone.splitlines()
+    assert filtered == alone
+
+
+def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
+    commissioning = str(CAPTURES / "atv71_commissioning.bin")
+    lines = run_cli(["--address-style", "plc", commissioning])[1].splitlines()
+    # The FC23 request names its read window as its answer does.
+    assert lines[18].startswith("    19            -   2 request   Read/Write Multiple Registers read 43202..43203 (2), write CMD=")
+    assert lines[19].startswith("    20            -   2 response  Read/Write Multiple Registers 43202..43203 (2): ETA=")
+    sel = str(CAPTURES / "sel749m_polling.bin")
+    assert run_cli(["--address-style", "plc", "-c", "1", sel])[1].startswith(
+        "     1            -   1 request   Read Holding Registers 40001..40016 (16)")
+    stats = run_cli(["--address-style", "plc", "--stats", sel])[1].splitlines()
+    assert "    1  3 Read Holding Registers  40001..40016 (16)     12       -       -       0" in stats
+    assert "    1  4 Read Input Registers    30101..30108 (8)      12       -       -       0" in stats
+    page = tmp_path / "sel.html"
+    run_cli(["--address-style", "plc", "--report", str(page), sel])
+    assert "<td>40001..40016 (16)</td>" in page.read_text(encoding="utf-8")
+
+
+def test_exception_counts_read_the_same_in_stats_and_report(tmp_path: Path) -> None:
+    p38 = str(CAPTURES / "p38_protection.bin")
+    stats = run_cli(["--stats", p38])[1].splitlines()
+    assert "   12  3 Read Holding Registers    6     4  02:2               0        0" in stats
+    page = tmp_path / "p38.html"
+    run_cli(["--report", str(page), p38])
+    text = page.read_text(encoding="utf-8")
+    assert "<td>02:2</td>" in text and "<td>2:2</td>" not in text

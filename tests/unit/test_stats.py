@@ -202,8 +202,8 @@ def test_render_p38() -> None:
         "Traffic per slave and function",
         " slave  function                  req  resp  exceptions  no reply  bad CRC",
         "─" * 75,
-        "    12  3 Read Holding Registers    6     4  2:2                0        0",
-        "req: requests, resp: normal responses, exceptions: code:count",
+        "    12  3 Read Holding Registers    6     4  02:2               0        0",  # as the notes: 02
+        "req: requests, resp: normal responses, exceptions: code:count (hex code)",
         "",
         "Response times (ms)",
         " slave  function                  count  min  median   p95   max",

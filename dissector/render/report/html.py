@@ -9,11 +9,10 @@ from importlib import resources
 from typing import Any, TextIO
 
 from dissector.errors import OutputError
-from dissector.render.pollcycle import describe_key
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
-from dissector.render.stats import StatsCollector, time_summary
+from dissector.render.stats import StatsCollector, exception_counts, time_summary
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
@@ -89,8 +88,7 @@ def render_report(
         ]))
     rows = []
     for entry in slaves:
-        exceptions = " ".join(f"{code:02X}:{count}" if code >= 0 else f"?:{count}"
-                              for code, count in sorted(entry["exceptions"].items()))
+        exceptions = exception_counts(entry["exceptions"])
         time = entry["time"] or {}
         rows.append([entry["slave"], entry["requests"], entry["responses"], exceptions, entry["unanswered"],
                      entry["crc_errors"], _ms(time.get("min")), _ms(time.get("median")),
@@ -106,7 +104,7 @@ def render_report(
     parts.extend(bus_section(data, bus, health, when))
     function_rows = [
         [row["slave"], f"{row['function']} {row['function_name']}", row["requests"], row["responses"],
-         " ".join(f"{code}:{count}" for code, count in row["exceptions"].items()), row["unanswered"],
+         exception_counts(row["exceptions"]), row["unanswered"],
          row["crc_errors"]]
         for row in summary["functions"]
     ]
@@ -119,7 +117,7 @@ def render_report(
     if poll:
         parts.append(_table(
             ["slave", "function", "addresses", "count", "period ms", "jitter ms", "skipped", "no answer", "misses"],
-            [[row["slave"], f"{row['function']} {SPEC.function_name(row['function'])}", describe_key(row),
+            [[row["slave"], f"{row['function']} {SPEC.function_name(row['function'])}", stats.poll_addresses(row),
               row["count"], _ms(row["period"]), _ms(row["jitter"]), row["skipped"], row["no_answer"],
               row["misses"]] for row in poll],
             "numbers",
