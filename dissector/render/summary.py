@@ -18,8 +18,14 @@ def time_text(item: Item, base: float | None) -> str:
     return f"{item.time - (base or 0.0):.6f}"
 
 
+_UNTYPED = ("no CRC typed", "no LRC typed")  # hexinput's note for bytes typed without their check
+
+
 def crc_text(frame: Frame) -> str:
     if frame.crc == frame.crc_expected:
+        if frame.notes and any(note.startswith(_UNTYPED) for note in frame.notes):
+            # The check was computed here, not received: nothing was checked.
+            return "CRC computed (none typed)" if frame.mode == "rtu" else "LRC computed (none typed)"
         return "CRC ok" if frame.mode == "rtu" else "LRC ok"
     check = "LRC" if frame.mode == "ascii" else "CRC"
     width = 2 if frame.mode == "ascii" else 4

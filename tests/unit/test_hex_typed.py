@@ -27,9 +27,10 @@ def test_a_frame_typed_without_its_crc_gets_the_crc_to_append() -> None:
     assert (status, err) == (0, "")
     assert out.splitlines() == [
         "     1            -  12 request   Read Holding Registers 8400..8402 (3) "
-        "[no CRC typed: append 0E EF (CRC 0xEF0E)]  CRC ok",
+        "[no CRC typed: append 0E EF (CRC 0xEF0E)]  CRC computed (none typed)",
         "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
-        "CHCF=IO (I/O profile) COP=Cd (command) [#1] [no CRC typed: append 17 E4 (CRC 0xE417)]  CRC ok",
+        "CHCF=IO (I/O profile) COP=Cd (command) [#1] [no CRC typed: append 17 E4 (CRC 0xE417)]  "
+        "CRC computed (none typed)",
     ]
 
 
@@ -50,7 +51,7 @@ def test_an_ascii_frame_typed_without_its_lrc_gets_the_lrc_to_append() -> None:
     out = run_cli(["--hex", ":02062329000A", "--profile", "atv71"])[1]
     assert out == (
         "     1            -   2 request   Write Single Register 9001 ACC=10 [no response] "
-        "[the capture ends before any response] [no LRC typed: append A2]  LRC ok\n"
+        "[the capture ends before any response] [no LRC typed: append A2]  LRC computed (none typed)\n"
     )
     assert run_cli(["--hex", ":02062329000AA3"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
 
