@@ -48,6 +48,8 @@ typedef struct {
     Poll *polls;
     size_t poll_slots, poll_count;
     size_t max_keys;              /* pollcycle.MAX_KEYS, given at creation */
+    size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
+    unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
     Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
@@ -74,9 +76,11 @@ static int grow_params(Stats *st) {
     return 0;
 }
 
-/* The parameter of (slave, address), made on first sight; *created says so. */
+/* The parameter of (slave, address), made on first sight; *created says so. NULL with no exception set:
+ * a new parameter past max_params (a flood over every address of every slave), not kept. */
 static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
-    if (2 * (st->param_count + 1) > st->param_slots && grow_params(st) < 0) return NULL;
+    if (2 * (st->param_count + 1) > st->param_slots && st->param_count < st->max_params && grow_params(st) < 0)
+        return NULL;
     uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
     size_t slot = (size_t)mix(key) & (st->param_slots - 1);
     while (st->params[slot].key) {
@@ -85,6 +89,10 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
             return &st->params[slot];
         }
         slot = (slot + 1) & (st->param_slots - 1);
+    }
+    if (st->param_count >= st->max_params) {
+        st->dropped++;
+        return NULL;
     }
     Param *p = &st->params[slot];
     p->key = key;
@@ -126,7 +134,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
                        int mapped) {
     int created;
     Param *p = param_get(st, slave, address, &created);
-    if (p == NULL) return -1;
+    if (p == NULL) return PyErr_Occurred() ? -1 : 0;
     if (mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
         (event != EVENT_CONFIRM || created)) {
         PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
@@ -341,7 +349,10 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
     }
     int created;
     Param *p = param_get(st, slave, address, &created);
-    if (p == NULL) return NULL;
+    if (p == NULL) {
+        if (PyErr_Occurred()) return NULL;
+        Py_RETURN_FALSE; /* not kept: no state, no change */
+    }
     if (code != Py_None && (event != EVENT_CONFIRM || created)) {
         Py_INCREF(code);
         Py_XSETREF(p->code, code);
@@ -610,16 +621,18 @@ fail:
     return NULL;
 }
 
-/* Stats(max_keys): the poll table follows at most max_keys request keys (pollcycle.MAX_KEYS). */
+/* Stats(max_keys, max_params=1 << 18): the poll table follows at most max_keys request keys
+ * (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters (MAX_PARAMETERS). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"max_keys", NULL};
-    Py_ssize_t max_keys;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n", keywords, &max_keys)) return -1;
-    if (max_keys < 0) {
-        PyErr_SetString(PyExc_ValueError, "max_keys must be >= 0");
+    static char *keywords[] = {"max_keys", "max_params", NULL};
+    Py_ssize_t max_keys, max_params = 1 << 18;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|n", keywords, &max_keys, &max_params)) return -1;
+    if (max_keys < 0 || max_params < 0) {
+        PyErr_SetString(PyExc_ValueError, "max_keys and max_params must be >= 0");
         return -1;
     }
     st->max_keys = (size_t)max_keys;
+    st->max_params = (size_t)max_params;
     return 0;
 }
 
@@ -628,6 +641,7 @@ static PyObject *stats_get_untracked(Stats *st, void *closure) {
     return PyLong_FromUnsignedLongLong(st->untracked);
 }
 static PyObject *stats_get_parameter_count(Stats *st, void *closure) { return PyLong_FromSize_t(st->param_count); }
+static PyObject *stats_get_dropped(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->dropped); }
 
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
@@ -650,6 +664,7 @@ static PyGetSetDef stats_getset[] = {
     {"frames", (getter)stats_get_frames, NULL, "frames the engine counted", NULL},
     {"untracked", (getter)stats_get_untracked, NULL, "requests of keys beyond the poll table's size", NULL},
     {"parameter_count", (getter)stats_get_parameter_count, NULL, "parameters kept", NULL},
+    {"dropped", (getter)stats_get_dropped, NULL, "events of parameters beyond max_params, not kept", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

@@ -281,10 +281,7 @@ class Sinks:
             self.wrote = report.path
         if self.stats is not None and self.stats_shown:
             if self.json:
-                report = self.stats.report()
-                if self.bus is not None:
-                    report["bus"] = self.bus.report()
-                self.text_out.write(json.dumps(report) + "\n")
+                self.stats.write_json(self.text_out.write, {"bus": self.bus.report()} if self.bus is not None else None)
             else:
                 self.output.flush()
                 if self.output.console is not None:

@@ -28,9 +28,10 @@ Counting rules (the table headers say the same):
 """
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 from rich.console import RenderableType
@@ -40,7 +41,7 @@ from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render import history
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import ParameterRow
+from dissector.render.stats_store import MAX_PARAMETERS, ParameterRow
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -194,26 +195,7 @@ class StatsCollector:
                     "response_time": time_summary(stats.times),
                 }
             )
-        parameters: list[dict[str, Any]] | None = None
-        if with_parameters:
-            parameters = [
-                {
-                    "slave": slave,
-                    "address": address,
-                    "code": code,
-                    "reads": reads,
-                    "unreadable": unreadable,
-                    "writes": writes,
-                    "refused": refused,
-                    "last": last,
-                    "last_text": last_text if last_text is not None or last is None else str(last),
-                    # The last state was a read status (then last is null and last_text the status).
-                    "last_status": last_text if last is None and last_text in UNREADABLE_STATUSES else None,
-                    "changes": changes,
-                }
-                for slave, address, code, reads, unreadable, writes, refused, last, last_text, changes
-                in self.store.parameters()
-            ]
+        parameters = list(self.parameter_dicts()) if with_parameters else None
         return {
             "frames": self.frames + self.store.frames,
             "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
@@ -223,6 +205,9 @@ class StatsCollector:
                 else self.last_time - self.first_time
             ),
             "registers_without_address": self.history.registers_without_address,
+            # Parameters are kept up to MAX_PARAMETERS; the register events of further ones are counted.
+            "parameter_limit": MAX_PARAMETERS,
+            "parameter_events_dropped": self.store.dropped,
             "functions": functions,
             "parameters": parameters,
             "poll_cycle": self.poll.report(),
@@ -231,6 +216,42 @@ class StatsCollector:
                 for choice in (self.profiles() if self.profiles is not None else [])
             ],
         }
+
+    def parameter_dicts(self) -> Iterator[dict[str, Any]]:
+        """The parameters of the JSON form, one at a time (write_json streams them)."""
+        for row in self.store.parameters():
+            slave, address, code, reads, unreadable, writes, refused, last, last_text, changes = row
+            yield {
+                "slave": slave,
+                "address": address,
+                "code": code,
+                "reads": reads,
+                "unreadable": unreadable,
+                "writes": writes,
+                "refused": refused,
+                "last": last,
+                "last_text": last_text if last_text is not None or last is None else str(last),
+                # The last state was a read status (then last is null and last_text the status).
+                "last_status": last_text if last is None and last_text in UNREADABLE_STATUSES else None,
+                "changes": changes,
+            }
+
+    def write_json(self, write: Callable[[str], object], extra: dict[str, Any] | None = None) -> None:
+        """The JSON form (and `extra` keys) as one line, its parameters written in batches, never one
+        string of them all (64 slaves' worth of parameters was a 643 MB line)."""
+        report = self.report(with_parameters=False)
+        report.update(extra or {})
+        head, tail = json.dumps(report).split('"parameters": null', 1)
+        write(head + '"parameters": [')
+        batch: list[str] = []
+        separator = ""
+        for parameter in self.parameter_dicts():
+            batch.append(json.dumps(parameter))
+            if len(batch) == 1024:
+                write(separator + ", ".join(batch))
+                batch.clear()
+                separator = ", "
+        write((separator + ", ".join(batch) if batch else "") + "]" + tail + "\n")
 
     def blocks(self) -> list[str | TableSpec]:
         """The summary line and the tables, for the rich or the plain writer."""
@@ -242,6 +263,9 @@ class StatsCollector:
         )
         if report["registers_without_address"]:
             summary += f", {report['registers_without_address']} register values without an address"
+        if report["parameter_events_dropped"]:
+            summary += (f", {report['parameter_events_dropped']} register values of parameters beyond the first "
+                        f"{MAX_PARAMETERS:,} not tracked")
         blocks += [summary, ""]
         traffic = TableSpec(
             "Traffic per slave and function",

@@ -33,6 +33,10 @@ except ImportError:  # built without a C compiler
     CompiledStore = None
 
 READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(6)
+# Parameters kept at most: a plant's devices have a few thousand each; a flood of writes over every
+# address of 64 slaves (4 M parameters) took 2 GB. Events of further parameters are counted (`dropped`)
+# and the outputs say so; kept parameters keep every event.
+MAX_PARAMETERS = 1 << 18
 
 ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int]
 
@@ -56,14 +60,19 @@ class ParameterTable:
 
     frames = 0  # frames counted by the compiled engine: none here
 
-    def __init__(self) -> None:
+    def __init__(self, max_params: int = MAX_PARAMETERS) -> None:
         self._parameters: dict[tuple[int, int], ParameterStats] = {}
+        self._max_params = max_params
+        self.dropped = 0  # events of parameters beyond max_params, not kept
 
     def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None) -> bool:
         key = (slave, address)
         stats = self._parameters.get(key)
         created = stats is None
         if stats is None:
+            if len(self._parameters) >= self._max_params:
+                self.dropped += 1
+                return False
             stats = self._parameters[key] = ParameterStats()
         if code is not None and (event != CONFIRM or created):
             stats.code = code
@@ -121,5 +130,5 @@ class ParameterTable:
 def new_store() -> Any:
     """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set)."""
     if CompiledStore is not None and not os.environ.get("VW3_PURE_PYTHON"):
-        return CompiledStore(MAX_KEYS)
+        return CompiledStore(MAX_KEYS, MAX_PARAMETERS)
     return ParameterTable()

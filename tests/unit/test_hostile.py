@@ -355,3 +355,64 @@ def test_a_full_disk_keeps_whole_records_and_says_how_many(tmp_path: Path, suffi
     source = open_source(str(written))
     list(source)
     assert source.warnings == []
+
+
+# -- bounded cost ------------------------------------------------------------------------------------
+def _write_flood(path: Path, slaves: int = 64) -> None:
+    """FC16 writes (and their answers) over every address of `slaves` slaves: 9 MB for 64."""
+    with path.open("wb") as stream:
+        for slave in range(1, slaves + 1):
+            for start in range(0, 65536, 123):
+                count = min(123, 65536 - start)
+                values = "".join(f"{(start + index) & 0xFFFF:04x}" for index in range(count))
+                stream.write(rtu(f"{slave:02x}10{start:04x}{count:04x}{2 * count:02x}{values}"))
+                stream.write(rtu(f"{slave:02x}10{start:04x}{count:04x}"))
+
+
+@pytest.mark.parametrize("store", ["compiled", "python"])
+def test_the_parameter_table_keeps_at_most_its_limit_and_counts_the_rest(store: str) -> None:
+    from dissector.render.stats_store import READ, WRITE, CompiledStore, ParameterTable
+
+    if store == "compiled":
+        assert CompiledStore is not None
+        table = CompiledStore(10, 3)
+    else:
+        table = ParameterTable(3)
+    for address in range(5):
+        table.param(1, address, WRITE, 7, None, None)
+    assert table.param(1, 0, READ, 8, None, "8") is False and table.param(1, 0, READ, 9, None, "9") is True
+    assert table.param(1, 4, READ, 8, None, "8") is False  # beyond the limit: not kept, no change
+    assert table.parameter_count == 3 and table.dropped == 3
+    assert [row[:7] for row in table.parameters()] == [
+        (1, 0, None, 2, 0, 1, 0), (1, 1, None, 0, 0, 1, 0), (1, 2, None, 0, 0, 1, 0)]
+
+
+def test_stats_on_a_write_flood_over_64_slaves_stays_under_200_mb(tmp_path: Path) -> None:
+    flood = tmp_path / "flood.bin"
+    _write_flood(flood)
+    assert 8_900_000 < flood.stat().st_size < 9_100_000
+    for options in (["--stats"], ["--stats", "--json"], ["--report", str(tmp_path / "r.html")]):
+        status, out, peak = _peak_rss(tmp_path, *options, str(flood))
+        assert status == 0
+        # kB; it was 1.95 GB for --stats, 4.56 GB with --json, 2.1 GB for --report (whose page holds an
+        # index of the 262,144 parameters kept: 45 MB of HTML, built in memory)
+        assert peak < (200_000 if options[0] == "--stats" else 400_000), (options, peak)
+        if options == ["--stats"]:
+            assert out.splitlines()[0] == (
+                "68224 frames, 0 noise bytes in 0 runs, 7864320 register values of parameters beyond the first "
+                "262,144 not tracked")
+        elif options[1:] == ["--json"]:
+            report = json.loads(out)
+            assert len(report["parameters"]) == report["parameter_limit"] == 262_144
+            assert report["parameter_events_dropped"] == 7_864_320
+
+
+def _peak_rss(tmp_path: Path, *argv: str) -> tuple[int, str, int]:
+    """(exit status, standard output, peak resident memory in kB) of one vw3-decode process."""
+    out_path = tmp_path / "out.txt"
+    with out_path.open("wb") as out:
+        process = subprocess.Popen([sys.executable, "-m", "dissector", *argv], stdout=out, cwd=ROOT,
+                                   env={**os.environ, "PYTHONPATH": str(ROOT)})
+        _pid, status, usage = os.wait4(process.pid, 0)
+        process.returncode = os.waitstatus_to_exitcode(status)
+    return process.returncode, out_path.read_text(encoding="utf-8"), usage.ru_maxrss

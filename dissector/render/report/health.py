@@ -15,6 +15,7 @@ from typing import Any
 from dissector.model import Item, Kind
 from dissector.protocol.table import FUNCTIONS
 from dissector.render.report.collect import COLUMNS, Columns
+from dissector.render.stats_store import MAX_PARAMETERS
 
 # Requests whose registers are values written: setpoints (FC23's write half too).
 WRITES = frozenset(entry.code for entry in FUNCTIONS if str(entry.access) in ("write", "read_write"))
@@ -42,7 +43,9 @@ class Health:
                 if frame.function in WRITES and frame.registers:  # type: ignore[union-attr]
                     slave = frame.slave  # type: ignore[union-attr]
                     for register in frame.registers:  # type: ignore[union-attr]
-                        if register.address is not None:
+                        # Bounded as the parameter table is (a write flood over every address of 64
+                        # slaves made this set 4 M pairs); only drawn series, at most MAX_SERIES, ask.
+                        if register.address is not None and len(self.written) < MAX_PARAMETERS:
                             self.written.add((slave, register.address))
                 continue
             seconds = frame.response_time  # type: ignore[union-attr]

@@ -65,7 +65,7 @@ def render_report(
     bus, health = extras.get("bus"), extras.get("health")
     data = collector.data(points=False)
     when = _clock(data, extras.get("time_format", "r"))
-    summary = stats.report()
+    summary = stats.report(with_parameters=False)  # parameters: the collector draws its own
     slaves = _slaves(stats)
     data["slaves"] = [
         {"slave": entry["slave"], "time": entry["time"]} for entry in slaves
