@@ -1084,6 +1084,7 @@ local DATA = {
     ["candidates"] = { "atv71", "sel749m" },
     ["fit_answers"] = 8,
     ["fit_frames"] = 32,
+    ["fit_reads"] = 2,
     ["product_code_object"] = 1,
   },
 }
@@ -3005,12 +3006,13 @@ local function device_for(st, slave)
 end
 
 -- The device a frame was annotated with: a slave's device changes only when `auto` chooses (rarely), so
--- the changes are kept per slave, { item number from which on, device }, rather than a key per frame.
+-- the changes are kept per slave, { item number from which on, device, reason }, rather than a key per
+-- frame. Second value: why `auto` gave the slave that device (Frame.profile_choice), nil before a choice.
 local function device_of(st, f)
   local history = st.history and st.history[f.slave]
   if history ~= nil then
     for k = #history, 1, -1 do
-      if history[k].number <= f.number then return history[k].device end
+      if history[k].number <= f.number then return history[k].device, history[k].reason end
     end
   end
   return device_for(st, f.slave)
@@ -3604,7 +3606,7 @@ local IDENTIFYING = {}
 for index = #CANDIDATES, 1, -1 do
   for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
 end
-local FIT_ANSWERS, FIT_FRAMES = SELECTION.fit_answers, SELECTION.fit_frames
+local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
 local function settled(judged)
   return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
@@ -3667,22 +3669,47 @@ local function register_list(f, b)
   return out
 end
 
+-- selection._fits: true, an answer the device gives; an address, also its non-existent marker there;
+-- false, one it would not give; nil, nothing either way.
 local function fits(f, name, registers)
   local profile = PROFILES[name]
   local rows = candidate_rows(name)
-  if not profile.identify.traffic_fit or next(rows) == nil then return false end
+  if not profile.identify.traffic_fit or next(rows) == nil then return nil end
   if profile.functions ~= nil and not profile.functions[f.fn] then return false end
-  if #registers == 0 then return false end
-  local known = 0
+  if #registers == 0 then return nil end
+  local known, marker = 0, nil
   for _, reg in ipairs(registers) do
-    if reg.address == nil then return false end
+    if reg.address == nil then return nil end
     if rows[reg.address] ~= nil then
       known = known + 1
-    elseif reg.value ~= profile.protected_value or READS[f.fn] == nil then
+    elseif reg.value == profile.protected_value and READS[f.fn] ~= nil then
+      marker = marker or reg.address
+    else
       return false
     end
   end
-  return known > 0
+  if known == 0 then return nil end
+  return marker or true
+end
+
+-- selection._Evidence: the reads a candidate's map explains (found.order: their keys as first seen).
+local function enough(found)
+  return #found.order >= FIT_READS or (found.marker ~= nil and found.answers >= FIT_READS)
+end
+
+local function evidence_reason(found, protected)
+  local parts = {}
+  for index = 1, math.min(#found.order, FIT_READS) do
+    local read = found.reads[found.order[index]]
+    local where = format("frame #%d", read.frames[1])
+    if #read.frames > 1 then where = format("frames #%d and #%d", read.frames[1], read.frames[2]) end
+    parts[index] = read.text .. " in " .. where
+  end
+  local text = "traffic fits its map: " .. table.concat(parts, ", ")
+  if #found.order < FIT_READS and found.marker ~= nil and protected ~= nil then
+    text = text .. format("; 16#%04X at %d, its answer for a non-existent parameter", protected, found.marker)
+  end
+  return text
 end
 
 local function what(f, registers)
@@ -3710,7 +3737,8 @@ local function observe(st, f, b)
   if found ~= nil then
     judged.choice = found
     if current == nil or current.profile ~= found.profile then return found end
-    return nil
+    found.same = true -- the same device, for a new reason (identified after a traffic fit)
+    return found
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
@@ -3724,17 +3752,43 @@ local function observe(st, f, b)
     return nil
   end
   if not judging then return nil end
+  -- Selector._weigh: what this answer says of each candidate; a choice when one alone has enough.
   local registers = register_list(f, b)
-  local fit = nil
+  local evidence, ruled_out = judged.evidence or {}, judged.ruled_out or {}
+  judged.evidence, judged.ruled_out = evidence, ruled_out
   for _, name in ipairs(CANDIDATES) do
-    if fits(f, name, registers) then
-      if fit ~= nil then return nil end
-      fit = name
+    local verdict = nil
+    if not ruled_out[name] then verdict = fits(f, name, registers) end
+    if verdict == false then
+      ruled_out[name], evidence[name] = true, nil
+    elseif verdict ~= nil then
+      local found = evidence[name]
+      if found == nil then
+        found = { reads = {}, order = {}, answers = 0 }
+        evidence[name] = found
+      end
+      local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
+      local read = found.reads[key]
+      if read == nil then
+        read = { text = what(f, registers), frames = {} }
+        found.reads[key] = read
+        found.order[#found.order + 1] = key
+      end
+      read.frames[#read.frames + 1] = f.number
+      found.answers = found.answers + 1
+      if found.marker == nil and verdict ~= true then found.marker = verdict end
     end
   end
-  if fit == nil then return nil end
-  judged.choice = { profile = fit, final = false, reason = format("traffic fits its map: %s in frame #%d",
-    what(f, registers), f.number) }
+  local ready = nil
+  for _, name in ipairs(CANDIDATES) do
+    if evidence[name] ~= nil and enough(evidence[name]) then
+      if ready ~= nil then return nil end
+      ready = name
+    end
+  end
+  if ready == nil then return nil end
+  judged.choice = { profile = ready, final = false,
+    reason = evidence_reason(evidence[ready], PROFILES[ready].protected_value) }
   return judged.choice
 end
 
@@ -3775,6 +3829,11 @@ select_device = function(st, f, b)
   local choice = observe(st, f, b)
   if choice == nil then return device_for(st, f.slave) end
   local slave = f.slave
+  if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
+    local history = st.history[slave]
+    history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
+    return device_for(st, slave)
+  end
   st.chosen = st.chosen or {}
   st.history = st.history or {}
   st.chosen[slave] = choice.profile
@@ -3786,7 +3845,7 @@ select_device = function(st, f, b)
     st.history[slave] = history
     if old then history[1] = { number = 0, device = old } end
   end
-  history[#history + 1] = { number = f.number, device = device }
+  history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   st.devices[slave] = device
   f.profile_choice = choice.reason
   return device
@@ -4738,6 +4797,8 @@ local pf = {
   reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
     { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
   profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
+  profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
+    "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
   profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
     "Profile auto: why this frame decides the slave's profile"),
   bit = ProtoField.none("vw3.bit", "Bit"),
@@ -5092,8 +5153,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
     t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
-    local device = device_of(st, f)
+    local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
+    if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
     local crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)

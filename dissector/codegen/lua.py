@@ -144,6 +144,7 @@ def _profile_data() -> dict[str, Any]:
             "candidates": [name for name in BUILTIN_PROFILES if name != FALLBACK_PROFILE],
             "fit_answers": selection.FIT_ANSWERS,
             "fit_frames": selection.FIT_FRAMES,
+            "fit_reads": selection.FIT_READS,
             "product_code_object": selection.PRODUCT_CODE,
         },
     }

@@ -253,6 +253,7 @@ class Annotator:
             chosen = self._observe(frame)
             if chosen is not None:
                 device = chosen
+            frame.profile_choice = self.selector.choice(frame.slave)  # type: ignore[union-attr]
         if device is None:
             device = self.device(frame.slave)
         kind = frame.kind

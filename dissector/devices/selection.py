@@ -5,11 +5,18 @@ data/profiles/*.toml):
 - a Read Device Identification answer whose ProductCode starts with one of a profile's product codes
   (`ATV71HU15M3` -> atv71);
 - a function code only that device speaks (SEL-749M 60h-62h, 7Dh), asked or answered;
-- traffic that fits one profile alone: answers to function codes it supports, at addresses its map
-  knows (or reading the value it returns for a non-existent parameter, 16#8000 on the VW3 A3 303).
-  Traffic is judged on a slave's first answers (FIT_ANSWERS); a later answer to a function the chosen
-  profile does not support takes the choice back.
-Until evidence arrives a slave gets spec semantics only (`generic`): no device claims.
+- traffic that fits one profile alone, over more than one answer: answers to function codes it
+  supports, at addresses its map knows (or reading the value it returns for a non-existent parameter,
+  16#8000 on the VW3 A3 303). One answer is never enough: an energy meter's read of 3203..3206 fits
+  the Altivar map by chance. The map must explain FIT_READS different reads (a master polling one
+  block again and again is one read, however often), or one read answered again with the device's own
+  non-existent marker at an address its map lacks (what the VW3 card does, p.38). An answer the map
+  cannot explain (a register it does not know, a function the device does not support) rules the
+  profile out for that slave. Traffic is judged on a slave's first answers (FIT_ANSWERS); a later
+  answer to a function the chosen profile does not support takes the choice back.
+Until evidence arrives a slave gets spec semantics only (`generic`): no device claims. The choice's
+reason names the frames, and every frame a chosen profile annotates carries it (Frame.profile: -V's
+`Profile:` line, --json's `profile`).
 """
 from __future__ import annotations
 
@@ -22,6 +29,7 @@ from dissector.protocol import table
 
 _READS = table.register_reads()  # answers whose registers are values read (16#8000 can mean non-existent)
 FIT_ANSWERS = 8  # answers of a slave its traffic is judged on
+FIT_READS = 2  # different reads a map must explain (or answers with the non-existent marker)
 FIT_FRAMES = 4 * FIT_ANSWERS  # frames of a slave that seldom answers, the same
 PRODUCT_CODE = 1  # FC43 object 01h ProductCode
 
@@ -41,10 +49,37 @@ class ProfileChoice:
 
 
 @dataclass(slots=True)
+class _Evidence:
+    """The answers one candidate's map explains, for one slave: by read (function, start, count)."""
+
+    reads: dict[tuple[int, int, int], list[int]]  # read -> the frames that answered it
+    texts: dict[tuple[int, int, int], str]  # read -> `function 3 at 8400..8402`
+    marker: int | None = None  # an unmapped address read as the non-existent marker
+
+    def enough(self) -> bool:
+        if len(self.reads) >= FIT_READS:
+            return True
+        return self.marker is not None and sum(map(len, self.reads.values())) >= FIT_READS
+
+    def reason(self, protected: int | None) -> str:
+        parts = []
+        for read, frames in self.reads.items():
+            numbers = [f"#{number}" for number in frames[:FIT_READS]]
+            where = f"frame {numbers[0]}" if len(numbers) == 1 else f"frames {' and '.join(numbers)}"
+            parts.append(f"{self.texts[read]} in {where}")
+        text = "traffic fits its map: " + ", ".join(parts[:FIT_READS])
+        if len(self.reads) < FIT_READS and self.marker is not None and protected is not None:
+            text += f"; 16#{protected:04X} at {self.marker}, its answer for a non-existent parameter"
+        return text
+
+
+@dataclass(slots=True)
 class _Judged:
     answers: int = 0
     frames: int = 0
     choice: ProfileChoice | None = None
+    evidence: dict[str, _Evidence] | None = None  # candidate -> what its map explains
+    ruled_out: set[str] | None = None  # candidates an answer contradicted
 
 
 class Selector:
@@ -106,15 +141,43 @@ class Selector:
             return None
         if not judging:
             return None
-        fits = [profile for profile, rows in self.candidates if _fits(frame, profile, rows)]
-        if len(fits) == 1:
-            profile = fits[0]
-            judged.choice = ProfileChoice(
-                slave, profile.name,
-                f"traffic fits its map: {_what(frame)} in frame #{frame.number}", frame.number, False,
-            )
-            return judged.choice
-        return None
+        return self._weigh(judged, frame)
+
+    def _weigh(self, judged: _Judged, frame: Frame) -> ProfileChoice | None:
+        """Add what this answer says of each candidate; a choice when one alone has enough."""
+        if judged.evidence is None:
+            judged.evidence, judged.ruled_out = {}, set()
+        evidence, ruled_out = judged.evidence, judged.ruled_out
+        assert ruled_out is not None
+        for profile, rows in self.candidates:
+            name = profile.name
+            if name in ruled_out:
+                continue
+            verdict = _fits(frame, profile, rows)
+            if verdict is None:
+                continue
+            if verdict is False:
+                ruled_out.add(name)
+                evidence.pop(name, None)
+                continue
+            found = evidence.get(name)
+            if found is None:
+                found = evidence[name] = _Evidence({}, {})
+            registers = frame.registers or []
+            read = (frame.function, registers[0].address or 0, len(registers))
+            found.reads.setdefault(read, []).append(frame.number)
+            found.texts.setdefault(read, _what(frame))
+            if found.marker is None and verdict is not True:
+                found.marker = verdict
+        ready = [name for name, found in evidence.items() if found.enough()]
+        if len(ready) != 1:
+            return None
+        profile = self.profile(ready[0])
+        assert profile is not None
+        judged.choice = ProfileChoice(
+            frame.slave, profile.name, evidence[profile.name].reason(profile.protected_value), frame.number, False
+        )
+        return judged.choice
 
     def profile(self, name: str) -> Profile | None:
         for profile, _ in self.candidates:
@@ -149,25 +212,32 @@ class Selector:
         return None
 
 
-def _fits(frame: Frame, profile: Profile, rows: RegisterMap) -> bool:
-    """This answer is one the device of `profile` gives: a function it supports, addresses it knows."""
+def _fits(frame: Frame, profile: Profile, rows: RegisterMap) -> bool | int | None:
+    """What this answer says of the device of `profile`: True, it is one the device gives (a function
+    it supports, addresses its map knows); an address (int) when it is also read as the device's
+    non-existent marker there; False, the device would not give it; None, nothing either way."""
     if not profile.traffic_fit or not rows:
-        return False
+        return None
     if profile.functions is not None and frame.function not in profile.functions:
         return False
     registers = frame.registers
     if not registers:
-        return False
+        return None
     known = 0
+    marker: int | None = None
     for register in registers:
         address = register.address
         if address is None:
-            return False
+            return None
         if address in rows:
             known += 1
-        elif register.value != profile.protected_value or frame.function not in _READS:
+        elif register.value == profile.protected_value and frame.function in _READS:
+            marker = address if marker is None else marker
+        else:
             return False
-    return known > 0
+    if not known:
+        return None
+    return True if marker is None else marker
 
 
 def _what(frame: Frame) -> str:

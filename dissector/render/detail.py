@@ -376,11 +376,18 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
         add(f"    Response in frame: {response.number}")
     if frame.unanswered:
         detail.styled("    No response", "vw3.warning")
+    if frame.profile_choice is not None:
+        add(_profile_line(frame.profile_choice))
     for note in frame.notes:
         detail.styled(f"    Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note")
     for warning in frame.warnings:
         detail.styled(f"    Warning: {warning}", "vw3.warning")
     return detail
+
+
+def _profile_line(choice: Any) -> str:
+    """Profile `auto`: which profile named this frame's registers, and why (selection.ProfileChoice)."""
+    return f"    Profile: {choice.profile} ({choice.reason})"
 
 
 def _depth(text: str) -> int:
@@ -443,6 +450,8 @@ def _plain_frame(frame: Frame, base: float | None) -> str:
             add(f"    Response in frame: {response.number}")
     if frame.unanswered:
         add("    No response")
+    if frame.profile_choice is not None:
+        add(_profile_line(frame.profile_choice))
     if frame.notes:
         texts.extend([f"    Note: {note}" for note in frame.notes])
     if frame.warnings:

@@ -80,6 +80,10 @@ def _head(frame: Frame) -> dict[str, Any]:
     if frame.subfunction is not None:
         out["subfunction"] = frame.subfunction
         out["subfunction_name"] = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
+    choice = frame.profile_choice
+    if choice is not None:
+        out["profile"] = choice.profile
+        out["profile_reason"] = choice.reason
     return out
 
 
@@ -225,6 +229,9 @@ def _head_json(frame: Frame) -> str:
     if frame.subfunction is not None:
         name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction)
         text += f', "subfunction": {_scalar(frame.subfunction)}, "subfunction_name": {_scalar(name)}'
+    choice = frame.profile_choice
+    if choice is not None:
+        text += f', "profile": {_json_string(choice.profile)}, "profile_reason": {_json_string(choice.reason)}'
     return text
 
 

@@ -47,7 +47,8 @@ def evidence_session() -> list[tuple[bytes, float]]:
     """One frame a record; every kind of evidence profile auto weighs, and what it must not be fooled by."""
     sel = SessionBuilder(seed=4)
     frames: list[bytes] = []
-    # slave 3: its first answer fits the ATV71 map (8400 reads 16#8000: non-existent, CHCF and COP known)
+    # slave 3: its first answer fits the ATV71 map (8400 reads 16#8000: non-existent, CHCF and COP known);
+    # one answer is no evidence (issue 26): its second read, at other addresses the map knows, decides
     frames += _read(3, 8400, [0x8000, 3, 2])
     frames += _read(3, 3202, [500, 0x8000])
     # slave 4: a read no map knows, then its identification: ATV71 from the ProductCode (final)
@@ -55,16 +56,20 @@ def evidence_session() -> list[tuple[bytes, float]]:
     frames += _identification(4, b"ATV71HU15M3")
     frames += _coils(4)  # (final: an unsupported function takes nothing back)
     # slave 7: a SEL-749M function code (60h, Read Parameter Information): final
-    frames += _read(7, 3100, [40, 600])  # fits the ATV71 first...
+    frames += _read(7, 3100, [40, 600])  # fits the ATV71 (one read: no evidence yet)...
     frames += [sel._scanned(7, 0x60, 10), sel._scanned(7, 0x60, 24)]  # ...then says what it is
     frames += [frame(7, 3, Kind.REQUEST, start=0, quantity=200), exception(7, 3, 3)]  # Table D.5, quantity
-    # slave 9: fits the ATV71, then answers a function the VW3 A3 303 does not support: back to generic
+    # slave 9: fits the ATV71 (two reads), then answers a function the VW3 A3 303 does not support:
+    # back to generic
     frames += _read(9, 8401, [3, 2])
+    frames += _read(9, 3202, [500, 7])
     frames += _coils(9)
     frames += _read(9, 8400, [0x8000, 0x8000, 2])  # generic now: no 16#8000 status
     # slave 11: no evidence at all (spec semantics only)
     frames += _coils(11) + _read(11, 0, [7])
-    # slave 12: chosen from its traffic, then every parameter of a read unreadable: exception 02 (p.38)
+    # slave 12: chosen from its traffic (one read answered twice with the VW3 card's 16#8000 for the
+    # non-existent 8400), then every parameter of a read unreadable: exception 02 (p.38)
+    frames += _read(12, 8400, [0x8000, 3, 2])
     frames += _read(12, 8400, [0x8000, 3, 2])
     frames += [frame(12, 3, Kind.REQUEST, start=8400, quantity=3), exception(12, 3, 2)]
     frames += [frame(12, 3, Kind.REQUEST, start=8401, quantity=1), exception(12, 3, 2)]
@@ -119,27 +124,30 @@ def test_auto_is_the_default_and_chooses_as_vw3_decode(tmp_path: Path) -> None:
     choices = cli_choices(pcap, [])
     assert lua_choices(lua) == choices
     assert choices == [
-        "slave 3: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #2)",
+        "slave 3: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #2, function 3 at 3202..3203 in "
+        "frame #4)",
         "slave 4: atv71 (Read Device Identification in frame #8: ProductCode 'ATV71HU15M3')",
         "slave 7: sel749m (function 60h (Read Parameter Information) in frame #13)",
-        "slave 9: generic (function 1 answered in frame #20, which the VW3 A3 303 does not support)",
-        "slave 12: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #28)",
+        "slave 9: generic (function 1 answered in frame #22, which the VW3 A3 303 does not support)",
+        "slave 12: atv71 (traffic fits its map: function 3 at 8400..8402 in frames #30 and #32; 16#8000 at 8400, "
+        "its answer for a non-existent parameter)",
     ]
     # Slave 9's choice was made, then taken back: both said where they happened.
     said = [item.fields["profile_choice"] for item in lua_shown(lua) if "profile_choice" in item.fields]
-    assert "slave 9: atv71 (traffic fits its map: function 3 at 8401..8402 in frame #18)" in said
+    assert ("slave 9: atv71 (traffic fits its map: function 3 at 8401..8402 in frame #18, function 3 at "
+            "3202..3203 in frame #20)") in said
     # The evidence shows in what is decoded: names and 16#8000 statuses only where a device was chosen.
     frames = {item.data["frame"]: item.data for item in python}
     profiles = _profiles_by_item(lua)
-    assert profiles[1] == ("3", "generic") and profiles[2] == ("3", "atv71")  # the answer decides, for itself
+    assert profiles[2] == ("3", "generic") and profiles[4] == ("3", "atv71")  # the second read decides, for itself
     assert [reg.get("status") for reg in frames[4]["registers"]] == ["ok", "protected"]
     assert profiles[7] == ("4", "generic") and profiles[8] == ("4", "atv71") and profiles[10] == ("4", "atv71")
     assert frames[13]["function_name"] == "Read Parameter Information"
     assert "illegal number of registers to read" in frames[16]["notes"][0]
-    assert [reg.get("status") for reg in frames[22]["registers"]] == [None, None, None]
-    assert profiles[22] == ("9", "generic")
+    assert [reg.get("status") for reg in frames[24]["registers"]] == [None, None, None]
+    assert profiles[24] == ("9", "generic")
     # p.38 on a chosen slave: the statuses an exception 02 tells, listed as vw3-decode lists them.
-    inferred = frames[30]["registers"]
+    inferred = frames[34]["registers"]
     assert [(reg["address"], reg["value"], reg.get("code"), reg["status"], reg["text"]) for reg in inferred] == [
         (8400, None, None, "non-existent", "no value: exception 02"),
         (8401, None, "CHCF", "protected", "no value: exception 02"),
@@ -204,3 +212,24 @@ def test_auto_preference_errors(tmp_path: Path) -> None:
     for phrase in ('"12=auto": auto is for every slave', '"auto": a default profile (atv71) is already set',
                    '"12=generic": slave 12 already has a profile'):
         assert any(phrase in text for text in texts), (phrase, texts)
+
+
+def test_one_read_is_no_evidence_and_the_reason_is_on_every_frame(tmp_path: Path) -> None:
+    """Issue 26: an iEM3255 energy meter (slave 1) polling its INT64 energy at 3203..3206, addresses the
+    ATV71 map names FRH, LCR, OTR, ETI, stays generic however often it is polled; an Altivar read at
+    two places is chosen at the second, and from then on each frame says which profile and why."""
+    meter = _read(1, 3203, [0, 0, 1, 0xE240]) * 5
+    drive = _read(2, 3202, [500, 7]) + _read(2, 8401, [3, 2]) + _read(2, 3202, [500, 7])
+    records = [(data, 1767225600.0 + 0.02 * index) for index, data in enumerate(meter + drive)]
+    pcap = write_pcap(tmp_path / "meter.pcap", records)
+    python = python_items(pcap)
+    lua, _, _ = lua_items(pcap)
+    differences = compare(python, lua)
+    assert not differences, "\n".join(differences[:40])
+    reason = "traffic fits its map: function 3 at 3202..3203 in frame #12, function 3 at 8401..8402 in frame #14"
+    assert [(item.fields.get("profile"), item.fields.get("profile_reason")) for item in lua_shown(lua)] == (
+        [("generic", None)] * 13 + [("atv71", reason)] * 3)
+    assert [(item.data.get("profile"), item.data.get("profile_reason")) for item in python] == (
+        [(None, None)] * 13 + [("atv71", reason)] * 3)
+    assert [reg.get("code") for reg in python[9].data["registers"]] == [None, None, None, None]
+    assert cli_choices(pcap, []) == [f"slave 2: atv71 ({reason})"]

@@ -104,11 +104,13 @@ def test_wide_rows_for_every_slave(tmp_path: Path) -> None:
 
 
 def test_wide_rows_on_a_device_with_16_8000(tmp_path: Path) -> None:
-    # atv71=FILE: the rows join the ATV71 map (profile auto chooses it for slave 12 from its first read),
-    # where 16#8000 means protected: never for a word of a 32-bit value; ambiguous for a lone first word.
+    # atv71=FILE: the rows join the ATV71 map (profile auto chooses it for slave 12 from its first read,
+    # answered twice with 16#8000 at 8400: one answer is no evidence, issue 26), where 16#8000 means
+    # protected: never for a word of a 32-bit value; ambiguous for a lone first word.
     wide = tmp_path / "meter.csv"
     wide.write_text(WIDE_MAP.replace(";", ",").replace("0,1", "0.1").replace("0,01", "0.01"), encoding="utf-8")
-    records = [(data, 1767225599.0 + 0.1 * index) for index, data in enumerate(_read(12, 8400, [0x8000, 3, 2]))]
+    first = _read(12, 8400, [0x8000, 3, 2]) * 2
+    records = [(data, 1767225599.0 + 0.1 * index) for index, data in enumerate(first)]
     records += wide_session(12)
     pcap = write_pcap(tmp_path / "wide-atv71.pcap", records)
     python = python_items(pcap, [], "--map", f"atv71={wide}")

@@ -12,6 +12,10 @@ from lua_session import SessionBuilder
 from seed_frames import SCENARIO_1, SCENARIO_REQUEST
 
 
+# The ATV71 named: one answer is no evidence for profile auto (issue 26), and these captures have one.
+ATV71 = ("-o", "vw3.profiles:atv71")
+
+
 def _rows(pcap: Path, *args: str) -> list[list[str]]:
     result = run_tshark(pcap, *args, "-T", "fields", "-E", "separator=|", "-e", "frame.number", "-e", "vw3.kind",
                         "-e", "vw3.request_frame", "-e", "vw3.reg.code", "-e", "vw3.note")
@@ -31,14 +35,14 @@ def test_two_connections_keep_their_own_pairing_and_split_frames_are_reassembled
     writer.tcp(False, 40002, 5020, SCENARIO_1[5:], 1.012)
     writer.tcp(False, 40001, 5020, SCENARIO_1[3:], 1.013)
     writer.close()
-    rows = _rows(tmp_path / "two.pcap", "-o", "vw3.tcp_port:5020")
+    rows = _rows(tmp_path / "two.pcap", "-o", "vw3.tcp_port:5020", *ATV71)
     # Each response is shown once, reassembled, in the segment that completes it, and answers the
     # request of its own connection (frame 2 for port 40002, frame 1 for port 40001).
     shown = [(row[0], row[1], row[2], row[3]) for row in rows if row[1]]
     assert shown == [("1", "1", "", ""), ("2", "1", "", ""), ("5", "2", "2", "CHCF,COP"), ("6", "2", "1", "CHCF,COP")]
     assert not any("without a matching request" in row[4] for row in rows)
     # The same by Decode As.
-    assert _rows(tmp_path / "two.pcap", "-d", "tcp.port==5020,vw3") == rows
+    assert _rows(tmp_path / "two.pcap", "-d", "tcp.port==5020,vw3", *ATV71) == rows
 
 
 def test_udp_port_preference_and_decode_as(tmp_path: Path) -> None:
@@ -47,8 +51,8 @@ def test_udp_port_preference_and_decode_as(tmp_path: Path) -> None:
     writer.udp(False, 40001, 5021, SCENARIO_1, 1.01)
     writer.close()
     expected = [["1", "1", "", "", ""], ["2", "2", "1", "CHCF,COP", ""]]
-    assert _rows(tmp_path / "udp.pcap", "-o", "vw3.udp_port:5021") == expected
-    assert _rows(tmp_path / "udp.pcap", "-d", "udp.port==5021,vw3") == expected
+    assert _rows(tmp_path / "udp.pcap", "-o", "vw3.udp_port:5021", *ATV71) == expected
+    assert _rows(tmp_path / "udp.pcap", "-d", "udp.port==5021,vw3", *ATV71) == expected
     assert [row[1] for row in _rows(tmp_path / "udp.pcap")] == ["", ""]
 
 

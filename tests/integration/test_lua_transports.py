@@ -10,6 +10,10 @@ from lua_harness import PLUGIN, lua_items, run_tshark
 from lua_net import NetWriter
 from seed_frames import SCENARIO_1, SCENARIO_2, SCENARIO_REQUEST
 
+# The ATV71 named: one answer is no evidence for profile auto (issue 26), and these captures have one.
+ATV71 = ("-o", "vw3.profiles:atv71")
+
+
 def _fields(pcap: Path, *args: str) -> list[list[str]]:
     result = run_tshark(pcap, *args, "-T", "fields", "-E", "separator=|", "-e", "vw3.kind",
                         "-e", "vw3.request_frame", "-e", "vw3.reg.code", "-e", "vw3.reg.status")
@@ -24,8 +28,8 @@ def test_rtu_over_tcp_port_preference_and_decode_as(tmp_path: Path) -> None:
     writer.close()
     # (kind and status are integers with value strings: 1 request, 2 response; 0 ok, 1 protected, 2 non-existent)
     expected = [["1", "", "", ""], ["2", "1", "CHCF,COP", "2,0,0"]]
-    assert _fields(tmp_path / "rtu-tcp.pcap", "-o", "vw3.tcp_port:5020") == expected
-    assert _fields(tmp_path / "rtu-tcp.pcap", "-d", "tcp.port==5020,vw3") == expected
+    assert _fields(tmp_path / "rtu-tcp.pcap", "-o", "vw3.tcp_port:5020", *ATV71) == expected
+    assert _fields(tmp_path / "rtu-tcp.pcap", "-d", "tcp.port==5020,vw3", *ATV71) == expected
     # Without either, the port is not ours.
     assert _fields(tmp_path / "rtu-tcp.pcap") == [["", "", "", ""], ["", "", "", ""]]
 
@@ -37,7 +41,7 @@ def test_rtac_serial_decode_as(tmp_path: Path) -> None:
         for index, frame in enumerate([SCENARIO_REQUEST, SCENARIO_2]):
             header = struct.pack(">IIBBH", 100, index * 10_000, 0, 0, 0)
             writer.write(header + frame, 100 + index * 0.01)
-    rows = _fields(pcap, "-d", "rtacser.data,vw3")
+    rows = _fields(pcap, "-d", "rtacser.data,vw3", *ATV71)
     assert rows == [["1", "", "", ""], ["2", "1", "CHCF,COP", "2,1,0"]]
     items, _, _ = lua_items(pcap, "-d", "rtacser.data,vw3")
     assert [(item.record, item.offset) for item in items] == [(1, 12), (2, 12)]
@@ -57,7 +61,7 @@ def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
             time += 0.01
     writer.close()
     names = ("-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}")
-    result = run_tshark(tmp_path / "mbtcp.pcap", *names, "-T", "fields", "-E", "separator=|", "-e", "modbus.regnum16",
+    result = run_tshark(tmp_path / "mbtcp.pcap", *names, *ATV71, "-T", "fields", "-E", "separator=|", "-e", "modbus.regnum16",
                         "-e", "vw3.reg.code", "-e", "vw3.reg.status", "-e", "vw3.reg.text", "-e", "vw3.note")
     assert result.returncode == 0, result.stderr
     rows = [line.split("|") for line in result.stdout.splitlines()]

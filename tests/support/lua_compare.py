@@ -26,7 +26,7 @@ FRAME_KEYS = frozenset([
     "crc_ok", "crc", "crc_expected", "broadcast", "start", "span_label", "quantity", "subfunction",
     "subfunction_name", "registers", "bits", "objects", "exception_code", "exception_name",
     "exception_meaning", "request_frame", "response_time", "response_frame", "unanswered", "fields",
-    "warnings", "notes",
+    "warnings", "notes", "profile", "profile_reason",
 ])
 NOISE_KEYS = frozenset(["frame", "kind", "offset", "length", "time", "raw", "reason", "warnings"])
 REGISTER_KEYS = frozenset(["address", "value", "code", "name", "unit", "scaled", "text", "status", "source",
@@ -88,6 +88,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
         "warnings": [_warning(text) for text in data["warnings"]],
         "notes": [text for text in data["notes"] if not _PAIRING_NOTE.match(text)],
+        # profile auto: which profile named the frame's registers, and why
+        "profile": (data.get("profile"), data.get("profile_reason")),
     }
     return out
 
@@ -156,6 +158,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         ],
         "warnings": [_warning(text) for text in item.texts.get("warning", [])],
         "notes": item.texts.get("note", []),
+        # (vw3.profile is on every frame; vw3.profile_reason only where `auto` chose, as --json's keys)
+        "profile": (fields.get("profile") if "profile_reason" in fields else None, fields.get("profile_reason")),
     }
 
 

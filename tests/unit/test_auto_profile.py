@@ -43,13 +43,20 @@ def cli(*args: str, stdin: bytes = b"") -> tuple[int, str, str]:
     return run(list(args), env), out.getvalue(), err.getvalue()
 
 
+P38_REASON = ("traffic fits its map: function 3 at 8400..8402 in frames #2 and #4; 16#8000 at 8400, its answer "
+              "for a non-existent parameter")
+
+
 def test_p38_is_told_as_with_the_atv71_profile_by_traffic_fit() -> None:
     # The capture has no identification: frame 2 answers FC3 at 8401/8402 (CHCF, COP, in the ATV71 map)
-    # and 16#8000 at 8400, the value the card returns for a non-existent parameter: only atv71 fits.
+    # and 16#8000 at 8400, the value the card returns for a non-existent parameter: only atv71 fits. One
+    # answer is no evidence (issue 26); frame 4 answers the read again, with 16#8000 again: chosen there.
     status, auto, err = cli(str(P38))
     forced = cli(str(P38), "--profile", "atv71")[1]
-    assert status == 0 and auto == forced
-    assert err == "vw3-decode: profile slave 12: atv71 (traffic fits its map: function 3 at 8400..8402 in frame #2)\n"
+    assert status == 0 and auto.splitlines()[2:] == forced.splitlines()[2:]
+    assert auto.splitlines()[1] == (
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1]  CRC ok")
+    assert err == f"vw3-decode: profile slave 12: atv71 ({P38_REASON})\n"
     assert "CHCF (8401) became protected: read 3 in frame #4, 16#8000 now" in auto.splitlines()[5]
     # The pcap gives the same lines with times, through the Python stages instead of the compiled path.
     pcap = cli(str(P38.with_suffix(".pcap")))[1].splitlines()
@@ -107,13 +114,15 @@ def test_sel_function_codes_choose_the_relay() -> None:
 
 def test_a_traffic_choice_is_taken_back_by_an_answer_the_device_cannot_give() -> None:
     data = (rtu("0C 03 0C 1E 00 02") + rtu("0C 03 04 00 28 02 58")  # SFR, TFR: fits the ATV71
+            + rtu("0C 03 20 D1 00 02") + rtu("0C 03 04 00 03 00 02")  # CHCF, COP: a second read, chosen
             + rtu("0C 01 00 00 00 08") + rtu("0C 01 01 FF"))  # but it answers Read Coils
     annotate = build_annotator([], [])
     items = dissect_bytes(data, annotate=annotate)
-    assert [register.code for register in items[1].registers] == ["SFR", "TFR"]
-    assert items[2].warnings == ["Read Coils (1) is not supported by the VW3 A3 303"]  # still the ATV71
+    assert [register.code for register in items[1].registers] == [None, None]  # one read: no evidence
+    assert [register.code for register in items[3].registers] == ["CHCF", "COP"]
+    assert items[4].warnings == ["Read Coils (1) is not supported by the VW3 A3 303"]  # still the ATV71
     assert annotate.profile_report() == [
-        "profile slave 12: generic (function 1 answered in frame #4, which the VW3 A3 303 does not support)"
+        "profile slave 12: generic (function 1 answered in frame #6, which the VW3 A3 303 does not support)"
     ]
 
 
@@ -160,5 +169,50 @@ def test_compiled_path_follows_a_late_choice() -> None:
 
 def test_json_and_choices_agree() -> None:
     out = cli(str(P38), "--json")[1]
-    first = json.loads(out.splitlines()[1])
-    assert [register.get("code") for register in first["registers"]] == [None, "CHCF", "COP"]
+    first, second = json.loads(out.splitlines()[1]), json.loads(out.splitlines()[3])
+    assert [register.get("code") for register in first["registers"]] == [None, None, None]
+    assert "profile" not in first and "profile_reason" not in first
+    assert [register.get("code") for register in second["registers"]] == [None, "CHCF", "COP"]
+    assert (second["profile"], second["profile_reason"]) == ("atv71", P38_REASON)
+
+
+# Issue 26: a Schneider iEM3255 energy meter reads its INT64 energy at 3203..3206 (here 123456 Wh), which
+# the ATV71 map happens to name FRH, LCR, OTR and ETI.
+METER_READ = rtu("01 03 0C 83 00 04") + rtu("01 03 08 00 00 00 00 00 01 E2 40")
+DRIVE_READS = (rtu("02 03 0C 82 00 02") + rtu("02 03 04 01 F4 00 07")  # RFR, FRH
+               + rtu("02 03 20 D1 00 02") + rtu("02 03 04 00 03 00 02"))  # CHCF, COP
+DRIVE_REASON = "traffic fits its map: function 3 at 3202..3203 in frame #2, function 3 at 8401..8402 in frame #4"
+
+
+def test_an_energy_meter_polled_at_altivar_addresses_is_no_altivar() -> None:
+    for polls in (1, 2, 5):  # one read, answered once or again and again: no evidence of a device
+        status, out, err = cli("-", stdin=METER_READ * polls)
+        assert status == 0 and "FRH" not in out and "Hz" not in out
+        assert out.splitlines()[1] == (
+            "     2            -   1 response  Read Holding Registers 3203..3206 (4): 3203=0 3204=0 3205=1 3206=57920 "
+            "[#1]  CRC ok")
+        assert err == "vw3-decode: profile slave 1: generic (no evidence of a device: spec semantics only)\n"
+
+
+def test_a_map_must_explain_two_different_reads_and_every_answer() -> None:
+    annotate = build_annotator([], [])
+    dissect_bytes(DRIVE_READS, annotate=annotate)
+    assert annotate.choices() == [ProfileChoice(2, "atv71", DRIVE_REASON, 4, False)]
+    # an answer at an address the map does not know rules the ATV71 out for that slave
+    unknown = rtu("02 03 00 00 00 01") + rtu("02 03 02 00 07")
+    annotate = build_annotator([], [])
+    dissect_bytes(unknown + DRIVE_READS, annotate=annotate)
+    assert annotate.profile_report() == ["profile slave 2: generic (no evidence of a device: spec semantics only)"]
+
+
+def test_minus_v_and_json_say_which_profile_named_the_registers_and_why() -> None:
+    detail = cli("-V", "-", stdin=DRIVE_READS)[1]
+    assert [line for line in detail.splitlines() if "Profile:" in line] == [f"    Profile: atv71 ({DRIVE_REASON})"]
+    assert detail.split("\n\n")[3].splitlines()[-2:] == ["    Request in frame: 3", f"    Profile: atv71 ({DRIVE_REASON})"]
+    records = [json.loads(line) for line in cli("--json", "-", stdin=DRIVE_READS)[1].splitlines()]
+    assert [(record.get("profile"), record.get("profile_reason")) for record in records] == (
+        [(None, None)] * 3 + [("atv71", DRIVE_REASON)])
+    assert [register.get("code") for register in records[1]["registers"]] == [None, None]
+    assert [register.get("code") for register in records[3]["registers"]] == ["CHCF", "COP"]
+    forced = cli("--json", "--profile", "atv71", "-", stdin=DRIVE_READS)[1]
+    assert "profile_reason" not in forced  # forced: the user said which, there is nothing to explain

@@ -29,7 +29,7 @@ def _cli(*argv: str, env: dict[str, str] | None = None) -> subprocess.CompletedP
 def test_fields_csv_with_header_and_double_quotes() -> None:
     status, out, err = run_cli(
         ["-T", "fields", "-e", "frame", "-e", "kind", "-e", "response_time", "-e", "code", "-e", "value",
-         "-E", "header=y", "-E", "separator=,", "-E", "quote=d", "-c", "2", P38]
+         "-E", "header=y", "-E", "separator=,", "-E", "quote=d", "-c", "2", "--profile", "atv71", P38]
     )
     assert (status, err) == (0, "")
     assert out.splitlines() == [

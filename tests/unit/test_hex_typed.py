@@ -28,9 +28,9 @@ def test_a_frame_typed_without_its_crc_gets_the_crc_to_append() -> None:
     assert out.splitlines() == [
         "     1            -  12 request   Read Holding Registers 8400..8402 (3) "
         "[no CRC typed: append 0E EF (CRC 0xEF0E)]  CRC computed (none typed)",
-        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
-        "CHCF=IO (I/O profile) COP=Cd (command) [#1] [no CRC typed: append 17 E4 (CRC 0xE417)]  "
-        "CRC computed (none typed)",
+        # (one answer is no evidence of an ATV71 under profile auto: issue 26)
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1] "
+        "[no CRC typed: append 17 E4 (CRC 0xE417)]  CRC computed (none typed)",
     ]
 
 

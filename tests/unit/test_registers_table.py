@@ -17,7 +17,8 @@ HEADER = "frame,time,slave,function,access,address,label,code,name,value,scaled,
 
 
 def test_p38_one_row_per_register_of_frames_2_to_12() -> None:
-    status, out, err = run_cli(["-T", "registers", "-E", "header=y", "-E", "separator=,", P38])
+    # (forced: under profile auto frame 2 is before the evidence, issue 26)
+    status, out, err = run_cli(["-T", "registers", "-E", "header=y", "-E", "separator=,", "--profile", "atv71", P38])
     assert (status, err) == (0, "")
     lines = out.splitlines()
     assert lines[0] == HEADER
