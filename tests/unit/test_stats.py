@@ -88,7 +88,8 @@ def test_p38_stats_table_as_a_user_sees_it() -> None:
     from helpers import run_cli
 
     for name in ("p38_protection.pcap", "p38_protection.bin"):
-        status, out, err = run_cli(["--stats", str(CAPTURES / name)])
+        # (forced: under profile auto frame 2 is before the evidence, issue 26)
+        status, out, err = run_cli(["--stats", "--profile", "atv71", str(CAPTURES / name)])
         assert status == 0
         assert out.split("Parameters\n", 1)[1].splitlines()[:6] == [
             "slave   address  code  reads  unreadable  writes  refused  last          changes",

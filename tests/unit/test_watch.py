@@ -31,7 +31,7 @@ def test_untimed_capture_codes_case_and_addresses_json() -> None:
         (10, 8402, "COP", "2 Cd (command)", "protected (exception 02)"),
     ]
     assert all(c["time"] is None for c in changes)
-    status, out, _ = run_cli([str(CAPTURES / "p38_protection.bin"), "--watch", "chcf,8400,COP"])
+    status, out, _ = run_cli([str(CAPTURES / "p38_protection.bin"), "--watch", "chcf,8400,COP", "--profile", "atv71"])
     assert out.splitlines() == [
         "     6            -  12 CHCF 3 IO (I/O profile) -> protected",
         "    10            -  12 COP 2 Cd (command) -> protected (exception 02)",
@@ -108,8 +108,11 @@ def test_a_value_read_before_the_profile_is_chosen_is_named_by_it(tmp_path) -> N
     capture = tmp_path / "late.bin"
     request = rtu("0C 17 0C 81 00 02 21 35 00 02 04 00 0F 01 28")  # FC23 read 3201..3202, write 8501..8502
     answer = rtu("0C 17 04 02 31 00 95")
-    request2 = rtu("0C 17 0C 81 00 02 21 35 00 02 04 00 0F 01 CD")  # LFR = 461 -> 46.1 Hz
-    capture.write_bytes(request + answer + request2 + answer)
+    # LFR = 461 -> 46.1 Hz, reading 3202..3203 (RFR, FRH): a second read the ATV71 map explains, which
+    # profile auto needs (one is no evidence, issue 26)
+    request2 = rtu("0C 17 0C 82 00 02 21 35 00 02 04 00 0F 01 CD")
+    answer2 = rtu("0C 17 04 00 95 01 F4")
+    capture.write_bytes(request + answer + request2 + answer2)
     for name in ("8502", "LFR", "lfr"):
         status, out, err = run_cli([str(capture), "--watch", name])
         assert (status, err) == (0, ""), err
