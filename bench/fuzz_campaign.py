@@ -72,7 +72,7 @@ from dissector.render.jsonout import item_to_dict  # noqa: E402
 from dissector.sim.simulate import generate_session  # noqa: E402
 from dissector.sources.reader import SourceError  # noqa: E402
 from helpers import rtu  # noqa: E402
-from test_fastsummary import fast_lines, python_lines  # noqa: E402
+from test_fastsummary import LONG_NOTES, fast_lines, python_lines  # noqa: E402
 
 OUT = ROOT / "bench" / "out" / "fuzz"
 SCRATCH = Path(tempfile.mkdtemp(prefix="vw3-fuzz-"))  # -w, --report and --map files of the cli target
@@ -249,13 +249,13 @@ def engine(data: bytes) -> None:
 
 
 def _long_notes_streams() -> list[bytes]:
-    """FC43 answers with long object values (long notes) and a trailing byte, as the C path once
-    showed three notes where Python counts them past the 240-character budget."""
-    streams = []
+    """FC43 answers with long object values (long notes under the ATV71 profile) and a trailing byte,
+    as the C path once showed three notes where Python counts them past the 240-character budget."""
+    streams = list(LONG_NOTES)
     for count, length, trailing in ((3, 90, 1), (5, 60, 2), (2, 200, 1)):
-        objects = b"".join(bytes([index, length]) + bytes([0x41 + index]) * length for index in range(count))
-        pdu = bytes([0x2B, 0x0E, 0x01, 0x01, 0x00, 0x00, count]) + objects
-        streams.append(rtu("0c2b0e0100") + rtu("0c" + pdu.hex()) + bytes(range(trailing)))
+        objects = b"".join(bytes([2, length]) + bytes([0x41 + index]) * length for index in range(count))
+        pdu = bytes([0x2B, 0x0E, 0x03, 0x81, 0x00, 0x00, count]) + objects.replace(bytes([0x41]), b"\x1b")
+        streams.append(rtu("0c2b0e0300") + rtu("0c" + pdu.hex()) + bytes(range(1, trailing + 1)))
     return streams
 
 

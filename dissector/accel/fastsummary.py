@@ -31,6 +31,7 @@ from dissector.decode.fields import decode_frame
 from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
 from dissector.render.describe import function_label, info_text, register_text
+from dissector.render.summary import findings_text
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 
@@ -123,7 +124,8 @@ class Texts:
 
 
 def _tail(frame: Frame) -> str:
-    return "".join(f" [{note}]" for note in frame.notes) + "".join(f" [warning: {w}]" for w in frame.warnings)
+    # The summary's own budget: past 240 characters of notes, `[+N more notes]` (it showed them all).
+    return findings_text(frame)
 
 
 def _plain_end(info: str) -> bool:

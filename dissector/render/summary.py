@@ -52,9 +52,21 @@ def tail_parts(frame: Frame) -> list[tuple[str, str]]:
         parts.append(("[broadcast]", "vw3.pairing"))
     if frame.unanswered:
         parts.append(("[no response]", "vw3.warning"))
+    _findings(parts, frame)
+    return parts
+
+
+def _findings(parts: list[tuple[str, str]], frame: Frame) -> None:
     _budgeted(parts, [(f"[{getattr(note, 'short', note)}]", note) for note in frame.notes], "note")
     _budgeted(parts, [(f"[warning: {warning}]", warning) for warning in frame.warnings], "warning")
-    return parts
+
+
+def findings_text(frame: Frame) -> str:
+    """The notes and warnings of the tail, each ` [...]`, within NOTES_BUDGET as tail_parts shows them:
+    the texts the compiled path takes from the Python stages (accel/fastsummary.py)."""
+    parts: list[tuple[str, str]] = []
+    _findings(parts, frame)
+    return "".join(f" {text}" for text, _style in parts)
 
 
 def _budgeted(parts: list[tuple[str, str]], texts: list[tuple[str, str]], what: str) -> None:
