@@ -3063,6 +3063,10 @@ interpret = function(row, value)
     return nil, concat(names, ", ")
   end
   if row.scale == nil then
+    -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
+    if row.unit ~= nil then
+      return row.signed and raw_value or nil, format("%d (unscaled, in %s)", raw_value, row.unit)
+    end
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end

@@ -318,7 +318,10 @@ def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, 
     scale = definition.scale
     if scale is None:
         # Without a scale the unit cannot be trusted (ACC/DEC depend on the ramp increment): the raw
-        # value speaks for itself, except a signed one, which is shown with its sign.
+        # value speaks for itself, signed with its sign, and names the unit it counts in unscaled.
+        unit = definition.unit
+        if unit is not None:
+            return (raw if definition.signed else None), f"{raw} (unscaled, in {unit})"
         if definition.signed:
             return raw, str(raw)
         return None, None

@@ -111,6 +111,8 @@ def value_text(register: Register, bits: bool = False) -> tuple[str, str | None]
     if bits:
         return f"16#{register.value:04X} ({register.text})" if register.text else f"16#{register.value:04X}", None
     if register.text is not None:
+        if register.text.startswith(f"{register.value} "):  # an unscaled value names its own number
+            return register.text, None
         return f"{register.value} {register.text}", None
     return str(register.value), None
 

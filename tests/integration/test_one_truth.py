@@ -274,3 +274,14 @@ def test_exception_counts_read_the_same_in_stats_and_report(tmp_path: Path) -> N
     run_cli(["--report", str(page), p38])
     text = page.read_text(encoding="utf-8")
     assert "<td>02:2</td>" in text and "<td>2:2</td>" not in text
+
+
+def test_ramps_say_their_unit_unscaled() -> None:
+    # ACC/DEC count in s, at a scale the drive's ramp increment (Inr) sets: unit named, number unscaled.
+    lines = run_cli([str(CAPTURES / "atv71_commissioning.pcap")])[1].splitlines()
+    assert lines[16] == ("    17     0.206804   2 request   Write Multiple Registers 9001..9002 (2): "
+                         "ACC=10 (unscaled, in s) DEC=10 (unscaled, in s)  CRC ok")
+    status, out, _ = run_cli([str(CAPTURES / "atv71_commissioning.pcap"), "--json", "-Y", "frame == 17"])
+    (acc, dec) = json.loads(out)["registers"]
+    assert (acc["code"], acc["value"], acc["unit"], acc["text"], acc.get("scaled")) == (
+        "ACC", 10, "s", "10 (unscaled, in s)", None)

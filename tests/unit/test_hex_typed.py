@@ -50,7 +50,7 @@ def test_an_ascii_frame_typed_without_its_lrc_gets_the_lrc_to_append() -> None:
     # (a request alone is no evidence of a device: profile `auto` names nothing; `--profile atv71` does)
     out = run_cli(["--hex", ":02062329000A", "--profile", "atv71"])[1]
     assert out == (
-        "     1            -   2 request   Write Single Register 9001 ACC=10 [no response] "
+        "     1            -   2 request   Write Single Register 9001 ACC=10 (unscaled, in s) [no response] "
         "[the capture ends before any response] [no LRC typed: append A2]  LRC computed (none typed)\n"
     )
     assert run_cli(["--hex", ":02062329000AA3"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
