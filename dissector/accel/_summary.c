@@ -206,6 +206,7 @@ typedef struct {
     PyObject_HEAD
     unsigned long long count;
     int expect_slave, expect_function; /* -1: no answer awaited */
+    int glitchy; /* the framer's StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
     PyObject *slave_info;
     PyObject *piece;
     PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
@@ -520,8 +521,9 @@ static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_
  * Both of the framer's interpretations scan alike, so the first one's kind stands. */
 static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
     Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
-    /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer). */
-    for (int glitches = 0; glitches < 2 && minimum <= maximum; glitches++) {
+    /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer);
+     * on a line that leaves 00 glitches, only the second (the 00 after a frame is one). */
+    for (int glitches = e->glitchy ? 1 : 0; glitches < 2 && minimum <= maximum; glitches++) {
         uint16_t crc = crc16(b + i, minimum - 2);
         for (Py_ssize_t length = minimum; length <= maximum; length++) {
             Py_ssize_t stop = i + length - 2;
@@ -566,6 +568,12 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     if (n - i < MIN_ADU) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
     if (slave > MAX_SLAVE) return FRAME_HANDOVER;
+    if (slave == 0) {
+        /* rtu.py GLITCH_ADDRESSES: a 00 before an intact frame is a glitch, the careful path's. */
+        int after = valid_frame_at(e, b, i + 1, n);
+        if (after < 0) return FRAME_NEED;
+        if (after) return FRAME_HANDOVER;
+    }
     int kind;
     if (function & 0x80) {
         /* An exception: taken on the fast path only as the answer awaited (framer.py _run). */
@@ -1431,6 +1439,15 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
+static PyObject *engine_get_glitchy(Engine *e, void *closure) { return PyBool_FromLong(e->glitchy); }
+
+static int engine_set_glitchy(Engine *e, PyObject *value, void *closure) {
+    int truth = value == NULL ? 0 : PyObject_IsTrue(value);
+    if (truth < 0) return -1;
+    e->glitchy = truth;
+    return 0;
+}
+
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None, *subfunctions = Py_None;
     static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", "subfunctions", NULL};
@@ -1558,6 +1575,8 @@ static PyGetSetDef engine_getset[] = {
     {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
+    {"glitchy", (getter)engine_get_glitchy, (setter)engine_set_glitchy,
+     "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

@@ -354,6 +354,7 @@ class SummaryPath:
                     self.base, self.pos = offset, 0
                 self.engine.count = self.stretch_start = self.pairer.count
                 self.engine.expect = expect
+                self.engine.glitchy = framer.glitchy  # (learnt by the framer alone: the engine hands glitches over)
                 self.python = False
                 return
             before = framer.offset

@@ -55,6 +55,7 @@ import re
 from collections.abc import Callable
 
 from dissector.protocol import table
+from dissector.protocol.spec import SPEC
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
 from dissector.framing.evidence import plausible_request as _plausible_request
@@ -222,6 +223,11 @@ _POSSIBLE_START = re.compile(
 )
 
 GLITCH_SKIP = 16  # glitch bytes looked past when asking what follows a frame
+NOT_BROADCAST = frozenset(SPEC.not_broadcast)  # function codes a broadcast (slave 0) may not carry
+# Glitch bytes that are no device's address (broadcast, reserved): a frame read from one loses to a frame
+# right after it (the glitch, then the frame): on a line with idle FF before every frame, a reserved
+# slave 255 would otherwise pass a CRC once in 65,536 frames.
+GLITCH_ADDRESSES = frozenset(value for value in GLITCH_BYTES if value == 0 or value > MAX_SLAVE)
 
 
 # The fast path of _run: the first interpretation only, with fixed lengths as plain numbers.
@@ -352,8 +358,9 @@ class RtuFramer(StreamFramer):
         """
         lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
         # First a frame (or the end) right after it; only then one after glitch bytes: a frame followed
-        # by a 00 checks one byte longer too (no final XOR), and a glitch 00 is no evidence against that.
-        for glitches in (False, True):
+        # by a 00 checks one byte longer too (no final XOR). On a line that leaves glitches (glitchy),
+        # the 00 is one: the shortest length the line confirms, glitch bytes skipped, wins.
+        for glitches in ((True,) if self.glitchy else (False, True)):
             for length in lengths:
                 if glitches:
                     following = self._followed(buf, i + length, n, final)
@@ -374,6 +381,12 @@ class RtuFramer(StreamFramer):
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
         slave, function = buf[i], buf[i + 1]
+        if slave in GLITCH_ADDRESSES:
+            after = self._valid_frame_at(buf, i + 1, n, final)
+            if after is None:
+                return NEED
+            if after:
+                return NONE  # a glitch byte before a frame
         valid: list[tuple[Kind, int]] = []
         damaged: list[tuple[Kind, int]] = []
         waiting: list[int] = []  # lengths of layouts whose bytes have not all arrived (NEED: unknown)
@@ -411,8 +424,17 @@ class RtuFramer(StreamFramer):
                 return NEED
             return (kind, length, True)
         if valid:
-            # Two layouts check out (the 00 case above, mostly): a record boundary, else what
-            # follows, decides.
+            # Two layouts check out (the 00 case above, mostly): on a line that leaves 00 glitches the
+            # shortest reading it confirms, else a record boundary, else what follows, decides.
+            if self.glitchy:
+                # (a 00 after a frame is a glitch there, not the last byte of a longer frame; a record's
+                # end after the glitch confirms the shorter reading)
+                for kind, length in sorted(valid, key=lambda choice: choice[1]):
+                    following = self._followed(buf, i + length, n, final)
+                    if following is None:
+                        return NEED
+                    if following:
+                        return (kind, length, True)
             for kind, length in valid:
                 if self._boundary_at(i + length):
                     return (kind, length, True)
@@ -427,9 +449,18 @@ class RtuFramer(StreamFramer):
                 if following:
                     return (kind, length, True)
             return (*valid[0], True)
-        if waiting or slave > MAX_SLAVE:
-            # (a reserved address counts with a good CRC only: a glitch byte is one too)
+        if waiting or slave > MAX_SLAVE or (slave == 0 and function in NOT_BROADCAST):
+            # (a reserved address counts with a good CRC only: a glitch byte is one too; so does a
+            # broadcast the spec does not allow, a read: 00 is a glitch byte)
             return NEED if waiting else NONE
+        if slave in GLITCH_BYTES:
+            # A glitch byte before a frame (a CRC scan's too, which _intact_inside does not try): no
+            # damaged frame. (Broadcast and reserved glitch bytes were weighed above.)
+            after = self._valid_frame_at(buf, i + 1, n, final)
+            if after is None:
+                return NEED
+            if after:
+                return NONE
         # No layout checks out: a damaged frame is shown once if the line says it ends where it would
         # (an intact frame, a boundary, after glitch bytes or not) and it holds no intact frame inside
         # (a cut frame must not swallow the intact frame that follows it).
@@ -515,6 +546,7 @@ class RtuFramer(StreamFramer):
             if (
                 not self._noise
                 and (first[0] is not Kind.EXCEPTION or self._expect == (slave, function & 0x7F))
+                and slave not in GLITCH_ADDRESSES  # (weighed by _match: a glitch byte before a frame?)
             ):
                 kind, length, rule = first
                 if not length:

@@ -13,6 +13,9 @@ NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stay
 # FE after responses); a break reads as 00, an idle line's noise as FF.
 GLITCH_BYTES = frozenset((0xFF << k) & 0xFF for k in range(9))
 _GLITCHES = bytes(sorted(GLITCH_BYTES))
+GLITCH_RUN = 16  # the longest run of glitch bytes between two frames that says the line leaves glitches
+GLITCHY_AFTER = 3
+GLITCH_SCORE_MAX = 8
 
 
 class StreamFramer(ABC):
@@ -40,6 +43,11 @@ class StreamFramer(ABC):
         # next frame start is still where one is expected (RtuFramer._anchored).
         self._glitches_only = True
         self._noise_cut = False  # the noise run goes on past an item cut at NOISE_ITEM_MAX bytes
+        # How much the line shows 00 glitches: +1 for a frame after nothing but a few glitch bytes, a 00
+        # among them, after a frame; -1 for one after other noise (a damaged line's); at most
+        # GLITCH_SCORE_MAX. From GLITCHY_AFTER on, a 00 after a frame is a glitch, not the last byte of
+        # a frame one byte longer (both check: CRC-16/MODBUS has no final XOR).
+        self._glitch_runs = 0
         self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
@@ -159,8 +167,20 @@ class StreamFramer(ABC):
                 self._flush_noise(items)
                 self._noise_cut = True
 
+    @property
+    def glitchy(self) -> bool:
+        """Has the line shown 00 glitch bytes between frames (GLITCHY_AFTER times)?"""
+        return self._glitch_runs >= GLITCHY_AFTER
+
     def _emit(self, frame: Frame, items: list[Item]) -> None:
         """A frame is found: close the noise before it, and expect the answer to a request."""
+        noise = self._noise
+        if noise:
+            if self._glitches_only and len(noise) <= GLITCH_RUN and self._noise_offset and not self._noise_cut:
+                if 0 in noise:
+                    self._glitch_runs = min(GLITCH_SCORE_MAX, self._glitch_runs + 1)
+            elif self._glitch_runs:
+                self._glitch_runs -= 1
         self._flush_noise(items)
         self._noise_cut = False
         items.append(frame)
