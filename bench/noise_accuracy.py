@@ -127,19 +127,27 @@ def pdu_pair(rng: random.Random) -> tuple[bytes, bytes | None]:
     return read, bytes([0x83, rng.choice((1, 2, 3, 4, 6))])
 
 
-def session(rng: random.Random, transactions: int) -> list[bytes]:
-    """The frames of `transactions` exchanges, in bus order (some requests unanswered or broadcast)."""
+def session(
+    rng: random.Random, transactions: int, slaves: tuple[int, ...] | None = None, requests: list[bool] | None = None
+) -> list[bytes]:
+    """The frames of `transactions` exchanges, in bus order (some requests unanswered or broadcast), to
+    any slave (1..247) or to those of `slaves`; `requests` gets True for each request, False for each
+    answer."""
     frames: list[bytes] = []
+    kinds = requests if requests is not None else []
     for _ in range(transactions):
         request, response = pdu_pair(rng)
         draw = rng.random()
         if draw < 0.02 and request[0] in (5, 6, 15, 16):
             frames.append(adu(0, request))  # broadcast: no answer
+            kinds.append(True)
             continue
-        slave = rng.randint(1, 247)
+        slave = rng.randint(1, 247) if slaves is None else rng.choice(slaves)
         frames.append(adu(slave, request))
+        kinds.append(True)
         if response is not None and draw < 0.97:  # 3% unanswered (a slave that is off)
             frames.append(adu(slave, response))
+            kinds.append(False)
     return frames
 
 
@@ -221,6 +229,68 @@ def measure(transactions: int, seed: int = 0, rate: float = 0.02, chunk: int = 4
     return result
 
 
+BUS = (1, 2, 3, 17, 247)  # the slaves on the bus of the real-line runs: any other is an invented one
+DELIVERIES = ("file", "bursts")
+
+
+@dataclass
+class LineResult:
+    """One kind of real-line noise (dissector/sim/line.py), delivered as a file or as random reads."""
+
+    kind: str
+    delivery: str
+    intact: int = 0
+    recovered: int = 0
+    invented: list[tuple[int, bytes]] = field(default_factory=list)  # good-CRC frames never sent
+    slaves: set[int] = field(default_factory=set)  # slaves of good-CRC frames that are not on the bus
+    lost: list[tuple[int, bytes]] = field(default_factory=list)
+
+    @property
+    def share(self) -> float:
+        return self.recovered / self.intact if self.intact else 1.0
+
+
+def measure_line(kind: str, transactions: int, seed: int = 0, delivery: str = "file") -> LineResult:
+    """Frames of a bus with the slaves BUS, over a line with noise of `kind`; a file is read in 4 KiB
+    chunks, bursts are a USB adapter's random reads (records). The truncated last frame is one per
+    capture: 20 transactions a capture."""
+    from dissector.sim.line import bursts, on_the_line
+
+    rng = random.Random(seed)
+    result = LineResult(kind, delivery)
+    captures = max(1, transactions // 20) if kind == "truncated last frame" else 1
+    for _ in range(captures):
+        requests: list[bool] = []
+        frames = session(rng, transactions // captures, BUS, requests)
+        line = on_the_line(frames, requests, kind, rng)
+        stream = line.stream
+        if delivery == "bursts":
+            chunks: list[Chunk] = bursts(stream, rng)
+        else:
+            chunks = [Chunk(stream[i : i + 4096]) for i in range(0, len(stream), 4096)]
+        sent = dict(line.frames)
+        result.intact += len(sent)
+        found: set[int] = set()
+        for item in dissect(chunks):
+            if not isinstance(item, Frame):
+                continue
+            if sent.get(item.offset) == item.raw:
+                found.add(item.offset)
+            elif item.crc_ok:
+                result.invented.append((item.offset, item.raw))
+                if item.slave not in BUS and item.slave != 0:
+                    result.slaves.add(item.slave)
+        result.recovered += len(found)
+        result.lost += [(at, sent[at]) for at in sorted(set(sent) - found)]
+    return result
+
+
+def real_lines(transactions: int, seed: int = 0) -> list[LineResult]:
+    from dissector.sim.line import KINDS
+
+    return [measure_line(kind, transactions, seed, delivery) for kind in KINDS for delivery in DELIVERIES]
+
+
 def _context(stream: bytes, offset: int, length: int) -> str:
     before = stream[max(0, offset - 24) : offset].hex(" ")
     return f"... {before} [{stream[offset : offset + length].hex(' ')}] {stream[offset + length : offset + length + 24].hex(' ')} ..."
@@ -232,6 +302,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--rate", type=float, default=0.02, help="share of frames damaged (default 0.02)")
     parser.add_argument("--show", type=int, default=0, metavar="N", help="print N lost and N false frames")
+    parser.add_argument("--real-lines", type=int, default=100_000, metavar="N",
+                        help="transactions a kind of real-line noise (dissector/sim/line.py); 0: none")
     args = parser.parse_args(argv)
     result = measure(args.transactions, args.seed, args.rate)
     damaged = sum(result.damaged.values())
@@ -247,6 +319,18 @@ def main(argv: list[str] | None = None) -> int:
     for offset, frame in result.false[: args.show]:
         print(f"false @{offset}: {_context(result.stream, offset, len(frame))}")
     ok = result.share >= 0.999 and result.false_frames == 0
+    if args.real_lines:
+        print(f"\nreal-line noise (dissector/sim/line.py): {args.real_lines} transactions a kind, slaves "
+              f"{' '.join(map(str, BUS))}; file: 4 KiB reads, bursts: random 1..64-byte reads (records)")
+        print(f"{'kind':22} {'delivery':8} {'recovered':>28} {'invented frames':>16} {'invented slaves':>16}")
+        for line in real_lines(args.real_lines, args.seed):
+            print(f"{line.kind:22} {line.delivery:8} {100 * line.share:9.3f} % ({line.recovered} of {line.intact})"
+                  f"{len(line.invented):>17} {len(line.slaves):>16}")
+            for offset, frame in line.lost[: args.show]:
+                print(f"    lost @{offset}: {frame.hex(' ')}")
+            for offset, frame in line.invented[: args.show]:
+                print(f"    invented @{offset}: {frame.hex(' ')}")
+            ok = ok and line.share >= 0.999 and not line.invented and not line.slaves
     return 0 if ok else 1
 
 
