@@ -96,6 +96,10 @@ local DATA = {
     ["min_adu"] = 4,
     ["max_slave"] = 247,
     ["noise_item_max"] = 4096,
+    ["glitch_skip"] = 16,
+    ["glitch_run"] = 16,
+    ["glitchy_after"] = 3,
+    ["glitch_score_max"] = 8,
   },
   ["other_functions"] = {
     [65] = true,
@@ -334,6 +338,17 @@ local DATA = {
     ["plain_reads"] = {
       [3] = true,
       [4] = true,
+    },
+    ["by_quantity"] = {
+      [15] = { 4, 9, 0 },
+      [16] = { 4, 9, 2 },
+      [23] = { 8, 13, 2 },
+    },
+    ["plausible_reads"] = {
+      [1] = { 1, 2000 },
+      [2] = { 1, 2000 },
+      [3] = { 1, 125 },
+      [4] = { 1, 125 },
     },
   },
   ["profiles"] = {
@@ -1329,6 +1344,21 @@ do
   for code, rules in pairs(DATA.protocol.rules) do
     RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
   end
+  -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
+  for code, spec in pairs(DATA.protocol.by_quantity or {}) do
+    local position, extra, unit = spec[1], spec[2], spec[3]
+    local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
+    local count_at, count_extra = counted[2], counted[3]
+    local need = math.max(position + 1, count_at)
+    RULES[code][3] = function(b, i, n)
+      if i + need >= n then return NEED end
+      local quantity = b[i + position] * 256 + b[i + position + 1]
+      local length
+      if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
+      if length == count_extra + b[i + count_at] then return NONE end
+      return length
+    end
+  end
   AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 end
 for code in pairs(DATA.other_functions or {}) do
@@ -1340,6 +1370,10 @@ local AS_REQUEST, AS_RESPONSE = {}, {}
 for code, rules in pairs(RULES) do
   AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] } }
   AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] } }
+  if rules[3] ~= nil then -- (the quantity's length, tried last)
+    AS_REQUEST[code][3] = { REQUEST, rules[3] }
+    AS_RESPONSE[code][3] = { REQUEST, rules[3] }
+  end
 end
 local NO_INTERPRETATION = {}
 
@@ -1379,6 +1413,17 @@ local known_requests -- (see below: requests met before)
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
 do
+local GLITCH_SKIP = FRAMING.glitch_skip or 16
+-- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
+-- turn-around after a frame, a break (00).
+local GLITCH = {}
+do
+  local value = 255
+  for _ = 0, 8 do
+    GLITCH[value] = true
+    value = (value * 2) % 256
+  end
+end
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -1414,6 +1459,25 @@ end
 
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
+  -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
+  if s.noise == nil and not s.noise_cut then s.glitches_only = true end
+  local check_from = start
+  local base = s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at >= start and at < stop then
+      s.glitches_only = true
+      check_from = math.max(at, check_from)
+    end
+  end
+  if s.glitches_only then
+    for k = check_from, stop - 1 do
+      if not GLITCH[b[k]] then
+        s.glitches_only = false
+        break
+      end
+    end
+  end
   while start < stop do
     local noise = s.noise
     if noise == nil then
@@ -1426,7 +1490,10 @@ local function add_noise(s, start, stop, reason, items)
     for k = 0, take - 1 do bytes_[length + k + 1] = b[start + k] end
     noise.length = length + take
     start = start + take
-    if noise.length >= NOISE_ITEM_MAX then flush_noise(s, items) end
+    if noise.length >= NOISE_ITEM_MAX then
+      flush_noise(s, items)
+      s.noise_cut = true
+    end
   end
 end
 
@@ -1439,8 +1506,27 @@ local function expect_after(s, frame)
   end
 end
 
+local GLITCH_RUN, GLITCHY_AFTER = FRAMING.glitch_run or 16, FRAMING.glitchy_after or 3 -- (stream.py)
+local GLITCH_SCORE_MAX = FRAMING.glitch_score_max or 8
 local function emit(s, frame, items)
+  -- How much the line shows 00 glitches before frames (stream.py _emit): +1 after a few glitch bytes with
+  -- a 00 among them, -1 after other noise.
+  local noise = s.noise
+  if noise ~= nil then
+    if s.glitches_only and noise.length <= GLITCH_RUN and noise.offset > 0 and not s.noise_cut then
+      local bytes_ = noise.bytes
+      for k = 1, noise.length do
+        if bytes_[k] == 0 then
+          s.glitch_runs = math.min(GLITCH_SCORE_MAX, s.glitch_runs + 1)
+          break
+        end
+      end
+    elseif s.glitch_runs > 0 then
+      s.glitch_runs = s.glitch_runs - 1
+    end
+  end
   flush_noise(s, items)
+  s.noise_cut = false
   items[#items + 1] = frame
   expect_after(s, frame)
 end
@@ -1452,8 +1538,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
     if final then return i == n end
     return nil
   end
-  local slave = b[i]
-  if slave > MAX_SLAVE then return false end
+  local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
   local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
   local list = interpretations(s, slave, b[i + 1])
   for index = 1, #list do
@@ -1492,12 +1577,98 @@ local function intact_inside(s, b, i, length, n, final)
   return false
 end
 
--- A frame without a length rule: the shortest CRC match that an intact frame (or the end) follows. In
--- step a scanned frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
+-- Can a frame start with these two bytes (any address, then a function code with a layout)?
+local function possible_start(slave, code)
+  return RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil)
+end
+
+-- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
+-- that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end)
+  local j = stop
+  while true do
+    if final and j == n then return at_end ~= false end
+    if boundary_at(s, j) then return true end
+    local found = valid_frame_at(s, b, j, n, final)
+    if found ~= false then return found end
+    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
+  end
+end
+
+-- Does a frame of the slave at i start at `stop`, after glitch bytes or not, damaged or not (its answer,
+-- rtu.py _answered)?
+local function answered(s, b, i, stop, n, final)
+  local slave = b[i]
+  local j = stop
+  while j - stop <= GLITCH_SKIP do
+    if n - j < 2 then
+      if final then return false end
+      return nil
+    end
+    if b[j] == slave and possible_start(b[j], b[j + 1]) then return true end
+    if not GLITCH[b[j]] then return false end
+    j = j + 1
+  end
+  return false
+end
+
+-- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
+-- a coil set ON or OFF.
+local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
+local function plausible_request(b, i, length)
+  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
+  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
+  if code == 5 then return word == 0xFF00 or word == 0 end
+  local limits = PLAUSIBLE_READS[code]
+  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
+end
+
+-- May a CRC-valid frame found inside noise count (rtu.py _confirmed)?
+local function confirmed(s, b, i, kind, length, n, final)
+  local stop = i + length
+  local following = followed(s, b, stop, n, final)
+  if following ~= false then return following end
+  if kind == REQUEST and b[i] ~= 0 then
+    if plausible_request(b, i, length) then return true end
+    return answered(s, b, i, stop, n, final)
+  end
+  return false
+end
+
+-- Is i where a frame is expected: in step, at a record boundary, after nothing but glitch bytes since one?
+local function anchored(s, i)
+  return s.noise == nil or s.glitches_only or boundary_at(s, i)
+end
+
+-- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
+-- (rtu.py _cut_answer)? The reason, or nil.
+local function cut_answer(s, b, i, n)
+  if n - i < 2 then return nil end
+  local slave, code = b[i], b[i + 1]
+  if s.expect ~= slave * 256 + code % 128 then return nil end
+  local first = interpretations(s, slave, code)[1]
+  if first == nil then return nil end
+  local length, is_scan = first[2](b, i, n)
+  if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if intact_inside(s, b, i, n - i, n, true) then return nil end
+  local what = "exception response"
+  if first[1] == RESPONSE then what = "response" end
+  if length == NEED then return format("the capture ends inside the %s (%d bytes of it)", what, n - i) end
+  return format("the capture ends inside the %s (%d of %d bytes)", what, n - i, length)
+end
+lane.cut_answer = cut_answer
+
+-- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
+-- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
+-- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
 local function scan_match(s, b, i, n, minimum, final)
   local last = math.min(n - i, MAX_ADU)
   if minimum < 2 then minimum = 2 end
-  if minimum <= last then
+  local from = 1
+  if s.glitch_runs >= GLITCHY_AFTER then from = 2 end -- (a 00 after a frame is a glitch: rtu.py _scan)
+  for pass = from, 2 do
+    if minimum > last then break end
     -- One running CRC over the growing frame: each length costs one byte, not a new CRC. (Its two
     -- bytes, lo and hi, stepped here rather than by a call a byte: this loop runs for every byte of
     -- every frame without a length rule.)
@@ -1506,7 +1677,9 @@ local function scan_match(s, b, i, n, minimum, final)
       local stop = i + length - 2
       local byte = b[stop]
       if lo == byte and hi == b[stop + 1] then
-        local following = valid_frame_at(s, b, i + length, n, final)
+        local following
+        if pass == 1 then following = valid_frame_at(s, b, i + length, n, final)
+        else following = followed(s, b, i + length, n, final) end
         if following == nil then return NEED end
         if following then
           local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
@@ -1525,7 +1698,12 @@ end
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   local slave, code = b[i], b[i + 1]
-  if slave > MAX_SLAVE then return NONE end
+  if GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE) then
+    -- (rtu.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
+    local after = valid_frame_at(s, b, i + 1, n, final)
+    if after == nil then return NEED end
+    if after then return NONE end
+  end
   local valid, damaged, waiting = nil, nil, nil
   local list = interpretations(s, slave, code)
   for index = 1, #list do
@@ -1573,7 +1751,18 @@ local function match(s, b, i, n, final)
     return kind, length, true
   end
   if valid ~= nil then
-    -- Two layouts check out: a record boundary, the answer awaited, then what follows decides.
+    -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
+    -- else a record boundary, the answer awaited, then what follows decides.
+    if s.glitch_runs >= GLITCHY_AFTER then
+      local order = {}
+      for index = 1, #valid do order[index] = valid[index] end
+      table.sort(order, function(x, y) return x[2] < y[2] end)
+      for index = 1, #order do
+        local following = followed(s, b, i + order[index][2], n, final)
+        if following == nil then return NEED end
+        if following then return order[index][1], order[index][2], true end
+      end
+    end
     for index = 1, #valid do
       if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
     end
@@ -1586,13 +1775,23 @@ local function match(s, b, i, n, final)
     return valid[1][1], valid[1][2], true
   end
   if waiting ~= nil then return NEED end
-  -- No layout checks out: a damaged frame is shown once if it ends where an intact one begins and holds
-  -- none inside (a cut frame must not swallow the intact frame that follows it).
+  -- (a reserved address counts with a good CRC only: a glitch byte is one too; so does a broadcast the
+  -- spec does not allow, a read: 00 is a glitch byte)
+  if slave > MAX_SLAVE or (slave == 0 and DATA.not_broadcast[code]) then return NONE end
+  if GLITCH[slave] then
+    -- A glitch byte before a frame (a CRC scan's too, which intact_inside does not try).
+    local after = valid_frame_at(s, b, i + 1, n, final)
+    if after == nil then return NEED end
+    if after then return NONE end
+  end
+  -- No layout checks out: a damaged frame is shown once if the line confirms its end (followed; the end of
+  -- the input only for the answer awaited) and it holds none inside (a cut frame must not swallow the
+  -- intact frame that follows it).
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
-    local following = valid_frame_at(s, b, i + length, n, final)
+    local following = followed(s, b, i + length, n, final, s.expect == slave * 256 + code % 128)
     if following == nil then return NEED end
-    if following and (i + length < n or s.expect == slave * 256 + code % 128) then
+    if following then
       local inside = intact_inside(s, b, i, length, n, final)
       if inside == nil then return NEED end
       if not inside then return kind, length, false end
@@ -1601,10 +1800,6 @@ local function match(s, b, i, n, final)
   return NONE
 end
 
--- Can a frame start with these two bytes (a slave address, then a function code with a layout)?
-local function possible_start(slave, code)
-  return slave <= MAX_SLAVE and (RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil))
-end
 
 -- The frame of `length` bytes at b[i], its first byte at stream offset `offset`, received at `time`.
 local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
@@ -1676,14 +1871,14 @@ local function run_rtu(s, final, items)
   local i = 0
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
-      add_noise(s, i, n, "too short for a frame", items)
+      add_noise(s, i, n, cut_answer(s, b, i, n) or "too short for a frame", items)
       i = n
       break
     end
     local slave, code = b[i], b[i + 1]
     local list = interpretations(s, slave, code)
     local first = list[1]
-    if first == nil or slave > MAX_SLAVE then
+    if first == nil then
       -- No frame starts here: skip to the next byte pair that could start one.
       local stop = i + 1
       while stop < n - 1 and not possible_start(b[stop], b[stop + 1]) do stop = stop + 1 end
@@ -1694,7 +1889,8 @@ local function run_rtu(s, final, items)
       local done = false
       -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
       -- belong to a longer frame, see match): nearly every frame of a clean bus.
-      if s.noise == nil and fast_interpretation(s, first, slave, code) then
+      if s.noise == nil and fast_interpretation(s, first, slave, code)
+          and not (GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE)) then
         -- (or the frame ends where the record does: a record boundary settles what match would weigh,
         -- and this is every frame of a capture with one frame a record)
         local length, is_scan = first[2](b, i, n)
@@ -1707,15 +1903,21 @@ local function run_rtu(s, final, items)
           done = true
         end
       end
+      local cut = nil
+      if not done and final then cut = cut_answer(s, b, i, n) end
+      if cut ~= nil then
+        add_noise(s, i, n, cut, items)
+        i = n
+        break
+      end
       if not done then
         local kind, length, crc_ok = match(s, b, i, n, final)
         if kind == NEED then break end
-        if kind ~= NONE and crc_ok and (s.noise ~= nil
-            or (kind ~= REQUEST and s.expect ~= slave * 256 + code % 128)) then
-          -- Resynchronising after noise, or an answer nobody asked for: random bytes pass a CRC 1 time
-          -- in 65,536 per layout tried, so such a frame counts only when an intact frame, the end, or
-          -- the end of a record follows it.
-          local following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
+        if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
+            and not anchored(s, i) then
+          -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
+          -- such a frame counts only when the line confirms it (rtu.py _confirmed).
+          local following = confirmed(s, b, i, kind, length, n, final)
           if following == nil then break end
           if not following then kind = NONE end
         end
@@ -1804,10 +2006,10 @@ end
 local function ascii_candidate(s, at, length, items)
   -- b[at .. at + length - 1]: ':' digits CR LF
   local b = s.b
-  if length < 3 or b[at + length - 2] ~= CR then
-    return reject(s, at, length, "ASCII frame ends with LF without CR", items)
-  end
+  -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py).
+  local lost_cr = length < 3 or b[at + length - 2] ~= CR
   local digits = length - 3
+  if lost_cr then digits = length - 2 end
   local lower = false
   if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
   for k = at + 1, at + digits do
@@ -1823,7 +2025,6 @@ local function ascii_candidate(s, at, length, items)
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local check = "LRC ok"
   if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
-  if slave > MAX_SLAVE then return reject(s, at, length, format("slave %d out of range (%s)", slave, check), items) end
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
     return reject(s, at, length, format("no Modbus layout fits function %d (%s)", code, check), items)
@@ -1834,7 +2035,11 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lower then frame.warnings = { "lower-case hex digits (the spec wants upper case)" } end
+  if lost_cr then frame.warnings = { "line ends with LF without CR (the spec ends a frame with CR LF)" } end
+  if lower then
+    frame.warnings = frame.warnings or {}
+    frame.warnings[#frame.warnings + 1] = "lower-case hex digits (the spec wants upper case)"
+  end
   emit(s, frame, items)
 end
 
@@ -1918,12 +2123,13 @@ lane.flush_noise = flush_noise
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
 local function takes_whole(s, n, slave)
   return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
-    and slave <= MAX_SLAVE
+    and slave <= MAX_SLAVE and slave ~= 0 -- (a broadcast: is its 00 a glitch before a frame? match weighs it)
 end
 
 -- The stream after a whole record of n bytes is framed (its expectation set by the caller): no byte
 -- waits, the record's time is the last one kept, no record end (its end is the stream's end).
 function lane.advance(s, n, time)
+  s.noise_cut = false
   local offset = s.base
   s.base = offset + n
   local times = s.times
@@ -2519,6 +2725,7 @@ end
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
+  if f.slave > MAX_SLAVE then warn(f, format("slave address %d is reserved (248..255 are no device's)", f.slave)) end
   if f.kind == EXCEPTION then
     f.fields = {}
     f.exception_code = b[d]
@@ -3946,6 +4153,7 @@ local function new_state(timeout, mode)
     mode = mode,
     -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
     b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil, items = {},
+    glitches_only = true, noise_cut = false, glitch_runs = 0, -- (stream.py: the glitch rule's state)
     open = {}, -- records some of whose bytes are not framed yet (oldest first)
     last = nil, -- the last record fed
     unpacked = {}, -- record, index of each item not packed yet (pack.settle)
@@ -4728,7 +4936,13 @@ local function finish(st)
   st.finished = true
   local record = st.last
   if record == nil then return end
-  take_items(st, feed(st, "", nil, false, true), record)
+  local items = feed(st, "", nil, false, true)
+  for index = 1, #items do
+    -- The answer awaited cut by the end of the capture: said on the request (pairing.py CUT_ANSWER).
+    local reason = items[index].reason
+    if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
+  end
+  take_items(st, items, record)
   if st.pending ~= nil then release_run(st.pending.registers) end
 end
 
@@ -5314,7 +5528,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = "the capture ends before any response"
+    local text = st.cut_note or "the capture ends before any response"
     if index <= count then text = notes[index] end
     local item = t
     if full then item = t:add(pf.note, whole, text):set_generated() end

@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from dissector.errors import GenerateError
-from dissector.framing import rtu as framer, stream as streambuf
+from dissector.framing import evidence, rtu as framer, stream as streambuf
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
@@ -86,6 +86,10 @@ def plugin_data() -> dict[str, Any]:
             "min_adu": framer.MIN_ADU,
             "max_slave": framer.MAX_SLAVE,
             "noise_item_max": streambuf.NOISE_ITEM_MAX,
+            "glitch_skip": framer.GLITCH_SKIP,
+            "glitch_run": streambuf.GLITCH_RUN,
+            "glitchy_after": streambuf.GLITCHY_AFTER,
+            "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,
@@ -119,6 +123,13 @@ def protocol_tables() -> dict[str, Any]:
         "limits": {name: table.by_kind("limit")[kind] for name, kind in directions.items()},
         "reads": table.register_reads(),
         "plain_reads": table.plain_register_reads(),
+        # A request's length by its quantity (table.ByQuantity): {quantity's position, extra, unit}.
+        "by_quantity": {
+            entry.code: [entry.request.by_quantity.position, entry.request.by_quantity.extra, entry.request.by_quantity.unit]
+            for entry in table.FUNCTIONS if entry.request.by_quantity is not None
+        },
+        # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).
+        "plausible_reads": {code: list(limits) for code, limits in evidence.READ_LIMITS.items()},
     }
 
 
