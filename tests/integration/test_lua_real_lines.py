@@ -29,7 +29,9 @@ def both(path: Path, records: list[bytes]) -> list[tuple[str, str]]:
     pcap = write_pcap(path, [(data, 1_700_000_000 + index * 0.001) for index, data in enumerate(records)])
     python = python_items(pcap, [])
     lua, _, _ = lua_items(pcap)
-    differences = compare(python, lua)
+    # (FC43 object strings of random bytes: tshark's PDML escapes control bytes its own way; framing is
+    # what is compared here)
+    differences = compare(python, lua, ignore=frozenset({"objects"}))
     assert not differences, "\n".join(differences[:40])
     assert len([item for item in lua_shown(lua) if lua_kind(item) != "noise"]) == len(
         [item for item in python if item.data["kind"] != "noise"])
@@ -107,3 +109,23 @@ def test_real_line_noise_of_every_kind_in_random_reads(tmp_path: Path, kind: str
     items = both(tmp_path / "line.pcap", [stream[a:b] for a, b in zip([0, *cuts], [*cuts, len(stream)])])
     found = {raw for item_kind, raw in items if item_kind != "noise"}
     assert sum(frame.hex() in found for _offset, frame in line.frames) >= 0.99 * len(line.frames)
+
+
+def test_the_wizmodbus_line_as_a_pcap_of_reads(tmp_path: Path) -> None:
+    """The real RS-485 line of tests/corpus (a glitch byte after every frame): the plugin finds the 88
+    frames of the node's RX and TX channels, as vw3-decode does, in the line's own bursts and in reads
+    cut anywhere."""
+    corpus = Path(__file__).resolve().parents[1] / "corpus"
+
+    def recs(name: str) -> list[bytes]:
+        return [bytes.fromhex(line.partition(" ")[2]) for line in (corpus / name).read_text().splitlines()]
+
+    sides = [data.hex() for data in recs("wizmodbus_rxtx.records")]
+    bus = recs("wizmodbus_bus.records")
+    items = both(tmp_path / "bus.pcap", bus)
+    assert [raw for kind, raw in items if kind != "noise"] == sides
+    stream = b"".join(bus)
+    rng = random.Random(88)
+    cuts = sorted(rng.sample(range(1, len(stream)), 150))
+    items = both(tmp_path / "reads.pcap", [stream[a:b] for a, b in zip([0, *cuts], [*cuts, len(stream)])])
+    assert [raw for kind, raw in items if kind != "noise"] == sides
