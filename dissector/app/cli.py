@@ -383,7 +383,7 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {warning}\n")
 
-            framer = AsciiFramer() if mode == "ascii" else RtuFramer()
+            framer = AsciiFramer(args.baud) if mode == "ascii" else RtuFramer(args.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
                 annotate=annotate,

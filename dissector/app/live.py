@@ -231,7 +231,7 @@ def run_live(
     err.write(f"{PROG}: listening on {args.live} at {port_settings(args).text()}\n")
     err.flush()
     # Modbus ASCII on the line only with --mode ascii: a live stream cannot be sniffed before it starts.
-    framer = AsciiFramer() if getattr(args, "mode", None) == "ascii" else RtuFramer()
+    framer = AsciiFramer(args.baud) if getattr(args, "mode", None) == "ascii" else RtuFramer(args.baud)
     # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
     dissector = Dissector(hold=True, annotate=annotate, timeout=getattr(args, "timeout", None))
     handoff = Handoff()
