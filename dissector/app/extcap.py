@@ -66,7 +66,11 @@ def serial_ports() -> list[tuple[str, str]]:
     from serial.tools.list_ports import comports
 
     found = []
-    for port in comports():
+    try:
+        ports = comports()
+    except OSError:  # an unreadable /sys or registry: the socket interface is still offered
+        return []
+    for port in ports:
         description = port.description if port.description and port.description != "n/a" else ""
         found.append((port.device, description))
     return sorted(found)
@@ -250,6 +254,11 @@ def release(argv: list[str] | None, status: int) -> int:
 def main(argv: list[str] | None = None) -> int:
     if sys.stdout is None or sys.stderr is None:
         return ExitStatus.ERROR
+    for stream in (sys.stdout, sys.stderr):
+        # Wireshark reads UTF-8 whatever the locale (a Windows pipe would otherwise get the ANSI code
+        # page, and a USB description outside it would end in a traceback).
+        if hasattr(stream, "reconfigure"):
+            stream.reconfigure(encoding="utf-8", errors="replace")
     try:
         status = run(argv, sys.stdout, sys.stderr)
         sys.stdout.flush()

@@ -58,8 +58,9 @@ def open_fifo(path: str, stopped: Callable[[], bool], patience: float = FIFO_PAT
 
 
 def is_fifo(path: str) -> bool:
+    """A POSIX fifo (Windows reports its named pipes as fifos too, but they open as files)."""
     try:
-        return stat.S_ISFIFO(os.stat(path).st_mode)
+        return os.name == "posix" and stat.S_ISFIFO(os.stat(path).st_mode)
     except OSError:
         return False
 
@@ -73,7 +74,7 @@ class FifoOutput(CaptureOutput):
         self.reader_gone = False
         self._parent = os.getppid()
         self._poll = None
-        if hasattr(select, "poll"):
+        if hasattr(select, "poll") and stat.S_ISFIFO(os.fstat(stream.fileno()).st_mode):
             self._poll = select.poll()
             self._poll.register(stream.fileno(), 0)  # POLLERR and POLLHUP are always reported
         super().__init__(STDOUT, "pcapng", None, flush=True, stdout=stream, interface=interface)

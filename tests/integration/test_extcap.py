@@ -505,6 +505,29 @@ def test_stops_cleanly_keeping_every_frame(tmp_path: Path, how: str) -> None:
     assert len(bus.slave.frames) == 60
 
 
+def test_a_file_given_by_hand(tmp_path: Path) -> None:
+    """--fifo FILE outside Wireshark (to try a port): a pcapng file, written as heard."""
+    bus = Bus(baud=BAUD, seed=12)
+    path = tmp_path / "by-hand.pcapng"
+    path.write_bytes(b"old content, longer than what the capture writes" * 100)
+    try:
+        process = subprocess.Popen(
+            [sys.executable, "-m", "dissector.app.extcap", "--capture", "--extcap-interface", IFACE, "--fifo",
+             str(path), "--port", bus.c_path, "--baud", str(BAUD)], cwd=ROOT, stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE, text=True)
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline and not holds(process.pid, bus.c_path):
+            time.sleep(0.02)
+        our_master(bus.a_slave, 10, seed=12)
+        time.sleep(0.3)
+        process.send_signal(signal.SIGTERM)
+        out, err = process.communicate(timeout=10)
+    finally:
+        bus.close()
+    assert (process.returncode, out, err) == (0, "", "")
+    assert [record for _, record, _ in pcapng_records(path)[1]] == bus.slave.frames
+
+
 def test_reader_gone_during_traffic_ends_the_capture(tmp_path: Path) -> None:
     """The same with frames still coming: the next write fails with EPIPE, exit 0, nothing said."""
     bus = Bus(baud=BAUD, seed=10)

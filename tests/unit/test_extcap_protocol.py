@@ -117,3 +117,15 @@ def test_pip_installs_the_console_script() -> None:
     target = project["project"]["scripts"]["vw3-extcap"]
     module, _, function = target.partition(":")
     assert getattr(importlib.import_module(module), function) is extcap.main
+
+
+def test_output_is_utf8_whatever_the_locale() -> None:
+    """Wireshark reads UTF-8; a Windows pipe or an ASCII locale must not turn a name into a traceback."""
+    import subprocess
+    from pathlib import Path
+
+    done = subprocess.run([sys.executable, "-m", "dissector.app.extcap", "--extcap-interface", "vw3-é", "--extcap-config"],
+                          cwd=Path(__file__).resolve().parents[2], capture_output=True, timeout=60,
+                          env=dict(os.environ, PYTHONIOENCODING="ascii"))
+    assert (done.returncode, done.stdout) == (2, b"")
+    assert done.stderr == "vw3-extcap: no interface 'vw3-é' (see vw3-extcap --extcap-interfaces)\n".encode()
