@@ -22,11 +22,9 @@ import time
 from collections.abc import Callable
 from typing import BinaryIO, TextIO
 
-from dissector.app.live import StopFlag, interface_description
+from dissector.app.live import StopFlag, interface_description, live_framer
 from dissector.app.live_capture import CaptureFiles, CaptureThread, Handoff, silence_threshold
 from dissector.errors import ExitStatus, LiveError
-from dissector.framing.ascii import AsciiFramer
-from dissector.framing.rtu import RtuFramer
 from dissector.render.capturefile import STDOUT, CaptureOutput
 from dissector.sources.serial_port import PortSettings, open_port
 
@@ -171,9 +169,8 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             if stream is None:
                 return ExitStatus.OK  # stopped, or nobody came to read
             output = FifoOutput(stream, args.fifo, (settings.port, description(args, settings)))
-            framer = AsciiFramer() if args.mode == "ascii" else RtuFramer()
-            thread = CaptureThread(port, framer, CaptureFiles(output, None), Handoff(limit=0),
-                                   silence_threshold(settings.baud), port_name=settings.port)
+            thread = CaptureThread(port, live_framer(args.mode, settings.baud), CaptureFiles(output, None),
+                                   Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port)
             thread.start()
             while not thread.done.wait(WAIT):
                 if stop.signal is not None:

@@ -50,6 +50,12 @@ def port_settings(args: argparse.Namespace) -> PortSettings:
     return PortSettings(args.live, args.baud, args.parity, args.stopbits, args.bytesize)
 
 
+def live_framer(mode: str | None, baud: int) -> AsciiFramer | RtuFramer:
+    """The capture thread's framer (vw3-decode --live, vw3-extcap). Modbus ASCII only with --mode
+    ascii: a live stream cannot be sniffed before it starts."""
+    return AsciiFramer(baud) if mode == "ascii" else RtuFramer(baud)
+
+
 def interface_description(settings: PortSettings) -> str:
     """pcapng if_description: the serial settings, spelled out and as a manual writes them."""
     parity = {"E": "even", "O": "odd", "N": "no"}[settings.parity]
@@ -230,8 +236,7 @@ def run_live(
     stats = LiveStats(files=bool(files.names))
     err.write(f"{PROG}: listening on {args.live} at {port_settings(args).text()}\n")
     err.flush()
-    # Modbus ASCII on the line only with --mode ascii: a live stream cannot be sniffed before it starts.
-    framer = AsciiFramer(args.baud) if getattr(args, "mode", None) == "ascii" else RtuFramer(args.baud)
+    framer = live_framer(getattr(args, "mode", None), args.baud)
     # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
     dissector = Dissector(hold=True, annotate=annotate, timeout=getattr(args, "timeout", None))
     handoff = Handoff()
