@@ -29,7 +29,7 @@ BAUD = 115200
 IFACE = "vw3-socket"
 PREF = "extcap.vw3_socket."
 AS_DATA = 'uat:user_dlts:"User 0 (DLT=147)","data","0","","0",""'  # the record's bytes as `data`
-JITTER = 0.050  # two sniffers on a loaded two-core machine stamp the same bytes this far apart at most
+JITTER = 0.200  # two sniffers on a loaded two-core machine stamp the same bytes this far apart at most
 OPTIONS = ("port", "baud", "parity", "stopbits", "bytesize", "mode", "detect", "detectseconds", "description")
 
 
@@ -284,7 +284,9 @@ def test_tshark_decodes_live_what_vw3_decode_live_shows(config: dict[str, str], 
     _, written = pcapng_records(ours)
     assert [(data, comment) for _, data, comment in written] == [(data, comment) for _, data, comment in records]
     gaps = sorted(abs(a[0] - b[0]) for a, b in zip(written, records))
-    assert gaps[len(gaps) // 2] < 0.001 and gaps[-1] < JITTER, gaps
+    print(f"\nextcap vs -w time stamps over {len(gaps)} records: median {gaps[len(gaps) // 2] * 1e6:.0f} us, "
+          f"max {gaps[-1] * 1e6:.0f} us")
+    assert gaps[len(gaps) // 2] < 0.002 and gaps[-1] < JITTER, gaps
 
     # What tshark showed live, frame by frame, equals what vw3-decode --live showed. tshark cannot
     # decode a live capture in two passes: a request is shown before its response is heard, so its
