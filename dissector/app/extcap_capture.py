@@ -30,6 +30,7 @@ from dissector.sources.serial_port import PortSettings, open_port
 
 WAIT = 0.05  # how often the main thread looks at the stop flag
 FIFO_PATIENCE = 30.0  # Wireshark (dumpcap) opens the fifo at once; this bounds a wait for nobody
+RELEASE_PATIENCE = 5.0  # the same after an error, when Wireshark may be gone already
 
 
 def open_fifo(path: str, stopped: Callable[[], bool], patience: float = FIFO_PATIENCE) -> BinaryIO | None:
@@ -159,11 +160,11 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
                 settings = detected(settings, args.detect_seconds, stop)
             port = open_port(settings)
         except Stopped:
-            return release(args.fifo, ExitStatus.OK)
+            return ExitStatus.OK  # Wireshark is stopping: nobody is left to read the fifo
         except LiveError as error:
             err.write(f"{prog}: {error}\n")
             err.flush()
-            return release(args.fifo, error.status)
+            return release(args.fifo, error.status, lambda: stop.signal is not None)
         try:
             stream = open_fifo(args.fifo, lambda: stop.signal is not None)
             if stream is None:
@@ -191,12 +192,13 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
     return thread.status
 
 
-def release(fifo: str | None, status: int) -> int:
+def release(fifo: str | None, status: int, stopped: Callable[[], bool] = lambda: False) -> int:
     """After an error before the capture starts: open and close the fifo, so that Wireshark, waiting
-    for the capture, reads its end and shows our error line instead of waiting on."""
+    for the capture, reads its end and shows our error line instead of waiting on. dumpcap opens it
+    as we start; a Wireshark that has stopped meanwhile is not waited for long."""
     if fifo and is_fifo(fifo):
         try:
-            stream = open_fifo(fifo, lambda: False, patience=10.0)
+            stream = open_fifo(fifo, stopped, patience=RELEASE_PATIENCE)
         except OSError:
             return status
         if stream is not None:

@@ -580,3 +580,21 @@ def test_detect_then_capture_through_tshark(config: dict[str, str]) -> None:
     rest, sent = records[first:], bus.slave.frames
     assert any(sent[start:start + len(rest)] == rest for start in range(len(sent))), records
     assert none_left(f"--port {bus.c_path}", seconds=3) == []
+
+
+def test_stopped_during_detect(config: dict[str, str]) -> None:
+    """Stop pressed while --detect listens (15 settings of 1 s): gone at the next setting, no 10 s wait
+    for a fifo reader that has left."""
+    bus = Bus(baud=BAUD, seed=13)
+    try:
+        sharked = start_tshark(config, bus.c_path, "-o", f"{PREF}detect:true", "-o", f"{PREF}detectseconds:1")
+        time.sleep(0.5)
+        stopped = time.monotonic()
+        sharked.send_signal(signal.SIGINT)
+        sharked.communicate(timeout=30)
+        left = none_left(f"--port {bus.c_path}", seconds=10)
+        took = time.monotonic() - stopped
+    finally:
+        bus.close()
+    assert left == []
+    assert took < 3.0
