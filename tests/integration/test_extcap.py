@@ -598,3 +598,17 @@ def test_stopped_during_detect(config: dict[str, str]) -> None:
         bus.close()
     assert left == []
     assert took < 3.0
+
+
+def test_tshark_killed_on_a_silent_bus(config: dict[str, str]) -> None:
+    """SIGKILL to tshark (no SIGTERM for the extcap, a silent bus): the extcap sees its parent gone or
+    the fifo closed, and ends."""
+    bus = Bus(baud=BAUD, seed=14)
+    try:
+        sharked = start_tshark(config, bus.c_path)
+        our_master(bus.a_slave, 3, seed=14)
+        sharked.kill()
+        sharked.communicate(timeout=30)
+        assert none_left(f"--port {bus.c_path}", seconds=3) == []
+    finally:
+        bus.close()
