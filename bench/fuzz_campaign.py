@@ -220,8 +220,11 @@ def cli(data: bytes) -> None:
                       stderr_isatty=False)
     status = run(argv, env)
     lines = err.getvalue().splitlines()
-    assert all(line.startswith("vw3-decode: ") for line in lines), lines
-    errors = [line for line in lines if not line.startswith("vw3-decode: warning: ")]
+    # A display filter's error shows the filter and a caret under the fault, as tshark: lines of two
+    # spaces that continue the error line before them.
+    assert not lines or lines[0].startswith("vw3-decode: "), lines
+    assert all(line.startswith(("vw3-decode: ", "  ")) for line in lines), lines
+    errors = [line for line in lines if line.startswith("vw3-decode: ") and not line.startswith("vw3-decode: warning: ")]
     assert (status, len(errors)) in ((0, 0), (2, 1)), (status, lines)
     if "--color" not in argv:  # bus and map texts never reach the terminal as an escape sequence
         assert "\x1b" not in out.getvalue(), "an ESC in the output"

@@ -2863,6 +2863,13 @@ for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
+-- A map's texts are shown: control characters as \xNN (maps.py escapes them too), never raw.
+local function printable(text)
+  return (text:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end))
+end
+local MAX_MAP_BYTES = 16 * 1024 * 1024 -- maps.MAX_MAP_BYTES
+local SCALE_MIN, SCALE_MAX = 1e-12, 1e12 -- maps.SCALE_MIN, SCALE_MAX: results stay finite numbers
+
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
 local function csv_cells(line, delimiter)
   local cells, cell, k, quoted = {}, {}, 1, false
@@ -2915,7 +2922,7 @@ local function map_pairs(text, what, low, high)
         return nil, format("%s entry %q: %d is outside %d..%d", what, part, number, low, high)
       end
       if out[number] ~= nil then return nil, format("%s entry %q: %d given twice", what, part, number) end
-      out[number] = strip(label)
+      out[number] = printable(strip(label))
       any = true
     end
   end
@@ -2938,18 +2945,20 @@ local function map_row(values)
   local address = map_int(values.address or "")
   if address == nil then return nil, format("address %q is not a number", values.address or "") end
   if address < 0 or address > 0xFFFF then return nil, format("address %d is outside 0..65535", address) end
-  local code = strip(values.code or "")
+  local code = printable(strip(values.code or ""))
   if code == "" then return nil, "code is empty" end
   local row = { code = code }
   for _, key in ipairs({ "name", "unit", "source" }) do
-    local text = strip(values[key] or "")
+    local text = printable(strip(values[key] or ""))
     if text ~= "" then row[key] = text end
   end
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
     local scale = tonumber(scale_text)
-    if scale == nil then return nil, format("scale %q is not a number", scale_text) end
-    if scale == 0 then return nil, "scale 0 would hide every value" end
+    if scale == nil or scale ~= scale then return nil, format("scale %q is not a number", scale_text) end
+    if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
+      return nil, format("scale '%s' is outside ±1e-12..1e+12 (and not 0)", scale_text)
+    end
     row.scale, row.decimals = scale, scale_decimals(scale_text)
   end
   local access = strip(values.access or ""):upper()
@@ -2998,10 +3007,22 @@ local SEPARATOR_NAMES = { [","] = "comma", [";"] = "';'", ["\t"] = "'\\t'" }
 -- The rows of a map file, or nil and `file:line: what is wrong` (maps.parse_map, message for message):
 -- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
 local function load_map(path)
-  local handle, open_error = io.open(path, "rb")
+  -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
+  -- write returns at once on Linux and the seek below refuses it. A file without write permission is
+  -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
+  local handle, open_error = io.open(path, "r+b")
+  if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
   if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
-  local text = handle:read("*a")
+  local size = handle:seek("end")
+  local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
   handle:close()
+  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
+  if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
+    return nil, format("%s: larger than 16 MiB, not a register map", path)
+  end
+  if not text then
+    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
+  end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, number, delimiter = nil, {}, {}, 0, ","
   local wide, wide_order = {}, {} -- second register of a 32-bit row -> its first
@@ -5468,7 +5489,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       for _, object in ipairs(f.objects) do
         local r = frame_range(tvb, f, object.offset, object.length)
         local sub = t:add(pf.object, r)
-        sub:set_text(format("%s: %s", object.name, object.value))
+        -- A device's bytes are data: an ESC or a C1 control (latin-1 held as UTF-8) shown as \xNN, never
+        -- written raw into tshark -V (a terminal would run it), as vw3-decode shows them.
+        local value = object.value:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end)
+        value = value:gsub("\194([\128-\159])", function(c) return format("\\x%02x", c:byte()) end)
+        sub:set_text(format("%s: %s", object.name, value))
         sub:add(pf.object_id, r, object.id)
         sub:add(pf.object_name, r, object.name):set_generated()
         sub:add(pf.object_value, r, object.value)

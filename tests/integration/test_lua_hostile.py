@@ -1,0 +1,103 @@
+"""The plugin on hostile bytes and preferences (issue 32): a device's strings never reach tshark -V as
+terminal escapes, a bad `maps` preference (a directory, a FIFO, /dev/zero, a scale that overflows) is a
+warning and never a Lua error or a hang, and floods of one byte cost memory and time like any capture."""
+from __future__ import annotations
+
+import os
+import resource
+import subprocess
+import time
+from pathlib import Path
+
+import pytest
+
+from dissector.sim.simulate import generate_session
+from helpers import rtu
+from lua_harness import PLUGIN, USER_DLT, ensure_tool, lua_errors, run_tshark, write_pcap
+
+ESC = "\x1b"
+VENDOR = b"\x1b]8;;http://x\x1b\\LINK\x1b[2J\x07"
+
+
+def test_fc43_objects_are_escaped_in_tshark_v(tmp_path: Path) -> None:
+    answer = rtu("0c2b0e010100000100" + f"{len(VENDOR):02x}" + VENDOR.hex())
+    pcap = write_pcap(tmp_path / "fc43.pcap", [(rtu("0c2b0e0100"), 1.0), (answer, 1.1)])
+    result = run_tshark(pcap, "-V")
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr)
+    assert ESC not in result.stdout and "\x07" not in result.stdout
+    assert "    VendorName: \\x1b]8;;http://x\\x1b\\LINK\\x1b[2J\\x07\n" in result.stdout
+
+
+def _with_maps(tmp_path: Path, maps: str) -> subprocess.CompletedProcess[str]:
+    pcap = write_pcap(tmp_path / "read.pcap", [(rtu("0c0320d10002"), 1.0), (rtu("0c0304ffffffff"), 1.1)])
+    return run_tshark(pcap, "-V", "-o", f"vw3.maps:{maps}", timeout=60)
+
+
+def test_a_bad_maps_preference_is_a_warning(tmp_path: Path) -> None:
+    fifo = tmp_path / "fifo.csv"
+    os.mkfifo(fifo)  # opening it to read used to wait for a writer forever
+    big = tmp_path / "big.csv"
+    with big.open("wb") as stream:
+        stream.truncate(17 << 20)
+    (tmp_path / "inf.csv").write_text("address,code,scale\n8401,A,1e999\n", encoding="utf-8")
+    (tmp_path / "huge.csv").write_text("address,code,scale\n8401,A,1e308\n", encoding="utf-8")
+    cases = {
+        str(tmp_path): f"{tmp_path}: cannot read the map: {tmp_path}: Is a directory",  # was a Lua error
+        str(fifo): f"{fifo}: not a file that can be read whole (a FIFO or a socket)",
+        "/dev/zero": "/dev/zero: larger than 16 MiB, not a register map",
+        str(big): f"{big}: larger than 16 MiB, not a register map",
+        # 1e308 x FFFF was `attempt to perform arithmetic on local 'scaled' (a nil value)`
+        str(tmp_path / "huge.csv"): f"{tmp_path / 'huge.csv'}:2: scale '1e308' is outside ±1e-12..1e+12 (and not 0)",
+        str(tmp_path / "inf.csv"): f"{tmp_path / 'inf.csv'}:2: scale '1e999' is outside ±1e-12..1e+12 (and not 0)",
+    }
+    for maps, warning in cases.items():
+        result = _with_maps(tmp_path, maps)
+        assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), maps
+        assert f"[Expert Info (Warning/Protocol): Preferences: {warning}]" in result.stdout, maps
+        assert "Read Holding Registers" in result.stdout
+
+
+def test_map_texts_are_escaped_and_the_largest_scale_is_a_number(tmp_path: Path) -> None:
+    good = tmp_path / "good.csv"
+    good.write_text("address,code,name,scale,unit\n8401,A\x1b[2J,N\x07,1e12,Wh\n", encoding="utf-8")
+    result = _with_maps(tmp_path, str(good))
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr)
+    assert ESC not in result.stdout and "\x07" not in result.stdout
+    assert "Register 8401 A\\x1b[2J = 65535: 65535000000000000 Wh" in result.stdout
+
+
+# -- floods ------------------------------------------------------------------------------------------
+MB = 1 << 20
+
+
+def _tshark_cost(pcap: Path) -> tuple[float, int]:
+    """(seconds, peak resident kB) of one tshark run with the plugin, its output discarded."""
+    tshark = ensure_tool("tshark", "tshark")
+    started = time.monotonic()
+    process = subprocess.Popen([tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _pid, status, usage = os.wait4(process.pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    return time.monotonic() - started, usage.ru_maxrss
+
+
+@pytest.fixture(scope="module")
+def normal_cost(tmp_path_factory: pytest.TempPathFactory) -> tuple[float, int]:
+    """tshark's own cost on a normal capture of 1 MB: a simulated plant session."""
+    records, size = [], 0
+    for data, stamp in generate_session(60_000, seed=3):
+        records.append((data, stamp))
+        size += len(data)
+        if size >= MB:
+            break
+    return _tshark_cost(write_pcap(tmp_path_factory.mktemp("normal") / "normal.pcap", records))
+
+
+@pytest.mark.parametrize("byte", [b":", b"+"])
+def test_a_flood_of_one_byte_costs_memory_like_a_normal_capture(tmp_path: Path, byte: bytes,
+                                                                normal_cost: tuple[float, int]) -> None:
+    # 1 MB of `:` took 0.9-1.5 GB (about 1 KB a colon); 0x2B is FC43 and a slave address at every byte.
+    data = byte * MB
+    pcap = write_pcap(tmp_path / "flood.pcap", [(data[at:at + 1024], 1767225600 + at / 1e6) for at in range(0, MB, 1024)])
+    _seconds, peak = _tshark_cost(pcap)
+    assert peak < 2 * normal_cost[1], (peak, normal_cost)
