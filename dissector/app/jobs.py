@@ -115,7 +115,11 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     except ProfileError as error:
         result.error = str(error)
         return result
-    tables = CaptureTables(settings.directory, capture.name, file_stem(capture.key))
+    try:
+        tables = CaptureTables(settings.directory, capture.name, file_stem(capture.key))
+    except OSError as error:  # DIR/frames and the others could not be made
+        result.error = f"--parquet {settings.directory}: {error.strerror or error}"
+        return result
     bus = BusTiming(settings.timeout)
     state: dict[str, Dissector] = {}
 

@@ -249,3 +249,12 @@ def test_a_bad_capture_is_one_line_and_the_others_are_written(tmp_path: Path) ->
     assert out == "p38_protection.pcap: 12 frames, 18 registers, 5 events\n"
     assert len(err.splitlines()) == 1 and err.startswith("vw3-decode: ") and "bad.pcap" in err
     assert sorted(os.listdir(tmp_path / "d" / "frames")) == [f for f in os.listdir(tmp_path / "d" / "frames") if f.startswith("p38")]
+
+
+def test_an_unwritable_dataset_folder_is_one_line(tmp_path: Path) -> None:
+    out = tmp_path / "d"
+    out.mkdir()
+    (out / "frames").write_text("a file where a folder must be")
+    status, stdout, err = run_cli(["--parquet", str(out), str(ROOT / "captures" / "p38_protection.pcap")])
+    assert (status, stdout) == (2, "")
+    assert err.startswith(f"vw3-decode: --parquet {out}: ") and len(err.splitlines()) == 1
