@@ -9,7 +9,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "dissector"
 STAGES = {
     "errors": 0, "model": 0,
     "protocol": 1, "sources": 2, "framing": 3, "decode": 4, "devices": 5, "pipeline": 6,
-    "render": 7, "accel": 8, "sim": 8, "codegen": 8, "app": 9, "__main__": 10,
+    "render": 7, "accel": 8, "sim": 8, "codegen": 8, "export": 8, "app": 9, "__main__": 10,
 }
 
 
