@@ -216,3 +216,11 @@ def test_minus_v_and_json_say_which_profile_named_the_registers_and_why() -> Non
     assert [register.get("code") for register in records[3]["registers"]] == ["CHCF", "COP"]
     forced = cli("--json", "--profile", "atv71", "-", stdin=DRIVE_READS)[1]
     assert "profile_reason" not in forced  # forced: the user said which, there is nothing to explain
+
+
+def test_the_profile_and_its_reason_are_fields_and_filter_keys() -> None:
+    out = cli("-T", "fields", "-e", "frame", "-e", "profile", "-e", "profile_reason", "-", stdin=DRIVE_READS)[1]
+    assert out.splitlines() == ["1\t\t", "2\t\t", "3\t\t", f"4\tatv71\t{DRIVE_REASON}"]
+    shown = cli("-Y", 'profile == "atv71"', "-", stdin=DRIVE_READS)[1]
+    assert [line.split()[0] for line in shown.splitlines()] == ["4"]
+    assert [line.split()[0] for line in cli("-Y", "!profile", "-", stdin=DRIVE_READS)[1].splitlines()] == ["1", "2", "3"]
