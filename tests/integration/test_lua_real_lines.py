@@ -129,3 +129,17 @@ def test_the_wizmodbus_line_as_a_pcap_of_reads(tmp_path: Path) -> None:
     cuts = sorted(rng.sample(range(1, len(stream)), 150))
     items = both(tmp_path / "reads.pcap", [stream[a:b] for a, b in zip([0, *cuts], [*cuts, len(stream)])])
     assert [raw for kind, raw in items if kind != "noise"] == sides
+
+
+def test_ascii_lines_that_lost_their_cr_and_reserved_addresses(tmp_path: Path) -> None:
+    def ascii_frame(hex_text: str) -> bytes:
+        from dissector.protocol.crc import lrc
+
+        binary = bytes.fromhex(hex_text)
+        return b":" + (binary + bytes([lrc(binary)])).hex().upper().encode() + b"\r\n"
+
+    lines = [ascii_frame("01 03 00 00 00 02"), ascii_frame("01 03 04 00 0A 00 14"),
+             ascii_frame("F8 03 20 D0 00 03"), ascii_frame("F8 03 06 00 01 00 02 00 03")]
+    records = [line.replace(b"\r", b"") for line in lines[:2]] + lines[2:]
+    items = both(tmp_path / "ascii.pcap", records)
+    assert [kind for kind, _ in items] == ["request", "response", "request", "response"]
