@@ -138,3 +138,21 @@ def test_omega_cn7500_recordings_on_a_glitching_line(tmp_path: Path) -> None:
     decoded = items(str(pcap(tmp_path / "omega.pcap", reads)))
     assert frames_of(decoded) == clean
     assert {item["slave"] for item in decoded if item["kind"] != "noise"} == {1, 10}
+
+
+def test_pymodbus_vectors_of_the_spec_example_clean_and_glitched() -> None:
+    """pymodbus's RTU framer vectors (test_check_frame): the specification's FC3 example answer of slave
+    17, valid with CRC 49 AD and invalid with 49 AC, after its request (aiomodbus's test of the same
+    pair asserts the registers 0xAE41, 0x5652, 0x4340)."""
+    request = bytes.fromhex("11 03 00 6B 00 03 76 87")
+    answer = bytes.fromhex("11 03 06 AE 41 56 52 43 40 49 AD")
+    for stream in (request + answer, request + b"\x00" + answer + b"\xfe", b"\xfe" + request + b"\x00" + answer):
+        decoded = [item for item in items("-", stdin=stream) if item["kind"] != "noise"]
+        assert [(item["kind"], item["crc_ok"]) for item in decoded] == [("request", True), ("response", True)]
+        assert [(r["address"], r["value"]) for r in decoded[1]["registers"]] == [(107, 0xAE41), (108, 0x5652), (109, 0x4340)]
+    damaged = answer[:-1] + b"\xac"
+    decoded = items("-", stdin=request + b"\x00" + damaged)
+    assert [(item["kind"], item.get("crc_ok")) for item in decoded] == [("request", True), ("noise", None), ("response", False)]
+    assert decoded[2]["crc"] == 0xAC49 and decoded[2]["crc_expected"] == 0xAD49
+    (single,) = items("-", stdin=bytes.fromhex("02 01 01 00 51 CC"))  # slave 2's FC1 answer, one byte
+    assert (single["kind"], single["slave"], single["crc_ok"], single["fields"]["byte_count"]) == ("response", 2, True, 1)
