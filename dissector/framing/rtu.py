@@ -19,7 +19,10 @@ warns.
 
 CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
 without that last byte, and any frame followed by a 00 checks one byte longer: when two layouts
-check out, a record boundary, else the one an intact frame follows, wins.
+check out, a record boundary, else the one an intact frame follows, wins. A line that keeps leaving
+00 glitches after frames is learnt (StreamFramer.glitchy: frames after glitch runs with a 00, less
+those after other noise): there a 00 after a frame is a glitch, and the shortest reading the line
+confirms wins (1 frame in 256 whose CRC ends in 00 is then shown a byte short: the bench counts them).
 
 The evidence a real line gives, weighed where a frame with a good CRC is found (the rule):
 - Anchors. Where a frame is expected to start, its CRC is enough: right after a frame (in step), at
@@ -29,6 +32,9 @@ The evidence a real line gives, weighed where a frame with a good CRC is found (
   driver's turn-around leaves one after frames (00 after requests, FE after responses on the
   sigrok-dumps wizmodbus line), a break reads as 00.
 - The answer awaited (its slave and function) counts on its CRC wherever it starts.
+- A glitch byte that is no device's address (00, F8, FC, FE, FF) followed by an intact frame is a
+  glitch, whatever reading starting at it checks: an idle FF before every frame would otherwise make
+  a reserved slave 255 pass a CRC once in 65,536 frames.
 - Elsewhere (resynchronising inside noise: each position tried is a 1 in 65,536 chance of a random
   CRC match) a frame counts when the line confirms it: the end of the input, a boundary or silence, or
   an intact frame right after it or after glitch bytes (at most GLITCH_SKIP); for a request, also a
@@ -38,8 +44,9 @@ The evidence a real line gives, weighed where a frame with a good CRC is found (
   the expectation or its own fields speak for it; random bytes need two chances in 65,536 at once.
 - A damaged frame (no layout checks out) is shown once, with its bad CRC, when its length is known,
   the line confirms its end as above (the end of the input only for the answer awaited), its address
-  is a device's (1..247 or 0), and it holds no intact frame inside (a cut frame must not swallow the
-  frames after it). The answer awaited cut by the end of the capture is noise whose reason says so
+  is a device's (1..247, or 0 with a function a broadcast may carry), it does not start with a glitch
+  byte before a frame, and it holds no intact frame inside (a cut frame must not swallow the frames
+  after it). The answer awaited cut by the end of the capture is noise whose reason says so
   ("the capture ends inside the response (8 of 9 bytes)"), never a frame of another kind.
 Otherwise the byte is noise and the framer resynchronises. Measured by bench/noise_accuracy.py (see
 README.md, Framing real lines): recovery and invented frames per kind of noise. Noise runs are
