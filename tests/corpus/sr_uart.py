@@ -1,6 +1,6 @@
 """Bytes from a sigrok session file (.sr): a plain UART decode of one logic channel.
 
-    python3 tests/corpus/sr_uart.py FILE.sr CHANNEL BAUD [--parity none|even|odd] [--records]
+    python3 tests/corpus/sr_uart.py FILE.sr CHANNEL BAUD [--parity none|even|odd] [--invert] [--records]
 
 A .sr file is a zip holding `metadata` (probe names, samplerate) and `logic-1-N` chunks of samples,
 `unitsize` bytes a sample, bit k of a sample being probe k+1. The decoder is the textbook one (sigrok's
@@ -40,9 +40,13 @@ def samples(path: str) -> tuple[bytes, int, int, dict[str, int]]:
     return data, unit, rate, probes
 
 
-def uart(data: bytes, unit: int, bit: int, rate: int, baud: int, parity: str = "none") -> list[tuple[float, int]]:
-    """(time of the start bit in seconds, byte) of every character on channel `bit`."""
-    level = [(data[i * unit + bit // 8] >> (bit % 8)) & 1 for i in range(len(data) // unit)]
+def uart(
+    data: bytes, unit: int, bit: int, rate: int, baud: int, parity: str = "none", invert: bool = False
+) -> list[tuple[float, int]]:
+    """(time of the start bit in seconds, byte) of every character on channel `bit`; `invert`: the
+    probe sits on an RS-232 line (idle low at logic level)."""
+    flip = 1 if invert else 0
+    level = [((data[i * unit + bit // 8] >> (bit % 8)) & 1) ^ flip for i in range(len(data) // unit)]
     per_bit = rate / baud
     extra = 0 if parity == "none" else 1
     out: list[tuple[float, int]] = []
@@ -82,11 +86,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("baud", type=int)
     parser.add_argument("--parity", choices=("none", "even", "odd"), default="none")
     parser.add_argument("--records", action="store_true")
+    parser.add_argument("--invert", action="store_true", help="an RS-232 line: idle reads low")
     parser.add_argument("--gap", type=float, default=1.5, help="idle characters that end a record (default 1.5)")
     args = parser.parse_args(argv)
     data, unit, rate, probes = samples(args.file)
     bit = probes[args.channel] if args.channel in probes else int(args.channel)
-    chars = uart(data, unit, bit, rate, args.baud, args.parity)
+    chars = uart(data, unit, bit, rate, args.baud, args.parity, args.invert)
     if args.records:
         bits = 10 if args.parity == "none" else 11
         for time, group in bursts(chars, args.baud, args.gap, bits):

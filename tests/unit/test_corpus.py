@@ -156,3 +156,23 @@ def test_pymodbus_vectors_of_the_spec_example_clean_and_glitched() -> None:
     assert decoded[2]["crc"] == 0xAC49 and decoded[2]["crc_expected"] == 0xAD49
     (single,) = items("-", stdin=bytes.fromhex("02 01 01 00 51 CC"))  # slave 2's FC1 answer, one byte
     assert (single["kind"], single["slave"], single["crc_ok"], single["fields"]["byte_count"]) == ("response", 2, True, 1)
+
+
+def test_brainchild_io16do_decodes_as_its_activity_script_says() -> None:
+    """sigrok-dumps brainchild_io_16do: a PC running minimalmodbus (8E1, 19200 baud) polls slave 1 with
+    one request of each of FC1..FC6, FC15, FC16, as its brainchild-io-16do-activity.py script says."""
+    stream = b"".join(data for _time, data in records("brainchild_io16do.records"))
+    decoded = items("-", stdin=stream)
+    assert len(decoded) == 30 and all(item["kind"] != "noise" and item["crc_ok"] for item in decoded)
+    assert [item["kind"] for item in decoded] == ["request", "response"] * 15
+    assert {item["slave"] for item in decoded} == {1}
+    assert [item["function"] for item in decoded[:16:2]] == [1, 2, 3, 4, 5, 6, 15, 16]
+    requests = decoded[:16:2]
+    assert [(item["start"], item["quantity"]) for item in requests[:4]] == [(3, 1), (0, 1), (99, 1), (120, 1)]
+    assert (requests[4]["fields"]["address"], requests[4]["fields"]["value"]) == (3, 0xFF00)  # write_bit(3, True)
+    assert (requests[5]["fields"]["address"], requests[5]["fields"]["value"]) == (1, 0b01010101)
+    assert (requests[6]["start"], [bit["value"] for bit in requests[6]["bits"]]) == (2, [1])  # write_bit(2, True) by FC15
+    assert (requests[7]["start"], [r["value"] for r in requests[7]["registers"]]) == (1, [0b10101010])
+    answers = decoded[1:16:2]
+    assert [bit["value"] for bit in answers[0]["bits"]] == [1] and [bit["value"] for bit in answers[1]["bits"]] == [0]
+    assert [r["value"] for r in answers[2]["registers"]] == [513] and [r["value"] for r in answers[3]["registers"]] == [19200]
