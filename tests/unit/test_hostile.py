@@ -407,12 +407,22 @@ def test_stats_on_a_write_flood_over_64_slaves_stays_under_200_mb(tmp_path: Path
             assert report["parameter_events_dropped"] == 7_864_320
 
 
+# Started from a small process: a child forked (or vforked) straight from the test run inherits the run's
+# own peak in ru_maxrss at exec (Linux keeps the old memory's high-water mark), so after a few hundred
+# tests in one pytest process the figure was pytest's (295 MB to 2.7 GB), not vw3-decode's.
+_MEASURE = (
+    "import os, subprocess, sys\n"
+    "process = subprocess.Popen(sys.argv[2:])\n"
+    "_pid, status, usage = os.wait4(process.pid, 0)\n"
+    "open(sys.argv[1], 'w').write(f'{os.waitstatus_to_exitcode(status)} {usage.ru_maxrss}')\n"
+)
+
+
 def _peak_rss(tmp_path: Path, *argv: str) -> tuple[int, str, int]:
     """(exit status, standard output, peak resident memory in kB) of one vw3-decode process."""
-    out_path = tmp_path / "out.txt"
+    out_path, measure = tmp_path / "out.txt", tmp_path / "measure.txt"
     with out_path.open("wb") as out:
-        process = subprocess.Popen([sys.executable, "-m", "dissector", *argv], stdout=out, cwd=ROOT,
-                                   env={**os.environ, "PYTHONPATH": str(ROOT)})
-        _pid, status, usage = os.wait4(process.pid, 0)
-        process.returncode = os.waitstatus_to_exitcode(status)
-    return process.returncode, out_path.read_text(encoding="utf-8"), usage.ru_maxrss
+        subprocess.run([sys.executable, "-c", _MEASURE, str(measure), sys.executable, "-m", "dissector", *argv],
+                       stdout=out, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, check=True)
+    status, peak = map(int, measure.read_text().split())
+    return status, out_path.read_text(encoding="utf-8"), peak
