@@ -263,8 +263,9 @@ def run_live(
     stats.not_shown = handoff.dropped + sink.dropped
     seconds = time.monotonic() - started
     names = files.names
-    written = f"; wrote {', '.join(names)}" if names else ""
     status = capture.status
+    # After a failure the error says what the files keep; "wrote" is for a capture that ended well.
+    written = f"; wrote {', '.join(names)}" if names and status == ExitStatus.OK else ""
     if status != ExitStatus.OK:
         err.write(f"{PROG}: error: {capture.reason}; capture files closed\n")
     hidden = stats.not_shown_text()

@@ -19,6 +19,10 @@ computes the same response times, to the last bit, as the live display.
 """
 from __future__ import annotations
 
+import contextlib
+import os
+import stat
+
 import copy
 import threading
 import time
@@ -92,9 +96,18 @@ class CaptureFiles:
                 self._failed(self.output.name, error)
 
     def _failed(self, path: str | None, error: OSError) -> None:
-        # A full disk or a vanished mount: stop writing (files keep every whole record) and say so.
+        # A full disk or a vanished mount: stop writing (files keep every whole record) and say what
+        # they keep.
+        kept = ""
+        if self.output is not None and path == self.output.name:
+            kept = f"; {self.output.kept}"
+        elif self._raw is not None:
+            with contextlib.suppress(OSError, ValueError):
+                info = os.fstat(self._raw.fileno())
+                if stat.S_ISREG(info.st_mode):  # (a device such as /dev/full keeps nothing to count)
+                    kept = f"; {path} keeps {info.st_size:,} bytes"
         self.close()
-        raise LiveError(f"cannot write {path}: {error.strerror or error}", ExitStatus.ERROR)
+        raise LiveError(f"cannot write {path}: {error.strerror or error}{kept}", ExitStatus.ERROR)
 
     def close(self) -> None:
         output, raw = self.output, self._raw

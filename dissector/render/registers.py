@@ -19,6 +19,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from dissector.protocol.table import FUNCTIONS
+from dissector.render.printable import printable
 
 COLUMNS = (
     "frame", "time", "slave", "function", "access", "address", "label", "code", "name", "value", "scaled",
@@ -67,8 +68,13 @@ class RegistersWriter:
     """Formats records as register lines with `-E` separator, quote, header and bom (FieldsOptions)."""
 
     def __init__(self, separator: str = "\t", quote: str = "", header: bool = False, bom: bool = False,
-                 with_file: bool = False) -> None:
+                 with_file: bool = False, formulas: bool = False) -> None:
+        from dissector.render.fields import SPREADSHEET_SEPARATORS
+
         self.separator = separator
+        # Values are data (map texts, FC17 bytes): as -T fields, escaped, and neutralised for a
+        # spreadsheet with a , or ; separator unless -E formulas=y.
+        self._neutralise = separator in SPREADSHEET_SEPARATORS and not formulas
         self.quote = quote
         self.header = header
         self.bom = bom
@@ -79,6 +85,8 @@ class RegistersWriter:
         return (self.separator.join(self.columns) if self.header else None), ("\ufeff" if self.bom else "")
 
     def lines(self, record: dict[str, Any], time: str | None) -> list[str]:
+        from dissector.render.fields import neutralise
+
         quote, separator = self.quote, self.separator
         file = record.get("file")
         out = []
@@ -86,7 +94,9 @@ class RegistersWriter:
             row["time"] = time
             if file is not None:
                 row["file"] = file
-            values = [_text(row.get(column)) for column in self.columns]
+            values = [printable(_text(row.get(column))) for column in self.columns]
+            if self._neutralise:
+                values = [neutralise(value) for value in values]
             if quote:
                 values = [quote + value.replace(quote, quote + quote) + quote for value in values]
             out.append(separator.join(values))
@@ -103,4 +113,5 @@ def parse_registers_options(settings: list[str], with_file: bool) -> RegistersWr
         if name in ("occurrence", "aggregator"):
             raise UsageError(f"-E {name}: -T registers has one value a line; use header, separator, quote or bom")
     options = parse_fields_options([], settings)
-    return RegistersWriter(options.separator, QUOTES[options.quote], options.header, options.bom, with_file)
+    return RegistersWriter(options.separator, QUOTES[options.quote], options.header, options.bom, with_file,
+                           options.formulas)

@@ -426,3 +426,16 @@ def _peak_rss(tmp_path: Path, *argv: str) -> tuple[int, str, int]:
                        stdout=out, cwd=ROOT, env={**os.environ, "PYTHONPATH": str(ROOT)}, check=True)
     status, peak = map(int, measure.read_text().split())
     return status, out_path.read_text(encoding="utf-8"), peak
+
+
+def test_register_lines_are_neutralised_for_a_spreadsheet_too(tmp_path: Path) -> None:
+    map_file = tmp_path / "map.csv"
+    map_file.write_text('address,code,name\n8401,=CMD,"@SUM(A1)"\n', encoding="utf-8")
+    capture = tmp_path / "read.bin"
+    capture.write_bytes(rtu("0c0320d10001") + rtu("0c03020003"))
+    argv = ["--map", str(map_file), "-T", "registers", "-E", "separator=,", str(capture)]
+    status, out, err = run_cli(argv)
+    assert (status, err) == (0, "")
+    assert out.splitlines()[0].split(",")[7:9] == ["'=CMD", "'@SUM(A1)"]
+    status, out, err = run_cli([*argv, "-E", "formulas=y"])
+    assert out.splitlines()[0].split(",")[7:9] == ["=CMD", "@SUM(A1)"]
