@@ -1,7 +1,7 @@
 """The compiled summary path (dissector/accel/_summary.c); everything else is declared in pyproject.toml.
 
 The extension is optional: without a C compiler the package installs and runs on the pure-Python
-stages, which are the reference the extension is tested against (tests/test_fastsummary.py).
+stages, which are the reference the extension is tested against (tests/differential/test_fastsummary.py).
 """
 from setuptools import Extension, setup
 

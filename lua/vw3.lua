@@ -7,7 +7,7 @@
 -- through Decode As, and Modbus RTU over TCP on the port set in the preferences.
 --
 -- The framing, pairing and decoding below mirror the Python package (dissector/framing/rtu.py, pairing.py,
--- decode.py, profile_annotator.py) rule for rule; a parity test runs tshark with this file and compares
+-- decode/fields.py, devices/annotator.py) rule for rule; a parity test runs tshark with this file and compares
 -- every frame with the Python decoder. The tables between the GENERATED markers come from the package's
 -- data files (python3 -m dissector.codegen.lua); a test fails when they are stale.
 --
@@ -1282,7 +1282,7 @@ local NEED, NONE = -1, 0
 local REQUEST, RESPONSE, EXCEPTION, NOISE = "request", "response", "exception", "noise"
 
 -- A length rule returns the frame's length, NEED, or NONE; or (minimum, true) when the layout gives no
--- length and the frame is to be found by scanning for a CRC from that minimum (framer.Scan).
+-- length and the frame is to be found by scanning for a CRC from that minimum (rules.Scan).
 local function fixed(length)
   return function() return length end
 end
@@ -2322,7 +2322,7 @@ local function exception_name(code)
 end
 
 -- ---------------------------------------------------------------------------------------------------
--- Decoding (dissector/protocol/grammar.py + decode.py): PDU data after the function code, then the handlers.
+-- Decoding (dissector/protocol/grammar.py + decode/fields.py): PDU data after the function code, then the handlers.
 local function u16(b, k) return b[k] * 256 + b[k + 1] end
 
 -- A frame's warnings and notes lists are made with their first entry (most frames have none).
@@ -2560,7 +2560,7 @@ do
   for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
 end
 
--- Handlers (decode.py): lift out start, quantity, registers, bits, objects; check the spec.
+-- Handlers (decode/fields.py): lift out start, quantity, registers, bits, objects; check the spec.
 local H = { [REQUEST] = {}, [RESPONSE] = {} }
 
 local function read_request_handler(f, b)
@@ -2616,7 +2616,7 @@ local function read_registers_response_handler(f, b)
   f.registers = make_registers(b, fields.values_at, fields.count, start)
 end
 
--- decode._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
+-- fields._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
 -- In a block of its own: the main chunk is at Lua's 200 locals.
 local write_single_coil_handler, write_single_register_handler
 do
@@ -2847,7 +2847,7 @@ local device_now -- (the device a frame is annotated with: profile auto chooses 
 local summary -- (the Info text of a frame: defined with the display)
 
 -- ---------------------------------------------------------------------------------------------------
--- Device profiles and register maps (profiles.py, maps.py, profile_annotator.py): names, scaling, the
+-- Device profiles and register maps (profiles.py, maps.py, devices/annotator.py): names, scaling, the
 -- 16#8000 semantics, exception explanations, device limits. Profile data come from the generated block.
 local PROFILES = DATA.profiles or {}
 local READS = DATA.protocol.reads

@@ -124,7 +124,7 @@ static int out_str(Out *o, PyObject *text) {
     return o->failed ? -1 : 0;
 }
 
-/* profile_annotator._plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
+/* naming.plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
 static void out_label(Out *o, long long base, unsigned address) {
     if (base < 0) {
         out_uint(o, address, 0);
@@ -177,7 +177,7 @@ typedef struct {
     uint8_t *sources;         /* the addresses those rules depend on */
     uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
     uint8_t *explained;       /* FC8 sub-functions the device profile explains (a note: Python's) */
-    long long base[HANDLED];  /* PLC-style display: 40001 + address (profile_annotator._plc_label); -1: none */
+    long long base[HANDLED];  /* PLC-style display: 40001 + address (naming.plc_label); -1: none */
     unsigned long depend_run; /* the run() the answer below was found in */
     unsigned depend_address;
     int depend_plain;
@@ -380,13 +380,13 @@ static Slave *slave_for(Engine *e, int address) {
     return s;
 }
 
-/* ---- framing: framer.py's fast path, for the codes handled here -------------------------------- */
+/* ---- framing: framing/rtu.py's fast path, for the codes handled here -------------------------- */
 typedef struct {
     Py_ssize_t at, length;
     int kind, slave, function;
 } FrameRef;
 
-/* framing/rtu.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
+/* framing/rules.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
 static Py_ssize_t special_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int special) {
     if (i + 2 >= n) return FRAME_NEED;
     if (b[i + 2] != 14) return FRAME_HANDOVER;
@@ -538,7 +538,7 @@ static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, P
     return n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER; /* nothing: noise, the careful path's */
 }
 
-/* Frame length by the first interpretation (framer.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
+/* Frame length by the first interpretation (framing/rtu.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
  * *scanned: found by a CRC scan (FC8's Return Query Data), CRC and what follows checked already. */
 static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function,
                                int kind, int *scanned) {
@@ -576,7 +576,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     }
     int kind;
     if (function & 0x80) {
-        /* An exception: taken on the fast path only as the answer awaited (framer.py _run). */
+        /* An exception: taken on the fast path only as the answer awaited (framing/rtu.py _run). */
         if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
         kind = KIND_EXCEPTION;
     } else {
@@ -603,7 +603,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
 
 /* ---- registers ---------------------------------------------------------------------------------- */
 typedef struct {
-    unsigned start;        /* first address; addresses wrap at 65536 as decode._registers does */
+    unsigned start;        /* first address; addresses wrap at 65536 as fields._registers does */
     unsigned count;
     const uint8_t *values; /* big-endian words */
 } Words;
@@ -857,7 +857,7 @@ static PyObject *subfunction_name(Engine *e, unsigned sub) {
     return name;
 }
 
-/* decode._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
+/* fields._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
  * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over, -1 error. */
 static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length) {
     unsigned sub = word(f + 2);
@@ -938,7 +938,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
         r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
         r->has_writes = 1;
     }
-    if (L->coil_at) { /* decode._write_single_coil warns of any value but ON and OFF */
+    if (L->coil_at) { /* fields._write_single_coil warns of any value but ON and OFF */
         r->value = word(f + L->coil_at);
         if (r->value != 0xFF00 && r->value != 0) return 0;
     }
@@ -1068,7 +1068,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         if (f[2] != 2 * r->quantity) return 0;
         *reads = (Words){r->start, r->quantity, f + 3};
         break;
-    case 6: {  /* decode._check_echo: an answer that is not the request's echo gets a warning */
+    case 6: {  /* fields._check_echo: an answer that is not the request's echo gets a warning */
         if (word(f + 2) != r->start || word(f + 4) != word(r->writes.values)) return 0;
         Words echo = {word(f + 2), 1, f + 4};
         return words_are_plain(s, e->run_number, &echo);
@@ -1085,7 +1085,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         return 1;
     case 12: /* events are byte count - 6 bytes: a shorter count is malformed */
         return f[2] >= 6;
-    case 24: /* decode._fifo_response: at most 31 values, byte count 2 + 2 x count */
+    case 24: /* fields._fifo_response: at most 31 values, byte count 2 + 2 x count */
         return word(f + 4) <= 31 && word(f + 2) == 2 + 2 * word(f + 4);
     default:
         return 0;

@@ -217,7 +217,7 @@ def test_plc_style_addresses_come_from_the_engine() -> None:
     got = assert_same(data, lambda: build_annotator(["sel749m"], [], None))
     assert got.engine_lines > len(got.lines) // 2
     assert "   2            -   1 response  Read Holding Registers 40001..40016 (16): 40001=" in got.lines[1]
-    # Past 49999, six-digit references (profile_annotator._plc_label), as the Python stages show them.
+    # Past 49999, six-digit references (naming.plc_label), as the Python stages show them.
     high = read(1, 9998, [1, 2, 3]) + write_single(1, 9999, 7) + read(1, 0, [5])
     got = assert_same(high, lambda: build_annotator(["sel749m"], [], None))
     assert got.lines[0].endswith("Read Holding Registers 49999..410001 (3)  CRC ok")  # 400001 + 10000

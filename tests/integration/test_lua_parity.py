@@ -273,7 +273,7 @@ def test_fuzzed_ascii_stream_in_one_record_parity(tmp_path: Path) -> None:
 
 def test_awaited_answer_followed_by_00_parity(tmp_path: Path) -> None:
     # CRC-16/MODBUS has no final XOR: an answer followed by a 00 byte also checks as an 8-byte request.
-    # Both take the answer awaited (framer.py _match, vw3.lua match), in one record and across records.
+    # Both take the answer awaited (framing/rtu.py _match, vw3.lua match), in one record and across records.
     from dissector.protocol.crc import with_crc
 
     request = with_crc(bytes.fromhex("0c0320d10001"))
