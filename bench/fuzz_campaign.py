@@ -45,6 +45,15 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path[:0] = [str(ROOT), *(str(ROOT / "tests" / sub) for sub in ("", "support", "differential"))]
 
+if not any((ROOT / "dissector" / "accel").glob("_summary*.so")) and sys.argv[1:2] != ["--atheris-child"]:
+    # A clean clone: the engine target compares the compiled path with the Python stages, so build it
+    # in place as `pip install -e .` does (without a C compiler the engine target is left out).
+    built = subprocess.run([sys.executable, "setup.py", "-q", "build_ext", "--inplace"], cwd=ROOT,
+                           capture_output=True, text=True)
+    if built.returncode != 0:
+        print(f"the compiled extension could not be built (the engine target is left out): "
+              f"{(built.stderr.strip().splitlines() or ['?'])[-1]}", file=sys.stderr)
+
 if sys.argv[1:2] == ["--atheris-child"]:
     # Instrument the dissector and construct (its grammars) for coverage as they are first imported
     # (not everything: instrumenting hypothesis too costs a minute per child and guides nothing).
@@ -515,6 +524,11 @@ def main(argv: list[str] | None = None) -> int:
             engines = [engine for engine in engines if engine != "atheris"] or ["hypothesis"]
     signal.signal(signal.SIGALRM, _on_alarm)
     names = args.target or list(TARGETS)
+    from dissector.accel import fastsummary
+
+    if fastsummary._summary is None and "engine" in names:
+        print("dissector.accel._summary is not built: the engine target is left out", file=sys.stderr)
+        names.remove("engine")
     timed = [engine for engine in engines if engine != "mutate"]
     share = args.seconds / (len(names) * len(timed)) if timed else 0.0
     OUT.mkdir(parents=True, exist_ok=True)
