@@ -2,7 +2,8 @@
 
     python3 bench/throughput.py [--frames 100000] [--repeat 3] [--mix NAME] [--memory] [--gigabyte]
 
-Mixes (each generated reproducibly, written raw for vw3-decode and as a USER0 pcap for tshark's mbrtu):
+Mixes (each generated reproducibly and written as a USER0 pcap, which both tools read: vw3-decode and
+tshark's mbrtu; also written raw, whose vw3-decode summary is printed beside as the raw-stream figure):
 - polling: the cyclic ATV71 I/O scan with SEL-749M polls (dissector.sim.simulate.generate_session);
 - plant: 4 drives, 2 relays polled for 40-register blocks, a coil/input module (FC1/2/5/15), an energy
   meter (FC4), changing values, ~1 % exceptions (dissector.sim.mixes.plant_mix), decoded with the
@@ -10,8 +11,9 @@ Mixes (each generated reproducibly, written raw for vw3-decode and as a USER0 pc
 - max-size: every public function code at random quantities up to the spec limits, random slaves
   (dissector.sim.mixes.max_size_mix), decoded with the generic profile (and timed with the default
   ATV71 one apart).
-For each mix it times, best of --repeat interleaved rounds: vw3-decode's summary, --json, -V and
---stats, and tshark's summary, -T json and -V with CRC verification on; peak RSS of every vw3-decode
+For each mix it times, best of --repeat interleaved rounds, on the same pcap file: vw3-decode's summary,
+--json, -V and --stats, and tshark's summary, -T json and -V with CRC verification on; and vw3-decode's
+summary of the raw stream of the same frames; peak RSS of every vw3-decode
 run comes from the same runs (timed from a small probe process). Sub-second commands run SHORT_RUNS
 times a round. The package is byte-compiled first, as pip does. It prints the seconds of every run, then one table of ratios from
 this one run. With --memory, peak RSS on each mix repeated tenfold; with --gigabyte, also at 1 GB.
@@ -96,9 +98,10 @@ def measure(mix: Mix, frames: int, repeat: int, out: Path, tshark: str) -> dict[
     records = mix.records(frames)
     raw, pcap = write_capture(records, out / mix.name)
     print(f"{mix.name}: {len(records)} frames, {raw.stat().st_size:,} bytes raw", flush=True)
-    vw3 = VW3 + [str(raw), *mix.options]
+    vw3 = VW3 + [str(pcap), *mix.options]
     runs = {
         "summary": vw3,
+        "summary raw": VW3 + [str(raw), *mix.options],
         "--json": vw3 + ["--json"],
         "-V": vw3 + ["-V"],
         "--stats": vw3 + ["--stats"],
@@ -109,7 +112,7 @@ def measure(mix: Mix, frames: int, repeat: int, out: Path, tshark: str) -> dict[
     if mix.name == "polling":
         runs["summary -n"] = vw3 + ["-n"]
     if mix.name == "max-size":
-        runs["summary atv71"] = VW3 + [str(raw)]
+        runs["summary atv71"] = VW3 + [str(pcap)]
     # Rounds interleave the commands, so a slow spell of a shared machine hits them all alike; a 30 ms
     # hiccup would move the ratio of two 0.3 s runs by 10%, hence several runs of the short ones.
     best = {name: (float("inf"), 0.0) for name in runs}
@@ -126,9 +129,9 @@ def measure(mix: Mix, frames: int, repeat: int, out: Path, tshark: str) -> dict[
 
 def ratio_table(results: dict[str, dict[str, tuple[float, float]]]) -> str:
     lines = [
-        "| mix | frames | summary vs tshark | `--json` vs `tshark -T json` | `-V` vs `tshark -V` "
-        "| `--stats` time / summary time | peak RSS |",
-        "|---|---:|---:|---:|---:|---:|---:|",
+        "| mix | frames | summary vs tshark | (raw stream vs tshark) | `--json` vs `tshark -T json` "
+        "| `-V` vs `tshark -V` | `--stats` time / summary time | peak RSS |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for name, best in results.items():
         seconds = {run: value[0] for run, value in best.items()}
@@ -136,6 +139,7 @@ def ratio_table(results: dict[str, dict[str, tuple[float, float]]]) -> str:
         lines.append(
             f"| {name} | {int(seconds['frames']):,} "
             f"| {seconds['tshark summary'] / seconds['summary']:.2f}x "
+            f"| ({seconds['tshark summary'] / seconds['summary raw']:.2f}x) "
             f"| {seconds['tshark -T json'] / seconds['--json']:.2f}x "
             f"| {seconds['tshark -V'] / seconds['-V']:.2f}x "
             f"| {seconds['--stats'] / seconds['summary']:.2f} "

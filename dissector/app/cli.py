@@ -28,7 +28,6 @@ from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
 from dissector.errors import ProfileError
-from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output
 from dissector.render.printable import printable
 from dissector.render.timefmt import Clock
@@ -181,6 +180,8 @@ class Sinks:
         if self.health is not None:
             self.health.add_items(items)
         if predicate is not None:
+            from dissector.render.jsonout import item_to_dict  # -Y only
+
             self._filter_times(items)
             # The filter reads the NDJSON form; keep it for --json rather than building it twice.
             pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]

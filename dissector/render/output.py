@@ -9,16 +9,16 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
-from dissector.render.detail import detail_text, detail_tree, render_rich
-from dissector.render.fields import FieldsOptions, FieldsWriter
-from dissector.render.hexdump import hexdump
-from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.render.printable import printable
-from dissector.render.registers import RegistersWriter
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
 
+# The writers of -V, -x, --json and -T are imported by the output that uses them (a one-frame summary
+# starts faster without them).
+
 if TYPE_CHECKING:
+    from dissector.render.fields import FieldsOptions
+    from dissector.render.registers import RegistersWriter
     from rich.console import Console
 
 BATCH = 512
@@ -63,7 +63,11 @@ class Output:
                 soft_wrap=False,
             )
         self._buffer: list[str] = []
-        self.fields = FieldsWriter(options.fields) if options.fields is not None else None
+        self.fields = None
+        if options.fields is not None:
+            from dissector.render.fields import FieldsWriter
+
+            self.fields = FieldsWriter(options.fields)
         time_keys = self.fields.time_keys if self.fields is not None else ()
         self.clock = Clock(options.time_format, deltas="time_delta" in time_keys)
         self._prefix = ""  # written before the first line (-E bom=y)
@@ -100,6 +104,12 @@ class Output:
         options = self.options
         out = self._buffer
         clock = self.clock
+        if options.records:
+            from dissector.render.jsonout import item_to_dict, item_to_json
+        if options.detail:
+            from dissector.render.detail import detail_text
+        if options.hexdump:
+            from dissector.render.hexdump import hexdump
         size = 0  # characters appended since the last flush (by this call)
         for index, item in enumerate(items):
             if options.records:
@@ -171,7 +181,12 @@ class Output:
     def _write_rich(self, item: Item) -> None:
         console = self.console
         assert console is not None
+        from dissector.render.hexdump import hexdump
+
         if self.options.detail:
+            from dissector.render.detail import detail_tree, render_rich
+
+
             console.print(render_rich(detail_tree(item, self.clock.first)))
         else:
             console.print(summary_text(item, column=self.clock.text(item)))
