@@ -4270,6 +4270,9 @@ do
   end
 
   function pack.item(f)
+    -- Noise in 9 slots, not 19 and a table of rare keys: a flood of ':' in ASCII mode is a noise item a
+    -- byte (as vw3-decode shows it), 1 KB each kept this way (1 MB of ':' took 1.1 GB).
+    if f.kind == NOISE then return { NOISE, f.at, f.length, f.number, f.offset, f.record, f.time, f.reason, f.raw } end
     local request, response = f.request, f.response
     local request_record, request_time, response_record = nil, nil, nil
     if request ~= nil then request_record, request_time = request.record, request.time end
@@ -4496,6 +4499,10 @@ do
   function pack.expand(p, st)
     if type(p) == "number" then return expand_flat(st, p) end
     if p.kind ~= nil then return p end
+    if p[1] == NOISE then
+      return { kind = NOISE, at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
+        reason = p[8], raw = p[9] }
+    end
     local f = { kind = p[1], at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
       slave = p[8], fn = p[9], crc = p[10], crc_expected = p[11], start = p[12], quantity = p[13],
       registers = expand_run(p[14]), bits = expand_run(p[15]) }

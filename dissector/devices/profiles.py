@@ -19,6 +19,7 @@ from typing import Any
 
 from dissector.devices.maps import ProfileError, RegisterMap, load_builtin_map, load_map_file
 from dissector.devices.readfile import read_capped
+from dissector.render.printable import printable
 from dissector.protocol.spec import SPEC
 
 
@@ -101,7 +102,8 @@ class _Reader:
         value = data.get(key, default)
         if value is not None and not isinstance(value, str):
             raise self.fail(f"{key} must be a string")
-        return value
+        # A profile's texts are shown: control characters escaped (the map's file name is a path).
+        return value if value is None or key == "map" else printable(value)
 
     def integer(self, value: Any, what: str, low: int = 0, high: int = 0xFFFF) -> int:
         if isinstance(value, str):
@@ -132,7 +134,7 @@ class _Reader:
         for code, text in self.table(data, key).items():
             if not isinstance(text, str):
                 raise self.fail(f"[{key}] {code} must be a string")
-            out[self.integer(code, f"[{key}] key", 0, high)] = text
+            out[self.integer(code, f"[{key}] key", 0, high)] = printable(text)
         return out
 
 

@@ -439,3 +439,26 @@ def test_register_lines_are_neutralised_for_a_spreadsheet_too(tmp_path: Path) ->
     assert out.splitlines()[0].split(",")[7:9] == ["'=CMD", "'@SUM(A1)"]
     status, out, err = run_cli([*argv, "-E", "formulas=y"])
     assert out.splitlines()[0].split(",")[7:9] == ["=CMD", "@SUM(A1)"]
+
+
+def test_a_profiles_texts_are_escaped(tmp_path: Path) -> None:
+    profile = tmp_path / "p.toml"
+    profile.write_text('name = "p"\ntitle = "T\\u001b[2J"\n[exceptions]\n2 = "bad\\u001b]8;;x\\u0007 address"\n',
+                       encoding="utf-8")
+    status, out, err = run_cli(["--profile", str(profile), "--hex", rtu("0c0320d00003").hex(), "--hex",
+                                rtu("0c8302").hex()])
+    assert (status, err) == (0, "")
+    assert ESC not in out and "\x07" not in out
+    assert "bad\\x1b]8;;x\\x07 address" in out
+
+
+def test_the_fuzz_campaign_runs_as_shipped(tmp_path: Path) -> None:
+    # It failed with `ModuleNotFoundError: test_fuzz` without a PYTHONPATH.
+    env = {key: value for key, value in os.environ.items() if key != "PYTHONPATH"}
+    done = subprocess.run([sys.executable, str(ROOT / "bench" / "fuzz_campaign.py"), "--inputs", "90",
+                           "--seconds", "0", "--plugin-records", "0", "--json", str(tmp_path / "f.json")],
+                          capture_output=True, text=True, cwd=tmp_path, env=env, timeout=600)
+    assert done.returncode == 0, done.stderr[-2000:]
+    figures = json.loads((tmp_path / "f.json").read_text())
+    assert (figures["inputs"], figures["tracebacks"], figures["differences"]) == (90, 0, 0)
+    assert len(figures["formats"]) == 10 and {o["target"] for o in figures["outcomes"]} >= {"cli", "engine", "readers"}
