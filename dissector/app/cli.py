@@ -29,7 +29,7 @@ from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
 from dissector.errors import ProfileError
 from dissector.render.output import Output
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.sources.reader import NOTATIONS, SourceError, open_source

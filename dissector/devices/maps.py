@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from dissector.errors import ProfileError
 from dissector.devices.readfile import read_capped
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 import csv
 import math
 import re

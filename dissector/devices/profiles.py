@@ -19,7 +19,7 @@ from typing import Any
 
 from dissector.devices.maps import ProfileError, RegisterMap, load_builtin_map, load_map_file
 from dissector.devices.readfile import read_capped
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 from dissector.protocol.spec import SPEC
 
 

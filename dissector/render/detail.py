@@ -16,7 +16,7 @@ from construct import ListContainer
 from dissector.model import BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 from dissector.render.summary import crc_text, noise_info
 
 if TYPE_CHECKING:

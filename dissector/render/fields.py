@@ -25,7 +25,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
 # Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).

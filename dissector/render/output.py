@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 from dissector.render.summary import summary_line, summary_text
 from dissector.render.timefmt import Clock
 

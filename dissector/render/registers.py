@@ -19,7 +19,7 @@ from collections.abc import Iterator
 from typing import Any
 
 from dissector.protocol.table import FUNCTIONS
-from dissector.render.printable import printable
+from dissector.protocol.printable import printable
 
 COLUMNS = (
     "frame", "time", "slave", "function", "access", "address", "label", "code", "name", "value", "scaled",
