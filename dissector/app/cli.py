@@ -18,7 +18,7 @@ from typing import BinaryIO, TextIO
 
 from dissector.errors import ExitStatus, OutputError, UsageError
 from dissector.framing.ascii import AsciiFramer
-from dissector.render.filters import FilterError
+from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from dissector.errors import UsageError
-from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS
+from dissector.render.filter_fields import FRAME_FIELDS, REGISTER_FIELDS  # not filters: its compiler is for -Y only
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 

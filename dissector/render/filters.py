@@ -49,8 +49,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from dissector.errors import MalformedInput
 from dissector.model import REGISTER_STATUSES
+from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
     _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing,
 )
@@ -80,18 +80,6 @@ MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's la
 
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
-
-
-class FilterError(MalformedInput):
-    """A filter that cannot be compiled; str() shows the expression and a caret under the token."""
-
-    def __init__(self, message: str, text: str, position: int) -> None:
-        self.message = message
-        self.text = text
-        self.position = position
-        column = position + 1
-        line = text.replace("\t", " ").replace("\n", " ").replace("\r", " ")
-        super().__init__(f"{message} (column {column})\n  {line}\n  {' ' * position}^")
 
 
 @dataclass(slots=True)
