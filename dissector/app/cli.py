@@ -384,6 +384,7 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {warning}\n")
 
+            _choose_profiles(annotate, args, chunks, mode, path)
             framer = AsciiFramer(args.baud) if mode == "ascii" else RtuFramer(args.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
@@ -405,6 +406,22 @@ def _decode_inputs(
     except BaseException:
         sinks.abandon()
         raise
+
+
+def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
+                     path: str | None) -> None:
+    """Profile `auto`: the choices made over the whole input first, where it can be read twice."""
+    if getattr(annotate, "selector", None) is None:
+        return
+    from dissector.app.preselect import choose_profiles, rereadable
+
+    if path is None:  # --hex: its chunks are a list
+        choose_profiles(annotate, chunks, mode, args.baud, args.timeout)  # type: ignore[arg-type]
+    elif rereadable(path):
+        with open_source(path, args.format, mode=args.mode) as again:
+            choose_profiles(annotate, again, mode, args.baud, args.timeout)  # type: ignore[arg-type]
+    else:
+        annotate.thaw()  # type: ignore[union-attr]
 
 
 def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissector: Dissector, sinks: Sinks,

@@ -117,10 +117,30 @@ class Annotator:
         self.changed.add(slave)
         return device
 
+    def freeze(self) -> None:
+        """The selector has seen the whole input (app/preselect.py): every slave's device is the one
+        chosen over it, from the slave's first frame on, and no frame changes it until thaw()."""
+        selector = self.selector
+        if selector is None:
+            return
+        for slave, choice in selector.chosen().items():
+            profile = selector.profile(choice.profile) or self.default
+            if self.profile_for(slave) is not profile:
+                self._chosen[slave] = profile
+                if slave in self._devices:
+                    self._devices[slave] = self._builder.build(profile, slave)
+                self.changed.add(slave)
+        selector.frozen = True
+
+    def thaw(self) -> None:
+        """The next input's first pass: its frames may add to (or take back) the choices."""
+        if self.selector is not None:
+            self.selector.frozen = False
+
     def choice_frame(self, slave: int) -> int | None:
-        """The frame whose evidence gave this slave its profile (None: forced, or no choice yet): frames
-        before it were named with the profile the slave had then."""
-        if self.selector is None or slave in self.per_slave:
+        """The frame whose evidence gave this slave its profile (None: forced, no choice yet, or chosen
+        before the decode by a first pass): frames before it were named with the profile the slave had then."""
+        if self.selector is None or slave in self.per_slave or self.selector.frozen:
             return None
         choice = self.selector.choice(slave)
         return None if choice is None else choice.frame

@@ -17,6 +17,10 @@ data/profiles/*.toml):
 Until evidence arrives a slave gets spec semantics only (`generic`): no device claims. The choice's
 reason names the frames, and every frame a chosen profile annotates carries it (Frame.profile: -V's
 `Profile:` line, --json's `profile`).
+
+A file is read twice (app/preselect.py, issue 27): a first pass hands every frame to observe(), then
+`frozen` holds the choices while the decode names every frame of a slave, from its first, with the
+profile chosen over the whole input. Frozen, no frame changes a choice and every slave is settled.
 """
 from __future__ import annotations
 
@@ -93,15 +97,22 @@ class Selector:
         # when candidates are added).
         self._identifying: dict[int, Profile] = {}
         self._identifying_from = -1
+        self.frozen = False  # the choices were made over the whole input (a first pass): observe() is idle
 
     def settled(self, slave: int) -> bool:
         """No later frame can change this slave's profile unless it is handed to observe()."""
+        if self.frozen:
+            return True
         judged = self._slaves.get(slave)
         return judged is not None and (
             judged.answers >= FIT_ANSWERS
             or judged.frames >= FIT_FRAMES
             or (judged.choice is not None and judged.choice.final)
         )
+
+    def chosen(self) -> dict[int, ProfileChoice]:
+        """The choice of every slave that has one, by slave."""
+        return {slave: judged.choice for slave, judged in self._slaves.items() if judged.choice is not None}
 
     def choice(self, slave: int) -> ProfileChoice | None:
         judged = self._slaves.get(slave)
@@ -110,7 +121,7 @@ class Selector:
     def observe(self, frame: Frame) -> ProfileChoice | None:
         """A new choice for frame.slave when this frame decides (or undoes) one, else None."""
         slave = frame.slave
-        if slave == 0:
+        if slave == 0 or self.frozen:
             return None
         judged = self._slaves.get(slave)
         if judged is None:

@@ -50,12 +50,14 @@ P38_REASON = ("traffic fits its map: function 3 at 8400..8402 in frames #2 and #
 def test_p38_is_told_as_with_the_atv71_profile_by_traffic_fit() -> None:
     # The capture has no identification: frame 2 answers FC3 at 8401/8402 (CHCF, COP, in the ATV71 map)
     # and 16#8000 at 8400, the value the card returns for a non-existent parameter: only atv71 fits. One
-    # answer is no evidence (issue 26); frame 4 answers the read again, with 16#8000 again: chosen there.
+    # answer is no evidence (issue 26); frame 4 answers the read again, with 16#8000 again: chosen there,
+    # over the whole file before the decode (issue 27), so frame 2 is named too.
     status, auto, err = cli(str(P38))
     forced = cli(str(P38), "--profile", "atv71")[1]
-    assert status == 0 and auto.splitlines()[2:] == forced.splitlines()[2:]
+    assert status == 0 and auto == forced
     assert auto.splitlines()[1] == (
-        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1]  CRC ok")
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=IO (I/O "
+        "profile) COP=Cd (command) [#1]  CRC ok")
     assert err == f"vw3-decode: profile slave 12: atv71 ({P38_REASON})\n"
     assert "CHCF (8401) became protected: read 3 in frame #4, 16#8000 now" in auto.splitlines()[5]
     # The pcap gives the same lines with times, through the Python stages instead of the compiled path.
@@ -170,10 +172,15 @@ def test_compiled_path_follows_a_late_choice() -> None:
 def test_json_and_choices_agree() -> None:
     out = cli(str(P38), "--json")[1]
     first, second = json.loads(out.splitlines()[1]), json.loads(out.splitlines()[3])
+    # Chosen over the whole file (issue 27): frame 2 is named, with the reason that names frame 4.
+    for frame in (first, second):
+        assert [register.get("code") for register in frame["registers"]] == [None, "CHCF", "COP"]
+        assert (frame["profile"], frame["profile_reason"]) == ("atv71", P38_REASON)
+    # Read once (standard input), frame 2 comes before the evidence: no device named.
+    once = cli("-", "--json", stdin=P38.read_bytes())[1]
+    first = json.loads(once.splitlines()[1])
     assert [register.get("code") for register in first["registers"]] == [None, None, None]
     assert "profile" not in first and "profile_reason" not in first
-    assert [register.get("code") for register in second["registers"]] == [None, "CHCF", "COP"]
-    assert (second["profile"], second["profile_reason"]) == ("atv71", P38_REASON)
 
 
 # Issue 26: a Schneider iEM3255 energy meter reads its INT64 energy at 3203..3206 (here 123456 Wh), which

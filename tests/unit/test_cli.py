@@ -22,13 +22,15 @@ SEED_STREAM = hx(
 
 def test_hex_summary_lines_with_the_default_atv71_profile() -> None:
     # Profile auto: one answer is no evidence (issue 26); the same read answered again with the card's
-    # 16#8000 for the non-existent 8400 makes slave 12 an ATV71 from that answer on. --profile at once.
+    # 16#8000 for the non-existent 8400 makes slave 12 an ATV71, chosen over all the --hex bytes before
+    # the decode (issue 27): from its first answer on. A single answer stays unnamed (below, -n aside).
     pair = ["--hex", "0C 03 20 D0 00 03 0E EF", "--hex", "0C 03 06 80 00 00 03 00 02 17 E4"]
     status, out, err = run_cli([*pair, *pair])
     assert (status, err) == (0, "")
     assert out.splitlines() == [
         "     1            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
-        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1]  CRC ok",
+        "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
+        "CHCF=IO (I/O profile) COP=Cd (command) [#1]  CRC ok",
         "     3            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok",
         "     4            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
         "CHCF=IO (I/O profile) COP=Cd (command) [#3]  CRC ok",

@@ -37,21 +37,21 @@ def test_radix_literals_as_the_notes_print_them() -> None:
     # 8400 reads 16#8000 (non-existent) in every response
     assert _frames("-Y", "value == 16#8000", P38) == [2, 4, 6, 8]
     assert _frames("-Y", "value == 0x8000", P38) == [2, 4, 6, 8]
-    # CHCF = IO (3); frame 2 has no codes: one answer is no evidence of an ATV71 (issue 26)
-    assert _frames("-Y", "value == 2#11 and code == \"CHCF\"", P38) == [4]
+    # CHCF = IO (3); profile auto chose the ATV71 over the whole file, frame 2 is named too (issue 27)
+    assert _frames("-Y", "value == 2#11 and code == \"CHCF\"", P38) == [2, 4]
 
 
 def test_bit_test() -> None:
     assert _frames("-Y", "value & 0x8000", P38) == [2, 4, 6, 8]
-    assert _frames("-Y", "code == \"COP\" and value & 16#0002", P38) == [4, 6, 8]  # (frame 2: no codes yet)
+    assert _frames("-Y", "code == \"COP\" and value & 16#0002", P38) == [2, 4, 6, 8]
     assert _frames("-Y", "code == \"COP\" and value & 1", P38) == []
 
 
 def test_matches_is_a_case_insensitive_regular_expression_as_in_wireshark() -> None:
     assert _frames("-Y", 'notes matches "BECAME (protected|non-existent)"', P38) == [6, 10]
     assert _frames("-Y", 'notes ~ "(?-i)BECAME"', P38) == []
-    # 10, 12: exception 02 tells COP; frame 2 has no codes (profile auto chose at frame 4)
-    assert _frames("-Y", 'code matches "^C.P$"', P38) == [4, 6, 8, 10, 12]
+    # 10, 12: exception 02 tells COP; frame 2 is named (auto chose over the whole file: issue 27)
+    assert _frames("-Y", 'code matches "^C.P$"', P38) == [2, 4, 6, 8, 10, 12]
 
 
 @pytest.mark.parametrize(

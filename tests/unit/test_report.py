@@ -89,8 +89,8 @@ def test_untimed_events_are_numbered_by_their_frames() -> None:
         exception = "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"
         expected = {
             "p38_protection.bin": [
-                # #4: profile auto chooses the ATV71 at the second answer (issue 26)
-                ("protection", "12", "8400 non-existent", "1", "#4", ""),
+                # #2: profile auto chooses the ATV71 over the whole file, before the decode (issue 27)
+                ("protection", "12", "8400 non-existent", "1", "#2", ""),
                 ("protection", "12", "CHCF (8401) protected", "1", "#6", ""),
                 ("exception", "12", exception, "2", "#10", "#12"),
                 ("protection", "12", "COP (8402) protected (exception 02)", "1", "#10", ""),
