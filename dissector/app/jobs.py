@@ -104,6 +104,24 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
             source.close()
 
 
+def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings) -> None:
+    """Profile `auto` over the capture's files first, as one stream (app/preselect.py, issue 27)."""
+    if getattr(annotate, "selector", None) is None:
+        return
+    from dissector.app.preselect import choose_profiles
+
+    first = open_source(files[0], settings.format, mode=settings.mode)
+
+    def chunks() -> Iterator[object]:
+        with first:
+            yield from first
+        for path in files[1:]:
+            with open_source(path, settings.format, mode=settings.mode) as source:
+                yield from source
+
+    choose_profiles(annotate, chunks(), first.mode, None, settings.timeout)  # type: ignore[arg-type]
+
+
 def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     """Decode one capture into DIR/frames, DIR/registers and DIR/events (runs in any process)."""
     from dissector.app.profile_options import annotator_from_args
@@ -132,6 +150,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
                                        gaps=GapChecker(baud, mode) if timed else None)
 
     try:
+        _choose_profiles(annotate, capture.files, settings)
         for chunk in _chunks(capture.files, settings, tables, result, first):
             items = state["dissector"].feed(chunk)  # type: ignore[arg-type]
             tables.add(items)

@@ -48,7 +48,7 @@ def choose_profiles(
     if selector is None:
         return
     annotate.thaw()
-    framer = AsciiFramer(baud) if mode == "ascii" else RtuFramer(baud)
+    framer = (AsciiFramer if mode == "ascii" else RtuFramer)(*([] if baud is None else [baud]))
     pairer = Pairer(timeout=timeout)
     forced = annotate.per_slave
     settled = selector.settled

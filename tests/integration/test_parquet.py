@@ -109,8 +109,9 @@ def test_p38_protections_and_noisy_bus_outage(dataset: Path) -> None:
     )
     for suffix in (".bin", ".pcap"):
         assert [row[1:] for row in rows if row[0] == "p38_protection" + suffix] == [
-            # frame 4: profile auto needs more than one answer (issue 26); frame 2 is before the evidence
-            ("non-existent", 4, 12, 8400, None, "non-existent"),
+            # frame 2: profile auto needs more than one answer (issue 26), and chooses over the whole
+            # capture before the decode (issue 27)
+            ("non-existent", 2, 12, 8400, None, "non-existent"),
             ("protected", 6, 12, 8401, "CHCF", "protected"),
             ("protected", 10, 12, 8402, "COP", "protected"),
         ]
