@@ -207,8 +207,10 @@ def python_items(
     command = [sys.executable, "-m", "dissector", "-" if one_pass else str(pcap), "--json", *options]
     for profile in plugin_profiles(profiles):
         command += ["--profile", profile]
-    result = subprocess.run(command, capture_output=True, text=True, cwd=ROOT, timeout=900,
-                            input=pcap.read_text(encoding="latin-1") if one_pass else None)
+    run = subprocess.run(command, capture_output=True, cwd=ROOT, timeout=900,
+                         input=pcap.read_bytes() if one_pass else None)
+    result = subprocess.CompletedProcess(run.args, run.returncode, run.stdout.decode(),
+                                         run.stderr.decode(errors="replace"))
     if result.returncode != 0:
         raise AssertionError(f"{' '.join(command)} failed ({result.returncode}): {result.stderr[-3000:]}")
     dicts = [json.loads(line) for line in result.stdout.splitlines() if line.strip()]
