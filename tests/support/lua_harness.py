@@ -199,11 +199,12 @@ def plugin_profiles(profiles: list[str] | None) -> list[str]:
 
 
 def python_items(
-    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0, one_pass: bool = False
+    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0, one_pass: bool = True
 ) -> list[PythonItem]:
     """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records.
-    `one_pass`: the file on standard input, read once as tshark reads it without -2 (profile `auto`
-    names a slave's frames as its choice stands then; a file is read twice, issue 27)."""
+    `one_pass` (the default): the file on standard input, read once as the plugin reads it, with or
+    without -2 (profile `auto` names a slave's frames as its choice stands then; vw3-decode reads a
+    file twice and names them from the first, issue 27, which the plugin does not do yet)."""
     command = [sys.executable, "-m", "dissector", "-" if one_pass else str(pcap), "--json", *options]
     for profile in plugin_profiles(profiles):
         command += ["--profile", profile]
