@@ -127,6 +127,27 @@ static inline int param_status(Param *p, PyObject *status) {
     return changed;
 }
 
+/* The parameter's code as `namer` (the slave's device) gives it for (address, value), remembered with the
+ * namer that gave it: 0, or -1 with an exception set. */
+static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value) {
+    PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
+    if (answer == NULL) return -1;
+    if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
+        Py_DECREF(answer);
+        PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
+        return -1;
+    }
+    PyObject *code = PyTuple_GET_ITEM(answer, 1);
+    if (code != Py_None) {
+        Py_INCREF(code);
+        Py_XSETREF(p->code, code);
+    }
+    Py_DECREF(answer);
+    Py_INCREF(namer);
+    Py_XSETREF(p->code_namer, namer);
+    return 0;
+}
+
 /* One register's event, from a transaction the engine shows: texts and codes from `namer` (the slave's
  * device). The code is asked once per parameter and namer, only where the device names the address;
  * CONFIRM sets it only on a parameter's first sight (StatsCollector._confirm). */
@@ -137,21 +158,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
     if (p == NULL) return PyErr_Occurred() ? -1 : 0;
     if (mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
         (event != EVENT_CONFIRM || created)) {
-        PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
-        if (answer == NULL) return -1;
-        if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
-            Py_DECREF(answer);
-            PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
-            return -1;
-        }
-        PyObject *code = PyTuple_GET_ITEM(answer, 1);
-        if (code != Py_None) {
-            Py_INCREF(code);
-            Py_XSETREF(p->code, code);
-        }
-        Py_DECREF(answer);
-        Py_INCREF(namer);
-        Py_XSETREF(p->code_namer, namer);
+        if (take_code(p, namer, address, value) < 0) return -1;
     }
     switch (event) {
     case EVENT_WRITE: p->writes++; return 0;
@@ -399,21 +406,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
             if (PyErr_Occurred()) return NULL;
             continue;
         }
-        PyObject *answer = PyObject_CallFunction(namer, "II", p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last);
-        if (answer == NULL) return NULL;
-        if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
-            Py_DECREF(answer);
-            PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
-            return NULL;
-        }
-        PyObject *code = PyTuple_GET_ITEM(answer, 1);
-        if (code != Py_None) {
-            Py_INCREF(code);
-            Py_XSETREF(p->code, code);
-        }
-        Py_DECREF(answer);
-        Py_INCREF(namer);
-        Py_XSETREF(p->code_namer, namer);
+        if (take_code(p, namer, p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last) < 0) return NULL;
         Py_INCREF(namer);
         Py_XSETREF(p->namer, namer);
         Py_CLEAR(p->text);

@@ -13,26 +13,20 @@ import io
 from collections.abc import Callable
 from typing import Any, TextIO
 
-from dissector.app.live_view import OutputPump
+from dissector.app.live_view import PumpedSink
 from dissector.model import Item
 from dissector.render.filters import FilterContext, compile_filter
 from dissector.render.jsonout import item_to_dict
 from dissector.render.output import Output, OutputOptions
 
 
-class TextSink:
+class TextSink(PumpedSink):
+    """Items written by the file decode's own writer, line by line through the pump."""
+
     def __init__(self, out: TextIO, options: OutputOptions) -> None:
-        self._pump = OutputPump(out)
+        super().__init__(out)
         self._text = io.StringIO()
         self.output = Output(options, self._text, False)
-
-    @property
-    def failed(self) -> BaseException | None:
-        return self._pump.failed
-
-    @property
-    def dropped(self) -> int:
-        return self._pump.dropped
 
     def observe(self, items: list[Item]) -> None:
         """Every item heard, before -Y: the time column's references."""
@@ -49,12 +43,6 @@ class TextSink:
             self._text.seek(0)
             self._text.truncate()
             self._pump.put(text[:-1].split("\n") if text.endswith("\n") else text.split("\n"))
-
-    def tick(self) -> None:
-        pass
-
-    def close(self) -> None:
-        self._pump.close()
 
 
 class FilteredSink:

@@ -180,12 +180,11 @@ class OutputPump:
         self._thread.join()
 
 
-class LineSink:
-    """One line per item (plain or NDJSON), written by an OutputPump."""
+class PumpedSink:
+    """A sink whose lines an OutputPump writes: its failure and dropped lines are the pump's."""
 
-    def __init__(self, out: TextIO, render: Callable[[Item], str]) -> None:
+    def __init__(self, out: TextIO) -> None:
         self._pump = OutputPump(out)
-        self._render = render
 
     @property
     def failed(self) -> BaseException | None:
@@ -195,15 +194,23 @@ class LineSink:
     def dropped(self) -> int:
         return self._pump.dropped
 
-    def show(self, items: list[Item]) -> None:
-        if items:
-            self._pump.put([self._render(item) for item in items])
-
     def tick(self) -> None:
         pass
 
     def close(self) -> None:
         self._pump.close()
+
+
+class LineSink(PumpedSink):
+    """One line per item (plain or NDJSON), written by an OutputPump."""
+
+    def __init__(self, out: TextIO, render: Callable[[Item], str]) -> None:
+        super().__init__(out)
+        self._render = render
+
+    def show(self, items: list[Item]) -> None:
+        if items:
+            self._pump.put([self._render(item) for item in items])
 
 
 def json_line(item: Item) -> str:
