@@ -12,6 +12,10 @@ from enum import StrEnum
 from itertools import chain, islice
 from typing import Any, overload
 
+# The start of the noise reason the framers give an awaited answer cut by the end of the capture
+# (RtuFramer._cut_answer); pairing notes it on the request.
+CUT_ANSWER = "the capture ends inside the "
+
 
 class Stamp(float):
     """A time in seconds since the epoch that keeps the integer nanoseconds its source wrote.

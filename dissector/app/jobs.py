@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
-from dissector.framing.timing import GapChecker
+from dissector.framing.timing import DEFAULT_BAUD, GapChecker
 from dissector.pipeline import Dissector
 from dissector.render.bustiming import BusTiming, line_settings
 from dissector.sources.reader import SourceError, open_source
@@ -145,7 +145,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         framer = AsciiFramer() if mode == "ascii" else RtuFramer()
         line = line_settings(capture.files[0], source_format, settings.baud)
         bus.new_input(mode, line)
-        baud = settings.baud or 19200
+        baud = settings.baud or DEFAULT_BAUD
         state["dissector"] = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
                                        gaps=GapChecker(baud, mode) if timed else None)
 

@@ -14,7 +14,7 @@ from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register, R
 from dissector.protocol.spec import SPEC
 
 _LIMITS = SPEC.limits
-_MAX_SLAVE = 247  # Serial Line Guide 2.2: 0 broadcast, 1..247 devices, 248..255 reserved
+_MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]  # 248..255 reserved
 
 
 def _check_range(frame: Frame, what: str, value: int, limit_name: str) -> None:

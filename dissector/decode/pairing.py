@@ -16,9 +16,8 @@ from __future__ import annotations
 
 import weakref
 
-from dissector.model import Frame, Item, Kind, Noise
+from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
 
-CUT_ANSWER = "the capture ends inside the "  # a noise reason of the framers' (RtuFramer._cut_answer)
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 
 

@@ -20,12 +20,12 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.model import Item, Stamp
+from dissector.render.history import UNREADABLE_STATUSES
 from dissector.render.jsonout import item_to_dict
 from dissector.render.registers import register_rows
 
 ROWS_PER_GROUP = 1 << 16  # rows kept before a row group is written: memory stays flat
 TABLES = ("frames", "registers", "events")
-UNREADABLE = frozenset(["protected", "non-existent"])
 
 
 def need_pyarrow() -> Any:
@@ -183,7 +183,7 @@ class CaptureTables:
         key = (row["slave"], row["address"])
         status = row["status"]
         before = self._state.get(key)
-        now = status if status in UNREADABLE else "readable"
+        now = status if status in UNREADABLE_STATUSES else "readable"
         if now == before or (now == "readable" and before is None):
             self._state[key] = now
             return

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
+from dissector.framing.rules import MAX_SLAVE
 
-MAX_SLAVE = 247
 COIL_VALUES = (0xFF00, 0x0000)
 
 

@@ -59,7 +59,7 @@ serial reads all drive the same object, and the answer does not depend on how th
 from __future__ import annotations
 
 from dissector.protocol.crc import crc16, crc_lengths
-from dissector.model import Frame, Item, Kind
+from dissector.model import CUT_ANSWER, Frame, Item, Kind
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
@@ -75,7 +75,6 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     RULES,
     BY_QUANTITY,
     OTHER_FUNCTIONS,
-    KNOWN_FUNCTIONS,
     REQUEST_FIRST,
     RESPONSE_FIRST,
     interpretations,
@@ -327,7 +326,7 @@ class RtuFramer(StreamFramer):
             return None
         what = "response" if kind is Kind.RESPONSE else "exception response"
         size = f"{n - i} of {length} bytes" if length != NEED else f"{n - i} bytes of it"
-        return f"the capture ends inside the {what} ({size})"
+        return f"{CUT_ANSWER}{what} ({size})"
 
     def cut_answer(self, data: bytes) -> str | None:
         """Would `data`, fed now and ended there, be the answer awaited cut by the end of the capture

@@ -12,9 +12,9 @@ from dissector.protocol import table
 from dissector.protocol.crc import crc16
 from dissector.protocol.spec import SPEC
 
-MAX_ADU = 256
+MAX_ADU = int(SPEC.limits["max_adu"])  # type: ignore[call-overload]
 MIN_ADU = 4
-MAX_SLAVE = 247
+MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]
 
 NEED = -1  # not enough bytes yet to know the length
 NONE = 0  # this interpretation cannot apply here
@@ -140,7 +140,6 @@ OTHER_FUNCTIONS = table.OTHER_FUNCTIONS
 for _code in OTHER_FUNCTIONS:
     RULES.setdefault(_code, (_scan_any, _scan_any))
 
-KNOWN_FUNCTIONS = frozenset(RULES)
 
 _EXCEPTION_LENGTH = table.EXCEPTION_LAYOUT.length.length  # type: ignore[union-attr]
 _EXCEPTION_RULE = _fixed(_EXCEPTION_LENGTH)

@@ -26,7 +26,7 @@ import struct
 from dataclasses import dataclass, field
 from typing import Any
 
-from dissector.framing.timing import ASCII_BITS_PER_CHAR, RTU_BITS_PER_CHAR, LineTiming
+from dissector.framing.timing import ASCII_BITS_PER_CHAR, DEFAULT_BAUD, RTU_BITS_PER_CHAR, LineTiming
 from dissector.model import Item, Kind
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
@@ -173,7 +173,7 @@ def line_settings(path: str | None, source_format: str | None, baud: int | None)
         settings = settings_from_text(text) if text else None
         if settings is not None:
             return settings
-    return LineSettings(19200, None, "assumed: --baud sets it")
+    return LineSettings(DEFAULT_BAUD, None, "assumed: --baud sets it")
 
 
 @dataclass(slots=True)
@@ -189,7 +189,7 @@ class _Run:
 @dataclass(slots=True)
 class BusTiming:
     timeout: float = 1.0
-    settings: LineSettings = field(default_factory=lambda: LineSettings(19200))
+    settings: LineSettings = field(default_factory=lambda: LineSettings(DEFAULT_BAUD))
     mode: str = "rtu"
     timed: bool = False
     untimed_items: int = 0

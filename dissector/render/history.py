@@ -31,6 +31,7 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from dissector.model import Frame, Item, Kind, Register
+from dissector.protocol.table import FUNCTIONS, Access, Data
 from dissector.render.stats_store import CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store
 
 __all__ = [
@@ -38,8 +39,15 @@ __all__ = [
     "READ_FUNCTIONS", "UNREADABLE_STATUSES", "WRITE_FUNCTIONS",
 ]
 
-READ_FUNCTIONS = frozenset([3, 4, 23])
-WRITE_FUNCTIONS = frozenset([6, 16, 23])
+# Codes whose registers are values read or written, as the protocol table states them: {3, 4, 23} and {6, 16, 23}.
+READ_FUNCTIONS = frozenset(
+    entry.code for entry in FUNCTIONS
+    if entry.data is Data.REGISTERS and entry.access in (Access.READ, Access.READ_WRITE)
+)
+WRITE_FUNCTIONS = frozenset(
+    entry.code for entry in FUNCTIONS
+    if entry.data is Data.REGISTERS and entry.access in (Access.WRITE, Access.READ_WRITE)
+)
 # Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
 UNREADABLE_STATUSES = frozenset(["protected", "non-existent"])
 

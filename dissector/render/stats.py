@@ -36,17 +36,14 @@ from typing import Any
 
 from rich.console import RenderableType
 
-from dissector.model import Frame, Item, Kind, Noise, Register
+from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
-from dissector.render import history
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import MAX_PARAMETERS, ParameterRow
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
-# The parameter rules live in render/history.py; these names are kept for their readers.
-READ_FUNCTIONS, WRITE_FUNCTIONS, UNREADABLE = history.READ_FUNCTIONS, history.WRITE_FUNCTIONS, UNREADABLE_STATUSES
 
 
 @dataclass(slots=True)

@@ -21,9 +21,10 @@ from __future__ import annotations
 import random
 from dataclasses import dataclass
 
+from dissector.framing.stream import GLITCH_BYTES
 from dissector.model import Chunk
 
-GLITCHES = tuple((0xFF << k) & 0xFF for k in range(9))  # FF FE FC F8 F0 E0 C0 80 00
+GLITCHES = tuple(sorted(GLITCH_BYTES, reverse=True))  # FF FE FC F8 F0 E0 C0 80 00
 KINDS = ("glitch after", "glitches both sides", "idle-line bytes", "breaks", "truncated last frame")
 BURST_BYTES = (1, 64)  # a read of a USB adapter: 1 to 64 bytes (FTDI's packet)
 

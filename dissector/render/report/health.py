@@ -13,12 +13,12 @@ from __future__ import annotations
 from typing import Any
 
 from dissector.model import Item, Kind
-from dissector.protocol.table import FUNCTIONS
+from dissector.protocol.table import FUNCTIONS, Access
 from dissector.render.report.collect import COLUMNS, Columns
 from dissector.render.stats_store import MAX_PARAMETERS
 
 # Requests whose registers are values written: setpoints (FC23's write half too).
-WRITES = frozenset(entry.code for entry in FUNCTIONS if str(entry.access) in ("write", "read_write"))
+WRITES = frozenset(entry.code for entry in FUNCTIONS if entry.access in (Access.WRITE, Access.READ_WRITE))
 
 
 class Health:
