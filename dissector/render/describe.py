@@ -17,7 +17,8 @@ def address_text(address: int | None, label: str | None = None) -> str:
 
 
 def span_text(frame: Frame) -> str:
-    """`8400..8402 (3)` or `9001` for the frame's start and quantity."""
+    """`8400..8402 (3)` or `9001` for the frame's start and quantity; `8400 (0)` for a quantity of 0 (no
+    register: the start the request names, never a range wrapped back to 8399)."""
     start, quantity = frame.start, frame.quantity
     if frame.span_label is not None:
         return frame.span_label if quantity is None or quantity == 1 else f"{frame.span_label} ({quantity})"
@@ -26,8 +27,19 @@ def span_text(frame: Frame) -> str:
     first = _label_for(frame, start)
     if quantity is None or quantity == 1:
         return first
+    if quantity == 0:
+        return f"{first} (0)"
     last = _label_for(frame, (start + quantity - 1) & 0xFFFF)
     return f"{first}..{last} ({quantity})"
+
+
+def plain_span(start: int, quantity: int | None) -> str:
+    """`8400..8402 (3)`, `8400` (one or no quantity), `8400 (0)` (no register: nothing wraps)."""
+    if quantity is None or quantity == 1:
+        return str(start)
+    if quantity == 0:
+        return f"{start} (0)"
+    return f"{start}..{start + quantity - 1} ({quantity})"
 
 
 def _label_for(frame: Frame, address: int) -> str:
@@ -170,7 +182,7 @@ def _read_write(frame: Frame, request: bool) -> str:
         start, quantity = fields["read_start"], fields["read_quantity"]
         if frame.span_label is not None:  # PLC style: the read window as its answer shows it (43202..43203)
             return f"read {span_text(frame)}, write {values_text(frame)}"
-        return f"read {start}..{start + quantity - 1} ({quantity}), write {values_text(frame)}"
+        return f"read {plain_span(start, quantity)}, write {values_text(frame)}"
     return f"{span_text(frame)}: {values_text(frame)}"
 
 

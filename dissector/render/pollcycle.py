@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.model import Frame
+from dissector.render.describe import plain_span
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
 MAX_KEYS = 50_000
@@ -181,7 +182,4 @@ def describe_key(row: dict[str, Any]) -> str:
     return text
 
 
-def _span(start: int, quantity: int | None) -> str:
-    if not quantity or quantity == 1:
-        return str(start)
-    return f"{start}..{start + quantity - 1} ({quantity})"
+_span = plain_span

@@ -309,8 +309,10 @@ class StatsCollector:
 
         def span(first: int, quantity: int | None) -> str:
             text = label(row["slave"], row["function"], first)
-            if not quantity or quantity == 1:
+            if quantity is None or quantity == 1:
                 return text
+            if quantity == 0:
+                return f"{text} (0)"  # no register: what the request says, nothing wrapped
             return f"{text}..{label(row['slave'], row['function'], (first + quantity - 1) & 0xFFFF)} ({quantity})"
 
         text = span(start, row.get("quantity"))

@@ -158,6 +158,71 @@ def test_a_filter_on_address_over_a_quantity_0_read() -> None:
     assert (status, out, err) == (0, "", "")
 
 
+# A quantity-0 FC3 read and its empty answer, an FC23 reading 0 registers, an FC16 writing 0: the requests
+# say quantity 0, which the spec forbids; no output invents a range wrapped back to start - 1 (issue 32).
+QUANTITY_0 = [rtu(text) for text in ("010320d00000", "010300", "0117000a0000001400010200ff", "011700",
+                                     "01100010000000", "011000100000")]
+
+
+def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Path) -> None:
+    capture = tmp_path / "q0.bin"
+    capture.write_bytes(b"".join(QUANTITY_0))
+    lines = [
+        "     1            -   1 request   Read Holding Registers {a} (0) [warning: quantity 0 outside the spec's 1..125]  CRC ok",
+        "     2            -   1 response  Read Holding Registers {a} (0): [#1]  CRC ok",
+        "     3            -   1 request   Read/Write Multiple Registers read {b} (0), write {c}=255 "
+        "[warning: read quantity 0 outside the spec's 1..125]  CRC ok",
+        "     4            -   1 response  Read/Write Multiple Registers {b} (0): [#3]  CRC ok",
+        "     5            -   1 request   Write Multiple Registers {d} (0): [warning: quantity 0 outside the spec's 1..123]  CRC ok",
+        "     6            -   1 response  Write Multiple Registers {d} (0) written [#5]  CRC ok",
+    ]
+    for style, names in ((None, ("8400", "10", "20", "16")), ("plc", ("48401", "40011", "40021", "40017"))):
+        options = ["--address-style", style] if style else []
+        for pure in ("0", "1"):  # the compiled path leaves such frames to the Python stages
+            env = {**os.environ, "VW3_PURE_PYTHON": pure, "PYTHONPATH": str(ROOT)}
+            run = subprocess.run([sys.executable, "-m", "dissector", str(capture), *options], capture_output=True,
+                                 text=True, env=env, cwd=ROOT, timeout=60)
+            assert (run.returncode, run.stderr) == (0, "")
+            a, b, c, d = names
+            assert run.stdout.splitlines() == [line.format(a=a, b=b, c=c, d=d) for line in lines]
+    status, out, err = run_cli([str(capture), "-V"])
+    assert (status, err) == (0, "")
+    assert out.split("\n\n")[0].splitlines()[4:6] == ["        Start: 8400 (0x20D0)", "        Quantity: 0 (0x0)"]
+    status, out, err = run_cli([str(capture), "--json"])
+    records = [json.loads(line) for line in out.splitlines()]
+    assert [(r["start"], r["quantity"], r.get("registers"), "span_label" in r) for r in records] == [
+        (8400, 0, None, False), (8400, 0, [], False), (10, 0, [{"address": 20, "value": 255}], False),
+        (10, 0, [], False), (16, 0, [], False), (16, 0, None, False)]
+    status, out, err = run_cli([str(capture), "-T", "fields", "-e", "frame", "-e", "start", "-e", "quantity",
+                                "-e", "address", "-e", "value"])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == ["1\t8400\t0\t\t", "2\t8400\t0\t\t", "3\t10\t0\t20\t255", "4\t10\t0\t\t",
+                                "5\t16\t0\t\t", "6\t16\t0\t\t"]
+    status, out, err = run_cli([str(capture), "-T", "registers"])
+    assert (status, out, err) == (0, "3\t\t1\t23\twrite\t20\t\t\t\t255\t\t\t\t\n", "")  # only frame 3 names a register
+
+
+def test_a_polled_quantity_0_read_in_stats(tmp_path: Path) -> None:
+    capture = tmp_path / "q0.pcap"
+    records = b""
+    for index, frame in enumerate(QUANTITY_0[:4] * 4):
+        micros = 50_000 * (index + 1)
+        records += struct.pack("<IIII", 1_700_000_000 + micros // 1_000_000, micros % 1_000_000, len(frame), len(frame))
+        records += frame
+    capture.write_bytes(struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147) + records)
+    for style, first, second in ((None, "8400 (0)", "read 10 (0), write 20"),
+                                 ("plc", "48401 (0)", "read 40011 (0), write 40021")):
+        status, out, err = run_cli([str(capture), "--stats", *(["--address-style", style] if style else [])])
+        assert (status, err) == (0, "")
+        rows = [line for line in out.splitlines() if line.startswith("    1  ") and "200.0" in line]
+        assert [re.split(r"\s{2,}", line.strip()) for line in rows] == [
+            ["1", "3 Read Holding Registers", first, "4", "200.0", "0.0", "0"],
+            ["1", "23 Read/Write Multiple Registers", second, "4", "200.0", "0.0", "0"]]
+    status, out, err = run_cli([str(capture), "--stats", "--json"])
+    polls = json.loads(out)["poll_cycle"]
+    assert [(p["function"], p["start"], p["quantity"], p["count"]) for p in polls] == [(3, 8400, 0, 4), (23, 10, 0, 4)]
+
+
 def _block(block_type: int, body: bytes) -> bytes:
     body += b"\0" * (-len(body) % 4)
     return struct.pack("<II", block_type, len(body) + 12) + body + struct.pack("<I", len(body) + 12)
