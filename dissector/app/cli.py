@@ -242,14 +242,16 @@ class Sinks:
                     return items[: index + 1]
         return items
 
-    def abandon(self) -> None:
-        """Close the files after a failure, keeping what was written; errors are the caller's."""
+    def abandon(self, refused: bool = False) -> None:
+        """Close the files after a failure, keeping what was written; errors are the caller's.
+        `refused`: an input was refused (SourceError): a -w file that holds no record and the report
+        are removed, not left header-only or empty."""
         if self.report is not None:
             self.report, report = None, self.report
-            report.abandon()
+            report.abandon(refused)
         if self.pcap is not None:
             try:
-                self.pcap.close()
+                self.pcap.discard_if_empty() if refused else self.pcap.close()
             except OSError:
                 pass
             self.pcap = None
@@ -403,8 +405,8 @@ def _decode_inputs(
                     "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
                     "or line speed?\n"
                 )
-    except BaseException:
-        sinks.abandon()
+    except BaseException as error:
+        sinks.abandon(isinstance(error, SourceError))
         raise
 
 

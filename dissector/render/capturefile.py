@@ -15,6 +15,7 @@ so the error can say so and the file still opens in Wireshark.
 """
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import time
@@ -280,6 +281,15 @@ class CaptureOutput:
     def close(self) -> None:
         if self._writer is not None:
             self._close_writer()
+
+    def discard_if_empty(self) -> None:
+        """Close; a file that holds no record is removed (a refused input leaves no header-only file)."""
+        records = self._records
+        empty = records is not None and records.whole <= 1  # the first write is the file header
+        self.close()
+        if empty and self.path != STDOUT and self.paths:
+            with contextlib.suppress(OSError):
+                os.unlink(self.paths[-1])
 
 
 def open_output(

@@ -41,7 +41,7 @@ def _utc(seconds: float) -> str:
         moment = datetime.fromtimestamp(seconds, tz=timezone.utc)
     except (OverflowError, OSError, ValueError):
         return f"{seconds:.6f}"
-    return moment.strftime("%Y-%m-%d %H:%M:%S.%f UTC")
+    return f"{moment.year:04d}-{moment:%m-%d %H:%M:%S.%f} UTC"
 
 
 # A detail is laid out once, as a flat list of texts that carry their indentation (four spaces a

@@ -27,8 +27,8 @@ UNTIMED = "-"
 TIME_FIELDS = ("time_relative", "time_delta", "time_delta_displayed")
 
 
-# What tshark's time column says of a time the platform's calendar cannot hold (a pcapng stamp of
-# 2^64 units, an if_tsoffset of -2^62 s): the column, not the decode, gives up.
+# What tshark's time column says of a time the platform's calendar cannot hold. The readers refuse
+# such records (sources/common.py TIME_RANGE, issue 32); a library caller's own times may still be.
 NOT_REPRESENTABLE = "Not representable"
 
 
@@ -39,8 +39,8 @@ def _clock_text(seconds: float, utc: bool, date: bool) -> str:
         whole, micros = whole + 1, 0
     try:
         parts = _time.gmtime(whole) if utc else _time.localtime(whole)
-        shape = "%Y-%m-%d %H:%M:%S" if date else "%H:%M:%S"
-        return f"{_time.strftime(shape, parts)}.{micros:06d}"
+        day = f"{parts.tm_year:04d}-{parts.tm_mon:02d}-{parts.tm_mday:02d} " if date else ""  # 0001, as tshark
+        return f"{day}{_time.strftime('%H:%M:%S', parts)}.{micros:06d}"
     except (OverflowError, OSError, ValueError):  # outside time_t or the C library's years
         return NOT_REPRESENTABLE
 

@@ -26,6 +26,25 @@ RTAC_TROUBLE_EVENTS = {
     0x0A: "serial overflow",
 }
 
+# The times every output can show and compute with (issue 32): -t ad/ud dates and -V's arrival time
+# (Python's calendar holds the years 1..9999; a day inside it for local time zones), --json, the
+# report's dates, --parquet's timestamp[us]. A record stamped outside is refused in one line (exit 2):
+# the stamp or the if_tsoffset is corrupt, and no time put in its place would be the truth.
+EARLIEST_NS = -62_135_510_400 * 1_000_000_000  # 0001-01-02 00:00:00 UTC
+LATEST_NS = 253_402_214_400 * 1_000_000_000  # 9999-12-31 00:00:00 UTC, excluded
+TIME_RANGE = "0001-01-02..9999-12-30 UTC"
+
+
+def outside_time_range(ns: int, offset: int = 0) -> str | None:
+    """None for a time (integer nanoseconds from 1970) every output can show; else why not, for the
+    reader's one-line refusal (`offset`: a pcapng interface's if_tsoffset, named when not 0)."""
+    if EARLIEST_NS <= ns < LATEST_NS:
+        return None
+    added = f" (if_tsoffset {offset} s)" if offset else ""
+    return (f"time {ns // 1_000_000_000} s from 1970{added} is outside {TIME_RANGE}, the times every output "
+            "can show: a corrupt time stamp?")
+
+
 MESSAGES_PER_KIND = 5  # warnings of one kind shown before they are only counted
 
 

@@ -26,7 +26,7 @@ from datetime import datetime, timedelta, timezone
 
 from dissector.errors import MalformedInput
 from dissector.model import Chunk, Stamp
-from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.common import Input, SourceError, WarningLog, outside_time_range
 from dissector.sources.notation import RefusedList, Notation, NotationError
 
 MAX_LINE = 1 << 20  # a whole capture pasted on one line is a hex dump too; memory stays bounded
@@ -45,6 +45,11 @@ class HexLineError(MalformedInput):
     """A hex dump line that is not hex bytes."""
 
 
+class TimeRangeError(HexLineError):
+    """A well-formed time stamp outside the times every output can show: the input is a dump (the
+    sniffers say so) and reading it refuses the line."""
+
+
 def _strip_stamp(token: str) -> str:
     if token.startswith("[") and token.endswith("]"):
         token = token[1:-1]
@@ -53,8 +58,17 @@ def _strip_stamp(token: str) -> str:
     return token
 
 
-def _timestamp(tokens: list[str]) -> tuple[float | None, int]:
+def _timestamp(tokens: list[str]) -> tuple[Stamp | None, int]:
     """(time, tokens used) for a leading timestamp; (None, 0) when the line starts with data."""
+    time, used = _stamp(tokens)
+    if time is not None:
+        outside = outside_time_range(time.ns)
+        if outside is not None:
+            raise TimeRangeError(outside)
+    return time, used
+
+
+def _stamp(tokens: list[str]) -> tuple[Stamp | None, int]:
     if not tokens:
         return None, 0
     first = _strip_stamp(tokens[0])
@@ -133,7 +147,7 @@ def looks_like_hexdump(text: str, complete: bool) -> bool:
     for number, line in enumerate(lines, start=1):
         try:
             parsed = parse_line(line, notation, f"line {number}")
-        except RefusedList:
+        except (RefusedList, TimeRangeError):
             return True
         except HexLineError:
             return False
@@ -151,7 +165,7 @@ def _cut_line_is_hex(cut: str, notation: Notation) -> bool:
     if head.strip(" ,\t"):
         try:
             return parse_line(head.rstrip(" ,\t"), notation, "line 1") is not None
-        except RefusedList:
+        except (RefusedList, TimeRangeError):
             return True
         except HexLineError:
             return False

@@ -18,6 +18,7 @@ from dissector.sources.common import (
     SourceError,
     WarningLog,
     check_linktype,
+    outside_time_range,
     record_chunks,
 )
 
@@ -201,6 +202,10 @@ class _Reader:
         seconds, fraction = divmod(high << 32 | low, interface.units)
         # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
         time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units) if high or low else None
+        if time is not None:
+            outside = outside_time_range(time.ns, interface.offset)
+            if outside is not None:
+                raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
         yield from self._data(captured, original, time, interface, body_length - 20, start)
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:

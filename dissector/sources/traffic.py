@@ -17,7 +17,7 @@ from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, WarningLog
-from dissector.sources.hexdump import HexLineError, _timestamp, read_lines
+from dissector.sources.hexdump import HexLineError, TimeRangeError, _timestamp, read_lines
 
 # Found with search(), then the line is cut in plain steps: one regular expression with optional
 # parts on both sides backtracked exponentially on lines of spaces (50 s for 400 characters).
@@ -33,6 +33,8 @@ def _time(text: str) -> Stamp | None:
     tokens = text.replace("T", " ").split()
     try:
         time, used = _timestamp(tokens)
+    except TimeRangeError:
+        raise  # a time stamp, refused for its range
     except HexLineError as error:
         raise ValueError(str(error)) from None
     if time is None or used != len(tokens):
@@ -75,6 +77,8 @@ def looks_like_traffic(text: str, complete: bool) -> bool:
     for line in lines:
         try:
             found = parse_traffic_line(line) is not None or found
+        except TimeRangeError:
+            return True  # a traffic line whose time reading refuses
         except ValueError:
             return False
     return found

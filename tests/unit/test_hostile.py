@@ -239,42 +239,105 @@ def _pcapng(offset: int | None, units: list[int]) -> bytes:
     return out
 
 
-OUT_OF_RANGE = {"late": (None, [2**64 - 1]), "early": (-(2**62), [1_000_000]), "before 1970": (-100, [1_000_000])}
+# Times no output can show (years 1..9999 are what the calendar, -V, the report and --parquet hold):
+# a pcapng stamp of 2^64 - 1 microseconds (the year 586524), an if_tsoffset of -2^62 s.
+OUT_OF_RANGE = {"late": (None, [2**64 - 1]), "early": (-(2**62), [1_000_000])}
+REFUSED = {
+    "late": "t.pcapng: packet block at byte 48: time 18446744073709 s from 1970 is outside "
+    "0001-01-02..9999-12-30 UTC, the times every output can show: a corrupt time stamp?",
+    "early": "t.pcapng: packet block at byte 64: time -4611686018427387903 s from 1970 (if_tsoffset "
+    "-4611686018427387904 s) is outside 0001-01-02..9999-12-30 UTC, the times every output can show: a corrupt "
+    "time stamp?",
+}
+# Times the calendar holds that pcap (1970..2106) or pcapng (from 1970) do not: -w clamps them.
+FORMAT_RANGE = {"before 1970": (-100, [1_000_000]), "first day": (-62_135_510_400, [1_000_000]),
+                "year 2200": (7_258_118_400, [1_000_000])}
+OUTPUTS = [[], ["-t", "a"], ["-t", "ad"], ["-t", "u"], ["-t", "ud"], ["-V"], ["--json"], ["-T", "fields", "-e", "time"],
+           ["-T", "registers"], ["--stats"], ["--stats", "--json"], ["--report", "{out}/r.html"],
+           ["--report", "{out}/r.html", "-t", "ud"], ["--parquet", "{out}/pq"], ["-w", "{out}/w.pcap"],
+           ["-w", "{out}/w.pcapng"], ["-n", "-w", "{out}/w.pcap"]]
 
 
 @pytest.mark.parametrize("case", sorted(OUT_OF_RANGE))
-@pytest.mark.parametrize("column", ["a", "ad", "u", "ud"])
-def test_times_outside_the_calendar_are_not_representable(tmp_path: Path, case: str, column: str) -> None:
+@pytest.mark.parametrize("output", OUTPUTS, ids=" ".join)
+def test_times_no_output_can_show_are_refused_in_one_line(tmp_path: Path, case: str, output: list[str]) -> None:
     capture = tmp_path / "t.pcapng"
     capture.write_bytes(_pcapng(*OUT_OF_RANGE[case]))
+    made = tmp_path / "out"
+    made.mkdir()
+    options = [option.format(out=made) for option in output]
+    if "--parquet" in options:
+        run = subprocess.run([sys.executable, "-m", "dissector", *options, str(capture)], capture_output=True,
+                             text=True, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=120)
+        status, out, err = run.returncode, run.stdout, run.stderr
+        # The parquet dataset's empty table folders are all it leaves; no data file.
+        assert not [path for path in made.rglob("*") if path.is_file()]
+    else:
+        status, out, err = run_cli([*options, str(capture)])
+        assert list(made.iterdir()) == []  # no header-only -w file, no empty report
+    assert (status, out, err) == (2, "", f"{PROG}{tmp_path}/{REFUSED[case]}\n")
+    if "--parquet" in options:
+        return  # --parquet reads files only
+    status, out, err = run_cli([*options, "-"], stdin=capture.read_bytes())  # read once, the same refusal
+    assert (status, out, err[err.index(": packet"):]) == (2, "", REFUSED[case][REFUSED[case].index(": packet"):] + "\n")
+
+
+@pytest.mark.parametrize("first, text", [
+    ("0.5 01 03 00 00 00 01 84 0A", "100000000000000.5 01 03 00 00 00 01 84 0A"),
+    ("0.5 01 03 00 00 00 01 84 0A", "0001-01-01T00:00:00 01 03 00 00 00 01 84 0A"),
+    ("Tx:000001-[0.5]-01 03 00 00 00 01 84 0A", "Tx:000002-[100000000000000.5]-01 03 00 00 00 01 84 0A"),
+])
+def test_dump_times_no_output_can_show_are_refused_in_one_line(tmp_path: Path, first: str, text: str) -> None:
+    dump = tmp_path / "d.txt"
+    dump.write_text(f"{first}\n{text}\n", encoding="ascii")
+    seconds = "-62135596800" if text.startswith("0001") else "100000000000000"
+    for options in ([], ["-n"]):  # refused by the first pass, or after the first line's
+        status, out, err = run_cli([str(dump), *options])
+        assert (status, err) == (2, f"{PROG}{dump} line 2: time {seconds} s from 1970 is outside 0001-01-02..9999-12-30 "
+                                    "UTC, the times every output can show: a corrupt time stamp?\n")
+
+
+@pytest.mark.parametrize("case", sorted(FORMAT_RANGE))
+@pytest.mark.parametrize("column", ["a", "ad", "u", "ud"])
+def test_times_before_1970_and_on_the_first_day_show(tmp_path: Path, case: str, column: str) -> None:
+    capture = tmp_path / "t.pcapng"
+    capture.write_bytes(_pcapng(*FORMAT_RANGE[case]))
     status, out, err = run_cli(["-t", column, str(capture)])
     assert (status, err) == (0, "")
-    if case == "before 1970":
-        assert ("1969-12-31 23:58:21.000000" if column == "ud" else "23:58:21.000000" if column == "u" else "") in out
-    elif case == "late":  # 2^64 - 1 microseconds: the year 586524, which the calendar holds
-        assert ("586524-01-19 08:01:49.5" if column in ("ud", "ad") else ":01:49.5") in out
-    else:
-        # What tshark's time column says of a time its calendar cannot hold (-2^62 s).
-        assert "Not representable  12 request   Read Holding Registers 8400..8402 (3)" in out
+    day, clock = {"before 1970": ("1969-12-31", "23:58:21"), "first day": ("0001-01-02", "00:00:01"),
+                  "year 2200": ("2200-01-01", "00:00:01")}[case]
+    if column == "ud":
+        assert out.startswith(f"     1 {day} {clock}.000000  12 request   Read Holding Registers 8400..8402 (3)")
+    elif column == "u":
+        assert out.startswith(f"     1 {clock}.000000  12 request   Read Holding Registers 8400..8402 (3)")
+    else:  # local time: the test machine's zone
+        assert re.match(r"     1 (\d{4}-\d\d-\d\d )?\d\d:\d\d:\d\d\.000000  12 request", out) and (
+            (column == "ad") == bool(re.match(r"     1 \d{4}-", out)))
+    status, out, err = run_cli(["-V", str(capture)])
+    assert f"    Arrival time: {day} {clock}.000000 UTC (0.000000 s since the first item)" in out.splitlines()
 
 
-@pytest.mark.parametrize("case", sorted(OUT_OF_RANGE))
+@pytest.mark.parametrize("case", sorted(FORMAT_RANGE))
 @pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
 def test_w_clamps_times_the_format_cannot_hold_and_says_so(tmp_path: Path, case: str, suffix: str) -> None:
     capture = tmp_path / "t.pcapng"
-    capture.write_bytes(_pcapng(*OUT_OF_RANGE[case]))
+    capture.write_bytes(_pcapng(*FORMAT_RANGE[case]))
     written = tmp_path / f"out.{suffix}"
     status, out, err = run_cli([str(capture), "-w", str(written)])
     assert status == 0
+    if case == "year 2200" and suffix == "pcapng":
+        assert err == ""
+        assert [chunk.time for chunk in open_source(str(written))] == [7_258_118_401.0]
+        return
     assert err == (f"{PROG}warning: -w {written}: 1 record's time outside what {suffix} holds, "
                    "written at the nearest time it holds\n")
     chunks = list(open_source(str(written)))
     assert [chunk.data for chunk in chunks] == [rtu("0c0320d00003")]
     data = written.read_bytes()
     if suffix == "pcap":  # seconds and microseconds of the first record
-        expected = (0xFFFFFFFF, 999_999) if case == "late" else (0, 0)
+        expected = (0xFFFFFFFF, 999_999) if case == "year 2200" else (0, 0)
         assert struct.unpack_from("<II", data, 24) == expected
-    elif case != "late":  # the packet block's 64-bit microseconds: 0, the earliest pcapng holds
+    else:  # the packet block's 64-bit microseconds: 0, the earliest pcapng holds
         assert data.endswith(struct.pack("<IIIII", 0, 0, 0, 8, 8) + rtu("0c0320d00003") + struct.pack("<I", 40))
 
 

@@ -1,6 +1,8 @@
 """`--report FILE`: one self-contained HTML page of a capture (see collect.py and html.py)."""
 from __future__ import annotations
 
+import os
+
 from dissector.errors import UsageError
 from dissector.render.report.collect import ReportCollector
 from dissector.render.report.html import render_report, write_report
@@ -28,8 +30,15 @@ class ReportFile:
     def write(self, stats: StatsCollector, extras: dict | None = None) -> None:
         write_report(self.stream, self.path, self.collector, stats, self.title, extras)
 
-    def abandon(self) -> None:
+    def abandon(self, discard: bool = False) -> None:
+        """Close the file; `discard`: the input was refused, and the report (written only at the end)
+        is removed rather than left empty."""
         try:
             self.stream.close()
         except OSError:
             pass
+        if discard:
+            try:
+                os.unlink(self.path)
+            except OSError:
+                pass
