@@ -32,6 +32,7 @@ from dissector.render.output import Output
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
+from dissector.framing.linespeed import line_settings
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
@@ -374,10 +375,10 @@ def _decode_inputs(
         for title, chunks, mode, take_warnings, timed, fix, (path, source_format) in _inputs(args, env):
             if sinks.done:
                 break
+            # The one line speed of this input, for the framer, the silence checks and the bus timing.
+            line = line_settings(path, source_format, args.baud if args.baud_given else None)
             if sinks.bus is not None:
-                from dissector.render.bustiming import line_settings
-
-                sinks.bus.new_input(mode, line_settings(path, source_format, args.baud if args.baud_given else None))
+                sinks.bus.new_input(mode, line)
             sinks.output.new_input(title)
             sinks.restart_times()
             sinks.extra = {"file": title} if title is not None else None
@@ -386,13 +387,13 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {warning}\n")
 
-            _choose_profiles(annotate, args, chunks, mode, path)
-            framer = AsciiFramer(args.baud) if mode == "ascii" else RtuFramer(args.baud)  # (its silences: evidence)
+            _choose_profiles(annotate, args, chunks, mode, path, line.baud)
+            framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
                 annotate=annotate,
                 timeout=args.timeout,
-                gaps=GapChecker(args.baud, mode) if timed else None,
+                gaps=GapChecker(line.baud, mode) if timed else None,
             )
             sinks.valid_frames = sinks.input_bytes = 0
             _decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
@@ -411,17 +412,17 @@ def _decode_inputs(
 
 
 def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
-                     path: str | None) -> None:
+                     path: str | None, baud: int) -> None:
     """Profile `auto`: the choices made over the whole input first, where it can be read twice."""
     if getattr(annotate, "selector", None) is None:
         return
     from dissector.app.preselect import choose_profiles, rereadable
 
     if path is None:  # --hex: its chunks are a list
-        choose_profiles(annotate, chunks, mode, args.baud, args.timeout)  # type: ignore[arg-type]
+        choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
     elif rereadable(path):
         with open_source(path, args.format, mode=args.mode) as again:
-            choose_profiles(annotate, again, mode, args.baud, args.timeout)  # type: ignore[arg-type]
+            choose_profiles(annotate, again, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]
 

@@ -19,9 +19,10 @@ from dataclasses import dataclass, field
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
-from dissector.framing.timing import DEFAULT_BAUD, GapChecker
+from dissector.framing.linespeed import line_settings
+from dissector.framing.timing import GapChecker
 from dissector.pipeline import Dissector
-from dissector.render.bustiming import BusTiming, line_settings
+from dissector.render.bustiming import BusTiming
 from dissector.sources.reader import SourceError, open_source
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])
@@ -44,7 +45,7 @@ class JobSettings:
     format: str | None = None
     mode: str | None = None
     timeout: float = 1.0
-    baud: int | None = None  # None: the pcapng description or 19200
+    baud: int | None = None  # --baud; None: what framing/linespeed.py says of each capture
     profile_args: argparse.Namespace | None = None  # None: -n (no device profile)
 
 
@@ -87,14 +88,11 @@ def group_captures(paths: list[str]) -> list[Capture]:
     return captures
 
 
-def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
-            first: Callable[[str, str, bool], None]) -> Iterator[object]:
+def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult) -> Iterator[object]:
     offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
-    for index, path in enumerate(files):
+    for path in files:
         source = open_source(path, settings.format, mode=settings.mode)
         try:
-            if index == 0:
-                first(source.mode, source.format, source.format in TIMED_FORMATS)
             tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]
             for chunk in source:
                 offset += len(chunk.data)
@@ -104,22 +102,18 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
             source.close()
 
 
-def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings) -> None:
+def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings, mode: str, baud: int) -> None:
     """Profile `auto` over the capture's files first, as one stream (app/preselect.py, issue 27)."""
     if getattr(annotate, "selector", None) is None:
         return
     from dissector.app.preselect import choose_profiles
 
-    first = open_source(files[0], settings.format, mode=settings.mode)
-
     def chunks() -> Iterator[object]:
-        with first:
-            yield from first
-        for path in files[1:]:
+        for path in files:
             with open_source(path, settings.format, mode=settings.mode) as source:
                 yield from source
 
-    choose_profiles(annotate, chunks(), first.mode, None, settings.timeout)  # type: ignore[arg-type]
+    choose_profiles(annotate, chunks(), mode, baud, settings.timeout)  # type: ignore[arg-type]
 
 
 def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
@@ -139,26 +133,23 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         result.error = f"--parquet {settings.directory}: {error.strerror or error}"
         return result
     bus = BusTiming(settings.timeout)
-    state: dict[str, Dissector] = {}
-
-    def first(mode: str, source_format: str, timed: bool) -> None:
-        framer = AsciiFramer() if mode == "ascii" else RtuFramer()
+    try:
+        with open_source(capture.files[0], settings.format, mode=settings.mode) as first:
+            mode, source_format = first.mode, first.format  # the first file's, as one stream's
+        # The one line speed of this capture, as a single-process decode of it gets (framing/linespeed.py).
         line = line_settings(capture.files[0], source_format, settings.baud)
         bus.new_input(mode, line)
-        baud = settings.baud or DEFAULT_BAUD
-        state["dissector"] = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
-                                       gaps=GapChecker(baud, mode) if timed else None)
-
-    try:
-        _choose_profiles(annotate, capture.files, settings)
-        for chunk in _chunks(capture.files, settings, tables, result, first):
-            items = state["dissector"].feed(chunk)  # type: ignore[arg-type]
+        framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)
+        dissector = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
+                              gaps=GapChecker(line.baud, mode) if source_format in TIMED_FORMATS else None)
+        _choose_profiles(annotate, capture.files, settings, mode, line.baud)
+        for chunk in _chunks(capture.files, settings, tables, result):
+            items = dissector.feed(chunk)  # type: ignore[arg-type]
             tables.add(items)
             bus.add_items(items)
-        if "dissector" in state:
-            items = state["dissector"].finish()
-            tables.add(items)
-            bus.add_items(items)
+        items = dissector.finish()
+        tables.add(items)
+        bus.add_items(items)
         bus.finish()
         tables.outages(bus.outages)
         result.rows = tables.close()

@@ -21,19 +21,16 @@ An input without timestamps has no timing: its `bus` says `timed: false`.
 from __future__ import annotations
 
 import math
-import re
-import struct
 from dataclasses import dataclass, field
 from typing import Any
 
-from dissector.framing.timing import ASCII_BITS_PER_CHAR, DEFAULT_BAUD, RTU_BITS_PER_CHAR, LineTiming
+from dissector.framing.timing import DEFAULT_BAUD, LineTiming
 from dissector.model import Item, Kind
+from dissector.framing.linespeed import LineSettings
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
 GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
 MINUTE = 60.0
-_SETTINGS = re.compile(r"\b(\d{2,7})[ /,]+([5-8])([NEOMS])(1\.5|1|2)\b")
-_BAUD = re.compile(r"\b(\d{2,7}) ?(?:baud|bd|bps)\b", re.I)
 
 
 class Quantiles:
@@ -106,74 +103,6 @@ class Outage:
     def as_dict(self) -> dict[str, Any]:
         return {"slave": self.slave, "start": self.start, "end": self.end, "requests": self.requests,
                 "first_frame": self.first_frame, "last_frame": self.last_frame}
-
-
-@dataclass(frozen=True, slots=True)
-class LineSettings:
-    baud: int
-    bits: float | None = None  # bits a character; None: the mode's (11 RTU, 10 ASCII)
-    source: str = "assumed"  # "--baud", "pcapng interface description", "assumed"
-
-    def char_bits(self, mode: str) -> float:
-        if self.bits is not None:
-            return self.bits
-        return ASCII_BITS_PER_CHAR if mode == "ascii" else RTU_BITS_PER_CHAR
-
-
-def settings_from_text(text: str) -> LineSettings | None:
-    """The line settings a pcapng interface description states: `19200 8E1`, or `9600 baud`."""
-    match = _SETTINGS.search(text)
-    if match is not None:
-        baud, data, parity, stop = match.groups()
-        bits = 1 + int(data) + (parity != "N") + float(stop)
-        return LineSettings(int(baud), bits if bits != int(bits) else int(bits), "pcapng interface description")
-    match = _BAUD.search(text)
-    if match is not None:
-        return LineSettings(int(match.group(1)), None, "pcapng interface description")
-    return None
-
-
-def pcapng_description(path: str) -> str | None:
-    """The first interface's if_description (and if_name) of a pcapng file, None when absent."""
-    try:
-        with open(path, "rb") as stream:
-            head = stream.read(1 << 16)
-    except OSError:
-        return None
-    if len(head) < 28 or head[:4] != b"\x0a\x0d\x0d\x0a":
-        return None
-    order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
-    position = 0
-    texts: list[str] = []
-    while position + 12 <= len(head):
-        block_type, total = struct.unpack_from(order + "II", head, position)
-        if total < 12 or position + total > len(head):
-            break
-        if block_type == 1:
-            body = head[position + 8 : position + total - 4]
-            option = 8
-            while option + 4 <= len(body):
-                code, length = struct.unpack_from(order + "HH", body, option)
-                if code == 0:
-                    break
-                if code in (2, 3):
-                    texts.append(body[option + 4 : option + 4 + length].decode("utf-8", "replace"))
-                option += 4 + ((length + 3) & ~3)
-            break
-        position += total
-    return " ".join(texts) or None
-
-
-def line_settings(path: str | None, source_format: str | None, baud: int | None) -> LineSettings:
-    """--baud when given, else what a pcapng file says, else 19200 (assumed, as the simulator's)."""
-    if baud is not None:
-        return LineSettings(baud, None, "--baud")
-    if path is not None and source_format == "pcapng":
-        text = pcapng_description(path)
-        settings = settings_from_text(text) if text else None
-        if settings is not None:
-            return settings
-    return LineSettings(DEFAULT_BAUD, None, "assumed: --baud sets it")
 
 
 @dataclass(slots=True)

@@ -1,5 +1,6 @@
 """pcapng files: sections in either byte order, several interfaces, each with its link type and
-timestamp resolution (if_tsresol) and offset (if_tsoffset).
+timestamp resolution (if_tsresol) and offset (if_tsoffset), and its texts (if_name, if_description:
+what `vw3-decode --live -w` writes the serial settings in, framing/linespeed.py reads the speed there).
 
 Packets come from Enhanced (EPB), Simple (SPB, no timestamp) and obsolete Packet blocks (OPB).
 Blocks that carry no packet (name resolution, statistics, secrets, custom) are passed over; blocks
@@ -8,6 +9,7 @@ bounded whatever block sizes the file claims.
 """
 from __future__ import annotations
 
+import io
 import struct
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -29,7 +31,7 @@ BYTE_ORDER_MAGIC = 0x1A2B3C4D
 # Blocks that carry no packet data: NRB, ISB, systemd journal, DSB, custom (copyable or not).
 NO_PACKET_BLOCKS = {4: "name resolution", 5: "interface statistics", 9: "systemd journal",
                     0x0A: "decryption secrets", 0x0BAD: "custom", 0x40000BAD: "custom"}
-OPT_END, OPT_TSRESOL, OPT_TSOFFSET = 0, 9, 14
+OPT_END, OPT_IF_NAME, OPT_IF_DESCRIPTION, OPT_TSRESOL, OPT_TSOFFSET = 0, 2, 3, 9, 14
 MAX_HEADER_BLOCK = 1 << 20  # SHB and IDB are parsed whole: a bigger one is corruption
 
 
@@ -39,6 +41,7 @@ class Interface:
     snaplen: int
     units: int = 1_000_000  # timestamp units per second (if_tsresol)
     offset: int = 0  # seconds added to every timestamp (if_tsoffset)
+    texts: tuple[str, ...] = ()  # if_name and if_description, in the file's order
 
 
 def is_pcapng(head: bytes) -> bool:
@@ -67,12 +70,15 @@ def _interface(body: bytes, order: str, name: str) -> Interface:
             interface.units = 2**exponent if value[0] & 0x80 else 10**exponent
         elif code == OPT_TSOFFSET and len(value) == 8:
             interface.offset = struct.unpack(order + "q", value)[0]
+        elif code in (OPT_IF_NAME, OPT_IF_DESCRIPTION):
+            interface.texts += (value.decode("utf-8", "replace"),)
     return interface
 
 
 class _Reader:
-    def __init__(self, inp: Input, log: WarningLog, chunk_size: int) -> None:
+    def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False) -> None:
         self.inp = inp
+        self.first_interface = first_interface  # stop once the first interface is described
         self.log = log
         self.chunk_size = chunk_size
         self.order = "<"
@@ -109,6 +115,8 @@ class _Reader:
                 if body is None:
                     return
                 self.interfaces.append(_interface(body, self.order, inp.name))
+                if self.first_interface:
+                    return
             elif block_type in (EPB, OPB):
                 yield from self._packet(block_type, body_length, start)
             elif block_type == SPB:
@@ -245,6 +253,31 @@ class _Reader:
 
 class _Ended(Exception):
     """The input ended inside a block (already reported): stop reading."""
+
+
+def first_interface(path: str) -> Interface | None:
+    """The first interface a pcapng file describes; None for another format, or a file that cannot say.
+
+    Read from the file's first blocks (the interface precedes the packets it carries), at most
+    HEAD_BYTES, so asking costs the same whatever the capture's size.
+    """
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(HEAD_BYTES)
+    except OSError:
+        return None
+    if not is_pcapng(head):
+        return None
+    reader = _Reader(Input(io.BytesIO(head), path), WarningLog(), 1 << 16, first_interface=True)
+    try:
+        for _chunk in reader.run():
+            break  # a packet before any interface: not a valid file, nothing to say
+    except (SourceError, _Ended):
+        pass
+    return reader.interfaces[0] if reader.interfaces else None
+
+
+HEAD_BYTES = 4 * MAX_HEADER_BLOCK
 
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:

@@ -1,6 +1,7 @@
 """`--parquet` (issue 29), read back by DuckDB, an engine other than the writer: every shipped capture's
 tables hold what `--json` says, row for row; the README's queries run as they stand; `--jobs 2`, a
-ring buffer and a Dask cluster (a scheduler and two workers on localhost) give the same dataset."""
+ring buffer and a Dask cluster (a scheduler and two workers on localhost) give the same dataset.
+Beside the shipped captures, a pcapng whose interface says 9600 baud: every path reads its speed there."""
 from __future__ import annotations
 
 import json
@@ -16,9 +17,10 @@ import duckdb
 import pytest
 
 from conftest import ROOT
-from helpers import run_cli
+from helpers import run_cli, write_9600_tap
 
 CAPTURES = sorted(path for path in (ROOT / "captures").iterdir() if path.suffix in (".pcap", ".bin"))
+TAP = "tap_9600.pcapng"  # written by helpers.write_9600_tap
 ENV = dict(os.environ, PYTHONPATH=str(ROOT))
 
 
@@ -44,9 +46,16 @@ def _epoch_us(value: object) -> int | None:
 
 
 @pytest.fixture(scope="module")
-def dataset(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def inputs(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
+    tap = tmp_path_factory.mktemp("tap") / TAP
+    write_9600_tap(tap)
+    return [*CAPTURES, tap]
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory: pytest.TempPathFactory, inputs: list[Path]) -> Path:
     out = tmp_path_factory.mktemp("parquet") / "data"
-    result = _cli("--parquet", str(out), *map(str, CAPTURES))
+    result = _cli("--parquet", str(out), *map(str, inputs))
     assert (result.returncode, result.stderr) == (0, "")
     assert result.stdout.splitlines()[0] == "ascii_session.bin: 10 frames, 9 registers, 2 events"
     return out
@@ -57,8 +66,9 @@ FRAME_KEYS = ("frame", "kind", "offset", "length", "slave", "function", "crc_ok"
 QUOTED_KEYS = ", ".join(f'"{key}"' for key in FRAME_KEYS)  # offset is an SQL keyword
 
 
-@pytest.mark.parametrize("capture", CAPTURES, ids=lambda path: path.name)
-def test_tables_hold_what_json_says(dataset: Path, capture: Path) -> None:
+@pytest.mark.parametrize("name", [path.name for path in CAPTURES] + [TAP])
+def test_tables_hold_what_json_says(dataset: Path, inputs: list[Path], name: str) -> None:
+    (capture,) = [path for path in inputs if path.name == name]
     records = _records(capture)
     frames = _query(
         f"SELECT {QUOTED_KEYS}, epoch_us(time), hex(raw), warnings, notes "
@@ -148,10 +158,19 @@ def _everything(directory: Path) -> dict[str, list[tuple]]:
     }
 
 
-def test_jobs_give_the_same_dataset(dataset: Path, tmp_path: Path) -> None:
-    result = _cli("--parquet", str(tmp_path / "jobs"), "--jobs", "2", *map(str, CAPTURES))
+def test_the_line_speed_of_a_pcapng_is_its_interface_description(dataset: Path) -> None:
+    """9600 baud, as --json of the file says (tests/unit/test_linespeed.py): t1.5 is 1.719 ms; at the
+    19200 baud assumed without the description, all three requests would have a silence event."""
+    silences = _query(f"SELECT frame, text FROM read_parquet('{dataset}/events/*.parquet') "
+                      f"WHERE capture = '{TAP}' AND kind = 'silence'")
+    assert silences == [
+        (3, "silence of 2.000 ms inside the frame before byte 4 (longer than t1.5 = 1.719 ms at 9600 baud)")]
+
+
+def test_jobs_give_the_same_dataset(dataset: Path, inputs: list[Path], tmp_path: Path) -> None:
+    result = _cli("--parquet", str(tmp_path / "jobs"), "--jobs", "2", *map(str, inputs))
     assert (result.returncode, result.stderr) == (0, "")
-    assert sorted(result.stdout.splitlines()) == sorted(_cli("--parquet", str(tmp_path / "one"), *map(str, CAPTURES)).stdout.splitlines())
+    assert sorted(result.stdout.splitlines()) == sorted(_cli("--parquet", str(tmp_path / "one"), *map(str, inputs)).stdout.splitlines())
     assert _everything(tmp_path / "jobs") == _everything(dataset)
     assert sorted(os.listdir(tmp_path / "jobs" / "frames")) == sorted(os.listdir(dataset / "frames"))
 
@@ -182,7 +201,7 @@ def _free_port() -> int:
         return sock.getsockname()[1]
 
 
-def test_a_dask_cluster_gives_the_same_dataset(dataset: Path, tmp_path: Path) -> None:
+def test_a_dask_cluster_gives_the_same_dataset(dataset: Path, inputs: list[Path], tmp_path: Path) -> None:
     port = _free_port()
     address = f"tcp://127.0.0.1:{port}"
     dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
@@ -202,9 +221,9 @@ def test_a_dask_cluster_gives_the_same_dataset(dataset: Path, tmp_path: Path) ->
             while len(client.scheduler_info()["workers"]) < 2:
                 assert time.monotonic() < deadline, "the two workers never joined"
                 time.sleep(0.2)
-        result = _cli("--parquet", str(tmp_path / "dask"), "--scheduler", address, *map(str, CAPTURES))
+        result = _cli("--parquet", str(tmp_path / "dask"), "--scheduler", address, *map(str, inputs))
         assert (result.returncode, result.stderr) == (0, "")
-        assert len(result.stdout.splitlines()) == len(CAPTURES)
+        assert len(result.stdout.splitlines()) == len(inputs)
         assert _everything(tmp_path / "dask") == _everything(dataset)
     finally:
         for process in reversed(processes):

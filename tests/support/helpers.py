@@ -28,3 +28,23 @@ def run_cli(argv: list[str], stdin: bytes = b"", tty: bool = False) -> tuple[int
     env = Environment(io.BytesIO(stdin), out, err, stdout_isatty=tty, stderr_isatty=False)
     status = run(argv, env)
     return status, out.getvalue(), err.getvalue()
+
+
+def write_9600_tap(path: object, t0: float = 1767225600.0) -> None:
+    """A pcapng whose interface says 9600 8E1 (as `vw3-decode --live -w` writes it), three ATV71 reads of
+    8401 (CHCF), each request read in two pieces: 1.2 ms of silence inside the first (below t1.5 =
+    1.719 ms at 9600 baud, above 0.859 ms at 19200), 2 ms inside the second (above both), none in the
+    third. Silences are after the first piece's 4 characters at 9600 baud (4.583 ms)."""
+    from dissector.render.pcapngwriter import PcapngWriter
+
+    request, response = rtu("0C 03 20 D1 00 01"), rtu("0C 03 02 0003")
+    character = 11 / 9600
+    with open(path, "wb") as stream:  # type: ignore[call-overload]
+        writer = PcapngWriter(stream, if_name="/dev/ttyUSB0", if_description=(
+            "serial port /dev/ttyUSB0, 9600 baud, 8 data bits, even parity, 1 stop bit (9600 8E1)"))
+        for index, silence in enumerate((0.0012, 0.002, 0.0)):
+            start = t0 + 0.2 * index
+            writer.write(request[:4], start)
+            writer.write(request[4:], start + 4 * character + silence)
+            writer.write(response, start + 8 * character + silence + 0.015)
+        writer.close()
