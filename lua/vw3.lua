@@ -2097,14 +2097,22 @@ local function run_ascii(s, final, items)
       i = stop
     else
       local limit = math.min(n, i + MAX_ASCII)
-      local lf = find_byte(b, LF, i + 1, limit)
-      local colon = find_byte(b, COLON, i + 1, limit)
-      if colon ~= nil and (lf == nil or colon < lf) then
-        reject(s, i, colon - i, "ASCII frame cut short by the next ':'", items)
-        i = colon
-      elseif lf ~= nil then
-        ascii_candidate(s, i, lf + 1 - i, items)
-        i = lf + 1
+      -- (the first LF or ':' after it, in one scan that stops there: two scans to the limit cost 513
+      -- reads a ':' in a flood of them)
+      local stop = nil
+      for k = i + 1, limit - 1 do
+        local byte = b[k]
+        if byte == LF or byte == COLON then
+          stop = k
+          break
+        end
+      end
+      if stop ~= nil and b[stop] == COLON then
+        reject(s, i, stop - i, "ASCII frame cut short by the next ':'", items)
+        i = stop
+      elseif stop ~= nil then
+        ascii_candidate(s, i, stop + 1 - i, items)
+        i = stop + 1
       elseif n - i >= MAX_ASCII then
         reject(s, i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII), items)
         i = i + MAX_ASCII
@@ -3820,6 +3828,7 @@ local function python_repr(text)
   end
   return quote .. concat(out) .. quote
 end
+story.repr = python_repr -- (the display's too: FC43 objects)
 
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
@@ -5223,7 +5232,7 @@ function unseen.at(tvb, f, at, size)
   unseen.offset, unseen.length = frame_span(f, at, size)
 end
 
-function unseen.add(parent, field, value, generated)
+function unseen.add(parent, field, value, generated, hidden)
   local serial = unseen.serial
   if unseen.faked[field] == serial then
     if generated then unseen.generated = true end
@@ -5242,6 +5251,8 @@ function unseen.add(parent, field, value, generated)
     local frame_length = unseen.frame_length
     if unseen.length ~= frame_length and item.len == frame_length then unseen.faked[field] = serial end
   end
+  -- (never the faked item: it is the frame's)
+  if hidden and unseen.faked[field] ~= serial then item:set_hidden() end
   return item
 end
 
@@ -5338,6 +5349,19 @@ do
   proto.fields = field_list
 end
 
+-- A register's text fields have one occurrence per register, empty (and hidden) where the register has
+-- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
+-- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
+-- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
+-- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
+function unseen.shown(sub, field, r, text)
+  if text then sub:add(field, r, text):set_generated() else sub:add(field, r, ""):set_hidden() end
+end
+
+function unseen.text(sub, field, text)
+  if text then unseen.add(sub, field, text, true) else unseen.add(sub, field, "", false, true) end
+end
+
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
@@ -5352,19 +5376,19 @@ local function add_register(tree, tvb, f, reg, range, full)
     local sub = unseen.add(tree, pf.reg)
     sub:set_text(register_title(reg))
     if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
-    if reg.label then unseen.add(sub, pf.reg_label, reg.label, true) end
+    unseen.text(sub, pf.reg_label, reg.label)
     if reg.value ~= nil then unseen.add(sub, pf.reg_value, reg.value, false) end
     local row = reg.row or unseen.no_row
-    if row.code then unseen.add(sub, pf.reg_code, row.code, true) end
-    if row.name then unseen.add(sub, pf.reg_name, row.name, true) end
-    if row.unit then unseen.add(sub, pf.reg_unit, row.unit, true) end
+    unseen.text(sub, pf.reg_code, row.code)
+    unseen.text(sub, pf.reg_name, row.name)
+    unseen.text(sub, pf.reg_unit, row.unit)
     if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
     local parameter = PARAMETER_FIELDS[row]
     if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
       unseen.add(sub, parameter, reg.scaled or reg.value, true)
     end
-    if reg.text then unseen.add(sub, pf.reg_text, reg.text, true) end
-    if row.source then unseen.add(sub, pf.reg_source, row.source, true) end
+    unseen.text(sub, pf.reg_text, reg.text)
+    unseen.text(sub, pf.reg_source, row.source)
     if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
     if reg.status then
       unseen.add(sub, pf.reg_status, STATUS_VALUES[reg.status], true)
@@ -5379,19 +5403,19 @@ local function add_register(tree, tvb, f, reg, range, full)
     local item = sub:add(pf.reg_address, r, reg.address)
     if r ~= nil then item:set_generated() end
   end
-  if reg.label then sub:add(pf.reg_label, r, reg.label):set_generated() end
+  unseen.shown(sub, pf.reg_label, r, reg.label)
   if reg.value ~= nil then sub:add(pf.reg_value, r, reg.value) end -- (none: an exception 02's inferred status)
   local row = reg.row or unseen.no_row
-  if row.code then sub:add(pf.reg_code, r, row.code):set_generated() end
-  if row.name then sub:add(pf.reg_name, r, row.name):set_generated() end
-  if row.unit then sub:add(pf.reg_unit, r, row.unit):set_generated() end
+  unseen.shown(sub, pf.reg_code, r, row.code)
+  unseen.shown(sub, pf.reg_name, r, row.name)
+  unseen.shown(sub, pf.reg_unit, r, row.unit)
   if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
   local parameter = PARAMETER_FIELDS[row]
   if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
     sub:add(parameter, r, reg.scaled or reg.value):set_generated()
   end
-  if reg.text then sub:add(pf.reg_text, r, reg.text):set_generated() end
-  if row.source then sub:add(pf.reg_source, r, row.source):set_generated() end
+  unseen.shown(sub, pf.reg_text, r, reg.text)
+  unseen.shown(sub, pf.reg_source, r, row.source)
   if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
   if reg.status then
     sub:add(pf.reg_status, r, STATUS_VALUES[reg.status]):set_generated()
@@ -5540,14 +5564,14 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       for _, object in ipairs(f.objects) do
         local r = frame_range(tvb, f, object.offset, object.length)
         local sub = t:add(pf.object, r)
-        -- A device's bytes are data: an ESC or a C1 control (latin-1 held as UTF-8) shown as \xNN, never
-        -- written raw into tshark -V (a terminal would run it), as vw3-decode shows them.
-        local value = object.value:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end)
-        value = value:gsub("\194([\128-\159])", function(c) return format("\\x%02x", c:byte()) end)
-        sub:set_text(format("%s: %s", object.name, value))
+        -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
+        -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
+        -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
+        local shown = story.repr(object.value)
+        sub:set_text(format("%s: %s", object.name, shown))
         sub:add(pf.object_id, r, object.id)
         sub:add(pf.object_name, r, object.name):set_generated()
-        sub:add(pf.object_value, r, object.value)
+        sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
       end
     end

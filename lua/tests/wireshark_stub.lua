@@ -129,6 +129,7 @@ end
 function TreeItem:set_text(text) self.text = text return self end
 function TreeItem:append_text(text) self.text = (self.text or "") .. text return self end
 function TreeItem:set_generated() self.generated = true return self end
+function TreeItem:set_hidden() self.hidden = true return self end
 function TreeItem:add_proto_expert_info(info, text)
   assert(type(info) == "table" and info.kind == "expert", "stub: add_proto_expert_info needs a ProtoExpert")
   local child = new_item(nil, nil, nil)
@@ -144,7 +145,8 @@ function stub.dump(item, depth, out)
   depth, out = depth or 0, out or {}
   for _, child in ipairs(item.children) do
     local pad = string.rep("  ", depth)
-    if child.expert then
+    if child.hidden then -- (not shown, as tshark -V does not show it)
+    elseif child.expert then
       out[#out + 1] = pad .. "expert:" .. child.expert .. "=" .. tostring(child.text)
     elseif child.field.kind == "proto" then
       out[#out + 1] = pad .. child.field.name .. ": " .. tostring(child.text)

@@ -25,7 +25,31 @@ def test_fc43_objects_are_escaped_in_tshark_v(tmp_path: Path) -> None:
     result = run_tshark(pcap, "-V")
     assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr)
     assert ESC not in result.stdout and "\x07" not in result.stdout
-    assert "    VendorName: \\x1b]8;;http://x\\x1b\\LINK\\x1b[2J\\x07\n" in result.stdout
+    # (as vw3-decode -V writes it: Python's repr, the backslash of the bytes doubled)
+    assert "    VendorName: '\\x1b]8;;http://x\\x1b\\\\LINK\\x1b[2J\\x07'\n" in result.stdout
+
+
+def test_fc43_object_values_are_escaped_in_every_output(tmp_path: Path) -> None:
+    """ESC, CR, BEL, DEL, NBSP, a soft hyphen and a C1 control in an FC43 answer, and `[/x]` (rich markup
+    that killed vw3-decode -x): the field's value, in -T fields, -V and PDML, is vw3-decode's text."""
+    value = b"Ev\x1b[31mil\rCR\x07BEL\x7fDEL [/x] \xa0\xad\x85\xe9'\"\\"
+    body = "0c2b0e0101000002" + "00" + f"{len(value):02x}" + value.hex() + "01" + "03" + b"X\x1bY".hex()
+    pcap = write_pcap(tmp_path / "fc43.pcap", [(rtu("0c2b0e010100"), 1.0), (rtu(body), 1.1)])
+    python = subprocess.run(["vw3-decode", str(pcap), "-V"], capture_output=True, text=True, timeout=60)
+    assert python.returncode == 0, python.stderr
+    said = [line.strip() for line in python.stdout.splitlines() if line.strip().startswith(("Object 0 ", "Object 1 "))]
+    assert said == ["Object 0 VendorName: 'Ev\\x1b[31mil\\rCR\\x07BEL\\x7fDEL [/x] \\xa0\\xad\\x85é\\'\"\\\\'",
+                    "Object 1 ProductCode: 'X\\x1bY'"]
+    texts = [line.split(": ", 1)[1] for line in said]  # vw3-decode's texts, quotes and all
+    fields = run_tshark(pcap, "-T", "fields", "-E", "aggregator=|", "-e", "vw3.object.value")
+    assert fields.returncode == 0 and not lua_errors(fields.stdout + fields.stderr)
+    assert fields.stdout.splitlines()[1] == "|".join(text[1:-1] for text in texts)
+    verbose = run_tshark(pcap, "-V")
+    labels = [line.strip() for line in verbose.stdout.splitlines() if line.strip().startswith(("VendorName:", "ProductCode:"))]
+    assert labels == ["VendorName: " + texts[0], "ProductCode: " + texts[1]]
+    for output in (fields.stdout, verbose.stdout, run_tshark(pcap, "-T", "pdml").stdout):
+        assert not any(char in output for char in "\x1b\x07\x7f\x85\xa0\xad"), output
+        assert "\r" not in output.replace("\r\n", "")
 
 
 def _with_maps(tmp_path: Path, maps: str) -> subprocess.CompletedProcess[str]:

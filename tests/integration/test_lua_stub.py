@@ -87,7 +87,7 @@ def test_device_identification_and_a_record_with_two_frames() -> None:
                          "2 Encapsulated Interface Transport response")
     assert "vw3.request_frame=1" in record and "vw3.response_frame=1" in record
     objects = [line for line in record if line.startswith("vw3.object")]
-    assert objects[:5] == ["vw3.object=VendorName: Telemecanique", "vw3.object.id=0",
+    assert objects[:5] == ["vw3.object=VendorName: 'Telemecanique'", "vw3.object.id=0",
                            "vw3.object.name=VendorName", "vw3.object.value=Telemecanique",
                            "vw3.object.text=manufacturer name"]
     assert "vw3.object.text=V2.1" in objects

@@ -39,7 +39,7 @@ def test_two_connections_keep_their_own_pairing_and_split_frames_are_reassembled
     # Each response is shown once, reassembled, in the segment that completes it, and answers the
     # request of its own connection (frame 2 for port 40002, frame 1 for port 40001).
     shown = [(row[0], row[1], row[2], row[3]) for row in rows if row[1]]
-    assert shown == [("1", "1", "", ""), ("2", "1", "", ""), ("5", "2", "2", "CHCF,COP"), ("6", "2", "1", "CHCF,COP")]
+    assert shown == [("1", "1", "", ""), ("2", "1", "", ""), ("5", "2", "2", ",CHCF,COP"), ("6", "2", "1", ",CHCF,COP")]
     assert not any("without a matching request" in row[4] for row in rows)
     # The same by Decode As.
     assert _rows(tmp_path / "two.pcap", "-d", "tcp.port==5020,vw3", *ATV71) == rows
@@ -50,7 +50,7 @@ def test_udp_port_preference_and_decode_as(tmp_path: Path) -> None:
     writer.udp(True, 40001, 5021, SCENARIO_REQUEST, 1.0)
     writer.udp(False, 40001, 5021, SCENARIO_1, 1.01)
     writer.close()
-    expected = [["1", "1", "", "", ""], ["2", "2", "1", "CHCF,COP", ""]]
+    expected = [["1", "1", "", "", ""], ["2", "2", "1", ",CHCF,COP", ""]]
     assert _rows(tmp_path / "udp.pcap", "-o", "vw3.udp_port:5021", *ATV71) == expected
     assert _rows(tmp_path / "udp.pcap", "-d", "udp.port==5021,vw3", *ATV71) == expected
     assert [row[1] for row in _rows(tmp_path / "udp.pcap")] == ["", ""]

@@ -85,24 +85,14 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
             for reg in data.get("registers", [])
         ],
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
-        "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
+        # (the plugin's object values are escaped as vw3-decode's -V writes them, repr without its quotes)
+        "objects": [(obj["id"], obj["name"], repr(obj["value"])[1:-1], obj.get("text")) for obj in data.get("objects", [])],
         "warnings": [_warning(text) for text in data["warnings"]],
         "notes": [text for text in data["notes"] if not _PAIRING_NOTE.match(text)],
         # profile auto: which profile named the frame's registers, and why
         "profile": (data.get("profile"), data.get("profile_reason")),
     }
     return out
-
-
-_ESCAPE = re.compile(r"\\(x[0-9a-fA-F]{2}|[abfnrtv\\])")
-_ESCAPED = {"a": "\a", "b": "\b", "f": "\f", "n": "\n", "r": "\r", "t": "\t", "v": "\v", "\\": "\\"}
-
-
-def _unescape(text: str | None) -> str | None:
-    # Wireshark shows control characters of string fields as C escapes (\x1d, \n); the value is the same.
-    if text is None:
-        return None
-    return _ESCAPE.sub(lambda m: chr(int(m.group(1)[1:], 16)) if m.group(1)[0] == "x" else _ESCAPED[m.group(1)], text)
 
 
 def _int(text: str | None) -> int | None:
@@ -153,7 +143,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         ],
         "bits": [(_int(bit.get("address")), _int(bit.get("value"))) for bit in item.bits],
         "objects": [
-            (_int(obj.get("id")), obj.get("name"), _unescape(obj.get("value")), obj.get("text"))
+            (_int(obj.get("id")), obj.get("name"), obj.get("value"), obj.get("text"))
             for obj in item.objects
         ],
         "warnings": [_warning(text) for text in item.texts.get("warning", [])],

@@ -103,7 +103,8 @@ def _subtree(element: ET.Element, prefix: str) -> dict[str, str]:
     out = {}
     for child in element:
         name = child.get("name", "")
-        if name.startswith(prefix):
+        # (a register's hidden empty text fields are -T fields' empty occurrences, not values)
+        if name.startswith(prefix) and not (child.get("hide") == "yes" and child.get("show") == ""):
             out[name[len(prefix):]] = child.get("show", "")
     return out
 

@@ -1,0 +1,152 @@
+"""`tshark -T fields` with the plugin lines its register columns up as `vw3-decode -T fields` does (issue
+27): each text field of a register (`vw3.reg.code`, `.name`, `.unit`, `.text`, `.source`, `.label`) has
+one occurrence per register, empty where the register has no such key, so `-e vw3.reg.address -e
+vw3.reg.code` pairs them and `-E occurrence=f` names the first register's code, not the first code.
+
+Numbers (`vw3.reg.value`, `.scaled`, `.status`, `.words`) keep their types (`vw3.reg.scaled > 5`): tshark
+4.0 cannot print an empty number, and a text field of the same name makes it crash on `vw3.reg.value ==
+3`. Their occurrences are compared with vw3-decode's non-empty ones, in order.
+
+Every shipped capture and a simulator session, real tshark 4.0.17, against vw3-decode's own -T fields.
+"""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from lua_harness import PLUGIN, ROOT, USER_DLT, ensure_tool, lua_errors, write_pcap
+from lua_session import SessionBuilder
+
+TEXT_KEYS = ("code", "name", "unit", "text", "source", "label")
+NUMBER_KEYS = ("value", "scaled", "status")  # and address
+STATUS = {"ok": "0", "protected": "1", "non-existent": "2", "ambiguous": "3"}
+SEP = "^"  # the aggregator: no value of these captures holds it
+CAPTURES = sorted((ROOT / "captures").glob("*.pcap"))
+
+
+def plugin_rows(pcap: Path, *options: str, two_pass: bool = True, first: bool = False) -> dict[int, dict]:
+    """Per record: its item numbers and, per register key, the occurrences tshark prints."""
+    tshark = ensure_tool("tshark", "tshark")
+    keys = [f"vw3.reg.{key}" for key in ("address", *TEXT_KEYS, *NUMBER_KEYS)] + ["vw3.bit.address", "vw3.bit.value"]
+    command = [tshark, "-n", *(["-2"] if two_pass else []), "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT,
+               *options, "-r", str(pcap), "-T", "fields", "-E", f"aggregator={SEP}",
+               *(["-E", "occurrence=f"] if first else []), "-e", "frame.number", "-e", "vw3.item"]
+    for key in keys:
+        command += ["-e", key]
+    result = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    rows = {}
+    for line in result.stdout.splitlines():
+        cells = line.split("\t")
+        values = {key.split(".", 1)[1]: _split(cell) for key, cell in zip(keys, cells[2:])}
+        registers = max(len(values[f"reg.{key}"]) for key in ("address", "value", *TEXT_KEYS))
+        for key in TEXT_KEYS:
+            # (one register's empty occurrence prints as an empty cell, as no occurrence would)
+            if registers == 1 and not values[f"reg.{key}"]:
+                values[f"reg.{key}"] = [""]
+        rows[int(cells[0])] = {"items": [int(item) for item in _split(cells[1])], **values}
+    return rows
+
+
+def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = False) -> dict[int, dict]:
+    """Per item: vw3-decode's occurrences of each register key (registers, then bits, as it lists them)."""
+    keys = ("address", *TEXT_KEYS, *NUMBER_KEYS)
+    command = [sys.executable, "-m", "dissector", "-" if stdin else str(pcap), *options, "-T", "fields",
+               "-E", f"aggregator={SEP}", *(["-E", "occurrence=f"] if first else []), "-e", "frame"]
+    for key in keys:
+        command += ["-e", key]
+    run = subprocess.run(command, capture_output=True, cwd=ROOT, timeout=600,
+                         input=pcap.read_bytes() if stdin else None)
+    assert run.returncode == 0, run.stderr.decode(errors="replace")[-2000:]
+    rows = {}
+    for line in run.stdout.decode().splitlines():
+        cells = line.split("\t")
+        count = len(_split(cells[1]))
+        values = {}
+        for key, cell in zip(keys, cells[1:]):
+            # (one register without the key prints an empty cell: one empty occurrence, not none)
+            values[key] = cell.split(SEP) if count else []
+            assert len(values[key]) == count or (first and len(values[key]) == 1), (key, line)
+        rows[int(cells[0])] = values
+    return rows
+
+
+def _split(cell: str) -> list[str]:
+    return cell.split(SEP) if cell else []
+
+
+def differences(plugin: dict[int, dict], python: dict[int, dict]) -> list[str]:
+    out = []
+    for record, row in plugin.items():
+        bits = len(row["bit.address"])
+        expected: dict[str, list[str]] = {key: [] for key in ("address", *TEXT_KEYS, *NUMBER_KEYS)}
+        for item in row["items"]:
+            for key, values in python[item].items():
+                expected[key] += values
+        # registers, then bits, as vw3-decode lists them (a bit has an address and a value, no text)
+        shown = {"address": row["reg.address"] + row["bit.address"]}
+        for key in TEXT_KEYS:
+            shown[key] = row[f"reg.{key}"] + [""] * bits
+        shown["value"] = row["reg.value"] + row["bit.value"]
+        shown["scaled"] = [float(value) for value in row["reg.scaled"]]
+        shown["status"] = row["reg.status"]
+        wanted = {key: expected[key] for key in TEXT_KEYS}
+        # (an answer nobody asked for has registers without addresses)
+        wanted["address"] = [value for value in expected["address"] if value]
+        wanted["value"] = [value for value in expected["value"] if value]
+        wanted["scaled"] = [float(value) for value in expected["scaled"] if value]
+        wanted["status"] = [STATUS[value] for value in expected["status"] if value]
+        for key, values in wanted.items():
+            if shown[key] != values:
+                out.append(f"record {record} (items {row['items']}) {key}: plugin {shown[key]} vw3-decode {values}")
+    return out
+
+
+@pytest.mark.parametrize("capture", CAPTURES, ids=lambda path: path.name)
+def test_register_columns_line_up_as_vw3_decode_one_pass(capture: Path) -> None:
+    # tshark's single pass against vw3-decode reading the same bytes once (standard input)
+    found = differences(plugin_rows(capture, two_pass=False), python_rows(capture, stdin=True))
+    assert not found, "\n".join(found[:20])
+
+
+def test_register_columns_of_a_simulator_session(tmp_path: Path) -> None:
+    pcap = write_pcap(tmp_path / "session.pcap", SessionBuilder(seed=27).session(500))
+    found = differences(plugin_rows(pcap, two_pass=False), python_rows(pcap, stdin=True))
+    assert not found, "\n".join(found[:20])
+    # PLC addresses: vw3.reg.label on every register of an ATV71 slave, empty on the others
+    found = differences(plugin_rows(pcap, "-o", "vw3.address_style:plc", "-o", "vw3.profiles:12=atv71", two_pass=False),
+                        python_rows(pcap, "--address-style", "plc", "--profile", "auto", "--profile", "12=atv71",
+                                    stdin=True))
+    assert not found, "\n".join(found[:20])
+
+
+def test_p38_rows_exactly() -> None:
+    p38 = ROOT / "captures" / "p38_protection.pcap"
+    rows = plugin_rows(p38, two_pass=False)
+    assert [(record, row["reg.address"], row["reg.code"], row["reg.status"]) for record, row in rows.items()
+            if row["reg.address"]] == [
+        (2, ["8400", "8401", "8402"], ["", "", ""], []),  # (one pass: slave 12 is still generic)
+        (4, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "0", "0"]),
+        (6, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "0"]),
+        (8, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "0"]),
+        (10, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
+        (12, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
+    ]
+    # -E occurrence=f: the first register's code (8400 has none), as vw3-decode says it
+    first = plugin_rows(p38, two_pass=False, first=True)
+    assert [row["reg.code"] for row in first.values() if row["reg.address"]] == [[""]] * 6  # (it said CHCF)
+    python = python_rows(p38, stdin=True, first=True)
+    assert [row["code"] for row in python.values() if row["address"]] == [[""]] * 6
+    # Filters keep their types: codes and statuses by name, values and statuses as numbers.
+    tshark = ensure_tool("tshark", "tshark")
+    for expression, frames in (('vw3.reg.code == "CHCF" && vw3.reg.status == "protected"', "6 8 10 12"),
+                               ("vw3.reg.value == 3", "2 4"), ("vw3.reg.status == 1", "6 8 10 12"),
+                               ('vw3.reg.code == "COP" && vw3.reg.status == 0', "4 6 8")):
+        command = [tshark, "-n", "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(p38), "-Y", expression,
+                   "-T", "fields", "-e", "frame.number"]
+        result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+        assert result.returncode == 0, (expression, result.stderr)
+        assert " ".join(result.stdout.split()) == frames, expression
