@@ -603,7 +603,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
 
 /* ---- registers ---------------------------------------------------------------------------------- */
 typedef struct {
-    unsigned start;        /* first address; addresses wrap at 65536 as fields._registers does */
+    unsigned start;        /* first address; addresses wrap at 65536 as fields.Lifter's register blocks do */
     unsigned count;
     const uint8_t *values; /* big-endian words */
 } Words;
@@ -938,7 +938,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
         r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
         r->has_writes = 1;
     }
-    if (L->coil_at) { /* fields._write_single_coil warns of any value but ON and OFF */
+    if (L->coil_at) { /* fields.Lifter's coil rule warns of any value but ON and OFF */
         r->value = word(f + L->coil_at);
         if (r->value != 0xFF00 && r->value != 0) return 0;
     }
@@ -1068,7 +1068,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         if (f[2] != 2 * r->quantity) return 0;
         *reads = (Words){r->start, r->quantity, f + 3};
         break;
-    case 6: {  /* fields._check_echo: an answer that is not the request's echo gets a warning */
+    case 6: {  /* fields.Lifter's echo rule: an answer that is not the request's echo gets a warning */
         if (word(f + 2) != r->start || word(f + 4) != word(r->writes.values)) return 0;
         Words echo = {word(f + 2), 1, f + 4};
         return words_are_plain(s, e->run_number, &echo);
@@ -1085,7 +1085,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         return 1;
     case 12: /* events are byte count - 6 bytes: a shorter count is malformed */
         return f[2] >= 6;
-    case 24: /* fields._fifo_response: at most 31 values, byte count 2 + 2 x count */
+    case 24: /* fields.Lifter's fifo_response rule: at most 31 values, byte count 2 + 2 x count */
         return word(f + 4) <= 31 && word(f + 2) == 2 + 2 * word(f + 4);
     default:
         return 0;

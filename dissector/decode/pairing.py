@@ -17,6 +17,7 @@ from __future__ import annotations
 import weakref
 
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
+from dissector.protocol.rules import text
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 
@@ -81,7 +82,7 @@ class Pairer:
                      if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
                     None,
                 )
-                pending.notes.append(cut or "the capture ends before any response")
+                pending.notes.append(cut or text("capture_ends"))
         self._pending = None
         self._release(out)
         return out
@@ -114,7 +115,7 @@ class Pairer:
             if pending is not None:
                 pending.unanswered = True
                 if self._pending_released:
-                    item.notes.append(f"request #{pending.number} was not answered")
+                    item.notes.append(text("unanswered", number=pending.number))
             self._pending = None
             self._release(out)
             if item.slave == 0:
@@ -134,17 +135,16 @@ class Pairer:
             self._pending = None
         elif late is not None and late.slave == item.slave and late.function == item.function:
             assert self._timeout is not None and item.time is not None and late.time is not None
-            item.warnings.append(
-                f"response {(item.time - late.time) * 1000:.1f} ms after request #{late.number}, later "
-                f"than the {self._timeout * 1000:.0f} ms timeout: not its answer"
-            )
+            item.warnings.append(text(
+                "late", delay_ms=(item.time - late.time) * 1000, number=late.number, timeout_ms=self._timeout * 1000
+            ))
         else:
             if pending is not None:
                 pending.unanswered = True
                 if self._pending_released:
-                    item.notes.append(f"request #{pending.number} was not answered")
+                    item.notes.append(text("unanswered", number=pending.number))
                 self._pending = None
-            item.notes.append("response without a matching request in the capture")
+            item.notes.append(text("unmatched"))
         self._queue.append(item)
         self._release(out)
 

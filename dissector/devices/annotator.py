@@ -25,11 +25,15 @@ from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol import table
+from dissector.protocol.rules import Confirm
 from dissector.protocol.spec import SPEC
 
 __all__ = ["Annotator", "MapLayer", "ProfileChoice"]
 
 _READS = table.register_reads()  # functions whose response registers are values read from the device
+# Register writes by how they are confirmed (data/modbus.toml [confirm]): FC6 by its echo, FC16/23 by an answer.
+_BY_ECHO = table.confirmed_registers(Confirm.ECHO)
+_BY_ANSWER = table.confirmed_registers(Confirm.ANSWER)
 _HAS_LABEL = "label" in Register.__dataclass_fields__
 _REQUEST = Kind.REQUEST
 _RESPONSE = Kind.RESPONSE
@@ -293,8 +297,8 @@ class Annotator:
             if events:
                 frame.notes.extend(tell(events))
             return
-        elif device.track and function in (16, 23):
-            # Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+        elif device.track and function in _BY_ANSWER:
+            # Writes a normal answer confirms (FC16 answers carry no values; FC23 writes before it reads).
             request = frame.request
             if request is not None and request.registers:
                 remember_writes(frame, device, request.registers)
@@ -302,11 +306,11 @@ class Annotator:
         if registers:
             read = kind is _RESPONSE and function in _READS
             self._annotate(frame, device, registers, read, events)
-            if kind is _RESPONSE and function == 6 and device.track:
+            if kind is _RESPONSE and function in _BY_ECHO and device.track:
                 remember_writes(frame, device, registers)
             if events:
                 frame.notes.extend(tell(events))
-        if function == 8 and frame.subfunction is not None:
+        if frame.subfunction is not None:  # FC8: only its lifter sets one
             _diagnostics(frame, device)
         if frame.objects:
             _objects(frame, device.profile, frame.objects)

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 from dissector.devices.device import Device
 from dissector.devices.profiles import Profile
-from dissector.model import Frame
+from dissector.model import Frame, Kind
 from dissector.protocol.spec import SPEC
+from dissector.protocol.table import lift_of, write_windows
+
+_WRITE_WINDOWS = write_windows()  # requests with a write quantity of their own (FC23)
 
 
 def within_limits(frame: Frame, device: Device) -> bool:
@@ -17,8 +20,10 @@ def within_limits(frame: Frame, device: Device) -> bool:
     if quantity is None or quantity > limits[0]:
         return False
     if len(limits) > 1:
+        window = _WRITE_WINDOWS.get(frame.function)
         fields = frame.fields
-        return fields is not None and fields["write_quantity"] <= limits[1]  # a key, not Container.__getattr__
+        # a key, not Container.__getattr__
+        return window is not None and fields is not None and fields[window[1]] <= limits[1]
     return True
 
 
@@ -48,11 +53,13 @@ def check_request(frame: Frame, device: Device) -> None:
 
 
 def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, ...]) -> None:
-    if frame.function == 23:
+    rule = lift_of(frame.function, Kind.REQUEST)
+    if rule is not None and rule.write_window is not None:
+        # Read and write quantities (FC23): as the spec's checks of the lifting rule name them.
         fields = frame.fields
         if fields is None:
             return
-        checks = [("read quantity", fields.read_quantity), ("write quantity", fields.write_quantity)]
+        checks = [(check.what, fields[check.field]) for check in rule.checks]
     else:
         checks = [("quantity", frame.quantity)]
     for (what, quantity), limit in zip(checks, limits):

@@ -24,6 +24,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
 from dissector.protocol.ascii import _HEX_DIGITS, COLON, MAX_ASCII, MIN_BINARY
+from dissector.protocol.rules import text
 
 
 class AsciiFramer(StreamFramer):
@@ -100,9 +101,9 @@ class AsciiFramer(StreamFramer):
             mode="ascii",
         )
         if lost_cr:
-            frame.warnings.append("line ends with LF without CR (the spec ends a frame with CR LF)")
+            frame.warnings.append(text("lf_without_cr"))
         if digits != digits.upper():
-            frame.warnings.append("lower-case hex digits (the spec wants upper case)")
+            frame.warnings.append(text("lower_case_hex"))
         self._emit(frame, items)
 
     def _classify(self, adu: bytes) -> Kind | None:

@@ -27,6 +27,7 @@ def _request_checks() -> dict[int, tuple[int, int]]:
 
 
 READ_LIMITS = _request_checks()
+COIL_REQUESTS = table.coil_requests()  # the lifting rules' coil values (FC5)
 
 
 def plausible_request(buf: bytes | bytearray, i: int, length: int) -> bool:
@@ -37,7 +38,7 @@ def plausible_request(buf: bytes | bytearray, i: int, length: int) -> bool:
     if length != 8 or not 1 <= buf[i] <= MAX_SLAVE:
         return False
     word = buf[i + 4] << 8 | buf[i + 5]
-    if function == 5:
+    if function in COIL_REQUESTS:
         return word in COIL_VALUES
     limits = READ_LIMITS.get(function)
     return limits is not None and limits[0] <= word <= limits[1] and (buf[i + 2] << 8 | buf[i + 3]) + word <= 0x10000

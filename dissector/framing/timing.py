@@ -23,6 +23,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from dissector.model import Chunk, Frame, Item
+from dissector.protocol.rules import text
 
 DEFAULT_BAUD = 19200
 RTU_BITS_PER_CHAR = 11
@@ -80,10 +81,9 @@ def inner_gaps(
             continue
         silence = time - previous_time - (start - previous_offset) * timing.char_time
         if silence > timing.max_silence:
-            warnings.append(
-                f"silence of {silence * 1000:.3f} ms inside the frame before byte {start - offset} "
-                f"(longer than {timing.describe_limit()})"
-            )
+            warnings.append(text(
+                "inner_silence", silence_ms=silence * 1000, byte=start - offset, limit=timing.describe_limit()
+            ))
     return warnings
 
 

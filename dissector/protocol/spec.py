@@ -24,6 +24,10 @@ class Spec:
     user_defined: frozenset[int]  # function codes the spec leaves to users
     # Codes with no public layout that a shipped device profile speaks (data/profiles/*.toml `functions`)
     vendor_functions: frozenset[int]
+    # The rule tables protocol/rules.py reads: how a write is confirmed, how frames are lifted, the texts
+    confirm: dict[int, str]
+    lift: dict[str, dict[str, object]]
+    texts: dict[str, str]
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -54,6 +58,9 @@ def load_spec() -> Spec:
         plc_references={int(key): int(value) for key, value in data.get("plc_references", {}).items()},
         user_defined=frozenset(code for low, high in data["user_defined"] for code in range(low, high + 1)),
         vendor_functions=_vendor_functions(frozenset(_int_keys(data["functions"]))),
+        confirm=_int_keys(data["confirm"]),
+        lift=data["lift"],
+        texts={str(key): str(value) for key, value in data["texts"].items()},
     )
 
 

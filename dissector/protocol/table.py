@@ -21,6 +21,7 @@ from construct import Construct, Struct
 
 from dissector.model import Kind
 from dissector.protocol import layouts as L
+from dissector.protocol.rules import LIFTS, Confirm, Lift, confirmed_by
 from dissector.protocol.spec import SPEC
 
 
@@ -341,3 +342,44 @@ def field_offset(grammar: Construct, name: str) -> int:
             return offset
         offset += sub.sizeof()  # raises for a variable-size field: no fixed offset then
     raise KeyError(f"no field {name!r} at a fixed offset")
+
+
+# -- what the rule tables (protocol/rules.py) say per function code ------------------------------------
+def lift_of(function: int, kind: Kind) -> Lift | None:
+    """The lifting rule of a frame's data; None: a named special case, or no handler."""
+    entry = TABLE.get(function)
+    if entry is None or kind is Kind.EXCEPTION:
+        return None
+    handler = entry.layout(kind).handler
+    return None if handler is None else LIFTS.get(handler)
+
+
+def write_windows() -> dict[int, tuple[str, str]]:
+    """Codes whose request writes a window of its own beside the one it reads (FC23): its fields."""
+    out = {}
+    for entry in FUNCTIONS:
+        rule = lift_of(entry.code, Kind.REQUEST)
+        if rule is not None and rule.write_window is not None:
+            out[entry.code] = rule.write_window
+    return out
+
+
+def register_writes() -> frozenset[int]:
+    """Codes whose request registers are values written (FC6, FC16, FC23)."""
+    return frozenset(
+        entry.code for entry in FUNCTIONS
+        if entry.data is Data.REGISTERS and entry.access in (Access.WRITE, Access.READ_WRITE)
+    )
+
+
+def confirmed_registers(how: Confirm) -> frozenset[int]:
+    """Register writes `how` confirms (data/modbus.toml [confirm]): by its echo FC6, by a normal answer
+    FC16 and FC23."""
+    return confirmed_by(how, register_writes())
+
+
+def coil_requests() -> frozenset[int]:
+    """Codes whose request carries one coil value that must be ON or OFF (FC5)."""
+    return frozenset(
+        entry.code for entry in FUNCTIONS if (rule := lift_of(entry.code, Kind.REQUEST)) is not None and rule.coil
+    )

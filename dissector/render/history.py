@@ -31,7 +31,8 @@ from collections.abc import Callable
 from typing import Any, Protocol
 
 from dissector.model import Frame, Item, Kind, Register
-from dissector.protocol.table import FUNCTIONS, Access, Data
+from dissector.protocol.rules import Confirm
+from dissector.protocol.table import confirmed_registers, register_reads, register_writes
 from dissector.render.stats_store import CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store
 
 __all__ = [
@@ -40,14 +41,11 @@ __all__ = [
 ]
 
 # Codes whose registers are values read or written, as the protocol table states them: {3, 4, 23} and {6, 16, 23}.
-READ_FUNCTIONS = frozenset(
-    entry.code for entry in FUNCTIONS
-    if entry.data is Data.REGISTERS and entry.access in (Access.READ, Access.READ_WRITE)
-)
-WRITE_FUNCTIONS = frozenset(
-    entry.code for entry in FUNCTIONS
-    if entry.data is Data.REGISTERS and entry.access in (Access.WRITE, Access.READ_WRITE)
-)
+READ_FUNCTIONS = register_reads()
+WRITE_FUNCTIONS = register_writes()
+# How those writes are confirmed (data/modbus.toml [confirm]): FC6 by its echo, FC16/FC23 by a normal answer.
+_BY_ECHO = confirmed_registers(Confirm.ECHO)
+_BY_ANSWER = confirmed_registers(Confirm.ANSWER)
 # Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
 UNREADABLE_STATUSES = frozenset(["protected", "non-existent"])
 
@@ -109,10 +107,10 @@ class History:
                 self._reads(frame, registers)
             return
         # Writes first: FC23 performs its write before its read.
-        if function == 6:
+        if function in _BY_ECHO:
             if registers:
                 self._events(frame, registers, CONFIRM, confirmed=True)
-        elif function in (16, 23) and written:
+        elif function in _BY_ANSWER and written:
             self._events(frame, written, CONFIRM, confirmed=True)
         if function in READ_FUNCTIONS and registers:
             self._reads(frame, registers)

@@ -22,7 +22,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.model import Frame
+from dissector.protocol.table import write_windows
 from dissector.render.describe import plain_span
+
+_WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
 MAX_KEYS = 50_000
@@ -126,10 +129,11 @@ class PollCycle:
 
 
 def request_key(frame: Frame) -> Key:
-    if frame.function == 23:
+    window = _WRITE_WINDOWS.get(frame.function)
+    if window is not None:
         try:
             fields = frame.fields
-            return (frame.slave, 23, frame.start, frame.quantity, fields["write_start"], fields["write_quantity"])
+            return (frame.slave, frame.function, frame.start, frame.quantity, fields[window[0]], fields[window[1]])
         except (KeyError, TypeError):
             pass
     if frame.start is not None:

@@ -1,0 +1,98 @@
+"""The rule tables of data/modbus.toml (protocol/rules.py) as Lua data for the Wireshark plugin, and the
+Lua literal writer the conformance vectors (tests/conformance/vectors.lua) use.
+
+`render_rules()` gives a Lua chunk defining `local RULES = {...}`: the lifting rules per handler name
+(with each check's limit resolved per function code), how each write is confirmed, and the catalogue of
+texts, each with its Python template, its parameters in order and a `string.format` form (`%s` for a
+plain parameter, the format spec carried over: `0x{value:04X}` -> `0x%04X`). The plugin's code
+generator (codegen/lua.py) places it inside its generated block, between the markers below, so that
+`python3 -m dissector.codegen --check` covers it with the rest of the plugin.
+"""
+from __future__ import annotations
+
+import re
+import string
+from typing import Any
+
+from dissector.codegen.lua import lua_literal as scalar_literal
+from dissector.model import Kind
+from dissector.protocol import table
+from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Lift, params
+from dissector.protocol.spec import SPEC
+
+BEGIN = "-- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)"
+END = "-- END RULES"
+
+
+def lua_literal(value: Any) -> str:
+    """A Lua literal for plain data: dicts, lists, strings, numbers, booleans; None is nil (an absent
+    key in a table, a hole in a list)."""
+    if not isinstance(value, (dict, list, tuple)):
+        return scalar_literal(value)  # nil, booleans, numbers, strings: as the plugin's own block writes them
+    if isinstance(value, dict):
+        rows = [f"[{lua_literal(key)}]={lua_literal(item)}" for key, item in value.items() if item is not None]
+        return "{" + ",".join(rows) + "}"
+    if isinstance(value, (list, tuple)):
+        return "{" + ",".join(lua_literal(item) for item in value) + "}"
+    raise TypeError(f"no Lua literal for {type(value).__name__}")
+
+
+_SPEC = re.compile(r"^[0-9]*(\.[0-9]+)?[dfxX]?$")
+
+
+def lua_format(template: str) -> str:
+    """A catalogue text as a `string.format` pattern; its parameters come in `params()` order."""
+    out = []
+    for literal, name, spec, conversion in string.Formatter().parse(template):
+        out.append(literal.replace("%", "%%"))
+        if name is None:
+            continue
+        if conversion or not _SPEC.match(spec or ""):
+            raise ValueError(f"text {template!r}: no Lua form for {{{name}:{spec}}}")
+        if not spec:
+            out.append("%s")
+        else:
+            out.append("%" + spec + ("" if spec[-1] in "dfxX" else "d"))
+    return "".join(out)
+
+
+def _lift(rule: Lift) -> dict[str, Any]:
+    return {
+        "start": rule.start, "quantity": rule.quantity, "unpaired_unit": rule.unpaired_unit,
+        "checks": [{"what": c.what, "field": c.field, "limit": c.limit, "test": str(c.test)} for c in rule.checks],
+        "span": rule.span,
+        "count": None if rule.count is None else {
+            "of": rule.count.of, "unit": rule.count.unit, "plus": rule.count.plus, "text": rule.count.text},
+        "odd_count": rule.odd_count, "coil": rule.coil,
+        "echo": None if rule.echo is None else {"fields": list(rule.echo.fields), "names": str(rule.echo.names)},
+        "values": None if rule.values is None else {
+            "kind": str(rule.values.kind), "field": rule.values.field, "start": rule.values.start},
+        "write_window": None if rule.write_window is None else list(rule.write_window),
+    }
+
+
+def rules_data() -> dict[str, Any]:
+    """Everything the plugin needs to interpret the rule tables, as plain data."""
+    by_code: dict[str, dict[int, Any]] = {}
+    for kind in (Kind.REQUEST, Kind.RESPONSE):
+        handlers = table.by_kind("handler")[kind]
+        limits = table.by_kind("limit")[kind]
+        # Per code: the handler's rule name and the layout's own limit (a check without `limit` uses it).
+        by_code[str(kind)] = {
+            code: {"rule": name if name in LIFTS else None, "special": None if name in LIFTS else name,
+                   "limit": limits.get(code)}
+            for code, name in handlers.items()
+        }
+    return {
+        "lift": {name: _lift(rule) for name, rule in LIFTS.items()},
+        "by_code": by_code,
+        "confirm": {code: str(how) for code, how in CONFIRM.items()},
+        "limits": {name: list(value) for name, value in SPEC.limits.items() if isinstance(value, list)},
+        "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key))}
+                  for key in TEXTS},
+    }
+
+
+def render_rules() -> str:
+    """The Lua chunk (between BEGIN and END) that defines `local RULES`."""
+    return f"{BEGIN}\nlocal RULES = {lua_literal(rules_data())}\n{END}\n"

@@ -1,0 +1,179 @@
+"""The rule tables of data/modbus.toml as typed objects: how frames are lifted, how writes are confirmed,
+and the catalogue of warning and note texts.
+
+They are data so that each engine interprets the same statement: the Python lifter (decode/fields.py),
+the compiled engine (accel/_summary.c through the generated accel/_tables.h, codegen/c_rules.py) and
+the plugin (its generated rule data, codegen/rules_lua.py). A rule names fields of the layout grammars
+(protocol/layouts.py); tests/unit/test_rules.py holds every name to a grammar field.
+"""
+from __future__ import annotations
+
+import string
+from dataclasses import dataclass
+from enum import StrEnum
+
+from dissector.protocol.spec import SPEC
+
+REQUEST_PREFIX = "request."  # a window value taken from the request a frame answers
+
+
+class Test(StrEnum):
+    RANGE = "range"  # low <= value <= high
+    ABOVE = "above"  # value <= high (the low bound is 0, an unsigned field's own)
+
+
+@dataclass(frozen=True, slots=True)
+class Check:
+    """A field checked against a spec limit; `limit` None: the layout's own (protocol/table.py)."""
+
+    what: str
+    field: str
+    limit: str | None = None
+    test: Test = Test.RANGE
+
+
+@dataclass(frozen=True, slots=True)
+class Count:
+    """The byte count must be `plus` + `of` x `unit` (unit 0: bits, ceil(of / 8))."""
+
+    of: str
+    unit: int
+    text: str
+    plus: int = 0
+
+    def expected(self, quantity: int) -> int:
+        return self.plus + (quantity * self.unit if self.unit else (quantity + 7) // 8)
+
+
+class Names(StrEnum):
+    DIFFERING = "differing"  # the text names the fields that differ
+    ALL = "all"  # the text names every field when any differs
+
+
+@dataclass(frozen=True, slots=True)
+class Echo:
+    fields: tuple[str, ...]
+    names: Names
+
+
+class ValueKind(StrEnum):
+    REGISTERS = "registers"
+    BITS = "bits"
+    REGISTER = "register"
+    COIL = "coil"
+
+
+@dataclass(frozen=True, slots=True)
+class Values:
+    kind: ValueKind
+    field: str
+    start: str | None = None  # a field; None: the window's start
+
+
+@dataclass(frozen=True, slots=True)
+class Lift:
+    """How one handler lifts a frame (data/modbus.toml [lift.<name>], the keys explained there)."""
+
+    name: str
+    start: str | None = None
+    quantity: str | int | None = None
+    unpaired_unit: int | None = None
+    checks: tuple[Check, ...] = ()
+    span: bool = False
+    count: Count | None = None
+    odd_count: bool = False
+    coil: str | None = None
+    echo: Echo | None = None
+    values: Values | None = None
+    write_window: tuple[str, str] | None = None
+
+    def fields(self) -> set[str]:
+        """The grammar fields the rule names of its own frame (the request's are the window's)."""
+        names = {check.field for check in self.checks}
+        for value in (self.start, self.quantity, self.coil, self.count.of if self.count else None):
+            if isinstance(value, str) and not value.startswith(REQUEST_PREFIX):
+                names.add(value)
+        if self.echo:
+            names.update(self.echo.fields)
+        if self.values:
+            names.add(self.values.field)
+            if self.values.start:
+                names.add(self.values.start)
+        if self.write_window:
+            names.update(self.write_window)
+        if self.count:
+            names.add("byte_count")
+        return names
+
+
+class RuleError(ValueError):
+    """A rule table entry the engines cannot interpret."""
+
+
+_KEYS = set(Lift.__dataclass_fields__) - {"name"}
+
+
+def _lift(name: str, entry: dict[str, object]) -> Lift:
+    unknown = set(entry) - _KEYS
+    if unknown:
+        raise RuleError(f"[lift.{name}]: unknown keys {sorted(unknown)}")
+    try:
+        count = entry.get("count")
+        echo = entry.get("echo")
+        values = entry.get("values")
+        window = entry.get("write_window")
+        return Lift(
+            name,
+            start=entry.get("start"),  # type: ignore[arg-type]
+            quantity=entry.get("quantity"),  # type: ignore[arg-type]
+            unpaired_unit=entry.get("unpaired_unit"),  # type: ignore[arg-type]
+            checks=tuple(
+                Check(c["what"], c["field"], c.get("limit"), Test(c.get("test", "range")))
+                for c in entry.get("checks", ())  # type: ignore[attr-defined]
+            ),
+            span=bool(entry.get("span", False)),
+            count=None if count is None else Count(count["of"], int(count["unit"]), count["text"], int(count.get("plus", 0))),  # type: ignore[index, attr-defined]
+            odd_count=bool(entry.get("odd_count", False)),
+            coil=entry.get("coil"),  # type: ignore[arg-type]
+            echo=None if echo is None else Echo(tuple(echo["fields"]), Names(echo["names"])),  # type: ignore[index]
+            values=None if values is None else Values(ValueKind(values["kind"]), values["field"], values.get("start")),  # type: ignore[index, attr-defined]
+            write_window=None if window is None else (window[0], window[1]),  # type: ignore[index]
+        )
+    except (KeyError, TypeError, ValueError) as error:
+        raise RuleError(f"[lift.{name}]: {error}") from None
+
+
+LIFTS: dict[str, Lift] = {name: _lift(name, entry) for name, entry in SPEC.lift.items()}  # type: ignore[arg-type]
+
+
+# -- writes and their confirmation ---------------------------------------------------------------------
+class Confirm(StrEnum):
+    ECHO = "echo"  # the answer repeats the values written
+    ANSWER = "answer"  # a normal answer confirms the request's values
+
+
+CONFIRM: dict[int, Confirm] = {code: Confirm(how) for code, how in SPEC.confirm.items()}
+
+
+def confirmed_by(how: Confirm, codes: frozenset[int] | set[int] | None = None) -> frozenset[int]:
+    """Codes whose writes `how` confirms, among `codes` when given (e.g. the codes with registers)."""
+    return frozenset(code for code, way in CONFIRM.items() if way is how and (codes is None or code in codes))
+
+
+# -- the catalogue of texts ----------------------------------------------------------------------------
+TEXTS: dict[str, str] = dict(SPEC.texts)
+
+
+def params(key: str) -> tuple[str, ...]:
+    """The parameter names a text takes, in order of appearance."""
+    return tuple(name for _, name, _, _ in string.Formatter().parse(TEXTS[key]) if name)
+
+
+def text(key: str, **values: object) -> str:
+    """The catalogue's text `key` with its parameters filled in."""
+    return TEXTS[key].format(**values)
+
+
+def echo_text(names: list[str]) -> str:
+    """`the response's address and value differ from the request's`."""
+    return text("echo", fields=" and ".join(names), verb="differs" if len(names) == 1 else "differ")

@@ -1,0 +1,251 @@
+"""Shared conformance vectors: the Python reference's result of each stage, for a set of inputs, in files
+every port is checked against (issue 30).
+
+    python3 tests/conformance/generate.py          # rewrite vectors.json and vectors.lua
+    python3 tests/conformance/generate.py --check  # exit 1 when they are stale
+
+Inputs: the frames printed in the seed pages (tests/support/seed_frames.py), one frame alone and the
+pages' transactions in order; crafted transactions that break each lifting rule of data/modbus.toml
+[lift] once (limits, span, byte counts, coil values, echoes, FIFO counts); the shipped captures
+(captures/*.bin). Stages, per input (see tests/conformance/README.md for the format):
+framing -> pairing -> decoding -> profile selection -> annotation -> summary lines; and the shipped
+maps as map reading gives them. tests/unit/test_conformance.py fails when these files are stale and
+checks the compiled engine's summary lines against them; the plugin's runner reads vectors.lua.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "support")]
+
+from construct import Container, ListContainer  # noqa: E402
+
+from dissector.app.preselect import choose_profiles  # noqa: E402
+from dissector.codegen.rules_lua import lua_literal  # noqa: E402
+from dissector.decode.fields import decode_frame  # noqa: E402
+from dissector.decode.pairing import Pairer  # noqa: E402
+from dissector.devices.build import build_annotator  # noqa: E402
+from dissector.devices.maps import load_builtin_map  # noqa: E402
+from dissector.framing.ascii import AsciiFramer  # noqa: E402
+from dissector.framing.rtu import RtuFramer  # noqa: E402
+from dissector.model import Chunk, Frame, Item, Noise  # noqa: E402
+from dissector.pipeline import Dissector  # noqa: E402
+from dissector.protocol.crc import with_crc  # noqa: E402
+
+JSON_FILE = HERE / "vectors.json"
+LUA_FILE = HERE / "vectors.lua"
+FORMAT = 1
+PROFILE = "auto"  # the CLI's default: the selection stage is part of what is checked
+
+
+def _crafted() -> list[tuple[str, bytes]]:
+    """One transaction per lifting rule it breaks (request, then its answer where one is needed)."""
+    h = bytes.fromhex
+    f = lambda text: with_crc(h(text))  # noqa: E731
+    return [
+        ("fc3 quantity above the limit", f("01030000007E")),
+        ("fc3 zero quantity", f("010300000000")),
+        ("fc1 span past 65535", f("0101FFF00020")),
+        ("fc3 byte count disagrees", f("010300000002") + f("0103020007")),
+        ("fc3 odd byte count", f("010300000002") + f("010303000102")),
+        ("fc3 answer without its request", f("01030400010002")),
+        ("fc1 byte count disagrees", f("010100000010") + f("01010105")),
+        ("fc5 coil value neither on nor off", f("010500011234") + f("010500011234")),
+        ("fc5 echo differs", f("01050001FF00") + f("010500020000")),
+        ("fc6 echo value differs", f("010600100007") + f("010600100008")),
+        ("fc15 byte count disagrees", f("010F0000000A0103FF")),
+        ("fc15 answer start differs", f("010F0000000A0203FF") + f("010F0001000A")),
+        ("fc16 quantity above the limit", f("01100000007C00")),
+        ("fc16 byte count disagrees", f("011000000002020007") + f("011000000002")),
+        ("fc22 mask write", f("011600040F0F00F0") + f("011600040F0F00F0")),
+        ("fc23 limits", f("0117000000800010007A00")),
+        ("fc23 write", f("0117000A00020014000102002A") + f("01170400010002")),
+        ("fc24 fifo above 31", f("011804DE") + f("011800420020" + "0001" + "0002" * 31)),
+        ("fc24 fifo byte count", f("011804DE") + f("011800080002000100020003")),
+        ("fc8 unknown sub-function", f("010800630000") + f("010800630000")),
+        ("fc17 run indicator", f("0111") + f("011103011241")),
+        ("broadcast read", f("000300000001")),
+        ("reserved slave", f("F80300000001")),
+    ]
+
+
+def inputs() -> Iterator[tuple[str, str, bytes]]:
+    """(name, mode, bytes) of every input, in a stable order."""
+    import seed_frames
+
+    singles = [(name, value) for name, value in vars(seed_frames).items() if name.isupper() and isinstance(value, bytes)]
+    for name, value in singles:
+        yield f"seed {name}", "rtu", value
+    yield "seed pages in order", "rtu", b"".join(value for _, value in singles)
+    for name, value in _crafted():
+        yield name, "rtu", value
+    for path in sorted((ROOT / "captures").glob("*.bin")):
+        yield f"capture {path.name}", "ascii" if "ascii" in path.name else "rtu", path.read_bytes()
+
+
+def plain(value: Any) -> Any:
+    """A decoded value as JSON (bytes as hex, Construct containers as objects without their `_io`)."""
+    if isinstance(value, (bytes, bytearray)):
+        return value.hex()
+    if isinstance(value, dict) or isinstance(value, Container):
+        return {str(k): plain(v) for k, v in value.items() if not str(k).startswith("_")}
+    if isinstance(value, (list, tuple, ListContainer)):
+        return [plain(v) for v in value]
+    if isinstance(value, bool) or value is None or isinstance(value, (int, float)):
+        return value
+    return str(value)  # enum names (the server id's run indicator), kinds
+
+
+def _framer(mode: str) -> RtuFramer | AsciiFramer:
+    return AsciiFramer() if mode == "ascii" else RtuFramer()
+
+
+def _framing(mode: str, data: bytes) -> list[dict[str, Any]]:
+    framer = _framer(mode)
+    items = framer.feed(Chunk(data)) + framer.finish()
+    return [_item(item) for item in items]
+
+
+def _item(item: Item) -> dict[str, Any]:
+    if isinstance(item, Noise):
+        return {"noise": item.raw.hex(), "reason": item.reason}
+    assert isinstance(item, Frame)
+    return {
+        "kind": str(item.kind), "slave": item.slave, "function": item.function, "raw": item.raw.hex(),
+        "crc_ok": item.crc_ok, "warnings": list(item.warnings),
+    }
+
+
+def _pairing(items: list[Item]) -> list[dict[str, Any]]:
+    out = []
+    for item in items:
+        row: dict[str, Any] = {"number": item.number}
+        if isinstance(item, Frame):
+            row.update(
+                request=item.request.number if item.request is not None else None,
+                unanswered=item.unanswered, broadcast=item.broadcast, notes=list(item.notes),
+            )
+        out.append(row)
+    return out
+
+
+def _decoding(frame: Frame) -> dict[str, Any]:
+    return {
+        "number": frame.number, "fields": plain(frame.fields), "start": frame.start, "quantity": frame.quantity,
+        "subfunction": frame.subfunction,
+        "registers": None if frame.registers is None else [[r.address, r.value] for r in frame.registers],
+        "bits": None if frame.bits is None else [[b.address, b.value] for b in frame.bits],
+        "objects": None if frame.objects is None else [[o.id, o.name, o.value] for o in frame.objects],
+        "warnings": list(frame.warnings),
+    }
+
+
+def _annotation(frame: Frame) -> dict[str, Any]:
+    registers = [
+        {k: v for k, v in (("address", r.address), ("value", r.value), ("code", r.code), ("name", r.name),
+                           ("unit", r.unit), ("text", r.text), ("status", r.status), ("label", r.label),
+                           ("words", r.words)) if v is not None}
+        for r in frame.registers or []
+    ]
+    return {
+        "number": frame.number, "function_text": frame.function_text, "exception_text": frame.exception_text,
+        "subfunction_text": frame.subfunction_text, "span_label": frame.span_label, "registers": registers,
+        "notes": [str(note) for note in frame.notes], "warnings": list(frame.warnings),
+    }
+
+
+def summary_lines(mode: str, data: bytes, pure: bool) -> list[str]:
+    """vw3-decode's summary output of the input as a raw file (the compiled engine's when not `pure`)."""
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "input.bin"
+        path.write_bytes(data)
+        env = dict(os.environ, PYTHONPATH=str(ROOT), NO_COLOR="1")
+        env.pop("VW3_PURE_PYTHON", None)
+        if pure:
+            env["VW3_PURE_PYTHON"] = "1"
+        command = [sys.executable, "-m", "dissector", str(path), "--mode", mode]
+        result = subprocess.run(command, capture_output=True, env=env, timeout=120)
+    if result.returncode not in (0, 1):
+        raise RuntimeError(f"vw3-decode failed: {result.stderr.decode(errors='replace')}")
+    return result.stdout.decode("utf-8").splitlines()
+
+
+def case(name: str, mode: str, data: bytes) -> dict[str, Any]:
+    framing = _framing(mode, data)
+    framer, pairer = _framer(mode), Pairer()
+    paired = pairer.push(framer.feed(Chunk(data)))
+    paired += pairer.push(framer.finish()) + pairer.finish()
+    pairing = _pairing(paired)
+    decoding = [_decoding(decode_frame(item)) for item in paired if isinstance(item, Frame)]
+    annotator = build_annotator([PROFILE], [])
+    choose_profiles(annotator, [Chunk(data)], mode, None, None)
+    selection = [{"slave": c.slave, "profile": c.profile, "reason": c.reason, "frame": c.frame} for c in annotator.choices()]
+    dissector = Dissector(_framer(mode), annotate=annotator)
+    annotated = dissector.feed(Chunk(data)) + dissector.finish()
+    annotation = [_annotation(item) for item in annotated if isinstance(item, Frame)]
+    return {
+        "name": name, "mode": mode, "input": data.hex(), "profile": PROFILE,
+        "framing": framing, "pairing": pairing, "decoding": decoding, "selection": selection,
+        "annotation": annotation, "summary": summary_lines(mode, data, pure=True),
+    }
+
+
+def maps() -> list[dict[str, Any]]:
+    out = []
+    for name in ("atv71", "sel749m"):
+        rows = load_builtin_map(f"{name}.csv")
+        out.append({"map": name, "rows": [
+            {"address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
+             "access": row.access, "enum": {str(k): v for k, v in row.enum.items()},
+             "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
+             "type": row.kind, "swapped": row.swapped}
+            for address, row in sorted(rows.items())
+        ]})
+    return out
+
+
+def vectors() -> dict[str, Any]:
+    return {
+        "format": FORMAT,
+        "refresh": "python3 tests/conformance/generate.py",
+        "cases": [case(name, mode, data) for name, mode, data in inputs()],
+        "maps": maps(),
+    }
+
+
+def render(data: dict[str, Any]) -> tuple[str, str]:
+    """The JSON file and its Lua twin (`return {...}`, JSON null as the `NULL` sentinel's absence)."""
+    text = json.dumps(data, indent=1, ensure_ascii=False, sort_keys=True) + "\n"
+    lua = "-- GENERATED by python3 tests/conformance/generate.py: do not edit (vectors.json's twin).\n"
+    return text, lua + "return " + lua_literal(data) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="exit 1 when the files are stale")
+    args = parser.parse_args(argv)
+    text, lua = render(vectors())
+    stale = [path for path, new in ((JSON_FILE, text), (LUA_FILE, lua))
+             if not path.exists() or path.read_text(encoding="utf-8") != new]
+    if args.check:
+        for path in stale:
+            print(f"{path}: stale; run python3 tests/conformance/generate.py", file=sys.stderr)
+        return 1 if stale else 0
+    for path, new in ((JSON_FILE, text), (LUA_FILE, lua)):
+        path.write_text(new, encoding="utf-8")
+    print(f"{JSON_FILE}, {LUA_FILE}: written")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,72 @@
+"""The rule tables of data/modbus.toml (protocol/rules.py) name what exists: every field a lifting rule
+names is a field of the grammars of the layouts that use it, every text key is in the catalogue, every
+confirmed write is a write; and their Lua forms format as Python does."""
+from __future__ import annotations
+
+import pytest
+from construct import Struct
+
+from dissector.codegen.rules_lua import lua_format
+from dissector.model import Kind
+from dissector.protocol import rules, table
+from dissector.protocol.rules import LIFTS, TEXTS, params, text
+
+
+def _grammar_fields(grammar: Struct) -> set[str]:
+    return {sub.name for sub in grammar.subcons if sub.name}
+
+
+@pytest.mark.parametrize("name", sorted(LIFTS))
+def test_a_rule_names_fields_of_every_layout_using_it(name: str) -> None:
+    layouts = [entry.layout(kind) for entry in table.FUNCTIONS for kind in (Kind.REQUEST, Kind.RESPONSE)
+               if entry.layout(kind).handler == name]
+    assert layouts, f"[lift.{name}] is no handler of the protocol table"
+    for layout in layouts:
+        assert LIFTS[name].fields() <= _grammar_fields(layout.grammar), layout.name
+
+
+def test_every_handler_is_a_rule_or_a_named_special_case() -> None:
+    from dissector.decode.fields import SPECIAL_HANDLERS
+
+    handlers = {entry.layout(kind).handler for entry in table.FUNCTIONS for kind in (Kind.REQUEST, Kind.RESPONSE)}
+    handlers.discard(None)
+    assert handlers == set(LIFTS) | set(SPECIAL_HANDLERS)
+    assert set(SPECIAL_HANDLERS) == {"diagnostics", "mei_response", "report_server_id_response"}
+
+
+def test_request_values_and_texts_exist() -> None:
+    for rule in LIFTS.values():
+        for value in (rule.start, rule.quantity, rule.count.of if rule.count else None):
+            if isinstance(value, str) and value.startswith(rules.REQUEST_PREFIX):
+                assert value in ("request.start", "request.quantity")
+        if rule.count:
+            assert rule.count.text in TEXTS
+
+
+def test_confirmed_writes_are_writes() -> None:
+    for code in rules.CONFIRM:
+        assert table.TABLE[code].access in (table.Access.WRITE, table.Access.READ_WRITE)
+    assert table.confirmed_registers(rules.Confirm.ECHO) == {6}
+    assert table.confirmed_registers(rules.Confirm.ANSWER) == {16, 23}
+    assert table.write_windows() == {23: ("write_start", "write_quantity")}
+    assert table.coil_requests() == {5}
+
+
+def test_a_broken_rule_is_refused() -> None:
+    with pytest.raises(rules.RuleError, match="unknown keys"):
+        rules._lift("x", {"strat": "start"})
+    with pytest.raises(rules.RuleError):
+        rules._lift("x", {"checks": [{"what": "quantity"}]})
+
+
+@pytest.mark.parametrize(("key", "values"), [
+    ("late", {"delay_ms": 12.345, "number": 5, "timeout_ms": 200.0}),
+    ("coil_value", {"value": 0x12AB}),
+    ("range", {"what": "quantity", "value": 126, "low": 1, "high": 125}),
+    ("inner_silence", {"silence_ms": 1.23456, "byte": 3, "limit": "1.5 characters"}),
+])
+def test_lua_format_gives_the_python_text(key: str, values: dict[str, object]) -> None:
+    pattern = lua_format(TEXTS[key])
+    ordered = tuple(values[name] for name in params(key))
+    # %s of Lua is str(); %d, %X, %.1f are C's as Python's % operator has them.
+    assert pattern % ordered == text(key, **values)
