@@ -1038,6 +1038,9 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         if (base >= 0) {
             span_text(&e->out, base, r->start, r->quantity);
             out_cstr(&e->out, ", write ");
+        } else if (r->quantity == 1) { /* describe.plain_span: one register is its address */
+            out_uint(&e->out, r->start, 0);
+            out_cstr(&e->out, ", write ");
         } else {
             out_uint(&e->out, r->start, 0);
             out_put(&e->out, "..", 2);
