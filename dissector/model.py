@@ -290,6 +290,9 @@ class Frame:
     # Profile `auto`: the choice (devices.selection.ProfileChoice) that gave this frame's slave the device
     # annotating it, with its reason; None for forced profiles and slaves without evidence.
     profile_choice: Any = None
+    # Read once (live, standard input): profile `auto` had not chosen this slave's device yet and still
+    # may, so its values were named with spec semantics only and may read otherwise later (issue 27).
+    provisional: bool = False
 
     @property
     def response(self) -> Frame | None:

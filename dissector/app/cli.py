@@ -120,7 +120,8 @@ class Sinks:
         self.show = not args.stats and self.watch is None and (self.report is None or asked) and (
             args.write is None or args.print_too
         )
-        self.output = Output(args.output, self.text_out, text_isatty)
+        self.output = Output(args.output, self.text_out, text_isatty,
+                             lambda text: env.stderr.write(f"{PROG}: {text}\n"))
         self.clock = self.output.clock
         self.pcap: CaptureOutput | None = None
         self.write_path = args.write

@@ -8,8 +8,11 @@ and writes the files; this module, on the main thread, pairs, decodes, annotates
 hands on, and an output thread writes the lines (live_view.py). Neither can slow the capture.
 
 Every line is final: a request's line waits for its answer, or for its --timeout to pass (pairing.py
-states the rule), so the line shown live is the line the decode of the -w file gives, pairing,
-response time and unanswered included. On a healthy bus a request is shown when its response comes.
+states the rule), so the line shown live is the line the one-pass decode of the -w file gives
+(`vw3-decode - < file`), pairing, response time and unanswered included. On a healthy bus a request is
+shown when its response comes. A file read by name is read twice (app/preselect.py); live cannot look
+ahead, so a frame decoded before profile `auto` chose its slave's device says it is provisional
+(Frame.provisional) in every output, and ProfileNews says on stderr when the choice is made.
 """
 from __future__ import annotations
 
@@ -135,7 +138,7 @@ def _make_sink(
         if not getattr(args, "print_too", False):
             return NullSink()
         out, is_terminal = err, False
-    sink = _items_sink(args, out, is_terminal, render_line, render_text, stats, annotate)
+    sink = _items_sink(args, out, is_terminal, render_line, render_text, stats, annotate, err)
     text = getattr(args, "filter_text", None)
     if text is not None:
         from dissector.app.live_display import FilteredSink
@@ -152,6 +155,7 @@ def _items_sink(
     render_text: Callable[[Item], Text] | None,
     stats: LiveStats,
     annotate: Annotator | None = None,
+    err: TextIO | None = None,
 ) -> Sink:
     if getattr(args, "watch", None) is not None:
         from dissector.render.watch import WatchSink
@@ -163,7 +167,7 @@ def _items_sink(
                                 or display.registers is not None):
         from dissector.app.live_display import TextSink
 
-        return TextSink(out, display)  # as a file decode writes them (plain text, also on a terminal)
+        return TextSink(out, display, err)  # as a file decode writes them (plain text, also on a terminal)
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
@@ -176,8 +180,34 @@ def _items_sink(
     return LineSink(out, render_line)
 
 
+class ProfileNews:
+    """Profile `auto` live: a stderr line when a slave's device is chosen (or the choice changes), so
+    that the user knows from which frame its lines are no longer provisional."""
+
+    def __init__(self, annotate: Annotator | None, err: TextIO | None) -> None:
+        self.selector = getattr(annotate, "selector", None) if err is not None else None
+        self.err = err
+        self.told: dict[int, str] = {}
+        self.provisional: set[int] = set()  # slaves shown provisional lines
+
+    def __call__(self, shown: list[Item]) -> None:
+        selector = self.selector
+        if selector is None:
+            return
+        for item in shown:
+            if getattr(item, "provisional", False):
+                self.provisional.add(item.slave)  # type: ignore[union-attr]
+        for slave, choice in selector.chosen().items():
+            if self.told.get(slave) != choice.profile:
+                self.told[slave] = choice.profile
+                earlier = "; its earlier lines were provisional" if slave in self.provisional else ""
+                self.err.write(f"{PROG}: profile {choice.text()}{earlier}\n")  # type: ignore[union-attr]
+                self.err.flush()  # type: ignore[union-attr]
+
+
 def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
-            stop: StopFlag, observe: Callable[[list[Item]], None] | None = None) -> str | None:
+            stop: StopFlag, observe: Callable[[list[Item]], None] | None = None,
+            news: Callable[[list[Item]], None] | None = None) -> str | None:
     """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it."""
     while True:
         if stop.signal is not None:
@@ -197,6 +227,8 @@ def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink
         if sink_observe is not None:
             sink_observe(shown)
         sink.show(shown)
+        if news is not None and shown:
+            news(shown)
         sink.tick()
         if sink.failed is not None:
             # The reader of our output (head, less) went away: stop, keep the files whole.
@@ -250,7 +282,7 @@ def run_live(
         with StopFlag() as stop:
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
             capture.start()
-            display(capture, handoff, dissector, sink, stats, stop, observe)
+            display(capture, handoff, dissector, sink, stats, stop, observe, ProfileNews(annotate, err))
     finally:
         capture.stop.set()
         capture.done.wait()

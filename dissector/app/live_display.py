@@ -23,10 +23,11 @@ from dissector.render.output import Output, OutputOptions
 class TextSink(PumpedSink):
     """Items written by the file decode's own writer, line by line through the pump."""
 
-    def __init__(self, out: TextIO, options: OutputOptions) -> None:
+    def __init__(self, out: TextIO, options: OutputOptions, err: TextIO | None = None) -> None:
         super().__init__(out)
         self._text = io.StringIO()
-        self.output = Output(options, self._text, False)
+        notice = None if err is None else (lambda text: (err.write(f"vw3-decode: {text}\n"), err.flush()))
+        self.output = Output(options, self._text, False, notice)
 
     def observe(self, items: list[Item]) -> None:
         """Every item heard, before -Y: the time column's references."""

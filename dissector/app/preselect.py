@@ -11,7 +11,8 @@ per-slave counts. Then the annotator is frozen on those choices for the decode.
 
 Inputs read twice: regular files and --hex. Standard input and pipes are read once, as a live line
 is: a slave's frames are named as its choice stands when they are decoded (the stderr line says where
-it was made), which is what tshark's single pass does with the plugin too.
+it was made), which is what tshark's single pass does with the plugin too; the frames decoded before
+the choice are marked provisional (Frame.provisional: `[provisional]`, `"provisional": true`).
 """
 from __future__ import annotations
 

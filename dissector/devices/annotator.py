@@ -277,7 +277,9 @@ class Annotator:
             chosen = self._observe(frame)
             if chosen is not None:
                 device = chosen
-            frame.profile_choice = self.selector.choice(frame.slave)  # type: ignore[union-attr]
+            choice = frame.profile_choice = self.selector.choice(frame.slave)  # type: ignore[union-attr]
+            if choice is None and frame.slave != 0 and not self.selector.settled(frame.slave):  # type: ignore[union-attr]
+                frame.provisional = True  # read once: no device yet, and evidence may still come
         if device is None:
             device = self.device(frame.slave)
         kind = frame.kind

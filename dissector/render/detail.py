@@ -378,11 +378,19 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
         detail.styled("    No response", "vw3.warning")
     if frame.profile_choice is not None:
         add(_profile_line(frame.profile_choice))
+    elif frame.provisional:
+        add(PROVISIONAL_LINE)
     for note in frame.notes:
         detail.styled(f"    Note: {note}", "vw3.key" if getattr(note, "key", False) else "vw3.note")
     for warning in frame.warnings:
         detail.styled(f"    Warning: {warning}", "vw3.warning")
     return detail
+
+
+PROVISIONAL_LINE = (
+    "    Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec "
+    "semantics only, which its device may name otherwise)"
+)
 
 
 def _profile_line(choice: Any) -> str:
@@ -452,6 +460,8 @@ def _plain_frame(frame: Frame, base: float | None) -> str:
         add("    No response")
     if frame.profile_choice is not None:
         add(_profile_line(frame.profile_choice))
+    elif frame.provisional:
+        add(PROVISIONAL_LINE)
     if frame.notes:
         texts.extend([f"    Note: {note}" for note in frame.notes])
     if frame.warnings:

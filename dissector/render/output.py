@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from collections.abc import Callable
 from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
@@ -44,10 +45,24 @@ class OutputOptions:
         return self.json or self.fields is not None or self.registers is not None
 
 
+def provisional_notice(number: int, fields: FieldsOptions | None) -> str:
+    """What -T fields and -T registers say (on standard error, once) of a provisional row their
+    columns cannot show (summary, -V and --json mark each item themselves)."""
+    marked = "-e provisional marks them" if fields is not None else "--json or -T fields -e provisional mark them"
+    return (
+        f"note: rows from frame {number} on of slaves whose device profile auto has not chosen yet are "
+        f"provisional (read once, named with spec semantics only); {marked}"
+    )
+
+
 class Output:
-    def __init__(self, options: OutputOptions, stream: TextIO, isatty: bool) -> None:
+    def __init__(
+        self, options: OutputOptions, stream: TextIO, isatty: bool, notice: Callable[[str], None] | None = None
+    ) -> None:
+        """`notice`: where -T fields and -T registers say once that rows are provisional."""
         self.options = options
         self.stream = stream
+        self._notice = notice
         use_rich = options.color == "always" or (options.color == "auto" and isatty)
         self.console: Console | None = None
         if use_rich and not options.records:
@@ -113,6 +128,8 @@ class Output:
         size = 0  # characters appended since the last flush (by this call)
         for index, item in enumerate(items):
             if options.records:
+                if self._notice is not None and getattr(item, "provisional", False):
+                    self._tell_provisional(item.number)
                 if self.registers is not None:
                     record = records[index] if records is not None else item_to_dict(item)
                     if extra:
@@ -159,6 +176,14 @@ class Output:
                 size = 0
         if len(out) > BATCH:
             self.flush()
+
+    def _tell_provisional(self, number: int) -> None:
+        notice, self._notice = self._notice, None  # once
+        fields = self.options.fields
+        if self.registers is None and (fields is None or "provisional" in fields.fields):
+            return  # --json has the key; -e provisional shows the column
+        assert notice is not None
+        notice(provisional_notice(number, fields))
 
     @property
     def plain_summary(self) -> bool:

@@ -32,6 +32,10 @@ def crc_text(frame: Frame) -> str:
     return f"{check} BAD (received 0x{frame.crc:0{width}X}, expected 0x{frame.crc_expected:0{width}X})"
 
 
+# A frame read once (live, standard input) before profile `auto` chose its slave's device: its values
+# are named with spec semantics only and may read otherwise once the device is known (issue 27).
+PROVISIONAL = "[provisional]"
+
 NOTES_BUDGET = 240  # characters of notes (and of warnings) a summary line shows; the rest is counted
 # (-V and JSON have them all)
 
@@ -52,6 +56,8 @@ def tail_parts(frame: Frame) -> list[tuple[str, str]]:
         parts.append(("[broadcast]", "vw3.pairing"))
     if frame.unanswered:
         parts.append(("[no response]", "vw3.warning"))
+    if frame.provisional:
+        parts.append((PROVISIONAL, "vw3.warning"))
     _findings(parts, frame)
     return parts
 
@@ -87,7 +93,7 @@ def _budgeted(parts: list[tuple[str, str]], texts: list[tuple[str, str]], what: 
 def tail_text(frame: Frame) -> str:
     """Pairing and findings appended to the info column."""
     request = frame.request
-    if not frame.notes and not frame.warnings and not frame.unanswered:
+    if not frame.notes and not frame.warnings and not frame.unanswered and not frame.provisional:
         if request is None:
             if frame.kind is Kind.REQUEST and not frame.broadcast:
                 return ""

@@ -17,7 +17,8 @@ need a profile (`-n` has none). A code is matched with the profile that applies 
 read before profile `auto` chose a slave's device is named by that device once it is chosen. In a file,
 lines of a slave whose device `auto` has not chosen yet (and still may) wait, in order, at most
 MAX_WAITING, and are written with the profile finally chosen; live, they are written at once, marked
-`[provisional]` (JSON `"provisional": true`).
+`[provisional]` (JSON `"provisional": true`), by address when no device names them yet: `--watch CHCF`
+then shows address 8401 (which a candidate device names CHCF) as `--watch 8401` does.
 """
 from __future__ import annotations
 
@@ -252,7 +253,10 @@ class Watcher:
         slave, address = pending.key
         code = self._code(slave, address, pending.new)
         if address not in self.addresses and (code is None or code.upper() not in self.codes):
-            return
+            if not (provisional and code is None):
+                return
+            # Live, no device yet: an address a candidate's map names with a watched code is shown by
+            # its number, provisional, as --watch ADDRESS shows it (by address and by code agree).
         old_text, _ = self._text(slave, address, pending.old)
         new_text, unit = self._text(slave, address, pending.new)
         if old_text == new_text:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -45,7 +46,10 @@ def test_p38_chcf_rows_with_auto() -> None:
 def test_standard_input_is_read_once() -> None:
     # A pipe cannot be read twice: frame 2 is decoded before frame 4 decides, as on a live line.
     out = run_cli(["-"], stdin=P38.read_bytes())[1].splitlines()
-    assert out[1] == "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1]  CRC ok"
+    # Named before the choice, and said so (issue 27): the lines of frames 1-3 are provisional.
+    assert out[1] == ("     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1] "
+                      "[provisional]  CRC ok")
+    assert [line.endswith("[provisional]  CRC ok") for line in out] == [True] * 3 + [False] * 9
     assert out[3].startswith("     4            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=IO")
 
 
@@ -82,3 +86,12 @@ def test_compiled_path_equals_python_stages() -> None:
                                 cwd=ROOT, timeout=120)
         outputs.append(result.stdout)
     assert outputs[0] == outputs[1] and b"8400=32768" not in outputs[0]
+
+
+def test_standard_input_on_a_terminal_marks_provisional_lines() -> None:
+    # The terminal's styled line (summary_text: the live view's too) says it as the plain one does.
+    out = run_cli(["-", "--color", "always"], stdin=P38.read_bytes(), tty=True)[1]
+    lines = re.sub(r" \n", " ", re.sub(r"\x1b\[[0-9;]*m", "", out)).splitlines()  # rich wraps at 80 columns
+    assert lines[1] == ("     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 "
+                        "8402=2 [#1] [provisional]  CRC ok")
+    assert "[provisional]" not in lines[3]
