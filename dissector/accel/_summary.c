@@ -162,6 +162,7 @@ static void out_label(Out *o, long long base, unsigned address) {
 /* handled_codes, handled_index, length rules, request layouts, limits: generated from the protocol
  * table (python3 -m dissector.codegen). */
 #include "_tables.h"
+#include "_timeline.h" /* the chunks of a timed source (pcap records) */
 
 typedef struct {
     int loaded;
@@ -223,6 +224,10 @@ typedef struct {
     size_t log_len, log_cap;
     int running; /* inside run(): callbacks must not re-enter */
     PyObject *stats; /* a Stats (_stats.h) counting what is shown here, or NULL: summary only */
+    Timeline tl;     /* run_timed(): the chunks and times of the stream (_timeline.h) */
+    /* The line being written: its frame's time, and its request's (the response time). */
+    int line_timed, pair_timed;
+    long long line_ns, request_ns;
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -384,6 +389,9 @@ static Slave *slave_for(Engine *e, int address) {
 typedef struct {
     Py_ssize_t at, length;
     int kind, slave, function;
+    int timed;           /* run_timed(): the frame's chunk has a time, ns */
+    long long ns;
+    long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
 } FrameRef;
 
 /* framing/rules.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
@@ -564,6 +572,17 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
     return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
 }
 
+/* The kind of a frame starting with slave and function on the fast path, FRAME_HANDOVER: none there. */
+static int frame_kind(const Engine *e, int slave, int function) {
+    if (function & 0x80) {
+        /* An exception: taken on the fast path only as the answer awaited (framing/rtu.py _run). */
+        if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
+        return KIND_EXCEPTION;
+    }
+    if (handled_index(function) < 0) return FRAME_HANDOVER;
+    return (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
+}
+
 static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
     if (n - i < MIN_ADU) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
@@ -574,15 +593,8 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
         if (after < 0) return FRAME_NEED;
         if (after) return FRAME_HANDOVER;
     }
-    int kind;
-    if (function & 0x80) {
-        /* An exception: taken on the fast path only as the answer awaited (framing/rtu.py _run). */
-        if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
-        kind = KIND_EXCEPTION;
-    } else {
-        if (handled_index(function) < 0) return FRAME_HANDOVER;
-        kind = (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
-    }
+    int kind = frame_kind(e, slave, function);
+    if (kind < 0) return kind;
     int scanned;
     Py_ssize_t length = first_length(e, b, i, n, function, kind, &scanned);
     if (length < 0) return (int)length;
@@ -599,6 +611,17 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     f->slave = slave;
     f->function = function;
     return FRAME_OK;
+}
+
+#include "_timedframe.h" /* frame_at for chunked, timed streams */
+
+/* The next frame at i: frame_at, or with run_timed()'s chunks timed_frame_at (`decided`: the Python
+ * framer's buffer end when it took the frame before). */
+static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
+    if (e->tl.active) return timed_frame_at(e, b, i, n, f, decided);
+    f->timed = 0;
+    f->ns = f->decided = 0;
+    return frame_at(e, b, i, n, f);
 }
 
 /* ---- registers ---------------------------------------------------------------------------------- */
@@ -956,7 +979,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
 /* summary.summary_line up to the info text: number, time (`-`: untimed), slave, kind, function name */
 static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
     out_uint(&e->out, number, 6);
-    out_put(&e->out, "            - ", 14);
+    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
     out_uint(&e->out, f[0], 3);
     out_cstr(&e->out, kind);
     if (out_str(&e->out, s->name[handled_index(f[1])]) < 0) return -1;
@@ -1159,9 +1182,9 @@ static int response_line(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t lengt
     }
     if (e->out.failed) return -1;
     if (!info_end_is_plain(&e->out)) return 0;
-    out_cstr(&e->out, " [#");
-    out_uint(&e->out, request_number, 0);
-    out_cstr(&e->out, "]  CRC ok\n");
+    out_put(&e->out, " ", 1);
+    out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
+    out_cstr(&e->out, "  CRC ok\n");
     return 1;
 }
 
@@ -1185,14 +1208,13 @@ static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, cons
         return -1;
     }
     out_uint(&e->out, number, 6);
-    out_put(&e->out, "            - ", 14);
+    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
     out_uint(&e->out, a[0], 3);
     out_cstr(&e->out, " exception ");
     int status = out_str(&e->out, PyTuple_GET_ITEM(texts, 0));
     if (status == 0) {
-        out_cstr(&e->out, " [#");
-        out_uint(&e->out, request_number, 0);
-        out_put(&e->out, "]", 1);
+        out_put(&e->out, " ", 1);
+        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
         status = out_str(&e->out, PyTuple_GET_ITEM(texts, 1));
     }
     Py_DECREF(texts);
@@ -1205,15 +1227,14 @@ static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, cons
 static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
                       const char *pairing, unsigned long long request_number, PyObject *tail) {
     out_uint(&e->out, number, 6);
-    out_put(&e->out, "            - ", 14);
+    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
     out_uint(&e->out, f[0], 3);
     out_cstr(&e->out, kind);
     if (out_str(&e->out, info) < 0) return -1;
     if (pairing != NULL) out_cstr(&e->out, pairing);
     if (request_number) {
-        out_cstr(&e->out, " [#");
-        out_uint(&e->out, request_number, 0);
-        out_put(&e->out, "]", 1);
+        out_put(&e->out, " ", 1);
+        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
     }
     if (out_str(&e->out, tail) < 0) return -1;
     out_cstr(&e->out, "  CRC ok\n");
@@ -1251,9 +1272,12 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     if (response_tail != NULL) {
         status = texts_line(e, b + q->at, number, " request   ", request_info, a == NULL ? " [no response]" : NULL,
                             0, request_tail);
-        if (status > 0 && a != NULL)
+        if (status > 0 && a != NULL) {
+            e->line_timed = a->timed;
+            e->line_ns = a->ns;
             status = texts_line(e, b + a->at, number + 1, " response  ", response_info, NULL, number,
                                 response_tail);
+        }
     }
     Py_XDECREF(request_info);
     Py_XDECREF(request_tail);
@@ -1285,7 +1309,7 @@ enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
 /* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
 static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
     FrameRef q, a;
-    int found = frame_at(e, b, *pos, n, &q);
+    int found = next_frame(e, b, *pos, n, &q, e->tl.decided);
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
     if (q.kind != KIND_REQUEST || q.slave == 0) return STEP_HANDOVER;
     Slave *s = slave_for(e, q.slave);
@@ -1299,7 +1323,15 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->expect_slave = q.slave;
     e->expect_function = q.function;
     int step, written;
-    found = frame_at(e, b, q.at + q.length, n, &a);
+    found = next_frame(e, b, q.at + q.length, n, &a, q.decided);
+    if (found == FRAME_OK && a.kind != KIND_REQUEST && q.timed && a.timed && e->tl.timeout >= 0 &&
+        stamp_seconds(a.ns, q.ns) > e->tl.timeout)
+        found = FRAME_HANDOVER; /* later than the timeout: no answer (pairing.py), a warning */
+    Timeline clock = e->tl; /* the time column's references, taken back with the lines */
+    e->line_timed = q.timed;
+    e->line_ns = q.ns;
+    e->pair_timed = q.timed && found == FRAME_OK && a.timed;
+    e->request_ns = q.ns;
     if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
         int unanswered = a.kind == KIND_REQUEST;
         written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
@@ -1311,6 +1343,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
             e->count += unanswered ? 1 : 2;
             if (!unanswered) e->expect_slave = e->expect_function = -1;
             *pos = unanswered ? a.at : a.at + a.length;
+            e->tl.decided = unanswered ? q.decided : a.decided;
             return STEP_DONE;
         }
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -1324,11 +1357,14 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         if (written > 0) {
             e->count += 1;
             *pos = a.at;
+            e->tl.decided = q.decided;
             return STEP_DONE;
         }
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
     } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
         written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+        e->line_timed = a.timed;
+        e->line_ns = a.ns;
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
         if (written > 0 && e->stats != NULL &&
             count_transaction((Stats *)e->stats, s, b + q.at, b + a.at, r.has_writes ? &r.writes : NULL, NULL,
@@ -1338,6 +1374,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
             e->count += 2;
             e->expect_slave = e->expect_function = -1;
             *pos = a.at + a.length;
+            e->tl.decided = a.decided;
             return STEP_DONE;
         }
         step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -1346,6 +1383,8 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &reads) : 0;
         if (quiet > 0) {
             written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+            e->line_timed = a.timed;
+            e->line_ns = a.ns;
             if (written > 0)
                 written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
             if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
@@ -1357,6 +1396,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
                 e->count += 2;
                 e->expect_slave = e->expect_function = -1;
                 *pos = a.at + a.length;
+                e->tl.decided = a.decided;
                 return STEP_DONE;
             }
             step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -1369,23 +1409,28 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->out.failed = 0;
     e->expect_slave = saved_slave;
     e->expect_function = saved_function;
+    e->tl.has_first = clock.has_first;
+    e->tl.first_ns = clock.first_ns;
+    e->tl.has_previous = clock.has_previous;
+    e->tl.previous_ns = clock.previous_ns;
     return step;
 }
 
-static PyObject *engine_run(Engine *e, PyObject *args) {
-    Py_buffer view;
-    Py_ssize_t pos;
+static int engine_ready(Engine *e) {
     if (e->slave_info == NULL) {
         PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
-        return NULL;
+        return 0;
     }
     if (e->running) { /* a callback calling back in would free what the outer call uses */
         PyErr_SetString(PyExc_RuntimeError, "Engine.run is not re-entrant");
-        return NULL;
+        return 0;
     }
-    if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
-    if (pos < 0 || pos > view.len) {
-        PyBuffer_Release(&view);
+    return 1;
+}
+
+/* The transactions of view from pos on: (lines, position, status). */
+static PyObject *run_buffer(Engine *e, Py_buffer *view, Py_ssize_t pos) {
+    if (pos < 0 || pos > view->len) {
         PyErr_SetString(PyExc_ValueError, "position outside the buffer");
         return NULL;
     }
@@ -1395,17 +1440,117 @@ static PyObject *engine_run(Engine *e, PyObject *args) {
     e->out.failed = 0;
     int step;
     do {
-        step = transaction(e, view.buf, view.len, &pos);
+        step = transaction(e, view->buf, view->len, &pos);
     } while (step == STEP_DONE);
     /* The Python stages may read the parameter memory as soon as this returns. */
     if (write_memory(e) < 0 && step != STEP_ERROR) step = STEP_ERROR;
     e->running = 0;
-    PyBuffer_Release(&view);
     if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
     /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
     PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
     if (lines == NULL) return NULL;
     return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
+}
+
+static PyObject *engine_run(Engine *e, PyObject *args) {
+    Py_buffer view;
+    Py_ssize_t pos;
+    if (!engine_ready(e)) return NULL;
+    if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
+    PyObject *result = run_buffer(e, &view, pos);
+    PyBuffer_Release(&view);
+    return result;
+}
+
+/* run_timed(buffer, position, base, starts, times, flags): run() on a stream of chunks (_timeline.h):
+ * `base` the stream offset of buffer[0]; per chunk its start (stream offset, int64), its time (int64
+ * ns) and its flags (a byte); the first chunk holds buffer[0], the last one ends with the buffer. */
+static PyObject *engine_run_timed(Engine *e, PyObject *args) {
+    Py_buffer view, starts, times, flags;
+    Py_ssize_t pos;
+    long long base;
+    if (!engine_ready(e)) return NULL;
+    if (!PyArg_ParseTuple(args, "y*nLy*y*y*", &view, &pos, &base, &starts, &times, &flags)) return NULL;
+    PyObject *result = NULL;
+    Py_ssize_t count = starts.len / (Py_ssize_t)sizeof(long long);
+    const long long *start = starts.buf;
+    if (count < 1 || starts.len % (Py_ssize_t)sizeof(long long) || times.len != starts.len || flags.len != count ||
+        start[0] > base || start[count - 1] >= base + view.len) {
+        PyErr_SetString(PyExc_ValueError, "run_timed: one start, time and flag per chunk, covering the buffer");
+    } else {
+        Timeline *t = &e->tl;
+        t->active = 1;
+        t->base = base;
+        t->start = start;
+        t->ns = times.buf;
+        t->flags = flags.buf;
+        t->count = count;
+        t->end = base + view.len;
+        t->cursor = 0;
+        result = run_buffer(e, &view, pos);
+        t->active = 0;
+        t->start = t->ns = NULL;
+        t->flags = NULL;
+    }
+    PyBuffer_Release(&view);
+    PyBuffer_Release(&starts);
+    PyBuffer_Release(&times);
+    PyBuffer_Release(&flags);
+    return result;
+}
+
+/* set_timing(char_time, t15, timeout, clock): the line's character time and t1.5 (timing.LineTiming),
+ * the pairing timeout in seconds (None: none), the time column (0: -t r, 1: -t d or dd). */
+static PyObject *engine_set_timing(Engine *e, PyObject *args) {
+    double char_time, t15;
+    PyObject *timeout;
+    int clock;
+    if (!PyArg_ParseTuple(args, "ddOi", &char_time, &t15, &timeout, &clock)) return NULL;
+    double seconds = -1;
+    if (timeout != Py_None) {
+        seconds = PyFloat_AsDouble(timeout);
+        if (seconds == -1 && PyErr_Occurred()) return NULL;
+    }
+    e->tl.char_time = char_time;
+    e->tl.t15 = t15;
+    e->tl.timeout = seconds;
+    e->tl.clock = clock;
+    Py_RETURN_NONE;
+}
+
+static PyObject *engine_get_decided(Engine *e, void *closure) { return PyLong_FromLongLong(e->tl.decided); }
+
+static int engine_set_decided(Engine *e, PyObject *value, void *closure) {
+    long long decided = value == NULL ? 0 : PyLong_AsLongLong(value);
+    if (decided == -1 && PyErr_Occurred()) return -1;
+    e->tl.decided = decided;
+    return 0;
+}
+
+static PyObject *clock_value(int has, long long ns) {
+    if (!has) Py_RETURN_NONE;
+    return PyLong_FromLongLong(ns);
+}
+
+static PyObject *engine_get_clock(Engine *e, void *closure) {
+    return Py_BuildValue("(NN)", clock_value(e->tl.has_first, e->tl.first_ns),
+                         clock_value(e->tl.has_previous, e->tl.previous_ns));
+}
+
+static int engine_set_clock(Engine *e, PyObject *value, void *closure) {
+    PyObject *first, *previous;
+    if (value == NULL || !PyArg_ParseTuple(value, "OO", &first, &previous)) {
+        if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "clock: (first ns or None, previous ns or None)");
+        return -1;
+    }
+    long long first_ns = first == Py_None ? 0 : PyLong_AsLongLong(first);
+    long long previous_ns = previous == Py_None ? 0 : PyLong_AsLongLong(previous);
+    if (PyErr_Occurred()) return -1;
+    e->tl.has_first = first != Py_None;
+    e->tl.first_ns = first_ns;
+    e->tl.has_previous = previous != Py_None;
+    e->tl.previous_ns = previous_ns;
+    return 0;
 }
 
 static PyObject *engine_get_count(Engine *e, void *closure) { return PyLong_FromUnsignedLongLong(e->count); }
@@ -1489,6 +1634,7 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     e->count = 0;
     e->expect_slave = e->expect_function = -1;
+    e->tl.timeout = -1;
     return 0;
 }
 
@@ -1548,6 +1694,11 @@ static PyMethodDef engine_methods[] = {
     {"run", (PyCFunction)engine_run, METH_VARARGS,
      "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
      "position on; status 0: needs more bytes, 1: hand the stream over at position."},
+    {"run_timed", (PyCFunction)engine_run_timed, METH_VARARGS,
+     "run_timed(buffer, position, base, starts, times, flags) -> run()'s answer, for a stream of timed\n"
+     "chunks (pcap records): int64 stream offsets and ns times, a flag byte per chunk (_timeline.h)."},
+    {"set_timing", (PyCFunction)engine_set_timing, METH_VARARGS,
+     "set_timing(char_time, t15, timeout, clock): line timing, pairing timeout, time column (0 r, 1 d/dd)."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -1578,6 +1729,10 @@ static PyGetSetDef engine_getset[] = {
     {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
+    {"decided", (getter)engine_get_decided, (setter)engine_set_decided,
+     "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame", NULL},
+    {"clock", (getter)engine_get_clock, (setter)engine_set_clock,
+     "the time column's (first, previous) item times in ns, None where none", NULL},
     {"glitchy", (getter)engine_get_glitchy, (setter)engine_set_glitchy,
      "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length", NULL},
     {NULL, NULL, NULL, NULL, NULL},

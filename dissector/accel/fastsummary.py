@@ -357,12 +357,7 @@ class SummaryPath:
                 self.engine.glitchy = framer.glitchy  # (learnt by the framer alone: the engine hands glitches over)
                 self.python = False
                 return
-            before = framer.offset
-            framer.pause_at(before + 1)  # one frame (or one noise run) at a time
-            items = self.dissector.feed(Chunk(b""))
-            if items:
-                self.write_items(items)
-            if framer.offset != before:
+            if python_step(self.dissector, self.write_items):
                 continue
             if self.pos >= len(self.buf):
                 return  # it needs bytes that have not come yet
@@ -371,6 +366,17 @@ class SummaryPath:
             items = self.dissector.feed(Chunk(window))
             if items:
                 self.write_items(items)
+
+
+def python_step(dissector: Dissector, write_items: Callable[[list[Item]], None]) -> bool:
+    """One frame (or one noise run) from the Python stages, with the bytes they hold: did they advance?"""
+    framer = dissector.framer
+    before = framer.offset
+    framer.pause_at(before + 1)
+    items = dissector.feed(Chunk(b""))
+    if items:
+        write_items(items)
+    return framer.offset != before
 
 
 def summarize(chunks: Iterable[Chunk], path: SummaryPath, after_chunk: Callable[[], None]) -> None:

@@ -37,6 +37,11 @@ class Pairer:
         return self._pending is None and not self._queue
 
     @property
+    def timeout(self) -> float | None:
+        """The response timeout: a later answer is none (seconds, None: no limit)."""
+        return self._timeout
+
+    @property
     def count(self) -> int:
         """Items numbered so far."""
         return self._count

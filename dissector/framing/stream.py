@@ -70,6 +70,11 @@ class StreamFramer(ABC):
         self._flush_noise(items)
         return items
 
+    @property
+    def timing(self) -> LineTiming:
+        """The line's timing: what a silence between chunks is."""
+        return self._timing
+
     # -- handing the stream over to another framing engine (dissector/accel/fastsummary.py) ------------
     @property
     def offset(self) -> int:
@@ -100,6 +105,17 @@ class StreamFramer(ABC):
         self._expect = expect
         self._glitches_only = True
         self._noise_cut = False
+
+    def take_over(self, offset: int, expect: tuple[int, int] | None, chunk_start: int, chunk: Chunk) -> None:
+        """restart_at(offset) inside `chunk`, which starts at stream offset chunk_start: the bytes of it
+        from offset on are buffered as its feed() left them (its time, the record's end), so that the
+        chunks fed after it are timed and weighed as if the stream had never changed hands."""
+        self.restart_at(offset, expect)
+        self._timed = self._timed or chunk.time is not None
+        self._times = [(chunk_start, chunk.time)]
+        self._buf += chunk.data[offset - chunk_start :]
+        if chunk.boundary:
+            self._boundaries.add(chunk_start + len(chunk.data))
 
     def hand_back(self) -> tuple[int, bytes, tuple[int, int] | None]:
         """(offset, bytes not framed yet, expectation) for another engine; the buffer is emptied."""
@@ -135,7 +151,8 @@ class StreamFramer(ABC):
         if keep:
             del times[:keep]
         if self._boundaries:
-            self._boundaries = {offset for offset in self._boundaries if offset > self._base}
+            # (one at the new base still counts: the next run starts there, however the feeding went)
+            self._boundaries = {offset for offset in self._boundaries if offset >= self._base}
 
     def _boundary_at(self, index: int) -> bool:
         """Did the source mark a frame boundary after buffer index `index`?"""

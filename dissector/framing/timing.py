@@ -105,6 +105,12 @@ class GapChecker:
             self._starts.append((self._position, chunk.time))
             self._position += len(chunk.data)
 
+    def take_over(self, chunk_start: int, chunk: Chunk) -> None:
+        """Observe from inside `chunk` (stream offset chunk_start) on: the chunks before it were framed
+        elsewhere (dissector/accel/timedpath.py)."""
+        self._starts = [(chunk_start, chunk.time)]
+        self._position = chunk_start + len(chunk.data)
+
     def check(self, item: Item) -> list[str]:
         end = item.offset + item.length
         warnings: list[str] = []

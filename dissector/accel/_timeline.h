@@ -1,0 +1,129 @@
+/* The chunks a timed source delivered (pcap and pcapng records, each a framer chunk): where each
+ * starts in the byte stream, its time, whether a record ends after it and whether the line was silent
+ * for t3.5 before it. The engine needs them to do what the Python stages do with the same chunks
+ * (dissector/accel/timedpath.py): the framer decides a frame when the chunk its last byte needs has
+ * come, and a record's end or a silence is evidence (framing/rtu.py _match, stream.py feed); a frame's
+ * time is its first chunk's (stream.py _time_at); a silence inside a frame is a warning
+ * (timing.inner_gaps); a response later than the timeout is no answer (pairing.py); and the time
+ * column and response times of the summary line (render/timefmt.py, summary.py).
+ *
+ * Times are the sources' integer nanoseconds (model.Stamp): two stamps subtract exactly, as there.
+ * Included by _summary.c before the Engine type, which holds one Timeline. */
+#ifndef VW3_TIMELINE_H
+#define VW3_TIMELINE_H
+
+enum { CHUNK_TIMED = 1, CHUNK_RECORD_END = 2, CHUNK_SILENCE_BEFORE = 4 };
+enum { CLOCK_RELATIVE = 0, CLOCK_DELTA = 1 }; /* -t r; -t d and dd (the same without a filter) */
+
+typedef struct {
+    int active;              /* run_timed() is running: chunks below; 0: an untimed raw stream */
+    long long base;          /* stream offset of the buffer's first byte */
+    const long long *start;  /* chunk starts (stream offsets, ascending); chunk k ends where k+1 starts */
+    const long long *ns;     /* chunk times (valid where CHUNK_TIMED) */
+    const uint8_t *flags;
+    Py_ssize_t count;
+    long long end;           /* stream offset of the end of the last chunk given (the buffer's end) */
+    Py_ssize_t cursor;       /* the chunk looked up last */
+    long long decided;       /* the Python framer's buffer end when it decided the last frame */
+    /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
+    double char_time, t15, timeout;
+    int clock;
+    /* The time column's references (timefmt.Clock): first timed item, previous timed item. */
+    int has_first, has_previous;
+    long long first_ns, previous_ns;
+} Timeline;
+
+/* Index of the chunk holding stream offset `at` (start[k] <= at < its end). */
+static Py_ssize_t chunk_of(Timeline *t, long long at) {
+    Py_ssize_t k = t->cursor;
+    if (k >= t->count) k = t->count - 1;
+    if (k < 0) k = 0;
+    while (k > 0 && t->start[k] > at) k--;
+    while (k + 1 < t->count && t->start[k + 1] <= at) k++;
+    t->cursor = k;
+    return k;
+}
+
+static inline long long chunk_end(const Timeline *t, Py_ssize_t k) {
+    return k + 1 < t->count ? t->start[k + 1] : t->end;
+}
+
+/* StreamFramer._boundary_at: a record ends, or a silence of t3.5 begins a chunk, at stream offset `at`. */
+static int boundary_at(Timeline *t, long long at) {
+    if (at <= t->start[0] || at > t->end) return 0;
+    Py_ssize_t k = chunk_of(t, at - 1); /* the chunk `at` ends or lies in */
+    if (chunk_end(t, k) != at) return 0;
+    if (t->flags[k] & CHUNK_RECORD_END) return 1;
+    return k + 1 < t->count && (t->flags[k + 1] & CHUNK_SILENCE_BEFORE);
+}
+
+/* Seconds between two stamps, as model.Stamp.__sub__: (ns - ns) / 1e9, rounded once. */
+static inline double stamp_seconds(long long later, long long earlier) {
+    return (double)(later - earlier) / 1e9;
+}
+
+/* timing.inner_gaps: is there a silence longer than t1.5 before a chunk starting inside the frame at
+ * [at, at + length)? (The warning is the Python stages' to write: the frame is handed over.) */
+static int silence_inside(Timeline *t, long long at, Py_ssize_t length) {
+    Py_ssize_t k = chunk_of(t, at);
+    for (; k + 1 < t->count && t->start[k + 1] < at + length; k++) {
+        if (!(t->flags[k] & CHUNK_TIMED) || !(t->flags[k + 1] & CHUNK_TIMED)) continue;
+        double silence = stamp_seconds(t->ns[k + 1], t->ns[k]) - (double)(t->start[k + 1] - t->start[k]) * t->char_time;
+        if (silence > t->t15) return 1;
+    }
+    return 0;
+}
+
+/* The text of a double as Python's f"{value:.{digits}f}" (both round the exact binary value). */
+static void out_fixed(Out *o, double value, int digits) {
+    char text[64];
+    int n = snprintf(text, sizeof text, "%.*f", digits, value);
+    if (n > 0 && n < (int)sizeof text) out_put(o, text, (size_t)n);
+    else out_cstr(o, "nan"); /* never for a stamp difference */
+}
+
+/* summary_line's head after the number: ` {column:>12} ` (render/timefmt.Clock.text, -t r, d, dd). */
+static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
+    if (!timed) {
+        out_put(o, "            - ", 14);
+        return;
+    }
+    double seconds;
+    if (t->clock == CLOCK_RELATIVE) {
+        if (!t->has_first) {
+            t->has_first = 1;
+            t->first_ns = ns;
+        }
+        seconds = stamp_seconds(ns, t->first_ns);
+    } else {
+        seconds = t->has_previous ? stamp_seconds(ns, t->previous_ns) : 0.0;
+    }
+    if (!t->has_first) {
+        t->has_first = 1;
+        t->first_ns = ns;
+    }
+    t->has_previous = 1;
+    t->previous_ns = ns;
+    char text[64];
+    int n = snprintf(text, sizeof text, "%.6f", seconds);
+    if (n <= 0 || n >= (int)sizeof text) n = 0;
+    out_put(o, " ", 1);
+    for (int pad = 12 - n; pad > 0; pad--) out_put(o, " ", 1);
+    out_put(o, text, (size_t)n);
+    out_put(o, " ", 1);
+}
+
+/* The pairing text of an answer: `[#N]`, or `[#N, 17.8 ms]` when both frames have times. */
+static void out_pairing(Out *o, unsigned long long request_number, int timed, long long request_ns,
+                        long long answer_ns) {
+    out_cstr(o, "[#");
+    out_uint(o, request_number, 0);
+    if (timed) {
+        out_put(o, ", ", 2);
+        out_fixed(o, stamp_seconds(answer_ns, request_ns) * 1000, 1);
+        out_cstr(o, " ms");
+    }
+    out_put(o, "]", 1);
+}
+
+#endif

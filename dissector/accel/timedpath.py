@@ -1,0 +1,216 @@
+"""The compiled summary path for timed captures: pcap and pcapng records with their times.
+
+A pcap went through the Python stages record by record (about 20 us a frame); here the records come in
+blocks (dissector/accel/records.py: the bytes of many records at once, with arrays of where each starts,
+its time and its flags) and the engine (_summary.c run_timed, _timeline.h, _timedframe.h) does for them
+what the Python stages do with the same chunks: the framer's decision with the bytes it has when it first
+looks at a frame (a record's end is evidence), times and response times, the time column (-t r, d, dd),
+the pairing timeout, and silences inside a frame. What it does not show it hands over, as the untimed
+path does (fastsummary.py), at a frame start: the Python stages take the stream there, inside its chunk
+(the framer and the gap checker are told where that chunk started and when: StreamFramer.take_over,
+GapChecker.take_over), are fed the following chunks as they would have been, and give the stream back
+at their next idle point. tests/differential/test_timed_summary.py holds both paths byte-identical.
+"""
+from __future__ import annotations
+
+from array import array
+from bisect import bisect_right
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from dissector.accel.fastsummary import NEED, make_engine, python_step
+from dissector.accel.records import Block
+from dissector.model import Chunk, Item, Stamp
+from dissector.pipeline import Dissector
+from dissector.render.timefmt import Clock
+
+CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
+
+
+def usable(clock: Clock) -> bool:
+    return clock.format in CLOCKS and not clock.deltas
+
+
+class TimedPath:
+    """Drives a timed stream through the engine and, where it hands over, the Python stages."""
+
+    def __init__(self, dissector: Dissector, annotator: Any | None, clock: Clock,
+                 write_items: Callable[[list[Item]], None], write_lines: Callable[[bytes], None],
+                 timeout: float | None) -> None:
+        self.dissector = dissector
+        self.framer = dissector.framer
+        self.pairer = dissector.pairer
+        self.annotator = annotator
+        self.clock = clock
+        self.engine = make_engine(annotator)
+        timing = self.framer.timing
+        self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
+        self.write_items = write_items
+        self.write_lines = write_lines
+        # The chunks not consumed yet: buf holds their bytes from stream offset `base` (inside chunk 0).
+        self.buf = b""
+        self.base = 0
+        self.pos = 0  # the next byte neither side has taken, buf[pos]
+        self.starts = array("q")
+        self.times = array("q")
+        self.flags = bytearray()
+        self.chunks: list[Chunk | None] = []  # made when the Python stages need them,
+        self.owners: list[Block] = []  # by the block each came in
+        self.local = array("q")  # and its index there
+        self.python = False  # the Python stages have the stream
+        self.taken_at = 0
+        self.fed = 0  # chunks given to the Python stages (an index into the lists above)
+        self.engine_ok = True  # False: a source whose times the engine cannot subtract (plain floats)
+
+    # -- input ------------------------------------------------------------------------------------
+    def feed(self, block: Block) -> None:
+        if not len(block.starts):
+            return
+        self._trim()
+        if not self.starts:
+            self.base = block.starts[0]
+        self.buf += block.data
+        self.starts.extend(block.starts)
+        self.times.extend(block.times)
+        self.flags += block.flags
+        count = len(block.starts)
+        self.chunks.extend([None] * count)
+        self.owners.extend([block] * count)
+        self.local.extend(range(count))
+        self.engine_ok = self.engine_ok and block.exact
+        if not self.engine_ok and not self.python:
+            self._hand_over()
+        while self._python_frames() if self.python else self._engine_frames():
+            pass  # one side gave the stream to the other: go on there
+
+    def finish(self) -> None:
+        if not self.python:
+            self._hand_over()
+        self.framer.pause_at(None)
+        items: list[Item] = []
+        while self.fed < len(self.starts):
+            items += self.dissector.feed(self._chunk(self.fed))
+            self.fed += 1
+        self.write_items(items + self.dissector.finish())
+
+    # -- the engine's side --------------------------------------------------------------------------
+    def _engine_frames(self) -> bool:
+        """The engine's lines up to where it needs more bytes (False) or hands the stream over (True)."""
+        lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
+                                                        self.flags)
+        if lines:
+            self.write_lines(lines)
+        if status == NEED:
+            return False
+        self._hand_over()
+        return True
+
+    def _hand_over(self) -> None:
+        """The Python stages take the stream at buf[pos], inside its chunk."""
+        offset = self.base + self.pos
+        self.taken_at = offset
+        self.python = True
+        if not self.starts:
+            self.framer.restart_at(offset, self.engine.expect)
+            return
+        index = self._chunk_of(offset)
+        chunk = self._chunk(index)
+        start = self.starts[index]
+        self.framer.restart_at(offset, self.engine.expect)
+        if offset < start + len(chunk.data):
+            self.framer.take_over(offset, self.engine.expect, start, chunk)
+        if self.dissector.gaps is not None:
+            self.dissector.gaps.take_over(start, chunk)
+        self.fed = index + 1
+        self.pairer.count = self.engine.count
+        first, previous = self.engine.clock
+        clock = self.clock
+        clock.first = None if first is None else Stamp(first)
+        clock._previous_captured = clock._previous_shown = None if previous is None else Stamp(previous)
+
+    # -- the Python stages' side --------------------------------------------------------------------
+    def _python_frames(self) -> bool:
+        """The Python stages' items up to where they need more chunks (False) or give the stream back
+        to the engine (True)."""
+        framer = self.framer
+        while True:
+            if self.engine_ok and framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+                self._forget_changed()
+                offset, rest, expect = framer.hand_back()
+                self.pos = offset - self.base
+                self.engine.count = self.pairer.count
+                self.engine.expect = expect
+                self.engine.glitchy = framer.glitchy
+                self.engine.decided = offset + len(rest)  # where the framer's buffer ended: what it has seen
+                clock = self.clock
+                previous = clock._previous_shown if clock.format == "dd" else clock._previous_captured
+                if not (_exact(clock.first) and _exact(previous)):
+                    self.engine_ok = False
+                    continue
+                self.engine.clock = (_ns(clock.first), _ns(previous))
+                self.python = False
+                return True
+            if python_step(self.dissector, self.write_items):
+                continue
+            if self.fed >= len(self.starts):
+                return False  # it needs chunks that have not come yet
+            items = self.dissector.feed(self._chunk(self.fed))
+            self.fed += 1
+            if items:
+                self.write_items(items)
+
+    def _forget_changed(self) -> None:
+        changed = getattr(self.annotator, "changed", None)
+        if changed:
+            for slave in changed:
+                self.engine.forget(slave)
+            changed.clear()
+
+    # -- the chunks kept ------------------------------------------------------------------------------
+    def _chunk_of(self, offset: int) -> int:
+        """The chunk holding stream offset `offset`: the last one starting at or before it."""
+        return max(0, bisect_right(self.starts, offset) - 1)
+
+    def _chunk(self, index: int) -> Chunk:
+        chunk = self.chunks[index]
+        if chunk is None:
+            chunk = self.chunks[index] = self.owners[index].chunk(self.local[index])
+        return chunk
+
+    def _trim(self) -> None:
+        """Forget the chunks both sides are done with (memory stays flat)."""
+        if not self.starts:
+            return
+        keep_from = self.base + self.pos if not self.python else self.framer.offset
+        index = self._chunk_of(keep_from)
+        if self.python:
+            index = min(index, self.fed)
+        if index <= 0:
+            return
+        start = self.starts[index] if index < len(self.starts) else self.base + len(self.buf)
+        self.buf = self.buf[start - self.base :]
+        self.pos -= start - self.base
+        self.base = start
+        del self.starts[:index]
+        del self.times[:index]
+        del self.flags[:index]
+        del self.chunks[:index]
+        del self.owners[:index]
+        del self.local[:index]
+        self.fed -= index
+
+
+def _exact(time: float | None) -> bool:
+    return time is None or isinstance(time, Stamp)
+
+
+def _ns(time: float | None) -> int | None:
+    return None if time is None else time.ns  # type: ignore[union-attr]
+
+
+def summarize_timed(blocks: Iterable[Block], path: TimedPath, after_block: Callable[[], None]) -> None:
+    for block in blocks:
+        path.feed(block)
+        after_block()
+    path.finish()
+    after_block()
