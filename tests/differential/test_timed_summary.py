@@ -80,7 +80,7 @@ def cut_records(rng: random.Random, frames: list[tuple[bytes, int]], how: str) -
     return records
 
 
-def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tuple[str, int]:
+def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> tuple[str, int]:
     """The output, and how many lines the engine wrote itself."""
     if pure:
         monkeypatch.setenv("VW3_PURE_PYTHON", "1")
@@ -96,14 +96,14 @@ def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tupl
 
     monkeypatch.setattr(Output, "write_encoded", counting)
     stdout = io.StringIO()
-    env = Environment(io.BytesIO(), stdout, io.StringIO(), False, False)
+    env = Environment(io.BytesIO(stdin), stdout, io.StringIO(), False, False)
     assert run(argv, env) == 0
     return stdout.getvalue(), engine_lines
 
 
-def assert_same(argv: list[str], monkeypatch: pytest.MonkeyPatch) -> tuple[str, int]:
-    fast, engine_lines = decode(argv, monkeypatch, pure=False)
-    reference, none = decode(argv, monkeypatch, pure=True)
+def assert_same(argv: list[str], monkeypatch: pytest.MonkeyPatch, stdin: bytes = b"") -> tuple[str, int]:
+    fast, engine_lines = decode(argv, monkeypatch, pure=False, stdin=stdin)
+    reference, none = decode(argv, monkeypatch, pure=True, stdin=stdin)
     assert none == 0
     assert fast == reference
     return fast, engine_lines
@@ -146,6 +146,9 @@ def test_clean_polling_pcap_comes_from_the_engine(tmp_path: Path, monkeypatch: p
     assert lines[0].startswith("     1     0.000000 ")
     assert any(" ms]  CRC ok" in line for line in lines)
     assert_same([str(capture), "-t", "dd", "--profile", "atv71"], monkeypatch)
+    # Read once from standard input: profile auto chooses as it goes ([provisional] until then).
+    piped, engine_lines = assert_same(["-"], monkeypatch, stdin=capture.read_bytes())
+    assert engine_lines > 0.5 * len(piped.splitlines())
 
 
 def test_late_answers_and_silences_inside_frames(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
