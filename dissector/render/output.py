@@ -50,7 +50,7 @@ def provisional_notice(number: int, fields: FieldsOptions | None) -> str:
     columns cannot show (summary, -V and --json mark each item themselves)."""
     marked = "-e provisional marks them" if fields is not None else "--json or -T fields -e provisional mark them"
     return (
-        f"note: rows from frame {number} on of slaves whose device profile auto has not chosen yet are "
+        f"warning: rows from frame {number} on of slaves whose device profile auto has not chosen yet are "
         f"provisional (read once, named with spec semantics only); {marked}"
     )
 

@@ -28,7 +28,7 @@ from dissector.render.detail import PROVISIONAL_LINE
 from dissector.sources.reader import open_source
 
 P38_FRAMES = [chunk.data for chunk in open_source(str(ROOT / "captures" / "p38_protection.pcap"))]
-NOTE = ("vw3-decode: note: rows from frame 1 on of slaves whose device profile auto has not chosen yet are "
+NOTE = ("vw3-decode: warning: rows from frame 1 on of slaves whose device profile auto has not chosen yet are "
         "provisional (read once, named with spec semantics only); -e provisional marks them")
 
 
@@ -137,7 +137,7 @@ def test_live_detail_fields_and_filter_say_provisional() -> None:
         "its answer for a non-existent parameter)")
     lines, err = run_live("-T", "fields", "-e", "frame", "-e", "provisional", "-e", "value", "-Y", "frame <= 4")
     assert lines == ["1\t1\t", "2\t1\t32768,3,2", "3\t1\t", "4\t\t32768,3,2"]
-    assert "note:" not in err
+    assert "warning:" not in err
     lines, err = run_live("-T", "fields", "-e", "frame", "-e", "value", "-Y", "frame <= 4")
     assert lines == ["1\t", "2\t32768,3,2", "3\t", "4\t32768,3,2"]
     assert err.count(NOTE) == 1, err

@@ -108,6 +108,9 @@ def inputs(tmp_path: Path) -> list[tuple[str, list[str]]]:
         found += [(str(raw), plant_profiles), (str(pcap), plant_profiles)]
     for raw, pcap in (big,):
         found += [(str(raw), ["--profile", "generic"]), (str(pcap), ["--profile", "generic"])]
+    # The plant and max-size mixes under profile auto as well (the default): the choices made over the
+    # whole file name every output alike.
+    found += [(str(plant[1]), []), (str(big[1]), [])]
     return found
 
 
@@ -178,15 +181,30 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
         ]
         assert out.splitlines() == expected_rows, path
         checked += 1
-    assert checked == 16
+    assert checked == 18
 
 
-def test_p38_story_in_every_output() -> None:
-    p38 = str(CAPTURES / "p38_protection.bin")
+@pytest.mark.parametrize("suffix", [".bin", ".pcap"])
+def test_p38_story_in_every_output(suffix: str) -> None:
+    p38 = str(CAPTURES / f"p38_protection{suffix}")
     status, out, _ = run_cli([p38, "--stats", "--json"])
-    rows = {row["code"]: row for row in json.loads(out)["parameters"]}
-    assert [(rows[c]["reads"], rows[c]["unreadable"], rows[c]["last_status"]) for c in ("CHCF", "COP")] == [
-        (2, 4, "protected"), (4, 2, "protected")]
+    assert status == 0
+    assert [{key: row[key] for key in ("slave", "address", "code", "reads", "unreadable", "writes", "refused", "last",
+                                        "last_status", "changes")} for row in json.loads(out)["parameters"]] == [
+        {"slave": 12, "address": 8400, "code": None, "reads": 0, "unreadable": 6, "writes": 0, "refused": 0,
+         "last": None, "last_status": "non-existent", "changes": 0},
+        {"slave": 12, "address": 8401, "code": "CHCF", "reads": 2, "unreadable": 4, "writes": 0, "refused": 0,
+         "last": None, "last_status": "protected", "changes": 1},
+        {"slave": 12, "address": 8402, "code": "COP", "reads": 4, "unreadable": 2, "writes": 0, "refused": 0,
+         "last": None, "last_status": "protected", "changes": 1},
+    ]
+    status, out, _ = run_cli([p38, "--stats"])
+    table = out[out.index("Parameters\n"):].split("\n\n")[0].splitlines()
+    assert table[3:6] == [
+        "   12      8400            0           6       0        0  non-existent        0",
+        "   12      8401  CHCF      2           4       0        0  protected           1",
+        "   12      8402  COP       4           2       0        0  protected           1",
+    ]
 
 
 def test_reverse_output_frequency_is_signed() -> None:

@@ -95,3 +95,20 @@ def test_standard_input_on_a_terminal_marks_provisional_lines() -> None:
     assert lines[1] == ("     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 "
                         "8402=2 [#1] [provisional]  CRC ok")
     assert "[provisional]" not in lines[3]
+
+
+def test_fields_and_registers_read_once_say_rows_are_provisional() -> None:
+    data = P38.read_bytes()
+    warning = ("vw3-decode: warning: rows from frame 1 on of slaves whose device profile auto has not chosen yet are "
+               "provisional (read once, named with spec semantics only); {}\n")
+    status, out, err = run_cli(["-", "-T", "fields", "-e", "frame", "-e", "value"], stdin=data)
+    assert (status, err) == (0, warning.format("-e provisional marks them"))
+    assert out.splitlines()[:4] == ["1\t", "2\t32768,3,2", "3\t", "4\t32768,3,2"]
+    status, out, err = run_cli(["-", "-T", "fields", "-e", "frame", "-e", "provisional"], stdin=data)
+    assert (status, err) == (0, "") and out.splitlines()[:5] == ["1\t1", "2\t1", "3\t1", "4\t", "5\t"]
+    status, out, err = run_cli(["-", "-T", "registers"], stdin=data)
+    assert (status, err) == (0, warning.format("--json or -T fields -e provisional mark them"))
+    assert out.splitlines()[0] == "2\t\t12\t3\tread\t8400\t\t\t\t32768\t\t\t\t"
+    # Read twice (a file by its name), nothing is provisional and nothing is said.
+    assert run_cli([str(P38), "-T", "fields", "-e", "frame", "-e", "provisional"])[1:] == (
+        "".join(f"{n}\t\n" for n in range(1, 13)), "")
