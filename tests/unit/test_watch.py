@@ -121,6 +121,20 @@ def test_a_value_read_before_the_profile_is_chosen_is_named_by_it(tmp_path) -> N
     status, out, _ = run_cli([str(capture), "--stats", "--json"])
     (lfr,) = [row for row in json.loads(out)["parameters"] if row["address"] == 8502]
     assert (lfr["code"], lfr["last"], lfr["last_text"], lfr["changes"]) == ("LFR", 461, "46.1 Hz", 1)
+    # Read once (standard input) too: the watch line waits for the choice, the report's LFR trend and
+    # --stats are named by the device chosen (no 296 Hz point beside 46.1), as from the file.
+    import re
+
+    data = capture.read_bytes()
+    for source in (str(capture), "-"):
+        assert run_cli([source, "--watch", "LFR"], stdin=data)[1:] == ("     4            -  12 LFR 29.6 -> 46.1 (Hz)\n", "")
+        page = tmp_path / "late.html"
+        assert run_cli([source, "--report", str(page)], stdin=data)[0] == 0
+        report = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
+        assert [(p["x"], p["y"]) for p in report["parameters"] if p.get("code") == "LFR"] == [([2.0, 4.0], [29.6, 46.1])]
+        (lfr,) = [row for row in json.loads(run_cli([source, "--stats", "--json"], stdin=data)[1])["parameters"]
+                  if row["address"] == 8502]
+        assert (lfr["code"], lfr["last"], lfr["last_text"], lfr["changes"]) == ("LFR", 461, "46.1 Hz", 1)
 
 
 def test_bad_watch_lists_are_one_line_errors() -> None:
