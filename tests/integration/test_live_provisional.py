@@ -12,16 +12,13 @@ pseudo-terminal one frame at a time; live --json equals `vw3-decode - --json` of
 from __future__ import annotations
 
 import json
-import os
 import re
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 from conftest import ROOT
-from live_bus import open_pty
+from live_bus import live_on_pty
 
 from dissector.protocol.crc import with_crc
 from dissector.render.detail import PROVISIONAL_LINE
@@ -32,29 +29,11 @@ NOTE = ("vw3-decode: warning: rows from frame 1 on of slaves whose device profil
         "provisional (read once, named with spec semantics only); -e provisional marks them")
 
 
-def run_live(*options: str, frames: list[bytes] = P38_FRAMES, pause: float = 0.1) -> tuple[list[str], str]:
+def run_live(*options: str, frames: list[bytes] = P38_FRAMES) -> tuple[list[str], str]:
     """`frames` written to a pseudo-terminal one by one; vw3-decode --live (profile auto) on its other end."""
-    line, device_fd, path = open_pty()
-    process = subprocess.Popen(
-        [sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
-        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )
-    try:
-        assert process.stderr is not None
-        assert "listening on" in process.stderr.readline()
-        for frame in frames:
-            os.write(line, frame)
-            time.sleep(pause)
-        time.sleep(0.3)
-        process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=20)
-    finally:
-        if process.poll() is None:
-            process.kill()
-        os.close(line)
-        os.close(device_fd)
-    assert process.returncode == 0, err
-    return out.splitlines(), err
+    lines, err, status = live_on_pty(frames, *options)
+    assert status == 0, err
+    return lines, err
 
 
 def _untimed(line: str) -> str:

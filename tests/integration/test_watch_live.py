@@ -10,7 +10,7 @@ import threading
 import time
 
 from conftest import ROOT
-from live_bus import open_pty
+from live_bus import live_on_pty, open_pty
 
 P38 = [
     "0C 03 20 D0 00 03 0E EF", "0C 03 06 80 00 00 03 00 02 17 E4",
@@ -64,26 +64,7 @@ def test_live_watch_prints_each_change_when_it_happens() -> None:
 
 def run_live(*options: str, pause: float = 0.1) -> tuple[list[str], str, int]:
     """The p.38 frames written to a pseudo-terminal one by one; vw3-decode --live on its other end."""
-    line, device_fd, path = open_pty()
-    process = subprocess.Popen(
-        [sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
-        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )
-    try:
-        assert process.stderr is not None and process.stdout is not None
-        assert "listening on" in process.stderr.readline()
-        for frame in P38:
-            os.write(line, bytes.fromhex(frame.replace(" ", "")))
-            time.sleep(pause)
-        time.sleep(0.3)
-        process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=10)
-    finally:
-        if process.poll() is None:
-            process.kill()
-        os.close(line)
-        os.close(device_fd)
-    return out.splitlines(), err, process.returncode
+    return live_on_pty([bytes.fromhex(frame.replace(" ", "")) for frame in P38], *options, pause=pause)
 
 
 def test_live_filter_json_gives_exactly_the_two_exceptions() -> None:

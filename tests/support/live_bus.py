@@ -360,3 +360,28 @@ def transactions(count: int, seed: int) -> bytes:
         request = with_crc(request)
         out += request + slave.answer(request)
     return bytes(out)
+
+
+def live_on_pty(frames: list[bytes], *options: str, pause: float = 0.1) -> tuple[list[str], str, int]:
+    """`frames` written to a pseudo-terminal one by one, `pause` apart; vw3-decode --live at 115200 baud
+    on its other end, stopped by SIGINT: (its stdout lines, its stderr after "listening on", its status)."""
+    line, device_fd, path = open_pty()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
+        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    try:
+        assert process.stderr is not None and process.stdout is not None
+        assert "listening on" in process.stderr.readline()
+        for frame in frames:
+            os.write(line, frame)
+            time.sleep(pause)
+        time.sleep(0.3)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=20)
+    finally:
+        if process.poll() is None:
+            process.kill()
+        os.close(line)
+        os.close(device_fd)
+    return out.splitlines(), err, process.returncode

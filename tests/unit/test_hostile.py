@@ -180,11 +180,11 @@ def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Pa
         options = ["--address-style", style] if style else []
         for pure in ("0", "1"):  # the compiled path leaves such frames to the Python stages
             env = {**os.environ, "VW3_PURE_PYTHON": pure, "PYTHONPATH": str(ROOT)}
-            run = subprocess.run([sys.executable, "-m", "dissector", str(capture), *options], capture_output=True,
-                                 text=True, env=env, cwd=ROOT, timeout=60)
-            assert (run.returncode, run.stderr) == (0, "")
+            done = subprocess.run([sys.executable, "-m", "dissector", str(capture), *options], capture_output=True,
+                                  text=True, env=env, cwd=ROOT, timeout=60)
+            assert (done.returncode, done.stderr) == (0, "")
             a, b, c, d = names
-            assert run.stdout.splitlines() == [line.format(a=a, b=b, c=c, d=d) for line in lines]
+            assert done.stdout.splitlines() == [line.format(a=a, b=b, c=c, d=d) for line in lines]
     status, out, err = run_cli([str(capture), "-V"])
     assert (status, err) == (0, "")
     assert out.split("\n\n")[0].splitlines()[4:6] == ["        Start: 8400 (0x20D0)", "        Quantity: 0 (0x0)"]
@@ -267,9 +267,9 @@ def test_times_no_output_can_show_are_refused_in_one_line(tmp_path: Path, case: 
     made.mkdir()
     options = [option.format(out=made) for option in output]
     if "--parquet" in options:
-        run = subprocess.run([sys.executable, "-m", "dissector", *options, str(capture)], capture_output=True,
-                             text=True, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=120)
-        status, out, err = run.returncode, run.stdout, run.stderr
+        done = subprocess.run([sys.executable, "-m", "dissector", *options, str(capture)], capture_output=True,
+                              text=True, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=120)
+        status, out, err = done.returncode, done.stdout, done.stderr
         # The parquet dataset's empty table folders are all it leaves; no data file.
         assert not [path for path in made.rglob("*") if path.is_file()]
     else:
