@@ -268,7 +268,7 @@ static int request_key(const uint8_t *f, uint32_t *fields) {
         fields[5] = word(f + L->write_quantity_at);
         return 6;
     }
-    if (function == 8) {
+    if (rules[handled_index(function)].special) { /* FC8: keyed by its sub-function, the data's first word */
         fields[2] = word(f + 2);
         return 3;
     }
@@ -314,10 +314,12 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *q, const uint8_
         return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
     }
     c->responses++;
-    if (function == 6) {
-        Words echo = {word(answer + 2), 1, answer + 4};
+    /* The writes the answer confirms (data/modbus.toml [confirm]): its echo's (FC6), the request's (FC16, FC23) */
+    const Rules *R = &rules[handled_index(function)];
+    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
+        Words echo = {word(answer + R->start_at), 1, answer + R->values_at};
         if (words_event(st, s, slave, &echo, EVENT_CONFIRM) < 0) return -1;
-    } else if (writes != NULL && words_event(st, s, slave, writes, EVENT_CONFIRM) < 0) {
+    } else if (R->confirm == CONFIRM_ANSWER && writes != NULL && words_event(st, s, slave, writes, EVENT_CONFIRM) < 0) {
         return -1;
     }
     return reads != NULL && reads->count ? words_event(st, s, slave, reads, EVENT_READ) : 0;

@@ -39,10 +39,12 @@
 #include <stdint.h>
 #include <string.h>
 
-#define MIN_ADU 4
-#define MAX_ADU 256
-#define MAX_SLAVE 247
-#define MAX_VALUES 6   /* render/describe.py MAX_VALUES */
+/* Every rule per function code, and the constants shared with the Python stages, are generated from
+ * the protocol table and its rule tables (python3 -m dissector.codegen; codegen/c.py, c_rules.py): no
+ * function code is named below, the checks and lines interpret `rules`, `request_layout` and the
+ * length rules. */
+#include "_tables.h"
+
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
@@ -159,9 +161,6 @@ static void out_label(Out *o, long long base, unsigned address) {
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
-/* handled_codes, handled_index, length rules, request layouts, limits: generated from the protocol
- * table (python3 -m dissector.codegen). */
-#include "_tables.h"
 #include "_timeline.h" /* the chunks of a timed source (pcap records) */
 
 typedef struct {
@@ -394,21 +393,6 @@ typedef struct {
     long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
 } FrameRef;
 
-/* framing/rules.py _mei_request and _mei_response, where they give a length (a scan: the careful path). */
-static Py_ssize_t special_length(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int special) {
-    if (i + 2 >= n) return FRAME_NEED;
-    if (b[i + 2] != 14) return FRAME_HANDOVER;
-    if (special == 1) return 7;
-    if (i + 7 >= n) return FRAME_NEED;
-    Py_ssize_t position = 8;
-    for (int k = b[i + 7]; k > 0; k--) {
-        if (i + position + 1 >= n) return FRAME_NEED;
-        position += 2 + b[i + position + 1];
-        if (position > MAX_ADU) return FRAME_HANDOVER;
-    }
-    return position + 2;
-}
-
 /* A length rule's answer as framing/rtu.py gives it: a length (0: the layout cannot apply), more
  * bytes needed, or a CRC scan from a minimum length (its Scan). */
 enum { LENGTH_OK, LENGTH_NEED, LENGTH_SCAN };
@@ -513,7 +497,6 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
 
 /* rtu.GLITCH_BYTES: what a short low pulse on an idle line reads as, FF << k (a driver's turn-around). */
 static inline int glitch_byte(uint8_t v) { return v == 0 || (uint8_t)(v | (v - 1)) == 0xFF; }
-#define GLITCH_SKIP 16
 
 /* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
  * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
@@ -556,20 +539,16 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
     if (k < 0) return FRAME_HANDOVER;
     const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
     if (rule->fixed) return rule->fixed;
-    if (rule->special == 3) {
-        Length length = rule_length(rule, b, i, n);
-        if (length.what == LENGTH_NEED) return FRAME_NEED;
-        if (length.what == LENGTH_OK) return length.value;
+    Length length = rule_length(rule, b, i, n);
+    if (length.what == LENGTH_NEED) return FRAME_NEED;
+    if (length.what == LENGTH_SCAN) {
+        /* FC8's Return Query Data is found by the framer's own scan; FC43 other than 14 is the careful path's */
+        if (!rules[k].special) return FRAME_HANDOVER;
         *scanned = 1;
         return scan_length(e, b, i, n, length.value);
     }
-    if (rule->special) {
-        Py_ssize_t length = special_length(b, i, n, rule->special);
-        return length > MAX_ADU ? FRAME_HANDOVER : length; /* the framer's fast path takes none longer */
-    }
-    if (i + rule->position + rule->width - 1 >= n) return FRAME_NEED;
-    Py_ssize_t length = rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position) : b[i + rule->position]);
-    return length > MAX_ADU ? FRAME_HANDOVER : length; /* longer than any RTU frame: the careful path */
+    /* 0: the rule cannot apply; longer than any RTU frame: the careful path's (its fast path takes none) */
+    return length.value == 0 || length.value > MAX_ADU ? FRAME_HANDOVER : length.value;
 }
 
 /* The kind of a frame starting with slave and function on the fast path, FRAME_HANDOVER: none there. */
@@ -863,6 +842,7 @@ typedef struct {
     int has_writes;
     unsigned value;             /* FC5: 0xFF00 or 0 */
     const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
+    const uint8_t *frame;       /* its bytes: what an answer's echo fields are compared with */
     Py_ssize_t length;          /* the frame's, CRC included */
 } Request;
 
@@ -888,8 +868,6 @@ static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize
     if (subfunction_name(e, sub) == NULL) return PyErr_Occurred() ? -1 : 0;
     return 1;
 }
-
-#define MAX_DATA_BYTES 16 /* describe.MAX_DATA_BYTES */
 
 /* describe._diagnostics: `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7` */
 static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
@@ -923,12 +901,12 @@ static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
 
 /* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
 static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
-    unsigned shown = count < 32 ? count : 32;
+    unsigned shown = count < MAX_BITS ? count : MAX_BITS;
     if (out_reserve(o, shown) < 0) return;
     for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
-    if (count > 32) {
+    if (count > MAX_BITS) {
         out_cstr(o, "\xe2\x80\xa6 (+");
-        out_uint(o, count - 32, 0);
+        out_uint(o, count - MAX_BITS, 0);
         out_put(o, ")", 1);
     }
 }
@@ -939,14 +917,14 @@ static int in_range(const long range[2], unsigned value) {
 
 /* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
 static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Request *r) {
-    int function = f[1];
-    int k = handled_index(function);
+    int k = handled_index(f[1]);
     if (k < 0) return 0;
     int check = s->check[k];
     if (check < 0) return 0;
     r->has_writes = 0;
     r->length = length;
-    if (function == 8) return diagnostics_are_plain(e, s, f, length);
+    r->frame = f;
+    if (rules[k].special) return diagnostics_are_plain(e, s, f, length);
     const RequestLayout *L = &request_layout[k];
     unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
     r->start = L->start_at ? word(f + L->start_at) : 0;
@@ -993,13 +971,13 @@ static int info_end_is_plain(const Out *o) {
     return last > 0x20 && last < 0x7F;
 }
 
-static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, unsigned value) {
+static int write_single_text(Engine *e, Slave *s, int slave, int function, unsigned address, unsigned value) {
     /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
-    out_label(&e->out, s->base[handled_index(6)], address);
+    out_label(&e->out, s->base[handled_index(function)], address);
     size_t mark = e->out.len;
     int named;
     out_put(&e->out, " ", 1);
-    if (piece(e, s, slave, 6, address, value, &named) < 0) return -1;
+    if (piece(e, s, slave, function, address, value, &named) < 0) return -1;
     if (!named) {
         e->out.len = mark;
         out_put(&e->out, " = ", 3);
@@ -1008,55 +986,57 @@ static int write_single_text(Engine *e, Slave *s, int slave, unsigned address, u
     return 0;
 }
 
-/* describe._mask_write: the address as sent, even PLC style */
-static void mask_write_text(Out *o, const uint8_t *f) {
-    out_uint(o, word(f + 2), 0);
+/* describe._mask_write: the address as sent, even PLC style; `at`: address, AND mask, OR mask */
+static void mask_write_text(Out *o, const uint8_t *f, const int at[3]) {
+    out_uint(o, word(f + at[0]), 0);
     out_cstr(o, " AND 0x");
-    out_hex(o, word(f + 4), 4);
+    out_hex(o, word(f + at[1]), 4);
     out_cstr(o, " OR 0x");
-    out_hex(o, word(f + 6), 4);
+    out_hex(o, word(f + at[2]), 4);
 }
 
+/* The Info column of a request, by the form its describer gives (rules[k].request_form). */
 static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
                         int unanswered) {
-    int slave = f[0], function = f[1];
-    long long base = s->base[handled_index(function)];
+    int slave = f[0], function = f[1], k = handled_index(function);
+    const Rules *R = &rules[k];
+    long long base = s->base[k];
     if (line_start(e, s, f, number, " request   ") < 0) return -1;
-    switch (function) {
-    case 1: case 2: case 3: case 4:
+    switch (R->request_form) {
+    case FORM_SPAN:
         span_text(&e->out, base, r->start, r->quantity);
         break;
-    case 5:
+    case FORM_COIL:
         span_text(&e->out, base, r->start, 1);
         out_cstr(&e->out, r->value == 0xFF00 ? " = ON" : " = OFF");
         break;
-    case 15:
+    case FORM_BITS:
         span_text(&e->out, base, r->start, r->quantity);
         out_put(&e->out, ": ", 2);
         bits_text(&e->out, r->packed, r->quantity);
         break;
-    case 6:
-        if (write_single_text(e, s, slave, r->start, word(f + 4)) < 0) return -1;
+    case FORM_SINGLE:
+        if (write_single_text(e, s, slave, function, r->start, word(f + R->request_at[0])) < 0) return -1;
         break;
-    case 7: case 11: case 12: /* describe._simple, _comm_event_counter: the name alone */
+    case FORM_NAME: /* describe._simple, _comm_event_counter: the name alone */
         e->out.len -= 1;
         break;
-    case 8:
+    case FORM_DIAGNOSTICS:
         if (diagnostics_text(e, f, r->length) < 0) return -1;
         break;
-    case 22:
-        mask_write_text(&e->out, f);
+    case FORM_MASK:
+        mask_write_text(&e->out, f, R->request_at);
         break;
-    case 24:
+    case FORM_POINTER:
         out_cstr(&e->out, "pointer ");
-        out_uint(&e->out, r->start, 0);
+        out_uint(&e->out, word(f + R->request_at[0]), 0);
         break;
-    case 16:
+    case FORM_VALUES:
         span_text(&e->out, base, r->start, r->quantity);
         out_put(&e->out, ": ", 2);
         if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
-    case 23: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
+    case FORM_READ_WRITE: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
         out_cstr(&e->out, "read ");
         if (base >= 0) {
             span_text(&e->out, base, r->start, r->quantity);
@@ -1074,6 +1054,8 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
         }
         if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
         break;
+    default:
+        return 0;
     }
     if (e->out.failed) return -1;
     if (!info_end_is_plain(&e->out)) return 0;
@@ -1082,103 +1064,106 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
     return 1;
 }
 
-/* The response's checks (decoder and annotator); fills its registers. 1 quiet, 0 hand over. */
+static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
+
+/* The answer's checks as the lifting rule states them (fields.Lifter: limit check, byte count, coil,
+ * echo) and the annotator's (its registers plain, its reads quiet); fills its registers. 1 quiet, 0 hand over. */
 static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
                              Words *reads) {
-    int function = f[1];
+    const Rules *R = &rules[handled_index(f[1])];
     reads->count = 0;
-    switch (function) {
-    case 8:
-        return diagnostics_are_plain(e, s, f, length);
-    case 3: case 4: case 23:
-        if (f[2] != 2 * r->quantity) return 0;
-        *reads = (Words){r->start, r->quantity, f + 3};
-        break;
-    case 6: {  /* fields.Lifter's echo rule: an answer that is not the request's echo gets a warning */
-        if (word(f + 2) != r->start || word(f + 4) != word(r->writes.values)) return 0;
-        Words echo = {word(f + 2), 1, f + 4};
-        return words_are_plain(s, e->run_number, &echo);
+    if (R->special) return diagnostics_are_plain(e, s, f, length);
+    if (R->response_form == FORM_PYTHON) return 0;
+    if (R->check_at) {
+        const long *range = e->limits[R->check_limit];
+        unsigned value = field(f, R->check_at, R->check_width);
+        if (R->check_above ? (long)value > range[1] : !in_range(range, value)) return 0;
     }
-    case 1: case 2:
-        return f[2] == (r->quantity + 7) / 8;
-    case 5: {
-        unsigned value = word(f + 4);
-        return (value == 0xFF00 || value == 0) && word(f + 2) == r->start && value == r->value;
+    if (R->count_at) {
+        unsigned count = field(f, R->count_at, R->count_width);
+        if (count < (unsigned)R->min_count) return 0; /* malformed: the fixed fields after it are longer */
+        if (R->count_rule) {
+            unsigned of = R->count_of_at ? field(f, R->count_of_at, 2) : r->quantity;
+            if (count != R->count_plus + (R->count_unit ? of * R->count_unit : (of + 7) / 8)) return 0;
+        }
+        if (R->odd_count && count & 1) return 0;
     }
-    case 15: case 16:
-        return word(f + 2) == r->start && word(f + 4) == r->quantity;
-    case 7: case 11: case 22:
-        return 1;
-    case 12: /* events are byte count - 6 bytes: a shorter count is malformed */
-        return f[2] >= 6;
-    case 24: /* fields.Lifter's fifo_response rule: at most 31 values, byte count 2 + 2 x count */
-        return word(f + 4) <= 31 && word(f + 2) == 2 + 2 * word(f + 4);
-    default:
-        return 0;
+    if (R->coil_at && word(f + R->coil_at) != 0xFF00 && word(f + R->coil_at) != 0) return 0;
+    for (int j = 0; j < 2 && R->echo_at[j]; j++)
+        if (word(f + R->echo_at[j]) != word(r->frame + R->echo_request_at[j])) return 0;
+    if (R->values == VALUES_ONE) {
+        Words one = {R->start_at ? word(f + R->start_at) : r->start, 1, f + R->values_at};
+        return words_are_plain(s, e->run_number, &one);
     }
+    if (R->values != VALUES_BLOCK) return 1;
+    *reads = (Words){r->start, r->quantity, f + R->values_at};
     int plain = words_are_plain(s, e->run_number, reads);
-    if (plain <= 0) return plain;
-    return reads_are_quiet(s, reads, function == 23 ? &r->writes : NULL);
+    if (plain <= 0 || !R->reads) return plain;
+    return reads_are_quiet(s, reads, r->has_writes ? &r->writes : NULL);
 }
 
+/* The Info column of an answer, by the form its describer gives (rules[k].response_form). */
 static int response_line(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
                          const Words *reads, unsigned long long number, unsigned long long request_number) {
-    int slave = f[0], function = f[1];
-    long long base = s->base[handled_index(function)];
+    int slave = f[0], function = f[1], k = handled_index(function);
+    const Rules *R = &rules[k];
+    const int *at = R->response_at;
+    long long base = s->base[k];
+    /* the answer's own window where its rule gives one (FC5, FC15, FC16), else its request's */
+    unsigned start = R->start_at ? word(f + R->start_at) : r->start;
+    unsigned quantity = R->quantity_at ? word(f + R->quantity_at) : R->start_at ? (unsigned)R->one : r->quantity;
     if (line_start(e, s, f, number, " response  ") < 0) return -1;
-    switch (function) {
-    case 3: case 4: case 23:
-        span_text(&e->out, base, r->start, r->quantity);
+    switch (R->response_form) {
+    case FORM_VALUES:
+        span_text(&e->out, base, start, quantity);
         out_put(&e->out, ": ", 2);
         if (values_text(e, s, slave, function, reads) < 0) return -1;
         break;
-    case 6:
-        if (write_single_text(e, s, slave, word(f + 2), word(f + 4)) < 0) return -1;
+    case FORM_SINGLE:
+        if (write_single_text(e, s, slave, function, start, word(f + at[0])) < 0) return -1;
         break;
-    case 1: case 2:
-        span_text(&e->out, base, r->start, r->quantity);
+    case FORM_BITS:
+        span_text(&e->out, base, start, quantity);
         out_put(&e->out, ": ", 2);
-        bits_text(&e->out, f + 3, r->quantity);
+        bits_text(&e->out, f + R->bits_at, quantity);
         break;
-    case 5:
-        span_text(&e->out, base, word(f + 2), 1);
-        out_cstr(&e->out, word(f + 4) == 0xFF00 ? " = ON" : " = OFF");
+    case FORM_COIL:
+        span_text(&e->out, base, start, 1);
+        out_cstr(&e->out, word(f + at[0]) == 0xFF00 ? " = ON" : " = OFF");
         break;
-    case 15: case 16:
-        span_text(&e->out, base, word(f + 2), word(f + 4));
+    case FORM_WRITTEN:
+        span_text(&e->out, base, start, quantity);
         out_cstr(&e->out, " written");
         break;
-    case 7: /* describe._simple */
+    case FORM_STATUS: /* describe._simple: the status, at least two digits */
         out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, f[2], 2);
+        out_hex(&e->out, field(f, at[0], R->print_width), 2);
         break;
-    case 8:
+    case FORM_DIAGNOSTICS:
         if (diagnostics_text(e, f, length) < 0) return -1;
         break;
-    case 11: /* describe._comm_event_counter */
+    case FORM_COUNTER: /* describe._comm_event_counter */
         out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, word(f + 2), 4);
+        out_hex(&e->out, word(f + at[0]), 4);
         out_cstr(&e->out, ", ");
-        out_uint(&e->out, word(f + 4), 0);
+        out_uint(&e->out, word(f + at[1]), 0);
         out_cstr(&e->out, " events");
         break;
-    case 12: /* describe._simple: the 16-bit status, at least two digits */
-        out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, word(f + 3), 2);
+    case FORM_MASK:
+        mask_write_text(&e->out, f, at);
         break;
-    case 22:
-        mask_write_text(&e->out, f);
-        break;
-    case 24: { /* describe._fifo: the count, then at most 8 values (rstrip: no space after none) */
-        unsigned count = word(f + 4);
+    case FORM_FIFO: { /* describe._fifo: the count, then the first values (rstrip: no space after none) */
+        unsigned count = word(f + at[0]);
         out_uint(&e->out, count, 0);
         out_cstr(&e->out, " values:");
-        for (unsigned k = 0; k < count && k < 8; k++) {
+        for (unsigned j = 0; j < count && j < MAX_FIFO_VALUES; j++) {
             out_put(&e->out, " ", 1);
-            out_uint(&e->out, word(f + 6 + 2 * k), 0);
+            out_uint(&e->out, word(f + at[1] + 2 * j), 0);
         }
         break;
     }
+    default:
+        return 0;
     }
     if (e->out.failed) return -1;
     if (!info_end_is_plain(&e->out)) return 0;
@@ -1287,19 +1272,28 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     return status;
 }
 
+/* The registers an answer confirms written (data/modbus.toml [confirm]): its own echo (FC6), or the
+ * request's values a normal answer confirms (FC16, FC23); 1: some, in *out. */
+static int confirmed_writes(const uint8_t *answer, const Request *r, Words *out) {
+    const Rules *R = &rules[handled_index(answer[1])];
+    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
+        *out = (Words){word(answer + R->start_at), 1, answer + R->values_at};
+        return 1;
+    }
+    if (R->confirm == CONFIRM_ANSWER && r->has_writes) {
+        *out = r->writes;
+        return 1;
+    }
+    return 0;
+}
+
 /* Annotator state after an answered transaction: what was written, then what was read. */
 static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
                  unsigned long long number) {
     if (s->seen == NULL) return 0;
-    int slave = f[0], function = f[1];
-    if (function == 16 || function == 23) {
-        if (remember(e, slave, s, &r->writes, number, 1) < 0) return -1;
-    }
-    if (function == 6) {
-        Words echo = {word(f + 2), 1, f + 4};
-        if (remember(e, slave, s, &echo, number, 1) < 0) return -1;
-    }
-    if (reads->count && s->protected_value >= 0) return remember(e, slave, s, reads, number, 0);
+    Words written;
+    if (confirmed_writes(f, r, &written) && remember(e, f[0], s, &written, number, 1) < 0) return -1;
+    if (reads->count && s->protected_value >= 0) return remember(e, f[0], s, reads, number, 0);
     return 0;
 }
 

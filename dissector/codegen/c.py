@@ -12,10 +12,10 @@ from pathlib import Path
 
 from dissector.errors import GenerateError
 from dissector.protocol import table
-from dissector.protocol.table import Compiled, Counted, Fixed, Layout, Special
+from dissector.codegen import c_rules
+from dissector.protocol.table import Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
-_ADU_HEAD = 2  # slave and function code before the grammar's data
 # Special length rules the engine implements (framing/rtu.py's functions of the same names).
 _SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4}
 
@@ -29,44 +29,6 @@ def _rule(layout: Layout, code: int) -> str:
     if isinstance(rule, Special) and rule.name in _SPECIAL_RULES:
         return f"{{0, 0, 0, 0, {_SPECIAL_RULES[rule.name]}}}"
     raise GenerateError(f"function {code}: the compiled path handles fixed and counted lengths only, not {rule}")
-
-
-def _offset(layout: Layout, field: str | None, code: int) -> int:
-    if field is None:
-        return 0
-    try:
-        return _ADU_HEAD + table.field_offset(layout.grammar, field)
-    except Exception as error:
-        raise GenerateError(f"function {code}: field {field!r} of {layout.name}: {error}") from None
-
-
-def _request_layout(code: int, layout: Layout, compiled: Compiled, limits: tuple[str, ...]) -> str:
-    writes = compiled.writes
-    values = [
-        _offset(layout, compiled.start, code),
-        _offset(layout, compiled.quantity, code),
-        limits.index(compiled.limit) if compiled.limit else -1,
-        int(compiled.span),
-    ]
-    coils = compiled.coils
-    values += [
-        _offset(layout, compiled.coil, code),
-        _offset(layout, coils.status if coils else None, code),
-        _offset(layout, coils.count if coils else None, code),
-    ]
-    if writes is None:
-        values += [0, 0, 0, -1, 0]
-    else:
-        values += [
-            _offset(layout, writes.values, code),
-            # 0: the request's own start and quantity (then no separate write quantity to check)
-            _offset(layout, None if writes.start == compiled.start else writes.start, code),
-            _offset(layout, None if writes.quantity == compiled.quantity else writes.quantity, code),
-            limits.index(writes.limit) if writes.limit else -1,
-            _offset(layout, writes.count, code),
-        ]
-    values.append(int(compiled.texts))
-    return "{" + ", ".join(map(str, values)) + "}"
 
 
 def _known_rules() -> tuple[list[int], list[str], list[str]]:
@@ -157,8 +119,9 @@ def render_header() -> str:
         "typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;",
         "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",
         "",
-        "/* Where a request's fields are, as offsets from the frame's first byte (0: absent). The quantity",
-        " * defaults to one register; the written registers' start and quantity default to the request's. */",
+        "/* Where a request's fields are, as offsets from the frame's first byte (0: absent), from its lifting",
+        " * rule (codegen/c_rules.py). The quantity defaults to one register; the written registers' start and",
+        " * quantity default to the request's. */",
         "typedef struct {",
         "    int start_at, quantity_at, limit, span; /* limit: LIMIT_* or -1; span: start + quantity <= 65536 */",
         "    int coil_at, coils_at, coils_count_at; /* FC5's ON/OFF value; FC15's packed coils, ceil(quantity / 8) */",
@@ -167,11 +130,12 @@ def render_header() -> str:
         "} RequestLayout;",
         "static const RequestLayout request_layout[HANDLED] = {",
         *(
-            f"    {_request_layout(entry.code, entry.request, entry.compiled, limits)}, /* {entry.code} */"
+            "    {" + ", ".join(map(str, c_rules.request_layout(entry, limits))) + f"}}, /* {entry.code} */"
             for entry in entries
-            if entry.compiled is not None
         ),
         "};",
+        "",
+        *c_rules.render(entries, limits),
         "",
         "#endif",
     ]

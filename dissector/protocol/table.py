@@ -96,35 +96,10 @@ class Layout:
 
 
 @dataclass(frozen=True, slots=True)
-class Writes:
-    """Where a request's written registers are, by field names of its grammar."""
-
-    values: str
-    start: str
-    quantity: str | None = None  # None: one register
-    count: str | None = None  # byte count that must be 2 x quantity
-    limit: str | None = None
-
-
-@dataclass(frozen=True, slots=True)
-class Coils:
-    """Where a request's written coils are (FC15), by field names of its grammar."""
-
-    status: str  # the coils, packed 8 to a byte
-    count: str  # byte count that must be ceil(quantity / 8)
-
-
-@dataclass(frozen=True, slots=True)
 class Compiled:
-    """How the compiled summary path reads the request, by field names of its grammar."""
+    """The compiled summary path (accel/_summary.c) shows this code; it reads the request and the answer
+    by the lifting rules (data/modbus.toml [lift], through codegen/c_rules.py)."""
 
-    start: str | None = None  # None: no address (FC7, FC11, FC12)
-    quantity: str | None = None  # None: one register
-    limit: str | None = None
-    span: bool = False  # start + quantity must stay within 65536
-    writes: Writes | None = None
-    coil: str | None = None  # FC5: the value, ON (0xFF00) or OFF (0000); any other draws a warning
-    coils: Coils | None = None
     # The engine frames and pairs the transaction, and its texts come from the Python stages (kept by
     # the frames' bytes): for layouts whose decoding and annotation change no state and whose texts
     # are not worth porting (file records, identification objects, the server ID).
@@ -140,6 +115,9 @@ class Function:
     data: Data = Data.NONE
     echo: bool = False  # the response repeats the request (or its first fields)
     compiled: Compiled | None = None
+    # How the Info column describes it: a describer of render/describe.py by name (the compiled engine
+    # writes the same texts, by the forms codegen/c_rules.py derives from this name and the direction).
+    text: str = "simple"
 
     def layout(self, kind: Kind) -> Layout:
         return self.request if kind is Kind.REQUEST else self.response
@@ -168,7 +146,8 @@ def _read(code: int, bits: bool) -> Function:
         ),
         Access.READ,
         Data.BITS if bits else Data.REGISTERS,
-        compiled=Compiled("start", "quantity", request_limit, span=True),
+        compiled=Compiled(),
+        text="read",
     )
 
 
@@ -182,14 +161,14 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("write_single", _EIGHT, "write_single_coil"),
         _layout("write_single", _EIGHT, "write_single_coil"),
         Access.WRITE, Data.BITS, echo=True,
-        compiled=Compiled("address", coil="value"),
+        compiled=Compiled(), text="write_single_coil",
     ),
     Function(
         6,
         _layout("write_single", _EIGHT, "write_single_register"),
         _layout("write_single", _EIGHT, "write_single_register"),
         Access.WRITE, Data.REGISTERS, echo=True,
-        compiled=Compiled("address", writes=Writes("value", "address")),
+        compiled=Compiled(), text="write_single_register",
     ),
     Function(
         7, _layout("empty", Fixed(4)), _layout("exception_status_response", Fixed(5)), Access.DIAGNOSTIC,
@@ -200,11 +179,11 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         _layout("diagnostics", Special("diagnostics"), "diagnostics"),
         Access.DIAGNOSTIC, echo=True,
-        compiled=Compiled(),
+        compiled=Compiled(), text="diagnostics",
     ),
     Function(
         11, _layout("empty", Fixed(4)), _layout("comm_event_counter_response", _EIGHT), Access.DIAGNOSTIC,
-        compiled=Compiled(),
+        compiled=Compiled(), text="comm_event_counter",
     ),
     Function(
         12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC,
@@ -215,7 +194,7 @@ FUNCTIONS: tuple[Function, ...] = (
         _layout("write_coils_request", Counted(6, 9), "write_coils_request", "write_coils", ByQuantity(4, 9, 0)),
         _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
         Access.WRITE, Data.BITS, echo=True,
-        compiled=Compiled("start", "quantity", "write_coils", span=True, coils=Coils("status", "byte_count")),
+        compiled=Compiled(), text="write_multiple",
     ),
     Function(
         16,
@@ -224,42 +203,36 @@ FUNCTIONS: tuple[Function, ...] = (
         ),
         _layout("write_multiple_response", _EIGHT, "write_multiple_response"),
         Access.WRITE, Data.REGISTERS, echo=True,
-        compiled=Compiled(
-            "start", "quantity", "write_registers", span=True,
-            writes=Writes("values", "start", "quantity", count="byte_count"),
-        ),
+        compiled=Compiled(), text="write_multiple",
     ),
     Function(
         17,
         _layout("empty", Fixed(4)),
         _layout("report_server_id_response", _BYTE_COUNT, "report_server_id_response"),
         Access.DIAGNOSTIC,
-        compiled=Compiled(texts=True),
+        compiled=Compiled(texts=True), text="report_server_id",
     ),
     Function(
         20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ,
-        compiled=Compiled(texts=True),
+        compiled=Compiled(texts=True), text="file_record",
     ),
     Function(
         21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True,
-        compiled=Compiled(texts=True),
+        compiled=Compiled(texts=True), text="file_record",
     ),
     Function(
         22,
         _layout("mask_write", Fixed(10), "mask_write"),
         _layout("mask_write", Fixed(10), "mask_write"),
         Access.WRITE, echo=True,
-        compiled=Compiled("address"),
+        compiled=Compiled(), text="mask_write",
     ),
     Function(
         23,
         _layout("read_write_request", Counted(10, 13), "read_write_request", by_quantity=ByQuantity(8, 13, 2)),
         _layout("read_registers_response", _BYTE_COUNT, "read_registers_response"),
         Access.READ_WRITE, Data.REGISTERS,
-        compiled=Compiled(
-            "read_start", "read_quantity", "rw_read",
-            writes=Writes("values", "write_start", "write_quantity", count="byte_count", limit="rw_write"),
-        ),
+        compiled=Compiled(), text="read_write",
     ),
     Function(
         24,
@@ -267,14 +240,14 @@ FUNCTIONS: tuple[Function, ...] = (
         # The FIFO's values have no addresses of their own: Data.NONE.
         _layout("fifo_response", Counted(2, 6, width=2), "fifo_response", "fifo_count"),
         Access.READ,
-        compiled=Compiled("address"),
+        compiled=Compiled(), text="fifo",
     ),
     Function(
         43,
         _layout("mei_request", Special("mei_request")),
         _layout("mei_response", Special("mei_response"), "mei_response"),
         Access.DIAGNOSTIC,
-        compiled=Compiled(texts=True),
+        compiled=Compiled(texts=True), text="mei",
     ),
 )
 
@@ -292,15 +265,16 @@ COMPILED = tuple(entry.code for entry in FUNCTIONS if entry.compiled is not None
 
 
 def compiled_limits() -> tuple[str, ...]:
-    """The spec limits the engine checks, in the order of its `limits` argument (and LIMIT_* below)."""
+    """The spec limits the engine checks (its lifting rules' checks, requests then answers), in the order
+    of its `limits` argument (and LIMIT_* of accel/_tables.h)."""
     names: list[str] = []
-    for entry in FUNCTIONS:
-        compiled = entry.compiled
-        if compiled is None:
-            continue
-        for name in (compiled.limit, compiled.writes.limit if compiled.writes else None):
-            if name is not None and name not in names:
-                names.append(name)
+    for kind in (Kind.REQUEST, Kind.RESPONSE):
+        for entry in FUNCTIONS:
+            rule = lift_of(entry.code, kind) if entry.compiled is not None else None
+            for check in rule.checks if rule is not None else ():
+                name = check.limit or entry.layout(kind).limit
+                if name is not None and name not in names:
+                    names.append(name)
     return tuple(names)
 
 

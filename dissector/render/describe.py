@@ -5,8 +5,11 @@ import re
 
 from dissector.model import DeviceObject, Frame, Kind, Register
 from dissector.protocol.spec import SPEC
+from dissector.protocol.table import FUNCTIONS
 
-MAX_VALUES = 6
+MAX_VALUES = 6  # register values a summary shows (the compiled engine reads these three in _tables.h)
+MAX_BITS = 32  # bits a summary shows
+MAX_FIFO_VALUES = 8  # FIFO values a summary shows
 _FUNCTION_NAMES = SPEC.functions
 
 
@@ -89,9 +92,9 @@ def values_text(frame: Frame) -> str:
 
 def bits_text(frame: Frame) -> str:
     bits = frame.bits or []
-    text = "".join(str(bit.value) for bit in bits[:32])
-    if len(bits) > 32:
-        text += f"… (+{len(bits) - 32})"
+    text = "".join(str(bit.value) for bit in bits[:MAX_BITS])
+    if len(bits) > MAX_BITS:
+        text += f"… (+{len(bits) - MAX_BITS})"
     return text
 
 
@@ -189,7 +192,7 @@ def _read_write(frame: Frame, request: bool) -> str:
 def _fifo(frame: Frame, request: bool) -> str:
     if request:
         return f"pointer {frame.fields.address}"
-    return f"{frame.fields.fifo_count} values: {' '.join(map(str, frame.fields['values'][:8]))}"
+    return f"{frame.fields.fifo_count} values: {' '.join(map(str, frame.fields['values'][:MAX_FIFO_VALUES]))}"
 
 
 def _mei(frame: Frame, request: bool) -> str:
@@ -240,24 +243,20 @@ def _file_record(frame: Frame, request: bool) -> str:
     return f"{len(groups)} record group(s)"
 
 
-_DESCRIBERS = {
-    1: _read,
-    2: _read,
-    3: _read,
-    4: _read,
-    5: _write_single_coil,
-    6: _write_single_register,
-    7: _simple,
-    8: _diagnostics,
-    11: _comm_event_counter,
-    12: _simple,
-    15: _write_multiple,
-    16: _write_multiple,
-    17: _report_server_id,
-    20: _file_record,
-    21: _file_record,
-    22: _mask_write,
-    23: _read_write,
-    24: _fifo,
-    43: _mei,
+# Describers by name; the protocol table says which function code uses which (table.Function.text).
+_BY_NAME = {
+    "read": _read,
+    "write_single_coil": _write_single_coil,
+    "write_single_register": _write_single_register,
+    "simple": _simple,
+    "diagnostics": _diagnostics,
+    "comm_event_counter": _comm_event_counter,
+    "write_multiple": _write_multiple,
+    "report_server_id": _report_server_id,
+    "file_record": _file_record,
+    "mask_write": _mask_write,
+    "read_write": _read_write,
+    "fifo": _fifo,
+    "mei": _mei,
 }
+_DESCRIBERS = {entry.code: _BY_NAME[entry.text] for entry in FUNCTIONS}
