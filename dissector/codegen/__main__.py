@@ -2,14 +2,16 @@
 
 The generated files are checked in (a build or a Wireshark install needs no Python step):
   dissector/accel/_tables.h   the compiled summary path's per-code tables (codegen/c.py)
-  lua/vw3.lua, between its GENERATED markers: the plugin's data and rule tables (codegen/lua.py)
+  lua/vw3.lua, between its GENERATED markers: the plugin's data and rule tables (codegen/lua.py); the
+      lifting rules, confirmations and texts of data/modbus.toml (codegen/rules_lua.py) where it
+      carries them, between the RULES markers
 """
 from __future__ import annotations
 
 import argparse
 import sys
 
-from dissector.codegen import c, lua
+from dissector.codegen import c, lua, rules_lua
 from dissector.errors import GenerateError
 
 
@@ -18,7 +20,7 @@ def stale() -> list[str]:
     out = []
     if c.current_header() != c.render_header():
         out.append(str(c.HEADER))
-    if lua.current_block() != lua.render_block():
+    if lua.current_block() != lua.render_block() or not rules_lua.current_in(lua.PLUGIN):
         out.append(str(lua.PLUGIN))
     return out
 

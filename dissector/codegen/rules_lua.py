@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 import string
+from pathlib import Path
 from typing import Any
 
 from dissector.codegen.lua import lua_literal as scalar_literal
@@ -96,3 +97,13 @@ def rules_data() -> dict[str, Any]:
 def render_rules() -> str:
     """The Lua chunk (between BEGIN and END) that defines `local RULES`."""
     return f"{BEGIN}\nlocal RULES = {lua_literal(rules_data())}\n{END}\n"
+
+
+def current_in(plugin: Path) -> bool:
+    """The plugin carries no rules block, or the one the tables give now (`--check` holds it to them)."""
+    text = plugin.read_text(encoding="utf-8") if plugin.exists() else ""
+    if BEGIN not in text:
+        return True
+    start = text.index(BEGIN)
+    end = text.find(END, start)
+    return end >= 0 and text[start : end + len(END) + 1] == render_rules()
