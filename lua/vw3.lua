@@ -4005,6 +4005,7 @@ end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
 local function observe(st, f, b)
+  if st.frozen ~= nil then return nil end -- (decoded again with the choices of the whole capture)
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
@@ -4084,6 +4085,8 @@ end
 -- judged, an answer its device does not support). Changes nothing. (The quick lanes ask this instead.)
 function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
+  local frozen = st.frozen
+  if frozen ~= nil then return frozen[st.count + 1] == nil end -- (the frame that decided says so: observe's path)
   local all = st.judged
   local judged = all and all[slave]
   if judged == nil then return false end
@@ -4111,6 +4114,14 @@ end
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 select_device = function(st, f, b)
+  local frozen = st.frozen
+  if frozen ~= nil then
+    -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
+    -- say so (vw3-decode reading a file says where each choice was made too).
+    local said = frozen[f.number]
+    if said ~= nil then f.profile_choice, f.profile_said = said[2], said[1] end
+    return device_for(st, f.slave)
+  end
   local choice = observe(st, f, b)
   if choice == nil then return device_for(st, f.slave) end
   local slave = f.slave
@@ -4133,6 +4144,8 @@ select_device = function(st, f, b)
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   st.devices[slave] = device
   f.profile_choice = choice.reason
+  st.said = st.said or {}
+  st.said[f.number] = { choice.profile, choice.reason }
   return device
 end
 end
@@ -4248,7 +4261,7 @@ do
   -- (then: registers, bits as runs; request record and time, response record; the rare keys)
   local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "span_label", "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects",
-    "server", "ascii", "raw", "reason", "inferred", "profile_choice" }
+    "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said" }
   local RUN_RARE = { "status", "plain", "single" }
 
   local function rare(t, keys)
@@ -4279,9 +4292,11 @@ do
   end
 
   function pack.item(f)
-    -- Noise in 9 slots, not 19 and a table of rare keys: a flood of ':' in ASCII mode is a noise item a
-    -- byte (as vw3-decode shows it), 1 KB each kept this way (1 MB of ':' took 1.1 GB).
-    if f.kind == NOISE then return { NOISE, f.at, f.length, f.number, f.offset, f.record, f.time, f.reason, f.raw } end
+    -- Noise in 10 slots, not 19 and a table of rare keys; a run of the same noise (take_items) is one:
+    -- a flood of ':' in ASCII mode is a noise item a byte (as vw3-decode shows it), 1 KB each was kept.
+    if f.kind == NOISE then
+      return { NOISE, f.at, f.length, f.number, f.offset, f.record, f.time, f.reason, f.raw, f.count }
+    end
     local request, response = f.request, f.response
     local request_record, request_time, response_record = nil, nil, nil
     if request ~= nil then request_record, request_time = request.record, request.time end
@@ -4510,7 +4525,7 @@ do
     if p.kind ~= nil then return p end
     if p[1] == NOISE then
       return { kind = NOISE, at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
-        reason = p[8], raw = p[9] }
+        reason = p[8], raw = p[9], count = p[10] }
     end
     local f = { kind = p[1], at = p[2], length = p[3], number = p[4], offset = p[5], record = p[6], time = p[7],
       slave = p[8], fn = p[9], crc = p[10], crc_expected = p[11], start = p[12], quantity = p[13],
@@ -4719,13 +4734,29 @@ take_items = function(st, items, record)
       end
     end
     item.record = home.number
-    home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
-    local unpacked = st.unpacked
-    unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
     local first = home.start or offset -- (a closed record holds no bytes still to frame)
-    if offset >= first and offset + length <= first + (home.length or length) then
+    local last = home[#home]
+    local inside = offset >= first and offset + length <= first + (home.length or length)
+    if inside then
       item.at = offset - first
-    else
+      if item.kind == NOISE and type(last) == "table" and last.kind == NOISE and last.raw == nil
+          and last.length == length and last.reason == item.reason and last.time == item.time then
+        -- The same noise again right after (a flood of ':' in ASCII mode is an item a byte, as
+        -- vw3-decode shows it): one entry for the run, shown item by item (show_record).
+        local count = last.count or 1
+        local span = count * length
+        if last.number + count == item.number and last.at + span == item.at and last.offset + span == offset then
+          last.count = count + 1
+          item = nil
+        end
+      end
+    end
+    if item ~= nil then
+      home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
+      local unpacked = st.unpacked
+      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
+    end
+    if not inside then
       item.at = 0
       if item.kind == NOISE then
         item.raw = string_of(item.bytes, 1, length)
@@ -4744,8 +4775,10 @@ take_items = function(st, items, record)
         end
       end
     end
-    item.bytes, item.src = nil, nil
-    if item.kind ~= NOISE then take_frame(st, item) end
+    if item ~= nil then
+      item.bytes, item.src = nil, nil
+      if item.kind ~= NOISE then take_frame(st, item) end
+    end
   end
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
@@ -5607,7 +5640,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
   end
   if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
-    local text = format("slave %d: %s (%s)", f.slave, device_of(st, f).profile.name, f.profile_choice)
+    -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
+    local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
+      f.profile_choice)
     local item = t
     if full then item = t:add(pf.profile_choice, whole, text):set_generated() end
     add_text(item, ex.profile, text)
@@ -5642,17 +5677,19 @@ if full then return t end
   return nil
 end
 
-local function show_noise(item, tvb, tree, full)
-  local expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
+-- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
+local function show_noise(item, tvb, tree, full, k)
+  local length = item.length
+  local expert_text = format("%d bytes outside any frame: %s", length, item.reason)
   if not full then
     add_text(tree, ex.noise, expert_text)
     return nil
   end
-  local r = tvb:range(item.at, item.length)
-  local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", item.length, item.reason))
-  t:add(pf.item, r, item.number):set_generated()
+  local r = tvb:range(item.at + k * length, length)
+  local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
+  t:add(pf.item, r, item.number + k):set_generated()
   t:add(pf.kind, r, KIND_VALUES[NOISE]):set_generated()
-  t:add(pf.offset, r, item.offset):set_generated()
+  t:add(pf.offset, r, item.offset + k * length):set_generated()
   t:add(pf.noise_reason, r, item.reason):set_generated()
   t:add(pf.data, r)
   add_text(t, ex.noise, expert_text)
@@ -5773,9 +5810,12 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
     local shown_from = item_tvb(item, tvb)
     local t
     if item.kind == NOISE then
-      t = show_noise(item, shown_from, tree, full)
       local text = format("noise (%d bytes)", item.length)
-      summaries, info = add_part(summaries, info, text)
+      for k = 0, (item.count or 1) - 1 do
+        local shown = show_noise(item, shown_from, tree, full, k)
+        t = t or shown
+        summaries, info = add_part(summaries, info, text)
+      end
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
@@ -5818,6 +5858,46 @@ end
 udp_states = {}
 
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
+-- Profile `auto` over the whole capture (app/preselect.py, issue 27): once the first pass is over, a
+-- slave's frames met before its choice (or before it was taken back) are decoded again, the whole
+-- capture in order, with every slave's device the one chosen over the capture from its first frame
+-- (annotations, statuses and the parameter story follow the device). Framing and pairing give the same
+-- items again; only what the device says changes. `tshark -2` and Wireshark's later dissections then
+-- show what vw3-decode shows reading a file; a single pass stays as vw3-decode reading a stream.
+function lane.again(st)
+  local again = st.again
+  st.again = nil
+  if again == nil or st.said == nil then return end -- (nothing chosen after a slave's first frame)
+  local fresh = new_state(st.timeout, st.mode)
+  local frozen, chosen, history = {}, {}, {}
+  for number, reason in pairs(st.said) do frozen[number] = reason end
+  for slave, judged in pairs(st.judged or {}) do
+    local choice = judged.choice
+    if choice ~= nil and PROFILES[choice.profile] ~= nil then
+      local device = build_device(PROFILES[choice.profile], slave)
+      chosen[slave], fresh.devices[slave] = choice.profile, device
+      history[slave] = { { number = 0, device = device, reason = choice.reason } }
+    end
+  end
+  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
+  local records = st.records
+  for _, number in ipairs(again.order) do
+    local bytes, time = again.bytes[number], again.times[number]
+    if time == false then time = nil end
+    local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
+    if not ok then result = { length = #bytes, error = tostring(result) } end
+    fresh.records[number] = result
+    records[number] = nil -- (the first decoding of the record is done with)
+    again.bytes[number] = nil
+    if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+  end
+  local ok, problem = pcall(finish, fresh)
+  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  -- (the same table: `state` and udp_states keep naming it)
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end
+
 local function finish_all()
   for _, st in pairs(udp_states) do
     if not st.finished then
@@ -5829,6 +5909,8 @@ local function finish_all()
     local ok, problem = pcall(finish, state)
     if not ok and state.last ~= nil then state.last.error = tostring(problem) end
   end
+  for _, st in pairs(udp_states) do lane.again(st) end
+  lane.again(state)
 end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
@@ -5839,6 +5921,21 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
+  if config.default == AUTO then
+    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
+    local again = st.again
+    if again == nil then
+      again = { order = {}, bytes = {}, times = {} }
+      st.again = again
+    end
+    again.order[#again.order + 1] = number
+    again.bytes[number], again.times[number] = bytes, time or false
+  end
+  return lane.decode(st, bytes, n, time, number)
+end
+
+-- A record's first decoding: the quick lanes, else the general path (dissect_record).
+function lane.decode(st, bytes, n, time, number)
   local kept, info = lane.answer(st, bytes, n, time, number)
   if kept ~= nil then return kept, n, info end
   local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
@@ -5881,7 +5978,11 @@ local function dissect_records(st, tvb, pinfo, tree)
     if st.whole_record ~= nil or st.unpacked[1] ~= nil then pack.settle(st) end
     return n
   end
-  if not state.finished and pinfo.visited then finish_all() end
+  if not state.finished and pinfo.visited then
+    finish_all()
+    record = st.records[number] -- (lane.again may have decoded the capture again)
+    if record == nil then return 0 end
+  end
   if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   local n = tvb:len()
   show_record(st, record, tvb, pinfo, tree, n)

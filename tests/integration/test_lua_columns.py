@@ -112,9 +112,18 @@ def test_register_columns_line_up_as_vw3_decode_one_pass(capture: Path) -> None:
     assert not found, "\n".join(found[:20])
 
 
+@pytest.mark.parametrize("capture", CAPTURES, ids=lambda path: path.name)
+def test_register_columns_line_up_as_vw3_decode_two_pass(capture: Path) -> None:
+    # tshark -2 against vw3-decode reading the file (twice: profile auto chosen over the whole capture)
+    found = differences(plugin_rows(capture), python_rows(capture))
+    assert not found, "\n".join(found[:20])
+
+
 def test_register_columns_of_a_simulator_session(tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "session.pcap", SessionBuilder(seed=27).session(500))
     found = differences(plugin_rows(pcap, two_pass=False), python_rows(pcap, stdin=True))
+    assert not found, "\n".join(found[:20])
+    found = differences(plugin_rows(pcap), python_rows(pcap))
     assert not found, "\n".join(found[:20])
     # PLC addresses: vw3.reg.label on every register of an ATV71 slave, empty on the others
     found = differences(plugin_rows(pcap, "-o", "vw3.address_style:plc", "-o", "vw3.profiles:12=atv71", two_pass=False),
@@ -135,6 +144,11 @@ def test_p38_rows_exactly() -> None:
         (10, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
         (12, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
     ]
+    # -2: slave 12's profile, chosen at frame 4, names frame 2 too (vw3-decode reading the file)
+    two = plugin_rows(p38)
+    assert (two[2]["reg.code"], two[2]["reg.status"]) == (["", "CHCF", "COP"], ["2", "0", "0"])
+    assert {record: row for record, row in two.items() if record != 2} == {
+        record: row for record, row in rows.items() if record != 2}
     # -E occurrence=f: the first register's code (8400 has none), as vw3-decode says it
     first = plugin_rows(p38, two_pass=False, first=True)
     assert [row["reg.code"] for row in first.values() if row["reg.address"]] == [[""]] * 6  # (it said CHCF)

@@ -23,6 +23,10 @@ from dissector.pipeline import Dissector
 from dissector.sources.reader import open_source
 
 
+# What one pass cannot know yet: a request's answer is in a later record (tshark -2 shows it).
+LATER = frozenset(["response_frame", "unanswered"])
+
+
 def _read(slave: int, start: int, values: list[int], function: int = 3) -> list[bytes]:
     request = frame(slave, function, Kind.REQUEST, start=start, quantity=len(values))
     return [request, frame(slave, function, Kind.RESPONSE, byte_count=2 * len(values), values=values)]
@@ -116,8 +120,8 @@ def _profiles_by_item(lua: list) -> dict[int, tuple[str | None, str | None]]:
 
 def test_auto_is_the_default_and_chooses_as_vw3_decode(tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "evidence.pcap", evidence_session())
-    # vw3-decode's default, profile auto, reading once as tshark does (a file is read twice: issue 27)
-    python = python_items(pcap, one_pass=True)
+    # vw3-decode's default, profile auto, reading the file twice as tshark -2 shows it (issue 27)
+    python = python_items(pcap)
     lua, record_experts, _ = lua_items(pcap)  # the plugin's default
     differences = compare(python, lua)
     assert not differences, "\n".join(differences[:40])
@@ -140,9 +144,14 @@ def test_auto_is_the_default_and_chooses_as_vw3_decode(tmp_path: Path) -> None:
     # The evidence shows in what is decoded: names and 16#8000 statuses only where a device was chosen.
     frames = {item.data["frame"]: item.data for item in python}
     profiles = _profiles_by_item(lua)
-    assert profiles[2] == ("3", "generic") and profiles[4] == ("3", "atv71")  # the second read decides, for itself
+    # (-2, as vw3-decode reading a file: the second read decides, for the first as well)
+    assert profiles[2] == ("3", "atv71") and profiles[4] == ("3", "atv71")
+    assert [reg.get("status") for reg in frames[2]["registers"]] == ["non-existent", "ok", "ok"]
     assert [reg.get("status") for reg in frames[4]["registers"]] == ["ok", "protected"]
-    assert profiles[7] == ("4", "generic") and profiles[8] == ("4", "atv71") and profiles[10] == ("4", "atv71")
+    assert profiles[7] == ("4", "atv71") and profiles[8] == ("4", "atv71") and profiles[10] == ("4", "atv71")
+    # slave 9's choice taken back: generic from its first frame, with the reason it was taken back
+    assert {profiles[number] for number in (17, 18, 19, 20, 24)} == {("9", "generic")}
+    assert frames[18]["profile_reason"] == "function 1 answered in frame #22, which the VW3 A3 303 does not support"
     assert frames[13]["function_name"] == "Read Parameter Information"
     assert "illegal number of registers to read" in frames[16]["notes"][0]
     assert [reg.get("status") for reg in frames[24]["registers"]] == [None, None, None]
@@ -161,37 +170,43 @@ def test_auto_is_the_default_and_chooses_as_vw3_decode(tmp_path: Path) -> None:
     assert "status" not in frames[last_14]["registers"][0]
 
 
-def test_one_pass_shows_what_two_passes_show(tmp_path: Path) -> None:
-    # The choice rests on earlier frames only (as vw3-decode reads its input): tshark without -2 (what
-    # Wireshark does when opening a file) gives every item the same profile, names, statuses and notes.
+def test_one_pass_is_vw3_decode_reading_a_stream(tmp_path: Path) -> None:
+    # tshark without -2 (one pass) decides in capture order, as vw3-decode does reading standard input:
+    # a slave's frames before its choice stay generic there; -2 (lane.again) names them as vw3-decode
+    # reading the file does (test_auto_is_the_default_and_chooses_as_vw3_decode).
     records = evidence_session()
     pcap = write_pcap(tmp_path / "evidence.pcap", records)
-    tshark = ensure_tool("tshark", "tshark")
-    shown = []
-    for passes in ([], ["-2"]):
-        command = [tshark, "-n", *passes, "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap), "-T", "pdml"]
-        result = subprocess.run(command, capture_output=True, text=True, timeout=300)
-        assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr
-        items = lua_shown(parse_pdml(result.stdout)[0])
-        shown.append({
-            item.fields["item"]: (item.fields.get("profile"), item.fields.get("profile_choice"), item.registers,
-                                  item.texts.get("note"))
-            for item in items
-        })
-    one, two = shown
-    assert len(two) == len(records)  # one frame a record
+    one, _, _ = lua_items(pcap, two_pass=False)
+    stream = python_items(pcap, one_pass=True)
+    differences = compare(stream, one, ignore=LATER)
     # (One pass cannot show the two SEL frames: a code without a length rule is framed by a CRC scan that
     # the next record settles, and one pass has gone past their record by then; -2 shows them there.)
-    assert set(two) - set(one) == {"13", "14"}
-    assert one == {item: two[item] for item in one}
-    assert sum(choice is not None and "atv71 (" in choice for _, choice, _, _ in one.values()) == 4
+    sel = sorted(item.data["offset"] for item in stream if item.data.get("function") == 0x60)
+    assert len(sel) == 2
+    assert differences == [f"stream offset {offset}: only Python has a frame: {item.data['raw']}"
+                           for offset in sel for item in stream if item.data["offset"] == offset] + [
+        f"{len(stream)} items in vw3-decode --json, {len(stream) - 2} shown by the plugin"]
+    profiles = _profiles_by_item(one)
+    assert profiles[2] == ("3", "generic") and profiles[4] == ("3", "atv71")  # the second read decides, for itself
+    assert profiles[7] == ("4", "generic") and profiles[8] == ("4", "atv71")
+    # -2 differs exactly where vw3-decode reading the file differs from reading the stream
+    two, _, _ = lua_items(pcap)
+    shown = [{item.fields["item"]: (item.fields.get("profile"), item.fields.get("profile_reason"), item.registers,
+                                    item.texts.get("note")) for item in lua_shown(items)} for items in (one, two)]
+    changed = {key for key in shown[0] if shown[0][key] != shown[1][key]}
+    # ("provisional", said by vw3-decode reading a stream only, is compared by compare() itself)
+    files = {item.data["frame"]: item.data for item in python_items(pcap)}
+    streams = {item.data["frame"]: {key: value for key, value in item.data.items() if key != "provisional"}
+               for item in stream}
+    assert changed == {str(number) for number in streams if streams[number] != files[number]}
+    assert {"2", "7", "17", "18", "19", "20"} <= changed
 
 
 def test_auto_with_forced_slaves_and_plc_addresses(tmp_path: Path) -> None:
     # `--profile auto --profile 9=atv71 --profile 3=generic --address-style plc` = the same preferences.
     records = evidence_session() + SessionBuilder(seed=11).session(600, start_time=1767226000.0)
     pcap = write_pcap(tmp_path / "forced.pcap", records)
-    python = python_items(pcap, ["auto", "9=atv71", "3=generic"], "--address-style", "plc", one_pass=True)
+    python = python_items(pcap, ["auto", "9=atv71", "3=generic"], "--address-style", "plc")
     lua, record_experts, _ = lua_items(pcap, "-o", "vw3.profiles:auto,9=atv71,3=generic",
                                        "-o", "vw3.address_style:plc")
     differences = compare(python, lua)
@@ -223,14 +238,20 @@ def test_one_read_is_no_evidence_and_the_reason_is_on_every_frame(tmp_path: Path
     drive = _read(2, 3202, [500, 7]) + _read(2, 8401, [3, 2]) + _read(2, 3202, [500, 7])
     records = [(data, 1767225600.0 + 0.02 * index) for index, data in enumerate(meter + drive)]
     pcap = write_pcap(tmp_path / "meter.pcap", records)
-    python = python_items(pcap, one_pass=True)
+    python = python_items(pcap)
     lua, _, _ = lua_items(pcap)
     differences = compare(python, lua)
     assert not differences, "\n".join(differences[:40])
     reason = "traffic fits its map: function 3 at 3202..3203 in frame #12, function 3 at 8401..8402 in frame #14"
+    # (-2, as vw3-decode reading the file: the drive's frames from its first; tshark's one pass names
+    # them from the frame that decides, as vw3-decode reading a stream)
     assert [(item.fields.get("profile"), item.fields.get("profile_reason")) for item in lua_shown(lua)] == (
-        [("generic", None)] * 13 + [("atv71", reason)] * 3)
+        [("generic", None)] * 10 + [("atv71", reason)] * 6)
     assert [(item.data.get("profile"), item.data.get("profile_reason")) for item in python] == (
-        [(None, None)] * 13 + [("atv71", reason)] * 3)
+        [(None, None)] * 10 + [("atv71", reason)] * 6)
+    one, _, _ = lua_items(pcap, two_pass=False)
+    assert not compare(python_items(pcap, one_pass=True), one, ignore=LATER)
+    assert [(item.fields.get("profile"), item.fields.get("profile_reason")) for item in lua_shown(one)] == (
+        [("generic", None)] * 13 + [("atv71", reason)] * 3)
     assert [reg.get("code") for reg in python[9].data["registers"]] == [None, None, None, None]
     assert cli_choices(pcap, []) == [f"slave 2: atv71 ({reason})"]

@@ -63,9 +63,11 @@ def write_pcap(path: Path, records: Iterable[tuple[bytes, float]]) -> Path:
     return path
 
 
-def run_tshark(pcap: Path, *args: str, timeout: float = 900) -> subprocess.CompletedProcess[str]:
+def run_tshark(pcap: Path, *args: str, timeout: float = 900, two_pass: bool = True) -> subprocess.CompletedProcess[str]:
+    """tshark with the plugin, -2 unless `two_pass` is false (one pass: what tshark shows without -2)."""
     tshark = ensure_tool("tshark", "tshark")
-    command = [tshark, "-n", "-2", "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap), *args]
+    passes = ["-2"] if two_pass else []
+    command = [tshark, "-n", *passes, "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(pcap), *args]
     # Replacement characters, not an exception, should tshark ever print bytes that are not UTF-8.
     return subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=timeout)
 
@@ -145,9 +147,11 @@ def parse_pdml(text: str) -> tuple[list[LuaItem], list[tuple[int, str]]]:
     return items, record_experts
 
 
-def lua_items(pcap: Path, *options: str, header: int = 0) -> tuple[list[LuaItem], list[tuple[int, str]], str]:
-    """The plugin's items; `header`: bytes before the Modbus payload in each record (RTAC: 12)."""
-    result = run_tshark(pcap, "-T", "pdml", *options)
+def lua_items(pcap: Path, *options: str, header: int = 0, two_pass: bool = True
+              ) -> tuple[list[LuaItem], list[tuple[int, str]], str]:
+    """The plugin's items (tshark -2, or one pass); `header`: bytes before the Modbus payload in each
+    record (RTAC: 12)."""
+    result = run_tshark(pcap, "-T", "pdml", *options, two_pass=two_pass)
     if result.returncode != 0:
         raise AssertionError(f"tshark failed ({result.returncode}): {result.stderr[-3000:]}")
     errors = lua_errors(result.stdout + result.stderr)
@@ -200,12 +204,13 @@ def plugin_profiles(profiles: list[str] | None) -> list[str]:
 
 
 def python_items(
-    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0, one_pass: bool = True
+    pcap: Path, profiles: list[str] | None = None, *options: str, header: int = 0, one_pass: bool = False
 ) -> list[PythonItem]:
-    """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records.
-    `one_pass` (the default): the file on standard input, read once as the plugin reads it, with or
-    without -2 (profile `auto` names a slave's frames as its choice stands then; vw3-decode reads a
-    file twice and names them from the first, issue 27, which the plugin does not do yet)."""
+    """The NDJSON items of `vw3-decode FILE --json` (python3 -m dissector), placed in their records: the
+    file read twice, as the plugin shows it with tshark -2 (profile `auto` names a slave's frames with
+    the choice made over the whole capture, issue 27). `one_pass`: the file on standard input, read
+    once, as the plugin shows it in tshark's single pass (a slave's frames named as its choice stands
+    then)."""
     command = [sys.executable, "-m", "dissector", "-" if one_pass else str(pcap), "--json", *options]
     for profile in plugin_profiles(profiles):
         command += ["--profile", profile]
