@@ -162,6 +162,7 @@ static void out_label(Out *o, long long base, unsigned address) {
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
 #include "_timeline.h" /* the chunks of a timed source (pcap records) */
+#include "_records.h"  /* pcap records read in bulk */
 
 typedef struct {
     int loaded;
@@ -227,6 +228,8 @@ typedef struct {
     /* The line being written: its frame's time, and its request's (the response time). */
     int line_timed, pair_timed;
     long long line_ns, request_ns;
+    PyObject *judge_bytes; /* profile auto's first pass (_judge.h): the bitmap below, or NULL */
+    const uint8_t *judge;
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -1300,12 +1303,15 @@ static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const 
 /* ---- the Python object ------------------------------------------------------------------------- */
 enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
 
+#include "_judge.h" /* profile auto's first pass: frames and pairs only */
+
 /* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
 static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
     FrameRef q, a;
     int found = next_frame(e, b, *pos, n, &q, e->tl.decided);
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
     if (q.kind != KIND_REQUEST || q.slave == 0) return STEP_HANDOVER;
+    if (e->judge != NULL) return judge_transaction(e, b, n, pos, &q);
     Slave *s = slave_for(e, q.slave);
     if (s == NULL) return STEP_ERROR;
     if (!s->usable) return STEP_HANDOVER;
@@ -1512,6 +1518,28 @@ static PyObject *engine_set_timing(Engine *e, PyObject *args) {
     Py_RETURN_NONE;
 }
 
+static PyObject *engine_get_judge(Engine *e, void *closure) {
+    if (e->judge_bytes == NULL) Py_RETURN_NONE;
+    Py_INCREF(e->judge_bytes);
+    return e->judge_bytes;
+}
+
+static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
+    if (e->running) {
+        PyErr_SetString(PyExc_RuntimeError, "judge: not while run() is running");
+        return -1;
+    }
+    if (value != NULL && value != Py_None && (!PyBytes_Check(value) || PyBytes_GET_SIZE(value) != 256 * 32)) {
+        PyErr_SetString(PyExc_TypeError, "judge: 8192 bytes (a bit per slave and function code) or None");
+        return -1;
+    }
+    if (value == Py_None) value = NULL;
+    Py_XINCREF(value);
+    Py_XSETREF(e->judge_bytes, value);
+    e->judge = value == NULL ? NULL : (const uint8_t *)PyBytes_AS_STRING(value);
+    return 0;
+}
+
 static PyObject *engine_get_decided(Engine *e, void *closure) { return PyLong_FromLongLong(e->tl.decided); }
 
 static int engine_set_decided(Engine *e, PyObject *value, void *closure) {
@@ -1640,6 +1668,7 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->subfunctions);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     Py_VISIT(e->stats);
+    Py_VISIT(e->judge_bytes);
     return 0;
 }
 
@@ -1653,6 +1682,8 @@ static int engine_clear(Engine *e) {
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);
     Py_CLEAR(e->stats);
+    Py_CLEAR(e->judge_bytes);
+    e->judge = NULL;
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     return 0;
 }
@@ -1723,6 +1754,9 @@ static PyGetSetDef engine_getset[] = {
     {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
+    {"judge", (getter)engine_get_judge, (setter)engine_set_judge,
+     "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
+     NULL},
     {"decided", (getter)engine_get_decided, (setter)engine_set_decided,
      "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame", NULL},
     {"clock", (getter)engine_get_clock, (setter)engine_set_clock,
@@ -1790,6 +1824,9 @@ static PyObject *module_crc_lengths(PyObject *self, PyObject *args) {
 
 static PyMethodDef module_methods[] = {
     {"crc16", module_crc16, METH_VARARGS, "CRC-16/MODBUS of a bytes-like object."},
+    {"scan_pcap", module_scan_pcap, METH_VARARGS,
+     "scan_pcap(buffer, position, big_endian, units, offset, previous, char_time, t35, chunk_size) -> a block\n"
+     "of the pcap records in buffer from position (see _records.h)."},
     {"crc_lengths", module_crc_lengths, METH_VARARGS,
      "crc_lengths(buffer, start, minimum, maximum) -> the lengths L in minimum..maximum at which\n"
      "buffer[start:start + L] ends in the CRC-16/MODBUS of the bytes before it."},

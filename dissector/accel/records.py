@@ -4,20 +4,29 @@ timed, a record ends after it, a silence of t3.5 before it). The engine reads th
 instead of one call per record; the Python stages get the very chunks back (Block.chunk) where they
 take the stream.
 
-The silence flag is the framer's own rule (timing.silence_before, from the chunk before), so both
-sides weigh the same boundaries.
+Classic pcap records are read in bulk by the engine's scan_pcap (_records.h), a megabyte at a time,
+as sources/pcap.py reads them; a record that reader must see itself (one captured in part, one longer
+than a chunk: their warnings and splits) and the rest after it go through it. Every other source's
+chunks (pcapng, hex dumps...) are gathered as they come. The silence flag is the framer's own rule
+(timing.silence_before, from the chunk before), so both sides weigh the same boundaries.
 """
 from __future__ import annotations
 
 from array import array
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from typing import Any
 
 from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
+from dissector.sources.common import LINKTYPE_USER0
 
 TIMED, RECORD_END, SILENCE_BEFORE = 1, 2, 4  # _timeline.h CHUNK_*
+# Times the engine subtracts as Python does: within 2**52 ns of each other, a difference converts to a
+# double exactly, so (a - b) / 1e9 rounds once there as Stamp.__sub__'s integer division does.
+EXACT_SPAN = 1 << 52
 BLOCK_BYTES = 1 << 18  # bytes gathered before the engine runs: memory stays flat, calls few
+READ_BYTES = 1 << 20  # a pcap read at a time
 
 
 @dataclass(slots=True)
@@ -25,50 +34,139 @@ class Block:
     data: bytes
     starts: array  # int64 stream offsets
     times: array  # int64 ns (0 where untimed)
-    flags: bytearray
+    flags: bytearray | bytes
     exact: bool = True  # every time is a Stamp (integer ns): the engine can subtract them as Python does
-    chunks: list[Chunk] = field(default_factory=list)
+    chunks: list[Chunk | None] = field(default_factory=list)  # the source's, or made on demand
 
     def chunk(self, index: int) -> Chunk:
-        return self.chunks[index]
+        chunk = self.chunks[index] if self.chunks else None
+        if chunk is None:
+            begin = self.starts[index] - self.starts[0]
+            end = self.starts[index + 1] - self.starts[0] if index + 1 < len(self.starts) else len(self.data)
+            flag = self.flags[index]
+            chunk = Chunk(self.data[begin:end], Stamp(self.times[index]) if flag & TIMED else None,
+                          bool(flag & RECORD_END))
+        return chunk
 
 
-def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming) -> Iterator[Block]:
-    """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...)."""
-    offset = 0
-    previous: tuple[int, float | None] | None = None
-    pieces: list[bytes] = []
-    kept: list[Chunk] = []
-    starts, times, flags = array("q"), array("q"), bytearray()
-    size = 0
-    exact = True
-    for chunk in chunks:
+class BlockBuilder:
+    """Gathers chunks into blocks, carrying the stream offset and the chunk before across them."""
+
+    def __init__(self, timing: LineTiming) -> None:
+        self.timing = timing
+        self.offset = 0
+        self.previous: tuple[int, float | None] | None = None
+        self.lowest: int | None = None  # the stream's earliest and latest times so far (ns)
+        self.highest = 0
+        self.exact = True  # so far every time is a stamp, all within EXACT_SPAN of each other
+        self._reset()
+
+    def _reset(self) -> None:
+        self.pieces: list[bytes] = []
+        self.kept: list[Chunk | None] = []
+        self.starts, self.times, self.flags = array("q"), array("q"), bytearray()
+        self.size = 0
+
+    def add(self, chunk: Chunk) -> Iterator[Block]:
         data = chunk.data
         if not data:
-            continue
+            return
         time = chunk.time
         flag = RECORD_END if chunk.boundary else 0
         ns = 0
         if time is not None:
             flag |= TIMED
             if isinstance(time, Stamp):
-                ns = time.ns
+                self._span(time.ns, time.ns)
+                ns = time.ns if self.exact else 0
             else:
-                exact = False
-            if previous is not None and silence_before(previous, offset, time, timing):
+                self.exact = False
+            if self.previous is not None and silence_before(self.previous, self.offset, time, self.timing):
                 flag |= SILENCE_BEFORE
-        previous = (offset, time)
-        pieces.append(data)
-        kept.append(chunk)
-        starts.append(offset)
-        times.append(ns)
-        flags.append(flag)
-        offset += len(data)
-        size += len(data)
-        if size >= BLOCK_BYTES:
-            yield Block(b"".join(pieces), starts, times, flags, exact, kept)
-            pieces, kept = [], []
-            starts, times, flags = array("q"), array("q"), bytearray()
-            size = 0
-    if kept:
-        yield Block(b"".join(pieces), starts, times, flags, exact, kept)
+        self.previous = (self.offset, time)
+        self.pieces.append(data)
+        self.kept.append(chunk)
+        self.starts.append(self.offset)
+        self.times.append(ns)
+        self.flags.append(flag)
+        self.offset += len(data)
+        self.size += len(data)
+        if self.size >= BLOCK_BYTES:
+            yield from self.flush()
+
+    def _span(self, lowest: int, highest: int) -> None:
+        if self.lowest is None:
+            self.lowest, self.highest = lowest, highest
+        self.lowest, self.highest = min(self.lowest, lowest), max(self.highest, highest)
+        if self.highest - self.lowest >= EXACT_SPAN or self.lowest < -(1 << 62) or self.highest >= 1 << 62:  # (int64)
+            self.exact = False
+
+    def flush(self) -> Iterator[Block]:
+        if self.kept:
+            yield Block(b"".join(self.pieces), self.starts, self.times, self.flags, self.exact, self.kept)
+            self._reset()
+
+    def chunks(self, chunks: Iterable[Chunk]) -> Iterator[Block]:
+        for chunk in chunks:
+            yield from self.add(chunk)
+        yield from self.flush()
+
+    def pcap(self, reader: Any, scan: Any) -> Iterator[Block]:
+        """The rest of a pcap (sources/pcap.py PcapRecords, standing between two records) in bulk."""
+        from dissector.sources.common import Input
+
+        yield from self.flush()
+        inp = reader.inp
+        big_endian = reader.order == ">"
+        buffer, position = b"", 0
+        while True:
+            data = inp.read(READ_BYTES)
+            buffer = buffer[position:] + data
+            position = 0
+            previous = self.previous
+            if previous is not None:
+                time = previous[1]
+                if time is not None and not isinstance(time, Stamp):
+                    break  # (never from a pcap reader: its times are stamps)
+                previous = (previous[0], time.ns if time is not None else 0, time is not None)  # type: ignore[union-attr]
+            payload, starts, times, flags, position, stop, records, self.offset, last, span = scan(
+                buffer, position, big_endian, reader.units, self.offset, previous, self.timing.char_time,
+                self.timing.t35, reader.chunk_size,
+            )
+            reader.record += records
+            if last is not None:
+                self.previous = (last[0], Stamp(last[1]) if last[2] else None)
+            if span is not None:
+                self._span(*span)
+            if flags:
+                yield Block(payload, array("q", starts), array("q", times), flags, self.exact)
+            if stop or not data:
+                break
+        # A record the Python reader must see, or the end (a record cut short: its warning): it reads
+        # the rest, from the bytes not scanned.
+        yield from self.chunks(reader.records(Input(inp.stream, inp.name, prefix=buffer[position:])))
+
+
+def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
+    """The blocks of a source (sources/reader.py Source): pcap records in bulk, other chunks as they come."""
+    from dissector.accel import fastsummary
+
+    builder = BlockBuilder(timing)
+    head, rest = source.parts()
+    try:
+        yield from builder.chunks(head)
+        bulk = fastsummary._summary is not None and hasattr(fastsummary._summary, "scan_pcap")
+        if bulk and getattr(rest, "between", False) and getattr(rest, "linktype", None) == LINKTYPE_USER0:
+            yield from builder.pcap(rest, fastsummary._summary.scan_pcap)
+        else:
+            yield from builder.chunks(rest)
+    finally:
+        source.finished()
+
+
+def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming) -> Iterator[Block]:
+    """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...)."""
+    if hasattr(chunks, "parts"):
+        yield from source_blocks(chunks, timing)
+        return
+    yield from BlockBuilder(timing).chunks(chunks)

@@ -18,7 +18,7 @@ from bisect import bisect_right
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from dissector.accel.fastsummary import NEED, make_engine, python_step
+from dissector.accel.fastsummary import NEED, _summary, make_engine, python_step
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
@@ -28,7 +28,8 @@ CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefm
 
 
 def usable(clock: Clock) -> bool:
-    return clock.format in CLOCKS and not clock.deltas
+    """The engine writes this time column, and is built with run_timed (a stale build is not used)."""
+    return clock.format in CLOCKS and not clock.deltas and hasattr(_summary.Engine, "run_timed")
 
 
 class TimedPath:
@@ -61,6 +62,7 @@ class TimedPath:
         self.taken_at = 0
         self.fed = 0  # chunks given to the Python stages (an index into the lists above)
         self.engine_ok = True  # False: a source whose times the engine cannot subtract (plain floats)
+        self.on_hand_back: Callable[[], None] | None = None  # called as the engine takes the stream back
 
     # -- input ------------------------------------------------------------------------------------
     def feed(self, block: Block) -> None:
@@ -148,6 +150,8 @@ class TimedPath:
                     self.engine_ok = False
                     continue
                 self.engine.clock = (_ns(clock.first), _ns(previous))
+                if self.on_hand_back is not None:
+                    self.on_hand_back()
                 self.python = False
                 return True
             if python_step(self.dissector, self.write_items):
@@ -214,3 +218,22 @@ def summarize_timed(blocks: Iterable[Block], path: TimedPath, after_block: Calla
         after_block()
     path.finish()
     after_block()
+
+
+def summarize_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: Any | None,
+                    warn: Callable[[], None]) -> bool:
+    """The plain summary of a timed input (app/cli.py Sinks) through the engine; False (nothing read)
+    when it cannot write it: no extension, VW3_PURE_PYTHON, a time column it does not write."""
+    from dissector.accel import fastsummary
+    from dissector.accel.records import blocks_from_chunks
+
+    if not fastsummary.available() or not usable(sinks.clock):
+        return False
+
+    def counted(data: bytes) -> None:
+        sinks.valid_frames += 1  # the engine shows valid transactions only
+        sinks.output.write_encoded(data)
+
+    path = TimedPath(dissector, annotate, sinks.clock, sinks.accept, counted, dissector.pairer.timeout)
+    summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
+    return True

@@ -431,21 +431,10 @@ def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: It
 def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissector: Dissector, sinks: Sinks,
                 annotate: Annotator | None, warn: Callable[[], None]) -> None:
     if mode == "rtu" and timed and fix is None and sinks.plain_summary_only:
-        from dissector.accel import fastsummary
+        from dissector.accel.timedpath import summarize_input
 
-        if fastsummary.available():
-            from dissector.accel import timedpath
-            from dissector.accel.records import blocks_from_chunks
-
-            if timedpath.usable(sinks.clock):
-                def counted(data: bytes) -> None:
-                    sinks.valid_frames += 1  # the engine shows valid transactions only
-                    sinks.output.write_encoded(data)
-
-                timed_path = timedpath.TimedPath(dissector, annotate, sinks.clock, sinks.accept, counted,
-                                                 dissector.pairer.timeout)
-                timedpath.summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), timed_path, warn)
-                return
+        if summarize_input(chunks, dissector, sinks, annotate, warn):  # pcap, pcapng: the compiled path
+            return
     if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
         from dissector.accel import fastsummary
 

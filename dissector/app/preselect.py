@@ -66,6 +66,12 @@ def choose_profiles(
                 decode_frame(item)
             observe(item)
 
+    if mode == "rtu":
+        from dissector.accel import preselect as compiled  # the same pass, framed in C (issue 28)
+
+        if compiled.choose(annotate, chunks, framer, pairer, judge, timeout):
+            annotate.freeze()
+            return
     for chunk in chunks:
         judge(pairer.push(framer.feed(chunk)))
     judge(pairer.push(framer.finish()) + pairer.finish())

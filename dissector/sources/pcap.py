@@ -27,39 +27,68 @@ def is_pcap(head: bytes) -> bool:
     return head[:4] in MAGICS
 
 
-def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    header = inp.read(FILE_HEADER_SIZE)
-    magic = header[:4]
-    if magic not in MAGICS:
-        raise SourceError(f"{inp.name}: not a pcap file (magic {magic.hex() or 'missing'})")
-    if len(header) < FILE_HEADER_SIZE:
-        raise SourceError(
-            f"{inp.name}: truncated pcap file header ({len(header)} of {FILE_HEADER_SIZE} bytes)"
-        )
-    order, units = MAGICS[magic]
-    _major, _minor, _zone, _sigfigs, _snaplen, network = struct.unpack(order + "HHiIII", header[4:])
-    # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
-    linktype = network & 0xFFFF
-    check_linktype(inp.name, linktype)
-    record_header = struct.Struct(order + "IIII")
-    record = 0
-    while True:
-        head = inp.read(RECORD_HEADER_SIZE)
-        if not head:
-            return
-        record += 1
-        if len(head) < RECORD_HEADER_SIZE:
-            log.warn(
-                "truncated input",
-                f"record {record}: the capture ends inside its header ({len(head)} of 16 bytes)",
+def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> PcapRecords:
+    return PcapRecords(inp, log, chunk_size)
+
+
+class PcapRecords:
+    """The chunks of a pcap's records (an iterator); `blocks` reads the rest in bulk (accel/records.py)."""
+
+    def __init__(self, inp: Input, log: WarningLog, chunk_size: int) -> None:
+        self.inp = inp
+        self.log = log
+        self.chunk_size = chunk_size
+        self.record = 0
+        self.between = False  # the last chunk given ended a record: the next bytes are a record header
+        self.order, self.units, self.linktype = "<", 1_000_000, 0
+        self._chunks = self._read()
+
+    def __iter__(self) -> PcapRecords:
+        return self
+
+    def __next__(self) -> Chunk:
+        chunk = next(self._chunks)
+        self.between = chunk.boundary
+        return chunk
+
+    def _read(self) -> Iterator[Chunk]:
+        inp = self.inp
+        header = inp.read(FILE_HEADER_SIZE)
+        magic = header[:4]
+        if magic not in MAGICS:
+            raise SourceError(f"{inp.name}: not a pcap file (magic {magic.hex() or 'missing'})")
+        if len(header) < FILE_HEADER_SIZE:
+            raise SourceError(
+                f"{inp.name}: truncated pcap file header ({len(header)} of {FILE_HEADER_SIZE} bytes)"
             )
-            return
-        seconds, fraction, captured, original = record_header.unpack(head)
-        if captured < original:
-            log.warn(
-                "records captured in part",
-                f"record {record}: only {captured} of its {original} bytes were captured",
-            )
-        # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
-        time = Stamp.from_parts(seconds, fraction, units) if seconds or fraction else None
-        yield from record_chunks(inp, captured, time, linktype, record, log, chunk_size)
+        self.order, self.units = MAGICS[magic]
+        _major, _minor, _zone, _sigfigs, _snaplen, network = struct.unpack(self.order + "HHiIII", header[4:])
+        # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
+        self.linktype = network & 0xFFFF
+        check_linktype(inp.name, self.linktype)
+        yield from self.records(inp)
+
+    def records(self, inp: Input) -> Iterator[Chunk]:
+        """The chunks of the records `inp` holds from its position on."""
+        log = self.log
+        record_header = struct.Struct(self.order + "IIII")
+        while True:
+            head = inp.read(RECORD_HEADER_SIZE)
+            if not head:
+                return
+            self.record += 1
+            if len(head) < RECORD_HEADER_SIZE:
+                log.warn(
+                    "truncated input",
+                    f"record {self.record}: the capture ends inside its header ({len(head)} of 16 bytes)",
+                )
+                return
+            seconds, fraction, captured, original = record_header.unpack(head)
+            if captured < original:
+                log.warn(
+                    "records captured in part",
+                    f"record {self.record}: only {captured} of its {original} bytes were captured",
+                )
+            # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
+            time = Stamp.from_parts(seconds, fraction, self.units) if seconds or fraction else None
+            yield from record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)

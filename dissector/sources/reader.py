@@ -167,6 +167,17 @@ class Source:
             self._log.close()
             self.close()
 
+    def parts(self) -> tuple[list[Chunk], Iterator[Chunk]]:
+        """Instead of iterating: the chunks read to choose the mode, and the reader of the rest (a
+        pcap's reads it in bulk: accel/records.py). Call finished() after the last."""
+        head, self._head = self._head, []
+        return head, self._chunks
+
+    def finished(self) -> None:
+        """The end of reading through parts(), as of iterating."""
+        self._log.close()
+        self.close()
+
     def close(self) -> None:
         self._closer()
 

@@ -95,10 +95,10 @@ def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: 
         write_encoded(self, lines)
 
     monkeypatch.setattr(Output, "write_encoded", counting)
-    stdout = io.StringIO()
-    env = Environment(io.BytesIO(stdin), stdout, io.StringIO(), False, False)
+    stdout, stderr = io.StringIO(), io.StringIO()
+    env = Environment(io.BytesIO(stdin), stdout, stderr, False, False)
     assert run(argv, env) == 0
-    return stdout.getvalue(), engine_lines
+    return stdout.getvalue() + stderr.getvalue(), engine_lines  # (warnings: the reader's, both ways)
 
 
 def assert_same(argv: list[str], monkeypatch: pytest.MonkeyPatch, stdin: bytes = b"") -> tuple[str, int]:
@@ -170,3 +170,58 @@ def test_late_answers_and_silences_inside_frames(tmp_path: Path, monkeypatch: py
     assert "later than the 1000 ms timeout" in fast
     assert "silence of" in fast
     assert "[#1, 10.0 ms]" in fast
+
+
+def raw_pcap(path: Path, records: list[tuple[int, int, int, bytes]], big_endian: bool = False) -> None:
+    """A pcap from (seconds, microseconds, original length, captured bytes) records, as written."""
+    order = ">" if big_endian else "<"
+    with path.open("wb") as out:
+        out.write(struct.pack(order + "IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147))
+        for seconds, micros, original, data in records:
+            out.write(struct.pack(order + "IIII", seconds, micros, len(data), original) + data)
+
+
+@pytest.mark.parametrize("read_bytes", [37, 1 << 20])
+@pytest.mark.parametrize("big_endian", [False, True])
+def test_odd_pcap_records_read_in_bulk_as_the_reader_does(read_bytes: int, big_endian: bool, tmp_path: Path,
+                                                          monkeypatch: pytest.MonkeyPatch) -> None:
+    """Records the bulk reader leaves to sources/pcap.py (captured in part, longer than a chunk, cut by the
+    end of the file) and those it reads itself (empty, untimed, across its reads): same lines, same warnings."""
+    from dissector.accel import records as bulk
+    from helpers import rtu
+
+    monkeypatch.setattr(bulk, "READ_BYTES", read_bytes)
+    read, answer = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
+    records = []
+    for k in range(40):
+        records += [(1_700_000_000 + k, 1000, len(read), read), (1_700_000_000 + k, 9000, len(answer), answer)]
+    records[7:7] = [(1_700_000_000, 5000, 0, b""), (0, 0, len(read), read)]  # empty; untimed (time 0)
+    records[30:30] = [(1_700_000_010, 0, 64, read)]  # captured in part
+    records.append((1_700_000_050, 0, 70000, bytes(70000)))  # longer than a chunk: split by the reader
+    records += [(1_700_000_051, 0, len(read), read)] * 3
+    capture = tmp_path / "odd.pcap"
+    raw_pcap(capture, records, big_endian)
+    whole = capture.read_bytes()
+    fast, engine_lines = assert_same([str(capture)], monkeypatch)
+    assert engine_lines > 40
+    assert "only 8 of its 64 bytes were captured" in fast
+    (tmp_path / "cut.pcap").write_bytes(whole[:-5])  # the last record cut short
+    assert "is cut short" in assert_same([str(tmp_path / "cut.pcap")], monkeypatch)[0]
+    (tmp_path / "head.pcap").write_bytes(whole[: 24 + 16 + len(read) + 7])  # a header cut short
+    assert_same([str(tmp_path / "head.pcap")], monkeypatch)
+
+
+def test_times_far_apart_same_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Times months apart (their differences in ns do not fit a double exactly): the Python stages'
+    rounding, wherever the engine stops."""
+    from helpers import rtu
+
+    read, answer = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
+    records: list[tuple[bytes, int | None]] = []
+    for k in range(30):
+        base = 1_000_000_000 * 10**9 + k * 200 * 86_400 * 10**9 + 123_456_789
+        records += [(read, base), (answer, base + 10_123_457)]
+    capture = tmp_path / "far.pcap"
+    write_pcap(capture, records)
+    for options in ([], ["-t", "d"], ["-t", "dd"]):
+        assert_same([str(capture), *options], monkeypatch)
