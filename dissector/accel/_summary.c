@@ -608,7 +608,7 @@ static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, F
 
 /* ---- registers ---------------------------------------------------------------------------------- */
 typedef struct {
-    unsigned start;        /* first address; addresses wrap at 65536 as fields.Lifter's register blocks do */
+    unsigned start;        /* first address; addresses wrap at 65536 as fields.lifter's register blocks do */
     unsigned count;
     const uint8_t *values; /* big-endian words */
 } Words;
@@ -942,7 +942,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
         r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
         r->has_writes = 1;
     }
-    if (L->coil_at) { /* fields.Lifter's coil rule warns of any value but ON and OFF */
+    if (L->coil_at) { /* fields.lifter's coil rule warns of any value but ON and OFF */
         r->value = word(f + L->coil_at);
         if (r->value != 0xFF00 && r->value != 0) return 0;
     }
@@ -1069,7 +1069,7 @@ static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r,
 
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
-/* The answer's checks as the lifting rule states them (fields.Lifter: limit check, byte count, coil,
+/* The answer's checks as the lifting rule states them (fields.lifter: limit check, byte count, coil,
  * echo) and the annotator's (its registers plain, its reads quiet); fills its registers. 1 quiet, 0 hand over. */
 static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
                              Words *reads) {

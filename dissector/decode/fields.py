@@ -3,7 +3,7 @@
 Runs after pairing, because a response's registers are numbered from the request it answers. Spec
 limits are checked here and reported as warnings, never raised.
 
-The generic lifter (`Lifter`) interprets the rule tables of data/modbus.toml [lift] (protocol/rules.py)
+The generic lifter (`lifter`) interprets the rule tables of data/modbus.toml [lift] (protocol/rules.py)
 for every handler but the few named special cases below (diagnostics, the server id, FC43 objects);
 each rule is prepared once (its limits looked up), so that a frame costs a few attribute tests. The
 compiled engine (accel/_summary.c) and the plugin interpret the same rules from their generated tables.
@@ -89,6 +89,8 @@ def _decode(frame: Frame, function: int, kind: Kind, pdu: bytes) -> Frame:
 
 
 COIL_ON, COIL_OFF = 0xFF00, 0x0000
+# The request a response answers, decoded, or None (not in the capture, or its data did not parse).
+RequestOf = Callable[[Frame], "Frame | None"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -105,85 +107,102 @@ def _limits(name: str) -> tuple[int, int]:
     return int(low), int(high)
 
 
-class Lifter:
-    """One prepared rule; calling it lifts a frame (a decode/fields.py handler)."""
+# Module globals: an Enum member looked up on its class costs a descriptor call per frame.
+_REGISTERS, _BITS, _REGISTER = ValueKind.REGISTERS, ValueKind.BITS, ValueKind.REGISTER
+_DIFFERING = Names.DIFFERING
 
-    __slots__ = ("rule", "checks", "request_of", "from_request", "_start", "_quantity", "_quantity_const")
 
-    def __init__(self, rule: Lift, limit: str | None, request_of: RequestOf) -> None:
-        self.rule = rule
-        self.request_of = request_of
-        checks = []
-        for check in rule.checks:
-            name = check.limit or limit
-            if name is None:
-                raise ValueError(f"[lift.{rule.name}]: {check.field} has no limit (the layout gives none)")
-            low, high = _limits(name)
-            checks.append(_Check(check.what, check.field, low, high, check.test is Test.ABOVE))
-        self.checks = tuple(checks)
-        quantity = rule.quantity
-        self._quantity_const = quantity if isinstance(quantity, int) else None
-        self._start = rule.start
-        self._quantity = quantity if isinstance(quantity, str) else None
-        named = [value for value in (rule.start, self._quantity, rule.count.of if rule.count else None) if value]
-        self.from_request = any(value.startswith(REQUEST_PREFIX) for value in named) or rule.echo is not None
+def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
+    """One rule prepared as a handler: each value it names is resolved here once to a field name or the
+    request's window, into the closure's variables, so that a frame costs a few tests (decoding is the
+    Python path's hot loop; a closure is called faster than an object's __call__)."""
+    checks: list[_Check] | None = []
+    for check in rule.checks:
+        name = check.limit or limit
+        if name is None:
+            raise ValueError(f"[lift.{rule.name}]: {check.field} has no limit (the layout gives none)")
+        low, high = _limits(name)
+        checks.append(_Check(check.what, check.field, low, high, check.test is Test.ABOVE))
+    checks = checks or None  # most rules check nothing: no loop set up per frame
+    quantity_const = rule.quantity if isinstance(rule.quantity, int) else None
+    start_field, start_from_request = _source(rule.start, "request.start")
+    quantity_field, quantity_from_request = _source(
+        rule.quantity if isinstance(rule.quantity, str) else None, "request.quantity"
+    )
+    count = rule.count
+    count_field, count_from_request = _source(count.of if count else None, "request.quantity")
+    from_request = start_from_request or quantity_from_request or count_from_request or rule.echo is not None
+    unpaired, span, odd_count, coil, echo, values = (
+        rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo, rule.values
+    )
 
-    def __call__(self, frame: Frame, fields: Container) -> None:
-        rule = self.rule
-        request = self.request_of(frame) if self.from_request else None
-        start = self._value(self._start, fields, request)
-        quantity = self._quantity_const if self._quantity_const is not None else self._value(self._quantity, fields, request)
-        if quantity is None and rule.unpaired_unit and request is None:
-            count = fields["byte_count"]
-            if count % rule.unpaired_unit == 0:
-                quantity = count // rule.unpaired_unit
+    def lift(frame: Frame, fields: Container) -> None:
+        request = request_of(frame) if from_request else None
+        if start_from_request:
+            start = None if request is None else request.start
+        else:
+            start = None if start_field is None else fields[start_field]
+        if quantity_const is not None:
+            quantity = quantity_const
+        elif quantity_from_request:
+            quantity = None if request is None else request.quantity
+            if quantity is None and unpaired:
+                given = fields["byte_count"]
+                if given % unpaired == 0:
+                    quantity = given // unpaired
+        else:
+            quantity = None if quantity_field is None else fields[quantity_field]
         frame.start, frame.quantity = start, quantity
-        warnings = frame.warnings
-        for check in self.checks:
+        for check in checks or ():
             value = fields[check.field]
             if check.above:
                 if value > check.high:
-                    warnings.append(text("above", what=check.what, value=value, high=check.high))
+                    frame.warnings.append(text("above", what=check.what, value=value, high=check.high))
             elif not check.low <= value <= check.high:
-                warnings.append(text("range", what=check.what, value=value, low=check.low, high=check.high))
-        if rule.span and start + quantity > 0x10000:
-            warnings.append(text("span", first=start, last=start + quantity - 1))
-        count = rule.count
+                frame.warnings.append(text("range", what=check.what, value=value, low=check.low, high=check.high))
+        if span and start + quantity > 0x10000:
+            frame.warnings.append(text("span", first=start, last=start + quantity - 1))
         if count is not None:
-            of = self._value(count.of, fields, request)
-            if of is not None and fields["byte_count"] != count.expected(of):
-                warnings.append(text(count.text, count=fields["byte_count"], quantity=of))
-        if rule.odd_count and fields["byte_count"] % 2:
-            warnings.append(text("odd_count", count=fields["byte_count"]))
-        if rule.coil is not None and fields[rule.coil] not in (COIL_ON, COIL_OFF):
-            warnings.append(text("coil_value", value=fields[rule.coil]))
-        if rule.echo is not None and request is not None:
-            _check_echo(frame, fields, request, rule.echo)
-        values = rule.values
+            if count_from_request:  # the request's quantity: the window's already when it is the request's
+                of = None if request is None else quantity if quantity_from_request else request.quantity
+            else:
+                of = fields[count_field]
+            if of is not None:
+                given = fields["byte_count"]
+                if given != count.plus + (of * count.unit if count.unit else (of + 7) >> 3):  # Count.expected
+                    frame.warnings.append(text(count.text, count=given, quantity=of))
+        if odd_count and fields["byte_count"] % 2:
+            frame.warnings.append(text("odd_count", count=fields["byte_count"]))
+        if coil is not None and fields[coil] not in (COIL_ON, COIL_OFF):
+            frame.warnings.append(text("coil_value", value=fields[coil]))
+        if request is not None and echo is not None:
+            _check_echo(frame, fields, request, echo)
         if values is not None:
             data = fields[values.field]
             kind = values.kind
-            if kind is ValueKind.REGISTERS:
+            if kind is _REGISTERS:
                 # In bulk: a 125-register block makes no Register object until a view asks for one.
                 frame.registers = RegisterList(start if values.start is None else fields[values.start], data)
-            elif kind is ValueKind.BITS:
+            elif kind is _BITS:
                 # In bulk: a 2000-coil read makes no Bit object until a view asks for one.
                 bits = len(data) * 8
                 frame.bits = BitList(start, data, bits if quantity is None else min(quantity, bits))
-            elif kind is ValueKind.REGISTER:
+            elif kind is _REGISTER:
                 frame.registers = [Register(start, data)]
             else:
                 frame.bits = [Bit(start, 1 if data == COIL_ON else 0)]
 
-    @staticmethod
-    def _value(name: str | None, fields: Container, request: Frame | None) -> int | None:
-        if name is None:
-            return None
-        if name.startswith(REQUEST_PREFIX):
-            if request is None:
-                return None
-            return request.start if name == "request.start" else request.quantity
-        return fields[name]  # type: ignore[no-any-return]
+    lift.__qualname__ = f"lifter[{rule.name}]"
+    return lift
+
+
+def _source(name: str | None, window: str) -> tuple[str | None, bool]:
+    """(the frame's field, from the request's window) for a rule value; `window` is the one allowed."""
+    if name is None or not name.startswith(REQUEST_PREFIX):
+        return name, False
+    if name != window:
+        raise ValueError(f"{name!r}: only {window!r} can be taken from the request here")
+    return None, True
 
 
 def _check_echo(frame: Frame, fields: Container, request: Frame, echo: Echo) -> None:
@@ -192,7 +211,7 @@ def _check_echo(frame: Frame, fields: Container, request: Frame, echo: Echo) -> 
     answered = request.fields
     differ = [name for name in echo.fields if answered[name] != fields[name]]
     if differ:
-        frame.warnings.append(echo_text(differ if echo.names is Names.DIFFERING else list(echo.fields)))
+        frame.warnings.append(echo_text(differ if echo.names is _DIFFERING else list(echo.fields)))
 
 
 def _request_of(frame: Frame) -> Frame | None:
@@ -232,7 +251,7 @@ def _mei_response(frame: Frame, fields: Container) -> None:
 
 
 # Handlers by name; the protocol table says which (function code, direction) uses which. Every name
-# with a rule in data/modbus.toml [lift] is the generic lifter's (Lifter above); the named special
+# with a rule in data/modbus.toml [lift] is the generic lifter's (`lifter` above); the named special
 # cases below are the layouts no rule describes.
 SPECIAL_HANDLERS = {
     "diagnostics": _diagnostics,
@@ -249,7 +268,7 @@ def _handlers() -> dict[Kind, dict[int, Handler]]:
         for code, name in names.items():
             rule = LIFTS.get(name)  # type: ignore[call-overload]
             handlers[code] = (
-                Lifter(rule, limits.get(code), _request_of)  # type: ignore[arg-type]
+                lifter(rule, limits.get(code), _request_of)  # type: ignore[arg-type]
                 if rule is not None else SPECIAL_HANDLERS[name]  # type: ignore[index]
             )
         by_kind[kind] = handlers
