@@ -1,10 +1,27 @@
-/* The first pass of profile `auto` (app/preselect.py) in the engine: frame and pair, number the frames,
- * and hand over to the Python stages every transaction whose frames the selector must see (a slave it
- * still judges, an identifying function code, FC43, a function the chosen profile does not support:
- * the `judge` bitmap, per slave and function code, made by accel/preselect.py); the others change
- * nothing the selector keeps. No line is written. Included by _summary.c before transaction(). */
+/* Framing and pairing alone, for callers that want the frames, not the lines:
+ * - the first pass of profile `auto` (app/preselect.py): frame and pair, number the frames, and hand
+ *   over to the Python stages every transaction whose frames the selector must see (a slave it still
+ *   judges, an identifying function code, FC43, a function the chosen profile does not support: the
+ *   `judge` bitmap, per slave and function code, made by accel/preselect.py); the others change
+ *   nothing the selector keeps;
+ * - with `frames` set (accel/framespath.py: -V, --json, -T, --stats... of a pcap), each transaction
+ *   passed is written out as a record (FRAMES_RECORD below) for the Python stages to decode and show.
+ * Included by _summary.c before transaction(). */
 #ifndef VW3_JUDGE_H
 #define VW3_JUDGE_H
+
+/* One transaction: request offset, answer offset (-1: unanswered), lengths, answer kind, whether each
+ * has a time, their times (struct "=qqiiBBBq q": accel/framespath.py RECORD). */
+static void frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
+    struct __attribute__((packed)) {
+        long long q_at, a_at;
+        int32_t q_length, a_length;
+        uint8_t a_kind, q_timed, a_timed;
+        long long q_ns, a_ns;
+    } record = {q->at, a ? a->at : -1, (int32_t)q->length, a ? (int32_t)a->length : 0, (uint8_t)(a ? a->kind : 0),
+                (uint8_t)q->timed, (uint8_t)(a ? a->timed : 0), q->ns, a ? a->ns : 0};
+    out_put(&e->out, (const char *)&record, sizeof record);
+}
 
 static inline int judged(const Engine *e, const FrameRef *f) {
     int function = f->function & 0x7F;
@@ -20,6 +37,8 @@ static int judge_transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize
     FrameRef a;
     int found = next_frame(e, b, q->at + q->length, n, &a, q->decided);
     if (found == FRAME_OK && a.kind == KIND_REQUEST) { /* unanswered: the next request is its own */
+        if (e->frames) frames_record(e, q, NULL);
+        if (e->out.failed) return STEP_ERROR;
         e->count += 1;
         *pos = a.at;
         e->tl.decided = q->decided;
@@ -27,6 +46,8 @@ static int judge_transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize
     }
     if (found == FRAME_OK && !judged(e, &a) &&
         !(q->timed && a.timed && e->tl.timeout >= 0 && stamp_seconds(a.ns, q->ns) > e->tl.timeout)) {
+        if (e->frames) frames_record(e, q, &a);
+        if (e->out.failed) return STEP_ERROR;
         e->count += 2;
         e->expect_slave = e->expect_function = -1;
         *pos = a.at + a.length;

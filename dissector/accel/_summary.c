@@ -230,6 +230,7 @@ typedef struct {
     long long line_ns, request_ns;
     PyObject *judge_bytes; /* profile auto's first pass (_judge.h): the bitmap below, or NULL */
     const uint8_t *judge;
+    int frames;            /* with judge: each transaction passed is written out as a record (_judge.h) */
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -504,7 +505,9 @@ static inline int glitch_byte(uint8_t v) { return v == 0 || (uint8_t)(v | (v - 1
 /* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
  * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
 static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_t n) {
+    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
     for (Py_ssize_t j = end;; j++) {
+        if (t->active && boundary_at(t, t->base + j)) return 1; /* run_timed(): a record's end, a silence */
         int found = valid_frame_at(e, b, j, n);
         if (found != 0) return found;
         if (!(j < n && glitch_byte(b[j]) && j - end < GLITCH_SKIP)) return 0;
@@ -1540,6 +1543,15 @@ static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
+static PyObject *engine_get_frames(Engine *e, void *closure) { return PyBool_FromLong(e->frames); }
+
+static int engine_set_frames(Engine *e, PyObject *value, void *closure) {
+    int truth = value == NULL ? 0 : PyObject_IsTrue(value);
+    if (truth < 0) return -1;
+    e->frames = truth;
+    return 0;
+}
+
 static PyObject *engine_get_decided(Engine *e, void *closure) { return PyLong_FromLongLong(e->tl.decided); }
 
 static int engine_set_decided(Engine *e, PyObject *value, void *closure) {
@@ -1757,6 +1769,8 @@ static PyGetSetDef engine_getset[] = {
     {"judge", (getter)engine_get_judge, (setter)engine_set_judge,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
      NULL},
+    {"frames", (getter)engine_get_frames, (setter)engine_set_frames,
+     "with judge: run() returns a record per transaction passed instead of lines (_judge.h)", NULL},
     {"decided", (getter)engine_get_decided, (setter)engine_set_decided,
      "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame", NULL},
     {"clock", (getter)engine_get_clock, (setter)engine_set_clock,

@@ -47,69 +47,105 @@ static int quantity_layout(const QuantityRule *q, const uint8_t *b, Py_ssize_t i
     return crc16(b + i, stop - i) == (uint16_t)(b[stop] | b[stop + 1] << 8);
 }
 
+enum { DECIDE_OK, DECIDE_HANDOVER, DECIDE_WAIT };
+
+/* The other layouts of a frame at i (_match's interpretations after the first) with the bytes up to m:
+ * -1 one is a CRC scan (hand over); else how many check out, with the shortest such length in *shortest,
+ * and whether one waits for more bytes (NEED, or `length` + 1: the 00 after a frame) in *waits. */
+static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, Py_ssize_t length,
+                         Py_ssize_t *shortest, int *waits) {
+    int k = known_slot[function];
+    const LengthRule *other = kind == KIND_RESPONSE ? &known_request_rule[k] : &known_response_rule[k];
+    Py_ssize_t waiting[2] = {0, 0};
+    int found[2] = {other_layout(other, b, i, m, &waiting[0]), 0};
+    if (known_quantity_rule[k].position) found[1] = quantity_layout(&known_quantity_rule[k], b, i, m, &waiting[1]);
+    int valid = 0;
+    *waits = 0;
+    for (int w = 0; w < 2; w++) {
+        if (found[w] < 0) return -1;
+        if (found[w] == 2 && (waiting[w] == -1 || waiting[w] == length + 1)) *waits = 1;
+        if (found[w] != 1) continue;
+        valid++;
+        Py_ssize_t checked;
+        if (w == 0) {
+            checked = rule_length(other, b, i, m).value;
+        } else {
+            const QuantityRule *q = &known_quantity_rule[k];
+            Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
+            checked = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
+        }
+        if (checked < *shortest) *shortest = checked;
+    }
+    return valid;
+}
+
+/* What the Python framer does at i with the bytes up to m (its buffer when it looks there): take the
+ * frame of the first layout (*length, its kind), wait for more bytes (its NEED: it looks again at the
+ * next chunk), or anything else (hand over). */
+static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, int function, int kind,
+                     Py_ssize_t *length_out) {
+    Timeline *t = &e->tl;
+    long long at = t->base + i;
+    int scanned;
+    Py_ssize_t length = first_length(e, b, i, m, function, kind, &scanned);
+    *length_out = length;
+    if (scanned) {
+        /* FC8's Return Query Data (_match, _scan): both layouts scan alike, so both check out at the
+         * length found, and the first stands where a record ends there, as the answer awaited, or where
+         * what follows is known; the scan waits as _scan does (what follows a match not come yet). */
+        if (length == FRAME_NEED) return DECIDE_WAIT;
+        if (length < 0) return DECIDE_HANDOVER;
+        if (!boundary_at(t, at + length) && kind != KIND_RESPONSE && valid_frame_at(e, b, i + length, m) < 0)
+            return DECIDE_WAIT;
+        return DECIDE_OK;
+    }
+    if (length == FRAME_HANDOVER) return DECIDE_HANDOVER;
+    Py_ssize_t shortest = MAX_ADU + 1;
+    int waits, valid;
+    if (length == FRAME_NEED || i + length > m) {
+        /* The first layout waits for its bytes: _match waits too, unless another one checks out. */
+        if (kind == KIND_EXCEPTION) return DECIDE_WAIT;
+        valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
+        return valid == 0 ? DECIDE_WAIT : DECIDE_HANDOVER;
+    }
+    Py_ssize_t stop = i + length - 2;
+    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return DECIDE_HANDOVER;
+    if ((i + length < m && b[i + length] != 0) || kind == KIND_EXCEPTION) return DECIDE_OK; /* (its fast path) */
+    /* _match: this layout checks out; it stands alone unless another one does too, or may. */
+    valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
+    if (valid < 0) return DECIDE_HANDOVER;
+    if (valid) {
+        /* Two layouts check out (a FC23 request whose response reading is as long, FC5's echo): a
+         * record's end after this one picks it, the first tried, unless a shorter one checks out too
+         * (the framer tries the shortest first on a glitchy line). */
+        return boundary_at(t, at + length) && shortest >= length ? DECIDE_OK : DECIDE_HANDOVER;
+    }
+    if (waits && kind != KIND_RESPONSE && !boundary_at(t, at + length))
+        return DECIDE_WAIT; /* a longer layout may still come (the 00 case) */
+    return DECIDE_OK;
+}
+
 /* frame_at for a chunked stream (e->tl.active). */
 static int timed_frame_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
     Timeline *t = &e->tl;
     long long at = t->base + i;
     if (n - i < MIN_ADU) return FRAME_NEED;
-    /* The Python framer's buffer end when it first looks at i: the chunk holding byte i + 3 has come,
-     * and the frame before was decided. */
-    long long seen = chunk_end(t, chunk_of(t, at + MIN_ADU - 1));
-    if (seen < decided) seen = decided;
-    Py_ssize_t m = (Py_ssize_t)(seen - t->base);
-    if (m > n) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
     if (slave > MAX_SLAVE || slave == 0) return FRAME_HANDOVER; /* glitch addresses: _match weighs them */
     int kind = frame_kind(e, slave, function);
     if (kind < 0) return kind;
-    int scanned;
-    Py_ssize_t length = first_length(e, b, i, m, function, kind, &scanned);
-    if (scanned || length < 0) return FRAME_HANDOVER; /* a scan, or the rule waits: the careful path's */
-    if (i + length > m) return FRAME_HANDOVER;      /* _match would wait for the rest */
-    Py_ssize_t stop = i + length - 2;
-    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
-    if (!(i + length < m && b[i + length] != 0)) {
-        /* _match: this layout checks out; it stands alone unless another one does too, or may. */
-        if (kind != KIND_EXCEPTION) {
-            int k = known_slot[function];
-            const LengthRule *other = kind == KIND_RESPONSE ? &known_request_rule[k] : &known_response_rule[k];
-            Py_ssize_t waiting[2] = {0, 0}, valid[2] = {0, 0};
-            int found[2] = {other_layout(other, b, i, m, &waiting[0]), 0};
-            if (known_quantity_rule[k].position)
-                found[1] = quantity_layout(&known_quantity_rule[k], b, i, m, &waiting[1]);
-            int others = 0;
-            for (int w = 0; w < 2; w++) {
-                if (found[w] < 0) return FRAME_HANDOVER;
-                if (found[w] == 1) {
-                    others = 1;
-                    /* (the checked length: other_layout's rule again, or the quantity's) */
-                    valid[w] = 1;
-                }
-            }
-            if (others) {
-                /* Two layouts check out (a FC23 request whose response reading is as long, FC5's
-                 * echo): a record's end after this one picks it, the first tried, unless a shorter
-                 * one checks out too (the framer tries the shortest first on a glitchy line). */
-                if (!boundary_at(t, at + length)) return FRAME_HANDOVER;
-                Py_ssize_t shortest = length;
-                if (valid[0]) {
-                    Length other_length = rule_length(other, b, i, m);
-                    if (other_length.value < shortest) shortest = other_length.value;
-                }
-                if (valid[1]) {
-                    const QuantityRule *q = &known_quantity_rule[k];
-                    Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
-                    Py_ssize_t other_length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
-                    if (other_length < shortest) shortest = other_length;
-                }
-                if (shortest < length) return FRAME_HANDOVER;
-            } else {
-                int expected = kind == KIND_RESPONSE; /* the answer awaited */
-                for (int w = 0; w < 2; w++)
-                    if ((waiting[w] == -1 || waiting[w] == length + 1) && !expected && !boundary_at(t, at + length))
-                        return FRAME_HANDOVER; /* the Python framer waits: decided later, maybe otherwise */
-            }
-        }
+    /* The Python framer's buffer end when it first looks at i: the chunk holding byte i + 3 has come,
+     * and the frame before was decided; where it waits, it looks again with the next chunk. */
+    long long seen = chunk_end(t, chunk_of(t, at + MIN_ADU - 1));
+    if (seen < decided) seen = decided;
+    Py_ssize_t length;
+    for (;;) {
+        if (seen > t->end) return FRAME_NEED;
+        int decision = decide_at(e, b, i, (Py_ssize_t)(seen - t->base), function, kind, &length);
+        if (decision == DECIDE_OK) break;
+        if (decision == DECIDE_HANDOVER) return FRAME_HANDOVER;
+        if (seen >= t->end) return FRAME_NEED;
+        seen = chunk_end(t, chunk_of(t, seen));
     }
     if (silence_inside(t, at, length)) return FRAME_HANDOVER;
     Py_ssize_t k = chunk_of(t, at);

@@ -63,6 +63,8 @@ class TimedPath:
         self.fed = 0  # chunks given to the Python stages (an index into the lists above)
         self.engine_ok = True  # False: a source whose times the engine cannot subtract (plain floats)
         self.on_hand_back: Callable[[], None] | None = None  # called as the engine takes the stream back
+        self.sync_clock = True  # the engine writes the time column: the clock's references go with the stream
+        self.numbered = 0  # items numbered before the engine's last run
 
     # -- input ------------------------------------------------------------------------------------
     def feed(self, block: Block) -> None:
@@ -98,6 +100,7 @@ class TimedPath:
     # -- the engine's side --------------------------------------------------------------------------
     def _engine_frames(self) -> bool:
         """The engine's lines up to where it needs more bytes (False) or hands the stream over (True)."""
+        self.numbered = self.engine.count
         lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
                                                         self.flags)
         if lines:
@@ -125,10 +128,11 @@ class TimedPath:
             self.dissector.gaps.take_over(start, chunk)
         self.fed = index + 1
         self.pairer.count = self.engine.count
-        first, previous = self.engine.clock
-        clock = self.clock
-        clock.first = None if first is None else Stamp(first)
-        clock._previous_captured = clock._previous_shown = None if previous is None else Stamp(previous)
+        if self.sync_clock:
+            first, previous = self.engine.clock
+            clock = self.clock
+            clock.first = None if first is None else Stamp(first)
+            clock._previous_captured = clock._previous_shown = None if previous is None else Stamp(previous)
 
     # -- the Python stages' side --------------------------------------------------------------------
     def _python_frames(self) -> bool:

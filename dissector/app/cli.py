@@ -457,6 +457,11 @@ def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, disse
                 fastsummary.summarize(chunks, path, warn)
                 sinks.valid_frames += store.frames - frames
                 return
+    if mode == "rtu" and timed and fix is None:
+        from dissector.accel import framespath
+
+        if framespath.decode(chunks, dissector, sinks, annotate, warn):  # framed in C, shown by Python
+            return
     decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
 
 
