@@ -2,8 +2,8 @@
 Lua literal writer the conformance vectors (tests/conformance/vectors.lua) use.
 
 `render_rules()` gives a Lua chunk defining `local RULES = {...}`: the lifting rules per handler name
-(with each check's limit resolved per function code), how each write is confirmed, and the catalogue of
-texts, each with its Python template, its parameters in order and a `string.format` form (`%s` for a
+(with each check's limit resolved per function code), how each write is confirmed, the regular layouts'
+fields, and the catalogue of texts, each with its Python template, its parameters in order and a `string.format` form (`%s` for a
 plain parameter, the format spec carried over: `0x{value:04X}` -> `0x%04X`). The plugin's code
 generator (codegen/lua.py) places it inside its generated block, between the markers below, so that
 `python3 -m dissector.codegen --check` covers it with the rest of the plugin.
@@ -19,6 +19,7 @@ from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Lift, params
+from dissector.protocol.shapes import SHAPES
 from dissector.protocol.spec import SPEC
 
 BEGIN = "-- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)"
@@ -91,6 +92,9 @@ def rules_data() -> dict[str, Any]:
         "limits": {name: list(value) for name, value in SPEC.limits.items() if isinstance(value, list)},
         "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key))}
                   for key in TEXTS},
+        # The regular layouts' fields in order (data/modbus.toml [layouts]): what the plugin's parsers read.
+        "layouts": {name: [{"name": f.name, "type": str(f.type), "count": f.count, "half": f.half} for f in shape]
+                    for name, shape in SHAPES.items()},
     }
 
 

@@ -4,11 +4,15 @@
 The function code itself and the check (CRC/LRC) are not part of these layouts: the framer finds the
 frame and records the check, so that a frame with a bad CRC is still shown rather than thrown away.
 Every layout ends in `trailing`, so bytes past the documented layout are kept and reported, never lost.
+
+The regular layouts are made from their field descriptions (data/modbus.toml [layouts], read by
+protocol/shapes.py), which the fast parser is made from too; the irregular ones are written here.
 """
 from __future__ import annotations
 
 from construct import (
     Adapter,
+    Construct,
     Array,
     Bytes,
     Enum,
@@ -23,33 +27,43 @@ from construct import (
     this,
 )
 
-_trailing = "trailing" / GreedyBytes
-_address_quantity = ("start" / Int16ub, "quantity" / Int16ub)
+from dissector.protocol.shapes import SHAPES, Field, Type, has_trailing
 
-READ_REQUEST = Struct(*_address_quantity, _trailing)
-READ_BITS_RESPONSE = Struct("byte_count" / Int8ub, "status" / Bytes(this.byte_count), _trailing)
-READ_REGISTERS_RESPONSE = Struct(
-    "byte_count" / Int8ub,
-    "values" / Array(this.byte_count // 2, Int16ub),
-    "odd_byte" / If(this.byte_count % 2 == 1, Bytes(1)),
-    _trailing,
-)
-WRITE_SINGLE = Struct("address" / Int16ub, "value" / Int16ub, _trailing)
-EMPTY = Struct(_trailing)
-DIAGNOSTICS = Struct("subfunction" / Int16ub, "data" / GreedyBytes)
-WRITE_COILS_REQUEST = Struct(
-    *_address_quantity, "byte_count" / Int8ub, "status" / Bytes(this.byte_count), _trailing
-)
-WRITE_REGISTERS_REQUEST = Struct(
-    *_address_quantity,
-    "byte_count" / Int8ub,
-    "values" / Array(this.byte_count // 2, Int16ub),
-    "odd_byte" / If(this.byte_count % 2 == 1, Bytes(1)),
-    _trailing,
-)
-WRITE_MULTIPLE_RESPONSE = READ_REQUEST
-EXCEPTION_STATUS_RESPONSE = Struct("status" / Int8ub, _trailing)
-COMM_EVENT_COUNTER_RESPONSE = Struct("status" / Int16ub, "event_count" / Int16ub, _trailing)
+_trailing = "trailing" / GreedyBytes
+
+
+def _subcon(field: Field) -> Construct:
+    count = field.count
+    if field.type is Type.U8:
+        return field.name / Int8ub
+    if field.type is Type.U16:
+        return field.name / Int16ub
+    if field.type is Type.BYTES:
+        return field.name / Bytes(this[count])
+    if field.type is Type.WORDS:
+        return field.name / Array((this[count] // 2) if field.half else this[count], Int16ub)
+    if field.type is Type.ODD:
+        return field.name / If(this[count] % 2 == 1, Bytes(1))
+    return field.name / GreedyBytes
+
+
+def regular(name: str) -> Struct:
+    """The Construct grammar of a layout data/modbus.toml [layouts] describes."""
+    shape = SHAPES[name]
+    return Struct(*map(_subcon, shape), *([_trailing] if has_trailing(shape) else []))
+
+
+READ_REQUEST = regular("read_request")
+READ_BITS_RESPONSE = regular("read_bits_response")
+READ_REGISTERS_RESPONSE = regular("read_registers_response")
+WRITE_SINGLE = regular("write_single")
+EMPTY = regular("empty")
+DIAGNOSTICS = regular("diagnostics")
+WRITE_COILS_REQUEST = regular("write_coils_request")
+WRITE_REGISTERS_REQUEST = regular("write_registers_request")
+WRITE_MULTIPLE_RESPONSE = regular("write_multiple_response")
+EXCEPTION_STATUS_RESPONSE = regular("exception_status_response")
+COMM_EVENT_COUNTER_RESPONSE = regular("comm_event_counter_response")
 COMM_EVENT_LOG_RESPONSE = Struct(
     "byte_count" / Int8ub,
     "status" / Int16ub,
@@ -111,24 +125,10 @@ WRITE_FILE = Struct(
     "records" / FixedSized(this.byte_count, GreedyRange(_FILE_WRITE_RECORD)),
     _trailing,
 )
-MASK_WRITE = Struct("address" / Int16ub, "and_mask" / Int16ub, "or_mask" / Int16ub, _trailing)
-READ_WRITE_REQUEST = Struct(
-    "read_start" / Int16ub,
-    "read_quantity" / Int16ub,
-    "write_start" / Int16ub,
-    "write_quantity" / Int16ub,
-    "byte_count" / Int8ub,
-    "values" / Array(this.byte_count // 2, Int16ub),
-    "odd_byte" / If(this.byte_count % 2 == 1, Bytes(1)),
-    _trailing,
-)
-FIFO_REQUEST = Struct("address" / Int16ub, _trailing)
-FIFO_RESPONSE = Struct(
-    "byte_count" / Int16ub,
-    "fifo_count" / Int16ub,
-    "values" / Array(this.fifo_count, Int16ub),
-    _trailing,
-)
+MASK_WRITE = regular("mask_write")
+READ_WRITE_REQUEST = regular("read_write_request")
+FIFO_REQUEST = regular("fifo_request")
+FIFO_RESPONSE = regular("fifo_response")
 MEI_REQUEST = Struct(
     "mei_type" / Int8ub,
     "body"
@@ -159,5 +159,5 @@ MEI_RESPONSE = Struct(
     ),
     _trailing,
 )
-EXCEPTION = Struct("exception_code" / Int8ub, _trailing)
-RAW = Struct("data" / GreedyBytes)
+EXCEPTION = regular("exception")
+RAW = regular("raw")

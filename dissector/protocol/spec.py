@@ -28,6 +28,7 @@ class Spec:
     confirm: dict[int, str]
     lift: dict[str, dict[str, object]]
     texts: dict[str, str]
+    layouts: dict[str, list[str]]  # the regular layouts' fields (protocol/layouts.py)
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -61,6 +62,7 @@ def load_spec() -> Spec:
         confirm=_int_keys(data["confirm"]),
         lift=data["lift"],
         texts={str(key): str(value) for key, value in data["texts"].items()},
+        layouts={str(key): [str(field) for field in value] for key, value in data["layouts"].items()},
     )
 
 

@@ -70,3 +70,18 @@ def test_lua_format_gives_the_python_text(key: str, values: dict[str, object]) -
     ordered = tuple(values[name] for name in params(key))
     # %s of Lua is str(); %d, %X, %.1f are C's as Python's % operator has them.
     assert pattern % ordered == text(key, **values)
+
+
+def test_layout_descriptions_are_checked() -> None:
+    from dissector.protocol.shapes import SHAPES, ShapeError, parse_shape
+
+    assert parse_shape("x", ["byte_count:u8", "values:words(byte_count/2)"])[1].half
+    for bad, why in ((["a:u32"], "is no field"), (["a:bytes(n)"], "no earlier field"), (["n:u8", "a:bytes(n/2)"], "half"),
+                     (["a:rest", "b:u8"], "after the rest"), (["class:u8"], "cannot be")):
+        with pytest.raises(ShapeError, match=why):
+            parse_shape("x", bad)
+    # Every layout the protocol table names is described in data/modbus.toml or written in layouts.py.
+    irregular = {"comm_event_log_response", "report_server_id_response", "read_file_request", "read_file_response",
+                 "write_file", "mei_request", "mei_response"}
+    names = {entry.layout(kind).name for entry in table.FUNCTIONS for kind in (Kind.REQUEST, Kind.RESPONSE)}
+    assert names - set(SHAPES) == irregular
