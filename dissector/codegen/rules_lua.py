@@ -49,6 +49,9 @@ def lua_format(template: str) -> str:
         out.append(literal.replace("%", "%%"))
         if name is None:
             continue
+        if conversion == "r":
+            out.append("%s")  # Python's repr: the parameter is listed in the text's `repr` (the plugin quotes it)
+            continue
         if conversion or not _SPEC.match(spec or ""):
             raise ValueError(f"text {template!r}: no Lua form for {{{name}:{spec}}}")
         if not spec:
@@ -90,7 +93,9 @@ def rules_data() -> dict[str, Any]:
         "by_code": by_code,
         "confirm": {code: str(how) for code, how in CONFIRM.items()},
         "limits": {name: list(value) for name, value in SPEC.limits.items() if isinstance(value, list)},
-        "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key))}
+        "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key)),
+                        "repr": [name for _, name, _, conversion in string.Formatter().parse(TEXTS[key])
+                                 if name and conversion == "r"]}
                   for key in TEXTS},
         # The regular layouts' fields in order (data/modbus.toml [layouts]): what the plugin's parsers read.
         "layouts": {name: [{"name": f.name, "type": str(f.type), "count": f.count, "half": f.half} for f in shape]

@@ -25,7 +25,7 @@ from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol import table
-from dissector.protocol.rules import Confirm
+from dissector.protocol.rules import Confirm, text
 from dissector.protocol.spec import SPEC
 
 __all__ = ["Annotator", "MapLayer", "ProfileChoice"]
@@ -428,11 +428,11 @@ def _diagnostics(frame: Frame, device: Device) -> None:
     if meaning is None:
         return
     frame.subfunction_text = meaning
-    text = f"sub-function {sub:02X} on the {profile.device}: {meaning}"
+    note = text("subfunction_meaning", subfunction=sub, device=profile.device, meaning=meaning)
     fields = frame.fields
     if frame.kind is Kind.RESPONSE and fields is not None and len(fields.data) == 2:
-        text += f"; value {int.from_bytes(fields.data, 'big')}"
-    frame.notes.append(text)
+        note += text("subfunction_value", value=int.from_bytes(fields.data, "big"))
+    frame.notes.append(note)
 
 
 def _objects(frame: Frame, profile: Profile, objects: list[DeviceObject]) -> None:
@@ -445,9 +445,7 @@ def _objects(frame: Frame, profile: Profile, objects: list[DeviceObject]) -> Non
             if len(value) == 4 and value.isascii() and value.isdigit():
                 obj.text = f"V{int(value[:2])}.{int(value[2:])}"
                 continue
-            frame.notes.append(
-                f"{obj.name} {value!r} is not in the MMmm form the {profile.device} uses"
-            )
+            frame.notes.append(text("revision_form", object=obj.name, value=value, device=profile.device))
         obj.text = meaning.meaning
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dissector.devices.device import Device
 from dissector.devices.profiles import Profile
 from dissector.model import Frame, Kind
+from dissector.protocol.rules import text
 from dissector.protocol.spec import SPEC
 from dissector.protocol.table import lift_of, write_windows
 
@@ -32,11 +33,9 @@ def check_request(frame: Frame, device: Device) -> None:
     function = frame.function
     name = profile.function_names.get(function) or SPEC.function_name(function)
     if profile.functions is not None and function not in profile.functions:
-        frame.warnings.append(f"{name} ({function}) is not supported by the {profile.device}")
+        frame.warnings.append(text("not_supported", name=name, function=function, device=profile.device))
     elif function in profile.inner_only:
-        frame.warnings.append(
-            f"{name} ({function}) is only valid inside an encapsulated packet on the {profile.device}"
-        )
+        frame.warnings.append(text("inner_only", name=name, function=function, device=profile.device))
     limits = profile.limits.get(function)
     if limits is not None:
         _check_limits(frame, profile, name, limits)
@@ -47,9 +46,7 @@ def check_request(frame: Frame, device: Device) -> None:
         and function not in SPEC.not_broadcast  # decode.py already warned with the spec's rule
     ):
         allowed = ", ".join(str(code) for code in sorted(profile.broadcast)) or "none"
-        frame.warnings.append(
-            f"{name} cannot be broadcast to the {profile.device} (broadcast functions: {allowed})"
-        )
+        frame.warnings.append(text("device_broadcast", name=name, device=profile.device, allowed=allowed))
 
 
 def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, ...]) -> None:
@@ -65,5 +62,5 @@ def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, 
     for (what, quantity), limit in zip(checks, limits):
         if quantity is not None and quantity > limit:
             frame.warnings.append(
-                f"{what} {quantity} is beyond the {profile.device}'s limit of {limit} words for {name}"
+                text("device_limit", what=what, quantity=quantity, device=profile.device, limit=limit, name=name)
             )

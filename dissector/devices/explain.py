@@ -10,6 +10,7 @@ from dissector.devices.profiles import ExceptionCause, Profile
 from dissector.devices.story import Event, listed
 from dissector.model import Frame, Note, Register
 from dissector.protocol import table
+from dissector.protocol.rules import text
 from dissector.protocol.spec import SPEC
 
 # Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
@@ -34,18 +35,17 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
         note = device.explained.get(key)
         if note is None:
             chosen = _pick_causes(request, profile, causes)
-            note = f"exception {code:02X} from the {profile.device} to {name}: " + " or ".join(
-                _cause_text(cause) for cause in chosen
-            )
+            causes_text = " or ".join(_cause_text(cause) for cause in chosen)
+            note = text("exception_cause", code=code, device=profile.device, name=name, causes=causes_text)
             _remember(device.explained, key, note)
         frame.notes.append(note)  # type: ignore[arg-type]
     elif all_unreadable and request is not None and request.start is not None and request.quantity:
         _all_unreadable(frame, device, request, events)
     elif code in profile.exceptions:
-        frame.notes.append(f"exception {code:02X} from the {profile.device}: {profile.exceptions[code]}")
+        frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=profile.exceptions[code]))
     elif profile.exceptions:
         known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
-        frame.notes.append(f"exception {code:02X} is not one the {profile.device} documents ({known})")
+        frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
     frame.exception_text = profile.exceptions.get(code)
 
 

@@ -85,3 +85,29 @@ def test_layout_descriptions_are_checked() -> None:
                  "write_file", "mei_request", "mei_response"}
     names = {entry.layout(kind).name for entry in table.FUNCTIONS for kind in (Kind.REQUEST, Kind.RESPONSE)}
     assert names - set(SHAPES) == irregular
+
+
+def test_the_lua_rules_load_and_format_as_python_does(tmp_path) -> None:  # noqa: ANN001
+    """The RULES chunk the plugin will carry is valid Lua, and its string.format forms give the
+    catalogue's texts (the integration test of the plugin itself waits for the wiring)."""
+    import subprocess
+
+    from dissector.codegen.rules_lua import render_rules
+    from lua_harness import ensure_tool
+
+    lua = ensure_tool("lua5.4", "lua5.4")
+    script = tmp_path / "rules.lua"
+    script.write_text(render_rules() + (
+        'local t = RULES.texts\n'
+        'print(string.format(t.late.format, 12.345, 5, 200.0))\n'
+        'print(string.format(t.coil_value.format, 0x12AB))\n'
+        'print(RULES.lift.read_write_request.write_window[2], RULES.confirm[6], RULES.by_code.response[3].rule)\n'
+        'print(#RULES.layouts.read_registers_response, RULES.layouts.read_registers_response[2].type)\n'
+    ), encoding="utf-8")
+    out = subprocess.run([lua, str(script)], capture_output=True, text=True, check=True).stdout.splitlines()
+    assert out == [
+        text("late", delay_ms=12.345, number=5, timeout_ms=200.0),
+        text("coil_value", value=0x12AB),
+        "write_quantity\techo\tread_registers_response",
+        "3\twords",
+    ]
