@@ -1,15 +1,16 @@
--- vw3.lua: Wireshark plugin for Modbus serial (RTU) captures of Altivar 71 drives (VW3 A3 303 card)
+-- vw3.lua: Wireshark plugin for Modbus serial (RTU, ASCII) captures of Altivar 71 drives (VW3 A3 303 card)
 -- and SEL-749M relays; the same dissection as the vw3-decode command, inside Wireshark.
 --
 -- Install: copy this one file into the personal Lua plugins folder (Linux, macOS:
 -- ~/.local/lib/wireshark/plugins/, Windows: %APPDATA%\Wireshark\plugins\), or load it for one run with
 -- `tshark -X lua_script:vw3.lua -r capture.pcap`. It decodes linktype 147 (USER0) records, `rtacser.data`
--- through Decode As, and Modbus RTU over TCP on the port set in the preferences.
+-- through Decode As, and Modbus RTU over TCP and UDP on the ports set in the preferences.
 --
--- The framing, pairing and decoding below mirror the Python package (dissector/framing/rtu.py, pairing.py,
--- decode/fields.py, devices/annotator.py) rule for rule; a parity test runs tshark with this file and compares
--- every frame with the Python decoder. The tables between the GENERATED markers come from the package's
--- data files (python3 -m dissector.codegen.lua); a test fails when they are stale.
+-- GENERATED: python3 -m dissector.codegen assembles this file from lua/src/*.lua (one module a stage,
+-- each naming the Python module it mirrors; edit those) and the tables between the GENERATED DATA markers
+-- (the package's data files); `python3 -m dissector.codegen --check` fails when it is not that assembly.
+-- Each module is a function in package.preload, obtained with require("vw3.NAME"); they share one table
+-- of names, vw3.env (each module's exports and DATA, then this script's globals).
 --
 -- Runs on Wireshark 4.0 (Lua 5.2) and 4.4+ (Lua 5.4): no native bitwise operators, no `//`, integer
 -- division with math.floor; XOR comes from `bit` (Wireshark's bitop), `bit32`, or 5.3+ operators
@@ -1105,6 +1106,16 @@ local DATA = {
 }
 -- END GENERATED DATA
 
+-- ---- vw3.crc: lua/src/crc.lua ----
+package.preload["vw3.crc"] = function(...)
+-- vw3.crc: CRC-16/MODBUS on table lookups, XOR that runs on Lua 5.2 and 5.4.
+-- Mirrors dissector/protocol/crc.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
+local M = require("vw3.env")
+local bit, bit32, collectgarbage, load, math, pcall = bit, bit32, collectgarbage, load, math, pcall
+local string, table, type = string, table, type
+local _ENV = M -- (the other modules' names: their exports in M)
+
 local floor = math.floor
 local format = string.format
 local concat = table.concat
@@ -1273,6 +1284,20 @@ local function crc_ok_at(b, i, length)
   return hi * 256 + lo == b[stop] + b[stop + 1] * 256
 end
 
+M.CRC_HI, M.CRC_LO, M.XOR8, M.concat, M.crc16, M.crc_bytes = CRC_HI, CRC_LO, XOR8, concat, crc16, crc_bytes
+M.crc_ok_at, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_string_ok, floor, format
+end
+
+-- ---- vw3.layouts: lua/src/layouts.lua ----
+package.preload["vw3.layouts"] = function(...)
+-- vw3.layouts: the length rules of every function code, and which layouts a slave's code may have.
+-- Mirrors dissector/protocol/table.py (the rules codegen writes into DATA.protocol).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
+local M = require("vw3.env")
+local math, pairs = math, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes
+
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
 local FRAMING = DATA.framing or { max_adu = 256, min_adu = 4, max_slave = 247, noise_item_max = 4096 }
@@ -1332,7 +1357,6 @@ local function scan_any() return MIN_ADU, true end
 
 -- Length rules per function code (request, response): generated from dissector/protocol/table.py.
 local RULES, AS_EXCEPTION = {}, nil
-do
   local makers = {
     fixed = fixed, count8 = count8, count16 = count16,
     diagnostics = function() return diagnostics_rule end,
@@ -1360,7 +1384,6 @@ do
     end
   end
   AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
-end
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
@@ -1403,16 +1426,30 @@ local function shortest_crc(b, i, n, minimum)
   return 0
 end
 
--- (one block: the main chunk of a Lua file may hold at most 200 locals)
+-- The first bytes of a capture its mode (RTU or ASCII) is told from (framing/stream.py, detect_mode).
 local MODE_SAMPLE = 64
-local feed, feed_whole, detect_mode
-local known_requests -- (see below: requests met before)
--- Functions one block hands to another (one table: the main chunk may hold at most 200 locals). Among
+
+M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
+M.MODE_SAMPLE, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MODE_SAMPLE, NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
+M.interpretations, M.shortest_crc = interpretations, shortest_crc
+end
+
+-- ---- vw3.stream: lua/src/stream.lua ----
+package.preload["vw3.stream"] = function(...)
+-- vw3.stream: the byte stream the framers read: record boundaries and times, noise runs, the glitch rule.
+-- Mirrors dissector/framing/stream.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
+local M = require("vw3.env")
+local math, pairs = math, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST
+
+-- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
-do
 local GLITCH_SKIP = FRAMING.glitch_skip or 16
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
@@ -1530,6 +1567,28 @@ local function emit(s, frame, items)
   items[#items + 1] = frame
   expect_after(s, frame)
 end
+
+M.GLITCH, M.GLITCHY_AFTER, M.GLITCH_SKIP, M.add_noise = GLITCH, GLITCHY_AFTER, GLITCH_SKIP, add_noise
+M.boundary_at, M.emit, M.expect_after, M.flush_noise = boundary_at, emit, expect_after, flush_noise
+M.lane, M.time_at = lane, time_at
+end
+
+-- ---- vw3.rtu: lua/src/rtu.lua ----
+package.preload["vw3.rtu"] = function(...)
+-- vw3.rtu: RTU framing: frames by their length rules and CRC, damaged frames, CRC scans, the line's evidence.
+-- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
+local M = require("vw3.env")
+local math, pairs, table = math, pairs, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH
+local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
+local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
+local RESPONSE, RULES, XOR8, add_noise, boundary_at = RESPONSE, RULES, XOR8, add_noise, boundary_at
+local crc16, crc_bytes, crc_ok_at, crc_string_ok, emit = crc16, crc_bytes, crc_ok_at, crc_string_ok, emit
+local format, interpretations, lane, shortest_crc = format, interpretations, lane, shortest_crc
+local time_at = time_at
+local known_requests
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -1979,6 +2038,22 @@ local function run_rtu(s, final, items)
   return i
 end
 
+M.fast_interpretation, M.known_requests, M.rtu_frame = fast_interpretation, known_requests, rtu_frame
+M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good
+end
+
+-- ---- vw3.ascii: lua/src/ascii.lua ----
+package.preload["vw3.ascii"] = function(...)
+-- vw3.ascii: ASCII framing: ':' ... CR LF lines, LRC, the mode of a capture.
+-- Mirrors dissector/framing/ascii.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
+local M = require("vw3.env")
+local ipairs, math, string, tonumber = ipairs, math, string, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local add_noise, crc16, emit, floor, flush_noise, format = add_noise, crc16, emit, floor, flush_noise, format
+local interpretations, time_at = interpretations, time_at
+local detect_mode
+
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
 -- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
@@ -2126,6 +2201,24 @@ local function run_ascii(s, final, items)
   end
   return i
 end
+
+M.detect_mode, M.run_ascii = detect_mode, run_ascii
+end
+
+-- ---- vw3.feed: lua/src/feed.lua ----
+package.preload["vw3.feed"] = function(...)
+-- vw3.feed: feeding records to the framers (whole-record frames first), what stays buffered.
+-- Mirrors dissector/framing/stream.py (feed, finish).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
+local M = require("vw3.env")
+local next, pairs, string = next, pairs, string
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST
+local expect_after, fast_interpretation, flush_noise = expect_after, fast_interpretation, flush_noise
+local interpretations, known_requests, lane, rtu_frame = interpretations, known_requests, lane, rtu_frame
+local run_ascii, run_rtu, whole_crc_good = run_ascii, run_rtu, whole_crc_good
+local feed
+local feed_whole
 
 local NO_BYTES = {} -- (the buffer once every byte is framed: never written to)
 
@@ -2304,7 +2397,20 @@ feed = function(s, bytes, time, boundary, final, built)
   if final then flush_noise(s, items) end
   return items
 end
+
+M.feed, M.feed_whole = feed, feed_whole
 end
+
+-- ---- vw3.decode: lua/src/decode.lua ----
+package.preload["vw3.decode"] = function(...)
+-- vw3.decode: decoding a frame's fields per function code: grammars, handlers, spec limits.
+-- Mirrors dissector/decode/fields.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
+local M = require("vw3.env")
+local ipairs, pairs, string = ipairs, pairs, string
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
+local concat, floor, format, lane = concat, floor, format, lane
 
 -- ---------------------------------------------------------------------------------------------------
 -- Protocol names and limits (dissector/protocol/spec.py).
@@ -2546,7 +2652,6 @@ end
 
 -- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
 local GRAMMARS = { [REQUEST] = {}, [RESPONSE] = {} }
-do
   local PARSERS = {
     read_request = read_request, write_multiple_response = read_request,
     read_bits_response = read_bits_response, read_registers_response = read_registers_response,
@@ -2566,7 +2671,6 @@ do
   }
   for code, name in pairs(DATA.protocol.parsers.request) do GRAMMARS[REQUEST][code] = PARSERS[name] end
   for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
-end
 
 -- Handlers (decode/fields.py): lift out start, quantity, registers, bits, objects; check the spec.
 local H = { [REQUEST] = {}, [RESPONSE] = {} }
@@ -2625,9 +2729,7 @@ local function read_registers_response_handler(f, b)
 end
 
 -- fields._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
--- In a block of its own: the main chunk is at Lua's 200 locals.
 local write_single_coil_handler, write_single_register_handler
-do
   local function check_echo(f, fields)
     local request = request_fields(f)
     if request == nil then return end
@@ -2659,7 +2761,6 @@ do
     check_echo(f, fields)
     f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
   end
-end
 
 local function diagnostics_handler(f, b)
   local fields = f.fields
@@ -2746,7 +2847,6 @@ local function mei_response_handler(f, b)
 end
 
 -- Handlers by name (dissector/decode/fields.py); which code uses which: the generated table.
-do
   local HANDLERS = {
     read_request = read_request_handler, read_bits_response = read_bits_response_handler,
     read_registers_response = read_registers_response_handler, write_single_coil = write_single_coil_handler,
@@ -2773,7 +2873,6 @@ do
   }
   for code, name in pairs(DATA.protocol.handlers.request) do H[REQUEST][code] = HANDLERS[name] end
   for code, name in pairs(DATA.protocol.handlers.response) do H[RESPONSE][code] = HANDLERS[name] end
-end
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
@@ -2801,6 +2900,21 @@ local function decode_frame(f)
     warn(f, format("%s cannot be broadcast (slave 0)", function_name(f.fn)))
   end
 end
+
+M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
+M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
+M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
+M.release_run, M.u16, M.warn = release_run, u16, warn
+end
+
+-- ---- vw3.pairing: lua/src/pairing.lua ----
+package.preload["vw3.pairing"] = function(...)
+-- vw3.pairing: requests and responses paired, timeouts.
+-- Mirrors dissector/decode/pairing.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
+local M = require("vw3.env")
+local _ENV = M -- (the other modules' names: their exports in M)
+local REQUEST, format, release_run, warn = REQUEST, format, release_run, warn
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
@@ -2850,9 +2964,20 @@ local function pair(st, f)
   end
 end
 
-local annotate_with -- defined with the device profiles below: annotate a frame for its device
-local device_now -- (the device a frame is annotated with: profile auto chooses it)
-local summary -- (the Info text of a frame: defined with the display)
+M.pair = pair
+end
+
+-- ---- vw3.maps: lua/src/maps.lua ----
+package.preload["vw3.maps"] = function(...)
+-- vw3.maps: the profile and map preferences, register maps read from CSV.
+-- Mirrors dissector/devices/maps.py, dissector/devices/profiles.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
+local M = require("vw3.env")
+local io, ipairs, math, select, string, tonumber = io, ipairs, math, select, string, tonumber
+local tostring = tostring
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, LIMITS, concat, format = DATA, LIMITS, concat, format
+
 
 -- ---------------------------------------------------------------------------------------------------
 -- Device profiles and register maps (profiles.py, maps.py, devices/annotator.py): names, scaling, the
@@ -2869,7 +2994,7 @@ local ELLIPSIS = "\226\128\166"
 -- selection.py), profile per slave, address style override, map layers.
 local SELECTION = DATA.selection
 local AUTO = SELECTION.auto
-local config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {}, layers = {} }
+config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {}, layers = {} }
 
 local function parse_profile_choice(text)
   -- as build_annotator reads `--profile` options: one default (a profile or auto), SLAVE=PROFILE entries
@@ -2903,7 +3028,6 @@ local function parse_profile_choice(text)
 end
 
 local parse_map_choice
-do -- (a block: the main chunk may hold at most 200 locals)
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
 local MAP_COLUMNS = {
@@ -3178,10 +3302,23 @@ parse_map_choice = function(text, profile_names)
   end
   return layers, errors
 end
+
+M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
+M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
 end
 
+-- ---- vw3.device: lua/src/device.lua ----
+package.preload["vw3.device"] = function(...)
+-- vw3.device: a slave's device: its profile, rows, PLC labels; values interpreted by the map.
+-- Mirrors dissector/devices/build.py, dissector/devices/maps.py (interpret).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
+local M = require("vw3.env")
+local ipairs, next, pairs, setmetatable, table, tonumber = ipairs, next, pairs, setmetatable, table, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, NO_INTERPRETATION, PROFILES, SELECTION = AUTO, NO_INTERPRETATION, PROFILES, SELECTION
+local concat, floor, format = concat, floor, format
+
 local plc_label
-do
 local PLC_TOP = {} -- the highest reference of each base's digit count
 local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
 local function make_plc_label(base, address)
@@ -3216,7 +3353,6 @@ plc_label = function(base, address)
     labels[address] = label
   end
   return label
-end
 end
 
 local function address_name(row, address, label)
@@ -3312,7 +3448,6 @@ end
 
 -- maps.interpret: the scaled value and its display text.
 local interpret, interpret_wide
-do
 local FIXED = setmetatable({}, { __index = function(formats, decimals)
   local text = "%." .. decimals .. "f"
   formats[decimals] = text
@@ -3395,11 +3530,26 @@ interpret_wide = function(row, first, second)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
+
+M.address_name, M.build_device, M.device_for, M.device_of = address_name, build_device, device_for, device_of
+M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
+M.plc_label = plc_label
 end
+
+-- ---- vw3.story: lua/src/story.lua ----
+package.preload["vw3.story"] = function(...)
+-- vw3.story: the parameter story (became protected, readable again) and registers annotated.
+-- Mirrors dissector/devices/story.py, dissector/devices/annotator.py (registers).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
+local M = require("vw3.env")
+local ipairs, next, table = ipairs, next, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local address_name, concat, format, has_note, interpret = address_name, concat, format, has_note, interpret
+local interpret_wide, note, plc_label, register_at = interpret_wide, note, plc_label, register_at
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
-local story = {} -- event(), tell(), plain_rule(): one table, for the main chunk's 200 locals
+local story = {} -- event(), tell(), plain_rule(), repr()
 function story.event(f, what, address, row, label, before, how, frame, now, shared)
   local events = f.events
   if events == nil then events = {}; f.events = events end
@@ -3652,7 +3802,24 @@ local function annotate_list(st, f, device, registers, read)
   story.tell(f)
 end
 
-do -- (a block: the main chunk may hold at most 200 locals)
+M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
+M.plc_base, M.remember_writes, M.story, M.track = plc_base, remember_writes, story, track
+M.words_at = words_at
+end
+
+-- ---- vw3.explain: lua/src/explain.lua ----
+package.preload["vw3.explain"] = function(...)
+-- vw3.explain: device checks of requests, exceptions explained, device objects and diagnostics.
+-- Mirrors dissector/devices/checks.py, dissector/devices/explain.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
+local M = require("vw3.env")
+local ipairs, math, next, tonumber = ipairs, math, next, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
+local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
+local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
+local u16, warn = u16, warn
+
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
 end
@@ -3875,6 +4042,23 @@ local function span_label(f, device)
   end
 end
 lane.span_label = span_label
+
+M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
+M.explain_objects, M.python_repr, M.span_label = explain_objects, python_repr, span_label
+end
+
+-- ---- vw3.selection: lua/src/selection.lua ----
+package.preload["vw3.selection"] = function(...)
+-- vw3.selection: profile auto: which device each slave is, from evidence in the capture.
+-- Mirrors dissector/devices/selection.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
+local M = require("vw3.env")
+local ipairs, math, next, pairs, table = ipairs, math, next, pairs, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
+local RESPONSE, SELECTION, build_device, device_for = RESPONSE, SELECTION, build_device, device_for
+local format, lane, python_repr, register_at = format, lane, python_repr, register_at
+local device_now
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4128,6 +4312,9 @@ select_device = function(st, f, b)
   if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
     local history = st.history[slave]
     history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
+    -- (said on the later passes, where every frame bears this reason: the frame it comes from says so)
+    st.said = st.said or {}
+    st.said[f.number] = { choice.profile, choice.reason }
     return device_for(st, slave)
   end
   st.chosen = st.chosen or {}
@@ -4155,6 +4342,27 @@ device_now = function(st, f, b)
   return device_for(st, f.slave)
 end
 
+M.device_now = device_now
+end
+
+-- ---- vw3.annotator: lua/src/annotator.lua ----
+package.preload["vw3.annotator"] = function(...)
+-- vw3.annotator: a frame annotated with its device; the per-capture state.
+-- Mirrors dissector/devices/annotator.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
+local M = require("vw3.env")
+local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, EXCEPTION, NO_INTERPRETATION, READS = AUTO, EXCEPTION, NO_INTERPRETATION, READS
+local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
+local annotate_registers, check_request, concat = annotate_registers, check_request, concat
+local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
+local explain_objects, format, parse_map_choice = explain_objects, format, parse_map_choice
+local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
+local remember_writes, span_label = remember_writes, span_label
+local describe, register_at, words_at = describe, register_at, words_at
+local annotate_with
+
 annotate_with = function(st, f, b, device)
   if not device then return end
   local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
@@ -4180,7 +4388,6 @@ annotate_with = function(st, f, b, device)
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
-end
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
@@ -4248,6 +4455,51 @@ local function new_state(timeout, mode)
   }
 end
 
+-- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
+-- (its value is the profile's 16#8000, no bytes needed).
+local function register_view(st, f, run, b, index)
+  -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
+  local device = device_of(st, f)
+  local address, value, offset
+  if b ~= nil then
+    address, value, offset = register_at(run, b, index, true)
+  else
+    address, value, offset = (run.start + index) % 0x10000, device.profile.protected_value, -1
+  end
+  local view = { address = address, value = value, offset = offset }
+  if device and address ~= nil then
+    local status = run.status and run.status[index]
+    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+      status = "ok"
+    end
+    local words, second = words_at(device.rows, address, index, run.count), nil
+    if words == 2 and b ~= nil then
+      local _
+      _, second = register_at(run, b, index + 1, true)
+    end
+    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
+      second)
+    view.status, view.words = status, words
+    local base = plc_base(device, f)
+    if base ~= nil then view.label = plc_label(base, address) end
+  end
+  return view
+end
+
+M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
+M.new_state, M.register_view, M.string_of = new_state, register_view, string_of
+end
+
+-- ---- vw3.pack: lua/src/pack.lua ----
+package.preload["vw3.pack"] = function(...)
+-- vw3.pack: what a record keeps of its frames for the later passes, packed (no Python counterpart: the plugin keeps every record for Wireshark's later dissections).
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
+local M = require("vw3.env")
+local assert, load, next, pairs, type = assert, load, next, pairs, type
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat
+
 -- What a record keeps of a frame (or noise run) for the later passes, packed: an array with the keys in
 -- fixed slots. A table with named keys keeps the hash it grew to while the frame was decoded (some 25
 -- keys, 1.3 KB); the array takes 0.3 KB. Requests and responses name each other by record (and the
@@ -4255,7 +4507,6 @@ end
 -- A key the display reads must be in SLOTS or RARE: one missing shows only from the second pass on
 -- (`tshark -2`, which the parity tests run).
 local pack = {}
-do
   local SLOTS = { "kind", "at", "length", "number", "offset", "record", "time", "slave", "fn", "crc",
     "crc_expected", "start", "quantity" }
   -- (then: registers, bits as runs; request record and time, response record; the rare keys)
@@ -4585,10 +4836,27 @@ do
     end
     for index = #list, kept + 1, -1 do list[index] = nil end
   end
+
+M.pack = pack
 end
 
+-- ---- vw3.records: lua/src/records.lua ----
+package.preload["vw3.records"] = function(...)
+-- vw3.records: one record: framed, paired, decoded and annotated in order; the quick lanes.
+-- Mirrors dissector/pipeline.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
+local M = require("vw3.env")
+local ipairs, math, next, pairs, pcall, string = ipairs, math, next, pairs, pcall, string
+local tostring, type = tostring, type
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST = AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST
+local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_with, ceil_bytes, crc_string_ok
+local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
+local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
+local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
+local PROFILES, build_device, new_state = PROFILES, build_device, new_state
+
 local take_items, dissect_record
-do -- (a block: the main chunk may hold at most 200 locals)
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
 local function copy_run(run)
   if run == nil then return nil end
@@ -5041,7 +5309,6 @@ dissect_record = function(st, bytes, time, number)
   take_items(st, feed(st, bytes, time, true, false, built), record)
   return record
 end
-end
 
 -- The end of the capture: frame what still waits (as vw3-decode does at the end of its input), shown in
 -- the last record. Called once, when the first pass is over.
@@ -5060,6 +5327,74 @@ local function finish(st)
   if st.pending ~= nil then release_run(st.pending.registers) end
 end
 
+-- A record's first decoding: the quick lanes, else the general path (dissect_record).
+-- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
+-- record the general path, which the quick lanes must equal (the parity tests run both).
+lane.quick = VW3_QUICK_LANES ~= false
+function lane.decode(st, bytes, n, time, number)
+  if lane.quick then
+    local kept, info = lane.answer(st, bytes, n, time, number)
+    if kept ~= nil then return kept, n, info end
+    local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
+    if record ~= nil then return record, n, record[1].info end
+  end
+  return dissect_record(st, bytes, time, number), n
+end
+
+-- Profile `auto` over the whole capture (app/preselect.py, issue 27): once the first pass is over, a
+-- slave's frames met before its choice (or before it was taken back) are decoded again, the whole
+-- capture in order, with every slave's device the one chosen over the capture from its first frame
+-- (annotations, statuses and the parameter story follow the device). Framing and pairing give the same
+-- items again; only what the device says changes. `tshark -2` and Wireshark's later dissections then
+-- show what vw3-decode shows reading a file; a single pass stays as vw3-decode reading a stream.
+function lane.again(st)
+  local again = st.again
+  st.again = nil
+  if again == nil or st.said == nil then return end -- (nothing chosen after a slave's first frame)
+  local fresh = new_state(st.timeout, st.mode)
+  local frozen, chosen, history = {}, {}, {}
+  for number, reason in pairs(st.said) do frozen[number] = reason end
+  for slave, judged in pairs(st.judged or {}) do
+    local choice = judged.choice
+    if choice ~= nil and PROFILES[choice.profile] ~= nil then
+      local device = build_device(PROFILES[choice.profile], slave)
+      chosen[slave], fresh.devices[slave] = choice.profile, device
+      history[slave] = { { number = 0, device = device, reason = choice.reason } }
+    end
+  end
+  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
+  local records = st.records
+  for _, number in ipairs(again.order) do
+    local bytes, time = again.bytes[number], again.times[number]
+    if time == false then time = nil end
+    local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
+    if not ok then result = { length = #bytes, error = tostring(result) } end
+    fresh.records[number] = result
+    records[number] = nil -- (the first decoding of the record is done with)
+    again.bytes[number] = nil
+    if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+  end
+  local ok, problem = pcall(finish, fresh)
+  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  -- (the same table: `state` and udp_states keep naming it)
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end
+
+M.dissect_record, M.finish, M.take_items = dissect_record, finish, take_items
+end
+
+-- ---- vw3.api: lua/src/api.lua ----
+package.preload["vw3.api"] = function(...)
+-- vw3.api: the pure part's entry points (tests load vw3.lua outside Wireshark).
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
+local M = require("vw3.env")
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, configure, crc16, dissect_record = DATA, configure, crc16, dissect_record
+local exception_name, finish, function_name, new_state = exception_name, finish, function_name, new_state
+local pack = pack
+
 local vw3 = {
   DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,
   settle = pack.settle,
@@ -5067,19 +5402,21 @@ local vw3 = {
   config = function() return config end,
 }
 
--- ---------------------------------------------------------------------------------------------------
--- Wireshark glue.
-if Proto == nil then
-  return vw3 -- loaded outside Wireshark (lua5.x tests without a stub): the pure part only
+M.vw3 = vw3
 end
 
-if set_plugin_info then
-  set_plugin_info({
-    version = "1.0.0",
-    description = "Modbus RTU/ASCII for Altivar 71 (VW3 A3 303) and SEL-749M, as vw3-decode decodes it",
-    repository = "vw3-dissector (lua/vw3.lua)",
-  })
-end
+-- ---- vw3.fields: lua/src/fields.lua ----
+package.preload["vw3.fields"] = function(...)
+-- vw3.fields: Wireshark: the protocol, its fields, expert infos and preferences.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
+local M = require("vw3.env")
+local Proto, ProtoExpert, ProtoField, base, expert = Proto, ProtoExpert, ProtoField, base, expert
+local frametype, pairs = frametype, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
+local NOISE, REQUEST, RESPONSE, configure, new_state = NOISE, REQUEST, RESPONSE, configure, new_state
+local vw3 = vw3
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
@@ -5199,20 +5536,24 @@ proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
   "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
 proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
 proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
+proto.prefs.quick_lanes = Pref.bool("Quick lanes", VW3_QUICK_LANES ~= false,
+  "Take the usual polling records (a known request, its usual answer, a setpoint write) by a shorter path "
+  .. "that gives the same dissection; off: every record by the general path")
 proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
   "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
     .. "Protocols > DLT_USER, payload protocol vw3)")
 
-local state = new_state(1.0)
+state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
 -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
-local rtac_times = {}
+rtac_times = {}
 vw3.state = function() return state end
 
 local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
 
 local function apply_prefs()
   configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style], proto.prefs.maps)
+  lane.quick = proto.prefs.quick_lanes
 end
 
 local function timeout_pref()
@@ -5220,7 +5561,6 @@ local function timeout_pref()
   return proto.prefs.timeout_ms / 1000
 end
 
-local udp_states, tcp_states, tcp_records, tcp_call -- (defined with the dissector below)
 
 function proto.init()
   rtac_times = {}
@@ -5228,6 +5568,28 @@ function proto.init()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
+
+M.KIND_VALUES, M.MODE_NAMES, M.STATUS_VALUES = KIND_VALUES, MODE_NAMES, STATUS_VALUES
+M.apply_prefs, M.ex, M.pf, M.proto, M.timeout_pref = apply_prefs, ex, pf, proto, timeout_pref
+end
+
+-- ---- vw3.tree: lua/src/tree.lua ----
+package.preload["vw3.tree"] = function(...)
+-- vw3.tree: Wireshark: a frame's tree (registers, bits, objects, links, notes) and Info text.
+-- Mirrors dissector/render/detail.py, dissector/render/summary.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
+local M = require("vw3.env")
+local NSTime, ProtoField, ipairs, pairs, setmetatable = NSTime, ProtoField, ipairs, pairs, setmetatable
+local string, tonumber, tostring = string, tonumber, tostring
+local _ENV = M -- (the other modules' names: their exports in M)
+local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
+local NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST = NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST
+local RESPONSE, STATUS_VALUES, bit_at, concat, describe = RESPONSE, STATUS_VALUES, bit_at, concat, describe
+local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
+local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
+local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
+local register_view = register_view
+local summary
 
 local function add_text(tree, expert_info, text)
   tree:add_proto_expert_info(expert_info, text)
@@ -5323,43 +5685,11 @@ local function frame_bytes(f, tvb)
   return b
 end
 
--- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
--- (its value is the profile's 16#8000, no bytes needed).
-local function register_view(st, f, run, b, index)
-  -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
-  local device = device_of(st, f)
-  local address, value, offset
-  if b ~= nil then
-    address, value, offset = register_at(run, b, index, true)
-  else
-    address, value, offset = (run.start + index) % 0x10000, device.profile.protected_value, -1
-  end
-  local view = { address = address, value = value, offset = offset }
-  if device and address ~= nil then
-    local status = run.status and run.status[index]
-    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
-      status = "ok"
-    end
-    local words, second = words_at(device.rows, address, index, run.count), nil
-    if words == 2 and b ~= nil then
-      local _
-      _, second = register_at(run, b, index + 1, true)
-    end
-    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
-      second)
-    view.status, view.words = status, words
-    local base = plc_base(device, f)
-    if base ~= nil then view.label = plc_label(base, address) end
-  end
-  return view
-end
-
 -- Per-parameter fields (vw3.atv71.rfr, vw3.sel749m.ia, ...): one per row of the built-in register maps,
 -- its scaled value (or its value where the map gives no scale), so that an IO graph or a column can
 -- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
 -- is read).
 local PARAMETER_FIELDS = {}
-do
   local taken = {}
   for profile_name, profile in pairs(PROFILES) do
     for _, row in pairs(profile.map or {}) do
@@ -5380,7 +5710,6 @@ do
   for _, field in pairs(pf) do field_list[#field_list + 1] = field end
   for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
   proto.fields = field_list
-end
 
 -- A register's text fields have one occurrence per register, empty (and hidden) where the register has
 -- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
@@ -5456,7 +5785,6 @@ local function add_register(tree, tvb, f, reg, range, full)
   end
 end
 
-do -- (a block: the main chunk may hold at most 200 locals)
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
 local DECIMAL = setmetatable({}, { __index = function(texts, number)
@@ -5482,7 +5810,6 @@ summary = function(f)
       .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
-end
 end
 
 local function show_frame(st, f, tvb, tree, pinfo, full)
@@ -5696,6 +6023,23 @@ local function show_noise(item, tvb, tree, full, k)
   return t
 end
 
+M.add_register, M.add_text, M.show_frame, M.show_noise = add_register, add_text, show_frame, show_noise
+M.summary, M.unseen = summary, unseen
+end
+
+-- ---- vw3.show: lua/src/show.lua ----
+package.preload["vw3.show"] = function(...)
+-- vw3.show: Wireshark: a record's items shown, the first dissection of a record, the end of the first pass.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
+local M = require("vw3.env")
+local ByteArray, ipairs, pairs, pcall, tostring, type = ByteArray, ipairs, pairs, pcall, tostring, type
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, EXCEPTION, NOISE, PROFILES, add_text = AUTO, EXCEPTION, NOISE, PROFILES, add_text
+local build_device, concat, dissect_record, ex, finish = build_device, concat, dissect_record, ex, finish
+local format, lane, new_state, pack, pf, proto = format, lane, new_state, pack, pf, proto
+local show_frame, show_noise, summary, unseen = show_frame, show_noise, summary, unseen
+
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
 -- the record's time otherwise.
@@ -5713,7 +6057,6 @@ end
 -- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
 -- Wireshark without TreeItem.text or .visible.
 local tree_mode
-do
   local function tree_text(tree) return tree.text end
   local function tree_visible(tree) return tree.visible end
   local function tree_len(tree) return tree.len end
@@ -5730,7 +6073,6 @@ do
     end
     return true
   end
-end
 
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
@@ -5741,7 +6083,6 @@ local function item_tvb(item, tvb)
 end
 
 local show_record
-do -- (a block: the main chunk may hold at most 200 locals)
 -- The item the record-level notes go on: the first item shown, else one of their own.
 local function anchored(anchor, tree, full, tvb, n)
   if anchor == nil then
@@ -5852,52 +6193,11 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
   end
 end
 end
-end
 
 -- Streams of records: the serial capture's (state), and one per UDP conversation.
 udp_states = {}
 
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
--- Profile `auto` over the whole capture (app/preselect.py, issue 27): once the first pass is over, a
--- slave's frames met before its choice (or before it was taken back) are decoded again, the whole
--- capture in order, with every slave's device the one chosen over the capture from its first frame
--- (annotations, statuses and the parameter story follow the device). Framing and pairing give the same
--- items again; only what the device says changes. `tshark -2` and Wireshark's later dissections then
--- show what vw3-decode shows reading a file; a single pass stays as vw3-decode reading a stream.
-function lane.again(st)
-  local again = st.again
-  st.again = nil
-  if again == nil or st.said == nil then return end -- (nothing chosen after a slave's first frame)
-  local fresh = new_state(st.timeout, st.mode)
-  local frozen, chosen, history = {}, {}, {}
-  for number, reason in pairs(st.said) do frozen[number] = reason end
-  for slave, judged in pairs(st.judged or {}) do
-    local choice = judged.choice
-    if choice ~= nil and PROFILES[choice.profile] ~= nil then
-      local device = build_device(PROFILES[choice.profile], slave)
-      chosen[slave], fresh.devices[slave] = choice.profile, device
-      history[slave] = { { number = 0, device = device, reason = choice.reason } }
-    end
-  end
-  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
-  local records = st.records
-  for _, number in ipairs(again.order) do
-    local bytes, time = again.bytes[number], again.times[number]
-    if time == false then time = nil end
-    local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
-    if not ok then result = { length = #bytes, error = tostring(result) } end
-    fresh.records[number] = result
-    records[number] = nil -- (the first decoding of the record is done with)
-    again.bytes[number] = nil
-    if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
-  end
-  local ok, problem = pcall(finish, fresh)
-  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
-  -- (the same table: `state` and udp_states keep naming it)
-  for key in pairs(st) do st[key] = nil end
-  for key, value in pairs(fresh) do st[key] = value end
-end
-
 local function finish_all()
   for _, st in pairs(udp_states) do
     if not st.finished then
@@ -5934,14 +6234,25 @@ local function dissect_now(st, tvb, pinfo, number)
   return lane.decode(st, bytes, n, time, number)
 end
 
--- A record's first decoding: the quick lanes, else the general path (dissect_record).
-function lane.decode(st, bytes, n, time, number)
-  local kept, info = lane.answer(st, bytes, n, time, number)
-  if kept ~= nil then return kept, n, info end
-  local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
-  if record ~= nil then return record, n, record[1].info end
-  return dissect_record(st, bytes, time, number), n
+M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
+M.tree_mode = tree_mode
 end
+
+-- ---- vw3.dissector: lua/src/dissector.lua ----
+package.preload["vw3.dissector"] = function(...)
+-- vw3.dissector: Wireshark: the dissectors (serial records, RTU over TCP and UDP), registration.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
+local M = require("vw3.env")
+local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto
+local math, package, pcall, tostring, type, wtap = math, package, pcall, tostring, type, wtap
+local _ENV = M -- (the other modules' names: their exports in M)
+local MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE = MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE
+local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
+local detect_mode, device_for, device_now, dissect_now = detect_mode, device_for, device_now, dissect_now
+local ex, feed, finish_all, lane, new_state, pack, pf = ex, feed, finish_all, lane, new_state, pack, pf
+local proto, record_time, show_record, take_items = proto, record_time, show_record, take_items
+local timeout_pref, tree_mode, vw3 = timeout_pref, tree_mode, vw3
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
@@ -5989,7 +6300,6 @@ local function dissect_records(st, tvb, pinfo, tree)
   return n
 end
 
-do -- (a block: the main chunk may hold at most 200 locals)
 -- A connection or conversation by its two ends, the same both ways.
 local function conversation_key(pinfo)
   local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
@@ -6079,13 +6389,11 @@ function proto.dissector(tvb, pinfo, tree)
   end
   return dissect_records(state, tvb, pinfo, tree)
 end
-end
 
 -- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)
 -- is the user's to map (Preferences > Protocols > DLT_USER: payload protocol "vw3"): a plugin that took
 -- it over would override a user who mapped it to mbrtu. The "user0" preference does it for one session.
 local wtap_encap = DissectorTable.get("wtap_encap")
-do -- (a block: the main chunk may hold at most 200 locals)
 local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
 if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
 
@@ -6102,7 +6410,6 @@ if ok_original and rtac_original ~= nil then
     return rtac_original:call(tvb, pinfo, tree)
   end
   wtap_encap:add(RTAC_ENCAP, rtac_time)
-end
 end
 DissectorTable.get("tcp.port"):add_for_decode_as(proto)
 DissectorTable.get("udp.port"):add_for_decode_as(proto)
@@ -6140,3 +6447,32 @@ function proto.prefs_changed()
 end
 
 return vw3
+end
+
+-- The modules in load order: those that need no Wireshark API first (plain lua5.2/lua5.4 loads them,
+-- tests/conformance runs them), then the Wireshark glue.
+local PURE = { "crc", "layouts", "stream", "rtu", "ascii", "feed", "decode", "pairing", "maps", "device", "story",
+  "explain", "selection", "annotator", "pack", "records", "api" }
+local WIRESHARK = { "fields", "tree", "show", "dissector" }
+
+-- (a second load of this file, as the tests do, starts from fresh modules)
+for name in pairs(package.loaded) do
+  if type(name) == "string" and name:sub(1, 4) == "vw3." then package.loaded[name] = nil end
+end
+local env = setmetatable({ DATA = DATA }, { __index = _ENV })
+package.loaded["vw3.env"] = env
+for _, name in ipairs(PURE) do require("vw3." .. name) end
+
+if Proto == nil then
+  return env.vw3 -- loaded outside Wireshark (lua5.x tests without a stub): the pure part only
+end
+
+if set_plugin_info then
+  set_plugin_info({
+    version = "1.0.0",
+    description = "Modbus RTU/ASCII for Altivar 71 (VW3 A3 303) and SEL-749M, as vw3-decode decodes it",
+    repository = "vw3-dissector (lua/vw3.lua)",
+  })
+end
+
+for _, name in ipairs(WIRESHARK) do require("vw3." .. name) end

@@ -1,16 +1,20 @@
-"""Generate the data block of the Wireshark Lua plugin (lua/vw3.lua) from the Python package's data.
+"""Assemble the Wireshark Lua plugin (lua/vw3.lua) from its modules and the Python package's data.
 
 The plugin must decode exactly as the Python decoder does, so every table it needs (function and
 exception names, spec limits, framing constants, device profiles and register maps) is written here
-from the same sources the Python side loads, never copied by hand. The block sits between two marker
-lines inside lua/vw3.lua, so the plugin stays one installable file.
+from the same sources the Python side loads, never copied by hand, between two marker lines. Its logic
+is hand-written in lua/src/: one module a stage (each names the Python module it mirrors), and
+lua/src/main.lua, the entry, which lists them in load order (PURE: no Wireshark API, then WIRESHARK).
+lua/vw3.lua is their assembly, one installable file: main.lua's header comment, the generated data,
+each module as a function in package.preload["vw3.NAME"] (obtained with require), then main.lua's body.
 
-    python3 -m dissector.codegen.lua            # rewrite the block in lua/vw3.lua
-    python3 -m dissector.codegen.lua --check    # exit 1 when the block is stale (the tests do the same)
+    python3 -m dissector.codegen.lua            # rewrite lua/vw3.lua
+    python3 -m dissector.codegen.lua --check    # exit 1 when lua/vw3.lua is not that assembly
 """
 from __future__ import annotations
 
 import argparse
+import re
 import sys
 from pathlib import Path
 from typing import Any
@@ -24,6 +28,9 @@ from dissector.protocol.spec import SPEC
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)"
 END = "-- END GENERATED DATA"
 PLUGIN = Path(__file__).resolve().parents[2] / "lua" / "vw3.lua"
+SRC = PLUGIN.parent / "src"
+MAIN = "main.lua"
+MODULE_LINE = "-- ---- vw3.{name}: lua/src/{name}.lua ----"
 
 
 def lua_literal(value: Any, indent: str = "") -> str:
@@ -231,47 +238,90 @@ def _row_table(row: Any) -> dict[str, Any]:
     return out
 
 
-def render_block() -> str:
+def render_data() -> str:
+    """The generated data: `local DATA = {...}` between the markers."""
     data = plugin_data()
     lines = [BEGIN, "local DATA = " + lua_literal(data), END]
     return "\n".join(lines) + "\n"
 
 
-def _split(text: str) -> tuple[str, str, str]:
-    if text.count(BEGIN) != 1 or text.count(END) != 1:
-        raise GenerateError(f"{PLUGIN} must hold exactly one '{BEGIN}' line and one '{END}' line")
-    head, rest = text.split(BEGIN + "\n", 1)
-    block, tail = rest.split(END + "\n", 1)
-    return head, BEGIN + "\n" + block + END + "\n", tail
+def module_names(main_text: str) -> list[str]:
+    """The modules main.lua loads, in order: its PURE list, then its WIRESHARK list."""
+    names = []
+    for list_name in ("PURE", "WIRESHARK"):
+        match = re.search(r"^local %s = \{([^}]*)\}" % list_name, main_text, re.M)
+        if match is None:
+            raise GenerateError(f"{MAIN} must list its modules as `local {list_name} = {{ \"name\", ... }}`")
+        names += re.findall(r'"([a-z_][a-z0-9_]*)"', match.group(1))
+    return names
+
+
+def render_plugin(src: Path = SRC) -> str:
+    """lua/vw3.lua as the modules in `src` and the package's data assemble it."""
+    try:
+        main_text = (src / MAIN).read_text(encoding="utf-8")
+    except OSError as error:
+        raise GenerateError(f"{src / MAIN}: {error.strerror or error}") from None
+    lines = main_text.split("\n")
+    cut = 0
+    while cut < len(lines) and lines[cut].startswith("--"):
+        cut += 1
+    header, body = "\n".join(lines[:cut]), "\n".join(lines[cut:]).lstrip("\n")
+    parts = [header, "", render_data()]
+    for name in module_names(main_text):
+        path = src / f"{name}.lua"
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as error:
+            raise GenerateError(f"{path}: {error.strerror or error} (listed in {MAIN})") from None
+        parts.append(MODULE_LINE.format(name=name))
+        parts.append(f'package.preload["vw3.{name}"] = function(...)')
+        parts.append(text.rstrip("\n"))
+        parts.append("end")
+        parts.append("")
+    parts.append(body.rstrip("\n"))
+    return "\n".join(parts) + "\n"
+
+
+def render_block() -> str:
+    """The whole plugin as it must be (python3 -m dissector.codegen compares it with current_block())."""
+    return render_plugin()
 
 
 def current_block(path: Path = PLUGIN) -> str:
-    return _split(path.read_text(encoding="utf-8"))[1]
+    """The plugin as it is."""
+    return path.read_text(encoding="utf-8")
 
 
-def write_block(path: Path = PLUGIN) -> bool:
-    """Rewrite the generated block; True when the file changed."""
-    text = path.read_text(encoding="utf-8")
-    head, old, tail = _split(text)
-    new = render_block()
+def write_block(path: Path = PLUGIN, src: Path = SRC) -> bool:
+    """Write the assembly; True when the file changed."""
+    new = render_plugin(src)
+    old = path.read_text(encoding="utf-8") if path.exists() else None
     if new == old:
         return False
-    path.write_text(head + new + tail, encoding="utf-8")
+    path.write_text(new, encoding="utf-8")
     return True
+
+
+def stale(path: Path = PLUGIN, src: Path = SRC) -> bool:
+    """lua/vw3.lua is not the assembly of `src` and the package's data."""
+    return current_block(path) != render_plugin(src)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python3 -m dissector.codegen.lua", description=__doc__.splitlines()[0])
     parser.add_argument("--check", action="store_true", help="exit 1 when lua/vw3.lua is stale")
     parser.add_argument("--plugin", type=Path, default=PLUGIN, help="plugin file (default: lua/vw3.lua)")
+    parser.add_argument("--src", type=Path, default=SRC, help="its modules (default: lua/src)")
     args = parser.parse_args(argv)
     try:
         if args.check:
-            if current_block(args.plugin) != render_block():
-                print(f"{args.plugin}: generated data is stale; run python3 -m dissector.codegen.lua", file=sys.stderr)
+            if stale(args.plugin, args.src):
+                print(f"{args.plugin}: stale, not the assembly of {args.src} and the package's data; "
+                      "run python3 -m dissector.codegen", file=sys.stderr)
                 return 1
             return 0
-        changed = write_block(args.plugin)
+        changed = write_block(args.plugin, args.src)
     except (OSError, GenerateError) as error:
         print(f"error: {error}", file=sys.stderr)
         return 2

@@ -189,9 +189,10 @@ def case(name: str, mode: str, data: bytes) -> dict[str, Any]:
     decoding = [_decoding(decode_frame(item)) for item in paired if isinstance(item, Frame)]
     annotator = build_annotator([PROFILE], [])
     choose_profiles(annotator, [Chunk(data)], mode, None, None)
-    selection = [{"slave": c.slave, "profile": c.profile, "reason": c.reason, "frame": c.frame} for c in annotator.choices()]
     dissector = Dissector(_framer(mode), annotate=annotator)
     annotated = dissector.feed(Chunk(data)) + dissector.finish()
+    # (after the decode: choices() lists the slaves the decode met, each with its choice or none)
+    selection = [{"slave": c.slave, "profile": c.profile, "reason": c.reason, "frame": c.frame} for c in annotator.choices()]
     annotation = [_annotation(item) for item in annotated if isinstance(item, Frame)]
     return {
         "name": name, "mode": mode, "input": data.hex(), "profile": PROFILE,

@@ -1,4 +1,5 @@
-"""The plugin's generated data block (lua/vw3.lua) is current, and its Lua literals are exact."""
+"""The plugin (lua/vw3.lua) is the assembly of its modules (lua/src) and the generated data, and the data's
+Lua literals are exact."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -10,8 +11,10 @@ from dissector.protocol.spec import SPEC
 
 
 def test_generated_block_is_current() -> None:
-    # Fails when a data file (modbus.toml, profiles/*.toml, maps/*.csv) changed without regenerating.
+    # Fails when a data file (modbus.toml, profiles/*.toml, maps/*.csv) or a module of lua/src changed
+    # without regenerating.
     assert luagen.current_block() == luagen.render_block(), "run: python3 -m dissector.codegen.lua"
+    assert luagen.render_data() in luagen.current_block()
 
 
 def test_check_command_reports_a_stale_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -24,11 +27,12 @@ def test_check_command_reports_a_stale_file(tmp_path: Path, capsys: pytest.Captu
     assert stale.read_text() == luagen.PLUGIN.read_text()
 
 
-def test_missing_markers_are_an_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    broken = tmp_path / "vw3.lua"
-    broken.write_text("local DATA = {}\n")
-    assert luagen.main(["--plugin", str(broken)]) == 2
-    assert "must hold exactly one" in capsys.readouterr().err
+def test_a_main_without_its_module_lists_is_an_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = tmp_path / "src"
+    src.mkdir()
+    (src / "main.lua").write_text("-- entry\nrequire('vw3.crc')\n")
+    assert luagen.main(["--plugin", str(tmp_path / "vw3.lua"), "--src", str(src)]) == 2
+    assert "must list its modules" in capsys.readouterr().err
 
 
 def test_lua_literals() -> None:

@@ -1,0 +1,141 @@
+-- vw3.annotator: a frame annotated with its device; the per-capture state.
+-- Mirrors dissector/devices/annotator.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
+local M = require("vw3.env")
+local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, EXCEPTION, NO_INTERPRETATION, READS = AUTO, EXCEPTION, NO_INTERPRETATION, READS
+local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
+local annotate_registers, check_request, concat = annotate_registers, check_request, concat
+local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
+local explain_objects, format, parse_map_choice = explain_objects, format, parse_map_choice
+local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
+local remember_writes, span_label = remember_writes, span_label
+local describe, register_at, words_at = describe, register_at, words_at
+local annotate_with
+
+annotate_with = function(st, f, b, device)
+  if not device then return end
+  local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
+  if special_name ~= nil then f.function_text = special_name end
+  if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
+  local kind = f.kind
+  if kind == REQUEST then
+    check_request(f, device)
+  elseif kind == EXCEPTION then
+    explain_exception(st, f, device)
+    return
+  end
+  local request = f.request
+  if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
+      and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
+    -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+    remember_writes(device.seen, f.number, request.registers, request.registers.b)
+  end
+  local registers = f.registers
+  if registers ~= nil and registers.count > 0 then
+    annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
+    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f.number, registers, b) end
+  end
+  if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
+  if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
+end
+
+-- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
+-- its status, no value. Made when shown, from the request and the device, rather than kept.
+local function inferred_registers(st, f)
+  local request = f.request
+  local device = device_of(st, f)
+  local base = plc_base(device, request)
+  local text = format("no value: exception %02X", f.exception_code)
+  local out = {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    local row = device.rows[address]
+    out[index + 1] = { address = address, row = row, text = text, offset = -1,
+      status = row == nil and "non-existent" or "protected", label = base and plc_label(base, address) or nil }
+  end
+  return out
+end
+
+local function configure(profiles_text, style, maps_text)
+  local default, per_slave, errors = parse_profile_choice(profiles_text)
+  local in_use = {}
+  if default ~= AUTO then in_use[default] = true end
+  if default == AUTO then
+    -- (auto: the fallback and every candidate are profiles in use, as build_annotator names them)
+    in_use[SELECTION.fallback] = true
+    for _, name in ipairs(SELECTION.candidates) do in_use[name] = true end
+  end
+  for _, name in pairs(per_slave) do in_use[name] = true end
+  local layers, map_errors = parse_map_choice(maps_text, in_use)
+  for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end
+  config = { default = default, per_slave = per_slave, style = style, errors = errors, layers = layers }
+end
+
+-- ---------------------------------------------------------------------------------------------------
+-- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
+-- the standalone tests both call it.
+local unpack = table.unpack or unpack
+
+-- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
+local function string_of(b, first, count)
+  local parts = {}
+  local k = 0
+  while k < count do
+    local take = math.min(count - k, 200)
+    parts[#parts + 1] = string.char(unpack(b, first + k, first + k + take - 1))
+    k = k + take
+  end
+  return concat(parts)
+end
+
+local function new_state(timeout, mode)
+  -- timeout: seconds after which a response is flagged as late (nil: never), as vw3-decode --timeout.
+  -- mode: "rtu" or "ascii"; nil: chosen from the first record's bytes, as vw3-decode does.
+  return {
+    expect = nil, pending = nil, count = 0, records = {}, devices = {}, timeout = timeout,
+    mode = mode,
+    -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
+    b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil, items = {},
+    glitches_only = true, noise_cut = false, glitch_runs = 0, -- (stream.py: the glitch rule's state)
+    open = {}, -- records some of whose bytes are not framed yet (oldest first)
+    last = nil, -- the last record fed
+    unpacked = {}, -- record, index of each item not packed yet (pack.settle)
+    flat = {}, flat_n = 0, -- the items packed as numbers (pack.settle)
+  }
+end
+
+-- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
+-- (its value is the profile's 16#8000, no bytes needed).
+local function register_view(st, f, run, b, index)
+  -- (the device and whether 16#8000 statuses apply are found again rather than kept with the run)
+  local device = device_of(st, f)
+  local address, value, offset
+  if b ~= nil then
+    address, value, offset = register_at(run, b, index, true)
+  else
+    address, value, offset = (run.start + index) % 0x10000, device.profile.protected_value, -1
+  end
+  local view = { address = address, value = value, offset = offset }
+  if device and address ~= nil then
+    local status = run.status and run.status[index]
+    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+      status = "ok"
+    end
+    local words, second = words_at(device.rows, address, index, run.count), nil
+    if words == 2 and b ~= nil then
+      local _
+      _, second = register_at(run, b, index + 1, true)
+    end
+    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
+      second)
+    view.status, view.words = status, words
+    local base = plc_base(device, f)
+    if base ~= nil then view.label = plc_label(base, address) end
+  end
+  return view
+end
+
+M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
+M.new_state, M.register_view, M.string_of = new_state, register_view, string_of

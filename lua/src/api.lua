@@ -1,0 +1,17 @@
+-- vw3.api: the pure part's entry points (tests load vw3.lua outside Wireshark).
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
+local M = require("vw3.env")
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, configure, crc16, dissect_record = DATA, configure, crc16, dissect_record
+local exception_name, finish, function_name, new_state = exception_name, finish, function_name, new_state
+local pack = pack
+
+local vw3 = {
+  DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,
+  settle = pack.settle,
+  function_name = function_name, exception_name = exception_name, configure = configure,
+  config = function() return config end,
+}
+
+M.vw3 = vw3

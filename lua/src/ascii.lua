@@ -1,0 +1,159 @@
+-- vw3.ascii: ASCII framing: ':' ... CR LF lines, LRC, the mode of a capture.
+-- Mirrors dissector/framing/ascii.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
+local M = require("vw3.env")
+local ipairs, math, string, tonumber = ipairs, math, string, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local add_noise, crc16, emit, floor, flush_noise, format = add_noise, crc16, emit, floor, flush_noise, format
+local interpretations, time_at = interpretations, time_at
+local detect_mode
+
+-- ---------------------------------------------------------------------------------------------------
+-- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
+-- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
+local COLON, CR, LF = 0x3A, 0x0D, 0x0A
+local MAX_BINARY = 255
+local MAX_ASCII = 1 + 2 * MAX_BINARY + 2
+local MIN_BINARY = 3
+local ASCII_SHARE = 0.9
+
+local function is_hex(byte)
+  return (byte >= 48 and byte <= 57) or (byte >= 65 and byte <= 70) or (byte >= 97 and byte <= 102)
+end
+
+detect_mode = function(sample)
+  -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
+  local colon = sample:find(":", 1, true)
+  if colon == nil then return "rtu" end
+  local following = sample:sub(colon + 1, colon + 2)
+  if #following == 0 then return "rtu" end
+  for k = 1, #following do
+    if not is_hex(following:byte(k)) then return "rtu" end
+  end
+  local inside = 0
+  for k = 1, #sample do
+    local byte = sample:byte(k)
+    if is_hex(byte) or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+  end
+  if inside >= ASCII_SHARE * #sample then return "ascii" end
+  return "rtu"
+end
+
+local function lrc(bytes_, count)
+  local sum = 0
+  for k = 0, count - 1 do sum = sum + bytes_[k] end
+  return (256 - sum % 256) % 256
+end
+
+local function find_byte(b, value, from, to)
+  for k = from, to - 1 do
+    if b[k] == value then return k end
+  end
+  return nil
+end
+
+local function classify_ascii(s, adu, count)
+  -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
+  local slave, code = adu[0], adu[1]
+  local crc = crc16(adu, 0, count)
+  local equivalent = {}
+  for k = 0, count - 1 do equivalent[k] = adu[k] end
+  equivalent[count] = crc % 256
+  equivalent[count + 1] = floor(crc / 256)
+  local length = count + 2
+  for _, interpretation in ipairs(interpretations(s, slave, code)) do
+    -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
+    local found, is_scan = interpretation[2](equivalent, 0, length)
+    if found == length or (is_scan and length >= found) then return interpretation[1] end
+  end
+  return nil
+end
+
+-- A run of ASCII bytes that is no frame, with the reason: a noise item of its own.
+local function reject(s, at, length, reason, items)
+  flush_noise(s, items)
+  add_noise(s, at, at + length, reason, items)
+  flush_noise(s, items)
+end
+
+local function ascii_candidate(s, at, length, items)
+  -- b[at .. at + length - 1]: ':' digits CR LF
+  local b = s.b
+  -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py).
+  local lost_cr = length < 3 or b[at + length - 2] ~= CR
+  local digits = length - 3
+  if lost_cr then digits = length - 2 end
+  local lower = false
+  if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+  for k = at + 1, at + digits do
+    if not is_hex(b[k]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if b[k] >= 97 then lower = true end
+  end
+  local bin, count = {}, floor(digits / 2)
+  for k = 0, count - 1 do
+    bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
+  end
+  if count < MIN_BINARY then return reject(s, at, length, "ASCII frame too short", items) end
+  local slave, code = bin[0], bin[1]
+  local received, expected = bin[count - 1], lrc(bin, count - 1)
+  local check = "LRC ok"
+  if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
+  local kind = classify_ascii(s, bin, count - 1)
+  if kind == nil then
+    return reject(s, at, length, format("no Modbus layout fits function %d (%s)", code, check), items)
+  end
+  local offset = s.base + at
+  local frame = {
+    kind = kind, offset = offset, length = length, slave = slave, fn = code % 128,
+    crc = received, crc_expected = expected, ascii = true,
+    b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
+  }
+  if lost_cr then frame.warnings = { "line ends with LF without CR (the spec ends a frame with CR LF)" } end
+  if lower then
+    frame.warnings = frame.warnings or {}
+    frame.warnings[#frame.warnings + 1] = "lower-case hex digits (the spec wants upper case)"
+  end
+  emit(s, frame, items)
+end
+
+local function run_ascii(s, final, items)
+  local b, n = s.b, s.n
+  local i = 0
+  while i < n do
+    if b[i] ~= COLON then
+      local stop = find_byte(b, COLON, i, n) or n
+      add_noise(s, i, stop, "outside an ASCII frame", items)
+      i = stop
+    else
+      local limit = math.min(n, i + MAX_ASCII)
+      -- (the first LF or ':' after it, in one scan that stops there: two scans to the limit cost 513
+      -- reads a ':' in a flood of them)
+      local stop = nil
+      for k = i + 1, limit - 1 do
+        local byte = b[k]
+        if byte == LF or byte == COLON then
+          stop = k
+          break
+        end
+      end
+      if stop ~= nil and b[stop] == COLON then
+        reject(s, i, stop - i, "ASCII frame cut short by the next ':'", items)
+        i = stop
+      elseif stop ~= nil then
+        ascii_candidate(s, i, stop + 1 - i, items)
+        i = stop + 1
+      elseif n - i >= MAX_ASCII then
+        reject(s, i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII), items)
+        i = i + MAX_ASCII
+      elseif final then
+        reject(s, i, n - i, "ASCII frame cut off by the end of the capture", items)
+        i = n
+      else
+        break -- wait for the rest of the frame
+      end
+    end
+  end
+  return i
+end
+
+M.detect_mode, M.run_ascii = detect_mode, run_ascii

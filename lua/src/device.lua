@@ -1,0 +1,225 @@
+-- vw3.device: a slave's device: its profile, rows, PLC labels; values interpreted by the map.
+-- Mirrors dissector/devices/build.py, dissector/devices/maps.py (interpret).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
+local M = require("vw3.env")
+local ipairs, next, pairs, setmetatable, table, tonumber = ipairs, next, pairs, setmetatable, table, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, NO_INTERPRETATION, PROFILES, SELECTION = AUTO, NO_INTERPRETATION, PROFILES, SELECTION
+local concat, floor, format = concat, floor, format
+
+local plc_label
+local PLC_TOP = {} -- the highest reference of each base's digit count
+local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
+local function make_plc_label(base, address)
+  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
+  -- references keep their zeros (00001), as naming.plc_label.
+  local digits = #format("%d", base)
+  if digits < 5 then digits = 5 end
+  local top = PLC_TOP[base]
+  if top == nil then
+    local power = 1
+    for _ = 2, digits do power = power * 10 end
+    top = (floor(base / power) + 1) * power - 1
+    PLC_TOP[base] = top
+  end
+  local number = base + address
+  if number > top then
+    number = base * 10 - 9 + address
+    digits = digits + 1
+  end
+  return format("%0" .. digits .. "d", number)
+end
+
+plc_label = function(base, address)
+  local labels = PLC_LABELS[base]
+  if labels == nil then
+    labels = {}
+    PLC_LABELS[base] = labels
+  end
+  local label = labels[address]
+  if label == nil then
+    label = make_plc_label(base, address)
+    labels[address] = label
+  end
+  return label
+end
+
+local function address_name(row, address, label)
+  local shown = label or format("%d", address)
+  if row ~= nil then return format("%s (%s)", row.code, shown) end
+  return shown
+end
+
+local function sorted_keys(set)
+  local keys = {}
+  for key in pairs(set) do keys[#keys + 1] = key end
+  table.sort(keys)
+  return keys
+end
+
+-- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
+-- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
+local function build_device(profile, slave)
+  local rows = profile.map or {}
+  if #config.layers > 0 then
+    local merged = {}
+    for address, row in pairs(rows) do merged[address] = row end
+    for _, layer in ipairs(config.layers) do
+      if (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name) then
+        for address, row in pairs(layer.rows) do merged[address] = row end
+      end
+    end
+    rows = merged
+  end
+  local depend, plain = {}, {}
+  for _, rule in ipairs(profile.bits_depend or {}) do
+    for _, address in ipairs(rule.registers) do
+      local row = rows[address]
+      if row ~= nil then
+        depend[address] = rule
+        local copy = {}
+        for key, value in pairs(row) do copy[key] = value end
+        copy.bits = nil
+        plain[address] = copy
+      end
+    end
+  end
+  local style = config.style or profile.address_style
+  local device = { profile = profile, rows = rows, depend = depend, plain = plain, plc_default = profile.plc_base_default,
+    seen = {} }
+  -- Parameters are followed only where it tells something: protection, or bits that depend on a value.
+  device.track = profile.protected_value ~= nil or next(depend) ~= nil
+  if style == "plc" then device.plc = profile.plc_base or {} end
+  return device
+end
+
+-- The profile a slave has now: forced per slave, chosen by `auto`, or the default (auto: the fallback).
+local function profile_name(st, slave)
+  local name = config.per_slave[slave]
+  if name ~= nil then return name end
+  if config.default == AUTO then return (st.chosen and st.chosen[slave]) or SELECTION.fallback end
+  return config.default
+end
+
+local function device_for(st, slave)
+  local device = st.devices[slave]
+  if device ~= nil then return device end
+  local profile = PROFILES[profile_name(st, slave)]
+  device = profile ~= nil and build_device(profile, slave) or false
+  st.devices[slave] = device
+  return device
+end
+
+-- The device a frame was annotated with: a slave's device changes only when `auto` chooses (rarely), so
+-- the changes are kept per slave, { item number from which on, device, reason }, rather than a key per
+-- frame. Second value: why `auto` gave the slave that device (Frame.profile_choice), nil before a choice.
+local function device_of(st, f)
+  local history = st.history and st.history[f.slave]
+  if history ~= nil then
+    for k = #history, 1, -1 do
+      if history[k].number <= f.number then return history[k].device, history[k].reason end
+    end
+  end
+  return device_for(st, f.slave)
+end
+
+local function note(f, text)
+  local notes = f.notes
+  if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+end
+
+local function has_note(f, text)
+  for _, existing in ipairs(f.notes or NO_INTERPRETATION) do
+    if existing == text then return true end
+  end
+  return false
+end
+
+-- maps.interpret: the scaled value and its display text.
+local interpret, interpret_wide
+local FIXED = setmetatable({}, { __index = function(formats, decimals)
+  local text = "%." .. decimals .. "f"
+  formats[decimals] = text
+  return text
+end })
+
+local BIT_NAMES = {}
+for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
+
+interpret = function(row, value)
+  local raw_value = value
+  if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
+  if row.enum then
+    local label = row.enum[value]
+    if label ~= nil then return nil, label end
+    return nil, format("%d (not a listed value)", value)
+  end
+  if row.bits then
+    local names, bits, rest = {}, row.bits, value
+    for bit_ = 0, 15 do
+      if rest % 2 == 1 then
+        names[#names + 1] = bits[bit_] or BIT_NAMES[bit_]
+        rest = rest - 1
+      end
+      rest = rest / 2
+    end
+    if #names == 0 then return nil, "no bit set" end
+    return nil, concat(names, ", ")
+  end
+  if row.scale == nil then
+    -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
+    if row.unit ~= nil then
+      return row.signed and raw_value or nil, format("%d (unscaled, in %s)", raw_value, row.unit)
+    end
+    if row.signed then return raw_value, format("%d", raw_value) end
+    return nil, nil
+  end
+  local decimals = row.decimals or 0
+  local text = format(FIXED[decimals], raw_value * row.scale)
+  local scaled = tonumber(text)
+  if decimals == 0 then scaled = floor(scaled + 0.5) end
+  if row.unit ~= nil then return scaled, text .. " " .. row.unit end
+  return scaled, text
+end
+
+-- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
+interpret_wide = function(row, first, second)
+  local high, low = first, second
+  if row.swapped then high, low = second, first end
+  local value
+  if row.kind == "float32" then
+    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
+    local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
+    if high >= 0x8000 then sign = -1.0 end
+    local exponent = floor(high / 128) % 256
+    local fraction = (high % 128) * 65536 + low
+    if exponent == 255 then
+      if fraction ~= 0 then return nil, "nan" end
+      return nil, sign > 0 and "inf" or "-inf" -- (no number JSON can hold)
+    elseif exponent == 0 then
+      value = sign * fraction * 2 ^ -149
+    else
+      value = sign * (8388608 + fraction) * 2 ^ (exponent - 150)
+    end
+  else
+    value = high * 65536 + low
+    if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
+  end
+  local text
+  if row.scale ~= nil then
+    local decimals = row.decimals or 0
+    text = format(FIXED[decimals], value * row.scale)
+    value = tonumber(text)
+    if decimals == 0 then value = floor(value + 0.5) end
+  elseif row.kind == "float32" then
+    text = format("%.7g", value) -- float32 holds about 7 significant digits
+  else
+    text = format("%d", value)
+  end
+  if row.unit ~= nil then text = text .. " " .. row.unit end
+  return value, text
+end
+
+M.address_name, M.build_device, M.device_for, M.device_of = address_name, build_device, device_for, device_of
+M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
+M.plc_label = plc_label

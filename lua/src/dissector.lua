@@ -1,0 +1,207 @@
+-- vw3.dissector: Wireshark: the dissectors (serial records, RTU over TCP and UDP), registration.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
+local M = require("vw3.env")
+local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto
+local math, package, pcall, tostring, type, wtap = math, package, pcall, tostring, type, wtap
+local _ENV = M -- (the other modules' names: their exports in M)
+local MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE = MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE
+local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
+local detect_mode, device_for, device_now, dissect_now = detect_mode, device_for, device_now, dissect_now
+local ex, feed, finish_all, lane, new_state, pack, pf = ex, feed, finish_all, lane, new_state, pack, pf
+local proto, record_time, show_record, take_items = proto, record_time, show_record, take_items
+local timeout_pref, tree_mode, vw3 = timeout_pref, tree_mode, vw3
+
+local function dissect_records(st, tvb, pinfo, tree)
+  local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
+  local record = st.records[number]
+  if record == nil then
+    -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
+    -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
+    local ok, result, n, info = pcall(dissect_now, st, tvb, pinfo, number)
+    if ok then
+      if result == nil then return 0 end
+      record = result
+    else
+      -- A bug must not make later passes dissect this record again (pairing twice): keep the error.
+      n = tvb:len()
+      record = { length = n, error = tostring(result) }
+    end
+    st.records[number] = record
+    if info ~= nil then
+      -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
+      -- say but its Info text where no tree is wanted; else shown as show_record shows a record.
+      local cols = pinfo.cols
+      if not tree_mode(tree) and config.errors[1] == nil then
+        cols.protocol = "VW3"
+        cols.info = info
+      elseif type(record) == "number" then
+        show_record(st, { record }, tvb, pinfo, tree, n)
+      else
+        show_record(st, record, tvb, pinfo, tree, n)
+      end
+    else
+      show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
+    end
+    -- (after the first showing, which reads the items as they were decoded; asked only when some wait)
+    if st.whole_record ~= nil or st.unpacked[1] ~= nil then pack.settle(st) end
+    return n
+  end
+  if not state.finished and pinfo.visited then
+    finish_all()
+    record = st.records[number] -- (lane.again may have decoded the capture again)
+    if record == nil then return 0 end
+  end
+  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
+  local n = tvb:len()
+  show_record(st, record, tvb, pinfo, tree, n)
+  return n
+end
+
+-- A connection or conversation by its two ends, the same both ways.
+local function conversation_key(pinfo)
+  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
+  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
+  if a < b then return a .. " " .. b end
+  return b .. " " .. a
+end
+
+-- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
+-- reassembly for a frame split over segments: the framer frames what it can; where it needs more bytes,
+-- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
+-- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
+-- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
+tcp_states, tcp_records, tcp_call = {}, {}, { number = -1, index = 0 }
+local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
+
+local function dissect_tcp_now(st, tvb, pinfo, n)
+  if st.mode == nil then st.mode = detect_mode(tvb:raw(0, math.min(n, MODE_SAMPLE))) end
+  -- A new buffer each call: what was left over last time comes back at the start of this tvb.
+  st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
+  local record = { number = pinfo.number, start = 0, length = n }
+  st.open = { record }
+  local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
+  lane.flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  local used = st.base
+  take_items(st, items, record)
+  if used < n and pinfo.can_desegment > 0 then
+    record.desegment_offset = used
+  end
+  record.waiting = nil
+  return record
+end
+
+local function dissect_tcp(tvb, pinfo, tree)
+  local n = tvb:len()
+  if n == 0 then return 0 end
+  if tcp_call.number ~= pinfo.number then tcp_call.number, tcp_call.index = pinfo.number, 0 end
+  tcp_call.index = tcp_call.index + 1
+  local calls = tcp_records[pinfo.number]
+  if calls == nil then
+    calls = {}
+    tcp_records[pinfo.number] = calls
+  end
+  local key = conversation_key(pinfo)
+  local st = tcp_states[key]
+  if st == nil then
+    st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+    tcp_states[key] = st
+  end
+  local record = calls[tcp_call.index]
+  if record == nil then
+    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
+    if ok then
+      record = result
+    else
+      record = { length = n, error = tostring(result) }
+    end
+    calls[tcp_call.index] = record
+    st.settle = true
+  end
+  if record.desegment_offset ~= nil then
+    pinfo.desegment_offset = record.desegment_offset
+    pinfo.desegment_len = DESEGMENT_ONE_MORE
+  end
+  show_record(st, record, tvb, pinfo, tree, n)
+  if st.settle then
+    st.settle = nil
+    pack.settle(st)
+  end
+  return n
+end
+
+-- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
+local PT_TCP, PT_UDP = 2, 3
+
+function proto.dissector(tvb, pinfo, tree)
+  local port_type = pinfo.port_type
+  if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
+  if port_type == PT_UDP then
+    local key = conversation_key(pinfo)
+    local st = udp_states[key]
+    if st == nil then
+      st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+      udp_states[key] = st
+    end
+    return dissect_records(st, tvb, pinfo, tree)
+  end
+  return dissect_records(state, tvb, pinfo, tree)
+end
+
+-- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)
+-- is the user's to map (Preferences > Protocols > DLT_USER: payload protocol "vw3"): a plugin that took
+-- it over would override a user who mapped it to mbrtu. The "user0" preference does it for one session.
+local wtap_encap = DissectorTable.get("wtap_encap")
+local ok_rtac, rtac = pcall(DissectorTable.get, "rtacser.data")
+if ok_rtac and rtac ~= nil then rtac:add_for_decode_as(proto) end
+
+-- RTAC serial records: note the RTAC's own timestamp (u32 seconds, u32 microseconds, big-endian: when the
+-- device saw the bytes, which response times need), then hand the record to Wireshark's RTAC dissector.
+local RTAC_ENCAP = wtap.RTAC_SERIAL
+local ok_original, rtac_original = pcall(function() return RTAC_ENCAP and wtap_encap:get_dissector(RTAC_ENCAP) end)
+if ok_original and rtac_original ~= nil then
+  local rtac_time = Proto("vw3rtac", "VW3 RTAC timestamp")
+  function rtac_time.dissector(tvb, pinfo, tree)
+    if tvb:len() >= 8 and not pinfo.visited then
+      rtac_times[pinfo.number] = tvb:range(0, 4):uint() + tvb:range(4, 4):uint() / 1000000
+    end
+    return rtac_original:call(tvb, pinfo, tree)
+  end
+  wtap_encap:add(RTAC_ENCAP, rtac_time)
+end
+DissectorTable.get("tcp.port"):add_for_decode_as(proto)
+DissectorTable.get("udp.port"):add_for_decode_as(proto)
+
+-- What the optional Modbus/TCP naming file (vw3_modbus.lua, loaded after this one) builds on. It is a
+-- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
+-- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
+package.loaded.vw3_plugin = {
+  new_state = new_state, device_for = device_for, device_now = device_now, annotate_registers = annotate_list,
+  reads = READS,
+  add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
+}
+
+-- What the preferences registered: TCP and UDP ports (0: none), USER0 taken over.
+local registered = { tcp = 0, udp = 0, user0 = false }
+function proto.prefs_changed()
+  if proto.prefs.udp_port ~= registered.udp then
+    local udp = DissectorTable.get("udp.port")
+    if registered.udp ~= 0 then udp:remove(registered.udp, proto) end
+    if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
+    registered.udp = proto.prefs.udp_port
+  end
+  if proto.prefs.user0 ~= registered.user0 then
+    if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
+    registered.user0 = proto.prefs.user0
+  end
+  local port = proto.prefs.tcp_port
+  if port ~= registered.tcp then
+    local tcp = DissectorTable.get("tcp.port")
+    if registered.tcp ~= 0 then tcp:remove(registered.tcp, proto) end
+    if port ~= 0 then tcp:add(port, proto) end
+    registered.tcp = port
+  end
+  apply_prefs()
+end
+
+return vw3

@@ -1,0 +1,236 @@
+-- vw3.explain: device checks of requests, exceptions explained, device objects and diagnostics.
+-- Mirrors dissector/devices/checks.py, dissector/devices/explain.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
+local M = require("vw3.env")
+local ipairs, math, next, tonumber = ipairs, math, next, tonumber
+local _ENV = M -- (the other modules' names: their exports in M)
+local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
+local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
+local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
+local u16, warn = u16, warn
+
+local function profile_function_name(profile, code)
+  return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
+end
+
+-- A quantity above the device's limit for the function (limit: nil when the device gives none).
+local function check_limit(f, profile, what, quantity, limit)
+  if limit ~= nil and quantity ~= nil and quantity > limit then
+    warn(f, format("%s %d is beyond the %s's limit of %d words for %s", what, quantity, profile.device, limit,
+      profile_function_name(profile, f.fn)))
+  end
+end
+
+local function check_request(f, device)
+  local profile = device.profile
+  local code = f.fn
+  if profile.functions ~= nil and not profile.functions[code] then
+    warn(f, format("%s (%d) is not supported by the %s", profile_function_name(profile, code), code, profile.device))
+  elseif profile.inner_only and profile.inner_only[code] then
+    warn(f, format("%s (%d) is only valid inside an encapsulated packet on the %s", profile_function_name(profile, code),
+      code, profile.device))
+  end
+  local limits = (profile.limits or NO_INTERPRETATION)[code]
+  if limits ~= nil then
+    -- (no tables: this runs for every request)
+    if code ~= 23 then
+      check_limit(f, profile, "quantity", f.quantity, limits[1])
+    elseif f.fields ~= nil then
+      check_limit(f, profile, "read quantity", f.fields.read_quantity, limits[1])
+      check_limit(f, profile, "write quantity", f.fields.write_quantity, limits[2])
+    end
+  end
+  -- (decode_frame already warned where the spec's own rule forbids the broadcast)
+  if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
+    do
+      local name = profile_function_name(profile, code)
+      local allowed = {}
+      for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
+      local list = concat(allowed, ", ")
+      if list == "" then list = "none" end
+      warn(f, format("%s cannot be broadcast to the %s (broadcast functions: %s)", name, profile.device, list))
+    end
+  end
+end
+
+local function holds(when, request, profile)
+  if when == "quantity" then
+    local limits = (profile.limits or {})[request.fn]
+    local limit = READ_LIMIT
+    if limits ~= nil then limit = limits[1] end
+    local quantity = request.quantity
+    return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
+  end
+  if when == "byte_count" then
+    local fields = request.fields
+    if fields == nil or fields.byte_count == nil or fields.quantity == nil then return false end
+    return fields.byte_count ~= 2 * fields.quantity
+  end
+  return false
+end
+
+local function pick_causes(request, profile, causes)
+  if request == nil then return causes end
+  local hits, plain = {}, {}
+  for _, cause in ipairs(causes) do
+    if cause.when ~= nil and holds(cause.when, request, profile) then hits[#hits + 1] = cause end
+    if cause.when == nil then plain[#plain + 1] = cause end
+  end
+  if #hits > 0 then return hits end
+  if #plain > 0 then return plain end
+  return causes
+end
+
+local function cause_text(cause)
+  local counters = cause.counters or {}
+  if #counters == 0 then return cause.error end
+  local plural = "counter"
+  if #counters > 1 then plural = "counters" end
+  return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
+end
+
+local function all_unreadable(st, f, device)
+  -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
+  -- a range), then each parameter's story (devices/explain.py).
+  local request = f.request
+  local rows = device.rows
+  local base = nil
+  if device.plc ~= nil then base = device.plc[request.fn] or device.plc_default end
+  local entries, parts = {}, {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    entries[#entries + 1] = { address = address, row = rows[address], label = label }
+  end
+  local run = {}
+  local function flush()
+    local first = run[1]
+    if #run == 1 then
+      parts[#parts + 1] = address_name(first.row, first.address, first.label)
+        .. (first.row == nil and " non-existent" or " protected")
+    else
+      local last = run[#run]
+      parts[#parts + 1] = format("%s..%s non-existent (%d)", first.label or format("%d", first.address),
+        last.label or format("%d", last.address), #run)
+    end
+  end
+  for _, entry in ipairs(entries) do
+    local previous = run[#run]
+    if previous ~= nil and previous.row == nil and entry.row == nil and entry.address == previous.address + 1 then
+      run[#run + 1] = entry
+    else
+      if previous ~= nil then flush() end
+      run = { entry }
+    end
+  end
+  flush()
+  note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
+    f.exception_code, device.profile.device, concat(parts, ", ")))
+  local now = format("exception %02X now", f.exception_code)
+  for _, entry in ipairs(entries) do
+    track(device.seen, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
+  end
+end
+
+local function explain_exception(st, f, device)
+  local profile = device.profile
+  local code = f.exception_code
+  if code == nil then return end
+  local name = profile_function_name(profile, f.fn)
+  local causes = (profile.exception_causes or {})[f.fn * 256 + code]
+  local meanings = profile.exceptions or {}
+  f.exception_meaning = meanings[code]
+  local request = f.request
+  if causes ~= nil and #causes > 0 then
+    local texts = {}
+    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
+    note(f, format("exception %02X from the %s to %s: %s", code, profile.device, name, concat(texts, " or ")))
+  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
+      and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
+    all_unreadable(st, f, device)
+    story.tell(f)
+    -- The registers of the refused read, with the status this tells and no value (the display lists
+    -- them from the request and the device: inferred_registers), as vw3-decode lists them.
+    f.inferred = true
+  elseif meanings[code] ~= nil then
+    note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
+  elseif next(meanings) ~= nil then
+    local known = {}
+    for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
+    note(f, format("exception %02X is not one the %s documents (%s)", code, profile.device, concat(known, ", ")))
+  end
+end
+
+local function python_repr(text)
+  -- str.__repr__ of a device object's text (latin-1 characters held as UTF-8), quotes as Python picks.
+  local quote = "'"
+  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
+  local out = {}
+  local k = 1
+  while k <= #text do
+    local byte = text:byte(k)
+    local code, width = byte, 1
+    if byte >= 192 then code, width = (byte - 192) * 64 + (text:byte(k + 1) - 128), 2 end
+    local char = text:sub(k, k + width - 1)
+    if char == "\\" then out[#out + 1] = "\\\\"
+    elseif char == quote then out[#out + 1] = "\\" .. quote
+    elseif code == 10 then out[#out + 1] = "\\n"
+    elseif code == 13 then out[#out + 1] = "\\r"
+    elseif code == 9 then out[#out + 1] = "\\t"
+    elseif code < 32 or (code >= 127 and code <= 160) or code == 173 then out[#out + 1] = format("\\x%02x", code)
+    else out[#out + 1] = char end
+    k = k + width
+  end
+  return quote .. concat(out) .. quote
+end
+story.repr = python_repr -- (the display's too: FC43 objects)
+
+local function explain_objects(f, profile)
+  for _, object in ipairs(f.objects) do
+    local meaning = (profile.objects or {})[object.id]
+    if meaning ~= nil then
+      local done = false
+      if meaning.format == "MMmm" then
+        local value = object.value
+        if #value == 4 and value:match("^%d%d%d%d$") then
+          object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
+          done = true
+        else
+          note(f, format("%s %s is not in the MMmm form the %s uses", object.name, python_repr(value), profile.device))
+        end
+      end
+      if not done then object.text = meaning.meaning end
+    end
+  end
+end
+
+local function diagnostics_note(f, device, b)
+  local profile = device.profile
+  local sub = f.subfunction
+  local meaning = (profile.diagnostics or {})[sub]
+  if meaning == nil then return end
+  f.subfunction_text = meaning
+  local text = format("sub-function %02X on the %s: %s", sub, profile.device, meaning)
+  if f.kind == RESPONSE and f.fields ~= nil and f.fields.data_length == 2 then
+    text = text .. format("; value %d", u16(b, f.data_at + 2))
+  end
+  note(f, text)
+end
+
+local function span_label(f, device)
+  -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
+  local base = device.plc[f.fn] or device.plc_default
+  local quantity = f.quantity
+  if quantity == nil or quantity == 0 then quantity = 1 end
+  local first = plc_label(base, f.start)
+  if quantity == 1 then
+    f.span_label = first
+  else
+    f.span_label = first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
+  end
+end
+lane.span_label = span_label
+
+M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
+M.explain_objects, M.python_repr, M.span_label = explain_objects, python_repr, span_label

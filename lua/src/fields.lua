@@ -1,0 +1,164 @@
+-- vw3.fields: Wireshark: the protocol, its fields, expert infos and preferences.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
+local M = require("vw3.env")
+local Proto, ProtoExpert, ProtoField, base, expert = Proto, ProtoExpert, ProtoField, base, expert
+local frametype, pairs = frametype, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
+local NOISE, REQUEST, RESPONSE, configure, new_state = NOISE, REQUEST, RESPONSE, configure, new_state
+local vw3 = vw3
+
+local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
+
+local function names(table_)
+  local out = {}
+  for key, value in pairs(table_) do out[key] = value end
+  return out
+end
+
+-- Kind and register status are integers with value strings: `vw3.kind == "request"` filters by name,
+-- and an integer costs less than a string to add and to compare.
+local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
+local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+local STATUS_NAMES = { [0] = "ok", [1] = "protected", [2] = "non-existent", [3] = "ambiguous" }
+local STATUS_VALUES = { ok = 0, protected = 1, ["non-existent"] = 2, ambiguous = 3 }
+
+local pf = {
+  item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
+  kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
+  mode = ProtoField.string("vw3.mode", "Mode"),
+  slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
+  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, names(FUNCTIONS)),
+  crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
+  crc_expected = ProtoField.uint16("vw3.crc_expected", "Expected CRC", base.HEX),
+  crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
+  broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
+  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, names(EXCEPTIONS)),
+  exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
+  exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
+  function_name = ProtoField.string("vw3.function_name", "Function name"),
+  subfunction_name = ProtoField.string("vw3.subfunction_name", "Sub-function name"),
+  span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
+  start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
+  quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
+  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, names(DIAGNOSTICS)),
+  reg = ProtoField.none("vw3.reg", "Register"),
+  reg_address = ProtoField.uint16("vw3.reg.address", "Address", base.DEC),
+  reg_label = ProtoField.string("vw3.reg.label", "Address as shown"),
+  reg_value = ProtoField.uint16("vw3.reg.value", "Value", base.DEC_HEX),
+  reg_code = ProtoField.string("vw3.reg.code", "Code"),
+  reg_name = ProtoField.string("vw3.reg.name", "Name"),
+  reg_unit = ProtoField.string("vw3.reg.unit", "Unit"),
+  reg_scaled = ProtoField.double("vw3.reg.scaled", "Scaled value"),
+  reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
+  reg_status = ProtoField.uint8("vw3.reg.status", "Status", base.DEC, STATUS_NAMES),
+  reg_source = ProtoField.string("vw3.reg.source", "Source"),
+  reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
+    { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
+  profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
+  profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
+    "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
+  profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
+    "Profile auto: why this frame decides the slave's profile"),
+  bit = ProtoField.none("vw3.bit", "Bit"),
+  bit_address = ProtoField.uint16("vw3.bit.address", "Address", base.DEC),
+  bit_value = ProtoField.uint8("vw3.bit.value", "Value", base.DEC),
+  object = ProtoField.none("vw3.object", "Object"),
+  object_id = ProtoField.uint8("vw3.object.id", "Object id", base.DEC),
+  object_name = ProtoField.string("vw3.object.name", "Name"),
+  object_value = ProtoField.string("vw3.object.value", "Value"),
+  object_text = ProtoField.string("vw3.object.text", "Meaning"),
+  request_frame = ProtoField.framenum("vw3.request_frame", "Request in frame", base.NONE, frametype and frametype.REQUEST),
+  response_frame = ProtoField.framenum("vw3.response_frame", "Response in frame", base.NONE, frametype and frametype.RESPONSE),
+  response_time = ProtoField.relative_time("vw3.response_time", "Time since request"),
+  offset = ProtoField.uint32("vw3.offset", "Stream offset", base.DEC, nil, nil,
+    "Where the item starts in the byte stream, as vw3-decode --json's offset"),
+  continued_in = ProtoField.framenum("vw3.continued_in", "Continued in record"),
+  unanswered = ProtoField.bool("vw3.unanswered", "Unanswered"),
+  noise_reason = ProtoField.string("vw3.noise.reason", "Why noise"),
+  warning = ProtoField.string("vw3.warning", "Warning"),
+  note = ProtoField.string("vw3.note", "Note"),
+  data = ProtoField.bytes("vw3.data", "Data"),
+  byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
+  server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
+  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, { [0] = "OFF", [255] = "ON" }),
+  additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
+  additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
+}
+
+local ex = {
+  crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
+  exception = ProtoExpert.new("vw3.expert.exception", "Exception response", expert.group.RESPONSE_CODE, expert.severity.NOTE),
+  unanswered = ProtoExpert.new("vw3.expert.unanswered", "Request not answered", expert.group.SEQUENCE, expert.severity.WARN),
+  no_request = ProtoExpert.new("vw3.expert.no_request", "Response without a matching request", expert.group.SEQUENCE, expert.severity.WARN),
+  warning = ProtoExpert.new("vw3.expert.warning", "Outside the spec or the device profile", expert.group.PROTOCOL, expert.severity.WARN),
+  malformed = ProtoExpert.new("vw3.expert.malformed", "PDU does not fit its layout", expert.group.MALFORMED, expert.severity.ERROR),
+  protected = ProtoExpert.new("vw3.expert.protected", "Protected or non-existent parameter", expert.group.RESPONSE_CODE, expert.severity.WARN),
+  note = ProtoExpert.new("vw3.expert.note", "Note", expert.group.COMMENTS_GROUP, expert.severity.NOTE),
+  noise = ProtoExpert.new("vw3.expert.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
+  multiple = ProtoExpert.new("vw3.expert.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
+  partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
+  internal = ProtoExpert.new("vw3.expert.internal", "Plugin error (please report it)", expert.group.UNDECODED, expert.severity.ERROR),
+  preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
+  profile = ProtoExpert.new("vw3.expert.profile", "Device profile chosen (profile auto)", expert.group.COMMENTS_GROUP, expert.severity.CHAT),
+}
+proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
+  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal, ex.profile }
+vw3.experts = ex
+
+local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
+proto.prefs.profiles = Pref.string("Device profiles", "",
+  "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave")
+proto.prefs.maps = Pref.string("Register maps", "",
+  "CSV register maps as vw3-decode --map takes them, separated by ';': FILE (every slave), 12=FILE (one "
+    .. "slave) or sel749m=FILE (the slaves of a profile)")
+proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
+  "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
+    .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
+  { { 1, "profile", STYLE_DEFAULT }, { 2, "protocol", STYLE_PROTOCOL }, { 3, "plc", STYLE_PLC } }, false)
+local MODE_AUTO, MODE_RTU, MODE_ASCII = 1, 2, 3
+local MODE_NAMES = { [MODE_RTU] = "rtu", [MODE_ASCII] = "ascii" }
+proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
+  "auto: from the first record's bytes (as vw3-decode looks at the first bytes); rtu or ascii: forced, "
+    .. "as vw3-decode --mode", { { 1, "auto", MODE_AUTO }, { 2, "rtu", MODE_RTU }, { 3, "ascii", MODE_ASCII } },
+  false)
+proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
+  "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
+proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
+proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
+proto.prefs.quick_lanes = Pref.bool("Quick lanes", VW3_QUICK_LANES ~= false,
+  "Take the usual polling records (a known request, its usual answer, a setpoint write) by a shorter path "
+  .. "that gives the same dissection; off: every record by the general path")
+proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
+  "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
+    .. "Protocols > DLT_USER, payload protocol vw3)")
+
+state = new_state(1.0)
+-- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
+-- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
+rtac_times = {}
+vw3.state = function() return state end
+
+local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
+
+local function apply_prefs()
+  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style], proto.prefs.maps)
+  lane.quick = proto.prefs.quick_lanes
+end
+
+local function timeout_pref()
+  if proto.prefs.timeout_ms == 0 then return nil end
+  return proto.prefs.timeout_ms / 1000
+end
+
+
+function proto.init()
+  rtac_times = {}
+  apply_prefs()
+  state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+  udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
+end
+
+M.KIND_VALUES, M.MODE_NAMES, M.STATUS_VALUES = KIND_VALUES, MODE_NAMES, STATUS_VALUES
+M.apply_prefs, M.ex, M.pf, M.proto, M.timeout_pref = apply_prefs, ex, pf, proto, timeout_pref

@@ -1,0 +1,143 @@
+-- vw3.layouts: the length rules of every function code, and which layouts a slave's code may have.
+-- Mirrors dissector/protocol/table.py (the rules codegen writes into DATA.protocol).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
+local M = require("vw3.env")
+local math, pairs = math, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes
+
+-- ---------------------------------------------------------------------------------------------------
+-- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
+local FRAMING = DATA.framing or { max_adu = 256, min_adu = 4, max_slave = 247, noise_item_max = 4096 }
+local MAX_ADU, MIN_ADU, MAX_SLAVE = FRAMING.max_adu, FRAMING.min_adu, FRAMING.max_slave
+local NOISE_ITEM_MAX = FRAMING.noise_item_max
+local NEED, NONE = -1, 0
+local REQUEST, RESPONSE, EXCEPTION, NOISE = "request", "response", "exception", "noise"
+
+-- A length rule returns the frame's length, NEED, or NONE; or (minimum, true) when the layout gives no
+-- length and the frame is to be found by scanning for a CRC from that minimum (rules.Scan).
+local function fixed(length)
+  return function() return length end
+end
+
+local function count8(position, extra)
+  return function(b, i, n)
+    if i + position >= n then return NEED end
+    return extra + b[i + position]
+  end
+end
+
+local function count16(position, extra)
+  return function(b, i, n)
+    if i + position + 1 >= n then return NEED end
+    return extra + b[i + position] * 256 + b[i + position + 1]
+  end
+end
+
+local function diagnostics_rule(b, i, n)
+  -- Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
+  if i + 3 >= n then return NEED end
+  if b[i + 2] == 0 and b[i + 3] == 0 then return 6, true end
+  return 8
+end
+
+local function mei_request_rule(b, i, n)
+  if i + 2 >= n then return NEED end
+  if b[i + 2] == 14 then return 7 end
+  return 5, true
+end
+
+local function mei_response_rule(b, i, n)
+  -- Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object.
+  if i + 2 >= n then return NEED end
+  if b[i + 2] ~= 14 then return 5, true end
+  if i + 7 >= n then return NEED end
+  local position = 8
+  for _ = 1, b[i + 7] do
+    if i + position + 1 >= n then return NEED end
+    position = position + 2 + b[i + position + 1]
+    if position > MAX_ADU then return NONE end
+  end
+  return position + 2
+end
+
+local function scan_any() return MIN_ADU, true end
+
+-- Length rules per function code (request, response): generated from dissector/protocol/table.py.
+local RULES, AS_EXCEPTION = {}, nil
+  local makers = {
+    fixed = fixed, count8 = count8, count16 = count16,
+    diagnostics = function() return diagnostics_rule end,
+    mei_request = function() return mei_request_rule end,
+    mei_response = function() return mei_response_rule end,
+    scan = function() return scan_any end,
+  }
+  local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
+  for code, rules in pairs(DATA.protocol.rules) do
+    RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+  end
+  -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
+  for code, spec in pairs(DATA.protocol.by_quantity or {}) do
+    local position, extra, unit = spec[1], spec[2], spec[3]
+    local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
+    local count_at, count_extra = counted[2], counted[3]
+    local need = math.max(position + 1, count_at)
+    RULES[code][3] = function(b, i, n)
+      if i + need >= n then return NEED end
+      local quantity = b[i + position] * 256 + b[i + position + 1]
+      local length
+      if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
+      if length == count_extra + b[i + count_at] then return NONE end
+      return length
+    end
+  end
+  AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
+for code in pairs(DATA.other_functions or {}) do
+  if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
+end
+
+-- Interpretations in the order they are tried: request first, unless a response is expected.
+local AS_REQUEST, AS_RESPONSE = {}, {}
+for code, rules in pairs(RULES) do
+  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] } }
+  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] } }
+  if rules[3] ~= nil then -- (the quantity's length, tried last)
+    AS_REQUEST[code][3] = { REQUEST, rules[3] }
+    AS_RESPONSE[code][3] = { REQUEST, rules[3] }
+  end
+end
+local NO_INTERPRETATION = {}
+
+local function interpretations(st, slave, code)
+  if code >= 128 then
+    if RULES[code - 128] then return AS_EXCEPTION end
+    return NO_INTERPRETATION
+  end
+  if RULES[code] == nil then return NO_INTERPRETATION end
+  if st.expect == slave * 256 + code then return AS_RESPONSE[code] end
+  return AS_REQUEST[code]
+end
+
+-- The shortest length from `minimum` at which the bytes from i end in a valid CRC; 0 when none does.
+local function shortest_crc(b, i, n, minimum)
+  local last = math.min(n - i, MAX_ADU)
+  if minimum > last then return 0 end
+  -- (the register's two bytes, one byte more a length: see scan_match)
+  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then return length end
+    local index = XOR8[lo * 256 + byte]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+  end
+  return 0
+end
+
+-- The first bytes of a capture its mode (RTU or ASCII) is told from (framing/stream.py, detect_mode).
+local MODE_SAMPLE = 64
+
+M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
+M.MODE_SAMPLE, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MODE_SAMPLE, NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
+M.interpretations, M.shortest_crc = interpretations, shortest_crc

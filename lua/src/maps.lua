@@ -1,0 +1,336 @@
+-- vw3.maps: the profile and map preferences, register maps read from CSV.
+-- Mirrors dissector/devices/maps.py, dissector/devices/profiles.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
+local M = require("vw3.env")
+local io, ipairs, math, select, string, tonumber = io, ipairs, math, select, string, tonumber
+local tostring = tostring
+local _ENV = M -- (the other modules' names: their exports in M)
+local DATA, LIMITS, concat, format = DATA, LIMITS, concat, format
+
+
+-- ---------------------------------------------------------------------------------------------------
+-- Device profiles and register maps (profiles.py, maps.py, devices/annotator.py): names, scaling, the
+-- 16#8000 semantics, exception explanations, device limits. Profile data come from the generated block.
+local PROFILES = DATA.profiles or {}
+local READS = DATA.protocol.reads
+-- Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
+local PLAIN_READS = DATA.protocol.plain_reads
+local MAX_LISTED = 8
+local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
+local ELLIPSIS = "\226\128\166"
+
+-- The choices the preferences make: default profile (`auto`: one per slave from evidence, devices/
+-- selection.py), profile per slave, address style override, map layers.
+local SELECTION = DATA.selection
+local AUTO = SELECTION.auto
+config = { default = DATA.default_profile, per_slave = {}, style = nil, errors = {}, layers = {} }
+
+local function parse_profile_choice(text)
+  -- as build_annotator reads `--profile` options: one default (a profile or auto), SLAVE=PROFILE entries
+  local default, per_slave, errors = nil, {}, {}
+  for part in string.gmatch(text or "", "[^,;%s]+") do
+    local slave, name = string.match(part, "^(%d+)=(.+)$")
+    if slave ~= nil then
+      slave = tonumber(slave)
+      if name == AUTO then
+        errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
+      elseif PROFILES[name] == nil then
+        errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
+      elseif slave > 247 then
+        errors[#errors + 1] = format("slave %d is outside 0..247", slave)
+      elseif per_slave[slave] ~= nil then
+        errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
+      else
+        per_slave[slave] = name
+      end
+    elseif PROFILES[part] ~= nil or part == AUTO then
+      if default ~= nil then
+        errors[#errors + 1] = format("%q: a default profile (%s) is already set", part, default)
+      else
+        default = part
+      end
+    else
+      errors[#errors + 1] = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+    end
+  end
+  return default or DATA.default_profile, per_slave, errors
+end
+
+local parse_map_choice
+-- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
+-- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
+local MAP_COLUMNS = {
+  "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
+}
+local MAP_TYPES = { uint16 = 1, int16 = 1, uint32 = 2, int32 = 2, float32 = 2 } -- words each type spans
+local KNOWN_COLUMN = {}
+for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
+
+local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
+
+-- A map's texts are shown: control characters as \xNN (maps.py escapes them too), never raw.
+local function printable(text)
+  return (text:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end))
+end
+local MAX_MAP_BYTES = 16 * 1024 * 1024 -- maps.MAX_MAP_BYTES
+local SCALE_MIN, SCALE_MAX = 1e-12, 1e12 -- maps.SCALE_MIN, SCALE_MAX: results stay finite numbers
+
+-- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
+local function csv_cells(line, delimiter)
+  local cells, cell, k, quoted = {}, {}, 1, false
+  while k <= #line do
+    local char = line:sub(k, k)
+    if quoted then
+      if char == '"' then
+        if line:sub(k + 1, k + 1) == '"' then
+          cell[#cell + 1] = '"'
+          k = k + 1
+        else
+          quoted = false
+        end
+      else
+        cell[#cell + 1] = char
+      end
+    elseif char == '"' and #cell == 0 then
+      quoted = true
+    elseif char == delimiter then
+      cells[#cells + 1] = concat(cell)
+      cell = {}
+    else
+      cell[#cell + 1] = char
+    end
+    k = k + 1
+  end
+  if quoted then return nil, "unexpected end of data" end
+  cells[#cells + 1] = concat(cell)
+  return cells
+end
+
+local function map_int(text)
+  text = strip(text)
+  local hex = text:match("^16#(%x+)$") or text:match("^0[xX](%x+)$")
+  if hex then return tonumber(hex, 16) end
+  if text:match("^[+-]?%d+$") then return tonumber(text) end
+  return nil
+end
+
+local function map_pairs(text, what, low, high)
+  local out, any = {}, false
+  for part in (text .. ";"):gmatch("([^;]*);") do
+    part = strip(part)
+    if part ~= "" then
+      local key, label = part:match("^([^=]*)=(.*)$")
+      if key == nil or strip(label) == "" then return nil, format("%s entry %q is not `number=label`", what, part) end
+      local number = map_int(key)
+      if number == nil then return nil, format("%s entry %q: %q is not a number", what, part, strip(key)) end
+      if number < low or number > high then
+        return nil, format("%s entry %q: %d is outside %d..%d", what, part, number, low, high)
+      end
+      if out[number] ~= nil then return nil, format("%s entry %q: %d given twice", what, part, number) end
+      out[number] = printable(strip(label))
+      any = true
+    end
+  end
+  if not any then return nil end
+  return out
+end
+
+-- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0).
+local function scale_decimals(text)
+  local mantissa, exponent = text:lower():match("^[+-]?([%d.]+)e([+-]?%d+)$")
+  if mantissa == nil then mantissa, exponent = text:match("^[+-]?([%d.]+)$"), "0" end
+  if mantissa == nil then return 0 end
+  local fraction = (mantissa:match("%.(%d*)$") or ""):gsub("0+$", "")
+  local decimals = #fraction - tonumber(exponent)
+  if decimals < 0 then return 0 end
+  return decimals
+end
+
+local function map_row(values)
+  local address = map_int(values.address or "")
+  if address == nil then return nil, format("address %q is not a number", values.address or "") end
+  if address < 0 or address > 0xFFFF then return nil, format("address %d is outside 0..65535", address) end
+  local code = printable(strip(values.code or ""))
+  if code == "" then return nil, "code is empty" end
+  local row = { code = code }
+  for _, key in ipairs({ "name", "unit", "source" }) do
+    local text = printable(strip(values[key] or ""))
+    if text ~= "" then row[key] = text end
+  end
+  local scale_text = strip(values.scale or "")
+  if scale_text ~= "" then
+    local scale = tonumber(scale_text)
+    if scale == nil or scale ~= scale then return nil, format("scale %q is not a number", scale_text) end
+    if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
+      return nil, format("scale '%s' is outside ±1e-12..1e+12 (and not 0)", scale_text)
+    end
+    row.scale, row.decimals = scale, scale_decimals(scale_text)
+  end
+  local access = strip(values.access or ""):upper()
+  if access ~= "" and access ~= "R" and access ~= "W" and access ~= "RW" then
+    return nil, format("access %q is not R, W or RW", access)
+  end
+  local problem
+  row.enum, problem = map_pairs(values.enum or "", "enum", 0, 0xFFFF)
+  if problem then return nil, problem end
+  row.bits, problem = map_pairs(values.bits or "", "bits", 0, 15)
+  if problem then return nil, problem end
+  local signed = strip(values.signed or "")
+  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, format("signed %q is not 1, 0 or empty", signed) end
+  local kind = strip(values.type or ""):lower()
+  if kind == "" then kind = signed == "1" and "int16" or "uint16" end
+  local words = MAP_TYPES[kind]
+  if words == nil then return nil, format("type '%s' is not one of uint16, int16, uint32, int32, float32", kind) end
+  row.signed = (signed == "1" or kind == "int16" or kind == "int32") or nil
+  local order = strip(values.order or ""):upper()
+  if order == "" then order = "ABCD" end
+  if order ~= "ABCD" and order ~= "CDAB" then return nil, format("order '%s' is not ABCD or CDAB", order) end
+  if words == 2 then
+    -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
+    if row.enum or row.bits then return nil, format("a %s value cannot carry enum or bit labels", kind) end
+    if address == 0xFFFF then return nil, format("a %s value needs two registers: %d is the last address", kind, address) end
+    row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
+  end
+  if row.signed and row.enum then return nil, "a signed register cannot carry enum labels" end
+  row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
+    and true or nil
+  return address, row
+end
+
+-- The separator of a map from its header line: the one of `,`, `;`, tab that splits it most (maps.py).
+local function sniff(header)
+  local best, most = ",", 0
+  for _, separator in ipairs({ ",", ";", "\t" }) do
+    local count = select(2, header:gsub(separator, ""))
+    if count > most then best, most = separator, count end
+  end
+  return best
+end
+
+local SEPARATOR_NAMES = { [","] = "comma", [";"] = "';'", ["\t"] = "'\\t'" }
+
+-- The rows of a map file, or nil and `file:line: what is wrong` (maps.parse_map, message for message):
+-- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
+local function load_map(path)
+  -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
+  -- write returns at once on Linux and the seek below refuses it. A file without write permission is
+  -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
+  local handle, open_error = io.open(path, "r+b")
+  if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
+  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
+  local size = handle:seek("end")
+  local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
+  handle:close()
+  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
+  if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
+    return nil, format("%s: larger than 16 MiB, not a register map", path)
+  end
+  if not text then
+    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
+  end
+  if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
+  local header, rows, first_line, number, delimiter = nil, {}, {}, 0, ","
+  local wide, wide_order = {}, {} -- second register of a 32-bit row -> its first
+  for line in (text:gsub("\r\n", "\n"):gsub("\r", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+    number = number + 1
+    local stripped = strip(line)
+    if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
+      if header == nil then delimiter = sniff(line) end
+      local cells, problem = csv_cells(line, delimiter)
+      if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
+      if header == nil then
+        header = {}
+        local seen = {}
+        for index, cell in ipairs(cells) do
+          local name = strip(cell):lower()
+          if not KNOWN_COLUMN[name] then
+            return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
+          end
+          header[index] = name
+        end
+        for _, required in ipairs({ "address", "code" }) do
+          local found = false
+          for _, name in ipairs(header) do found = found or name == required end
+          if not found then
+            return nil, format("%s:%d: the header lacks the %q column", path, number, required)
+          end
+        end
+        for _, name in ipairs(header) do
+          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
+          seen[name] = true
+        end
+      else
+        if #cells ~= #header then
+          return nil, format("%s:%d: %d fields, the header has %d (quote a field that holds a %s)", path, number,
+            #cells, #header, SEPARATOR_NAMES[delimiter])
+        end
+        local values = {}
+        for index, name in ipairs(header) do values[name] = cells[index] end
+        if delimiter ~= "," and values.scale ~= nil and strip(values.scale):match("^[-+]?%d+,%d+$") then
+          values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
+        end
+        local address, row = map_row(values)
+        if address == nil then return nil, format("%s:%d: %s", path, number, row) end
+        if rows[address] ~= nil then
+          return nil, format("%s:%d: address %d already defined on line %d", path, number, address, first_line[address])
+        end
+        rows[address], first_line[address] = row, number
+        if row.words == 2 and wide[address + 1] == nil then
+          wide[address + 1] = address
+          wide_order[#wide_order + 1] = address + 1
+        end
+      end
+    end
+  end
+  for _, second in ipairs(wide_order) do
+    local first = wide[second]
+    if rows[second] ~= nil then
+      return nil, format("%s:%d: address %d is the second register of %s (%s, line %d)", path, first_line[second],
+        second, rows[first].code, rows[first].kind, first_line[first])
+    end
+  end
+  if header == nil then return nil, format("%s: no header line (expected: %s)", path, concat(MAP_COLUMNS, ",")) end
+  return rows
+end
+
+-- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
+parse_map_choice = function(text, profile_names)
+  local layers, errors = {}, {}
+  for spec in (text or ""):gmatch("[^;]+") do
+    spec = strip(spec)
+    if spec ~= "" then
+      local target, path = spec:match("^([^=]*)=(.+)$")
+      if target ~= nil then
+        target = strip(target)
+        local whole = io.open(spec, "rb")
+        if whole ~= nil then whole:close(); target, path = nil, spec end
+      else
+        path = spec
+      end
+      local layer = {}
+      if target == nil then
+        -- every slave
+      elseif target:match("^%d+$") then
+        layer.slave = tonumber(target)
+      elseif profile_names[target] then
+        layer.profile = target
+      else
+        errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
+        layer = nil
+      end
+      if layer ~= nil then
+        local rows, problem = load_map(path)
+        if rows == nil then
+          errors[#errors + 1] = problem
+        else
+          layer.rows = rows
+          layers[#layers + 1] = layer
+        end
+      end
+    end
+  end
+  return layers, errors
+end
+
+M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
+M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice

@@ -1,0 +1,56 @@
+-- vw3.pairing: requests and responses paired, timeouts.
+-- Mirrors dissector/decode/pairing.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
+local M = require("vw3.env")
+local _ENV = M -- (the other modules' names: their exports in M)
+local REQUEST, format, release_run, warn = REQUEST, format, release_run, warn
+
+-- ---------------------------------------------------------------------------------------------------
+-- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
+-- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+local function pair(st, f)
+  local pending = st.pending
+  local timeout = st.timeout
+  local late = nil
+  if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
+    and f.time - pending.time > timeout then
+    pending.unanswered = true
+    pending.fields = nil
+    release_run(pending.registers)
+    late, pending, st.pending = pending, nil, nil
+  end
+  if f.kind == REQUEST then
+    if pending ~= nil then
+      pending.unanswered = true
+      pending.fields = nil -- no answer can ask for them any more
+      release_run(pending.registers)
+    end
+    st.pending = nil
+    if f.slave == 0 then
+      f.broadcast = true
+    else
+      st.pending = f
+    end
+    return
+  end
+  if pending ~= nil and pending.slave == f.slave and pending.fn == f.fn then
+    f.request = pending
+    pending.response = f
+    st.pending = nil
+  elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
+    warn(f, format("response %.1f ms after request #%d, later than the %.0f ms timeout: not its answer",
+      (f.time - late.time) * 1000, late.number, timeout * 1000))
+  else
+    if pending ~= nil then
+      pending.unanswered = true
+      release_run(pending.registers)
+      st.pending = nil
+    end
+    f.no_request = true
+    local notes = f.notes
+    if notes == nil then notes = {}; f.notes = notes end
+    notes[#notes + 1] = "response without a matching request in the capture"
+  end
+end
+
+M.pair = pair

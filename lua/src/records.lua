@@ -1,0 +1,540 @@
+-- vw3.records: one record: framed, paired, decoded and annotated in order; the quick lanes.
+-- Mirrors dissector/pipeline.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
+local M = require("vw3.env")
+local ipairs, math, next, pairs, pcall, string = ipairs, math, next, pairs, pcall, string
+local tostring, type = tostring, type
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST = AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST
+local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_with, ceil_bytes, crc_string_ok
+local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
+local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
+local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
+local PROFILES, build_device, new_state = PROFILES, build_device, new_state
+
+local take_items, dissect_record
+-- A run of a known request, for one frame (runs change with their frame: released, packed).
+local function copy_run(run)
+  if run == nil then return nil end
+  return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
+end
+
+-- Pair, decode and annotate a frame just numbered; the device it was annotated with.
+-- A request decoded as when it was met (its entry in known_requests).
+local function adopt_known(item, known)
+  item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
+  item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
+end
+
+local function take_frame(st, item, whole)
+  pair(st, item)
+  local known = item.known
+  local device
+  if known ~= nil then
+    -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
+    item.known = nil
+    adopt_known(item, known)
+    device = device_now(st, item, item.b)
+    if device == known.device and item.profile_choice == nil then
+      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
+    else
+      annotate_with(st, item, item.b, device)
+    end
+  else
+    decode_frame(item)
+    device = device_now(st, item, item.b)
+    annotate_with(st, item, item.b, device)
+  end
+  -- What the display does not need is dropped (the record is kept for every later pass): the byte
+  -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
+  -- ask for them (a request's, until its answer is decoded or it can have none).
+  if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
+  if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
+  -- A record's one frame (whole) is copied by pack.settle, which takes none of these keys (and its
+  -- indices are the frame's own already); a request awaiting its answer keeps its byte table until then.
+  -- The request it answers may have come through the stream's buffer: its registers are released.
+  if whole then
+    local request = item.request
+    if request ~= nil then release_run(request.registers) end
+    return device
+  end
+  item.b = nil
+  -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
+  -- pending request's registers once its answer has been read), and what is known from the kind of
+  -- frame dropped: a record keeps fewer keys (Lua tables grow by powers of two).
+  local bi = item.bi
+  if item.registers ~= nil then item.registers.shift = bi end
+  if item.bits ~= nil then
+    item.bits.shift = bi
+    release_run(item.bits)
+  end
+  local objects = item.objects
+  if objects ~= nil then
+    for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
+  end
+  item.bi, item.data_at, item.data_len = nil, nil, nil
+  if item.kind ~= REQUEST then
+    item.fields = nil
+    release_run(item.registers)
+    local request = item.request
+    if request ~= nil then
+      request.fields = nil
+      release_run(request.registers)
+    end
+  elseif st.pending ~= item then
+    item.fields = nil
+    release_run(item.registers)
+  end
+  return device
+end
+
+-- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
+-- layout rule, which may be noted)?
+local function follows_registers(device, run)
+  if run == nil or run.start == nil then return false end
+  local depend = device.depend
+  if next(depend) == nil then return false end
+  for index = 0, run.count - 1 do
+    if depend[(run.start + index) % 0x10000] ~= nil then return true end
+  end
+  return false
+end
+
+-- Keep a request of one record for the next time its bytes come (see known_requests): one whose
+-- decoding and annotation said nothing but its fields and device texts, which nothing else than its
+-- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
+-- A request that writes is kept by its bytes before the values too (known_requests.headers, for
+-- lane.write, which looks at the layout rules again), even where it writes registers under one.
+local function remember_request(bytes, item, device)
+  if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
+      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected then
+    return
+  end
+  local header = known_requests.header_lengths[item.fn]
+  if header ~= nil and #bytes <= header then header = nil end
+  local by_bytes = not follows_registers(device, item.registers)
+  if header == nil and not by_bytes then return end
+  if known_requests.count >= known_requests.MAX then
+    known_requests.entries, known_requests.headers, known_requests.count = {}, {}, 0
+  end
+  local info = item.info
+  if info == nil and summary ~= nil then info = summary(item) end -- (nil: loaded without Wireshark)
+  item.info = info
+  local entry = {
+    device = device, crc = item.crc, b = item.b, fields = item.fields, start = item.start,
+    quantity = item.quantity, registers = copy_run(item.registers), bits = copy_run(item.bits),
+    function_text = item.function_text, span_label = item.span_label, info = info, length = #bytes,
+  }
+  if by_bytes then
+    known_requests.count = known_requests.count + 1
+    known_requests.entries[bytes] = entry
+  end
+  if header ~= nil then
+    local key = bytes:sub(1, header)
+    local known = known_requests.headers[key]
+    if known == nil or known.device ~= device then
+      known_requests.count = known_requests.count + 1
+      known_requests.headers[key] = entry
+    end
+  end
+end
+
+-- Number, pair, decode and annotate the items the framer gave out while `record` was fed. Each is shown
+-- in the record that holds its last byte (the framer may have needed later bytes to decide; Wireshark's
+-- later passes show it there): through that record's bytes when they hold it whole, else through its
+-- own bytes (a frame or noise run that began in earlier records, which say where it went).
+take_items = function(st, items, record)
+  local open = st.open
+  for index = 1, #items do
+    local item = items[index]
+    st.count = st.count + 1
+    item.number = st.count
+    local offset, length = item.offset, item.length
+    local home = record
+    for at = 1, #open do
+      local earlier = open[at]
+      if earlier.start <= offset + length - 1 and offset + length - 1 < earlier.start + earlier.length then
+        home = earlier
+      end
+    end
+    item.record = home.number
+    local first = home.start or offset -- (a closed record holds no bytes still to frame)
+    local last = home[#home]
+    local inside = offset >= first and offset + length <= first + (home.length or length)
+    if inside then
+      item.at = offset - first
+      if item.kind == NOISE and type(last) == "table" and last.kind == NOISE and last.raw == nil
+          and last.length == length and last.reason == item.reason and last.time == item.time then
+        -- The same noise again right after (a flood of ':' in ASCII mode is an item a byte, as
+        -- vw3-decode shows it): one entry for the run, shown item by item (show_record).
+        local count = last.count or 1
+        local span = count * length
+        if last.number + count == item.number and last.at + span == item.at and last.offset + span == offset then
+          last.count = count + 1
+          item = nil
+        end
+      end
+    end
+    if item ~= nil then
+      home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
+      local unpacked = st.unpacked
+      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
+    end
+    if not inside then
+      item.at = 0
+      if item.kind == NOISE then
+        item.raw = string_of(item.bytes, 1, length)
+      elseif item.ascii then
+        item.raw = string_of(item.src, item.src_at, length)
+      else
+        item.raw = string_of(item.b, item.bi, length)
+      end
+      for _, earlier in ipairs(st.open) do
+        local from, to = earlier.start, earlier.start + earlier.length
+        if earlier ~= home and from < offset + length and offset < to then
+          earlier.continued = earlier.continued or {}
+          earlier.continued[#earlier.continued + 1] = {
+            item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
+          }
+        end
+      end
+    end
+    if item ~= nil then
+      item.bytes, item.src = nil, nil
+      if item.kind ~= NOISE then take_frame(st, item) end
+    end
+  end
+  -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
+  local waiting_from = st.base
+  if st.noise ~= nil then waiting_from = st.noise.offset end
+  local open = st.open -- (compacted in place: no new list a record)
+  local count, kept = #open, 0
+  for index = 1, count do
+    local earlier = open[index]
+    local waiting = earlier.start + earlier.length - waiting_from
+    if waiting > 0 then
+      kept = kept + 1
+      open[kept] = earlier
+      earlier.waiting = math.min(waiting, earlier.length)
+    else
+      -- closed: all its bytes are framed (kept: its items and frame count)
+      earlier.waiting, earlier.start, earlier.length, earlier.number = nil, nil, nil, nil
+    end
+  end
+  for index = count, kept + 1, -1 do open[index] = nil end
+end
+
+-- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
+-- the read_registers_response or read_bits_response grammar and handler), and the frame the Info text of
+-- a quick answer is made from.
+local RUN_ANSWERS = {}
+for code, name in pairs(DATA.protocol.handlers.response) do
+  if (name == "read_registers_response" or name == "read_bits_response")
+      and DATA.protocol.parsers.response[code] == name then
+    RUN_ANSWERS[code] = name
+  end
+end
+local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
+local LANE_VALUES, LANE_LASTS = {}, {}
+
+-- The quick lane: a record that is the usual answer to the request awaited (a run of registers or bits
+-- whose byte count agrees with the request, on time, from a device that notes nothing about them and has
+-- no name of its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
+-- pack.settle would do it, without a byte table, frame table or fields. Returns the item kept and its Info
+-- text; nil, with nothing changed, for any other record (the general path takes it).
+function lane.answer(st, bytes, n, time, number)
+  local byte = string.byte
+  local pending = st.pending
+  if pending == nil or st.open[1] ~= nil then return nil end
+  local slave, code, count = byte(bytes, 1, 3)
+  local run = RUN_ANSWERS[code]
+  if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
+  if not lane.frames_answer(st, bytes, n, slave, code) then return nil end
+  -- pair: on time (else the request went unanswered)
+  local timeout, asked = st.timeout, pending.time
+  if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
+  -- read_registers_response_handler, read_bits_response_handler: the request's start and quantity, its
+  -- byte count agreeing
+  local fields = pending.fields
+  if fields == nil then return nil end
+  local start, quantity = lane.asked_window(code, fields)
+  if start == nil or quantity == nil then return nil end
+  local bits = run == "read_bits_response"
+  if bits then
+    if count ~= ceil_bytes(quantity) then return nil end
+  elseif count ~= 2 * quantity then
+    return nil
+  end
+  -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
+  local auto = config.default == AUTO and config.per_slave[slave] == nil
+  local quiet = auto and lane.quiet(st, slave, code, true)
+  if auto and not quiet then return nil end
+  local device = device_for(st, slave)
+  if not device then return nil end
+  local profile = device.profile
+  if profile.function_names ~= nil and profile.function_names[code] ~= nil then return nil end
+  -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
+  -- value where 16#8000 is followed), which is only noted as read
+  local protected = nil
+  if READS[code] ~= nil then protected = profile.protected_value end
+  local depend, seen = device.depend, device.seen
+  local follow = not bits and quantity > 0 and (protected ~= nil or next(depend) ~= nil)
+  local values, lasts = LANE_VALUES, LANE_LASTS -- (each register's value and history, for the changes below)
+  if follow then
+    for index = 0, quantity - 1 do
+      local high, low = byte(bytes, 4 + 2 * index, 5 + 2 * index)
+      local address, value = (start + index) % 0x10000, high * 256 + low
+      if value == protected or depend[address] ~= nil then return nil end
+      if protected ~= nil then
+        local last = seen[address]
+        if last == nil or last.value == nil then return nil end
+        values[index], lasts[index] = value, last
+      end
+    end
+  end
+  -- From here on the answer is taken: the same changes, in the same order, as the general path's.
+  if auto then lane.counted(quiet, true) end
+  st.expect = nil -- (expect_after: an answer awaits nothing)
+  local offset = lane.advance(st, n, time)
+  local item = st.count + 1
+  st.count = item
+  -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
+  st.last = nil
+  st.pending = nil
+  local writes = pending.registers
+  if device.track and (code == 16 or code == 23) and writes ~= nil and writes.count > 0 and writes.b ~= nil then
+    remember_writes(seen, item, writes, writes.b)
+  end
+  if follow and protected ~= nil then
+    -- (remember_writes changed these tables in place, if any: none was missing)
+    for index = 0, quantity - 1 do
+      local last = lasts[index]
+      last.value, last.frame, last.how = values[index], item, "read"
+    end
+  end
+  release_run(writes)
+  -- The request, packed now where it came through the quick lane and waits at the end of the list
+  -- pack.settle packs (as_number: its record holds it alone); else it is linked to this record.
+  local slots = pending.slots
+  local list = st.unpacked
+  local last = #list
+  local request_record = list[last - 1]
+  if slots and last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
+      and st.records[pending.record] == request_record then
+    local packed = pack.answered_request(st, pending, slots, number)
+    list[last], list[last - 1] = nil, nil
+    request_record[1] = packed
+    st.records[pending.record] = packed
+    local spare = lane.spare
+    if #spare < 4 then spare[#spare + 1] = pending end
+  else
+    pending.response = { record = number }
+  end
+  -- The Info text and span label (PLC-style devices: 4X numbers), the same for every answer of the
+  -- device's function and read window: made once (summary, span_label), bounded.
+  local key = (code * 65536 + start) * 65536 + quantity
+  local infos = device.lane_infos
+  if infos == nil or infos.count >= 256 then
+    infos = { count = 0, labels = {} }
+    device.lane_infos = infos
+  end
+  local info = infos[key]
+  if info == nil then
+    ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
+    if device.plc ~= nil then lane.span_label(ANSWER, device) end
+    info = summary(ANSWER)
+    infos[key], infos.labels[key], infos.count = info, ANSWER.span_label, infos.count + 1
+  end
+  local crc_low, crc_high = byte(bytes, n - 1, n)
+  local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
+    quantity, pending.record, asked, infos.labels[key], bits)
+  return kept, info
+end
+
+-- The quick lane of requests: a record that is a request met before (known_requests) with no request
+-- awaiting its answer, for the device it was met with, is framed, paired and decoded as feed_whole,
+-- dissect_record and take_frame would do it, in one table. Returns the record, as dissect_record does
+-- (shown and kept by dissect_records as such); nil, with nothing changed, for any other record.
+function lane.request(st, bytes, n, time, number)
+  if st.pending ~= nil or st.open[1] ~= nil then return nil end
+  local known = known_requests.entries[bytes]
+  if known == nil then return nil end
+  local slave, code = string.byte(bytes, 1, 2)
+  local quiet = lane.takes_known(st, known, n, slave, code)
+  if quiet == nil then return nil end
+  return lane.hold_known(st, known, quiet, n, slave, code, time, number)
+end
+
+-- Would the quick lanes take a request met before (its entry `known`) of slave's function code, n bytes:
+-- framed whole where no answer of its slave and function is awaited (feed_whole), profile auto settled
+-- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
+-- in use for the slave), or nil. Changes nothing.
+function lane.takes_known(st, known, n, slave, code)
+  if not lane.frames_known(st, n, slave, code) then return nil end
+  local quiet = false
+  if config.default == AUTO and config.per_slave[slave] == nil then
+    quiet = lane.quiet(st, slave, code, false)
+    if not quiet then return nil end
+  end
+  if device_for(st, slave) ~= known.device then return nil end
+  return quiet
+end
+
+-- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
+-- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
+-- pack.settle). Returns the record.
+function lane.hold_known(st, known, quiet, n, slave, code, time, number)
+  if quiet then lane.counted(quiet, false) end
+  local frame = lane.known_frame(known, st.base, n, slave, code, time)
+  st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
+  lane.advance(st, n, time)
+  local count = st.count + 1
+  st.count = count
+  frame.number, frame.record = count, number
+  adopt_known(frame, known)
+  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
+  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
+  st.pending = frame
+  local record = { frame }
+  st.last = record
+  st.whole_record = record
+  return record
+end
+
+-- The quick lane of requests that write (FC15, FC16, FC23 by the protocol table): a record whose bytes
+-- before the values are a request met before (known_requests.headers), with no request awaiting its
+-- answer, for the device it was met with, and no register it writes under a layout rule that holds now
+-- (annotate_one would note it), is framed, paired and decoded as feed_whole, dissect_record and take_frame
+-- would do it: its CRC checked, its runs read from its own bytes. Returns the record as lane.request does;
+-- nil, with nothing changed, for any other record.
+function lane.write(st, bytes, n, time, number)
+  if st.pending ~= nil or st.open[1] ~= nil then return nil end
+  local byte = string.byte
+  local slave, code = byte(bytes, 1, 2)
+  local header = known_requests.header_lengths[code]
+  if header == nil or n <= header then return nil end
+  local known = known_requests.headers[bytes:sub(1, header)]
+  if known == nil or known.length ~= n then return nil end
+  local quiet = lane.takes_known(st, known, n, slave, code)
+  if quiet == nil then return nil end
+  local device, registers = known.device, known.registers
+  if registers ~= nil and next(device.depend) ~= nil then
+    local rows, plain_rule = device.rows, story.plain_rule
+    for index = 0, registers.count - 1 do
+      local address = (registers.start + index) % 0x10000
+      if plain_rule(device, address, rows[address]) ~= nil then return nil end
+    end
+  end
+  if not crc_string_ok(bytes, n) then return nil end
+  -- Taken: as lane.request takes a request, with this record's own bytes and CRC.
+  local record = lane.hold_known(st, known, quiet, n, slave, code, time, number)
+  local frame = record[1]
+  local crc_low, crc_high = byte(bytes, n - 1, n)
+  local b = { [0] = slave, byte(bytes, 2, n) }
+  frame.b, frame.crc, frame.crc_expected = b, crc_low + crc_high * 256, crc_low + crc_high * 256
+  if frame.registers ~= nil then frame.registers.b = b end
+  if frame.bits ~= nil then frame.bits.b = b end
+  return record
+end
+
+dissect_record = function(st, bytes, time, number)
+  local n = #bytes
+  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  local built = nil
+  if st.open[1] == nil then
+    -- A record that is one frame (take_items's work for it: the record closed, the frame at 0 in it)
+    local frame
+    frame, built = feed_whole(st, bytes, time)
+    if frame ~= nil then
+      local record = { frame }
+      st.last = record
+      local count = st.count + 1
+      st.count = count
+      frame.number, frame.record = count, number
+      local known = frame.known
+      local device = take_frame(st, frame, true)
+      if known == nil then remember_request(bytes, frame, device) end
+      st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
+      return record
+    end
+  end
+  -- (four keys: a fifth would double the table's hash, and records stay for the whole capture)
+  local record = { number = number, start = st.base + st.n, length = n, waiting = nil }
+  st.open[#st.open + 1] = record
+  st.last = record
+  take_items(st, feed(st, bytes, time, true, false, built), record)
+  return record
+end
+
+-- The end of the capture: frame what still waits (as vw3-decode does at the end of its input), shown in
+-- the last record. Called once, when the first pass is over.
+local function finish(st)
+  if st.finished then return end
+  st.finished = true
+  local record = st.last
+  if record == nil then return end
+  local items = feed(st, "", nil, false, true)
+  for index = 1, #items do
+    -- The answer awaited cut by the end of the capture: said on the request (pairing.py CUT_ANSWER).
+    local reason = items[index].reason
+    if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
+  end
+  take_items(st, items, record)
+  if st.pending ~= nil then release_run(st.pending.registers) end
+end
+
+-- A record's first decoding: the quick lanes, else the general path (dissect_record).
+-- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
+-- record the general path, which the quick lanes must equal (the parity tests run both).
+lane.quick = VW3_QUICK_LANES ~= false
+function lane.decode(st, bytes, n, time, number)
+  if lane.quick then
+    local kept, info = lane.answer(st, bytes, n, time, number)
+    if kept ~= nil then return kept, n, info end
+    local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
+    if record ~= nil then return record, n, record[1].info end
+  end
+  return dissect_record(st, bytes, time, number), n
+end
+
+-- Profile `auto` over the whole capture (app/preselect.py, issue 27): once the first pass is over, a
+-- slave's frames met before its choice (or before it was taken back) are decoded again, the whole
+-- capture in order, with every slave's device the one chosen over the capture from its first frame
+-- (annotations, statuses and the parameter story follow the device). Framing and pairing give the same
+-- items again; only what the device says changes. `tshark -2` and Wireshark's later dissections then
+-- show what vw3-decode shows reading a file; a single pass stays as vw3-decode reading a stream.
+function lane.again(st)
+  local again = st.again
+  st.again = nil
+  if again == nil or st.said == nil then return end -- (nothing chosen after a slave's first frame)
+  local fresh = new_state(st.timeout, st.mode)
+  local frozen, chosen, history = {}, {}, {}
+  for number, reason in pairs(st.said) do frozen[number] = reason end
+  for slave, judged in pairs(st.judged or {}) do
+    local choice = judged.choice
+    if choice ~= nil and PROFILES[choice.profile] ~= nil then
+      local device = build_device(PROFILES[choice.profile], slave)
+      chosen[slave], fresh.devices[slave] = choice.profile, device
+      history[slave] = { { number = 0, device = device, reason = choice.reason } }
+    end
+  end
+  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
+  local records = st.records
+  for _, number in ipairs(again.order) do
+    local bytes, time = again.bytes[number], again.times[number]
+    if time == false then time = nil end
+    local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
+    if not ok then result = { length = #bytes, error = tostring(result) } end
+    fresh.records[number] = result
+    records[number] = nil -- (the first decoding of the record is done with)
+    again.bytes[number] = nil
+    if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+  end
+  local ok, problem = pcall(finish, fresh)
+  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  -- (the same table: `state` and udp_states keep naming it)
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end
+
+M.dissect_record, M.finish, M.take_items = dissect_record, finish, take_items

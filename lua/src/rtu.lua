@@ -1,0 +1,465 @@
+-- vw3.rtu: RTU framing: frames by their length rules and CRC, damaged frames, CRC scans, the line's evidence.
+-- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
+local M = require("vw3.env")
+local math, pairs, table = math, pairs, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH
+local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
+local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
+local RESPONSE, RULES, XOR8, add_noise, boundary_at = RESPONSE, RULES, XOR8, add_noise, boundary_at
+local crc16, crc_bytes, crc_ok_at, crc_string_ok, emit = crc16, crc_bytes, crc_ok_at, crc_string_ok, emit
+local format, interpretations, lane, shortest_crc = format, interpretations, lane, shortest_crc
+local time_at = time_at
+local known_requests
+
+-- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
+-- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
+local function valid_frame_at(s, b, i, n, final, scan)
+  if n - i < MIN_ADU then
+    if final then return i == n end
+    return nil
+  end
+  local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
+  local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
+  local list = interpretations(s, slave, b[i + 1])
+  for index = 1, #list do
+    local length, is_scan = list[index][2](b, i, n)
+    if is_scan then
+      if scan ~= false then
+        if shortest_crc(b, i, n, length) > 0 then return true end
+        undecided = undecided or (not final and n - i < MAX_ADU)
+      end
+    elseif length == NEED then
+      if final then return false end
+      return nil
+    elseif length >= MIN_ADU and length <= MAX_ADU then
+      if i + length > n then
+        if not final then return nil end
+      elseif crc_ok_at(b, i, length) then
+        return true
+      end
+    end
+  end
+  if undecided then return nil end
+  return false
+end
+
+-- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
+-- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
+-- the input was cut.
+local function intact_inside(s, b, i, length, n, final)
+  local undecided = false
+  for j = i + 1, i + length - 1 do
+    local found = valid_frame_at(s, b, j, n, final, false)
+    if found then return true end
+    if found == nil then undecided = true end
+  end
+  if undecided then return nil end
+  return false
+end
+
+-- Can a frame start with these two bytes (any address, then a function code with a layout)?
+local function possible_start(slave, code)
+  return RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil)
+end
+
+-- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
+-- that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end)
+  local j = stop
+  while true do
+    if final and j == n then return at_end ~= false end
+    if boundary_at(s, j) then return true end
+    local found = valid_frame_at(s, b, j, n, final)
+    if found ~= false then return found end
+    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
+  end
+end
+
+-- Does a frame of the slave at i start at `stop`, after glitch bytes or not, damaged or not (its answer,
+-- rtu.py _answered)?
+local function answered(s, b, i, stop, n, final)
+  local slave = b[i]
+  local j = stop
+  while j - stop <= GLITCH_SKIP do
+    if n - j < 2 then
+      if final then return false end
+      return nil
+    end
+    if b[j] == slave and possible_start(b[j], b[j + 1]) then return true end
+    if not GLITCH[b[j]] then return false end
+    j = j + 1
+  end
+  return false
+end
+
+-- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
+-- a coil set ON or OFF.
+local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
+local function plausible_request(b, i, length)
+  if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
+  local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
+  if code == 5 then return word == 0xFF00 or word == 0 end
+  local limits = PLAUSIBLE_READS[code]
+  return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
+end
+
+-- May a CRC-valid frame found inside noise count (rtu.py _confirmed)?
+local function confirmed(s, b, i, kind, length, n, final)
+  local stop = i + length
+  local following = followed(s, b, stop, n, final)
+  if following ~= false then return following end
+  if kind == REQUEST and b[i] ~= 0 then
+    if plausible_request(b, i, length) then return true end
+    return answered(s, b, i, stop, n, final)
+  end
+  return false
+end
+
+-- Is i where a frame is expected: in step, at a record boundary, after nothing but glitch bytes since one?
+local function anchored(s, i)
+  return s.noise == nil or s.glitches_only or boundary_at(s, i)
+end
+
+-- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
+-- (rtu.py _cut_answer)? The reason, or nil.
+local function cut_answer(s, b, i, n)
+  if n - i < 2 then return nil end
+  local slave, code = b[i], b[i + 1]
+  if s.expect ~= slave * 256 + code % 128 then return nil end
+  local first = interpretations(s, slave, code)[1]
+  if first == nil then return nil end
+  local length, is_scan = first[2](b, i, n)
+  if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
+  if intact_inside(s, b, i, n - i, n, true) then return nil end
+  local what = "exception response"
+  if first[1] == RESPONSE then what = "response" end
+  if length == NEED then return format("the capture ends inside the %s (%d bytes of it)", what, n - i) end
+  return format("the capture ends inside the %s (%d of %d bytes)", what, n - i, length)
+end
+lane.cut_answer = cut_answer
+
+-- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
+-- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
+-- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
+-- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
+-- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
+-- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. On a
+-- flood of one byte that starts a scanned frame everywhere (1 MB of 0x2B, 0x69, 0x6E, 0x41: any slave,
+-- an unknown code) the scans were the plugin's time: 76 s for 1 MB, 13x a normal capture of that size
+-- (25 s with one scan a position, 4 s with the lengths of a flood kept).
+-- A window of one byte value (a flood) has the same lengths wherever it starts: they are kept by the
+-- byte, minimum and last (at most FLOOD_KEEP of them), and the run of that byte around the position is
+-- kept per buffer (buffers are only appended to: a run found stays one).
+local scanned = { lengths = {} }
+local run = { start = 0, stop = 0 }
+local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
+local function crc_lengths(b, i, n, minimum, last)
+  local memo = scanned
+  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum then return memo.lengths end
+  local c = b[i]
+  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
+  local stop = run.stop
+  while stop < n and b[stop] == c do stop = stop + 1 end
+  run.stop = stop
+  local key
+  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
+    key = (c * 512 + minimum) * 512 + last
+    local kept = flood_lengths[key]
+    if kept ~= nil then
+      memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, kept
+      return kept
+    end
+  end
+  local lengths, count = {}, 0
+  -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
+  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then
+      count = count + 1
+      lengths[count] = length
+    end
+    local index = XOR8[lo * 256 + byte]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+  end
+  if key ~= nil then
+    if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
+    flood_lengths[key], flood_kept = lengths, flood_kept + 1
+  end
+  memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, lengths
+  return lengths
+end
+
+local function scan_match(s, b, i, n, minimum, final)
+  local last = math.min(n - i, MAX_ADU)
+  if minimum < 2 then minimum = 2 end
+  local from = 1
+  if s.glitch_runs >= GLITCHY_AFTER then from = 2 end -- (a 00 after a frame is a glitch: rtu.py _scan)
+  if minimum <= last then
+    local lengths = crc_lengths(b, i, n, minimum, last)
+    for pass = from, 2 do
+      for k = 1, #lengths do
+        local length = lengths[k]
+        local following
+        if pass == 1 then following = valid_frame_at(s, b, i + length, n, final)
+        else following = followed(s, b, i + length, n, final) end
+        if following == nil then return NEED end
+        if following then
+          local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
+          if inside == nil then return NEED end
+          if not inside then return length end
+        end
+      end
+    end
+  end
+  if n - i < MAX_ADU and not final then return NEED end
+  return NONE
+end
+
+-- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
+local function match(s, b, i, n, final)
+  scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
+  local slave, code = b[i], b[i + 1]
+  if GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE) then
+    -- (rtu.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
+    local after = valid_frame_at(s, b, i + 1, n, final)
+    if after == nil then return NEED end
+    if after then return NONE end
+  end
+  local valid, damaged, waiting = nil, nil, nil
+  local list = interpretations(s, slave, code)
+  for index = 1, #list do
+    local kind = list[index][1]
+    local length, is_scan = list[index][2](b, i, n)
+    if is_scan then
+      local found = scan_match(s, b, i, n, length, final)
+      if found == NEED then
+        waiting = waiting or {}
+        waiting[#waiting + 1] = NEED
+      elseif found > 0 then
+        valid = valid or {}
+        valid[#valid + 1] = { kind, found }
+      end
+    elseif length == NEED then
+      if not final then
+        waiting = waiting or {}
+        waiting[#waiting + 1] = NEED
+      end
+    elseif length >= MIN_ADU and length <= MAX_ADU then
+      if i + length > n then
+        if not final then
+          waiting = waiting or {}
+          waiting[#waiting + 1] = length
+        end
+      elseif crc_ok_at(b, i, length) then
+        valid = valid or {}
+        valid[#valid + 1] = { kind, length }
+      else
+        damaged = damaged or {}
+        damaged[#damaged + 1] = { kind, length }
+      end
+    end
+  end
+  if valid ~= nil and #valid == 1 then
+    local kind, length = valid[1][1], valid[1][2]
+    -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
+    -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
+    local expected = kind == RESPONSE and s.expect == slave * 256 + code
+    if not expected and not boundary_at(s, i + length) and waiting ~= nil then
+      for index = 1, #waiting do
+        if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
+      end
+    end
+    return kind, length, true
+  end
+  if valid ~= nil then
+    -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
+    -- else a record boundary, the answer awaited, then what follows decides.
+    if s.glitch_runs >= GLITCHY_AFTER then
+      local order = {}
+      for index = 1, #valid do order[index] = valid[index] end
+      table.sort(order, function(x, y) return x[2] < y[2] end)
+      for index = 1, #order do
+        local following = followed(s, b, i + order[index][2], n, final)
+        if following == nil then return NEED end
+        if following then return order[index][1], order[index][2], true end
+      end
+    end
+    for index = 1, #valid do
+      if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
+    end
+    if s.expect == slave * 256 + code and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
+    for index = 1, #valid do
+      local following = valid_frame_at(s, b, i + valid[index][2], n, final)
+      if following == nil then return NEED end
+      if following then return valid[index][1], valid[index][2], true end
+    end
+    return valid[1][1], valid[1][2], true
+  end
+  if waiting ~= nil then return NEED end
+  -- (a reserved address counts with a good CRC only: a glitch byte is one too; so does a broadcast the
+  -- spec does not allow, a read: 00 is a glitch byte)
+  if slave > MAX_SLAVE or (slave == 0 and DATA.not_broadcast[code]) then return NONE end
+  if GLITCH[slave] then
+    -- A glitch byte before a frame (a CRC scan's too, which intact_inside does not try).
+    local after = valid_frame_at(s, b, i + 1, n, final)
+    if after == nil then return NEED end
+    if after then return NONE end
+  end
+  -- No layout checks out: a damaged frame is shown once if the line confirms its end (followed; the end of
+  -- the input only for the answer awaited) and it holds none inside (a cut frame must not swallow the
+  -- intact frame that follows it).
+  for index = 1, #(damaged or NO_INTERPRETATION) do
+    local kind, length = damaged[index][1], damaged[index][2]
+    local following = followed(s, b, i + length, n, final, s.expect == slave * 256 + code % 128)
+    if following == nil then return NEED end
+    if following then
+      local inside = intact_inside(s, b, i, length, n, final)
+      if inside == nil then return NEED end
+      if not inside then return kind, length, false end
+    end
+  end
+  return NONE
+end
+
+
+-- The frame of `length` bytes at b[i], its first byte at stream offset `offset`, received at `time`.
+local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
+  local stop = i + length - 2
+  local crc = b[stop] + b[stop + 1] * 256
+  local code = b[i + 1]
+  -- (a frame that checks out has the CRC it carries: no need to compute it again)
+  return {
+    kind = kind, offset = offset, length = length, slave = b[i], fn = code % 128,
+    crc = crc, crc_expected = crc_ok and crc or crc16(b, i, stop), time = time,
+    b = b, bi = i, data_at = i + 2, data_len = length - 4,
+    number = 0, record = 0, at = 0, -- (set by take_items: in the constructor, the hash is made at its size)
+    -- (and the keys decoding adds: a table that outgrows its hash is rebuilt, each key inserted again)
+    fields = nil, start = nil, quantity = nil, registers = nil, bits = nil, request = nil, response = nil,
+  }
+end
+
+-- The interpretation the fast paths try at a frame start: the likeliest, unless it is an exception
+-- nobody awaits (those are weighed by match). nil: no fast path here.
+local function fast_interpretation(s, first, slave, code)
+  if first ~= nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then return first end
+  return nil
+end
+
+-- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
+-- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
+-- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
+local CRC_SEEN_MAX = 32768
+local crc_seen, crc_seen_count = {}, 0
+
+-- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
+-- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
+-- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
+-- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
+known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
+
+-- Requests that write, by the length of their bytes before the values (slave, function, addresses,
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): the
+-- handlers that decode such a request from those bytes alone (the values are a run read when shown).
+-- A master writes its setpoints every cycle with new values (lane.write).
+known_requests.header_lengths = {}
+do
+  local FROM_HEADER = { write_coils_request = true, write_registers_request = true, read_write_request = true }
+  for code, name in pairs(DATA.protocol.handlers.request) do
+    local rule = DATA.protocol.rules[code][1]
+    if FROM_HEADER[name] and rule[1] == "count8" then known_requests.header_lengths[code] = rule[2] + 1 end
+  end
+end
+
+-- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
+local function whole_crc_good(b, n, whole)
+  if crc_seen[whole] then return true end
+  if not crc_string_ok(whole, n) then return false end
+  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
+  crc_seen[whole] = true
+  crc_seen_count = crc_seen_count + 1
+  return true
+end
+
+local function crc_good(s, b, i, length, n)
+  local whole = s.whole
+  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
+  return whole_crc_good(b, n, whole)
+end
+
+-- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
+local function run_rtu(s, final, items)
+  local b, n = s.b, s.n
+  local i = 0
+  while n - i >= MIN_ADU or (final and i < n) do
+    if n - i < MIN_ADU then
+      add_noise(s, i, n, cut_answer(s, b, i, n) or "too short for a frame", items)
+      i = n
+      break
+    end
+    local slave, code = b[i], b[i + 1]
+    local list = interpretations(s, slave, code)
+    local first = list[1]
+    if first == nil then
+      -- No frame starts here: skip to the next byte pair that could start one.
+      local stop = i + 1
+      while stop < n - 1 and not possible_start(b[stop], b[stop + 1]) do stop = stop + 1 end
+      if stop >= n - 1 then stop = final and n or n - 1 end
+      add_noise(s, i, stop, "no valid frame", items)
+      i = stop
+    else
+      local done = false
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
+      -- belong to a longer frame, see match): nearly every frame of a clean bus.
+      if s.noise == nil and fast_interpretation(s, first, slave, code)
+          and not (GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE)) then
+        -- (or the frame ends where the record does: a record boundary settles what match would weigh,
+        -- and this is every frame of a capture with one frame a record)
+        local length, is_scan = first[2](b, i, n)
+        if not is_scan and length >= MIN_ADU and length <= MAX_ADU
+            and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
+            and crc_good(s, b, i, length, n) then
+          local offset = s.base + i
+          emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
+          i = i + length
+          done = true
+        end
+      end
+      local cut = nil
+      if not done and final then cut = cut_answer(s, b, i, n) end
+      if cut ~= nil then
+        add_noise(s, i, n, cut, items)
+        i = n
+        break
+      end
+      if not done then
+        local kind, length, crc_ok = match(s, b, i, n, final)
+        if kind == NEED then break end
+        if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
+            and not anchored(s, i) then
+          -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
+          -- such a frame counts only when the line confirms it (rtu.py _confirmed).
+          local following = confirmed(s, b, i, kind, length, n, final)
+          if following == nil then break end
+          if not following then kind = NONE end
+        end
+        if kind == NONE then
+          add_noise(s, i, i + 1, "no valid frame", items)
+          i = i + 1
+        else
+          local offset = s.base + i
+          emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+          i = i + length
+        end
+      end
+    end
+  end
+  return i
+end
+
+M.fast_interpretation, M.known_requests, M.rtu_frame = fast_interpretation, known_requests, rtu_frame
+M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good

@@ -1,0 +1,294 @@
+-- vw3.selection: profile auto: which device each slave is, from evidence in the capture.
+-- Mirrors dissector/devices/selection.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
+local M = require("vw3.env")
+local ipairs, math, next, pairs, table = ipairs, math, next, pairs, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
+local RESPONSE, SELECTION, build_device, device_for = RESPONSE, SELECTION, build_device, device_for
+local format, lane, python_repr, register_at = format, lane, python_repr, register_at
+local device_now
+
+-- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
+-- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
+-- code only that device speaks (final), else its first answers fitting one candidate's map alone (its
+-- rows and the maps given for it; 16#8000 where it has none); an answer to a function the chosen device
+-- does not support takes the choice back. Until then the fallback: spec semantics only. What a later
+-- frame says changes nothing before it, in one pass as with -2: the frames before the evidence are shown
+-- as vw3-decode shows them.
+local select_device
+do
+local CANDIDATES = SELECTION.candidates
+-- The candidate a function code identifies (the first, in the candidates' order, that claims it).
+local IDENTIFYING = {}
+for index = #CANDIDATES, 1, -1 do
+  for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
+end
+local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
+
+local function settled(judged)
+  return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
+    or (judged.choice ~= nil and judged.choice.final)
+end
+
+local function candidate_rows(name)
+  -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
+  config.fit_rows = config.fit_rows or {}
+  local rows = config.fit_rows[name]
+  if rows == nil then
+    rows = {}
+    for address, row in pairs(PROFILES[name].map or {}) do rows[address] = row end
+    for _, layer in ipairs(config.layers) do
+      if layer.profile == name then
+        for address, row in pairs(layer.rows) do rows[address] = row end
+      end
+    end
+    config.fit_rows[name] = rows
+  end
+  return rows
+end
+
+local function identified(f)
+  if f.objects ~= nil and f.kind == RESPONSE then
+    for _, object in ipairs(f.objects) do
+      if object.id == SELECTION.product_code_object then
+        for _, name in ipairs(CANDIDATES) do
+          for _, code in ipairs(PROFILES[name].identify.product_codes) do
+            if object.value:sub(1, #code) == code then
+              return { profile = name, final = true, reason = format(
+                "Read Device Identification in frame #%d: ProductCode %s", f.number, python_repr(object.value)) }
+            end
+          end
+        end
+      end
+    end
+  end
+  if f.kind ~= NOISE and f.crc == f.crc_expected then
+    local name = IDENTIFYING[f.fn]
+    if name ~= nil then
+      local profile = PROFILES[name]
+      local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
+      return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
+        f.number) }
+    end
+  end
+  return nil
+end
+
+-- The registers of an answer as { address, value } pairs (a run read from b, or vw3_modbus.lua's list).
+local function register_list(f, b)
+  local run = f.registers
+  if run == nil or run.count == nil then return run or {} end
+  local out = {}
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    out[index + 1] = { address = address, value = value }
+  end
+  return out
+end
+
+-- selection._fits: true, an answer the device gives; an address, also its non-existent marker there;
+-- false, one it would not give; nil, nothing either way.
+local function fits(f, name, registers)
+  local profile = PROFILES[name]
+  local rows = candidate_rows(name)
+  if not profile.identify.traffic_fit or next(rows) == nil then return nil end
+  if profile.functions ~= nil and not profile.functions[f.fn] then return false end
+  if #registers == 0 then return nil end
+  local known, marker = 0, nil
+  for _, reg in ipairs(registers) do
+    if reg.address == nil then return nil end
+    if rows[reg.address] ~= nil then
+      known = known + 1
+    elseif reg.value == profile.protected_value and READS[f.fn] ~= nil then
+      marker = marker or reg.address
+    else
+      return false
+    end
+  end
+  if known == 0 then return nil end
+  return marker or true
+end
+
+-- selection._Evidence: the reads a candidate's map explains (found.order: their keys as first seen).
+local function enough(found)
+  return #found.order >= FIT_READS or (found.marker ~= nil and found.answers >= FIT_READS)
+end
+
+local function evidence_reason(found, protected)
+  local parts = {}
+  for index = 1, math.min(#found.order, FIT_READS) do
+    local read = found.reads[found.order[index]]
+    local where = format("frame #%d", read.frames[1])
+    if #read.frames > 1 then where = format("frames #%d and #%d", read.frames[1], read.frames[2]) end
+    parts[index] = read.text .. " in " .. where
+  end
+  local text = "traffic fits its map: " .. table.concat(parts, ", ")
+  if #found.order < FIT_READS and found.marker ~= nil and protected ~= nil then
+    text = text .. format("; 16#%04X at %d, its answer for a non-existent parameter", protected, found.marker)
+  end
+  return text
+end
+
+local function what(f, registers)
+  local first, last = registers[1].address, registers[#registers].address
+  if #registers == 1 then return format("function %d at %d", f.fn, first) end
+  return format("function %d at %d..%d", f.fn, first, last)
+end
+
+-- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
+local function observe(st, f, b)
+  if st.frozen ~= nil then return nil end -- (decoded again with the choices of the whole capture)
+  local slave = f.slave
+  -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
+  if slave == 0 and not f.unit_zero then return nil end
+  st.judged = st.judged or {}
+  local judged = st.judged[slave]
+  if judged == nil then
+    judged = { answers = 0, frames = 0 }
+    st.judged[slave] = judged
+  end
+  local current = judged.choice
+  if current ~= nil and current.final then return nil end
+  local judging = not settled(judged)
+  judged.frames = judged.frames + 1
+  local found = identified(f)
+  if found ~= nil then
+    judged.choice = found
+    if current == nil or current.profile ~= found.profile then return found end
+    found.same = true -- the same device, for a new reason (identified after a traffic fit)
+    return found
+  end
+  if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
+  judged.answers = judged.answers + 1
+  if current ~= nil then
+    local profile = PROFILES[current.profile]
+    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[f.fn] then
+      judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
+        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number, profile.device) }
+      return judged.choice
+    end
+    return nil
+  end
+  if not judging then return nil end
+  -- Selector._weigh: what this answer says of each candidate; a choice when one alone has enough.
+  local registers = register_list(f, b)
+  local evidence, ruled_out = judged.evidence or {}, judged.ruled_out or {}
+  judged.evidence, judged.ruled_out = evidence, ruled_out
+  for _, name in ipairs(CANDIDATES) do
+    local verdict = nil
+    if not ruled_out[name] then verdict = fits(f, name, registers) end
+    if verdict == false then
+      ruled_out[name], evidence[name] = true, nil
+    elseif verdict ~= nil then
+      local found = evidence[name]
+      if found == nil then
+        found = { reads = {}, order = {}, answers = 0 }
+        evidence[name] = found
+      end
+      local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
+      local read = found.reads[key]
+      if read == nil then
+        read = { text = what(f, registers), frames = {} }
+        found.reads[key] = read
+        found.order[#found.order + 1] = key
+      end
+      read.frames[#read.frames + 1] = f.number
+      found.answers = found.answers + 1
+      if found.marker == nil and verdict ~= true then found.marker = verdict end
+    end
+  end
+  local ready = nil
+  for _, name in ipairs(CANDIDATES) do
+    if evidence[name] ~= nil and enough(evidence[name]) then
+      if ready ~= nil then return nil end
+      ready = name
+    end
+  end
+  if ready == nil then return nil end
+  judged.choice = { profile = ready, final = false,
+    reason = evidence_reason(evidence[ready], PROFILES[ready].protected_value) }
+  return judged.choice
+end
+
+-- Would observe decide nothing with a good frame of slave's function fn, an answer (answer true: no device
+-- objects in it) or a request? For a slave met before (and judged, for an answer): what lane.counted
+-- counts the frame in (the slave's judged table; true where its choice is final: observe counts nothing).
+-- false when observe is to weigh the frame (a function that identifies a device, a slave not met or still
+-- judged, an answer its device does not support). Changes nothing. (The quick lanes ask this instead.)
+function lane.quiet(st, slave, fn, answer)
+  if IDENTIFYING[fn] ~= nil then return false end
+  local frozen = st.frozen
+  if frozen ~= nil then return frozen[st.count + 1] == nil end -- (the frame that decided says so: observe's path)
+  local all = st.judged
+  local judged = all and all[slave]
+  if judged == nil then return false end
+  local current = judged.choice
+  if current ~= nil and current.final then return true end
+  if answer then
+    if not settled(judged) then return false end
+    if current ~= nil then
+      local profile = PROFILES[current.profile]
+      if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
+        return false
+      end
+    end
+  end
+  return judged
+end
+
+-- Count the frame as observe does, once the lane takes it (judged: what lane.quiet returned).
+function lane.counted(judged, answer)
+  if judged == true then return end
+  if answer then judged.answers = judged.answers + 1 end
+  judged.frames = judged.frames + 1
+end
+
+-- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
+select_device = function(st, f, b)
+  local frozen = st.frozen
+  if frozen ~= nil then
+    -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
+    -- say so (vw3-decode reading a file says where each choice was made too).
+    local said = frozen[f.number]
+    if said ~= nil then f.profile_choice, f.profile_said = said[2], said[1] end
+    return device_for(st, f.slave)
+  end
+  local choice = observe(st, f, b)
+  if choice == nil then return device_for(st, f.slave) end
+  local slave = f.slave
+  if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
+    local history = st.history[slave]
+    history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
+    -- (said on the later passes, where every frame bears this reason: the frame it comes from says so)
+    st.said = st.said or {}
+    st.said[f.number] = { choice.profile, choice.reason }
+    return device_for(st, slave)
+  end
+  st.chosen = st.chosen or {}
+  st.history = st.history or {}
+  st.chosen[slave] = choice.profile
+  local old = st.devices[slave]
+  local device = build_device(PROFILES[choice.profile], slave)
+  local history = st.history[slave]
+  if history == nil then
+    history = {}
+    st.history[slave] = history
+    if old then history[1] = { number = 0, device = old } end
+  end
+  history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
+  st.devices[slave] = device
+  f.profile_choice = choice.reason
+  st.said = st.said or {}
+  st.said[f.number] = { choice.profile, choice.reason }
+  return device
+end
+end
+
+device_now = function(st, f, b)
+  if config.default == AUTO and config.per_slave[f.slave] == nil then return select_device(st, f, b) end
+  return device_for(st, f.slave)
+end
+
+M.device_now = device_now

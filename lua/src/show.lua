@@ -1,0 +1,207 @@
+-- vw3.show: Wireshark: a record's items shown, the first dissection of a record, the end of the first pass.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
+local M = require("vw3.env")
+local ByteArray, ipairs, pairs, pcall, tostring, type = ByteArray, ipairs, pairs, pcall, tostring, type
+local _ENV = M -- (the other modules' names: their exports in M)
+local AUTO, EXCEPTION, NOISE, PROFILES, add_text = AUTO, EXCEPTION, NOISE, PROFILES, add_text
+local build_device, concat, dissect_record, ex, finish = build_device, concat, dissect_record, ex, finish
+local format, lane, new_state, pack, pf, proto = format, lane, new_state, pack, pf, proto
+local show_frame, show_noise, summary, unseen = show_frame, show_noise, summary, unseen
+
+-- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
+-- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
+-- the record's time otherwise.
+local function record_time(pinfo, number)
+  local rtac = rtac_times[number or pinfo.number]
+  if rtac ~= nil then return rtac end
+  local time = pinfo.abs_ts
+  if time == 0 then return nil end
+  return time
+end
+
+-- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
+-- that neither shows details nor filters on fields: tshark's first pass, a summary without filters); its
+-- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
+-- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
+-- Wireshark without TreeItem.text or .visible.
+local tree_mode
+  local function tree_text(tree) return tree.text end
+  local function tree_visible(tree) return tree.visible end
+  local function tree_len(tree) return tree.len end
+  local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
+  local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
+  tree_mode = function(tree)
+    if type(tree) ~= "userdata" then return true end
+    if has_text == nil then has_text = pcall(tree_text, tree) end
+    if has_text and tree.text == nil then return false end
+    local known, visible = pcall(tree_visible, tree)
+    if known and visible == false then
+      if has_len == nil then has_len = pcall(tree_len, tree) end
+      if has_len then return "unseen" end
+    end
+    return true
+  end
+
+
+-- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
+-- in earlier records (a frame the capture tool cut across records).
+local function item_tvb(item, tvb)
+  if item.raw == nil then return tvb end
+  return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
+end
+
+local show_record
+-- The item the record-level notes go on: the first item shown, else one of their own.
+local function anchored(anchor, tree, full, tvb, n)
+  if anchor == nil then
+    anchor = tree
+    if full then anchor = tree:add(proto, tvb:range(0, n), "VW3 record") end
+  end
+  return anchor
+end
+
+-- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
+-- so that they show in the details, not under a hidden item.
+do
+-- One more part of a record's Info text: a single part stays a string, a list is made from the second.
+local function add_part(summaries, info, text)
+  if summaries ~= nil then
+    summaries[#summaries + 1] = text
+    return summaries, nil
+  end
+  if info == nil then return nil, text end
+  return { info, text }, nil
+end
+
+-- whole: the record is one frame just taken by dissect_record's fast lane (not packed yet).
+show_record = function(st, record, tvb, pinfo, tree, n, whole)
+  local cols = pinfo.cols
+  cols.protocol = "VW3"
+  local full = tree_mode(tree)
+  if whole and not full and config.errors[1] == nil then
+    -- No tree (a summary's first pass): the frame's expert infos and its Info text, nothing else to say.
+    -- (show_frame only adds expert infos here: asked only when the frame has one to add)
+    local item = record[1]
+    local registers = item.registers
+    if item.crc ~= item.crc_expected or item.kind == EXCEPTION or item.warnings or item.notes or item.unanswered
+        or item.profile_choice or item.inferred or (registers ~= nil and registers.status ~= nil) then
+      show_frame(st, item, tvb, tree, nil, false)
+    end
+    cols.info = item.info or summary(item) -- (info: a known request's, see known_requests)
+    return
+  end
+  unseen.serial = unseen.serial + 1
+  unseen.generated = false
+  local anchor = nil
+  if record.error then
+    anchor = full and tree:add(proto, tvb:range(0, n)) or tree
+    add_text(anchor, ex.internal, "Lua Error in vw3.lua: " .. record.error)
+  end
+  local continued = record.continued
+  -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
+  -- (the Info text: one part as it is, a list of parts only when there are more)
+  local info, summaries = nil, nil
+  if continued ~= nil then
+    summaries = {}
+    for _, part in ipairs(continued) do
+      local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
+      if full then
+        local t = tree:add(proto, tvb:range(0, n), "VW3 bytes of a frame shown in a later record: " .. text)
+        t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
+        anchor = anchor or t
+      end
+      summaries[#summaries + 1] = format("(%d bytes continue in #%d)", part.count, part.record)
+    end
+  end
+  local frames = 0
+  for index = 1, #record do
+    local item = pack.expand(record[index], st)
+    local shown_from = item_tvb(item, tvb)
+    local t
+    if item.kind == NOISE then
+      local text = format("noise (%d bytes)", item.length)
+      for k = 0, (item.count or 1) - 1 do
+        local shown = show_noise(item, shown_from, tree, full, k)
+        t = t or shown
+        summaries, info = add_part(summaries, info, text)
+      end
+    else
+      frames = frames + 1
+      t = show_frame(st, item, shown_from, tree, pinfo, full)
+      local text = summary(item)
+      summaries, info = add_part(summaries, info, text)
+    end
+    anchor = anchor or t
+  end
+  if frames > 1 then
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.multiple, format("This record holds %d frames", frames))
+  end
+  local errors = config.errors
+  for index = 1, #errors do
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.preference, "Preferences: " .. errors[index])
+  end
+  if record.waiting ~= nil and record.waiting > 0 then
+    local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
+      record.waiting)
+    anchor = anchored(anchor, tree, full, tvb, n)
+    add_text(anchor, ex.partial, text)
+    local text = format("(%d bytes continue)", record.waiting)
+    summaries, info = add_part(summaries, info, text)
+  end
+  if info ~= nil then
+    cols.info = info
+  elseif summaries == nil then
+    cols.info = ""
+  elseif #summaries == 1 then
+    cols.info = summaries[1]
+  else
+    cols.info = concat(summaries, "; ")
+  end
+end
+end
+
+-- Streams of records: the serial capture's (state), and one per UDP conversation.
+udp_states = {}
+
+-- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
+local function finish_all()
+  for _, st in pairs(udp_states) do
+    if not st.finished then
+      local ok, problem = pcall(finish, st)
+      if not ok and st.last ~= nil then st.last.error = tostring(problem) end
+    end
+  end
+  if not state.finished then
+    local ok, problem = pcall(finish, state)
+    if not ok and state.last ~= nil then state.last.error = tostring(problem) end
+  end
+  for _, st in pairs(udp_states) do lane.again(st) end
+  lane.again(state)
+end
+
+-- Each record (serial record, UDP datagram) is a chunk of its stream.
+-- The record's first dissection: nil for an empty record, else the record and its length, and the Info
+-- text of a record the quick lanes took (its one frame has nothing else to say where no tree is wanted).
+local function dissect_now(st, tvb, pinfo, number)
+  local bytes = tvb:raw()
+  local n = #bytes
+  if n == 0 then return nil end
+  local time = record_time(pinfo, number)
+  if config.default == AUTO then
+    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
+    local again = st.again
+    if again == nil then
+      again = { order = {}, bytes = {}, times = {} }
+      st.again = again
+    end
+    again.order[#again.order + 1] = number
+    again.bytes[number], again.times[number] = bytes, time or false
+  end
+  return lane.decode(st, bytes, n, time, number)
+end
+
+M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
+M.tree_mode = tree_mode

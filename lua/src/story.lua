@@ -1,0 +1,267 @@
+-- vw3.story: the parameter story (became protected, readable again) and registers annotated.
+-- Mirrors dissector/devices/story.py, dissector/devices/annotator.py (registers).
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
+local M = require("vw3.env")
+local ipairs, next, table = ipairs, next, table
+local _ENV = M -- (the other modules' names: their exports in M)
+local address_name, concat, format, has_note, interpret = address_name, concat, format, has_note, interpret
+local interpret_wide, note, plc_label, register_at = interpret_wide, note, plc_label, register_at
+
+-- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
+-- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
+local story = {} -- event(), tell(), plain_rule(), repr()
+function story.event(f, what, address, row, label, before, how, frame, now, shared)
+  local events = f.events
+  if events == nil then events = {}; f.events = events end
+  events[#events + 1] = { what = what, address = address, row = row, label = label, before = before,
+    how = how, frame = frame, now = now, shared = shared }
+end
+
+function story.tell(f)
+  local events = f.events
+  if events == nil then return end -- (most frames: before the closure below is made)
+  local function event_name(e) return address_name(e.row, e.address, e.label) end
+  f.events = nil
+  local groups, order = {}, {}
+  for _, e in ipairs(events) do
+    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.shared or "")
+    local group = groups[key]
+    if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
+    group[#group + 1] = e
+  end
+  for _, key in ipairs(order) do
+    local group = groups[key]
+    local first = group[1]
+    if #group == 1 then
+      note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
+    else
+      table.sort(group, function(a, b) return a.address < b.address end)
+      local parts, run = {}, { group[1] }
+      local function flush()
+        if #run == 1 then parts[#parts + 1] = event_name(run[1])
+        else
+          local a, b = run[1], run[#run]
+          parts[#parts + 1] = (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
+        end
+      end
+      for index = 2, #group do
+        local e = group[index]
+        if e.address == run[#run].address + 1 then run[#run + 1] = e
+        else flush(); run = { e } end
+      end
+      flush()
+      local tail = format(": %s in frame #%d", first.how, first.frame)
+      if first.shared ~= nil then tail = tail .. ", " .. first.shared end
+      note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))
+    end
+  end
+end
+
+local function track(seen, f, address, row, value, status, now, label)
+  local last = seen[address]
+  if status == "ok" then
+    if last ~= nil and last.value == nil then
+      story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
+    end
+    if last ~= nil then
+      last.value, last.frame, last.how = value, f.number, "read"
+    else
+      seen[address] = { value = value, frame = f.number, how = "read" }
+    end
+  elseif status == "protected" or status == "non-existent" then
+    if last ~= nil and last.value ~= nil then
+      local became = "non-existent or protected"
+      if row ~= nil then became = "protected" end
+      story.event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
+        last.frame, now, now)
+    end
+    if last ~= nil then
+      last.value, last.frame, last.how = nil, f.number, status
+    else
+      seen[address] = { value = nil, frame = f.number, how = status }
+    end
+  end
+end
+
+local function remember_writes(seen, number, run, b)
+  if run.start == nil then return end
+  for index = 0, run.count - 1 do
+    local address, value = register_at(run, b, index)
+    local last = seen[address]
+    if last ~= nil then
+      last.value, last.frame, last.how = value, number, "written"
+    else
+      seen[address] = { value = value, frame = number, how = "written" }
+    end
+  end
+end
+
+-- What register `index` of a frame's consecutive registers is of a 32-bit map row (naming.name_wide):
+-- 2 its first word (the value is read here), 0 its second word, 1 a register on its own.
+local function words_at(rows, address, index, count)
+  local words = 1
+  if index > 0 then
+    local before = rows[(address + 0xFFFF) % 0x10000]
+    if before ~= nil and before.words == 2 then words = 0 end
+  end
+  local row = rows[address]
+  if row ~= nil and row.words == 2 and index + 1 < count then words = 2 end
+  return words
+end
+
+-- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
+-- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
+-- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
+-- layout now (the register it depends on last held a value that says so), or nil.
+function story.plain_rule(device, address, row)
+  if row == nil or row.words == 2 then return nil end
+  local rule = device.depend[address]
+  if rule == nil then return nil end
+  local last = device.seen[rule.on]
+  if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then return rule end
+  return nil
+end
+
+local function annotate_one(f, device, address, value, protected, multi, label, words)
+  local row = device.rows[address]
+  local plain = false
+  local rule = story.plain_rule(device, address, row)
+  if rule ~= nil then
+    plain = true
+    if not has_note(f, rule.reason) then note(f, rule.reason) end
+  end
+  local status = nil
+  if protected ~= nil then
+    status = "ok"
+    -- (a word of a 32-bit value is no parameter on its own)
+    if value == protected and multi and words == 1 then
+      if row == nil then
+        status = "non-existent"
+      elseif row.ambiguous_8000 then
+        status = "ambiguous"
+      else
+        status = "protected"
+      end
+    end
+    track(device.seen, f, address, row, value, status, "16#8000 now", label)
+  end
+  return plain, status
+end
+
+-- What a register says: the map row that names it, its scaled value and text, from its value, the plain
+-- layout flag, its status and its part of a 32-bit value (`second`: the next word, when words is 2):
+-- maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, address, value, plain, status, words, second)
+  local rows = device.rows
+  local row = rows[address]
+  local named, scaled, text = row, nil, nil
+  if words == 0 then
+    named = rows[(address + 0xFFFF) % 0x10000]
+    text = "second word of " .. named.code
+  end
+  if row ~= nil then
+    named = row
+    if row.words == 2 then
+      if words == 2 then
+        scaled, text = interpret_wide(row, value, second)
+      else
+        text = format("first word of a %s, the second is not in this frame", row.kind)
+      end
+    else
+      local used = row
+      if plain then used = device.plain[address] end
+      scaled, text = interpret(used, value)
+    end
+  end
+  if status == "non-existent" then
+    text = "16#8000: non-existent (address not in the map)"
+  elseif status == "protected" then
+    scaled, text = nil, "16#8000: protected"
+  end
+  return named, scaled, text
+end
+
+local function plc_base(device, f)
+  if device.plc == nil then return nil end
+  return device.plc[f.fn] or device.plc_default
+end
+
+-- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
+-- not the usual: the statuses other than ok, the registers read with their plain layout.
+local function annotate_registers(st, f, device, run, b, read)
+  local start = run.start
+  if start == nil then return end
+  local protected = nil
+  if read then protected = device.profile.protected_value end
+  local count = run.count
+  local multi = count > 1
+  -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
+  if protected == nil and next(device.depend) == nil then return end
+  local first = run.first
+  local base = plc_base(device, f)
+  local rows, depend, seen, number = device.rows, device.depend, device.seen, f.number
+  for index = 0, count - 1 do
+    local k = first + 2 * index
+    local address = (start + index) % 0x10000
+    local value = b[k] * 256 + b[k + 1]
+    local last = nil
+    -- The usual register: no layout rule, not 16#8000, and read before with a value (or nothing to
+    -- follow): what annotate_one would do comes down to noting the value read.
+    if value ~= protected and depend[address] == nil then
+      if protected == nil then
+        last = false
+      else
+        last = seen[address]
+        if last ~= nil and last.value ~= nil then
+          last.value, last.frame, last.how = value, number, "read"
+        else
+          last = nil
+        end
+      end
+    end
+    local plain, status = false, nil
+    if last == nil then
+      local label = nil
+      if base ~= nil then label = plc_label(base, address) end
+      plain, status = annotate_one(f, device, address, value, protected, multi, label, words_at(rows, address, index, count))
+    end
+    if plain then
+      run.plain = run.plain or {}
+      run.plain[index] = true
+    end
+    if status ~= nil and status ~= "ok" then
+      run.status = run.status or {}
+      run.status[index] = status
+    end
+  end
+  story.tell(f)
+end
+
+-- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
+-- gets its row, label, scaled value, text, status and words.
+local function annotate_list(st, f, device, registers, read)
+  local protected = nil
+  if read then protected = device.profile.protected_value end
+  local base = plc_base(device, f)
+  local count = #registers
+  local multi = count > 1
+  for index, reg in ipairs(registers) do
+    local address = reg.address
+    if address ~= nil then
+      if base ~= nil then reg.label = plc_label(base, address) end
+      local words = words_at(device.rows, address, index - 1, count)
+      local next_reg = registers[index + 1]
+      if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
+      if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
+      local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
+      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status, words,
+        next_reg and next_reg.value)
+      reg.status, reg.words = status, words
+    end
+  end
+  story.tell(f)
+end
+
+M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
+M.plc_base, M.remember_writes, M.story, M.track = plc_base, remember_writes, story, track
+M.words_at = words_at

@@ -1,0 +1,134 @@
+-- vw3.stream: the byte stream the framers read: record boundaries and times, noise runs, the glitch rule.
+-- Mirrors dissector/framing/stream.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
+local M = require("vw3.env")
+local math, pairs = math, pairs
+local _ENV = M -- (the other modules' names: their exports in M)
+local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST
+
+-- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
+-- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
+-- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
+-- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
+local lane = {}
+local GLITCH_SKIP = FRAMING.glitch_skip or 16
+-- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
+-- turn-around after a frame, a break (00).
+local GLITCH = {}
+do
+  local value = 255
+  for _ = 0, 8 do
+    GLITCH[value] = true
+    value = (value * 2) % 256
+  end
+end
+-- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
+-- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
+-- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
+-- are chunks with boundary=True), yet it is no end of data: a frame cut by it waits for the next
+-- record, and the end of the capture (finish) decides what is still waiting.
+local function boundary_at(s, i)
+  return s.boundaries[s.base + i] == true
+end
+
+-- The stream offset's time: the time of the record its byte came in (stream.py _time_at). s.times
+-- holds (stream offset, time) pairs flat, oldest first, false for a record without a time.
+local function time_at(s, offset)
+  local times = s.times
+  for index = #times - 1, 1, -2 do
+    if times[index] <= offset then
+      local time = times[index + 1]
+      if time == false then return nil end
+      return time
+    end
+  end
+  return nil
+end
+
+-- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
+-- (and buffers) it came from, and is shown in one piece.
+local function flush_noise(s, items)
+  local noise = s.noise
+  if noise ~= nil then
+    items[#items + 1] = noise
+    s.noise = nil
+  end
+end
+
+local function add_noise(s, start, stop, reason, items)
+  local b = s.b
+  -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
+  if s.noise == nil and not s.noise_cut then s.glitches_only = true end
+  local check_from = start
+  local base = s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at >= start and at < stop then
+      s.glitches_only = true
+      check_from = math.max(at, check_from)
+    end
+  end
+  if s.glitches_only then
+    for k = check_from, stop - 1 do
+      if not GLITCH[b[k]] then
+        s.glitches_only = false
+        break
+      end
+    end
+  end
+  while start < stop do
+    local noise = s.noise
+    if noise == nil then
+      local offset = s.base + start
+      noise = { kind = NOISE, offset = offset, length = 0, reason = reason, time = time_at(s, offset), bytes = {} }
+      s.noise = noise
+    end
+    local take = math.min(stop - start, NOISE_ITEM_MAX - noise.length)
+    local bytes_, length = noise.bytes, noise.length
+    for k = 0, take - 1 do bytes_[length + k + 1] = b[start + k] end
+    noise.length = length + take
+    start = start + take
+    if noise.length >= NOISE_ITEM_MAX then
+      flush_noise(s, items)
+      s.noise_cut = true
+    end
+  end
+end
+
+-- What the framer expects after a frame: the answer to a request (not to a broadcast), else nothing.
+local function expect_after(s, frame)
+  if frame.kind == REQUEST and frame.slave ~= 0 then
+    s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
+  else
+    s.expect = nil
+  end
+end
+
+local GLITCH_RUN, GLITCHY_AFTER = FRAMING.glitch_run or 16, FRAMING.glitchy_after or 3 -- (stream.py)
+local GLITCH_SCORE_MAX = FRAMING.glitch_score_max or 8
+local function emit(s, frame, items)
+  -- How much the line shows 00 glitches before frames (stream.py _emit): +1 after a few glitch bytes with
+  -- a 00 among them, -1 after other noise.
+  local noise = s.noise
+  if noise ~= nil then
+    if s.glitches_only and noise.length <= GLITCH_RUN and noise.offset > 0 and not s.noise_cut then
+      local bytes_ = noise.bytes
+      for k = 1, noise.length do
+        if bytes_[k] == 0 then
+          s.glitch_runs = math.min(GLITCH_SCORE_MAX, s.glitch_runs + 1)
+          break
+        end
+      end
+    elseif s.glitch_runs > 0 then
+      s.glitch_runs = s.glitch_runs - 1
+    end
+  end
+  flush_noise(s, items)
+  s.noise_cut = false
+  items[#items + 1] = frame
+  expect_after(s, frame)
+end
+
+M.GLITCH, M.GLITCHY_AFTER, M.GLITCH_SKIP, M.add_noise = GLITCH, GLITCHY_AFTER, GLITCH_SKIP, add_noise
+M.boundary_at, M.emit, M.expect_after, M.flush_noise = boundary_at, emit, expect_after, flush_noise
+M.lane, M.time_at = lane, time_at

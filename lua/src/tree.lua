@@ -1,0 +1,450 @@
+-- vw3.tree: Wireshark: a frame's tree (registers, bits, objects, links, notes) and Info text.
+-- Mirrors dissector/render/detail.py, dissector/render/summary.py.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
+local M = require("vw3.env")
+local NSTime, ProtoField, ipairs, pairs, setmetatable = NSTime, ProtoField, ipairs, pairs, setmetatable
+local string, tonumber, tostring = string, tonumber, tostring
+local _ENV = M -- (the other modules' names: their exports in M)
+local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
+local NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST = NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST
+local RESPONSE, STATUS_VALUES, bit_at, concat, describe = RESPONSE, STATUS_VALUES, bit_at, concat, describe
+local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
+local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
+local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
+local register_view = register_view
+local summary
+
+local function add_text(tree, expert_info, text)
+  tree:add_proto_expert_info(expert_info, text)
+end
+
+-- The tvb range of `size` bytes at `at` in the frame's byte table (ASCII: hex pairs in the record);
+-- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
+local function frame_span(f, at, size)
+  -- f.at: where the frame starts in the tvb it is shown from; f.bi: its slave byte's index in its byte table
+  local offset, length = at + f.at, size
+  if f.ascii then offset, length = f.at + 1 + 2 * at, 2 * size end
+  if length <= 0 or offset < f.at or offset + length > f.at + f.length then
+    return f.at, f.length
+  end
+  return offset, length
+end
+
+local function frame_range(tvb, f, at, size)
+  return tvb:range(frame_span(f, at, size))
+end
+
+-- Invisible trees. Wireshark often builds a tree that nobody sees, only to run filters, coloring rules or
+-- field extractors over it (this file's own Modbus field extractors make tshark build one on its second
+-- pass). In such a tree an item of a field that nothing refers to is not created: TreeItem:add hands back
+-- the parent item ("faked"). A frame's registers and bits repeat the same few fields, so there each field
+-- is checked once per dissection (the faked item is the frame's item: it has the frame's length), and
+-- the next registers and bits skip a field found faked, doing only what the faked item did: the text
+-- and generated flag of the frame's item, and the expert infos. `serial` counts the dissections.
+-- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
+-- made when a field needs it); .frame_length: the length of the frame's item.
+local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
+
+function unseen.at(tvb, f, at, size)
+  unseen.tvb, unseen.frame_length, unseen.range = tvb, f.length, nil
+  unseen.offset, unseen.length = frame_span(f, at, size)
+end
+
+function unseen.add(parent, field, value, generated, hidden)
+  local serial = unseen.serial
+  if unseen.faked[field] == serial then
+    if generated then unseen.generated = true end
+    return parent
+  end
+  local r = unseen.range
+  if r == nil then
+    r = unseen.tvb:range(unseen.offset, unseen.length)
+    unseen.range = r
+  end
+  local item
+  if value == nil then item = parent:add(field, r) else item = parent:add(field, r, value) end
+  if generated then item:set_generated() end
+  if unseen.checked[field] ~= serial then
+    unseen.checked[field] = serial
+    local frame_length = unseen.frame_length
+    if unseen.length ~= frame_length and item.len == frame_length then unseen.faked[field] = serial end
+  end
+  -- (never the faked item: it is the frame's)
+  if hidden and unseen.faked[field] ~= serial then item:set_hidden() end
+  return item
+end
+
+-- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
+-- each time they are shown rather than kept: records stay in memory for the whole capture.
+local function register_title(reg)
+  local label = reg.label or (reg.address and tostring(reg.address)) or "?"
+  local code = reg.row and reg.row.code
+  local parts = { "Register ", label }
+  if code then parts[#parts + 1] = " " .. code end
+  if reg.value ~= nil then parts[#parts + 1] = format(" = %d", reg.value) end
+  if reg.text then parts[#parts + 1] = ": " .. reg.text end
+  if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
+  return concat(parts)
+end
+
+local function register_expert(reg)
+  if not reg.status or reg.status == "ok" then return nil end
+  local label = reg.label or (reg.address and tostring(reg.address)) or "?"
+  local code = reg.row and reg.row.code
+  return format("Register %s%s: %s", label, code and (" " .. code) or "", reg.text or reg.status)
+end
+
+-- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
+local function frame_bytes(f, tvb)
+  local b = {}
+  if f.ascii then
+    local raw = tvb:raw(f.at + 1, f.length - 3)
+    for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
+  else
+    local raw = tvb:raw(f.at, f.length)
+    local byte = string.byte
+    for k = 1, #raw do b[k - 1] = byte(raw, k) end
+  end
+  return b
+end
+
+-- Per-parameter fields (vw3.atv71.rfr, vw3.sel749m.ia, ...): one per row of the built-in register maps,
+-- its scaled value (or its value where the map gives no scale), so that an IO graph or a column can
+-- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
+-- is read).
+local PARAMETER_FIELDS = {}
+  local taken = {}
+  for profile_name, profile in pairs(PROFILES) do
+    for _, row in pairs(profile.map or {}) do
+      local code = row.code and row.code:lower():gsub("[^%w_]", "_")
+      if code ~= nil and code ~= "" then
+        local abbr = format("vw3.%s.%s", profile_name, code)
+        if not taken[abbr] then
+          taken[abbr] = true
+          local title = row.name and format("%s (%s)", row.name, row.code) or row.code
+          if row.unit then title = title .. ", " .. row.unit end
+          local field = ProtoField.double(abbr, title)
+          PARAMETER_FIELDS[row] = field
+        end
+      end
+    end
+  end
+  local field_list = {}
+  for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+  for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
+  proto.fields = field_list
+
+-- A register's text fields have one occurrence per register, empty (and hidden) where the register has
+-- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
+-- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
+-- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
+-- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
+function unseen.shown(sub, field, r, text)
+  if text then sub:add(field, r, text):set_generated() else sub:add(field, r, ""):set_hidden() end
+end
+
+function unseen.text(sub, field, text)
+  if text then unseen.add(sub, field, text, true) else unseen.add(sub, field, "", false, true) end
+end
+
+-- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
+-- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
+-- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
+local function add_register(tree, tvb, f, reg, range, full)
+  if full == false then
+    if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
+    return
+  end
+  if full == "unseen" then
+    -- tree is the frame's item, in an invisible tree (see unseen.add).
+    unseen.at(tvb, f, reg.offset or -1, 2)
+    local sub = unseen.add(tree, pf.reg)
+    sub:set_text(register_title(reg))
+    if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
+    unseen.text(sub, pf.reg_label, reg.label)
+    if reg.value ~= nil then unseen.add(sub, pf.reg_value, reg.value, false) end
+    local row = reg.row or unseen.no_row
+    unseen.text(sub, pf.reg_code, row.code)
+    unseen.text(sub, pf.reg_name, row.name)
+    unseen.text(sub, pf.reg_unit, row.unit)
+    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
+    local parameter = PARAMETER_FIELDS[row]
+    if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
+      unseen.add(sub, parameter, reg.scaled or reg.value, true)
+    end
+    unseen.text(sub, pf.reg_text, reg.text)
+    unseen.text(sub, pf.reg_source, row.source)
+    if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
+    if reg.status then
+      unseen.add(sub, pf.reg_status, STATUS_VALUES[reg.status], true)
+      if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
+    end
+    return
+  end
+  local r = range or frame_range(tvb, f, reg.offset or -1, 2)
+  local sub = tree:add(pf.reg, r)
+  sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
+  if reg.address ~= nil then
+    local item = sub:add(pf.reg_address, r, reg.address)
+    if r ~= nil then item:set_generated() end
+  end
+  unseen.shown(sub, pf.reg_label, r, reg.label)
+  if reg.value ~= nil then sub:add(pf.reg_value, r, reg.value) end -- (none: an exception 02's inferred status)
+  local row = reg.row or unseen.no_row
+  unseen.shown(sub, pf.reg_code, r, row.code)
+  unseen.shown(sub, pf.reg_name, r, row.name)
+  unseen.shown(sub, pf.reg_unit, r, row.unit)
+  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
+  local parameter = PARAMETER_FIELDS[row]
+  if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
+    sub:add(parameter, r, reg.scaled or reg.value):set_generated()
+  end
+  unseen.shown(sub, pf.reg_text, r, reg.text)
+  unseen.shown(sub, pf.reg_source, r, row.source)
+  if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
+  if reg.status then
+    sub:add(pf.reg_status, r, STATUS_VALUES[reg.status]):set_generated()
+    if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
+  end
+end
+
+-- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
+-- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
+local DECIMAL = setmetatable({}, { __index = function(texts, number)
+  local text = format("%d", number)
+  texts[number] = text
+  return text
+end })
+
+summary = function(f)
+  -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
+  local kind, fn = f.kind, f.fn
+  local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
+  if kind == EXCEPTION then
+    kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
+  end
+  local tail = ""
+  if f.crc ~= f.crc_expected then tail = " BAD CRC" end
+  local start, quantity, label = f.start, f.quantity, f.span_label
+  if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
+  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
+  if quantity ~= nil and quantity > 1 then
+    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[(start + quantity - 1) % 0x10000]
+      .. tail
+  end
+  return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
+end
+
+local function show_frame(st, f, tvb, tree, pinfo, full)
+  local crc_ok = f.crc == f.crc_expected
+  local t, whole = tree, nil
+  if full then
+    whole = tvb:range(f.at, f.length)
+    t = tree:add(proto, whole)
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
+    t:add(pf.item, whole, f.number):set_generated()
+    t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
+    t:add(pf.offset, whole, f.offset):set_generated()
+    local base = 0 -- the slave byte in the frame's byte table
+    t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
+    t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
+    t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+    t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
+    local device, reason = device_of(st, f)
+    if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
+    if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
+    local crc_at = f.length - 2
+    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
+    t:add(pf.crc, crc_range, f.crc)
+    t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
+    t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
+  end
+  if not crc_ok then
+    if f.ascii then
+      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
+    else
+      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
+    end
+  end
+  if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
+  if f.kind == EXCEPTION then
+    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
+    add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
+    if full then
+      t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
+      if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
+    end
+  end
+  if full then
+    local data_range = frame_range(tvb, f, 2, 2)
+    if f.start ~= nil then
+      local item = t:add(pf.start, data_range, f.start)
+      if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
+    end
+    if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
+    if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.subfunction ~= nil then
+      t:add(pf.subfunction, data_range, f.subfunction)
+      local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
+      if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
+    end
+  end
+  local registers = f.registers
+  if registers and registers.count > 0 then
+    if not full then
+      -- Only the expert infos of the registers that are not ok: no value needed (it is 16#8000).
+      local statuses = registers.status
+      if statuses ~= nil then
+        for index = 0, registers.count - 1 do
+          if statuses[index] ~= nil then
+            add_text(t, ex.protected, register_expert(register_view(st, f, registers, nil, index)))
+          end
+        end
+      end
+    else
+      local b = frame_bytes(f, tvb)
+      -- (checking which fields are faked pays from the second register on)
+      local mode = full
+      if full == "unseen" and registers.count < 2 then mode = true end
+      for index = 0, registers.count - 1 do
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
+      end
+    end
+  end
+  if f.inferred then
+    for _, reg in ipairs(inferred_registers(st, f)) do add_register(t, tvb, f, reg, nil, full and true) end
+  end
+  if full then
+    local bits = f.bits
+    if bits and bits.count > 0 then
+      local b = bits.single == nil and frame_bytes(f, tvb) or nil
+      local checked = full == "unseen" and bits.count > 1
+      for index = 0, bits.count - 1 do
+        local address, value, k = bit_at(bits, b, index, true)
+        local title = format("Bit %s = %d", address and tostring(address) or "?", value)
+        if checked then
+          unseen.at(tvb, f, k, 1)
+          local sub = unseen.add(t, pf.bit)
+          sub:set_text(title)
+          if address ~= nil then unseen.add(sub, pf.bit_address, address, true) end
+          unseen.add(sub, pf.bit_value, value, true)
+        else
+          local r = frame_range(tvb, f, k, 1)
+          local sub = t:add(pf.bit, r)
+          sub:set_text(title)
+          if address ~= nil then sub:add(pf.bit_address, r, address):set_generated() end
+          sub:add(pf.bit_value, r, value):set_generated()
+        end
+      end
+    end
+    if unseen.generated then
+      -- what the skipped set_generated() calls of faked items would have done
+      unseen.generated = false
+      t:set_generated()
+    end
+    if f.objects then
+      for _, object in ipairs(f.objects) do
+        local r = frame_range(tvb, f, object.offset, object.length)
+        local sub = t:add(pf.object, r)
+        -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
+        -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
+        -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
+        local shown = story.repr(object.value)
+        sub:set_text(format("%s: %s", object.name, shown))
+        sub:add(pf.object_id, r, object.id)
+        sub:add(pf.object_name, r, object.name):set_generated()
+        sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
+        if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
+      end
+    end
+    local server = f.server -- Report Server ID (FC17) response
+    if server then
+      t:add(pf.byte_count, frame_range(tvb, f, server.at, 1), server.byte_count)
+      t:add(pf.server_id, frame_range(tvb, f, server.at + 1, 1), server.id)
+      t:add(pf.run_indicator, frame_range(tvb, f, server.at + 2, 1), server.run)
+      if server.length > 0 then
+        local r = frame_range(tvb, f, server.at + 3, server.length)
+        if server.text then t:add(pf.additional_data, r, server.text) else t:add(pf.additional_bytes, r) end
+      end
+    end
+    if f.request ~= nil then
+      t:add(pf.request_frame, whole, f.request.record):set_generated()
+      if f.time ~= nil and f.request.time ~= nil then
+        local delta = f.time - f.request.time
+        local seconds = floor(delta)
+        t:add(pf.response_time, whole, NSTime.new(seconds, floor((delta - seconds) * 1e9 + 0.5))):set_generated()
+      end
+    end
+    if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
+  end
+  -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
+  -- dissection, which is never a later pass's, and asks pinfo nothing).
+  local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo ~= nil and pinfo.visited
+  if f.kind == REQUEST then
+    -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
+    if f.unanswered or ends_unanswered then
+      local item = t
+      if full then item = t:add(pf.unanswered, whole, true):set_generated() end
+      add_text(item, ex.unanswered, "Request not answered")
+    end
+  end
+  if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
+    -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
+    local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
+      f.profile_choice)
+    local item = t
+    if full then item = t:add(pf.profile_choice, whole, text):set_generated() end
+    add_text(item, ex.profile, text)
+  end
+  -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
+  -- label Wireshark cuts at 240 bytes).
+  local warnings = f.warnings or NO_INTERPRETATION
+  for index = 1, #warnings do
+    local text = warnings[index]
+    local item = t
+    if full then item = t:add(pf.warning, whole, text):set_generated() end
+    if f.malformed and text:sub(1, 10) == "malformed " then
+      add_text(item, ex.malformed, text)
+    else
+      add_text(item, ex.warning, text)
+    end
+  end
+  local notes = f.notes or NO_INTERPRETATION
+  local count = #notes
+  for index = 1, count + (ends_unanswered and 1 or 0) do
+    local text = st.cut_note or "the capture ends before any response"
+    if index <= count then text = notes[index] end
+    local item = t
+    if full then item = t:add(pf.note, whole, text):set_generated() end
+    if f.no_request and text == "response without a matching request in the capture" then
+      add_text(item, ex.no_request, text)
+    else
+      add_text(item, ex.note, text)
+    end
+  end
+if full then return t end
+  return nil
+end
+
+-- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
+local function show_noise(item, tvb, tree, full, k)
+  local length = item.length
+  local expert_text = format("%d bytes outside any frame: %s", length, item.reason)
+  if not full then
+    add_text(tree, ex.noise, expert_text)
+    return nil
+  end
+  local r = tvb:range(item.at + k * length, length)
+  local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
+  t:add(pf.item, r, item.number + k):set_generated()
+  t:add(pf.kind, r, KIND_VALUES[NOISE]):set_generated()
+  t:add(pf.offset, r, item.offset + k * length):set_generated()
+  t:add(pf.noise_reason, r, item.reason):set_generated()
+  t:add(pf.data, r)
+  add_text(t, ex.noise, expert_text)
+  return t
+end
+
+M.add_register, M.add_text, M.show_frame, M.show_noise = add_register, add_text, show_frame, show_noise
+M.summary, M.unseen = summary, unseen

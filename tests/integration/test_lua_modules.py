@@ -1,0 +1,147 @@
+"""The plugin as modules (issue 30): lua/src holds one module a stage, each naming the Python module it
+mirrors, none over 600 lines; `python3 -m dissector.codegen` assembles them with the generated data into
+the one lua/vw3.lua users copy (package.preload, require) and `--check` fails when vw3.lua is not that
+assembly; the modules that need no Wireshark load under plain lua5.2 and lua5.4 and give, stage by stage,
+what the Python reference gives (tests/conformance/vectors.lua: framing, pairing, decoding, profile
+selection, annotation, map reading); the quick lanes are a switch the parity holds either way."""
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from dissector.codegen import lua as luagen
+from lua_compare import compare
+from lua_harness import PLUGIN, ROOT, ensure_tool, lua_items, python_items, write_pcap
+from lua_session import SessionBuilder
+
+SRC = ROOT / "lua" / "src"
+VECTORS = ROOT / "tests" / "conformance" / "vectors.lua"
+RUNNER = ROOT / "lua" / "tests" / "conformance.lua"
+MAIN = (SRC / "main.lua").read_text(encoding="utf-8")
+
+
+def _list(name: str) -> list[str]:
+    match = re.search(r"^local %s = \{([^}]*)\}" % name, MAIN, re.M)
+    assert match, name
+    return re.findall(r'"([a-z_]+)"', match.group(1))
+
+
+PURE, WIRESHARK = _list("PURE"), _list("WIRESHARK")
+
+
+@pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
+def test_pure_modules_give_what_the_python_stages_give(lua: str) -> None:
+    interpreter = ensure_tool(lua, lua)
+    result = subprocess.run([interpreter, str(RUNNER), str(PLUGIN), str(VECTORS)], capture_output=True, text=True,
+                            timeout=600)
+    assert result.returncode == 0, (result.stdout[-4000:], result.stderr[-2000:])
+    summary = result.stdout.splitlines()[-1]
+    match = re.fullmatch(r"Lua 5\.[24]: (\d+) cases, (\d+) checks, 0 differences", summary)
+    assert match and summary.startswith(f"Lua {lua[3:]}"), summary
+    assert int(match.group(1)) >= 35 and int(match.group(2)) >= 250, summary
+
+
+def test_the_runner_finds_a_difference(tmp_path: Path) -> None:
+    # A plugin that decodes a read's registers one address off: the runner says where, and fails.
+    broken = tmp_path / "vw3.lua"
+    text = PLUGIN.read_text(encoding="utf-8")
+    line = "if run.start ~= nil then address = (run.start + index) % 0x10000 end"
+    at = text.index(line, text.index("local function register_at(run, b, index, shift)"))
+    broken.write_text(text[:at] + line.replace("index)", "index + 1)") + text[at + len(line):], encoding="utf-8")
+    result = subprocess.run([ensure_tool("lua5.4", "lua5.4"), str(RUNNER), str(broken), str(VECTORS)],
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 1
+    assert "capture p38_protection.bin decoding" in result.stdout
+    assert not result.stdout.splitlines()[-1].endswith(" 0 differences")
+
+
+@pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
+def test_pure_modules_load_without_wireshark(lua: str) -> None:
+    script = (
+        f'local vw3 = dofile({str(PLUGIN)!r}) '
+        'assert(type(vw3) == "table" and vw3.new_state and vw3.dissect_record, "the pure entry points") '
+        'local names = {} '
+        'for name in pairs(package.loaded) do if name:sub(1, 4) == "vw3." then names[#names + 1] = name:sub(5) end end '
+        'table.sort(names) print(table.concat(names, " "))'
+    )
+    result = subprocess.run([ensure_tool(lua, lua), "-e", script], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split() == sorted(PURE + ["env"])  # no Wireshark module was loaded
+
+
+def test_modules_are_small_stages_that_name_their_python_module() -> None:
+    files = sorted(SRC.glob("*.lua"))
+    assert {path.stem for path in files} == set(PURE + WIRESHARK + ["main"])
+    for path in files:
+        text = path.read_text(encoding="utf-8")
+        lines = text.count("\n")
+        assert lines <= 600, (path.name, lines)
+        assert "at most 200 locals" not in text, path.name  # no `do` block workarounds any more
+        if path.stem == "main":
+            continue
+        head = text.splitlines()[:3]
+        assert head[0].startswith(f"-- vw3.{path.stem}: "), (path.name, head[0])
+        assert head[1].startswith("-- Mirrors "), (path.name, head[1])
+        for module in re.findall(r"dissector/[a-z_/]+\.py", head[1]):
+            assert (ROOT / module).is_file(), (path.name, module)
+        assert 'require("vw3.env")' in text
+    assert sum((SRC / f"{name}.lua").read_text().count("\n") for name in PURE + WIRESHARK) > 4000
+
+
+def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    src = tmp_path / "src"
+    shutil.copytree(SRC, src)
+    plugin = tmp_path / "vw3.lua"
+    shutil.copy(PLUGIN, plugin)
+    args = ["--plugin", str(plugin), "--src", str(src)]
+    assert luagen.main(["--check", *args]) == 0
+    # a module changed without assembling again
+    rtu = src / "rtu.lua"
+    rtu.write_text(rtu.read_text().replace("local function run_rtu(", "local function run_rtu( "), encoding="utf-8")
+    assert luagen.main(["--check", *args]) == 1
+    assert "stale" in capsys.readouterr().err
+    assert luagen.main(args) == 0 and luagen.main(["--check", *args]) == 0
+    assert "local function run_rtu( " in plugin.read_text()
+    # vw3.lua edited by hand
+    plugin.write_text(plugin.read_text().replace("local function run_rtu( ", "local function run_rtu("))
+    assert luagen.main(["--check", *args]) == 1
+    # a module listed in main.lua but missing
+    rtu.unlink()
+    assert luagen.main(args) == 2
+    assert "rtu.lua" in capsys.readouterr().err
+    # the whole assembly: main's header, the generated data, each module in package.preload, main's body
+    text = PLUGIN.read_text()
+    assert text.startswith(MAIN.split("\n\n")[0])
+    assert text.count("\npackage.preload[") == len(PURE + WIRESHARK)
+    assert text.index(luagen.BEGIN) < text.index('package.preload["vw3.crc"]') < text.index("for _, name in ipairs(PURE)")
+
+
+@pytest.mark.parametrize("quick", ["TRUE", "FALSE"])
+def test_parity_with_the_quick_lanes_on_and_off(tmp_path: Path, quick: str) -> None:
+    pcap = write_pcap(tmp_path / "session.pcap", SessionBuilder(seed=30).session(800))
+    python = python_items(pcap)
+    for capture in (pcap, ROOT / "captures" / "sel749m_polling.pcap", ROOT / "captures" / "atv71_commissioning.pcap"):
+        expected = python if capture == pcap else python_items(capture)
+        # (one pass: on the shipped captures, where no frame waits for a later record to be framed)
+        for two_pass in ((True,) if capture == pcap else (True, False)):
+            if not two_pass:
+                expected_one = python_items(capture, one_pass=True)
+            lua, _, _ = lua_items(capture, "-o", f"vw3.quick_lanes:{quick}", two_pass=two_pass)
+            ignore = frozenset() if two_pass else frozenset(["response_frame", "unanswered"])
+            differences = compare(expected if two_pass else expected_one, lua, ignore)
+            assert not differences, (capture.name, two_pass, "\n".join(differences[:20]))
+
+
+def test_the_switch_before_loading(tmp_path: Path) -> None:
+    # VW3_QUICK_LANES = false before the plugin loads: the lanes are off (the preference's default too).
+    script = (
+        f'VW3_QUICK_LANES = false local vw3 = dofile({str(PLUGIN)!r}) '
+        'print(package.loaded["vw3.env"].lane.quick) '
+        f'VW3_QUICK_LANES = nil dofile({str(PLUGIN)!r}) print(package.loaded["vw3.env"].lane.quick)'
+    )
+    result = subprocess.run([ensure_tool("lua5.4", "lua5.4"), "-e", script], capture_output=True, text=True, timeout=60)
+    assert result.stdout.split() == ["false", "true"], result.stderr
