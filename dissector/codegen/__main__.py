@@ -11,8 +11,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from dissector.codegen import c, lua, rules_lua
 from dissector.errors import GenerateError
+
+try:
+    from dissector.codegen import c, lua, rules_lua
+except ValueError as error:  # data/modbus.toml: a rule, layout or TOML the tables cannot be made from
+    print(f"error: {error}", file=sys.stderr)
+    raise SystemExit(2) from None
 
 
 def stale() -> list[str]:
