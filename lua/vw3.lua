@@ -4276,8 +4276,8 @@ function lane.quiet(st, slave, fn, answer)
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
+  if current == nil and not settled(judged) then return false end -- (a provisional frame: observe's path)
   if answer then
-    if not settled(judged) then return false end
     if current ~= nil then
       local profile = PROFILES[current.profile]
       if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
@@ -4307,7 +4307,17 @@ select_device = function(st, f, b)
     return device_for(st, f.slave)
   end
   local choice = observe(st, f, b)
-  if choice == nil then return device_for(st, f.slave) end
+  if choice == nil then
+    -- Read once, no device chosen for the slave yet while evidence may still come: its values are named
+    -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
+    local slave = f.slave
+    local judged = slave ~= 0 and st.judged and st.judged[slave]
+    if judged and judged.choice == nil and not settled(judged) then
+      f.provisional = true
+      st.provisional = true -- (lane.again: the later passes show no frame provisional)
+    end
+    return device_for(st, slave)
+  end
   local slave = f.slave
   if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
     local history = st.history[slave]
@@ -4512,7 +4522,8 @@ local pack = {}
   -- (then: registers, bits as runs; request record and time, response record; the rare keys)
   local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "span_label", "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects",
-    "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said" }
+    "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said",
+    "provisional" }
   local RUN_RARE = { "status", "plain", "single" }
 
   local function rare(t, keys)
@@ -5350,10 +5361,11 @@ end
 function lane.again(st)
   local again = st.again
   st.again = nil
-  if again == nil or st.said == nil then return end -- (nothing chosen after a slave's first frame)
+  -- (nothing chosen after a slave's first frame, and no frame read before a choice could be made)
+  if again == nil or (st.said == nil and not st.provisional) then return end
   local fresh = new_state(st.timeout, st.mode)
   local frozen, chosen, history = {}, {}, {}
-  for number, reason in pairs(st.said) do frozen[number] = reason end
+  for number, reason in pairs(st.said or {}) do frozen[number] = reason end
   for slave, judged in pairs(st.judged or {}) do
     local choice = judged.choice
     if choice ~= nil and PROFILES[choice.profile] ~= nil then
@@ -5468,6 +5480,8 @@ local pf = {
   profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
   profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
     "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
+  provisional = ProtoField.bool("vw3.provisional", "Provisional", base.NONE, nil, nil,
+    "Profile auto had not chosen this slave's device when the frame was read (one pass): its values are named with spec semantics only"),
   profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
     "Profile auto: why this frame decides the slave's profile"),
   bit = ProtoField.none("vw3.bit", "Bit"),
@@ -5801,7 +5815,8 @@ summary = function(f)
     kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
   end
   local tail = ""
-  if f.crc ~= f.crc_expected then tail = " BAD CRC" end
+  if f.provisional then tail = " [provisional]" end -- (as vw3-decode's summary says it: render/summary.py)
+  if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
   if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
@@ -5830,6 +5845,12 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
     if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
+    if f.provisional then
+      -- (vw3-decode -V's line, render/detail.py PROVISIONAL_LINE)
+      t:add(pf.provisional, whole, true):set_generated():set_text("Profile: provisional (profile auto has not "
+        .. "chosen this slave's device yet: values named with spec semantics only, which its device may name "
+        .. "otherwise)")
+    end
     local crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)

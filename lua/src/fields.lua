@@ -59,6 +59,8 @@ local pf = {
   profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
   profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
     "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
+  provisional = ProtoField.bool("vw3.provisional", "Provisional", base.NONE, nil, nil,
+    "Profile auto had not chosen this slave's device when the frame was read (one pass): its values are named with spec semantics only"),
   profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
     "Profile auto: why this frame decides the slave's profile"),
   bit = ProtoField.none("vw3.bit", "Bit"),

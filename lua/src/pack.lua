@@ -18,7 +18,8 @@ local pack = {}
   -- (then: registers, bits as runs; request record and time, response record; the rare keys)
   local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "span_label", "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects",
-    "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said" }
+    "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said",
+    "provisional" }
   local RUN_RARE = { "status", "plain", "single" }
 
   local function rare(t, keys)

@@ -225,8 +225,8 @@ function lane.quiet(st, slave, fn, answer)
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
+  if current == nil and not settled(judged) then return false end -- (a provisional frame: observe's path)
   if answer then
-    if not settled(judged) then return false end
     if current ~= nil then
       local profile = PROFILES[current.profile]
       if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
@@ -256,7 +256,17 @@ select_device = function(st, f, b)
     return device_for(st, f.slave)
   end
   local choice = observe(st, f, b)
-  if choice == nil then return device_for(st, f.slave) end
+  if choice == nil then
+    -- Read once, no device chosen for the slave yet while evidence may still come: its values are named
+    -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
+    local slave = f.slave
+    local judged = slave ~= 0 and st.judged and st.judged[slave]
+    if judged and judged.choice == nil and not settled(judged) then
+      f.provisional = true
+      st.provisional = true -- (lane.again: the later passes show no frame provisional)
+    end
+    return device_for(st, slave)
+  end
   local slave = f.slave
   if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
     local history = st.history[slave]

@@ -186,6 +186,12 @@ def test_one_pass_is_vw3_decode_reading_a_stream(tmp_path: Path) -> None:
     assert differences == [f"stream offset {offset}: only Python has a frame: {item.data['raw']}"
                            for offset in sel for item in stream if item.data["offset"] == offset] + [
         f"{len(stream)} items in vw3-decode --json, {len(stream) - 2} shown by the plugin"]
+    # (compare() holds vw3.provisional to vw3-decode's "provisional": frames read before their slave's choice)
+    provisional = sorted(int(item.fields["item"]) for item in lua_shown(one) if item.fields.get("provisional") == "1")
+    assert provisional == sorted(item.data["frame"] for item in stream if item.data.get("provisional"))
+    assert provisional[:3] == [1, 2, 3] and len(provisional) > 10
+    two_shown, _, _ = lua_items(pcap)
+    assert not any(item.fields.get("provisional") for item in lua_shown(two_shown))  # -2: the file's view
     profiles = _profiles_by_item(one)
     assert profiles[2] == ("3", "generic") and profiles[4] == ("3", "atv71")  # the second read decides, for itself
     assert profiles[7] == ("4", "generic") and profiles[8] == ("4", "atv71")

@@ -27,8 +27,8 @@ FRAME_KEYS = frozenset([
     "subfunction_name", "registers", "bits", "objects", "exception_code", "exception_name",
     "exception_meaning", "request_frame", "response_time", "response_frame", "unanswered", "fields",
     "warnings", "notes", "profile", "profile_reason",
-    # Read once, before profile `auto` chose the slave's device (issue 27): not compared yet, the plugin
-    # has no such field (tshark -2 names every frame from the choice over the whole capture).
+    # Read once, before profile `auto` chose the slave's device (issue 27): vw3.provisional in tshark's
+    # single pass (-2 names every frame from the choice over the whole capture, as the file read twice).
     "provisional",
 ])
 NOISE_KEYS = frozenset(["frame", "kind", "offset", "length", "time", "raw", "reason", "warnings"])
@@ -80,6 +80,7 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "request_frame": records.get(data["request_frame"]) if "request_frame" in data else None,
         "response_frame": records.get(data["response_frame"]) if "response_frame" in data else None,
         "unanswered": data.get("unanswered"),
+        "provisional": data.get("provisional", False),
         # Microseconds: Wireshark holds times as doubles in Lua (pinfo.abs_ts), pcap gives microseconds.
         "response_time": None if data.get("response_time") is None else round(data["response_time"], 6),
         "registers": [
@@ -136,6 +137,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "response_frame": _int(fields.get("response_frame")),
         # (present only when true)
         "unanswered": bool(_bool(fields.get("unanswered"))) if kind == "request" else None,
+        "provisional": bool(_bool(fields.get("provisional"))),
         "response_time": None if fields.get("response_time") is None else round(float(fields["response_time"]), 6),
         "registers": [
             (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"),
