@@ -139,8 +139,17 @@ class TimedPath:
         """The Python stages' items up to where they need more chunks (False) or give the stream back
         to the engine (True)."""
         framer = self.framer
+        if not self.engine_ok:
+            # The engine will not take the stream back: the Python stages frame freely, chunk by chunk.
+            framer.pause_at(None)
+            while self.fed < len(self.starts):
+                items = self.dissector.feed(self._chunk(self.fed))
+                self.fed += 1
+                if items:
+                    self.write_items(items)
+            return False
         while True:
-            if self.engine_ok and framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+            if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
                 self._forget_changed()
                 offset, rest, expect = framer.hand_back()
                 self.pos = offset - self.base

@@ -225,3 +225,26 @@ def test_times_far_apart_same_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPa
     write_pcap(capture, records)
     for options in ([], ["-t", "d"], ["-t", "dd"]):
         assert_same([str(capture), *options], monkeypatch)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_hex_dumps_same_lines(seed: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Text hex dumps, a line a read, with times in seconds, ISO date-times, or none; damaged."""
+    rng = random.Random(seed)
+    records = cut_records(rng, frames_of(seed + 60, damaged=0.05), ["frame", "bursts", "untimed"][seed])
+    lines = []
+    for data, ns in records:
+        if ns is None or seed == 2:
+            stamp = ""
+        elif seed == 0:
+            stamp = f"{ns // 10**9}.{ns % 10**9 // 1000:06d} "
+        else:
+            seconds, fraction = divmod(ns, 10**9)
+            from datetime import datetime, timezone
+
+            stamp = datetime.fromtimestamp(seconds, timezone.utc).strftime("%Y-%m-%dT%H:%M:%S") + f".{fraction // 1000:06d} "
+        lines.append(stamp + data.hex(" "))
+    dump = tmp_path / "bus.txt"
+    dump.write_text("\n".join(lines) + "\n")
+    for options in ([], ["--json"], ["-t", "d"]):
+        assert_same([str(dump), *options], monkeypatch)
