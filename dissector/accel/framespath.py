@@ -23,6 +23,7 @@ from dissector.render.timefmt import Clock
 RECORD = struct.Struct("=qqiiBBBqq")  # _judge.h frames_record
 _KINDS = {2: Kind.RESPONSE, 3: Kind.EXCEPTION}  # _summary.c KIND_*
 _NOTHING = bytes(256 * 32)  # no (slave, function) is the Python stages' alone
+SLICE = 256  # transactions decoded and shown at a time
 
 
 def decode(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: Any | None,
@@ -60,11 +61,18 @@ class _Frames:
         self.path = path
         self.annotate = annotate
         self.accept = accept
+        self.numbered = 0  # items numbered so far
 
     def __call__(self, records: bytes) -> None:
+        # A slice of records at a time: only that many decoded frames are alive at once (memory flat).
+        self.numbered = self.path.numbered
+        for start in range(0, len(records), SLICE * RECORD.size):
+            self._frames(records[start : start + SLICE * RECORD.size])
+
+    def _frames(self, records: bytes) -> None:
         path = self.path
         buf, base = path.buf, path.base
-        number = path.numbered  # the items numbered before this run
+        number = self.numbered
         annotate = self.annotate
         items: list[Item] = []
         for q_at, a_at, q_length, a_length, a_kind, q_timed, a_timed, q_ns, a_ns in RECORD.iter_unpack(records):
@@ -87,6 +95,7 @@ class _Frames:
                 answer.request = request
                 request.response_ref = weakref.ref(answer)
                 items.append(answer)
+        self.numbered = number
         for item in items:
             decode_frame(item)  # type: ignore[arg-type]
             if annotate is not None:
