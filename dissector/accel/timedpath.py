@@ -128,6 +128,16 @@ class TimedPath:
             self.dissector.gaps.take_over(start, chunk)
         self.fed = index + 1
         self.pairer.count = self.engine.count
+        # The framer looks at `offset` first with every chunk it had when it took the frame before (it
+        # may have waited for more): give them before it frames anything.
+        decided = self.engine.decided
+        if self.fed < len(self.starts) and self.starts[self.fed] < decided:
+            self.framer.pause_at(offset)
+            while self.fed < len(self.starts) and self.starts[self.fed] < decided:
+                items = self.dissector.feed(self._chunk(self.fed))  # (none: paused)
+                self.fed += 1
+                if items:
+                    self.write_items(items)
         if self.sync_clock:
             first, previous = self.engine.clock
             clock = self.clock
