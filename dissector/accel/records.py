@@ -52,8 +52,11 @@ class Block:
 class BlockBuilder:
     """Gathers chunks into blocks, carrying the stream offset and the chunk before across them."""
 
-    def __init__(self, timing: LineTiming) -> None:
+    def __init__(self, timing: LineTiming, streaming: bool = False) -> None:
         self.timing = timing
+        # A pipe: each chunk is a block as it comes (a live feed is never held back to fill one).
+        self.block_bytes = 1 if streaming else BLOCK_BYTES
+        self.streaming = streaming
         self.offset = 0
         self.previous: tuple[int, float | None] | None = None
         self.lowest: int | None = None  # the stream's earliest and latest times so far (ns)
@@ -91,7 +94,7 @@ class BlockBuilder:
         self.flags.append(flag)
         self.offset += len(data)
         self.size += len(data)
-        if self.size >= BLOCK_BYTES:
+        if self.size >= self.block_bytes:
             yield from self.flush()
 
     def _span(self, lowest: int, highest: int) -> None:
@@ -120,7 +123,8 @@ class BlockBuilder:
         big_endian = reader.order == ">"
         buffer, position = b"", 0
         while True:
-            data = inp.read(READ_BYTES)
+            # (a pipe's bytes as they come; a file's a megabyte at a time)
+            data = inp.read_some(READ_BYTES) if self.streaming else inp.read(READ_BYTES)
             buffer = buffer[position:] + data
             position = 0
             previous = self.previous
@@ -151,7 +155,7 @@ def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
     """The blocks of a source (sources/reader.py Source): pcap records in bulk, other chunks as they come."""
     from dissector.accel import fastsummary
 
-    builder = BlockBuilder(timing)
+    builder = BlockBuilder(timing, getattr(source, "streaming", False))
     head, rest = source.parts()
     try:
         yield from builder.chunks(head)

@@ -12,6 +12,7 @@ the reading survives (a truncated last record, a skipped block) go to `Source.wa
 """
 from __future__ import annotations
 
+import io
 import os
 import stat
 import sys
@@ -148,6 +149,9 @@ class Source:
         self._log = log
         self._closer = closer
         self._taken = 0
+        # Not a regular file (standard input, a pipe, a FIFO): bytes come as they are written, and a
+        # reader must not wait for more than what is there before it shows what it has.
+        self.streaming = True
 
     @property
     def warnings(self) -> list[str]:
@@ -251,4 +255,13 @@ def _start(
             mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
     if format == "raw" and mode == "ascii" and fmt is None:
         format = "ascii"
-    return Source(chunks, head, format, mode, name, log, closer)
+    source = Source(chunks, head, format, mode, name, log, closer)
+    source.streaming = not _regular(stream)
+    return source
+
+
+def _regular(stream: BinaryIO) -> bool:
+    try:
+        return stat.S_ISREG(os.fstat(stream.fileno()).st_mode)
+    except (OSError, ValueError, AttributeError, io.UnsupportedOperation):
+        return False

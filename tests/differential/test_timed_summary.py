@@ -248,3 +248,36 @@ def test_hex_dumps_same_lines(seed: int, tmp_path: Path, monkeypatch: pytest.Mon
     dump.write_text("\n".join(lines) + "\n")
     for options in ([], ["--json"], ["-t", "d"]):
         assert_same([str(dump), *options], monkeypatch)
+
+
+@pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
+def test_a_pipe_is_never_held_back(suffix: str, tmp_path: Path) -> None:
+    """From a pipe (a capture still being written), the records there are handed on as they come, not
+    when a block's worth has arrived: all of them while the writer still holds the pipe open."""
+    import os
+    import threading
+
+    from dissector.accel.records import blocks_from_chunks
+    from dissector.framing.timing import LineTiming
+    from dissector.sources.reader import open_source
+    from helpers import rtu
+
+    read, answer = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
+    capture = tmp_path / f"two.{suffix}"
+    (write_pcap if suffix == "pcap" else write_pcapng)(capture, [(read, 10**18), (answer, 10**18 + 10**7)] * 40)
+    reading, writing = os.pipe()
+    os.write(writing, capture.read_bytes())  # (the writer keeps the pipe open: no end of input)
+    got: list = []
+
+    def blocks() -> None:
+        with os.fdopen(reading, "rb") as stream:
+            for block in blocks_from_chunks(open_source("-", stdin=stream), LineTiming()):
+                got.extend(block.starts)
+
+    thread = threading.Thread(target=blocks, daemon=True)
+    thread.start()
+    thread.join(5)
+    received = len(got)
+    os.close(writing)
+    thread.join(10)
+    assert received == len(got) == 80
