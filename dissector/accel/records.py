@@ -159,7 +159,9 @@ def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
     head, rest = source.parts()
     try:
         yield from builder.chunks(head)
-        bulk = fastsummary._summary is not None and hasattr(fastsummary._summary, "scan_pcap")
+        from dissector.accel.timedpath import built
+
+        bulk = built()
         if bulk and getattr(rest, "between", False) and getattr(rest, "linktype", None) == LINKTYPE_USER0:
             yield from builder.pcap(rest, fastsummary._summary.scan_pcap)
         else:

@@ -27,9 +27,15 @@ from dissector.render.timefmt import Clock
 CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
 
 
+def built() -> bool:
+    """The extension is built from these sources (a build older than its last feature, `frames`, is not
+    used: its timed calls would not match)."""
+    return _summary is not None and hasattr(_summary.Engine, "frames")
+
+
 def usable(clock: Clock) -> bool:
-    """The engine writes this time column, and is built with run_timed (a stale build is not used)."""
-    return clock.format in CLOCKS and not clock.deltas and hasattr(_summary.Engine, "run_timed")
+    """The engine writes this time column, and is built from these sources."""
+    return clock.format in CLOCKS and not clock.deltas and built()
 
 
 class TimedPath:
