@@ -56,6 +56,12 @@ def available() -> bool:
     return _summary is not None and not os.environ.get("VW3_PURE_PYTHON")
 
 
+def built() -> bool:
+    """The extension is built from these sources for the timed path (a build older than its last
+    feature, `frames`, is not used: its timed calls would not match; timedpath.py)."""
+    return _summary is not None and hasattr(_summary.Engine, "frames")
+
+
 def _limits() -> tuple[tuple[int, int], ...]:
     names = table.compiled_limits()  # the order of LIMIT_* in _tables.h
     return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]

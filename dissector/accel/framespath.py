@@ -33,7 +33,7 @@ def decode(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: 
     from dissector.accel import timedpath
     from dissector.accel.records import blocks_from_chunks
 
-    if not fastsummary.available() or not timedpath.built():
+    if not fastsummary.available() or not fastsummary.built():
         return False
     def accept(items: list[Item]) -> None:
         if not sinks.done:  # -c N: nothing after the frame that reached it

@@ -159,9 +159,7 @@ def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
     head, rest = source.parts()
     try:
         yield from builder.chunks(head)
-        from dissector.accel.timedpath import built
-
-        bulk = built()
+        bulk = fastsummary.built()
         if bulk and getattr(rest, "between", False) and getattr(rest, "linktype", None) == LINKTYPE_USER0:
             yield from builder.pcap(rest, fastsummary._summary.scan_pcap)
         else:

@@ -18,19 +18,13 @@ from bisect import bisect_right
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from dissector.accel.fastsummary import NEED, _summary, make_engine, python_step
+from dissector.accel.fastsummary import NEED, built, make_engine, python_step
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
 from dissector.render.timefmt import Clock
 
 CLOCKS = {"r": 0, "d": 1, "dd": 1}  # the time columns the engine writes (timefmt.Clock.text)
-
-
-def built() -> bool:
-    """The extension is built from these sources (a build older than its last feature, `frames`, is not
-    used: its timed calls would not match)."""
-    return _summary is not None and hasattr(_summary.Engine, "frames")
 
 
 def usable(clock: Clock) -> bool:
