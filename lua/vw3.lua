@@ -4189,7 +4189,8 @@ end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
 local function observe(st, f, b)
-  if st.frozen ~= nil then return nil end -- (decoded again with the choices of the whole capture)
+  -- (decoded again with the choices of the whole capture: a slave chosen for is fixed)
+  if st.frozen ~= nil and st.fixed[f.slave] then return nil end
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
@@ -4270,7 +4271,7 @@ end
 function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local frozen = st.frozen
-  if frozen ~= nil then return frozen[st.count + 1] == nil end -- (the frame that decided says so: observe's path)
+  if frozen ~= nil and st.fixed[slave] then return frozen[st.count + 1] == nil end -- (the frame that decided says so)
   local all = st.judged
   local judged = all and all[slave]
   if judged == nil then return false end
@@ -4299,7 +4300,7 @@ end
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 select_device = function(st, f, b)
   local frozen = st.frozen
-  if frozen ~= nil then
+  if frozen ~= nil and st.fixed[f.slave] then
     -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
     -- say so (vw3-decode reading a file says where each choice was made too).
     local said = frozen[f.number]
@@ -4312,7 +4313,7 @@ select_device = function(st, f, b)
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
     local slave = f.slave
     local judged = slave ~= 0 and st.judged and st.judged[slave]
-    if judged and judged.choice == nil and not settled(judged) then
+    if judged and judged.choice == nil and not settled(judged) and st.frozen == nil then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
     end
@@ -5364,17 +5365,18 @@ function lane.again(st)
   -- (nothing chosen after a slave's first frame, and no frame read before a choice could be made)
   if again == nil or (st.said == nil and not st.provisional) then return end
   local fresh = new_state(st.timeout, st.mode)
-  local frozen, chosen, history = {}, {}, {}
+  local frozen, chosen, history, fixed = {}, {}, {}, {}
   for number, reason in pairs(st.said or {}) do frozen[number] = reason end
   for slave, judged in pairs(st.judged or {}) do
     local choice = judged.choice
     if choice ~= nil and PROFILES[choice.profile] ~= nil then
       local device = build_device(PROFILES[choice.profile], slave)
-      chosen[slave], fresh.devices[slave] = choice.profile, device
+      chosen[slave], fresh.devices[slave], fixed[slave] = choice.profile, device, true
       history[slave] = { { number = 0, device = device, reason = choice.reason } }
     end
   end
-  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
+  -- (the other slaves are judged again as they come: more records may follow in a live capture)
+  fresh.frozen, fresh.chosen, fresh.history, fresh.fixed = frozen, chosen, history, fixed
   local records = st.records
   for _, number in ipairs(again.order) do
     local bytes, time = again.bytes[number], again.times[number]
@@ -5577,6 +5579,7 @@ end
 
 
 function proto.init()
+  newest_record = 0
   rtac_times = {}
   apply_prefs()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
@@ -6219,7 +6222,11 @@ end
 udp_states = {}
 
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
-local function finish_all()
+-- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
+-- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
+-- record just read again (tshark -w -P): its records keep their single pass.
+newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
+local function finish_all(number)
   for _, st in pairs(udp_states) do
     if not st.finished then
       local ok, problem = pcall(finish, st)
@@ -6230,8 +6237,10 @@ local function finish_all()
     local ok, problem = pcall(finish, state)
     if not ok and state.last ~= nil then state.last.error = tostring(problem) end
   end
-  for _, st in pairs(udp_states) do lane.again(st) end
-  lane.again(state)
+  if number < newest_record then
+    for _, st in pairs(udp_states) do lane.again(st) end
+    lane.again(state)
+  end
 end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
@@ -6242,6 +6251,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
+  if number > newest_record then newest_record = number end
   if config.default == AUTO then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
     local again = st.again
@@ -6311,7 +6321,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     return n
   end
   if not state.finished and pinfo.visited then
-    finish_all()
+    finish_all(number)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end
   end

@@ -48,7 +48,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     return n
   end
   if not state.finished and pinfo.visited then
-    finish_all()
+    finish_all(number)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end
   end

@@ -156,6 +156,7 @@ end
 
 
 function proto.init()
+  newest_record = 0
   rtac_times = {}
   apply_prefs()
   state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])

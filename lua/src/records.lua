@@ -509,17 +509,18 @@ function lane.again(st)
   -- (nothing chosen after a slave's first frame, and no frame read before a choice could be made)
   if again == nil or (st.said == nil and not st.provisional) then return end
   local fresh = new_state(st.timeout, st.mode)
-  local frozen, chosen, history = {}, {}, {}
+  local frozen, chosen, history, fixed = {}, {}, {}, {}
   for number, reason in pairs(st.said or {}) do frozen[number] = reason end
   for slave, judged in pairs(st.judged or {}) do
     local choice = judged.choice
     if choice ~= nil and PROFILES[choice.profile] ~= nil then
       local device = build_device(PROFILES[choice.profile], slave)
-      chosen[slave], fresh.devices[slave] = choice.profile, device
+      chosen[slave], fresh.devices[slave], fixed[slave] = choice.profile, device, true
       history[slave] = { { number = 0, device = device, reason = choice.reason } }
     end
   end
-  fresh.frozen, fresh.chosen, fresh.history = frozen, chosen, history
+  -- (the other slaves are judged again as they come: more records may follow in a live capture)
+  fresh.frozen, fresh.chosen, fresh.history, fresh.fixed = frozen, chosen, history, fixed
   local records = st.records
   for _, number in ipairs(again.order) do
     local bytes, time = again.bytes[number], again.times[number]

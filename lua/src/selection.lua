@@ -138,7 +138,8 @@ end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
 local function observe(st, f, b)
-  if st.frozen ~= nil then return nil end -- (decoded again with the choices of the whole capture)
+  -- (decoded again with the choices of the whole capture: a slave chosen for is fixed)
+  if st.frozen ~= nil and st.fixed[f.slave] then return nil end
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
@@ -219,7 +220,7 @@ end
 function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local frozen = st.frozen
-  if frozen ~= nil then return frozen[st.count + 1] == nil end -- (the frame that decided says so: observe's path)
+  if frozen ~= nil and st.fixed[slave] then return frozen[st.count + 1] == nil end -- (the frame that decided says so)
   local all = st.judged
   local judged = all and all[slave]
   if judged == nil then return false end
@@ -248,7 +249,7 @@ end
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 select_device = function(st, f, b)
   local frozen = st.frozen
-  if frozen ~= nil then
+  if frozen ~= nil and st.fixed[f.slave] then
     -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
     -- say so (vw3-decode reading a file says where each choice was made too).
     local said = frozen[f.number]
@@ -261,7 +262,7 @@ select_device = function(st, f, b)
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
     local slave = f.slave
     local judged = slave ~= 0 and st.judged and st.judged[slave]
-    if judged and judged.choice == nil and not settled(judged) then
+    if judged and judged.choice == nil and not settled(judged) and st.frozen == nil then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
     end

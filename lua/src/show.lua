@@ -167,7 +167,11 @@ end
 udp_states = {}
 
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
-local function finish_all()
+-- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
+-- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
+-- record just read again (tshark -w -P): its records keep their single pass.
+newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
+local function finish_all(number)
   for _, st in pairs(udp_states) do
     if not st.finished then
       local ok, problem = pcall(finish, st)
@@ -178,8 +182,10 @@ local function finish_all()
     local ok, problem = pcall(finish, state)
     if not ok and state.last ~= nil then state.last.error = tostring(problem) end
   end
-  for _, st in pairs(udp_states) do lane.again(st) end
-  lane.again(state)
+  if number < newest_record then
+    for _, st in pairs(udp_states) do lane.again(st) end
+    lane.again(state)
+  end
 end
 
 -- Each record (serial record, UDP datagram) is a chunk of its stream.
@@ -190,6 +196,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
+  if number > newest_record then newest_record = number end
   if config.default == AUTO then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
     local again = st.again
