@@ -1,8 +1,9 @@
 """The compiled path for timed captures (dissector/accel/timedpath.py; the engine's run_timed in
-dissector/accel/_summary.c) against the Python stages (VW3_PURE_PYTHON=1), the reference: the same summary lines byte for byte, on pcap and
-pcapng files whose records cut the stream at random (one frame a record, several, frames split across
-records), with times (response times, the time column, silences inside frames and between them, late
-answers past the timeout, untimed records) and damage. The extension must be built: it is not skipped.
+dissector/accel/_summary.c) against the Python stages (VW3_PURE_PYTHON=1), the reference: the same
+summary lines byte for byte, on pcap and pcapng files whose records cut the stream at random (one frame
+a record, several, frames split across records), with times (response times, the time column, silences
+inside frames and between them, late answers past the timeout, untimed records) and damage. The
+extension must be built: it is not skipped.
 """
 from __future__ import annotations
 
