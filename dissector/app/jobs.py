@@ -159,6 +159,9 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     except OSError as error:
         tables.abandon()
         result.error = f"{settings.directory}: {error.strerror or error}"
+    except BaseException:  # Ctrl-C or a worker's end: no half-written .part files left behind
+        tables.abandon()
+        raise
     return result
 
 
@@ -209,6 +212,7 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
     for path in args.files:
         if not os.path.isfile(path):
             raise UsageError(f"{path}: no such file")
+    created = not os.path.exists(args.parquet)
     try:
         os.makedirs(args.parquet, exist_ok=True)
     except OSError as error:
@@ -234,4 +238,9 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         )
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)
+    if failed and created:
+        try:
+            os.rmdir(args.parquet)  # nothing was written: the refused run leaves no empty folder
+        except OSError:
+            pass
     return ExitStatus.BAD_INPUT if failed else ExitStatus.OK

@@ -221,5 +221,10 @@ class CaptureTables:
         return {name: table.rows for name, table in self.tables.items()}
 
     def abandon(self) -> None:
+        """Remove what this capture wrote, and the table folders it leaves empty: a refused input leaves no dataset."""
         for table in self.tables.values():
             table.abandon()
+            try:
+                os.rmdir(os.path.dirname(table.path))  # only when empty: other captures' files stay
+            except OSError:
+                pass

@@ -278,3 +278,20 @@ def test_an_unwritable_dataset_folder_is_one_line(tmp_path: Path) -> None:
     status, stdout, err = run_cli(["--parquet", str(out), str(ROOT / "captures" / "p38_protection.pcap")])
     assert (status, stdout) == (2, "")
     assert err.startswith(f"vw3-decode: --parquet {out}: ") and len(err.splitlines()) == 1
+
+
+def test_a_refused_capture_leaves_no_dataset_behind(tmp_path: Path) -> None:
+    late = tmp_path / "late.txt"
+    late.write_text("9999-12-31T00:00:01 0C 03 20 D0 00 03 0E EF\n")  # a time no output can show
+    out = tmp_path / "d"
+    status, stdout, err = run_cli(["--parquet", str(out), str(late)])
+    assert (status, stdout) == (2, "")
+    assert err == (f"vw3-decode: {late} line 1: time 253402214401 s from 1970 is outside 0001-01-02..9999-12-30 UTC, "
+                   "the times every output can show: a corrupt time stamp?\n")
+    assert not out.exists()  # neither the folder it made nor empty frames/, registers/, events/
+
+    kept = tmp_path / "kept"
+    kept.mkdir()
+    (kept / "notes.txt").write_text("the engineer's own file")
+    assert run_cli(["--parquet", str(kept), str(late)])[0] == 2
+    assert sorted(os.listdir(kept)) == ["notes.txt"]  # a folder that was there stays, with what it held
