@@ -6,9 +6,11 @@ what the Python reference gives (tests/conformance/vectors.lua: framing, pairing
 selection, annotation, map reading); the quick lanes are a switch the parity holds either way."""
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -73,9 +75,16 @@ def test_pure_modules_load_without_wireshark(lua: str) -> None:
     assert result.stdout.split() == sorted(PURE + ["env"])  # no Wireshark module was loaded
 
 
+# The modules with no Python counterpart: Wireshark's side (the protocol and its fields, the dissectors,
+# the showing of records and trees is render/ in Python, tree.lua says so), the pure part's entry points,
+# and what a record keeps for Wireshark's later dissections.
+UNMIRRORED = {"api", "dissector", "fields", "pack", "show"}
+
+
 def test_modules_are_small_stages_that_name_their_python_module() -> None:
     files = sorted(SRC.glob("*.lua"))
     assert {path.stem for path in files} == set(PURE + WIRESHARK + ["main"])
+    mirrored = set()
     for path in files:
         text = path.read_text(encoding="utf-8")
         lines = text.count("\n")
@@ -85,10 +94,23 @@ def test_modules_are_small_stages_that_name_their_python_module() -> None:
             continue
         head = text.splitlines()[:3]
         assert head[0].startswith(f"-- vw3.{path.stem}: "), (path.name, head[0])
-        assert head[1].startswith("-- Mirrors "), (path.name, head[1])
-        for module in re.findall(r"dissector/[a-z_/]+\.py", head[1]):
+        modules = re.findall(r"dissector/[a-z_/]+\.py", head[1])
+        if path.stem in UNMIRRORED:
+            assert head[1] == "-- Mirrors no Python module.", (path.name, head[1])
+        else:
+            # "-- Mirrors dissector/a/b.py, dissector/c.py (what of it)." and nothing else
+            assert re.fullmatch(r"-- Mirrors dissector/[a-z_/]+\.py( \([^)]*\))?"
+                                r"(, dissector/[a-z_/]+\.py( \([^)]*\))?)*\.", head[1]), (path.name, head[1])
+        for module in modules:
             assert (ROOT / module).is_file(), (path.name, module)
+            mirrored.add(module)
+        assert head[2] == (f"-- Assembled into lua/vw3.lua by python3 -m dissector.codegen "
+                           f'(package.preload["vw3.{path.stem}"]).'), (path.name, head[2])
         assert 'require("vw3.env")' in text
+    # the stages of the Python pipeline the plugin runs, each held by a module
+    assert {"dissector/framing/rtu.py", "dissector/framing/ascii.py", "dissector/framing/stream.py",
+            "dissector/decode/pairing.py", "dissector/decode/fields.py", "dissector/devices/selection.py",
+            "dissector/devices/annotator.py", "dissector/devices/story.py", "dissector/pipeline.py"} <= mirrored
     assert sum((SRC / f"{name}.lua").read_text().count("\n") for name in PURE + WIRESHARK) > 4000
 
 
@@ -118,6 +140,48 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
     assert text.startswith(MAIN.split("\n\n")[0])
     assert text.count("\npackage.preload[") == len(PURE + WIRESHARK)
     assert text.index(luagen.BEGIN) < text.index('package.preload["vw3.crc"]') < text.index("for _, name in ipairs(PURE)")
+
+
+def test_the_codegen_command_checks_the_assembly_of_a_copy(tmp_path: Path) -> None:
+    """`python3 -m dissector.codegen --check`, the command the README and CI run, on a copy of the package
+    and the plugin: 0 on the assembly, 1 naming lua/vw3.lua when a module or vw3.lua was edited alone."""
+    copy = tmp_path / "checkout"
+    shutil.copytree(ROOT / "dissector", copy / "dissector", ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(ROOT / "lua", copy / "lua", ignore=shutil.ignore_patterns("__pycache__"))
+    plugin, story = copy / "lua" / "vw3.lua", copy / "lua" / "src" / "story.lua"
+    stale = f"{plugin}: stale; run python3 -m dissector.codegen\n"
+
+    def check() -> tuple[int, str, str]:
+        done = subprocess.run([sys.executable, "-m", "dissector.codegen", "--check"], cwd=copy,
+                              env={**os.environ, "PYTHONPATH": str(copy)}, capture_output=True, text=True,
+                              timeout=300)
+        return done.returncode, done.stdout, done.stderr
+
+    assert check() == (0, "", "")
+    original_plugin, original_story = plugin.read_text(encoding="utf-8"), story.read_text(encoding="utf-8")
+    # vw3.lua edited by hand: one character of a module's code
+    line = original_story.splitlines()[0]  # its first line, in vw3.lua as in the module
+    assert original_plugin.count(line + "\n") == 1
+    plugin.write_text(original_plugin.replace(line + "\n", line + " \n"), encoding="utf-8")
+    assert check() == (1, "", stale)
+    # a module edited and not assembled again
+    plugin.write_text(original_plugin, encoding="utf-8")
+    assert check() == (0, "", "")
+    head, body = original_story.split("\nlocal M = ", 1)
+    story.write_text(head + "\n-- an edit\nlocal M = " + body, encoding="utf-8")
+    assert check() == (1, "", stale)
+    # assembled again: the module's edit is in vw3.lua, and the check holds
+    done = subprocess.run([sys.executable, "-m", "dissector.codegen"], cwd=copy,
+                          env={**os.environ, "PYTHONPATH": str(copy)}, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0 and f"{plugin}: updated\n" in done.stdout, (done.stdout, done.stderr)
+    assert check() == (0, "", "")
+    assert "\n-- an edit\nlocal M = " in plugin.read_text(encoding="utf-8")
+    # the generated data edited by hand (between its markers)
+    data = plugin.read_text(encoding="utf-8")
+    assert data.count('[3] = "Read Holding Registers",') == 1
+    plugin.write_text(data.replace('[3] = "Read Holding Registers",', '[3] = "Read Holding Register",'),
+                      encoding="utf-8")
+    assert check() == (1, "", stale)
 
 
 @pytest.mark.parametrize("quick", ["TRUE", "FALSE"])
