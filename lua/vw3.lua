@@ -1104,6 +1104,12 @@ local DATA = {
     ["product_code_object"] = 1,
   },
 }
+do
+-- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
+local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["register_writes"]={[6]=true,[16]=true,[23]=true},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false},{["name"]="value",["type"]="u16",["half"]=false}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false},{["name"]="data",["type"]="rest",["half"]=false}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false},{["name"]="event_count",["type"]="u16",["half"]=false}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false},{["name"]="and_mask",["type"]="u16",["half"]=false},{["name"]="or_mask",["type"]="u16",["half"]=false}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false},{["name"]="read_quantity",["type"]="u16",["half"]=false},{["name"]="write_start",["type"]="u16",["half"]=false},{["name"]="write_quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false},{["name"]="fifo_count",["type"]="u16",["half"]=false},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false}}}}
+-- END RULES
+DATA.rules = RULES
+end
 -- END GENERATED DATA
 
 -- ---- vw3.crc: lua/src/crc.lua ----
@@ -1673,12 +1679,16 @@ local function answered(s, b, i, stop, n, final)
 end
 
 -- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
--- a coil set ON or OFF.
+-- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
 local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
+local COIL_REQUESTS = {}
+for code, entry in pairs(DATA.rules.by_code.request) do
+  if entry.rule ~= nil and DATA.rules.lift[entry.rule].coil ~= nil then COIL_REQUESTS[code] = true end
+end
 local function plausible_request(b, i, length)
   if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
   local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if code == 5 then return word == 0xFF00 or word == 0 end
+  if COIL_REQUESTS[code] then return word == 0xFF00 or word == 0 end
   local limits = PLAUSIBLE_READS[code]
   return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end
@@ -2407,10 +2417,11 @@ package.preload["vw3.decode"] = function(...)
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local ipairs, pairs, string = ipairs, pairs, string
+local ipairs, load, pairs, string, type, unpack = ipairs, load, pairs, string, type, table.unpack or unpack
 local _ENV = M -- (the other modules' names: their exports in M)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
 local concat, floor, format, lane = concat, floor, format, lane
+local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
 -- Protocol names and limits (dissector/protocol/spec.py).
@@ -2443,19 +2454,6 @@ local function u16(b, k) return b[k] * 256 + b[k + 1] end
 local function warn(frame, text)
   local warnings = frame.warnings
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
-end
-
-local function check_range(frame, what, value, limit_name)
-  local limit = LIMITS[limit_name]
-  if limit and (value < limit[1] or value > limit[2]) then
-    warn(frame, format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2]))
-  end
-end
-
-local function check_span(frame, start, quantity)
-  if start + quantity > 0x10000 then
-    warn(frame, format("addresses %d..%d run past 65535", start, start + quantity - 1))
-  end
 end
 
 -- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
@@ -2502,106 +2500,74 @@ end
 
 local function ceil_bytes(bits) return floor((bits + 7) / 8) end
 
+-- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()): its parameters by
+-- name, as Python fills them in.
+local TEXTS = RULES.texts
+local function say(key, values)
+  local entry = TEXTS[key]
+  local params, args = entry.params, {}
+  for index = 1, #params do args[index] = values[params[index]] end
+  return format(entry.format, unpack(args, 1, #params))
+end
+
 -- Each parser gets the frame, the byte table, the first data byte and the data length. It returns the
 -- number of bytes its grammar consumed (the rest is `trailing`), or nil and a reason when the data do
 -- not fit the grammar (Python: GrammarError -> "malformed ...").
-local P = {}
-
-local function read_request(f, b, d, len)
-  if len < 4 then return nil, "too short for start and quantity" end
-  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3] }
-  return 4
-end
-
-local function read_bits_response(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = { byte_count = b[d], status_at = d + 1 }
-  return 1 + b[d]
-end
-
-local function read_registers_response(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = { byte_count = b[d], values_at = d + 1, count = (b[d] - b[d] % 2) / 2 }
-  return 1 + b[d]
-end
-
-local function write_single(f, b, d, len)
-  if len < 4 then return nil, "too short for address and value" end
-  f.fields = { address = b[d] * 256 + b[d + 1], value = b[d + 2] * 256 + b[d + 3] }
-  return 4
-end
-
-local function empty(f, b, d, len)
-  f.fields = {}
-  return 0
-end
-
-local function diagnostics(f, b, d, len)
-  if len < 2 then return nil, "too short for a sub-function" end
-  f.fields = { subfunction = b[d] * 256 + b[d + 1], data_length = len - 2 }
-  return len
-end
-
-local function write_coils_request(f, b, d, len)
-  if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
-  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], status_at = d + 5 }
-  return 5 + b[d + 4]
-end
-
-local function write_registers_request(f, b, d, len)
-  if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
-  f.fields = {
-    start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], values_at = d + 5,
-    count = (b[d + 4] - b[d + 4] % 2) / 2,
-  }
-  return 5 + b[d + 4]
-end
-
-local function fixed_size(size, what)
-  return function(f, b, d, len)
-    if len < size then return nil, what end
-    f.fields = {}
-    return size
+-- The regular layouts are read as their description says (data/modbus.toml [layouts], protocol/shapes.py):
+-- u8 and u16 fields by name, a counted field (bytes, words, odd) by where it starts (NAME_at), the rest
+-- of the data by its length (NAME_length). Each description is made into a Lua function once (load),
+-- so that a frame costs what a hand-written parser costs: its fields in one table constructor.
+local SIZE_OF = { bytes = "v%d", words = "2 * v%d", half = "v%d - v%d %% 2", odd = "v%d %% 2" }
+local function shape_parser(shape)
+  local lines, keys, at = { "return function(f, b, d, len)", "local p = 0" }, {}, {}
+  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
+  for index, field in ipairs(shape) do
+    local name, kind = field.name, field.type
+    at[name] = index
+    if kind == "u8" or kind == "u16" then
+      local size = kind == "u8" and 1 or 2
+      lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
+      lines[#lines + 1] = format(kind == "u8" and "local v%d = b[d + p]" or "local v%d = b[d + p] * 256 + b[d + p + 1]",
+        index)
+      lines[#lines + 1] = format("p = p + %d", size)
+      keys[#keys + 1] = format("[%q] = v%d", name, index)
+    elseif kind == "rest" then
+      lines[#lines + 1] = "local rest = len - p"
+      lines[#lines + 1] = "p = len"
+      keys[#keys + 1] = format("[%q] = rest", name .. "_length")
+    else
+      local count = at[field.count]
+      local size = format(SIZE_OF[field.half and "half" or kind], count, count)
+      lines[#lines + 1] = format("local s%d = %s", index, size)
+      lines[#lines + 1] = format("if p + s%d > len then return nil, %q end", index, field.count .. " past the end")
+      lines[#lines + 1] = format("local a%d = d + p", index)
+      lines[#lines + 1] = format("p = p + s%d", index)
+      keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+    end
   end
+  lines[#lines + 1] = "f.fields = { " .. concat(keys, ", ") .. " }"
+  lines[#lines + 1] = trailing and "return p" or "return len"
+  lines[#lines + 1] = "end"
+  return load(concat(lines, "\n"))()
 end
 
-local function comm_event_log_response(f, b, d, len)
-  if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
-  f.fields = {}
-  return 1 + b[d]
+-- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
+local SIZES = { u8 = 1, u16 = 2 }
+local function offset_of(shape, name)
+  local offset = 0
+  for _, field in ipairs(shape or {}) do
+    if field.name == name then return offset end
+    if SIZES[field.type] == nil then return nil end
+    offset = offset + SIZES[field.type]
+  end
+  return nil
 end
 
+-- The irregular layouts (protocol/layouts.py writes them by hand too).
 local function byte_counted(f, b, d, len)
   if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
   f.fields = {}
   return 1 + b[d]
-end
-
-local function mask_write(f, b, d, len)
-  if len < 6 then return nil, "too short for address and masks" end
-  f.fields = { address = b[d] * 256 + b[d + 1] }
-  return 6
-end
-
-local function read_write_request(f, b, d, len)
-  if len < 9 or len < 9 + b[d + 8] then return nil, "byte count past the end" end
-  f.fields = {
-    read_start = b[d] * 256 + b[d + 1], read_quantity = b[d + 2] * 256 + b[d + 3], write_start = b[d + 4] * 256 + b[d + 5],
-    write_quantity = b[d + 6] * 256 + b[d + 7], byte_count = b[d + 8], values_at = d + 9, count = (b[d + 8] - b[d + 8] % 2) / 2,
-  }
-  return 9 + b[d + 8]
-end
-
-local function fifo_request(f, b, d, len)
-  if len < 2 then return nil, "too short for an address" end
-  f.fields = { address = b[d] * 256 + b[d + 1] }
-  return 2
-end
-
-local function fifo_response(f, b, d, len)
-  if len < 4 or len < 4 + 2 * (b[d + 2] * 256 + b[d + 3]) then return nil, "FIFO count past the end" end
-  f.fields = { byte_count = b[d] * 256 + b[d + 1], fifo_count = b[d + 2] * 256 + b[d + 3] }
-  return 4 + 2 * (b[d + 2] * 256 + b[d + 3])
 end
 
 local function mei_request(f, b, d, len)
@@ -2651,237 +2617,207 @@ local function raw(f, b, d, len)
 end
 
 -- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local GRAMMARS = { [REQUEST] = {}, [RESPONSE] = {} }
-  local PARSERS = {
-    read_request = read_request, write_multiple_response = read_request,
-    read_bits_response = read_bits_response, read_registers_response = read_registers_response,
-    write_single = write_single, empty = empty, diagnostics = diagnostics,
-    write_coils_request = write_coils_request, write_registers_request = write_registers_request,
-    exception_status_response = fixed_size(1, "too short for a status"),
-    comm_event_counter_response = fixed_size(4, "too short for status and event count"),
-    comm_event_log_response = comm_event_log_response, byte_counted = byte_counted,
-    read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
-    mask_write = mask_write, read_write_request = read_write_request, fifo_request = fifo_request,
-    fifo_response = fifo_response, mei_request = mei_request, mei_response = mei_response,
-    report_server_id_response = function(f, b, d, len)
-      if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
-      f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
-      return 1 + b[d]
-    end,
-  }
-  for code, name in pairs(DATA.protocol.parsers.request) do GRAMMARS[REQUEST][code] = PARSERS[name] end
-  for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
-
--- Handlers (decode/fields.py): lift out start, quantity, registers, bits, objects; check the spec.
-local H = { [REQUEST] = {}, [RESPONSE] = {} }
-
-local function read_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
+local PARSERS = {
+  comm_event_log_response = function(f, b, d, len)
+    if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
+    f.fields = {}
+    return 1 + b[d]
+  end,
+  read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
+  mei_request = mei_request, mei_response = mei_response,
+  report_server_id_response = function(f, b, d, len)
+    if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
+    f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
+    return 1 + b[d]
+  end,
+}
+for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
+local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
+for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
+  for code, name in pairs(names) do GRAMMARS[kind][code], LAYOUTS[kind][code] = PARSERS[name], name end
 end
 
-local function request_fields(f)
-  if f.request == nil then return nil end
-  return f.request.fields
+-- ---------------------------------------------------------------------------------------------------
+-- The generic lifter (decode/fields.py lifter): one rule of data/modbus.toml [lift] prepared for one
+-- function code and direction, as a handler. Warnings in the table's order: checks, span, byte count,
+-- odd count, coil, echo.
+local COIL_ON, COIL_OFF = 0xFF00, 0x0000
+local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
+
+-- The request a response answers, when it is in the capture and its data parsed.
+local function request_of(f)
+  local request = f.request
+  if request == nil or request.fields == nil then return nil end
+  return request
 end
 
-local function read_bits_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  local start, quantity = nil, nil
-  if request ~= nil then
-    start, quantity = request.start, request.quantity
-    if fields.byte_count ~= ceil_bytes(quantity) then
-      warn(f, format("byte count %d disagrees with the %d bits asked", fields.byte_count, quantity))
+local function echo_check(f, fields, request, echo)
+  local answered, differ = request.fields, {}
+  for _, name in ipairs(echo.fields) do
+    if answered[name] ~= fields[name] then differ[#differ + 1] = name end
+  end
+  if #differ == 0 then return end
+  if echo.names ~= "differing" then differ = echo.fields end
+  warn(f, say("echo", { fields = concat(differ, " and "), verb = #differ == 1 and "differs" or "differ" }))
+end
+
+local function lifter(rule, limit, layout)
+  local checks = {}
+  for index, check in ipairs(rule.checks) do
+    local range = RULES.limits[check.limit or limit]
+    checks[index] = { what = check.what, field = check.field, low = range[1], high = range[2],
+      above = check.test == "above" }
+  end
+  local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
+  local start_from_request, quantity_from_request = start == REQUEST_START, quantity == REQUEST_QUANTITY
+  local count_from_request = count ~= nil and count.of == REQUEST_QUANTITY
+  local from_request = start_from_request or quantity_from_request or count_from_request or rule.echo ~= nil
+  local quantity_const = type(quantity) == "number"
+  local unpaired, span, odd_count, coil, echo = rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo
+  -- where the values are: a counted field (its start, its count field) or one word at a fixed offset
+  local value_kind, value_at, value_count, value_half, value_offset, value_start
+  if values ~= nil then
+    value_kind, value_at, value_start = values.kind, values.field .. "_at", values.start
+    for _, field in ipairs(RULES.layouts[layout] or {}) do
+      if field.name == values.field then value_count, value_half = field.count, field.half end
+    end
+    value_offset = offset_of(RULES.layouts[layout], values.field)
+  end
+  return function(f, b)
+    local fields = f.fields
+    local request = from_request and request_of(f) or nil
+    local first, many
+    if start_from_request then
+      first = request and request.start
+    elseif start ~= nil then
+      first = fields[start]
+    end
+    if quantity_const then
+      many = quantity
+    elseif quantity_from_request then
+      many = request and request.quantity
+      if many == nil and unpaired ~= nil and fields.byte_count % unpaired == 0 then
+        many = floor(fields.byte_count / unpaired)
+      end
+    elseif quantity ~= nil then
+      many = fields[quantity]
+    end
+    f.start, f.quantity = first, many
+    for index = 1, #checks do
+      local check = checks[index]
+      local value = fields[check.field]
+      if check.above then
+        if value > check.high then warn(f, say("above", { what = check.what, value = value, high = check.high })) end
+      elseif value < check.low or value > check.high then
+        warn(f, say("range", { what = check.what, value = value, low = check.low, high = check.high }))
+      end
+    end
+    if span and first + many > 0x10000 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+    if count ~= nil then
+      local of
+      if count_from_request then of = request and request.quantity else of = fields[count.of] end
+      if of ~= nil then
+        local given = fields.byte_count
+        local expected = count.plus + (count.unit > 0 and of * count.unit or floor((of + 7) / 8))
+        if given ~= expected then warn(f, say(count.text, { count = given, quantity = of })) end
+      end
+    end
+    if odd_count and fields.byte_count % 2 == 1 then warn(f, say("odd_count", { count = fields.byte_count })) end
+    if coil ~= nil and fields[coil] ~= COIL_ON and fields[coil] ~= COIL_OFF then
+      warn(f, say("coil_value", { value = fields[coil] }))
+    end
+    if request ~= nil and echo ~= nil then echo_check(f, fields, request, echo) end
+    if value_kind == "registers" then
+      local words = fields[value_count]
+      if value_half then words = floor(words / 2) end
+      f.registers = make_registers(b, fields[value_at], words, value_start and fields[value_start] or first)
+    elseif value_kind == "bits" then
+      f.bits = make_bits(b, fields[value_at], fields[value_count], first, many)
+    elseif value_kind == "register" then
+      f.registers = make_registers(b, f.data_at + value_offset, 1, first)
+    elseif value_kind == "coil" then
+      f.bits = { first = f.data_at + value_offset, count = 1, start = first,
+        single = fields[values.field] == COIL_ON and 1 or 0 }
     end
   end
-  f.start, f.quantity = start, quantity
-  f.bits = make_bits(b, fields.status_at, fields.byte_count, start, quantity)
 end
 
--- The registers an answer of function fn reads, from its request's fields: FC23 reads its read window.
+-- The registers an answer of function fn reads, from its request's fields (the request's window: FC23
+-- reads from read_start).
+local LIFT_OF = { [REQUEST] = {}, [RESPONSE] = {} }
 function lane.asked_window(fn, request)
-  if fn == 23 then return request.read_start, request.read_quantity end
-  return request.start, request.quantity
+  local rule = LIFT_OF[REQUEST][fn]
+  return request[rule.start], request[rule.quantity]
 end
 
-local function read_registers_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  local start = nil
-  if request ~= nil then
-    local quantity
-    start, quantity = lane.asked_window(f.fn, request)
-    if fields.byte_count ~= 2 * quantity then
-      warn(f, format("byte count %d disagrees with the %d registers asked", fields.byte_count, quantity))
-    end
-    f.quantity = quantity
-  elseif fields.byte_count % 2 == 0 then
-    f.quantity = floor(fields.byte_count / 2)
-  end
-  if fields.byte_count % 2 == 1 then
-    warn(f, format("odd byte count %d for 16-bit registers", fields.byte_count))
-  end
-  f.start = start
-  f.registers = make_registers(b, fields.values_at, fields.count, start)
-end
-
--- fields._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
-local write_single_coil_handler, write_single_register_handler
-  local function check_echo(f, fields)
-    local request = request_fields(f)
-    if request == nil then return end
-    local address, value = request.address ~= fields.address, request.value ~= fields.value
-    if address and value then
-      warn(f, "the response's address and value differ from the request's")
-    elseif address then
-      warn(f, "the response's address differs from the request's")
-    elseif value then
-      warn(f, "the response's value differs from the request's")
-    end
-  end
-
-  write_single_coil_handler = function(f, b)
+-- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
+local SPECIAL = {
+  diagnostics = function(f, b)
     local fields = f.fields
-    f.start, f.quantity = fields.address, 1
-    if fields.value ~= 0xFF00 and fields.value ~= 0 then
-      warn(f, format("coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)", fields.value))
+    f.subfunction = fields.subfunction
+    if DIAGNOSTICS[fields.subfunction] == nil then
+      warn(f, say("unknown_subfunction", { subfunction = fields.subfunction }))
     end
-    check_echo(f, fields)
-    local value = 0
-    if fields.value == 0xFF00 then value = 1 end
-    f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
-  end
+    if fields.data_length % 2 == 1 then warn(f, say("odd_diagnostic_data", {})) end
+  end,
+  mei_response = function(f, b)
+    if f.fields.mei_type ~= 14 then return end
+    local objects = {}
+    for _, object in ipairs(f.fields.objects) do
+      objects[#objects + 1] = {
+        id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
+        offset = object.offset, length = object.length,
+      }
+    end
+    f.objects = objects
+  end,
+  report_server_id_response = function(f, b)
+    -- the additional data as text when every byte is printable ASCII (a version string), as Python
+    local fields, d = f.fields, f.data_at
+    local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
+    if run ~= 0 and run ~= 255 then warn(f, say("run_indicator", { value = run })) end
+    for k = 0, length - 1 do
+      local byte = b[d + 3 + k]
+      if byte < 32 or byte > 126 then chars = nil break end
+      chars[#chars + 1] = string.char(byte)
+    end
+    f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
+      text = length > 0 and chars and concat(chars) or nil }
+  end,
+}
 
-  write_single_register_handler = function(f, b)
-    local fields = f.fields
-    f.start, f.quantity = fields.address, 1
-    check_echo(f, fields)
-    f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
-  end
-
-local function diagnostics_handler(f, b)
-  local fields = f.fields
-  f.subfunction = fields.subfunction
-  if DIAGNOSTICS[fields.subfunction] == nil then
-    warn(f, format("diagnostic sub-function %d is not defined by the spec", fields.subfunction))
-  end
-  if fields.data_length % 2 == 1 then warn(f, "diagnostic data is not a whole number of words") end
-end
-
-local function write_coils_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
-  if fields.byte_count ~= ceil_bytes(fields.quantity) then
-    warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
-  end
-  f.bits = make_bits(b, fields.status_at, fields.byte_count, fields.start, fields.quantity)
-end
-
-local function write_registers_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
-  if fields.byte_count ~= 2 * fields.quantity then
-    warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
-  end
-  f.registers = make_registers(b, fields.values_at, fields.count, fields.start)
-end
-
-local function write_multiple_response_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  local request = request_fields(f)
-  if request ~= nil and (request.start ~= fields.start or request.quantity ~= fields.quantity) then
-    warn(f, "the response's start and quantity differ from the request's")
+-- Handlers per direction and code: the generic lifter where the table has a rule, else a special case.
+local H = { [REQUEST] = {}, [RESPONSE] = {} }
+for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
+  for code, entry in pairs(codes) do
+    if entry.rule ~= nil then
+      LIFT_OF[kind][code] = RULES.lift[entry.rule]
+      H[kind][code] = lifter(RULES.lift[entry.rule], entry.limit, LAYOUTS[kind][code])
+    else
+      H[kind][code] = SPECIAL[entry.special]
+    end
   end
 end
 
-local function mask_write_handler(f, b)
-  f.start, f.quantity = f.fields.address, 1
-end
+-- The answers whose start is their request's (a field the display shows as generated): FC1-4, 23, 24.
+local START_FROM_REQUEST = {}
+for code, rule in pairs(LIFT_OF[RESPONSE]) do START_FROM_REQUEST[code] = rule.start == REQUEST_START end
 
-local function read_write_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.read_start, fields.read_quantity
-  check_range(f, "read quantity", fields.read_quantity, "rw_read")
-  check_range(f, "write quantity", fields.write_quantity, "rw_write")
-  if fields.byte_count ~= 2 * fields.write_quantity then
-    warn(f, format("byte count %d disagrees with the write quantity %d", fields.byte_count, fields.write_quantity))
-  end
-  f.registers = make_registers(b, fields.values_at, fields.count, fields.write_start)
+-- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
+-- by their echo (FC6), by a normal answer (FC16, FC23).
+local CONFIRMED = { echo = {}, answer = {} }
+for code, how in pairs(RULES.confirm) do
+  if RULES.register_writes[code] then CONFIRMED[how][code] = true end
 end
-
-local function fifo_request_handler(f, b)
-  f.start = f.fields.address
-end
-
-local function fifo_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  if request ~= nil then f.start = request.address end
-  f.quantity = fields.fifo_count
-  if fields.fifo_count > LIMITS.fifo_count[2] then
-    warn(f, format("FIFO count %d above the spec's 31", fields.fifo_count))
-  end
-  if fields.byte_count ~= 2 + 2 * fields.fifo_count then
-    warn(f, format("byte count %d disagrees with the FIFO count", fields.byte_count))
-  end
-end
-
-local function mei_response_handler(f, b)
-  if f.fields.mei_type ~= 14 then return end
-  local objects = {}
-  for _, object in ipairs(f.fields.objects) do
-    objects[#objects + 1] = {
-      id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
-      offset = object.offset, length = object.length,
-    }
-  end
-  f.objects = objects
-end
-
--- Handlers by name (dissector/decode/fields.py); which code uses which: the generated table.
-  local HANDLERS = {
-    read_request = read_request_handler, read_bits_response = read_bits_response_handler,
-    read_registers_response = read_registers_response_handler, write_single_coil = write_single_coil_handler,
-    write_single_register = write_single_register_handler, diagnostics = diagnostics_handler,
-    write_coils_request = write_coils_request_handler, write_registers_request = write_registers_request_handler,
-    write_multiple_response = write_multiple_response_handler, mask_write = mask_write_handler,
-    read_write_request = read_write_request_handler, fifo_request = fifo_request_handler,
-    fifo_response = fifo_response_handler, mei_response = mei_response_handler,
-    report_server_id_response = function(f, b)
-      -- the additional data as text when every byte is printable ASCII (a version string), as Python
-      local fields, d = f.fields, f.data_at
-      local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
-      if run ~= 0 and run ~= 255 then
-        warn(f, format("run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)", run))
-      end
-      for k = 0, length - 1 do
-        local byte = b[d + 3 + k]
-        if byte < 32 or byte > 126 then chars = nil break end
-        chars[#chars + 1] = string.char(byte)
-      end
-      f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
-        text = length > 0 and chars and concat(chars) or nil }
-    end,
-  }
-  for code, name in pairs(DATA.protocol.handlers.request) do H[REQUEST][code] = HANDLERS[name] end
-  for code, name in pairs(DATA.protocol.handlers.response) do H[RESPONSE][code] = HANDLERS[name] end
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
-  if f.slave > MAX_SLAVE then warn(f, format("slave address %d is reserved (248..255 are no device's)", f.slave)) end
+  if f.slave > MAX_SLAVE then warn(f, say("reserved_slave", { slave = f.slave })) end
   if f.kind == EXCEPTION then
     f.fields = {}
     f.exception_code = b[d]
     if EXCEPTIONS[f.exception_code] == nil then
-      warn(f, format("exception code %d is not defined by the spec", f.exception_code))
+      warn(f, say("unknown_exception", { code = f.exception_code }))
     end
     return
   end
@@ -2890,17 +2826,18 @@ local function decode_frame(f)
   if used == nil then
     f.fields = nil
     f.malformed = true
-    warn(f, format("malformed %s: %s", f.kind, reason))
+    warn(f, say("malformed", { kind = f.kind, error = reason }))
     return
   end
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
-  if used < len then warn(f, format("%d unexpected bytes after the data", len - used)) end
+  if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then
-    warn(f, format("%s cannot be broadcast (slave 0)", function_name(f.fn)))
+    warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))
   end
 end
 
+M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say
 M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
 M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
 M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
@@ -3816,6 +3753,7 @@ local M = require("vw3.env")
 local ipairs, math, next, tonumber = ipairs, math, next, tonumber
 local _ENV = M -- (the other modules' names: their exports in M)
 local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
+local LIFT_OF, REQUEST = LIFT_OF, REQUEST
 local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
 local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
 local u16, warn = u16, warn
@@ -3844,11 +3782,14 @@ local function check_request(f, device)
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
     -- (no tables: this runs for every request)
-    if code ~= 23 then
+    local rule = LIFT_OF[REQUEST][code]
+    if rule == nil or rule.write_window == nil then
       check_limit(f, profile, "quantity", f.quantity, limits[1])
     elseif f.fields ~= nil then
-      check_limit(f, profile, "read quantity", f.fields.read_quantity, limits[1])
-      check_limit(f, profile, "write quantity", f.fields.write_quantity, limits[2])
+      -- read and write quantities (FC23): as the spec's checks of the lifting rule name them
+      for index, check in ipairs(rule.checks) do
+        check_limit(f, profile, check.what, f.fields[check.field], limits[index])
+      end
     end
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
@@ -4364,7 +4305,7 @@ package.preload["vw3.annotator"] = function(...)
 local M = require("vw3.env")
 local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
 local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, EXCEPTION, NO_INTERPRETATION, READS = AUTO, EXCEPTION, NO_INTERPRETATION, READS
+local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
 local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
 local annotate_registers, check_request, concat = annotate_registers, check_request, concat
 local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
@@ -4387,15 +4328,18 @@ annotate_with = function(st, f, b, device)
     return
   end
   local request = f.request
-  if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
+  if kind == RESPONSE and device.track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
-    -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+    -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes
+    -- before it reads).
     remember_writes(device.seen, f.number, request.registers, request.registers.b)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
     annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f.number, registers, b) end
+    if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
+      remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
+    end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
@@ -4866,7 +4810,7 @@ local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_wi
 local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
 local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
 local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
-local PROFILES, build_device, new_state = PROFILES, build_device, new_state
+local CONFIRMED, PROFILES, build_device, new_state = CONFIRMED, PROFILES, build_device, new_state
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -5158,7 +5102,7 @@ function lane.answer(st, bytes, n, time, number)
   st.last = nil
   st.pending = nil
   local writes = pending.registers
-  if device.track and (code == 16 or code == 23) and writes ~= nil and writes.count > 0 and writes.b ~= nil then
+  if device.track and CONFIRMED.answer[code] and writes ~= nil and writes.count > 0 and writes.b ~= nil then
     remember_writes(seen, item, writes, writes.b)
   end
   if follow and protected ~= nil then
@@ -5605,7 +5549,7 @@ local RESPONSE, STATUS_VALUES, bit_at, concat, describe = RESPONSE, STATUS_VALUE
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
 local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
 local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
-local register_view = register_view
+local START_FROM_REQUEST, register_view = START_FROM_REQUEST, register_view
 local summary
 
 local function add_text(tree, expert_info, text)
@@ -5881,7 +5825,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
-      if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
+      if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
     end
     if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end

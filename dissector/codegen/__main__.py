@@ -2,9 +2,9 @@
 
 The generated files are checked in (a build or a Wireshark install needs no Python step):
   dissector/accel/_tables.h   the compiled summary path's per-code tables (codegen/c.py)
-  lua/vw3.lua, between its GENERATED markers: the plugin's data and rule tables (codegen/lua.py); the
-      lifting rules, confirmations and texts of data/modbus.toml (codegen/rules_lua.py) where it
-      carries them, between the RULES markers
+  lua/vw3.lua, the assembly of lua/src/*.lua with, between its GENERATED markers, the plugin's data
+      (codegen/lua.py) and, between the RULES markers inside them, the lifting rules, layouts,
+      confirmations and texts of data/modbus.toml (codegen/rules_lua.py) its modules interpret
 """
 from __future__ import annotations
 

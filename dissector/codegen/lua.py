@@ -239,9 +239,16 @@ def _row_table(row: Any) -> dict[str, Any]:
 
 
 def render_data() -> str:
-    """The generated data: `local DATA = {...}` between the markers."""
+    """The generated data between the markers: `local DATA = {...}`, then the rule tables of
+    data/modbus.toml (codegen/rules_lua.py: `local RULES = {...}`, what the modules' lifter, parsers and
+    texts interpret), which the modules reach as DATA.rules."""
+    from dissector.codegen import rules_lua  # (it imports this module's lua_literal)
+
     data = plugin_data()
-    lines = [BEGIN, "local DATA = " + lua_literal(data), END]
+    # (in a block of its own: the modules below are closures of this chunk, a `local RULES` in their
+    # scope would hide layouts.lua's length rules of the same name)
+    rules = ["do", rules_lua.render_rules().rstrip("\n"), "DATA.rules = RULES", "end"]
+    lines = [BEGIN, "local DATA = " + lua_literal(data), *rules, END]
     return "\n".join(lines) + "\n"
 
 

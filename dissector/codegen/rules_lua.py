@@ -92,6 +92,9 @@ def rules_data() -> dict[str, Any]:
         "lift": {name: _lift(rule) for name, rule in LIFTS.items()},
         "by_code": by_code,
         "confirm": {code: str(how) for code, how in CONFIRM.items()},
+        # The codes whose request's registers are values written (table.register_writes: FC6, FC16, FC23):
+        # [confirm] of these says how the annotator's parameter memory takes them as confirmed.
+        "register_writes": {code: True for code in sorted(table.register_writes())},
         "limits": {name: list(value) for name, value in SPEC.limits.items() if isinstance(value, list)},
         "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key)),
                         "repr": [name for _, name, _, conversion in string.Formatter().parse(TEXTS[key])

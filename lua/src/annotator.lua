@@ -4,7 +4,7 @@
 local M = require("vw3.env")
 local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
 local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, EXCEPTION, NO_INTERPRETATION, READS = AUTO, EXCEPTION, NO_INTERPRETATION, READS
+local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
 local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
 local annotate_registers, check_request, concat = annotate_registers, check_request, concat
 local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
@@ -27,15 +27,18 @@ annotate_with = function(st, f, b, device)
     return
   end
   local request = f.request
-  if kind == RESPONSE and device.track and (f.fn == 16 or f.fn == 23) and request ~= nil
+  if kind == RESPONSE and device.track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
-    -- Confirmed writes (FC16 answers carry no values; FC23 writes before it reads).
+    -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes
+    -- before it reads).
     remember_writes(device.seen, f.number, request.registers, request.registers.b)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
     annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and f.fn == 6 and device.track then remember_writes(device.seen, f.number, registers, b) end
+    if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
+      remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
+    end
   end
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end

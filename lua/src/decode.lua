@@ -2,10 +2,11 @@
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local ipairs, pairs, string = ipairs, pairs, string
+local ipairs, load, pairs, string, type, unpack = ipairs, load, pairs, string, type, table.unpack or unpack
 local _ENV = M -- (the other modules' names: their exports in M)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
 local concat, floor, format, lane = concat, floor, format, lane
+local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
 -- Protocol names and limits (dissector/protocol/spec.py).
@@ -38,19 +39,6 @@ local function u16(b, k) return b[k] * 256 + b[k + 1] end
 local function warn(frame, text)
   local warnings = frame.warnings
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
-end
-
-local function check_range(frame, what, value, limit_name)
-  local limit = LIMITS[limit_name]
-  if limit and (value < limit[1] or value > limit[2]) then
-    warn(frame, format("%s %d outside the spec's %d..%d", what, value, limit[1], limit[2]))
-  end
-end
-
-local function check_span(frame, start, quantity)
-  if start + quantity > 0x10000 then
-    warn(frame, format("addresses %d..%d run past 65535", start, start + quantity - 1))
-  end
 end
 
 -- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
@@ -97,106 +85,74 @@ end
 
 local function ceil_bytes(bits) return floor((bits + 7) / 8) end
 
+-- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()): its parameters by
+-- name, as Python fills them in.
+local TEXTS = RULES.texts
+local function say(key, values)
+  local entry = TEXTS[key]
+  local params, args = entry.params, {}
+  for index = 1, #params do args[index] = values[params[index]] end
+  return format(entry.format, unpack(args, 1, #params))
+end
+
 -- Each parser gets the frame, the byte table, the first data byte and the data length. It returns the
 -- number of bytes its grammar consumed (the rest is `trailing`), or nil and a reason when the data do
 -- not fit the grammar (Python: GrammarError -> "malformed ...").
-local P = {}
-
-local function read_request(f, b, d, len)
-  if len < 4 then return nil, "too short for start and quantity" end
-  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3] }
-  return 4
-end
-
-local function read_bits_response(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = { byte_count = b[d], status_at = d + 1 }
-  return 1 + b[d]
-end
-
-local function read_registers_response(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = { byte_count = b[d], values_at = d + 1, count = (b[d] - b[d] % 2) / 2 }
-  return 1 + b[d]
-end
-
-local function write_single(f, b, d, len)
-  if len < 4 then return nil, "too short for address and value" end
-  f.fields = { address = b[d] * 256 + b[d + 1], value = b[d + 2] * 256 + b[d + 3] }
-  return 4
-end
-
-local function empty(f, b, d, len)
-  f.fields = {}
-  return 0
-end
-
-local function diagnostics(f, b, d, len)
-  if len < 2 then return nil, "too short for a sub-function" end
-  f.fields = { subfunction = b[d] * 256 + b[d + 1], data_length = len - 2 }
-  return len
-end
-
-local function write_coils_request(f, b, d, len)
-  if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
-  f.fields = { start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], status_at = d + 5 }
-  return 5 + b[d + 4]
-end
-
-local function write_registers_request(f, b, d, len)
-  if len < 5 or len < 5 + b[d + 4] then return nil, "byte count past the end" end
-  f.fields = {
-    start = b[d] * 256 + b[d + 1], quantity = b[d + 2] * 256 + b[d + 3], byte_count = b[d + 4], values_at = d + 5,
-    count = (b[d + 4] - b[d + 4] % 2) / 2,
-  }
-  return 5 + b[d + 4]
-end
-
-local function fixed_size(size, what)
-  return function(f, b, d, len)
-    if len < size then return nil, what end
-    f.fields = {}
-    return size
+-- The regular layouts are read as their description says (data/modbus.toml [layouts], protocol/shapes.py):
+-- u8 and u16 fields by name, a counted field (bytes, words, odd) by where it starts (NAME_at), the rest
+-- of the data by its length (NAME_length). Each description is made into a Lua function once (load),
+-- so that a frame costs what a hand-written parser costs: its fields in one table constructor.
+local SIZE_OF = { bytes = "v%d", words = "2 * v%d", half = "v%d - v%d %% 2", odd = "v%d %% 2" }
+local function shape_parser(shape)
+  local lines, keys, at = { "return function(f, b, d, len)", "local p = 0" }, {}, {}
+  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
+  for index, field in ipairs(shape) do
+    local name, kind = field.name, field.type
+    at[name] = index
+    if kind == "u8" or kind == "u16" then
+      local size = kind == "u8" and 1 or 2
+      lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
+      lines[#lines + 1] = format(kind == "u8" and "local v%d = b[d + p]" or "local v%d = b[d + p] * 256 + b[d + p + 1]",
+        index)
+      lines[#lines + 1] = format("p = p + %d", size)
+      keys[#keys + 1] = format("[%q] = v%d", name, index)
+    elseif kind == "rest" then
+      lines[#lines + 1] = "local rest = len - p"
+      lines[#lines + 1] = "p = len"
+      keys[#keys + 1] = format("[%q] = rest", name .. "_length")
+    else
+      local count = at[field.count]
+      local size = format(SIZE_OF[field.half and "half" or kind], count, count)
+      lines[#lines + 1] = format("local s%d = %s", index, size)
+      lines[#lines + 1] = format("if p + s%d > len then return nil, %q end", index, field.count .. " past the end")
+      lines[#lines + 1] = format("local a%d = d + p", index)
+      lines[#lines + 1] = format("p = p + s%d", index)
+      keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+    end
   end
+  lines[#lines + 1] = "f.fields = { " .. concat(keys, ", ") .. " }"
+  lines[#lines + 1] = trailing and "return p" or "return len"
+  lines[#lines + 1] = "end"
+  return load(concat(lines, "\n"))()
 end
 
-local function comm_event_log_response(f, b, d, len)
-  if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
-  f.fields = {}
-  return 1 + b[d]
+-- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
+local SIZES = { u8 = 1, u16 = 2 }
+local function offset_of(shape, name)
+  local offset = 0
+  for _, field in ipairs(shape or {}) do
+    if field.name == name then return offset end
+    if SIZES[field.type] == nil then return nil end
+    offset = offset + SIZES[field.type]
+  end
+  return nil
 end
 
+-- The irregular layouts (protocol/layouts.py writes them by hand too).
 local function byte_counted(f, b, d, len)
   if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
   f.fields = {}
   return 1 + b[d]
-end
-
-local function mask_write(f, b, d, len)
-  if len < 6 then return nil, "too short for address and masks" end
-  f.fields = { address = b[d] * 256 + b[d + 1] }
-  return 6
-end
-
-local function read_write_request(f, b, d, len)
-  if len < 9 or len < 9 + b[d + 8] then return nil, "byte count past the end" end
-  f.fields = {
-    read_start = b[d] * 256 + b[d + 1], read_quantity = b[d + 2] * 256 + b[d + 3], write_start = b[d + 4] * 256 + b[d + 5],
-    write_quantity = b[d + 6] * 256 + b[d + 7], byte_count = b[d + 8], values_at = d + 9, count = (b[d + 8] - b[d + 8] % 2) / 2,
-  }
-  return 9 + b[d + 8]
-end
-
-local function fifo_request(f, b, d, len)
-  if len < 2 then return nil, "too short for an address" end
-  f.fields = { address = b[d] * 256 + b[d + 1] }
-  return 2
-end
-
-local function fifo_response(f, b, d, len)
-  if len < 4 or len < 4 + 2 * (b[d + 2] * 256 + b[d + 3]) then return nil, "FIFO count past the end" end
-  f.fields = { byte_count = b[d] * 256 + b[d + 1], fifo_count = b[d + 2] * 256 + b[d + 3] }
-  return 4 + 2 * (b[d + 2] * 256 + b[d + 3])
 end
 
 local function mei_request(f, b, d, len)
@@ -246,237 +202,207 @@ local function raw(f, b, d, len)
 end
 
 -- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local GRAMMARS = { [REQUEST] = {}, [RESPONSE] = {} }
-  local PARSERS = {
-    read_request = read_request, write_multiple_response = read_request,
-    read_bits_response = read_bits_response, read_registers_response = read_registers_response,
-    write_single = write_single, empty = empty, diagnostics = diagnostics,
-    write_coils_request = write_coils_request, write_registers_request = write_registers_request,
-    exception_status_response = fixed_size(1, "too short for a status"),
-    comm_event_counter_response = fixed_size(4, "too short for status and event count"),
-    comm_event_log_response = comm_event_log_response, byte_counted = byte_counted,
-    read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
-    mask_write = mask_write, read_write_request = read_write_request, fifo_request = fifo_request,
-    fifo_response = fifo_response, mei_request = mei_request, mei_response = mei_response,
-    report_server_id_response = function(f, b, d, len)
-      if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
-      f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
-      return 1 + b[d]
-    end,
-  }
-  for code, name in pairs(DATA.protocol.parsers.request) do GRAMMARS[REQUEST][code] = PARSERS[name] end
-  for code, name in pairs(DATA.protocol.parsers.response) do GRAMMARS[RESPONSE][code] = PARSERS[name] end
-
--- Handlers (decode/fields.py): lift out start, quantity, registers, bits, objects; check the spec.
-local H = { [REQUEST] = {}, [RESPONSE] = {} }
-
-local function read_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
+local PARSERS = {
+  comm_event_log_response = function(f, b, d, len)
+    if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
+    f.fields = {}
+    return 1 + b[d]
+  end,
+  read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
+  mei_request = mei_request, mei_response = mei_response,
+  report_server_id_response = function(f, b, d, len)
+    if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
+    f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
+    return 1 + b[d]
+  end,
+}
+for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
+local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
+for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
+  for code, name in pairs(names) do GRAMMARS[kind][code], LAYOUTS[kind][code] = PARSERS[name], name end
 end
 
-local function request_fields(f)
-  if f.request == nil then return nil end
-  return f.request.fields
+-- ---------------------------------------------------------------------------------------------------
+-- The generic lifter (decode/fields.py lifter): one rule of data/modbus.toml [lift] prepared for one
+-- function code and direction, as a handler. Warnings in the table's order: checks, span, byte count,
+-- odd count, coil, echo.
+local COIL_ON, COIL_OFF = 0xFF00, 0x0000
+local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
+
+-- The request a response answers, when it is in the capture and its data parsed.
+local function request_of(f)
+  local request = f.request
+  if request == nil or request.fields == nil then return nil end
+  return request
 end
 
-local function read_bits_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  local start, quantity = nil, nil
-  if request ~= nil then
-    start, quantity = request.start, request.quantity
-    if fields.byte_count ~= ceil_bytes(quantity) then
-      warn(f, format("byte count %d disagrees with the %d bits asked", fields.byte_count, quantity))
+local function echo_check(f, fields, request, echo)
+  local answered, differ = request.fields, {}
+  for _, name in ipairs(echo.fields) do
+    if answered[name] ~= fields[name] then differ[#differ + 1] = name end
+  end
+  if #differ == 0 then return end
+  if echo.names ~= "differing" then differ = echo.fields end
+  warn(f, say("echo", { fields = concat(differ, " and "), verb = #differ == 1 and "differs" or "differ" }))
+end
+
+local function lifter(rule, limit, layout)
+  local checks = {}
+  for index, check in ipairs(rule.checks) do
+    local range = RULES.limits[check.limit or limit]
+    checks[index] = { what = check.what, field = check.field, low = range[1], high = range[2],
+      above = check.test == "above" }
+  end
+  local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
+  local start_from_request, quantity_from_request = start == REQUEST_START, quantity == REQUEST_QUANTITY
+  local count_from_request = count ~= nil and count.of == REQUEST_QUANTITY
+  local from_request = start_from_request or quantity_from_request or count_from_request or rule.echo ~= nil
+  local quantity_const = type(quantity) == "number"
+  local unpaired, span, odd_count, coil, echo = rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo
+  -- where the values are: a counted field (its start, its count field) or one word at a fixed offset
+  local value_kind, value_at, value_count, value_half, value_offset, value_start
+  if values ~= nil then
+    value_kind, value_at, value_start = values.kind, values.field .. "_at", values.start
+    for _, field in ipairs(RULES.layouts[layout] or {}) do
+      if field.name == values.field then value_count, value_half = field.count, field.half end
+    end
+    value_offset = offset_of(RULES.layouts[layout], values.field)
+  end
+  return function(f, b)
+    local fields = f.fields
+    local request = from_request and request_of(f) or nil
+    local first, many
+    if start_from_request then
+      first = request and request.start
+    elseif start ~= nil then
+      first = fields[start]
+    end
+    if quantity_const then
+      many = quantity
+    elseif quantity_from_request then
+      many = request and request.quantity
+      if many == nil and unpaired ~= nil and fields.byte_count % unpaired == 0 then
+        many = floor(fields.byte_count / unpaired)
+      end
+    elseif quantity ~= nil then
+      many = fields[quantity]
+    end
+    f.start, f.quantity = first, many
+    for index = 1, #checks do
+      local check = checks[index]
+      local value = fields[check.field]
+      if check.above then
+        if value > check.high then warn(f, say("above", { what = check.what, value = value, high = check.high })) end
+      elseif value < check.low or value > check.high then
+        warn(f, say("range", { what = check.what, value = value, low = check.low, high = check.high }))
+      end
+    end
+    if span and first + many > 0x10000 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+    if count ~= nil then
+      local of
+      if count_from_request then of = request and request.quantity else of = fields[count.of] end
+      if of ~= nil then
+        local given = fields.byte_count
+        local expected = count.plus + (count.unit > 0 and of * count.unit or floor((of + 7) / 8))
+        if given ~= expected then warn(f, say(count.text, { count = given, quantity = of })) end
+      end
+    end
+    if odd_count and fields.byte_count % 2 == 1 then warn(f, say("odd_count", { count = fields.byte_count })) end
+    if coil ~= nil and fields[coil] ~= COIL_ON and fields[coil] ~= COIL_OFF then
+      warn(f, say("coil_value", { value = fields[coil] }))
+    end
+    if request ~= nil and echo ~= nil then echo_check(f, fields, request, echo) end
+    if value_kind == "registers" then
+      local words = fields[value_count]
+      if value_half then words = floor(words / 2) end
+      f.registers = make_registers(b, fields[value_at], words, value_start and fields[value_start] or first)
+    elseif value_kind == "bits" then
+      f.bits = make_bits(b, fields[value_at], fields[value_count], first, many)
+    elseif value_kind == "register" then
+      f.registers = make_registers(b, f.data_at + value_offset, 1, first)
+    elseif value_kind == "coil" then
+      f.bits = { first = f.data_at + value_offset, count = 1, start = first,
+        single = fields[values.field] == COIL_ON and 1 or 0 }
     end
   end
-  f.start, f.quantity = start, quantity
-  f.bits = make_bits(b, fields.status_at, fields.byte_count, start, quantity)
 end
 
--- The registers an answer of function fn reads, from its request's fields: FC23 reads its read window.
+-- The registers an answer of function fn reads, from its request's fields (the request's window: FC23
+-- reads from read_start).
+local LIFT_OF = { [REQUEST] = {}, [RESPONSE] = {} }
 function lane.asked_window(fn, request)
-  if fn == 23 then return request.read_start, request.read_quantity end
-  return request.start, request.quantity
+  local rule = LIFT_OF[REQUEST][fn]
+  return request[rule.start], request[rule.quantity]
 end
 
-local function read_registers_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  local start = nil
-  if request ~= nil then
-    local quantity
-    start, quantity = lane.asked_window(f.fn, request)
-    if fields.byte_count ~= 2 * quantity then
-      warn(f, format("byte count %d disagrees with the %d registers asked", fields.byte_count, quantity))
-    end
-    f.quantity = quantity
-  elseif fields.byte_count % 2 == 0 then
-    f.quantity = floor(fields.byte_count / 2)
-  end
-  if fields.byte_count % 2 == 1 then
-    warn(f, format("odd byte count %d for 16-bit registers", fields.byte_count))
-  end
-  f.start = start
-  f.registers = make_registers(b, fields.values_at, fields.count, start)
-end
-
--- fields._check_echo: an FC5/FC6 answer echoes its request; one that does not wrote something else.
-local write_single_coil_handler, write_single_register_handler
-  local function check_echo(f, fields)
-    local request = request_fields(f)
-    if request == nil then return end
-    local address, value = request.address ~= fields.address, request.value ~= fields.value
-    if address and value then
-      warn(f, "the response's address and value differ from the request's")
-    elseif address then
-      warn(f, "the response's address differs from the request's")
-    elseif value then
-      warn(f, "the response's value differs from the request's")
-    end
-  end
-
-  write_single_coil_handler = function(f, b)
+-- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
+local SPECIAL = {
+  diagnostics = function(f, b)
     local fields = f.fields
-    f.start, f.quantity = fields.address, 1
-    if fields.value ~= 0xFF00 and fields.value ~= 0 then
-      warn(f, format("coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)", fields.value))
+    f.subfunction = fields.subfunction
+    if DIAGNOSTICS[fields.subfunction] == nil then
+      warn(f, say("unknown_subfunction", { subfunction = fields.subfunction }))
     end
-    check_echo(f, fields)
-    local value = 0
-    if fields.value == 0xFF00 then value = 1 end
-    f.bits = { first = f.data_at + 2, count = 1, start = fields.address, single = value }
-  end
+    if fields.data_length % 2 == 1 then warn(f, say("odd_diagnostic_data", {})) end
+  end,
+  mei_response = function(f, b)
+    if f.fields.mei_type ~= 14 then return end
+    local objects = {}
+    for _, object in ipairs(f.fields.objects) do
+      objects[#objects + 1] = {
+        id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
+        offset = object.offset, length = object.length,
+      }
+    end
+    f.objects = objects
+  end,
+  report_server_id_response = function(f, b)
+    -- the additional data as text when every byte is printable ASCII (a version string), as Python
+    local fields, d = f.fields, f.data_at
+    local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
+    if run ~= 0 and run ~= 255 then warn(f, say("run_indicator", { value = run })) end
+    for k = 0, length - 1 do
+      local byte = b[d + 3 + k]
+      if byte < 32 or byte > 126 then chars = nil break end
+      chars[#chars + 1] = string.char(byte)
+    end
+    f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
+      text = length > 0 and chars and concat(chars) or nil }
+  end,
+}
 
-  write_single_register_handler = function(f, b)
-    local fields = f.fields
-    f.start, f.quantity = fields.address, 1
-    check_echo(f, fields)
-    f.registers = make_registers(b, f.data_at + 2, 1, fields.address)
-  end
-
-local function diagnostics_handler(f, b)
-  local fields = f.fields
-  f.subfunction = fields.subfunction
-  if DIAGNOSTICS[fields.subfunction] == nil then
-    warn(f, format("diagnostic sub-function %d is not defined by the spec", fields.subfunction))
-  end
-  if fields.data_length % 2 == 1 then warn(f, "diagnostic data is not a whole number of words") end
-end
-
-local function write_coils_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
-  if fields.byte_count ~= ceil_bytes(fields.quantity) then
-    warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
-  end
-  f.bits = make_bits(b, fields.status_at, fields.byte_count, fields.start, fields.quantity)
-end
-
-local function write_registers_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  check_range(f, "quantity", fields.quantity, DATA.protocol.limits.request[f.fn])
-  check_span(f, fields.start, fields.quantity)
-  if fields.byte_count ~= 2 * fields.quantity then
-    warn(f, format("byte count %d disagrees with the quantity %d", fields.byte_count, fields.quantity))
-  end
-  f.registers = make_registers(b, fields.values_at, fields.count, fields.start)
-end
-
-local function write_multiple_response_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.start, fields.quantity
-  local request = request_fields(f)
-  if request ~= nil and (request.start ~= fields.start or request.quantity ~= fields.quantity) then
-    warn(f, "the response's start and quantity differ from the request's")
+-- Handlers per direction and code: the generic lifter where the table has a rule, else a special case.
+local H = { [REQUEST] = {}, [RESPONSE] = {} }
+for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
+  for code, entry in pairs(codes) do
+    if entry.rule ~= nil then
+      LIFT_OF[kind][code] = RULES.lift[entry.rule]
+      H[kind][code] = lifter(RULES.lift[entry.rule], entry.limit, LAYOUTS[kind][code])
+    else
+      H[kind][code] = SPECIAL[entry.special]
+    end
   end
 end
 
-local function mask_write_handler(f, b)
-  f.start, f.quantity = f.fields.address, 1
-end
+-- The answers whose start is their request's (a field the display shows as generated): FC1-4, 23, 24.
+local START_FROM_REQUEST = {}
+for code, rule in pairs(LIFT_OF[RESPONSE]) do START_FROM_REQUEST[code] = rule.start == REQUEST_START end
 
-local function read_write_request_handler(f, b)
-  local fields = f.fields
-  f.start, f.quantity = fields.read_start, fields.read_quantity
-  check_range(f, "read quantity", fields.read_quantity, "rw_read")
-  check_range(f, "write quantity", fields.write_quantity, "rw_write")
-  if fields.byte_count ~= 2 * fields.write_quantity then
-    warn(f, format("byte count %d disagrees with the write quantity %d", fields.byte_count, fields.write_quantity))
-  end
-  f.registers = make_registers(b, fields.values_at, fields.count, fields.write_start)
+-- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
+-- by their echo (FC6), by a normal answer (FC16, FC23).
+local CONFIRMED = { echo = {}, answer = {} }
+for code, how in pairs(RULES.confirm) do
+  if RULES.register_writes[code] then CONFIRMED[how][code] = true end
 end
-
-local function fifo_request_handler(f, b)
-  f.start = f.fields.address
-end
-
-local function fifo_response_handler(f, b)
-  local fields = f.fields
-  local request = request_fields(f)
-  if request ~= nil then f.start = request.address end
-  f.quantity = fields.fifo_count
-  if fields.fifo_count > LIMITS.fifo_count[2] then
-    warn(f, format("FIFO count %d above the spec's 31", fields.fifo_count))
-  end
-  if fields.byte_count ~= 2 + 2 * fields.fifo_count then
-    warn(f, format("byte count %d disagrees with the FIFO count", fields.byte_count))
-  end
-end
-
-local function mei_response_handler(f, b)
-  if f.fields.mei_type ~= 14 then return end
-  local objects = {}
-  for _, object in ipairs(f.fields.objects) do
-    objects[#objects + 1] = {
-      id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
-      offset = object.offset, length = object.length,
-    }
-  end
-  f.objects = objects
-end
-
--- Handlers by name (dissector/decode/fields.py); which code uses which: the generated table.
-  local HANDLERS = {
-    read_request = read_request_handler, read_bits_response = read_bits_response_handler,
-    read_registers_response = read_registers_response_handler, write_single_coil = write_single_coil_handler,
-    write_single_register = write_single_register_handler, diagnostics = diagnostics_handler,
-    write_coils_request = write_coils_request_handler, write_registers_request = write_registers_request_handler,
-    write_multiple_response = write_multiple_response_handler, mask_write = mask_write_handler,
-    read_write_request = read_write_request_handler, fifo_request = fifo_request_handler,
-    fifo_response = fifo_response_handler, mei_response = mei_response_handler,
-    report_server_id_response = function(f, b)
-      -- the additional data as text when every byte is printable ASCII (a version string), as Python
-      local fields, d = f.fields, f.data_at
-      local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
-      if run ~= 0 and run ~= 255 then
-        warn(f, format("run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)", run))
-      end
-      for k = 0, length - 1 do
-        local byte = b[d + 3 + k]
-        if byte < 32 or byte > 126 then chars = nil break end
-        chars[#chars + 1] = string.char(byte)
-      end
-      f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
-        text = length > 0 and chars and concat(chars) or nil }
-    end,
-  }
-  for code, name in pairs(DATA.protocol.handlers.request) do H[REQUEST][code] = HANDLERS[name] end
-  for code, name in pairs(DATA.protocol.handlers.response) do H[RESPONSE][code] = HANDLERS[name] end
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
-  if f.slave > MAX_SLAVE then warn(f, format("slave address %d is reserved (248..255 are no device's)", f.slave)) end
+  if f.slave > MAX_SLAVE then warn(f, say("reserved_slave", { slave = f.slave })) end
   if f.kind == EXCEPTION then
     f.fields = {}
     f.exception_code = b[d]
     if EXCEPTIONS[f.exception_code] == nil then
-      warn(f, format("exception code %d is not defined by the spec", f.exception_code))
+      warn(f, say("unknown_exception", { code = f.exception_code }))
     end
     return
   end
@@ -485,17 +411,18 @@ local function decode_frame(f)
   if used == nil then
     f.fields = nil
     f.malformed = true
-    warn(f, format("malformed %s: %s", f.kind, reason))
+    warn(f, say("malformed", { kind = f.kind, error = reason }))
     return
   end
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
-  if used < len then warn(f, format("%d unexpected bytes after the data", len - used)) end
+  if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then
-    warn(f, format("%s cannot be broadcast (slave 0)", function_name(f.fn)))
+    warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))
   end
 end
 
+M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say
 M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
 M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
 M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at

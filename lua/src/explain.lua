@@ -5,6 +5,7 @@ local M = require("vw3.env")
 local ipairs, math, next, tonumber = ipairs, math, next, tonumber
 local _ENV = M -- (the other modules' names: their exports in M)
 local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
+local LIFT_OF, REQUEST = LIFT_OF, REQUEST
 local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
 local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
 local u16, warn = u16, warn
@@ -33,11 +34,14 @@ local function check_request(f, device)
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
     -- (no tables: this runs for every request)
-    if code ~= 23 then
+    local rule = LIFT_OF[REQUEST][code]
+    if rule == nil or rule.write_window == nil then
       check_limit(f, profile, "quantity", f.quantity, limits[1])
     elseif f.fields ~= nil then
-      check_limit(f, profile, "read quantity", f.fields.read_quantity, limits[1])
-      check_limit(f, profile, "write quantity", f.fields.write_quantity, limits[2])
+      -- read and write quantities (FC23): as the spec's checks of the lifting rule name them
+      for index, check in ipairs(rule.checks) do
+        check_limit(f, profile, check.what, f.fields[check.field], limits[index])
+      end
     end
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)

@@ -10,7 +10,7 @@ local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_wi
 local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
 local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
 local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
-local PROFILES, build_device, new_state = PROFILES, build_device, new_state
+local CONFIRMED, PROFILES, build_device, new_state = CONFIRMED, PROFILES, build_device, new_state
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -302,7 +302,7 @@ function lane.answer(st, bytes, n, time, number)
   st.last = nil
   st.pending = nil
   local writes = pending.registers
-  if device.track and (code == 16 or code == 23) and writes ~= nil and writes.count > 0 and writes.b ~= nil then
+  if device.track and CONFIRMED.answer[code] and writes ~= nil and writes.count > 0 and writes.b ~= nil then
     remember_writes(seen, item, writes, writes.b)
   end
   if follow and protected ~= nil then

@@ -96,12 +96,16 @@ local function answered(s, b, i, stop, n, final)
 end
 
 -- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
--- a coil set ON or OFF.
+-- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
 local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
+local COIL_REQUESTS = {}
+for code, entry in pairs(DATA.rules.by_code.request) do
+  if entry.rule ~= nil and DATA.rules.lift[entry.rule].coil ~= nil then COIL_REQUESTS[code] = true end
+end
 local function plausible_request(b, i, length)
   if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
   local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if code == 5 then return word == 0xFF00 or word == 0 end
+  if COIL_REQUESTS[code] then return word == 0xFF00 or word == 0 end
   local limits = PLAUSIBLE_READS[code]
   return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end

@@ -11,7 +11,7 @@ local RESPONSE, STATUS_VALUES, bit_at, concat, describe = RESPONSE, STATUS_VALUE
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
 local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
 local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
-local register_view = register_view
+local START_FROM_REQUEST, register_view = START_FROM_REQUEST, register_view
 local summary
 
 local function add_text(tree, expert_info, text)
@@ -287,7 +287,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
-      if f.kind == RESPONSE and (f.fn <= 4 or f.fn == 23 or f.fn == 24) then item:set_generated() end
+      if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
     end
     if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
