@@ -246,7 +246,7 @@ def render_data() -> str:
 
     data = plugin_data()
     # (in a block of its own: the modules below are closures of this chunk, a `local RULES` in their
-    # scope would hide layouts.lua's length rules of the same name)
+    # scope would hide the length rules the framing modules share under that name)
     rules = ["do", rules_lua.render_rules().rstrip("\n"), "DATA.rules = RULES", "end"]
     lines = [BEGIN, "local DATA = " + lua_literal(data), *rules, END]
     return "\n".join(lines) + "\n"

@@ -8,7 +8,7 @@ local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRE
 local LIFT_OF, REQUEST = LIFT_OF, REQUEST
 local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
 local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
-local u16, warn = u16, warn
+local say, u16, warn = say, u16, warn
 
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
@@ -17,8 +17,8 @@ end
 -- A quantity above the device's limit for the function (limit: nil when the device gives none).
 local function check_limit(f, profile, what, quantity, limit)
   if limit ~= nil and quantity ~= nil and quantity > limit then
-    warn(f, format("%s %d is beyond the %s's limit of %d words for %s", what, quantity, profile.device, limit,
-      profile_function_name(profile, f.fn)))
+    warn(f, say("device_limit", { what = what, quantity = quantity, device = profile.device, limit = limit,
+      name = profile_function_name(profile, f.fn) }))
   end
 end
 
@@ -26,10 +26,9 @@ local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
   if profile.functions ~= nil and not profile.functions[code] then
-    warn(f, format("%s (%d) is not supported by the %s", profile_function_name(profile, code), code, profile.device))
+    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
   elseif profile.inner_only and profile.inner_only[code] then
-    warn(f, format("%s (%d) is only valid inside an encapsulated packet on the %s", profile_function_name(profile, code),
-      code, profile.device))
+    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
   end
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
@@ -52,7 +51,7 @@ local function check_request(f, device)
       for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
       local list = concat(allowed, ", ")
       if list == "" then list = "none" end
-      warn(f, format("%s cannot be broadcast to the %s (broadcast functions: %s)", name, profile.device, list))
+      warn(f, say("device_broadcast", { name = name, device = profile.device, allowed = list }))
     end
   end
 end
@@ -149,7 +148,7 @@ local function explain_exception(st, f, device)
   if causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
-    note(f, format("exception %02X from the %s to %s: %s", code, profile.device, name, concat(texts, " or ")))
+    note(f, say("exception_cause", { code = code, device = profile.device, name = name, causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(st, f, device)
@@ -158,11 +157,11 @@ local function explain_exception(st, f, device)
     -- them from the request and the device: inferred_registers), as vw3-decode lists them.
     f.inferred = true
   elseif meanings[code] ~= nil then
-    note(f, format("exception %02X from the %s: %s", code, profile.device, meanings[code]))
+    note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meanings[code] }))
   elseif next(meanings) ~= nil then
     local known = {}
     for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
-    note(f, format("exception %02X is not one the %s documents (%s)", code, profile.device, concat(known, ", ")))
+    note(f, say("exception_undocumented", { code = code, device = profile.device, known = concat(known, ", ") }))
   end
 end
 
@@ -201,7 +200,7 @@ local function explain_objects(f, profile)
           object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
           done = true
         else
-          note(f, format("%s %s is not in the MMmm form the %s uses", object.name, python_repr(value), profile.device))
+          note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
         end
       end
       if not done then object.text = meaning.meaning end
@@ -215,9 +214,9 @@ local function diagnostics_note(f, device, b)
   local meaning = (profile.diagnostics or {})[sub]
   if meaning == nil then return end
   f.subfunction_text = meaning
-  local text = format("sub-function %02X on the %s: %s", sub, profile.device, meaning)
+  local text = say("subfunction_meaning", { subfunction = sub, device = profile.device, meaning = meaning })
   if f.kind == RESPONSE and f.fields ~= nil and f.fields.data_length == 2 then
-    text = text .. format("; value %d", u16(b, f.data_at + 2))
+    text = text .. say("subfunction_value", { value = u16(b, f.data_at + 2) })
   end
   note(f, text)
 end

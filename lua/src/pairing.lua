@@ -3,7 +3,8 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the other modules' names: their exports in M)
-local REQUEST, format, release_run, warn = REQUEST, format, release_run, warn
+local REQUEST, release_run, say, warn = REQUEST, release_run, say, warn
+local UNMATCHED = say("unmatched", {})
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
@@ -38,8 +39,7 @@ local function pair(st, f)
     pending.response = f
     st.pending = nil
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
-    warn(f, format("response %.1f ms after request #%d, later than the %.0f ms timeout: not its answer",
-      (f.time - late.time) * 1000, late.number, timeout * 1000))
+    warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
     if pending ~= nil then
       pending.unanswered = true
@@ -49,7 +49,7 @@ local function pair(st, f)
     f.no_request = true
     local notes = f.notes
     if notes == nil then notes = {}; f.notes = notes end
-    notes[#notes + 1] = "response without a matching request in the capture"
+    notes[#notes + 1] = UNMATCHED
   end
 end
 
