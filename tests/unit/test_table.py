@@ -16,6 +16,8 @@ from dissector.framing import rtu
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.grammar import GRAMMARS, parse_pdu
+from dissector.protocol.rules import LIFTS
+from dissector.protocol.shapes import SHAPES
 
 ROOT = Path(__file__).resolve().parents[2]
 PLUGIN = ROOT / "lua" / "vw3.lua"
@@ -24,16 +26,20 @@ LAYOUTS = [(entry.code, kind, entry.layout(kind)) for entry in table.FUNCTIONS f
 
 def _lua_names(table_name: str) -> set[str]:
     text = PLUGIN.read_text(encoding="utf-8")
-    body = re.search(r"\n *local %s = \{\n(.*?)\n *\}\n" % table_name, text, re.DOTALL)
+    # (to its closing brace at the indentation of its `local`)
+    body = re.search(r"\n( *)local %s = \{\n(.*?)\n\1\}\n" % table_name, text, re.DOTALL)
     assert body is not None, f"lua/vw3.lua has no {table_name} table"
-    return set(re.findall(r"(\w+) = ", body.group(1)))
+    return set(re.findall(r"(\w+) = ", body.group(2)))
 
 
 def test_every_name_has_an_implementation() -> None:
     handlers = {layout.handler for _, _, layout in LAYOUTS if layout.handler}
     assert handlers <= set(fields.HANDLERS)
-    assert handlers <= _lua_names("HANDLERS")
-    assert {layout.name for _, _, layout in LAYOUTS} <= _lua_names("PARSERS")
+    # the plugin: the generic lifter interprets every [lift] rule, the named special cases are its SPECIAL;
+    # the regular layouts are read from their descriptions ([layouts]), the irregular ones are its PARSERS
+    assert handlers <= set(LIFTS) | _lua_names("SPECIAL")
+    assert {layout.name for _, _, layout in LAYOUTS} <= set(SHAPES) | _lua_names("PARSERS")
+    assert "DATA.rules = RULES" in PLUGIN.read_text(encoding="utf-8")
     specials = {layout.length.name for _, _, layout in LAYOUTS if isinstance(layout.length, table.Special)}
     assert specials <= set(rtu._SPECIAL) and specials <= _lua_names("makers")
 
