@@ -14,6 +14,8 @@
  * none of which refer back to it.
  */
 
+#include "_bus.h" /* the time-dependent counts: bus timing, response times, poll intervals */
+
 enum { EVENT_READ, EVENT_UNREADABLE, EVENT_WRITE, EVENT_WRITE_OBSERVED, EVENT_REFUSED, EVENT_CONFIRM, EVENTS };
 
 typedef struct {
@@ -34,6 +36,7 @@ typedef struct {
     uint8_t size; /* fields used: 2, 3, 4 or 6, as pollcycle.request_key's tuple */
     unsigned long long first, count, failed;
     size_t order; /* keys in the order first seen, as PollCycle's dict keeps them */
+    Time last;    /* the last occurrence's time: intervals are tallies (TALLY_INTERVALS, owner order) */
 } Poll;
 
 typedef struct {
@@ -53,6 +56,8 @@ typedef struct {
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
     Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
+    Tallies tallies;              /* response times, gaps, turnarounds, load per minute, intervals */
+    Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
 } Stats;
 
 static PyTypeObject StatsType;
@@ -229,8 +234,9 @@ static Poll *poll_find(Stats *st, const uint32_t *fields, int size, int make) {
     return p;
 }
 
-/* PollCycle.add_request (untimed): 0 or -1 (no memory). */
-static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned long long number, int failed) {
+/* PollCycle.add_request: 0 or -1 (no memory). */
+static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned long long number, int failed,
+                        const Time *t) {
     Poll *p = poll_find(st, fields, size, 0);
     if (p == NULL) {
         if (PyErr_Occurred()) return -1;
@@ -244,6 +250,11 @@ static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned lo
     }
     p->count++;
     if (failed) p->failed++;
+    if (!t->has) return 0;
+    if (p->last.has &&
+        tally_add(&st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / 1e-4), 1) < 0)
+        return -1;
+    p->last = *t;
     return 0;
 }
 
@@ -287,12 +298,29 @@ static Counted *counted_for(Stats *st, int slave, int function) {
     return &row[handled_index(function)];
 }
 
-/* What StatsCollector.add does with a transaction the engine shows: the request (unanswered when
- * `answer` is NULL), then its normal answer or exception. `writes`: the request's registers (FC6, 16,
- * 23), `reads`: the answer's values (FC3, 4, 23). */
-static int count_transaction(Stats *st, Slave *s, const uint8_t *q, const uint8_t *answer, const Words *writes,
-                             const Words *reads, unsigned long long number) {
+/* What StatsCollector.add and BusTiming.add do with a transaction the engine shows: the request (unanswered
+ * when `af` is NULL), then its normal answer or exception. `writes`: the request's registers (FC6, 16,
+ * 23), `reads`: the answer's values (FC3, 4, 23); `base`: the stream offset of b[0]. */
+static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
+                             const Words *writes, const Words *reads, unsigned long long number, long long base) {
+    const uint8_t *q = b + qf->at, *answer = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
+    Time qt = stamp_time(qf->timed, qf->ns);
+    stats_seen(&st->bus, &qt);
+    if (bus_add(&st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
+                base + qf->at) < 0)
+        return -1;
+    if (af != NULL) {
+        Time at = stamp_time(af->timed, af->ns);
+        double response = stamp_seconds(af->ns, qf->ns);
+        int timed = qf->timed && af->timed;
+        stats_seen(&st->bus, &at);
+        if (bus_add(&st->tallies, &st->bus, &at, af->length, af->kind, slave, 0, 0, 1, timed ? &response : NULL,
+                    number + 1, base + af->at) < 0)
+            return -1;
+        if (timed && tally_add(&st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
+            return -1;
+    }
     Counted *c = counted_for(st, slave, function);
     if (c == NULL) return -1;
     uint32_t key[6];
@@ -301,7 +329,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *q, const uint8_
     c->requests++;
     st->frames += answer != NULL ? 2 : 1;
     if (answer == NULL) c->unanswered++;
-    if (poll_request(st, key, size, number, answer == NULL) < 0) return -1;
+    if (poll_request(st, key, size, number, answer == NULL, &qt) < 0) return -1;
     if (writes != NULL && words_event(st, s, slave, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
     if (exception) {
@@ -338,6 +366,9 @@ static void stats_dealloc(Stats *st) {
     }
     PyMem_Free(st->params);
     PyMem_Free(st->polls);
+    PyMem_Free(st->tallies.slots);
+    PyMem_Free(st->bus.outages);
+    PyMem_Free(st->bus.outage_slaves);
     for (int k = 0; k < 256; k++) {
         if (st->counted[k] == NULL) continue;
         for (int j = 0; j < HANDLED; j++) PyMem_Free(st->counted[k][j].exceptions);
@@ -437,13 +468,14 @@ static int key_fields(PyObject *key, uint32_t *fields) {
 }
 
 static PyObject *stats_poll(Stats *st, PyObject *args) {
-    PyObject *key;
+    PyObject *key, *time = Py_None;
     unsigned long long number;
     int failed;
-    if (!PyArg_ParseTuple(args, "OKp", &key, &number, &failed)) return NULL;
+    if (!PyArg_ParseTuple(args, "OKp|O", &key, &number, &failed, &time)) return NULL;
     uint32_t fields[6];
+    Time t;
     int size = key_fields(key, fields);
-    if (size < 0 || poll_request(st, fields, size, number, failed) < 0) return NULL;
+    if (size < 0 || read_time(time, &t) < 0 || poll_request(st, fields, size, number, failed, &t) < 0) return NULL;
     Py_RETURN_NONE;
 }
 
@@ -616,6 +648,116 @@ fail:
     return NULL;
 }
 
+/* bus_line(char_time, t35, timeout, new_input): the line's settings (BusTiming.char_time, t35, timeout);
+ * new_input: a new file, whose gaps do not continue the previous one's (BusTiming.new_input). */
+static PyObject *stats_bus_line(Stats *st, PyObject *args) {
+    int fresh;
+    if (!PyArg_ParseTuple(args, "dddp", &st->bus.char_time, &st->bus.t35, &st->bus.timeout, &fresh)) return NULL;
+    if (fresh) st->bus.has_last_end = st->bus.has_answer_end = 0;
+    Py_RETURN_NONE;
+}
+
+/* bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset):
+ * BusTiming.add of an item the Python stages showed (kind: 0 noise, 1 request, 2 response, 3 exception). */
+static PyObject *stats_bus_item(Stats *st, PyObject *args) {
+    PyObject *time, *response;
+    long long length, offset;
+    int kind, slave, broadcast, unanswered, crc_ok;
+    unsigned long long number;
+    if (!PyArg_ParseTuple(args, "OLiippiOKL", &time, &length, &kind, &slave, &broadcast, &unanswered, &crc_ok,
+                          &response, &number, &offset))
+        return NULL;
+    Time t;
+    double seconds = 0.0;
+    if (read_time(time, &t) < 0) return NULL;
+    if (response != Py_None && (seconds = PyFloat_AsDouble(response)) == -1.0 && PyErr_Occurred()) return NULL;
+    if (slave < 0 || slave > 255 || kind < 0 || kind > KIND_EXCEPTION) {
+        PyErr_SetString(PyExc_ValueError, "bus_item: slave 0..255, kind 0..3");
+        return NULL;
+    }
+    if (bus_add(&st->tallies, &st->bus, &t, length, kind, slave, broadcast, unanswered, crc_ok,
+                response != Py_None ? &seconds : NULL, number, offset) < 0)
+        return NULL;
+    Py_RETURN_NONE;
+}
+
+/* stamp(time): StatsCollector.add's first and last times, of an item the Python stages showed. */
+static PyObject *stats_stamp(Stats *st, PyObject *time) {
+    Time t;
+    if (read_time(time, &t) < 0) return NULL;
+    stats_seen(&st->bus, &t);
+    Py_RETURN_NONE;
+}
+
+/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*); sums (TALLY_MINUTES) as floats. */
+static PyObject *stats_tallies(Stats *st, PyObject *arg) {
+    long kind = PyLong_AsLong(arg);
+    if (kind == -1 && PyErr_Occurred()) return NULL;
+    PyObject *owners = PyDict_New();
+    for (size_t k = 0; owners != NULL && k < st->tallies.size; k++) {
+        const Tally *t = &st->tallies.slots[k];
+        if (!t->tag || (long)(t->tag >> 24) != kind + 1) continue;
+        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
+        PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
+        PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
+        if (inner == NULL && owner != NULL && !PyErr_Occurred() && (inner = PyDict_New()) != NULL) {
+            if (PyDict_SetItem(owners, owner, inner) < 0) Py_CLEAR(owners);
+            Py_DECREF(inner); /* owners holds it */
+        }
+        if (owners == NULL || inner == NULL || key == NULL || value == NULL || PyDict_SetItem(inner, key, value) < 0)
+            Py_CLEAR(owners);
+        Py_XDECREF(owner);
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+    }
+    return owners;
+}
+
+static PyObject *runs_value(const Run *runs, const int *slaves, size_t count, int active_only) {
+    PyObject *rows = PyList_New(0);
+    for (size_t k = 0; rows != NULL && k < count; k++) {
+        const Run *r = &runs[k];
+        if (active_only && !r->active) continue;
+        PyObject *row = Py_BuildValue("(iNNKKKL)", slaves != NULL ? slaves[k] : (int)k, time_value(&r->start),
+                                      time_value(&r->end), r->requests, r->first_frame, r->last_frame, r->offset);
+        if (row == NULL || PyList_Append(rows, row) < 0) Py_CLEAR(rows);
+        Py_XDECREF(row);
+    }
+    return rows;
+}
+
+static PyObject *quantile_value(const Quantile *q) { return Py_BuildValue("(Kdd)", q->count, q->low, q->high); }
+
+/* bus_state(): what BusTiming keeps but its histograms (tallies()), for the report (bustiming.py). */
+static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
+    const Bus *b = &st->bus;
+    PyObject *histogram = PyList_New(GAP_BINS), *responses = PyList_New(0);
+    for (size_t k = 0; histogram != NULL && k < GAP_BINS; k++)
+        PyList_SET_ITEM(histogram, (Py_ssize_t)k, PyLong_FromUnsignedLongLong(b->histogram[k]));
+    for (int slave = 0; responses != NULL && slave < 256; slave++) {
+        if (!b->responses[slave].count) continue;
+        const Quantile *q = &b->responses[slave];
+        PyObject *row = Py_BuildValue("(iKddK)", slave, q->count, q->low, q->high, b->close[slave]);
+        if (row == NULL || PyList_Append(responses, row) < 0) Py_CLEAR(responses);
+        Py_XDECREF(row);
+    }
+    if (histogram == NULL || responses == NULL) {
+        Py_XDECREF(histogram);
+        Py_XDECREF(responses);
+        return NULL;
+    }
+    PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : (Py_INCREF(Py_None), Py_None);
+    PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : (Py_INCREF(Py_None), Py_None);
+    return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N}", "timed",
+                         b->timed ? Py_True : Py_False, "untimed", b->untimed, "first", time_value(&b->first),
+                         "last_end", last_end, "busy", b->busy, "answer_end", answer_end, "below_t35", b->below_t35,
+                         "histogram", histogram, "gaps", quantile_value(&b->gaps), "turnaround",
+                         quantile_value(&b->turnaround), "responses", responses, "runs",
+                         runs_value(b->runs, NULL, 256, 1), "outages",
+                         runs_value(b->outages, b->outage_slaves, b->outage_count, 0), "first_seen",
+                         time_value(&b->first_seen), "last_seen", time_value(&b->last_seen));
+}
+
 /* Stats(max_keys, max_params=1 << 18): the poll table follows at most max_keys request keys
  * (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters (MAX_PARAMETERS). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
@@ -628,6 +770,7 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     }
     st->max_keys = (size_t)max_keys;
     st->max_params = (size_t)max_params;
+    bus_init(&st->bus);
     return 0;
 }
 
@@ -645,10 +788,16 @@ static PyMethodDef stats_methods[] = {
      "the status); True when the parameter's state (a value or a status) changed."},
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
-    {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed): a good request."},
+    {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_VARARGS, "poll_fail(key): its answer was an exception."},
     {"parameters", (PyCFunction)stats_parameters, METH_NOARGS,
      "[(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]"},
+    {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},
+    {"bus_item", (PyCFunction)stats_bus_item, METH_VARARGS,
+     "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
+    {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
+    {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
+    {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
     {"functions", (PyCFunction)stats_functions, METH_NOARGS,
      "the engine's [(slave, function, requests, responses, unanswered, {code: count})]"},

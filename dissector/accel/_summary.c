@@ -1308,6 +1308,14 @@ enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
 
 #include "_judge.h" /* profile auto's first pass: frames and pairs only */
 
+/* --stats: the transaction's counts once its lines are written (_stats.h); `written`, or -1. */
+static int counted(Engine *e, Slave *s, const uint8_t *b, const FrameRef *q, const FrameRef *a, const Words *writes,
+                   const Words *reads, int written) {
+    if (written <= 0 || e->stats == NULL) return written;
+    long long base = e->tl.active ? e->tl.base : 0;
+    return count_transaction((Stats *)e->stats, s, b, q, a, writes, reads, e->count + 1, base) < 0 ? -1 : written;
+}
+
 /* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
 static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
     FrameRef q, a;
@@ -1338,10 +1346,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
         int unanswered = a.kind == KIND_REQUEST;
         written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
-        if (written > 0 && e->stats != NULL &&
-            count_transaction((Stats *)e->stats, s, b + q.at, unanswered ? NULL : b + a.at, NULL, NULL,
-                              e->count + 1) < 0)
-            written = -1;
+        written = counted(e, s, b, &q, unanswered ? NULL : &a, NULL, NULL, written);
         if (written > 0) {
             e->count += unanswered ? 1 : 2;
             if (!unanswered) e->expect_slave = e->expect_function = -1;
@@ -1353,10 +1358,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     } else if (found == FRAME_OK && a.kind == KIND_REQUEST) {
         /* The next frame is a request: this one was not answered (pairing.py). */
         written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
-        if (written > 0 && e->stats != NULL &&
-            count_transaction((Stats *)e->stats, s, b + q.at, NULL, r.has_writes ? &r.writes : NULL, NULL,
-                              e->count + 1) < 0)
-            written = -1;
+        written = counted(e, s, b, &q, NULL, r.has_writes ? &r.writes : NULL, NULL, written);
         if (written > 0) {
             e->count += 1;
             *pos = a.at;
@@ -1369,10 +1371,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         e->line_timed = a.timed;
         e->line_ns = a.ns;
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
-        if (written > 0 && e->stats != NULL &&
-            count_transaction((Stats *)e->stats, s, b + q.at, b + a.at, r.has_writes ? &r.writes : NULL, NULL,
-                              e->count + 1) < 0)
-            written = -1;
+        written = counted(e, s, b, &q, &a, r.has_writes ? &r.writes : NULL, NULL, written);
         if (written > 0) {
             e->count += 2;
             e->expect_slave = e->expect_function = -1;
@@ -1391,10 +1390,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
             if (written > 0)
                 written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
             if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
-            if (written > 0 && e->stats != NULL &&
-                count_transaction((Stats *)e->stats, s, b + q.at, b + a.at, r.has_writes ? &r.writes : NULL,
-                                  &reads, e->count + 1) < 0)
-                written = -1;
+            written = counted(e, s, b, &q, &a, r.has_writes ? &r.writes : NULL, &reads, written);
             if (written > 0) {
                 e->count += 2;
                 e->expect_slave = e->expect_function = -1;

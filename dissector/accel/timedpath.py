@@ -260,3 +260,30 @@ def summarize_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, a
     path = TimedPath(dissector, annotate, sinks.clock, sinks.accept, counted, dissector.pairer.timeout)
     summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
     return True
+
+
+def count_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: Any | None,
+                warn: Callable[[], None]) -> bool:
+    """--stats of a timed input (app/cli.py Sinks) counted by the engine in the compiled store, with
+    the times, the poll intervals and the bus timing (dissector/accel/_bus.h); the Python stages count
+    what the engine hands over into the same store. False (nothing read) when it cannot: no extension,
+    VW3_PURE_PYTHON, or what was counted before cannot go into the store."""
+    from dissector.accel import fastsummary
+    from dissector.accel.records import blocks_from_chunks
+
+    if not fastsummary.available() or not built():
+        return False
+    store = sinks.stats.engine_store(sinks.bus)
+    if store is None:
+        return False
+    frames = store.frames
+    path = TimedPath(dissector, annotate, Clock(), sinks.accept, _drop, dissector.pairer.timeout)
+    path.sync_clock = False  # (its lines are not shown: the time column is not the sinks')
+    path.engine.stats = store
+    summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
+    sinks.valid_frames += store.frames - frames
+    return True
+
+
+def _drop(lines: bytes) -> None:
+    """The summary lines of --stats' compiled path: only its counts are shown."""

@@ -435,6 +435,11 @@ def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, disse
 
         if summarize_input(chunks, dissector, sinks, annotate, warn):  # pcap, pcapng: the compiled path
             return
+    if mode == "rtu" and timed and fix is None and sinks.stats_only:
+        from dissector.accel.timedpath import count_input
+
+        if count_input(chunks, dissector, sinks, annotate, warn):  # --stats of a pcap counted in the engine
+            return
     if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
         from dissector.accel import fastsummary
 
@@ -450,7 +455,7 @@ def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, disse
                                                engine_lines(sinks.output.write_encoded))
                 fastsummary.summarize(chunks, path, warn)
                 return
-            store = sinks.stats.engine_store()  # type: ignore[union-attr]
+            store = sinks.stats.engine_store(sinks.bus)  # type: ignore[union-attr]
             if store is not None:  # the engine counts what it shows; its lines are not wanted
                 frames = store.frames
                 path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, _drop, store)

@@ -90,6 +90,16 @@ def _round(seconds: float) -> float:
     return round(seconds, 6)
 
 
+def _quantiles(count: int, low: float, high: float, buckets: dict[int, int] | None) -> Quantiles:
+    quantiles = Quantiles()
+    quantiles.count, quantiles.low, quantiles.high = count, low, high
+    quantiles.buckets = buckets or {}
+    return quantiles
+
+
+_KINDS = {Kind.REQUEST: 1, Kind.RESPONSE: 2, Kind.EXCEPTION: 3}  # _summary.c KIND_*
+
+
 @dataclass(slots=True)
 class Outage:
     slave: int
@@ -135,6 +145,9 @@ class BusTiming:
     outages: list[Outage] = field(default_factory=list)
     _runs: dict[int, _Run] = field(default_factory=dict)
     _answer_end: float | None = None  # end of the last item when it was an answer
+    # The compiled store (_summary.Stats, dissector/accel/_bus.h) that keeps all of the above while the
+    # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
+    store: Any = None
 
     def new_input(self, mode: str, settings: LineSettings | None = None) -> None:
         """A new file: its gaps do not continue the previous file's (one capture's ring files do)."""
@@ -143,6 +156,42 @@ class BusTiming:
             self.settings = settings
         self.last_end = None
         self._answer_end = None
+        if self.store is not None:
+            self.store.bus_line(self.char_time, self.t35, self.timeout, True)
+
+    @property
+    def fresh(self) -> bool:
+        """Nothing heard yet (the compiled store can take over)."""
+        return self.store is None and not self.timed and not self.untimed_items and self.last_end is None
+
+    def attach(self, store: Any) -> None:
+        self.store = store
+        store.bus_line(self.char_time, self.t35, self.timeout, False)
+
+    def take_back(self) -> None:
+        """The compiled store's state, here (once the items are all heard)."""
+        from dissector.render.stats_store import (
+            TALLY_GAPS, TALLY_MINUTES, TALLY_RESPONSES, TALLY_TURNAROUND, stamp,
+        )
+
+        store, self.store = self.store, None
+        if store is None:
+            return
+        state = store.bus_state()
+        self.timed, self.untimed_items, self.busy = state["timed"], state["untimed"], state["busy"]
+        self.first, self.last_end, self._answer_end = stamp(state["first"]), state["last_end"], state["answer_end"]
+        self.gaps_below_t35, self.gap_histogram = state["below_t35"], state["histogram"]
+        self.gaps = _quantiles(*state["gaps"], store.tallies(TALLY_GAPS).get(0))
+        self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
+        buckets = store.tallies(TALLY_RESPONSES)
+        self.responses = {slave: _quantiles(count, low, high, buckets.get(slave))
+                          for slave, count, low, high, _close in state["responses"]}
+        self.close_to_timeout = {slave: close for slave, _c, _l, _h, close in state["responses"] if close}
+        self._runs = {slave: _Run(stamp(start), stamp(end), requests, first, last, offset)
+                      for slave, start, end, requests, first, last, offset in state["runs"]}
+        self.outages = [Outage(slave, stamp(start), stamp(end), requests, first, last, offset)
+                        for slave, start, end, requests, first, last, offset in state["outages"]]
+        self.minutes = store.tallies(TALLY_MINUTES).get(0, {})
 
     @property
     def char_time(self) -> float:
@@ -158,6 +207,14 @@ class BusTiming:
 
     def add(self, item: Item) -> None:
         time = item.time
+        if self.store is not None:
+            if item.kind is Kind.NOISE:
+                self.store.bus_item(time, item.length, 0, 0, False, False, False, None, item.number, item.offset)
+            else:
+                frame: Any = item
+                self.store.bus_item(time, frame.length, _KINDS[frame.kind], frame.slave, frame.broadcast,
+                                    frame.unanswered, frame.crc_ok, frame.response_time, frame.number, frame.offset)
+            return
         if time is None:
             self.untimed_items += 1
             return
@@ -221,6 +278,7 @@ class BusTiming:
             self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame, run.offset))
 
     def finish(self) -> None:
+        self.take_back()
         for slave in sorted(self._runs):
             self._close(slave)
         self.outages.sort(key=lambda outage: (outage.first_frame, outage.slave))

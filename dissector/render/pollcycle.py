@@ -46,8 +46,8 @@ class _Poll:
 
 class PollCycle:
     def __init__(self, store: Any | None = None) -> None:
-        # The compiled store (_summary.Stats) when the compiled path counts untimed input: keys,
-        # counts and misses are kept there, where the engine counts the requests it shows itself.
+        # The compiled store (_summary.Stats) when the compiled path counts: keys, counts, misses and
+        # intervals are kept there, where the engine counts the requests it shows itself.
         self.store = store
         self._polls: dict[Key, _Poll] = {}
         self.untracked = 0  # requests of keys beyond MAX_KEYS
@@ -60,10 +60,8 @@ class PollCycle:
         """A good request (CRC ok); its pairing (unanswered) must be final, as the sinks see it."""
         key = request_key(frame)
         if self.store is not None:
-            if frame.time is None:
-                self.store.poll(key, frame.number, frame.unanswered)
-                return
-            self._take_back()
+            self.store.poll(key, frame.number, frame.unanswered, frame.time)
+            return
         poll = self._polls.get(key)
         if poll is None:
             if len(self._polls) >= MAX_KEYS:
@@ -79,14 +77,6 @@ class PollCycle:
                 step = round((time - poll.last_time) / STEP)
                 poll.intervals[step] = poll.intervals.get(step, 0) + 1
             poll.last_time = time
-
-    def _take_back(self) -> None:
-        """A timed request after the compiled store counted untimed input (a pcap after a raw file):
-        its keys come back here, where intervals are kept, for the rest of the run."""
-        store, self.store = self.store, None
-        for key, first, count, failed in store.polls():  # type: ignore[union-attr]
-            self._polls[key] = _Poll(first, count, None, failed)
-        self.untracked += store.untracked  # type: ignore[union-attr]
 
     def add_answer(self, frame: Frame) -> None:
         """An exception (or a damaged answer) to a request: that cycle missed."""
@@ -104,7 +94,11 @@ class PollCycle:
         rows = []
         polls = self._polls
         if self.store is not None:
-            polls = {key: _Poll(first, count, None, failed) for key, first, count, failed in self.store.polls()}
+            from dissector.render.stats_store import TALLY_INTERVALS
+
+            intervals = self.store.tallies(TALLY_INTERVALS)
+            polls = {key: _Poll(first, count, None, failed, intervals.get(order, {}))
+                     for order, (key, first, count, failed) in enumerate(self.store.polls())}
         for key, poll in sorted(polls.items(), key=lambda entry: entry[1].first_number):
             if poll.count < MIN_REPEATS:
                 continue

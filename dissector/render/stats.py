@@ -40,7 +40,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, ParameterRow
+from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, ParameterRow, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -92,17 +92,31 @@ class StatsCollector:
         self.first_time: float | None = None
         self.last_time: float | None = None
         self.poll = PollCycle()
+        self.bus: Any | None = None  # the BusTiming that went into the compiled store with the rest
+        self.attached = False  # the times, the poll cycle and the bus are counted in the compiled store
 
-    def engine_store(self) -> Any | None:
+    def engine_store(self, bus: Any | None = None) -> Any | None:
         """The compiled store, for the engine to count the transactions it shows itself (the compiled
-        path of --stats), with the poll cycle kept there too; None when the store is not compiled or
-        the poll cycle has timed requests already (the engine sees untimed input only)."""
+        path of --stats), with the poll cycle, the first and last times, the response times and the
+        bus timing `bus` (render/bustiming.py) kept there too, for the rest of the run: the Python
+        stages' items go there as well, in stream order. None when the store is not compiled, or
+        when what Python counted already cannot go there (requests in the poll cycle, a bus that
+        heard items)."""
         if not hasattr(self.store, "poll"):
             return None
-        if self.poll.store is None:
-            if not self.poll.empty:
+        if not self.attached:
+            if not self.poll.empty or (bus is not None and not bus.fresh):
                 return None
             self.poll = PollCycle(self.store)
+            for time in (self.first_time, self.last_time):
+                if time is not None:
+                    self.store.stamp(time)
+            if bus is not None:
+                bus.attach(self.store)
+            self.bus = bus
+            self.attached = True
+        elif bus is not self.bus:
+            return None
         return self.store
 
     # -- collecting ---------------------------------------------------------------------------
@@ -115,7 +129,9 @@ class StatsCollector:
 
     def add(self, item: Item) -> None:
         if item.time is not None:
-            if self.first_time is None:
+            if self.attached:
+                self.store.stamp(item.time)
+            elif self.first_time is None:
                 self.first_time = item.time
             self.last_time = item.time
         if isinstance(item, Noise):
@@ -154,15 +170,18 @@ class StatsCollector:
     def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
         """The Python stages' counts plus the engine's (sums: the order of frames does not matter)."""
         merged = dict(self.functions)
+        times = self.store.tallies(TALLY_TIMES) if self.attached else {}
         for slave, function, requests, responses, unanswered, exceptions in self.store.functions():
             own = merged.get((slave, function))
             stats = FunctionStats(requests=requests, responses=responses, unanswered=unanswered,
-                                  exceptions=dict(exceptions))
+                                  exceptions=dict(exceptions), times=times.get(slave << 8 | function, {}))
             if own is not None:
                 stats.requests += own.requests
                 stats.responses += own.responses
                 stats.unanswered += own.unanswered
-                stats.broadcasts, stats.crc_errors, stats.times = own.broadcasts, own.crc_errors, own.times
+                stats.broadcasts, stats.crc_errors = own.broadcasts, own.crc_errors
+                for key, count in own.times.items():
+                    stats.times[key] = stats.times.get(key, 0) + count
                 for code, count in own.exceptions.items():
                     stats.exceptions[code] = stats.exceptions.get(code, 0) + count
             merged[(slave, function)] = stats
@@ -193,14 +212,16 @@ class StatsCollector:
                 }
             )
         parameters = list(self.parameter_dicts()) if with_parameters else None
+        first_time, last_time = self.first_time, self.last_time
+        if self.attached:
+            state = self.store.bus_state()
+            first_time, last_time = stamp(state["first_seen"]), stamp(state["last_seen"])
+            if self.bus is not None:
+                self.bus.take_back()
         return {
             "frames": self.frames + self.store.frames,
             "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
-            "duration": (
-                None
-                if self.first_time is None or self.last_time is None
-                else self.last_time - self.first_time
-            ),
+            "duration": None if first_time is None or last_time is None else last_time - first_time,
             "registers_without_address": self.history.registers_without_address,
             # Parameters are kept up to MAX_PARAMETERS; the register events of further ones are counted.
             "parameter_limit": MAX_PARAMETERS,

@@ -33,6 +33,9 @@ except ImportError:  # built without a C compiler
     CompiledStore = None
 
 READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(6)
+# The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h): response times by (slave <<
+# 8 | function), gaps, turnarounds, response times by slave, load per minute, poll intervals by key order.
+TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS = range(6)
 # Parameters kept at most: a plant's devices have a few thousand each; a flood of writes over every
 # address of 64 slaves (4 M parameters) took 2 GB. Events of further parameters are counted (`dropped`)
 # and the outputs say so; kept parameters keep every event.
@@ -125,6 +128,15 @@ class ParameterTable:
     @property
     def parameter_count(self) -> int:
         return len(self._parameters)
+
+
+def stamp(time: tuple[float, int | None] | None) -> float | None:
+    """A time the compiled store gives back, (float, ns or None), as the Python stages had it."""
+    if time is None:
+        return None
+    from dissector.model import Stamp
+
+    return time[0] if time[1] is None else Stamp(time[1])
 
 
 def new_store() -> Any:

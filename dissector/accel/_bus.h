@@ -1,0 +1,287 @@
+/* --stats' time-dependent counts in the engine, for timed captures (pcap, pcapng) and the raw ones alike:
+ * what render/bustiming.py BusTiming.add, render/pollcycle.py's intervals and StatsCollector's response
+ * times and first and last times do per item. Once a collector is attached (StatsCollector.engine_store),
+ * these live here for the rest of the run and the Python stages send their own items here too
+ * (Stats.bus_item, Stats.stamp, Stats.poll with a time), so that gaps, turnarounds, outages and
+ * intervals follow the stream's order whichever side saw each frame; the Python objects take the
+ * state back when the report is made (Stats.bus_state, Stats.tallies). Included by _stats.h.
+ *
+ * Times are kept as the Python stages have them: a float, and the source's integer nanoseconds where
+ * it is a model.Stamp (two stamps subtract exactly, anything else as floats do). */
+#include <math.h>
+
+typedef struct {
+    int has, exact;
+    long long ns;
+    double d;
+} Time;
+
+/* model.Stamp(ns) as a float: ns / 1e9 rounded once, as Python's int / int. */
+static double stamp_float(long long ns) {
+    if (ns < 0) return -stamp_float(-ns);
+    if (ns < (1LL << 53)) return (double)ns / 1e9; /* both exact: one rounding */
+    double d = (double)((long double)ns / 1e9L), best = d;
+#ifdef __SIZEOF_INT128__
+    /* d is within an ulp: pick the nearest of d and its neighbours, exactly (units of 2^-29 s: d >= 2^23). */
+    __int128 target = (__int128)ns << 29, best_error = -1;
+    double candidates[3] = {nextafter(d, 0.0), d, nextafter(d, INFINITY)};
+    for (int k = 0; k < 3; k++) {
+        int exponent;
+        double fraction = frexp(candidates[k], &exponent);
+        long long mantissa = (long long)ldexp(fraction, 53);
+        __int128 error = ((__int128)mantissa << (exponent - 24)) * 1000000000 - target;
+        if (error < 0) error = -error;
+        if (best_error < 0 || error < best_error || (error == best_error && !(mantissa & 1))) {
+            best_error = error;
+            best = candidates[k];
+        }
+    }
+#endif
+    return best;
+}
+
+static inline Time stamp_time(int timed, long long ns) {
+    Time t = {timed, 1, ns, timed ? stamp_float(ns) : 0.0};
+    return t;
+}
+
+/* a - b as the Python stages subtract them: Stamp - Stamp exactly, else as floats. */
+static inline double time_sub(const Time *a, const Time *b) {
+    return a->exact && b->exact ? stamp_float(a->ns - b->ns) : a->d - b->d;
+}
+
+/* A Python time (None, a float or a model.Stamp) into *t: 0, or -1 with an exception set. */
+static int read_time(PyObject *value, Time *t) {
+    memset(t, 0, sizeof *t);
+    if (value == Py_None) return 0;
+    t->has = 1;
+    t->d = PyFloat_AsDouble(value);
+    if (t->d == -1.0 && PyErr_Occurred()) return -1;
+    PyObject *ns = PyObject_GetAttrString(value, "ns");
+    if (ns == NULL) {
+        if (!PyErr_ExceptionMatches(PyExc_AttributeError)) return -1;
+        PyErr_Clear();
+        return 0;
+    }
+    int overflow;
+    t->ns = PyLong_AsLongLongAndOverflow(ns, &overflow);
+    Py_DECREF(ns);
+    if (t->ns == -1 && PyErr_Occurred()) return -1;
+    /* Stamps past +-2^62 ns (year 2116; a pcapng's offset can say so) subtract as floats here: no
+     * difference of two kept stamps then overflows. */
+    t->exact = !overflow && t->ns > -(1LL << 62) && t->ns < (1LL << 62);
+    return 0;
+}
+
+/* (float, ns or None), or None: timedpath's Python side makes Stamps of them again. */
+static PyObject *time_value(const Time *t) {
+    if (!t->has) Py_RETURN_NONE;
+    if (t->exact) return Py_BuildValue("(dL)", t->d, t->ns);
+    return Py_BuildValue("(dO)", t->d, Py_None);
+}
+
+/* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report --------------- */
+enum { TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS };
+
+typedef struct {
+    uint32_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order); 0: empty */
+    long long key;
+    double value; /* counts too: exact up to 2^53 */
+} Tally;
+
+typedef struct {
+    Tally *slots;
+    size_t size, count;
+} Tallies;
+
+static inline size_t tally_slot(uint32_t tag, long long key, size_t size) {
+    return (size_t)mix((uint64_t)tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)key) & (size - 1);
+}
+
+static double *tally(Tallies *t, uint32_t tag, long long key) {
+    if (4 * (t->count + 1) > 3 * t->size) {
+        size_t size = t->size ? 2 * t->size : 1024;
+        Tally *slots = PyMem_Calloc(size, sizeof *slots);
+        if (slots == NULL) {
+            PyErr_NoMemory();
+            return NULL;
+        }
+        for (size_t k = 0; k < t->size; k++) {
+            if (!t->slots[k].tag) continue;
+            size_t slot = tally_slot(t->slots[k].tag, t->slots[k].key, size);
+            while (slots[slot].tag) slot = (slot + 1) & (size - 1);
+            slots[slot] = t->slots[k];
+        }
+        PyMem_Free(t->slots);
+        t->slots = slots;
+        t->size = size;
+    }
+    size_t slot = tally_slot(tag, key, t->size);
+    while (t->slots[slot].tag) {
+        if (t->slots[slot].tag == tag && t->slots[slot].key == key) return &t->slots[slot].value;
+        slot = (slot + 1) & (t->size - 1);
+    }
+    Tally *entry = &t->slots[slot];
+    entry->tag = tag;
+    entry->key = key;
+    t->count++;
+    return &entry->value;
+}
+
+static int tally_add(Tallies *t, int kind, long long owner, long long key, double amount) {
+    double *value = tally(t, (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key);
+    if (value == NULL) return -1;
+    *value += amount;
+    return 0;
+}
+
+/* ---- bustiming.BusTiming -------------------------------------------------------------------------- */
+typedef struct {
+    unsigned long long count;
+    double low, high;
+} Quantile; /* bustiming.Quantiles: its buckets are tallies */
+
+typedef struct {
+    int active;
+    Time start, end;
+    unsigned long long requests, first_frame, last_frame;
+    long long offset;
+} Run;
+
+static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0};
+#define GAP_BINS (sizeof gap_edges_ms / sizeof *gap_edges_ms + 1)
+
+typedef struct {
+    double char_time, t35, timeout;
+    int timed;
+    unsigned long long untimed;
+    Time first;
+    int has_last_end, has_answer_end;
+    double last_end, busy, answer_end;
+    Quantile gaps, turnaround, responses[256];
+    unsigned long long histogram[GAP_BINS], below_t35, close[256];
+    Run runs[256];
+    Run *outages; /* closed runs of two requests or more, and their slaves */
+    int *outage_slaves;
+    size_t outage_count, outage_cap;
+    Time first_seen, last_seen; /* StatsCollector.first_time, last_time */
+} Bus;
+
+static void quantile_init(Quantile *q) {
+    q->count = 0;
+    q->low = INFINITY;
+    q->high = -INFINITY;
+}
+
+static void bus_init(Bus *b) {
+    memset(b, 0, sizeof *b);
+    quantile_init(&b->gaps);
+    quantile_init(&b->turnaround);
+    for (int k = 0; k < 256; k++) quantile_init(&b->responses[k]);
+}
+
+/* Quantiles.add: a RESOLUTION (10 us) bucket, count, min, max. */
+static int quantile_add(Tallies *t, Quantile *q, int kind, long long owner, double value) {
+    if (tally_add(t, kind, owner, (long long)rint(value / 1e-5), 1.0) < 0) return -1;
+    q->count++;
+    if (value < q->low) q->low = value;
+    if (value > q->high) q->high = value;
+    return 0;
+}
+
+/* Python's float // float (CPython's _float_div_mod). */
+static double floor_div(double vx, double wx) {
+    double mod = fmod(vx, wx), div = (vx - mod) / wx;
+    if (mod && ((wx < 0) != (mod < 0))) div -= 1.0;
+    if (!div) return copysign(0.0, vx / wx);
+    double result = floor(div);
+    return div - result > 0.5 ? result + 1.0 : result;
+}
+
+static int close_run(Bus *b, int slave) {
+    Run *run = &b->runs[slave];
+    run->active = 0;
+    if (run->requests < 2) return 0;
+    if (b->outage_count == b->outage_cap) {
+        size_t cap = b->outage_cap ? 2 * b->outage_cap : 16;
+        Run *outages = PyMem_Realloc(b->outages, cap * sizeof *outages);
+        if (outages == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        b->outages = outages;
+        int *slaves = PyMem_Realloc(b->outage_slaves, cap * sizeof *slaves);
+        if (slaves == NULL) {
+            PyErr_NoMemory();
+            return -1;
+        }
+        b->outage_slaves = slaves;
+        b->outage_cap = cap;
+    }
+    b->outages[b->outage_count] = *run;
+    b->outage_slaves[b->outage_count++] = slave;
+    return 0;
+}
+
+enum { ITEM_NOISE = 0 }; /* else KIND_REQUEST, KIND_RESPONSE, KIND_EXCEPTION (_summary.c) */
+
+/* StatsCollector.add's first and last times. */
+static inline void stats_seen(Bus *b, const Time *t) {
+    if (!t->has) return;
+    if (!b->first_seen.has) b->first_seen = *t;
+    b->last_seen = *t;
+}
+
+/* BusTiming.add, for one item. `response`: its response time,
+ * NULL for none; 0 or -1 (no memory). */
+static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, int kind, int slave, int broadcast,
+                   int unanswered, int crc_ok, const double *response, unsigned long long number, long long offset) {
+    if (!t->has) {
+        b->untimed++;
+        return 0;
+    }
+    b->timed = 1;
+    double duration = (double)length * b->char_time, end = t->d + duration;
+    if (!b->first.has) b->first = *t;
+    b->busy += duration;
+    if (tally_add(tallies, TALLY_MINUTES, 0, (long long)floor_div(time_sub(t, &b->first), 60.0), duration) < 0)
+        return -1;
+    if (b->has_last_end) {
+        double gap = t->d - b->last_end;
+        if (quantile_add(tallies, &b->gaps, TALLY_GAPS, 0, gap) < 0) return -1;
+        if (gap < b->t35) b->below_t35++;
+        size_t index = 0;
+        while (index < GAP_BINS - 1 && gap * 1000 >= gap_edges_ms[index]) index++;
+        b->histogram[index]++;
+    }
+    if (!b->has_last_end || end > b->last_end) b->last_end = end;
+    b->has_last_end = 1;
+    if (kind == ITEM_NOISE) return 0;
+    if (kind == KIND_REQUEST) {
+        if (b->has_answer_end && quantile_add(tallies, &b->turnaround, TALLY_TURNAROUND, 0, t->d - b->answer_end) < 0)
+            return -1;
+        b->has_answer_end = 0;
+        if (broadcast) return 0;
+        Run *run = &b->runs[slave];
+        if (unanswered) {
+            if (!run->active) {
+                Run fresh = {1, *t, *t, 1, number, number, offset};
+                *run = fresh;
+            } else {
+                run->end = *t;
+                run->requests++;
+                run->last_frame = number;
+            }
+        } else if (run->active && close_run(b, slave) < 0) {
+            return -1;
+        }
+        return 0;
+    }
+    b->has_answer_end = 1;
+    b->answer_end = end;
+    if (response != NULL && crc_ok) {
+        if (quantile_add(tallies, &b->responses[slave], TALLY_RESPONSES, slave, *response) < 0) return -1;
+        if (*response > 0.9 * b->timeout) b->close[slave]++;
+    }
+    return 0;
+}
