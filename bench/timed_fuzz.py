@@ -1,6 +1,6 @@
 """Differential campaign of the compiled path for timed captures against the Python stages.
 
-    python3 bench/timed_fuzz.py FIRST_SEED LAST_SEED
+    python3 bench/timed_fuzz.py FIRST_SEED LAST_SEED [--stats]
 
 Per seed, a random bus (bench/noise_accuracy.py sessions: every public code, broadcasts, unanswered
 requests, answers from 2 ms to past the 1 s timeout), damaged at a random rate, with glitch bytes after
@@ -8,7 +8,8 @@ some frames, cut into pcap or pcapng records (one frame a record, bursts cut any
 inside a frame, or some records untimed: tests/differential/test_timed_summary.py cut_records), then
 decoded by `vw3-decode` with a random option among the time columns, --timeout, --baud, -n, a profile,
 --json, -V, --stats, -x and -T fields, with the compiled path and with VW3_PURE_PYTHON=1: stdout and
-stderr must be equal. Prints each difference (seed, cut, options, first differing lines) and the count.
+stderr must be equal (`--stats`: only --stats, --stats --json and --stats with a time column, --timeout
+or --baud, the outputs the engine counts). Prints each difference (seed, cut, options, first differing lines) and the count.
 tests/differential/test_timed_summary.py and test_timed_outputs.py hold bounded versions of this.
 """
 from __future__ import annotations
@@ -26,7 +27,8 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "support"), str(ROOT / "tests" /
 from dissector.app.cli import Environment, run  # noqa: E402
 import test_timed_summary as timed  # noqa: E402
 
-OUTPUTS = [["--json"], ["-V"], ["--stats"], ["-x"], ["-T", "fields", "-e", "frame", "-e", "time_delta", "-e", "registers"]]
+OUTPUTS = [["--json"], ["-V"], ["--stats"], ["-x"], ["-T", "fields", "-e", "frame", "-e", "time_delta", "-e", "registers"],
+           ["--stats", "--json"]]
 
 
 def decode(argv: list[str], pure: bool) -> str:
@@ -41,6 +43,7 @@ def decode(argv: list[str], pure: bool) -> str:
 
 def main() -> int:
     first, last = int(sys.argv[1]), int(sys.argv[2])
+    stats_only = "--stats" in sys.argv[3:]
     differences = 0
     with tempfile.TemporaryDirectory() as folder:
         for seed in range(first, last):
@@ -58,6 +61,8 @@ def main() -> int:
             else:
                 timed.write_pcap(capture, records, nano=rng.random() < 0.5)
             options = rng.choice(timed.OPTIONS + OUTPUTS)
+            if stats_only:
+                options = [*rng.choice([[], ["--json"]]), "--stats", *rng.choice(timed.OPTIONS)]
             argv = [str(capture), *options]
             fast, pure = decode(argv, False), decode(argv, True)
             if fast != pure:
