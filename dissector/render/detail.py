@@ -5,6 +5,7 @@ is decided once and a terminal only adds colour.
 """
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from operator import attrgetter
@@ -37,11 +38,31 @@ class Node:
 
 
 def _utc(seconds: float) -> str:
-    try:
-        moment = datetime.fromtimestamp(seconds, tz=timezone.utc)
-    except (OverflowError, OSError, ValueError):
+    # datetime.fromtimestamp's own rounding (CPython _PyTime_DoubleToDenominator, half to even): the
+    # whole second's text is kept (a capture's frames share their seconds), the microseconds appended.
+    if not math.isfinite(seconds):
         return f"{seconds:.6f}"
-    return f"{moment.year:04d}-{moment:%m-%d %H:%M:%S.%f} UTC"
+    fraction, whole = math.modf(seconds)
+    micros = round(fraction * 1e6)
+    if micros >= 1_000_000:
+        micros -= 1_000_000
+        whole += 1.0
+    elif micros < 0:
+        micros += 1_000_000
+        whole -= 1.0
+    second = _SECONDS.get(whole)
+    if second is None:
+        try:
+            moment = datetime.fromtimestamp(whole, tz=timezone.utc)
+        except (OverflowError, OSError, ValueError):
+            return f"{seconds:.6f}"
+        if len(_SECONDS) >= 4096:
+            _SECONDS.clear()
+        second = _SECONDS[whole] = f"{moment.year:04d}-{moment:%m-%d %H:%M:%S}"
+    return f"{second}.{micros:06d} UTC"
+
+
+_SECONDS: dict[float, str] = {}  # a whole second's `YYYY-MM-DD HH:MM:SS` (bounded)
 
 
 # A detail is laid out once, as a flat list of texts that carry their indentation (four spaces a

@@ -120,3 +120,29 @@ def test_bulk_annotation_is_the_per_register_one(profiles: list[str]) -> None:
 
         fast = [item_to_dict(item) for item in dissect_bytes(capture, annotate=bulk)]
         assert fast == [item_to_dict(item) for item in dissect_bytes(capture, annotate=as_objects)]
+
+
+def _utc_reference(seconds: float) -> str:
+    from datetime import datetime, timezone
+
+    try:
+        moment = datetime.fromtimestamp(seconds, tz=timezone.utc)
+    except (OverflowError, OSError, ValueError):
+        return f"{seconds:.6f}"
+    return f"{moment.year:04d}-{moment:%m-%d %H:%M:%S.%f} UTC"
+
+
+@given(st.one_of(
+    st.integers(0, 4 * 10**18).map(lambda ns: ns / 1e9),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.tuples(st.integers(-10**11, 10**11), st.sampled_from([0.0, 0.5, 5e-7, -5e-7, 0.9999995, 0.9999994999, 1e-7]))
+    .map(lambda pair: pair[0] + pair[1]),
+))
+@settings(max_examples=3000, deadline=None)
+def test_arrival_time_text_is_datetimes(seconds: float) -> None:
+    """-V's `Arrival time` keeps each second's text and appends the microseconds: it must be what
+    datetime.fromtimestamp gives (its rounding half to even carries into the next second), out of range
+    and non-finite times included."""
+    from dissector.render.detail import _utc
+
+    assert _utc(seconds) == _utc_reference(seconds)
