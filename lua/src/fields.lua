@@ -17,12 +17,12 @@ local function names(table_)
   return out
 end
 
--- Kind and register status are integers with value strings: `vw3.kind == "request"` filters by name,
--- and an integer costs less than a string to add and to compare.
+-- The kind is an integer with value strings: `vw3.kind == "request"` filters by name, and an integer costs
+-- less than a string to add and to compare. A register's status is text, as vw3-decode's `status` key:
+-- `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a register has no
+-- status (a text field can have one, issue 27).
 local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
 local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
-local STATUS_NAMES = { [0] = "ok", [1] = "protected", [2] = "non-existent", [3] = "ambiguous" }
-local STATUS_VALUES = { ok = 0, protected = 1, ["non-existent"] = 2, ambiguous = 3 }
 
 local pf = {
   item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
@@ -52,7 +52,7 @@ local pf = {
   reg_unit = ProtoField.string("vw3.reg.unit", "Unit"),
   reg_scaled = ProtoField.double("vw3.reg.scaled", "Scaled value"),
   reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
-  reg_status = ProtoField.uint8("vw3.reg.status", "Status", base.DEC, STATUS_NAMES),
+  reg_status = ProtoField.string("vw3.reg.status", "Status", base.ASCII, "ok, protected, non-existent or ambiguous"),
   reg_source = ProtoField.string("vw3.reg.source", "Source"),
   reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
     { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
@@ -163,5 +163,5 @@ function proto.init()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.KIND_VALUES, M.MODE_NAMES, M.STATUS_VALUES = KIND_VALUES, MODE_NAMES, STATUS_VALUES
+M.KIND_VALUES, M.MODE_NAMES = KIND_VALUES, MODE_NAMES
 M.apply_prefs, M.ex, M.pf, M.proto, M.timeout_pref = apply_prefs, ex, pf, proto, timeout_pref

@@ -7,7 +7,7 @@ local string, tonumber, tostring = string, tonumber, tostring
 local _ENV = M -- (the other modules' names: their exports in M)
 local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
 local NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST = NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST
-local RESPONSE, STATUS_VALUES, bit_at, concat, describe = RESPONSE, STATUS_VALUES, bit_at, concat, describe
+local RESPONSE, bit_at, concat, describe = RESPONSE, bit_at, concat, describe
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
 local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
 local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
@@ -175,10 +175,8 @@ local function add_register(tree, tvb, f, reg, range, full)
     unseen.text(sub, pf.reg_text, reg.text)
     unseen.text(sub, pf.reg_source, row.source)
     if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
-    if reg.status then
-      unseen.add(sub, pf.reg_status, STATUS_VALUES[reg.status], true)
-      if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
-    end
+    unseen.text(sub, pf.reg_status, reg.status)
+    if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
     return
   end
   local r = range or frame_range(tvb, f, reg.offset or -1, 2)
@@ -202,10 +200,8 @@ local function add_register(tree, tvb, f, reg, range, full)
   unseen.shown(sub, pf.reg_text, r, reg.text)
   unseen.shown(sub, pf.reg_source, r, row.source)
   if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
-  if reg.status then
-    sub:add(pf.reg_status, r, STATUS_VALUES[reg.status]):set_generated()
-    if reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
-  end
+  unseen.shown(sub, pf.reg_status, r, reg.status)
+  if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than

@@ -223,7 +223,8 @@ def test_tshark_decodes_live_what_vw3_decode_live_shows(config: dict[str, str], 
     # answer is no evidence for profile auto, issue 26: the second, the same read with 16#8000, is).
     story = [item for item in lua if item.fields.get("slave") == "12" and item.fields.get("kind") == "2"]
     assert [[(reg.get("code"), reg.get("status")) for reg in item.registers] for item in story] == [
-        [(None, None)] * 3, [(None, "2"), ("CHCF", "0"), ("COP", "0")], [(None, "2"), ("CHCF", "1"), ("COP", "0")]]
+        [(None, None)] * 3, [(None, "non-existent"), ("CHCF", "ok"), ("COP", "ok")],
+        [(None, "non-existent"), ("CHCF", "protected"), ("COP", "ok")]]
     assert story[-1].texts["note"] == ["CHCF (8401) became protected: read 3 in frame #42, 16#8000 now"]
 
     # The saved capture, decoded in two passes by the plugin, equals vw3-decode of it, every key.

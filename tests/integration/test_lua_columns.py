@@ -1,11 +1,12 @@
 """`tshark -T fields` with the plugin lines its register columns up as `vw3-decode -T fields` does (issue
-27): each text field of a register (`vw3.reg.code`, `.name`, `.unit`, `.text`, `.source`, `.label`) has
-one occurrence per register, empty where the register has no such key, so `-e vw3.reg.address -e
-vw3.reg.code` pairs them and `-E occurrence=f` names the first register's code, not the first code.
+27): each text field of a register (`vw3.reg.code`, `.name`, `.unit`, `.text`, `.source`, `.label`,
+`.status`) has one occurrence per register, empty where the register has no such key, so `-e
+vw3.reg.address -e vw3.reg.code` pairs them and `-E occurrence=f` names the first register's code, not
+the first code; the statuses are vw3-decode's words (ok, protected, non-existent, ambiguous).
 
-Numbers (`vw3.reg.value`, `.scaled`, `.status`, `.words`) keep their types (`vw3.reg.scaled > 5`): tshark
-4.0 cannot print an empty number, and a text field of the same name makes it crash on `vw3.reg.value ==
-3`. Their occurrences are compared with vw3-decode's non-empty ones, in order.
+Numbers (`vw3.reg.value`, `.scaled`, `.words`) keep their types (`vw3.reg.scaled > 5`): tshark 4.0 cannot
+print an empty number, and a text field of the same name makes it crash on `vw3.reg.value == 3`. Their
+occurrences are compared with vw3-decode's non-empty ones, in order.
 
 Every shipped capture and a simulator session, real tshark 4.0.17, against vw3-decode's own -T fields.
 """
@@ -20,9 +21,8 @@ import pytest
 from lua_harness import PLUGIN, ROOT, USER_DLT, ensure_tool, lua_errors, write_pcap
 from lua_session import SessionBuilder
 
-TEXT_KEYS = ("code", "name", "unit", "text", "source", "label")
-NUMBER_KEYS = ("value", "scaled", "status")  # and address
-STATUS = {"ok": "0", "protected": "1", "non-existent": "2", "ambiguous": "3"}
+TEXT_KEYS = ("code", "name", "unit", "text", "source", "label", "status")
+NUMBER_KEYS = ("value", "scaled")  # and address
 SEP = "^"  # the aggregator: no value of these captures holds it
 CAPTURES = sorted((ROOT / "captures").glob("*.pcap"))
 
@@ -92,13 +92,11 @@ def differences(plugin: dict[int, dict], python: dict[int, dict]) -> list[str]:
             shown[key] = row[f"reg.{key}"] + [""] * bits
         shown["value"] = row["reg.value"] + row["bit.value"]
         shown["scaled"] = [float(value) for value in row["reg.scaled"]]
-        shown["status"] = row["reg.status"]
         wanted = {key: expected[key] for key in TEXT_KEYS}
         # (an answer nobody asked for has registers without addresses)
         wanted["address"] = [value for value in expected["address"] if value]
         wanted["value"] = [value for value in expected["value"] if value]
         wanted["scaled"] = [float(value) for value in expected["scaled"] if value]
-        wanted["status"] = [STATUS[value] for value in expected["status"] if value]
         for key, values in wanted.items():
             if shown[key] != values:
                 out.append(f"record {record} (items {row['items']}) {key}: plugin {shown[key]} vw3-decode {values}")
@@ -137,16 +135,16 @@ def test_p38_rows_exactly() -> None:
     rows = plugin_rows(p38, two_pass=False)
     assert [(record, row["reg.address"], row["reg.code"], row["reg.status"]) for record, row in rows.items()
             if row["reg.address"]] == [
-        (2, ["8400", "8401", "8402"], ["", "", ""], []),  # (one pass: slave 12 is still generic)
-        (4, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "0", "0"]),
-        (6, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "0"]),
-        (8, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "0"]),
-        (10, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
-        (12, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["2", "1", "1"]),
+        (2, ["8400", "8401", "8402"], ["", "", ""], ["", "", ""]),  # (one pass: slave 12 is still generic)
+        (4, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "ok", "ok"]),
+        (6, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "protected", "ok"]),
+        (8, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "protected", "ok"]),
+        (10, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "protected", "protected"]),
+        (12, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "protected", "protected"]),
     ]
     # -2: slave 12's profile, chosen at frame 4, names frame 2 too (vw3-decode reading the file)
     two = plugin_rows(p38)
-    assert (two[2]["reg.code"], two[2]["reg.status"]) == (["", "CHCF", "COP"], ["2", "0", "0"])
+    assert (two[2]["reg.code"], two[2]["reg.status"]) == (["", "CHCF", "COP"], ["non-existent", "ok", "ok"])
     assert {record: row for record, row in two.items() if record != 2} == {
         record: row for record, row in rows.items() if record != 2}
     # -E occurrence=f: the first register's code (8400 has none), as vw3-decode says it
@@ -154,11 +152,11 @@ def test_p38_rows_exactly() -> None:
     assert [row["reg.code"] for row in first.values() if row["reg.address"]] == [[""]] * 6  # (it said CHCF)
     python = python_rows(p38, stdin=True, first=True)
     assert [row["code"] for row in python.values() if row["address"]] == [[""]] * 6
-    # Filters keep their types: codes and statuses by name, values and statuses as numbers.
+    # Filters keep their types: codes and statuses by name, values as numbers.
     tshark = ensure_tool("tshark", "tshark")
     for expression, frames in (('vw3.reg.code == "CHCF" && vw3.reg.status == "protected"', "6 8 10 12"),
-                               ("vw3.reg.value == 3", "2 4"), ("vw3.reg.status == 1", "6 8 10 12"),
-                               ('vw3.reg.code == "COP" && vw3.reg.status == 0', "4 6 8")):
+                               ("vw3.reg.value == 3", "2 4"), ('vw3.reg.status == "non-existent"', "4 6 8 10 12"),
+                               ('vw3.reg.code == "COP" && vw3.reg.status == "ok"', "4 6 8")):
         command = [tshark, "-n", "-X", f"lua_script:{PLUGIN}", "-o", USER_DLT, "-r", str(p38), "-Y", expression,
                    "-T", "fields", "-e", "frame.number"]
         result = subprocess.run(command, capture_output=True, text=True, timeout=300)

@@ -55,16 +55,16 @@ def test_p38_protection_story_under_lua54() -> None:
         "vw3.function_name=Read Holding Registers", "vw3.profile=atv71", "vw3.crc=9422", "vw3.crc_expected=9422", "vw3.crc_ok=true", "vw3.start=8400", "vw3.quantity=3",
         "vw3.reg=Register 8400 = 32768: 16#8000: non-existent (address not in the map) [non-existent]",
         "vw3.reg.address=8400", "vw3.reg.value=32768",
-        "vw3.reg.text=16#8000: non-existent (address not in the map)", "vw3.reg.status=2",
+        "vw3.reg.text=16#8000: non-existent (address not in the map)", "vw3.reg.status=non-existent",
         "expert:vw3.expert.protected=Register 8400: 16#8000: non-existent (address not in the map)",
         "vw3.reg=Register 8401 CHCF = 32768: 16#8000: protected [protected]",
         "vw3.reg.address=8401", "vw3.reg.value=32768", "vw3.reg.code=CHCF", "vw3.reg.name=Profile",
-        "vw3.reg.text=16#8000: protected", "vw3.reg.source=S", "vw3.reg.status=1",
+        "vw3.reg.text=16#8000: protected", "vw3.reg.source=S", "vw3.reg.status=protected",
         "expert:vw3.expert.protected=Register 8401 CHCF: 16#8000: protected",
         "vw3.reg=Register 8402 COP = 2: Cd (command) [ok]",
         "vw3.reg.address=8402", "vw3.reg.value=2", "vw3.reg.code=COP", "vw3.reg.name=Copy channel 1 <> 2",
         "vw3.atv71.cop=2",  # the per-parameter field (no scale: the value)
-        "vw3.reg.text=Cd (command)", "vw3.reg.source=S", "vw3.reg.status=0",
+        "vw3.reg.text=Cd (command)", "vw3.reg.source=S", "vw3.reg.status=ok",
         "vw3.request_frame=3", "vw3.response_time=0.011000000",
         "vw3.note=CHCF (8401) became protected: read 3 in frame #2, 16#8000 now",
         "expert:vw3.expert.note=CHCF (8401) became protected: read 3 in frame #2, 16#8000 now",
@@ -126,10 +126,10 @@ def test_modbus_tcp_post_dissector_under_lua54() -> None:
         "vw3names: VW3 register names (Altivar 71 (VW3 A3 303 Modbus card), unit 0)",
         "vw3.reg=Register 3102 SFR = 40: 4.0 kHz [ok]",
         "vw3.reg.address=3102", "vw3.reg.value=40", "vw3.reg.code=SFR", "vw3.reg.name=Switching frequency",
-        "vw3.reg.unit=kHz", "vw3.reg.scaled=4.0", "vw3.atv71.sfr=4.0", "vw3.reg.text=4.0 kHz", "vw3.reg.source=A", "vw3.reg.status=0",
+        "vw3.reg.unit=kHz", "vw3.reg.scaled=4.0", "vw3.atv71.sfr=4.0", "vw3.reg.text=4.0 kHz", "vw3.reg.source=A", "vw3.reg.status=ok",
         "vw3.reg=Register 3103 TFR = 600: 60.0 Hz [ok]",
         "vw3.reg.address=3103", "vw3.reg.value=600", "vw3.reg.code=TFR", "vw3.reg.name=Maximum output frequency",
-        "vw3.reg.unit=Hz", "vw3.reg.scaled=60.0", "vw3.atv71.tfr=60.0", "vw3.reg.text=60.0 Hz", "vw3.reg.source=A", "vw3.reg.status=0",
+        "vw3.reg.unit=Hz", "vw3.reg.scaled=60.0", "vw3.atv71.tfr=60.0", "vw3.reg.text=60.0 Hz", "vw3.reg.source=A", "vw3.reg.status=ok",
     ]
 
 

@@ -26,8 +26,8 @@ def test_rtu_over_tcp_port_preference_and_decode_as(tmp_path: Path) -> None:
     writer.tcp(True, 40000, 5020, SCENARIO_REQUEST, 1.0)
     writer.tcp(False, 40000, 5020, SCENARIO_1, 1.01)
     writer.close()
-    # (kind and status are integers with value strings: 1 request, 2 response; 0 ok, 1 protected, 2 non-existent)
-    expected = [["1", "", "", ""], ["2", "1", ",CHCF,COP", "2,0,0"]]
+    # (the kind is an integer with value strings: 1 request, 2 response; the status text, as vw3-decode's)
+    expected = [["1", "", "", ""], ["2", "1", ",CHCF,COP", "non-existent,ok,ok"]]
     assert _fields(tmp_path / "rtu-tcp.pcap", "-o", "vw3.tcp_port:5020", *ATV71) == expected
     assert _fields(tmp_path / "rtu-tcp.pcap", "-d", "tcp.port==5020,vw3", *ATV71) == expected
     # Without either, the port is not ours.
@@ -42,7 +42,7 @@ def test_rtac_serial_decode_as(tmp_path: Path) -> None:
             header = struct.pack(">IIBBH", 100, index * 10_000, 0, 0, 0)
             writer.write(header + frame, 100 + index * 0.01)
     rows = _fields(pcap, "-d", "rtacser.data,vw3", *ATV71)
-    assert rows == [["1", "", "", ""], ["2", "1", ",CHCF,COP", "2,1,0"]]
+    assert rows == [["1", "", "", ""], ["2", "1", ",CHCF,COP", "non-existent,protected,ok"]]
     items, _, _ = lua_items(pcap, "-d", "rtacser.data,vw3")
     assert [(item.record, item.offset) for item in items] == [(1, 12), (2, 12)]
 
@@ -65,11 +65,11 @@ def test_modbus_tcp_registers_are_named(tmp_path: Path) -> None:
                         "-e", "vw3.reg.code", "-e", "vw3.reg.status", "-e", "vw3.reg.text", "-e", "vw3.note")
     assert result.returncode == 0, result.stderr
     rows = [line.split("|") for line in result.stdout.splitlines()]
-    assert rows[1] == ["8400,8401,8402", ",CHCF,COP", "2,0,0",
+    assert rows[1] == ["8400,8401,8402", ",CHCF,COP", "non-existent,ok,ok",
                        "16#8000: non-existent (address not in the map),IO (I/O profile),Cd (command)", ""]
-    assert rows[3][:3] == ["8400,8401,8402", ",CHCF,COP", "2,1,0"]
+    assert rows[3][:3] == ["8400,8401,8402", ",CHCF,COP", "non-existent,protected,ok"]
     assert rows[3][4] == "CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"
-    assert rows[5][:4] == ["3102,3103,3104,3105", "SFR,TFR,HSP,LSP", "0,0,0,0",
+    assert rows[5][:4] == ["3102,3103,3104,3105", "SFR,TFR,HSP,LSP", "ok,ok,ok,ok",
                            "4.0 kHz,60.0 Hz,50.0 Hz,0.0 Hz"]
     off = run_tshark(tmp_path / "mbtcp.pcap", *names, "-o", "vw3names.enabled:FALSE", "-T", "fields",
                      "-e", "vw3.reg.code")

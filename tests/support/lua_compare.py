@@ -141,7 +141,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         "response_time": None if fields.get("response_time") is None else round(float(fields["response_time"]), 6),
         "registers": [
             (_int(reg.get("address")), _int(reg.get("value")), reg.get("code"),
-             STATUS_NAMES.get(reg.get("status"), reg.get("status")),
+             reg.get("status"),  # (text, as vw3-decode's: ok, protected, non-existent, ambiguous)
              reg.get("text"), reg.get("label"), reg.get("name"), reg.get("unit"), reg.get("source"),
              _scaled(reg.get("scaled")), _int(reg.get("words")) if "words" in reg else 1)
             for reg in item.registers
@@ -159,7 +159,6 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
 
 
 KIND_NAMES = {"1": "request", "2": "response", "3": "exception", "4": "noise"}
-STATUS_NAMES = {"0": "ok", "1": "protected", "2": "non-existent", "3": "ambiguous"}
 
 
 def lua_kind(item: LuaItem) -> str | None:
