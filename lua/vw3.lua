@@ -4253,7 +4253,9 @@ select_device = function(st, f, b)
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
     local slave = f.slave
     local judged = slave ~= 0 and st.judged and st.judged[slave]
-    if judged and judged.choice == nil and not settled(judged) and st.frozen == nil then
+    -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
+    -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
+    if judged and judged.choice == nil and not settled(judged) and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
     end
@@ -5333,6 +5335,9 @@ function lane.again(st)
   end
   local ok, problem = pcall(finish, fresh)
   if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
+  -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
+  fresh.going_on = true
   -- (the same table: `state` and udp_states keep naming it)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end
@@ -6191,8 +6196,9 @@ local function dissect_now(st, tvb, pinfo, number)
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
   if number > newest_record then newest_record = number end
-  if config.default == AUTO then
-    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
+  if config.default == AUTO and not state.finished then
+    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
+    -- after the first pass is over: a live capture's later records are never decoded again).
     local again = st.again
     if again == nil then
       again = { order = {}, bytes = {}, times = {} }

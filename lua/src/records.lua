@@ -534,6 +534,9 @@ function lane.again(st)
   end
   local ok, problem = pcall(finish, fresh)
   if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
+  -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
+  fresh.going_on = true
   -- (the same table: `state` and udp_states keep naming it)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end

@@ -262,7 +262,9 @@ select_device = function(st, f, b)
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
     local slave = f.slave
     local judged = slave ~= 0 and st.judged and st.judged[slave]
-    if judged and judged.choice == nil and not settled(judged) and st.frozen == nil then
+    -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
+    -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
+    if judged and judged.choice == nil and not settled(judged) and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
     end

@@ -197,8 +197,9 @@ local function dissect_now(st, tvb, pinfo, number)
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
   if number > newest_record then newest_record = number end
-  if config.default == AUTO then
-    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known.
+  if config.default == AUTO and not state.finished then
+    -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
+    -- after the first pass is over: a live capture's later records are never decoded again).
     local again = st.again
     if again == nil then
       again = { order = {}, bytes = {}, times = {} }

@@ -10,6 +10,8 @@ from __future__ import annotations
 import subprocess
 from pathlib import Path
 
+import pytest
+
 from lua_compare import compare, lua_shown
 from lua_harness import (
     CLI_TIMEOUT, PLUGIN, USER_DLT, ensure_tool, lua_errors, lua_items, parse_pdml, python_items, write_pcap,
@@ -261,3 +263,64 @@ def test_one_read_is_no_evidence_and_the_reason_is_on_every_frame(tmp_path: Path
         [("generic", None)] * 13 + [("atv71", reason)] * 3)
     assert [reg.get("code") for reg in python[9].data["registers"]] == [None, None, None, None]
     assert cli_choices(pcap, []) == [f"slave 2: atv71 ({reason})"]
+
+
+# Wireshark's packet details opened while it captures: a record older than the newest dissected again.
+# The capture so far is then decoded again with its choices (as tshark -2 shows a file), and the records
+# that come after are read once, as vw3-decode --live reads them. Under the stub (lua/tests), Lua 5.2 and
+# 5.4: records 1..HALF first, then record CLICKED again, then the others; each record shown at the end.
+_LIVE_DRIVER = r'''
+package.path = arg[1] .. "/?.lua;" .. package.path
+local stub = require("wireshark_stub")
+dofile(arg[2])
+local proto = stub.protos.vw3
+proto.set_pref("user0", true)
+proto.prefs_changed()
+proto.init()
+local half, clicked, records = tonumber(arg[3]), tonumber(arg[4]), {}
+for index = 5, #arg do
+  records[#records + 1] = (arg[index]:gsub("%x%x", function(pair) return string.char(tonumber(pair, 16)) end))
+end
+local function dissect(number, visited)
+  local tree = stub.tree()
+  proto.dissector(stub.tvb(records[number]), stub.pinfo(number, visited, 1767225600 + number * 0.05), tree)
+  return tree
+end
+for number = 1, #records do
+  dissect(number, false)
+  if number == half then dissect(clicked, true) end
+end
+for number = 1, #records do
+  local shown = {}
+  for _, line in ipairs(stub.dump(dissect(number, true))) do
+    local key, value = line:match("^%s*vw3%.([a-z_]+)=(.*)$")
+    if key == "item" or key == "provisional" then shown[#shown + 1] = key .. "=" .. value end
+  end
+  print(number .. " " .. table.concat(shown, " "))
+end
+'''
+
+
+@pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
+def test_a_live_capture_goes_on_after_its_details_are_opened(tmp_path: Path, lua: str) -> None:
+    # Slave 1 reads what no profile explains: its frames are provisional until its 8th answer (settled).
+    records = [data for index in range(12) for data in _read(1, 100 + index, [index, 7])]
+    driver = tmp_path / "live.lua"
+    driver.write_text(_LIVE_DRIVER, encoding="utf-8")
+    half, clicked = 8, 3
+    result = subprocess.run([ensure_tool(lua, lua), str(driver), str(PLUGIN.parent / "tests"), str(PLUGIN), str(half),
+                             str(clicked), *(data.hex() for data in records)], capture_output=True, text=True,
+                            timeout=120)
+    assert result.returncode == 0, result.stderr
+    shown = {}
+    for line in result.stdout.splitlines():
+        number, *fields = line.split()
+        shown[int(number)] = dict(field.split("=", 1) for field in fields)
+    pcap = write_pcap(tmp_path / "live.pcap", [(data, 1767225600 + (index + 1) * 0.05) for index, data in
+                                               enumerate(records)])
+    stream = {item.data["frame"]: bool(item.data.get("provisional")) for item in python_items(pcap, one_pass=True)}
+    assert [number for number, said in stream.items() if said] == list(range(1, 16))  # 8 requests, 7 answers
+    # records 1..8, decoded again: the file's view (none provisional); 9.. read once, as vw3-decode --live
+    assert [int(shown[number]["item"]) for number in shown] == list(range(1, 25))
+    assert {number: shown[number].get("provisional") == "true" for number in shown} == {
+        number: number > half and stream[number] for number in stream}
