@@ -81,7 +81,7 @@ static PyObject *time_value(const Time *t) {
 }
 
 /* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report --------------- */
-enum { TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS };
+enum { TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS, TALLIES };
 
 typedef struct {
     uint32_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order); 0: empty */
@@ -128,8 +128,9 @@ static double *tally(Tallies *t, uint32_t tag, long long key) {
     return &entry->value;
 }
 
+/* t: the TALLIES tables, one a kind (the small ones stay in cache). */
 static int tally_add(Tallies *t, int kind, long long owner, long long key, double amount) {
-    double *value = tally(t, (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key);
+    double *value = tally(&t[kind], (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key);
     if (value == NULL) return -1;
     *value += amount;
     return 0;

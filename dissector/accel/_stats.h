@@ -56,7 +56,7 @@ typedef struct {
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
     Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
-    Tallies tallies;              /* response times, gaps, turnarounds, load per minute, intervals */
+    Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals */
     Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
 } Stats;
 
@@ -84,7 +84,7 @@ static int grow_params(Stats *st) {
 /* The parameter of (slave, address), made on first sight; *created says so. NULL with no exception set:
  * a new parameter past max_params (a flood over every address of every slave), not kept. */
 static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
-    if (2 * (st->param_count + 1) > st->param_slots && st->param_count < st->max_params && grow_params(st) < 0)
+    if (4 * (st->param_count + 1) > 3 * st->param_slots && st->param_count < st->max_params && grow_params(st) < 0)
         return NULL;
     uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
     size_t slot = (size_t)mix(key) & (st->param_slots - 1);
@@ -252,7 +252,7 @@ static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned lo
     if (failed) p->failed++;
     if (!t->has) return 0;
     if (p->last.has &&
-        tally_add(&st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / 1e-4), 1) < 0)
+        tally_add(st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / 1e-4), 1) < 0)
         return -1;
     p->last = *t;
     return 0;
@@ -307,7 +307,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     int slave = q[0], function = q[1];
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
-    if (bus_add(&st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
+    if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
                 base + qf->at) < 0)
         return -1;
     if (af != NULL) {
@@ -315,10 +315,10 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         double response = stamp_seconds(af->ns, qf->ns);
         int timed = qf->timed && af->timed;
         stats_seen(&st->bus, &at);
-        if (bus_add(&st->tallies, &st->bus, &at, af->length, af->kind, slave, 0, 0, 1, timed ? &response : NULL,
+        if (bus_add(st->tallies, &st->bus, &at, af->length, af->kind, slave, 0, 0, 1, timed ? &response : NULL,
                     number + 1, base + af->at) < 0)
             return -1;
-        if (timed && tally_add(&st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
+        if (timed && tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
             return -1;
     }
     Counted *c = counted_for(st, slave, function);
@@ -366,7 +366,7 @@ static void stats_dealloc(Stats *st) {
     }
     PyMem_Free(st->params);
     PyMem_Free(st->polls);
-    PyMem_Free(st->tallies.slots);
+    for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots);
     PyMem_Free(st->bus.outages);
     PyMem_Free(st->bus.outage_slaves);
     for (int k = 0; k < 256; k++) {
@@ -675,7 +675,7 @@ static PyObject *stats_bus_item(Stats *st, PyObject *args) {
         PyErr_SetString(PyExc_ValueError, "bus_item: slave 0..255, kind 0..3");
         return NULL;
     }
-    if (bus_add(&st->tallies, &st->bus, &t, length, kind, slave, broadcast, unanswered, crc_ok,
+    if (bus_add(st->tallies, &st->bus, &t, length, kind, slave, broadcast, unanswered, crc_ok,
                 response != Py_None ? &seconds : NULL, number, offset) < 0)
         return NULL;
     Py_RETURN_NONE;
@@ -693,10 +693,15 @@ static PyObject *stats_stamp(Stats *st, PyObject *time) {
 static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     long kind = PyLong_AsLong(arg);
     if (kind == -1 && PyErr_Occurred()) return NULL;
+    if (kind < 0 || kind >= TALLIES) {
+        PyErr_SetString(PyExc_ValueError, "tallies: an unknown kind");
+        return NULL;
+    }
+    const Tallies *table = &st->tallies[kind];
     PyObject *owners = PyDict_New();
-    for (size_t k = 0; owners != NULL && k < st->tallies.size; k++) {
-        const Tally *t = &st->tallies.slots[k];
-        if (!t->tag || (long)(t->tag >> 24) != kind + 1) continue;
+    for (size_t k = 0; owners != NULL && k < table->size; k++) {
+        const Tally *t = &table->slots[k];
+        if (!t->tag) continue;
         PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
         PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
         PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;

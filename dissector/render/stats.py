@@ -30,6 +30,9 @@ from __future__ import annotations
 
 import json
 import math
+import operator
+from itertools import compress, count as counter, islice, repeat
+from operator import itemgetter
 from dataclasses import dataclass, field
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -378,6 +381,11 @@ def _poll_table(rows: list[dict[str, Any]], addresses: Callable[[dict[str, Any]]
     return table
 
 
+_STORY = itemgetter(0, 3, 4, 5, 6, 9)  # slave, reads, unreadable, writes, refused, changes
+_ADDRESS = itemgetter(1)
+_CODE = itemgetter(2)
+
+
 def _parameter_table(parameters: list[ParameterRow]) -> TableSpec:
     """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
     all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all."""
@@ -387,39 +395,29 @@ def _parameter_table(parameters: list[ParameterRow]) -> TableSpec:
         [True, True, False, True, True, True, True, False, True],
         squeeze={7: 24},  # long enumeration texts and bit lists are cut on a terminal only
     )
-    # Runs of neighbouring rows with the same story, and the totals, in one pass.
-    shown = expanded = 0
-    reads = unreadable = writes = refused = changes = 0
+    # Runs of neighbouring rows with the same story (slave, counts, named or not, next address), found
+    # by comparing each row with the one before through map and zip (a max-size capture has 67,000).
     count = len(parameters)
-    first = 0
-    for index in range(count):
-        row = parameters[index]
-        reads += row[3]
-        unreadable += row[4]
-        writes += row[5]
-        refused += row[6]
-        changes += row[9]
-        following = parameters[index + 1] if index + 1 < count else None
-        if (
-            following is not None
-            and following[1] == row[1] + 1
-            and following[0] == row[0]
-            and following[3] == row[3]
-            and following[5] == row[5]
-            and following[9] == row[9]
-            and following[4] == row[4]
-            and following[6] == row[6]
-            and (following[2] is None) == (row[2] is None)
-        ):
-            continue
-        end = index + 1
-        pieces = [(first, end)] if end - first >= GROUP_MIN else [(k, k + 1) for k in range(first, end)]
+    following = lambda: islice(parameters, 1, None)  # noqa: E731
+    joined = map(operator.and_, map(operator.and_,
+        map(operator.eq, map(_STORY, following()), map(_STORY, parameters)),
+        map(operator.eq, map(operator.is_, map(_CODE, following()), repeat(None)),
+            map(operator.is_, map(_CODE, parameters), repeat(None)))),
+        map(operator.eq, map(operator.sub, map(_ADDRESS, following()), map(_ADDRESS, parameters)), repeat(1)))
+    ends = list(compress(counter(1), map(operator.not_, joined)))  # where a run ends
+    if count:
+        ends.append(count)
+    shown = expanded = first = 0
+    for end in ends:
+        grouped = end - first >= GROUP_MIN
+        if shown < MAX_PARAMETER_ROWS:
+            for start, stop in [(first, end)] if grouped else [(k, k + 1) for k in range(first, end)]:
+                if shown < MAX_PARAMETER_ROWS:
+                    shown += 1
+                    table.rows.append(_parameter_row(parameters[start:stop]))
+        expanded += 1 if grouped else end - first
         first = end
-        expanded += len(pieces)
-        for start, stop in pieces:
-            if shown < MAX_PARAMETER_ROWS:
-                shown += 1
-                table.rows.append(_parameter_row(parameters[start:stop]))
+    reads, unreadable, writes, refused, changes = (sum(map(itemgetter(k), parameters)) for k in (3, 4, 5, 6, 9))
     if expanded > shown:
         table.rows.append(["", f"... (+{expanded - shown} more rows)", "", "", "", "", "", "", ""])
     if count > 1:
