@@ -75,10 +75,10 @@ static int silence_inside(Timeline *t, long long at, Py_ssize_t length) {
 }
 
 /* The text of a double as Python's f"{value:.{digits}f}" (both round the exact binary value, half to
- * even): value = m * 2^e exactly, so value * 10^digits is m * 10^digits shifted, rounded on the bits
- * shifted out; snprintf (a third of a pcap summary's time) only for what that does not hold. */
-static void out_fixed(Out *o, double value, int digits) {
-    char text[64];
+ * even) into text[64], its length (0: too long): value = m * 2^e exactly, so value * 10^digits is
+ * m * 10^digits shifted, rounded on the bits shifted out; snprintf (a third of a pcap summary's time)
+ * only for what that does not hold. */
+static int fixed_text(char *text, double value, int digits) {
 #ifdef __SIZEOF_INT128__
     int exponent;
     double fraction = frexp(fabs(value), &exponent);
@@ -93,17 +93,24 @@ static void out_fixed(Out *o, double value, int digits) {
             q = (unsigned long long)whole;
             if (rest > half || (rest == half && (q & 1))) q++;
         }
-        char *p = text + sizeof text;
+        char digits_out[64], *p = digits_out + sizeof digits_out;
         for (int k = 0; k < digits; k++, q /= 10) *--p = (char)('0' + q % 10);
         *--p = '.';
         do *--p = (char)('0' + q % 10); while (q /= 10);
         if (signbit(value)) *--p = '-';
-        out_put(o, p, (size_t)(text + sizeof text - p));
-        return;
+        int n = (int)(digits_out + sizeof digits_out - p);
+        memcpy(text, p, (size_t)n);
+        return n;
     }
 #endif
-    int n = snprintf(text, sizeof text, "%.*f", digits, value);
-    if (n > 0 && n < (int)sizeof text) out_put(o, text, (size_t)n);
+    int n = snprintf(text, 64, "%.*f", digits, value);
+    return n > 0 && n < 64 ? n : 0;
+}
+
+static void out_fixed(Out *o, double value, int digits) {
+    char text[64];
+    int n = fixed_text(text, value, digits);
+    if (n) out_put(o, text, (size_t)n);
     else out_cstr(o, "nan"); /* never for a stamp difference */
 }
 
@@ -130,8 +137,7 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
     t->has_previous = 1;
     t->previous_ns = ns;
     char text[64];
-    int n = snprintf(text, sizeof text, "%.6f", seconds);
-    if (n <= 0 || n >= (int)sizeof text) n = 0;
+    int n = fixed_text(text, seconds, 6);
     out_put(o, " ", 1);
     for (int pad = 12 - n; pad > 0; pad--) out_put(o, " ", 1);
     out_put(o, text, (size_t)n);
