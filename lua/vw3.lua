@@ -1950,15 +1950,14 @@ local crc_seen, crc_seen_count = {}, 0
 known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 
 -- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): the
--- handlers that decode such a request from those bytes alone (the values are a run read when shown).
--- A master writes its setpoints every cycle with new values (lane.write).
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
+-- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
+-- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
 known_requests.header_lengths = {}
-do
-  local FROM_HEADER = { write_coils_request = true, write_registers_request = true, read_write_request = true }
-  for code, name in pairs(DATA.protocol.handlers.request) do
-    local rule = DATA.protocol.rules[code][1]
-    if FROM_HEADER[name] and rule[1] == "count8" then known_requests.header_lengths[code] = rule[2] + 1 end
+for code, entry in pairs(DATA.rules.by_code.request) do
+  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
+  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
+    known_requests.header_lengths[code] = rule[2] + 1
   end
 end
 
@@ -4528,14 +4527,13 @@ local pack = {}
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
   local ITEM = 13
   -- Frames packed as tables whatever they hold: exceptions (they hold their code) and the functions
-  -- whose handlers keep what they decoded (by the protocol table: FC8's sub-function, FC17's server id,
-  -- FC43's objects); noise has a
-  -- kind of its own. The rare keys only those hold need no test on the others.
+  -- whose handlers keep what they decoded (the rule tables' named special cases: FC8's sub-function,
+  -- FC17's server id, FC43's objects); noise has a kind of its own. The rare keys only those hold need
+  -- no test on the others.
   local TABLE_FUNCTIONS = {}
-  local KEEPING = { diagnostics = true, report_server_id_response = true, mei_response = true }
-  for _, direction in pairs(DATA.protocol.handlers) do
-    for code, name in pairs(direction) do
-      if KEEPING[name] then TABLE_FUNCTIONS[code] = true end
+  for _, direction in pairs(DATA.rules.by_code) do
+    for code, entry in pairs(direction) do
+      if entry.special ~= nil then TABLE_FUNCTIONS[code] = true end
     end
   end
   local NOT_TESTED = { span_label = true, exception_code = true, exception_meaning = true, inferred = true,

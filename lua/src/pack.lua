@@ -78,14 +78,13 @@ local pack = {}
   local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
   local ITEM = 13
   -- Frames packed as tables whatever they hold: exceptions (they hold their code) and the functions
-  -- whose handlers keep what they decoded (by the protocol table: FC8's sub-function, FC17's server id,
-  -- FC43's objects); noise has a
-  -- kind of its own. The rare keys only those hold need no test on the others.
+  -- whose handlers keep what they decoded (the rule tables' named special cases: FC8's sub-function,
+  -- FC17's server id, FC43's objects); noise has a kind of its own. The rare keys only those hold need
+  -- no test on the others.
   local TABLE_FUNCTIONS = {}
-  local KEEPING = { diagnostics = true, report_server_id_response = true, mei_response = true }
-  for _, direction in pairs(DATA.protocol.handlers) do
-    for code, name in pairs(direction) do
-      if KEEPING[name] then TABLE_FUNCTIONS[code] = true end
+  for _, direction in pairs(DATA.rules.by_code) do
+    for code, entry in pairs(direction) do
+      if entry.special ~= nil then TABLE_FUNCTIONS[code] = true end
     end
   end
   local NOT_TESTED = { span_label = true, exception_code = true, exception_meaning = true, inferred = true,

@@ -367,15 +367,14 @@ local crc_seen, crc_seen_count = {}, 0
 known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 
 -- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): the
--- handlers that decode such a request from those bytes alone (the values are a run read when shown).
--- A master writes its setpoints every cycle with new values (lane.write).
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
+-- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
+-- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
 known_requests.header_lengths = {}
-do
-  local FROM_HEADER = { write_coils_request = true, write_registers_request = true, read_write_request = true }
-  for code, name in pairs(DATA.protocol.handlers.request) do
-    local rule = DATA.protocol.rules[code][1]
-    if FROM_HEADER[name] and rule[1] == "count8" then known_requests.header_lengths[code] = rule[2] + 1 end
+for code, entry in pairs(DATA.rules.by_code.request) do
+  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
+  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
+    known_requests.header_lengths[code] = rule[2] + 1
   end
 end
 
