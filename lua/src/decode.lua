@@ -2,7 +2,8 @@
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local ipairs, load, pairs, string, type, unpack = ipairs, load, pairs, string, type, table.unpack or unpack
+local ipairs, load, pairs, string, table, type = ipairs, load, pairs, string, table, type
+local unpack = table.unpack or unpack
 local _ENV = M -- (the other modules' names: their exports in M)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
 local concat, floor, format, lane = concat, floor, format, lane
@@ -101,43 +102,56 @@ end
 -- The regular layouts are read as their description says (data/modbus.toml [layouts], protocol/shapes.py):
 -- u8 and u16 fields by name, a counted field (bytes, words, odd) by where it starts (NAME_at), the rest
 -- of the data by its length (NAME_length). Each description is made into a Lua function once (load),
--- so that a frame costs what a hand-written parser costs: its fields in one table constructor.
+-- so that a frame costs what a hand-written parser costs: one length check for the fixed fields that
+-- come first, read at constant offsets, and the fields in one table constructor.
+local SIZES = { u8 = 1, u16 = 2 }
 local SIZE_OF = { bytes = "v%d", words = "2 * v%d", half = "v%d - v%d %% 2", odd = "v%d %% 2" }
 local function shape_parser(shape)
-  local lines, keys, at = { "return function(f, b, d, len)", "local p = 0" }, {}, {}
-  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
+  local lines, keys, index_of = { "return function(f, b, d, len)" }, {}, {}
+  local fixed, names = 0, {}
+  for _, field in ipairs(shape) do
+    if SIZES[field.type] == nil then break end
+    fixed, names[#names + 1] = fixed + SIZES[field.type], field.name
+  end
+  if fixed > 0 then
+    local last = table.remove(names)
+    local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
+    lines[2] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
+  end
+  local static = 0 -- where the next field starts while it is a constant; then `p`
   for index, field in ipairs(shape) do
-    local name, kind = field.name, field.type
-    at[name] = index
-    if kind == "u8" or kind == "u16" then
-      local size = kind == "u8" and 1 or 2
-      lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
-      lines[#lines + 1] = format(kind == "u8" and "local v%d = b[d + p]" or "local v%d = b[d + p] * 256 + b[d + p + 1]",
-        index)
-      lines[#lines + 1] = format("p = p + %d", size)
+    local name, kind, size = field.name, field.type, SIZES[field.type]
+    index_of[name] = index
+    local here, next_ = static and format("%d", static) or "p", static and format("%d", static + 1) or "p + 1"
+    if size ~= nil then
+      if not static then lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
+      local value = size == 1 and "b[d + %s]" or "b[d + %s] * 256 + b[d + %s]"
+      lines[#lines + 1] = format("local v%d = " .. value, index, here, next_)
       keys[#keys + 1] = format("[%q] = v%d", name, index)
+      if static then static = static + size else lines[#lines + 1] = format("p = p + %d", size) end
     elseif kind == "rest" then
-      lines[#lines + 1] = "local rest = len - p"
-      lines[#lines + 1] = "p = len"
-      keys[#keys + 1] = format("[%q] = rest", name .. "_length")
+      keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", here)
     else
-      local count = at[field.count]
-      local size = format(SIZE_OF[field.half and "half" or kind], count, count)
-      lines[#lines + 1] = format("local s%d = %s", index, size)
+      if static then lines[#lines + 1] = format("local p = %d", static) end
+      static = nil
+      local count = index_of[field.count]
+      lines[#lines + 1] = format("local s%d = " .. SIZE_OF[field.half and "half" or kind], index, count, count)
       lines[#lines + 1] = format("if p + s%d > len then return nil, %q end", index, field.count .. " past the end")
-      lines[#lines + 1] = format("local a%d = d + p", index)
+      if kind ~= "odd" then -- (where an odd byte is, nothing asks)
+        lines[#lines + 1] = format("local a%d = d + p", index)
+        keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+      end
       lines[#lines + 1] = format("p = p + s%d", index)
-      keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
     end
   end
   lines[#lines + 1] = "f.fields = { " .. concat(keys, ", ") .. " }"
-  lines[#lines + 1] = trailing and "return p" or "return len"
+  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
+  lines[#lines + 1] = "return " .. (not trailing and "len" or static and format("%d", static) or "p")
   lines[#lines + 1] = "end"
   return load(concat(lines, "\n"))()
 end
 
 -- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
-local SIZES = { u8 = 1, u16 = 2 }
 local function offset_of(shape, name)
   local offset = 0
   for _, field in ipairs(shape or {}) do
@@ -229,20 +243,18 @@ end
 local COIL_ON, COIL_OFF = 0xFF00, 0x0000
 local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
 
--- The request a response answers, when it is in the capture and its data parsed.
-local function request_of(f)
-  local request = f.request
-  if request == nil or request.fields == nil then return nil end
-  return request
-end
-
 local function echo_check(f, fields, request, echo)
-  local answered, differ = request.fields, {}
-  for _, name in ipairs(echo.fields) do
+  local answered, names = request.fields, echo.fields
+  local first, second = names[1], names[2] -- (a list made only when one differs: most answers echo)
+  if answered[first] == fields[first] and (second == nil or answered[second] == fields[second]) and #names <= 2 then
+    return
+  end
+  local differ = {}
+  for _, name in ipairs(names) do
     if answered[name] ~= fields[name] then differ[#differ + 1] = name end
   end
   if #differ == 0 then return end
-  if echo.names ~= "differing" then differ = echo.fields end
+  if echo.names ~= "differing" then differ = names end
   warn(f, say("echo", { fields = concat(differ, " and "), verb = #differ == 1 and "differs" or "differ" }))
 end
 
@@ -270,7 +282,8 @@ local function lifter(rule, limit, layout)
   end
   return function(f, b)
     local fields = f.fields
-    local request = from_request and request_of(f) or nil
+    local request = from_request and f.request or nil
+    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
     local first, many
     if start_from_request then
       first = request and request.start
