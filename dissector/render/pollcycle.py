@@ -90,7 +90,9 @@ class PollCycle:
         if poll is not None:
             poll.failed += 1
 
-    def report(self) -> list[dict[str, Any]]:
+    def report(self, timed_rows: int | None = None) -> list[dict[str, Any]]:
+        """Rows of the keys repeated MIN_REPEATS times or more, by first frame; `timed_rows`: only the
+        first that many get their period, jitter and skipped cycles (a table shows no more)."""
         rows = []
         polls = self._polls
         if self.store is not None:
@@ -116,7 +118,8 @@ class PollCycle:
                 "jitter_sd": None,
                 "skipped": 0,
             }
-            row.update(_timing(poll.intervals))
+            if timed_rows is None or len(rows) < timed_rows:
+                row.update(_timing(poll.intervals))
             row["misses"] = row["skipped"] + poll.failed
             rows.append(row)
         return rows

@@ -195,9 +195,10 @@ class StatsCollector:
         (slave, address); last_text as the summary names the value, None when nothing does."""
         return self.store.parameters()
 
-    def report(self, with_parameters: bool = True) -> dict[str, Any]:
+    def report(self, with_parameters: bool = True, poll_rows: int | None = None) -> dict[str, Any]:
         """The JSON form (--stats --json); without parameters for the tables, which show a few rows
-        of parameter_rows() instead of a dict per parameter."""
+        of parameter_rows() instead of a dict per parameter, and the timings of `poll_rows` poll keys
+        at most (those a table shows)."""
         functions = []
         for (slave, function), stats in sorted(self._all_functions().items()):
             functions.append(
@@ -231,7 +232,7 @@ class StatsCollector:
             "parameter_events_dropped": self.store.dropped,
             "functions": functions,
             "parameters": parameters,
-            "poll_cycle": self.poll.report(),
+            "poll_cycle": self.poll.report(poll_rows),
             "profiles": [
                 {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame}
                 for choice in (self.profiles() if self.profiles is not None else [])
@@ -277,7 +278,7 @@ class StatsCollector:
     def blocks(self) -> list[str | TableSpec]:
         """The summary line and the tables, for the rich or the plain writer."""
         parameter_rows = self.parameter_rows()  # tuples: a table shows a few rows of them
-        report = self.report(with_parameters=False)
+        report = self.report(with_parameters=False, poll_rows=MAX_POLL_ROWS)  # (timings of the rows shown)
         blocks: list[str | TableSpec] = []
         summary = (
             f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in {report['noise']['items']} runs"
