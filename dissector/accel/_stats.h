@@ -47,7 +47,7 @@ typedef struct {
 typedef struct {
     PyObject_HEAD
     Param *params;
-    size_t param_slots, param_count; /* slots: a power of two, at most half full */
+    size_t param_slots, param_count; /* slots: a power of two, at most 3/4 full */
     Poll *polls;
     size_t poll_slots, poll_count;
     size_t max_keys;              /* pollcycle.MAX_KEYS, given at creation */
@@ -62,6 +62,12 @@ typedef struct {
 
 static PyTypeObject StatsType;
 
+/* A parameter's first slot: neighbouring addresses of a slave in neighbouring slots (a read's registers
+ * touch a few cache lines, not one each). */
+static inline size_t param_slot(uint32_t key, size_t slots) {
+    return (size_t)(mix(key >> 4) + (key & 15)) & (slots - 1);
+}
+
 static int grow_params(Stats *st) {
     size_t slots = st->param_slots ? 2 * st->param_slots : 4096;
     Param *table = PyMem_Calloc(slots, sizeof *table);
@@ -71,7 +77,7 @@ static int grow_params(Stats *st) {
     }
     for (size_t k = 0; k < st->param_slots; k++) {
         if (!st->params[k].key) continue;
-        size_t slot = (size_t)mix(st->params[k].key) & (slots - 1);
+        size_t slot = param_slot(st->params[k].key, slots);
         while (table[slot].key) slot = (slot + 1) & (slots - 1);
         table[slot] = st->params[k];
     }
@@ -87,7 +93,7 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
     if (4 * (st->param_count + 1) > 3 * st->param_slots && st->param_count < st->max_params && grow_params(st) < 0)
         return NULL;
     uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
-    size_t slot = (size_t)mix(key) & (st->param_slots - 1);
+    size_t slot = param_slot(key, st->param_slots);
     while (st->params[slot].key) {
         if (st->params[slot].key == key) {
             *created = 0;
