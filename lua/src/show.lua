@@ -120,9 +120,11 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
     local shown_from = item_tvb(item, tvb)
     local t
     if item.kind == NOISE then
+      -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
       local text = format("noise (%d bytes)", item.length)
+      local expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
       for k = 0, (item.count or 1) - 1 do
-        local shown = show_noise(item, shown_from, tree, full, k)
+        local shown = show_noise(item, shown_from, tree, full, k, expert_text)
         t = t or shown
         summaries, info = add_part(summaries, info, text)
       end

@@ -431,9 +431,10 @@ if full then return t end
 end
 
 -- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
-local function show_noise(item, tvb, tree, full, k)
+-- (expert_text: the run's text, made once for all its items by the caller)
+local function show_noise(item, tvb, tree, full, k, expert_text)
   local length = item.length
-  local expert_text = format("%d bytes outside any frame: %s", length, item.reason)
+  expert_text = expert_text or format("%d bytes outside any frame: %s", length, item.reason)
   if not full then
     add_text(tree, ex.noise, expert_text)
     return nil
