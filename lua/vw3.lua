@@ -4010,7 +4010,6 @@ local _ENV = M -- (the other modules' names: their exports in M)
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
 local RESPONSE, SELECTION, build_device, device_for = RESPONSE, SELECTION, build_device, device_for
 local format, lane, python_repr, register_at = format, lane, python_repr, register_at
-local device_now
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4019,8 +4018,6 @@ local device_now
 -- does not support takes the choice back. Until then the fallback: spec semantics only. What a later
 -- frame says changes nothing before it, in one pass as with -2: the frames before the evidence are shown
 -- as vw3-decode shows them.
-local select_device
-do
 local CANDIDATES = SELECTION.candidates
 -- The candidate a function code identifies (the first, in the candidates' order, that claims it).
 local IDENTIFYING = {}
@@ -4250,7 +4247,7 @@ end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
-select_device = function(st, f, b)
+local function select_device(st, f, b)
   local frozen = st.frozen
   if frozen ~= nil and st.fixed[f.slave] then
     -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
@@ -4300,9 +4297,8 @@ select_device = function(st, f, b)
   st.said[f.number] = { choice.profile, choice.reason }
   return device
 end
-end
 
-device_now = function(st, f, b)
+local function device_now(st, f, b)
   if config.default == AUTO and config.per_slave[f.slave] == nil then return select_device(st, f, b) end
   return device_for(st, f.slave)
 end
