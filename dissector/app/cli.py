@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from typing import BinaryIO, TextIO
 
-from dissector.errors import ExitStatus, OutputError, UsageError
+from dissector.errors import ExitStatus, OutputError, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
@@ -27,7 +27,6 @@ from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, o
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
-from dissector.errors import ProfileError
 from dissector.render.output import Output
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
@@ -430,16 +429,6 @@ def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: It
 
 def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissector: Dissector, sinks: Sinks,
                 annotate: Annotator | None, warn: Callable[[], None]) -> None:
-    if mode == "rtu" and timed and fix is None and sinks.plain_summary_only:
-        from dissector.accel.timedpath import summarize_input
-
-        if summarize_input(chunks, dissector, sinks, annotate, warn):  # pcap, pcapng: the compiled path
-            return
-    if mode == "rtu" and timed and fix is None and sinks.stats_only:
-        from dissector.accel.timedpath import count_input
-
-        if count_input(chunks, dissector, sinks, annotate, warn):  # --stats of a pcap counted in the engine
-            return
     if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
         from dissector.accel import fastsummary
 
@@ -463,8 +452,12 @@ def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, disse
                 sinks.valid_frames += store.frames - frames
                 return
     if mode == "rtu" and timed and fix is None:
-        from dissector.accel import framespath
+        from dissector.accel import framespath, timedpath
 
+        if sinks.plain_summary_only and timedpath.summarize_input(chunks, dissector, sinks, annotate, warn):
+            return  # pcap, pcapng: the compiled path
+        if sinks.stats_only and timedpath.count_input(chunks, dissector, sinks, annotate, warn):
+            return  # --stats of a pcap counted in the engine
         if framespath.decode(chunks, dissector, sinks, annotate, warn):  # framed in C, shown by Python
             return
     decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))

@@ -24,11 +24,11 @@ from typing import Any
 from dissector.model import Frame
 from dissector.protocol.table import write_windows
 from dissector.render.describe import plain_span
+from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS
 
 _WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
 
 MIN_REPEATS = 3  # fewer occurrences are not a cycle
-MAX_KEYS = 50_000
 STEP = 1e-4  # interval histogram resolution: 100 us (a few thousand entries at most)
 SKIP_FACTOR = 1.5
 
@@ -96,8 +96,6 @@ class PollCycle:
         rows = []
         polls = self._polls
         if self.store is not None:
-            from dissector.render.stats_store import TALLY_INTERVALS
-
             intervals = self.store.tallies(TALLY_INTERVALS)
             polls = {key: _Poll(first, count, None, failed, intervals.get(order, {}))
                      for order, (key, first, count, failed) in enumerate(self.store.polls())}

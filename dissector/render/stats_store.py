@@ -25,7 +25,6 @@ import os
 from dataclasses import dataclass
 from typing import Any
 
-from dissector.render.pollcycle import MAX_KEYS
 
 try:
     from dissector.accel._summary import Stats as CompiledStore
@@ -36,6 +35,7 @@ READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(6)
 # The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h): response times by (slave <<
 # 8 | function), gaps, turnarounds, response times by slave, load per minute, poll intervals by key order.
 TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS = range(6)
+MAX_KEYS = 50_000  # requests the poll cycle follows (render/pollcycle.py), in either store
 # Parameters kept at most: a plant's devices have a few thousand each; a flood of writes over every
 # address of 64 slaves (4 M parameters) took 2 GB. Events of further parameters are counted (`dropped`)
 # and the outputs say so; kept parameters keep every event.

@@ -98,7 +98,7 @@ def test_modules_are_small_stages_that_name_their_python_module() -> None:
         if path.stem in UNMIRRORED:
             assert head[1] == "-- Mirrors no Python module.", (path.name, head[1])
         else:
-            # "-- Mirrors dissector/a/b.py, dissector/c.py (what of it)." and nothing else
+            # "-- Mirrors dissector/<stage>/<module>.py (what of it), ..." and nothing else
             assert re.fullmatch(r"-- Mirrors dissector/[a-z_/]+\.py( \([^)]*\))?"
                                 r"(, dissector/[a-z_/]+\.py( \([^)]*\))?)*\.", head[1]), (path.name, head[1])
         for module in modules:

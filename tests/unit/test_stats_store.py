@@ -9,8 +9,8 @@ import random
 import pytest
 
 from dissector.accel import _summary
-from dissector.render.pollcycle import MAX_KEYS
 from dissector.render.stats_store import (
+    MAX_KEYS,
     CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store,
 )
 
