@@ -525,56 +525,103 @@ static PyObject *param_text(const Param *p) {
     return text;
 }
 
+/* The parameters by (slave, address): a PyMem array of *n pointers, NULL with an exception set. */
+static Param **param_sorted(Stats *st, size_t *n) {
+    Param **order = PyMem_Malloc((st->param_count ? st->param_count : 1) * sizeof *order);
+    if (order == NULL) {
+        PyErr_NoMemory();
+        return NULL;
+    }
+    *n = 0;
+    for (size_t k = 0; k < st->param_slots; k++)
+        if (st->params[k].key) order[(*n)++] = &st->params[k];
+    qsort(order, *n, sizeof *order, param_order);
+    return order;
+}
+
+/* (slave, address, code, reads, unreadable, writes, refused, last, last_text, changes), built item by
+ * item (Py_BuildValue's format parsing was a third of the cost). */
+static PyObject *param_row(const Param *p) {
+    PyObject *row = PyTuple_New(10), *text = row != NULL ? param_text(p) : NULL;
+    if (text == NULL) {
+        Py_XDECREF(row);
+        return NULL;
+    }
+    PyObject *code = p->code ? p->code : Py_None, *last = Py_None;
+    Py_INCREF(code);
+    if (p->has_last && p->status == NULL) last = PyLong_FromUnsignedLong(p->last);
+    else Py_INCREF(last);
+    const unsigned long fields[] = {(p->key >> 16) & 0xFF, p->key & 0xFFFF, 0, p->reads, p->unreadable, p->writes,
+                                    p->refused, 0, 0, p->changes};
+    for (int j = 0; j < 10; j++)
+        PyTuple_SET_ITEM(row, j, j == 2 ? code : j == 7 ? last : j == 8 ? text : PyLong_FromUnsignedLong(fields[j]));
+    for (int j = 0; j < 10; j++)
+        if (PyTuple_GET_ITEM(row, j) == NULL) { /* no memory for an int */
+            Py_DECREF(row);
+            return NULL;
+        }
+    return row;
+}
+
 /* parameters() -> [(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]
  * by (slave, address); last_text the text of the last value, None when nothing names it; when the last
  * state is a read status, last is None and last_text the status (`protected`). */
 static PyObject *stats_parameters(Stats *st, PyObject *unused) {
-    Param **order = PyMem_Malloc((st->param_count ? st->param_count : 1) * sizeof *order);
-    if (order == NULL) return PyErr_NoMemory();
-    size_t n = 0;
-    for (size_t k = 0; k < st->param_slots; k++)
-        if (st->params[k].key) order[n++] = &st->params[k];
-    qsort(order, n, sizeof *order, param_order);
-    PyObject *rows = PyList_New((Py_ssize_t)n);
-    if (rows == NULL) goto fail;
-    for (size_t k = 0; k < n; k++) {
-        const Param *p = order[k];
-        PyObject *text = param_text(p);
-        if (text == NULL) goto fail;
-        /* Built item by item: Py_BuildValue's format parsing was a third of the cost. */
-        PyObject *row = PyTuple_New(10);
-        if (row == NULL) {
-            Py_DECREF(text);
-            goto fail;
-        }
-        PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
-        PyObject *code = p->code ? p->code : Py_None;
-        Py_INCREF(code);
-        PyObject *last = Py_None;
-        if (p->has_last && p->status == NULL) {
-            last = PyLong_FromUnsignedLong(p->last);
-        } else {
-            Py_INCREF(last);
-        }
-        PyTuple_SET_ITEM(row, 0, PyLong_FromUnsignedLong((p->key >> 16) & 0xFF));
-        PyTuple_SET_ITEM(row, 1, PyLong_FromUnsignedLong(p->key & 0xFFFF));
-        PyTuple_SET_ITEM(row, 2, code);
-        PyTuple_SET_ITEM(row, 3, PyLong_FromUnsignedLong(p->reads));
-        PyTuple_SET_ITEM(row, 4, PyLong_FromUnsignedLong(p->unreadable));
-        PyTuple_SET_ITEM(row, 5, PyLong_FromUnsignedLong(p->writes));
-        PyTuple_SET_ITEM(row, 6, PyLong_FromUnsignedLong(p->refused));
-        PyTuple_SET_ITEM(row, 7, last);
-        PyTuple_SET_ITEM(row, 8, text);
-        PyTuple_SET_ITEM(row, 9, PyLong_FromUnsignedLong(p->changes));
-        for (int j = 0; j < 10; j++)
-            if (PyTuple_GET_ITEM(row, j) == NULL) goto fail; /* no memory for an int: the row is freed with rows */
+    size_t n;
+    Param **order = param_sorted(st, &n);
+    PyObject *rows = order != NULL ? PyList_New((Py_ssize_t)n) : NULL;
+    for (size_t k = 0; rows != NULL && k < n; k++) {
+        PyObject *row = param_row(order[k]);
+        if (row == NULL) Py_CLEAR(rows);
+        else PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
     }
     PyMem_Free(order);
     return rows;
-fail:
+}
+
+/* b follows a in --stats' parameter table's run: the next address of the slave, the same counts, both
+ * named or both not (render/stats.py _parameter_table). */
+static int same_story(const Param *a, const Param *b) {
+    return b->key == a->key + 1 && (a->key & 0xFFFF) != 0xFFFF && b->reads == a->reads && b->unreadable == a->unreadable &&
+           b->writes == a->writes && b->refused == a->refused && b->changes == a->changes &&
+           (b->code == NULL) == (a->code == NULL);
+}
+
+/* table(max_rows, group_min) -> (pieces, expanded, count, (reads, unreadable, writes, refused, changes)):
+ * stats_store.ParameterTable.table, the rows of the parameter table without a row per parameter. */
+static PyObject *stats_table(Stats *st, PyObject *args) {
+    Py_ssize_t max_rows, group_min;
+    if (!PyArg_ParseTuple(args, "nn", &max_rows, &group_min)) return NULL;
+    size_t n, first = 0;
+    Param **order = param_sorted(st, &n);
+    PyObject *pieces = order != NULL ? PyList_New(0) : NULL;
+    unsigned long long totals[5] = {0}, expanded = 0;
+    for (size_t k = 0; pieces != NULL && k < n; k++) {
+        const Param *p = order[k];
+        const unsigned long counts[5] = {p->reads, p->unreadable, p->writes, p->refused, p->changes};
+        for (int j = 0; j < 5; j++) totals[j] += counts[j];
+        if (k + 1 < n && same_story(p, order[k + 1])) continue;
+        size_t end = k + 1;
+        int grouped = end - first >= (size_t)group_min;
+        for (size_t start = first; start < end && PyList_GET_SIZE(pieces) < max_rows; start = grouped ? end : start + 1) {
+            size_t stop = grouped ? end : start + 1;
+            PyObject *members = PyList_New((Py_ssize_t)(stop - start));
+            for (size_t m = start; members != NULL && m < stop; m++) {
+                PyObject *row = param_row(order[m]);
+                if (row == NULL) Py_CLEAR(members);
+                else PyList_SET_ITEM(members, (Py_ssize_t)(m - start), row);
+            }
+            if (members == NULL || PyList_Append(pieces, members) < 0) Py_CLEAR(pieces);
+            Py_XDECREF(members);
+            if (pieces == NULL) break;
+        }
+        expanded += grouped ? 1 : end - first;
+        first = end;
+    }
     PyMem_Free(order);
-    Py_XDECREF(rows);
-    return NULL;
+    if (pieces == NULL) return NULL;
+    return Py_BuildValue("(NKn(KKKKK))", pieces, expanded, (Py_ssize_t)n, totals[0], totals[1], totals[2], totals[3],
+                         totals[4]);
 }
 
 static int poll_order(const void *a, const void *b) {
@@ -809,6 +856,8 @@ static PyMethodDef stats_methods[] = {
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
     {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
+    {"table", (PyCFunction)stats_table, METH_VARARGS,
+     "table(max_rows, group_min) -> (pieces, expanded, count, totals): the --stats parameter table's rows"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
     {"functions", (PyCFunction)stats_functions, METH_NOARGS,
      "the engine's [(slave, function, requests, responses, unanswered, {code: count})]"},

@@ -30,9 +30,6 @@ from __future__ import annotations
 
 import json
 import math
-import operator
-from itertools import compress, count as counter, islice, repeat
-from operator import itemgetter
 from dataclasses import dataclass, field
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -277,7 +274,6 @@ class StatsCollector:
 
     def blocks(self) -> list[str | TableSpec]:
         """The summary line and the tables, for the rich or the plain writer."""
-        parameter_rows = self.parameter_rows()  # tuples: a table shows a few rows of them
         report = self.report(with_parameters=False, poll_rows=MAX_POLL_ROWS)  # (timings of the rows shown)
         blocks: list[str | TableSpec] = []
         summary = (
@@ -322,7 +318,7 @@ class StatsCollector:
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
             blocks += [_poll_table(report["poll_cycle"], self.poll_addresses), ""]
-        blocks.append(_parameter_table(parameter_rows))
+        blocks.append(_parameter_table(self.store))
         return blocks
 
     def poll_addresses(self, row: dict[str, Any]) -> str:
@@ -382,43 +378,20 @@ def _poll_table(rows: list[dict[str, Any]], addresses: Callable[[dict[str, Any]]
     return table
 
 
-_STORY = itemgetter(0, 3, 4, 5, 6, 9)  # slave, reads, unreadable, writes, refused, changes
-_ADDRESS = itemgetter(1)
-_CODE = itemgetter(2)
-
-
-def _parameter_table(parameters: list[ParameterRow]) -> TableSpec:
+def _parameter_table(store: Any) -> TableSpec:
     """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
-    all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all."""
+    all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all: the runs
+    are found by the store (stats_store.ParameterTable.table, or the compiled one's), which makes rows
+    of the parameters shown only."""
     table = TableSpec(
         "Parameters",
         ["slave", "address", "code", "reads", "unreadable", "writes", "refused", "last", "changes"],
         [True, True, False, True, True, True, True, False, True],
         squeeze={7: 24},  # long enumeration texts and bit lists are cut on a terminal only
     )
-    # Runs of neighbouring rows with the same story (slave, counts, named or not, next address), found
-    # by comparing each row with the one before through map and zip (a max-size capture has 67,000).
-    count = len(parameters)
-    following = lambda: islice(parameters, 1, None)  # noqa: E731
-    joined = map(operator.and_, map(operator.and_,
-        map(operator.eq, map(_STORY, following()), map(_STORY, parameters)),
-        map(operator.eq, map(operator.is_, map(_CODE, following()), repeat(None)),
-            map(operator.is_, map(_CODE, parameters), repeat(None)))),
-        map(operator.eq, map(operator.sub, map(_ADDRESS, following()), map(_ADDRESS, parameters)), repeat(1)))
-    ends = list(compress(counter(1), map(operator.not_, joined)))  # where a run ends
-    if count:
-        ends.append(count)
-    shown = expanded = first = 0
-    for end in ends:
-        grouped = end - first >= GROUP_MIN
-        if shown < MAX_PARAMETER_ROWS:
-            for start, stop in [(first, end)] if grouped else [(k, k + 1) for k in range(first, end)]:
-                if shown < MAX_PARAMETER_ROWS:
-                    shown += 1
-                    table.rows.append(_parameter_row(parameters[start:stop]))
-        expanded += 1 if grouped else end - first
-        first = end
-    reads, unreadable, writes, refused, changes = (sum(map(itemgetter(k), parameters)) for k in (3, 4, 5, 6, 9))
+    pieces, expanded, count, (reads, unreadable, writes, refused, changes) = store.table(MAX_PARAMETER_ROWS, GROUP_MIN)
+    shown = len(pieces)
+    table.rows.extend(_parameter_row(members) for members in pieces)
     if expanded > shown:
         table.rows.append(["", f"... (+{expanded - shown} more rows)", "", "", "", "", "", "", ""])
     if count > 1:

@@ -125,6 +125,30 @@ class ParameterTable:
     def functions(self) -> list[tuple[int, int, int, int, int, dict[int, int]]]:
         return []
 
+    def table(self, max_rows: int, group_min: int) -> tuple[list[list[ParameterRow]], int, int, tuple[int, ...]]:
+        """--stats' parameter table (render/stats.py _parameter_table): the rows of the first `max_rows`
+        pieces, a piece being a run of `group_min` or more parameters with the same story (the next
+        address of the slave, the same counts, all named or all unnamed) or one parameter; how many
+        pieces in all; how many parameters; the sums of reads, unreadable, writes, refused, changes."""
+        rows = self.parameters()
+        pieces: list[list[ParameterRow]] = []
+        expanded = first = 0
+        for index, row in enumerate(rows):
+            following = rows[index + 1] if index + 1 < len(rows) else None
+            if (following is not None and following[0] == row[0] and following[1] == row[1] + 1
+                    and following[3:7] == row[3:7] and following[9] == row[9]
+                    and (following[2] is None) == (row[2] is None)):
+                continue
+            end = index + 1
+            grouped = end - first >= group_min
+            for start in [first] if grouped else range(first, end):
+                if len(pieces) < max_rows:
+                    pieces.append(rows[start : end if grouped else start + 1])
+            expanded += 1 if grouped else end - first
+            first = end
+        totals = tuple(sum(row[k] for row in rows) for k in (3, 4, 5, 6, 9))
+        return pieces, expanded, len(rows), totals
+
     @property
     def parameter_count(self) -> int:
         return len(self._parameters)

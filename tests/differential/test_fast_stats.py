@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from dissector.accel import fastsummary
@@ -230,3 +230,23 @@ def test_cli_stats_same_bytes(extra: list[str], tmp_path: Path, monkeypatch: pyt
     if "--json" in extra:
         report = json.loads(cli(["--stats", str(raw), *extra], monkeypatch, pure=False))
         assert report["frames"] == len(records)
+
+
+@given(st.lists(st.tuples(st.sampled_from([1, 2, 3]), st.sampled_from([0, 1, 2, 3, 4, 5, 0xFFFE, 0xFFFF]),
+                          st.integers(0, 5), st.integers(0, 3), st.sampled_from([None, "ACC", "DEC"])),
+                max_size=80),
+       st.integers(1, 12), st.integers(1, 4))
+@example([(1, 0xFFFE, 0, 1, None), (1, 0xFFFF, 0, 1, None), (2, 0, 0, 1, None), (2, 1, 0, 1, None)], 10, 2)
+@settings(max_examples=300, deadline=None)
+def test_parameter_table_same_rows(events: list, max_rows: int, group_min: int) -> None:
+    """The compiled store's parameter table (Stats.table) gives the rows, pieces, count and sums of the
+    Python store's: runs of the next address of a slave (never across slaves: 0xFFFF then 0 of the next),
+    the same counts, named or not, cut at max_rows."""
+    from dissector.render.stats_store import CompiledStore
+
+    stores = [CompiledStore(50_000), ParameterTable()]
+    for slave, address, event, value, code in events:
+        for store in stores:
+            store.param(slave, address, event, value, code, "protected" if event == 1 else None)
+    compiled, python = (store.table(max_rows, group_min) for store in stores)
+    assert compiled == python
