@@ -40,17 +40,13 @@ def plain(blocks: list[str | TableSpec]) -> str:
             continue
         rows = [[_text(cell) for cell in row] for row in block.rows]
         widths = [len(header) for header in block.headers]
-        for row in rows:
-            for index, cell in enumerate(row):
-                if len(cell) > widths[index]:
-                    widths[index] = len(cell)
-        right = block.right
+        for index, column in enumerate(zip(*rows)):  # (rows are as long as the headers)
+            widths[index] = max(widths[index], *map(len, column))
+        # One format a table: `{:>5}  {:<28}...`, rjust or ljust to each column's width.
+        template = "  ".join(f"{{:{'>' if right else '<'}{width}}}" for right, width in zip(block.right, widths))
 
         def line(cells: list[str]) -> str:
-            return "  ".join(
-                cell.rjust(width) if right[index] else cell.ljust(width)
-                for index, (cell, width) in enumerate(zip(cells, widths))
-            ).rstrip()
+            return template.format(*cells).rstrip()
 
         out.append(block.title)
         out.append(line(block.headers))
