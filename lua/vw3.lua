@@ -2059,9 +2059,13 @@ package.preload["vw3.ascii"] = function(...)
 local M = require("vw3.env")
 local ipairs, math, string, tonumber = ipairs, math, string, tonumber
 local _ENV = M -- (the other modules' names: their exports in M)
-local add_noise, crc16, emit, floor, flush_noise, format = add_noise, crc16, emit, floor, flush_noise, format
+local DATA, add_noise, crc16, emit, floor = DATA, add_noise, crc16, emit, floor
+local flush_noise, format = flush_noise, format
 local interpretations, time_at = interpretations, time_at
 local detect_mode
+-- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
+local TEXTS = DATA.rules.texts
+local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
@@ -2163,10 +2167,10 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr then frame.warnings = { "line ends with LF without CR (the spec ends a frame with CR LF)" } end
+  if lost_cr then frame.warnings = { LF_WITHOUT_CR } end
   if lower then
     frame.warnings = frame.warnings or {}
-    frame.warnings[#frame.warnings + 1] = "lower-case hex digits (the spec wants upper case)"
+    frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX
   end
   emit(s, frame, items)
 end
@@ -2538,7 +2542,9 @@ local function shape_parser(shape)
     index_of[name] = index
     local here, next_ = static and format("%d", static) or "p", static and format("%d", static + 1) or "p + 1"
     if size ~= nil then
-      if not static then lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
+      if not static then
+        lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
+      end
       local value = size == 1 and "b[d + %s]" or "b[d + %s] * 256 + b[d + %s]"
       lines[#lines + 1] = format("local v%d = " .. value, index, here, next_)
       keys[#keys + 1] = format("[%q] = v%d", name, index)
@@ -3786,9 +3792,11 @@ local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
   if profile.functions ~= nil and not profile.functions[code] then
-    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code,
+      device = profile.device }))
   elseif profile.inner_only and profile.inner_only[code] then
-    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code,
+      device = profile.device }))
   end
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
@@ -3908,7 +3916,8 @@ local function explain_exception(st, f, device)
   if causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
-    note(f, say("exception_cause", { code = code, device = profile.device, name = name, causes = concat(texts, " or ") }))
+    note(f, say("exception_cause", { code = code, device = profile.device, name = name,
+      causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(st, f, device)

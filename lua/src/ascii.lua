@@ -4,9 +4,13 @@
 local M = require("vw3.env")
 local ipairs, math, string, tonumber = ipairs, math, string, tonumber
 local _ENV = M -- (the other modules' names: their exports in M)
-local add_noise, crc16, emit, floor, flush_noise, format = add_noise, crc16, emit, floor, flush_noise, format
+local DATA, add_noise, crc16, emit, floor = DATA, add_noise, crc16, emit, floor
+local flush_noise, format = flush_noise, format
 local interpretations, time_at = interpretations, time_at
 local detect_mode
+-- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
+local TEXTS = DATA.rules.texts
+local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
@@ -108,10 +112,10 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr then frame.warnings = { "line ends with LF without CR (the spec ends a frame with CR LF)" } end
+  if lost_cr then frame.warnings = { LF_WITHOUT_CR } end
   if lower then
     frame.warnings = frame.warnings or {}
-    frame.warnings[#frame.warnings + 1] = "lower-case hex digits (the spec wants upper case)"
+    frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX
   end
   emit(s, frame, items)
 end

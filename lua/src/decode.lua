@@ -124,7 +124,9 @@ local function shape_parser(shape)
     index_of[name] = index
     local here, next_ = static and format("%d", static) or "p", static and format("%d", static + 1) or "p + 1"
     if size ~= nil then
-      if not static then lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
+      if not static then
+        lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
+      end
       local value = size == 1 and "b[d + %s]" or "b[d + %s] * 256 + b[d + %s]"
       lines[#lines + 1] = format("local v%d = " .. value, index, here, next_)
       keys[#keys + 1] = format("[%q] = v%d", name, index)

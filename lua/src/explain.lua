@@ -26,9 +26,11 @@ local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
   if profile.functions ~= nil and not profile.functions[code] then
-    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code,
+      device = profile.device }))
   elseif profile.inner_only and profile.inner_only[code] then
-    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code,
+      device = profile.device }))
   end
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
@@ -148,7 +150,8 @@ local function explain_exception(st, f, device)
   if causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
-    note(f, say("exception_cause", { code = code, device = profile.device, name = name, causes = concat(texts, " or ") }))
+    note(f, say("exception_cause", { code = code, device = profile.device, name = name,
+      causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(st, f, device)
