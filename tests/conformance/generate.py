@@ -49,7 +49,8 @@ PROFILE = "auto"  # the CLI's default: the selection stage is part of what is ch
 
 
 def _crafted() -> list[tuple[str, bytes]]:
-    """One transaction per lifting rule it breaks (request, then its answer where one is needed)."""
+    """One transaction per lifting rule it breaks (request, then its answer where one is needed), and
+    answers whose data do not fit their layout (malformed: a count past the end, a byte count too small)."""
     h = bytes.fromhex
     f = lambda text: with_crc(h(text))  # noqa: E731
     return [
@@ -72,6 +73,8 @@ def _crafted() -> list[tuple[str, bytes]]:
         ("fc23 write", f("0117000A00020014000102002A") + f("01170400010002")),
         ("fc24 fifo above 31", f("011804DE") + f("011800420020" + "0001" + "0002" * 31)),
         ("fc24 fifo byte count", f("011804DE") + f("011800080002000100020003")),
+        ("fc24 fifo count past the end", f("011804DE") + f("011800060005" + "0001" * 2)),
+        ("fc17 byte count below 2", f("0111") + f("01110100")),
         ("fc8 unknown sub-function", f("010800630000") + f("010800630000")),
         ("fc17 run indicator", f("0111") + f("011103011241")),
         ("broadcast read", f("000300000001")),
