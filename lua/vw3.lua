@@ -2424,7 +2424,7 @@ local ipairs, load, pairs, string, table, type = ipairs, load, pairs, string, ta
 local unpack = table.unpack or unpack
 local _ENV = M -- (the other modules' names: their exports in M)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
-local concat, floor, format, lane = concat, floor, format, lane
+local concat, floor, format = concat, floor, format
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -2760,13 +2760,8 @@ local function lifter(rule, limit, layout)
   end
 end
 
--- The registers an answer of function fn reads, from its request's fields (the request's window: FC23
--- reads from read_start).
+-- Each code's lifting rule per direction (nil: a named special case).
 local LIFT_OF = { [REQUEST] = {}, [RESPONSE] = {} }
-function lane.asked_window(fn, request)
-  local rule = LIFT_OF[REQUEST][fn]
-  return request[rule.start], request[rule.quantity]
-end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {
@@ -5070,11 +5065,11 @@ function lane.answer(st, bytes, n, time, number)
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
-  -- read_registers_response_handler, read_bits_response_handler: the request's start and quantity, its
+  -- the lifting rules of read_registers_response, read_bits_response: the request's start and quantity, its
   -- byte count agreeing
   local fields = pending.fields
   if fields == nil then return nil end
-  local start, quantity = lane.asked_window(code, fields)
+  local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
   local bits = run == "read_bits_response"
   if bits then

@@ -6,7 +6,7 @@ local ipairs, load, pairs, string, table, type = ipairs, load, pairs, string, ta
 local unpack = table.unpack or unpack
 local _ENV = M -- (the other modules' names: their exports in M)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
-local concat, floor, format, lane = concat, floor, format, lane
+local concat, floor, format = concat, floor, format
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -342,13 +342,8 @@ local function lifter(rule, limit, layout)
   end
 end
 
--- The registers an answer of function fn reads, from its request's fields (the request's window: FC23
--- reads from read_start).
+-- Each code's lifting rule per direction (nil: a named special case).
 local LIFT_OF = { [REQUEST] = {}, [RESPONSE] = {} }
-function lane.asked_window(fn, request)
-  local rule = LIFT_OF[REQUEST][fn]
-  return request[rule.start], request[rule.quantity]
-end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {

@@ -253,11 +253,11 @@ function lane.answer(st, bytes, n, time, number)
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
-  -- read_registers_response_handler, read_bits_response_handler: the request's start and quantity, its
+  -- the lifting rules of read_registers_response, read_bits_response: the request's start and quantity, its
   -- byte count agreeing
   local fields = pending.fields
   if fields == nil then return nil end
-  local start, quantity = lane.asked_window(code, fields)
+  local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
   local bits = run == "read_bits_response"
   if bits then
