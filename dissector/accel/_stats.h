@@ -445,6 +445,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
             if (PyErr_Occurred()) return NULL;
             continue;
         }
+        Py_CLEAR(p->code); /* the new device's code, none where it names nothing (not the old one's) */
         if (take_code(p, namer, p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last) < 0) return NULL;
         Py_INCREF(namer);
         Py_XSETREF(p->namer, namer);

@@ -109,8 +109,7 @@ class ParameterTable:
             if namer is None:
                 continue
             text, code = namer(address, 0 if stats.status is not None or stats.last is None else stats.last)
-            if code is not None:
-                stats.code = code
+            stats.code = code  # the new device's, None where it names nothing (not the old one's)
             if stats.status is None and stats.last is not None:
                 stats.last_text = text
 

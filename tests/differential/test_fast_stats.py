@@ -250,3 +250,26 @@ def test_parameter_table_same_rows(events: list, max_rows: int, group_min: int) 
             store.param(slave, address, event, value, code, "protected" if event == 1 else None)
     compiled, python = (store.table(max_rows, group_min) for store in stores)
     assert compiled == python
+
+
+@pytest.mark.parametrize("extra", [[], ["--json"]])
+def test_a_profile_chosen_twice_in_one_pass(extra: list[str], monkeypatch: pytest.MonkeyPatch) -> None:
+    """Standard input (one pass): profile auto chooses the ATV71 at frame 5, then the generic profile at
+    frame 7 (function 1 answered). The engine's side sees both choices, the Python stages' one batch the
+    last only: the codes kept are the last device's (none for 8501), both ways, not the ATV71's CMD
+    (bench/fastsummary_fuzz.py seed 16)."""
+    data = bytes.fromhex("f70621350006076cf70621350006076c00f70320d10001cb65f703020001b191"
+                         "f70120d0001aa36ef7010461e86b065d24")
+
+    def decode(pure: bool) -> str:
+        if pure:
+            monkeypatch.setenv("VW3_PURE_PYTHON", "1")
+        else:
+            monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+        stdout = io.StringIO()
+        assert run(["-", "--stats", *extra], Environment(io.BytesIO(data), stdout, io.StringIO(), False, False)) == 0
+        return stdout.getvalue()
+
+    fast = decode(False)
+    assert fast == decode(True)
+    assert "CMD" not in fast and "8501" in fast
