@@ -7,7 +7,8 @@ The change: the read requests' quantity check (data/modbus.toml [lift.read_reque
 limit (1..123) instead of the layout's own (1..125). A read of 124 registers answered normally is quiet
 before and draws the warning after. The compiled engine shows that transaction itself before the change
 (no warning: nothing to hand over); if it ignored the regenerated table it would still show it quiet
-after, and its output would differ from the Python stages'.
+after, and its output would differ from the Python stages'. The same copy changes that check's text in
+the catalogue ([texts] range): every engine, the plugin too, writes the new words, none the old.
 """
 from __future__ import annotations
 
@@ -27,7 +28,10 @@ RULE = '[lift.read_request]\nstart = "start"\nquantity = "quantity"\nchecks = [{
 CHANGED = RULE.replace('field = "quantity" }', 'field = "quantity", limit = "write_registers" }')
 REQUEST = with_crc(bytes.fromhex("0103000A007C"))  # 124 registers from 10
 ANSWER = with_crc(bytes.fromhex("0103F8") + bytes(248))
-WARNING = "[warning: quantity 124 outside the spec's 1..123]"
+# The catalogue's text of that check changed in the same copy: each engine writes the text the table gives.
+TEXT = 'range = "{what} {value} outside the spec\'s {low}..{high}"\n'
+CHANGED_TEXT = TEXT.replace("outside the spec's", "not in the spec's range")
+WARNING = "[warning: quantity 124 not in the spec's range 1..123]"
 
 
 def _copy(tmp: Path, changed: bool) -> Path:
@@ -41,7 +45,8 @@ def _copy(tmp: Path, changed: bool) -> Path:
         table = root / "dissector" / "data" / "modbus.toml"
         text = table.read_text(encoding="utf-8")
         assert text.count(RULE) == 1, "the rule this test changes is no longer stated this way"
-        table.write_text(text.replace(RULE, CHANGED), encoding="utf-8")
+        assert text.count(TEXT) == 1, "the text this test changes is no longer stated this way"
+        table.write_text(text.replace(RULE, CHANGED).replace(TEXT, CHANGED_TEXT), encoding="utf-8")
     env = _env(root)
     for command in ([sys.executable, "-m", "dissector.codegen"], [sys.executable, "setup.py", "-q", "build_ext", "--inplace"]):
         result = subprocess.run(command, cwd=root, env=env, capture_output=True, text=True, timeout=600)
@@ -85,7 +90,7 @@ def test_every_engine_follows_a_changed_lifting_rule(copies: dict[bool, Path], t
         assert compiled == python
         outputs[changed] = python
     assert len(outputs[False]) == len(outputs[True]) == 2
-    assert WARNING not in outputs[False][0] and outputs[False][0].endswith("Read Holding Registers 10..133 (124)  CRC ok")
+    assert "[warning:" not in outputs[False][0] and outputs[False][0].endswith("Read Holding Registers 10..133 (124)  CRC ok")
     assert outputs[True][0].endswith(f"Read Holding Registers 10..133 (124) {WARNING}  CRC ok")
 
 
@@ -103,5 +108,6 @@ def test_the_plugin_follows_a_changed_lifting_rule(copies: dict[bool, Path], tmp
         command = [tshark, "-n", "-2", "-X", f"lua_script:{plugin}", "-o", USER_DLT, "-r", str(pcap), "-V"]
         result = subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=300)
         assert result.returncode == 0, result.stderr
-        seen[changed] = "quantity 124 outside the spec's 1..123" in result.stdout
-    assert seen == {False: False, True: True}
+        seen[changed] = ("quantity 124 not in the spec's range 1..123" in result.stdout,
+                         "quantity 124 outside the spec's" in result.stdout)
+    assert seen == {False: (False, False), True: (True, False)}
