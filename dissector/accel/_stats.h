@@ -787,6 +787,63 @@ static PyObject *runs_value(const Run *runs, const int *slaves, size_t count, in
 
 static PyObject *quantile_value(const Quantile *q) { return Py_BuildValue("(Kdd)", q->count, q->low, q->high); }
 
+/* response(slave, function, ns): a response time of an answer the Python stages showed (StatsCollector.add). */
+static PyObject *stats_response(Stats *st, PyObject *args) {
+    int slave, function;
+    long long ns;
+    if (!PyArg_ParseTuple(args, "iiL", &slave, &function, &ns)) return NULL;
+    if (slave < 0 || slave > 255 || function < 0 || function > 255) {
+        PyErr_SetString(PyExc_ValueError, "response: slave and function 0..255");
+        return NULL;
+    }
+    if (tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, ns, 1) < 0) return NULL;
+    Py_RETURN_NONE;
+}
+
+static int tally_order(const void *a, const void *b) {
+    const Tally *x = a, *y = b;
+    if (x->tag != y->tag) return x->tag < y->tag ? -1 : 1;
+    return x->key < y->key ? -1 : x->key > y->key;
+}
+
+/* The rank-th smallest key (1-based) of n sorted tallies (stats.time_summary's nth). */
+static long long tally_nth(const Tally *t, size_t n, double rank) {
+    double seen = 0;
+    for (size_t k = 0; k < n; k++)
+        if ((seen += t[k].value) >= rank) return t[k].key;
+    return t[n - 1].key;
+}
+
+/* time_summaries() -> {slave << 8 | function: (count, min, median, p95, max)}: stats.time_summary of
+ * each pair's response times (ns), in seconds, without a dict of them in Python. */
+static PyObject *stats_time_summaries(Stats *st, PyObject *unused) {
+    const Tallies *table = &st->tallies[TALLY_TIMES];
+    Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
+    PyObject *summaries = all != NULL ? PyDict_New() : NULL;
+    size_t n = 0;
+    for (size_t k = 0; summaries != NULL && k < table->size; k++)
+        if (table->slots[k].tag) all[n++] = table->slots[k];
+    qsort(all, n, sizeof *all, tally_order);
+    for (size_t first = 0, end; summaries != NULL && first < n; first = end) {
+        double count = 0;
+        for (end = first; end < n && all[end].tag == all[first].tag; end++) count += all[end].value;
+        const Tally *t = all + first;
+        size_t size = end - first;
+        unsigned long long half = (unsigned long long)count / 2;
+        double median = (unsigned long long)count % 2 ? (double)tally_nth(t, size, (double)half + 1)
+                      : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
+        double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(0.95 * count)));
+        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF);
+        PyObject *row = Py_BuildValue("(Kdddd)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9,
+                                      p95 / 1e9, (double)t[size - 1].key / 1e9);
+        if (owner == NULL || row == NULL || PyDict_SetItem(summaries, owner, row) < 0) Py_CLEAR(summaries);
+        Py_XDECREF(owner);
+        Py_XDECREF(row);
+    }
+    PyMem_Free(all);
+    return all == NULL ? PyErr_NoMemory() : summaries;
+}
+
 /* bus_state(): what BusTiming keeps but its histograms (tallies()), for the report (bustiming.py). */
 static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
     const Bus *b = &st->bus;
@@ -855,6 +912,9 @@ static PyMethodDef stats_methods[] = {
     {"bus_item", (PyCFunction)stats_bus_item, METH_VARARGS,
      "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
+    {"response", (PyCFunction)stats_response, METH_VARARGS, "response(slave, function, ns): a response time"},
+    {"time_summaries", (PyCFunction)stats_time_summaries, METH_NOARGS,
+     "{slave << 8 | function: (count, min, median, p95, max)} of the response times, in seconds"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
     {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
     {"table", (PyCFunction)stats_table, METH_VARARGS,

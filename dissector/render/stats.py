@@ -40,7 +40,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, ParameterRow, stamp
+from dissector.render.stats_store import MAX_PARAMETERS, ParameterRow, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -111,6 +111,11 @@ class StatsCollector:
             for time in (self.first_time, self.last_time):
                 if time is not None:
                     self.store.stamp(time)
+            for (slave, function), stats in self.functions.items():
+                for key, count in stats.times.items():
+                    for _ in range(count):
+                        self.store.response(slave, function, key)
+                stats.times.clear()
             if bus is not None:
                 bus.attach(self.store)
             self.bus = bus
@@ -155,8 +160,11 @@ class StatsCollector:
             stats.responses += 1
         if item.response_time is not None:
             key = round(item.response_time * 1e9)
-            times = stats.times
-            times[key] = times.get(key, 0) + 1
+            if self.attached:
+                self.store.response(item.slave, item.function, key)  # beside the engine's (time_summaries)
+            else:
+                times = stats.times
+                times[key] = times.get(key, 0) + 1
 
     def _add_request(self, frame: Frame, stats: FunctionStats) -> None:
         stats.requests += 1
@@ -170,11 +178,10 @@ class StatsCollector:
     def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
         """The Python stages' counts plus the engine's (sums: the order of frames does not matter)."""
         merged = dict(self.functions)
-        times = self.store.tallies(TALLY_TIMES) if self.attached else {}
         for slave, function, requests, responses, unanswered, exceptions in self.store.functions():
             own = merged.get((slave, function))
             stats = FunctionStats(requests=requests, responses=responses, unanswered=unanswered,
-                                  exceptions=dict(exceptions), times=times.get(slave << 8 | function, {}))
+                                  exceptions=dict(exceptions))
             if own is not None:
                 stats.requests += own.requests
                 stats.responses += own.responses
@@ -197,7 +204,14 @@ class StatsCollector:
         of parameter_rows() instead of a dict per parameter, and the timings of `poll_rows` poll keys
         at most (those a table shows)."""
         functions = []
+        # Attached to the compiled store, every response time is there: its summaries, worked out in C.
+        summaries = self.store.time_summaries() if self.attached else None
         for (slave, function), stats in sorted(self._all_functions().items()):
+            if summaries is None:
+                response_time = time_summary(stats.times)
+            else:
+                summary = summaries.get(slave << 8 | function)
+                response_time = None if summary is None else dict(zip(_TIME_KEYS, summary))
             functions.append(
                 {
                     "slave": slave,
@@ -209,7 +223,7 @@ class StatsCollector:
                     "exceptions": {str(code): count for code, count in sorted(stats.exceptions.items())},
                     "unanswered": stats.unanswered,
                     "crc_errors": stats.crc_errors,
-                    "response_time": time_summary(stats.times),
+                    "response_time": response_time,
                 }
             )
         parameters = list(self.parameter_dicts()) if with_parameters else None
@@ -410,6 +424,9 @@ def _parameter_row(members: list[ParameterRow]) -> list[Cell]:
     texts = {row[8] if row[8] is not None or row[7] is None else str(row[7]) for row in members}
     last_value = texts.pop() if len(texts) == 1 else "(various)"
     return [str(first[0]), address, code, *(str(value) for value in first[3:7]), last_value or "", str(first[9])]
+
+
+_TIME_KEYS = ("count", "min", "median", "p95", "max")  # time_summary's, as the compiled store gives them
 
 
 def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:
