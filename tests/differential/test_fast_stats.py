@@ -273,3 +273,23 @@ def test_a_profile_chosen_twice_in_one_pass(extra: list[str], monkeypatch: pytes
     fast = decode(False)
     assert fast == decode(True)
     assert "CMD" not in fast and "8501" in fast
+
+
+@given(st.lists(st.tuples(st.sampled_from([(1, 3), (1, 4), (7, 3)]),
+                          st.one_of(st.integers(-10**6, 10**10), st.sampled_from([0, 1, 2, 2_000_000, 2_000_001]))),
+                min_size=1, max_size=60))
+@settings(max_examples=300, deadline=None)
+def test_response_time_summaries_are_time_summary(times: list) -> None:
+    """The compiled store's count, min, median (the mean of the middle two for an even count), nearest-rank
+    p95 and max of each pair's response times are render/stats.py time_summary's, float for float."""
+    from dissector.render.stats import _TIME_KEYS, time_summary
+    from dissector.render.stats_store import CompiledStore
+
+    store = CompiledStore(50_000)
+    expected: dict[int, dict[int, int]] = {}
+    for (slave, function), ns in times:
+        store.response(slave, function, ns)
+        pair = expected.setdefault(slave << 8 | function, {})
+        pair[ns] = pair.get(ns, 0) + 1
+    got = {owner: dict(zip(_TIME_KEYS, summary)) for owner, summary in store.time_summaries().items()}
+    assert got == {owner: time_summary(pair) for owner, pair in expected.items()}
