@@ -2536,21 +2536,29 @@ local function shape_parser(shape)
     local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
     lines[2] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
   end
+  local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
+  for _, field in ipairs(shape) do
+    if field.count ~= nil then counts[field.count] = true end
+  end
   local static = 0 -- where the next field starts while it is a constant; then `p`
   for index, field in ipairs(shape) do
     local name, kind, size = field.name, field.type, SIZES[field.type]
     index_of[name] = index
-    local here, next_ = static and format("%d", static) or "p", static and format("%d", static + 1) or "p + 1"
+    local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
     if size ~= nil then
       if not static then
         lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
       end
-      local value = size == 1 and "b[d + %s]" or "b[d + %s] * 256 + b[d + %s]"
-      lines[#lines + 1] = format("local v%d = " .. value, index, here, next_)
-      keys[#keys + 1] = format("[%q] = v%d", name, index)
+      local value = format("b[%s]", here)
+      if size == 2 then value = format("%s * 256 + b[%s]", value, static and format("d + %d", static + 1) or "d + p + 1") end
+      if counts[name] or not static then
+        lines[#lines + 1] = format("local v%d = %s", index, value)
+        value = format("v%d", index)
+      end
+      keys[#keys + 1] = format("[%q] = %s", name, value)
       if static then static = static + size else lines[#lines + 1] = format("p = p + %d", size) end
     elseif kind == "rest" then
-      keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", here)
+      keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", static and format("%d", static) or "p")
     else
       if static then lines[#lines + 1] = format("local p = %d", static) end
       static = nil
@@ -2659,105 +2667,99 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- The generic lifter (decode/fields.py lifter): one rule of data/modbus.toml [lift] prepared for one
 -- function code and direction, as a handler. Warnings in the table's order: checks, span, byte count,
--- odd count, coil, echo.
-local COIL_ON, COIL_OFF = 0xFF00, 0x0000
+-- odd count, coil, echo. Like the parsers, each rule is written out as a Lua function once (load), its
+-- limits and fields in place, so that a frame costs what a hand-written handler costs.
 local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
 
 local function echo_check(f, fields, request, echo)
-  local answered, names = request.fields, echo.fields
-  local first, second = names[1], names[2] -- (a list made only when one differs: most answers echo)
-  if answered[first] == fields[first] and (second == nil or answered[second] == fields[second]) and #names <= 2 then
-    return
-  end
-  local differ = {}
-  for _, name in ipairs(names) do
+  local answered, differ = request.fields, {}
+  for _, name in ipairs(echo.fields) do
     if answered[name] ~= fields[name] then differ[#differ + 1] = name end
   end
-  if #differ == 0 then return end
-  if echo.names ~= "differing" then differ = names end
+  if echo.names ~= "differing" then differ = echo.fields end
   warn(f, say("echo", { fields = concat(differ, " and "), verb = #differ == 1 and "differs" or "differ" }))
 end
 
 local function lifter(rule, limit, layout)
-  local checks = {}
-  for index, check in ipairs(rule.checks) do
-    local range = RULES.limits[check.limit or limit]
-    checks[index] = { what = check.what, field = check.field, low = range[1], high = range[2],
-      above = check.test == "above" }
-  end
+  local shape = RULES.layouts[layout] or {}
+  local function field(name) return format("fields[%q]", name) end
+  local out = { "local warn, say, make_registers, make_bits, floor, echo_check, echo = ...",
+    "return function(f, b)", "local fields = f.fields" }
+  local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
-  local start_from_request, quantity_from_request = start == REQUEST_START, quantity == REQUEST_QUANTITY
-  local count_from_request = count ~= nil and count.of == REQUEST_QUANTITY
-  local from_request = start_from_request or quantity_from_request or count_from_request or rule.echo ~= nil
-  local quantity_const = type(quantity) == "number"
-  local unpaired, span, odd_count, coil, echo = rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo
-  -- where the values are: a counted field (its start, its count field) or one word at a fixed offset
-  local value_kind, value_at, value_count, value_half, value_offset, value_start
-  if values ~= nil then
-    value_kind, value_at, value_start = values.kind, values.field .. "_at", values.start
-    for _, field in ipairs(RULES.layouts[layout] or {}) do
-      if field.name == values.field then value_count, value_half = field.count, field.half end
-    end
-    value_offset = offset_of(RULES.layouts[layout], values.field)
+  if start == REQUEST_START or quantity == REQUEST_QUANTITY or (count and count.of == REQUEST_QUANTITY) or rule.echo then
+    add("local request = f.request")
+    add("if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)")
   end
-  return function(f, b)
-    local fields = f.fields
-    local request = from_request and f.request or nil
-    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
-    local first, many
-    if start_from_request then
-      first = request and request.start
-    elseif start ~= nil then
-      first = fields[start]
+  if start == REQUEST_START then add("local first = request and request.start")
+  else add("local first = %s", start and field(start) or "nil") end
+  if type(quantity) == "number" then add("local many = %d", quantity)
+  elseif quantity == REQUEST_QUANTITY then
+    add("local many = request and request.quantity")
+    if rule.unpaired_unit then
+      add("if many == nil and fields.byte_count %% %d == 0 then many = floor(fields.byte_count / %d) end",
+        rule.unpaired_unit, rule.unpaired_unit)
     end
-    if quantity_const then
-      many = quantity
-    elseif quantity_from_request then
-      many = request and request.quantity
-      if many == nil and unpaired ~= nil and fields.byte_count % unpaired == 0 then
-        many = floor(fields.byte_count / unpaired)
-      end
-    elseif quantity ~= nil then
-      many = fields[quantity]
-    end
-    f.start, f.quantity = first, many
-    for index = 1, #checks do
-      local check = checks[index]
-      local value = fields[check.field]
-      if check.above then
-        if value > check.high then warn(f, say("above", { what = check.what, value = value, high = check.high })) end
-      elseif value < check.low or value > check.high then
-        warn(f, say("range", { what = check.what, value = value, low = check.low, high = check.high }))
-      end
-    end
-    if span and first + many > 0x10000 then warn(f, say("span", { first = first, last = first + many - 1 })) end
-    if count ~= nil then
-      local of
-      if count_from_request then of = request and request.quantity else of = fields[count.of] end
-      if of ~= nil then
-        local given = fields.byte_count
-        local expected = count.plus + (count.unit > 0 and of * count.unit or floor((of + 7) / 8))
-        if given ~= expected then warn(f, say(count.text, { count = given, quantity = of })) end
-      end
-    end
-    if odd_count and fields.byte_count % 2 == 1 then warn(f, say("odd_count", { count = fields.byte_count })) end
-    if coil ~= nil and fields[coil] ~= COIL_ON and fields[coil] ~= COIL_OFF then
-      warn(f, say("coil_value", { value = fields[coil] }))
-    end
-    if request ~= nil and echo ~= nil then echo_check(f, fields, request, echo) end
-    if value_kind == "registers" then
-      local words = fields[value_count]
-      if value_half then words = floor(words / 2) end
-      f.registers = make_registers(b, fields[value_at], words, value_start and fields[value_start] or first)
-    elseif value_kind == "bits" then
-      f.bits = make_bits(b, fields[value_at], fields[value_count], first, many)
-    elseif value_kind == "register" then
-      f.registers = make_registers(b, f.data_at + value_offset, 1, first)
-    elseif value_kind == "coil" then
-      f.bits = { first = f.data_at + value_offset, count = 1, start = first,
-        single = fields[values.field] == COIL_ON and 1 or 0 }
+  else add("local many = %s", quantity and field(quantity) or "nil") end
+  add("f.start, f.quantity = first, many")
+  for _, check in ipairs(rule.checks) do
+    local range = RULES.limits[check.limit or limit]
+    if check.test == "above" then
+      add("if %s > %d then warn(f, say(\"above\", { what = %q, value = %s, high = %d })) end", field(check.field),
+        range[2], check.what, field(check.field), range[2])
+    else
+      add("if %s < %d or %s > %d then warn(f, say(\"range\", { what = %q, value = %s, low = %d, high = %d })) end",
+        field(check.field), range[1], field(check.field), range[2], check.what, field(check.field), range[1], range[2])
     end
   end
+  if rule.span then
+    add("if first + many > 65536 then warn(f, say(\"span\", { first = first, last = first + many - 1 })) end")
+  end
+  if count then
+    add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
+    add("if of ~= nil and fields.byte_count ~= %d + %s then", count.plus,
+      count.unit > 0 and format("of * %d", count.unit) or "floor((of + 7) / 8)")
+    add("  warn(f, say(%q, { count = fields.byte_count, quantity = of }))", count.text)
+    add("end")
+  end
+  if rule.odd_count then
+    add("if fields.byte_count %% 2 == 1 then warn(f, say(\"odd_count\", { count = fields.byte_count })) end")
+  end
+  if rule.coil then
+    add("if %s ~= 65280 and %s ~= 0 then warn(f, say(\"coil_value\", { value = %s })) end", field(rule.coil),
+      field(rule.coil), field(rule.coil))
+  end
+  if rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
+    local differs = {}
+    for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
+    add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
+  end
+  if values then
+    local at = field(values.field .. "_at")
+    if values.kind == "registers" or values.kind == "bits" then
+      local counted -- the values' count field, in words or bytes
+      for _, item in ipairs(shape) do
+        if item.name == values.field then
+          counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
+        end
+      end
+      if values.kind == "registers" then
+        add("f.registers = make_registers(b, %s, %s, %s)", at, counted, values.start and field(values.start) or "first")
+      else
+        add("f.bits = make_bits(b, %s, %s, first, many)", at, counted)
+      end
+    else -- one value at a fixed offset of the data
+      local offset = offset_of(shape, values.field)
+      if values.kind == "register" then
+        add("f.registers = make_registers(b, f.data_at + %d, 1, first)", offset)
+      else
+        add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
+          field(values.field))
+      end
+    end
+  end
+  add("end")
+  return load(concat(out, "\n"))(warn, say, make_registers, make_bits, floor, echo_check, rule.echo)
 end
 
 -- Each code's lifting rule per direction (nil: a named special case).
