@@ -520,7 +520,7 @@ def run(argv: list[str] | None, env: Environment) -> int:
         env.stdout.write(field_listing())
         return ExitStatus.OK
     try:
-        refuse_same_files(args)
+        refuse_same_files(args, env.stdin, env.stdout)
         if args.live or args.detect is not None:
             if args.live is None:
                 raise UsageError("--detect needs --live PORT")

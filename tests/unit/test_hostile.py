@@ -457,6 +457,47 @@ def test_an_output_that_is_the_input_is_refused(tmp_path: Path, monkeypatch: pyt
     assert (status, err) == (0, "")
 
 
+def _vw3_from(stdin: Path, *argv: str, cwd: Path, stdout: Path | None = None) -> tuple[int, str, str]:
+    """vw3-decode with standard input (and stdout, when given) redirected from files, as a shell does."""
+    with open(stdin, "rb") as source, (open(stdout, "ab") if stdout else open(os.devnull, "wb")) as sink:
+        done = subprocess.run([sys.executable, "-m", "dissector", *argv], stdin=source,
+                              stdout=sink if stdout else subprocess.PIPE, stderr=subprocess.PIPE,
+                              env={**os.environ, "PYTHONPATH": str(ROOT)}, cwd=cwd, timeout=120)
+    return done.returncode, (done.stdout or b"").decode(), done.stderr.decode()
+
+
+def test_an_output_that_is_standard_input_is_refused(tmp_path: Path) -> None:
+    capture, data = _capture(tmp_path, "st.pcap")
+    tail = "is standard input (-): it would be overwritten; give another file\n"
+    cases = [
+        (["-", "-w", "st.pcap"], f"-w st.pcap {tail}"),
+        (["-", "-w", "./st.pcap", "-P"], f"-w ./st.pcap {tail}"),
+        (["--report", "st.pcap", "-"], f"--report st.pcap {tail}"),
+        (["-", "--report", "r.html", "-w", "st.pcap", "-F", "pcapng"], f"-w st.pcap {tail}"),
+        (["--parquet", "st.pcap", "-"], f"--parquet st.pcap {tail}"),
+        (["--raw", "st.pcap", "-"], f"--raw st.pcap {tail}"),
+        (["--live", "/dev/stdin", "-w", "st.pcap"],
+         "-w st.pcap is the --live /dev/stdin: it would be overwritten; give another file\n"),
+    ]
+    for argv, message in cases:
+        assert _vw3_from(capture, *argv, cwd=tmp_path) == (2, "", f"{PROG}{message}"), argv
+        assert capture.read_bytes() == data
+        assert sorted(path.name for path in tmp_path.iterdir()) == ["st.pcap"]
+    # Standard output appended to the capture read: refused before a byte is read or written.
+    for argv in (["st.pcap"], ["-"], ["-", "-w", "-"]):
+        whose = "standard input (-)" if "-" in argv else "the input st.pcap"
+        assert _vw3_from(capture, *argv, cwd=tmp_path, stdout=capture) == (
+            2, "", f"{PROG}standard output is {whose}: redirect it to another file\n")
+        assert capture.read_bytes() == data
+    # Standard input that is not the output, and an output that is the input's device, still decode.
+    status, out, err = _vw3_from(capture, "-", "-w", "copy.pcap", "-P", cwd=tmp_path)
+    assert (status, err) == (0, "") and out.startswith("     1     0.000000") and (tmp_path / "copy.pcap").read_bytes()
+    assert _vw3_from(capture, "-", "-w", "/dev/null", cwd=tmp_path) == (0, "", "")
+    out_file = tmp_path / "out.pcap"
+    assert _vw3_from(capture, "st.pcap", "-w", "/dev/stdout", cwd=tmp_path, stdout=out_file) == (0, "", "")
+    assert out_file.read_bytes()[:24] == data[:24]
+
+
 def test_live_w_and_raw_to_the_same_file_are_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(tmp_path)
     status, out, err = run_cli(["--live", "loop://", "-w", "cap.pcap", "--raw", "./cap.pcap", "--duration", "0.1"])
