@@ -11,10 +11,18 @@ goes between fields; `-E quote=d|s|n` surrounds every value (the header is never
 `-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
 With quote=d a double quote inside a value is doubled (RFC 4180), so a spreadsheet reads it back.
 
-Values are data from the bus and from map files: control characters are written as escapes (\x1b),
-and with a `,` or `;` separator (a CSV for a spreadsheet) a value that starts with `=`, `+`, `-`, `@`,
-a tab or a CR and is not a plain number gets a leading `'`, as OWASP advises against CSV injection
-(`=HYPERLINK(...)` from an FC17 answer stays text). `-E formulas=y` keeps such values as they are.
+Values are data from the bus and from map files: control characters are written as escapes (\x1b).
+With a `,` or `;` separator (a CSV for a spreadsheet) no cell a spreadsheet reads starts a formula
+(`=`, `+`, `-`, `@`, a tab or a CR, not a plain number), as OWASP advises against CSV injection:
+- a value that starts so gets a leading `'` (`=HYPERLINK(...)` from an FC17 answer stays text);
+- a value that holds a `,`, a `;` or a `"` (the separator, the aggregator, or the separator of a
+  spreadsheet in another locale) would split into cells nobody checked (`SEL,@SUM(1+1)`, the codes
+  `,=1+1,COP` joined by the aggregator): it is written between double quotes, `"` doubled (RFC 4180, as
+  tshark's `-E quote=d`), so it stays one cell and its value stays exact; with `-E quote=d` every value
+  is so already; with `-E quote=s` (single quotes, which a spreadsheet does not read as quoting) each
+  piece after a `,` or `;` that would start a formula gets the `'` instead.
+`-E formulas=y` keeps values as they are. A tab or space separator is not a CSV: values stay exact, as
+tshark writes them.
 """
 from __future__ import annotations
 
@@ -52,10 +60,29 @@ _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
 _NUMBER = re.compile(r"[-+]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?")
 
 
+_SPLITS = re.compile(r"([,;])")  # where a spreadsheet may start a cell inside an unquoted value
+_NEEDS_QUOTES = re.compile(r'[,;"]')
+
+
 def neutralise(text: str) -> str:
     """A CSV value a spreadsheet reads as text, never as a formula (numbers such as -12.5 stay)."""
     if text.startswith(_FORMULA_START) and not _NUMBER.fullmatch(text):
         return "'" + text
+    return text
+
+
+def spreadsheet_cell(text: str, quote: str) -> str:
+    """`text` as one CSV cell no spreadsheet runs as a formula, whatever `,` or `;` it holds: quoted
+    (double quotes, doubled inside) where it holds one and no quote was asked, each piece neutralised
+    under single quotes (no quoting a spreadsheet knows), else as `quote` asks."""
+    text = neutralise(text)
+    if quote == "'":
+        pieces = _SPLITS.split(text)
+        text = "".join(piece if index % 2 else neutralise(piece) for index, piece in enumerate(pieces))
+    elif not quote and _NEEDS_QUOTES.search(text):
+        quote = '"'
+    if quote:
+        return quote + text.replace(quote, quote + quote) + quote
     return text
 
 
@@ -167,8 +194,8 @@ class FieldsWriter:
                 values = values[-1:]
             text = printable(options.aggregator.join(_text(value) for value in values))
             if self._neutralise:
-                text = neutralise(text)
-            if quote:
+                out.append(spreadsheet_cell(text, quote))
+            elif quote:
                 out.append(quote + text.replace(quote, quote + quote) + quote)
             else:
                 out.append(text)

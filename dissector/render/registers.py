@@ -72,8 +72,8 @@ class RegistersWriter:
         from dissector.render.fields import SPREADSHEET_SEPARATORS
 
         self.separator = separator
-        # Values are data (map texts, FC17 bytes): as -T fields, escaped, and neutralised for a
-        # spreadsheet with a , or ; separator unless -E formulas=y.
+        # Values are data (map texts, FC17 bytes): as -T fields, escaped, and made single cells no
+        # spreadsheet runs as formulas with a , or ; separator unless -E formulas=y (fields.spreadsheet_cell).
         self._neutralise = separator in SPREADSHEET_SEPARATORS and not formulas
         self.quote = quote
         self.header = header
@@ -85,7 +85,7 @@ class RegistersWriter:
         return (self.separator.join(self.columns) if self.header else None), ("\ufeff" if self.bom else "")
 
     def lines(self, record: dict[str, Any], time: str | None) -> list[str]:
-        from dissector.render.fields import neutralise
+        from dissector.render.fields import spreadsheet_cell
 
         quote, separator = self.quote, self.separator
         file = record.get("file")
@@ -96,8 +96,8 @@ class RegistersWriter:
                 row["file"] = file
             values = [printable(_text(row.get(column))) for column in self.columns]
             if self._neutralise:
-                values = [neutralise(value) for value in values]
-            if quote:
+                values = [spreadsheet_cell(value, quote) for value in values]
+            elif quote:
                 values = [quote + value.replace(quote, quote + quote) + quote for value in values]
             out.append(separator.join(values))
         return out

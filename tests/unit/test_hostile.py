@@ -94,13 +94,55 @@ def test_csv_cells_that_a_spreadsheet_would_run_get_a_quote(tmp_path: Path, sepa
     argv = ["-T", "fields", "-e", "frame", "-e", "fields.additional_data", "-E", f"separator={separator}", str(capture)]
     status, out, err = run_cli(argv)
     assert (status, err) == (0, "")
-    assert out.splitlines() == ["1" + separator, f"2{separator}'=HYPERLINK(\"http://x\",\"y\")"]
+    # The value holds a `,`: one quoted cell (RFC 4180), not `'=HYPERLINK("http://x"` and `"y")`.
+    assert out.splitlines() == ["1" + separator, f'2{separator}"\'=HYPERLINK(""http://x"",""y"")"']
     status, out, err = run_cli([*argv, "-E", "quote=d"])
     assert out.splitlines()[1] == f'"2"{separator}"\'=HYPERLINK(""http://x"",""y"")"'
     status, out, err = run_cli([*argv, "-E", "formulas=y"])  # the documented way to keep them
     assert out.splitlines()[1] == f"2{separator}=HYPERLINK(\"http://x\",\"y\")"
     status, out, err = run_cli(argv[:-3] + ["-E", "separator=/t", str(capture)])  # a tab: as tshark
     assert out.splitlines()[1] == "2\t=HYPERLINK(\"http://x\",\"y\")"
+
+
+@pytest.mark.parametrize("separator", [",", ";"])
+def test_a_value_holding_the_separator_is_one_cell_no_spreadsheet_runs(tmp_path: Path, separator: str) -> None:
+    # Review of issue 32 (defect 2): only the whole value's first character was checked, so the piece
+    # after the `,` of `SEL,@SUM(1+1)*cmd|calc` was a cell of its own that a spreadsheet ran.
+    capture = tmp_path / "fc17b.bin"
+    capture.write_bytes(_fc17(b"SEL,@SUM(1+1)*cmd|calc"))
+    argv = ["-T", "fields", "-e", "frame", "-e", "fields.additional_data", "-E", f"separator={separator}", str(capture)]
+    status, out, err = run_cli(argv)
+    assert (status, err) == (0, "")
+    assert out.splitlines() == ["1" + separator, f'2{separator}"SEL,@SUM(1+1)*cmd|calc"']  # exact, one cell
+    status, out, err = run_cli([*argv, "-E", "quote=d"])
+    assert out.splitlines()[1] == f'"2"{separator}"SEL,@SUM(1+1)*cmd|calc"'
+    # Single quotes are no quoting to a spreadsheet: each piece that would start a formula gets its '.
+    status, out, err = run_cli([*argv, "-E", "quote=s"])
+    assert out.splitlines()[1] == f"'2'{separator}'SEL,''@SUM(1+1)*cmd|calc'"
+    status, out, err = run_cli([*argv, "-E", "formulas=y"])
+    assert out.splitlines()[1] == f"2{separator}SEL,@SUM(1+1)*cmd|calc"
+    status, out, err = run_cli(argv[:-3] + ["-E", "separator=/t", str(capture)])  # not a CSV: as tshark
+    assert out.splitlines()[1] == "2\tSEL,@SUM(1+1)*cmd|calc"
+
+
+def test_codes_joined_by_the_aggregator_are_one_cell(tmp_path: Path) -> None:
+    # A map code `=1+1` joined with the others by the aggregator `,` was the bare cell `=1+1` of `2,,=1+1,COP`.
+    map_file = tmp_path / "map.csv"
+    map_file.write_text("address,code,name\n8401,=1+1,x\n", encoding="utf-8")
+    argv = ["--map", str(map_file), "-T", "fields", "-e", "frame", "-e", "code", "-E", "separator=,",
+            str(ROOT / "captures" / "p38_protection.pcap")]
+    status, out, err = run_cli(argv)
+    assert (status, err) == (0, "")
+    assert out.splitlines()[:2] == ["1,", '2,",=1+1,COP"']
+    status, out, err = run_cli([*argv, "-E", "aggregator=;"])
+    assert out.splitlines()[1] == '2,";=1+1;COP"'
+    status, out, err = run_cli([*argv, "-E", "aggregator=/s"])  # no splitting character: kept as it is
+    assert out.splitlines()[1] == "2, =1+1 COP"
+    status, out, err = run_cli([*argv, "-E", "quote=s"])
+    assert out.splitlines()[1] == "'2',',''=1+1,COP'"
+    status, out, err = run_cli(["--map", str(map_file), "-T", "registers", "-E", "separator=,",
+                                str(ROOT / "captures" / "p38_protection.pcap")])
+    assert out.splitlines()[1] == "2,0.010157,12,3,read,8401,,'=1+1,x,3,,,ok,"
 
 
 @pytest.mark.parametrize("text, shown", [
