@@ -1848,6 +1848,10 @@ static struct PyModuleDef summary_module = {
     PyModuleDef_HEAD_INIT, "_summary", "The compiled summary path of vw3-decode.", -1, module_methods,
 };
 
+#ifndef VW3_SOURCES
+#define VW3_SOURCES ""  /* built without setup.py: never taken for the sources beside it */
+#endif
+
 PyMODINIT_FUNC PyInit__summary(void) {
     crc_init();
     if (PyType_Ready(&EngineType) < 0 || PyType_Ready(&StatsType) < 0) return NULL;
@@ -1862,6 +1866,11 @@ PyMODINIT_FUNC PyInit__summary(void) {
     Py_INCREF(&StatsType);
     if (PyModule_AddObject(module, "Stats", (PyObject *)&StatsType) < 0) {
         Py_DECREF(&StatsType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    /* The stamp of the sources it was built from (dissector/accel/stamp.py, checked on import). */
+    if (PyModule_AddStringConstant(module, "SOURCES", VW3_SOURCES) < 0) {
         Py_DECREF(module);
         return NULL;
     }

@@ -37,7 +37,7 @@ from dissector.protocol.spec import SPEC
 
 try:
     from dissector.accel import _summary
-except ImportError:  # built without a C compiler: the Python stages do everything
+except ImportError:  # built without a C compiler, or from older sources: the Python stages do everything
     _summary = None  # type: ignore[assignment]
 
 HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c, through _tables.h), and their exceptions
@@ -57,9 +57,9 @@ def available() -> bool:
 
 
 def built() -> bool:
-    """The extension is built from these sources for the timed path (a build older than its last
-    feature, `frames`, is not used: its timed calls would not match; timedpath.py)."""
-    return _summary is not None and hasattr(_summary.Engine, "frames")
+    """The extension is built from these sources (a build from older ones is not imported at all:
+    its stamp is checked once, dissector/accel/__init__.py)."""
+    return _summary is not None
 
 
 def _limits() -> tuple[tuple[int, int], ...]:
