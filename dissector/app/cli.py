@@ -263,6 +263,8 @@ class Sinks:
         return OutputError(f"-w {self.write_path}: {error.strerror or error}{kept}")
 
     def close(self) -> None:
+        if self.stats is not None:
+            self.stats.history.finish()  # frames held until their slave's profile was chosen (read once)
         if self.pcap is not None:
             try:
                 self.pcap.close()

@@ -16,7 +16,7 @@ from collections.abc import Callable, Sequence
 
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
-from dissector.devices.explain import explain_exception
+from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable
 from dissector.devices.naming import name_register, name_wide, plc_label
@@ -224,6 +224,61 @@ class Annotator:
         if row is not None:
             name_register(register, row, row)
         return register
+
+    def reread(self, frame: Frame) -> list[Register] | None:
+        """The registers of `frame` as its slave's device names them now: what the decode says of them
+        when the device is known from the frame on (a file, read twice). For a frame read before
+        profile `auto` chose (Frame.provisional) or named with a choice taken back since: the parameter
+        history (render/history.py) reads it again once the choice is made, so 16#8000 in a
+        multi-register read is the status the device gives it, never a value beside it. New Register
+        objects: the frame, the parameter memory and the notes are left as they were."""
+        device = self.device(frame.slave)
+        profile = device.profile
+        function = frame.function
+        kind = frame.kind
+        if kind is _EXCEPTION:
+            request = frame.request
+            if (frame.exception_code is None or frame.exception_code != profile.all_protected_exception
+                    or function not in PLAIN_READS or request is None or request.start is None
+                    or not request.quantity or profile.exception_causes.get((function, frame.exception_code))):
+                return None
+            return all_unreadable_registers(frame, device, request)
+        registers = frame.registers
+        if not registers:
+            return registers
+        plc = None if device.plc is None else device.plc.get(function, device.plc_default)
+        fresh = [Register(register.address, register.value) for register in registers]
+        rows = device.rows
+        for index, register in enumerate(fresh):
+            address = register.address
+            if address is None or register.value is None:
+                continue
+            if plc is not None:
+                register.label = plc_label(plc, address)
+            row = rows.get(address)
+            if row is None or register.words == 0:
+                continue
+            if row.words == 2:
+                name_wide(fresh, index, row)
+            else:
+                name_register(register, row, row)
+        protected = profile.protected_value if kind is _RESPONSE and function in _READS else None
+        if protected is not None:
+            multi = len(fresh) > 1
+            for register in fresh:
+                if register.address is None:
+                    continue
+                if register.value == protected and multi and register.words == 1:
+                    row = rows.get(register.address)
+                    if row is None:
+                        register.status, register.text = "non-existent", "16#8000: non-existent (address not in the map)"
+                    elif row.ambiguous_8000:
+                        register.status = "ambiguous"
+                    else:
+                        register.status, register.scaled, register.text = "protected", None, "16#8000: protected"
+                else:
+                    register.status = "ok"
+        return fresh
 
     def namer(self, slave: int) -> Callable[[int, int], tuple[str | None, str | None]]:
         """(address, value) -> (text, code) of a register as the slave's device names it now, as

@@ -92,18 +92,35 @@ def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[E
     note, lost_ = known  # type: ignore[misc]
     frame.notes.append(note)
     now = f"exception {frame.exception_code:02X} now"
+    for address, row, label in lost_:
+        lost(frame, device, address, row, "non-existent" if row is None else "protected", now, label, events)
+    frame.registers = _registers(frame, lost_)
+
+
+def all_unreadable_registers(frame: Frame, device: Device, request: Frame) -> list[Register]:
+    """The registers of an exception 02 to a read on such a device, as _all_unreadable gives them,
+    without a note or the parameter memory (Annotator.reread)."""
+    rows = device.rows
+    base = device.base(request.function) if device.plc is not None else None
+    lost_ = []
+    for index in range(min(request.quantity, READ_LIMIT)):  # type: ignore[type-var]
+        address = (request.start + index) & 0xFFFF  # type: ignore[operator]
+        lost_.append((address, rows.get(address), None if base is None else plc_label(base, address)))
+    return _registers(frame, lost_)
+
+
+def _registers(frame: Frame, lost_: list[tuple[int, object, str | None]]) -> list[Register]:
     # The registers the story is about, with the status it infers and no value (none was sent), so
     # that `status == "protected"` finds this frame as it finds a 16#8000 read.
     inferred = f"no value: exception {frame.exception_code:02X}"
     registers = []
     for address, row, label in lost_:
         status = "non-existent" if row is None else "protected"
-        lost(frame, device, address, row, status, now, label, events)
         register = Register(address, None, status=status, text=inferred, label=label)  # type: ignore[arg-type]
         if row is not None:
-            register.code, register.name, register.unit, register.source = row.code, row.name, row.unit, row.source
+            register.code, register.name, register.unit, register.source = row.code, row.name, row.unit, row.source  # type: ignore[attr-defined]
         registers.append(register)
-    frame.registers = registers
+    return registers
 
 
 def _part(run: list[tuple[int, object, str | None]]) -> tuple[str, int]:

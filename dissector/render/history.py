@@ -19,14 +19,22 @@ What a good frame (CRC/LRC ok) tells, per register with an address, in this orde
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 
-A value is read with the profile its slave had when it arrived. When profile `auto` chooses (or takes
-back) a slave's profile later, the values kept of that slave are named again by the new device
-(`store.rename`), and listeners hear `renamed(slave)`: what the outputs show is never the raw word of
-one profile beside the scaled value of another.
+A value counts as the device of its slave reads it. Read once (standard input, live), a frame decoded
+before profile `auto` chose its slave's device (Frame.provisional) was named with spec semantics only:
+the history holds it back, at most a slave's judging frames (FIT_FRAMES), and reads it again with the
+device once the choice is made (Annotator.reread: 16#8000 in a multi-register read is then the status
+`non-existent` or `protected`, not the value 32768), or as it stands when the slave is settled without
+one or the input ends (finish()). So `--stats` and `--report` count on a stream exactly what they
+count on the same file, and a state is never the raw reading beside the device's (p.38 read once:
+8400 is unreadable 6 times, 0 changes). Listeners that show lines as they come (`--watch` live and on
+standard input) hear such a frame at once as `provisional(frame, register, event)`, named as decoded,
+and its re-read states later through `state()` with the frame still provisional: they write no line
+for those (the change was shown provisional), so re-reading never invents a change.
+When profile `auto` chooses again later (a choice taken back), the values kept of that slave are
+named again by the new device (`store.rename`), and listeners hear `renamed(slave)`.
 """
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -58,6 +66,11 @@ class Listener(Protocol):
         """This slave's profile changed: what was kept of it is to be read with the new one."""
 
 
+class ProvisionalListener(Listener, Protocol):
+    def provisional(self, frame: Frame, register: Register, event: int) -> None:
+        """A register of a provisional frame, named as decoded (its state() comes once it is re-read)."""
+
+
 class History:
     def __init__(self, annotate: object = None, store: Any = None) -> None:
         self.store = new_store() if store is None else store
@@ -69,9 +82,12 @@ class History:
         self._annotate = annotate
         self.annotate = annotate  # for the outputs' names (PLC-style labels)
         self._renamed: dict[int, int] = {}  # slave -> the choice frame its values were named again for
+        self._held: dict[int, list[Frame]] = {}  # slave -> its provisional frames, until its choice
 
     def add(self, item: Item) -> None:
         """A decoded item, in stream order (noise and damaged frames tell nothing of parameters)."""
+        if self._held:
+            self._release(False)  # slaves whose choice came (or that settled) with frames still held
         if item.kind is Kind.NOISE or not item.crc_ok:  # type: ignore[union-attr]
             return
         frame: Frame = item  # type: ignore[assignment]
@@ -83,37 +99,72 @@ class History:
                 # this slave before (here, or by the compiled engine in the same store) is named again.
                 self._renamed[slave] = chosen
                 self._rename(slave)
+        if frame.provisional:
+            if self._watching:
+                self._apply(frame, provisional=True)
+            if not self._resolved(slave):
+                self._held.setdefault(slave, []).append(frame)
+                return
+        held = self._held.pop(slave, None) if self._held else None
+        if held:
+            for earlier in held:
+                self._apply(earlier)
+        self._apply(frame)
+
+    def finish(self) -> None:
+        """The input ended: the frames still held are counted as they were named (no device came)."""
+        self._release(True)
+
+    def _resolved(self, slave: int) -> bool:
+        """Profile `auto` chose this slave's device, or will not any more from its traffic."""
+        if self._choice_frame is not None and self._choice_frame(slave) is not None:
+            return True
+        settled = getattr(self._annotate, "settled", None)
+        return settled is None or settled(slave)
+
+    def _release(self, every: bool) -> None:
+        for slave in [slave for slave in self._held if every or self._resolved(slave)]:
+            for frame in self._held.pop(slave):
+                self._apply(frame)
+
+    @property
+    def _watching(self) -> list[Any]:
+        return [listener for listener in self.listeners if hasattr(listener, "provisional")]
+
+    def _apply(self, frame: Frame, provisional: bool = False) -> None:
+        """What `frame` tells of each parameter; `provisional`: only told to the listeners that show
+        provisional lines, with the registers as decoded (the store keeps nothing)."""
+        slave = frame.slave
         kind = frame.kind
         function = frame.function
-        stale = self._stale(slave, frame.number)
         registers = frame.registers
-        if stale and registers:
-            registers = self._fresh(frame, registers)
+        if not provisional and (frame.provisional or self._stale(slave, frame.number)):
+            registers = self._fresh(frame)
         if kind is Kind.REQUEST:
             if function in WRITE_FUNCTIONS and registers:
                 # A broadcast write: no answer will confirm it, the request is all there is.
-                self._events(frame, registers, WRITE_OBSERVED if frame.broadcast else WRITE)
+                self._events(frame, registers, WRITE_OBSERVED if frame.broadcast else WRITE, provisional=provisional)
             return
         request = frame.request
         written = None
         if request is not None and request.crc_ok and request.registers and request.function in WRITE_FUNCTIONS:
             written = request.registers
-            if self._stale(slave, request.number):
-                written = self._fresh(request, written)
+            if not provisional and (request.provisional or self._stale(slave, request.number)):
+                written = self._fresh(request)
         if kind is Kind.EXCEPTION:
             if written:
-                self._events(frame, written, REFUSED)
+                self._events(frame, written, REFUSED, provisional=provisional)
             if registers:
-                self._reads(frame, registers)
+                self._reads(frame, registers, provisional)
             return
         # Writes first: FC23 performs its write before its read.
         if function in _BY_ECHO:
             if registers:
-                self._events(frame, registers, CONFIRM, confirmed=True)
+                self._events(frame, registers, CONFIRM, confirmed=True, provisional=provisional)
         elif function in _BY_ANSWER and written:
-            self._events(frame, written, CONFIRM, confirmed=True)
+            self._events(frame, written, CONFIRM, confirmed=True, provisional=provisional)
         if function in READ_FUNCTIONS and registers:
-            self._reads(frame, registers)
+            self._reads(frame, registers, provisional)
 
     def named_by(self, frame: Frame) -> object:
         """The profile the registers listeners get were named with: the slave's profile now."""
@@ -127,28 +178,17 @@ class History:
         chosen = self._choice_frame(slave)
         return chosen is not None and number < chosen
 
-    def _fresh(self, frame: Frame, registers: list[Register]) -> list[Register]:
-        """Registers named as the slave's device (chosen since) names them; statuses kept."""
-        plain = getattr(self._annotate, "plain_register", None)
-        device = getattr(self._annotate, "device", None)
-        if plain is None or device is None:
-            return registers
-        rows = device(frame.slave).rows
-        fresh = []
-        for register in registers:
-            address = register.address
-            row = None if address is None else rows.get(address)
-            if row is None or row.words != 1 or register.value is None or register.status in UNREADABLE_STATUSES:
-                if row is not None and register.code is None:
-                    register = dataclasses.replace(register, code=row.code, name=row.name)
-                fresh.append(register)
-                continue
-            named = plain(frame.slave, frame.function, address, register.value)
-            named.status = register.status
-            fresh.append(named)
-        return fresh
+    def _fresh(self, frame: Frame) -> Any:
+        """The frame's registers as the slave's device (chosen since) reads them (Annotator.reread)."""
+        reread = getattr(self._annotate, "reread", None)
+        return frame.registers if reread is None else reread(frame)
 
-    def _events(self, frame: Frame, registers: list[Register], event: int, confirmed: bool = False) -> None:
+    def _events(self, frame: Frame, registers: list[Register], event: int, confirmed: bool = False,
+                provisional: bool = False) -> None:
+        if provisional:
+            if event in (CONFIRM, WRITE_OBSERVED):
+                self._tell(frame, registers, event)
+            return
         param = self.store.param
         slave = frame.slave
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
@@ -163,7 +203,10 @@ class History:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
 
-    def _reads(self, frame: Frame, registers: list[Register]) -> None:
+    def _reads(self, frame: Frame, registers: list[Register], provisional: bool = False) -> None:
+        if provisional:
+            self._tell(frame, registers, None)
+            return
         # The hot loop of --stats: one store call a register.
         param = self.store.param
         slave = frame.slave
@@ -183,6 +226,18 @@ class History:
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
+
+    def _tell(self, frame: Frame, registers: list[Register], event: int | None) -> None:
+        """A provisional frame's states, as decoded, to the listeners that show them (None: reads)."""
+        listeners = self._watching
+        for register in registers:
+            if register.address is None:
+                continue
+            told = event
+            if told is None:
+                told = UNREADABLE if register.status in UNREADABLE_STATUSES else READ
+            for listener in listeners:
+                listener.provisional(frame, register, told)
 
     def _rename(self, slave: int) -> None:
         if self._namer is not None:

@@ -13,12 +13,15 @@ again. Values are named as the summary names them; a bit field (a status word) i
 write it, `16#0231`, with its bits named.
 
 Names are checked: a code no map of the run knows is an error with the nearest known codes, and codes
-need a profile (`-n` has none). A code is matched with the profile that applies to its slave: a value
-read before profile `auto` chose a slave's device is named by that device once it is chosen. In a file,
-lines of a slave whose device `auto` has not chosen yet (and still may) wait, in order, at most
-MAX_WAITING, and are written with the profile finally chosen; live, they are written at once, marked
-`[provisional]` (JSON `"provisional": true`), by address when no device names them yet: `--watch CHCF`
-then shows address 8401 (which a candidate device names CHCF) as `--watch 8401` does.
+need a profile (`-n` has none). A code is matched with the profile that applies to its slave. A file
+is named with the profiles chosen over the whole file (app/preselect.py): no line waits. Read once
+(standard input, live), a frame decoded before profile `auto` chose its slave's device is provisional:
+its changes are written at once, as decoded, marked `[provisional]` (JSON `"provisional": true`), by
+address when no device names them yet (`--watch CHCF` then shows address 8401, which a candidate
+device names CHCF, as `--watch 8401` does). Once the device is chosen the history reads those frames
+again (render/history.py) and the watched states become what the device says of them, silently: the
+next line compares with that, so re-reading never makes a line of its own (p.38 read once: 16#8000
+at 8400 before and after the choice is `non-existent` both times, no change).
 """
 from __future__ import annotations
 
@@ -33,9 +36,6 @@ from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, History
 from dissector.render.timefmt import Clock
 
-MAX_WAITING = 10_000  # change lines a file decode holds for slaves whose profile is not settled
-
-
 @dataclass(frozen=True, slots=True)
 class Change:
     time: float | None  # seconds since the first item (None: no timestamps)
@@ -47,7 +47,7 @@ class Change:
     new: str
     unit: str | None
     column: str = "-"  # the time column as -t formats it
-    provisional: bool = False  # live: the slave's profile may still change how this reads
+    provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
 
     def line(self) -> str:
         name = self.code or str(self.address)
@@ -127,6 +127,14 @@ class _State:
     text: str
     unit: str | None
     profile: object  # the profile it was named with
+    status: str | None = None  # the read status (the history's state) when it is not a value
+    code: str | None = None  # provisional: the code it was decoded with (None: shown by address)
+
+    def differs(self, other: _State) -> bool:
+        """A change as the parameter history counts one (render/stats_store.py)."""
+        if self.status is not None or other.status is not None:
+            return self.status != other.status
+        return self.value != other.value
 
 
 @dataclass(slots=True)
@@ -159,8 +167,6 @@ class Watcher:
         self.on_change = on_change
         self.annotate = annotate
         self._profile_for = getattr(annotate, "profile_for", None)
-        self._settled: Callable[[int], bool] | None = getattr(annotate, "settled", None)
-        self._choice_frame: Callable[[int], int | None] | None = getattr(annotate, "choice_frame", None)
         self._device = getattr(annotate, "device", None)
         self.owns_history = history is None
         self.history = History(annotate) if history is None else history
@@ -170,8 +176,8 @@ class Watcher:
         # Addresses any profile of the run names with a watched code: followed for every slave, shown
         # when the slave's own profile gives them that code.
         self._candidates = frozenset(addresses).union(*(known.get(code, ()) for code in codes)) if known else addresses
-        self._state: dict[tuple[int, int], _State] = {}
-        self._waiting: list[_Pending] = []
+        self._state: dict[tuple[int, int], _State] = {}  # as the history holds it (re-read)
+        self._shown: dict[tuple[int, int], _State] = {}  # as provisional lines showed it
         self._column: tuple[Frame | None, str] = (None, "-")
 
     @property
@@ -206,76 +212,73 @@ class Watcher:
         new = self._read(frame, register, event)
         old = self._state.get(key)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
-        if not changed or old is None:
+        if frame.provisional:
+            return  # re-read once the device was chosen: its change (if any) was shown provisional
+        self._shown.pop(key, None)  # type: ignore[arg-type]
+        if changed and old is not None:
+            self._emit(self._pending(frame, key, old, new))  # type: ignore[arg-type]
+
+    def provisional(self, frame: Frame, register: Register, event: int) -> None:
+        """A state of a frame read before the slave's device was chosen, as decoded: shown at once."""
+        address = register.address
+        if address not in self._candidates:
             return
+        key = (frame.slave, address)  # type: ignore[assignment]
+        new = self._read(frame, register, event, provisional=True)
+        old = self._shown.get(key)  # type: ignore[arg-type]
+        self._shown[key] = new  # type: ignore[index]
+        if old is not None and old.differs(new):
+            self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
+
+    def _pending(self, frame: Frame, key: tuple[int, int], old: _State, new: _State) -> _Pending:
         if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
             self._column = (frame, self.clock.text(frame))
-        column = self._column[1]
         time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
-        pending = _Pending(frame, time, column, key, old, new)  # type: ignore[arg-type]
-        if self.live:
-            self._emit(pending, provisional=self._unknown(frame.slave))
-        elif self._waiting or self._unknown(frame.slave):
-            self._waiting.append(pending)  # in order: behind the lines already waiting
-            self.flush()
-        else:
-            self._emit(pending)
-
-    def _unknown(self, slave: int) -> bool:
-        """Profile `auto` has not chosen this slave's device yet, and still may."""
-        if self._settled is None or self._choice_frame is None:
-            return False
-        return self._choice_frame(slave) is None and not self._settled(slave)
+        return _Pending(frame, time, self._column[1], key, old, new)
 
     def renamed(self, slave: int) -> None:
         pass  # states keep their raw values: they are named again when written
 
     # -- writing -----------------------------------------------------------------------------------
     def flush(self) -> None:
-        """Write the waiting lines whose slaves are settled, in order (all beyond MAX_WAITING)."""
-        waiting = self._waiting
-        if not waiting:
-            return
-        done = 0
-        for pending in waiting:
-            if len(waiting) - done <= MAX_WAITING and self._unknown(pending.frame.slave):
-                break
-            self._emit(pending)
-            done += 1
-        del waiting[:done]
+        pass  # every line is written as its frame comes
 
     def finish(self) -> None:
-        for pending in self._waiting:
-            self._emit(pending)
-        self._waiting.clear()
+        """The input ended: the history's frames still held are counted (no line: shown provisional)."""
+        self.history.finish()
 
     def _emit(self, pending: _Pending, provisional: bool = False) -> None:
         slave, address = pending.key
-        code = self._code(slave, address, pending.new)
+        code = pending.new.code if provisional else self._code(slave, address, pending.new)
         if address not in self.addresses and (code is None or code.upper() not in self.codes):
             if not (provisional and code is None):
                 return
-            # Live, no device yet: an address a candidate's map names with a watched code is shown by
-            # its number, provisional, as --watch ADDRESS shows it (by address and by code agree).
-        old_text, _ = self._text(slave, address, pending.old)
-        new_text, unit = self._text(slave, address, pending.new)
+            # No device yet: an address a candidate's map names with a watched code is shown by its
+            # number, provisional, as --watch ADDRESS shows it (by address and by code agree).
+        if provisional:  # as decoded, whatever the history knows by now (the same in any batch)
+            (old_text, _), (new_text, unit) = (pending.old.text, None), (pending.new.text, pending.new.unit)
+        else:
+            old_text, _ = self._text(slave, address, pending.old)
+            new_text, unit = self._text(slave, address, pending.new)
         if old_text == new_text:
             return  # the same once named by the same device
         self.on_change(Change(pending.time, pending.frame.number, slave, address, code, old_text, new_text, unit,
                               pending.column, provisional))
 
-    def _read(self, frame: Frame, register: Register, event: int) -> _State:
-        profile = self.history.named_by(frame)
+    def _read(self, frame: Frame, register: Register, event: int, provisional: bool = False) -> _State:
+        """`provisional`: as decoded (the profile and device the history knows by now may be later's)."""
+        profile = None if provisional else self.history.named_by(frame)
         function = frame.function
         if event == UNREADABLE:
             status = register.status or "unreadable"
             if frame.kind is Kind.EXCEPTION and frame.exception_code is not None:
                 status = f"{status} (exception {frame.exception_code:02X})"
-            return _State(None, function, status, None, profile)
+            return _State(None, function, status, None, profile, register.status or "unreadable", register.code)
         if event != READ:
             register = _as_written(register)  # a written value has no read status
-        text, unit = value_text(register, self._bits(frame.slave, register.address))  # type: ignore[arg-type]
-        return _State(register.value, function, text, unit, profile)
+        bits = not provisional and self._bits(frame.slave, register.address)  # type: ignore[arg-type]
+        text, unit = value_text(register, bits)
+        return _State(register.value, function, text, unit, profile, None, register.code)
 
     def _bits(self, slave: int, address: int) -> bool:
         if self._device is None:

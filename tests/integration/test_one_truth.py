@@ -303,3 +303,124 @@ def test_ramps_say_their_unit_unscaled() -> None:
     (acc, dec) = json.loads(out)["registers"]
     assert (acc["code"], acc["value"], acc["unit"], acc["text"], acc.get("scaled")) == (
         "ACC", 10, "s", "10 (unscaled, in s)", None)
+
+
+def watch_lines(file_records: list[dict], stream_records: list[dict]) -> list[tuple[int, int, int, bool]]:
+    """The --watch lines of an input read once (standard input, live), from --json of the same bytes:
+    a frame decoded before profile auto chose its slave's device (`provisional` in the stream's --json)
+    shows the changes between such frames as decoded, marked provisional; every other frame the changes
+    of the parameter history, which reads the provisional frames again with the device (what --json of
+    the file, read twice, says of them): re-reading itself is no change."""
+    provisional = [record for record in stream_records if record.get("provisional")]
+    early = {record["frame"] for record in provisional}
+    lines = [(frame, slave, address, True) for frame, slave, address in derive(provisional)[2]]
+    lines += [(frame, slave, address, False) for frame, slave, address in derive(file_records)[2]
+              if frame not in early]
+    return sorted(lines, key=lambda line: line[0])  # stable: a frame's registers in their order
+
+
+def test_standard_input_says_what_the_file_says(tmp_path: Path) -> None:
+    # Read once, a slave's frames before profile auto chose its device are provisional; --stats and
+    # the report see the whole input before they print: they count exactly what the file (read twice)
+    # counts. --watch writes as the frames come: provisional lines are marked, the rest are the file's.
+    marked = checked = 0
+    for path, options in inputs(tmp_path):
+        data = Path(path).read_bytes()
+        file_records = [json.loads(line) for line in run_cli([path, "--json", *options])[1].splitlines()]
+        status, out, _ = run_cli(["-", "--json", *options], stdin=data)
+        assert status == 0, path
+        stream_records = [json.loads(line) for line in out.splitlines()]
+        assert [record["frame"] for record in stream_records] == [record["frame"] for record in file_records]
+        traffic, params, _changes, protections = derive(file_records)
+
+        status, out, _ = run_cli(["-", "--stats", "--json", *options], stdin=data)
+        stream_stats = json.loads(out)
+        assert stream_stats == json.loads(run_cli([path, "--stats", "--json", *options])[1]), path
+        got = {(row["slave"], row["address"]): row for row in stream_stats["parameters"]}
+        assert {key: (row["reads"], row["unreadable"], row["writes"], row["refused"], row["changes"])
+                for key, row in got.items()} == {
+            key: (entry["reads"], entry["unreadable"], entry["writes"], entry["refused"], entry["changes"])
+            for key, entry in params.items()}, path
+
+        page = tmp_path / "stream.html"
+        assert run_cli(["-", "--report", str(page), *options], stdin=data)[0] == 0
+        data_ = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
+        assert data_["event_counts"]["protection"] == len(protections), path
+        if not data_["timed"] and not data_["events_dropped"]:
+            assert [(int(x), slave) for x, kind, slave, _text in data_["events"] if kind == "protection"] == protections
+
+        addresses = sorted({address for _slave, address in params})
+        if addresses:
+            status, out, err = run_cli(["-", "--watch", ",".join(map(str, addresses)), "--json", *options], stdin=data)
+            assert status == 0, err
+            lines = [json.loads(line) for line in out.splitlines()]
+            assert [(c["frame"], c["slave"], c["address"], c.get("provisional", False)) for c in lines] == (
+                watch_lines(file_records, stream_records)), path
+            marked += sum(c.get("provisional", False) for c in lines)
+        checked += 1
+    assert checked == 18 and marked > 0
+
+
+def test_p38_read_once_counts_as_the_file() -> None:
+    # Frame 2 reads 8400..8402 before profile auto chose the ATV71 (frame 4): 16#8000 at 8400 is the
+    # VW3 card's non-existent marker there too once the choice is made, never a value that changed.
+    pcap = CAPTURES / "p38_protection.pcap"
+    data = pcap.read_bytes()
+    assert run_cli(["-", "--watch", "8400,CHCF"], stdin=data) == (
+        0, "     6     1.059949  12 CHCF 3 IO (I/O profile) -> protected\n", "")
+    status, out, _ = run_cli(["-", "--stats"], stdin=data)
+    table = out[out.index("Parameters\n"):].split("\n\n")[0].splitlines()
+    assert table[3:6] == [
+        "   12      8400            0           6       0        0  non-existent        0",
+        "   12      8401  CHCF      2           4       0        0  protected           1",
+        "   12      8402  COP       4           2       0        0  protected           1",
+    ]
+
+
+def test_plant_mix_read_once_marks_its_early_watch_lines(tmp_path: Path) -> None:
+    # Slaves 3 to 5 of the plant mix write LFR (8502) before profile auto chose the ATV71: those lines
+    # are provisional, by address (no device names 8502 yet) and unscaled; the file names them LFR.
+    _raw, pcap = write_capture(plant_mix(1500, seed=3), tmp_path / "plant")
+    stream = run_cli(["-", "--watch", "LFR"], stdin=pcap.read_bytes())[1].splitlines()
+    assert stream[:5] == [
+        "    30     0.604164   2 LFR 0.0 -> 1.3 (Hz)",
+        "    32     0.637298   3 8502 97 -> 110 [provisional]",
+        "    36     0.701086   4 8502 194 -> 207 [provisional]",
+        "    38     0.730595   5 8502 291 -> 304 [provisional]",
+        "    54     1.155817   2 LFR 1.3 -> 2.6 (Hz)",
+    ]
+    assert run_cli([str(pcap), "--watch", "LFR"])[1].splitlines()[1:4] == [
+        "    32     0.637298   3 LFR 9.7 -> 11.0 (Hz)",
+        "    36     0.701086   4 LFR 19.4 -> 20.7 (Hz)",
+        "    38     0.730595   5 LFR 29.1 -> 30.4 (Hz)",
+    ]
+    # The first line after the choice compares with the re-read value: no invented change.
+    assert not any("[provisional]" in line for line in stream[5:] if line.split()[2] == "2")
+
+
+def test_live_watch_says_what_standard_input_says(tmp_path: Path) -> None:
+    # Live through a pseudo-terminal, a frame at a time: the --watch lines (provisional ones marked)
+    # are those of the capture it wrote read once, and derive from --json of those bytes as above.
+    from live_bus import live_on_pty
+
+    from dissector.sources.reader import open_source
+
+    _raw, session = write_capture(generate_session(40, seed=11), tmp_path / "session")
+    marked = 0
+    for source in (CAPTURES / "p38_protection.pcap", CAPTURES / "atv71_commissioning.pcap", session):
+        frames = [chunk.data for chunk in open_source(str(source))]
+        written = tmp_path / "live.pcap"
+        records = [json.loads(line) for line in run_cli([str(source), "--json"])[1].splitlines()]
+        addresses = ",".join(map(str, sorted({address for _slave, address in derive(records)[1]})))
+        lines, err, status = live_on_pty(frames, "--watch", addresses, "--json", "-w", str(written), pause=0.02)
+        assert status == 0, err
+        live = [json.loads(line) for line in lines]
+        data = written.read_bytes()
+        assert run_cli(["-", "--watch", addresses, "--json"], stdin=data)[1].splitlines() == lines, source
+        file_records = [json.loads(line) for line in run_cli([str(written), "--json"])[1].splitlines()]
+        stream_records = [json.loads(line) for line in run_cli(["-", "--json"], stdin=data)[1].splitlines()]
+        assert len(file_records) == len(frames), source  # a frame a record: the live line framed them all
+        assert [(c["frame"], c["slave"], c["address"], c.get("provisional", False)) for c in live] == (
+            watch_lines(file_records, stream_records)), source
+        marked += sum(c.get("provisional", False) for c in live)
+    assert marked > 0  # the session's slaves are judged over several answers: its early lines say so
