@@ -172,7 +172,9 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
 
         def join(record: dict, key: str) -> str:
             elements = (record.get("registers") or []) + (record.get("bits") or [])
-            return ",".join("" if element.get(key) is None else str(element[key]) for element in elements)
+            cell = ",".join("" if element.get(key) is None else str(element[key]) for element in elements)
+            # A cell holding the aggregator (or ; or ") is one double-quoted CSV cell (issue 32).
+            return '"' + cell.replace('"', '""') + '"' if any(char in cell for char in ',;"') else cell
 
         expected_rows = [
             ";".join([str(record["frame"]), "" if record.get("slave") is None else str(record["slave"]),
