@@ -21,7 +21,7 @@ from dissector.framing.ascii import AsciiFramer
 from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.hexinput import HexInput
-from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options
+from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
@@ -120,7 +120,7 @@ class Sinks:
             args.write is None or args.print_too
         )
         self.output = Output(args.output, self.text_out, text_isatty,
-                             lambda text: env.stderr.write(f"{PROG}: {text}\n"))
+                             lambda text: env.stderr.write(f"{PROG}: {shown(text)}\n"))
         self.clock = self.output.clock
         self.pcap: CaptureOutput | None = None
         self.write_path = args.write
@@ -275,7 +275,7 @@ class Sinks:
                 clamped = pcap.clamped_total
                 whose = "records' times" if clamped > 1 else "record's time"
                 self.env.stderr.write(
-                    f"{PROG}: warning: -w {self.write_path}: {clamped:,} {whose} outside "
+                    f"{PROG}: warning: -w {shown(self.write_path)}: {clamped:,} {whose} outside "
                     f"what {pcap.format} holds, written at the nearest time it holds\n"
                 )
         if self.watch is not None:
@@ -360,7 +360,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
         sinks.close()
         report_profiles(annotate, env.stderr, env.stderr_isatty)
         if sinks.wrote is not None and env.stderr_isatty:
-            env.stderr.write(f"{PROG}: wrote {sinks.wrote}\n")
+            env.stderr.write(f"{PROG}: wrote {shown(sinks.wrote)}\n")
     except BrokenPipeError:
         sinks.abandon()
         raise  # the reader went away: main() ends quietly
@@ -387,7 +387,7 @@ def _decode_inputs(
 
             def warn() -> None:
                 for warning in take_warnings():
-                    env.stderr.write(f"{PROG}: warning: {warning}\n")
+                    env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
             _choose_profiles(annotate, args, chunks, mode, path, line.baud)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
@@ -404,7 +404,7 @@ def _decode_inputs(
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"
                 env.stderr.write(
-                    f"{PROG}: warning: {name}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
+                    f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
                     "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
                     "or line speed?\n"
                 )
@@ -513,7 +513,7 @@ def run(argv: list[str] | None, env: Environment) -> int:
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
     except UsageError as error:
-        env.stderr.write(f"{PROG}: {error}\n")
+        env.stderr.write(f"{PROG}: {shown(error)}\n")
         return ExitStatus.BAD_INPUT
     args.files = [*args.read, *args.files]
     if getattr(args, "glossary", None) or "help" in (args.filter or []):
@@ -545,10 +545,10 @@ def run(argv: list[str] | None, env: Environment) -> int:
         return decode_files(options, env, _annotator(args))
     except (UsageError, SourceError, ProfileError, FilterError) as error:
         _flush_quietly(env.stdout)
-        env.stderr.write(f"{PROG}: {error}\n")
+        env.stderr.write(f"{PROG}: {shown(error)}\n")
         return ExitStatus.BAD_INPUT
     except OutputError as error:
-        env.stderr.write(f"{PROG}: {error}\n")
+        env.stderr.write(f"{PROG}: {shown(error)}\n")
         return ExitStatus.ERROR
 
 

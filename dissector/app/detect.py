@@ -215,22 +215,23 @@ def command_line(port: str, best: Score) -> str:
 
 def run_detect(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Listen args.detect seconds per setting on args.live; print the command line to use."""
+    from dissector.app.options import shown  # typed names are data: control characters escaped
     from dissector.errors import ExitStatus, LiveError
 
     try:
         port = open_port(PortSettings(args.live, args.baud, args.parity, args.stopbits, args.bytesize))
     except LiveError as error:
-        err.write(f"{PROG}: {error}\n")
+        err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     seconds = float(args.detect)
     err.write(
-        f"{PROG}: listening on {args.live} for {seconds:g} s at each of {len(BAUDS) * 3} settings\n"
+        f"{PROG}: listening on {shown(args.live)} for {seconds:g} s at each of {len(BAUDS) * 3} settings\n"
     )
     err.flush()
     try:
         scores = detect(SerialListener(port), seconds)
     except (serial.SerialException, OSError) as error:
-        err.write(f"{PROG}: error: {args.live} went away ({error})\n")
+        err.write(f"{PROG}: error: {shown(args.live)} went away ({shown(error)})\n")
         return ExitStatus.ERROR
     except KeyboardInterrupt:
         err.write(f"{PROG}: detection interrupted\n")

@@ -201,7 +201,7 @@ def run_captures(captures: list[Capture], settings: JobSettings, jobs: int, sche
 
 def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog: str) -> int:
     """The --parquet run: one line per capture written, errors one line each; exit 2 if any failed."""
-    from dissector.app.options import baud_given
+    from dissector.app.options import baud_given, shown
     from dissector.export.parquet import need_pyarrow
 
     need_pyarrow()
@@ -227,10 +227,10 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
     def report(result: CaptureResult) -> None:
         nonlocal failed
         for warning in result.warnings:
-            stderr.write(f"{prog}: warning: {warning}\n")  # type: ignore[attr-defined]
+            stderr.write(f"{prog}: warning: {shown(warning)}\n")  # type: ignore[attr-defined]
         if result.error is not None:
             failed += 1
-            stderr.write(f"{prog}: {result.error}\n")  # type: ignore[attr-defined]
+            stderr.write(f"{prog}: {shown(result.error)}\n")  # type: ignore[attr-defined]
             return
         rows = result.rows
         stdout.write(  # type: ignore[attr-defined]

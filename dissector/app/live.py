@@ -34,6 +34,7 @@ from dissector.app.live_capture import (
     silence_threshold,
 )
 from dissector.app.live_options import PARITY_CHOICES
+from dissector.app.options import shown  # typed names are data: control characters escaped
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
@@ -257,16 +258,16 @@ def run_live(
     try:
         port = open_port(port_settings(args))
     except LiveError as error:
-        err.write(f"{PROG}: {error}\n")
+        err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     try:
         files = CaptureFiles(capture_output(args, getattr(out, "buffer", None)), args.raw)
     except LiveError as error:
         port.close()
-        err.write(f"{PROG}: {error}\n")
+        err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     stats = LiveStats(files=bool(files.names))
-    err.write(f"{PROG}: listening on {args.live} at {port_settings(args).text()}\n")
+    err.write(f"{PROG}: listening on {shown(args.live)} at {port_settings(args).text()}\n")
     err.flush()
     framer = live_framer(getattr(args, "mode", None), args.baud)
     # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
@@ -297,9 +298,9 @@ def run_live(
     names = files.names
     status = capture.status
     # After a failure the error says what the files keep; "wrote" is for a capture that ended well.
-    written = f"; wrote {', '.join(names)}" if names and status == ExitStatus.OK else ""
+    written = f"; wrote {shown(', '.join(names))}" if names and status == ExitStatus.OK else ""
     if status != ExitStatus.OK:
-        err.write(f"{PROG}: error: {capture.reason}; capture files closed\n")
+        err.write(f"{PROG}: error: {shown(capture.reason)}; capture files closed\n")
     hidden = stats.not_shown_text()
     err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()

@@ -12,6 +12,7 @@ from dissector import __version__
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.app.profile_options import add_profile_arguments
 from dissector.errors import UsageError
+from dissector.protocol.printable import printable
 from dissector.render.fields import FieldsOptions, parse_fields_options
 from dissector.render.output import OutputOptions
 from dissector.render.registers import parse_registers_options
@@ -19,6 +20,14 @@ from dissector.render.timefmt import TIME_FORMATS
 from dissector.sources.reader import FORMATS, MODES
 
 PROG = "vw3-decode"
+
+def shown(message: object) -> str:
+    """An error or warning as standard error shows it: file names, typed option values and bus bytes
+    are data, their control characters escaped as the rule titles and `==>` headers escape them
+    (printable: `e\\x1b[2Jmpty.bin`); a filter error's lines are escaped already (FilterError.lines)."""
+    lines = getattr(message, "lines", None)
+    return "\n".join(lines) if lines is not None else printable(str(message))
+
 
 class Parser(argparse.ArgumentParser):
     """argparse that reports a bad command line as one UsageError line, not the usage text."""

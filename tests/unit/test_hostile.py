@@ -189,6 +189,31 @@ def test_the_reports_json_block_escapes_comment_openers(tmp_path: Path) -> None:
     assert "<!-- a </script> b" in json.dumps(json.loads(block), ensure_ascii=False)
 
 
+def test_control_characters_typed_or_in_file_names_are_escaped_in_error_lines(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "e\x1b[2Jmpty.bin").write_bytes(b"")
+    capture = str(ROOT / "captures" / "p38_protection.pcap")
+    cases = [
+        (["e\x1b[2Jmpty.bin"], 0, "warning: e\\x1b[2Jmpty.bin: the input is empty"),
+        (["no\x1b[31mfile"], 2, "no\\x1b[31mfile: no such file"),
+        (["-Y", "slave == \x1b[31m", capture], 2,
+         "unexpected character '\\x1b' (column 10)\n  slave == \\x1b[31m\n           ^"),
+        (["-Y", 'code == "\x1b]8;;x\x07" or', capture], 2,
+         "code '\\x1b]8;;x\\x07' is no parameter code of this run's maps (column 9)\n"
+         '  code == "\\x1b]8;;x\\x07" or\n          ^'),
+        (["-Y", "slave == 1 \x1b\x9b and", capture], 2,
+         "unexpected character '\\x1b' (column 12)\n  slave == 1 \\x1b\\x9b and\n             ^"),
+        (["--x\x1b[31m", capture], 2, "unrecognized arguments: --x\\x1b[31m (see vw3-decode --help)"),
+        (["-w", "o\x1b[31m/x.pcap", capture], 2, "-w o\\x1b[31m/x.pcap: No such file or directory"),
+        (["-T", "fields", "-e", "fr\x1bame", capture], 2, "-e fr\\x1bame: not a field (did you mean frame?)"),
+        (["--live", "no\x1b[31mport"], 2, "cannot open no\\x1b[31mport: No such file or directory"),
+    ]
+    for argv, status, message in cases:
+        assert run_cli(argv) == (status, "", f"{PROG}{message}\n"), argv
+    assert not (tmp_path / "o\x1b[31m").exists()
+
+
 # -- crashes -----------------------------------------------------------------------------------------
 def test_a_filter_on_address_over_a_quantity_0_read() -> None:
     # It used to be an IndexError; the request names address 0 (tshark's reference_num) and is shown.
