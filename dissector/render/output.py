@@ -70,7 +70,14 @@ class Output:
 
             from dissector.render.theme import THEME
 
-            self.console = RichConsole(
+            class QuietConsole(RichConsole):
+                def on_broken_pipe(self) -> None:
+                    """The reader went away (`| head -1`): end as a plain run does (main(): exit 0),
+                    not as rich does (exit 1)."""
+                    self.quiet = True
+                    raise BrokenPipeError
+
+            self.console = QuietConsole(
                 file=stream,
                 theme=THEME,
                 force_terminal=True if options.color == "always" else None,

@@ -212,7 +212,8 @@ def test_untimed_input_shows_a_dash_in_every_format() -> None:
 
 # -- a reader that goes away ---------------------------------------------------------------------
 
-@pytest.mark.parametrize("view", [[], ["-V"], ["--json"], ["-T", "fields", "-e", "frame"]])
+@pytest.mark.parametrize("view", [[], ["-V"], ["--json"], ["-T", "fields", "-e", "frame"], ["--color", "always"],
+                                  ["--color", "always", "-V"]])
 def test_a_reader_that_goes_away_ends_quietly(tmp_path: Path, view: list[str]) -> None:
     capture = tmp_path / "big.bin"
     capture.write_bytes((ROOT / "captures" / "atv71_commissioning.bin").read_bytes() * 300)
@@ -225,6 +226,19 @@ def test_a_reader_that_goes_away_ends_quietly(tmp_path: Path, view: list[str]) -
     producer.stdout.close()
     _out, err = producer.communicate(timeout=120)
     assert first
+    assert (producer.returncode, err) == (0, b"")
+
+
+@pytest.mark.parametrize("color", ["always", "never"])
+@pytest.mark.parametrize("view", [[], ["-V"], ["-x"], ["--stats"]])
+def test_a_reader_gone_before_the_first_line_ends_quietly_coloured_or_not(color: str, view: list[str]) -> None:
+    # `vw3-decode --color always p38.pcap | head -1` exited 1 with nothing said (rich's own broken-pipe
+    # exit): the reader's end of a real pipe is closed before the first write, so every write fails.
+    producer = subprocess.Popen([sys.executable, "-m", "dissector", "--color", color, *view, P38], cwd=ROOT,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert producer.stdout is not None
+    producer.stdout.close()
+    _out, err = producer.communicate(timeout=120)
     assert (producer.returncode, err) == (0, b"")
 
 
