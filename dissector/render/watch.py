@@ -2,6 +2,10 @@
 
     frame  time  slave code old -> new (unit)
 
+`--json` writes one object a change: `time` (seconds since the epoch, as the --json items' `time`),
+`time_relative` (seconds since the first item, as -T fields' key), frame, slave, address, code, old,
+new, unit, and `provisional` when true; `-t` shapes the text lines' time column only.
+
 A watch line is a change of the parameter history (render/history.py): the state `--stats` counts in
 `changes` and `--report` draws, so the three cannot disagree. A parameter's state is what the wire last
 said of it: a value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23 request
@@ -38,7 +42,7 @@ from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
 class Change:
-    time: float | None  # seconds since the first item (None: no timestamps)
+    time: float | None  # seconds since the epoch, as --json items have it (None: no timestamps)
     frame: int
     slave: int
     address: int
@@ -48,6 +52,7 @@ class Change:
     unit: str | None
     column: str = "-"  # the time column as -t formats it
     provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
+    time_relative: float | None = None  # seconds since the first item, as -T fields' time_relative
 
     def line(self) -> str:
         name = self.code or str(self.address)
@@ -57,7 +62,8 @@ class Change:
 
     def record(self) -> dict[str, object]:
         record: dict[str, object] = {
-            "time": self.time, "frame": self.frame, "slave": self.slave, "address": self.address,
+            "time": self.time, "time_relative": self.time_relative, "frame": self.frame, "slave": self.slave,
+            "address": self.address,
             "code": self.code, "old": self.old, "new": self.new, "unit": self.unit,
         }
         if self.provisional:
@@ -140,7 +146,7 @@ class _State:
 @dataclass(slots=True)
 class _Pending:
     frame: Frame
-    time: float | None
+    time_relative: float | None
     column: str
     key: tuple[int, int]
     old: _State
@@ -234,7 +240,7 @@ class Watcher:
         if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
             self._column = (frame, self.clock.text(frame))
         time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
-        return _Pending(frame, time, self._column[1], key, old, new)
+        return _Pending(frame, time, self._column[1], key, old, new)  # -t shapes the column only
 
     def renamed(self, slave: int) -> None:
         pass  # states keep their raw values: they are named again when written
@@ -262,8 +268,8 @@ class Watcher:
             new_text, unit = self._text(slave, address, pending.new)
         if old_text == new_text:
             return  # the same once named by the same device
-        self.on_change(Change(pending.time, pending.frame.number, slave, address, code, old_text, new_text, unit,
-                              pending.column, provisional))
+        self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
+                              unit, pending.column, provisional, pending.time_relative))
 
     def _read(self, frame: Frame, register: Register, event: int, provisional: bool = False) -> _State:
         """`provisional`: as decoded (the profile and device the history knows by now may be later's)."""

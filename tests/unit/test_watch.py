@@ -30,7 +30,7 @@ def test_untimed_capture_codes_case_and_addresses_json() -> None:
         (6, 8401, "CHCF", "3 IO (I/O profile)", "protected"),
         (10, 8402, "COP", "2 Cd (command)", "protected (exception 02)"),
     ]
-    assert all(c["time"] is None for c in changes)
+    assert all(c["time"] is None and c["time_relative"] is None for c in changes)
     status, out, _ = run_cli([str(CAPTURES / "p38_protection.bin"), "--watch", "chcf,8400,COP", "--profile", "atv71"])
     assert out.splitlines() == [
         "     6            -  12 CHCF 3 IO (I/O profile) -> protected",
@@ -155,3 +155,19 @@ def test_watch_contradictions_are_refused() -> None:
         (["--stats"], "--watch and --stats are two outputs: choose one"),
     ]:
         assert run_cli([capture, "--watch", "CHCF", *extra]) == (2, "", f"vw3-decode: {message}\n")
+
+
+def test_json_time_is_the_items_time_whatever_t_says() -> None:
+    # --json items carry seconds since the epoch under `time`: so does --watch --json (-t shapes the
+    # text lines only); the relative time is under -T fields' key, time_relative.
+    capture = str(CAPTURES / "p38_protection.pcap")
+    (item,) = [json.loads(line) for line in run_cli([capture, "--json", "-Y", "frame == 6"])[1].splitlines()]
+    expected = {"time": 1767225601.069064, "time_relative": 1.059949, "frame": 6, "slave": 12, "address": 8401,
+                "code": "CHCF", "old": "3 IO (I/O profile)", "new": "protected", "unit": None}
+    assert item["time"] == expected["time"]
+    for extra in ([], ["-t", "e"], ["-t", "r"], ["-t", "d"], ["-t", "ud"]):
+        status, out, err = run_cli([capture, "--watch", "CHCF", "--json", *extra])
+        assert (status, err) == (0, "")
+        assert [json.loads(line) for line in out.splitlines()] == [expected], extra
+    fields = run_cli([capture, "-T", "fields", "-e", "time_relative", "-Y", "frame == 6"])[1]
+    assert fields == "1.059949000\n"
