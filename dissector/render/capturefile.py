@@ -287,9 +287,18 @@ class CaptureOutput:
         records = self._records
         empty = records is not None and records.whole <= 1  # the first write is the file header
         self.close()
-        if empty and self.path != STDOUT and self.paths:
+        if empty and self.path != STDOUT and self.paths and regular_file(self.paths[-1]):
             with contextlib.suppress(OSError):
                 os.unlink(self.paths[-1])
+
+
+def regular_file(path: str) -> bool:
+    """A name that may be removed after a refused input: a regular file itself, not a symlink (-w
+    link.pcap removed the link, -w /dev/stdout would remove /dev/stdout) nor a device (/dev/null)."""
+    try:
+        return stat.S_ISREG(os.lstat(path).st_mode)
+    except OSError:
+        return False
 
 
 def open_output(

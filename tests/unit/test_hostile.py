@@ -565,6 +565,27 @@ def test_an_output_that_is_standard_input_is_refused(tmp_path: Path) -> None:
     assert out_file.read_bytes()[:24] == data[:24]
 
 
+def test_a_refused_input_removes_only_regular_files_it_wrote(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A refused input removes the header-only -w file and the empty report: never a symlink in its place
+    # (-w link.pcap removed the link) nor a device (-w /dev/null, as root, would have removed /dev/null).
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "bad.pcap").write_bytes(b"garbage, not a pcap")
+    (tmp_path / "target").write_bytes(b"")
+    (tmp_path / "link").symlink_to("target")
+    names = ["link"]
+    if os.geteuid() == 0:  # a device of our own, never the system's /dev/null
+        os.mknod(tmp_path / "null", 0o666 | 0o020000, os.makedev(1, 3))
+        names.append("null")
+    refused = (2, "", f"{PROG}bad.pcap: not a pcap file (magic 67617262)\n")
+    for name in names:
+        for option in ("-w", "--report"):
+            assert run_cli(["--format", "pcap", "bad.pcap", option, name]) == refused
+            assert os.path.lexists(tmp_path / name), (option, name)
+    assert (tmp_path / "link").is_symlink()
+    assert run_cli(["--format", "pcap", "bad.pcap", "-w", "out.pcap", "--report", "out.html"]) == refused
+    assert not (tmp_path / "out.pcap").exists() and not (tmp_path / "out.html").exists()
+
+
 def test_live_w_and_raw_to_the_same_file_are_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(tmp_path)
     status, out, err = run_cli(["--live", "loop://", "-w", "cap.pcap", "--raw", "./cap.pcap", "--duration", "0.1"])

@@ -4,6 +4,7 @@ from __future__ import annotations
 import os
 
 from dissector.errors import UsageError
+from dissector.render.capturefile import regular_file
 from dissector.render.report.collect import ReportCollector
 from dissector.render.report.html import render_report, write_report
 from dissector.render.stats import StatsCollector
@@ -37,7 +38,7 @@ class ReportFile:
             self.stream.close()
         except OSError:
             pass
-        if discard:
+        if discard and regular_file(self.path):  # not a symlink, not /dev/stdout
             try:
                 os.unlink(self.path)
             except OSError:
