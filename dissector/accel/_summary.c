@@ -841,6 +841,7 @@ static void span_text(Out *o, long long base, unsigned start, unsigned quantity)
 }
 
 #include "_stats.h"
+#include "_columns.h" /* --report's pixel columns of a series */
 
 /* ---- one transaction ---------------------------------------------------------------------------- */
 typedef struct {
@@ -1854,7 +1855,7 @@ static struct PyModuleDef summary_module = {
 
 PyMODINIT_FUNC PyInit__summary(void) {
     crc_init();
-    if (PyType_Ready(&EngineType) < 0 || PyType_Ready(&StatsType) < 0) return NULL;
+    if (PyType_Ready(&EngineType) < 0 || PyType_Ready(&StatsType) < 0 || PyType_Ready(&ColumnsType) < 0) return NULL;
     PyObject *module = PyModule_Create(&summary_module);
     if (module == NULL) return NULL;
     Py_INCREF(&EngineType);
@@ -1866,6 +1867,12 @@ PyMODINIT_FUNC PyInit__summary(void) {
     Py_INCREF(&StatsType);
     if (PyModule_AddObject(module, "Stats", (PyObject *)&StatsType) < 0) {
         Py_DECREF(&StatsType);
+        Py_DECREF(module);
+        return NULL;
+    }
+    Py_INCREF(&ColumnsType);
+    if (PyModule_AddObject(module, "Columns", (PyObject *)&ColumnsType) < 0) {
+        Py_DECREF(&ColumnsType);
         Py_DECREF(module);
         return NULL;
     }

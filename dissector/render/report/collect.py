@@ -20,6 +20,7 @@ The x axis is the capture time (Unix seconds) when items are time-stamped, the f
 from __future__ import annotations
 
 import json
+import os
 from array import array
 from dataclasses import dataclass, field
 from typing import Any
@@ -35,6 +36,11 @@ MAX_MARKS = 200
 MAX_EVENTS = 1000
 MAX_LABELS = 64
 EVENT_KINDS = ("exception", "protection", "crc", "noise", "silence", "unanswered")
+
+try:  # the same columns in C (dissector/accel/_columns.h): add() runs once per register value
+    from dissector.accel._summary import Columns as CompiledColumns
+except ImportError:  # built without a C compiler
+    CompiledColumns = None
 
 class Columns:
     """Per-column first/min/max/last points of one series, 8 doubles a column (fx fy nx ny mx my lx ly)
@@ -69,16 +75,11 @@ class Columns:
     def __len__(self) -> int:
         return len(self.done) // 8
 
-    def remap(self, convert: object) -> None:
-        """Every y through `convert` (a profile chosen later scales raw words); each column's lowest
-        and highest points are found again, since a signed reading reorders them."""
-        done = self.done
-        for index in range(0, len(done), 8):
-            points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]  # type: ignore[operator]
-            low = min(points, key=lambda point: point[1])
-            high = max(points, key=lambda point: point[1])
-            for k, (x, y) in enumerate((points[0], low, high, points[3])):
-                done[index + 2 * k], done[index + 2 * k + 1] = x, y
+    def values(self) -> list[float]:
+        return self.done.tolist()
+
+    def load(self, values: list[float]) -> None:
+        self.done = array("d", values)
 
     def compact(self, origin: float, width: float) -> None:
         """Merge the finished columns that fall in one column of `width` (widths only grow by
@@ -99,7 +100,13 @@ class Columns:
             out[base + 6], out[base + 7] = done[index + 6], done[index + 7]
         self.done = out
 
+    def drawn(self, origin: float, digits: int) -> tuple[list[float], list[float | int]]:
+        """The points as the page writes them: x relative to `origin`, y an int when whole."""
+        xs, ys = self.points()
+        return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
+
     def points(self) -> tuple[list[float], list[float]]:
+        """Each column's distinct points in order (x, then y), none at or before the last x kept."""
         done = self.done
         xs: list[float] = []
         ys: list[float] = []
@@ -118,6 +125,26 @@ class Columns:
         return xs, ys
 
 
+def remap(columns: Any, convert: Any) -> None:
+    """Every y of `columns` through `convert` (a profile chosen later scales raw words); each column's
+    lowest and highest points are found again, since a signed reading reorders them."""
+    done = columns.values()
+    for index in range(0, len(done), 8):
+        points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]
+        low = min(points, key=lambda point: point[1])
+        high = max(points, key=lambda point: point[1])
+        for k, (x, y) in enumerate((points[0], low, high, points[3])):
+            done[index + 2 * k], done[index + 2 * k + 1] = x, y
+    columns.load(done)
+
+
+def new_columns() -> Any:
+    """The compiled columns when the extension is built (and VW3_PURE_PYTHON is not set)."""
+    if CompiledColumns is not None and not os.environ.get("VW3_PURE_PYTHON"):
+        return CompiledColumns()
+    return Columns()
+
+
 @dataclass(slots=True)
 class Series:
     slave: int
@@ -127,7 +154,7 @@ class Series:
     unit: str | None = None
     step: bool = False  # an enumeration or a bit field: the raw word, drawn as steps
     labels: dict[int, str] = field(default_factory=dict)
-    columns: Columns = field(default_factory=Columns)
+    columns: Any = field(default_factory=new_columns)
     values: int = 0
     status: str | None = None  # the open unreadable span's status, None when readable
     marks: list[tuple[float, str]] = field(default_factory=list)
@@ -155,6 +182,11 @@ class ReportCollector:
         self.first_x: float | None = None
         self.last_x: float | None = None
         self.number = 0  # the frame number of the item at hand (events name their frame)
+        # The frame whose registers the history is giving, with its x and column (the listener is
+        # called once per register: the x axis is worked out once per frame); None after a doubling.
+        self._at: Item | None = None
+        self._at_x = 0.0
+        self._at_col = 0
         self.groups = EventGroups()
 
     # -- the x axis -------------------------------------------------------------------------------
@@ -162,6 +194,7 @@ class ReportCollector:
         """Columns twice as wide. Finished columns are merged only when a series holds more than
         2 x COLUMNS of them (and once at the end), not at every doubling: 3 x COLUMNS at most."""
         self.width *= 2
+        self._at = None
         self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
         for series in self.series.values():
             columns = series.columns
@@ -200,6 +233,7 @@ class ReportCollector:
             self.add(item)
 
     def add(self, item: Item) -> None:
+        self._at = None
         x = self._x(item)
         for warning in item.warnings:
             if warning.startswith("silence"):
@@ -250,7 +284,12 @@ class ReportCollector:
     # -- the history's listener --------------------------------------------------------------------
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         """A register that set its parameter's state: a point, or an unreadable span's start or end."""
-        x = self._x(frame)  # the item's own x (add() saw it first: idempotent)
+        if frame is self._at:
+            x, col = self._at_x, self._at_col
+        else:
+            x = self._x(frame)  # the item's own x (add() saw it first: idempotent)
+            col = self._col(x)
+            self._at, self._at_x, self._at_col = frame, x, col
         slave = frame.slave
         series = self.series.get((slave, register.address))  # type: ignore[arg-type]
         if series is None:
@@ -285,23 +324,7 @@ class ReportCollector:
             self._event(x, "protection", slave, f"{_name(series)} readable again")
             series.status = None
         series.values += 1
-        # Columns.add inlined: this runs once per register value of the capture.
-        col = self._col(x)
-        columns = series.columns
-        done = columns.done
-        if col != columns.col:
-            columns.col = col
-            done.extend((x, y, x, y, x, y, x, y))
-            return
-        base = len(done) - 8
-        if y < done[base + 3]:
-            done[base + 2] = x
-            done[base + 3] = y
-        elif y > done[base + 5]:
-            done[base + 4] = x
-            done[base + 5] = y
-        done[base + 6] = x
-        done[base + 7] = y
+        series.columns.add(col, x, y)
 
     def renamed(self, slave: int) -> None:
         """The slave's profile changed: its series are read again as the new device reads them (the
@@ -318,13 +341,13 @@ class ReportCollector:
             series.code, series.name = row.code, row.name
             if row.enum or row.bits:
                 series.step = True
-                for y in series.columns.done[1::2]:
+                for y in series.columns.values()[1::2]:
                     value = int(y)
                     if value not in series.labels and len(series.labels) < MAX_LABELS and 0 <= value <= 0xFFFF:
                         series.labels[value] = interpret(row, value)[1]  # type: ignore[assignment]
             elif row.scale is not None or row.signed:
                 series.unit = row.unit
-                series.columns.remap(lambda y, row=row: float(interpret(row, int(y) & 0xFFFF)[0]))  # type: ignore[arg-type]
+                remap(series.columns, lambda y, row=row: float(interpret(row, int(y) & 0xFFFF)[0]))
 
     @staticmethod
     def _mark(series: Series, x: float, text: str) -> None:
@@ -399,9 +422,7 @@ class ReportCollector:
             columns = series.columns
             columns.close()
             columns.compact(self.origin or 0.0, self.width)
-            xs, ys = columns.points()
-            entry["x"] = [round(x - origin, digits) for x in xs]
-            entry["y"] = [_number(y) for y in ys]
+            entry["x"], entry["y"] = columns.drawn(origin, digits)
         return entry
 
 

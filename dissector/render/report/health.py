@@ -14,7 +14,7 @@ from typing import Any
 
 from dissector.model import Item, Kind
 from dissector.protocol.table import FUNCTIONS, Access
-from dissector.render.report.collect import COLUMNS, Columns
+from dissector.render.report.collect import COLUMNS, new_columns
 from dissector.render.stats_store import MAX_PARAMETERS
 
 # Requests whose registers are values written: setpoints (FC23's write half too).
@@ -28,7 +28,7 @@ class Health:
         self.origin: float | None = None
         self.width = 1e-3
         self.limit = 0.0
-        self.series: dict[int, Columns] = {}
+        self.series: dict[int, Any] = {}
         self.counts: dict[int, int] = {}
         self.written: set[tuple[int, int]] = set()
 
@@ -60,7 +60,7 @@ class Health:
             self._double()
         columns = self.series.get(slave)
         if columns is None:
-            columns = self.series[slave] = Columns()
+            columns = self.series[slave] = new_columns()
         columns.add(max(0, int((x - self.origin) / self.width)), x, y)
         self.counts[slave] = self.counts.get(slave, 0) + 1
 

@@ -108,7 +108,7 @@ def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int,
         series = collector.series.get((parameter["slave"], parameter["address"]))
         if series is None:
             continue
-        ys = series.columns.done[1::2]
+        ys = series.columns.values()[1::2]
         if ys and min(ys) == max(ys):
             single[index] = ys[0]
     return single

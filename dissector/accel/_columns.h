@@ -1,0 +1,256 @@
+/* --report's pixel columns of one parameter series (render/report/collect.py `Columns`, which stays the
+ * reference under VW3_PURE_PYTHON=1): 8 doubles a column, the first, lowest, highest and last point
+ * (fx fy nx ny mx my lx ly), in a growing array. The same arithmetic as the Python class, step for
+ * step, so that the page is byte-identical: add() is once per register value of the capture, compact()
+ * and points() once per series and doubling. Included by _summary.c: one translation unit. */
+
+typedef struct {
+    PyObject_HEAD
+    double *d;
+    Py_ssize_t n, cap; /* doubles used, allocated */
+    long long col;     /* the open column; -1 once closed */
+} Columns;
+
+static PyTypeObject ColumnsType;
+
+static int columns_grow(Columns *self, Py_ssize_t need) {
+    if (need <= self->cap) return 0;
+    Py_ssize_t cap = self->cap ? self->cap * 2 : 64;
+    while (cap < need) cap *= 2;
+    double *d = PyMem_Realloc(self->d, (size_t)cap * sizeof(double));
+    if (d == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    self->d = d;
+    self->cap = cap;
+    return 0;
+}
+
+static int columns_init(Columns *self, PyObject *args, PyObject *kwargs) {
+    self->col = -1;
+    self->n = 0;
+    return 0;
+}
+
+static void columns_dealloc(Columns *self) {
+    PyMem_Free(self->d);
+    Py_TYPE(self)->tp_free((PyObject *)self);
+}
+
+/* A column opened with the point (x, y) as its four points. */
+static int columns_open(Columns *self, double x, double y) {
+    if (columns_grow(self, self->n + 8) < 0) return -1;
+    double *c = self->d + self->n;
+    for (int k = 0; k < 8; k += 2) c[k] = x, c[k + 1] = y;
+    self->n += 8;
+    return 0;
+}
+
+static PyObject *columns_add(Columns *self, PyObject *const *args, Py_ssize_t nargs) {
+    if (nargs != 3) return PyErr_Format(PyExc_TypeError, "add(col, x, y)");
+    long long col = PyLong_AsLongLong(args[0]);
+    double x = PyFloat_AsDouble(args[1]), y = PyFloat_AsDouble(args[2]);
+    if (PyErr_Occurred()) return NULL;
+    if (col != self->col) {
+        self->col = col;
+        if (columns_open(self, x, y) < 0) return NULL;
+        Py_RETURN_NONE;
+    }
+    double *c = self->d + self->n - 8;
+    if (y < c[3]) c[2] = x, c[3] = y;
+    else if (y > c[5]) c[4] = x, c[5] = y;
+    c[6] = x, c[7] = y;
+    Py_RETURN_NONE;
+}
+
+static PyObject *columns_close(Columns *self, PyObject *unused) {
+    self->col = -1;
+    Py_RETURN_NONE;
+}
+
+static Py_ssize_t columns_len(Columns *self) { return self->n / 8; }
+
+/* Merge the finished columns that fall in one column of `width` (Python's int() truncates as the cast). */
+static PyObject *columns_compact(Columns *self, PyObject *args) {
+    double origin, width;
+    if (!PyArg_ParseTuple(args, "dd", &origin, &width)) return NULL;
+    double *d = self->d;
+    Py_ssize_t out = 0;
+    long long last = 0;
+    for (Py_ssize_t i = 0; i < self->n; i += 8) {
+        long long col = (long long)((d[i] - origin) / width);
+        if (out == 0 || col != last) {
+            if (out != i) memmove(d + out, d + i, 8 * sizeof(double));
+            out += 8;
+            last = col;
+            continue;
+        }
+        double *o = d + out - 8, *c = d + i;
+        if (c[3] < o[3]) o[2] = c[2], o[3] = c[3];
+        if (c[5] > o[5]) o[4] = c[4], o[5] = c[5];
+        o[6] = c[6], o[7] = c[7];
+    }
+    self->n = out;
+    Py_RETURN_NONE;
+}
+
+static int point_less(const double *a, const double *b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+
+/* round(v, digits) as Python's float.__round__ does it: the decimal text correctly rounded (dtoa's
+ * mode 3, as PyOS_double_to_string's 'f'), read back correctly rounded. */
+static PyObject *rounded(double v, int digits) {
+    if (!isfinite(v)) return PyFloat_FromDouble(v);
+    char *text = PyOS_double_to_string(v, 'f', digits, 0, NULL);
+    if (text == NULL) return NULL;
+    double r = PyOS_string_to_double(text, NULL, NULL);
+    PyMem_Free(text);
+    if (r == -1.0 && PyErr_Occurred()) return NULL;
+    return PyFloat_FromDouble(r);
+}
+
+/* (xs, ys): each column's distinct points in order (x, then y), none at or before the last x kept,
+ * a run of equal values by its ends only. drawn(origin, digits): the same as the page writes them,
+ * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number). */
+static PyObject *columns_list(Columns *self, int drawn, double origin, int digits) {
+    PyObject *xs = PyList_New(0), *ys = PyList_New(0);
+    if (xs == NULL || ys == NULL) goto fail;
+    /* Kept points in C first (x, y); made into lists at the end. */
+    double *kx = PyMem_Malloc((size_t)(self->n / 2 + 1) * sizeof(double));
+    double *ky = PyMem_Malloc((size_t)(self->n / 2 + 1) * sizeof(double));
+    if (kx == NULL || ky == NULL) {
+        PyMem_Free(kx), PyMem_Free(ky);
+        PyErr_NoMemory();
+        goto fail;
+    }
+    Py_ssize_t kept = 0;
+    for (Py_ssize_t i = 0; i < self->n; i += 8) {
+        const double *c = self->d + i;
+        double ends[4][2];
+        int count = 0;
+        if (c[0] == c[6]) {
+            ends[0][0] = c[0], ends[0][1] = c[1];
+            count = 1;
+        } else {
+            for (int k = 0; k < 8; k += 2) { /* a set: equal points once, then sorted */
+                int seen = 0;
+                for (int j = 0; j < count; j++) seen |= ends[j][0] == c[k] && ends[j][1] == c[k + 1];
+                if (seen) continue;
+                int at = count++;
+                while (at > 0 && point_less(c + k, ends[at - 1])) {
+                    ends[at][0] = ends[at - 1][0], ends[at][1] = ends[at - 1][1];
+                    at--;
+                }
+                ends[at][0] = c[k], ends[at][1] = c[k + 1];
+            }
+        }
+        for (int j = 0; j < count; j++) {
+            double x = ends[j][0], y = ends[j][1];
+            if (kept && x <= kx[kept - 1]) continue;
+            if (kept >= 2 && ky[kept - 1] == y && ky[kept - 2] == y) {
+                kx[kept - 1] = x;
+                continue;
+            }
+            kx[kept] = x, ky[kept] = y;
+            kept++;
+        }
+    }
+    for (Py_ssize_t j = 0; j < kept; j++) {
+        PyObject *x, *y;
+        if (!drawn) {
+            x = PyFloat_FromDouble(kx[j]), y = PyFloat_FromDouble(ky[j]);
+        } else {
+            x = rounded(kx[j] - origin, digits);
+            y = isfinite(ky[j]) && floor(ky[j]) == ky[j] ? PyLong_FromDouble(ky[j]) : rounded(ky[j], 6);
+        }
+        int bad = x == NULL || y == NULL || PyList_Append(xs, x) < 0 || PyList_Append(ys, y) < 0;
+        Py_XDECREF(x);
+        Py_XDECREF(y);
+        if (bad) {
+            PyMem_Free(kx), PyMem_Free(ky);
+            goto fail;
+        }
+    }
+    PyMem_Free(kx), PyMem_Free(ky);
+    PyObject *pair = PyTuple_Pack(2, xs, ys);
+    Py_DECREF(xs);
+    Py_DECREF(ys);
+    return pair;
+fail:
+    Py_XDECREF(xs);
+    Py_XDECREF(ys);
+    return NULL;
+}
+
+static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0); }
+
+static PyObject *columns_drawn(Columns *self, PyObject *args) {
+    double origin;
+    int digits;
+    if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
+    return columns_list(self, 1, origin, digits);
+}
+
+/* values() -> [fx, fy, nx, ...] and load(values): the doubles as a list, for the rare rewrites
+ * (a profile chosen later: collect.py remap) done in Python for both stores. */
+static PyObject *columns_values(Columns *self, PyObject *unused) {
+    PyObject *list = PyList_New(self->n);
+    if (list == NULL) return NULL;
+    for (Py_ssize_t i = 0; i < self->n; i++) {
+        PyObject *v = PyFloat_FromDouble(self->d[i]);
+        if (v == NULL) {
+            Py_DECREF(list);
+            return NULL;
+        }
+        PyList_SET_ITEM(list, i, v);
+    }
+    return list;
+}
+
+static PyObject *columns_load(Columns *self, PyObject *values) {
+    PyObject *seq = PySequence_Fast(values, "load(values): a sequence of floats");
+    if (seq == NULL) return NULL;
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n % 8 != 0 || columns_grow(self, n) < 0) {
+        if (!PyErr_Occurred()) PyErr_SetString(PyExc_ValueError, "load(values): 8 doubles a column");
+        Py_DECREF(seq);
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        double v = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(seq, i));
+        if (v == -1.0 && PyErr_Occurred()) {
+            Py_DECREF(seq);
+            return NULL;
+        }
+        self->d[i] = v;
+    }
+    self->n = n;
+    Py_DECREF(seq);
+    Py_RETURN_NONE;
+}
+
+static PyMethodDef columns_methods[] = {
+    {"add", (PyCFunction)(void (*)(void))columns_add, METH_FASTCALL, "add(col, x, y): a point in column col"},
+    {"close", (PyCFunction)columns_close, METH_NOARGS, "end the open column (the width is about to change)"},
+    {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
+    {"points", (PyCFunction)columns_points, METH_NOARGS, "(xs, ys): the points drawn"},
+    {"drawn", (PyCFunction)columns_drawn, METH_VARARGS, "drawn(origin, digits): (xs, ys) as the page writes them"},
+    {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles, 8 a column"},
+    {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PySequenceMethods columns_sequence = {.sq_length = (lenfunc)columns_len};
+
+static PyTypeObject ColumnsType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "dissector.accel._summary.Columns",
+    .tp_basicsize = sizeof(Columns),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "--report's pixel columns of one series (render/report/collect.py Columns).",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)columns_init,
+    .tp_dealloc = (destructor)columns_dealloc,
+    .tp_methods = columns_methods,
+    .tp_as_sequence = &columns_sequence,
+};
