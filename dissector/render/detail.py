@@ -18,7 +18,7 @@ from dissector.model import BitList, Frame, Item, Kind, Noise, Register, Registe
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
-from dissector.render.summary import crc_text, noise_info
+from dissector.render.summary import check_untyped, crc_text, noise_info
 
 if TYPE_CHECKING:
     from rich.text import Text
@@ -349,7 +349,11 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
     for obj in frame.objects or ():
         add(f"        Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
     crc = frame.crc
-    if rtu and crc == frame.crc_expected:
+    if frame.notes and check_untyped(frame):  # --hex typed without its check: nothing was received
+        detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: none typed "
+                      f"[{crc_text(frame)}: 0x{frame.crc_expected:0{2 if frame.mode == 'ascii' else 4}X}, not checked]",
+                      "vw3.note")
+    elif rtu and crc == frame.crc_expected:
         line = _CRC_OK_LINES.get(crc)
         if line is None:
             line = _CRC_OK_LINES[crc] = f"        CRC: 0x{crc:04X} [CRC ok]"  # 16-bit keys: bounded
@@ -382,7 +386,8 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
         joined and kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None
     ):
         # Slave to CRC depend on the bytes and the profile's words only: a polled request repeats them.
-        key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text)
+        key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text,
+               bool(frame.notes) and check_untyped(frame))  # the CRC line says whether it was typed
         add(_kept_text(_MIDDLES, key, _middle, frame))
     else:
         _middle(detail, frame)
@@ -459,7 +464,8 @@ def _plain_frame(frame: Frame, base: float | None) -> str:
             f"    Arrival time: {_utc(time)} ({time - (base or 0.0):.6f} s since the first item){words[1]}"
         )
     if kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None:
-        key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text)  # as _build keeps it
+        key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text,
+               bool(frame.notes) and check_untyped(frame))  # as _build keeps it
         texts = [head, _kept_text(_MIDDLES, key, _middle, frame)]
     else:
         detail = _Detail(joined=True)

@@ -14,6 +14,7 @@ from typing import Any, TextIO
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
+from dissector.render.summary import check_untyped
 
 
 def register_to_dict(register: Register) -> dict[str, Any]:
@@ -71,6 +72,9 @@ def _head(frame: Frame) -> dict[str, Any]:
         "crc_expected": frame.crc_expected,
         "broadcast": frame.broadcast,
     }
+    if frame.notes and check_untyped(frame):  # --hex typed without its check: none received, none checked
+        out["crc_ok"] = out["crc"] = None
+        out["crc_typed"] = False
     if frame.start is not None:
         out["start"] = frame.start
     if frame.span_label is not None:
@@ -220,6 +224,9 @@ def _head_json(frame: Frame) -> str:
         f'"crc_ok": {"true" if crc == expected else "false"}, "crc": {crc}, "crc_expected": {expected}, '
         f'"broadcast": {"true" if frame.broadcast else "false"}'
     )
+    if frame.notes and check_untyped(frame):  # as _head: none received, none checked
+        text = text.replace(f'"crc_ok": true, "crc": {crc}, ', '"crc_ok": null, "crc": null, ', 1)
+        text += ', "crc_typed": false'
     start = frame.start
     if start is not None:
         text += f', "start": {start}' if type(start) is int else f', "start": {_scalar(start)}'

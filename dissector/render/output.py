@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, TextIO
 
 from dissector.model import Item
 from dissector.protocol.printable import printable
-from dissector.render.summary import summary_line, summary_text
+from dissector.render.summary import summary_line, summary_text, typed_bytes
 from dissector.render.timefmt import Clock
 
 # The writers of -V, -x, --json and -T are imported by the output that uses them (a one-frame summary
@@ -167,14 +167,14 @@ class Output:
                 out.append(text)
                 size += len(text)
                 if options.hexdump:
-                    text = hexdump(item.raw)
+                    text = hexdump(typed_bytes(item))
                     out.append(text)
                     size += len(text)
                 out.append("")
             else:
                 out.append(summary_line(item, column=clock.text(item)))
                 if options.hexdump:
-                    text = hexdump(item.raw)
+                    text = hexdump(typed_bytes(item))
                     out.append(text)
                     size += len(text)
                     out.append("")
@@ -223,7 +223,7 @@ class Output:
         else:
             console.print(summary_text(item, column=self.clock.text(item)))
         if self.options.hexdump:
-            console.print(hexdump(item.raw), style="vw3.hex", highlight=False, markup=False, emoji=False)
+            console.print(hexdump(typed_bytes(item)), style="vw3.hex", highlight=False, markup=False, emoji=False)
         if self.options.detail or self.options.hexdump:
             console.print()
 

@@ -21,9 +21,28 @@ def time_text(item: Item, base: float | None) -> str:
 _UNTYPED = ("no CRC typed", "no LRC typed")  # hexinput's note for bytes typed without their check
 
 
+def check_untyped(frame: Frame) -> bool:
+    """A `--hex` frame typed without its CRC (LRC): the check was computed here, never received, so
+    no output may call it received or ok (summary, -V, --json, -T fields, -x; issue 27)."""
+    return frame.crc == frame.crc_expected and bool(frame.notes) and any(
+        note.startswith(_UNTYPED) for note in frame.notes
+    )
+
+
+def typed_bytes(item: Item) -> bytes:
+    """The bytes an item came as: a frame's without the check computed for it when none was typed
+    (what -x shows; in ASCII the two LRC characters before the CR LF)."""
+    raw = item.raw
+    if not isinstance(item, Frame) or not check_untyped(item):
+        return raw
+    if item.mode == "ascii":
+        return raw[:-4] + raw[-2:] if raw.endswith(b"\r\n") else raw[:-2]
+    return raw[:-2]
+
+
 def crc_text(frame: Frame) -> str:
     if frame.crc == frame.crc_expected:
-        if frame.notes and any(note.startswith(_UNTYPED) for note in frame.notes):
+        if check_untyped(frame):
             # The check was computed here, not received: nothing was checked.
             return "CRC computed (none typed)" if frame.mode == "rtu" else "LRC computed (none typed)"
         return "CRC ok" if frame.mode == "rtu" else "LRC ok"
@@ -156,5 +175,5 @@ def summary_text(item: Item, base: float | None = None, column: str | None = Non
         text.append(" ")
         text.append(part, style)
     text.append("  ")
-    text.append(crc_text(frame), "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad")
+    text.append(crc_text(frame), ("vw3.note" if check_untyped(frame) else "vw3.crc.ok") if frame.crc_ok else "vw3.crc.bad")
     return text

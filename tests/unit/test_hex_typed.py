@@ -34,6 +34,35 @@ def test_a_frame_typed_without_its_crc_gets_the_crc_to_append() -> None:
     ]
 
 
+def test_a_crc_nobody_typed_is_called_received_by_no_output() -> None:
+    # Review of issue 27 (defect 8): -V said `CRC: 0xEF0E [CRC ok]`, --json `crc_ok: true`, -T fields `1`
+    # and -x showed `0e ef`, none of them typed.
+    typed = ["--hex", "0C 03 20 D0 00 03"]
+    status, out, err = run_cli(["-V", *typed])
+    assert (status, err) == (0, "")
+    assert "        CRC: none typed [CRC computed (none typed): 0xEF0E, not checked]" in out.splitlines()
+    assert "CRC ok" not in out
+    record = json.loads(run_cli(["--json", *typed])[1])
+    assert (record["crc_ok"], record["crc"], record["crc_expected"], record["crc_typed"]) == (None, None, 0xEF0E, False)
+    assert run_cli(["-T", "fields", "-e", "frame", "-e", "crc_ok", "-e", "crc", "-e", "crc_expected", "-e", "crc_typed",
+                    *typed])[1] == "1\t\t\t61198\t0\n"
+    out = run_cli(["-x", *typed])[1]
+    assert out.splitlines()[1:] == ["0000  0c 03 20 d0 00 03                                 .. ...", ""]
+    assert run_cli(["-Y", "crc_ok", *typed])[1] == ""
+    assert run_cli(["-Y", "!crc_ok", *typed])[1].endswith("CRC computed (none typed)\n")
+    # ASCII: the LRC the same way
+    ascii_typed = ["--hex", ":02062329000A"]
+    assert "        LRC: none typed [LRC computed (none typed): 0xA2, not checked]" in run_cli(["-V", *ascii_typed])[1]
+    assert run_cli(["-x", *ascii_typed])[1].splitlines()[1] == (
+        "0000  3a 30 32 30 36 32 33 32 39 30 30 30 41 0d 0a      :02062329000A..")
+    # A CRC typed is received and checked, everywhere as before.
+    good = ["--hex", "0C 03 20 D0 00 03 0E EF"]
+    assert "        CRC: 0xEF0E [CRC ok]" in run_cli(["-V", *good])[1].splitlines()
+    record = json.loads(run_cli(["--json", *good])[1])
+    assert (record["crc_ok"], record["crc"], "crc_typed" in record) == (True, 0xEF0E, False)
+    assert run_cli(["-x", *good])[1].splitlines()[1] == "0000  0c 03 20 d0 00 03 0e ef                           .. ....."
+
+
 def test_bytes_that_are_no_frame_either_way_stay_noise() -> None:
     status, out, _err = run_cli(["--hex", "0C 03 20"])
     assert status == 0
