@@ -37,8 +37,7 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
 # Keys of the NDJSON object the filter does not list (kept in step with render.jsonout).
-EXTRA_FRAME_KEYS = ("span_label", "exception_meaning", "objects", "fields", "bits", "registers", "file",
-                    "crc_typed")
+EXTRA_FRAME_KEYS = ("span_label", "exception_meaning", "objects", "fields", "bits", "registers", "file")
 SWITCHES = ("y", "n")
 QUOTES = {"d": '"', "s": "'", "n": ""}
 OCCURRENCES = ("f", "l", "a")
