@@ -332,8 +332,36 @@ class StatsCollector:
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
             blocks += [_poll_table(report["poll_cycle"], self.poll_addresses), ""]
-        blocks.append(_parameter_table(self.store))
+        blocks.append(_parameter_table(self.store, self.parameter_address(report["poll_cycle"])))
         return blocks
+
+    def parameter_address(self, poll: list[dict[str, Any]]) -> Callable[[int, int], str]:
+        """(slave, address) -> the address as the summary shows it (PLC style: 40001, devices.naming's
+        plc_label through the annotator). A parameter is kept by (slave, address), not by function: it is
+        an input register (30001..) when an FC4 poll window holds it and no holding-register one does,
+        or when its slave was only ever read with FC4; a holding register (40001..) otherwise."""
+        label = getattr(self.history.annotate, "label", None)
+        if label is None:
+            return lambda slave, address: str(address)
+        windows: dict[tuple[int, bool], list[tuple[int, int]]] = {}
+        for row in poll:
+            start, quantity = row.get("start"), row.get("quantity")
+            if start is not None and quantity and row["function"] in (3, 4, 23):
+                windows.setdefault((row["slave"], row["function"] == 4), []).append((start, start + quantity))
+        functions: dict[int, set[int]] = {}
+        for slave, function in self._all_functions():
+            functions.setdefault(slave, set()).add(function)
+
+        def inside(slave: int, inputs: bool, address: int) -> bool:
+            return any(start <= address < end for start, end in windows.get((slave, inputs), ()))
+
+        def shown(slave: int, address: int) -> str:
+            inputs = functions.get(slave, set()) & {3, 4, 6, 16, 23} == {4} or (
+                inside(slave, True, address) and not inside(slave, False, address))
+            text = label(slave, 4 if inputs else 3, address)
+            return str(address) if text is None else text
+
+        return shown
 
     def poll_addresses(self, row: dict[str, Any]) -> str:
         """A poll key's addresses as the summary shows them (PLC style: 40001..40016 (16))."""
@@ -392,7 +420,7 @@ def _poll_table(rows: list[dict[str, Any]], addresses: Callable[[dict[str, Any]]
     return table
 
 
-def _parameter_table(store: Any) -> TableSpec:
+def _parameter_table(store: Any, address_text: Callable[[int, int], str] = lambda slave, address: str(address)) -> TableSpec:
     """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
     all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all: the runs
     are found by the store (stats_store.ParameterTable.table, or the compiled one's), which makes rows
@@ -405,7 +433,7 @@ def _parameter_table(store: Any) -> TableSpec:
     )
     pieces, expanded, count, (reads, unreadable, writes, refused, changes) = store.table(MAX_PARAMETER_ROWS, GROUP_MIN)
     shown = len(pieces)
-    table.rows.extend(_parameter_row(members) for members in pieces)
+    table.rows.extend(_parameter_row(members, address_text) for members in pieces)
     if expanded > shown:
         table.rows.append(["", f"... (+{expanded - shown} more rows)", "", "", "", "", "", "", ""])
     if count > 1:
@@ -414,12 +442,12 @@ def _parameter_table(store: Any) -> TableSpec:
     return table
 
 
-def _parameter_row(members: list[ParameterRow]) -> list[Cell]:
+def _parameter_row(members: list[ParameterRow], address_text: Callable[[int, int], str]) -> list[Cell]:
     first, last = members[0], members[-1]
     if len(members) == 1:
-        address, code = str(first[1]), first[2] or ""
+        address, code = address_text(first[0], first[1]), first[2] or ""
     else:
-        address = f"{first[1]}..{last[1]} ({len(members)})"
+        address = f"{address_text(first[0], first[1])}..{address_text(last[0], last[1])} ({len(members)})"
         code = f"{first[2]}..{last[2]}" if first[2] else ""
     texts = {row[8] if row[8] is not None or row[7] is None else str(row[7]) for row in members}
     last_value = texts.pop() if len(texts) == 1 else "(various)"

@@ -53,9 +53,10 @@ class Change:
     column: str = "-"  # the time column as -t formats it
     provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
     time_relative: float | None = None  # seconds since the first item, as -T fields' time_relative
+    label: str | None = None  # the address as --address-style shows it (plc: 40001), None: the address
 
     def line(self) -> str:
-        name = self.code or str(self.address)
+        name = self.code or self.label or str(self.address)
         unit = f" ({self.unit})" if self.unit else ""
         mark = " [provisional]" if self.provisional else ""
         return f"{self.frame:>6} {self.column:>12} {self.slave:>3} {name} {self.old} -> {self.new}{unit}{mark}"
@@ -66,6 +67,8 @@ class Change:
             "address": self.address,
             "code": self.code, "old": self.old, "new": self.new, "unit": self.unit,
         }
+        if self.label is not None:
+            record["label"] = self.label
         if self.provisional:
             record["provisional"] = True
         return record
@@ -81,8 +84,8 @@ def parse_watch(text: str, known: dict[str, frozenset[int]] | None = None) -> tu
             continue
         if token.isdigit():
             address = int(token)
-            if address > 0xFFFF:
-                raise UsageError(f"--watch: address {address} is beyond 65535")
+            if address > 999999:  # a protocol address (0..65535) or a PLC reference (40001, 400001)
+                raise UsageError(f"--watch: address {address} is beyond 65535 and no PLC reference (up to 999999)")
             addresses.add(address)
         elif token.replace("_", "").isalnum():
             codes.add(token.upper())
@@ -213,7 +216,11 @@ class Watcher:
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         address = register.address
         if address not in self._candidates:
-            return
+            # A number is the protocol address or, under --address-style plc, the reference shown (40001),
+            # as -Y 'address == 40001' takes either (filter_match.address_values).
+            label = register.label
+            if label is None or not label.isdigit() or int(label) not in self.addresses:
+                return
         key = (frame.slave, address)  # type: ignore[assignment]
         new = self._read(frame, register, event)
         old = self._state.get(key)  # type: ignore[arg-type]
@@ -256,7 +263,9 @@ class Watcher:
     def _emit(self, pending: _Pending, provisional: bool = False) -> None:
         slave, address = pending.key
         code = pending.new.code if provisional else self._code(slave, address, pending.new)
-        if address not in self.addresses and (code is None or code.upper() not in self.codes):
+        label = self._label(slave, pending.new.function, address)
+        if (address not in self.addresses and (label is None or int(label) not in self.addresses)
+                and (code is None or code.upper() not in self.codes)):
             if not (provisional and code is None):
                 return
             # No device yet: an address a candidate's map names with a watched code is shown by its
@@ -269,7 +278,12 @@ class Watcher:
         if old_text == new_text:
             return  # the same once named by the same device
         self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
-                              unit, pending.column, provisional, pending.time_relative))
+                              unit, pending.column, provisional, pending.time_relative, label))
+
+    def _label(self, slave: int, function: int, address: int) -> str | None:
+        """The address as the summary shows it under --address-style (devices.naming.plc_label), or None."""
+        label = getattr(self.annotate, "label", None)
+        return None if label is None else label(slave, function, address)
 
     def _read(self, frame: Frame, register: Register, event: int, provisional: bool = False) -> _State:
         """`provisional`: as decoded (the profile and device the history knows by now may be later's)."""

@@ -283,7 +283,39 @@ def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
     assert "    1  4 Read Input Registers    30101..30108 (8)      12       -       -       0" in stats
     page = tmp_path / "sel.html"
     run_cli(["--address-style", "plc", "--report", str(page), sel])
-    assert "<td>40001..40016 (16)</td>" in page.read_text(encoding="utf-8")
+    text = page.read_text(encoding="utf-8")
+    assert "<td>40001..40016 (16)</td>" in text
+    # Review of issue 27 (defect 4): every other output in the same style, one helper (naming.plc_label).
+    plc = ["--address-style", "plc"]
+    # summary and -V
+    assert run_cli([*plc, "-c", "4", sel])[1].splitlines()[3].startswith(
+        "     4            -   1 response  Read Input Registers 30101..30108 (8): 30101=250 ")
+    detail = run_cli([*plc, "-V", "-c", "2", sel])[1].splitlines()
+    assert "        Register 40001: 403 (0x0193)" in detail and "        Register 40016: 958 (0x03BE)" in detail
+    # --stats: the Parameters table as the poll cycle (input registers 3x, holding 4x)
+    assert "    1  40001..40016 (16)           12           0       0        0  (various)       11" in stats
+    assert "    1   30101..30108 (8)           12           0       0        0  (various)       11" in stats
+    assert "    1              40302            0           0       3        2  1                0" in stats
+    # the report: the parameter index, the trends' titles and the single-value table
+    assert '<a href="#p0" title="slave 1, 40001: ">40001</a>' in text
+    assert '<h3>Slave 1: <span class="code">30101</span>' in text
+    assert "<tr><td>1</td><td>40302</td><td></td><td></td><td>1</td><td>1</td></tr>" in text
+    assert "<td>0..15 (16)</td>" not in text and "Slave 1: 0 " not in text
+    # --watch: a number selects what -Y 'address == N' selects, the protocol address or the reference
+    by_reference = run_cli([*plc, "--watch", "40001", sel])[1]
+    assert by_reference.splitlines()[:2] == ["     6            -   1 40001 403 -> 407",
+                                             "    10            -   1 40001 407 -> 404"]
+    assert run_cli([*plc, "--watch", "0", sel])[1] == by_reference  # the protocol address: the same register
+    assert run_cli(["--watch", "0", sel])[1].splitlines()[0] == "     6            -   1 0 403 -> 407"
+    changes = json.loads(run_cli([*plc, "--watch", "30101", "--json", sel])[1].splitlines()[0])
+    assert (changes["address"], changes["label"], changes["old"], changes["new"]) == (100, "30101", "250", "251")
+    frames = run_cli([*plc, "-T", "fields", "-e", "frame", "-Y", "address == 40001", sel])[1].split()
+    watched = {line.split()[0] for line in by_reference.splitlines()}
+    assert watched <= set(frames)
+    # -T fields and -T registers
+    assert run_cli([*plc, "-T", "fields", "-e", "frame", "-e", "label", "-E", "occurrence=f", "-c", "4", sel])[1] == (
+        "1\t\n2\t40001\n3\t\n4\t30101\n")
+    assert run_cli([*plc, "-T", "registers", "-c", "2", sel])[1].splitlines()[0] == "2\t\t1\t3\tread\t0\t40001\t\t\t403\t\t\t\t"
 
 
 def test_exception_counts_read_the_same_in_stats_and_report(tmp_path: Path) -> None:

@@ -149,6 +149,7 @@ def new_columns() -> Any:
 class Series:
     slave: int
     address: int
+    label: str | None = None  # the address as --address-style shows it (plc: 40001), None: the address
     code: str | None = None
     name: str | None = None
     unit: str | None = None
@@ -278,7 +279,7 @@ class ReportCollector:
             if len(self.series) >= MAX_SERIES:
                 self.series_dropped += 1
                 return None
-            series = self.series[key] = Series(slave, register.address)  # type: ignore[index, arg-type]
+            series = self.series[key] = Series(slave, register.address, register.label)  # type: ignore[index, arg-type]
         return series
 
     # -- the history's listener --------------------------------------------------------------------
@@ -409,6 +410,7 @@ class ReportCollector:
         entry: dict[str, Any] = {
             "slave": key[0],
             "address": key[1],
+            "label": series.label,
             "code": series.code,
             "name": series.name,
             "unit": series.unit,
@@ -427,7 +429,8 @@ class ReportCollector:
 
 
 def _name(series: Series) -> str:
-    return f"{series.code} ({series.address})" if series.code else str(series.address)
+    shown = series.label or str(series.address)
+    return f"{series.code} ({shown})" if series.code else shown
 
 
 def _number(y: float) -> float | int:

@@ -141,7 +141,8 @@ def render_report(
         if index in single:
             continue
         code = parameter["code"]
-        head = f"{code} ({parameter['address']})" if code else str(parameter["address"])
+        shown = parameter.get("label") or str(parameter["address"])  # as --address-style shows it
+        head = f"{code} ({shown})" if code else shown
         extra = ", ".join(filter(None, [parameter["name"], parameter["unit"] and f"in {parameter['unit']}",
                                          "steps" if parameter["step"] else None]))
         marks = "".join(

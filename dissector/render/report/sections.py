@@ -132,15 +132,17 @@ def parameter_index(data: dict[str, Any], single: dict[int, float]) -> list[str]
     links = []
     for index in order:
         parameter = parameters[index]
-        name = parameter["code"] or str(parameter["address"])
+        shown = parameter.get("label") or str(parameter["address"])  # as --address-style shows it
+        name = parameter["code"] or shown
         target = "single" if index in single else f"p{index}"
-        title = _esc(f"slave {parameter['slave']}, {parameter['address']}: {parameter['name'] or ''}")
+        title = _esc(f"slave {parameter['slave']}, {shown}: {parameter['name'] or ''}")
         links.append(f'<a href="#{target}" title="{title}">{_esc(name)}</a>')
     parts = ['<p class="index">' + " ".join(links) + "</p>"]
     if single:
         parts.append('<h3 id="single">Parameters with a single value</h3>' + _table(
             ["slave", "address", "code", "name", "value", "values"],
-            [[parameters[index]["slave"], parameters[index]["address"], parameters[index]["code"] or "",
+            [[parameters[index]["slave"], parameters[index].get("label") or parameters[index]["address"],
+              parameters[index]["code"] or "",
               parameters[index]["name"] or "", _value_text(parameters[index], single[index]), parameters[index]["values"]]
              for index in order if index in single], "single"))
     return parts

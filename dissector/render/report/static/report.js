@@ -119,7 +119,7 @@
       legend: { show: true },
       plugins: [marksPlugin(p.marks)],
       series: [{}, {
-        label: p.code || String(p.address), stroke: "#1f77b4", width: 1.5,
+        label: p.code || p.label || String(p.address), stroke: "#1f77b4", width: 1.5,
         paths: step ? uPlot.paths.stepped({ align: 1 }) : undefined,
         value: function (u, v) { return v == null ? "-" : (labels[v] !== undefined ? v + " " + labels[v] : v + (p.unit ? " " + p.unit : "")); }
       }]
