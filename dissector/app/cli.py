@@ -298,6 +298,10 @@ class Sinks:
                     from dissector.render.bustiming import time_text
 
                     self.text_out.write(self.bus.render_plain(time_text(self.clock.format, self.bus.first)))
+        if self.bus is not None:
+            overlap = self.bus.overlap_warning()  # a wrong --baud: impossible timing, said once (issue 29)
+            if overlap is not None:
+                self.env.stderr.write(f"{PROG}: warning: {overlap}\n")
         self.output.flush()
 
 

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import argparse
 
+from dissector.framing.linespeed import baud_rate  # --baud's range, for files and live alike
+
 PARITY_CHOICES = ("E", "N", "O")
 
 
@@ -35,7 +37,7 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
         help="listen on a serial port or pyserial URL (/dev/ttyUSB0, COM3, socket://host:port, "
         "rfc2217://host:port); never writes to it",
     )
-    group.add_argument("--baud", type=positive_int, default=19200, help="baud rate (default 19200)")
+    group.add_argument("--baud", type=baud_rate, default=19200, help="baud rate (50..4,000,000, default 19200)")
     group.add_argument(
         "--parity", type=str.upper, choices=PARITY_CHOICES, default="E",
         help="parity: E (default, the Modbus default), N or O",

@@ -335,12 +335,33 @@ class BusTiming:
             "load_per_minute": self.load_per_minute(),
             "gaps": self.gaps.summary(),
             "gaps_below_t35": self.gaps_below_t35 if self.timed else None,
+            # items starting before the previous one ends at this speed: a wrong --baud (a warning says so)
+            "overlaps": self.overlaps() if self.timed else None,
             "gap_histogram": histogram if self.timed else [],
             "turnaround": None if turnaround is None else
             {key: turnaround[key] for key in ("count", "median", "p95", "max")},
             "responses": responses,
             "outages": [outage.as_dict() for outage in self.outages],
         }
+
+    def overlaps(self) -> int:
+        """Items that start before the previous one ends at this line speed (by more than half a
+        percentile bucket, 5 us): a negative gap, so a negative turnaround too."""
+        self.take_back()
+        return sum(count for key, count in self.gaps.buckets.items() if key < 0)
+
+    def overlap_warning(self) -> str | None:
+        """One line when the captured frames overlap at the line speed used (a wrong --baud: the bus
+        timing is then impossible), None otherwise."""
+        count = self.overlaps() if self.timed else 0
+        if not count:
+            return None
+        settings = self.settings
+        typed = settings.source == "--baud"
+        what = f"--baud {settings.baud}" if typed else f"{settings.baud} baud ({settings.source})"
+        items = "frames would overlap the one before" if count > 1 else "frame would overlap the one before"
+        hint = "" if typed or "--baud" in settings.source else " (--baud sets it)"
+        return f"{what}: {count:,} {items} at {settings.baud} baud: the line is faster?{hint}"
 
     def render_plain(self, clock: Any = None) -> str:
         """The `Bus timing` section of --stats; `clock(seconds)` shows a time as the time column."""

@@ -270,8 +270,14 @@ def test_a_pcap_record_claiming_2gb_streams_in_bounded_memory(tmp_path: Path) ->
 @pytest.mark.parametrize(
     ("option", "message"),
     [
-        (["--baud", "0"], "argument --baud: '0' must be more than 0"),
-        (["--baud", "fast"], "argument --baud: 'fast' is not a whole number"),
+        (["--baud", "0"], "argument --baud: 0 baud is no Modbus serial line speed (50..4,000,000)"),
+        (["--baud", "fast"], "argument --baud: 'fast' is not a whole number of baud"),
+        # issue 29: 10**20 baud was taken (a t3.5 of 0); a Modbus serial line runs at 50..4,000,000 baud
+        (["--baud", "99999999999999999999"],
+         "argument --baud: 99999999999999999999 baud is no Modbus serial line speed (50..4,000,000)"),
+        (["--baud", "49"], "argument --baud: 49 baud is no Modbus serial line speed (50..4,000,000)"),
+        (["--live", "loop://", "--baud", "4000001"],
+         "argument --baud: 4000001 baud is no Modbus serial line speed (50..4,000,000)"),
         (["--live", "loop://", "--duration", "nan"], "argument --duration: 'nan' must be a number of seconds more than 0"),
         (["--live", "loop://", "--count", "-1"], "argument -c/--count: '-1' must be more than 0"),
         (["--live", "loop://", "--detect", "0"], "argument --detect: '0' must be a number of seconds more than 0"),

@@ -92,6 +92,31 @@ def _frames() -> list[bytes]:
     return [rtu("0C 03 20 D0 00 03"), rtu("0C 03 06 8000 0003 0002")]
 
 
+def test_a_line_speed_at_which_frames_overlap_is_said_once() -> None:
+    # Review of issue 29 (defect 9): --baud 9600 gave gaps of -27 ms and --baud 2400 a turnaround median
+    # of -8.5 ms, silently. Overlaps recomputed from --json: an item starting before the previous ends.
+    path = str(CAPTURES / "atv71_commissioning.pcap")
+    items = _items(path)
+    for baud, expected in ((9600, 49), (2400, 103)):
+        char = 11 / baud
+        overlaps, busy_until = 0, None  # the line is busy until the latest end heard (as the gaps count)
+        for item in items:
+            if busy_until is not None and item["time"] - busy_until < -5e-6:
+                overlaps += 1
+            end = item["time"] + item["length"] * char
+            busy_until = end if busy_until is None else max(busy_until, end)
+        assert overlaps == expected
+        status, out, err = run_cli(["--stats", "--baud", str(baud), path])
+        assert status == 0 and err == (f"vw3-decode: warning: --baud {baud}: {expected} frames would overlap the one "
+                                       f"before at {baud} baud: the line is faster?\n")
+        status, out, err = run_cli(["--stats", "--json", "--baud", str(baud), path])
+        assert json.loads(out)["bus"]["overlaps"] == expected and err.count("\n") == 1
+    # At the line's speed, or none said: no warning, no overlap.
+    status, out, err = run_cli(["--stats", "--json", "--baud", "19200", path])
+    assert (status, err, json.loads(out)["bus"]["overlaps"]) == (0, "", 0)
+    assert run_cli(["--stats", path])[2] == ""
+
+
 def test_gaps_below_t35_and_the_pcapng_line_settings(tmp_path: Path) -> None:
     request, response = _frames()
     # 8 bytes at 9600 8N2 (11 bits) last 9.167 ms; the answer 0.5 ms after its end is below t3.5 (4.01 ms).
