@@ -385,6 +385,8 @@ def _decode_inputs(
             line = line_settings(path, source_format, args.baud if args.baud_given else None)
             if sinks.bus is not None:
                 sinks.bus.new_input(mode, line)
+            if sinks.stats is not None and title is not None:
+                sinks.stats.captures.append(title)  # several inputs: --stats says they were merged as one bus
             sinks.output.new_input(title)
             sinks.restart_times()
             sinks.extra = {"file": title} if title is not None else None

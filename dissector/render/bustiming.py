@@ -148,10 +148,12 @@ class BusTiming:
     # The compiled store (_summary.Stats, dissector/accel/_bus.h) that keeps all of the above while the
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
+    inputs: int = 0  # files decoded (new_input): several are one bus, as mergecap joins them
 
     def new_input(self, mode: str, settings: LineSettings | None = None) -> None:
         """A new file: its gaps do not continue the previous file's (one capture's ring files do)."""
         self.mode = mode
+        self.inputs += 1
         if settings is not None:
             self.settings = settings
         self.last_end = None
@@ -371,6 +373,9 @@ class BusTiming:
         source = data["baud_source"]
         lines.append(f"line: {data['baud']} baud ({source}), {data['bits_per_char']} bits a character, "
                      f"t3.5 {data['t35'] * 1000:.3f} ms, timeout {data['timeout'] * 1000:g} ms")
+        if self.inputs > 1:
+            lines.append(f"{self.inputs} captures counted as one bus: gaps and turnarounds restart at each "
+                         "capture, the load is over the span from the first item to the last")
         if not data["timed"]:
             lines.append("no timestamps in this input: load, gaps, turnaround and outages need a pcap, "
                          "pcapng or timed dump")

@@ -93,6 +93,9 @@ class StatsCollector:
         self.last_time: float | None = None
         self.poll = PollCycle()
         self.bus: Any | None = None  # the BusTiming that went into the compiled store with the rest
+        # The inputs' names when several were decoded: counted as one bus (as mergecap joins them), which
+        # the header line and the JSON (`merged_captures`) say.
+        self.captures: list[str] = []
         self.attached = False  # the times, the poll cycle and the bus are counted in the compiled store
 
     def engine_store(self, bus: Any | None = None) -> Any | None:
@@ -244,6 +247,7 @@ class StatsCollector:
             "functions": functions,
             "parameters": parameters,
             "poll_cycle": self.poll.report(poll_rows),
+            **({"merged_captures": list(self.captures)} if len(self.captures) > 1 else {}),
             "profiles": [
                 {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame}
                 for choice in (self.profiles() if self.profiles is not None else [])
@@ -298,6 +302,8 @@ class StatsCollector:
         if report["parameter_events_dropped"]:
             summary += (f", {report['parameter_events_dropped']} register values of parameters beyond the first "
                         f"{MAX_PARAMETERS:,} not tracked")
+        if len(self.captures) > 1:
+            summary += f", from {merged_text(self.captures)}"
         blocks += [summary, ""]
         traffic = TableSpec(
             "Traffic per slave and function",
@@ -390,6 +396,15 @@ class StatsCollector:
     def render_plain(self) -> str:
         """For a pipe or a file: the same tables as plain text, full width."""
         return tables.plain(self.blocks())
+
+
+def merged_text(captures: list[str]) -> str:
+    """What --stats says of several inputs: one bus, as mergecap would join them (tshark reads one file)."""
+    from dissector.protocol.printable import printable
+
+    names = ", ".join(printable(name) for name in captures[:5]) + (f", ... (+{len(captures) - 5})" if len(captures) > 5 else "")
+    return (f"{len(captures)} captures counted as one bus, as mergecap would join them (decode each alone "
+            f"for its own traffic and timing): {names}")
 
 
 GROUP_MIN = 3  # neighbouring addresses with the same story shown as one row from this many on

@@ -154,3 +154,23 @@ def test_outage_needs_two_consecutive_unanswered_requests(tmp_path: Path) -> Non
         writer.close()
     bus = _stats("--timeout", "0.05", str(path))["bus"]
     assert [(o["slave"], o["requests"], o["first_frame"], o["last_frame"]) for o in bus["outages"]] == [(12, 3, 4, 6)]
+
+
+def test_several_captures_are_said_to_be_one_bus() -> None:
+    # Review of issue 29 (defect 13): --stats over two captures merged them as one bus without a word.
+    p38, noisy = str(CAPTURES / "p38_protection.pcap"), str(CAPTURES / "noisy_bus.pcap")
+    status, out, err = run_cli(["--stats", p38, noisy])
+    assert (status, err) == (0, "")
+    lines = out.splitlines()
+    header = next(line for line in lines if " frames, " in line)  # (after any `==> name <==` titles)
+    assert header == (f"48 frames, 9 noise bytes in 2 runs, from 2 captures counted as one bus, as mergecap "
+                        f"would join them (decode each alone for its own traffic and timing): {p38}, {noisy}")
+    bus = lines[lines.index("Bus timing") + 2]
+    assert bus == ("2 captures counted as one bus: gaps and turnarounds restart at each capture, the load is "
+                   "over the span from the first item to the last")
+    status, out, err = run_cli(["--stats", "--json", p38, noisy])
+    assert json.loads(out)["merged_captures"] == [p38, noisy]
+    # One capture: nothing said, no key.
+    status, out, err = run_cli(["--stats", p38])
+    assert out.splitlines()[0] == "12 frames, 0 noise bytes in 0 runs" and "counted as one bus" not in out
+    assert "merged_captures" not in json.loads(run_cli(["--stats", "--json", p38])[1])
