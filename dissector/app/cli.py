@@ -91,7 +91,7 @@ class Sinks:
         if args.stats or args.report is not None:
             from dissector.render.bustiming import BusTiming
 
-            self.bus = BusTiming(args.timeout)
+            self.bus = BusTiming(args.timeout, warn=lambda text: env.stderr.write(f"{PROG}: warning: {text}\n"))
         if args.report is not None:
             from dissector.render.report.health import Health
 
@@ -298,10 +298,6 @@ class Sinks:
                     from dissector.render.bustiming import time_text
 
                     self.text_out.write(self.bus.render_plain(time_text(self.clock.format, self.bus.first)))
-        if self.bus is not None:
-            overlap = self.bus.overlap_warning()  # a wrong --baud: impossible timing, said once (issue 29)
-            if overlap is not None:
-                self.env.stderr.write(f"{PROG}: warning: {overlap}\n")
         self.output.flush()
 
 

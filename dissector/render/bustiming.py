@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Callable
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming
 from dissector.model import Item, Kind
@@ -149,6 +149,8 @@ class BusTiming:
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
     inputs: int = 0  # files decoded (new_input): several are one bus, as mergecap joins them
+    # Told once, at the end, of a line speed at which the items overlap (overlap_warning; a wrong --baud).
+    warn: Callable[[str], object] | None = None
 
     def new_input(self, mode: str, settings: LineSettings | None = None) -> None:
         """A new file: its gaps do not continue the previous file's (one capture's ring files do)."""
@@ -284,6 +286,9 @@ class BusTiming:
         for slave in sorted(self._runs):
             self._close(slave)
         self.outages.sort(key=lambda outage: (outage.first_frame, outage.slave))
+        warn, self.warn = self.warn, None  # once
+        if warn is not None and (text := self.overlap_warning()) is not None:
+            warn(text)
 
     # -- results ------------------------------------------------------------------------------------
     def span(self) -> float | None:
