@@ -21,12 +21,18 @@ def test_groups_count_first_and_last_and_ignore_varying_numbers() -> None:
     groups.add("noise", None, "5 bytes of noise at offset 307", 3.0, 34)
     groups.add("exception", 12, "exception 02 to function 3", 4.0, 12)
     groups.add("exception", 12, "exception 03 to function 3", 5.0, 14)
-    rows = [(g.kind, g.slave, g.text, g.count, g.first_frame, g.last_frame) for g in groups.rows()]
+    rows = [(g.kind, g.slave, g.label, g.count, g.first_frame, g.last_frame) for g in groups.rows()]
     assert rows == [
-        ("noise", None, "4 bytes of noise at offset 0", 2, 1, 34),
+        # (the review of issue 29: `4 bytes of noise at offset 0`, count 2, named one run of two)
+        ("noise", None, "4..5 bytes of noise at offset 0..307", 2, 1, 34),
         ("exception", 12, "exception 02 to function 3", 2, 10, 12),
         ("exception", 12, "exception 03 to function 3", 1, 14, 14),
     ]
+    groups.add("silence", 1, "silence of 2.000 ms inside the frame before byte 4", 1.0, 3)
+    groups.add("silence", 1, "silence of 3.5 ms inside the frame before byte 4", 2.0, 7)
+    groups.add("silence", 1, "silence of 1.25 ms inside the frame before byte 4", 3.0, 9)
+    (silence,) = [group for group in groups.rows() if group.kind == "silence"]
+    assert (silence.label, silence.count) == ("silence of 1.25..3.5 ms inside the frame before byte 4", 3)
 
 
 def _report(tmp_path: Path, capture: str, *argv: str, stderr_tty: bool = False) -> tuple[str, str]:
@@ -53,7 +59,7 @@ def test_noisy_bus_outage_is_a_band_of_slave_5(tmp_path: Path) -> None:
     assert "<td>5</td><td>0.839570</td><td>1.050219</td><td>2</td><td>#28..#29</td>" in page
     assert "<td>inter-frame gaps</td><td>2-5 ms: 8, 5-10 ms: 19, 10-20 ms: 2, 100-200 ms: 6, 200-500 ms: 2</td>" in page
     # Two noise runs and their different lengths and offsets: one group of 2.
-    assert "<td>noise</td><td></td><td>4 bytes of noise at offset 0</td><td>2</td><td>0.000000 #1</td><td>1.407727 #34</td>" in page
+    assert "<td>noise</td><td></td><td>4..5 bytes of noise at offset 0..307</td><td>2</td><td>0.000000 #1</td><td>1.407727 #34</td>" in page
 
 
 def test_time_format_and_written_parameters(tmp_path: Path) -> None:

@@ -1,7 +1,9 @@
 """The report's events grouped by kind, slave and what happened (`CHCF (8401) protected`, `exception 02
 to function 3`), each with its count and its first and last moment and frame: a day of one recurring
 exception is one line, not a thousand. Numbers that vary between occurrences of the same event
-(noise offsets and lengths, silence durations, CRC values) do not split a group.
+(noise offsets and lengths, silence durations, CRC values) do not split a group; its text shows each
+such number as the range its occurrences cover (`4..5 bytes of noise at offset 0..307`), never the
+first occurrence's alone.
 """
 from __future__ import annotations
 
@@ -23,6 +25,34 @@ class Group:
     first_frame: int
     last_x: float
     last_frame: int
+    # Per varying number of the text, in order: (lowest, its text, highest, its text).
+    ranges: list[tuple[float, str, float, str]] | None = None
+
+    def widen(self, text: str) -> None:
+        numbers = _VARYING.findall(text)
+        if self.ranges is None or len(numbers) != len(self.ranges):
+            return
+        for index, number in enumerate(numbers):
+            low, low_text, high, high_text = self.ranges[index]
+            value = float(number)
+            if value < low:
+                low, low_text = value, number
+            if value > high:
+                high, high_text = value, number
+            self.ranges[index] = (low, low_text, high, high_text)
+
+    @property
+    def label(self) -> str:
+        """The text, each varying number the range of its occurrences (`4..5 bytes of noise`)."""
+        if not self.ranges:
+            return self.text
+        pieces = iter(self.ranges)
+
+        def shown(_match: re.Match[str]) -> str:
+            low, low_text, high, high_text = next(pieces)
+            return low_text if low == high else f"{low_text}..{high_text}"
+
+        return _VARYING.sub(shown, self.text)
 
 
 class EventGroups:
@@ -40,10 +70,15 @@ class EventGroups:
             if len(self.groups) >= MAX_GROUPS:
                 self.ungrouped += 1
                 return
-            self.groups[key] = Group(kind, slave, text, 1, x, frame, x, frame)
+            ranges = None
+            if kind in _VARYING_KINDS:
+                ranges = [(float(number), number, float(number), number) for number in _VARYING.findall(text)]
+            self.groups[key] = Group(kind, slave, text, 1, x, frame, x, frame, ranges)
             return
         group.count += 1
         group.last_x, group.last_frame = x, frame
+        if group.ranges:
+            group.widen(text)
 
     def rows(self) -> list[Group]:
         return sorted(self.groups.values(), key=lambda group: (group.first_x, group.first_frame))

@@ -87,7 +87,7 @@ def event_groups(collector: ReportCollector, data: dict[str, Any], when: Callabl
     groups = collector.groups.rows()
     if not groups:
         return []
-    rows = [[group.kind, "" if group.slave is None else group.slave, group.text, group.count,
+    rows = [[group.kind, "" if group.slave is None else group.slave, group.label, group.count,
              f"{when(group.first_x)} #{group.first_frame}" if data["timed"] else f"#{group.first_frame}",
              (f"{when(group.last_x)} #{group.last_frame}" if data["timed"] else f"#{group.last_frame}")
              if group.count > 1 else ""]
