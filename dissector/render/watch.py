@@ -84,8 +84,10 @@ def parse_watch(text: str, known: dict[str, frozenset[int]] | None = None) -> tu
             continue
         if token.isdigit():
             address = int(token)
-            if address > 999999:  # a protocol address (0..65535) or a PLC reference (40001, 400001)
-                raise UsageError(f"--watch: address {address} is beyond 65535 and no PLC reference (up to 999999)")
+            # A protocol address (0..65535), or a 6-digit PLC reference (100001.., 300001.., 400001..465536).
+            if address > 0xFFFF and not (len(token) == 6 and token[0] in "134" and int(token[1:]) <= 0x10000):
+                raise UsageError(f"--watch: address {address} is beyond 65535 and no 6-digit PLC reference "
+                                 "(such as 400001)")
             addresses.add(address)
         elif token.replace("_", "").isalnum():
             codes.add(token.upper())
