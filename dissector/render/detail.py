@@ -19,6 +19,7 @@ from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
 from dissector.render.summary import check_untyped, crc_text, noise_info
+from dissector.render.timefmt import whole_micros
 
 if TYPE_CHECKING:
     from rich.text import Text
@@ -42,14 +43,17 @@ def _utc(seconds: float) -> str:
     # whole second's text is kept (a capture's frames share their seconds), the microseconds appended.
     if not math.isfinite(seconds):
         return f"{seconds:.6f}"
-    fraction, whole = math.modf(seconds)
-    micros = round(fraction * 1e6)
-    if micros >= 1_000_000:
-        micros -= 1_000_000
-        whole += 1.0
-    elif micros < 0:
-        micros += 1_000_000
-        whole -= 1.0
+    if type(seconds) is not float and getattr(seconds, "ns", None) is not None:
+        whole, micros = whole_micros(seconds)  # a Stamp: its integer nanoseconds (year 1 keeps them)
+    else:
+        fraction, whole = math.modf(seconds)
+        micros = round(fraction * 1e6)
+        if micros >= 1_000_000:
+            micros -= 1_000_000
+            whole += 1.0
+        elif micros < 0:
+            micros += 1_000_000
+            whole -= 1.0
     second = _SECONDS.get(whole)
     if second is None:
         try:

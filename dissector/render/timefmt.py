@@ -32,11 +32,23 @@ TIME_FIELDS = ("time_relative", "time_delta", "time_delta_displayed")
 NOT_REPRESENTABLE = "Not representable"
 
 
-def _clock_text(seconds: float, utc: bool, date: bool) -> str:
-    whole = int(seconds // 1)
-    micros = round((seconds - whole) * 1_000_000)
+def whole_micros(seconds: float) -> tuple[int, int]:
+    """(whole seconds, microseconds) of a time: from a Stamp's integer nanoseconds where it has them (a
+    float of year 1 is -6.2e10 s, which keeps 8 us at best: .005000 showed .004997), else the float's."""
+    ns = getattr(seconds, "ns", None)
+    if ns is not None:
+        whole, rest = divmod(ns, 1_000_000_000)
+        micros = round(rest / 1000)
+    else:
+        whole = int(seconds // 1)
+        micros = round((seconds - whole) * 1_000_000)
     if micros == 1_000_000:  # 0.9999996 rounds up into the next second
         whole, micros = whole + 1, 0
+    return whole, micros
+
+
+def _clock_text(seconds: float, utc: bool, date: bool) -> str:
+    whole, micros = whole_micros(seconds)
     try:
         parts = _time.gmtime(whole) if utc else _time.localtime(whole)
         day = f"{parts.tm_year:04d}-{parts.tm_mon:02d}-{parts.tm_mday:02d} " if date else ""  # 0001, as tshark

@@ -385,6 +385,20 @@ def test_times_before_1970_and_on_the_first_day_show(tmp_path: Path, case: str, 
     assert f"    Arrival time: {day} {clock}.000000 UTC (0.000000 s since the first item)" in out.splitlines()
 
 
+def test_year_one_stamps_keep_their_microseconds(tmp_path: Path) -> None:
+    # Review of issue 32 (minor): a year-1 time as a float (-6.2e10 s) keeps about 8 us, so .005000 showed
+    # .004997; the stamp's integer nanoseconds are shown instead.
+    capture = tmp_path / "t.pcapng"
+    capture.write_bytes(_pcapng(-62_135_510_400, [86_400_005_000, 86_400_015_000]))
+    status, out, err = run_cli(["-t", "ud", str(capture)])
+    assert (status, err) == (0, "")
+    assert [line.split()[1:3] for line in out.splitlines()] == [["0001-01-03", "00:00:00.005000"],
+                                                                 ["0001-01-03", "00:00:00.015000"]]
+    assert run_cli(["-t", "u", str(capture)])[1].splitlines()[0].startswith("     1 00:00:00.005000  12 request")
+    status, out, err = run_cli(["-V", str(capture)])
+    assert "    Arrival time: 0001-01-03 00:00:00.005000 UTC (0.000000 s since the first item)" in out.splitlines()
+
+
 @pytest.mark.parametrize("case", sorted(FORMAT_RANGE))
 @pytest.mark.parametrize("suffix", ["pcap", "pcapng"])
 def test_w_clamps_times_the_format_cannot_hold_and_says_so(tmp_path: Path, case: str, suffix: str) -> None:
