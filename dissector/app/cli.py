@@ -379,10 +379,8 @@ def _decode_inputs(
                 break
             # The one line speed of this input, for the framer, the silence checks and the bus timing.
             line = line_settings(path, source_format, args.baud if args.baud_given else None)
-            if sinks.bus is not None:
-                sinks.bus.new_input(mode, line)
-            if sinks.stats is not None and title is not None:
-                sinks.stats.captures.append(title)  # several inputs: --stats says they were merged as one bus
+            if sinks.bus is not None:  # (several inputs: --stats says they were counted as one bus)
+                sinks.bus.new_input(mode, line, title, sinks.stats)
             sinks.output.new_input(title)
             sinks.restart_times()
             sinks.extra = {"file": title} if title is not None else None

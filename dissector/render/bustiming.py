@@ -152,10 +152,14 @@ class BusTiming:
     # Told once, at the end, of a line speed at which the items overlap (overlap_warning; a wrong --baud).
     warn: Callable[[str], object] | None = None
 
-    def new_input(self, mode: str, settings: LineSettings | None = None) -> None:
-        """A new file: its gaps do not continue the previous file's (one capture's ring files do)."""
+    def new_input(self, mode: str, settings: LineSettings | None = None, title: str | None = None,
+                  stats: Any = None) -> None:
+        """A new file: its gaps do not continue the previous file's (one capture's ring files do).
+        `title`: its name when several are decoded, kept in `stats.captures` too (--stats' header)."""
         self.mode = mode
         self.inputs += 1
+        if title is not None and stats is not None:
+            stats.captures.append(title)
         if settings is not None:
             self.settings = settings
         self.last_end = None
