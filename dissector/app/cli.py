@@ -381,7 +381,7 @@ def _decode_inputs(
             line = line_settings(path, source_format, args.baud if args.baud_given else None)
             if sinks.bus is not None:  # (several inputs: --stats says they were counted as one bus)
                 sinks.bus.new_input(mode, line, title, sinks.stats)
-            sinks.output.new_input(title)
+            sinks.output.new_input(title if sinks.show else None)  # no ==> header over nothing
             sinks.restart_times()
             sinks.extra = {"file": title} if title is not None else None
 

@@ -232,8 +232,19 @@ def _refuse_parquet_conflicts(args: argparse.Namespace) -> None:
         raise UsageError("--jobs and --scheduler: choose one (the cluster's workers are its processes)")
 
 
+def _refuse_stdout_names(args: argparse.Namespace) -> None:
+    """`-` is standard output for -w only (tshark -w -); the report and the dataset are files (./- is
+    a file named -)."""
+    if args.report == "-":
+        raise UsageError("--report -: the report is an HTML file, not a stream: give a FILE "
+                         "(-w - writes the capture to standard output)")
+    if args.parquet == "-":
+        raise UsageError("--parquet -: the dataset is a folder of Parquet files, not a stream: give a DIR")
+
+
 def decode_options(args: argparse.Namespace) -> DecodeOptions:
     """The typed options of a file decode; UsageError for options that contradict each other."""
+    _refuse_stdout_names(args)
     _refuse_conflicts(args)
     _refuse_parquet_conflicts(args)
     output_format = args.output_format or ("json" if args.json else "text")

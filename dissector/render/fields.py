@@ -93,6 +93,8 @@ def _character(text: str, option: str) -> str:
         return " "
     if not text:
         raise UsageError(f"-E {option}= needs a character (/t tab, /s space, or the character)")
+    if len(text) != 1:  # (-E separator=ab was taken whole, as the rows' one-character separator)
+        raise UsageError(f"-E {option}={text}: one character (/t tab, /s space, or the character)")
     return text
 
 

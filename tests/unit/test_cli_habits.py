@@ -142,11 +142,39 @@ def test_fields_bom_and_json_alias() -> None:
         (["-Y", "slave == 1", "-Y", "slave == 2"], "-Y given twice: combine the filters with and / or in one -Y"),
         (["-P"], "-P (print as well) needs -w FILE"),
         (["--stats", "-V"], "--stats replaces the items: -V and -x show none"),
+        (["-T", "fields", "-e", "frame", "-E", "separator=ab"],
+         "-E separator=ab: one character (/t tab, /s space, or the character)"),
+        (["-T", "fields", "-e", "frame", "-E", "aggregator=xy"],
+         "-E aggregator=xy: one character (/t tab, /s space, or the character)"),
+        (["--report", "-"], "--report -: the report is an HTML file, not a stream: give a FILE "
+                            "(-w - writes the capture to standard output)"),
+        (["--parquet", "-"], "--parquet -: the dataset is a folder of Parquet files, not a stream: give a DIR"),
     ],
 )
-def test_contradicting_options_are_refused_with_one_line(argv: list[str], message: str) -> None:
+def test_contradicting_options_are_refused_with_one_line(argv: list[str], message: str, tmp_path: Path,
+                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
     status, out, err = run_cli([*argv, P38])
     assert (status, out, err) == (2, "", f"{PROG}: {message}\n")
+    assert list(tmp_path.iterdir()) == []  # (--report - and --parquet - made a file or a folder named -)
+
+
+def test_several_inputs_announce_a_header_only_over_what_is_shown(tmp_path: Path) -> None:
+    bin38 = P38.replace(".pcap", ".bin")
+    out_pcap = str(tmp_path / "out.pcap")
+    for argv in (["-w", out_pcap], ["--stats"], ["--report", str(tmp_path / "r.html")]):
+        status, out, err = run_cli([*argv, P38, bin38])
+        assert (status, err) == (0, "")
+        assert "==>" not in out, argv  # (-w FILE printed two ==> file <== lines with nothing under them)
+    status, out, err = run_cli(["-w", out_pcap, "-P", P38, bin38])
+    assert [line for line in out.splitlines() if line.startswith("==>")] == [f"==> {P38} <==", f"==> {bin38} <=="]
+
+
+def test_the_simulator_runs_as_a_package() -> None:
+    done = subprocess.run([sys.executable, "-m", "dissector.sim", "--help"], cwd=ROOT, capture_output=True,
+                          text=True, timeout=60)
+    assert (done.returncode, done.stderr) == (0, "")
+    assert done.stdout.startswith("usage: python3 -m dissector.sim.simulate [-h] [--out OUT]")
 
 
 @pytest.mark.parametrize(
