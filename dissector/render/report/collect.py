@@ -294,6 +294,9 @@ class ReportCollector:
         slave = frame.slave
         series = self.series.get((slave, register.address))  # type: ignore[arg-type]
         if series is None:
+            if len(self.series) >= MAX_SERIES:  # the max-size mix: most registers are of no series kept
+                self.series_dropped += 1
+                return
             series = self._series(slave, register)
             if series is None:
                 return
