@@ -131,6 +131,8 @@ def test_fields_bom_and_json_alias() -> None:
         (["-T", "fields", "-e", "frame", "-E", "quote=x"], "-E quote=x: expected d (double), s (single) or n (none)"),
         (["-T", "fields", "-e", "frame", "-E", "occurrence=2"], "-E occurrence=2: expected f (first), l (last) or a (all)"),
         (["-T", "fields", "-e", "frame", "-E", "header"], "-E header: expected name=value, e.g. -E separator=,"),
+        (["-T", "registers", "-E", "separator=;;"],
+         "-E separator=;;: one character (/t tab, /s space, or the character)"),
         (["-T", "fields", "-e", "frame", "-E", "colour=y"],
          "-E colour: unknown option; use header, separator, quote, occurrence, aggregator, bom or formulas"),
         (["-T", "fields", "-e", "slvae"], "-e slvae: not a field (did you mean slave?)"),
