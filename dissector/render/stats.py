@@ -256,11 +256,17 @@ class StatsCollector:
 
     def parameter_dicts(self) -> Iterator[dict[str, Any]]:
         """The parameters of the JSON form, one at a time (write_json streams them)."""
+        label = getattr(self.history.annotate, "label", None)
+        shown: Callable[[int, int], str] | None = None  # --address-style plc: `label` as the table's address
         for row in self.store.parameters():
             slave, address, code, reads, unreadable, writes, refused, last, last_text, changes = row
+            plc = label is not None and label(slave, 3, address) is not None
+            if plc and shown is None:
+                shown = self.parameter_address(self.poll.report(0))  # (windows only: no timings)
             yield {
                 "slave": slave,
                 "address": address,
+                **({"label": shown(slave, address)} if plc and shown is not None else {}),
                 "code": code,
                 "reads": reads,
                 "unreadable": unreadable,

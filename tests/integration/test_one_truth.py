@@ -296,6 +296,9 @@ def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
     assert "    1  40001..40016 (16)           12           0       0        0  (various)       11" in stats
     assert "    1   30101..30108 (8)           12           0       0        0  (various)       11" in stats
     assert "    1              40302            0           0       3        2  1                0" in stats
+    parameters = json.loads(run_cli([*plc, "--stats", "--json", sel])[1])["parameters"]
+    assert [(row["address"], row["label"]) for row in parameters[:1] + parameters[16:17]] == [(0, "40001"), (100, "30101")]
+    assert "label" not in json.loads(run_cli(["--stats", "--json", sel])[1])["parameters"][0]
     # the report: the parameter index, the trends' titles and the single-value table
     assert '<a href="#p0" title="slave 1, 40001: ">40001</a>' in text
     assert '<h3>Slave 1: <span class="code">30101</span>' in text
