@@ -336,6 +336,8 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
     out = detail.texts
     add = out.append
     rtu = frame.mode == "rtu"
+    if frame.span_label is not None:  # --address-style plc: the span as the summary shows it
+        add(f"        PLC references{' (read)' if frame.function == 23 else ''}: {frame.span_label}")
     if frame.registers:
         _register_lines(detail, frame.registers)
     bits = frame.bits
@@ -391,7 +393,7 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     ):
         # Slave to CRC depend on the bytes and the profile's words only: a polled request repeats them.
         key = (frame.raw, kind, frame.mode, frame.function_text, frame.subfunction_text,
-               bool(frame.notes) and check_untyped(frame))  # the CRC line says whether it was typed
+               bool(frame.notes) and check_untyped(frame), frame.span_label)  # the CRC line: typed?
         add(_kept_text(_MIDDLES, key, _middle, frame))
     else:
         _middle(detail, frame)
@@ -469,7 +471,7 @@ def _plain_frame(frame: Frame, base: float | None) -> str:
         )
     if kind is not _EXCEPTION and not frame.registers and frame.bits is None and frame.objects is None:
         key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text,
-               bool(frame.notes) and check_untyped(frame))  # as _build keeps it
+               bool(frame.notes) and check_untyped(frame), frame.span_label)  # as _build keeps it
         texts = [head, _kept_text(_MIDDLES, key, _middle, frame)]
     else:
         detail = _Detail(joined=True)
