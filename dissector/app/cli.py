@@ -74,8 +74,7 @@ class Sinks:
             from dissector.render.filters import FilterContext, compile_filter
 
             # The time column's references (time_relative, time_delta) and the maps' codes.
-            codes = getattr(annotate, "codes", None)
-            self.filter_context = FilterContext(codes=frozenset(codes()) if codes is not None else None)
+            self.filter_context = FilterContext.of(annotate)  # the maps' codes, the profiles' names
             self.predicate = compile_filter(args.filter, self.filter_context)
         self.stats = None
         if args.stats or args.watch is not None or args.report is not None:
@@ -476,8 +475,7 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
     if options.filter is not None:
         from dissector.render.filters import FilterContext, compile_filter
 
-        codes = getattr(annotate, "codes", None)
-        compile_filter(options.filter, FilterContext(codes=frozenset(codes()) if codes is not None else None))
+        compile_filter(options.filter, FilterContext.of(annotate))
     if options.watch is not None:
         from dissector.render.watch import known_codes, parse_watch
 

@@ -51,8 +51,7 @@ class FilteredSink:
 
     def __init__(self, inner: Any, text: str, annotate: object = None) -> None:
         self.inner = inner
-        codes = getattr(annotate, "codes", None)
-        self.context = FilterContext(codes=frozenset(codes()) if codes is not None else None)
+        self.context = FilterContext.of(annotate)
         self.predicate: Callable[[dict], bool] = compile_filter(text, self.context)
         self._last: float | None = None
 

@@ -173,13 +173,29 @@ class Annotator:
         return device
 
     # -- names for renderers ------------------------------------------------------------------------------
-    def codes(self) -> dict[str, frozenset[int]]:
-        """Every parameter code (upper case) a slave may have in this run -> its addresses: the rows of
-        every profile in use or that `auto` may choose, and of the --map files (what --watch may name)."""
+    def profiles(self) -> list[Profile]:
+        """Every profile a slave may have in this run: in use, or that `auto` may choose."""
         profiles = [self.default, *self.per_slave.values()]
         if self.selector is not None:
             profiles += [profile for profile, _rows in self.selector.candidates]
-        maps = [self._builder.build(profile, None).rows for profile in {p.name: p for p in profiles}.values()]
+        return list({profile.name: profile for profile in profiles}.values())
+
+    def filter_names(self) -> dict[str, frozenset[str]]:
+        """The texts the run's profiles can give the display filter's enumerated keys beside the
+        spec's (render/filters.py FilterContext): profile, function_name, exception_meaning and
+        subfunction_name."""
+        profiles = self.profiles()
+        return {
+            "profile": frozenset(profile.name for profile in profiles),
+            "function_name": frozenset(name for p in profiles for name in p.function_names.values()),
+            "exception_meaning": frozenset(text for p in profiles for text in p.exceptions.values()),
+            "subfunction_name": frozenset(text for p in profiles for text in p.diagnostics.values()),
+        }
+
+    def codes(self) -> dict[str, frozenset[int]]:
+        """Every parameter code (upper case) a slave may have in this run -> its addresses: the rows of
+        every profile in use or that `auto` may choose, and of the --map files (what --watch may name)."""
+        maps = [self._builder.build(profile, None).rows for profile in self.profiles()]
         maps += [layer.rows for layer in self.layers]
         found: dict[str, set[int]] = {}
         for rows in maps:

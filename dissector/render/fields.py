@@ -135,6 +135,12 @@ def check_field(key: str) -> None:
     if head in FRAME_FIELDS or head in REGISTER_FIELDS or head in EXTRA_FRAME_KEYS:
         if "." in key and head != "fields":
             raise UsageError(f"-e {key}: only fields.KEY names a key inside a value")
+        if head == "fields" and "." in key:
+            from dissector.render.filter_fields import unknown_pdu_key
+
+            problem = unknown_pdu_key(key[7:])
+            if problem is not None:
+                raise UsageError(f"-e {key}: {problem}")
         return
     import difflib
 

@@ -90,6 +90,54 @@ _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": 
                "struct": "structure", "any": "value"}
 
 
+def pdu_keys() -> dict[str, tuple[str, ...]]:
+    """`fields.KEY`: every key a PDU layout of the protocol table (protocol/table.py) parses -> the
+    function codes (`exception`) whose frames have it, from the layouts' grammars, not a list kept here."""
+    global _PDU_KEYS
+    if _PDU_KEYS is None:
+        from dissector.protocol import table
+
+        found: dict[str, list[str]] = {}
+        layouts = [(str(entry.code), layout) for entry in table.FUNCTIONS for layout in (entry.request, entry.response)]
+        layouts += [("exception", table.EXCEPTION_LAYOUT), ("any", table.RAW_LAYOUT)]
+        for owner, layout in layouts:
+            grammar = layout.grammar
+            while getattr(grammar, "subcons", None) is None and getattr(grammar, "subcon", None) is not None:
+                grammar = grammar.subcon
+            for sub in getattr(grammar, "subcons", ()):
+                if sub.name and owner not in found.setdefault(sub.name, []):
+                    found[sub.name].append(owner)
+        _PDU_KEYS = {name: tuple(found[name]) for name in sorted(found)}
+    return _PDU_KEYS
+
+
+_PDU_KEYS: dict[str, tuple[str, ...]] | None = None
+
+
+def unknown_pdu_key(key: str) -> str | None:
+    """Why `fields.KEY` names nothing (with the nearest keys), or None when a layout has that key."""
+    keys = pdu_keys()
+    if key in keys:
+        return None
+    import difflib
+
+    close = difflib.get_close_matches(key, list(keys), n=3)
+    hint = f" (did you mean {', '.join('fields.' + name for name in close)}?)" if close else ""
+    return f"no PDU layout has the key {key!r}{hint}; -G fields lists them"
+
+
+def _owners(owners: tuple[str, ...]) -> str:
+    if owners == ("any",):
+        return "the undecoded PDU of an unknown function"
+    codes = [owner for owner in owners if owner not in ("exception", "any")]
+    words = [f"function{'s' if len(codes) > 1 else ''} {' '.join(codes)}"] if codes else []
+    if "exception" in owners:
+        words.append("exceptions")
+    if "any" in owners:
+        words.append("unknown functions")
+    return "PDU key of " + " and ".join(words)
+
+
 def field_listing() -> str:
     """`-Y help` (and `-G fields`): every field a filter and -T fields know, its type and meaning."""
     lines = ["Display filter and -T fields keys (-Y EXPR, -e KEY); register keys test one register at a time:"]
@@ -97,7 +145,8 @@ def field_listing() -> str:
     for group, fields in groups:
         for name, ftype in fields.items():
             lines.append(f"{name:<22} {group:<9} {_TYPE_WORDS[ftype]:<14} {FIELD_HELP.get(name, '')}")
-    lines.append(f"{'fields.KEY':<22} {'frame':<9} {'value':<14} a key of the PDU as parsed (fields.start)")
+    for key, owners in pdu_keys().items():  # fields.KEY: the keys of the protocol table's layouts
+        lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {_owners(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
     lines.append("operators: == != < <= > >= & in {..} a..b contains matches ~ and or not ( ); "
                  "values: 12 0x8000 16#8000 \"text\" true false")

@@ -21,7 +21,10 @@ warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed i
 `time` is the JSON's (seconds since the epoch); `time_relative` the seconds since the first item of
 the input, and `time_delta` since the item captured before, as the time column shows them (tshark's
 frame.time_relative and frame.time_delta). A value of an enumerated field that does not exist is an
-error naming the nearest ones: kind, mode, status, and code (the parameter codes of the run's maps).
+error naming the nearest ones: kind, mode, status, code (the parameter codes of the run's maps),
+profile, function_name, exception_name, exception_meaning and subfunction_name (the spec's names and
+those of the run's profiles); so is a `fields.KEY` whose KEY no layout of the protocol table has
+(`-G fields` lists them).
 
 Register fields: address, value, code, name, unit, scaled, text, status, source, label. A frame carries
 several registers, so these tests ask "is there a register such that...". The rule:
@@ -52,8 +55,9 @@ from typing import Any
 from dissector.model import REGISTER_STATUSES
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
-    _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing,
+    _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing, unknown_pdu_key,
 )
+from dissector.protocol.spec import SPEC
 from dissector.render.filter_match import (
     address_of,
     address_test,
@@ -76,6 +80,16 @@ CHOICES = {
     "mode": ("rtu", "ascii"),
     "status": REGISTER_STATUSES,
 }
+# Enumerated texts: the spec's names (every code 0..255 has one) and, from FilterContext.names, the
+# run's profiles' (a profile's own function names, exception meanings, diagnostics).
+SPEC_NAMES = {
+    "function_name": frozenset(SPEC.function_name(code) for code in range(256)),
+    "exception_name": frozenset([SPEC.exception_name(None), *(SPEC.exception_name(code) for code in range(256))]),
+    "subfunction_name": frozenset(SPEC.diagnostics.values()),
+    "exception_meaning": frozenset(),
+    "profile": frozenset(),
+}
+SHOWN_CHOICES = 12  # an error lists the values when there are at most this many
 MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
 Item = dict[str, Any]
@@ -211,6 +225,29 @@ class FilterContext:
     first: float | None = None
     previous: dict[int, float | None] | None = None  # frame -> time of the item captured before
     codes: frozenset[str] | None = None
+    names: dict[str, frozenset[str]] | None = None  # Annotator.filter_names(): the profiles' texts
+
+    @classmethod
+    def of(cls, annotate: object) -> FilterContext:
+        """The context of a run whose annotator is `annotate` (None: -n, spec names only)."""
+        codes = getattr(annotate, "codes", None)
+        names = getattr(annotate, "filter_names", None)
+        if names is None:
+            from dissector.devices.profiles import BUILTIN_PROFILES
+
+            found = {"profile": frozenset(BUILTIN_PROFILES)}
+        else:
+            found = names()
+        return cls(codes=frozenset(codes()) if codes is not None else None, names=found)
+
+    def choices(self, field: str) -> frozenset[str] | tuple[str, ...] | None:
+        """The values an enumerated field can have in this run (None: not enumerated)."""
+        spec = SPEC_NAMES.get(field)
+        if spec is None:
+            return CHOICES.get(field)
+        if self.names is None:
+            return None  # no run to ask (a library caller): not checked
+        return spec | self.names.get(field, frozenset())
 
     def seconds(self, item: Item, key: str) -> float | None:
         time = item.get("time")
@@ -319,7 +356,10 @@ class _Parser:
         name_token = self.advance()
         field = ALIASES.get(name_token.value, name_token.value)
         inner = None
-        if field.startswith("fields.") and field.count(".") == 1:
+        if field.startswith("fields."):
+            problem = unknown_pdu_key(field[7:])
+            if problem is not None:
+                raise self.error(f"unknown field {name_token.text!r}: {problem}", name_token)
             register, ftype, inner = False, "any", field[7:]
         elif "." in field:
             raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value", name_token)
@@ -490,12 +530,17 @@ class _Parser:
                 hint = f" (did you mean {', '.join(map(repr, close))}?)" if close else ""
                 raise self.error(f"code {value!r} is no parameter code of this run's maps{hint}", token)
             return
+        if field in SPEC_NAMES:
+            choices = self.context.choices(field)
         if choices and value not in choices:
             import difflib
 
-            close = difflib.get_close_matches(str(value), choices, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise self.error(f"{field} {value!r} does not exist{hint}: {field} is one of {', '.join(choices)}", token)
+            ordered = sorted(choices) if isinstance(choices, frozenset) else list(choices)
+            lowered = {choice.lower(): choice for choice in ordered}
+            close = difflib.get_close_matches(str(value).lower(), list(lowered), n=1)
+            hint = f" (did you mean {lowered[close[0]]!r}?)" if close else ""
+            listed = f": {field} is one of {', '.join(ordered)}" if len(ordered) <= SHOWN_CHOICES else ""
+            raise self.error(f"{field} {value!r} does not exist{hint}{listed}", token)
 
     @staticmethod
     def _describe(token: Token) -> str:

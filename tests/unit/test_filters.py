@@ -224,3 +224,67 @@ def test_negative_numbers_compare_with_signed_scaled_values() -> None:
     test = compile_filter("scaled < -1")
     assert (test(negative), test(positive)) == (True, False)
     assert compile_filter("scaled in -200..-50")(negative) is True
+
+
+# -- misspelt values of enumerated keys, and fields.KEY (issue 27) ---------------------------------------
+
+from helpers import run_cli  # noqa: E402
+
+
+@pytest.mark.parametrize("expression, message", [
+    ('profile == "atv7"',
+     "profile 'atv7' does not exist (did you mean 'atv71'?): profile is one of atv71, generic, sel749m (column 12)"),
+    ('exception_name == "Illegal Data Adress"',
+     "exception_name 'Illegal Data Adress' does not exist (did you mean 'Illegal Data Address'?) (column 19)"),
+    ('function_name == "Read Holding Register"',
+     "function_name 'Read Holding Register' does not exist (did you mean 'Read Holding Registers'?) (column 18)"),
+    ('function_name in {"Read Holding Registers" "Write Single Registre"}',
+     "function_name 'Write Single Registre' does not exist (did you mean 'Write Single Register'?) (column 44)"),
+    ('subfunction_name == "Return Query Dat"',
+     "subfunction_name 'Return Query Dat' does not exist (did you mean 'Return Query Data'?) (column 21)"),
+    ("fields.strat == 8400",
+     "unknown field 'fields.strat': no PDU layout has the key 'strat' (did you mean fields.start, fields.status?); "
+     "-G fields lists them (column 1)"),
+])
+def test_misspelt_enumerated_values_are_refused_with_a_suggestion(expression: str, message: str) -> None:
+    status, out, err = run_cli([str(CAPTURES / "p38_protection.pcap"), "-Y", expression])
+    assert (status, out) == (2, "") and err.splitlines()[0] == f"vw3-decode: {message}", err
+
+
+def test_the_values_that_exist_still_match() -> None:
+    p38 = str(CAPTURES / "p38_protection.pcap")
+    for expression, frames in [
+        ('profile == "atv71"', list(range(1, 13))),
+        ('exception_name == "Illegal Data Address"', [10, 12]),
+        ('function_name == "Read Holding Registers"', list(range(1, 13))),
+        ("fields.start == 8400", [1, 3, 5, 7, 9, 11]),
+        ('exception_name == "Unknown exception 99"', []),  # a name the spec gives an unknown code
+        ('function_name == "Function 9"', []),
+    ]:
+        status, out, err = run_cli([p38, "-Y", expression, "-T", "fields", "-e", "frame"])
+        assert (status, err) == (0, "") and out.split() == [str(frame) for frame in frames], expression
+    # A profile's own names are values of the run that has it: the SEL-749M's function 60h.
+    sel = str(CAPTURES / "sel749m_polling.pcap")
+    named = 'function_name == "Read Parameter Information"'
+    assert run_cli([sel, "-Y", named, "--profile", "sel749m"]) == (0, "", "")
+    assert run_cli([sel, "-Y", named, "--profile", "atv71"])[2].splitlines()[0] == (
+        "vw3-decode: function_name 'Read Parameter Information' does not exist (column 18)")
+
+
+def test_fields_key_of_t_fields_is_checked_and_listed() -> None:
+    p38 = str(CAPTURES / "p38_protection.pcap")
+    assert run_cli([p38, "-T", "fields", "-e", "fields.strat"]) == (2, "", (
+        "vw3-decode: -e fields.strat: no PDU layout has the key 'strat' (did you mean fields.start, fields.status?); "
+        "-G fields lists them\n"))
+    assert run_cli([p38, "-T", "fields", "-e", "fields.start", "-c", "1"]) == (0, "8400\n", "")
+    listing = run_cli(["-G", "fields"])[1].splitlines()
+    from dissector.protocol import table
+
+    # Every key of the protocol table's layouts, with the functions whose PDU has it.
+    assert "fields.start           frame     value          PDU key of functions 1 2 3 4 15 16" in listing
+    assert "fields.exception_code  frame     value          PDU key of exceptions" in listing
+    assert "fields.read_start      frame     value          PDU key of function 23" in listing
+    listed = {line.split()[0][7:] for line in listing if line.startswith("fields.")}
+    assert listed == {sub.name for entry in table.FUNCTIONS for layout in (entry.request, entry.response)
+                      for sub in layout.grammar.subcons if sub.name} | {"exception_code", "data", "trailing"}
+    assert not any(line.startswith("fields.KEY") for line in listing)
