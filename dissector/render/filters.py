@@ -52,12 +52,11 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from dissector.model import REGISTER_STATUSES
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
     _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing, unknown_pdu_key,
 )
-from dissector.protocol.spec import SPEC
+from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
     address_of,
     address_test,
@@ -75,21 +74,6 @@ from dissector.render.filter_match import (
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
 ALIASES = {"exception": "exception_code"}
-CHOICES = {
-    "kind": ("request", "response", "exception", "noise"),
-    "mode": ("rtu", "ascii"),
-    "status": REGISTER_STATUSES,
-}
-# Enumerated texts: the spec's names (every code 0..255 has one) and, from FilterContext.names, the
-# run's profiles' (a profile's own function names, exception meanings, diagnostics).
-SPEC_NAMES = {
-    "function_name": frozenset(SPEC.function_name(code) for code in range(256)),
-    "exception_name": frozenset([SPEC.exception_name(None), *(SPEC.exception_name(code) for code in range(256))]),
-    "subfunction_name": frozenset(SPEC.diagnostics.values()),
-    "exception_meaning": frozenset(),
-    "profile": frozenset(),
-}
-SHOWN_CHOICES = 12  # an error lists the values when there are at most this many
 MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
 Item = dict[str, Any]
@@ -214,49 +198,6 @@ def _elements(item: Item) -> list[dict[str, Any]]:
         if address & 0xFFFF not in known
     ]
     return elements + synthesized if synthesized else elements
-
-
-@dataclass(slots=True)
-class FilterContext:
-    """What a filter needs beyond the item: the capture's first time and each item's previous captured
-    time (the time column's references, set by the caller as items are captured, before filtering),
-    and the parameter codes the run's maps know (None: not checked)."""
-
-    first: float | None = None
-    previous: dict[int, float | None] | None = None  # frame -> time of the item captured before
-    codes: frozenset[str] | None = None
-    names: dict[str, frozenset[str]] | None = None  # Annotator.filter_names(): the profiles' texts
-
-    @classmethod
-    def of(cls, annotate: object) -> FilterContext:
-        """The context of a run whose annotator is `annotate` (None: -n, spec names only)."""
-        codes = getattr(annotate, "codes", None)
-        names = getattr(annotate, "filter_names", None)
-        if names is None:
-            from dissector.devices.profiles import BUILTIN_PROFILES
-
-            found = {"profile": frozenset(BUILTIN_PROFILES)}
-        else:
-            found = names()
-        return cls(codes=frozenset(codes()) if codes is not None else None, names=found)
-
-    def choices(self, field: str) -> frozenset[str] | tuple[str, ...] | None:
-        """The values an enumerated field can have in this run (None: not enumerated)."""
-        spec = SPEC_NAMES.get(field)
-        if spec is None:
-            return CHOICES.get(field)
-        if self.names is None:
-            return None  # no run to ask (a library caller): not checked
-        return spec | self.names.get(field, frozenset())
-
-    def seconds(self, item: Item, key: str) -> float | None:
-        time = item.get("time")
-        if not isinstance(time, (int, float)):
-            return None
-        if key == "time_relative":
-            return None if self.first is None else time - self.first
-        before = (self.previous or {}).get(item.get("frame"))  # type: ignore[arg-type]
-        return 0.0 if before is None else time - before
 
 
 class _Parser:
