@@ -170,6 +170,14 @@ def test_several_captures_are_said_to_be_one_bus() -> None:
                    "over the span from the first item to the last")
     status, out, err = run_cli(["--stats", "--json", p38, noisy])
     assert json.loads(out)["merged_captures"] == [p38, noisy]
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as folder:
+        page = Path(folder) / "two.html"
+        assert run_cli(["--report", str(page), p38, noisy])[0] == 0
+        text = page.read_text(encoding="utf-8")
+    assert (f'<p class="summary">48 frames, 9 noise bytes in 2 runs, 1.550 s, from 2 captures counted as one bus, '
+            f"as mergecap would join them (decode each alone for its own traffic and timing): {p38}, {noisy}</p>") in text
     # One capture: nothing said, no key.
     status, out, err = run_cli(["--stats", p38])
     assert out.splitlines()[0] == "12 frames, 0 noise bytes in 0 runs" and "counted as one bus" not in out

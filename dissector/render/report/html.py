@@ -12,7 +12,7 @@ from dissector.errors import OutputError
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
-from dissector.render.stats import StatsCollector, exception_counts, time_summary
+from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
@@ -76,6 +76,7 @@ def render_report(
         f"<p class=\"summary\">{summary['frames']} frames, {summary['noise']['bytes']} noise bytes in "
         f"{summary['noise']['items']} runs"
         + (f", {duration:.3f} s" if duration is not None else ", no timestamps (x axis: frame number)")
+        + (f", from {_esc(merged_text(stats.captures))}" if len(stats.captures) > 1 else "")  # one bus, said
         + "</p>"
     )
     # -- slaves
