@@ -390,6 +390,12 @@ def test_standard_input_says_what_the_file_says(tmp_path: Path) -> None:
         assert data_["event_counts"]["protection"] == len(protections), path
         if not data_["timed"] and not data_["events_dropped"]:
             assert [(int(x), slave) for x, kind, slave, _text in data_["events"] if kind == "protection"] == protections
+        assert run_cli([path, "--report", str(page), *options])[0] == 0
+        from_file = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
+        # The whole report's data, but which series it keeps beyond its bound (first come: the frames
+        # held until their slave's choice come later).
+        keys = [key for key in from_file if key != "parameters" or not from_file["parameters_dropped"]]
+        assert {key: data_[key] for key in keys} == {key: from_file[key] for key in keys}, path
 
         addresses = sorted({address for _slave, address in params})
         if addresses:

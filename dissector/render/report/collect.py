@@ -222,7 +222,8 @@ class ReportCollector:
             self._double()
         if self.first_x is None:
             self.first_x = x
-        self.last_x = x
+        if self.last_x is None or x > self.last_x:  # a frame read again later (history.py) is no later
+            self.last_x = x
         return x
 
     def _col(self, x: float) -> int:
