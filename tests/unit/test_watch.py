@@ -121,8 +121,9 @@ def test_a_value_read_before_the_profile_is_chosen_is_named_by_it(tmp_path) -> N
     status, out, _ = run_cli([str(capture), "--stats", "--json"])
     (lfr,) = [row for row in json.loads(out)["parameters"] if row["address"] == 8502]
     assert (lfr["code"], lfr["last"], lfr["last_text"], lfr["changes"]) == ("LFR", 461, "46.1 Hz", 1)
-    # Read once (standard input) too: the watch line waits for the choice, the report's LFR trend and
-    # --stats are named by the device chosen (no 296 Hz point beside 46.1), as from the file.
+    # Read once (standard input) too: frames 1 to 3 come before the choice and are read again with the
+    # ATV71 once frame 4 made it, so frame 4's line (after the choice) compares with 29.6 Hz, and the
+    # report's LFR trend and --stats are named by the device chosen (no 296 Hz point beside 46.1).
     import re
 
     data = capture.read_bytes()
@@ -171,3 +172,21 @@ def test_json_time_is_the_items_time_whatever_t_says() -> None:
         assert [json.loads(line) for line in out.splitlines()] == [expected], extra
     fields = run_cli([capture, "-T", "fields", "-e", "time_relative", "-Y", "frame == 6"])[1]
     assert fields == "1.059949000\n"
+
+
+def test_standard_input_marks_changes_before_any_device_and_writes_each_once() -> None:
+    # CHCF (8401) read alone, 3 then 4: no device is ever chosen (one read), so both frames are
+    # provisional: the change is written as it comes, marked, and once only when the input ends and the
+    # history counts the frames it held.
+    from helpers import rtu
+
+    request = rtu("0C 03 20 D1 00 01")
+    data = request + rtu("0C 03 02 00 03") + request + rtu("0C 03 02 00 04")
+    for watched in ("8401", "CHCF"):
+        assert run_cli(["-", "--watch", watched], stdin=data) == (
+            0, "     4            -  12 8401 3 -> 4 [provisional]\n", "")
+        status, out, _ = run_cli(["-", "--watch", watched, "--json"], stdin=data)
+        assert json.loads(out) == {"time": None, "time_relative": None, "frame": 4, "slave": 12, "address": 8401,
+                                   "code": None, "old": "3", "new": "4", "unit": None, "provisional": True}
+    (row,) = json.loads(run_cli(["-", "--stats", "--json"], stdin=data)[1])["parameters"]
+    assert (row["address"], row["reads"], row["last"], row["changes"]) == (8401, 2, 4, 1)
