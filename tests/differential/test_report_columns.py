@@ -16,7 +16,9 @@ import pytest
 
 from dissector.accel._summary import Columns as CompiledColumns
 from dissector.app.cli import Environment, run
-from dissector.render.report.collect import COLUMNS, Columns, remap
+from dissector.pipeline import dissect
+from dissector.render.report.collect import COLUMNS, Columns, ReportCollector, remap
+from dissector.sources.reader import open_source
 from dissector.sim.simulate import generate_session
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
 
@@ -24,19 +26,19 @@ ROOT = Path(__file__).resolve().parents[2]
 CAPTURES = ROOT / "captures"
 
 
-def report(argv: list[str], page: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
+def report(argv: list[str], page: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> str:
     if pure:
         monkeypatch.setenv("VW3_PURE_PYTHON", "1")
     else:
         monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
     stdout, stderr = io.StringIO(), io.StringIO()
-    assert run([*argv, "--report", str(page)], Environment(io.BytesIO(), stdout, stderr, False, False)) == 0
+    assert run([*argv, "--report", str(page)], Environment(io.BytesIO(stdin), stdout, stderr, False, False)) == 0
     return page.read_text(encoding="utf-8") + stdout.getvalue() + stderr.getvalue()
 
 
-def assert_same_report(argv: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> dict:
-    compiled = report(argv, tmp_path / "compiled.html", monkeypatch, pure=False)
-    reference = report(argv, tmp_path / "reference.html", monkeypatch, pure=True)
+def assert_same_report(argv: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch, stdin: bytes = b"") -> dict:
+    compiled = report(argv, tmp_path / "compiled.html", monkeypatch, pure=False, stdin=stdin)
+    reference = report(argv, tmp_path / "reference.html", monkeypatch, pure=True, stdin=stdin)
     assert compiled == reference
     found = re.search(r'<script type="application/json" id="report-data">(.*?)</script>', compiled, re.S)
     assert found is not None
@@ -63,6 +65,25 @@ def test_shipped_captures_one_after_another_same_report(profile: str, tmp_path: 
     data = assert_same_report([str(CAPTURES / f"{name}.pcap") for name in names] + ["--profile", profile],
                               tmp_path, monkeypatch)
     assert data["event_counts"]["protection"] > 0 and data["event_counts"]["exception"] > 0
+
+
+def test_profile_chosen_after_values_were_read_same_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Standard input (one pass): the drive's reads and writes come before its device identification,
+    then a polling bus of another make: profile auto chooses each device after values of it were kept,
+    and the series kept are named again (ReportCollector.renamed)."""
+    items = list(dissect(open_source(str(CAPTURES / "atv71_commissioning.bin"))))
+    raws = [bytes(item.raw) for item in items]
+    stream = b"".join(raws[18:60] + raws[:2] + raws[2:]) + (CAPTURES / "sel749m_polling.bin").read_bytes()
+    renamed: list[int] = []
+    original = ReportCollector.renamed
+
+    def spy(self: ReportCollector, slave: int) -> None:
+        renamed.append(slave)
+        original(self, slave)
+
+    monkeypatch.setattr(ReportCollector, "renamed", spy)
+    data = assert_same_report(["-", "--profile", "auto"], tmp_path, monkeypatch, stdin=stream)
+    assert renamed and data["parameters"]
 
 
 def test_long_poll_merges_columns_same_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
