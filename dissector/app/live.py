@@ -22,7 +22,6 @@ import time
 from collections.abc import Callable
 from typing import BinaryIO, TextIO
 
-from rich.console import Console
 from rich.text import Text
 
 from dissector.app.live_capture import (
@@ -172,9 +171,10 @@ def _items_sink(
     if getattr(args, "json", False):
         return LineSink(out, json_line)
     if is_terminal:
+        from dissector.render.output import quiet_console
         from dissector.render.theme import THEME
 
-        console = Console(file=out, theme=THEME, force_terminal=True, highlight=False)
+        console = quiet_console(out, theme=THEME, force_terminal=True, highlight=False)  # (| head: exit 0)
         render = render_text or (lambda item: Text(render_line(item), no_wrap=True))
         title = f"{args.live} at {port_settings(args).text()} (Ctrl-C to stop)"
         return RichSink(console, title, stats, render)
@@ -281,8 +281,8 @@ def run_live(
     sink: Sink = NullSink()
     try:
         with StopFlag() as stop:
+            capture.start()  # first: a sink that fails (a reader gone) must not leave done unset
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
-            capture.start()
             display(capture, handoff, dissector, sink, stats, stop, observe, ProfileNews(annotate, err))
     finally:
         capture.stop.set()

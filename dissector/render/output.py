@@ -55,6 +55,20 @@ def provisional_notice(number: int, fields: FieldsOptions | None) -> str:
     )
 
 
+def quiet_console(stream: TextIO, **options: object) -> Console:
+    """rich's Console on `stream`, except that a reader gone away (`| head -1`) is a BrokenPipeError
+    for main() to end quietly with exit 0, as a plain run does, not rich's own exit 1
+    (Console.on_broken_pipe)."""
+    from rich.console import Console as RichConsole
+
+    class QuietConsole(RichConsole):
+        def on_broken_pipe(self) -> None:
+            self.quiet = True
+            raise BrokenPipeError
+
+    return QuietConsole(file=stream, **options)  # type: ignore[arg-type]
+
+
 class Output:
     def __init__(
         self, options: OutputOptions, stream: TextIO, isatty: bool, notice: Callable[[str], None] | None = None
@@ -66,19 +80,10 @@ class Output:
         use_rich = options.color == "always" or (options.color == "auto" and isatty)
         self.console: Console | None = None
         if use_rich and not options.records:
-            from rich.console import Console as RichConsole  # only a terminal needs rich
+            from dissector.render.theme import THEME  # only a terminal needs rich
 
-            from dissector.render.theme import THEME
-
-            class QuietConsole(RichConsole):
-                def on_broken_pipe(self) -> None:
-                    """The reader went away (`| head -1`): end as a plain run does (main(): exit 0),
-                    not as rich does (exit 1)."""
-                    self.quiet = True
-                    raise BrokenPipeError
-
-            self.console = QuietConsole(
-                file=stream,
+            self.console = quiet_console(
+                stream,
                 theme=THEME,
                 force_terminal=True if options.color == "always" else None,
                 highlight=False,

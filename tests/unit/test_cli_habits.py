@@ -274,6 +274,23 @@ def test_a_reader_gone_before_the_first_line_ends_quietly_coloured_or_not(color:
     assert (producer.returncode, err) == (0, b"")
 
 
+def test_a_live_view_whose_reader_is_gone_ends_quietly(tmp_path: Path) -> None:
+    # The live view on a closed pipe hung for ever (rich's exit inside the sink, before the capture
+    # thread started, then a wait for that thread to finish); now it ends as a file decode does.
+    tap = tmp_path / "lv.pcap"
+    producer = subprocess.Popen([sys.executable, "-m", "dissector", "--live", "loop://", "--duration", "1",
+                                 "--color", "always", "-w", str(tap)], cwd=ROOT,
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert producer.stdout is not None
+    producer.stdout.close()
+    try:
+        _out, err = producer.communicate(timeout=60)
+    finally:
+        producer.kill()  # (it hung: no process left behind)
+    assert (producer.returncode, err) == (0, f"{PROG}: listening on loop:// at 19200 8E1\n".encode())
+    assert len(tap.read_bytes()) == 24  # the pcap header: nothing was heard
+
+
 # -- integer microseconds ---------------------------------------------------------------------------
 
 def test_response_times_from_integer_microseconds() -> None:
