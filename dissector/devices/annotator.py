@@ -60,6 +60,7 @@ class Annotator:
         self._chosen: dict[int, Profile] = {}  # profiles `auto` chose
         self.changed: set[int] = set()  # slaves whose profile changed (the compiled path reloads them)
         self._settled: set[int] = set()
+        self._rereading: dict[tuple[int, str], Device] = {}  # reread()'s devices of other profiles
         for profile in [default, *per_slave.values()]:
             self._builder.build(profile, None)  # load every map now: errors before the first frame
 
@@ -173,6 +174,11 @@ class Annotator:
         return device
 
     # -- names for renderers ------------------------------------------------------------------------------
+    def chosen_profile(self, choice: ProfileChoice | None) -> Profile:
+        """The profile a choice names (None: the fallback a slave has until one is made)."""
+        found = None if choice is None or self.selector is None else self.selector.profile(choice.profile)
+        return found or self.default
+
     def profiles(self) -> list[Profile]:
         """Every profile a slave may have in this run: in use, or that `auto` may choose."""
         profiles = [self.default, *self.per_slave.values()]
@@ -241,14 +247,23 @@ class Annotator:
             name_register(register, row, row)
         return register
 
-    def reread(self, frame: Frame) -> list[Register] | None:
+    def reread(self, frame: Frame, profile: Profile | None = None) -> list[Register] | None:
         """The registers of `frame` as its slave's device names them now: what the decode says of them
         when the device is known from the frame on (a file, read twice). For a frame read before
         profile `auto` chose (Frame.provisional) or named with a choice taken back since: the parameter
         history (render/history.py) reads it again once the choice is made, so 16#8000 in a
         multi-register read is the status the device gives it, never a value beside it. New Register
-        objects: the frame, the parameter memory and the notes are left as they were."""
+        objects: the frame, the parameter memory and the notes are left as they were. `profile`: the
+        one to read them with (default: the slave's now)."""
         device = self.device(frame.slave)
+        if profile is not None and profile is not device.profile:
+            key = (frame.slave, profile.name)
+            other = self._rereading.get(key)
+            if other is None:
+                if len(self._rereading) >= 64:
+                    self._rereading.clear()
+                other = self._rereading[key] = self._builder.build(profile, frame.slave)
+            device = other
         profile = device.profile
         function = frame.function
         kind = frame.kind

@@ -35,6 +35,8 @@ named again by the new device (`store.rename`), and listeners hear `renamed(slav
 """
 from __future__ import annotations
 
+import dataclasses
+
 from collections.abc import Callable
 from typing import Any, Protocol
 
@@ -56,6 +58,7 @@ _BY_ECHO = confirmed_registers(Confirm.ECHO)
 _BY_ANSWER = confirmed_registers(Confirm.ANSWER)
 # Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
 UNREADABLE_STATUSES = frozenset(["protected", "non-existent"])
+_NOW = object()  # finish(): held frames read with their slave's profile now
 
 
 class Listener(Protocol):
@@ -86,12 +89,16 @@ class History:
 
     def add(self, item: Item) -> None:
         """A decoded item, in stream order (noise and damaged frames tell nothing of parameters)."""
-        if self._held:
-            self._release(False)  # slaves whose choice came (or that settled) with frames still held
-        if item.kind is Kind.NOISE or not item.crc_ok:  # type: ignore[union-attr]
+        if item.kind is Kind.NOISE:
             return
         frame: Frame = item  # type: ignore[assignment]
         slave = frame.slave
+        if self._held and not frame.provisional and slave in self._held:
+            # The slave's first frame named after the choice (or once it settled without one): its
+            # held frames are read with the profile this frame was named with, whatever came since.
+            self._replay(self._held.pop(slave), frame.profile_choice)
+        if not frame.crc_ok:
+            return
         if self._choice_frame is not None:
             chosen = self._choice_frame(slave)
             if chosen is not None and frame.number >= chosen and self._renamed.get(slave) != chosen:
@@ -102,44 +109,38 @@ class History:
         if frame.provisional:
             if self._watching:
                 self._apply(frame, provisional=True)
-            if not self._resolved(slave):
-                self._held.setdefault(slave, []).append(frame)
-                return
-        held = self._held.pop(slave, None) if self._held else None
-        if held:
-            for earlier in held:
-                self._apply(earlier)
+            self._held.setdefault(slave, []).append(frame)
+            return
         self._apply(frame)
 
     def finish(self) -> None:
-        """The input ended: the frames still held are counted as they were named (no device came)."""
-        self._release(True)
+        """The input ended: the frames still held are read with their slave's profile now."""
+        for slave in list(self._held):
+            self._replay(self._held.pop(slave), _NOW)
 
-    def _resolved(self, slave: int) -> bool:
-        """Profile `auto` chose this slave's device, or will not any more from its traffic."""
-        if self._choice_frame is not None and self._choice_frame(slave) is not None:
-            return True
-        settled = getattr(self._annotate, "settled", None)
-        return settled is None or settled(slave)
-
-    def _release(self, every: bool) -> None:
-        for slave in [slave for slave in self._held if every or self._resolved(slave)]:
-            for frame in self._held.pop(slave):
-                self._apply(frame)
+    def _replay(self, frames: list[Frame], choice: object) -> None:
+        chosen = getattr(self._annotate, "chosen_profile", None)
+        profile = None if chosen is None or choice is _NOW else chosen(choice)
+        for frame in frames:
+            self._apply(frame, profile=profile)
 
     @property
     def _watching(self) -> list[Any]:
         return [listener for listener in self.listeners if hasattr(listener, "provisional")]
 
-    def _apply(self, frame: Frame, provisional: bool = False) -> None:
+    def _apply(self, frame: Frame, provisional: bool = False, profile: object = None) -> None:
         """What `frame` tells of each parameter; `provisional`: only told to the listeners that show
-        provisional lines, with the registers as decoded (the store keeps nothing)."""
+        provisional lines, with the registers as decoded (the store keeps nothing); `profile`: a held
+        frame's, read again with it (None: the slave's now)."""
         slave = frame.slave
         kind = frame.kind
         function = frame.function
         registers = frame.registers
-        if not provisional and (frame.provisional or self._stale(slave, frame.number)):
-            registers = self._fresh(frame)
+        if not provisional:
+            if frame.provisional:
+                registers = self._reread(frame, profile)
+            elif registers and self._stale(slave, frame.number):
+                registers = self._fresh(frame, registers)
         if kind is Kind.REQUEST:
             if function in WRITE_FUNCTIONS and registers:
                 # A broadcast write: no answer will confirm it, the request is all there is.
@@ -149,8 +150,11 @@ class History:
         written = None
         if request is not None and request.crc_ok and request.registers and request.function in WRITE_FUNCTIONS:
             written = request.registers
-            if not provisional and (request.provisional or self._stale(slave, request.number)):
-                written = self._fresh(request)
+            if not provisional:
+                if request.provisional:
+                    written = self._reread(request, profile)
+                elif self._stale(slave, request.number):
+                    written = self._fresh(request, written)
         if kind is Kind.EXCEPTION:
             if written:
                 self._events(frame, written, REFUSED, provisional=provisional)
@@ -178,10 +182,33 @@ class History:
         chosen = self._choice_frame(slave)
         return chosen is not None and number < chosen
 
-    def _fresh(self, frame: Frame) -> Any:
-        """The frame's registers as the slave's device (chosen since) reads them (Annotator.reread)."""
+    def _reread(self, frame: Frame, profile: object) -> Any:
+        """A held frame's registers as its slave's device reads them (Annotator.reread)."""
         reread = getattr(self._annotate, "reread", None)
-        return frame.registers if reread is None else reread(frame)
+        return frame.registers if reread is None else reread(frame, profile)
+
+    def _fresh(self, frame: Frame, registers: list[Register]) -> list[Register]:
+        """Registers of a frame named before its slave's profile changed (later in the same batch of
+        items), named as the slave's device now names them; statuses kept (the stream path, which saw
+        the frame before the change, counted them so: both paths count alike)."""
+        plain = getattr(self._annotate, "plain_register", None)
+        device = getattr(self._annotate, "device", None)
+        if plain is None or device is None:
+            return registers
+        rows = device(frame.slave).rows
+        fresh = []
+        for register in registers:
+            address = register.address
+            row = None if address is None else rows.get(address)
+            if row is None or row.words != 1 or register.value is None or register.status in UNREADABLE_STATUSES:
+                if row is not None and register.code is None:
+                    register = dataclasses.replace(register, code=row.code, name=row.name)
+                fresh.append(register)
+                continue
+            named = plain(frame.slave, frame.function, address, register.value)
+            named.status = register.status
+            fresh.append(named)
+        return fresh
 
     def _events(self, frame: Frame, registers: list[Register], event: int, confirmed: bool = False,
                 provisional: bool = False) -> None:

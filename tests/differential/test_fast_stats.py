@@ -40,6 +40,7 @@ def python_stats(data: bytes, annotator: object | None) -> StatsCollector:
     dissector = Dissector(annotate=annotator)  # type: ignore[arg-type]
     for item in dissector.feed(Chunk(data)) + dissector.finish():
         collector.add(item)
+    collector.history.finish()  # the frames held until a slave's profile was chosen (render/history.py)
     return collector
 
 
@@ -59,6 +60,7 @@ def compiled_stats(data: bytes, annotator: object | None, splits: list[int] | No
     for start, end in zip(cuts, cuts[1:]):
         path.feed(data[start:end])
     path.finish()
+    collector.history.finish()
     return collector
 
 
