@@ -21,12 +21,15 @@ without an address (an answer whose request is not in the capture) is only count
 
 A value counts as the device of its slave reads it. Read once (standard input, live), a frame decoded
 before profile `auto` chose its slave's device (Frame.provisional) was named with spec semantics only:
-the history holds it back, at most a slave's judging frames (FIT_FRAMES), and reads it again with the
-device once the choice is made (Annotator.reread: 16#8000 in a multi-register read is then the status
-`non-existent` or `protected`, not the value 32768), or as it stands when the slave is settled without
-one or the input ends (finish()). So `--stats` and `--report` count on a stream exactly what they
-count on the same file, and a state is never the raw reading beside the device's (p.38 read once:
-8400 is unreadable 6 times, 0 changes). Listeners that show lines as they come (`--watch` live and on
+the history holds it back, at most a slave's judging frames (FIT_FRAMES), until the slave's first frame
+named after the choice (or after it settled without one), and reads it again with the profile that
+frame was named with (Frame.profile_choice; Annotator.reread: 16#8000 in a multi-register read is then
+the status `non-existent` or `protected`, not the value 32768); frames still held when the input ends
+are read with the slave's profile then (finish()). Keyed on the frame, not on how far the annotator
+has gone, the compiled engine and the Python stages count alike however the stream is batched. So
+`--stats` and `--report` count on a stream what they count on the same file, and a state is never the
+raw reading beside the device's (p.38 read once: 8400 is unreadable 6 times, 0 changes); only a choice
+taken back later (the file names every frame with the last choice) can still differ. Listeners that show lines as they come (`--watch` live and on
 standard input) hear such a frame at once as `provisional(frame, register, event)`, named as decoded,
 and its re-read states later through `state()` with the frame still provisional: they write no line
 for those (the change was shown provisional), so re-reading never invents a change.
