@@ -18,7 +18,7 @@ from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
-from dissector.devices.memory import readable_again, remember_writes, unreadable
+from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
 from dissector.devices.naming import name_register, name_wide, plc_label
 from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
@@ -300,13 +300,7 @@ class Annotator:
                 if register.address is None:
                     continue
                 if register.value == protected and multi and register.words == 1:
-                    row = rows.get(register.address)
-                    if row is None:
-                        register.status, register.text = "non-existent", "16#8000: non-existent (address not in the map)"
-                    elif row.ambiguous_8000:
-                        register.status = "ambiguous"
-                    else:
-                        register.status, register.scaled, register.text = "protected", None, "16#8000: protected"
+                    unreadable_status(register, rows.get(register.address))
                 else:
                     register.status = "ok"
         return fresh

@@ -15,21 +15,28 @@ from dissector.devices.story import Event
 from dissector.model import Frame, Register
 
 
-def unreadable(frame: Frame, device: Device, register: Register, row: RegisterDef | None, events: list[Event]) -> None:
-    """16#8000 in a multi-register read: non-existent, protected, or (if it can be real) ambiguous."""
+def unreadable_status(register: Register, row: RegisterDef | None) -> str | None:
+    """16#8000 in a multi-register read: non-existent, protected, or (if it can be real) ambiguous; the
+    register's status and text set, the status returned when the parameter is unreadable (not ambiguous)."""
     if row is None:
-        status = "non-existent"
+        register.status = "non-existent"
         register.text = "16#8000: non-existent (address not in the map)"
     elif row.ambiguous_8000:
         # The value may be real: keep its own reading, and what was known of the parameter.
         register.status = "ambiguous"
-        return
+        return None
     else:
-        status = "protected"
+        register.status = "protected"
         register.scaled = None
         register.text = "16#8000: protected"
-    register.status = status
-    lost(frame, device, register.address, row, status, "16#8000 now", register.label, events)  # type: ignore[arg-type]
+    return register.status
+
+
+def unreadable(frame: Frame, device: Device, register: Register, row: RegisterDef | None, events: list[Event]) -> None:
+    """unreadable_status, and the parameter's story told (it became unreadable)."""
+    status = unreadable_status(register, row)
+    if status is not None:
+        lost(frame, device, register.address, row, status, "16#8000 now", register.label, events)  # type: ignore[arg-type]
 
 
 def lost(
