@@ -112,7 +112,7 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
     return p;
 }
 
-/* ParameterTable.observe (render/stats_store.py, render/history.py): the state is a value or a read
+/* ParameterTable.param (render/stats_store.py, render/history.py): the state is a value or a read
  * status; a change is a state that differs from the last one, whoever saw each. 1: changed. */
 static inline int param_observe(Param *p, unsigned value) {
     int changed = p->has_last && (p->status != NULL || value != p->last);
@@ -161,7 +161,7 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
 
 /* One register's event, from a transaction the engine shows: texts and codes from `namer` (the slave's
  * device). The code is asked once per parameter and namer, only where the device names the address;
- * CONFIRM sets it only on a parameter's first sight (StatsCollector._confirm). */
+ * CONFIRM sets it only on a parameter's first sight (ParameterTable.param). */
 static int param_event(Stats *st, int slave, unsigned address, unsigned value, int event, PyObject *namer,
                        int mapped) {
     int created;

@@ -956,7 +956,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
         r->packed = f + L->coils_at;
     }
     unsigned device_quantity = r->quantity;
-    /* Annotator._within_limits */
+    /* checks.within_limits: the device's own quantity limits */
     if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
     if (check == 2 && (!L->write_quantity_at || (long)write_quantity > s->limit[k][1])) return 0;
     return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;

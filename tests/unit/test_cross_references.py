@@ -3,7 +3,8 @@
 The Lua plugin, the C engine, the code generator, the benches and the tests say in comments which Python
 module or function they port or mirror. Nothing else links the copies, so a rename leaves them pointing at
 nothing: this test reads those comments and checks that every `something.py`, every `dissector/...` path
-and every `module.name` they give exists (and that the name is defined in that module).
+and every `module.name` they give exists (and that the name is defined in that module), and that every
+`Class.name` of a class the package defines names something that class defines.
 """
 
 from __future__ import annotations
@@ -79,6 +80,9 @@ COMMAND = re.compile(r"(?:python3?|-m) +$")  # "python3 tests/corpus/sr_uart.py 
 # "python3 tests/corpus/minimalmodbus_responses.py test_omegacn7500.py": another project's file, an argument.
 ARGUMENT = re.compile(r"python3? +\S+\.py +(?:\S+ +)*$")
 PACKAGE_PATH = re.compile(r"(?<![\w/.-])(dissector/[\w./-]*[\w])")
+# `RtuFramer._scan`: a class of the package and a name in it (classes it does not define, the C engine's
+# Stats or Wireshark's TreeItem, are not checked).
+CLASS_NAME = re.compile(r"(?<![\w/.-])([A-Z][a-z]\w*)\.([A-Za-z_]\w*)\b")
 MODULE_NAME = re.compile(r"(?<![\w/.-])([a-z_][a-z0-9_]*)\.([A-Za-z_]\w*)\b(?![./(]?\w*\.py)")
 
 
@@ -120,6 +124,27 @@ def module_basenames() -> dict[str, list[str]]:
     return found
 
 
+@cache
+def class_names() -> dict[str, frozenset[str]]:
+    """Class name -> every name its classes of that name define (methods, attributes), over the package."""
+    found: dict[str, set[str]] = {}
+    for f in python_files():
+        if not f.startswith("dissector/"):
+            continue
+        for node in ast.walk(ast.parse((ROOT / f).read_text(encoding="utf-8"))):
+            if not isinstance(node, ast.ClassDef):
+                continue
+            names = found.setdefault(node.name, set())
+            for sub in ast.walk(node):
+                if isinstance(sub, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+                    names.add(sub.name)
+                elif isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Store):
+                    names.add(sub.id)
+                elif isinstance(sub, ast.Attribute) and isinstance(sub.ctx, ast.Store):
+                    names.add(sub.attr)
+    return {name: frozenset(names) for name, names in found.items()}
+
+
 # Stems that once were modules and are gone: a `stem.name` with one of them is stale even though the stem
 # is not a module any more (the only way to see `framer.Scan` as a module reference at all).
 FORMER_MODULES = {"framer", "decode", "profile_annotator", "annotator", "decoder"}
@@ -157,6 +182,11 @@ def problems(path: Path, text: str) -> list[str]:
             continue
         if not any(name in defined_names(f) for f in files):
             found.append(f"{where}: names {stem}.{name}, which {' / '.join(files)} does not define")
+    for match in CLASS_NAME.finditer(text):
+        cls, name = match.groups()
+        names = class_names().get(cls)
+        if names is not None and name not in names:
+            found.append(f"{where}: names {cls}.{name}, which class {cls} does not define")
     return list(dict.fromkeys(found))  # a path is also a PY_FILE match: one report each
 
 
@@ -184,6 +214,9 @@ def test_every_named_module_and_name_exists():
     ("-- made by python3 tests/corpus/nothere.py FILE", ["tests/corpus/nothere.py"]),
     ("-- as fields._check_echo does, and naming.plc_label", []),
     ("-- as decode._check_echo does", ["decode._check_echo"]),
+    ("-- as RtuFramer._shortest_crc does", []),
+    ("-- as RtuFramer._no_such_method does", ["RtuFramer._no_such_method"]),
+    ("-- a TreeItem.add_le of Wireshark's", []),
 ])
 def test_a_planted_stale_name_is_found(comment, expected):
     """The checker itself: a name that is not there is reported, one that is there is not."""
