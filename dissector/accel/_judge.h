@@ -38,21 +38,12 @@ static int judge_transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize
     int found = next_frame(e, b, q->at + q->length, n, &a, q->decided);
     if (found == FRAME_OK && a.kind == KIND_REQUEST) { /* unanswered: the next request is its own */
         if (e->frames) frames_record(e, q, NULL);
-        if (e->out.failed) return STEP_ERROR;
-        e->count += 1;
-        *pos = a.at;
-        e->tl.decided = q->decided;
-        return STEP_DONE;
+        return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 0);
     }
     if (found == FRAME_OK && !judged(e, &a) &&
         !(q->timed && a.timed && e->tl.timeout >= 0 && stamp_seconds(a.ns, q->ns) > e->tl.timeout)) {
         if (e->frames) frames_record(e, q, &a);
-        if (e->out.failed) return STEP_ERROR;
-        e->count += 2;
-        e->expect_slave = e->expect_function = -1;
-        *pos = a.at + a.length;
-        e->tl.decided = a.decided;
-        return STEP_DONE;
+        return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 1);
     }
     e->expect_slave = saved_slave;
     e->expect_function = saved_function;

@@ -348,14 +348,9 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
     }
     c->responses++;
-    /* The writes the answer confirms (data/modbus.toml [confirm]): its echo's (FC6), the request's (FC16, FC23) */
-    const Rules *R = &rules[handled_index(function)];
-    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
-        Words echo = {word(answer + R->start_at), 1, answer + R->values_at};
-        if (words_event(st, s, slave, &echo, EVENT_CONFIRM) < 0) return -1;
-    } else if (R->confirm == CONFIRM_ANSWER && writes != NULL && words_event(st, s, slave, writes, EVENT_CONFIRM) < 0) {
+    Words confirmed; /* the writes the answer confirms (data/modbus.toml [confirm]) */
+    if (confirmed_writes(answer, writes, &confirmed) && words_event(st, s, slave, &confirmed, EVENT_CONFIRM) < 0)
         return -1;
-    }
     return reads != NULL && reads->count ? words_event(st, s, slave, reads, EVENT_READ) : 0;
 }
 

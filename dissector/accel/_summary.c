@@ -36,6 +36,7 @@
  */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
+#include <structmember.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -100,24 +101,19 @@ static void out_put(Out *o, const char *s, size_t n) {
 
 static void out_cstr(Out *o, const char *s) { out_put(o, s, strlen(s)); }
 
-static void out_uint(Out *o, unsigned long long v, int width) {
+/* v in base 10 or 16 (upper case), right-aligned in `width` characters with `pad`: Python's
+ * f"{v:{width}}" and f"{v:0{width}X}". */
+static inline void out_number(Out *o, unsigned long long v, unsigned radix, int width, char pad) {
     char digits[24];
     int n = 0;
-    do { digits[n++] = (char)('0' + v % 10); v /= 10; } while (v);
+    do { digits[n++] = "0123456789ABCDEF"[v % radix]; v /= radix; } while (v);
     if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
-    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = ' ';
+    for (int fill = width - n; fill > 0; fill--) o->data[o->len++] = pad;
     while (n) o->data[o->len++] = digits[--n];
 }
 
-/* Python's f"{v:0{width}X}" */
-static void out_hex(Out *o, unsigned long v, int width) {
-    char digits[16];
-    int n = 0;
-    do { digits[n++] = "0123456789ABCDEF"[v & 15]; v >>= 4; } while (v);
-    if (out_reserve(o, (size_t)(n > width ? n : width)) < 0) return;
-    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
-    while (n) o->data[o->len++] = digits[--n];
-}
+static inline void out_uint(Out *o, unsigned long long v, int width) { out_number(o, v, 10, width, ' '); }
+static inline void out_hex(Out *o, unsigned long v, int width) { out_number(o, v, 16, width, '0'); }
 
 static int out_str(Out *o, PyObject *text) {
     Py_ssize_t n;
@@ -127,14 +123,13 @@ static int out_str(Out *o, PyObject *text) {
     return o->failed ? -1 : 0;
 }
 
-/* naming.plc_label: 5-digit references (40001 + address) up to 49999, then 6-digit ones. */
+/* naming.plc_label: five digits at least, zero-padded (coil references: 00001), one more past the top
+ * of the base's range (40001 + address up to 49999, then 410000); base < 0: the address itself. */
 static void out_label(Out *o, long long base, unsigned address) {
     if (base < 0) {
         out_uint(o, address, 0);
         return;
     }
-    /* naming.plc_label: five digits at least, zero-padded (coil references: 00001), one more past the
-     * top of the base's range (49999 -> 410000). */
     int digits = 1;
     long long scale = 1;
     while (scale * 10 <= base) {
@@ -151,14 +146,7 @@ static void out_label(Out *o, long long base, unsigned address) {
         number = base * 10 - 9 + address;
         digits++;
     }
-    char buffer[24];
-    int n = 0;
-    unsigned long long v = (unsigned long long)number;
-    do { buffer[n++] = (char)('0' + v % 10); v /= 10; } while (v);
-    int width = n > digits ? n : digits;
-    if (out_reserve(o, (size_t)width) < 0) return;
-    for (int pad = width - n; pad > 0; pad--) o->data[o->len++] = '0';
-    while (n) o->data[o->len++] = buffer[--n];
+    out_number(o, (unsigned long long)number, 10, digits, '0');
 }
 
 /* ---- per-slave knowledge, from the Python callback slave_info(slave) -------------------------- */
@@ -208,7 +196,7 @@ typedef struct {
     PyObject_HEAD
     unsigned long long count;
     int expect_slave, expect_function; /* -1: no answer awaited */
-    int glitchy; /* the framer's StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
+    char glitchy; /* the framer's StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
     PyObject *slave_info;
     PyObject *piece;
     PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
@@ -231,7 +219,7 @@ typedef struct {
     long long line_ns, request_ns;
     PyObject *judge_bytes; /* profile auto's first pass (_judge.h): the bitmap below, or NULL */
     const uint8_t *judge;
-    int frames;            /* with judge: each transaction passed is written out as a record (_judge.h) */
+    char frames;           /* with judge: each transaction passed is written out as a record (_judge.h) */
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
@@ -434,6 +422,12 @@ static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i
     }
 }
 
+/* The frame of `length` bytes at i ends in the CRC of the bytes before it. */
+static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
+    Py_ssize_t stop = i + length - 2;
+    return crc16(b + i, length - 2) == (uint16_t)(b[stop] | b[stop + 1] << 8);
+}
+
 /* RtuFramer._shortest_crc: the shortest length from `minimum` whose last two bytes are the CRC of the
  * bytes before them, 0: none. */
 static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
@@ -449,53 +443,65 @@ static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_
     return 0;
 }
 
+/* A frame of `length` bytes at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
+ * _valid_frame_at, _match): 1 it checks out, 0 it does not apply or fails its CRC, 2 it waits for more bytes
+ * (*length: its length, -1 the bytes that give it). */
+static int length_check(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
+    if (*length < MIN_ADU || *length > MAX_ADU) return 0;
+    if (i + *length > n) return 2;
+    return crc_ok(b, i, *length);
+}
+
+/* A length rule at i, as length_check answers; -1: a CRC scan from *length bytes. */
+static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
+    Length found = rule_length(rule, b, i, n);
+    *length = found.what == LENGTH_NEED ? -1 : found.value;
+    if (found.what == LENGTH_SCAN) return -1;
+    return found.what == LENGTH_NEED ? 2 : length_check(b, i, n, length);
+}
+
+/* rules.quantity_rule: a request's length by its quantity where it differs from its byte count's, as
+ * length_check answers (0 too when both agree). */
+static int quantity_check(const QuantityRule *q, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
+    int need = q->position + 1 > q->count_position ? q->position + 1 : q->count_position;
+    *length = -1;
+    if (i + need >= n) return 2;
+    Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
+    *length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
+    return *length == q->count_extra + b[i + q->count_position] ? 0 : length_check(b, i, n, length);
+}
+
 /* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
  * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     if (n - j < MIN_ADU) return -1;
     int slave = b[j], function = b[j + 1]; /* any address: 248..255 are framed too (reserved) */
     const LengthRule exception = {5, 0, 0, 0, 0};
-    const QuantityRule *by_quantity = NULL;
     const LengthRule *rules[2];
-    int count = 2;
+    int count = 2, k = known_slot[function & 0x7F];
+    if (k < 0) return 0;
     if (function & 0x80) {
-        if (known_slot[function & 0x7F] < 0) return 0;
         rules[0] = &exception;
         count = 1;
     } else {
-        int k = known_slot[function];
-        if (k < 0) return 0;
         int expected = slave == e->expect_slave && function == e->expect_function;
         rules[0] = expected ? &known_response_rule[k] : &known_request_rule[k];
         rules[1] = expected ? &known_request_rule[k] : &known_response_rule[k];
-        if (known_quantity_rule[k].position) by_quantity = &known_quantity_rule[k];
     }
     int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
+    Py_ssize_t length;
     for (int r = 0; r < count; r++) {
-        Length length = rule_length(rules[r], b, j, n);
-        if (length.what == LENGTH_SCAN) {
-            if (shortest_crc(b, j, n, length.value)) return 1;
+        int found = rule_check(rules[r], b, j, n, &length);
+        if (found < 0) {
+            if (shortest_crc(b, j, n, length)) return 1;
             undecided = undecided || n - j < MAX_ADU;
-            continue;
+        } else if (found) {
+            return found == 1 ? 1 : -1;
         }
-        if (length.what == LENGTH_NEED) return -1;
-        if (length.value < MIN_ADU || length.value > MAX_ADU) continue;
-        if (j + length.value > n) return -1;
-        Py_ssize_t stop = j + length.value - 2;
-        if (crc16(b + j, stop - j) == (uint16_t)(b[stop] | b[stop + 1] << 8)) return 1;
     }
-    if (by_quantity != NULL) {
-        /* The request's length by its quantity, where it differs from the byte count's (rtu.py quantity_rule). */
-        const QuantityRule *q = by_quantity;
-        int need = q->position + 1 > q->count_position ? q->position + 1 : q->count_position;
-        if (j + need >= n) return -1;
-        Py_ssize_t quantity = (Py_ssize_t)word(b + j + q->position);
-        Py_ssize_t length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
-        if (length != q->count_extra + b[j + q->count_position] && length >= MIN_ADU && length <= MAX_ADU) {
-            if (j + length > n) return -1;
-            Py_ssize_t stop = j + length - 2;
-            if (crc16(b + j, stop - j) == (uint16_t)(b[stop] | b[stop + 1] << 8)) return 1;
-        }
+    if (count == 2 && known_quantity_rule[k].position) {
+        int found = quantity_check(&known_quantity_rule[k], b, j, n, &length);
+        if (found) return found == 1 ? 1 : -1;
     }
     return undecided ? -1 : 0;
 }
@@ -587,9 +593,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     if (!scanned) {
         /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
         if (i + length >= n) return FRAME_NEED;
-        if (b[i + length] == 0) return FRAME_HANDOVER;
-        Py_ssize_t stop = i + length - 2;
-        if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return FRAME_HANDOVER;
+        if (b[i + length] == 0 || !crc_ok(b, i, length)) return FRAME_HANDOVER;
     }
     f->at = i;
     f->length = length;
@@ -840,6 +844,21 @@ static void span_text(Out *o, long long base, unsigned start, unsigned quantity)
     out_put(o, ")", 1);
 }
 
+/* The registers an answer confirms written (data/modbus.toml [confirm]): its own echo (FC6), or the
+ * request's values `writes` (NULL: none) a normal answer confirms (FC16, FC23); 1: some, in *out. */
+static int confirmed_writes(const uint8_t *answer, const Words *writes, Words *out) {
+    const Rules *R = &rules[handled_index(answer[1])];
+    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
+        *out = (Words){word(answer + R->start_at), 1, answer + R->values_at};
+        return 1;
+    }
+    if (R->confirm == CONFIRM_ANSWER && writes != NULL) {
+        *out = *writes;
+        return 1;
+    }
+    return 0;
+}
+
 #include "_stats.h"
 #include "_columns.h" /* --report's pixel columns of a series */
 
@@ -848,7 +867,6 @@ typedef struct {
     unsigned start, quantity;   /* FC23: the read part */
     Words writes;               /* FC6, FC16, FC23 */
     int has_writes;
-    unsigned value;             /* FC5: 0xFF00 or 0 */
     const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
     const uint8_t *frame;       /* its bytes: what an answer's echo fields are compared with */
     Py_ssize_t length;          /* the frame's, CRC included */
@@ -930,6 +948,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
     int check = s->check[k];
     if (check < 0) return 0;
     r->has_writes = 0;
+    r->packed = NULL;
     r->length = length;
     r->frame = f;
     if (rules[k].special) return diagnostics_are_plain(e, s, f, length);
@@ -948,8 +967,8 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
         r->has_writes = 1;
     }
     if (L->coil_at) { /* fields.lifter's coil rule warns of any value but ON and OFF */
-        r->value = word(f + L->coil_at);
-        if (r->value != 0xFF00 && r->value != 0) return 0;
+        unsigned value = word(f + L->coil_at);
+        if (value != 0xFF00 && value != 0) return 0;
     }
     if (L->coils_at) {
         if (f[L->coils_count_at] != (r->quantity + 7) / 8) return 0;
@@ -962,12 +981,17 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
     return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
 }
 
-/* summary.summary_line up to the info text: number, time (`-`: untimed), slave, kind, function name */
-static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
+/* summary.summary_line's head: number, time (`-`: untimed), slave, kind */
+static void line_head(Engine *e, const uint8_t *f, unsigned long long number, const char *kind) {
     out_uint(&e->out, number, 6);
     out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
     out_uint(&e->out, f[0], 3);
     out_cstr(&e->out, kind);
+}
+
+/* ... then the function name, where the engine writes the info text itself */
+static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
+    line_head(e, f, number, kind);
     if (out_str(&e->out, s->name[handled_index(f[1])]) < 0) return -1;
     out_put(&e->out, " ", 1);
     return 0;
@@ -979,100 +1003,124 @@ static int info_end_is_plain(const Out *o) {
     return last > 0x20 && last < 0x7F;
 }
 
-static int write_single_text(Engine *e, Slave *s, int slave, int function, unsigned address, unsigned value) {
-    /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
-    out_label(&e->out, s->base[handled_index(function)], address);
-    size_t mark = e->out.len;
-    int named;
-    out_put(&e->out, " ", 1);
-    if (piece(e, s, slave, function, address, value, &named) < 0) return -1;
-    if (!named) {
-        e->out.len = mark;
-        out_put(&e->out, " = ", 3);
-        out_uint(&e->out, value, 0);
-    }
-    return 0;
-}
+static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
-/* describe._mask_write: the address as sent, even PLC style; `at`: address, AND mask, OR mask */
-static void mask_write_text(Out *o, const uint8_t *f, const int at[3]) {
-    out_uint(o, word(f + at[0]), 0);
-    out_cstr(o, " AND 0x");
-    out_hex(o, word(f + at[1]), 4);
-    out_cstr(o, " OR 0x");
-    out_hex(o, word(f + at[2]), 4);
-}
-
-/* The Info column of a request, by the form its describer gives (rules[k].request_form). */
-static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
-                        int unanswered) {
+/* The Info column by the form its describer gives (rules[k].request_form, response_form), from the
+ * fields at `at` (rules[k].request_at, response_at), the window start..quantity, the coils `packed` and
+ * the registers `values`: 1 written, 0 a form this engine does not write, -1 error. */
+static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, int form, const int at[3],
+                     unsigned start, unsigned quantity, const uint8_t *packed, const Words *values) {
     int slave = f[0], function = f[1], k = handled_index(function);
-    const Rules *R = &rules[k];
     long long base = s->base[k];
-    if (line_start(e, s, f, number, " request   ") < 0) return -1;
-    switch (R->request_form) {
-    case FORM_SPAN:
-        span_text(&e->out, base, r->start, r->quantity);
-        break;
-    case FORM_COIL:
-        span_text(&e->out, base, r->start, 1);
-        out_cstr(&e->out, r->value == 0xFF00 ? " = ON" : " = OFF");
-        break;
-    case FORM_BITS:
-        span_text(&e->out, base, r->start, r->quantity);
-        out_put(&e->out, ": ", 2);
-        bits_text(&e->out, r->packed, r->quantity);
-        break;
-    case FORM_SINGLE:
-        if (write_single_text(e, s, slave, function, r->start, word(f + R->request_at[0])) < 0) return -1;
-        break;
+    switch (form) {
     case FORM_NAME: /* describe._simple, _comm_event_counter: the name alone */
         e->out.len -= 1;
         break;
-    case FORM_DIAGNOSTICS:
-        if (diagnostics_text(e, f, r->length) < 0) return -1;
+    case FORM_SPAN:
+        span_text(&e->out, base, start, quantity);
         break;
-    case FORM_MASK:
-        mask_write_text(&e->out, f, R->request_at);
+    case FORM_BITS:
+        span_text(&e->out, base, start, quantity);
+        out_put(&e->out, ": ", 2);
+        bits_text(&e->out, packed, quantity);
+        break;
+    case FORM_VALUES:
+        span_text(&e->out, base, start, quantity);
+        out_put(&e->out, ": ", 2);
+        if (values_text(e, s, slave, function, values) < 0) return -1;
+        break;
+    case FORM_COIL:
+        span_text(&e->out, base, start, 1);
+        out_cstr(&e->out, word(f + at[0]) == 0xFF00 ? " = ON" : " = OFF");
+        break;
+    case FORM_SINGLE: { /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
+        unsigned value = word(f + at[0]);
+        out_label(&e->out, base, start);
+        size_t mark = e->out.len;
+        int named;
+        out_put(&e->out, " ", 1);
+        if (piece(e, s, slave, function, start, value, &named) < 0) return -1;
+        if (!named) {
+            e->out.len = mark;
+            out_put(&e->out, " = ", 3);
+            out_uint(&e->out, value, 0);
+        }
+        break;
+    }
+    case FORM_WRITTEN:
+        span_text(&e->out, base, start, quantity);
+        out_cstr(&e->out, " written");
+        break;
+    case FORM_STATUS: /* describe._simple: the status, at least two digits (FC7's byte, FC12's word) */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, field(f, at[0], rules[k].print_width), 2);
+        break;
+    case FORM_COUNTER: /* describe._comm_event_counter */
+        out_cstr(&e->out, "status 0x");
+        out_hex(&e->out, word(f + at[0]), 4);
+        out_cstr(&e->out, ", ");
+        out_uint(&e->out, word(f + at[1]), 0);
+        out_cstr(&e->out, " events");
+        break;
+    case FORM_DIAGNOSTICS:
+        if (diagnostics_text(e, f, length) < 0) return -1;
+        break;
+    case FORM_MASK: /* describe._mask_write: the address as sent, even PLC style; AND mask, OR mask */
+        out_uint(&e->out, word(f + at[0]), 0);
+        out_cstr(&e->out, " AND 0x");
+        out_hex(&e->out, word(f + at[1]), 4);
+        out_cstr(&e->out, " OR 0x");
+        out_hex(&e->out, word(f + at[2]), 4);
         break;
     case FORM_POINTER:
         out_cstr(&e->out, "pointer ");
-        out_uint(&e->out, word(f + R->request_at[0]), 0);
-        break;
-    case FORM_VALUES:
-        span_text(&e->out, base, r->start, r->quantity);
-        out_put(&e->out, ": ", 2);
-        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
+        out_uint(&e->out, word(f + at[0]), 0);
         break;
     case FORM_READ_WRITE: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
         out_cstr(&e->out, "read ");
         if (base >= 0) {
-            span_text(&e->out, base, r->start, r->quantity);
-            out_cstr(&e->out, ", write ");
-        } else if (r->quantity == 1) { /* describe.plain_span: one register is its address */
-            out_uint(&e->out, r->start, 0);
-            out_cstr(&e->out, ", write ");
-        } else {
-            out_uint(&e->out, r->start, 0);
-            out_put(&e->out, "..", 2);
-            out_uint(&e->out, (unsigned long long)r->start + r->quantity - 1, 0);
-            out_put(&e->out, " (", 2);
-            out_uint(&e->out, r->quantity, 0);
-            out_cstr(&e->out, "), write ");
+            span_text(&e->out, base, start, quantity);
+        } else { /* describe.plain_span: one register is its address; no wrap past 65535 */
+            out_uint(&e->out, start, 0);
+            if (quantity != 1) {
+                out_put(&e->out, "..", 2);
+                out_uint(&e->out, (unsigned long long)start + quantity - 1, 0);
+                out_put(&e->out, " (", 2);
+                out_uint(&e->out, quantity, 0);
+                out_put(&e->out, ")", 1);
+            }
         }
-        if (values_text(e, s, slave, function, &r->writes) < 0) return -1;
+        out_cstr(&e->out, ", write ");
+        if (values_text(e, s, slave, function, values) < 0) return -1;
         break;
+    case FORM_FIFO: { /* describe._fifo: the count, then the first values (rstrip: no space after none) */
+        unsigned count = word(f + at[0]);
+        out_uint(&e->out, count, 0);
+        out_cstr(&e->out, " values:");
+        for (unsigned j = 0; j < count && j < MAX_FIFO_VALUES; j++) {
+            out_put(&e->out, " ", 1);
+            out_uint(&e->out, word(f + at[1] + 2 * j), 0);
+        }
+        break;
+    }
     default:
         return 0;
     }
-    if (e->out.failed) return -1;
-    if (!info_end_is_plain(&e->out)) return 0;
+    return e->out.failed ? -1 : 1;
+}
+
+/* A request's line (`unanswered`: `[no response]`), from its checks' Request. */
+static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
+                        int unanswered) {
+    const Rules *R = &rules[handled_index(f[1])];
+    if (line_start(e, s, f, number, " request   ") < 0) return -1;
+    int written = info_text(e, s, f, r->length, R->request_form, R->request_at, r->start, r->quantity, r->packed,
+                            &r->writes);
+    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     if (unanswered) out_cstr(&e->out, " [no response]");
     out_cstr(&e->out, "  CRC ok\n");
     return 1;
 }
-
-static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
 /* The answer's checks as the lifting rule states them (fields.lifter: limit check, byte count, coil,
  * echo) and the annotator's (its registers plain, its reads quiet); fills its registers. 1 quiet, 0 hand over. */
@@ -1110,75 +1158,35 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
     return reads_are_quiet(s, reads, r->has_writes ? &r->writes : NULL);
 }
 
-/* The Info column of an answer, by the form its describer gives (rules[k].response_form). */
+/* An answer's line, paired with request `request_number`: the answer's own window where its rule gives
+ * one (FC5, FC15, FC16), else its request's. */
 static int response_line(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
                          const Words *reads, unsigned long long number, unsigned long long request_number) {
-    int slave = f[0], function = f[1], k = handled_index(function);
-    const Rules *R = &rules[k];
-    const int *at = R->response_at;
-    long long base = s->base[k];
-    /* the answer's own window where its rule gives one (FC5, FC15, FC16), else its request's */
+    const Rules *R = &rules[handled_index(f[1])];
     unsigned start = R->start_at ? word(f + R->start_at) : r->start;
     unsigned quantity = R->quantity_at ? word(f + R->quantity_at) : R->start_at ? (unsigned)R->one : r->quantity;
     if (line_start(e, s, f, number, " response  ") < 0) return -1;
-    switch (R->response_form) {
-    case FORM_VALUES:
-        span_text(&e->out, base, start, quantity);
-        out_put(&e->out, ": ", 2);
-        if (values_text(e, s, slave, function, reads) < 0) return -1;
-        break;
-    case FORM_SINGLE:
-        if (write_single_text(e, s, slave, function, start, word(f + at[0])) < 0) return -1;
-        break;
-    case FORM_BITS:
-        span_text(&e->out, base, start, quantity);
-        out_put(&e->out, ": ", 2);
-        bits_text(&e->out, f + R->bits_at, quantity);
-        break;
-    case FORM_COIL:
-        span_text(&e->out, base, start, 1);
-        out_cstr(&e->out, word(f + at[0]) == 0xFF00 ? " = ON" : " = OFF");
-        break;
-    case FORM_WRITTEN:
-        span_text(&e->out, base, start, quantity);
-        out_cstr(&e->out, " written");
-        break;
-    case FORM_STATUS: /* describe._simple: the status, at least two digits */
-        out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, field(f, at[0], R->print_width), 2);
-        break;
-    case FORM_DIAGNOSTICS:
-        if (diagnostics_text(e, f, length) < 0) return -1;
-        break;
-    case FORM_COUNTER: /* describe._comm_event_counter */
-        out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, word(f + at[0]), 4);
-        out_cstr(&e->out, ", ");
-        out_uint(&e->out, word(f + at[1]), 0);
-        out_cstr(&e->out, " events");
-        break;
-    case FORM_MASK:
-        mask_write_text(&e->out, f, at);
-        break;
-    case FORM_FIFO: { /* describe._fifo: the count, then the first values (rstrip: no space after none) */
-        unsigned count = word(f + at[0]);
-        out_uint(&e->out, count, 0);
-        out_cstr(&e->out, " values:");
-        for (unsigned j = 0; j < count && j < MAX_FIFO_VALUES; j++) {
-            out_put(&e->out, " ", 1);
-            out_uint(&e->out, word(f + at[1] + 2 * j), 0);
-        }
-        break;
-    }
-    default:
-        return 0;
-    }
-    if (e->out.failed) return -1;
-    if (!info_end_is_plain(&e->out)) return 0;
+    int written = info_text(e, s, f, length, R->response_form, R->response_at, start, quantity, f + R->bits_at, reads);
+    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     out_put(&e->out, " ", 1);
     out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
     out_cstr(&e->out, "  CRC ok\n");
     return 1;
+}
+
+/* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
+static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
+                      const char *pairing, unsigned long long request_number, PyObject *tail) {
+    line_head(e, f, number, kind);
+    if (out_str(&e->out, info) < 0) return -1;
+    if (pairing != NULL) out_cstr(&e->out, pairing);
+    if (request_number) {
+        out_put(&e->out, " ", 1);
+        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
+    }
+    if (out_str(&e->out, tail) < 0) return -1;
+    out_cstr(&e->out, "  CRC ok\n");
+    return e->out.failed ? -1 : 1;
 }
 
 /* An exception answering a shown request: its info and tail (notes, warnings) come from the Python
@@ -1189,49 +1197,19 @@ static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, cons
     if (e->exception == NULL || e->exception == Py_None) return 0;
     PyObject *texts = PyObject_CallFunction(e->exception, "iy#y#", q[0], (const char *)q, q_length,
                                             (const char *)a, (Py_ssize_t)5);
-    if (texts == NULL) return -1;
-    if (texts == Py_None) {
-        Py_DECREF(texts);
-        return 0;
+    if (texts == NULL || texts == Py_None) {
+        Py_XDECREF(texts);
+        return texts == NULL ? -1 : 0;
     }
+    int status = -1;
     if (!PyTuple_Check(texts) || PyTuple_GET_SIZE(texts) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(texts, 0)) ||
-        !PyUnicode_Check(PyTuple_GET_ITEM(texts, 1))) {
-        Py_DECREF(texts);
+        !PyUnicode_Check(PyTuple_GET_ITEM(texts, 1)))
         PyErr_SetString(PyExc_TypeError, "exception must return (str, str) or None");
-        return -1;
-    }
-    out_uint(&e->out, number, 6);
-    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
-    out_uint(&e->out, a[0], 3);
-    out_cstr(&e->out, " exception ");
-    int status = out_str(&e->out, PyTuple_GET_ITEM(texts, 0));
-    if (status == 0) {
-        out_put(&e->out, " ", 1);
-        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
-        status = out_str(&e->out, PyTuple_GET_ITEM(texts, 1));
-    }
+    else
+        status = texts_line(e, a, number, " exception ", PyTuple_GET_ITEM(texts, 0), NULL, request_number,
+                            PyTuple_GET_ITEM(texts, 1));
     Py_DECREF(texts);
-    if (status < 0) return -1;
-    out_cstr(&e->out, "  CRC ok\n");
-    return e->out.failed ? -1 : 1;
-}
-
-/* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
-static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
-                      const char *pairing, unsigned long long request_number, PyObject *tail) {
-    out_uint(&e->out, number, 6);
-    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
-    out_uint(&e->out, f[0], 3);
-    out_cstr(&e->out, kind);
-    if (out_str(&e->out, info) < 0) return -1;
-    if (pairing != NULL) out_cstr(&e->out, pairing);
-    if (request_number) {
-        out_put(&e->out, " ", 1);
-        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
-    }
-    if (out_str(&e->out, tail) < 0) return -1;
-    out_cstr(&e->out, "  CRC ok\n");
-    return e->out.failed ? -1 : 1;
+    return status;
 }
 
 static PyObject *texts_item(PyObject *texts, const char *name) {
@@ -1257,42 +1235,22 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
         Py_DECREF(texts);
         return 0;
     }
-    int status = -1;
-    PyObject *request_info = texts_item(texts, "request_info");
-    PyObject *request_tail = request_info ? texts_item(texts, "request_tail") : NULL;
-    PyObject *response_info = request_tail ? texts_item(texts, "response_info") : NULL;
-    PyObject *response_tail = response_info ? texts_item(texts, "response_tail") : NULL;
-    if (response_tail != NULL) {
-        status = texts_line(e, b + q->at, number, " request   ", request_info, a == NULL ? " [no response]" : NULL,
-                            0, request_tail);
-        if (status > 0 && a != NULL) {
-            e->line_timed = a->timed;
-            e->line_ns = a->ns;
-            status = texts_line(e, b + a->at, number + 1, " response  ", response_info, NULL, number,
-                                response_tail);
-        }
+    static const char *const names[4] = {"request_info", "request_tail", "response_info", "response_tail"};
+    PyObject *item[4] = {NULL, NULL, NULL, NULL};
+    int status = 1;
+    for (int j = 0; j < 4 && status > 0; j++)
+        if ((item[j] = texts_item(texts, names[j])) == NULL) status = -1;
+    if (status > 0)
+        status = texts_line(e, b + q->at, number, " request   ", item[0], a == NULL ? " [no response]" : NULL, 0,
+                            item[1]);
+    if (status > 0 && a != NULL) {
+        e->line_timed = a->timed;
+        e->line_ns = a->ns;
+        status = texts_line(e, b + a->at, number + 1, " response  ", item[2], NULL, number, item[3]);
     }
-    Py_XDECREF(request_info);
-    Py_XDECREF(request_tail);
-    Py_XDECREF(response_info);
-    Py_XDECREF(response_tail);
+    for (int j = 0; j < 4; j++) Py_XDECREF(item[j]);
     Py_DECREF(texts);
     return status;
-}
-
-/* The registers an answer confirms written (data/modbus.toml [confirm]): its own echo (FC6), or the
- * request's values a normal answer confirms (FC16, FC23); 1: some, in *out. */
-static int confirmed_writes(const uint8_t *answer, const Request *r, Words *out) {
-    const Rules *R = &rules[handled_index(answer[1])];
-    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
-        *out = (Words){word(answer + R->start_at), 1, answer + R->values_at};
-        return 1;
-    }
-    if (R->confirm == CONFIRM_ANSWER && r->has_writes) {
-        *out = r->writes;
-        return 1;
-    }
-    return 0;
 }
 
 /* Annotator state after an answered transaction: what was written, then what was read. */
@@ -1300,13 +1258,23 @@ static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const 
                  unsigned long long number) {
     if (s->seen == NULL) return 0;
     Words written;
-    if (confirmed_writes(f, r, &written) && remember(e, f[0], s, &written, number, 1) < 0) return -1;
+    if (confirmed_writes(f, r->has_writes ? &r->writes : NULL, &written) && remember(e, f[0], s, &written, number, 1) < 0) return -1;
     if (reads->count && s->protected_value >= 0) return remember(e, f[0], s, reads, number, 0);
     return 0;
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
 enum { STEP_DONE, STEP_NEED, STEP_HANDOVER, STEP_ERROR };
+
+/* A transaction's lines are written (or its record, _judge.h): its frames are numbered, the stream moves
+ * past its answer, or up to `a`, the next request, when it was not answered. */
+static int taken(Engine *e, Py_ssize_t *pos, const FrameRef *q, const FrameRef *a, int answered) {
+    e->count += answered ? 2 : 1;
+    if (answered) e->expect_slave = e->expect_function = -1;
+    *pos = answered ? a->at + a->length : a->at;
+    e->tl.decided = answered ? a->decided : q->decided;
+    return STEP_DONE;
+}
 
 #include "_judge.h" /* profile auto's first pass: frames and pairs only */
 
@@ -1335,7 +1303,6 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     size_t mark = e->out.len;
     e->expect_slave = q.slave;
     e->expect_function = q.function;
-    int step, written;
     found = next_frame(e, b, q.at + q.length, n, &a, q.decided);
     if (found == FRAME_OK && a.kind != KIND_REQUEST && q.timed && a.timed && e->tl.timeout >= 0 &&
         stamp_seconds(a.ns, q.ns) > e->tl.timeout)
@@ -1345,66 +1312,35 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->line_ns = q.ns;
     e->pair_timed = q.timed && found == FRAME_OK && a.timed;
     e->request_ns = q.ns;
-    if (request_layout[handled_index(q.function)].texts && found == FRAME_OK && a.kind != KIND_EXCEPTION) {
-        int unanswered = a.kind == KIND_REQUEST;
-        written = texts_lines(e, &q, b, unanswered ? NULL : &a, e->count + 1);
-        written = counted(e, s, b, &q, unanswered ? NULL : &a, NULL, NULL, written);
-        if (written > 0) {
-            e->count += unanswered ? 1 : 2;
-            if (!unanswered) e->expect_slave = e->expect_function = -1;
-            *pos = unanswered ? a.at : a.at + a.length;
-            e->tl.decided = unanswered ? q.decided : a.decided;
-            return STEP_DONE;
-        }
-        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
-    } else if (found == FRAME_OK && a.kind == KIND_REQUEST) {
-        /* The next frame is a request: this one was not answered (pairing.py). */
+    /* The next frame is a request: this one was not answered (pairing.py). */
+    int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written;
+    const Words *writes = r.has_writes ? &r.writes : NULL;
+    if (found == FRAME_OK && request_layout[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
+        written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
+        written = counted(e, s, b, &q, answered ? &a : NULL, NULL, NULL, written);
+    } else if (found == FRAME_OK && !answered) {
         written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
-        written = counted(e, s, b, &q, NULL, r.has_writes ? &r.writes : NULL, NULL, written);
-        if (written > 0) {
-            e->count += 1;
-            *pos = a.at;
-            e->tl.decided = q.decided;
-            return STEP_DONE;
-        }
-        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+        written = counted(e, s, b, &q, NULL, writes, NULL, written);
     } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
         written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
         e->line_timed = a.timed;
         e->line_ns = a.ns;
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
-        written = counted(e, s, b, &q, &a, r.has_writes ? &r.writes : NULL, NULL, written);
-        if (written > 0) {
-            e->count += 2;
-            e->expect_slave = e->expect_function = -1;
-            *pos = a.at + a.length;
-            e->tl.decided = a.decided;
-            return STEP_DONE;
-        }
-        step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
+        written = counted(e, s, b, &q, &a, writes, NULL, written);
     } else {
         Words reads;
-        quiet = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &reads) : 0;
-        if (quiet > 0) {
+        written = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &reads) : 0;
+        if (written > 0) {
             written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
             e->line_timed = a.timed;
             e->line_ns = a.ns;
             if (written > 0)
                 written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
             if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
-            written = counted(e, s, b, &q, &a, r.has_writes ? &r.writes : NULL, &reads, written);
-            if (written > 0) {
-                e->count += 2;
-                e->expect_slave = e->expect_function = -1;
-                *pos = a.at + a.length;
-                e->tl.decided = a.decided;
-                return STEP_DONE;
-            }
-            step = written < 0 ? STEP_ERROR : STEP_HANDOVER;
-        } else {
-            step = quiet < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
+            written = counted(e, s, b, &q, &a, writes, &reads, written);
         }
     }
+    if (written > 0) return taken(e, pos, &q, &a, answered);
     /* Not shown here: its lines and its expectation are taken back. */
     e->out.len = mark;
     e->out.failed = 0;
@@ -1414,7 +1350,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->tl.first_ns = clock.first_ns;
     e->tl.has_previous = clock.has_previous;
     e->tl.previous_ns = clock.previous_ns;
-    return step;
+    return written < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
 }
 
 static int engine_ready(Engine *e) {
@@ -1541,24 +1477,6 @@ static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
-static PyObject *engine_get_frames(Engine *e, void *closure) { return PyBool_FromLong(e->frames); }
-
-static int engine_set_frames(Engine *e, PyObject *value, void *closure) {
-    int truth = value == NULL ? 0 : PyObject_IsTrue(value);
-    if (truth < 0) return -1;
-    e->frames = truth;
-    return 0;
-}
-
-static PyObject *engine_get_decided(Engine *e, void *closure) { return PyLong_FromLongLong(e->tl.decided); }
-
-static int engine_set_decided(Engine *e, PyObject *value, void *closure) {
-    long long decided = value == NULL ? 0 : PyLong_AsLongLong(value);
-    if (decided == -1 && PyErr_Occurred()) return -1;
-    e->tl.decided = decided;
-    return 0;
-}
-
 static PyObject *clock_value(int has, long long ns) {
     if (!has) Py_RETURN_NONE;
     return PyLong_FromLongLong(ns);
@@ -1585,19 +1503,6 @@ static int engine_set_clock(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
-static PyObject *engine_get_count(Engine *e, void *closure) { return PyLong_FromUnsignedLongLong(e->count); }
-
-static int engine_set_count(Engine *e, PyObject *value, void *closure) {
-    if (value == NULL) {
-        PyErr_SetString(PyExc_TypeError, "count cannot be deleted");
-        return -1;
-    }
-    unsigned long long count = PyLong_AsUnsignedLongLong(value);
-    if (PyErr_Occurred()) return -1;
-    e->count = count;
-    return 0;
-}
-
 static PyObject *engine_get_expect(Engine *e, void *closure) {
     if (e->expect_slave < 0) Py_RETURN_NONE;
     return Py_BuildValue("(ii)", e->expect_slave, e->expect_function);
@@ -1616,15 +1521,6 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
     }
     e->expect_slave = slave;
     e->expect_function = function;
-    return 0;
-}
-
-static PyObject *engine_get_glitchy(Engine *e, void *closure) { return PyBool_FromLong(e->glitchy); }
-
-static int engine_set_glitchy(Engine *e, PyObject *value, void *closure) {
-    int truth = value == NULL ? 0 : PyObject_IsTrue(value);
-    if (truth < 0) return -1;
-    e->glitchy = truth;
     return 0;
 }
 
@@ -1758,23 +1654,27 @@ static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
+static PyMemberDef engine_members[] = {
+    {"count", T_ULONGLONG, offsetof(Engine, count), 0, "items numbered so far"},
+    {"frames", T_BOOL, offsetof(Engine, frames), 0,
+     "with judge: run() returns a record per transaction passed instead of lines (_judge.h)"},
+    {"decided", T_LONGLONG, offsetof(Engine, tl.decided), 0,
+     "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame"},
+    {"glitchy", T_BOOL, offsetof(Engine, glitchy), 0,
+     "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length"},
+    {NULL, 0, 0, 0, NULL},
+};
+
 static PyGetSetDef engine_getset[] = {
     {"stats", (getter)engine_get_stats, (setter)engine_set_stats,
      "a Stats that counts every transaction shown here (--stats), or None", NULL},
-    {"count", (getter)engine_get_count, (setter)engine_set_count, "items numbered so far", NULL},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
     {"judge", (getter)engine_get_judge, (setter)engine_set_judge,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
      NULL},
-    {"frames", (getter)engine_get_frames, (setter)engine_set_frames,
-     "with judge: run() returns a record per transaction passed instead of lines (_judge.h)", NULL},
-    {"decided", (getter)engine_get_decided, (setter)engine_set_decided,
-     "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame", NULL},
     {"clock", (getter)engine_get_clock, (setter)engine_set_clock,
      "the time column's (first, previous) item times in ns, None where none", NULL},
-    {"glitchy", (getter)engine_get_glitchy, (setter)engine_set_glitchy,
-     "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
@@ -1790,6 +1690,7 @@ static PyTypeObject EngineType = {
     .tp_traverse = (traverseproc)engine_traverse,
     .tp_clear = (inquiry)engine_clear,
     .tp_methods = engine_methods,
+    .tp_members = engine_members,
     .tp_getset = engine_getset,
 };
 
@@ -1855,26 +1756,14 @@ static struct PyModuleDef summary_module = {
 
 PyMODINIT_FUNC PyInit__summary(void) {
     crc_init();
-    if (PyType_Ready(&EngineType) < 0 || PyType_Ready(&StatsType) < 0 || PyType_Ready(&ColumnsType) < 0) return NULL;
     PyObject *module = PyModule_Create(&summary_module);
     if (module == NULL) return NULL;
-    Py_INCREF(&EngineType);
-    if (PyModule_AddObject(module, "Engine", (PyObject *)&EngineType) < 0) {
-        Py_DECREF(&EngineType);
-        Py_DECREF(module);
-        return NULL;
-    }
-    Py_INCREF(&StatsType);
-    if (PyModule_AddObject(module, "Stats", (PyObject *)&StatsType) < 0) {
-        Py_DECREF(&StatsType);
-        Py_DECREF(module);
-        return NULL;
-    }
-    Py_INCREF(&ColumnsType);
-    if (PyModule_AddObject(module, "Columns", (PyObject *)&ColumnsType) < 0) {
-        Py_DECREF(&ColumnsType);
-        Py_DECREF(module);
-        return NULL;
+    PyTypeObject *types[] = {&EngineType, &StatsType, &ColumnsType};
+    for (size_t k = 0; k < sizeof types / sizeof *types; k++) {
+        if (PyModule_AddType(module, types[k]) < 0) {
+            Py_DECREF(module);
+            return NULL;
+        }
     }
     /* The stamp of the sources it was built from (dissector/accel/stamp.py, checked on import). */
     if (PyModule_AddStringConstant(module, "SOURCES", VW3_SOURCES) < 0) {

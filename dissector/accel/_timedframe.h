@@ -8,45 +8,6 @@
 #ifndef VW3_TIMEDFRAME_H
 #define VW3_TIMEDFRAME_H
 
-/* Interpretation `rule` at i with the bytes up to n, as _match weighs it: 1 it checks out, 0 it does
- * not apply or fails its CRC, 2 it waits for more bytes (its length, or NEED: *waiting_length -1),
- * -1 a CRC scan (hand over). */
-static int other_layout(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n,
-                        Py_ssize_t *waiting_length) {
-    Length length = rule_length(rule, b, i, n);
-    if (length.what == LENGTH_SCAN) return -1;
-    if (length.what == LENGTH_NEED) {
-        *waiting_length = -1;
-        return 2;
-    }
-    if (length.value < MIN_ADU || length.value > MAX_ADU) return 0;
-    if (i + length.value > n) {
-        *waiting_length = length.value;
-        return 2;
-    }
-    Py_ssize_t stop = i + length.value - 2;
-    return crc16(b + i, stop - i) == (uint16_t)(b[stop] | b[stop + 1] << 8);
-}
-
-/* rules.quantity_rule, as other_layout answers. */
-static int quantity_layout(const QuantityRule *q, const uint8_t *b, Py_ssize_t i, Py_ssize_t n,
-                           Py_ssize_t *waiting_length) {
-    int need = q->position + 1 > q->count_position ? q->position + 1 : q->count_position;
-    if (i + need >= n) {
-        *waiting_length = -1;
-        return 2;
-    }
-    Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
-    Py_ssize_t length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
-    if (length == q->count_extra + b[i + q->count_position] || length < MIN_ADU || length > MAX_ADU) return 0;
-    if (i + length > n) {
-        *waiting_length = length;
-        return 2;
-    }
-    Py_ssize_t stop = i + length - 2;
-    return crc16(b + i, stop - i) == (uint16_t)(b[stop] | b[stop + 1] << 8);
-}
-
 enum { DECIDE_OK, DECIDE_HANDOVER, DECIDE_WAIT };
 
 /* The other layouts of a frame at i (_match's interpretations after the first) with the bytes up to m:
@@ -56,25 +17,17 @@ static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i,
                          Py_ssize_t *shortest, int *waits) {
     int k = known_slot[function];
     const LengthRule *other = kind == KIND_RESPONSE ? &known_request_rule[k] : &known_response_rule[k];
-    Py_ssize_t waiting[2] = {0, 0};
-    int found[2] = {other_layout(other, b, i, m, &waiting[0]), 0};
-    if (known_quantity_rule[k].position) found[1] = quantity_layout(&known_quantity_rule[k], b, i, m, &waiting[1]);
+    Py_ssize_t lengths[2] = {0, 0};
+    int found[2] = {rule_check(other, b, i, m, &lengths[0]), 0};
+    if (known_quantity_rule[k].position) found[1] = quantity_check(&known_quantity_rule[k], b, i, m, &lengths[1]);
     int valid = 0;
     *waits = 0;
     for (int w = 0; w < 2; w++) {
         if (found[w] < 0) return -1;
-        if (found[w] == 2 && (waiting[w] == -1 || waiting[w] == length + 1)) *waits = 1;
+        if (found[w] == 2 && (lengths[w] == -1 || lengths[w] == length + 1)) *waits = 1;
         if (found[w] != 1) continue;
         valid++;
-        Py_ssize_t checked;
-        if (w == 0) {
-            checked = rule_length(other, b, i, m).value;
-        } else {
-            const QuantityRule *q = &known_quantity_rule[k];
-            Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
-            checked = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
-        }
-        if (checked < *shortest) *shortest = checked;
+        if (lengths[w] < *shortest) *shortest = lengths[w];
     }
     return valid;
 }
@@ -108,8 +61,7 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
         valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
         return valid == 0 ? DECIDE_WAIT : DECIDE_HANDOVER;
     }
-    Py_ssize_t stop = i + length - 2;
-    if (crc16(b + i, stop - i) != (uint16_t)(b[stop] | b[stop + 1] << 8)) return DECIDE_HANDOVER;
+    if (!crc_ok(b, i, length)) return DECIDE_HANDOVER;
     if ((i + length < m && b[i + length] != 0) || kind == KIND_EXCEPTION) return DECIDE_OK; /* (its fast path) */
     /* _match: this layout checks out; it stands alone unless another one does too, or may. */
     valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
