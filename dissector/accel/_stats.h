@@ -123,6 +123,18 @@ static inline int param_observe(Param *p, unsigned value) {
     return changed;
 }
 
+/* An event's count; 1: it sets the state too (a value or a status seen), 0: a count only. */
+static int param_count(Param *p, int event) {
+    switch (event) {
+    case EVENT_WRITE: p->writes++; return 0;
+    case EVENT_REFUSED: p->refused++; return 0;
+    case EVENT_READ: p->reads++; return 1;
+    case EVENT_UNREADABLE: p->unreadable++; return 1;
+    case EVENT_WRITE_OBSERVED: p->writes++; return 1;
+    default: return 1; /* CONFIRM: a value seen */
+    }
+}
+
 /* An unreadable read: the state becomes `status` (a str); 1: changed, -1: error. */
 static inline int param_status(Param *p, PyObject *status) {
     int same = 0;
@@ -171,13 +183,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
         (event != EVENT_CONFIRM || created)) {
         if (take_code(p, namer, address, value) < 0) return -1;
     }
-    switch (event) {
-    case EVENT_WRITE: p->writes++; return 0;
-    case EVENT_REFUSED: p->refused++; return 0;
-    case EVENT_READ: p->reads++; break;
-    default: break; /* CONFIRM, WRITE_OBSERVED: a value seen */
-    }
-    if (event == EVENT_WRITE_OBSERVED) p->writes++;
+    if (!param_count(p, event)) return 0;
     (void)param_observe(p, value);
     p->last_mapped = (uint8_t)mapped;
     Py_CLEAR(p->text);
@@ -398,24 +404,16 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
         Py_INCREF(code);
         Py_XSETREF(p->code, code);
     }
-    int changed;
-    switch (event) {
-    case EVENT_WRITE: p->writes++; Py_RETURN_FALSE;
-    case EVENT_REFUSED: p->refused++; Py_RETURN_FALSE;
-    case EVENT_UNREADABLE: /* 16#8000 or an explained exception: `text` is the status, no value */
-        if (!PyUnicode_Check(text)) {
-            PyErr_SetString(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
-            return NULL;
-        }
-        p->unreadable++;
-        changed = param_status(p, text);
-        if (changed < 0) return NULL;
-        return PyBool_FromLong(changed);
-    case EVENT_READ: p->reads++; break;
-    case EVENT_WRITE_OBSERVED: p->writes++; break;
-    default: break;
+    if (event == EVENT_UNREADABLE && !PyUnicode_Check(text)) {
+        PyErr_SetString(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
+        return NULL;
     }
-    changed = param_observe(p, value);
+    if (!param_count(p, event)) Py_RETURN_FALSE;
+    if (event == EVENT_UNREADABLE) { /* 16#8000 or an explained exception: `text` is the status, no value */
+        int changed = param_status(p, text);
+        return changed < 0 ? NULL : PyBool_FromLong(changed);
+    }
+    int changed = param_observe(p, value);
     Py_INCREF(text);
     Py_XSETREF(p->text, text);
     Py_CLEAR(p->namer);

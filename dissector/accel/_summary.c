@@ -302,6 +302,14 @@ static PyObject *read_facts(PyObject *info) {
     return tuple;
 }
 
+/* A dict's entry for the k-th handled function code (borrowed), NULL: none or an error. */
+static PyObject *code_entry(PyObject *dict, int k) {
+    PyObject *code = PyLong_FromLong(handled_codes[k]);
+    PyObject *entry = code ? PyDict_GetItemWithError(dict, code) : NULL;
+    Py_XDECREF(code);
+    return entry;
+}
+
 static int fill_slave(Slave *s, PyObject *info) {
     PyObject *facts[FACTS];
     for (int k = 0; k < FACTS; k++) facts[k] = PyTuple_GET_ITEM(info, k);
@@ -316,9 +324,7 @@ static int fill_slave(Slave *s, PyObject *info) {
         (bases != Py_None && !PyDict_Check(bases)))
         return bad_info("facts of the wrong type");
     for (int k = 0; k < HANDLED; k++) {
-        PyObject *code = PyLong_FromLong(handled_codes[k]);
-        PyObject *entry = code ? PyDict_GetItemWithError(functions, code) : NULL;
-        Py_XDECREF(code);
+        PyObject *entry = code_entry(functions, k);
         if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
             !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
             if (!PyErr_Occurred()) bad_info("bad function entry");
@@ -357,9 +363,7 @@ static int fill_slave(Slave *s, PyObject *info) {
     for (int k = 0; k < HANDLED; k++) {
         s->base[k] = -1;
         if (bases == Py_None) continue;
-        PyObject *code = PyLong_FromLong(handled_codes[k]);
-        PyObject *base = code ? PyDict_GetItemWithError(bases, code) : NULL;
-        Py_XDECREF(code);
+        PyObject *base = code_entry(bases, k);
         if (base == NULL) {
             if (!PyErr_Occurred()) bad_info("no PLC base for a function");
             return -1;
@@ -428,19 +432,30 @@ static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
     return crc16(b + i, length - 2) == (uint16_t)(b[stop] | b[stop + 1] << 8);
 }
 
+/* A CRC scan of the frame at i over the lengths minimum..maximum (crc.crc_lengths): crc_next gives, in
+ * order, each length at which the bytes end in the CRC of the bytes before them, then 0; one CRC pass. */
+typedef struct { const uint8_t *frame; Py_ssize_t length, maximum; uint16_t crc; } CrcScan;
+
+static CrcScan crc_scan(const uint8_t *b, Py_ssize_t i, Py_ssize_t minimum, Py_ssize_t maximum) {
+    if (minimum < 2) minimum = 2;
+    return (CrcScan){b + i, minimum, maximum, minimum <= maximum ? crc16(b + i, minimum - 2) : 0};
+}
+
+static Py_ssize_t crc_next(CrcScan *scan) {
+    for (; scan->length <= scan->maximum; scan->length++) {
+        const uint8_t *stop = scan->frame + scan->length - 2;
+        uint16_t crc = scan->crc;
+        scan->crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ stop[0]) & 0xFF]);
+        if (crc == (uint16_t)(stop[0] | stop[1] << 8)) return scan->length++;
+    }
+    return 0;
+}
+
 /* RtuFramer._shortest_crc: the shortest length from `minimum` whose last two bytes are the CRC of the
  * bytes before them, 0: none. */
 static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
-    Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
-    if (minimum < 2) minimum = 2;
-    if (minimum > maximum) return 0;
-    uint16_t crc = crc16(b + i, minimum - 2);
-    for (Py_ssize_t length = minimum; length <= maximum; length++) {
-        Py_ssize_t stop = i + length - 2;
-        if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) return length;
-        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
-    }
-    return 0;
+    CrcScan scan = crc_scan(b, i, minimum, n - i < MAX_ADU ? n - i : MAX_ADU);
+    return crc_next(&scan);
 }
 
 /* A frame of `length` bytes at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
@@ -528,15 +543,11 @@ static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, P
     /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer);
      * on a line that leaves 00 glitches, only the second (the 00 after a frame is one). */
     for (int glitches = e->glitchy ? 1 : 0; glitches < 2 && minimum <= maximum; glitches++) {
-        uint16_t crc = crc16(b + i, minimum - 2);
-        for (Py_ssize_t length = minimum; length <= maximum; length++) {
-            Py_ssize_t stop = i + length - 2;
-            if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
-                int following = glitches ? followed(e, b, i + length, n) : valid_frame_at(e, b, i + length, n);
-                if (following < 0) return FRAME_NEED;
-                if (following) return length;
-            }
-            crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+        CrcScan scan = crc_scan(b, i, minimum, maximum);
+        for (Py_ssize_t length; (length = crc_next(&scan)) != 0;) {
+            int following = glitches ? followed(e, b, i + length, n) : valid_frame_at(e, b, i + length, n);
+            if (following < 0) return FRAME_NEED;
+            if (following) return length;
         }
     }
     return n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER; /* nothing: noise, the careful path's */
@@ -626,6 +637,22 @@ static inline unsigned words_value(const Words *w, unsigned k) { return word(w->
 
 static int depend_is_plain(Slave *s, unsigned address);
 
+/* The value the annotator's parameter memory (its `seen` dict) keeps for `key`, in *value (borrowed; None:
+ * unreadable): 1, 0 none kept, -1 error. */
+static int memory_value(Slave *s, PyObject *key, PyObject **value) {
+    PyObject *last = s->seen != NULL ? PyDict_GetItemWithError(s->seen, key) : NULL;
+    if (last == NULL) return PyErr_Occurred() ? -1 : 0;
+    if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
+    *value = PyTuple_GET_ITEM(last, 0);
+    return 1;
+}
+
+static int words_hold(const Words *w, unsigned address) {
+    for (unsigned k = 0; k < w->count; k++)
+        if (words_address(w, k) == address) return 1;
+    return 0;
+}
+
 /* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error.
  * A bits_depend answer holds for a whole run(): the engine never writes the values rules depend on
  * (it hands such transactions over), and the Python stages run only between two run() calls. */
@@ -649,11 +676,10 @@ static int depend_is_plain(Slave *s, unsigned address) {
     Py_DECREF(key);
     if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
     if (!PyTuple_Check(rule) || PyTuple_GET_SIZE(rule) != 2) return bad_info("bits_depend rule not (on, values)");
-    if (s->seen == NULL) return 1;
-    PyObject *last = PyDict_GetItemWithError(s->seen, PyTuple_GET_ITEM(rule, 0));
-    if (last == NULL) return PyErr_Occurred() ? -1 : 1;
-    if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
-    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), PyTuple_GET_ITEM(last, 0));
+    PyObject *last;
+    int found = memory_value(s, PyTuple_GET_ITEM(rule, 0), &last);
+    if (found <= 0) return found < 0 ? -1 : 1;
+    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), last);
     return plain < 0 ? -1 : !plain;
 }
 
@@ -672,23 +698,13 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         if (w->count > 1 && (long)words_value(w, k) == s->protected_value) return 0;
-        if (written != NULL && s->seen != NULL) {
-            int rewritten = 0;
-            for (unsigned j = 0; j < written->count; j++)
-                if (words_address(written, j) == address) { rewritten = 1; break; }
-            if (rewritten) continue;
-        }
         if (s->seen == NULL || bit(s->pending, address)) continue; /* the engine's entries hold values */
-        PyObject *key = PyLong_FromUnsignedLong(address);
-        if (key == NULL) return -1;
-        PyObject *last = PyDict_GetItemWithError(s->seen, key);
-        Py_DECREF(key);
-        if (last == NULL) {
-            if (PyErr_Occurred()) return -1;
-            continue;
-        }
-        if (!PyTuple_Check(last) || PyTuple_GET_SIZE(last) < 1) return bad_info("parameter memory entry not a tuple");
-        if (PyTuple_GET_ITEM(last, 0) == Py_None) return 0;
+        if (written != NULL && words_hold(written, address)) continue;
+        PyObject *key = PyLong_FromUnsignedLong(address), *last;
+        int found = key != NULL ? memory_value(s, key, &last) : -1;
+        Py_XDECREF(key);
+        if (found < 0) return -1;
+        if (found && last == Py_None) return 0;
     }
     return 1;
 }
@@ -1455,26 +1471,39 @@ static PyObject *engine_set_timing(Engine *e, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-static PyObject *engine_get_judge(Engine *e, void *closure) {
-    if (e->judge_bytes == NULL) Py_RETURN_NONE;
-    Py_INCREF(e->judge_bytes);
-    return e->judge_bytes;
+/* stats and judge: the object at offset `closure` in the engine, None for none (NULL). */
+static PyObject *engine_get_object(Engine *e, void *closure) {
+    PyObject *value = *(PyObject **)((char *)e + (size_t)closure);
+    return Py_NewRef(value != NULL ? value : Py_None);
+}
+
+/* stats and judge are set between two runs only, to an object that `fits` or to None (NULL). */
+static int set_between_runs(Engine *e, PyObject **field, PyObject *value, int fits, const char *name,
+                            const char *expected) {
+    if (e->running) {
+        PyErr_Format(PyExc_RuntimeError, "%s: not while run() is running", name);
+        return -1;
+    }
+    if (value != NULL && value != Py_None && !fits) {
+        PyErr_Format(PyExc_TypeError, "%s: %s", name, expected);
+        return -1;
+    }
+    Py_XSETREF(*field, value == Py_None ? NULL : Py_XNewRef(value));
+    return 0;
 }
 
 static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
-    if (e->running) {
-        PyErr_SetString(PyExc_RuntimeError, "judge: not while run() is running");
+    int fits = value != NULL && PyBytes_Check(value) && PyBytes_GET_SIZE(value) == 256 * 32;
+    if (set_between_runs(e, &e->judge_bytes, value, fits, "judge",
+                         "8192 bytes (a bit per slave and function code) or None") < 0)
         return -1;
-    }
-    if (value != NULL && value != Py_None && (!PyBytes_Check(value) || PyBytes_GET_SIZE(value) != 256 * 32)) {
-        PyErr_SetString(PyExc_TypeError, "judge: 8192 bytes (a bit per slave and function code) or None");
-        return -1;
-    }
-    if (value == Py_None) value = NULL;
-    Py_XINCREF(value);
-    Py_XSETREF(e->judge_bytes, value);
-    e->judge = value == NULL ? NULL : (const uint8_t *)PyBytes_AS_STRING(value);
+    e->judge = e->judge_bytes == NULL ? NULL : (const uint8_t *)PyBytes_AS_STRING(e->judge_bytes);
     return 0;
+}
+
+static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
+    int fits = value != NULL && PyObject_TypeCheck(value, &StatsType);
+    return set_between_runs(e, &e->stats, value, fits, "stats", "a Stats or None");
 }
 
 static PyObject *clock_value(int has, long long ns) {
@@ -1545,16 +1574,9 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     }
     for (int k = 0; k < LIMIT_COUNT; k++)
         if (!PyArg_ParseTuple(PyTuple_GET_ITEM(limits, k), "ll", &e->limits[k][0], &e->limits[k][1])) return -1;
-    Py_INCREF(slave_info);
-    Py_XSETREF(e->slave_info, slave_info);
-    Py_INCREF(piece_fn);
-    Py_XSETREF(e->piece, piece_fn);
-    Py_INCREF(exception_fn);
-    Py_XSETREF(e->exception, exception_fn);
-    Py_INCREF(texts_fn);
-    Py_XSETREF(e->texts, texts_fn);
-    Py_INCREF(subfunctions);
-    Py_XSETREF(e->subfunctions, subfunctions);
+    PyObject **fields[] = {&e->slave_info, &e->piece, &e->exception, &e->texts, &e->subfunctions};
+    PyObject *given[] = {slave_info, piece_fn, exception_fn, texts_fn, subfunctions};
+    for (int k = 0; k < 5; k++) Py_XSETREF(*fields[k], Py_NewRef(given[k]));
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -1633,27 +1655,6 @@ static PyMethodDef engine_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
-static PyObject *engine_get_stats(Engine *e, void *closure) {
-    if (e->stats == NULL) Py_RETURN_NONE;
-    Py_INCREF(e->stats);
-    return e->stats;
-}
-
-static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
-    if (e->running) {
-        PyErr_SetString(PyExc_RuntimeError, "stats: not while run() is running");
-        return -1;
-    }
-    if (value != NULL && value != Py_None && !PyObject_TypeCheck(value, &StatsType)) {
-        PyErr_SetString(PyExc_TypeError, "stats: a Stats or None");
-        return -1;
-    }
-    if (value == Py_None) value = NULL;
-    Py_XINCREF(value);
-    Py_XSETREF(e->stats, value);
-    return 0;
-}
-
 static PyMemberDef engine_members[] = {
     {"count", T_ULONGLONG, offsetof(Engine, count), 0, "items numbered so far"},
     {"frames", T_BOOL, offsetof(Engine, frames), 0,
@@ -1666,13 +1667,13 @@ static PyMemberDef engine_members[] = {
 };
 
 static PyGetSetDef engine_getset[] = {
-    {"stats", (getter)engine_get_stats, (setter)engine_set_stats,
-     "a Stats that counts every transaction shown here (--stats), or None", NULL},
+    {"stats", (getter)engine_get_object, (setter)engine_set_stats,
+     "a Stats that counts every transaction shown here (--stats), or None", (void *)offsetof(Engine, stats)},
     {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
      NULL},
-    {"judge", (getter)engine_get_judge, (setter)engine_set_judge,
+    {"judge", (getter)engine_get_object, (setter)engine_set_judge,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
-     NULL},
+     (void *)offsetof(Engine, judge_bytes)},
     {"clock", (getter)engine_get_clock, (setter)engine_set_clock,
      "the time column's (first, previous) item times in ns, None where none", NULL},
     {NULL, NULL, NULL, NULL, NULL},
@@ -1694,49 +1695,25 @@ static PyTypeObject EngineType = {
     .tp_getset = engine_getset,
 };
 
-static PyObject *module_crc16(PyObject *self, PyObject *args) {
-    Py_buffer view;
-    if (!PyArg_ParseTuple(args, "y*", &view)) return NULL;
-    uint16_t crc = crc16(view.buf, view.len);
-    PyBuffer_Release(&view);
-    return PyLong_FromLong(crc);
-}
-
 /* crc.crc_lengths: one incremental pass instead of one CRC per candidate length. */
 static PyObject *module_crc_lengths(PyObject *self, PyObject *args) {
     Py_buffer view;
     Py_ssize_t start, minimum, maximum;
     if (!PyArg_ParseTuple(args, "y*nnn", &view, &start, &minimum, &maximum)) return NULL;
-    const uint8_t *b = view.buf;
-    if (minimum < 2) minimum = 2;
-    if (start < 0 || start > view.len) maximum = -1;
+    if (start < 0 || start > view.len) start = maximum = 0; /* outside the buffer: no length */
     if (start + maximum > view.len) maximum = view.len - start;
+    CrcScan scan = crc_scan(view.buf, start, minimum, maximum);
     PyObject *lengths = PyList_New(0);
-    if (lengths == NULL || minimum > maximum) {
-        PyBuffer_Release(&view);
-        return lengths;
-    }
-    uint16_t crc = crc16(b + start, minimum - 2);
-    for (Py_ssize_t length = minimum; length <= maximum; length++) {
-        Py_ssize_t stop = start + length - 2;
-        if (crc == (uint16_t)(b[stop] | b[stop + 1] << 8)) {
-            PyObject *found = PyLong_FromSsize_t(length);
-            if (found == NULL || PyList_Append(lengths, found) < 0) {
-                Py_XDECREF(found);
-                Py_DECREF(lengths);
-                PyBuffer_Release(&view);
-                return NULL;
-            }
-            Py_DECREF(found);
-        }
-        crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ b[stop]) & 0xFF]);
+    for (Py_ssize_t length; lengths != NULL && (length = crc_next(&scan)) != 0;) {
+        PyObject *found = PyLong_FromSsize_t(length);
+        if (found == NULL || PyList_Append(lengths, found) < 0) Py_CLEAR(lengths);
+        Py_XDECREF(found);
     }
     PyBuffer_Release(&view);
     return lengths;
 }
 
 static PyMethodDef module_methods[] = {
-    {"crc16", module_crc16, METH_VARARGS, "CRC-16/MODBUS of a bytes-like object."},
     {"scan_pcap", module_scan_pcap, METH_VARARGS,
      "scan_pcap(buffer, position, big_endian, units, offset, previous, char_time, t35, chunk_size) -> a block\n"
      "of the pcap records in buffer from position (see _records.h)."},
