@@ -89,10 +89,18 @@ typedef struct {
     double value; /* counts too: exact up to 2^53 */
 } Tally;
 
+/* A kind's histograms together hold at most `limit` entries (stats_store.MAX_TALLY; 0: no limit): past
+ * it, every key of the kind is rounded down to a multiple of 2^shift, shift growing by one until they
+ * fit (stats_store.Coarse, the Python stages' twin). The result depends on the values only, not on
+ * their order: the smallest shift at which they all fit. */
 typedef struct {
     Tally *slots;
     size_t size, count;
+    size_t limit;
+    int shift;
 } Tallies;
+
+#define TALLY_MAX_SHIFT 62
 
 static inline size_t tally_slot(uint32_t tag, long long key, size_t size) {
     return (size_t)mix((uint64_t)tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)key) & (size - 1);
@@ -128,11 +136,33 @@ static double *tally(Tallies *t, uint32_t tag, long long key) {
     return &entry->value;
 }
 
+/* One step coarser: every key rounded down to a multiple of 2^(shift + 1), equal keys merged. */
+static int tally_coarsen(Tallies *t) {
+    Tally *old = t->slots;
+    size_t size = t->size;
+    Tally *slots = PyMem_Calloc(size, sizeof *slots);
+    if (slots == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    t->slots = slots;
+    t->count = 0;
+    t->shift++;
+    long long mask = -(1LL << t->shift);
+    for (size_t k = 0; k < size; k++)
+        if (old[k].tag) *tally(t, old[k].tag, old[k].key & mask) += old[k].value; /* fewer: no growth */
+    PyMem_Free(old);
+    return 0;
+}
+
 /* t: the TALLIES tables, one a kind (the small ones stay in cache). */
 static int tally_add(Tallies *t, int kind, long long owner, long long key, double amount) {
-    double *value = tally(&t[kind], (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key);
+    Tallies *table = &t[kind];
+    double *value = tally(table, (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key & -(1LL << table->shift));
     if (value == NULL) return -1;
     *value += amount;
+    while (table->limit && table->count > table->limit && table->shift < TALLY_MAX_SHIFT)
+        if (tally_coarsen(table) < 0) return -1;
     return 0;
 }
 

@@ -867,18 +867,20 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          time_value(&b->first_seen), "last_seen", time_value(&b->last_seen));
 }
 
-/* Stats(max_keys, max_params=1 << 18): the poll table follows at most max_keys request keys
- * (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters (MAX_PARAMETERS). */
+/* Stats(max_keys, max_params=1 << 18, max_tally=1 << 16): the poll table follows at most max_keys request
+ * keys (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters (MAX_PARAMETERS), each
+ * kind of histogram but the load per minute at most max_tally entries (MAX_TALLY, _bus.h Tallies). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"max_keys", "max_params", NULL};
-    Py_ssize_t max_keys, max_params = 1 << 18;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|n", keywords, &max_keys, &max_params)) return -1;
-    if (max_keys < 0 || max_params < 0) {
-        PyErr_SetString(PyExc_ValueError, "max_keys and max_params must be >= 0");
+    static char *keywords[] = {"max_keys", "max_params", "max_tally", NULL};
+    Py_ssize_t max_keys, max_params = 1 << 18, max_tally = 1 << 16;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nn", keywords, &max_keys, &max_params, &max_tally)) return -1;
+    if (max_keys < 0 || max_params < 0 || max_tally < 0) {
+        PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0");
         return -1;
     }
     st->max_keys = (size_t)max_keys;
     st->max_params = (size_t)max_params;
+    for (int k = 0; k < TALLIES; k++) st->tallies[k].limit = k == TALLY_MINUTES ? 0 : (size_t)max_tally;
     bus_init(&st->bus);
     return 0;
 }

@@ -15,7 +15,9 @@ interface description says: `19200 8N2`). From there:
 - outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing),
   from the first such request to the last, with their count and frames.
 Percentiles are nearest-rank (the median of an even count the mean of the middle two, as --stats)
-over 10 us buckets, so memory does not grow with the capture.
+over 10 us buckets, so memory does not grow with the capture (a kind of them, gaps, turnarounds or
+the response times of every slave, holds MAX_TALLY buckets at most: past it they are 2**k times wider,
+stats_store.Coarse).
 An input without timestamps has no timing: its `bus` says `timed: false`.
 """
 from __future__ import annotations
@@ -27,6 +29,7 @@ from typing import Any, Callable
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming
 from dissector.model import Item, Kind
 from dissector.framing.linespeed import LineSettings
+from dissector.render.stats_store import Coarse
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
 GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
@@ -34,19 +37,20 @@ MINUTE = 60.0
 
 
 class Quantiles:
-    """Counts in RESOLUTION buckets; nearest-rank percentiles, exact min and max."""
+    """Counts in RESOLUTION buckets; nearest-rank percentiles, exact min and max. `coarse`: the kind of
+    histogram they are (the response times of every slave are one), within MAX_TALLY entries."""
 
-    __slots__ = ("buckets", "count", "low", "high")
+    __slots__ = ("buckets", "count", "low", "high", "coarse")
 
-    def __init__(self) -> None:
-        self.buckets: dict[int, int] = {}
+    def __init__(self, coarse: Coarse | None = None) -> None:
+        self.coarse = Coarse() if coarse is None else coarse
+        self.buckets: dict[int, int] = self.coarse.histogram()
         self.count = 0
         self.low = math.inf
         self.high = -math.inf
 
     def add(self, value: float) -> None:
-        key = round(value / RESOLUTION)
-        self.buckets[key] = self.buckets.get(key, 0) + 1
+        self.coarse.add(self.buckets, round(value / RESOLUTION))
         self.count += 1
         if value < self.low:
             self.low = value
@@ -141,6 +145,7 @@ class BusTiming:
     gaps_below_t35: int = 0
     turnaround: Quantiles = field(default_factory=Quantiles)
     responses: dict[int, Quantiles] = field(default_factory=dict)
+    _response_tally: Coarse = field(default_factory=Coarse)  # the histograms of all of `responses`
     close_to_timeout: dict[int, int] = field(default_factory=dict)  # responses later than 90% of it
     outages: list[Outage] = field(default_factory=list)
     _runs: dict[int, _Run] = field(default_factory=dict)
@@ -263,7 +268,7 @@ class BusTiming:
             slave = frame.slave  # type: ignore[union-attr]
             quantiles = self.responses.get(slave)
             if quantiles is None:
-                quantiles = self.responses[slave] = Quantiles()
+                quantiles = self.responses[slave] = Quantiles(self._response_tally)
             quantiles.add(response_time)
             if response_time > 0.9 * self.timeout:
                 self.close_to_timeout[slave] = self.close_to_timeout.get(slave, 0) + 1

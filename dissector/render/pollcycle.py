@@ -13,7 +13,9 @@ Rules (the table captions say the same):
   standard deviation (JSON);
 - misses: skipped cycles plus occurrences that got no normal answer (unanswered, exception, bad CRC).
 Intervals are kept as a histogram of 100 us steps, so memory does not grow with the capture (a PLC
-polls at a few distinct intervals); keys beyond MAX_KEYS are counted, not followed.
+polls at a few distinct intervals; the keys' histograms hold MAX_TALLY entries together at most, then
+their steps are rounded down to multiples of 2**k: stats_store.Coarse); keys beyond MAX_KEYS are
+counted, not followed.
 """
 from __future__ import annotations
 
@@ -24,7 +26,7 @@ from typing import Any
 from dissector.model import Frame
 from dissector.protocol.table import write_windows
 from dissector.render.describe import plain_span
-from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS
+from dissector.render.stats_store import MAX_KEYS, TALLY_INTERVALS, Coarse
 
 _WRITE_WINDOWS = write_windows()  # requests that write a window of their own (FC23): part of the key
 
@@ -50,6 +52,7 @@ class PollCycle:
         # intervals are kept there, where the engine counts the requests it shows itself.
         self.store = store
         self._polls: dict[Key, _Poll] = {}
+        self._intervals = Coarse()  # the keys' interval histograms, within MAX_TALLY entries together
         self.untracked = 0  # requests of keys beyond MAX_KEYS
 
     @property
@@ -67,15 +70,14 @@ class PollCycle:
             if len(self._polls) >= MAX_KEYS:
                 self.untracked += 1
                 return
-            poll = self._polls[key] = _Poll(frame.number)
+            poll = self._polls[key] = _Poll(frame.number, intervals=self._intervals.histogram())
         poll.count += 1
         if frame.unanswered:
             poll.failed += 1
         time = frame.time
         if time is not None:
             if poll.last_time is not None:
-                step = round((time - poll.last_time) / STEP)
-                poll.intervals[step] = poll.intervals.get(step, 0) + 1
+                self._intervals.add(poll.intervals, round((time - poll.last_time) / STEP))
             poll.last_time = time
 
     def add_answer(self, frame: Frame) -> None:

@@ -4,7 +4,9 @@
 (`--stats --json`), `render()` rich tables and `render_plain()` plain ones. Memory stays bounded by the
 number of distinct (slave, function) pairs and (slave, address) parameters: response times are kept as
 a histogram of nanoseconds (exact for the micro- and nanosecond stamps of pcap and pcapng, and a few
-thousand entries where a capture has millions of answers).
+thousand entries where a capture has millions of answers). All pairs' histograms hold at most
+stats_store.MAX_TALLY entries together: past it (random times at 247 slaves, the max-size mix, filled
+1.3 GB at 1 GB of pcap) their times are rounded down to multiples of 2**k ns (stats_store.Coarse).
 
 Counting rules (the table headers say the same):
 - A frame whose CRC/LRC fails counts only as a CRC error of the (slave, function) its bytes name: its
@@ -40,7 +42,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, ParameterRow, stamp
+from dissector.render.stats_store import MAX_PARAMETERS, Coarse, ParameterRow, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -82,6 +84,7 @@ class StatsCollector:
         # slave, profile, reason, frame), asked once at the end; None without an annotator that says.
         self.profiles = profiles
         self.functions: dict[tuple[int, int], FunctionStats] = {}  # the Python stages' frames
+        self.times = Coarse()  # their response times' histograms, within MAX_TALLY entries together
         # The parameter history (render/history.py), shared with --watch and --report: per (slave,
         # address) the compiled store (C) or its Python twin, in stream order (stats_store).
         self.history = History() if history is None else history
@@ -132,7 +135,7 @@ class StatsCollector:
         key = (slave, function)
         stats = self.functions.get(key)
         if stats is None:
-            stats = self.functions[key] = FunctionStats()
+            stats = self.functions[key] = FunctionStats(times=self.times.histogram())
         return stats
 
     def add(self, item: Item) -> None:
@@ -166,8 +169,7 @@ class StatsCollector:
             if self.attached:
                 self.store.response(item.slave, item.function, key)  # beside the engine's (time_summaries)
             else:
-                times = stats.times
-                times[key] = times.get(key, 0) + 1
+                self.times.add(stats.times, key)
 
     def _add_request(self, frame: Frame, stats: FunctionStats) -> None:
         stats.requests += 1

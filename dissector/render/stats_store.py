@@ -40,6 +40,12 @@ MAX_KEYS = 50_000  # requests the poll cycle follows (render/pollcycle.py), in e
 # address of 64 slaves (4 M parameters) took 2 GB. Events of further parameters are counted (`dropped`)
 # and the outputs say so; kept parameters keep every event.
 MAX_PARAMETERS = 1 << 18
+# Histogram entries of one kind (response times of every slave and function, poll intervals of every
+# key, ...) kept at most: random times on a bus of 247 slaves (the max-size mix) kept 1.3 GB at 1 GB of
+# pcap. Past it the kind's keys are rounded down to multiples of 2**shift (Coarse): a real bus, whose
+# times cluster, stays exact.
+MAX_TALLY = 1 << 16
+MAX_SHIFT = 62  # _bus.h TALLY_MAX_SHIFT
 
 ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int]
 
@@ -153,6 +159,50 @@ class ParameterTable:
         return len(self._parameters)
 
 
+class Coarse:
+    """The histograms of one kind of tally ({key: count}, one per owner), which hold at most `limit`
+    entries together: past it, every key is rounded down to a multiple of 2**shift, shift growing by
+    one until they fit (the compiled store's Tallies, dissector/accel/_bus.h, do the same). The result
+    depends on the values only, not on their order: the smallest shift at which they all fit."""
+
+    __slots__ = ("limit", "shift", "mask", "entries", "histograms")
+
+    def __init__(self, limit: int | None = None) -> None:
+        self.limit = MAX_TALLY if limit is None else limit
+        self.shift = 0
+        self.mask = -1  # keys & mask: rounded down to a multiple of 2**shift
+        self.entries = 0
+        self.histograms: list[dict[int, int]] = []
+
+    def histogram(self) -> dict[int, int]:
+        """A new owner's histogram, kept within the kind's limit."""
+        histogram: dict[int, int] = {}
+        self.histograms.append(histogram)
+        return histogram
+
+    def add(self, histogram: dict[int, int], key: int) -> None:
+        key &= self.mask
+        count = histogram.get(key)
+        if count is not None:
+            histogram[key] = count + 1
+            return
+        histogram[key] = 1
+        self.entries += 1
+        while self.limit and self.entries > self.limit and self.shift < MAX_SHIFT:
+            self.shift += 1
+            mask = self.mask = -(1 << self.shift)
+            entries = 0
+            for histogram in self.histograms:
+                merged: dict[int, int] = {}
+                for key, count in histogram.items():
+                    key &= mask
+                    merged[key] = merged.get(key, 0) + count
+                histogram.clear()
+                histogram.update(merged)
+                entries += len(merged)
+            self.entries = entries
+
+
 def stamp(time: tuple[float, int | None] | None) -> float | None:
     """A time the compiled store gives back, (float, ns or None), as the Python stages had it."""
     if time is None:
@@ -165,5 +215,5 @@ def stamp(time: tuple[float, int | None] | None) -> float | None:
 def new_store() -> Any:
     """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set)."""
     if CompiledStore is not None and not os.environ.get("VW3_PURE_PYTHON"):
-        return CompiledStore(MAX_KEYS, MAX_PARAMETERS)
+        return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY)
     return ParameterTable()

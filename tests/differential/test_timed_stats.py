@@ -5,6 +5,7 @@ pcapng and hex dumps cut at random, with times (outages, late answers, times goi
 minutes, untimed records) and damage, alone and after or before other inputs."""
 from __future__ import annotations
 
+import json
 import os
 import random
 from pathlib import Path
@@ -12,9 +13,11 @@ from pathlib import Path
 import pytest
 
 from dissector.accel import timedpath
+from dissector.render import stats_store
+from dissector.sim.mixes import max_size_mix
 from dissector.sim.simulate import generate_session
 from helpers import rtu
-from test_timed_summary import CHAR_NS, assert_same, cut_records, frames_of, write_pcap, write_pcapng
+from test_timed_summary import CHAR_NS, assert_same, cut_records, decode, frames_of, write_pcap, write_pcapng
 
 ROOT = Path(__file__).resolve().parents[2]
 OUTPUTS = [["--stats"], ["--stats", "--json"], ["--stats", "--json", "--timeout", "0.03", "--baud", "9600"],
@@ -136,4 +139,24 @@ def test_times_too_far_apart_for_the_engine(tmp_path: Path, monkeypatch: pytest.
     write_pcap(capture, records)
     for output in OUTPUTS:
         assert_same([str(capture), *output], monkeypatch)
+    assert counted and all(counted)
+
+
+def test_histograms_past_their_limit(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, counted: list[bool]) -> None:
+    """Response times, bus timing and poll intervals of every public code at random slaves, past the
+    entries a kind of histogram may keep (stats_store.MAX_TALLY, here 64): both stores round their keys
+    down alike (stats_store.Coarse, _bus.h Tallies), so the tables and the JSON stay byte-identical."""
+    records = [(data, round(time * 1e6) * 1000) for data, time in max_size_mix(3000, seed=5)]
+    records[700] = (records[700][0][:-1] + bytes([records[700][0][-1] ^ 0xFF]), records[700][1])  # damage
+    capture = tmp_path / "max-size.pcap"
+    write_pcap(capture, records)
+    exact, _lines = decode([str(capture), "--stats", "--json"], monkeypatch, pure=False)
+    monkeypatch.setattr(stats_store, "MAX_TALLY", 64)
+    for output in (["--stats", "--json"], ["--stats"], ["--stats", "--json", "--profile", "generic"]):
+        text, _lines = assert_same([str(capture), *output], monkeypatch)
+        if output == ["--stats", "--json"]:
+            assert text != exact  # rounded: medians, percentiles and periods moved
+            report, _end = json.JSONDecoder().raw_decode(text)  # (its warnings on stderr after it)
+            times = [row["response_time"]["min"] for row in report["functions"] if row["response_time"]]
+            assert times and all(round(seconds * 1e9) % 1024 == 0 for seconds in times)
     assert counted and all(counted)

@@ -10,7 +10,7 @@ import pytest
 
 from dissector.accel import _summary
 from dissector.render.stats_store import (
-    MAX_KEYS,
+    MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
     CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store,
 )
 
@@ -126,3 +126,24 @@ def test_an_engine_takes_only_a_store() -> None:
     assert engine.stats is store
     engine.stats = None
     assert engine.stats is None
+
+
+def test_histograms_of_a_kind_stay_within_their_limit() -> None:
+    """Coarse (and the compiled store's Tallies): past `limit` entries together, every key of the kind is
+    rounded down to a multiple of 2**shift, the smallest shift at which they fit, whatever the order."""
+    values = [(owner, key) for owner in range(3) for key in (-5, 0, 1, 2, 3, 9, 10, 11, 1000)]
+    results = set()
+    for seed in range(5):
+        random.Random(seed).shuffle(values)
+        coarse = Coarse(limit=12)
+        histograms = [coarse.histogram() for _owner in range(3)]
+        for owner, key in values:
+            coarse.add(histograms[owner], key)
+        results.add((coarse.shift, tuple(tuple(sorted(histogram.items())) for histogram in histograms)))
+    # shift 1: 6 keys an owner (18 > 12); shift 2: -8 0 8 1000, 4 an owner (12)
+    assert results == {(2, (((-8, 1), (0, 4), (8, 3), (1000, 1)),) * 3)}
+    store = _summary.Stats(MAX_KEYS, 1 << 18, 12)
+    for owner, key in values:
+        store.response(0, owner, key)
+    assert store.tallies(TALLY_TIMES) == {owner: {-8: 1, 0: 4, 8: 3, 1000: 1} for owner in range(3)}
+    assert Coarse(limit=0).limit == 0 and Coarse().limit == MAX_TALLY
