@@ -47,20 +47,24 @@ static int columns_open(Columns *self, double x, double y) {
     return 0;
 }
 
-static PyObject *columns_add(Columns *self, PyObject *const *args, Py_ssize_t nargs) {
-    if (nargs != 3) return PyErr_Format(PyExc_TypeError, "add(col, x, y)");
-    long long col = PyLong_AsLongLong(args[0]);
-    double x = PyFloat_AsDouble(args[1]), y = PyFloat_AsDouble(args[2]);
-    if (PyErr_Occurred()) return NULL;
+/* The point (x, y) in column col: 0, or -1 with an exception set (no memory). */
+static int columns_point(Columns *self, long long col, double x, double y) {
     if (col != self->col) {
         self->col = col;
-        if (columns_open(self, x, y) < 0) return NULL;
-        Py_RETURN_NONE;
+        return columns_open(self, x, y);
     }
     double *c = self->d + self->n - 8;
     if (y < c[3]) c[2] = x, c[3] = y;
     else if (y > c[5]) c[4] = x, c[5] = y;
     c[6] = x, c[7] = y;
+    return 0;
+}
+
+static PyObject *columns_add(Columns *self, PyObject *const *args, Py_ssize_t nargs) {
+    if (nargs != 3) return PyErr_Format(PyExc_TypeError, "add(col, x, y)");
+    long long col = PyLong_AsLongLong(args[0]);
+    double x = PyFloat_AsDouble(args[1]), y = PyFloat_AsDouble(args[2]);
+    if (PyErr_Occurred() || columns_point(self, col, x, y) < 0) return NULL;
     Py_RETURN_NONE;
 }
 

@@ -58,7 +58,11 @@ typedef struct {
     Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
     Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals */
     Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
+    PyObject *report;             /* a Report (_report.h) fed what is counted here too, or NULL */
 } Stats;
+
+static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
+                              const Words *writes, const Words *reads, unsigned long long number);
 
 static PyTypeObject StatsType;
 
@@ -317,6 +321,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
                              const Words *writes, const Words *reads, unsigned long long number, long long base) {
     const uint8_t *q = b + qf->at, *answer = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
+    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, writes, reads, number) < 0) return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
     if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
@@ -371,6 +376,7 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(p->code_namer);
         Py_XDECREF(p->status);
     }
+    Py_XDECREF(st->report);
     PyMem_Free(st->params);
     PyMem_Free(st->polls);
     for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots);
@@ -920,7 +926,11 @@ static PyMethodDef stats_methods[] = {
     {NULL, NULL, 0, NULL},
 };
 
+static PyObject *stats_get_report(Stats *st, void *closure) { return Py_NewRef(st->report ? st->report : Py_None); }
+static int stats_set_report(Stats *st, PyObject *value, void *closure);
+
 static PyGetSetDef stats_getset[] = {
+    {"report", (getter)stats_get_report, (setter)stats_set_report, "a Report fed what is counted here, or None", NULL},
     {"frames", (getter)stats_get_frames, NULL, "frames the engine counted", NULL},
     {"untracked", (getter)stats_get_untracked, NULL, "requests of keys beyond the poll table's size", NULL},
     {"parameter_count", (getter)stats_get_parameter_count, NULL, "parameters kept", NULL},

@@ -877,6 +877,7 @@ static int confirmed_writes(const uint8_t *answer, const Words *writes, Words *o
 
 #include "_stats.h"
 #include "_columns.h" /* --report's pixel columns of a series */
+#include "_report.h"  /* --report fed by the engine */
 
 /* ---- one transaction ---------------------------------------------------------------------------- */
 typedef struct {
@@ -1735,7 +1736,7 @@ PyMODINIT_FUNC PyInit__summary(void) {
     crc_init();
     PyObject *module = PyModule_Create(&summary_module);
     if (module == NULL) return NULL;
-    PyTypeObject *types[] = {&EngineType, &StatsType, &ColumnsType};
+    PyTypeObject *types[] = {&EngineType, &StatsType, &ColumnsType, &ReportType};
     for (size_t k = 0; k < sizeof types / sizeof *types; k++) {
         if (PyModule_AddType(module, types[k]) < 0) {
             Py_DECREF(module);

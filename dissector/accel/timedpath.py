@@ -65,6 +65,7 @@ class TimedPath:
         self.on_hand_back: Callable[[], None] | None = None  # called as the engine takes the stream back
         self.sync_clock = True  # the engine writes the time column: the clock's references go with the stream
         self.numbered = 0  # items numbered before the engine's last run
+        self.report: Any | None = None  # a compiled Report the engine feeds (reportfeed.py): synced around runs
 
     # -- input ------------------------------------------------------------------------------------
     def feed(self, block: Block) -> None:
@@ -101,8 +102,13 @@ class TimedPath:
     def _engine_frames(self) -> bool:
         """The engine's lines up to where it needs more bytes (False) or hands the stream over (True)."""
         self.numbered = self.engine.count
+        report = self.report
+        if report is not None:
+            report.pull()
         lines, self.pos, status = self.engine.run_timed(self.buf, self.pos, self.base, self.starts, self.times,
                                                         self.flags)
+        if report is not None:
+            report.push()
         if lines:
             self.write_lines(lines)
         if status == NEED:
@@ -264,10 +270,11 @@ def summarize_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, a
 
 def count_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: Any | None,
                 warn: Callable[[], None]) -> bool:
-    """--stats of a timed input (app/cli.py Sinks) counted by the engine in the compiled store, with
-    the times, the poll intervals and the bus timing (dissector/accel/_bus.h); the Python stages count
-    what the engine hands over into the same store. False (nothing read) when it cannot: no extension,
-    VW3_PURE_PYTHON, or what was counted before cannot go into the store."""
+    """--stats (and --report) of a timed input (app/cli.py Sinks) counted by the engine in the compiled
+    store, with the times, the poll intervals and the bus timing (dissector/accel/_bus.h), and what the
+    report takes of them (reportfeed.py); the Python stages count what the engine hands over into the
+    same store and report. False (nothing read) when it cannot: no extension, VW3_PURE_PYTHON, or what
+    was counted before cannot go into the store."""
     from dissector.accel import fastsummary
     from dissector.accel.records import blocks_from_chunks
 
@@ -280,7 +287,14 @@ def count_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annot
     path = TimedPath(dissector, annotate, Clock(), sinks.accept, _drop, dissector.pairer.timeout)
     path.sync_clock = False  # (its lines are not shown: the time column is not the sinks')
     path.engine.stats = store
-    summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
+    if sinks.report is not None:
+        from dissector.accel.reportfeed import engine_report
+
+        path.report = store.report = engine_report(sinks.report.collector, sinks.health, annotate)
+    try:
+        summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
+    finally:
+        store.report = None  # (it holds the collector, whose history holds the store)
     sinks.valid_frames += store.frames - frames
     return True
 

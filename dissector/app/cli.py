@@ -22,6 +22,7 @@ from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
+from dissector.app.paths import Fix, decode_one
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
 from dissector.pipeline import Annotator, Dissector
@@ -300,33 +301,12 @@ class Sinks:
         self.output.flush()
 
 
-def decode_chunks(
-    chunks: Iterable[Chunk],
-    dissector: Dissector,
-    sinks: Sinks,
-    warn: Callable[[], None] = lambda: None,
-    fix: Callable[[list[Item]], list[Item]] = lambda items: items,
-) -> None:
-    for chunk in chunks:
-        sinks.accept(fix(dissector.feed(chunk)))
-        warn()
-        if sinks.done:
-            return
-    sinks.accept(fix(dissector.finish()))
-    warn()
-
-
-def _drop(lines: bytes) -> None:
-    """The summary lines of --stats' compiled path: only its counts are shown."""
-
-
 def _annotator(args: argparse.Namespace) -> Annotator | None:
     if args.no_profile:
         return None
     return annotator_from_args(args)
 
 
-Fix = Callable[[list[Item]], list[Item]] | None
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix, tuple[str | None, str | None]]
 
 
@@ -397,7 +377,7 @@ def _decode_inputs(
                 gaps=GapChecker(line.baud, mode) if timed else None,
             )
             sinks.valid_frames = sinks.input_bytes = 0
-            _decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
+            decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
             if sinks.input_bytes and not sinks.valid_frames and path is not None:
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
@@ -426,42 +406,6 @@ def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: It
             choose_profiles(annotate, again, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]
-
-
-def _decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissector: Dissector, sinks: Sinks,
-                annotate: Annotator | None, warn: Callable[[], None]) -> None:
-    if mode == "rtu" and not timed and fix is None and (sinks.plain_summary_only or sinks.stats_only):
-        from dissector.accel import fastsummary
-
-        if fastsummary.available():
-            def engine_lines(write: Callable[[bytes], None]) -> Callable[[bytes], None]:
-                def lines(data: bytes) -> None:
-                    sinks.valid_frames += 1  # the engine shows valid transactions only
-                    write(data)
-                return lines
-
-            if sinks.plain_summary_only:
-                path = fastsummary.SummaryPath(dissector, annotate, sinks.accept,
-                                               engine_lines(sinks.output.write_encoded))
-                fastsummary.summarize(chunks, path, warn)
-                return
-            store = sinks.stats.engine_store(sinks.bus)  # type: ignore[union-attr]
-            if store is not None:  # the engine counts what it shows; its lines are not wanted
-                frames = store.frames
-                path = fastsummary.SummaryPath(dissector, annotate, sinks.accept, _drop, store)
-                fastsummary.summarize(chunks, path, warn)
-                sinks.valid_frames += store.frames - frames
-                return
-    if mode == "rtu" and timed and fix is None:
-        from dissector.accel import framespath, timedpath
-
-        if sinks.plain_summary_only and timedpath.summarize_input(chunks, dissector, sinks, annotate, warn):
-            return  # pcap, pcapng: the compiled path
-        if sinks.stats_only and timedpath.count_input(chunks, dissector, sinks, annotate, warn):
-            return  # --stats of a pcap counted in the engine
-        if framespath.decode(chunks, dissector, sinks, annotate, warn):  # framed in C, shown by Python
-            return
-    decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:

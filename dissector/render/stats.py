@@ -30,6 +30,7 @@ Counting rules (the table headers say the same):
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
@@ -42,7 +43,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, Coarse, ParameterRow, stamp
+from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -197,6 +198,17 @@ class StatsCollector:
                 for code, count in own.exceptions.items():
                     stats.exceptions[code] = stats.exceptions.get(code, 0) + count
             merged[(slave, function)] = stats
+        return merged
+
+    def all_functions(self) -> dict[tuple[int, int], FunctionStats]:
+        """Per (slave, function) the counts and the response times (ns -> count) of both sides (the
+        report's per slave table): attached, the times are all in the compiled store."""
+        merged = self._all_functions()
+        if self.attached:
+            for owner, times in self.store.tallies(TALLY_TIMES).items():
+                key = (owner >> 8, owner & 0xFF)
+                if key in merged:
+                    merged[key] = dataclasses.replace(merged[key], times=dict(times))
         return merged
 
     def parameter_rows(self) -> list[ParameterRow]:

@@ -167,6 +167,7 @@ class ReportCollector:
         """`history`: the run's parameter history, fed by its owner (StatsCollector); None: one of its
         own, fed by add()."""
         self._device = getattr(annotate, "device", None)
+        self._annotate = annotate
         self.owns_history = history is None
         self.history = History(annotate) if history is None else history
         self.history.listeners.append(self)
@@ -311,25 +312,44 @@ class ReportCollector:
                 self._mark(series, x, status + how)
                 self._event(x, "protection", slave, f"{_name(series)} {status}{how}")
             return
-        scaled = register.scaled
-        if scaled is not None:
-            y = float(scaled)
-            if series.unit is None:
-                series.unit = register.unit
-        else:
-            y = float(register.value)  # type: ignore[arg-type]
-            text = register.text
-            if text is not None:  # an enumeration or a bit field: the profile names the word
-                series.step = True
-                labels = series.labels
-                if register.value not in labels and len(labels) < MAX_LABELS:
-                    labels[register.value] = text  # type: ignore[index]
+        y = self._y(series, register)
         if series.status is not None:
-            self._mark(series, x, f"readable again ({series.status} before)")
-            self._event(x, "protection", slave, f"{_name(series)} readable again")
-            series.status = None
+            self._readable_again(series, x)
         series.values += 1
         series.columns.add(col, x, y)
+
+    @staticmethod
+    def _y(series: Series, register: Register) -> float:
+        """The value drawn: scaled as the device reads it, else the raw word (named by labels)."""
+        scaled = register.scaled
+        if scaled is not None:
+            if series.unit is None:
+                series.unit = register.unit
+            return float(scaled)
+        text = register.text
+        if text is not None:  # an enumeration or a bit field: the profile names the word
+            series.step = True
+            labels = series.labels
+            if register.value not in labels and len(labels) < MAX_LABELS:
+                labels[register.value] = text  # type: ignore[index]
+        return float(register.value)  # type: ignore[arg-type]
+
+    def _readable_again(self, series: Series, x: float) -> None:
+        self._mark(series, x, f"readable again ({series.status} before)")
+        self._event(x, "protection", series.slave, f"{_name(series)} readable again")
+        series.status = None
+
+    def engine_point(self, slave: int, function: int, address: int, value: int) -> tuple[Series, float]:
+        """For the compiled engine (dissector/accel/_report.h), which feeds the points of the values it
+        counts itself and asks here once per value first seen (and for a series' first value): the
+        series (made now: the engine checked MAX_SERIES) with what state() takes of the register, as
+        the annotator names it (Annotator.plain_register), and its y."""
+        plain = getattr(self._annotate, "plain_register", None)
+        register = Register(address, value) if plain is None else plain(slave, function, address, value)
+        series = self.series.get((slave, address)) or self._series(slave, register)
+        if series.code is None and register.code is not None:
+            series.code, series.name = register.code, register.name
+        return series, self._y(series, register)  # type: ignore[arg-type]
 
     def renamed(self, slave: int) -> None:
         """The slave's profile changed: its series are read again as the new device reads them (the

@@ -1,0 +1,438 @@
+/* --report fed by the engine (issue 28): for each transaction the engine counts (_stats.h count_transaction,
+ * when a Report is attached to the Stats), what render/report/collect.py ReportCollector.add and .state and
+ * render/report/health.py Health.add_items do with its frames: the x axis (the frame's time, its number when
+ * untimed) and its doublings, the unanswered and exception events, a point per value read or confirmed
+ * written in its series' Columns (_columns.h), the setpoints written, the response times per slave.
+ * The Python objects keep the state: their scalars are taken at the start of each engine run (pull) and
+ * given back at its end (push); the rare steps that need Python call their methods (a series' first value
+ * and each value first seen: y as the device scales it, code, unit, labels, ReportCollector.engine_point;
+ * an event, a doubling, a span readable again). collect.py stays the reference (VW3_PURE_PYTHON=1).
+ * Times stay a model.Stamp where the Python stages have one (Time, _bus.h): x - origin is exact. */
+
+#define REPORT_POINTS (1 << 17) /* y of (namer epoch, function, slave, address, value), at most half full */
+
+typedef struct {
+    uint32_t key;             /* 1 << 24 | slave << 16 | address; 0: empty */
+    int readable;             /* series.status was None when read in run `gen` */
+    unsigned gen;
+    unsigned long long values; /* points not yet added to series.values */
+    PyObject *series;         /* owned */
+    Columns *columns;         /* owned: series.columns */
+} Trend;
+
+typedef struct {
+    uint64_t key; /* 0: empty */
+    double y;
+} Point;
+
+typedef struct {
+    PyObject_HEAD
+    PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
+    PyObject *series, *h_series, *h_counts, *written; /* their containers */
+    Py_ssize_t max_series, max_written;
+    double span; /* 2 * COLUMNS: columns before a doubling */
+    int timed;   /* -1: not known yet */
+    Time origin, first, last, h_origin;
+    double width, limit, h_width, h_limit;
+    unsigned long long number, dropped, h_counted[256];
+    Columns *h_columns[256];
+    Trend *trends;     /* open addressing, at most half full: the series kept (MAX_SERIES) */
+    size_t trend_slots;
+    Point *points;
+    size_t point_count;
+    PyObject *namers[256]; /* the namer each slave's cached points were read with */
+    unsigned epochs[256];
+    uint8_t *bits[256];    /* per slave: addresses of no series (dropped), then addresses written */
+    unsigned gen;
+} Report;
+
+static PyTypeObject ReportType;
+
+static PyObject *time_object(Report *r, const Time *t) {
+    if (!t->has) Py_RETURN_NONE;
+    return t->exact ? PyObject_CallFunction(r->stamp, "L", t->ns) : PyFloat_FromDouble(t->d);
+}
+
+static int set_attr(PyObject *o, const char *name, PyObject *value) {
+    int status = value == NULL ? -1 : PyObject_SetAttrString(o, name, value);
+    Py_XDECREF(value);
+    return status;
+}
+
+static int get_time(PyObject *o, const char *name, Time *t) {
+    PyObject *value = PyObject_GetAttrString(o, name);
+    int status = value == NULL ? -1 : read_time(value, t);
+    Py_XDECREF(value);
+    return status;
+}
+
+static int get_double(PyObject *o, const char *name, double *v) {
+    PyObject *value = PyObject_GetAttrString(o, name);
+    *v = value == NULL ? -1.0 : PyFloat_AsDouble(value);
+    Py_XDECREF(value);
+    return *v == -1.0 && PyErr_Occurred() ? -1 : 0;
+}
+
+/* The Python objects' scalars into the engine's copy (a run starts, or a Python method changed them). */
+static int report_pull(Report *r) {
+    PyObject *timed = PyObject_GetAttrString(r->collector, "timed");
+    if (timed == NULL) return -1;
+    r->timed = timed == Py_None ? -1 : PyObject_IsTrue(timed);
+    Py_DECREF(timed);
+    r->gen++;
+    if (get_time(r->collector, "origin", &r->origin) < 0 || get_time(r->collector, "first_x", &r->first) < 0 ||
+        get_time(r->collector, "last_x", &r->last) < 0 || get_double(r->collector, "width", &r->width) < 0 ||
+        get_double(r->collector, "limit", &r->limit) < 0)
+        return -1;
+    if (r->health == Py_None) return 0;
+    return get_time(r->health, "origin", &r->h_origin) < 0 || get_double(r->health, "width", &r->h_width) < 0 ||
+           get_double(r->health, "limit", &r->h_limit) < 0 ? -1 : 0;
+}
+
+/* ... and back; `counts`: the counts kept here too (series values, dropped, answers per slave). */
+static int report_push(Report *r, int counts) {
+    PyObject *c = r->collector, *h = r->health;
+    if (set_attr(c, "timed", r->timed < 0 ? Py_NewRef(Py_None) : PyBool_FromLong(r->timed)) < 0 ||
+        set_attr(c, "origin", time_object(r, &r->origin)) < 0 || set_attr(c, "first_x", time_object(r, &r->first)) < 0 ||
+        set_attr(c, "last_x", time_object(r, &r->last)) < 0 || set_attr(c, "width", PyFloat_FromDouble(r->width)) < 0 ||
+        set_attr(c, "limit", PyFloat_FromDouble(r->limit)) < 0 ||
+        set_attr(c, "number", PyLong_FromUnsignedLongLong(r->number)) < 0)
+        return -1;
+    if (h != Py_None && (set_attr(h, "origin", time_object(r, &r->h_origin)) < 0 ||
+                         set_attr(h, "width", PyFloat_FromDouble(r->h_width)) < 0 ||
+                         set_attr(h, "limit", PyFloat_FromDouble(r->h_limit)) < 0))
+        return -1;
+    if (!counts) return 0;
+    const char *names[2] = {"series_dropped", "values"};
+    for (size_t k = 0; k <= r->trend_slots; k++) { /* k == trend_slots: the collector's series_dropped */
+        Trend *t = k < r->trend_slots ? &r->trends[k] : NULL;
+        unsigned long long *n = t != NULL ? &t->values : &r->dropped;
+        if (!*n) continue;
+        PyObject *o = t != NULL ? t->series : c, *had = PyObject_GetAttrString(o, names[t != NULL]);
+        PyObject *more = PyLong_FromUnsignedLongLong(*n), *sum = had && more ? PyNumber_Add(had, more) : NULL;
+        Py_XDECREF(had);
+        Py_XDECREF(more);
+        if (set_attr(o, names[t != NULL], sum) < 0) return -1;
+        *n = 0;
+    }
+    for (int slave = 0; slave < 256; slave++) {
+        if (!r->h_counted[slave]) continue;
+        PyObject *key = PyLong_FromLong(slave), *had = key ? PyDict_GetItemWithError(r->h_counts, key) : NULL;
+        long long before = had != NULL ? PyLong_AsLongLong(had) : 0;
+        PyObject *sum = PyErr_Occurred() ? NULL : PyLong_FromLongLong(before + (long long)r->h_counted[slave]);
+        int status = sum != NULL ? PyDict_SetItem(r->h_counts, key, sum) : -1;
+        Py_XDECREF(key);
+        Py_XDECREF(sum);
+        if (status < 0) return -1;
+        r->h_counted[slave] = 0;
+    }
+    return 0;
+}
+
+/* target.method(*args) with the scalars given back first (and taken again after, with `pull`). */
+static int report_call(Report *r, PyObject *target, const char *method, int pull, const char *format, ...) {
+    if (report_push(r, 0) < 0) return -1;
+    PyObject *args = NULL;
+    if (format != NULL) {
+        va_list va;
+        va_start(va, format);
+        args = Py_VaBuildValue(format, va);
+        va_end(va);
+        if (args == NULL) return -1;
+    }
+    PyObject *f = PyObject_GetAttrString(target, method);
+    PyObject *result = f == NULL ? NULL : args != NULL ? PyObject_CallObject(f, args) : PyObject_CallNoArgs(f);
+    Py_XDECREF(f);
+    Py_XDECREF(args);
+    if (result == NULL) return -1;
+    Py_DECREF(result);
+    return pull ? report_pull(r) : 0;
+}
+
+/* ReportCollector._x: the x of the frame numbered `number` (its time, or the number untimed). */
+static int report_x(Report *r, int timed, long long ns, unsigned long long number, Time *x) {
+    r->number = number;
+    if (r->timed < 0) {
+        r->timed = timed;
+        r->width = timed ? 1e-3 : 1.0;
+    }
+    *x = !r->timed ? (Time){1, 0, 0, (double)number} : timed ? stamp_time(1, ns) : (Time){1, 0, 0, 0.0};
+    if (!r->origin.has) {
+        r->origin = *x;
+        r->limit = x->d + r->span * r->width;
+    }
+    while (x->d >= r->limit)
+        if (report_call(r, r->collector, "_double", 1, NULL) < 0) return -1;
+    if (!r->first.has) r->first = *x;
+    if (!r->last.has || x->d > r->last.d) r->last = *x;
+    return 0;
+}
+
+static long long report_col(const Time *x, const Time *origin, double width) {
+    long long col = (long long)(time_sub(x, origin) / width);
+    return col > 0 ? col : 0;
+}
+
+/* ReportCollector._event: `text` a new reference (NULL: an error). */
+static int report_event(Report *r, const Time *x, const char *kind, int slave, PyObject *text) {
+    PyObject *at = text != NULL ? time_object(r, x) : NULL;
+    int status = at != NULL ? report_call(r, r->collector, "_event", 0, "(OsiO)", at, kind, slave, text) : -1;
+    Py_XDECREF(at);
+    Py_XDECREF(text);
+    return status;
+}
+
+static uint8_t *report_bits(Report *r, int slave) {
+    if (r->bits[slave] == NULL && (r->bits[slave] = PyMem_Calloc(2, BITMAP_BYTES)) == NULL) PyErr_NoMemory();
+    return r->bits[slave];
+}
+
+/* Health.add_items of a request writing `w`: the setpoints written (bounded as the parameter table). */
+static int report_written(Report *r, int slave, const Words *w) {
+    uint8_t *bits = report_bits(r, slave);
+    if (bits == NULL) return -1;
+    bits += BITMAP_BYTES;
+    for (unsigned k = 0; k < w->count && PySet_GET_SIZE(r->written) < r->max_written; k++) {
+        unsigned address = words_address(w, k);
+        if (bit(bits, address)) continue;
+        PyObject *key = Py_BuildValue("(iI)", slave, address);
+        if (key == NULL || PySet_Add(r->written, key) < 0) {
+            Py_XDECREF(key);
+            return -1;
+        }
+        Py_DECREF(key);
+        bits[address >> 3] |= (uint8_t)(1 << (address & 7));
+    }
+    return 0;
+}
+
+/* Health._point: a response time `y` of `slave` at `x`. */
+static int health_point(Report *r, int slave, const Time *x, double y) {
+    if (r->health == Py_None) return 0;
+    if (!r->h_origin.has) {
+        r->h_origin = *x;
+        r->h_limit = x->d + r->span * r->h_width;
+    }
+    while (x->d >= r->h_limit)
+        if (report_call(r, r->health, "_double", 1, NULL) < 0) return -1;
+    if (r->h_columns[slave] == NULL) {
+        PyObject *key = PyLong_FromLong(slave), *columns = key ? PyDict_GetItemWithError(r->h_series, key) : NULL;
+        Py_XINCREF(columns);
+        if (columns == NULL && !PyErr_Occurred() && (columns = PyObject_CallNoArgs((PyObject *)&ColumnsType)) != NULL &&
+            PyDict_SetItem(r->h_series, key, columns) < 0)
+            Py_CLEAR(columns);
+        Py_XDECREF(key);
+        if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
+            Py_CLEAR(columns);
+            PyErr_SetString(PyExc_TypeError, "Health.series: compiled Columns expected");
+        }
+        if (columns == NULL) return -1;
+        r->h_columns[slave] = (Columns *)columns;
+    }
+    r->h_counted[slave]++;
+    return columns_point(r->h_columns[slave], report_col(x, &r->h_origin, r->h_width), x->d, y);
+}
+
+static Trend *trend_slot(Report *r, uint32_t key) {
+    size_t slot = (size_t)mix(key) & (r->trend_slots - 1);
+    while (r->trends[slot].key && r->trends[slot].key != key) slot = (slot + 1) & (r->trend_slots - 1);
+    return &r->trends[slot];
+}
+
+/* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
+static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
+                        const Time *x, long long col) {
+    uint8_t *dropped = report_bits(r, slave);
+    if (dropped == NULL) return -1;
+    if (bit(dropped, address)) {
+        r->dropped++;
+        return 0;
+    }
+    Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
+    if (!t->key) {
+        PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
+        Py_XDECREF(key);
+        if (series == NULL && PyErr_Occurred()) return -1;
+        if (series == NULL && PyDict_Size(r->series) >= r->max_series) { /* none kept: never one */
+            dropped[address >> 3] |= (uint8_t)(1 << (address & 7));
+            r->dropped++;
+            return 0;
+        }
+        t->series = series; /* NULL: made by engine_point below */
+    }
+    if (s->namer != r->namers[slave]) { /* a new device for this slave: its values are read again */
+        Py_XINCREF(s->namer);
+        Py_XSETREF(r->namers[slave], s->namer);
+        if (++r->epochs[slave] >= 1u << 16) {
+            memset(r->points, 0, REPORT_POINTS * sizeof *r->points);
+            r->point_count = 0;
+            memset(r->epochs, 0, sizeof r->epochs);
+        }
+    }
+    int mapped = bit(s->mapped, address);
+    uint64_t pkey = 1ULL << 63 | (uint64_t)r->epochs[slave] << 46 | (uint64_t)handled_index(function) << 40 |
+                    (uint64_t)slave << 32 | (uint64_t)address << 16 | value;
+    Point *p = NULL;
+    double y = value; /* an address the device does not name: the raw word */
+    if (mapped) {
+        size_t slot = (size_t)mix(pkey) & (REPORT_POINTS - 1);
+        while (r->points[slot].key && r->points[slot].key != pkey) slot = (slot + 1) & (REPORT_POINTS - 1);
+        p = &r->points[slot];
+        if (p->key) y = p->y;
+    }
+    if (t->series == NULL || (p != NULL && !p->key)) {
+        PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiII", slave, function, address, value);
+        if (answer == NULL) return -1;
+        PyObject *series = PyTuple_Check(answer) && PyTuple_GET_SIZE(answer) == 2 ? PyTuple_GET_ITEM(answer, 0) : NULL;
+        y = series != NULL ? PyFloat_AsDouble(PyTuple_GET_ITEM(answer, 1)) : -1.0;
+        if (series != NULL && t->series == NULL) t->series = series;
+        else if (series == NULL) PyErr_SetString(PyExc_TypeError, "engine_point must return (series, y)");
+        Py_DECREF(answer);
+        if (PyErr_Occurred()) return -1;
+        if (p != NULL && r->point_count < REPORT_POINTS / 2) {
+            p->key = pkey, p->y = y;
+            r->point_count++;
+        }
+    }
+    if (!t->key) { /* a series known from now on */
+        PyObject *columns = PyObject_GetAttrString(t->series, "columns");
+        if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
+            Py_CLEAR(columns);
+            PyErr_SetString(PyExc_TypeError, "Series.columns: compiled Columns expected");
+        }
+        if (columns == NULL) return -1;
+        Py_INCREF(t->series);
+        t->columns = (Columns *)columns;
+        t->key = 1u << 24 | (uint32_t)slave << 16 | address;
+        t->gen = r->gen - 1;
+    }
+    if (t->gen != r->gen) {
+        PyObject *status = PyObject_GetAttrString(t->series, "status");
+        if (status == NULL) return -1;
+        t->readable = status == Py_None;
+        t->gen = r->gen;
+        Py_DECREF(status);
+    }
+    if (!t->readable) {
+        PyObject *at = time_object(r, x);
+        int status = at != NULL ? report_call(r, r->collector, "_readable_again", 0, "(OO)", t->series, at) : -1;
+        Py_XDECREF(at);
+        if (status < 0) return -1;
+        t->readable = 1;
+    }
+    t->values++;
+    return columns_point(t->columns, col, x->d, y);
+}
+
+/* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1. */
+static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
+                              const Words *writes, const Words *reads, unsigned long long number) {
+    Report *r = (Report *)report;
+    const uint8_t *q = b + qf->at, *a = af != NULL ? b + af->at : NULL;
+    int slave = q[0], function = q[1];
+    Time x;
+    if (report_x(r, qf->timed, qf->ns, number, &x) < 0) return -1;
+    if (writes != NULL && r->health != Py_None && report_written(r, slave, writes) < 0) return -1;
+    if (a == NULL) return report_event(r, &x, "unanswered", slave, PyUnicode_FromFormat("function %d unanswered", function));
+    if (report_x(r, af->timed, af->ns, number + 1, &x) < 0) return -1;
+    Time at = stamp_time(1, af->ns);
+    if (qf->timed && af->timed && health_point(r, slave, &at, stamp_seconds(af->ns, qf->ns)) < 0) return -1;
+    if (a[1] & 0x80)
+        return report_event(r, &x, "exception", slave, PyObject_CallFunction(r->exception, "iii", slave, function, a[2]));
+    long long col = report_col(&x, &r->origin, r->width);
+    Words written;
+    const Words *confirmed = confirmed_writes(a, writes, &written) ? &written : NULL;
+    for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
+        const Words *w = pass ? reads : confirmed;
+        for (unsigned k = 0; w != NULL && k < w->count; k++)
+            if (report_value(r, s, slave, function, words_address(w, k), words_value(w, k), &x, col) < 0) return -1;
+    }
+    return 0;
+}
+
+/* ---- the Python object ------------------------------------------------------------------------- */
+static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
+    static char *keywords[] = {"collector", "health", "stamp", "exception", "max_series", "max_written", "columns", NULL};
+    PyObject *objects[4];
+    int columns;
+    if (r->collector != NULL) {
+        PyErr_SetString(PyExc_RuntimeError, "Report is initialised once");
+        return -1;
+    }
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOOnni", keywords, &objects[0], &objects[1], &objects[2],
+                                     &objects[3], &r->max_series, &r->max_written, &columns))
+        return -1;
+    r->collector = objects[0], r->health = objects[1], r->stamp = objects[2], r->exception = objects[3];
+    for (int k = 0; k < 4; k++) Py_INCREF(objects[k]);
+    r->series = PyObject_GetAttrString(r->collector, "series");
+    if (r->health != Py_None) {
+        r->h_series = PyObject_GetAttrString(r->health, "series");
+        r->h_counts = PyObject_GetAttrString(r->health, "counts");
+        r->written = PyObject_GetAttrString(r->health, "written");
+        if (r->written != NULL && !PySet_Check(r->written)) {
+            Py_CLEAR(r->written);
+            PyErr_SetString(PyExc_TypeError, "Health.written: a set");
+        }
+    }
+    if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->h_counts == NULL || r->written == NULL)))
+        return -1;
+    r->span = 2.0 * columns;
+    for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)r->max_series + 2;) r->trend_slots *= 2;
+    r->trends = PyMem_Calloc(r->trend_slots, sizeof *r->trends);
+    r->points = PyMem_Calloc(REPORT_POINTS, sizeof *r->points);
+    if (r->trends == NULL || r->points == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    return report_pull(r);
+}
+
+static void report_dealloc(Report *r) {
+    for (size_t k = 0; r->trends != NULL && k < r->trend_slots; k++) {
+        if (!r->trends[k].key) continue; /* (a series not kept yet is borrowed) */
+        Py_XDECREF(r->trends[k].series);
+        Py_XDECREF(r->trends[k].columns);
+    }
+    for (int k = 0; k < 256; k++) {
+        Py_XDECREF(r->h_columns[k]);
+        Py_XDECREF(r->namers[k]);
+        PyMem_Free(r->bits[k]);
+    }
+    PyMem_Free(r->trends);
+    PyMem_Free(r->points);
+    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series, r->h_counts, r->written};
+    for (int k = 0; k < 8; k++) Py_XDECREF(objects[k]);
+    Py_TYPE(r)->tp_free((PyObject *)r);
+}
+
+static PyObject *report_pull_method(Report *r, PyObject *unused) { return report_pull(r) < 0 ? NULL : Py_NewRef(Py_None); }
+static PyObject *report_push_method(Report *r, PyObject *unused) { return report_push(r, 1) < 0 ? NULL : Py_NewRef(Py_None); }
+
+static PyMethodDef report_methods[] = {
+    {"pull", (PyCFunction)report_pull_method, METH_NOARGS, "take the collector's and health's state (a run starts)"},
+    {"push", (PyCFunction)report_push_method, METH_NOARGS, "give it back, with the counts kept here (a run ended)"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyTypeObject ReportType = {
+    PyVarObject_HEAD_INIT(NULL, 0)
+    .tp_name = "dissector.accel._summary.Report",
+    .tp_basicsize = sizeof(Report),
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_doc = "Report(collector, health, stamp, exception, max_series, max_written, columns): --report fed by\n"
+              "the engine (render/report/collect.py, health.py); set as Stats.report.",
+    .tp_new = PyType_GenericNew,
+    .tp_init = (initproc)report_init,
+    .tp_dealloc = (destructor)report_dealloc,
+    .tp_methods = report_methods,
+};
+
+/* Stats.report = a Report or None (_stats.h: count_transaction feeds it). */
+static int stats_set_report(Stats *st, PyObject *value, void *closure) {
+    if (value != NULL && value != Py_None && !PyObject_TypeCheck(value, &ReportType)) {
+        PyErr_SetString(PyExc_TypeError, "report: a Report or None");
+        return -1;
+    }
+    Py_XSETREF(st->report, value != NULL && value != Py_None ? Py_NewRef(value) : NULL);
+    return 0;
+}
