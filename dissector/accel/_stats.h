@@ -284,7 +284,7 @@ static void poll_fail(Stats *st, const uint32_t *fields, int size) {
  * request layout (_tables.h) puts its start, quantity and write window; FC8 by its sub-function. */
 static int request_key(const uint8_t *f, uint32_t *fields) {
     int function = f[1];
-    const RequestLayout *L = &request_layout[handled_index(function)];
+    const Lift *L = &request_lift[handled_index(function)];
     fields[0] = f[0];
     fields[1] = (uint32_t)function;
     if (L->start_at) {

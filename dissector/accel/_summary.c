@@ -43,8 +43,8 @@
 
 /* Every rule per function code, and the constants shared with the Python stages, are generated from
  * the protocol table and its rule tables (python3 -m dissector.codegen; codegen/c.py, c_rules.py): no
- * function code is named below, the checks and lines interpret `rules`, `request_layout` and the
- * length rules. */
+ * function code is named below, the checks and lines interpret `rules`, `request_lift`, `response_lift`
+ * and the length rules. */
 #include "_tables.h"
 
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
@@ -863,12 +863,13 @@ static void span_text(Out *o, long long base, unsigned start, unsigned quantity)
 /* The registers an answer confirms written (data/modbus.toml [confirm]): its own echo (FC6), or the
  * request's values `writes` (NULL: none) a normal answer confirms (FC16, FC23); 1: some, in *out. */
 static int confirmed_writes(const uint8_t *answer, const Words *writes, Words *out) {
-    const Rules *R = &rules[handled_index(answer[1])];
-    if (R->confirm == CONFIRM_ECHO && R->values == VALUES_ONE) {
-        *out = (Words){word(answer + R->start_at), 1, answer + R->values_at};
+    int k = handled_index(answer[1]);
+    const Lift *L = &response_lift[k];
+    if (rules[k].confirm == CONFIRM_ECHO && L->values == VALUES_ONE) {
+        *out = (Words){word(answer + L->start_at), 1, answer + L->values_at};
         return 1;
     }
-    if (R->confirm == CONFIRM_ANSWER && writes != NULL) {
+    if (rules[k].confirm == CONFIRM_ANSWER && writes != NULL) {
         *out = *writes;
         return 1;
     }
@@ -880,14 +881,14 @@ static int confirmed_writes(const uint8_t *answer, const Words *writes, Words *o
 #include "_report.h"  /* --report fed by the engine */
 
 /* ---- one transaction ---------------------------------------------------------------------------- */
+/* A frame as its lifting rule reads it (lift_frame). */
 typedef struct {
-    unsigned start, quantity;   /* FC23: the read part */
-    Words writes;               /* FC6, FC16, FC23 */
-    int has_writes;
-    const uint8_t *packed;      /* FC15: the coils written, packed as on the wire */
-    const uint8_t *frame;       /* its bytes: what an answer's echo fields are compared with */
-    Py_ssize_t length;          /* the frame's, CRC included */
-} Request;
+    unsigned start, quantity; /* its window (FC23: the read part) */
+    Words values;             /* the registers it carries (written, echoed or read); values.values NULL: none */
+    const uint8_t *bits;      /* its coils or inputs, packed as on the wire; NULL: none */
+    const uint8_t *frame;     /* its bytes: what an answer's echo fields are compared with */
+    Py_ssize_t length;        /* the frame's, CRC included */
+} Lifted;
 
 /* The spec's name of an FC8 sub-function (borrowed), NULL with no error: not defined by the spec. */
 static PyObject *subfunction_name(Engine *e, unsigned sub) {
@@ -954,48 +955,58 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     }
 }
 
-static int in_range(const long range[2], unsigned value) {
-    return range[0] <= (long)value && (long)value <= range[1];
+static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
+
+/* fields.lifter's checks of a frame by its lifting rule L (_tables.h Lift), the request it answers
+ * given (NULL for a request), and its window and data in *out: 1 it passes them all, 0 a check draws a
+ * warning (hand over). */
+static int lift_frame(const Engine *e, const uint8_t *f, Py_ssize_t length, const Lift *L, const Lifted *request,
+                      Lifted *out) {
+    *out = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
+    out->start = L->start_at ? word(f + L->start_at) : request != NULL ? request->start : 0;
+    out->quantity = L->quantity_at ? word(f + L->quantity_at) : L->quantity || request == NULL ? (unsigned)L->quantity
+                                                                                               : request->quantity;
+    for (int j = 0; j < 2 && L->check_at[j]; j++) {
+        const long *range = e->limits[L->check_limit[j]];
+        long value = (long)field(f, L->check_at[j], L->check_width[j]);
+        if (value > range[1] || (!L->check_above[j] && value < range[0])) return 0;
+    }
+    if (L->span && out->start + out->quantity > 0x10000) return 0;
+    if (L->count_at) {
+        unsigned count = field(f, L->count_at, L->count_width);
+        if (count < (unsigned)L->min_count) return 0; /* malformed: the fixed fields after it are longer */
+        if (L->count_rule) {
+            unsigned of = L->count_of_at ? word(f + L->count_of_at) : request->quantity;
+            if (count != L->count_plus + (L->count_unit ? of * L->count_unit : (of + 7) / 8)) return 0;
+        }
+        if (L->odd_count && count & 1) return 0;
+    }
+    if (L->coil_at && word(f + L->coil_at) != 0xFF00 && word(f + L->coil_at) != 0) return 0;
+    for (int j = 0; j < 2 && L->echo_at[j]; j++)
+        if (word(f + L->echo_at[j]) != word(request->frame + L->echo_request_at[j])) return 0;
+    if (L->values == VALUES_BITS) out->bits = f + L->values_at;
+    if (L->values == VALUES_BLOCK || L->values == VALUES_ONE)
+        out->values = (Words){L->write_start_at ? word(f + L->write_start_at) : out->start,
+                              L->values == VALUES_ONE     ? 1
+                              : L->write_quantity_at ? word(f + L->write_quantity_at)
+                                                     : out->quantity,
+                              f + L->values_at};
+    return 1;
 }
 
 /* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
-static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Request *r) {
+static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Lifted *r) {
     int k = handled_index(f[1]);
-    if (k < 0) return 0;
-    int check = s->check[k];
-    if (check < 0) return 0;
-    r->has_writes = 0;
-    r->packed = NULL;
-    r->length = length;
-    r->frame = f;
-    if (rules[k].special) return diagnostics_are_plain(e, s, f, length);
-    const RequestLayout *L = &request_layout[k];
-    unsigned write_quantity = 0; /* a write quantity of its own (FC23); 0: none */
-    r->start = L->start_at ? word(f + L->start_at) : 0;
-    r->quantity = L->quantity_at ? word(f + L->quantity_at) : 1;
-    if (L->limit >= 0 && !in_range(e->limits[L->limit], r->quantity)) return 0;
-    if (L->span && r->start + r->quantity > 0x10000) return 0;
-    if (L->values_at) {
-        unsigned written = r->quantity;
-        if (L->write_quantity_at) written = write_quantity = word(f + L->write_quantity_at);
-        if (L->write_limit >= 0 && !in_range(e->limits[L->write_limit], written)) return 0;
-        if (L->count_at && f[L->count_at] != 2 * written) return 0;
-        r->writes = (Words){L->write_start_at ? word(f + L->write_start_at) : r->start, written, f + L->values_at};
-        r->has_writes = 1;
+    if (k < 0 || s->check[k] < 0) return 0;
+    if (rules[k].special) {
+        *r = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
+        return diagnostics_are_plain(e, s, f, length);
     }
-    if (L->coil_at) { /* fields.lifter's coil rule warns of any value but ON and OFF */
-        unsigned value = word(f + L->coil_at);
-        if (value != 0xFF00 && value != 0) return 0;
-    }
-    if (L->coils_at) {
-        if (f[L->coils_count_at] != (r->quantity + 7) / 8) return 0;
-        r->packed = f + L->coils_at;
-    }
-    unsigned device_quantity = r->quantity;
-    /* checks.within_limits: the device's own quantity limits */
-    if (check >= 1 && (long)device_quantity > s->limit[k][0]) return 0;
-    if (check == 2 && (!L->write_quantity_at || (long)write_quantity > s->limit[k][1])) return 0;
-    return r->has_writes ? words_are_plain(s, e->run_number, &r->writes) : 1;
+    if (!lift_frame(e, f, length, &request_lift[k], NULL, r)) return 0;
+    /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
+    if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
+    if (s->check[k] == 2 && (!request_lift[k].write_quantity_at || (long)r->values.count > s->limit[k][1])) return 0;
+    return r->values.values != NULL ? words_are_plain(s, e->run_number, &r->values) : 1;
 }
 
 /* summary.summary_line's head: number, time (`-`: untimed), slave, kind */
@@ -1020,15 +1031,15 @@ static int info_end_is_plain(const Out *o) {
     return last > 0x20 && last < 0x7F;
 }
 
-static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
-
 /* The Info column by the form its describer gives (rules[k].request_form, response_form), from the
- * fields at `at` (rules[k].request_at, response_at), the window start..quantity, the coils `packed` and
- * the registers `values`: 1 written, 0 a form this engine does not write, -1 error. */
+ * fields at `at` (rules[k].request_at, response_at) and the frame as lifted (its window, bits, registers):
+ * 1 written, 0 a form this engine does not write, -1 error. */
 static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, int form, const int at[3],
-                     unsigned start, unsigned quantity, const uint8_t *packed, const Words *values) {
+                     const Lifted *lifted) {
     int slave = f[0], function = f[1], k = handled_index(function);
     long long base = s->base[k];
+    unsigned start = lifted->start, quantity = lifted->quantity;
+    const Words *values = &lifted->values;
     switch (form) {
     case FORM_NAME: /* describe._simple, _comm_event_counter: the name alone */
         e->out.len -= 1;
@@ -1039,7 +1050,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
     case FORM_BITS:
         span_text(&e->out, base, start, quantity);
         out_put(&e->out, ": ", 2);
-        bits_text(&e->out, packed, quantity);
+        bits_text(&e->out, lifted->bits, quantity);
         break;
     case FORM_VALUES:
         span_text(&e->out, base, start, quantity);
@@ -1126,64 +1137,41 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
     return e->out.failed ? -1 : 1;
 }
 
-/* A request's line (`unanswered`: `[no response]`), from its checks' Request. */
-static int request_line(Engine *e, Slave *s, const uint8_t *f, const Request *r, unsigned long long number,
-                        int unanswered) {
-    const Rules *R = &rules[handled_index(f[1])];
-    if (line_start(e, s, f, number, " request   ") < 0) return -1;
-    int written = info_text(e, s, f, r->length, R->request_form, R->request_at, r->start, r->quantity, r->packed,
-                            &r->writes);
+/* A request's line (`unanswered`: `[no response]`). */
+static int request_line(Engine *e, Slave *s, const Lifted *r, unsigned long long number, int unanswered) {
+    const Rules *R = &rules[handled_index(r->frame[1])];
+    if (line_start(e, s, r->frame, number, " request   ") < 0) return -1;
+    int written = info_text(e, s, r->frame, r->length, R->request_form, R->request_at, r);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     if (unanswered) out_cstr(&e->out, " [no response]");
     out_cstr(&e->out, "  CRC ok\n");
     return 1;
 }
 
-/* The answer's checks as the lifting rule states them (fields.lifter: limit check, byte count, coil,
- * echo) and the annotator's (its registers plain, its reads quiet); fills its registers. 1 quiet, 0 hand over. */
-static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
+/* The answer's checks by its lifting rule (lift_frame) and the annotator's (its registers plain, its reads
+ * quiet); its window and data in *a, the registers it reads (FC3, FC4, FC23) in *reads. 1 quiet, 0 hand over. */
+static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Lifted *r, Lifted *a,
                              Words *reads) {
-    const Rules *R = &rules[handled_index(f[1])];
-    reads->count = 0;
-    if (R->special) return diagnostics_are_plain(e, s, f, length);
-    if (R->response_form == FORM_PYTHON) return 0;
-    if (R->check_at) {
-        const long *range = e->limits[R->check_limit];
-        unsigned value = field(f, R->check_at, R->check_width);
-        if (R->check_above ? (long)value > range[1] : !in_range(range, value)) return 0;
+    int k = handled_index(f[1]);
+    *reads = (Words){0, 0, NULL};
+    if (rules[k].special) {
+        *a = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
+        return diagnostics_are_plain(e, s, f, length);
     }
-    if (R->count_at) {
-        unsigned count = field(f, R->count_at, R->count_width);
-        if (count < (unsigned)R->min_count) return 0; /* malformed: the fixed fields after it are longer */
-        if (R->count_rule) {
-            unsigned of = R->count_of_at ? field(f, R->count_of_at, 2) : r->quantity;
-            if (count != R->count_plus + (R->count_unit ? of * R->count_unit : (of + 7) / 8)) return 0;
-        }
-        if (R->odd_count && count & 1) return 0;
-    }
-    if (R->coil_at && word(f + R->coil_at) != 0xFF00 && word(f + R->coil_at) != 0) return 0;
-    for (int j = 0; j < 2 && R->echo_at[j]; j++)
-        if (word(f + R->echo_at[j]) != word(r->frame + R->echo_request_at[j])) return 0;
-    if (R->values == VALUES_ONE) {
-        Words one = {R->start_at ? word(f + R->start_at) : r->start, 1, f + R->values_at};
-        return words_are_plain(s, e->run_number, &one);
-    }
-    if (R->values != VALUES_BLOCK) return 1;
-    *reads = (Words){r->start, r->quantity, f + R->values_at};
-    int plain = words_are_plain(s, e->run_number, reads);
-    if (plain <= 0 || !R->reads) return plain;
-    return reads_are_quiet(s, reads, r->has_writes ? &r->writes : NULL);
+    if (rules[k].response_form == FORM_PYTHON || !lift_frame(e, f, length, &response_lift[k], r, a)) return 0;
+    if (a->values.values == NULL) return 1;
+    int plain = words_are_plain(s, e->run_number, &a->values);
+    if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;
+    *reads = a->values;
+    return rules[k].reads ? reads_are_quiet(s, reads, r->values.values != NULL ? &r->values : NULL) : 1;
 }
 
-/* An answer's line, paired with request `request_number`: the answer's own window where its rule gives
- * one (FC5, FC15, FC16), else its request's. */
-static int response_line(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Request *r,
-                         const Words *reads, unsigned long long number, unsigned long long request_number) {
-    const Rules *R = &rules[handled_index(f[1])];
-    unsigned start = R->start_at ? word(f + R->start_at) : r->start;
-    unsigned quantity = R->quantity_at ? word(f + R->quantity_at) : R->start_at ? (unsigned)R->one : r->quantity;
-    if (line_start(e, s, f, number, " response  ") < 0) return -1;
-    int written = info_text(e, s, f, length, R->response_form, R->response_at, start, quantity, f + R->bits_at, reads);
+/* An answer's line, paired with request `request_number`. */
+static int response_line(Engine *e, Slave *s, const Lifted *a, unsigned long long number,
+                         unsigned long long request_number) {
+    const Rules *R = &rules[handled_index(a->frame[1])];
+    if (line_start(e, s, a->frame, number, " response  ") < 0) return -1;
+    int written = info_text(e, s, a->frame, a->length, R->response_form, R->response_at, a);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     out_put(&e->out, " ", 1);
     out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
@@ -1271,11 +1259,11 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
 }
 
 /* Annotator state after an answered transaction: what was written, then what was read. */
-static int track(Engine *e, Slave *s, const uint8_t *f, const Request *r, const Words *reads,
+static int track(Engine *e, Slave *s, const uint8_t *f, const Words *writes, const Words *reads,
                  unsigned long long number) {
     if (s->seen == NULL) return 0;
     Words written;
-    if (confirmed_writes(f, r->has_writes ? &r->writes : NULL, &written) && remember(e, f[0], s, &written, number, 1) < 0) return -1;
+    if (confirmed_writes(f, writes, &written) && remember(e, f[0], s, &written, number, 1) < 0) return -1;
     if (reads->count && s->protected_value >= 0) return remember(e, f[0], s, reads, number, 0);
     return 0;
 }
@@ -1313,7 +1301,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     Slave *s = slave_for(e, q.slave);
     if (s == NULL) return STEP_ERROR;
     if (!s->usable) return STEP_HANDOVER;
-    Request r;
+    Lifted r;
     int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
     if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
@@ -1331,29 +1319,29 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->request_ns = q.ns;
     /* The next frame is a request: this one was not answered (pairing.py). */
     int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written;
-    const Words *writes = r.has_writes ? &r.writes : NULL;
-    if (found == FRAME_OK && request_layout[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
+    const Words *writes = r.values.values != NULL ? &r.values : NULL;
+    if (found == FRAME_OK && rules[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
         written = counted(e, s, b, &q, answered ? &a : NULL, NULL, NULL, written);
     } else if (found == FRAME_OK && !answered) {
-        written = request_line(e, s, b + q.at, &r, e->count + 1, 1);
+        written = request_line(e, s, &r, e->count + 1, 1);
         written = counted(e, s, b, &q, NULL, writes, NULL, written);
     } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
-        written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+        written = request_line(e, s, &r, e->count + 1, 0);
         e->line_timed = a.timed;
         e->line_ns = a.ns;
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
         written = counted(e, s, b, &q, &a, writes, NULL, written);
     } else {
+        Lifted answer;
         Words reads;
-        written = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &reads) : 0;
+        written = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 0;
         if (written > 0) {
-            written = request_line(e, s, b + q.at, &r, e->count + 1, 0);
+            written = request_line(e, s, &r, e->count + 1, 0);
             e->line_timed = a.timed;
             e->line_ns = a.ns;
-            if (written > 0)
-                written = response_line(e, s, b + a.at, a.length, &r, &reads, e->count + 2, e->count + 1);
-            if (written > 0 && track(e, s, b + a.at, &r, &reads, e->count + 2) < 0) written = -1;
+            if (written > 0) written = response_line(e, s, &answer, e->count + 2, e->count + 1);
+            if (written > 0 && track(e, s, b + a.at, writes, &reads, e->count + 2) < 0) written = -1;
             written = counted(e, s, b, &q, &a, writes, &reads, written);
         }
     }

@@ -75,37 +75,6 @@ static const LengthRule known_response_rule[KNOWN] = {{0, 2, 5, 1, 0}, {0, 2, 5,
 typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;
 static const QuantityRule known_quantity_rule[KNOWN] = {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {4, 9, 0, 6, 9}, {4, 9, 2, 6, 9}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {8, 13, 2, 10, 13}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}};
 
-/* Where a request's fields are, as offsets from the frame's first byte (0: absent), from its lifting
- * rule (codegen/c_rules.py). The quantity defaults to one register; the written registers' start and
- * quantity default to the request's. */
-typedef struct {
-    int start_at, quantity_at, limit, span; /* limit: LIMIT_* or -1; span: start + quantity <= 65536 */
-    int coil_at, coils_at, coils_count_at; /* FC5's ON/OFF value; FC15's packed coils, ceil(quantity / 8) */
-    int values_at, write_start_at, write_quantity_at, write_limit, count_at; /* count: 2 x quantity */
-    int texts; /* 1: the texts come from the Python stages (table.Compiled.texts) */
-} RequestLayout;
-static const RequestLayout request_layout[HANDLED] = {
-    {2, 4, 0, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 1 */
-    {2, 4, 0, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 2 */
-    {2, 4, 1, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 3 */
-    {2, 4, 1, 1, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 4 */
-    {2, 0, -1, 0, 4, 0, 0, 0, 0, 0, -1, 0, 0}, /* 5 */
-    {2, 0, -1, 0, 0, 0, 0, 4, 0, 0, -1, 0, 0}, /* 6 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 7 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 8 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 11 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 12 */
-    {2, 4, 2, 1, 0, 7, 6, 0, 0, 0, -1, 0, 0}, /* 15 */
-    {2, 4, 3, 1, 0, 0, 0, 7, 0, 0, -1, 6, 0}, /* 16 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 17 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 20 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 21 */
-    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 22 */
-    {2, 4, 4, 0, 0, 0, 0, 11, 6, 8, 5, 10, 0}, /* 23 */
-    {2, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 0}, /* 24 */
-    {0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, 1}, /* 43 */
-};
-
 /* Constants of the framer (framing/rules.py, data/modbus.toml [limits]) and of render/describe.py. */
 #define MIN_ADU 4
 #define MAX_ADU 256
@@ -118,46 +87,93 @@ static const RequestLayout request_layout[HANDLED] = {
 
 enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
 enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };
-enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE };
-/* How the engine reads a transaction of a compiled code, from the lifting rules (data/modbus.toml
- * [lift], [confirm]; codegen/c_rules.py). Offsets from the frame's first byte, 0: none.
- *   special: 1 diagnostics (FC8's named case); confirm: 1 by the answer's echo, 2 by a normal answer;
- *   reads: the answer's registers are values read; request_form, response_form: FORM_*, printing the
- *   fields at request_at[] / response_at[] (_PRINTS in codegen/c_rules.py);
- *   the answer's window: start_at, quantity_at (0: the request's; `one` when a constant), bits_at;
- *   its byte count at count_at (count_width bytes), at least min_count; with count_rule it must be
+enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };
+/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule (data/modbus.toml
+ * [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the frame's first byte, 0: none.
+ *   the window: start_at, quantity_at; else the constant `quantity` (0: the request's) and the request's start;
+ *   check_at[j] (check_width[j] bytes) within LIMIT check_limit[j] (check_above: its high bound only);
+ *   span: start + quantity within the 65536 addresses;
+ *   the byte count at count_at (count_width bytes), at least min_count; with count_rule it must be
  *   count_plus + of x count_unit (0: bits, ceil(of / 8)), `of` at count_of_at or the request's quantity;
- *   odd_count: an even count; coil_at: ON or OFF; echo_at[k] must equal the request's echo_request_at[k];
- *   values (1 a block, 2 one register) at values_at; check_at (check_width bytes) within LIMIT check_limit
- *   (check_above: its high bound only). */
+ *   odd_count: an even count; coil_at: ON or OFF; echo_at[j] must equal the request's echo_request_at[j];
+ *   values (VALUES_*) at values_at: a block of the window's registers (at write_start_at and
+ *   write_quantity_at when the frame writes a window of its own, FC23), one register at the window's start,
+ *   or the window's bits. */
 typedef struct {
-    int special, confirm, reads, request_form, response_form, request_at[3], response_at[3];
-    int start_at, quantity_at, bits_at, one;
-    int count_at, count_width, count_rule, count_of_at, count_unit, count_plus, odd_count, min_count;
-    int coil_at, echo_at[2], echo_request_at[2];
-    int values, values_at, check_at, check_width, check_limit, check_above;
-    int print_width; /* bytes of the answer's first printed field (FORM_STATUS: 1 or 2) */
+    int start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
+    int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count;
+    int coil_at, echo_at[2], echo_request_at[2], values, values_at, write_start_at, write_quantity_at;
+} Lift;
+static const Lift request_lift[HANDLED] = {
+    {2, 4, 0, {4, 0}, {2, 0}, {0, -1}, {0, 0}, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 1 */
+    {2, 4, 0, {4, 0}, {2, 0}, {0, -1}, {0, 0}, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 2 */
+    {2, 4, 0, {4, 0}, {2, 0}, {1, -1}, {0, 0}, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 3 */
+    {2, 4, 0, {4, 0}, {2, 0}, {1, -1}, {0, 0}, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 4 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, {0, 0}, {0, 0}, 0, 4, 0, 0}, /* 5 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 2, 4, 0, 0}, /* 6 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 7 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 8 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 11 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 12 */
+    {2, 4, 0, {4, 0}, {2, 0}, {2, -1}, {0, 0}, 1, 6, 1, 0, 1, 4, 0, 0, 0, 0, {0, 0}, {0, 0}, 3, 7, 0, 0}, /* 15 */
+    {2, 4, 0, {4, 0}, {2, 0}, {3, -1}, {0, 0}, 1, 6, 1, 0, 1, 4, 2, 0, 0, 0, {0, 0}, {0, 0}, 1, 7, 0, 0}, /* 16 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 17 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 20 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 21 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 22 */
+    {2, 4, 0, {4, 8}, {2, 2}, {4, 5}, {0, 0}, 0, 10, 1, 0, 1, 8, 2, 0, 0, 0, {0, 0}, {0, 0}, 1, 11, 6, 8}, /* 23 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 24 */
+    {0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 43 */
+};
+static const Lift response_lift[HANDLED] = {
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 3, 3, 0, 0}, /* 1 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 3, 3, 0, 0}, /* 2 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 2, 0, 1, 0, {0, 0}, {0, 0}, 1, 3, 0, 0}, /* 3 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 2, 0, 1, 0, {0, 0}, {0, 0}, 1, 3, 0, 0}, /* 4 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, {2, 4}, {2, 4}, 0, 4, 0, 0}, /* 5 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 2, 4, 0, 0}, /* 6 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 7 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 8 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 11 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 6, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 12 */
+    {2, 4, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 0, 0, 0, 0}, /* 15 */
+    {2, 4, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 0, 0, 0, 0}, /* 16 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 17 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 20 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 21 */
+    {2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 22 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 2, 0, 1, 0, {0, 0}, {0, 0}, 1, 3, 0, 0}, /* 23 */
+    {0, 4, 0, {4, 0}, {2, 0}, {6, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 24 */
+    {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 43 */
+};
+/* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
+ *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
+ *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
+ *   (table.Compiled.texts); request_form, response_form: FORM_*, printing the fields at request_at[] /
+ *   response_at[] (_PRINTS in codegen/c_rules.py); print_width: bytes of the answer's first printed field. */
+typedef struct {
+    int special, confirm, reads, texts, request_form, response_form, request_at[3], response_at[3], print_width;
 } Rules;
 static const Rules rules[HANDLED] = {
-    {0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0, 0, 3, 1, 2, 1, 1, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 1 */
-    {0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0, 0, 3, 1, 2, 1, 1, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 2 */
-    {0, 0, 1, 2, 4, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 2, 1, 1, 0, 2, 0, 1, 0, 0, {0, 0}, {0, 0}, 1, 3, 0, 0, -1, 0, 0}, /* 3 */
-    {0, 0, 1, 2, 4, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 2, 1, 1, 0, 2, 0, 1, 0, 0, {0, 0}, {0, 0}, 1, 3, 0, 0, -1, 0, 0}, /* 4 */
-    {0, 1, 0, 5, 5, {4, 0, 0}, {4, 0, 0}, 2, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 4, {2, 4}, {2, 4}, 0, 0, 0, 0, -1, 0, 2}, /* 5 */
-    {0, 1, 0, 6, 6, {4, 0, 0}, {4, 0, 0}, 2, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 2, 4, 0, 0, -1, 0, 2}, /* 6 */
-    {0, 0, 0, 1, 8, {0, 0, 0}, {2, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 1}, /* 7 */
-    {1, 0, 0, 10, 10, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 8 */
-    {0, 0, 0, 1, 9, {0, 0, 0}, {2, 4, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 2}, /* 11 */
-    {0, 0, 0, 1, 8, {0, 0, 0}, {3, 0, 0}, 0, 0, 0, 1, 2, 1, 0, 0, 0, 0, 0, 6, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 2}, /* 12 */
-    {0, 2, 0, 3, 7, {0, 0, 0}, {0, 0, 0}, 2, 4, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 0, 0, 0, 0, -1, 0, 0}, /* 15 */
-    {0, 2, 0, 4, 7, {0, 0, 0}, {0, 0, 0}, 2, 4, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4}, {2, 4}, 0, 0, 0, 0, -1, 0, 0}, /* 16 */
-    {0, 0, 0, 15, 15, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 17 */
-    {0, 0, 0, 15, 15, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 20 */
-    {0, 0, 0, 15, 15, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 21 */
-    {0, 0, 0, 11, 11, {2, 4, 6}, {2, 4, 6}, 2, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 2}, /* 22 */
-    {0, 2, 1, 13, 4, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 2, 1, 1, 0, 2, 0, 1, 0, 0, {0, 0}, {0, 0}, 1, 3, 0, 0, -1, 0, 0}, /* 23 */
-    {0, 0, 0, 12, 14, {2, 0, 0}, {4, 6, 0}, 0, 4, 0, 1, 2, 2, 1, 4, 2, 2, 0, 2, 0, {0, 0}, {0, 0}, 0, 0, 4, 2, 6, 1, 2}, /* 24 */
-    {0, 0, 0, 15, 15, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0, -1, 0, 0}, /* 43 */
+    {0, 0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0}, /* 1 */
+    {0, 0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0}, /* 2 */
+    {0, 0, 1, 0, 2, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 3 */
+    {0, 0, 1, 0, 2, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 4 */
+    {0, 1, 0, 0, 5, 5, {4, 0, 0}, {4, 0, 0}, 2}, /* 5 */
+    {0, 1, 0, 0, 6, 6, {4, 0, 0}, {4, 0, 0}, 2}, /* 6 */
+    {0, 0, 0, 0, 1, 8, {0, 0, 0}, {2, 0, 0}, 1}, /* 7 */
+    {1, 0, 0, 0, 10, 10, {0, 0, 0}, {0, 0, 0}, 0}, /* 8 */
+    {0, 0, 0, 0, 1, 9, {0, 0, 0}, {2, 4, 0}, 2}, /* 11 */
+    {0, 0, 0, 0, 1, 8, {0, 0, 0}, {3, 0, 0}, 2}, /* 12 */
+    {0, 2, 0, 0, 3, 7, {0, 0, 0}, {0, 0, 0}, 0}, /* 15 */
+    {0, 2, 0, 0, 4, 7, {0, 0, 0}, {0, 0, 0}, 0}, /* 16 */
+    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 17 */
+    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 20 */
+    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 21 */
+    {0, 0, 0, 0, 11, 11, {2, 4, 6}, {2, 4, 6}, 2}, /* 22 */
+    {0, 2, 1, 0, 13, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 23 */
+    {0, 0, 0, 0, 12, 14, {2, 0, 0}, {4, 6, 0}, 2}, /* 24 */
+    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 43 */
 };
 
 #endif

@@ -1,9 +1,9 @@
 """Generate dissector/accel/_tables.h, the per-function-code tables of the compiled summary path.
 
 Everything _summary.c keeps per function code comes from the protocol table (protocol/table.py):
-which codes it shows, their length rules in both directions, where a request's start, quantity and
-written registers are (field offsets of the Construct grammars, counted from the frame's first
-byte) and the spec limits it checks them against. The header is checked in, so that a build needs
+which codes it shows, their length rules in both directions, how a frame is lifted in each direction
+(field offsets of the Construct grammars, counted from the frame's first byte: codegen/c_rules.py)
+and the spec limits it checks them against. The header is checked in, so that a build needs
 no Python step; `python3 -m dissector.codegen --check` fails when it is stale.
 """
 from __future__ import annotations
@@ -118,22 +118,6 @@ def render_header() -> str:
         " * {quantity's position, extra, bytes an item (0: coils, 8 a byte), byte count's position, extra}. */",
         "typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;",
         "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",
-        "",
-        "/* Where a request's fields are, as offsets from the frame's first byte (0: absent), from its lifting",
-        " * rule (codegen/c_rules.py). The quantity defaults to one register; the written registers' start and",
-        " * quantity default to the request's. */",
-        "typedef struct {",
-        "    int start_at, quantity_at, limit, span; /* limit: LIMIT_* or -1; span: start + quantity <= 65536 */",
-        "    int coil_at, coils_at, coils_count_at; /* FC5's ON/OFF value; FC15's packed coils, ceil(quantity / 8) */",
-        "    int values_at, write_start_at, write_quantity_at, write_limit, count_at; /* count: 2 x quantity */",
-        "    int texts; /* 1: the texts come from the Python stages (table.Compiled.texts) */",
-        "} RequestLayout;",
-        "static const RequestLayout request_layout[HANDLED] = {",
-        *(
-            "    {" + ", ".join(map(str, c_rules.request_layout(entry, limits))) + f"}}, /* {entry.code} */"
-            for entry in entries
-        ),
-        "};",
         "",
         *c_rules.render(entries, limits),
         "",

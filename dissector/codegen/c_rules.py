@@ -1,6 +1,6 @@
 """The lifting rules (data/modbus.toml [lift], protocol/rules.py) and text forms as C tables, for the part
-of accel/_tables.h the compiled engine's checks and lines interpret (accel/_summary.c request_is_quiet,
-response_is_quiet, request_line, response_line, track; _stats.h).
+of accel/_tables.h the compiled engine's checks and lines interpret (accel/_summary.c lift_frame, the one
+lifter of both directions, info_text, confirmed_writes; _stats.h).
 
 Every offset is a field of a Construct grammar named by a rule, counted from the frame's first byte, so
 the engine holds no function code: which codes write and how the write is confirmed ([confirm]), where a
@@ -16,7 +16,7 @@ from dissector.errors import GenerateError
 from dissector.framing import rules as framing_rules
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Confirm, Lift, ValueKind
+from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Check, Confirm, ValueKind
 from dissector.protocol.table import Data, Function, Layout
 from dissector.render import describe
 
@@ -89,52 +89,78 @@ def _own(name: str | int | None) -> str | None:
     return name if isinstance(name, str) and not name.startswith(REQUEST_PREFIX) else None
 
 
-def _limit(rule: Lift, field: str | None, layout: Layout, limits: tuple[str, ...]) -> int:
-    for check in rule.checks:
-        if field is None or check.field == field:
-            name = check.limit or layout.limit
-            return limits.index(name) if name else -1
-    return -1
+def _check_limit(check: Check, layout: Layout, limits: tuple[str, ...], code: int) -> int:
+    name = check.limit or layout.limit
+    if name is None:
+        raise GenerateError(f"function {code}: {check.field} has no limit (the layout gives none)")
+    return limits.index(name)
 
 
-def request_layout(entry: Function, limits: tuple[str, ...]) -> list[int]:
-    """RequestLayout (see the header) of a compiled code's request, from its lifting rule."""
-    layout, code = entry.request, entry.code
-    rule = table.lift_of(code, Kind.REQUEST)
-    texts = int(entry.compiled is not None and entry.compiled.texts)
-    if rule is None:
-        return [0, 0, -1, 0, 0, 0, 0, 0, 0, 0, -1, 0, texts]
+# The Lift struct's members in order (see LIFT_STRUCT); check_*, echo_*: two each at most.
+LIFT_FIELDS = (
+    "start_at", "quantity_at", "quantity", "check_at", "check_width", "check_limit", "check_above", "span",
+    "count_at", "count_width", "min_count", "count_rule", "count_of_at", "count_unit", "count_plus", "odd_count",
+    "coil_at", "echo_at", "echo_request_at", "values", "values_at", "write_start_at", "write_quantity_at",
+)
+VALUES = {None: 0, ValueKind.REGISTERS: 1, ValueKind.REGISTER: 2, ValueKind.BITS: 3, ValueKind.COIL: 0}
+
+
+def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, int | list[int]]:
+    """Lift (see the header) of a compiled code in one direction, from its lifting rule and its layout."""
+    code, layout = entry.code, entry.layout(kind)
+    request = kind is Kind.REQUEST
+    row: dict[str, int | list[int]] = {name: 0 for name in LIFT_FIELDS}
+    row.update(quantity=int(request), check_at=[0, 0], check_width=[0, 0], check_limit=[-1, -1],
+               check_above=[0, 0], echo_at=[0, 0], echo_request_at=[0, 0])
+    if entry.compiled is not None and entry.compiled.texts:
+        return row  # the texts come from the Python stages
     grammar = layout.grammar
     at = lambda name: field_at(grammar, name, code)  # noqa: E731
+    rule = table.lift_of(code, kind)
+    if isinstance(layout.length, table.Counted) or (rule is not None and rule.count is not None):
+        # A byte count shorter than the fixed fields after it is malformed (FC12's events: count - 6).
+        row.update(count_at=at("byte_count"), count_width=field_width(grammar, "byte_count"),
+                   min_count=fixed_after(grammar, "byte_count"))
+    if rule is None:
+        return row
+    echo = rule.echo.fields if rule.echo and not request else ()  # what an answer repeats
+    if len(echo) > 2 or any(field_width(grammar, name) != 2 for name in echo):
+        raise GenerateError(f"function {code}: the engine compares two 16-bit echo fields at most")
+    if len(rule.checks) > 2:
+        raise GenerateError(f"function {code}: the engine checks two fields of a frame at most")
+    quantity = rule.quantity
+    if not isinstance(quantity, int):  # a field, the request's (0), or none: one register at a start of its own
+        quantity = int(quantity is None and (request or _own(rule.start) is not None))
     values = rule.values
-    registers = values is not None and values.kind in (ValueKind.REGISTERS, ValueKind.REGISTER)
-    coils = values is not None and values.kind is ValueKind.BITS
-    window = rule.write_window
-    row = [at(_own(rule.start)), at(_own(rule.quantity)), _limit(rule, None, layout, limits), int(rule.span)]
-    row += [at(rule.coil), at(values.field) if coils else 0, at("byte_count") if coils and rule.count else 0]
-    row += [
-        at(values.field) if registers else 0,
-        at(values.start) if registers and values.start and values.start != rule.start else 0,
-        at(window[1]) if window else 0,
-        _limit(rule, window[1], layout, limits) if window else -1,
-        at("byte_count") if registers and rule.count else 0,
-        texts,
-    ]
+    row.update(
+        start_at=at(_own(rule.start)), quantity_at=at(_own(rule.quantity)), quantity=quantity, span=int(rule.span),
+        odd_count=int(rule.odd_count), coil_at=at(rule.coil),
+        echo_at=[at(name) for name in echo] + [0] * (2 - len(echo)),
+        echo_request_at=[field_at(entry.request.grammar, name, code) for name in echo] + [0] * (2 - len(echo)),
+        values=VALUES[values.kind if values else None], values_at=at(values.field) if values else 0,
+        write_start_at=at(values.start) if values and values.start and values.start != rule.start else 0,
+        write_quantity_at=at(rule.write_window[1]) if rule.write_window else 0,
+    )
+    for j, check in enumerate(rule.checks):
+        row["check_at"][j] = at(check.field)  # type: ignore[index]
+        row["check_width"][j] = field_width(grammar, check.field)  # type: ignore[index]
+        row["check_limit"][j] = _check_limit(check, layout, limits, code)  # type: ignore[index]
+        row["check_above"][j] = int(check.test == "above")  # type: ignore[index]
+    if rule.count is not None:
+        count = rule.count
+        row.update(count_rule=1, count_of_at=at(_own(count.of)), count_unit=count.unit, count_plus=count.plus)
     return row
 
 
-# The Rules struct's members in order; request_at, response_at: 3 offsets; echo_at, echo_request_at: 2.
+# The Rules struct's members in order; request_at, response_at: 3 offsets.
 RULE_FIELDS = (
-    "special", "confirm", "reads", "request_form", "response_form", "request_at", "response_at",
-    "start_at", "quantity_at", "bits_at", "one",
-    "count_at", "count_width", "count_rule", "count_of_at", "count_unit", "count_plus", "odd_count", "min_count",
-    "coil_at", "echo_at", "echo_request_at", "values", "values_at",
-    "check_at", "check_width", "check_limit", "check_above", "print_width",
+    "special", "confirm", "reads", "texts", "request_form", "response_form", "request_at", "response_at",
+    "print_width",
 )
 
 
-def rules_row(entry: Function, limits: tuple[str, ...]) -> dict[str, int | list[int]]:
-    """Rules (see the header) of a compiled code: both directions' forms, the answer's checks."""
+def rules_row(entry: Function) -> dict[str, int | list[int]]:
+    """Rules (see the header) of a compiled code: what it is, both directions' forms and printed fields."""
     code = entry.code
     request, response = entry.request, entry.response
     forms = [_form(entry, kind) for kind in (Kind.REQUEST, Kind.RESPONSE)]
@@ -142,80 +168,50 @@ def rules_row(entry: Function, limits: tuple[str, ...]) -> dict[str, int | list[
         ([field_at(layout.grammar, name, code) for name in _PRINTS.get(form, ())] + [0, 0, 0])[:3]
         for form, layout in zip(forms, (request, response))
     ]
-    row: dict[str, int | list[int]] = {name: 0 for name in RULE_FIELDS}
-    row.update(
+    return dict(
         special=int("diagnostics" in (request.handler, response.handler)),
         confirm={None: 0, Confirm.ECHO: 1, Confirm.ANSWER: 2}[CONFIRM.get(code)],
         reads=int(code in table.register_reads()),
+        texts=int(entry.compiled is not None and entry.compiled.texts),
         request_form=FORMS.index(forms[0]), response_form=FORMS.index(forms[1]),
-        request_at=printed[0], response_at=printed[1], one=1, echo_at=[0, 0], echo_request_at=[0, 0],
-        check_limit=-1,
+        request_at=printed[0], response_at=printed[1],
+        # FC7's 8-bit, FC12's 16-bit status
+        print_width=field_width(response.grammar, _PRINTS[forms[1]][0]) if printed[1][0] else 0,
     )
-    if printed[1][0]:
-        row["print_width"] = field_width(response.grammar, _PRINTS[forms[1]][0])  # FC7's 8-bit, FC12's 16-bit status
-    if forms[1] == "python":
-        return row
-    grammar = response.grammar
-    at = lambda name: field_at(grammar, name, code)  # noqa: E731
-    if isinstance(response.length, table.Counted):
-        # A byte count shorter than the fixed fields after it is malformed (FC12's events: count - 6).
-        row.update(count_at=at("byte_count"), count_width=field_width(grammar, "byte_count"),
-                   min_count=fixed_after(grammar, "byte_count"))
-    rule = table.lift_of(code, Kind.RESPONSE)
-    if rule is None:
-        return row
-    values = rule.values
-    count = rule.count
-    echo = rule.echo.fields if rule.echo else ()
-    if len(echo) > 2 or any(field_width(grammar, name) != 2 for name in echo):
-        raise GenerateError(f"function {code}: the engine compares two 16-bit echo fields at most")
-    if len(rule.checks) > 1:
-        raise GenerateError(f"function {code}: the engine checks one field of an answer")
-    row.update(
-        start_at=at(_own(rule.start)), quantity_at=at(_own(rule.quantity)),
-        bits_at=at(values.field) if values is not None and values.kind is ValueKind.BITS else 0,
-        one=rule.quantity if isinstance(rule.quantity, int) else 1,
-        odd_count=int(rule.odd_count), coil_at=at(rule.coil),
-        echo_at=[at(name) for name in echo] + [0] * (2 - len(echo)),
-        echo_request_at=[field_at(request.grammar, name, code) for name in echo] + [0] * (2 - len(echo)),
-    )
-    if count is not None:
-        row.update(count_rule=1, count_of_at=at(_own(count.of)), count_unit=count.unit, count_plus=count.plus)
-    if values is not None and values.kind in (ValueKind.REGISTERS, ValueKind.REGISTER):
-        row.update(values=1 if values.kind is ValueKind.REGISTERS else 2, values_at=at(values.field))
-    if rule.checks:
-        check = rule.checks[0]
-        row.update(check_at=at(check.field), check_width=field_width(grammar, check.field),
-                   check_limit=_limit(rule, check.field, response, limits), check_above=int(check.test == "above"))
-    return row
 
 
-RULES_STRUCT = """/* How the engine reads a transaction of a compiled code, from the lifting rules (data/modbus.toml
- * [lift], [confirm]; codegen/c_rules.py). Offsets from the frame's first byte, 0: none.
- *   special: 1 diagnostics (FC8's named case); confirm: 1 by the answer's echo, 2 by a normal answer;
- *   reads: the answer's registers are values read; request_form, response_form: FORM_*, printing the
- *   fields at request_at[] / response_at[] (_PRINTS in codegen/c_rules.py);
- *   the answer's window: start_at, quantity_at (0: the request's; `one` when a constant), bits_at;
- *   its byte count at count_at (count_width bytes), at least min_count; with count_rule it must be
+LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule (data/modbus.toml
+ * [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the frame's first byte, 0: none.
+ *   the window: start_at, quantity_at; else the constant `quantity` (0: the request's) and the request's start;
+ *   check_at[j] (check_width[j] bytes) within LIMIT check_limit[j] (check_above: its high bound only);
+ *   span: start + quantity within the 65536 addresses;
+ *   the byte count at count_at (count_width bytes), at least min_count; with count_rule it must be
  *   count_plus + of x count_unit (0: bits, ceil(of / 8)), `of` at count_of_at or the request's quantity;
- *   odd_count: an even count; coil_at: ON or OFF; echo_at[k] must equal the request's echo_request_at[k];
- *   values (1 a block, 2 one register) at values_at; check_at (check_width bytes) within LIMIT check_limit
- *   (check_above: its high bound only). */
+ *   odd_count: an even count; coil_at: ON or OFF; echo_at[j] must equal the request's echo_request_at[j];
+ *   values (VALUES_*) at values_at: a block of the window's registers (at write_start_at and
+ *   write_quantity_at when the frame writes a window of its own, FC23), one register at the window's start,
+ *   or the window's bits. */
 typedef struct {
-    int special, confirm, reads, request_form, response_form, request_at[3], response_at[3];
-    int start_at, quantity_at, bits_at, one;
-    int count_at, count_width, count_rule, count_of_at, count_unit, count_plus, odd_count, min_count;
-    int coil_at, echo_at[2], echo_request_at[2];
-    int values, values_at, check_at, check_width, check_limit, check_above;
-    int print_width; /* bytes of the answer's first printed field (FORM_STATUS: 1 or 2) */
+    int start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
+    int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count;
+    int coil_at, echo_at[2], echo_request_at[2], values, values_at, write_start_at, write_quantity_at;
+} Lift;"""
+
+RULES_STRUCT = """/* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
+ *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
+ *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
+ *   (table.Compiled.texts); request_form, response_form: FORM_*, printing the fields at request_at[] /
+ *   response_at[] (_PRINTS in codegen/c_rules.py); print_width: bytes of the answer's first printed field. */
+typedef struct {
+    int special, confirm, reads, texts, request_form, response_form, request_at[3], response_at[3], print_width;
 } Rules;"""
 
 
-def _braced(row: dict[str, int | list[int]]) -> str:
+def _braced(row: dict[str, int | list[int]], names: tuple[str, ...]) -> str:
     def one(value: int | list[int]) -> str:
         return "{" + ", ".join(map(str, value)) + "}" if isinstance(value, list) else str(value)
 
-    return "{" + ", ".join(one(row[name]) for name in RULE_FIELDS) + "}"
+    return "{" + ", ".join(one(row[name]) for name in names) + "}"
 
 
 def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
@@ -233,10 +229,18 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "",
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
         "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
-        "enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE };",
+        "enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };",
+        LIFT_STRUCT,
+    ]
+    for kind in (Kind.REQUEST, Kind.RESPONSE):
+        lines += [
+            f"static const Lift {kind.value}_lift[HANDLED] = {{",
+            *(f"    {_braced(lift_row(entry, kind, limits), LIFT_FIELDS)}, /* {entry.code} */" for entry in entries),
+            "};",
+        ]
+    return lines + [
         RULES_STRUCT,
         "static const Rules rules[HANDLED] = {",
-        *(f"    {_braced(rules_row(entry, limits))}, /* {entry.code} */" for entry in entries),
+        *(f"    {_braced(rules_row(entry), RULE_FIELDS)}, /* {entry.code} */" for entry in entries),
         "};",
     ]
-    return lines
