@@ -1118,9 +1118,9 @@ package.preload["vw3.crc"] = function(...)
 -- Mirrors dissector/protocol/crc.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
 local M = require("vw3.env")
-local bit, bit32, collectgarbage, load, math, pcall = bit, bit32, collectgarbage, load, math, pcall
-local string, table, type = string, table, type
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local bit, bit32, collectgarbage, load, math, pcall, string = bit, bit32, collectgarbage, load, math, pcall, string
+local table, type = table, type
 
 local floor = math.floor
 local format = string.format
@@ -1300,9 +1300,8 @@ package.preload["vw3.layouts"] = function(...)
 -- Mirrors dissector/protocol/table.py (the rules codegen writes into DATA.protocol).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
 local M = require("vw3.env")
-local math, pairs = math, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes, math, pairs = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes, math, pairs
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
@@ -1447,9 +1446,8 @@ package.preload["vw3.stream"] = function(...)
 -- Mirrors dissector/framing/stream.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
-local math, pairs = math, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math, pairs = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math, pairs
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
@@ -1585,15 +1583,14 @@ package.preload["vw3.rtu"] = function(...)
 -- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
-local math, pairs, table = math, pairs, table
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH
 local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
-local RESPONSE, RULES, XOR8, add_noise, boundary_at = RESPONSE, RULES, XOR8, add_noise, boundary_at
-local crc16, crc_bytes, crc_ok_at, crc_string_ok, emit = crc16, crc_bytes, crc_ok_at, crc_string_ok, emit
-local format, interpretations, lane, shortest_crc = format, interpretations, lane, shortest_crc
-local time_at = time_at
+local RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16 = RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16
+local crc_bytes, crc_ok_at, crc_string_ok, emit, format = crc_bytes, crc_ok_at, crc_string_ok, emit, format
+local interpretations, lane, math, pairs, shortest_crc = interpretations, lane, math, pairs, shortest_crc
+local table, time_at = table, time_at
 local known_requests
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
@@ -2057,11 +2054,10 @@ package.preload["vw3.ascii"] = function(...)
 -- Mirrors dissector/framing/ascii.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
-local ipairs, math, string, tonumber = ipairs, math, string, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, add_noise, crc16, emit, floor = DATA, add_noise, crc16, emit, floor
-local flush_noise, format = flush_noise, format
-local interpretations, time_at = interpretations, time_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DATA, add_noise, crc16, emit, floor, flush_noise = DATA, add_noise, crc16, emit, floor, flush_noise
+local format, interpretations, ipairs, math, string = format, interpretations, ipairs, math, string
+local time_at, tonumber = time_at, tonumber
 local detect_mode
 -- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
 local TEXTS = DATA.rules.texts
@@ -2224,12 +2220,11 @@ package.preload["vw3.feed"] = function(...)
 -- Mirrors dissector/framing/stream.py (feed, finish).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
-local next, pairs, string = next, pairs, string
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST
 local expect_after, fast_interpretation, flush_noise = expect_after, fast_interpretation, flush_noise
-local interpretations, known_requests, lane, rtu_frame = interpretations, known_requests, lane, rtu_frame
-local run_ascii, run_rtu, whole_crc_good = run_ascii, run_rtu, whole_crc_good
+local interpretations, known_requests, lane, next, pairs = interpretations, known_requests, lane, next, pairs
+local rtu_frame, run_ascii, run_rtu, string, whole_crc_good = rtu_frame, run_ascii, run_rtu, string, whole_crc_good
 local feed
 local feed_whole
 
@@ -2420,11 +2415,11 @@ package.preload["vw3.decode"] = function(...)
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local ipairs, load, pairs, string, table, type = ipairs, load, pairs, string, table, type
 local unpack = table.unpack or unpack
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
-local concat, floor, format = concat, floor, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat
+local floor, format, ipairs, load, pairs, string, table = floor, format, ipairs, load, pairs, string, table
+local type = type
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -2865,7 +2860,7 @@ package.preload["vw3.pairing"] = function(...)
 -- Mirrors dissector/decode/pairing.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local REQUEST, release_run, say, warn = REQUEST, release_run, say, warn
 local UNMATCHED = say("unmatched", {})
 
@@ -2925,10 +2920,9 @@ package.preload["vw3.maps"] = function(...)
 -- Mirrors dissector/devices/maps.py, dissector/devices/profiles.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
-local io, ipairs, math, select, string, tonumber = io, ipairs, math, select, string, tonumber
-local tostring = tostring
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, LIMITS, concat, format = DATA, LIMITS, concat, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DATA, LIMITS, concat, format, io, ipairs, math = DATA, LIMITS, concat, format, io, ipairs, math
+local select, string, tonumber, tostring = select, string, tonumber, tostring
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -3265,10 +3259,10 @@ package.preload["vw3.device"] = function(...)
 -- Mirrors dissector/devices/build.py, dissector/devices/maps.py (interpret).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
 local M = require("vw3.env")
-local ipairs, next, pairs, setmetatable, table, tonumber = ipairs, next, pairs, setmetatable, table, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, NO_INTERPRETATION, PROFILES, SELECTION = AUTO, NO_INTERPRETATION, PROFILES, SELECTION
-local concat, floor, format = concat, floor, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat
+local floor, format, ipairs, next, pairs, setmetatable = floor, format, ipairs, next, pairs, setmetatable
+local table, tonumber = table, tonumber
 
 local plc_label
 local PLC_TOP = {} -- the highest reference of each base's digit count
@@ -3494,10 +3488,10 @@ package.preload["vw3.story"] = function(...)
 -- Mirrors dissector/devices/story.py, dissector/devices/annotator.py (registers).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
-local ipairs, next, table = ipairs, next, table
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local address_name, concat, format, has_note, interpret = address_name, concat, format, has_note, interpret
-local interpret_wide, note, plc_label, register_at = interpret_wide, note, plc_label, register_at
+local interpret_wide, ipairs, next, note, plc_label = interpret_wide, ipairs, next, note, plc_label
+local register_at, table = register_at, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -3765,13 +3759,12 @@ package.preload["vw3.explain"] = function(...)
 -- Mirrors dissector/devices/checks.py, dissector/devices/explain.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
-local ipairs, math, next, tonumber = ipairs, math, next, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
-local LIFT_OF, REQUEST = LIFT_OF, REQUEST
-local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
-local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
-local say, u16, warn = say, u16, warn
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
+local PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE = PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE
+local address_name, concat, format, function_name, ipairs = address_name, concat, format, function_name, ipairs
+local lane, math, next, note, plc_label, say, story = lane, math, next, note, plc_label, say, story
+local tonumber, track, u16, warn = tonumber, track, u16, warn
 
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
@@ -4011,11 +4004,11 @@ package.preload["vw3.selection"] = function(...)
 -- Mirrors dissector/devices/selection.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
-local ipairs, math, next, pairs, table = ipairs, math, next, pairs, table
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
-local RESPONSE, SELECTION, build_device, device_for = RESPONSE, SELECTION, build_device, device_for
-local format, lane, python_repr, register_at = format, lane, python_repr, register_at
+local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
+local ipairs, lane, math, next, pairs, python_repr = ipairs, lane, math, next, pairs, python_repr
+local register_at, table = register_at, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4318,16 +4311,15 @@ package.preload["vw3.annotator"] = function(...)
 -- Mirrors dissector/devices/annotator.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
 local M = require("vw3.env")
-local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
 local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
-local annotate_registers, check_request, concat = annotate_registers, check_request, concat
+local annotate_registers, check_request, concat, describe = annotate_registers, check_request, concat, describe
 local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, format, parse_map_choice = explain_objects, format, parse_map_choice
-local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
-local remember_writes, span_label = remember_writes, span_label
-local describe, register_at, words_at = describe, register_at, words_at
+local explain_objects, format, ipairs, math, pairs = explain_objects, format, ipairs, math, pairs
+local parse_map_choice, parse_profile_choice, plc_base = parse_map_choice, parse_profile_choice, plc_base
+local plc_label, register_at, remember_writes, span_label = plc_label, register_at, remember_writes, span_label
+local string, table, words_at = string, table, words_at
 local annotate_with
 
 annotate_with = function(st, f, b, device)
@@ -4466,9 +4458,9 @@ package.preload["vw3.pack"] = function(...)
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
 local M = require("vw3.env")
-local assert, load, next, pairs, type = assert, load, next, pairs, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, assert = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, assert
+local concat, load, next, pairs, type = concat, load, next, pairs, type
 
 -- What a record keeps of a frame (or noise run) for the later passes, packed: an array with the keys in
 -- fixed slots. A table with named keys keeps the hash it grew to while the frame was decoded (some 25
@@ -4816,15 +4808,14 @@ package.preload["vw3.records"] = function(...)
 -- Mirrors dissector/pipeline.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
-local ipairs, math, next, pairs, pcall, string = ipairs, math, next, pairs, pcall, string
-local tostring, type = tostring, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST = AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST
-local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_with, ceil_bytes, crc_string_ok
-local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
-local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
-local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
-local CONFIRMED, PROFILES, build_device, new_state = CONFIRMED, PROFILES, build_device, new_state
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local AUTO, CONFIRMED, DATA, MODE_SAMPLE, NOISE, PROFILES = AUTO, CONFIRMED, DATA, MODE_SAMPLE, NOISE, PROFILES
+local READS, REQUEST, RESPONSE, annotate_with, build_device = READS, REQUEST, RESPONSE, annotate_with, build_device
+local ceil_bytes, crc_string_ok, decode_frame, detect_mode = ceil_bytes, crc_string_ok, decode_frame, detect_mode
+local device_for, device_now, feed, feed_whole, ipairs = device_for, device_now, feed, feed_whole, ipairs
+local known_requests, lane, math, new_state, next, pack = known_requests, lane, math, new_state, next, pack
+local pair, pairs, pcall, release_run, remember_writes = pair, pairs, pcall, release_run, remember_writes
+local story, string, string_of, tostring, type = story, string, string_of, tostring, type
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -5365,7 +5356,7 @@ package.preload["vw3.api"] = function(...)
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
 local M = require("vw3.env")
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, configure, crc16, dissect_record = DATA, configure, crc16, dissect_record
 local exception_name, finish, function_name, new_state = exception_name, finish, function_name, new_state
 local pack = pack
@@ -5386,12 +5377,11 @@ package.preload["vw3.fields"] = function(...)
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
 local M = require("vw3.env")
-local Proto, ProtoExpert, ProtoField, base, expert = Proto, ProtoExpert, ProtoField, base, expert
-local frametype, pairs = frametype, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
-local NOISE, REQUEST, RESPONSE, configure, new_state = NOISE, REQUEST, RESPONSE, configure, new_state
-local vw3 = vw3
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE
+local Pref, Proto, ProtoExpert, ProtoField, REQUEST = Pref, Proto, ProtoExpert, ProtoField, REQUEST
+local RESPONSE, base, configure, expert, frametype, lane = RESPONSE, base, configure, expert, frametype, lane
+local new_state, pairs, vw3 = new_state, pairs, vw3
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
@@ -6015,12 +6005,11 @@ package.preload["vw3.show"] = function(...)
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
-local ByteArray, ipairs, pairs, pcall, tostring, type = ByteArray, ipairs, pairs, pcall, tostring, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, EXCEPTION, NOISE, PROFILES, add_text = AUTO, EXCEPTION, NOISE, PROFILES, add_text
-local build_device, concat, dissect_record, ex, finish = build_device, concat, dissect_record, ex, finish
-local format, lane, new_state, pack, pf, proto = format, lane, new_state, pack, pf, proto
-local show_frame, show_noise, summary, unseen = show_frame, show_noise, summary, unseen
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat = AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat
+local ex, finish, format, ipairs, lane, pack, pairs, pcall = ex, finish, format, ipairs, lane, pack, pairs, pcall
+local pf, proto, show_frame, show_noise, summary, tostring = pf, proto, show_frame, show_noise, summary, tostring
+local type, unseen = type, unseen
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -6236,15 +6225,15 @@ package.preload["vw3.dissector"] = function(...)
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
 local M = require("vw3.env")
-local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto
-local math, package, pcall, tostring, type, wtap = math, package, pcall, tostring, type, wtap
-local _ENV = M -- (the other modules' names: their exports in M)
-local MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE = MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE
-local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
-local detect_mode, device_for, device_now, dissect_now = detect_mode, device_for, device_now, dissect_now
-local ex, feed, finish_all, lane, new_state, pack, pf = ex, feed, finish_all, lane, new_state, pack, pf
-local proto, record_time, show_record, take_items = proto, record_time, show_record, take_items
-local timeout_pref, tree_mode, vw3 = timeout_pref, tree_mode, vw3
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable
+local MODE_NAMES, MODE_SAMPLE, Proto, READS, REQUEST = MODE_NAMES, MODE_SAMPLE, Proto, READS, REQUEST
+local RESPONSE, add_register, add_text, annotate_list = RESPONSE, add_register, add_text, annotate_list
+local apply_prefs, detect_mode, device_for, device_now = apply_prefs, detect_mode, device_for, device_now
+local dissect_now, ex, feed, finish_all, lane, math = dissect_now, ex, feed, finish_all, lane, math
+local new_state, pack, package, pcall, pf, proto = new_state, pack, package, pcall, pf, proto
+local record_time, show_record, take_items, timeout_pref = record_time, show_record, take_items, timeout_pref
+local tostring, tree_mode, type, vw3, wtap = tostring, tree_mode, type, vw3, wtap
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)

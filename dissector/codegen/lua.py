@@ -263,6 +263,70 @@ def module_names(main_text: str) -> list[str]:
     return names
 
 
+# The globals of Lua and of Wireshark's Lua API a module may use; the generator binds those it uses as
+# locals (a global read through the shared table of names costs a metatable look-up a use). Globals the
+# plugin itself changes while it runs (`config`, `state`, ...) are never bound: they are read as they are.
+LUA_GLOBALS = frozenset("""
+    assert bit bit32 collectgarbage error getmetatable io ipairs load math next os package pairs pcall print
+    rawget rawset select setmetatable string table tonumber tostring type xpcall
+    ByteArray DESEGMENT_ONE_MORE_SEGMENT DissectorTable NSTime Pref Proto ProtoExpert ProtoField base expert
+    frametype wtap
+""".split())
+ENV_LINE = "local _ENV = M"
+_STRING_OR_COMMENT = re.compile(r"--\[(=*)\[.*?\]\1\]|--[^\n]*|\[(=*)\[.*?\]\2\]|\"(?:\\.|[^\"\\\n])*\"|'(?:\\.|[^'\\\n])*'",
+                                re.S)
+# (a number, `..`, or a field `.name`/`:name` is matched whole, so that only names used as names remain)
+_TOKEN = re.compile(r"\d[\w.]*|\.\.+|[.:]\s*[A-Za-z_]\w*|[A-Za-z_]\w*\s*=(?!=)|([A-Za-z_]\w*)")
+
+
+def _code_only(text: str) -> str:
+    """A module's text without its comments and strings (what it names as code)."""
+    return _STRING_OR_COMMENT.sub(" ", text)
+
+
+def module_exports(text: str) -> list[str]:
+    """The names a module exports: the `M.NAME` its `M.a, M.b = a, b` lines set."""
+    names = []
+    for line in text.split("\n"):
+        if line.startswith("M.") and " = " in line:
+            names += re.findall(r"M\.(\w+)", line.split(" = ", 1)[0])
+    return names
+
+
+def module_bindings(name: str, text: str, available: set[str]) -> list[str]:
+    """The lines that bind as locals what module `name` uses of the globals and of the earlier modules'
+    exports (`available`), in sorted order, after its `local _ENV = M` line. Refused: a module that
+    assigns such a name (it would assign the local, not the shared name)."""
+    code = _code_only(text)
+    declared = set(re.findall(r"^local function (\w+)", code, re.M))
+    for names in re.findall(r"^local ([\w, ]+?)(?: =|$)", code, re.M):
+        declared.update(part.strip() for part in names.split(","))
+    # (a global the module also names as a local or a parameter somewhere, as `base`, is left unbound: the
+    # binding would stand for either)
+    anywhere = set()
+    for names in re.findall(r"\bfunction\s*[\w.:]*\s*\(([^)]*)\)|\blocal\s+(?!function\b)([\w, ]+)|\bfor\s+([\w, ]+?)\s*(?:=|in\b)", code):
+        anywhere.update(part.strip() for group in names for part in group.split(","))
+    # (a name followed by `=` is assigned or a table constructor's key: no use)
+    used = {token for token in _TOKEN.findall(code + " ")} & (available | (LUA_GLOBALS - anywhere))
+    used -= declared | {"M", "_ENV"}
+    depth = 0  # (open brackets at a line's start: a `key = value` inside a table constructor is no assignment)
+    for line in code.split("\n"):
+        if depth == 0:
+            target = re.match(r"\s*((?:[\w.]+\s*,\s*)*[\w.]+)\s*=(?!=)", line)
+            for bound in set(re.split(r"\s*,\s*", target.group(1)) if target else ()) & used:
+                raise GenerateError(f"lua/src/{name}.lua assigns {bound}, a name the generator binds as a local")
+        depth += sum(line.count(char) for char in "({[") - sum(line.count(char) for char in ")}]")
+    lines = []
+    names = sorted(used)
+    while names:
+        take = 1
+        while take < len(names) and len(", ".join(names[:take + 1])) * 2 + 10 <= 116:
+            take += 1
+        part, names = names[:take], names[take:]
+        lines.append(f"local {', '.join(part)} = {', '.join(part)}")
+    return lines
+
+
 def render_plugin(src: Path = SRC) -> str:
     """lua/vw3.lua as the modules in `src` and the package's data assemble it."""
     try:
@@ -275,15 +339,22 @@ def render_plugin(src: Path = SRC) -> str:
         cut += 1
     header, body = "\n".join(lines[:cut]), "\n".join(lines[cut:]).lstrip("\n")
     parts = [header, "", render_data()]
+    available = {"DATA"}  # (main.lua puts it in the shared table of names, vw3.env)
     for name in module_names(main_text):
         path = src / f"{name}.lua"
         try:
             text = path.read_text(encoding="utf-8")
         except OSError as error:
             raise GenerateError(f"{path}: {error.strerror or error} (listed in {MAIN})") from None
+        lines = text.rstrip("\n").split("\n")
+        at = next((index for index, line in enumerate(lines) if line.startswith(ENV_LINE)), None)
+        if at is None:
+            raise GenerateError(f"{path}: no `{ENV_LINE}` line (after which the generator binds what it uses)")
+        lines[at + 1:at + 1] = module_bindings(name, text, available)
+        available.update(module_exports(text))
         parts.append(MODULE_LINE.format(name=name))
         parts.append(f'package.preload["vw3.{name}"] = function(...)')
-        parts.append(text.rstrip("\n"))
+        parts.append("\n".join(lines))
         parts.append("end")
         parts.append("")
     parts.append(body.rstrip("\n"))

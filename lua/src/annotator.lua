@@ -2,16 +2,7 @@
 -- Mirrors dissector/devices/annotator.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
 local M = require("vw3.env")
-local ipairs, math, pairs, string, table = ipairs, math, pairs, string, table
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
-local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
-local annotate_registers, check_request, concat = annotate_registers, check_request, concat
-local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, format, parse_map_choice = explain_objects, format, parse_map_choice
-local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
-local remember_writes, span_label = remember_writes, span_label
-local describe, register_at, words_at = describe, register_at, words_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local annotate_with
 
 annotate_with = function(st, f, b, device)

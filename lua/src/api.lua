@@ -2,10 +2,7 @@
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
 local M = require("vw3.env")
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, configure, crc16, dissect_record = DATA, configure, crc16, dissect_record
-local exception_name, finish, function_name, new_state = exception_name, finish, function_name, new_state
-local pack = pack
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local vw3 = {
   DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,

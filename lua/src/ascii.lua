@@ -2,11 +2,7 @@
 -- Mirrors dissector/framing/ascii.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
-local ipairs, math, string, tonumber = ipairs, math, string, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, add_noise, crc16, emit, floor = DATA, add_noise, crc16, emit, floor
-local flush_noise, format = flush_noise, format
-local interpretations, time_at = interpretations, time_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local detect_mode
 -- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
 local TEXTS = DATA.rules.texts

@@ -2,9 +2,7 @@
 -- Mirrors dissector/protocol/crc.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
 local M = require("vw3.env")
-local bit, bit32, collectgarbage, load, math, pcall = bit, bit32, collectgarbage, load, math, pcall
-local string, table, type = string, table, type
-local _ENV = M -- (the other modules' names: their exports in M)
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local floor = math.floor
 local format = string.format

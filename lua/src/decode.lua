@@ -2,11 +2,8 @@
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local ipairs, load, pairs, string, table, type = ipairs, load, pairs, string, table, type
 local unpack = table.unpack or unpack
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE
-local concat, floor, format = concat, floor, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------

@@ -2,10 +2,7 @@
 -- Mirrors dissector/devices/build.py, dissector/devices/maps.py (interpret).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.device"]).
 local M = require("vw3.env")
-local ipairs, next, pairs, setmetatable, table, tonumber = ipairs, next, pairs, setmetatable, table, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, NO_INTERPRETATION, PROFILES, SELECTION = AUTO, NO_INTERPRETATION, PROFILES, SELECTION
-local concat, floor, format = concat, floor, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local plc_label
 local PLC_TOP = {} -- the highest reference of each base's digit count

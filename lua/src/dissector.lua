@@ -2,15 +2,7 @@
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
 local M = require("vw3.env")
-local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable, Proto
-local math, package, pcall, tostring, type, wtap = math, package, pcall, tostring, type, wtap
-local _ENV = M -- (the other modules' names: their exports in M)
-local MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE = MODE_NAMES, MODE_SAMPLE, READS, REQUEST, RESPONSE
-local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
-local detect_mode, device_for, device_now, dissect_now = detect_mode, device_for, device_now, dissect_now
-local ex, feed, finish_all, lane, new_state, pack, pf = ex, feed, finish_all, lane, new_state, pack, pf
-local proto, record_time, show_record, take_items = proto, record_time, show_record, take_items
-local timeout_pref, tree_mode, vw3 = timeout_pref, tree_mode, vw3
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)

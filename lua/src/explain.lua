@@ -2,13 +2,7 @@
 -- Mirrors dissector/devices/checks.py, dissector/devices/explain.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
-local ipairs, math, next, tonumber = ipairs, math, next, tonumber
-local _ENV = M -- (the other modules' names: their exports in M)
-local NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS = NOT_BROADCAST, NO_INTERPRETATION, PLAIN_READS
-local LIFT_OF, REQUEST = LIFT_OF, REQUEST
-local READ_LIMIT, RESPONSE, address_name, concat, format = READ_LIMIT, RESPONSE, address_name, concat, format
-local function_name, lane, note, plc_label, story, track = function_name, lane, note, plc_label, story, track
-local say, u16, warn = say, u16, warn
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)

@@ -2,12 +2,7 @@
 -- Mirrors dissector/framing/stream.py (feed, finish).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
-local next, pairs, string = next, pairs, string
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST
-local expect_after, fast_interpretation, flush_noise = expect_after, fast_interpretation, flush_noise
-local interpretations, known_requests, lane, rtu_frame = interpretations, known_requests, lane, rtu_frame
-local run_ascii, run_rtu, whole_crc_good = run_ascii, run_rtu, whole_crc_good
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local feed
 local feed_whole
 

@@ -2,12 +2,7 @@
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
 local M = require("vw3.env")
-local Proto, ProtoExpert, ProtoField, base, expert = Proto, ProtoExpert, ProtoField, base, expert
-local frametype, pairs = frametype, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
-local NOISE, REQUEST, RESPONSE, configure, new_state = NOISE, REQUEST, RESPONSE, configure, new_state
-local vw3 = vw3
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 

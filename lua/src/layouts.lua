@@ -2,9 +2,7 @@
 -- Mirrors dissector/protocol/table.py (the rules codegen writes into DATA.protocol).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
 local M = require("vw3.env")
-local math, pairs = math, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.

@@ -2,10 +2,7 @@
 -- Mirrors dissector/devices/maps.py, dissector/devices/profiles.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
-local io, ipairs, math, select, string, tonumber = io, ipairs, math, select, string, tonumber
-local tostring = tostring
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, LIMITS, concat, format = DATA, LIMITS, concat, format
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 
 -- ---------------------------------------------------------------------------------------------------

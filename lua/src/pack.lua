@@ -2,9 +2,7 @@
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
 local M = require("vw3.env")
-local assert, load, next, pairs, type = assert, load, next, pairs, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, concat
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- What a record keeps of a frame (or noise run) for the later passes, packed: an array with the keys in
 -- fixed slots. A table with named keys keeps the hash it grew to while the frame was decoded (some 25

@@ -2,8 +2,7 @@
 -- Mirrors dissector/decode/pairing.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
-local _ENV = M -- (the other modules' names: their exports in M)
-local REQUEST, release_run, say, warn = REQUEST, release_run, say, warn
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local UNMATCHED = say("unmatched", {})
 
 -- ---------------------------------------------------------------------------------------------------

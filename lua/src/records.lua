@@ -2,15 +2,7 @@
 -- Mirrors dissector/pipeline.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
-local ipairs, math, next, pairs, pcall, string = ipairs, math, next, pairs, pcall, string
-local tostring, type = tostring, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST = AUTO, DATA, MODE_SAMPLE, NOISE, READS, REQUEST
-local RESPONSE, annotate_with, ceil_bytes, crc_string_ok = RESPONSE, annotate_with, ceil_bytes, crc_string_ok
-local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
-local feed, feed_whole, known_requests, lane, pack, pair = feed, feed_whole, known_requests, lane, pack, pair
-local release_run, remember_writes, story, string_of = release_run, remember_writes, story, string_of
-local CONFIRMED, PROFILES, build_device, new_state = CONFIRMED, PROFILES, build_device, new_state
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).

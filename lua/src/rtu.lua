@@ -2,15 +2,7 @@
 -- Mirrors dissector/framing/rtu.py, dissector/framing/evidence.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
-local math, pairs, table = math, pairs, table
-local _ENV = M -- (the other modules' names: their exports in M)
-local CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH
-local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
-local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
-local RESPONSE, RULES, XOR8, add_noise, boundary_at = RESPONSE, RULES, XOR8, add_noise, boundary_at
-local crc16, crc_bytes, crc_ok_at, crc_string_ok, emit = crc16, crc_bytes, crc_ok_at, crc_string_ok, emit
-local format, interpretations, lane, shortest_crc = format, interpretations, lane, shortest_crc
-local time_at = time_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local known_requests
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none

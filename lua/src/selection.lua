@@ -2,11 +2,7 @@
 -- Mirrors dissector/devices/selection.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
-local ipairs, math, next, pairs, table = ipairs, math, next, pairs, table
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
-local RESPONSE, SELECTION, build_device, device_for = RESPONSE, SELECTION, build_device, device_for
-local format, lane, python_repr, register_at = format, lane, python_repr, register_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function

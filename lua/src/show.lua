@@ -2,12 +2,7 @@
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
-local ByteArray, ipairs, pairs, pcall, tostring, type = ByteArray, ipairs, pairs, pcall, tostring, type
-local _ENV = M -- (the other modules' names: their exports in M)
-local AUTO, EXCEPTION, NOISE, PROFILES, add_text = AUTO, EXCEPTION, NOISE, PROFILES, add_text
-local build_device, concat, dissect_record, ex, finish = build_device, concat, dissect_record, ex, finish
-local format, lane, new_state, pack, pf, proto = format, lane, new_state, pack, pf, proto
-local show_frame, show_noise, summary, unseen = show_frame, show_noise, summary, unseen
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),

@@ -2,10 +2,7 @@
 -- Mirrors dissector/devices/story.py, dissector/devices/annotator.py (registers).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
-local ipairs, next, table = ipairs, next, table
-local _ENV = M -- (the other modules' names: their exports in M)
-local address_name, concat, format, has_note, interpret = address_name, concat, format, has_note, interpret
-local interpret_wide, note, plc_label, register_at = interpret_wide, note, plc_label, register_at
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.

@@ -2,9 +2,7 @@
 -- Mirrors dissector/framing/stream.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
-local math, pairs = math, pairs
-local _ENV = M -- (the other modules' names: their exports in M)
-local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
