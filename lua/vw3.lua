@@ -2932,9 +2932,7 @@ local PROFILES = DATA.profiles or {}
 local READS = DATA.protocol.reads
 -- Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
 local PLAIN_READS = DATA.protocol.plain_reads
-local MAX_LISTED = 8
 local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
-local ELLIPSIS = "\226\128\166"
 
 -- The choices the preferences make: default profile (`auto`: one per slave from evidence, devices/
 -- selection.py), profile per slave, address style override, map layers.
@@ -3262,7 +3260,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat
 local floor, format, ipairs, next, pairs, setmetatable = floor, format, ipairs, next, pairs, setmetatable
-local table, tonumber = table, tonumber
+local tonumber = tonumber
 
 local plc_label
 local PLC_TOP = {} -- the highest reference of each base's digit count
@@ -3305,13 +3303,6 @@ local function address_name(row, address, label)
   local shown = label or format("%d", address)
   if row ~= nil then return format("%s (%s)", row.code, shown) end
   return shown
-end
-
-local function sorted_keys(set)
-  local keys = {}
-  for key in pairs(set) do keys[#keys + 1] = key end
-  table.sort(keys)
-  return keys
 end
 
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
@@ -4466,12 +4457,9 @@ local concat, load, next, pairs, type = concat, load, next, pairs, type
 -- fixed slots. A table with named keys keeps the hash it grew to while the frame was decoded (some 25
 -- keys, 1.3 KB); the array takes 0.3 KB. Requests and responses name each other by record (and the
 -- request's time): no links between kept tables. The display unpacks a frame each time it shows it.
--- A key the display reads must be in SLOTS or RARE: one missing shows only from the second pass on
--- (`tshark -2`, which the parity tests run).
+-- A key the display reads must have a slot (pack.item) or be in RARE: one missing shows only from the
+-- second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
-  local SLOTS = { "kind", "at", "length", "number", "offset", "record", "time", "slave", "fn", "crc",
-    "crc_expected", "start", "quantity" }
-  -- (then: registers, bits as runs; request record and time, response record; the rare keys)
   local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "span_label", "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects",
     "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said",
@@ -5547,16 +5535,14 @@ package.preload["vw3.tree"] = function(...)
 -- Mirrors dissector/render/detail.py, dissector/render/summary.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
-local NSTime, ProtoField, ipairs, pairs, setmetatable = NSTime, ProtoField, ipairs, pairs, setmetatable
-local string, tonumber, tostring = string, tonumber, tostring
-local _ENV = M -- (the other modules' names: their exports in M)
-local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
-local NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST = NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST
-local RESPONSE, bit_at, concat, describe = RESPONSE, bit_at, concat, describe
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES, NOISE = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES, NOISE
+local NO_INTERPRETATION, NSTime, PROFILES, ProtoField = NO_INTERPRETATION, NSTime, PROFILES, ProtoField
+local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
-local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
-local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
-local START_FROM_REQUEST, register_view = START_FROM_REQUEST, register_view
+local function_name, inferred_registers, ipairs, pairs, pf = function_name, inferred_registers, ipairs, pairs, pf
+local proto, register_view, setmetatable, story, string = proto, register_view, setmetatable, story, string
+local tonumber, tostring = tonumber, tostring
 local summary
 
 local function add_text(tree, expert_info, text)
@@ -5679,74 +5665,59 @@ local PARAMETER_FIELDS = {}
   for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
   proto.fields = field_list
 
--- A register's text fields have one occurrence per register, empty (and hidden) where the register has
--- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
--- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
--- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
--- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
-function unseen.shown(sub, field, r, text)
-  if text then sub:add(field, r, text):set_generated() else sub:add(field, r, ""):set_hidden() end
+-- The same for a tree that is shown: every field added, from the range of the register or bit being
+-- added (unseen.range, set by the caller).
+function unseen.put(parent, field, value, generated, hidden)
+  local item
+  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
+  if generated then item:set_generated() end
+  if hidden then item:set_hidden() end
+  return item
 end
 
-function unseen.text(sub, field, text)
-  if text then unseen.add(sub, field, text, true) else unseen.add(sub, field, "", false, true) end
+-- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
+-- bit's bytes (`size` at `at`, or `range`) made the current range.
+local function adder(tvb, f, at, size, range, full)
+  if full == "unseen" then
+    unseen.at(tvb, f, at, size)
+    return unseen.add
+  end
+  unseen.range = range or frame_range(tvb, f, at, size)
+  return unseen.put
 end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
+-- A register's text fields have one occurrence per register, empty (and hidden) where the register has
+-- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
+-- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
+-- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
+-- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
 local function add_register(tree, tvb, f, reg, range, full)
-  if full == false then
-    if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
-    return
-  end
-  if full == "unseen" then
-    -- tree is the frame's item, in an invisible tree (see unseen.add).
-    unseen.at(tvb, f, reg.offset or -1, 2)
-    local sub = unseen.add(tree, pf.reg)
-    sub:set_text(register_title(reg))
-    if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
-    unseen.text(sub, pf.reg_label, reg.label)
-    if reg.value ~= nil then unseen.add(sub, pf.reg_value, reg.value, false) end
+  if full ~= false then
+    local add = adder(tvb, f, reg.offset or -1, 2, range, full)
+    local sub = add(tree, pf.reg)
+    sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
+    if reg.address ~= nil then add(sub, pf.reg_address, reg.address, true) end
+    add(sub, pf.reg_label, reg.label or "", reg.label ~= nil, reg.label == nil)
+    if reg.value ~= nil then add(sub, pf.reg_value, reg.value) end -- (none: an exception 02's inferred status)
     local row = reg.row or unseen.no_row
-    unseen.text(sub, pf.reg_code, row.code)
-    unseen.text(sub, pf.reg_name, row.name)
-    unseen.text(sub, pf.reg_unit, row.unit)
-    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
+    add(sub, pf.reg_code, row.code or "", row.code ~= nil, row.code == nil)
+    add(sub, pf.reg_name, row.name or "", row.name ~= nil, row.name == nil)
+    add(sub, pf.reg_unit, row.unit or "", row.unit ~= nil, row.unit == nil)
+    if reg.scaled ~= nil then add(sub, pf.reg_scaled, reg.scaled, true) end
     local parameter = PARAMETER_FIELDS[row]
     if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
-      unseen.add(sub, parameter, reg.scaled or reg.value, true)
+      add(sub, parameter, reg.scaled or reg.value, true)
     end
-    unseen.text(sub, pf.reg_text, reg.text)
-    unseen.text(sub, pf.reg_source, row.source)
-    if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
-    unseen.text(sub, pf.reg_status, reg.status)
-    if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
-    return
+    add(sub, pf.reg_text, reg.text or "", reg.text ~= nil, reg.text == nil)
+    add(sub, pf.reg_source, row.source or "", row.source ~= nil, row.source == nil)
+    if reg.words ~= nil and reg.words ~= 1 then add(sub, pf.reg_words, reg.words, true) end
+    add(sub, pf.reg_status, reg.status or "", reg.status ~= nil, reg.status == nil)
+    tree = sub
   end
-  local r = range or frame_range(tvb, f, reg.offset or -1, 2)
-  local sub = tree:add(pf.reg, r)
-  sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
-  if reg.address ~= nil then
-    local item = sub:add(pf.reg_address, r, reg.address)
-    if r ~= nil then item:set_generated() end
-  end
-  unseen.shown(sub, pf.reg_label, r, reg.label)
-  if reg.value ~= nil then sub:add(pf.reg_value, r, reg.value) end -- (none: an exception 02's inferred status)
-  local row = reg.row or unseen.no_row
-  unseen.shown(sub, pf.reg_code, r, row.code)
-  unseen.shown(sub, pf.reg_name, r, row.name)
-  unseen.shown(sub, pf.reg_unit, r, row.unit)
-  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
-  local parameter = PARAMETER_FIELDS[row]
-  if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
-    sub:add(parameter, r, reg.scaled or reg.value):set_generated()
-  end
-  unseen.shown(sub, pf.reg_text, r, reg.text)
-  unseen.shown(sub, pf.reg_source, r, row.source)
-  if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
-  unseen.shown(sub, pf.reg_status, r, reg.status)
-  if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
+  if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
@@ -5867,23 +5838,16 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local bits = f.bits
     if bits and bits.count > 0 then
       local b = bits.single == nil and frame_bytes(f, tvb) or nil
-      local checked = full == "unseen" and bits.count > 1
+      -- (checking which fields are faked pays from the second bit on)
+      local mode = full
+      if full == "unseen" and bits.count < 2 then mode = true end
       for index = 0, bits.count - 1 do
         local address, value, k = bit_at(bits, b, index, true)
-        local title = format("Bit %s = %d", address and tostring(address) or "?", value)
-        if checked then
-          unseen.at(tvb, f, k, 1)
-          local sub = unseen.add(t, pf.bit)
-          sub:set_text(title)
-          if address ~= nil then unseen.add(sub, pf.bit_address, address, true) end
-          unseen.add(sub, pf.bit_value, value, true)
-        else
-          local r = frame_range(tvb, f, k, 1)
-          local sub = t:add(pf.bit, r)
-          sub:set_text(title)
-          if address ~= nil then sub:add(pf.bit_address, r, address):set_generated() end
-          sub:add(pf.bit_value, r, value):set_generated()
-        end
+        local add = adder(tvb, f, k, 1, nil, mode)
+        local sub = add(t, pf.bit)
+        sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
+        if address ~= nil then add(sub, pf.bit_address, address, true) end
+        add(sub, pf.bit_value, value, true)
       end
     end
     if unseen.generated then

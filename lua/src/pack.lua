@@ -8,12 +8,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- fixed slots. A table with named keys keeps the hash it grew to while the frame was decoded (some 25
 -- keys, 1.3 KB); the array takes 0.3 KB. Requests and responses name each other by record (and the
 -- request's time): no links between kept tables. The display unpacks a frame each time it shows it.
--- A key the display reads must be in SLOTS or RARE: one missing shows only from the second pass on
--- (`tshark -2`, which the parity tests run).
+-- A key the display reads must have a slot (pack.item) or be in RARE: one missing shows only from the
+-- second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
-  local SLOTS = { "kind", "at", "length", "number", "offset", "record", "time", "slave", "fn", "crc",
-    "crc_expected", "start", "quantity" }
-  -- (then: registers, bits as runs; request record and time, response record; the rare keys)
   local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "span_label", "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects",
     "server", "ascii", "raw", "reason", "inferred", "profile_choice", "profile_said",

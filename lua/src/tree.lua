@@ -2,16 +2,7 @@
 -- Mirrors dissector/render/detail.py, dissector/render/summary.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
-local NSTime, ProtoField, ipairs, pairs, setmetatable = NSTime, ProtoField, ipairs, pairs, setmetatable
-local string, tonumber, tostring = string, tonumber, tostring
-local _ENV = M -- (the other modules' names: their exports in M)
-local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
-local NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST = NOISE, NO_INTERPRETATION, PROFILES, READS, REQUEST
-local RESPONSE, bit_at, concat, describe = RESPONSE, bit_at, concat, describe
-local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
-local function_name, inferred_registers, pf, plc_base = function_name, inferred_registers, pf, plc_base
-local plc_label, proto, register_at, story, words_at = plc_label, proto, register_at, story, words_at
-local START_FROM_REQUEST, register_view = START_FROM_REQUEST, register_view
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local summary
 
 local function add_text(tree, expert_info, text)
@@ -134,74 +125,59 @@ local PARAMETER_FIELDS = {}
   for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
   proto.fields = field_list
 
--- A register's text fields have one occurrence per register, empty (and hidden) where the register has
--- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
--- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
--- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
--- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
-function unseen.shown(sub, field, r, text)
-  if text then sub:add(field, r, text):set_generated() else sub:add(field, r, ""):set_hidden() end
+-- The same for a tree that is shown: every field added, from the range of the register or bit being
+-- added (unseen.range, set by the caller).
+function unseen.put(parent, field, value, generated, hidden)
+  local item
+  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
+  if generated then item:set_generated() end
+  if hidden then item:set_hidden() end
+  return item
 end
 
-function unseen.text(sub, field, text)
-  if text then unseen.add(sub, field, text, true) else unseen.add(sub, field, "", false, true) end
+-- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
+-- bit's bytes (`size` at `at`, or `range`) made the current range.
+local function adder(tvb, f, at, size, range, full)
+  if full == "unseen" then
+    unseen.at(tvb, f, at, size)
+    return unseen.add
+  end
+  unseen.range = range or frame_range(tvb, f, at, size)
+  return unseen.put
 end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
+-- A register's text fields have one occurrence per register, empty (and hidden) where the register has
+-- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
+-- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
+-- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
+-- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
 local function add_register(tree, tvb, f, reg, range, full)
-  if full == false then
-    if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
-    return
-  end
-  if full == "unseen" then
-    -- tree is the frame's item, in an invisible tree (see unseen.add).
-    unseen.at(tvb, f, reg.offset or -1, 2)
-    local sub = unseen.add(tree, pf.reg)
-    sub:set_text(register_title(reg))
-    if reg.address ~= nil then unseen.add(sub, pf.reg_address, reg.address, true) end
-    unseen.text(sub, pf.reg_label, reg.label)
-    if reg.value ~= nil then unseen.add(sub, pf.reg_value, reg.value, false) end
+  if full ~= false then
+    local add = adder(tvb, f, reg.offset or -1, 2, range, full)
+    local sub = add(tree, pf.reg)
+    sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
+    if reg.address ~= nil then add(sub, pf.reg_address, reg.address, true) end
+    add(sub, pf.reg_label, reg.label or "", reg.label ~= nil, reg.label == nil)
+    if reg.value ~= nil then add(sub, pf.reg_value, reg.value) end -- (none: an exception 02's inferred status)
     local row = reg.row or unseen.no_row
-    unseen.text(sub, pf.reg_code, row.code)
-    unseen.text(sub, pf.reg_name, row.name)
-    unseen.text(sub, pf.reg_unit, row.unit)
-    if reg.scaled ~= nil then unseen.add(sub, pf.reg_scaled, reg.scaled, true) end
+    add(sub, pf.reg_code, row.code or "", row.code ~= nil, row.code == nil)
+    add(sub, pf.reg_name, row.name or "", row.name ~= nil, row.name == nil)
+    add(sub, pf.reg_unit, row.unit or "", row.unit ~= nil, row.unit == nil)
+    if reg.scaled ~= nil then add(sub, pf.reg_scaled, reg.scaled, true) end
     local parameter = PARAMETER_FIELDS[row]
     if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
-      unseen.add(sub, parameter, reg.scaled or reg.value, true)
+      add(sub, parameter, reg.scaled or reg.value, true)
     end
-    unseen.text(sub, pf.reg_text, reg.text)
-    unseen.text(sub, pf.reg_source, row.source)
-    if reg.words ~= nil and reg.words ~= 1 then unseen.add(sub, pf.reg_words, reg.words, true) end
-    unseen.text(sub, pf.reg_status, reg.status)
-    if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
-    return
+    add(sub, pf.reg_text, reg.text or "", reg.text ~= nil, reg.text == nil)
+    add(sub, pf.reg_source, row.source or "", row.source ~= nil, row.source == nil)
+    if reg.words ~= nil and reg.words ~= 1 then add(sub, pf.reg_words, reg.words, true) end
+    add(sub, pf.reg_status, reg.status or "", reg.status ~= nil, reg.status == nil)
+    tree = sub
   end
-  local r = range or frame_range(tvb, f, reg.offset or -1, 2)
-  local sub = tree:add(pf.reg, r)
-  sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
-  if reg.address ~= nil then
-    local item = sub:add(pf.reg_address, r, reg.address)
-    if r ~= nil then item:set_generated() end
-  end
-  unseen.shown(sub, pf.reg_label, r, reg.label)
-  if reg.value ~= nil then sub:add(pf.reg_value, r, reg.value) end -- (none: an exception 02's inferred status)
-  local row = reg.row or unseen.no_row
-  unseen.shown(sub, pf.reg_code, r, row.code)
-  unseen.shown(sub, pf.reg_name, r, row.name)
-  unseen.shown(sub, pf.reg_unit, r, row.unit)
-  if reg.scaled ~= nil then sub:add(pf.reg_scaled, r, reg.scaled):set_generated() end
-  local parameter = PARAMETER_FIELDS[row]
-  if parameter ~= nil and reg.status ~= "protected" and reg.value ~= nil and reg.words ~= 0 then
-    sub:add(parameter, r, reg.scaled or reg.value):set_generated()
-  end
-  unseen.shown(sub, pf.reg_text, r, reg.text)
-  unseen.shown(sub, pf.reg_source, r, row.source)
-  if reg.words ~= nil and reg.words ~= 1 then sub:add(pf.reg_words, r, reg.words):set_generated() end
-  unseen.shown(sub, pf.reg_status, r, reg.status)
-  if reg.status and reg.status ~= "ok" then add_text(sub, ex.protected, register_expert(reg)) end
+  if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
@@ -322,23 +298,16 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local bits = f.bits
     if bits and bits.count > 0 then
       local b = bits.single == nil and frame_bytes(f, tvb) or nil
-      local checked = full == "unseen" and bits.count > 1
+      -- (checking which fields are faked pays from the second bit on)
+      local mode = full
+      if full == "unseen" and bits.count < 2 then mode = true end
       for index = 0, bits.count - 1 do
         local address, value, k = bit_at(bits, b, index, true)
-        local title = format("Bit %s = %d", address and tostring(address) or "?", value)
-        if checked then
-          unseen.at(tvb, f, k, 1)
-          local sub = unseen.add(t, pf.bit)
-          sub:set_text(title)
-          if address ~= nil then unseen.add(sub, pf.bit_address, address, true) end
-          unseen.add(sub, pf.bit_value, value, true)
-        else
-          local r = frame_range(tvb, f, k, 1)
-          local sub = t:add(pf.bit, r)
-          sub:set_text(title)
-          if address ~= nil then sub:add(pf.bit_address, r, address):set_generated() end
-          sub:add(pf.bit_value, r, value):set_generated()
-        end
+        local add = adder(tvb, f, k, 1, nil, mode)
+        local sub = add(t, pf.bit)
+        sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
+        if address ~= nil then add(sub, pf.bit_address, address, true) end
+        add(sub, pf.bit_value, value, true)
       end
     end
     if unseen.generated then
