@@ -1804,6 +1804,13 @@ local function scan_match(s, b, i, n, minimum, final)
   return NONE
 end
 
+-- The list with value appended (a new list for nil: most positions have none).
+local function added(list, value)
+  if list == nil then return { value } end
+  list[#list + 1] = value
+  return list
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
@@ -1822,29 +1829,19 @@ local function match(s, b, i, n, final)
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
-        waiting = waiting or {}
-        waiting[#waiting + 1] = NEED
+        waiting = added(waiting, NEED)
       elseif found > 0 then
-        valid = valid or {}
-        valid[#valid + 1] = { kind, found }
+        valid = added(valid, { kind, found })
       end
     elseif length == NEED then
-      if not final then
-        waiting = waiting or {}
-        waiting[#waiting + 1] = NEED
-      end
+      if not final then waiting = added(waiting, NEED) end
     elseif length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
-        if not final then
-          waiting = waiting or {}
-          waiting[#waiting + 1] = length
-        end
+        if not final then waiting = added(waiting, length) end
       elseif crc_ok_at(b, i, length) then
-        valid = valid or {}
-        valid[#valid + 1] = { kind, length }
+        valid = added(valid, { kind, length })
       else
-        damaged = damaged or {}
-        damaged[#damaged + 1] = { kind, length }
+        damaged = added(damaged, { kind, length })
       end
     end
   end
@@ -3305,6 +3302,29 @@ local function address_name(row, address, label)
   return shown
 end
 
+-- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
+-- in runs, an entry joining the run before it where joins(last of the run, entry) holds.
+local function address_runs(entries, joins)
+  local runs, run = {}, nil
+  for _, entry in ipairs(entries) do
+    if run ~= nil and joins(run[#run], entry) then
+      run[#run + 1] = entry
+    else
+      run = { entry }
+      runs[#runs + 1] = run
+    end
+  end
+  return runs
+end
+
+local function consecutive(a, b) return b.address == a.address + 1 end
+
+-- A run of several addresses as `first..last`.
+local function span_name(run)
+  local a, b = run[1], run[#run]
+  return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -3468,7 +3488,8 @@ interpret_wide = function(row, first, second)
   return value, text
 end
 
-M.address_name, M.build_device, M.device_for, M.device_of = address_name, build_device, device_for, device_of
+M.address_name, M.address_runs, M.consecutive, M.span_name = address_name, address_runs, consecutive, span_name
+M.build_device, M.device_for, M.device_of = build_device, device_for, device_of
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
 M.plc_label = plc_label
 end
@@ -3480,9 +3501,9 @@ package.preload["vw3.story"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local address_name, concat, format, has_note, interpret = address_name, concat, format, has_note, interpret
-local interpret_wide, ipairs, next, note, plc_label = interpret_wide, ipairs, next, note, plc_label
-local register_at, table = register_at, table
+local address_name, address_runs, concat, consecutive = address_name, address_runs, concat, consecutive
+local format, has_note, interpret, interpret_wide, ipairs = format, has_note, interpret, interpret_wide, ipairs
+local next, note, plc_label, register_at, span_name, table = next, note, plc_label, register_at, span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -3513,20 +3534,10 @@ function story.tell(f)
       note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
-      local parts, run = {}, { group[1] }
-      local function flush()
-        if #run == 1 then parts[#parts + 1] = event_name(run[1])
-        else
-          local a, b = run[1], run[#run]
-          parts[#parts + 1] = (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
-        end
+      local parts = {}
+      for index, run in ipairs(address_runs(group, consecutive)) do
+        parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
       end
-      for index = 2, #group do
-        local e = group[index]
-        if e.address == run[#run].address + 1 then run[#run + 1] = e
-        else flush(); run = { e } end
-      end
-      flush()
       local tail = format(": %s in frame #%d", first.how, first.frame)
       if first.shared ~= nil then tail = tail .. ", " .. first.shared end
       note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))
@@ -3753,9 +3764,10 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
 local PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE = PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE
-local address_name, concat, format, function_name, ipairs = address_name, concat, format, function_name, ipairs
-local lane, math, next, note, plc_label, say, story = lane, math, next, note, plc_label, say, story
-local tonumber, track, u16, warn = tonumber, track, u16, warn
+local address_name, address_runs, concat, consecutive = address_name, address_runs, concat, consecutive
+local format, function_name, ipairs, lane, math, next, note = format, function_name, ipairs, lane, math, next, note
+local plc_base, plc_label, say, span_name, story, tonumber = plc_base, plc_label, say, span_name, story, tonumber
+local track, u16, warn = track, u16, warn
 
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
@@ -3794,14 +3806,12 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    do
-      local name = profile_function_name(profile, code)
-      local allowed = {}
-      for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
-      local list = concat(allowed, ", ")
-      if list == "" then list = "none" end
-      warn(f, say("device_broadcast", { name = name, device = profile.device, allowed = list }))
-    end
+    local allowed = {}
+    for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
+    local list = concat(allowed, ", ")
+    if list == "" then list = "none" end
+    warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
+      allowed = list }))
   end
 end
 
@@ -3841,47 +3851,39 @@ local function cause_text(cause)
   return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
 end
 
+-- The registers of a read every parameter of which an exception 02 says non-existent or protected
+-- (explain._all_unreadable): each address with its row, label and that status, no value.
+local function refused_registers(device, request)
+  local base, out = plc_base(device, request), {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    local row = device.rows[address]
+    out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
+      label = base and plc_label(base, address) or nil }
+  end
+  return out
+end
+
+-- Addresses in a row that are both unmapped (a run of non-existent parameters, told as one range).
+local function both_unmapped(a, b) return a.row == nil and b.row == nil and consecutive(a, b) end
+
 local function all_unreadable(st, f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
-  local request = f.request
-  local rows = device.rows
-  local base = nil
-  if device.plc ~= nil then base = device.plc[request.fn] or device.plc_default end
-  local entries, parts = {}, {}
-  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
-    local address = (request.start + index) % 0x10000
-    local label = nil
-    if base ~= nil then label = plc_label(base, address) end
-    entries[#entries + 1] = { address = address, row = rows[address], label = label }
-  end
-  local run = {}
-  local function flush()
+  local entries, parts = refused_registers(device, f.request), {}
+  for index, run in ipairs(address_runs(entries, both_unmapped)) do
     local first = run[1]
     if #run == 1 then
-      parts[#parts + 1] = address_name(first.row, first.address, first.label)
-        .. (first.row == nil and " non-existent" or " protected")
+      parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
     else
-      local last = run[#run]
-      parts[#parts + 1] = format("%s..%s non-existent (%d)", first.label or format("%d", first.address),
-        last.label or format("%d", last.address), #run)
+      parts[index] = format("%s non-existent (%d)", span_name(run), #run)
     end
   end
-  for _, entry in ipairs(entries) do
-    local previous = run[#run]
-    if previous ~= nil and previous.row == nil and entry.row == nil and entry.address == previous.address + 1 then
-      run[#run + 1] = entry
-    else
-      if previous ~= nil then flush() end
-      run = { entry }
-    end
-  end
-  flush()
   note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
     f.exception_code, device.profile.device, concat(parts, ", ")))
   local now = format("exception %02X now", f.exception_code)
   for _, entry in ipairs(entries) do
-    track(device.seen, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
+    track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
   end
 end
 
@@ -3986,7 +3988,8 @@ end
 lane.span_label = span_label
 
 M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
-M.explain_objects, M.python_repr, M.span_label = explain_objects, python_repr, span_label
+M.explain_objects, M.python_repr, M.refused_registers = explain_objects, python_repr, refused_registers
+M.span_label = span_label
 end
 
 -- ---- vw3.selection: lua/src/selection.lua ----
@@ -4015,6 +4018,12 @@ for index = #CANDIDATES, 1, -1 do
   for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
 end
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
+
+-- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
+local function unsupported(current, fn)
+  local functions = PROFILES[current.profile].functions
+  return current.profile ~= SELECTION.fallback and functions ~= nil and not functions[fn]
+end
 
 local function settled(judged)
   return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
@@ -4153,10 +4162,10 @@ local function observe(st, f, b)
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
   if current ~= nil then
-    local profile = PROFILES[current.profile]
-    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[f.fn] then
+    if unsupported(current, f.fn) then
       judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
-        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number, profile.device) }
+        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number,
+        PROFILES[current.profile].device) }
       return judged.choice
     end
     return nil
@@ -4217,14 +4226,7 @@ function lane.quiet(st, slave, fn, answer)
   local current = judged.choice
   if current ~= nil and current.final then return true end
   if current == nil and not settled(judged) then return false end -- (a provisional frame: observe's path)
-  if answer then
-    if current ~= nil then
-      local profile = PROFILES[current.profile]
-      if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
-        return false
-      end
-    end
-  end
+  if answer and current ~= nil and unsupported(current, fn) then return false end
   return judged
 end
 
@@ -4304,13 +4306,13 @@ package.preload["vw3.annotator"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
-local READ_LIMIT, REQUEST, RESPONSE, SELECTION = READ_LIMIT, REQUEST, RESPONSE, SELECTION
-local annotate_registers, check_request, concat, describe = annotate_registers, check_request, concat, describe
-local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, format, ipairs, math, pairs = explain_objects, format, ipairs, math, pairs
-local parse_map_choice, parse_profile_choice, plc_base = parse_map_choice, parse_profile_choice, plc_base
-local plc_label, register_at, remember_writes, span_label = plc_label, register_at, remember_writes, span_label
-local string, table, words_at = string, table, words_at
+local REQUEST, RESPONSE, SELECTION, annotate_registers = REQUEST, RESPONSE, SELECTION, annotate_registers
+local check_request, concat, describe, device_of = check_request, concat, describe, device_of
+local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
+local format, ipairs, math, pairs, parse_map_choice = format, ipairs, math, pairs, parse_map_choice
+local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
+local refused_registers, register_at, remember_writes = refused_registers, register_at, remember_writes
+local span_label, string, table, words_at = span_label, string, table, words_at
 local annotate_with
 
 annotate_with = function(st, f, b, device)
@@ -4346,18 +4348,10 @@ end
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
 -- its status, no value. Made when shown, from the request and the device, rather than kept.
 local function inferred_registers(st, f)
-  local request = f.request
-  local device = device_of(st, f)
-  local base = plc_base(device, request)
   local text = format("no value: exception %02X", f.exception_code)
-  local out = {}
-  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
-    local address = (request.start + index) % 0x10000
-    local row = device.rows[address]
-    out[index + 1] = { address = address, row = row, text = text, offset = -1,
-      status = row == nil and "non-existent" or "protected", label = base and plc_label(base, address) or nil }
-  end
-  return out
+  local registers = refused_registers(device_of(st, f), f.request)
+  for _, reg in ipairs(registers) do reg.text, reg.offset = text, -1 end
+  return registers
 end
 
 local function configure(profiles_text, style, maps_text)
@@ -5369,15 +5363,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE
 local Pref, Proto, ProtoExpert, ProtoField, REQUEST = Pref, Proto, ProtoExpert, ProtoField, REQUEST
 local RESPONSE, base, configure, expert, frametype, lane = RESPONSE, base, configure, expert, frametype, lane
-local new_state, pairs, vw3 = new_state, pairs, vw3
+local new_state, vw3 = new_state, vw3
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
-
-local function names(table_)
-  local out = {}
-  for key, value in pairs(table_) do out[key] = value end
-  return out
-end
 
 -- The kind is an integer with value strings: `vw3.kind == "request"` filters by name, and an integer costs
 -- less than a string to add and to compare. A register's status is text, as vw3-decode's `status` key:
@@ -5391,12 +5379,12 @@ local pf = {
   kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
   mode = ProtoField.string("vw3.mode", "Mode"),
   slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
-  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, names(FUNCTIONS)),
+  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, FUNCTIONS),
   crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
   crc_expected = ProtoField.uint16("vw3.crc_expected", "Expected CRC", base.HEX),
   crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
   broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
-  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, names(EXCEPTIONS)),
+  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, EXCEPTIONS),
   exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
   exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
   function_name = ProtoField.string("vw3.function_name", "Function name"),
@@ -5404,7 +5392,7 @@ local pf = {
   span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
   start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
   quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
-  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, names(DIAGNOSTICS)),
+  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, DIAGNOSTICS),
   reg = ProtoField.none("vw3.reg", "Register"),
   reg_address = ProtoField.uint16("vw3.reg.address", "Address", base.DEC),
   reg_label = ProtoField.string("vw3.reg.label", "Address as shown"),
@@ -5511,22 +5499,23 @@ local function apply_prefs()
   lane.quick = proto.prefs.quick_lanes
 end
 
-local function timeout_pref()
-  if proto.prefs.timeout_ms == 0 then return nil end
-  return proto.prefs.timeout_ms / 1000
+-- A new stream's state, with the preferences' timeout and framing mode.
+local function stream_state()
+  local timeout = nil
+  if proto.prefs.timeout_ms ~= 0 then timeout = proto.prefs.timeout_ms / 1000 end
+  return new_state(timeout, MODE_NAMES[proto.prefs.mode])
 end
-
 
 function proto.init()
   newest_record = 0
   rtac_times = {}
   apply_prefs()
-  state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+  state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.KIND_VALUES, M.MODE_NAMES = KIND_VALUES, MODE_NAMES
-M.apply_prefs, M.ex, M.pf, M.proto, M.timeout_pref = apply_prefs, ex, pf, proto, timeout_pref
+M.KIND_VALUES = KIND_VALUES
+M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state
 end
 
 -- ---- vw3.tree: lua/src/tree.lua ----
@@ -5563,6 +5552,13 @@ end
 
 local function frame_range(tvb, f, at, size)
   return tvb:range(frame_span(f, at, size))
+end
+
+-- A text said on the frame: a field of its own (its value `value`) carrying the expert info, or the
+-- expert info alone where no tree is wanted (whole: the frame's range in a tree, nil without one).
+local function add_said(t, whole, field, value, expert_info, text)
+  if whole ~= nil then t = t:add(field, whole, value):set_generated() end
+  add_text(t, expert_info, text)
 end
 
 -- Invisible trees. Wireshark often builds a tree that nobody sees, only to run filters, coloring rules or
@@ -5893,49 +5889,33 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
   -- dissection, which is never a later pass's, and asks pinfo nothing).
   local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo ~= nil and pinfo.visited
-  if f.kind == REQUEST then
-    -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
-    if f.unanswered or ends_unanswered then
-      local item = t
-      if full then item = t:add(pf.unanswered, whole, true):set_generated() end
-      add_text(item, ex.unanswered, "Request not answered")
-    end
+  -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
+  if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
+    add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")
   end
   if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
     -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
     local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
       f.profile_choice)
-    local item = t
-    if full then item = t:add(pf.profile_choice, whole, text):set_generated() end
-    add_text(item, ex.profile, text)
+    add_said(t, whole, pf.profile_choice, text, ex.profile, text)
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
   local warnings = f.warnings or NO_INTERPRETATION
   for index = 1, #warnings do
     local text = warnings[index]
-    local item = t
-    if full then item = t:add(pf.warning, whole, text):set_generated() end
-    if f.malformed and text:sub(1, 10) == "malformed " then
-      add_text(item, ex.malformed, text)
-    else
-      add_text(item, ex.warning, text)
-    end
+    local malformed = f.malformed and text:sub(1, 10) == "malformed "
+    add_said(t, whole, pf.warning, text, malformed and ex.malformed or ex.warning, text)
   end
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
     local text = st.cut_note or "the capture ends before any response"
     if index <= count then text = notes[index] end
-    local item = t
-    if full then item = t:add(pf.note, whole, text):set_generated() end
-    if f.no_request and text == "response without a matching request in the capture" then
-      add_text(item, ex.no_request, text)
-    else
-      add_text(item, ex.note, text)
-    end
+    local unmatched = f.no_request and text == "response without a matching request in the capture"
+    add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
-if full then return t end
+  if full then return t end
   return nil
 end
 
@@ -6017,7 +5997,6 @@ local function item_tvb(item, tvb)
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
 end
 
-local show_record
 -- The item the record-level notes go on: the first item shown, else one of their own.
 local function anchored(anchor, tree, full, tvb, n)
   if anchor == nil then
@@ -6027,9 +6006,6 @@ local function anchored(anchor, tree, full, tvb, n)
   return anchor
 end
 
--- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
--- so that they show in the details, not under a hidden item.
-do
 -- One more part of a record's Info text: a single part stays a string, a list is made from the second.
 local function add_part(summaries, info, text)
   if summaries ~= nil then
@@ -6040,8 +6016,10 @@ local function add_part(summaries, info, text)
   return { info, text }, nil
 end
 
--- whole: the record is one frame just taken by dissect_record's fast lane (not packed yet).
-show_record = function(st, record, tvb, pinfo, tree, n, whole)
+-- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
+-- so that they show in the details, not under a hidden item. whole: the record is one frame just taken
+-- by dissect_record's fast lane (not packed yet).
+local function show_record(st, record, tvb, pinfo, tree, n, whole)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
@@ -6129,7 +6107,6 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
     cols.info = concat(summaries, "; ")
   end
 end
-end
 
 -- Streams of records: the serial capture's (state), and one per UDP conversation.
 udp_states = {}
@@ -6191,13 +6168,13 @@ package.preload["vw3.dissector"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable
-local MODE_NAMES, MODE_SAMPLE, Proto, READS, REQUEST = MODE_NAMES, MODE_SAMPLE, Proto, READS, REQUEST
-local RESPONSE, add_register, add_text, annotate_list = RESPONSE, add_register, add_text, annotate_list
-local apply_prefs, detect_mode, device_for, device_now = apply_prefs, detect_mode, device_for, device_now
-local dissect_now, ex, feed, finish_all, lane, math = dissect_now, ex, feed, finish_all, lane, math
-local new_state, pack, package, pcall, pf, proto = new_state, pack, package, pcall, pf, proto
-local record_time, show_record, take_items, timeout_pref = record_time, show_record, take_items, timeout_pref
-local tostring, tree_mode, type, vw3, wtap = tostring, tree_mode, type, vw3, wtap
+local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
+local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
+local detect_mode, device_for, device_now, dissect_now, ex = detect_mode, device_for, device_now, dissect_now, ex
+local feed, finish_all, lane, math, new_state, pack = feed, finish_all, lane, math, new_state, pack
+local package, pcall, pf, proto, record_time, show_record = package, pcall, pf, proto, record_time, show_record
+local stream_state, take_items, tostring, tree_mode, type = stream_state, take_items, tostring, tree_mode, type
+local vw3, wtap = vw3, wtap
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
@@ -6245,12 +6222,17 @@ local function dissect_records(st, tvb, pinfo, tree)
   return n
 end
 
--- A connection or conversation by its two ends, the same both ways.
-local function conversation_key(pinfo)
+-- A connection's or conversation's stream, by its two ends (the same both ways).
+local function conversation_state(states, pinfo)
   local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
   local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
-  if a < b then return a .. " " .. b end
-  return b .. " " .. a
+  local key = a < b and a .. " " .. b or b .. " " .. a
+  local st = states[key]
+  if st == nil then
+    st = stream_state()
+    states[key] = st
+  end
+  return st
 end
 
 -- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
@@ -6288,12 +6270,7 @@ local function dissect_tcp(tvb, pinfo, tree)
     calls = {}
     tcp_records[pinfo.number] = calls
   end
-  local key = conversation_key(pinfo)
-  local st = tcp_states[key]
-  if st == nil then
-    st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
-    tcp_states[key] = st
-  end
+  local st = conversation_state(tcp_states, pinfo)
   local record = calls[tcp_call.index]
   if record == nil then
     local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
@@ -6323,15 +6300,7 @@ local PT_TCP, PT_UDP = 2, 3
 function proto.dissector(tvb, pinfo, tree)
   local port_type = pinfo.port_type
   if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
-  if port_type == PT_UDP then
-    local key = conversation_key(pinfo)
-    local st = udp_states[key]
-    if st == nil then
-      st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
-      udp_states[key] = st
-    end
-    return dissect_records(st, tvb, pinfo, tree)
-  end
+  if port_type == PT_UDP then return dissect_records(conversation_state(udp_states, pinfo), tvb, pinfo, tree) end
   return dissect_records(state, tvb, pinfo, tree)
 end
 

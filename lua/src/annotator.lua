@@ -38,18 +38,10 @@ end
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
 -- its status, no value. Made when shown, from the request and the device, rather than kept.
 local function inferred_registers(st, f)
-  local request = f.request
-  local device = device_of(st, f)
-  local base = plc_base(device, request)
   local text = format("no value: exception %02X", f.exception_code)
-  local out = {}
-  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
-    local address = (request.start + index) % 0x10000
-    local row = device.rows[address]
-    out[index + 1] = { address = address, row = row, text = text, offset = -1,
-      status = row == nil and "non-existent" or "protected", label = base and plc_label(base, address) or nil }
-  end
-  return out
+  local registers = refused_registers(device_of(st, f), f.request)
+  for _, reg in ipairs(registers) do reg.text, reg.offset = text, -1 end
+  return registers
 end
 
 local function configure(profiles_text, style, maps_text)

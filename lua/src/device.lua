@@ -47,6 +47,29 @@ local function address_name(row, address, label)
   return shown
 end
 
+-- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
+-- in runs, an entry joining the run before it where joins(last of the run, entry) holds.
+local function address_runs(entries, joins)
+  local runs, run = {}, nil
+  for _, entry in ipairs(entries) do
+    if run ~= nil and joins(run[#run], entry) then
+      run[#run + 1] = entry
+    else
+      run = { entry }
+      runs[#runs + 1] = run
+    end
+  end
+  return runs
+end
+
+local function consecutive(a, b) return b.address == a.address + 1 end
+
+-- A run of several addresses as `first..last`.
+local function span_name(run)
+  local a, b = run[1], run[#run]
+  return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -210,6 +233,7 @@ interpret_wide = function(row, first, second)
   return value, text
 end
 
-M.address_name, M.build_device, M.device_for, M.device_of = address_name, build_device, device_for, device_of
+M.address_name, M.address_runs, M.consecutive, M.span_name = address_name, address_runs, consecutive, span_name
+M.build_device, M.device_for, M.device_of = build_device, device_for, device_of
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
 M.plc_label = plc_label

@@ -50,12 +50,17 @@ local function dissect_records(st, tvb, pinfo, tree)
   return n
 end
 
--- A connection or conversation by its two ends, the same both ways.
-local function conversation_key(pinfo)
+-- A connection's or conversation's stream, by its two ends (the same both ways).
+local function conversation_state(states, pinfo)
   local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
   local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
-  if a < b then return a .. " " .. b end
-  return b .. " " .. a
+  local key = a < b and a .. " " .. b or b .. " " .. a
+  local st = states[key]
+  if st == nil then
+    st = stream_state()
+    states[key] = st
+  end
+  return st
 end
 
 -- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
@@ -93,12 +98,7 @@ local function dissect_tcp(tvb, pinfo, tree)
     calls = {}
     tcp_records[pinfo.number] = calls
   end
-  local key = conversation_key(pinfo)
-  local st = tcp_states[key]
-  if st == nil then
-    st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
-    tcp_states[key] = st
-  end
+  local st = conversation_state(tcp_states, pinfo)
   local record = calls[tcp_call.index]
   if record == nil then
     local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
@@ -128,15 +128,7 @@ local PT_TCP, PT_UDP = 2, 3
 function proto.dissector(tvb, pinfo, tree)
   local port_type = pinfo.port_type
   if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
-  if port_type == PT_UDP then
-    local key = conversation_key(pinfo)
-    local st = udp_states[key]
-    if st == nil then
-      st = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
-      udp_states[key] = st
-    end
-    return dissect_records(st, tvb, pinfo, tree)
-  end
+  if port_type == PT_UDP then return dissect_records(conversation_state(udp_states, pinfo), tvb, pinfo, tree) end
   return dissect_records(state, tvb, pinfo, tree)
 end
 

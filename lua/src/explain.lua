@@ -41,14 +41,12 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    do
-      local name = profile_function_name(profile, code)
-      local allowed = {}
-      for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
-      local list = concat(allowed, ", ")
-      if list == "" then list = "none" end
-      warn(f, say("device_broadcast", { name = name, device = profile.device, allowed = list }))
-    end
+    local allowed = {}
+    for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
+    local list = concat(allowed, ", ")
+    if list == "" then list = "none" end
+    warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
+      allowed = list }))
   end
 end
 
@@ -88,47 +86,39 @@ local function cause_text(cause)
   return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
 end
 
+-- The registers of a read every parameter of which an exception 02 says non-existent or protected
+-- (explain._all_unreadable): each address with its row, label and that status, no value.
+local function refused_registers(device, request)
+  local base, out = plc_base(device, request), {}
+  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
+    local address = (request.start + index) % 0x10000
+    local row = device.rows[address]
+    out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
+      label = base and plc_label(base, address) or nil }
+  end
+  return out
+end
+
+-- Addresses in a row that are both unmapped (a run of non-existent parameters, told as one range).
+local function both_unmapped(a, b) return a.row == nil and b.row == nil and consecutive(a, b) end
+
 local function all_unreadable(st, f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
-  local request = f.request
-  local rows = device.rows
-  local base = nil
-  if device.plc ~= nil then base = device.plc[request.fn] or device.plc_default end
-  local entries, parts = {}, {}
-  for index = 0, math.min(request.quantity, READ_LIMIT) - 1 do
-    local address = (request.start + index) % 0x10000
-    local label = nil
-    if base ~= nil then label = plc_label(base, address) end
-    entries[#entries + 1] = { address = address, row = rows[address], label = label }
-  end
-  local run = {}
-  local function flush()
+  local entries, parts = refused_registers(device, f.request), {}
+  for index, run in ipairs(address_runs(entries, both_unmapped)) do
     local first = run[1]
     if #run == 1 then
-      parts[#parts + 1] = address_name(first.row, first.address, first.label)
-        .. (first.row == nil and " non-existent" or " protected")
+      parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
     else
-      local last = run[#run]
-      parts[#parts + 1] = format("%s..%s non-existent (%d)", first.label or format("%d", first.address),
-        last.label or format("%d", last.address), #run)
+      parts[index] = format("%s non-existent (%d)", span_name(run), #run)
     end
   end
-  for _, entry in ipairs(entries) do
-    local previous = run[#run]
-    if previous ~= nil and previous.row == nil and entry.row == nil and entry.address == previous.address + 1 then
-      run[#run + 1] = entry
-    else
-      if previous ~= nil then flush() end
-      run = { entry }
-    end
-  end
-  flush()
   note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
     f.exception_code, device.profile.device, concat(parts, ", ")))
   local now = format("exception %02X now", f.exception_code)
   for _, entry in ipairs(entries) do
-    track(device.seen, f, entry.address, entry.row, 0, entry.row == nil and "non-existent" or "protected", now, entry.label)
+    track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
   end
 end
 
@@ -233,4 +223,5 @@ end
 lane.span_label = span_label
 
 M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
-M.explain_objects, M.python_repr, M.span_label = explain_objects, python_repr, span_label
+M.explain_objects, M.python_repr, M.refused_registers = explain_objects, python_repr, refused_registers
+M.span_label = span_label

@@ -6,12 +6,6 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
-local function names(table_)
-  local out = {}
-  for key, value in pairs(table_) do out[key] = value end
-  return out
-end
-
 -- The kind is an integer with value strings: `vw3.kind == "request"` filters by name, and an integer costs
 -- less than a string to add and to compare. A register's status is text, as vw3-decode's `status` key:
 -- `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a register has no
@@ -24,12 +18,12 @@ local pf = {
   kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
   mode = ProtoField.string("vw3.mode", "Mode"),
   slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
-  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, names(FUNCTIONS)),
+  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, FUNCTIONS),
   crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
   crc_expected = ProtoField.uint16("vw3.crc_expected", "Expected CRC", base.HEX),
   crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
   broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
-  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, names(EXCEPTIONS)),
+  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, EXCEPTIONS),
   exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
   exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
   function_name = ProtoField.string("vw3.function_name", "Function name"),
@@ -37,7 +31,7 @@ local pf = {
   span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
   start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
   quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
-  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, names(DIAGNOSTICS)),
+  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, DIAGNOSTICS),
   reg = ProtoField.none("vw3.reg", "Register"),
   reg_address = ProtoField.uint16("vw3.reg.address", "Address", base.DEC),
   reg_label = ProtoField.string("vw3.reg.label", "Address as shown"),
@@ -144,19 +138,20 @@ local function apply_prefs()
   lane.quick = proto.prefs.quick_lanes
 end
 
-local function timeout_pref()
-  if proto.prefs.timeout_ms == 0 then return nil end
-  return proto.prefs.timeout_ms / 1000
+-- A new stream's state, with the preferences' timeout and framing mode.
+local function stream_state()
+  local timeout = nil
+  if proto.prefs.timeout_ms ~= 0 then timeout = proto.prefs.timeout_ms / 1000 end
+  return new_state(timeout, MODE_NAMES[proto.prefs.mode])
 end
-
 
 function proto.init()
   newest_record = 0
   rtac_times = {}
   apply_prefs()
-  state = new_state(timeout_pref(), MODE_NAMES[proto.prefs.mode])
+  state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.KIND_VALUES, M.MODE_NAMES = KIND_VALUES, MODE_NAMES
-M.apply_prefs, M.ex, M.pf, M.proto, M.timeout_pref = apply_prefs, ex, pf, proto, timeout_pref
+M.KIND_VALUES = KIND_VALUES
+M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state

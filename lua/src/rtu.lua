@@ -216,6 +216,13 @@ local function scan_match(s, b, i, n, minimum, final)
   return NONE
 end
 
+-- The list with value appended (a new list for nil: most positions have none).
+local function added(list, value)
+  if list == nil then return { value } end
+  list[#list + 1] = value
+  return list
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
@@ -234,29 +241,19 @@ local function match(s, b, i, n, final)
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
-        waiting = waiting or {}
-        waiting[#waiting + 1] = NEED
+        waiting = added(waiting, NEED)
       elseif found > 0 then
-        valid = valid or {}
-        valid[#valid + 1] = { kind, found }
+        valid = added(valid, { kind, found })
       end
     elseif length == NEED then
-      if not final then
-        waiting = waiting or {}
-        waiting[#waiting + 1] = NEED
-      end
+      if not final then waiting = added(waiting, NEED) end
     elseif length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
-        if not final then
-          waiting = waiting or {}
-          waiting[#waiting + 1] = length
-        end
+        if not final then waiting = added(waiting, length) end
       elseif crc_ok_at(b, i, length) then
-        valid = valid or {}
-        valid[#valid + 1] = { kind, length }
+        valid = added(valid, { kind, length })
       else
-        damaged = damaged or {}
-        damaged[#damaged + 1] = { kind, length }
+        damaged = added(damaged, { kind, length })
       end
     end
   end

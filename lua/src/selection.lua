@@ -19,6 +19,12 @@ for index = #CANDIDATES, 1, -1 do
 end
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
+-- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
+local function unsupported(current, fn)
+  local functions = PROFILES[current.profile].functions
+  return current.profile ~= SELECTION.fallback and functions ~= nil and not functions[fn]
+end
+
 local function settled(judged)
   return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
     or (judged.choice ~= nil and judged.choice.final)
@@ -156,10 +162,10 @@ local function observe(st, f, b)
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
   if current ~= nil then
-    local profile = PROFILES[current.profile]
-    if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[f.fn] then
+    if unsupported(current, f.fn) then
       judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
-        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number, profile.device) }
+        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number,
+        PROFILES[current.profile].device) }
       return judged.choice
     end
     return nil
@@ -220,14 +226,7 @@ function lane.quiet(st, slave, fn, answer)
   local current = judged.choice
   if current ~= nil and current.final then return true end
   if current == nil and not settled(judged) then return false end -- (a provisional frame: observe's path)
-  if answer then
-    if current ~= nil then
-      local profile = PROFILES[current.profile]
-      if current.profile ~= SELECTION.fallback and profile.functions ~= nil and not profile.functions[fn] then
-        return false
-      end
-    end
-  end
+  if answer and current ~= nil and unsupported(current, fn) then return false end
   return judged
 end
 

@@ -46,7 +46,6 @@ local function item_tvb(item, tvb)
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
 end
 
-local show_record
 -- The item the record-level notes go on: the first item shown, else one of their own.
 local function anchored(anchor, tree, full, tvb, n)
   if anchor == nil then
@@ -56,9 +55,6 @@ local function anchored(anchor, tree, full, tvb, n)
   return anchor
 end
 
--- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
--- so that they show in the details, not under a hidden item.
-do
 -- One more part of a record's Info text: a single part stays a string, a list is made from the second.
 local function add_part(summaries, info, text)
   if summaries ~= nil then
@@ -69,8 +65,10 @@ local function add_part(summaries, info, text)
   return { info, text }, nil
 end
 
--- whole: the record is one frame just taken by dissect_record's fast lane (not packed yet).
-show_record = function(st, record, tvb, pinfo, tree, n, whole)
+-- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
+-- so that they show in the details, not under a hidden item. whole: the record is one frame just taken
+-- by dissect_record's fast lane (not packed yet).
+local function show_record(st, record, tvb, pinfo, tree, n, whole)
   local cols = pinfo.cols
   cols.protocol = "VW3"
   local full = tree_mode(tree)
@@ -157,7 +155,6 @@ show_record = function(st, record, tvb, pinfo, tree, n, whole)
   else
     cols.info = concat(summaries, "; ")
   end
-end
 end
 
 -- Streams of records: the serial capture's (state), and one per UDP conversation.

@@ -33,20 +33,10 @@ function story.tell(f)
       note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
-      local parts, run = {}, { group[1] }
-      local function flush()
-        if #run == 1 then parts[#parts + 1] = event_name(run[1])
-        else
-          local a, b = run[1], run[#run]
-          parts[#parts + 1] = (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
-        end
+      local parts = {}
+      for index, run in ipairs(address_runs(group, consecutive)) do
+        parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
       end
-      for index = 2, #group do
-        local e = group[index]
-        if e.address == run[#run].address + 1 then run[#run + 1] = e
-        else flush(); run = { e } end
-      end
-      flush()
       local tail = format(": %s in frame #%d", first.how, first.frame)
       if first.shared ~= nil then tail = tail .. ", " .. first.shared end
       note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))

@@ -25,6 +25,13 @@ local function frame_range(tvb, f, at, size)
   return tvb:range(frame_span(f, at, size))
 end
 
+-- A text said on the frame: a field of its own (its value `value`) carrying the expert info, or the
+-- expert info alone where no tree is wanted (whole: the frame's range in a tree, nil without one).
+local function add_said(t, whole, field, value, expert_info, text)
+  if whole ~= nil then t = t:add(field, whole, value):set_generated() end
+  add_text(t, expert_info, text)
+end
+
 -- Invisible trees. Wireshark often builds a tree that nobody sees, only to run filters, coloring rules or
 -- field extractors over it (this file's own Modbus field extractors make tshark build one on its second
 -- pass). In such a tree an item of a field that nothing refers to is not created: TreeItem:add hands back
@@ -353,49 +360,33 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
   -- dissection, which is never a later pass's, and asks pinfo nothing).
   local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo ~= nil and pinfo.visited
-  if f.kind == REQUEST then
-    -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
-    if f.unanswered or ends_unanswered then
-      local item = t
-      if full then item = t:add(pf.unanswered, whole, true):set_generated() end
-      add_text(item, ex.unanswered, "Request not answered")
-    end
+  -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
+  if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
+    add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")
   end
   if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
     -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
     local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
       f.profile_choice)
-    local item = t
-    if full then item = t:add(pf.profile_choice, whole, text):set_generated() end
-    add_text(item, ex.profile, text)
+    add_said(t, whole, pf.profile_choice, text, ex.profile, text)
   end
   -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
   -- label Wireshark cuts at 240 bytes).
   local warnings = f.warnings or NO_INTERPRETATION
   for index = 1, #warnings do
     local text = warnings[index]
-    local item = t
-    if full then item = t:add(pf.warning, whole, text):set_generated() end
-    if f.malformed and text:sub(1, 10) == "malformed " then
-      add_text(item, ex.malformed, text)
-    else
-      add_text(item, ex.warning, text)
-    end
+    local malformed = f.malformed and text:sub(1, 10) == "malformed "
+    add_said(t, whole, pf.warning, text, malformed and ex.malformed or ex.warning, text)
   end
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
     local text = st.cut_note or "the capture ends before any response"
     if index <= count then text = notes[index] end
-    local item = t
-    if full then item = t:add(pf.note, whole, text):set_generated() end
-    if f.no_request and text == "response without a matching request in the capture" then
-      add_text(item, ex.no_request, text)
-    else
-      add_text(item, ex.note, text)
-    end
+    local unmatched = f.no_request and text == "response without a matching request in the capture"
+    add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
-if full then return t end
+  if full then return t end
   return nil
 end
 
