@@ -103,19 +103,51 @@ static int point_less(const double *a, const double *b) { return a[0] < b[0] || 
 
 /* round(v, digits) as Python's float.__round__ does it: the decimal text correctly rounded (dtoa's
  * mode 3, as PyOS_double_to_string's 'f'), read back correctly rounded. */
-static PyObject *rounded(double v, int digits) {
-    if (!isfinite(v)) return PyFloat_FromDouble(v);
+static int round_to(double v, int digits, double *r) {
+    *r = v;
+    if (!isfinite(v)) return 0;
     char *text = PyOS_double_to_string(v, 'f', digits, 0, NULL);
-    if (text == NULL) return NULL;
-    double r = PyOS_string_to_double(text, NULL, NULL);
+    if (text == NULL) return -1;
+    *r = PyOS_string_to_double(text, NULL, NULL);
     PyMem_Free(text);
-    if (r == -1.0 && PyErr_Occurred()) return NULL;
-    return PyFloat_FromDouble(r);
+    return *r == -1.0 && PyErr_Occurred() ? -1 : 0;
+}
+
+static PyObject *rounded(double v, int digits) {
+    double r;
+    return round_to(v, digits, &r) < 0 ? NULL : PyFloat_FromDouble(r);
+}
+
+/* round(v, digits) as json.dumps writes it into the page (its repr; a whole y: its int), after a comma
+ * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text, trailing
+ * zeros dropped (no other decimal of `digits` digits or fewer is within half an ulp of it): one dtoa. */
+static void json_number(Out *o, double v, int digits, int whole) {
+    char buffer[32] = "", *text = NULL;
+    double a = fabs(v), r;
+    if (whole && a < 9e15) {
+        PyOS_snprintf(buffer, sizeof buffer, "%lld", (long long)v);
+    } else if (whole || (a != 0.0 && (a < 1e-4 || a >= 1e9))) {
+        if (round_to(v, whole ? 0 : digits, &r) == 0)
+            text = PyOS_double_to_string(r, whole ? 'f' : 'r', 0, whole ? 0 : Py_DTSF_ADD_DOT_0, NULL);
+    } else if ((text = PyOS_double_to_string(v, 'f', digits, 0, NULL)) != NULL) {
+        size_t n = strlen(text);
+        while (digits > 0 && text[n - 1] == '0') n--;
+        PyOS_snprintf(buffer, sizeof buffer, "%.*s%s", (int)n, text, text[n - 1] == '.' ? "0" : digits ? "" : ".0");
+        PyMem_Free(text);
+        text = NULL;
+    }
+    if (text == NULL && !buffer[0]) o->failed = 1;
+    if (!o->failed) {
+        if (o->data[o->len - 1] != '[') out_put(o, ",", 1);
+        out_cstr(o, text != NULL ? text : buffer);
+    }
+    PyMem_Free(text);
 }
 
 /* (xs, ys): each column's distinct points in order (x, then y), none at or before the last x kept,
  * a run of equal values by its ends only. drawn(origin, digits): the same as the page writes them,
- * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number). */
+ * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number);
+ * drawn == 2 (drawn_json): those two lists as json.dumps writes them, None when a value is not finite. */
 static PyObject *columns_list(Columns *self, int drawn, double origin, int digits) {
     PyObject *xs = PyList_New(0), *ys = PyList_New(0);
     if (xs == NULL || ys == NULL) goto fail;
@@ -159,6 +191,29 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
             kept++;
         }
     }
+    if (drawn == 2) {
+        Out text[2] = {{0}};
+        int finite = 1;
+        for (int k = 0; k < 2; k++) out_put(&text[k], "[", 1);
+        for (Py_ssize_t j = 0; j < kept && finite; j++) {
+            double x = kx[j] - origin, y = ky[j];
+            if (!(finite = isfinite(x) && isfinite(y))) break;
+            json_number(&text[0], x, digits, 0);
+            json_number(&text[1], y, 6, floor(y) == y);
+        }
+        for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
+        PyMem_Free(kx), PyMem_Free(ky);
+        Py_DECREF(xs), Py_DECREF(ys);
+        PyObject *pair = NULL;
+        if (!text[0].failed && !text[1].failed)
+            pair = !finite ? Py_NewRef(Py_None)
+                           : Py_BuildValue("(s#s#)", text[0].data, (Py_ssize_t)text[0].len, text[1].data,
+                                           (Py_ssize_t)text[1].len);
+        else if (!PyErr_Occurred())
+            PyErr_NoMemory();
+        PyMem_Free(text[0].data), PyMem_Free(text[1].data);
+        return pair;
+    }
     for (Py_ssize_t j = 0; j < kept; j++) {
         PyObject *x, *y;
         if (!drawn) {
@@ -193,6 +248,24 @@ static PyObject *columns_drawn(Columns *self, PyObject *args) {
     int digits;
     if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
     return columns_list(self, 1, origin, digits);
+}
+
+static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
+    double origin;
+    int digits;
+    if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
+    return columns_list(self, 2, origin, digits);
+}
+
+/* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
+static PyObject *columns_levels(Columns *self, PyObject *unused) {
+    if (!self->n) Py_RETURN_NONE;
+    double low = self->d[1], high = self->d[1];
+    for (Py_ssize_t i = 3; i < self->n; i += 2) {
+        if (self->d[i] < low) low = self->d[i];
+        if (self->d[i] > high) high = self->d[i];
+    }
+    return Py_BuildValue("(ddd)", self->d[1], low, high);
 }
 
 /* values() -> [fx, fy, nx, ...] and load(values): the doubles as a list, for the rare rewrites
@@ -239,6 +312,9 @@ static PyMethodDef columns_methods[] = {
     {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
     {"points", (PyCFunction)columns_points, METH_NOARGS, "(xs, ys): the points drawn"},
     {"drawn", (PyCFunction)columns_drawn, METH_VARARGS, "drawn(origin, digits): (xs, ys) as the page writes them"},
+    {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
+     "drawn_json(origin, digits): drawn()'s lists as JSON text, None when a value is not finite"},
+    {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},
     {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles, 8 a column"},
     {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles"},
     {NULL, NULL, 0, NULL},

@@ -102,6 +102,10 @@ def compare(python: Columns, compiled: CompiledColumns, origin: float) -> None:
     assert python.points() == compiled.points()
     for digits in (6, 0):  # as the page writes them: the same numbers, ints where whole (repr tells)
         assert repr(python.drawn(origin, digits)) == repr(compiled.drawn(origin, digits))
+        # ... and as JSON, written by the compiled columns themselves (collect.py _parameter_json)
+        assert compiled.drawn_json(origin, digits) == tuple(
+            json.dumps(values, separators=(",", ":")) for values in python.drawn(origin, digits))
+    assert python.levels() == compiled.levels()
 
 
 @pytest.mark.parametrize("seed", range(20))
@@ -110,7 +114,7 @@ def test_columns_point_for_point(seed: int) -> None:
     rng = random.Random(seed)
     python, compiled = Columns(), CompiledColumns()
     origin, width, x = 1_700_000_000.123, 1e-3, 1_700_000_000.123
-    values = [rng.choice([0.0, -0.0, 1.5, -3.0, 7.0]) for _ in range(5)]
+    values = [rng.choice([0.0, -0.0, 1.5, -3.0, 7.0, 1e-7, -2.5e-5, 3e9 + 0.25, 2.0**60]) for _ in range(5)]
     for _step in range(rng.randrange(1, 4000)):
         x += rng.choice([0.0, 1e-4, 1e-3, 0.01, 0.5])
         y = rng.choice(values) if rng.random() < 0.5 else round(rng.uniform(-100, 100), rng.randrange(9))

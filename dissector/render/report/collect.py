@@ -100,6 +100,11 @@ class Columns:
             out[base + 6], out[base + 7] = done[index + 6], done[index + 7]
         self.done = out
 
+    def levels(self) -> tuple[float, float, float] | None:
+        """The first, lowest and highest y kept, None when empty."""
+        ys = self.done[1::2]
+        return (ys[0], min(ys), max(ys)) if ys else None
+
     def drawn(self, origin: float, digits: int) -> tuple[list[float], list[float | int]]:
         """The points as the page writes them: x relative to `origin`, y an int when whole."""
         xs, ys = self.points()
@@ -414,10 +419,22 @@ class ReportCollector:
 
     def parameters_json(self) -> str:
         """The parameters with their points as a JSON array, encoded series by series (call data first)."""
-        return "[" + ",".join(
-            json.dumps(self._parameter(key, series, True), separators=(",", ":"), allow_nan=False)
-            for key, series in self._drawn()
-        ) + "]"
+        return "[" + ",".join(self._parameter_json(key, series) for key, series in self._drawn()) + "]"
+
+    def _parameter_json(self, key: tuple[int, int], series: Series) -> str:
+        # The compiled columns write their points' JSON themselves (_columns.h drawn_json): x and y
+        # come last, as _parameter puts them.
+        drawn_json = getattr(series.columns, "drawn_json", None)
+        if drawn_json is not None:
+            entry = self._parameter(key, series, False)
+            columns = series.columns
+            columns.close()
+            columns.compact(self.origin or 0.0, self.width)
+            points = drawn_json(self._shift(), self._digits())
+            if points is not None:
+                head = json.dumps(entry, separators=(",", ":"), allow_nan=False)
+                return f'{head[:-1]},"x":{points[0]},"y":{points[1]}}}'
+        return json.dumps(self._parameter(key, series, True), separators=(",", ":"), allow_nan=False)
 
     def _digits(self) -> int:
         return 6 if self.timed else 0

@@ -38,6 +38,9 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
         for code, count in row.exceptions.items():
             entry["exceptions"][code] = entry["exceptions"].get(code, 0) + count
         times = entry["times"]
+        if not times:  # (most slaves answer one function: its histogram as it is)
+            times.update(row.times)
+            continue
         for value, count in row.times.items():
             times[value] = times.get(value, 0) + count
     result = []
@@ -65,7 +68,8 @@ def render_report(
     bus, health = extras.get("bus"), extras.get("health")
     data = collector.data(points=False)
     when = _clock(data, extras.get("time_format", "r"))
-    summary = stats.report(with_parameters=False)  # parameters: the collector draws its own
+    # Parameters: the collector draws its own; the poll cycle: its table below (timed once, there).
+    summary = stats.report(with_parameters=False, poll_rows=0)
     slaves = _slaves(stats)
     data["slaves"] = [
         {"slave": entry["slave"], "time": entry["time"]} for entry in slaves

@@ -5,6 +5,8 @@ import html
 
 
 def _esc(value: object) -> str:
+    if type(value) is int:  # (most cells of the poll table: nothing to escape)
+        return str(value)
     return html.escape("" if value is None else str(value))
 
 

@@ -108,9 +108,9 @@ def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int,
         series = collector.series.get((parameter["slave"], parameter["address"]))
         if series is None:
             continue
-        ys = series.columns.values()[1::2]
-        if ys and min(ys) == max(ys):
-            single[index] = ys[0]
+        levels = series.columns.levels()
+        if levels is not None and levels[1] == levels[2]:
+            single[index] = levels[0]
     return single
 
 
