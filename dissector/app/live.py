@@ -13,14 +13,23 @@ states the rule), so the line shown live is the line the one-pass decode of the 
 shown when its response comes. A file read by name is read twice (app/preselect.py); live cannot look
 ahead, so a frame decoded before profile `auto` chose its slave's device says it is provisional
 (Frame.provisional) in every output, and ProfileNews says on stderr when the choice is made.
+
+With the compiled engine (compiled_mode: not with VW3_PURE_PYTHON, Modbus ASCII, -w or -c), the capture
+thread only reads, stamps and writes --raw, and hands on the reads; the display frames, pairs and shows
+them through dissector/accel/livepath.py, which takes the capture thread's decisions (flush after a
+silence, expire a request past --timeout) at the same reads, so the lines are the Python path's, shown
+as soon. VW3_LIVE_TAPE records the reads, VW3_LIVE_REPLAY decodes a recording again (one thread, the
+display keeping up), VW3_LIVE_REPORT says how many frames the engine framed:
+tests/differential/test_live_compiled.py holds both paths byte-identical on the same reads.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import time
 from collections.abc import Callable
-from typing import BinaryIO, TextIO
+from typing import Any, BinaryIO, TextIO
 
 from rich.text import Text
 
@@ -30,6 +39,7 @@ from dissector.app.live_capture import (
     CaptureFiles,
     CaptureThread,
     Handoff,
+    Tape,
     silence_threshold,
 )
 from dissector.app.live_options import PARITY_CHOICES
@@ -46,6 +56,8 @@ from dissector.sources.serial_port import PARITIES, PortSettings, open_port
 PROG = "vw3-decode"
 assert set(PARITIES) == set(PARITY_CHOICES)
 __all__ = ["IDLE_FLUSH", "IDLE_FLUSH_LONG", "run_live", "silence_threshold"]
+REPLAY_ENV = "VW3_LIVE_REPLAY"  # decode the reads of a tape (live_capture.TAPE_ENV) instead of the port's
+REPORT_ENV = "VW3_LIVE_REPORT"  # say on stderr how much the engine framed (tests: the compiled path ran)
 WAIT = 0.02  # the display wakes at least this often (timeouts, the stop flag, redraws)
 
 
@@ -206,38 +218,124 @@ class ProfileNews:
                 self.err.flush()  # type: ignore[union-attr]
 
 
-def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
-            stop: StopFlag, observe: Callable[[list[Item]], None] | None = None,
-            news: Callable[[list[Item]], None] | None = None) -> str | None:
-    """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it."""
-    while True:
-        if stop.signal is not None:
-            capture.stop.set()
-        items, safe, closed = handoff.take(WAIT)
-        shown = dissector.push(items) if items else []
-        if closed:
-            shown += dissector.finish()
-        elif safe is not None:
-            shown += dissector.expire(safe)
+class Shown:
+    """What the display does with what is shown: count it, give the time column and the filter every
+    item heard, show it, and tell profile news."""
+
+    def __init__(self, sink: Sink, stats: LiveStats, observe: Callable[[list[Item]], None] | None = None,
+                 news: Callable[[list[Item]], None] | None = None) -> None:
+        self.sink, self.stats, self.observe, self.news = sink, stats, observe, news
+
+    def items(self, shown: list[Item]) -> None:
         for item in shown:
-            stats.add(item)
-        stats.not_shown = handoff.dropped + sink.dropped
-        if observe is not None:
-            observe(shown)  # the time column's references: every item heard, whatever -Y shows
+            self.stats.add(item)
+        if self.observe is not None:
+            self.observe(shown)  # the time column's references: every item heard, whatever -Y shows
+        sink = self.sink
         sink_observe = getattr(sink, "observe", None)
         if sink_observe is not None:
             sink_observe(shown)
         sink.show(shown)
-        if news is not None and shown:
-            news(shown)
-        sink.tick()
-        if sink.failed is not None:
-            # The reader of our output (head, less) went away: stop, keep the files whole.
+        if self.news is not None and shown:
+            self.news(shown)
+
+    def lines(self, data: bytes) -> None:
+        """The engine's summary lines (UTF-8, each ending in a newline)."""
+        lines = data.decode("utf-8").split("\n")
+        del lines[-1]
+        self.stats.add_lines(lines)
+        self.sink.show_lines(lines)  # type: ignore[attr-defined]
+
+
+def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
+            stop: StopFlag, observe: Callable[[list[Item]], None] | None = None,
+            news: Callable[[list[Item]], None] | None = None, live: Any = None) -> str | None:
+    """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it.
+    With `live` (dissector/accel/livepath.py LivePath), the capture hands on its reads, and `live`
+    frames and shows them."""
+    shown = Shown(sink, stats, observe, news)
+    while True:
+        if stop.signal is not None:
             capture.stop.set()
-            capture.done.wait()
-            return "output closed"
+        reason, closed = display_once(capture, handoff, dissector, shown, WAIT, live)
+        if reason is not None or closed:
+            return reason
+
+
+def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector, shown: Shown, wait: float,
+                 live: Any = None) -> tuple[str | None, bool]:
+    """What the capture handed on (waiting up to `wait` for it): (why the display stops, closed)."""
+    items, safe, closed = handoff.take(wait)
+    sink = shown.sink
+    if live is not None:
+        if items:
+            live.feed(items)
         if closed:
-            return None
+            live.finish()
+        sink.show([])
+    else:
+        out = dissector.push(items) if items else []
+        if closed:
+            out += dissector.finish()
+        elif safe is not None:
+            out += dissector.expire(safe)
+        shown.items(out)
+    shown.stats.not_shown = handoff.dropped + sink.dropped
+    sink.tick()
+    if sink.failed is not None:
+        # The reader of our output (head, less) went away: stop, keep the files whole.
+        capture.stop.set()
+        capture.done.wait()
+        return "output closed", closed
+    return None, closed
+
+
+def _live_path(compiled: str, dissector: Dissector, annotate: Annotator | None, clock: Any, shown_: Shown,
+               args: argparse.Namespace) -> Any:
+    from dissector.accel.livepath import LivePath
+
+    return LivePath(dissector, annotate, clock, shown_.items, shown_.lines, getattr(args, "timeout", None),
+                    silence_threshold(args.baud), IDLE_FLUSH_LONG, compiled == "summary")
+
+
+def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Dissector, shown_: Shown,
+            live: Any) -> None:
+    """The reads of a tape (VW3_LIVE_REPLAY) as the capture made them, each shown before the next is
+    made: a display that keeps up, on one thread, so that a capture's decode can be repeated exactly."""
+    try:
+        for data, stamp, now in Tape.read(path):
+            if data:
+                capture.files.raw(data)
+            if not capture.step(data, stamp, now):
+                capture.reason = "count"
+                break
+            display_once(capture, handoff, dissector, shown_, 0, live)
+    except LiveError as error:
+        capture.reason, capture.status = str(error), error.status
+    finally:
+        capture.end()
+    while not display_once(capture, handoff, dissector, shown_, 0, live)[1]:
+        pass
+
+
+def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> str | None:
+    """How the engine takes part in this live capture: "summary" (it writes the summary lines),
+    "frames" (it frames and pairs, the Python stages show), or None (the Python stages do it all:
+    VW3_PURE_PYTHON, no extension, Modbus ASCII, and -w and -c, which the capture thread writes and
+    counts as it frames)."""
+    if getattr(args, "mode", None) == "ascii" or getattr(args, "write", None) or getattr(args, "count", None):
+        return None
+    from dissector.accel import livepath
+
+    if not livepath.available():
+        return None
+    display = getattr(args, "display", None)
+    plain = display is None or not (display.detail or display.hexdump or display.fields is not None
+                                    or display.registers is not None)
+    if (plain and not is_terminal and not getattr(args, "json", False) and getattr(args, "watch", None) is None
+            and getattr(args, "filter_text", None) is None and clock is not None and livepath.summary_usable(clock)):
+        return "summary"
+    return "frames"
 
 
 def run_live(
@@ -255,44 +353,67 @@ def run_live(
         from dissector.app.detect import run_detect
 
         return run_detect(args, out, err)
+    replay = os.environ.get(REPLAY_ENV)  # a capture's reads again (live_capture.Tape), not the port
     try:
-        port = open_port(port_settings(args))
+        port = None if replay else open_port(port_settings(args))
     except LiveError as error:
         err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     try:
         files = CaptureFiles(capture_output(args, getattr(out, "buffer", None)), args.raw)
     except LiveError as error:
-        port.close()
+        if port is not None:
+            port.close()
         err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     stats = LiveStats(files=bool(files.names))
     err.write(f"{PROG}: listening on {shown(args.live)} at {port_settings(args).text()}\n")
     err.flush()
     framer = live_framer(getattr(args, "mode", None), args.baud)
-    # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
-    dissector = Dissector(hold=True, annotate=annotate, timeout=getattr(args, "timeout", None))
+    timeout = getattr(args, "timeout", None)
+    clock = getattr(observe, "__self__", None)  # (app/cli.py: the time column's Clock.observe)
+    compiled = compiled_mode(args, is_terminal, clock)
+    if compiled is not None:
+        # The capture thread only reads; the display frames (dissector/accel/livepath.py).
+        dissector = Dissector(framer=framer, hold=True, annotate=annotate, timeout=timeout)
+        framer = None  # type: ignore[assignment]
+    else:
+        # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
+        dissector = Dissector(hold=True, annotate=annotate, timeout=timeout)
     handoff = Handoff()
     capture = CaptureThread(
-        port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,
+        port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]
         port_name=args.live,
     )
     started = time.monotonic()
     sink: Sink = NullSink()
+    live = None
     try:
         with StopFlag() as stop:
-            capture.start()  # first: a sink that fails (a reader gone) must not leave done unset
+            if not replay:
+                capture.start()  # first: a sink that fails (a reader gone) must not leave done unset
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
-            display(capture, handoff, dissector, sink, stats, stop, observe, ProfileNews(annotate, err))
+            news = ProfileNews(annotate, err)
+            if compiled is not None:
+                live = _live_path(compiled, dissector, annotate, clock, Shown(sink, stats, observe, news), args)
+            if replay:
+                _replay(replay, capture, handoff, dissector, Shown(sink, stats, observe, news), live)
+            else:
+                display(capture, handoff, dissector, sink, stats, stop, observe, news, live)
     finally:
         capture.stop.set()
-        capture.done.wait()
-        port.close()
+        if not replay:
+            capture.done.wait()
+        if port is not None:
+            port.close()
         stats.finish()
         try:
             sink.close()
         except (BrokenPipeError, OSError):
             pass
+    if live is not None and os.environ.get(REPORT_ENV):
+        err.write(f"{PROG}: live path: engine ({compiled}), {live.engine_items} frames from the engine, "
+                  f"{live.python_items} items from the Python stages\n")
     stats.not_shown = handoff.dropped + sink.dropped
     seconds = time.monotonic() - started
     names = files.names

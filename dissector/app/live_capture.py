@@ -24,11 +24,13 @@ import os
 import stat
 
 import copy
+import struct
 import threading
 import time
 from collections import deque
 from dataclasses import dataclass, field
 from typing import BinaryIO
+from collections.abc import Iterator
 
 import serial
 
@@ -163,12 +165,47 @@ class Handoff:
             return items, self._safe, self._closed and not self._batches
 
 
+TAPE_ENV = "VW3_LIVE_TAPE"  # record every read of the port to this file (tests, bug reports)
+_TAPE_EVENT = struct.Struct("<dqI")  # monotonic time, stamp (ns), length; then the bytes
+
+
+class Tape:
+    """Every read of a live capture as the capture loop saw it: its bytes (none: the read timed out),
+    its stamp and the monotonic time then. Given back to run_live (VW3_LIVE_REPLAY), it repeats the
+    capture's decisions exactly, so that two decodes of one capture can be compared byte for byte."""
+
+    def __init__(self, path: str) -> None:
+        self._file = open(path, "wb")  # noqa: SIM115
+
+    @classmethod
+    def from_environment(cls) -> Tape | None:
+        path = os.environ.get(TAPE_ENV)
+        return cls(path) if path else None
+
+    def record(self, data: bytes, stamp: Stamp, now: float) -> None:
+        self._file.write(_TAPE_EVENT.pack(now, stamp.ns, len(data)) + data)
+
+    def close(self) -> None:
+        self._file.close()
+
+    @staticmethod
+    def read(path: str) -> Iterator[tuple[bytes, Stamp, float]]:
+        with open(path, "rb") as tape:
+            data = tape.read()
+        at = 0
+        while at < len(data):
+            now, ns, length = _TAPE_EVENT.unpack_from(data, at)
+            at += _TAPE_EVENT.size
+            yield data[at : at + length], Stamp(ns), now
+            at += length
+
+
 @dataclass
 class CaptureThread:
     """Reads until stopped, --duration, --count or a failure; `reason` and `status` say which."""
 
     port: serial.SerialBase
-    framer: Framer
+    framer: Framer | None  # None: the display frames the reads (dissector/accel/livepath.py)
     files: CaptureFiles
     handoff: Handoff
     silence: float
@@ -181,6 +218,9 @@ class CaptureThread:
     frames: int = 0
     stop: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
+    _last_data: float = 0.0  # monotonic time of the last read that gave bytes
+    _pending: bool = False  # bytes fed since the last idle flush
+    _tried: bool = False  # flush_due already tried a copy of the framer during this silence
 
     def start(self) -> None:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
@@ -191,7 +231,7 @@ class CaptureThread:
             return True
         if tried or silent < self.silence:
             return False
-        trial = copy.deepcopy(self.framer).finish()
+        trial = copy.deepcopy(self.framer).finish()  # type: ignore[union-attr]
         return any(isinstance(item, Frame) and item.crc_ok for item in trial)
 
     def deliver(self, items: list[Item], safe: float | None) -> bool:
@@ -223,52 +263,75 @@ class CaptureThread:
         except LiveError as error:
             self.reason, self.status = str(error), error.status
         finally:
-            try:
-                if self.reason != "count" and self.status == ExitStatus.OK:
-                    self.deliver(self.framer.finish(), None)
-                elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
-                    self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
-            except LiveError as error:
-                self.reason, self.status = str(error), error.status
-            finally:
-                self.files.close()
-                self.handoff.close()
-                self.done.set()
+            self.end()
+
+    def end(self) -> None:
+        """The capture is over: what the framer holds is closed and written, the files closed."""
+        try:
+            if self.framer is None:
+                pass  # (the display frames: it finishes when the hand-off closes)
+            elif self.reason != "count" and self.status == ExitStatus.OK:
+                self.deliver(self.framer.finish(), None)
+            elif self.status != ExitStatus.OK and not self.reason.startswith("cannot write"):
+                self.deliver(self.framer.finish(), None)  # a vanished port: keep the bytes read
+        except LiveError as error:
+            self.reason, self.status = str(error), error.status
+        finally:
+            self.files.close()
+            self.handoff.close()
+            self.done.set()
 
     def _loop(self) -> None:
-        port, framer = self.port, self.framer
+        port = self.port
         deadline = None if self.duration is None else time.monotonic() + self.duration
-        last_data = time.monotonic()
-        pending = False  # bytes fed since the last idle flush
-        tried = False  # flush_due already tried a copy of the framer during this silence
-        while not self.stop.is_set():
-            if deadline is not None and time.monotonic() >= deadline:
-                self.reason = "duration"
-                return
-            try:
-                data = port.read(max(1, port.in_waiting))
-                if data and port.in_waiting:
-                    data += port.read(port.in_waiting)
-            except (serial.SerialException, OSError) as error:
-                raise PortVanished(reason(error)) from None
-            stamp = stamp_now()
-            if data:
-                last_data = time.monotonic()
-                pending, tried = True, False
-                self.files.raw(data)
-                if not self.deliver(framer.feed(Chunk(data, time=stamp)), self.safe_time(stamp)):
+        tape = Tape.from_environment()
+        try:
+            while not self.stop.is_set():
+                if deadline is not None and time.monotonic() >= deadline:
+                    self.reason = "duration"
+                    return
+                try:
+                    data = port.read(max(1, port.in_waiting))
+                    if data and port.in_waiting:
+                        data += port.read(port.in_waiting)
+                except (serial.SerialException, OSError) as error:
+                    raise PortVanished(reason(error)) from None
+                stamp = stamp_now()
+                now = time.monotonic()
+                if data:
+                    self.files.raw(data)
+                if tape is not None:
+                    tape.record(data, stamp, now)
+                if not self.step(data, stamp, now):
                     self.reason = "count"
                     return
-            elif pending:
-                silent = time.monotonic() - last_data
-                if self.flush_due(silent, tried):
-                    pending = False
-                    if not self.deliver(framer.finish(), stamp):
-                        self.reason = "count"
-                        return
-                else:
-                    self.handoff.put([], self.safe_time(stamp))
-                tried = tried or silent >= self.silence
+                self.files.tick()
+        finally:
+            if tape is not None:
+                tape.close()
+
+    def step(self, data: bytes, stamp: Stamp, now: float) -> bool:
+        """One read of the port (`data`, maybe none) stamped `stamp` at monotonic time `now`: frame it
+        and hand the items on, or close what the framer holds after a silence; False once --count
+        frames are written. Without a framer (the compiled live path, dissector/accel/livepath.py)
+        the read itself is handed on, and the display frames it."""
+        framer = self.framer
+        if framer is None:
+            self.handoff.put([(data, stamp, now)], None)  # type: ignore[list-item]
+            return True
+        if data:
+            self._last_data = now
+            self._pending, self._tried = True, False
+            return self.deliver(framer.feed(Chunk(data, time=stamp)), self.safe_time(stamp))
+        if self._pending:
+            silent = now - self._last_data
+            if self.flush_due(silent, self._tried):
+                self._pending = False
+                if not self.deliver(framer.finish(), stamp):
+                    return False
             else:
-                self.handoff.put([], stamp)
-            self.files.tick()
+                self.handoff.put([], self.safe_time(stamp))
+            self._tried = self._tried or silent >= self.silence
+        else:
+            self.handoff.put([], stamp)
+        return True

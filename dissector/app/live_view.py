@@ -79,6 +79,25 @@ class LiveStats:
             self.last_response_time = frame.response_time
         self._settle()
 
+    def add_lines(self, lines: list[str]) -> None:
+        """Summary lines the engine wrote (dissector/accel/livepath.py): a valid frame each, its
+        request paired or known unanswered (the engine writes nothing else)."""
+        for line in lines:
+            _number, _time, slave_text, kind, rest = line.split(None, 4)
+            self.frames += 1
+            counts = self.slaves.get(int(slave_text))
+            if counts is None:
+                counts = self.slaves[int(slave_text)] = SlaveCounts()
+            if kind == "request":
+                counts.requests += 1
+                if rest.endswith(" [no response]  CRC ok"):
+                    self.unanswered += 1
+                    counts.unanswered += 1
+            elif kind == "exception":
+                counts.exceptions += 1
+            else:
+                counts.responses += 1
+
     def finish(self) -> None:
         self._settle()
 
@@ -211,6 +230,11 @@ class LineSink(PumpedSink):
     def show(self, items: list[Item]) -> None:
         if items:
             self._pump.put([self._render(item) for item in items])
+
+    def show_lines(self, lines: list[str]) -> None:
+        """Lines written elsewhere (the engine's summary lines), in order with the items'."""
+        if lines:
+            self._pump.put(lines)
 
 
 def json_line(item: Item) -> str:

@@ -1,0 +1,184 @@
+"""The compiled live path (dissector/accel/livepath.py) against the Python stages (VW3_PURE_PYTHON=1).
+
+A live capture's output depends on when its reads came: two captures of one bus never see the same
+reads. So each capture records its reads (VW3_LIVE_TAPE: bytes, stamp, monotonic time of each read,
+the port's empty reads too), and the other side decodes that tape (VW3_LIVE_REPLAY), taking the same
+decisions at the same reads: both outputs must be equal byte for byte (summary, --json, -V, -Y,
+--watch, -T fields, -x, -t dd), and stderr too (profile news, counts) but for the seconds it took.
+
+- Tapes made from the simulator's mixes (tests/support/live_tape.py: reads of 1..64 bytes, a read
+  timing out every 10 ms of silence, damage, noise, late and missing answers), replayed both ways.
+- Captures through a pseudo-terminal, written in random pieces with damage and noise, each decoded
+  live with the engine and replayed by the Python stages, and the other way round.
+
+VW3_LIVE_REPORT makes run_live say how many frames the engine framed: the compiled path ran.
+"""
+from __future__ import annotations
+
+import os
+import random
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+from live_bus import open_pty
+from live_tape import write_tape
+
+from dissector.protocol.crc import with_crc
+from dissector.sim.mixes import PLANT_PROFILES, plant_mix
+from dissector.sim.simulate import generate_session, session_noisy, session_p38
+
+PLANT = [option for profile in PLANT_PROFILES for option in ("--profile", profile)]
+OUTPUTS = [
+    [],
+    ["--json"],
+    ["-V"],
+    ["-Y", 'kind == "noise" or slave == 2 or notes contains "request"'],
+    ["--watch", "CMD,LFR,ETA"],
+    ["-T", "fields", "-e", "frame", "-e", "time_relative", "-e", "time_delta", "-e", "response_time", "-e",
+     "request_frame", "-e", "value", "-e", "notes"],
+    ["-x", "-t", "dd"],
+    ["-t", "d", "--timeout", "0.05"],
+]
+REPORT = re.compile(r"vw3-decode: live path: engine \((summary|frames)\), (\d+) frames from the engine, "
+                    r"(\d+) items from the Python stages")
+
+
+def decode(tape: Path, options: list[str], pure: bool, baud: int = 19200) -> tuple[str, str, int]:
+    """vw3-decode --live of a tape's reads: (stdout, stderr without its last line, frames the engine framed)."""
+    env = dict(os.environ, VW3_LIVE_REPLAY=str(tape), VW3_LIVE_REPORT="1", PYTHONPATH=str(ROOT))
+    env.pop("VW3_PURE_PYTHON", None)
+    if pure:
+        env["VW3_PURE_PYTHON"] = "1"
+    run = subprocess.run([sys.executable, "-m", "dissector", "--live", "/dev/ttyTAPE", "--baud", str(baud), *options],
+                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+    assert run.returncode == 0, run.stderr
+    return _split(run.stdout, run.stderr)
+
+
+def _split(out: str, err: str) -> tuple[str, str, int]:
+    lines = err.splitlines()
+    assert re.fullmatch(r"vw3-decode: \d+ frames? .* in \d+\.\d s.*", lines[-1]), lines[-1]
+    found = [REPORT.fullmatch(line) for line in lines]
+    engine = next((int(match.group(2)) for match in found if match), 0)
+    kept = [line for line, match in zip(lines[:-1], found) if not match and "listening on" not in line]
+    kept.append(re.sub(r" in \d+\.\d s", "", lines[-1]))
+    return out, "\n".join(kept), engine
+
+
+def assert_same(tape: Path, options: list[str], baud: int = 19200, engine_at_least: int = 1) -> str:
+    python_out, python_err, python_engine = decode(tape, options, True, baud)
+    engine_out, engine_err, engine_frames = decode(tape, options, False, baud)
+    assert python_engine == 0
+    assert engine_frames >= engine_at_least, engine_err
+    assert engine_out == python_out
+    assert engine_err == python_err
+    return python_out
+
+
+@pytest.mark.parametrize("output", range(len(OUTPUTS)))
+def test_plant_mix_with_damage_same_outputs(output: int, tmp_path: Path) -> None:
+    tape = write_tape(tmp_path / "plant.tape", plant_mix(1500, seed=output), seed=output, damage=0.03)
+    options = OUTPUTS[output] + (PLANT if output % 2 else [])  # profile auto on every other run
+    out = assert_same(tape, options, engine_at_least=200)
+    assert out
+
+
+def test_damage_shows_what_live_shows(tmp_path: Path) -> None:
+    """The tapes hold what the live path must follow: noise, bad CRCs, unanswered requests, answers
+    after the timeout (live: shown unanswered when the timeout passed, the late answer unmatched),
+    lines provisional until profile auto chose."""
+    tape = write_tape(tmp_path / "plant.tape", plant_mix(3000, seed=7), seed=7, damage=0.03)
+    out = assert_same(tape, [], engine_at_least=500)
+    for text in ("noise", "CRC BAD", "[no response]", "[response without a matching request in the capture]",
+                 "[provisional]"):
+        assert text in out, text
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_polling_and_noisy_sessions(seed: int, tmp_path: Path) -> None:
+    records = generate_session(400, seed=seed) + [
+        (data, when + 30) for data, when in session_noisy()] + [(data, when + 60) for data, when in session_p38()]
+    records.sort(key=lambda record: record[1])
+    tape = write_tape(tmp_path / "bus.tape", records, seed=seed, damage=0.02 * seed)
+    assert_same(tape, ["--timeout", "0.2"] if seed else [])
+    assert_same(tape, ["--json", "-t", "dd"])
+
+
+# -- through a pseudo-terminal ---------------------------------------------------------------------------
+def capture_on_pty(chunks: list[tuple[bytes, float]], tape: Path, options: list[str], pure: bool
+                   ) -> tuple[str, str, int]:
+    """`chunks` (bytes, pause after) written to a pseudo-terminal; vw3-decode --live on its other end,
+    recording its reads to `tape`, stopped by SIGINT."""
+    line, device_fd, path = open_pty()
+    env = dict(os.environ, VW3_LIVE_TAPE=str(tape), VW3_LIVE_REPORT="1", PYTHONPATH=str(ROOT))
+    env.pop("VW3_PURE_PYTHON", None)
+    if pure:
+        env["VW3_PURE_PYTHON"] = "1"
+    process = subprocess.Popen([sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
+                               cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        assert process.stderr is not None
+        assert "listening on" in process.stderr.readline()
+        for data, pause in chunks:
+            os.write(line, data)
+            time.sleep(pause)
+        time.sleep(0.4)  # (every flush after silence)
+        process.send_signal(signal.SIGINT)
+        out, err = process.communicate(timeout=60)
+    finally:
+        if process.poll() is None:
+            process.kill()
+        os.close(line)
+        os.close(device_fd)
+    assert process.returncode == 0, err
+    return _split(out, err)
+
+
+def pty_traffic(seed: int) -> list[tuple[bytes, float]]:
+    """A bus of drives and relays in random pieces: bursts, a pause inside a frame, glitch bytes, noise,
+    a damaged answer, a slave that does not answer, one that answers after the 0.2 s timeout."""
+    rng = random.Random(seed)
+    records = [data for data, _when in generate_session(60, seed=seed)]
+    chunks: list[tuple[bytes, float]] = []
+    for index, data in enumerate(records):
+        roll = rng.random()
+        if roll < 0.05:
+            data = data[:3] + bytes([data[3] ^ 0x10]) + data[4:]
+        elif roll < 0.10:
+            data += b"\x00"
+        elif roll < 0.13:
+            chunks.append((bytes(rng.randrange(256) for _ in range(rng.randint(1, 12))), 0.03))
+        elif roll < 0.15:
+            chunks.append((data, 0.3))  # the answer comes after the timeout
+            continue
+        at = 0
+        while at < len(data):
+            size = rng.randint(1, 16)
+            chunks.append((data[at : at + size], rng.choice([0.0, 0.0, 0.001, 0.004])))
+            at += size
+        chunks[-1] = (chunks[-1][0], rng.choice([0.002, 0.01, 0.03]) if index % 2 else 0.005)
+    unanswered = with_crc(bytes.fromhex("050300000002"))
+    chunks += [(unanswered, 0.3), (with_crc(bytes.fromhex("0c0320d00003")), 0.05)]
+    return chunks
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine-live", "python-live"])
+@pytest.mark.parametrize("options", [[], ["--json"], ["-V"]], ids=["summary", "json", "detail"])
+def test_pty_capture_replayed_by_the_other_side(pure: bool, options: list[str], tmp_path: Path) -> None:
+    tape = tmp_path / "pty.tape"
+    options = ["--timeout", "0.2", *options]
+    live_out, live_err, live_engine = capture_on_pty(pty_traffic(len(options) + pure), tape, options, pure)
+    assert tape.stat().st_size > 0
+    out, err, engine = decode(tape, options, not pure, baud=115200)
+    assert (live_engine == 0, engine > 0) == (pure, pure)  # the engine framed, live or replayed
+    assert max(live_engine, engine) >= 10
+    assert out == live_out
+    assert err == live_err
+    assert "[no response]" in out or '"unanswered": true' in out or "No response" in out
