@@ -125,10 +125,26 @@ static void json_number(Out *o, double v, int digits, int whole) {
     char buffer[32] = "", *text = NULL;
     double a = fabs(v), r;
     if (whole && a < 9e15) {
-        PyOS_snprintf(buffer, sizeof buffer, "%lld", (long long)v);
+        unsigned long long n = (unsigned long long)a;
+        char *at = buffer + sizeof buffer - 1;
+        do *--at = (char)('0' + n % 10); while (n /= 10);
+        if (v < 0) *--at = '-';
+        memmove(buffer, at, (size_t)(buffer + sizeof buffer - at));
     } else if (whole || (a != 0.0 && (a < 1e-4 || a >= 1e9))) {
         if (round_to(v, whole ? 0 : digits, &r) == 0)
             text = PyOS_double_to_string(r, whole ? 'f' : 'r', 0, whole ? 0 : Py_DTSF_ADD_DOT_0, NULL);
+    } else if ((r = v * (digits ? 1e6 : 1.0), fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3)) {
+        /* v * 10^digits is within 1e-4 of the exact product: its nearest integer is the rounding's */
+        unsigned long long n = (unsigned long long)llabs(llround(r));
+        char *end = buffer + sizeof buffer - 1, *at = end;
+        int places = digits ? 6 : 1;
+        for (int k = 0; k < places; k++, n /= digits ? 10 : 1) *--at = (char)('0' + (digits ? n % 10 : 0));
+        *--at = '.';
+        do *--at = (char)('0' + n % 10); while (n /= 10);
+        if (signbit(v)) *--at = '-';
+        while (end[-1] == '0' && end[-2] != '.') end--;
+        *end = 0;
+        memmove(buffer, at, (size_t)(end - at + 1));
     } else if ((text = PyOS_double_to_string(v, 'f', digits, 0, NULL)) != NULL) {
         size_t n = strlen(text);
         while (digits > 0 && text[n - 1] == '0') n--;

@@ -16,6 +16,8 @@ typedef struct {
     int readable;             /* series.status was None when read in run `gen` */
     unsigned gen;
     unsigned long long values; /* points not yet added to series.values */
+    uint64_t last;            /* the point key of its last value (most polls read what they read before), */
+    double last_y;            /* and its y */
     PyObject *series;         /* owned */
     Columns *columns;         /* owned: series.columns */
 } Trend;
@@ -274,7 +276,9 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
                     (uint64_t)slave << 32 | (uint64_t)address << 16 | value;
     Point *p = NULL;
     double y = value; /* an address the device does not name: the raw word */
-    if (mapped) {
+    if (mapped && t->key && t->last == pkey) {
+        y = t->last_y;
+    } else if (mapped) {
         size_t slot = (size_t)mix(pkey) & (REPORT_POINTS - 1);
         while (r->points[slot].key && r->points[slot].key != pkey) slot = (slot + 1) & (REPORT_POINTS - 1);
         p = &r->points[slot];
@@ -321,6 +325,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         t->readable = 1;
     }
     t->values++;
+    t->last = pkey, t->last_y = y;
     return columns_point(t->columns, col, x->d, y);
 }
 
