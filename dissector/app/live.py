@@ -14,9 +14,9 @@ shown when its response comes. A file read by name is read twice (app/preselect.
 ahead, so a frame decoded before profile `auto` chose its slave's device says it is provisional
 (Frame.provisional) in every output, and ProfileNews says on stderr when the choice is made.
 
-With the compiled engine (compiled_mode: not with VW3_PURE_PYTHON, Modbus ASCII, -w or -c), the capture
-thread only reads, stamps and writes --raw, and hands on the reads; the display frames, pairs and shows
-them through dissector/accel/livepath.py, which takes the capture thread's decisions (flush after a
+With the compiled engine (compiled_mode: not with VW3_PURE_PYTHON, Modbus ASCII or -c), the capture
+thread only reads, stamps and writes --raw, and hands on the reads; the display frames, pairs, writes -w
+and shows them through dissector/accel/livepath.py, which takes the capture thread's decisions (flush after a
 silence, expire a request past --timeout) at the same reads, so the lines are the Python path's, shown
 as soon. VW3_LIVE_TAPE records the reads, VW3_LIVE_REPLAY decodes a recording again (one thread, the
 display keeping up), VW3_LIVE_REPORT says how many frames the engine framed:
@@ -223,10 +223,31 @@ class Shown:
     item heard, show it, and tell profile news."""
 
     def __init__(self, sink: Sink, stats: LiveStats, observe: Callable[[list[Item]], None] | None = None,
-                 news: Callable[[list[Item]], None] | None = None) -> None:
+                 news: Callable[[list[Item]], None] | None = None, capture: CaptureThread | None = None) -> None:
         self.sink, self.stats, self.observe, self.news = sink, stats, observe, news
+        # The compiled live path: the display writes -w (before it shows, as the capture thread does);
+        # a failed write stops the capture, and nothing more is shown.
+        self.capture = capture
+        self.stopped = False
+
+    def write(self, items: list[Item] | None = None) -> bool:
+        capture = self.capture
+        if self.stopped or capture is None:
+            return not self.stopped
+        try:
+            if items is None:
+                capture.files.tick()
+            else:
+                capture.files.items(items)
+        except LiveError as error:
+            capture.reason, capture.status = str(error), error.status
+            capture.stop.set()
+            self.stopped = True
+        return not self.stopped
 
     def items(self, shown: list[Item]) -> None:
+        if not self.write(shown):
+            return
         for item in shown:
             self.stats.add(item)
         if self.observe is not None:
@@ -241,6 +262,8 @@ class Shown:
 
     def lines(self, data: bytes) -> None:
         """The engine's summary lines (UTF-8, each ending in a newline)."""
+        if self.stopped:
+            return
         lines = data.decode("utf-8").split("\n")
         del lines[-1]
         self.stats.add_lines(lines)
@@ -249,11 +272,13 @@ class Shown:
 
 def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
             stop: StopFlag, observe: Callable[[list[Item]], None] | None = None,
-            news: Callable[[list[Item]], None] | None = None, live: Any = None) -> str | None:
+            news: Callable[[list[Item]], None] | None = None, live: Any = None,
+            shown: Shown | None = None) -> str | None:
     """Pair, decode and show what the capture hands on until it ends; a reason if the display stops it.
     With `live` (dissector/accel/livepath.py LivePath), the capture hands on its reads, and `live`
     frames and shows them."""
-    shown = Shown(sink, stats, observe, news)
+    if shown is None:
+        shown = Shown(sink, stats, observe, news, capture if live is not None else None)
     while True:
         if stop.signal is not None:
             capture.stop.set()
@@ -268,10 +293,11 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
     items, safe, closed = handoff.take(wait)
     sink = shown.sink
     if live is not None:
-        if items:
+        if items and not shown.stopped:
             live.feed(items)
-        if closed:
+        if closed and not shown.stopped:
             live.finish()
+        shown.write()  # (a -w ring switches files on time)
         sink.show([])
     else:
         out = dissector.push(items) if items else []
@@ -320,10 +346,10 @@ def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Diss
 
 def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> str | None:
     """How the engine takes part in this live capture: "summary" (it writes the summary lines),
-    "frames" (it frames and pairs, the Python stages show), or None (the Python stages do it all:
-    VW3_PURE_PYTHON, no extension, Modbus ASCII, and -w and -c, which the capture thread writes and
-    counts as it frames)."""
-    if getattr(args, "mode", None) == "ascii" or getattr(args, "write", None) or getattr(args, "count", None):
+    "frames" (it frames and pairs, the Python stages show; -w is written from those items), or None
+    (the Python stages do it all: VW3_PURE_PYTHON, no extension, Modbus ASCII, and -c, whose cut the
+    capture thread makes as it frames, before the pairing the engine does)."""
+    if getattr(args, "mode", None) == "ascii" or getattr(args, "count", None):
         return None
     from dissector.accel import livepath
 
@@ -332,7 +358,7 @@ def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> st
     display = getattr(args, "display", None)
     plain = display is None or not (display.detail or display.hexdump or display.fields is not None
                                     or display.registers is not None)
-    if (plain and not is_terminal and not getattr(args, "json", False) and getattr(args, "watch", None) is None
+    if (plain and not is_terminal and not getattr(args, "write", None) and not getattr(args, "json", False) and getattr(args, "watch", None) is None
             and getattr(args, "filter_text", None) is None and clock is not None and livepath.summary_usable(clock)):
         return "summary"
     return "frames"
@@ -394,18 +420,20 @@ def run_live(
                 capture.start()  # first: a sink that fails (a reader gone) must not leave done unset
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
             news = ProfileNews(annotate, err)
+            shown_ = Shown(sink, stats, observe, news, capture if compiled is not None else None)
             if compiled is not None:
-                live = _live_path(compiled, dissector, annotate, clock, Shown(sink, stats, observe, news), args)
+                live = _live_path(compiled, dissector, annotate, clock, shown_, args)
             if replay:
-                _replay(replay, capture, handoff, dissector, Shown(sink, stats, observe, news), live)
+                _replay(replay, capture, handoff, dissector, shown_, live)
             else:
-                display(capture, handoff, dissector, sink, stats, stop, observe, news, live)
+                display(capture, handoff, dissector, sink, stats, stop, observe, news, live, shown_)
     finally:
         capture.stop.set()
         if not replay:
             capture.done.wait()
         if port is not None:
             port.close()
+        files.close()  # (the compiled path's -w: the display wrote it to the end)
         stats.finish()
         try:
             sink.close()

@@ -111,6 +111,15 @@ class CaptureFiles:
         self.close()
         raise LiveError(f"cannot write {path}: {error.strerror or error}{kept}", ExitStatus.ERROR)
 
+    def close_raw(self) -> None:
+        """Close --raw only (the compiled live path: the display writes -w, and closes it)."""
+        raw, self._raw = self._raw, None
+        if raw is not None:
+            try:
+                raw.close()
+            except OSError:
+                pass
+
     def close(self) -> None:
         output, raw = self.output, self._raw
         self._raw = None
@@ -277,7 +286,10 @@ class CaptureThread:
         except LiveError as error:
             self.reason, self.status = str(error), error.status
         finally:
-            self.files.close()
+            if self.framer is None:
+                self.files.close_raw()  # (-w is the display's: what it still frames goes there)
+            else:
+                self.files.close()
             self.handoff.close()
             self.done.set()
 
@@ -305,7 +317,8 @@ class CaptureThread:
                 if not self.step(data, stamp, now):
                     self.reason = "count"
                     return
-                self.files.tick()
+                if self.framer is not None:
+                    self.files.tick()  # (else the display's, which writes -w)
         finally:
             if tape is not None:
                 tape.close()

@@ -57,9 +57,9 @@ def decode(tape: Path, options: list[str], pure: bool, baud: int = 19200) -> tup
     if pure:
         env["VW3_PURE_PYTHON"] = "1"
     run = subprocess.run([sys.executable, "-m", "dissector", "--live", "/dev/ttyTAPE", "--baud", str(baud), *options],
-                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+                         cwd=ROOT, env=env, capture_output=True, timeout=300)
     assert run.returncode == 0, run.stderr
-    return _split(run.stdout, run.stderr)
+    return _split(run.stdout.decode("latin-1"), run.stderr.decode())  # (-w -: a pcap on stdout)
 
 
 def _split(out: str, err: str) -> tuple[str, str, int]:
@@ -111,6 +111,23 @@ def test_polling_and_noisy_sessions(seed: int, tmp_path: Path) -> None:
     assert_same(tape, ["--json", "-t", "dd"])
 
 
+@pytest.mark.parametrize("file_format", ["pcap", "pcapng"])
+def test_capture_files_written_by_the_display_are_the_capture_threads(file_format: str, tmp_path: Path) -> None:
+    """-w: with the engine, the display writes the records of the items it frames (before it shows
+    them); the file is the one the Python path's capture thread writes, record for record."""
+    tape = write_tape(tmp_path / "plant.tape", plant_mix(1000, seed=11), seed=11, damage=0.03)
+    runs = {}
+    for pure in (True, False):
+        written, raw = tmp_path / f"{pure}.{file_format}", tmp_path / f"{pure}.bin"
+        runs[pure] = decode(tape, ["-w", str(written), "-F", file_format, "-P", "--raw", str(raw), "--json"], pure)
+        runs[pure] = (runs[pure][0], runs[pure][1].replace(str(written), "W").replace(str(raw), "R"), runs[pure][2])
+    assert runs[True][:2] == runs[False][:2]
+    assert runs[False][2] > 100
+    assert (tmp_path / f"True.{file_format}").read_bytes() == (tmp_path / f"False.{file_format}").read_bytes()
+    assert (tmp_path / "True.bin").read_bytes() == (tmp_path / "False.bin").read_bytes()
+    assert len((tmp_path / "True.bin").read_bytes()) > 20_000
+
+
 # -- through a pseudo-terminal ---------------------------------------------------------------------------
 def capture_on_pty(chunks: list[tuple[bytes, float]], tape: Path, options: list[str], pure: bool
                    ) -> tuple[str, str, int]:
@@ -122,10 +139,10 @@ def capture_on_pty(chunks: list[tuple[bytes, float]], tape: Path, options: list[
     if pure:
         env["VW3_PURE_PYTHON"] = "1"
     process = subprocess.Popen([sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
-                               cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                               cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     try:
         assert process.stderr is not None
-        assert "listening on" in process.stderr.readline()
+        assert b"listening on" in process.stderr.readline()
         for data, pause in chunks:
             os.write(line, data)
             time.sleep(pause)
@@ -138,7 +155,7 @@ def capture_on_pty(chunks: list[tuple[bytes, float]], tape: Path, options: list[
         os.close(line)
         os.close(device_fd)
     assert process.returncode == 0, err
-    return _split(out, err)
+    return _split(out.decode("latin-1"), err.decode())
 
 
 def pty_traffic(seed: int) -> list[tuple[bytes, float]]:
@@ -170,7 +187,7 @@ def pty_traffic(seed: int) -> list[tuple[bytes, float]]:
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine-live", "python-live"])
-@pytest.mark.parametrize("options", [[], ["--json"], ["-V"]], ids=["summary", "json", "detail"])
+@pytest.mark.parametrize("options", [[], ["--json"], ["-V", "-w", "-", "-P"]], ids=["summary", "json", "detail-w"])
 def test_pty_capture_replayed_by_the_other_side(pure: bool, options: list[str], tmp_path: Path) -> None:
     tape = tmp_path / "pty.tape"
     options = ["--timeout", "0.2", *options]
@@ -181,4 +198,5 @@ def test_pty_capture_replayed_by_the_other_side(pure: bool, options: list[str], 
     assert max(live_engine, engine) >= 10
     assert out == live_out
     assert err == live_err
-    assert "[no response]" in out or '"unanswered": true' in out or "No response" in out
+    shown = out + err  # (-w - -P: the lines on stderr)
+    assert "[no response]" in shown or '"unanswered": true' in shown or "No response" in shown
