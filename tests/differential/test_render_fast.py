@@ -14,11 +14,12 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from dissector.devices.build import build_annotator
-from dissector.model import Bit, BitList, Frame, Register, RegisterList
-from dissector.pipeline import dissect_bytes
+from dissector.model import Bit, BitList, Chunk, Frame, Register, RegisterList, Stamp
+from dissector.pipeline import dissect, dissect_bytes
 from dissector.render.detail import detail_text, detail_tree, render_plain
 from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
+from dissector.sim.simulate import generate_session
 from strategies import session_bytes, transactions
 
 from conftest import ROOT
@@ -26,16 +27,16 @@ from conftest import ROOT
 PROFILES = [["atv71"], ["sel749m"], ["generic"], PLANT_PROFILES, ["atv71", "1=sel749m"]]
 
 
-def _check(items: list, extra: dict | None = None) -> None:
+def _check(items: list, extra: dict | None = None, base: float | None = 0.5) -> None:
     # The fast writers first, while register blocks are still columns (RegisterList.plain); the
     # references then make every Register object.
-    fast = [(item_to_json(item, extra), detail_text(item, 0.5)) for item in items]
+    fast = [(item_to_json(item, extra), detail_text(item, base)) for item in items]
     for item, (json_text, text) in zip(items, fast):
         record = item_to_dict(item)
         if extra:
             record.update(extra)
         assert json_text == json.dumps(record)
-        assert text == render_plain(detail_tree(item, 0.5))
+        assert text == render_plain(detail_tree(item, base))
 
 
 @pytest.mark.parametrize("path", sorted((ROOT / "captures").glob("*.bin")), ids=lambda path: path.name)
@@ -50,6 +51,43 @@ def test_captures(path: Path, profiles: list[str]) -> None:
 def test_mixes(profiles: list[str]) -> None:
     data = b"".join(raw for raw, _time in plant_mix(3000, seed=5) + max_size_mix(1500, seed=5))
     _check(dissect_bytes(data, annotate=build_annotator(profiles, [])))
+
+
+@pytest.mark.parametrize("profiles", PROFILES, ids=lambda profiles: ",".join(profiles))
+def test_stamped_records(profiles: list[str]) -> None:
+    """Records stamped with integer nanoseconds, as pcap and pcapng give them: -V's arrival, relative and
+    response times from the integers, and the middles of polled frames kept by their bytes (a second
+    pass: every one from the caches, the blocks then Register objects), as the tree writes them."""
+    records = generate_session(600, seed=4) + plant_mix(1500, seed=4) + max_size_mix(600, seed=4)
+    chunks = [Chunk(data, Stamp(round(time * 1e9) + index * 7), boundary=True)
+              for index, (data, time) in enumerate(records)]
+    items = list(dissect(chunks, annotate=build_annotator(profiles, [])))
+    assert all(type(item.time) is Stamp for item in items)
+    for base in (items[0].time, Stamp(items[0].time.ns - 5), None):
+        _check(items, base=base)
+
+
+def test_kept_middles_follow_labels_and_names() -> None:
+    """Frames of the same bytes and start whose registers are labelled or named otherwise are not
+    written from the text kept for the first."""
+    frames = [item for item in dissect_bytes(bytes.fromhex("0C0320D00003 0EEF 0C0306000100020003 2A74"))]
+    answer = frames[1]
+    plain = detail_text(answer, None)
+    assert "Register 8400: 1 (0x0001)" in plain
+    same = dissect_bytes(bytes.fromhex("0C0320D00003 0EEF 0C0306000100020003 2A74"))[1]
+    same.registers.labels = ["48401", "48402", "48403"]  # type: ignore[union-attr]
+    assert "Register 48401: 1 (0x0001)" in detail_text(same, None)
+    assert detail_text(same, None) == render_plain(detail_tree(same, None))
+    texts = []
+    for status in ("ok", "protected", "ok"):
+        named = dissect_bytes(bytes.fromhex("0C0320D00003 0EEF 0C0306000100020003 2A74"))[1]
+        registers = list(named.registers)  # type: ignore[arg-type]
+        named.registers = registers
+        registers[1].code, registers[1].status = "CHCF", status
+        texts.append(detail_text(named, None))
+        assert texts[-1] == render_plain(detail_tree(named, None))
+    assert "Register 8401: 2 (0x0002)  CHCF" in texts[1] and "Status: protected" in texts[1]
+    assert "Status: protected" not in texts[0] and texts[2] == texts[0] and detail_text(answer, None) == plain
 
 
 @settings(deadline=None, max_examples=150, suppress_health_check=list(HealthCheck))
