@@ -268,7 +268,7 @@ static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned lo
     if (failed) p->failed++;
     if (!t->has) return 0;
     if (p->last.has &&
-        tally_add(st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / 1e-4), 1) < 0)
+        tally_add(st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / POLL_STEP), 1) < 0)
         return -1;
     p->last = *t;
     return 0;
@@ -873,12 +873,13 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          time_value(&b->first_seen), "last_seen", time_value(&b->last_seen));
 }
 
-/* Stats(max_keys, max_params=1 << 18, max_tally=1 << 16): the poll table follows at most max_keys request
- * keys (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters (MAX_PARAMETERS), each
- * kind of histogram but the load per minute at most max_tally entries (MAX_TALLY, _bus.h Tallies). */
+/* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY): the poll table follows at most
+ * max_keys request keys (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters
+ * (MAX_PARAMETERS), each kind of histogram but the load per minute at most max_tally entries (MAX_TALLY,
+ * _bus.h Tallies). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     static char *keywords[] = {"max_keys", "max_params", "max_tally", NULL};
-    Py_ssize_t max_keys, max_params = 1 << 18, max_tally = 1 << 16;
+    Py_ssize_t max_keys, max_params = MAX_PARAMETERS, max_tally = MAX_TALLY;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nn", keywords, &max_keys, &max_params, &max_tally)) return -1;
     if (max_keys < 0 || max_params < 0 || max_tally < 0) {
         PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0");

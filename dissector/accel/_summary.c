@@ -18,8 +18,9 @@
  *   - an exception to FC17, FC20, FC21 or FC43;
  *   - broadcasts, answers nobody asked for, mismatched answers: pairing's findings are notes;
  *   - anything that carries a warning or a note: spec limits, byte counts, coil values other than
- *     ON/OFF, FC5/FC6 answers that do not echo their request, FC8 sub-functions the spec does not define or the device explains, odd FC8 data, requests beyond the device's limits or not supported by it, 16#8000 in a multi-word
- *     read, a parameter readable again, a bits_depend switch;
+ *     ON/OFF, FC5/FC6 answers that do not echo their request, FC8 sub-functions the spec does not
+ *     define or the device explains, odd FC8 data, requests beyond the device's limits or not
+ *     supported by it, 16#8000 in a multi-word read, a parameter readable again, a bits_depend switch;
  *   - exception 2 to an FC3/FC4 read on a device that protects parameters (ATV71, p.38): the
  *     annotator then forgets the values of every parameter read, a change of state;
  *   - a slave whose annotator the engine knows nothing of, or whose PLC-style base is odd.
@@ -981,7 +982,7 @@ static int lift_frame(const Engine *e, const uint8_t *f, Py_ssize_t length, cons
         }
         if (L->odd_count && count & 1) return 0;
     }
-    if (L->coil_at && word(f + L->coil_at) != 0xFF00 && word(f + L->coil_at) != 0) return 0;
+    if (L->coil_at && word(f + L->coil_at) != COIL_ON && word(f + L->coil_at) != COIL_OFF) return 0;
     for (int j = 0; j < 2 && L->echo_at[j]; j++)
         if (word(f + L->echo_at[j]) != word(request->frame + L->echo_request_at[j])) return 0;
     if (L->values == VALUES_BITS) out->bits = f + L->values_at;
@@ -1059,7 +1060,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
         break;
     case FORM_COIL:
         span_text(&e->out, base, start, 1);
-        out_cstr(&e->out, word(f + at[0]) == 0xFF00 ? " = ON" : " = OFF");
+        out_cstr(&e->out, word(f + at[0]) == COIL_ON ? " = ON" : " = OFF");
         break;
     case FORM_SINGLE: { /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
         unsigned value = word(f + at[0]);

@@ -84,12 +84,21 @@ static const QuantityRule known_quantity_rule[KNOWN] = {{0, 0, 0, 0, 0}, {0, 0, 
 #define MAX_BITS 32
 #define MAX_FIFO_VALUES 8
 #define MAX_DATA_BYTES 16
+#define COIL_ON 0xFF00
+#define COIL_OFF 0x0000
+/* Of the --stats store (render/stats_store.py, pollcycle.py) and the timed path (_timeline.h's chunk
+ * flags are accel/records.py's). */
+#define MAX_PARAMETERS 262144
+#define MAX_TALLY 65536
+#define POLL_STEP 0.0001
+enum { CHUNK_TIMED = 1, CHUNK_RECORD_END = 2, CHUNK_SILENCE_BEFORE = 4 };
 
 enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
 enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };
 enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };
-/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule (data/modbus.toml
- * [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the frame's first byte, 0: none.
+/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule
+ * (data/modbus.toml [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the
+ * frame's first byte, 0: none.
  *   the window: start_at, quantity_at; else the constant `quantity` (0: the request's) and the request's start;
  *   check_at[j] (check_width[j] bytes) within LIMIT check_limit[j] (check_above: its high bound only);
  *   span: start + quantity within the 65536 addresses;

@@ -12,7 +12,6 @@
 #ifndef VW3_TIMELINE_H
 #define VW3_TIMELINE_H
 
-enum { CHUNK_TIMED = 1, CHUNK_RECORD_END = 2, CHUNK_SILENCE_BEFORE = 4 };
 enum { CLOCK_RELATIVE = 0, CLOCK_DELTA = 1 }; /* -t r; -t d and dd (the same without a filter) */
 
 typedef struct {

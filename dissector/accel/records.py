@@ -21,7 +21,7 @@ from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import LINKTYPE_USER0
 
-TIMED, RECORD_END, SILENCE_BEFORE = 1, 2, 4  # _timeline.h CHUNK_*
+TIMED, RECORD_END, SILENCE_BEFORE = 1, 2, 4  # the engine's CHUNK_* (generated into _tables.h)
 # Times the engine subtracts as Python does: within 2**52 ns of each other, a difference converts to a
 # double exactly, so (a - b) / 1e9 rounds once there as Stamp.__sub__'s integer division does.
 EXACT_SPAN = 1 << 52

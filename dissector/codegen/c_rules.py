@@ -18,7 +18,9 @@ from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Check, Confirm, ValueKind
 from dissector.protocol.table import Data, Function, Layout
-from dissector.render import describe
+from dissector.accel import records
+from dissector.framing.evidence import COIL_VALUES
+from dissector.render import describe, pollcycle, stats_store
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
 
@@ -180,8 +182,9 @@ def rules_row(entry: Function) -> dict[str, int | list[int]]:
     )
 
 
-LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule (data/modbus.toml
- * [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the frame's first byte, 0: none.
+LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule
+ * (data/modbus.toml [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the
+ * frame's first byte, 0: none.
  *   the window: start_at, quantity_at; else the constant `quantity` (0: the request's) and the request's start;
  *   check_at[j] (check_width[j] bytes) within LIMIT check_limit[j] (check_above: its high bound only);
  *   span: start + quantity within the 65536 addresses;
@@ -226,6 +229,15 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         f"#define MAX_BITS {describe.MAX_BITS}",
         f"#define MAX_FIFO_VALUES {describe.MAX_FIFO_VALUES}",
         f"#define MAX_DATA_BYTES {describe.MAX_DATA_BYTES}",
+        f"#define COIL_ON 0x{COIL_VALUES[0]:04X}",
+        f"#define COIL_OFF 0x{COIL_VALUES[1]:04X}",
+        "/* Of the --stats store (render/stats_store.py, pollcycle.py) and the timed path (_timeline.h's chunk",
+        " * flags are accel/records.py's). */",
+        f"#define MAX_PARAMETERS {stats_store.MAX_PARAMETERS}",
+        f"#define MAX_TALLY {stats_store.MAX_TALLY}",
+        f"#define POLL_STEP {pollcycle.STEP!r}",
+        f"enum {{ CHUNK_TIMED = {records.TIMED}, CHUNK_RECORD_END = {records.RECORD_END}, "
+        f"CHUNK_SILENCE_BEFORE = {records.SILENCE_BEFORE} }};",
         "",
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
         "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
