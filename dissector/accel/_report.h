@@ -441,3 +441,75 @@ static int stats_set_report(Stats *st, PyObject *value, void *closure) {
     Py_XSETREF(st->report, value != NULL && value != Py_None ? Py_NewRef(value) : NULL);
     return 0;
 }
+
+/* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:
+ * from the lowest to the highest, (high - low) / bins wide (1e-4 s when all are equal); None: no bins. */
+static PyObject *time_bins(const Tally *t, size_t n, int bins) {
+    if (bins <= 0) Py_RETURN_NONE;
+    double low = (double)t[0].key / 1e9, width = ((double)t[n - 1].key / 1e9 - low) / bins, *counts;
+    if (width == 0.0) width = 1e-4;
+    if ((counts = PyMem_Calloc((size_t)bins, sizeof *counts)) == NULL) return PyErr_NoMemory();
+    for (size_t k = 0; k < n; k++) {
+        long long bin = (long long)(((double)t[k].key / 1e9 - low) / width);
+        counts[bin < bins - 1 ? bin : bins - 1] += t[k].value;
+    }
+    PyObject *list = PyList_New(bins);
+    for (int k = 0; list != NULL && k < bins; k++) {
+        PyObject *count = PyLong_FromDouble(counts[k]);
+        if (count == NULL) Py_CLEAR(list);
+        else PyList_SET_ITEM(list, k, count);
+    }
+    PyMem_Free(counts);
+    return list;
+}
+
+/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in 1e-4 s steps), exactly: None where a
+ * variance's sum is past what a double holds exactly (the Python stages then work it out). */
+static PyObject *poll_timing(const Tally *t, size_t n) {
+    double total = 0, seen = 0;
+    for (size_t k = 0; k < n; k++) total += t[k].value;
+    long long median = t[n - 1].key, skipped = 0, deviation = 0;
+    double half = floor((total + 1) / 2), kept = 0;
+    for (size_t k = 0; k < n; k++)
+        if ((seen += t[k].value) >= half) {
+            median = t[k].key;
+            break;
+        }
+    if (median <= 0) return Py_BuildValue("(d)", 0.0);
+    __int128 sum = 0;
+    for (size_t k = 0; k < n; k++) {
+        long long count = (long long)t[k].value, step = t[k].key;
+        if ((double)step >= 1.5 * (double)median) {
+            skipped += ((long long)rint((double)step / (double)median) - 1) * count;
+            continue;
+        }
+        long long d = llabs(step - median);
+        deviation = d > deviation ? d : deviation;
+        kept += (double)count;
+        sum += (__int128)d * d * count;
+    }
+    if (sum >= (__int128)1 << 53) Py_RETURN_NONE;
+    double variance = kept ? (double)sum / kept : 0.0;
+    return Py_BuildValue("(dddL)", (double)median * 1e-4, (double)deviation * 1e-4, sqrt(variance) * 1e-4, skipped);
+}
+
+static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
+    const Tallies *table = &st->tallies[TALLY_INTERVALS];
+    Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
+    PyObject *timings = all != NULL ? PyDict_New() : NULL;
+    size_t n = 0;
+    for (size_t k = 0; timings != NULL && k < table->size; k++)
+        if (table->slots[k].tag) all[n++] = table->slots[k];
+    qsort(all, n, sizeof *all, tally_order);
+    for (size_t first = 0, end; timings != NULL && first < n; first = end) {
+        double total = 0;
+        for (end = first; end < n && all[end].tag == all[first].tag; end++) total += all[end].value;
+        if (total == 0) continue;
+        PyObject *owner = PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), *row = poll_timing(all + first, end - first);
+        if (owner == NULL || row == NULL || PyDict_SetItem(timings, owner, row) < 0) Py_CLEAR(timings);
+        Py_XDECREF(owner);
+        Py_XDECREF(row);
+    }
+    PyMem_Free(all);
+    return all == NULL ? PyErr_NoMemory() : timings;
+}

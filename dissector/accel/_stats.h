@@ -799,6 +799,8 @@ static PyObject *stats_response(Stats *st, PyObject *args) {
     Py_RETURN_NONE;
 }
 
+static PyObject *time_bins(const Tally *t, size_t n, int bins);
+
 static int tally_order(const void *a, const void *b) {
     const Tally *x = a, *y = b;
     if (x->tag != y->tag) return x->tag < y->tag ? -1 : 1;
@@ -814,14 +816,17 @@ static long long tally_nth(const Tally *t, size_t n, double rank) {
 }
 
 /* time_summaries() -> {slave << 8 | function: (count, min, median, p95, max)}: stats.time_summary of
- * each pair's response times (ns), in seconds, without a dict of them in Python. */
-static PyObject *stats_time_summaries(Stats *st, PyObject *unused) {
+ * each pair's response times (ns), in seconds, without a dict of them in Python; time_summaries(bins):
+ * per slave << 8, each with the counts of its histogram of `bins` bins (report/html.py _slaves). */
+static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
+    int bins = 0;
+    if (!PyArg_ParseTuple(args, "|i", &bins)) return NULL;
     const Tallies *table = &st->tallies[TALLY_TIMES];
     Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
     PyObject *summaries = all != NULL ? PyDict_New() : NULL;
     size_t n = 0;
     for (size_t k = 0; summaries != NULL && k < table->size; k++)
-        if (table->slots[k].tag) all[n++] = table->slots[k];
+        if (table->slots[k].tag) all[n] = table->slots[k], all[n++].tag &= bins > 0 ? ~0xFFu : ~0u;
     qsort(all, n, sizeof *all, tally_order);
     for (size_t first = 0, end; summaries != NULL && first < n; first = end) {
         double count = 0;
@@ -833,8 +838,8 @@ static PyObject *stats_time_summaries(Stats *st, PyObject *unused) {
                       : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
         double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(0.95 * count)));
         PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF);
-        PyObject *row = Py_BuildValue("(Kdddd)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9,
-                                      p95 / 1e9, (double)t[size - 1].key / 1e9);
+        PyObject *row = Py_BuildValue("(KddddN)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9,
+                                      p95 / 1e9, (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
         if (owner == NULL || row == NULL || PyDict_SetItem(summaries, owner, row) < 0) Py_CLEAR(summaries);
         Py_XDECREF(owner);
         Py_XDECREF(row);
@@ -899,6 +904,8 @@ static PyObject *stats_get_untracked(Stats *st, void *closure) {
 static PyObject *stats_get_parameter_count(Stats *st, void *closure) { return PyLong_FromSize_t(st->param_count); }
 static PyObject *stats_get_dropped(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->dropped); }
 
+static PyObject *stats_poll_timings(Stats *st, PyObject *unused);
+
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
      "param(slave, address, event, value, code, text): a register of a frame the Python stages showed\n"
@@ -915,8 +922,11 @@ static PyMethodDef stats_methods[] = {
      "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
     {"response", (PyCFunction)stats_response, METH_VARARGS, "response(slave, function, ns): a response time"},
-    {"time_summaries", (PyCFunction)stats_time_summaries, METH_NOARGS,
-     "{slave << 8 | function: (count, min, median, p95, max)} of the response times, in seconds"},
+    {"time_summaries", (PyCFunction)stats_time_summaries, METH_VARARGS,
+     "{slave << 8 | function: (count, min, median, p95, max, None)} of the response times, in seconds;\n"
+     "time_summaries(bins): per slave << 8, with the counts of a histogram of `bins` bins"},
+    {"poll_timings", (PyCFunction)stats_poll_timings, METH_NOARGS,
+     "{poll order: (period, jitter, jitter_sd, skipped), (0.0,) or None} (pollcycle._timing in C)"},
     {"tallies", (PyCFunction)stats_tallies, METH_O, "tallies(kind) -> {owner: {key: count}}: a histogram"},
     {"bus_state", (PyCFunction)stats_bus_state, METH_NOARGS, "BusTiming's state but its histograms"},
     {"table", (PyCFunction)stats_table, METH_VARARGS,

@@ -96,12 +96,15 @@ class PollCycle:
         """Rows of the keys repeated MIN_REPEATS times or more, by first frame; `timed_rows`: only the
         first that many get their period, jitter and skipped cycles (a table shows no more)."""
         rows = []
-        polls = self._polls
+        # (key, poll, its timing when the compiled store worked it out: pollcycle._timing in C)
+        polls: list[tuple[Key, _Poll, tuple[float, ...] | None]] = [(key, poll, None) for key, poll in self._polls.items()]
         if self.store is not None:
-            intervals = self.store.tallies(TALLY_INTERVALS)
-            polls = {key: _Poll(first, count, None, failed, intervals.get(order, {}))
-                     for order, (key, first, count, failed) in enumerate(self.store.polls())}
-        for key, poll in sorted(polls.items(), key=lambda entry: entry[1].first_number):
+            timings = self.store.poll_timings()  # {order: (period, jitter, jitter_sd, skipped) or (0.0,) or None}
+            intervals = self.store.tallies(TALLY_INTERVALS) if None in timings.values() else {}
+            polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})),
+                      timings.get(order))
+                     for order, (key, first, count, failed) in enumerate(self.store.polls())]
+        for key, poll, timing in sorted(polls, key=lambda entry: entry[1].first_number):
             if poll.count < MIN_REPEATS:
                 continue
             row: dict[str, Any] = {
@@ -119,7 +122,7 @@ class PollCycle:
                 "skipped": 0,
             }
             if timed_rows is None or len(rows) < timed_rows:
-                row.update(_timing(poll.intervals))
+                row.update(_timing(poll.intervals) if timing is None else _timing_of(timing))
             row["misses"] = row["skipped"] + poll.failed
             rows.append(row)
         return rows
@@ -138,6 +141,11 @@ def request_key(frame: Frame) -> Key:
     if frame.subfunction is not None:
         return (frame.slave, frame.function, frame.subfunction)
     return (frame.slave, frame.function)
+
+
+def _timing_of(timing: tuple[float, ...]) -> dict[str, Any]:
+    """The compiled store's timing tuple (Stats.poll_timings) as _timing gives it."""
+    return dict(zip(("period", "jitter", "jitter_sd", "skipped"), timing))
 
 
 def _timing(intervals: dict[int, int]) -> dict[str, Any]:

@@ -200,11 +200,11 @@ class StatsCollector:
             merged[(slave, function)] = stats
         return merged
 
-    def all_functions(self) -> dict[tuple[int, int], FunctionStats]:
+    def all_functions(self, times: bool = True) -> dict[tuple[int, int], FunctionStats]:
         """Per (slave, function) the counts and the response times (ns -> count) of both sides (the
-        report's per slave table): attached, the times are all in the compiled store."""
+        report's per slave table): attached, the times are all in the compiled store (`times`: taken)."""
         merged = self._all_functions()
-        if self.attached:
+        if self.attached and times:
             for owner, times in self.store.tallies(TALLY_TIMES).items():
                 key = (owner >> 8, owner & 0xFF)
                 if key in merged:

@@ -14,9 +14,14 @@ from pathlib import Path
 import pytest
 
 from dissector.accel import reportfeed
+from dissector.decode.fields import decode_frame
+from dissector.model import Frame, Kind, Stamp
+from dissector.render.pollcycle import PollCycle
 from dissector.render.report.collect import MAX_SERIES, ReportCollector
 from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
+from dissector.render.stats_store import new_store
 from dissector.sim.simulate import generate_session, write_capture
+from helpers import rtu
 from test_report_columns import assert_same_report
 from test_timed_stats import story
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
@@ -128,3 +133,26 @@ def test_bench_mixes_same_report(mix: str, tmp_path: Path, monkeypatch: pytest.M
         assert len(data["parameters"]) == MAX_SERIES and data["parameters_dropped"]
     if mix == "plant":
         assert any(parameter["unit"] for parameter in data["parameters"])
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_poll_timings_in_the_store_as_in_python(seed: int) -> None:
+    """pollcycle's period, jitter and skipped cycles worked out by the compiled store (Stats.poll_timings)
+    as by the Python PollCycle: random intervals, skipped cycles, times going back, and intervals of days
+    whose variance a double does not hold exactly (those keys are worked out by Python)."""
+    rng = random.Random(seed)
+    python, compiled = PollCycle(), PollCycle(new_store())
+    ns = 1_700_000_000 * 10**9
+    for number in range(1, 3000):
+        slave = rng.randrange(1, 6)
+        frame = Frame(0, rtu(f"{slave:02X} 03 0000 000{slave}"), None, Kind.REQUEST, slave, 3, 0, 0, number=number,
+                      unanswered=rng.random() < 0.1)
+        decode_frame(frame)
+        step = rng.choice([10**7, 10**7 + rng.randrange(-10**6, 10**6), 3 * 10**7, -5 * 10**6])
+        if seed % 2 and slave == 5:
+            step = rng.choice([86_400 * 10**9, 3 * 86_400 * 10**9 // 2 - 10**9, -86_400 * 10**9 // 3])
+        ns += step
+        frame.time = Stamp(ns)
+        for cycle in (python, compiled):
+            cycle.add_request(frame)
+    assert compiled.report() == python.report() and compiled.report(2) == python.report(2)

@@ -25,7 +25,7 @@ def _static(name: str) -> str:
 def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
     """Per slave: the --stats counts summed over its functions, and its response-time histogram."""
     slaves: dict[int, dict[str, Any]] = {}
-    for (slave, _function), row in sorted(stats.all_functions().items()):
+    for (slave, _function), row in sorted(stats.all_functions(times=not stats.attached).items()):
         entry = slaves.setdefault(
             slave,
             {"slave": slave, "requests": 0, "responses": 0, "exceptions": {}, "unanswered": 0,
@@ -43,16 +43,25 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
             continue
         for value, count in row.times.items():
             times[value] = times.get(value, 0) + count
+    # Attached to the compiled store, the times are there: each slave's summary and histogram made in C.
+    compiled = stats.store.time_summaries(HISTOGRAM_BINS) if stats.attached else None
     result = []
     for entry in slaves.values():
         times = entry.pop("times")
-        entry["time"] = summary = time_summary(times)
+        if compiled is None:
+            entry["time"] = summary = time_summary(times)
+        else:
+            found = compiled.get(entry["slave"] << 8)
+            entry["time"] = summary = None if found is None else dict(zip(("count", "min", "median", "p95", "max"), found))
         if summary is not None:
             low, high = summary["min"], summary["max"]
             width = (high - low) / HISTOGRAM_BINS or 1e-4
-            counts = [0] * HISTOGRAM_BINS
-            for value, count in times.items():
-                counts[min(HISTOGRAM_BINS - 1, int((value / 1e9 - low) / width))] += count
+            if compiled is None:
+                counts = [0] * HISTOGRAM_BINS
+                for value, count in times.items():
+                    counts[min(HISTOGRAM_BINS - 1, int((value / 1e9 - low) / width))] += count
+            else:
+                counts = found[5]
             summary["bins"] = [round((low + (index + 0.5) * width) * 1000, 4) for index in range(HISTOGRAM_BINS)]
             summary["counts"] = counts
         result.append(entry)
