@@ -1816,7 +1816,7 @@ local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
   if GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE) then
-    -- (rtu.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
+    -- (framing/rules.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
     if after == nil then return NEED end
     if after then return NONE end
@@ -5262,7 +5262,7 @@ local function finish(st)
   if record == nil then return end
   local items = feed(st, "", nil, false, true)
   for index = 1, #items do
-    -- The answer awaited cut by the end of the capture: said on the request (pairing.py CUT_ANSWER).
+    -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
     local reason = items[index].reason
     if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
   end

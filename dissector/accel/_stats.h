@@ -50,7 +50,7 @@ typedef struct {
     size_t param_slots, param_count; /* slots: a power of two, at most 3/4 full */
     Poll *polls;
     size_t poll_slots, poll_count;
-    size_t max_keys;              /* pollcycle.MAX_KEYS, given at creation */
+    size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
@@ -879,7 +879,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
 }
 
 /* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY): the poll table follows at most
- * max_keys request keys (pollcycle.MAX_KEYS), the parameter table keeps at most max_params parameters
+ * max_keys request keys (stats_store.MAX_KEYS), the parameter table keeps at most max_params parameters
  * (MAX_PARAMETERS), each kind of histogram but the load per minute at most max_tally entries (MAX_TALLY,
  * _bus.h Tallies). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {

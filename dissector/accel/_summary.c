@@ -391,7 +391,7 @@ typedef struct {
     long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
 } FrameRef;
 
-/* A length rule's answer as framing/rtu.py gives it: a length (0: the layout cannot apply), more
+/* A length rule's answer as framing/rules.py gives it: a length (0: the layout cannot apply), more
  * bytes needed, or a CRC scan from a minimum length (its Scan). */
 enum { LENGTH_OK, LENGTH_NEED, LENGTH_SCAN };
 typedef struct { int what; Py_ssize_t value; } Length;
@@ -522,7 +522,7 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     return undecided ? -1 : 0;
 }
 
-/* rtu.GLITCH_BYTES: what a short low pulse on an idle line reads as, FF << k (a driver's turn-around). */
+/* stream.GLITCH_BYTES: what a short low pulse on an idle line reads as, FF << k (a driver's turn-around). */
 static inline int glitch_byte(uint8_t v) { return v == 0 || (uint8_t)(v | (v - 1)) == 0xFF; }
 
 /* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
@@ -554,7 +554,7 @@ static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, P
     return n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER; /* nothing: noise, the careful path's */
 }
 
-/* Frame length by the first interpretation (framing/rtu.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
+/* Frame length by the first interpretation (framing/rules.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);
  * *scanned: found by a CRC scan (FC8's Return Query Data), CRC and what follows checked already. */
 static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function,
                                int kind, int *scanned) {
@@ -592,7 +592,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     int slave = b[i], function = b[i + 1];
     if (slave > MAX_SLAVE) return FRAME_HANDOVER;
     if (slave == 0) {
-        /* rtu.py GLITCH_ADDRESSES: a 00 before an intact frame is a glitch, the careful path's. */
+        /* rules.py GLITCH_ADDRESSES: a 00 before an intact frame is a glitch, the careful path's. */
         int after = valid_frame_at(e, b, i + 1, n);
         if (after < 0) return FRAME_NEED;
         if (after) return FRAME_HANDOVER;

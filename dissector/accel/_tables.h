@@ -42,12 +42,12 @@ static int handled_index(int function) {
 
 /* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`
  * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,
- * 3: diagnostics, 4: scan, framing/rtu.py's functions of those names). */
+ * 3: diagnostics, 4: scan, framing/rules.py's functions of those names). */
 typedef struct { int fixed, position, extra, width, special; } LengthRule;
 static const LengthRule request_rule[HANDLED] = {{8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {0, 0, 0, 0, 3}, {4, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {0, 6, 9, 1, 0}, {0, 6, 9, 1, 0}, {4, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 10, 13, 1, 0}, {6, 0, 0, 0, 0}, {0, 0, 0, 0, 1}};
 static const LengthRule response_rule[HANDLED] = {{0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {5, 0, 0, 0, 0}, {0, 0, 0, 0, 3}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 6, 2, 0}, {0, 0, 0, 0, 2}};
 
-/* The framer's rules for every code it knows (framing/rtu.py RULES), as the check that an intact
+/* The framer's rules for every code it knows (framing/rules.py RULES), as the check that an intact
  * frame follows a frame found by a CRC scan needs them; -1: no frame starts with this code. */
 #define KNOWN 43
 static const signed char known_slot[256] = {
@@ -70,7 +70,7 @@ static const signed char known_slot[256] = {
 };
 static const LengthRule known_request_rule[KNOWN] = {{8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {0, 0, 0, 0, 3}, {4, 0, 0, 0, 0}, {4, 0, 0, 0, 0}, {0, 6, 9, 1, 0}, {0, 6, 9, 1, 0}, {4, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 10, 13, 1, 0}, {6, 0, 0, 0, 0}, {0, 0, 0, 0, 1}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}};
 static const LengthRule known_response_rule[KNOWN] = {{0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {5, 0, 0, 0, 0}, {0, 0, 0, 0, 3}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {8, 0, 0, 0, 0}, {8, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {0, 2, 5, 1, 0}, {10, 0, 0, 0, 0}, {0, 2, 5, 1, 0}, {0, 2, 6, 2, 0}, {0, 0, 0, 0, 2}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}, {0, 0, 0, 0, 4}};
-/* A request's length by its quantity when its byte count disagrees (framing/rtu.py BY_QUANTITY):
+/* A request's length by its quantity when its byte count disagrees (framing/rules.py BY_QUANTITY):
  * {quantity's position, extra, bytes an item (0: coils, 8 a byte), byte count's position, extra}. */
 typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;
 static const QuantityRule known_quantity_rule[KNOWN] = {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {4, 9, 0, 6, 9}, {4, 9, 2, 6, 9}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {8, 13, 2, 10, 13}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}};

@@ -16,7 +16,7 @@ from dissector.codegen import c_rules
 from dissector.protocol.table import Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
-# Special length rules the engine implements (framing/rtu.py's functions of the same names).
+# Special length rules the engine implements (framing/rules.py's functions of the same names).
 _SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4}
 
 
@@ -32,7 +32,7 @@ def _rule(layout: Layout, code: int) -> str:
 
 
 def _known_rules() -> tuple[list[int], list[str], list[str]]:
-    """The framer's rules for every code it knows (framing/rtu.py RULES: the table's codes, then the
+    """The framer's rules for every code it knows (framing/rules.py RULES: the table's codes, then the
     codes found by a CRC scan): slots by code, request rules, response rules."""
     slots = [-1] * 256
     requests: list[str] = []
@@ -99,14 +99,14 @@ def render_header() -> str:
         "",
         "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
         " * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,",
-        " * 3: diagnostics, 4: scan, framing/rtu.py's functions of those names). */",
+        " * 3: diagnostics, 4: scan, framing/rules.py's functions of those names). */",
         "typedef struct { int fixed, position, extra, width, special; } LengthRule;",
         "static const LengthRule request_rule[HANDLED] = {"
         + ", ".join(_rule(entry.request, entry.code) for entry in entries) + "};",
         "static const LengthRule response_rule[HANDLED] = {"
         + ", ".join(_rule(entry.response, entry.code) for entry in entries) + "};",
         "",
-        "/* The framer's rules for every code it knows (framing/rtu.py RULES), as the check that an intact",
+        "/* The framer's rules for every code it knows (framing/rules.py RULES), as the check that an intact",
         " * frame follows a frame found by a CRC scan needs them; -1: no frame starts with this code. */",
         f"#define KNOWN {len(known_requests)}",
         "static const signed char known_slot[256] = {",
@@ -114,7 +114,7 @@ def render_header() -> str:
         "};",
         "static const LengthRule known_request_rule[KNOWN] = {" + ", ".join(known_requests) + "};",
         "static const LengthRule known_response_rule[KNOWN] = {" + ", ".join(known_responses) + "};",
-        "/* A request's length by its quantity when its byte count disagrees (framing/rtu.py BY_QUANTITY):",
+        "/* A request's length by its quantity when its byte count disagrees (framing/rules.py BY_QUANTITY):",
         " * {quantity's position, extra, bytes an item (0: coils, 8 a byte), byte count's position, extra}. */",
         "typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;",
         "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",

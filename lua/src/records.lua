@@ -467,7 +467,7 @@ local function finish(st)
   if record == nil then return end
   local items = feed(st, "", nil, false, true)
   for index = 1, #items do
-    -- The answer awaited cut by the end of the capture: said on the request (pairing.py CUT_ANSWER).
+    -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
     local reason = items[index].reason
     if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
   end
