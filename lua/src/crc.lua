@@ -10,9 +10,8 @@ local concat = table.concat
 
 -- The collector in larger steps, and a new cycle at 1.5 times the memory in use rather than 2: the
 -- records of a capture stay for its whole length, the default small steps went over that large heap
--- again and again (100,000 records: one pass 19.5 s, 6.6 s with larger steps), and the default pause
--- let the garbage of a cycle double the peak. Wireshark's Lua state is shared: this tunes speed and
--- memory only.
+-- again and again (bench/README.md), and the default pause let the garbage of a cycle double the peak.
+-- Wireshark's Lua state is shared: this tunes speed and memory only.
 pcall(collectgarbage, "setstepmul", 1000)
 pcall(collectgarbage, "setpause", 150)
 

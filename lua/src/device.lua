@@ -156,6 +156,15 @@ local FIXED = setmetatable({}, { __index = function(formats, decimals)
   return text
 end })
 
+-- A value times its row's scale, rounded to the decimals the scale was written with, and its text.
+local function scaled_value(row, value)
+  local decimals = row.decimals or 0
+  local text = format(FIXED[decimals], value * row.scale)
+  local scaled = tonumber(text)
+  if decimals == 0 then scaled = floor(scaled + 0.5) end
+  return scaled, text
+end
+
 local BIT_NAMES = {}
 for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
 
@@ -187,10 +196,7 @@ interpret = function(row, value)
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end
-  local decimals = row.decimals or 0
-  local text = format(FIXED[decimals], raw_value * row.scale)
-  local scaled = tonumber(text)
-  if decimals == 0 then scaled = floor(scaled + 0.5) end
+  local scaled, text = scaled_value(row, raw_value)
   if row.unit ~= nil then return scaled, text .. " " .. row.unit end
   return scaled, text
 end
@@ -220,10 +226,7 @@ interpret_wide = function(row, first, second)
   end
   local text
   if row.scale ~= nil then
-    local decimals = row.decimals or 0
-    text = format(FIXED[decimals], value * row.scale)
-    value = tonumber(text)
-    if decimals == 0 then value = floor(value + 0.5) end
+    value, text = scaled_value(row, value)
   elseif row.kind == "float32" then
     text = format("%.7g", value) -- float32 holds about 7 significant digits
   else

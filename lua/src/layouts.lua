@@ -6,7 +6,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
-local FRAMING = DATA.framing or { max_adu = 256, min_adu = 4, max_slave = 247, noise_item_max = 4096 }
+local FRAMING = DATA.framing
 local MAX_ADU, MIN_ADU, MAX_SLAVE = FRAMING.max_adu, FRAMING.min_adu, FRAMING.max_slave
 local NOISE_ITEM_MAX = FRAMING.noise_item_max
 local NEED, NONE = -1, 0

@@ -12,7 +12,7 @@ local PROFILES = DATA.profiles or {}
 local READS = DATA.protocol.reads
 -- Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
 local PLAIN_READS = DATA.protocol.plain_reads
-local READ_LIMIT = (LIMITS.read_registers or { 1, 125 })[2]
+local READ_LIMIT = LIMITS.read_registers[2]
 
 -- The choices the preferences make: default profile (`auto`: one per slave from evidence, devices/
 -- selection.py), profile per slave, address style override, map layers.

@@ -137,16 +137,11 @@ local function cut_answer(s, b, i, n)
 end
 lane.cut_answer = cut_answer
 
--- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
--- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
--- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
--- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. On a
--- flood of one byte that starts a scanned frame everywhere (1 MB of 0x2B, 0x69, 0x6E, 0x41: any slave,
--- an unknown code) the scans were the plugin's time: 76 s for 1 MB, 13x a normal capture of that size
--- (25 s with one scan a position, 4 s with the lengths of a flood kept).
--- A window of one byte value (a flood) has the same lengths wherever it starts: they are kept by the
+-- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
+-- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
+-- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same lengths wherever it starts: they are kept by the
 -- byte, minimum and last (at most FLOOD_KEEP of them), and the run of that byte around the position is
 -- kept per buffer (buffers are only appended to: a run found stays one).
 local scanned = { lengths = {} }
@@ -190,6 +185,9 @@ local function crc_lengths(b, i, n, minimum, last)
   return lengths
 end
 
+-- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
+-- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
+-- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
 local function scan_match(s, b, i, n, minimum, final)
   local last = math.min(n - i, MAX_ADU)
   if minimum < 2 then minimum = 2 end

@@ -9,7 +9,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
-local GLITCH_SKIP = FRAMING.glitch_skip or 16
+local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
 local GLITCH = {}
@@ -102,8 +102,7 @@ local function expect_after(s, frame)
   end
 end
 
-local GLITCH_RUN, GLITCHY_AFTER = FRAMING.glitch_run or 16, FRAMING.glitchy_after or 3 -- (stream.py)
-local GLITCH_SCORE_MAX = FRAMING.glitch_score_max or 8
+local GLITCH_RUN, GLITCHY_AFTER, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitchy_after, FRAMING.glitch_score_max
 local function emit(s, frame, items)
   -- How much the line shows 00 glitches before frames (stream.py _emit): +1 after a few glitch bytes with
   -- a 00 among them, -1 after other noise.

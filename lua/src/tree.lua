@@ -74,11 +74,15 @@ end
 
 -- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
 -- each time they are shown rather than kept: records stay in memory for the whole capture.
-local function register_title(reg)
+local function register_name(reg)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
   local code = reg.row and reg.row.code
-  local parts = { "Register ", label }
-  if code then parts[#parts + 1] = " " .. code end
+  if code then return label .. " " .. code end
+  return label
+end
+
+local function register_title(reg)
+  local parts = { "Register ", register_name(reg) }
   if reg.value ~= nil then parts[#parts + 1] = format(" = %d", reg.value) end
   if reg.text then parts[#parts + 1] = ": " .. reg.text end
   if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
@@ -87,9 +91,7 @@ end
 
 local function register_expert(reg)
   if not reg.status or reg.status == "ok" then return nil end
-  local label = reg.label or (reg.address and tostring(reg.address)) or "?"
-  local code = reg.row and reg.row.code
-  return format("Register %s%s: %s", label, code and (" " .. code) or "", reg.text or reg.status)
+  return format("Register %s: %s", register_name(reg), reg.text or reg.status)
 end
 
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
