@@ -164,7 +164,7 @@ static void json_number(Out *o, double v, int digits, int whole) {
  * a run of equal values by its ends only. drawn(origin, digits): the same as the page writes them,
  * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number);
  * drawn == 2 (drawn_json): those two lists as json.dumps writes them, None when a value is not finite. */
-static PyObject *columns_list(Columns *self, int drawn, double origin, int digits) {
+static PyObject *columns_list(Columns *self, int drawn, double origin, int digits, double scale, int places) {
     PyObject *xs = PyList_New(0), *ys = PyList_New(0);
     if (xs == NULL || ys == NULL) goto fail;
     /* Kept points in C first (x, y); made into lists at the end. */
@@ -236,7 +236,8 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
             x = PyFloat_FromDouble(kx[j]), y = PyFloat_FromDouble(ky[j]);
         } else {
             x = rounded(kx[j] - origin, digits);
-            y = isfinite(ky[j]) && floor(ky[j]) == ky[j] ? PyLong_FromDouble(ky[j]) : rounded(ky[j], 6);
+            y = scale != 0.0 ? rounded(ky[j] * scale, places)
+              : isfinite(ky[j]) && floor(ky[j]) == ky[j] ? PyLong_FromDouble(ky[j]) : rounded(ky[j], 6);
         }
         int bad = x == NULL || y == NULL || PyList_Append(xs, x) < 0 || PyList_Append(ys, y) < 0;
         Py_XDECREF(x);
@@ -257,20 +258,21 @@ fail:
     return NULL;
 }
 
-static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0); }
+static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0, 0.0, 0); }
 
+/* drawn(origin, digits, scale=0, places=0): with a scale, each y is round(y * scale, places), a float. */
 static PyObject *columns_drawn(Columns *self, PyObject *args) {
-    double origin;
-    int digits;
-    if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
-    return columns_list(self, 1, origin, digits);
+    double origin, scale = 0.0;
+    int digits, places = 0;
+    if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
+    return columns_list(self, 1, origin, digits, scale, places);
 }
 
 static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     double origin;
     int digits;
     if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
-    return columns_list(self, 2, origin, digits);
+    return columns_list(self, 2, origin, digits, 0.0, 0);
 }
 
 /* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
@@ -327,7 +329,8 @@ static PyMethodDef columns_methods[] = {
     {"close", (PyCFunction)columns_close, METH_NOARGS, "end the open column (the width is about to change)"},
     {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
     {"points", (PyCFunction)columns_points, METH_NOARGS, "(xs, ys): the points drawn"},
-    {"drawn", (PyCFunction)columns_drawn, METH_VARARGS, "drawn(origin, digits): (xs, ys) as the page writes them"},
+    {"drawn", (PyCFunction)columns_drawn, METH_VARARGS,
+     "drawn(origin, digits, scale=0, places=0): (xs, ys) as the page writes them"},
     {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
      "drawn_json(origin, digits): drawn()'s lists as JSON text, None when a value is not finite"},
     {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},

@@ -91,9 +91,11 @@ static int report_pull(Report *r) {
            get_double(r->health, "limit", &r->h_limit) < 0 ? -1 : 0;
 }
 
-/* ... and back; `counts`: the counts kept here too (series values, dropped, answers per slave). */
+/* ... and back; `counts`: the counts kept here instead (series values, dropped, answers per slave: sums,
+ * which the Python stages add to as well, given back once at the end). */
 static int report_push(Report *r, int counts) {
     PyObject *c = r->collector, *h = r->health;
+    if (counts) goto counts;
     if (set_attr(c, "timed", r->timed < 0 ? Py_NewRef(Py_None) : PyBool_FromLong(r->timed)) < 0 ||
         set_attr(c, "origin", time_object(r, &r->origin)) < 0 || set_attr(c, "first_x", time_object(r, &r->first)) < 0 ||
         set_attr(c, "last_x", time_object(r, &r->last)) < 0 || set_attr(c, "width", PyFloat_FromDouble(r->width)) < 0 ||
@@ -104,7 +106,8 @@ static int report_push(Report *r, int counts) {
                          set_attr(h, "width", PyFloat_FromDouble(r->h_width)) < 0 ||
                          set_attr(h, "limit", PyFloat_FromDouble(r->h_limit)) < 0))
         return -1;
-    if (!counts) return 0;
+    return 0;
+counts:;
     const char *names[2] = {"series_dropped", "values"};
     for (size_t k = 0; k <= r->trend_slots; k++) { /* k == trend_slots: the collector's series_dropped */
         Trend *t = k < r->trend_slots ? &r->trends[k] : NULL;
@@ -411,11 +414,15 @@ static void report_dealloc(Report *r) {
 }
 
 static PyObject *report_pull_method(Report *r, PyObject *unused) { return report_pull(r) < 0 ? NULL : Py_NewRef(Py_None); }
-static PyObject *report_push_method(Report *r, PyObject *unused) { return report_push(r, 1) < 0 ? NULL : Py_NewRef(Py_None); }
+static PyObject *report_push_method(Report *r, PyObject *args) {
+    int counts = 0;
+    return !PyArg_ParseTuple(args, "|p", &counts) || report_push(r, counts) < 0 ? NULL : Py_NewRef(Py_None);
+}
 
 static PyMethodDef report_methods[] = {
     {"pull", (PyCFunction)report_pull_method, METH_NOARGS, "take the collector's and health's state (a run starts)"},
-    {"push", (PyCFunction)report_push_method, METH_NOARGS, "give it back, with the counts kept here (a run ended)"},
+    {"push", (PyCFunction)report_push_method, METH_VARARGS,
+     "push(counts=False): give it back (a run ended); push(True): the counts kept here (sums), at the end"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -293,6 +293,8 @@ def count_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annot
         path.report = store.report = engine_report(sinks.report.collector, sinks.health, annotate)
     try:
         summarize_timed(blocks_from_chunks(chunks, dissector.framer.timing), path, warn)
+        if path.report is not None:
+            path.report.push(True)  # the counts kept in the engine (sums) into the collector and health
     finally:
         store.report = None  # (it holds the collector, whose history holds the store)
     sinks.valid_frames += store.frames - frames

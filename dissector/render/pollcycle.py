@@ -99,7 +99,7 @@ class PollCycle:
         # (key, poll, its timing when the compiled store worked it out: pollcycle._timing in C)
         polls: list[tuple[Key, _Poll, tuple[float, ...] | None]] = [(key, poll, None) for key, poll in self._polls.items()]
         if self.store is not None:
-            timings = self.store.poll_timings()  # {order: (period, jitter, jitter_sd, skipped) or (0.0,) or None}
+            timings = self.store.poll_timings() if timed_rows != 0 else {}  # {order: (period, jitter, jitter_sd, skipped) or (0.0,) or None}
             intervals = self.store.tallies(TALLY_INTERVALS) if None in timings.values() else {}
             polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})),
                       timings.get(order))

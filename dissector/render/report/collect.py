@@ -105,9 +105,12 @@ class Columns:
         ys = self.done[1::2]
         return (ys[0], min(ys), max(ys)) if ys else None
 
-    def drawn(self, origin: float, digits: int) -> tuple[list[float], list[float | int]]:
-        """The points as the page writes them: x relative to `origin`, y an int when whole."""
+    def drawn(self, origin: float, digits: int, scale: float = 0.0, places: int = 0) -> tuple[list[float], list[float | int]]:
+        """The points as the page writes them: x relative to `origin`, y an int when whole; with a
+        `scale`, each y times it rounded to `places` (health.py: seconds as ms)."""
         xs, ys = self.points()
+        if scale:
+            return [round(x - origin, digits) for x in xs], [round(y * scale, places) for y in ys]
         return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
 
     def points(self) -> tuple[list[float], list[float]]:

@@ -79,7 +79,6 @@ class Health:
             columns = self.series[slave]
             columns.close()
             columns.compact(origin, max(width, self.width))
-            xs, ys = columns.points()
-            out.append({"slave": slave, "answers": self.counts[slave],
-                        "x": [round(x - origin, 6) for x in xs], "y": [round(y * 1000, 3) for y in ys]})
+            xs, ys = columns.drawn(origin, 6, 1000.0, 3)
+            out.append({"slave": slave, "answers": self.counts[slave], "x": xs, "y": ys})
         return out

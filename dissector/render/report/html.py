@@ -77,8 +77,7 @@ def render_report(
     bus, health = extras.get("bus"), extras.get("health")
     data = collector.data(points=False)
     when = _clock(data, extras.get("time_format", "r"))
-    # Parameters: the collector draws its own; the poll cycle: its table below (timed once, there).
-    summary = stats.report(with_parameters=False, poll_rows=0)
+    summary = stats.report(with_parameters=False)  # parameters: the collector draws its own
     slaves = _slaves(stats)
     data["slaves"] = [
         {"slave": entry["slave"], "time": entry["time"]} for entry in slaves
@@ -127,7 +126,7 @@ def render_report(
         function_rows, "numbers") + "</details>")
     # -- poll cycle
     parts.append('<h2 id="poll">Poll cycle</h2>')
-    poll = stats.poll.report()
+    poll = summary["poll_cycle"]
     if poll:
         parts.append(_table(
             ["slave", "function", "addresses", "count", "period ms", "jitter ms", "skipped", "no answer", "misses"],

@@ -2,12 +2,17 @@
 from __future__ import annotations
 
 import html
+import re
+
+
+_SPECIAL = re.compile("[&<>\"']")
 
 
 def _esc(value: object) -> str:
     if type(value) is int:  # (most cells of the poll table: nothing to escape)
         return str(value)
-    return html.escape("" if value is None else str(value))
+    text = "" if value is None else str(value)
+    return html.escape(text) if _SPECIAL.search(text) else text
 
 
 def _ms(seconds: float | None) -> str:
