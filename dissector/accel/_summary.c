@@ -5,9 +5,8 @@
  * exceptions), exactly what the Python stages do: the framer's fast path (framing/rtu.py, _run),
  * pairing, the decoder's spec checks, the annotator's naming (PLC-style addresses included) and
  * parameter tracking, and the summary line (render/summary.py); FC8's texts too (the spec's
- * sub-function names, given at init). For FC17, FC20, FC21 and FC43
- * (table.Compiled.texts) it frames and pairs, and the texts come from the Python stages by the frames'
- * bytes. What it hands back, before touching any state, at the start of the transaction, and why:
+ * sub-function names, from _tables.h). For FC17, FC20, FC21 and FC43 (table.Compiled.texts) it
+ * frames and pairs, and the texts come from the Python stages by the frames' bytes. What it hands back, before touching any state, at the start of the transaction, and why:
  *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC43
  *     other than 14): the framer's careful path decides those. FC8's Return Query Data, whose echo
  *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
@@ -202,12 +201,10 @@ typedef struct {
     PyObject *piece;
     PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
     PyObject *texts;     /* texts(slave, request, response or None) -> Texts or None (table.Compiled.texts) */
-    PyObject *subfunctions; /* the spec's FC8 sub-function names, {number: name} */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
     PyObject *read_word, *written_word;
-    long limits[LIMIT_COUNT][2]; /* LIMIT_* (_tables.h) */
     Slave slaves[256];
     Out out;
     Remembered *log;
@@ -891,37 +888,22 @@ typedef struct {
     Py_ssize_t length;        /* the frame's, CRC included */
 } Lifted;
 
-/* The spec's name of an FC8 sub-function (borrowed), NULL with no error: not defined by the spec. */
-static PyObject *subfunction_name(Engine *e, unsigned sub) {
-    if (e->subfunctions == NULL || !PyDict_Check(e->subfunctions)) return NULL;
-    PyObject *key = PyLong_FromUnsignedLong(sub);
-    if (key == NULL) return NULL;
-    PyObject *name = PyDict_GetItemWithError(e->subfunctions, key);
-    Py_DECREF(key);
-    if (name != NULL && !PyUnicode_Check(name)) {
-        PyErr_SetString(PyExc_TypeError, "subfunctions: names must be str");
-        return NULL;
-    }
-    return name;
-}
+/* The spec's name of an FC8 sub-function, NULL: not defined by the spec. */
+static const char *subfunction_name(unsigned sub) { return sub < SUBFUNCTIONS ? subfunction_names[sub] : NULL; }
 
 /* fields._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
  * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over, -1 error. */
 static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length) {
     unsigned sub = word(f + 2);
-    if ((length - 6) & 1 || bit(s->explained, sub)) return 0;
-    if (subfunction_name(e, sub) == NULL) return PyErr_Occurred() ? -1 : 0;
-    return 1;
+    return !((length - 6) & 1 || bit(s->explained, sub) || subfunction_name(sub) == NULL);
 }
 
 /* describe._diagnostics: `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7` */
 static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
     unsigned sub = word(f + 2);
-    PyObject *name = subfunction_name(e, sub);
-    if (name == NULL) return -1; /* checked before: only an error leaves it NULL now */
     out_hex(&e->out, sub, 2);
     out_put(&e->out, "h ", 2);
-    if (out_str(&e->out, name) < 0) return -1;
+    out_cstr(&e->out, subfunction_name(sub)); /* diagnostics_are_plain: the spec names it */
     const uint8_t *data = f + 4;
     Py_ssize_t size = length - 6;
     if (size == 2) {
@@ -968,7 +950,7 @@ static int lift_frame(const Engine *e, const uint8_t *f, Py_ssize_t length, cons
     out->quantity = L->quantity_at ? word(f + L->quantity_at) : L->quantity || request == NULL ? (unsigned)L->quantity
                                                                                                : request->quantity;
     for (int j = 0; j < 2 && L->check_at[j]; j++) {
-        const long *range = e->limits[L->check_limit[j]];
+        const long *range = spec_limits[L->check_limit[j]];
         long value = (long)field(f, L->check_at[j], L->check_width[j]);
         if (value > range[1] || (!L->check_above[j] && value < range[0])) return 0;
     }
@@ -1544,29 +1526,18 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 }
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None, *subfunctions = Py_None;
-    static char *keywords[] = {"slave_info", "piece", "limits", "exception", "texts", "subfunctions", NULL};
-    PyObject *limits;
+    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "exception", "texts", NULL};
     if (e->running) {
         PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOO|OOO", keywords, &slave_info, &piece_fn, &limits,
-                                     &exception_fn, &texts_fn, &subfunctions))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO", keywords, &slave_info, &piece_fn, &exception_fn,
+                                     &texts_fn))
         return -1;
-    if (subfunctions != Py_None && !PyDict_Check(subfunctions)) {
-        PyErr_SetString(PyExc_TypeError, "subfunctions: a dict {number: name}");
-        return -1;
-    }
-    if (!PyTuple_Check(limits) || PyTuple_GET_SIZE(limits) != LIMIT_COUNT) {
-        PyErr_Format(PyExc_TypeError, "limits: a tuple of %d (low, high) pairs", LIMIT_COUNT);
-        return -1;
-    }
-    for (int k = 0; k < LIMIT_COUNT; k++)
-        if (!PyArg_ParseTuple(PyTuple_GET_ITEM(limits, k), "ll", &e->limits[k][0], &e->limits[k][1])) return -1;
-    PyObject **fields[] = {&e->slave_info, &e->piece, &e->exception, &e->texts, &e->subfunctions};
-    PyObject *given[] = {slave_info, piece_fn, exception_fn, texts_fn, subfunctions};
-    for (int k = 0; k < 5; k++) Py_XSETREF(*fields[k], Py_NewRef(given[k]));
+    PyObject **fields[] = {&e->slave_info, &e->piece, &e->exception, &e->texts};
+    PyObject *given[] = {slave_info, piece_fn, exception_fn, texts_fn};
+    for (int k = 0; k < 4; k++) Py_XSETREF(*fields[k], Py_NewRef(given[k]));
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -1583,7 +1554,6 @@ static int engine_traverse(Engine *e, visitproc visit, void *arg) {
     Py_VISIT(e->piece);
     Py_VISIT(e->exception);
     Py_VISIT(e->texts);
-    Py_VISIT(e->subfunctions);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
     Py_VISIT(e->stats);
     Py_VISIT(e->judge_bytes);
@@ -1595,7 +1565,6 @@ static int engine_clear(Engine *e) {
     Py_CLEAR(e->piece);
     Py_CLEAR(e->exception);
     Py_CLEAR(e->texts);
-    Py_CLEAR(e->subfunctions);
     pieces_clear(e);
     Py_CLEAR(e->read_word);
     Py_CLEAR(e->written_word);

@@ -30,7 +30,7 @@ static int handled_index(int function) {
     return function >= 0 && function < 256 ? handled_slot[function] : -1;
 }
 
-/* Spec limits (data/modbus.toml), in the order of the engine's `limits` argument. */
+/* The spec limits the lifting rules check (data/modbus.toml [limits]): {low, high} by LIMIT_*. */
 #define LIMIT_COUNT 7
 #define LIMIT_READ_BITS 0
 #define LIMIT_READ_REGISTERS 1
@@ -39,6 +39,33 @@ static int handled_index(int function) {
 #define LIMIT_RW_READ 4
 #define LIMIT_RW_WRITE 5
 #define LIMIT_FIFO_COUNT 6
+static const long spec_limits[LIMIT_COUNT][2] = {{1, 2000}, {1, 125}, {1, 1968}, {1, 123}, {1, 125}, {1, 121}, {0, 31}};
+
+/* The spec's FC8 sub-function names by number (data/modbus.toml [diagnostics]); NULL: none. */
+#define SUBFUNCTIONS 21
+static const char *const subfunction_names[SUBFUNCTIONS] = {
+    "Return Query Data",
+    "Restart Communications Option",
+    "Return Diagnostic Register",
+    "Change ASCII Input Delimiter",
+    "Force Listen Only Mode",
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    NULL,
+    "Clear Counters and Diagnostic Register",
+    "Return Bus Message Count",
+    "Return Bus Communication Error Count",
+    "Return Bus Exception Error Count",
+    "Return Server Message Count",
+    "Return Server No Response Count",
+    "Return Server NAK Count",
+    "Return Server Busy Count",
+    "Return Bus Character Overrun Count",
+    NULL,
+    "Clear Overrun Counter and Flag",
+};
 
 /* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`
  * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,

@@ -33,7 +33,6 @@ from dissector.pipeline import Dissector
 from dissector.render.describe import function_label, info_text, register_text
 from dissector.render.summary import findings_text
 from dissector.protocol import table
-from dissector.protocol.spec import SPEC
 
 try:
     from dissector.accel import _summary
@@ -60,11 +59,6 @@ def built() -> bool:
     """The extension is built from these sources (a build from older ones is not imported at all:
     its stamp is checked once, dissector/accel/__init__.py)."""
     return _summary is not None
-
-
-def _limits() -> tuple[tuple[int, int], ...]:
-    names = table.compiled_limits()  # the order of LIMIT_* in _tables.h
-    return tuple((int(SPEC.limits[name][0]), int(SPEC.limits[name][1])) for name in names)  # type: ignore[index]
 
 
 @dataclass(frozen=True, slots=True)
@@ -115,8 +109,7 @@ def make_engine(annotator: Any | None) -> Any:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, _limits(), exception_texts(annotator), transaction_texts(annotator),
-                           subfunctions=dict(SPEC.diagnostics))
+    return _summary.Engine(slave_info, piece, exception_texts(annotator), transaction_texts(annotator))
 
 
 @dataclass(frozen=True, slots=True)

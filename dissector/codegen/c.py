@@ -12,12 +12,21 @@ from pathlib import Path
 
 from dissector.errors import GenerateError
 from dissector.protocol import table
+from dissector.protocol.spec import SPEC
 from dissector.codegen import c_rules
 from dissector.protocol.table import Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
 # Special length rules the engine implements (framing/rules.py's functions of the same names).
 _SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4}
+
+
+def _c_string(text: str | None) -> str:
+    """A C string literal of `text`'s UTF-8 bytes (octal escapes past printable ASCII), NULL for None."""
+    if text is None:
+        return "NULL"
+    plain = lambda byte: 0x20 <= byte < 0x7F and byte not in b'"\\?'  # noqa: E731  ("??" trigraphs)
+    return '"' + "".join(chr(byte) if plain(byte) else f"\\{byte:03o}" for byte in text.encode()) + '"'
 
 
 def _rule(layout: Layout, code: int) -> str:
@@ -93,9 +102,17 @@ def render_header() -> str:
         "    return function >= 0 && function < 256 ? handled_slot[function] : -1;",
         "}",
         "",
-        "/* Spec limits (data/modbus.toml), in the order of the engine's `limits` argument. */",
+        "/* The spec limits the lifting rules check (data/modbus.toml [limits]): {low, high} by LIMIT_*. */",
         f"#define LIMIT_COUNT {len(limits)}",
         *(f"#define LIMIT_{name.upper()} {index}" for index, name in enumerate(limits)),
+        "static const long spec_limits[LIMIT_COUNT][2] = {"
+        + ", ".join(f"{{{int(SPEC.limits[name][0])}, {int(SPEC.limits[name][1])}}}" for name in limits) + "};",
+        "",
+        "/* The spec's FC8 sub-function names by number (data/modbus.toml [diagnostics]); NULL: none. */",
+        f"#define SUBFUNCTIONS {max(SPEC.diagnostics) + 1}",
+        "static const char *const subfunction_names[SUBFUNCTIONS] = {",
+        *(f"    {_c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
+        "};",
         "",
         "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
         " * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,",

@@ -266,7 +266,7 @@ COMPILED = tuple(entry.code for entry in FUNCTIONS if entry.compiled is not None
 
 def compiled_limits() -> tuple[str, ...]:
     """The spec limits the engine checks (its lifting rules' checks, requests then answers), in the order
-    of its `limits` argument (and LIMIT_* of accel/_tables.h)."""
+    of LIMIT_* and spec_limits in accel/_tables.h."""
     names: list[str] = []
     for kind in (Kind.REQUEST, Kind.RESPONSE):
         for entry in FUNCTIONS:

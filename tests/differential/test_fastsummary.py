@@ -332,7 +332,6 @@ def test_split_invariance_regressions(data: bytes, splits: list[int]) -> None:
     assert [summary_line(item) for item in items] == expected
 
 
-LIMITS = fastsummary._limits()
 FUNCTIONS = {code: (f"F{code}", ()) for code in fastsummary.HANDLED}
 
 
@@ -340,7 +339,6 @@ def test_engine_refuses_bad_callbacks_without_crashing() -> None:
     engine = fastsummary._summary.Engine(
         lambda slave: fastsummary.SlaveFacts(True, {3: ("Read Holding Registers", ())}),
         lambda *args: ("x", False),
-        LIMITS,
     )
     data = rtu("0c0300000001") + rtu("0c03020005") + b"\x01"
     for _ in range(2):  # a slave that failed to load is not left half loaded
@@ -352,18 +350,18 @@ def test_engine_refuses_bad_callbacks_without_crashing() -> None:
             raise ValueError("no truth")
 
     with pytest.raises(TypeError, match="no usable"):  # the facts are read by name, not by position
-        fastsummary._summary.Engine(lambda slave: (True, FUNCTIONS), lambda *args: ("x", False), LIMITS).run(
+        fastsummary._summary.Engine(lambda slave: (True, FUNCTIONS), lambda *args: ("x", False)).run(
             rtu("0c0300000001") + rtu("0c03020005") + b"\x01", 0)
     info = fastsummary.SlaveFacts(True, FUNCTIONS, frozenset([5]))
-    engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()), LIMITS)
+    engine = fastsummary._summary.Engine(lambda slave: info, lambda *args: ("x", Untruthful()))
     with pytest.raises(ValueError, match="no truth"):
         engine.run(rtu("0c0600050001") * 2 + b"\x01", 0)
 
     def reenter(*args: object) -> tuple[str, bool]:
-        engine.__init__(lambda slave: info, reenter, LIMITS)
+        engine.__init__(lambda slave: info, reenter)
         return "x", True
 
-    engine = fastsummary._summary.Engine(lambda slave: info, reenter, LIMITS)
+    engine = fastsummary._summary.Engine(lambda slave: info, reenter)
     with pytest.raises(RuntimeError, match="inside run"):
         engine.run(rtu("0c10000500020400010002") + rtu("0c1000050002") + b"\x01", 0)
     with pytest.raises(TypeError):
