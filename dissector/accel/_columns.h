@@ -121,6 +121,8 @@ static PyObject *rounded(double v, int digits) {
 /* round(v, digits) as json.dumps writes it into the page (its repr; a whole y: its int), after a comma
  * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text, trailing
  * zeros dropped (no other decimal of `digits` digits or fewer is within half an ulp of it): one dtoa. */
+static const double tens[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
 static void json_number(Out *o, double v, int digits, int whole) {
     char buffer[32] = "", *text = NULL;
     double a = fabs(v), r;
@@ -133,11 +135,11 @@ static void json_number(Out *o, double v, int digits, int whole) {
     } else if (whole || (a != 0.0 && (a < 1e-4 || a >= 1e9))) {
         if (round_to(v, whole ? 0 : digits, &r) == 0)
             text = PyOS_double_to_string(r, whole ? 'f' : 'r', 0, whole ? 0 : Py_DTSF_ADD_DOT_0, NULL);
-    } else if ((r = v * (digits ? 1e6 : 1.0), fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3)) {
+    } else if ((r = v * tens[digits], fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3)) {
         /* v * 10^digits is within 1e-4 of the exact product: its nearest integer is the rounding's */
         unsigned long long n = (unsigned long long)llabs(llround(r));
         char *end = buffer + sizeof buffer - 1, *at = end;
-        int places = digits ? 6 : 1;
+        int places = digits ? digits : 1;
         for (int k = 0; k < places; k++, n /= digits ? 10 : 1) *--at = (char)('0' + (digits ? n % 10 : 0));
         *--at = '.';
         do *--at = (char)('0' + n % 10); while (n /= 10);
@@ -213,9 +215,10 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
         for (int k = 0; k < 2; k++) out_put(&text[k], "[", 1);
         for (Py_ssize_t j = 0; j < kept && finite; j++) {
             double x = kx[j] - origin, y = ky[j];
-            if (!(finite = isfinite(x) && isfinite(y))) break;
+            if (!(finite = isfinite(x) && isfinite(scale != 0.0 ? y * scale : y))) break;
             json_number(&text[0], x, digits, 0);
-            json_number(&text[1], y, 6, floor(y) == y);
+            if (scale != 0.0) json_number(&text[1], y * scale, places, 0);
+            else json_number(&text[1], y, 6, floor(y) == y);
         }
         for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
         PyMem_Free(kx), PyMem_Free(ky);
@@ -269,10 +272,11 @@ static PyObject *columns_drawn(Columns *self, PyObject *args) {
 }
 
 static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
-    double origin;
-    int digits;
-    if (!PyArg_ParseTuple(args, "di", &origin, &digits)) return NULL;
-    return columns_list(self, 2, origin, digits, 0.0, 0);
+    double origin, scale = 0.0;
+    int digits, places = 0;
+    if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
+    if (digits < 0 || digits > 9 || places < 0 || places > 9) return PyErr_Format(PyExc_ValueError, "digits 0..9");
+    return columns_list(self, 2, origin, digits, scale, places);
 }
 
 /* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
@@ -332,7 +336,7 @@ static PyMethodDef columns_methods[] = {
     {"drawn", (PyCFunction)columns_drawn, METH_VARARGS,
      "drawn(origin, digits, scale=0, places=0): (xs, ys) as the page writes them"},
     {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
-     "drawn_json(origin, digits): drawn()'s lists as JSON text, None when a value is not finite"},
+     "drawn_json(origin, digits, scale=0, places=0): drawn()'s lists as JSON text, None when one is not finite"},
     {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},
     {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles, 8 a column"},
     {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles"},

@@ -113,6 +113,11 @@ class Columns:
             return [round(x - origin, digits) for x in xs], [round(y * scale, places) for y in ys]
         return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
 
+    def drawn_json(self, origin: float, digits: int, scale: float = 0.0, places: int = 0) -> tuple[str, str]:
+        """drawn()'s two lists as the page's JSON text (the compiled columns write it themselves)."""
+        xs, ys = self.drawn(origin, digits, scale, places)
+        return _json(xs), _json(ys)
+
     def points(self) -> tuple[list[float], list[float]]:
         """Each column's distinct points in order (x, then y), none at or before the last x kept."""
         done = self.done
@@ -425,19 +430,16 @@ class ReportCollector:
         return "[" + ",".join(self._parameter_json(key, series) for key, series in self._drawn()) + "]"
 
     def _parameter_json(self, key: tuple[int, int], series: Series) -> str:
-        # The compiled columns write their points' JSON themselves (_columns.h drawn_json): x and y
-        # come last, as _parameter puts them.
-        drawn_json = getattr(series.columns, "drawn_json", None)
-        if drawn_json is not None:
-            entry = self._parameter(key, series, False)
-            columns = series.columns
-            columns.close()
-            columns.compact(self.origin or 0.0, self.width)
-            points = drawn_json(self._shift(), self._digits())
-            if points is not None:
-                head = json.dumps(entry, separators=(",", ":"), allow_nan=False)
-                return f'{head[:-1]},"x":{points[0]},"y":{points[1]}}}'
-        return json.dumps(self._parameter(key, series, True), separators=(",", ":"), allow_nan=False)
+        # The columns write their points' JSON themselves (the compiled ones in C, _columns.h
+        # drawn_json; None: a value json.dumps refuses): x and y come last, as _parameter puts them.
+        entry = self._parameter(key, series, False)
+        columns = series.columns
+        columns.close()
+        columns.compact(self.origin or 0.0, self.width)
+        points = columns.drawn_json(self._shift(), self._digits())
+        if points is None:
+            return _json(self._parameter(key, series, True))
+        return f'{_json(entry)[:-1]},"x":{points[0]},"y":{points[1]}}}'
 
     def _digits(self) -> int:
         return 6 if self.timed else 0
@@ -475,6 +477,10 @@ class ReportCollector:
 def _name(series: Series) -> str:
     shown = series.label or str(series.address)
     return f"{series.code} ({shown})" if series.code else shown
+
+
+def _json(value: Any) -> str:
+    return json.dumps(value, separators=(",", ":"), allow_nan=False)
 
 
 def _number(y: float) -> float | int:

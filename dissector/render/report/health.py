@@ -10,6 +10,7 @@
 """
 from __future__ import annotations
 
+import json
 from typing import Any
 
 from dissector.model import Item, Kind
@@ -73,12 +74,15 @@ class Health:
                 columns.compact(self.origin, self.width)  # type: ignore[arg-type]
 
     def response_series(self, origin: float, width: float) -> list[dict[str, Any]]:
-        """Per slave x (relative to the report's origin) and y (ms), in the report's columns."""
+        """Per slave x (relative to the report's origin) and y (ms), in the report's columns, as the
+        page's JSON text of each list (html.py writes them into its data)."""
         out = []
         for slave in sorted(self.series):
             columns = self.series[slave]
             columns.close()
             columns.compact(origin, max(width, self.width))
-            xs, ys = columns.drawn(origin, 6, 1000.0, 3)
-            out.append({"slave": slave, "answers": self.counts[slave], "x": xs, "y": ys})
+            points = columns.drawn_json(origin, 6, 1000.0, 3)
+            if points is None:  # a value json.dumps refuses: its error
+                points = [json.dumps(values, allow_nan=False) for values in columns.drawn(origin, 6, 1000.0, 3)]
+            out.append({"slave": slave, "answers": self.counts[slave], "x": points[0], "y": points[1]})
         return out

@@ -16,6 +16,8 @@ from dissector.render.stats import StatsCollector, exception_counts, merged_text
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
+_STAND_IN = "\0responses"
+_STAND_IN_JSON = json.dumps(_STAND_IN)
 
 
 def _static(name: str) -> str:
@@ -178,8 +180,18 @@ def render_report(
     data["clock"] = extras.get("time_format", "r")
     data["first"] = collector.first_x
     if health is not None:
-        data["written"] = sorted(f"{slave}:{address}" for slave, address in health.written)
+        data["written"] = sorted(map("%d:%d".__mod__, health.written))  # slave:address
+    # The response-time series come as JSON text (health.py): written in where their key is, the last
+    # occurrence of the stand-in (only "clock", "first" and "written" come after it).
+    responses = data.get("responses")
+    if responses is not None:
+        data["responses"] = _STAND_IN
     head = json.dumps(data, separators=(",", ":"), allow_nan=False)
+    if responses is not None:
+        at = head.rindex(_STAND_IN_JSON)
+        head = head[:at] + "[" + ",".join(
+            f'{{"slave":{entry["slave"]},"answers":{entry["answers"]},"x":{entry["x"]},"y":{entry["y"]}}}'
+            for entry in responses) + "]" + head[at + len(_STAND_IN_JSON):]
     # Every `<` as \u003c (only JSON strings hold one): neither `</script>` nor `<!--` from a map's
     # text can end the block or swallow the page's scripts.
     payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("<", "\\u003c")

@@ -21,5 +21,5 @@ def _ms(seconds: float | None) -> str:
 
 def _table(headers: list[str], rows: list[list[object]], cls: str = "") -> str:
     head = "".join(f"<th>{_esc(header)}</th>" for header in headers)
-    body = "".join("<tr>" + "".join(f"<td>{_esc(cell)}</td>" for cell in row) + "</tr>" for row in rows)
+    body = "".join("<tr><td>" + "</td><td>".join(map(_esc, row)) + "</td></tr>" if row else "<tr></tr>" for row in rows)
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'

@@ -43,7 +43,7 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
     data["responses"] = health.response_series(origin, data["column_width"]) if health is not None else []
     answered = {entry["slave"] for entry in data["responses"]}
     for slave in sorted({outage["slave"] for outage in data["outages"]} - answered):  # silent throughout
-        data["responses"].append({"slave": slave, "answers": 0, "x": [], "y": []})
+        data["responses"].append({"slave": slave, "answers": 0, "x": "[]", "y": "[]"})  # (JSON text)
     data["responses"].sort(key=lambda entry: entry["slave"])
     if not report["timed"]:
         return parts + ["<p>No timestamps in this capture: load, gaps, turnaround and outages need a pcap, "
