@@ -70,7 +70,13 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
         /* Two layouts check out (a FC23 request whose response reading is as long, FC5's echo): a
          * record's end after this one picks it, the first tried, unless a shorter one checks out too
          * (the framer tries the shortest first on a glitchy line). */
-        return boundary_at(t, at + length) && shortest >= length ? DECIDE_OK : DECIDE_HANDOVER;
+        if (boundary_at(t, at + length) && shortest >= length) return DECIDE_OK;
+        /* Nothing after it yet (a live read, a record, that ends with the frame; so the others are as
+         * long): off a glitchy line, _match takes the answer awaited at once, and waits for what follows
+         * anything else (_valid_frame_at there: NEED). */
+        if (i + length >= m && shortest >= length && !e->glitchy)
+            return kind == KIND_RESPONSE ? DECIDE_OK : DECIDE_WAIT;
+        return DECIDE_HANDOVER;
     }
     if (waits && kind != KIND_RESPONSE && !boundary_at(t, at + length))
         return DECIDE_WAIT; /* a longer layout may still come (the 00 case) */
