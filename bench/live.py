@@ -36,8 +36,9 @@ VW3 = [sys.executable, "-m", "dissector"]
 
 
 def run_live(stream: bytes, options: list[str], pure: bool, baud: int, rate: float | None, seed: int,
-             expected: int | None) -> tuple[float, list[str], str]:
-    """(CPU seconds, stdout lines, stderr) of one live decode of `stream`."""
+             expected: int | None, idle: float = 0.0) -> tuple[float, list[str], str]:
+    """(CPU seconds, stdout lines, stderr) of one live decode of `stream` (none: `idle` seconds of a
+    silent line)."""
     line, device, path = _pty()
     env = dict(os.environ, PYTHONPATH=str(ROOT), VW3_LIVE_REPORT="1")
     env.pop("VW3_PURE_PYTHON", None)
@@ -70,7 +71,9 @@ def run_live(stream: bytes, options: list[str], pure: bool, baud: int, rate: flo
                     time.sleep(delay)
             select.select([], [line], [])
             at += os.write(line, piece)
-        if expected is None:  # until no line comes for a second
+        if not stream:
+            time.sleep(idle)
+        elif expected is None:  # until no line comes for a second
             count = -1
             while count != len(lines):
                 count = len(lines)
@@ -78,6 +81,10 @@ def run_live(stream: bytes, options: list[str], pure: bool, baud: int, rate: flo
         else:
             done.wait(600)
         time.sleep(0.3)  # (the last reads, the flush after silence)
+        if os.environ.get("BENCH_THREADS"):
+            for task in sorted(Path(f"/proc/{process.pid}/task").iterdir(), key=lambda p: int(p.name)):
+                fields = (task / "stat").read_text().rsplit(")", 1)[1].split()
+                print("   thread", task.name, (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK"), "s")
         process.send_signal(signal.SIGINT)
         _pid, _status, usage = os.wait4(process.pid, 0)
         process.returncode = 0
@@ -133,6 +140,16 @@ def main() -> int:
     print(f"outputs equal (less times): {'yes' if same else 'NO'}")
     print(f"CPU time, best of {args.repeat}: Python stages {best['python']:.2f} s, engine {best['engine']:.2f} s: "
           f"{best['python'] / best['engine']:.2f}x less CPU with the engine")
+    if args.rate:
+        # What a silent line costs for as long (start-up, the reads timing out, the display waking):
+        # the rest is what decoding the stream cost.
+        seconds = len(stream) / args.rate + 0.3
+        idle = {name: min(run_live(b"", options, pure, args.baud, None, 0, None, seconds)[0]
+                          for _round in range(args.repeat)) for name, pure in (("python", True), ("engine", False))}
+        work = {name: best[name] - idle[name] for name in best}
+        print(f"a silent line for {seconds:.1f} s: Python stages {idle['python']:.2f} s, engine {idle['engine']:.2f} s; "
+              f"decoding the stream: Python stages {work['python']:.2f} s, engine {work['engine']:.2f} s: "
+              f"{work['python'] / work['engine']:.2f}x")
     return 0 if same else 1
 
 

@@ -12,9 +12,10 @@ are dropped and counted, and the counters and the final summary say how many wer
 from __future__ import annotations
 
 import json
+import re
 import threading
 import time
-from collections import deque
+from collections import Counter, deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Protocol, TextIO
@@ -27,6 +28,8 @@ from rich.text import Text
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.render.jsonout import item_to_dict
 
+_SLAVE_KIND = re.compile(r" *\d+ +\S+ +(\d+) (\w+)")  # a summary line's slave and kind (-t r, d, dd)
+_UNANSWERED = " [no response]  CRC ok"  # the end of an unanswered request's line (the engine's: no notes)
 # The rich view redraws at most this often; a frame is still drawn within 50 ms of being framed.
 REDRAW_INTERVAL = 0.04
 
@@ -81,22 +84,25 @@ class LiveStats:
 
     def add_lines(self, lines: list[str]) -> None:
         """Summary lines the engine wrote (dissector/accel/livepath.py): a valid frame each, its
-        request paired or known unanswered (the engine writes nothing else)."""
-        for line in lines:
-            _number, _time, slave_text, kind, rest = line.split(None, 4)
-            self.frames += 1
-            counts = self.slaves.get(int(slave_text))
+        request paired or known unanswered (the engine writes nothing else). Counted by (slave, kind)
+        in C (Counter), then per pair."""
+        self.frames += len(lines)
+        kinds = Counter(_SLAVE_KIND.match(line).groups() for line in lines)  # type: ignore[union-attr]
+        for (slave_text, kind), count in kinds.items():
+            slave = int(slave_text)
+            counts = self.slaves.get(slave)
             if counts is None:
-                counts = self.slaves[int(slave_text)] = SlaveCounts()
+                counts = self.slaves[slave] = SlaveCounts()
             if kind == "request":
-                counts.requests += 1
-                if rest.endswith(" [no response]  CRC ok"):
-                    self.unanswered += 1
-                    counts.unanswered += 1
+                counts.requests += count
             elif kind == "exception":
-                counts.exceptions += 1
+                counts.exceptions += count
             else:
-                counts.responses += 1
+                counts.responses += count
+        for line in lines:
+            if line.endswith(_UNANSWERED):
+                self.unanswered += 1
+                self.slaves[int(_SLAVE_KIND.match(line).group(1))].unanswered += 1  # type: ignore[union-attr]
 
     def finish(self) -> None:
         self._settle()
