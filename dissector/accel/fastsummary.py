@@ -81,8 +81,9 @@ class SlaveFacts:
     namer: Callable[[int, int], tuple[str | None, str | None]] | None = None
 
 
-def make_engine(annotator: Any | None) -> Any:
-    """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n)."""
+def make_engine(annotator: Any | None, shown: bool = True) -> Any:
+    """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n);
+    `shown` False: nothing reads its lines (--stats alone), its transactions are only counted."""
     plain = SlaveFacts(True, {function: (function_label(function, None), ()) for function in HANDLED})
     unknown = SlaveFacts(False)
 
@@ -109,7 +110,8 @@ def make_engine(annotator: Any | None) -> Any:
         register = annotator.plain_register(slave, function, address, value)
         return register_text(register), bool(register.code or register.text)
 
-    return _summary.Engine(slave_info, piece, exception_texts(annotator), transaction_texts(annotator))
+    texts = transaction_texts(annotator) if shown else counted_texts(annotator)
+    return _summary.Engine(slave_info, piece, exception_texts(annotator), texts)
 
 
 @dataclass(frozen=True, slots=True)
@@ -169,6 +171,21 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
             known.clear()
         known[key] = found
         return found
+
+    return texts
+
+
+_COUNTED = Texts("-", "", "-", "")  # no line made: the transaction is counted (--stats alone)
+
+
+def counted_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
+    """The `texts` callback of an engine whose lines nobody reads: transaction_texts' only effect on
+    what is counted is to hand over what profile `auto` may still choose a profile by; no scratch
+    frames decoded and annotated for texts nobody shows (the max-size mix's --stats asked 9,795)."""
+    choosing = _choosing(annotator, objects=True)
+
+    def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+        return None if _may_choose(annotator, slave, request_raw[1], choosing) else _COUNTED
 
     return texts
 

@@ -37,13 +37,13 @@ class TimedPath:
 
     def __init__(self, dissector: Dissector, annotator: Any | None, clock: Clock,
                  write_items: Callable[[list[Item]], None], write_lines: Callable[[bytes], None],
-                 timeout: float | None) -> None:
+                 timeout: float | None, shown: bool = True) -> None:
         self.dissector = dissector
         self.framer = dissector.framer
         self.pairer = dissector.pairer
         self.annotator = annotator
         self.clock = clock
-        self.engine = make_engine(annotator)
+        self.engine = make_engine(annotator, shown)  # shown False: its lines are only counted (--stats)
         timing = self.framer.timing
         self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
         self.write_items = write_items
@@ -284,7 +284,8 @@ def count_input(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annot
     if store is None:
         return False
     frames = store.frames
-    path = TimedPath(dissector, annotate, Clock(), sinks.accept, _drop, dissector.pairer.timeout)
+    path = TimedPath(dissector, annotate, Clock(), sinks.accept, _drop, dissector.pairer.timeout,
+                     shown=sinks.report is not None)  # (the report's events read the lines' texts)
     path.sync_clock = False  # (its lines are not shown: the time column is not the sinks')
     path.engine.stats = store
     if sinks.report is not None:
