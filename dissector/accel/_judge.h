@@ -32,16 +32,13 @@ static inline int judged(const Engine *e, const FrameRef *f) {
 static int judge_transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos, const FrameRef *q) {
     if (judged(e, q)) return STEP_HANDOVER;
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
-    e->expect_slave = q->slave;
-    e->expect_function = q->function;
     FrameRef a;
-    int found = next_frame(e, b, q->at + q->length, n, &a, q->decided);
+    int found = answer_to(e, b, n, q, &a);
     if (found == FRAME_OK && a.kind == KIND_REQUEST) { /* unanswered: the next request is its own */
         if (e->frames) frames_record(e, q, NULL);
         return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 0);
     }
-    if (found == FRAME_OK && !judged(e, &a) &&
-        !(q->timed && a.timed && e->tl.timeout >= 0 && stamp_seconds(a.ns, q->ns) > e->tl.timeout)) {
+    if (found == FRAME_OK && !judged(e, &a)) {
         if (e->frames) frames_record(e, q, &a);
         return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 1);
     }

@@ -1264,6 +1264,19 @@ static int taken(Engine *e, Py_ssize_t *pos, const FrameRef *q, const FrameRef *
     return STEP_DONE;
 }
 
+/* The frame after request q, expected as its answer: FRAME_OK (in *a: its answer, or the next request when
+ * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout too (no answer:
+ * pairing.py's warning). A caller that does not take the transaction takes the expectation back. */
+static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *q, FrameRef *a) {
+    e->expect_slave = q->slave;
+    e->expect_function = q->function;
+    int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
+    if (found == FRAME_OK && a->kind != KIND_REQUEST && q->timed && a->timed && e->tl.timeout >= 0 &&
+        stamp_seconds(a->ns, q->ns) > e->tl.timeout)
+        return FRAME_HANDOVER;
+    return found;
+}
+
 #include "_judge.h" /* profile auto's first pass: frames and pairs only */
 
 /* --stats: the transaction's counts once its lines are written (_stats.h); `written`, or -1. */
@@ -1289,12 +1302,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
     size_t mark = e->out.len;
-    e->expect_slave = q.slave;
-    e->expect_function = q.function;
-    found = next_frame(e, b, q.at + q.length, n, &a, q.decided);
-    if (found == FRAME_OK && a.kind != KIND_REQUEST && q.timed && a.timed && e->tl.timeout >= 0 &&
-        stamp_seconds(a.ns, q.ns) > e->tl.timeout)
-        found = FRAME_HANDOVER; /* later than the timeout: no answer (pairing.py), a warning */
+    found = answer_to(e, b, n, &q, &a);
     Timeline clock = e->tl; /* the time column's references, taken back with the lines */
     e->line_timed = q.timed;
     e->line_ns = q.ns;
