@@ -38,6 +38,7 @@ from dissector.app.live_capture import (
     IDLE_FLUSH_LONG,
     CaptureFiles,
     CaptureThread,
+    HANDOFF_READS_LIMIT,
     Handoff,
     Tape,
     silence_threshold,
@@ -406,7 +407,7 @@ def run_live(
     else:
         # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
         dissector = Dissector(hold=True, annotate=annotate, timeout=timeout)
-    handoff = Handoff()
+    handoff = Handoff(HANDOFF_READS_LIMIT) if compiled is not None else Handoff()
     capture = CaptureThread(
         port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]
         port_name=args.live,

@@ -43,6 +43,10 @@ from dissector.sources.serial_port import reason
 IDLE_FLUSH = 0.020
 IDLE_FLUSH_LONG = 0.250
 HANDOFF_LIMIT = 20_000  # items waiting for decoding and display; beyond, they are dropped (counted)
+# Reads waiting for the compiled live path's display (framer=None), which frames them and writes -w: a
+# read dropped would cut a frame and leave a hole in -w, so the limit is only there to bound memory
+# (about 100 s of a busy adapter's reads; the engine frames them far faster than they come).
+HANDOFF_READS_LIMIT = 1_000_000
 
 
 def silence_threshold(baud: int) -> float:
