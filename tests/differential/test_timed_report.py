@@ -156,3 +156,12 @@ def test_poll_timings_in_the_store_as_in_python(seed: int) -> None:
         for cycle in (python, compiled):
             cycle.add_request(frame)
     assert compiled.report() == python.report() and compiled.report(2) == python.report(2)
+
+
+@pytest.mark.parametrize("name", ["atv71_commissioning", "p38_protection", "sel749m_polling"])
+def test_standard_input_same_report(name: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fed: Fed) -> None:
+    """A pcap on standard input (read once): profile auto chooses while the engine counts the slaves
+    already settled, the parameter history holds and reads again the frames named before."""
+    stdin = (CAPTURES / f"{name}.pcap").read_bytes()
+    assert_same_report(["-", "--profile", "auto"], tmp_path, monkeypatch, stdin=stdin)
+    assert fed.reports == 1
