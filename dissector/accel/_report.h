@@ -13,7 +13,7 @@
 
 typedef struct {
     uint32_t key;             /* 1 << 24 | slave << 16 | address; 0: empty */
-    int readable;             /* series.status was None when read in run `gen` */
+    int readable;             /* series.status was None when read (gen: while no span opened since) */
     unsigned gen;
     unsigned long long values; /* points not yet added to series.values */
     uint64_t last;            /* the point key of its last value (most polls read what they read before), */
@@ -46,6 +46,8 @@ typedef struct {
     unsigned epochs[256];
     uint8_t *bits[256];    /* per slave: addresses of no series (dropped), then addresses written */
     unsigned gen;
+    double spans; /* ReportCollector.spans when last pulled */
+    int full; /* the collector holds MAX_SERIES series, every one in `trends` */
 } Report;
 
 static PyTypeObject ReportType;
@@ -81,7 +83,9 @@ static int report_pull(Report *r) {
     if (timed == NULL) return -1;
     r->timed = timed == Py_None ? -1 : PyObject_IsTrue(timed);
     Py_DECREF(timed);
-    r->gen++;
+    double spans; /* unreadable spans the Python stages opened: the series' statuses are read again */
+    if (get_double(r->collector, "spans", &spans) < 0) return -1;
+    if (spans != r->spans) r->gen++, r->spans = spans;
     if (get_time(r->collector, "origin", &r->origin) < 0 || get_time(r->collector, "first_x", &r->first) < 0 ||
         get_time(r->collector, "last_x", &r->last) < 0 || get_double(r->collector, "width", &r->width) < 0 ||
         get_double(r->collector, "limit", &r->limit) < 0)
@@ -244,6 +248,36 @@ static Trend *trend_slot(Report *r, uint32_t key) {
     return &r->trends[slot];
 }
 
+/* The series of `key` known from now on (its columns kept). */
+static int trend_keep(Report *r, Trend *t, uint32_t key, PyObject *series) {
+    PyObject *columns = PyObject_GetAttrString(series, "columns");
+    if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
+        Py_CLEAR(columns);
+        PyErr_SetString(PyExc_TypeError, "Series.columns: compiled Columns expected");
+    }
+    if (columns == NULL) return -1;
+    t->series = Py_NewRef(series);
+    t->columns = (Columns *)columns;
+    t->key = key;
+    t->gen = r->gen - 1;
+    return 0;
+}
+
+/* The collector keeps MAX_SERIES series: every one of them known here, so that a key not known is of no
+ * series without a look-up (the max-size mix reads thousands of addresses once each). */
+static int trends_full(Report *r) {
+    PyObject *key, *series;
+    Py_ssize_t at = 0;
+    int slave, address;
+    while (PyDict_Next(r->series, &at, &key, &series)) {
+        if (!PyArg_ParseTuple(key, "ii", &slave, &address)) return -1;
+        Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address);
+        if (!t->key && trend_keep(r, t, 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address, series) < 0) return -1;
+    }
+    r->full = 1;
+    return 0;
+}
+
 /* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
@@ -254,16 +288,20 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         return 0;
     }
     Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
+    if (!t->key && !r->full && PyDict_Size(r->series) >= r->max_series) {
+        if (trends_full(r) < 0) return -1;
+        t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
+    }
+    if (!t->key && r->full) { /* none kept: never one */
+        dropped[address >> 3] |= (uint8_t)(1 << (address & 7));
+        r->dropped++;
+        return 0;
+    }
     if (!t->key) {
         PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
         Py_XDECREF(key);
         if (series == NULL && PyErr_Occurred()) return -1;
-        if (series == NULL && PyDict_Size(r->series) >= r->max_series) { /* none kept: never one */
-            dropped[address >> 3] |= (uint8_t)(1 << (address & 7));
-            r->dropped++;
-            return 0;
-        }
-        t->series = series; /* NULL: made by engine_point below */
+        t->series = series; /* NULL: made by engine_point below (there is room: not full) */
     }
     if (s->namer != r->namers[slave]) { /* a new device for this slave: its values are read again */
         Py_XINCREF(s->namer);
@@ -301,18 +339,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
             r->point_count++;
         }
     }
-    if (!t->key) { /* a series known from now on */
-        PyObject *columns = PyObject_GetAttrString(t->series, "columns");
-        if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
-            Py_CLEAR(columns);
-            PyErr_SetString(PyExc_TypeError, "Series.columns: compiled Columns expected");
-        }
-        if (columns == NULL) return -1;
-        Py_INCREF(t->series);
-        t->columns = (Columns *)columns;
-        t->key = 1u << 24 | (uint32_t)slave << 16 | address;
-        t->gen = r->gen - 1;
-    }
+    if (!t->key && trend_keep(r, t, 1u << 24 | (uint32_t)slave << 16 | address, t->series) < 0) return -1;
     if (t->gen != r->gen) {
         PyObject *status = PyObject_GetAttrString(t->series, "status");
         if (status == NULL) return -1;

@@ -190,6 +190,7 @@ class ReportCollector:
         self.limit = 0.0  # x beyond which the columns double
         self.series: dict[tuple[int, int], Series] = {}
         self.series_dropped = 0
+        self.spans = 0  # unreadable spans opened (the compiled engine reads the statuses again when it grows)
         self.events: list[tuple[float, str, int | None, str]] = []
         self.events_dropped = 0
         self.event_columns: dict[str, dict[int, int]] = {kind: {} for kind in EVENT_KINDS}
@@ -321,6 +322,7 @@ class ReportCollector:
             status = register.status or "unreadable"
             if series.status != status:  # a span opens (the first state too: the chart starts unreadable)
                 series.status = status
+                self.spans += 1
                 how = f" (exception {frame.exception_code:02X})" if frame.kind is Kind.EXCEPTION else ""
                 self._mark(series, x, status + how)
                 self._event(x, "protection", slave, f"{_name(series)} {status}{how}")
