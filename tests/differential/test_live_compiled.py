@@ -106,7 +106,8 @@ def test_polling_and_noisy_sessions(seed: int, tmp_path: Path) -> None:
     records = generate_session(400, seed=seed) + [
         (data, when + 30) for data, when in session_noisy()] + [(data, when + 60) for data, when in session_p38()]
     records.sort(key=lambda record: record[1])
-    tape = write_tape(tmp_path / "bus.tape", records, seed=seed, damage=0.02 * seed)
+    # Reads of one byte at a time, of an adapter's usual sizes, of a gateway's big bursts.
+    tape = write_tape(tmp_path / "bus.tape", records, seed=seed, damage=0.02 * seed, largest=(1, 64, 4096)[seed])
     assert_same(tape, ["--timeout", "0.2"] if seed else [])
     assert_same(tape, ["--json", "-t", "dd"])
 

@@ -40,8 +40,9 @@ def damaged(records: list[Record], rng: random.Random, rate: float = 0.02) -> li
     return out
 
 
-def tape_of(records: list[Record], rng: random.Random, baud: int = 19200) -> bytes:
-    """The reads a live capture makes of these records (bytes, time of their first byte)."""
+def tape_of(records: list[Record], rng: random.Random, baud: int = 19200, largest: int = 64) -> bytes:
+    """The reads a live capture makes of these records (bytes, time of their first byte), each of 1 to
+    `largest` bytes."""
     byte_time = 11 / baud
     events: list[tuple[bytes, int, float]] = []
     start_ns = int(records[0][1] * 1e9) // 1000 * 1000
@@ -54,7 +55,7 @@ def tape_of(records: list[Record], rng: random.Random, baud: int = 19200) -> byt
             events.append((b"", _ns(clock), start_mono + clock - records[0][1]))
         at = 0
         while at < len(data):
-            size = rng.randint(1, 64)
+            size = rng.randint(1, largest)
             piece = data[at : at + size]
             at += len(piece)
             clock = when + at * byte_time + rng.random() * 0.0005
@@ -70,9 +71,9 @@ def _ns(seconds: float) -> int:
     return int(seconds * 1e6) * 1000  # stamped to the microsecond, as stamp_now
 
 
-def write_tape(path: Path, records: list[Record], seed: int, damage: float = 0.0) -> Path:
+def write_tape(path: Path, records: list[Record], seed: int, damage: float = 0.0, largest: int = 64) -> Path:
     rng = random.Random(seed)
     if damage:
         records = damaged(records, rng, damage)
-    path.write_bytes(tape_of(records, rng))
+    path.write_bytes(tape_of(records, rng, largest=largest))
     return path
