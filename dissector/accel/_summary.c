@@ -604,11 +604,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
         if (i + length >= n) return FRAME_NEED;
         if (b[i + length] == 0 || !crc_ok(b, i, length)) return FRAME_HANDOVER;
     }
-    f->at = i;
-    f->length = length;
-    f->kind = kind;
-    f->slave = slave;
-    f->function = function;
+    *f = (FrameRef){i, length, kind, slave, function, 0, 0, 0}; /* untimed */
     return FRAME_OK;
 }
 
@@ -617,10 +613,7 @@ static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
 /* The next frame at i: frame_at, or with run_timed()'s chunks timed_frame_at (`decided`: the Python
  * framer's buffer end when it took the frame before). */
 static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
-    if (e->tl.active) return timed_frame_at(e, b, i, n, f, decided);
-    f->timed = 0;
-    f->ns = f->decided = 0;
-    return frame_at(e, b, i, n, f);
+    return e->tl.active ? timed_frame_at(e, b, i, n, f, decided) : frame_at(e, b, i, n, f);
 }
 
 /* ---- registers ---------------------------------------------------------------------------------- */

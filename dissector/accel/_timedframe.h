@@ -107,14 +107,7 @@ static int timed_frame_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t 
     }
     if (silence_inside(t, at, length)) return FRAME_HANDOVER;
     Py_ssize_t k = chunk_of(t, at);
-    f->at = i;
-    f->length = length;
-    f->kind = kind;
-    f->slave = slave;
-    f->function = function;
-    f->timed = (t->flags[k] & CHUNK_TIMED) != 0;
-    f->ns = t->ns[k];
-    f->decided = seen;
+    *f = (FrameRef){i, length, kind, slave, function, (t->flags[k] & CHUNK_TIMED) != 0, t->ns[k], seen};
     return FRAME_OK;
 }
 
