@@ -101,6 +101,54 @@ local DATA = {
     ["glitch_run"] = 16,
     ["glitchy_after"] = 3,
     ["glitch_score_max"] = 8,
+    ["glitch_bytes"] = {
+      [0] = true,
+      [128] = true,
+      [192] = true,
+      [224] = true,
+      [240] = true,
+      [248] = true,
+      [252] = true,
+      [254] = true,
+      [255] = true,
+    },
+  },
+  ["ascii"] = {
+    ["max_ascii"] = 513,
+    ["min_binary"] = 3,
+    ["share"] = 0.9,
+    ["hex_digits"] = {
+      [48] = true,
+      [49] = true,
+      [50] = true,
+      [51] = true,
+      [52] = true,
+      [53] = true,
+      [54] = true,
+      [55] = true,
+      [56] = true,
+      [57] = true,
+      [65] = true,
+      [66] = true,
+      [67] = true,
+      [68] = true,
+      [69] = true,
+      [70] = true,
+      [97] = true,
+      [98] = true,
+      [99] = true,
+      [100] = true,
+      [101] = true,
+      [102] = true,
+    },
+    ["mode_sample"] = 64,
+  },
+  ["map_format"] = {
+    ["columns"] = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order" },
+    ["required"] = { "address", "code" },
+    ["max_bytes"] = 16777216,
+    ["scale_min"] = 1e-12,
+    ["scale_max"] = 1000000000000.0,
   },
   ["other_functions"] = {
     [65] = true,
@@ -1360,34 +1408,34 @@ end
 local function scan_any() return MIN_ADU, true end
 
 -- Length rules per function code (request, response): generated from dissector/protocol/table.py.
-local RULES, AS_EXCEPTION = {}, nil
-  local makers = {
-    fixed = fixed, count8 = count8, count16 = count16,
-    diagnostics = function() return diagnostics_rule end,
-    mei_request = function() return mei_request_rule end,
-    mei_response = function() return mei_response_rule end,
-    scan = function() return scan_any end,
-  }
-  local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
-  for code, rules in pairs(DATA.protocol.rules) do
-    RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+local RULES = {}
+local makers = {
+  fixed = fixed, count8 = count8, count16 = count16,
+  diagnostics = function() return diagnostics_rule end,
+  mei_request = function() return mei_request_rule end,
+  mei_response = function() return mei_response_rule end,
+  scan = function() return scan_any end,
+}
+local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
+for code, rules in pairs(DATA.protocol.rules) do
+  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+end
+-- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
+for code, spec in pairs(DATA.protocol.by_quantity or {}) do
+  local position, extra, unit = spec[1], spec[2], spec[3]
+  local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
+  local count_at, count_extra = counted[2], counted[3]
+  local need = math.max(position + 1, count_at)
+  RULES[code][3] = function(b, i, n)
+    if i + need >= n then return NEED end
+    local quantity = b[i + position] * 256 + b[i + position + 1]
+    local length
+    if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
+    if length == count_extra + b[i + count_at] then return NONE end
+    return length
   end
-  -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
-  for code, spec in pairs(DATA.protocol.by_quantity or {}) do
-    local position, extra, unit = spec[1], spec[2], spec[3]
-    local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
-    local count_at, count_extra = counted[2], counted[3]
-    local need = math.max(position + 1, count_at)
-    RULES[code][3] = function(b, i, n)
-      if i + need >= n then return NEED end
-      local quantity = b[i + position] * 256 + b[i + position + 1]
-      local length
-      if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
-      if length == count_extra + b[i + count_at] then return NONE end
-      return length
-    end
-  end
-  AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
+end
+local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
@@ -1430,11 +1478,8 @@ local function shortest_crc(b, i, n, minimum)
   return 0
 end
 
--- The first bytes of a capture its mode (RTU or ASCII) is told from (framing/stream.py, detect_mode).
-local MODE_SAMPLE = 64
-
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.MODE_SAMPLE, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MODE_SAMPLE, NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
 M.interpretations, M.shortest_crc = interpretations, shortest_crc
 end
@@ -1456,14 +1501,7 @@ local lane = {}
 local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
-local GLITCH = {}
-do
-  local value = 255
-  for _ = 0, 8 do
-    GLITCH[value] = true
-    value = (value * 2) % 256
-  end
-end
+local GLITCH = FRAMING.glitch_bytes
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -2058,16 +2096,12 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
--- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
+-- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is. Its sizes
+-- and alphabet: dissector/protocol/ascii.py.
 local COLON, CR, LF = 0x3A, 0x0D, 0x0A
-local MAX_BINARY = 255
-local MAX_ASCII = 1 + 2 * MAX_BINARY + 2
-local MIN_BINARY = 3
-local ASCII_SHARE = 0.9
-
-local function is_hex(byte)
-  return (byte >= 48 and byte <= 57) or (byte >= 65 and byte <= 70) or (byte >= 97 and byte <= 102)
-end
+local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
+local HEX = DATA.ascii.hex_digits
+local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 detect_mode = function(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
@@ -2076,12 +2110,12 @@ detect_mode = function(sample)
   local following = sample:sub(colon + 1, colon + 2)
   if #following == 0 then return "rtu" end
   for k = 1, #following do
-    if not is_hex(following:byte(k)) then return "rtu" end
+    if not HEX[following:byte(k)] then return "rtu" end
   end
   local inside = 0
   for k = 1, #sample do
     local byte = sample:byte(k)
-    if is_hex(byte) or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+    if HEX[byte] or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
@@ -2134,7 +2168,7 @@ local function ascii_candidate(s, at, length, items)
   local lower = false
   if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
   for k = at + 1, at + digits do
-    if not is_hex(b[k]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if not HEX[b[k]] then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
     if b[k] >= 97 then lower = true end
   end
   local bin, count = {}, floor(digits / 2)
@@ -2204,7 +2238,7 @@ local function run_ascii(s, final, items)
   return i
 end
 
-M.detect_mode, M.run_ascii = detect_mode, run_ascii
+M.MODE_SAMPLE, M.detect_mode, M.run_ascii = MODE_SAMPLE, detect_mode, run_ascii
 end
 
 -- ---- vw3.feed: lua/src/feed.lua ----
@@ -2765,13 +2799,8 @@ local SPECIAL = {
   end,
   mei_response = function(f, b)
     if f.fields.mei_type ~= 14 then return end
-    local objects = {}
-    for _, object in ipairs(f.fields.objects) do
-      objects[#objects + 1] = {
-        id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
-        offset = object.offset, length = object.length,
-      }
-    end
+    local objects = f.fields.objects -- (the frame's from now on: its fields are dropped once it is done with)
+    for _, object in ipairs(objects) do object.name = OBJECTS[object.id] or format("Object %d", object.id) end
     f.objects = objects
   end,
   report_server_id_response = function(f, b)
@@ -2914,7 +2943,7 @@ package.preload["vw3.maps"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIMITS, concat, format, io, ipairs, math = DATA, LIMITS, concat, format, io, ipairs, math
+local DATA, LIMITS, concat, format, io, ipairs, math, pairs = DATA, LIMITS, concat, format, io, ipairs, math, pairs
 local select, string, tonumber, tostring = select, string, tonumber, tostring
 
 
@@ -2967,9 +2996,9 @@ end
 local parse_map_choice
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
-local MAP_COLUMNS = {
-  "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
-}
+local FORMAT = DATA.map_format -- (maps.py COLUMNS, REQUIRED, MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX)
+local MAP_COLUMNS, MAX_MAP_BYTES = FORMAT.columns, FORMAT.max_bytes
+local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
 local MAP_TYPES = { uint16 = 1, int16 = 1, uint32 = 2, int32 = 2, float32 = 2 } -- words each type spans
 local KNOWN_COLUMN = {}
 for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
@@ -2980,8 +3009,6 @@ local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 local function printable(text)
   return (text:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end))
 end
-local MAX_MAP_BYTES = 16 * 1024 * 1024 -- maps.MAX_MAP_BYTES
-local SCALE_MIN, SCALE_MAX = 1e-12, 1e12 -- maps.SCALE_MIN, SCALE_MAX: results stay finite numbers
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
 local function csv_cells(line, delimiter)
@@ -3148,24 +3175,19 @@ local function load_map(path)
       if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
       if header == nil then
         header = {}
-        local seen = {}
+        local named = {} -- (how many times each column is named)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
           if not KNOWN_COLUMN[name] then
             return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
           end
-          header[index] = name
+          header[index], named[name] = name, (named[name] or 0) + 1
         end
-        for _, required in ipairs({ "address", "code" }) do
-          local found = false
-          for _, name in ipairs(header) do found = found or name == required end
-          if not found then
-            return nil, format("%s:%d: the header lacks the %q column", path, number, required)
-          end
+        for _, required in ipairs(FORMAT.required) do
+          if not named[required] then return nil, format("%s:%d: the header lacks the %q column", path, number, required) end
         end
-        for _, name in ipairs(header) do
-          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
-          seen[name] = true
+        for _, count in pairs(named) do
+          if count > 1 then return nil, format("%s:%d: a column is named twice in the header", path, number) end
         end
       else
         if #cells ~= #header then
@@ -3487,8 +3509,8 @@ interpret_wide = function(row, first, second)
   return value, text
 end
 
-M.address_name, M.address_runs, M.consecutive, M.span_name = address_name, address_runs, consecutive, span_name
-M.build_device, M.device_for, M.device_of = build_device, device_for, device_of
+M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
+M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
 M.plc_label = plc_label
 end
@@ -4450,11 +4472,12 @@ local floor, load, next, type = floor, load, next, type
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
--- the slots take a tenth of the bytes. Small numbers share a slot (a double holds 53 bits exactly): a
--- slot written costs more than the arithmetic that fills it. A missing value is false. Requests and
--- responses name each other by record (and the request's time): no links between kept tables. The keys
--- a frame holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame each time it shows it. A key the display reads must have a slot or be in RARE: one
--- missing shows only from the second pass on (`tshark -2`, which the parity tests run).
+-- its 13 slots take some 200 bytes. Small numbers share a slot (a double holds 53 bits exactly): a slot
+-- written costs more than the arithmetic that fills it. A missing value is false. Requests and responses
+-- name each other by record (and the request's time): no links between kept tables. The keys a frame
+-- holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame
+-- each time it shows it. A key the display reads must have a slot or be in RARE: one missing shows only
+-- from the second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
   "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
@@ -4571,12 +4594,16 @@ local function pack_item(st, f)
   end
   local last = f.span_label
   if has_rare(f) then
+    -- (only the keys the frame holds: Lua 5.2 makes a key even for a nil stored under it)
     last = { span_label = last }
     for index = 1, #RARE do
       local key = RARE[index]
-      last[key] = f[key]
+      local kept = f[key]
+      if kept ~= nil then last[key] = kept end
     end
-    if registers ~= nil then last.status, last.plain = registers.status, registers.plain end
+    if registers ~= nil and (registers.status or registers.plain) then
+      last.status, last.plain = registers.status, registers.plain
+    end
     -- An exception 02's inferred registers are listed from its request's start and quantity.
     if f.inferred and request ~= nil then last.inferred = { request.start, request.quantity } end
   end
@@ -4643,7 +4670,8 @@ local function expand_flat(st, k)
   if rare ~= nil then
     for index = 1, #RARE do
       local key = RARE[index]
-      f[key] = rare[key]
+      local kept = rare[key]
+      if kept ~= nil then f[key] = kept end
     end
     if f.registers ~= nil then f.registers.status, f.registers.plain = rare.status, rare.plain end
     local inferred = rare.inferred
@@ -5525,6 +5553,16 @@ function unseen.add(parent, field, value, generated, hidden)
   return item
 end
 
+-- unseen.add for a tree that is shown: every field added, from the range of the register or bit being
+-- added (unseen.range, set by the caller).
+function unseen.put(parent, field, value, generated, hidden)
+  local item
+  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
+  if generated then item:set_generated() end
+  if hidden then item:set_hidden() end
+  return item
+end
+
 -- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
 -- each time they are shown rather than kept: records stay in memory for the whole capture.
 local function register_name(reg)
@@ -5566,36 +5604,26 @@ end
 -- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
 -- is read).
 local PARAMETER_FIELDS = {}
-  local taken = {}
-  for profile_name, profile in pairs(PROFILES) do
-    for _, row in pairs(profile.map or {}) do
-      local code = row.code and row.code:lower():gsub("[^%w_]", "_")
-      if code ~= nil and code ~= "" then
-        local abbr = format("vw3.%s.%s", profile_name, code)
-        if not taken[abbr] then
-          taken[abbr] = true
-          local title = row.name and format("%s (%s)", row.name, row.code) or row.code
-          if row.unit then title = title .. ", " .. row.unit end
-          local field = ProtoField.double(abbr, title)
-          PARAMETER_FIELDS[row] = field
-        end
+local taken = {}
+for profile_name, profile in pairs(PROFILES) do
+  for _, row in pairs(profile.map or {}) do
+    local code = row.code and row.code:lower():gsub("[^%w_]", "_")
+    if code ~= nil and code ~= "" then
+      local abbr = format("vw3.%s.%s", profile_name, code)
+      if not taken[abbr] then
+        taken[abbr] = true
+        local title = row.name and format("%s (%s)", row.name, row.code) or row.code
+        if row.unit then title = title .. ", " .. row.unit end
+        local field = ProtoField.double(abbr, title)
+        PARAMETER_FIELDS[row] = field
       end
     end
   end
-  local field_list = {}
-  for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-  for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
-  proto.fields = field_list
-
--- The same for a tree that is shown: every field added, from the range of the register or bit being
--- added (unseen.range, set by the caller).
-function unseen.put(parent, field, value, generated, hidden)
-  local item
-  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
-  if generated then item:set_generated() end
-  if hidden then item:set_hidden() end
-  return item
 end
+local field_list = {}
+for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
+proto.fields = field_list
 
 -- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
 -- bit's bytes (`size` at `at`, or `range`) made the current range.
@@ -5897,24 +5925,22 @@ end
 -- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
 -- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
 -- Wireshark without TreeItem.text or .visible.
-local tree_mode
-  local function tree_text(tree) return tree.text end
-  local function tree_visible(tree) return tree.visible end
-  local function tree_len(tree) return tree.len end
-  local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
-  local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
-  tree_mode = function(tree)
-    if type(tree) ~= "userdata" then return true end
-    if has_text == nil then has_text = pcall(tree_text, tree) end
-    if has_text and tree.text == nil then return false end
-    local known, visible = pcall(tree_visible, tree)
-    if known and visible == false then
-      if has_len == nil then has_len = pcall(tree_len, tree) end
-      if has_len then return "unseen" end
-    end
-    return true
+local function tree_text(tree) return tree.text end
+local function tree_visible(tree) return tree.visible end
+local function tree_len(tree) return tree.len end
+local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
+local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
+local function tree_mode(tree)
+  if type(tree) ~= "userdata" then return true end
+  if has_text == nil then has_text = pcall(tree_text, tree) end
+  if has_text and tree.text == nil then return false end
+  local known, visible = pcall(tree_visible, tree)
+  if known and visible == false then
+    if has_len == nil then has_len = pcall(tree_len, tree) end
+    if has_len then return "unseen" end
   end
-
+  return true
+end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
 -- in earlier records (a frame the capture tool cut across records).

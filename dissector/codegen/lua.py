@@ -19,11 +19,13 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
 from dissector.model import Kind
-from dissector.protocol import table
+from dissector.protocol import ascii as ascii_mode, table
 from dissector.protocol.spec import SPEC
+from dissector.sources import reader
 
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)"
 END = "-- END GENERATED DATA"
@@ -97,6 +99,21 @@ def plugin_data() -> dict[str, Any]:
             "glitch_run": streambuf.GLITCH_RUN,
             "glitchy_after": streambuf.GLITCHY_AFTER,
             "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
+            "glitch_bytes": streambuf.GLITCH_BYTES,
+        },
+        "ascii": {
+            "max_ascii": ascii_mode.MAX_ASCII,
+            "min_binary": ascii_mode.MIN_BINARY,
+            "share": ascii_mode.ASCII_SHARE,
+            "hex_digits": ascii_mode._HEX_DIGITS,
+            "mode_sample": reader.MODE_SAMPLE,
+        },
+        "map_format": {
+            "columns": list(maps.COLUMNS),
+            "required": list(maps.REQUIRED),
+            "max_bytes": maps.MAX_MAP_BYTES,
+            "scale_min": maps.SCALE_MIN,
+            "scale_max": maps.SCALE_MAX,
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,

@@ -10,16 +10,12 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
--- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is.
+-- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is. Its sizes
+-- and alphabet: dissector/protocol/ascii.py.
 local COLON, CR, LF = 0x3A, 0x0D, 0x0A
-local MAX_BINARY = 255
-local MAX_ASCII = 1 + 2 * MAX_BINARY + 2
-local MIN_BINARY = 3
-local ASCII_SHARE = 0.9
-
-local function is_hex(byte)
-  return (byte >= 48 and byte <= 57) or (byte >= 65 and byte <= 70) or (byte >= 97 and byte <= 102)
-end
+local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
+local HEX = DATA.ascii.hex_digits
+local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 detect_mode = function(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
@@ -28,12 +24,12 @@ detect_mode = function(sample)
   local following = sample:sub(colon + 1, colon + 2)
   if #following == 0 then return "rtu" end
   for k = 1, #following do
-    if not is_hex(following:byte(k)) then return "rtu" end
+    if not HEX[following:byte(k)] then return "rtu" end
   end
   local inside = 0
   for k = 1, #sample do
     local byte = sample:byte(k)
-    if is_hex(byte) or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+    if HEX[byte] or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
@@ -86,7 +82,7 @@ local function ascii_candidate(s, at, length, items)
   local lower = false
   if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
   for k = at + 1, at + digits do
-    if not is_hex(b[k]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if not HEX[b[k]] then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
     if b[k] >= 97 then lower = true end
   end
   local bin, count = {}, floor(digits / 2)
@@ -156,4 +152,4 @@ local function run_ascii(s, final, items)
   return i
 end
 
-M.detect_mode, M.run_ascii = detect_mode, run_ascii
+M.MODE_SAMPLE, M.detect_mode, M.run_ascii = MODE_SAMPLE, detect_mode, run_ascii

@@ -356,13 +356,8 @@ local SPECIAL = {
   end,
   mei_response = function(f, b)
     if f.fields.mei_type ~= 14 then return end
-    local objects = {}
-    for _, object in ipairs(f.fields.objects) do
-      objects[#objects + 1] = {
-        id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id), value = object.value,
-        offset = object.offset, length = object.length,
-      }
-    end
+    local objects = f.fields.objects -- (the frame's from now on: its fields are dropped once it is done with)
+    for _, object in ipairs(objects) do object.name = OBJECTS[object.id] or format("Object %d", object.id) end
     f.objects = objects
   end,
   report_server_id_response = function(f, b)

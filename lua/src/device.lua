@@ -236,7 +236,7 @@ interpret_wide = function(row, first, second)
   return value, text
 end
 
-M.address_name, M.address_runs, M.consecutive, M.span_name = address_name, address_runs, consecutive, span_name
-M.build_device, M.device_for, M.device_of = build_device, device_for, device_of
+M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
+M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
 M.plc_label = plc_label

@@ -62,34 +62,34 @@ end
 local function scan_any() return MIN_ADU, true end
 
 -- Length rules per function code (request, response): generated from dissector/protocol/table.py.
-local RULES, AS_EXCEPTION = {}, nil
-  local makers = {
-    fixed = fixed, count8 = count8, count16 = count16,
-    diagnostics = function() return diagnostics_rule end,
-    mei_request = function() return mei_request_rule end,
-    mei_response = function() return mei_response_rule end,
-    scan = function() return scan_any end,
-  }
-  local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
-  for code, rules in pairs(DATA.protocol.rules) do
-    RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+local RULES = {}
+local makers = {
+  fixed = fixed, count8 = count8, count16 = count16,
+  diagnostics = function() return diagnostics_rule end,
+  mei_request = function() return mei_request_rule end,
+  mei_response = function() return mei_response_rule end,
+  scan = function() return scan_any end,
+}
+local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
+for code, rules in pairs(DATA.protocol.rules) do
+  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
+end
+-- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
+for code, spec in pairs(DATA.protocol.by_quantity or {}) do
+  local position, extra, unit = spec[1], spec[2], spec[3]
+  local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
+  local count_at, count_extra = counted[2], counted[3]
+  local need = math.max(position + 1, count_at)
+  RULES[code][3] = function(b, i, n)
+    if i + need >= n then return NEED end
+    local quantity = b[i + position] * 256 + b[i + position + 1]
+    local length
+    if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
+    if length == count_extra + b[i + count_at] then return NONE end
+    return length
   end
-  -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
-  for code, spec in pairs(DATA.protocol.by_quantity or {}) do
-    local position, extra, unit = spec[1], spec[2], spec[3]
-    local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
-    local count_at, count_extra = counted[2], counted[3]
-    local need = math.max(position + 1, count_at)
-    RULES[code][3] = function(b, i, n)
-      if i + need >= n then return NEED end
-      local quantity = b[i + position] * 256 + b[i + position + 1]
-      local length
-      if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
-      if length == count_extra + b[i + count_at] then return NONE end
-      return length
-    end
-  end
-  AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
+end
+local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
@@ -132,10 +132,7 @@ local function shortest_crc(b, i, n, minimum)
   return 0
 end
 
--- The first bytes of a capture its mode (RTU or ASCII) is told from (framing/stream.py, detect_mode).
-local MODE_SAMPLE = 64
-
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.MODE_SAMPLE, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MODE_SAMPLE, NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
 M.interpretations, M.shortest_crc = interpretations, shortest_crc

@@ -54,9 +54,9 @@ end
 local parse_map_choice
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
-local MAP_COLUMNS = {
-  "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
-}
+local FORMAT = DATA.map_format -- (maps.py COLUMNS, REQUIRED, MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX)
+local MAP_COLUMNS, MAX_MAP_BYTES = FORMAT.columns, FORMAT.max_bytes
+local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
 local MAP_TYPES = { uint16 = 1, int16 = 1, uint32 = 2, int32 = 2, float32 = 2 } -- words each type spans
 local KNOWN_COLUMN = {}
 for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
@@ -67,8 +67,6 @@ local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 local function printable(text)
   return (text:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end))
 end
-local MAX_MAP_BYTES = 16 * 1024 * 1024 -- maps.MAX_MAP_BYTES
-local SCALE_MIN, SCALE_MAX = 1e-12, 1e12 -- maps.SCALE_MIN, SCALE_MAX: results stay finite numbers
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
 local function csv_cells(line, delimiter)
@@ -235,24 +233,19 @@ local function load_map(path)
       if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
       if header == nil then
         header = {}
-        local seen = {}
+        local named = {} -- (how many times each column is named)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
           if not KNOWN_COLUMN[name] then
             return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
           end
-          header[index] = name
+          header[index], named[name] = name, (named[name] or 0) + 1
         end
-        for _, required in ipairs({ "address", "code" }) do
-          local found = false
-          for _, name in ipairs(header) do found = found or name == required end
-          if not found then
-            return nil, format("%s:%d: the header lacks the %q column", path, number, required)
-          end
+        for _, required in ipairs(FORMAT.required) do
+          if not named[required] then return nil, format("%s:%d: the header lacks the %q column", path, number, required) end
         end
-        for _, name in ipairs(header) do
-          if seen[name] then return nil, format("%s:%d: a column is named twice in the header", path, number) end
-          seen[name] = true
+        for _, count in pairs(named) do
+          if count > 1 then return nil, format("%s:%d: a column is named twice in the header", path, number) end
         end
       else
         if #cells ~= #header then

@@ -8,11 +8,12 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
--- the slots take a tenth of the bytes. Small numbers share a slot (a double holds 53 bits exactly): a
--- slot written costs more than the arithmetic that fills it. A missing value is false. Requests and
--- responses name each other by record (and the request's time): no links between kept tables. The keys
--- a frame holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame each time it shows it. A key the display reads must have a slot or be in RARE: one
--- missing shows only from the second pass on (`tshark -2`, which the parity tests run).
+-- its 13 slots take some 200 bytes. Small numbers share a slot (a double holds 53 bits exactly): a slot
+-- written costs more than the arithmetic that fills it. A missing value is false. Requests and responses
+-- name each other by record (and the request's time): no links between kept tables. The keys a frame
+-- holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame
+-- each time it shows it. A key the display reads must have a slot or be in RARE: one missing shows only
+-- from the second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
   "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
@@ -129,12 +130,16 @@ local function pack_item(st, f)
   end
   local last = f.span_label
   if has_rare(f) then
+    -- (only the keys the frame holds: Lua 5.2 makes a key even for a nil stored under it)
     last = { span_label = last }
     for index = 1, #RARE do
       local key = RARE[index]
-      last[key] = f[key]
+      local kept = f[key]
+      if kept ~= nil then last[key] = kept end
     end
-    if registers ~= nil then last.status, last.plain = registers.status, registers.plain end
+    if registers ~= nil and (registers.status or registers.plain) then
+      last.status, last.plain = registers.status, registers.plain
+    end
     -- An exception 02's inferred registers are listed from its request's start and quantity.
     if f.inferred and request ~= nil then last.inferred = { request.start, request.quantity } end
   end
@@ -201,7 +206,8 @@ local function expand_flat(st, k)
   if rare ~= nil then
     for index = 1, #RARE do
       local key = RARE[index]
-      f[key] = rare[key]
+      local kept = rare[key]
+      if kept ~= nil then f[key] = kept end
     end
     if f.registers ~= nil then f.registers.status, f.registers.plain = rare.status, rare.plain end
     local inferred = rare.inferred

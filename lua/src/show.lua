@@ -20,24 +20,22 @@ end
 -- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
 -- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
 -- Wireshark without TreeItem.text or .visible.
-local tree_mode
-  local function tree_text(tree) return tree.text end
-  local function tree_visible(tree) return tree.visible end
-  local function tree_len(tree) return tree.len end
-  local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
-  local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
-  tree_mode = function(tree)
-    if type(tree) ~= "userdata" then return true end
-    if has_text == nil then has_text = pcall(tree_text, tree) end
-    if has_text and tree.text == nil then return false end
-    local known, visible = pcall(tree_visible, tree)
-    if known and visible == false then
-      if has_len == nil then has_len = pcall(tree_len, tree) end
-      if has_len then return "unseen" end
-    end
-    return true
+local function tree_text(tree) return tree.text end
+local function tree_visible(tree) return tree.visible end
+local function tree_len(tree) return tree.len end
+local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
+local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
+local function tree_mode(tree)
+  if type(tree) ~= "userdata" then return true end
+  if has_text == nil then has_text = pcall(tree_text, tree) end
+  if has_text and tree.text == nil then return false end
+  local known, visible = pcall(tree_visible, tree)
+  if known and visible == false then
+    if has_len == nil then has_len = pcall(tree_len, tree) end
+    if has_len then return "unseen" end
   end
-
+  return true
+end
 
 -- The tvb an item is shown from: the record's own, or a new one holding the item's bytes where it began
 -- in earlier records (a frame the capture tool cut across records).

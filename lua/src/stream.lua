@@ -12,14 +12,7 @@ local lane = {}
 local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
-local GLITCH = {}
-do
-  local value = 255
-  for _ = 0, 8 do
-    GLITCH[value] = true
-    value = (value * 2) % 256
-  end
-end
+local GLITCH = FRAMING.glitch_bytes
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records

@@ -72,6 +72,16 @@ function unseen.add(parent, field, value, generated, hidden)
   return item
 end
 
+-- unseen.add for a tree that is shown: every field added, from the range of the register or bit being
+-- added (unseen.range, set by the caller).
+function unseen.put(parent, field, value, generated, hidden)
+  local item
+  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
+  if generated then item:set_generated() end
+  if hidden then item:set_hidden() end
+  return item
+end
+
 -- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
 -- each time they are shown rather than kept: records stay in memory for the whole capture.
 local function register_name(reg)
@@ -113,36 +123,26 @@ end
 -- follow one parameter. Rows of maps given in the preferences have none (fields exist before any file
 -- is read).
 local PARAMETER_FIELDS = {}
-  local taken = {}
-  for profile_name, profile in pairs(PROFILES) do
-    for _, row in pairs(profile.map or {}) do
-      local code = row.code and row.code:lower():gsub("[^%w_]", "_")
-      if code ~= nil and code ~= "" then
-        local abbr = format("vw3.%s.%s", profile_name, code)
-        if not taken[abbr] then
-          taken[abbr] = true
-          local title = row.name and format("%s (%s)", row.name, row.code) or row.code
-          if row.unit then title = title .. ", " .. row.unit end
-          local field = ProtoField.double(abbr, title)
-          PARAMETER_FIELDS[row] = field
-        end
+local taken = {}
+for profile_name, profile in pairs(PROFILES) do
+  for _, row in pairs(profile.map or {}) do
+    local code = row.code and row.code:lower():gsub("[^%w_]", "_")
+    if code ~= nil and code ~= "" then
+      local abbr = format("vw3.%s.%s", profile_name, code)
+      if not taken[abbr] then
+        taken[abbr] = true
+        local title = row.name and format("%s (%s)", row.name, row.code) or row.code
+        if row.unit then title = title .. ", " .. row.unit end
+        local field = ProtoField.double(abbr, title)
+        PARAMETER_FIELDS[row] = field
       end
     end
   end
-  local field_list = {}
-  for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-  for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
-  proto.fields = field_list
-
--- The same for a tree that is shown: every field added, from the range of the register or bit being
--- added (unseen.range, set by the caller).
-function unseen.put(parent, field, value, generated, hidden)
-  local item
-  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
-  if generated then item:set_generated() end
-  if hidden then item:set_hidden() end
-  return item
 end
+local field_list = {}
+for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
+proto.fields = field_list
 
 -- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
 -- bit's bytes (`size` at `at`, or `range`) made the current range.
