@@ -3343,20 +3343,25 @@ local function span_name(run)
   return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
 end
 
+-- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
+local function layered_rows(profile, applies)
+  if #config.layers == 0 then return profile.map or {} end
+  local rows = {}
+  for address, row in pairs(profile.map or {}) do rows[address] = row end
+  for _, layer in ipairs(config.layers) do
+    if applies(layer) then
+      for address, row in pairs(layer.rows) do rows[address] = row end
+    end
+  end
+  return rows
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
-  local rows = profile.map or {}
-  if #config.layers > 0 then
-    local merged = {}
-    for address, row in pairs(rows) do merged[address] = row end
-    for _, layer in ipairs(config.layers) do
-      if (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name) then
-        for address, row in pairs(layer.rows) do merged[address] = row end
-      end
-    end
-    rows = merged
-  end
+  local rows = layered_rows(profile, function(layer)
+    return (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name)
+  end)
   local depend, plain = {}, {}
   for _, rule in ipairs(profile.bits_depend or {}) do
     for _, address in ipairs(rule.registers) do
@@ -3512,7 +3517,7 @@ end
 M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
 M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.plc_label = plc_label
+M.layered_rows, M.plc_label = layered_rows, plc_label
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -4022,8 +4027,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
 local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
-local ipairs, lane, math, next, pairs, python_repr = ipairs, lane, math, next, pairs, python_repr
-local register_at, table = register_at, table
+local ipairs, lane, layered_rows, math, next, pairs = ipairs, lane, layered_rows, math, next, pairs
+local python_repr, register_at, table = python_repr, register_at, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4056,13 +4061,7 @@ local function candidate_rows(name)
   config.fit_rows = config.fit_rows or {}
   local rows = config.fit_rows[name]
   if rows == nil then
-    rows = {}
-    for address, row in pairs(PROFILES[name].map or {}) do rows[address] = row end
-    for _, layer in ipairs(config.layers) do
-      if layer.profile == name then
-        for address, row in pairs(layer.rows) do rows[address] = row end
-      end
-    end
+    rows = layered_rows(PROFILES[name], function(layer) return layer.profile == name end)
     config.fit_rows[name] = rows
   end
   return rows
@@ -4758,13 +4757,13 @@ local function copy_run(run)
   return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
--- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 -- A request decoded as when it was met (its entry in known_requests).
 local function adopt_known(item, known)
   item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
   item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
 end
 
+-- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
   local known = item.known
@@ -5222,6 +5221,12 @@ local function finish(st)
   if st.pending ~= nil then release_run(st.pending.registers) end
 end
 
+-- finish, a failure kept as the last record's error (shown there) rather than raised.
+local function finish_safely(st)
+  local ok, problem = pcall(finish, st)
+  if not ok and st.last ~= nil then st.last.error = tostring(problem) end
+end
+
 -- A record's first decoding: the quick lanes, else the general path (dissect_record).
 -- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
 -- record the general path, which the quick lanes must equal (the parity tests run both).
@@ -5271,8 +5276,7 @@ function lane.again(st)
     again.bytes[number] = nil
     if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
   end
-  local ok, problem = pcall(finish, fresh)
-  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
   fresh.going_on = true
@@ -5281,7 +5285,7 @@ function lane.again(st)
   for key, value in pairs(fresh) do st[key] = value end
 end
 
-M.dissect_record, M.finish, M.take_items = dissect_record, finish, take_items
+M.dissect_record, M.finish, M.finish_safely, M.take_items = dissect_record, finish, finish_safely, take_items
 end
 
 -- ---- vw3.api: lua/src/api.lua ----
@@ -5905,8 +5909,8 @@ package.preload["vw3.show"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat = AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat
-local ex, finish, format, ipairs, lane, pack, pairs, pcall = ex, finish, format, ipairs, lane, pack, pairs, pcall
-local pf, proto, show_frame, show_noise, summary, tostring = pf, proto, show_frame, show_noise, summary, tostring
+local ex, finish_safely, format, ipairs, lane, pack, pairs = ex, finish_safely, format, ipairs, lane, pack, pairs
+local pcall, pf, proto, show_frame, show_noise, summary = pcall, pf, proto, show_frame, show_noise, summary
 local type, unseen = type, unseen
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
@@ -6069,16 +6073,8 @@ udp_states = {}
 -- record just read again (tshark -w -P): its records keep their single pass.
 newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
 local function finish_all(number)
-  for _, st in pairs(udp_states) do
-    if not st.finished then
-      local ok, problem = pcall(finish, st)
-      if not ok and st.last ~= nil then st.last.error = tostring(problem) end
-    end
-  end
-  if not state.finished then
-    local ok, problem = pcall(finish, state)
-    if not ok and state.last ~= nil then state.last.error = tostring(problem) end
-  end
+  for _, st in pairs(udp_states) do finish_safely(st) end
+  finish_safely(state)
   if number < newest_record then
     for _, st in pairs(udp_states) do lane.again(st) end
     lane.again(state)

@@ -302,11 +302,16 @@ def _code_only(text: str) -> str:
 
 
 def module_exports(text: str) -> list[str]:
-    """The names a module exports: the `M.NAME` its `M.a, M.b = a, b` lines set."""
+    """The names a module exports: the `M.NAME` its `M.a, M.b = a, b` lines set (refused: a line that
+    exports a name under another, `M.a, M.b = b, a`)."""
     names = []
     for line in text.split("\n"):
         if line.startswith("M.") and " = " in line:
-            names += re.findall(r"M\.(\w+)", line.split(" = ", 1)[0])
+            targets, values = line.split(" = ", 1)
+            exported = re.findall(r"M\.(\w+)", targets)
+            if re.fullmatch(r"\w+(, \w+)*", values) and values.split(", ") != exported:
+                raise GenerateError(f"an export line does not export each name as itself: {line}")
+            names += exported
     return names
 
 

@@ -70,20 +70,25 @@ local function span_name(run)
   return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
 end
 
+-- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
+local function layered_rows(profile, applies)
+  if #config.layers == 0 then return profile.map or {} end
+  local rows = {}
+  for address, row in pairs(profile.map or {}) do rows[address] = row end
+  for _, layer in ipairs(config.layers) do
+    if applies(layer) then
+      for address, row in pairs(layer.rows) do rows[address] = row end
+    end
+  end
+  return rows
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
-  local rows = profile.map or {}
-  if #config.layers > 0 then
-    local merged = {}
-    for address, row in pairs(rows) do merged[address] = row end
-    for _, layer in ipairs(config.layers) do
-      if (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name) then
-        for address, row in pairs(layer.rows) do merged[address] = row end
-      end
-    end
-    rows = merged
-  end
+  local rows = layered_rows(profile, function(layer)
+    return (layer.slave == nil or layer.slave == slave) and (layer.profile == nil or layer.profile == profile.name)
+  end)
   local depend, plain = {}, {}
   for _, rule in ipairs(profile.bits_depend or {}) do
     for _, address in ipairs(rule.registers) do
@@ -239,4 +244,4 @@ end
 M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
 M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.plc_label = plc_label
+M.layered_rows, M.plc_label = layered_rows, plc_label

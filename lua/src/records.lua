@@ -11,13 +11,13 @@ local function copy_run(run)
   return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
--- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 -- A request decoded as when it was met (its entry in known_requests).
 local function adopt_known(item, known)
   item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
   item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
 end
 
+-- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
   local known = item.known
@@ -475,6 +475,12 @@ local function finish(st)
   if st.pending ~= nil then release_run(st.pending.registers) end
 end
 
+-- finish, a failure kept as the last record's error (shown there) rather than raised.
+local function finish_safely(st)
+  local ok, problem = pcall(finish, st)
+  if not ok and st.last ~= nil then st.last.error = tostring(problem) end
+end
+
 -- A record's first decoding: the quick lanes, else the general path (dissect_record).
 -- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
 -- record the general path, which the quick lanes must equal (the parity tests run both).
@@ -524,8 +530,7 @@ function lane.again(st)
     again.bytes[number] = nil
     if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
   end
-  local ok, problem = pcall(finish, fresh)
-  if not ok and fresh.last ~= nil then fresh.last.error = tostring(problem) end
+  finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
   fresh.going_on = true
@@ -534,4 +539,4 @@ function lane.again(st)
   for key, value in pairs(fresh) do st[key] = value end
 end
 
-M.dissect_record, M.finish, M.take_items = dissect_record, finish, take_items
+M.dissect_record, M.finish, M.finish_safely, M.take_items = dissect_record, finish, finish_safely, take_items

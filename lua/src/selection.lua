@@ -35,13 +35,7 @@ local function candidate_rows(name)
   config.fit_rows = config.fit_rows or {}
   local rows = config.fit_rows[name]
   if rows == nil then
-    rows = {}
-    for address, row in pairs(PROFILES[name].map or {}) do rows[address] = row end
-    for _, layer in ipairs(config.layers) do
-      if layer.profile == name then
-        for address, row in pairs(layer.rows) do rows[address] = row end
-      end
-    end
+    rows = layered_rows(PROFILES[name], function(layer) return layer.profile == name end)
     config.fit_rows[name] = rows
   end
   return rows

@@ -164,16 +164,8 @@ udp_states = {}
 -- record just read again (tshark -w -P): its records keep their single pass.
 newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
 local function finish_all(number)
-  for _, st in pairs(udp_states) do
-    if not st.finished then
-      local ok, problem = pcall(finish, st)
-      if not ok and st.last ~= nil then st.last.error = tostring(problem) end
-    end
-  end
-  if not state.finished then
-    local ok, problem = pcall(finish, state)
-    if not ok and state.last ~= nil then state.last.error = tostring(problem) end
-  end
+  for _, st in pairs(udp_states) do finish_safely(st) end
+  finish_safely(state)
   if number < newest_record then
     for _, st in pairs(udp_states) do lane.again(st) end
     lane.again(state)

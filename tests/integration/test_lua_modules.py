@@ -142,6 +142,31 @@ def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: py
     assert text.index(luagen.BEGIN) < text.index('package.preload["vw3.crc"]') < text.index("for _, name in ipairs(PURE)")
 
 
+def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """After a module's `local _ENV = M`, the generator binds as locals what it uses of the earlier modules'
+    exports and of the globals (the pairing module: REQUEST from layouts; release_run, say and warn from decode),
+    and refuses a module that assigns such a name or an export line that exports a name as another."""
+    pairing = PLUGIN.read_text(encoding="utf-8").split('package.preload["vw3.pairing"] = function(...)\n')[1]
+    assert pairing.split("\n")[4:6] == [
+        "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
+        "local REQUEST, release_run, say, warn = REQUEST, release_run, say, warn"]
+    src = tmp_path / "src"
+    args = ["--plugin", str(tmp_path / "vw3.lua"), "--src", str(src)]
+    for module, old, new, error in (
+            ("pairing", "  if f.kind == REQUEST then", "  warn = nil\n  if f.kind == REQUEST then",
+             "lua/src/pairing.lua assigns warn"),
+            ("pairing", "M.pair = pair", "M.pair = warn",
+             "an export line does not export each name as itself: M.pair = warn")):
+        shutil.rmtree(src, ignore_errors=True)
+        shutil.copytree(SRC, src)
+        path = src / f"{module}.lua"
+        text = path.read_text(encoding="utf-8")
+        assert text.count(old) == 1, (module, old)
+        path.write_text(text.replace(old, new), encoding="utf-8")
+        assert luagen.main(args) == 2
+        assert error in capsys.readouterr().err
+
+
 def test_the_codegen_command_checks_the_assembly_of_a_copy(tmp_path: Path) -> None:
     """`python3 -m dissector.codegen --check`, the command the README and CI run, on a copy of the package
     and the plugin: 0 on the assembly, 1 naming lua/vw3.lua when a module or vw3.lua was edited alone."""
