@@ -27,6 +27,9 @@ DECODE = """
 import sys
 from dissector.render import stats_store
 stats_store.MAX_TALLY = 4096
+if len(sys.argv) > 1 and sys.argv[1].startswith("--columns="):  # before the modules that import COLUMNS
+    from dissector.render.report import collect
+    collect.COLUMNS = int(sys.argv.pop(1).split("=")[1])
 from dissector.app.cli import main
 status = main(sys.argv[1:])
 sys.stdout.flush()
@@ -37,9 +40,10 @@ sys.exit(status)
 """
 
 
-def peak_kb(arguments: list[str], output: Path) -> int:
+def peak_kb(arguments: list[str], output: Path, columns: int | None = None) -> int:
+    lowered = [f"--columns={columns}"] if columns is not None else []
     with output.open("wb") as sink:
-        result = subprocess.run([sys.executable, "-c", DECODE, *arguments], stdout=sink, stderr=subprocess.PIPE,
+        result = subprocess.run([sys.executable, "-c", DECODE, *lowered, *arguments], stdout=sink, stderr=subprocess.PIPE,
                                 cwd=ROOT, check=True)
     return int(result.stderr.decode().rsplit("peak ", 1)[1])
 
@@ -67,4 +71,21 @@ def test_peak_memory_does_not_grow_with_the_capture(options: list[str], captures
     at_n = peak_kb([str(small), *arguments], tmp_path / "n.txt")
     at_4n = peak_kb([str(large), *arguments], tmp_path / "4n.txt")
     assert (tmp_path / "4n.txt").stat().st_size > 0
+    assert at_4n - at_n < SLACK_KB, f"peak RSS {at_n} kB at {FRAMES} frames, {at_4n} kB at {4 * FRAMES}"
+
+
+def test_peak_memory_of_a_report_does_not_grow_with_the_capture(captures: tuple[Path, Path], tmp_path: Path) -> None:
+    """--report: its page is bounded by construction (COLUMNS pixel columns of MAX_SERIES parameters and
+    of each slave's response times), and so is what it keeps while collecting. COLUMNS is lowered to 64
+    in the decoding process, so that N frames fill each slave's columns already (about 300 answers each)."""
+    small, large = captures
+    pages = []
+    for name, capture in (("n", small), ("4n", large)):
+        page = tmp_path / f"{name}.html"
+        pages.append(peak_kb([str(capture), "--profile", "generic", "--report", str(page)], tmp_path / f"{name}.txt",
+                             columns=64))
+        text = page.read_text("utf-8")
+        assert text.startswith("<!DOCTYPE html>") and text.endswith("</body></html>\n")
+        assert '"parameters":[{"slave":' in text
+    at_n, at_4n = pages
     assert at_4n - at_n < SLACK_KB, f"peak RSS {at_n} kB at {FRAMES} frames, {at_4n} kB at {4 * FRAMES}"

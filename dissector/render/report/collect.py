@@ -11,7 +11,7 @@
 - Points are downsampled per pixel column: each of at most COLUMNS columns of the capture's span
   keeps its first, lowest, highest and last point, so a spike or a dip of one sample survives, and a
   1 GB capture draws as fast as a small one. The span is not known while streaming: columns start
-  narrow and double in width (merging pairs) whenever the capture outgrows 2 x COLUMNS of them.
+  narrow and double in width (merging pairs) whenever the capture outgrows COLUMNS of them.
 - Events: exceptions, protections, CRC errors, noise bursts, silences inside frames (the timing
   warnings), unanswered requests; counted per column for the timeline, the first MAX_EVENTS listed.
 The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise
@@ -23,7 +23,7 @@ import json
 import os
 from array import array
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Iterator
 
 from dissector.devices.maps import interpret
 from dissector.model import Frame, Item, Kind, Register
@@ -207,15 +207,18 @@ class ReportCollector:
 
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
-        """Columns twice as wide. Finished columns are merged only when a series holds more than
-        2 x COLUMNS of them (and once at the end), not at every doubling: 3 x COLUMNS at most."""
+        """Columns twice as wide, once the capture outgrows COLUMNS of them (the most drawn: the
+        width at the end is the one data() would choose), finished columns merged at once: a series
+        holds COLUMNS + 1 columns at most (MAX_SERIES of them 15 MB; they were let grow to 3 x COLUMNS,
+        45 MB, issue 28). Merging keeps a column's first, lowest, highest and last point whenever it
+        runs, and all series share the origin: the page is the same."""
         self.width *= 2
         self._at = None
-        self.limit = self.origin + 2 * COLUMNS * self.width  # type: ignore[operator]
+        self.limit = self.origin + COLUMNS * self.width  # type: ignore[operator]
         for series in self.series.values():
             columns = series.columns
             columns.close()
-            if len(columns) > 2 * COLUMNS:
+            if len(columns) > COLUMNS // 2:
                 columns.compact(self.origin, self.width)  # type: ignore[arg-type]
         for counts in self.event_columns.values():
             merged: dict[int, int] = {}
@@ -232,7 +235,7 @@ class ReportCollector:
         x = (item.time if item.time is not None else 0.0) if self.timed else float(item.number)
         if self.origin is None:
             self.origin = x
-            self.limit = x + 2 * COLUMNS * self.width
+            self.limit = x + COLUMNS * self.width
         while x >= self.limit:
             self._double()
         if self.first_x is None:
@@ -429,7 +432,14 @@ class ReportCollector:
 
     def parameters_json(self) -> str:
         """The parameters with their points as a JSON array, encoded series by series (call data first)."""
-        return "[" + ",".join(self._parameter_json(key, series) for key, series in self._drawn()) + "]"
+        return "".join(self.parameters_json_pieces())
+
+    def parameters_json_pieces(self) -> Iterator[str]:
+        """parameters_json's text in pieces, a series each (html.py writes them one by one)."""
+        yield "["
+        for index, (key, series) in enumerate(self._drawn()):
+            yield ("," if index else "") + self._parameter_json(key, series)
+        yield "]"
 
     def _parameter_json(self, key: tuple[int, int], series: Series) -> str:
         # The columns write their points' JSON themselves (the compiled ones in C, _columns.h

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 from importlib import resources
-from typing import Any, TextIO
+from typing import Any, Iterator, TextIO
 
 from dissector.errors import OutputError
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
@@ -75,6 +75,15 @@ def render_report(
     extras: dict[str, Any] | None = None,
 ) -> str:
     """`extras`: `bus` (BusTiming), `health` (report/health.py) and `time_format` (-t) when the CLI has them."""
+    return "".join(report_pieces(collector, stats, title, extras))
+
+
+def report_pieces(
+    collector: ReportCollector, stats: StatsCollector, title: str = "vw3-decode report",
+    extras: dict[str, Any] | None = None,
+) -> Iterator[str]:
+    """The page in pieces, in order (render_report joins them; write_report writes them one by one, so
+    that a large report's points are never one string and its copies: issue 28, flat memory)."""
     extras = extras or {}
     bus, health = extras.get("bus"), extras.get("health")
     data = collector.data(points=False)
@@ -187,15 +196,9 @@ def render_report(
     if responses is not None:
         data["responses"] = _STAND_IN
     head = json.dumps(data, separators=(",", ":"), allow_nan=False)
-    if responses is not None:
-        at = head.rindex(_STAND_IN_JSON)
-        head = head[:at] + "[" + ",".join(
-            f'{{"slave":{entry["slave"]},"answers":{entry["answers"]},"x":{entry["x"]},"y":{entry["y"]}}}'
-            for entry in responses) + "]" + head[at + len(_STAND_IN_JSON):]
     # Every `<` as \u003c (only JSON strings hold one): neither `</script>` nor `<!--` from a map's
-    # text can end the block or swallow the page's scripts.
-    payload = (head[:-1] + ',"parameters":' + collector.parameters_json() + "}").replace("<", "\\u003c")
-    return (
+    # text can end the block or swallow the page's scripts (piece by piece: the same text).
+    yield (
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
         f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"
         "<script>window.reportErrors=[];window.onerror=function(m,s,l,c,e){window.reportErrors.push(String(m));"
@@ -203,8 +206,25 @@ def render_report(
         f"</head><body><h1>{_esc(title)}</h1><pre id=\"errors\"></pre>"
         '<nav><a href="#slaves">slaves</a> <a href="#bus">bus</a> <a href="#poll">poll cycle</a> '
         '<a href="#events">events</a> <a href="#parameters">parameters</a></nav>\n'
-        + "\n".join(parts)
-        + f'\n<script type="application/json" id="report-data">{payload}</script>\n'
+    )
+    yield "\n".join(parts)
+    del parts
+    yield '\n<script type="application/json" id="report-data">'
+    if responses is None:
+        yield head[:-1].replace("<", "\\u003c")
+    else:
+        at = head.rindex(_STAND_IN_JSON)
+        yield head[:at].replace("<", "\\u003c") + "["
+        for index, entry in enumerate(responses):
+            yield ("," if index else "") + (
+                f'{{"slave":{entry["slave"]},"answers":{entry["answers"]},"x":{entry["x"]},"y":{entry["y"]}}}')
+        yield "]" + head[at + len(_STAND_IN_JSON):-1].replace("<", "\\u003c")
+    del responses
+    yield ',"parameters":'
+    for piece in collector.parameters_json_pieces():
+        yield piece.replace("<", "\\u003c")
+    yield (
+        "}</script>\n"
         f"<script>/* uPlot 1.6.31, (c) Leon Sorokin, MIT licence */\n{_static('uPlot.iife.min.js')}</script>\n"
         f"<script>{_static('report.js')}</script>\n</body></html>\n"
     )
@@ -219,9 +239,10 @@ def write_report(
     extras: dict[str, Any] | None = None,
 ) -> None:
     """Write and close the report (opened by the caller before decoding, so a bad path fails first)."""
-    text = render_report(collector, stats, title or "vw3-decode report", extras)
+    pieces = report_pieces(collector, stats, title or "vw3-decode report", extras)
     try:
         with stream:
-            stream.write(text)
+            for piece in pieces:
+                stream.write(piece)
     except OSError as error:
         raise OutputError(f"--report {path}: {error.strerror or error}") from None
