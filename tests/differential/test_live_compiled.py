@@ -18,16 +18,14 @@ from __future__ import annotations
 import os
 import random
 import re
-import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
 from conftest import ROOT
-from live_bus import open_pty
+from live_bus import run_live_on_pty
 from live_tape import write_tape
 
 from dissector.protocol.crc import with_crc
@@ -134,28 +132,12 @@ def capture_on_pty(chunks: list[tuple[bytes, float]], tape: Path, options: list[
                    ) -> tuple[str, str, int]:
     """`chunks` (bytes, pause after) written to a pseudo-terminal; vw3-decode --live on its other end,
     recording its reads to `tape`, stopped by SIGINT."""
-    line, device_fd, path = open_pty()
     env = dict(os.environ, VW3_LIVE_TAPE=str(tape), VW3_LIVE_REPORT="1", PYTHONPATH=str(ROOT))
     env.pop("VW3_PURE_PYTHON", None)
     if pure:
         env["VW3_PURE_PYTHON"] = "1"
-    process = subprocess.Popen([sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
-                               cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-    try:
-        assert process.stderr is not None
-        assert b"listening on" in process.stderr.readline()
-        for data, pause in chunks:
-            os.write(line, data)
-            time.sleep(pause)
-        time.sleep(0.4)  # (every flush after silence)
-        process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=60)
-    finally:
-        if process.poll() is None:
-            process.kill()
-        os.close(line)
-        os.close(device_fd)
-    assert process.returncode == 0, err
+    out, err, status = run_live_on_pty(chunks, options, env, settle=0.4, timeout=60)  # (every flush after silence)
+    assert status == 0, err
     return _split(out.decode("latin-1"), err.decode())
 
 

@@ -23,7 +23,7 @@ from dissector.render.stats_store import new_store
 from dissector.sim.simulate import generate_session, write_capture
 from helpers import rtu
 from test_report_columns import assert_same_report
-from test_timed_stats import story
+from test_timed_stats import four_inputs, story
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -99,16 +99,7 @@ def test_shipped_captures_same_report(name: str, profile: str, tmp_path: Path, m
 
 def test_several_inputs_one_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, fed: Fed) -> None:
     """A pcap, a raw file (the Python stages) and a pcapng, then a hex dump: one axis, one set of series."""
-    pcap = tmp_path / "story.pcap"
-    write_pcap(pcap, story())
-    records = generate_session(400, seed=5)
-    polling = tmp_path / "polling.pcapng"
-    write_pcapng(polling, [(data, round(time * 1e9)) for data, time in records])
-    raw = tmp_path / "polling.bin"
-    raw.write_bytes(b"".join(data for data, _time in records))
-    dump = tmp_path / "bus.txt"
-    dump.write_text("".join(f"{ns // 10**9}.{ns % 10**9 // 1000:06d} {data.hex(' ')}\n"
-                            for data, ns in cut_records(random.Random(2), frames_of(9, 0.05), "frame")))
+    pcap, raw, polling, dump = four_inputs(tmp_path, 400, 5, 2, 9)
     # (after a raw file counted first, the statistics cannot go to the compiled store: Python's path)
     for files, engine in (([pcap, raw, polling], 2), ([dump, pcap], 2), ([raw, dump], 0)):
         fed.reports = 0

@@ -100,19 +100,27 @@ def test_outages_late_answers_and_times_going_back(output: int, tmp_path: Path, 
         assert "slave 1 silent" in text and "6 requests unanswered" in text
 
 
-def test_several_inputs_in_one_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, counted: list[bool]) -> None:
-    """A pcap, a raw file and a pcap again, a hex dump after a pcapng, a raw file first, two captures:
-    one bus, one poll cycle, one set of first and last times over them all, whichever side counted."""
+def four_inputs(tmp_path: Path, transactions: int, seed: int, cut_seed: int, dump_frames: int
+                ) -> tuple[Path, Path, Path, Path]:
+    """The story as a pcap, a polling session as a raw file and as a pcapng, and a stamped hex dump:
+    inputs of every kind, for one run over several of them."""
     pcap = tmp_path / "story.pcap"
     write_pcap(pcap, story())
-    records = generate_session(300, seed=4)
+    records = generate_session(transactions, seed=seed)
     polling = tmp_path / "polling.pcapng"
     write_pcapng(polling, [(data, round(time * 1e9)) for data, time in records])
     raw = tmp_path / "polling.bin"
     raw.write_bytes(b"".join(data for data, _time in records))
     dump = tmp_path / "bus.txt"
     dump.write_text("".join(f"{ns // 10**9}.{ns % 10**9 // 1000:06d} {data.hex(' ')}\n"
-                            for data, ns in cut_records(random.Random(1), frames_of(7, 0.05), "frame")))
+                            for data, ns in cut_records(random.Random(cut_seed), frames_of(dump_frames, 0.05), "frame")))
+    return pcap, raw, polling, dump
+
+
+def test_several_inputs_in_one_run(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, counted: list[bool]) -> None:
+    """A pcap, a raw file and a pcap again, a hex dump after a pcapng, a raw file first, two captures:
+    one bus, one poll cycle, one set of first and last times over them all, whichever side counted."""
+    pcap, raw, polling, dump = four_inputs(tmp_path, 300, 4, 1, 7)
     for files in ([pcap, raw, polling], [raw, pcap], [polling, dump, pcap], [dump, pcap],
                   [ROOT / "captures" / "noisy_bus.pcap", ROOT / "captures" / "p38_protection.pcap"]):
         for output in (["--stats"], ["--stats", "--json"]):

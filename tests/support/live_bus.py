@@ -362,26 +362,40 @@ def transactions(count: int, seed: int) -> bytes:
     return bytes(out)
 
 
-def live_on_pty(frames: list[bytes], *options: str, pause: float = 0.1) -> tuple[list[str], str, int]:
-    """`frames` written to a pseudo-terminal one by one, `pause` apart; vw3-decode --live at 115200 baud
-    on its other end, stopped by SIGINT: (its stdout lines, its stderr after "listening on", its status)."""
+def run_live_on_pty(chunks: list[tuple[bytes, float]], options: list[str], env: dict[str, str] | None = None,
+                    settle: float = 0.3, timeout: float = 20) -> tuple[bytes, bytes, int]:
+    """`chunks` (bytes, pause after) written to a pseudo-terminal; vw3-decode --live at 115200 baud on its
+    other end, stopped by SIGINT `settle` seconds after the last: (its stdout, its stderr after
+    "listening on", its status)."""
     line, device_fd, path = open_pty()
     process = subprocess.Popen(
         [sys.executable, "-m", "dissector", "--live", path, "--baud", "115200", *options],
-        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
     )
     try:
         assert process.stderr is not None and process.stdout is not None
-        assert "listening on" in process.stderr.readline()
-        for frame in frames:
-            os.write(line, frame)
+        assert b"listening on" in process.stderr.readline()
+        for data, pause in chunks:
+            os.write(line, data)
             time.sleep(pause)
-        time.sleep(0.3)
+        time.sleep(settle)
         process.send_signal(signal.SIGINT)
-        out, err = process.communicate(timeout=20)
+        out, err = process.communicate(timeout=timeout)
     finally:
         if process.poll() is None:
             process.kill()
         os.close(line)
         os.close(device_fd)
-    return out.splitlines(), err, process.returncode
+    return out, err, process.returncode
+
+
+def _text(data: bytes) -> str:
+    """As a text-mode pipe reads it (universal newlines)."""
+    return data.decode().replace("\r\n", "\n").replace("\r", "\n")
+
+
+def live_on_pty(frames: list[bytes], *options: str, pause: float = 0.1) -> tuple[list[str], str, int]:
+    """`frames` written to a pseudo-terminal one by one, `pause` apart; vw3-decode --live at 115200 baud
+    on its other end, stopped by SIGINT: (its stdout lines, its stderr after "listening on", its status)."""
+    out, err, status = run_live_on_pty([(frame, pause) for frame in frames], list(options))
+    return _text(out).splitlines(), _text(err), status
