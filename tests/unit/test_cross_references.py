@@ -97,7 +97,12 @@ def resolve_file(ref: str) -> list[str]:
 def defined_names(relpath: str) -> frozenset[str]:
     """Every name a module defines at any depth (functions, classes, methods, assignments); a name it only
     imports is not its own (`rtu.py RULES` once RULES moved to rules.py points a reader at the wrong file)."""
-    tree = ast.parse((ROOT / relpath).read_text(encoding="utf-8"))
+    return frozenset(names_defined_in(ast.parse((ROOT / relpath).read_text(encoding="utf-8"))))
+
+
+def names_defined_in(tree: ast.AST) -> set[str]:
+    """The functions, classes, methods and assigned names and attributes anywhere in `tree` (an
+    annotated assignment's target is a stored Name too)."""
     names: set[str] = set()
     for node in ast.walk(tree):
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
@@ -106,9 +111,7 @@ def defined_names(relpath: str) -> frozenset[str]:
             names.add(node.id)
         elif isinstance(node, ast.Attribute) and isinstance(node.ctx, ast.Store):
             names.add(node.attr)
-        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
-            names.add(node.target.id)
-    return frozenset(names)
+    return names
 
 
 @cache
@@ -133,14 +136,7 @@ def class_names() -> dict[str, frozenset[str]]:
         for node in ast.walk(ast.parse((ROOT / f).read_text(encoding="utf-8"))):
             if not isinstance(node, ast.ClassDef):
                 continue
-            names = found.setdefault(node.name, set())
-            for sub in ast.walk(node):
-                if isinstance(sub, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
-                    names.add(sub.name)
-                elif isinstance(sub, ast.Name) and isinstance(sub.ctx, ast.Store):
-                    names.add(sub.id)
-                elif isinstance(sub, ast.Attribute) and isinstance(sub.ctx, ast.Store):
-                    names.add(sub.attr)
+            found.setdefault(node.name, set()).update(names_defined_in(node))
     return {name: frozenset(names) for name, names in found.items()}
 
 
