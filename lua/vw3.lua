@@ -4843,9 +4843,11 @@ end
 -- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
 -- A request that writes is kept by its bytes before the values too (known_requests.headers, for
 -- lane.write, which looks at the layout rules again), even where it writes registers under one.
+-- Not a provisional one: its Info text says so, the lanes take a request of a settled slave.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
-      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected then
+      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
+      or item.provisional then
     return
   end
   local header = known_requests.header_lengths[item.fn]
