@@ -32,8 +32,7 @@ typedef struct {
     PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
     PyObject *series, *h_series, *h_counts, *written; /* their containers */
     Py_ssize_t max_series, max_written;
-    double span;   /* COLUMNS: the collector's columns before a doubling (collect.py ReportCollector._double) */
-    double h_span; /* 2 * COLUMNS: the response times' (health.py Health._double) */
+    double span; /* COLUMNS: the columns before a doubling (collect.py ReportCollector._double, health.py Health._double) */
     int timed;   /* -1: not known yet */
     Time origin, first, last, h_origin;
     double width, limit, h_width, h_limit;
@@ -221,7 +220,7 @@ static int health_point(Report *r, int slave, const Time *x, double y) {
     if (r->health == Py_None) return 0;
     if (!r->h_origin.has) {
         r->h_origin = *x;
-        r->h_limit = x->d + r->h_span * r->h_width;
+        r->h_limit = x->d + r->span * r->h_width;
     }
     while (x->d >= r->h_limit)
         if (report_call(r, r->health, "_double", 1, NULL) < 0) return -1;
@@ -413,7 +412,6 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->h_counts == NULL || r->written == NULL)))
         return -1;
     r->span = columns;
-    r->h_span = 2.0 * columns;
     for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)r->max_series + 2;) r->trend_slots *= 2;
     r->trends = PyMem_Calloc(r->trend_slots, sizeof *r->trends);
     r->points = PyMem_Calloc(REPORT_POINTS, sizeof *r->points);

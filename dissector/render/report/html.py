@@ -216,8 +216,9 @@ def report_pieces(
         at = head.rindex(_STAND_IN_JSON)
         yield head[:at].replace("<", "\\u003c") + "["
         for index, entry in enumerate(responses):
-            yield ("," if index else "") + (
-                f'{{"slave":{entry["slave"]},"answers":{entry["answers"]},"x":{entry["x"]},"y":{entry["y"]}}}')
+            x, y = entry["points"]()  # (health.py: made now, one slave's at a time)
+            yield ("," if index else "") + f'{{"slave":{entry["slave"]},"answers":{entry["answers"]},"x":{x},"y":{y}}}'
+            del x, y
         yield "]" + head[at + len(_STAND_IN_JSON):-1].replace("<", "\\u003c")
     del responses
     yield ',"parameters":'

@@ -43,7 +43,7 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
     data["responses"] = health.response_series(origin, data["column_width"]) if health is not None else []
     answered = {entry["slave"] for entry in data["responses"]}
     for slave in sorted({outage["slave"] for outage in data["outages"]} - answered):  # silent throughout
-        data["responses"].append({"slave": slave, "answers": 0, "x": "[]", "y": "[]"})  # (JSON text)
+        data["responses"].append({"slave": slave, "answers": 0, "points": _no_points})
     data["responses"].sort(key=lambda entry: entry["slave"])
     if not report["timed"]:
         return parts + ["<p>No timestamps in this capture: load, gaps, turnaround and outages need a pcap, "
@@ -146,3 +146,8 @@ def parameter_index(data: dict[str, Any], single: dict[int, float]) -> list[str]
               parameters[index]["name"] or "", _value_text(parameters[index], single[index]), parameters[index]["values"]]
              for index in order if index in single], "single"))
     return parts
+
+
+def _no_points() -> tuple[str, str]:
+    """The response times of a slave silent throughout (health.py's points: JSON text): none."""
+    return "[]", "[]"
