@@ -114,6 +114,10 @@ def plugin_data() -> dict[str, Any]:
             "max_bytes": maps.MAX_MAP_BYTES,
             "scale_min": maps.SCALE_MIN,
             "scale_max": maps.SCALE_MAX,
+            "types": maps.TYPES,
+            "orders": frozenset(maps.ORDERS),
+            "access": maps.ACCESS,
+            "messages": _messages(maps.MESSAGES),
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         "not_broadcast": SPEC.not_broadcast,
@@ -122,6 +126,21 @@ def plugin_data() -> dict[str, Any]:
     }
     data.update(_profile_data())
     return data
+
+
+def _messages(templates: dict[str, str]) -> dict[str, Any]:
+    """A catalogue of Python templates as the plugin fills them in: a `string.format` pattern, the
+    parameters in order, and those Python gives as their repr (`{name!r}`)."""
+    import string
+
+    from dissector.codegen import rules_lua  # (it imports this module)
+
+    out = {}
+    for key, template in templates.items():
+        fields = [(name, conversion) for _, name, _, conversion in string.Formatter().parse(template) if name]
+        out[key] = {"format": rules_lua.lua_format(template), "params": [name for name, _ in fields],
+                    "repr": {name: True for name, conversion in fields if conversion == "r"}}
+    return out
 
 
 def _length_rule(rule: table.LengthRule) -> list[Any]:

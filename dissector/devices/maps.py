@@ -1,7 +1,8 @@
 """Register maps: one CSV per device (data/maps/*.csv) naming, scaling and labelling register values.
 
-Format (shared with the Wireshark Lua helper, keep it in step): a header line naming the columns, then one
-row per register. Lines starting with `#` are comments (the source legend lives there). Columns:
+Format (the plugin's map reader, lua/src/maps.lua, reads COLUMNS, TYPES, ORDERS, ACCESS and MESSAGES
+from the data codegen writes into lua/vw3.lua): a header line naming the columns, then one row per
+register. Lines starting with `#` are comments (the source legend lives there). Columns:
 
     address  logic address as sent on the wire (decimal, or 0x/16# hexadecimal)
     code     short code shown to users (CHCF)
@@ -40,7 +41,7 @@ from pathlib import Path
 COLUMNS = (
     "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order",
 )
-TYPES = ("uint16", "int16", "uint32", "int32", "float32")
+TYPES = {"uint16": 1, "int16": 1, "uint32": 2, "int32": 2, "float32": 2}  # registers each type spans
 ORDERS = ("ABCD", "CDAB")  # ABCD: the first register holds the high word (Modbus' big-endian); CDAB: swapped
 REQUIRED = ("address", "code")
 ACCESS = frozenset(["R", "W", "RW"])
@@ -51,6 +52,38 @@ MAX_MAP_BYTES = 16 << 20
 # Scales a device could mean (0.001 Hz .. GWh): any 16- or 32-bit raw value times one stays a finite
 # number with a bounded count of digits (1e308 times FFFF is inf; 1e-300 would print 300 decimals).
 SCALE_MIN, SCALE_MAX = 1e-12, 1e12
+# What a malformed map is told (after `file:line: `), by key. The plugin's map reader (lua/src/maps.lua)
+# says the same texts: codegen/lua.py writes this table into lua/vw3.lua, `{NAME!r}` as Python's repr.
+MESSAGES = {
+    "unknown_column": "unknown column {name!r} (columns: " + ", ".join(COLUMNS) + ")",
+    "missing_column": "the header lacks the {name!r} column",
+    "column_twice": "a column is named twice in the header",
+    "fields": "{count:d} fields, the header has {header:d} (quote a field that holds a {separator})",
+    "address_twice": "address {address:d} already defined on line {line:d}",
+    "second_register": "address {address:d} is the second register of {code} ({kind}, line {line:d})",
+    "no_header": "no header line (expected: " + ",".join(COLUMNS) + ")",
+    "address": "address {text!r} is not a number",
+    "address_range": "address {address:d} is outside 0..65535",
+    "code": "code is empty",
+    "scale": "scale {text!r} is not a number",
+    "scale_range": "scale {text!r} is outside " + f"±{SCALE_MIN:g}..{SCALE_MAX:g}" + " (and not 0)",
+    "access": "access {text!r} is not R, W or RW",
+    "pair": "{what} entry {part!r} is not `number=label`",
+    "pair_number": "{what} entry {part!r}: {key!r} is not a number",
+    "pair_range": "{what} entry {part!r}: {number:d} is outside {low:d}..{high:d}",
+    "pair_twice": "{what} entry {part!r}: {number:d} given twice",
+    "signed": "signed {text!r} is not 1, 0 or empty",
+    "type": "type {text!r} is not one of " + ", ".join(TYPES),
+    "order": "order {text!r} is not " + " or ".join(ORDERS),
+    "wide_labels": "a {kind} value cannot carry enum or bit labels",
+    "wide_last": "a {kind} value needs two registers: {address:d} is the last address",
+    # Enumerations are listed as unsigned words; a signed register with labels is a map error.
+    "signed_enum": "a signed register cannot carry enum labels",
+}
+
+
+def _say(key: str, /, **values: object) -> str:
+    return MESSAGES[key].format(**values)
 
 
 @dataclass(slots=True)
@@ -98,15 +131,15 @@ def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
             continue
         key, sep, label = part.partition("=")
         if not sep or not label.strip():
-            raise ValueError(f"{what} entry {part!r} is not `number=label`")
+            raise ValueError(_say("pair", what=what, part=part))
         try:
             number = _parse_int(key)
         except ValueError:
-            raise ValueError(f"{what} entry {part!r}: {key.strip()!r} is not a number") from None
+            raise ValueError(_say("pair_number", what=what, part=part, key=key.strip())) from None
         if not low <= number <= high:
-            raise ValueError(f"{what} entry {part!r}: {number} is outside {low}..{high}")
+            raise ValueError(_say("pair_range", what=what, part=part, number=number, low=low, high=high))
         if number in out:
-            raise ValueError(f"{what} entry {part!r}: {number} given twice")
+            raise ValueError(_say("pair_twice", what=what, part=part, number=number))
         out[number] = printable(label.strip())
     return out
 
@@ -121,12 +154,12 @@ def _row(values: dict[str, str]) -> RegisterDef:
     try:
         address = _parse_int(raw_address)
     except ValueError:
-        raise ValueError(f"address {raw_address!r} is not a number") from None
+        raise ValueError(_say("address", text=raw_address)) from None
     if not 0 <= address <= 0xFFFF:
-        raise ValueError(f"address {address} is outside 0..65535")
+        raise ValueError(_say("address_range", address=address))
     code = printable(values.get("code", "").strip())  # a map's texts are shown: control characters escaped
     if not code:
-        raise ValueError("code is empty")
+        raise ValueError(_say("code"))
     scale: float | None = None
     decimals = 0
     raw_scale = values.get("scale", "").strip()
@@ -135,33 +168,32 @@ def _row(values: dict[str, str]) -> RegisterDef:
             scale = float(raw_scale)
             decimals = _decimals(raw_scale)
         except (ValueError, InvalidOperation):
-            raise ValueError(f"scale {raw_scale!r} is not a number") from None
+            raise ValueError(_say("scale", text=raw_scale)) from None
         if not SCALE_MIN <= abs(scale) <= SCALE_MAX:  # also nan, inf (1e999) and 0
-            raise ValueError(f"scale {raw_scale!r} is outside ±{SCALE_MIN:g}..{SCALE_MAX:g} (and not 0)")
+            raise ValueError(_say("scale_range", text=raw_scale))
     access = values.get("access", "").strip().upper() or None
     if access is not None and access not in ACCESS:
-        raise ValueError(f"access {access!r} is not R, W or RW")
+        raise ValueError(_say("access", text=access))
     enum = _pairs(values.get("enum", ""), "enum", 0, 0xFFFF)
     bits = _pairs(values.get("bits", ""), "bits", 0, 15)
     signed_text = values.get("signed", "").strip()
     if signed_text not in ("", "0", "1"):
-        raise ValueError(f"signed {signed_text!r} is not 1, 0 or empty")
+        raise ValueError(_say("signed", text=signed_text))
     signed = signed_text == "1"
     kind = values.get("type", "").strip().lower() or ("int16" if signed else "uint16")
     if kind not in TYPES:
-        raise ValueError(f"type {kind!r} is not one of {', '.join(TYPES)}")
+        raise ValueError(_say("type", text=kind))
     signed = signed or kind in ("int16", "int32")
-    words = 2 if kind.endswith("32") else 1
+    words = TYPES[kind]
     order = values.get("order", "").strip().upper() or "ABCD"
     if order not in ORDERS:
-        raise ValueError(f"order {order!r} is not ABCD or CDAB")
+        raise ValueError(_say("order", text=order))
     if words == 2 and (enum or bits):
-        raise ValueError(f"a {kind} value cannot carry enum or bit labels")
+        raise ValueError(_say("wide_labels", kind=kind))
     if words == 2 and address == 0xFFFF:
-        raise ValueError(f"a {kind} value needs two registers: {address} is the last address")
+        raise ValueError(_say("wide_last", kind=kind, address=address))
     if signed and enum:
-        # Enumerations are listed as unsigned words; a signed register with labels is a map error.
-        raise ValueError("a signed register cannot carry enum labels")
+        raise ValueError(_say("signed_enum"))
     return RegisterDef(
         address=address,
         code=code,
@@ -213,19 +245,17 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             header = [cell.strip().lower() for cell in cells]
             unknown = [name for name in header if name not in COLUMNS]
             if unknown:
-                raise ProfileError(
-                    f"{origin}:{number}: unknown column {unknown[0]!r} (columns: {', '.join(COLUMNS)})"
-                )
+                raise ProfileError(f"{origin}:{number}: " + _say("unknown_column", name=unknown[0]))
             missing = [name for name in REQUIRED if name not in header]
             if missing:
-                raise ProfileError(f"{origin}:{number}: the header lacks the {missing[0]!r} column")
+                raise ProfileError(f"{origin}:{number}: " + _say("missing_column", name=missing[0]))
             if len(set(header)) != len(header):
-                raise ProfileError(f"{origin}:{number}: a column is named twice in the header")
+                raise ProfileError(f"{origin}:{number}: " + _say("column_twice"))
             continue
         if len(cells) != len(header):
+            separator = "comma" if delimiter == "," else repr(delimiter)
             raise ProfileError(
-                f"{origin}:{number}: {len(cells)} fields, the header has {len(header)} "
-                f"(quote a field that holds a {'comma' if delimiter == ',' else repr(delimiter)})"
+                f"{origin}:{number}: " + _say("fields", count=len(cells), header=len(header), separator=separator)
             )
         values = dict(zip(header, cells))
         scale = values.get("scale", "")
@@ -237,8 +267,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if row.address in rows:
             raise ProfileError(
-                f"{origin}:{number}: address {row.address} already defined on line "
-                f"{first_line[row.address]}"
+                f"{origin}:{number}: " + _say("address_twice", address=row.address, line=first_line[row.address])
             )
         rows[row.address] = row
         first_line[row.address] = number
@@ -246,12 +275,11 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             wide[row.address + 1] = row.address
     for second, first in wide.items():
         if second in rows:
-            raise ProfileError(
-                f"{origin}:{first_line[second]}: address {second} is the second register of "
-                f"{rows[first].code} ({rows[first].kind}, line {first_line[first]})"
-            )
+            raise ProfileError(f"{origin}:{first_line[second]}: " + _say(
+                "second_register", address=second, code=rows[first].code, kind=rows[first].kind,
+                line=first_line[first]))
     if header is None:
-        raise ProfileError(f"{origin}: no header line (expected: {','.join(COLUMNS)})")
+        raise ProfileError(f"{origin}: " + _say("no_header"))
     return rows
 
 

@@ -152,30 +152,6 @@ local function explain_exception(st, f, device)
   end
 end
 
-local function python_repr(text)
-  -- str.__repr__ of a device object's text (latin-1 characters held as UTF-8), quotes as Python picks.
-  local quote = "'"
-  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
-  local out = {}
-  local k = 1
-  while k <= #text do
-    local byte = text:byte(k)
-    local code, width = byte, 1
-    if byte >= 192 then code, width = (byte - 192) * 64 + (text:byte(k + 1) - 128), 2 end
-    local char = text:sub(k, k + width - 1)
-    if char == "\\" then out[#out + 1] = "\\\\"
-    elseif char == quote then out[#out + 1] = "\\" .. quote
-    elseif code == 10 then out[#out + 1] = "\\n"
-    elseif code == 13 then out[#out + 1] = "\\r"
-    elseif code == 9 then out[#out + 1] = "\\t"
-    elseif code < 32 or (code >= 127 and code <= 160) or code == 173 then out[#out + 1] = format("\\x%02x", code)
-    else out[#out + 1] = char end
-    k = k + width
-  end
-  return quote .. concat(out) .. quote
-end
-story.repr = python_repr -- (the display's too: FC43 objects)
-
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
     local meaning = (profile.objects or {})[object.id]
@@ -223,5 +199,5 @@ end
 lane.span_label = span_label
 
 M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
-M.explain_objects, M.python_repr, M.refused_registers = explain_objects, python_repr, refused_registers
+M.explain_objects, M.refused_registers = explain_objects, refused_registers
 M.span_label = span_label

@@ -51,51 +51,73 @@ local function parse_profile_choice(text)
   return default or DATA.default_profile, per_slave, errors
 end
 
-local parse_map_choice
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
--- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`.
-local FORMAT = DATA.map_format -- (maps.py COLUMNS, REQUIRED, MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX)
-local MAP_COLUMNS, MAX_MAP_BYTES = FORMAT.columns, FORMAT.max_bytes
+-- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`. The format's
+-- facts and its error messages are maps.py's (COLUMNS, REQUIRED, TYPES, ORDERS, ACCESS, MESSAGES,
+-- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX), written into the generated data.
+local FORMAT = DATA.map_format
+local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
+  FORMAT.orders, FORMAT.access
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
-local MAP_TYPES = { uint16 = 1, int16 = 1, uint32 = 2, int32 = 2, float32 = 2 } -- words each type spans
 local KNOWN_COLUMN = {}
-for _, name in ipairs(MAP_COLUMNS) do KNOWN_COLUMN[name] = true end
+for _, name in ipairs(FORMAT.columns) do KNOWN_COLUMN[name] = true end
+local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
--- A map's texts are shown: control characters as \xNN (maps.py escapes them too), never raw.
-local function printable(text)
-  return (text:gsub("[%z\1-\31\127]", function(c) return format("\\x%02x", c:byte()) end))
+-- Python's escapes in a text (UTF-8): what str.isprintable() refuses below U+0100 (C0, DEL, C1, no-break
+-- space, soft hyphen) as \xNN, and with a quote (python_repr) the backslash, that quote, \n, \r, \t too.
+local REPR_ESCAPES = { ["\\"] = "\\\\", ["\n"] = "\\n", ["\r"] = "\\r", ["\t"] = "\\t" }
+local function escaped(text, quote)
+  return (text:gsub("[\0-\127\192-\255][\128-\191]*", function(char)
+    if quote ~= nil and (REPR_ESCAPES[char] or char == quote) then return REPR_ESCAPES[char] or "\\" .. quote end
+    local code = char:byte()
+    if #char == 2 then code = (code - 192) * 64 + char:byte(2) - 128 end
+    if code < 32 or (code >= 127 and code <= 160) or code == 173 then return format("\\x%02x", code) end
+  end))
 end
 
--- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote.
-local function csv_cells(line, delimiter)
-  local cells, cell, k, quoted = {}, {}, 1, false
-  while k <= #line do
-    local char = line:sub(k, k)
-    if quoted then
-      if char == '"' then
-        if line:sub(k + 1, k + 1) == '"' then
-          cell[#cell + 1] = '"'
-          k = k + 1
-        else
-          quoted = false
-        end
-      else
-        cell[#cell + 1] = char
-      end
-    elseif char == '"' and #cell == 0 then
-      quoted = true
-    elseif char == delimiter then
-      cells[#cells + 1] = concat(cell)
-      cell = {}
-    else
-      cell[#cell + 1] = char
-    end
-    k = k + 1
+-- A map's texts are shown: control characters as \xNN (maps.py escapes them too), never raw.
+local function printable(text) return escaped(text) end
+
+-- str.__repr__ of a text (a device object's latin-1 characters are held as UTF-8 too), quotes as Python picks.
+local function python_repr(text)
+  local quote = "'"
+  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
+  return quote .. escaped(text, quote) .. quote
+end
+
+-- A map error in maps.py's words (its MESSAGES, by key): the parameters by name, `!r` ones as Python's repr.
+local function wrong(key, values)
+  local entry, args = MESSAGES[key], {}
+  for index, name in ipairs(entry.params) do
+    args[index] = entry.repr[name] and python_repr(values[name]) or values[name]
   end
-  if quoted then return nil, "unexpected end of data" end
-  cells[#cells + 1] = concat(cell)
+  return format(entry.format, unpack(args, 1, #entry.params))
+end
+
+-- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote;
+-- a quote left open at the line's end closes there (the dialect is not strict).
+local function csv_cells(line, delimiter)
+  local cells, at, stop = {}, 1, 0
+  repeat
+    local cell = {}
+    if line:sub(at, at) == '"' then
+      -- quoted up to a quote that is not doubled (`""` stands for one); what follows it is the cell's too
+      at = at + 1
+      repeat
+        local quote = line:find('"', at, true) or #line + 1
+        cell[#cell + 1] = line:sub(at, quote - 1)
+        local doubled = line:sub(quote + 1, quote + 1) == '"'
+        if doubled then cell[#cell + 1] = '"' end
+        at = doubled and quote + 2 or quote + 1
+      until not doubled
+    end
+    stop = line:find(delimiter, at, true) or #line + 1
+    cell[#cell + 1] = line:sub(at, stop - 1)
+    cells[#cells + 1] = concat(cell)
+    at = stop + 1
+  until stop > #line
   return cells
 end
 
@@ -108,23 +130,22 @@ local function map_int(text)
 end
 
 local function map_pairs(text, what, low, high)
-  local out, any = {}, false
+  local out = {}
   for part in (text .. ";"):gmatch("([^;]*);") do
     part = strip(part)
     if part ~= "" then
       local key, label = part:match("^([^=]*)=(.*)$")
-      if key == nil or strip(label) == "" then return nil, format("%s entry %q is not `number=label`", what, part) end
+      if key == nil or strip(label) == "" then return nil, wrong("pair", { what = what, part = part }) end
       local number = map_int(key)
-      if number == nil then return nil, format("%s entry %q: %q is not a number", what, part, strip(key)) end
+      if number == nil then return nil, wrong("pair_number", { what = what, part = part, key = strip(key) }) end
       if number < low or number > high then
-        return nil, format("%s entry %q: %d is outside %d..%d", what, part, number, low, high)
+        return nil, wrong("pair_range", { what = what, part = part, number = number, low = low, high = high })
       end
-      if out[number] ~= nil then return nil, format("%s entry %q: %d given twice", what, part, number) end
+      if out[number] ~= nil then return nil, wrong("pair_twice", { what = what, part = part, number = number }) end
       out[number] = printable(strip(label))
-      any = true
     end
   end
-  if not any then return nil end
+  if next(out) == nil then return nil end
   return out
 end
 
@@ -141,10 +162,10 @@ end
 
 local function map_row(values)
   local address = map_int(values.address or "")
-  if address == nil then return nil, format("address %q is not a number", values.address or "") end
-  if address < 0 or address > 0xFFFF then return nil, format("address %d is outside 0..65535", address) end
+  if address == nil then return nil, wrong("address", { text = values.address or "" }) end
+  if address < 0 or address > 0xFFFF then return nil, wrong("address_range", { address = address }) end
   local code = printable(strip(values.code or ""))
-  if code == "" then return nil, "code is empty" end
+  if code == "" then return nil, wrong("code") end
   local row = { code = code }
   for _, key in ipairs({ "name", "unit", "source" }) do
     local text = printable(strip(values[key] or ""))
@@ -153,38 +174,36 @@ local function map_row(values)
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
     local scale = tonumber(scale_text)
-    if scale == nil or scale ~= scale then return nil, format("scale %q is not a number", scale_text) end
+    if scale == nil or scale ~= scale then return nil, wrong("scale", { text = scale_text }) end
     if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
-      return nil, format("scale '%s' is outside ±1e-12..1e+12 (and not 0)", scale_text)
+      return nil, wrong("scale_range", { text = scale_text })
     end
     row.scale, row.decimals = scale, scale_decimals(scale_text)
   end
   local access = strip(values.access or ""):upper()
-  if access ~= "" and access ~= "R" and access ~= "W" and access ~= "RW" then
-    return nil, format("access %q is not R, W or RW", access)
-  end
+  if access ~= "" and not ACCESS[access] then return nil, wrong("access", { text = access }) end
   local problem
   row.enum, problem = map_pairs(values.enum or "", "enum", 0, 0xFFFF)
   if problem then return nil, problem end
   row.bits, problem = map_pairs(values.bits or "", "bits", 0, 15)
   if problem then return nil, problem end
   local signed = strip(values.signed or "")
-  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, format("signed %q is not 1, 0 or empty", signed) end
+  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, wrong("signed", { text = signed }) end
   local kind = strip(values.type or ""):lower()
   if kind == "" then kind = signed == "1" and "int16" or "uint16" end
-  local words = MAP_TYPES[kind]
-  if words == nil then return nil, format("type '%s' is not one of uint16, int16, uint32, int32, float32", kind) end
+  local words = TYPES[kind]
+  if words == nil then return nil, wrong("type", { text = kind }) end
   row.signed = (signed == "1" or kind == "int16" or kind == "int32") or nil
   local order = strip(values.order or ""):upper()
   if order == "" then order = "ABCD" end
-  if order ~= "ABCD" and order ~= "CDAB" then return nil, format("order '%s' is not ABCD or CDAB", order) end
+  if not ORDERS[order] then return nil, wrong("order", { text = order }) end
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
-    if row.enum or row.bits then return nil, format("a %s value cannot carry enum or bit labels", kind) end
-    if address == 0xFFFF then return nil, format("a %s value needs two registers: %d is the last address", kind, address) end
+    if row.enum or row.bits then return nil, wrong("wide_labels", { kind = kind }) end
+    if address == 0xFFFF then return nil, wrong("wide_last", { kind = kind, address = address }) end
     row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
-  if row.signed and row.enum then return nil, "a signed register cannot carry enum labels" end
+  if row.signed and row.enum then return nil, wrong("signed_enum") end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -199,8 +218,6 @@ local function sniff(header)
   end
   return best
 end
-
-local SEPARATOR_NAMES = { [","] = "comma", [";"] = "';'", ["\t"] = "'\\t'" }
 
 -- The rows of a map file, or nil and `file:line: what is wrong` (maps.parse_map, message for message):
 -- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
@@ -222,35 +239,32 @@ local function load_map(path)
     if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
-  local header, rows, first_line, number, delimiter = nil, {}, {}, 0, ","
-  local wide, wide_order = {}, {} -- second register of a 32-bit row -> its first
+  local header, rows, first_line, order, number, delimiter = nil, {}, {}, {}, 0, ","
+  local function at(line, problem) return format("%s:%d: %s", path, line, problem) end
   for line in (text:gsub("\r\n", "\n"):gsub("\r", "\n") .. "\n"):gmatch("([^\n]*)\n") do
     number = number + 1
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
       if header == nil then delimiter = sniff(line) end
-      local cells, problem = csv_cells(line, delimiter)
-      if cells == nil then return nil, format("%s:%d: %s", path, number, problem) end
+      local cells = csv_cells(line, delimiter)
       if header == nil then
         header = {}
         local named = {} -- (how many times each column is named)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then
-            return nil, format("%s:%d: unknown column %q (columns: %s)", path, number, name, concat(MAP_COLUMNS, ", "))
-          end
+          if not KNOWN_COLUMN[name] then return nil, at(number, wrong("unknown_column", { name = name })) end
           header[index], named[name] = name, (named[name] or 0) + 1
         end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then return nil, format("%s:%d: the header lacks the %q column", path, number, required) end
+          if not named[required] then return nil, at(number, wrong("missing_column", { name = required })) end
         end
         for _, count in pairs(named) do
-          if count > 1 then return nil, format("%s:%d: a column is named twice in the header", path, number) end
+          if count > 1 then return nil, at(number, wrong("column_twice")) end
         end
       else
         if #cells ~= #header then
-          return nil, format("%s:%d: %d fields, the header has %d (quote a field that holds a %s)", path, number,
-            #cells, #header, SEPARATOR_NAMES[delimiter])
+          local separator = delimiter == "," and "comma" or python_repr(delimiter)
+          return nil, at(number, wrong("fields", { count = #cells, header = #header, separator = separator }))
         end
         local values = {}
         for index, name in ipairs(header) do values[name] = cells[index] end
@@ -258,31 +272,29 @@ local function load_map(path)
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
         local address, row = map_row(values)
-        if address == nil then return nil, format("%s:%d: %s", path, number, row) end
+        if address == nil then return nil, at(number, row) end
         if rows[address] ~= nil then
-          return nil, format("%s:%d: address %d already defined on line %d", path, number, address, first_line[address])
+          return nil, at(number, wrong("address_twice", { address = address, line = first_line[address] }))
         end
         rows[address], first_line[address] = row, number
-        if row.words == 2 and wide[address + 1] == nil then
-          wide[address + 1] = address
-          wide_order[#wide_order + 1] = address + 1
-        end
+        order[#order + 1] = address
       end
     end
   end
-  for _, second in ipairs(wide_order) do
-    local first = wide[second]
-    if rows[second] ~= nil then
-      return nil, format("%s:%d: address %d is the second register of %s (%s, line %d)", path, first_line[second],
-        second, rows[first].code, rows[first].kind, first_line[first])
+  -- (a 32-bit row's second register defined as a row of its own: told once the file is read, rows in order)
+  for _, first in ipairs(order) do
+    local row, second = rows[first], first + 1
+    if row.words == 2 and rows[second] ~= nil then
+      return nil, at(first_line[second], wrong("second_register",
+        { address = second, code = row.code, kind = row.kind, line = first_line[first] }))
     end
   end
-  if header == nil then return nil, format("%s: no header line (expected: %s)", path, concat(MAP_COLUMNS, ",")) end
+  if header == nil then return nil, format("%s: %s", path, wrong("no_header")) end
   return rows
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
-parse_map_choice = function(text, profile_names)
+local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
     spec = strip(spec)
@@ -320,5 +332,6 @@ parse_map_choice = function(text, profile_names)
   return layers, errors
 end
 
+M.python_repr = python_repr
 M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
 M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice

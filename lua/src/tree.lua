@@ -331,7 +331,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
         -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
         -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
-        local shown = story.repr(object.value)
+        local shown = python_repr(object.value)
         sub:set_text(format("%s: %s", object.name, shown))
         sub:add(pf.object_id, r, object.id)
         sub:add(pf.object_name, r, object.name):set_generated()

@@ -187,8 +187,8 @@ def test_register_map_errors_are_shown(tmp_path: Path) -> None:
     _, record_experts, _ = lua_items(pcap, "-o", f"vw3.maps:{bad};{worse};{tmp_path / 'none.csv'};9x={bad}")
     texts = [text for _, text in record_experts]
     expected = [
-        f'{bad}:1: unknown column "colour"',
-        f'{worse}:2: enum entry "1=B": 1 given twice',
+        f"{bad}:1: unknown column 'colour'",  # (vw3-decode's words: Python's repr)
+        f"{worse}:2: enum entry '1=B': 1 given twice",
         f"{tmp_path / 'none.csv'}: cannot read the map",
         '"9x" is neither a slave address nor a profile in use',
     ]
