@@ -3447,33 +3447,14 @@ package.preload["vw3.device"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat
-local floor, format, ipairs, next, pairs, setmetatable = floor, format, ipairs, next, pairs, setmetatable
-local tonumber = tonumber
+local floor, format, ipairs, math, next, pairs = floor, format, ipairs, math, next, pairs
+local setmetatable, tonumber = setmetatable, tonumber
 
-local plc_label
-local PLC_TOP = {} -- the highest reference of each base's digit count
 local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
-local function make_plc_label(base, address)
-  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
-  -- references keep their zeros (00001), as naming.plc_label.
-  local digits = #format("%d", base)
-  if digits < 5 then digits = 5 end
-  local top = PLC_TOP[base]
-  if top == nil then
-    local power = 1
-    for _ = 2, digits do power = power * 10 end
-    top = (floor(base / power) + 1) * power - 1
-    PLC_TOP[base] = top
-  end
-  local number = base + address
-  if number > top then
-    number = base * 10 - 9 + address
-    digits = digits + 1
-  end
-  return format("%0" .. digits .. "d", number)
-end
 
-plc_label = function(base, address)
+-- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
+-- references keep their zeros (00001). Each made once.
+local function plc_label(base, address)
   local labels = PLC_LABELS[base]
   if labels == nil then
     labels = {}
@@ -3481,7 +3462,11 @@ plc_label = function(base, address)
   end
   local label = labels[address]
   if label == nil then
-    label = make_plc_label(base, address)
+    local digits = math.max(5, #format("%d", base))
+    local power = 10 ^ (digits - 1)
+    local number = base + address
+    if number > (floor(base / power) + 1) * power - 1 then number, digits = base * 10 - 9 + address, digits + 1 end
+    label = format("%0" .. digits .. "d", number)
     labels[address] = label
   end
   return label
@@ -4177,7 +4162,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
 local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
 local ipairs, lane, layered_rows, math, next, pairs = ipairs, lane, layered_rows, math, next, pairs
-local python_repr, register_at, table = python_repr, register_at, table
+local python_repr, register_at, span_name, table = python_repr, register_at, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4299,9 +4284,8 @@ local function evidence_reason(found, protected)
 end
 
 local function what(f, registers)
-  local first, last = registers[1].address, registers[#registers].address
-  if #registers == 1 then return format("function %d at %d", f.fn, first) end
-  return format("function %d at %d..%d", f.fn, first, last)
+  local span = #registers == 1 and format("%d", registers[1].address) or span_name(registers)
+  return format("function %d at %s", f.fn, span)
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
@@ -4324,8 +4308,8 @@ local function observe(st, f, b)
   local found = identified(f)
   if found ~= nil then
     judged.choice = found
-    if current == nil or current.profile ~= found.profile then return found end
-    found.same = true -- the same device, for a new reason (identified after a traffic fit)
+    -- (the same device, for a new reason: identified after a traffic fit)
+    found.same = current ~= nil and current.profile == found.profile
     return found
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
@@ -4432,12 +4416,12 @@ local function select_device(st, f, b)
     return device_for(st, slave)
   end
   local slave = f.slave
+  -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
+  st.said = st.said or {}
+  st.said[f.number] = { choice.profile, choice.reason }
   if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
     local history = st.history[slave]
     history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
-    -- (said on the later passes, where every frame bears this reason: the frame it comes from says so)
-    st.said = st.said or {}
-    st.said[f.number] = { choice.profile, choice.reason }
     return device_for(st, slave)
   end
   st.chosen = st.chosen or {}
@@ -4454,8 +4438,6 @@ local function select_device(st, f, b)
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   st.devices[slave] = device
   f.profile_choice = choice.reason
-  st.said = st.said or {}
-  st.said[f.number] = { choice.profile, choice.reason }
   return device
 end
 

@@ -4,30 +4,11 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
-local plc_label
-local PLC_TOP = {} -- the highest reference of each base's digit count
 local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
-local function make_plc_label(base, address)
-  -- 5-digit references (40001 + address) up to 49999, then 6-digit ones (400001 + address); coil
-  -- references keep their zeros (00001), as naming.plc_label.
-  local digits = #format("%d", base)
-  if digits < 5 then digits = 5 end
-  local top = PLC_TOP[base]
-  if top == nil then
-    local power = 1
-    for _ = 2, digits do power = power * 10 end
-    top = (floor(base / power) + 1) * power - 1
-    PLC_TOP[base] = top
-  end
-  local number = base + address
-  if number > top then
-    number = base * 10 - 9 + address
-    digits = digits + 1
-  end
-  return format("%0" .. digits .. "d", number)
-end
 
-plc_label = function(base, address)
+-- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
+-- references keep their zeros (00001). Each made once.
+local function plc_label(base, address)
   local labels = PLC_LABELS[base]
   if labels == nil then
     labels = {}
@@ -35,7 +16,11 @@ plc_label = function(base, address)
   end
   local label = labels[address]
   if label == nil then
-    label = make_plc_label(base, address)
+    local digits = math.max(5, #format("%d", base))
+    local power = 10 ^ (digits - 1)
+    local number = base + address
+    if number > (floor(base / power) + 1) * power - 1 then number, digits = base * 10 - 9 + address, digits + 1 end
+    label = format("%0" .. digits .. "d", number)
     labels[address] = label
   end
   return label

@@ -124,9 +124,8 @@ local function evidence_reason(found, protected)
 end
 
 local function what(f, registers)
-  local first, last = registers[1].address, registers[#registers].address
-  if #registers == 1 then return format("function %d at %d", f.fn, first) end
-  return format("function %d at %d..%d", f.fn, first, last)
+  local span = #registers == 1 and format("%d", registers[1].address) or span_name(registers)
+  return format("function %d at %s", f.fn, span)
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
@@ -149,8 +148,8 @@ local function observe(st, f, b)
   local found = identified(f)
   if found ~= nil then
     judged.choice = found
-    if current == nil or current.profile ~= found.profile then return found end
-    found.same = true -- the same device, for a new reason (identified after a traffic fit)
+    -- (the same device, for a new reason: identified after a traffic fit)
+    found.same = current ~= nil and current.profile == found.profile
     return found
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
@@ -257,12 +256,12 @@ local function select_device(st, f, b)
     return device_for(st, slave)
   end
   local slave = f.slave
+  -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
+  st.said = st.said or {}
+  st.said[f.number] = { choice.profile, choice.reason }
   if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
     local history = st.history[slave]
     history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
-    -- (said on the later passes, where every frame bears this reason: the frame it comes from says so)
-    st.said = st.said or {}
-    st.said[f.number] = { choice.profile, choice.reason }
     return device_for(st, slave)
   end
   st.chosen = st.chosen or {}
@@ -279,8 +278,6 @@ local function select_device(st, f, b)
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   st.devices[slave] = device
   f.profile_choice = choice.reason
-  st.said = st.said or {}
-  st.said[f.number] = { choice.profile, choice.reason }
   return device
 end
 
