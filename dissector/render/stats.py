@@ -43,7 +43,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, stamp
+from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, give_back, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -220,6 +220,7 @@ class StatsCollector:
         """The JSON form (--stats --json); without parameters for the tables, which show a few rows
         of parameter_rows() instead of a dict per parameter, and the timings of `poll_rows` poll keys
         at most (those a table shows)."""
+        give_back()
         functions = []
         # Attached to the compiled store, every response time is there: its summaries, worked out in C.
         summaries = self.store.time_summaries() if self.attached else None

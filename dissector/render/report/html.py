@@ -13,6 +13,7 @@ from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
+from dissector.render.stats_store import give_back
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
@@ -86,6 +87,7 @@ def report_pieces(
     that a large report's points are never one string and its copies: issue 28, flat memory)."""
     extras = extras or {}
     bus, health = extras.get("bus"), extras.get("health")
+    give_back()  # (the decoding's freed memory: the page's objects are made next)
     data = collector.data(points=False)
     when = _clock(data, extras.get("time_format", "r"))
     summary = stats.report(with_parameters=False)  # parameters: the collector draws its own
