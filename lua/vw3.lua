@@ -1787,7 +1787,6 @@ local RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16 = RESPONSE, RULES, XO
 local crc_bytes, crc_ok_at, crc_string_ok, emit, format = crc_bytes, crc_ok_at, crc_string_ok, emit, format
 local interpretations, lane, math, pairs, shortest_crc = interpretations, lane, math, pairs, shortest_crc
 local table, time_at = table, time_at
-local known_requests
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -2131,38 +2130,14 @@ end
 local CRC_SEEN_MAX = 32768
 local crc_seen, crc_seen_count = {}, 0
 
--- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
--- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
--- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
--- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
-known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
-
--- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
--- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
-known_requests.header_lengths = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
-  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
-    known_requests.header_lengths[code] = rule[2] + 1
-  end
-end
-
--- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
-local function whole_crc_good(b, n, whole)
-  if crc_seen[whole] then return true end
-  if not crc_string_ok(whole, n) then return false end
+-- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
+local function whole_crc_good(bytes, n)
+  if crc_seen[bytes] then return true end
+  if not crc_string_ok(bytes, n) then return false end
   if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
-  crc_seen[whole] = true
+  crc_seen[bytes] = true
   crc_seen_count = crc_seen_count + 1
   return true
-end
-
-local function crc_good(s, b, i, length, n)
-  local whole = s.whole
-  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
-  return whole_crc_good(b, n, whole)
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -2196,7 +2171,7 @@ local function run_rtu(s, final, items)
         local length, is_scan = first[2](b, i, n)
         if not is_scan and length >= MIN_ADU and length <= MAX_ADU
             and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
-            and crc_good(s, b, i, length, n) then
+            and crc_ok_at(b, i, length) then
           local offset = s.base + i
           emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
           i = i + length
@@ -2235,7 +2210,7 @@ local function run_rtu(s, final, items)
   return i
 end
 
-M.fast_interpretation, M.known_requests, M.rtu_frame = fast_interpretation, known_requests, rtu_frame
+M.fast_interpretation, M.rtu_frame = fast_interpretation, rtu_frame
 M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good
 end
 
@@ -2408,10 +2383,10 @@ package.preload["vw3.feed"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, REQUEST
-local expect_after, fast_interpretation, flush_noise = expect_after, fast_interpretation, flush_noise
-local interpretations, known_requests, lane, next, pairs = interpretations, known_requests, lane, next, pairs
-local rtu_frame, run_ascii, run_rtu, string, whole_crc_good = rtu_frame, run_ascii, run_rtu, string, whole_crc_good
+local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after
+local fast_interpretation, flush_noise, interpretations = fast_interpretation, flush_noise, interpretations
+local lane, next, pairs, rtu_frame, run_ascii, run_rtu = lane, next, pairs, rtu_frame, run_ascii, run_rtu
+local string, whole_crc_good = string, whole_crc_good
 local feed
 local feed_whole
 
@@ -2451,15 +2426,8 @@ local function consume(s, count)
   end
 end
 
--- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
--- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
--- table when feed_whole made it.
 lane.flush_noise = flush_noise
 
--- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
--- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
--- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
--- record's time is the last one kept, no record end (its end is the stream's end).
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
 local function takes_whole(s, n, slave)
   return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
@@ -2478,51 +2446,20 @@ function lane.advance(s, n, time)
   return offset
 end
 
--- The frame of a request met before (known_requests), its stream offset and time given: what framing
--- finds (the request's layout is the likeliest; its length and CRC checked when it was met). A frame of
--- the quick lanes packed once answered (lane.answer) is held by nothing else: it is taken again here, every
--- key set anew, so that a polling bus makes no table a request (lane.spare, a few at most).
-lane.spare = {}
-function lane.known_frame(known, offset, n, slave, code, time)
-  local spare = lane.spare
-  local count = #spare
-  local f = spare[count]
-  if f == nil then
-    -- (the keys below made at once, as the constructor sizes them)
-    f = { kind = 0, offset = 0, length = 0, slave = 0, fn = 0, crc = 0, crc_expected = 0, time = 0, b = 0, bi = 0,
-      data_at = 0, data_len = 0, number = 0, record = 0, at = 0, fields = 0, start = 0, quantity = 0, registers = 0,
-      bits = 0, request = 0, response = 0, known = 0, function_text = 0, span_label = 0, info = 0, slots = 0 }
-  else
-    spare[count] = nil
-  end
-  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
-    known.crc, time
-  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, 0, 0, 0
-  f.fields, f.start, f.quantity, f.registers, f.bits, f.request, f.response = nil, nil, nil, nil, nil, nil, nil
-  f.known, f.function_text, f.span_label, f.info, f.slots = nil, nil, nil, nil, nil
-  return f
-end
-
+-- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
+-- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
+-- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
+-- record's time is the last one kept, no record end (its end is the stream's end).
 feed_whole = function(s, bytes, time)
   local n = #bytes
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
   if n < MIN_ADU or not takes_whole(s, n, slave) then return nil end
-  local known = known_requests.entries[bytes]
-  if known ~= nil and s.expect ~= slave * 256 + code then
-    -- A request met before, where no answer of its slave and function is awaited, and the stream left as
-    -- the lines below leave it (expect_after: a request's code is its function).
-    local frame = lane.known_frame(known, s.base, n, slave, code, time)
-    frame.known = known -- (take_frame decodes it from the entry)
-    s.expect = slave * 256 + code
-    lane.advance(s, n, time)
-    return frame
-  end
   local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
   if first == nil then return nil end
   local b = { [0] = slave, byte(bytes, 2, n) }
   local length, is_scan = first[2](b, 0, n)
-  if is_scan or length ~= n or not whole_crc_good(b, n, bytes) then return nil, b end
+  if is_scan or length ~= n or not whole_crc_good(bytes, n) then return nil, b end
   local frame = rtu_frame(b, 0, s.base, time, first[1], n, true)
   expect_after(s, frame)
   lane.advance(s, n, time)
@@ -2544,15 +2481,12 @@ function lane.frames_answer(s, bytes, n, slave, code)
   if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
     return false
   end
-  return whole_crc_good(nil, n, bytes)
+  return whole_crc_good(bytes, n)
 end
 
--- Would feed_whole take the record as a request met before (the slave and function of its first two
--- bytes; known_requests)?
-function lane.frames_known(s, n, slave, code)
-  return takes_whole(s, n, slave) and s.expect ~= slave * 256 + code
-end
-
+-- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
+-- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
+-- table when feed_whole made it.
 feed = function(s, bytes, time, boundary, final, built)
   local n = #bytes
   if n > 0 then
@@ -2565,7 +2499,6 @@ feed = function(s, bytes, time, boundary, final, built)
       b = built or { [0] = byte(bytes, 1), byte(bytes, 2, n) }
       s.b = b
       k = n + 1
-      s.whole = bytes -- (the buffer holds this record alone: see crc_good)
     elseif at == 0 then
       b = {} -- (never NO_BYTES, which stays empty)
       s.b = b
@@ -2587,13 +2520,12 @@ feed = function(s, bytes, time, boundary, final, built)
   for index = #items, 1, -1 do items[index] = nil end
   local used
   if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
-  s.whole = nil
   consume(s, used)
   if final then flush_noise(s, items) end
   return items
 end
 
-M.feed, M.feed_whole = feed, feed_whole
+M.feed, M.feed_whole, M.takes_whole = feed, feed_whole, takes_whole
 end
 
 -- ---- vw3.decode: lua/src/decode.lua ----
@@ -4877,9 +4809,9 @@ local AUTO, CONFIRMED, DATA, MODE_SAMPLE, NOISE, PROFILES = AUTO, CONFIRMED, DAT
 local READS, REQUEST, RESPONSE, annotate_with, build_device = READS, REQUEST, RESPONSE, annotate_with, build_device
 local ceil_bytes, crc_string_ok, decode_frame, detect_mode = ceil_bytes, crc_string_ok, decode_frame, detect_mode
 local device_for, device_now, feed, feed_whole, ipairs = device_for, device_now, feed, feed_whole, ipairs
-local known_requests, lane, math, new_state, next, pack = known_requests, lane, math, new_state, next, pack
-local pair, pairs, pcall, release_run, remember_writes = pair, pairs, pcall, release_run, remember_writes
-local story, string, string_of, tostring, type = story, string, string_of, tostring, type
+local lane, math, new_state, next, pack, pair, pairs, pcall = lane, math, new_state, next, pack, pair, pairs, pcall
+local release_run, remember_writes, story, string = release_run, remember_writes, story, string
+local string_of, takes_whole, tostring, type = string_of, takes_whole, tostring, type
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -4888,32 +4820,12 @@ local function copy_run(run)
   return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
--- A request decoded as when it was met (its entry in known_requests).
-local function adopt_known(item, known)
-  item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
-  item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
-end
-
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
-  local known = item.known
-  local device
-  if known ~= nil then
-    -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
-    item.known = nil
-    adopt_known(item, known)
-    device = device_now(st, item, item.b)
-    if device == known.device and item.profile_choice == nil then
-      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
-    else
-      annotate_with(st, item, item.b, device)
-    end
-  else
-    decode_frame(item)
-    device = device_now(st, item, item.b)
-    annotate_with(st, item, item.b, device)
-  end
+  decode_frame(item)
+  local device = device_now(st, item, item.b)
+  annotate_with(st, item, item.b, device)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
   -- ask for them (a request's, until its answer is decoded or it can have none).
@@ -4955,6 +4867,24 @@ local function take_frame(st, item, whole)
     release_run(item.registers)
   end
   return device
+end
+
+-- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
+-- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
+-- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
+-- (remember_request makes them, the quick lanes of requests use them). Bounded: a new table after MAX entries.
+local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
+
+-- Requests that write, by the length of their bytes before the values (slave, function, addresses,
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
+-- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
+-- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
+known_requests.header_lengths = {}
+for code, entry in pairs(DATA.rules.by_code.request) do
+  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
+  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
+    known_requests.header_lengths[code] = rule[2] + 1
+  end
 end
 
 -- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
@@ -5241,7 +5171,7 @@ end
 -- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
 -- in use for the slave), or nil. Changes nothing.
 function lane.takes_known(st, known, n, slave, code)
-  if not lane.frames_known(st, n, slave, code) then return nil end
+  if not takes_whole(st, n, slave) or st.expect == slave * 256 + code then return nil end
   local quiet = false
   if config.default == AUTO and config.per_slave[slave] == nil then
     quiet = lane.quiet(st, slave, code, false)
@@ -5254,19 +5184,36 @@ end
 -- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
 -- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
 -- pack.settle). Returns the record.
+lane.spare = {}
 function lane.hold_known(st, known, quiet, n, slave, code, time, number)
   if quiet then lane.counted(quiet, false) end
-  local frame = lane.known_frame(known, st.base, n, slave, code, time)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
-  lane.advance(st, n, time)
+  local offset = lane.advance(st, n, time)
   local count = st.count + 1
   st.count = count
-  frame.number, frame.record = count, number
-  adopt_known(frame, known)
-  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
-  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
-  st.pending = frame
-  local record = { frame }
+  -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
+  -- was met), decoded as its entry says. A frame of the quick lanes packed once answered (lane.answer) is
+  -- held by nothing else: it is taken again here, every key set anew, so that a polling bus makes no
+  -- table a request (lane.spare, a few at most).
+  local spare = lane.spare
+  local f = spare[#spare]
+  if f == nil then
+    -- (the keys below made at once, as the constructor sizes them)
+    f = { kind = 0, offset = 0, length = 0, slave = 0, fn = 0, crc = 0, crc_expected = 0, time = 0, b = 0, bi = 0,
+      data_at = 0, data_len = 0, number = 0, record = 0, at = 0, fields = 0, start = 0, quantity = 0, registers = 0,
+      bits = 0, request = 0, response = 0, function_text = 0, span_label = 0, info = 0, slots = 0 }
+  else
+    spare[#spare] = nil
+  end
+  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
+    known.crc, time
+  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, count, number, 0
+  f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
+  f.registers, f.bits = copy_run(known.registers), copy_run(known.bits)
+  f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
+  f.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
+  st.pending = f
+  local record = { f }
   st.last = record
   st.whole_record = record
   return record
@@ -5322,9 +5269,7 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      local known = frame.known
-      local device = take_frame(st, frame, true)
-      if known == nil then remember_request(bytes, frame, device) end
+      remember_request(bytes, frame, take_frame(st, frame, true))
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
     end

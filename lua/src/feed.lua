@@ -42,15 +42,8 @@ local function consume(s, count)
   end
 end
 
--- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
--- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
--- table when feed_whole made it.
 lane.flush_noise = flush_noise
 
--- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
--- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
--- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
--- record's time is the last one kept, no record end (its end is the stream's end).
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
 local function takes_whole(s, n, slave)
   return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
@@ -69,51 +62,20 @@ function lane.advance(s, n, time)
   return offset
 end
 
--- The frame of a request met before (known_requests), its stream offset and time given: what framing
--- finds (the request's layout is the likeliest; its length and CRC checked when it was met). A frame of
--- the quick lanes packed once answered (lane.answer) is held by nothing else: it is taken again here, every
--- key set anew, so that a polling bus makes no table a request (lane.spare, a few at most).
-lane.spare = {}
-function lane.known_frame(known, offset, n, slave, code, time)
-  local spare = lane.spare
-  local count = #spare
-  local f = spare[count]
-  if f == nil then
-    -- (the keys below made at once, as the constructor sizes them)
-    f = { kind = 0, offset = 0, length = 0, slave = 0, fn = 0, crc = 0, crc_expected = 0, time = 0, b = 0, bi = 0,
-      data_at = 0, data_len = 0, number = 0, record = 0, at = 0, fields = 0, start = 0, quantity = 0, registers = 0,
-      bits = 0, request = 0, response = 0, known = 0, function_text = 0, span_label = 0, info = 0, slots = 0 }
-  else
-    spare[count] = nil
-  end
-  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
-    known.crc, time
-  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, 0, 0, 0
-  f.fields, f.start, f.quantity, f.registers, f.bits, f.request, f.response = nil, nil, nil, nil, nil, nil, nil
-  f.known, f.function_text, f.span_label, f.info, f.slots = nil, nil, nil, nil, nil
-  return f
-end
-
+-- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
+-- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
+-- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
+-- record's time is the last one kept, no record end (its end is the stream's end).
 feed_whole = function(s, bytes, time)
   local n = #bytes
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
   if n < MIN_ADU or not takes_whole(s, n, slave) then return nil end
-  local known = known_requests.entries[bytes]
-  if known ~= nil and s.expect ~= slave * 256 + code then
-    -- A request met before, where no answer of its slave and function is awaited, and the stream left as
-    -- the lines below leave it (expect_after: a request's code is its function).
-    local frame = lane.known_frame(known, s.base, n, slave, code, time)
-    frame.known = known -- (take_frame decodes it from the entry)
-    s.expect = slave * 256 + code
-    lane.advance(s, n, time)
-    return frame
-  end
   local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
   if first == nil then return nil end
   local b = { [0] = slave, byte(bytes, 2, n) }
   local length, is_scan = first[2](b, 0, n)
-  if is_scan or length ~= n or not whole_crc_good(b, n, bytes) then return nil, b end
+  if is_scan or length ~= n or not whole_crc_good(bytes, n) then return nil, b end
   local frame = rtu_frame(b, 0, s.base, time, first[1], n, true)
   expect_after(s, frame)
   lane.advance(s, n, time)
@@ -135,15 +97,12 @@ function lane.frames_answer(s, bytes, n, slave, code)
   if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
     return false
   end
-  return whole_crc_good(nil, n, bytes)
+  return whole_crc_good(bytes, n)
 end
 
--- Would feed_whole take the record as a request met before (the slave and function of its first two
--- bytes; known_requests)?
-function lane.frames_known(s, n, slave, code)
-  return takes_whole(s, n, slave) and s.expect ~= slave * 256 + code
-end
-
+-- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
+-- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
+-- table when feed_whole made it.
 feed = function(s, bytes, time, boundary, final, built)
   local n = #bytes
   if n > 0 then
@@ -156,7 +115,6 @@ feed = function(s, bytes, time, boundary, final, built)
       b = built or { [0] = byte(bytes, 1), byte(bytes, 2, n) }
       s.b = b
       k = n + 1
-      s.whole = bytes -- (the buffer holds this record alone: see crc_good)
     elseif at == 0 then
       b = {} -- (never NO_BYTES, which stays empty)
       s.b = b
@@ -178,10 +136,9 @@ feed = function(s, bytes, time, boundary, final, built)
   for index = #items, 1, -1 do items[index] = nil end
   local used
   if s.mode == "ascii" then used = run_ascii(s, final, items) else used = run_rtu(s, final, items) end
-  s.whole = nil
   consume(s, used)
   if final then flush_noise(s, items) end
   return items
 end
 
-M.feed, M.feed_whole = feed, feed_whole
+M.feed, M.feed_whole, M.takes_whole = feed, feed_whole, takes_whole

@@ -11,32 +11,12 @@ local function copy_run(run)
   return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
--- A request decoded as when it was met (its entry in known_requests).
-local function adopt_known(item, known)
-  item.fields, item.start, item.quantity = known.fields, known.start, known.quantity
-  item.registers, item.bits = copy_run(known.registers), copy_run(known.bits)
-end
-
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
-  local known = item.known
-  local device
-  if known ~= nil then
-    -- decoded as when it was met; annotated so too when the device is the same (and did not change now)
-    item.known = nil
-    adopt_known(item, known)
-    device = device_now(st, item, item.b)
-    if device == known.device and item.profile_choice == nil then
-      item.function_text, item.span_label, item.info = known.function_text, known.span_label, known.info
-    else
-      annotate_with(st, item, item.b, device)
-    end
-  else
-    decode_frame(item)
-    device = device_now(st, item, item.b)
-    annotate_with(st, item, item.b, device)
-  end
+  decode_frame(item)
+  local device = device_now(st, item, item.b)
+  annotate_with(st, item, item.b, device)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
   -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
   -- ask for them (a request's, until its answer is decoded or it can have none).
@@ -78,6 +58,24 @@ local function take_frame(st, item, whole)
     release_run(item.registers)
   end
   return device
+end
+
+-- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
+-- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
+-- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
+-- (remember_request makes them, the quick lanes of requests use them). Bounded: a new table after MAX entries.
+local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
+
+-- Requests that write, by the length of their bytes before the values (slave, function, addresses,
+-- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
+-- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
+-- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
+known_requests.header_lengths = {}
+for code, entry in pairs(DATA.rules.by_code.request) do
+  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
+  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
+    known_requests.header_lengths[code] = rule[2] + 1
+  end
 end
 
 -- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
@@ -364,7 +362,7 @@ end
 -- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
 -- in use for the slave), or nil. Changes nothing.
 function lane.takes_known(st, known, n, slave, code)
-  if not lane.frames_known(st, n, slave, code) then return nil end
+  if not takes_whole(st, n, slave) or st.expect == slave * 256 + code then return nil end
   local quiet = false
   if config.default == AUTO and config.per_slave[slave] == nil then
     quiet = lane.quiet(st, slave, code, false)
@@ -377,19 +375,36 @@ end
 -- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
 -- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
 -- pack.settle). Returns the record.
+lane.spare = {}
 function lane.hold_known(st, known, quiet, n, slave, code, time, number)
   if quiet then lane.counted(quiet, false) end
-  local frame = lane.known_frame(known, st.base, n, slave, code, time)
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
-  lane.advance(st, n, time)
+  local offset = lane.advance(st, n, time)
   local count = st.count + 1
   st.count = count
-  frame.number, frame.record = count, number
-  adopt_known(frame, known)
-  frame.function_text, frame.span_label, frame.info = known.function_text, known.span_label, known.info
-  frame.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
-  st.pending = frame
-  local record = { frame }
+  -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
+  -- was met), decoded as its entry says. A frame of the quick lanes packed once answered (lane.answer) is
+  -- held by nothing else: it is taken again here, every key set anew, so that a polling bus makes no
+  -- table a request (lane.spare, a few at most).
+  local spare = lane.spare
+  local f = spare[#spare]
+  if f == nil then
+    -- (the keys below made at once, as the constructor sizes them)
+    f = { kind = 0, offset = 0, length = 0, slave = 0, fn = 0, crc = 0, crc_expected = 0, time = 0, b = 0, bi = 0,
+      data_at = 0, data_len = 0, number = 0, record = 0, at = 0, fields = 0, start = 0, quantity = 0, registers = 0,
+      bits = 0, request = 0, response = 0, function_text = 0, span_label = 0, info = 0, slots = 0 }
+  else
+    spare[#spare] = nil
+  end
+  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
+    known.crc, time
+  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, count, number, 0
+  f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
+  f.registers, f.bits = copy_run(known.registers), copy_run(known.bits)
+  f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
+  f.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
+  st.pending = f
+  local record = { f }
   st.last = record
   st.whole_record = record
   return record
@@ -445,9 +460,7 @@ dissect_record = function(st, bytes, time, number)
       local count = st.count + 1
       st.count = count
       frame.number, frame.record = count, number
-      local known = frame.known
-      local device = take_frame(st, frame, true)
-      if known == nil then remember_request(bytes, frame, device) end
+      remember_request(bytes, frame, take_frame(st, frame, true))
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
     end

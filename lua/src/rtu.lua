@@ -3,7 +3,6 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local known_requests
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -347,38 +346,14 @@ end
 local CRC_SEEN_MAX = 32768
 local crc_seen, crc_seen_count = {}, 0
 
--- Requests met before, by their bytes: a polling master sends the same requests every cycle, and what
--- decoding and the device make of a request depends on its bytes and the device alone. An entry holds
--- the frame's decoded fields, runs, device texts and Info text, and the device they were made with
--- (dissect_record makes them, take_frame uses them). Bounded: a new table after MAX entries.
-known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
-
--- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
--- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
-known_requests.header_lengths = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
-  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
-    known_requests.header_lengths[code] = rule[2] + 1
-  end
-end
-
--- crc_ok_at for the fast path: s.whole is the record's string while the buffer holds it alone.
-local function whole_crc_good(b, n, whole)
-  if crc_seen[whole] then return true end
-  if not crc_string_ok(whole, n) then return false end
+-- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
+local function whole_crc_good(bytes, n)
+  if crc_seen[bytes] then return true end
+  if not crc_string_ok(bytes, n) then return false end
   if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
-  crc_seen[whole] = true
+  crc_seen[bytes] = true
   crc_seen_count = crc_seen_count + 1
   return true
-end
-
-local function crc_good(s, b, i, length, n)
-  local whole = s.whole
-  if whole == nil or i ~= 0 or length ~= n then return crc_ok_at(b, i, length) end
-  return whole_crc_good(b, n, whole)
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -412,7 +387,7 @@ local function run_rtu(s, final, items)
         local length, is_scan = first[2](b, i, n)
         if not is_scan and length >= MIN_ADU and length <= MAX_ADU
             and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
-            and crc_good(s, b, i, length, n) then
+            and crc_ok_at(b, i, length) then
           local offset = s.base + i
           emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
           i = i + length
@@ -451,5 +426,5 @@ local function run_rtu(s, final, items)
   return i
 end
 
-M.fast_interpretation, M.known_requests, M.rtu_frame = fast_interpretation, known_requests, rtu_frame
+M.fast_interpretation, M.rtu_frame = fast_interpretation, rtu_frame
 M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good
