@@ -1,4 +1,4 @@
--- vw3.crc: CRC-16/MODBUS on table lookups, XOR that runs on Lua 5.2 and 5.4.
+-- vw3.crc: CRC-16/MODBUS on table lookups (no bitwise operators: the same on Lua 5.2 and 5.4).
 -- Mirrors dissector/protocol/crc.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
 local M = require("vw3.env")
@@ -15,35 +15,12 @@ local concat = table.concat
 pcall(collectgarbage, "setstepmul", 1000)
 pcall(collectgarbage, "setpause", 150)
 
--- ---------------------------------------------------------------------------------------------------
--- Bit helpers that work on Lua 5.2 and 5.4 alike.
-local bxor
-if type(bit) == "table" and bit.bxor then
-  bxor = bit.bxor
-elseif type(bit32) == "table" and bit32.bxor then
-  bxor = bit32.bxor
-else
-  -- Lua 5.3+: the operator is only compiled here, so a 5.2 parser never sees it.
-  bxor = load("return function(a, b) return a ~ b end")()
-end
-
 -- The CRC runs on table lookups only (a call of `bxor` per byte, a C function on Lua 5.2, cost more than
 -- all the rest of the framing), two bytes a step: the register is 16 bits wide, so after two bytes it
 -- depends only on (register XOR the two bytes), and one 65,536-entry table (TWO_LO, TWO_HI: its two
 -- bytes, times 256) gives it. XOR8[a * 256 + b] = a XOR b; CRC_LO and CRC_HI are the bytes of the
--- one-byte table.
+-- one-byte table. No XOR of Lua or Wireshark is needed: XOR8 builds the rest.
 local XOR8, CRC_LO, CRC_HI, TWO_LO, TWO_HI = {}, {}, {}, {}, {}
-for byte = 0, 255 do
-  local crc = byte
-  for _ = 1, 8 do
-    if crc % 2 == 1 then
-      crc = bxor(floor(crc / 2), 0xA001)
-    else
-      crc = floor(crc / 2)
-    end
-  end
-  CRC_LO[byte], CRC_HI[byte] = crc % 256, floor(crc / 256)
-end
 -- XOR8 row by row, each from an earlier one: a XOR b is (a - top) XOR b plus top where b lacks the bit
 -- top (a's highest), minus top where b has it (65,536 calls of bxor were most of the plugin's start-up).
 for b = 0, 255 do XOR8[b] = b end
@@ -57,6 +34,17 @@ do
       for b = block + top, block + 2 * top - 1 do XOR8[row + b] = XOR8[base + b] - top end
     end
   end
+end
+-- The one-byte table, bit by bit: shifted right, and XOR the polynomial 0xA001 (bytes A0 01) when the bit
+-- shifted out is 1.
+for byte = 0, 255 do
+  local lo, hi = byte, 0
+  for _ = 1, 8 do
+    local out = lo % 2
+    lo, hi = floor(lo / 2) + hi % 2 * 128, floor(hi / 2)
+    if out == 1 then lo, hi = XOR8[lo * 256 + 0x01], XOR8[hi * 256 + 0xA0] end
+  end
+  CRC_LO[byte], CRC_HI[byte] = lo, hi
 end
 -- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
 -- (filled in index order: a table filled out of order keeps its keys in the hash part, rebuilt again and

@@ -13,8 +13,7 @@
 -- of names, vw3.env (each module's exports and DATA, then this script's globals).
 --
 -- Runs on Wireshark 4.0 (Lua 5.2) and 4.4+ (Lua 5.4): no native bitwise operators, no `//`, integer
--- division with math.floor; XOR comes from `bit` (Wireshark's bitop), `bit32`, or 5.3+ operators
--- compiled at run time.
+-- division with math.floor; the CRC's XOR from tables built with arithmetic alone (vw3.crc).
 
 -- The modules in load order: those that need no Wireshark API first (plain lua5.2/lua5.4 loads them,
 -- tests/conformance runs them), then the Wireshark glue.
