@@ -143,7 +143,20 @@ local DATA = {
     ["mode_sample"] = 64,
   },
   ["map_format"] = {
-    ["columns"] = { "address", "code", "name", "unit", "scale", "access", "enum", "bits", "signed", "source", "type", "order" },
+    ["columns"] = {
+      ["access"] = true,
+      ["address"] = true,
+      ["bits"] = true,
+      ["code"] = true,
+      ["enum"] = true,
+      ["name"] = true,
+      ["order"] = true,
+      ["scale"] = true,
+      ["signed"] = true,
+      ["source"] = true,
+      ["type"] = true,
+      ["unit"] = true,
+    },
     ["required"] = { "address", "code" },
     ["max_bytes"] = 16777216,
     ["scale_min"] = 1e-12,
@@ -1305,6 +1318,12 @@ local DATA = {
     ["auto"] = "auto",
     ["fallback"] = "generic",
     ["candidates"] = { "atv71", "sel749m" },
+    ["identifying"] = {
+      [96] = "sel749m",
+      [97] = "sel749m",
+      [98] = "sel749m",
+      [125] = "sel749m",
+    },
     ["fit_answers"] = 8,
     ["fit_frames"] = 32,
     ["fit_reads"] = 2,
@@ -3079,8 +3098,7 @@ local FORMAT = DATA.map_format
 local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
   FORMAT.orders, FORMAT.access
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
-local KNOWN_COLUMN = {}
-for _, name in ipairs(FORMAT.columns) do KNOWN_COLUMN[name] = true end
+local KNOWN_COLUMN = FORMAT.columns -- (a set)
 local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
@@ -3502,27 +3520,28 @@ local function has_note(f, text)
   return false
 end
 
--- maps.interpret: the scaled value and its display text.
-local interpret, interpret_wide
 local FIXED = setmetatable({}, { __index = function(formats, decimals)
   local text = "%." .. decimals .. "f"
   formats[decimals] = text
   return text
 end })
 
--- A value times its row's scale, rounded to the decimals the scale was written with, and its text.
+-- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
+-- and all).
 local function scaled_value(row, value)
   local decimals = row.decimals or 0
   local text = format(FIXED[decimals], value * row.scale)
   local scaled = tonumber(text)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
+  if row.unit ~= nil then text = text .. " " .. row.unit end
   return scaled, text
 end
 
 local BIT_NAMES = {}
 for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
 
-interpret = function(row, value)
+-- maps.interpret: the scaled value and its display text.
+local function interpret(row, value)
   local raw_value = value
   if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
   if row.enum then
@@ -3550,13 +3569,11 @@ interpret = function(row, value)
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end
-  local scaled, text = scaled_value(row, raw_value)
-  if row.unit ~= nil then return scaled, text .. " " .. row.unit end
-  return scaled, text
+  return scaled_value(row, raw_value)
 end
 
 -- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
-interpret_wide = function(row, first, second)
+local function interpret_wide(row, first, second)
   local high, low = first, second
   if row.swapped then high, low = second, first end
   local value
@@ -3578,14 +3595,9 @@ interpret_wide = function(row, first, second)
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  local text
-  if row.scale ~= nil then
-    value, text = scaled_value(row, value)
-  elseif row.kind == "float32" then
-    text = format("%.7g", value) -- float32 holds about 7 significant digits
-  else
-    text = format("%d", value)
-  end
+  if row.scale ~= nil then return scaled_value(row, value) end
+  -- (float32 holds about 7 significant digits)
+  local text = row.kind == "float32" and format("%.7g", value) or format("%d", value)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
@@ -4079,8 +4091,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
 local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
-local ipairs, lane, layered_rows, math, next, pairs = ipairs, lane, layered_rows, math, next, pairs
-local python_repr, register_at, span_name, table = python_repr, register_at, span_name, table
+local ipairs, lane, layered_rows, math, next, python_repr = ipairs, lane, layered_rows, math, next, python_repr
+local register_at, span_name, table = register_at, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4091,10 +4103,7 @@ local python_repr, register_at, span_name, table = python_repr, register_at, spa
 -- as vw3-decode shows them.
 local CANDIDATES = SELECTION.candidates
 -- The candidate a function code identifies (the first, in the candidates' order, that claims it).
-local IDENTIFYING = {}
-for index = #CANDIDATES, 1, -1 do
-  for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
-end
+local IDENTIFYING = SELECTION.identifying
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?

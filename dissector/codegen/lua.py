@@ -109,7 +109,7 @@ def plugin_data() -> dict[str, Any]:
             "mode_sample": reader.MODE_SAMPLE,
         },
         "map_format": {
-            "columns": list(maps.COLUMNS),
+            "columns": frozenset(maps.COLUMNS),
             "required": list(maps.REQUIRED),
             "max_bytes": maps.MAX_MAP_BYTES,
             "scale_min": maps.SCALE_MIN,
@@ -187,6 +187,7 @@ def _profile_data() -> dict[str, Any]:
     for name in BUILTIN_PROFILES:
         profile = load_profile(name)
         profiles[profile.name] = _profile_table(profile, load_profile_map(profile))
+    candidates = [name for name in BUILTIN_PROFILES if name != FALLBACK_PROFILE]
     return {
         "profiles": profiles,
         "default_profile": DEFAULT_PROFILE,
@@ -195,7 +196,11 @@ def _profile_data() -> dict[str, Any]:
         "selection": {
             "auto": AUTO,
             "fallback": FALLBACK_PROFILE,
-            "candidates": [name for name in BUILTIN_PROFILES if name != FALLBACK_PROFILE],
+            "candidates": candidates,
+            # The candidate a function code identifies: the first, in the candidates' order, that claims it.
+            "identifying": {
+                code: name for name in reversed(candidates) for code in profiles[name]["identify"]["functions"]
+            },
             "fit_answers": selection.FIT_ANSWERS,
             "fit_frames": selection.FIT_FRAMES,
             "fit_reads": selection.FIT_READS,

@@ -138,27 +138,28 @@ local function has_note(f, text)
   return false
 end
 
--- maps.interpret: the scaled value and its display text.
-local interpret, interpret_wide
 local FIXED = setmetatable({}, { __index = function(formats, decimals)
   local text = "%." .. decimals .. "f"
   formats[decimals] = text
   return text
 end })
 
--- A value times its row's scale, rounded to the decimals the scale was written with, and its text.
+-- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
+-- and all).
 local function scaled_value(row, value)
   local decimals = row.decimals or 0
   local text = format(FIXED[decimals], value * row.scale)
   local scaled = tonumber(text)
   if decimals == 0 then scaled = floor(scaled + 0.5) end
+  if row.unit ~= nil then text = text .. " " .. row.unit end
   return scaled, text
 end
 
 local BIT_NAMES = {}
 for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
 
-interpret = function(row, value)
+-- maps.interpret: the scaled value and its display text.
+local function interpret(row, value)
   local raw_value = value
   if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
   if row.enum then
@@ -186,13 +187,11 @@ interpret = function(row, value)
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end
-  local scaled, text = scaled_value(row, raw_value)
-  if row.unit ~= nil then return scaled, text .. " " .. row.unit end
-  return scaled, text
+  return scaled_value(row, raw_value)
 end
 
 -- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
-interpret_wide = function(row, first, second)
+local function interpret_wide(row, first, second)
   local high, low = first, second
   if row.swapped then high, low = second, first end
   local value
@@ -214,14 +213,9 @@ interpret_wide = function(row, first, second)
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  local text
-  if row.scale ~= nil then
-    value, text = scaled_value(row, value)
-  elseif row.kind == "float32" then
-    text = format("%.7g", value) -- float32 holds about 7 significant digits
-  else
-    text = format("%d", value)
-  end
+  if row.scale ~= nil then return scaled_value(row, value) end
+  -- (float32 holds about 7 significant digits)
+  local text = row.kind == "float32" and format("%.7g", value) or format("%d", value)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end

@@ -59,8 +59,7 @@ local FORMAT = DATA.map_format
 local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
   FORMAT.orders, FORMAT.access
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
-local KNOWN_COLUMN = {}
-for _, name in ipairs(FORMAT.columns) do KNOWN_COLUMN[name] = true end
+local KNOWN_COLUMN = FORMAT.columns -- (a set)
 local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end

@@ -13,10 +13,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- as vw3-decode shows them.
 local CANDIDATES = SELECTION.candidates
 -- The candidate a function code identifies (the first, in the candidates' order, that claims it).
-local IDENTIFYING = {}
-for index = #CANDIDATES, 1, -1 do
-  for code in pairs(PROFILES[CANDIDATES[index]].identify.functions) do IDENTIFYING[code] = CANDIDATES[index] end
-end
+local IDENTIFYING = SELECTION.identifying
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
