@@ -9,7 +9,7 @@ from dataclasses import dataclass
 from collections.abc import Callable
 from typing import TYPE_CHECKING, TextIO
 
-from dissector.model import Item
+from dissector.model import Frame, Item
 from dissector.protocol.printable import printable
 from dissector.render.summary import summary_line, summary_text, typed_bytes
 from dissector.render.timefmt import Clock
@@ -131,6 +131,9 @@ class Output:
         options = self.options
         out = self._buffer
         clock = self.clock
+        if options.detail and not (options.hexdump or options.records) and self.console is None:
+            self._write_details(items)
+            return
         if options.records:
             from dissector.render.jsonout import item_to_dict, item_to_json
         if options.detail:
@@ -183,6 +186,25 @@ class Output:
                     out.append(text)
                     size += len(text)
                     out.append("")
+            if size > FLUSH_CHARS:
+                self.flush()
+                size = 0
+        if len(out) > BATCH:
+            self.flush()
+
+    def _write_details(self, items: list[Item]) -> None:
+        """write() for plain -V alone: each item's detail and an empty line."""
+        from dissector.render.detail import detail_text, plain_frame_text
+
+        out = self._buffer
+        append = out.append
+        first = self.clock.first
+        size = 0
+        for item in items:
+            text = plain_frame_text(item, first) if type(item) is Frame else detail_text(item, first)
+            append(text)
+            append("")
+            size += len(text)
             if size > FLUSH_CHARS:
                 self.flush()
                 size = 0
