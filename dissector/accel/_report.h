@@ -44,7 +44,7 @@ typedef struct {
     size_t point_count;
     PyObject *namers[256]; /* the namer each slave's cached points were read with */
     unsigned epochs[256];
-    uint8_t *bits[256];    /* per slave: addresses of no series (dropped), then addresses written */
+    uint8_t *bits[256];    /* per slave: the addresses written */
     unsigned gen;
     double spans; /* ReportCollector.spans when last pulled */
     int full; /* the collector holds MAX_SERIES series, every one in `trends` */
@@ -192,7 +192,7 @@ static int report_event(Report *r, const Time *x, const char *kind, int slave, P
 }
 
 static uint8_t *report_bits(Report *r, int slave) {
-    if (r->bits[slave] == NULL && (r->bits[slave] = PyMem_Calloc(2, BITMAP_BYTES)) == NULL) PyErr_NoMemory();
+    if (r->bits[slave] == NULL && (r->bits[slave] = PyMem_Calloc(1, BITMAP_BYTES)) == NULL) PyErr_NoMemory();
     return r->bits[slave];
 }
 
@@ -200,7 +200,6 @@ static uint8_t *report_bits(Report *r, int slave) {
 static int report_written(Report *r, int slave, const Words *w) {
     uint8_t *bits = report_bits(r, slave);
     if (bits == NULL) return -1;
-    bits += BITMAP_BYTES;
     for (unsigned k = 0; k < w->count && PySet_GET_SIZE(r->written) < r->max_written; k++) {
         unsigned address = words_address(w, k);
         if (bit(bits, address)) continue;
@@ -281,19 +280,12 @@ static int trends_full(Report *r) {
 /* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
-    uint8_t *dropped = report_bits(r, slave);
-    if (dropped == NULL) return -1;
-    if (bit(dropped, address)) {
-        r->dropped++;
-        return 0;
-    }
     Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
     if (!t->key && !r->full && PyDict_Size(r->series) >= r->max_series) {
         if (trends_full(r) < 0) return -1;
         t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
     }
     if (!t->key && r->full) { /* none kept: never one */
-        dropped[address >> 3] |= (uint8_t)(1 << (address & 7));
         r->dropped++;
         return 0;
     }
