@@ -3257,29 +3257,16 @@ local function sniff(header)
   return best
 end
 
--- The rows of a map file, or nil and `file:line: what is wrong` (maps.parse_map, message for message):
+-- The rows of a map's text, or nil and `origin:line: what is wrong` (maps.parse_map, message for message):
 -- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
-local function load_map(path)
-  -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
-  -- write returns at once on Linux and the seek below refuses it. A file without write permission is
-  -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
-  local handle, open_error = io.open(path, "r+b")
-  if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
-  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
-  local size = handle:seek("end")
-  local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
-  handle:close()
-  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
-  if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
-    return nil, format("%s: larger than 16 MiB, not a register map", path)
-  end
-  if not text then
-    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
-  end
+local function parse_map(text, origin)
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, number, delimiter = nil, {}, {}, {}, 0, ","
-  local function at(line, problem) return format("%s:%d: %s", path, line, problem) end
-  for line in (text:gsub("\r\n", "\n"):gsub("\r", "\n") .. "\n"):gmatch("([^\n]*)\n") do
+  local function at(line, problem) return format("%s:%d: %s", origin, line, problem) end
+  -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
+  text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
+  text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
+  for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     number = number + 1
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
@@ -3327,8 +3314,29 @@ local function load_map(path)
         { address = second, code = row.code, kind = row.kind, line = first_line[first] }))
     end
   end
-  if header == nil then return nil, format("%s: %s", path, wrong("no_header")) end
+  if header == nil then return nil, format("%s: %s", origin, wrong("no_header")) end
   return rows
+end
+
+-- A map file's rows (parse_map), or nil and what is wrong with it.
+local function load_map(path)
+  -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
+  -- write returns at once on Linux and the seek below refuses it. A file without write permission is
+  -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
+  local handle, open_error = io.open(path, "r+b")
+  if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
+  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
+  local size = handle:seek("end")
+  local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
+  handle:close()
+  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
+  if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
+    return nil, format("%s: larger than 16 MiB, not a register map", path)
+  end
+  if not text then
+    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
+  end
+  return parse_map(text, path)
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
@@ -3370,7 +3378,7 @@ local function parse_map_choice(text, profile_names)
   return layers, errors
 end
 
-M.python_repr = python_repr
+M.parse_map, M.python_repr = parse_map, python_repr
 M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
 M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
 end

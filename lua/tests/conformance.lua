@@ -264,6 +264,29 @@ local function maps(entry)
   end
 end
 
+-- Map reading (maps.parse_map): a text's rows as the plugin keeps them (access is checked, not kept), or its
+-- message word for word.
+local function map_reading(entry)
+  local rows, problem = M.parse_map(entry.text, "map.csv")
+  local got = problem
+  if rows ~= nil then
+    got = {}
+    local function keyed(labels)
+      local out = {}
+      for key, text in pairs(labels or {}) do out[format("%d", key)] = text end
+      return out
+    end
+    for address, row in pairs(rows) do
+      got[#got + 1] = { address = address, code = row.code, name = row.name, unit = row.unit, scale = row.scale,
+        decimals = row.decimals or 0, enum = keyed(row.enum), bits = keyed(row.bits), signed = row.signed == true,
+        words = row.words or 1, type = row.kind, swapped = row.swapped == true, source = row.source,
+        ambiguous_8000 = row.ambiguous_8000 == true }
+    end
+    table.sort(got, function(a, b) return a.address < b.address end)
+  end
+  check("map reading " .. entry.name, got, entry.rows or entry.error)
+end
+
 vw3.configure("", "profile", "")
 local only = arg[3] -- (a case's name: that case alone)
 for _, case in ipairs(V.cases) do
@@ -287,6 +310,7 @@ for _, case in ipairs(V.cases) do
   ::continue::
 end
 for _, entry in ipairs(V.maps or {}) do maps(entry) end
+for _, entry in ipairs(V.map_reading or {}) do map_reading(entry) end
 
 for _, line in ipairs(differences) do print(line) end
 print(format("%s: %d cases, %d checks, %d differences", _VERSION, #V.cases, checks, #differences))

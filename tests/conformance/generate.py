@@ -8,9 +8,10 @@ Inputs: the frames printed in the seed pages (tests/support/seed_frames.py), one
 pages' transactions in order; crafted transactions that break each lifting rule of data/modbus.toml
 [lift] once (limits, span, byte counts, coil values, echoes, FIFO counts); the shipped captures
 (captures/*.bin). Stages, per input (see tests/conformance/README.md for the format):
-framing -> pairing -> decoding -> profile selection -> annotation -> summary lines; and the shipped
-maps as map reading gives them. tests/unit/test_conformance.py fails when these files are stale and
-checks the compiled engine's summary lines against them; the plugin's runner reads vectors.lua.
+framing -> pairing -> decoding -> profile selection -> annotation -> summary lines; the shipped maps
+as map reading gives them, and map texts good and malformed as parse_map reads them (rows or message).
+tests/unit/test_conformance.py fails when these files are stale and checks the compiled engine's summary
+lines against them; the plugin's runner reads vectors.lua.
 """
 from __future__ import annotations
 
@@ -35,7 +36,8 @@ from dissector.codegen.rules_lua import lua_literal  # noqa: E402
 from dissector.decode.fields import decode_frame  # noqa: E402
 from dissector.decode.pairing import Pairer  # noqa: E402
 from dissector.devices.build import build_annotator  # noqa: E402
-from dissector.devices.maps import load_builtin_map  # noqa: E402
+from dissector.devices.maps import load_builtin_map, parse_map  # noqa: E402
+from dissector.errors import ProfileError  # noqa: E402
 from dissector.framing.ascii import AsciiFramer  # noqa: E402
 from dissector.framing.rtu import RtuFramer  # noqa: E402
 from dissector.model import Chunk, Frame, Item, Noise  # noqa: E402
@@ -218,12 +220,81 @@ def maps() -> list[dict[str, Any]]:
     return out
 
 
+# Map texts as spreadsheets save them, good and malformed (map reading: parse_map's rows or its message).
+MAP_TEXTS = {
+    "plain": "address,code,name,unit,scale,access,enum,bits,signed,source,type,order\n"
+             "# a comment line, then a blank one\n\n"
+             "8401,CHCF,[Profile],,,RW,0=IO;3=SE8,,,A,,\n"
+             "0x2001,HSP,High speed,Hz,0.1,R,,,,,,\n"
+             "16#3203,ETA,Status,,,r,,0=Ready;15=Manual,,,,\n"
+             "3000,TQ,Torque,%,1e-2,,,,1,,,\n"
+             "3001,CNT,Count,,10,,,,0,,uint16,\n",
+    "wide": "address,code,type,order,scale,unit\n100,E,uint32,,0.1,kWh\n102,F,float32,cdab,,\n"
+            "104,G,int32,ABCD,,\n106,H,INT16,,,\n",
+    "semicolons and decimal commas": "\ufeffaddress;code;name;scale\n1;A;\"x;y\";0,5\n2;B;\"say \"\"hi\"\"\";-1,25\n",
+    "tab": "address\tcode\tunit\n1\tA\tV\n",
+    "line ends": "address,code\r\n1,A\r\n2,B\x0c3,C\u20284,D\x855,E\r6,F\n",
+    "escapes": "address,code,name,enum\n1,A\x1b[2J,N\x07,1=\u009bx\n2,\u00e9\u20ac,na\u00afme\u00ad,\n",
+    "quote left open": "address,code,name\n1,A,\"open, still\n",
+    "address": "address,code\nx1,A\n",
+    "address range": "address,code\n70000,A\n",
+    "code empty": "address,code\n1, \n",
+    "scale": "address,code,scale\n1,A,abc\n",
+    "scale range": "address,code,scale\n1,A,1e13\n",
+    "scale zero": "address,code,scale\n1,A,0\n",
+    "access": "address,code,access\n1,A,rx\n",
+    "access quoted": "address,code,access\n1,A,it's\n",
+    "access both quotes": "address,code,access\n1,A,\"a'b\"\"\"\n",
+    "enum form": "address,code,enum\n1,A,foo\n",
+    "enum number": "address,code,enum\n1,A,x=foo\n",
+    "enum range": "address,code,enum\n1,A,70000=foo\n",
+    "enum twice": "address,code,enum\n1,A,1=a;1=b\n",
+    "bits range": "address,code,bits\n1,A,16=a\n",
+    "signed": "address,code,signed\n1,A,2\n",
+    "type": "address,code,type\n1,A,int64\n",
+    "order": "address,code,type,order\n1,A,uint32,badc\n",
+    "wide labels": "address,code,type,enum\n1,A,uint32,1=a\n",
+    "wide last": "address,code,type\n65535,A,float32\n",
+    "signed enum": "address,code,signed,enum\n1,A,1,1=a\n",
+    "unknown column": "address,code,Colour\n",
+    "missing column": "address,name\n",
+    "column twice": "address,code,code\n",
+    "fields comma": "address,code\n1,A,B\n",
+    "fields semicolon": "address;code\n1;A;B\n",
+    "fields tab": "address\tcode\n1\tA\tB\n",
+    "address twice": "address,code\n1,A\n0x1,B\n",
+    "second register": "address,code,type\n1,A,uint32\n3,C,uint32\n2,B,\n4,D,\n",
+    "no header": "# only a comment\n\n",
+    "empty": "",
+}
+
+
+def map_reading() -> list[dict[str, Any]]:
+    out = []
+    for name, text in MAP_TEXTS.items():
+        try:
+            rows = parse_map(text, "map.csv")
+        except ProfileError as error:
+            out.append({"name": name, "text": text, "error": str(error)})
+            continue
+        out.append({"name": name, "text": text, "rows": [
+            {"address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
+             "decimals": row.decimals, "enum": {str(k): v for k, v in row.enum.items()},
+             "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
+             "type": row.kind if row.words == 2 else None, "swapped": row.swapped, "source": row.source,
+             "ambiguous_8000": row.ambiguous_8000}
+            for address, row in sorted(rows.items())
+        ]})
+    return out
+
+
 def vectors() -> dict[str, Any]:
     return {
         "format": FORMAT,
         "refresh": "python3 tests/conformance/generate.py",
         "cases": [case(name, mode, data) for name, mode, data in inputs()],
         "maps": maps(),
+        "map_reading": map_reading(),
     }
 
 

@@ -47,6 +47,9 @@ CHANGES: dict[str, tuple[str, Callable[[dict[str, Any]], None]]] = {
                    lambda d: _first_with(_case(d, "capture p38_protection.bin")["annotation"], "registers")
                    ["registers"][1].update(text="IO")),
     "maps": ("map atv71 ", lambda d: next(m for m in d["maps"] if m["map"] == "atv71")["rows"][0].update(name="x")),
+    # (the message as the plugin said it before it took maps.py's: Lua's %q, not Python's repr)
+    "map reading": ("map reading address", lambda d: next(e for e in d["map_reading"] if e["name"] == "address")
+                    .update(error='map.csv:2: address "x1" is not a number')),
 }
 
 
