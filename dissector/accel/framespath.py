@@ -62,6 +62,8 @@ class _Frames:
         self.annotate = annotate
         self.accept = accept
         self.numbered = 0  # items numbered so far
+        # Live -c N (livepath.py): the frames of a slice kept, before they are decoded and annotated.
+        self.cut: Callable[[list[Item]], list[Item]] | None = None
 
     def __call__(self, records: bytes) -> None:
         # A slice of records at a time: only that many decoded frames are alive at once (memory flat).
@@ -96,6 +98,8 @@ class _Frames:
                 request.response_ref = weakref.ref(answer)
                 items.append(answer)
         self.numbered = number
+        if self.cut is not None:
+            items = self.cut(items)
         for item in items:
             decode_frame(item)  # type: ignore[arg-type]
             if annotate is not None:

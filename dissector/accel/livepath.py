@@ -19,7 +19,15 @@ the same decisions at the same reads:
 
 Reads are put in one block as long as no request could expire between them (the last read is within
 --timeout of the oldest byte held); lines are shown as soon as the engine or the Python stages give
-them, which is when the Python live path shows them. tests/differential/test_live_compiled.py holds
+them, which is when the Python live path shows them.
+
+With -c N (`count`), the Python live path's capture thread keeps its framer's items up to the Nth frame
+and stops (CaptureThread.deliver); the display then finishes the pairer, so a request that is the Nth
+frame is unanswered, "the capture ends" before its answer. Here the engine's frames of each slice are
+cut at the Nth before they are decoded and annotated (a request that is the Nth is finished as the
+pairer would finish it), and the Python stages' framer, when they have the stream, is cut as the
+capture thread cuts it (_CountedFramer); nothing is read after the cut, and finish() then finishes
+only the pairer (the capture thread does not finish its framer after a count). tests/differential/test_live_compiled.py holds
 the outputs byte-identical to VW3_PURE_PYTHON=1 on the same reads (a tape of them: live_capture.Tape).
 """
 from __future__ import annotations
@@ -31,8 +39,9 @@ from typing import Any
 from dissector.accel import fastsummary
 from dissector.accel.records import BlockBuilder
 from dissector.accel.timedpath import CLOCKS, TimedPath, usable
-from dissector.model import Chunk, Frame, Item, Stamp
+from dissector.model import Chunk, Frame, Item, Kind, Stamp
 from dissector.pipeline import Dissector
+from dissector.protocol.rules import text
 from dissector.render.timefmt import Clock
 
 NO_SILENCE_CHECK = 1e300  # live has no GapChecker: a silence inside a frame is no warning, no handover
@@ -58,8 +67,14 @@ class LivePath:
 
     def __init__(self, dissector: Dissector, annotate: Any | None, clock: Clock | None,
                  write_items: Callable[[list[Item]], None], write_lines: Callable[[bytes], None],
-                 timeout: float | None, silence: float, silence_long: float, summary: bool) -> None:
+                 timeout: float | None, silence: float, silence_long: float, summary: bool,
+                 count: int | None = None) -> None:
         self.dissector = dissector
+        self.left = count  # -c: frames still to show (None: no count)
+        self.done = False  # -c reached: nothing more is read or shown
+        if count is not None:
+            assert not summary, "-c: the Python stages show the engine's frames"
+            dissector.framer = _CountedFramer(dissector.framer, self)  # type: ignore[assignment]
         self.framer = dissector.framer
         self.timeout = timeout
         self.silence = silence
@@ -78,7 +93,9 @@ class LivePath:
             path.sync_clock = False  # (the display's clock sees every item)
             path.engine.judge = _NOTHING
             path.engine.frames = True
-            path.write_lines = _Frames(path, annotate, self._engine_frames)
+            path.write_lines = frames = _Frames(path, annotate, self._engine_frames)
+            if count is not None:
+                frames.cut = self._cut_engine
             clock_code = 0
         timing = self.framer.timing
         path.engine.set_timing(timing.char_time, NO_SILENCE_CHECK, timeout, clock_code)
@@ -104,11 +121,44 @@ class LivePath:
             write(data)
         return lines
 
+    # -- -c N ---------------------------------------------------------------------------------------------
+    def _cut_engine(self, frames: list[Item]) -> list[Item]:
+        """The engine's frames of a slice up to the Nth; a request that is the Nth is finished as
+        Pairer.finish finishes the request it awaits an answer for when the capture ends."""
+        left = self.left
+        assert left is not None
+        if len(frames) < left:
+            self.left = left - len(frames)
+            return frames
+        frames = frames[:left]
+        self.left, self.done = 0, True
+        if frames and frames[-1].kind is Kind.REQUEST:  # its answer (or the frame that told) is past the cut
+            last: Frame = frames[-1]  # type: ignore[assignment]
+            last.response_ref = None
+            last.unanswered = True
+            last.notes.append(text("capture_ends"))
+        return frames
+
+    def _cut_framed(self, items: list[Item]) -> list[Item]:
+        """The Python framer's items up to the Nth frame, as CaptureThread.deliver keeps them."""
+        left = self.left
+        assert left is not None
+        kept: list[Item] = []
+        for item in items:
+            if left <= 0:
+                break
+            kept.append(item)
+            left -= isinstance(item, Frame)
+        self.left = left
+        if left <= 0:
+            self.done = True
+        return kept
+
     # -- what goes in --------------------------------------------------------------------------------
     def feed(self, reads: Sequence[Read]) -> None:
         """Reads in the order the capture made them (a read with no bytes: the port was silent)."""
         index, count = 0, len(reads)
-        while index < count:
+        while index < count and not self.done:
             data, stamp, now = reads[index]
             if not data:
                 self._idle(stamp, now)
@@ -121,6 +171,9 @@ class LivePath:
             index = end
 
     def finish(self) -> None:
+        if self.done:  # -c reached: the pairer finishes what it holds (the framer gives nothing more)
+            self._items(self.dissector.finish())
+            return
         self.path.finish()
 
     # -- the capture loop's decisions (live_capture.CaptureThread.step) ---------------------------------
@@ -140,6 +193,8 @@ class LivePath:
             self._feed_block()
             self._last_data, self._pending, self._tried = now, True, False
             self._expire(stamp)
+            if self.done:
+                return
 
     def _within_timeout(self, first: Stamp, last: Stamp) -> bool:
         if self.timeout is None:
@@ -157,6 +212,8 @@ class LivePath:
             self.path.feed(block)
 
     def _idle(self, stamp: Stamp, now: float) -> None:
+        if self.done:
+            return
         if not self._pending:
             self._expire(stamp)
             return
@@ -183,7 +240,7 @@ class LivePath:
 
     def _flush(self) -> None:
         """Close what the Python framer would hold (Dissector.flush_idle)."""
-        if not self._to_python():
+        if self.done or not self._to_python():
             return  # nothing held: nothing to close
         self.framer.pause_at(None)
         self._items(self.dissector.flush_idle())
@@ -192,7 +249,7 @@ class LivePath:
     def _expire(self, stamp: Stamp, safe: Stamp | None = None) -> None:
         """The display's Dissector.expire(safe): safe is `stamp`, or the time of the first byte the
         Python framer holds if earlier (CaptureThread.safe_time)."""
-        if self.timeout is None:
+        if self.timeout is None or self.done:
             return
         path = self.path
         if not path.python:
@@ -235,3 +292,27 @@ class LivePath:
         while path._python_frames() if path.python else path._engine_frames():
             pass
 
+
+
+class _CountedFramer:
+    """The Python stages' framer with -c's cut (LivePath._cut_framed) on what it gives out; anything
+    else is the framer's own. A copy (the trial of a flush) is the framer's, uncut."""
+
+    def __init__(self, framer: Any, live: LivePath) -> None:
+        object.__setattr__(self, "_framer", framer)
+        object.__setattr__(self, "_live", live)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._framer, name)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        setattr(self._framer, name, value)
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> Any:
+        return copy.deepcopy(self._framer, memo)
+
+    def feed(self, chunk: Chunk) -> list[Item]:
+        return self._live._cut_framed(self._framer.feed(chunk))
+
+    def finish(self) -> list[Item]:
+        return self._live._cut_framed(self._framer.finish())

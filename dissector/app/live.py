@@ -14,7 +14,7 @@ shown when its response comes. A file read by name is read twice (app/preselect.
 ahead, so a frame decoded before profile `auto` chose its slave's device says it is provisional
 (Frame.provisional) in every output, and ProfileNews says on stderr when the choice is made.
 
-With the compiled engine (compiled_mode: not with VW3_PURE_PYTHON, Modbus ASCII or -c), the capture
+With the compiled engine (compiled_mode: not with VW3_PURE_PYTHON, Modbus ASCII or -c with --raw), the capture
 thread only reads, stamps and writes --raw, and hands on the reads; the display frames, pairs, writes -w
 and shows them through dissector/accel/livepath.py, which takes the capture thread's decisions (flush after a
 silence, expire a request past --timeout) at the same reads, so the lines are the Python path's, shown
@@ -296,6 +296,9 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
     if live is not None:
         if items and not shown.stopped:
             live.feed(items)
+            if live.done:  # -c reached: the capture stops, as its thread stops itself on the Python path
+                capture.reason = "count"
+                capture.stop.set()
         if closed and not shown.stopped:
             live.finish()
         shown.write()  # (a -w ring switches files on time)
@@ -322,7 +325,8 @@ def _live_path(compiled: str, dissector: Dissector, annotate: Annotator | None, 
     from dissector.accel.livepath import LivePath
 
     return LivePath(dissector, annotate, clock, shown_.items, shown_.lines, getattr(args, "timeout", None),
-                    silence_threshold(args.baud), IDLE_FLUSH_LONG, compiled == "summary")
+                    silence_threshold(args.baud), IDLE_FLUSH_LONG, compiled == "summary",
+                    getattr(args, "count", None))
 
 
 def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Dissector, shown_: Shown,
@@ -337,6 +341,8 @@ def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Diss
                 capture.reason = "count"
                 break
             display_once(capture, handoff, dissector, shown_, 0, live)
+            if live is not None and live.done:
+                break  # (-c reached: display_once said it)
     except LiveError as error:
         capture.reason, capture.status = str(error), error.status
     finally:
@@ -347,10 +353,13 @@ def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Diss
 
 def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> str | None:
     """How the engine takes part in this live capture: "summary" (it writes the summary lines),
-    "frames" (it frames and pairs, the Python stages show; -w is written from those items), or None
-    (the Python stages do it all: VW3_PURE_PYTHON, no extension, Modbus ASCII, and -c, whose cut the
-    capture thread makes as it frames, before the pairing the engine does)."""
-    if getattr(args, "mode", None) == "ascii" or getattr(args, "count", None):
+    "frames" (it frames and pairs, the Python stages show; -w is written from those items; always with
+    -c, cut at the Nth frame before the Python stages decode it: livepath.py), or None (the Python
+    stages do it all: VW3_PURE_PYTHON, no extension, Modbus ASCII, and -c with --raw: the capture
+    thread stops at the read its framer reaches the count with, which the engine, holding a request
+    until its answer, may reach later)."""
+    count = getattr(args, "count", None)
+    if getattr(args, "mode", None) == "ascii" or (count is not None and getattr(args, "raw", None)):
         return None
     from dissector.accel import livepath
 
@@ -359,7 +368,7 @@ def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> st
     display = getattr(args, "display", None)
     plain = display is None or not (display.detail or display.hexdump or display.fields is not None
                                     or display.registers is not None)
-    if (plain and not is_terminal and not getattr(args, "write", None) and not getattr(args, "json", False) and getattr(args, "watch", None) is None
+    if (plain and count is None and not is_terminal and not getattr(args, "write", None) and not getattr(args, "json", False) and getattr(args, "watch", None) is None
             and getattr(args, "filter_text", None) is None and clock is not None and livepath.summary_usable(clock)):
         return "summary"
     return "frames"

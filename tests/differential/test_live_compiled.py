@@ -183,3 +183,63 @@ def test_pty_capture_replayed_by_the_other_side(pure: bool, options: list[str], 
     assert err == live_err
     shown = out + err  # (-w - -P: the lines on stderr)
     assert "[no response]" in shown or '"unanswered": true' in shown or "No response" in shown
+
+
+# -- -c N: the count honoured by the engine ----------------------------------------------------------------
+COUNT_OUTPUTS = [[], ["-V"], ["--json", "--timeout", "0.05"], ["-Y", "slave == 2 or kind == \"noise\""]]
+
+
+@pytest.mark.parametrize("output", range(len(COUNT_OUTPUTS)))
+def test_count_cut_where_the_python_stages_cut(output: int, tmp_path: Path) -> None:
+    """-c N through the engine: the Nth frame's output as the Python stages give it (a request that is
+    the Nth is unanswered, the capture ending before its answer, though the engine saw the answer), nothing
+    after it, whether the engine or the Python stages (after damage) had the stream at the Nth; beyond the
+    capture's frames, the whole capture."""
+    tape = write_tape(tmp_path / "plant.tape", plant_mix(600, seed=3 + output), seed=3 + output, damage=0.05)
+    rng = random.Random(output)
+    total = None  # frames in the capture
+    for count in [2000, 1, 2, 3, 50, 51] + [rng.randint(4, 560) for _ in range(4)]:
+        options = ["-c", str(count), *COUNT_OUTPUTS[output]] + (PLANT if count % 2 else [])
+        python_out, python_err, _none = decode(tape, options, True)
+        engine_out, engine_err, engine_frames = decode(tape, options, False)
+        assert engine_frames >= min(count, 100) // 4
+        assert (engine_out, engine_err) == (python_out, python_err)
+        frames = int(re.search(r"vw3-decode: (\d+) frames?", python_err.splitlines()[-1]).group(1))
+        total = total or frames
+        assert frames == min(count, total) and total > 560
+        if count == 1 and output == 0:
+            assert python_out.count("\n") == 1 and "[no response]" in python_out, python_out
+
+
+def test_count_written_files(tmp_path: Path) -> None:
+    """-c N with -w: the display writes the records of the frames up to the Nth, as the capture thread
+    of the Python path does; with --raw the Python stages take the capture (the capture thread stops
+    at the read its framer reaches the count with: the raw file ends there)."""
+    tape = write_tape(tmp_path / "plant.tape", plant_mix(800, seed=21), seed=21, damage=0.03)
+    for count in (1, 257, 400):
+        runs = {}
+        for pure in (True, False):
+            written = tmp_path / f"{pure}.pcap"
+            out, err, engine = decode(tape, ["-c", str(count), "-w", str(written), "-P"], pure)
+            runs[pure] = (out, err.replace(str(written), "W"), engine, written.read_bytes())
+        assert runs[True][:2] == runs[False][:2]
+        assert runs[True][3] == runs[False][3]
+        assert runs[False][2] >= min(count, 100) // 4
+        raw = tmp_path / "raw.bin"
+        assert decode(tape, ["-c", str(count), "--raw", str(raw)], False)[2] == 0  # the Python stages
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine-live", "python-live"])
+def test_pty_count_capture_replayed_by_the_other_side(pure: bool, tmp_path: Path) -> None:
+    """A live capture on a pseudo-terminal stopped by -c 40 (not by SIGINT), its reads replayed by the other
+    side: the same 40 frames. The engine, holding a request until its answer, reads further than the
+    Python stages' capture thread: the tape it leaves holds more, the Python replay cuts at the same frame."""
+    tape = tmp_path / "pty.tape"
+    options = ["--timeout", "0.2", "-c", "40", "-V"]
+    live_out, live_err, live_engine = capture_on_pty(pty_traffic(7 + pure), tape, options, pure)
+    out, err, engine = decode(tape, options, not pure, baud=115200)
+    assert (live_engine == 0, engine > 0) == (pure, pure)
+    assert max(live_engine, engine) >= 10
+    assert out == live_out
+    assert err == live_err
+    assert "vw3-decode: 40 frames" in err
