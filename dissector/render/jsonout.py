@@ -328,6 +328,10 @@ def _fields_json(fields: dict[str, Any]) -> str:
 
 
 _KEYS_JSON: dict[str, str] = {}  # `"start": ` by key (a grammar's names: few)
+# The `"fields": {...}` text of a frame without registers, bits or objects, by its bytes, kind and mode
+# (what decoding reads them from; -V keeps such a frame's middle by the same): bounded, cleared when full.
+_FIELDS_TEXTS: dict[tuple[bytes, Kind, str], str] = {}
+_FIELDS_TEXTS_MAX = 1 << 14
 
 
 def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
@@ -372,7 +376,17 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
         if frame.kind is Kind.REQUEST:
             parts.append('"unanswered": true' if frame.unanswered else '"unanswered": false')
     if fields is not None:
-        parts.append('"fields": ' + _fields_json(fields))
+        if registers is None and bits is None and frame.objects is None:
+            # A frame without values (a polled request, a write's echo): its fields are its bytes'.
+            key = (frame.raw, frame.kind, frame.mode)
+            text = _FIELDS_TEXTS.get(key)
+            if text is None:
+                if len(_FIELDS_TEXTS) >= _FIELDS_TEXTS_MAX:
+                    _FIELDS_TEXTS.clear()
+                text = _FIELDS_TEXTS[key] = '"fields": ' + _fields_json(fields)
+            parts.append(text)
+        else:
+            parts.append('"fields": ' + _fields_json(fields))
     if extra:
         last: dict[str, Any] = {"warnings": list(frame.warnings), "notes": list(frame.notes)}
         last.update(extra)
