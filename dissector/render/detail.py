@@ -591,23 +591,26 @@ def plain_frame_text(frame: Frame, base: float | None) -> str:
         head = (f"Frame {frame.number}: {len(frame.raw)} bytes at offset {frame.offset}{words[0]}\n"
                 f"{_arrival(time, base)}{words[1]}")  # type: ignore[arg-type]
     registers = frame.registers
+    listed = type(registers) is RegisterList
+    # (a RegisterList's own len() is a Python call)
+    size = len(registers.values) if listed else 0 if registers is None else len(registers)  # type: ignore[union-attr]
     middle = None
     if kind is not _EXCEPTION and frame.objects is None:
         bits = frame.bits
         untyped = bool(frame.notes) and check_untyped(frame)
         if bits is None:
-            if not registers:
+            if not size:
                 key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text, untyped,
                        frame.span_label)  # as _build keeps it
                 middle = _kept_text(_MIDDLES, key, _middle, frame)
-            elif type(registers) is RegisterList and registers.plain:
-                if len(registers.values) <= _BLOCK_MIDDLE_REGISTERS:
-                    middle = _block_middle(frame, registers, untyped)
+            elif listed and registers.plain:  # type: ignore[union-attr]
+                if size <= _BLOCK_MIDDLE_REGISTERS:
+                    middle = _block_middle(frame, registers, untyped)  # type: ignore[arg-type]
                 elif not untyped:
-                    middle = _values_middle(frame, registers)
-            elif len(registers) <= _NAMED_MIDDLE_REGISTERS:
-                middle = _block_middle(frame, registers, untyped)
-        elif not registers and type(bits) is BitList and bits.count <= _BIT_MIDDLE_BITS:
+                    middle = _values_middle(frame, registers)  # type: ignore[arg-type]
+            elif size <= _NAMED_MIDDLE_REGISTERS:
+                middle = _block_middle(frame, registers, untyped)  # type: ignore[arg-type]
+        elif not size and type(bits) is BitList and bits.count <= _BIT_MIDDLE_BITS:
             key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text, untyped,
                    frame.span_label, bits.start, bits.count)
             middle = _BIT_MIDDLES.get(key)
