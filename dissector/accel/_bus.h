@@ -94,8 +94,9 @@ typedef struct {
  * fit (stats_store.Coarse, the Python stages' twin). The result depends on the values only, not on
  * their order: the smallest shift at which they all fit. */
 typedef struct {
-    Tally *slots;
-    size_t size, count;
+    Tally *slots;    /* the entries in the order first seen, `cap` allocated (a dense array: 65,536 entries of */
+    uint32_t *index; /* 24 bytes took 131,072 slots, 3 MB a kind), found through `size` indexes: 1 + a */
+    size_t size, count, cap; /* position, 0: empty (a power of two, at most 3/4 used) */
     size_t limit;
     int shift;
 } Tallies;
@@ -106,52 +107,54 @@ static inline size_t tally_slot(uint32_t tag, long long key, size_t size) {
     return (size_t)mix((uint64_t)tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)key) & (size - 1);
 }
 
-static double *tally(Tallies *t, uint32_t tag, long long key) {
-    if (4 * (t->count + 1) > 3 * t->size) {
-        size_t size = t->size ? 2 * t->size : 1024;
-        Tally *slots = PyMem_Calloc(size, sizeof *slots);
-        if (slots == NULL) {
-            PyErr_NoMemory();
-            return NULL;
-        }
-        for (size_t k = 0; k < t->size; k++) {
-            if (!t->slots[k].tag) continue;
-            size_t slot = tally_slot(t->slots[k].tag, t->slots[k].key, size);
-            while (slots[slot].tag) slot = (slot + 1) & (size - 1);
-            slots[slot] = t->slots[k];
-        }
-        PyMem_Free(t->slots);
-        t->slots = slots;
-        t->size = size;
-    }
-    size_t slot = tally_slot(tag, key, t->size);
-    while (t->slots[slot].tag) {
-        if (t->slots[slot].tag == tag && t->slots[slot].key == key) return &t->slots[slot].value;
-        slot = (slot + 1) & (t->size - 1);
-    }
-    Tally *entry = &t->slots[slot];
-    entry->tag = tag;
-    entry->key = key;
-    t->count++;
-    return &entry->value;
-}
-
-/* One step coarser: every key rounded down to a multiple of 2^(shift + 1), equal keys merged. */
-static int tally_coarsen(Tallies *t) {
-    Tally *old = t->slots;
-    size_t size = t->size;
-    Tally *slots = PyMem_Calloc(size, sizeof *slots);
-    if (slots == NULL) {
+/* The index of the entries, in `size` slots (0: as it is, emptied). */
+static int tally_index(Tallies *t, size_t size) {
+    uint32_t *index = PyMem_Calloc(size ? size : t->size, sizeof *index);
+    if (index == NULL) {
         PyErr_NoMemory();
         return -1;
     }
-    t->slots = slots;
+    PyMem_Free(t->index);
+    t->index = index;
+    t->size = size ? size : t->size;
+    for (size_t k = 0; k < t->count; k++) {
+        size_t slot = tally_slot(t->slots[k].tag, t->slots[k].key, t->size);
+        while (index[slot]) slot = (slot + 1) & (t->size - 1);
+        index[slot] = (uint32_t)k + 1;
+    }
+    return 0;
+}
+
+static double *tally(Tallies *t, uint32_t tag, long long key) {
+    if (4 * (t->count + 1) > 3 * t->size && tally_index(t, t->size ? 2 * t->size : 1024) < 0) return NULL;
+    size_t slot = tally_slot(tag, key, t->size);
+    for (uint32_t at; (at = t->index[slot]) != 0; slot = (slot + 1) & (t->size - 1))
+        if (t->slots[at - 1].tag == tag && t->slots[at - 1].key == key) return &t->slots[at - 1].value;
+    if (t->count == t->cap) { /* half as many again, first up to the kind's limit + 1 (it coarsens then, */
+        size_t cap = t->cap ? t->cap + t->cap / 2 : 768; /* unless a shift of 62 does not fit: more owners) */
+        cap = t->limit && t->cap <= t->limit && cap > t->limit + 1 ? t->limit + 1 : cap;
+        Tally *slots = PyMem_Realloc(t->slots, cap * sizeof *slots);
+        if (slots == NULL) return (double *)PyErr_NoMemory();
+        t->slots = slots, t->cap = cap;
+    }
+    Tally *entry = &t->slots[t->count];
+    *entry = (Tally){tag, key, 0.0};
+    t->index[slot] = (uint32_t)++t->count;
+    return &entry->value;
+}
+
+/* One step coarser: every key rounded down to a multiple of 2^(shift + 1), equal keys merged (in place:
+ * the k-th entry goes to the k-th position or before). */
+static int tally_coarsen(Tallies *t) {
+    size_t n = t->count;
     t->count = 0;
     t->shift++;
+    if (tally_index(t, 0) < 0) return -1;
     long long mask = -(1LL << t->shift);
-    for (size_t k = 0; k < size; k++)
-        if (old[k].tag) *tally(t, old[k].tag, old[k].key & mask) += old[k].value; /* fewer: no growth */
-    PyMem_Free(old);
+    for (size_t k = 0; k < n; k++) {
+        Tally old = t->slots[k];
+        *tally(t, old.tag, old.key & mask) += old.value; /* fewer: no growth */
+    }
     return 0;
 }
 

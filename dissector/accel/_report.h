@@ -524,8 +524,7 @@ static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
     Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
     PyObject *timings = all != NULL ? PyDict_New() : NULL;
     size_t n = 0;
-    for (size_t k = 0; timings != NULL && k < table->size; k++)
-        if (table->slots[k].tag) all[n++] = table->slots[k];
+    for (size_t k = 0; timings != NULL && k < table->count; k++) all[n++] = table->slots[k];
     qsort(all, n, sizeof *all, tally_order);
     for (size_t first = 0, end; timings != NULL && first < n; first = end) {
         double total = 0;

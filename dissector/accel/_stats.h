@@ -384,7 +384,7 @@ static void stats_dealloc(Stats *st) {
     PyMem_Free(st->params);
     PyMem_Free(st->slots);
     PyMem_Free(st->polls);
-    for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots);
+    for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots), PyMem_Free(st->tallies[k].index);
     PyMem_Free(st->bus.outages);
     PyMem_Free(st->bus.outage_slaves);
     for (int k = 0; k < 256; k++) {
@@ -755,9 +755,8 @@ static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     }
     const Tallies *table = &st->tallies[kind];
     PyObject *owners = PyDict_New();
-    for (size_t k = 0; owners != NULL && k < table->size; k++) {
+    for (size_t k = 0; owners != NULL && k < table->count; k++) {
         const Tally *t = &table->slots[k];
-        if (!t->tag) continue;
         PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
         PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
         PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
@@ -828,8 +827,8 @@ static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
     Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
     PyObject *summaries = all != NULL ? PyDict_New() : NULL;
     size_t n = 0;
-    for (size_t k = 0; summaries != NULL && k < table->size; k++)
-        if (table->slots[k].tag) all[n] = table->slots[k], all[n++].tag &= bins > 0 ? ~0xFFu : ~0u;
+    for (size_t k = 0; summaries != NULL && k < table->count; k++)
+        all[n] = table->slots[k], all[n++].tag &= bins > 0 ? ~0xFFu : ~0u;
     qsort(all, n, sizeof *all, tally_order);
     for (size_t first = 0, end; summaries != NULL && first < n; first = end) {
         double count = 0;
