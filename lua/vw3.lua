@@ -2388,7 +2388,7 @@ package.preload["vw3.feed"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.feed"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after
+local MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after = MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after
 local fast_interpretation, flush_noise, interpretations = fast_interpretation, flush_noise, interpretations
 local lane, next, pairs, rtu_frame, run_ascii, run_rtu = lane, next, pairs, rtu_frame, run_ascii, run_rtu
 local string, whole_crc_good = string, whole_crc_good
@@ -2469,24 +2469,6 @@ feed_whole = function(s, bytes, time)
   expect_after(s, frame)
   lane.advance(s, n, time)
   return frame
-end
-
--- The quick lane's framing (lane.answer): would feed_whole take the record (n bytes, its first two the
--- slave and function awaited) as one whole answer, by the function's length rule, with a good CRC? Only
--- for the functions whose answer's length is a byte count (count8: the rule's byte, plus its extra).
--- Changes nothing but the CRC verdicts kept. lane.advance then leaves the stream as feed_whole leaves it.
-local COUNTED_ANSWERS = {}
-for code, rules in pairs(DATA.protocol.rules) do
-  if rules[2][1] == "count8" then COUNTED_ANSWERS[code] = { rules[2][2], rules[2][3] } end
-end
-
-function lane.frames_answer(s, bytes, n, slave, code)
-  if not takes_whole(s, n, slave) or s.expect ~= slave * 256 + code then return false end
-  local counted = COUNTED_ANSWERS[code]
-  if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
-    return false
-  end
-  return whole_crc_good(bytes, n)
 end
 
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
@@ -4815,6 +4797,7 @@ local device_for, device_now, feed, feed_whole, ipairs = device_for, device_now,
 local lane, math, new_state, next, pack, pair, pairs, pcall = lane, math, new_state, next, pack, pair, pairs, pcall
 local release_run, remember_writes, story, string = release_run, remember_writes, story, string
 local string_of, takes_whole, tostring, type = string_of, takes_whole, tostring, type
+local whole_crc_good = whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -5029,13 +5012,14 @@ take_items = function(st, items, record)
 end
 
 -- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
--- the read_registers_response or read_bits_response grammar and handler), and the frame the Info text of
--- a quick answer is made from.
+-- the read_registers_response or read_bits_response grammar and handler, the length rule the byte count
+-- in its third byte plus the rule's extra), and the frame the Info text of a quick answer is made from.
 local RUN_ANSWERS = {}
 for code, name in pairs(DATA.protocol.handlers.response) do
+  local rule = DATA.protocol.rules[code][2]
   if (name == "read_registers_response" or name == "read_bits_response")
-      and DATA.protocol.parsers.response[code] == name then
-    RUN_ANSWERS[code] = name
+      and DATA.protocol.parsers.response[code] == name and rule[1] == "count8" and rule[2] == 2 then
+    RUN_ANSWERS[code] = { bits = name == "read_bits_response", extra = rule[3] }
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
@@ -5053,7 +5037,12 @@ function lane.answer(st, bytes, n, time, number)
   local slave, code, count = byte(bytes, 1, 3)
   local run = RUN_ANSWERS[code]
   if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
-  if not lane.frames_answer(st, bytes, n, slave, code) then return nil end
+  -- framed as feed_whole frames it: one whole answer where no byte waits, by its length rule, its CRC good
+  -- (lane.advance then leaves the stream as feed_whole leaves it)
+  if not takes_whole(st, n, slave) or st.expect ~= slave * 256 + code or n ~= run.extra + count
+      or not whole_crc_good(bytes, n) then
+    return nil
+  end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
@@ -5063,7 +5052,7 @@ function lane.answer(st, bytes, n, time, number)
   if fields == nil then return nil end
   local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
-  local bits = run == "read_bits_response"
+  local bits = run.bits
   if bits then
     if count ~= ceil_bytes(quantity) then return nil end
   elseif count ~= 2 * quantity then

@@ -82,24 +82,6 @@ feed_whole = function(s, bytes, time)
   return frame
 end
 
--- The quick lane's framing (lane.answer): would feed_whole take the record (n bytes, its first two the
--- slave and function awaited) as one whole answer, by the function's length rule, with a good CRC? Only
--- for the functions whose answer's length is a byte count (count8: the rule's byte, plus its extra).
--- Changes nothing but the CRC verdicts kept. lane.advance then leaves the stream as feed_whole leaves it.
-local COUNTED_ANSWERS = {}
-for code, rules in pairs(DATA.protocol.rules) do
-  if rules[2][1] == "count8" then COUNTED_ANSWERS[code] = { rules[2][2], rules[2][3] } end
-end
-
-function lane.frames_answer(s, bytes, n, slave, code)
-  if not takes_whole(s, n, slave) or s.expect ~= slave * 256 + code then return false end
-  local counted = COUNTED_ANSWERS[code]
-  if counted == nil or counted[1] + 1 > n or counted[2] + string.byte(bytes, counted[1] + 1) ~= n then
-    return false
-  end
-  return whole_crc_good(bytes, n)
-end
-
 -- Feed one record's bytes (a Lua string; boundary: its end is a frame boundary) and frame what can be
 -- framed; final: nothing more will come. Returns the items in stream order. built: the record's byte
 -- table when feed_whole made it.

@@ -217,13 +217,14 @@ take_items = function(st, items, record)
 end
 
 -- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
--- the read_registers_response or read_bits_response grammar and handler), and the frame the Info text of
--- a quick answer is made from.
+-- the read_registers_response or read_bits_response grammar and handler, the length rule the byte count
+-- in its third byte plus the rule's extra), and the frame the Info text of a quick answer is made from.
 local RUN_ANSWERS = {}
 for code, name in pairs(DATA.protocol.handlers.response) do
+  local rule = DATA.protocol.rules[code][2]
   if (name == "read_registers_response" or name == "read_bits_response")
-      and DATA.protocol.parsers.response[code] == name then
-    RUN_ANSWERS[code] = name
+      and DATA.protocol.parsers.response[code] == name and rule[1] == "count8" and rule[2] == 2 then
+    RUN_ANSWERS[code] = { bits = name == "read_bits_response", extra = rule[3] }
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
@@ -241,7 +242,12 @@ function lane.answer(st, bytes, n, time, number)
   local slave, code, count = byte(bytes, 1, 3)
   local run = RUN_ANSWERS[code]
   if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
-  if not lane.frames_answer(st, bytes, n, slave, code) then return nil end
+  -- framed as feed_whole frames it: one whole answer where no byte waits, by its length rule, its CRC good
+  -- (lane.advance then leaves the stream as feed_whole leaves it)
+  if not takes_whole(st, n, slave) or st.expect ~= slave * 256 + code or n ~= run.extra + count
+      or not whole_crc_good(bytes, n) then
+    return nil
+  end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
@@ -251,7 +257,7 @@ function lane.answer(st, bytes, n, time, number)
   if fields == nil then return nil end
   local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
-  local bits = run == "read_bits_response"
+  local bits = run.bits
   if bits then
     if count ~= ceil_bytes(quantity) then return nil end
   elseif count ~= 2 * quantity then
