@@ -38,19 +38,17 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         has_previous = 1;
     }
     const uint8_t *b = view.buf;
-    Py_ssize_t n = view.len, count = 0, capacity = 1024, size = 0;
+    Py_ssize_t n = view.len;
     long long records = 0, lowest = 0, highest = 0;
     int stop = SCAN_MORE, timed_seen = 0;
     PyObject *result = NULL;
-    long long *starts = PyMem_Malloc(capacity * sizeof(long long));
-    long long *times = PyMem_Malloc(capacity * sizeof(long long));
-    uint8_t *flags = PyMem_Malloc(capacity);
-    char *data = PyMem_Malloc(n > 0 ? (size_t)n : 1);
-    if (starts == NULL || times == NULL || flags == NULL || data == NULL || pos < 0 || units <= 0) {
-        if (!PyErr_Occurred()) PyErr_SetString(pos < 0 || units <= 0 ? PyExc_ValueError : PyExc_MemoryError,
-                                               "scan_pcap: bad position or units, or no memory");
+    /* Per record its stream offset and time (int64) and its flag byte, and the records' bytes end to end. */
+    Out starts = {0}, times = {0}, flags = {0}, data = {0};
+    if (pos < 0 || units <= 0) {
+        PyErr_SetString(PyExc_ValueError, "scan_pcap: bad position or units");
         goto done;
     }
+    if (out_reserve(&data, (size_t)n + 1) < 0) goto done;
     while (pos + 16 <= n) {
         uint32_t seconds = read_u32(b + pos, swapped), fraction = read_u32(b + pos + 4, swapped);
         uint32_t captured = read_u32(b + pos + 8, swapped), original = read_u32(b + pos + 12, swapped);
@@ -62,19 +60,6 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         pos += 16;
         records++;
         if (!captured) continue;
-        if (count == capacity) {
-            capacity *= 2;
-            long long *more_starts = PyMem_Realloc(starts, capacity * sizeof(long long));
-            if (more_starts != NULL) starts = more_starts;
-            long long *more_times = PyMem_Realloc(times, capacity * sizeof(long long));
-            if (more_times != NULL) times = more_times;
-            uint8_t *more_flags = PyMem_Realloc(flags, capacity);
-            if (more_flags != NULL) flags = more_flags;
-            if (more_starts == NULL || more_times == NULL || more_flags == NULL) {
-                PyErr_NoMemory();
-                goto done;
-            }
-        }
         int timed = seconds || fraction;
         long long ns = timed ? (long long)seconds * 1000000000LL + (long long)fraction * 1000000000LL / units : 0;
         uint8_t flag = CHUNK_RECORD_END | (timed ? CHUNK_TIMED : 0);
@@ -86,12 +71,11 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
             if (!timed_seen || ns > highest) highest = ns;
             timed_seen = 1;
         }
-        starts[count] = offset;
-        times[count] = ns;
-        flags[count] = flag;
-        count++;
-        memcpy(data + size, b + pos, captured);
-        size += captured;
+        out_put(&starts, (const char *)&offset, sizeof offset);
+        out_put(&times, (const char *)&ns, sizeof ns);
+        out_put(&flags, (const char *)&flag, 1);
+        out_put(&data, (const char *)b + pos, captured);
+        if (starts.failed || times.failed || flags.failed || data.failed) goto done;
         has_previous = 1;
         previous_offset = offset;
         previous_ns = ns;
@@ -100,19 +84,20 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         pos += captured;
     }
     PyObject *last = has_previous ? Py_BuildValue("(LLi)", previous_offset, previous_ns, previous_timed)
-                                  : (Py_INCREF(Py_None), Py_None);
-    PyObject *span = last == NULL ? NULL : timed_seen ? Py_BuildValue("(LL)", lowest, highest)
-                                                      : (Py_INCREF(Py_None), Py_None);
+                                  : Py_NewRef(Py_None);
+    PyObject *span = last == NULL ? NULL : timed_seen ? Py_BuildValue("(LL)", lowest, highest) : Py_NewRef(Py_None);
+    /* (an Out's data is NULL until its first byte, which y# would make None: "" then) */
     if (span == NULL) Py_XDECREF(last);
     else
-        result = Py_BuildValue("(y#y#y#y#niLLNN)", data, size, (const char *)starts, count * (Py_ssize_t)sizeof(long long),
-                               (const char *)times, count * (Py_ssize_t)sizeof(long long), (const char *)flags, count,
-                               pos, stop, records, offset, last, span);
+        result = Py_BuildValue("(y#y#y#y#niLLNN)", data.data, (Py_ssize_t)data.len, starts.len ? starts.data : "",
+                               (Py_ssize_t)starts.len, times.len ? times.data : "", (Py_ssize_t)times.len,
+                               flags.len ? flags.data : "", (Py_ssize_t)flags.len, pos, stop, records, offset, last,
+                               span);
 done:
-    PyMem_Free(starts);
-    PyMem_Free(times);
-    PyMem_Free(flags);
-    PyMem_Free(data);
+    PyMem_Free(starts.data);
+    PyMem_Free(times.data);
+    PyMem_Free(flags.data);
+    PyMem_Free(data.data);
     PyBuffer_Release(&view);
     return result;
 }
