@@ -115,6 +115,14 @@ static inline void out_number(Out *o, unsigned long long v, unsigned radix, int 
 static inline void out_uint(Out *o, unsigned long long v, int width) { out_number(o, v, 10, width, ' '); }
 static inline void out_hex(Out *o, unsigned long v, int width) { out_number(o, v, 16, width, '0'); }
 
+/* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (unit " bytes"). */
+static void out_more(Out *o, unsigned long long more, const char *unit) {
+    out_cstr(o, "\xe2\x80\xa6 (+");
+    out_uint(o, more, 0);
+    out_cstr(o, unit);
+    out_put(o, ")", 1);
+}
+
 static int out_str(Out *o, PyObject *text) {
     Py_ssize_t n;
     const char *s = PyUnicode_AsUTF8AndSize(text, &n);
@@ -833,19 +841,20 @@ static int values_text(Engine *e, Slave *s, int slave, int function, const Words
         if (piece(e, s, slave, function, words_address(w, k), words_value(w, k), &named) < 0) return -1;
     }
     if (w->count > MAX_VALUES) {
-        out_cstr(&e->out, " \xe2\x80\xa6 (+");
-        out_uint(&e->out, w->count - MAX_VALUES, 0);
-        out_put(&e->out, ")", 1);
+        out_put(&e->out, " ", 1);
+        out_more(&e->out, w->count - MAX_VALUES, "");
     }
     return 0;
 }
 
-/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0) */
-static void span_text(Out *o, long long base, unsigned start, unsigned quantity) {
+/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0); `wrap` 0:
+ * describe.plain_span, whose last address goes on past 65535. */
+static void span_text(Out *o, long long base, unsigned start, unsigned quantity, int wrap) {
     out_label(o, base, start);
     if (quantity == 1) return;
     out_put(o, "..", 2);
-    out_label(o, base, (start + quantity - 1) & 0xFFFF);
+    if (wrap) out_label(o, base, (start + quantity - 1) & 0xFFFF);
+    else out_uint(o, (unsigned long long)start + quantity - 1, 0);
     out_put(o, " (", 2);
     out_uint(o, quantity, 0);
     out_put(o, ")", 1);
@@ -910,11 +919,7 @@ static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
             e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
             e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
         }
-        if (size > MAX_DATA_BYTES) {
-            out_cstr(&e->out, "\xe2\x80\xa6 (+");
-            out_uint(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), 0);
-            out_cstr(&e->out, " bytes)");
-        }
+        if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes");
     }
     return e->out.failed ? -1 : 0;
 }
@@ -924,11 +929,7 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     unsigned shown = count < MAX_BITS ? count : MAX_BITS;
     if (out_reserve(o, shown) < 0) return;
     for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
-    if (count > MAX_BITS) {
-        out_cstr(o, "\xe2\x80\xa6 (+");
-        out_uint(o, count - MAX_BITS, 0);
-        out_put(o, ")", 1);
-    }
+    if (count > MAX_BITS) out_more(o, count - MAX_BITS, "");
 }
 
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
@@ -1021,20 +1022,20 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
         e->out.len -= 1;
         break;
     case FORM_SPAN:
-        span_text(&e->out, base, start, quantity);
+        span_text(&e->out, base, start, quantity, 1);
         break;
     case FORM_BITS:
-        span_text(&e->out, base, start, quantity);
+        span_text(&e->out, base, start, quantity, 1);
         out_put(&e->out, ": ", 2);
         bits_text(&e->out, lifted->bits, quantity);
         break;
     case FORM_VALUES:
-        span_text(&e->out, base, start, quantity);
+        span_text(&e->out, base, start, quantity, 1);
         out_put(&e->out, ": ", 2);
         if (values_text(e, s, slave, function, values) < 0) return -1;
         break;
     case FORM_COIL:
-        span_text(&e->out, base, start, 1);
+        span_text(&e->out, base, start, 1, 1);
         out_cstr(&e->out, word(f + at[0]) == COIL_ON ? " = ON" : " = OFF");
         break;
     case FORM_SINGLE: { /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
@@ -1052,7 +1053,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
         break;
     }
     case FORM_WRITTEN:
-        span_text(&e->out, base, start, quantity);
+        span_text(&e->out, base, start, quantity, 1);
         out_cstr(&e->out, " written");
         break;
     case FORM_STATUS: /* describe._simple: the status, at least two digits (FC7's byte, FC12's word) */
@@ -1082,18 +1083,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
         break;
     case FORM_READ_WRITE: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
         out_cstr(&e->out, "read ");
-        if (base >= 0) {
-            span_text(&e->out, base, start, quantity);
-        } else { /* describe.plain_span: one register is its address; no wrap past 65535 */
-            out_uint(&e->out, start, 0);
-            if (quantity != 1) {
-                out_put(&e->out, "..", 2);
-                out_uint(&e->out, (unsigned long long)start + quantity - 1, 0);
-                out_put(&e->out, " (", 2);
-                out_uint(&e->out, quantity, 0);
-                out_put(&e->out, ")", 1);
-            }
-        }
+        span_text(&e->out, base, start, quantity, base >= 0); /* not PLC style: describe.plain_span */
         out_cstr(&e->out, ", write ");
         if (values_text(e, s, slave, function, values) < 0) return -1;
         break;
@@ -1113,15 +1103,29 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, i
     return e->out.failed ? -1 : 1;
 }
 
-/* A request's line (`unanswered`: `[no response]`). */
-static int request_line(Engine *e, Slave *s, const Lifted *r, unsigned long long number, int unanswered) {
-    const Rules *R = &rules[handled_index(r->frame[1])];
-    if (line_start(e, s, r->frame, number, " request   ") < 0) return -1;
-    int written = info_text(e, s, r->frame, r->length, R->request_form, R->request_at, r);
-    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
-    if (unanswered) out_cstr(&e->out, " [no response]");
+/* A line after its info: `pairing` (` [no response]`) or the pairing with request_number (0: none), the
+ * tail from the Python stages (NULL: none), the CRC. 1, -1 error. */
+static int line_end(Engine *e, const char *pairing, unsigned long long request_number, PyObject *tail) {
+    if (pairing != NULL) out_cstr(&e->out, pairing);
+    if (request_number) {
+        out_put(&e->out, " ", 1);
+        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
+    }
+    if (tail != NULL && out_str(&e->out, tail) < 0) return -1;
     out_cstr(&e->out, "  CRC ok\n");
-    return 1;
+    return e->out.failed ? -1 : 1;
+}
+
+/* The line of a frame as lifted: a request's (`unanswered`: `[no response]`), or with request_number
+ * an answer's, paired with that request. 1 written, 0 hand over, -1 error. */
+static int frame_line(Engine *e, Slave *s, const Lifted *f, unsigned long long number,
+                      unsigned long long request_number, int unanswered) {
+    const Rules *R = &rules[handled_index(f->frame[1])];
+    if (line_start(e, s, f->frame, number, request_number ? " response  " : " request   ") < 0) return -1;
+    int written = request_number ? info_text(e, s, f->frame, f->length, R->response_form, R->response_at, f)
+                                 : info_text(e, s, f->frame, f->length, R->request_form, R->request_at, f);
+    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
+    return line_end(e, unanswered ? " [no response]" : NULL, request_number, NULL);
 }
 
 /* The answer's checks by its lifting rule (lift_frame) and the annotator's (its registers plain, its reads
@@ -1142,32 +1146,12 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
     return rules[k].reads ? reads_are_quiet(s, reads, r->values.values != NULL ? &r->values : NULL) : 1;
 }
 
-/* An answer's line, paired with request `request_number`. */
-static int response_line(Engine *e, Slave *s, const Lifted *a, unsigned long long number,
-                         unsigned long long request_number) {
-    const Rules *R = &rules[handled_index(a->frame[1])];
-    if (line_start(e, s, a->frame, number, " response  ") < 0) return -1;
-    int written = info_text(e, s, a->frame, a->length, R->response_form, R->response_at, a);
-    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
-    out_put(&e->out, " ", 1);
-    out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
-    out_cstr(&e->out, "  CRC ok\n");
-    return 1;
-}
-
 /* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
 static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
                       const char *pairing, unsigned long long request_number, PyObject *tail) {
     line_head(e, f, number, kind);
     if (out_str(&e->out, info) < 0) return -1;
-    if (pairing != NULL) out_cstr(&e->out, pairing);
-    if (request_number) {
-        out_put(&e->out, " ", 1);
-        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
-    }
-    if (out_str(&e->out, tail) < 0) return -1;
-    out_cstr(&e->out, "  CRC ok\n");
-    return e->out.failed ? -1 : 1;
+    return line_end(e, pairing, request_number, tail);
 }
 
 /* An exception answering a shown request: its info and tail (notes, warnings) come from the Python
@@ -1308,10 +1292,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
         written = counted(e, s, b, &q, answered ? &a : NULL, NULL, NULL, written);
     } else if (found == FRAME_OK && !answered) {
-        written = request_line(e, s, &r, e->count + 1, 1);
+        written = frame_line(e, s, &r, e->count + 1, 0, 1);
         written = counted(e, s, b, &q, NULL, writes, NULL, written);
     } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
-        written = request_line(e, s, &r, e->count + 1, 0);
+        written = frame_line(e, s, &r, e->count + 1, 0, 0);
         e->line_timed = a.timed;
         e->line_ns = a.ns;
         if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
@@ -1321,10 +1305,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         Words reads;
         written = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 0;
         if (written > 0) {
-            written = request_line(e, s, &r, e->count + 1, 0);
+            written = frame_line(e, s, &r, e->count + 1, 0, 0);
             e->line_timed = a.timed;
             e->line_ns = a.ns;
-            if (written > 0) written = response_line(e, s, &answer, e->count + 2, e->count + 1);
+            if (written > 0) written = frame_line(e, s, &answer, e->count + 2, e->count + 1, 0);
             if (written > 0 && track(e, s, b + a.at, writes, &reads, e->count + 2) < 0) written = -1;
             written = counted(e, s, b, &q, &a, writes, &reads, written);
         }
