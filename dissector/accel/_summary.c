@@ -1280,7 +1280,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
     size_t mark = e->out.len;
     found = answer_to(e, b, n, &q, &a);
-    Timeline clock = e->tl; /* the time column's references, taken back with the lines */
+    ClockRefs clock = e->tl.refs; /* the time column's references, taken back with the lines */
     e->line_timed = q.timed;
     e->line_ns = q.ns;
     e->pair_timed = q.timed && found == FRAME_OK && a.timed;
@@ -1319,10 +1319,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->out.failed = 0;
     e->expect_slave = saved_slave;
     e->expect_function = saved_function;
-    e->tl.has_first = clock.has_first;
-    e->tl.first_ns = clock.first_ns;
-    e->tl.has_previous = clock.has_previous;
-    e->tl.previous_ns = clock.previous_ns;
+    e->tl.refs = clock;
     return written < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
 }
 
@@ -1469,8 +1466,9 @@ static PyObject *clock_value(int has, long long ns) {
 }
 
 static PyObject *engine_get_clock(Engine *e, void *closure) {
-    return Py_BuildValue("(NN)", clock_value(e->tl.has_first, e->tl.first_ns),
-                         clock_value(e->tl.has_previous, e->tl.previous_ns));
+    const ClockRefs *refs = &e->tl.refs;
+    return Py_BuildValue("(NN)", clock_value(refs->has_first, refs->first_ns),
+                         clock_value(refs->has_previous, refs->previous_ns));
 }
 
 static int engine_set_clock(Engine *e, PyObject *value, void *closure) {
@@ -1482,10 +1480,7 @@ static int engine_set_clock(Engine *e, PyObject *value, void *closure) {
     long long first_ns = first == Py_None ? 0 : PyLong_AsLongLong(first);
     long long previous_ns = previous == Py_None ? 0 : PyLong_AsLongLong(previous);
     if (PyErr_Occurred()) return -1;
-    e->tl.has_first = first != Py_None;
-    e->tl.first_ns = first_ns;
-    e->tl.has_previous = previous != Py_None;
-    e->tl.previous_ns = previous_ns;
+    e->tl.refs = (ClockRefs){first != Py_None, previous != Py_None, first_ns, previous_ns};
     return 0;
 }
 

@@ -14,6 +14,12 @@
 
 enum { CLOCK_RELATIVE = 0, CLOCK_DELTA = 1 }; /* -t r; -t d and dd (the same without a filter) */
 
+/* The time column's references (timefmt.Clock): first timed item, previous timed item. */
+typedef struct {
+    int has_first, has_previous;
+    long long first_ns, previous_ns;
+} ClockRefs;
+
 typedef struct {
     int active;              /* run_timed() is running: chunks below; 0: an untimed raw stream */
     long long base;          /* stream offset of the buffer's first byte */
@@ -27,9 +33,7 @@ typedef struct {
     /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
     double char_time, t15, timeout;
     int clock;
-    /* The time column's references (timefmt.Clock): first timed item, previous timed item. */
-    int has_first, has_previous;
-    long long first_ns, previous_ns;
+    ClockRefs refs;
 } Timeline;
 
 /* Index of the chunk holding stream offset `at` (start[k] <= at < its end). */
@@ -119,22 +123,16 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
         out_put(o, "            - ", 14);
         return;
     }
-    double seconds;
-    if (t->clock == CLOCK_RELATIVE) {
-        if (!t->has_first) {
-            t->has_first = 1;
-            t->first_ns = ns;
-        }
-        seconds = stamp_seconds(ns, t->first_ns);
-    } else {
-        seconds = t->has_previous ? stamp_seconds(ns, t->previous_ns) : 0.0;
+    ClockRefs *refs = &t->refs;
+    if (!refs->has_first) {
+        refs->has_first = 1;
+        refs->first_ns = ns;
     }
-    if (!t->has_first) {
-        t->has_first = 1;
-        t->first_ns = ns;
-    }
-    t->has_previous = 1;
-    t->previous_ns = ns;
+    double seconds = t->clock == CLOCK_RELATIVE ? stamp_seconds(ns, refs->first_ns)
+                     : refs->has_previous       ? stamp_seconds(ns, refs->previous_ns)
+                                                : 0.0;
+    refs->has_previous = 1;
+    refs->previous_ns = ns;
     char text[64];
     int n = fixed_text(text, seconds, 6);
     out_put(o, " ", 1);
