@@ -53,17 +53,6 @@ enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
 enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
-static uint16_t crc_table[256];
-
-static void crc_init(void) {
-    for (int n = 0; n < 256; n++) {
-        uint16_t c = (uint16_t)n;
-        for (int k = 0; k < 8; k++)
-            c = (c & 1) ? (uint16_t)((c >> 1) ^ 0xA001) : (uint16_t)(c >> 1);
-        crc_table[n] = c;
-    }
-}
-
 static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
     uint16_t crc = 0xFFFF;
     while (n--) crc = (uint16_t)((crc >> 8) ^ crc_table[(crc ^ *p++) & 0xFF]);
@@ -282,13 +271,8 @@ static int bad_info(const char *what) {
     return -1;
 }
 
-/* The facts are a fastsummary.SlaveFacts (frozen): read by name, borrowed while `info` lives. */
-enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES,
-       FACT_DIAGNOSTICS, FACT_NAMER, FACTS };
-static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen",
-                                             "protected", "bases", "diagnostics", "namer"};
-
-/* The facts by name, into a tuple the slave keeps (its items are borrowed below). */
+/* The facts are a fastsummary.SlaveFacts (frozen), read by name (fact_names, _tables.h) into a tuple the
+ * slave keeps: its items are borrowed while `info` lives. */
 static PyObject *read_facts(PyObject *info) {
     PyObject *tuple = PyTuple_New(FACTS);
     if (tuple == NULL) return NULL;
@@ -1671,7 +1655,6 @@ static struct PyModuleDef summary_module = {
 #endif
 
 PyMODINIT_FUNC PyInit__summary(void) {
-    crc_init();
     PyObject *module = PyModule_Create(&summary_module);
     if (module == NULL) return NULL;
     PyTypeObject *types[] = {&EngineType, &StatsType, &ColumnsType, &ReportType};

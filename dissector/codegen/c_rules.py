@@ -10,6 +10,8 @@ as a FORM_* below) all come from here. A form's printed fields are named per des
 """
 from __future__ import annotations
 
+from dataclasses import fields
+
 from construct import Construct, Struct
 
 from dissector.errors import GenerateError
@@ -19,6 +21,8 @@ from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Check, Confirm, ValueKind
 from dissector.protocol.table import Data, Function, Layout
 from dissector.accel import records
+from dissector.accel.fastsummary import SlaveFacts
+from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
 from dissector.render import describe, pollcycle, stats_store
 
@@ -219,6 +223,7 @@ def _braced(row: dict[str, int | list[int]], names: tuple[str, ...]) -> str:
 
 def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
     """The header lines for the rules, the forms and the constants the engine shares with describe.py."""
+    facts = [field.name for field in fields(SlaveFacts)]
     lines = [
         "/* Constants of the framer (framing/rules.py, data/modbus.toml [limits]) and of render/describe.py. */",
         f"#define MIN_ADU {framing_rules.MIN_ADU}",
@@ -238,6 +243,13 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         f"#define POLL_STEP {pollcycle.STEP!r}",
         f"enum {{ CHUNK_TIMED = {records.TIMED}, CHUNK_RECORD_END = {records.RECORD_END}, "
         f"CHUNK_SILENCE_BEFORE = {records.SILENCE_BEFORE} }};",
+        "/* CRC-16/MODBUS by byte (protocol/crc.py's table). */",
+        "static const uint16_t crc_table[256] = {",
+        *(f"    {', '.join(f'0x{value:04X}' for value in crc._TABLE[row : row + 8])}," for row in range(0, 256, 8)),
+        "};",
+        "/* What the engine knows of a slave, the fields of accel/fastsummary.py's SlaveFacts read by name. */",
+        "enum { " + ", ".join(f"FACT_{name.upper()}" for name in facts) + ", FACTS };",
+        "static const char *const fact_names[FACTS] = {" + ", ".join(f'"{name}"' for name in facts) + "};",
         "",
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
         "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
