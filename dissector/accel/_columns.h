@@ -167,16 +167,10 @@ static void json_number(Out *o, double v, int digits, int whole) {
  * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number);
  * drawn == 2 (drawn_json): those two lists as json.dumps writes them, None when a value is not finite. */
 static PyObject *columns_list(Columns *self, int drawn, double origin, int digits, double scale, int places) {
-    PyObject *xs = PyList_New(0), *ys = PyList_New(0);
-    if (xs == NULL || ys == NULL) goto fail;
-    /* Kept points in C first (x, y); made into lists at the end. */
-    double *kx = PyMem_Malloc((size_t)(self->n / 2 + 1) * sizeof(double));
-    double *ky = PyMem_Malloc((size_t)(self->n / 2 + 1) * sizeof(double));
-    if (kx == NULL || ky == NULL) {
-        PyMem_Free(kx), PyMem_Free(ky);
-        PyErr_NoMemory();
-        goto fail;
-    }
+    /* Kept points in C first (x, y), n / 2 + 1 each; made into lists or JSON text at the end. */
+    double *kx = PyMem_Malloc((size_t)(self->n + 2) * sizeof(double));
+    if (kx == NULL) return PyErr_NoMemory();
+    double *ky = kx + self->n / 2 + 1;
     Py_ssize_t kept = 0;
     for (Py_ssize_t i = 0; i < self->n; i += 8) {
         const double *c = self->d + i;
@@ -221,8 +215,7 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
             else json_number(&text[1], y, 6, floor(y) == y);
         }
         for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
-        PyMem_Free(kx), PyMem_Free(ky);
-        Py_DECREF(xs), Py_DECREF(ys);
+        PyMem_Free(kx);
         PyObject *pair = NULL;
         if (!text[0].failed && !text[1].failed)
             pair = !finite ? Py_NewRef(Py_None)
@@ -233,7 +226,8 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
         PyMem_Free(text[0].data), PyMem_Free(text[1].data);
         return pair;
     }
-    for (Py_ssize_t j = 0; j < kept; j++) {
+    PyObject *xs = PyList_New(kept), *ys = PyList_New(kept);
+    for (Py_ssize_t j = 0; xs != NULL && ys != NULL && j < kept; j++) {
         PyObject *x, *y;
         if (!drawn) {
             x = PyFloat_FromDouble(kx[j]), y = PyFloat_FromDouble(ky[j]);
@@ -242,42 +236,32 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
             y = scale != 0.0 ? rounded(ky[j] * scale, places)
               : isfinite(ky[j]) && floor(ky[j]) == ky[j] ? PyLong_FromDouble(ky[j]) : rounded(ky[j], 6);
         }
-        int bad = x == NULL || y == NULL || PyList_Append(xs, x) < 0 || PyList_Append(ys, y) < 0;
-        Py_XDECREF(x);
-        Py_XDECREF(y);
-        if (bad) {
-            PyMem_Free(kx), PyMem_Free(ky);
-            goto fail;
-        }
+        PyList_SET_ITEM(xs, j, x);
+        PyList_SET_ITEM(ys, j, y);
+        if (x == NULL || y == NULL) Py_CLEAR(xs); /* (a list frees the items it holds, NULL ones too) */
     }
-    PyMem_Free(kx), PyMem_Free(ky);
-    PyObject *pair = PyTuple_Pack(2, xs, ys);
-    Py_DECREF(xs);
-    Py_DECREF(ys);
-    return pair;
-fail:
+    PyMem_Free(kx);
+    PyObject *pair = xs != NULL && ys != NULL ? PyTuple_Pack(2, xs, ys) : NULL;
     Py_XDECREF(xs);
     Py_XDECREF(ys);
-    return NULL;
+    return pair;
 }
 
 static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0, 0.0, 0); }
 
-/* drawn(origin, digits, scale=0, places=0): with a scale, each y is round(y * scale, places), a float. */
-static PyObject *columns_drawn(Columns *self, PyObject *args) {
+/* drawn(origin, digits, scale=0, places=0): with a scale, each y is round(y * scale, places), a float;
+ * drawn_json(...): drawn()'s lists as JSON text (drawn == 2). */
+static PyObject *columns_drawn_as(Columns *self, PyObject *args, int drawn) {
     double origin, scale = 0.0;
     int digits, places = 0;
     if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
-    return columns_list(self, 1, origin, digits, scale, places);
+    if (drawn == 2 && (digits < 0 || digits > 9 || places < 0 || places > 9))
+        return PyErr_Format(PyExc_ValueError, "digits 0..9");
+    return columns_list(self, drawn, origin, digits, scale, places);
 }
 
-static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
-    double origin, scale = 0.0;
-    int digits, places = 0;
-    if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
-    if (digits < 0 || digits > 9 || places < 0 || places > 9) return PyErr_Format(PyExc_ValueError, "digits 0..9");
-    return columns_list(self, 2, origin, digits, scale, places);
-}
+static PyObject *columns_drawn(Columns *self, PyObject *args) { return columns_drawn_as(self, args, 1); }
+static PyObject *columns_drawn_json(Columns *self, PyObject *args) { return columns_drawn_as(self, args, 2); }
 
 /* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
 static PyObject *columns_levels(Columns *self, PyObject *unused) {
