@@ -246,43 +246,23 @@ static int fill_bitmap(uint8_t *bitmap, PyObject *addresses) {
     return PyErr_Occurred() ? -1 : 0;
 }
 
-static int fill_slave(Slave *s, PyObject *info);
-static PyObject *read_facts(PyObject *info);
-
-static int load_slave(Engine *e, int address) {
-    Slave *s = &e->slaves[address];
-    PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
-    if (answer == NULL) return -1;
-    PyObject *info = read_facts(answer);
-    Py_DECREF(answer);
-    if (info == NULL) return -1;
-    slave_clear(s); /* the callback may have loaded it already */
-    s->info = info;
-    if (fill_slave(s, info) < 0) {
-        slave_clear(s);
-        return -1;
-    }
-    s->loaded = 1;
-    return 0;
-}
-
 static int bad_info(const char *what) {
     PyErr_Format(PyExc_TypeError, "slave_info: %s", what);
     return -1;
 }
 
-/* The facts are a fastsummary.SlaveFacts (frozen), read by name (fact_names, _tables.h) into a tuple the
- * slave keeps: its items are borrowed while `info` lives. */
-static PyObject *read_facts(PyObject *info) {
-    PyObject *tuple = PyTuple_New(FACTS);
+/* The attributes `names` of a callback's answer (`what`: which, for the error) as a tuple in that order:
+ * a fastsummary.SlaveFacts (fact_names, _tables.h; the slave keeps the tuple, its items are borrowed
+ * while it lives) or Texts (text_names). */
+static PyObject *read_fields(PyObject *object, const char *const *names, int count, const char *what) {
+    PyObject *tuple = PyTuple_New(count);
     if (tuple == NULL) return NULL;
-    for (int k = 0; k < FACTS; k++) {
-        PyObject *value = PyObject_GetAttrString(info, fact_names[k]);
+    for (int k = 0; k < count; k++) {
+        PyObject *value = PyObject_GetAttrString(object, names[k]);
         if (value == NULL) {
             if (PyErr_ExceptionMatches(PyExc_AttributeError)) {
                 PyErr_Clear();
-                PyErr_Format(PyExc_TypeError, "slave_info: no %s (a fastsummary.SlaveFacts is expected)",
-                             fact_names[k]);
+                PyErr_Format(PyExc_TypeError, "%s: no %s", what, names[k]);
             }
             Py_DECREF(tuple);
             return NULL;
@@ -362,6 +342,23 @@ static int fill_slave(Slave *s, PyObject *info) {
         if (PyErr_Occurred()) return -1;
         if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
     }
+    return 0;
+}
+
+static int load_slave(Engine *e, int address) {
+    Slave *s = &e->slaves[address];
+    PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
+    if (answer == NULL) return -1;
+    PyObject *info = read_fields(answer, fact_names, FACTS, "slave_info (a fastsummary.SlaveFacts)");
+    Py_DECREF(answer);
+    if (info == NULL) return -1;
+    slave_clear(s); /* the callback may have loaded it already */
+    s->info = info;
+    if (fill_slave(s, info) < 0) {
+        slave_clear(s);
+        return -1;
+    }
+    s->loaded = 1;
     return 0;
 }
 
@@ -565,8 +562,18 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
     return length.value == 0 || length.value > MAX_ADU ? FRAME_HANDOVER : length.value;
 }
 
-/* The kind of a frame starting with slave and function on the fast path, FRAME_HANDOVER: none there. */
-static int frame_kind(const Engine *e, int slave, int function) {
+/* The kind of the frame at i on the fast path, FRAME_NEED, or FRAME_HANDOVER: none there. A frame at 00
+ * is the careful path's when an intact frame follows that 00 (rules.py GLITCH_ADDRESSES: a glitch), and
+ * always in a chunked stream (_match weighs it). */
+static int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
+    if (n - i < MIN_ADU) return FRAME_NEED;
+    int slave = b[i], function = b[i + 1];
+    if (slave > MAX_SLAVE) return FRAME_HANDOVER;
+    if (slave == 0) {
+        int after = e->tl.active ? 1 : valid_frame_at(e, b, i + 1, n);
+        if (after < 0) return FRAME_NEED;
+        if (after) return FRAME_HANDOVER;
+    }
     if (function & 0x80) {
         /* An exception: taken on the fast path only as the answer awaited (framing/rtu.py _run). */
         if (slave != e->expect_slave || (function & 0x7F) != e->expect_function) return FRAME_HANDOVER;
@@ -577,18 +584,9 @@ static int frame_kind(const Engine *e, int slave, int function) {
 }
 
 static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
-    if (n - i < MIN_ADU) return FRAME_NEED;
-    int slave = b[i], function = b[i + 1];
-    if (slave > MAX_SLAVE) return FRAME_HANDOVER;
-    if (slave == 0) {
-        /* rules.py GLITCH_ADDRESSES: a 00 before an intact frame is a glitch, the careful path's. */
-        int after = valid_frame_at(e, b, i + 1, n);
-        if (after < 0) return FRAME_NEED;
-        if (after) return FRAME_HANDOVER;
-    }
-    int kind = frame_kind(e, slave, function);
+    int kind = frame_kind(e, b, i, n);
     if (kind < 0) return kind;
-    int scanned;
+    int slave = b[i], function = b[i + 1], scanned;
     Py_ssize_t length = first_length(e, b, i, n, function, kind, &scanned);
     if (length < 0) return (int)length;
     if (!scanned) {
@@ -1150,25 +1148,12 @@ static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, cons
         Py_XDECREF(texts);
         return texts == NULL ? -1 : 0;
     }
-    int status = -1;
-    if (!PyTuple_Check(texts) || PyTuple_GET_SIZE(texts) != 2 || !PyUnicode_Check(PyTuple_GET_ITEM(texts, 0)) ||
-        !PyUnicode_Check(PyTuple_GET_ITEM(texts, 1)))
-        PyErr_SetString(PyExc_TypeError, "exception must return (str, str) or None");
-    else
-        status = texts_line(e, a, number, " exception ", PyTuple_GET_ITEM(texts, 0), NULL, request_number,
-                            PyTuple_GET_ITEM(texts, 1));
+    PyObject *info, *tail;
+    int status = PyArg_Parse(texts, "(UU);exception must return (str, str) or None", &info, &tail)
+                     ? texts_line(e, a, number, " exception ", info, NULL, request_number, tail)
+                     : -1;
     Py_DECREF(texts);
     return status;
-}
-
-static PyObject *texts_item(PyObject *texts, const char *name) {
-    PyObject *value = PyObject_GetAttrString(texts, name);
-    if (value != NULL && !PyUnicode_Check(value)) {
-        Py_DECREF(value);
-        PyErr_Format(PyExc_TypeError, "texts: %s must be a str", name);
-        return NULL;
-    }
-    return value;
 }
 
 /* A transaction of a code whose texts come from the Python stages (fastsummary.transaction_texts):
@@ -1184,21 +1169,19 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
         Py_DECREF(texts);
         return 0;
     }
-    static const char *const names[4] = {"request_info", "request_tail", "response_info", "response_tail"};
-    PyObject *item[4] = {NULL, NULL, NULL, NULL};
-    int status = 1;
-    for (int j = 0; j < 4 && status > 0; j++)
-        if ((item[j] = texts_item(texts, names[j])) == NULL) status = -1;
-    if (status > 0)
-        status = texts_line(e, b + q->at, number, " request   ", item[0], a == NULL ? " [no response]" : NULL, 0,
-                            item[1]);
+    PyObject *item = read_fields(texts, text_names, TEXTS, "texts (a fastsummary.Texts)");
+    Py_DECREF(texts);
+    if (item == NULL) return -1;
+    /* (out_str refuses a text that is not a str) */
+    int status = texts_line(e, b + q->at, number, " request   ", PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO),
+                            a == NULL ? " [no response]" : NULL, 0, PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
     if (status > 0 && a != NULL) {
         e->line_timed = a->timed;
         e->line_ns = a->ns;
-        status = texts_line(e, b + a->at, number + 1, " response  ", item[2], NULL, number, item[3]);
+        status = texts_line(e, b + a->at, number + 1, " response  ", PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), NULL,
+                            number, PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
     }
-    for (int j = 0; j < 4; j++) Py_XDECREF(item[j]);
-    Py_DECREF(texts);
+    Py_DECREF(item);
     return status;
 }
 
@@ -1489,6 +1472,11 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
     return 0;
 }
 
+/* The objects an engine holds: its four callbacks in engine_init's order, then what it keeps. */
+#define ENGINE_HELD(e)                                                                                   \
+    {&(e)->slave_info, &(e)->piece, &(e)->exception, &(e)->texts, &(e)->read_word, &(e)->written_word, \
+     &(e)->stats, &(e)->judge_bytes}
+
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
     static char *keywords[] = {"slave_info", "piece", "exception", "texts", NULL};
@@ -1499,9 +1487,9 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO", keywords, &slave_info, &piece_fn, &exception_fn,
                                      &texts_fn))
         return -1;
-    PyObject **fields[] = {&e->slave_info, &e->piece, &e->exception, &e->texts};
+    PyObject **held[] = ENGINE_HELD(e);
     PyObject *given[] = {slave_info, piece_fn, exception_fn, texts_fn};
-    for (int k = 0; k < 4; k++) Py_XSETREF(*fields[k], Py_NewRef(given[k]));
+    for (int k = 0; k < 4; k++) Py_XSETREF(*held[k], Py_NewRef(given[k]));
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));
@@ -1514,26 +1502,16 @@ static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
 }
 
 static int engine_traverse(Engine *e, visitproc visit, void *arg) {
-    Py_VISIT(e->slave_info);
-    Py_VISIT(e->piece);
-    Py_VISIT(e->exception);
-    Py_VISIT(e->texts);
+    PyObject **held[] = ENGINE_HELD(e);
+    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_VISIT(*held[k]);
     for (int k = 0; k < 256; k++) Py_VISIT(e->slaves[k].info);
-    Py_VISIT(e->stats);
-    Py_VISIT(e->judge_bytes);
     return 0;
 }
 
 static int engine_clear(Engine *e) {
-    Py_CLEAR(e->slave_info);
-    Py_CLEAR(e->piece);
-    Py_CLEAR(e->exception);
-    Py_CLEAR(e->texts);
+    PyObject **held[] = ENGINE_HELD(e);
+    for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
     pieces_clear(e);
-    Py_CLEAR(e->read_word);
-    Py_CLEAR(e->written_word);
-    Py_CLEAR(e->stats);
-    Py_CLEAR(e->judge_bytes);
     e->judge = NULL;
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     return 0;

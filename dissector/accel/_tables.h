@@ -154,9 +154,12 @@ static const uint16_t crc_table[256] = {
     0x4400, 0x84C1, 0x8581, 0x4540, 0x8701, 0x47C0, 0x4680, 0x8641,
     0x8201, 0x42C0, 0x4380, 0x8341, 0x4100, 0x81C1, 0x8081, 0x4040,
 };
-/* What the engine knows of a slave, the fields of accel/fastsummary.py's SlaveFacts read by name. */
+/* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what
+ * the Python stages write of a transaction), read by name. */
 enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES, FACT_DIAGNOSTICS, FACT_NAMER, FACTS };
 static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen", "protected", "bases", "diagnostics", "namer"};
+enum { TEXT_REQUEST_INFO, TEXT_REQUEST_TAIL, TEXT_RESPONSE_INFO, TEXT_RESPONSE_TAIL, TEXTS };
+static const char *const text_names[TEXTS] = {"request_info", "request_tail", "response_info", "response_tail"};
 
 enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
 enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };

@@ -87,11 +87,9 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
 static int timed_frame_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
     Timeline *t = &e->tl;
     long long at = t->base + i;
-    if (n - i < MIN_ADU) return FRAME_NEED;
-    int slave = b[i], function = b[i + 1];
-    if (slave > MAX_SLAVE || slave == 0) return FRAME_HANDOVER; /* glitch addresses: _match weighs them */
-    int kind = frame_kind(e, slave, function);
+    int kind = frame_kind(e, b, i, n);
     if (kind < 0) return kind;
+    int slave = b[i], function = b[i + 1];
     /* The Python framer's buffer end when it first looks at i: the chunk holding byte i + 3 has come,
      * and the frame before was decided; where it waits, it looks again with the next chunk. */
     long long seen = chunk_end(t, chunk_of(t, at + MIN_ADU - 1));

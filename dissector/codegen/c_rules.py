@@ -21,7 +21,7 @@ from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Check, Confirm, ValueKind
 from dissector.protocol.table import Data, Function, Layout
 from dissector.accel import records
-from dissector.accel.fastsummary import SlaveFacts
+from dissector.accel.fastsummary import SlaveFacts, Texts
 from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
 from dissector.render import describe, pollcycle, stats_store
@@ -221,9 +221,17 @@ def _braced(row: dict[str, int | list[int]], names: tuple[str, ...]) -> str:
     return "{" + ", ".join(one(row[name]) for name in names) + "}"
 
 
+def _field_names(cls: type, prefix: str, count: str, names: str) -> list[str]:
+    """An enum of a dataclass's fields by name, and their names, for the engine to read them in order."""
+    found = [field.name for field in fields(cls)]
+    return [
+        "enum { " + ", ".join(f"{prefix}_{name.upper()}" for name in found) + f", {count} }};",
+        f"static const char *const {names}[{count}] = {{" + ", ".join(f'"{name}"' for name in found) + "};",
+    ]
+
+
 def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
     """The header lines for the rules, the forms and the constants the engine shares with describe.py."""
-    facts = [field.name for field in fields(SlaveFacts)]
     lines = [
         "/* Constants of the framer (framing/rules.py, data/modbus.toml [limits]) and of render/describe.py. */",
         f"#define MIN_ADU {framing_rules.MIN_ADU}",
@@ -247,9 +255,10 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "static const uint16_t crc_table[256] = {",
         *(f"    {', '.join(f'0x{value:04X}' for value in crc._TABLE[row : row + 8])}," for row in range(0, 256, 8)),
         "};",
-        "/* What the engine knows of a slave, the fields of accel/fastsummary.py's SlaveFacts read by name. */",
-        "enum { " + ", ".join(f"FACT_{name.upper()}" for name in facts) + ", FACTS };",
-        "static const char *const fact_names[FACTS] = {" + ", ".join(f'"{name}"' for name in facts) + "};",
+        "/* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what",
+        " * the Python stages write of a transaction), read by name. */",
+        *_field_names(SlaveFacts, "FACT", "FACTS", "fact_names"),
+        *_field_names(Texts, "TEXT", "TEXTS", "text_names"),
         "",
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
         "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
