@@ -38,17 +38,21 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         has_previous = 1;
     }
     const uint8_t *b = view.buf;
-    Py_ssize_t n = view.len;
+    Py_ssize_t n = view.len, count = 0, size = 0;
     long long records = 0, lowest = 0, highest = 0;
     int stop = SCAN_MORE, timed_seen = 0;
     PyObject *result = NULL;
-    /* Per record its stream offset and time (int64) and its flag byte, and the records' bytes end to end. */
-    Out starts = {0}, times = {0}, flags = {0}, data = {0};
-    if (pos < 0 || units <= 0) {
-        PyErr_SetString(PyExc_ValueError, "scan_pcap: bad position or units");
+    /* Per record its stream offset and time and its flag byte, and the records' bytes end to end: a record
+     * takes 16 bytes of header at least, so the buffer holds n / 16 of them at most. */
+    size_t most = (size_t)(n > 0 ? n : 0) / 16 + 1;
+    long long *starts = PyMem_Malloc(most * sizeof(long long)), *times = PyMem_Malloc(most * sizeof(long long));
+    uint8_t *flags = PyMem_Malloc(most);
+    char *data = PyMem_Malloc(most * 16);
+    if (starts == NULL || times == NULL || flags == NULL || data == NULL || pos < 0 || units <= 0) {
+        if (!PyErr_Occurred()) PyErr_SetString(pos < 0 || units <= 0 ? PyExc_ValueError : PyExc_MemoryError,
+                                               "scan_pcap: bad position or units, or no memory");
         goto done;
     }
-    if (out_reserve(&data, (size_t)n + 1) < 0) goto done;
     while (pos + 16 <= n) {
         uint32_t seconds = read_u32(b + pos, swapped), fraction = read_u32(b + pos + 4, swapped);
         uint32_t captured = read_u32(b + pos + 8, swapped), original = read_u32(b + pos + 12, swapped);
@@ -71,11 +75,12 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
             if (!timed_seen || ns > highest) highest = ns;
             timed_seen = 1;
         }
-        out_put(&starts, (const char *)&offset, sizeof offset);
-        out_put(&times, (const char *)&ns, sizeof ns);
-        out_put(&flags, (const char *)&flag, 1);
-        out_put(&data, (const char *)b + pos, captured);
-        if (starts.failed || times.failed || flags.failed || data.failed) goto done;
+        starts[count] = offset;
+        times[count] = ns;
+        flags[count] = flag;
+        count++;
+        memcpy(data + size, b + pos, captured);
+        size += captured;
         has_previous = 1;
         previous_offset = offset;
         previous_ns = ns;
@@ -86,18 +91,16 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
     PyObject *last = has_previous ? Py_BuildValue("(LLi)", previous_offset, previous_ns, previous_timed)
                                   : Py_NewRef(Py_None);
     PyObject *span = last == NULL ? NULL : timed_seen ? Py_BuildValue("(LL)", lowest, highest) : Py_NewRef(Py_None);
-    /* (an Out's data is NULL until its first byte, which y# would make None: "" then) */
     if (span == NULL) Py_XDECREF(last);
     else
-        result = Py_BuildValue("(y#y#y#y#niLLNN)", data.data, (Py_ssize_t)data.len, starts.len ? starts.data : "",
-                               (Py_ssize_t)starts.len, times.len ? times.data : "", (Py_ssize_t)times.len,
-                               flags.len ? flags.data : "", (Py_ssize_t)flags.len, pos, stop, records, offset, last,
-                               span);
+        result = Py_BuildValue("(y#y#y#y#niLLNN)", data, size, (const char *)starts, count * (Py_ssize_t)sizeof(long long),
+                               (const char *)times, count * (Py_ssize_t)sizeof(long long), (const char *)flags, count,
+                               pos, stop, records, offset, last, span);
 done:
-    PyMem_Free(starts.data);
-    PyMem_Free(times.data);
-    PyMem_Free(flags.data);
-    PyMem_Free(data.data);
+    PyMem_Free(starts);
+    PyMem_Free(times);
+    PyMem_Free(flags);
+    PyMem_Free(data);
     PyBuffer_Release(&view);
     return result;
 }

@@ -104,12 +104,11 @@ static inline void out_number(Out *o, unsigned long long v, unsigned radix, int 
 static inline void out_uint(Out *o, unsigned long long v, int width) { out_number(o, v, 10, width, ' '); }
 static inline void out_hex(Out *o, unsigned long v, int width) { out_number(o, v, 16, width, '0'); }
 
-/* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (unit " bytes"). */
-static void out_more(Out *o, unsigned long long more, const char *unit) {
+/* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (`end` ")" or " bytes)"). */
+static void out_more(Out *o, unsigned long long more, const char *end) {
     out_cstr(o, "\xe2\x80\xa6 (+");
     out_uint(o, more, 0);
-    out_cstr(o, unit);
-    out_put(o, ")", 1);
+    out_cstr(o, end);
 }
 
 static int out_str(Out *o, PyObject *text) {
@@ -122,7 +121,7 @@ static int out_str(Out *o, PyObject *text) {
 
 /* naming.plc_label: five digits at least, zero-padded (coil references: 00001), one more past the top
  * of the base's range (40001 + address up to 49999, then 410000); base < 0: the address itself. */
-static void out_label(Out *o, long long base, unsigned address) {
+static inline void out_label(Out *o, long long base, unsigned address) {
     if (base < 0) {
         out_uint(o, address, 0);
         return;
@@ -565,7 +564,7 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
 /* The kind of the frame at i on the fast path, FRAME_NEED, or FRAME_HANDOVER: none there. A frame at 00
  * is the careful path's when an intact frame follows that 00 (rules.py GLITCH_ADDRESSES: a glitch), and
  * always in a chunked stream (_match weighs it). */
-static int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
+static inline int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     if (n - i < MIN_ADU) return FRAME_NEED;
     int slave = b[i], function = b[i + 1];
     if (slave > MAX_SLAVE) return FRAME_HANDOVER;
@@ -824,7 +823,7 @@ static int values_text(Engine *e, Slave *s, int slave, int function, const Words
     }
     if (w->count > MAX_VALUES) {
         out_put(&e->out, " ", 1);
-        out_more(&e->out, w->count - MAX_VALUES, "");
+        out_more(&e->out, w->count - MAX_VALUES, ")");
     }
     return 0;
 }
@@ -835,8 +834,7 @@ static void span_text(Out *o, long long base, unsigned start, unsigned quantity,
     out_label(o, base, start);
     if (quantity == 1) return;
     out_put(o, "..", 2);
-    if (wrap) out_label(o, base, (start + quantity - 1) & 0xFFFF);
-    else out_uint(o, (unsigned long long)start + quantity - 1, 0);
+    out_label(o, base, wrap ? (start + quantity - 1) & 0xFFFF : start + quantity - 1);
     out_put(o, " (", 2);
     out_uint(o, quantity, 0);
     out_put(o, ")", 1);
@@ -901,7 +899,7 @@ static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
             e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
             e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
         }
-        if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes");
+        if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes)");
     }
     return e->out.failed ? -1 : 0;
 }
@@ -911,7 +909,7 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     unsigned shown = count < MAX_BITS ? count : MAX_BITS;
     if (out_reserve(o, shown) < 0) return;
     for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
-    if (count > MAX_BITS) out_more(o, count - MAX_BITS, "");
+    if (count > MAX_BITS) out_more(o, count - MAX_BITS, ")");
 }
 
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
@@ -1103,9 +1101,10 @@ static int line_end(Engine *e, const char *pairing, unsigned long long request_n
 static int frame_line(Engine *e, Slave *s, const Lifted *f, unsigned long long number,
                       unsigned long long request_number, int unanswered) {
     const Rules *R = &rules[handled_index(f->frame[1])];
-    if (line_start(e, s, f->frame, number, request_number ? " response  " : " request   ") < 0) return -1;
-    int written = request_number ? info_text(e, s, f->frame, f->length, R->response_form, R->response_at, f)
-                                 : info_text(e, s, f->frame, f->length, R->request_form, R->request_at, f);
+    int answer = request_number != 0;
+    if (line_start(e, s, f->frame, number, answer ? " response  " : " request   ") < 0) return -1;
+    int written = info_text(e, s, f->frame, f->length, answer ? R->response_form : R->request_form,
+                            answer ? R->response_at : R->request_at, f);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     return line_end(e, unanswered ? " [no response]" : NULL, request_number, NULL);
 }
