@@ -105,7 +105,7 @@ static inline void out_uint(Out *o, unsigned long long v, int width) { out_numbe
 static inline void out_hex(Out *o, unsigned long v, int width) { out_number(o, v, 16, width, '0'); }
 
 /* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (`end` ")" or " bytes)"). */
-static void out_more(Out *o, unsigned long long more, const char *end) {
+static inline void out_more(Out *o, unsigned long long more, const char *end) {
     out_cstr(o, "\xe2\x80\xa6 (+");
     out_uint(o, more, 0);
     out_cstr(o, end);
@@ -988,97 +988,69 @@ static int info_end_is_plain(const Out *o) {
     return last > 0x20 && last < 0x7F;
 }
 
-/* The Info column by the form its describer gives (rules[k].request_form, response_form), from the
- * fields at `at` (rules[k].request_at, response_at) and the frame as lifted (its window, bits, registers):
- * 1 written, 0 a form this engine does not write, -1 error. */
-static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, int form, const int at[3],
+/* The Info column by its describer's form (info->steps: those of form_steps, _tables.h, generated from
+ * codegen/c_rules.py's TEXT_FORMS), from the fields it prints (at info->at, info->width bytes) and the
+ * frame as lifted (its window, bits, registers): 1 written, 0 a form this engine does not write, -1 error. */
+static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const InfoForm *info,
                      const Lifted *lifted) {
-    int slave = f[0], function = f[1], k = handled_index(function);
-    long long base = s->base[k];
+    int slave = f[0], function = f[1];
+    long long base = s->base[handled_index(function)];
     unsigned start = lifted->start, quantity = lifted->quantity;
-    const Words *values = &lifted->values;
-    switch (form) {
-    case FORM_NAME: /* describe._simple, _comm_event_counter: the name alone */
-        e->out.len -= 1;
-        break;
-    case FORM_SPAN:
-        span_text(&e->out, base, start, quantity, 1);
-        break;
-    case FORM_BITS:
-        span_text(&e->out, base, start, quantity, 1);
-        out_put(&e->out, ": ", 2);
-        bits_text(&e->out, lifted->bits, quantity);
-        break;
-    case FORM_VALUES:
-        span_text(&e->out, base, start, quantity, 1);
-        out_put(&e->out, ": ", 2);
-        if (values_text(e, s, slave, function, values) < 0) return -1;
-        break;
-    case FORM_COIL:
-        span_text(&e->out, base, start, 1, 1);
-        out_cstr(&e->out, word(f + at[0]) == COIL_ON ? " = ON" : " = OFF");
-        break;
-    case FORM_SINGLE: { /* describe._write_single_register: `3104 HSP=50.9 Hz` when named, `3104 = 7` otherwise */
-        unsigned value = word(f + at[0]);
-        out_label(&e->out, base, start);
-        size_t mark = e->out.len;
-        int named;
-        out_put(&e->out, " ", 1);
-        if (piece(e, s, slave, function, start, value, &named) < 0) return -1;
-        if (!named) {
-            e->out.len = mark;
-            out_put(&e->out, " = ", 3);
-            out_uint(&e->out, value, 0);
-        }
-        break;
-    }
-    case FORM_WRITTEN:
-        span_text(&e->out, base, start, quantity, 1);
-        out_cstr(&e->out, " written");
-        break;
-    case FORM_STATUS: /* describe._simple: the status, at least two digits (FC7's byte, FC12's word) */
-        out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, field(f, at[0], rules[k].print_width), 2);
-        break;
-    case FORM_COUNTER: /* describe._comm_event_counter */
-        out_cstr(&e->out, "status 0x");
-        out_hex(&e->out, word(f + at[0]), 4);
-        out_cstr(&e->out, ", ");
-        out_uint(&e->out, word(f + at[1]), 0);
-        out_cstr(&e->out, " events");
-        break;
-    case FORM_DIAGNOSTICS:
-        if (diagnostics_text(e, f, length) < 0) return -1;
-        break;
-    case FORM_MASK: /* describe._mask_write: the address as sent, even PLC style; AND mask, OR mask */
-        out_uint(&e->out, word(f + at[0]), 0);
-        out_cstr(&e->out, " AND 0x");
-        out_hex(&e->out, word(f + at[1]), 4);
-        out_cstr(&e->out, " OR 0x");
-        out_hex(&e->out, word(f + at[2]), 4);
-        break;
-    case FORM_POINTER:
-        out_cstr(&e->out, "pointer ");
-        out_uint(&e->out, word(f + at[0]), 0);
-        break;
-    case FORM_READ_WRITE: /* describe._read_write: the read part as its answer shows it (PLC style: 43202..43203 (2)) */
-        out_cstr(&e->out, "read ");
-        span_text(&e->out, base, start, quantity, base >= 0); /* not PLC style: describe.plain_span */
-        out_cstr(&e->out, ", write ");
-        if (values_text(e, s, slave, function, values) < 0) return -1;
-        break;
-    case FORM_FIFO: { /* describe._fifo: the count, then the first values (rstrip: no space after none) */
-        unsigned count = word(f + at[0]);
-        out_uint(&e->out, count, 0);
-        out_cstr(&e->out, " values:");
-        for (unsigned j = 0; j < count && j < MAX_FIFO_VALUES; j++) {
+    for (const Step *step = info->steps; step->step != STEP_END; step++) {
+        unsigned value = step->field >= 0 ? field(f, info->at[step->field], info->width[step->field]) : 0;
+        switch (step->step) {
+        case STEP_NONE:
+            return 0;
+        case STEP_TEXT:
+            out_put(&e->out, step->text, (size_t)step->length);
+            break;
+        case STEP_UNSPACE: /* describe._simple, _comm_event_counter: the name alone */
+            e->out.len -= 1;
+            break;
+        case STEP_SPAN: /* PLAIN_SPAN: describe._read_write's read part, as its answer shows it PLC style */
+        case STEP_PLAIN_SPAN:
+            span_text(&e->out, base, start, quantity, step->step == STEP_SPAN || base >= 0);
+            break;
+        case STEP_LABEL:
+            out_label(&e->out, base, start);
+            break;
+        case STEP_BITS:
+            bits_text(&e->out, lifted->bits, quantity);
+            break;
+        case STEP_VALUES:
+            if (values_text(e, s, slave, function, &lifted->values) < 0) return -1;
+            break;
+        case STEP_COIL:
+            out_cstr(&e->out, value == COIL_ON ? " = ON" : " = OFF");
+            break;
+        case STEP_SINGLE: { /* describe._write_single_register: ` HSP=50.9 Hz` when named, ` = 7` otherwise */
+            size_t mark = e->out.len;
+            int named;
             out_put(&e->out, " ", 1);
-            out_uint(&e->out, word(f + at[1] + 2 * j), 0);
+            if (piece(e, s, slave, function, start, value, &named) < 0) return -1;
+            if (!named) {
+                e->out.len = mark;
+                out_put(&e->out, " = ", 3);
+                out_uint(&e->out, value, 0);
+            }
+            break;
         }
-        break;
-    }
-    default:
-        return 0;
+        case STEP_DEC:
+            out_uint(&e->out, value, 0);
+            break;
+        case STEP_HEX:
+            out_hex(&e->out, value, step->number);
+            break;
+        case STEP_DIAGNOSTICS:
+            if (diagnostics_text(e, f, length) < 0) return -1;
+            break;
+        case STEP_FIFO: /* describe._fifo: the first of `value` words (rstrip: no space after none) */
+            for (unsigned j = 0; j < value && j < MAX_FIFO_VALUES; j++) {
+                out_put(&e->out, " ", 1);
+                out_uint(&e->out, word(f + info->at[step->number] + 2 * j), 0);
+            }
+            break;
+        }
     }
     return e->out.failed ? -1 : 1;
 }
@@ -1100,11 +1072,9 @@ static int line_end(Engine *e, const char *pairing, unsigned long long request_n
  * an answer's, paired with that request. 1 written, 0 hand over, -1 error. */
 static int frame_line(Engine *e, Slave *s, const Lifted *f, unsigned long long number,
                       unsigned long long request_number, int unanswered) {
-    const Rules *R = &rules[handled_index(f->frame[1])];
     int answer = request_number != 0;
     if (line_start(e, s, f->frame, number, answer ? " response  " : " request   ") < 0) return -1;
-    int written = info_text(e, s, f->frame, f->length, answer ? R->response_form : R->request_form,
-                            answer ? R->response_at : R->request_at, f);
+    int written = info_text(e, s, f->frame, f->length, &rules[handled_index(f->frame[1])].info[answer], f);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     return line_end(e, unanswered ? " [no response]" : NULL, request_number, NULL);
 }
@@ -1119,7 +1089,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
         *a = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
         return diagnostics_are_plain(e, s, f, length);
     }
-    if (rules[k].response_form == FORM_PYTHON || !lift_frame(e, f, length, &response_lift[k], r, a)) return 0;
+    if (rules[k].texts || !lift_frame(e, f, length, &response_lift[k], r, a)) return 0;
     if (a->values.values == NULL) return 1;
     int plain = words_are_plain(s, e->run_number, &a->values);
     if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;

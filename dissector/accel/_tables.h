@@ -223,34 +223,61 @@ static const Lift response_lift[HANDLED] = {
     {0, 4, 0, {4, 0}, {2, 0}, {6, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 43 */
 };
+enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_DIAGNOSTICS, STEP_FIFO };
+/* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
+ * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
+ * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
+ * STEP_HEX's least digits, STEP_FIFO's values field). */
+typedef struct { int step, field, number; const char *text; int length; } Step;
+#define MAX_STEPS 6
+static const Step form_steps[][MAX_STEPS] = {
+    {{STEP_NONE, -1, 0, NULL, 0}}, /* none */
+    {{STEP_UNSPACE, -1, 0, NULL, 0}}, /* name */
+    {{STEP_SPAN, -1, 0, NULL, 0}}, /* span */
+    {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ": ", 2}, {STEP_BITS, -1, 0, NULL, 0}}, /* bits */
+    {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ": ", 2}, {STEP_VALUES, -1, 0, NULL, 0}}, /* values */
+    {{STEP_LABEL, -1, 0, NULL, 0}, {STEP_COIL, 0, 0, NULL, 0}}, /* coil */
+    {{STEP_LABEL, -1, 0, NULL, 0}, {STEP_SINGLE, 0, 0, NULL, 0}}, /* single */
+    {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " written", 8}}, /* written */
+    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 2, NULL, 0}}, /* status */
+    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events", 7}}, /* counter */
+    {{STEP_DIAGNOSTICS, -1, 0, NULL, 0}}, /* diagnostics */
+    {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
+    {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
+    {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_VALUES, -1, 0, NULL, 0}}, /* read_write */
+    {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " values:", 8}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
+    {{STEP_NONE, -1, 0, NULL, 0}}, /* python */
+};
 /* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
  *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
  *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
- *   (table.Compiled.texts); request_form, response_form: FORM_*, printing the fields at request_at[] /
- *   response_at[] (_PRINTS in codegen/c_rules.py); print_width: bytes of the answer's first printed field. */
+ *   (table.Compiled.texts); info: the request's and the response's Info column, the steps of its form
+ *   (form_steps) printing the fields at at[] of width[] bytes (0: from its offset only). */
+typedef struct { const Step *steps; int at[3], width[3]; } InfoForm;
 typedef struct {
-    int special, confirm, reads, texts, request_form, response_form, request_at[3], response_at[3], print_width;
+    int special, confirm, reads, texts;
+    InfoForm info[2];
 } Rules;
 static const Rules rules[HANDLED] = {
-    {0, 0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0}, /* 1 */
-    {0, 0, 0, 0, 2, 3, {0, 0, 0}, {0, 0, 0}, 0}, /* 2 */
-    {0, 0, 1, 0, 2, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 3 */
-    {0, 0, 1, 0, 2, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 4 */
-    {0, 1, 0, 0, 5, 5, {4, 0, 0}, {4, 0, 0}, 2}, /* 5 */
-    {0, 1, 0, 0, 6, 6, {4, 0, 0}, {4, 0, 0}, 2}, /* 6 */
-    {0, 0, 0, 0, 1, 8, {0, 0, 0}, {2, 0, 0}, 1}, /* 7 */
-    {1, 0, 0, 0, 10, 10, {0, 0, 0}, {0, 0, 0}, 0}, /* 8 */
-    {0, 0, 0, 0, 1, 9, {0, 0, 0}, {2, 4, 0}, 2}, /* 11 */
-    {0, 0, 0, 0, 1, 8, {0, 0, 0}, {3, 0, 0}, 2}, /* 12 */
-    {0, 2, 0, 0, 3, 7, {0, 0, 0}, {0, 0, 0}, 0}, /* 15 */
-    {0, 2, 0, 0, 4, 7, {0, 0, 0}, {0, 0, 0}, 0}, /* 16 */
-    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 17 */
-    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 20 */
-    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 21 */
-    {0, 0, 0, 0, 11, 11, {2, 4, 6}, {2, 4, 6}, 2}, /* 22 */
-    {0, 2, 1, 0, 13, 4, {0, 0, 0}, {0, 0, 0}, 0}, /* 23 */
-    {0, 0, 0, 0, 12, 14, {2, 0, 0}, {4, 6, 0}, 2}, /* 24 */
-    {0, 0, 0, 1, 15, 15, {0, 0, 0}, {0, 0, 0}, 0}, /* 43 */
+    {0, 0, 0, 0, {{form_steps[FORM_SPAN], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_BITS], {0, 0, 0}, {0, 0, 0}}}}, /* 1 */
+    {0, 0, 0, 0, {{form_steps[FORM_SPAN], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_BITS], {0, 0, 0}, {0, 0, 0}}}}, /* 2 */
+    {0, 0, 1, 0, {{form_steps[FORM_SPAN], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 3 */
+    {0, 0, 1, 0, {{form_steps[FORM_SPAN], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 4 */
+    {0, 1, 0, 0, {{form_steps[FORM_COIL], {4, 0, 0}, {2, 0, 0}}, {form_steps[FORM_COIL], {4, 0, 0}, {2, 0, 0}}}}, /* 5 */
+    {0, 1, 0, 0, {{form_steps[FORM_SINGLE], {4, 0, 0}, {2, 0, 0}}, {form_steps[FORM_SINGLE], {4, 0, 0}, {2, 0, 0}}}}, /* 6 */
+    {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {2, 0, 0}, {1, 0, 0}}}}, /* 7 */
+    {1, 0, 0, 0, {{form_steps[FORM_DIAGNOSTICS], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_DIAGNOSTICS], {0, 0, 0}, {0, 0, 0}}}}, /* 8 */
+    {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_COUNTER], {2, 4, 0}, {2, 2, 0}}}}, /* 11 */
+    {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {3, 0, 0}, {2, 0, 0}}}}, /* 12 */
+    {0, 2, 0, 0, {{form_steps[FORM_BITS], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_WRITTEN], {0, 0, 0}, {0, 0, 0}}}}, /* 15 */
+    {0, 2, 0, 0, {{form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_WRITTEN], {0, 0, 0}, {0, 0, 0}}}}, /* 16 */
+    {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 17 */
+    {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 20 */
+    {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 21 */
+    {0, 0, 0, 0, {{form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}, {form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}}}, /* 22 */
+    {0, 2, 1, 0, {{form_steps[FORM_READ_WRITE], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 23 */
+    {0, 0, 0, 0, {{form_steps[FORM_POINTER], {2, 0, 0}, {2, 0, 0}}, {form_steps[FORM_FIFO], {4, 6, 0}, {2, 0, 0}}}}, /* 24 */
+    {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 43 */
 };
 
 #endif

@@ -21,14 +21,6 @@ HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
 _SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4}
 
 
-def _c_string(text: str | None) -> str:
-    """A C string literal of `text`'s UTF-8 bytes (octal escapes past printable ASCII), NULL for None."""
-    if text is None:
-        return "NULL"
-    plain = lambda byte: 0x20 <= byte < 0x7F and byte not in b'"\\?'  # noqa: E731  ("??" trigraphs)
-    return '"' + "".join(chr(byte) if plain(byte) else f"\\{byte:03o}" for byte in text.encode()) + '"'
-
-
 def _rule(layout: Layout, code: int) -> str:
     rule = layout.length
     if isinstance(rule, Fixed):
@@ -111,7 +103,7 @@ def render_header() -> str:
         "/* The spec's FC8 sub-function names by number (data/modbus.toml [diagnostics]); NULL: none. */",
         f"#define SUBFUNCTIONS {max(SPEC.diagnostics) + 1}",
         "static const char *const subfunction_names[SUBFUNCTIONS] = {",
-        *(f"    {_c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
+        *(f"    {c_rules.c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
         "};",
         "",
         "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",

@@ -6,7 +6,9 @@ Every offset is a field of a Construct grammar named by a rule, counted from the
 the engine holds no function code: which codes write and how the write is confirmed ([confirm]), where a
 request's window and values are, what an answer must repeat (its echo fields), its byte count rule,
 its limit checks, and which describer of render/describe.py writes its Info column (table.Function.text,
-as a FORM_* below) all come from here. A form's printed fields are named per describer in _FORMS.
+as a FORM_* below) all come from here. What each form writes (its texts, and the steps that print the
+frame's window, values and fields, named) is TEXT_FORMS below: the engine's info_text interprets it
+and holds no text of its own.
 """
 from __future__ import annotations
 
@@ -28,13 +30,60 @@ from dissector.render import describe, pollcycle, stats_store
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
 
-# The forms the engine writes (describe.py's describers, by direction), and the fields each prints.
-FORMS = ("none", "name", "span", "bits", "values", "coil", "single", "written", "status", "counter", "diagnostics",
-         "mask", "pointer", "read_write", "fifo", "python")
-_PRINTS = {
-    "coil": ("value",), "single": ("value",), "status": ("status",), "counter": ("status", "event_count"),
-    "mask": ("address", "and_mask", "or_mask"), "pointer": ("address",), "fifo": ("fifo_count", "values"),
+# The Info column of each form the engine writes, as describe.py's describers write it in one direction:
+# texts, and steps (the engine's STEP_*, _summary.c info_text) with the fields they print, by name (read
+# at each code's offsets: Rules.info) and a step's number (hex: its least digits). "none": not written
+# by the engine (handed over); "python": the texts come from the Python stages (table.Compiled.texts).
+TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
+    "none": [("none",)],
+    "name": [("unspace",)],  # the name alone: the space after it taken back (rstrip)
+    "span": [("span",)],
+    "bits": [("span",), ": ", ("bits",)],
+    "values": [("span",), ": ", ("values",)],
+    "coil": [("label",), ("coil", "value")],
+    "single": [("label",), ("single", "value")],
+    "written": [("span",), " written"],
+    "status": ["status 0x", ("hex", "status", 2)],
+    "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
+    "diagnostics": [("diagnostics",)],
+    "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
+    "pointer": ["pointer ", ("dec", "address")],
+    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],
+    "fifo": [("dec", "fifo_count"), " values:", ("fifo", "fifo_count", "values")],
+    "python": [("none",)],
 }
+FORMS = tuple(TEXT_FORMS)
+STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "coil", "single", "dec",
+         "hex", "diagnostics", "fifo")
+MAX_STEPS = max(len(steps) for steps in TEXT_FORMS.values()) + 1  # and its STEP_END
+
+
+def _printed(form: str) -> list[str]:
+    """The fields a form prints, in the order its steps name them (at most 3)."""
+    names: list[str] = []
+    for step in TEXT_FORMS[form]:
+        for arg in step[1:] if isinstance(step, tuple) else ():
+            if isinstance(arg, str) and arg not in names:
+                names.append(arg)
+    return names
+
+
+def _step(step: str | tuple[str | int, ...], printed: list[str]) -> str:
+    """A Step of form_steps: {STEP_*, its first field's index (-1: none), its number or second field's
+    index, text, its length in bytes}."""
+    if isinstance(step, str):
+        return f"{{STEP_TEXT, -1, 0, {c_string(step)}, {len(step.encode())}}}"
+    fields = [printed.index(arg) for arg in step[1:] if isinstance(arg, str)]
+    number = [arg for arg in step[1:] if isinstance(arg, int)]
+    return f"{{STEP_{str(step[0]).upper()}, {(fields or [-1])[0]}, {(number or fields[1:] or [0])[0]}, NULL, 0}}"
+
+
+def c_string(text: str | None) -> str:
+    """A C string literal of `text`'s UTF-8 bytes (octal escapes past printable ASCII), NULL for None."""
+    if text is None:
+        return "NULL"
+    plain = lambda byte: 0x20 <= byte < 0x7F and byte not in b'"\\?'  # noqa: E731  ("??" trigraphs)
+    return '"' + "".join(chr(byte) if plain(byte) else f"\\{byte:03o}" for byte in text.encode()) + '"'
 
 
 def _form(entry: Function, kind: Kind) -> str:
@@ -158,31 +207,38 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     return row
 
 
-# The Rules struct's members in order; request_at, response_at: 3 offsets.
-RULE_FIELDS = (
-    "special", "confirm", "reads", "texts", "request_form", "response_form", "request_at", "response_at",
-    "print_width",
-)
+# The Rules struct's members in order; info: the request's and the response's InfoForm.
+RULE_FIELDS = ("special", "confirm", "reads", "texts", "info")
 
 
-def rules_row(entry: Function) -> dict[str, int | list[int]]:
+def _info(entry: Function, kind: Kind) -> str:
+    """InfoForm of a compiled code in one direction: its form, and where the fields it prints are and their
+    widths (FC7's status a byte, FC12's a word; 0: a field printed from its offset only, FIFO values)."""
+    form, grammar = _form(entry, kind), entry.layout(kind).grammar
+    names = _printed(form)
+    if len(names) > 3:
+        raise GenerateError(f"form {form}: the engine prints three fields at most")
+    at = [field_at(grammar, name, entry.code) for name in names] + [0] * (3 - len(names))
+    widths = []
+    for name in names:
+        try:
+            widths.append(field_width(grammar, name))
+        except Exception:
+            widths.append(0)
+    widths += [0] * (3 - len(names))
+    return f"{{form_steps[FORM_{form.upper()}], {{{', '.join(map(str, at))}}}, {{{', '.join(map(str, widths))}}}}}"
+
+
+def rules_row(entry: Function) -> dict[str, int | list[int] | str]:
     """Rules (see the header) of a compiled code: what it is, both directions' forms and printed fields."""
     code = entry.code
     request, response = entry.request, entry.response
-    forms = [_form(entry, kind) for kind in (Kind.REQUEST, Kind.RESPONSE)]
-    printed = [
-        ([field_at(layout.grammar, name, code) for name in _PRINTS.get(form, ())] + [0, 0, 0])[:3]
-        for form, layout in zip(forms, (request, response))
-    ]
     return dict(
         special=int("diagnostics" in (request.handler, response.handler)),
         confirm={None: 0, Confirm.ECHO: 1, Confirm.ANSWER: 2}[CONFIRM.get(code)],
         reads=int(code in table.register_reads()),
         texts=int(entry.compiled is not None and entry.compiled.texts),
-        request_form=FORMS.index(forms[0]), response_form=FORMS.index(forms[1]),
-        request_at=printed[0], response_at=printed[1],
-        # FC7's 8-bit, FC12's 16-bit status
-        print_width=field_width(response.grammar, _PRINTS[forms[1]][0]) if printed[1][0] else 0,
+        info="{" + ", ".join(_info(entry, kind) for kind in (Kind.REQUEST, Kind.RESPONSE)) + "}",
     )
 
 
@@ -207,15 +263,23 @@ typedef struct {
 RULES_STRUCT = """/* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
  *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
  *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
- *   (table.Compiled.texts); request_form, response_form: FORM_*, printing the fields at request_at[] /
- *   response_at[] (_PRINTS in codegen/c_rules.py); print_width: bytes of the answer's first printed field. */
+ *   (table.Compiled.texts); info: the request's and the response's Info column, the steps of its form
+ *   (form_steps) printing the fields at at[] of width[] bytes (0: from its offset only). */
+typedef struct { const Step *steps; int at[3], width[3]; } InfoForm;
 typedef struct {
-    int special, confirm, reads, texts, request_form, response_form, request_at[3], response_at[3], print_width;
+    int special, confirm, reads, texts;
+    InfoForm info[2];
 } Rules;"""
 
+STEP_STRUCT = """/* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
+ * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
+ * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
+ * STEP_HEX's least digits, STEP_FIFO's values field). */
+typedef struct { int step, field, number; const char *text; int length; } Step;"""
 
-def _braced(row: dict[str, int | list[int]], names: tuple[str, ...]) -> str:
-    def one(value: int | list[int]) -> str:
+
+def _braced(row: dict[str, int | list[int] | str], names: tuple[str, ...]) -> str:
+    def one(value: int | list[int] | str) -> str:
         return "{" + ", ".join(map(str, value)) + "}" if isinstance(value, list) else str(value)
 
     return "{" + ", ".join(one(row[name]) for name in names) + "}"
@@ -272,6 +336,13 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
             "};",
         ]
     return lines + [
+        "enum { " + ", ".join(f"STEP_{name.upper()}" for name in STEPS) + " };",
+        STEP_STRUCT,
+        f"#define MAX_STEPS {MAX_STEPS}",
+        "static const Step form_steps[][MAX_STEPS] = {",
+        *(f"    {{{', '.join(_step(step, _printed(form)) for step in steps)}}}, /* {form} */"
+          for form, steps in TEXT_FORMS.items()),
+        "};",
         RULES_STRUCT,
         "static const Rules rules[HANDLED] = {",
         *(f"    {_braced(rules_row(entry), RULE_FIELDS)}, /* {entry.code} */" for entry in entries),
