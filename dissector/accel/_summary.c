@@ -1259,16 +1259,19 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     return written < 0 ? STEP_ERROR : found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
 }
 
+/* 1, or 0 with RuntimeError inside run() (`what` the call refused): a callback calling back in would
+ * change or free what the outer call uses. */
+static int idle(const Engine *e, const char *what) {
+    if (e->running) PyErr_Format(PyExc_RuntimeError, "%s: not inside run()", what);
+    return !e->running;
+}
+
 static int engine_ready(Engine *e) {
     if (e->slave_info == NULL) {
         PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
         return 0;
     }
-    if (e->running) { /* a callback calling back in would free what the outer call uses */
-        PyErr_SetString(PyExc_RuntimeError, "Engine.run is not re-entrant");
-        return 0;
-    }
-    return 1;
+    return idle(e, "run");
 }
 
 /* The transactions of view from pos on: (lines, position, status). */
@@ -1370,10 +1373,7 @@ static PyObject *engine_get_object(Engine *e, void *closure) {
 /* stats and judge are set between two runs only, to an object that `fits` or to None (NULL). */
 static int set_between_runs(Engine *e, PyObject **field, PyObject *value, int fits, const char *name,
                             const char *expected) {
-    if (e->running) {
-        PyErr_Format(PyExc_RuntimeError, "%s: not while run() is running", name);
-        return -1;
-    }
+    if (!idle(e, name)) return -1;
     if (value != NULL && value != Py_None && !fits) {
         PyErr_Format(PyExc_TypeError, "%s: %s", name, expected);
         return -1;
@@ -1449,10 +1449,7 @@ static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
     static char *keywords[] = {"slave_info", "piece", "exception", "texts", NULL};
-    if (e->running) {
-        PyErr_SetString(PyExc_RuntimeError, "Engine.__init__ inside run()");
-        return -1;
-    }
+    if (!idle(e, "Engine.__init__")) return -1;
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO", keywords, &slave_info, &piece_fn, &exception_fn,
                                      &texts_fn))
         return -1;
@@ -1502,10 +1499,7 @@ static PyObject *engine_forget(Engine *e, PyObject *args) {
         PyErr_SetString(PyExc_ValueError, "forget: slave outside 0..255");
         return NULL;
     }
-    if (e->running) {
-        PyErr_SetString(PyExc_RuntimeError, "forget: not while run() is running");
-        return NULL;
-    }
+    if (!idle(e, "forget")) return NULL;
     slave_clear(&e->slaves[address]);
     pieces_clear(e); /* register texts of the old profile (rare: a profile changes a few times a run) */
     Py_RETURN_NONE;
