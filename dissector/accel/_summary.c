@@ -615,8 +615,6 @@ typedef struct {
 static inline unsigned words_address(const Words *w, unsigned k) { return (w->start + k) & 0xFFFF; }
 static inline unsigned words_value(const Words *w, unsigned k) { return word(w->values + 2 * k); }
 
-static int depend_is_plain(Slave *s, unsigned address);
-
 /* The value the annotator's parameter memory (its `seen` dict) keeps for `key`, in *value (borrowed; None:
  * unreadable): 1, 0 none kept, -1 error. */
 static int memory_value(Slave *s, PyObject *key, PyObject **value) {
@@ -633,6 +631,20 @@ static int words_hold(const Words *w, unsigned address) {
     return 0;
 }
 
+static int depend_is_plain(Slave *s, unsigned address) {
+    PyObject *key = PyLong_FromUnsignedLong(address);
+    if (key == NULL) return -1;
+    PyObject *rule = PyDict_GetItemWithError(s->depend, key);
+    Py_DECREF(key);
+    if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
+    if (!PyTuple_Check(rule) || PyTuple_GET_SIZE(rule) != 2) return bad_info("bits_depend rule not (on, values)");
+    PyObject *last;
+    int found = memory_value(s, PyTuple_GET_ITEM(rule, 0), &last);
+    if (found <= 0) return found < 0 ? -1 : 1;
+    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), last);
+    return plain < 0 ? -1 : !plain;
+}
+
 /* 1: the annotator would give this register a plain text without a note; 0: hand over; -1: error.
  * A bits_depend answer holds for a whole run(): the engine never writes the values rules depend on
  * (it hands such transactions over), and the Python stages run only between two run() calls. */
@@ -647,20 +659,6 @@ static int register_is_plain(Slave *s, unsigned long run_number, unsigned addres
         s->depend_plain = plain;
     }
     return plain;
-}
-
-static int depend_is_plain(Slave *s, unsigned address) {
-    PyObject *key = PyLong_FromUnsignedLong(address);
-    if (key == NULL) return -1;
-    PyObject *rule = PyDict_GetItemWithError(s->depend, key);
-    Py_DECREF(key);
-    if (rule == NULL) return PyErr_Occurred() ? -1 : 1;
-    if (!PyTuple_Check(rule) || PyTuple_GET_SIZE(rule) != 2) return bad_info("bits_depend rule not (on, values)");
-    PyObject *last;
-    int found = memory_value(s, PyTuple_GET_ITEM(rule, 0), &last);
-    if (found <= 0) return found < 0 ? -1 : 1;
-    int plain = PySet_Contains(PyTuple_GET_ITEM(rule, 1), last);
-    return plain < 0 ? -1 : !plain;
 }
 
 static int words_are_plain(Slave *s, unsigned long run_number, const Words *w) {
