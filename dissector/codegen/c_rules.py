@@ -43,12 +43,13 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "coil": [("label",), ("coil", "value")],
     "single": [("label",), ("single", "value")],
     "written": [("span",), " written"],
-    "status": ["status 0x", ("hex", "status", 2)],
+    "status": ["status 0x", ("hex", "status", 2)],  # at least two digits: FC7's byte, FC12's word
     "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
     "diagnostics": [("diagnostics",)],
+    # the address as sent, even PLC style
     "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
     "pointer": ["pointer ", ("dec", "address")],
-    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],
+    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
     "fifo": [("dec", "fifo_count"), " values:", ("fifo", "fifo_count", "values")],
     "python": [("none",)],
 }
