@@ -217,11 +217,16 @@ typedef struct {
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
+#define SLAVE_BITMAPS(s) {&(s)->mapped, &(s)->dependent, &(s)->sources, &(s)->pending, &(s)->explained}
+static const uint8_t no_addresses[BITMAP_BYTES]; /* an empty set's bitmap, shared (only pending is written) */
 
 static void slave_clear(Slave *s) {
     Py_CLEAR(s->info);
-    PyMem_Free(s->mapped);
-    s->mapped = s->dependent = s->sources = s->pending = s->explained = NULL;
+    uint8_t **bitmaps[5] = SLAVE_BITMAPS(s);
+    for (int k = 0; k < 5; k++) {
+        if (*bitmaps[k] != no_addresses) PyMem_Free(*bitmaps[k]);
+        *bitmaps[k] = NULL;
+    }
     s->depend_run = 0;
     s->loaded = 0;
 }
@@ -313,18 +318,15 @@ static int fill_slave(Slave *s, PyObject *info) {
         }
     }
     s->depend = facts[FACT_DEPEND];
-    s->mapped = PyMem_Calloc(5, BITMAP_BYTES);
-    if (s->mapped == NULL) {
-        PyErr_NoMemory();
-        return -1;
+    /* (a generic profile's slaves kept 4 x 8 KB of zeros each: 247 of them 8 MB; issue 28) */
+    PyObject *sets[5] = {facts[FACT_MAPPED], s->depend, facts[FACT_SOURCES], NULL, facts[FACT_DIAGNOSTICS]};
+    uint8_t **bitmaps[5] = SLAVE_BITMAPS(s);
+    for (int k = 0; k < 5; k++) {
+        Py_ssize_t n = sets[k] != NULL ? PyObject_Size(sets[k]) : 1; /* (pending: set as frames come) */
+        *bitmaps[k] = n == 0 ? (uint8_t *)no_addresses : n > 0 ? PyMem_Calloc(1, BITMAP_BYTES) : NULL;
+        if (*bitmaps[k] == NULL) return n < 0 ? -1 : (PyErr_NoMemory(), -1);
+        if (n > 0 && sets[k] != NULL && fill_bitmap(*bitmaps[k], sets[k]) < 0) return -1;
     }
-    s->dependent = s->mapped + BITMAP_BYTES;
-    s->sources = s->mapped + 2 * BITMAP_BYTES;
-    s->pending = s->mapped + 3 * BITMAP_BYTES;
-    s->explained = s->mapped + 4 * BITMAP_BYTES;
-    if (fill_bitmap(s->mapped, facts[FACT_MAPPED]) < 0 || fill_bitmap(s->dependent, s->depend) < 0 ||
-        fill_bitmap(s->sources, facts[FACT_SOURCES]) < 0 || fill_bitmap(s->explained, facts[FACT_DIAGNOSTICS]) < 0)
-        return -1;
     s->seen = seen == Py_None ? NULL : seen;
     s->namer = facts[FACT_NAMER];
     s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
