@@ -111,6 +111,7 @@ local DATA = {
       [254] = true,
       [255] = true,
     },
+    ["cut_answer"] = "the capture ends inside the ",
   },
   ["ascii"] = {
     ["max_ascii"] = 513,
@@ -1785,7 +1786,7 @@ package.preload["vw3.rtu"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, GLITCH
+local CRC_HI, CRC_LO, DATA, EXCEPTION, FRAMING, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, FRAMING, GLITCH
 local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
 local RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16 = RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16
@@ -1920,8 +1921,8 @@ local function cut_answer(s, b, i, n)
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   local what = "exception response"
   if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("the capture ends inside the %s (%d bytes of it)", what, n - i) end
-  return format("the capture ends inside the %s (%d of %d bytes)", what, n - i, length)
+  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
 end
 lane.cut_answer = cut_answer
 
@@ -4790,13 +4791,13 @@ package.preload["vw3.records"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, CONFIRMED, DATA, MODE_SAMPLE, NOISE, PROFILES = AUTO, CONFIRMED, DATA, MODE_SAMPLE, NOISE, PROFILES
-local READS, REQUEST, RESPONSE, annotate_with, build_device = READS, REQUEST, RESPONSE, annotate_with, build_device
-local ceil_bytes, crc_string_ok, decode_frame, detect_mode = ceil_bytes, crc_string_ok, decode_frame, detect_mode
-local device_for, device_now, feed, feed_whole, ipairs = device_for, device_now, feed, feed_whole, ipairs
-local lane, math, new_state, next, pack, pair, pairs, pcall = lane, math, new_state, next, pack, pair, pairs, pcall
-local release_run, remember_writes, story, string = release_run, remember_writes, story, string
-local string_of, takes_whole, tostring, type = string_of, takes_whole, tostring, type
+local AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE = AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE
+local PROFILES, READS, REQUEST, RESPONSE, annotate_with = PROFILES, READS, REQUEST, RESPONSE, annotate_with
+local build_device, ceil_bytes, crc_string_ok, decode_frame = build_device, ceil_bytes, crc_string_ok, decode_frame
+local detect_mode, device_for, device_now, feed, feed_whole = detect_mode, device_for, device_now, feed, feed_whole
+local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
+local pairs, pcall, release_run, remember_writes, story = pairs, pcall, release_run, remember_writes, story
+local string, string_of, takes_whole, tostring, type = string, string_of, takes_whole, tostring, type
 local whole_crc_good = whole_crc_good
 
 local take_items, dissect_record
@@ -4976,7 +4977,7 @@ take_items = function(st, items, record)
       else
         item.raw = string_of(item.b, item.bi, length)
       end
-      for _, earlier in ipairs(st.open) do
+      for _, earlier in ipairs(open) do
         local from, to = earlier.start, earlier.start + earlier.length
         if earlier ~= home and from < offset + length and offset < to then
           earlier.continued = earlier.continued or {}
@@ -4994,8 +4995,7 @@ take_items = function(st, items, record)
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
-  local open = st.open -- (compacted in place: no new list a record)
-  local count, kept = #open, 0
+  local count, kept = #open, 0 -- (compacted in place: no new list a record)
   for index = 1, count do
     local earlier = open[index]
     local waiting = earlier.start + earlier.length - waiting_from
@@ -5284,8 +5284,8 @@ local function finish(st)
   local items = feed(st, "", nil, false, true)
   for index = 1, #items do
     -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
-    local reason = items[index].reason
-    if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
+    local reason, cut = items[index].reason, FRAMING.cut_answer
+    if reason ~= nil and reason:sub(1, #cut) == cut then st.cut_note = reason end
   end
   take_items(st, items, record)
   if st.pending ~= nil then release_run(st.pending.registers) end

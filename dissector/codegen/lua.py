@@ -22,7 +22,7 @@ from typing import Any
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
-from dissector.model import Kind
+from dissector.model import CUT_ANSWER, Kind
 from dissector.protocol import ascii as ascii_mode, table
 from dissector.protocol.spec import SPEC
 from dissector.sources import reader
@@ -100,6 +100,7 @@ def plugin_data() -> dict[str, Any]:
             "glitchy_after": streambuf.GLITCHY_AFTER,
             "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
             "glitch_bytes": streambuf.GLITCH_BYTES,
+            "cut_answer": CUT_ANSWER,
         },
         "ascii": {
             "max_ascii": ascii_mode.MAX_ASCII,

@@ -181,7 +181,7 @@ take_items = function(st, items, record)
       else
         item.raw = string_of(item.b, item.bi, length)
       end
-      for _, earlier in ipairs(st.open) do
+      for _, earlier in ipairs(open) do
         local from, to = earlier.start, earlier.start + earlier.length
         if earlier ~= home and from < offset + length and offset < to then
           earlier.continued = earlier.continued or {}
@@ -199,8 +199,7 @@ take_items = function(st, items, record)
   -- Records all of whose bytes are framed are done with; the others say how many of their bytes wait.
   local waiting_from = st.base
   if st.noise ~= nil then waiting_from = st.noise.offset end
-  local open = st.open -- (compacted in place: no new list a record)
-  local count, kept = #open, 0
+  local count, kept = #open, 0 -- (compacted in place: no new list a record)
   for index = 1, count do
     local earlier = open[index]
     local waiting = earlier.start + earlier.length - waiting_from
@@ -489,8 +488,8 @@ local function finish(st)
   local items = feed(st, "", nil, false, true)
   for index = 1, #items do
     -- The answer awaited cut by the end of the capture: said on the request (model.py CUT_ANSWER).
-    local reason = items[index].reason
-    if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then st.cut_note = reason end
+    local reason, cut = items[index].reason, FRAMING.cut_answer
+    if reason ~= nil and reason:sub(1, #cut) == cut then st.cut_note = reason end
   end
   take_items(st, items, record)
   if st.pending ~= nil then release_run(st.pending.registers) end

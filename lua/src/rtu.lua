@@ -131,8 +131,8 @@ local function cut_answer(s, b, i, n)
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   local what = "exception response"
   if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("the capture ends inside the %s (%d bytes of it)", what, n - i) end
-  return format("the capture ends inside the %s (%d of %d bytes)", what, n - i, length)
+  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
 end
 lane.cut_answer = cut_answer
 

@@ -104,8 +104,8 @@ local function pairing(case)
   local st, items = paired(case)
   local cut = nil
   for _, item in ipairs(items) do
-    local reason = item.reason
-    if reason ~= nil and reason:sub(1, 27) == "the capture ends inside the" then cut = reason end
+    local reason, prefix = item.reason, M.FRAMING.cut_answer
+    if reason ~= nil and reason:sub(1, #prefix) == prefix then cut = reason end
   end
   local got = {}
   for index, item in ipairs(items) do

@@ -81,6 +81,8 @@ def _crafted() -> list[tuple[str, bytes]]:
         ("fc17 run indicator", f("0111") + f("011103011241")),
         ("broadcast read", f("000300000001")),
         ("reserved slave", f("F80300000001")),
+        # (the answer awaited cut by the end of the capture: noise saying so, and the note on its request)
+        ("fc3 answer cut by the end", f("0C0320D00003") + h("0C0306800000 0300")),
     ]
 
 
