@@ -99,9 +99,22 @@ _HEADS: dict[tuple[Any, ...], str] = {}  # Slave..fields texts of frames of valu
 
 # Plain output writes a long run (a 2000-coil read, a 125-register block) from cached pieces (runs.py).
 _BIT_RUNS = BitRuns("            %d: ", "0\n", "1\n")
-_REGISTER_HEADS = Pieces("        Register %s: ")  # labels
-_REGISTER_ADDRESS_HEADS = AddressPieces("        Register %d: ")
-_WORD_TAILS = Pieces("%d (0x%04X)\n", twice=True)
+# A register line's address part (its newline before it) by address or label; its value part by value.
+_LINE_ADDRESS_HEADS = AddressPieces("\n        Register %d: ")
+_LINE_LABEL_HEADS = Pieces("\n        Register %s: ")
+
+
+class _Words(dict):  # type: ignore[type-arg]
+    """`8400 (0x20D0)` by 16-bit value, made on first sight (65,536 at most)."""
+
+    __slots__ = ()
+
+    def __missing__(self, value: int) -> str:
+        text = self[value] = f"{value} (0x{value:04X})"
+        return text
+
+
+_WORDS = _Words()
 
 
 class _Detail:
@@ -170,8 +183,9 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
             detail.run([f"        Register ?: {value} (0x{value:04X})" for value in values])
         elif detail.joined and values:
             labels = registers.labels
-            heads = _REGISTER_ADDRESS_HEADS(registers.addresses) if labels is None else _REGISTER_HEADS(labels)
-            detail.texts.append(interleave((heads, _WORD_TAILS(values)), len(values))[:-1])
+            heads = _LINE_ADDRESS_HEADS(registers.addresses) if labels is None else _LINE_LABEL_HEADS(labels)
+            # (the pieces _values_middle writes: each line's address part has its newline before it)
+            detail.texts.append(interleave((heads, map(_WORDS.__getitem__, values)), len(values))[1:])
         else:
             shown = registers.labels or registers.addresses
             detail.run([f"        Register {address}: {value} (0x{value:04X})" for address, value in zip(shown, values)])
@@ -473,29 +487,14 @@ _BLOCK_MIDDLES_MAX, _BLOCK_MIDDLE_REGISTERS, _NAMED_MIDDLE_REGISTERS = 1 << 12, 
 _BIT_MIDDLES: dict[tuple[Any, ...], str] = {}
 _BIT_MIDDLES_MAX, _BIT_MIDDLE_BITS = 1 << 12, 64
 # A longer block of plain columns (a relay's 40 registers, a meter's readings: new values every poll):
-# its head and span lines kept by its header bytes, its register lines from kept pieces (a line's
-# address part with the newline before it, by address or label; its value part, by value).
-# The parts list of such a block with its head and its lines' address parts in place, by the head's
-# key, span and the block's start and size or labels: a poll's parts are a copy with its values put in.
+# its parts list with its head (Slave to span) and its lines' address parts in place, kept by the head's
+# key, span and the block's start and size or labels; a poll's parts are a copy with its values put in.
 _VALUE_PARTS: dict[tuple[Any, ...], list[Any]] = {}
 _VALUE_PARTS_MAX = 1 << 10
 _CRC_OK_TAILS: dict[int, str] = {}
-_LINE_ADDRESS_HEADS = AddressPieces("\n        Register %d: ")
-_LINE_LABEL_HEADS = Pieces("\n        Register %s: ")
 _NS = 1_000_000_000
 
 
-class _Words(dict):  # type: ignore[type-arg]
-    """`8400 (0x20D0)` by 16-bit value, made on first sight (65,536 at most)."""
-
-    __slots__ = ()
-
-    def __missing__(self, value: int) -> str:
-        text = self[value] = f"{value} (0x{value:04X})"
-        return text
-
-
-_WORDS = _Words()
 
 
 def _arrival(time: float, base: float | None) -> str:
