@@ -80,6 +80,12 @@ local DATA = {
     [5] = "ModelName",
     [6] = "UserApplicationName",
   },
+  ["names"] = {
+    ["run_indicator"] = {
+      [0] = "OFF",
+      [255] = "ON",
+    },
+  },
   ["limits"] = {
     ["read_bits"] = { 1, 2000 },
     ["read_registers"] = { 1, 125 },
@@ -1333,7 +1339,7 @@ local DATA = {
 }
 do
 -- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
-local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["register_writes"]={[6]=true,[16]=true,[23]=true},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false},{["name"]="value",["type"]="u16",["half"]=false}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false},{["name"]="data",["type"]="rest",["half"]=false}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false},{["name"]="quantity",["type"]="u16",["half"]=false}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false},{["name"]="event_count",["type"]="u16",["half"]=false}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false},{["name"]="and_mask",["type"]="u16",["half"]=false},{["name"]="or_mask",["type"]="u16",["half"]=false}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false},{["name"]="read_quantity",["type"]="u16",["half"]=false},{["name"]="write_start",["type"]="u16",["half"]=false},{["name"]="write_quantity",["type"]="u16",["half"]=false},{["name"]="byte_count",["type"]="u8",["half"]=false},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false},{["name"]="fifo_count",["type"]="u16",["half"]=false},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false}}}}
+local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["register_writes"]={[6]=true,[16]=true,[23]=true},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
 -- END RULES
 DATA.rules = RULES
 end
@@ -2616,18 +2622,29 @@ local function say(key, values)
   return format(entry.format, unpack(args, 1, #params))
 end
 
--- Each parser gets the frame, the byte table, the first data byte and the data length. It returns the
--- number of bytes its grammar consumed (the rest is `trailing`), or nil and a reason when the data do
--- not fit the grammar (Python: GrammarError -> "malformed ...").
--- The regular layouts are read as their description says (data/modbus.toml [layouts], protocol/shapes.py):
--- u8 and u16 fields by name, a counted field (bytes, words, odd) by where it starts (NAME_at), the rest
--- of the data by its length (NAME_length). Each description is made into a Lua function once (load),
--- so that a frame costs what a hand-written parser costs: one length check for the fixed fields that
--- come first, read at constant offsets, and the fields in one table constructor.
+-- Each parser gets the byte table, the first data byte and the data length. It returns the number of
+-- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
+-- do not fit the grammar (Python: GrammarError -> "malformed ...").
+-- Every layout is read as its description says (data/modbus.toml [layouts] and [parts], protocol/shapes.py):
+-- u8 and u16 fields by name, a counted field (bytes, text, words, odd, records) by where it starts
+-- (NAME_at), the rest of the data by its length (NAME_length), an array of parts as a list of their
+-- fields, a switch as the fields of the part it chose. Each description is made into a Lua function once
+-- (load), so that a frame costs what a hand-written parser costs: one length check for the fixed fields
+-- that come first, read at constant offsets, and the fields in one table constructor.
 local SIZES = { u8 = 1, u16 = 2 }
-local SIZE_OF = { bytes = "v%d", words = "2 * v%d", half = "v%d - v%d %% 2", odd = "v%d %% 2" }
+local PARTS = {} -- (the parts' readers, which the layouts' call by name)
+
+-- A counted field's size in bytes, from the local holding its count: less `minus` (which may make it
+-- negative: the data do not fit), words(n/2) a whole number of words.
+local function size_of(field, count)
+  if field.type == "odd" then return format("%s %% 2", count) end
+  local n = field.minus > 0 and format("(%s - %d)", count, field.minus) or count
+  if field.half then return format("%s - %s %% 2", n, n) end
+  return field.type == "words" and "2 * " .. n or n
+end
+
 local function shape_parser(shape)
-  local lines, keys, index_of = { "return function(f, b, d, len)" }, {}, {}
+  local lines, keys, index_of = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}
   local fixed, names = 0, {}
   for _, field in ipairs(shape) do
     if SIZES[field.type] == nil then break end
@@ -2636,7 +2653,7 @@ local function shape_parser(shape)
   if fixed > 0 then
     local last = table.remove(names)
     local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
-    lines[2] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
+    lines[3] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
   end
   local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
   for _, field in ipairs(shape) do
@@ -2664,21 +2681,42 @@ local function shape_parser(shape)
     else
       if static then lines[#lines + 1] = format("local p = %d", static) end
       static = nil
-      local count = index_of[field.count]
-      lines[#lines + 1] = format("local s%d = " .. SIZE_OF[field.half and "half" or kind], index, count, count)
-      lines[#lines + 1] = format("if p + s%d > len then return nil, %q end", index, field.count .. " past the end")
-      if kind ~= "odd" then -- (where an odd byte is, nothing asks)
-        lines[#lines + 1] = format("local a%d = d + p", index)
-        keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+      local count = format("v%d", index_of[field.count])
+      if kind == "array" then -- (count parts one after the other)
+        lines[#lines + 1] = format("local a%d = {}", index)
+        lines[#lines + 1] = format("for k = 1, %s do", count)
+        lines[#lines + 1] = format("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
+        lines[#lines + 1] = "  if used == nil then return nil, item end"
+        lines[#lines + 1] = format("  a%d[k], p = item, p + used", index)
+        lines[#lines + 1] = "end"
+        keys[#keys + 1] = format("[%q] = a%d", name, index)
+      elseif kind == "switch" then -- (the part for the field's value, else the last one)
+        local choice = {}
+        for _, case in ipairs(field.cases) do
+          choice[#choice + 1] = case.value and format("%s == %d and PARTS[%q]", count, case.value, case.part)
+            or format("PARTS[%q]", case.part)
+        end
+        lines[#lines + 1] = format("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
+        lines[#lines + 1] = format("if used == nil then return nil, c%d end", index)
+        lines[#lines + 1] = "p = p + used"
+        keys[#keys + 1] = format("[%q] = c%d", name, index)
+      else
+        lines[#lines + 1] = format("local s%d = %s", index, size_of(field, count))
+        lines[#lines + 1] = format("if %sp + s%d > len then return nil, %q end", field.minus > 0
+          and format("s%d < 0 or ", index) or "", index, field.count .. " past the end")
+        if kind ~= "odd" then -- (where an odd byte is, nothing asks)
+          lines[#lines + 1] = format("local a%d = d + p", index)
+          keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+        end
+        lines[#lines + 1] = format("p = p + s%d", index)
       end
-      lines[#lines + 1] = format("p = p + s%d", index)
     end
   end
-  lines[#lines + 1] = "f.fields = { " .. concat(keys, ", ") .. " }"
   local trailing = #shape == 0 or shape[#shape].type ~= "rest"
-  lines[#lines + 1] = "return " .. (not trailing and "len" or static and format("%d", static) or "p")
+  lines[#lines + 1] = format("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p",
+    concat(keys, ", "))
   lines[#lines + 1] = "end"
-  return load(concat(lines, "\n"))()
+  return load(concat(lines, "\n"))(PARTS)
 end
 
 -- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
@@ -2692,74 +2730,9 @@ local function offset_of(shape, name)
   return nil
 end
 
--- The irregular layouts (protocol/layouts.py writes them by hand too).
-local function byte_counted(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = {}
-  return 1 + b[d]
-end
-
-local function mei_request(f, b, d, len)
-  if len < 1 then return nil, "too short for a MEI type" end
-  if b[d] == 14 then
-    if len < 3 then return nil, "too short for read code and object id" end
-    f.fields = { mei_type = 14 }
-    return 3
-  end
-  f.fields = { mei_type = b[d] }
-  return len
-end
-
-local function mei_response(f, b, d, len)
-  if len < 1 then return nil, "too short for a MEI type" end
-  if b[d] ~= 14 then
-    f.fields = { mei_type = b[d] }
-    return len
-  end
-  if len < 6 then return nil, "too short for the identification header" end
-  local objects, position = {}, 6
-  for _ = 1, b[d + 5] do
-    if position + 2 > len or position + 2 + b[d + position + 1] > len then
-      return nil, "object length past the end"
-    end
-    local size = b[d + position + 1]
-    -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
-    local chars = {}
-    for k = 0, size - 1 do
-      local byte = b[d + position + 2 + k]
-      if byte < 128 then
-        chars[#chars + 1] = string.char(byte)
-      else
-        chars[#chars + 1] = string.char(192 + floor(byte / 64), 128 + byte % 64)
-      end
-    end
-    objects[#objects + 1] = { id = b[d + position], value = concat(chars), offset = d + position, length = 2 + size }
-    position = position + 2 + size
-  end
-  f.fields = { mei_type = 14, objects = objects }
-  return position
-end
-
-local function raw(f, b, d, len)
-  f.fields = {}
-  return len
-end
-
 -- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local PARSERS = {
-  comm_event_log_response = function(f, b, d, len)
-    if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
-    f.fields = {}
-    return 1 + b[d]
-  end,
-  read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
-  mei_request = mei_request, mei_response = mei_response,
-  report_server_id_response = function(f, b, d, len)
-    if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
-    f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
-    return 1 + b[d]
-  end,
-}
+local PARSERS = {}
+for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape) end
 for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
 local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
 for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
@@ -2879,8 +2852,17 @@ local SPECIAL = {
   end,
   mei_response = function(f, b)
     if f.fields.mei_type ~= 14 then return end
-    local objects = f.fields.objects -- (the frame's from now on: its fields are dropped once it is done with)
-    for _, object in ipairs(objects) do object.name = OBJECTS[object.id] or format("Object %d", object.id) end
+    local objects = {} -- (the frame's from now on: its fields are dropped once it is done with)
+    for index, object in ipairs(f.fields.body.objects) do
+      -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
+      local chars = {}
+      for k = object.value_at, object.value_at + object.length - 1 do
+        local byte = b[k]
+        chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
+      end
+      objects[index] = { id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id),
+        value = concat(chars), offset = object.value_at - 2, length = 2 + object.length }
+    end
     f.objects = objects
   end,
   report_server_id_response = function(f, b)
@@ -2889,7 +2871,7 @@ local SPECIAL = {
     local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
     if run ~= 0 and run ~= 255 then warn(f, say("run_indicator", { value = run })) end
     for k = 0, length - 1 do
-      local byte = b[d + 3 + k]
+      local byte = b[fields.additional_data_at + k]
       if byte < 32 or byte > 126 then chars = nil break end
       chars[#chars + 1] = string.char(byte)
     end
@@ -2933,14 +2915,14 @@ local function decode_frame(f)
     end
     return
   end
-  local parser = GRAMMARS[f.kind][f.fn] or raw
-  local used, reason = parser(f, b, d, len)
-  if used == nil then
+  local used, fields = (GRAMMARS[f.kind][f.fn] or PARSERS.raw)(b, d, len)
+  if used == nil then -- (fields: the reason)
     f.fields = nil
     f.malformed = true
-    warn(f, say("malformed", { kind = f.kind, error = reason }))
+    warn(f, say("malformed", { kind = f.kind, error = fields }))
     return
   end
+  f.fields = fields
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
   if used < len then warn(f, say("trailing", { count = len - used })) end
@@ -3951,9 +3933,8 @@ end
 local function cause_text(cause)
   local counters = cause.counters or {}
   if #counters == 0 then return cause.error end
-  local plural = "counter"
-  if #counters > 1 then plural = "counters" end
-  return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
+  return say(#counters > 1 and "cause_counters" or "cause_counter", { error = cause.error,
+    counters = concat(counters, " and ") })
 end
 
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
@@ -3981,12 +3962,12 @@ local function all_unreadable(st, f, device)
     if #run == 1 then
       parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
     else
-      parts[index] = format("%s non-existent (%d)", span_name(run), #run)
+      parts[index] = say("unmapped_run", { span = span_name(run), count = #run })
     end
   end
-  note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
-    f.exception_code, device.profile.device, concat(parts, ", ")))
-  local now = format("exception %02X now", f.exception_code)
+  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device,
+    parameters = concat(parts, ", ") }))
+  local now = say("unreadable_now", { code = f.exception_code })
   for _, entry in ipairs(entries) do
     track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
   end
@@ -4378,9 +4359,9 @@ local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EX
 local REQUEST, RESPONSE, SELECTION, annotate_registers = REQUEST, RESPONSE, SELECTION, annotate_registers
 local check_request, concat, describe, device_of = check_request, concat, describe, device_of
 local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
-local format, ipairs, math, pairs, parse_map_choice = format, ipairs, math, pairs, parse_map_choice
+local ipairs, math, pairs, parse_map_choice = ipairs, math, pairs, parse_map_choice
 local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
-local refused_registers, register_at, remember_writes = refused_registers, register_at, remember_writes
+local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
 local span_label, string, table, words_at = span_label, string, table, words_at
 local annotate_with
 
@@ -4417,7 +4398,7 @@ end
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
 -- its status, no value. Made when shown, from the request and the device, rather than kept.
 local function inferred_registers(st, f)
-  local text = format("no value: exception %02X", f.exception_code)
+  local text = say("no_value", { code = f.exception_code })
   local registers = refused_registers(device_of(st, f), f.request)
   for _, reg in ipairs(registers) do reg.text, reg.offset = text, -1 end
   return registers
@@ -5386,8 +5367,8 @@ package.preload["vw3.fields"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE = DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS, NOISE
-local Pref, Proto, ProtoExpert, ProtoField, REQUEST = Pref, Proto, ProtoExpert, ProtoField, REQUEST
+local DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
+local NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST = NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST
 local RESPONSE, base, configure, expert, frametype, lane = RESPONSE, base, configure, expert, frametype, lane
 local new_state, vw3 = new_state, vw3
 
@@ -5460,7 +5441,7 @@ local pf = {
   data = ProtoField.bytes("vw3.data", "Data"),
   byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
   server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
-  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, { [0] = "OFF", [255] = "ON" }),
+  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, DATA.names.run_indicator),
   additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
   additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
 }

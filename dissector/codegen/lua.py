@@ -89,6 +89,7 @@ def plugin_data() -> dict[str, Any]:
         "diagnostics": SPEC.diagnostics,
         "mei_types": SPEC.mei_types,
         "device_id_objects": SPEC.device_id_objects,
+        "names": SPEC.names,  # value names of layout fields (u8{NAMES}: the run indicator)
         "limits": limits,
         "framing": {
             "max_adu": framer.MAX_ADU,

@@ -2,11 +2,12 @@
 Lua literal writer the conformance vectors (tests/conformance/vectors.lua) use.
 
 `render_rules()` gives a Lua chunk defining `local RULES = {...}`: the lifting rules per handler name
-(with each check's limit resolved per function code), how each write is confirmed, the regular layouts'
-fields, and the catalogue of texts, each with its Python template, its parameters in order and a `string.format` form (`%s` for a
-plain parameter, the format spec carried over: `0x{value:04X}` -> `0x%04X`). The plugin's code
-generator (codegen/lua.py) places it inside its generated block, between the markers below, so that
-`python3 -m dissector.codegen --check` covers it with the rest of the plugin.
+(with each check's limit resolved per function code), how each write is confirmed, every layout's
+fields (and the parts they repeat or switch to), and the catalogue of texts, each with its Python
+template, its parameters in order and a `string.format` form (`%s` for a plain parameter, the format
+spec carried over: `0x{value:04X}` -> `0x%04X`). The plugin's code generator (codegen/lua.py) places it
+inside its generated block, between the markers below, so that `python3 -m dissector.codegen --check`
+covers it with the rest of the plugin.
 """
 from __future__ import annotations
 
@@ -19,7 +20,7 @@ from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Lift, params
-from dissector.protocol.shapes import SHAPES
+from dissector.protocol.shapes import PARTS, SHAPES, Field
 from dissector.protocol.spec import SPEC
 
 BEGIN = "-- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)"
@@ -76,6 +77,12 @@ def _lift(rule: Lift) -> dict[str, Any]:
     }
 
 
+def _shape(shape: tuple[Field, ...]) -> list[dict[str, Any]]:
+    return [{"name": f.name, "type": str(f.type), "count": f.count, "half": f.half, "minus": f.minus, "part": f.part,
+             # (switch: the parts by value, the last the default's)
+             "cases": [{"value": value, "part": part} for value, part in f.cases] or None} for f in shape]
+
+
 def rules_data() -> dict[str, Any]:
     """Everything the plugin needs to interpret the rule tables, as plain data."""
     by_code: dict[str, dict[int, Any]] = {}
@@ -100,9 +107,10 @@ def rules_data() -> dict[str, Any]:
                         "repr": [name for _, name, _, conversion in string.Formatter().parse(TEXTS[key])
                                  if name and conversion == "r"]}
                   for key in TEXTS},
-        # The regular layouts' fields in order (data/modbus.toml [layouts]): what the plugin's parsers read.
-        "layouts": {name: [{"name": f.name, "type": str(f.type), "count": f.count, "half": f.half} for f in shape]
-                    for name, shape in SHAPES.items()},
+        # Every layout's fields in order (data/modbus.toml [layouts], and the [parts] they repeat or switch
+        # to): what the plugin's reader reads.
+        "layouts": {name: _shape(shape) for name, shape in SHAPES.items()},
+        "parts": {name: _shape(shape) for name, shape in PARTS.items()},
     }
 
 

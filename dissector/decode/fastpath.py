@@ -16,9 +16,8 @@ from construct import Container, ListContainer
 
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.shapes import SHAPES, Field, Type, has_trailing
+from dissector.protocol.shapes import PARTS, SHAPES, Field, Type, has_trailing
 
-_THREE_WORDS = Struct(">HHH")
 _WORDS: dict[int, Struct] = {}
 
 
@@ -29,144 +28,91 @@ def _words(data: bytes, start: int, count: int) -> ListContainer:
     return ListContainer(unpacker.unpack_from(data, start))
 
 
-def regular(shape: tuple[Field, ...]) -> Callable[[bytes], Container | None]:
+def regular(shape: tuple[Field, ...], part: bool = False) -> Callable[..., object] | None:
     """The fast parser of a layout data/modbus.toml [layouts] describes: its fixed-size head in one
-    unpack, then its counted fields. Steps aside (None) where the grammar must judge: data too short
-    for a field, or an odd byte count of words (the grammar's odd_byte).
+    unpack, then its counted fields, its parts (records, arrays, a switch) by their own fast parsers.
+    Steps aside (None) where the grammar must judge: data too short for a field, an odd byte count of
+    words (the grammar's odd_byte), a count less its constant below zero, records that do not fill
+    their byte count exactly (the grammar's GreedyRange).
 
     It is written as Python source from the description and compiled once, as dataclasses writes its
     methods: a generic loop over the fields cost 1.5 to 4 times the hand-written parsers this replaces,
-    on the path every frame takes. Field names are identifiers (protocol/shapes.py checks them)."""
+    on the path every frame takes. Field names are identifiers (protocol/shapes.py checks them).
+    A part's parser (`part`) reads from `at` to `n` and gives its Container and where it ends.
+    None for a layout with text or named values: the grammar's adapters make those."""
+    if any(field.type is Type.TEXT or field.names for field in shape):
+        return None
+    parts = {name: regular(PARTS[name], part=True) for field in shape
+             for name in [field.part, *(case for _, case in field.cases)] if name is not None}
+    if None in parts.values():
+        return None
     head = 0
     while head < len(shape) and shape[head].size is not None:
         head += 1
     if any(field.size is not None for field in shape[head:]):
         raise ValueError(f"a fixed-size field after a counted one: {shape}")
     unpacker = Struct(">" + "".join("B" if field.size == 1 else "H" for field in shape[:head]))
-    end = 1 + unpacker.size
-    code = ["def parse(pdu):", "    n = len(pdu)", f"    if n < {end}:", "        return None"]
+
+    def at(offset: int) -> str:  # a layout's data start after the function code, a part's at `at`
+        return (f"at + {offset}" if offset else "at") if part else str(offset + 1)
+
+    code = ["def parse(pdu, at, n):" if part else "def parse(pdu):", *([] if part else ["    n = len(pdu)"]),
+            f"    if n < {at(unpacker.size)}:", "        return None"]
     if head == 1:  # one byte or word: indexing is quicker than an unpack call
-        code.append(f"    f_{shape[0].name} = pdu[1]" + (" << 8 | pdu[2]" if shape[0].size == 2 else ""))
+        code.append(f"    f_{shape[0].name} = pdu[{at(0)}]" + (f" << 8 | pdu[{at(1)}]" if shape[0].size == 2 else ""))
     elif head:
-        code.append(f"    {''.join(f'f_{field.name}, ' for field in shape[:head])}= unpack(pdu, 1)")
-    position = str(end)
+        code.append(f"    {''.join(f'f_{field.name}, ' for field in shape[:head])}= unpack(pdu, {at(0)})")
+    position = at(unpacker.size)
     for index, field in enumerate(shape[head:]):
-        name, count = f"f_{field.name}", f"f_{field.count}"
+        name, count, stop = f"f_{field.name}", f"f_{field.count}", f"e{index}"
+        if field.minus:
+            code += [f"    s{index} = {count} - {field.minus}", f"    if s{index} < 0:", "        return None"]
+            count = f"s{index}"
         if field.type is Type.REST:
-            code.append(f"    {name} = pdu[{position}:]")
+            code.append(f"    {name} = pdu[{position}:{'n' if part else ''}]")
             position = "n"
         elif field.type is Type.ODD:  # a byte count of words that is odd is the grammar's to judge
             code += [f"    if {count} & 1:", "        return None", f"    {name} = None"]
+        elif field.type is Type.SWITCH:
+            choice = " else ".join(f"P_{case} if {count} == {value}" if value is not None else f"P_{case}"
+                                   for value, case in field.cases)
+            code += [f"    r = ({choice})(pdu, {position}, n)", "    if r is None:", "        return None",
+                     f"    {name}, {stop} = r"]
+            position = stop
+        elif field.type in (Type.RECORDS, Type.ARRAY):
+            records = field.type is Type.RECORDS  # (parts that fill `count` bytes, or `count` parts)
+            if records:
+                code += [f"    {stop} = {position} + {count}", f"    if {stop} > n:", "        return None"]
+            code += [f"    {name} = ListContainer()", f"    p = {position}",
+                     f"    while p < {stop}:" if records else f"    for _ in range({count}):",
+                     f"        r = P_{field.part}(pdu, p, {stop if records else 'n'})",
+                     "        if r is None:", "            return None", "        item, p = r", f"        {name}.append(item)"]
+            if not records:
+                code.append(f"    {stop} = p")
+            position = stop
         else:
             size = (f"({count} >> 1)" if field.half else count) if field.type is Type.WORDS else count
-            stop = f"e{index}"
             code += [f"    {stop} = {position} + {'2 * ' if field.type is Type.WORDS else ''}{size}",
                      f"    if {stop} > n:", "        return None"]
             code.append(f"    {name} = words(pdu, {position}, {size})" if field.type is Type.WORDS
                         else f"    {name} = pdu[{position}:{stop}]")
             position = stop
     values = [f"{field.name}=f_{field.name}" for field in shape]
-    if has_trailing(shape):
-        values.append(f"trailing=pdu[{position}:]")
-    code.append(f"    return Container({', '.join(values)})")
-    namespace: dict[str, object] = {"unpack": unpacker.unpack_from, "words": _words, "Container": Container}
+    if part:
+        code.append(f"    return Container({', '.join(values)}), {position}")
+    else:
+        if has_trailing(shape):
+            values.append(f"trailing=pdu[{position}:]")
+        code.append(f"    return Container({', '.join(values)})")
+    namespace: dict[str, object] = {"unpack": unpacker.unpack_from, "words": _words, "Container": Container,
+                                    "ListContainer": ListContainer, **{f"P_{name}": parse for name, parse in parts.items()}}
     exec("\n".join(code), namespace)  # noqa: S102  (source made above from checked identifiers)
     return namespace["parse"]  # type: ignore[return-value]
 
 
-# File records (FC20/21): only runs of records that fill the byte count exactly; anything else (a
-# record cut short, bytes the grammar's GreedyRange would leave) is the grammar's to judge.
-def _read_file_request(pdu: bytes) -> Container | None:
-    count = pdu[1] if len(pdu) > 1 else -1
-    if count < 0 or count % 7 or len(pdu) < 2 + count:
-        return None
-    subrequests = ListContainer()
-    for offset in range(2, 2 + count, 7):
-        file, record, length = _THREE_WORDS.unpack_from(pdu, offset + 1)
-        subrequests.append(Container(reference_type=pdu[offset], file=file, record=record, length=length))
-    return Container(byte_count=count, subrequests=subrequests, trailing=pdu[2 + count :])
-
-
-def _read_file_response(pdu: bytes) -> Container | None:
-    count = pdu[1] if len(pdu) > 1 else -1
-    end = 2 + count
-    if count < 0 or len(pdu) < end:
-        return None
-    subresponses = ListContainer()
-    offset = 2
-    while offset < end:
-        if offset + 2 > end or pdu[offset] < 1:
-            return None
-        length = pdu[offset]
-        words = (length - 1) // 2
-        if offset + 2 + 2 * words > end:
-            return None
-        subresponses.append(Container(length=length, reference_type=pdu[offset + 1], values=_words(pdu, offset + 2, words)))
-        offset += 2 + 2 * words
-    return Container(byte_count=count, subresponses=subresponses, trailing=pdu[end:])
-
-
-def _write_file(pdu: bytes) -> Container | None:
-    count = pdu[1] if len(pdu) > 1 else -1
-    end = 2 + count
-    if count < 0 or len(pdu) < end:
-        return None
-    records = ListContainer()
-    offset = 2
-    while offset < end:
-        if offset + 7 > end:
-            return None
-        file, record, length = _THREE_WORDS.unpack_from(pdu, offset + 1)
-        if offset + 7 + 2 * length > end:
-            return None
-        records.append(Container(
-            reference_type=pdu[offset], file=file, record=record, length=length, values=_words(pdu, offset + 7, length)
-        ))
-        offset += 7 + 2 * length
-    return Container(byte_count=count, records=records, trailing=pdu[end:])
-
-
-def _mei_request(pdu: bytes) -> Container | None:
-    if len(pdu) < 2:
-        return None
-    if pdu[1] != 14:
-        return Container(mei_type=pdu[1], body=Container(data=pdu[2:]), trailing=b"")
-    if len(pdu) < 4:
-        return None
-    return Container(mei_type=14, body=Container(read_code=pdu[2], object_id=pdu[3]), trailing=pdu[4:])
-
-
-def _mei_response(pdu: bytes) -> Container | None:
-    if len(pdu) < 2:
-        return None
-    if pdu[1] != 14:
-        return Container(mei_type=pdu[1], body=Container(data=pdu[2:]), trailing=b"")
-    if len(pdu) < 7:
-        return None
-    objects = ListContainer()
-    offset = 7
-    for _ in range(pdu[6]):
-        if offset + 2 > len(pdu) or offset + 2 + pdu[offset + 1] > len(pdu):
-            return None
-        length = pdu[offset + 1]
-        objects.append(Container(id=pdu[offset], length=length, value=pdu[offset + 2 : offset + 2 + length]))
-        offset += 2 + length
-    body = Container(
-        read_code=pdu[2], conformity=pdu[3], more_follows=pdu[4], next_object_id=pdu[5], object_count=pdu[6], objects=objects
-    )
-    return Container(mei_type=14, body=body, trailing=pdu[offset:])
-
-
-# Fast parsers by layout name (protocol/table.py): the regular layouts' from their descriptions, the
-# irregular ones written above; the table says which codes use which layout.
-_BY_LAYOUT = {
-    **{name: regular(shape) for name, shape in SHAPES.items()},
-    "read_file_request": _read_file_request,
-    "read_file_response": _read_file_response,
-    "write_file": _write_file,
-    "mei_request": _mei_request,
-    "mei_response": _mei_response,
-}
+# Fast parsers by layout name (protocol/table.py), from their descriptions; the table says which codes
+# use which layout.
+_BY_LAYOUT = {name: parser for name, shape in SHAPES.items() if (parser := regular(shape)) is not None}
 _EXCEPTION = _BY_LAYOUT["exception"]
 
 _FAST_BY_KIND = {

@@ -85,13 +85,15 @@ def _all_unreadable(frame: Frame, device: Device, request: Frame, events: list[E
                 parts.append(_part(run))
             run = [entry]
         parts.append(_part(run))
-        head = f"exception {frame.exception_code:02X} from the {device.profile.device}: every parameter of this read is non-existent or protected: "
-        full, short = listed(parts, SHORT_PARTS)
-        known = (Note(head + full, head + short, key=True), lost_)
+        full, short = (
+            text("all_unreadable", code=frame.exception_code, device=device.profile.device, parameters=parameters)
+            for parameters in listed(parts, SHORT_PARTS)
+        )
+        known = (Note(full, short, key=True), lost_)
         _remember(device.explained, key, known)
     note, lost_ = known  # type: ignore[misc]
     frame.notes.append(note)
-    now = f"exception {frame.exception_code:02X} now"
+    now = text("unreadable_now", code=frame.exception_code)
     for address, row, label in lost_:
         lost(frame, device, address, row, "non-existent" if row is None else "protected", now, label, events)
     frame.registers = _registers(frame, lost_)
@@ -112,7 +114,7 @@ def all_unreadable_registers(frame: Frame, device: Device, request: Frame) -> li
 def _registers(frame: Frame, lost_: list[tuple[int, object, str | None]]) -> list[Register]:
     # The registers the story is about, with the status it infers and no value (none was sent), so
     # that `status == "protected"` finds this frame as it finds a 16#8000 read.
-    inferred = f"no value: exception {frame.exception_code:02X}"
+    inferred = text("no_value", code=frame.exception_code)
     registers = []
     for address, row, label in lost_:
         status = "non-existent" if row is None else "protected"
@@ -130,7 +132,7 @@ def _part(run: list[tuple[int, object, str | None]]) -> tuple[str, int]:
         status = "non-existent" if row is None else "protected"
         return f"{address_name(row, address, label)} {status}", 1  # type: ignore[arg-type]
     last_address, _, last_label = run[-1]
-    return f"{label or address}..{last_label or last_address} non-existent ({len(run)})", len(run)
+    return text("unmapped_run", span=f"{label or address}..{last_label or last_address}", count=len(run)), len(run)
 
 
 def _remember(cache: dict[object, object], key: object, value: object) -> None:
@@ -157,6 +159,5 @@ def _cause_text(cause: ExceptionCause) -> str:
     if not cause.counters:
         return cause.error
     counters = cause.counters
-    names = " and ".join(counters)
-    plural = "counters" if len(counters) > 1 else "counter"
-    return f"{cause.error} (increments the {names} {plural})"
+    return text("cause_counters" if len(counters) > 1 else "cause_counter", error=cause.error,
+                counters=" and ".join(counters))

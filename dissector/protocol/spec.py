@@ -28,7 +28,9 @@ class Spec:
     confirm: dict[int, str]
     lift: dict[str, dict[str, object]]
     texts: dict[str, str]
-    layouts: dict[str, list[str]]  # the regular layouts' fields (protocol/layouts.py)
+    layouts: dict[str, list[str]]  # each layout's fields (protocol/shapes.py, layouts.py)
+    parts: dict[str, list[str]]  # the fields of the parts layouts repeat or switch to
+    names: dict[str, dict[int, str]]  # value names of u8{NAMES} fields
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -63,6 +65,8 @@ def load_spec() -> Spec:
         lift=data["lift"],
         texts={str(key): str(value) for key, value in data["texts"].items()},
         layouts={str(key): [str(field) for field in value] for key, value in data["layouts"].items()},
+        parts={str(key): [str(field) for field in value] for key, value in data["parts"].items()},
+        names={str(key): _int_keys(value) for key, value in data["names"].items()},
     )
 
 

@@ -127,7 +127,7 @@ def _layout(
     name: str, length: LengthRule, handler: str | None = None, limit: str | None = None,
     by_quantity: ByQuantity | None = None,
 ) -> Layout:
-    return Layout(name, getattr(L, name.upper()), length, handler, limit, by_quantity)
+    return Layout(name, L.LAYOUTS[name], length, handler, limit, by_quantity)
 
 
 _EIGHT = Fixed(8)

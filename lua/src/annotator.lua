@@ -38,7 +38,7 @@ end
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
 -- its status, no value. Made when shown, from the request and the device, rather than kept.
 local function inferred_registers(st, f)
-  local text = format("no value: exception %02X", f.exception_code)
+  local text = say("no_value", { code = f.exception_code })
   local registers = refused_registers(device_of(st, f), f.request)
   for _, reg in ipairs(registers) do reg.text, reg.offset = text, -1 end
   return registers

@@ -93,18 +93,29 @@ local function say(key, values)
   return format(entry.format, unpack(args, 1, #params))
 end
 
--- Each parser gets the frame, the byte table, the first data byte and the data length. It returns the
--- number of bytes its grammar consumed (the rest is `trailing`), or nil and a reason when the data do
--- not fit the grammar (Python: GrammarError -> "malformed ...").
--- The regular layouts are read as their description says (data/modbus.toml [layouts], protocol/shapes.py):
--- u8 and u16 fields by name, a counted field (bytes, words, odd) by where it starts (NAME_at), the rest
--- of the data by its length (NAME_length). Each description is made into a Lua function once (load),
--- so that a frame costs what a hand-written parser costs: one length check for the fixed fields that
--- come first, read at constant offsets, and the fields in one table constructor.
+-- Each parser gets the byte table, the first data byte and the data length. It returns the number of
+-- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
+-- do not fit the grammar (Python: GrammarError -> "malformed ...").
+-- Every layout is read as its description says (data/modbus.toml [layouts] and [parts], protocol/shapes.py):
+-- u8 and u16 fields by name, a counted field (bytes, text, words, odd, records) by where it starts
+-- (NAME_at), the rest of the data by its length (NAME_length), an array of parts as a list of their
+-- fields, a switch as the fields of the part it chose. Each description is made into a Lua function once
+-- (load), so that a frame costs what a hand-written parser costs: one length check for the fixed fields
+-- that come first, read at constant offsets, and the fields in one table constructor.
 local SIZES = { u8 = 1, u16 = 2 }
-local SIZE_OF = { bytes = "v%d", words = "2 * v%d", half = "v%d - v%d %% 2", odd = "v%d %% 2" }
+local PARTS = {} -- (the parts' readers, which the layouts' call by name)
+
+-- A counted field's size in bytes, from the local holding its count: less `minus` (which may make it
+-- negative: the data do not fit), words(n/2) a whole number of words.
+local function size_of(field, count)
+  if field.type == "odd" then return format("%s %% 2", count) end
+  local n = field.minus > 0 and format("(%s - %d)", count, field.minus) or count
+  if field.half then return format("%s - %s %% 2", n, n) end
+  return field.type == "words" and "2 * " .. n or n
+end
+
 local function shape_parser(shape)
-  local lines, keys, index_of = { "return function(f, b, d, len)" }, {}, {}
+  local lines, keys, index_of = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}
   local fixed, names = 0, {}
   for _, field in ipairs(shape) do
     if SIZES[field.type] == nil then break end
@@ -113,7 +124,7 @@ local function shape_parser(shape)
   if fixed > 0 then
     local last = table.remove(names)
     local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
-    lines[2] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
+    lines[3] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
   end
   local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
   for _, field in ipairs(shape) do
@@ -141,21 +152,42 @@ local function shape_parser(shape)
     else
       if static then lines[#lines + 1] = format("local p = %d", static) end
       static = nil
-      local count = index_of[field.count]
-      lines[#lines + 1] = format("local s%d = " .. SIZE_OF[field.half and "half" or kind], index, count, count)
-      lines[#lines + 1] = format("if p + s%d > len then return nil, %q end", index, field.count .. " past the end")
-      if kind ~= "odd" then -- (where an odd byte is, nothing asks)
-        lines[#lines + 1] = format("local a%d = d + p", index)
-        keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+      local count = format("v%d", index_of[field.count])
+      if kind == "array" then -- (count parts one after the other)
+        lines[#lines + 1] = format("local a%d = {}", index)
+        lines[#lines + 1] = format("for k = 1, %s do", count)
+        lines[#lines + 1] = format("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
+        lines[#lines + 1] = "  if used == nil then return nil, item end"
+        lines[#lines + 1] = format("  a%d[k], p = item, p + used", index)
+        lines[#lines + 1] = "end"
+        keys[#keys + 1] = format("[%q] = a%d", name, index)
+      elseif kind == "switch" then -- (the part for the field's value, else the last one)
+        local choice = {}
+        for _, case in ipairs(field.cases) do
+          choice[#choice + 1] = case.value and format("%s == %d and PARTS[%q]", count, case.value, case.part)
+            or format("PARTS[%q]", case.part)
+        end
+        lines[#lines + 1] = format("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
+        lines[#lines + 1] = format("if used == nil then return nil, c%d end", index)
+        lines[#lines + 1] = "p = p + used"
+        keys[#keys + 1] = format("[%q] = c%d", name, index)
+      else
+        lines[#lines + 1] = format("local s%d = %s", index, size_of(field, count))
+        lines[#lines + 1] = format("if %sp + s%d > len then return nil, %q end", field.minus > 0
+          and format("s%d < 0 or ", index) or "", index, field.count .. " past the end")
+        if kind ~= "odd" then -- (where an odd byte is, nothing asks)
+          lines[#lines + 1] = format("local a%d = d + p", index)
+          keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
+        end
+        lines[#lines + 1] = format("p = p + s%d", index)
       end
-      lines[#lines + 1] = format("p = p + s%d", index)
     end
   end
-  lines[#lines + 1] = "f.fields = { " .. concat(keys, ", ") .. " }"
   local trailing = #shape == 0 or shape[#shape].type ~= "rest"
-  lines[#lines + 1] = "return " .. (not trailing and "len" or static and format("%d", static) or "p")
+  lines[#lines + 1] = format("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p",
+    concat(keys, ", "))
   lines[#lines + 1] = "end"
-  return load(concat(lines, "\n"))()
+  return load(concat(lines, "\n"))(PARTS)
 end
 
 -- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
@@ -169,74 +201,9 @@ local function offset_of(shape, name)
   return nil
 end
 
--- The irregular layouts (protocol/layouts.py writes them by hand too).
-local function byte_counted(f, b, d, len)
-  if len < 1 or len < 1 + b[d] then return nil, "byte count past the end" end
-  f.fields = {}
-  return 1 + b[d]
-end
-
-local function mei_request(f, b, d, len)
-  if len < 1 then return nil, "too short for a MEI type" end
-  if b[d] == 14 then
-    if len < 3 then return nil, "too short for read code and object id" end
-    f.fields = { mei_type = 14 }
-    return 3
-  end
-  f.fields = { mei_type = b[d] }
-  return len
-end
-
-local function mei_response(f, b, d, len)
-  if len < 1 then return nil, "too short for a MEI type" end
-  if b[d] ~= 14 then
-    f.fields = { mei_type = b[d] }
-    return len
-  end
-  if len < 6 then return nil, "too short for the identification header" end
-  local objects, position = {}, 6
-  for _ = 1, b[d + 5] do
-    if position + 2 > len or position + 2 + b[d + position + 1] > len then
-      return nil, "object length past the end"
-    end
-    local size = b[d + position + 1]
-    -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
-    local chars = {}
-    for k = 0, size - 1 do
-      local byte = b[d + position + 2 + k]
-      if byte < 128 then
-        chars[#chars + 1] = string.char(byte)
-      else
-        chars[#chars + 1] = string.char(192 + floor(byte / 64), 128 + byte % 64)
-      end
-    end
-    objects[#objects + 1] = { id = b[d + position], value = concat(chars), offset = d + position, length = 2 + size }
-    position = position + 2 + size
-  end
-  f.fields = { mei_type = 14, objects = objects }
-  return position
-end
-
-local function raw(f, b, d, len)
-  f.fields = {}
-  return len
-end
-
 -- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local PARSERS = {
-  comm_event_log_response = function(f, b, d, len)
-    if len < 7 or b[d] < 6 or len < 1 + b[d] then return nil, "byte count below 6 or past the end" end
-    f.fields = {}
-    return 1 + b[d]
-  end,
-  read_file_request = byte_counted, read_file_response = byte_counted, write_file = byte_counted,
-  mei_request = mei_request, mei_response = mei_response,
-  report_server_id_response = function(f, b, d, len)
-    if len < 3 or b[d] < 2 or len < 1 + b[d] then return nil, "byte count below 2 or past the end" end
-    f.fields = { byte_count = b[d], server_id = b[d + 1], run_indicator = b[d + 2] }
-    return 1 + b[d]
-  end,
-}
+local PARSERS = {}
+for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape) end
 for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
 local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
 for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
@@ -356,8 +323,17 @@ local SPECIAL = {
   end,
   mei_response = function(f, b)
     if f.fields.mei_type ~= 14 then return end
-    local objects = f.fields.objects -- (the frame's from now on: its fields are dropped once it is done with)
-    for _, object in ipairs(objects) do object.name = OBJECTS[object.id] or format("Object %d", object.id) end
+    local objects = {} -- (the frame's from now on: its fields are dropped once it is done with)
+    for index, object in ipairs(f.fields.body.objects) do
+      -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
+      local chars = {}
+      for k = object.value_at, object.value_at + object.length - 1 do
+        local byte = b[k]
+        chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
+      end
+      objects[index] = { id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id),
+        value = concat(chars), offset = object.value_at - 2, length = 2 + object.length }
+    end
     f.objects = objects
   end,
   report_server_id_response = function(f, b)
@@ -366,7 +342,7 @@ local SPECIAL = {
     local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
     if run ~= 0 and run ~= 255 then warn(f, say("run_indicator", { value = run })) end
     for k = 0, length - 1 do
-      local byte = b[d + 3 + k]
+      local byte = b[fields.additional_data_at + k]
       if byte < 32 or byte > 126 then chars = nil break end
       chars[#chars + 1] = string.char(byte)
     end
@@ -410,14 +386,14 @@ local function decode_frame(f)
     end
     return
   end
-  local parser = GRAMMARS[f.kind][f.fn] or raw
-  local used, reason = parser(f, b, d, len)
-  if used == nil then
+  local used, fields = (GRAMMARS[f.kind][f.fn] or PARSERS.raw)(b, d, len)
+  if used == nil then -- (fields: the reason)
     f.fields = nil
     f.malformed = true
-    warn(f, say("malformed", { kind = f.kind, error = reason }))
+    warn(f, say("malformed", { kind = f.kind, error = fields }))
     return
   end
+  f.fields = fields
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
   if used < len then warn(f, say("trailing", { count = len - used })) end

@@ -81,9 +81,8 @@ end
 local function cause_text(cause)
   local counters = cause.counters or {}
   if #counters == 0 then return cause.error end
-  local plural = "counter"
-  if #counters > 1 then plural = "counters" end
-  return format("%s (increments the %s %s)", cause.error, concat(counters, " and "), plural)
+  return say(#counters > 1 and "cause_counters" or "cause_counter", { error = cause.error,
+    counters = concat(counters, " and ") })
 end
 
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
@@ -111,12 +110,12 @@ local function all_unreadable(st, f, device)
     if #run == 1 then
       parts[index] = address_name(first.row, first.address, first.label) .. " " .. first.status
     else
-      parts[index] = format("%s non-existent (%d)", span_name(run), #run)
+      parts[index] = say("unmapped_run", { span = span_name(run), count = #run })
     end
   end
-  note(f, format("exception %02X from the %s: every parameter of this read is non-existent or protected: %s",
-    f.exception_code, device.profile.device, concat(parts, ", ")))
-  local now = format("exception %02X now", f.exception_code)
+  note(f, say("all_unreadable", { code = f.exception_code, device = device.profile.device,
+    parameters = concat(parts, ", ") }))
+  local now = say("unreadable_now", { code = f.exception_code })
   for _, entry in ipairs(entries) do
     track(device.seen, f, entry.address, entry.row, 0, entry.status, now, entry.label)
   end

@@ -73,7 +73,7 @@ local pf = {
   data = ProtoField.bytes("vw3.data", "Data"),
   byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
   server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
-  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, { [0] = "OFF", [255] = "ON" }),
+  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, DATA.names.run_indicator),
   additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
   additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
 }

@@ -79,6 +79,12 @@ def _crafted() -> list[tuple[str, bytes]]:
         ("fc17 byte count below 2", f("0111") + f("01110100")),
         ("fc8 unknown sub-function", f("010800630000") + f("010800630000")),
         ("fc17 run indicator", f("0111") + f("011103011241")),
+        ("fc17 version text", f("0111") + f("01110512FF56312E")),
+        ("fc12 event log", f("010C") + f("010C080000000100022040")),
+        ("fc12 byte count below 6", f("010C") + f("010C0400000001")),
+        ("fc20 file records", f("01140706000400010002") + f("0114060506000D00FE")),
+        ("fc21 file record written", f("01150D0600040007000306AF04BE100D") * 2),
+        ("fc43 other MEI type", f("012B0D0102")),
         ("broadcast read", f("000300000001")),
         ("reserved slave", f("F80300000001")),
         # (the answer awaited cut by the end of the capture: noise saying so, and the note on its request)

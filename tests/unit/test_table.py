@@ -36,9 +36,9 @@ def test_every_name_has_an_implementation() -> None:
     handlers = {layout.handler for _, _, layout in LAYOUTS if layout.handler}
     assert handlers <= set(fields.HANDLERS)
     # the plugin: the generic lifter interprets every [lift] rule, the named special cases are its SPECIAL;
-    # the regular layouts are read from their descriptions ([layouts]), the irregular ones are its PARSERS
+    # every layout is read from its description ([layouts])
     assert handlers <= set(LIFTS) | _lua_names("SPECIAL")
-    assert {layout.name for _, _, layout in LAYOUTS} <= set(SHAPES) | _lua_names("PARSERS")
+    assert {layout.name for _, _, layout in LAYOUTS} <= set(SHAPES)
     assert "DATA.rules = RULES" in PLUGIN.read_text(encoding="utf-8")
     specials = {layout.length.name for _, _, layout in LAYOUTS if isinstance(layout.length, table.Special)}
     assert specials <= set(rtu._SPECIAL) and specials <= _lua_names("makers")
