@@ -31,7 +31,7 @@ annotate_with = function(st, f, b, device)
       remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
     end
   end
-  if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
+  if f.subfunction ~= nil then diagnostics_note(f, device, b) end -- (FC8: only its handler sets one)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 
