@@ -2852,16 +2852,18 @@ local SPECIAL = {
   end,
   mei_response = function(f, b)
     if f.fields.mei_type ~= 14 then return end
-    local objects = {} -- (the frame's from now on: its fields are dropped once it is done with)
-    for index, object in ipairs(f.fields.body.objects) do
+    -- The objects the reader listed become the frame's (its fields are dropped once it is done with):
+    -- each named, its value as text, where it starts (its id) and its bytes (id and length too).
+    local objects = f.fields.body.objects
+    for _, object in ipairs(objects) do
       -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
-      local chars = {}
-      for k = object.value_at, object.value_at + object.length - 1 do
+      local chars, at, size = {}, object.value_at, object.length
+      for k = at, at + size - 1 do
         local byte = b[k]
         chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
       end
-      objects[index] = { id = object.id, name = OBJECTS[object.id] or format("Object %d", object.id),
-        value = concat(chars), offset = object.value_at - 2, length = 2 + object.length }
+      object.name = OBJECTS[object.id] or format("Object %d", object.id)
+      object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil
     end
     f.objects = objects
   end,
