@@ -322,7 +322,7 @@ static int fill_slave(Slave *s, PyObject *info) {
     PyObject *sets[5] = {facts[FACT_MAPPED], s->depend, facts[FACT_SOURCES], NULL, facts[FACT_DIAGNOSTICS]};
     uint8_t **bitmaps[5] = SLAVE_BITMAPS(s);
     for (int k = 0; k < 5; k++) {
-        Py_ssize_t n = sets[k] != NULL ? PyObject_Size(sets[k]) : 1; /* (pending: set as frames come) */
+        Py_ssize_t n = sets[k] != NULL ? PyObject_Size(sets[k]) : seen != Py_None; /* (pending: track()'s) */
         *bitmaps[k] = n == 0 ? (uint8_t *)no_addresses : n > 0 ? PyMem_Calloc(1, BITMAP_BYTES) : NULL;
         if (*bitmaps[k] == NULL) return n < 0 ? -1 : (PyErr_NoMemory(), -1);
         if (n > 0 && sets[k] != NULL && fill_bitmap(*bitmaps[k], sets[k]) < 0) return -1;
