@@ -5,6 +5,7 @@ Built on a slave's first frame (or when its profile is chosen), so the per-frame
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass, field
 
 from dissector.devices.maps import RegisterDef, RegisterMap
@@ -89,7 +90,7 @@ class DeviceBuilder:
             plc=dict(profile.plc_base) if style == "plc" else None,
             plc_default=profile.plc_base_default,
             track=profile.protected_value is not None or bool(depend),
-            unchecked=frozenset(supported - profile.inner_only - set(profile.limits)),
+            unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits)),
             wide=any(row.words == 2 for row in rows.values()),
             limited={
                 function: limits
@@ -97,3 +98,10 @@ class DeviceBuilder:
                 if function in supported and function not in profile.inner_only
             },
         )
+
+
+@functools.lru_cache(maxsize=64)
+def _unchecked(supported: frozenset[int], inner_only: frozenset[int], limited: frozenset[int]) -> frozenset[int]:
+    """Device.unchecked, one set for the slaves of one profile (a set of 256 codes is 16 KB: 247 slaves of
+    the generic profile kept 4 MB of them; issue 28)."""
+    return frozenset(supported - inner_only - limited)
