@@ -19,7 +19,9 @@ local function plc_label(base, address)
     local digits = math.max(5, #format("%d", base))
     local power = 10 ^ (digits - 1)
     local number = base + address
-    if number > (floor(base / power) + 1) * power - 1 then number, digits = base * 10 - 9 + address, digits + 1 end
+    if number > (floor(base / power) + 1) * power - 1 then
+      number, digits = base * 10 - 9 + address, digits + 1
+    end
     label = format("%0" .. digits .. "d", number)
     labels[address] = label
   end
