@@ -485,7 +485,7 @@ _BLOCK_MIDDLES_MAX, _BLOCK_MIDDLE_REGISTERS, _NAMED_MIDDLE_REGISTERS = 1 << 12, 
 # The middle of a frame of up to 64 bits (a module's coils and inputs, FC15's few) by its bytes, words,
 # span and its bits' start and count (a coil read repeats its bytes until a coil is written).
 _BIT_MIDDLES: dict[tuple[Any, ...], str] = {}
-_BIT_MIDDLES_MAX, _BIT_MIDDLE_BITS = 1 << 12, 64
+_BIT_MIDDLES_MAX, _BIT_MIDDLE_BITS = 1 << 10, 64  # (a 64-bit read's middle: ~1.2 kB)
 # A longer block of plain columns (a relay's 40 registers, a meter's readings: new values every poll):
 # its parts list with its head (Slave to span) and its lines' address parts in place, kept by the head's
 # key, span and the block's start and size or labels; a poll's parts are a copy with its values put in.
