@@ -15,8 +15,8 @@ static PyTypeObject ColumnsType;
 
 static int columns_grow(Columns *self, Py_ssize_t need) {
     if (need <= self->cap) return 0;
-    Py_ssize_t cap = self->cap ? self->cap : 64; /* doubled up to 64 columns, then 64 more at a time: */
-    while (cap < need) cap += cap < 512 ? cap : 512; /* a series' COLUMNS + 1 columns fill 40 KB, not 64 */
+    Py_ssize_t cap = self->cap ? self->cap : 64; /* doubled up to 64 columns, then 8 more at a time: */
+    while (cap < need) cap += cap < 512 ? cap : 64; /* a series' COLUMNS + 1 columns fill 38 KB, not 64 */
     double *d = PyMem_Realloc(self->d, (size_t)cap * sizeof(double));
     if (d == NULL) {
         PyErr_NoMemory();
