@@ -137,7 +137,7 @@ class Output:
         if options.records:
             from dissector.render.jsonout import item_to_dict, item_to_json
         if options.detail:
-            from dissector.render.detail import detail_text
+            from dissector.render.detail_plain import detail_text
         if options.hexdump:
             from dissector.render.hexdump import hexdump
         size = 0  # characters appended since the last flush (by this call)
@@ -194,7 +194,7 @@ class Output:
 
     def _write_details(self, items: list[Item]) -> None:
         """write() for plain -V alone: each item's detail and an empty line."""
-        from dissector.render.detail import detail_text, plain_frame_text
+        from dissector.render.detail_plain import detail_text, plain_frame_text
 
         out = self._buffer
         append = out.append

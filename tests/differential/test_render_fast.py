@@ -16,7 +16,8 @@ from hypothesis import strategies as st
 from dissector.devices.build import build_annotator
 from dissector.model import Bit, BitList, Chunk, Frame, Register, RegisterList, Stamp
 from dissector.pipeline import dissect, dissect_bytes
-from dissector.render.detail import detail_text, detail_tree, render_plain
+from dissector.render.detail import detail_tree, render_plain
+from dissector.render.detail_plain import detail_text
 from dissector.render.jsonout import item_to_dict, item_to_json
 from dissector.sim.mixes import PLANT_PROFILES, max_size_mix, plant_mix
 from dissector.sim.simulate import generate_session

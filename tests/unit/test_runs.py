@@ -5,7 +5,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dissector.model import BitList, RegisterList
-from dissector.render.detail import detail_text
+from dissector.render.detail_plain import detail_text
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, bit_texts, byte_table, interleave
 
 
