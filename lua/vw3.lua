@@ -5543,9 +5543,10 @@ local NO_INTERPRETATION, NSTime, PROFILES, ProtoField = NO_INTERPRETATION, NSTim
 local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
 local function_name, inferred_registers, ipairs, pairs, pf = function_name, inferred_registers, ipairs, pairs, pf
-local proto, python_repr, register_view, setmetatable = proto, python_repr, register_view, setmetatable
+local proto, python_repr, register_view, say, setmetatable = proto, python_repr, register_view, say, setmetatable
 local string, tonumber, tostring = string, tonumber, tostring
 local summary
+local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 local function add_text(tree, expert_info, text)
   tree:add_proto_expert_info(expert_info, text)
@@ -5582,14 +5583,17 @@ end
 -- the next registers and bits skip a field found faked, doing only what the faked item did: the text
 -- and generated flag of the frame's item, and the expert infos. `serial` counts the dissections.
 -- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
--- made when a field needs it); .frame_length: the length of the frame's item.
+-- made when a field needs it); .frame_length: the length of the frame's item. .checking: fields are
+-- checked (an invisible tree; it pays from the second register or bit on).
 local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
-function unseen.at(tvb, f, at, size)
-  unseen.tvb, unseen.frame_length, unseen.range = tvb, f.length, nil
+-- The register or bit being added: `size` bytes at `at` in the frame (or the TvbRange `range`).
+function unseen.at(tvb, f, at, size, range, checking)
+  unseen.tvb, unseen.frame_length, unseen.range, unseen.checking = tvb, f.length, range, checking
   unseen.offset, unseen.length = frame_span(f, at, size)
 end
 
+-- Add a field to the register's or bit's item (in a tree that is shown, no field is ever faked).
 function unseen.add(parent, field, value, generated, hidden)
   local serial = unseen.serial
   if unseen.faked[field] == serial then
@@ -5604,23 +5608,13 @@ function unseen.add(parent, field, value, generated, hidden)
   local item
   if value == nil then item = parent:add(field, r) else item = parent:add(field, r, value) end
   if generated then item:set_generated() end
-  if unseen.checked[field] ~= serial then
+  if unseen.checking and unseen.checked[field] ~= serial then
     unseen.checked[field] = serial
     local frame_length = unseen.frame_length
     if unseen.length ~= frame_length and item.len == frame_length then unseen.faked[field] = serial end
   end
   -- (never the faked item: it is the frame's)
   if hidden and unseen.faked[field] ~= serial then item:set_hidden() end
-  return item
-end
-
--- unseen.add for a tree that is shown: every field added, from the range of the register or bit being
--- added (unseen.range, set by the caller).
-function unseen.put(parent, field, value, generated, hidden)
-  local item
-  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
-  if generated then item:set_generated() end
-  if hidden then item:set_hidden() end
   return item
 end
 
@@ -5686,28 +5680,18 @@ for _, field in pairs(pf) do field_list[#field_list + 1] = field end
 for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
 proto.fields = field_list
 
--- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
--- bit's bytes (`size` at `at`, or `range`) made the current range.
-local function adder(tvb, f, at, size, range, full)
-  if full == "unseen" then
-    unseen.at(tvb, f, at, size)
-    return unseen.add
-  end
-  unseen.range = range or frame_range(tvb, f, at, size)
-  return unseen.put
-end
-
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
--- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
+-- column without a tree. checking: an invisible tree's fields are checked (unseen.add).
 -- A register's text fields have one occurrence per register, empty (and hidden) where the register has
 -- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
 -- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
 -- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
 -- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
-local function add_register(tree, tvb, f, reg, range, full)
+local function add_register(tree, tvb, f, reg, range, full, checking)
   if full ~= false then
-    local add = adder(tvb, f, reg.offset or -1, 2, range, full)
+    unseen.at(tvb, f, reg.offset or -1, 2, range, checking)
+    local add = unseen.add
     local sub = add(tree, pf.reg)
     sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
     if reg.address ~= nil then add(sub, pf.reg_address, reg.address, true) end
@@ -5769,10 +5753,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
-    local base = 0 -- the slave byte in the frame's byte table
     t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
-    t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
-    t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+    t:add(pf.slave, frame_range(tvb, f, 0, 1), f.slave) -- (the slave byte is the first of the frame's byte table)
+    t:add(pf["function"], frame_range(tvb, f, 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
     local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
@@ -5790,12 +5773,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
     t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
   end
-  if not crc_ok then
-    if f.ascii then
-      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
-    else
-      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
-    end
+  if not crc_ok then -- (ASCII: the LRC, one byte)
+    local text = f.ascii and "Bad LRC: 0x%02X, expected 0x%02X" or "Bad CRC: 0x%04X, expected 0x%04X"
+    add_text(t, ex.crc_bad, format(text, f.crc, f.crc_expected))
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
@@ -5821,24 +5801,13 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
   end
   local registers = f.registers
-  if registers and registers.count > 0 then
-    if not full then
-      -- Only the expert infos of the registers that are not ok: no value needed (it is 16#8000).
-      local statuses = registers.status
-      if statuses ~= nil then
-        for index = 0, registers.count - 1 do
-          if statuses[index] ~= nil then
-            add_text(t, ex.protected, register_expert(register_view(st, f, registers, nil, index)))
-          end
-        end
-      end
-    else
-      local b = frame_bytes(f, tvb)
-      -- (checking which fields are faked pays from the second register on)
-      local mode = full
-      if full == "unseen" and registers.count < 2 then mode = true end
-      for index = 0, registers.count - 1 do
-        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
+  if registers and registers.count > 0 and (full or registers.status ~= nil) then
+    -- (no tree: only the expert infos of the registers that are not ok, no value needed: it is 16#8000)
+    local b, statuses = full and frame_bytes(f, tvb) or nil, registers.status or NO_INTERPRETATION
+    local checking = full == "unseen" and registers.count > 1
+    for index = 0, registers.count - 1 do
+      if full or statuses[index] ~= nil then
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, full, checking)
       end
     end
   end
@@ -5849,12 +5818,10 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local bits = f.bits
     if bits and bits.count > 0 then
       local b = bits.single == nil and frame_bytes(f, tvb) or nil
-      -- (checking which fields are faked pays from the second bit on)
-      local mode = full
-      if full == "unseen" and bits.count < 2 then mode = true end
+      local checking, add = full == "unseen" and bits.count > 1, unseen.add
       for index = 0, bits.count - 1 do
         local address, value, k = bit_at(bits, b, index, true)
-        local add = adder(tvb, f, k, 1, nil, mode)
+        unseen.at(tvb, f, k, 1, nil, checking)
         local sub = add(t, pf.bit)
         sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
         if address ~= nil then add(sub, pf.bit_address, address, true) end
@@ -5925,9 +5892,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = st.cut_note or "the capture ends before any response"
+    local text = st.cut_note or CAPTURE_ENDS
     if index <= count then text = notes[index] end
-    local unmatched = f.no_request and text == "response without a matching request in the capture"
+    local unmatched = f.no_request and text == UNMATCHED
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
   if full then return t end
@@ -5938,7 +5905,6 @@ end
 -- (expert_text: the run's text, made once for all its items by the caller)
 local function show_noise(item, tvb, tree, full, k, expert_text)
   local length = item.length
-  expert_text = expert_text or format("%d bytes outside any frame: %s", length, item.reason)
   if not full then
     add_text(tree, ex.noise, expert_text)
     return nil
@@ -5967,8 +5933,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat = AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat
 local ex, finish_safely, format, ipairs, lane, pack, pairs = ex, finish_safely, format, ipairs, lane, pack, pairs
-local pcall, pf, proto, show_frame, show_noise, summary = pcall, pf, proto, show_frame, show_noise, summary
-local type, unseen = type, unseen
+local pf, proto, show_frame, show_noise, summary, type = pf, proto, show_frame, show_noise, summary, type
+local unseen = unseen
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -5984,22 +5950,12 @@ end
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
 -- that neither shows details nor filters on fields: tshark's first pass, a summary without filters); its
 -- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
--- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
--- Wireshark without TreeItem.text or .visible.
-local function tree_text(tree) return tree.text end
-local function tree_visible(tree) return tree.visible end
-local function tree_len(tree) return tree.len end
-local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
-local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
+-- invisible tree (see unseen.add). true: a tree that is shown, or the test stub's (a Lua table).
+-- (TreeItem.text, .visible and .len, which unseen.add reads, are there from Wireshark 4.0 on.)
 local function tree_mode(tree)
   if type(tree) ~= "userdata" then return true end
-  if has_text == nil then has_text = pcall(tree_text, tree) end
-  if has_text and tree.text == nil then return false end
-  local known, visible = pcall(tree_visible, tree)
-  if known and visible == false then
-    if has_len == nil then has_len = pcall(tree_len, tree) end
-    if has_len then return "unseen" end
-  end
+  if tree.text == nil then return false end
+  if tree.visible == false then return "unseen" end
   return true
 end
 
@@ -6030,8 +5986,9 @@ local function add_part(summaries, info, text)
 end
 
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
--- so that they show in the details, not under a hidden item. whole: the record is one frame just taken
--- by dissect_record's fast lane (not packed yet).
+-- so that they show in the details, not under a hidden item. A record kept as one packed frame is a
+-- number (see pack.settle). whole: the record is one frame just taken by dissect_record's fast lane (not
+-- packed yet).
 local function show_record(st, record, tvb, pinfo, tree, n, whole)
   local cols = pinfo.cols
   cols.protocol = "VW3"
@@ -6048,6 +6005,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     cols.info = item.info or summary(item) -- (info: a known request's, see known_requests)
     return
   end
+  if type(record) == "number" then record = { record } end
   unseen.serial = unseen.serial + 1
   unseen.generated = false
   local anchor = nil
@@ -6057,7 +6015,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   end
   local continued = record.continued
   -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
-  -- (the Info text: one part as it is, a list of parts only when there are more)
+  -- (one part as it is, a list of parts only when there are more)
   local info, summaries = nil, nil
   if continued ~= nil then
     summaries = {}
@@ -6088,8 +6046,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      local text = summary(item)
-      summaries, info = add_part(summaries, info, text)
+      summaries, info = add_part(summaries, info, item.info or summary(item)) -- (info: see known_requests)
     end
     anchor = anchor or t
   end
@@ -6107,15 +6064,12 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
       record.waiting)
     anchor = anchored(anchor, tree, full, tvb, n)
     add_text(anchor, ex.partial, text)
-    local text = format("(%d bytes continue)", record.waiting)
-    summaries, info = add_part(summaries, info, text)
+    summaries, info = add_part(summaries, info, format("(%d bytes continue)", record.waiting))
   end
   if info ~= nil then
     cols.info = info
   elseif summaries == nil then
     cols.info = ""
-  elseif #summaries == 1 then
-    cols.info = summaries[1]
   else
     cols.info = concat(summaries, "; ")
   end
@@ -6176,10 +6130,9 @@ local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, D
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_for, device_now, dissect_now, ex = detect_mode, device_for, device_now, dissect_now, ex
-local feed, finish_all, lane, math, new_state, pack = feed, finish_all, lane, math, new_state, pack
+local feed, finish_all, ipairs, lane, math, new_state, pack = feed, finish_all, ipairs, lane, math, new_state, pack
 local package, pcall, pf, proto, record_time, show_record = package, pcall, pf, proto, record_time, show_record
-local stream_state, take_items, tostring, tree_mode, type = stream_state, take_items, tostring, tree_mode, type
-local vw3, wtap = vw3, wtap
+local stream_state, take_items, tostring, tree_mode, wtap = stream_state, take_items, tostring, tree_mode, wtap
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
@@ -6197,18 +6150,12 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    if info ~= nil then
+    if info ~= nil and not tree_mode(tree) and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
-      -- say but its Info text where no tree is wanted; else shown as show_record shows a record.
+      -- say but its Info text where no tree is wanted.
       local cols = pinfo.cols
-      if not tree_mode(tree) and config.errors[1] == nil then
-        cols.protocol = "VW3"
-        cols.info = info
-      elseif type(record) == "number" then
-        show_record(st, { record }, tvb, pinfo, tree, n)
-      else
-        show_record(st, record, tvb, pinfo, tree, n)
-      end
+      cols.protocol = "VW3"
+      cols.info = info
     else
       show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
     end
@@ -6221,7 +6168,6 @@ local function dissect_records(st, tvb, pinfo, tree)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end
   end
-  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   local n = tvb:len()
   show_record(st, record, tvb, pinfo, tree, n)
   return n
@@ -6277,7 +6223,8 @@ local function dissect_tcp(tvb, pinfo, tree)
   end
   local st = conversation_state(tcp_states, pinfo)
   local record = calls[tcp_call.index]
-  if record == nil then
+  local first = record == nil
+  if first then
     local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
     if ok then
       record = result
@@ -6285,17 +6232,13 @@ local function dissect_tcp(tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     calls[tcp_call.index] = record
-    st.settle = true
   end
   if record.desegment_offset ~= nil then
     pinfo.desegment_offset = record.desegment_offset
     pinfo.desegment_len = DESEGMENT_ONE_MORE
   end
   show_record(st, record, tvb, pinfo, tree, n)
-  if st.settle then
-    st.settle = nil
-    pack.settle(st)
-  end
+  if first then pack.settle(st) end -- (after the first showing, which reads the items as they were decoded)
   return n
 end
 
@@ -6343,29 +6286,23 @@ package.loaded.vw3_plugin = {
 }
 
 -- What the preferences registered: TCP and UDP ports (0: none), USER0 taken over.
-local registered = { tcp = 0, udp = 0, user0 = false }
+local registered = { tcp_port = 0, udp_port = 0, user0 = false }
 function proto.prefs_changed()
-  if proto.prefs.udp_port ~= registered.udp then
-    local udp = DissectorTable.get("udp.port")
-    if registered.udp ~= 0 then udp:remove(registered.udp, proto) end
-    if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
-    registered.udp = proto.prefs.udp_port
+  for _, pref in ipairs({ "tcp_port", "udp_port" }) do
+    local port = proto.prefs[pref]
+    if port ~= registered[pref] then
+      local ports = DissectorTable.get(pref == "tcp_port" and "tcp.port" or "udp.port")
+      if registered[pref] ~= 0 then ports:remove(registered[pref], proto) end
+      if port ~= 0 then ports:add(port, proto) end
+      registered[pref] = port
+    end
   end
   if proto.prefs.user0 ~= registered.user0 then
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
     registered.user0 = proto.prefs.user0
   end
-  local port = proto.prefs.tcp_port
-  if port ~= registered.tcp then
-    local tcp = DissectorTable.get("tcp.port")
-    if registered.tcp ~= 0 then tcp:remove(registered.tcp, proto) end
-    if port ~= 0 then tcp:add(port, proto) end
-    registered.tcp = port
-  end
   apply_prefs()
 end
-
-return vw3
 end
 
 -- The modules in load order: those that need no Wireshark API first (plain lua5.2/lua5.4 loads them,

@@ -20,18 +20,12 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    if info ~= nil then
+    if info ~= nil and not tree_mode(tree) and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
-      -- say but its Info text where no tree is wanted; else shown as show_record shows a record.
+      -- say but its Info text where no tree is wanted.
       local cols = pinfo.cols
-      if not tree_mode(tree) and config.errors[1] == nil then
-        cols.protocol = "VW3"
-        cols.info = info
-      elseif type(record) == "number" then
-        show_record(st, { record }, tvb, pinfo, tree, n)
-      else
-        show_record(st, record, tvb, pinfo, tree, n)
-      end
+      cols.protocol = "VW3"
+      cols.info = info
     else
       show_record(st, record, tvb, pinfo, tree, n, st.whole_record == record)
     end
@@ -44,7 +38,6 @@ local function dissect_records(st, tvb, pinfo, tree)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end
   end
-  if type(record) == "number" then record = { record } end -- (a record of one packed frame, see settle)
   local n = tvb:len()
   show_record(st, record, tvb, pinfo, tree, n)
   return n
@@ -100,7 +93,8 @@ local function dissect_tcp(tvb, pinfo, tree)
   end
   local st = conversation_state(tcp_states, pinfo)
   local record = calls[tcp_call.index]
-  if record == nil then
+  local first = record == nil
+  if first then
     local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
     if ok then
       record = result
@@ -108,17 +102,13 @@ local function dissect_tcp(tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     calls[tcp_call.index] = record
-    st.settle = true
   end
   if record.desegment_offset ~= nil then
     pinfo.desegment_offset = record.desegment_offset
     pinfo.desegment_len = DESEGMENT_ONE_MORE
   end
   show_record(st, record, tvb, pinfo, tree, n)
-  if st.settle then
-    st.settle = nil
-    pack.settle(st)
-  end
+  if first then pack.settle(st) end -- (after the first showing, which reads the items as they were decoded)
   return n
 end
 
@@ -166,26 +156,20 @@ package.loaded.vw3_plugin = {
 }
 
 -- What the preferences registered: TCP and UDP ports (0: none), USER0 taken over.
-local registered = { tcp = 0, udp = 0, user0 = false }
+local registered = { tcp_port = 0, udp_port = 0, user0 = false }
 function proto.prefs_changed()
-  if proto.prefs.udp_port ~= registered.udp then
-    local udp = DissectorTable.get("udp.port")
-    if registered.udp ~= 0 then udp:remove(registered.udp, proto) end
-    if proto.prefs.udp_port ~= 0 then udp:add(proto.prefs.udp_port, proto) end
-    registered.udp = proto.prefs.udp_port
+  for _, pref in ipairs({ "tcp_port", "udp_port" }) do
+    local port = proto.prefs[pref]
+    if port ~= registered[pref] then
+      local ports = DissectorTable.get(pref == "tcp_port" and "tcp.port" or "udp.port")
+      if registered[pref] ~= 0 then ports:remove(registered[pref], proto) end
+      if port ~= 0 then ports:add(port, proto) end
+      registered[pref] = port
+    end
   end
   if proto.prefs.user0 ~= registered.user0 then
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
     registered.user0 = proto.prefs.user0
   end
-  local port = proto.prefs.tcp_port
-  if port ~= registered.tcp then
-    local tcp = DissectorTable.get("tcp.port")
-    if registered.tcp ~= 0 then tcp:remove(registered.tcp, proto) end
-    if port ~= 0 then tcp:add(port, proto) end
-    registered.tcp = port
-  end
   apply_prefs()
 end
-
-return vw3

@@ -18,22 +18,12 @@ end
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
 -- that neither shows details nor filters on fields: tshark's first pass, a summary without filters); its
 -- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
--- invisible tree (see unseen.add). true: a tree that is shown, the test stub's (a Lua table), or a
--- Wireshark without TreeItem.text or .visible.
-local function tree_text(tree) return tree.text end
-local function tree_visible(tree) return tree.visible end
-local function tree_len(tree) return tree.len end
-local has_len = nil -- does this Wireshark have TreeItem.len (which unseen.add reads)?
-local has_text = nil -- and TreeItem.text? (asked once: pcall costs more than the rest)
+-- invisible tree (see unseen.add). true: a tree that is shown, or the test stub's (a Lua table).
+-- (TreeItem.text, .visible and .len, which unseen.add reads, are there from Wireshark 4.0 on.)
 local function tree_mode(tree)
   if type(tree) ~= "userdata" then return true end
-  if has_text == nil then has_text = pcall(tree_text, tree) end
-  if has_text and tree.text == nil then return false end
-  local known, visible = pcall(tree_visible, tree)
-  if known and visible == false then
-    if has_len == nil then has_len = pcall(tree_len, tree) end
-    if has_len then return "unseen" end
-  end
+  if tree.text == nil then return false end
+  if tree.visible == false then return "unseen" end
   return true
 end
 
@@ -64,8 +54,9 @@ local function add_part(summaries, info, text)
 end
 
 -- Show a record's items; the record-level notes go on the first item shown (or an item of their own),
--- so that they show in the details, not under a hidden item. whole: the record is one frame just taken
--- by dissect_record's fast lane (not packed yet).
+-- so that they show in the details, not under a hidden item. A record kept as one packed frame is a
+-- number (see pack.settle). whole: the record is one frame just taken by dissect_record's fast lane (not
+-- packed yet).
 local function show_record(st, record, tvb, pinfo, tree, n, whole)
   local cols = pinfo.cols
   cols.protocol = "VW3"
@@ -82,6 +73,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     cols.info = item.info or summary(item) -- (info: a known request's, see known_requests)
     return
   end
+  if type(record) == "number" then record = { record } end
   unseen.serial = unseen.serial + 1
   unseen.generated = false
   local anchor = nil
@@ -91,7 +83,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   end
   local continued = record.continued
   -- (the Info text is made each time rather than kept: records stay in memory for the whole capture)
-  -- (the Info text: one part as it is, a list of parts only when there are more)
+  -- (one part as it is, a list of parts only when there are more)
   local info, summaries = nil, nil
   if continued ~= nil then
     summaries = {}
@@ -122,8 +114,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      local text = summary(item)
-      summaries, info = add_part(summaries, info, text)
+      summaries, info = add_part(summaries, info, item.info or summary(item)) -- (info: see known_requests)
     end
     anchor = anchor or t
   end
@@ -141,15 +132,12 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
       record.waiting)
     anchor = anchored(anchor, tree, full, tvb, n)
     add_text(anchor, ex.partial, text)
-    local text = format("(%d bytes continue)", record.waiting)
-    summaries, info = add_part(summaries, info, text)
+    summaries, info = add_part(summaries, info, format("(%d bytes continue)", record.waiting))
   end
   if info ~= nil then
     cols.info = info
   elseif summaries == nil then
     cols.info = ""
-  elseif #summaries == 1 then
-    cols.info = summaries[1]
   else
     cols.info = concat(summaries, "; ")
   end

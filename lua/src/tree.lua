@@ -4,6 +4,7 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local summary
+local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 local function add_text(tree, expert_info, text)
   tree:add_proto_expert_info(expert_info, text)
@@ -40,14 +41,17 @@ end
 -- the next registers and bits skip a field found faked, doing only what the faked item did: the text
 -- and generated flag of the frame's item, and the expert infos. `serial` counts the dissections.
 -- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
--- made when a field needs it); .frame_length: the length of the frame's item.
+-- made when a field needs it); .frame_length: the length of the frame's item. .checking: fields are
+-- checked (an invisible tree; it pays from the second register or bit on).
 local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
-function unseen.at(tvb, f, at, size)
-  unseen.tvb, unseen.frame_length, unseen.range = tvb, f.length, nil
+-- The register or bit being added: `size` bytes at `at` in the frame (or the TvbRange `range`).
+function unseen.at(tvb, f, at, size, range, checking)
+  unseen.tvb, unseen.frame_length, unseen.range, unseen.checking = tvb, f.length, range, checking
   unseen.offset, unseen.length = frame_span(f, at, size)
 end
 
+-- Add a field to the register's or bit's item (in a tree that is shown, no field is ever faked).
 function unseen.add(parent, field, value, generated, hidden)
   local serial = unseen.serial
   if unseen.faked[field] == serial then
@@ -62,23 +66,13 @@ function unseen.add(parent, field, value, generated, hidden)
   local item
   if value == nil then item = parent:add(field, r) else item = parent:add(field, r, value) end
   if generated then item:set_generated() end
-  if unseen.checked[field] ~= serial then
+  if unseen.checking and unseen.checked[field] ~= serial then
     unseen.checked[field] = serial
     local frame_length = unseen.frame_length
     if unseen.length ~= frame_length and item.len == frame_length then unseen.faked[field] = serial end
   end
   -- (never the faked item: it is the frame's)
   if hidden and unseen.faked[field] ~= serial then item:set_hidden() end
-  return item
-end
-
--- unseen.add for a tree that is shown: every field added, from the range of the register or bit being
--- added (unseen.range, set by the caller).
-function unseen.put(parent, field, value, generated, hidden)
-  local item
-  if value == nil then item = parent:add(field, unseen.range) else item = parent:add(field, unseen.range, value) end
-  if generated then item:set_generated() end
-  if hidden then item:set_hidden() end
   return item
 end
 
@@ -144,28 +138,18 @@ for _, field in pairs(pf) do field_list[#field_list + 1] = field end
 for _, field in pairs(PARAMETER_FIELDS) do field_list[#field_list + 1] = field end
 proto.fields = field_list
 
--- The adder of a tree mode ("unseen": fields checked, unseen.add; else unseen.put), the register's or
--- bit's bytes (`size` at `at`, or `range`) made the current range.
-local function adder(tvb, f, at, size, range, full)
-  if full == "unseen" then
-    unseen.at(tvb, f, at, size)
-    return unseen.add
-  end
-  unseen.range = range or frame_range(tvb, f, at, size)
-  return unseen.put
-end
-
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
--- column without a tree. "unseen": an invisible tree, fields checked (unseen.add).
+-- column without a tree. checking: an invisible tree's fields are checked (unseen.add).
 -- A register's text fields have one occurrence per register, empty (and hidden) where the register has
 -- no such key, as vw3-decode's -T fields lists them: `tshark -T fields -e vw3.reg.code` then lines up
 -- with -e vw3.reg.address, and -E occurrence=f names the first register's code, not the first code.
 -- (Only text fields can: an empty occurrence of a number would need a text field of the same name, and
 -- tshark 4.0 crashes comparing numbers with it, `vw3.reg.value == 3`.)
-local function add_register(tree, tvb, f, reg, range, full)
+local function add_register(tree, tvb, f, reg, range, full, checking)
   if full ~= false then
-    local add = adder(tvb, f, reg.offset or -1, 2, range, full)
+    unseen.at(tvb, f, reg.offset or -1, 2, range, checking)
+    local add = unseen.add
     local sub = add(tree, pf.reg)
     sub:set_text(register_title(reg)) -- (an FT_NONE item takes no label in add)
     if reg.address ~= nil then add(sub, pf.reg_address, reg.address, true) end
@@ -227,10 +211,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
-    local base = 0 -- the slave byte in the frame's byte table
     t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
-    t:add(pf.slave, frame_range(tvb, f, base, 1), f.slave)
-    t:add(pf["function"], frame_range(tvb, f, base + 1, 1), f.fn)
+    t:add(pf.slave, frame_range(tvb, f, 0, 1), f.slave) -- (the slave byte is the first of the frame's byte table)
+    t:add(pf["function"], frame_range(tvb, f, 1, 1), f.fn)
     t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
     local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
@@ -248,12 +231,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
     t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
   end
-  if not crc_ok then
-    if f.ascii then
-      add_text(t, ex.crc_bad, format("Bad LRC: 0x%02X, expected 0x%02X", f.crc, f.crc_expected))
-    else
-      add_text(t, ex.crc_bad, format("Bad CRC: 0x%04X, expected 0x%04X", f.crc, f.crc_expected))
-    end
+  if not crc_ok then -- (ASCII: the LRC, one byte)
+    local text = f.ascii and "Bad LRC: 0x%02X, expected 0x%02X" or "Bad CRC: 0x%04X, expected 0x%04X"
+    add_text(t, ex.crc_bad, format(text, f.crc, f.crc_expected))
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
@@ -279,24 +259,13 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
   end
   local registers = f.registers
-  if registers and registers.count > 0 then
-    if not full then
-      -- Only the expert infos of the registers that are not ok: no value needed (it is 16#8000).
-      local statuses = registers.status
-      if statuses ~= nil then
-        for index = 0, registers.count - 1 do
-          if statuses[index] ~= nil then
-            add_text(t, ex.protected, register_expert(register_view(st, f, registers, nil, index)))
-          end
-        end
-      end
-    else
-      local b = frame_bytes(f, tvb)
-      -- (checking which fields are faked pays from the second register on)
-      local mode = full
-      if full == "unseen" and registers.count < 2 then mode = true end
-      for index = 0, registers.count - 1 do
-        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, mode)
+  if registers and registers.count > 0 and (full or registers.status ~= nil) then
+    -- (no tree: only the expert infos of the registers that are not ok, no value needed: it is 16#8000)
+    local b, statuses = full and frame_bytes(f, tvb) or nil, registers.status or NO_INTERPRETATION
+    local checking = full == "unseen" and registers.count > 1
+    for index = 0, registers.count - 1 do
+      if full or statuses[index] ~= nil then
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, full, checking)
       end
     end
   end
@@ -307,12 +276,10 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local bits = f.bits
     if bits and bits.count > 0 then
       local b = bits.single == nil and frame_bytes(f, tvb) or nil
-      -- (checking which fields are faked pays from the second bit on)
-      local mode = full
-      if full == "unseen" and bits.count < 2 then mode = true end
+      local checking, add = full == "unseen" and bits.count > 1, unseen.add
       for index = 0, bits.count - 1 do
         local address, value, k = bit_at(bits, b, index, true)
-        local add = adder(tvb, f, k, 1, nil, mode)
+        unseen.at(tvb, f, k, 1, nil, checking)
         local sub = add(t, pf.bit)
         sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
         if address ~= nil then add(sub, pf.bit_address, address, true) end
@@ -383,9 +350,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
   for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = st.cut_note or "the capture ends before any response"
+    local text = st.cut_note or CAPTURE_ENDS
     if index <= count then text = notes[index] end
-    local unmatched = f.no_request and text == "response without a matching request in the capture"
+    local unmatched = f.no_request and text == UNMATCHED
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
   if full then return t end
@@ -396,7 +363,6 @@ end
 -- (expert_text: the run's text, made once for all its items by the caller)
 local function show_noise(item, tvb, tree, full, k, expert_text)
   local length = item.length
-  expert_text = expert_text or format("%d bytes outside any frame: %s", length, item.reason)
   if not full then
     add_text(tree, ex.noise, expert_text)
     return nil
