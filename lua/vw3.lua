@@ -579,6 +579,10 @@ local DATA = {
       [4] = { 1, 125 },
     },
   },
+  ["render"] = {
+    ["provisional"] = "[provisional]",
+    ["provisional_line"] = "Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec semantics only, which its device may name otherwise)",
+  },
   ["profiles"] = {
     ["atv71"] = {
       ["name"] = "atv71",
@@ -5538,13 +5542,13 @@ package.preload["vw3.tree"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES, NOISE = DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES, NOISE
-local NO_INTERPRETATION, NSTime, PROFILES, ProtoField = NO_INTERPRETATION, NSTime, PROFILES, ProtoField
-local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
-local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
-local function_name, inferred_registers, ipairs, pairs, pf = function_name, inferred_registers, ipairs, pairs, pf
-local proto, python_repr, register_view, say, setmetatable = proto, python_repr, register_view, say, setmetatable
-local string, tonumber, tostring = string, tonumber, tostring
+local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
+local NOISE, NO_INTERPRETATION, NSTime, PROFILES = NOISE, NO_INTERPRETATION, NSTime, PROFILES
+local ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST = ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST
+local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
+local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
+local pairs, pf, proto, python_repr, register_view, say = pairs, pf, proto, python_repr, register_view, say
+local setmetatable, string, tonumber, tostring = setmetatable, string, tonumber, tostring
 local summary
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
@@ -5731,7 +5735,7 @@ summary = function(f)
     kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
   end
   local tail = ""
-  if f.provisional then tail = " [provisional]" end -- (as vw3-decode's summary says it: render/summary.py)
+  if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
   if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
@@ -5760,11 +5764,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
     if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
-    if f.provisional then
-      -- (vw3-decode -V's line, render/detail.py PROVISIONAL_LINE)
-      t:add(pf.provisional, whole, true):set_generated():set_text("Profile: provisional (profile auto has not "
-        .. "chosen this slave's device yet: values named with spec semantics only, which its device may name "
-        .. "otherwise)")
+    if f.provisional then -- (vw3-decode -V's line)
+      t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
     local crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end

@@ -25,6 +25,7 @@ from dissector.framing import evidence, rtu as framer, stream as streambuf
 from dissector.model import CUT_ANSWER, Kind
 from dissector.protocol import ascii as ascii_mode, table
 from dissector.protocol.spec import SPEC
+from dissector.render import detail, summary
 from dissector.sources import reader
 
 BEGIN = "-- BEGIN GENERATED DATA: python3 -m dissector.codegen.lua (do not edit by hand)"
@@ -125,6 +126,8 @@ def plugin_data() -> dict[str, Any]:
         "not_broadcast": SPEC.not_broadcast,
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
+        # The display's texts: a provisional frame's mark in the summary and its line in -V.
+        "render": {"provisional": summary.PROVISIONAL, "provisional_line": detail.PROVISIONAL_LINE.strip()},
     }
     data.update(_profile_data())
     return data

@@ -189,7 +189,7 @@ summary = function(f)
     kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
   end
   local tail = ""
-  if f.provisional then tail = " [provisional]" end -- (as vw3-decode's summary says it: render/summary.py)
+  if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
   if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
@@ -218,11 +218,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local device, reason = device_of(st, f)
     if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
     if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
-    if f.provisional then
-      -- (vw3-decode -V's line, render/detail.py PROVISIONAL_LINE)
-      t:add(pf.provisional, whole, true):set_generated():set_text("Profile: provisional (profile auto has not "
-        .. "chosen this slave's device yet: values named with spec semantics only, which its device may name "
-        .. "otherwise)")
+    if f.provisional then -- (vw3-decode -V's line)
+      t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
     local crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
