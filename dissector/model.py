@@ -353,6 +353,18 @@ class Noise:
 Item = Frame | Noise
 
 
+def up_to_frames(items: list[Item], room: int) -> tuple[list[Item], int]:
+    """The items up to the room-th frame (-c's cut: noise before it kept, nothing after it), and the
+    room left."""
+    kept: list[Item] = []
+    for item in items:
+        if room <= 0:
+            break
+        kept.append(item)
+        room -= isinstance(item, Frame)
+    return kept, room
+
+
 @dataclass(slots=True)
 class Chunk:
     """Bytes as a source delivers them, with the time the first byte was seen (None when unknown)."""

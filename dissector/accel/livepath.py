@@ -39,7 +39,7 @@ from typing import Any
 from dissector.accel import fastsummary
 from dissector.accel.records import BlockBuilder
 from dissector.accel.timedpath import CLOCKS, TimedPath, usable
-from dissector.model import Chunk, Frame, Item, Kind, Stamp
+from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_frames
 from dissector.pipeline import Dissector
 from dissector.protocol.rules import text
 from dissector.render.timefmt import Clock
@@ -141,16 +141,9 @@ class LivePath:
 
     def _cut_framed(self, items: list[Item]) -> list[Item]:
         """The Python framer's items up to the Nth frame, as CaptureThread.deliver keeps them."""
-        left = self.left
-        assert left is not None
-        kept: list[Item] = []
-        for item in items:
-            if left <= 0:
-                break
-            kept.append(item)
-            left -= isinstance(item, Frame)
-        self.left = left
-        if left <= 0:
+        assert self.left is not None
+        kept, self.left = up_to_frames(items, self.left)
+        if self.left <= 0:
             self.done = True
         return kept
 

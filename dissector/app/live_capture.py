@@ -35,7 +35,7 @@ from collections.abc import Iterator
 import serial
 
 from dissector.errors import ExitStatus, LiveError, PortVanished
-from dissector.model import Chunk, Frame, Item, Stamp
+from dissector.model import Chunk, Frame, Item, Stamp, up_to_frames
 from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
 from dissector.sources.serial_port import reason
@@ -250,14 +250,7 @@ class CaptureThread:
     def deliver(self, items: list[Item], safe: float | None) -> bool:
         """Write, then hand on; False once --count frames are written."""
         if self.count is not None:
-            room = self.count - self.frames
-            kept: list[Item] = []
-            for item in items:
-                if room <= 0:
-                    break
-                kept.append(item)
-                room -= isinstance(item, Frame)
-            items = kept
+            items = up_to_frames(items, self.count - self.frames)[0]
         self.files.items(items)
         self.frames += sum(isinstance(item, Frame) for item in items)
         self.handoff.put(items, safe)

@@ -250,11 +250,12 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
 
 
 def _kept_text(cache: dict[tuple[Any, ...], str], key: tuple[Any, ...],
-               lines: Callable[[_Detail, Frame], None], frame: Frame) -> str:
-    """The joined text `lines` writes for `frame`, kept in `cache` by `key` (bounded: cleared when full)."""
+               lines: Callable[[_Detail, Frame], None], frame: Frame, most: int = _MIDDLES_MAX) -> str:
+    """The joined text `lines` writes for `frame`, kept in `cache` by `key` (bounded: cleared when it
+    holds `most`)."""
     text = cache.get(key)
     if text is None:
-        if len(cache) >= _MIDDLES_MAX:
+        if len(cache) >= most:
             cache.clear()
         part = _Detail(joined=True)
         lines(part, frame)

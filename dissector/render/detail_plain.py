@@ -189,13 +189,7 @@ def plain_frame_text(frame: Frame, base: float | None) -> str:
         elif not size and type(bits) is BitList and bits.count <= _BIT_MIDDLE_BITS:
             key = (frame.raw, kind, mode, frame.function_text, frame.subfunction_text, untyped,
                    frame.span_label, bits.start, bits.count)
-            middle = _BIT_MIDDLES.get(key)
-            if middle is None:
-                if len(_BIT_MIDDLES) >= _BIT_MIDDLES_MAX:
-                    _BIT_MIDDLES.clear()
-                part = _Detail(joined=True)
-                _middle(part, frame)
-                middle = _BIT_MIDDLES[key] = "\n".join(part.texts)
+            middle = _kept_text(_BIT_MIDDLES, key, _middle, frame, _BIT_MIDDLES_MAX)
     if middle is None:
         detail = _Detail(joined=True)
         _middle(detail, frame)
