@@ -394,8 +394,15 @@ def test_standard_input_says_what_the_file_says(tmp_path: Path) -> None:
         from_file = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
         # The whole report's data, but which series it keeps beyond its bound (first come: the frames
         # held until their slave's choice come later).
-        keys = [key for key in from_file if key != "parameters" or not from_file["parameters_dropped"]]
+        # The setpoints listed are those of the series drawn (html.py), so they follow the same choice.
+        keys = [key for key in from_file
+                if key not in ("parameters", "written") or not from_file["parameters_dropped"]]
         assert {key: data_[key] for key in keys} == {key: from_file[key] for key in keys}, path
+        drawn = [{"%d:%d" % (row["slave"], row["address"]) for row in page_["parameters"]}
+                 for page_ in (data_, from_file)]
+        assert set(data_["written"]) <= drawn[0] and set(from_file["written"]) <= drawn[1], path
+        both = drawn[0] & drawn[1]
+        assert set(data_["written"]) & both == set(from_file["written"]) & both, path
 
         addresses = sorted({address for _slave, address in params})
         if addresses:
