@@ -40,8 +40,8 @@ from dissector.accel import fastsummary
 from dissector.accel.records import BlockBuilder
 from dissector.accel.timedpath import CLOCKS, TimedPath, usable
 from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_frames
+from dissector.decode.pairing import capture_ended
 from dissector.pipeline import Dissector
-from dissector.protocol.rules import text
 from dissector.render.timefmt import Clock
 
 NO_SILENCE_CHECK = 1e300  # live has no GapChecker: a silence inside a frame is no warning, no handover
@@ -135,8 +135,7 @@ class LivePath:
         if frames and frames[-1].kind is Kind.REQUEST:  # its answer (or the frame that told) is past the cut
             last: Frame = frames[-1]  # type: ignore[assignment]
             last.response_ref = None
-            last.unanswered = True
-            last.notes.append(text("capture_ends"))
+            capture_ended(last)
         return frames
 
     def _cut_framed(self, items: list[Item]) -> list[Item]:

@@ -22,6 +22,13 @@ from dissector.protocol.rules import text
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 
 
+def capture_ended(request: Frame, cut: str | None = None) -> None:
+    """A request whose answer the capture does not hold: unanswered, and why (an answer cut by the end
+    of the capture, else "the capture ends")."""
+    request.unanswered = True
+    request.notes.append(cut or text("capture_ends"))
+
+
 class Pairer:
     def __init__(self, hold: bool = True, timeout: float | None = None) -> None:
         self._hold = hold
@@ -79,15 +86,16 @@ class Pairer:
         out: list[Item] = []
         pending = self._pending
         if pending is not None:
-            pending.unanswered = True
-            if not self._pending_released:
+            if self._pending_released:
+                pending.unanswered = True
+            else:
                 # The framer names an answer cut by the end of the capture (RtuFramer._cut_answer).
                 cut = next(
                     (item.reason for item in self._queue
                      if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
                     None,
                 )
-                pending.notes.append(cut or text("capture_ends"))
+                capture_ended(pending, cut)
         self._pending = None
         self._release(out)
         return out
