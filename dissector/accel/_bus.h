@@ -80,8 +80,7 @@ static PyObject *time_value(const Time *t) {
     return Py_BuildValue("(dO)", t->d, Py_None);
 }
 
-/* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report --------------- */
-enum { TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS, TALLIES };
+/* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report and the counts ---- */
 
 typedef struct {
     uint32_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order); 0: empty */
@@ -100,8 +99,6 @@ typedef struct {
     size_t limit;
     int shift;
 } Tallies;
-
-#define TALLY_MAX_SHIFT 62
 
 static inline size_t tally_slot(uint32_t tag, long long key, size_t size) {
     return (size_t)mix((uint64_t)tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)key) & (size - 1);
@@ -182,7 +179,6 @@ typedef struct {
     long long offset;
 } Run;
 
-static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0};
 #define GAP_BINS (sizeof gap_edges_ms / sizeof *gap_edges_ms + 1)
 
 typedef struct {
@@ -214,9 +210,9 @@ static void bus_init(Bus *b) {
     for (int k = 0; k < 256; k++) quantile_init(&b->responses[k]);
 }
 
-/* Quantiles.add: a RESOLUTION (10 us) bucket, count, min, max. */
+/* Quantiles.add: a RESOLUTION bucket, count, min, max. */
 static int quantile_add(Tallies *t, Quantile *q, int kind, long long owner, double value) {
-    if (tally_add(t, kind, owner, (long long)rint(value / 1e-5), 1.0) < 0) return -1;
+    if (tally_add(t, kind, owner, (long long)rint(value / RESOLUTION), 1.0) < 0) return -1;
     q->count++;
     if (value < q->low) q->low = value;
     if (value > q->high) q->high = value;
@@ -278,7 +274,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     double duration = (double)length * b->char_time, end = t->d + duration;
     if (!b->first.has) b->first = *t;
     b->busy += duration;
-    if (tally_add(tallies, TALLY_MINUTES, 0, (long long)floor_div(time_sub(t, &b->first), 60.0), duration) < 0)
+    if (tally_add(tallies, TALLY_MINUTES, 0, (long long)floor_div(time_sub(t, &b->first), MINUTE), duration) < 0)
         return -1;
     if (b->has_last_end) {
         double gap = t->d - b->last_end;
@@ -315,7 +311,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     b->answer_end = end;
     if (response != NULL && crc_ok) {
         if (quantile_add(tallies, &b->responses[slave], TALLY_RESPONSES, slave, *response) < 0) return -1;
-        if (*response > 0.9 * b->timeout) b->close[slave]++;
+        if (*response > CLOSE_MARGIN * b->timeout) b->close[slave]++;
     }
     return 0;
 }

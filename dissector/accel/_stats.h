@@ -5,8 +5,8 @@
  *
  * What lives here: per (slave, address) the StatsCollector's ParameterStats (counts, last value, its
  * text, the code), per request key the PollCycle's count/misses/first frame (untimed input only: the
- * engine never sees timestamps), and per (slave, function) the engine's own counts, which the
- * collector adds to its own (sums: order does not matter). A last value seen here keeps the slave's
+ * engine never sees timestamps), and per (slave, function) the engine's own counts (TALLY_COUNTS,
+ * stats_store.engine_functions), which the collector adds to its own (sums: order does not matter). A last value seen here keeps the slave's
  * `namer` (SlaveFacts.namer: the device it was read with), asked for its text when the report is
  * made: a register's text is asked once per parameter, not once per value.
  *
@@ -15,8 +15,6 @@
  */
 
 #include "_bus.h" /* the time-dependent counts: bus timing, response times, poll intervals */
-
-enum { EVENT_READ, EVENT_UNREADABLE, EVENT_WRITE, EVENT_WRITE_OBSERVED, EVENT_REFUSED, EVENT_CONFIRM, EVENTS };
 
 typedef struct {
     uint32_t key; /* 1 << 24 | slave << 16 | address; 0: empty */
@@ -40,11 +38,6 @@ typedef struct {
 } Poll;
 
 typedef struct {
-    unsigned long long requests, responses, unanswered;
-    unsigned long long *exceptions; /* by code, 256 of them, allocated on the first */
-} Counted;
-
-typedef struct {
     PyObject_HEAD
     Param *params;      /* in the order first seen, param_cap allocated (a dense array: 67,384 parameters of
                          * the max-size mix take 4.9 MB, their 131,072 slots of open addressing took 9.4) */
@@ -57,7 +50,6 @@ typedef struct {
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
-    Counted *counted[256];        /* per slave, HANDLED functions, allocated on first use */
     Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals */
     Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
     PyObject *report;             /* a Report (_report.h) fed what is counted here too, or NULL */
@@ -307,18 +299,6 @@ static int request_key(const uint8_t *f, uint32_t *fields) {
     return 2;
 }
 
-static Counted *counted_for(Stats *st, int slave, int function) {
-    Counted *row = st->counted[slave];
-    if (row == NULL) {
-        row = st->counted[slave] = PyMem_Calloc(HANDLED, sizeof *row);
-        if (row == NULL) {
-            PyErr_NoMemory();
-            return NULL;
-        }
-    }
-    return &row[handled_index(function)];
-}
-
 /* What StatsCollector.add and BusTiming.add do with a transaction the engine shows: the request (unanswered
  * when `af` is NULL), then its normal answer or exception. `writes`: the request's registers (FC6, 16,
  * 23), `reads`: the answer's values (FC3, 4, 23); `base`: the stream offset of b[0]. */
@@ -343,27 +323,21 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         if (timed && tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
             return -1;
     }
-    Counted *c = counted_for(st, slave, function);
-    if (c == NULL) return -1;
     uint32_t key[6];
-    int size = request_key(q, key);
-    int exception = answer != NULL && (answer[1] & 0x80);
-    c->requests++;
+    int size = request_key(q, key), owner = slave << 8 | function;
     st->frames += answer != NULL ? 2 : 1;
-    if (answer == NULL) c->unanswered++;
-    if (poll_request(st, key, size, number, answer == NULL, &qt) < 0) return -1;
+    if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_REQUESTS, 1) < 0 ||
+        (answer == NULL && tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_UNANSWERED, 1) < 0) ||
+        poll_request(st, key, size, number, answer == NULL, &qt) < 0)
+        return -1;
     if (writes != NULL && words_event(st, s, slave, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
-    if (exception) {
-        if (c->exceptions == NULL && (c->exceptions = PyMem_Calloc(256, sizeof *c->exceptions)) == NULL) {
-            PyErr_NoMemory();
-            return -1;
-        }
-        c->exceptions[answer[2]]++;
+    if (answer[1] & 0x80) { /* an exception: counted by its code */
+        if (tally_add(st->tallies, TALLY_COUNTS, owner, answer[2], 1) < 0) return -1;
         poll_fail(st, key, size);
         return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
     }
-    c->responses++;
+    if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
     Words confirmed; /* the writes the answer confirms (data/modbus.toml [confirm]) */
     if (confirmed_writes(answer, writes, &confirmed) && words_event(st, s, slave, &confirmed, EVENT_CONFIRM) < 0)
         return -1;
@@ -387,11 +361,6 @@ static void stats_dealloc(Stats *st) {
     for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots), PyMem_Free(st->tallies[k].index);
     PyMem_Free(st->bus.outages);
     PyMem_Free(st->bus.outage_slaves);
-    for (int k = 0; k < 256; k++) {
-        if (st->counted[k] == NULL) continue;
-        for (int j = 0; j < HANDLED; j++) PyMem_Free(st->counted[k][j].exceptions);
-        PyMem_Free(st->counted[k]);
-    }
     Py_TYPE(st)->tp_free((PyObject *)st);
 }
 
@@ -666,44 +635,6 @@ fail:
     return NULL;
 }
 
-/* functions() -> [(slave, function, requests, responses, unanswered, {code: count})]: the engine's. */
-static PyObject *stats_functions(Stats *st, PyObject *unused) {
-    PyObject *rows = PyList_New(0);
-    if (rows == NULL) return NULL;
-    for (int slave = 0; slave < 256; slave++) {
-        if (st->counted[slave] == NULL) continue;
-        for (int k = 0; k < HANDLED; k++) {
-            Counted *c = &st->counted[slave][k];
-            if (!c->requests) continue;
-            PyObject *exceptions = PyDict_New();
-            if (exceptions == NULL) goto fail;
-            for (int code = 0; code < 256 && c->exceptions != NULL; code++) {
-                if (!c->exceptions[code]) continue;
-                PyObject *key = PyLong_FromLong(code);
-                PyObject *count = PyLong_FromUnsignedLongLong(c->exceptions[code]);
-                int status = key && count ? PyDict_SetItem(exceptions, key, count) : -1;
-                Py_XDECREF(key);
-                Py_XDECREF(count);
-                if (status < 0) {
-                    Py_DECREF(exceptions);
-                    goto fail;
-                }
-            }
-            PyObject *row = Py_BuildValue("(iiKKKN)", slave, handled_codes[k], c->requests, c->responses,
-                                          c->unanswered, exceptions);
-            if (row == NULL || PyList_Append(rows, row) < 0) {
-                Py_XDECREF(row);
-                goto fail;
-            }
-            Py_DECREF(row);
-        }
-    }
-    return rows;
-fail:
-    Py_DECREF(rows);
-    return NULL;
-}
-
 /* bus_line(char_time, t35, timeout, new_input): the line's settings (BusTiming.char_time, t35, timeout);
  * new_input: a new file, whose gaps do not continue the previous one's (BusTiming.new_input). */
 static PyObject *stats_bus_line(Stats *st, PyObject *args) {
@@ -894,7 +825,7 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     }
     st->max_keys = (size_t)max_keys;
     st->max_params = (size_t)max_params;
-    for (int k = 0; k < TALLIES; k++) st->tallies[k].limit = k == TALLY_MINUTES ? 0 : (size_t)max_tally;
+    for (int k = 0; k < TALLIES; k++) st->tallies[k].limit = TALLY_UNBOUNDED >> k & 1 ? 0 : (size_t)max_tally;
     bus_init(&st->bus);
     return 0;
 }
@@ -934,8 +865,6 @@ static PyMethodDef stats_methods[] = {
     {"table", (PyCFunction)stats_table, METH_VARARGS,
      "table(max_rows, group_min) -> (pieces, expanded, count, totals): the --stats parameter table's rows"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
-    {"functions", (PyCFunction)stats_functions, METH_NOARGS,
-     "the engine's [(slave, function, requests, responses, unanswered, {code: count})]"},
     {NULL, NULL, 0, NULL},
 };
 

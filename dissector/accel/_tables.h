@@ -280,4 +280,16 @@ static const Rules rules[HANDLED] = {
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 43 */
 };
 
+/* The --stats store's events, tallies and count keys (render/stats_store.py) and bus timing's
+ * buckets (render/bustiming.py), for _stats.h, _bus.h and _report.h. */
+enum { EVENT_READ = 0, EVENT_UNREADABLE = 1, EVENT_WRITE = 2, EVENT_WRITE_OBSERVED = 3, EVENT_REFUSED = 4, EVENT_CONFIRM = 5, EVENTS = 6 };
+enum { TALLY_TIMES = 0, TALLY_GAPS = 1, TALLY_TURNAROUND = 2, TALLY_RESPONSES = 3, TALLY_MINUTES = 4, TALLY_INTERVALS = 5, TALLY_COUNTS = 6, TALLIES = 7 };
+enum { COUNT_REQUESTS = 256, COUNT_RESPONSES = 257, COUNT_UNANSWERED = 258 };
+#define TALLY_UNBOUNDED (1 << 4 | 1 << 6)
+#define TALLY_MAX_SHIFT 62
+#define RESOLUTION 1e-05
+#define MINUTE 60.0
+#define CLOSE_MARGIN 0.9
+static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0};
+
 #endif

@@ -13,7 +13,7 @@ from pathlib import Path
 from dissector.errors import GenerateError
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
-from dissector.codegen import c_rules
+from dissector.codegen import c_rules, c_stats
 from dissector.protocol.table import Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
@@ -129,6 +129,8 @@ def render_header() -> str:
         "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",
         "",
         *c_rules.render(entries, limits),
+        "",
+        *c_stats.render(),
         "",
         "#endif",
     ]

@@ -34,6 +34,7 @@ from dissector.render.stats_store import Coarse
 RESOLUTION = 1e-5  # percentile buckets: 10 us
 GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
 MINUTE = 60.0
+CLOSE_MARGIN = 0.9  # a response slower than this part of the timeout is close to it
 
 
 class Quantiles:
@@ -270,7 +271,7 @@ class BusTiming:
             if quantiles is None:
                 quantiles = self.responses[slave] = Quantiles(self._response_tally)
             quantiles.add(response_time)
-            if response_time > 0.9 * self.timeout:
+            if response_time > CLOSE_MARGIN * self.timeout:
                 self.close_to_timeout[slave] = self.close_to_timeout.get(slave, 0) + 1
 
     def _request(self, frame: Any, time: float) -> None:

@@ -31,10 +31,16 @@ try:
 except ImportError:  # built without a C compiler
     CompiledStore = None
 
-READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(6)
-# The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h): response times by (slave <<
-# 8 | function), gaps, turnarounds, response times by slave, load per minute, poll intervals by key order.
-TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS = range(6)
+# The events (the compiled store's EVENT_*, generated into dissector/accel/_tables.h).
+EVENTS = ("READ", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "REFUSED", "CONFIRM")
+READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(len(EVENTS))
+# The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h; TALLY_* generated into
+# _tables.h): response times by (slave << 8 | function), gaps, turnarounds, response times by slave, load
+# per minute, poll intervals by key order, and the engine's counts by (slave << 8 | function): exceptions
+# by their code, requests, responses and unanswered requests by the COUNT_* keys (engine_functions).
+TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS, TALLY_COUNTS = range(7)
+COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED = 256, 257, 258  # past the exception codes
+UNBOUNDED_TALLIES = (TALLY_MINUTES, TALLY_COUNTS)  # never coarsened: sums, counts by name
 MAX_KEYS = 50_000  # requests the poll cycle follows (render/pollcycle.py), in either store
 # Parameters kept at most: a plant's devices have a few thousand each; a flood of writes over every
 # address of 64 slaves (4 M parameters) took 2 GB. Events of further parameters are counted (`dropped`)
@@ -141,8 +147,8 @@ class ParameterTable:
             for (slave, address), s in sorted(self._parameters.items())
         ]
 
-    def functions(self) -> list[tuple[int, int, int, int, int, dict[int, int]]]:
-        return []
+    def tallies(self, kind: int) -> dict[int, dict[int, int]]:
+        return {}  # the engine's: none here
 
     def table(self, max_rows: int, group_min: int) -> tuple[list[list[ParameterRow]], int, int, tuple[int, ...]]:
         """--stats' parameter table (render/stats.py _parameter_table): the rows of the first `max_rows`
@@ -215,6 +221,14 @@ class Coarse:
                 histogram.update(merged)
                 entries += len(merged)
             self.entries = entries
+
+
+def engine_functions(store: Any) -> list[tuple[int, int, int, int, int, dict[int, int]]]:
+    """The engine's counts (TALLY_COUNTS): (slave, function, requests, responses, unanswered, {code: count})
+    by (slave, function)."""
+    return [(owner >> 8, owner & 0xFF, counts.get(COUNT_REQUESTS, 0), counts.get(COUNT_RESPONSES, 0),
+             counts.get(COUNT_UNANSWERED, 0), {code: n for code, n in sorted(counts.items()) if code < COUNT_REQUESTS})
+            for owner, counts in sorted(store.tallies(TALLY_COUNTS).items())]
 
 
 def stamp(time: tuple[float, int | None] | None) -> float | None:

@@ -1,0 +1,31 @@
+"""The --stats and --report store's constants as C, for the part of accel/_tables.h that _stats.h, _bus.h and
+_report.h read: the parameter events, the kinds of tallies and the engine's count keys
+(render/stats_store.py), the bus timing's buckets and gap edges (render/bustiming.py). Stated once in
+Python, where the pure-Python stages (the reference under VW3_PURE_PYTHON=1) read them too.
+"""
+from __future__ import annotations
+
+from dissector.render import bustiming, stats_store
+
+
+def _enum(prefix: str, names: dict[str, int], count: str | None = None) -> str:
+    items = [f"{prefix}{name} = {value}" for name, value in sorted(names.items(), key=lambda item: item[1])]
+    return "enum { " + ", ".join(items + ([f"{count} = {len(names)}"] if count else [])) + " };"
+
+
+def render() -> list[str]:
+    tallies = {name[len("TALLY_"):]: value for name, value in vars(stats_store).items() if name.startswith("TALLY_")}
+    counts = {name[len("COUNT_"):]: value for name, value in vars(stats_store).items() if name.startswith("COUNT_")}
+    return [
+        "/* The --stats store's events, tallies and count keys (render/stats_store.py) and bus timing's",
+        " * buckets (render/bustiming.py), for _stats.h, _bus.h and _report.h. */",
+        _enum("EVENT_", {name: getattr(stats_store, name) for name in stats_store.EVENTS}, "EVENTS"),
+        _enum("TALLY_", tallies, "TALLIES"),
+        _enum("COUNT_", counts),
+        "#define TALLY_UNBOUNDED (" + " | ".join(f"1 << {kind}" for kind in stats_store.UNBOUNDED_TALLIES) + ")",
+        f"#define TALLY_MAX_SHIFT {stats_store.MAX_SHIFT}",
+        f"#define RESOLUTION {bustiming.RESOLUTION!r}",
+        f"#define MINUTE {bustiming.MINUTE!r}",
+        f"#define CLOSE_MARGIN {bustiming.CLOSE_MARGIN!r}",
+        "static const double gap_edges_ms[] = {" + ", ".join(map(repr, bustiming.GAP_EDGES_MS)) + "};",
+    ]
