@@ -604,7 +604,7 @@ local DATA = {
         [6] = true,
         [16] = true,
       },
-      ["broadcast_list"] = { 6, 16 },
+      ["broadcast_allowed"] = "6, 16",
       ["protected_value"] = 32768,
       ["all_protected_exception"] = 2,
       ["limits"] = {
@@ -621,7 +621,7 @@ local DATA = {
         [6] = "write refused: the drive is in Forced local mode",
         [7] = "write refused: the motor is running (configuration parameter)",
       },
-      ["exception_list"] = { 1, 2, 3, 4, 6, 7 },
+      ["documented"] = "01, 02, 03, 04, 06, 07",
       ["exception_causes"] = {},
       ["diagnostics"] = {
         [15] = "broadcast messages received (the spec's 0F counts requests not answered)",
@@ -1167,7 +1167,7 @@ local DATA = {
         [126] = true,
       },
       ["broadcast"] = nil,
-      ["broadcast_list"] = nil,
+      ["broadcast_allowed"] = "none",
       ["protected_value"] = nil,
       ["all_protected_exception"] = nil,
       ["limits"] = {
@@ -1180,81 +1180,69 @@ local DATA = {
         [2] = "Illegal Data Address",
         [3] = "Illegal Data Value",
       },
-      ["exception_list"] = { 1, 2, 3 },
+      ["documented"] = "01, 02, 03",
       ["exception_causes"] = {
         [770] = {
           {
-            ["error"] = "illegal register to read",
-            ["counters"] = { "Invalid Address" },
+            ["text"] = "illegal register to read (increments the Invalid Address counter)",
             ["when"] = nil,
           },
         },
         [771] = {
           {
-            ["error"] = "illegal number of registers to read",
-            ["counters"] = { "Illegal Register" },
+            ["text"] = "illegal number of registers to read (increments the Illegal Register counter)",
             ["when"] = "quantity",
           },
           {
-            ["error"] = "format error",
-            ["counters"] = { "Bad Packet Format" },
+            ["text"] = "format error (increments the Bad Packet Format counter)",
             ["when"] = nil,
           },
         },
         [1026] = {
           {
-            ["error"] = "illegal register to read",
-            ["counters"] = { "Invalid Address" },
+            ["text"] = "illegal register to read (increments the Invalid Address counter)",
             ["when"] = nil,
           },
         },
         [1027] = {
           {
-            ["error"] = "illegal number of registers to read",
-            ["counters"] = { "Illegal Register" },
+            ["text"] = "illegal number of registers to read (increments the Illegal Register counter)",
             ["when"] = "quantity",
           },
           {
-            ["error"] = "format error",
-            ["counters"] = { "Bad Packet Format" },
+            ["text"] = "format error (increments the Bad Packet Format counter)",
             ["when"] = nil,
           },
         },
         [1538] = {
           {
-            ["error"] = "illegal register address",
-            ["counters"] = { "Invalid Address", "Illegal Write" },
+            ["text"] = "illegal register address (increments the Invalid Address and Illegal Write counters)",
             ["when"] = nil,
           },
         },
         [1539] = {
           {
-            ["error"] = "illegal value",
-            ["counters"] = { "Illegal Write" },
+            ["text"] = "illegal value (increments the Illegal Write counter)",
             ["when"] = nil,
           },
         },
         [4098] = {
           {
-            ["error"] = "illegal register to set",
-            ["counters"] = { "Invalid Address", "Illegal Write" },
+            ["text"] = "illegal register to set (increments the Invalid Address and Illegal Write counters)",
             ["when"] = nil,
           },
         },
         [4099] = {
           {
-            ["error"] = "illegal number of registers",
-            ["counters"] = { "Illegal Register", "Illegal Write" },
+            ["text"] = "illegal number of registers (increments the Illegal Register and Illegal Write counters)",
             ["when"] = "quantity",
           },
           {
-            ["error"] = "wrong byte count",
-            ["counters"] = { "Bad Packet Format", "Illegal Write" },
+            ["text"] = "wrong byte count (increments the Bad Packet Format and Illegal Write counters)",
             ["when"] = "byte_count",
           },
           {
-            ["error"] = "invalid data value",
-            ["counters"] = { "Illegal Write" },
+            ["text"] = "invalid data value (increments the Illegal Write counter)",
             ["when"] = nil,
           },
         },
@@ -1297,12 +1285,12 @@ local DATA = {
       ["functions"] = nil,
       ["inner_only"] = {},
       ["broadcast"] = nil,
-      ["broadcast_list"] = nil,
+      ["broadcast_allowed"] = "none",
       ["protected_value"] = nil,
       ["all_protected_exception"] = nil,
       ["limits"] = {},
       ["exceptions"] = {},
-      ["exception_list"] = {},
+      ["documented"] = "",
       ["exception_causes"] = {},
       ["diagnostics"] = {},
       ["objects"] = {},
@@ -1343,7 +1331,7 @@ local DATA = {
 }
 do
 -- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
-local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["register_writes"]={[6]=true,[16]=true,[23]=true},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
+local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["confirmed"]={["echo"]={[6]=true},["answer"]={[16]=true,[23]=true}},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
 -- END RULES
 DATA.rules = RULES
 end
@@ -2572,20 +2560,10 @@ local function warn(frame, text)
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
 end
 
--- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
--- address. A value is read from the bytes each time it is needed (the first pass reads them from the
--- frame's byte table, .b, dropped once the frame is done with; the display from the tvb), so a record
--- keeps one small table for a read of 125 registers, not 125.
-local function make_registers(b, first, count, start)
-  return { b = b, first = first, count = count, start = start, shift = nil } -- (shift: see release_run)
-end
-
-local function make_bits(b, first, byte_count, start, quantity)
-  local count = byte_count * 8
-  if quantity ~= nil and quantity < count then count = quantity end
-  return { b = b, first = first, count = count, start = start, shift = nil }
-end
-
+-- Registers and bits are runs (made by the lifter below): where their values start in the frame's byte
+-- table, how many, the first address. A value is read from the bytes each time it is needed (the first
+-- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
+-- the tvb), so a record keeps one small table for a read of 125 registers, not 125.
 -- A run is done with its frame's byte table (the display reads the tvb): its indices become the
 -- frame's own (shift: the frame's first byte in the table it was read from).
 local function release_run(run)
@@ -2647,7 +2625,7 @@ local function size_of(field, count)
   return field.type == "words" and "2 * " .. n or n
 end
 
-local function shape_parser(shape)
+local function shape_parser(shape, offsets) -- (offsets: filled with where each field at a constant offset is)
   local lines, keys, index_of = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}
   local fixed, names = 0, {}
   for _, field in ipairs(shape) do
@@ -2666,7 +2644,7 @@ local function shape_parser(shape)
   local static = 0 -- where the next field starts while it is a constant; then `p`
   for index, field in ipairs(shape) do
     local name, kind, size = field.name, field.type, SIZES[field.type]
-    index_of[name] = index
+    index_of[name], offsets[name] = index, static
     local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
     if size ~= nil then
       if not static then
@@ -2723,21 +2701,14 @@ local function shape_parser(shape)
   return load(concat(lines, "\n"))(PARTS)
 end
 
--- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
-local function offset_of(shape, name)
-  local offset = 0
-  for _, field in ipairs(shape or {}) do
-    if field.name == name then return offset end
-    if SIZES[field.type] == nil then return nil end
-    offset = offset + SIZES[field.type]
-  end
-  return nil
+-- Parsers by layout name (dissector/protocol/layouts.py), and where their fields are when that is a
+-- constant; which code uses which: the generated table.
+local PARSERS, OFFSETS = {}, {}
+for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape, {}) end
+for name, shape in pairs(RULES.layouts) do
+  OFFSETS[name] = {}
+  PARSERS[name] = shape_parser(shape, OFFSETS[name])
 end
-
--- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local PARSERS = {}
-for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape) end
-for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
 local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
 for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
   for code, name in pairs(names) do GRAMMARS[kind][code], LAYOUTS[kind][code] = PARSERS[name], name end
@@ -2762,7 +2733,7 @@ end
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, make_registers, make_bits, floor, echo_check, echo = ...",
+  local out = { "local warn, say, floor, echo_check, echo = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -2813,32 +2784,30 @@ local function lifter(rule, limit, layout)
     for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
     add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
   end
-  if values then
-    local at = field(values.field .. "_at")
-    if values.kind == "registers" or values.kind == "bits" then
-      local counted -- the values' count field, in words or bytes
-      for _, item in ipairs(shape) do
-        if item.name == values.field then
-          counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
-        end
+  if values then -- (a run's `shift`: see release_run; a block's from its count field, in words or bytes)
+    local at, counted = field(values.field .. "_at"), nil
+    for _, item in ipairs(shape) do
+      if item.name == values.field and item.count then
+        counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
       end
-      if values.kind == "registers" then
-        add("f.registers = make_registers(b, %s, %s, %s)", at, counted, values.start and field(values.start) or "first")
-      else
-        add("f.bits = make_bits(b, %s, %s, first, many)", at, counted)
-      end
-    else -- one value at a fixed offset of the data
-      local offset = offset_of(shape, values.field)
-      if values.kind == "register" then
-        add("f.registers = make_registers(b, f.data_at + %d, 1, first)", offset)
-      else
-        add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
-          field(values.field))
-      end
+    end
+    local offset = (OFFSETS[layout] or {})[values.field] -- (one value at a fixed offset of the data)
+    if values.kind == "registers" then
+      add("f.registers = { b = b, first = %s, count = %s, start = %s, shift = nil }", at, counted,
+        values.start and field(values.start) or "first")
+    elseif values.kind == "bits" then
+      add("local count = 8 * %s", counted)
+      add("if many ~= nil and many < count then count = many end")
+      add("f.bits = { b = b, first = %s, count = count, start = first, shift = nil }", at)
+    elseif values.kind == "register" then
+      add("f.registers = { b = b, first = f.data_at + %d, count = 1, start = first, shift = nil }", offset)
+    else
+      add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
+        field(values.field))
     end
   end
   add("end")
-  return load(concat(out, "\n"))(warn, say, make_registers, make_bits, floor, echo_check, rule.echo)
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo)
 end
 
 -- Each code's lifting rule per direction (nil: a named special case).
@@ -2905,10 +2874,7 @@ for code, rule in pairs(LIFT_OF[RESPONSE]) do START_FROM_REQUEST[code] = rule.st
 
 -- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
 -- by their echo (FC6), by a normal answer (FC16, FC23).
-local CONFIRMED = { echo = {}, answer = {} }
-for code, how in pairs(RULES.confirm) do
-  if RULES.register_writes[code] then CONFIRMED[how][code] = true end
-end
+local CONFIRMED = RULES.confirmed
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
@@ -2957,23 +2923,24 @@ local UNMATCHED = say("unmatched", {})
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+
+-- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more.
+local function unanswered(pending)
+  pending.unanswered, pending.fields = true, nil
+  release_run(pending.registers)
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
     and f.time - pending.time > timeout then
-    pending.unanswered = true
-    pending.fields = nil
-    release_run(pending.registers)
+    unanswered(pending)
     late, pending, st.pending = pending, nil, nil
   end
   if f.kind == REQUEST then
-    if pending ~= nil then
-      pending.unanswered = true
-      pending.fields = nil -- no answer can ask for them any more
-      release_run(pending.registers)
-    end
+    if pending ~= nil then unanswered(pending) end
     st.pending = nil
     if f.slave == 0 then
       f.broadcast = true
@@ -2990,8 +2957,7 @@ local function pair(st, f)
     warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
     if pending ~= nil then
-      pending.unanswered = true
-      release_run(pending.registers)
+      unanswered(pending)
       st.pending = nil
     end
     f.no_request = true
@@ -3901,29 +3867,19 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    local allowed = {}
-    for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
-    local list = concat(allowed, ", ")
-    if list == "" then list = "none" end
     warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
-      allowed = list }))
+      allowed = profile.broadcast_allowed }))
   end
 end
 
 local function holds(when, request, profile)
+  local fields, quantity = request.fields, request.quantity
   if when == "quantity" then
-    local limits = (profile.limits or {})[request.fn]
-    local limit = READ_LIMIT
-    if limits ~= nil then limit = limits[1] end
-    local quantity = request.quantity
+    local limit = ((profile.limits or NO_INTERPRETATION)[request.fn] or { READ_LIMIT })[1]
     return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
   end
-  if when == "byte_count" then
-    local fields = request.fields
-    if fields == nil or fields.byte_count == nil or fields.quantity == nil then return false end
-    return fields.byte_count ~= 2 * fields.quantity
-  end
-  return false
+  return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
+    and fields.byte_count ~= 2 * fields.quantity
 end
 
 local function pick_causes(request, profile, causes)
@@ -3936,13 +3892,6 @@ local function pick_causes(request, profile, causes)
   if #hits > 0 then return hits end
   if #plain > 0 then return plain end
   return causes
-end
-
-local function cause_text(cause)
-  local counters = cause.counters or {}
-  if #counters == 0 then return cause.error end
-  return say(#counters > 1 and "cause_counters" or "cause_counter", { error = cause.error,
-    counters = concat(counters, " and ") })
 end
 
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
@@ -3992,7 +3941,7 @@ local function explain_exception(st, f, device)
   local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
-    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
+    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
       causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
@@ -4005,27 +3954,20 @@ local function explain_exception(st, f, device)
   elseif meanings[code] ~= nil then
     note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meanings[code] }))
   elseif next(meanings) ~= nil then
-    local known = {}
-    for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
-    note(f, say("exception_undocumented", { code = code, device = profile.device, known = concat(known, ", ") }))
+    note(f, say("exception_undocumented", { code = code, device = profile.device, known = profile.documented }))
   end
 end
 
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
-    local meaning = (profile.objects or {})[object.id]
-    if meaning ~= nil then
-      local done = false
+    local meaning, value = (profile.objects or NO_INTERPRETATION)[object.id], object.value
+    if meaning ~= nil and meaning.format == "MMmm" and value:match("^%d%d%d%d$") then -- (a revision, V5.2)
+      object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
+    elseif meaning ~= nil then
       if meaning.format == "MMmm" then
-        local value = object.value
-        if #value == 4 and value:match("^%d%d%d%d$") then
-          object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
-          done = true
-        else
-          note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
-        end
+        note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
       end
-      if not done then object.text = meaning.meaning end
+      object.text = meaning.meaning
     end
   end
 end
@@ -4046,14 +3988,8 @@ end
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
   local base = device.plc[f.fn] or device.plc_default
-  local quantity = f.quantity
-  if quantity == nil or quantity == 0 then quantity = 1 end
-  local first = plc_label(base, f.start)
-  if quantity == 1 then
-    f.span_label = first
-  else
-    f.span_label = first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
-  end
+  local quantity, first = f.quantity or 0, plc_label(base, f.start) -- (a quantity of 0 or none: one address)
+  f.span_label = quantity <= 1 and first or first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
 end
 lane.span_label = span_label
 

@@ -215,10 +215,10 @@ def _profile_data() -> dict[str, Any]:
 
 
 def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
+    from dissector.devices import checks, explain
+
     causes = {
-        function * 256 + code: [
-            {"error": cause.error, "counters": list(cause.counters), "when": cause.when} for cause in entries
-        ]
+        function * 256 + code: [{"text": explain.cause_text(cause), "when": cause.when} for cause in entries]
         for (function, code), entries in sorted(profile.exception_causes.items())
     }
     return {
@@ -229,12 +229,12 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "functions": profile.functions,
         "inner_only": profile.inner_only,
         "broadcast": profile.broadcast,
-        "broadcast_list": None if profile.broadcast is None else sorted(profile.broadcast),
+        "broadcast_allowed": checks.broadcast_allowed(profile),  # (as the device's broadcast warning lists them)
         "protected_value": profile.protected_value,
         "all_protected_exception": profile.all_protected_exception,
         "limits": {code: list(values) for code, values in sorted(profile.limits.items())},
         "exceptions": dict(sorted(profile.exceptions.items())),
-        "exception_list": sorted(profile.exceptions),
+        "documented": explain.documented(profile),  # (as the undocumented exception's note lists them)
         "exception_causes": causes,
         "diagnostics": dict(sorted(profile.diagnostics.items())),
         "objects": {

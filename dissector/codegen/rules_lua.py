@@ -19,7 +19,7 @@ from typing import Any
 from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Lift, params
+from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Confirm, Lift, params
 from dissector.protocol.shapes import PARTS, SHAPES, Field
 from dissector.protocol.spec import SPEC
 
@@ -99,9 +99,10 @@ def rules_data() -> dict[str, Any]:
         "lift": {name: _lift(rule) for name, rule in LIFTS.items()},
         "by_code": by_code,
         "confirm": {code: str(how) for code, how in CONFIRM.items()},
-        # The codes whose request's registers are values written (table.register_writes: FC6, FC16, FC23):
-        # [confirm] of these says how the annotator's parameter memory takes them as confirmed.
-        "register_writes": {code: True for code in sorted(table.register_writes())},
+        # The register writes by how the annotator's parameter memory takes them as confirmed
+        # (table.confirmed_registers, annotator.py _BY_ECHO, _BY_ANSWER): by their echo FC6, by a normal
+        # answer FC16 and FC23.
+        "confirmed": {str(how): {code: True for code in sorted(table.confirmed_registers(how))} for how in Confirm},
         "limits": {name: list(value) for name, value in SPEC.limits.items() if isinstance(value, list)},
         "texts": {key: {"template": TEXTS[key], "format": lua_format(TEXTS[key]), "params": list(params(key)),
                         "repr": [name for _, name, _, conversion in string.Formatter().parse(TEXTS[key])

@@ -45,8 +45,15 @@ def check_request(frame: Frame, device: Device) -> None:
         and function not in profile.broadcast
         and function not in SPEC.not_broadcast  # decode.py already warned with the spec's rule
     ):
-        allowed = ", ".join(str(code) for code in sorted(profile.broadcast)) or "none"
-        frame.warnings.append(text("device_broadcast", name=name, device=profile.device, allowed=allowed))
+        frame.warnings.append(
+            text("device_broadcast", name=name, device=profile.device, allowed=broadcast_allowed(profile))
+        )
+
+
+def broadcast_allowed(profile: Profile) -> str:
+    """The functions a device takes broadcast, as its warning lists them (`5, 6, 15, 16`, or `none`); the
+    plugin's profile data carries it (codegen/lua.py)."""
+    return ", ".join(str(code) for code in sorted(profile.broadcast or ())) or "none"
 
 
 def _check_limits(frame: Frame, profile: Profile, name: str, limits: tuple[int, ...]) -> None:

@@ -35,7 +35,7 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
         note = device.explained.get(key)
         if note is None:
             chosen = _pick_causes(request, profile, causes)
-            causes_text = " or ".join(_cause_text(cause) for cause in chosen)
+            causes_text = " or ".join(cause_text(cause) for cause in chosen)
             note = text("exception_cause", code=code, device=profile.device, name=name, causes=causes_text)
             _remember(device.explained, key, note)
         frame.notes.append(note)  # type: ignore[arg-type]
@@ -44,7 +44,7 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     elif code in profile.exceptions:
         frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=profile.exceptions[code]))
     elif profile.exceptions:
-        known = ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
+        known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
     frame.exception_text = profile.exceptions.get(code)
 
@@ -155,7 +155,15 @@ def _holds(when: str, request: Frame, profile: Profile) -> bool:
     return False
 
 
-def _cause_text(cause: ExceptionCause) -> str:
+def documented(profile: Profile) -> str:
+    """The exception codes a device documents, as a note lists them (`01, 02, 03`); the plugin's profile
+    data carries it (codegen/lua.py)."""
+    return ", ".join(f"{known:02X}" for known in sorted(profile.exceptions))
+
+
+def cause_text(cause: ExceptionCause) -> str:
+    """A cause as an exception's note says it (with the counters it increments); the plugin's profile
+    data carries each cause's text (codegen/lua.py)."""
     if not cause.counters:
         return cause.error
     counters = cause.counters

@@ -39,20 +39,10 @@ local function warn(frame, text)
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
 end
 
--- Registers and bits are runs: where their values start in the frame's byte table, how many, the first
--- address. A value is read from the bytes each time it is needed (the first pass reads them from the
--- frame's byte table, .b, dropped once the frame is done with; the display from the tvb), so a record
--- keeps one small table for a read of 125 registers, not 125.
-local function make_registers(b, first, count, start)
-  return { b = b, first = first, count = count, start = start, shift = nil } -- (shift: see release_run)
-end
-
-local function make_bits(b, first, byte_count, start, quantity)
-  local count = byte_count * 8
-  if quantity ~= nil and quantity < count then count = quantity end
-  return { b = b, first = first, count = count, start = start, shift = nil }
-end
-
+-- Registers and bits are runs (made by the lifter below): where their values start in the frame's byte
+-- table, how many, the first address. A value is read from the bytes each time it is needed (the first
+-- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
+-- the tvb), so a record keeps one small table for a read of 125 registers, not 125.
 -- A run is done with its frame's byte table (the display reads the tvb): its indices become the
 -- frame's own (shift: the frame's first byte in the table it was read from).
 local function release_run(run)
@@ -114,7 +104,7 @@ local function size_of(field, count)
   return field.type == "words" and "2 * " .. n or n
 end
 
-local function shape_parser(shape)
+local function shape_parser(shape, offsets) -- (offsets: filled with where each field at a constant offset is)
   local lines, keys, index_of = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}
   local fixed, names = 0, {}
   for _, field in ipairs(shape) do
@@ -133,7 +123,7 @@ local function shape_parser(shape)
   local static = 0 -- where the next field starts while it is a constant; then `p`
   for index, field in ipairs(shape) do
     local name, kind, size = field.name, field.type, SIZES[field.type]
-    index_of[name] = index
+    index_of[name], offsets[name] = index, static
     local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
     if size ~= nil then
       if not static then
@@ -190,21 +180,14 @@ local function shape_parser(shape)
   return load(concat(lines, "\n"))(PARTS)
 end
 
--- Where a field starts in a layout's data when every field before it has a fixed size (nil otherwise).
-local function offset_of(shape, name)
-  local offset = 0
-  for _, field in ipairs(shape or {}) do
-    if field.name == name then return offset end
-    if SIZES[field.type] == nil then return nil end
-    offset = offset + SIZES[field.type]
-  end
-  return nil
+-- Parsers by layout name (dissector/protocol/layouts.py), and where their fields are when that is a
+-- constant; which code uses which: the generated table.
+local PARSERS, OFFSETS = {}, {}
+for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape, {}) end
+for name, shape in pairs(RULES.layouts) do
+  OFFSETS[name] = {}
+  PARSERS[name] = shape_parser(shape, OFFSETS[name])
 end
-
--- Parsers by layout name (dissector/protocol/layouts.py); which code uses which: the generated table.
-local PARSERS = {}
-for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape) end
-for name, shape in pairs(RULES.layouts) do PARSERS[name] = shape_parser(shape) end
 local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
 for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
   for code, name in pairs(names) do GRAMMARS[kind][code], LAYOUTS[kind][code] = PARSERS[name], name end
@@ -229,7 +212,7 @@ end
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, make_registers, make_bits, floor, echo_check, echo = ...",
+  local out = { "local warn, say, floor, echo_check, echo = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -280,32 +263,30 @@ local function lifter(rule, limit, layout)
     for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
     add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
   end
-  if values then
-    local at = field(values.field .. "_at")
-    if values.kind == "registers" or values.kind == "bits" then
-      local counted -- the values' count field, in words or bytes
-      for _, item in ipairs(shape) do
-        if item.name == values.field then
-          counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
-        end
+  if values then -- (a run's `shift`: see release_run; a block's from its count field, in words or bytes)
+    local at, counted = field(values.field .. "_at"), nil
+    for _, item in ipairs(shape) do
+      if item.name == values.field and item.count then
+        counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
       end
-      if values.kind == "registers" then
-        add("f.registers = make_registers(b, %s, %s, %s)", at, counted, values.start and field(values.start) or "first")
-      else
-        add("f.bits = make_bits(b, %s, %s, first, many)", at, counted)
-      end
-    else -- one value at a fixed offset of the data
-      local offset = offset_of(shape, values.field)
-      if values.kind == "register" then
-        add("f.registers = make_registers(b, f.data_at + %d, 1, first)", offset)
-      else
-        add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
-          field(values.field))
-      end
+    end
+    local offset = (OFFSETS[layout] or {})[values.field] -- (one value at a fixed offset of the data)
+    if values.kind == "registers" then
+      add("f.registers = { b = b, first = %s, count = %s, start = %s, shift = nil }", at, counted,
+        values.start and field(values.start) or "first")
+    elseif values.kind == "bits" then
+      add("local count = 8 * %s", counted)
+      add("if many ~= nil and many < count then count = many end")
+      add("f.bits = { b = b, first = %s, count = count, start = first, shift = nil }", at)
+    elseif values.kind == "register" then
+      add("f.registers = { b = b, first = f.data_at + %d, count = 1, start = first, shift = nil }", offset)
+    else
+      add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
+        field(values.field))
     end
   end
   add("end")
-  return load(concat(out, "\n"))(warn, say, make_registers, make_bits, floor, echo_check, rule.echo)
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo)
 end
 
 -- Each code's lifting rule per direction (nil: a named special case).
@@ -372,10 +353,7 @@ for code, rule in pairs(LIFT_OF[RESPONSE]) do START_FROM_REQUEST[code] = rule.st
 
 -- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
 -- by their echo (FC6), by a normal answer (FC16, FC23).
-local CONFIRMED = { echo = {}, answer = {} }
-for code, how in pairs(RULES.confirm) do
-  if RULES.register_writes[code] then CONFIRMED[how][code] = true end
-end
+local CONFIRMED = RULES.confirmed
 
 local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len

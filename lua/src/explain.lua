@@ -41,29 +41,19 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    local allowed = {}
-    for _, allowed_code in ipairs(profile.broadcast_list or {}) do allowed[#allowed + 1] = format("%d", allowed_code) end
-    local list = concat(allowed, ", ")
-    if list == "" then list = "none" end
     warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
-      allowed = list }))
+      allowed = profile.broadcast_allowed }))
   end
 end
 
 local function holds(when, request, profile)
+  local fields, quantity = request.fields, request.quantity
   if when == "quantity" then
-    local limits = (profile.limits or {})[request.fn]
-    local limit = READ_LIMIT
-    if limits ~= nil then limit = limits[1] end
-    local quantity = request.quantity
+    local limit = ((profile.limits or NO_INTERPRETATION)[request.fn] or { READ_LIMIT })[1]
     return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
   end
-  if when == "byte_count" then
-    local fields = request.fields
-    if fields == nil or fields.byte_count == nil or fields.quantity == nil then return false end
-    return fields.byte_count ~= 2 * fields.quantity
-  end
-  return false
+  return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
+    and fields.byte_count ~= 2 * fields.quantity
 end
 
 local function pick_causes(request, profile, causes)
@@ -76,13 +66,6 @@ local function pick_causes(request, profile, causes)
   if #hits > 0 then return hits end
   if #plain > 0 then return plain end
   return causes
-end
-
-local function cause_text(cause)
-  local counters = cause.counters or {}
-  if #counters == 0 then return cause.error end
-  return say(#counters > 1 and "cause_counters" or "cause_counter", { error = cause.error,
-    counters = concat(counters, " and ") })
 end
 
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
@@ -132,7 +115,7 @@ local function explain_exception(st, f, device)
   local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
-    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause_text(cause) end
+    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
       causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
@@ -145,27 +128,20 @@ local function explain_exception(st, f, device)
   elseif meanings[code] ~= nil then
     note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meanings[code] }))
   elseif next(meanings) ~= nil then
-    local known = {}
-    for _, known_code in ipairs(profile.exception_list or {}) do known[#known + 1] = format("%02X", known_code) end
-    note(f, say("exception_undocumented", { code = code, device = profile.device, known = concat(known, ", ") }))
+    note(f, say("exception_undocumented", { code = code, device = profile.device, known = profile.documented }))
   end
 end
 
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
-    local meaning = (profile.objects or {})[object.id]
-    if meaning ~= nil then
-      local done = false
+    local meaning, value = (profile.objects or NO_INTERPRETATION)[object.id], object.value
+    if meaning ~= nil and meaning.format == "MMmm" and value:match("^%d%d%d%d$") then -- (a revision, V5.2)
+      object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
+    elseif meaning ~= nil then
       if meaning.format == "MMmm" then
-        local value = object.value
-        if #value == 4 and value:match("^%d%d%d%d$") then
-          object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
-          done = true
-        else
-          note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
-        end
+        note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
       end
-      if not done then object.text = meaning.meaning end
+      object.text = meaning.meaning
     end
   end
 end
@@ -186,14 +162,8 @@ end
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
   local base = device.plc[f.fn] or device.plc_default
-  local quantity = f.quantity
-  if quantity == nil or quantity == 0 then quantity = 1 end
-  local first = plc_label(base, f.start)
-  if quantity == 1 then
-    f.span_label = first
-  else
-    f.span_label = first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
-  end
+  local quantity, first = f.quantity or 0, plc_label(base, f.start) -- (a quantity of 0 or none: one address)
+  f.span_label = quantity <= 1 and first or first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
 end
 lane.span_label = span_label
 

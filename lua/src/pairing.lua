@@ -8,23 +8,24 @@ local UNMATCHED = say("unmatched", {})
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+
+-- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more.
+local function unanswered(pending)
+  pending.unanswered, pending.fields = true, nil
+  release_run(pending.registers)
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
     and f.time - pending.time > timeout then
-    pending.unanswered = true
-    pending.fields = nil
-    release_run(pending.registers)
+    unanswered(pending)
     late, pending, st.pending = pending, nil, nil
   end
   if f.kind == REQUEST then
-    if pending ~= nil then
-      pending.unanswered = true
-      pending.fields = nil -- no answer can ask for them any more
-      release_run(pending.registers)
-    end
+    if pending ~= nil then unanswered(pending) end
     st.pending = nil
     if f.slave == 0 then
       f.broadcast = true
@@ -41,8 +42,7 @@ local function pair(st, f)
     warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
     if pending ~= nil then
-      pending.unanswered = true
-      release_run(pending.registers)
+      unanswered(pending)
       st.pending = nil
     end
     f.no_request = true
