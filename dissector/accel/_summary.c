@@ -1004,10 +1004,10 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
         case STEP_TEXT:
             out_put(&e->out, step->text, (size_t)step->length);
             break;
-        case STEP_UNSPACE: /* describe._simple, _comm_event_counter: the name alone */
+        case STEP_UNSPACE: /* describe.TEXT_FORMS' name: the name alone */
             e->out.len -= 1;
             break;
-        case STEP_SPAN: /* PLAIN_SPAN: describe._read_write's read part, as its answer shows it PLC style */
+        case STEP_SPAN: /* PLAIN_SPAN: describe._plain_span, FC23's read part, as its answer shows it PLC style */
         case STEP_PLAIN_SPAN:
             span_text(&e->out, base, start, quantity, step->step == STEP_SPAN || base >= 0);
             break;
@@ -1023,7 +1023,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
         case STEP_COIL:
             out_cstr(&e->out, value == COIL_ON ? " = ON" : " = OFF");
             break;
-        case STEP_SINGLE: { /* describe._write_single_register: ` HSP=50.9 Hz` when named, ` = 7` otherwise */
+        case STEP_SINGLE: { /* describe._single: ` HSP=50.9 Hz` when named, ` = 7` otherwise */
             size_t mark = e->out.len;
             int named;
             out_put(&e->out, " ", 1);
@@ -1044,7 +1044,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
         case STEP_DIAGNOSTICS:
             if (diagnostics_text(e, f, length) < 0) return -1;
             break;
-        case STEP_FIFO: /* describe._fifo: the first of `value` words (rstrip: no space after none) */
+        case STEP_FIFO: /* describe.TEXT_FORMS' fifo: the first of `value` words (rstrip: no space after none) */
             for (unsigned j = 0; j < value && j < MAX_FIFO_VALUES; j++) {
                 out_put(&e->out, " ", 1);
                 out_uint(&e->out, word(f + info->at[step->number] + 2 * j), 0);

@@ -30,29 +30,10 @@ from dissector.render import describe, pollcycle, stats_store
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
 
-# The Info column of each form the engine writes, as describe.py's describers write it in one direction:
-# texts, and steps (the engine's STEP_*, _summary.c info_text) with the fields they print, by name (read
-# at each code's offsets: Rules.info) and a step's number (hex: its least digits). "none": not written
-# by the engine (handed over); "python": the texts come from the Python stages (table.Compiled.texts).
-TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
-    "none": [("none",)],
-    "name": [("unspace",)],  # the name alone: the space after it taken back (rstrip)
-    "span": [("span",)],
-    "bits": [("span",), ": ", ("bits",)],
-    "values": [("span",), ": ", ("values",)],
-    "coil": [("label",), ("coil", "value")],
-    "single": [("label",), ("single", "value")],
-    "written": [("span",), " written"],
-    "status": ["status 0x", ("hex", "status", 2)],  # at least two digits: FC7's byte, FC12's word
-    "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
-    "diagnostics": [("diagnostics",)],
-    # the address as sent, even PLC style
-    "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
-    "pointer": ["pointer ", ("dec", "address")],
-    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
-    "fifo": [("dec", "fifo_count"), " values:", ("fifo", "fifo_count", "values")],
-    "python": [("none",)],
-}
+# The Info column of each form the engine writes (its texts and steps, the engine's STEP_*, _summary.c
+# info_text) is render/describe.py's TEXT_FORMS, which describe.py interprets too; the fields a step prints
+# are read at each code's offsets (Rules.info).
+TEXT_FORMS = describe.TEXT_FORMS
 FORMS = tuple(TEXT_FORMS)
 STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "coil", "single", "dec",
          "hex", "diagnostics", "fifo")
@@ -88,26 +69,13 @@ def c_string(text: str | None) -> str:
 
 
 def _form(entry: Function, kind: Kind) -> str:
-    """The FORM_* a describer gives in one direction (describe._DESCRIBERS by table.Function.text)."""
-    request = kind is Kind.REQUEST
-    bits = entry.data is Data.BITS
-    forms = {
-        "read": "span" if request else ("bits" if bits else "values"),
-        "write_single_coil": "coil",
-        "write_single_register": "single",
-        "simple": "name" if request else "status",
-        "comm_event_counter": "name" if request else "counter",
-        "diagnostics": "diagnostics",
-        "write_multiple": ("bits" if bits else "values") if request else "written",
-        "mask_write": "mask",
-        "read_write": "read_write" if request else "values",
-        "fifo": "pointer" if request else "fifo",
-    }
+    """The FORM_* a describer gives in one direction (describe.DESCRIBER_FORMS by table.Function.text)."""
     if entry.compiled is not None and entry.compiled.texts:
         return "python"
-    if entry.text not in forms:
+    form = describe.form_of(entry.text, kind is Kind.REQUEST, entry.data is Data.BITS)
+    if form is None:
         raise GenerateError(f"function {entry.code}: no compiled form for describer {entry.text!r}")
-    return forms[entry.text]
+    return form
 
 
 def field_at(grammar: Construct, name: str | None, code: int) -> int:

@@ -2,10 +2,11 @@
 from __future__ import annotations
 
 import re
+from typing import Any, Callable
 
 from dissector.model import DeviceObject, Frame, Kind, Register
 from dissector.protocol.spec import SPEC
-from dissector.protocol.table import FUNCTIONS
+from dissector.protocol.table import FUNCTIONS, Data
 
 MAX_VALUES = 6  # register values a summary shows (the compiled engine reads these three in _tables.h)
 MAX_BITS = 32  # bits a summary shows
@@ -103,6 +104,57 @@ def function_label(function: int, function_text: str | None = None) -> str:
     return function_text or _FUNCTION_NAMES.get(function) or SPEC.function_name(function)
 
 
+# The Info column of each form, as data (the C engine's info_text interprets it too, from the steps
+# codegen/c_rules.py writes into accel/_tables.h): texts, and steps with the fields they print by name and a
+# step's number (hex: its least digits). "none": not written by the C engine (handed over); "python": the
+# texts come from the Python stages there (table.Compiled.texts) and from a describer of _BY_NAME here.
+TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
+    "none": [("none",)],
+    "name": [("unspace",)],  # the name alone: the space after it taken back (rstrip)
+    "span": [("span",)],
+    "bits": [("span",), ": ", ("bits",)],
+    "values": [("span",), ": ", ("values",)],
+    "coil": [("label",), ("coil", "value")],
+    "single": [("label",), ("single", "value")],
+    "written": [("span",), " written"],
+    "status": ["status 0x", ("hex", "status", 2)],  # at least two digits: FC7's byte, FC12's word
+    "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
+    "diagnostics": [("diagnostics",)],
+    # the address as sent, even PLC style
+    "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
+    "pointer": ["pointer ", ("dec", "address")],
+    "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
+    "fifo": [("dec", "fifo_count"), " values:", ("fifo", "fifo_count", "values")],
+    "python": [("none",)],
+}
+# The form of each describer (table.Function.text) in each direction, (request, response); a pair where it
+# depends on the data the code carries (bits, registers). The others are described by _BY_NAME below.
+DESCRIBER_FORMS: dict[str, tuple[str | tuple[str, str], str | tuple[str, str]]] = {
+    "read": ("span", ("bits", "values")),
+    "write_single_coil": ("coil", "coil"),
+    "write_single_register": ("single", "single"),
+    "simple": ("name", "status"),
+    "comm_event_counter": ("name", "counter"),
+    "diagnostics": ("diagnostics", "diagnostics"),
+    "write_multiple": (("bits", "values"), "written"),
+    "mask_write": ("mask", "mask"),
+    "read_write": ("read_write", "values"),
+    "fifo": ("pointer", "fifo"),
+}
+# A register read's answer whose window is unknown (no request) shows its values alone, without the `: `
+# after its empty span (only the read's: a bit read's answer and FC23's keep it).
+_VALUES_ALONE = ("read", "values")
+
+
+def form_of(describer: str, request: bool, bits: bool) -> str | None:
+    """The form (TEXT_FORMS) a describer gives in one direction; None: one of _BY_NAME's."""
+    forms = DESCRIBER_FORMS.get(describer)
+    if forms is None:
+        return None
+    form = forms[0 if request else 1]
+    return form if isinstance(form, str) else form[0 if bits else 1]
+
+
 def info_text(frame: Frame) -> str:
     """The Info column: what was asked or answered, in a few words."""
     function = frame.function
@@ -115,30 +167,64 @@ def info_text(frame: Frame) -> str:
     if fields is None:
         return f"{name} (malformed)"
     request = frame.kind is Kind.REQUEST
-    describe = _DESCRIBERS.get(function)
+    describe = _DESCRIBERS.get((function, request))
     detail = describe(frame, request) if describe else f"{len(frame.pdu) - 1} bytes of data"
     return f"{name} {detail}".rstrip()
 
 
-def _read(frame: Frame, request: bool) -> str:
-    if request:
-        return span_text(frame)
-    if frame.bits is not None:
-        return f"{span_text(frame)}: {bits_text(frame)}".lstrip()
-    return f"{span_text(frame)}: {values_text(frame)}".lstrip(": ")
+def _coil(frame: Frame, value: int) -> str:
+    return " = " + {0xFF00: "ON", 0x0000: "OFF"}.get(value, f"0x{value:04X}")
 
 
-def _write_single_coil(frame: Frame, request: bool) -> str:
-    value = frame.fields.value
-    state = {0xFF00: "ON", 0x0000: "OFF"}.get(value, f"0x{value:04X}")
-    return f"{span_text(frame)} = {state}"
-
-
-def _write_single_register(frame: Frame, request: bool) -> str:
+def _single(frame: Frame, value: int) -> str:
+    """` HSP=50.9 Hz` where the register is named or read as a text, ` = 7` otherwise."""
     registers = frame.registers or []
     if registers and (registers[0].code or registers[0].text):
-        return f"{span_text(frame)} {register_text(registers[0])}"
-    return f"{span_text(frame)} = {frame.fields.value}"
+        return f" {register_text(registers[0])}"
+    return f" = {value}"
+
+
+def _plain_span(frame: Frame) -> str:
+    """The window as sent (FC23's read part); PLC style as its answer shows it."""
+    return span_text(frame) if frame.span_label is not None else plain_span(frame.start, frame.quantity)
+
+
+# What each step of TEXT_FORMS writes (the C engine's STEP_*): of the frame, or of the field it names.
+_OF_FRAME: dict[str, Callable[[Frame], str]] = {
+    "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
+    "bits": bits_text, "values": values_text, "diagnostics": lambda frame: _diagnostics(frame, True),
+}
+_OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {"coil": _coil, "single": _single, "dec": lambda frame, value: str(value)}
+
+
+def _step(step: str | tuple[str | int, ...]) -> Callable[[Frame], str]:
+    if isinstance(step, str):
+        return lambda frame: step
+    what, args = step[0], step[1:]
+    if what in _OF_FRAME:
+        return _OF_FRAME[what]
+    if what in _OF_FIELD:
+        of = _OF_FIELD[what]
+        return lambda frame: of(frame, frame.fields[args[0]])
+    if what == "hex":
+        return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
+    if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says
+        return lambda frame: "".join(f" {value}" for value in frame.fields[args[1]][:MAX_FIFO_VALUES])
+    raise ValueError(f"describe: no step {what!r}")
+
+
+def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:
+    steps = [_step(step) for step in TEXT_FORMS[form]]
+
+    def describe(frame: Frame, request: bool) -> str:
+        text = "".join([step(frame) for step in steps])
+        return text.lstrip(": ") if values_alone else text
+
+    describe.__qualname__ = f"describe[{form}]"
+    return describe
+
+
+MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
 
 
 def _diagnostics(frame: Frame, request: bool) -> str:
@@ -151,48 +237,10 @@ def _diagnostics(frame: Frame, request: bool) -> str:
     return f"{sub:02X}h {sub_name}" + (f" data {_hex_preview(data)}" if data else "")
 
 
-MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
-
-
 def _hex_preview(data: bytes) -> str:
     if len(data) <= MAX_DATA_BYTES:
         return data.hex()
     return f"{data[:MAX_DATA_BYTES].hex()}… (+{len(data) - MAX_DATA_BYTES} bytes)"
-
-
-def _write_multiple(frame: Frame, request: bool) -> str:
-    if request and frame.registers is not None:
-        return f"{span_text(frame)}: {values_text(frame)}"
-    if request and frame.bits is not None:
-        return f"{span_text(frame)}: {bits_text(frame)}"
-    return f"{span_text(frame)} written"
-
-
-def _comm_event_counter(frame: Frame, request: bool) -> str:
-    if request:
-        return ""
-    return f"status 0x{frame.fields.status:04X}, {frame.fields.event_count} events"
-
-
-def _mask_write(frame: Frame, request: bool) -> str:
-    fields = frame.fields
-    return f"{fields.address} AND 0x{fields.and_mask:04X} OR 0x{fields.or_mask:04X}"
-
-
-def _read_write(frame: Frame, request: bool) -> str:
-    fields = frame.fields
-    if request:
-        start, quantity = fields["read_start"], fields["read_quantity"]
-        if frame.span_label is not None:  # PLC style: the read window as its answer shows it (43202..43203)
-            return f"read {span_text(frame)}, write {values_text(frame)}"
-        return f"read {plain_span(start, quantity)}, write {values_text(frame)}"
-    return f"{span_text(frame)}: {values_text(frame)}"
-
-
-def _fifo(frame: Frame, request: bool) -> str:
-    if request:
-        return f"pointer {frame.fields.address}"
-    return f"{frame.fields.fifo_count} values: {' '.join(map(str, frame.fields['values'][:MAX_FIFO_VALUES]))}"
 
 
 def _mei(frame: Frame, request: bool) -> str:
@@ -217,17 +265,6 @@ def _object_value(obj: DeviceObject) -> str:
     return repr(obj.value)
 
 
-def _simple(frame: Frame, request: bool) -> str:
-    if request:
-        return ""
-    fields = frame.fields
-    if "status" in fields and isinstance(fields.status, int):
-        return f"status 0x{fields.status:02X}"
-    if "data" in fields:
-        return f"{len(fields.data)} bytes"
-    return ""
-
-
 def _report_server_id(frame: Frame, request: bool) -> str:
     fields = frame.fields
     if request or "server_id" not in fields:
@@ -243,20 +280,10 @@ def _file_record(frame: Frame, request: bool) -> str:
     return f"{len(groups)} record group(s)"
 
 
-# Describers by name; the protocol table says which function code uses which (table.Function.text).
-_BY_NAME = {
-    "read": _read,
-    "write_single_coil": _write_single_coil,
-    "write_single_register": _write_single_register,
-    "simple": _simple,
-    "diagnostics": _diagnostics,
-    "comm_event_counter": _comm_event_counter,
-    "write_multiple": _write_multiple,
-    "report_server_id": _report_server_id,
-    "file_record": _file_record,
-    "mask_write": _mask_write,
-    "read_write": _read_write,
-    "fifo": _fifo,
-    "mei": _mei,
-}
-_DESCRIBERS = {entry.code: _BY_NAME[entry.text] for entry in FUNCTIONS}
+# The describers that are no form of TEXT_FORMS, by name; the protocol table says which function code uses
+# which (table.Function.text), and its data (bits, registers) which of a describer's forms it takes.
+_BY_NAME = {"report_server_id": _report_server_id, "file_record": _file_record, "mei": _mei}
+_FORMS = {(entry.code, request): (entry.text, form_of(entry.text, request, entry.data is Data.BITS))
+          for entry in FUNCTIONS for request in (True, False)}
+_DESCRIBERS = {key: _BY_NAME.get(text) or _interpreter(form, (text, form) == _VALUES_ALONE)
+               for key, (text, form) in _FORMS.items()}
