@@ -167,7 +167,7 @@ def info_text(frame: Frame) -> str:
     if fields is None:
         return f"{name} (malformed)"
     request = frame.kind is Kind.REQUEST
-    describe = _DESCRIBERS.get((function, request))
+    describe = _DESCRIBERS[request].get(function)
     detail = describe(frame, request) if describe else f"{len(frame.pdu) - 1} bytes of data"
     return f"{name} {detail}".rstrip()
 
@@ -194,12 +194,12 @@ _OF_FRAME: dict[str, Callable[[Frame], str]] = {
     "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
     "bits": bits_text, "values": values_text, "diagnostics": lambda frame: _diagnostics(frame, True),
 }
-_OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {"coil": _coil, "single": _single, "dec": lambda frame, value: str(value)}
+_OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {
+    "coil": _coil, "single": _single, "dec": lambda frame, value: str(value),
+}
 
 
-def _step(step: str | tuple[str | int, ...]) -> Callable[[Frame], str]:
-    if isinstance(step, str):
-        return lambda frame: step
+def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
     what, args = step[0], step[1:]
     if what in _OF_FRAME:
         return _OF_FRAME[what]
@@ -214,14 +214,26 @@ def _step(step: str | tuple[str | int, ...]) -> Callable[[Frame], str]:
 
 
 def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:
-    steps = [_step(step) for step in TEXT_FORMS[form]]
-
-    def describe(frame: Frame, request: bool) -> str:
-        text = "".join([step(frame) for step in steps])
-        return text.lstrip(": ") if values_alone else text
-
-    describe.__qualname__ = f"describe[{form}]"
-    return describe
+    """A describer of a form: its steps called for their texts, joined with its texts."""
+    steps = TEXT_FORMS[form]
+    texts = [""]  # the texts before, between and after the steps that are calls
+    calls = []
+    for step in steps:
+        if isinstance(step, str):
+            texts[-1] += step
+        else:
+            calls.append(_step(step))
+            texts.append("")
+    strip = ": " if values_alone else ""  # (str.lstrip("") strips nothing)
+    if len(calls) == 1:
+        (one,), (head, tail) = calls, texts
+        if not head and not tail:
+            return lambda frame, request: one(frame)
+        return lambda frame, request: head + one(frame) + tail
+    if len(calls) == 2:
+        (first, second), (head, middle, tail) = calls, texts
+        return lambda frame, request: (head + first(frame) + middle + second(frame) + tail).lstrip(strip)
+    return lambda frame, request: "".join([text + call(frame) for text, call in zip(texts, calls)]) + texts[-1]
 
 
 MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
@@ -285,5 +297,6 @@ def _file_record(frame: Frame, request: bool) -> str:
 _BY_NAME = {"report_server_id": _report_server_id, "file_record": _file_record, "mei": _mei}
 _FORMS = {(entry.code, request): (entry.text, form_of(entry.text, request, entry.data is Data.BITS))
           for entry in FUNCTIONS for request in (True, False)}
-_DESCRIBERS = {key: _BY_NAME.get(text) or _interpreter(form, (text, form) == _VALUES_ALONE)
-               for key, (text, form) in _FORMS.items()}
+_DESCRIBERS = tuple({code: _BY_NAME.get(text) or _interpreter(form, (text, form) == _VALUES_ALONE)
+                     for (code, request), (text, form) in _FORMS.items() if request is direction}
+                    for direction in (False, True))  # [request]: the describers by function code
