@@ -1331,7 +1331,7 @@ local DATA = {
 }
 do
 -- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
-local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["confirmed"]={["echo"]={[6]=true},["answer"]={[16]=true,[23]=true}},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
+local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=false,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["rule"]="read_request",["limit"]="read_bits"},[2]={["rule"]="read_request",["limit"]="read_bits"},[3]={["rule"]="read_request",["limit"]="read_registers"},[4]={["rule"]="read_request",["limit"]="read_registers"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["rule"]="write_registers_request",["limit"]="write_registers"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_write_request"},[24]={["rule"]="fifo_request"}},["response"]={[1]={["rule"]="read_bits_response"},[2]={["rule"]="read_bits_response"},[3]={["rule"]="read_registers_response"},[4]={["rule"]="read_registers_response"},[5]={["rule"]="write_single_coil"},[6]={["rule"]="write_single_register"},[8]={["special"]="diagnostics"},[15]={["rule"]="write_multiple_response"},[16]={["rule"]="write_multiple_response"},[17]={["special"]="report_server_id_response"},[22]={["rule"]="mask_write"},[23]={["rule"]="read_registers_response"},[24]={["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["confirmed"]={["echo"]={[6]=true},["answer"]={[16]=true,[23]=true}},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the {quantity} bits asked",["format"]="byte count %s disagrees with the %s bits asked",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the {quantity} registers asked",["format"]="byte count %s disagrees with the %s registers asked",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="{count} unexpected bytes after the data",["format"]="%s unexpected bytes after the data",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}},["became_protected"]={["template"]="became protected",["format"]="became protected",["params"]={},["repr"]={}},["became_unknown"]={["template"]="became non-existent or protected",["format"]="became non-existent or protected",["params"]={},["repr"]={}},["readable_again"]={["template"]="readable again",["format"]="readable again",["params"]={},["repr"]={}},["known_value"]={["template"]="{how} {value:d}",["format"]="%s %d",["params"]={"how","value"},["repr"]={}},["value_now"]={["template"]="{value:d} now",["format"]="%d now",["params"]={"value"},["repr"]={}},["marker_now"]={["template"]="16#8000 now",["format"]="16#8000 now",["params"]={},["repr"]={}},["event_one"]={["template"]="{name} {what}: {before} in frame #{frame:d}, {now}",["format"]="%s %s: %s in frame #%d, %s",["params"]={"name","what","before","frame","now"},["repr"]={}},["event_runs"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}",["format"]="%s %s (%d): %s in frame #%d",["params"]={"runs","what","count","how","frame"},["repr"]={}},["event_runs_now"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}, {now}",["format"]="%s %s (%d): %s in frame #%d, %s",["params"]={"runs","what","count","how","frame","now"},["repr"]={}},["marker_non_existent"]={["template"]="16#8000: non-existent (address not in the map)",["format"]="16#8000: non-existent (address not in the map)",["params"]={},["repr"]={}},["marker_protected"]={["template"]="16#8000: protected",["format"]="16#8000: protected",["params"]={},["repr"]={}},["first_word"]={["template"]="first word of a {kind}, the second is not in this frame",["format"]="first word of a %s, the second is not in this frame",["params"]={"kind"},["repr"]={}},["second_word"]={["template"]="second word of {code}",["format"]="second word of %s",["params"]={"code"},["repr"]={}},["not_listed"]={["template"]="{value:d} (not a listed value)",["format"]="%d (not a listed value)",["params"]={"value"},["repr"]={}},["no_bit_set"]={["template"]="no bit set",["format"]="no bit set",["params"]={},["repr"]={}},["bit_unnamed"]={["template"]="bit {bit:d}",["format"]="bit %d",["params"]={"bit"},["repr"]={}},["unscaled"]={["template"]="{value:d} (unscaled, in {unit})",["format"]="%d (unscaled, in %s)",["params"]={"value","unit"},["repr"]={}},["chosen_product_code"]={["template"]="Read Device Identification in frame #{frame:d}: ProductCode {value!r}",["format"]="Read Device Identification in frame #%d: ProductCode %s",["params"]={"frame","value"},["repr"]={"value"}},["chosen_function"]={["template"]="function {function:02X}h ({name}) in frame #{frame:d}",["format"]="function %02Xh (%s) in frame #%d",["params"]={"function","name","frame"},["repr"]={}},["chosen_unsupported"]={["template"]="function {function:d} answered in frame #{frame:d}, which the {device} does not support",["format"]="function %d answered in frame #%d, which the %s does not support",["params"]={"function","frame","device"},["repr"]={}},["chosen_fit"]={["template"]="traffic fits its map: {reads}",["format"]="traffic fits its map: %s",["params"]={"reads"},["repr"]={}},["chosen_fit_marker"]={["template"]="traffic fits its map: {reads}; 16#{protected:04X} at {marker:d}, its answer for a non-existent parameter",["format"]="traffic fits its map: %s; 16#%04X at %d, its answer for a non-existent parameter",["params"]={"reads","protected","marker"},["repr"]={}},["fit_read"]={["template"]="function {function:d} at {span} in frame #{frame:d}",["format"]="function %d at %s in frame #%d",["params"]={"function","span","frame"},["repr"]={}},["fit_read_again"]={["template"]="function {function:d} at {span} in frames #{frame:d} and #{again:d}",["format"]="function %d at %s in frames #%d and #%d",["params"]={"function","span","frame","again"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
 -- END RULES
 DATA.rules = RULES
 end
@@ -3328,7 +3328,7 @@ package.preload["vw3.device"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat
-local floor, format, ipairs, math, next, pairs = floor, format, ipairs, math, next, pairs
+local floor, format, ipairs, math, next, pairs, say = floor, format, ipairs, math, next, pairs, say
 local setmetatable, tonumber = setmetatable, tonumber
 
 local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
@@ -3484,8 +3484,8 @@ local function scaled_value(row, value)
   return scaled, text
 end
 
-local BIT_NAMES = {}
-for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
+local BIT_NAMES, NO_BIT_SET = {}, say("no_bit_set", {}) -- (maps.py's texts: data/modbus.toml [texts])
+for bit_ = 0, 15 do BIT_NAMES[bit_] = say("bit_unnamed", { bit = bit_ }) end
 
 -- maps.interpret: the scaled value and its display text.
 local function interpret(row, value)
@@ -3494,7 +3494,7 @@ local function interpret(row, value)
   if row.enum then
     local label = row.enum[value]
     if label ~= nil then return nil, label end
-    return nil, format("%d (not a listed value)", value)
+    return nil, say("not_listed", { value = value })
   end
   if row.bits then
     local names, bits, rest = {}, row.bits, value
@@ -3505,13 +3505,13 @@ local function interpret(row, value)
       end
       rest = rest / 2
     end
-    if #names == 0 then return nil, "no bit set" end
+    if #names == 0 then return nil, NO_BIT_SET end
     return nil, concat(names, ", ")
   end
   if row.scale == nil then
     -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
     if row.unit ~= nil then
-      return row.signed and raw_value or nil, format("%d (unscaled, in %s)", raw_value, row.unit)
+      return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
     end
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
@@ -3563,18 +3563,13 @@ package.preload["vw3.story"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local address_name, address_runs, concat, consecutive = address_name, address_runs, concat, consecutive
-local format, has_note, interpret, interpret_wide, ipairs = format, has_note, interpret, interpret_wide, ipairs
-local next, note, plc_label, register_at, span_name, table = next, note, plc_label, register_at, span_name, table
+local has_note, interpret, interpret_wide, ipairs, next = has_note, interpret, interpret_wide, ipairs, next
+local note, plc_label, register_at, say, span_name, table = note, plc_label, register_at, say, span_name, table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
-local story = {} -- event(), tell(), plain_rule(), repr()
-function story.event(f, what, address, row, label, before, how, frame, now, shared)
-  local events = f.events
-  if events == nil then events = {}; f.events = events end
-  events[#events + 1] = { what = what, address = address, row = row, label = label, before = before,
-    how = how, frame = frame, now = now, shared = shared }
-end
+-- (The texts are data/modbus.toml [texts]: became_protected, event_one, event_runs, ...)
+local story = {} -- tell(), plain_rule()
 
 function story.tell(f)
   local events = f.events
@@ -3583,7 +3578,7 @@ function story.tell(f)
   f.events = nil
   local groups, order = {}, {}
   for _, e in ipairs(events) do
-    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.shared or "")
+    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.now_shared or "")
     local group = groups[key]
     if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
     group[#group + 1] = e
@@ -3592,56 +3587,61 @@ function story.tell(f)
     local group = groups[key]
     local first = group[1]
     if #group == 1 then
-      note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
+      first.name = event_name(first)
+      note(f, say("event_one", first))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
       local parts = {}
       for index, run in ipairs(address_runs(group, consecutive)) do
         parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
       end
-      local tail = format(": %s in frame #%d", first.how, first.frame)
-      if first.shared ~= nil then tail = tail .. ", " .. first.shared end
-      note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))
+      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { runs = concat(parts, ", "),
+        what = first.what, count = #group, how = first.how, frame = first.frame, now = first.now_shared }))
     end
   end
 end
 
+-- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
+-- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
+local function remember(seen, address, value, number, how)
+  local last = seen[address]
+  if last ~= nil then
+    last.value, last.frame, last.how = value, number, how
+  else
+    seen[address] = { value = value, frame = number, how = how }
+  end
+end
+
+-- A register's status followed (memory.py lost, readable_again): an event when it changes the story.
 local function track(seen, f, address, row, value, status, now, label)
   local last = seen[address]
+  local what, before, shared = nil, nil, nil
   if status == "ok" then
     if last ~= nil and last.value == nil then
-      story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
-    end
-    if last ~= nil then
-      last.value, last.frame, last.how = value, f.number, "read"
-    else
-      seen[address] = { value = value, frame = f.number, how = "read" }
+      what, before, now = "readable_again", last.how, say("value_now", { value = value })
     end
   elseif status == "protected" or status == "non-existent" then
     if last ~= nil and last.value ~= nil then
-      local became = "non-existent or protected"
-      if row ~= nil then became = "protected" end
-      story.event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
-        last.frame, now, now)
+      what, before, shared = row ~= nil and "became_protected" or "became_unknown", say("known_value", last), now
     end
-    if last ~= nil then
-      last.value, last.frame, last.how = nil, f.number, status
-    else
-      seen[address] = { value = nil, frame = f.number, how = status }
-    end
+    value = nil
+  else
+    return
   end
+  if what ~= nil then
+    local events = f.events or {}
+    f.events = events
+    events[#events + 1] = { what = say(what, {}), address = address, row = row, label = label, before = before,
+      how = last.how, frame = last.frame, now = now, now_shared = shared }
+  end
+  remember(seen, address, value, f.number, status == "ok" and "read" or status)
 end
 
 local function remember_writes(seen, number, run, b)
   if run.start == nil then return end
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
-    local last = seen[address]
-    if last ~= nil then
-      last.value, last.frame, last.how = value, number, "written"
-    else
-      seen[address] = { value = value, frame = number, how = "written" }
-    end
+    remember(seen, address, value, number, "written")
   end
 end
 
@@ -3658,8 +3658,6 @@ local function words_at(rows, address, index, count)
   return words
 end
 
--- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
--- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
@@ -3671,6 +3669,12 @@ function story.plain_rule(device, address, row)
   return nil
 end
 
+-- (16#8000's texts: memory.py's, data/modbus.toml [texts])
+local MARKER_NOW, MARKER_NON_EXISTENT = say("marker_now", {}), say("marker_non_existent", {})
+local MARKER_PROTECTED = say("marker_protected", {})
+
+-- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
+-- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 local function annotate_one(f, device, address, value, protected, multi, label, words)
   local row = device.rows[address]
   local plain = false
@@ -3692,21 +3696,27 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
         status = "protected"
       end
     end
-    track(device.seen, f, address, row, value, status, "16#8000 now", label)
+    track(device.seen, f, address, row, value, status, MARKER_NOW, label)
   end
   return plain, status
 end
 
--- What a register says: the map row that names it, its scaled value and text, from its value, the plain
--- layout flag, its status and its part of a 32-bit value (`second`: the next word, when words is 2):
--- maps.interpret / interpret_wide, then the 16#8000 texts.
-local function describe(device, address, value, plain, status, words, second)
-  local rows = device.rows
+local function plc_base(device, f)
+  if device.plc == nil then return nil end
+  return device.plc[f.fn] or device.plc_default
+end
+
+-- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
+-- the map row that names it, its scaled value and text, status, part of a 32-bit value (words; `second`:
+-- the next word, when words is 2) and PLC label, from the plain layout flag (a bits_depend rule) and its
+-- status: maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, f, reg, plain, status, words, second)
+  local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
   if words == 0 then
     named = rows[(address + 0xFFFF) % 0x10000]
-    text = "second word of " .. named.code
+    text = say("second_word", named)
   end
   if row ~= nil then
     named = row
@@ -3714,7 +3724,7 @@ local function describe(device, address, value, plain, status, words, second)
       if words == 2 then
         scaled, text = interpret_wide(row, value, second)
       else
-        text = format("first word of a %s, the second is not in this frame", row.kind)
+        text = say("first_word", row)
       end
     else
       local used = row
@@ -3723,16 +3733,13 @@ local function describe(device, address, value, plain, status, words, second)
     end
   end
   if status == "non-existent" then
-    text = "16#8000: non-existent (address not in the map)"
+    text = MARKER_NON_EXISTENT
   elseif status == "protected" then
-    scaled, text = nil, "16#8000: protected"
+    scaled, text = nil, MARKER_PROTECTED
   end
-  return named, scaled, text
-end
-
-local function plc_base(device, f)
-  if device.plc == nil then return nil end
-  return device.plc[f.fn] or device.plc_default
+  reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
+  local base = plc_base(device, f)
+  if base ~= nil then reg.label = plc_label(base, address) end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
@@ -3803,9 +3810,7 @@ local function annotate_list(st, f, device, registers, read)
       if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
       if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
       local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
-      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status, words,
-        next_reg and next_reg.value)
-      reg.status, reg.words = status, words
+      describe(device, f, reg, plain, status, words, next_reg and next_reg.value)
     end
   end
   story.tell(f)
@@ -4008,7 +4013,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
 local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
 local ipairs, lane, layered_rows, math, next, python_repr = ipairs, lane, layered_rows, math, next, python_repr
-local register_at, span_name, table = register_at, span_name, table
+local register_at, say, span_name, table = register_at, say, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4051,8 +4056,8 @@ local function identified(f)
         for _, name in ipairs(CANDIDATES) do
           for _, code in ipairs(PROFILES[name].identify.product_codes) do
             if object.value:sub(1, #code) == code then
-              return { profile = name, final = true, reason = format(
-                "Read Device Identification in frame #%d: ProductCode %s", f.number, python_repr(object.value)) }
+              return { profile = name, final = true, reason = say("chosen_product_code",
+                { frame = f.number, value = python_repr(object.value) }) }
             end
           end
         end
@@ -4064,8 +4069,8 @@ local function identified(f)
     if name ~= nil then
       local profile = PROFILES[name]
       local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
-      return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
-        f.number) }
+      return { profile = name, final = true, reason = say("chosen_function",
+        { ["function"] = f.fn, name = called, frame = f.number }) }
     end
   end
   return nil
@@ -4111,24 +4116,19 @@ local function enough(found)
   return #found.order >= FIT_READS or (found.marker ~= nil and found.answers >= FIT_READS)
 end
 
+-- (the texts: data/modbus.toml [texts] chosen_fit, fit_read, ...; each read named with its first two frames)
 local function evidence_reason(found, protected)
   local parts = {}
   for index = 1, math.min(#found.order, FIT_READS) do
     local read = found.reads[found.order[index]]
-    local where = format("frame #%d", read.frames[1])
-    if #read.frames > 1 then where = format("frames #%d and #%d", read.frames[1], read.frames[2]) end
-    parts[index] = read.text .. " in " .. where
+    read.frame, read.again = read.frames[1], read.frames[2]
+    parts[index] = say(read.again and "fit_read_again" or "fit_read", read)
   end
-  local text = "traffic fits its map: " .. table.concat(parts, ", ")
+  local reads = table.concat(parts, ", ")
   if #found.order < FIT_READS and found.marker ~= nil and protected ~= nil then
-    text = text .. format("; 16#%04X at %d, its answer for a non-existent parameter", protected, found.marker)
+    return say("chosen_fit_marker", { reads = reads, protected = protected, marker = found.marker })
   end
-  return text
-end
-
-local function what(f, registers)
-  local span = #registers == 1 and format("%d", registers[1].address) or span_name(registers)
-  return format("function %d at %s", f.fn, span)
+  return say("chosen_fit", { reads = reads })
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
@@ -4159,9 +4159,8 @@ local function observe(st, f, b)
   judged.answers = judged.answers + 1
   if current ~= nil then
     if unsupported(current, f.fn) then
-      judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
-        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number,
-        PROFILES[current.profile].device) }
+      judged.choice = { profile = SELECTION.fallback, final = false, reason = say("chosen_unsupported",
+        { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
       return judged.choice
     end
     return nil
@@ -4185,7 +4184,8 @@ local function observe(st, f, b)
       local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
       local read = found.reads[key]
       if read == nil then
-        read = { text = what(f, registers), frames = {} }
+        read = { ["function"] = f.fn, frames = {},
+          span = #registers == 1 and format("%d", registers[1].address) or span_name(registers) }
         found.reads[key] = read
         found.order[#found.order + 1] = key
       end
@@ -4304,9 +4304,9 @@ local REQUEST, RESPONSE, SELECTION, annotate_registers = REQUEST, RESPONSE, SELE
 local check_request, concat, describe, device_of = check_request, concat, describe, device_of
 local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
 local ipairs, math, pairs, parse_map_choice = ipairs, math, pairs, parse_map_choice
-local parse_profile_choice, plc_base, plc_label = parse_profile_choice, plc_base, plc_label
-local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
-local span_label, string, table, words_at = span_label, string, table, words_at
+local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
+local remember_writes, say, span_label, string, table = remember_writes, say, span_label, string, table
+local words_at = words_at
 local annotate_with
 
 annotate_with = function(st, f, b, device)
@@ -4420,11 +4420,7 @@ local function register_view(st, f, run, b, index)
       local _
       _, second = register_at(run, b, index + 1, true)
     end
-    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
-      second)
-    view.status, view.words = status, words
-    local base = plc_base(device, f)
-    if base ~= nil then view.label = plc_label(base, address) end
+    describe(device, f, view, run.plain and run.plain[index], status, words, second)
   end
   return view
 end

@@ -29,6 +29,7 @@ from __future__ import annotations
 from dissector.errors import ProfileError
 from dissector.devices.readfile import read_capped
 from dissector.protocol.printable import printable
+from dissector.protocol.rules import text as say_text
 import csv
 import math
 import re
@@ -337,19 +338,19 @@ def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, 
     if definition.enum:
         # The raw word already is the value; an enumeration or a bit field has no scaled value.
         label = definition.enum.get(value)
-        return None, label if label is not None else f"{value} (not a listed value)"
+        return None, label if label is not None else say_text("not_listed", value=value)
     if definition.bits:
         names = [
-            definition.bits.get(bit, f"bit {bit}") for bit in range(16) if value >> bit & 1
+            definition.bits.get(bit) or say_text("bit_unnamed", bit=bit) for bit in range(16) if value >> bit & 1
         ]
-        return None, ", ".join(names) if names else "no bit set"
+        return None, ", ".join(names) if names else say_text("no_bit_set")
     scale = definition.scale
     if scale is None:
         # Without a scale the unit cannot be trusted (ACC/DEC depend on the ramp increment): the raw
         # value speaks for itself, signed with its sign, and names the unit it counts in unscaled.
         unit = definition.unit
         if unit is not None:
-            return (raw if definition.signed else None), f"{raw} (unscaled, in {unit})"
+            return (raw if definition.signed else None), say_text("unscaled", value=raw, unit=unit)
         if definition.signed:
             return raw, str(raw)
         return None, None

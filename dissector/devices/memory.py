@@ -13,6 +13,7 @@ from dissector.devices.device import Device
 from dissector.devices.maps import RegisterDef
 from dissector.devices.story import Event
 from dissector.model import Frame, Register
+from dissector.protocol.rules import text
 
 
 def unreadable_status(register: Register, row: RegisterDef | None) -> str | None:
@@ -20,7 +21,7 @@ def unreadable_status(register: Register, row: RegisterDef | None) -> str | None
     register's status and text set, the status returned when the parameter is unreadable (not ambiguous)."""
     if row is None:
         register.status = "non-existent"
-        register.text = "16#8000: non-existent (address not in the map)"
+        register.text = text("marker_non_existent")
     elif row.ambiguous_8000:
         # The value may be real: keep its own reading, and what was known of the parameter.
         register.status = "ambiguous"
@@ -28,7 +29,7 @@ def unreadable_status(register: Register, row: RegisterDef | None) -> str | None
     else:
         register.status = "protected"
         register.scaled = None
-        register.text = "16#8000: protected"
+        register.text = text("marker_protected")
     return register.status
 
 
@@ -36,7 +37,7 @@ def unreadable(frame: Frame, device: Device, register: Register, row: RegisterDe
     """unreadable_status, and the parameter's story told (it became unreadable)."""
     status = unreadable_status(register, row)
     if status is not None:
-        lost(frame, device, register.address, row, status, "16#8000 now", register.label, events)  # type: ignore[arg-type]
+        lost(frame, device, register.address, row, status, text("marker_now"), register.label, events)  # type: ignore[arg-type]
 
 
 def lost(
@@ -46,10 +47,9 @@ def lost(
     """Record a parameter as unreadable, telling the story if it was readable before."""
     last = device.seen.get(address)
     if last is not None and last[0] is not None:
-        became = "protected" if row is not None else "non-existent or protected"
-        events.append(
-            Event(f"became {became}", address, row, label, f"{last[2]} {last[0]}", last[2], last[1], now, now)
-        )
+        became = text("became_protected" if row is not None else "became_unknown")
+        before = text("known_value", how=last[2], value=last[0])
+        events.append(Event(became, address, row, label, before, last[2], last[1], now, now, key=True))
     device.seen[address] = (None, frame.number, status)
 
 
@@ -57,7 +57,8 @@ def readable_again(
     address: int, row: RegisterDef | None, label: str | None, last: tuple[int | None, int, str], value: int,
     events: list[Event],
 ) -> None:
-    events.append(Event("readable again", address, row, label, last[2], last[2], last[1], f"{value} now", None))
+    now = text("value_now", value=value)
+    events.append(Event(text("readable_again"), address, row, label, last[2], last[2], last[1], now, None))
 
 
 def remember_writes(frame: Frame, device: Device, registers: Sequence[Register]) -> None:

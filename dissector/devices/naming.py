@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret, interpret_wide
 from dissector.model import Register
+from dissector.protocol.rules import text
 
 
 def plc_label(base: int, address: int) -> str:
@@ -51,7 +52,7 @@ def name_wide(registers: Sequence[Register], index: int, row: RegisterDef) -> No
     first.source = row.source
     second = registers[index + 1] if index + 1 < len(registers) else None
     if second is None or second.address != (first.address + 1) & 0xFFFF:  # type: ignore[operator]
-        first.text = f"first word of a {row.kind}, the second is not in this frame"
+        first.text = text("first_word", kind=row.kind)
         return
     first.scaled, first.text = interpret_wide(row, first.value, second.value)
     first.words = 2
@@ -59,5 +60,5 @@ def name_wide(registers: Sequence[Register], index: int, row: RegisterDef) -> No
     second.name = row.name
     second.unit = row.unit
     second.source = row.source
-    second.text = f"second word of {row.code}"
+    second.text = text("second_word", code=row.code)
     second.words = 0

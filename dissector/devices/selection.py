@@ -30,6 +30,7 @@ from dissector.devices.maps import RegisterMap
 from dissector.devices.profiles import Profile
 from dissector.model import Frame, Kind
 from dissector.protocol import table
+from dissector.protocol.rules import text
 
 _READS = table.register_reads()  # answers whose registers are values read (16#8000 can mean non-existent)
 FIT_ANSWERS = 8  # answers of a slave its traffic is judged on
@@ -57,7 +58,7 @@ class _Evidence:
     """The answers one candidate's map explains, for one slave: by read (function, start, count)."""
 
     reads: dict[tuple[int, int, int], list[int]]  # read -> the frames that answered it
-    texts: dict[tuple[int, int, int], str]  # read -> `function 3 at 8400..8402`
+    spans: dict[tuple[int, int, int], str]  # read -> its addresses, `8400..8402`
     marker: int | None = None  # an unmapped address read as the non-existent marker
 
     def enough(self) -> bool:
@@ -67,14 +68,14 @@ class _Evidence:
 
     def reason(self, protected: int | None) -> str:
         parts = []
-        for read, frames in self.reads.items():
-            numbers = [f"#{number}" for number in frames[:FIT_READS]]
-            where = f"frame {numbers[0]}" if len(numbers) == 1 else f"frames {' and '.join(numbers)}"
-            parts.append(f"{self.texts[read]} in {where}")
-        text = "traffic fits its map: " + ", ".join(parts[:FIT_READS])
+        for read, frames in list(self.reads.items())[:FIT_READS]:
+            again = frames[1] if len(frames) > 1 else None  # (the first two frames are named)
+            parts.append(text("fit_read" if again is None else "fit_read_again", function=read[0],
+                              span=self.spans[read], frame=frames[0], again=again))
+        reads = ", ".join(parts)
         if len(self.reads) < FIT_READS and self.marker is not None and protected is not None:
-            text += f"; 16#{protected:04X} at {self.marker}, its answer for a non-existent parameter"
-        return text
+            return text("chosen_fit_marker", reads=reads, protected=protected, marker=self.marker)
+        return text("chosen_fit", reads=reads)
 
 
 @dataclass(slots=True)
@@ -145,7 +146,7 @@ class Selector:
             if profile is not None and profile.functions is not None and frame.function not in profile.functions:
                 judged.choice = ProfileChoice(
                     slave, self.fallback.name,
-                    f"function {frame.function} answered in frame #{frame.number}, which the {profile.device} does not support",
+                    text("chosen_unsupported", function=frame.function, frame=frame.number, device=profile.device),
                     frame.number, False,
                 )
                 return judged.choice
@@ -177,7 +178,7 @@ class Selector:
             registers = frame.registers or []
             read = (frame.function, registers[0].address or 0, len(registers))
             found.reads.setdefault(read, []).append(frame.number)
-            found.texts.setdefault(read, _what(frame))
+            found.spans.setdefault(read, _span(frame))
             if found.marker is None and verdict is not True:
                 found.marker = verdict
         ready = [name for name, found in evidence.items() if found.enough()]
@@ -205,7 +206,7 @@ class Selector:
                     if any(obj.value.startswith(code) for code in profile.product_codes):
                         return ProfileChoice(
                             frame.slave, profile.name,
-                            f"Read Device Identification in frame #{frame.number}: ProductCode {obj.value!r}",
+                            text("chosen_product_code", frame=frame.number, value=obj.value),
                             frame.number, True,
                         )
         if self._identifying_from != len(self.candidates):
@@ -218,7 +219,7 @@ class Selector:
             name = profile.function_names.get(frame.function, str(frame.function))
             return ProfileChoice(
                 frame.slave, profile.name,
-                f"function {frame.function:02X}h ({name}) in frame #{frame.number}", frame.number, True,
+                text("chosen_function", function=frame.function, name=name, frame=frame.number), frame.number, True,
             )
         return None
 
@@ -251,7 +252,6 @@ def _fits(frame: Frame, profile: Profile, rows: RegisterMap) -> bool | int | Non
     return True if marker is None else marker
 
 
-def _what(frame: Frame) -> str:
+def _span(frame: Frame) -> str:
     addresses = [register.address for register in frame.registers or [] if register.address is not None]
-    span = str(addresses[0]) if len(addresses) == 1 else f"{addresses[0]}..{addresses[-1]}"
-    return f"function {frame.function} at {span}"
+    return str(addresses[0]) if len(addresses) == 1 else f"{addresses[0]}..{addresses[-1]}"

@@ -17,15 +17,17 @@ from dataclasses import dataclass
 from dissector.devices.maps import RegisterDef
 from dissector.devices.naming import address_name
 from dissector.model import Note
+from dissector.protocol.rules import text
 
 SHORT_RUNS = 4  # address runs a summary line names before `… (+N more)`
 
 
 @dataclass(slots=True)
 class Event:
-    """One parameter's change: `became` unreadable (key event) or readable `again`."""
+    """One parameter's change: it became unreadable (a key event) or readable again (data/modbus.toml
+    [texts]: became_protected, became_unknown, readable_again)."""
 
-    what: str  # "became protected", "became non-existent or protected", "readable again"
+    what: str
     address: int
     row: RegisterDef | None
     label: str | None  # the address as the screen shows it (PLC style), None: the address itself
@@ -34,10 +36,7 @@ class Event:
     frame: int  # where it was known
     now: str  # `16#8000 now`, `exception 02 now`, `28092 now`
     now_shared: str | None  # the same for a range (None: values differ, the registers show them)
-
-    @property
-    def key(self) -> bool:
-        return self.what.startswith("became")
+    key: bool = False  # the parameter became unreadable
 
 
 def _run_text(run: list[Event]) -> str:
@@ -78,12 +77,13 @@ def tell(events: list[Event]) -> list[Note]:
         key = group[0].key
         if len(group) == 1:
             event = group[0]
-            text = f"{address_name(event.row, event.address, event.label)} {what}: {event.before} in frame #{frame}, {event.now}"
-            notes.append(Note(text, key=key))
+            name = address_name(event.row, event.address, event.label)
+            notes.append(Note(text("event_one", name=name, what=what, before=event.before, frame=frame, now=event.now),
+                              key=key))
             continue
         parts = [(_run_text(run), len(run)) for run in _runs(group)]
         full, short = listed(parts, SHORT_RUNS)
-        tail = f": {how} in frame #{frame}" + (f", {now}" if now else "")
-        count = f" ({len(group)})"
-        notes.append(Note(f"{full} {what}{count}{tail}", f"{short} {what}{count}{tail}", key=key))
+        form = "event_runs_now" if now else "event_runs"
+        said = {"what": what, "count": len(group), "how": how, "frame": frame, "now": now}
+        notes.append(Note(text(form, runs=full, **said), text(form, runs=short, **said), key=key))
     return notes

@@ -116,11 +116,7 @@ local function register_view(st, f, run, b, index)
       local _
       _, second = register_at(run, b, index + 1, true)
     end
-    view.row, view.scaled, view.text = describe(device, address, value, run.plain and run.plain[index], status, words,
-      second)
-    view.status, view.words = status, words
-    local base = plc_base(device, f)
-    if base ~= nil then view.label = plc_label(base, address) end
+    describe(device, f, view, run.plain and run.plain[index], status, words, second)
   end
   return view
 end

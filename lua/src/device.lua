@@ -157,8 +157,8 @@ local function scaled_value(row, value)
   return scaled, text
 end
 
-local BIT_NAMES = {}
-for bit_ = 0, 15 do BIT_NAMES[bit_] = format("bit %d", bit_) end
+local BIT_NAMES, NO_BIT_SET = {}, say("no_bit_set", {}) -- (maps.py's texts: data/modbus.toml [texts])
+for bit_ = 0, 15 do BIT_NAMES[bit_] = say("bit_unnamed", { bit = bit_ }) end
 
 -- maps.interpret: the scaled value and its display text.
 local function interpret(row, value)
@@ -167,7 +167,7 @@ local function interpret(row, value)
   if row.enum then
     local label = row.enum[value]
     if label ~= nil then return nil, label end
-    return nil, format("%d (not a listed value)", value)
+    return nil, say("not_listed", { value = value })
   end
   if row.bits then
     local names, bits, rest = {}, row.bits, value
@@ -178,13 +178,13 @@ local function interpret(row, value)
       end
       rest = rest / 2
     end
-    if #names == 0 then return nil, "no bit set" end
+    if #names == 0 then return nil, NO_BIT_SET end
     return nil, concat(names, ", ")
   end
   if row.scale == nil then
     -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
     if row.unit ~= nil then
-      return row.signed and raw_value or nil, format("%d (unscaled, in %s)", raw_value, row.unit)
+      return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
     end
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil

@@ -45,8 +45,8 @@ local function identified(f)
         for _, name in ipairs(CANDIDATES) do
           for _, code in ipairs(PROFILES[name].identify.product_codes) do
             if object.value:sub(1, #code) == code then
-              return { profile = name, final = true, reason = format(
-                "Read Device Identification in frame #%d: ProductCode %s", f.number, python_repr(object.value)) }
+              return { profile = name, final = true, reason = say("chosen_product_code",
+                { frame = f.number, value = python_repr(object.value) }) }
             end
           end
         end
@@ -58,8 +58,8 @@ local function identified(f)
     if name ~= nil then
       local profile = PROFILES[name]
       local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
-      return { profile = name, final = true, reason = format("function %02Xh (%s) in frame #%d", f.fn, called,
-        f.number) }
+      return { profile = name, final = true, reason = say("chosen_function",
+        { ["function"] = f.fn, name = called, frame = f.number }) }
     end
   end
   return nil
@@ -105,24 +105,19 @@ local function enough(found)
   return #found.order >= FIT_READS or (found.marker ~= nil and found.answers >= FIT_READS)
 end
 
+-- (the texts: data/modbus.toml [texts] chosen_fit, fit_read, ...; each read named with its first two frames)
 local function evidence_reason(found, protected)
   local parts = {}
   for index = 1, math.min(#found.order, FIT_READS) do
     local read = found.reads[found.order[index]]
-    local where = format("frame #%d", read.frames[1])
-    if #read.frames > 1 then where = format("frames #%d and #%d", read.frames[1], read.frames[2]) end
-    parts[index] = read.text .. " in " .. where
+    read.frame, read.again = read.frames[1], read.frames[2]
+    parts[index] = say(read.again and "fit_read_again" or "fit_read", read)
   end
-  local text = "traffic fits its map: " .. table.concat(parts, ", ")
+  local reads = table.concat(parts, ", ")
   if #found.order < FIT_READS and found.marker ~= nil and protected ~= nil then
-    text = text .. format("; 16#%04X at %d, its answer for a non-existent parameter", protected, found.marker)
+    return say("chosen_fit_marker", { reads = reads, protected = protected, marker = found.marker })
   end
-  return text
-end
-
-local function what(f, registers)
-  local span = #registers == 1 and format("%d", registers[1].address) or span_name(registers)
-  return format("function %d at %s", f.fn, span)
+  return say("chosen_fit", { reads = reads })
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
@@ -153,9 +148,8 @@ local function observe(st, f, b)
   judged.answers = judged.answers + 1
   if current ~= nil then
     if unsupported(current, f.fn) then
-      judged.choice = { profile = SELECTION.fallback, final = false, reason = format(
-        "function %d answered in frame #%d, which the %s does not support", f.fn, f.number,
-        PROFILES[current.profile].device) }
+      judged.choice = { profile = SELECTION.fallback, final = false, reason = say("chosen_unsupported",
+        { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
       return judged.choice
     end
     return nil
@@ -179,7 +173,8 @@ local function observe(st, f, b)
       local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
       local read = found.reads[key]
       if read == nil then
-        read = { text = what(f, registers), frames = {} }
+        read = { ["function"] = f.fn, frames = {},
+          span = #registers == 1 and format("%d", registers[1].address) or span_name(registers) }
         found.reads[key] = read
         found.order[#found.order + 1] = key
       end

@@ -6,13 +6,8 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
-local story = {} -- event(), tell(), plain_rule(), repr()
-function story.event(f, what, address, row, label, before, how, frame, now, shared)
-  local events = f.events
-  if events == nil then events = {}; f.events = events end
-  events[#events + 1] = { what = what, address = address, row = row, label = label, before = before,
-    how = how, frame = frame, now = now, shared = shared }
-end
+-- (The texts are data/modbus.toml [texts]: became_protected, event_one, event_runs, ...)
+local story = {} -- tell(), plain_rule()
 
 function story.tell(f)
   local events = f.events
@@ -21,7 +16,7 @@ function story.tell(f)
   f.events = nil
   local groups, order = {}, {}
   for _, e in ipairs(events) do
-    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.shared or "")
+    local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.now_shared or "")
     local group = groups[key]
     if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
     group[#group + 1] = e
@@ -30,56 +25,61 @@ function story.tell(f)
     local group = groups[key]
     local first = group[1]
     if #group == 1 then
-      note(f, format("%s %s: %s in frame #%d, %s", event_name(first), first.what, first.before, first.frame, first.now))
+      first.name = event_name(first)
+      note(f, say("event_one", first))
     else
       table.sort(group, function(a, b) return a.address < b.address end)
       local parts = {}
       for index, run in ipairs(address_runs(group, consecutive)) do
         parts[index] = #run == 1 and event_name(run[1]) or span_name(run)
       end
-      local tail = format(": %s in frame #%d", first.how, first.frame)
-      if first.shared ~= nil then tail = tail .. ", " .. first.shared end
-      note(f, format("%s %s (%d)%s", concat(parts, ", "), first.what, #group, tail))
+      note(f, say(first.now_shared and "event_runs_now" or "event_runs", { runs = concat(parts, ", "),
+        what = first.what, count = #group, how = first.how, frame = first.frame, now = first.now_shared }))
     end
   end
 end
 
+-- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
+-- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
+local function remember(seen, address, value, number, how)
+  local last = seen[address]
+  if last ~= nil then
+    last.value, last.frame, last.how = value, number, how
+  else
+    seen[address] = { value = value, frame = number, how = how }
+  end
+end
+
+-- A register's status followed (memory.py lost, readable_again): an event when it changes the story.
 local function track(seen, f, address, row, value, status, now, label)
   local last = seen[address]
+  local what, before, shared = nil, nil, nil
   if status == "ok" then
     if last ~= nil and last.value == nil then
-      story.event(f, "readable again", address, row, label, last.how, last.how, last.frame, format("%d now", value), nil)
-    end
-    if last ~= nil then
-      last.value, last.frame, last.how = value, f.number, "read"
-    else
-      seen[address] = { value = value, frame = f.number, how = "read" }
+      what, before, now = "readable_again", last.how, say("value_now", { value = value })
     end
   elseif status == "protected" or status == "non-existent" then
     if last ~= nil and last.value ~= nil then
-      local became = "non-existent or protected"
-      if row ~= nil then became = "protected" end
-      story.event(f, "became " .. became, address, row, label, format("%s %d", last.how, last.value), last.how,
-        last.frame, now, now)
+      what, before, shared = row ~= nil and "became_protected" or "became_unknown", say("known_value", last), now
     end
-    if last ~= nil then
-      last.value, last.frame, last.how = nil, f.number, status
-    else
-      seen[address] = { value = nil, frame = f.number, how = status }
-    end
+    value = nil
+  else
+    return
   end
+  if what ~= nil then
+    local events = f.events or {}
+    f.events = events
+    events[#events + 1] = { what = say(what, {}), address = address, row = row, label = label, before = before,
+      how = last.how, frame = last.frame, now = now, now_shared = shared }
+  end
+  remember(seen, address, value, f.number, status == "ok" and "read" or status)
 end
 
 local function remember_writes(seen, number, run, b)
   if run.start == nil then return end
   for index = 0, run.count - 1 do
     local address, value = register_at(run, b, index)
-    local last = seen[address]
-    if last ~= nil then
-      last.value, last.frame, last.how = value, number, "written"
-    else
-      seen[address] = { value = value, frame = number, how = "written" }
-    end
+    remember(seen, address, value, number, "written")
   end
 end
 
@@ -96,8 +96,6 @@ local function words_at(rows, address, index, count)
   return words
 end
 
--- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
--- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
@@ -109,6 +107,12 @@ function story.plain_rule(device, address, row)
   return nil
 end
 
+-- (16#8000's texts: memory.py's, data/modbus.toml [texts])
+local MARKER_NOW, MARKER_NON_EXISTENT = say("marker_now", {}), say("marker_non_existent", {})
+local MARKER_PROTECTED = say("marker_protected", {})
+
+-- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
+-- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 local function annotate_one(f, device, address, value, protected, multi, label, words)
   local row = device.rows[address]
   local plain = false
@@ -130,21 +134,27 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
         status = "protected"
       end
     end
-    track(device.seen, f, address, row, value, status, "16#8000 now", label)
+    track(device.seen, f, address, row, value, status, MARKER_NOW, label)
   end
   return plain, status
 end
 
--- What a register says: the map row that names it, its scaled value and text, from its value, the plain
--- layout flag, its status and its part of a 32-bit value (`second`: the next word, when words is 2):
--- maps.interpret / interpret_wide, then the 16#8000 texts.
-local function describe(device, address, value, plain, status, words, second)
-  local rows = device.rows
+local function plc_base(device, f)
+  if device.plc == nil then return nil end
+  return device.plc[f.fn] or device.plc_default
+end
+
+-- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
+-- the map row that names it, its scaled value and text, status, part of a 32-bit value (words; `second`:
+-- the next word, when words is 2) and PLC label, from the plain layout flag (a bits_depend rule) and its
+-- status: maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, f, reg, plain, status, words, second)
+  local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
   if words == 0 then
     named = rows[(address + 0xFFFF) % 0x10000]
-    text = "second word of " .. named.code
+    text = say("second_word", named)
   end
   if row ~= nil then
     named = row
@@ -152,7 +162,7 @@ local function describe(device, address, value, plain, status, words, second)
       if words == 2 then
         scaled, text = interpret_wide(row, value, second)
       else
-        text = format("first word of a %s, the second is not in this frame", row.kind)
+        text = say("first_word", row)
       end
     else
       local used = row
@@ -161,16 +171,13 @@ local function describe(device, address, value, plain, status, words, second)
     end
   end
   if status == "non-existent" then
-    text = "16#8000: non-existent (address not in the map)"
+    text = MARKER_NON_EXISTENT
   elseif status == "protected" then
-    scaled, text = nil, "16#8000: protected"
+    scaled, text = nil, MARKER_PROTECTED
   end
-  return named, scaled, text
-end
-
-local function plc_base(device, f)
-  if device.plc == nil then return nil end
-  return device.plc[f.fn] or device.plc_default
+  reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
+  local base = plc_base(device, f)
+  if base ~= nil then reg.label = plc_label(base, address) end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
@@ -241,9 +248,7 @@ local function annotate_list(st, f, device, registers, read)
       if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
       if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
       local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
-      reg.row, reg.scaled, reg.text = describe(device, address, reg.value, plain, status, words,
-        next_reg and next_reg.value)
-      reg.status, reg.words = status, words
+      describe(device, f, reg, plain, status, words, next_reg and next_reg.value)
     end
   end
   story.tell(f)
