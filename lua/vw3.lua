@@ -1318,10 +1318,14 @@ local DATA = {
     ["fallback"] = "generic",
     ["candidates"] = { "atv71", "sel749m" },
     ["identifying"] = {
-      [96] = "sel749m",
-      [97] = "sel749m",
-      [98] = "sel749m",
-      [125] = "sel749m",
+      [96] = { "sel749m", "Read Parameter Information" },
+      [97] = { "sel749m", "Read Parameter Text" },
+      [98] = { "sel749m", "Read Enumeration Text" },
+      [125] = { "sel749m", "Encapsulated Packet With Control" },
+    },
+    ["product_codes"] = {
+      { "ATV71", "atv71" },
+      { "SEL-749M", "sel749m" },
     },
     ["fit_answers"] = 8,
     ["fit_frames"] = 32,
@@ -2977,8 +2981,9 @@ package.preload["vw3.maps"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIMITS, concat, format, io, ipairs, math, next = DATA, LIMITS, concat, format, io, ipairs, math, next
-local pairs, select, string, table, tonumber, tostring = pairs, select, string, table, tonumber, tostring
+local DATA, LIMITS, concat, floor, format, io, ipairs, math = DATA, LIMITS, concat, floor, format, io, ipairs, math
+local next, pairs, select, string, table, tonumber = next, pairs, select, string, table, tonumber
+local tostring = tostring
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -3268,7 +3273,7 @@ local function load_map(path)
   handle:close()
   if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
   if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
-    return nil, format("%s: larger than 16 MiB, not a register map", path)
+    return nil, format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576))
   end
   if not text then
     if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
@@ -4010,10 +4015,10 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS = AUTO, NOISE, NO_INTERPRETATION, PROFILES, READS
-local RESPONSE, SELECTION, build_device, device_for, format = RESPONSE, SELECTION, build_device, device_for, format
-local ipairs, lane, layered_rows, math, next, python_repr = ipairs, lane, layered_rows, math, next, python_repr
-local register_at, say, span_name, table = register_at, say, span_name, table
+local AUTO, NOISE, PROFILES, READS, RESPONSE, SELECTION = AUTO, NOISE, PROFILES, READS, RESPONSE, SELECTION
+local build_device, device_for, format, ipairs, lane = build_device, device_for, format, ipairs, lane
+local layered_rows, math, next, python_repr, register_at = layered_rows, math, next, python_repr, register_at
+local say, span_name, table = say, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -4023,8 +4028,9 @@ local register_at, say, span_name, table = register_at, say, span_name, table
 -- frame says changes nothing before it, in one pass as with -2: the frames before the evidence are shown
 -- as vw3-decode shows them.
 local CANDIDATES = SELECTION.candidates
--- The candidate a function code identifies (the first, in the candidates' order, that claims it).
-local IDENTIFYING = SELECTION.identifying
+-- The candidate a function code identifies (the first, in the candidates' order, that claims it) and the
+-- code's name on it; the ProductCode prefixes that identify one, { prefix, candidate } in that order.
+local IDENTIFYING, PRODUCT_CODES = SELECTION.identifying, SELECTION.product_codes
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
@@ -4053,24 +4059,20 @@ local function identified(f)
   if f.objects ~= nil and f.kind == RESPONSE then
     for _, object in ipairs(f.objects) do
       if object.id == SELECTION.product_code_object then
-        for _, name in ipairs(CANDIDATES) do
-          for _, code in ipairs(PROFILES[name].identify.product_codes) do
-            if object.value:sub(1, #code) == code then
-              return { profile = name, final = true, reason = say("chosen_product_code",
-                { frame = f.number, value = python_repr(object.value) }) }
-            end
+        for _, claim in ipairs(PRODUCT_CODES) do
+          if object.value:sub(1, #claim[1]) == claim[1] then
+            return { profile = claim[2], final = true, reason = say("chosen_product_code",
+              { frame = f.number, value = python_repr(object.value) }) }
           end
         end
       end
     end
   end
   if f.kind ~= NOISE and f.crc == f.crc_expected then
-    local name = IDENTIFYING[f.fn]
-    if name ~= nil then
-      local profile = PROFILES[name]
-      local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
-      return { profile = name, final = true, reason = say("chosen_function",
-        { ["function"] = f.fn, name = called, frame = f.number }) }
+    local claim = IDENTIFYING[f.fn]
+    if claim ~= nil then
+      return { profile = claim[1], final = true, reason = say("chosen_function",
+        { ["function"] = f.fn, name = claim[2], frame = f.number }) }
     end
   end
   return nil
@@ -4132,9 +4134,8 @@ local function evidence_reason(found, protected)
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
+-- (select_device calls it only for a slave not fixed by the choices of the whole capture)
 local function observe(st, f, b)
-  -- (decoded again with the choices of the whole capture: a slave chosen for is fixed)
-  if st.frozen ~= nil and st.fixed[f.slave] then return nil end
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
@@ -4299,14 +4300,14 @@ package.preload["vw3.annotator"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION, READS
-local REQUEST, RESPONSE, SELECTION, annotate_registers = REQUEST, RESPONSE, SELECTION, annotate_registers
-local check_request, concat, describe, device_of = check_request, concat, describe, device_of
-local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
-local ipairs, math, pairs, parse_map_choice = ipairs, math, pairs, parse_map_choice
-local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
-local remember_writes, say, span_label, string, table = remember_writes, say, span_label, string, table
-local words_at = words_at
+local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION
+local PROFILES, READS, REQUEST, RESPONSE = PROFILES, READS, REQUEST, RESPONSE
+local annotate_registers, check_request, concat, describe = annotate_registers, check_request, concat, describe
+local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
+local explain_objects, ipairs, math, pairs = explain_objects, ipairs, math, pairs
+local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
+local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
+local span_label, string, table, words_at = span_label, string, table, words_at
 local annotate_with
 
 annotate_with = function(st, f, b, device)
@@ -4352,13 +4353,9 @@ end
 
 local function configure(profiles_text, style, maps_text)
   local default, per_slave, errors = parse_profile_choice(profiles_text)
+  -- (auto: the fallback and every candidate, every built-in profile, are in use, as build_annotator names them)
   local in_use = {}
-  if default ~= AUTO then in_use[default] = true end
-  if default == AUTO then
-    -- (auto: the fallback and every candidate are profiles in use, as build_annotator names them)
-    in_use[SELECTION.fallback] = true
-    for _, name in ipairs(SELECTION.candidates) do in_use[name] = true end
-  end
+  for name in pairs(default == AUTO and PROFILES or { [default] = true }) do in_use[name] = true end
   for _, name in pairs(per_slave) do in_use[name] = true end
   local layers, map_errors = parse_map_choice(maps_text, in_use)
   for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end

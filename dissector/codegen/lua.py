@@ -202,10 +202,16 @@ def _profile_data() -> dict[str, Any]:
             "auto": AUTO,
             "fallback": FALLBACK_PROFILE,
             "candidates": candidates,
-            # The candidate a function code identifies: the first, in the candidates' order, that claims it.
+            # The candidate a function code identifies: the first, in the candidates' order, that claims it,
+            # and the code's name on it (its number where it has none).
             "identifying": {
-                code: name for name in reversed(candidates) for code in profiles[name]["identify"]["functions"]
+                code: [name, profiles[name]["function_names"].get(code, str(code))]
+                for name in reversed(candidates) for code in profiles[name]["identify"]["functions"]
             },
+            # The ProductCode prefixes that identify a candidate, [prefix, candidate] in the candidates' order.
+            "product_codes": [
+                [code, name] for name in candidates for code in profiles[name]["identify"]["product_codes"]
+            ],
             "fit_answers": selection.FIT_ANSWERS,
             "fit_frames": selection.FIT_FRAMES,
             "fit_reads": selection.FIT_READS,

@@ -48,13 +48,9 @@ end
 
 local function configure(profiles_text, style, maps_text)
   local default, per_slave, errors = parse_profile_choice(profiles_text)
+  -- (auto: the fallback and every candidate, every built-in profile, are in use, as build_annotator names them)
   local in_use = {}
-  if default ~= AUTO then in_use[default] = true end
-  if default == AUTO then
-    -- (auto: the fallback and every candidate are profiles in use, as build_annotator names them)
-    in_use[SELECTION.fallback] = true
-    for _, name in ipairs(SELECTION.candidates) do in_use[name] = true end
-  end
+  for name in pairs(default == AUTO and PROFILES or { [default] = true }) do in_use[name] = true end
   for _, name in pairs(per_slave) do in_use[name] = true end
   local layers, map_errors = parse_map_choice(maps_text, in_use)
   for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end

@@ -292,7 +292,7 @@ local function load_map(path)
   handle:close()
   if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
   if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
-    return nil, format("%s: larger than 16 MiB, not a register map", path)
+    return nil, format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576))
   end
   if not text then
     if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end

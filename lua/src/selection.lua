@@ -12,8 +12,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- frame says changes nothing before it, in one pass as with -2: the frames before the evidence are shown
 -- as vw3-decode shows them.
 local CANDIDATES = SELECTION.candidates
--- The candidate a function code identifies (the first, in the candidates' order, that claims it).
-local IDENTIFYING = SELECTION.identifying
+-- The candidate a function code identifies (the first, in the candidates' order, that claims it) and the
+-- code's name on it; the ProductCode prefixes that identify one, { prefix, candidate } in that order.
+local IDENTIFYING, PRODUCT_CODES = SELECTION.identifying, SELECTION.product_codes
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
 
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
@@ -42,24 +43,20 @@ local function identified(f)
   if f.objects ~= nil and f.kind == RESPONSE then
     for _, object in ipairs(f.objects) do
       if object.id == SELECTION.product_code_object then
-        for _, name in ipairs(CANDIDATES) do
-          for _, code in ipairs(PROFILES[name].identify.product_codes) do
-            if object.value:sub(1, #code) == code then
-              return { profile = name, final = true, reason = say("chosen_product_code",
-                { frame = f.number, value = python_repr(object.value) }) }
-            end
+        for _, claim in ipairs(PRODUCT_CODES) do
+          if object.value:sub(1, #claim[1]) == claim[1] then
+            return { profile = claim[2], final = true, reason = say("chosen_product_code",
+              { frame = f.number, value = python_repr(object.value) }) }
           end
         end
       end
     end
   end
   if f.kind ~= NOISE and f.crc == f.crc_expected then
-    local name = IDENTIFYING[f.fn]
-    if name ~= nil then
-      local profile = PROFILES[name]
-      local called = (profile.function_names or NO_INTERPRETATION)[f.fn] or format("%d", f.fn)
-      return { profile = name, final = true, reason = say("chosen_function",
-        { ["function"] = f.fn, name = called, frame = f.number }) }
+    local claim = IDENTIFYING[f.fn]
+    if claim ~= nil then
+      return { profile = claim[1], final = true, reason = say("chosen_function",
+        { ["function"] = f.fn, name = claim[2], frame = f.number }) }
     end
   end
   return nil
@@ -121,9 +118,8 @@ local function evidence_reason(found, protected)
 end
 
 -- A new choice for f.slave when this frame decides (or undoes) one, else nil (Selector.observe).
+-- (select_device calls it only for a slave not fixed by the choices of the whole capture)
 local function observe(st, f, b)
-  -- (decoded again with the choices of the whole capture: a slave chosen for is fixed)
-  if st.frozen ~= nil and st.fixed[f.slave] then return nil end
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
