@@ -5896,12 +5896,13 @@ local function item_tvb(item, tvb)
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
 end
 
--- The item the record-level notes go on: the first item shown, else one of their own.
-local function anchored(anchor, tree, full, tvb, n)
+-- A record-level note, on the item they go on: the first item shown, else one of their own. Returns it.
+local function record_note(anchor, tree, full, tvb, n, expert_info, text)
   if anchor == nil then
     anchor = tree
     if full then anchor = tree:add(proto, tvb:range(0, n), "VW3 record") end
   end
+  add_text(anchor, expert_info, text)
   return anchor
 end
 
@@ -5981,19 +5982,16 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     anchor = anchor or t
   end
   if frames > 1 then
-    anchor = anchored(anchor, tree, full, tvb, n)
-    add_text(anchor, ex.multiple, format("This record holds %d frames", frames))
+    anchor = record_note(anchor, tree, full, tvb, n, ex.multiple, format("This record holds %d frames", frames))
   end
   local errors = config.errors
   for index = 1, #errors do
-    anchor = anchored(anchor, tree, full, tvb, n)
-    add_text(anchor, ex.preference, "Preferences: " .. errors[index])
+    anchor = record_note(anchor, tree, full, tvb, n, ex.preference, "Preferences: " .. errors[index])
   end
   if record.waiting ~= nil and record.waiting > 0 then
     local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
       record.waiting)
-    anchor = anchored(anchor, tree, full, tvb, n)
-    add_text(anchor, ex.partial, text)
+    anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
     summaries, info = add_part(summaries, info, format("(%d bytes continue)", record.waiting))
   end
   if info ~= nil then
