@@ -8,7 +8,9 @@ limit (1..123) instead of the layout's own (1..125). A read of 124 registers ans
 before and draws the warning after. The compiled engine shows that transaction itself before the change
 (no warning: nothing to hand over); if it ignored the regenerated table it would still show it quiet
 after, and its output would differ from the Python stages'. The same copy changes that check's text in
-the catalogue ([texts] range): every engine, the plugin too, writes the new words, none the old.
+the catalogue ([texts] range): every engine, the plugin too, writes the new words, none the old. And it
+changes one Info column form (render/describe.py TEXT_FORMS, which describe.py interprets and codegen writes
+into _tables.h): a normal answer to a register write says `stored`, not `written`, in both engines.
 """
 from __future__ import annotations
 
@@ -32,6 +34,10 @@ ANSWER = with_crc(bytes.fromhex("0103F8") + bytes(248))
 TEXT = 'range = "{what} {value} outside the spec\'s {low}..{high}"\n'
 CHANGED_TEXT = TEXT.replace("outside the spec's", "not in the spec's range")
 WARNING = "[warning: quantity 124 not in the spec's range 1..123]"
+FORM = '"written": [("span",), " written"],'
+CHANGED_FORM = FORM.replace(" written", " stored")
+WRITE = with_crc(bytes.fromhex("0110000A00020400010002"))  # registers 10 and 11 written
+WRITTEN = with_crc(bytes.fromhex("0110000A0002"))
 
 
 def _copy(tmp: Path, changed: bool) -> Path:
@@ -47,6 +53,10 @@ def _copy(tmp: Path, changed: bool) -> Path:
         assert text.count(RULE) == 1, "the rule this test changes is no longer stated this way"
         assert text.count(TEXT) == 1, "the text this test changes is no longer stated this way"
         table.write_text(text.replace(RULE, CHANGED).replace(TEXT, CHANGED_TEXT), encoding="utf-8")
+        forms = root / "dissector" / "render" / "describe.py"
+        text = forms.read_text(encoding="utf-8")
+        assert text.count(FORM) == 1, "the form this test changes is no longer stated this way"
+        forms.write_text(text.replace(FORM, CHANGED_FORM), encoding="utf-8")
     env = _env(root)
     for command in ([sys.executable, "-m", "dissector.codegen"], [sys.executable, "setup.py", "-q", "build_ext", "--inplace"]):
         result = subprocess.run(command, cwd=root, env=env, capture_output=True, text=True, timeout=600)
@@ -83,15 +93,17 @@ def copies(tmp_path_factory: pytest.TempPathFactory) -> dict[bool, Path]:
 
 def test_every_engine_follows_a_changed_lifting_rule(copies: dict[bool, Path], tmp_path: Path) -> None:
     capture = tmp_path / "read124.bin"
-    capture.write_bytes(REQUEST + ANSWER)
+    capture.write_bytes(REQUEST + ANSWER + WRITE + WRITTEN)
     outputs = {}
     for changed, root in copies.items():
         python, compiled = _decode(root, capture, pure=True), _decode(root, capture, pure=False)
         assert compiled == python
         outputs[changed] = python
-    assert len(outputs[False]) == len(outputs[True]) == 2
+    assert len(outputs[False]) == len(outputs[True]) == 4
     assert "[warning:" not in outputs[False][0] and outputs[False][0].endswith("Read Holding Registers 10..133 (124)  CRC ok")
     assert outputs[True][0].endswith(f"Read Holding Registers 10..133 (124) {WARNING}  CRC ok")
+    assert "Write Multiple Registers 10..11 (2) written [#3" in outputs[False][3]
+    assert "Write Multiple Registers 10..11 (2) stored [#3" in outputs[True][3]
 
 
 def test_the_plugin_follows_a_changed_lifting_rule(copies: dict[bool, Path], tmp_path: Path) -> None:
