@@ -3674,9 +3674,9 @@ function story.plain_rule(device, address, row)
   return nil
 end
 
--- (16#8000's texts: memory.py's, data/modbus.toml [texts])
-local MARKER_NOW, MARKER_NON_EXISTENT = say("marker_now", {}), say("marker_non_existent", {})
-local MARKER_PROTECTED = say("marker_protected", {})
+-- (16#8000's texts, memory.py's: data/modbus.toml [texts]; a register's by its status, no value left)
+local MARKER_NOW = say("marker_now", {})
+local MARKER_TEXTS = { ["non-existent"] = say("marker_non_existent", {}), protected = say("marker_protected", {}) }
 
 -- One register of a frame, in capture order: is it read with its plain layout (a bits_depend rule), and
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
@@ -3737,11 +3737,7 @@ local function describe(device, f, reg, plain, status, words, second)
       scaled, text = interpret(used, value)
     end
   end
-  if status == "non-existent" then
-    text = MARKER_NON_EXISTENT
-  elseif status == "protected" then
-    scaled, text = nil, MARKER_PROTECTED
-  end
+  if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
   local base = plc_base(device, f)
   if base ~= nil then reg.label = plc_label(base, address) end
