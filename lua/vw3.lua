@@ -3563,7 +3563,7 @@ end
 -- ---- vw3.story: lua/src/story.lua ----
 package.preload["vw3.story"] = function(...)
 -- vw3.story: the parameter story (became protected, readable again) and registers annotated.
--- Mirrors dissector/devices/story.py, dissector/devices/annotator.py (registers).
+-- Mirrors dissector/devices/story.py, dissector/devices/memory.py, dissector/devices/annotator.py (registers).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
