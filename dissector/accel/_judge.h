@@ -6,13 +6,15 @@
  *   nothing the selector keeps;
  * - with `frames` set (accel/framespath.py: -V, --json, -T, --stats... of a pcap), each transaction
  *   passed is written out as a record (FRAMES_RECORD below) for the Python stages to decode and show.
- * Included by _summary.c before transaction(). */
+ * transaction() passes such a transaction at once when its request and answer are not judged. Included by
+ * _summary.c before transaction(). */
 #ifndef VW3_JUDGE_H
 #define VW3_JUDGE_H
 
 /* One transaction: request offset, answer offset (-1: unanswered), lengths, answer kind, whether each
  * has a time, their times (struct "=qqiiBBBq q": accel/framespath.py RECORD). */
-static void frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
+static int frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
+    if (!e->frames) return 1;
     struct __attribute__((packed)) {
         long long q_at, a_at;
         int32_t q_length, a_length;
@@ -21,30 +23,12 @@ static void frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
     } record = {q->at, a ? a->at : -1, (int32_t)q->length, a ? (int32_t)a->length : 0, (uint8_t)(a ? a->kind : 0),
                 (uint8_t)q->timed, (uint8_t)(a ? a->timed : 0), q->ns, a ? a->ns : 0};
     out_put(&e->out, (const char *)&record, sizeof record);
+    return e->out.failed ? -1 : 1;
 }
 
 static inline int judged(const Engine *e, const FrameRef *f) {
     int function = f->function & 0x7F;
     return (e->judge[f->slave * 32 + (function >> 3)] >> (function & 7)) & 1;
-}
-
-/* One transaction from q (a request to a slave, found at *pos): counted and passed (STEP_DONE), or left. */
-static int judge_transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos, const FrameRef *q) {
-    if (judged(e, q)) return STEP_HANDOVER;
-    int saved_slave = e->expect_slave, saved_function = e->expect_function;
-    FrameRef a;
-    int found = answer_to(e, b, n, q, &a);
-    if (found == FRAME_OK && a.kind == KIND_REQUEST) { /* unanswered: the next request is its own */
-        if (e->frames) frames_record(e, q, NULL);
-        return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 0);
-    }
-    if (found == FRAME_OK && !judged(e, &a)) {
-        if (e->frames) frames_record(e, q, &a);
-        return e->out.failed ? STEP_ERROR : taken(e, pos, q, &a, 1);
-    }
-    e->expect_slave = saved_slave;
-    e->expect_function = saved_function;
-    return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
 }
 
 #endif

@@ -409,6 +409,12 @@ static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i
     case 3: /* _diagnostics: Return Query Data (sub-function 0) echoes any amount of data */
         if (i + 3 >= n) return need;
         return b[i + 2] == 0 && b[i + 3] == 0 ? (Length){LENGTH_SCAN, 6} : (Length){LENGTH_OK, 8};
+    case 5: { /* quantity_rule: a request's length by its quantity where it differs from its byte count's */
+        if (i + (rule->position + 1 > rule->count_at ? rule->position + 1 : rule->count_at) >= n) return need;
+        Py_ssize_t quantity = (Py_ssize_t)word(b + i + rule->position);
+        Py_ssize_t length = rule->extra + (rule->unit ? quantity * rule->unit : (quantity + 7) / 8);
+        return (Length){LENGTH_OK, length == rule->count_extra + b[i + rule->count_at] ? 0 : length};
+    }
     default: /* _scan_any */
         return (Length){LENGTH_SCAN, MIN_ADU};
     }
@@ -446,32 +452,15 @@ static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_
     return crc_next(&scan);
 }
 
-/* A frame of `length` bytes at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
- * _valid_frame_at, _match): 1 it checks out, 0 it does not apply or fails its CRC, 2 it waits for more bytes
- * (*length: its length, -1 the bytes that give it). */
-static int length_check(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
-    if (*length < MIN_ADU || *length > MAX_ADU) return 0;
-    if (i + *length > n) return 2;
-    return crc_ok(b, i, *length);
-}
-
-/* A length rule at i, as length_check answers; -1: a CRC scan from *length bytes. */
+/* A length rule at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
+ * _valid_frame_at, _match): 1 it checks out, 0 it does not apply or fails its CRC, 2 it waits for more
+ * bytes, -1 a CRC scan from *length bytes (*length: its length, -1 the bytes that give it). */
 static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
     Length found = rule_length(rule, b, i, n);
     *length = found.what == LENGTH_NEED ? -1 : found.value;
-    if (found.what == LENGTH_SCAN) return -1;
-    return found.what == LENGTH_NEED ? 2 : length_check(b, i, n, length);
-}
-
-/* rules.quantity_rule: a request's length by its quantity where it differs from its byte count's, as
- * length_check answers (0 too when both agree). */
-static int quantity_check(const QuantityRule *q, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t *length) {
-    int need = q->position + 1 > q->count_position ? q->position + 1 : q->count_position;
-    *length = -1;
-    if (i + need >= n) return 2;
-    Py_ssize_t quantity = (Py_ssize_t)word(b + i + q->position);
-    *length = q->extra + (q->unit ? quantity * q->unit : (quantity + 7) / 8);
-    return *length == q->count_extra + b[i + q->count_position] ? 0 : length_check(b, i, n, length);
+    if (found.what != LENGTH_OK) return found.what == LENGTH_SCAN ? -1 : 2;
+    if (*length < MIN_ADU || *length > MAX_ADU) return 0;
+    return i + *length > n ? 2 : crc_ok(b, i, *length);
 }
 
 /* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
@@ -479,18 +468,13 @@ static int quantity_check(const QuantityRule *q, const uint8_t *b, Py_ssize_t i,
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     if (n - j < MIN_ADU) return -1;
     int slave = b[j], function = b[j + 1]; /* any address: 248..255 are framed too (reserved) */
-    const LengthRule exception = {5, 0, 0, 0, 0};
-    const LengthRule *rules[2];
-    int count = 2, k = known_slot[function & 0x7F];
+    int k = known_slot[function & 0x7F];
     if (k < 0) return 0;
-    if (function & 0x80) {
-        rules[0] = &exception;
-        count = 1;
-    } else {
-        int expected = slave == e->expect_slave && function == e->expect_function;
-        rules[0] = expected ? &known_response_rule[k] : &known_request_rule[k];
-        rules[1] = expected ? &known_request_rule[k] : &known_response_rule[k];
-    }
+    int expected = slave == e->expect_slave && function == e->expect_function;
+    const LengthRule exception = {5, 0, 0, 0, 0, 0, 0, 0};
+    const LengthRule *rules[3] = {&known_rule[k][expected], &known_rule[k][!expected], &known_rule[k][LAYOUT_BY_QUANTITY]};
+    int count = function & 0x80 ? 1 : rules[2]->special ? 3 : 2;
+    if (function & 0x80) rules[0] = &exception;
     int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
     Py_ssize_t length;
     for (int r = 0; r < count; r++) {
@@ -501,10 +485,6 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
         } else if (found) {
             return found == 1 ? 1 : -1;
         }
-    }
-    if (count == 2 && known_quantity_rule[k].position) {
-        int found = quantity_check(&known_quantity_rule[k], b, j, n, &length);
-        if (found) return found == 1 ? 1 : -1;
     }
     return undecided ? -1 : 0;
 }
@@ -549,7 +529,7 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
     if (kind == KIND_EXCEPTION) return 5;
     int k = handled_index(function);
     if (k < 0) return FRAME_HANDOVER;
-    const LengthRule *rule = kind == KIND_REQUEST ? &request_rule[k] : &response_rule[k];
+    const LengthRule *rule = &known_rule[known_slot[function]][kind == KIND_RESPONSE];
     if (rule->fixed) return rule->fixed;
     Length length = rule_length(rule, b, i, n);
     if (length.what == LENGTH_NEED) return FRAME_NEED;
@@ -1205,14 +1185,16 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     FrameRef q, a;
     int found = next_frame(e, b, *pos, n, &q, e->tl.decided);
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
-    if (q.kind != KIND_REQUEST || q.slave == 0) return STEP_HANDOVER;
-    if (e->judge != NULL) return judge_transaction(e, b, n, pos, &q);
-    Slave *s = slave_for(e, q.slave);
-    if (s == NULL) return STEP_ERROR;
-    if (!s->usable) return STEP_HANDOVER;
-    Lifted r;
-    int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
-    if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
+    if (q.kind != KIND_REQUEST || q.slave == 0 || (e->judge != NULL && judged(e, &q))) return STEP_HANDOVER;
+    Slave *s = NULL;
+    Lifted r = {0};
+    if (e->judge == NULL) { /* (judged: framed and paired only) */
+        s = slave_for(e, q.slave);
+        if (s == NULL) return STEP_ERROR;
+        if (!s->usable) return STEP_HANDOVER;
+        int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
+        if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
+    }
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
     size_t mark = e->out.len;
     found = answer_to(e, b, n, &q, &a);
@@ -1224,7 +1206,9 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     /* The next frame is a request: this one was not answered (pairing.py). */
     int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written;
     const Words *writes = r.values.values != NULL ? &r.values : NULL;
-    if (found == FRAME_OK && rules[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
+    if (e->judge != NULL) {
+        written = found == FRAME_OK && (!answered || !judged(e, &a)) ? frames_record(e, &q, answered ? &a : NULL) : 0;
+    } else if (found == FRAME_OK && rules[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
         written = counted(e, s, b, &q, answered ? &a : NULL, NULL, NULL, written);
     } else if (found == FRAME_OK && !answered) {
@@ -1345,25 +1329,6 @@ static PyObject *engine_run_timed(Engine *e, PyObject *args) {
     return result;
 }
 
-/* set_timing(char_time, t15, timeout, clock): the line's character time and t1.5 (timing.LineTiming),
- * the pairing timeout in seconds (None: none), the time column (0: -t r, 1: -t d or dd). */
-static PyObject *engine_set_timing(Engine *e, PyObject *args) {
-    double char_time, t15;
-    PyObject *timeout;
-    int clock;
-    if (!PyArg_ParseTuple(args, "ddOi", &char_time, &t15, &timeout, &clock)) return NULL;
-    double seconds = -1;
-    if (timeout != Py_None) {
-        seconds = PyFloat_AsDouble(timeout);
-        if (seconds == -1 && PyErr_Occurred()) return NULL;
-    }
-    e->tl.char_time = char_time;
-    e->tl.t15 = t15;
-    e->tl.timeout = seconds;
-    e->tl.clock = clock;
-    Py_RETURN_NONE;
-}
-
 /* stats and judge: the object at offset `closure` in the engine, None for none (NULL). */
 static PyObject *engine_get_object(Engine *e, void *closure) {
     PyObject *value = *(PyObject **)((char *)e + (size_t)closure);
@@ -1394,51 +1359,6 @@ static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
 static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
     int fits = value != NULL && PyObject_TypeCheck(value, &StatsType);
     return set_between_runs(e, &e->stats, value, fits, "stats", "a Stats or None");
-}
-
-static PyObject *clock_value(int has, long long ns) {
-    if (!has) Py_RETURN_NONE;
-    return PyLong_FromLongLong(ns);
-}
-
-static PyObject *engine_get_clock(Engine *e, void *closure) {
-    const ClockRefs *refs = &e->tl.refs;
-    return Py_BuildValue("(NN)", clock_value(refs->has_first, refs->first_ns),
-                         clock_value(refs->has_previous, refs->previous_ns));
-}
-
-static int engine_set_clock(Engine *e, PyObject *value, void *closure) {
-    PyObject *first, *previous;
-    if (value == NULL || !PyArg_ParseTuple(value, "OO", &first, &previous)) {
-        if (!PyErr_Occurred()) PyErr_SetString(PyExc_TypeError, "clock: (first ns or None, previous ns or None)");
-        return -1;
-    }
-    long long first_ns = first == Py_None ? 0 : PyLong_AsLongLong(first);
-    long long previous_ns = previous == Py_None ? 0 : PyLong_AsLongLong(previous);
-    if (PyErr_Occurred()) return -1;
-    e->tl.refs = (ClockRefs){first != Py_None, previous != Py_None, first_ns, previous_ns};
-    return 0;
-}
-
-static PyObject *engine_get_expect(Engine *e, void *closure) {
-    if (e->expect_slave < 0) Py_RETURN_NONE;
-    return Py_BuildValue("(ii)", e->expect_slave, e->expect_function);
-}
-
-static int engine_set_expect(Engine *e, PyObject *value, void *closure) {
-    if (value == NULL || value == Py_None) {
-        e->expect_slave = e->expect_function = -1;
-        return 0;
-    }
-    int slave, function;
-    if (!PyArg_ParseTuple(value, "ii", &slave, &function)) return -1;
-    if (slave < 0 || slave > 255 || function < 0 || function > 255) {
-        PyErr_SetString(PyExc_ValueError, "expect: (slave, function) bytes");
-        return -1;
-    }
-    e->expect_slave = slave;
-    e->expect_function = function;
-    return 0;
 }
 
 /* The objects an engine holds: its four callbacks in engine_init's order, then what it keeps. */
@@ -1514,8 +1434,6 @@ static PyMethodDef engine_methods[] = {
     {"run_timed", (PyCFunction)engine_run_timed, METH_VARARGS,
      "run_timed(buffer, position, base, starts, times, flags) -> run()'s answer, for a stream of timed\n"
      "chunks (pcap records): int64 stream offsets and ns times, a flag byte per chunk (_timeline.h)."},
-    {"set_timing", (PyCFunction)engine_set_timing, METH_VARARGS,
-     "set_timing(char_time, t15, timeout, clock): line timing, pairing timeout, time column (0 r, 1 d/dd)."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -1527,19 +1445,26 @@ static PyMemberDef engine_members[] = {
      "run_timed(): the Python framer's buffer end (stream offset) when it decided the last frame"},
     {"glitchy", T_BOOL, offsetof(Engine, glitchy), 0,
      "the line leaves 00 glitches (the framer's glitchy): CRC scans take the shortest length"},
+    /* Plain fields, in the shapes fastsummary.PathEngine gives its callers (expect, clock, set_timing). */
+    {"expect_slave", T_INT, offsetof(Engine, expect_slave), 0, "the slave whose answer is awaited, -1: none"},
+    {"expect_function", T_INT, offsetof(Engine, expect_function), 0, "the function code awaited"},
+    {"char_time", T_DOUBLE, offsetof(Engine, tl.char_time), 0, "the line's character time, s (timing.LineTiming)"},
+    {"t15", T_DOUBLE, offsetof(Engine, tl.t15), 0, "the line's t1.5, s: a longer silence inside a frame warns"},
+    {"timeout", T_DOUBLE, offsetof(Engine, tl.timeout), 0, "the pairing timeout, s; < 0: none"},
+    {"clock_format", T_INT, offsetof(Engine, tl.clock), 0, "the time column: 0 -t r, 1 -t d or dd"},
+    {"has_first", T_INT, offsetof(Engine, tl.refs.has_first), 0, "the time column has its first timed item"},
+    {"first_ns", T_LONGLONG, offsetof(Engine, tl.refs.first_ns), 0, "its time, ns"},
+    {"has_previous", T_INT, offsetof(Engine, tl.refs.has_previous), 0, "it has a previous timed item"},
+    {"previous_ns", T_LONGLONG, offsetof(Engine, tl.refs.previous_ns), 0, "its time, ns"},
     {NULL, 0, 0, 0, NULL},
 };
 
 static PyGetSetDef engine_getset[] = {
     {"stats", (getter)engine_get_object, (setter)engine_set_stats,
      "a Stats that counts every transaction shown here (--stats), or None", (void *)offsetof(Engine, stats)},
-    {"expect", (getter)engine_get_expect, (setter)engine_set_expect, "(slave, function) awaited, or None",
-     NULL},
     {"judge", (getter)engine_get_object, (setter)engine_set_judge,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
      (void *)offsetof(Engine, judge_bytes)},
-    {"clock", (getter)engine_get_clock, (setter)engine_set_clock,
-     "the time column's (first, previous) item times in ns, None where none", NULL},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
@@ -1547,8 +1472,8 @@ static PyTypeObject EngineType = {
     PyVarObject_HEAD_INIT(NULL, 0)
     .tp_name = "dissector.accel._summary.Engine",
     .tp_basicsize = sizeof(Engine),
-    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_GC,
-    .tp_doc = "The compiled summary path (see dissector/accel/fastsummary.py).",
+    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_BASETYPE | Py_TPFLAGS_HAVE_GC,
+    .tp_doc = "The compiled summary path (see dissector/accel/fastsummary.py PathEngine).",
     .tp_new = PyType_GenericNew,
     .tp_init = (initproc)engine_init,
     .tp_dealloc = (destructor)engine_dealloc,

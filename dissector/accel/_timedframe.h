@@ -15,19 +15,18 @@ enum { DECIDE_OK, DECIDE_HANDOVER, DECIDE_WAIT };
  * and whether one waits for more bytes (NEED, or `length` + 1: the 00 after a frame) in *waits. */
 static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, Py_ssize_t length,
                          Py_ssize_t *shortest, int *waits) {
-    int k = known_slot[function];
-    const LengthRule *other = kind == KIND_RESPONSE ? &known_request_rule[k] : &known_response_rule[k];
-    Py_ssize_t lengths[2] = {0, 0};
-    int found[2] = {rule_check(other, b, i, m, &lengths[0]), 0};
-    if (known_quantity_rule[k].position) found[1] = quantity_check(&known_quantity_rule[k], b, i, m, &lengths[1]);
+    const LengthRule *rules = known_rule[known_slot[function]];
+    const LengthRule *others[2] = {&rules[kind != KIND_RESPONSE], &rules[LAYOUT_BY_QUANTITY]};
     int valid = 0;
     *waits = 0;
-    for (int w = 0; w < 2; w++) {
-        if (found[w] < 0) return -1;
-        if (found[w] == 2 && (lengths[w] == -1 || lengths[w] == length + 1)) *waits = 1;
-        if (found[w] != 1) continue;
+    for (int w = 0; w < (others[1]->special ? 2 : 1); w++) {
+        Py_ssize_t other;
+        int found = rule_check(others[w], b, i, m, &other);
+        if (found < 0) return -1;
+        if (found == 2 && (other == -1 || other == length + 1)) *waits = 1;
+        if (found != 1) continue;
         valid++;
-        if (lengths[w] < *shortest) *shortest = lengths[w];
+        if (other < *shortest) *shortest = other;
     }
     return valid;
 }

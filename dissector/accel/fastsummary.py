@@ -81,6 +81,37 @@ class SlaveFacts:
     namer: Callable[[int, int], tuple[str | None, str | None]] | None = None
 
 
+class PathEngine(_summary.Engine if _summary is not None else object):  # type: ignore[misc]
+    """The compiled engine, its plain fields in the shapes its callers use: `expect` as the framer's
+    (slave, function) or None, `clock` as the time column's (first, previous) ns or None each."""
+
+    __slots__ = ()
+
+    @property
+    def expect(self) -> tuple[int, int] | None:
+        return None if self.expect_slave < 0 else (self.expect_slave, self.expect_function)
+
+    @expect.setter
+    def expect(self, value: tuple[int, int] | None) -> None:
+        self.expect_slave, self.expect_function = (-1, -1) if value is None else value
+
+    @property
+    def clock(self) -> tuple[int | None, int | None]:
+        return (self.first_ns if self.has_first else None, self.previous_ns if self.has_previous else None)
+
+    @clock.setter
+    def clock(self, value: tuple[int | None, int | None]) -> None:
+        first, previous = value
+        self.has_first, self.first_ns = first is not None, first or 0
+        self.has_previous, self.previous_ns = previous is not None, previous or 0
+
+    def set_timing(self, char_time: float, t15: float, timeout: float | None, clock: int) -> None:
+        """The line's character time and t1.5 (timing.LineTiming), the pairing timeout in seconds
+        (None: none), the time column (0: -t r, 1: -t d or dd)."""
+        self.char_time, self.t15, self.clock_format = char_time, t15, clock
+        self.timeout = -1.0 if timeout is None else timeout
+
+
 def make_engine(annotator: Any | None, shown: bool = True) -> Any:
     """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n);
     `shown` False: nothing reads its lines (--stats alone), its transactions are only counted."""
@@ -111,7 +142,7 @@ def make_engine(annotator: Any | None, shown: bool = True) -> Any:
         return register_text(register), bool(register.code or register.text)
 
     texts = transaction_texts(annotator) if shown else counted_texts(annotator)
-    return _summary.Engine(slave_info, piece, exception_texts(annotator), texts)
+    return PathEngine(slave_info, piece, exception_texts(annotator), texts)
 
 
 @dataclass(frozen=True, slots=True)

@@ -17,51 +17,45 @@ from dissector.codegen import c_rules, c_stats
 from dissector.protocol.table import Counted, Fixed, Layout, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
-# Special length rules the engine implements (framing/rules.py's functions of the same names).
-_SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4}
+# Special length rules the engine implements (framing/rules.py's functions of the same names, and its
+# quantity_rule, "by_quantity").
+_SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4, "by_quantity": 5}
+_NO_RULE = "{0, 0, 0, 0, 0, 0, 0, 0}"
 
 
 def _rule(layout: Layout, code: int) -> str:
     rule = layout.length
     if isinstance(rule, Fixed):
-        return f"{{{rule.length}, 0, 0, 0, 0}}"
+        return f"{{{rule.length}, 0, 0, 0, 0, 0, 0, 0}}"
     if isinstance(rule, Counted) and rule.width in (1, 2):
-        return f"{{0, {rule.position}, {rule.extra}, {rule.width}, 0}}"
+        return f"{{0, {rule.position}, {rule.extra}, {rule.width}, 0, 0, 0, 0}}"
     if isinstance(rule, Special) and rule.name in _SPECIAL_RULES:
-        return f"{{0, 0, 0, 0, {_SPECIAL_RULES[rule.name]}}}"
+        return f"{{0, 0, 0, 0, {_SPECIAL_RULES[rule.name]}, 0, 0, 0}}"
     raise GenerateError(f"function {code}: the compiled path handles fixed and counted lengths only, not {rule}")
 
 
-def _known_rules() -> tuple[list[int], list[str], list[str]]:
-    """The framer's rules for every code it knows (framing/rules.py RULES: the table's codes, then the
-    codes found by a CRC scan): slots by code, request rules, response rules."""
+def _by_quantity(layout: Layout) -> str:
+    """A request's length by its quantity where its byte count disagrees (table.ByQuantity,
+    framing/rules.py quantity_rule), as a LengthRule; none: all zero."""
+    alternative, counted = layout.by_quantity, layout.length
+    if alternative is None or not isinstance(counted, Counted):
+        return _NO_RULE
+    return (f"{{0, {alternative.position}, {alternative.extra}, 2, {_SPECIAL_RULES['by_quantity']}, "
+            f"{alternative.unit}, {counted.position}, {counted.extra}}}")
+
+
+def _known_rules() -> tuple[list[int], list[str]]:
+    """The framer's interpretations for every code it knows (framing/rules.py REQUEST_FIRST: the table's
+    codes, then the codes found by a CRC scan): slots by code, and per slot {request, response, by quantity}."""
     slots = [-1] * 256
-    requests: list[str] = []
-    responses: list[str] = []
+    rows: list[str] = []
     codes = [(entry.code, entry.request, entry.response) for entry in table.FUNCTIONS]
     scan = table.RAW_LAYOUT
     codes += [(code, scan, scan) for code in sorted(table.OTHER_FUNCTIONS) if code not in table.TABLE]
     for code, request, response in codes:
-        slots[code] = len(requests)
-        requests.append(_rule(request, code))
-        responses.append(_rule(response, code))
-    return slots, requests, responses
-
-
-def _quantity_rules() -> list[str]:
-    """Per known slot (as _known_rules): a request's length by its quantity (table.ByQuantity) as
-    {position, extra, unit, the byte count's position, its extra}; position 0: none."""
-    rules = []
-    for entry in table.FUNCTIONS:
-        alternative, counted = entry.request.by_quantity, entry.request.length
-        if alternative is None or not isinstance(counted, Counted):
-            rules.append("{0, 0, 0, 0, 0}")
-        else:
-            rules.append(
-                f"{{{alternative.position}, {alternative.extra}, {alternative.unit}, {counted.position}, {counted.extra}}}"
-            )
-    others = [code for code in sorted(table.OTHER_FUNCTIONS) if code not in table.TABLE]
-    return rules + ["{0, 0, 0, 0, 0}"] * len(others)
+        slots[code] = len(rows)
+        rows.append(f"{{{_rule(request, code)}, {_rule(response, code)}, {_by_quantity(request)}}}, /* {code} */")
+    return slots, rows
 
 
 def _slot_rows(slots: list[int]) -> list[str]:
@@ -70,7 +64,7 @@ def _slot_rows(slots: list[int]) -> list[str]:
 
 def render_header() -> str:
     entries = [entry for entry in table.FUNCTIONS if entry.compiled is not None]
-    known_slots, known_requests, known_responses = _known_rules()
+    known_slots, known_rows = _known_rules()
     limits = table.compiled_limits()
     slots = [-1] * 256
     for index, entry in enumerate(entries):
@@ -108,25 +102,22 @@ def render_header() -> str:
         "",
         "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
         " * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,",
-        " * 3: diagnostics, 4: scan, framing/rules.py's functions of those names). */",
-        "typedef struct { int fixed, position, extra, width, special; } LengthRule;",
-        "static const LengthRule request_rule[HANDLED] = {"
-        + ", ".join(_rule(entry.request, entry.code) for entry in entries) + "};",
-        "static const LengthRule response_rule[HANDLED] = {"
-        + ", ".join(_rule(entry.response, entry.code) for entry in entries) + "};",
+        " * 3: diagnostics, 4: scan, framing/rules.py's functions of those names; 5: by_quantity, its",
+        " * quantity_rule: `extra` + the word at `position` x `unit` bytes (0: bits, ceil(q / 8)), none where",
+        " * that is the byte count's length, count_extra + the byte at count_at). */",
+        "typedef struct { int fixed, position, extra, width, special, unit, count_at, count_extra; } LengthRule;",
         "",
-        "/* The framer's rules for every code it knows (framing/rules.py RULES), as the check that an intact",
-        " * frame follows a frame found by a CRC scan needs them; -1: no frame starts with this code. */",
-        f"#define KNOWN {len(known_requests)}",
+        "/* The framer's interpretations of a frame start for every code it knows (framing/rules.py",
+        " * REQUEST_FIRST): its request's and its response's length rules, and a request's by its quantity",
+        " * (special 0: none); -1: no frame starts with this code. */",
+        f"#define KNOWN {len(known_rows)}",
         "static const signed char known_slot[256] = {",
         *(f"    {row}," for row in _slot_rows(known_slots)),
         "};",
-        "static const LengthRule known_request_rule[KNOWN] = {" + ", ".join(known_requests) + "};",
-        "static const LengthRule known_response_rule[KNOWN] = {" + ", ".join(known_responses) + "};",
-        "/* A request's length by its quantity when its byte count disagrees (framing/rules.py BY_QUANTITY):",
-        " * {quantity's position, extra, bytes an item (0: coils, 8 a byte), byte count's position, extra}. */",
-        "typedef struct { int position, extra, unit, count_position, count_extra; } QuantityRule;",
-        "static const QuantityRule known_quantity_rule[KNOWN] = {" + ", ".join(_quantity_rules()) + "};",
+        "enum { LAYOUT_REQUEST, LAYOUT_RESPONSE, LAYOUT_BY_QUANTITY };",
+        "static const LengthRule known_rule[KNOWN][3] = {",
+        *(f"    {row}" for row in known_rows),
+        "};",
         "",
         *c_rules.render(entries, limits),
         "",
