@@ -5,8 +5,9 @@
  * exceptions), exactly what the Python stages do: the framer's fast path (framing/rtu.py, _run),
  * pairing, the decoder's spec checks, the annotator's naming (PLC-style addresses included) and
  * parameter tracking, and the summary line (render/summary.py); FC8's texts too (the spec's
- * sub-function names, from _tables.h). For FC17, FC20, FC21 and FC43 (table.Compiled.texts) it
- * frames and pairs, and the texts come from the Python stages by the frames' bytes. What it hands back, before touching any state, at the start of the transaction, and why:
+ * sub-function names, from _tables.h). For FC17, FC20, FC21 and FC43 (table.Compiled.texts), and for
+ * exceptions, it frames and pairs, and the texts come from the Python stages by the frames' bytes. What
+ * it hands back, before touching any state, at the start of the transaction, and why:
  *   - noise, a damaged frame, a frame followed by a 00 byte, a length only a CRC scan finds (FC43
  *     other than 14): the framer's careful path decides those. FC8's Return Query Data, whose echo
  *     has no length either, is found here by the framer's own scan (scan_length: the shortest CRC
@@ -28,8 +29,9 @@
  * paths equal; bench/fastsummary_fuzz.py runs the same comparison for as long as asked.
  *
  * Device knowledge stays in Python: register texts come from a callback (the annotator and the
- * summary renderer themselves), cached here by (slave, function, address, value); an exception's
- * texts (with the device's explanation) come from another, cached there by request and answer.
+ * summary renderer themselves), cached here by (slave, function, address, value); the texts of a
+ * transaction it does not write itself (an exception, with the device's explanation) come from
+ * another, cached there by request and answer.
  *
  * One file on purpose: a single translation unit lets the compiler inline the per-byte helpers
  * (CRC, words, output) into the transaction loop without link-time optimisation.
@@ -195,8 +197,7 @@ typedef struct {
     char glitchy; /* the framer's StreamFramer.glitchy: the line leaves 00 glitches (set at each hand-back) */
     PyObject *slave_info;
     PyObject *piece;
-    PyObject *exception; /* exception(slave, request, answer) -> (info, tail) or None; None: hand over */
-    PyObject *texts;     /* texts(slave, request, response or None) -> Texts or None (table.Compiled.texts) */
+    PyObject *texts;     /* texts(slave, request, answer or None) -> Texts or None (hand over) */
     PieceSlot *pieces; /* (slave, function, address, value) -> the register's text */
     size_t piece_count;
     unsigned long run_number; /* bits_depend answers are kept for one run() (see register_is_plain) */
@@ -1085,28 +1086,9 @@ static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, co
     return line_end(e, pairing, request_number, tail);
 }
 
-/* An exception answering a shown request: its info and tail (notes, warnings) come from the Python
- * stages themselves (fastsummary.exception_texts), which say None when the annotator would change
- * its state or the text would not be plain; 1 written, 0 hand over, -1 error. */
-static int exception_line(Engine *e, const uint8_t *q, Py_ssize_t q_length, const uint8_t *a,
-                          unsigned long long number, unsigned long long request_number) {
-    if (e->exception == NULL || e->exception == Py_None) return 0;
-    PyObject *texts = PyObject_CallFunction(e->exception, "iy#y#", q[0], (const char *)q, q_length,
-                                            (const char *)a, (Py_ssize_t)5);
-    if (texts == NULL || texts == Py_None) {
-        Py_XDECREF(texts);
-        return texts == NULL ? -1 : 0;
-    }
-    PyObject *info, *tail;
-    int status = PyArg_Parse(texts, "(UU);exception must return (str, str) or None", &info, &tail)
-                     ? texts_line(e, a, number, " exception ", info, NULL, request_number, tail)
-                     : -1;
-    Py_DECREF(texts);
-    return status;
-}
-
-/* A transaction of a code whose texts come from the Python stages (fastsummary.transaction_texts):
- * the request and its response (a NULL response: unanswered). 1 written, 0 hand over, -1 error. */
+/* A transaction whose texts come from the Python stages (fastsummary.transaction_texts: a code of
+ * table.Compiled.texts, or an exception): the request and its answer (NULL: unanswered). 1 written, 0
+ * hand over, -1 error. */
 static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const FrameRef *a, unsigned long long number) {
     if (e->texts == NULL || e->texts == Py_None) return 0;
     PyObject *texts = a != NULL
@@ -1127,8 +1109,9 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     if (status > 0 && a != NULL) {
         e->line_timed = a->timed;
         e->line_ns = a->ns;
-        status = texts_line(e, b + a->at, number + 1, " response  ", PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), NULL,
-                            number, PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
+        status = texts_line(e, b + a->at, number + 1, a->kind == KIND_EXCEPTION ? " exception " : " response  ",
+                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), NULL, number,
+                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
     }
     Py_DECREF(item);
     return status;
@@ -1208,22 +1191,19 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     const Words *writes = r.values.values != NULL ? &r.values : NULL;
     if (e->judge != NULL) {
         written = found == FRAME_OK && (!answered || !judged(e, &a)) ? frames_record(e, &q, answered ? &a : NULL) : 0;
-    } else if (found == FRAME_OK && rules[handled_index(q.function)].texts && a.kind != KIND_EXCEPTION) {
+    } else if (found == FRAME_OK && rules[handled_index(q.function)].texts != (answered && a.kind == KIND_EXCEPTION)) {
+        /* Texts from the Python stages: a code of table.Compiled.texts (not its exceptions), an exception */
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
-        written = counted(e, s, b, &q, answered ? &a : NULL, NULL, NULL, written);
+        written = counted(e, s, b, &q, answered ? &a : NULL, writes, NULL, written);
     } else if (found == FRAME_OK && !answered) {
         written = frame_line(e, s, &r, e->count + 1, 0, 1);
         written = counted(e, s, b, &q, NULL, writes, NULL, written);
-    } else if (found == FRAME_OK && a.kind == KIND_EXCEPTION) {
-        written = frame_line(e, s, &r, e->count + 1, 0, 0);
-        e->line_timed = a.timed;
-        e->line_ns = a.ns;
-        if (written > 0) written = exception_line(e, b + q.at, q.length, b + a.at, e->count + 2, e->count + 1);
-        written = counted(e, s, b, &q, &a, writes, NULL, written);
     } else {
         Lifted answer;
         Words reads;
-        written = found == FRAME_OK ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 0;
+        /* (not an exception to a code of table.Compiled.texts: the Python stages') */
+        written = found == FRAME_OK && a.kind == KIND_RESPONSE ? response_is_quiet(e, s, b + a.at, a.length, &r,
+                                                                                   &answer, &reads) : 0;
         if (written > 0) {
             written = frame_line(e, s, &r, e->count + 1, 0, 0);
             e->line_timed = a.timed;
@@ -1361,21 +1341,18 @@ static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
     return set_between_runs(e, &e->stats, value, fits, "stats", "a Stats or None");
 }
 
-/* The objects an engine holds: its four callbacks in engine_init's order, then what it keeps. */
+/* The objects an engine holds: its three callbacks in engine_init's order, then what it keeps. */
 #define ENGINE_HELD(e)                                                                                   \
-    {&(e)->slave_info, &(e)->piece, &(e)->exception, &(e)->texts, &(e)->read_word, &(e)->written_word, \
-     &(e)->stats, &(e)->judge_bytes}
+    {&(e)->slave_info, &(e)->piece, &(e)->texts, &(e)->read_word, &(e)->written_word, &(e)->stats, &(e)->judge_bytes}
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
-    PyObject *slave_info, *piece_fn, *exception_fn = Py_None, *texts_fn = Py_None;
-    static char *keywords[] = {"slave_info", "piece", "exception", "texts", NULL};
+    PyObject *slave_info, *piece_fn, *texts_fn = Py_None;
+    static char *keywords[] = {"slave_info", "piece", "texts", NULL};
     if (!idle(e, "Engine.__init__")) return -1;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|OO", keywords, &slave_info, &piece_fn, &exception_fn,
-                                     &texts_fn))
-        return -1;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OO|O", keywords, &slave_info, &piece_fn, &texts_fn)) return -1;
     PyObject **held[] = ENGINE_HELD(e);
-    PyObject *given[] = {slave_info, piece_fn, exception_fn, texts_fn};
-    for (int k = 0; k < 4; k++) Py_XSETREF(*held[k], Py_NewRef(given[k]));
+    PyObject *given[] = {slave_info, piece_fn, texts_fn};
+    for (int k = 0; k < 3; k++) Py_XSETREF(*held[k], Py_NewRef(given[k]));
     pieces_clear(e);
     Py_XSETREF(e->read_word, PyUnicode_InternFromString("read"));
     Py_XSETREF(e->written_word, PyUnicode_InternFromString("written"));

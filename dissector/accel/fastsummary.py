@@ -14,7 +14,7 @@ names, exception explanations) and keeps the annotator's parameter memory up to 
 tests/differential/test_fastsummary.py holds its output equal to the Python stages' byte for byte.
 
 The engine and this module exchange typed objects: `SlaveFacts` and `Texts` (read by attribute name
-in C), a register's text and whether the annotator named it, an exception's (info, tail) texts.
+in C), a register's text and whether the annotator named it.
 
 Used for plain summary output of untimed RTU input (raw files, stdin, --hex) with no filter,
 statistics, pcap output or -c; VW3_PURE_PYTHON=1 turns it off. Without the C extension (no compiler at
@@ -40,7 +40,7 @@ except ImportError:  # built without a C compiler, or from older sources: the Py
     _summary = None  # type: ignore[assignment]
 
 HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c, through _tables.h), and their exceptions
-EXPLAINED_MAX = 4096  # exception texts kept (bounded: memory stays flat)
+EXPLAINED_MAX = 4096  # transactions' texts kept (bounded: memory stays flat)
 _PLAIN_READS = table.plain_register_reads()  # an exception 2 to these may change the annotator's memory
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
 # When the engine hands the stream straight back (a device or function codes it does not show), the
@@ -142,7 +142,7 @@ def make_engine(annotator: Any | None, shown: bool = True) -> Any:
         return register_text(register), bool(register.code or register.text)
 
     texts = transaction_texts(annotator) if shown else counted_texts(annotator)
-    return PathEngine(slave_info, piece, exception_texts(annotator), texts)
+    return PathEngine(slave_info, piece, texts)
 
 
 @dataclass(frozen=True, slots=True)
@@ -170,12 +170,13 @@ def _scratch(raw: bytes, kind: Kind, offset: int = 0, request: Frame | None = No
 
 
 def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
-    """The engine's `texts` callback, for the codes whose texts it does not make itself
-    (table.Compiled.texts): the Python stages decode and annotate a scratch pair of frames; the
-    annotator keeps no state for these codes, so the texts depend on the frames' bytes and the slave's
-    profile alone and are kept by them (bounded)."""
+    """The engine's `texts` callback, for the transactions whose texts it does not make itself: those
+    of the codes table.Compiled.texts names, and the exceptions answering the requests it shows. The
+    Python stages decode and annotate a scratch pair of frames; the annotator keeps no state for these
+    (an exception that would change it gets None, _texts), so the texts depend on the frames' bytes and
+    the slave's profile alone and are kept by them (bounded)."""
     known: dict[tuple[str | None, bytes, bytes | None], Texts | None] = {}
-    choosing = _choosing(annotator, objects=True)
+    choosing = _choosing(annotator)
 
     def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
         if _may_choose(annotator, slave, request_raw[1], choosing):
@@ -183,21 +184,7 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
         key = (_profile_name(annotator, slave), request_raw, response_raw)
         if key in known:
             return known[key]
-        request = _scratch(request_raw, Kind.REQUEST)
-        decode_frame(request)
-        response = None
-        if response_raw is not None:
-            response = _scratch(response_raw, Kind.RESPONSE, len(request_raw), request)
-            decode_frame(response)
-        if annotator is not None:
-            annotator(request)
-            if response is not None:
-                annotator(response)
-        found: Texts | None = Texts(info_text(request), _tail(request))
-        if response is not None:
-            found = Texts(found.request_info, found.request_tail, info_text(response), _tail(response))
-        if not _plain_end(found.request_info) or (response is not None and not _plain_end(found.response_info)):
-            found = None
+        found = _texts(annotator, slave, request_raw, response_raw)
         if len(known) >= EXPLAINED_MAX:
             known.clear()
         known[key] = found
@@ -206,16 +193,49 @@ def transaction_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | No
     return texts
 
 
+def _texts(annotator: Any | None, slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+    """A transaction's texts as the summary shows them, or None where the engine must hand it over: an
+    info that does not end in a plain character, or an exception after which the annotator would change
+    its state: exception 2 to a read on a device that protects parameters (p.38) makes it forget the
+    values of every parameter read (with an annotator the engine knows nothing of, every exception)."""
+    exception = response_raw is not None and response_raw[1] & 0x80
+    if exception and annotator is not None:
+        if not hasattr(annotator, "profile_for"):
+            return None
+        if response_raw[2] == annotator.profile_for(slave).all_protected_exception and request_raw[1] in _PLAIN_READS:
+            return None
+    request = _scratch(request_raw, Kind.REQUEST)
+    decode_frame(request)
+    response = None
+    if response_raw is not None:
+        response = _scratch(response_raw, Kind.EXCEPTION if exception else Kind.RESPONSE, len(request_raw), request)
+        decode_frame(response)
+    if annotator is not None:
+        annotator(request)
+        if response is not None:
+            annotator(response)
+    found = Texts(info_text(request), _tail(request))
+    if response is not None:
+        found = Texts(found.request_info, found.request_tail, info_text(response), _tail(response))
+    if not _plain_end(found.request_info) or (response is not None and not _plain_end(found.response_info)):
+        return None
+    return found
+
+
 _COUNTED = Texts("-", "", "-", "")  # no line made: the transaction is counted (--stats alone)
 
 
 def counted_texts(annotator: Any | None) -> Callable[[int, bytes, bytes | None], Texts | None]:
     """The `texts` callback of an engine whose lines nobody reads: transaction_texts' only effect on
-    what is counted is to hand over what profile `auto` may still choose a profile by; no scratch
-    frames decoded and annotated for texts nobody shows (the max-size mix's --stats asked 9,795)."""
-    choosing = _choosing(annotator, objects=True)
+    what is counted is to hand over what profile `auto` may still choose a profile by, and the
+    exceptions it hands over; no scratch frames decoded and annotated for other texts nobody shows
+    (the max-size mix's --stats asked 9,795)."""
+    choosing = _choosing(annotator)
+    exceptions = transaction_texts(annotator)
 
     def texts(slave: int, request_raw: bytes, response_raw: bytes | None) -> Texts | None:
+        if response_raw is not None and response_raw[1] & 0x80:
+            return exceptions(slave, request_raw, response_raw)
         return None if _may_choose(annotator, slave, request_raw[1], choosing) else _COUNTED
 
     return texts
@@ -230,15 +250,14 @@ def _may_choose(annotator: Any | None, slave: int, function: int, choosing: froz
     return final is not None and function in choosing and not final(slave)
 
 
-def _choosing(annotator: Any | None, objects: bool) -> frozenset[int]:
-    """Function codes whose frames can identify a device: those only one device speaks, and with
-    `objects` Read Device Identification, whose answer names the product (the table's mei_response)."""
+def _choosing(annotator: Any | None) -> frozenset[int]:
+    """Function codes whose frames can identify a device: those only one device speaks, and Read Device
+    Identification, whose answer names the product (the table's mei_response)."""
     selector = getattr(annotator, "selector", None)
     codes: set[int] = set()
     for profile, _rows in getattr(selector, "candidates", ()):
         codes |= profile.identifying_functions
-    if objects:
-        codes |= {entry.code for entry in table.FUNCTIONS if entry.response.name == "mei_response"}
+    codes |= {entry.code for entry in table.FUNCTIONS if entry.response.name == "mei_response"}
     return frozenset(codes)
 
 
@@ -246,52 +265,6 @@ def _profile_name(annotator: Any | None, slave: int) -> str | None:
     """The slave's profile: texts kept by bytes are kept per profile (profile `auto` may change it)."""
     profile_for = getattr(annotator, "profile_for", None)
     return None if profile_for is None else profile_for(slave).name
-
-
-def exception_texts(annotator: Any | None) -> Callable[[int, bytes, bytes], tuple[str, str] | None]:
-    """The engine's `exception` callback: (info, tail) of an exception answering a request it shows.
-
-    The Python stages make the texts themselves (decoder, annotator with the profile's explanations,
-    summary renderer) on a scratch pair of frames, so both paths say the same; the texts depend on the
-    request's bytes and the answer only, and are kept by them. None, and the engine hands the
-    transaction over, where the annotator would change its state: exception 2 to a read on a device
-    that protects parameters (p.38) makes it forget the values of every parameter read.
-    """
-    known: dict[tuple[str | None, bytes, bytes], tuple[str, str] | None] = {}
-    choosing = _choosing(annotator, objects=False)  # an exception carries no identification objects
-
-    def texts(slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
-        if _may_choose(annotator, slave, request_raw[1], choosing):
-            return None
-        key = (_profile_name(annotator, slave), request_raw, answer_raw)
-        if key in known:
-            return known[key]
-        found = _exception_texts(annotator, slave, request_raw, answer_raw)
-        if len(known) >= EXPLAINED_MAX:
-            known.clear()
-        known[key] = found
-        return found
-
-    return texts
-
-
-def _exception_texts(annotator: Any | None, slave: int, request_raw: bytes, answer_raw: bytes) -> tuple[str, str] | None:
-    function = request_raw[1]
-    if annotator is not None:
-        if not hasattr(annotator, "profile_for"):
-            return None
-        profile = annotator.profile_for(slave)
-        if answer_raw[2] == profile.all_protected_exception and function in _PLAIN_READS:
-            return None
-    request = _scratch(request_raw, Kind.REQUEST)
-    answer = _scratch(answer_raw, Kind.EXCEPTION, len(request_raw), request)
-    decode_frame(request)
-    decode_frame(answer)
-    if annotator is not None:
-        annotator(request)
-        annotator(answer)
-    info = info_text(answer)
-    return (info, _tail(answer)) if _plain_end(info) else None
 
 
 class SummaryPath:
