@@ -565,27 +565,21 @@ static inline int frame_kind(const Engine *e, const uint8_t *b, Py_ssize_t i, Py
     return (slave == e->expect_slave && function == e->expect_function) ? KIND_RESPONSE : KIND_REQUEST;
 }
 
-static int frame_at(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f) {
-    int kind = frame_kind(e, b, i, n);
-    if (kind < 0) return kind;
-    int slave = b[i], function = b[i + 1], scanned;
-    Py_ssize_t length = first_length(e, b, i, n, function, kind, &scanned);
-    if (length < 0) return (int)length;
-    if (!scanned) {
-        /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
-        if (i + length >= n) return FRAME_NEED;
-        if (b[i + length] == 0 || !crc_ok(b, i, length)) return FRAME_HANDOVER;
-    }
-    *f = (FrameRef){i, length, kind, slave, function, 0, 0, 0}; /* untimed */
-    return FRAME_OK;
-}
+#include "_timedframe.h" /* the framer's decision on a chunked, timed stream */
 
-#include "_timedframe.h" /* frame_at for chunked, timed streams */
-
-/* The next frame at i: frame_at, or with run_timed()'s chunks timed_frame_at (`decided`: the Python
- * framer's buffer end when it took the frame before). */
+/* The frame at i (*f: its kind, slave, function, length; its time with run_timed()'s chunks), FRAME_NEED
+ * or FRAME_HANDOVER: the framer's fast path (framing/rtu.py _run) on an untimed stream, its decision with
+ * the chunks it had on a timed one (timed_frame, `decided`: its buffer end when it took the frame before). */
 static int next_frame(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
-    return e->tl.active ? timed_frame_at(e, b, i, n, f, decided) : frame_at(e, b, i, n, f);
+    int kind = frame_kind(e, b, i, n), scanned;
+    if (kind < 0) return kind;
+    *f = (FrameRef){i, 0, kind, b[i], b[i + 1], 0, 0, 0}; /* untimed */
+    if (e->tl.active) return timed_frame(e, b, n, f, decided);
+    f->length = first_length(e, b, i, n, f->function, kind, &scanned);
+    if (f->length < 0 || scanned) return f->length < 0 ? (int)f->length : FRAME_OK;
+    /* The Python fast path needs the byte after the frame, and takes the careful path on a 00. */
+    if (i + f->length >= n) return FRAME_NEED;
+    return b[i + f->length] == 0 || !crc_ok(b, i, f->length) ? FRAME_HANDOVER : FRAME_OK;
 }
 
 /* ---- registers ---------------------------------------------------------------------------------- */

@@ -4,7 +4,7 @@
  * ends with the frame, the usual pcap) its careful path (_match) decides, where a record's end is
  * evidence. This mirrors both for the frames it can show and hands everything else over: any other
  * layout that checks out too or may once more bytes come, a CRC scan, a glitch address, a silence
- * inside the frame (a warning). Included by _summary.c after frame_at's helpers. */
+ * inside the frame (a warning). Included by _summary.c before next_frame, which calls timed_frame. */
 #ifndef VW3_TIMEDFRAME_H
 #define VW3_TIMEDFRAME_H
 
@@ -82,29 +82,29 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
     return DECIDE_OK;
 }
 
-/* frame_at for a chunked stream (e->tl.active). */
-static int timed_frame_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, FrameRef *f, long long decided) {
+/* The frame f starts (its kind, slave and function found) on a chunked stream (e->tl.active): its length
+ * and its time as next_frame gives them. */
+static int timed_frame(Engine *e, const uint8_t *b, Py_ssize_t n, FrameRef *f, long long decided) {
     Timeline *t = &e->tl;
+    Py_ssize_t i = f->at;
     long long at = t->base + i;
-    int kind = frame_kind(e, b, i, n);
-    if (kind < 0) return kind;
-    int slave = b[i], function = b[i + 1];
     /* The Python framer's buffer end when it first looks at i: the chunk holding byte i + 3 has come,
      * and the frame before was decided; where it waits, it looks again with the next chunk. */
     long long seen = chunk_end(t, chunk_of(t, at + MIN_ADU - 1));
     if (seen < decided) seen = decided;
-    Py_ssize_t length;
     for (;;) {
         if (seen > t->end) return FRAME_NEED;
-        int decision = decide_at(e, b, i, (Py_ssize_t)(seen - t->base), function, kind, &length);
+        int decision = decide_at(e, b, i, (Py_ssize_t)(seen - t->base), f->function, f->kind, &f->length);
         if (decision == DECIDE_OK) break;
         if (decision == DECIDE_HANDOVER) return FRAME_HANDOVER;
         if (seen >= t->end) return FRAME_NEED;
         seen = chunk_end(t, chunk_of(t, seen));
     }
-    if (silence_inside(t, at, length)) return FRAME_HANDOVER;
+    if (silence_inside(t, at, f->length)) return FRAME_HANDOVER;
     Py_ssize_t k = chunk_of(t, at);
-    *f = (FrameRef){i, length, kind, slave, function, (t->flags[k] & CHUNK_TIMED) != 0, t->ns[k], seen};
+    f->timed = (t->flags[k] & CHUNK_TIMED) != 0;
+    f->ns = t->ns[k];
+    f->decided = seen;
     return FRAME_OK;
 }
 
