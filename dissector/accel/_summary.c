@@ -258,12 +258,17 @@ static int bad_info(const char *what) {
 
 /* The attributes `names` of a callback's answer (`what`: which, for the error) as a tuple in that order:
  * a fastsummary.SlaveFacts (fact_names, _tables.h; the slave keeps the tuple, its items are borrowed
- * while it lives) or Texts (text_names). */
-static PyObject *read_fields(PyObject *object, const char *const *names, int count, const char *what) {
+ * while it lives) or Texts (text_names, read for every transaction whose texts are Python's). `keys`: the
+ * names as interned str, made on first use (a str from a C string at every read cost more than the read). */
+static PyObject *read_fields(PyObject *object, const char *const *names, PyObject **keys, int count, const char *what) {
     PyObject *tuple = PyTuple_New(count);
     if (tuple == NULL) return NULL;
     for (int k = 0; k < count; k++) {
-        PyObject *value = PyObject_GetAttrString(object, names[k]);
+        if (keys[k] == NULL && (keys[k] = PyUnicode_InternFromString(names[k])) == NULL) {
+            Py_DECREF(tuple);
+            return NULL;
+        }
+        PyObject *value = PyObject_GetAttr(object, keys[k]);
         if (value == NULL) {
             if (PyErr_ExceptionMatches(PyExc_AttributeError)) {
                 PyErr_Clear();
@@ -351,7 +356,8 @@ static int load_slave(Engine *e, int address) {
     Slave *s = &e->slaves[address];
     PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
     if (answer == NULL) return -1;
-    PyObject *info = read_fields(answer, fact_names, FACTS, "slave_info (a fastsummary.SlaveFacts)");
+    static PyObject *keys[FACTS];
+    PyObject *info = read_fields(answer, fact_names, keys, FACTS, "slave_info (a fastsummary.SlaveFacts)");
     Py_DECREF(answer);
     if (info == NULL) return -1;
     slave_clear(s); /* the callback may have loaded it already */
@@ -528,15 +534,13 @@ static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, 
                                int kind, int *scanned) {
     *scanned = 0;
     if (kind == KIND_EXCEPTION) return 5;
-    int k = handled_index(function);
-    if (k < 0) return FRAME_HANDOVER;
-    const LengthRule *rule = &known_rule[known_slot[function]][kind == KIND_RESPONSE];
+    const LengthRule *rule = &known_rule[known_slot[function]][kind == KIND_RESPONSE]; /* (a handled code: frame_kind) */
     if (rule->fixed) return rule->fixed;
     Length length = rule_length(rule, b, i, n);
     if (length.what == LENGTH_NEED) return FRAME_NEED;
     if (length.what == LENGTH_SCAN) {
         /* FC8's Return Query Data is found by the framer's own scan; FC43 other than 14 is the careful path's */
-        if (!rules[k].special) return FRAME_HANDOVER;
+        if (!rules[handled_index(function)].special) return FRAME_HANDOVER;
         *scanned = 1;
         return scan_length(e, b, i, n, length.value);
     }
@@ -1094,7 +1098,8 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
         Py_DECREF(texts);
         return 0;
     }
-    PyObject *item = read_fields(texts, text_names, TEXTS, "texts (a fastsummary.Texts)");
+    static PyObject *keys[TEXTS];
+    PyObject *item = read_fields(texts, text_names, keys, TEXTS, "texts (a fastsummary.Texts)");
     Py_DECREF(texts);
     if (item == NULL) return -1;
     /* (out_str refuses a text that is not a str) */
@@ -1164,7 +1169,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
     if (q.kind != KIND_REQUEST || q.slave == 0 || (e->judge != NULL && judged(e, &q))) return STEP_HANDOVER;
     Slave *s = NULL;
-    Lifted r = {0};
+    Lifted r;
     if (e->judge == NULL) { /* (judged: framed and paired only) */
         s = slave_for(e, q.slave);
         if (s == NULL) return STEP_ERROR;
@@ -1182,7 +1187,7 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->request_ns = q.ns;
     /* The next frame is a request: this one was not answered (pairing.py). */
     int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written;
-    const Words *writes = r.values.values != NULL ? &r.values : NULL;
+    const Words *writes = s != NULL && r.values.values != NULL ? &r.values : NULL; /* (s: not judged) */
     if (e->judge != NULL) {
         written = found == FRAME_OK && (!answered || !judged(e, &a)) ? frames_record(e, &q, answered ? &a : NULL) : 0;
     } else if (found == FRAME_OK && rules[handled_index(q.function)].texts != (answered && a.kind == KIND_EXCEPTION)) {
