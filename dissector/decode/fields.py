@@ -243,7 +243,7 @@ def _mei_response(frame: Frame, fields: Container) -> None:
     frame.objects = [
         DeviceObject(
             id=obj.id,
-            name=SPEC.device_id_objects.get(obj.id, f"Object {obj.id}"),
+            name=SPEC.device_id_objects.get(obj.id) or text("other_object", id=obj.id),
             value=obj.value.decode("latin-1"),
         )
         for obj in fields["body"]["objects"]

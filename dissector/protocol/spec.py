@@ -36,14 +36,12 @@ class Spec:
         name = self.functions.get(code)
         if name is not None:
             return name
-        if code in self.user_defined:
-            return f"User-defined function {code}"
-        return f"Function {code}"
+        return self.texts["user_function" if code in self.user_defined else "other_function"].format(code=code)
 
     def exception_name(self, code: int | None) -> str:
         if code is None:
-            return "Missing exception code"
-        return self.exceptions.get(code, f"Unknown exception {code}")
+            return self.texts["missing_exception"]
+        return self.exceptions.get(code) or self.texts["undefined_exception"].format(code=code)
 
 
 def load_spec() -> Spec:

@@ -15,18 +15,23 @@ local OBJECTS = DATA.device_id_objects or {}
 local LIMITS = DATA.limits or {}
 local NOT_BROADCAST = DATA.not_broadcast or {}
 
+-- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()): its parameters by
+-- name, as Python fills them in.
+local TEXTS = RULES.texts
+local function say(key, values)
+  local entry = TEXTS[key]
+  local params, args = entry.params, {}
+  for index = 1, #params do args[index] = values[params[index]] end
+  return format(entry.format, unpack(args, 1, #params))
+end
+
 local function function_name(code)
-  local name = FUNCTIONS[code]
-  if name then return name end
-  if (DATA.user_defined or {})[code] then
-    return format("User-defined function %d", code)
-  end
-  return format("Function %d", code)
+  return FUNCTIONS[code] or say(DATA.user_defined[code] and "user_function" or "other_function", { code = code })
 end
 
 local function exception_name(code)
-  if code == nil then return "Missing exception code" end
-  return EXCEPTIONS[code] or format("Unknown exception %d", code)
+  if code == nil then return say("missing_exception", {}) end
+  return EXCEPTIONS[code] or say("undefined_exception", { code = code })
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -43,6 +48,7 @@ end
 -- table, how many, the first address. A value is read from the bytes each time it is needed (the first
 -- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
 -- the tvb), so a record keeps one small table for a read of 125 registers, not 125.
+
 -- A run is done with its frame's byte table (the display reads the tvb): its indices become the
 -- frame's own (shift: the frame's first byte in the table it was read from).
 local function release_run(run)
@@ -72,16 +78,6 @@ local function bit_at(run, b, index, shift)
 end
 
 local function ceil_bytes(bits) return floor((bits + 7) / 8) end
-
--- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()): its parameters by
--- name, as Python fills them in.
-local TEXTS = RULES.texts
-local function say(key, values)
-  local entry = TEXTS[key]
-  local params, args = entry.params, {}
-  for index = 1, #params do args[index] = values[params[index]] end
-  return format(entry.format, unpack(args, 1, #params))
-end
 
 -- Each parser gets the byte table, the first data byte and the data length. It returns the number of
 -- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
@@ -231,15 +227,12 @@ local function lifter(rule, limit, layout)
     end
   else add("local many = %s", quantity and field(quantity) or "nil") end
   add("f.start, f.quantity = first, many")
-  for _, check in ipairs(rule.checks) do
-    local range = RULES.limits[check.limit or limit]
-    if check.test == "above" then
-      add("if %s > %d then warn(f, say(\"above\", { what = %q, value = %s, high = %d })) end", field(check.field),
-        range[2], check.what, field(check.field), range[2])
-    else
-      add("if %s < %d or %s > %d then warn(f, say(\"range\", { what = %q, value = %s, low = %d, high = %d })) end",
-        field(check.field), range[1], field(check.field), range[2], check.what, field(check.field), range[1], range[2])
-    end
+  for _, check in ipairs(rule.checks) do -- (test "above": the high bound only; its text names no low one)
+    local value, low, high = field(check.field), unpack(RULES.limits[check.limit or limit])
+    local outside = check.test == "above" and format("%s > %d", value, high)
+      or format("%s < %d or %s > %d", value, low, value, high)
+    add("if %s then warn(f, say(%q, { what = %q, value = %s, low = %d, high = %d })) end", outside, check.test,
+      check.what, value, low, high)
   end
   if rule.span then
     add("if first + many > 65536 then warn(f, say(\"span\", { first = first, last = first + many - 1 })) end")
@@ -314,7 +307,7 @@ local SPECIAL = {
         local byte = b[k]
         chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
       end
-      object.name = OBJECTS[object.id] or format("Object %d", object.id)
+      object.name = OBJECTS[object.id] or say("other_object", { id = object.id })
       object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil
     end
     f.objects = objects
@@ -323,7 +316,7 @@ local SPECIAL = {
     -- the additional data as text when every byte is printable ASCII (a version string), as Python
     local fields, d = f.fields, f.data_at
     local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
-    if run ~= 0 and run ~= 255 then warn(f, say("run_indicator", { value = run })) end
+    if DATA.names.run_indicator[run] == nil then warn(f, say("run_indicator", { value = run })) end -- (OFF, ON)
     for k = 0, length - 1 do
       local byte = b[fields.additional_data_at + k]
       if byte < 32 or byte > 126 then chars = nil break end

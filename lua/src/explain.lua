@@ -19,12 +19,10 @@ end
 local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
-  if profile.functions ~= nil and not profile.functions[code] then
-    warn(f, say("not_supported", { name = profile_function_name(profile, code), ["function"] = code,
-      device = profile.device }))
-  elseif profile.inner_only and profile.inner_only[code] then
-    warn(f, say("inner_only", { name = profile_function_name(profile, code), ["function"] = code,
-      device = profile.device }))
+  local refused = profile.functions ~= nil and not profile.functions[code] and "not_supported"
+    or profile.inner_only and profile.inner_only[code] and "inner_only"
+  if refused then
+    warn(f, say(refused, { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
   end
   local limits = (profile.limits or NO_INTERPRETATION)[code]
   if limits ~= nil then
@@ -63,9 +61,7 @@ local function pick_causes(request, profile, causes)
     if cause.when ~= nil and holds(cause.when, request, profile) then hits[#hits + 1] = cause end
     if cause.when == nil then plain[#plain + 1] = cause end
   end
-  if #hits > 0 then return hits end
-  if #plain > 0 then return plain end
-  return causes
+  return #hits > 0 and hits or #plain > 0 and plain or causes
 end
 
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
@@ -115,7 +111,7 @@ local function explain_exception(st, f, device)
   local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
-    for _, cause in ipairs(pick_causes(f.request, profile, causes)) do texts[#texts + 1] = cause.text end
+    for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
       causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
