@@ -179,6 +179,17 @@ local DATA = {
       ["ABCD"] = true,
       ["CDAB"] = true,
     },
+    ["order_list"] = { "ABCD", "CDAB" },
+    ["default_types"] = { "uint16", "int16" },
+    ["signed_types"] = {
+      ["int16"] = true,
+      ["int32"] = true,
+    },
+    ["pairs"] = {
+      ["enum"] = { 0, 65535 },
+      ["bits"] = { 0, 15 },
+    },
+    ["separators"] = { ",", ";", "\009" },
     ["access"] = {
       ["R"] = true,
       ["RW"] = true,
@@ -3028,10 +3039,12 @@ end
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`. The format's
 -- facts and its error messages are maps.py's (COLUMNS, REQUIRED, TYPES, ORDERS, ACCESS, MESSAGES,
--- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX), written into the generated data.
+-- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS), written into the
+-- generated data.
 local FORMAT = DATA.map_format
 local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
   FORMAT.orders, FORMAT.access
+local PAIRS, SEPARATORS = FORMAT.pairs, FORMAT.separators
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
 local KNOWN_COLUMN = FORMAT.columns -- (a set)
 local unpack = table.unpack or unpack
@@ -3156,19 +3169,19 @@ local function map_row(values)
   local access = strip(values.access or ""):upper()
   if access ~= "" and not ACCESS[access] then return nil, wrong("access", { text = access }) end
   local problem
-  row.enum, problem = map_pairs(values.enum or "", "enum", 0, 0xFFFF)
+  row.enum, problem = map_pairs(values.enum or "", "enum", PAIRS.enum[1], PAIRS.enum[2])
   if problem then return nil, problem end
-  row.bits, problem = map_pairs(values.bits or "", "bits", 0, 15)
+  row.bits, problem = map_pairs(values.bits or "", "bits", PAIRS.bits[1], PAIRS.bits[2])
   if problem then return nil, problem end
   local signed = strip(values.signed or "")
   if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, wrong("signed", { text = signed }) end
   local kind = strip(values.type or ""):lower()
-  if kind == "" then kind = signed == "1" and "int16" or "uint16" end
+  if kind == "" then kind = FORMAT.default_types[signed == "1" and 2 or 1] end
   local words = TYPES[kind]
   if words == nil then return nil, wrong("type", { text = kind }) end
-  row.signed = (signed == "1" or kind == "int16" or kind == "int32") or nil
+  row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
   local order = strip(values.order or ""):upper()
-  if order == "" then order = "ABCD" end
+  if order == "" then order = FORMAT.order_list[1] end
   if not ORDERS[order] then return nil, wrong("order", { text = order }) end
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
@@ -3182,10 +3195,10 @@ local function map_row(values)
   return address, row
 end
 
--- The separator of a map from its header line: the one of `,`, `;`, tab that splits it most (maps.py).
+-- The separator of a map from its header line: the one of SEPARATORS that splits it most (maps.py).
 local function sniff(header)
-  local best, most = ",", 0
-  for _, separator in ipairs({ ",", ";", "\t" }) do
+  local best, most = SEPARATORS[1], 0
+  for _, separator in ipairs(SEPARATORS) do
     local count = select(2, header:gsub(separator, ""))
     if count > most then best, most = separator, count end
   end

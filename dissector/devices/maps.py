@@ -44,6 +44,11 @@ COLUMNS = (
 )
 TYPES = {"uint16": 1, "int16": 1, "uint32": 2, "int32": 2, "float32": 2}  # registers each type spans
 ORDERS = ("ABCD", "CDAB")  # ABCD: the first register holds the high word (Modbus' big-endian); CDAB: swapped
+# (an empty order is the first; an empty type is the first, or the second when `signed` is 1)
+DEFAULT_TYPES = ("uint16", "int16")
+SIGNED_TYPES = frozenset(["int16", "int32"])
+PAIRS = {"enum": (0, 0xFFFF), "bits": (0, 15)}  # the numbers an enum or bits entry may label
+SEPARATORS = (",", ";", "\t")  # a map's separator: the one of these that splits its header most
 REQUIRED = ("address", "code")
 ACCESS = frozenset(["R", "W", "RW"])
 MEMO_LIMIT = 4096
@@ -175,18 +180,18 @@ def _row(values: dict[str, str]) -> RegisterDef:
     access = values.get("access", "").strip().upper() or None
     if access is not None and access not in ACCESS:
         raise ValueError(_say("access", text=access))
-    enum = _pairs(values.get("enum", ""), "enum", 0, 0xFFFF)
-    bits = _pairs(values.get("bits", ""), "bits", 0, 15)
+    enum = _pairs(values.get("enum", ""), "enum", *PAIRS["enum"])
+    bits = _pairs(values.get("bits", ""), "bits", *PAIRS["bits"])
     signed_text = values.get("signed", "").strip()
     if signed_text not in ("", "0", "1"):
         raise ValueError(_say("signed", text=signed_text))
     signed = signed_text == "1"
-    kind = values.get("type", "").strip().lower() or ("int16" if signed else "uint16")
+    kind = values.get("type", "").strip().lower() or DEFAULT_TYPES[signed]
     if kind not in TYPES:
         raise ValueError(_say("type", text=kind))
-    signed = signed or kind in ("int16", "int32")
+    signed = signed or kind in SIGNED_TYPES
     words = TYPES[kind]
-    order = values.get("order", "").strip().upper() or "ABCD"
+    order = values.get("order", "").strip().upper() or ORDERS[0]
     if order not in ORDERS:
         raise ValueError(_say("order", text=order))
     if words == 2 and (enum or bits):
@@ -218,10 +223,10 @@ _DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
 
 
 def _sniff(header: str) -> str:
-    """The separator of a map from its header line: the one of `,`, `;`, tab that splits it most."""
-    counts = {separator: header.count(separator) for separator in (",", ";", "\t")}
+    """The separator of a map from its header line: the one of SEPARATORS that splits it most."""
+    counts = {separator: header.count(separator) for separator in SEPARATORS}
     best = max(counts, key=lambda separator: counts[separator])
-    return best if counts[best] else ","
+    return best if counts[best] else SEPARATORS[0]
 
 
 def parse_map(text: str, origin: str) -> RegisterMap:
