@@ -594,6 +594,384 @@ local DATA = {
     ["provisional"] = "[provisional]",
     ["provisional_line"] = "Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec semantics only, which its device may name otherwise)",
   },
+  ["fields"] = {
+    {
+      ["abbr"] = "vw3.item",
+      ["ftype"] = "uint32",
+      ["title"] = "Item",
+      ["help"] = "item number, 1-based, as vw3-decode counts them",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.kind",
+      ["ftype"] = "uint8",
+      ["title"] = "Kind",
+      ["help"] = "request, response, exception or noise",
+      ["base"] = "DEC",
+      ["values"] = "kind",
+    },
+    {
+      ["abbr"] = "vw3.offset",
+      ["ftype"] = "uint32",
+      ["title"] = "Stream offset",
+      ["help"] = "byte offset of the item in the input, as vw3-decode --json's offset",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.mode",
+      ["ftype"] = "string",
+      ["title"] = "Mode",
+      ["help"] = "rtu or ascii",
+    },
+    {
+      ["abbr"] = "vw3.slave",
+      ["ftype"] = "uint8",
+      ["title"] = "Slave",
+      ["help"] = "slave address (0: broadcast)",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.function",
+      ["ftype"] = "uint8",
+      ["title"] = "Function",
+      ["help"] = "function code",
+      ["base"] = "DEC",
+      ["values"] = "functions",
+    },
+    {
+      ["abbr"] = "vw3.function_name",
+      ["ftype"] = "string",
+      ["title"] = "Function name",
+      ["help"] = "function name",
+    },
+    {
+      ["abbr"] = "vw3.crc_ok",
+      ["ftype"] = "bool",
+      ["title"] = "CRC OK",
+      ["help"] = "the CRC/LRC checks",
+    },
+    {
+      ["abbr"] = "vw3.crc",
+      ["ftype"] = "uint16",
+      ["title"] = "CRC",
+      ["help"] = "received check value",
+      ["base"] = "HEX",
+    },
+    {
+      ["abbr"] = "vw3.crc_expected",
+      ["ftype"] = "uint16",
+      ["title"] = "Expected CRC",
+      ["help"] = "computed check value",
+      ["base"] = "HEX",
+    },
+    {
+      ["abbr"] = "vw3.broadcast",
+      ["ftype"] = "bool",
+      ["title"] = "Broadcast",
+      ["help"] = "a request to slave 0",
+    },
+    {
+      ["abbr"] = "vw3.start",
+      ["ftype"] = "uint16",
+      ["title"] = "Start address",
+      ["help"] = "first address",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.quantity",
+      ["ftype"] = "uint16",
+      ["title"] = "Quantity",
+      ["help"] = "count",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.subfunction",
+      ["ftype"] = "uint16",
+      ["title"] = "Sub-function",
+      ["help"] = "FC8 sub-function",
+      ["base"] = "DEC",
+      ["values"] = "diagnostics",
+    },
+    {
+      ["abbr"] = "vw3.subfunction_name",
+      ["ftype"] = "string",
+      ["title"] = "Sub-function name",
+      ["help"] = "FC8 sub-function name",
+    },
+    {
+      ["abbr"] = "vw3.exception_code",
+      ["ftype"] = "uint8",
+      ["title"] = "Exception code",
+      ["help"] = "exception code",
+      ["base"] = "DEC",
+      ["values"] = "exceptions",
+    },
+    {
+      ["abbr"] = "vw3.exception_name",
+      ["ftype"] = "string",
+      ["title"] = "Exception name",
+      ["help"] = "the spec's exception name",
+    },
+    {
+      ["abbr"] = "vw3.request_frame",
+      ["ftype"] = "framenum",
+      ["title"] = "Request in frame",
+      ["help"] = "the request a response answers",
+      ["base"] = "NONE",
+      ["values"] = "request",
+    },
+    {
+      ["abbr"] = "vw3.response_frame",
+      ["ftype"] = "framenum",
+      ["title"] = "Response in frame",
+      ["help"] = "the response that answered a request",
+      ["base"] = "NONE",
+      ["values"] = "response",
+    },
+    {
+      ["abbr"] = "vw3.response_time",
+      ["ftype"] = "relative_time",
+      ["title"] = "Time since request",
+      ["help"] = "seconds after the request",
+    },
+    {
+      ["abbr"] = "vw3.unanswered",
+      ["ftype"] = "bool",
+      ["title"] = "Unanswered",
+      ["help"] = "a request no response came to",
+    },
+    {
+      ["abbr"] = "vw3.noise.reason",
+      ["ftype"] = "string",
+      ["title"] = "Why noise",
+      ["help"] = "why noise is no frame",
+    },
+    {
+      ["abbr"] = "vw3.warning",
+      ["ftype"] = "string",
+      ["title"] = "Warning",
+      ["help"] = "warnings: outside the spec or the device profile",
+    },
+    {
+      ["abbr"] = "vw3.note",
+      ["ftype"] = "string",
+      ["title"] = "Note",
+      ["help"] = "notes on the frame",
+    },
+    {
+      ["abbr"] = "vw3.exception_meaning",
+      ["ftype"] = "string",
+      ["title"] = "Exception meaning on this device",
+      ["help"] = "what it means on the device",
+    },
+    {
+      ["abbr"] = "vw3.span_label",
+      ["ftype"] = "string",
+      ["title"] = "Addresses as shown",
+      ["help"] = "the addresses as shown (PLC style)",
+    },
+    {
+      ["abbr"] = "vw3.profile",
+      ["ftype"] = "string",
+      ["title"] = "Device profile",
+      ["help"] = "the device profile the frame is annotated with",
+    },
+    {
+      ["abbr"] = "vw3.profile_reason",
+      ["ftype"] = "string",
+      ["title"] = "Why this profile",
+      ["help"] = "profile auto: the evidence that gave the slave its device profile",
+    },
+    {
+      ["abbr"] = "vw3.provisional",
+      ["ftype"] = "bool",
+      ["title"] = "Provisional",
+      ["help"] = "read before profile auto chose the slave's device (one pass: live, stdin): values named with spec semantics only",
+      ["base"] = "NONE",
+    },
+    {
+      ["abbr"] = "vw3.profile_choice",
+      ["ftype"] = "string",
+      ["title"] = "Profile chosen",
+      ["help"] = "profile auto: why this frame decides the slave's profile",
+    },
+    {
+      ["abbr"] = "vw3.reg",
+      ["ftype"] = "none",
+      ["title"] = "Register",
+      ["help"] = "register values (presence)",
+    },
+    {
+      ["abbr"] = "vw3.bit",
+      ["ftype"] = "none",
+      ["title"] = "Bit",
+      ["help"] = "coils and inputs (presence)",
+    },
+    {
+      ["abbr"] = "vw3.bit.address",
+      ["ftype"] = "uint16",
+      ["title"] = "Address",
+      ["help"] = "coil or input address",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.bit.value",
+      ["ftype"] = "uint8",
+      ["title"] = "Value",
+      ["help"] = "coil or input value",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.object",
+      ["ftype"] = "none",
+      ["title"] = "Object",
+      ["help"] = "FC43 objects (presence)",
+    },
+    {
+      ["abbr"] = "vw3.object.id",
+      ["ftype"] = "uint8",
+      ["title"] = "Object id",
+      ["help"] = "FC43 object id",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.object.name",
+      ["ftype"] = "string",
+      ["title"] = "Name",
+      ["help"] = "FC43 object name",
+    },
+    {
+      ["abbr"] = "vw3.object.value",
+      ["ftype"] = "string",
+      ["title"] = "Value",
+      ["help"] = "FC43 object value",
+    },
+    {
+      ["abbr"] = "vw3.object.text",
+      ["ftype"] = "string",
+      ["title"] = "Meaning",
+      ["help"] = "the object value's meaning on the device",
+    },
+    {
+      ["abbr"] = "vw3.data",
+      ["ftype"] = "bytes",
+      ["title"] = "Data",
+      ["help"] = "noise: the bytes outside any frame",
+    },
+    {
+      ["abbr"] = "vw3.byte_count",
+      ["ftype"] = "uint8",
+      ["title"] = "Byte count",
+      ["help"] = "the PDU's byte count",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.server_id",
+      ["ftype"] = "uint8",
+      ["title"] = "Server id",
+      ["help"] = "FC17 server id",
+      ["base"] = "DEC_HEX",
+    },
+    {
+      ["abbr"] = "vw3.run_indicator",
+      ["ftype"] = "uint8",
+      ["title"] = "Run indicator",
+      ["help"] = "FC17 run indicator",
+      ["base"] = "HEX",
+      ["values"] = "run_indicator",
+    },
+    {
+      ["abbr"] = "vw3.additional_data",
+      ["ftype"] = "string",
+      ["title"] = "Additional data",
+      ["help"] = "FC17 additional data, as text",
+    },
+    {
+      ["abbr"] = "vw3.additional_bytes",
+      ["ftype"] = "bytes",
+      ["title"] = "Additional data",
+      ["help"] = "FC17 additional data",
+    },
+    {
+      ["abbr"] = "vw3.continued_in",
+      ["ftype"] = "framenum",
+      ["title"] = "Continued in record",
+      ["help"] = "the later record that shows the frame these bytes begin",
+    },
+    {
+      ["abbr"] = "vw3.reg.address",
+      ["ftype"] = "uint16",
+      ["title"] = "Address",
+      ["help"] = "register address on the wire",
+      ["base"] = "DEC",
+    },
+    {
+      ["abbr"] = "vw3.reg.value",
+      ["ftype"] = "uint16",
+      ["title"] = "Value",
+      ["help"] = "register value",
+      ["base"] = "DEC_HEX",
+    },
+    {
+      ["abbr"] = "vw3.reg.code",
+      ["ftype"] = "string",
+      ["title"] = "Code",
+      ["help"] = "parameter code",
+    },
+    {
+      ["abbr"] = "vw3.reg.name",
+      ["ftype"] = "string",
+      ["title"] = "Name",
+      ["help"] = "parameter name",
+    },
+    {
+      ["abbr"] = "vw3.reg.unit",
+      ["ftype"] = "string",
+      ["title"] = "Unit",
+      ["help"] = "unit",
+    },
+    {
+      ["abbr"] = "vw3.reg.scaled",
+      ["ftype"] = "double",
+      ["title"] = "Scaled value",
+      ["help"] = "scaled value",
+    },
+    {
+      ["abbr"] = "vw3.reg.text",
+      ["ftype"] = "string",
+      ["title"] = "Meaning",
+      ["help"] = "the value's text",
+    },
+    {
+      ["abbr"] = "vw3.reg.status",
+      ["ftype"] = "string",
+      ["title"] = "Status",
+      ["help"] = "ok, protected, non-existent or ambiguous",
+    },
+    {
+      ["abbr"] = "vw3.reg.source",
+      ["ftype"] = "string",
+      ["title"] = "Source",
+      ["help"] = "where the map row comes from",
+    },
+    {
+      ["abbr"] = "vw3.reg.label",
+      ["ftype"] = "string",
+      ["title"] = "Address as shown",
+      ["help"] = "the address as shown (PLC style)",
+    },
+    {
+      ["abbr"] = "vw3.reg.words",
+      ["ftype"] = "uint8",
+      ["title"] = "Words of a 32-bit value",
+      ["help"] = "words of a 32-bit value",
+      ["base"] = "DEC",
+      ["values"] = {
+        [0] = "second word (the value is read on the register before)",
+        [2] = "this register and the next",
+      },
+    },
+  },
   ["profiles"] = {
     ["atv71"] = {
       ["name"] = "atv71",
@@ -5306,8 +5684,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
 local NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST = NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST
-local RESPONSE, base, configure, expert, frametype, lane = RESPONSE, base, configure, expert, frametype, lane
-local new_state, vw3 = new_state, vw3
+local RESPONSE, base, configure, expert, frametype, ipairs = RESPONSE, base, configure, expert, frametype, ipairs
+local lane, new_state, string, type, vw3 = lane, new_state, string, type, vw3
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
@@ -5318,70 +5696,25 @@ local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
 local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
 
-local pf = {
-  item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
-  kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
-  mode = ProtoField.string("vw3.mode", "Mode"),
-  slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
-  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, FUNCTIONS),
-  crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
-  crc_expected = ProtoField.uint16("vw3.crc_expected", "Expected CRC", base.HEX),
-  crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
-  broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
-  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, EXCEPTIONS),
-  exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
-  exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
-  function_name = ProtoField.string("vw3.function_name", "Function name"),
-  subfunction_name = ProtoField.string("vw3.subfunction_name", "Sub-function name"),
-  span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
-  start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
-  quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
-  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, DIAGNOSTICS),
-  reg = ProtoField.none("vw3.reg", "Register"),
-  reg_address = ProtoField.uint16("vw3.reg.address", "Address", base.DEC),
-  reg_label = ProtoField.string("vw3.reg.label", "Address as shown"),
-  reg_value = ProtoField.uint16("vw3.reg.value", "Value", base.DEC_HEX),
-  reg_code = ProtoField.string("vw3.reg.code", "Code"),
-  reg_name = ProtoField.string("vw3.reg.name", "Name"),
-  reg_unit = ProtoField.string("vw3.reg.unit", "Unit"),
-  reg_scaled = ProtoField.double("vw3.reg.scaled", "Scaled value"),
-  reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
-  reg_status = ProtoField.string("vw3.reg.status", "Status", base.ASCII, "ok, protected, non-existent or ambiguous"),
-  reg_source = ProtoField.string("vw3.reg.source", "Source"),
-  reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
-    { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
-  profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
-  profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
-    "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
-  provisional = ProtoField.bool("vw3.provisional", "Provisional", base.NONE, nil, nil,
-    "Profile auto had not chosen this slave's device when the frame was read (one pass): its values are named with spec semantics only"),
-  profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
-    "Profile auto: why this frame decides the slave's profile"),
-  bit = ProtoField.none("vw3.bit", "Bit"),
-  bit_address = ProtoField.uint16("vw3.bit.address", "Address", base.DEC),
-  bit_value = ProtoField.uint8("vw3.bit.value", "Value", base.DEC),
-  object = ProtoField.none("vw3.object", "Object"),
-  object_id = ProtoField.uint8("vw3.object.id", "Object id", base.DEC),
-  object_name = ProtoField.string("vw3.object.name", "Name"),
-  object_value = ProtoField.string("vw3.object.value", "Value"),
-  object_text = ProtoField.string("vw3.object.text", "Meaning"),
-  request_frame = ProtoField.framenum("vw3.request_frame", "Request in frame", base.NONE, frametype and frametype.REQUEST),
-  response_frame = ProtoField.framenum("vw3.response_frame", "Response in frame", base.NONE, frametype and frametype.RESPONSE),
-  response_time = ProtoField.relative_time("vw3.response_time", "Time since request"),
-  offset = ProtoField.uint32("vw3.offset", "Stream offset", base.DEC, nil, nil,
-    "Where the item starts in the byte stream, as vw3-decode --json's offset"),
-  continued_in = ProtoField.framenum("vw3.continued_in", "Continued in record"),
-  unanswered = ProtoField.bool("vw3.unanswered", "Unanswered"),
-  noise_reason = ProtoField.string("vw3.noise.reason", "Why noise"),
-  warning = ProtoField.string("vw3.warning", "Warning"),
-  note = ProtoField.string("vw3.note", "Note"),
-  data = ProtoField.bytes("vw3.data", "Data"),
-  byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
-  server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
-  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, DATA.names.run_indicator),
-  additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
-  additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
-}
+-- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
+local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
+  run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
+  response = frametype and frametype.RESPONSE }
+
+-- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
+-- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
+local pf = {}
+for _, f in ipairs(DATA.fields) do
+  local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
+  local values = f.values
+  if type(values) == "string" then values = VALUES[values] end
+  if f.ftype == "string" or f.ftype == "bytes" or f.ftype == "none" or f.ftype == "double"
+      or f.ftype == "relative_time" then
+    pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
+  else
+    pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
+  end
+end
 
 local ex = {
   crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),

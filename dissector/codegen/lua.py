@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from dissector.codegen import fields_lua
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
@@ -133,6 +134,7 @@ def plugin_data() -> dict[str, Any]:
         "protocol": protocol_tables(),
         # The display's texts: a provisional frame's mark in the summary and its line in -V.
         "render": {"provisional": summary.PROVISIONAL, "provisional_line": detail.PROVISIONAL_LINE.strip()},
+        "fields": fields_lua.plugin_fields(),  # the ProtoFields, from data/fields.toml (codegen/fields_lua.py)
     }
     data.update(_profile_data())
     return data

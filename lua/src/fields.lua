@@ -13,70 +13,25 @@ local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
 local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
 
-local pf = {
-  item = ProtoField.uint32("vw3.item", "Item", base.DEC, nil, nil, "Item number as vw3-decode counts them"),
-  kind = ProtoField.uint8("vw3.kind", "Kind", base.DEC, KIND_NAMES),
-  mode = ProtoField.string("vw3.mode", "Mode"),
-  slave = ProtoField.uint8("vw3.slave", "Slave", base.DEC),
-  ["function"] = ProtoField.uint8("vw3.function", "Function", base.DEC, FUNCTIONS),
-  crc = ProtoField.uint16("vw3.crc", "CRC", base.HEX),
-  crc_expected = ProtoField.uint16("vw3.crc_expected", "Expected CRC", base.HEX),
-  crc_ok = ProtoField.bool("vw3.crc_ok", "CRC OK"),
-  broadcast = ProtoField.bool("vw3.broadcast", "Broadcast"),
-  exception_code = ProtoField.uint8("vw3.exception_code", "Exception code", base.DEC, EXCEPTIONS),
-  exception_name = ProtoField.string("vw3.exception_name", "Exception name"),
-  exception_meaning = ProtoField.string("vw3.exception_meaning", "Exception meaning on this device"),
-  function_name = ProtoField.string("vw3.function_name", "Function name"),
-  subfunction_name = ProtoField.string("vw3.subfunction_name", "Sub-function name"),
-  span_label = ProtoField.string("vw3.span_label", "Addresses as shown"),
-  start = ProtoField.uint16("vw3.start", "Start address", base.DEC),
-  quantity = ProtoField.uint16("vw3.quantity", "Quantity", base.DEC),
-  subfunction = ProtoField.uint16("vw3.subfunction", "Sub-function", base.DEC, DIAGNOSTICS),
-  reg = ProtoField.none("vw3.reg", "Register"),
-  reg_address = ProtoField.uint16("vw3.reg.address", "Address", base.DEC),
-  reg_label = ProtoField.string("vw3.reg.label", "Address as shown"),
-  reg_value = ProtoField.uint16("vw3.reg.value", "Value", base.DEC_HEX),
-  reg_code = ProtoField.string("vw3.reg.code", "Code"),
-  reg_name = ProtoField.string("vw3.reg.name", "Name"),
-  reg_unit = ProtoField.string("vw3.reg.unit", "Unit"),
-  reg_scaled = ProtoField.double("vw3.reg.scaled", "Scaled value"),
-  reg_text = ProtoField.string("vw3.reg.text", "Meaning"),
-  reg_status = ProtoField.string("vw3.reg.status", "Status", base.ASCII, "ok, protected, non-existent or ambiguous"),
-  reg_source = ProtoField.string("vw3.reg.source", "Source"),
-  reg_words = ProtoField.uint8("vw3.reg.words", "Words of a 32-bit value", base.DEC,
-    { [0] = "second word (the value is read on the register before)", [2] = "this register and the next" }),
-  profile = ProtoField.string("vw3.profile", "Device profile", "The profile the frame is annotated with"),
-  profile_reason = ProtoField.string("vw3.profile_reason", "Why this profile",
-    "Profile auto: the evidence that gave the slave this device profile (vw3-decode --json profile_reason)"),
-  provisional = ProtoField.bool("vw3.provisional", "Provisional", base.NONE, nil, nil,
-    "Profile auto had not chosen this slave's device when the frame was read (one pass): its values are named with spec semantics only"),
-  profile_choice = ProtoField.string("vw3.profile_choice", "Profile chosen",
-    "Profile auto: why this frame decides the slave's profile"),
-  bit = ProtoField.none("vw3.bit", "Bit"),
-  bit_address = ProtoField.uint16("vw3.bit.address", "Address", base.DEC),
-  bit_value = ProtoField.uint8("vw3.bit.value", "Value", base.DEC),
-  object = ProtoField.none("vw3.object", "Object"),
-  object_id = ProtoField.uint8("vw3.object.id", "Object id", base.DEC),
-  object_name = ProtoField.string("vw3.object.name", "Name"),
-  object_value = ProtoField.string("vw3.object.value", "Value"),
-  object_text = ProtoField.string("vw3.object.text", "Meaning"),
-  request_frame = ProtoField.framenum("vw3.request_frame", "Request in frame", base.NONE, frametype and frametype.REQUEST),
-  response_frame = ProtoField.framenum("vw3.response_frame", "Response in frame", base.NONE, frametype and frametype.RESPONSE),
-  response_time = ProtoField.relative_time("vw3.response_time", "Time since request"),
-  offset = ProtoField.uint32("vw3.offset", "Stream offset", base.DEC, nil, nil,
-    "Where the item starts in the byte stream, as vw3-decode --json's offset"),
-  continued_in = ProtoField.framenum("vw3.continued_in", "Continued in record"),
-  unanswered = ProtoField.bool("vw3.unanswered", "Unanswered"),
-  noise_reason = ProtoField.string("vw3.noise.reason", "Why noise"),
-  warning = ProtoField.string("vw3.warning", "Warning"),
-  note = ProtoField.string("vw3.note", "Note"),
-  data = ProtoField.bytes("vw3.data", "Data"),
-  byte_count = ProtoField.uint8("vw3.byte_count", "Byte count", base.DEC),
-  server_id = ProtoField.uint8("vw3.server_id", "Server id", base.DEC_HEX),
-  run_indicator = ProtoField.uint8("vw3.run_indicator", "Run indicator", base.HEX, DATA.names.run_indicator),
-  additional_data = ProtoField.string("vw3.additional_data", "Additional data"),
-  additional_bytes = ProtoField.bytes("vw3.additional_bytes", "Additional data"),
-}
+-- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
+local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
+  run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
+  response = frametype and frametype.RESPONSE }
+
+-- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
+-- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
+local pf = {}
+for _, f in ipairs(DATA.fields) do
+  local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
+  local values = f.values
+  if type(values) == "string" then values = VALUES[values] end
+  if f.ftype == "string" or f.ftype == "bytes" or f.ftype == "none" or f.ftype == "double"
+      or f.ftype == "relative_time" then
+    pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
+  else
+    pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
+  end
+end
 
 local ex = {
   crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
