@@ -80,89 +80,109 @@ static PyObject *time_value(const Time *t) {
     return Py_BuildValue("(dO)", t->d, Py_None);
 }
 
-/* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report and the counts ---- */
+/* ---- dense tables: items in the order first made, in an array grown by half at a time, found through
+ * an index of `size` slots (a power of two, at most 3/4 used): 1 + an item's position, 0: empty. An
+ * item's key is its first `key` bytes (no padding in them). Open addressing of the items themselves took
+ * twice their room: 65,536 tallies of 24 bytes took 131,072 slots, 3 MB a kind. ------------------- */
+typedef struct {
+    size_t item, key, first;         /* the bytes of an item and of its key; the first allocation: 3 << k */
+    size_t (*hash)(const void *key); /* of a key, or of an item (its key comes first) */
+} DenseKind;
 
 typedef struct {
-    uint32_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order); 0: empty */
+    char *items;
+    uint32_t *index;
+    size_t size, count, cap, hole; /* hole: the empty slot where the last dense_find stopped */
+} Dense;
+
+/* The item of `key`, or NULL (d->hole: where it goes). */
+static inline void *dense_find(Dense *d, const DenseKind *kind, const void *key) {
+    if (!d->size) return NULL;
+    size_t slot = kind->hash(key) & (d->size - 1);
+    for (uint32_t at; (at = d->index[slot]) != 0; slot = (slot + 1) & (d->size - 1))
+        if (memcmp(d->items + (at - 1) * kind->item, key, kind->key) == 0) return d->items + (at - 1) * kind->item;
+    d->hole = slot;
+    return NULL;
+}
+
+/* A new item of `key` after dense_find missed it: zeroed, its key copied; NULL with an exception set (no
+ * memory). The array grows up to most + 1 items at first (0: no bound; more when the owner lets it). */
+static void *dense_add(Dense *d, const DenseKind *kind, const void *key, size_t most) {
+    if (d->count == d->cap) {
+        size_t cap = d->cap ? d->cap + d->cap / 2 : kind->first;
+        cap = most && d->cap <= most && cap > most + 1 ? most + 1 : cap;
+        char *items = PyMem_Realloc(d->items, cap * kind->item);
+        if (items == NULL) return PyErr_NoMemory();
+        d->items = items, d->cap = cap;
+    }
+    if (4 * (d->count + 1) > 3 * d->size) {
+        size_t size = d->size ? 2 * d->size : kind->first / 3 * 4;
+        uint32_t *index = PyMem_Calloc(size, sizeof *index);
+        if (index == NULL) return PyErr_NoMemory();
+        PyMem_Free(d->index);
+        d->index = index, d->size = size;
+        for (size_t k = 0, slot; k < d->count; index[slot] = (uint32_t)++k)
+            for (slot = kind->hash(d->items + k * kind->item) & (size - 1); index[slot]; slot = (slot + 1) & (size - 1)) {}
+        (void)dense_find(d, kind, key);
+    }
+    char *item = d->items + d->count * kind->item;
+    memset(item, 0, kind->item);
+    memcpy(item, key, kind->key);
+    d->index[d->hole] = (uint32_t)++d->count;
+    return item;
+}
+
+/* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report and the counts ---- */
+typedef struct {
+    uint64_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order) */
     long long key;
     double value; /* counts too: exact up to 2^53 */
 } Tally;
+
+static size_t tally_hash(const void *key) {
+    const Tally *t = key;
+    return (size_t)mix(t->tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)t->key);
+}
+
+static const DenseKind TALLY_KIND = {sizeof(Tally), offsetof(Tally, value), 768, tally_hash};
 
 /* A kind's histograms together hold at most `limit` entries (stats_store.MAX_TALLY; 0: no limit): past
  * it, every key of the kind is rounded down to a multiple of 2^shift, shift growing by one until they
  * fit (stats_store.Coarse, the Python stages' twin). The result depends on the values only, not on
  * their order: the smallest shift at which they all fit. */
 typedef struct {
-    Tally *slots;    /* the entries in the order first seen, `cap` allocated (a dense array: 65,536 entries of */
-    uint32_t *index; /* 24 bytes took 131,072 slots, 3 MB a kind), found through `size` indexes: 1 + a */
-    size_t size, count, cap; /* position, 0: empty (a power of two, at most 3/4 used) */
+    Dense d; /* of Tally */
     size_t limit;
     int shift;
 } Tallies;
 
-static inline size_t tally_slot(uint32_t tag, long long key, size_t size) {
-    return (size_t)mix((uint64_t)tag * 0x9E3779B97F4A7C15ULL ^ (uint64_t)key) & (size - 1);
-}
-
-/* The index of the entries, in `size` slots (0: as it is, emptied). */
-static int tally_index(Tallies *t, size_t size) {
-    uint32_t *index = PyMem_Calloc(size ? size : t->size, sizeof *index);
-    if (index == NULL) {
-        PyErr_NoMemory();
-        return -1;
-    }
-    PyMem_Free(t->index);
-    t->index = index;
-    t->size = size ? size : t->size;
-    for (size_t k = 0; k < t->count; k++) {
-        size_t slot = tally_slot(t->slots[k].tag, t->slots[k].key, t->size);
-        while (index[slot]) slot = (slot + 1) & (t->size - 1);
-        index[slot] = (uint32_t)k + 1;
-    }
-    return 0;
-}
-
-static double *tally(Tallies *t, uint32_t tag, long long key) {
-    if (4 * (t->count + 1) > 3 * t->size && tally_index(t, t->size ? 2 * t->size : 1024) < 0) return NULL;
-    size_t slot = tally_slot(tag, key, t->size);
-    for (uint32_t at; (at = t->index[slot]) != 0; slot = (slot + 1) & (t->size - 1))
-        if (t->slots[at - 1].tag == tag && t->slots[at - 1].key == key) return &t->slots[at - 1].value;
-    if (t->count == t->cap) { /* half as many again, first up to the kind's limit + 1 (it coarsens then, */
-        size_t cap = t->cap ? t->cap + t->cap / 2 : 768; /* unless a shift of 62 does not fit: more owners) */
-        cap = t->limit && t->cap <= t->limit && cap > t->limit + 1 ? t->limit + 1 : cap;
-        Tally *slots = PyMem_Realloc(t->slots, cap * sizeof *slots);
-        if (slots == NULL) return (double *)PyErr_NoMemory();
-        t->slots = slots, t->cap = cap;
-    }
-    Tally *entry = &t->slots[t->count];
-    *entry = (Tally){tag, key, 0.0};
-    t->index[slot] = (uint32_t)++t->count;
-    return &entry->value;
+static double *tally(Tallies *t, uint64_t tag, long long key) {
+    Tally probe = {tag, key, 0.0}, *entry = dense_find(&t->d, &TALLY_KIND, &probe);
+    if (entry == NULL) entry = dense_add(&t->d, &TALLY_KIND, &probe, t->limit); /* up to the limit + 1: it */
+    return entry != NULL ? &entry->value : NULL; /* coarsens then, unless a shift of 62 does not fit */
 }
 
 /* One step coarser: every key rounded down to a multiple of 2^(shift + 1), equal keys merged (in place:
- * the k-th entry goes to the k-th position or before). */
-static int tally_coarsen(Tallies *t) {
-    size_t n = t->count;
-    t->count = 0;
+ * the k-th entry goes to the k-th position or before; fewer: no growth). */
+static void tally_coarsen(Tallies *t) {
+    size_t n = t->d.count;
+    t->d.count = 0;
     t->shift++;
-    if (tally_index(t, 0) < 0) return -1;
+    memset(t->d.index, 0, t->d.size * sizeof *t->d.index);
     long long mask = -(1LL << t->shift);
     for (size_t k = 0; k < n; k++) {
-        Tally old = t->slots[k];
-        *tally(t, old.tag, old.key & mask) += old.value; /* fewer: no growth */
+        Tally old = ((Tally *)t->d.items)[k];
+        *tally(t, old.tag, old.key & mask) += old.value;
     }
-    return 0;
 }
 
 /* t: the TALLIES tables, one a kind (the small ones stay in cache). */
 static int tally_add(Tallies *t, int kind, long long owner, long long key, double amount) {
     Tallies *table = &t[kind];
-    double *value = tally(table, (uint32_t)(kind + 1) << 24 | (uint32_t)owner, key & -(1LL << table->shift));
+    double *value = tally(table, (uint64_t)(kind + 1) << 24 | (uint32_t)owner, key & -(1LL << table->shift));
     if (value == NULL) return -1;
     *value += amount;
-    while (table->limit && table->count > table->limit && table->shift < TALLY_MAX_SHIFT)
-        if (tally_coarsen(table) < 0) return -1;
+    while (table->limit && table->d.count > table->limit && table->shift < TALLY_MAX_SHIFT) tally_coarsen(table);
     return 0;
 }
 
@@ -173,7 +193,7 @@ typedef struct {
 } Quantile; /* bustiming.Quantiles: its buckets are tallies */
 
 typedef struct {
-    int active;
+    int active, slave;
     Time start, end;
     unsigned long long requests, first_frame, last_frame;
     long long offset;
@@ -191,8 +211,7 @@ typedef struct {
     Quantile gaps, turnaround, responses[256];
     unsigned long long histogram[GAP_BINS], below_t35, close[256];
     Run runs[256];
-    Run *outages; /* closed runs of two requests or more, and their slaves */
-    int *outage_slaves;
+    Run *outages; /* closed runs of two requests or more */
     size_t outage_count, outage_cap;
     Time first_seen, last_seen; /* StatsCollector.first_time, last_time */
 } Bus;
@@ -239,17 +258,9 @@ static int close_run(Bus *b, int slave) {
             PyErr_NoMemory();
             return -1;
         }
-        b->outages = outages;
-        int *slaves = PyMem_Realloc(b->outage_slaves, cap * sizeof *slaves);
-        if (slaves == NULL) {
-            PyErr_NoMemory();
-            return -1;
-        }
-        b->outage_slaves = slaves;
-        b->outage_cap = cap;
+        b->outages = outages, b->outage_cap = cap;
     }
-    b->outages[b->outage_count] = *run;
-    b->outage_slaves[b->outage_count++] = slave;
+    b->outages[b->outage_count++] = *run;
     return 0;
 }
 
@@ -295,7 +306,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
         Run *run = &b->runs[slave];
         if (unanswered) {
             if (!run->active) {
-                Run fresh = {1, *t, *t, 1, number, number, offset};
+                Run fresh = {1, slave, *t, *t, 1, number, number, offset};
                 *run = fresh;
             } else {
                 run->end = *t;

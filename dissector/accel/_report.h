@@ -491,7 +491,7 @@ static PyObject *time_bins(const Tally *t, size_t n, int bins) {
 
 /* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in 1e-4 s steps), exactly: None where a
  * variance's sum is past what a double holds exactly (the Python stages then work it out). */
-static PyObject *poll_timing(const Tally *t, size_t n) {
+static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
     double total = 0, seen = 0;
     for (size_t k = 0; k < n; k++) total += t[k].value;
     long long median = t[n - 1].key, skipped = 0, deviation = 0;
@@ -520,21 +520,5 @@ static PyObject *poll_timing(const Tally *t, size_t n) {
 }
 
 static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
-    const Tallies *table = &st->tallies[TALLY_INTERVALS];
-    Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
-    PyObject *timings = all != NULL ? PyDict_New() : NULL;
-    size_t n = 0;
-    for (size_t k = 0; timings != NULL && k < table->count; k++) all[n++] = table->slots[k];
-    qsort(all, n, sizeof *all, tally_order);
-    for (size_t first = 0, end; timings != NULL && first < n; first = end) {
-        double total = 0;
-        for (end = first; end < n && all[end].tag == all[first].tag; end++) total += all[end].value;
-        if (total == 0) continue;
-        PyObject *owner = PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), *row = poll_timing(all + first, end - first);
-        if (owner == NULL || row == NULL || PyDict_SetItem(timings, owner, row) < 0) Py_CLEAR(timings);
-        Py_XDECREF(owner);
-        Py_XDECREF(row);
-    }
-    PyMem_Free(all);
-    return all == NULL ? PyErr_NoMemory() : timings;
+    return tally_groups(&st->tallies[TALLY_INTERVALS], ~0u, poll_timing, 0);
 }

@@ -17,7 +17,7 @@
 #include "_bus.h" /* the time-dependent counts: bus timing, response times, poll intervals */
 
 typedef struct {
-    uint32_t key; /* 1 << 24 | slave << 16 | address; 0: empty */
+    uint32_t key; /* 1 << 24 | slave << 16 | address */
     uint32_t reads, unreadable, writes, refused, changes;
     uint16_t last;
     uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
@@ -28,88 +28,64 @@ typedef struct {
     PyObject *status;     /* owned: the last state is this read status (`protected`...), not a value; NULL: a value */
 } Param;
 
+/* A parameter's hash: neighbouring addresses of a slave in neighbouring slots (a read's registers touch a
+ * few cache lines, not one each). */
+static size_t param_hash(const void *key) {
+    uint32_t k = *(const uint32_t *)key;
+    return (size_t)(mix(k >> 4) + (k & 15));
+}
+
+/* (67,384 parameters of the max-size mix take 4.9 MB; open addressing of the Params took 9.4.) */
+static const DenseKind PARAM_KIND = {sizeof(Param), sizeof(uint32_t), 3072, param_hash};
+
 typedef struct {
-    uint64_t hash; /* 0: empty */
-    uint32_t fields[6];
-    uint8_t size; /* fields used: 2, 3, 4 or 6, as pollcycle.request_key's tuple */
+    uint32_t fields[6], size; /* pollcycle.request_key's tuple: 2, 3, 4 or 6 fields, the others 0 */
+} PollKey;
+
+typedef struct {
+    PollKey key;
     unsigned long long first, count, failed;
-    size_t order; /* keys in the order first seen, as PollCycle's dict keeps them */
-    Time last;    /* the last occurrence's time: intervals are tallies (TALLY_INTERVALS, owner order) */
+    Time last; /* the last occurrence's time: intervals are tallies (TALLY_INTERVALS, owner: the poll's position) */
 } Poll;
+
+static size_t poll_hash(const void *key) {
+    const PollKey *k = key;
+    uint64_t h = k->size;
+    for (uint32_t j = 0; j < k->size; j++) h = mix(h * 0x100000001b3ULL ^ k->fields[j]);
+    return (size_t)h;
+}
+
+static const DenseKind POLL_KIND = {sizeof(Poll), sizeof(PollKey), 768, poll_hash};
 
 typedef struct {
     PyObject_HEAD
-    Param *params;      /* in the order first seen, param_cap allocated (a dense array: 67,384 parameters of
-                         * the max-size mix take 4.9 MB, their 131,072 slots of open addressing took 9.4) */
-    uint32_t *slots;    /* 1 + a key's index in params, 0: empty; param_slots of them, a power of two, */
-    size_t param_slots, param_count, param_cap; /* at most 3/4 used */
-    Poll *polls;
-    size_t poll_slots, poll_count;
+    Dense params;                 /* of Param, in the order first seen */
+    Dense polls;                  /* of Poll, in the order first seen, as PollCycle's dict keeps them */
     size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
-    Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals */
+    Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals, counts */
     Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
     PyObject *report;             /* a Report (_report.h) fed what is counted here too, or NULL */
 } Stats;
+
+#define PARAMS(st) ((Param *)(st)->params.items)
 
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
                               const Words *writes, const Words *reads, unsigned long long number);
 
 static PyTypeObject StatsType;
 
-/* A parameter's first slot: neighbouring addresses of a slave in neighbouring slots (a read's registers
- * touch a few cache lines, not one each). */
-static inline size_t param_slot(uint32_t key, size_t slots) {
-    return (size_t)(mix(key >> 4) + (key & 15)) & (slots - 1);
-}
-
-static int grow_params(Stats *st) {
-    size_t slots = st->param_slots ? 2 * st->param_slots : 4096;
-    uint32_t *table = PyMem_Calloc(slots, sizeof *table);
-    if (table == NULL) {
-        PyErr_NoMemory();
-        return -1;
-    }
-    for (size_t k = 0; k < st->param_count; k++) {
-        size_t slot = param_slot(st->params[k].key, slots);
-        while (table[slot]) slot = (slot + 1) & (slots - 1);
-        table[slot] = (uint32_t)k + 1;
-    }
-    PyMem_Free(st->slots);
-    st->slots = table;
-    st->param_slots = slots;
-    return 0;
-}
-
 /* The parameter of (slave, address), made on first sight; *created says so. NULL with no exception set:
- * a new parameter past max_params (a flood over every address of every slave), not kept. */
+ * a new parameter past max_params (a flood over every address of every slave), not kept. (A Param
+ * pointer is good until the next param_get.) */
 static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
-    if (4 * (st->param_count + 1) > 3 * st->param_slots && st->param_count < st->max_params && grow_params(st) < 0)
-        return NULL;
     uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
-    size_t slot = param_slot(key, st->param_slots);
-    for (uint32_t at; (at = st->slots[slot]) != 0; slot = (slot + 1) & (st->param_slots - 1))
-        if (st->params[at - 1].key == key) {
-            *created = 0;
-            return &st->params[at - 1];
-        }
-    if (st->param_count >= st->max_params) {
-        st->dropped++;
-        return NULL;
-    }
-    if (st->param_count == st->param_cap) { /* (a Param pointer is good until the next param_get) */
-        size_t cap = st->param_cap ? st->param_cap + st->param_cap / 2 : 3072;
-        Param *params = PyMem_Realloc(st->params, cap * sizeof *params);
-        if (params == NULL) return (Param *)PyErr_NoMemory();
-        st->params = params, st->param_cap = cap;
-    }
-    Param *p = &st->params[st->param_count];
-    *p = (Param){.key = key};
-    st->slots[slot] = (uint32_t)++st->param_count;
-    *created = 1;
+    Param *p = dense_find(&st->params, &PARAM_KIND, &key);
+    if ((*created = p == NULL) && st->params.count >= st->max_params) st->dropped++;
+    else if (p == NULL) p = dense_add(&st->params, &PARAM_KIND, &key, 0);
     return p;
 }
 
@@ -151,16 +127,22 @@ static inline int param_status(Param *p, PyObject *status) {
     return changed;
 }
 
+/* namer(address, value): the (text, code) a slave's device gives a register, a new reference; NULL with an
+ * exception set. */
+static PyObject *named(PyObject *namer, unsigned address, unsigned value) {
+    PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
+    if (answer != NULL && (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2)) {
+        Py_CLEAR(answer);
+        PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
+    }
+    return answer;
+}
+
 /* The parameter's code as `namer` (the slave's device) gives it for (address, value), remembered with the
  * namer that gave it: 0, or -1 with an exception set. */
 static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value) {
-    PyObject *answer = PyObject_CallFunction(namer, "II", address, value);
+    PyObject *answer = named(namer, address, value);
     if (answer == NULL) return -1;
-    if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
-        Py_DECREF(answer);
-        PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
-        return -1;
-    }
     PyObject *code = PyTuple_GET_ITEM(answer, 1);
     if (code != Py_None) {
         Py_INCREF(code);
@@ -205,98 +187,52 @@ static int words_event(Stats *st, Slave *s, int slave, const Words *w, int event
 }
 
 /* ---- poll keys: pollcycle.request_key ---------------------------------------------------------- */
-static uint64_t poll_hash(const uint32_t *fields, int size) {
-    uint64_t h = (uint64_t)size;
-    for (int k = 0; k < size; k++) h = mix(h * 0x100000001b3ULL ^ fields[k]);
-    return h | 1; /* never 0 */
-}
-
-static Poll *poll_find(Stats *st, const uint32_t *fields, int size, int make) {
-    if (make && 2 * (st->poll_count + 1) > st->poll_slots) {
-        size_t slots = st->poll_slots ? 2 * st->poll_slots : 1024;
-        Poll *table = PyMem_Calloc(slots, sizeof *table);
-        if (table == NULL) {
-            PyErr_NoMemory();
-            return NULL;
-        }
-        for (size_t k = 0; k < st->poll_slots; k++) {
-            if (!st->polls[k].hash) continue;
-            size_t slot = (size_t)st->polls[k].hash & (slots - 1);
-            while (table[slot].hash) slot = (slot + 1) & (slots - 1);
-            table[slot] = st->polls[k];
-        }
-        PyMem_Free(st->polls);
-        st->polls = table;
-        st->poll_slots = slots;
-    }
-    if (st->poll_slots == 0) return NULL;
-    uint64_t hash = poll_hash(fields, size);
-    size_t slot = (size_t)hash & (st->poll_slots - 1);
-    while (st->polls[slot].hash) {
-        Poll *p = &st->polls[slot];
-        if (p->hash == hash && p->size == size && memcmp(p->fields, fields, (size_t)size * sizeof *fields) == 0)
-            return p;
-        slot = (slot + 1) & (st->poll_slots - 1);
-    }
-    if (!make) return NULL;
-    Poll *p = &st->polls[slot];
-    p->hash = hash;
-    p->size = (uint8_t)size;
-    memcpy(p->fields, fields, (size_t)size * sizeof *fields);
-    p->order = st->poll_count++;
-    return p;
-}
-
 /* PollCycle.add_request: 0 or -1 (no memory). */
-static int poll_request(Stats *st, const uint32_t *fields, int size, unsigned long long number, int failed,
-                        const Time *t) {
-    Poll *p = poll_find(st, fields, size, 0);
+static int poll_request(Stats *st, const PollKey *key, unsigned long long number, int failed, const Time *t) {
+    Poll *p = dense_find(&st->polls, &POLL_KIND, key);
+    if (p == NULL && st->polls.count >= st->max_keys) {
+        st->untracked++;
+        return 0;
+    }
     if (p == NULL) {
-        if (PyErr_Occurred()) return -1;
-        if (st->poll_count >= st->max_keys) {
-            st->untracked++;
-            return 0;
-        }
-        p = poll_find(st, fields, size, 1);
-        if (p == NULL) return -1;
+        if ((p = dense_add(&st->polls, &POLL_KIND, key, 0)) == NULL) return -1;
         p->first = number;
     }
     p->count++;
     if (failed) p->failed++;
     if (!t->has) return 0;
+    long long order = p - (Poll *)st->polls.items;
     if (p->last.has &&
-        tally_add(st->tallies, TALLY_INTERVALS, (long long)p->order, (long long)rint(time_sub(t, &p->last) / POLL_STEP), 1) < 0)
+        tally_add(st->tallies, TALLY_INTERVALS, order, (long long)rint(time_sub(t, &p->last) / POLL_STEP), 1) < 0)
         return -1;
     p->last = *t;
     return 0;
 }
 
 /* PollCycle.add_answer: an exception (or a damaged answer) to a request: that cycle missed. */
-static void poll_fail(Stats *st, const uint32_t *fields, int size) {
-    Poll *p = poll_find(st, fields, size, 0);
+static void poll_fail(Stats *st, const PollKey *key) {
+    Poll *p = dense_find(&st->polls, &POLL_KIND, key);
     if (p != NULL) p->failed++;
 }
 
 /* pollcycle.request_key of a request the engine shows, from its bytes where the protocol table's
  * request layout (_tables.h) puts its start, quantity and write window; FC8 by its sub-function. */
-static int request_key(const uint8_t *f, uint32_t *fields) {
+static void request_key(const uint8_t *f, PollKey *key) {
     int function = f[1];
     const Lift *L = &request_lift[handled_index(function)];
-    fields[0] = f[0];
-    fields[1] = (uint32_t)function;
+    *key = (PollKey){{f[0], (uint32_t)function}, 2};
     if (L->start_at) {
-        fields[2] = word(f + L->start_at);
-        fields[3] = L->quantity_at ? word(f + L->quantity_at) : 1;
-        if (!L->write_quantity_at) return 4;
-        fields[4] = word(f + L->write_start_at);
-        fields[5] = word(f + L->write_quantity_at);
-        return 6;
+        key->fields[2] = word(f + L->start_at);
+        key->fields[3] = L->quantity_at ? word(f + L->quantity_at) : 1;
+        key->size = 4;
+        if (!L->write_quantity_at) return;
+        key->fields[4] = word(f + L->write_start_at);
+        key->fields[5] = word(f + L->write_quantity_at);
+        key->size = 6;
+    } else if (rules[handled_index(function)].special) { /* FC8: keyed by its sub-function, the data's first word */
+        key->fields[2] = word(f + 2);
+        key->size = 3;
     }
-    if (rules[handled_index(function)].special) { /* FC8: keyed by its sub-function, the data's first word */
-        fields[2] = word(f + 2);
-        return 3;
-    }
-    return 2;
 }
 
 /* What StatsCollector.add and BusTiming.add do with a transaction the engine shows: the request (unanswered
@@ -323,18 +259,19 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         if (timed && tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, (long long)rint(response * 1e9), 1) < 0)
             return -1;
     }
-    uint32_t key[6];
-    int size = request_key(q, key), owner = slave << 8 | function;
+    PollKey key;
+    request_key(q, &key);
+    int owner = slave << 8 | function;
     st->frames += answer != NULL ? 2 : 1;
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_REQUESTS, 1) < 0 ||
         (answer == NULL && tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_UNANSWERED, 1) < 0) ||
-        poll_request(st, key, size, number, answer == NULL, &qt) < 0)
+        poll_request(st, &key, number, answer == NULL, &qt) < 0)
         return -1;
     if (writes != NULL && words_event(st, s, slave, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
     if (answer[1] & 0x80) { /* an exception: counted by its code */
         if (tally_add(st->tallies, TALLY_COUNTS, owner, answer[2], 1) < 0) return -1;
-        poll_fail(st, key, size);
+        poll_fail(st, &key);
         return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
     }
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
@@ -346,8 +283,8 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 
 /* ---- the Python object ------------------------------------------------------------------------- */
 static void stats_dealloc(Stats *st) {
-    for (size_t k = 0; k < st->param_count; k++) {
-        Param *p = &st->params[k];
+    for (size_t k = 0; k < st->params.count; k++) {
+        Param *p = &PARAMS(st)[k];
         Py_XDECREF(p->text);
         Py_XDECREF(p->namer);
         Py_XDECREF(p->code);
@@ -355,12 +292,10 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(p->status);
     }
     Py_XDECREF(st->report);
-    PyMem_Free(st->params);
-    PyMem_Free(st->slots);
-    PyMem_Free(st->polls);
-    for (int k = 0; k < TALLIES; k++) PyMem_Free(st->tallies[k].slots), PyMem_Free(st->tallies[k].index);
+    Dense *tables[TALLIES + 2] = {&st->params, &st->polls};
+    for (int k = 0; k < TALLIES; k++) tables[k + 2] = &st->tallies[k].d;
+    for (int k = 0; k < TALLIES + 2; k++) PyMem_Free(tables[k]->items), PyMem_Free(tables[k]->index);
     PyMem_Free(st->bus.outages);
-    PyMem_Free(st->bus.outage_slaves);
     Py_TYPE(st)->tp_free((PyObject *)st);
 }
 
@@ -407,8 +342,8 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
         PyErr_SetString(PyExc_TypeError, "rename: a dict {slave: namer}");
         return NULL;
     }
-    for (size_t k = 0; k < st->param_count; k++) {
-        Param *p = &st->params[k];
+    for (size_t k = 0; k < st->params.count; k++) {
+        Param *p = &PARAMS(st)[k];
         PyObject *slave = PyLong_FromUnsignedLong((p->key >> 16) & 0xFF);
         if (slave == NULL) return NULL;
         PyObject *namer = PyDict_GetItemWithError(namers, slave);
@@ -427,23 +362,23 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
     Py_RETURN_NONE;
 }
 
-/* A request key tuple (slave, function[, ...]) of up to 6 ints into fields; its size or -1. */
-static int key_fields(PyObject *key, uint32_t *fields) {
+/* A request key tuple (slave, function[, ...]) of up to 6 ints into *fields: 0 or -1. */
+static int key_fields(PyObject *key, PollKey *fields) {
     if (!PyTuple_Check(key) || PyTuple_GET_SIZE(key) < 2 || PyTuple_GET_SIZE(key) > 6) {
         PyErr_SetString(PyExc_TypeError, "a request key: a tuple of 2 to 6 ints");
         return -1;
     }
-    int size = (int)PyTuple_GET_SIZE(key);
-    for (int k = 0; k < size; k++) {
+    *fields = (PollKey){.size = (uint32_t)PyTuple_GET_SIZE(key)};
+    for (uint32_t k = 0; k < fields->size; k++) {
         unsigned long v = PyLong_AsUnsignedLong(PyTuple_GET_ITEM(key, k));
         if (v == (unsigned long)-1 && PyErr_Occurred()) return -1;
         if (v > 0xFFFFFFFFUL) {
             PyErr_SetString(PyExc_ValueError, "a request key's fields are 32-bit");
             return -1;
         }
-        fields[k] = (uint32_t)v;
+        fields->fields[k] = (uint32_t)v;
     }
-    return size;
+    return 0;
 }
 
 static PyObject *stats_poll(Stats *st, PyObject *args) {
@@ -451,20 +386,19 @@ static PyObject *stats_poll(Stats *st, PyObject *args) {
     unsigned long long number;
     int failed;
     if (!PyArg_ParseTuple(args, "OKp|O", &key, &number, &failed, &time)) return NULL;
-    uint32_t fields[6];
+    PollKey fields;
     Time t;
-    int size = key_fields(key, fields);
-    if (size < 0 || read_time(time, &t) < 0 || poll_request(st, fields, size, number, failed, &t) < 0) return NULL;
+    if (key_fields(key, &fields) < 0 || read_time(time, &t) < 0 || poll_request(st, &fields, number, failed, &t) < 0)
+        return NULL;
     Py_RETURN_NONE;
 }
 
 static PyObject *stats_poll_fail(Stats *st, PyObject *args) {
     PyObject *key;
     if (!PyArg_ParseTuple(args, "O", &key)) return NULL;
-    uint32_t fields[6];
-    int size = key_fields(key, fields);
-    if (size < 0) return NULL;
-    poll_fail(st, fields, size);
+    PollKey fields;
+    if (key_fields(key, &fields) < 0) return NULL;
+    poll_fail(st, &fields);
     Py_RETURN_NONE;
 }
 
@@ -485,13 +419,8 @@ static PyObject *param_text(const Param *p) {
         return p->text;
     }
     if (!p->has_last || !p->last_mapped || p->namer == NULL || p->namer == Py_None) Py_RETURN_NONE;
-    PyObject *answer = PyObject_CallFunction(p->namer, "II", p->key & 0xFFFF, (unsigned)p->last);
+    PyObject *answer = named(p->namer, p->key & 0xFFFF, (unsigned)p->last);
     if (answer == NULL) return NULL;
-    if (!PyTuple_Check(answer) || PyTuple_GET_SIZE(answer) != 2) {
-        Py_DECREF(answer);
-        PyErr_SetString(PyExc_TypeError, "namer must return (text, code)");
-        return NULL;
-    }
     PyObject *text = PyTuple_GET_ITEM(answer, 0);
     Py_INCREF(text);
     Py_DECREF(answer);
@@ -500,13 +429,13 @@ static PyObject *param_text(const Param *p) {
 
 /* The parameters by (slave, address): a PyMem array of *n pointers, NULL with an exception set. */
 static Param **param_sorted(Stats *st, size_t *n) {
-    Param **order = PyMem_Malloc((st->param_count ? st->param_count : 1) * sizeof *order);
+    Param **order = PyMem_Malloc((st->params.count ? st->params.count : 1) * sizeof *order);
     if (order == NULL) {
         PyErr_NoMemory();
         return NULL;
     }
     *n = 0;
-    for (size_t k = 0; k < st->param_count; k++) order[(*n)++] = &st->params[k];
+    for (size_t k = 0; k < st->params.count; k++) order[(*n)++] = &PARAMS(st)[k];
     qsort(order, *n, sizeof *order, param_order);
     return order;
 }
@@ -596,43 +525,21 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
                          totals[4]);
 }
 
-static int poll_order(const void *a, const void *b) {
-    size_t x = (*(Poll *const *)a)->order, y = (*(Poll *const *)b)->order;
-    return x < y ? -1 : x > y;
-}
-
 /* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
 static PyObject *stats_polls(Stats *st, PyObject *unused) {
-    Poll **order = PyMem_Malloc((st->poll_count ? st->poll_count : 1) * sizeof *order);
-    if (order == NULL) return PyErr_NoMemory();
-    size_t n = 0;
-    for (size_t k = 0; k < st->poll_slots; k++)
-        if (st->polls[k].hash) order[n++] = &st->polls[k];
-    qsort(order, n, sizeof *order, poll_order);
-    PyObject *rows = PyList_New((Py_ssize_t)n);
-    if (rows == NULL) goto fail;
-    for (size_t k = 0; k < n; k++) {
-        const Poll *p = order[k];
-        PyObject *key = PyTuple_New(p->size);
-        if (key == NULL) goto fail;
-        for (int j = 0; j < p->size; j++) {
-            PyObject *v = PyLong_FromUnsignedLong(p->fields[j]);
-            if (v == NULL) {
-                Py_DECREF(key);
-                goto fail;
-            }
-            PyTuple_SET_ITEM(key, j, v);
+    PyObject *rows = PyList_New((Py_ssize_t)st->polls.count);
+    for (size_t k = 0; rows != NULL && k < st->polls.count; k++) {
+        const Poll *p = (const Poll *)st->polls.items + k;
+        PyObject *key = PyTuple_New(p->key.size), *row = NULL;
+        for (uint32_t j = 0; key != NULL && j < p->key.size; j++) {
+            PyObject *v = PyLong_FromUnsignedLong(p->key.fields[j]);
+            if (v == NULL) Py_CLEAR(key);
+            else PyTuple_SET_ITEM(key, j, v);
         }
-        PyObject *row = Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed);
-        if (row == NULL) goto fail;
-        PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
+        if (key == NULL || (row = Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed)) == NULL) Py_CLEAR(rows);
+        else PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
     }
-    PyMem_Free(order);
     return rows;
-fail:
-    PyMem_Free(order);
-    Py_XDECREF(rows);
-    return NULL;
 }
 
 /* bus_line(char_time, t35, timeout, new_input): the line's settings (BusTiming.char_time, t35, timeout);
@@ -686,8 +593,8 @@ static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     }
     const Tallies *table = &st->tallies[kind];
     PyObject *owners = PyDict_New();
-    for (size_t k = 0; owners != NULL && k < table->count; k++) {
-        const Tally *t = &table->slots[k];
+    for (size_t k = 0; owners != NULL && k < table->d.count; k++) {
+        const Tally *t = (const Tally *)table->d.items + k;
         PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
         PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
         PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
@@ -704,12 +611,12 @@ static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     return owners;
 }
 
-static PyObject *runs_value(const Run *runs, const int *slaves, size_t count, int active_only) {
+static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
     PyObject *rows = PyList_New(0);
     for (size_t k = 0; rows != NULL && k < count; k++) {
         const Run *r = &runs[k];
         if (active_only && !r->active) continue;
-        PyObject *row = Py_BuildValue("(iNNKKKL)", slaves != NULL ? slaves[k] : (int)k, time_value(&r->start),
+        PyObject *row = Py_BuildValue("(iNNKKKL)", r->slave, time_value(&r->start),
                                       time_value(&r->end), r->requests, r->first_frame, r->last_frame, r->offset);
         if (row == NULL || PyList_Append(rows, row) < 0) Py_CLEAR(rows);
         Py_XDECREF(row);
@@ -748,37 +655,45 @@ static long long tally_nth(const Tally *t, size_t n, double rank) {
     return t[n - 1].key;
 }
 
-/* time_summaries() -> {slave << 8 | function: (count, min, median, p95, max)}: stats.time_summary of
- * each pair's response times (ns), in seconds, without a dict of them in Python; time_summaries(bins):
- * per slave << 8, each with the counts of its histogram of `bins` bins (report/html.py _slaves). */
+/* {owner: row(its tallies, how many, arg)} of one kind's tallies sorted by owner (tag & mask), then key;
+ * row gives a new reference, or NULL with an exception set. */
+static PyObject *tally_groups(const Tallies *table, uint32_t mask, PyObject *(*row)(const Tally *, size_t, int), int arg) {
+    size_t n = table->d.count;
+    Tally *all = PyMem_Malloc((n ? n : 1) * sizeof *all);
+    if (all == NULL) return PyErr_NoMemory();
+    for (size_t k = 0; k < n; k++) all[k] = ((const Tally *)table->d.items)[k], all[k].tag &= mask;
+    qsort(all, n, sizeof *all, tally_order);
+    PyObject *groups = PyDict_New();
+    for (size_t first = 0, end = 0; groups != NULL && first < n; first = end) {
+        while (end < n && all[end].tag == all[first].tag) end++;
+        PyObject *owner = PyLong_FromUnsignedLong(all[first].tag & 0xFFFFFF), *value = row(all + first, end - first, arg);
+        if (owner == NULL || value == NULL || PyDict_SetItem(groups, owner, value) < 0) Py_CLEAR(groups);
+        Py_XDECREF(owner);
+        Py_XDECREF(value);
+    }
+    PyMem_Free(all);
+    return groups;
+}
+
+/* stats.time_summary of one owner's response times (ns), in seconds: (count, min, median, p95, max, the
+ * counts of its histogram of `bins` bins or None). */
+static PyObject *time_summary(const Tally *t, size_t size, int bins) {
+    double count = 0;
+    for (size_t k = 0; k < size; k++) count += t[k].value;
+    unsigned long long half = (unsigned long long)count / 2;
+    double median = (unsigned long long)count % 2 ? (double)tally_nth(t, size, (double)half + 1)
+                  : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
+    double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(0.95 * count)));
+    return Py_BuildValue("(KddddN)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9, p95 / 1e9,
+                         (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
+}
+
+/* time_summaries() -> {slave << 8 | function: time_summary} of each pair's response times, without a dict
+ * of them in Python; time_summaries(bins): per slave << 8, with its histogram (report/html.py _slaves). */
 static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
     int bins = 0;
     if (!PyArg_ParseTuple(args, "|i", &bins)) return NULL;
-    const Tallies *table = &st->tallies[TALLY_TIMES];
-    Tally *all = PyMem_Malloc((table->count ? table->count : 1) * sizeof *all);
-    PyObject *summaries = all != NULL ? PyDict_New() : NULL;
-    size_t n = 0;
-    for (size_t k = 0; summaries != NULL && k < table->count; k++)
-        all[n] = table->slots[k], all[n++].tag &= bins > 0 ? ~0xFFu : ~0u;
-    qsort(all, n, sizeof *all, tally_order);
-    for (size_t first = 0, end; summaries != NULL && first < n; first = end) {
-        double count = 0;
-        for (end = first; end < n && all[end].tag == all[first].tag; end++) count += all[end].value;
-        const Tally *t = all + first;
-        size_t size = end - first;
-        unsigned long long half = (unsigned long long)count / 2;
-        double median = (unsigned long long)count % 2 ? (double)tally_nth(t, size, (double)half + 1)
-                      : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
-        double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(0.95 * count)));
-        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF);
-        PyObject *row = Py_BuildValue("(KddddN)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9,
-                                      p95 / 1e9, (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
-        if (owner == NULL || row == NULL || PyDict_SetItem(summaries, owner, row) < 0) Py_CLEAR(summaries);
-        Py_XDECREF(owner);
-        Py_XDECREF(row);
-    }
-    PyMem_Free(all);
-    return all == NULL ? PyErr_NoMemory() : summaries;
+    return tally_groups(&st->tallies[TALLY_TIMES], bins > 0 ? ~0xFFu : ~0u, time_summary, bins);
 }
 
 /* bus_state(): what BusTiming keeps but its histograms (tallies()), for the report (bustiming.py). */
@@ -806,8 +721,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          "last_end", last_end, "busy", b->busy, "answer_end", answer_end, "below_t35", b->below_t35,
                          "histogram", histogram, "gaps", quantile_value(&b->gaps), "turnaround",
                          quantile_value(&b->turnaround), "responses", responses, "runs",
-                         runs_value(b->runs, NULL, 256, 1), "outages",
-                         runs_value(b->outages, b->outage_slaves, b->outage_count, 0), "first_seen",
+                         runs_value(b->runs, 256, 1), "outages", runs_value(b->outages, b->outage_count, 0), "first_seen",
                          time_value(&b->first_seen), "last_seen", time_value(&b->last_seen));
 }
 
@@ -829,13 +743,6 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     bus_init(&st->bus);
     return 0;
 }
-
-static PyObject *stats_get_frames(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->frames); }
-static PyObject *stats_get_untracked(Stats *st, void *closure) {
-    return PyLong_FromUnsignedLongLong(st->untracked);
-}
-static PyObject *stats_get_parameter_count(Stats *st, void *closure) { return PyLong_FromSize_t(st->param_count); }
-static PyObject *stats_get_dropped(Stats *st, void *closure) { return PyLong_FromUnsignedLongLong(st->dropped); }
 
 static PyObject *stats_poll_timings(Stats *st, PyObject *unused);
 
@@ -873,11 +780,15 @@ static int stats_set_report(Stats *st, PyObject *value, void *closure);
 
 static PyGetSetDef stats_getset[] = {
     {"report", (getter)stats_get_report, (setter)stats_set_report, "a Report fed what is counted here, or None", NULL},
-    {"frames", (getter)stats_get_frames, NULL, "frames the engine counted", NULL},
-    {"untracked", (getter)stats_get_untracked, NULL, "requests of keys beyond the poll table's size", NULL},
-    {"parameter_count", (getter)stats_get_parameter_count, NULL, "parameters kept", NULL},
-    {"dropped", (getter)stats_get_dropped, NULL, "events of parameters beyond max_params, not kept", NULL},
     {NULL, NULL, NULL, NULL, NULL},
+};
+
+static PyMemberDef stats_members[] = {
+    {"frames", T_ULONGLONG, offsetof(Stats, frames), READONLY, "frames the engine counted"},
+    {"untracked", T_ULONGLONG, offsetof(Stats, untracked), READONLY, "requests of keys beyond the poll table's size"},
+    {"parameter_count", T_PYSSIZET, offsetof(Stats, params.count), READONLY, "parameters kept"},
+    {"dropped", T_ULONGLONG, offsetof(Stats, dropped), READONLY, "events of parameters beyond max_params, not kept"},
+    {NULL, 0, 0, 0, NULL},
 };
 
 static PyTypeObject StatsType = {
@@ -891,4 +802,5 @@ static PyTypeObject StatsType = {
     .tp_dealloc = (destructor)stats_dealloc,
     .tp_methods = stats_methods,
     .tp_getset = stats_getset,
+    .tp_members = stats_members,
 };
