@@ -113,11 +113,6 @@ static int round_to(double v, int digits, double *r) {
     return *r == -1.0 && PyErr_Occurred() ? -1 : 0;
 }
 
-static PyObject *rounded(double v, int digits) {
-    double r;
-    return round_to(v, digits, &r) < 0 ? NULL : PyFloat_FromDouble(r);
-}
-
 /* round(v, digits) as json.dumps writes it into the page (its repr; a whole y: its int), after a comma
  * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text, trailing
  * zeros dropped (no other decimal of `digits` digits or fewer is within half an ulp of it): one dtoa. */
@@ -163,10 +158,10 @@ static void json_number(Out *o, double v, int digits, int whole) {
 }
 
 /* (xs, ys): each column's distinct points in order (x, then y), none at or before the last x kept,
- * a run of equal values by its ends only. drawn(origin, digits): the same as the page writes them,
- * x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits (collect.py _number);
- * drawn == 2 (drawn_json): those two lists as json.dumps writes them, None when a value is not finite. */
-static PyObject *columns_list(Columns *self, int drawn, double origin, int digits, double scale, int places) {
+ * a run of equal values by its ends only. json (drawn_json): the two lists as collect.py drawn() makes
+ * them (x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits, or y * scale
+ * rounded to `places`) and json.dumps writes them; None when a value is not finite. */
+static PyObject *columns_list(Columns *self, int json, double origin, int digits, double scale, int places) {
     /* Kept points in C first (x, y), n / 2 + 1 each; made into lists or JSON text at the end. */
     double *kx = PyMem_Malloc((size_t)(self->n + 2) * sizeof(double));
     if (kx == NULL) return PyErr_NoMemory();
@@ -203,7 +198,7 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
             kept++;
         }
     }
-    if (drawn == 2) {
+    if (json) {
         Out text[2] = {{0}};
         int finite = 1;
         for (int k = 0; k < 2; k++) out_put(&text[k], "[", 1);
@@ -228,14 +223,7 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
     }
     PyObject *xs = PyList_New(kept), *ys = PyList_New(kept);
     for (Py_ssize_t j = 0; xs != NULL && ys != NULL && j < kept; j++) {
-        PyObject *x, *y;
-        if (!drawn) {
-            x = PyFloat_FromDouble(kx[j]), y = PyFloat_FromDouble(ky[j]);
-        } else {
-            x = rounded(kx[j] - origin, digits);
-            y = scale != 0.0 ? rounded(ky[j] * scale, places)
-              : isfinite(ky[j]) && floor(ky[j]) == ky[j] ? PyLong_FromDouble(ky[j]) : rounded(ky[j], 6);
-        }
+        PyObject *x = PyFloat_FromDouble(kx[j]), *y = PyFloat_FromDouble(ky[j]);
         PyList_SET_ITEM(xs, j, x);
         PyList_SET_ITEM(ys, j, y);
         if (x == NULL || y == NULL) Py_CLEAR(xs); /* (a list frees the items it holds, NULL ones too) */
@@ -249,19 +237,14 @@ static PyObject *columns_list(Columns *self, int drawn, double origin, int digit
 
 static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0, 0.0, 0); }
 
-/* drawn(origin, digits, scale=0, places=0): with a scale, each y is round(y * scale, places), a float;
- * drawn_json(...): drawn()'s lists as JSON text (drawn == 2). */
-static PyObject *columns_drawn_as(Columns *self, PyObject *args, int drawn) {
+/* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text. */
+static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     double origin, scale = 0.0;
     int digits, places = 0;
     if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
-    if (drawn == 2 && (digits < 0 || digits > 9 || places < 0 || places > 9))
-        return PyErr_Format(PyExc_ValueError, "digits 0..9");
-    return columns_list(self, drawn, origin, digits, scale, places);
+    if (digits < 0 || digits > 9 || places < 0 || places > 9) return PyErr_Format(PyExc_ValueError, "digits 0..9");
+    return columns_list(self, 1, origin, digits, scale, places);
 }
-
-static PyObject *columns_drawn(Columns *self, PyObject *args) { return columns_drawn_as(self, args, 1); }
-static PyObject *columns_drawn_json(Columns *self, PyObject *args) { return columns_drawn_as(self, args, 2); }
 
 /* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
 static PyObject *columns_levels(Columns *self, PyObject *unused) {
@@ -317,10 +300,9 @@ static PyMethodDef columns_methods[] = {
     {"close", (PyCFunction)columns_close, METH_NOARGS, "end the open column (the width is about to change)"},
     {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
     {"points", (PyCFunction)columns_points, METH_NOARGS, "(xs, ys): the points drawn"},
-    {"drawn", (PyCFunction)columns_drawn, METH_VARARGS,
-     "drawn(origin, digits, scale=0, places=0): (xs, ys) as the page writes them"},
     {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
-     "drawn_json(origin, digits, scale=0, places=0): drawn()'s lists as JSON text, None when one is not finite"},
+     "drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text, None when one is not\n"
+     "finite"},
     {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},
     {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles, 8 a column"},
     {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles"},

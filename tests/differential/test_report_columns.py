@@ -17,7 +17,7 @@ import pytest
 from dissector.accel._summary import Columns as CompiledColumns
 from dissector.app.cli import Environment, run
 from dissector.pipeline import dissect
-from dissector.render.report.collect import COLUMNS, Columns, ReportCollector, remap
+from dissector.render.report.collect import COLUMNS, Columns, ReportCollector, drawn, remap
 from dissector.sources.reader import open_source
 from dissector.sim.simulate import generate_session
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
@@ -100,11 +100,11 @@ def compare(python: Columns, compiled: CompiledColumns, origin: float) -> None:
     assert len(python) == len(compiled)
     assert python.values() == compiled.values()
     assert python.points() == compiled.points()
-    for digits in (6, 0):  # as the page writes them: the same numbers, ints where whole (repr tells)
-        assert repr(python.drawn(origin, digits)) == repr(compiled.drawn(origin, digits))
-        # ... and as JSON, written by the compiled columns themselves (collect.py _parameter_json)
-        assert compiled.drawn_json(origin, digits) == tuple(
-            json.dumps(values, separators=(",", ":")) for values in python.drawn(origin, digits))
+    for digits in (6, 0):  # as the page writes them (collect.py drawn), written by the compiled columns
+        # themselves as JSON (collect.py _parameter_json), with and without a scale (health.py)
+        for scale, places in ((0.0, 0), (1000.0, 3)):
+            assert compiled.drawn_json(origin, digits, scale, places) == tuple(
+                json.dumps(values, separators=(",", ":")) for values in drawn(python, origin, digits, scale, places))
     assert python.levels() == compiled.levels()
 
 

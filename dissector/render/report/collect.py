@@ -105,17 +105,9 @@ class Columns:
         ys = self.done[1::2]
         return (ys[0], min(ys), max(ys)) if ys else None
 
-    def drawn(self, origin: float, digits: int, scale: float = 0.0, places: int = 0) -> tuple[list[float], list[float | int]]:
-        """The points as the page writes them: x relative to `origin`, y an int when whole; with a
-        `scale`, each y times it rounded to `places` (health.py: seconds as ms)."""
-        xs, ys = self.points()
-        if scale:
-            return [round(x - origin, digits) for x in xs], [round(y * scale, places) for y in ys]
-        return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
-
     def drawn_json(self, origin: float, digits: int, scale: float = 0.0, places: int = 0) -> tuple[str, str]:
         """drawn()'s two lists as the page's JSON text (the compiled columns write it themselves)."""
-        xs, ys = self.drawn(origin, digits, scale, places)
+        xs, ys = drawn(self, origin, digits, scale, places)
         return _json(xs), _json(ys)
 
     def points(self) -> tuple[list[float], list[float]]:
@@ -136,6 +128,16 @@ class Columns:
                 xs.append(x)
                 ys.append(y)
         return xs, ys
+
+
+def drawn(columns: Any, origin: float, digits: int, scale: float = 0.0,
+          places: int = 0) -> tuple[list[float], list[float | int]]:
+    """The points of `columns` (either store's) as the page writes them: x relative to `origin`, y an int
+    when whole; with a `scale`, each y times it rounded to `places` (health.py: seconds as ms)."""
+    xs, ys = columns.points()
+    if scale:
+        return [round(x - origin, digits) for x in xs], [round(y * scale, places) for y in ys]
+    return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
 
 
 def remap(columns: Any, convert: Any) -> None:
@@ -482,7 +484,7 @@ class ReportCollector:
             columns = series.columns
             columns.close()
             columns.compact(self.origin or 0.0, self.width)
-            entry["x"], entry["y"] = columns.drawn(origin, digits)
+            entry["x"], entry["y"] = drawn(columns, origin, digits)
         return entry
 
 

@@ -16,7 +16,7 @@ from typing import Any
 
 from dissector.model import Item, Kind
 from dissector.protocol.table import FUNCTIONS, Access
-from dissector.render.report.collect import COLUMNS, new_columns
+from dissector.render.report.collect import COLUMNS, drawn, new_columns
 from dissector.render.stats_store import MAX_PARAMETERS
 
 # Requests whose registers are values written: setpoints (FC23's write half too).
@@ -89,5 +89,5 @@ class Health:
         columns.compact(origin, max(width, self.width))
         points = columns.drawn_json(origin, 6, 1000.0, 3)
         if points is None:  # a value json.dumps refuses: its error
-            points = [json.dumps(values, allow_nan=False) for values in columns.drawn(origin, 6, 1000.0, 3)]
+            points = [json.dumps(values, allow_nan=False) for values in drawn(columns, origin, 6, 1000.0, 3)]
         return points[0], points[1]
