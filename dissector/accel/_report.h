@@ -46,7 +46,7 @@ typedef struct {
     unsigned epochs[256];
     uint8_t *bits[256];    /* per slave: the addresses written */
     unsigned gen;
-    double spans; /* ReportCollector.spans when last pulled */
+    unsigned long long spans; /* ReportCollector.spans when last pulled */
     int full; /* the collector holds MAX_SERIES series, every one in `trends` */
 } Report;
 
@@ -63,61 +63,67 @@ static int set_attr(PyObject *o, const char *name, PyObject *value) {
     return status;
 }
 
-static int get_time(PyObject *o, const char *name, Time *t) {
-    PyObject *value = PyObject_GetAttrString(o, name);
-    int status = value == NULL ? -1 : read_time(value, t);
-    Py_XDECREF(value);
-    return status;
-}
+/* The scalars of the collector and of health kept here while the engine runs: taken when a run starts and
+ * after a Python method changed them (pull), given back before one is called and when the run ends (push). */
+enum { AS_TIME, AS_FLOAT, AS_FLAG, AS_COUNT }; /* AS_FLAG: None, False or True as -1, 0 or 1 */
+static const struct {
+    int health, as;
+    const char *name;
+    size_t at;
+} scalars[] = {
+    {0, AS_FLAG, "timed", offsetof(Report, timed)},       {0, AS_TIME, "origin", offsetof(Report, origin)},
+    {0, AS_TIME, "first_x", offsetof(Report, first)},     {0, AS_TIME, "last_x", offsetof(Report, last)},
+    {0, AS_FLOAT, "width", offsetof(Report, width)},      {0, AS_FLOAT, "limit", offsetof(Report, limit)},
+    {0, AS_COUNT, "number", offsetof(Report, number)},    {0, AS_COUNT, "spans", offsetof(Report, spans)},
+    {1, AS_TIME, "origin", offsetof(Report, h_origin)},   {1, AS_FLOAT, "width", offsetof(Report, h_width)},
+    {1, AS_FLOAT, "limit", offsetof(Report, h_limit)},
+};
+#define SCALARS (sizeof scalars / sizeof *scalars)
 
-static int get_double(PyObject *o, const char *name, double *v) {
-    PyObject *value = PyObject_GetAttrString(o, name);
-    *v = value == NULL ? -1.0 : PyFloat_AsDouble(value);
-    Py_XDECREF(value);
-    return *v == -1.0 && PyErr_Occurred() ? -1 : 0;
-}
-
-/* The Python objects' scalars into the engine's copy (a run starts, or a Python method changed them). */
 static int report_pull(Report *r) {
-    PyObject *timed = PyObject_GetAttrString(r->collector, "timed");
-    if (timed == NULL) return -1;
-    r->timed = timed == Py_None ? -1 : PyObject_IsTrue(timed);
-    Py_DECREF(timed);
-    double spans; /* unreadable spans the Python stages opened: the series' statuses are read again */
-    if (get_double(r->collector, "spans", &spans) < 0) return -1;
-    if (spans != r->spans) r->gen++, r->spans = spans;
-    if (get_time(r->collector, "origin", &r->origin) < 0 || get_time(r->collector, "first_x", &r->first) < 0 ||
-        get_time(r->collector, "last_x", &r->last) < 0 || get_double(r->collector, "width", &r->width) < 0 ||
-        get_double(r->collector, "limit", &r->limit) < 0)
-        return -1;
-    if (r->health == Py_None) return 0;
-    return get_time(r->health, "origin", &r->h_origin) < 0 || get_double(r->health, "width", &r->h_width) < 0 ||
-           get_double(r->health, "limit", &r->h_limit) < 0 ? -1 : 0;
+    unsigned long long spans = r->spans; /* unreadable spans the Python stages opened: statuses read again */
+    for (size_t k = 0; k < SCALARS; k++) {
+        PyObject *o = scalars[k].health ? r->health : r->collector, *v;
+        char *at = (char *)r + scalars[k].at;
+        if (o == Py_None) continue;
+        if ((v = PyObject_GetAttrString(o, scalars[k].name)) == NULL) return -1;
+        switch (scalars[k].as) {
+        case AS_TIME: (void)read_time(v, (Time *)at); break;
+        case AS_FLOAT: *(double *)at = PyFloat_AsDouble(v); break;
+        case AS_FLAG: *(int *)at = v == Py_None ? -1 : PyObject_IsTrue(v); break;
+        default: *(unsigned long long *)at = PyLong_AsUnsignedLongLong(v);
+        }
+        Py_DECREF(v);
+        if (PyErr_Occurred()) return -1;
+    }
+    if (spans != r->spans) r->gen++;
+    return 0;
+}
+
+static PyObject *scalar_value(Report *r, size_t k) {
+    const char *at = (const char *)r + scalars[k].at;
+    switch (scalars[k].as) {
+    case AS_TIME: return time_object(r, (const Time *)at);
+    case AS_FLOAT: return PyFloat_FromDouble(*(const double *)at);
+    case AS_FLAG: return *(const int *)at < 0 ? Py_NewRef(Py_None) : PyBool_FromLong(*(const int *)at);
+    default: return PyLong_FromUnsignedLongLong(*(const unsigned long long *)at);
+    }
 }
 
 /* ... and back; `counts`: the counts kept here instead (series values, dropped, answers per slave: sums,
  * which the Python stages add to as well, given back once at the end). */
 static int report_push(Report *r, int counts) {
-    PyObject *c = r->collector, *h = r->health;
-    if (counts) goto counts;
-    if (set_attr(c, "timed", r->timed < 0 ? Py_NewRef(Py_None) : PyBool_FromLong(r->timed)) < 0 ||
-        set_attr(c, "origin", time_object(r, &r->origin)) < 0 || set_attr(c, "first_x", time_object(r, &r->first)) < 0 ||
-        set_attr(c, "last_x", time_object(r, &r->last)) < 0 || set_attr(c, "width", PyFloat_FromDouble(r->width)) < 0 ||
-        set_attr(c, "limit", PyFloat_FromDouble(r->limit)) < 0 ||
-        set_attr(c, "number", PyLong_FromUnsignedLongLong(r->number)) < 0)
-        return -1;
-    if (h != Py_None && (set_attr(h, "origin", time_object(r, &r->h_origin)) < 0 ||
-                         set_attr(h, "width", PyFloat_FromDouble(r->h_width)) < 0 ||
-                         set_attr(h, "limit", PyFloat_FromDouble(r->h_limit)) < 0))
-        return -1;
-    return 0;
-counts:;
+    for (size_t k = 0; !counts && k < SCALARS; k++) {
+        PyObject *o = scalars[k].health ? r->health : r->collector;
+        if (o != Py_None && set_attr(o, scalars[k].name, scalar_value(r, k)) < 0) return -1;
+    }
+    if (!counts) return 0;
     const char *names[2] = {"series_dropped", "values"};
     for (size_t k = 0; k <= r->trend_slots; k++) { /* k == trend_slots: the collector's series_dropped */
         Trend *t = k < r->trend_slots ? &r->trends[k] : NULL;
         unsigned long long *n = t != NULL ? &t->values : &r->dropped;
         if (!*n) continue;
-        PyObject *o = t != NULL ? t->series : c, *had = PyObject_GetAttrString(o, names[t != NULL]);
+        PyObject *o = t != NULL ? t->series : r->collector, *had = PyObject_GetAttrString(o, names[t != NULL]);
         PyObject *more = PyLong_FromUnsignedLongLong(*n), *sum = had && more ? PyNumber_Add(had, more) : NULL;
         Py_XDECREF(had);
         Py_XDECREF(more);
