@@ -1,5 +1,5 @@
 """The --stats and --report store's constants as C, for the part of accel/_tables.h that _stats.h, _bus.h and
-_report.h read: the parameter events, the kinds of tallies and the engine's count keys
+_report.h read: the parameter events and what each does, the kinds of tallies and the engine's count keys
 (render/stats_store.py), the bus timing's buckets and gap edges (render/bustiming.py). Stated once in
 Python, where the pure-Python stages (the reference under VW3_PURE_PYTHON=1) read them too.
 """
@@ -20,6 +20,10 @@ def render() -> list[str]:
         "/* The --stats store's events, tallies and count keys (render/stats_store.py) and bus timing's",
         " * buckets (render/bustiming.py), for _stats.h, _bus.h and _report.h. */",
         _enum("EVENT_", {name: getattr(stats_store, name) for name in stats_store.EVENTS}, "EVENTS"),
+        "/* By event: {where in a Param the count it adds one to (0: none), 1 when it sets the state}. */",
+        "#define EVENT_RULES {" + ", ".join(
+            f"{{{'0' if counter is None else f'offsetof(Param, {counter})'}, {int(state)}}}"
+            for _event, (counter, state) in sorted(stats_store.EVENT_RULES.items())) + "}",
         _enum("TALLY_", tallies, "TALLIES"),
         _enum("COUNT_", counts),
         "#define TALLY_UNBOUNDED (" + " | ".join(f"1 << {kind}" for kind in stats_store.UNBOUNDED_TALLIES) + ")",

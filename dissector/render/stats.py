@@ -43,8 +43,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import (MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, engine_functions, give_back,
-                                          stamp)
+from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, give_back, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -185,7 +184,7 @@ class StatsCollector:
     def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
         """The Python stages' counts plus the engine's (sums: the order of frames does not matter)."""
         merged = dict(self.functions)
-        for slave, function, requests, responses, unanswered, exceptions in engine_functions(self.store):
+        for slave, function, requests, responses, unanswered, exceptions in self.store.functions().values():
             own = merged.get((slave, function))
             stats = FunctionStats(requests=requests, responses=responses, unanswered=unanswered,
                                   exceptions=dict(exceptions))

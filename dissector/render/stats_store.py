@@ -34,10 +34,17 @@ except ImportError:  # built without a C compiler
 # The events (the compiled store's EVENT_*, generated into dissector/accel/_tables.h).
 EVENTS = ("READ", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "REFUSED", "CONFIRM")
 READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(len(EVENTS))
+# What an event does to its parameter (the rules above): the count it adds one to (None: none) and whether
+# it sets the state (a value or a status seen). ParameterTable.param and the compiled store (_stats.h
+# param_count, EVENT_RULES generated into _tables.h) both read it.
+EVENT_RULES: dict[int, tuple[str | None, bool]] = {
+    READ: ("reads", True), UNREADABLE: ("unreadable", True), WRITE: ("writes", False),
+    WRITE_OBSERVED: ("writes", True), REFUSED: ("refused", False), CONFIRM: (None, True),
+}
 # The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h; TALLY_* generated into
 # _tables.h): response times by (slave << 8 | function), gaps, turnarounds, response times by slave, load
 # per minute, poll intervals by key order, and the engine's counts by (slave << 8 | function): exceptions
-# by their code, requests, responses and unanswered requests by the COUNT_* keys (engine_functions).
+# by their code, requests, responses and unanswered requests by the COUNT_* keys (Stats.functions()).
 TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS, TALLY_COUNTS = range(7)
 COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED = 256, 257, 258  # past the exception codes
 UNBOUNDED_TALLIES = (TALLY_MINUTES, TALLY_COUNTS)  # never coarsened: sums, counts by name
@@ -105,21 +112,15 @@ class ParameterTable:
             stats = self._parameters[key] = ParameterStats()
         if code is not None and (event != CONFIRM or created):
             stats.code = code
-        if event == WRITE:
-            stats.writes += 1
+        counter, sets_state = EVENT_RULES[event]
+        if counter is not None:
+            setattr(stats, counter, getattr(stats, counter) + 1)
+        if not sets_state:
             return False
-        if event == REFUSED:
-            stats.refused += 1
-            return False
-        if event == UNREADABLE:
-            stats.unreadable += 1  # 16#8000 stands for "no value", not a value: the state is the status
+        if event == UNREADABLE:  # 16#8000 stands for "no value", not a value: the state is the status
             changed = stats.seen and stats.status != text
             stats.status = text
         else:
-            if event == READ:
-                stats.reads += 1
-            elif event == WRITE_OBSERVED:
-                stats.writes += 1
             changed = stats.seen and (stats.status is not None or value != stats.last)
             stats.status = None
             stats.last = value
@@ -147,8 +148,8 @@ class ParameterTable:
             for (slave, address), s in sorted(self._parameters.items())
         ]
 
-    def tallies(self, kind: int) -> dict[int, dict[int, int]]:
-        return {}  # the engine's: none here
+    def functions(self) -> dict[int, tuple[int, int, int, int, int, dict[int, int]]]:
+        return {}  # the engine's counts: none here
 
     def table(self, max_rows: int, group_min: int) -> tuple[list[list[ParameterRow]], int, int, tuple[int, ...]]:
         """--stats' parameter table (render/stats.py _parameter_table): the rows of the first `max_rows`
@@ -221,14 +222,6 @@ class Coarse:
                 histogram.update(merged)
                 entries += len(merged)
             self.entries = entries
-
-
-def engine_functions(store: Any) -> list[tuple[int, int, int, int, int, dict[int, int]]]:
-    """The engine's counts (TALLY_COUNTS): (slave, function, requests, responses, unanswered, {code: count})
-    by (slave, function)."""
-    return [(owner >> 8, owner & 0xFF, counts.get(COUNT_REQUESTS, 0), counts.get(COUNT_RESPONSES, 0),
-             counts.get(COUNT_UNANSWERED, 0), {code: n for code, n in sorted(counts.items()) if code < COUNT_REQUESTS})
-            for owner, counts in sorted(store.tallies(TALLY_COUNTS).items())]
 
 
 def stamp(time: tuple[float, int | None] | None) -> float | None:
