@@ -2051,7 +2051,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math, pairs = FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math, pairs
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
--- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
+-- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
@@ -4810,9 +4810,9 @@ package.preload["vw3.pack"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local EXCEPTION, NOISE, REQUEST, RESPONSE, assert, concat = EXCEPTION, NOISE, REQUEST, RESPONSE, assert, concat
-local floor, load, next, type = floor, load, next, type
+local floor, format, ipairs, load, next, table, type = floor, format, ipairs, load, next, table, type
 
--- What a record keeps of a frame for the later passes, packed: numbers, ITEM slots of one flat array per
+-- What a record keeps of a frame for the later passes, packed: numbers, SLOTS of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
@@ -4828,7 +4828,6 @@ local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "ma
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
 local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
-local ITEM = 13
 
 -- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
 -- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
@@ -4837,87 +4836,73 @@ local tests = { "f.registers and (f.registers.status or f.registers.plain)" }
 for index = 1, #RARE do tests[#tests + 1] = "f." .. RARE[index] end
 local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
 
--- Slots: kind, slave, function and length; at; number; offset; record; time; CRC and expected CRC; start
--- and quantity; the register run; the bit run; the request's record (or minus the response's); the
--- request's time; span label (or the table of the rare keys and the span label). A missing start, quantity or run start is 0 and the others are one more
--- than they are.
 local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
+-- The slots of a packed frame, in order: each the keys it packs, lowest first, each but the last followed
+-- by its radix (the next key multiplies it). A key that may be missing is one more than it is, 0 for none
+-- (`+`), or false for none (`?`). A slot with a name is made by ENCODE[name] from its keys; a run's
+-- (registers, bits) packs the keys of the frame's run (false where it has none). The kind is KIND_NUMBER's;
+-- link is the request's record, or minus the response's; span_label the span label, or the table of the
+-- rare keys and the span label.
+local SLOTS = {
+  { name = "head", "kind", 4, "slave", 256, "fn", 256, "length" }, { "at" }, { "number" }, { "offset" }, { "record" },
+  { "time?" }, { name = "crcs", "crc_expected", SHORT, "crc" }, { name = "span", "quantity+", 65537, "start+" },
+  { name = "registers", "first", SHORT, "count", SHORT, "start+" },
+  { name = "bits", "first", SHORT, "count", SHORT, "start+", 65537, "single+" },
+  { "link?" }, { "request_time?" }, { "span_label?" },
+}
+local RUNS, APART = { registers = true, bits = true }, { link = true, request_time = true }
 
--- A register run's slot: its first byte, count and start (nil: none).
-local function run_slot(first, count, start)
-  if start == nil then start = 0 else start = start + 1 end
-  return first + SHORT * (count + SHORT * start)
-end
-
--- A bit run's slot: its first byte, count, start and single coil's value (nil: none).
-local function bit_slot(first, count, start, single)
-  if start == nil then start = 0 else start = start + 1 end
-  if single == nil then single = 0 else single = single + 1 end
-  return first + SHORT * (count + SHORT * (start + 65537 * single))
-end
-
--- The shared slots: kind, slave, function and length; the CRC and the expected CRC; start and quantity
--- (each one more than it is, 0 for none: 16-bit fields).
-local function head_slot(kind, slave, fn, length) return kind + 4 * (slave + 256 * (fn + 256 * length)) end
-local function crc_slot(crc, expected) return crc * SHORT + expected end
-local function span_slot(start, quantity)
-  if start == nil then start = 0 else start = start + 1 end
-  if quantity == nil then quantity = 0 else quantity = quantity + 1 end
-  return start * 65537 + quantity
-end
-
--- Write a frame's 13 slots (the order expand_flat reads them in); time, request_time and label nil when
--- missing, regs and bits a run's slot or false, link the request's record, minus the response's, or false.
-local function put_flat(st, head, at, number, offset, record, time, crcs, span, regs, bits, link, request_time,
-    label)
-  if time == nil then time = false end
-  if request_time == nil then request_time = false end
-  if label == nil then label = false end
-  local flat, k = st.flat, st.flat_n
-  -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
-  -- of the array part, where the key goes to the hash part until the table is rebuilt)
-  flat[k + 1] = head; flat[k + 2] = at; flat[k + 3] = number; flat[k + 4] = offset; flat[k + 5] = record
-  flat[k + 6] = time; flat[k + 7] = crcs; flat[k + 8] = span; flat[k + 9] = regs; flat[k + 10] = bits
-  flat[k + 11] = link; flat[k + 12] = request_time; flat[k + 13] = label
-  st.flat_n = k + ITEM
-  return k
-end
-
--- An answer of the quick lane (lane.answer): a response with a good CRC, at the start of its own
--- record, whose registers (or bits) are a run from its fourth byte and whose request is in record `link`.
-function pack.answer(st, slave, fn, length, number, offset, record, time, crc, start, quantity, count, link,
-    request_time, label, bits)
-  local registers, coils = false, false
-  if bits then coils = bit_slot(3, count, start, nil) else registers = run_slot(3, count, start) end
-  return put_flat(st, head_slot(2, slave, fn, length), 0, number, offset, record, time, crc_slot(crc, crc),
-    span_slot(start, quantity), registers, coils, link, request_time, label)
-end
-
--- A request of the quick lanes (lane.request, lane.write), answered in the quick lane (lane.answer): its
--- slots but its number, offset, record, time and CRC come from its entry in known_requests (the same for
--- every request with its bytes, or its bytes before the values), made once; false when such a request
--- holds a rare key (a name of the device's own: packed by pack.settle).
-local function entry_slots(known, n, slave, fn)
-  local slots = known.slots
-  if slots ~= nil then return slots end
-  slots = false
-  local registers, bits = known.registers, known.bits
-  if known.function_text == nil then
-    slots = { head_slot(1, slave, fn, n), span_slot(known.start, known.quantity),
-      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
-      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
-      known.span_label or false }
+-- From SLOTS, as Lua source run once (straight code, no loop a frame): ENCODE[name](keys, lowest first);
+-- put_flat(st, every slot's value), the frame's first slot in st.flat; expand_slots(flat, that slot), its
+-- keys and runs in a table, then the keys APART. (put_flat writes one statement a slot, in order: a
+-- multiple assignment stores its last target first, past the end of the array part, where the key goes
+-- to the hash part until the table is rebuilt.)
+local ENCODE, put_flat, expand_slots = {}, nil, nil
+do
+  -- (a key's code put and got, X its name)
+  local PUT = { ["+"] = "if X == nil then X = 0 else X = X + 1 end ", ["?"] = "", [""] = "" }
+  local GOT = { ["+"] = " if X == 0 then X = nil else X = X - 1 end", ["?"] = " if X == false then X = nil end",
+    [""] = "" }
+  local source, params, put, get, keys, apart = { "local floor, ENCODE = ..." }, {}, {}, {}, {}, {}
+  for at, slot in ipairs(SLOTS) do
+    local v, fields, before, got, sum = "s" .. at, {}, "", {}, nil
+    params[at], get[at] = v, format("local %s = flat[k + %d] ", v, at)
+    for index = #slot, 1, -2 do -- (the last key first: the others multiply it)
+      local radix, key, how = slot[index + 1], slot[index]:match("^([%w_]+)([+?]?)$")
+      table.insert(fields, 1, key)
+      before = PUT[how]:gsub("X", key) .. before
+      sum = sum and format("%s + %d * (%s)", key, radix, sum) or key
+      if how == "?" then put[#put + 1] = format("if %s == nil then %s = false end", v, v) end
+      local split = radix and format("local %s = %s %% %d; %s = floor((%s - %s) / %d)", key, v, radix, v, v, key, radix)
+      table.insert(got, 1, (split or format("local %s = %s", key, v)) .. GOT[how]:gsub("X", key))
+    end
+    if slot.name then
+      source[#source + 1] = format("ENCODE.%s = function(%s) %sreturn %s end", slot.name, concat(fields, ", "), before,
+        sum)
+    end
+    if RUNS[slot.name] then
+      -- (a run's keys in a table of their own, made where the slot holds one)
+      local run = {}
+      for index, key in ipairs(fields) do run[index] = key .. " = " .. key end
+      get[at] = get[at] .. format("if %s == false then %s = nil else %s %s = { %s } end", v, v, concat(got, " "), v,
+        concat(run, ", "))
+      keys[#keys + 1] = format("%s = %s", slot.name, v)
+    else
+      get[at] = get[at] .. concat(got, " ")
+      for _, key in ipairs(fields) do
+        if APART[key] then apart[#apart + 1] = key else keys[#keys + 1] = key .. " = " .. key end
+      end
+    end
+    put[#put + 1] = format("flat[k + %d] = %s", at, v)
   end
-  known.slots = slots
-  return slots
+  source[#source + 1] = format("return function(st, %s) local flat, k = st.flat, st.flat_n %s st.flat_n = k + %d "
+    .. "return k end,", concat(params, ", "), concat(put, " "), #SLOTS)
+  source[#source + 1] = format("function(flat, k) %s return { %s }, %s end", concat(get, " "), concat(keys, ", "),
+    concat(apart, ", "))
+  put_flat, expand_slots = assert(load(concat(source, "\n"), "=vw3.pack.SLOTS"))(floor, ENCODE)
 end
-pack.entry_slots = entry_slots
-
--- The request's flat item.
-function pack.answered_request(st, f, slots, response_record)
-  return put_flat(st, slots[1], 0, f.number, f.offset, f.record, f.time, crc_slot(f.crc, f.crc_expected), slots[2],
-    slots[3], slots[4], -response_record, nil, slots[5])
-end
+local head_slot, crc_slot, span_slot, run_slot, bit_slot = ENCODE.head, ENCODE.crcs, ENCODE.span, ENCODE.registers,
+  ENCODE.bits
 
 -- A frame's first slot in st.flat; noise in a table of its own, 10 slots (a
 -- run of the same noise, take_items, is one: a flood of ':' in ASCII mode is a noise item a byte).
@@ -4952,61 +4937,18 @@ local function pack_item(st, f)
     if f.inferred and request ~= nil then last.inferred = { request.start, request.quantity } end
   end
   return put_flat(st, head_slot(KIND_NUMBER[f.kind], f.slave, f.fn, f.length), f.at, f.number, f.offset,
-    f.record, f.time, crc_slot(f.crc, f.crc_expected), span_slot(f.start, f.quantity), regs, coils, link,
+    f.record, f.time, crc_slot(f.crc_expected, f.crc), span_slot(f.quantity, f.start), regs, coils, link,
     request_time, last)
 end
 
-local function value(x)
-  if x == false then return nil end
-  return x
-end
-
--- n split into its low part (below `base`) and the rest (math.floor: integers on Lua 5.4, as they were)
-local function split(n, base)
-  local low = n % base
-  return low, floor((n - low) / base)
-end
-
--- one more than a value, or 0: the value, or nil
-local function less_one(n)
-  if n == 0 then return nil end
-  return n - 1
-end
-
 local function expand_flat(st, k)
-  local flat = st.flat
-  local kind, rest = split(flat[k + 1], 4)
-  local slave, fn
-  slave, rest = split(rest, 256)
-  fn, rest = split(rest, 256)
-  local crc, crc_expected = flat[k + 7], nil
-  crc_expected, crc = split(crc, SHORT)
-  local quantity, start = split(flat[k + 8], 65537)
-  local f = { kind = NUMBER_KIND[kind], at = flat[k + 2], length = rest, number = flat[k + 3],
-    offset = flat[k + 4], record = flat[k + 5], time = value(flat[k + 6]), slave = slave,
-    fn = fn, crc = crc, crc_expected = crc_expected, start = less_one(start),
-    quantity = less_one(quantity), span_label = value(flat[k + 13]) }
+  local f, link, request_time = expand_slots(st.flat, k)
+  f.kind = NUMBER_KIND[f.kind]
   local rare = f.span_label
   if type(rare) == "table" then f.span_label = rare.span_label else rare = nil end
-  local regs = flat[k + 9]
-  if regs ~= false then
-    local first, count, run_start
-    first, rest = split(regs, SHORT)
-    count, run_start = split(rest, SHORT)
-    f.registers = { first = first, count = count, start = less_one(run_start) }
-  end
-  local bits = flat[k + 10]
-  if bits ~= false then
-    local first, count, run_start, single
-    first, rest = split(bits, SHORT)
-    count, rest = split(rest, SHORT)
-    run_start, single = split(rest, 65537)
-    f.bits = { first = first, count = count, start = less_one(run_start), single = less_one(single) }
-  end
-  local link = flat[k + 11]
-  if link ~= false then
+  if link ~= nil then
     if link > 0 then
-      f.request = { record = link, time = value(flat[k + 12]) }
+      f.request = { record = link, time = request_time }
     else
       f.response = { record = -link }
     end
@@ -5077,7 +5019,8 @@ function pack.settle(st)
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
 
-M.pack = pack
+M.pack, M.put_flat = pack, put_flat
+M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot
 end
 
 -- ---- vw3.records: lua/src/records.lua ----
@@ -5089,18 +5032,20 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE = AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE
 local PROFILES, READS, REQUEST, RESPONSE, annotate_with = PROFILES, READS, REQUEST, RESPONSE, annotate_with
-local build_device, ceil_bytes, crc_string_ok, decode_frame = build_device, ceil_bytes, crc_string_ok, decode_frame
-local detect_mode, device_for, device_now, feed, feed_whole = detect_mode, device_for, device_now, feed, feed_whole
-local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
-local pairs, pcall, release_run, remember_writes, story = pairs, pcall, release_run, remember_writes, story
-local string, string_of, takes_whole, tostring, type = string, string_of, takes_whole, tostring, type
-local whole_crc_good = whole_crc_good
+local bit_slot, build_device, ceil_bytes, crc_slot = bit_slot, build_device, ceil_bytes, crc_slot
+local crc_string_ok, decode_frame, detect_mode, device_for = crc_string_ok, decode_frame, detect_mode, device_for
+local device_now, feed, feed_whole, head_slot, ipairs, lane = device_now, feed, feed_whole, head_slot, ipairs, lane
+local math, new_state, next, pack, pair, pairs, pcall = math, new_state, next, pack, pair, pairs, pcall
+local put_flat, release_run, remember_writes, run_slot = put_flat, release_run, remember_writes, run_slot
+local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
+local tostring, type, whole_crc_good = tostring, type, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
-local function copy_run(run)
+-- (b: the frame's bytes, else the run's)
+local function copy_run(run, b)
   if run == nil then return nil end
-  return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
+  return { b = b or run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
@@ -5110,10 +5055,9 @@ local function take_frame(st, item, whole)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
-  -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
-  -- ask for them (a request's, until its answer is decoded or it can have none).
-  if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
-  if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
+  -- table (the display reads the tvb) and the decoded fields once nothing can ask for them (a
+  -- request's, until its answer is decoded or it can have none). (Warnings and notes are lists made
+  -- with their first entry: none is empty.)
   -- A record's one frame (whole) is copied by pack.settle, which takes none of these keys (and its
   -- indices are the frame's own already); a request awaiting its answer keeps its byte table until then.
   -- The request it answers may have come through the stream's buffer: its registers are released.
@@ -5161,7 +5105,7 @@ local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 -- Requests that write, by the length of their bytes before the values (slave, function, addresses,
 -- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
 -- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
+-- values are a run read when shown). A master writes its setpoints every cycle with new values.
 known_requests.header_lengths = {}
 for code, entry in pairs(DATA.rules.by_code.request) do
   local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
@@ -5186,7 +5130,7 @@ end
 -- decoding and annotation said nothing but its fields and device texts, which nothing else than its
 -- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
 -- A request that writes is kept by its bytes before the values too (known_requests.headers, for
--- lane.write, which looks at the layout rules again), even where it writes registers under one.
+-- lane.request, which looks at the layout rules again), even where it writes registers under one.
 -- Not a provisional one: its Info text says so, the lanes take a request of a settled slave.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
@@ -5321,24 +5265,18 @@ end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
 local LANE_VALUES, LANE_LASTS = {}, {}
 
--- The quick lane: a record that is the usual answer to the request awaited (a run of registers or bits
--- whose byte count agrees with the request, on time, from a device that notes nothing about them and has
--- no name of its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
--- pack.settle would do it, without a byte table, frame table or fields. Returns the item kept and its Info
--- text; nil, with nothing changed, for any other record (the general path takes it).
-function lane.answer(st, bytes, n, time, number)
+-- The quick lane of answers (see lane.decode): a record that is the usual answer to the request awaited (a
+-- run of registers or bits whose byte count agrees with the request, on time, from a device that notes
+-- nothing about them and has no name of its own for the function) is framed, paired, annotated and kept
+-- as dissect_record, take_frame and pack.settle would do it, without a byte table, frame table or fields.
+-- Returns the item kept and its Info text; nil, with nothing changed, for any other record.
+function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local byte = string.byte
   local pending = st.pending
-  if pending == nil or st.open[1] ~= nil then return nil end
-  local slave, code, count = byte(bytes, 1, 3)
-  local run = RUN_ANSWERS[code]
+  local run, count = RUN_ANSWERS[code], byte(bytes, 3)
   if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
-  -- framed as feed_whole frames it: one whole answer where no byte waits, by its length rule, its CRC good
-  -- (lane.advance then leaves the stream as feed_whole leaves it)
-  if not takes_whole(st, n, slave) or st.expect ~= slave * 256 + code or n ~= run.extra + count
-      or not whole_crc_good(bytes, n) then
-    return nil
-  end
+  -- framed by its length rule, its CRC good
+  if n ~= run.extra + count or not whole_crc_good(bytes, n) then return nil end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
@@ -5354,10 +5292,7 @@ function lane.answer(st, bytes, n, time, number)
   elseif count ~= 2 * quantity then
     return nil
   end
-  -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
-  local auto = config.default == AUTO and config.per_slave[slave] == nil
-  local quiet = auto and lane.quiet(st, slave, code, true)
-  if auto and not quiet then return nil end
+  -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
   if not device then return nil end
   local profile = device.profile
@@ -5382,7 +5317,7 @@ function lane.answer(st, bytes, n, time, number)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if auto then lane.counted(quiet, true) end
+  if quiet then lane.counted(quiet, true) end
   st.expect = nil -- (expect_after: an answer awaits nothing)
   local offset = lane.advance(st, n, time)
   local item = st.count + 1
@@ -5410,7 +5345,8 @@ function lane.answer(st, bytes, n, time, number)
   local request_record = list[last - 1]
   if slots and last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
       and st.records[pending.record] == request_record then
-    local packed = pack.answered_request(st, pending, slots, number)
+    local packed = put_flat(st, slots[1], 0, pending.number, pending.offset, pending.record, pending.time,
+      crc_slot(pending.crc_expected, pending.crc), slots[2], slots[3], slots[4], -number, nil, slots[5])
     list[last], list[last - 1] = nil, nil
     request_record[1] = packed
     st.records[pending.record] = packed
@@ -5434,46 +5370,49 @@ function lane.answer(st, bytes, n, time, number)
     info = summary(ANSWER)
     infos[key], infos.labels[key], infos.count = info, ANSWER.span_label, infos.count + 1
   end
+  -- Kept as pack.settle would keep it: a response with a good CRC, at the start of its own record, whose
+  -- registers (or bits) are a run from its fourth byte, its request in record pending.record.
   local crc_low, crc_high = byte(bytes, n - 1, n)
-  local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
-    quantity, pending.record, asked, infos.labels[key], bits)
-  return kept, info
+  local crc, registers, coils = crc_low + crc_high * 256, false, false
+  if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
+  return put_flat(st, head_slot(2, slave, code, n), 0, item, offset, number, time, crc_slot(crc, crc),
+    span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
 end
 
--- The quick lane of requests: a record that is a request met before (known_requests) with no request
--- awaiting its answer, for the device it was met with, is framed, paired and decoded as feed_whole,
--- dissect_record and take_frame would do it, in one table. Returns the record, as dissect_record does
--- (shown and kept by dissect_records as such); nil, with nothing changed, for any other record.
-function lane.request(st, bytes, n, time, number)
-  if st.pending ~= nil or st.open[1] ~= nil then return nil end
-  local known = known_requests.entries[bytes]
-  if known == nil then return nil end
-  local slave, code = string.byte(bytes, 1, 2)
-  local quiet = lane.takes_known(st, known, n, slave, code)
-  if quiet == nil then return nil end
-  return lane.hold_known(st, known, quiet, n, slave, code, time, number)
-end
-
--- Would the quick lanes take a request met before (its entry `known`) of slave's function code, n bytes:
--- framed whole where no answer of its slave and function is awaited (feed_whole), profile auto settled
--- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
--- in use for the slave), or nil. Changes nothing.
-function lane.takes_known(st, known, n, slave, code)
-  if not takes_whole(st, n, slave) or st.expect == slave * 256 + code then return nil end
-  local quiet = false
-  if config.default == AUTO and config.per_slave[slave] == nil then
-    quiet = lane.quiet(st, slave, code, false)
-    if not quiet then return nil end
-  end
-  if device_for(st, slave) ~= known.device then return nil end
-  return quiet
-end
-
--- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
--- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
--- pack.settle). Returns the record.
+-- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
+-- its bytes, or, a request that writes (FC15, FC16, FC23 by the protocol table), by its bytes before the
+-- values), for the device it was met with, is framed, paired and decoded as feed_whole, dissect_record and
+-- take_frame would do it, in one table. A request known by its
+-- bytes before the values has its CRC checked and its runs read from its own bytes, and goes the general
+-- path where a register it writes is under a layout rule that holds now (annotate_one would note it).
+-- Returns the record, as dissect_record does (shown and kept by dissect_records as such); nil, with
+-- nothing changed, for any other record.
 lane.spare = {}
-function lane.hold_known(st, known, quiet, n, slave, code, time, number)
+function lane.request(st, bytes, n, time, number, slave, code, quiet)
+  local byte = string.byte
+  local known = known_requests.entries[bytes]
+  local own = known == nil -- (its own values: known by its bytes before them)
+  if own then
+    local header = known_requests.header_lengths[code]
+    if header == nil or n <= header then return nil end
+    known = known_requests.headers[bytes:sub(1, header)]
+    if known == nil or known.length ~= n then return nil end
+  end
+  local device = known.device
+  if device_for(st, slave) ~= device then return nil end
+  if own then
+    local registers = known.registers
+    if registers ~= nil and next(device.depend) ~= nil then
+      local rows, plain_rule = device.rows, story.plain_rule
+      for index = 0, registers.count - 1 do
+        local address = (registers.start + index) % 0x10000
+        if plain_rule(device, address, rows[address]) ~= nil then return nil end
+      end
+    end
+    if not crc_string_ok(bytes, n) then return nil end
+  end
+  -- Taken: the same changes as the general path's (the stream, the count, profile auto's count, the frame
+  -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
   if quiet then lane.counted(quiet, false) end
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   local offset = lane.advance(st, n, time)
@@ -5493,53 +5432,33 @@ function lane.hold_known(st, known, quiet, n, slave, code, time, number)
   else
     spare[#spare] = nil
   end
-  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
-    known.crc, time
-  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, count, number, 0
+  local b, crc = nil, known.crc
+  if own then
+    local crc_low, crc_high = byte(bytes, n - 1, n)
+    b, crc = { [0] = slave, byte(bytes, 2, n) }, crc_low + crc_high * 256
+  end
+  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, crc, crc,
+    time
+  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
-  f.registers, f.bits = copy_run(known.registers), copy_run(known.bits)
+  f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
-  f.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
+  local slots = known.slots
+  if slots == nil then
+    -- The slots of such a request but its number, offset, record, time and CRC (lane.answer packs it with
+    -- them), made once for its entry when the lane first takes it (most entries of a mix of random
+    -- requests never are); false where it holds a rare key (a name of the device's own: pack.settle).
+    local registers, bits = known.registers, known.bits
+    slots = known.function_text == nil and { head_slot(1, slave, code, n), span_slot(known.quantity, known.start),
+      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
+      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false, known.span_label or false }
+    known.slots = slots
+  end
+  f.slots = slots
   st.pending = f
   local record = { f }
   st.last = record
   st.whole_record = record
-  return record
-end
-
--- The quick lane of requests that write (FC15, FC16, FC23 by the protocol table): a record whose bytes
--- before the values are a request met before (known_requests.headers), with no request awaiting its
--- answer, for the device it was met with, and no register it writes under a layout rule that holds now
--- (annotate_one would note it), is framed, paired and decoded as feed_whole, dissect_record and take_frame
--- would do it: its CRC checked, its runs read from its own bytes. Returns the record as lane.request does;
--- nil, with nothing changed, for any other record.
-function lane.write(st, bytes, n, time, number)
-  if st.pending ~= nil or st.open[1] ~= nil then return nil end
-  local byte = string.byte
-  local slave, code = byte(bytes, 1, 2)
-  local header = known_requests.header_lengths[code]
-  if header == nil or n <= header then return nil end
-  local known = known_requests.headers[bytes:sub(1, header)]
-  if known == nil or known.length ~= n then return nil end
-  local quiet = lane.takes_known(st, known, n, slave, code)
-  if quiet == nil then return nil end
-  local device, registers = known.device, known.registers
-  if registers ~= nil and next(device.depend) ~= nil then
-    local rows, plain_rule = device.rows, story.plain_rule
-    for index = 0, registers.count - 1 do
-      local address = (registers.start + index) % 0x10000
-      if plain_rule(device, address, rows[address]) ~= nil then return nil end
-    end
-  end
-  if not crc_string_ok(bytes, n) then return nil end
-  -- Taken: as lane.request takes a request, with this record's own bytes and CRC.
-  local record = lane.hold_known(st, known, quiet, n, slave, code, time, number)
-  local frame = record[1]
-  local crc_low, crc_high = byte(bytes, n - 1, n)
-  local b = { [0] = slave, byte(bytes, 2, n) }
-  frame.b, frame.crc, frame.crc_expected = b, crc_low + crc_high * 256, crc_low + crc_high * 256
-  if frame.registers ~= nil then frame.registers.b = b end
-  if frame.bits ~= nil then frame.bits.b = b end
   return record
 end
 
@@ -5593,16 +5512,29 @@ local function finish_safely(st)
   if not ok and st.last ~= nil then st.last.error = tostring(problem) end
 end
 
--- A record's first decoding: the quick lanes, else the general path (dissect_record).
+-- A record's first decoding: the quick lanes, else the general path (dissect_record). A lane takes a
+-- record framed as feed_whole frames it, one whole frame where no byte waits (lane.advance then leaves the
+-- stream as feed_whole leaves it), where profile auto's choice is settled for its slave (device_now); the
+-- answer's where a request awaits its answer (and the framer expects it), the requests' where none does.
 -- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
 -- record the general path, which the quick lanes must equal (the parity tests run both).
 lane.quick = VW3_QUICK_LANES ~= false
 function lane.decode(st, bytes, n, time, number)
-  if lane.quick then
-    local kept, info = lane.answer(st, bytes, n, time, number)
-    if kept ~= nil then return kept, n, info end
-    local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
-    if record ~= nil then return record, n, record[1].info end
+  local slave, code = string.byte(bytes, 1, 2)
+  local answer = st.pending ~= nil
+  if lane.quick and st.open[1] == nil and takes_whole(st, n, slave)
+      and (st.expect == slave * 256 + code) == answer then
+    local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
+    if config.default == AUTO and config.per_slave[slave] == nil then quiet = lane.quiet(st, slave, code, answer) end
+    if quiet ~= false then
+      if answer then
+        local kept, info = lane.answer(st, bytes, n, time, number, slave, code, quiet)
+        if kept ~= nil then return kept, n, info end
+      else
+        local record = lane.request(st, bytes, n, time, number, slave, code, quiet)
+        if record ~= nil then return record, n, record[1].info end
+      end
+    end
   end
   return dissect_record(st, bytes, time, number), n
 end

@@ -4,7 +4,7 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
--- What a record keeps of a frame for the later passes, packed: numbers, ITEM slots of one flat array per
+-- What a record keeps of a frame for the later passes, packed: numbers, SLOTS of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
@@ -20,7 +20,6 @@ local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "ma
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
 local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
-local ITEM = 13
 
 -- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
 -- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
@@ -29,87 +28,73 @@ local tests = { "f.registers and (f.registers.status or f.registers.plain)" }
 for index = 1, #RARE do tests[#tests + 1] = "f." .. RARE[index] end
 local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
 
--- Slots: kind, slave, function and length; at; number; offset; record; time; CRC and expected CRC; start
--- and quantity; the register run; the bit run; the request's record (or minus the response's); the
--- request's time; span label (or the table of the rare keys and the span label). A missing start, quantity or run start is 0 and the others are one more
--- than they are.
 local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
+-- The slots of a packed frame, in order: each the keys it packs, lowest first, each but the last followed
+-- by its radix (the next key multiplies it). A key that may be missing is one more than it is, 0 for none
+-- (`+`), or false for none (`?`). A slot with a name is made by ENCODE[name] from its keys; a run's
+-- (registers, bits) packs the keys of the frame's run (false where it has none). The kind is KIND_NUMBER's;
+-- link is the request's record, or minus the response's; span_label the span label, or the table of the
+-- rare keys and the span label.
+local SLOTS = {
+  { name = "head", "kind", 4, "slave", 256, "fn", 256, "length" }, { "at" }, { "number" }, { "offset" }, { "record" },
+  { "time?" }, { name = "crcs", "crc_expected", SHORT, "crc" }, { name = "span", "quantity+", 65537, "start+" },
+  { name = "registers", "first", SHORT, "count", SHORT, "start+" },
+  { name = "bits", "first", SHORT, "count", SHORT, "start+", 65537, "single+" },
+  { "link?" }, { "request_time?" }, { "span_label?" },
+}
+local RUNS, APART = { registers = true, bits = true }, { link = true, request_time = true }
 
--- A register run's slot: its first byte, count and start (nil: none).
-local function run_slot(first, count, start)
-  if start == nil then start = 0 else start = start + 1 end
-  return first + SHORT * (count + SHORT * start)
-end
-
--- A bit run's slot: its first byte, count, start and single coil's value (nil: none).
-local function bit_slot(first, count, start, single)
-  if start == nil then start = 0 else start = start + 1 end
-  if single == nil then single = 0 else single = single + 1 end
-  return first + SHORT * (count + SHORT * (start + 65537 * single))
-end
-
--- The shared slots: kind, slave, function and length; the CRC and the expected CRC; start and quantity
--- (each one more than it is, 0 for none: 16-bit fields).
-local function head_slot(kind, slave, fn, length) return kind + 4 * (slave + 256 * (fn + 256 * length)) end
-local function crc_slot(crc, expected) return crc * SHORT + expected end
-local function span_slot(start, quantity)
-  if start == nil then start = 0 else start = start + 1 end
-  if quantity == nil then quantity = 0 else quantity = quantity + 1 end
-  return start * 65537 + quantity
-end
-
--- Write a frame's 13 slots (the order expand_flat reads them in); time, request_time and label nil when
--- missing, regs and bits a run's slot or false, link the request's record, minus the response's, or false.
-local function put_flat(st, head, at, number, offset, record, time, crcs, span, regs, bits, link, request_time,
-    label)
-  if time == nil then time = false end
-  if request_time == nil then request_time = false end
-  if label == nil then label = false end
-  local flat, k = st.flat, st.flat_n
-  -- (one statement a slot, in order: a multiple assignment stores its last target first, past the end
-  -- of the array part, where the key goes to the hash part until the table is rebuilt)
-  flat[k + 1] = head; flat[k + 2] = at; flat[k + 3] = number; flat[k + 4] = offset; flat[k + 5] = record
-  flat[k + 6] = time; flat[k + 7] = crcs; flat[k + 8] = span; flat[k + 9] = regs; flat[k + 10] = bits
-  flat[k + 11] = link; flat[k + 12] = request_time; flat[k + 13] = label
-  st.flat_n = k + ITEM
-  return k
-end
-
--- An answer of the quick lane (lane.answer): a response with a good CRC, at the start of its own
--- record, whose registers (or bits) are a run from its fourth byte and whose request is in record `link`.
-function pack.answer(st, slave, fn, length, number, offset, record, time, crc, start, quantity, count, link,
-    request_time, label, bits)
-  local registers, coils = false, false
-  if bits then coils = bit_slot(3, count, start, nil) else registers = run_slot(3, count, start) end
-  return put_flat(st, head_slot(2, slave, fn, length), 0, number, offset, record, time, crc_slot(crc, crc),
-    span_slot(start, quantity), registers, coils, link, request_time, label)
-end
-
--- A request of the quick lanes (lane.request, lane.write), answered in the quick lane (lane.answer): its
--- slots but its number, offset, record, time and CRC come from its entry in known_requests (the same for
--- every request with its bytes, or its bytes before the values), made once; false when such a request
--- holds a rare key (a name of the device's own: packed by pack.settle).
-local function entry_slots(known, n, slave, fn)
-  local slots = known.slots
-  if slots ~= nil then return slots end
-  slots = false
-  local registers, bits = known.registers, known.bits
-  if known.function_text == nil then
-    slots = { head_slot(1, slave, fn, n), span_slot(known.start, known.quantity),
-      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
-      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
-      known.span_label or false }
+-- From SLOTS, as Lua source run once (straight code, no loop a frame): ENCODE[name](keys, lowest first);
+-- put_flat(st, every slot's value), the frame's first slot in st.flat; expand_slots(flat, that slot), its
+-- keys and runs in a table, then the keys APART. (put_flat writes one statement a slot, in order: a
+-- multiple assignment stores its last target first, past the end of the array part, where the key goes
+-- to the hash part until the table is rebuilt.)
+local ENCODE, put_flat, expand_slots = {}, nil, nil
+do
+  -- (a key's code put and got, X its name)
+  local PUT = { ["+"] = "if X == nil then X = 0 else X = X + 1 end ", ["?"] = "", [""] = "" }
+  local GOT = { ["+"] = " if X == 0 then X = nil else X = X - 1 end", ["?"] = " if X == false then X = nil end",
+    [""] = "" }
+  local source, params, put, get, keys, apart = { "local floor, ENCODE = ..." }, {}, {}, {}, {}, {}
+  for at, slot in ipairs(SLOTS) do
+    local v, fields, before, got, sum = "s" .. at, {}, "", {}, nil
+    params[at], get[at] = v, format("local %s = flat[k + %d] ", v, at)
+    for index = #slot, 1, -2 do -- (the last key first: the others multiply it)
+      local radix, key, how = slot[index + 1], slot[index]:match("^([%w_]+)([+?]?)$")
+      table.insert(fields, 1, key)
+      before = PUT[how]:gsub("X", key) .. before
+      sum = sum and format("%s + %d * (%s)", key, radix, sum) or key
+      if how == "?" then put[#put + 1] = format("if %s == nil then %s = false end", v, v) end
+      local split = radix and format("local %s = %s %% %d; %s = floor((%s - %s) / %d)", key, v, radix, v, v, key, radix)
+      table.insert(got, 1, (split or format("local %s = %s", key, v)) .. GOT[how]:gsub("X", key))
+    end
+    if slot.name then
+      source[#source + 1] = format("ENCODE.%s = function(%s) %sreturn %s end", slot.name, concat(fields, ", "), before,
+        sum)
+    end
+    if RUNS[slot.name] then
+      -- (a run's keys in a table of their own, made where the slot holds one)
+      local run = {}
+      for index, key in ipairs(fields) do run[index] = key .. " = " .. key end
+      get[at] = get[at] .. format("if %s == false then %s = nil else %s %s = { %s } end", v, v, concat(got, " "), v,
+        concat(run, ", "))
+      keys[#keys + 1] = format("%s = %s", slot.name, v)
+    else
+      get[at] = get[at] .. concat(got, " ")
+      for _, key in ipairs(fields) do
+        if APART[key] then apart[#apart + 1] = key else keys[#keys + 1] = key .. " = " .. key end
+      end
+    end
+    put[#put + 1] = format("flat[k + %d] = %s", at, v)
   end
-  known.slots = slots
-  return slots
+  source[#source + 1] = format("return function(st, %s) local flat, k = st.flat, st.flat_n %s st.flat_n = k + %d "
+    .. "return k end,", concat(params, ", "), concat(put, " "), #SLOTS)
+  source[#source + 1] = format("function(flat, k) %s return { %s }, %s end", concat(get, " "), concat(keys, ", "),
+    concat(apart, ", "))
+  put_flat, expand_slots = assert(load(concat(source, "\n"), "=vw3.pack.SLOTS"))(floor, ENCODE)
 end
-pack.entry_slots = entry_slots
-
--- The request's flat item.
-function pack.answered_request(st, f, slots, response_record)
-  return put_flat(st, slots[1], 0, f.number, f.offset, f.record, f.time, crc_slot(f.crc, f.crc_expected), slots[2],
-    slots[3], slots[4], -response_record, nil, slots[5])
-end
+local head_slot, crc_slot, span_slot, run_slot, bit_slot = ENCODE.head, ENCODE.crcs, ENCODE.span, ENCODE.registers,
+  ENCODE.bits
 
 -- A frame's first slot in st.flat; noise in a table of its own, 10 slots (a
 -- run of the same noise, take_items, is one: a flood of ':' in ASCII mode is a noise item a byte).
@@ -144,61 +129,18 @@ local function pack_item(st, f)
     if f.inferred and request ~= nil then last.inferred = { request.start, request.quantity } end
   end
   return put_flat(st, head_slot(KIND_NUMBER[f.kind], f.slave, f.fn, f.length), f.at, f.number, f.offset,
-    f.record, f.time, crc_slot(f.crc, f.crc_expected), span_slot(f.start, f.quantity), regs, coils, link,
+    f.record, f.time, crc_slot(f.crc_expected, f.crc), span_slot(f.quantity, f.start), regs, coils, link,
     request_time, last)
 end
 
-local function value(x)
-  if x == false then return nil end
-  return x
-end
-
--- n split into its low part (below `base`) and the rest (math.floor: integers on Lua 5.4, as they were)
-local function split(n, base)
-  local low = n % base
-  return low, floor((n - low) / base)
-end
-
--- one more than a value, or 0: the value, or nil
-local function less_one(n)
-  if n == 0 then return nil end
-  return n - 1
-end
-
 local function expand_flat(st, k)
-  local flat = st.flat
-  local kind, rest = split(flat[k + 1], 4)
-  local slave, fn
-  slave, rest = split(rest, 256)
-  fn, rest = split(rest, 256)
-  local crc, crc_expected = flat[k + 7], nil
-  crc_expected, crc = split(crc, SHORT)
-  local quantity, start = split(flat[k + 8], 65537)
-  local f = { kind = NUMBER_KIND[kind], at = flat[k + 2], length = rest, number = flat[k + 3],
-    offset = flat[k + 4], record = flat[k + 5], time = value(flat[k + 6]), slave = slave,
-    fn = fn, crc = crc, crc_expected = crc_expected, start = less_one(start),
-    quantity = less_one(quantity), span_label = value(flat[k + 13]) }
+  local f, link, request_time = expand_slots(st.flat, k)
+  f.kind = NUMBER_KIND[f.kind]
   local rare = f.span_label
   if type(rare) == "table" then f.span_label = rare.span_label else rare = nil end
-  local regs = flat[k + 9]
-  if regs ~= false then
-    local first, count, run_start
-    first, rest = split(regs, SHORT)
-    count, run_start = split(rest, SHORT)
-    f.registers = { first = first, count = count, start = less_one(run_start) }
-  end
-  local bits = flat[k + 10]
-  if bits ~= false then
-    local first, count, run_start, single
-    first, rest = split(bits, SHORT)
-    count, rest = split(rest, SHORT)
-    run_start, single = split(rest, 65537)
-    f.bits = { first = first, count = count, start = less_one(run_start), single = less_one(single) }
-  end
-  local link = flat[k + 11]
-  if link ~= false then
+  if link ~= nil then
     if link > 0 then
-      f.request = { record = link, time = value(flat[k + 12]) }
+      f.request = { record = link, time = request_time }
     else
       f.response = { record = -link }
     end
@@ -269,4 +211,5 @@ function pack.settle(st)
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
 
-M.pack = pack
+M.pack, M.put_flat = pack, put_flat
+M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot

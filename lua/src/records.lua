@@ -6,9 +6,10 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
-local function copy_run(run)
+-- (b: the frame's bytes, else the run's)
+local function copy_run(run, b)
   if run == nil then return nil end
-  return { b = run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
+  return { b = b or run.b, first = run.first, count = run.count, start = run.start, shift = nil, single = run.single }
 end
 
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
@@ -18,10 +19,9 @@ local function take_frame(st, item, whole)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
   -- What the display does not need is dropped (the record is kept for every later pass): the byte
-  -- table (the display reads the tvb), empty lists (shared), and the decoded fields once nothing can
-  -- ask for them (a request's, until its answer is decoded or it can have none).
-  if item.warnings ~= nil and #item.warnings == 0 then item.warnings = nil end
-  if item.notes ~= nil and #item.notes == 0 then item.notes = nil end
+  -- table (the display reads the tvb) and the decoded fields once nothing can ask for them (a
+  -- request's, until its answer is decoded or it can have none). (Warnings and notes are lists made
+  -- with their first entry: none is empty.)
   -- A record's one frame (whole) is copied by pack.settle, which takes none of these keys (and its
   -- indices are the frame's own already); a request awaiting its answer keeps its byte table until then.
   -- The request it answers may have come through the stream's buffer: its registers are released.
@@ -69,7 +69,7 @@ local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 -- Requests that write, by the length of their bytes before the values (slave, function, addresses,
 -- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
 -- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values (lane.write).
+-- values are a run read when shown). A master writes its setpoints every cycle with new values.
 known_requests.header_lengths = {}
 for code, entry in pairs(DATA.rules.by_code.request) do
   local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
@@ -94,7 +94,7 @@ end
 -- decoding and annotation said nothing but its fields and device texts, which nothing else than its
 -- bytes and device made (no registers annotated: those under a device's layout rules may be noted).
 -- A request that writes is kept by its bytes before the values too (known_requests.headers, for
--- lane.write, which looks at the layout rules again), even where it writes registers under one.
+-- lane.request, which looks at the layout rules again), even where it writes registers under one.
 -- Not a provisional one: its Info text says so, the lanes take a request of a settled slave.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
@@ -229,24 +229,18 @@ end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
 local LANE_VALUES, LANE_LASTS = {}, {}
 
--- The quick lane: a record that is the usual answer to the request awaited (a run of registers or bits
--- whose byte count agrees with the request, on time, from a device that notes nothing about them and has
--- no name of its own for the function) is framed, paired, annotated and kept as dissect_record, take_frame and
--- pack.settle would do it, without a byte table, frame table or fields. Returns the item kept and its Info
--- text; nil, with nothing changed, for any other record (the general path takes it).
-function lane.answer(st, bytes, n, time, number)
+-- The quick lane of answers (see lane.decode): a record that is the usual answer to the request awaited (a
+-- run of registers or bits whose byte count agrees with the request, on time, from a device that notes
+-- nothing about them and has no name of its own for the function) is framed, paired, annotated and kept
+-- as dissect_record, take_frame and pack.settle would do it, without a byte table, frame table or fields.
+-- Returns the item kept and its Info text; nil, with nothing changed, for any other record.
+function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local byte = string.byte
   local pending = st.pending
-  if pending == nil or st.open[1] ~= nil then return nil end
-  local slave, code, count = byte(bytes, 1, 3)
-  local run = RUN_ANSWERS[code]
+  local run, count = RUN_ANSWERS[code], byte(bytes, 3)
   if pending.slave ~= slave or pending.fn ~= code or run == nil then return nil end
-  -- framed as feed_whole frames it: one whole answer where no byte waits, by its length rule, its CRC good
-  -- (lane.advance then leaves the stream as feed_whole leaves it)
-  if not takes_whole(st, n, slave) or st.expect ~= slave * 256 + code or n ~= run.extra + count
-      or not whole_crc_good(bytes, n) then
-    return nil
-  end
+  -- framed by its length rule, its CRC good
+  if n ~= run.extra + count or not whole_crc_good(bytes, n) then return nil end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
@@ -262,10 +256,7 @@ function lane.answer(st, bytes, n, time, number)
   elseif count ~= 2 * quantity then
     return nil
   end
-  -- device_now: profile auto's choice settled; annotate_with: nothing but the registers' bookkeeping
-  local auto = config.default == AUTO and config.per_slave[slave] == nil
-  local quiet = auto and lane.quiet(st, slave, code, true)
-  if auto and not quiet then return nil end
+  -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
   if not device then return nil end
   local profile = device.profile
@@ -290,7 +281,7 @@ function lane.answer(st, bytes, n, time, number)
     end
   end
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
-  if auto then lane.counted(quiet, true) end
+  if quiet then lane.counted(quiet, true) end
   st.expect = nil -- (expect_after: an answer awaits nothing)
   local offset = lane.advance(st, n, time)
   local item = st.count + 1
@@ -318,7 +309,8 @@ function lane.answer(st, bytes, n, time, number)
   local request_record = list[last - 1]
   if slots and last >= 2 and list[last] == 1 and request_record[1] == pending and request_record[2] == nil
       and st.records[pending.record] == request_record then
-    local packed = pack.answered_request(st, pending, slots, number)
+    local packed = put_flat(st, slots[1], 0, pending.number, pending.offset, pending.record, pending.time,
+      crc_slot(pending.crc_expected, pending.crc), slots[2], slots[3], slots[4], -number, nil, slots[5])
     list[last], list[last - 1] = nil, nil
     request_record[1] = packed
     st.records[pending.record] = packed
@@ -342,46 +334,49 @@ function lane.answer(st, bytes, n, time, number)
     info = summary(ANSWER)
     infos[key], infos.labels[key], infos.count = info, ANSWER.span_label, infos.count + 1
   end
+  -- Kept as pack.settle would keep it: a response with a good CRC, at the start of its own record, whose
+  -- registers (or bits) are a run from its fourth byte, its request in record pending.record.
   local crc_low, crc_high = byte(bytes, n - 1, n)
-  local kept = pack.answer(st, slave, code, n, item, offset, number, time, crc_low + crc_high * 256, start, quantity,
-    quantity, pending.record, asked, infos.labels[key], bits)
-  return kept, info
+  local crc, registers, coils = crc_low + crc_high * 256, false, false
+  if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
+  return put_flat(st, head_slot(2, slave, code, n), 0, item, offset, number, time, crc_slot(crc, crc),
+    span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
 end
 
--- The quick lane of requests: a record that is a request met before (known_requests) with no request
--- awaiting its answer, for the device it was met with, is framed, paired and decoded as feed_whole,
--- dissect_record and take_frame would do it, in one table. Returns the record, as dissect_record does
--- (shown and kept by dissect_records as such); nil, with nothing changed, for any other record.
-function lane.request(st, bytes, n, time, number)
-  if st.pending ~= nil or st.open[1] ~= nil then return nil end
-  local known = known_requests.entries[bytes]
-  if known == nil then return nil end
-  local slave, code = string.byte(bytes, 1, 2)
-  local quiet = lane.takes_known(st, known, n, slave, code)
-  if quiet == nil then return nil end
-  return lane.hold_known(st, known, quiet, n, slave, code, time, number)
-end
-
--- Would the quick lanes take a request met before (its entry `known`) of slave's function code, n bytes:
--- framed whole where no answer of its slave and function is awaited (feed_whole), profile auto settled
--- for the slave, the device it was met with? What lane.counted counts it in (false: profile auto is not
--- in use for the slave), or nil. Changes nothing.
-function lane.takes_known(st, known, n, slave, code)
-  if not takes_whole(st, n, slave) or st.expect == slave * 256 + code then return nil end
-  local quiet = false
-  if config.default == AUTO and config.per_slave[slave] == nil then
-    quiet = lane.quiet(st, slave, code, false)
-    if not quiet then return nil end
-  end
-  if device_for(st, slave) ~= known.device then return nil end
-  return quiet
-end
-
--- Take such a request: the same changes as the general path's (the stream, the count, profile auto's
--- count, the frame decoded as its entry says, awaiting its answer alone in its record, packed by
--- pack.settle). Returns the record.
+-- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
+-- its bytes, or, a request that writes (FC15, FC16, FC23 by the protocol table), by its bytes before the
+-- values), for the device it was met with, is framed, paired and decoded as feed_whole, dissect_record and
+-- take_frame would do it, in one table. A request known by its
+-- bytes before the values has its CRC checked and its runs read from its own bytes, and goes the general
+-- path where a register it writes is under a layout rule that holds now (annotate_one would note it).
+-- Returns the record, as dissect_record does (shown and kept by dissect_records as such); nil, with
+-- nothing changed, for any other record.
 lane.spare = {}
-function lane.hold_known(st, known, quiet, n, slave, code, time, number)
+function lane.request(st, bytes, n, time, number, slave, code, quiet)
+  local byte = string.byte
+  local known = known_requests.entries[bytes]
+  local own = known == nil -- (its own values: known by its bytes before them)
+  if own then
+    local header = known_requests.header_lengths[code]
+    if header == nil or n <= header then return nil end
+    known = known_requests.headers[bytes:sub(1, header)]
+    if known == nil or known.length ~= n then return nil end
+  end
+  local device = known.device
+  if device_for(st, slave) ~= device then return nil end
+  if own then
+    local registers = known.registers
+    if registers ~= nil and next(device.depend) ~= nil then
+      local rows, plain_rule = device.rows, story.plain_rule
+      for index = 0, registers.count - 1 do
+        local address = (registers.start + index) % 0x10000
+        if plain_rule(device, address, rows[address]) ~= nil then return nil end
+      end
+    end
+    if not crc_string_ok(bytes, n) then return nil end
+  end
+  -- Taken: the same changes as the general path's (the stream, the count, profile auto's count, the frame
+  -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
   if quiet then lane.counted(quiet, false) end
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
   local offset = lane.advance(st, n, time)
@@ -401,53 +396,33 @@ function lane.hold_known(st, known, quiet, n, slave, code, time, number)
   else
     spare[#spare] = nil
   end
-  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, known.crc,
-    known.crc, time
-  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = known.b, 0, 2, n - 4, count, number, 0
+  local b, crc = nil, known.crc
+  if own then
+    local crc_low, crc_high = byte(bytes, n - 1, n)
+    b, crc = { [0] = slave, byte(bytes, 2, n) }, crc_low + crc_high * 256
+  end
+  f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, crc, crc,
+    time
+  f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
-  f.registers, f.bits = copy_run(known.registers), copy_run(known.bits)
+  f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
-  f.slots = known.slots or pack.entry_slots(known, n, slave, code) -- (made once per entry)
+  local slots = known.slots
+  if slots == nil then
+    -- The slots of such a request but its number, offset, record, time and CRC (lane.answer packs it with
+    -- them), made once for its entry when the lane first takes it (most entries of a mix of random
+    -- requests never are); false where it holds a rare key (a name of the device's own: pack.settle).
+    local registers, bits = known.registers, known.bits
+    slots = known.function_text == nil and { head_slot(1, slave, code, n), span_slot(known.quantity, known.start),
+      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
+      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false, known.span_label or false }
+    known.slots = slots
+  end
+  f.slots = slots
   st.pending = f
   local record = { f }
   st.last = record
   st.whole_record = record
-  return record
-end
-
--- The quick lane of requests that write (FC15, FC16, FC23 by the protocol table): a record whose bytes
--- before the values are a request met before (known_requests.headers), with no request awaiting its
--- answer, for the device it was met with, and no register it writes under a layout rule that holds now
--- (annotate_one would note it), is framed, paired and decoded as feed_whole, dissect_record and take_frame
--- would do it: its CRC checked, its runs read from its own bytes. Returns the record as lane.request does;
--- nil, with nothing changed, for any other record.
-function lane.write(st, bytes, n, time, number)
-  if st.pending ~= nil or st.open[1] ~= nil then return nil end
-  local byte = string.byte
-  local slave, code = byte(bytes, 1, 2)
-  local header = known_requests.header_lengths[code]
-  if header == nil or n <= header then return nil end
-  local known = known_requests.headers[bytes:sub(1, header)]
-  if known == nil or known.length ~= n then return nil end
-  local quiet = lane.takes_known(st, known, n, slave, code)
-  if quiet == nil then return nil end
-  local device, registers = known.device, known.registers
-  if registers ~= nil and next(device.depend) ~= nil then
-    local rows, plain_rule = device.rows, story.plain_rule
-    for index = 0, registers.count - 1 do
-      local address = (registers.start + index) % 0x10000
-      if plain_rule(device, address, rows[address]) ~= nil then return nil end
-    end
-  end
-  if not crc_string_ok(bytes, n) then return nil end
-  -- Taken: as lane.request takes a request, with this record's own bytes and CRC.
-  local record = lane.hold_known(st, known, quiet, n, slave, code, time, number)
-  local frame = record[1]
-  local crc_low, crc_high = byte(bytes, n - 1, n)
-  local b = { [0] = slave, byte(bytes, 2, n) }
-  frame.b, frame.crc, frame.crc_expected = b, crc_low + crc_high * 256, crc_low + crc_high * 256
-  if frame.registers ~= nil then frame.registers.b = b end
-  if frame.bits ~= nil then frame.bits.b = b end
   return record
 end
 
@@ -501,16 +476,29 @@ local function finish_safely(st)
   if not ok and st.last ~= nil then st.last.error = tostring(problem) end
 end
 
--- A record's first decoding: the quick lanes, else the general path (dissect_record).
+-- A record's first decoding: the quick lanes, else the general path (dissect_record). A lane takes a
+-- record framed as feed_whole frames it, one whole frame where no byte waits (lane.advance then leaves the
+-- stream as feed_whole leaves it), where profile auto's choice is settled for its slave (device_now); the
+-- answer's where a request awaits its answer (and the framer expects it), the requests' where none does.
 -- lane.quick false (the `quick_lanes` preference, or VW3_QUICK_LANES = false set before loading): every
 -- record the general path, which the quick lanes must equal (the parity tests run both).
 lane.quick = VW3_QUICK_LANES ~= false
 function lane.decode(st, bytes, n, time, number)
-  if lane.quick then
-    local kept, info = lane.answer(st, bytes, n, time, number)
-    if kept ~= nil then return kept, n, info end
-    local record = lane.request(st, bytes, n, time, number) or lane.write(st, bytes, n, time, number)
-    if record ~= nil then return record, n, record[1].info end
+  local slave, code = string.byte(bytes, 1, 2)
+  local answer = st.pending ~= nil
+  if lane.quick and st.open[1] == nil and takes_whole(st, n, slave)
+      and (st.expect == slave * 256 + code) == answer then
+    local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
+    if config.default == AUTO and config.per_slave[slave] == nil then quiet = lane.quiet(st, slave, code, answer) end
+    if quiet ~= false then
+      if answer then
+        local kept, info = lane.answer(st, bytes, n, time, number, slave, code, quiet)
+        if kept ~= nil then return kept, n, info end
+      else
+        local record = lane.request(st, bytes, n, time, number, slave, code, quiet)
+        if record ~= nil then return record, n, record[1].info end
+      end
+    end
   end
   return dissect_record(st, bytes, time, number), n
 end

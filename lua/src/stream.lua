@@ -5,7 +5,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
--- them the quick lanes (lane.answer, lane.request, lane.write): a record that is the usual answer to the
+-- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
