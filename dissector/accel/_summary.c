@@ -393,11 +393,12 @@ typedef struct { int what; Py_ssize_t value; } Length;
 static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     const Length need = {LENGTH_NEED, 0};
     if (rule->fixed) return (Length){LENGTH_OK, rule->fixed};
-    switch (rule->special) {
-    case 0:
+    if (!rule->special) { /* counted */
         if (i + rule->position + rule->width - 1 >= n) return need;
         return (Length){LENGTH_OK, rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position)
                                                                     : b[i + rule->position])};
+    }
+    switch (rule->special) {
     case 1: /* _mei_request */
         if (i + 2 >= n) return need;
         return b[i + 2] == 14 ? (Length){LENGTH_OK, 7} : (Length){LENGTH_SCAN, 5};
