@@ -117,6 +117,13 @@ local DATA = {
       [254] = true,
       [255] = true,
     },
+    ["glitch_addresses"] = {
+      [0] = true,
+      [248] = true,
+      [252] = true,
+      [254] = true,
+      [255] = true,
+    },
     ["cut_answer"] = "the capture ends inside the ",
   },
   ["ascii"] = {
@@ -147,6 +154,34 @@ local DATA = {
       [101] = true,
       [102] = true,
     },
+    ["alphabet"] = {
+      [10] = true,
+      [13] = true,
+      [48] = true,
+      [49] = true,
+      [50] = true,
+      [51] = true,
+      [52] = true,
+      [53] = true,
+      [54] = true,
+      [55] = true,
+      [56] = true,
+      [57] = true,
+      [58] = true,
+      [65] = true,
+      [66] = true,
+      [67] = true,
+      [68] = true,
+      [69] = true,
+      [70] = true,
+      [97] = true,
+      [98] = true,
+      [99] = true,
+      [100] = true,
+      [101] = true,
+      [102] = true,
+    },
+    ["delimiters"] = { 58, 13, 10 },
     ["mode_sample"] = 64,
   },
   ["map_format"] = {
@@ -588,6 +623,13 @@ local DATA = {
       [2] = { 1, 2000 },
       [3] = { 1, 125 },
       [4] = { 1, 125 },
+    },
+    ["coil_requests"] = {
+      [5] = true,
+    },
+    ["coil_values"] = {
+      [0] = true,
+      [65280] = true,
     },
   },
   ["render"] = {
@@ -1820,6 +1862,27 @@ local function crc_bytes(b, from, to, lo, hi)
   return lo, hi
 end
 
+-- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
+-- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
+-- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
+local function crc_scan(b, i, minimum, last, lengths)
+  if minimum > last then return 0 end
+  local count = 0
+  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then
+      if lengths == nil then return length end
+      count = count + 1
+      lengths[count] = length
+    end
+    local index = XOR8[lo * 256 + byte]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+  end
+  return count
+end
+
 local function crc16(b, from, to)
   local lo, hi = crc_bytes(b, from, to, 0xFF, 0xFF)
   return hi * 256 + lo
@@ -1895,7 +1958,7 @@ local function crc_ok_at(b, i, length)
 end
 
 M.CRC_HI, M.CRC_LO, M.XOR8, M.concat, M.crc16, M.crc_bytes = CRC_HI, CRC_LO, XOR8, concat, crc16, crc_bytes
-M.crc_ok_at, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_string_ok, floor, format
+M.crc_ok_at, M.crc_scan, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_scan, crc_string_ok, floor, format
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -1905,7 +1968,7 @@ package.preload["vw3.layouts"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CRC_HI, CRC_LO, DATA, XOR8, crc_bytes, math, pairs = CRC_HI, CRC_LO, DATA, XOR8, crc_bytes, math, pairs
+local DATA, math, pairs = DATA, math, pairs
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
@@ -1980,65 +2043,48 @@ end
 -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
 for code, spec in pairs(DATA.protocol.by_quantity or {}) do
   local position, extra, unit = spec[1], spec[2], spec[3]
-  local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
-  local count_at, count_extra = counted[2], counted[3]
-  local need = math.max(position + 1, count_at)
+  local counted = RULES[code][1] -- (the byte count's length: { "count8", position, extra })
+  local need = math.max(position + 1, DATA.protocol.rules[code][1][2])
   RULES[code][3] = function(b, i, n)
     if i + need >= n then return NEED end
     local quantity = b[i + position] * 256 + b[i + position + 1]
     local length
     if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
-    if length == count_extra + b[i + count_at] then return NONE end
+    if length == counted(b, i, n) then return NONE end
     return length
   end
 end
-local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
 
--- Interpretations in the order they are tried: request first, unless a response is expected.
+-- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,
+-- unless a response is expected; an exception's code (code + 128), the exception. No entry: no frame
+-- starts with the code.
 local AS_REQUEST, AS_RESPONSE = {}, {}
+local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code, rules in pairs(RULES) do
-  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] } }
-  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] } }
-  if rules[3] ~= nil then -- (the quantity's length, tried last)
-    AS_REQUEST[code][3] = { REQUEST, rules[3] }
-    AS_RESPONSE[code][3] = { REQUEST, rules[3] }
-  end
+  local by_quantity = rules[3] and { REQUEST, rules[3] } -- (the quantity's length, tried last)
+  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] }, by_quantity }
+  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] }, by_quantity }
+  AS_REQUEST[code + 128] = AS_EXCEPTION -- (no answer is awaited with an exception's code)
 end
 local NO_INTERPRETATION = {}
 
 local function interpretations(st, slave, code)
-  if code >= 128 then
-    if RULES[code - 128] then return AS_EXCEPTION end
-    return NO_INTERPRETATION
-  end
-  if RULES[code] == nil then return NO_INTERPRETATION end
-  if st.expect == slave * 256 + code then return AS_RESPONSE[code] end
-  return AS_REQUEST[code]
+  if st.expect == slave * 256 + code then return AS_RESPONSE[code] or NO_INTERPRETATION end
+  return AS_REQUEST[code] or NO_INTERPRETATION
 end
 
--- The shortest length from `minimum` at which the bytes from i end in a valid CRC; 0 when none does.
-local function shortest_crc(b, i, n, minimum)
-  local last = math.min(n - i, MAX_ADU)
-  if minimum > last then return 0 end
-  -- (the register's two bytes, one byte more a length: see scan_match)
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then return length end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return 0
+-- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?
+local function possible_start(code)
+  return AS_REQUEST[code] ~= nil
 end
 
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
 M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
-M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
-M.interpretations, M.shortest_crc = interpretations, shortest_crc
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
+M.interpretations, M.possible_start = interpretations, possible_start
 end
 
 -- ---- vw3.stream: lua/src/stream.lua ----
@@ -2059,6 +2105,7 @@ local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
 local GLITCH = FRAMING.glitch_bytes
+local GLITCH_ADDRESSES = FRAMING.glitch_addresses -- (those that are no device's address: rules.py)
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -2165,8 +2212,8 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
-M.GLITCH, M.GLITCHY_AFTER, M.GLITCH_SKIP, M.add_noise = GLITCH, GLITCHY_AFTER, GLITCH_SKIP, add_noise
-M.boundary_at, M.emit, M.expect_after, M.flush_noise = boundary_at, emit, expect_after, flush_noise
+M.GLITCH, M.GLITCH_ADDRESSES, M.GLITCHY_AFTER, M.GLITCH_SKIP = GLITCH, GLITCH_ADDRESSES, GLITCHY_AFTER, GLITCH_SKIP
+M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
 M.lane, M.time_at = lane, time_at
 end
 
@@ -2177,13 +2224,12 @@ package.preload["vw3.rtu"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CRC_HI, CRC_LO, DATA, EXCEPTION, FRAMING, GLITCH = CRC_HI, CRC_LO, DATA, EXCEPTION, FRAMING, GLITCH
-local GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCHY_AFTER, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
+local DATA, EXCEPTION, FRAMING, GLITCH, GLITCHY_AFTER = DATA, EXCEPTION, FRAMING, GLITCH, GLITCHY_AFTER
+local GLITCH_ADDRESSES, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCH_ADDRESSES, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
-local RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16 = RESPONSE, RULES, XOR8, add_noise, boundary_at, crc16
-local crc_bytes, crc_ok_at, crc_string_ok, emit, format = crc_bytes, crc_ok_at, crc_string_ok, emit, format
-local interpretations, lane, math, pairs, shortest_crc = interpretations, lane, math, pairs, shortest_crc
-local table, time_at = table, time_at
+local RESPONSE, add_noise, boundary_at, crc16, crc_ok_at = RESPONSE, add_noise, boundary_at, crc16, crc_ok_at
+local crc_scan, crc_string_ok, emit, format = crc_scan, crc_string_ok, emit, format
+local interpretations, math, possible_start, table, time_at = interpretations, math, possible_start, table, time_at
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -2199,7 +2245,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
     local length, is_scan = list[index][2](b, i, n)
     if is_scan then
       if scan ~= false then
-        if shortest_crc(b, i, n, length) > 0 then return true end
+        if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
         undecided = undecided or (not final and n - i < MAX_ADU)
       end
     elseif length == NEED then
@@ -2231,11 +2277,6 @@ local function intact_inside(s, b, i, length, n, final)
   return false
 end
 
--- Can a frame start with these two bytes (any address, then a function code with a layout)?
-local function possible_start(slave, code)
-  return RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil)
-end
-
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
 -- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
 -- that tell have not come yet.
@@ -2260,7 +2301,7 @@ local function answered(s, b, i, stop, n, final)
       if final then return false end
       return nil
     end
-    if b[j] == slave and possible_start(b[j], b[j + 1]) then return true end
+    if b[j] == slave and possible_start(b[j + 1]) then return true end
     if not GLITCH[b[j]] then return false end
     j = j + 1
   end
@@ -2269,15 +2310,12 @@ end
 
 -- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
 -- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
-local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
-local COIL_REQUESTS = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  if entry.rule ~= nil and DATA.rules.lift[entry.rule].coil ~= nil then COIL_REQUESTS[code] = true end
-end
+local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
+local COIL_VALUES = DATA.protocol.coil_values
 local function plausible_request(b, i, length)
   if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
   local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if COIL_REQUESTS[code] then return word == 0xFF00 or word == 0 end
+  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
   local limits = PLAUSIBLE_READS[code]
   return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end
@@ -2315,15 +2353,15 @@ local function cut_answer(s, b, i, n)
   if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
   return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
 end
-lane.cut_answer = cut_answer
 
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
 -- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
 -- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
--- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same lengths wherever it starts: they are kept by the
--- byte, minimum and last (at most FLOOD_KEEP of them), and the run of that byte around the position is
--- kept per buffer (buffers are only appended to: a run found stays one).
+-- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
+-- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
+-- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
+-- found stays one).
 local scanned = { lengths = {} }
 local run = { start = 0, stop = 0 }
 local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
@@ -2335,31 +2373,18 @@ local function crc_lengths(b, i, n, minimum, last)
   local stop = run.stop
   while stop < n and b[stop] == c do stop = stop + 1 end
   run.stop = stop
-  local key
+  local key, lengths = nil, nil
   if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
     key = (c * 512 + minimum) * 512 + last
-    local kept = flood_lengths[key]
-    if kept ~= nil then
-      memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, kept
-      return kept
-    end
+    lengths = flood_lengths[key]
   end
-  local lengths, count = {}, 0
-  -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then
-      count = count + 1
-      lengths[count] = length
+  if lengths == nil then
+    lengths = {}
+    crc_scan(b, i, minimum, last, lengths)
+    if key ~= nil then
+      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
+      flood_lengths[key], flood_kept = lengths, flood_kept + 1
     end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  if key ~= nil then
-    if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
-    flood_lengths[key], flood_kept = lengths, flood_kept + 1
   end
   memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, lengths
   return lengths
@@ -2405,8 +2430,7 @@ end
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
-  if GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE) then
-    -- (framing/rules.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
+  if GLITCH_ADDRESSES[slave] then -- (a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
     if after == nil then return NEED end
     if after then return NONE end
@@ -2544,46 +2568,37 @@ local function run_rtu(s, final, items)
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
       add_noise(s, i, n, cut_answer(s, b, i, n) or "too short for a frame", items)
-      i = n
-      break
+      return n
     end
     local slave, code = b[i], b[i + 1]
-    local list = interpretations(s, slave, code)
-    local first = list[1]
+    local first = interpretations(s, slave, code)[1]
     if first == nil then
       -- No frame starts here: skip to the next byte pair that could start one.
       local stop = i + 1
-      while stop < n - 1 and not possible_start(b[stop], b[stop + 1]) do stop = stop + 1 end
+      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
       if stop >= n - 1 then stop = final and n or n - 1 end
       add_noise(s, i, stop, "no valid frame", items)
       i = stop
     else
-      local done = false
-      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
-      -- belong to a longer frame, see match): nearly every frame of a clean bus.
-      if s.noise == nil and fast_interpretation(s, first, slave, code)
-          and not (GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE)) then
-        -- (or the frame ends where the record does: a record boundary settles what match would weigh,
-        -- and this is every frame of a capture with one frame a record)
-        local length, is_scan = first[2](b, i, n)
-        if not is_scan and length >= MIN_ADU and length <= MAX_ADU
-            and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
-            and crc_ok_at(b, i, length) then
-          local offset = s.base + i
-          emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
-          i = i + length
-          done = true
+      local kind, length, crc_ok = nil, nil, true
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
+      -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
+      -- what match would weigh): nearly every frame of a clean bus.
+      if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
+        local found, is_scan = first[2](b, i, n)
+        if not is_scan and found >= MIN_ADU and found <= MAX_ADU
+            and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
+            and crc_ok_at(b, i, found) then
+          kind, length = first[1], found
         end
       end
-      local cut = nil
-      if not done and final then cut = cut_answer(s, b, i, n) end
-      if cut ~= nil then
-        add_noise(s, i, n, cut, items)
-        i = n
-        break
-      end
-      if not done then
-        local kind, length, crc_ok = match(s, b, i, n, final)
+      if kind == nil then
+        local cut = final and cut_answer(s, b, i, n)
+        if cut then
+          add_noise(s, i, n, cut, items)
+          return n
+        end
+        kind, length, crc_ok = match(s, b, i, n, final)
         if kind == NEED then break end
         if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
             and not anchored(s, i) then
@@ -2593,14 +2608,14 @@ local function run_rtu(s, final, items)
           if following == nil then break end
           if not following then kind = NONE end
         end
-        if kind == NONE then
-          add_noise(s, i, i + 1, "no valid frame", items)
-          i = i + 1
-        else
-          local offset = s.base + i
-          emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
-          i = i + length
-        end
+      end
+      if kind == NONE then
+        add_noise(s, i, i + 1, "no valid frame", items)
+        i = i + 1
+      else
+        local offset = s.base + i
+        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        i = i + length
       end
     end
   end
@@ -2630,9 +2645,9 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
 -- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is. Its sizes
 -- and alphabet: dissector/protocol/ascii.py.
-local COLON, CR, LF = 0x3A, 0x0D, 0x0A
+local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
-local HEX = DATA.ascii.hex_digits
+local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 detect_mode = function(sample)
@@ -2646,8 +2661,7 @@ detect_mode = function(sample)
   end
   local inside = 0
   for k = 1, #sample do
-    local byte = sample:byte(k)
-    if HEX[byte] or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+    if ALPHABET[sample:byte(k)] then inside = inside + 1 end
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
@@ -2657,13 +2671,6 @@ local function lrc(bytes_, count)
   local sum = 0
   for k = 0, count - 1 do sum = sum + bytes_[k] end
   return (256 - sum % 256) % 256
-end
-
-local function find_byte(b, value, from, to)
-  for k = from, to - 1 do
-    if b[k] == value then return k end
-  end
-  return nil
 end
 
 local function classify_ascii(s, adu, count)
@@ -2722,11 +2729,9 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr then frame.warnings = { LF_WITHOUT_CR } end
-  if lower then
-    frame.warnings = frame.warnings or {}
-    frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX
-  end
+  if lost_cr or lower then frame.warnings = {} end
+  if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
+  if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   emit(s, frame, items)
 end
 
@@ -2735,7 +2740,8 @@ local function run_ascii(s, final, items)
   local i = 0
   while i < n do
     if b[i] ~= COLON then
-      local stop = find_byte(b, COLON, i, n) or n
+      local stop = i + 1
+      while stop < n and b[stop] ~= COLON do stop = stop + 1 end
       add_noise(s, i, stop, "outside an ASCII frame", items)
       i = stop
     else

@@ -103,6 +103,7 @@ def plugin_data() -> dict[str, Any]:
             "glitchy_after": streambuf.GLITCHY_AFTER,
             "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
             "glitch_bytes": streambuf.GLITCH_BYTES,
+            "glitch_addresses": framer.GLITCH_ADDRESSES,
             "cut_answer": CUT_ANSWER,
         },
         "ascii": {
@@ -110,6 +111,8 @@ def plugin_data() -> dict[str, Any]:
             "min_binary": ascii_mode.MIN_BINARY,
             "share": ascii_mode.ASCII_SHARE,
             "hex_digits": ascii_mode._HEX_DIGITS,
+            "alphabet": ascii_mode._ALPHABET,  # (the characters of ASCII mode: hex digits, ':', CR, LF)
+            "delimiters": [ascii_mode.COLON, ascii_mode.CR, ascii_mode.LF],
             "mode_sample": reader.MODE_SAMPLE,
         },
         "map_format": {
@@ -185,6 +188,9 @@ def protocol_tables() -> dict[str, Any]:
         },
         # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).
         "plausible_reads": {code: list(limits) for code, limits in evidence.READ_LIMITS.items()},
+        # The requests whose coil value makes them plausible, and the values it may have (evidence.py).
+        "coil_requests": evidence.COIL_REQUESTS,
+        "coil_values": frozenset(evidence.COIL_VALUES),
     }
 
 

@@ -12,9 +12,9 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
 -- delimits itself; the RTU length rules, applied to the same bytes, still say what kind it is. Its sizes
 -- and alphabet: dissector/protocol/ascii.py.
-local COLON, CR, LF = 0x3A, 0x0D, 0x0A
+local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
-local HEX = DATA.ascii.hex_digits
+local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 detect_mode = function(sample)
@@ -28,8 +28,7 @@ detect_mode = function(sample)
   end
   local inside = 0
   for k = 1, #sample do
-    local byte = sample:byte(k)
-    if HEX[byte] or byte == COLON or byte == CR or byte == LF then inside = inside + 1 end
+    if ALPHABET[sample:byte(k)] then inside = inside + 1 end
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
@@ -39,13 +38,6 @@ local function lrc(bytes_, count)
   local sum = 0
   for k = 0, count - 1 do sum = sum + bytes_[k] end
   return (256 - sum % 256) % 256
-end
-
-local function find_byte(b, value, from, to)
-  for k = from, to - 1 do
-    if b[k] == value then return k end
-  end
-  return nil
 end
 
 local function classify_ascii(s, adu, count)
@@ -104,11 +96,9 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr then frame.warnings = { LF_WITHOUT_CR } end
-  if lower then
-    frame.warnings = frame.warnings or {}
-    frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX
-  end
+  if lost_cr or lower then frame.warnings = {} end
+  if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
+  if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   emit(s, frame, items)
 end
 
@@ -117,7 +107,8 @@ local function run_ascii(s, final, items)
   local i = 0
   while i < n do
     if b[i] ~= COLON then
-      local stop = find_byte(b, COLON, i, n) or n
+      local stop = i + 1
+      while stop < n and b[stop] ~= COLON do stop = stop + 1 end
       add_noise(s, i, stop, "outside an ASCII frame", items)
       i = stop
     else

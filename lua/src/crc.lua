@@ -85,6 +85,27 @@ local function crc_bytes(b, from, to, lo, hi)
   return lo, hi
 end
 
+-- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
+-- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
+-- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
+local function crc_scan(b, i, minimum, last, lengths)
+  if minimum > last then return 0 end
+  local count = 0
+  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then
+      if lengths == nil then return length end
+      count = count + 1
+      lengths[count] = length
+    end
+    local index = XOR8[lo * 256 + byte]
+    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+  end
+  return count
+end
+
 local function crc16(b, from, to)
   local lo, hi = crc_bytes(b, from, to, 0xFF, 0xFF)
   return hi * 256 + lo
@@ -160,4 +181,4 @@ local function crc_ok_at(b, i, length)
 end
 
 M.CRC_HI, M.CRC_LO, M.XOR8, M.concat, M.crc16, M.crc_bytes = CRC_HI, CRC_LO, XOR8, concat, crc16, crc_bytes
-M.crc_ok_at, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_string_ok, floor, format
+M.crc_ok_at, M.crc_scan, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_scan, crc_string_ok, floor, format

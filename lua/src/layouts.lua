@@ -77,62 +77,45 @@ end
 -- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
 for code, spec in pairs(DATA.protocol.by_quantity or {}) do
   local position, extra, unit = spec[1], spec[2], spec[3]
-  local counted = DATA.protocol.rules[code][1] -- { "count8", position, extra }
-  local count_at, count_extra = counted[2], counted[3]
-  local need = math.max(position + 1, count_at)
+  local counted = RULES[code][1] -- (the byte count's length: { "count8", position, extra })
+  local need = math.max(position + 1, DATA.protocol.rules[code][1][2])
   RULES[code][3] = function(b, i, n)
     if i + need >= n then return NEED end
     local quantity = b[i + position] * 256 + b[i + position + 1]
     local length
     if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
-    if length == count_extra + b[i + count_at] then return NONE end
+    if length == counted(b, i, n) then return NONE end
     return length
   end
 end
-local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code in pairs(DATA.other_functions or {}) do
   if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
 
--- Interpretations in the order they are tried: request first, unless a response is expected.
+-- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,
+-- unless a response is expected; an exception's code (code + 128), the exception. No entry: no frame
+-- starts with the code.
 local AS_REQUEST, AS_RESPONSE = {}, {}
+local AS_EXCEPTION = { { EXCEPTION, make_rule(DATA.protocol.exception_rule) } }
 for code, rules in pairs(RULES) do
-  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] } }
-  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] } }
-  if rules[3] ~= nil then -- (the quantity's length, tried last)
-    AS_REQUEST[code][3] = { REQUEST, rules[3] }
-    AS_RESPONSE[code][3] = { REQUEST, rules[3] }
-  end
+  local by_quantity = rules[3] and { REQUEST, rules[3] } -- (the quantity's length, tried last)
+  AS_REQUEST[code] = { { REQUEST, rules[1] }, { RESPONSE, rules[2] }, by_quantity }
+  AS_RESPONSE[code] = { { RESPONSE, rules[2] }, { REQUEST, rules[1] }, by_quantity }
+  AS_REQUEST[code + 128] = AS_EXCEPTION -- (no answer is awaited with an exception's code)
 end
 local NO_INTERPRETATION = {}
 
 local function interpretations(st, slave, code)
-  if code >= 128 then
-    if RULES[code - 128] then return AS_EXCEPTION end
-    return NO_INTERPRETATION
-  end
-  if RULES[code] == nil then return NO_INTERPRETATION end
-  if st.expect == slave * 256 + code then return AS_RESPONSE[code] end
-  return AS_REQUEST[code]
+  if st.expect == slave * 256 + code then return AS_RESPONSE[code] or NO_INTERPRETATION end
+  return AS_REQUEST[code] or NO_INTERPRETATION
 end
 
--- The shortest length from `minimum` at which the bytes from i end in a valid CRC; 0 when none does.
-local function shortest_crc(b, i, n, minimum)
-  local last = math.min(n - i, MAX_ADU)
-  if minimum > last then return 0 end
-  -- (the register's two bytes, one byte more a length: see scan_match)
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then return length end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return 0
+-- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?
+local function possible_start(code)
+  return AS_REQUEST[code] ~= nil
 end
 
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
 M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
-M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.RULES = NO_INTERPRETATION, REQUEST, RESPONSE, RULES
-M.interpretations, M.shortest_crc = interpretations, shortest_crc
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
+M.interpretations, M.possible_start = interpretations, possible_start

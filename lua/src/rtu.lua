@@ -18,7 +18,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
     local length, is_scan = list[index][2](b, i, n)
     if is_scan then
       if scan ~= false then
-        if shortest_crc(b, i, n, length) > 0 then return true end
+        if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
         undecided = undecided or (not final and n - i < MAX_ADU)
       end
     elseif length == NEED then
@@ -50,11 +50,6 @@ local function intact_inside(s, b, i, length, n, final)
   return false
 end
 
--- Can a frame start with these two bytes (any address, then a function code with a layout)?
-local function possible_start(slave, code)
-  return RULES[code] ~= nil or (code >= 128 and RULES[code - 128] ~= nil)
-end
-
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
 -- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
 -- that tell have not come yet.
@@ -79,7 +74,7 @@ local function answered(s, b, i, stop, n, final)
       if final then return false end
       return nil
     end
-    if b[j] == slave and possible_start(b[j], b[j + 1]) then return true end
+    if b[j] == slave and possible_start(b[j + 1]) then return true end
     if not GLITCH[b[j]] then return false end
     j = j + 1
   end
@@ -88,15 +83,12 @@ end
 
 -- A request whose fields only a real one has (framing/evidence.py): a read within its quantity limits,
 -- a coil set ON or OFF (the requests whose lifting rule names a coil value: FC5).
-local PLAUSIBLE_READS = DATA.protocol.plausible_reads or {}
-local COIL_REQUESTS = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  if entry.rule ~= nil and DATA.rules.lift[entry.rule].coil ~= nil then COIL_REQUESTS[code] = true end
-end
+local PLAUSIBLE_READS, COIL_REQUESTS = DATA.protocol.plausible_reads, DATA.protocol.coil_requests
+local COIL_VALUES = DATA.protocol.coil_values
 local function plausible_request(b, i, length)
   if length ~= 8 or b[i] < 1 or b[i] > MAX_SLAVE then return false end
   local code, word = b[i + 1], b[i + 4] * 256 + b[i + 5]
-  if COIL_REQUESTS[code] then return word == 0xFF00 or word == 0 end
+  if COIL_REQUESTS[code] then return COIL_VALUES[word] == true end
   local limits = PLAUSIBLE_READS[code]
   return limits ~= nil and limits[1] <= word and word <= limits[2] and b[i + 2] * 256 + b[i + 3] + word <= 0x10000
 end
@@ -134,15 +126,15 @@ local function cut_answer(s, b, i, n)
   if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
   return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
 end
-lane.cut_answer = cut_answer
 
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
 -- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
 -- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
--- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same lengths wherever it starts: they are kept by the
--- byte, minimum and last (at most FLOOD_KEEP of them), and the run of that byte around the position is
--- kept per buffer (buffers are only appended to: a run found stays one).
+-- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
+-- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
+-- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
+-- found stays one).
 local scanned = { lengths = {} }
 local run = { start = 0, stop = 0 }
 local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
@@ -154,31 +146,18 @@ local function crc_lengths(b, i, n, minimum, last)
   local stop = run.stop
   while stop < n and b[stop] == c do stop = stop + 1 end
   run.stop = stop
-  local key
+  local key, lengths = nil, nil
   if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
     key = (c * 512 + minimum) * 512 + last
-    local kept = flood_lengths[key]
-    if kept ~= nil then
-      memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, kept
-      return kept
-    end
+    lengths = flood_lengths[key]
   end
-  local lengths, count = {}, 0
-  -- One running CRC over the growing frame: each length costs one byte, not a new CRC.
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then
-      count = count + 1
-      lengths[count] = length
+  if lengths == nil then
+    lengths = {}
+    crc_scan(b, i, minimum, last, lengths)
+    if key ~= nil then
+      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
+      flood_lengths[key], flood_kept = lengths, flood_kept + 1
     end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  if key ~= nil then
-    if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
-    flood_lengths[key], flood_kept = lengths, flood_kept + 1
   end
   memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, lengths
   return lengths
@@ -224,8 +203,7 @@ end
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
-  if GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE) then
-    -- (framing/rules.py GLITCH_ADDRESSES: a glitch byte that is no device's address, before an intact frame)
+  if GLITCH_ADDRESSES[slave] then -- (a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
     if after == nil then return NEED end
     if after then return NONE end
@@ -363,46 +341,37 @@ local function run_rtu(s, final, items)
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
       add_noise(s, i, n, cut_answer(s, b, i, n) or "too short for a frame", items)
-      i = n
-      break
+      return n
     end
     local slave, code = b[i], b[i + 1]
-    local list = interpretations(s, slave, code)
-    local first = list[1]
+    local first = interpretations(s, slave, code)[1]
     if first == nil then
       -- No frame starts here: skip to the next byte pair that could start one.
       local stop = i + 1
-      while stop < n - 1 and not possible_start(b[stop], b[stop + 1]) do stop = stop + 1 end
+      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
       if stop >= n - 1 then stop = final and n or n - 1 end
       add_noise(s, i, stop, "no valid frame", items)
       i = stop
     else
-      local done = false
-      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may
-      -- belong to a longer frame, see match): nearly every frame of a clean bus.
-      if s.noise == nil and fast_interpretation(s, first, slave, code)
-          and not (GLITCH[slave] and (slave == 0 or slave > MAX_SLAVE)) then
-        -- (or the frame ends where the record does: a record boundary settles what match would weigh,
-        -- and this is every frame of a capture with one frame a record)
-        local length, is_scan = first[2](b, i, n)
-        if not is_scan and length >= MIN_ADU and length <= MAX_ADU
-            and ((i + length < n and b[i + length] ~= 0) or (i + length == n and boundary_at(s, n)))
-            and crc_ok_at(b, i, length) then
-          local offset = s.base + i
-          emit(s, rtu_frame(b, i, offset, time_at(s, offset), first[1], length, true), items)
-          i = i + length
-          done = true
+      local kind, length, crc_ok = nil, nil, true
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
+      -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
+      -- what match would weigh): nearly every frame of a clean bus.
+      if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
+        local found, is_scan = first[2](b, i, n)
+        if not is_scan and found >= MIN_ADU and found <= MAX_ADU
+            and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
+            and crc_ok_at(b, i, found) then
+          kind, length = first[1], found
         end
       end
-      local cut = nil
-      if not done and final then cut = cut_answer(s, b, i, n) end
-      if cut ~= nil then
-        add_noise(s, i, n, cut, items)
-        i = n
-        break
-      end
-      if not done then
-        local kind, length, crc_ok = match(s, b, i, n, final)
+      if kind == nil then
+        local cut = final and cut_answer(s, b, i, n)
+        if cut then
+          add_noise(s, i, n, cut, items)
+          return n
+        end
+        kind, length, crc_ok = match(s, b, i, n, final)
         if kind == NEED then break end
         if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
             and not anchored(s, i) then
@@ -412,14 +381,14 @@ local function run_rtu(s, final, items)
           if following == nil then break end
           if not following then kind = NONE end
         end
-        if kind == NONE then
-          add_noise(s, i, i + 1, "no valid frame", items)
-          i = i + 1
-        else
-          local offset = s.base + i
-          emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
-          i = i + length
-        end
+      end
+      if kind == NONE then
+        add_noise(s, i, i + 1, "no valid frame", items)
+        i = i + 1
+      else
+        local offset = s.base + i
+        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        i = i + length
       end
     end
   end

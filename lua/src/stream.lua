@@ -13,6 +13,7 @@ local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
 local GLITCH = FRAMING.glitch_bytes
+local GLITCH_ADDRESSES = FRAMING.glitch_addresses -- (those that are no device's address: rules.py)
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -119,6 +120,6 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
-M.GLITCH, M.GLITCHY_AFTER, M.GLITCH_SKIP, M.add_noise = GLITCH, GLITCHY_AFTER, GLITCH_SKIP, add_noise
-M.boundary_at, M.emit, M.expect_after, M.flush_noise = boundary_at, emit, expect_after, flush_noise
+M.GLITCH, M.GLITCH_ADDRESSES, M.GLITCHY_AFTER, M.GLITCH_SKIP = GLITCH, GLITCH_ADDRESSES, GLITCHY_AFTER, GLITCH_SKIP
+M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
 M.lane, M.time_at = lane, time_at
