@@ -2788,8 +2788,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after = MAX_ADU, MAX_SLAVE, MIN_ADU, expect_after
 local fast_interpretation, flush_noise, interpretations = fast_interpretation, flush_noise, interpretations
-local lane, next, pairs, rtu_frame, run_ascii, run_rtu = lane, next, pairs, rtu_frame, run_ascii, run_rtu
-local string, whole_crc_good = string, whole_crc_good
+local lane, pairs, rtu_frame, run_ascii, run_rtu, string = lane, pairs, rtu_frame, run_ascii, run_rtu, string
+local whole_crc_good = whole_crc_good
 local feed
 local feed_whole
 
@@ -2820,12 +2820,9 @@ local function consume(s, count)
     for index = keep, count do times[index - shift] = times[index] end
     for index = count, count - shift + 1, -1 do times[index] = nil end
   end
-  local boundaries = s.boundaries
-  boundaries[base] = nil -- (the usual case: the one boundary, the end of the record just framed)
-  if next(boundaries) ~= nil then
-    for offset in pairs(boundaries) do
-      if offset <= base then boundaries[offset] = nil end
-    end
+  -- (one at the new base still counts: the next run starts there, however the feeding went: stream.py)
+  for offset in pairs(s.boundaries) do
+    if offset < base then s.boundaries[offset] = nil end
   end
 end
 

@@ -33,12 +33,9 @@ local function consume(s, count)
     for index = keep, count do times[index - shift] = times[index] end
     for index = count, count - shift + 1, -1 do times[index] = nil end
   end
-  local boundaries = s.boundaries
-  boundaries[base] = nil -- (the usual case: the one boundary, the end of the record just framed)
-  if next(boundaries) ~= nil then
-    for offset in pairs(boundaries) do
-      if offset <= base then boundaries[offset] = nil end
-    end
+  -- (one at the new base still counts: the next run starts there, however the feeding went: stream.py)
+  for offset in pairs(s.boundaries) do
+    if offset < base then s.boundaries[offset] = nil end
   end
 end
 
