@@ -5206,29 +5206,31 @@ take_items = function(st, items, record)
         end
       end
     end
-    if item ~= nil then -- (nil: merged into the run of noise before it, inside this record)
+    if item ~= nil then
       home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
       local unpacked = st.unpacked
       unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
-      if not inside then
-        item.at = 0
-        if item.kind == NOISE then
-          item.raw = string_of(item.bytes, 1, length)
-        elseif item.ascii then
-          item.raw = string_of(item.src, item.src_at, length)
-        else
-          item.raw = string_of(item.b, item.bi, length)
-        end
-        for _, earlier in ipairs(open) do
-          local from, to = earlier.start, earlier.start + earlier.length
-          if earlier ~= home and from < offset + length and offset < to then
-            earlier.continued = earlier.continued or {}
-            earlier.continued[#earlier.continued + 1] = {
-              item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
-            }
-          end
+    end
+    if not inside then
+      item.at = 0
+      if item.kind == NOISE then
+        item.raw = string_of(item.bytes, 1, length)
+      elseif item.ascii then
+        item.raw = string_of(item.src, item.src_at, length)
+      else
+        item.raw = string_of(item.b, item.bi, length)
+      end
+      for _, earlier in ipairs(open) do
+        local from, to = earlier.start, earlier.start + earlier.length
+        if earlier ~= home and from < offset + length and offset < to then
+          earlier.continued = earlier.continued or {}
+          earlier.continued[#earlier.continued + 1] = {
+            item = item.number, record = home.number, count = math.min(to, offset + length) - math.max(from, offset),
+          }
         end
       end
+    end
+    if item ~= nil then
       item.bytes, item.src = nil, nil
       if item.kind ~= NOISE then take_frame(st, item) end
     end
