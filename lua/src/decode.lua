@@ -15,15 +15,20 @@ local OBJECTS = DATA.device_id_objects or {}
 local LIMITS = DATA.limits or {}
 local NOT_BROADCAST = DATA.not_broadcast or {}
 
--- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()): its parameters by
--- name, as Python fills them in.
-local TEXTS = RULES.texts
-local function say(key, values)
-  local entry = TEXTS[key]
-  local params, args = entry.params, {}
-  for index = 1, #params do args[index] = values[params[index]] end
+-- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
+-- with its parameters by name, as Python fills them in: the texts here and maps.py's MESSAGES alike.
+local function fill(entry, values, quote)
+  local params, repr, args = entry.params, entry.repr, {}
+  for index = 1, #params do
+    local name = params[index]
+    args[index] = repr and repr[name] and quote(values[name]) or values[name]
+  end
   return format(entry.format, unpack(args, 1, #params))
 end
+
+-- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()).
+local TEXTS = RULES.texts
+local function say(key, values) return fill(TEXTS[key], values) end
 
 local function function_name(code)
   return FUNCTIONS[code] or say(DATA.user_defined[code] and "user_function" or "other_function", { code = code })
@@ -375,7 +380,7 @@ local function decode_frame(f)
   end
 end
 
-M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say
+M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say, M.fill = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say, fill
 M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
 M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
 M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at

@@ -88,14 +88,8 @@ local function python_repr(text)
   return quote .. escaped(text, quote) .. quote
 end
 
--- A map error in maps.py's words (its MESSAGES, by key): the parameters by name, `!r` ones as Python's repr.
-local function wrong(key, values)
-  local entry, args = MESSAGES[key], {}
-  for index, name in ipairs(entry.params) do
-    args[index] = entry.repr[name] and python_repr(values[name]) or values[name]
-  end
-  return format(entry.format, unpack(args, 1, #entry.params))
-end
+-- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr.
+local function wrong(key, values) return fill(MESSAGES[key], values, python_repr) end
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote;
 -- a quote left open at the line's end closes there (the dialect is not strict).
