@@ -3722,28 +3722,27 @@ local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETA
 local floor, format, ipairs, math, next, pairs, say = floor, format, ipairs, math, next, pairs, say
 local setmetatable, tonumber = setmetatable, tonumber
 
-local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
-
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
--- references keep their zeros (00001). Each made once.
-local function plc_label(base, address)
-  local labels = PLC_LABELS[base]
-  if labels == nil then
-    labels = {}
-    PLC_LABELS[base] = labels
-  end
-  local label = labels[address]
-  if label == nil then
+-- references keep their zeros (00001). Each made once: the labels made, per base (at most 65,536 each:
+-- addresses are 16 bits).
+local PLC_LABELS = setmetatable({}, { __index = function(all, base)
+  local labels = setmetatable({}, { __index = function(labels, address)
     local digits = math.max(5, #format("%d", base))
     local power = 10 ^ (digits - 1)
     local number = base + address
     if number > (floor(base / power) + 1) * power - 1 then
       number, digits = base * 10 - 9 + address, digits + 1
     end
-    label = format("%0" .. digits .. "d", number)
+    local label = format("%0" .. digits .. "d", number)
     labels[address] = label
-  end
-  return label
+    return label
+  end })
+  all[base] = labels
+  return labels
+end })
+
+local function plc_label(base, address)
+  return PLC_LABELS[base][address]
 end
 
 local function address_name(row, address, label)
@@ -3971,11 +3970,10 @@ function story.tell(f)
   for _, e in ipairs(events) do
     local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.now_shared or "")
     local group = groups[key]
-    if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
+    if group == nil then group = {}; groups[key] = group; order[#order + 1] = group end
     group[#group + 1] = e
   end
-  for _, key in ipairs(order) do
-    local group = groups[key]
+  for _, group in ipairs(order) do
     local first = group[1]
     if #group == 1 then
       first.name = event_name(first)
@@ -4142,32 +4140,14 @@ local function annotate_registers(st, f, device, run, b, read)
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
   local base = plc_base(device, f)
-  local rows, depend, seen, number = device.rows, device.depend, device.seen, f.number
+  local rows = device.rows
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local value = b[k] * 256 + b[k + 1]
-    local last = nil
-    -- The usual register: no layout rule, not 16#8000, and read before with a value (or nothing to
-    -- follow): what annotate_one would do comes down to noting the value read.
-    if value ~= protected and depend[address] == nil then
-      if protected == nil then
-        last = false
-      else
-        last = seen[address]
-        if last ~= nil and last.value ~= nil then
-          last.value, last.frame, last.how = value, number, "read"
-        else
-          last = nil
-        end
-      end
-    end
-    local plain, status = false, nil
-    if last == nil then
-      local label = nil
-      if base ~= nil then label = plc_label(base, address) end
-      plain, status = annotate_one(f, device, address, value, protected, multi, label, words_at(rows, address, index, count))
-    end
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
+      words_at(rows, address, index, count))
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
@@ -4549,6 +4529,7 @@ local function observe(st, f, b)
   local registers = register_list(f, b)
   local evidence, ruled_out = judged.evidence or {}, judged.ruled_out or {}
   judged.evidence, judged.ruled_out = evidence, ruled_out
+  local ready = nil -- (the candidate whose evidence is enough; false: more than one)
   for _, name in ipairs(CANDIDATES) do
     local verdict = nil
     if not ruled_out[name] then verdict = fits(f, name, registers) end
@@ -4572,15 +4553,11 @@ local function observe(st, f, b)
       found.answers = found.answers + 1
       if found.marker == nil and verdict ~= true then found.marker = verdict end
     end
-  end
-  local ready = nil
-  for _, name in ipairs(CANDIDATES) do
     if evidence[name] ~= nil and enough(evidence[name]) then
-      if ready ~= nil then return nil end
-      ready = name
+      ready = ready == nil and name
     end
   end
-  if ready == nil then return nil end
+  if not ready then return nil end
   judged.choice = { profile = ready, final = false,
     reason = evidence_reason(evidence[ready], PROFILES[ready].protected_value) }
   return judged.choice
@@ -4641,25 +4618,23 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said = st.said or {}
   st.said[f.number] = { choice.profile, choice.reason }
-  if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
-    local history = st.history[slave]
-    history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
-    return device_for(st, slave)
-  end
-  st.chosen = st.chosen or {}
   st.history = st.history or {}
-  st.chosen[slave] = choice.profile
-  local old = st.devices[slave]
-  local device = build_device(PROFILES[choice.profile], slave)
   local history = st.history[slave]
-  if history == nil then
-    history = {}
-    st.history[slave] = history
-    if old then history[1] = { number = 0, device = old } end
+  local device = st.devices[slave]
+  -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
+  if not choice.same then
+    st.chosen = st.chosen or {}
+    st.chosen[slave] = choice.profile
+    if history == nil then
+      history = {}
+      st.history[slave] = history
+      if device then history[1] = { number = 0, device = device } end
+    end
+    device = build_device(PROFILES[choice.profile], slave)
+    st.devices[slave] = device
+    f.profile_choice = choice.reason
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  st.devices[slave] = device
-  f.profile_choice = choice.reason
   return device
 end
 

@@ -4,28 +4,27 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
-local PLC_LABELS = {} -- the labels made, per base (at most 65,536 each: addresses are 16 bits)
-
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
--- references keep their zeros (00001). Each made once.
-local function plc_label(base, address)
-  local labels = PLC_LABELS[base]
-  if labels == nil then
-    labels = {}
-    PLC_LABELS[base] = labels
-  end
-  local label = labels[address]
-  if label == nil then
+-- references keep their zeros (00001). Each made once: the labels made, per base (at most 65,536 each:
+-- addresses are 16 bits).
+local PLC_LABELS = setmetatable({}, { __index = function(all, base)
+  local labels = setmetatable({}, { __index = function(labels, address)
     local digits = math.max(5, #format("%d", base))
     local power = 10 ^ (digits - 1)
     local number = base + address
     if number > (floor(base / power) + 1) * power - 1 then
       number, digits = base * 10 - 9 + address, digits + 1
     end
-    label = format("%0" .. digits .. "d", number)
+    local label = format("%0" .. digits .. "d", number)
     labels[address] = label
-  end
-  return label
+    return label
+  end })
+  all[base] = labels
+  return labels
+end })
+
+local function plc_label(base, address)
+  return PLC_LABELS[base][address]
 end
 
 local function address_name(row, address, label)

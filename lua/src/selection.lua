@@ -155,6 +155,7 @@ local function observe(st, f, b)
   local registers = register_list(f, b)
   local evidence, ruled_out = judged.evidence or {}, judged.ruled_out or {}
   judged.evidence, judged.ruled_out = evidence, ruled_out
+  local ready = nil -- (the candidate whose evidence is enough; false: more than one)
   for _, name in ipairs(CANDIDATES) do
     local verdict = nil
     if not ruled_out[name] then verdict = fits(f, name, registers) end
@@ -178,15 +179,11 @@ local function observe(st, f, b)
       found.answers = found.answers + 1
       if found.marker == nil and verdict ~= true then found.marker = verdict end
     end
-  end
-  local ready = nil
-  for _, name in ipairs(CANDIDATES) do
     if evidence[name] ~= nil and enough(evidence[name]) then
-      if ready ~= nil then return nil end
-      ready = name
+      ready = ready == nil and name
     end
   end
-  if ready == nil then return nil end
+  if not ready then return nil end
   judged.choice = { profile = ready, final = false,
     reason = evidence_reason(evidence[ready], PROFILES[ready].protected_value) }
   return judged.choice
@@ -247,25 +244,23 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said = st.said or {}
   st.said[f.number] = { choice.profile, choice.reason }
-  if choice.same then -- kept, and said with its new reason from here on (nothing announced, as vw3-decode)
-    local history = st.history[slave]
-    history[#history + 1] = { number = f.number, device = history[#history].device, reason = choice.reason }
-    return device_for(st, slave)
-  end
-  st.chosen = st.chosen or {}
   st.history = st.history or {}
-  st.chosen[slave] = choice.profile
-  local old = st.devices[slave]
-  local device = build_device(PROFILES[choice.profile], slave)
   local history = st.history[slave]
-  if history == nil then
-    history = {}
-    st.history[slave] = history
-    if old then history[1] = { number = 0, device = old } end
+  local device = st.devices[slave]
+  -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
+  if not choice.same then
+    st.chosen = st.chosen or {}
+    st.chosen[slave] = choice.profile
+    if history == nil then
+      history = {}
+      st.history[slave] = history
+      if device then history[1] = { number = 0, device = device } end
+    end
+    device = build_device(PROFILES[choice.profile], slave)
+    st.devices[slave] = device
+    f.profile_choice = choice.reason
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  st.devices[slave] = device
-  f.profile_choice = choice.reason
   return device
 end
 

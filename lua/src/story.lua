@@ -18,11 +18,10 @@ function story.tell(f)
   for _, e in ipairs(events) do
     local key = e.what .. "\0" .. e.how .. "\0" .. e.frame .. "\0" .. (e.now_shared or "")
     local group = groups[key]
-    if group == nil then group = {}; groups[key] = group; order[#order + 1] = key end
+    if group == nil then group = {}; groups[key] = group; order[#order + 1] = group end
     group[#group + 1] = e
   end
-  for _, key in ipairs(order) do
-    local group = groups[key]
+  for _, group in ipairs(order) do
     local first = group[1]
     if #group == 1 then
       first.name = event_name(first)
@@ -189,32 +188,14 @@ local function annotate_registers(st, f, device, run, b, read)
   if protected == nil and next(device.depend) == nil then return end
   local first = run.first
   local base = plc_base(device, f)
-  local rows, depend, seen, number = device.rows, device.depend, device.seen, f.number
+  local rows = device.rows
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local value = b[k] * 256 + b[k + 1]
-    local last = nil
-    -- The usual register: no layout rule, not 16#8000, and read before with a value (or nothing to
-    -- follow): what annotate_one would do comes down to noting the value read.
-    if value ~= protected and depend[address] == nil then
-      if protected == nil then
-        last = false
-      else
-        last = seen[address]
-        if last ~= nil and last.value ~= nil then
-          last.value, last.frame, last.how = value, number, "read"
-        else
-          last = nil
-        end
-      end
-    end
-    local plain, status = false, nil
-    if last == nil then
-      local label = nil
-      if base ~= nil then label = plc_label(base, address) end
-      plain, status = annotate_one(f, device, address, value, protected, multi, label, words_at(rows, address, index, count))
-    end
+    local label = nil
+    if base ~= nil then label = plc_label(base, address) end
+    local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
+      words_at(rows, address, index, count))
     if plain then
       run.plain = run.plain or {}
       run.plain[index] = true
