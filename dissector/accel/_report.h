@@ -30,13 +30,13 @@ typedef struct {
 typedef struct {
     PyObject_HEAD
     PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
-    PyObject *series, *h_series, *h_counts, *written; /* their containers */
+    PyObject *series, *h_series, *written; /* their containers */
     Py_ssize_t max_series, max_written;
     double span; /* COLUMNS: the columns before a doubling (collect.py ReportCollector._double, health.py Health._double) */
     int timed;   /* -1: not known yet */
     Time origin, first, last, h_origin;
     double width, limit, h_width, h_limit;
-    unsigned long long number, dropped, h_counted[256];
+    unsigned long long number, dropped;
     Columns *h_columns[256];
     Trend *trends;     /* open addressing, at most half full: the series kept (MAX_SERIES) */
     size_t trend_slots;
@@ -110,8 +110,8 @@ static PyObject *scalar_value(Report *r, size_t k) {
     }
 }
 
-/* ... and back; `counts`: the counts kept here instead (series values, dropped, answers per slave: sums,
- * which the Python stages add to as well, given back once at the end). */
+/* ... and back; `counts`: the counts kept here instead (series values, dropped: sums, which the Python
+ * stages add to as well, given back once at the end). Health's answers per slave are bustiming's count. */
 static int report_push(Report *r, int counts) {
     for (size_t k = 0; !counts && k < SCALARS; k++) {
         PyObject *o = scalars[k].health ? r->health : r->collector;
@@ -129,17 +129,6 @@ static int report_push(Report *r, int counts) {
         Py_XDECREF(more);
         if (set_attr(o, names[t != NULL], sum) < 0) return -1;
         *n = 0;
-    }
-    for (int slave = 0; slave < 256; slave++) {
-        if (!r->h_counted[slave]) continue;
-        PyObject *key = PyLong_FromLong(slave), *had = key ? PyDict_GetItemWithError(r->h_counts, key) : NULL;
-        long long before = had != NULL ? PyLong_AsLongLong(had) : 0;
-        PyObject *sum = PyErr_Occurred() ? NULL : PyLong_FromLongLong(before + (long long)r->h_counted[slave]);
-        int status = sum != NULL ? PyDict_SetItem(r->h_counts, key, sum) : -1;
-        Py_XDECREF(key);
-        Py_XDECREF(sum);
-        if (status < 0) return -1;
-        r->h_counted[slave] = 0;
     }
     return 0;
 }
@@ -243,7 +232,6 @@ static int health_point(Report *r, int slave, const Time *x, double y) {
         if (columns == NULL) return -1;
         r->h_columns[slave] = (Columns *)columns;
     }
-    r->h_counted[slave]++;
     return columns_point(r->h_columns[slave], report_col(x, &r->h_origin, r->h_width), x->d, y);
 }
 
@@ -359,7 +347,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
 
 /* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1. */
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *writes, const Words *reads, unsigned long long number) {
+                              const Words *writes, const Words *confirmed, const Words *reads, unsigned long long number) {
     Report *r = (Report *)report;
     const uint8_t *q = b + qf->at, *a = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
@@ -373,8 +361,6 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
     if (a[1] & 0x80)
         return report_event(r, &x, "exception", slave, PyObject_CallFunction(r->exception, "iii", slave, function, a[2]));
     long long col = report_col(&x, &r->origin, r->width);
-    Words written;
-    const Words *confirmed = confirmed_writes(a, writes, &written) ? &written : NULL;
     for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
         const Words *w = pass ? reads : confirmed;
         for (unsigned k = 0; w != NULL && k < w->count; k++)
@@ -400,14 +386,13 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     r->series = PyObject_GetAttrString(r->collector, "series");
     if (r->health != Py_None) {
         r->h_series = PyObject_GetAttrString(r->health, "series");
-        r->h_counts = PyObject_GetAttrString(r->health, "counts");
         r->written = PyObject_GetAttrString(r->health, "written");
         if (r->written != NULL && !PySet_Check(r->written)) {
             Py_CLEAR(r->written);
             PyErr_SetString(PyExc_TypeError, "Health.written: a set");
         }
     }
-    if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->h_counts == NULL || r->written == NULL)))
+    if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->written == NULL)))
         return -1;
     r->span = columns;
     for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)r->max_series + 2;) r->trend_slots *= 2;
@@ -433,8 +418,8 @@ static void report_dealloc(Report *r) {
     }
     PyMem_Free(r->trends);
     PyMem_Free(r->points);
-    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series, r->h_counts, r->written};
-    for (int k = 0; k < 8; k++) Py_XDECREF(objects[k]);
+    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series, r->written};
+    for (int k = 0; k < 7; k++) Py_XDECREF(objects[k]);
     Py_TYPE(r)->tp_free((PyObject *)r);
 }
 

@@ -74,7 +74,7 @@ typedef struct {
 #define PARAMS(st) ((Param *)(st)->params.items)
 
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *writes, const Words *reads, unsigned long long number);
+                              const Words *writes, const Words *confirmed, const Words *reads, unsigned long long number);
 
 static PyTypeObject StatsType;
 
@@ -237,7 +237,10 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
                              const Words *writes, const Words *reads, unsigned long long number, long long base) {
     const uint8_t *q = b + qf->at, *answer = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
-    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, writes, reads, number) < 0) return -1;
+    Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
+    const Words *confirmed =
+        answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
+    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, writes, confirmed, reads, number) < 0) return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
     if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
@@ -270,9 +273,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
     }
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
-    Words confirmed; /* the writes the answer confirms (data/modbus.toml [confirm]) */
-    if (confirmed_writes(answer, writes, &confirmed) && words_event(st, s, slave, &confirmed, EVENT_CONFIRM) < 0)
-        return -1;
+    if (confirmed != NULL && words_event(st, s, slave, confirmed, EVENT_CONFIRM) < 0) return -1;
     return reads != NULL && reads->count ? words_event(st, s, slave, reads, EVENT_READ) : 0;
 }
 

@@ -31,7 +31,6 @@ class Health:
         self.width = 1e-3
         self.limit = 0.0
         self.series: dict[int, Any] = {}
-        self.counts: dict[int, int] = {}
         self.written: set[tuple[int, int]] = set()
 
     def add_items(self, items: list[Item]) -> None:
@@ -64,7 +63,6 @@ class Health:
         if columns is None:
             columns = self.series[slave] = new_columns()
         columns.add(max(0, int((x - self.origin) / self.width)), x, y)
-        self.counts[slave] = self.counts.get(slave, 0) + 1
 
     def _double(self) -> None:
         """As ReportCollector._double: at COLUMNS columns, merged at once (they were let grow to 3 x COLUMNS,
@@ -76,11 +74,13 @@ class Health:
             if len(columns) > COLUMNS // 2:
                 columns.compact(self.origin, self.width)  # type: ignore[arg-type]
 
-    def response_series(self, origin: float, width: float) -> list[dict[str, Any]]:
+    def response_series(self, origin: float, width: float, answers: dict[int, int]) -> list[dict[str, Any]]:
         """Per slave its answers and `points`: a call that gives x (relative to the report's origin) and y
         (ms), in the report's columns, as the page's JSON text of each list. html.py calls it as it
-        writes the slave's series: one slave's text at a time (247 slaves' took 13 MB at once, issue 28)."""
-        return [{"slave": slave, "answers": self.counts[slave],
+        writes the slave's series: one slave's text at a time (247 slaves' took 13 MB at once, issue 28).
+        `answers`: per slave the answers with a response time, as bustiming counts them (the same answers
+        make this slave's points: a good CRC and a response time; counted once, there)."""
+        return [{"slave": slave, "answers": answers[slave],
                  "points": lambda columns=self.series[slave]: self._drawn_json(columns, origin, width)}
                 for slave in sorted(self.series)]
 

@@ -40,7 +40,8 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
         end = min(minutes[-1]["start"] + 60.0, bus.first + report["span"])
         data["load"]["x"].append(round(end - origin, 6))
         data["load"]["y"].append(data["load"]["y"][-1])
-    data["responses"] = health.response_series(origin, data["column_width"]) if health is not None else []
+    answers = {slave: quantiles.count for slave, quantiles in bus.responses.items()}
+    data["responses"] = health.response_series(origin, data["column_width"], answers) if health is not None else []
     answered = {entry["slave"] for entry in data["responses"]}
     for slave in sorted({outage["slave"] for outage in data["outages"]} - answered):  # silent throughout
         data["responses"].append({"slave": slave, "answers": 0, "points": _no_points})
