@@ -257,42 +257,23 @@ static PyObject *columns_levels(Columns *self, PyObject *unused) {
     return Py_BuildValue("(ddd)", self->d[1], low, high);
 }
 
-/* values() -> [fx, fy, nx, ...] and load(values): the doubles as a list, for the rare rewrites
- * (a profile chosen later: collect.py remap) done in Python for both stores. */
+/* values() -> bytes and load(values): the doubles (8 a column) as bytes, for the rare rewrites (a profile
+ * chosen later: collect.py remap) done in Python for both stores. */
 static PyObject *columns_values(Columns *self, PyObject *unused) {
-    PyObject *list = PyList_New(self->n);
-    if (list == NULL) return NULL;
-    for (Py_ssize_t i = 0; i < self->n; i++) {
-        PyObject *v = PyFloat_FromDouble(self->d[i]);
-        if (v == NULL) {
-            Py_DECREF(list);
-            return NULL;
-        }
-        PyList_SET_ITEM(list, i, v);
-    }
-    return list;
+    return PyBytes_FromStringAndSize((const char *)self->d, self->n * (Py_ssize_t)sizeof(double));
 }
 
 static PyObject *columns_load(Columns *self, PyObject *values) {
-    PyObject *seq = PySequence_Fast(values, "load(values): a sequence of floats");
-    if (seq == NULL) return NULL;
-    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
-    if (n % 8 != 0 || columns_grow(self, n) < 0) {
-        if (!PyErr_Occurred()) PyErr_SetString(PyExc_ValueError, "load(values): 8 doubles a column");
-        Py_DECREF(seq);
-        return NULL;
+    Py_buffer view;
+    if (PyObject_GetBuffer(values, &view, PyBUF_SIMPLE) < 0) return NULL;
+    Py_ssize_t n = view.len / (Py_ssize_t)sizeof(double);
+    if (view.len % (8 * sizeof(double)) != 0) PyErr_SetString(PyExc_ValueError, "load(values): 8 doubles a column");
+    else if (columns_grow(self, n) == 0) {
+        if (n) memcpy(self->d, view.buf, (size_t)view.len); /* (no array yet when n is 0) */
+        self->n = n;
     }
-    for (Py_ssize_t i = 0; i < n; i++) {
-        double v = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(seq, i));
-        if (v == -1.0 && PyErr_Occurred()) {
-            Py_DECREF(seq);
-            return NULL;
-        }
-        self->d[i] = v;
-    }
-    self->n = n;
-    Py_DECREF(seq);
-    Py_RETURN_NONE;
+    PyBuffer_Release(&view);
+    return PyErr_Occurred() ? NULL : Py_NewRef(Py_None);
 }
 
 static PyMethodDef columns_methods[] = {
@@ -304,8 +285,8 @@ static PyMethodDef columns_methods[] = {
      "drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text, None when one is not\n"
      "finite"},
     {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},
-    {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles, 8 a column"},
-    {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles"},
+    {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles as bytes, 8 a column"},
+    {"load", (PyCFunction)columns_load, METH_O, "load(values): replace the doubles (bytes, an array('d'))"},
     {NULL, NULL, 0, NULL},
 };
 

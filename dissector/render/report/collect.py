@@ -75,10 +75,11 @@ class Columns:
     def __len__(self) -> int:
         return len(self.done) // 8
 
-    def values(self) -> list[float]:
-        return self.done.tolist()
+    def values(self) -> bytes:
+        """The doubles as bytes, 8 a column (the compiled columns' too)."""
+        return self.done.tobytes()
 
-    def load(self, values: list[float]) -> None:
+    def load(self, values: bytes | array) -> None:
         self.done = array("d", values)
 
     def compact(self, origin: float, width: float) -> None:
@@ -143,7 +144,7 @@ def drawn(columns: Any, origin: float, digits: int, scale: float = 0.0,
 def remap(columns: Any, convert: Any) -> None:
     """Every y of `columns` through `convert` (a profile chosen later scales raw words); each column's
     lowest and highest points are found again, since a signed reading reorders them."""
-    done = columns.values()
+    done = array("d", columns.values())
     for index in range(0, len(done), 8):
         points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]
         low = min(points, key=lambda point: point[1])
@@ -386,7 +387,7 @@ class ReportCollector:
             series.code, series.name = row.code, row.name
             if row.enum or row.bits:
                 series.step = True
-                for y in series.columns.values()[1::2]:
+                for y in array("d", series.columns.values())[1::2]:
                     value = int(y)
                     if value not in series.labels and len(series.labels) < MAX_LABELS and 0 <= value <= 0xFFFF:
                         series.labels[value] = interpret(row, value)[1]  # type: ignore[assignment]
