@@ -18,7 +18,7 @@
 
 typedef struct {
     uint32_t key; /* 1 << 24 | slave << 16 | address */
-    uint32_t reads, unreadable, writes, refused, changes;
+    uint32_t counts[PARAM_COUNTS]; /* by PARAM_* (stats_store.COUNTERS): reads, unreadable, writes, refused, changes */
     uint16_t last;
     uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
     PyObject *text;       /* owned: the Python stages' text of the last value (maybe None); NULL: the namer's */
@@ -93,7 +93,7 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
  * status; a change is a state that differs from the last one, whoever saw each. 1: changed. */
 static inline int param_observe(Param *p, unsigned value) {
     int changed = p->has_last && (p->status != NULL || value != p->last);
-    if (changed) p->changes++;
+    if (changed) p->counts[PARAM_CHANGES]++;
     Py_CLEAR(p->status);
     p->last = (uint16_t)value;
     p->has_last = 1;
@@ -102,8 +102,8 @@ static inline int param_observe(Param *p, unsigned value) {
 
 /* An event's count (stats_store.EVENT_RULES); 1: it sets the state too (a value or a status seen). */
 static int param_count(Param *p, int event) {
-    static const struct { size_t counter; int state; } rules[EVENTS] = EVENT_RULES;
-    if (rules[event].counter) ++*(uint32_t *)((char *)p + rules[event].counter);
+    static const struct { int counter, state; } rules[EVENTS] = EVENT_RULES;
+    if (rules[event].counter >= 0) p->counts[rules[event].counter]++;
     return rules[event].state;
 }
 
@@ -115,7 +115,7 @@ static inline int param_status(Param *p, PyObject *status) {
         if (same < 0) return -1;
     }
     int changed = p->has_last && !same;
-    if (changed) p->changes++;
+    if (changed) p->counts[PARAM_CHANGES]++;
     Py_INCREF(status);
     Py_XSETREF(p->status, status);
     p->has_last = 1;
@@ -448,8 +448,9 @@ static PyObject *param_row(const Param *p) {
     Py_INCREF(code);
     if (p->has_last && p->status == NULL) last = PyLong_FromUnsignedLong(p->last);
     else Py_INCREF(last);
-    const unsigned long fields[] = {(p->key >> 16) & 0xFF, p->key & 0xFFFF, 0, p->reads, p->unreadable, p->writes,
-                                    p->refused, 0, 0, p->changes};
+    const uint32_t *n = p->counts;
+    const unsigned long fields[] = {(p->key >> 16) & 0xFF, p->key & 0xFFFF, 0, n[PARAM_READS], n[PARAM_UNREADABLE],
+                                    n[PARAM_WRITES], n[PARAM_REFUSED], 0, 0, n[PARAM_CHANGES]};
     for (int j = 0; j < 10; j++)
         PyTuple_SET_ITEM(row, j, j == 2 ? code : j == 7 ? last : j == 8 ? text : PyLong_FromUnsignedLong(fields[j]));
     for (int j = 0; j < 10; j++)
@@ -479,8 +480,7 @@ static PyObject *stats_parameters(Stats *st, PyObject *unused) {
 /* b follows a in --stats' parameter table's run: the next address of the slave, the same counts, both
  * named or both not (render/stats.py _parameter_table). */
 static int same_story(const Param *a, const Param *b) {
-    return b->key == a->key + 1 && (a->key & 0xFFFF) != 0xFFFF && b->reads == a->reads && b->unreadable == a->unreadable &&
-           b->writes == a->writes && b->refused == a->refused && b->changes == a->changes &&
+    return b->key == a->key + 1 && (a->key & 0xFFFF) != 0xFFFF && memcmp(b->counts, a->counts, sizeof a->counts) == 0 &&
            (b->code == NULL) == (a->code == NULL);
 }
 
@@ -492,11 +492,10 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
     size_t n, first = 0;
     Param **order = param_sorted(st, &n);
     PyObject *pieces = order != NULL ? PyList_New(0) : NULL;
-    unsigned long long totals[5] = {0}, expanded = 0;
+    unsigned long long totals[PARAM_COUNTS] = {0}, expanded = 0;
     for (size_t k = 0; pieces != NULL && k < n; k++) {
         const Param *p = order[k];
-        const unsigned long counts[5] = {p->reads, p->unreadable, p->writes, p->refused, p->changes};
-        for (int j = 0; j < 5; j++) totals[j] += counts[j];
+        for (int j = 0; j < PARAM_COUNTS; j++) totals[j] += p->counts[j];
         if (k + 1 < n && same_story(p, order[k + 1])) continue;
         size_t end = k + 1;
         int grouped = end - first >= (size_t)group_min;

@@ -324,8 +324,9 @@ static const Rules rules[HANDLED] = {
 /* The --stats store's events, tallies and count keys (render/stats_store.py) and bus timing's
  * buckets (render/bustiming.py), for _stats.h, _bus.h and _report.h. */
 enum { EVENT_READ = 0, EVENT_UNREADABLE = 1, EVENT_WRITE = 2, EVENT_WRITE_OBSERVED = 3, EVENT_REFUSED = 4, EVENT_CONFIRM = 5, EVENTS = 6 };
-/* By event: {where in a Param the count it adds one to (0: none), 1 when it sets the state}. */
-#define EVENT_RULES {{offsetof(Param, reads), 1}, {offsetof(Param, unreadable), 1}, {offsetof(Param, writes), 0}, {offsetof(Param, writes), 1}, {offsetof(Param, refused), 0}, {0, 1}}
+enum { PARAM_READS = 0, PARAM_UNREADABLE = 1, PARAM_WRITES = 2, PARAM_REFUSED = 3, PARAM_CHANGES = 4, PARAM_COUNTS = 5 };
+/* By event: {the PARAM_* count it adds one to (-1: none), 1 when it sets the state}. */
+#define EVENT_RULES {{PARAM_READS, 1}, {PARAM_UNREADABLE, 1}, {PARAM_WRITES, 0}, {PARAM_WRITES, 1}, {PARAM_REFUSED, 0}, {-1, 1}}
 enum { TALLY_TIMES = 0, TALLY_GAPS = 1, TALLY_TURNAROUND = 2, TALLY_RESPONSES = 3, TALLY_MINUTES = 4, TALLY_INTERVALS = 5, TALLY_COUNTS = 6, TALLIES = 7 };
 enum { COUNT_REQUESTS = 256, COUNT_RESPONSES = 257, COUNT_UNANSWERED = 258 };
 #define TALLY_UNBOUNDED (1 << 4 | 1 << 6)

@@ -20,9 +20,10 @@ def render() -> list[str]:
         "/* The --stats store's events, tallies and count keys (render/stats_store.py) and bus timing's",
         " * buckets (render/bustiming.py), for _stats.h, _bus.h and _report.h. */",
         _enum("EVENT_", {name: getattr(stats_store, name) for name in stats_store.EVENTS}, "EVENTS"),
-        "/* By event: {where in a Param the count it adds one to (0: none), 1 when it sets the state}. */",
+        _enum("PARAM_", {name.upper(): k for k, name in enumerate(stats_store.COUNTERS)}, "PARAM_COUNTS"),
+        "/* By event: {the PARAM_* count it adds one to (-1: none), 1 when it sets the state}. */",
         "#define EVENT_RULES {" + ", ".join(
-            f"{{{'0' if counter is None else f'offsetof(Param, {counter})'}, {int(state)}}}"
+            f"{{{'-1' if counter is None else f'PARAM_{counter.upper()}'}, {int(state)}}}"
             for _event, (counter, state) in sorted(stats_store.EVENT_RULES.items())) + "}",
         _enum("TALLY_", tallies, "TALLIES"),
         _enum("COUNT_", counts),
