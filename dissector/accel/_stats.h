@@ -768,8 +768,7 @@ static PyObject *stats_poll_timings(Stats *st, PyObject *unused);
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
      "param(slave, address, event, value, code, text): a register of a frame the Python stages showed\n"
-     "(event: READ 0, UNREADABLE 1, WRITE 2, WRITE_OBSERVED 3, REFUSED 4, CONFIRM 5; UNREADABLE's text is\n"
-     "the status); True when the parameter's state (a value or a status) changed."},
+     "(event: stats_store.EVENTS' index; UNREADABLE's text is the status); True when the state changed."},
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
