@@ -389,9 +389,7 @@ static PyObject *stats_poll(Stats *st, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-static PyObject *stats_poll_fail(Stats *st, PyObject *args) {
-    PyObject *key;
-    if (!PyArg_ParseTuple(args, "O", &key)) return NULL;
+static PyObject *stats_poll_fail(Stats *st, PyObject *key) {
     PollKey fields;
     if (key_fields(key, &fields) < 0) return NULL;
     poll_fail(st, &fields);
@@ -772,7 +770,7 @@ static PyMethodDef stats_methods[] = {
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
-    {"poll_fail", (PyCFunction)stats_poll_fail, METH_VARARGS, "poll_fail(key): its answer was an exception."},
+    {"poll_fail", (PyCFunction)stats_poll_fail, METH_O, "poll_fail(key): its answer was an exception."},
     {"parameters", (PyCFunction)stats_parameters, METH_NOARGS,
      "[(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]"},
     {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},
