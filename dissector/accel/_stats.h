@@ -18,7 +18,7 @@
 
 typedef struct {
     uint32_t key; /* 1 << 24 | slave << 16 | address */
-    uint32_t counts[PARAM_COUNTS]; /* by PARAM_* (stats_store.COUNTERS): reads, unreadable, writes, refused, changes */
+    uint32_t counts[PARAM_COUNTS]; /* by PARAM_* (c_stats.py): reads, unreadable, writes, refused, changes */
     uint16_t last;
     uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
     PyObject *text;       /* owned: the Python stages' text of the last value (maybe None); NULL: the namer's */

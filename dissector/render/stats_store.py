@@ -34,9 +34,6 @@ except ImportError:  # built without a C compiler
 # The events (the compiled store's EVENT_*, generated into dissector/accel/_tables.h).
 EVENTS = ("READ", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "REFUSED", "CONFIRM")
 READ, UNREADABLE, WRITE, WRITE_OBSERVED, REFUSED, CONFIRM = range(len(EVENTS))
-# A parameter's counts: the compiled store's Param.counts (PARAM_* generated into _tables.h), and the rows'
-# count columns (ParameterRow: reads..refused at 3..6, changes at 9).
-COUNTERS = ("reads", "unreadable", "writes", "refused", "changes")
 # What an event does to its parameter (the rules above): the count it adds one to (None: none) and whether
 # it sets the state (a value or a status seen). ParameterTable.param and the compiled store (_stats.h
 # param_count, EVENT_RULES generated into _tables.h) both read it.
