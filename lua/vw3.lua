@@ -637,380 +637,547 @@ local DATA = {
     ["provisional_line"] = "Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec semantics only, which its device may name otherwise)",
   },
   ["fields"] = {
-    {
-      ["abbr"] = "vw3.item",
-      ["ftype"] = "uint32",
-      ["title"] = "Item",
-      ["help"] = "item number, 1-based, as vw3-decode counts them",
-      ["base"] = "DEC",
+    ["fields"] = {
+      {
+        ["abbr"] = "vw3.item",
+        ["ftype"] = "uint32",
+        ["title"] = "Item",
+        ["help"] = "item number, 1-based, as vw3-decode counts them",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.kind",
+        ["ftype"] = "uint8",
+        ["title"] = "Kind",
+        ["help"] = "request, response, exception or noise",
+        ["base"] = "DEC",
+        ["values"] = "kind",
+      },
+      {
+        ["abbr"] = "vw3.offset",
+        ["ftype"] = "uint32",
+        ["title"] = "Stream offset",
+        ["help"] = "byte offset of the item in the input, as vw3-decode --json's offset",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.mode",
+        ["ftype"] = "string",
+        ["title"] = "Mode",
+        ["help"] = "rtu or ascii",
+      },
+      {
+        ["abbr"] = "vw3.slave",
+        ["ftype"] = "uint8",
+        ["title"] = "Slave",
+        ["help"] = "slave address (0: broadcast)",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.function",
+        ["ftype"] = "uint8",
+        ["title"] = "Function",
+        ["help"] = "function code",
+        ["base"] = "DEC",
+        ["values"] = "functions",
+      },
+      {
+        ["abbr"] = "vw3.function_name",
+        ["ftype"] = "string",
+        ["title"] = "Function name",
+        ["help"] = "function name",
+      },
+      {
+        ["abbr"] = "vw3.crc_ok",
+        ["ftype"] = "bool",
+        ["title"] = "CRC OK",
+        ["help"] = "the CRC/LRC checks",
+      },
+      {
+        ["abbr"] = "vw3.crc",
+        ["ftype"] = "uint16",
+        ["title"] = "CRC",
+        ["help"] = "received check value",
+        ["base"] = "HEX",
+      },
+      {
+        ["abbr"] = "vw3.crc_expected",
+        ["ftype"] = "uint16",
+        ["title"] = "Expected CRC",
+        ["help"] = "computed check value",
+        ["base"] = "HEX",
+      },
+      {
+        ["abbr"] = "vw3.broadcast",
+        ["ftype"] = "bool",
+        ["title"] = "Broadcast",
+        ["help"] = "a request to slave 0",
+      },
+      {
+        ["abbr"] = "vw3.start",
+        ["ftype"] = "uint16",
+        ["title"] = "Start address",
+        ["help"] = "first address",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.quantity",
+        ["ftype"] = "uint16",
+        ["title"] = "Quantity",
+        ["help"] = "count",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.subfunction",
+        ["ftype"] = "uint16",
+        ["title"] = "Sub-function",
+        ["help"] = "FC8 sub-function",
+        ["base"] = "DEC",
+        ["values"] = "diagnostics",
+      },
+      {
+        ["abbr"] = "vw3.subfunction_name",
+        ["ftype"] = "string",
+        ["title"] = "Sub-function name",
+        ["help"] = "FC8 sub-function name",
+      },
+      {
+        ["abbr"] = "vw3.exception_code",
+        ["ftype"] = "uint8",
+        ["title"] = "Exception code",
+        ["help"] = "exception code",
+        ["base"] = "DEC",
+        ["values"] = "exceptions",
+      },
+      {
+        ["abbr"] = "vw3.exception_name",
+        ["ftype"] = "string",
+        ["title"] = "Exception name",
+        ["help"] = "the spec's exception name",
+      },
+      {
+        ["abbr"] = "vw3.request_frame",
+        ["ftype"] = "framenum",
+        ["title"] = "Request in frame",
+        ["help"] = "the request a response answers",
+        ["base"] = "NONE",
+        ["values"] = "request",
+      },
+      {
+        ["abbr"] = "vw3.response_frame",
+        ["ftype"] = "framenum",
+        ["title"] = "Response in frame",
+        ["help"] = "the response that answered a request",
+        ["base"] = "NONE",
+        ["values"] = "response",
+      },
+      {
+        ["abbr"] = "vw3.response_time",
+        ["ftype"] = "relative_time",
+        ["title"] = "Time since request",
+        ["help"] = "seconds after the request",
+      },
+      {
+        ["abbr"] = "vw3.unanswered",
+        ["ftype"] = "bool",
+        ["title"] = "Unanswered",
+        ["help"] = "a request no response came to",
+      },
+      {
+        ["abbr"] = "vw3.noise.reason",
+        ["ftype"] = "string",
+        ["title"] = "Why noise",
+        ["help"] = "why noise is no frame",
+      },
+      {
+        ["abbr"] = "vw3.warning",
+        ["ftype"] = "string",
+        ["title"] = "Warning",
+        ["help"] = "warnings: outside the spec or the device profile",
+      },
+      {
+        ["abbr"] = "vw3.note",
+        ["ftype"] = "string",
+        ["title"] = "Note",
+        ["help"] = "notes on the frame",
+      },
+      {
+        ["abbr"] = "vw3.exception_meaning",
+        ["ftype"] = "string",
+        ["title"] = "Exception meaning on this device",
+        ["help"] = "what it means on the device",
+      },
+      {
+        ["abbr"] = "vw3.span_label",
+        ["ftype"] = "string",
+        ["title"] = "Addresses as shown",
+        ["help"] = "the addresses as shown (PLC style)",
+      },
+      {
+        ["abbr"] = "vw3.profile",
+        ["ftype"] = "string",
+        ["title"] = "Device profile",
+        ["help"] = "the device profile the frame is annotated with",
+      },
+      {
+        ["abbr"] = "vw3.profile_reason",
+        ["ftype"] = "string",
+        ["title"] = "Why this profile",
+        ["help"] = "profile auto: the evidence that gave the slave its device profile",
+      },
+      {
+        ["abbr"] = "vw3.provisional",
+        ["ftype"] = "bool",
+        ["title"] = "Provisional",
+        ["help"] = "read before profile auto chose the slave's device (one pass: live, stdin): values named with spec semantics only",
+        ["base"] = "NONE",
+      },
+      {
+        ["abbr"] = "vw3.profile_choice",
+        ["ftype"] = "string",
+        ["title"] = "Profile chosen",
+        ["help"] = "profile auto: why this frame decides the slave's profile",
+      },
+      {
+        ["abbr"] = "vw3.reg",
+        ["ftype"] = "none",
+        ["title"] = "Register",
+        ["help"] = "register values (presence)",
+      },
+      {
+        ["abbr"] = "vw3.bit",
+        ["ftype"] = "none",
+        ["title"] = "Bit",
+        ["help"] = "coils and inputs (presence)",
+      },
+      {
+        ["abbr"] = "vw3.bit.address",
+        ["ftype"] = "uint16",
+        ["title"] = "Address",
+        ["help"] = "coil or input address",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.bit.value",
+        ["ftype"] = "uint8",
+        ["title"] = "Value",
+        ["help"] = "coil or input value",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.object",
+        ["ftype"] = "none",
+        ["title"] = "Object",
+        ["help"] = "FC43 objects (presence)",
+      },
+      {
+        ["abbr"] = "vw3.object.id",
+        ["ftype"] = "uint8",
+        ["title"] = "Object id",
+        ["help"] = "FC43 object id",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.object.name",
+        ["ftype"] = "string",
+        ["title"] = "Name",
+        ["help"] = "FC43 object name",
+      },
+      {
+        ["abbr"] = "vw3.object.value",
+        ["ftype"] = "string",
+        ["title"] = "Value",
+        ["help"] = "FC43 object value",
+      },
+      {
+        ["abbr"] = "vw3.object.text",
+        ["ftype"] = "string",
+        ["title"] = "Meaning",
+        ["help"] = "the object value's meaning on the device",
+      },
+      {
+        ["abbr"] = "vw3.data",
+        ["ftype"] = "bytes",
+        ["title"] = "Data",
+        ["help"] = "noise: the bytes outside any frame",
+      },
+      {
+        ["abbr"] = "vw3.byte_count",
+        ["ftype"] = "uint8",
+        ["title"] = "Byte count",
+        ["help"] = "the PDU's byte count",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.server_id",
+        ["ftype"] = "uint8",
+        ["title"] = "Server id",
+        ["help"] = "FC17 server id",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.run_indicator",
+        ["ftype"] = "uint8",
+        ["title"] = "Run indicator",
+        ["help"] = "FC17 run indicator",
+        ["base"] = "HEX",
+        ["values"] = "run_indicator",
+      },
+      {
+        ["abbr"] = "vw3.additional_data",
+        ["ftype"] = "string",
+        ["title"] = "Additional data",
+        ["help"] = "FC17 additional data, as text",
+      },
+      {
+        ["abbr"] = "vw3.additional_bytes",
+        ["ftype"] = "bytes",
+        ["title"] = "Additional data",
+        ["help"] = "FC17 additional data",
+      },
+      {
+        ["abbr"] = "vw3.continued_in",
+        ["ftype"] = "framenum",
+        ["title"] = "Continued in record",
+        ["help"] = "the later record that shows the frame these bytes begin",
+      },
+      {
+        ["abbr"] = "vw3.reg.address",
+        ["ftype"] = "uint16",
+        ["title"] = "Address",
+        ["help"] = "register address on the wire",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.reg.value",
+        ["ftype"] = "uint16",
+        ["title"] = "Value",
+        ["help"] = "register value",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.reg.code",
+        ["ftype"] = "string",
+        ["title"] = "Code",
+        ["help"] = "parameter code",
+      },
+      {
+        ["abbr"] = "vw3.reg.name",
+        ["ftype"] = "string",
+        ["title"] = "Name",
+        ["help"] = "parameter name",
+      },
+      {
+        ["abbr"] = "vw3.reg.unit",
+        ["ftype"] = "string",
+        ["title"] = "Unit",
+        ["help"] = "unit",
+      },
+      {
+        ["abbr"] = "vw3.reg.scaled",
+        ["ftype"] = "double",
+        ["title"] = "Scaled value",
+        ["help"] = "scaled value",
+      },
+      {
+        ["abbr"] = "vw3.reg.text",
+        ["ftype"] = "string",
+        ["title"] = "Meaning",
+        ["help"] = "the value's text",
+      },
+      {
+        ["abbr"] = "vw3.reg.status",
+        ["ftype"] = "string",
+        ["title"] = "Status",
+        ["help"] = "ok, protected, non-existent or ambiguous",
+      },
+      {
+        ["abbr"] = "vw3.reg.source",
+        ["ftype"] = "string",
+        ["title"] = "Source",
+        ["help"] = "where the map row comes from",
+      },
+      {
+        ["abbr"] = "vw3.reg.label",
+        ["ftype"] = "string",
+        ["title"] = "Address as shown",
+        ["help"] = "the address as shown (PLC style)",
+      },
+      {
+        ["abbr"] = "vw3.reg.words",
+        ["ftype"] = "uint8",
+        ["title"] = "Words of a 32-bit value",
+        ["help"] = "words of a 32-bit value",
+        ["base"] = "DEC",
+        ["values"] = {
+          [0] = "second word (the value is read on the register before)",
+          [2] = "this register and the next",
+        },
+      },
     },
-    {
-      ["abbr"] = "vw3.kind",
-      ["ftype"] = "uint8",
-      ["title"] = "Kind",
-      ["help"] = "request, response, exception or noise",
-      ["base"] = "DEC",
-      ["values"] = "kind",
+    ["experts"] = {
+      {
+        ["name"] = "crc_bad",
+        ["filter"] = "vw3.expert.crc_bad",
+        ["title"] = "Bad CRC",
+        ["group"] = "CHECKSUM",
+        ["severity"] = "ERROR",
+      },
+      {
+        ["name"] = "exception",
+        ["filter"] = "vw3.expert.exception",
+        ["title"] = "Exception response",
+        ["group"] = "RESPONSE_CODE",
+        ["severity"] = "NOTE",
+      },
+      {
+        ["name"] = "unanswered",
+        ["filter"] = "vw3.expert.unanswered",
+        ["title"] = "Request not answered",
+        ["group"] = "SEQUENCE",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "no_request",
+        ["filter"] = "vw3.expert.no_request",
+        ["title"] = "Response without a matching request",
+        ["group"] = "SEQUENCE",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "warning",
+        ["filter"] = "vw3.expert.warning",
+        ["title"] = "Outside the spec or the device profile",
+        ["group"] = "PROTOCOL",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "malformed",
+        ["filter"] = "vw3.expert.malformed",
+        ["title"] = "PDU does not fit its layout",
+        ["group"] = "MALFORMED",
+        ["severity"] = "ERROR",
+      },
+      {
+        ["name"] = "protected",
+        ["filter"] = "vw3.expert.protected",
+        ["title"] = "Protected or non-existent parameter",
+        ["group"] = "RESPONSE_CODE",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "note",
+        ["filter"] = "vw3.expert.note",
+        ["title"] = "Note",
+        ["group"] = "COMMENTS_GROUP",
+        ["severity"] = "NOTE",
+      },
+      {
+        ["name"] = "noise",
+        ["filter"] = "vw3.expert.noise",
+        ["title"] = "Bytes outside any frame",
+        ["group"] = "MALFORMED",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "multiple",
+        ["filter"] = "vw3.expert.record.multiple",
+        ["title"] = "Several frames in one record",
+        ["group"] = "REASSEMBLE",
+        ["severity"] = "NOTE",
+      },
+      {
+        ["name"] = "partial",
+        ["filter"] = "vw3.expert.record.partial",
+        ["title"] = "Record ends inside a frame",
+        ["group"] = "REASSEMBLE",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "preference",
+        ["filter"] = "vw3.expert.preference",
+        ["title"] = "Preference not understood",
+        ["group"] = "PROTOCOL",
+        ["severity"] = "WARN",
+      },
+      {
+        ["name"] = "internal",
+        ["filter"] = "vw3.expert.internal",
+        ["title"] = "Plugin error (please report it)",
+        ["group"] = "UNDECODED",
+        ["severity"] = "ERROR",
+      },
+      {
+        ["name"] = "profile",
+        ["filter"] = "vw3.expert.profile",
+        ["title"] = "Device profile chosen (profile auto)",
+        ["group"] = "COMMENTS_GROUP",
+        ["severity"] = "CHAT",
+      },
     },
-    {
-      ["abbr"] = "vw3.offset",
-      ["ftype"] = "uint32",
-      ["title"] = "Stream offset",
-      ["help"] = "byte offset of the item in the input, as vw3-decode --json's offset",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.mode",
-      ["ftype"] = "string",
-      ["title"] = "Mode",
-      ["help"] = "rtu or ascii",
-    },
-    {
-      ["abbr"] = "vw3.slave",
-      ["ftype"] = "uint8",
-      ["title"] = "Slave",
-      ["help"] = "slave address (0: broadcast)",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.function",
-      ["ftype"] = "uint8",
-      ["title"] = "Function",
-      ["help"] = "function code",
-      ["base"] = "DEC",
-      ["values"] = "functions",
-    },
-    {
-      ["abbr"] = "vw3.function_name",
-      ["ftype"] = "string",
-      ["title"] = "Function name",
-      ["help"] = "function name",
-    },
-    {
-      ["abbr"] = "vw3.crc_ok",
-      ["ftype"] = "bool",
-      ["title"] = "CRC OK",
-      ["help"] = "the CRC/LRC checks",
-    },
-    {
-      ["abbr"] = "vw3.crc",
-      ["ftype"] = "uint16",
-      ["title"] = "CRC",
-      ["help"] = "received check value",
-      ["base"] = "HEX",
-    },
-    {
-      ["abbr"] = "vw3.crc_expected",
-      ["ftype"] = "uint16",
-      ["title"] = "Expected CRC",
-      ["help"] = "computed check value",
-      ["base"] = "HEX",
-    },
-    {
-      ["abbr"] = "vw3.broadcast",
-      ["ftype"] = "bool",
-      ["title"] = "Broadcast",
-      ["help"] = "a request to slave 0",
-    },
-    {
-      ["abbr"] = "vw3.start",
-      ["ftype"] = "uint16",
-      ["title"] = "Start address",
-      ["help"] = "first address",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.quantity",
-      ["ftype"] = "uint16",
-      ["title"] = "Quantity",
-      ["help"] = "count",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.subfunction",
-      ["ftype"] = "uint16",
-      ["title"] = "Sub-function",
-      ["help"] = "FC8 sub-function",
-      ["base"] = "DEC",
-      ["values"] = "diagnostics",
-    },
-    {
-      ["abbr"] = "vw3.subfunction_name",
-      ["ftype"] = "string",
-      ["title"] = "Sub-function name",
-      ["help"] = "FC8 sub-function name",
-    },
-    {
-      ["abbr"] = "vw3.exception_code",
-      ["ftype"] = "uint8",
-      ["title"] = "Exception code",
-      ["help"] = "exception code",
-      ["base"] = "DEC",
-      ["values"] = "exceptions",
-    },
-    {
-      ["abbr"] = "vw3.exception_name",
-      ["ftype"] = "string",
-      ["title"] = "Exception name",
-      ["help"] = "the spec's exception name",
-    },
-    {
-      ["abbr"] = "vw3.request_frame",
-      ["ftype"] = "framenum",
-      ["title"] = "Request in frame",
-      ["help"] = "the request a response answers",
-      ["base"] = "NONE",
-      ["values"] = "request",
-    },
-    {
-      ["abbr"] = "vw3.response_frame",
-      ["ftype"] = "framenum",
-      ["title"] = "Response in frame",
-      ["help"] = "the response that answered a request",
-      ["base"] = "NONE",
-      ["values"] = "response",
-    },
-    {
-      ["abbr"] = "vw3.response_time",
-      ["ftype"] = "relative_time",
-      ["title"] = "Time since request",
-      ["help"] = "seconds after the request",
-    },
-    {
-      ["abbr"] = "vw3.unanswered",
-      ["ftype"] = "bool",
-      ["title"] = "Unanswered",
-      ["help"] = "a request no response came to",
-    },
-    {
-      ["abbr"] = "vw3.noise.reason",
-      ["ftype"] = "string",
-      ["title"] = "Why noise",
-      ["help"] = "why noise is no frame",
-    },
-    {
-      ["abbr"] = "vw3.warning",
-      ["ftype"] = "string",
-      ["title"] = "Warning",
-      ["help"] = "warnings: outside the spec or the device profile",
-    },
-    {
-      ["abbr"] = "vw3.note",
-      ["ftype"] = "string",
-      ["title"] = "Note",
-      ["help"] = "notes on the frame",
-    },
-    {
-      ["abbr"] = "vw3.exception_meaning",
-      ["ftype"] = "string",
-      ["title"] = "Exception meaning on this device",
-      ["help"] = "what it means on the device",
-    },
-    {
-      ["abbr"] = "vw3.span_label",
-      ["ftype"] = "string",
-      ["title"] = "Addresses as shown",
-      ["help"] = "the addresses as shown (PLC style)",
-    },
-    {
-      ["abbr"] = "vw3.profile",
-      ["ftype"] = "string",
-      ["title"] = "Device profile",
-      ["help"] = "the device profile the frame is annotated with",
-    },
-    {
-      ["abbr"] = "vw3.profile_reason",
-      ["ftype"] = "string",
-      ["title"] = "Why this profile",
-      ["help"] = "profile auto: the evidence that gave the slave its device profile",
-    },
-    {
-      ["abbr"] = "vw3.provisional",
-      ["ftype"] = "bool",
-      ["title"] = "Provisional",
-      ["help"] = "read before profile auto chose the slave's device (one pass: live, stdin): values named with spec semantics only",
-      ["base"] = "NONE",
-    },
-    {
-      ["abbr"] = "vw3.profile_choice",
-      ["ftype"] = "string",
-      ["title"] = "Profile chosen",
-      ["help"] = "profile auto: why this frame decides the slave's profile",
-    },
-    {
-      ["abbr"] = "vw3.reg",
-      ["ftype"] = "none",
-      ["title"] = "Register",
-      ["help"] = "register values (presence)",
-    },
-    {
-      ["abbr"] = "vw3.bit",
-      ["ftype"] = "none",
-      ["title"] = "Bit",
-      ["help"] = "coils and inputs (presence)",
-    },
-    {
-      ["abbr"] = "vw3.bit.address",
-      ["ftype"] = "uint16",
-      ["title"] = "Address",
-      ["help"] = "coil or input address",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.bit.value",
-      ["ftype"] = "uint8",
-      ["title"] = "Value",
-      ["help"] = "coil or input value",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.object",
-      ["ftype"] = "none",
-      ["title"] = "Object",
-      ["help"] = "FC43 objects (presence)",
-    },
-    {
-      ["abbr"] = "vw3.object.id",
-      ["ftype"] = "uint8",
-      ["title"] = "Object id",
-      ["help"] = "FC43 object id",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.object.name",
-      ["ftype"] = "string",
-      ["title"] = "Name",
-      ["help"] = "FC43 object name",
-    },
-    {
-      ["abbr"] = "vw3.object.value",
-      ["ftype"] = "string",
-      ["title"] = "Value",
-      ["help"] = "FC43 object value",
-    },
-    {
-      ["abbr"] = "vw3.object.text",
-      ["ftype"] = "string",
-      ["title"] = "Meaning",
-      ["help"] = "the object value's meaning on the device",
-    },
-    {
-      ["abbr"] = "vw3.data",
-      ["ftype"] = "bytes",
-      ["title"] = "Data",
-      ["help"] = "noise: the bytes outside any frame",
-    },
-    {
-      ["abbr"] = "vw3.byte_count",
-      ["ftype"] = "uint8",
-      ["title"] = "Byte count",
-      ["help"] = "the PDU's byte count",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.server_id",
-      ["ftype"] = "uint8",
-      ["title"] = "Server id",
-      ["help"] = "FC17 server id",
-      ["base"] = "DEC_HEX",
-    },
-    {
-      ["abbr"] = "vw3.run_indicator",
-      ["ftype"] = "uint8",
-      ["title"] = "Run indicator",
-      ["help"] = "FC17 run indicator",
-      ["base"] = "HEX",
-      ["values"] = "run_indicator",
-    },
-    {
-      ["abbr"] = "vw3.additional_data",
-      ["ftype"] = "string",
-      ["title"] = "Additional data",
-      ["help"] = "FC17 additional data, as text",
-    },
-    {
-      ["abbr"] = "vw3.additional_bytes",
-      ["ftype"] = "bytes",
-      ["title"] = "Additional data",
-      ["help"] = "FC17 additional data",
-    },
-    {
-      ["abbr"] = "vw3.continued_in",
-      ["ftype"] = "framenum",
-      ["title"] = "Continued in record",
-      ["help"] = "the later record that shows the frame these bytes begin",
-    },
-    {
-      ["abbr"] = "vw3.reg.address",
-      ["ftype"] = "uint16",
-      ["title"] = "Address",
-      ["help"] = "register address on the wire",
-      ["base"] = "DEC",
-    },
-    {
-      ["abbr"] = "vw3.reg.value",
-      ["ftype"] = "uint16",
-      ["title"] = "Value",
-      ["help"] = "register value",
-      ["base"] = "DEC_HEX",
-    },
-    {
-      ["abbr"] = "vw3.reg.code",
-      ["ftype"] = "string",
-      ["title"] = "Code",
-      ["help"] = "parameter code",
-    },
-    {
-      ["abbr"] = "vw3.reg.name",
-      ["ftype"] = "string",
-      ["title"] = "Name",
-      ["help"] = "parameter name",
-    },
-    {
-      ["abbr"] = "vw3.reg.unit",
-      ["ftype"] = "string",
-      ["title"] = "Unit",
-      ["help"] = "unit",
-    },
-    {
-      ["abbr"] = "vw3.reg.scaled",
-      ["ftype"] = "double",
-      ["title"] = "Scaled value",
-      ["help"] = "scaled value",
-    },
-    {
-      ["abbr"] = "vw3.reg.text",
-      ["ftype"] = "string",
-      ["title"] = "Meaning",
-      ["help"] = "the value's text",
-    },
-    {
-      ["abbr"] = "vw3.reg.status",
-      ["ftype"] = "string",
-      ["title"] = "Status",
-      ["help"] = "ok, protected, non-existent or ambiguous",
-    },
-    {
-      ["abbr"] = "vw3.reg.source",
-      ["ftype"] = "string",
-      ["title"] = "Source",
-      ["help"] = "where the map row comes from",
-    },
-    {
-      ["abbr"] = "vw3.reg.label",
-      ["ftype"] = "string",
-      ["title"] = "Address as shown",
-      ["help"] = "the address as shown (PLC style)",
-    },
-    {
-      ["abbr"] = "vw3.reg.words",
-      ["ftype"] = "uint8",
-      ["title"] = "Words of a 32-bit value",
-      ["help"] = "words of a 32-bit value",
-      ["base"] = "DEC",
-      ["values"] = {
-        [0] = "second word (the value is read on the register before)",
-        [2] = "this register and the next",
+    ["preferences"] = {
+      {
+        ["name"] = "profiles",
+        ["type"] = "string",
+        ["title"] = "Device profiles",
+        ["default"] = "",
+        ["help"] = "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave",
+      },
+      {
+        ["name"] = "maps",
+        ["type"] = "string",
+        ["title"] = "Register maps",
+        ["default"] = "",
+        ["help"] = "CSV register maps as vw3-decode --map takes them, separated by ';': FILE (every slave), 12=FILE (one slave) or sel749m=FILE (the slaves of a profile)",
+      },
+      {
+        ["name"] = "address_style",
+        ["type"] = "enum",
+        ["title"] = "Register address style",
+        ["choices"] = { "profile", "protocol", "plc" },
+        ["help"] = "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
+      },
+      {
+        ["name"] = "mode",
+        ["type"] = "enum",
+        ["title"] = "Framing mode",
+        ["choices"] = { "auto", "rtu", "ascii" },
+        ["help"] = "auto: from the first record's bytes (as vw3-decode looks at the first bytes); rtu or ascii: forced, as vw3-decode --mode",
+      },
+      {
+        ["name"] = "timeout_ms",
+        ["type"] = "uint",
+        ["title"] = "Response timeout (ms)",
+        ["default"] = 1000,
+        ["help"] = "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)",
+      },
+      {
+        ["name"] = "tcp_port",
+        ["type"] = "uint",
+        ["title"] = "RTU over TCP port",
+        ["default"] = 0,
+        ["help"] = "TCP port of a serial gateway carrying raw RTU frames (0: off)",
+      },
+      {
+        ["name"] = "udp_port",
+        ["type"] = "uint",
+        ["title"] = "RTU over UDP port",
+        ["default"] = 0,
+        ["help"] = "UDP port of a serial gateway sending raw RTU frames (0: off)",
+      },
+      {
+        ["name"] = "quick_lanes",
+        ["type"] = "bool",
+        ["title"] = "Quick lanes",
+        ["default"] = true,
+        ["help"] = "Take the usual polling records (a known request, its usual answer, a setpoint write) by a shorter path that gives the same dissection; off: every record by the general path",
+      },
+      {
+        ["name"] = "user0",
+        ["type"] = "bool",
+        ["title"] = "Decode linktype 147 (USER0)",
+        ["default"] = false,
+        ["help"] = "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > Protocols > DLT_USER, payload protocol vw3)",
       },
     },
   },
@@ -5613,7 +5780,7 @@ local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIO
 -- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
 -- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
 local pf = {}
-for _, f in ipairs(DATA.fields) do
+for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
   if type(values) == "string" then values = VALUES[values] end
@@ -5625,52 +5792,36 @@ for _, f in ipairs(DATA.fields) do
   end
 end
 
-local ex = {
-  crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
-  exception = ProtoExpert.new("vw3.expert.exception", "Exception response", expert.group.RESPONSE_CODE, expert.severity.NOTE),
-  unanswered = ProtoExpert.new("vw3.expert.unanswered", "Request not answered", expert.group.SEQUENCE, expert.severity.WARN),
-  no_request = ProtoExpert.new("vw3.expert.no_request", "Response without a matching request", expert.group.SEQUENCE, expert.severity.WARN),
-  warning = ProtoExpert.new("vw3.expert.warning", "Outside the spec or the device profile", expert.group.PROTOCOL, expert.severity.WARN),
-  malformed = ProtoExpert.new("vw3.expert.malformed", "PDU does not fit its layout", expert.group.MALFORMED, expert.severity.ERROR),
-  protected = ProtoExpert.new("vw3.expert.protected", "Protected or non-existent parameter", expert.group.RESPONSE_CODE, expert.severity.WARN),
-  note = ProtoExpert.new("vw3.expert.note", "Note", expert.group.COMMENTS_GROUP, expert.severity.NOTE),
-  noise = ProtoExpert.new("vw3.expert.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
-  multiple = ProtoExpert.new("vw3.expert.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
-  partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
-  internal = ProtoExpert.new("vw3.expert.internal", "Plugin error (please report it)", expert.group.UNDECODED, expert.severity.ERROR),
-  preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
-  profile = ProtoExpert.new("vw3.expert.profile", "Device profile chosen (profile auto)", expert.group.COMMENTS_GROUP, expert.severity.CHAT),
-}
-proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
-  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal, ex.profile }
+-- The expert infos, stated in data/fields.toml's [[expert]] entries: ex.NAME, registered in their order.
+local ex, experts = {}, {}
+for index, e in ipairs(DATA.fields.experts) do
+  experts[index] = ProtoExpert.new(e.filter, e.title, expert.group[e.group], expert.severity[e.severity])
+  ex[e.name] = experts[index]
+end
+proto.experts = experts
 vw3.experts = ex
 
-local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
-proto.prefs.profiles = Pref.string("Device profiles", "",
-  "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave")
-proto.prefs.maps = Pref.string("Register maps", "",
-  "CSV register maps as vw3-decode --map takes them, separated by ';': FILE (every slave), 12=FILE (one "
-    .. "slave) or sel749m=FILE (the slaves of a profile)")
-proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
-  "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
-    .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
-  { { 1, "profile", STYLE_DEFAULT }, { 2, "protocol", STYLE_PROTOCOL }, { 3, "plc", STYLE_PLC } }, false)
-local MODE_AUTO, MODE_RTU, MODE_ASCII = 1, 2, 3
-local MODE_NAMES = { [MODE_RTU] = "rtu", [MODE_ASCII] = "ascii" }
-proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
-  "auto: from the first record's bytes (as vw3-decode looks at the first bytes); rtu or ascii: forced, "
-    .. "as vw3-decode --mode", { { 1, "auto", MODE_AUTO }, { 2, "rtu", MODE_RTU }, { 3, "ascii", MODE_ASCII } },
-  false)
-proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
-  "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
-proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
-proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
-proto.prefs.quick_lanes = Pref.bool("Quick lanes", VW3_QUICK_LANES ~= false,
-  "Take the usual polling records (a known request, its usual answer, a setpoint write) by a shorter path "
-  .. "that gives the same dissection; off: every record by the general path")
-proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
-  "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
-    .. "Protocols > DLT_USER, payload protocol vw3)")
+-- The preferences, stated in data/fields.toml's [[preference]] entries, registered in their order. An enum's
+-- value is its choice's place among its choices (`chosen` names it; the first, the default, forces nothing).
+local CHOICES = {}
+for _, p in ipairs(DATA.fields.preferences) do
+  if p.type == "enum" then
+    local choices = {}
+    for index, choice in ipairs(p.choices) do choices[index] = { index, choice, index } end
+    CHOICES[p.name] = p.choices
+    proto.prefs[p.name] = Pref.enum(p.title, 1, p.help, choices, false)
+  else
+    local default = p.default
+    if p.name == "quick_lanes" then default = lane.quick end -- (VW3_QUICK_LANES = false before loading: off)
+    proto.prefs[p.name] = Pref[p.type](p.title, default, p.help)
+  end
+end
+
+local function chosen(name)
+  local value = proto.prefs[name]
+  if value == 1 then return nil end
+  return CHOICES[name][value]
+end
 
 state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
@@ -5678,10 +5829,8 @@ state = new_state(1.0)
 rtac_times = {}
 vw3.state = function() return state end
 
-local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
-
 local function apply_prefs()
-  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style], proto.prefs.maps)
+  configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)
   lane.quick = proto.prefs.quick_lanes
 end
 
@@ -5689,7 +5838,7 @@ end
 local function stream_state()
   local timeout = nil
   if proto.prefs.timeout_ms ~= 0 then timeout = proto.prefs.timeout_ms / 1000 end
-  return new_state(timeout, MODE_NAMES[proto.prefs.mode])
+  return new_state(timeout, chosen("mode"))
 end
 
 function proto.init()

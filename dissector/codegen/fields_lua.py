@@ -1,8 +1,12 @@
 """The plugin's ProtoFields from the catalogue vw3-decode's filters read (data/fields.toml, loaded by
 render/filter_fields.py): per field its name, constructor, title, base, value strings and meaning, as
-lua/vw3.lua's DATA.fields, which lua/src/fields.lua turns into ProtoFields."""
+lua/vw3.lua's DATA.fields.fields, which lua/src/fields.lua turns into ProtoFields; and the plugin's expert
+infos and preferences from the same file's [[expert]] and [[preference]] entries, as DATA.fields.experts and
+DATA.fields.preferences."""
 from __future__ import annotations
 
+import tomllib
+from importlib import resources
 from typing import Any
 
 from dissector.errors import GenerateError
@@ -13,7 +17,38 @@ INTEGER = frozenset({"uint8", "uint16", "uint32", "bool", "framenum"})
 PLAIN = frozenset({"string", "bytes", "none", "double", "relative_time"})
 
 
-def plugin_fields() -> list[dict[str, Any]]:
+def plugin_fields() -> dict[str, list[dict[str, Any]]]:
+    """The plugin's fields and expert infos: {"fields": [...], "experts": [...]}."""
+    return {"fields": proto_fields(), "experts": experts(), "preferences": preferences()}
+
+
+def _catalogue() -> dict[str, Any]:
+    return tomllib.loads(resources.files("dissector").joinpath("data/fields.toml").read_text(encoding="utf-8"))
+
+
+def experts() -> list[dict[str, str]]:
+    """One table an expert info, in the catalogue's order: {name, filter, title, group, severity}."""
+    keys = ("name", "filter", "title", "group", "severity")
+    out = []
+    for entry in _catalogue()["expert"]:
+        if set(entry) != set(keys):
+            raise GenerateError(f"data/fields.toml: expert {entry.get('name')}: needs exactly {', '.join(keys)}")
+        out.append({key: entry[key] for key in keys})
+    return out
+
+
+def preferences() -> list[dict[str, Any]]:
+    """One table a preference, in the catalogue's order: {name, type, title, help, default | choices}."""
+    out = []
+    for entry in _catalogue()["preference"]:
+        wanted = {"name", "type", "title", "help", "choices" if entry.get("type") == "enum" else "default"}
+        if entry.get("type") not in ("string", "uint", "bool", "enum") or set(entry) != wanted:
+            raise GenerateError(f"data/fields.toml: preference {entry.get('name')}: needs exactly {', '.join(sorted(wanted))}")
+        out.append(dict(entry))
+    return out
+
+
+def proto_fields() -> list[dict[str, Any]]:
     """One table a plugin field, in the catalogue's order: {abbr, ftype, title, help, [base], [values]}."""
     out = []
     for entry in CATALOGUE:

@@ -21,7 +21,7 @@ local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIO
 -- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
 -- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
 local pf = {}
-for _, f in ipairs(DATA.fields) do
+for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
   if type(values) == "string" then values = VALUES[values] end
@@ -33,52 +33,36 @@ for _, f in ipairs(DATA.fields) do
   end
 end
 
-local ex = {
-  crc_bad = ProtoExpert.new("vw3.expert.crc_bad", "Bad CRC", expert.group.CHECKSUM, expert.severity.ERROR),
-  exception = ProtoExpert.new("vw3.expert.exception", "Exception response", expert.group.RESPONSE_CODE, expert.severity.NOTE),
-  unanswered = ProtoExpert.new("vw3.expert.unanswered", "Request not answered", expert.group.SEQUENCE, expert.severity.WARN),
-  no_request = ProtoExpert.new("vw3.expert.no_request", "Response without a matching request", expert.group.SEQUENCE, expert.severity.WARN),
-  warning = ProtoExpert.new("vw3.expert.warning", "Outside the spec or the device profile", expert.group.PROTOCOL, expert.severity.WARN),
-  malformed = ProtoExpert.new("vw3.expert.malformed", "PDU does not fit its layout", expert.group.MALFORMED, expert.severity.ERROR),
-  protected = ProtoExpert.new("vw3.expert.protected", "Protected or non-existent parameter", expert.group.RESPONSE_CODE, expert.severity.WARN),
-  note = ProtoExpert.new("vw3.expert.note", "Note", expert.group.COMMENTS_GROUP, expert.severity.NOTE),
-  noise = ProtoExpert.new("vw3.expert.noise", "Bytes outside any frame", expert.group.MALFORMED, expert.severity.WARN),
-  multiple = ProtoExpert.new("vw3.expert.record.multiple", "Several frames in one record", expert.group.REASSEMBLE, expert.severity.NOTE),
-  partial = ProtoExpert.new("vw3.expert.record.partial", "Record ends inside a frame", expert.group.REASSEMBLE, expert.severity.WARN),
-  internal = ProtoExpert.new("vw3.expert.internal", "Plugin error (please report it)", expert.group.UNDECODED, expert.severity.ERROR),
-  preference = ProtoExpert.new("vw3.expert.preference", "Preference not understood", expert.group.PROTOCOL, expert.severity.WARN),
-  profile = ProtoExpert.new("vw3.expert.profile", "Device profile chosen (profile auto)", expert.group.COMMENTS_GROUP, expert.severity.CHAT),
-}
-proto.experts = { ex.crc_bad, ex.exception, ex.unanswered, ex.no_request, ex.warning, ex.malformed,
-  ex.protected, ex.note, ex.noise, ex.multiple, ex.partial, ex.preference, ex.internal, ex.profile }
+-- The expert infos, stated in data/fields.toml's [[expert]] entries: ex.NAME, registered in their order.
+local ex, experts = {}, {}
+for index, e in ipairs(DATA.fields.experts) do
+  experts[index] = ProtoExpert.new(e.filter, e.title, expert.group[e.group], expert.severity[e.severity])
+  ex[e.name] = experts[index]
+end
+proto.experts = experts
 vw3.experts = ex
 
-local STYLE_DEFAULT, STYLE_PROTOCOL, STYLE_PLC = 1, 2, 3
-proto.prefs.profiles = Pref.string("Device profiles", "",
-  "Profile per slave, e.g. '12=atv71,3=sel749m'; a name alone sets the default for every other slave")
-proto.prefs.maps = Pref.string("Register maps", "",
-  "CSV register maps as vw3-decode --map takes them, separated by ';': FILE (every slave), 12=FILE (one "
-    .. "slave) or sel749m=FILE (the slaves of a profile)")
-proto.prefs.address_style = Pref.enum("Register address style", STYLE_DEFAULT,
-  "profile: as the device profile says; protocol: as sent (8401); plc: 4X references (48402). "
-    .. "The vw3.reg.address field is always the address on the wire; vw3.reg.label is the one shown.",
-  { { 1, "profile", STYLE_DEFAULT }, { 2, "protocol", STYLE_PROTOCOL }, { 3, "plc", STYLE_PLC } }, false)
-local MODE_AUTO, MODE_RTU, MODE_ASCII = 1, 2, 3
-local MODE_NAMES = { [MODE_RTU] = "rtu", [MODE_ASCII] = "ascii" }
-proto.prefs.mode = Pref.enum("Framing mode", MODE_AUTO,
-  "auto: from the first record's bytes (as vw3-decode looks at the first bytes); rtu or ascii: forced, "
-    .. "as vw3-decode --mode", { { 1, "auto", MODE_AUTO }, { 2, "rtu", MODE_RTU }, { 3, "ascii", MODE_ASCII } },
-  false)
-proto.prefs.timeout_ms = Pref.uint("Response timeout (ms)", 1000,
-  "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)")
-proto.prefs.tcp_port = Pref.uint("RTU over TCP port", 0, "TCP port of a serial gateway carrying raw RTU frames (0: off)")
-proto.prefs.udp_port = Pref.uint("RTU over UDP port", 0, "UDP port of a serial gateway sending raw RTU frames (0: off)")
-proto.prefs.quick_lanes = Pref.bool("Quick lanes", VW3_QUICK_LANES ~= false,
-  "Take the usual polling records (a known request, its usual answer, a setpoint write) by a shorter path "
-  .. "that gives the same dissection; off: every record by the general path")
-proto.prefs.user0 = Pref.bool("Decode linktype 147 (USER0)", false,
-  "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > "
-    .. "Protocols > DLT_USER, payload protocol vw3)")
+-- The preferences, stated in data/fields.toml's [[preference]] entries, registered in their order. An enum's
+-- value is its choice's place among its choices (`chosen` names it; the first, the default, forces nothing).
+local CHOICES = {}
+for _, p in ipairs(DATA.fields.preferences) do
+  if p.type == "enum" then
+    local choices = {}
+    for index, choice in ipairs(p.choices) do choices[index] = { index, choice, index } end
+    CHOICES[p.name] = p.choices
+    proto.prefs[p.name] = Pref.enum(p.title, 1, p.help, choices, false)
+  else
+    local default = p.default
+    if p.name == "quick_lanes" then default = lane.quick end -- (VW3_QUICK_LANES = false before loading: off)
+    proto.prefs[p.name] = Pref[p.type](p.title, default, p.help)
+  end
+end
+
+local function chosen(name)
+  local value = proto.prefs[name]
+  if value == 1 then return nil end
+  return CHOICES[name][value]
+end
 
 state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
@@ -86,10 +70,8 @@ state = new_state(1.0)
 rtac_times = {}
 vw3.state = function() return state end
 
-local STYLE_NAMES = { [STYLE_PROTOCOL] = "protocol", [STYLE_PLC] = "plc" }
-
 local function apply_prefs()
-  configure(proto.prefs.profiles, STYLE_NAMES[proto.prefs.address_style], proto.prefs.maps)
+  configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)
   lane.quick = proto.prefs.quick_lanes
 end
 
@@ -97,7 +79,7 @@ end
 local function stream_state()
   local timeout = nil
   if proto.prefs.timeout_ms ~= 0 then timeout = proto.prefs.timeout_ms / 1000 end
-  return new_state(timeout, MODE_NAMES[proto.prefs.mode])
+  return new_state(timeout, chosen("mode"))
 end
 
 function proto.init()
