@@ -665,6 +665,7 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Mode",
         ["help"] = "rtu or ascii",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.slave",
@@ -686,6 +687,7 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Function name",
         ["help"] = "function name",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.crc_ok",
@@ -740,6 +742,7 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Sub-function name",
         ["help"] = "FC8 sub-function name",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.exception_code",
@@ -754,6 +757,7 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Exception name",
         ["help"] = "the spec's exception name",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.request_frame",
@@ -776,6 +780,7 @@ local DATA = {
         ["ftype"] = "relative_time",
         ["title"] = "Time since request",
         ["help"] = "seconds after the request",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.unanswered",
@@ -788,42 +793,49 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Why noise",
         ["help"] = "why noise is no frame",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.warning",
         ["ftype"] = "string",
         ["title"] = "Warning",
         ["help"] = "warnings: outside the spec or the device profile",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.note",
         ["ftype"] = "string",
         ["title"] = "Note",
         ["help"] = "notes on the frame",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.exception_meaning",
         ["ftype"] = "string",
         ["title"] = "Exception meaning on this device",
         ["help"] = "what it means on the device",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.span_label",
         ["ftype"] = "string",
         ["title"] = "Addresses as shown",
         ["help"] = "the addresses as shown (PLC style)",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.profile",
         ["ftype"] = "string",
         ["title"] = "Device profile",
         ["help"] = "the device profile the frame is annotated with",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.profile_reason",
         ["ftype"] = "string",
         ["title"] = "Why this profile",
         ["help"] = "profile auto: the evidence that gave the slave its device profile",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.provisional",
@@ -837,18 +849,21 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Profile chosen",
         ["help"] = "profile auto: why this frame decides the slave's profile",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg",
         ["ftype"] = "none",
         ["title"] = "Register",
         ["help"] = "register values (presence)",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.bit",
         ["ftype"] = "none",
         ["title"] = "Bit",
         ["help"] = "coils and inputs (presence)",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.bit.address",
@@ -869,6 +884,7 @@ local DATA = {
         ["ftype"] = "none",
         ["title"] = "Object",
         ["help"] = "FC43 objects (presence)",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.object.id",
@@ -882,24 +898,28 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Name",
         ["help"] = "FC43 object name",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.object.value",
         ["ftype"] = "string",
         ["title"] = "Value",
         ["help"] = "FC43 object value",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.object.text",
         ["ftype"] = "string",
         ["title"] = "Meaning",
         ["help"] = "the object value's meaning on the device",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.data",
         ["ftype"] = "bytes",
         ["title"] = "Data",
         ["help"] = "noise: the bytes outside any frame",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.byte_count",
@@ -928,12 +948,14 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Additional data",
         ["help"] = "FC17 additional data, as text",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.additional_bytes",
         ["ftype"] = "bytes",
         ["title"] = "Additional data",
         ["help"] = "FC17 additional data",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.continued_in",
@@ -960,48 +982,56 @@ local DATA = {
         ["ftype"] = "string",
         ["title"] = "Code",
         ["help"] = "parameter code",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.name",
         ["ftype"] = "string",
         ["title"] = "Name",
         ["help"] = "parameter name",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.unit",
         ["ftype"] = "string",
         ["title"] = "Unit",
         ["help"] = "unit",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.scaled",
         ["ftype"] = "double",
         ["title"] = "Scaled value",
         ["help"] = "scaled value",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.text",
         ["ftype"] = "string",
         ["title"] = "Meaning",
         ["help"] = "the value's text",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.status",
         ["ftype"] = "string",
         ["title"] = "Status",
         ["help"] = "ok, protected, non-existent or ambiguous",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.source",
         ["ftype"] = "string",
         ["title"] = "Source",
         ["help"] = "where the map row comes from",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.label",
         ["ftype"] = "string",
         ["title"] = "Address as shown",
         ["help"] = "the address as shown (PLC style)",
+        ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.reg.words",
@@ -5761,7 +5791,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
 local NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST = NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST
 local RESPONSE, base, configure, expert, frametype, ipairs = RESPONSE, base, configure, expert, frametype, ipairs
-local lane, new_state, string, type, vw3 = lane, new_state, string, type, vw3
+local lane, new_state, string, type = lane, new_state, string, type
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
@@ -5784,8 +5814,7 @@ for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
   if type(values) == "string" then values = VALUES[values] end
-  if f.ftype == "string" or f.ftype == "bytes" or f.ftype == "none" or f.ftype == "double"
-      or f.ftype == "relative_time" then
+  if f.plain then -- (a constructor of (abbr, title, help): codegen/fields_lua.py PLAIN)
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
   else
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
@@ -5799,7 +5828,6 @@ for index, e in ipairs(DATA.fields.experts) do
   ex[e.name] = experts[index]
 end
 proto.experts = experts
-vw3.experts = ex
 
 -- The preferences, stated in data/fields.toml's [[preference]] entries, registered in their order. An enum's
 -- value is its choice's place among its choices (`chosen` names it; the first, the default, forces nothing).
@@ -5827,7 +5855,6 @@ state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
 -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
 rtac_times = {}
-vw3.state = function() return state end
 
 local function apply_prefs()
   configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)

@@ -58,6 +58,8 @@ def proto_fields() -> list[dict[str, Any]]:
         if ftype not in INTEGER | PLAIN or (ftype in PLAIN and ("base" in entry or "values" in entry)):
             raise GenerateError(f"data/fields.toml: {entry['filter']}: no ProtoField.{ftype} with those arguments")
         field = {"abbr": entry["filter"], "ftype": ftype, "title": entry["title"], "help": entry["help"]}
+        if ftype in PLAIN:
+            field["plain"] = True  # (its constructor takes (abbr, title, help))
         for key in ("base", "values"):
             if key in entry:
                 value = entry[key]

@@ -25,8 +25,7 @@ for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
   if type(values) == "string" then values = VALUES[values] end
-  if f.ftype == "string" or f.ftype == "bytes" or f.ftype == "none" or f.ftype == "double"
-      or f.ftype == "relative_time" then
+  if f.plain then -- (a constructor of (abbr, title, help): codegen/fields_lua.py PLAIN)
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
   else
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
@@ -40,7 +39,6 @@ for index, e in ipairs(DATA.fields.experts) do
   ex[e.name] = experts[index]
 end
 proto.experts = experts
-vw3.experts = ex
 
 -- The preferences, stated in data/fields.toml's [[preference]] entries, registered in their order. An enum's
 -- value is its choice's place among its choices (`chosen` names it; the first, the default, forces nothing).
@@ -68,7 +66,6 @@ state = new_state(1.0)
 -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
 -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
 rtac_times = {}
-vw3.state = function() return state end
 
 local function apply_prefs()
   configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)
