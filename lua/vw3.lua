@@ -5851,11 +5851,6 @@ local function chosen(name)
   return CHOICES[name][value]
 end
 
-state = new_state(1.0)
--- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
--- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
-rtac_times = {}
-
 local function apply_prefs()
   configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)
   lane.quick = proto.prefs.quick_lanes
@@ -5868,10 +5863,15 @@ local function stream_state()
   return new_state(timeout, chosen("mode"))
 end
 
+-- Each capture starts here (Wireshark calls it before the first record is dissected): the plugin's state.
 function proto.init()
-  newest_record = 0
+  newest_record = 0 -- (the newest record's number: show.lua finish_all)
+  -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
+  -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
   apply_prefs()
+  -- Streams of records: the serial capture's (state), one per UDP conversation, one per TCP connection
+  -- (with the records of each TCP call: dissector.lua).
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
@@ -6419,14 +6419,11 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   end
 end
 
--- Streams of records: the serial capture's (state), and one per UDP conversation.
-udp_states = {}
-
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
 -- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
 -- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
 -- record just read again (tshark -w -P): its records keep their single pass.
-newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
+-- (newest_record: the newest record's number, reset with each capture by proto.init)
 local function finish_all(number)
   for _, st in pairs(udp_states) do finish_safely(st) end
   finish_safely(state)
@@ -6535,7 +6532,6 @@ end
 -- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
 -- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
 -- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
-tcp_states, tcp_records, tcp_call = {}, {}, { number = -1, index = 0 }
 local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
 
 local function dissect_tcp_now(st, tvb, pinfo, n)

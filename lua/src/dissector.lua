@@ -61,7 +61,6 @@ end
 -- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
 -- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
 -- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
-tcp_states, tcp_records, tcp_call = {}, {}, { number = -1, index = 0 }
 local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
 
 local function dissect_tcp_now(st, tvb, pinfo, n)

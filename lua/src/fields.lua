@@ -62,11 +62,6 @@ local function chosen(name)
   return CHOICES[name][value]
 end
 
-state = new_state(1.0)
--- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
--- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
-rtac_times = {}
-
 local function apply_prefs()
   configure(proto.prefs.profiles, chosen("address_style"), proto.prefs.maps)
   lane.quick = proto.prefs.quick_lanes
@@ -79,10 +74,15 @@ local function stream_state()
   return new_state(timeout, chosen("mode"))
 end
 
+-- Each capture starts here (Wireshark calls it before the first record is dissected): the plugin's state.
 function proto.init()
-  newest_record = 0
+  newest_record = 0 -- (the newest record's number: show.lua finish_all)
+  -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
+  -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
   apply_prefs()
+  -- Streams of records: the serial capture's (state), one per UDP conversation, one per TCP connection
+  -- (with the records of each TCP call: dissector.lua).
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end

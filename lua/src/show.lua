@@ -141,14 +141,11 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   end
 end
 
--- Streams of records: the serial capture's (state), and one per UDP conversation.
-udp_states = {}
-
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
 -- The first pass is over when Wireshark dissects again a record older than the newest (tshark -2, the
 -- packet details): then the choices apply to every frame (lane.again). A live capture dissects the
 -- record just read again (tshark -w -P): its records keep their single pass.
-newest_record = 0 -- (the newest record's number: reset with each capture, proto.init)
+-- (newest_record: the newest record's number, reset with each capture by proto.init)
 local function finish_all(number)
   for _, st in pairs(udp_states) do finish_safely(st) end
   finish_safely(state)
