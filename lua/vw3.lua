@@ -5904,7 +5904,7 @@ end
 -- The tvb range of `size` bytes at `at` in the frame's byte table (ASCII: hex pairs in the record);
 -- the whole frame when that would fall outside it (never nil: TreeItem:add would shift its arguments).
 local function frame_span(f, at, size)
-  -- f.at: where the frame starts in the tvb it is shown from; f.bi: its slave byte's index in its byte table
+  -- f.at: where the frame starts in the tvb it is shown from (ASCII: its colon)
   local offset, length = at + f.at, size
   if f.ascii then offset, length = f.at + 1 + 2 * at, 2 * size end
   if length <= 0 or offset < f.at or offset + length > f.at + f.length then
@@ -5967,8 +5967,8 @@ function unseen.add(parent, field, value, generated, hidden)
   return item
 end
 
--- A register's texts: its item's, and its expert info's (16#8000 reads), nil when it has none. Made
--- each time they are shown rather than kept: records stay in memory for the whole capture.
+-- A register's texts: its item's, and its expert info's (16#8000 reads, add_register). Made each time
+-- they are shown rather than kept: records stay in memory for the whole capture.
 local function register_name(reg)
   local label = reg.label or (reg.address and tostring(reg.address)) or "?"
   local code = reg.row and reg.row.code
@@ -5982,11 +5982,6 @@ local function register_title(reg)
   if reg.text then parts[#parts + 1] = ": " .. reg.text end
   if reg.status then parts[#parts + 1] = " [" .. reg.status .. "]" end
   return concat(parts)
-end
-
-local function register_expert(reg)
-  if not reg.status or reg.status == "ok" then return nil end
-  return format("Register %s: %s", register_name(reg), reg.text or reg.status)
 end
 
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
@@ -6061,7 +6056,9 @@ local function add_register(tree, tvb, f, reg, range, full, checking)
     add(sub, pf.reg_status, reg.status or "", reg.status ~= nil, reg.status == nil)
     tree = sub
   end
-  if reg.status and reg.status ~= "ok" then add_text(tree, ex.protected, register_expert(reg)) end
+  if reg.status and reg.status ~= "ok" then
+    add_text(tree, ex.protected, format("Register %s: %s", register_name(reg), reg.text or reg.status))
+  end
 end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
