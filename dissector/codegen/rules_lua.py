@@ -87,14 +87,17 @@ def rules_data() -> dict[str, Any]:
     """Everything the plugin needs to interpret the rule tables, as plain data."""
     by_code: dict[str, dict[int, Any]] = {}
     for kind in (Kind.REQUEST, Kind.RESPONSE):
+        layouts = table.by_kind("name")[kind]
         handlers = table.by_kind("handler")[kind]
         limits = table.by_kind("limit")[kind]
-        # Per code: the handler's rule name and the layout's own limit (a check without `limit` uses it).
-        by_code[str(kind)] = {
-            code: {"rule": name if name in LIFTS else None, "special": None if name in LIFTS else name,
-                   "limit": limits.get(code)}
-            for code, name in handlers.items()
-        }
+        # Per code: its layout's name, the handler's rule name (or the special case's) and the layout's own
+        # limit (a check without `limit` uses it).
+        by_code[str(kind)] = {}
+        for code in sorted(layouts.keys() | handlers.keys()):
+            name = handlers.get(code)
+            by_code[str(kind)][code] = {"layout": layouts.get(code), "rule": name if name in LIFTS else None,
+                                        "special": None if name is None or name in LIFTS else name,
+                                        "limit": limits.get(code)}
     return {
         "lift": {name: _lift(rule) for name, rule in LIFTS.items()},
         "by_code": by_code,

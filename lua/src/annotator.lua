@@ -3,9 +3,8 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local annotate_with
 
-annotate_with = function(st, f, b, device)
+local function annotate_with(st, f, b, device)
   if not device then return end
   local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
   if special_name ~= nil then f.function_text = special_name end
@@ -65,11 +64,8 @@ local unpack = table.unpack or unpack
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)
   local parts = {}
-  local k = 0
-  while k < count do
-    local take = math.min(count - k, 200)
-    parts[#parts + 1] = string.char(unpack(b, first + k, first + k + take - 1))
-    k = k + take
+  for k = 0, count - 1, 200 do -- (200 at a time: unpack puts them on the stack, string.char's arguments)
+    parts[#parts + 1] = string.char(unpack(b, first + k, first + math.min(k + 200, count) - 1))
   end
   return concat(parts)
 end
@@ -108,10 +104,7 @@ local function register_view(st, f, run, b, index)
       status = "ok"
     end
     local words, second = words_at(device.rows, address, index, run.count), nil
-    if words == 2 and b ~= nil then
-      local _
-      _, second = register_at(run, b, index + 1, true)
-    end
+    if words == 2 and b ~= nil then second = select(2, register_at(run, b, index + 1, true)) end
     describe(device, f, view, run.plain and run.plain[index], status, words, second)
   end
   return view

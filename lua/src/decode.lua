@@ -182,16 +182,12 @@ local function shape_parser(shape, offsets) -- (offsets: filled with where each 
 end
 
 -- Parsers by layout name (dissector/protocol/layouts.py), and where their fields are when that is a
--- constant; which code uses which: the generated table.
+-- constant; which code uses which: the generated table (RULES.by_code, below).
 local PARSERS, OFFSETS = {}, {}
 for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape, {}) end
 for name, shape in pairs(RULES.layouts) do
   OFFSETS[name] = {}
   PARSERS[name] = shape_parser(shape, OFFSETS[name])
-end
-local GRAMMARS, LAYOUTS = { [REQUEST] = {}, [RESPONSE] = {} }, { [REQUEST] = {}, [RESPONSE] = {} }
-for kind, names in pairs({ [REQUEST] = DATA.protocol.parsers.request, [RESPONSE] = DATA.protocol.parsers.response }) do
-  for code, name in pairs(names) do GRAMMARS[kind][code], LAYOUTS[kind][code] = PARSERS[name], name end
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -287,9 +283,6 @@ local function lifter(rule, limit, layout)
   return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo)
 end
 
--- Each code's lifting rule per direction (nil: a named special case).
-local LIFT_OF = { [REQUEST] = {}, [RESPONSE] = {} }
-
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {
   diagnostics = function(f, b)
@@ -332,16 +325,15 @@ local SPECIAL = {
   end,
 }
 
--- Handlers per direction and code: the generic lifter where the table has a rule, else a special case.
-local H = { [REQUEST] = {}, [RESPONSE] = {} }
+-- Per direction and code: the parser of its layout (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a
+-- named special case) and its handler (H): the generic lifter where the table has a rule, else the special case.
+local GRAMMARS, LIFT_OF, H = {}, {}, {}
 for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
+  GRAMMARS[kind], LIFT_OF[kind], H[kind] = {}, {}, {}
   for code, entry in pairs(codes) do
-    if entry.rule ~= nil then
-      LIFT_OF[kind][code] = RULES.lift[entry.rule]
-      H[kind][code] = lifter(RULES.lift[entry.rule], entry.limit, LAYOUTS[kind][code])
-    else
-      H[kind][code] = SPECIAL[entry.special]
-    end
+    local rule = RULES.lift[entry.rule]
+    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], rule
+    H[kind][code] = rule and lifter(rule, entry.limit, entry.layout) or SPECIAL[entry.special]
   end
 end
 

@@ -66,10 +66,11 @@ local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
--- Python's escapes in a text (UTF-8): what str.isprintable() refuses below U+0100 (C0, DEL, C1, no-break
--- space, soft hyphen) as \xNN, and with a quote (python_repr) the backslash, that quote, \n, \r, \t too.
+-- A map's texts are shown (maps.py printable): what str.isprintable() refuses below U+0100 (C0, DEL, C1,
+-- no-break space, soft hyphen) as \xNN, never raw; with a quote (python_repr) the backslash, that quote,
+-- \n, \r, \t escaped too, as Python's repr escapes them.
 local REPR_ESCAPES = { ["\\"] = "\\\\", ["\n"] = "\\n", ["\r"] = "\\r", ["\t"] = "\\t" }
-local function escaped(text, quote)
+local function printable(text, quote)
   return (text:gsub("[\0-\127\192-\255][\128-\191]*", function(char)
     if quote ~= nil and (REPR_ESCAPES[char] or char == quote) then return REPR_ESCAPES[char] or "\\" .. quote end
     local code = char:byte()
@@ -78,14 +79,11 @@ local function escaped(text, quote)
   end))
 end
 
--- A map's texts are shown: control characters as \xNN (maps.py escapes them too), never raw.
-local function printable(text) return escaped(text) end
-
 -- str.__repr__ of a text (a device object's latin-1 characters are held as UTF-8 too), quotes as Python picks.
 local function python_repr(text)
   local quote = "'"
   if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
-  return quote .. escaped(text, quote) .. quote
+  return quote .. printable(text, quote) .. quote
 end
 
 -- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr.
@@ -231,18 +229,16 @@ local function parse_map(text, origin)
       local cells = csv_cells(line, delimiter)
       if header == nil then
         header = {}
-        local named = {} -- (how many times each column is named)
+        local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
           if not KNOWN_COLUMN[name] then return nil, at(number, wrong("unknown_column", { name = name })) end
-          header[index], named[name] = name, (named[name] or 0) + 1
+          header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
         for _, required in ipairs(FORMAT.required) do
           if not named[required] then return nil, at(number, wrong("missing_column", { name = required })) end
         end
-        for _, count in pairs(named) do
-          if count > 1 then return nil, at(number, wrong("column_twice")) end
-        end
+        if twice then return nil, at(number, wrong("column_twice")) end
       else
         if #cells ~= #header then
           local separator = delimiter == "," and "comma" or python_repr(delimiter)
