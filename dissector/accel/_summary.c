@@ -860,30 +860,6 @@ static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize
     return !((length - 6) & 1 || bit(s->explained, sub) || subfunction_name(sub) == NULL);
 }
 
-/* describe._diagnostics: `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7` */
-static int diagnostics_text(Engine *e, const uint8_t *f, Py_ssize_t length) {
-    unsigned sub = word(f + 2);
-    out_hex(&e->out, sub, 2);
-    out_put(&e->out, "h ", 2);
-    out_cstr(&e->out, subfunction_name(sub)); /* diagnostics_are_plain: the spec names it */
-    const uint8_t *data = f + 4;
-    Py_ssize_t size = length - 6;
-    if (size == 2) {
-        out_put(&e->out, " = ", 3);
-        out_uint(&e->out, word(data), 0);
-    } else if (size > 0) {
-        out_cstr(&e->out, " data ");
-        Py_ssize_t shown = size < MAX_DATA_BYTES ? size : MAX_DATA_BYTES;
-        if (out_reserve(&e->out, (size_t)(2 * shown)) < 0) return -1;
-        for (Py_ssize_t k = 0; k < shown; k++) {
-            e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
-            e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
-        }
-        if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes)");
-    }
-    return e->out.failed ? -1 : 0;
-}
-
 /* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
 static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     unsigned shown = count < MAX_BITS ? count : MAX_BITS;
@@ -1021,9 +997,26 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
         case STEP_HEX:
             out_hex(&e->out, value, step->number);
             break;
-        case STEP_DIAGNOSTICS:
-            if (diagnostics_text(e, f, length) < 0) return -1;
+        case STEP_SUBFUNCTION: /* diagnostics_are_plain: the spec names it */
+            out_cstr(&e->out, subfunction_name(value));
             break;
+        case STEP_DATA: { /* describe._data: the data up to the CRC, ` = 7` for a word, else its first bytes */
+            const uint8_t *data = f + info->at[step->field];
+            Py_ssize_t size = f + length - 2 - data, shown = size < MAX_DATA_BYTES ? size : MAX_DATA_BYTES;
+            if (size == 2) {
+                out_put(&e->out, " = ", 3);
+                out_uint(&e->out, word(data), 0);
+                break;
+            }
+            if (size > 0) out_cstr(&e->out, " data ");
+            if (out_reserve(&e->out, (size_t)(2 * shown)) < 0) return -1;
+            for (Py_ssize_t k = 0; k < shown; k++) {
+                e->out.data[e->out.len++] = "0123456789abcdef"[data[k] >> 4];
+                e->out.data[e->out.len++] = "0123456789abcdef"[data[k] & 15];
+            }
+            if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes)");
+            break;
+        }
         case STEP_FIFO: /* describe.TEXT_FORMS' fifo: the first of `value` words (rstrip: no space after none) */
             for (unsigned j = 0; j < value && j < MAX_FIFO_VALUES; j++) {
                 out_put(&e->out, " ", 1);

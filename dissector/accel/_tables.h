@@ -264,7 +264,7 @@ static const Lift response_lift[HANDLED] = {
     {0, 4, 0, {4, 0}, {2, 0}, {6, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0}, {0, 0}, 0, 0, 0, 0}, /* 43 */
 };
-enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_DIAGNOSTICS, STEP_FIFO };
+enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO };
 /* The Info column's forms (codegen/c_rules.py TEXT_FORMS, describe.py's describers): the steps of each,
  * up to STEP_END. A step writes `text` (STEP_TEXT, `length` bytes) or a part of the frame: its window,
  * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
@@ -282,7 +282,7 @@ static const Step form_steps[][MAX_STEPS] = {
     {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " written", 8}}, /* written */
     {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 2, NULL, 0}}, /* status */
     {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events", 7}}, /* counter */
-    {{STEP_DIAGNOSTICS, -1, 0, NULL, 0}}, /* diagnostics */
+    {{STEP_HEX, 0, 2, NULL, 0}, {STEP_TEXT, -1, 0, "h ", 2}, {STEP_SUBFUNCTION, 0, 0, NULL, 0}, {STEP_DATA, 1, 0, NULL, 0}}, /* diagnostics */
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
     {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
     {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_VALUES, -1, 0, NULL, 0}}, /* read_write */
@@ -307,7 +307,7 @@ static const Rules rules[HANDLED] = {
     {0, 1, 0, 0, {{form_steps[FORM_COIL], {4, 0, 0}, {2, 0, 0}}, {form_steps[FORM_COIL], {4, 0, 0}, {2, 0, 0}}}}, /* 5 */
     {0, 1, 0, 0, {{form_steps[FORM_SINGLE], {4, 0, 0}, {2, 0, 0}}, {form_steps[FORM_SINGLE], {4, 0, 0}, {2, 0, 0}}}}, /* 6 */
     {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {2, 0, 0}, {1, 0, 0}}}}, /* 7 */
-    {1, 0, 0, 0, {{form_steps[FORM_DIAGNOSTICS], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_DIAGNOSTICS], {0, 0, 0}, {0, 0, 0}}}}, /* 8 */
+    {1, 0, 0, 0, {{form_steps[FORM_DIAGNOSTICS], {2, 4, 0}, {2, 0, 0}}, {form_steps[FORM_DIAGNOSTICS], {2, 4, 0}, {2, 0, 0}}}}, /* 8 */
     {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_COUNTER], {2, 4, 0}, {2, 2, 0}}}}, /* 11 */
     {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {3, 0, 0}, {2, 0, 0}}}}, /* 12 */
     {0, 2, 0, 0, {{form_steps[FORM_BITS], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_WRITTEN], {0, 0, 0}, {0, 0, 0}}}}, /* 15 */

@@ -36,7 +36,7 @@ ADU_HEAD = 2  # slave and function code before the grammar's data
 TEXT_FORMS = describe.TEXT_FORMS
 FORMS = tuple(TEXT_FORMS)
 STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "coil", "single", "dec",
-         "hex", "diagnostics", "fifo")
+         "hex", "subfunction", "data", "fifo")
 MAX_STEPS = max(len(steps) for steps in TEXT_FORMS.values()) + 1  # and its STEP_END
 
 

@@ -119,7 +119,8 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "written": [("span",), " written"],
     "status": ["status 0x", ("hex", "status", 2)],  # at least two digits: FC7's byte, FC12's word
     "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
-    "diagnostics": [("diagnostics",)],
+    # `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7`
+    "diagnostics": [("hex", "subfunction", 2), "h ", ("subfunction", "subfunction"), ("data", "data")],
     # the address as sent, even PLC style
     "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
     "pointer": ["pointer ", ("dec", "address")],
@@ -192,10 +193,13 @@ def _plain_span(frame: Frame) -> str:
 # What each step of TEXT_FORMS writes (the C engine's STEP_*): of the frame, or of the field it names.
 _OF_FRAME: dict[str, Callable[[Frame], str]] = {
     "unspace": lambda frame: "", "span": span_text, "label": span_text, "plain_span": _plain_span,
-    "bits": bits_text, "values": values_text, "diagnostics": lambda frame: _diagnostics(frame, True),
+    "bits": bits_text, "values": values_text,
 }
 _OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {
     "coil": _coil, "single": _single, "dec": lambda frame, value: str(value),
+    # FC8's sub-function as the profile names it, else the spec
+    "subfunction": lambda frame, sub: frame.subfunction_text or SPEC.diagnostics.get(sub, "unknown sub-function"),
+    "data": lambda frame, data: _data(data),
 }
 
 
@@ -239,14 +243,11 @@ def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:
 MAX_DATA_BYTES = 16  # bytes of echoed data a summary shows (-V and JSON show them all)
 
 
-def _diagnostics(frame: Frame, request: bool) -> str:
-    sub = frame.subfunction if frame.subfunction is not None else -1
-    sub_name = frame.subfunction_text or SPEC.diagnostics.get(sub, "unknown sub-function")
-    data = frame.fields.data
+def _data(data: bytes) -> str:
+    """FC8's data: ` = 7` for a word, else ` data 0a0b… (+4 bytes)`, nothing for none."""
     if len(data) == 2:
-        value = int.from_bytes(data, "big")
-        return f"{sub:02X}h {sub_name} = {value}"
-    return f"{sub:02X}h {sub_name}" + (f" data {_hex_preview(data)}" if data else "")
+        return f" = {int.from_bytes(data, 'big')}"
+    return f" data {_hex_preview(data)}" if data else ""
 
 
 def _hex_preview(data: bytes) -> str:
