@@ -303,25 +303,23 @@ static int fill_slave(Slave *s, PyObject *info) {
         (seen != Py_None && !PyDict_Check(seen)) ||
         (bases != Py_None && !PyDict_Check(bases)))
         return bad_info("facts of the wrong type");
-    for (int k = 0; k < HANDLED; k++) {
+    for (int k = 0; k < HANDLED; k++) { /* its entries in functions and bases (None: protocol addresses) */
         PyObject *entry = code_entry(functions, k);
-        if (entry == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
+        PyObject *base = bases == Py_None || entry == NULL ? Py_None : code_entry(bases, k);
+        if (entry == NULL || base == NULL || !PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 ||
             !PyUnicode_Check(PyTuple_GET_ITEM(entry, 0))) {
-            if (!PyErr_Occurred()) bad_info("bad function entry");
+            if (!PyErr_Occurred()) bad_info(base == NULL ? "no PLC base for a function" : "bad function entry");
             return -1;
         }
         s->name[k] = PyTuple_GET_ITEM(entry, 0);
         PyObject *check = PyTuple_GET_ITEM(entry, 1);
-        if (check == Py_None) {
-            s->check[k] = -1;
-        } else {
-            Py_ssize_t n = PyTuple_Size(check);
-            if (n < 0) return -1;
-            s->check[k] = n > 2 ? -1 : (int)n;
-            for (Py_ssize_t j = 0; j < n && j < 2; j++)
-                s->limit[k][j] = PyLong_AsLong(PyTuple_GET_ITEM(check, j));
-            if (PyErr_Occurred()) return -1;
-        }
+        Py_ssize_t n = check == Py_None ? -1 : PyTuple_Size(check); /* None: every request to the annotator */
+        s->check[k] = n > 2 ? -1 : (int)n;
+        for (Py_ssize_t j = 0; j < n && j < 2; j++) s->limit[k][j] = PyLong_AsLong(PyTuple_GET_ITEM(check, j));
+        s->base[k] = base == Py_None ? -1 : PyLong_AsLongLong(base);
+        if (PyErr_Occurred()) return -1;
+        if (base != Py_None && (s->base[k] < 1 || s->base[k] > 999999999))
+            s->usable = 0; /* odd labels: leave them to Python */
     }
     s->depend = facts[FACT_DEPEND];
     /* (a generic profile's slaves kept 4 x 8 KB of zeros each: 247 of them 8 MB; issue 28) */
@@ -337,18 +335,6 @@ static int fill_slave(Slave *s, PyObject *info) {
     s->namer = facts[FACT_NAMER];
     s->protected_value = PyLong_AsLong(facts[FACT_PROTECTED]);
     if (PyErr_Occurred()) return -1;
-    for (int k = 0; k < HANDLED; k++) {
-        s->base[k] = -1;
-        if (bases == Py_None) continue;
-        PyObject *base = code_entry(bases, k);
-        if (base == NULL) {
-            if (!PyErr_Occurred()) bad_info("no PLC base for a function");
-            return -1;
-        }
-        s->base[k] = PyLong_AsLongLong(base);
-        if (PyErr_Occurred()) return -1;
-        if (s->base[k] < 1 || s->base[k] > 999999999) s->usable = 0; /* odd labels: leave them to Python */
-    }
     return 0;
 }
 
