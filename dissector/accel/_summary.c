@@ -465,10 +465,9 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     int k = known_slot[function & 0x7F];
     if (k < 0) return 0;
     int expected = slave == e->expect_slave && function == e->expect_function;
-    const LengthRule exception = {5, 0, 0, 0, 0, 0, 0, 0};
     const LengthRule *rules[3] = {&known_rule[k][expected], &known_rule[k][!expected], &known_rule[k][LAYOUT_BY_QUANTITY]};
     int count = function & 0x80 ? 1 : rules[2]->special ? 3 : 2;
-    if (function & 0x80) rules[0] = &exception;
+    if (function & 0x80) rules[0] = &exception_rule;
     int undecided = 0; /* a CRC scan found nothing yet, but a longer frame may still arrive */
     Py_ssize_t length;
     for (int r = 0; r < count; r++) {
@@ -483,9 +482,6 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     return undecided ? -1 : 0;
 }
 
-/* stream.GLITCH_BYTES: what a short low pulse on an idle line reads as, FF << k (a driver's turn-around). */
-static inline int glitch_byte(uint8_t v) { return v == 0 || (uint8_t)(v | (v - 1)) == 0xFF; }
-
 /* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
  * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
 static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_t n) {
@@ -494,7 +490,7 @@ static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_
         if (t->active && boundary_at(t, t->base + j)) return 1; /* run_timed(): a record's end, a silence */
         int found = valid_frame_at(e, b, j, n);
         if (found != 0) return found;
-        if (!(j < n && glitch_byte(b[j]) && j - end < GLITCH_SKIP)) return 0;
+        if (!(j < n && glitch_bytes[b[j]] && j - end < GLITCH_SKIP)) return 0;
     }
 }
 
@@ -520,7 +516,7 @@ static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, P
 static Py_ssize_t first_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, int function,
                                int kind, int *scanned) {
     *scanned = 0;
-    if (kind == KIND_EXCEPTION) return 5;
+    if (kind == KIND_EXCEPTION) return exception_rule.fixed;
     const LengthRule *rule = &known_rule[known_slot[function]][kind == KIND_RESPONSE]; /* (a handled code: frame_kind) */
     if (rule->fixed) return rule->fixed;
     Length length = rule_length(rule, b, i, n);

@@ -26,6 +26,7 @@ from dissector.accel import records
 from dissector.accel.fastsummary import SlaveFacts, Texts
 from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
+from dissector.framing.stream import GLITCH_BYTES
 from dissector.render import describe, pollcycle, stats_store
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
@@ -277,6 +278,13 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         f"#define MAX_DATA_BYTES {describe.MAX_DATA_BYTES}",
         f"#define COIL_ON 0x{COIL_VALUES[0]:04X}",
         f"#define COIL_OFF 0x{COIL_VALUES[1]:04X}",
+        "/* An exception's length rule (table.EXCEPTION_LAYOUT), and the bytes a short low pulse on an idle line",
+        " * reads as (framing/stream.py GLITCH_BYTES: a driver's turn-around), by byte. */",
+        f"static const LengthRule exception_rule = {{{table.EXCEPTION_LAYOUT.length.length}, 0, 0, 0, 0, 0, 0, 0}};",
+        "static const uint8_t glitch_bytes[256] = {",
+        *(f"    {', '.join(str(int(byte in GLITCH_BYTES)) for byte in range(row, row + 32))},"
+          for row in range(0, 256, 32)),
+        "};",
         "/* Of the --stats store (render/stats_store.py, pollcycle.py) and the timed path (_timeline.h's chunk",
         " * flags are accel/records.py's). */",
         f"#define MAX_PARAMETERS {stats_store.MAX_PARAMETERS}",
