@@ -698,7 +698,6 @@ static int write_memory(Engine *e) {
     return status;
 }
 
-/* `CHCF=IO (I/O profile)` or `8401=3`; *named: the annotator gave it a code or a text. */
 static uint64_t mix(uint64_t key) { /* splitmix64's finaliser: keys differ in a few low bits */
     key ^= key >> 30;
     key *= 0xbf58476d1ce4e5b9ULL;
@@ -837,7 +836,7 @@ static const char *subfunction_name(unsigned sub) { return sub < SUBFUNCTIONS ? 
 
 /* fields._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
  * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over, -1 error. */
-static int diagnostics_are_plain(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length) {
+static int diagnostics_are_plain(const Slave *s, const uint8_t *f, Py_ssize_t length) {
     unsigned sub = word(f + 2);
     return !((length - 6) & 1 || bit(s->explained, sub) || subfunction_name(sub) == NULL);
 }
@@ -852,12 +851,13 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
 
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
-/* fields.lifter's checks of a frame by its lifting rule L (_tables.h Lift), the request it answers
- * given (NULL for a request), and its window and data in *out: 1 it passes them all, 0 a check draws a
- * warning (hand over). */
-static int lift_frame(const Engine *e, const uint8_t *f, Py_ssize_t length, const Lift *L, const Lifted *request,
-                      Lifted *out) {
+/* fields.lifter's checks of a frame of the k-th handled code by its lifting rule L (_tables.h Lift), FC8's by
+ * its named case, the request it answers given (NULL for a request), and its window and data in *out: 1 it
+ * passes them all, 0 a check draws a warning or a note (hand over). */
+static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, int k, const Lifted *request, Lifted *out) {
+    const Lift *L = request != NULL ? &response_lift[k] : &request_lift[k];
     *out = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
+    if (rules[k].special) return diagnostics_are_plain(s, f, length);
     out->start = L->start_at ? word(f + L->start_at) : request != NULL ? request->start : 0;
     out->quantity = L->quantity_at ? word(f + L->quantity_at) : L->quantity || request == NULL ? (unsigned)L->quantity
                                                                                                : request->quantity;
@@ -893,11 +893,7 @@ static int lift_frame(const Engine *e, const uint8_t *f, Py_ssize_t length, cons
 static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Lifted *r) {
     int k = handled_index(f[1]);
     if (k < 0 || s->check[k] < 0) return 0;
-    if (rules[k].special) {
-        *r = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
-        return diagnostics_are_plain(e, s, f, length);
-    }
-    if (!lift_frame(e, f, length, &request_lift[k], NULL, r)) return 0;
+    if (!lift_frame(s, f, length, k, NULL, r)) return 0;
     /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
     if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
     if (s->check[k] == 2 && (!request_lift[k].write_quantity_at || (long)r->values.count > s->limit[k][1])) return 0;
@@ -1040,11 +1036,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
                              Words *reads) {
     int k = handled_index(f[1]);
     *reads = (Words){0, 0, NULL};
-    if (rules[k].special) {
-        *a = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
-        return diagnostics_are_plain(e, s, f, length);
-    }
-    if (rules[k].texts || !lift_frame(e, f, length, &response_lift[k], r, a)) return 0;
+    if (rules[k].texts || !lift_frame(s, f, length, k, r, a)) return 0;
     if (a->values.values == NULL) return 1;
     int plain = words_are_plain(s, e->run_number, &a->values);
     if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;
