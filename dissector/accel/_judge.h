@@ -28,7 +28,8 @@ static int frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
 
 static inline int judged(const Engine *e, const FrameRef *f) {
     int function = f->function & 0x7F;
-    return (e->judge[f->slave * 32 + (function >> 3)] >> (function & 7)) & 1;
+    const uint8_t *judge = (const uint8_t *)PyBytes_AS_STRING(e->judge);
+    return (judge[f->slave * 32 + (function >> 3)] >> (function & 7)) & 1;
 }
 
 #endif

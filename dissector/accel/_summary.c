@@ -212,8 +212,7 @@ typedef struct {
     /* The line being written: its frame's time, and its request's (the response time). */
     int line_timed, pair_timed;
     long long line_ns, request_ns;
-    PyObject *judge_bytes; /* profile auto's first pass (_judge.h): the bitmap below, or NULL */
-    const uint8_t *judge;
+    PyObject *judge;       /* profile auto's first pass (_judge.h): its bitmap (bytes), or NULL */
     char frames;           /* with judge: each transaction passed is written out as a record (_judge.h) */
 } Engine;
 
@@ -1296,11 +1295,8 @@ static int set_between_runs(Engine *e, PyObject **field, PyObject *value, int fi
 
 static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
     int fits = value != NULL && PyBytes_Check(value) && PyBytes_GET_SIZE(value) == 256 * 32;
-    if (set_between_runs(e, &e->judge_bytes, value, fits, "judge",
-                         "8192 bytes (a bit per slave and function code) or None") < 0)
-        return -1;
-    e->judge = e->judge_bytes == NULL ? NULL : (const uint8_t *)PyBytes_AS_STRING(e->judge_bytes);
-    return 0;
+    return set_between_runs(e, &e->judge, value, fits, "judge",
+                            "8192 bytes (a bit per slave and function code) or None");
 }
 
 static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
@@ -1310,7 +1306,7 @@ static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
 
 /* The objects an engine holds: its three callbacks in engine_init's order, then what it keeps. */
 #define ENGINE_HELD(e)                                                                                   \
-    {&(e)->slave_info, &(e)->piece, &(e)->texts, &(e)->read_word, &(e)->written_word, &(e)->stats, &(e)->judge_bytes}
+    {&(e)->slave_info, &(e)->piece, &(e)->texts, &(e)->read_word, &(e)->written_word, &(e)->stats, &(e)->judge}
 
 static int engine_init(Engine *e, PyObject *args, PyObject *kwargs) {
     PyObject *slave_info, *piece_fn, *texts_fn = Py_None;
@@ -1342,7 +1338,6 @@ static int engine_clear(Engine *e) {
     PyObject **held[] = ENGINE_HELD(e);
     for (size_t k = 0; k < sizeof held / sizeof *held; k++) Py_CLEAR(*held[k]);
     pieces_clear(e);
-    e->judge = NULL;
     for (int k = 0; k < 256; k++) slave_clear(&e->slaves[k]);
     return 0;
 }
@@ -1408,7 +1403,7 @@ static PyGetSetDef engine_getset[] = {
      "a Stats that counts every transaction shown here (--stats), or None", (void *)offsetof(Engine, stats)},
     {"judge", (getter)engine_get_object, (setter)engine_set_judge,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
-     (void *)offsetof(Engine, judge_bytes)},
+     (void *)offsetof(Engine, judge)},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
