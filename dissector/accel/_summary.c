@@ -337,7 +337,7 @@ static int fill_slave(Slave *s, PyObject *info) {
     return 0;
 }
 
-static int load_slave(Engine *e, int address) {
+static __attribute__((noinline)) int load_slave(Engine *e, int address) { /* (off the path of every transaction) */
     Slave *s = &e->slaves[address];
     PyObject *answer = PyObject_CallFunction(e->slave_info, "i", address);
     if (answer == NULL) return -1;
@@ -850,13 +850,13 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
 
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
-/* fields.lifter's checks of a frame of the k-th handled code by its lifting rule L (_tables.h Lift), FC8's by
- * its named case, the request it answers given (NULL for a request), and its window and data in *out: 1 it
- * passes them all, 0 a check draws a warning or a note (hand over). */
-static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, int k, const Lifted *request, Lifted *out) {
-    const Lift *L = request != NULL ? &response_lift[k] : &request_lift[k];
+/* fields.lifter's checks of a frame by its lifting rule L (_tables.h Lift), FC8's by its named case, the
+ * request it answers given (NULL for a request), and its window and data in *out: 1 it passes them all, 0 a
+ * check draws a warning or a note (hand over). */
+static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const Lift *L, const Lifted *request,
+                      Lifted *out) {
     *out = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
-    if (rules[k].special) return diagnostics_are_plain(s, f, length);
+    if (L->special) return diagnostics_are_plain(s, f, length);
     out->start = L->start_at ? word(f + L->start_at) : request != NULL ? request->start : 0;
     out->quantity = L->quantity_at ? word(f + L->quantity_at) : L->quantity || request == NULL ? (unsigned)L->quantity
                                                                                                : request->quantity;
@@ -892,7 +892,7 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, int k
 static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Lifted *r) {
     int k = handled_index(f[1]);
     if (k < 0 || s->check[k] < 0) return 0;
-    if (!lift_frame(s, f, length, k, NULL, r)) return 0;
+    if (!lift_frame(s, f, length, &request_lift[k], NULL, r)) return 0;
     /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
     if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
     if (s->check[k] == 2 && (!request_lift[k].write_quantity_at || (long)r->values.count > s->limit[k][1])) return 0;
@@ -1035,7 +1035,7 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
                              Words *reads) {
     int k = handled_index(f[1]);
     *reads = (Words){0, 0, NULL};
-    if (rules[k].texts || !lift_frame(s, f, length, k, r, a)) return 0;
+    if (rules[k].texts || !lift_frame(s, f, length, &response_lift[k], r, a)) return 0;
     if (a->values.values == NULL) return 1;
     int plain = words_are_plain(s, e->run_number, &a->values);
     if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;

@@ -123,7 +123,7 @@ def _check_limit(check: Check, layout: Layout, limits: tuple[str, ...], code: in
 
 # The Lift struct's members in order (see LIFT_STRUCT); check_*, echo_*: two each at most.
 LIFT_FIELDS = (
-    "start_at", "quantity_at", "quantity", "check_at", "check_width", "check_limit", "check_above", "span",
+    "special", "start_at", "quantity_at", "quantity", "check_at", "check_width", "check_limit", "check_above", "span",
     "count_at", "count_width", "min_count", "count_rule", "count_of_at", "count_unit", "count_plus", "odd_count",
     "coil_at", "echo_at", "echo_request_at", "values", "values_at", "write_start_at", "write_quantity_at",
 )
@@ -135,7 +135,7 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     code, layout = entry.code, entry.layout(kind)
     request = kind is Kind.REQUEST
     row: dict[str, int | list[int]] = {name: 0 for name in LIFT_FIELDS}
-    row.update(quantity=int(request), check_at=[0, 0], check_width=[0, 0], check_limit=[-1, -1],
+    row.update(special=_named_case(layout), quantity=int(request), check_at=[0, 0], check_width=[0, 0], check_limit=[-1, -1],
                check_above=[0, 0], echo_at=[0, 0], echo_request_at=[0, 0])
     if entry.compiled is not None and entry.compiled.texts:
         return row  # the texts come from the Python stages
@@ -199,12 +199,17 @@ def _info(entry: Function, kind: Kind) -> str:
     return f"{{form_steps[FORM_{form.upper()}], {{{', '.join(map(str, at))}}}, {{{', '.join(map(str, widths))}}}}}"
 
 
+def _named_case(layout: Layout) -> int:
+    """1: the layout is FC8's, which the engine checks by its named case (diagnostics_are_plain)."""
+    return int(layout.handler == "diagnostics")
+
+
 def rules_row(entry: Function) -> dict[str, int | list[int] | str]:
     """Rules (see the header) of a compiled code: what it is, both directions' forms and printed fields."""
     code = entry.code
     request, response = entry.request, entry.response
     return dict(
-        special=int("diagnostics" in (request.handler, response.handler)),
+        special=_named_case(request) | _named_case(response),
         confirm={None: 0, Confirm.ECHO: 1, Confirm.ANSWER: 2}[CONFIRM.get(code)],
         reads=int(code in table.register_reads()),
         texts=int(entry.compiled is not None and entry.compiled.texts),
@@ -214,7 +219,7 @@ def rules_row(entry: Function) -> dict[str, int | list[int] | str]:
 
 LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direction, from its lifting rule
  * (data/modbus.toml [lift]; codegen/c_rules.py), as decode/fields.py's lifter does. Offsets from the
- * frame's first byte, 0: none.
+ * frame's first byte, 0: none. special: FC8's named case checks it instead (diagnostics_are_plain);
  *   the window: start_at, quantity_at; else the constant `quantity` (0: the request's) and the request's start;
  *   check_at[j] (check_width[j] bytes) within LIMIT check_limit[j] (check_above: its high bound only);
  *   span: start + quantity within the 65536 addresses;
@@ -225,7 +230,7 @@ LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direc
  *   write_quantity_at when the frame writes a window of its own, FC23), one register at the window's start,
  *   or the window's bits. */
 typedef struct {
-    int start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
+    int special, start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
     int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count;
     int coil_at, echo_at[2], echo_request_at[2], values, values_at, write_start_at, write_quantity_at;
 } Lift;"""
