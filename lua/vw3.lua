@@ -401,6 +401,264 @@ local DATA = {
     [125] = true,
     [126] = true,
   },
+  ["crc_table"] = {
+    0,
+    49345,
+    49537,
+    320,
+    49921,
+    960,
+    640,
+    49729,
+    50689,
+    1728,
+    1920,
+    51009,
+    1280,
+    50625,
+    50305,
+    1088,
+    52225,
+    3264,
+    3456,
+    52545,
+    3840,
+    53185,
+    52865,
+    3648,
+    2560,
+    51905,
+    52097,
+    2880,
+    51457,
+    2496,
+    2176,
+    51265,
+    55297,
+    6336,
+    6528,
+    55617,
+    6912,
+    56257,
+    55937,
+    6720,
+    7680,
+    57025,
+    57217,
+    8000,
+    56577,
+    7616,
+    7296,
+    56385,
+    5120,
+    54465,
+    54657,
+    5440,
+    55041,
+    6080,
+    5760,
+    54849,
+    53761,
+    4800,
+    4992,
+    54081,
+    4352,
+    53697,
+    53377,
+    4160,
+    61441,
+    12480,
+    12672,
+    61761,
+    13056,
+    62401,
+    62081,
+    12864,
+    13824,
+    63169,
+    63361,
+    14144,
+    62721,
+    13760,
+    13440,
+    62529,
+    15360,
+    64705,
+    64897,
+    15680,
+    65281,
+    16320,
+    16000,
+    65089,
+    64001,
+    15040,
+    15232,
+    64321,
+    14592,
+    63937,
+    63617,
+    14400,
+    10240,
+    59585,
+    59777,
+    10560,
+    60161,
+    11200,
+    10880,
+    59969,
+    60929,
+    11968,
+    12160,
+    61249,
+    11520,
+    60865,
+    60545,
+    11328,
+    58369,
+    9408,
+    9600,
+    58689,
+    9984,
+    59329,
+    59009,
+    9792,
+    8704,
+    58049,
+    58241,
+    9024,
+    57601,
+    8640,
+    8320,
+    57409,
+    40961,
+    24768,
+    24960,
+    41281,
+    25344,
+    41921,
+    41601,
+    25152,
+    26112,
+    42689,
+    42881,
+    26432,
+    42241,
+    26048,
+    25728,
+    42049,
+    27648,
+    44225,
+    44417,
+    27968,
+    44801,
+    28608,
+    28288,
+    44609,
+    43521,
+    27328,
+    27520,
+    43841,
+    26880,
+    43457,
+    43137,
+    26688,
+    30720,
+    47297,
+    47489,
+    31040,
+    47873,
+    31680,
+    31360,
+    47681,
+    48641,
+    32448,
+    32640,
+    48961,
+    32000,
+    48577,
+    48257,
+    31808,
+    46081,
+    29888,
+    30080,
+    46401,
+    30464,
+    47041,
+    46721,
+    30272,
+    29184,
+    45761,
+    45953,
+    29504,
+    45313,
+    29120,
+    28800,
+    45121,
+    20480,
+    37057,
+    37249,
+    20800,
+    37633,
+    21440,
+    21120,
+    37441,
+    38401,
+    22208,
+    22400,
+    38721,
+    21760,
+    38337,
+    38017,
+    21568,
+    39937,
+    23744,
+    23936,
+    40257,
+    24320,
+    40897,
+    40577,
+    24128,
+    23040,
+    39617,
+    39809,
+    23360,
+    39169,
+    22976,
+    22656,
+    38977,
+    34817,
+    18624,
+    18816,
+    35137,
+    19200,
+    35777,
+    35457,
+    19008,
+    19968,
+    36545,
+    36737,
+    20288,
+    36097,
+    19904,
+    19584,
+    35905,
+    17408,
+    33985,
+    34177,
+    17728,
+    34561,
+    18368,
+    18048,
+    34369,
+    33281,
+    17088,
+    17280,
+    33601,
+    16640,
+    33217,
+    32897,
+    16448,
+  },
   ["not_broadcast"] = {
     [1] = true,
     [2] = true,
@@ -1976,7 +2234,7 @@ package.preload["vw3.crc"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local collectgarbage, math, pcall, string, table = collectgarbage, math, pcall, string, table
+local DATA, collectgarbage, math, pcall, string, table = DATA, collectgarbage, math, pcall, string, table
 
 local floor = math.floor
 local format = string.format
@@ -2009,16 +2267,10 @@ do
     end
   end
 end
--- The one-byte table, bit by bit: shifted right, and XOR the polynomial 0xA001 (bytes A0 01) when the bit
--- shifted out is 1.
+-- The one-byte table (protocol/crc.py, generated), its bytes apart.
 for byte = 0, 255 do
-  local lo, hi = byte, 0
-  for _ = 1, 8 do
-    local out = lo % 2
-    lo, hi = floor(lo / 2) + hi % 2 * 128, floor(hi / 2)
-    if out == 1 then lo, hi = XOR8[lo * 256 + 0x01], XOR8[hi * 256 + 0xA0] end
-  end
-  CRC_LO[byte], CRC_HI[byte] = lo, hi
+  local entry = DATA.crc_table[byte + 1]
+  CRC_LO[byte], CRC_HI[byte] = entry % 256, floor(entry / 256)
 end
 -- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
 -- (filled in index order: a table filled out of order keeps its keys in the hash part, rebuilt again and
@@ -2031,70 +2283,20 @@ for hi = 0, 255 do
   end
 end
 
--- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
--- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
--- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
-local function crc_bytes(b, from, to, lo, hi)
+local byte, unpack = string.byte, table.unpack
+
+-- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
+-- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
+-- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,
+-- string.byte from a string. Called as crc_string_ok(bytes, n), without `read`: does a record's string
+-- (the whole frame, n bytes, 1-based) end in its CRC? (A record of one frame is checked before its byte
+-- table is needed, and a call of string.byte costs less than the table reads it saves.)
+local function crc_string_ok(bytes, to, read, from, l, h)
+  local check = read == nil
+  if check then read, from, to, l, h = byte, 1, to - 1, 0xFF00, 0xFF00 end
   local k = from
-  if k + 1 < to then
-    local l, h = lo * 256, hi * 256
-    while k + 3 < to do
-      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      k = k + 4
-    end
-    if k + 1 < to then
-      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      k = k + 2
-    end
-    lo, hi = floor(l / 256), floor(h / 256)
-  end
-  if k < to then
-    local index = XOR8[lo * 256 + b[k]]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return lo, hi
-end
-
--- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
--- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
--- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
-local function crc_scan(b, i, minimum, last, lengths)
-  if minimum > last then return 0 end
-  local count = 0
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then
-      if lengths == nil then return length end
-      count = count + 1
-      lengths[count] = length
-    end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return count
-end
-
-local function crc16(b, from, to)
-  local lo, hi = crc_bytes(b, from, to, 0xFF, 0xFF)
-  return hi * 256 + lo
-end
-
--- Does a record's string (the whole frame, `n` bytes) end in its CRC? The same steps as crc_bytes, the
--- bytes read sixteen a call from the string (then four, two, one): a record of one frame is checked
--- before its byte table is needed, and a call of string.byte costs less than the table reads it saves.
-local function crc_string_ok(bytes, n)
-  local byte = string.byte
-  local stop = n - 2 -- (the bytes 1 .. stop are covered; then the CRC, low byte first)
-  local l, h = 0xFF00, 0xFF00
-  local k = 1
-  while k + 15 <= stop do
-    local a, b, c, d, e, f, g, i, a2, b2, c2, d2, e2, f2, g2, i2 = byte(bytes, k, k + 15)
+  while k + 15 < to do
+    local a, b, c, d, e, f, g, i, a2, b2, c2, d2, e2, f2, g2, i2 = read(bytes, k, k + 15)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     w = XOR8[h + d] * 256 + XOR8[l + c]
@@ -2113,49 +2315,78 @@ local function crc_string_ok(bytes, n)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 16
   end
-  while k + 3 <= stop do
-    local a, b, c, d = byte(bytes, k, k + 3)
+  while k + 3 < to do
+    local a, b, c, d = read(bytes, k, k + 3)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     w = XOR8[h + d] * 256 + XOR8[l + c]
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 4
   end
-  if k + 1 <= stop then
-    local a, b = byte(bytes, k, k + 1)
+  if k + 1 < to then
+    local a, b = read(bytes, k, k + 1)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 2
   end
-  local lo, hi = (l - l % 256) / 256, (h - h % 256) / 256
-  if k <= stop then
-    local index = XOR8[lo * 256 + byte(bytes, k)]
+  if k < to then
+    local index = XOR8[l + read(bytes, k, k)]
+    l, h = XOR8[h + CRC_LO[index]] * 256, CRC_HI[index] * 256
+  end
+  if check then
+    local crc_lo, crc_hi = read(bytes, to, to + 1) -- (low byte first)
+    return l == crc_lo * 256 and h == crc_hi * 256
+  end
+  return l, h
+end
+local crc_run = crc_string_ok -- (a byte table's CRC: crc_run(b, to, unpack, from, l, h))
+
+-- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
+-- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
+-- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
+local function crc_scan(b, i, minimum, last, lengths)
+  if minimum > last then return 0 end
+  local count = 0
+  local l, h = crc_run(b, i + minimum - 2, unpack, i, 0xFF00, 0xFF00)
+  local lo, hi = floor(l / 256), floor(h / 256)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then
+      if lengths == nil then return length end
+      count = count + 1
+      lengths[count] = length
+    end
+    local index = XOR8[lo * 256 + byte]
     lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
   end
-  local crc_lo, crc_hi = byte(bytes, n - 1, n)
-  return lo == crc_lo and hi == crc_hi
+  return count
 end
 
+local function crc16(b, from, to)
+  local l, h = crc_run(b, to, unpack, from, 0xFF00, 0xFF00)
+  return h + floor(l / 256)
+end
 
 -- Does the frame of `length` bytes at i carry a good CRC? The running CRC of the last frame start is
 -- kept: the layouts tried at one start (a request of 8 bytes, then a response of 5 + byte count, then the
 -- frame that follows...) share their first bytes, and the CRC costs most of the framing. (Byte tables
 -- are never changed below their end, so a CRC once computed stays right.)
-local crc_b, crc_i, crc_to, crc_lo, crc_hi = nil, -1, -1, 0xFF, 0xFF
+local crc_b, crc_i, crc_to, crc_l, crc_h = nil, -1, -1, 0xFF00, 0xFF00
 local function crc_ok_at(b, i, length)
   local stop = i + length - 2
-  local lo, hi
+  local l, h
   if b == crc_b and i == crc_i and stop >= crc_to then
-    lo, hi = crc_bytes(b, crc_to, stop, crc_lo, crc_hi)
+    l, h = crc_run(b, stop, unpack, crc_to, crc_l, crc_h)
   else
-    lo, hi = crc_bytes(b, i, stop, 0xFF, 0xFF)
+    l, h = crc_run(b, stop, unpack, i, 0xFF00, 0xFF00)
   end
-  crc_b, crc_i, crc_to, crc_lo, crc_hi = b, i, stop, lo, hi
-  return hi * 256 + lo == b[stop] + b[stop + 1] * 256
+  crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
+  return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
 
-M.CRC_HI, M.CRC_LO, M.XOR8, M.concat, M.crc16, M.crc_bytes = CRC_HI, CRC_LO, XOR8, concat, crc16, crc_bytes
-M.crc_ok_at, M.crc_scan, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_scan, crc_string_ok, floor, format
+M.concat, M.crc16, M.crc_ok_at, M.crc_scan = concat, crc16, crc_ok_at, crc_scan
+M.crc_string_ok, M.floor, M.format = crc_string_ok, floor, format
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -2833,7 +3064,6 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, add_noise, crc16, emit, floor, flush_noise = DATA, add_noise, crc16, emit, floor, flush_noise
 local format, interpretations, ipairs, math, string = format, interpretations, ipairs, math, string
 local time_at, tonumber = time_at, tonumber
-local detect_mode
 -- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -2847,7 +3077,7 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
-detect_mode = function(sample)
+local function detect_mode(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
   local colon = sample:find(":", 1, true)
   if colon == nil then return "rtu" end

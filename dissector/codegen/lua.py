@@ -24,7 +24,7 @@ from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
 from dissector.model import CUT_ANSWER, Kind
-from dissector.protocol import ascii as ascii_mode, table
+from dissector.protocol import ascii as ascii_mode, crc, table
 from dissector.protocol.spec import SPEC
 from dissector.render import detail, summary
 from dissector.sources import reader
@@ -132,6 +132,8 @@ def plugin_data() -> dict[str, Any]:
             "messages": _messages(maps.MESSAGES),
         },
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
+        # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
+        "crc_table": crc._TABLE,
         "not_broadcast": SPEC.not_broadcast,
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),

@@ -3,7 +3,6 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local detect_mode
 -- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -17,7 +16,7 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
-detect_mode = function(sample)
+local function detect_mode(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
   local colon = sample:find(":", 1, true)
   if colon == nil then return "rtu" end

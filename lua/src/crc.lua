@@ -35,16 +35,10 @@ do
     end
   end
 end
--- The one-byte table, bit by bit: shifted right, and XOR the polynomial 0xA001 (bytes A0 01) when the bit
--- shifted out is 1.
+-- The one-byte table (protocol/crc.py, generated), its bytes apart.
 for byte = 0, 255 do
-  local lo, hi = byte, 0
-  for _ = 1, 8 do
-    local out = lo % 2
-    lo, hi = floor(lo / 2) + hi % 2 * 128, floor(hi / 2)
-    if out == 1 then lo, hi = XOR8[lo * 256 + 0x01], XOR8[hi * 256 + 0xA0] end
-  end
-  CRC_LO[byte], CRC_HI[byte] = lo, hi
+  local entry = DATA.crc_table[byte + 1]
+  CRC_LO[byte], CRC_HI[byte] = entry % 256, floor(entry / 256)
 end
 -- One byte (b) into the register (lo, hi): lo' = hi XOR T_lo[lo XOR b], hi' = T_hi[lo XOR b].
 -- (filled in index order: a table filled out of order keeps its keys in the hash part, rebuilt again and
@@ -57,70 +51,20 @@ for hi = 0, 255 do
   end
 end
 
--- CRC-16/MODBUS of b[from] .. b[to - 1] (b is a 0-based byte table), from the register lo, hi (0xFF,
--- 0xFF: a new CRC); returns the register's two bytes. (The loop keeps them times 256, as TWO_LO and
--- TWO_HI hold them, and takes four bytes a turn: fewer operations a byte.)
-local function crc_bytes(b, from, to, lo, hi)
+local byte, unpack = string.byte, table.unpack
+
+-- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
+-- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
+-- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,
+-- string.byte from a string. Called as crc_string_ok(bytes, n), without `read`: does a record's string
+-- (the whole frame, n bytes, 1-based) end in its CRC? (A record of one frame is checked before its byte
+-- table is needed, and a call of string.byte costs less than the table reads it saves.)
+local function crc_string_ok(bytes, to, read, from, l, h)
+  local check = read == nil
+  if check then read, from, to, l, h = byte, 1, to - 1, 0xFF00, 0xFF00 end
   local k = from
-  if k + 1 < to then
-    local l, h = lo * 256, hi * 256
-    while k + 3 < to do
-      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      w = XOR8[h + b[k + 3]] * 256 + XOR8[l + b[k + 2]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      k = k + 4
-    end
-    if k + 1 < to then
-      local w = XOR8[h + b[k + 1]] * 256 + XOR8[l + b[k]]
-      l, h = TWO_LO[w], TWO_HI[w]
-      k = k + 2
-    end
-    lo, hi = floor(l / 256), floor(h / 256)
-  end
-  if k < to then
-    local index = XOR8[lo * 256 + b[k]]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return lo, hi
-end
-
--- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
--- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
--- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
-local function crc_scan(b, i, minimum, last, lengths)
-  if minimum > last then return 0 end
-  local count = 0
-  local lo, hi = crc_bytes(b, i, i + minimum - 2, 0xFF, 0xFF)
-  for length = minimum, last do
-    local stop = i + length - 2
-    local byte = b[stop]
-    if lo == byte and hi == b[stop + 1] then
-      if lengths == nil then return length end
-      count = count + 1
-      lengths[count] = length
-    end
-    local index = XOR8[lo * 256 + byte]
-    lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
-  end
-  return count
-end
-
-local function crc16(b, from, to)
-  local lo, hi = crc_bytes(b, from, to, 0xFF, 0xFF)
-  return hi * 256 + lo
-end
-
--- Does a record's string (the whole frame, `n` bytes) end in its CRC? The same steps as crc_bytes, the
--- bytes read sixteen a call from the string (then four, two, one): a record of one frame is checked
--- before its byte table is needed, and a call of string.byte costs less than the table reads it saves.
-local function crc_string_ok(bytes, n)
-  local byte = string.byte
-  local stop = n - 2 -- (the bytes 1 .. stop are covered; then the CRC, low byte first)
-  local l, h = 0xFF00, 0xFF00
-  local k = 1
-  while k + 15 <= stop do
-    local a, b, c, d, e, f, g, i, a2, b2, c2, d2, e2, f2, g2, i2 = byte(bytes, k, k + 15)
+  while k + 15 < to do
+    local a, b, c, d, e, f, g, i, a2, b2, c2, d2, e2, f2, g2, i2 = read(bytes, k, k + 15)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     w = XOR8[h + d] * 256 + XOR8[l + c]
@@ -139,46 +83,75 @@ local function crc_string_ok(bytes, n)
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 16
   end
-  while k + 3 <= stop do
-    local a, b, c, d = byte(bytes, k, k + 3)
+  while k + 3 < to do
+    local a, b, c, d = read(bytes, k, k + 3)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     w = XOR8[h + d] * 256 + XOR8[l + c]
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 4
   end
-  if k + 1 <= stop then
-    local a, b = byte(bytes, k, k + 1)
+  if k + 1 < to then
+    local a, b = read(bytes, k, k + 1)
     local w = XOR8[h + b] * 256 + XOR8[l + a]
     l, h = TWO_LO[w], TWO_HI[w]
     k = k + 2
   end
-  local lo, hi = (l - l % 256) / 256, (h - h % 256) / 256
-  if k <= stop then
-    local index = XOR8[lo * 256 + byte(bytes, k)]
+  if k < to then
+    local index = XOR8[l + read(bytes, k, k)]
+    l, h = XOR8[h + CRC_LO[index]] * 256, CRC_HI[index] * 256
+  end
+  if check then
+    local crc_lo, crc_hi = read(bytes, to, to + 1) -- (low byte first)
+    return l == crc_lo * 256 and h == crc_hi * 256
+  end
+  return l, h
+end
+local crc_run = crc_string_ok -- (a byte table's CRC: crc_run(b, to, unpack, from, l, h))
+
+-- The lengths from `minimum` to `last` at which the bytes from i end in their CRC (protocol/crc.py
+-- crc_lengths), written into `lengths`, their count returned; without `lengths`, the first such length (0:
+-- none). One running CRC over the growing frame: each length costs one byte, not a new CRC.
+local function crc_scan(b, i, minimum, last, lengths)
+  if minimum > last then return 0 end
+  local count = 0
+  local l, h = crc_run(b, i + minimum - 2, unpack, i, 0xFF00, 0xFF00)
+  local lo, hi = floor(l / 256), floor(h / 256)
+  for length = minimum, last do
+    local stop = i + length - 2
+    local byte = b[stop]
+    if lo == byte and hi == b[stop + 1] then
+      if lengths == nil then return length end
+      count = count + 1
+      lengths[count] = length
+    end
+    local index = XOR8[lo * 256 + byte]
     lo, hi = XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
   end
-  local crc_lo, crc_hi = byte(bytes, n - 1, n)
-  return lo == crc_lo and hi == crc_hi
+  return count
 end
 
+local function crc16(b, from, to)
+  local l, h = crc_run(b, to, unpack, from, 0xFF00, 0xFF00)
+  return h + floor(l / 256)
+end
 
 -- Does the frame of `length` bytes at i carry a good CRC? The running CRC of the last frame start is
 -- kept: the layouts tried at one start (a request of 8 bytes, then a response of 5 + byte count, then the
 -- frame that follows...) share their first bytes, and the CRC costs most of the framing. (Byte tables
 -- are never changed below their end, so a CRC once computed stays right.)
-local crc_b, crc_i, crc_to, crc_lo, crc_hi = nil, -1, -1, 0xFF, 0xFF
+local crc_b, crc_i, crc_to, crc_l, crc_h = nil, -1, -1, 0xFF00, 0xFF00
 local function crc_ok_at(b, i, length)
   local stop = i + length - 2
-  local lo, hi
+  local l, h
   if b == crc_b and i == crc_i and stop >= crc_to then
-    lo, hi = crc_bytes(b, crc_to, stop, crc_lo, crc_hi)
+    l, h = crc_run(b, stop, unpack, crc_to, crc_l, crc_h)
   else
-    lo, hi = crc_bytes(b, i, stop, 0xFF, 0xFF)
+    l, h = crc_run(b, stop, unpack, i, 0xFF00, 0xFF00)
   end
-  crc_b, crc_i, crc_to, crc_lo, crc_hi = b, i, stop, lo, hi
-  return hi * 256 + lo == b[stop] + b[stop + 1] * 256
+  crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
+  return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
 
-M.CRC_HI, M.CRC_LO, M.XOR8, M.concat, M.crc16, M.crc_bytes = CRC_HI, CRC_LO, XOR8, concat, crc16, crc_bytes
-M.crc_ok_at, M.crc_scan, M.crc_string_ok, M.floor, M.format = crc_ok_at, crc_scan, crc_string_ok, floor, format
+M.concat, M.crc16, M.crc_ok_at, M.crc_scan = concat, crc16, crc_ok_at, crc_scan
+M.crc_string_ok, M.floor, M.format = crc_string_ok, floor, format
