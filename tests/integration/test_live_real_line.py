@@ -34,7 +34,8 @@ def test_the_wizmodbus_line_live_at_9600_baud(tmp_path: Path) -> None:
         cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
     )
     try:
-        time.sleep(1.0)  # the port is open
+        # the port is open once it says so (a fixed wait lost the whole line on a loaded machine)
+        assert process.stderr.readline().startswith(b"vw3-decode: listening on ")
         assert paced_writer(bus.c, stream, BAUD, piece=8) == 0
         time.sleep(1.0)  # the last frame is closed by the silence
         process.send_signal(signal.SIGINT)
