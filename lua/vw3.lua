@@ -3931,6 +3931,12 @@ local function map_pairs(text, what, low, high)
   return out
 end
 
+-- A scale is a plain decimal number, as maps.py _SCALE: not tonumber's 0x10, nor inf or nan.
+local function plain_number(text)
+  local mantissa = text:lower():match("^[+-]?([%d.]+)e[+-]?%d+$") or text:match("^[+-]?([%d.]+)$")
+  return mantissa ~= nil and mantissa:match("^%d*%.?%d*$") ~= nil and mantissa:match("%d") ~= nil
+end
+
 -- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0).
 local function scale_decimals(text)
   local mantissa, exponent = text:lower():match("^[+-]?([%d.]+)e([+-]?%d+)$")
@@ -3955,8 +3961,8 @@ local function map_row(values)
   end
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
-    local scale = tonumber(scale_text)
-    if scale == nil or scale ~= scale then return nil, wrong("scale", { text = scale_text }) end
+    local scale = plain_number(scale_text) and tonumber(scale_text)
+    if not scale then return nil, wrong("scale", { text = scale_text }) end
     if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
       return nil, wrong("scale_range", { text = scale_text })
     end

@@ -170,6 +170,8 @@ def _row(values: dict[str, str]) -> RegisterDef:
     decimals = 0
     raw_scale = values.get("scale", "").strip()
     if raw_scale:
+        if not _SCALE.fullmatch(raw_scale):  # not float()'s 1_0, nan, inf, nor Unicode digits
+            raise ValueError(_say("scale", text=raw_scale))
         try:
             scale = float(raw_scale)
             decimals = _decimals(raw_scale)
@@ -220,6 +222,8 @@ def _row(values: dict[str, str]) -> RegisterDef:
 
 
 _DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
+# A scale is a plain decimal number, as the plugin reads it (maps.lua plain_number).
+_SCALE = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?")
 
 
 def _sniff(header: str) -> str:
