@@ -222,7 +222,7 @@ def _row(values: dict[str, str]) -> RegisterDef:
 
 
 _DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
-# A scale is a plain decimal number, as the plugin reads it (maps.lua plain_number).
+# A scale is a plain decimal number, as the plugin reads it (maps.lua scale_decimals).
 _SCALE = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?")
 
 

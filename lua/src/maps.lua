@@ -142,17 +142,12 @@ local function map_pairs(text, what, low, high)
   return out
 end
 
--- A scale is a plain decimal number, as maps.py _SCALE: not tonumber's 0x10, nor inf or nan.
-local function plain_number(text)
-  local mantissa = text:lower():match("^[+-]?([%d.]+)e[+-]?%d+$") or text:match("^[+-]?([%d.]+)$")
-  return mantissa ~= nil and mantissa:match("^%d*%.?%d*$") ~= nil and mantissa:match("%d") ~= nil
-end
-
--- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0).
+-- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0), or nil
+-- when it is not a plain decimal number (maps.py _SCALE: not tonumber's 0x10, nor inf or nan).
 local function scale_decimals(text)
   local mantissa, exponent = text:lower():match("^[+-]?([%d.]+)e([+-]?%d+)$")
   if mantissa == nil then mantissa, exponent = text:match("^[+-]?([%d.]+)$"), "0" end
-  if mantissa == nil then return 0 end
+  if mantissa == nil or not mantissa:match("^%d*%.?%d*$") or not mantissa:match("%d") then return nil end
   local fraction = (mantissa:match("%.(%d*)$") or ""):gsub("0+$", "")
   local decimals = #fraction - tonumber(exponent)
   if decimals < 0 then return 0 end
@@ -172,12 +167,13 @@ local function map_row(values)
   end
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
-    local scale = plain_number(scale_text) and tonumber(scale_text)
+    local decimals = scale_decimals(scale_text)
+    local scale = decimals and tonumber(scale_text)
     if not scale then return nil, wrong("scale", { text = scale_text }) end
     if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
       return nil, wrong("scale_range", { text = scale_text })
     end
-    row.scale, row.decimals = scale, scale_decimals(scale_text)
+    row.scale, row.decimals = scale, decimals
   end
   local access = strip(values.access or ""):upper()
   if access ~= "" and not ACCESS[access] then return nil, wrong("access", { text = access }) end
