@@ -51,7 +51,6 @@
 
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
-enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
 enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
@@ -104,7 +103,6 @@ static inline void out_number(Out *o, unsigned long long v, unsigned radix, int 
 }
 
 static inline void out_uint(Out *o, unsigned long long v, int width) { out_number(o, v, 10, width, ' '); }
-static inline void out_hex(Out *o, unsigned long v, int width) { out_number(o, v, 16, width, '0'); }
 
 /* describe.py's tail after the first items shown: `… (+n)`, `… (+n bytes)` (`end` ")" or " bytes)"). */
 static inline void out_more(Out *o, unsigned long long more, const char *end) {
@@ -353,12 +351,6 @@ static __attribute__((noinline)) int load_slave(Engine *e, int address) { /* (of
     }
     s->loaded = 1;
     return 0;
-}
-
-static Slave *slave_for(Engine *e, int address) {
-    Slave *s = &e->slaves[address];
-    if (!s->loaded && load_slave(e, address) < 0) return NULL;
-    return s;
 }
 
 /* ---- framing: framing/rtu.py's fast path, for the codes handled here -------------------------- */
@@ -907,14 +899,6 @@ static void line_head(Engine *e, const uint8_t *f, unsigned long long number, co
     out_cstr(&e->out, kind);
 }
 
-/* ... then the function name, where the engine writes the info text itself */
-static int line_start(Engine *e, Slave *s, const uint8_t *f, unsigned long long number, const char *kind) {
-    line_head(e, f, number, kind);
-    if (out_str(&e->out, s->name[handled_index(f[1])]) < 0) return -1;
-    out_put(&e->out, " ", 1);
-    return 0;
-}
-
 /* Python's str.rstrip() in info_text: hand over unless the info ends in a plain visible character. */
 static int info_end_is_plain(const Out *o) {
     unsigned char last = (unsigned char)o->data[o->len - 1];
@@ -972,7 +956,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
             out_uint(&e->out, value, 0);
             break;
         case STEP_HEX:
-            out_hex(&e->out, value, step->number);
+            out_number(&e->out, value, 16, step->number, '0');
             break;
         case STEP_SUBFUNCTION: /* diagnostics_are_plain: the spec names it */
             out_cstr(&e->out, subfunction_name(value));
@@ -1022,9 +1006,11 @@ static int line_end(Engine *e, const char *pairing, unsigned long long request_n
  * an answer's, paired with that request. 1 written, 0 hand over, -1 error. */
 static int frame_line(Engine *e, Slave *s, const Lifted *f, unsigned long long number,
                       unsigned long long request_number, int unanswered) {
-    int answer = request_number != 0;
-    if (line_start(e, s, f->frame, number, answer ? " response  " : " request   ") < 0) return -1;
-    int written = info_text(e, s, f->frame, f->length, &rules[handled_index(f->frame[1])].info[answer], f);
+    int answer = request_number != 0, k = handled_index(f->frame[1]);
+    line_head(e, f->frame, number, answer ? " response  " : " request   ");
+    if (out_str(&e->out, s->name[k]) < 0) return -1; /* the function name, then the info text */
+    out_put(&e->out, " ", 1);
+    int written = info_text(e, s, f->frame, f->length, &rules[k].info[answer], f);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
     return line_end(e, unanswered ? " [no response]" : NULL, request_number, NULL);
 }
@@ -1121,14 +1107,6 @@ static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *
 
 #include "_judge.h" /* profile auto's first pass: frames and pairs only */
 
-/* --stats: the transaction's counts once its lines are written (_stats.h); `written`, or -1. */
-static int counted(Engine *e, Slave *s, const uint8_t *b, const FrameRef *q, const FrameRef *a, const Words *writes,
-                   const Words *reads, int written) {
-    if (written <= 0 || e->stats == NULL) return written;
-    long long base = e->tl.active ? e->tl.base : 0;
-    return count_transaction((Stats *)e->stats, s, b, q, a, writes, reads, e->count + 1, base) < 0 ? -1 : written;
-}
-
 /* One transaction from *pos: shown (STEP_DONE, *pos moves past it) or left as it was found. */
 static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *pos) {
     FrameRef q, a;
@@ -1136,10 +1114,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
     if (q.kind != KIND_REQUEST || q.slave == 0 || (e->judge != NULL && judged(e, &q))) return STEP_HANDOVER;
     Slave *s = NULL;
-    Lifted r;
+    Lifted r, answer;
     if (e->judge == NULL) { /* (judged: framed and paired only) */
-        s = slave_for(e, q.slave);
-        if (s == NULL) return STEP_ERROR;
+        s = &e->slaves[q.slave];
+        if (!s->loaded && load_slave(e, q.slave) < 0) return STEP_ERROR;
         if (!s->usable) return STEP_HANDOVER;
         int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
         if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
@@ -1153,32 +1131,30 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     e->pair_timed = q.timed && found == FRAME_OK && a.timed;
     e->request_ns = q.ns;
     /* The next frame is a request: this one was not answered (pairing.py). */
-    int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written;
+    int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written = 0;
     const Words *writes = s != NULL && r.values.values != NULL ? &r.values : NULL; /* (s: not judged) */
+    Words reads = {0, 0, NULL};
     if (e->judge != NULL) {
         written = found == FRAME_OK && (!answered || !judged(e, &a)) ? frames_record(e, &q, answered ? &a : NULL) : 0;
     } else if (found == FRAME_OK && rules[handled_index(q.function)].texts != (answered && a.kind == KIND_EXCEPTION)) {
         /* Texts from the Python stages: a code of table.Compiled.texts (not its exceptions), an exception */
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
-        written = counted(e, s, b, &q, answered ? &a : NULL, writes, NULL, written);
-    } else if (found == FRAME_OK && !answered) {
-        written = frame_line(e, s, &r, e->count + 1, 0, 1);
-        written = counted(e, s, b, &q, NULL, writes, NULL, written);
-    } else {
-        Lifted answer;
-        Words reads;
+    } else if (found == FRAME_OK && (!answered || a.kind == KIND_RESPONSE)) {
         /* (not an exception to a code of table.Compiled.texts: the Python stages') */
-        written = found == FRAME_OK && a.kind == KIND_RESPONSE ? response_is_quiet(e, s, b + a.at, a.length, &r,
-                                                                                   &answer, &reads) : 0;
-        if (written > 0) {
-            written = frame_line(e, s, &r, e->count + 1, 0, 0);
+        written = answered ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 1;
+        if (written > 0) written = frame_line(e, s, &r, e->count + 1, 0, !answered);
+        if (written > 0 && answered) {
             e->line_timed = a.timed;
             e->line_ns = a.ns;
-            if (written > 0) written = frame_line(e, s, &answer, e->count + 2, e->count + 1, 0);
+            written = frame_line(e, s, &answer, e->count + 2, e->count + 1, 0);
             if (written > 0 && track(e, s, b + a.at, writes, &reads, e->count + 2) < 0) written = -1;
-            written = counted(e, s, b, &q, &a, writes, &reads, written);
         }
     }
+    /* --stats: the transaction's counts once its lines are written (_stats.h) */
+    if (written > 0 && s != NULL && e->stats != NULL &&
+        count_transaction((Stats *)e->stats, s, b, &q, answered ? &a : NULL, writes, &reads, e->count + 1,
+                          e->tl.active ? e->tl.base : 0) < 0)
+        written = -1;
     if (written > 0) return taken(e, pos, &q, &a, answered);
     /* Not shown here: its lines and its expectation are taken back. */
     e->out.len = mark;
@@ -1196,74 +1172,50 @@ static int idle(const Engine *e, const char *what) {
     return !e->running;
 }
 
-static int engine_ready(Engine *e) {
+/* run(buffer, position) -> (lines, position, status): the transactions of buffer from position on;
+ * run_timed(buffer, position, base, starts, times, flags): the same on a stream of chunks (_timeline.h):
+ * `base` the stream offset of buffer[0]; per chunk its start (stream offset, int64), its time (int64 ns)
+ * and its flags (a byte); the first chunk holds buffer[0], the last one ends with the buffer. */
+static PyObject *engine_run(Engine *e, PyObject *args) {
+    Py_buffer view, starts = {0}, times = {0}, flags = {0};
+    Py_ssize_t pos;
+    long long base = 0;
     if (e->slave_info == NULL) {
         PyErr_SetString(PyExc_RuntimeError, "Engine not initialised");
-        return 0;
-    }
-    return idle(e, "run");
-}
-
-/* The transactions of view from pos on: (lines, position, status). */
-static PyObject *run_buffer(Engine *e, Py_buffer *view, Py_ssize_t pos) {
-    if (pos < 0 || pos > view->len) {
-        PyErr_SetString(PyExc_ValueError, "position outside the buffer");
         return NULL;
     }
-    e->running = 1;
-    e->run_number++;
-    e->out.len = 0;
-    e->out.failed = 0;
-    int step;
-    do {
-        step = transaction(e, view->buf, view->len, &pos);
-    } while (step == STEP_DONE);
-    /* The Python stages may read the parameter memory as soon as this returns. */
-    if (write_memory(e) < 0 && step != STEP_ERROR) step = STEP_ERROR;
-    e->running = 0;
-    if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
-    /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
-    PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
-    if (lines == NULL) return NULL;
-    return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
-}
-
-static PyObject *engine_run(Engine *e, PyObject *args) {
-    Py_buffer view;
-    Py_ssize_t pos;
-    if (!engine_ready(e)) return NULL;
-    if (!PyArg_ParseTuple(args, "y*n", &view, &pos)) return NULL;
-    PyObject *result = run_buffer(e, &view, pos);
-    PyBuffer_Release(&view);
-    return result;
-}
-
-/* run_timed(buffer, position, base, starts, times, flags): run() on a stream of chunks (_timeline.h):
- * `base` the stream offset of buffer[0]; per chunk its start (stream offset, int64), its time (int64
- * ns) and its flags (a byte); the first chunk holds buffer[0], the last one ends with the buffer. */
-static PyObject *engine_run_timed(Engine *e, PyObject *args) {
-    Py_buffer view, starts, times, flags;
-    Py_ssize_t pos;
-    long long base;
-    if (!engine_ready(e)) return NULL;
-    if (!PyArg_ParseTuple(args, "y*nLy*y*y*", &view, &pos, &base, &starts, &times, &flags)) return NULL;
-    PyObject *result = NULL;
+    if (!idle(e, "run") || !PyArg_ParseTuple(args, "y*n|Ly*y*y*", &view, &pos, &base, &starts, &times, &flags))
+        return NULL;
+    int timed = PyTuple_GET_SIZE(args) > 2, step = STEP_ERROR;
     Py_ssize_t count = starts.len / (Py_ssize_t)sizeof(long long);
     const long long *start = starts.buf;
-    if (count < 1 || starts.len % (Py_ssize_t)sizeof(long long) || times.len != starts.len || flags.len != count ||
-        start[0] > base || start[count - 1] >= base + view.len) {
+    Timeline *t = &e->tl;
+    if (timed && (count < 1 || starts.len % (Py_ssize_t)sizeof(long long) || times.len != starts.len ||
+                  flags.len != count || start[0] > base || start[count - 1] >= base + view.len)) {
         PyErr_SetString(PyExc_ValueError, "run_timed: one start, time and flag per chunk, covering the buffer");
+    } else if (pos < 0 || pos > view.len) {
+        PyErr_SetString(PyExc_ValueError, "position outside the buffer");
     } else {
-        Timeline *t = &e->tl;
-        t->active = 1;
-        t->base = base;
-        t->start = start;
-        t->ns = times.buf;
-        t->flags = flags.buf;
-        t->count = count;
-        t->end = base + view.len;
-        t->cursor = 0;
-        result = run_buffer(e, &view, pos);
+        if (timed) {
+            t->active = 1;
+            t->base = base;
+            t->start = start;
+            t->ns = times.buf;
+            t->flags = flags.buf;
+            t->count = count;
+            t->end = base + view.len;
+            t->cursor = 0;
+        }
+        e->running = 1;
+        e->run_number++;
+        e->out.len = 0;
+        e->out.failed = 0;
+        do {
+            step = transaction(e, view.buf, view.len, &pos);
+        } while (step == STEP_DONE);
+        /* The Python stages may read the parameter memory as soon as this returns. */
+        if (write_memory(e) < 0) step = STEP_ERROR;
+        e->running = 0;
         t->active = 0;
         t->start = t->ns = NULL;
         t->flags = NULL;
@@ -1272,7 +1224,11 @@ static PyObject *engine_run_timed(Engine *e, PyObject *args) {
     PyBuffer_Release(&starts);
     PyBuffer_Release(&times);
     PyBuffer_Release(&flags);
-    return result;
+    if (step == STEP_ERROR) return NULL; /* a failing callback or no memory: a bug to see, not to hide */
+    /* UTF-8 bytes: written to the binary stream as they are, with no round trip through str. */
+    PyObject *lines = PyBytes_FromStringAndSize(e->out.data ? e->out.data : "", (Py_ssize_t)e->out.len);
+    if (lines == NULL) return NULL;
+    return Py_BuildValue("(Nni)", lines, pos, step == STEP_NEED ? STATUS_NEED : STATUS_HANDOVER);
 }
 
 /* stats and judge: the object at offset `closure` in the engine, None for none (NULL). */
@@ -1370,7 +1326,7 @@ static PyMethodDef engine_methods[] = {
     {"run", (PyCFunction)engine_run, METH_VARARGS,
      "run(buffer, position) -> (lines, position, status): summary lines (UTF-8) of the transactions from\n"
      "position on; status 0: needs more bytes, 1: hand the stream over at position."},
-    {"run_timed", (PyCFunction)engine_run_timed, METH_VARARGS,
+    {"run_timed", (PyCFunction)engine_run, METH_VARARGS,
      "run_timed(buffer, position, base, starts, times, flags) -> run()'s answer, for a stream of timed\n"
      "chunks (pcap records): int64 stream offsets and ns times, a flag byte per chunk (_timeline.h)."},
     {NULL, NULL, 0, NULL},

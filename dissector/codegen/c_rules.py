@@ -23,7 +23,7 @@ from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, REQUEST_PREFIX, Check, Confirm, ValueKind
 from dissector.protocol.table import Data, Function, Layout
 from dissector.accel import records
-from dissector.accel.fastsummary import SlaveFacts, Texts
+from dissector.accel.fastsummary import HANDOVER, NEED, SlaveFacts, Texts
 from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
 from dissector.framing.stream import GLITCH_BYTES
@@ -301,6 +301,8 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "static const uint16_t crc_table[256] = {",
         *(f"    {', '.join(f'0x{value:04X}' for value in crc._TABLE[row : row + 8])}," for row in range(0, 256, 8)),
         "};",
+        "/* run()'s status (accel/fastsummary.py): more bytes needed, or the stream handed over. */",
+        f"enum {{ STATUS_NEED = {NEED}, STATUS_HANDOVER = {HANDOVER} }};",
         "/* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what",
         " * the Python stages write of a transaction), read by name. */",
         *_field_names(SlaveFacts, "FACT", "FACTS", "fact_names"),
