@@ -38,25 +38,26 @@ static void columns_dealloc(Columns *self) {
     Py_TYPE(self)->tp_free((PyObject *)self);
 }
 
-/* A column opened with the point (x, y) as its four points. */
-static int columns_open(Columns *self, double x, double y) {
-    if (columns_grow(self, self->n + 8) < 0) return -1;
-    double *c = self->d + self->n;
-    for (int k = 0; k < 8; k += 2) c[k] = x, c[k + 1] = y;
-    self->n += 8;
-    return 0;
+/* Column `c` merged into column `o` (a later one, or a point as a column of four equal points): its lowest
+ * and highest points where they pass o's, its last point. */
+static inline void column_merge(double *o, const double *c) {
+    if (c[3] < o[3]) o[2] = c[2], o[3] = c[3];
+    if (c[5] > o[5]) o[4] = c[4], o[5] = c[5];
+    o[6] = c[6], o[7] = c[7];
 }
 
-/* The point (x, y) in column col: 0, or -1 with an exception set (no memory). */
+/* The point (x, y) in column col (a new column: the point as its four points): 0, or -1 with an
+ * exception set (no memory). */
 static int columns_point(Columns *self, long long col, double x, double y) {
-    if (col != self->col) {
-        self->col = col;
-        return columns_open(self, x, y);
+    const double point[8] = {x, y, x, y, x, y, x, y};
+    if (col == self->col) {
+        column_merge(self->d + self->n - 8, point);
+        return 0;
     }
-    double *c = self->d + self->n - 8;
-    if (y < c[3]) c[2] = x, c[3] = y;
-    else if (y > c[5]) c[4] = x, c[5] = y;
-    c[6] = x, c[7] = y;
+    self->col = col;
+    if (columns_grow(self, self->n + 8) < 0) return -1;
+    memcpy(self->d + self->n, point, sizeof point);
+    self->n += 8;
     return 0;
 }
 
@@ -90,10 +91,7 @@ static PyObject *columns_compact(Columns *self, PyObject *args) {
             last = col;
             continue;
         }
-        double *o = d + out - 8, *c = d + i;
-        if (c[3] < o[3]) o[2] = c[2], o[3] = c[3];
-        if (c[5] > o[5]) o[4] = c[4], o[5] = c[5];
-        o[6] = c[6], o[7] = c[7];
+        column_merge(d + out - 8, d + i);
     }
     self->n = out;
     Py_RETURN_NONE;
