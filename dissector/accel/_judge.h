@@ -26,10 +26,9 @@ static int frames_record(Engine *e, const FrameRef *q, const FrameRef *a) {
     return e->out.failed ? -1 : 1;
 }
 
+/* The judge bitmap's bit of the frame's slave (32 bytes each) and function code. */
 static inline int judged(const Engine *e, const FrameRef *f) {
-    int function = f->function & 0x7F;
-    const uint8_t *judge = (const uint8_t *)PyBytes_AS_STRING(e->judge);
-    return (judge[f->slave * 32 + (function >> 3)] >> (function & 7)) & 1;
+    return bit((const uint8_t *)PyBytes_AS_STRING(e->judge) + f->slave * 32, f->function & 0x7F);
 }
 
 #endif
