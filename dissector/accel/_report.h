@@ -31,8 +31,6 @@ typedef struct {
     PyObject_HEAD
     PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
     PyObject *series, *h_series, *written; /* their containers */
-    Py_ssize_t max_series, max_written;
-    double span; /* COLUMNS: the columns before a doubling (collect.py ReportCollector._double, health.py Health._double) */
     int timed;   /* -1: not known yet */
     Time origin, first, last, h_origin;
     double width, limit, h_width, h_limit;
@@ -163,7 +161,7 @@ static int report_x(Report *r, int timed, long long ns, unsigned long long numbe
     *x = !r->timed ? (Time){1, 0, 0, (double)number} : timed ? stamp_time(1, ns) : (Time){1, 0, 0, 0.0};
     if (!r->origin.has) {
         r->origin = *x;
-        r->limit = x->d + r->span * r->width;
+        r->limit = x->d + COLUMNS * r->width;
     }
     while (x->d >= r->limit)
         if (report_call(r, r->collector, "_double", 1, NULL) < 0) return -1;
@@ -195,7 +193,7 @@ static uint8_t *report_bits(Report *r, int slave) {
 static int report_written(Report *r, int slave, const Words *w) {
     uint8_t *bits = report_bits(r, slave);
     if (bits == NULL) return -1;
-    for (unsigned k = 0; k < w->count && PySet_GET_SIZE(r->written) < r->max_written; k++) {
+    for (unsigned k = 0; k < w->count && PySet_GET_SIZE(r->written) < MAX_PARAMETERS; k++) {
         unsigned address = words_address(w, k);
         if (bit(bits, address)) continue;
         PyObject *key = Py_BuildValue("(iI)", slave, address);
@@ -214,7 +212,7 @@ static int health_point(Report *r, int slave, const Time *x, double y) {
     if (r->health == Py_None) return 0;
     if (!r->h_origin.has) {
         r->h_origin = *x;
-        r->h_limit = x->d + r->span * r->h_width;
+        r->h_limit = x->d + COLUMNS * r->h_width;
     }
     while (x->d >= r->h_limit)
         if (report_call(r, r->health, "_double", 1, NULL) < 0) return -1;
@@ -275,7 +273,7 @@ static int trends_full(Report *r) {
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
     Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
-    if (!t->key && !r->full && PyDict_Size(r->series) >= r->max_series) {
+    if (!t->key && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
         if (trends_full(r) < 0) return -1;
         t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
     }
@@ -371,15 +369,13 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
 
 /* ---- the Python object ------------------------------------------------------------------------- */
 static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"collector", "health", "stamp", "exception", "max_series", "max_written", "columns", NULL};
+    static char *keywords[] = {"collector", "health", "stamp", "exception", NULL};
     PyObject *objects[4];
-    int columns;
     if (r->collector != NULL) {
         PyErr_SetString(PyExc_RuntimeError, "Report is initialised once");
         return -1;
     }
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOOnni", keywords, &objects[0], &objects[1], &objects[2],
-                                     &objects[3], &r->max_series, &r->max_written, &columns))
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "OOOO", keywords, &objects[0], &objects[1], &objects[2], &objects[3]))
         return -1;
     r->collector = objects[0], r->health = objects[1], r->stamp = objects[2], r->exception = objects[3];
     for (int k = 0; k < 4; k++) Py_INCREF(objects[k]);
@@ -394,8 +390,7 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     }
     if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->written == NULL)))
         return -1;
-    r->span = columns;
-    for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)r->max_series + 2;) r->trend_slots *= 2;
+    for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)MAX_SERIES + 2;) r->trend_slots *= 2;
     r->trends = PyMem_Calloc(r->trend_slots, sizeof *r->trends);
     r->points = PyMem_Calloc(REPORT_POINTS, sizeof *r->points);
     if (r->trends == NULL || r->points == NULL) {
@@ -441,8 +436,9 @@ static PyTypeObject ReportType = {
     .tp_name = "dissector.accel._summary.Report",
     .tp_basicsize = sizeof(Report),
     .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "Report(collector, health, stamp, exception, max_series, max_written, columns): --report fed by\n"
-              "the engine (render/report/collect.py, health.py); set as Stats.report.",
+    .tp_doc = "Report(collector, health, stamp, exception): --report fed by the engine (render/report/collect.py,\n"
+              "health.py; their COLUMNS, MAX_SERIES and the written set's bound, MAX_PARAMETERS, from _tables.h); set\n"
+              "as Stats.report.",
     .tp_new = PyType_GenericNew,
     .tp_init = (initproc)report_init,
     .tp_dealloc = (destructor)report_dealloc,
@@ -480,23 +476,17 @@ static PyObject *time_bins(const Tally *t, size_t n, int bins) {
     return list;
 }
 
-/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in 1e-4 s steps), exactly: None where a
+/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in POLL_STEP s steps), exactly: None where a
  * variance's sum is past what a double holds exactly (the Python stages then work it out). */
 static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
-    double total = 0, seen = 0;
+    double total = 0, kept = 0;
     for (size_t k = 0; k < n; k++) total += t[k].value;
-    long long median = t[n - 1].key, skipped = 0, deviation = 0;
-    double half = floor((total + 1) / 2), kept = 0;
-    for (size_t k = 0; k < n; k++)
-        if ((seen += t[k].value) >= half) {
-            median = t[k].key;
-            break;
-        }
+    long long median = tally_nth(t, n, floor((total + 1) / 2)), skipped = 0, deviation = 0;
     if (median <= 0) return Py_BuildValue("(d)", 0.0);
     __int128 sum = 0;
     for (size_t k = 0; k < n; k++) {
         long long count = (long long)t[k].value, step = t[k].key;
-        if ((double)step >= 1.5 * (double)median) {
+        if ((double)step >= POLL_SKIP_FACTOR * (double)median) {
             skipped += ((long long)rint((double)step / (double)median) - 1) * count;
             continue;
         }
@@ -507,7 +497,8 @@ static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
     }
     if (sum >= (__int128)1 << 53) Py_RETURN_NONE;
     double variance = kept ? (double)sum / kept : 0.0;
-    return Py_BuildValue("(dddL)", (double)median * 1e-4, (double)deviation * 1e-4, sqrt(variance) * 1e-4, skipped);
+    return Py_BuildValue("(dddL)", (double)median * POLL_STEP, (double)deviation * POLL_STEP, sqrt(variance) * POLL_STEP,
+                         skipped);
 }
 
 static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {

@@ -350,5 +350,11 @@ enum { COUNT_REQUESTS = 256, COUNT_RESPONSES = 257, COUNT_UNANSWERED = 258 };
 #define MINUTE 60.0
 #define CLOSE_MARGIN 0.9
 static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0};
+/* --report's pixel columns before a doubling and series drawn at most (render/report/collect.py), a poll
+ * interval's step (s) and the factor past which it counts skipped cycles (render/pollcycle.py), for _report.h. */
+#define COLUMNS 600
+#define MAX_SERIES 400
+#define POLL_STEP 0.0001
+#define POLL_SKIP_FACTOR 1.5
 
 #endif

@@ -12,8 +12,6 @@ from collections.abc import Callable
 from typing import Any
 
 from dissector.model import Stamp
-from dissector.render.report.collect import COLUMNS, MAX_SERIES
-from dissector.render.stats_store import MAX_PARAMETERS
 
 
 def exception_event(annotator: Any | None) -> Callable[[int, int, int], str]:
@@ -32,4 +30,4 @@ def engine_report(collector: Any, health: Any | None, annotator: Any | None) -> 
     """A compiled Report feeding `collector` and `health` (None: no health section)."""
     from dissector.accel import _summary
 
-    return _summary.Report(collector, health, Stamp, exception_event(annotator), MAX_SERIES, MAX_PARAMETERS, COLUMNS)
+    return _summary.Report(collector, health, Stamp, exception_event(annotator))

@@ -5,7 +5,8 @@ Python, where the pure-Python stages (the reference under VW3_PURE_PYTHON=1) rea
 """
 from __future__ import annotations
 
-from dissector.render import bustiming, stats_store
+from dissector.render import bustiming, pollcycle, stats_store
+from dissector.render.report import collect
 
 # The compiled store's Param.counts by PARAM_*: ParameterStats' counts (render/stats_store.py), in the order of
 # the rows' count columns (ParameterRow: reads..refused at 3..6, changes at 9). (Kept out of stats_store's
@@ -38,4 +39,10 @@ def render() -> list[str]:
         f"#define MINUTE {bustiming.MINUTE!r}",
         f"#define CLOSE_MARGIN {bustiming.CLOSE_MARGIN!r}",
         "static const double gap_edges_ms[] = {" + ", ".join(map(repr, bustiming.GAP_EDGES_MS)) + "};",
+        "/* --report's pixel columns before a doubling and series drawn at most (render/report/collect.py), a poll",
+        " * interval's step (s) and the factor past which it counts skipped cycles (render/pollcycle.py), for _report.h. */",
+        f"#define COLUMNS {collect.COLUMNS}",
+        f"#define MAX_SERIES {collect.MAX_SERIES}",
+        f"#define POLL_STEP {pollcycle.STEP!r}",
+        f"#define POLL_SKIP_FACTOR {pollcycle.SKIP_FACTOR!r}",
     ]
