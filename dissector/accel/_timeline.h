@@ -110,11 +110,12 @@ static int fixed_text(char *text, double value, int digits) {
     return n > 0 && n < 64 ? n : 0;
 }
 
-static void out_fixed(Out *o, double value, int digits) {
+/* f"{value:>{width}.{digits}f}" (a stamp difference: never too long for fixed_text). */
+static void out_fixed(Out *o, double value, int digits, int width) {
     char text[64];
     int n = fixed_text(text, value, digits);
-    if (n) out_put(o, text, (size_t)n);
-    else out_cstr(o, "nan"); /* never for a stamp difference */
+    for (int pad = width - n; pad > 0; pad--) out_put(o, " ", 1);
+    out_put(o, text, (size_t)n);
 }
 
 /* summary_line's head after the number: ` {column:>12} ` (render/timefmt.Clock.text, -t r, d, dd). */
@@ -133,11 +134,8 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
                                                 : 0.0;
     refs->has_previous = 1;
     refs->previous_ns = ns;
-    char text[64];
-    int n = fixed_text(text, seconds, 6);
     out_put(o, " ", 1);
-    for (int pad = 12 - n; pad > 0; pad--) out_put(o, " ", 1);
-    out_put(o, text, (size_t)n);
+    out_fixed(o, seconds, 6, 12);
     out_put(o, " ", 1);
 }
 
@@ -148,7 +146,7 @@ static void out_pairing(Out *o, unsigned long long request_number, int timed, lo
     out_uint(o, request_number, 0);
     if (timed) {
         out_put(o, ", ", 2);
-        out_fixed(o, stamp_seconds(answer_ns, request_ns) * 1000, 1);
+        out_fixed(o, stamp_seconds(answer_ns, request_ns) * 1000, 1, 0);
         out_cstr(o, " ms");
     }
     out_put(o, "]", 1);
