@@ -89,12 +89,18 @@ static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
     return p;
 }
 
-/* ParameterTable.param (render/stats_store.py, render/history.py): the state is a value or a read
- * status; a change is a state that differs from the last one, whoever saw each. 1: changed. */
-static inline int param_observe(Param *p, unsigned value) {
-    int changed = p->has_last && (p->status != NULL || value != p->last);
+/* ParameterTable.param (render/stats_store.py, render/history.py): the state becomes a value, or the read
+ * status `status` (a str, of an unreadable read; NULL: the value); a change is a state that differs from
+ * the last one, whoever saw each. 1: changed, -1: error. */
+static inline int param_state(Param *p, unsigned value, PyObject *status) {
+    int same = status == NULL ? p->status == NULL && value == p->last
+               : p->status == NULL ? 0
+                                   : PyObject_RichCompareBool(p->status, status, Py_EQ);
+    if (same < 0) return -1;
+    int changed = p->has_last && !same;
     if (changed) p->counts[PARAM_CHANGES]++;
-    Py_CLEAR(p->status);
+    Py_XINCREF(status);
+    Py_XSETREF(p->status, status);
     p->last = (uint16_t)value;
     p->has_last = 1;
     return changed;
@@ -105,21 +111,6 @@ static int param_count(Param *p, int event) {
     static const struct { int counter, state; } rules[EVENTS] = EVENT_RULES;
     if (rules[event].counter >= 0) p->counts[rules[event].counter]++;
     return rules[event].state;
-}
-
-/* An unreadable read: the state becomes `status` (a str); 1: changed, -1: error. */
-static inline int param_status(Param *p, PyObject *status) {
-    int same = 0;
-    if (p->status != NULL) {
-        same = PyObject_RichCompareBool(p->status, status, Py_EQ);
-        if (same < 0) return -1;
-    }
-    int changed = p->has_last && !same;
-    if (changed) p->counts[PARAM_CHANGES]++;
-    Py_INCREF(status);
-    Py_XSETREF(p->status, status);
-    p->has_last = 1;
-    return changed;
 }
 
 /* namer(address, value): the (text, code) a slave's device gives a register, a new reference; NULL with an
@@ -162,7 +153,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
         if (take_code(p, namer, address, value) < 0) return -1;
     }
     if (!param_count(p, event)) return 0;
-    (void)param_observe(p, value);
+    (void)param_state(p, value, NULL);
     p->last_mapped = (uint8_t)mapped;
     Py_CLEAR(p->text);
     if (p->namer != namer) {
@@ -320,14 +311,14 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
         return NULL;
     }
     if (!param_count(p, event)) Py_RETURN_FALSE;
-    if (event == EVENT_UNREADABLE) { /* 16#8000 or an explained exception: `text` is the status, no value */
-        int changed = param_status(p, text);
-        return changed < 0 ? NULL : PyBool_FromLong(changed);
+    /* UNREADABLE (16#8000 or an explained exception): `text` is the status, no value */
+    int changed = param_state(p, value, event == EVENT_UNREADABLE ? text : NULL);
+    if (changed < 0) return NULL;
+    if (event != EVENT_UNREADABLE) {
+        Py_INCREF(text);
+        Py_XSETREF(p->text, text);
+        Py_CLEAR(p->namer);
     }
-    int changed = param_observe(p, value);
-    Py_INCREF(text);
-    Py_XSETREF(p->text, text);
-    Py_CLEAR(p->namer);
     return PyBool_FromLong(changed);
 }
 
