@@ -3791,7 +3791,7 @@ package.preload["vw3.maps"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, LIMITS, concat, fill, floor, format, io, ipairs = DATA, LIMITS, concat, fill, floor, format, io, ipairs
-local math, next, select, string, table, tonumber, tostring = math, next, select, string, table, tonumber, tostring
+local math, next, select, string, tonumber, tostring = math, next, select, string, tonumber, tostring
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -3851,7 +3851,6 @@ local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.
 local PAIRS, SEPARATORS = FORMAT.pairs, FORMAT.separators
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
 local KNOWN_COLUMN = FORMAT.columns -- (a set)
-local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
@@ -4139,8 +4138,8 @@ local floor, format, ipairs, math, next, pairs, say = floor, format, ipairs, mat
 local setmetatable, tonumber = setmetatable, tonumber
 
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
--- references keep their zeros (00001). Each made once: the labels made, per base (at most 65,536 each:
--- addresses are 16 bits).
+-- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536
+-- a base: addresses are 16 bits).
 local PLC_LABELS = setmetatable({}, { __index = function(all, base)
   local labels = setmetatable({}, { __index = function(labels, address)
     local digits = math.max(5, #format("%d", base))
@@ -4156,10 +4155,6 @@ local PLC_LABELS = setmetatable({}, { __index = function(all, base)
   all[base] = labels
   return labels
 end })
-
-local function plc_label(base, address)
-  return PLC_LABELS[base][address]
-end
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
@@ -4358,7 +4353,7 @@ end
 M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
 M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.layered_rows, M.plc_label = layered_rows, plc_label
+M.layered_rows, M.PLC_LABELS = layered_rows, PLC_LABELS
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -4368,9 +4363,10 @@ package.preload["vw3.story"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local address_name, address_runs, concat, consecutive = address_name, address_runs, concat, consecutive
-local has_note, interpret, interpret_wide, ipairs, next = has_note, interpret, interpret_wide, ipairs, next
-local note, plc_label, register_at, say, span_name, table = note, plc_label, register_at, say, span_name, table
+local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
+local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
+local ipairs, next, note, register_at, say, span_name = ipairs, next, note, register_at, say, span_name
+local table = table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
 -- neighbouring addresses as ranges, `39193..39288 readable again (96): non-existent in frame #1576`.
@@ -4540,7 +4536,7 @@ local function describe(device, f, reg, plain, status, words, second)
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
   local base = plc_base(device, f)
-  if base ~= nil then reg.label = plc_label(base, address) end
+  if base ~= nil then reg.label = PLC_LABELS[base][address] end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
@@ -4560,8 +4556,7 @@ local function annotate_registers(st, f, device, run, b, read)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local label = nil
-    if base ~= nil then label = plc_label(base, address) end
+    local label = base and PLC_LABELS[base][address]
     local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
       words_at(rows, address, index, count))
     if plain then
@@ -4587,7 +4582,7 @@ local function annotate_list(st, f, device, registers, read)
   for index, reg in ipairs(registers) do
     local address = reg.address
     if address ~= nil then
-      if base ~= nil then reg.label = plc_label(base, address) end
+      if base ~= nil then reg.label = PLC_LABELS[base][address] end
       local words = words_at(device.rows, address, index - 1, count)
       local next_reg = registers[index + 1]
       if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
@@ -4612,11 +4607,11 @@ package.preload["vw3.explain"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
-local PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE = PLAIN_READS, READ_LIMIT, REQUEST, RESPONSE
-local address_name, address_runs, concat, consecutive = address_name, address_runs, concat, consecutive
-local format, function_name, ipairs, lane, math, next, note = format, function_name, ipairs, lane, math, next, note
-local plc_base, plc_label, python_repr, say, span_name = plc_base, plc_label, python_repr, say, span_name
-local story, tonumber, track, u16, warn = story, tonumber, track, u16, warn
+local PLAIN_READS, PLC_LABELS, READ_LIMIT, REQUEST = PLAIN_READS, PLC_LABELS, READ_LIMIT, REQUEST
+local RESPONSE, address_name, address_runs, concat = RESPONSE, address_name, address_runs, concat
+local consecutive, format, function_name, ipairs, lane = consecutive, format, function_name, ipairs, lane
+local math, next, note, plc_base, python_repr, say = math, next, note, plc_base, python_repr, say
+local span_name, story, tonumber, track, u16, warn = span_name, story, tonumber, track, u16, warn
 
 local function profile_function_name(profile, code)
   return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
@@ -4686,7 +4681,7 @@ local function refused_registers(device, request)
     local address = (request.start + index) % 0x10000
     local row = device.rows[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and plc_label(base, address) or nil }
+      label = base and PLC_LABELS[base][address] or nil }
   end
   return out
 end
@@ -4771,9 +4766,9 @@ end
 
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
-  local base = device.plc[f.fn] or device.plc_default
-  local quantity, first = f.quantity or 0, plc_label(base, f.start) -- (a quantity of 0 or none: one address)
-  f.span_label = quantity <= 1 and first or first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
+  local labels = PLC_LABELS[plc_base(device, f)]
+  local quantity, first = f.quantity or 0, labels[f.start] -- (a quantity of 0 or none: one address)
+  f.span_label = quantity <= 1 and first or first .. ".." .. labels[(f.start + quantity - 1) % 0x10000]
 end
 lane.span_label = span_label
 

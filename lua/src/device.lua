@@ -5,8 +5,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
--- references keep their zeros (00001). Each made once: the labels made, per base (at most 65,536 each:
--- addresses are 16 bits).
+-- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536
+-- a base: addresses are 16 bits).
 local PLC_LABELS = setmetatable({}, { __index = function(all, base)
   local labels = setmetatable({}, { __index = function(labels, address)
     local digits = math.max(5, #format("%d", base))
@@ -22,10 +22,6 @@ local PLC_LABELS = setmetatable({}, { __index = function(all, base)
   all[base] = labels
   return labels
 end })
-
-local function plc_label(base, address)
-  return PLC_LABELS[base][address]
-end
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
@@ -224,4 +220,4 @@ end
 M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
 M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
 M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.layered_rows, M.plc_label = layered_rows, plc_label
+M.layered_rows, M.PLC_LABELS = layered_rows, PLC_LABELS

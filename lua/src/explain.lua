@@ -72,7 +72,7 @@ local function refused_registers(device, request)
     local address = (request.start + index) % 0x10000
     local row = device.rows[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and plc_label(base, address) or nil }
+      label = base and PLC_LABELS[base][address] or nil }
   end
   return out
 end
@@ -157,9 +157,9 @@ end
 
 local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
-  local base = device.plc[f.fn] or device.plc_default
-  local quantity, first = f.quantity or 0, plc_label(base, f.start) -- (a quantity of 0 or none: one address)
-  f.span_label = quantity <= 1 and first or first .. ".." .. plc_label(base, (f.start + quantity - 1) % 0x10000)
+  local labels = PLC_LABELS[plc_base(device, f)]
+  local quantity, first = f.quantity or 0, labels[f.start] -- (a quantity of 0 or none: one address)
+  f.span_label = quantity <= 1 and first or first .. ".." .. labels[(f.start + quantity - 1) % 0x10000]
 end
 lane.span_label = span_label
 

@@ -62,7 +62,6 @@ local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.
 local PAIRS, SEPARATORS = FORMAT.pairs, FORMAT.separators
 local SCALE_MIN, SCALE_MAX = FORMAT.scale_min, FORMAT.scale_max -- (results stay finite numbers)
 local KNOWN_COLUMN = FORMAT.columns -- (a set)
-local unpack = table.unpack or unpack
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 

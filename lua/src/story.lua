@@ -172,7 +172,7 @@ local function describe(device, f, reg, plain, status, words, second)
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
   local base = plc_base(device, f)
-  if base ~= nil then reg.label = plc_label(base, address) end
+  if base ~= nil then reg.label = PLC_LABELS[base][address] end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
@@ -192,8 +192,7 @@ local function annotate_registers(st, f, device, run, b, read)
   for index = 0, count - 1 do
     local k = first + 2 * index
     local address = (start + index) % 0x10000
-    local label = nil
-    if base ~= nil then label = plc_label(base, address) end
+    local label = base and PLC_LABELS[base][address]
     local plain, status = annotate_one(f, device, address, b[k] * 256 + b[k + 1], protected, multi, label,
       words_at(rows, address, index, count))
     if plain then
@@ -219,7 +218,7 @@ local function annotate_list(st, f, device, registers, read)
   for index, reg in ipairs(registers) do
     local address = reg.address
     if address ~= nil then
-      if base ~= nil then reg.label = plc_label(base, address) end
+      if base ~= nil then reg.label = PLC_LABELS[base][address] end
       local words = words_at(device.rows, address, index - 1, count)
       local next_reg = registers[index + 1]
       if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
