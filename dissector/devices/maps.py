@@ -122,31 +122,46 @@ class RegisterDef:
 RegisterMap = dict[int, RegisterDef]
 
 
+# What both readers strip from a cell or a line, and the case they fold: ASCII's, as the plugin's Lua
+# patterns and string.upper know it (not str.strip()'s no-break space, nor upper()'s ß -> SS).
+_SPACE = " \t\n\r\x0b\x0c"
+_UPPER = {letter: letter - 32 for letter in range(ord("a"), ord("z") + 1)}  # (str.translate tables)
+_LOWER = {letter: letter + 32 for letter in range(ord("A"), ord("Z") + 1)}
+_HEX_DIGITS = frozenset("0123456789abcdefABCDEF")
+
+
 def _parse_int(text: str) -> int:
-    text = text.strip()
-    if text.startswith("16#"):
-        return int(text[3:], 16)
-    return int(text, 0) if text.lower().startswith("0x") else int(text, 10)
+    """A number in a map (an address, an enum or bits entry): decimal, or hexadecimal after 0x or 16#, as
+    the plugin reads it (maps.lua map_int): not int()'s 1_0, 0x_10, 16#0x10 nor Unicode digits."""
+    text = text.strip(_SPACE)
+    digits = text[1:] if text[:1] in ("+", "-") else text
+    if digits.isascii() and digits.isdecimal():
+        return int(text)
+    for prefix in ("0x", "0X", "16#"):
+        digits = text[len(prefix):]
+        if text.startswith(prefix) and digits and _HEX_DIGITS.issuperset(digits):
+            return int(digits, 16)
+    raise ValueError(text)
 
 
 def _pairs(text: str, what: str, low: int, high: int) -> dict[int, str]:
     out: dict[int, str] = {}
     for part in text.split(";"):
-        part = part.strip()
+        part = part.strip(_SPACE)
         if not part:
             continue
         key, sep, label = part.partition("=")
-        if not sep or not label.strip():
+        if not sep or not label.strip(_SPACE):
             raise ValueError(_say("pair", what=what, part=part))
         try:
             number = _parse_int(key)
         except ValueError:
-            raise ValueError(_say("pair_number", what=what, part=part, key=key.strip())) from None
+            raise ValueError(_say("pair_number", what=what, part=part, key=key.strip(_SPACE))) from None
         if not low <= number <= high:
             raise ValueError(_say("pair_range", what=what, part=part, number=number, low=low, high=high))
         if number in out:
             raise ValueError(_say("pair_twice", what=what, part=part, number=number))
-        out[number] = printable(label.strip())
+        out[number] = printable(label.strip(_SPACE))
     return out
 
 
@@ -163,12 +178,12 @@ def _row(values: dict[str, str]) -> RegisterDef:
         raise ValueError(_say("address", text=raw_address)) from None
     if not 0 <= address <= 0xFFFF:
         raise ValueError(_say("address_range", address=address))
-    code = printable(values.get("code", "").strip())  # a map's texts are shown: control characters escaped
+    code = printable(values.get("code", "").strip(_SPACE))  # a map's texts are shown: control characters escaped
     if not code:
         raise ValueError(_say("code"))
     scale: float | None = None
     decimals = 0
-    raw_scale = values.get("scale", "").strip()
+    raw_scale = values.get("scale", "").strip(_SPACE)
     if raw_scale:
         if not _SCALE.fullmatch(raw_scale):  # not float()'s 1_0, nan, inf, nor Unicode digits
             raise ValueError(_say("scale", text=raw_scale))
@@ -179,21 +194,21 @@ def _row(values: dict[str, str]) -> RegisterDef:
             raise ValueError(_say("scale", text=raw_scale)) from None
         if not SCALE_MIN <= abs(scale) <= SCALE_MAX:  # also nan, inf (1e999) and 0
             raise ValueError(_say("scale_range", text=raw_scale))
-    access = values.get("access", "").strip().upper() or None
+    access = values.get("access", "").strip(_SPACE).translate(_UPPER) or None
     if access is not None and access not in ACCESS:
         raise ValueError(_say("access", text=access))
     enum = _pairs(values.get("enum", ""), "enum", *PAIRS["enum"])
     bits = _pairs(values.get("bits", ""), "bits", *PAIRS["bits"])
-    signed_text = values.get("signed", "").strip()
+    signed_text = values.get("signed", "").strip(_SPACE)
     if signed_text not in ("", "0", "1"):
         raise ValueError(_say("signed", text=signed_text))
     signed = signed_text == "1"
-    kind = values.get("type", "").strip().lower() or DEFAULT_TYPES[signed]
+    kind = values.get("type", "").strip(_SPACE).translate(_LOWER) or DEFAULT_TYPES[signed]
     if kind not in TYPES:
         raise ValueError(_say("type", text=kind))
     signed = signed or kind in SIGNED_TYPES
     words = TYPES[kind]
-    order = values.get("order", "").strip().upper() or ORDERS[0]
+    order = values.get("order", "").strip(_SPACE).translate(_UPPER) or ORDERS[0]
     if order not in ORDERS:
         raise ValueError(_say("order", text=order))
     if words == 2 and (enum or bits):
@@ -205,14 +220,14 @@ def _row(values: dict[str, str]) -> RegisterDef:
     return RegisterDef(
         address=address,
         code=code,
-        name=printable(values.get("name", "").strip()) or None,
-        unit=printable(values.get("unit", "").strip()) or None,
+        name=printable(values.get("name", "").strip(_SPACE)) or None,
+        unit=printable(values.get("unit", "").strip(_SPACE)) or None,
         scale=scale,
         access=access,
         enum=enum,
         bits=bits,
         signed=signed,
-        source=printable(values.get("source", "").strip()) or None,
+        source=printable(values.get("source", "").strip(_SPACE)) or None,
         decimals=decimals,
         ambiguous_8000=signed or 15 in bits or 0x8000 in enum or words == 2,
         words=words,
@@ -221,7 +236,7 @@ def _row(values: dict[str, str]) -> RegisterDef:
     )
 
 
-_DECIMAL_COMMA = re.compile(r"[-+]?\d+,\d+")
+_DECIMAL_COMMA = re.compile(r"[-+]?[0-9]+,[0-9]+")
 # A scale is a plain decimal number, as the plugin reads it (maps.lua scale_decimals).
 _SCALE = re.compile(r"[-+]?([0-9]+\.?[0-9]*|\.[0-9]+)([eE][-+]?[0-9]+)?")
 
@@ -242,7 +257,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     first_line: dict[int, int] = {}
     wide: dict[int, int] = {}  # second register of a 32-bit row -> its first
     for number, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
+        stripped = line.strip(_SPACE)
         if not stripped or stripped.startswith("#"):
             continue
         if header is None:
@@ -252,7 +267,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
         except csv.Error as error:
             raise ProfileError(f"{origin}:{number}: {error}") from None
         if header is None:
-            header = [cell.strip().lower() for cell in cells]
+            header = [cell.strip(_SPACE).translate(_LOWER) for cell in cells]
             unknown = [name for name in header if name not in COLUMNS]
             if unknown:
                 raise ProfileError(f"{origin}:{number}: " + _say("unknown_column", name=unknown[0]))
@@ -269,7 +284,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             )
         values = dict(zip(header, cells))
         scale = values.get("scale", "")
-        if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip()):
+        if delimiter != "," and _DECIMAL_COMMA.fullmatch(scale.strip(_SPACE)):
             values["scale"] = scale.replace(",", ".")  # `0,1`: the decimal comma of the same spreadsheets
         try:
             row = _row(values)
