@@ -2548,11 +2548,7 @@ end
 local function time_at(s, offset)
   local times = s.times
   for index = #times - 1, 1, -2 do
-    if times[index] <= offset then
-      local time = times[index + 1]
-      if time == false then return nil end
-      return time
-    end
+    if times[index] <= offset then return times[index + 1] or nil end
   end
   return nil
 end
@@ -3737,10 +3733,12 @@ local UNMATCHED = say("unmatched", {})
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
 
--- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more.
-local function unanswered(pending)
+-- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more, and the
+-- stream awaits no answer.
+local function unanswered(st, pending)
   pending.unanswered, pending.fields = true, nil
   release_run(pending.registers)
+  st.pending = nil
 end
 
 local function pair(st, f)
@@ -3749,12 +3747,11 @@ local function pair(st, f)
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
     and f.time - pending.time > timeout then
-    unanswered(pending)
-    late, pending, st.pending = pending, nil, nil
+    unanswered(st, pending)
+    late, pending = pending, nil
   end
   if f.kind == REQUEST then
-    if pending ~= nil then unanswered(pending) end
-    st.pending = nil
+    if pending ~= nil then unanswered(st, pending) end
     if f.slave == 0 then
       f.broadcast = true
     else
@@ -3769,14 +3766,10 @@ local function pair(st, f)
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
     warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
-    if pending ~= nil then
-      unanswered(pending)
-      st.pending = nil
-    end
+    if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
     local notes = f.notes
-    if notes == nil then notes = {}; f.notes = notes end
-    notes[#notes + 1] = UNMATCHED
+    if notes == nil then f.notes = { UNMATCHED } else notes[#notes + 1] = UNMATCHED end
   end
 end
 
@@ -5439,14 +5432,15 @@ local function take_frame(st, item, whole)
   -- table (the display reads the tvb) and the decoded fields once nothing can ask for them (a
   -- request's, until its answer is decoded or it can have none). (Warnings and notes are lists made
   -- with their first entry: none is empty.)
+  -- The request it answers may have come through the stream's buffer: its registers are released.
+  local request = item.request
+  if request ~= nil then
+    request.fields = nil
+    release_run(request.registers)
+  end
   -- A record's one frame (whole) is copied by pack.settle, which takes none of these keys (and its
   -- indices are the frame's own already); a request awaiting its answer keeps its byte table until then.
-  -- The request it answers may have come through the stream's buffer: its registers are released.
-  if whole then
-    local request = item.request
-    if request ~= nil then release_run(request.registers) end
-    return device
-  end
+  if whole then return device end
   item.b = nil
   -- Indices into the frame's own bytes from now on (the display rebuilds them from the tvb; a
   -- pending request's registers once its answer has been read), and what is known from the kind of
@@ -5462,15 +5456,7 @@ local function take_frame(st, item, whole)
     for at = 1, #objects do objects[at].offset = objects[at].offset - bi end
   end
   item.bi, item.data_at, item.data_len = nil, nil, nil
-  if item.kind ~= REQUEST then
-    item.fields = nil
-    release_run(item.registers)
-    local request = item.request
-    if request ~= nil then
-      request.fields = nil
-      release_run(request.registers)
-    end
-  elseif st.pending ~= item then
+  if item.kind ~= REQUEST or st.pending ~= item then
     item.fields = nil
     release_run(item.registers)
   end
@@ -5663,16 +5649,11 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
   -- the lifting rules of read_registers_response, read_bits_response: the request's start and quantity, its
   -- byte count agreeing
-  local fields = pending.fields
-  if fields == nil then return nil end
+  if pending.fields == nil then return nil end
   local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
   local bits = run.bits
-  if bits then
-    if count ~= ceil_bytes(quantity) then return nil end
-  elseif count ~= 2 * quantity then
-    return nil
-  end
+  if count ~= (bits and ceil_bytes(quantity) or 2 * quantity) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
   if not device then return nil end
@@ -5763,11 +5744,11 @@ end
 -- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
 -- its bytes, or, a request that writes (FC15, FC16, FC23 by the protocol table), by its bytes before the
 -- values), for the device it was met with, is framed, paired and decoded as feed_whole, dissect_record and
--- take_frame would do it, in one table. A request known by its
--- bytes before the values has its CRC checked and its runs read from its own bytes, and goes the general
--- path where a register it writes is under a layout rule that holds now (annotate_one would note it).
--- Returns the record, as dissect_record does (shown and kept by dissect_records as such); nil, with
--- nothing changed, for any other record.
+-- take_frame would do it, in one table. A request known by its bytes before the values has its CRC
+-- checked and its runs read from its own bytes, and goes the general path where a register it writes is
+-- under a layout rule that holds now (annotate_one would note it).
+-- Returns the record, as dissect_record does (shown and kept by dissect_records as such), and its Info
+-- text; nil, with nothing changed, for any other record.
 lane.spare = {}
 function lane.request(st, bytes, n, time, number, slave, code, quiet)
   local byte = string.byte
@@ -5840,7 +5821,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   local record = { f }
   st.last = record
   st.whole_record = record
-  return record
+  return record, f.info
 end
 
 dissect_record = function(st, bytes, time, number)
@@ -5908,13 +5889,8 @@ function lane.decode(st, bytes, n, time, number)
     local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
     if config.default == AUTO and config.per_slave[slave] == nil then quiet = lane.quiet(st, slave, code, answer) end
     if quiet ~= false then
-      if answer then
-        local kept, info = lane.answer(st, bytes, n, time, number, slave, code, quiet)
-        if kept ~= nil then return kept, n, info end
-      else
-        local record = lane.request(st, bytes, n, time, number, slave, code, quiet)
-        if record ~= nil then return record, n, record[1].info end
-      end
+      local kept, info = (answer and lane.answer or lane.request)(st, bytes, n, time, number, slave, code, quiet)
+      if kept ~= nil then return kept, n, info end
     end
   end
   return dissect_record(st, bytes, time, number), n
@@ -5946,8 +5922,7 @@ function lane.again(st)
   fresh.frozen, fresh.chosen, fresh.history, fresh.fixed = frozen, chosen, history, fixed
   local records = st.records
   for _, number in ipairs(again.order) do
-    local bytes, time = again.bytes[number], again.times[number]
-    if time == false then time = nil end
+    local bytes, time = again.bytes[number], again.times[number] or nil -- (false: a record without a time)
     local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
     if not ok then result = { length = #bytes, error = tostring(result) } end
     fresh.records[number] = result

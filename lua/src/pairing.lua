@@ -9,10 +9,12 @@ local UNMATCHED = say("unmatched", {})
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
 
--- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more.
-local function unanswered(pending)
+-- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more, and the
+-- stream awaits no answer.
+local function unanswered(st, pending)
   pending.unanswered, pending.fields = true, nil
   release_run(pending.registers)
+  st.pending = nil
 end
 
 local function pair(st, f)
@@ -21,12 +23,11 @@ local function pair(st, f)
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
     and f.time - pending.time > timeout then
-    unanswered(pending)
-    late, pending, st.pending = pending, nil, nil
+    unanswered(st, pending)
+    late, pending = pending, nil
   end
   if f.kind == REQUEST then
-    if pending ~= nil then unanswered(pending) end
-    st.pending = nil
+    if pending ~= nil then unanswered(st, pending) end
     if f.slave == 0 then
       f.broadcast = true
     else
@@ -41,14 +42,10 @@ local function pair(st, f)
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
     warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
-    if pending ~= nil then
-      unanswered(pending)
-      st.pending = nil
-    end
+    if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
     local notes = f.notes
-    if notes == nil then notes = {}; f.notes = notes end
-    notes[#notes + 1] = UNMATCHED
+    if notes == nil then f.notes = { UNMATCHED } else notes[#notes + 1] = UNMATCHED end
   end
 end
 

@@ -28,11 +28,7 @@ end
 local function time_at(s, offset)
   local times = s.times
   for index = #times - 1, 1, -2 do
-    if times[index] <= offset then
-      local time = times[index + 1]
-      if time == false then return nil end
-      return time
-    end
+    if times[index] <= offset then return times[index + 1] or nil end
   end
   return nil
 end
