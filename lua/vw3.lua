@@ -2818,24 +2818,20 @@ end
 -- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
 -- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
 local function scan_match(s, b, i, n, minimum, final)
-  local last = math.min(n - i, MAX_ADU)
-  if minimum < 2 then minimum = 2 end
   local from = 1
   if s.glitch_runs >= GLITCHY_AFTER then from = 2 end -- (a 00 after a frame is a glitch: rtu.py _scan)
-  if minimum <= last then
-    local lengths = crc_lengths(b, i, n, minimum, last)
-    for pass = from, 2 do
-      for k = 1, #lengths do
-        local length = lengths[k]
-        local following
-        if pass == 1 then following = valid_frame_at(s, b, i + length, n, final)
-        else following = followed(s, b, i + length, n, final) end
-        if following == nil then return NEED end
-        if following then
-          local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
-          if inside == nil then return NEED end
-          if not inside then return length end
-        end
+  local lengths = crc_lengths(b, i, n, minimum, math.min(n - i, MAX_ADU)) -- (none when minimum is past it)
+  for pass = from, 2 do
+    for k = 1, #lengths do
+      local length = lengths[k]
+      local following
+      if pass == 1 then following = valid_frame_at(s, b, i + length, n, final)
+      else following = followed(s, b, i + length, n, final) end
+      if following == nil then return NEED end
+      if following then
+        local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
+        if inside == nil then return NEED end
+        if not inside then return length end
       end
     end
   end
