@@ -3072,11 +3072,9 @@ local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its 
 local function detect_mode(sample)
   -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
   local colon = sample:find(":", 1, true)
-  if colon == nil then return "rtu" end
-  local following = sample:sub(colon + 1, colon + 2)
-  if #following == 0 then return "rtu" end
-  for k = 1, #following do
-    if not HEX[following:byte(k)] then return "rtu" end
+  if colon == nil or colon == #sample then return "rtu" end
+  for k = colon + 1, math.min(colon + 2, #sample) do -- (the one or two bytes after it)
+    if not HEX[sample:byte(k)] then return "rtu" end
   end
   local inside = 0
   for k = 1, #sample do
