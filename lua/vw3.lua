@@ -5943,15 +5943,11 @@ package.preload["vw3.api"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.api"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, configure, crc16, dissect_record = DATA, configure, crc16, dissect_record
-local exception_name, finish, function_name, new_state = exception_name, finish, function_name, new_state
-local pack = pack
+local configure, dissect_record, finish, new_state, pack = configure, dissect_record, finish, new_state, pack
 
 local vw3 = {
-  DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,
-  settle = pack.settle,
-  function_name = function_name, exception_name = exception_name, configure = configure,
-  config = function() return config end,
+  new_state = new_state, dissect_record = dissect_record, finish = finish, settle = pack.settle,
+  configure = configure,
 }
 
 M.vw3 = vw3

@@ -5,10 +5,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 local vw3 = {
-  DATA = DATA, new_state = new_state, dissect_record = dissect_record, finish = finish, crc16 = crc16,
-  settle = pack.settle,
-  function_name = function_name, exception_name = exception_name, configure = configure,
-  config = function() return config end,
+  new_state = new_state, dissect_record = dissect_record, finish = finish, settle = pack.settle,
+  configure = configure,
 }
 
 M.vw3 = vw3
