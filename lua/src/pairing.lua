@@ -45,7 +45,11 @@ local function pair(st, f)
     if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
     local notes = f.notes
-    if notes == nil then f.notes = { UNMATCHED } else notes[#notes + 1] = UNMATCHED end
+    if notes == nil then
+      f.notes = { UNMATCHED }
+    else
+      notes[#notes + 1] = UNMATCHED
+    end
   end
 end
 
