@@ -2,7 +2,8 @@
  * when a Report is attached to the Stats), what render/report/collect.py ReportCollector.add and .state and
  * render/report/health.py Health.add_items do with its frames: the x axis (the frame's time, its number when
  * untimed) and its doublings, the unanswered and exception events, a point per value read or confirmed
- * written in its series' Columns (_columns.h), the setpoints written, the response times per slave.
+ * written in its series' Columns (_columns.h), the response times per slave. (The setpoints written are the
+ * parameter table's: html.py asks Stats.writes.)
  * The Python objects keep the state: their scalars are taken at the start of each engine run (pull) and
  * given back at its end (push); the rare steps that need Python call their methods (a series' first value
  * and each value first seen: y as the device scales it, code, unit, labels, ReportCollector.engine_point;
@@ -30,7 +31,7 @@ typedef struct {
 typedef struct {
     PyObject_HEAD
     PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
-    PyObject *series, *h_series, *written; /* their containers */
+    PyObject *series, *h_series; /* their containers */
     int timed;   /* -1: not known yet */
     Time origin, first, last, h_origin;
     double width, limit, h_width, h_limit;
@@ -42,7 +43,6 @@ typedef struct {
     size_t point_count;
     PyObject *namers[256]; /* the namer each slave's cached points were read with */
     unsigned epochs[256];
-    uint8_t *bits[256];    /* per slave: the addresses written */
     unsigned gen;
     unsigned long long spans; /* ReportCollector.spans when last pulled */
     int full; /* the collector holds MAX_SERIES series, every one in `trends` */
@@ -184,29 +184,6 @@ static int report_event(Report *r, const Time *x, const char *kind, int slave, P
     return status;
 }
 
-static uint8_t *report_bits(Report *r, int slave) {
-    if (r->bits[slave] == NULL && (r->bits[slave] = PyMem_Calloc(1, BITMAP_BYTES)) == NULL) PyErr_NoMemory();
-    return r->bits[slave];
-}
-
-/* Health.add_items of a request writing `w`: the setpoints written (bounded as the parameter table). */
-static int report_written(Report *r, int slave, const Words *w) {
-    uint8_t *bits = report_bits(r, slave);
-    if (bits == NULL) return -1;
-    for (unsigned k = 0; k < w->count && PySet_GET_SIZE(r->written) < MAX_PARAMETERS; k++) {
-        unsigned address = words_address(w, k);
-        if (bit(bits, address)) continue;
-        PyObject *key = Py_BuildValue("(iI)", slave, address);
-        if (key == NULL || PySet_Add(r->written, key) < 0) {
-            Py_XDECREF(key);
-            return -1;
-        }
-        Py_DECREF(key);
-        bits[address >> 3] |= (uint8_t)(1 << (address & 7));
-    }
-    return 0;
-}
-
 /* Health._point: a response time `y` of `slave` at `x`. */
 static int health_point(Report *r, int slave, const Time *x, double y) {
     if (r->health == Py_None) return 0;
@@ -345,13 +322,12 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
 
 /* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1. */
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *writes, const Words *confirmed, const Words *reads, unsigned long long number) {
+                              const Words *confirmed, const Words *reads, unsigned long long number) {
     Report *r = (Report *)report;
     const uint8_t *q = b + qf->at, *a = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
     Time x;
     if (report_x(r, qf->timed, qf->ns, number, &x) < 0) return -1;
-    if (writes != NULL && r->health != Py_None && report_written(r, slave, writes) < 0) return -1;
     if (a == NULL) return report_event(r, &x, "unanswered", slave, PyUnicode_FromFormat("function %d unanswered", function));
     if (report_x(r, af->timed, af->ns, number + 1, &x) < 0) return -1;
     Time at = stamp_time(1, af->ns);
@@ -380,16 +356,8 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     r->collector = objects[0], r->health = objects[1], r->stamp = objects[2], r->exception = objects[3];
     for (int k = 0; k < 4; k++) Py_INCREF(objects[k]);
     r->series = PyObject_GetAttrString(r->collector, "series");
-    if (r->health != Py_None) {
-        r->h_series = PyObject_GetAttrString(r->health, "series");
-        r->written = PyObject_GetAttrString(r->health, "written");
-        if (r->written != NULL && !PySet_Check(r->written)) {
-            Py_CLEAR(r->written);
-            PyErr_SetString(PyExc_TypeError, "Health.written: a set");
-        }
-    }
-    if (r->series == NULL || (r->health != Py_None && (r->h_series == NULL || r->written == NULL)))
-        return -1;
+    if (r->health != Py_None) r->h_series = PyObject_GetAttrString(r->health, "series");
+    if (r->series == NULL || (r->health != Py_None && r->h_series == NULL)) return -1;
     for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)MAX_SERIES + 2;) r->trend_slots *= 2;
     r->trends = PyMem_Calloc(r->trend_slots, sizeof *r->trends);
     r->points = PyMem_Calloc(REPORT_POINTS, sizeof *r->points);
@@ -409,12 +377,11 @@ static void report_dealloc(Report *r) {
     for (int k = 0; k < 256; k++) {
         Py_XDECREF(r->h_columns[k]);
         Py_XDECREF(r->namers[k]);
-        PyMem_Free(r->bits[k]);
     }
     PyMem_Free(r->trends);
     PyMem_Free(r->points);
-    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series, r->written};
-    for (int k = 0; k < 7; k++) Py_XDECREF(objects[k]);
+    PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series};
+    for (int k = 0; k < 6; k++) Py_XDECREF(objects[k]);
     Py_TYPE(r)->tp_free((PyObject *)r);
 }
 
@@ -437,8 +404,7 @@ static PyTypeObject ReportType = {
     .tp_basicsize = sizeof(Report),
     .tp_flags = Py_TPFLAGS_DEFAULT,
     .tp_doc = "Report(collector, health, stamp, exception): --report fed by the engine (render/report/collect.py,\n"
-              "health.py; their COLUMNS, MAX_SERIES and the written set's bound, MAX_PARAMETERS, from _tables.h); set\n"
-              "as Stats.report.",
+              "health.py; their COLUMNS and MAX_SERIES from _tables.h); set as Stats.report.",
     .tp_new = PyType_GenericNew,
     .tp_init = (initproc)report_init,
     .tp_dealloc = (destructor)report_dealloc,

@@ -74,7 +74,7 @@ typedef struct {
 #define PARAMS(st) ((Param *)(st)->params.items)
 
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *writes, const Words *confirmed, const Words *reads, unsigned long long number);
+                              const Words *confirmed, const Words *reads, unsigned long long number);
 
 static PyTypeObject StatsType;
 
@@ -231,7 +231,7 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
-    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, writes, confirmed, reads, number) < 0) return -1;
+    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number) < 0) return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
     if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
@@ -509,6 +509,17 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
                          totals[4]);
 }
 
+/* writes(slave, address) -> the writes counted of that parameter (0: none, or not kept): the report's
+ * setpoints (report/html.py). */
+static PyObject *stats_writes(Stats *st, PyObject *args) {
+    unsigned char slave;
+    unsigned short address;
+    if (!PyArg_ParseTuple(args, "bH", &slave, &address)) return NULL;
+    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | address;
+    const Param *p = dense_find(&st->params, &PARAM_KIND, &key);
+    return PyLong_FromUnsignedLong(p != NULL ? p->counts[PARAM_WRITES] : 0);
+}
+
 /* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
 static PyObject *stats_polls(Stats *st, PyObject *unused) {
     PyObject *rows = PyList_New((Py_ssize_t)st->polls.count);
@@ -781,6 +792,7 @@ static PyMethodDef stats_methods[] = {
     {"table", (PyCFunction)stats_table, METH_VARARGS,
      "table(max_rows, group_min) -> (pieces, expanded, count, totals): the --stats parameter table's rows"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
+    {"writes", (PyCFunction)stats_writes, METH_VARARGS, "writes(slave, address): the writes counted of a parameter"},
     {NULL, NULL, 0, NULL},
 };
 

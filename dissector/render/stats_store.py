@@ -148,6 +148,11 @@ class ParameterTable:
             for (slave, address), s in sorted(self._parameters.items())
         ]
 
+    def writes(self, slave: int, address: int) -> int:
+        """The writes counted of that parameter (0: none, or not kept)."""
+        stats = self._parameters.get((slave, address))
+        return 0 if stats is None else stats.writes
+
     def functions(self) -> dict[int, tuple[int, int, int, int, int, dict[int, int]]]:
         return {}  # the engine's counts: none here
 

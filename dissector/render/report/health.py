@@ -5,9 +5,7 @@
   as they are, COLUMNS + 1 columns a slave at most), drawn with the slave's outages
   (render/bustiming.py) as bands;
 - the bus load per minute (bustiming);
-- events grouped (groups.py);
-- which parameters were written (setpoints): their trends are drawn as steps, since a setpoint holds
-  until the next write.
+- events grouped (groups.py).
 """
 from __future__ import annotations
 
@@ -15,39 +13,24 @@ import json
 from typing import Any
 
 from dissector.model import Item, Kind
-from dissector.protocol.table import FUNCTIONS, Access
 from dissector.render.report.collect import COLUMNS, drawn, new_columns
-from dissector.render.stats_store import MAX_PARAMETERS
-
-# Requests whose registers are values written: setpoints (FC23's write half too).
-WRITES = frozenset(entry.code for entry in FUNCTIONS if entry.access in (Access.WRITE, Access.READ_WRITE))
 
 
 class Health:
-    """Response times per slave over time, and the parameters written; fed every item in order."""
+    """Response times per slave over time; fed every item in order."""
 
     def __init__(self) -> None:
         self.origin: float | None = None
         self.width = 1e-3
         self.limit = 0.0
         self.series: dict[int, Any] = {}
-        self.written: set[tuple[int, int]] = set()
 
     def add_items(self, items: list[Item]) -> None:
         for item in items:
             if item.kind is Kind.NOISE:
                 continue
             frame = item
-            if not frame.crc_ok:  # type: ignore[union-attr]
-                continue
-            if frame.kind is Kind.REQUEST:  # type: ignore[union-attr]
-                if frame.function in WRITES and frame.registers:  # type: ignore[union-attr]
-                    slave = frame.slave  # type: ignore[union-attr]
-                    for register in frame.registers:  # type: ignore[union-attr]
-                        # Bounded as the parameter table is (a write flood over every address of 64
-                        # slaves made this set 4 M pairs); only drawn series, at most MAX_SERIES, ask.
-                        if register.address is not None and len(self.written) < MAX_PARAMETERS:
-                            self.written.add((slave, register.address))
+            if not frame.crc_ok or frame.kind is Kind.REQUEST:  # type: ignore[union-attr]
                 continue
             seconds = frame.response_time  # type: ignore[union-attr]
             if seconds is not None:

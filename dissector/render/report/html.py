@@ -191,9 +191,11 @@ def report_pieces(
     # points are written series by series)
     data["clock"] = extras.get("time_format", "r")
     data["first"] = collector.first_x
-    if health is not None:  # slave:address of the series drawn written (report.js asks of no other: the
-        # max-size mix's 26,402 were 1.7 MB of text, 260 kB of the page)
-        data["written"] = sorted(map("%d:%d".__mod__, health.written & drawn))
+    if health is not None:  # slave:address of the series drawn that requests asked to write, as the
+        # parameter table counts them: setpoints, drawn as steps, since one holds until the next write
+        # (report.js asks of no other: the max-size mix's 26,402 were 1.7 MB of text, 260 kB of the page)
+        writes = stats.store.writes
+        data["written"] = sorted("%d:%d" % key for key in drawn if writes(*key))
     # The response-time series come as JSON text (health.py): written in where their key is, the last
     # occurrence of the stand-in (only "clock", "first" and "written" come after it).
     responses = data.get("responses")
