@@ -4597,22 +4597,19 @@ package.preload["vw3.explain"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION = LIFT_OF, NOT_BROADCAST, NO_INTERPRETATION
-local PLAIN_READS, PLC_LABELS, READ_LIMIT, REQUEST = PLAIN_READS, PLC_LABELS, READ_LIMIT, REQUEST
-local RESPONSE, address_name, address_runs, concat = RESPONSE, address_name, address_runs, concat
-local consecutive, format, function_name, ipairs, lane = consecutive, format, function_name, ipairs, lane
-local math, next, note, plc_base, python_repr, say = math, next, note, plc_base, python_repr, say
-local span_name, story, tonumber, track, u16, warn = span_name, story, tonumber, track, u16, warn
+local LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS
+local READ_LIMIT, REQUEST, RESPONSE, address_name = READ_LIMIT, REQUEST, RESPONSE, address_name
+local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
+local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
+local plc_base, python_repr, say, span_name, story = plc_base, python_repr, say, span_name, story
+local tonumber, track, u16, warn = tonumber, track, u16, warn
 
-local function profile_function_name(profile, code)
-  return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
-end
-
--- A quantity above the device's limit for the function (limit: nil when the device gives none).
+-- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
+-- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
 local function check_limit(f, profile, what, quantity, limit)
   if limit ~= nil and quantity ~= nil and quantity > limit then
     warn(f, say("device_limit", { what = what, quantity = quantity, device = profile.device, limit = limit,
-      name = profile_function_name(profile, f.fn) }))
+      name = f.function_text or function_name(f.fn) }))
   end
 end
 
@@ -4620,11 +4617,11 @@ local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
   local refused = profile.functions ~= nil and not profile.functions[code] and "not_supported"
-    or profile.inner_only and profile.inner_only[code] and "inner_only"
+    or profile.inner_only[code] and "inner_only"
   if refused then
-    warn(f, say(refused, { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say(refused, { name = f.function_text or function_name(code), ["function"] = code, device = profile.device }))
   end
-  local limits = (profile.limits or NO_INTERPRETATION)[code]
+  local limits = profile.limits[code]
   if limits ~= nil then
     -- (no tables: this runs for every request)
     local rule = LIFT_OF[REQUEST][code]
@@ -4639,7 +4636,7 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
+    warn(f, say("device_broadcast", { name = f.function_text or function_name(code), device = profile.device,
       allowed = profile.broadcast_allowed }))
   end
 end
@@ -4647,7 +4644,7 @@ end
 local function holds(when, request, profile)
   local fields, quantity = request.fields, request.quantity
   if when == "quantity" then
-    local limit = ((profile.limits or NO_INTERPRETATION)[request.fn] or { READ_LIMIT })[1]
+    local limit = (profile.limits[request.fn] or { READ_LIMIT })[1]
     return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
   end
   return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
@@ -4704,9 +4701,9 @@ local function explain_exception(st, f, device)
   local profile = device.profile
   local code = f.exception_code
   if code == nil then return end
-  local name = profile_function_name(profile, f.fn)
-  local causes = (profile.exception_causes or {})[f.fn * 256 + code]
-  local meanings = profile.exceptions or {}
+  local name = f.function_text or function_name(f.fn)
+  local causes = profile.exception_causes[f.fn * 256 + code]
+  local meanings = profile.exceptions
   f.exception_meaning = meanings[code]
   local request = f.request
   if causes ~= nil and #causes > 0 then
@@ -4730,7 +4727,7 @@ end
 
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
-    local meaning, value = (profile.objects or NO_INTERPRETATION)[object.id], object.value
+    local meaning, value = profile.objects[object.id], object.value
     if meaning ~= nil and meaning.format == "MMmm" and value:match("^%d%d%d%d$") then -- (a revision, V5.2)
       object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
     elseif meaning ~= nil then
@@ -4745,7 +4742,7 @@ end
 local function diagnostics_note(f, device, b)
   local profile = device.profile
   local sub = f.subfunction
-  local meaning = (profile.diagnostics or {})[sub]
+  local meaning = profile.diagnostics[sub]
   if meaning == nil then return end
   f.subfunction_text = meaning
   local text = say("subfunction_meaning", { subfunction = sub, device = profile.device, meaning = meaning })
@@ -5055,18 +5052,17 @@ package.preload["vw3.annotator"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.annotator"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION = AUTO, CONFIRMED, EXCEPTION, NO_INTERPRETATION
-local PROFILES, READS, REQUEST, RESPONSE = PROFILES, READS, REQUEST, RESPONSE
-local annotate_registers, check_request, concat, describe = annotate_registers, check_request, concat, describe
-local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, ipairs, math, pairs = explain_objects, ipairs, math, pairs
-local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
+local AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST = AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST
+local RESPONSE, annotate_registers, check_request, concat = RESPONSE, annotate_registers, check_request, concat
+local describe, device_of, diagnostics_note = describe, device_of, diagnostics_note
+local explain_exception, explain_objects, ipairs, math = explain_exception, explain_objects, ipairs, math
+local pairs, parse_map_choice, parse_profile_choice = pairs, parse_map_choice, parse_profile_choice
 local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
 local select, span_label, string, table, words_at = select, span_label, string, table, words_at
 
 local function annotate_with(st, f, b, device)
   if not device then return end
-  local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
+  local special_name = device.profile.function_names[f.fn]
   if special_name ~= nil then f.function_text = special_name end
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind

@@ -6,7 +6,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 local function annotate_with(st, f, b, device)
   if not device then return end
-  local special_name = (device.profile.function_names or NO_INTERPRETATION)[f.fn]
+  local special_name = device.profile.function_names[f.fn]
   if special_name ~= nil then f.function_text = special_name end
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind

@@ -4,15 +4,12 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
-local function profile_function_name(profile, code)
-  return (profile.function_names or NO_INTERPRETATION)[code] or function_name(code)
-end
-
--- A quantity above the device's limit for the function (limit: nil when the device gives none).
+-- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
+-- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
 local function check_limit(f, profile, what, quantity, limit)
   if limit ~= nil and quantity ~= nil and quantity > limit then
     warn(f, say("device_limit", { what = what, quantity = quantity, device = profile.device, limit = limit,
-      name = profile_function_name(profile, f.fn) }))
+      name = f.function_text or function_name(f.fn) }))
   end
 end
 
@@ -20,11 +17,11 @@ local function check_request(f, device)
   local profile = device.profile
   local code = f.fn
   local refused = profile.functions ~= nil and not profile.functions[code] and "not_supported"
-    or profile.inner_only and profile.inner_only[code] and "inner_only"
+    or profile.inner_only[code] and "inner_only"
   if refused then
-    warn(f, say(refused, { name = profile_function_name(profile, code), ["function"] = code, device = profile.device }))
+    warn(f, say(refused, { name = f.function_text or function_name(code), ["function"] = code, device = profile.device }))
   end
-  local limits = (profile.limits or NO_INTERPRETATION)[code]
+  local limits = profile.limits[code]
   if limits ~= nil then
     -- (no tables: this runs for every request)
     local rule = LIFT_OF[REQUEST][code]
@@ -39,7 +36,7 @@ local function check_request(f, device)
   end
   -- (decode_frame already warned where the spec's own rule forbids the broadcast)
   if f.broadcast and profile.broadcast ~= nil and not profile.broadcast[code] and not NOT_BROADCAST[code] then
-    warn(f, say("device_broadcast", { name = profile_function_name(profile, code), device = profile.device,
+    warn(f, say("device_broadcast", { name = f.function_text or function_name(code), device = profile.device,
       allowed = profile.broadcast_allowed }))
   end
 end
@@ -47,7 +44,7 @@ end
 local function holds(when, request, profile)
   local fields, quantity = request.fields, request.quantity
   if when == "quantity" then
-    local limit = ((profile.limits or NO_INTERPRETATION)[request.fn] or { READ_LIMIT })[1]
+    local limit = (profile.limits[request.fn] or { READ_LIMIT })[1]
     return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
   end
   return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
@@ -104,9 +101,9 @@ local function explain_exception(st, f, device)
   local profile = device.profile
   local code = f.exception_code
   if code == nil then return end
-  local name = profile_function_name(profile, f.fn)
-  local causes = (profile.exception_causes or {})[f.fn * 256 + code]
-  local meanings = profile.exceptions or {}
+  local name = f.function_text or function_name(f.fn)
+  local causes = profile.exception_causes[f.fn * 256 + code]
+  local meanings = profile.exceptions
   f.exception_meaning = meanings[code]
   local request = f.request
   if causes ~= nil and #causes > 0 then
@@ -130,7 +127,7 @@ end
 
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
-    local meaning, value = (profile.objects or NO_INTERPRETATION)[object.id], object.value
+    local meaning, value = profile.objects[object.id], object.value
     if meaning ~= nil and meaning.format == "MMmm" and value:match("^%d%d%d%d$") then -- (a revision, V5.2)
       object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
     elseif meaning ~= nil then
@@ -145,7 +142,7 @@ end
 local function diagnostics_note(f, device, b)
   local profile = device.profile
   local sub = f.subfunction
-  local meaning = (profile.diagnostics or {})[sub]
+  local meaning = profile.diagnostics[sub]
   if meaning == nil then return end
   f.subfunction_text = meaning
   local text = say("subfunction_meaning", { subfunction = sub, device = profile.device, meaning = meaning })
