@@ -114,12 +114,8 @@ local MARKER_TEXTS = { ["non-existent"] = say("marker_non_existent", {}), protec
 -- its 16#8000 status (nil: the profile has none, or this is no read). Notes and the story go on.
 local function annotate_one(f, device, address, value, protected, multi, label, words)
   local row = device.rows[address]
-  local plain = false
   local rule = story.plain_rule(device, address, row)
-  if rule ~= nil then
-    plain = true
-    if not has_note(f, rule.reason) then note(f, rule.reason) end
-  end
+  if rule ~= nil and not has_note(f, rule.reason) then note(f, rule.reason) end
   local status = nil
   if protected ~= nil then
     status = "ok"
@@ -135,7 +131,7 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     end
     track(device.seen, f, address, row, value, status, MARKER_NOW, label)
   end
-  return plain, status
+  return rule ~= nil, status
 end
 
 local function plc_base(device, f)
