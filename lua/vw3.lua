@@ -131,28 +131,28 @@ local DATA = {
     ["min_binary"] = 3,
     ["share"] = 0.9,
     ["hex_digits"] = {
-      [48] = true,
-      [49] = true,
-      [50] = true,
-      [51] = true,
-      [52] = true,
-      [53] = true,
-      [54] = true,
-      [55] = true,
-      [56] = true,
-      [57] = true,
-      [65] = true,
-      [66] = true,
-      [67] = true,
-      [68] = true,
-      [69] = true,
-      [70] = true,
-      [97] = true,
-      [98] = true,
-      [99] = true,
-      [100] = true,
-      [101] = true,
-      [102] = true,
+      [48] = 0,
+      [49] = 1,
+      [50] = 2,
+      [51] = 3,
+      [52] = 4,
+      [53] = 5,
+      [54] = 6,
+      [55] = 7,
+      [56] = 8,
+      [57] = 9,
+      [65] = 10,
+      [66] = 11,
+      [67] = 12,
+      [68] = 13,
+      [69] = 14,
+      [70] = 15,
+      [97] = 10,
+      [98] = 11,
+      [99] = 12,
+      [100] = 13,
+      [101] = 14,
+      [102] = 15,
     },
     ["alphabet"] = {
       [10] = true,
@@ -3054,8 +3054,7 @@ package.preload["vw3.ascii"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, add_noise, crc16, emit, floor, flush_noise = DATA, add_noise, crc16, emit, floor, flush_noise
-local format, interpretations, ipairs, math, string = format, interpretations, ipairs, math, string
-local time_at, tonumber = time_at, tonumber
+local format, interpretations, ipairs, math, time_at = format, interpretations, ipairs, math, time_at
 -- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -3066,7 +3065,7 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 -- and alphabet: dissector/protocol/ascii.py.
 local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
-local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
+local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 local function detect_mode(sample)
@@ -3121,15 +3120,13 @@ local function ascii_candidate(s, at, length, items)
   local lost_cr = length < 3 or b[at + length - 2] ~= CR
   local digits = length - 3
   if lost_cr then digits = length - 2 end
-  local lower = false
   if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
-  for k = at + 1, at + digits do
-    if not HEX[b[k]] then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
-    if b[k] >= 97 then lower = true end
-  end
-  local bin, count = {}, floor(digits / 2)
+  local bin, count, lower = {}, floor(digits / 2), false
   for k = 0, count - 1 do
-    bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
+    local high, low = b[at + 1 + 2 * k], b[at + 2 + 2 * k]
+    if not (HEX[high] and HEX[low]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if high >= 97 or low >= 97 then lower = true end
+    bin[k] = HEX[high] * 16 + HEX[low]
   end
   if count < MIN_BINARY then return reject(s, at, length, "ASCII frame too short", items) end
   local slave, code = bin[0], bin[1]

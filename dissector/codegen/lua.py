@@ -110,7 +110,7 @@ def plugin_data() -> dict[str, Any]:
             "max_ascii": ascii_mode.MAX_ASCII,
             "min_binary": ascii_mode.MIN_BINARY,
             "share": ascii_mode.ASCII_SHARE,
-            "hex_digits": ascii_mode._HEX_DIGITS,
+            "hex_digits": {digit: int(chr(digit), 16) for digit in sorted(ascii_mode._HEX_DIGITS)},  # (their values)
             "alphabet": ascii_mode._ALPHABET,  # (the characters of ASCII mode: hex digits, ':', CR, LF)
             "delimiters": [ascii_mode.COLON, ascii_mode.CR, ascii_mode.LF],
             "mode_sample": reader.MODE_SAMPLE,

@@ -13,7 +13,7 @@ local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format
 -- and alphabet: dissector/protocol/ascii.py.
 local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
-local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet
+local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
 local function detect_mode(sample)
@@ -68,15 +68,13 @@ local function ascii_candidate(s, at, length, items)
   local lost_cr = length < 3 or b[at + length - 2] ~= CR
   local digits = length - 3
   if lost_cr then digits = length - 2 end
-  local lower = false
   if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
-  for k = at + 1, at + digits do
-    if not HEX[b[k]] then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
-    if b[k] >= 97 then lower = true end
-  end
-  local bin, count = {}, floor(digits / 2)
+  local bin, count, lower = {}, floor(digits / 2), false
   for k = 0, count - 1 do
-    bin[k] = tonumber(string.char(b[at + 1 + 2 * k], b[at + 2 + 2 * k]), 16)
+    local high, low = b[at + 1 + 2 * k], b[at + 2 + 2 * k]
+    if not (HEX[high] and HEX[low]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if high >= 97 or low >= 97 then lower = true end
+    bin[k] = HEX[high] * 16 + HEX[low]
   end
   if count < MIN_BINARY then return reject(s, at, length, "ASCII frame too short", items) end
   local slave, code = bin[0], bin[1]
