@@ -157,7 +157,7 @@ static void json_number(Out *o, double v, int digits, int whole) {
 
 /* (xs, ys): each column's distinct points in order (x, then y), none at or before the last x kept,
  * a run of equal values by its ends only. json (drawn_json): the two lists as collect.py drawn() makes
- * them (x - origin rounded to `digits`, y an int when whole, else rounded to 6 digits, or y * scale
+ * them (x - origin rounded to `digits`, y an int when whole, else rounded to Y_DIGITS, or y * scale
  * rounded to `places`) and json.dumps writes them; None when a value is not finite. */
 static PyObject *columns_list(Columns *self, int json, double origin, int digits, double scale, int places) {
     /* Kept points in C first (x, y), n / 2 + 1 each; made into lists or JSON text at the end. */
@@ -205,7 +205,7 @@ static PyObject *columns_list(Columns *self, int json, double origin, int digits
             if (!(finite = isfinite(x) && isfinite(scale != 0.0 ? y * scale : y))) break;
             json_number(&text[0], x, digits, 0);
             if (scale != 0.0) json_number(&text[1], y * scale, places, 0);
-            else json_number(&text[1], y, 6, floor(y) == y);
+            else json_number(&text[1], y, Y_DIGITS, floor(y) == y);
         }
         for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
         PyMem_Free(kx);

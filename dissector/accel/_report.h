@@ -156,7 +156,7 @@ static int report_x(Report *r, int timed, long long ns, unsigned long long numbe
     r->number = number;
     if (r->timed < 0) {
         r->timed = timed;
-        r->width = timed ? 1e-3 : 1.0;
+        r->width = timed ? TIMED_WIDTH : UNTIMED_WIDTH;
     }
     *x = !r->timed ? (Time){1, 0, 0, (double)number} : timed ? stamp_time(1, ns) : (Time){1, 0, 0, 0.0};
     if (!r->origin.has) {
@@ -422,11 +422,11 @@ static int stats_set_report(Stats *st, PyObject *value, void *closure) {
 }
 
 /* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:
- * from the lowest to the highest, (high - low) / bins wide (1e-4 s when all are equal); None: no bins. */
+ * from the lowest to the highest, (high - low) / bins wide (FLAT_BIN when all are equal); None: no bins. */
 static PyObject *time_bins(const Tally *t, size_t n, int bins) {
     if (bins <= 0) Py_RETURN_NONE;
     double low = (double)t[0].key / 1e9, width = ((double)t[n - 1].key / 1e9 - low) / bins, *counts;
-    if (width == 0.0) width = 1e-4;
+    if (width == 0.0) width = FLAT_BIN;
     if ((counts = PyMem_Calloc((size_t)bins, sizeof *counts)) == NULL) return PyErr_NoMemory();
     for (size_t k = 0; k < n; k++) {
         long long bin = (long long)(((double)t[k].key / 1e9 - low) / width);

@@ -678,7 +678,7 @@ static PyObject *time_summary(const Tally *t, size_t size, int bins) {
     unsigned long long half = (unsigned long long)count / 2;
     double median = (unsigned long long)count % 2 ? (double)tally_nth(t, size, (double)half + 1)
                   : (double)(tally_nth(t, size, (double)half) + tally_nth(t, size, (double)half + 1)) / 2;
-    double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(0.95 * count)));
+    double p95 = (double)tally_nth(t, size, fmax(1.0, ceil(PERCENTILE * count)));
     return Py_BuildValue("(KddddN)", (unsigned long long)count, (double)t[0].key / 1e9, median / 1e9, p95 / 1e9,
                          (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
 }

@@ -60,6 +60,7 @@ class FunctionStats:
     times: dict[int, int] = field(default_factory=dict)  # response time in ns -> how many
 
 
+PERCENTILE = 0.95  # p95: the nearest-rank percentile of the response times
 PLAIN_READS = frozenset([3, 4])  # reads whose exception can mean "every parameter read is unreadable"
 
 
@@ -514,7 +515,7 @@ def time_summary(times: dict[int, int]) -> dict[str, float | int] | None:
         "count": count,
         "min": ordered[0][0] / 1e9,
         "median": median / 1e9,
-        "p95": nth(max(1, math.ceil(0.95 * count))) / 1e9,
+        "p95": nth(max(1, math.ceil(PERCENTILE * count))) / 1e9,
         "max": ordered[-1][0] / 1e9,
     }
 

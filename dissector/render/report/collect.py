@@ -31,6 +31,8 @@ from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
 
 COLUMNS = 600
+TIMED_WIDTH, UNTIMED_WIDTH = 1e-3, 1.0  # a column's first width: a millisecond timed, a frame untimed
+Y_DIGITS = 6  # a y not whole is drawn rounded to this many places
 MAX_SERIES = 400
 MAX_MARKS = 200
 MAX_EVENTS = 1000
@@ -234,7 +236,7 @@ class ReportCollector:
         self.number = item.number
         if self.timed is None:
             self.timed = item.time is not None
-            self.width = 1e-3 if self.timed else 1.0
+            self.width = TIMED_WIDTH if self.timed else UNTIMED_WIDTH
         x = (item.time if item.time is not None else 0.0) if self.timed else float(item.number)
         if self.origin is None:
             self.origin = x
@@ -499,4 +501,4 @@ def _json(value: Any) -> str:
 
 
 def _number(y: float) -> float | int:
-    return int(y) if y.is_integer() else round(y, 6)
+    return int(y) if y.is_integer() else round(y, Y_DIGITS)

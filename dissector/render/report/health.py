@@ -13,7 +13,7 @@ import json
 from typing import Any
 
 from dissector.model import Item, Kind
-from dissector.render.report.collect import COLUMNS, drawn, new_columns
+from dissector.render.report.collect import COLUMNS, TIMED_WIDTH, drawn, new_columns
 
 
 class Health:
@@ -21,7 +21,7 @@ class Health:
 
     def __init__(self) -> None:
         self.origin: float | None = None
-        self.width = 1e-3
+        self.width = TIMED_WIDTH
         self.limit = 0.0
         self.series: dict[int, Any] = {}
 

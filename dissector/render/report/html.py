@@ -17,6 +17,7 @@ from dissector.render.stats_store import give_back
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
+FLAT_BIN = 1e-4  # a histogram's bin width (s) when its times are all equal
 _STAND_IN = "\0responses"
 _STAND_IN_JSON = json.dumps(_STAND_IN)
 
@@ -58,7 +59,7 @@ def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
             entry["time"] = summary = None if found is None else dict(zip(("count", "min", "median", "p95", "max"), found))
         if summary is not None:
             low, high = summary["min"], summary["max"]
-            width = (high - low) / HISTOGRAM_BINS or 1e-4
+            width = (high - low) / HISTOGRAM_BINS or FLAT_BIN
             if compiled is None:
                 counts = [0] * HISTOGRAM_BINS
                 for value, count in times.items():
