@@ -74,6 +74,10 @@ def test_random_events_same_rows() -> None:
         assert compiled.param(*event) == python.param(*event)
     assert compiled.parameters() == python.parameters()
     assert compiled.parameter_count == python.parameter_count == len(python.parameters())
+    # The report's setpoints (html.py): a parameter's writes, 0 for one never seen (address 40).
+    keys = [(slave, address) for slave in (1, 2, 3, 247) for address in range(41)]
+    assert [compiled.writes(*key) for key in keys] == [python.writes(*key) for key in keys]
+    assert any(python.writes(*key) for key in keys)
 
 
 def test_poll_keys_in_the_order_first_seen() -> None:
