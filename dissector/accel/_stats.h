@@ -510,7 +510,7 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
 }
 
 /* writes(slave, address) -> the writes counted of that parameter (0: none, or not kept): the report's
- * setpoints (report/html.py). */
+ * setpoints (report/html.py). ("b": a slave past 0..255 is an OverflowError; "H" keeps an address's 16 bits.) */
 static PyObject *stats_writes(Stats *st, PyObject *args) {
     unsigned char slave;
     unsigned short address;
@@ -621,15 +621,12 @@ static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
 
 static PyObject *quantile_value(const Quantile *q) { return Py_BuildValue("(Kdd)", q->count, q->low, q->high); }
 
-/* response(slave, function, ns): a response time of an answer the Python stages showed (StatsCollector.add). */
+/* response(slave, function, ns): a response time of an answer the Python stages showed (StatsCollector.add);
+ * slave and function 0..255 ("b": OverflowError past them). */
 static PyObject *stats_response(Stats *st, PyObject *args) {
-    int slave, function;
+    unsigned char slave, function;
     long long ns;
-    if (!PyArg_ParseTuple(args, "iiL", &slave, &function, &ns)) return NULL;
-    if (slave < 0 || slave > 255 || function < 0 || function > 255) {
-        PyErr_SetString(PyExc_ValueError, "response: slave and function 0..255");
-        return NULL;
-    }
+    if (!PyArg_ParseTuple(args, "bbL", &slave, &function, &ns)) return NULL;
     if (tally_add(st->tallies, TALLY_TIMES, slave << 8 | function, ns, 1) < 0) return NULL;
     Py_RETURN_NONE;
 }
