@@ -30,7 +30,6 @@ Counting rules (the table headers say the same):
 """
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 from dataclasses import dataclass, field
@@ -43,7 +42,7 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, TALLY_TIMES, Coarse, ParameterRow, give_back, stamp
+from dissector.render.stats_store import MAX_PARAMETERS, Coarse, ParameterRow, give_back, stamp
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -182,8 +181,10 @@ class StatsCollector:
             stats.unanswered += 1
 
     # -- results ------------------------------------------------------------------------------
-    def _all_functions(self) -> dict[tuple[int, int], FunctionStats]:
-        """The Python stages' counts plus the engine's (sums: the order of frames does not matter)."""
+    def all_functions(self) -> dict[tuple[int, int], FunctionStats]:
+        """Per (slave, function) the Python stages' counts plus the engine's (sums: the order of frames does
+        not matter); the response times are the Python stages' (attached, all of them are in the compiled
+        store: its time_summaries)."""
         merged = dict(self.functions)
         for slave, function, requests, responses, unanswered, exceptions in self.store.functions().values():
             own = merged.get((slave, function))
@@ -201,17 +202,6 @@ class StatsCollector:
             merged[(slave, function)] = stats
         return merged
 
-    def all_functions(self, times: bool = True) -> dict[tuple[int, int], FunctionStats]:
-        """Per (slave, function) the counts and the response times (ns -> count) of both sides (the
-        report's per slave table): attached, the times are all in the compiled store (`times`: taken)."""
-        merged = self._all_functions()
-        if self.attached and times:
-            for owner, times in self.store.tallies(TALLY_TIMES).items():
-                key = (owner >> 8, owner & 0xFF)
-                if key in merged:
-                    merged[key] = dataclasses.replace(merged[key], times=dict(times))
-        return merged
-
     def parameter_rows(self) -> list[ParameterRow]:
         """(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes) by
         (slave, address); last_text as the summary names the value, None when nothing does."""
@@ -225,7 +215,7 @@ class StatsCollector:
         functions = []
         # Attached to the compiled store, every response time is there: its summaries, worked out in C.
         summaries = self.store.time_summaries() if self.attached else None
-        for (slave, function), stats in sorted(self._all_functions().items()):
+        for (slave, function), stats in sorted(self.all_functions().items()):
             if summaries is None:
                 response_time = time_summary(stats.times)
             else:
@@ -377,7 +367,7 @@ class StatsCollector:
             if start is not None and quantity and row["function"] in (3, 4, 23):
                 windows.setdefault((row["slave"], row["function"] == 4), []).append((start, start + quantity))
         functions: dict[int, set[int]] = {}
-        for slave, function in self._all_functions():
+        for slave, function in self.all_functions():
             functions.setdefault(slave, set()).add(function)
 
         def inside(slave: int, inputs: bool, address: int) -> bool:

@@ -29,7 +29,7 @@ def _static(name: str) -> str:
 def _slaves(stats: StatsCollector) -> list[dict[str, Any]]:
     """Per slave: the --stats counts summed over its functions, and its response-time histogram."""
     slaves: dict[int, dict[str, Any]] = {}
-    for (slave, _function), row in sorted(stats.all_functions(times=not stats.attached).items()):
+    for (slave, _function), row in sorted(stats.all_functions().items()):
         entry = slaves.setdefault(
             slave,
             {"slave": slave, "requests": 0, "responses": 0, "exceptions": {}, "unanswered": 0,
