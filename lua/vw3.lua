@@ -4525,7 +4525,7 @@ end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
 -- not the usual: the statuses other than ok, the registers read with their plain layout.
-local function annotate_registers(st, f, device, run, b, read)
+local function annotate_registers(f, device, run, b, read)
   local start = run.start
   if start == nil then return end
   local protected = nil
@@ -4662,7 +4662,7 @@ local function refused_registers(device, request)
     local address = (request.start + index) % 0x10000
     local row = device.rows[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and PLC_LABELS[base][address] or nil }
+      label = base and PLC_LABELS[base][address] }
   end
   return out
 end
@@ -4670,7 +4670,7 @@ end
 -- Addresses in a row that are both unmapped (a run of non-existent parameters, told as one range).
 local function both_unmapped(a, b) return a.row == nil and b.row == nil and consecutive(a, b) end
 
-local function all_unreadable(st, f, device)
+local function all_unreadable(f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
   local entries, parts = refused_registers(device, f.request), {}
@@ -4690,7 +4690,7 @@ local function all_unreadable(st, f, device)
   end
 end
 
-local function explain_exception(st, f, device)
+local function explain_exception(f, device)
   local profile = device.profile
   local code = f.exception_code
   if code == nil then return end
@@ -4706,7 +4706,7 @@ local function explain_exception(st, f, device)
       causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
-    all_unreadable(st, f, device)
+    all_unreadable(f, device)
     story.tell(f)
     -- The registers of the refused read, with the status this tells and no value (the display lists
     -- them from the request and the device: inferred_registers), as vw3-decode lists them.
@@ -5062,7 +5062,7 @@ local function annotate_with(st, f, b, device)
   if kind == REQUEST then
     check_request(f, device)
   elseif kind == EXCEPTION then
-    explain_exception(st, f, device)
+    explain_exception(f, device)
     return
   end
   local request = f.request
@@ -5074,7 +5074,7 @@ local function annotate_with(st, f, b, device)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
-    annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
+    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
     if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
       remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
     end

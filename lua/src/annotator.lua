@@ -13,7 +13,7 @@ local function annotate_with(st, f, b, device)
   if kind == REQUEST then
     check_request(f, device)
   elseif kind == EXCEPTION then
-    explain_exception(st, f, device)
+    explain_exception(f, device)
     return
   end
   local request = f.request
@@ -25,7 +25,7 @@ local function annotate_with(st, f, b, device)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
-    annotate_registers(st, f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
+    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
     if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
       remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
     end

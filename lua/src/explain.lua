@@ -69,7 +69,7 @@ local function refused_registers(device, request)
     local address = (request.start + index) % 0x10000
     local row = device.rows[address]
     out[index + 1] = { address = address, row = row, status = row == nil and "non-existent" or "protected",
-      label = base and PLC_LABELS[base][address] or nil }
+      label = base and PLC_LABELS[base][address] }
   end
   return out
 end
@@ -77,7 +77,7 @@ end
 -- Addresses in a row that are both unmapped (a run of non-existent parameters, told as one range).
 local function both_unmapped(a, b) return a.row == nil and b.row == nil and consecutive(a, b) end
 
-local function all_unreadable(st, f, device)
+local function all_unreadable(f, device)
   -- One note: the device meaning with the parameters of the read (neighbouring unmapped addresses as
   -- a range), then each parameter's story (devices/explain.py).
   local entries, parts = refused_registers(device, f.request), {}
@@ -97,7 +97,7 @@ local function all_unreadable(st, f, device)
   end
 end
 
-local function explain_exception(st, f, device)
+local function explain_exception(f, device)
   local profile = device.profile
   local code = f.exception_code
   if code == nil then return end
@@ -113,7 +113,7 @@ local function explain_exception(st, f, device)
       causes = concat(texts, " or ") }))
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
-    all_unreadable(st, f, device)
+    all_unreadable(f, device)
     story.tell(f)
     -- The registers of the refused read, with the status this tells and no value (the display lists
     -- them from the request and the device: inferred_registers), as vw3-decode lists them.

@@ -173,7 +173,7 @@ end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
 -- not the usual: the statuses other than ok, the registers read with their plain layout.
-local function annotate_registers(st, f, device, run, b, read)
+local function annotate_registers(f, device, run, b, read)
   local start = run.start
   if start == nil then return end
   local protected = nil
