@@ -147,12 +147,7 @@ local function describe(device, f, reg, plain, status, words, second)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
-  if words == 0 then
-    named = rows[(address + 0xFFFF) % 0x10000]
-    text = say("second_word", named)
-  end
   if row ~= nil then
-    named = row
     if row.words == 2 then
       if words == 2 then
         scaled, text = interpret_wide(row, value, second)
@@ -164,6 +159,9 @@ local function describe(device, f, reg, plain, status, words, second)
       if plain then used = device.plain[address] end
       scaled, text = interpret(used, value)
     end
+  elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
+    named = rows[(address + 0xFFFF) % 0x10000]
+    text = say("second_word", named)
   end
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
