@@ -5936,12 +5936,10 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local configure, dissect_record, finish, new_state, pack = configure, dissect_record, finish, new_state, pack
 
-local vw3 = {
+M.vw3 = {
   new_state = new_state, dissect_record = dissect_record, finish = finish, settle = pack.settle,
   configure = configure,
 }
-
-M.vw3 = vw3
 end
 
 -- ---- vw3.fields: lua/src/fields.lua ----

@@ -4,9 +4,7 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
-local vw3 = {
+M.vw3 = {
   new_state = new_state, dissect_record = dissect_record, finish = finish, settle = pack.settle,
   configure = configure,
 }
-
-M.vw3 = vw3
