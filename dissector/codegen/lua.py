@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from dissector.codegen import fields_lua
+from dissector.codegen import fields_lua, printable_table
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
@@ -131,6 +131,8 @@ def plugin_data() -> dict[str, Any]:
             "access": maps.ACCESS,
             "messages": _messages(maps.MESSAGES),
         },
+        # What printable() escapes: the code points str.isprintable() refuses (codegen/printable_table.py).
+        "nonprintable": printable_table.lua_data(),
         "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
         "crc_table": crc._TABLE,

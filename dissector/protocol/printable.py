@@ -3,7 +3,14 @@
 Bus bytes and file contents are data: an ESC from an FC43 object or a map cell must not reach a
 terminal as an escape sequence (OSC 8 links, cursor moves, a cleared screen), nor a bidi override
 reorder what is shown. Everything that is not printable (C0, DEL, C1, format characters such as
-U+202E, line and paragraph separators) is written as Python writes it in a string literal.
+U+202E, line and paragraph separators, private use, unassigned code points) is written as Python writes
+it in a string literal: \\xNN below U+0100, \\uNNNN below U+10000, \\UNNNNNNNN above.
+
+The plugin's map reader (lua/src/maps.lua printable, python_repr) escapes the same characters: the code
+points str.isprintable() refuses, as Python 3.11 (Unicode 14.0.0) answered, are frozen in
+dissector/data/nonprintable.toml (codegen/printable_table.py) and generated into the plugin's data. A Python
+of another Unicode version differs from it on the code points Unicode assigned in between (tests/unit/
+test_printable.py compares them when the versions are the same).
 """
 from __future__ import annotations
 

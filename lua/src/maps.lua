@@ -65,16 +65,47 @@ local KNOWN_COLUMN = FORMAT.columns -- (a set)
 
 local function strip(text) return (text:gsub("^%s+", ""):gsub("%s+$", "")) end
 
--- A map's texts are shown (maps.py printable): what str.isprintable() refuses below U+0100 (C0, DEL, C1,
--- no-break space, soft hyphen) as \xNN, never raw; with a quote (python_repr) the backslash, that quote,
--- \n, \r, \t escaped too, as Python's repr escapes them.
+-- A map's texts are shown (maps.py printable): what str.isprintable() refuses (C0, DEL, C1, no-break space,
+-- soft hyphen, format characters such as U+202E, line and paragraph separators, private use, unassigned
+-- code points: DATA.nonprintable, codegen/printable_table.py) escaped as Python writes it in a literal,
+-- \xNN below U+0100, \uNNNN below U+10000, \UNNNNNNNN above, never raw; with a quote (python_repr) the
+-- backslash, that quote, \n, \r, \t escaped too, as Python's repr escapes them.
+local HIDDEN -- ({ first, last } in order, from DATA.nonprintable.ranges' `first-last` in hex: read on first use)
+local function hidden(code)
+  if HIDDEN == nil then
+    HIDDEN = {}
+    for first, last in concat(DATA.nonprintable.ranges, " "):gmatch("(%x+)-(%x+)") do
+      HIDDEN[#HIDDEN + 1] = { tonumber(first, 16), tonumber(last, 16) }
+    end
+  end
+  for _, range in ipairs(HIDDEN) do
+    if code <= range[2] then return code >= range[1] end
+  end
+end
+
+-- One character as UTF-8: a byte and the continuation bytes after it. Its code point, or nil when Python's
+-- strict decoder refuses it (a stray continuation byte, too few or too many for its lead byte, an overlong
+-- form, a surrogate, past U+10FFFF): a map file is read as UTF-8 or refused, as maps.load_map_file does.
+local UTF8_CHAR = "[\0-\255][\128-\191]*"
+local LEAD_FIRST, LEAD_END = { 0, 192, 224, 240 }, { 128, 224, 240, 248 } -- (lead bytes, by length)
+local LEAST = { 0, 0x80, 0x800, 0x10000 } -- (below: an overlong form)
+local function code_point(char)
+  local size, code = #char, char:byte()
+  if size > 4 or code < LEAD_FIRST[size] or code >= LEAD_END[size] then return nil end
+  code = code - LEAD_FIRST[size]
+  for at = 2, size do code = code * 64 + char:byte(at) - 128 end
+  if code < LEAST[size] or code > 0x10FFFF or (code >= 0xD800 and code <= 0xDFFF) then return nil end
+  return code
+end
+
 local REPR_ESCAPES = { ["\\"] = "\\\\", ["\n"] = "\\n", ["\r"] = "\\r", ["\t"] = "\\t" }
 local function printable(text, quote)
-  return (text:gsub("[\0-\127\192-\255][\128-\191]*", function(char)
+  return (text:gsub(UTF8_CHAR, function(char)
     if quote ~= nil and (REPR_ESCAPES[char] or char == quote) then return REPR_ESCAPES[char] or "\\" .. quote end
-    local code = char:byte()
-    if #char == 2 then code = (code - 192) * 64 + char:byte(2) - 128 end
-    if code < 32 or (code >= 127 and code <= 160) or code == 173 then return format("\\x%02x", code) end
+    local code = code_point(char)
+    if (code < 32 or code > 126) and hidden(code) then
+      return format(code < 0x100 and "\\x%02x" or code < 0x10000 and "\\u%04x" or "\\U%08x", code)
+    end
   end))
 end
 
@@ -214,8 +245,12 @@ local function sniff(header)
 end
 
 -- The rows of a map's text, or nil and `origin:line: what is wrong` (maps.parse_map, message for message):
--- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale.
+-- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale. Bytes that
+-- are not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
 local function parse_map(text, origin)
+  for char in (text:find("[\128-\255]") and text or ""):gmatch(UTF8_CHAR) do
+    if code_point(char) == nil then return nil, format("%s: not UTF-8 text", origin) end
+  end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, number, delimiter = nil, {}, {}, {}, 0, ","
   local function at(line, problem) return format("%s:%d: %s", origin, line, problem) end

@@ -1,7 +1,7 @@
 -- Usage: lua5.2|lua5.4 conformance.lua PLUGIN VECTORS
 -- The plugin's modules that need no Wireshark (loaded from the assembled lua/vw3.lua outside Wireshark)
 -- against what the Python reference gives at each stage (tests/conformance/vectors.lua, written by
--- tests/conformance/generate.py): framing, pairing, decoding, profile selection, annotation, map reading.
+-- tests/conformance/generate.py): framing, pairing, decoding, profile selection, annotation, map reading, repr.
 -- Prints one line a difference and `N cases, M checks, K differences`; exits 1 on any difference.
 local plugin, vectors_path = arg[1], arg[2]
 local vw3 = dofile(plugin)
@@ -267,7 +267,8 @@ end
 -- Map reading (maps.parse_map): a text's rows as the plugin keeps them (access is checked, not kept), or its
 -- message word for word.
 local function map_reading(entry)
-  local rows, problem = M.parse_map(entry.text, "map.csv")
+  local text = entry.text or entry.hex:gsub("%x%x", function(hex) return string.char(tonumber(hex, 16)) end)
+  local rows, problem = M.parse_map(text, "map.csv")
   local got = problem
   if rows ~= nil then
     got = {}
@@ -311,6 +312,7 @@ for _, case in ipairs(V.cases) do
 end
 for _, entry in ipairs(V.maps or {}) do maps(entry) end
 for _, entry in ipairs(V.map_reading or {}) do map_reading(entry) end
+for _, entry in ipairs(V.repr or {}) do check("repr " .. show(entry.text), M.python_repr(entry.text), entry.repr) end
 
 for _, line in ipairs(differences) do print(line) end
 print(format("%s: %d cases, %d checks, %d differences", _VERSION, #V.cases, checks, #differences))

@@ -21,7 +21,7 @@ import os
 import subprocess
 import sys
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -36,7 +36,7 @@ from dissector.codegen.rules_lua import lua_literal  # noqa: E402
 from dissector.decode.fields import decode_frame  # noqa: E402
 from dissector.decode.pairing import Pairer  # noqa: E402
 from dissector.devices.build import build_annotator  # noqa: E402
-from dissector.devices.maps import load_builtin_map, parse_map  # noqa: E402
+from dissector.devices.maps import load_builtin_map, load_map_file, parse_map  # noqa: E402
 from dissector.errors import ProfileError  # noqa: E402
 from dissector.framing.ascii import AsciiFramer  # noqa: E402
 from dissector.framing.rtu import RtuFramer  # noqa: E402
@@ -243,6 +243,12 @@ MAP_TEXTS = {
     "tab": "address\tcode\tunit\n1\tA\tV\n",
     "line ends": "address,code\r\n1,A\r\n2,B\x0c3,C\u20284,D\x855,E\r6,F\n",
     "escapes": "address,code,name,enum\n1,A\x1b[2J,N\x07,1=\u009bx\n2,\u00e9\u20ac,na\u00afme\u00ad,\n",
+    # (what str.isprintable() refuses past U+00FF is escaped as Python writes it, \\uNNNN or \\UNNNNNNNN: a
+    # bidi override, an ideographic space, a BOM inside a text, private use, a tag, unassigned code points;
+    # a 4-byte emoji is printable)
+    "unicode texts": "address,code,name,unit,enum,source\n1,A\u202eB,x\u3000y\u200bz,\ufeffkm,"
+                     "1=\ue000;2=\U0001f600;3=\u0378\U000e0001\U0010ffff,s\U0001f600\n",
+    "unicode in a message": "address,code,access\n1,A,\u202e\u3000\ufeff\ue000\U0001f600\u0378'\n",
     "quote left open": "address,code,name\n1,A,\"open, still\n",
     "address": "address,code\nx1,A\n",
     "address range": "address,code\n70000,A\n",
@@ -297,22 +303,50 @@ MAP_TEXTS = {
 }
 
 
+# Map files whose bytes are not UTF-8 (load_map_file's strict decode, no surrogateescape: refused).
+MAP_BYTES = {
+    "not utf-8 latin-1": b"address,code,name\n1,A,caf\xe9\n",
+    "not utf-8 stray continuation": b"address,code\n1,\x80\n",
+    "not utf-8 overlong": b"address,code\n1,\xc0\xaf\n",
+    "not utf-8 surrogate": b"address,code\n1,\xed\xa0\x80\n",
+    "not utf-8 past U+10FFFF": b"address,code\n1,\xf4\x90\x80\x80\n",
+    "not utf-8 cut short": b"address,code\n1,A\xe2\x80",
+    "utf-8 four bytes": b"address,code\n1,\xf0\x9f\x98\x80\xf4\x8f\xbf\xbf\n",
+}
+
+# Texts as Python's repr shows them (the plugin's python_repr): printable() escapes the same characters.
+REPR_TEXTS = ["plain", "it's", "both ' and \"", "back\\slash\ttab\n", "\x1b[2J\x7f\x85\xa0\xad\xe9",
+              "\u202e\u2028\u2029\u3000\u200b\ufeff\ue000\U0001f600\u0378\U000e0001\U0010ffff",
+              "\uffff\U0001ffff\U000f0000\U00020000\u00ff\u0100"]
+
+
+def _read(name: str, given: dict[str, str], read: Callable[[], Any]) -> dict[str, Any]:
+    """What reading a map gives: its message, or its rows."""
+    try:
+        rows = read()
+    except ProfileError as error:
+        return {"name": name, **given, "error": str(error)}
+    return {"name": name, **given, "rows": [
+        {"address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
+         "decimals": row.decimals, "enum": {str(k): v for k, v in row.enum.items()},
+         "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
+         "type": row.kind if row.words == 2 else None, "swapped": row.swapped, "source": row.source,
+         "ambiguous_8000": row.ambiguous_8000}
+        for address, row in sorted(rows.items())
+    ]}
+
+
 def map_reading() -> list[dict[str, Any]]:
-    out = []
-    for name, text in MAP_TEXTS.items():
-        try:
-            rows = parse_map(text, "map.csv")
-        except ProfileError as error:
-            out.append({"name": name, "text": text, "error": str(error)})
-            continue
-        out.append({"name": name, "text": text, "rows": [
-            {"address": address, "code": row.code, "name": row.name, "unit": row.unit, "scale": row.scale,
-             "decimals": row.decimals, "enum": {str(k): v for k, v in row.enum.items()},
-             "bits": {str(k): v for k, v in row.bits.items()}, "signed": row.signed, "words": row.words,
-             "type": row.kind if row.words == 2 else None, "swapped": row.swapped, "source": row.source,
-             "ambiguous_8000": row.ambiguous_8000}
-            for address, row in sorted(rows.items())
-        ]})
+    out = [_read(name, {"text": text}, lambda text=text: parse_map(text, "map.csv"))
+           for name, text in MAP_TEXTS.items()]
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "map.csv"
+        for name, data in MAP_BYTES.items():  # (a file: the bytes as hex, the message with the name `map.csv`)
+            path.write_bytes(data)
+            entry = _read(name, {"hex": data.hex()}, lambda: load_map_file(path))
+            if "error" in entry:
+                entry["error"] = entry["error"].replace(str(path), "map.csv")
+            out.append(entry)
     return out
 
 
@@ -323,6 +357,7 @@ def vectors() -> dict[str, Any]:
         "cases": [case(name, mode, data) for name, mode, data in inputs()],
         "maps": maps(),
         "map_reading": map_reading(),
+        "repr": [{"text": text, "repr": repr(text)} for text in REPR_TEXTS],
     }
 
 
