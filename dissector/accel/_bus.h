@@ -8,46 +8,20 @@
  *
  * Times are kept as the Python stages have them: a float, and the source's integer nanoseconds where
  * it is a model.Stamp (two stamps subtract exactly, anything else as floats do). */
-#include <math.h>
-
 typedef struct {
     int has, exact;
     long long ns;
     double d;
 } Time;
 
-/* model.Stamp(ns) as a float: ns / 1e9 rounded once, as Python's int / int. */
-static double stamp_float(long long ns) {
-    if (ns < 0) return -stamp_float(-ns);
-    if (ns < (1LL << 53)) return (double)ns / 1e9; /* both exact: one rounding */
-    double d = (double)((long double)ns / 1e9L), best = d;
-#ifdef __SIZEOF_INT128__
-    /* d is within an ulp: pick the nearest of d and its neighbours, exactly (units of 2^-29 s: d >= 2^23). */
-    __int128 target = (__int128)ns << 29, best_error = -1;
-    double candidates[3] = {nextafter(d, 0.0), d, nextafter(d, INFINITY)};
-    for (int k = 0; k < 3; k++) {
-        int exponent;
-        double fraction = frexp(candidates[k], &exponent);
-        long long mantissa = (long long)ldexp(fraction, 53);
-        __int128 error = ((__int128)mantissa << (exponent - 24)) * 1000000000 - target;
-        if (error < 0) error = -error;
-        if (best_error < 0 || error < best_error || (error == best_error && !(mantissa & 1))) {
-            best_error = error;
-            best = candidates[k];
-        }
-    }
-#endif
-    return best;
-}
-
 static inline Time stamp_time(int timed, long long ns) {
-    Time t = {timed, 1, ns, timed ? stamp_float(ns) : 0.0};
+    Time t = {timed, 1, ns, timed ? stamp_seconds(ns, 0) : 0.0};
     return t;
 }
 
 /* a - b as the Python stages subtract them: Stamp - Stamp exactly, else as floats. */
 static inline double time_sub(const Time *a, const Time *b) {
-    return a->exact && b->exact ? stamp_float(a->ns - b->ns) : a->d - b->d;
+    return a->exact && b->exact ? stamp_seconds(a->ns, b->ns) : a->d - b->d;
 }
 
 /* A Python time (None, a float or a model.Stamp) into *t: 0, or -1 with an exception set. */

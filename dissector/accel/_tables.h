@@ -363,5 +363,7 @@ static const double gap_edges_ms[] = {1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 20
 #define POLL_SKIP_FACTOR 1.5
 #define PERCENTILE 0.95
 #define FLAT_BIN 0.0001
+/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), for _timeline.h. */
+#define CLOCK_RELATIVE 0
 
 #endif

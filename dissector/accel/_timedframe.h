@@ -8,8 +8,6 @@
 #ifndef VW3_TIMEDFRAME_H
 #define VW3_TIMEDFRAME_H
 
-enum { DECIDE_OK, DECIDE_HANDOVER, DECIDE_WAIT };
-
 /* The other layouts of a frame at i (_match's interpretations after the first) with the bytes up to m:
  * -1 one is a CRC scan (hand over); else how many check out, with the shortest such length in *shortest,
  * and whether one waits for more bytes (NEED, or `length` + 1: the 00 after a frame) in *waits. */
@@ -32,8 +30,8 @@ static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i,
 }
 
 /* What the Python framer does at i with the bytes up to m (its buffer when it looks there): take the
- * frame of the first layout (*length, its kind), wait for more bytes (its NEED: it looks again at the
- * next chunk), or anything else (hand over). */
+ * frame of the first layout (FRAME_OK: *length, its kind), wait for more bytes (FRAME_NEED, its NEED: it
+ * looks again at the next chunk), or anything else (FRAME_HANDOVER). */
 static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, int function, int kind,
                      Py_ssize_t *length_out) {
     Timeline *t = &e->tl;
@@ -45,41 +43,40 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
         /* FC8's Return Query Data (_match, _scan): both layouts scan alike, so both check out at the
          * length found, and the first stands where a record ends there, as the answer awaited, or where
          * what follows is known; the scan waits as _scan does (what follows a match not come yet). */
-        if (length == FRAME_NEED) return DECIDE_WAIT;
-        if (length < 0) return DECIDE_HANDOVER;
+        if (length < 0) return (int)length;
         if (!boundary_at(t, at + length) && kind != KIND_RESPONSE && valid_frame_at(e, b, i + length, m) < 0)
-            return DECIDE_WAIT;
-        return DECIDE_OK;
+            return FRAME_NEED;
+        return FRAME_OK;
     }
-    if (length == FRAME_HANDOVER) return DECIDE_HANDOVER;
+    if (length == FRAME_HANDOVER) return FRAME_HANDOVER;
     Py_ssize_t shortest = MAX_ADU + 1;
     int waits, valid;
     if (length == FRAME_NEED || i + length > m) {
         /* The first layout waits for its bytes: _match waits too, unless another one checks out. */
-        if (kind == KIND_EXCEPTION) return DECIDE_WAIT;
+        if (kind == KIND_EXCEPTION) return FRAME_NEED;
         valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
-        return valid == 0 ? DECIDE_WAIT : DECIDE_HANDOVER;
+        return valid == 0 ? FRAME_NEED : FRAME_HANDOVER;
     }
-    if (!crc_ok(b, i, length)) return DECIDE_HANDOVER;
-    if ((i + length < m && b[i + length] != 0) || kind == KIND_EXCEPTION) return DECIDE_OK; /* (its fast path) */
+    if (!crc_ok(b, i, length)) return FRAME_HANDOVER;
+    if ((i + length < m && b[i + length] != 0) || kind == KIND_EXCEPTION) return FRAME_OK; /* (its fast path) */
     /* _match: this layout checks out; it stands alone unless another one does too, or may. */
     valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
-    if (valid < 0) return DECIDE_HANDOVER;
+    if (valid < 0) return FRAME_HANDOVER;
     if (valid) {
         /* Two layouts check out (a FC23 request whose response reading is as long, FC5's echo): a
          * record's end after this one picks it, the first tried, unless a shorter one checks out too
          * (the framer tries the shortest first on a glitchy line). */
-        if (boundary_at(t, at + length) && shortest >= length) return DECIDE_OK;
+        if (boundary_at(t, at + length) && shortest >= length) return FRAME_OK;
         /* Nothing after it yet (a live read, a record, that ends with the frame; so the others are as
          * long): off a glitchy line, _match takes the answer awaited at once, and waits for what follows
          * anything else (_valid_frame_at there: NEED). */
         if (i + length >= m && shortest >= length && !e->glitchy)
-            return kind == KIND_RESPONSE ? DECIDE_OK : DECIDE_WAIT;
-        return DECIDE_HANDOVER;
+            return kind == KIND_RESPONSE ? FRAME_OK : FRAME_NEED;
+        return FRAME_HANDOVER;
     }
     if (waits && kind != KIND_RESPONSE && !boundary_at(t, at + length))
-        return DECIDE_WAIT; /* a longer layout may still come (the 00 case) */
-    return DECIDE_OK;
+        return FRAME_NEED; /* a longer layout may still come (the 00 case) */
+    return FRAME_OK;
 }
 
 /* The frame f starts (its kind, slave and function found) on a chunked stream (e->tl.active): its length
@@ -95,8 +92,8 @@ static int timed_frame(Engine *e, const uint8_t *b, Py_ssize_t n, FrameRef *f, l
     for (;;) {
         if (seen > t->end) return FRAME_NEED;
         int decision = decide_at(e, b, i, (Py_ssize_t)(seen - t->base), f->function, f->kind, &f->length);
-        if (decision == DECIDE_OK) break;
-        if (decision == DECIDE_HANDOVER) return FRAME_HANDOVER;
+        if (decision == FRAME_OK) break;
+        if (decision == FRAME_HANDOVER) return FRAME_HANDOVER;
         if (seen >= t->end) return FRAME_NEED;
         seen = chunk_end(t, chunk_of(t, seen));
     }

@@ -12,8 +12,6 @@
 #ifndef VW3_TIMELINE_H
 #define VW3_TIMELINE_H
 
-enum { CLOCK_RELATIVE = 0, CLOCK_DELTA = 1 }; /* -t r; -t d and dd (the same without a filter) */
-
 /* The time column's references (timefmt.Clock): first timed item, previous timed item. */
 typedef struct {
     int has_first, has_previous;
@@ -32,7 +30,7 @@ typedef struct {
     long long decided;       /* the Python framer's buffer end when it decided the last frame */
     /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
     double char_time, t15, timeout;
-    int clock;
+    int clock;               /* timedpath.CLOCKS: CLOCK_RELATIVE (-t r), else deltas (-t d, dd) */
     ClockRefs refs;
 } Timeline;
 
@@ -60,9 +58,35 @@ static int boundary_at(Timeline *t, long long at) {
     return k + 1 < t->count && (t->flags[k + 1] & CHUNK_SILENCE_BEFORE);
 }
 
-/* Seconds between two stamps, as model.Stamp.__sub__: (ns - ns) / 1e9, rounded once. */
+/* A stamp's float past 2^53 ns (stamp_seconds' far case; model.Stamp(ns)): ns / 1e9 rounded once, as
+ * Python's int / int. */
+static double stamp_far(long long ns) {
+    if (ns < 0) return -stamp_far(-ns);
+    double d = (double)((long double)ns / 1e9L), best = d;
+#ifdef __SIZEOF_INT128__
+    /* d is within an ulp: pick the nearest of d and its neighbours, exactly (units of 2^-29 s: d >= 2^23). */
+    __int128 target = (__int128)ns << 29, best_error = -1;
+    double candidates[3] = {nextafter(d, 0.0), d, nextafter(d, INFINITY)};
+    for (int k = 0; k < 3; k++) {
+        int exponent;
+        double fraction = frexp(candidates[k], &exponent);
+        long long mantissa = (long long)ldexp(fraction, 53);
+        __int128 error = ((__int128)mantissa << (exponent - 24)) * 1000000000 - target;
+        if (error < 0) error = -error;
+        if (best_error < 0 || error < best_error || (error == best_error && !(mantissa & 1))) {
+            best_error = error;
+            best = candidates[k];
+        }
+    }
+#endif
+    return best;
+}
+
+/* Seconds between two stamps, as model.Stamp.__sub__: (ns - ns) / 1e9 rounded once; a stamp's own float
+ * (model.Stamp(ns)) with earlier 0. */
 static inline double stamp_seconds(long long later, long long earlier) {
-    return (double)(later - earlier) / 1e9;
+    long long ns = later - earlier;
+    return ns > -(1LL << 53) && ns < (1LL << 53) ? (double)ns / 1e9 : stamp_far(ns); /* both exact: one rounding */
 }
 
 /* timing.inner_gaps: is there a silence longer than t1.5 before a chunk starting inside the frame at

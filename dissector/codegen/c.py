@@ -13,6 +13,7 @@ from pathlib import Path
 from dissector.errors import GenerateError
 from dissector.protocol import table
 from dissector.protocol.spec import SPEC
+from dissector.accel.timedpath import CLOCKS
 from dissector.codegen import c_rules, c_stats
 from dissector.protocol.table import Counted, Fixed, Layout, Special
 
@@ -60,6 +61,13 @@ def _known_rules() -> tuple[list[int], list[str]]:
 
 def _slot_rows(slots: list[int]) -> list[str]:
     return [", ".join(f"{value:2d}" for value in slots[row : row + 16]) for row in range(0, 256, 16)]
+
+
+def _clocks() -> list[str]:
+    return [
+        "/* The time column -t r's code (accel/timedpath.py CLOCKS; the others' are deltas), for _timeline.h. */",
+        f"#define CLOCK_RELATIVE {CLOCKS['r']}",
+    ]
 
 
 def render_header() -> str:
@@ -122,6 +130,7 @@ def render_header() -> str:
         *c_rules.render(entries, limits),
         "",
         *c_stats.render(),
+        *_clocks(),
         "",
         "#endif",
     ]
