@@ -26,7 +26,7 @@ typedef struct {
     const uint8_t *flags;
     Py_ssize_t count;
     long long end;           /* stream offset of the end of the last chunk given (the buffer's end) */
-    Py_ssize_t cursor;       /* the chunk looked up last */
+    Py_ssize_t cursor;       /* the chunk looked up last (run_timed starts it at 0; count >= 1) */
     long long decided;       /* the Python framer's buffer end when it decided the last frame */
     /* Settings (set_timing): the line's character time and t1.5, the pairing timeout (< 0: none). */
     double char_time, t15, timeout;
@@ -37,8 +37,6 @@ typedef struct {
 /* Index of the chunk holding stream offset `at` (start[k] <= at < its end). */
 static Py_ssize_t chunk_of(Timeline *t, long long at) {
     Py_ssize_t k = t->cursor;
-    if (k >= t->count) k = t->count - 1;
-    if (k < 0) k = 0;
     while (k > 0 && t->start[k] > at) k--;
     while (k + 1 < t->count && t->start[k + 1] <= at) k++;
     t->cursor = k;
