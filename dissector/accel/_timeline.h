@@ -151,13 +151,12 @@ static void out_time_column(Out *o, Timeline *t, int timed, long long ns) {
         refs->has_first = 1;
         refs->first_ns = ns;
     }
-    double seconds = t->clock == CLOCK_RELATIVE ? stamp_seconds(ns, refs->first_ns)
-                     : refs->has_previous       ? stamp_seconds(ns, refs->previous_ns)
-                                                : 0.0;
+    /* Its time since its reference: the first timed item, else the previous one (none: itself, 0). */
+    long long since = t->clock == CLOCK_RELATIVE ? refs->first_ns : refs->has_previous ? refs->previous_ns : ns;
     refs->has_previous = 1;
     refs->previous_ns = ns;
     out_put(o, " ", 1);
-    out_fixed(o, seconds, 6, 12);
+    out_fixed(o, stamp_seconds(ns, since), 6, 12);
     out_put(o, " ", 1);
 }
 
