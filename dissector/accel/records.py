@@ -22,9 +22,6 @@ from dissector.model import Chunk, Stamp
 from dissector.sources.common import LINKTYPE_USER0
 
 TIMED, RECORD_END, SILENCE_BEFORE = 1, 2, 4  # the engine's CHUNK_* (generated into _tables.h)
-# Times the engine subtracts as Python does: within 2**52 ns of each other, a difference converts to a
-# double exactly, so (a - b) / 1e9 rounds once there as Stamp.__sub__'s integer division does.
-EXACT_SPAN = 1 << 52
 BLOCK_BYTES = 1 << 18  # bytes gathered before the engine runs: memory stays flat, calls few
 READ_BYTES = 1 << 20  # a pcap read at a time
 
@@ -59,9 +56,7 @@ class BlockBuilder:
         self.streaming = streaming
         self.offset = 0
         self.previous: tuple[int, float | None] | None = None
-        self.lowest: int | None = None  # the stream's earliest and latest times so far (ns)
-        self.highest = 0
-        self.exact = True  # so far every time is a stamp, all within EXACT_SPAN of each other
+        self.exact = True  # so far every time is a stamp, all within +-2**62 ns (no difference overflows int64)
         self._reset()
 
     def _reset(self) -> None:
@@ -98,10 +93,9 @@ class BlockBuilder:
             yield from self.flush()
 
     def _span(self, lowest: int, highest: int) -> None:
-        if self.lowest is None:
-            self.lowest, self.highest = lowest, highest
-        self.lowest, self.highest = min(self.lowest, lowest), max(self.highest, highest)
-        if self.highest - self.lowest >= EXACT_SPAN or self.lowest < -(1 << 62) or self.highest >= 1 << 62:  # (int64)
+        """Times from `lowest` to `highest` ns: the engine subtracts any two within +-2**62 as Stamp.__sub__
+        does (_timeline.h stamp_seconds), none further out (int64)."""
+        if lowest < -(1 << 62) or highest >= 1 << 62:
             self.exact = False
 
     def flush(self) -> Iterator[Block]:
