@@ -818,8 +818,22 @@ local DATA = {
         { "fixed", 5 },
       },
       [8] = {
-        { "diagnostics" },
-        { "diagnostics" },
+        {
+          "select",
+          2,
+          2,
+          0,
+          { "scan", 6 },
+          { "fixed", 8 },
+        },
+        {
+          "select",
+          2,
+          2,
+          0,
+          { "scan", 6 },
+          { "fixed", 8 },
+        },
       },
       [11] = {
         { "fixed", 4 },
@@ -862,8 +876,118 @@ local DATA = {
         { "count16", 2, 6 },
       },
       [43] = {
-        { "mei_request" },
-        { "mei_response" },
+        {
+          "select",
+          2,
+          1,
+          14,
+          { "fixed", 7 },
+          { "scan", 5 },
+        },
+        {
+          "select",
+          2,
+          1,
+          14,
+          { "mei_objects", 7, 8 },
+          { "scan", 5 },
+        },
+      },
+      [65] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [66] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [67] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [68] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [69] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [70] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [71] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [72] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [96] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [97] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [98] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [100] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [101] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [102] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [103] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [104] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [105] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [106] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [107] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [108] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [109] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [110] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [125] = {
+        { "scan", 4 },
+        { "scan", 4 },
+      },
+      [126] = {
+        { "scan", 4 },
+        { "scan", 4 },
       },
     },
     ["exception_rule"] = { "fixed", 5 },
@@ -2520,45 +2644,45 @@ local function count16(position, extra)
   end
 end
 
-local function diagnostics_rule(b, i, n)
-  -- Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
-  if i + 3 >= n then return NEED end
-  if b[i + 2] == 0 and b[i + 3] == 0 then return 6, true end
-  return 8
+local function scan(minimum)
+  return function() return minimum, true end
 end
 
-local function mei_request_rule(b, i, n)
-  if i + 2 >= n then return NEED end
-  if b[i + 2] == 14 then return 7 end
-  return 5, true
-end
-
-local function mei_response_rule(b, i, n)
-  -- Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object.
-  if i + 2 >= n then return NEED end
-  if b[i + 2] ~= 14 then return 5, true end
-  if i + 7 >= n then return NEED end
-  local position = 8
-  for _ = 1, b[i + 7] do
-    if i + position + 1 >= n then return NEED end
-    position = position + 2 + b[i + position + 1]
-    if position > MAX_ADU then return NONE end
+-- The rule a field of the frame picks (table.Select, rules.py _select): `chosen` where the byte (width 1)
+-- or word (2) at `position` is `value`, else `otherwise`; the field read by its count rule, nothing added.
+local make_rule
+local function select(position, width, value, chosen, otherwise)
+  local field = (width == 2 and count16 or count8)(position, 0)
+  chosen, otherwise = make_rule(chosen), make_rule(otherwise)
+  return function(b, i, n)
+    local found = field(b, i, n)
+    if found == value then return chosen(b, i, n) end
+    if found == NEED then return NEED end
+    return otherwise(b, i, n)
   end
-  return position + 2
 end
 
-local function scan_any() return MIN_ADU, true end
+-- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
+local function mei_objects(position, start)
+  return function(b, i, n)
+    if i + position >= n then return NEED end
+    local stop = start
+    for _ = 1, b[i + position] do
+      if i + stop + 1 >= n then return NEED end
+      stop = stop + 2 + b[i + stop + 1]
+      if stop > MAX_ADU then return NONE end
+    end
+    return stop + 2
+  end
+end
 
 -- Length rules per function code (request, response): generated from dissector/protocol/table.py.
 local RULES = {}
 local makers = {
   fixed = fixed, count8 = count8, count16 = count16,
-  diagnostics = function() return diagnostics_rule end,
-  mei_request = function() return mei_request_rule end,
-  mei_response = function() return mei_response_rule end,
-  scan = function() return scan_any end,
+  scan = scan, select = select, mei_objects = mei_objects,
 }
-local function make_rule(spec) return makers[spec[1]](spec[2], spec[3]) end
+function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end
 for code, rules in pairs(DATA.protocol.rules) do
   RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
 end
@@ -2575,9 +2699,6 @@ for code, spec in pairs(DATA.protocol.by_quantity or {}) do
     if length == counted(b, i, n) then return NONE end
     return length
   end
-end
-for code in pairs(DATA.other_functions or {}) do
-  if RULES[code] == nil then RULES[code] = { scan_any, scan_any } end
 end
 
 -- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,

@@ -61,6 +61,7 @@ static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
 }
 
 static inline unsigned word(const uint8_t *p) { return (unsigned)p[0] << 8 | p[1]; }
+static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
 /* ---- output buffer ---------------------------------------------------------------------------- */
 /* Lines being written. After a failed allocation, `failed` is set with MemoryError raised; writers
@@ -370,38 +371,28 @@ typedef struct { int what; Py_ssize_t value; } Length;
 static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
     const Length need = {LENGTH_NEED, 0};
     if (rule->fixed) return (Length){LENGTH_OK, rule->fixed};
-    if (!rule->special) { /* counted */
-        if (i + rule->position + rule->width - 1 >= n) return need;
-        return (Length){LENGTH_OK, rule->extra + (rule->width == 2 ? (Py_ssize_t)word(b + i + rule->position)
-                                                                    : b[i + rule->position])};
-    }
+    if (rule->special == RULE_SCAN) return (Length){LENGTH_SCAN, rule->extra};
+    if (i + rule->position + rule->width - 1 >= n) return need;
+    Py_ssize_t value = field(b + i, rule->position, rule->width);
     switch (rule->special) {
-    case 1: /* _mei_request */
-        if (i + 2 >= n) return need;
-        return b[i + 2] == 14 ? (Length){LENGTH_OK, 7} : (Length){LENGTH_SCAN, 5};
-    case 2: { /* _mei_response */
-        if (i + 2 >= n) return need;
-        if (b[i + 2] != 14) return (Length){LENGTH_SCAN, 5};
-        if (i + 7 >= n) return need;
-        Py_ssize_t position = 8;
-        for (int k = b[i + 7]; k > 0; k--) {
-            if (i + position + 1 >= n) return need;
-            position += 2 + b[i + position + 1];
-            if (position > MAX_ADU) return (Length){LENGTH_OK, 0};
-        }
-        return (Length){LENGTH_OK, position + 2};
-    }
-    case 3: /* _diagnostics: Return Query Data (sub-function 0) echoes any amount of data */
-        if (i + 3 >= n) return need;
-        return b[i + 2] == 0 && b[i + 3] == 0 ? (Length){LENGTH_SCAN, 6} : (Length){LENGTH_OK, 8};
-    case 5: { /* quantity_rule: a request's length by its quantity where it differs from its byte count's */
-        if (i + (rule->position + 1 > rule->count_at ? rule->position + 1 : rule->count_at) >= n) return need;
-        Py_ssize_t quantity = (Py_ssize_t)word(b + i + rule->position);
-        Py_ssize_t length = rule->extra + (rule->unit ? quantity * rule->unit : (quantity + 7) / 8);
+    case RULE_SELECT:
+        return rule_length(&selected_rule[value == rule->value ? rule->chosen : rule->otherwise], b, i, n);
+    case RULE_BY_QUANTITY: { /* a request's length by its quantity where it differs from its byte count's */
+        if (i + rule->count_at >= n) return need;
+        Py_ssize_t length = rule->extra + (rule->unit ? value * rule->unit : (value + 7) / 8);
         return (Length){LENGTH_OK, length == rule->count_extra + b[i + rule->count_at] ? 0 : length};
     }
-    default: /* _scan_any */
-        return (Length){LENGTH_SCAN, MIN_ADU};
+    case RULE_MEI_OBJECTS: { /* `value` objects from `extra`: an id, a length byte, that many bytes each */
+        Py_ssize_t stop = rule->extra;
+        for (Py_ssize_t k = value; k > 0; k--) {
+            if (i + stop + 1 >= n) return need;
+            stop += 2 + b[i + stop + 1];
+            if (stop > MAX_ADU) return (Length){LENGTH_OK, 0};
+        }
+        return (Length){LENGTH_OK, stop + 2};
+    }
+    default: /* counted */
+        return (Length){LENGTH_OK, rule->extra + value};
     }
 }
 
@@ -428,13 +419,6 @@ static Py_ssize_t crc_next(CrcScan *scan) {
         if (crc == (uint16_t)(stop[0] | stop[1] << 8)) return scan->length++;
     }
     return 0;
-}
-
-/* RtuFramer._shortest_crc: the shortest length from `minimum` whose last two bytes are the CRC of the
- * bytes before them, 0: none. */
-static Py_ssize_t shortest_crc(const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
-    CrcScan scan = crc_scan(b, i, minimum, n - i < MAX_ADU ? n - i : MAX_ADU);
-    return crc_next(&scan);
 }
 
 /* A length rule at i with the bytes up to n, as the framer weighs one interpretation (RtuFramer
@@ -464,7 +448,8 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     for (int r = 0; r < count; r++) {
         int found = rule_check(rules[r], b, j, n, &length);
         if (found < 0) {
-            if (shortest_crc(b, j, n, length)) return 1;
+            CrcScan scan = crc_scan(b, j, length, n - j < MAX_ADU ? n - j : MAX_ADU); /* RtuFramer._shortest_crc */
+            if (crc_next(&scan)) return 1;
             undecided = undecided || n - j < MAX_ADU;
         } else if (found) {
             return found == 1 ? 1 : -1;
@@ -839,8 +824,6 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
     for (unsigned k = 0; k < shown; k++) o->data[o->len++] = (char)('0' + (packed[k >> 3] >> (k & 7) & 1));
     if (count > MAX_BITS) out_more(o, count - MAX_BITS, ")");
 }
-
-static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
 /* fields.lifter's checks of a frame by its lifting rule L (_tables.h Lift), FC8's by its named case, the
  * request it answers given (NULL for a request), and its window and data in *out: 1 it passes them all, 0 a

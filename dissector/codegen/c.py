@@ -15,24 +15,36 @@ from dissector.protocol import table
 from dissector.protocol.spec import SPEC
 from dissector.accel.timedpath import CLOCKS
 from dissector.codegen import c_rules, c_stats
-from dissector.protocol.table import Counted, Fixed, Layout, Special
+from dissector.protocol.table import Counted, Fixed, Layout, LengthRule, Scan, Select, Special
 
 HEADER = Path(__file__).resolve().parents[1] / "accel" / "_tables.h"
-# Special length rules the engine implements (framing/rules.py's functions of the same names, and its
-# quantity_rule, "by_quantity").
-_SPECIAL_RULES = {"mei_request": 1, "mei_response": 2, "diagnostics": 3, "scan": 4, "by_quantity": 5}
-_NO_RULE = "{0, 0, 0, 0, 0, 0, 0, 0}"
+# The kinds of length rule the engine interprets (rule_length in _summary.c), LengthRule.special: a count
+# (or a fixed length), then framing/rules.py length_rule's others and its quantity_rule ("by_quantity").
+_KINDS = ("counted", "scan", "select", "by_quantity", "mei_objects")
+_FIELDS = ("fixed", "position", "extra", "width", "special", "unit", "count_at", "count_extra")
+_SELECT_FIELDS = ("value", "chosen", "otherwise")  # (written on a select's row only: zero elsewhere)
 
 
-def _rule(layout: Layout, code: int) -> str:
-    rule = layout.length
+def _row(**values: int) -> str:
+    names = _FIELDS + _SELECT_FIELDS if values.get("special") == _KINDS.index("select") else _FIELDS
+    return "{" + ", ".join(str(values.get(name, 0)) for name in names) + "}"
+
+
+def _rule(rule: LengthRule, code: int, selected: list[str]) -> str:
+    """A length rule as a LengthRule; a select's two rules appended to `selected` (selected_rule)."""
     if isinstance(rule, Fixed):
-        return f"{{{rule.length}, 0, 0, 0, 0, 0, 0, 0}}"
+        return _row(fixed=rule.length)
     if isinstance(rule, Counted) and rule.width in (1, 2):
-        return f"{{0, {rule.position}, {rule.extra}, {rule.width}, 0, 0, 0, 0}}"
-    if isinstance(rule, Special) and rule.name in _SPECIAL_RULES:
-        return f"{{0, 0, 0, 0, {_SPECIAL_RULES[rule.name]}, 0, 0, 0}}"
-    raise GenerateError(f"function {code}: the compiled path handles fixed and counted lengths only, not {rule}")
+        return _row(position=rule.position, extra=rule.extra, width=rule.width)
+    if isinstance(rule, Scan):
+        return _row(extra=rule.minimum, special=_KINDS.index("scan"))
+    if isinstance(rule, Select) and rule.width in (1, 2):
+        selected += [_rule(rule.chosen, code, selected), _rule(rule.otherwise, code, selected)]
+        return _row(position=rule.position, width=rule.width, special=_KINDS.index("select"), value=rule.value,
+                    chosen=len(selected) - 2, otherwise=len(selected) - 1)
+    if isinstance(rule, Special) and rule.name in _KINDS:
+        return _row(position=rule.position, extra=rule.start, width=1, special=_KINDS.index(rule.name))
+    raise GenerateError(f"function {code}: the compiled path has no length rule {rule}")
 
 
 def _by_quantity(layout: Layout) -> str:
@@ -40,23 +52,23 @@ def _by_quantity(layout: Layout) -> str:
     framing/rules.py quantity_rule), as a LengthRule; none: all zero."""
     alternative, counted = layout.by_quantity, layout.length
     if alternative is None or not isinstance(counted, Counted):
-        return _NO_RULE
-    return (f"{{0, {alternative.position}, {alternative.extra}, 2, {_SPECIAL_RULES['by_quantity']}, "
-            f"{alternative.unit}, {counted.position}, {counted.extra}}}")
+        return _row()
+    return _row(position=alternative.position, extra=alternative.extra, width=2, special=_KINDS.index("by_quantity"),
+                unit=alternative.unit, count_at=counted.position, count_extra=counted.extra)
 
 
-def _known_rules() -> tuple[list[int], list[str]]:
+def _known_rules() -> tuple[list[int], list[str], list[str]]:
     """The framer's interpretations for every code it knows (framing/rules.py REQUEST_FIRST: the table's
-    codes, then the codes found by a CRC scan): slots by code, and per slot {request, response, by quantity}."""
+    codes, then the codes found by a CRC scan): slots by code, per slot {request, response, by quantity}, and
+    the rules their selects pick."""
     slots = [-1] * 256
     rows: list[str] = []
-    codes = [(entry.code, entry.request, entry.response) for entry in table.FUNCTIONS]
-    scan = table.RAW_LAYOUT
-    codes += [(code, scan, scan) for code in sorted(table.OTHER_FUNCTIONS) if code not in table.TABLE]
-    for code, request, response in codes:
+    selected: list[str] = []
+    for code, request, response in table.known_layouts():
         slots[code] = len(rows)
-        rows.append(f"{{{_rule(request, code)}, {_rule(response, code)}, {_by_quantity(request)}}}, /* {code} */")
-    return slots, rows
+        rules = (_rule(request.length, code, selected), _rule(response.length, code, selected), _by_quantity(request))
+        rows.append(f"{{{', '.join(rules)}}}, /* {code} */")
+    return slots, rows, selected
 
 
 def _slot_rows(slots: list[int]) -> list[str]:
@@ -72,7 +84,7 @@ def _clocks() -> list[str]:
 
 def render_header() -> str:
     entries = [entry for entry in table.FUNCTIONS if entry.compiled is not None]
-    known_slots, known_rows = _known_rules()
+    known_slots, known_rows, selected = _known_rules()
     limits = table.compiled_limits()
     slots = [-1] * 256
     for index, entry in enumerate(entries):
@@ -108,12 +120,18 @@ def render_header() -> str:
         *(f"    {c_rules.c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
         "};",
         "",
-        "/* Frame length, CRC included: `fixed` when not 0, else `extra` + the count at `position` (`width`",
-        " * 1: a byte, 2: a big-endian word), else the special rule (1: mei_request, 2: mei_response,",
-        " * 3: diagnostics, 4: scan, framing/rules.py's functions of those names; 5: by_quantity, its",
-        " * quantity_rule: `extra` + the word at `position` x `unit` bytes (0: bits, ceil(q / 8)), none where",
-        " * that is the byte count's length, count_extra + the byte at count_at). */",
-        "typedef struct { int fixed, position, extra, width, special, unit, count_at, count_extra; } LengthRule;",
+        "/* Frame length, CRC included: `fixed` when not 0, else by `special`: RULE_SCAN, a CRC scan from `extra`",
+        " * bytes (table.Scan); the others read the byte (`width` 1) or big-endian word (2) at `position`:",
+        " * RULE_COUNTED `extra` + it; RULE_SELECT the rule selected_rule[`chosen`] where it is `value`, else",
+        " * selected_rule[`otherwise`] (table.Select); RULE_BY_QUANTITY, framing/rules.py quantity_rule: `extra` + it",
+        " * (a quantity) x `unit` bytes (0: bits, ceil(q / 8)), none where that is the byte count's length,",
+        " * count_extra + the byte at count_at; RULE_MEI_OBJECTS, rules.py _mei_objects: it objects (an id, a",
+        " * length byte, that many bytes) from `extra`. */",
+        f"enum {{ {', '.join(f'RULE_{kind.upper()}' for kind in _KINDS)} }};",
+        f"typedef struct {{ int {', '.join(_FIELDS + _SELECT_FIELDS)}; }} LengthRule;",
+        "static const LengthRule selected_rule[] = {",
+        *(f"    {row}," for row in selected),
+        "};",
         "",
         "/* The framer's interpretations of a frame start for every code it knows (framing/rules.py",
         " * REQUEST_FIRST): its request's and its response's length rules, and a request's by its quantity",

@@ -167,7 +167,11 @@ def _length_rule(rule: table.LengthRule) -> list[Any]:
         return ["fixed", rule.length]
     if isinstance(rule, table.Counted):
         return ["count8" if rule.width == 1 else "count16", rule.position, rule.extra]
-    return [rule.name]
+    if isinstance(rule, table.Scan):
+        return ["scan", rule.minimum]
+    if isinstance(rule, table.Select):
+        return ["select", rule.position, rule.width, rule.value, _length_rule(rule.chosen), _length_rule(rule.otherwise)]
+    return [rule.name, rule.position, rule.start]
 
 
 def protocol_tables() -> dict[str, Any]:
@@ -175,9 +179,10 @@ def protocol_tables() -> dict[str, Any]:
     per direction the parser (by layout name), the handler and the spec limit; the read classes."""
     directions = {"request": Kind.REQUEST, "response": Kind.RESPONSE}
     return {
+        # (the codes without a layout, found by a CRC scan: framing/rules.py RULES)
         "rules": {
-            entry.code: [_length_rule(entry.request.length), _length_rule(entry.response.length)]
-            for entry in table.FUNCTIONS
+            code: [_length_rule(request.length), _length_rule(response.length)]
+            for code, request, response in table.known_layouts()
         },
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
         "parsers": {name: table.by_kind("name")[kind] for name, kind in directions.items()},

@@ -13,7 +13,7 @@ from dissector.protocol.crc import crc16
 from dissector.protocol.spec import SPEC
 
 MAX_ADU = int(SPEC.limits["max_adu"])  # type: ignore[call-overload]
-MIN_ADU = 4
+MIN_ADU = table.SCAN.minimum
 MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]
 
 NEED = -1  # not enough bytes yet to know the length
@@ -58,50 +58,48 @@ def _crc_ok(buf: bytes | bytearray, i: int, length: int) -> bool:
     return crc16(buf[i:stop]) == buf[stop] | buf[stop + 1] << 8
 
 
-def _diagnostics(buf: bytes | bytearray, i: int, n: int) -> int:
-    # Return Query Data (sub-function 0) echoes any amount of data; all others carry one word.
-    if i + 3 >= n:
-        return NEED
-    if buf[i + 2] == 0 and buf[i + 3] == 0:
-        return Scan(6)
-    return 8
+def _scan(minimum: int) -> LengthRule:
+    found = Scan(minimum)
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        return found
+
+    return rule
 
 
-def _mei_request(buf: bytes | bytearray, i: int, n: int) -> int:
-    if i + 2 >= n:
-        return NEED
-    return 7 if buf[i + 2] == 14 else Scan(5)
+def _select(select: table.Select) -> LengthRule:
+    """The rule the field at select.position picks (table.Select): the field's count rule with nothing added."""
+    field = length_rule(table.Counted(select.position, 0, select.width))
+    value, chosen, otherwise = select.value, length_rule(select.chosen), length_rule(select.otherwise)
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        found = field(buf, i, n)
+        if found == value:
+            return chosen(buf, i, n)
+        return NEED if found == NEED else otherwise(buf, i, n)
+
+    return rule
 
 
-def _mei_response(buf: bytes | bytearray, i: int, n: int) -> int:
-    """Walk the FC43/14 object list: 8 header bytes, then (id, length, value) per object."""
-    if i + 2 >= n:
-        return NEED
-    if buf[i + 2] != 14:
-        return Scan(5)
-    if i + 7 >= n:
-        return NEED
-    count = buf[i + 7]
-    position = 8
-    for _ in range(count):
-        if i + position + 1 >= n:
+def _mei_objects(position: int, start: int) -> LengthRule:
+    """Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`."""
+
+    def rule(buf: bytes | bytearray, i: int, n: int) -> int:
+        if i + position >= n:
             return NEED
-        position += 2 + buf[i + position + 1]
-        if position > MAX_ADU:
-            return NONE
-    return position + 2
+        stop = start
+        for _ in range(buf[i + position]):
+            if i + stop + 1 >= n:
+                return NEED
+            stop += 2 + buf[i + stop + 1]
+            if stop > MAX_ADU:
+                return NONE
+        return stop + 2
+
+    return rule
 
 
-def _scan_any(buf: bytes | bytearray, i: int, n: int) -> int:
-    return Scan(MIN_ADU)
-
-
-_SPECIAL: dict[str, LengthRule] = {
-    "diagnostics": _diagnostics,
-    "mei_request": _mei_request,
-    "mei_response": _mei_response,
-    "scan": _scan_any,
-}
+_SPECIAL: dict[str, Callable[[int, int], LengthRule]] = {"mei_objects": _mei_objects}
 
 
 def length_rule(rule: table.LengthRule) -> LengthRule:
@@ -110,7 +108,11 @@ def length_rule(rule: table.LengthRule) -> LengthRule:
         return _fixed(rule.length)
     if isinstance(rule, table.Counted):
         return (_count8 if rule.width == 1 else _count16)(rule.position, rule.extra)
-    return _SPECIAL[rule.name]
+    if isinstance(rule, table.Scan):
+        return _scan(rule.minimum)
+    if isinstance(rule, table.Select):
+        return _select(rule)
+    return _SPECIAL[rule.name](rule.position, rule.start)
 
 
 def quantity_rule(alternative: table.ByQuantity, counted: table.Counted) -> LengthRule:
@@ -127,8 +129,8 @@ def quantity_rule(alternative: table.ByQuantity, counted: table.Counted) -> Leng
 
 # (request rule, response rule) per function code: lengths of the whole ADU, CRC included.
 RULES: dict[int, tuple[LengthRule, LengthRule]] = {
-    entry.code: (length_rule(entry.request.length), length_rule(entry.response.length))
-    for entry in table.FUNCTIONS
+    code: (length_rule(request.length), length_rule(response.length))
+    for code, request, response in table.known_layouts()
 }
 # Requests whose byte count may disagree with their quantity: the quantity's length, tried last.
 BY_QUANTITY: dict[int, LengthRule] = {
@@ -137,8 +139,6 @@ BY_QUANTITY: dict[int, LengthRule] = {
     if entry.request.by_quantity is not None and isinstance(entry.request.length, table.Counted)
 }
 OTHER_FUNCTIONS = table.OTHER_FUNCTIONS
-for _code in OTHER_FUNCTIONS:
-    RULES.setdefault(_code, (_scan_any, _scan_any))
 
 
 _EXCEPTION_LENGTH = table.EXCEPTION_LAYOUT.length.length  # type: ignore[union-attr]
