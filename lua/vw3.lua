@@ -2744,11 +2744,9 @@ local FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math, pairs = FRAMING, NOISE, NOI
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
-local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
 local GLITCH = FRAMING.glitch_bytes
-local GLITCH_ADDRESSES = FRAMING.glitch_addresses -- (those that are no device's address: rules.py)
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -2827,7 +2825,7 @@ local function expect_after(s, frame)
   end
 end
 
-local GLITCH_RUN, GLITCHY_AFTER, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitchy_after, FRAMING.glitch_score_max
+local GLITCH_RUN, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitch_score_max
 local function emit(s, frame, items)
   -- How much the line shows 00 glitches before frames (stream.py _emit): +1 after a few glitch bytes with
   -- a 00 among them, -1 after other noise.
@@ -2851,7 +2849,7 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
-M.GLITCH, M.GLITCH_ADDRESSES, M.GLITCHY_AFTER, M.GLITCH_SKIP = GLITCH, GLITCH_ADDRESSES, GLITCHY_AFTER, GLITCH_SKIP
+M.GLITCH = GLITCH
 M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
 M.lane, M.time_at = lane, time_at
 end
@@ -2863,12 +2861,12 @@ package.preload["vw3.rtu"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, FRAMING, GLITCH, GLITCHY_AFTER = DATA, EXCEPTION, FRAMING, GLITCH, GLITCHY_AFTER
-local GLITCH_ADDRESSES, GLITCH_SKIP, MAX_ADU, MAX_SLAVE = GLITCH_ADDRESSES, GLITCH_SKIP, MAX_ADU, MAX_SLAVE
+local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
 local RESPONSE, add_noise, boundary_at, crc16, crc_ok_at = RESPONSE, add_noise, boundary_at, crc16, crc_ok_at
 local crc_scan, crc_string_ok, emit, format = crc_scan, crc_string_ok, emit, format
 local interpretations, math, possible_start, table, time_at = interpretations, math, possible_start, table, time_at
+local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).

@@ -3,6 +3,7 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).

@@ -9,11 +9,9 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- request awaited, or a request met before (by its bytes, or its bytes before the values), framed,
 -- paired, annotated and kept in one step; their parts are defined beside the rules they follow.
 local lane = {}
-local GLITCH_SKIP = FRAMING.glitch_skip
 -- What a short low pulse on an idle line reads as (stream.py GLITCH_BYTES): FF << k, a bus driver's
 -- turn-around after a frame, a break (00).
 local GLITCH = FRAMING.glitch_bytes
-local GLITCH_ADDRESSES = FRAMING.glitch_addresses -- (those that are no device's address: rules.py)
 -- The stream the framers read: every record's bytes appended to the bytes not framed yet, as the Python
 -- framers are fed chunks (dissector/framing/stream.py). s.b holds the unframed bytes from index 0,
 -- s.n of them; s.base is the stream offset of s.b[0]. A record's end is a frame boundary (pcap records
@@ -92,7 +90,7 @@ local function expect_after(s, frame)
   end
 end
 
-local GLITCH_RUN, GLITCHY_AFTER, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitchy_after, FRAMING.glitch_score_max
+local GLITCH_RUN, GLITCH_SCORE_MAX = FRAMING.glitch_run, FRAMING.glitch_score_max
 local function emit(s, frame, items)
   -- How much the line shows 00 glitches before frames (stream.py _emit): +1 after a few glitch bytes with
   -- a 00 among them, -1 after other noise.
@@ -116,6 +114,6 @@ local function emit(s, frame, items)
   expect_after(s, frame)
 end
 
-M.GLITCH, M.GLITCH_ADDRESSES, M.GLITCHY_AFTER, M.GLITCH_SKIP = GLITCH, GLITCH_ADDRESSES, GLITCHY_AFTER, GLITCH_SKIP
+M.GLITCH = GLITCH
 M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
 M.lane, M.time_at = lane, time_at
