@@ -5433,8 +5433,9 @@ local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
   "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
-local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
-local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
+-- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
+local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION, NOISE }
 
 -- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
 -- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
@@ -5626,7 +5627,7 @@ function pack.settle(st)
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
 
-M.pack, M.put_flat = pack, put_flat
+M.KIND_NUMBER, M.NUMBER_KIND, M.pack, M.put_flat = KIND_NUMBER, NUMBER_KIND, pack, put_flat
 M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot
 end
 
@@ -6197,22 +6198,20 @@ package.preload["vw3.fields"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.fields"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, EXCEPTIONS, FUNCTIONS
-local NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST = NOISE, Pref, Proto, ProtoExpert, ProtoField, REQUEST
-local RESPONSE, base, configure, expert, frametype, ipairs = RESPONSE, base, configure, expert, frametype, ipairs
-local lane, new_state, string, type = lane, new_state, string, type
+local DATA, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, NUMBER_KIND = DATA, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, NUMBER_KIND
+local Pref, Proto, ProtoExpert, ProtoField, base, configure = Pref, Proto, ProtoExpert, ProtoField, base, configure
+local expert, frametype, ipairs, lane, new_state, string = expert, frametype, ipairs, lane, new_state, string
+local type = type
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
--- The kind is an integer with value strings: `vw3.kind == "request"` filters by name, and an integer costs
--- less than a string to add and to compare. A register's status is text, as vw3-decode's `status` key:
--- `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a register has no
--- status (a text field can have one, issue 27).
-local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
-local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+-- The kind is an integer with value strings (pack.lua's numbering): `vw3.kind == "request"` filters by name,
+-- and an integer costs less than a string to add and to compare. A register's status is text, as vw3-decode's
+-- `status` key: `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a
+-- register has no status (a text field can have one, issue 27).
 
 -- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
-local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
+local VALUES = { kind = NUMBER_KIND, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
   run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
   response = frametype and frametype.RESPONSE }
 
@@ -6285,7 +6284,6 @@ function proto.init()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.KIND_VALUES = KIND_VALUES
 M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state
 end
 
@@ -6296,7 +6294,7 @@ package.preload["vw3.tree"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_VALUES
+local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
 local NOISE, NO_INTERPRETATION, NSTime, PROFILES = NOISE, NO_INTERPRETATION, NSTime, PROFILES
 local ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST = ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST
 local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
@@ -6505,7 +6503,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     t = tree:add(proto, whole)
     t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
     t:add(pf.item, whole, f.number):set_generated()
-    t:add(pf.kind, whole, KIND_VALUES[f.kind]):set_generated()
+    t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
     t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
     t:add(pf.slave, frame_range(tvb, f, 0, 1), f.slave) -- (the slave byte is the first of the frame's byte table)
@@ -6663,7 +6661,7 @@ local function show_noise(item, tvb, tree, full, k, expert_text)
   local r = tvb:range(item.at + k * length, length)
   local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
   t:add(pf.item, r, item.number + k):set_generated()
-  t:add(pf.kind, r, KIND_VALUES[NOISE]):set_generated()
+  t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
   t:add(pf.offset, r, item.offset + k * length):set_generated()
   t:add(pf.noise_reason, r, item.reason):set_generated()
   t:add(pf.data, r)

@@ -6,15 +6,13 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
--- The kind is an integer with value strings: `vw3.kind == "request"` filters by name, and an integer costs
--- less than a string to add and to compare. A register's status is text, as vw3-decode's `status` key:
--- `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a register has no
--- status (a text field can have one, issue 27).
-local KIND_NAMES = { [1] = REQUEST, [2] = RESPONSE, [3] = EXCEPTION, [4] = NOISE }
-local KIND_VALUES = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+-- The kind is an integer with value strings (pack.lua's numbering): `vw3.kind == "request"` filters by name,
+-- and an integer costs less than a string to add and to compare. A register's status is text, as vw3-decode's
+-- `status` key: `-T fields` prints `protected` where vw3-decode does, and an empty occurrence where a
+-- register has no status (a text field can have one, issue 27).
 
 -- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
-local VALUES = { kind = KIND_NAMES, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
+local VALUES = { kind = NUMBER_KIND, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
   run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
   response = frametype and frametype.RESPONSE }
 
@@ -87,5 +85,4 @@ function proto.init()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.KIND_VALUES = KIND_VALUES
 M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state

@@ -18,8 +18,9 @@ local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
   "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
-local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3 }
-local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION }
+-- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
+local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
+local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION, NOISE }
 
 -- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
 -- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
@@ -211,5 +212,5 @@ function pack.settle(st)
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
 
-M.pack, M.put_flat = pack, put_flat
+M.KIND_NUMBER, M.NUMBER_KIND, M.pack, M.put_flat = KIND_NUMBER, NUMBER_KIND, pack, put_flat
 M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot
