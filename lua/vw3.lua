@@ -6301,7 +6301,6 @@ local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, dev
 local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
 local pairs, pf, proto, python_repr, register_view, say = pairs, pf, proto, python_repr, register_view, say
 local setmetatable, string, tonumber, tostring = setmetatable, string, tonumber, tostring
-local summary
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 local function add_text(tree, expert_info, text)
@@ -6393,15 +6392,13 @@ end
 
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
-  local b = {}
-  if f.ascii then
-    local raw = tvb:raw(f.at + 1, f.length - 3)
-    for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
-  else
+  if not f.ascii then -- (the bytes as they are, 0-based)
     local raw = tvb:raw(f.at, f.length)
-    local byte = string.byte
-    for k = 1, #raw do b[k - 1] = byte(raw, k) end
+    return { [0] = string.byte(raw, 1), string.byte(raw, 2, -1) }
   end
+  local raw = tvb:raw(f.at + 1, f.length - 3)
+  local b = {}
+  for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
   return b
 end
 
@@ -6475,7 +6472,7 @@ local DECIMAL = setmetatable({}, { __index = function(texts, number)
   return text
 end })
 
-summary = function(f)
+local function summary(f)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
   local kind, fn = f.kind, f.fn
   local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
@@ -6646,25 +6643,23 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     local unmatched = f.no_request and text == UNMATCHED
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
-  if full then return t end
-  return nil
+  return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
 end
 
 -- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
 -- (expert_text: the run's text, made once for all its items by the caller)
 local function show_noise(item, tvb, tree, full, k, expert_text)
   local length = item.length
-  if not full then
-    add_text(tree, ex.noise, expert_text)
-    return nil
+  local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
+  if full then
+    local r = tvb:range(item.at + k * length, length)
+    t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
+    t:add(pf.item, r, item.number + k):set_generated()
+    t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
+    t:add(pf.offset, r, item.offset + k * length):set_generated()
+    t:add(pf.noise_reason, r, item.reason):set_generated()
+    t:add(pf.data, r)
   end
-  local r = tvb:range(item.at + k * length, length)
-  local t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
-  t:add(pf.item, r, item.number + k):set_generated()
-  t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
-  t:add(pf.offset, r, item.offset + k * length):set_generated()
-  t:add(pf.noise_reason, r, item.reason):set_generated()
-  t:add(pf.data, r)
   add_text(t, ex.noise, expert_text)
   return t
 end
