@@ -2,7 +2,6 @@
 -- Mirrors dissector/decode/fields.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.decode"]).
 local M = require("vw3.env")
-local unpack = table.unpack or unpack
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local RULES = DATA.rules
 
@@ -11,7 +10,6 @@ local RULES = DATA.rules
 local FUNCTIONS = DATA.functions or {}
 local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
-local OBJECTS = DATA.device_id_objects or {}
 local LIMITS = DATA.limits or {}
 local NOT_BROADCAST = DATA.not_broadcast or {}
 
@@ -23,12 +21,11 @@ local function fill(entry, values, quote)
     local name = params[index]
     args[index] = repr and repr[name] and quote(values[name]) or values[name]
   end
-  return format(entry.format, unpack(args, 1, #params))
+  return format(entry.format, table.unpack(args, 1, #params))
 end
 
 -- The catalogue's text `key` (data/modbus.toml [texts], protocol/rules.py text()).
-local TEXTS = RULES.texts
-local function say(key, values) return fill(TEXTS[key], values) end
+local function say(key, values) return fill(RULES.texts[key], values) end
 
 local function function_name(code)
   return FUNCTIONS[code] or say(DATA.user_defined[code] and "user_function" or "other_function", { code = code })
@@ -229,7 +226,7 @@ local function lifter(rule, limit, layout)
   else add("local many = %s", quantity and field(quantity) or "nil") end
   add("f.start, f.quantity = first, many")
   for _, check in ipairs(rule.checks) do -- (test "above": the high bound only; its text names no low one)
-    local value, low, high = field(check.field), unpack(RULES.limits[check.limit or limit])
+    local value, low, high = field(check.field), table.unpack(RULES.limits[check.limit or limit])
     local outside = check.test == "above" and format("%s > %d", value, high)
       or format("%s < %d or %s > %d", value, low, value, high)
     add("if %s then warn(f, say(%q, { what = %q, value = %s, low = %d, high = %d })) end", outside, check.test,
@@ -305,7 +302,7 @@ local SPECIAL = {
         local byte = b[k]
         chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
       end
-      object.name = OBJECTS[object.id] or say("other_object", { id = object.id })
+      object.name = DATA.device_id_objects[object.id] or say("other_object", { id = object.id })
       object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil
     end
     f.objects = objects
