@@ -3453,8 +3453,6 @@ local function consume(s, count)
   end
 end
 
-lane.flush_noise = flush_noise
-
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
 local function takes_whole(s, n, slave)
   return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
@@ -6866,9 +6864,10 @@ local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, D
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_for, device_now, dissect_now, ex = detect_mode, device_for, device_now, dissect_now, ex
-local feed, finish_all, ipairs, lane, math, new_state, pack = feed, finish_all, ipairs, lane, math, new_state, pack
-local package, pcall, pf, proto, record_time, show_record = package, pcall, pf, proto, record_time, show_record
-local stream_state, take_items, tostring, tree_mode, wtap = stream_state, take_items, tostring, tree_mode, wtap
+local feed, finish_all, flush_noise, ipairs, math = feed, finish_all, flush_noise, ipairs, math
+local new_state, pack, package, pcall, pf, proto = new_state, pack, package, pcall, pf, proto
+local record_time, show_record, stream_state, take_items = record_time, show_record, stream_state, take_items
+local tostring, tree_mode, wtap = tostring, tree_mode, wtap
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
@@ -6936,7 +6935,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   local record = { number = pinfo.number, start = 0, length = n }
   st.open = { record }
   local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
-  lane.flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
   local used = st.base
   take_items(st, items, record)
   if used < n and pinfo.can_desegment > 0 then

@@ -70,7 +70,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   local record = { number = pinfo.number, start = 0, length = n }
   st.open = { record }
   local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
-  lane.flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
+  flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
   local used = st.base
   take_items(st, items, record)
   if used < n and pinfo.can_desegment > 0 then

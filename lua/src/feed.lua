@@ -39,8 +39,6 @@ local function consume(s, count)
   end
 end
 
-lane.flush_noise = flush_noise
-
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
 local function takes_whole(s, n, slave)
   return s.n == 0 and s.noise == nil and s.mode == "rtu" and n >= MIN_ADU and n <= MAX_ADU and s.times[3] == nil
