@@ -93,18 +93,13 @@ local function build_device(profile, slave)
   return device
 end
 
--- The profile a slave has now: forced per slave, chosen by `auto`, or the default (auto: the fallback).
-local function profile_name(st, slave)
-  local name = config.per_slave[slave]
-  if name ~= nil then return name end
-  if config.default == AUTO then return (st.chosen and st.chosen[slave]) or SELECTION.fallback end
-  return config.default
-end
-
 local function device_for(st, slave)
   local device = st.devices[slave]
   if device ~= nil then return device end
-  local profile = PROFILES[profile_name(st, slave)]
+  -- The profile the slave has now (annotator.py profile_for): forced per slave, chosen by `auto` (only
+  -- auto chooses: select_device), or the default (auto: the fallback).
+  local name = config.per_slave[slave] or (st.chosen and st.chosen[slave]) or config.default
+  local profile = PROFILES[name == AUTO and SELECTION.fallback or name]
   device = profile ~= nil and build_device(profile, slave) or false
   st.devices[slave] = device
   return device
