@@ -3967,12 +3967,7 @@ local function pair(st, f)
   else
     if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
-    local notes = f.notes
-    if notes == nil then
-      f.notes = { UNMATCHED }
-    else
-      notes[#notes + 1] = UNMATCHED
-    end
+    note(f, UNMATCHED)
   end
 end
 
