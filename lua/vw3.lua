@@ -469,32 +469,6 @@ local DATA = {
       "2cea2-2ceaf 2ebe1-2f7ff 2fa1e-2ffff 3134b-e00ff e01f0-10ffff",
     },
   },
-  ["other_functions"] = {
-    [65] = true,
-    [66] = true,
-    [67] = true,
-    [68] = true,
-    [69] = true,
-    [70] = true,
-    [71] = true,
-    [72] = true,
-    [96] = true,
-    [97] = true,
-    [98] = true,
-    [100] = true,
-    [101] = true,
-    [102] = true,
-    [103] = true,
-    [104] = true,
-    [105] = true,
-    [106] = true,
-    [107] = true,
-    [108] = true,
-    [109] = true,
-    [110] = true,
-    [125] = true,
-    [126] = true,
-  },
   ["crc_table"] = {
     0,
     49345,
@@ -5339,7 +5313,7 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
-local unpack = table.unpack or unpack
+local unpack = table.unpack
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)

@@ -180,11 +180,10 @@ static const uint8_t glitch_bytes[256] = {
     1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0,
     1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1,
 };
-/* Of the --stats store (render/stats_store.py, pollcycle.py) and the timed path (_timeline.h's chunk
+/* Of the --stats store (render/stats_store.py) and the timed path (_timeline.h's chunk
  * flags are accel/records.py's). */
 #define MAX_PARAMETERS 262144
 #define MAX_TALLY 65536
-#define POLL_STEP 0.0001
 enum { CHUNK_TIMED = 1, CHUNK_RECORD_END = 2, CHUNK_SILENCE_BEFORE = 4 };
 /* CRC-16/MODBUS by byte (protocol/crc.py's table). */
 static const uint16_t crc_table[256] = {

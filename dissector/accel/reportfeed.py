@@ -1,7 +1,7 @@
 """--report fed by the engine (issue 28): the compiled Report (dissector/accel/_report.h) that the engine's
 count path (timedpath.count_input) gives what the report takes of the transactions it counts itself,
 into the very objects the Python stages fill (render/report/collect.py ReportCollector, health.py
-Health): the x axis, the events, the trends' points, the response times and the setpoints. The Python
+Health): the x axis, the events, the trends' points and the response times (the setpoints are the parameter table's). The Python
 stages' items go to those objects as before, in stream order; the engine takes their state at the
 start of each of its runs (Report.pull) and gives it back at the end (Report.push).
 tests/differential/test_timed_report.py holds the page byte-identical to VW3_PURE_PYTHON=1.

@@ -87,7 +87,7 @@ class Sinks:
             self.stats = StatsCollector(getattr(annotate, "choices", None), History(annotate))
         self.stats_shown = args.stats
         self.bus = None  # bus timing and slave health (render/bustiming.py), from every item heard
-        self.health = None  # the report's response times over time and setpoints (report/health.py)
+        self.health = None  # the report's response times over time (report/health.py)
         if args.stats or args.report is not None:
             from dissector.render.bustiming import BusTiming
 

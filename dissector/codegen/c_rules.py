@@ -27,7 +27,7 @@ from dissector.accel.fastsummary import HANDOVER, NEED, SlaveFacts, Texts
 from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
 from dissector.framing.stream import GLITCH_BYTES
-from dissector.render import describe, pollcycle, stats_store
+from dissector.render import describe, stats_store
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
 
@@ -290,11 +290,10 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         *(f"    {', '.join(str(int(byte in GLITCH_BYTES)) for byte in range(row, row + 32))},"
           for row in range(0, 256, 32)),
         "};",
-        "/* Of the --stats store (render/stats_store.py, pollcycle.py) and the timed path (_timeline.h's chunk",
+        "/* Of the --stats store (render/stats_store.py) and the timed path (_timeline.h's chunk",
         " * flags are accel/records.py's). */",
         f"#define MAX_PARAMETERS {stats_store.MAX_PARAMETERS}",
         f"#define MAX_TALLY {stats_store.MAX_TALLY}",
-        f"#define POLL_STEP {pollcycle.STEP!r}",
         f"enum {{ CHUNK_TIMED = {records.TIMED}, CHUNK_RECORD_END = {records.RECORD_END}, "
         f"CHUNK_SILENCE_BEFORE = {records.SILENCE_BEFORE} }};",
         "/* CRC-16/MODBUS by byte (protocol/crc.py's table). */",

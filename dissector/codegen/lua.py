@@ -133,7 +133,6 @@ def plugin_data() -> dict[str, Any]:
         },
         # What printable() escapes: the code points str.isprintable() refuses (codegen/printable_table.py).
         "nonprintable": printable_table.lua_data(),
-        "other_functions": frozenset(framer.OTHER_FUNCTIONS),
         # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
         "crc_table": crc._TABLE,
         "not_broadcast": SPEC.not_broadcast,

@@ -59,7 +59,7 @@ end
 -- ---------------------------------------------------------------------------------------------------
 -- One record: frame it, pair and decode every frame, in order. Pure Lua: the Wireshark glue below and
 -- the standalone tests both call it.
-local unpack = table.unpack or unpack
+local unpack = table.unpack
 
 -- A Lua string of count bytes from a 0-based (first) or 1-based byte table.
 local function string_of(b, first, count)

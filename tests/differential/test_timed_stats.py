@@ -138,8 +138,8 @@ def test_shipped_captures_same_stats(name: str, monkeypatch: pytest.MonkeyPatch,
 
 def test_times_too_far_apart_for_the_engine(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                              counted: list[bool]) -> None:
-    """A record 120 days after the one before (more than the engine subtracts exactly): the Python stages
-    count the rest of the capture into the same store, their stamps still subtracted exactly there."""
+    """A record 120 days after the one before (past 2^53 ns, where a difference's double rounds): the
+    engine's stamp subtraction rounds once, as the Python stages', into the same store."""
     records = story()
     jump = 120 * 86_400 * 10**9
     records = records[:300] + [(data, None if ns is None else ns + jump) for data, ns in records[300:]]

@@ -213,8 +213,8 @@ def test_odd_pcap_records_read_in_bulk_as_the_reader_does(read_bytes: int, big_e
 
 
 def test_times_far_apart_same_lines(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    """Times months apart (their differences in ns do not fit a double exactly): the Python stages'
-    rounding, wherever the engine stops."""
+    """Times months apart (their differences in ns do not fit a double exactly): the engine rounds them
+    once, as the Python stages do, wherever it hands over and takes back."""
     from helpers import rtu
 
     read, answer = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")

@@ -40,8 +40,18 @@ def test_every_name_has_an_implementation() -> None:
     assert handlers <= set(LIFTS) | _lua_names("SPECIAL")
     assert {layout.name for _, _, layout in LAYOUTS} <= set(SHAPES)
     assert "DATA.rules = RULES" in PLUGIN.read_text(encoding="utf-8")
-    specials = {layout.length.name for _, _, layout in LAYOUTS if isinstance(layout.length, table.Special)}
+    specials = {rule.name for _, _, layout in LAYOUTS for rule in _rules_within(layout.length) if isinstance(rule, table.Special)}
+    assert specials == {"mei_objects"}  # (FC43/14's object walk, inside FC43's select on the MEI type)
     assert specials <= set(rtu._SPECIAL) and specials <= _lua_names("makers")
+    c_kinds = set(re.findall(r"RULE_(\w+)", (ROOT / "dissector" / "accel" / "_tables.h").read_text(encoding="utf-8")))
+    assert {name.upper() for name in specials} <= c_kinds
+
+
+def _rules_within(rule: table.LengthRule) -> list[table.LengthRule]:
+    """A length rule and every rule a select of it may pick (selects nest)."""
+    if isinstance(rule, table.Select):
+        return [rule, *_rules_within(rule.chosen), *_rules_within(rule.otherwise)]
+    return [rule]
 
 
 def test_derived_tables_follow_the_table() -> None:
