@@ -63,6 +63,13 @@ class LineTiming:
         return f"t1.5 = {self.t15 * 1000:.3f} ms at {self.baud} baud"
 
 
+def line_silence(previous_offset: int, previous_time: float, start: int, time: float, timing: LineTiming) -> float:
+    """Seconds the line was silent before the chunk at stream offset `start` that came at `time`, after
+    the chunk at `previous_offset` that came at `previous_time`: the formula above, for a silence inside
+    a frame (inner_gaps) and between frames (silence_before) alike."""
+    return time - previous_time - (start - previous_offset) * timing.char_time
+
+
 def inner_gaps(
     offset: int,
     length: int,
@@ -79,7 +86,7 @@ def inner_gaps(
     for (previous_offset, previous_time), (start, time) in zip(starts, starts[1:]):
         if not offset < start < end or previous_time is None or time is None:
             continue
-        silence = time - previous_time - (start - previous_offset) * timing.char_time
+        silence = line_silence(previous_offset, previous_time, start, time, timing)
         if silence > timing.max_silence:
             warnings.append(text(
                 "inner_silence", silence_ms=silence * 1000, byte=start - offset, limit=timing.describe_limit()
@@ -135,6 +142,4 @@ def silence_before(previous: tuple[int, float | None], start: int, time: float, 
     frame may end there (a record boundary's weight), never as a cut: a USB adapter's reads come in
     bursts whose times say little about the gaps inside them."""
     offset, before = previous
-    if before is None:
-        return False
-    return time - before - (start - offset) * timing.char_time >= timing.t35
+    return before is not None and line_silence(offset, before, start, time, timing) >= timing.t35
