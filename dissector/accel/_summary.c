@@ -208,9 +208,6 @@ typedef struct {
     int running; /* inside run(): callbacks must not re-enter */
     PyObject *stats; /* a Stats (_stats.h) counting what is shown here, or NULL: summary only */
     Timeline tl;     /* run_timed(): the chunks and times of the stream (_timeline.h) */
-    /* The line being written: its frame's time, and its request's (the response time). */
-    int line_timed, pair_timed;
-    long long line_ns, request_ns;
     PyObject *judge;       /* profile auto's first pass (_judge.h): its bitmap (bytes), or NULL */
     char frames;           /* with judge: each transaction passed is written out as a record (_judge.h) */
 } Engine;
@@ -874,11 +871,11 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
     return r->values.values != NULL ? words_are_plain(s, e->run_number, &r->values) : 1;
 }
 
-/* summary.summary_line's head: number, time (`-`: untimed), slave, kind */
-static void line_head(Engine *e, const uint8_t *f, unsigned long long number, const char *kind) {
+/* summary.summary_line's head of frame f: number, time (`-`: untimed), slave, kind */
+static void line_head(Engine *e, const FrameRef *f, unsigned long long number, const char *kind) {
     out_uint(&e->out, number, 6);
-    out_time_column(&e->out, &e->tl, e->line_timed, e->line_ns);
-    out_uint(&e->out, f[0], 3);
+    out_time_column(&e->out, &e->tl, f->timed, f->ns);
+    out_uint(&e->out, (unsigned)f->slave, 3);
     out_cstr(&e->out, kind);
 }
 
@@ -972,30 +969,32 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
     return e->out.failed ? -1 : 1;
 }
 
-/* A line after its info: `pairing` (` [no response]`) or the pairing with request_number (0: none), the
- * tail from the Python stages (NULL: none), the CRC. 1, -1 error. */
-static int line_end(Engine *e, const char *pairing, unsigned long long request_number, PyObject *tail) {
-    if (pairing != NULL) out_cstr(&e->out, pairing);
-    if (request_number) {
+/* The line `number` of frame f after its info: ` [no response]` (`unanswered`) or, for an answer, the
+ * pairing with its request (the line before; NULL: f is a request), the tail from the Python stages (NULL:
+ * none), the CRC. 1, -1 error. */
+static int line_end(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number, int unanswered,
+                    PyObject *tail) {
+    if (unanswered) out_cstr(&e->out, " [no response]");
+    if (request != NULL) {
         out_put(&e->out, " ", 1);
-        out_pairing(&e->out, request_number, e->pair_timed, e->request_ns, e->line_ns);
+        out_pairing(&e->out, number - 1, request->timed && f->timed, request->ns, f->ns);
     }
     if (tail != NULL && out_str(&e->out, tail) < 0) return -1;
     out_cstr(&e->out, "  CRC ok\n");
     return e->out.failed ? -1 : 1;
 }
 
-/* The line of a frame as lifted: a request's (`unanswered`: `[no response]`), or with request_number
- * an answer's, paired with that request. 1 written, 0 hand over, -1 error. */
-static int frame_line(Engine *e, Slave *s, const Lifted *f, unsigned long long number,
-                      unsigned long long request_number, int unanswered) {
-    int answer = request_number != 0, k = handled_index(f->frame[1]);
-    line_head(e, f->frame, number, answer ? " response  " : " request   ");
+/* The line of frame f as lifted: a request's (`unanswered`: `[no response]`), or with its `request` an
+ * answer's, paired with it. 1 written, 0 hand over, -1 error. */
+static int frame_line(Engine *e, Slave *s, const Lifted *lifted, const FrameRef *f, const FrameRef *request,
+                      unsigned long long number, int unanswered) {
+    int answer = request != NULL, k = handled_index(f->function);
+    line_head(e, f, number, answer ? " response  " : " request   ");
     if (out_str(&e->out, s->name[k]) < 0) return -1; /* the function name, then the info text */
     out_put(&e->out, " ", 1);
-    int written = info_text(e, s, f->frame, f->length, &rules[k].info[answer], f);
+    int written = info_text(e, s, lifted->frame, lifted->length, &rules[k].info[answer], lifted);
     if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
-    return line_end(e, unanswered ? " [no response]" : NULL, request_number, NULL);
+    return line_end(e, f, request, number, unanswered, NULL);
 }
 
 /* The answer's checks by its lifting rule (lift_frame) and the annotator's (its registers plain, its reads
@@ -1013,11 +1012,11 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
 }
 
 /* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
-static int texts_line(Engine *e, const uint8_t *f, unsigned long long number, const char *kind, PyObject *info,
-                      const char *pairing, unsigned long long request_number, PyObject *tail) {
+static int texts_line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number,
+                      const char *kind, PyObject *info, int unanswered, PyObject *tail) {
     line_head(e, f, number, kind);
     if (out_str(&e->out, info) < 0) return -1;
-    return line_end(e, pairing, request_number, tail);
+    return line_end(e, f, request, number, unanswered, tail);
 }
 
 /* A transaction whose texts come from the Python stages (fastsummary.transaction_texts: a code of
@@ -1039,15 +1038,11 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     Py_DECREF(texts);
     if (item == NULL) return -1;
     /* (out_str refuses a text that is not a str) */
-    int status = texts_line(e, b + q->at, number, " request   ", PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO),
-                            a == NULL ? " [no response]" : NULL, 0, PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
-    if (status > 0 && a != NULL) {
-        e->line_timed = a->timed;
-        e->line_ns = a->ns;
-        status = texts_line(e, b + a->at, number + 1, a->kind == KIND_EXCEPTION ? " exception " : " response  ",
-                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), NULL, number,
-                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
-    }
+    int status = texts_line(e, q, NULL, number, " request   ", PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO), a == NULL,
+                            PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
+    if (status > 0 && a != NULL)
+        status = texts_line(e, a, q, number + 1, a->kind == KIND_EXCEPTION ? " exception " : " response  ",
+                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), 0, PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
     Py_DECREF(item);
     return status;
 }
@@ -1109,10 +1104,6 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     size_t mark = e->out.len;
     found = answer_to(e, b, n, &q, &a);
     ClockRefs clock = e->tl.refs; /* the time column's references, taken back with the lines */
-    e->line_timed = q.timed;
-    e->line_ns = q.ns;
-    e->pair_timed = q.timed && found == FRAME_OK && a.timed;
-    e->request_ns = q.ns;
     /* The next frame is a request: this one was not answered (pairing.py). */
     int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written = 0;
     const Words *writes = s != NULL && r.values.values != NULL ? &r.values : NULL; /* (s: not judged) */
@@ -1125,11 +1116,9 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     } else if (found == FRAME_OK && (!answered || a.kind == KIND_RESPONSE)) {
         /* (not an exception to a code of table.Compiled.texts: the Python stages') */
         written = answered ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 1;
-        if (written > 0) written = frame_line(e, s, &r, e->count + 1, 0, !answered);
+        if (written > 0) written = frame_line(e, s, &r, &q, NULL, e->count + 1, !answered);
         if (written > 0 && answered) {
-            e->line_timed = a.timed;
-            e->line_ns = a.ns;
-            written = frame_line(e, s, &answer, e->count + 2, e->count + 1, 0);
+            written = frame_line(e, s, &answer, &a, &q, e->count + 2, 0);
             if (written > 0 && track(e, s, b + a.at, writes, &reads, e->count + 2) < 0) written = -1;
         }
     }
