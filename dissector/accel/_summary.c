@@ -562,12 +562,6 @@ static int memory_value(Slave *s, PyObject *key, PyObject **value) {
     return 1;
 }
 
-static int words_hold(const Words *w, unsigned address) {
-    for (unsigned k = 0; k < w->count; k++)
-        if (words_address(w, k) == address) return 1;
-    return 0;
-}
-
 static int depend_is_plain(Slave *s, unsigned address) {
     PyObject *key = PyLong_FromUnsignedLong(address);
     if (key == NULL) return -1;
@@ -607,14 +601,15 @@ static int words_are_plain(Slave *s, unsigned long run_number, const Words *w) {
 }
 
 /* Reads as the annotator sees them: 16#8000 in a multi-word read, or a parameter unreadable before,
- * gives a note (Python's). `written` are addresses this transaction wrote first (FC23). */
+ * gives a note (Python's). `written` are addresses this transaction wrote first (FC23): a window, whose
+ * addresses wrap at 65536 as the reads' do. */
 static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
     if (s->protected_value < 0) return 1;
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         if (w->count > 1 && (long)words_value(w, k) == s->protected_value) return 0;
         if (s->seen == NULL || bit(s->pending, address)) continue; /* the engine's entries hold values */
-        if (written != NULL && words_hold(written, address)) continue;
+        if (written != NULL && ((address - written->start) & 0xFFFF) < written->count) continue;
         PyObject *key = PyLong_FromUnsignedLong(address), *last;
         int found = key != NULL ? memory_value(s, key, &last) : -1;
         Py_XDECREF(key);
@@ -860,10 +855,11 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
     return 1;
 }
 
-/* The decoder's and the annotator's checks of a request: 1 quiet, 0 hand over, -1 error. */
+/* The decoder's and the annotator's checks of a request (a handled code: frame_kind): 1 quiet, 0 hand over,
+ * -1 error. */
 static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Lifted *r) {
     int k = handled_index(f[1]);
-    if (k < 0 || s->check[k] < 0) return 0;
+    if (s->check[k] < 0) return 0;
     if (!lift_frame(s, f, length, &request_lift[k], NULL, r)) return 0;
     /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
     if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
@@ -998,12 +994,13 @@ static int frame_line(Engine *e, Slave *s, const Lifted *lifted, const FrameRef 
 }
 
 /* The answer's checks by its lifting rule (lift_frame) and the annotator's (its registers plain, its reads
- * quiet); its window and data in *a, the registers it reads (FC3, FC4, FC23) in *reads. 1 quiet, 0 hand over. */
+ * quiet); its window and data in *a, the registers it reads (FC3, FC4, FC23) in *reads. 1 quiet, 0 hand over.
+ * (Not an answer to a code of table.Compiled.texts: transaction() gives those to texts_lines.) */
 static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Lifted *r, Lifted *a,
                              Words *reads) {
     int k = handled_index(f[1]);
     *reads = (Words){0, 0, NULL};
-    if (rules[k].texts || !lift_frame(s, f, length, &response_lift[k], r, a)) return 0;
+    if (!lift_frame(s, f, length, &response_lift[k], r, a)) return 0;
     if (a->values.values == NULL) return 1;
     int plain = words_are_plain(s, e->run_number, &a->values);
     if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;
