@@ -601,7 +601,7 @@ static int words_are_plain(Slave *s, unsigned long run_number, const Words *w) {
 }
 
 /* Reads as the annotator sees them: 16#8000 in a multi-word read, or a parameter unreadable before,
- * gives a note (Python's). `written` are addresses this transaction wrote first (FC23): a window, whose
+ * gives a note (Python's). `written`: the window this transaction wrote first (FC23; else empty), whose
  * addresses wrap at 65536 as the reads' do. */
 static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
     if (s->protected_value < 0) return 1;
@@ -609,7 +609,7 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
         unsigned address = words_address(w, k);
         if (w->count > 1 && (long)words_value(w, k) == s->protected_value) return 0;
         if (s->seen == NULL || bit(s->pending, address)) continue; /* the engine's entries hold values */
-        if (written != NULL && ((address - written->start) & 0xFFFF) < written->count) continue;
+        if (((address - written->start) & 0xFFFF) < written->count) continue;
         PyObject *key = PyLong_FromUnsignedLong(address), *last;
         int found = key != NULL ? memory_value(s, key, &last) : -1;
         Py_XDECREF(key);
@@ -864,7 +864,7 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
     /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
     if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
     if (s->check[k] == 2 && (!request_lift[k].write_quantity_at || (long)r->values.count > s->limit[k][1])) return 0;
-    return r->values.values != NULL ? words_are_plain(s, e->run_number, &r->values) : 1;
+    return words_are_plain(s, e->run_number, &r->values);
 }
 
 /* summary.summary_line's head of frame f: number, time (`-`: untimed), slave, kind */
@@ -1001,11 +1001,10 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
     int k = handled_index(f[1]);
     *reads = (Words){0, 0, NULL};
     if (!lift_frame(s, f, length, &response_lift[k], r, a)) return 0;
-    if (a->values.values == NULL) return 1;
     int plain = words_are_plain(s, e->run_number, &a->values);
     if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;
     *reads = a->values;
-    return rules[k].reads ? reads_are_quiet(s, reads, r->values.values != NULL ? &r->values : NULL) : 1;
+    return rules[k].reads ? reads_are_quiet(s, reads, &r->values) : 1;
 }
 
 /* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
