@@ -29,13 +29,10 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
                           &chunk_size))
         return NULL;
     long long previous_offset = 0, previous_ns = 0;
-    int previous_timed = 0, has_previous = 0;
-    if (previous != Py_None) {
-        if (!PyArg_ParseTuple(previous, "LLp", &previous_offset, &previous_ns, &previous_timed)) {
-            PyBuffer_Release(&view);
-            return NULL;
-        }
-        has_previous = 1;
+    int previous_timed = 0;
+    if (previous != Py_None && !PyArg_ParseTuple(previous, "LLp", &previous_offset, &previous_ns, &previous_timed)) {
+        PyBuffer_Release(&view);
+        return NULL;
     }
     const uint8_t *b = view.buf;
     Py_ssize_t n = view.len, count = 0, size = 0;
@@ -67,8 +64,7 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         int timed = seconds || fraction;
         long long ns = timed ? (long long)seconds * 1000000000LL + (long long)fraction * 1000000000LL / units : 0;
         uint8_t flag = CHUNK_RECORD_END | (timed ? CHUNK_TIMED : 0);
-        if (timed && has_previous && previous_timed &&
-            stamp_seconds(ns, previous_ns) - (double)(offset - previous_offset) * char_time >= t35)
+        if (timed && previous_timed && line_silence(previous_offset, previous_ns, offset, ns, char_time) >= t35)
             flag |= CHUNK_SILENCE_BEFORE;
         if (timed) {
             if (!timed_seen || ns < lowest) lowest = ns;
@@ -81,15 +77,14 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
         count++;
         memcpy(data + size, b + pos, captured);
         size += captured;
-        has_previous = 1;
         previous_offset = offset;
         previous_ns = ns;
         previous_timed = timed;
         offset += captured;
         pos += captured;
     }
-    PyObject *last = has_previous ? Py_BuildValue("(LLi)", previous_offset, previous_ns, previous_timed)
-                                  : Py_NewRef(Py_None);
+    PyObject *last = count || previous != Py_None /* the last chunk read here, else the one given */
+                         ? Py_BuildValue("(LLi)", previous_offset, previous_ns, previous_timed) : Py_NewRef(Py_None);
     PyObject *span = last == NULL ? NULL : timed_seen ? Py_BuildValue("(LL)", lowest, highest) : Py_NewRef(Py_None);
     if (span == NULL) Py_XDECREF(last);
     else

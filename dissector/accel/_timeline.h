@@ -87,14 +87,19 @@ static inline double stamp_seconds(long long later, long long earlier) {
     return ns > -(1LL << 53) && ns < (1LL << 53) ? (double)ns / 1e9 : stamp_far(ns); /* both exact: one rounding */
 }
 
+/* timing.line_silence: the line's silence, s, from a chunk (at `from`, time `from_ns`) to the next (`start`,
+ * `ns`): their time apart less the first one's bytes' (inside a frame here, t3.5 in scan_pcap). */
+static inline double line_silence(long long from, long long from_ns, long long start, long long ns, double char_time) {
+    return stamp_seconds(ns, from_ns) - (double)(start - from) * char_time;
+}
+
 /* timing.inner_gaps: is there a silence longer than t1.5 before a chunk starting inside the frame at
  * [at, at + length)? (The warning is the Python stages' to write: the frame is handed over.) */
 static int silence_inside(Timeline *t, long long at, Py_ssize_t length) {
     Py_ssize_t k = chunk_of(t, at);
     for (; k + 1 < t->count && t->start[k + 1] < at + length; k++) {
         if (!(t->flags[k] & CHUNK_TIMED) || !(t->flags[k + 1] & CHUNK_TIMED)) continue;
-        double silence = stamp_seconds(t->ns[k + 1], t->ns[k]) - (double)(t->start[k + 1] - t->start[k]) * t->char_time;
-        if (silence > t->t15) return 1;
+        if (line_silence(t->start[k], t->ns[k], t->start[k + 1], t->ns[k + 1], t->char_time) > t->t15) return 1;
     }
     return 0;
 }

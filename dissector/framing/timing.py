@@ -66,7 +66,7 @@ class LineTiming:
 def line_silence(previous_offset: int, previous_time: float, start: int, time: float, timing: LineTiming) -> float:
     """Seconds the line was silent before the chunk at stream offset `start` that came at `time`, after
     the chunk at `previous_offset` that came at `previous_time`: the formula above, for a silence inside
-    a frame (inner_gaps) and between frames (silence_before) alike."""
+    a frame (inner_gaps) and between frames (silence_before) alike; _timeline.h line_silence in C."""
     return time - previous_time - (start - previous_offset) * timing.char_time
 
 
