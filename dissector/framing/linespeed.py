@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from dissector.framing.timing import ASCII_BITS_PER_CHAR, DEFAULT_BAUD, RTU_BITS_PER_CHAR
+from dissector.framing.timing import DEFAULT_BAUD, mode_bits
 from dissector.sources.pcapng import first_interface
 
 _SETTINGS = re.compile(r"\b(\d{2,7})[ /,]+([5-8])([NEOMS])(1\.5|1|2)\b")
@@ -31,9 +31,7 @@ class LineSettings:
     source: str = "assumed"  # "--baud", "pcapng interface description", "assumed: --baud sets it"
 
     def char_bits(self, mode: str) -> float:
-        if self.bits is not None:
-            return self.bits
-        return ASCII_BITS_PER_CHAR if mode == "ascii" else RTU_BITS_PER_CHAR
+        return self.bits if self.bits is not None else mode_bits(mode)
 
 
 def baud_rate(text: str) -> int:

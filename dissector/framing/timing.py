@@ -34,6 +34,11 @@ FIXED_T35 = 1750e-6
 ASCII_MAX_SILENCE = 1.0
 
 
+def mode_bits(mode: str) -> int:
+    """The bits of a character in `mode` (above): 11 RTU, 10 ASCII."""
+    return ASCII_BITS_PER_CHAR if mode == "ascii" else RTU_BITS_PER_CHAR
+
+
 @dataclass(frozen=True, slots=True)
 class LineTiming:
     baud: int = DEFAULT_BAUD
@@ -41,8 +46,7 @@ class LineTiming:
 
     @property
     def char_time(self) -> float:
-        bits = ASCII_BITS_PER_CHAR if self.mode == "ascii" else RTU_BITS_PER_CHAR
-        return bits / self.baud
+        return mode_bits(self.mode) / self.baud
 
     @property
     def t15(self) -> float:
