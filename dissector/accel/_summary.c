@@ -1276,13 +1276,8 @@ static void engine_dealloc(Engine *e) {
 
 /* forget(slave): ask slave_info again on the slave's next transaction (its device profile changed). */
 static PyObject *engine_forget(Engine *e, PyObject *args) {
-    int address;
-    if (!PyArg_ParseTuple(args, "i", &address)) return NULL;
-    if (address < 0 || address > 255) {
-        PyErr_SetString(PyExc_ValueError, "forget: slave outside 0..255");
-        return NULL;
-    }
-    if (!idle(e, "forget")) return NULL;
+    unsigned char address; /* (PyArg's "b": OverflowError outside 0..255) */
+    if (!PyArg_ParseTuple(args, "b", &address) || !idle(e, "forget")) return NULL;
     slave_clear(&e->slaves[address]);
     pieces_clear(e); /* register texts of the old profile (rare: a profile changes a few times a run) */
     Py_RETURN_NONE;
