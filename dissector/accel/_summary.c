@@ -875,17 +875,12 @@ static void line_head(Engine *e, const FrameRef *f, unsigned long long number, c
     out_cstr(&e->out, kind);
 }
 
-/* Python's str.rstrip() in info_text: hand over unless the info ends in a plain visible character. */
-static int info_end_is_plain(const Out *o) {
-    unsigned char last = (unsigned char)o->data[o->len - 1];
-    return last > 0x20 && last < 0x7F;
-}
-
 /* The Info column by its describer's form (info->steps: those of form_steps, _tables.h, generated from
  * codegen/c_rules.py's TEXT_FORMS), from the fields it prints (at info->at, info->width bytes) and the
- * frame as lifted (its window, bits, registers): 1 written, 0 a form this engine does not write, -1 error. */
-static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const InfoForm *info,
-                     const Lifted *lifted) {
+ * frame as lifted (its window, bits, registers): 1 written, 0 a form this engine does not write or a text
+ * Python's str.rstrip() in info_text would change (not ending in a plain visible character), -1 error. */
+static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *lifted) {
+    const uint8_t *f = lifted->frame;
     int slave = f[0], function = f[1];
     long long base = s->base[handled_index(function)];
     unsigned start = lifted->start, quantity = lifted->quantity;
@@ -939,7 +934,7 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
             break;
         case STEP_DATA: { /* describe._data: the data up to the CRC, ` = 7` for a word, else its first bytes */
             const uint8_t *data = f + info->at[step->field];
-            Py_ssize_t size = f + length - 2 - data, shown = size < MAX_DATA_BYTES ? size : MAX_DATA_BYTES;
+            Py_ssize_t size = f + lifted->length - 2 - data, shown = size < MAX_DATA_BYTES ? size : MAX_DATA_BYTES;
             if (size == 2) {
                 out_put(&e->out, " = ", 3);
                 out_uint(&e->out, word(data), 0);
@@ -962,7 +957,9 @@ static int info_text(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, c
             break;
         }
     }
-    return e->out.failed ? -1 : 1;
+    if (e->out.failed) return -1;
+    unsigned char last = (unsigned char)e->out.data[e->out.len - 1];
+    return last > 0x20 && last < 0x7F;
 }
 
 /* The line `number` of frame f after its info: ` [no response]` (`unanswered`) or, for an answer, the
@@ -988,8 +985,8 @@ static int frame_line(Engine *e, Slave *s, const Lifted *lifted, const FrameRef 
     line_head(e, f, number, answer ? " response  " : " request   ");
     if (out_str(&e->out, s->name[k]) < 0) return -1; /* the function name, then the info text */
     out_put(&e->out, " ", 1);
-    int written = info_text(e, s, lifted->frame, lifted->length, &rules[k].info[answer], lifted);
-    if (written <= 0 || !info_end_is_plain(&e->out)) return written < 0 ? -1 : 0;
+    int written = info_text(e, s, &rules[k].info[answer], lifted);
+    if (written <= 0) return written;
     return line_end(e, f, request, number, unanswered, NULL);
 }
 
