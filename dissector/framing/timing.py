@@ -50,11 +50,15 @@ class LineTiming:
 
     @property
     def t15(self) -> float:
-        return FIXED_T15 if self.baud > FIXED_TIMING_ABOVE else 1.5 * RTU_BITS_PER_CHAR / self.baud
+        return self._rtu_interval(1.5, FIXED_T15)
 
     @property
     def t35(self) -> float:
-        return FIXED_T35 if self.baud > FIXED_TIMING_ABOVE else 3.5 * RTU_BITS_PER_CHAR / self.baud
+        return self._rtu_interval(3.5, FIXED_T35)
+
+    def _rtu_interval(self, characters: float, fixed: float) -> float:
+        """`characters` RTU character times, or `fixed` s above FIXED_TIMING_ABOVE baud (2.5.1.1, above)."""
+        return fixed if self.baud > FIXED_TIMING_ABOVE else characters * RTU_BITS_PER_CHAR / self.baud
 
     @property
     def max_silence(self) -> float:
