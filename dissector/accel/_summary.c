@@ -51,7 +51,6 @@
 
 #define PIECE_SLOTS (1 << 17) /* register texts cached, open addressing, at most half full */
 
-enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
 enum { FRAME_OK = 0, FRAME_NEED = -1, FRAME_HANDOVER = -2 };
 
 static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
@@ -868,11 +867,11 @@ static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t le
 }
 
 /* summary.summary_line's head of frame f: number, time (`-`: untimed), slave, kind */
-static void line_head(Engine *e, const FrameRef *f, unsigned long long number, const char *kind) {
+static void line_head(Engine *e, const FrameRef *f, unsigned long long number) {
     out_uint(&e->out, number, 6);
     out_time_column(&e->out, &e->tl, f->timed, f->ns);
     out_uint(&e->out, (unsigned)f->slave, 3);
-    out_cstr(&e->out, kind);
+    out_cstr(&e->out, kind_column[f->kind]);
 }
 
 /* The Info column by its describer's form (info->steps: those of form_steps, _tables.h, generated from
@@ -982,7 +981,7 @@ static int line_end(Engine *e, const FrameRef *f, const FrameRef *request, unsig
 static int frame_line(Engine *e, Slave *s, const Lifted *lifted, const FrameRef *f, const FrameRef *request,
                       unsigned long long number, int unanswered) {
     int answer = request != NULL, k = handled_index(f->function);
-    line_head(e, f, number, answer ? " response  " : " request   ");
+    line_head(e, f, number);
     if (out_str(&e->out, s->name[k]) < 0) return -1; /* the function name, then the info text */
     out_put(&e->out, " ", 1);
     int written = info_text(e, s, &rules[k].info[answer], lifted);
@@ -1006,8 +1005,8 @@ static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t l
 
 /* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
 static int texts_line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number,
-                      const char *kind, PyObject *info, int unanswered, PyObject *tail) {
-    line_head(e, f, number, kind);
+                      PyObject *info, int unanswered, PyObject *tail) {
+    line_head(e, f, number);
     if (out_str(&e->out, info) < 0) return -1;
     return line_end(e, f, request, number, unanswered, tail);
 }
@@ -1031,11 +1030,11 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     Py_DECREF(texts);
     if (item == NULL) return -1;
     /* (out_str refuses a text that is not a str) */
-    int status = texts_line(e, q, NULL, number, " request   ", PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO), a == NULL,
+    int status = texts_line(e, q, NULL, number, PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO), a == NULL,
                             PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
     if (status > 0 && a != NULL)
-        status = texts_line(e, a, q, number + 1, a->kind == KIND_EXCEPTION ? " exception " : " response  ",
-                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), 0, PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
+        status = texts_line(e, a, q, number + 1, PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), 0,
+                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
     Py_DECREF(item);
     return status;
 }

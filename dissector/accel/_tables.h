@@ -220,6 +220,10 @@ static const uint16_t crc_table[256] = {
     0x4400, 0x84C1, 0x8581, 0x4540, 0x8701, 0x47C0, 0x4680, 0x8641,
     0x8201, 0x42C0, 0x4380, 0x8341, 0x4100, 0x81C1, 0x8081, 0x4040,
 };
+/* The kinds of frame (KIND_*), and each as a summary line shows it between its slave and its info
+ * (render/summary.py summary_line: ` {_KIND_COLUMN} `), by kind. */
+enum { KIND_REQUEST = 1, KIND_RESPONSE = 2, KIND_EXCEPTION = 3 };
+static const char *const kind_column[] = {NULL, " request   ", " response  ", " exception "};
 /* run()'s status (accel/fastsummary.py): more bytes needed, or the stream handed over. */
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
 /* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what
