@@ -1660,6 +1660,320 @@ local DATA = {
         ["help"] = "Decode every USER0 record as VW3 without a DLT_USER entry (which is the usual way: Preferences > Protocols > DLT_USER, payload protocol vw3)",
       },
     },
+    ["parameters"] = {
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3015,
+        ["abbr"] = "vw3.atv71.bfr",
+        ["title"] = "Standard motor frequency (BFR)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3102,
+        ["abbr"] = "vw3.atv71.sfr",
+        ["title"] = "Switching frequency (SFR), kHz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3103,
+        ["abbr"] = "vw3.atv71.tfr",
+        ["title"] = "Maximum output frequency (TFR), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3104,
+        ["abbr"] = "vw3.atv71.hsp",
+        ["title"] = "High speed (HSP), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3105,
+        ["abbr"] = "vw3.atv71.lsp",
+        ["title"] = "Low speed (LSP), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3201,
+        ["abbr"] = "vw3.atv71.eta",
+        ["title"] = "Status word (ETA)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3202,
+        ["abbr"] = "vw3.atv71.rfr",
+        ["title"] = "Output frequency (RFR), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3203,
+        ["abbr"] = "vw3.atv71.frh",
+        ["title"] = "Frequency reference before ramp (FRH), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3204,
+        ["abbr"] = "vw3.atv71.lcr",
+        ["title"] = "Motor current (LCR), A",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3205,
+        ["abbr"] = "vw3.atv71.otr",
+        ["title"] = "Motor torque (OTR), %",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3206,
+        ["abbr"] = "vw3.atv71.eti",
+        ["title"] = "Extended status word (ETI)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3207,
+        ["abbr"] = "vw3.atv71.uln",
+        ["title"] = "Mains voltage (ULN), V",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3208,
+        ["abbr"] = "vw3.atv71.uop",
+        ["title"] = "Motor voltage (UOP), V",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3209,
+        ["abbr"] = "vw3.atv71.thd",
+        ["title"] = "Drive thermal state (THD), %",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 3211,
+        ["abbr"] = "vw3.atv71.opr",
+        ["title"] = "Motor power (OPR), %",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 6001,
+        ["abbr"] = "vw3.atv71.add",
+        ["title"] = "Modbus address (drive port) (ADD)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 6003,
+        ["abbr"] = "vw3.atv71.tbr",
+        ["title"] = "Modbus baud rate (TBR)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 6004,
+        ["abbr"] = "vw3.atv71.tfo",
+        ["title"] = "Modbus format (TFO)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 6005,
+        ["abbr"] = "vw3.atv71.tto",
+        ["title"] = "Modbus time-out (TTO), s",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 7121,
+        ["abbr"] = "vw3.atv71.lft",
+        ["title"] = "Last fault (LFT)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8401,
+        ["abbr"] = "vw3.atv71.chcf",
+        ["title"] = "Profile (CHCF)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8402,
+        ["abbr"] = "vw3.atv71.cop",
+        ["title"] = "Copy channel 1 <> 2 (COP)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8413,
+        ["abbr"] = "vw3.atv71.fr1",
+        ["title"] = "Ref.1 channel (FR1)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8423,
+        ["abbr"] = "vw3.atv71.cd1",
+        ["title"] = "Cmd channel 1 (CD1)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8501,
+        ["abbr"] = "vw3.atv71.cmd",
+        ["title"] = "Control word (CMD)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8502,
+        ["abbr"] = "vw3.atv71.lfr",
+        ["title"] = "Frequency reference (LFR), Hz",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8503,
+        ["abbr"] = "vw3.atv71.pisp",
+        ["title"] = "PID setpoint (PISP)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8504,
+        ["abbr"] = "vw3.atv71.cmi",
+        ["title"] = "Extended control word (CMI)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8602,
+        ["abbr"] = "vw3.atv71.lfrd",
+        ["title"] = "Speed reference (LFRD), rpm",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8603,
+        ["abbr"] = "vw3.atv71.etad",
+        ["title"] = "DRIVECOM status word (ETAD)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8604,
+        ["abbr"] = "vw3.atv71.rfrd",
+        ["title"] = "Output speed (RFRD), rpm",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8605,
+        ["abbr"] = "vw3.atv71.frhd",
+        ["title"] = "Speed reference before ramp (FRHD), rpm",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 8606,
+        ["abbr"] = "vw3.atv71.errd",
+        ["title"] = "CiA402 fault code (ERRD)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 9001,
+        ["abbr"] = "vw3.atv71.acc",
+        ["title"] = "Acceleration (ACC), s",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 9002,
+        ["abbr"] = "vw3.atv71.dec",
+        ["title"] = "Deceleration (DEC), s",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 9630,
+        ["abbr"] = "vw3.atv71.thr",
+        ["title"] = "Motor thermal state (THR), %",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12741,
+        ["abbr"] = "vw3.atv71.nm1",
+        ["title"] = "Com scanner input 1 value (default ETA) (NM1)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12742,
+        ["abbr"] = "vw3.atv71.nm2",
+        ["title"] = "Com scanner input 2 value (default RFRD) (NM2)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12743,
+        ["abbr"] = "vw3.atv71.nm3",
+        ["title"] = "Com scanner input 3 value (NM3)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12744,
+        ["abbr"] = "vw3.atv71.nm4",
+        ["title"] = "Com scanner input 4 value (NM4)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12745,
+        ["abbr"] = "vw3.atv71.nm5",
+        ["title"] = "Com scanner input 5 value (NM5)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12746,
+        ["abbr"] = "vw3.atv71.nm6",
+        ["title"] = "Com scanner input 6 value (NM6)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12747,
+        ["abbr"] = "vw3.atv71.nm7",
+        ["title"] = "Com scanner input 7 value (NM7)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12748,
+        ["abbr"] = "vw3.atv71.nm8",
+        ["title"] = "Com scanner input 8 value (NM8)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12761,
+        ["abbr"] = "vw3.atv71.nc1",
+        ["title"] = "Com scanner output 1 value (default CMD) (NC1)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12762,
+        ["abbr"] = "vw3.atv71.nc2",
+        ["title"] = "Com scanner output 2 value (default LFRD) (NC2)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12763,
+        ["abbr"] = "vw3.atv71.nc3",
+        ["title"] = "Com scanner output 3 value (NC3)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12764,
+        ["abbr"] = "vw3.atv71.nc4",
+        ["title"] = "Com scanner output 4 value (NC4)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12765,
+        ["abbr"] = "vw3.atv71.nc5",
+        ["title"] = "Com scanner output 5 value (NC5)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12766,
+        ["abbr"] = "vw3.atv71.nc6",
+        ["title"] = "Com scanner output 6 value (NC6)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12767,
+        ["abbr"] = "vw3.atv71.nc7",
+        ["title"] = "Com scanner output 7 value (NC7)",
+      },
+      {
+        ["profile"] = "atv71",
+        ["address"] = 12768,
+        ["abbr"] = "vw3.atv71.nc8",
+        ["title"] = "Com scanner output 8 value (NC8)",
+      },
+    },
   },
   ["profiles"] = {
     ["atv71"] = {
@@ -6158,9 +6472,9 @@ package.preload["vw3.fields"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, NUMBER_KIND = DATA, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, NUMBER_KIND
-local Pref, Proto, ProtoExpert, ProtoField, base, configure = Pref, Proto, ProtoExpert, ProtoField, base, configure
-local expert, frametype, ipairs, lane, new_state, string = expert, frametype, ipairs, lane, new_state, string
-local type = type
+local PROFILES, Pref, Proto, ProtoExpert, ProtoField, base = PROFILES, Pref, Proto, ProtoExpert, ProtoField, base
+local configure, expert, frametype, ipairs, lane, new_state = configure, expert, frametype, ipairs, lane, new_state
+local pairs, string, type = pairs, string, type
 
 local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 
@@ -6187,6 +6501,19 @@ for _, f in ipairs(DATA.fields.fields) do
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
   end
 end
+
+-- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
+-- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow
+-- (tree.lua add_register).
+local field_list = {}
+for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+local PARAMETER_FIELDS = {}
+for _, p in ipairs(DATA.fields.parameters) do
+  local field = ProtoField.double(p.abbr, p.title)
+  PARAMETER_FIELDS[PROFILES[p.profile].map[p.address]] = field
+  field_list[#field_list + 1] = field
+end
+proto.fields = field_list
 
 -- The expert infos, stated in data/fields.toml's [[expert]] entries: ex.NAME, registered in their order.
 local ex, experts = {}, {}
@@ -6243,7 +6570,8 @@ function proto.init()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state
+M.apply_prefs, M.ex, M.PARAMETER_FIELDS, M.pf, M.proto, M.stream_state = apply_prefs, ex, PARAMETER_FIELDS, pf, proto,
+  stream_state
 end
 
 -- ---- vw3.tree: lua/src/tree.lua ----
@@ -6254,12 +6582,12 @@ package.preload["vw3.tree"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
-local NOISE, NO_INTERPRETATION, NSTime, PROFILES = NOISE, NO_INTERPRETATION, NSTime, PROFILES
-local ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST = ProtoField, REQUEST, RESPONSE, START_FROM_REQUEST
-local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
-local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
-local pairs, pf, proto, python_repr, register_view, say = pairs, pf, proto, python_repr, register_view, say
-local setmetatable, string, tonumber, tostring = setmetatable, string, tonumber, tostring
+local NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS
+local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
+local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
+local function_name, inferred_registers, ipairs, pf, proto = function_name, inferred_registers, ipairs, pf, proto
+local python_repr, register_view, say, setmetatable, string = python_repr, register_view, say, setmetatable, string
+local tonumber, tostring = tonumber, tostring
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 local function add_text(tree, expert_info, text)
@@ -6360,31 +6688,6 @@ local function frame_bytes(f, tvb)
   for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
   return b
 end
-
--- The protocol's fields: the catalogue's (pf), then the per-parameter fields (vw3.atv71.rfr,
--- vw3.sel749m.ia, ...): one per row of the built-in register maps, its scaled value (or its value where
--- the map gives no scale), so that an IO graph or a column can follow one parameter. Rows of maps given in
--- the preferences have none (fields exist before any file is read).
-local field_list = {}
-for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-local PARAMETER_FIELDS = {}
-local taken = {}
-for profile_name, profile in pairs(PROFILES) do
-  for _, row in pairs(profile.map or {}) do
-    local code = row.code and row.code:lower():gsub("[^%w_]", "_")
-    if code ~= nil and code ~= "" then
-      local abbr = format("vw3.%s.%s", profile_name, code)
-      if not taken[abbr] then
-        taken[abbr] = true
-        local title = row.name and format("%s (%s)", row.name, row.code) or row.code
-        if row.unit then title = title .. ", " .. row.unit end
-        PARAMETER_FIELDS[row] = ProtoField.double(abbr, title)
-        field_list[#field_list + 1] = PARAMETER_FIELDS[row]
-      end
-    end
-  end
-end
-proto.fields = field_list
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and

@@ -2,9 +2,10 @@
 render/filter_fields.py): per field its name, constructor, title, base, value strings and meaning, as
 lua/vw3.lua's DATA.fields.fields, which lua/src/fields.lua turns into ProtoFields; and the plugin's expert
 infos and preferences from the same file's [[expert]] and [[preference]] entries, as DATA.fields.experts and
-DATA.fields.preferences."""
+DATA.fields.preferences; and a field per parameter of the built-in register maps, DATA.fields.parameters."""
 from __future__ import annotations
 
+import re
 import tomllib
 from importlib import resources
 from typing import Any
@@ -19,7 +20,8 @@ PLAIN = frozenset({"string", "bytes", "none", "double", "relative_time"})
 
 def plugin_fields() -> dict[str, list[dict[str, Any]]]:
     """The plugin's fields and expert infos: {"fields": [...], "experts": [...]}."""
-    return {"fields": proto_fields(), "experts": experts(), "preferences": preferences()}
+    return {"fields": proto_fields(), "experts": experts(), "preferences": preferences(),
+            "parameters": parameter_fields()}
 
 
 def _catalogue() -> dict[str, Any]:
@@ -66,4 +68,31 @@ def proto_fields() -> list[dict[str, Any]]:
                 # (a value-string table: TOML keys are strings, Wireshark's are the numbers)
                 field[key] = {int(k): v for k, v in value.items()} if isinstance(value, dict) else value
         out.append(field)
+    return out
+
+
+def parameter_fields() -> list[dict[str, Any]]:
+    """The per-parameter fields (vw3.atv71.rfr, vw3.sel749m.ia, ...): one per row of the built-in register maps
+    that has a code, its scaled value (or its value where the map gives no scale), so that an IO graph or a
+    column can follow one parameter: {profile, address (the row's in DATA.profiles[profile].map), abbr, title},
+    by profile and address; of two rows whose codes give the same abbr, the first. Rows of maps given in the
+    plugin's preferences have none (fields exist before any file is read)."""
+    from dissector.devices.profiles import BUILTIN_PROFILES, load_profile, load_profile_map
+
+    out, taken = [], set()
+    for name in BUILTIN_PROFILES:
+        profile = load_profile(name)
+        for address, row in sorted(load_profile_map(profile).items()):
+            if row.code is None:
+                continue
+            # (the code's bytes lower-cased, each byte not a letter, digit or _ as _: as Lua's gsub("[^%w_]"))
+            code = re.sub(rb"[^0-9A-Za-z_]", b"_", row.code.encode("utf-8").lower()).decode("ascii")
+            abbr = f"vw3.{profile.name}.{code}"
+            if code == "" or abbr in taken:
+                continue
+            taken.add(abbr)
+            title = row.code if row.name is None else f"{row.name} ({row.code})"
+            if row.unit is not None:
+                title += ", " + row.unit
+            out.append({"profile": profile.name, "address": address, "abbr": abbr, "title": title})
     return out

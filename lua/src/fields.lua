@@ -30,6 +30,19 @@ for _, f in ipairs(DATA.fields.fields) do
   end
 end
 
+-- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
+-- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow
+-- (tree.lua add_register).
+local field_list = {}
+for _, field in pairs(pf) do field_list[#field_list + 1] = field end
+local PARAMETER_FIELDS = {}
+for _, p in ipairs(DATA.fields.parameters) do
+  local field = ProtoField.double(p.abbr, p.title)
+  PARAMETER_FIELDS[PROFILES[p.profile].map[p.address]] = field
+  field_list[#field_list + 1] = field
+end
+proto.fields = field_list
+
 -- The expert infos, stated in data/fields.toml's [[expert]] entries: ex.NAME, registered in their order.
 local ex, experts = {}, {}
 for index, e in ipairs(DATA.fields.experts) do
@@ -85,4 +98,5 @@ function proto.init()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
 
-M.apply_prefs, M.ex, M.pf, M.proto, M.stream_state = apply_prefs, ex, pf, proto, stream_state
+M.apply_prefs, M.ex, M.PARAMETER_FIELDS, M.pf, M.proto, M.stream_state = apply_prefs, ex, PARAMETER_FIELDS, pf, proto,
+  stream_state

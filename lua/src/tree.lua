@@ -104,31 +104,6 @@ local function frame_bytes(f, tvb)
   return b
 end
 
--- The protocol's fields: the catalogue's (pf), then the per-parameter fields (vw3.atv71.rfr,
--- vw3.sel749m.ia, ...): one per row of the built-in register maps, its scaled value (or its value where
--- the map gives no scale), so that an IO graph or a column can follow one parameter. Rows of maps given in
--- the preferences have none (fields exist before any file is read).
-local field_list = {}
-for _, field in pairs(pf) do field_list[#field_list + 1] = field end
-local PARAMETER_FIELDS = {}
-local taken = {}
-for profile_name, profile in pairs(PROFILES) do
-  for _, row in pairs(profile.map or {}) do
-    local code = row.code and row.code:lower():gsub("[^%w_]", "_")
-    if code ~= nil and code ~= "" then
-      local abbr = format("vw3.%s.%s", profile_name, code)
-      if not taken[abbr] then
-        taken[abbr] = true
-        local title = row.name and format("%s (%s)", row.name, row.code) or row.code
-        if row.unit then title = title .. ", " .. row.unit end
-        PARAMETER_FIELDS[row] = ProtoField.double(abbr, title)
-        field_list[#field_list + 1] = PARAMETER_FIELDS[row]
-      end
-    end
-  end
-end
-proto.fields = field_list
-
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
 -- only the expert infos are added, in the same order, since they reach Wireshark's expert tap and
 -- column without a tree. checking: an invisible tree's fields are checked (unseen.add).
