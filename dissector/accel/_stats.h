@@ -5,8 +5,8 @@
  *
  * What lives here: per (slave, address) the StatsCollector's ParameterStats (counts, last value, its
  * text, the code), per request key the PollCycle's count/misses/first frame (untimed input only: the
- * engine never sees timestamps), and per (slave, function) the engine's own counts (TALLY_COUNTS,
- * functions()), which the collector adds to its own (sums: order does not matter). A last value seen here keeps the slave's
+ * engine never sees timestamps), and per (slave, function) the engine's own counts (TALLY_COUNTS, read
+ * through tallies()), which the collector adds to its own (sums: order does not matter). A last value seen here keeps the slave's
  * `namer` (SlaveFacts.namer: the device it was read with), asked for its text when the report is
  * made: a register's text is asked once per parameter, not once per value.
  *
@@ -680,30 +680,6 @@ static PyObject *time_summary(const Tally *t, size_t size, int bins) {
                          (double)t[size - 1].key / 1e9, time_bins(t, size, bins));
 }
 
-/* The engine's counts of one (slave, function) (TALLY_COUNTS, sorted by key): (slave, function, requests,
- * responses, unanswered, {exception code: count}). */
-static PyObject *function_row(const Tally *t, size_t n, int unused) {
-    unsigned long long counts[3] = {0}; /* by COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED */
-    PyObject *exceptions = PyDict_New();
-    for (size_t k = 0; exceptions != NULL && k < n; k++) {
-        if (t[k].key >= COUNT_REQUESTS) {
-            counts[t[k].key - COUNT_REQUESTS] = (unsigned long long)t[k].value;
-            continue;
-        }
-        PyObject *code = PyLong_FromLongLong(t[k].key), *count = PyLong_FromDouble(t[k].value);
-        if (code == NULL || count == NULL || PyDict_SetItem(exceptions, code, count) < 0) Py_CLEAR(exceptions);
-        Py_XDECREF(code);
-        Py_XDECREF(count);
-    }
-    return exceptions == NULL ? NULL : Py_BuildValue("(iiKKKN)", (int)(t->tag >> 8 & 0xFF), (int)(t->tag & 0xFF), counts[0],
-                                                      counts[1], counts[2], exceptions);
-}
-
-/* functions() -> {slave << 8 | function: function_row}, the engine's counts by (slave, function). */
-static PyObject *stats_functions(Stats *st, PyObject *unused) {
-    return tally_groups(&st->tallies[TALLY_COUNTS], ~0u, function_row, 0);
-}
-
 /* time_summaries() -> {slave << 8 | function: time_summary} of each pair's response times, without a dict
  * of them in Python; time_summaries(bins): per slave << 8, with its histogram (report/html.py _slaves). */
 static PyObject *stats_time_summaries(Stats *st, PyObject *args) {
@@ -777,8 +753,6 @@ static PyMethodDef stats_methods[] = {
      "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},
     {"stamp", (PyCFunction)stats_stamp, METH_O, "stamp(time): an item's time (first and last seen)"},
     {"response", (PyCFunction)stats_response, METH_VARARGS, "response(slave, function, ns): a response time"},
-    {"functions", (PyCFunction)stats_functions, METH_NOARGS,
-     "{slave << 8 | function: (slave, function, requests, responses, unanswered, {code: count})}: the engine's"},
     {"time_summaries", (PyCFunction)stats_time_summaries, METH_VARARGS,
      "{slave << 8 | function: (count, min, median, p95, max, None)} of the response times, in seconds;\n"
      "time_summaries(bins): per slave << 8, with the counts of a histogram of `bins` bins"},

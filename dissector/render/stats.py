@@ -42,7 +42,10 @@ from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
-from dissector.render.stats_store import MAX_PARAMETERS, Coarse, ParameterRow, give_back, stamp
+from dissector.render.stats_store import (
+    COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TALLY_COUNTS, Coarse, ParameterRow, give_back,
+    stamp,
+)
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
 
@@ -184,12 +187,17 @@ class StatsCollector:
     def all_functions(self) -> dict[tuple[int, int], FunctionStats]:
         """Per (slave, function) the Python stages' counts plus the engine's (sums: the order of frames does
         not matter); the response times are the Python stages' (attached, all of them are in the compiled
-        store: its time_summaries)."""
+        store: its time_summaries). The engine counts only when attached, in the store's TALLY_COUNTS: per
+        slave << 8 | function, exceptions by their code, requests, responses, unanswered by the COUNT_* keys."""
         merged = dict(self.functions)
-        for slave, function, requests, responses, unanswered, exceptions in self.store.functions().values():
+        engine = self.store.tallies(TALLY_COUNTS) if self.attached else {}
+        for owner in sorted(engine):  # (in order: the callers' sorts of the pairs then find them sorted)
+            counts = engine[owner]
+            slave, function = divmod(owner, 256)
             own = merged.get((slave, function))
-            stats = FunctionStats(requests=requests, responses=responses, unanswered=unanswered,
-                                  exceptions=dict(exceptions))
+            # (what the COUNT_* keys leave are the exception codes; every output sorts them)
+            stats = FunctionStats(requests=counts.pop(COUNT_REQUESTS, 0), responses=counts.pop(COUNT_RESPONSES, 0),
+                                  unanswered=counts.pop(COUNT_UNANSWERED, 0), exceptions=counts)
             if own is not None:
                 stats.requests += own.requests
                 stats.responses += own.responses

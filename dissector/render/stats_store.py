@@ -44,7 +44,7 @@ EVENT_RULES: dict[int, tuple[str | None, bool]] = {
 # The compiled store's histograms (Stats.tallies(), dissector/accel/_bus.h; TALLY_* generated into
 # _tables.h): response times by (slave << 8 | function), gaps, turnarounds, response times by slave, load
 # per minute, poll intervals by key order, and the engine's counts by (slave << 8 | function): exceptions
-# by their code, requests, responses and unanswered requests by the COUNT_* keys (Stats.functions()).
+# by their code, requests, responses and unanswered requests by the COUNT_* keys (StatsCollector.all_functions).
 TALLY_TIMES, TALLY_GAPS, TALLY_TURNAROUND, TALLY_RESPONSES, TALLY_MINUTES, TALLY_INTERVALS, TALLY_COUNTS = range(7)
 COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED = 256, 257, 258  # past the exception codes
 UNBOUNDED_TALLIES = (TALLY_MINUTES, TALLY_COUNTS)  # never coarsened: sums, counts by name
@@ -152,9 +152,6 @@ class ParameterTable:
         """The writes counted of that parameter (0: none, or not kept)."""
         stats = self._parameters.get((slave, address))
         return 0 if stats is None else stats.writes
-
-    def functions(self) -> dict[int, tuple[int, int, int, int, int, dict[int, int]]]:
-        return {}  # the engine's counts: none here
 
     def table(self, max_rows: int, group_min: int) -> tuple[list[list[ParameterRow]], int, int, tuple[int, ...]]:
         """--stats' parameter table (render/stats.py _parameter_table): the rows of the first `max_rows`
