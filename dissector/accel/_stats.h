@@ -426,7 +426,8 @@ static Param **param_sorted(Stats *st, size_t *n) {
 }
 
 /* (slave, address, code, reads, unreadable, writes, refused, last, last_text, changes), built item by
- * item (Py_BuildValue's format parsing was a third of the cost). */
+ * item (Py_BuildValue's format parsing was a third of the cost); last_text the text of the last value,
+ * None when nothing names it; when the last state is a read status, last is None and last_text the status. */
 static PyObject *param_row(const Param *p) {
     PyObject *row = PyTuple_New(10), *text = row != NULL ? param_text(p) : NULL;
     if (text == NULL) {
@@ -448,22 +449,6 @@ static PyObject *param_row(const Param *p) {
             return NULL;
         }
     return row;
-}
-
-/* parameters() -> [(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]
- * by (slave, address); last_text the text of the last value, None when nothing names it; when the last
- * state is a read status, last is None and last_text the status (`protected`). */
-static PyObject *stats_parameters(Stats *st, PyObject *unused) {
-    size_t n;
-    Param **order = param_sorted(st, &n);
-    PyObject *rows = order != NULL ? PyList_New((Py_ssize_t)n) : NULL;
-    for (size_t k = 0; rows != NULL && k < n; k++) {
-        PyObject *row = param_row(order[k]);
-        if (row == NULL) Py_CLEAR(rows);
-        else PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
-    }
-    PyMem_Free(order);
-    return rows;
 }
 
 /* b follows a in --stats' parameter table's run: the next address of the slave, the same counts, both
@@ -746,8 +731,6 @@ static PyMethodDef stats_methods[] = {
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_O, "poll_fail(key): its answer was an exception."},
-    {"parameters", (PyCFunction)stats_parameters, METH_NOARGS,
-     "[(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes)]"},
     {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},
     {"bus_item", (PyCFunction)stats_bus_item, METH_VARARGS,
      "bus_item(time, length, kind, slave, broadcast, unanswered, crc_ok, response_time, number, offset)"},

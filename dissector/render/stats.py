@@ -44,7 +44,7 @@ from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import (
     COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TALLY_COUNTS, Coarse, ParameterRow, give_back,
-    stamp,
+    parameter_rows, stamp,
 )
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
@@ -210,14 +210,9 @@ class StatsCollector:
             merged[(slave, function)] = stats
         return merged
 
-    def parameter_rows(self) -> list[ParameterRow]:
-        """(slave, address, code, reads, unreadable, writes, refused, last, last_text, changes) by
-        (slave, address); last_text as the summary names the value, None when nothing does."""
-        return self.store.parameters()
-
     def report(self, with_parameters: bool = True, poll_rows: int | None = None) -> dict[str, Any]:
         """The JSON form (--stats --json); without parameters for the tables, which show a few rows
-        of parameter_rows() instead of a dict per parameter, and the timings of `poll_rows` poll keys
+        of the parameter rows instead of a dict per parameter, and the timings of `poll_rows` poll keys
         at most (those a table shows)."""
         give_back()
         functions = []
@@ -272,7 +267,7 @@ class StatsCollector:
         """The parameters of the JSON form, one at a time (write_json streams them)."""
         label = getattr(self.history.annotate, "label", None)
         shown: Callable[[int, int], str] | None = None  # --address-style plc: `label` as the table's address
-        for row in self.store.parameters():
+        for row in parameter_rows(self.store):
             slave, address, code, reads, unreadable, writes, refused, last, last_text, changes = row
             plc = label is not None and label(slave, 3, address) is not None
             if plc and shown is None:

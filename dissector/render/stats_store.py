@@ -22,6 +22,9 @@ first state is no change), and `changes` counts those: the same changes `--watch
 from __future__ import annotations
 
 import os
+import sys
+from collections.abc import Iterator
+from itertools import chain
 from dataclasses import dataclass
 from typing import Any
 
@@ -180,6 +183,12 @@ class ParameterTable:
     @property
     def parameter_count(self) -> int:
         return len(self._parameters)
+
+
+def parameter_rows(store: Any) -> Iterator[ParameterRow]:
+    """Every parameter's row (ParameterTable.parameters) by (slave, address), from either store's table():
+    with no limit on pieces and every run of the same story one piece."""
+    return chain.from_iterable(store.table(sys.maxsize, 0)[0])
 
 
 class Coarse:

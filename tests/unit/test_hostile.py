@@ -643,7 +643,7 @@ def _write_flood(path: Path, slaves: int = 64) -> None:
 
 @pytest.mark.parametrize("store", ["compiled", "python"])
 def test_the_parameter_table_keeps_at_most_its_limit_and_counts_the_rest(store: str) -> None:
-    from dissector.render.stats_store import READ, WRITE, CompiledStore, ParameterTable
+    from dissector.render.stats_store import READ, WRITE, CompiledStore, ParameterTable, parameter_rows
 
     if store == "compiled":
         assert CompiledStore is not None
@@ -655,7 +655,7 @@ def test_the_parameter_table_keeps_at_most_its_limit_and_counts_the_rest(store: 
     assert table.param(1, 0, READ, 8, None, "8") is False and table.param(1, 0, READ, 9, None, "9") is True
     assert table.param(1, 4, READ, 8, None, "8") is False  # beyond the limit: not kept, no change
     assert table.parameter_count == 3 and table.dropped == 3
-    assert [row[:7] for row in table.parameters()] == [
+    assert [row[:7] for row in parameter_rows(table)] == [
         (1, 0, None, 2, 0, 1, 0), (1, 1, None, 0, 0, 1, 0), (1, 2, None, 0, 0, 1, 0)]
 
 

@@ -11,7 +11,7 @@ import pytest
 from dissector.accel import _summary
 from dissector.render.stats_store import (
     MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
-    CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store,
+    CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store, parameter_rows,
 )
 
 
@@ -45,7 +45,7 @@ def test_one_story_in_both_stores() -> None:
     assert [a for a, b in changed] == [b for a, b in changed] == [
         False, True, True, False, True, False, False, False, False, True, False, False, True, False, False,
     ]
-    assert compiled.parameters() == python.parameters() == [
+    assert list(parameter_rows(compiled)) == python.parameters() == [
         (0, 9001, None, 0, 0, 1, 0, 10, None, 0),  # no text: the tables and JSON show the number
         (1, 7, "READ", 1, 0, 0, 0, 4, None, 1),
         (5, 1, "X", 1, 2, 0, 0, None, "protected", 1),  # last: the status, no value
@@ -56,7 +56,7 @@ def test_one_story_in_both_stores() -> None:
     namers = {1: lambda address, value: (f"{value} named", "NAMED"), 5: lambda address, value: ("never", "Y")}
     compiled.rename(namers)
     python.rename(namers)
-    assert compiled.parameters() == python.parameters()
+    assert list(parameter_rows(compiled)) == python.parameters()
     assert [row[2] for row in python.parameters()] == [None, "NAMED", "Y", "Y", "HSP"]
     assert [row[8] for row in python.parameters()] == [None, "4 named", "protected", "non-existent", "51.0 Hz"]
 
@@ -72,7 +72,7 @@ def test_random_events_same_rows() -> None:
             rng.choice(["protected", "non-existent"]) if kind == UNREADABLE else rng.choice([None, "x", "y"]),
         )
         assert compiled.param(*event) == python.param(*event)
-    assert compiled.parameters() == python.parameters()
+    assert list(parameter_rows(compiled)) == python.parameters()
     assert compiled.parameter_count == python.parameter_count == len(python.parameters())
     # The report's setpoints (html.py): a parameter's writes, 0 for one never seen (address 40).
     keys = [(slave, address) for slave in (1, 2, 3, 247) for address in range(41)]
