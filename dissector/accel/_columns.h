@@ -2,7 +2,7 @@
  * reference under VW3_PURE_PYTHON=1): 8 doubles a column, the first, lowest, highest and last point
  * (fx fy nx ny mx my lx ly), in a growing array. The same arithmetic as the Python class, step for
  * step, so that the page is byte-identical: add() is once per register value of the capture, compact()
- * and points() once per series and doubling. Included by _summary.c: one translation unit. */
+ * and drawn_json() once per series and doubling. Included by _summary.c: one translation unit. */
 
 typedef struct {
     PyObject_HEAD
@@ -155,12 +155,17 @@ static void json_number(Out *o, double v, int digits, int whole) {
     PyMem_Free(text);
 }
 
-/* (xs, ys): each column's distinct points in order (x, then y), none at or before the last x kept,
- * a run of equal values by its ends only. json (drawn_json): the two lists as collect.py drawn() makes
- * them (x - origin rounded to `digits`, y an int when whole, else rounded to Y_DIGITS, or y * scale
- * rounded to `places`) and json.dumps writes them; None when a value is not finite. */
-static PyObject *columns_list(Columns *self, int json, double origin, int digits, double scale, int places) {
-    /* Kept points in C first (x, y), n / 2 + 1 each; made into lists or JSON text at the end. */
+/* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text: each column's
+ * distinct points in order (x, then y), none at or before the last x kept, a run of equal values by its
+ * ends only (Columns.points), x - origin rounded to `digits`, y an int when whole, else rounded to
+ * Y_DIGITS, or y * scale rounded to `places`, as json.dumps writes them; None when a value is not finite
+ * (collect.py drawn() then asks the Python Columns.points of these columns' values()). */
+static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
+    double origin, scale = 0.0;
+    int digits, places = 0;
+    if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
+    if (digits < 0 || digits > 9 || places < 0 || places > 9) return PyErr_Format(PyExc_ValueError, "digits 0..9");
+    /* Kept points in C first (x, y), n / 2 + 1 each; made into JSON text at the end. */
     double *kx = PyMem_Malloc((size_t)(self->n + 2) * sizeof(double));
     if (kx == NULL) return PyErr_NoMemory();
     double *ky = kx + self->n / 2 + 1;
@@ -196,52 +201,27 @@ static PyObject *columns_list(Columns *self, int json, double origin, int digits
             kept++;
         }
     }
-    if (json) {
-        Out text[2] = {{0}};
-        int finite = 1;
-        for (int k = 0; k < 2; k++) out_put(&text[k], "[", 1);
-        for (Py_ssize_t j = 0; j < kept && finite; j++) {
-            double x = kx[j] - origin, y = ky[j];
-            if (!(finite = isfinite(x) && isfinite(scale != 0.0 ? y * scale : y))) break;
-            json_number(&text[0], x, digits, 0);
-            if (scale != 0.0) json_number(&text[1], y * scale, places, 0);
-            else json_number(&text[1], y, Y_DIGITS, floor(y) == y);
-        }
-        for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
-        PyMem_Free(kx);
-        PyObject *pair = NULL;
-        if (!text[0].failed && !text[1].failed)
-            pair = !finite ? Py_NewRef(Py_None)
-                           : Py_BuildValue("(s#s#)", text[0].data, (Py_ssize_t)text[0].len, text[1].data,
-                                           (Py_ssize_t)text[1].len);
-        else if (!PyErr_Occurred())
-            PyErr_NoMemory();
-        PyMem_Free(text[0].data), PyMem_Free(text[1].data);
-        return pair;
+    Out text[2] = {{0}};
+    int finite = 1;
+    for (int k = 0; k < 2; k++) out_put(&text[k], "[", 1);
+    for (Py_ssize_t j = 0; j < kept && finite; j++) {
+        double x = kx[j] - origin, y = ky[j];
+        if (!(finite = isfinite(x) && isfinite(scale != 0.0 ? y * scale : y))) break;
+        json_number(&text[0], x, digits, 0);
+        if (scale != 0.0) json_number(&text[1], y * scale, places, 0);
+        else json_number(&text[1], y, Y_DIGITS, floor(y) == y);
     }
-    PyObject *xs = PyList_New(kept), *ys = PyList_New(kept);
-    for (Py_ssize_t j = 0; xs != NULL && ys != NULL && j < kept; j++) {
-        PyObject *x = PyFloat_FromDouble(kx[j]), *y = PyFloat_FromDouble(ky[j]);
-        PyList_SET_ITEM(xs, j, x);
-        PyList_SET_ITEM(ys, j, y);
-        if (x == NULL || y == NULL) Py_CLEAR(xs); /* (a list frees the items it holds, NULL ones too) */
-    }
+    for (int k = 0; k < 2; k++) out_put(&text[k], "]", 1);
     PyMem_Free(kx);
-    PyObject *pair = xs != NULL && ys != NULL ? PyTuple_Pack(2, xs, ys) : NULL;
-    Py_XDECREF(xs);
-    Py_XDECREF(ys);
+    PyObject *pair = NULL;
+    if (!text[0].failed && !text[1].failed)
+        pair = !finite ? Py_NewRef(Py_None)
+                       : Py_BuildValue("(s#s#)", text[0].data, (Py_ssize_t)text[0].len, text[1].data,
+                                       (Py_ssize_t)text[1].len);
+    else if (!PyErr_Occurred())
+        PyErr_NoMemory();
+    PyMem_Free(text[0].data), PyMem_Free(text[1].data);
     return pair;
-}
-
-static PyObject *columns_points(Columns *self, PyObject *unused) { return columns_list(self, 0, 0.0, 0, 0.0, 0); }
-
-/* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text. */
-static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
-    double origin, scale = 0.0;
-    int digits, places = 0;
-    if (!PyArg_ParseTuple(args, "di|di", &origin, &digits, &scale, &places)) return NULL;
-    if (digits < 0 || digits > 9 || places < 0 || places > 9) return PyErr_Format(PyExc_ValueError, "digits 0..9");
-    return columns_list(self, 1, origin, digits, scale, places);
 }
 
 /* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
@@ -278,7 +258,6 @@ static PyMethodDef columns_methods[] = {
     {"add", (PyCFunction)(void (*)(void))columns_add, METH_FASTCALL, "add(col, x, y): a point in column col"},
     {"close", (PyCFunction)columns_close, METH_NOARGS, "end the open column (the width is about to change)"},
     {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
-    {"points", (PyCFunction)columns_points, METH_NOARGS, "(xs, ys): the points drawn"},
     {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
      "drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text, None when one is not\n"
      "finite"},

@@ -136,7 +136,12 @@ class Columns:
 def drawn(columns: Any, origin: float, digits: int, scale: float = 0.0,
           places: int = 0) -> tuple[list[float], list[float | int]]:
     """The points of `columns` (either store's) as the page writes them: x relative to `origin`, y an int
-    when whole; with a `scale`, each y times it rounded to `places` (health.py: seconds as ms)."""
+    when whole; with a `scale`, each y times it rounded to `places` (health.py: seconds as ms). The compiled
+    columns write these as JSON only (drawn_json): their points are Columns.points of their doubles."""
+    if not isinstance(columns, Columns):
+        python = Columns()
+        python.load(columns.values())
+        columns = python
     xs, ys = columns.points()
     if scale:
         return [round(x - origin, digits) for x in xs], [round(y * scale, places) for y in ys]
