@@ -292,10 +292,8 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
     unsigned address, value;
     PyObject *code, *text;
     if (!PyArg_ParseTuple(args, "iIiIOO", &slave, &address, &event, &value, &code, &text)) return NULL;
-    if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF) {
-        PyErr_SetString(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event");
-        return NULL;
-    }
+    if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF)
+        return PyErr_Format(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event");
     int created;
     Param *p = param_get(st, slave, address, &created);
     if (p == NULL) {
@@ -306,10 +304,8 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
         Py_INCREF(code);
         Py_XSETREF(p->code, code);
     }
-    if (event == EVENT_UNREADABLE && !PyUnicode_Check(text)) {
-        PyErr_SetString(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
-        return NULL;
-    }
+    if (event == EVENT_UNREADABLE && !PyUnicode_Check(text))
+        return PyErr_Format(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
     if (!param_count(p, event)) Py_RETURN_FALSE;
     /* UNREADABLE (16#8000 or an explained exception): `text` is the status, no value */
     int changed = param_state(p, value, event == EVENT_UNREADABLE ? text : NULL);
@@ -325,10 +321,7 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
 /* rename({slave: namer}): the values kept of these slaves were read before their profile was chosen:
  * name them (text and code) as the chosen device does, once (render/history.py, a profile change). */
 static PyObject *stats_rename(Stats *st, PyObject *namers) {
-    if (!PyDict_Check(namers)) {
-        PyErr_SetString(PyExc_TypeError, "rename: a dict {slave: namer}");
-        return NULL;
-    }
+    if (!PyDict_Check(namers)) return PyErr_Format(PyExc_TypeError, "rename: a dict {slave: namer}");
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
         PyObject *slave = PyLong_FromUnsignedLong((p->key >> 16) & 0xFF);
@@ -545,10 +538,8 @@ static PyObject *stats_bus_item(Stats *st, PyObject *args) {
     double seconds = 0.0;
     if (read_time(time, &t) < 0) return NULL;
     if (response != Py_None && (seconds = PyFloat_AsDouble(response)) == -1.0 && PyErr_Occurred()) return NULL;
-    if (slave < 0 || slave > 255 || kind < 0 || kind > KIND_EXCEPTION) {
-        PyErr_SetString(PyExc_ValueError, "bus_item: slave 0..255, kind 0..3");
-        return NULL;
-    }
+    if (slave < 0 || slave > 255 || kind < 0 || kind > KIND_EXCEPTION)
+        return PyErr_Format(PyExc_ValueError, "bus_item: slave 0..255, kind 0..3");
     if (bus_add(st->tallies, &st->bus, &t, length, kind, slave, broadcast, unanswered, crc_ok,
                 response != Py_None ? &seconds : NULL, number, offset) < 0)
         return NULL;
@@ -565,12 +556,9 @@ static PyObject *stats_stamp(Stats *st, PyObject *time) {
 
 /* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*); sums (TALLY_MINUTES) as floats. */
 static PyObject *stats_tallies(Stats *st, PyObject *arg) {
-    long kind = PyLong_AsLong(arg);
-    if (kind == -1 && PyErr_Occurred()) return NULL;
-    if (kind < 0 || kind >= TALLIES) {
-        PyErr_SetString(PyExc_ValueError, "tallies: an unknown kind");
-        return NULL;
-    }
+    int kind;
+    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
+    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
     const Tallies *table = &st->tallies[kind];
     PyObject *owners = PyDict_New();
     for (size_t k = 0; owners != NULL && k < table->d.count; k++) {
