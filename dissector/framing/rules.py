@@ -10,6 +10,7 @@ from dissector.framing.stream import GLITCH_BYTES
 from dissector.model import Kind
 from dissector.protocol import table
 from dissector.protocol.crc import crc16
+from dissector.protocol.rules import data_bytes
 from dissector.protocol.spec import SPEC
 
 MAX_ADU = int(SPEC.limits["max_adu"])  # type: ignore[call-overload]
@@ -117,11 +118,12 @@ def length_rule(rule: table.LengthRule) -> LengthRule:
 
 def quantity_rule(alternative: table.ByQuantity, counted: table.Counted) -> LengthRule:
     """A request's length by its quantity (table.ByQuantity), NONE where it is the byte count's."""
+    position, extra, unit = alternative.position, alternative.extra, alternative.unit
 
     def rule(buf: bytes | bytearray, i: int, n: int) -> int:
-        if i + max(alternative.position + 1, counted.position) >= n:
+        if i + max(position + 1, counted.position) >= n:
             return NEED
-        length = alternative.length(buf[i + alternative.position] << 8 | buf[i + alternative.position + 1])
+        length = extra + data_bytes(buf[i + position] << 8 | buf[i + position + 1], unit)
         return NONE if length == counted.extra + buf[i + counted.position] else length
 
     return rule

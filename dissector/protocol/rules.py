@@ -42,7 +42,14 @@ class Count:
     plus: int = 0
 
     def expected(self, quantity: int) -> int:
-        return self.plus + (quantity * self.unit if self.unit else (quantity + 7) // 8)
+        return self.plus + data_bytes(quantity, self.unit)
+
+
+def data_bytes(quantity: int, unit: int) -> int:
+    """The data `quantity` items take, `unit` bytes an item (0: bits, 8 to a byte): what a byte count
+    counts (Count.expected) and what a request's length by its quantity adds (table.ByQuantity,
+    framing/rules.py quantity_rule)."""
+    return quantity * unit if unit else (quantity + 7) // 8
 
 
 class Names(StrEnum):

@@ -88,9 +88,6 @@ class ByQuantity:
     extra: int
     unit: int
 
-    def length(self, quantity: int) -> int:
-        return self.extra + (quantity * self.unit if self.unit else (quantity + 7) // 8)
-
 
 SCAN = Scan(4)  # (from the shortest frame: slave, function, CRC)
 
