@@ -802,7 +802,7 @@ typedef struct {
 static const char *subfunction_name(unsigned sub) { return sub < SUBFUNCTIONS ? subfunction_names[sub] : NULL; }
 
 /* fields._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
- * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over, -1 error. */
+ * the spec defines, whole words of data, no meaning on this device. 1 quiet, 0 hand over. */
 static int diagnostics_are_plain(const Slave *s, const uint8_t *f, Py_ssize_t length) {
     unsigned sub = word(f + 2);
     return !((length - 6) & 1 || bit(s->explained, sub) || subfunction_name(sub) == NULL);
