@@ -27,7 +27,7 @@ from dissector.accel.fastsummary import HANDOVER, NEED, SlaveFacts, Texts
 from dissector.protocol import crc
 from dissector.framing.evidence import COIL_VALUES
 from dissector.framing.stream import GLITCH_BYTES
-from dissector.render import describe, stats_store, summary
+from dissector.render import bustiming, describe, stats_store, summary
 
 ADU_HEAD = 2  # slave and function code before the grammar's data
 
@@ -39,9 +39,9 @@ FORMS = tuple(TEXT_FORMS)
 STEPS = ("end", "none", "text", "unspace", "span", "plain_span", "label", "bits", "values", "coil", "single", "dec",
          "hex", "subfunction", "data", "fifo")
 MAX_STEPS = max(len(steps) for steps in TEXT_FORMS.values()) + 1  # and its STEP_END
-# The kinds of frame the engine shows, numbered from 1 in this order (KIND_*; accel/framespath.py reads its
-# records' answer kinds by these numbers).
-KINDS = (Kind.REQUEST, Kind.RESPONSE, Kind.EXCEPTION)
+# The kinds of frame the engine shows by their numbers (KIND_*): those render/bustiming.py gives the engine's
+# Stats.bus_item (accel/framespath.py reads its records' answer kinds by them too).
+KINDS = {number: kind for kind, number in bustiming._KINDS.items()}
 
 
 def _printed(form: str) -> list[str]:
@@ -305,9 +305,11 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "};",
         "/* The kinds of frame (KIND_*), and each as a summary line shows it between its slave and its info",
         " * (render/summary.py summary_line: ` {_KIND_COLUMN} `), by kind. */",
-        "enum { " + ", ".join(f"KIND_{kind.name} = {number}" for number, kind in enumerate(KINDS, 1)) + " };",
-        "static const char *const kind_column[] = {NULL, "
-        + ", ".join(c_string(f" {summary._KIND_COLUMN[kind]} ") for kind in KINDS) + "};",
+        "enum { " + ", ".join(f"KIND_{kind.name} = {number}" for number, kind in KINDS.items()) + " };",
+        "static const char *const kind_column[] = {"
+        + ", ".join(c_string(f" {summary._KIND_COLUMN[KINDS[number]]} " if number in KINDS else None)
+                    for number in range(max(KINDS) + 1))
+        + "};",
         "/* run()'s status (accel/fastsummary.py): more bytes needed, or the stream handed over. */",
         f"enum {{ STATUS_NEED = {NEED}, STATUS_HANDOVER = {HANDOVER} }};",
         "/* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what",
