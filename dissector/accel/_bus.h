@@ -162,9 +162,8 @@ static int tally_add(Tallies *t, int kind, long long owner, long long key, doubl
 
 /* ---- bustiming.BusTiming -------------------------------------------------------------------------- */
 typedef struct {
-    unsigned long long count;
     double low, high;
-} Quantile; /* bustiming.Quantiles: its buckets are tallies */
+} Quantile; /* bustiming.Quantiles: its buckets are tallies (and its count their sum: bustiming._quantiles) */
 
 typedef struct {
     int active, slave;
@@ -191,7 +190,6 @@ typedef struct {
 } Bus;
 
 static void quantile_init(Quantile *q) {
-    q->count = 0;
     q->low = INFINITY;
     q->high = -INFINITY;
 }
@@ -203,10 +201,9 @@ static void bus_init(Bus *b) {
     for (int k = 0; k < 256; k++) quantile_init(&b->responses[k]);
 }
 
-/* Quantiles.add: a RESOLUTION bucket, count, min, max. */
+/* Quantiles.add: a RESOLUTION bucket (their sum the count), min, max. */
 static int quantile_add(Tallies *t, Quantile *q, int kind, long long owner, double value) {
     if (tally_add(t, kind, owner, (long long)rint(value / RESOLUTION), 1.0) < 0) return -1;
-    q->count++;
     if (value < q->low) q->low = value;
     if (value > q->high) q->high = value;
     return 0;

@@ -592,7 +592,7 @@ static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
     return rows;
 }
 
-static PyObject *quantile_value(const Quantile *q) { return Py_BuildValue("(Kdd)", q->count, q->low, q->high); }
+static PyObject *quantile_value(const Quantile *q) { return Py_BuildValue("(dd)", q->low, q->high); }
 
 /* response(slave, function, ns): a response time of an answer the Python stages showed (StatsCollector.add);
  * slave and function 0..255 ("b": OverflowError past them). */
@@ -668,9 +668,9 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
     for (size_t k = 0; histogram != NULL && k < GAP_BINS; k++)
         PyList_SET_ITEM(histogram, (Py_ssize_t)k, PyLong_FromUnsignedLongLong(b->histogram[k]));
     for (int slave = 0; responses != NULL && slave < 256; slave++) {
-        if (!b->responses[slave].count) continue;
         const Quantile *q = &b->responses[slave];
-        PyObject *row = Py_BuildValue("(iKddK)", slave, q->count, q->low, q->high, b->close[slave]);
+        if (q->low > q->high) continue; /* no response time */
+        PyObject *row = Py_BuildValue("(iddK)", slave, q->low, q->high, b->close[slave]);
         if (row == NULL || PyList_Append(responses, row) < 0) Py_CLEAR(responses);
         Py_XDECREF(row);
     }

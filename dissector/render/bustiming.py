@@ -95,10 +95,12 @@ def _round(seconds: float) -> float:
     return round(seconds, 6)
 
 
-def _quantiles(count: int, low: float, high: float, buckets: dict[int, int] | None) -> Quantiles:
+def _quantiles(low: float, high: float, buckets: dict[int, int] | None) -> Quantiles:
+    """The compiled store's Quantiles: its min and max, and its buckets (tallies), whose sum is the count."""
     quantiles = Quantiles()
-    quantiles.count, quantiles.low, quantiles.high = count, low, high
+    quantiles.low, quantiles.high = low, high
     quantiles.buckets = buckets or {}
+    quantiles.count = sum(quantiles.buckets.values())
     return quantiles
 
 
@@ -198,9 +200,9 @@ class BusTiming:
         self.gaps = _quantiles(*state["gaps"], store.tallies(TALLY_GAPS).get(0))
         self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
         buckets = store.tallies(TALLY_RESPONSES)
-        self.responses = {slave: _quantiles(count, low, high, buckets.get(slave))
-                          for slave, count, low, high, _close in state["responses"]}
-        self.close_to_timeout = {slave: close for slave, _c, _l, _h, close in state["responses"] if close}
+        self.responses = {slave: _quantiles(low, high, buckets.get(slave))
+                          for slave, low, high, _close in state["responses"]}
+        self.close_to_timeout = {slave: close for slave, _l, _h, close in state["responses"] if close}
         self._runs = {slave: _Run(stamp(start), stamp(end), requests, first, last, offset)
                       for slave, start, end, requests, first, last, offset in state["runs"]}
         self.outages = [Outage(slave, stamp(start), stamp(end), requests, first, last, offset)
