@@ -3767,7 +3767,7 @@ feed_whole = function(s, bytes, time)
   local n = #bytes
   local byte = string.byte
   local slave, code = byte(bytes, 1, 2)
-  if n < MIN_ADU or not takes_whole(s, n, slave) then return nil end
+  if not takes_whole(s, n, slave) then return nil end -- (its length checked before its slave: n may be 0)
   local first = fast_interpretation(s, interpretations(s, slave, code)[1], slave, code)
   if first == nil then return nil end
   local b = { [0] = slave, byte(bytes, 2, n) }
