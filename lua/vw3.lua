@@ -5911,15 +5911,16 @@ package.preload["vw3.records"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE = AUTO, CONFIRMED, DATA, FRAMING, MODE_SAMPLE, NOISE
-local PROFILES, READS, REQUEST, RESPONSE, annotate_with = PROFILES, READS, REQUEST, RESPONSE, annotate_with
-local bit_slot, build_device, ceil_bytes, crc_slot = bit_slot, build_device, ceil_bytes, crc_slot
-local crc_string_ok, decode_frame, detect_mode, device_for = crc_string_ok, decode_frame, detect_mode, device_for
-local device_now, feed, feed_whole, head_slot, ipairs, lane = device_now, feed, feed_whole, head_slot, ipairs, lane
-local math, new_state, next, pack, pair, pairs, pcall = math, new_state, next, pack, pair, pairs, pcall
-local put_flat, release_run, remember_writes, run_slot = put_flat, release_run, remember_writes, run_slot
-local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
-local tostring, type, whole_crc_good = tostring, type, whole_crc_good
+local AUTO, CONFIRMED, DATA, FRAMING, KIND_NUMBER = AUTO, CONFIRMED, DATA, FRAMING, KIND_NUMBER
+local MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST = MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST
+local RESPONSE, annotate_with, bit_slot, build_device = RESPONSE, annotate_with, bit_slot, build_device
+local ceil_bytes, crc_slot, crc_string_ok, decode_frame = ceil_bytes, crc_slot, crc_string_ok, decode_frame
+local detect_mode, device_for, device_now, feed, feed_whole = detect_mode, device_for, device_now, feed, feed_whole
+local head_slot, ipairs, lane, math, new_state, next, pack = head_slot, ipairs, lane, math, new_state, next, pack
+local pair, pairs, pcall, put_flat, release_run = pair, pairs, pcall, put_flat, release_run
+local remember_writes, run_slot, span_slot, story, string = remember_writes, run_slot, span_slot, story, string
+local string_of, takes_whole, tostring, type = string_of, takes_whole, tostring, type
+local whole_crc_good = whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -6244,8 +6245,8 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local crc, registers, coils = crc_low + crc_high * 256, false, false
   if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
-  return put_flat(st, head_slot(2, slave, code, n), 0, item, offset, number, time, crc_slot(crc, crc),
-    span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
+  return put_flat(st, head_slot(KIND_NUMBER[RESPONSE], slave, code, n), 0, item, offset, number, time,
+    crc_slot(crc, crc), span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
 end
 
 -- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
@@ -6318,9 +6319,10 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     -- them), made once for its entry when the lane first takes it (most entries of a mix of random
     -- requests never are); false where it holds a rare key (a name of the device's own: pack.settle).
     local registers, bits = known.registers, known.bits
-    slots = known.function_text == nil and { head_slot(1, slave, code, n), span_slot(known.quantity, known.start),
-      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
-      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false, known.span_label or false }
+    slots = known.function_text == nil and { head_slot(KIND_NUMBER[REQUEST], slave, code, n),
+      span_slot(known.quantity, known.start), registers ~= nil and run_slot(registers.first, registers.count,
+      registers.start) or false, bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
+      known.span_label or false }
     known.slots = slots
   end
   f.slots = slots

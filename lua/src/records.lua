@@ -327,8 +327,8 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local crc_low, crc_high = byte(bytes, n - 1, n)
   local crc, registers, coils = crc_low + crc_high * 256, false, false
   if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
-  return put_flat(st, head_slot(2, slave, code, n), 0, item, offset, number, time, crc_slot(crc, crc),
-    span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
+  return put_flat(st, head_slot(KIND_NUMBER[RESPONSE], slave, code, n), 0, item, offset, number, time,
+    crc_slot(crc, crc), span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
 end
 
 -- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
@@ -401,9 +401,10 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     -- them), made once for its entry when the lane first takes it (most entries of a mix of random
     -- requests never are); false where it holds a rare key (a name of the device's own: pack.settle).
     local registers, bits = known.registers, known.bits
-    slots = known.function_text == nil and { head_slot(1, slave, code, n), span_slot(known.quantity, known.start),
-      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
-      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false, known.span_label or false }
+    slots = known.function_text == nil and { head_slot(KIND_NUMBER[REQUEST], slave, code, n),
+      span_slot(known.quantity, known.start), registers ~= nil and run_slot(registers.first, registers.count,
+      registers.start) or false, bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
+      known.span_label or false }
     known.slots = slots
   end
   f.slots = slots
