@@ -6166,7 +6166,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local device = device_for(st, slave)
   if not device then return nil end
   local profile = device.profile
-  if profile.function_names ~= nil and profile.function_names[code] ~= nil then return nil end
+  if profile.function_names[code] ~= nil then return nil end
   -- annotate_registers: every register the usual one (not 16#8000, under no layout rule, read before with a
   -- value where 16#8000 is followed), which is only noted as read
   local protected = nil
