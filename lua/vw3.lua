@@ -3747,8 +3747,8 @@ local function takes_whole(s, n, slave)
     and slave <= MAX_SLAVE and slave ~= 0 -- (a broadcast: is its 00 a glitch before a frame? match weighs it)
 end
 
--- The stream after a whole record of n bytes is framed (its expectation set by the caller): no byte
--- waits, the record's time is the last one kept, no record end (its end is the stream's end).
+-- The stream after a whole record's frame of n bytes, counted (its expectation set by the caller); its offset
+-- and number: no byte waits, the record's time is the last one kept, no record end (its end is the stream's end).
 function lane.advance(s, n, time)
   s.noise_cut = false
   local offset = s.base
@@ -3756,13 +3756,15 @@ function lane.advance(s, n, time)
   local times = s.times
   times[1] = offset
   if time == nil then times[2] = false else times[2] = time end
-  return offset
+  local count = s.count + 1
+  s.count = count
+  return offset, count
 end
 
 -- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
 -- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
--- record's time is the last one kept, no record end (its end is the stream's end).
+-- record's time is the last one kept, no record end (its end is the stream's end), the frame counted.
 feed_whole = function(s, bytes, time)
   local n = #bytes
   local byte = string.byte
@@ -6189,9 +6191,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
   if quiet then lane.counted(quiet, true) end
   st.expect = nil -- (expect_after: an answer awaits nothing)
-  local offset = lane.advance(st, n, time)
-  local item = st.count + 1
-  st.count = item
+  local offset, item = lane.advance(st, n, time)
   -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
   st.last = nil
   st.pending = nil
@@ -6285,9 +6285,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
   if quiet then lane.counted(quiet, false) end
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
-  local offset = lane.advance(st, n, time)
-  local count = st.count + 1
-  st.count = count
+  local offset, count = lane.advance(st, n, time)
   -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
   -- was met), decoded as its entry says. A frame of the quick lanes packed once answered (lane.answer) is
   -- held by nothing else: it is taken again here, every key set anew, so that a polling bus makes no
@@ -6344,9 +6342,7 @@ dissect_record = function(st, bytes, time, number)
     if frame ~= nil then
       local record = { frame }
       st.last = record
-      local count = st.count + 1
-      st.count = count
-      frame.number, frame.record = count, number
+      frame.number, frame.record = st.count, number -- (counted by feed_whole)
       remember_request(bytes, frame, take_frame(st, frame, true))
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record

@@ -45,8 +45,8 @@ local function takes_whole(s, n, slave)
     and slave <= MAX_SLAVE and slave ~= 0 -- (a broadcast: is its 00 a glitch before a frame? match weighs it)
 end
 
--- The stream after a whole record of n bytes is framed (its expectation set by the caller): no byte
--- waits, the record's time is the last one kept, no record end (its end is the stream's end).
+-- The stream after a whole record's frame of n bytes, counted (its expectation set by the caller); its offset
+-- and number: no byte waits, the record's time is the last one kept, no record end (its end is the stream's end).
 function lane.advance(s, n, time)
   s.noise_cut = false
   local offset = s.base
@@ -54,13 +54,15 @@ function lane.advance(s, n, time)
   local times = s.times
   times[1] = offset
   if time == nil then times[2] = false else times[2] = time end
-  return offset
+  local count = s.count + 1
+  s.count = count
+  return offset, count
 end
 
 -- A record that is one whole RTU frame, fed where no byte waits (nearly every record of a clean
 -- capture): the frame run_rtu's fast path finds at 0, or nil (and the byte table when it was made) for
 -- feed to frame the record. The stream is left as feed and consume leave it: no byte waits, the
--- record's time is the last one kept, no record end (its end is the stream's end).
+-- record's time is the last one kept, no record end (its end is the stream's end), the frame counted.
 feed_whole = function(s, bytes, time)
   local n = #bytes
   local byte = string.byte

@@ -271,9 +271,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   -- From here on the answer is taken: the same changes, in the same order, as the general path's.
   if quiet then lane.counted(quiet, true) end
   st.expect = nil -- (expect_after: an answer awaits nothing)
-  local offset = lane.advance(st, n, time)
-  local item = st.count + 1
-  st.count = item
+  local offset, item = lane.advance(st, n, time)
   -- (no record table for finish: the stream waits for no byte, and an answer awaits nothing)
   st.last = nil
   st.pending = nil
@@ -367,9 +365,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   -- decoded as its entry says, awaiting its answer alone in its record, packed by pack.settle).
   if quiet then lane.counted(quiet, false) end
   st.expect = slave * 256 + code -- (expect_after: a request's code is its function)
-  local offset = lane.advance(st, n, time)
-  local count = st.count + 1
-  st.count = count
+  local offset, count = lane.advance(st, n, time)
   -- The frame framing finds (the request's layout is the likeliest; its length and CRC checked when it
   -- was met), decoded as its entry says. A frame of the quick lanes packed once answered (lane.answer) is
   -- held by nothing else: it is taken again here, every key set anew, so that a polling bus makes no
@@ -426,9 +422,7 @@ dissect_record = function(st, bytes, time, number)
     if frame ~= nil then
       local record = { frame }
       st.last = record
-      local count = st.count + 1
-      st.count = count
-      frame.number, frame.record = count, number
+      frame.number, frame.record = st.count, number -- (counted by feed_whole)
       remember_request(bytes, frame, take_frame(st, frame, true))
       st.whole_record = record -- (packed by pack.settle; not when take_frame fails: the record is then an error)
       return record
