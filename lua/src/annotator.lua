@@ -76,6 +76,7 @@ local function new_state(timeout, mode)
   return {
     expect = nil, pending = nil, count = 0, records = {}, devices = {}, timeout = timeout,
     mode = mode,
+    judged = {}, said = {}, history = {}, chosen = {}, -- profile auto's: what it judged, said and chose
     -- the byte stream (see feed): unframed bytes, their stream offset, record ends, record times
     b = {}, n = 0, base = 0, boundaries = {}, times = {}, noise = nil, items = {},
     glitches_only = true, noise_cut = false, glitch_runs = 0, -- (stream.py: the glitch rule's state)

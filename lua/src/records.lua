@@ -491,11 +491,11 @@ function lane.again(st)
   local again = st.again
   st.again = nil
   -- (nothing chosen after a slave's first frame, and no frame read before a choice could be made)
-  if again == nil or (st.said == nil and not st.provisional) then return end
+  if again == nil or (next(st.said) == nil and not st.provisional) then return end
   local fresh = new_state(st.timeout, st.mode)
   local frozen, chosen, history, fixed = {}, {}, {}, {}
-  for number, reason in pairs(st.said or {}) do frozen[number] = reason end
-  for slave, judged in pairs(st.judged or {}) do
+  for number, reason in pairs(st.said) do frozen[number] = reason end
+  for slave, judged in pairs(st.judged) do
     local choice = judged.choice
     if choice ~= nil and PROFILES[choice.profile] ~= nil then
       local device = build_device(PROFILES[choice.profile], slave)

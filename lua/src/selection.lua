@@ -123,10 +123,9 @@ local function observe(st, f, b)
   local slave = f.slave
   -- (serial slave 0 is the broadcast address; a Modbus/TCP unit 0 is the device itself: f.unit_zero)
   if slave == 0 and not f.unit_zero then return nil end
-  st.judged = st.judged or {}
   local judged = st.judged[slave]
   if judged == nil then
-    judged = { answers = 0, frames = 0 }
+    judged = { answers = 0, frames = 0, evidence = {}, ruled_out = {} }
     st.judged[slave] = judged
   end
   local current = judged.choice
@@ -153,8 +152,7 @@ local function observe(st, f, b)
   if not judging then return nil end
   -- Selector._weigh: what this answer says of each candidate; a choice when one alone has enough.
   local registers = register_list(f, b)
-  local evidence, ruled_out = judged.evidence or {}, judged.ruled_out or {}
-  judged.evidence, judged.ruled_out = evidence, ruled_out
+  local evidence, ruled_out = judged.evidence, judged.ruled_out
   local ready = nil -- (the candidate whose evidence is enough; false: more than one)
   for _, name in ipairs(CANDIDATES) do
     local verdict = nil
@@ -198,8 +196,7 @@ function lane.quiet(st, slave, fn, answer)
   if IDENTIFYING[fn] ~= nil then return false end
   local frozen = st.frozen
   if frozen ~= nil and st.fixed[slave] then return frozen[st.count + 1] == nil end -- (the frame that decided says so)
-  local all = st.judged
-  local judged = all and all[slave]
+  local judged = st.judged[slave]
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
@@ -231,7 +228,7 @@ local function select_device(st, f, b)
     -- Read once, no device chosen for the slave yet while evidence may still come: its values are named
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
     local slave = f.slave
-    local judged = slave ~= 0 and st.judged and st.judged[slave]
+    local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
     if judged and judged.choice == nil and not settled(judged) and (st.frozen == nil or st.going_on) then
@@ -242,14 +239,11 @@ local function select_device(st, f, b)
   end
   local slave = f.slave
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
-  st.said = st.said or {}
   st.said[f.number] = { choice.profile, choice.reason }
-  st.history = st.history or {}
   local history = st.history[slave]
   local device = st.devices[slave]
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
   if not choice.same then
-    st.chosen = st.chosen or {}
     st.chosen[slave] = choice.profile
     if history == nil then
       history = {}
