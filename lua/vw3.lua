@@ -5286,7 +5286,7 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, NOISE, PROFILES, READS, RESPONSE, SELECTION = AUTO, NOISE, PROFILES, READS, RESPONSE, SELECTION
+local NOISE, PROFILES, READS, RESPONSE, SELECTION = NOISE, PROFILES, READS, RESPONSE, SELECTION
 local build_device, device_for, format, ipairs, lane = build_device, device_for, format, ipairs, lane
 local layered_rows, math, next, python_repr, register_at = layered_rows, math, next, python_repr, register_at
 local say, span_name, table = say, span_name, table
@@ -5546,7 +5546,7 @@ local function select_device(st, f, b)
 end
 
 local function device_now(st, f, b)
-  if config.default == AUTO and config.per_slave[f.slave] == nil then return select_device(st, f, b) end
+  if config.auto[f.slave] then return select_device(st, f, b) end
   return device_for(st, f.slave)
 end
 
@@ -5617,7 +5617,9 @@ local function configure(profiles_text, style, maps_text)
   for _, name in pairs(per_slave) do in_use[name] = true end
   local layers, map_errors = parse_map_choice(maps_text, in_use)
   for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end
-  config = { default = default, per_slave = per_slave, style = style, errors = errors, layers = layers }
+  local auto = {} -- (the slaves profile auto judges, by number: auto the default, no profile given for it)
+  for slave = 0, 255 do auto[slave] = default == AUTO and per_slave[slave] == nil end
+  config = { default = default, per_slave = per_slave, auto = auto, style = style, errors = errors, layers = layers }
 end
 
 -- ---------------------------------------------------------------------------------------------------
@@ -5908,16 +5910,15 @@ package.preload["vw3.records"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, CONFIRMED, DATA, FRAMING, KIND_NUMBER = AUTO, CONFIRMED, DATA, FRAMING, KIND_NUMBER
-local MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST = MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST
-local RESPONSE, annotate_with, bit_slot, build_device = RESPONSE, annotate_with, bit_slot, build_device
-local ceil_bytes, crc_slot, crc_string_ok, decode_frame = ceil_bytes, crc_slot, crc_string_ok, decode_frame
-local detect_mode, device_for, device_now, feed, feed_whole = detect_mode, device_for, device_now, feed, feed_whole
-local head_slot, ipairs, lane, math, new_state, next, pack = head_slot, ipairs, lane, math, new_state, next, pack
-local pair, pairs, pcall, put_flat, release_run = pair, pairs, pcall, put_flat, release_run
-local remember_writes, run_slot, span_slot, story, string = remember_writes, run_slot, span_slot, story, string
-local string_of, takes_whole, tostring, type = string_of, takes_whole, tostring, type
-local whole_crc_good = whole_crc_good
+local CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE = CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE
+local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
+local annotate_with, bit_slot, build_device, ceil_bytes = annotate_with, bit_slot, build_device, ceil_bytes
+local crc_slot, crc_string_ok, decode_frame, detect_mode = crc_slot, crc_string_ok, decode_frame, detect_mode
+local device_for, device_now, feed, feed_whole, head_slot = device_for, device_now, feed, feed_whole, head_slot
+local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
+local pairs, pcall, put_flat, release_run, remember_writes = pairs, pcall, put_flat, release_run, remember_writes
+local run_slot, span_slot, story, string, string_of = run_slot, span_slot, story, string, string_of
+local takes_whole, tostring, type, whole_crc_good = takes_whole, tostring, type, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -6387,7 +6388,7 @@ function lane.decode(st, bytes, n, time, number)
   if lane.quick and st.open[1] == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
     local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
-    if config.default == AUTO and config.per_slave[slave] == nil then quiet = lane.quiet(st, slave, code, answer) end
+    if config.auto[slave] then quiet = lane.quiet(st, slave, code, answer) end
     if quiet ~= false then
       local kept, info = (answer and lane.answer or lane.request)(st, bytes, n, time, number, slave, code, quiet)
       if kept ~= nil then return kept, n, info end

@@ -53,7 +53,9 @@ local function configure(profiles_text, style, maps_text)
   for _, name in pairs(per_slave) do in_use[name] = true end
   local layers, map_errors = parse_map_choice(maps_text, in_use)
   for _, problem in ipairs(map_errors) do errors[#errors + 1] = problem end
-  config = { default = default, per_slave = per_slave, style = style, errors = errors, layers = layers }
+  local auto = {} -- (the slaves profile auto judges, by number: auto the default, no profile given for it)
+  for slave = 0, 255 do auto[slave] = default == AUTO and per_slave[slave] == nil end
+  config = { default = default, per_slave = per_slave, auto = auto, style = style, errors = errors, layers = layers }
 end
 
 -- ---------------------------------------------------------------------------------------------------

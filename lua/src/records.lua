@@ -472,7 +472,7 @@ function lane.decode(st, bytes, n, time, number)
   if lane.quick and st.open[1] == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
     local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
-    if config.default == AUTO and config.per_slave[slave] == nil then quiet = lane.quiet(st, slave, code, answer) end
+    if config.auto[slave] then quiet = lane.quiet(st, slave, code, answer) end
     if quiet ~= false then
       local kept, info = (answer and lane.answer or lane.request)(st, bytes, n, time, number, slave, code, quiet)
       if kept ~= nil then return kept, n, info end

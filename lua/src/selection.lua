@@ -259,7 +259,7 @@ local function select_device(st, f, b)
 end
 
 local function device_now(st, f, b)
-  if config.default == AUTO and config.per_slave[f.slave] == nil then return select_device(st, f, b) end
+  if config.auto[f.slave] then return select_device(st, f, b) end
   return device_for(st, f.slave)
 end
 
