@@ -173,6 +173,16 @@ def _length_rule(rule: table.LengthRule) -> list[Any]:
     return [rule.name, rule.position, rule.start]
 
 
+def _by_quantity(layout: table.Layout) -> list[list[Any]]:
+    """A request's length by its quantity (table.ByQuantity, framing/rules.py quantity_rule), as the rule
+    `by_quantity` with the fields of accel/_tables.h's RULE_BY_QUANTITY: the quantity's position, extra,
+    unit, and the byte count's position and extra; none: an empty list."""
+    alternative, counted = layout.by_quantity, layout.length
+    if alternative is None or not isinstance(counted, table.Counted):
+        return []
+    return [["by_quantity", alternative.position, alternative.extra, alternative.unit, counted.position, counted.extra]]
+
+
 def protocol_tables() -> dict[str, Any]:
     """The protocol table as the plugin uses it: per code, the length rules (request, response), and
     per direction the parser (by layout name), the handler and the spec limit; the read classes."""
@@ -180,7 +190,7 @@ def protocol_tables() -> dict[str, Any]:
     return {
         # (the codes without a layout, found by a CRC scan: framing/rules.py RULES)
         "rules": {
-            code: [_length_rule(request.length), _length_rule(response.length)]
+            code: [_length_rule(request.length), _length_rule(response.length), *_by_quantity(request)]
             for code, request, response in table.known_layouts()
         },
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
@@ -189,11 +199,6 @@ def protocol_tables() -> dict[str, Any]:
         "limits": {name: table.by_kind("limit")[kind] for name, kind in directions.items()},
         "reads": table.register_reads(),
         "plain_reads": table.plain_register_reads(),
-        # A request's length by its quantity (table.ByQuantity): {quantity's position, extra, unit}.
-        "by_quantity": {
-            entry.code: [entry.request.by_quantity.position, entry.request.by_quantity.extra, entry.request.by_quantity.unit]
-            for entry in table.FUNCTIONS if entry.request.by_quantity is not None
-        },
         # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).
         "plausible_reads": {code: list(limits) for code, limits in evidence.READ_LIMITS.items()},
         # The requests whose coil value makes them plausible, and the values it may have (evidence.py).

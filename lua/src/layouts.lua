@@ -64,29 +64,27 @@ local function mei_objects(position, start)
   end
 end
 
--- Length rules per function code (request, response): generated from dissector/protocol/table.py.
+-- A request's length by its quantity (a word at `position`): `extra` + it x `unit` bytes (0: bits, 8 a byte);
+-- NONE where its byte count (`count_extra` + the byte at `count_at`) agrees (rules.py quantity_rule).
+local function by_quantity(position, extra, unit, count_at, count_extra)
+  return function(b, i, n)
+    if i + position + 1 >= n or i + count_at >= n then return NEED end
+    local items = b[i + position] * 256 + b[i + position + 1]
+    local length = extra + (unit > 0 and items * unit or math.floor((items + 7) / 8))
+    if length == count_extra + b[i + count_at] then return NONE end
+    return length
+  end
+end
+
+-- Length rules per function code (request, response, by quantity): generated from dissector/protocol/table.py.
 local RULES = {}
 local makers = {
   fixed = fixed, count8 = count8, count16 = count16,
-  scan = scan, select = select, mei_objects = mei_objects,
+  scan = scan, select = select, mei_objects = mei_objects, by_quantity = by_quantity,
 }
 function make_rule(spec) return makers[spec[1]](spec[2], spec[3], spec[4], spec[5], spec[6]) end
 for code, rules in pairs(DATA.protocol.rules) do
-  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]) }
-end
--- A request's length by its quantity where its byte count says otherwise (rtu.py quantity_rule).
-for code, spec in pairs(DATA.protocol.by_quantity or {}) do
-  local position, extra, unit = spec[1], spec[2], spec[3]
-  local counted = RULES[code][1] -- (the byte count's length: { "count8", position, extra })
-  local need = math.max(position + 1, DATA.protocol.rules[code][1][2])
-  RULES[code][3] = function(b, i, n)
-    if i + need >= n then return NEED end
-    local quantity = b[i + position] * 256 + b[i + position + 1]
-    local length
-    if unit > 0 then length = extra + quantity * unit else length = extra + math.floor((quantity + 7) / 8) end
-    if length == counted(b, i, n) then return NONE end
-    return length
-  end
+  RULES[code] = { make_rule(rules[1]), make_rule(rules[2]), rules[3] and make_rule(rules[3]) }
 end
 
 -- Interpretations in the order they are tried (rules.py REQUEST_FIRST, RESPONSE_FIRST): request first,
