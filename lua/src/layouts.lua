@@ -37,15 +37,14 @@ local function scan(minimum)
 end
 
 -- The rule a field of the frame picks (table.Select, rules.py _select): `chosen` where the byte (width 1)
--- or word (2) at `position` is `value`, else `otherwise`; the field read by its count rule, nothing added.
+-- or word (2) at `position` is `value`, else `otherwise` (the field read in place, not by a count rule's call).
 local make_rule
 local function select(position, width, value, chosen, otherwise)
-  local field = (width == 2 and count16 or count8)(position, 0)
   chosen, otherwise = make_rule(chosen), make_rule(otherwise)
   return function(b, i, n)
-    local found = field(b, i, n)
+    if i + position + width - 1 >= n then return NEED end
+    local found = width == 2 and b[i + position] * 256 + b[i + position + 1] or b[i + position]
     if found == value then return chosen(b, i, n) end
-    if found == NEED then return NEED end
     return otherwise(b, i, n)
   end
 end
