@@ -41,26 +41,23 @@ class AsciiFramer(StreamFramer):
             if buf[i] != COLON:
                 colon = buf.find(b":", i)
                 end = n if colon < 0 else colon
-                self._add_noise(i, end, "outside an ASCII frame", items)
+                self._add_noise(i, end, text("outside_ascii"), items)
                 i = end
                 continue
             limit = min(n, i + MAX_ASCII)
             lf = buf.find(b"\n", i + 1, limit)
             colon = buf.find(b":", i + 1, limit)
             if colon >= 0 and (lf < 0 or colon < lf):
-                self._reject(bytes(buf[i:colon]), i, "ASCII frame cut short by the next ':'", items)
+                self._reject(bytes(buf[i:colon]), i, text("cut_by_colon"), items)
                 i = colon
             elif lf >= 0:
                 self._candidate(bytes(buf[i : lf + 1]), i, items)
                 i = lf + 1
             elif n - i >= MAX_ASCII:
-                self._reject(
-                    bytes(buf[i : i + MAX_ASCII]), i,
-                    f"no CR LF within {MAX_ASCII} characters of the ':'", items,
-                )
+                self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
             elif final:
-                self._reject(bytes(buf[i:n]), i, "ASCII frame cut off by the end of the capture", items)
+                self._reject(bytes(buf[i:n]), i, text("cut_by_end"), items)
                 i = n
             else:
                 break  # wait for the rest of the frame
@@ -75,18 +72,18 @@ class AsciiFramer(StreamFramer):
         lost_cr = not body.endswith(b"\r")
         digits = body if lost_cr else body[:-1]
         if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
-            self._reject(raw, i, "ASCII frame is not made of hex pairs", items)
+            self._reject(raw, i, text("not_hex_pairs"), items)
             return
         binary = bytes.fromhex(digits.decode("ascii"))
         if len(binary) < MIN_BINARY:
-            self._reject(raw, i, "ASCII frame too short", items)
+            self._reject(raw, i, text("ascii_too_short"), items)
             return
         slave, function = binary[0], binary[1]
         received, expected = binary[-1], lrc(binary[:-1])
-        check = "LRC ok" if received == expected else f"LRC {received:02X}, expected {expected:02X}"
+        check = text("lrc_ok") if received == expected else text("lrc_wrong", received=received, expected=expected)
         kind = self._classify(binary[:-1])
         if kind is None:
-            self._reject(raw, i, f"no Modbus layout fits function {function} ({check})", items)
+            self._reject(raw, i, text("no_layout", function=function, check=check), items)
             return
         offset = self._base + i
         frame = Frame(

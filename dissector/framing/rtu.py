@@ -87,6 +87,11 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     _RESPONSE_FIRST_FAST,
 )
 from dissector.framing.stream import GLITCH_BYTES, StreamFramer
+from dissector.protocol.rules import text
+
+# Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
+NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
+
 
 class RtuFramer(StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
@@ -359,7 +364,7 @@ class RtuFramer(StreamFramer):
             if i >= paused_from:
                 break
             if n - i < MIN_ADU:
-                self._add_noise(i, n, self._cut_answer(buf, i, n) or "too short for a frame", items)
+                self._add_noise(i, n, self._cut_answer(buf, i, n) or TOO_SHORT, items)
                 i = n
                 break
             # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
@@ -372,7 +377,7 @@ class RtuFramer(StreamFramer):
                 # No frame starts here: skip at C speed to the next byte pair that could start one.
                 found = _POSSIBLE_START.search(buf, i + 1)
                 end = found.start() if found is not None else (n if final else n - 1)
-                self._add_noise(i, end, "no valid frame", items)
+                self._add_noise(i, end, NO_FRAME, items)
                 i = end
                 continue
             if (
@@ -418,7 +423,7 @@ class RtuFramer(StreamFramer):
             if match == NEED:
                 break
             if match == NONE:
-                self._add_noise(i, i + 1, "no valid frame", items)
+                self._add_noise(i, i + 1, NO_FRAME, items)
                 i += 1
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
@@ -430,7 +435,7 @@ class RtuFramer(StreamFramer):
                 if following is None:
                     break
                 if not following:
-                    self._add_noise(i, i + 1, "no valid frame", items)
+                    self._add_noise(i, i + 1, NO_FRAME, items)
                     i += 1
                     continue
             raw = bytes(buf[i : i + length])

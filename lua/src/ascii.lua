@@ -3,9 +3,12 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
--- (the catalogue's texts, data/modbus.toml [texts]: these take no parameter)
+-- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
+local OUTSIDE_ASCII, NOT_HEX_PAIRS = format(TEXTS.outside_ascii.format), format(TEXTS.not_hex_pairs.format)
+local CUT_BY_COLON, CUT_BY_END = format(TEXTS.cut_by_colon.format), format(TEXTS.cut_by_end.format)
+local ASCII_TOO_SHORT, LRC_OK = format(TEXTS.ascii_too_short.format), format(TEXTS.lrc_ok.format)
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
@@ -68,22 +71,22 @@ local function ascii_candidate(s, at, length, items)
   local lost_cr = length < 3 or b[at + length - 2] ~= CR
   local digits = length - 3
   if lost_cr then digits = length - 2 end
-  if digits % 2 == 1 then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+  if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
   local bin, count, lower = {}, floor(digits / 2), false
   for k = 0, count - 1 do
     local high, low = b[at + 1 + 2 * k], b[at + 2 + 2 * k]
-    if not (HEX[high] and HEX[low]) then return reject(s, at, length, "ASCII frame is not made of hex pairs", items) end
+    if not (HEX[high] and HEX[low]) then return reject(s, at, length, NOT_HEX_PAIRS, items) end
     if high >= 97 or low >= 97 then lower = true end
     bin[k] = HEX[high] * 16 + HEX[low]
   end
-  if count < MIN_BINARY then return reject(s, at, length, "ASCII frame too short", items) end
+  if count < MIN_BINARY then return reject(s, at, length, ASCII_TOO_SHORT, items) end
   local slave, code = bin[0], bin[1]
   local received, expected = bin[count - 1], lrc(bin, count - 1)
-  local check = "LRC ok"
-  if received ~= expected then check = format("LRC %02X, expected %02X", received, expected) end
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
-    return reject(s, at, length, format("no Modbus layout fits function %d (%s)", code, check), items)
+    local check = LRC_OK
+    if received ~= expected then check = format(TEXTS.lrc_wrong.format, received, expected) end
+    return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   local offset = s.base + at
   local frame = {
@@ -104,7 +107,7 @@ local function run_ascii(s, final, items)
     if b[i] ~= COLON then
       local stop = i + 1
       while stop < n and b[stop] ~= COLON do stop = stop + 1 end
-      add_noise(s, i, stop, "outside an ASCII frame", items)
+      add_noise(s, i, stop, OUTSIDE_ASCII, items)
       i = stop
     else
       local limit = math.min(n, i + MAX_ASCII)
@@ -119,16 +122,16 @@ local function run_ascii(s, final, items)
         end
       end
       if stop ~= nil and b[stop] == COLON then
-        reject(s, i, stop - i, "ASCII frame cut short by the next ':'", items)
+        reject(s, i, stop - i, CUT_BY_COLON, items)
         i = stop
       elseif stop ~= nil then
         ascii_candidate(s, i, stop + 1 - i, items)
         i = stop + 1
       elseif n - i >= MAX_ASCII then
-        reject(s, i, MAX_ASCII, format("no CR LF within %d characters of the ':'", MAX_ASCII), items)
+        reject(s, i, MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII), items)
         i = i + MAX_ASCII
       elseif final then
-        reject(s, i, n - i, "ASCII frame cut off by the end of the capture", items)
+        reject(s, i, n - i, CUT_BY_END, items)
         i = n
       else
         break -- wait for the rest of the frame

@@ -4,6 +4,8 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
+-- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
+local NO_FRAME, TOO_SHORT = format(DATA.rules.texts.no_frame.format), format(DATA.rules.texts.too_short.format)
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -337,7 +339,7 @@ local function run_rtu(s, final, items)
   local i = 0
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
-      add_noise(s, i, n, cut_answer(s, b, i, n) or "too short for a frame", items)
+      add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
     local slave, code = b[i], b[i + 1]
@@ -347,7 +349,7 @@ local function run_rtu(s, final, items)
       local stop = i + 1
       while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
       if stop >= n - 1 then stop = final and n or n - 1 end
-      add_noise(s, i, stop, "no valid frame", items)
+      add_noise(s, i, stop, NO_FRAME, items)
       i = stop
     else
       local kind, length, crc_ok = nil, nil, true
@@ -380,7 +382,7 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == NONE then
-        add_noise(s, i, i + 1, "no valid frame", items)
+        add_noise(s, i, i + 1, NO_FRAME, items)
         i = i + 1
       else
         local offset = s.base + i
