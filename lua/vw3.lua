@@ -1044,19 +1044,6 @@ local DATA = {
         [43] = "mei_response",
       },
     },
-    ["limits"] = {
-      ["request"] = {
-        [1] = "read_bits",
-        [2] = "read_bits",
-        [3] = "read_registers",
-        [4] = "read_registers",
-        [15] = "write_coils",
-        [16] = "write_registers",
-      },
-      ["response"] = {
-        [24] = "fifo_count",
-      },
-    },
     ["reads"] = {
       [3] = true,
       [4] = true,

@@ -184,8 +184,9 @@ def _by_quantity(layout: table.Layout) -> list[list[Any]]:
 
 
 def protocol_tables() -> dict[str, Any]:
-    """The protocol table as the plugin uses it: per code, the length rules (request, response), and
-    per direction the parser (by layout name), the handler and the spec limit; the read classes."""
+    """The protocol table as the plugin uses it: per code, the length rules (request, response, by
+    quantity), and per direction the parser (by layout name) and the handler; the read classes. (The
+    limit a handler checks comes with the rule data, codegen/rules_lua.py's by_code.)"""
     directions = {"request": Kind.REQUEST, "response": Kind.RESPONSE}
     return {
         # (the codes without a layout, found by a CRC scan: framing/rules.py RULES)
@@ -196,7 +197,6 @@ def protocol_tables() -> dict[str, Any]:
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
         "parsers": {name: table.by_kind("name")[kind] for name, kind in directions.items()},
         "handlers": {name: table.by_kind("handler")[kind] for name, kind in directions.items()},
-        "limits": {name: table.by_kind("limit")[kind] for name, kind in directions.items()},
         "reads": table.register_reads(),
         "plain_reads": table.plain_register_reads(),
         # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).
