@@ -67,10 +67,6 @@ local DATA = {
     [18] = "Return Bus Character Overrun Count",
     [20] = "Clear Overrun Counter and Flag",
   },
-  ["mei_types"] = {
-    [13] = "CANopen General Reference",
-    [14] = "Read Device Identification",
-  },
   ["device_id_objects"] = {
     [0] = "VendorName",
     [1] = "ProductCode",

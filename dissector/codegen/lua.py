@@ -89,7 +89,6 @@ def plugin_data() -> dict[str, Any]:
         "functions": SPEC.functions,
         "exceptions": SPEC.exceptions,
         "diagnostics": SPEC.diagnostics,
-        "mei_types": SPEC.mei_types,
         "device_id_objects": SPEC.device_id_objects,
         "names": SPEC.names,  # value names of layout fields (u8{NAMES}: the run indicator)
         "limits": limits,
