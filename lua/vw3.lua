@@ -6296,10 +6296,13 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     -- them), made once for its entry when the lane first takes it (most entries of a mix of random
     -- requests never are); false where it holds a rare key (a name of the device's own: pack.settle).
     local registers, bits = known.registers, known.bits
-    slots = known.function_text == nil and { head_slot(KIND_NUMBER[REQUEST], slave, code, n),
-      span_slot(known.quantity, known.start), registers ~= nil and run_slot(registers.first, registers.count,
-      registers.start) or false, bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
-      known.span_label or false }
+    slots = known.function_text == nil and {
+      head_slot(KIND_NUMBER[REQUEST], slave, code, n),
+      span_slot(known.quantity, known.start),
+      registers ~= nil and run_slot(registers.first, registers.count, registers.start) or false,
+      bits ~= nil and bit_slot(bits.first, bits.count, bits.start, bits.single) or false,
+      known.span_label or false,
+    }
     known.slots = slots
   end
   f.slots = slots

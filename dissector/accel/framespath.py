@@ -18,10 +18,11 @@ from dissector.accel import fastsummary
 from dissector.decode.fields import decode_frame
 from dissector.model import Chunk, Frame, Item, Kind, Stamp
 from dissector.pipeline import Dissector
+from dissector.render import bustiming
 from dissector.render.timefmt import Clock
 
 RECORD = struct.Struct("=qqiiBBBqq")  # _judge.h frames_record
-_KINDS = {2: Kind.RESPONSE, 3: Kind.EXCEPTION}  # _summary.c KIND_*
+_KINDS = {number: kind for kind, number in bustiming._KINDS.items()}  # (an answer's: response, exception)
 _NOTHING = bytes(256 * 32)  # no (slave, function) is the Python stages' alone
 SLICE = 256  # transactions decoded and shown at a time
 

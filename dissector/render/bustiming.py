@@ -104,7 +104,8 @@ def _quantiles(low: float, high: float, buckets: dict[int, int] | None) -> Quant
     return quantiles
 
 
-_KINDS = {Kind.REQUEST: 1, Kind.RESPONSE: 2, Kind.EXCEPTION: 3}  # _summary.c KIND_*
+# The engine's numbers for the kinds of frame (codegen/c_rules.py generates _tables.h's KIND_* from them).
+_KINDS = {Kind.REQUEST: 1, Kind.RESPONSE: 2, Kind.EXCEPTION: 3}
 
 
 @dataclass(slots=True)
