@@ -964,82 +964,6 @@ local DATA = {
       },
     },
     ["exception_rule"] = { "fixed", 5 },
-    ["parsers"] = {
-      ["request"] = {
-        [1] = "read_request",
-        [2] = "read_request",
-        [3] = "read_request",
-        [4] = "read_request",
-        [5] = "write_single",
-        [6] = "write_single",
-        [7] = "empty",
-        [8] = "diagnostics",
-        [11] = "empty",
-        [12] = "empty",
-        [15] = "write_coils_request",
-        [16] = "write_registers_request",
-        [17] = "empty",
-        [20] = "read_file_request",
-        [21] = "write_file",
-        [22] = "mask_write",
-        [23] = "read_write_request",
-        [24] = "fifo_request",
-        [43] = "mei_request",
-      },
-      ["response"] = {
-        [1] = "read_bits_response",
-        [2] = "read_bits_response",
-        [3] = "read_registers_response",
-        [4] = "read_registers_response",
-        [5] = "write_single",
-        [6] = "write_single",
-        [7] = "exception_status_response",
-        [8] = "diagnostics",
-        [11] = "comm_event_counter_response",
-        [12] = "comm_event_log_response",
-        [15] = "write_multiple_response",
-        [16] = "write_multiple_response",
-        [17] = "report_server_id_response",
-        [20] = "read_file_response",
-        [21] = "write_file",
-        [22] = "mask_write",
-        [23] = "read_registers_response",
-        [24] = "fifo_response",
-        [43] = "mei_response",
-      },
-    },
-    ["handlers"] = {
-      ["request"] = {
-        [1] = "read_request",
-        [2] = "read_request",
-        [3] = "read_request",
-        [4] = "read_request",
-        [5] = "write_single_coil",
-        [6] = "write_single_register",
-        [8] = "diagnostics",
-        [15] = "write_coils_request",
-        [16] = "write_registers_request",
-        [22] = "mask_write",
-        [23] = "read_write_request",
-        [24] = "fifo_request",
-      },
-      ["response"] = {
-        [1] = "read_bits_response",
-        [2] = "read_bits_response",
-        [3] = "read_registers_response",
-        [4] = "read_registers_response",
-        [5] = "write_single_coil",
-        [6] = "write_single_register",
-        [8] = "diagnostics",
-        [15] = "write_multiple_response",
-        [16] = "write_multiple_response",
-        [17] = "report_server_id_response",
-        [22] = "mask_write",
-        [23] = "read_registers_response",
-        [24] = "fifo_response",
-        [43] = "mei_response",
-      },
-    },
     ["reads"] = {
       [3] = true,
       [4] = true,
@@ -2883,7 +2807,7 @@ package.preload["vw3.layouts"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.layouts"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, math, pairs = DATA, math, pairs
+local DATA, floor, pairs = DATA, floor, pairs
 
 -- ---------------------------------------------------------------------------------------------------
 -- Framing (dissector/framing/rtu.py): length rules per function code and direction, CRC to confirm.
@@ -2944,13 +2868,15 @@ local function mei_objects(position, start)
   end
 end
 
--- A request's length by its quantity (a word at `position`): `extra` + it x `unit` bytes (0: bits, 8 a byte);
+-- The bytes of `items` values of `unit` bytes each (0: bits, 8 a byte): rules.data_bytes, the one byte formula.
+local function data_bytes(items, unit) return unit > 0 and items * unit or floor((items + 7) / 8) end
+
+-- A request's length by its quantity (a word at `position`): `extra` + its data bytes (data_bytes by `unit`);
 -- NONE where its byte count (`count_extra` + the byte at `count_at`) agrees (rules.py quantity_rule).
 local function by_quantity(position, extra, unit, count_at, count_extra)
   return function(b, i, n)
     if i + position + 1 >= n or i + count_at >= n then return NEED end
-    local items = b[i + position] * 256 + b[i + position + 1]
-    local length = extra + (unit > 0 and items * unit or math.floor((items + 7) / 8))
+    local length = extra + data_bytes(b[i + position] * 256 + b[i + position + 1], unit)
     if length == count_extra + b[i + count_at] then return NONE end
     return length
   end
@@ -2991,7 +2917,7 @@ local function possible_start(code)
 end
 
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE, M.data_bytes = NEED, NOISE, NOISE_ITEM_MAX, NONE, data_bytes
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
 M.interpretations, M.possible_start = interpretations, possible_start
 end
@@ -3816,8 +3742,8 @@ package.preload["vw3.decode"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat
-local floor, format, ipairs, load, pairs, string, table = floor, format, ipairs, load, pairs, string, table
-local type = type
+local data_bytes, floor, format, ipairs, load, pairs = data_bytes, floor, format, ipairs, load, pairs
+local string, table, type = string, table, type
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -3893,8 +3819,6 @@ local function bit_at(run, b, index, shift)
   if run.single ~= nil then return address, run.single, k end
   return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
-
-local function ceil_bytes(bits) return floor((bits + 7) / 8) end
 
 -- Each parser gets the byte table, the first data byte and the data length. It returns the number of
 -- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
@@ -4021,7 +3945,7 @@ end
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo = ...",
+  local out = { "local warn, say, floor, echo_check, echo, data_bytes = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -4052,8 +3976,7 @@ local function lifter(rule, limit, layout)
   end
   if count then
     add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
-    add("if of ~= nil and fields.byte_count ~= %d + %s then", count.plus,
-      count.unit > 0 and format("of * %d", count.unit) or "floor((of + 7) / 8)")
+    add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)
     add("  warn(f, say(%q, { count = fields.byte_count, quantity = of }))", count.text)
     add("end")
   end
@@ -4092,7 +4015,7 @@ local function lifter(rule, limit, layout)
     end
   end
   add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo)
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes)
 end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
@@ -4186,7 +4109,7 @@ end
 
 M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say, M.fill = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say, fill
 M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
-M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
+M.NOT_BROADCAST, M.bit_at, M.decode_frame = NOT_BROADCAST, bit_at, decode_frame
 M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
 M.release_run, M.u16, M.warn = release_run, u16, warn
 end
@@ -5895,8 +5818,8 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE = CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE
 local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
-local annotate_with, bit_slot, build_device, ceil_bytes = annotate_with, bit_slot, build_device, ceil_bytes
-local crc_slot, crc_string_ok, decode_frame, detect_mode = crc_slot, crc_string_ok, decode_frame, detect_mode
+local annotate_with, bit_slot, build_device, crc_slot = annotate_with, bit_slot, build_device, crc_slot
+local crc_string_ok, data_bytes, decode_frame, detect_mode = crc_string_ok, data_bytes, decode_frame, detect_mode
 local device_for, device_now, feed, feed_whole, head_slot = device_for, device_now, feed, feed_whole, head_slot
 local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
 local pairs, pcall, put_flat, release_run, remember_writes = pairs, pcall, put_flat, release_run, remember_writes
@@ -6107,15 +6030,16 @@ take_items = function(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
--- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
--- the read_registers_response or read_bits_response grammar and handler, the length rule the byte count
--- in its third byte plus the rule's extra), and the frame the Info text of a quick answer is made from.
+-- The functions whose answer is a run of the registers or bits its request asked for, from its fourth
+-- byte (the rule data: its lifting rule's start, count (by unit, 0: bits) and values; the length rule that
+-- count, in the third byte, plus an extra), and the frame the Info text of a quick answer is made from.
 local RUN_ANSWERS = {}
-for code, name in pairs(DATA.protocol.handlers.response) do
-  local rule = DATA.protocol.rules[code][2]
-  if (name == "read_registers_response" or name == "read_bits_response")
-      and DATA.protocol.parsers.response[code] == name and rule[1] == "count8" and rule[2] == 2 then
-    RUN_ANSWERS[code] = { bits = name == "read_bits_response", extra = rule[3] }
+for code, entry in pairs(DATA.rules.by_code.response) do
+  local lift, rule = DATA.rules.lift[entry.rule or ""], DATA.protocol.rules[code][2]
+  local kind = lift and lift.start == "request.start" and lift.count and lift.count.of == "request.quantity"
+    and lift.values and lift.values.kind
+  if (kind == "registers" or kind == "bits") and rule[1] == "count8" and rule[2] == 2 then
+    RUN_ANSWERS[code] = { bits = kind == "bits", extra = rule[3], unit = lift.count.unit }
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
@@ -6142,7 +6066,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
   local bits = run.bits
-  if count ~= (bits and ceil_bytes(quantity) or 2 * quantity) then return nil end
+  if count ~= data_bytes(quantity, run.unit) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
   if not device then return nil end

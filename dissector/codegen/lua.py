@@ -23,7 +23,7 @@ from dissector.codegen import fields_lua, printable_table
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
-from dissector.model import CUT_ANSWER, Kind
+from dissector.model import CUT_ANSWER
 from dissector.protocol import ascii as ascii_mode, crc, table
 from dissector.protocol.spec import SPEC
 from dissector.render import detail, summary
@@ -184,9 +184,8 @@ def _by_quantity(layout: table.Layout) -> list[list[Any]]:
 
 def protocol_tables() -> dict[str, Any]:
     """The protocol table as the plugin uses it: per code, the length rules (request, response, by
-    quantity), and per direction the parser (by layout name) and the handler; the read classes. (The
-    limit a handler checks comes with the rule data, codegen/rules_lua.py's by_code.)"""
-    directions = {"request": Kind.REQUEST, "response": Kind.RESPONSE}
+    quantity); the read classes. (Per direction each code's layout, handler and the limit it checks
+    come with the rule data, codegen/rules_lua.py's by_code.)"""
     return {
         # (the codes without a layout, found by a CRC scan: framing/rules.py RULES)
         "rules": {
@@ -194,8 +193,6 @@ def protocol_tables() -> dict[str, Any]:
             for code, request, response in table.known_layouts()
         },
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
-        "parsers": {name: table.by_kind("name")[kind] for name, kind in directions.items()},
-        "handlers": {name: table.by_kind("handler")[kind] for name, kind in directions.items()},
         "reads": table.register_reads(),
         "plain_reads": table.plain_register_reads(),
         # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).

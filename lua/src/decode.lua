@@ -79,8 +79,6 @@ local function bit_at(run, b, index, shift)
   return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
 
-local function ceil_bytes(bits) return floor((bits + 7) / 8) end
-
 -- Each parser gets the byte table, the first data byte and the data length. It returns the number of
 -- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
 -- do not fit the grammar (Python: GrammarError -> "malformed ...").
@@ -206,7 +204,7 @@ end
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo = ...",
+  local out = { "local warn, say, floor, echo_check, echo, data_bytes = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -237,8 +235,7 @@ local function lifter(rule, limit, layout)
   end
   if count then
     add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
-    add("if of ~= nil and fields.byte_count ~= %d + %s then", count.plus,
-      count.unit > 0 and format("of * %d", count.unit) or "floor((of + 7) / 8)")
+    add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)
     add("  warn(f, say(%q, { count = fields.byte_count, quantity = of }))", count.text)
     add("end")
   end
@@ -277,7 +274,7 @@ local function lifter(rule, limit, layout)
     end
   end
   add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo)
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes)
 end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
@@ -371,6 +368,6 @@ end
 
 M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say, M.fill = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say, fill
 M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
-M.NOT_BROADCAST, M.bit_at, M.ceil_bytes, M.decode_frame = NOT_BROADCAST, bit_at, ceil_bytes, decode_frame
+M.NOT_BROADCAST, M.bit_at, M.decode_frame = NOT_BROADCAST, bit_at, decode_frame
 M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
 M.release_run, M.u16, M.warn = release_run, u16, warn

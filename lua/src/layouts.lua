@@ -63,13 +63,15 @@ local function mei_objects(position, start)
   end
 end
 
--- A request's length by its quantity (a word at `position`): `extra` + it x `unit` bytes (0: bits, 8 a byte);
+-- The bytes of `items` values of `unit` bytes each (0: bits, 8 a byte): rules.data_bytes, the one byte formula.
+local function data_bytes(items, unit) return unit > 0 and items * unit or floor((items + 7) / 8) end
+
+-- A request's length by its quantity (a word at `position`): `extra` + its data bytes (data_bytes by `unit`);
 -- NONE where its byte count (`count_extra` + the byte at `count_at`) agrees (rules.py quantity_rule).
 local function by_quantity(position, extra, unit, count_at, count_extra)
   return function(b, i, n)
     if i + position + 1 >= n or i + count_at >= n then return NEED end
-    local items = b[i + position] * 256 + b[i + position + 1]
-    local length = extra + (unit > 0 and items * unit or math.floor((items + 7) / 8))
+    local length = extra + data_bytes(b[i + position] * 256 + b[i + position + 1], unit)
     if length == count_extra + b[i + count_at] then return NONE end
     return length
   end
@@ -110,6 +112,6 @@ local function possible_start(code)
 end
 
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE, M.data_bytes = NEED, NOISE, NOISE_ITEM_MAX, NONE, data_bytes
 M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
 M.interpretations, M.possible_start = interpretations, possible_start

@@ -208,15 +208,16 @@ take_items = function(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
--- The functions whose answer is a run of registers or bits from its fourth byte (by the protocol table:
--- the read_registers_response or read_bits_response grammar and handler, the length rule the byte count
--- in its third byte plus the rule's extra), and the frame the Info text of a quick answer is made from.
+-- The functions whose answer is a run of the registers or bits its request asked for, from its fourth
+-- byte (the rule data: its lifting rule's start, count (by unit, 0: bits) and values; the length rule that
+-- count, in the third byte, plus an extra), and the frame the Info text of a quick answer is made from.
 local RUN_ANSWERS = {}
-for code, name in pairs(DATA.protocol.handlers.response) do
-  local rule = DATA.protocol.rules[code][2]
-  if (name == "read_registers_response" or name == "read_bits_response")
-      and DATA.protocol.parsers.response[code] == name and rule[1] == "count8" and rule[2] == 2 then
-    RUN_ANSWERS[code] = { bits = name == "read_bits_response", extra = rule[3] }
+for code, entry in pairs(DATA.rules.by_code.response) do
+  local lift, rule = DATA.rules.lift[entry.rule or ""], DATA.protocol.rules[code][2]
+  local kind = lift and lift.start == "request.start" and lift.count and lift.count.of == "request.quantity"
+    and lift.values and lift.values.kind
+  if (kind == "registers" or kind == "bits") and rule[1] == "count8" and rule[2] == 2 then
+    RUN_ANSWERS[code] = { bits = kind == "bits", extra = rule[3], unit = lift.count.unit }
   end
 end
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
@@ -243,7 +244,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   local start, quantity = pending.start, pending.quantity -- (the window its rule lifted: FC23's read window)
   if start == nil or quantity == nil then return nil end
   local bits = run.bits
-  if count ~= (bits and ceil_bytes(quantity) or 2 * quantity) then return nil end
+  if count ~= data_bytes(quantity, run.unit) then return nil end
   -- annotate_with: nothing but the registers' bookkeeping
   local device = device_for(st, slave)
   if not device then return nil end
