@@ -24,7 +24,7 @@ from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
 from dissector.app.paths import Fix, decode_one
 from dissector.model import Chunk, Frame, Item
-from dissector.render.capturefile import STDOUT, CaptureOutput, noise_comment, open_output
+from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
@@ -194,8 +194,7 @@ class Sinks:
                 records = records[: len(items)]
         if self.pcap is not None:
             try:
-                for item in items:
-                    self.pcap.write(item.raw, item.time, noise_comment(item))
+                self.pcap.write_items(items)
             except OSError as error:
                 raise self._write_failed(error) from None
         if self.stats is not None:
@@ -213,6 +212,11 @@ class Sinks:
 
     def restart_times(self) -> None:
         """A new input: its times count from its own first item (as the time column)."""
+        if self.pcap is not None:
+            try:
+                self.pcap.release()  # its last noise run shares no record with the next input's bytes
+            except OSError as error:
+                raise self._write_failed(error) from None
         if self.predicate is not None:
             self.filter_context.first = None
             self._last_time = None

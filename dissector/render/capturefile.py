@@ -25,7 +25,7 @@ from typing import BinaryIO, Protocol
 
 from dissector.model import Item, Noise
 from dissector.render.pcapngwriter import PcapngWriter
-from dissector.render.pcapwriter import PcapWriter
+from dissector.render.pcapwriter import SNAPLEN, PcapWriter
 
 FORMATS = ("pcap", "pcapng")
 STDOUT = "-"
@@ -186,6 +186,8 @@ class CaptureOutput:
         self._kept: deque[str] = deque()
         self._records: WholeRecords | None = None
         self.clamped = 0  # records of closed files whose time the format could not hold
+        # A noise run write_items holds for the item after it: (bytes, time, comments, stream end offset).
+        self._held: tuple[bytes, float | None, list[str], int] | None = None
         self._open()
 
     @property
@@ -242,6 +244,48 @@ class CaptureOutput:
         if ring is not None and ring.filesize is not None and self._writer.size >= ring.filesize * 1000:
             self._next()
 
+    def write_items(self, items: list[Item]) -> None:
+        """Write items of a decode so that the file decodes back to the same items: a record an item,
+        except that a noise run shares the record of the item after it when that is more noise or a
+        damaged frame (one heard at the same time, within SNAPLEN bytes).
+
+        A reader takes a record's end for a pause of the line, evidence that a frame ends there
+        (framing/rtu.py _followed), and the line gave none where a noise run stops: a record ending there
+        made a frame of a CRC-valid tail of the noise (d1 | 03 17 02 00 00 c4 74, then the damaged frame
+        01 e9 bb b8 2b), or of a damaged frame ending where the noise did, that the decode had found no
+        frame. Before an intact frame the record ends all the same (each frame a record of its own, as
+        Wireshark's mbrtu reads them): that frame is the framer's evidence there anyway."""
+        write = self.write
+        for item in items:
+            held = self._held
+            if held is not None:
+                data, timestamp, comments, end = held
+                if (
+                    item.offset == end
+                    and item.time == timestamp
+                    and (isinstance(item, Noise) or not item.crc_ok)
+                    and len(data) + item.length <= SNAPLEN
+                ):
+                    if isinstance(item, Noise):
+                        comments.append(noise_comment(item) or "")
+                        self._held = (data + item.raw, timestamp, comments, end + item.length)
+                        continue
+                    self._held = None
+                    comments.append(f"then a damaged frame ({item.length} bytes)")
+                    write(data + item.raw, timestamp, "; ".join(comments))
+                    continue
+                self.release()
+            if isinstance(item, Noise):
+                self._held = (item.raw, item.time, [noise_comment(item) or ""], item.offset + item.length)
+            else:
+                write(item.raw, item.time)
+
+    def release(self) -> None:
+        """Write the noise run write_items holds (the input ends, or the file is closed)."""
+        held, self._held = self._held, None
+        if held is not None:
+            self.write(held[0], held[1], "; ".join(held[2]))
+
     def tick(self, now: float | None = None) -> None:
         """A ring with duration:S switches files on time, heard bytes or not (as dumpcap)."""
         ring = self.ring
@@ -280,10 +324,19 @@ class CaptureOutput:
 
     def close(self) -> None:
         if self._writer is not None:
-            self._close_writer()
+            try:
+                self.release()
+            finally:
+                self._close_writer()
 
     def discard_if_empty(self) -> None:
         """Close; a file that holds no record is removed (a refused input leaves no header-only file)."""
+        if self._writer is not None:
+            try:
+                self.release()
+            except OSError:
+                self.close()
+                raise
         records = self._records
         empty = records is not None and records.whole <= 1  # the first write is the file header
         self.close()
