@@ -187,6 +187,12 @@ typedef struct {
     Run *outages; /* closed runs of two requests or more */
     size_t outage_count, outage_cap;
     Time first_seen, last_seen; /* StatsCollector.first_time, last_time */
+    /* Time going backwards (BusTiming.backwards): items stamped before the item before them; the time of the
+     * item before; where the items' stretch of forward time starts, its latest end so far, and the spans of
+     * the stretches before it. */
+    unsigned long long backwards;
+    Time previous, stretch;
+    double reach, spanned;
 } Bus;
 
 static void quantile_init(Quantile *q) {
@@ -244,8 +250,8 @@ static inline void stats_seen(Bus *b, const Time *t) {
     b->last_seen = *t;
 }
 
-/* BusTiming.add, for one item. `response`: its response time,
- * NULL for none; 0 or -1 (no memory). */
+/* BusTiming.add, for one item. `response`: its response time, NULL for none (a negative one never comes:
+ * BusTiming.add and the engine's pairing leave it out); 0 or -1 (no memory). */
 static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, int kind, int slave, int broadcast,
                    int unanswered, int crc_ok, const double *response, unsigned long long number, long long offset) {
     if (!t->has) {
@@ -254,7 +260,19 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
     }
     b->timed = 1;
     double duration = (double)length * b->char_time, end = t->d + duration;
-    if (!b->first.has) b->first = *t;
+    if (!b->first.has) {
+        b->first = b->stretch = *t;
+        b->reach = end;
+    } else if (time_sub(t, &b->previous) < 0) { /* time goes backwards: a new stretch */
+        b->backwards++;
+        b->spanned += b->reach - b->stretch.d;
+        b->stretch = *t;
+        b->reach = end;
+        b->has_last_end = b->has_answer_end = 0; /* no gap, no turnaround to it */
+    } else if (end > b->reach) {
+        b->reach = end;
+    }
+    b->previous = *t;
     b->busy += duration;
     if (tally_add(tallies, TALLY_MINUTES, 0, (long long)floor_div(time_sub(t, &b->first), MINUTE), duration) < 0)
         return -1;

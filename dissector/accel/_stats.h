@@ -188,8 +188,8 @@ static int poll_request(Stats *st, const PollKey *key, unsigned long long number
     if (failed) p->failed++;
     if (!t->has) return 0;
     long long order = p - (Poll *)st->polls.items;
-    if (p->last.has &&
-        tally_add(st->tallies, TALLY_INTERVALS, order, (long long)rint(time_sub(t, &p->last) / POLL_STEP), 1) < 0)
+    double interval = p->last.has ? time_sub(t, &p->last) : -1.0; /* (time going backwards: none) */
+    if (interval >= 0 && tally_add(st->tallies, TALLY_INTERVALS, order, (long long)rint(interval / POLL_STEP), 1) < 0)
         return -1;
     p->last = *t;
     return 0;
@@ -681,13 +681,15 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
     }
     PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : (Py_INCREF(Py_None), Py_None);
     PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : (Py_INCREF(Py_None), Py_None);
-    return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N}", "timed",
+    return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:K,s:N,s:N,s:d,s:d}", "timed",
                          b->timed ? Py_True : Py_False, "untimed", b->untimed, "first", time_value(&b->first),
                          "last_end", last_end, "busy", b->busy, "answer_end", answer_end, "below_t35", b->below_t35,
                          "histogram", histogram, "gaps", quantile_value(&b->gaps), "turnaround",
                          quantile_value(&b->turnaround), "responses", responses, "runs",
                          runs_value(b->runs, 256, 1), "outages", runs_value(b->outages, b->outage_count, 0), "first_seen",
-                         time_value(&b->first_seen), "last_seen", time_value(&b->last_seen));
+                         time_value(&b->first_seen), "last_seen", time_value(&b->last_seen), "backwards", b->backwards,
+                         "previous", time_value(&b->previous), "stretch", time_value(&b->stretch), "reach", b->reach,
+                         "spanned", b->spanned);
 }
 
 /* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY): the poll table follows at most

@@ -1064,13 +1064,14 @@ static int taken(Engine *e, Py_ssize_t *pos, const FrameRef *q, const FrameRef *
 
 /* The frame after request q, expected as its answer: FRAME_OK (in *a: its answer, or the next request when
  * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout too (no answer:
- * pairing.py's warning). A caller that does not take the transaction takes the expectation back. */
+ * pairing.py's warning) or stamped before q (time going backwards: pairing.py's warning). A caller that
+ * does not take the transaction takes the expectation back. */
 static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *q, FrameRef *a) {
     e->expect_slave = q->slave;
     e->expect_function = q->function;
     int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
-    if (found == FRAME_OK && a->kind != KIND_REQUEST && q->timed && a->timed && e->tl.timeout >= 0 &&
-        stamp_seconds(a->ns, q->ns) > e->tl.timeout)
+    if (found == FRAME_OK && a->kind != KIND_REQUEST && q->timed && a->timed &&
+        (a->ns < q->ns || (e->tl.timeout >= 0 && stamp_seconds(a->ns, q->ns) > e->tl.timeout)))
         return FRAME_HANDOVER;
     return found;
 }

@@ -11,6 +11,10 @@ byte came at most `timeout` seconds after the request's, as a Modbus master give
 timeout; a later frame ends the wait, the request is unanswered and a late response is shown as such.
 So whether a request was answered is known `timeout` seconds after it at the latest: a live capture
 calls `expire(now)` to release it then, and shows the line the decode of its capture file gives.
+
+Time going backwards (a pcap whose records go back, a clock step): a response stamped before its
+request still answers it, its response time shown as it is (negative, as Wireshark shows a negative
+delta) with a warning that it is left out of the response times (--stats, the bus timing).
 """
 from __future__ import annotations
 
@@ -142,10 +146,13 @@ class Pairer:
                 self._release(out)
             return
         # A response or an exception.
+        backwards: Frame | None = None
         if pending is not None and pending.slave == item.slave and pending.function == item.function:
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
+            if item.time is not None and pending.time is not None and item.time - pending.time < 0:
+                backwards = pending
         elif late is not None and late.slave == item.slave and late.function == item.function:
             assert self._timeout is not None and item.time is not None and late.time is not None
             item.warnings.append(text(
@@ -160,6 +167,9 @@ class Pairer:
             item.notes.append(text("unmatched"))
         self._queue.append(item)
         self._release(out)
+        if backwards is not None:  # (numbered now)
+            ahead_ms = (backwards.time - item.time) * 1000  # type: ignore[operator]
+            item.warnings.append(text("backwards", ahead_ms=ahead_ms, number=backwards.number))
 
     def _enqueue(self, item: Item, out: list[Item]) -> None:
         self._queue.append(item)

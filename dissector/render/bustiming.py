@@ -14,6 +14,11 @@ interface description says: `19200 8N2`). From there:
 - response times per slave against `--timeout`: the margin is timeout - the slowest response;
 - outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing),
   from the first such request to the last, with their count and frames.
+Time going backwards (a pcap whose records go back, a clock step; the summary shows those times as
+they are) is left out of the figures, never averaged in: an item stamped before the item before it
+has no gap and no turnaround and starts a new stretch of time (the load is the busy time over the
+stretches' spans added up), and a response stamped before its request (pairing.py's warning) has no
+response time here, nor in --stats' response times; `backwards` counts both.
 Percentiles are nearest-rank (the median of an even count the mean of the middle two, as --stats)
 over 10 us buckets, so memory does not grow with the capture (a kind of them, gaps, turnarounds or
 the response times of every slave, holds MAX_TALLY buckets at most: past it they are 2**k times wider,
@@ -154,6 +159,14 @@ class BusTiming:
     outages: list[Outage] = field(default_factory=list)
     _runs: dict[int, _Run] = field(default_factory=dict)
     _answer_end: float | None = None  # end of the last item when it was an answer
+    # Time going backwards: items stamped before the item before them, responses stamped before their
+    # request (counted only here: their response time goes nowhere, the store's included).
+    backwards: int = 0
+    backwards_responses: int = 0
+    _previous: float | None = None  # the time of the item before
+    _stretch: float | None = None  # where the items' stretch of forward time starts: first, else the last step back
+    _reach: float = 0.0  # the stretch's latest end so far
+    _spanned: float = 0.0  # the spans of the stretches before it
     # The compiled store (_summary.Stats, dissector/accel/_bus.h) that keeps all of the above while the
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
@@ -197,6 +210,8 @@ class BusTiming:
         state = store.bus_state()
         self.timed, self.untimed_items, self.busy = state["timed"], state["untimed"], state["busy"]
         self.first, self.last_end, self._answer_end = stamp(state["first"]), state["last_end"], state["answer_end"]
+        self.backwards, self._previous, self._stretch = state["backwards"], stamp(state["previous"]), stamp(state["stretch"])
+        self._reach, self._spanned = state["reach"], state["spanned"]
         self.gaps_below_t35, self.gap_histogram = state["below_t35"], state["histogram"]
         self.gaps = _quantiles(*state["gaps"], store.tallies(TALLY_GAPS).get(0))
         self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
@@ -229,8 +244,11 @@ class BusTiming:
                 self.store.bus_item(time, item.length, 0, 0, False, False, False, None, item.number, item.offset)
             else:
                 frame: Any = item
+                response_time = frame.response_time
+                if response_time is not None and response_time < 0:
+                    response_time = self._backwards(frame)
                 self.store.bus_item(time, frame.length, _KINDS[frame.kind], frame.slave, frame.broadcast,
-                                    frame.unanswered, frame.crc_ok, frame.response_time, frame.number, frame.offset)
+                                    frame.unanswered, frame.crc_ok, response_time, frame.number, frame.offset)
             return
         if time is None:
             self.untimed_items += 1
@@ -239,7 +257,16 @@ class BusTiming:
         duration = item.length * self.char_time
         end = time + duration
         if self.first is None:
-            self.first = time
+            self.first = self._stretch = time
+            self._reach = end
+        elif time - self._previous < 0:  # type: ignore[operator]  # time goes backwards: a new stretch
+            self.backwards += 1
+            self._spanned += self._reach - self._stretch  # type: ignore[operator]
+            self._stretch, self._reach = time, end
+            self.last_end = self._answer_end = None  # no gap, no turnaround to it
+        elif end > self._reach:
+            self._reach = end
+        self._previous = time
         self.busy += duration
         minute = int((time - self.first) // MINUTE)
         self.minutes[minute] = self.minutes.get(minute, 0.0) + duration
@@ -268,6 +295,8 @@ class BusTiming:
             return
         self._answer_end = end
         response_time = frame.response_time  # type: ignore[union-attr]
+        if response_time is not None and response_time < 0:
+            response_time = self._backwards(frame)
         if response_time is not None and frame.crc_ok:  # type: ignore[union-attr]  # as --stats counts them
             slave = frame.slave  # type: ignore[union-attr]
             quantiles = self.responses.get(slave)
@@ -276,6 +305,12 @@ class BusTiming:
             quantiles.add(response_time)
             if response_time > CLOSE_MARGIN * self.timeout:
                 self.close_to_timeout[slave] = self.close_to_timeout.get(slave, 0) + 1
+
+    def _backwards(self, frame: Any) -> None:
+        """A response stamped before its request: counted (as --stats counts answers: CRC ok), no time."""
+        if frame.crc_ok:
+            self.backwards_responses += 1
+        return None
 
     def _request(self, frame: Any, time: float) -> None:
         slave = frame.slave
@@ -307,7 +342,7 @@ class BusTiming:
     def span(self) -> float | None:
         if self.first is None or self.last_end is None:
             return None
-        return self.last_end - self.first
+        return self._spanned + (self.last_end - self._stretch)  # type: ignore[operator]
 
     def load(self) -> float | None:
         span = self.span()
@@ -362,6 +397,8 @@ class BusTiming:
             {key: turnaround[key] for key in ("count", "median", "p95", "max")},
             "responses": responses,
             "outages": [outage.as_dict() for outage in self.outages],
+            # time going backwards: items stamped before the item before them, responses before their request
+            "backwards": {"items": self.backwards, "responses": self.backwards_responses} if self.timed else None,
         }
 
     def overlaps(self) -> int:
@@ -425,6 +462,11 @@ class BusTiming:
                     f"{entry['slave']:>5}  {entry['count']:>9}  {entry['median'] * 1000:>9.1f}  {entry['p95'] * 1000:>6.1f}"
                     f"  {entry['max'] * 1000:>6.1f}  {entry['margin'] * 1000:>20.1f}  {entry['close_to_timeout']:>15}"
                 )
+        backwards = data["backwards"]
+        if backwards["items"] or backwards["responses"]:
+            lines.append(f"time going backwards, left out of the timing: {_items(backwards['items'], 'item')} stamped "
+                         f"earlier than the item before, {_items(backwards['responses'], 'response')} earlier than "
+                         "its request")
         if data["outages"]:
             lines.append("outages (two or more consecutive requests unanswered)")
             for outage in data["outages"]:
@@ -435,6 +477,10 @@ class BusTiming:
         else:
             lines.append("outages: none")
         return "\n".join(lines) + "\n"
+
+
+def _items(count: int, what: str) -> str:
+    return f"{count:,} {what}" + ("s" if count != 1 else "")
 
 
 def time_text(time_format: str, first: float | None) -> Any:

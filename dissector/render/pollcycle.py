@@ -12,6 +12,7 @@ Rules (the table captions say the same):
 - jitter: the largest deviation from the period of the intervals that skipped nothing, and its
   standard deviation (JSON);
 - misses: skipped cycles plus occurrences that got no normal answer (unanswered, exception, bad CRC).
+An interval that goes back in time (a clock step, records out of order) is left out.
 Intervals are kept as a histogram of 100 us steps, so memory does not grow with the capture (a PLC
 polls at a few distinct intervals; the keys' histograms hold MAX_TALLY entries together at most, then
 their steps are rounded down to multiples of 2**k: stats_store.Coarse); keys beyond MAX_KEYS are
@@ -76,7 +77,7 @@ class PollCycle:
             poll.failed += 1
         time = frame.time
         if time is not None:
-            if poll.last_time is not None:
+            if poll.last_time is not None and time - poll.last_time >= 0:  # (time going backwards: none)
                 self._intervals.add(poll.intervals, round((time - poll.last_time) / STEP))
             poll.last_time = time
 

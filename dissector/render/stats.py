@@ -14,7 +14,8 @@ Counting rules (the table headers say the same):
 - requests: good requests, broadcasts included; `broadcasts` counts those to slave 0. responses: normal
   answers; exceptions: exception answers, by code. unanswered: requests the pairing stage found no
   answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
-  request and both timed.
+  request and both timed, but an answer stamped before its request (time going backwards: pairing.py's
+  warning; the bus timing counts them).
 - Per parameter (slave, address, and its code when a profile names it), by the rules of the parameter
   history (render/history.py, which --watch and --report read too): `reads` counts the values read
   (FC3/4/23 responses); `unreadable` the reads a profile marked protected or non-existent (16#8000 on
@@ -168,8 +169,9 @@ class StatsCollector:
             self.poll.add_answer(item)
         else:
             stats.responses += 1
-        if item.response_time is not None:
-            key = round(item.response_time * 1e9)
+        response_time = item.response_time
+        if response_time is not None and response_time >= 0:
+            key = round(response_time * 1e9)
             if self.attached:
                 self.store.response(item.slave, item.function, key)  # beside the engine's (time_summaries)
             else:

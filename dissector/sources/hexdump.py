@@ -14,6 +14,12 @@ A leading timestamp is recognised only in shapes a hex group can never take (a h
 (`10:00:00.125`, seconds since midnight). It may be wrapped in [ ] or followed by ':'. A line that is
 only `10:00:00` is the colon-hex bytes 10 00 00, not a time without data.
 
+A time of day has no date, so a log that runs past midnight would go back a day: a time of day more
+than 12 hours earlier than the one before it is on the next day (`23:59:59.900` then `00:00:00.010`
+is 110 ms later, Days). A time of day less than that earlier stays on the same day, time going
+backwards as the log says (a clock step: shown as it is, left out of --stats' timing). Seconds and
+date-times are absolute: kept as they are.
+
 Whether the input is a hex dump is judged on its first lines; when the first line is longer than the
 sample (a whole capture on one line), on the part of it the sample holds.
 """
@@ -31,6 +37,7 @@ from dissector.sources.notation import RefusedList, Notation, NotationError
 
 MAX_LINE = 1 << 20  # a whole capture pasted on one line is a hex dump too; memory stays bounded
 _EPOCH = datetime(1970, 1, 1, tzinfo=timezone.utc)
+DAY_NS = 86_400 * 1_000_000_000
 
 _SECONDS = re.compile(r"\d+\.\d+")
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}")
@@ -39,6 +46,29 @@ _TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?)")
 _HEX = re.compile(r"(?:[0-9A-Fa-f]{2})+")
 _LABEL = re.compile(r"[TR]X:", re.IGNORECASE)
 _CUT_TOKEN = re.compile(r"[\[{]?(?:0[xX])?[0-9A-Fa-f:]{2,}")
+
+
+class TimeOfDay(Stamp):
+    """A time of day without a date (`10:00:00.125`): nanoseconds since midnight, until Days places it
+    on its day."""
+
+
+class Days:
+    """The days of an input's times of day: one that is more than 12 hours earlier than the time of day
+    before it is on the next day (the log ran past midnight); any other is on the day of the one before.
+    Other times (seconds, date-times) pass as they are."""
+
+    def __init__(self) -> None:
+        self.days = 0
+        self.last: int | None = None  # the time of day before, ns since its midnight
+
+    def place(self, time: Stamp | None) -> Stamp | None:
+        if not isinstance(time, TimeOfDay):
+            return time
+        if self.last is not None and time.ns < self.last - DAY_NS // 2:
+            self.days += 1
+        self.last = time.ns
+        return Stamp(time.ns + self.days * DAY_NS)
 
 
 class HexLineError(MalformedInput):
@@ -85,7 +115,7 @@ def _stamp(tokens: list[str]) -> tuple[Stamp | None, int]:
     match = _TIME_OF_DAY.fullmatch(first)
     if match:
         hours, minutes, seconds = match.groups()
-        return Stamp((int(hours) * 3600 + int(minutes) * 60) * 1_000_000_000 + _nanoseconds(seconds)), 1
+        return TimeOfDay((int(hours) * 3600 + int(minutes) * 60) * 1_000_000_000 + _nanoseconds(seconds)), 1
     return None, 0
 
 
@@ -199,7 +229,8 @@ def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
 
 def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object, bytes] | None]) -> Iterator[Chunk]:
     """One chunk per line that `parse` finds bytes in; a line it refuses (ValueError) ends the read
-    with the line's number."""
+    with the line's number. Times of day are placed on their days (Days)."""
+    days = Days()
     for number, line in text_lines(inp, chunk_size):
         try:
             parsed = parse(line)
@@ -207,14 +238,16 @@ def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object,
             raise SourceError(f"{inp.name} line {number}: {error}") from None
         if parsed is not None:
             time, data = parsed
-            yield Chunk(data, time, True)
+            yield Chunk(data, days.place(time), True)  # type: ignore[arg-type]
 
 
 def read_hexdump(
     inp: Input, log: WarningLog, chunk_size: int, notation: Notation | None = None
 ) -> Iterator[Chunk]:
-    """One chunk per line with bytes; `notation` fixes hex or decimal (--format), else learned."""
+    """One chunk per line with bytes; `notation` fixes hex or decimal (--format), else learned. Times
+    of day are placed on their days (Days)."""
     notation = notation if notation is not None else Notation()
+    days = Days()
     for number, line in text_lines(inp, chunk_size):
         try:
             parsed = parse_line(line, notation, f"line {number}")
@@ -222,4 +255,4 @@ def read_hexdump(
             raise SourceError(f"{inp.name} line {number}: {error}") from None
         if parsed is not None:
             time, data = parsed
-            yield Chunk(data, time, True)
+            yield Chunk(data, days.place(time), True)

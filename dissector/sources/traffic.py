@@ -8,7 +8,8 @@
 Tx is what the program sent, Rx what it received; for a master that is request and response, for a
 slave simulator the other way round, so the direction is not used to decide what a frame is: the
 framer does, as for any capture. A line with a direction but no bytes (a timeout) is skipped; any
-other line is an error. Times follow the hex-dump reader's rules (a time of day counts from midnight).
+other line is an error. Times follow the hex-dump reader's rules (a time of day counts from midnight,
+and is on the next day when it is more than 12 hours earlier than the one before: hexdump.Days).
 """
 from __future__ import annotations
 

@@ -8,6 +8,8 @@ local UNMATCHED = say("unmatched", {})
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function.
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
+-- Time going backwards: an answer stamped before its request still answers it, with a warning (its
+-- negative response time is shown as it is and left out of the response times).
 
 -- A request whose wait ended unanswered: no answer can ask for its fields and bytes any more, and the
 -- stream awaits no answer.
@@ -39,6 +41,9 @@ local function pair(st, f)
     f.request = pending
     pending.response = f
     st.pending = nil
+    if f.time ~= nil and pending.time ~= nil and f.time < pending.time then
+      warn(f, say("backwards", { ahead_ms = (pending.time - f.time) * 1000, number = pending.number }))
+    end
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn then
     warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
   else
