@@ -151,8 +151,9 @@ class Pairer:
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
-            if item.time is not None and pending.time is not None and item.time - pending.time < 0:
-                backwards = pending
+            time, asked = item.time, pending.time
+            if time is not None and asked is not None and (time < asked or time == asked and time - asked < 0):
+                backwards = pending  # (Stamps as floats, their ns where the floats are equal)
         elif late is not None and late.slave == item.slave and late.function == item.function:
             assert self._timeout is not None and item.time is not None and late.time is not None
             item.warnings.append(text(

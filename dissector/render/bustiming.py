@@ -138,6 +138,22 @@ class _Run:
     offset: int
 
 
+class Backwards:
+    """Time going backwards, as BusTiming.add meets it: the items stamped before the item before them and
+    the responses stamped before their request (counted only in BusTiming: their response time goes
+    nowhere, the compiled store included); the time of the item before; where the items' stretch of
+    forward time starts (the first item's, else the last step back's), its latest end so far, and the
+    spans of the stretches before it. (One field of BusTiming: a dataclass field costs its import.)"""
+
+    __slots__ = ("items", "responses", "previous", "stretch", "reach", "spanned")
+
+    def __init__(self) -> None:
+        self.items = self.responses = 0
+        self.previous: float | None = None
+        self.stretch: float | None = None
+        self.reach = self.spanned = 0.0
+
+
 @dataclass(slots=True)
 class BusTiming:
     timeout: float = 1.0
@@ -159,14 +175,7 @@ class BusTiming:
     outages: list[Outage] = field(default_factory=list)
     _runs: dict[int, _Run] = field(default_factory=dict)
     _answer_end: float | None = None  # end of the last item when it was an answer
-    # Time going backwards: items stamped before the item before them, responses stamped before their
-    # request (counted only here: their response time goes nowhere, the store's included).
-    backwards: int = 0
-    backwards_responses: int = 0
-    _previous: float | None = None  # the time of the item before
-    _stretch: float | None = None  # where the items' stretch of forward time starts: first, else the last step back
-    _reach: float = 0.0  # the stretch's latest end so far
-    _spanned: float = 0.0  # the spans of the stretches before it
+    backwards: Backwards = field(default_factory=Backwards)  # time going backwards
     # The compiled store (_summary.Stats, dissector/accel/_bus.h) that keeps all of the above while the
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
@@ -210,8 +219,9 @@ class BusTiming:
         state = store.bus_state()
         self.timed, self.untimed_items, self.busy = state["timed"], state["untimed"], state["busy"]
         self.first, self.last_end, self._answer_end = stamp(state["first"]), state["last_end"], state["answer_end"]
-        self.backwards, self._previous, self._stretch = state["backwards"], stamp(state["previous"]), stamp(state["stretch"])
-        self._reach, self._spanned = state["reach"], state["spanned"]
+        back = self.backwards
+        back.items, back.previous, back.stretch = state["backwards"], stamp(state["previous"]), stamp(state["stretch"])
+        back.reach, back.spanned = state["reach"], state["spanned"]
         self.gaps_below_t35, self.gap_histogram = state["below_t35"], state["histogram"]
         self.gaps = _quantiles(*state["gaps"], store.tallies(TALLY_GAPS).get(0))
         self.turnaround = _quantiles(*state["turnaround"], store.tallies(TALLY_TURNAROUND).get(0))
@@ -256,17 +266,19 @@ class BusTiming:
         self.timed = True
         duration = item.length * self.char_time
         end = time + duration
+        back = self.backwards
+        previous = back.previous
         if self.first is None:
-            self.first = self._stretch = time
-            self._reach = end
-        elif time - self._previous < 0:  # type: ignore[operator]  # time goes backwards: a new stretch
-            self.backwards += 1
-            self._spanned += self._reach - self._stretch  # type: ignore[operator]
-            self._stretch, self._reach = time, end
+            self.first = back.stretch = time
+            back.reach = end
+        elif time < previous or time == previous and time - previous < 0:  # type: ignore[operator]  # (Stamps: their ns)
+            back.items += 1  # time goes backwards: a new stretch
+            back.spanned += back.reach - back.stretch  # type: ignore[operator]
+            back.stretch, back.reach = time, end
             self.last_end = self._answer_end = None  # no gap, no turnaround to it
-        elif end > self._reach:
-            self._reach = end
-        self._previous = time
+        elif end > back.reach:
+            back.reach = end
+        back.previous = time
         self.busy += duration
         minute = int((time - self.first) // MINUTE)
         self.minutes[minute] = self.minutes.get(minute, 0.0) + duration
@@ -309,7 +321,7 @@ class BusTiming:
     def _backwards(self, frame: Any) -> None:
         """A response stamped before its request: counted (as --stats counts answers: CRC ok), no time."""
         if frame.crc_ok:
-            self.backwards_responses += 1
+            self.backwards.responses += 1
         return None
 
     def _request(self, frame: Any, time: float) -> None:
@@ -342,7 +354,8 @@ class BusTiming:
     def span(self) -> float | None:
         if self.first is None or self.last_end is None:
             return None
-        return self._spanned + (self.last_end - self._stretch)  # type: ignore[operator]
+        back = self.backwards
+        return back.spanned + (self.last_end - back.stretch)  # type: ignore[operator]
 
     def load(self) -> float | None:
         span = self.span()
@@ -398,7 +411,7 @@ class BusTiming:
             "responses": responses,
             "outages": [outage.as_dict() for outage in self.outages],
             # time going backwards: items stamped before the item before them, responses before their request
-            "backwards": {"items": self.backwards, "responses": self.backwards_responses} if self.timed else None,
+            "backwards": {"items": self.backwards.items, "responses": self.backwards.responses} if self.timed else None,
         }
 
     def overlaps(self) -> int:

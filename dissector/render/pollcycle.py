@@ -77,8 +77,10 @@ class PollCycle:
             poll.failed += 1
         time = frame.time
         if time is not None:
-            if poll.last_time is not None and time - poll.last_time >= 0:  # (time going backwards: none)
-                self._intervals.add(poll.intervals, round((time - poll.last_time) / STEP))
+            if poll.last_time is not None:
+                interval = time - poll.last_time
+                if interval >= 0:  # (time going backwards: none)
+                    self._intervals.add(poll.intervals, round(interval / STEP))
             poll.last_time = time
 
     def add_answer(self, frame: Frame) -> None:

@@ -33,7 +33,7 @@ class Health:
             if not frame.crc_ok or frame.kind is Kind.REQUEST:  # type: ignore[union-attr]
                 continue
             seconds = frame.response_time  # type: ignore[union-attr]
-            if seconds is not None:
+            if seconds is not None and seconds >= 0:  # (stamped before its request: left out, as bustiming does)
                 self._point(frame.slave, frame.time, seconds)  # type: ignore[union-attr, arg-type]
 
     def _point(self, slave: int, x: float, y: float) -> None:
