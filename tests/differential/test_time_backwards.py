@@ -171,3 +171,20 @@ def test_no_backwards_line_when_time_goes_forward(tmp_path: Path, monkeypatch: p
     assert "backwards" not in out and "warning" not in out
     out, _ = assert_same([str(capture), "--stats", "--json"], monkeypatch)
     assert json.loads(out)["bus"]["backwards"] == {"items": 0, "responses": 0}
+
+
+def test_days_rule() -> None:
+    """hexdump.Days: more than 12 hours earlier than the time of day before is the next day (each midnight
+    of a log of several days); 12 hours earlier or less is the same day; absolute times pass as they are."""
+    from dissector.model import Stamp
+    from dissector.sources.hexdump import DAY_NS, Days, TimeOfDay
+
+    hour = 3600 * 10**9
+    days = Days()
+    placed = [days.place(TimeOfDay(h * hour)).ns for h in (23, 1, 13, 1, 0)]  # type: ignore[union-attr]
+    assert placed == [23 * hour, DAY_NS + hour, DAY_NS + 13 * hour, DAY_NS + hour, DAY_NS]
+    assert [days.place(TimeOfDay(h * hour)).ns for h in (12, 23, 10)] == [  # type: ignore[union-attr]
+        DAY_NS + 12 * hour, DAY_NS + 23 * hour, 2 * DAY_NS + 10 * hour]
+    assert type(days.place(TimeOfDay(0))) is Stamp
+    absolute = Stamp(1_700_000_000 * 10**9)
+    assert days.place(absolute) is absolute and days.place(None) is None
