@@ -97,7 +97,7 @@ static PyObject *columns_compact(Columns *self, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-static int point_less(const double *a, const double *b) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+static int point_equal(const double *a, const double *b) { return a[0] == b[0] && a[1] == b[1]; }
 
 /* round(v, digits) as Python's float.__round__ does it: the decimal text correctly rounded (dtoa's
  * mode 3, as PyOS_double_to_string's 'f'), read back correctly rounded. */
@@ -156,10 +156,11 @@ static void json_number(Out *o, double v, int digits, int whole) {
 }
 
 /* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text: each column's
- * distinct points in order (x, then y), none at or before the last x kept, a run of equal values by its
- * ends only (Columns.points), x - origin rounded to `digits`, y an int when whole, else rounded to
- * Y_DIGITS, or y * scale rounded to `places`, as json.dumps writes them; None when a value is not finite
- * (collect.py drawn() then asks the Python Columns.points of these columns' values()). */
+ * points in the order of their x, several at one x all (an FC23 write and its read back: a step), none
+ * before the last x kept, a run of equal values by its ends only (Columns.points), x - origin rounded to
+ * `digits`, y an int when whole, else rounded to Y_DIGITS, or y * scale rounded to `places`, as json.dumps
+ * writes them; None when a value is not finite (collect.py drawn() then asks the Python Columns.points of
+ * these columns' values()). */
 static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     double origin, scale = 0.0;
     int digits, places = 0;
@@ -172,27 +173,22 @@ static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     Py_ssize_t kept = 0;
     for (Py_ssize_t i = 0; i < self->n; i += 8) {
         const double *c = self->d + i;
-        double ends[4][2];
-        int count = 0;
-        if (c[0] == c[6]) {
-            ends[0][0] = c[0], ends[0][1] = c[1];
-            count = 1;
-        } else {
-            for (int k = 0; k < 8; k += 2) { /* a set: equal points once, then sorted */
-                int seen = 0;
-                for (int j = 0; j < count; j++) seen |= ends[j][0] == c[k] && ends[j][1] == c[k + 1];
-                if (seen) continue;
-                int at = count++;
-                while (at > 0 && point_less(c + k, ends[at - 1])) {
-                    ends[at][0] = ends[at - 1][0], ends[at][1] = ends[at - 1][1];
-                    at--;
-                }
-                ends[at][0] = c[k], ends[at][1] = c[k + 1];
-            }
+        /* Its first point, its lowest and highest unless one is the first or the last, its last unless it
+         * is the first alone; sorted by x, stably (points at one x: in that order). */
+        const double *ends[4] = {c};
+        int count = 1;
+        if (!point_equal(c + 2, c) && !point_equal(c + 2, c + 6)) ends[count++] = c + 2;
+        if (!point_equal(c + 4, c) && !point_equal(c + 4, c + 6) && !point_equal(c + 4, c + 2)) ends[count++] = c + 4;
+        if (!point_equal(c + 6, c) || count > 1) ends[count++] = c + 6;
+        for (int j = 1; j < count; j++) {
+            const double *p = ends[j];
+            int at = j;
+            for (; at > 0 && p[0] < ends[at - 1][0]; at--) ends[at] = ends[at - 1];
+            ends[at] = p;
         }
         for (int j = 0; j < count; j++) {
             double x = ends[j][0], y = ends[j][1];
-            if (kept && x <= kx[kept - 1]) continue;
+            if (kept && (x < kx[kept - 1] || (x == kx[kept - 1] && y == ky[kept - 1]))) continue;
             if (kept >= 2 && ky[kept - 1] == y && ky[kept - 2] == y) {
                 kx[kept - 1] = x;
                 continue;

@@ -19,6 +19,7 @@ typedef struct {
     unsigned long long values; /* points not yet added to series.values */
     uint64_t last;            /* the point key of its last value (most polls read what they read before), */
     double last_y;            /* and its y */
+    unsigned long long naming; /* the slave's naming its series last adopted (engine_point) */
     PyObject *series;         /* owned */
     Columns *columns;         /* owned: series.columns */
 } Trend;
@@ -43,6 +44,7 @@ typedef struct {
     size_t point_count;
     PyObject *namers[256]; /* the namer each slave's cached points were read with */
     unsigned epochs[256];
+    unsigned long long namings, named[256]; /* namer changes, and the count at each slave's last one */
     unsigned gen;
     unsigned long long spans; /* ReportCollector.spans when last pulled */
     int full; /* the collector holds MAX_SERIES series, every one in `trends` */
@@ -267,6 +269,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
     if (s->namer != r->namers[slave]) { /* a new device for this slave: its values are read again */
         Py_XINCREF(s->namer);
         Py_XSETREF(r->namers[slave], s->namer);
+        r->named[slave] = ++r->namings;
         if (++r->epochs[slave] >= 1u << 16) {
             memset(r->points, 0, REPORT_POINTS * sizeof *r->points);
             r->point_count = 0;
@@ -286,7 +289,9 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         p = &r->points[slot];
         if (p->key) y = p->y;
     }
-    if (t->series == NULL || (p != NULL && !p->key)) {
+    /* Asked: a value first seen, and each series' first value after its slave's device changed (engine_point
+     * adopts the device's map row: its points read again, an address it no longer names included). */
+    if (t->series == NULL || (p != NULL && !p->key) || t->naming != r->named[slave]) {
         PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiII", slave, function, address, value);
         if (answer == NULL) return -1;
         PyObject *series = PyTuple_Check(answer) && PyTuple_GET_SIZE(answer) == 2 ? PyTuple_GET_ITEM(answer, 0) : NULL;
@@ -295,7 +300,8 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         else if (series == NULL) PyErr_SetString(PyExc_TypeError, "engine_point must return (series, y)");
         Py_DECREF(answer);
         if (PyErr_Occurred()) return -1;
-        if (p != NULL && r->point_count < REPORT_POINTS / 2) {
+        t->naming = r->named[slave];
+        if (p != NULL && !p->key && r->point_count < REPORT_POINTS / 2) {
             p->key = pkey, p->y = y;
             r->point_count++;
         }

@@ -114,15 +114,32 @@ class Columns:
         return _json(xs), _json(ys)
 
     def points(self) -> tuple[list[float], list[float]]:
-        """Each column's distinct points in order (x, then y), none at or before the last x kept."""
+        """Each column's points in the order of their x, none before the last x kept (a time that went
+        back), a run of equal values by its ends only.
+
+        Several values at one x are all drawn, in the order they came, the last one last: an FC23
+        read/write writes a register and reads it back in one transaction, at its answer's time, and the
+        trend steps from the value written to the value read back, the parameter's state after it (what
+        the summary line and --stats' `last` say), as an IO graph shows two samples of one time. Of a
+        column's first, lowest, highest and last point (sorted by x, those at one x kept in that order),
+        a lowest or highest point equal to the first or the last is that point, not drawn twice; the last
+        point is drawn after the others even when it equals the first (a value left and come back to)."""
         done = self.done
         xs: list[float] = []
         ys: list[float] = []
         for index in range(0, len(done), 8):
-            fx, fy, nx, ny, mx, my, lx, ly = done[index : index + 8]
-            ends = ((fx, fy),) if fx == lx else sorted({(fx, fy), (nx, ny), (mx, my), (lx, ly)})
+            first, low, high, last = ((done[index + k], done[index + k + 1]) for k in (0, 2, 4, 6))
+            ends = [first]
+            if low != first and low != last:
+                ends.append(low)
+            if high != first and high != last and high != low:
+                ends.append(high)
+            if last != first or len(ends) > 1:
+                ends.append(last)
+            if len(ends) > 1:
+                ends.sort(key=_x_of)  # stable: points at one x keep the order above
             for x, y in ends:
-                if xs and x <= xs[-1]:
+                if xs and (x < xs[-1] or (x == xs[-1] and y == ys[-1])):
                     continue
                 # A run of equal values needs only its ends.
                 if len(ys) >= 2 and ys[-1] == y and ys[-2] == y:
@@ -131,7 +148,6 @@ class Columns:
                 xs.append(x)
                 ys.append(y)
         return xs, ys
-
 
 def drawn(columns: Any, origin: float, digits: int, scale: float = 0.0,
           places: int = 0) -> tuple[list[float], list[float | int]]:
@@ -179,6 +195,9 @@ class Series:
     step: bool = False  # an enumeration or a bit field: the raw word, drawn as steps
     labels: dict[int, str] = field(default_factory=dict)
     columns: Any = field(default_factory=new_columns)
+    # The map row the slave's device names the address with, whose reading of the words the points are
+    # (ReportCollector._adopt); None: no row, the points are the words themselves.
+    row: Any = None
     values: int = 0
     status: str | None = None  # the open unreadable span's status, None when readable
     marks: list[tuple[float, str]] = field(default_factory=list)
@@ -213,6 +232,7 @@ class ReportCollector:
         self._at: Item | None = None
         self._at_x = 0.0
         self._at_col = 0
+        self._at_rows: Any = None  # the map of its slave's device now (None: no device)
         self.groups = EventGroups()
 
     # -- the x axis -------------------------------------------------------------------------------
@@ -315,11 +335,12 @@ class ReportCollector:
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         """A register that set its parameter's state: a point, or an unreadable span's start or end."""
         if frame is self._at:
-            x, col = self._at_x, self._at_col
+            x, col, rows = self._at_x, self._at_col, self._at_rows
         else:
             x = self._x(frame)  # the item's own x (add() saw it first: idempotent)
             col = self._col(x)
-            self._at, self._at_x, self._at_col = frame, x, col
+            rows = None if self._device is None else self._device(frame.slave).rows
+            self._at, self._at_x, self._at_col, self._at_rows = frame, x, col, rows
         slave = frame.slave
         series = self.series.get((slave, register.address))  # type: ignore[arg-type]
         if series is None:
@@ -329,8 +350,13 @@ class ReportCollector:
             series = self._series(slave, register)
             if series is None:
                 return
-        if series.code is None and register.code is not None:
-            series.code, series.name = register.code, register.name
+        if rows is None:  # no device: the names the decode gave
+            if series.code is None and register.code is not None:
+                series.code, series.name = register.code, register.name
+        else:
+            row = rows.get(register.address)
+            if row is not series.row:
+                self._adopt(series, row)
         if event == UNREADABLE:
             status = register.status or "unreadable"
             if series.status != status:  # a span opens (the first state too: the chart starts unreadable)
@@ -346,21 +372,65 @@ class ReportCollector:
         series.values += 1
         series.columns.add(col, x, y)
 
-    @staticmethod
-    def _y(series: Series, register: Register) -> float:
-        """The value drawn: scaled as the device reads it, else the raw word (named by labels)."""
-        scaled = register.scaled
+    def _y(self, series: Series, register: Register) -> float:
+        """The value drawn: as the slave's device now reads the word (the series' row, adopted first:
+        state(), engine_point()), else the raw word (named by labels). A register the history gives as
+        another device named it (a frame decoded before profile `auto` chose again, or a choice taken
+        back) is read again with the row: a series holds one reading, the one of the file, which is
+        named with the last choice throughout."""
+        row = series.row
+        if self._device is None or (row is not None and row.words != 1):
+            scaled, text, unit = register.scaled, register.text, register.unit  # (no device: as decoded)
+        elif row is None:
+            scaled, text, unit = None, None, None  # the device now names nothing there: the word itself
+        elif register.code != row.code or register.unit != row.unit:
+            scaled, text = _reading(row, register.value)  # type: ignore[arg-type]
+            unit = row.unit
+        else:
+            scaled, text, unit = register.scaled, register.text, register.unit
         if scaled is not None:
             if series.unit is None:
-                series.unit = register.unit
+                series.unit = unit
             return float(scaled)
-        text = register.text
         if text is not None:  # an enumeration or a bit field: the profile names the word
             series.step = True
             labels = series.labels
             if register.value not in labels and len(labels) < MAX_LABELS:
                 labels[register.value] = text  # type: ignore[index]
         return float(register.value)  # type: ignore[arg-type]
+
+    def _adopt(self, series: Series, row: Any) -> None:
+        """`row` (the map row the slave's device now names the series' address with; None: it names
+        nothing there) becomes the series' reading: its names, its unit, and the points kept, each read
+        again from its word as the row reads it (a profile chosen, or taken back, after values were
+        drawn: they are drawn as the file, named with the last choice, draws them)."""
+        old, series.row = series.row, row
+        if old is not None and row is not None and old == row:  # the same row of a device built again
+            return
+        series.code, series.name = (None, None) if row is None else (row.code, row.name)
+        series.unit, series.step, series.labels = None, False, {}
+        columns = series.columns
+        if not len(columns):
+            return
+        if (old is not None and old.words != 1) or (row is not None and row.words != 1):
+            return  # a 32-bit value is read from two words: its points stay as they were read
+        words: list[int] = []
+
+        def again(y: float) -> float:
+            word = _word(old, y)
+            words.append(word)
+            return _reading(row, word)[0] if _scales(row) else float(word)
+
+        remap(columns, again)
+        if _scales(row):
+            series.unit = row.unit
+            return
+        for word in words:
+            text = _reading(row, word)[1]
+            if text is not None:
+                series.step = True
+                if word not in series.labels and len(series.labels) < MAX_LABELS:
+                    series.labels[word] = text
 
     def _readable_again(self, series: Series, x: float) -> None:
         self._mark(series, x, f"readable again ({series.status} before)")
@@ -375,32 +445,27 @@ class ReportCollector:
         plain = getattr(self._annotate, "plain_register", None)
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
         series = self.series.get((slave, address)) or self._series(slave, register)
-        if series.code is None and register.code is not None:
-            series.code, series.name = register.code, register.name
+        if self._device is None:
+            if series.code is None and register.code is not None:
+                series.code, series.name = register.code, register.name
+        else:
+            row = self._device(slave).rows.get(address)
+            if row is not series.row:
+                self._adopt(series, row)
         return series, self._y(series, register)  # type: ignore[arg-type]
 
     def renamed(self, slave: int) -> None:
-        """The slave's profile changed: its series are read again as the new device reads them (the
-        raw words kept for unscaled series are scaled, enumerations and bit fields become steps)."""
+        """The slave's profile changed: its series are read again as the new device reads them (raw words
+        kept for unscaled series scaled, enumerations and bit fields become steps; a choice taken back:
+        the other way)."""
         if self._device is None:
             return
         rows = self._device(slave).rows
         for (owner, address), series in self.series.items():
-            if owner != slave or series.unit is not None or series.step:
-                continue  # already read by a device: its points are no raw words
-            row = rows.get(address)
-            if row is None or row.words != 1:
-                continue
-            series.code, series.name = row.code, row.name
-            if row.enum or row.bits:
-                series.step = True
-                for y in array("d", series.columns.values())[1::2]:
-                    value = int(y)
-                    if value not in series.labels and len(series.labels) < MAX_LABELS and 0 <= value <= 0xFFFF:
-                        series.labels[value] = interpret(row, value)[1]  # type: ignore[assignment]
-            elif row.scale is not None or row.signed:
-                series.unit = row.unit
-                remap(series.columns, lambda y, row=row: float(interpret(row, int(y) & 0xFFFF)[0]))
+            if owner == slave:
+                row = rows.get(address)
+                if row is not series.row:
+                    self._adopt(series, row)
 
     @staticmethod
     def _mark(series: Series, x: float, text: str) -> None:
@@ -499,6 +564,34 @@ class ReportCollector:
 def _name(series: Series) -> str:
     shown = series.label or str(series.address)
     return f"{series.code} ({shown})" if series.code else shown
+
+
+def _scales(row: Any) -> bool:
+    """The row reads a word as a number (Register.scaled, maps.interpret): a scale, or a signed word."""
+    return row is not None and not row.enum and not row.bits and (row.scale is not None or row.signed)
+
+
+def _reading(row: Any, word: int) -> tuple[float | int | None, str | None]:
+    """The scaled value and text `row` reads `word` as (maps.interpret; None: no row, neither)."""
+    if row is None:
+        return None, None
+    reading = row.memo.get(word)
+    return interpret(row, word) if reading is None else reading
+
+
+def _word(row: Any, y: float) -> int:
+    """The word a point's y was read from with `row` (None, or a row that does not scale: y is the word)."""
+    if not _scales(row) or row.scale is None:
+        return int(y) & 0xFFFF  # (a signed word without a scale: its value)
+    guess = round(y / row.scale)
+    for word in (guess, guess - 1, guess + 1):
+        if interpret(row, word & 0xFFFF)[0] == y:
+            return word & 0xFFFF
+    return guess & 0xFFFF
+
+
+def _x_of(point: tuple[float, float]) -> float:
+    return point[0]
 
 
 def _json(value: Any) -> str:
