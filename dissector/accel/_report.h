@@ -289,9 +289,9 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         p = &r->points[slot];
         if (p->key) y = p->y;
     }
-    /* Asked: a value first seen, and each series' first value after its slave's device changed (engine_point
-     * adopts the device's map row: its points read again, an address it no longer names included). */
-    if (t->series == NULL || (p != NULL && !p->key) || t->naming != r->named[slave]) {
+    /* Asked: a value first seen (engine_point adopts the device's map row for its series: its points read
+     * again when the slave's device changed), and an address the device does not name, once a change. */
+    if (t->series == NULL || (p != NULL && !p->key) || (!mapped && t->naming != r->named[slave])) {
         PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiII", slave, function, address, value);
         if (answer == NULL) return -1;
         PyObject *series = PyTuple_Check(answer) && PyTuple_GET_SIZE(answer) == 2 ? PyTuple_GET_ITEM(answer, 0) : NULL;

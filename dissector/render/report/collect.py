@@ -6,14 +6,20 @@
   raw word for enumerations and bit fields (drawn as steps, with the profile's texts as labels), or
   the raw word when the map gives no scale. A status (`protected`, `non-existent`, or an exception the
   profile explains so) is no value: it opens an unreadable span, which the next value closes
-  ("readable again"); both moments are marks on the chart and events on the timeline. Values read
-  before profile `auto` chose a slave's device are scaled again by that device once it is chosen.
+  ("readable again"); both moments are marks on the chart and events on the timeline. A series is
+  read as its slave's device now reads the words (Series.row): values drawn before profile `auto` chose
+  a slave's device, or took a choice back, are read again from their words by the device chosen, so
+  that standard input (one pass) draws what the file (named with the last choice throughout) draws.
 - Points are downsampled per pixel column: each of at most COLUMNS columns of the capture's span
   keeps its first, lowest, highest and last point, so a spike or a dip of one sample survives, and a
-  1 GB capture draws as fast as a small one. The span is not known while streaming: columns start
-  narrow and double in width (merging pairs) whenever the capture outgrows COLUMNS of them.
+  1 GB capture draws as fast as a small one. Values at one time are all drawn, in order (an FC23
+  write and its read back: a step to the value read, the trend's last; Columns.points). The span is
+  not known while streaming: columns start narrow and double in width (merging pairs) whenever the
+  capture outgrows COLUMNS of them. The series kept (MAX_SERIES) are the first seen in the stream.
 - Events: exceptions, protections, CRC errors, noise bursts, silences inside frames (the timing
   warnings), unanswered requests; counted per column for the timeline, the first MAX_EVENTS listed.
+  An exception is told with the meaning its slave's device gives the code (on standard input, for a
+  frame decoded before profile `auto` chose the device: the meaning of the device chosen).
 The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise
 (then `origin` is 0 and every x is the frame number itself: events at frames 2, 6, 10 say #2, #6, #10).
 """
@@ -198,6 +204,7 @@ class Series:
     # The map row the slave's device names the address with, whose reading of the words the points are
     # (ReportCollector._adopt); None: no row, the points are the words themselves.
     row: Any = None
+    reserved: bool = False  # made by provisional(), no state yet: its label is its first state's
     values: int = 0
     status: str | None = None  # the open unreadable span's status, None when readable
     marks: list[tuple[float, str]] = field(default_factory=list)
@@ -234,6 +241,9 @@ class ReportCollector:
         self._at_col = 0
         self._at_rows: Any = None  # the map of its slave's device now (None: no device)
         self.groups = EventGroups()
+        # Exceptions told before their slave's device was chosen: (event index or None, slave, function,
+        # code, text told), retold with the device's meaning by data()
+        self._pending: list[tuple[int | None, int, int, int, str]] = []
 
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
@@ -301,12 +311,15 @@ class ReportCollector:
                 self._event(x, "unanswered", frame.slave, f"function {frame.function} unanswered")
         elif kind is Kind.EXCEPTION:
             code = frame.exception_code
-            text = frame.exception_text or ""
-            self._event(
-                x, "exception", frame.slave,
-                f"exception {code:02X} to function {frame.function & 0x7F}" + (f": {text}" if text else "")
-                if code is not None else "exception",
-            )
+            if code is None:
+                self._event(x, "exception", frame.slave, "exception")
+            else:
+                told = _exception_text(frame.function, code, frame.exception_text)
+                if frame.provisional and self._device is not None:
+                    # Decoded before profile `auto` chose the slave's device: no meaning yet (data() tells it)
+                    self._pending.append((len(self.events) if len(self.events) < MAX_EVENTS else None,
+                                          frame.slave, frame.function, code, told))
+                self._event(x, "exception", frame.slave, told)
         if self.owns_history:
             self.history.add(frame)
 
@@ -332,6 +345,15 @@ class ReportCollector:
         return series
 
     # -- the history's listener --------------------------------------------------------------------
+    def provisional(self, frame: Frame, register: Register, event: int) -> None:
+        """A register of a frame decoded before profile `auto` chose its slave's device (standard input):
+        the history holds the frame back and gives its states later, in the slave's choice's frame;
+        its series is made now, so that the series kept (MAX_SERIES) are those seen first in the stream,
+        as from the file, whose frames give their states in the stream's order."""
+        key = (frame.slave, register.address)
+        if key not in self.series and len(self.series) < MAX_SERIES:
+            self.series[key] = Series(frame.slave, register.address, reserved=True)  # type: ignore[arg-type]
+
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
         """A register that set its parameter's state: a point, or an unreadable span's start or end."""
         if frame is self._at:
@@ -350,6 +372,8 @@ class ReportCollector:
             series = self._series(slave, register)
             if series is None:
                 return
+        if series.reserved:
+            series.reserved, series.label = False, register.label
         if rows is None:  # no device: the names the decode gave
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
@@ -445,6 +469,8 @@ class ReportCollector:
         plain = getattr(self._annotate, "plain_register", None)
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
         series = self.series.get((slave, address)) or self._series(slave, register)
+        if series.reserved:
+            series.reserved, series.label = False, register.label
         if self._device is None:
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
@@ -482,6 +508,7 @@ class ReportCollector:
         if self.last_x is not None:
             while (self.last_x - (self.origin or 0.0)) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
                 self._double()
+        self._retell()
         digits = self._digits()
         origin = self._shift()
         parameters = [self._parameter(key, series, points) for key, series in self._drawn()]
@@ -504,6 +531,19 @@ class ReportCollector:
             "event_counts": self.event_counts,
             "event_columns": columns,
         }
+
+    def _retell(self) -> None:
+        """The exceptions of frames decoded before profile `auto` chose their slave's device (standard
+        input) told with the meaning the device it chose gives them (Frame.exception_text: the profile's
+        meaning of the code), as the file, named with the last choice throughout, tells them."""
+        for index, slave, function, code, told in self._pending:
+            text = _exception_text(function, code, self._device(slave).profile.exceptions.get(code))  # type: ignore[misc]
+            if text == told:
+                continue
+            if index is not None:
+                self.events[index] = (*self.events[index][:3], text)
+            self.groups.retell("exception", slave, told, text)
+        self._pending.clear()
 
     def parameters_json(self) -> str:
         """The parameters with their points as a JSON array, encoded series by series (call data first)."""
@@ -564,6 +604,11 @@ class ReportCollector:
 def _name(series: Series) -> str:
     shown = series.label or str(series.address)
     return f"{series.code} ({shown})" if series.code else shown
+
+
+def _exception_text(function: int, code: int, meaning: str | None) -> str:
+    """An exception event's text (accel/reportfeed.py exception_event writes it too)."""
+    return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
 
 
 def _scales(row: Any) -> bool:

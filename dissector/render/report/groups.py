@@ -80,5 +80,22 @@ class EventGroups:
         if group.ranges:
             group.widen(text)
 
+    def retell(self, kind: str, slave: int | None, text: str, new: str) -> None:
+        """The occurrences told as `text` told as `new` (an exception's meaning known later): their group
+        under the new text, joined with the one already there (an event of no varying number)."""
+        group = self.groups.pop((kind, slave, text), None)
+        if group is None:
+            return
+        group.text = new
+        there = self.groups.get((kind, slave, new))
+        if there is None:
+            self.groups[(kind, slave, new)] = group
+            return
+        there.count += group.count
+        if (group.first_x, group.first_frame) < (there.first_x, there.first_frame):
+            there.first_x, there.first_frame = group.first_x, group.first_frame
+        if (group.last_x, group.last_frame) > (there.last_x, there.last_frame):
+            there.last_x, there.last_frame = group.last_x, group.last_frame
+
     def rows(self) -> list[Group]:
         return sorted(self.groups.values(), key=lambda group: (group.first_x, group.first_frame))
