@@ -281,6 +281,9 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
                     (uint64_t)slave << 32 | (uint64_t)address << 16 | value;
     Point *p = NULL;
     double y = value; /* an address the device does not name: the raw word */
+    /* Asked: a value first seen (engine_point adopts the device's map row for its series: its points read
+     * again when the slave's device changed), and an address the device does not name, once a change. */
+    int ask = t->series == NULL;
     if (mapped && t->key && t->last == pkey) {
         y = t->last_y;
     } else if (mapped) {
@@ -288,10 +291,11 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         while (r->points[slot].key && r->points[slot].key != pkey) slot = (slot + 1) & (REPORT_POINTS - 1);
         p = &r->points[slot];
         if (p->key) y = p->y;
+        else ask = 1;
+    } else if (t->naming != r->named[slave]) {
+        ask = 1;
     }
-    /* Asked: a value first seen (engine_point adopts the device's map row for its series: its points read
-     * again when the slave's device changed), and an address the device does not name, once a change. */
-    if (t->series == NULL || (p != NULL && !p->key) || (!mapped && t->naming != r->named[slave])) {
+    if (ask) {
         PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiII", slave, function, address, value);
         if (answer == NULL) return -1;
         PyObject *series = PyTuple_Check(answer) && PyTuple_GET_SIZE(answer) == 2 ? PyTuple_GET_ITEM(answer, 0) : NULL;
