@@ -296,7 +296,8 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         ask = 1;
     }
     if (ask) {
-        PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiII", slave, function, address, value);
+        PyObject *answer = PyObject_CallMethod(r->collector, "engine_point", "iiIIi", slave, function, address, value,
+                                               t->naming != r->named[slave]);
         if (answer == NULL) return -1;
         PyObject *series = PyTuple_Check(answer) && PyTuple_GET_SIZE(answer) == 2 ? PyTuple_GET_ITEM(answer, 0) : NULL;
         y = series != NULL ? PyFloat_AsDouble(PyTuple_GET_ITEM(answer, 1)) : -1.0;

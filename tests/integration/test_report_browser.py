@@ -178,3 +178,20 @@ def test_a_200000_frame_capture_renders_with_the_health_charts(tmp_path: Path) -
     assert 0 < len(rows) < 200 and sum(int(count) for _kind, _slave, count, _first in rows) > len(rows)
     assert all(re.fullmatch(r"2026-01-01 \d\d:\d\d:\d\d\.\d{6} #\d+", first) for *_rest, first in rows)
     assert re.search(r'<p class="index">(<a href="#(p\d+|single)"[^>]*>[^<]+</a> ?)+</p>', dom)
+
+
+def test_a_register_written_and_read_back_at_one_time_draws_a_step(tmp_path: Path) -> None:
+    """FC23 writes RFR (3202) 16#7FFF and reads it back as 16#1234 in one transaction: two points at the
+    answer's x (3276.7 then 466 Hz, the value read back last); the page draws them without error."""
+    page = tmp_path / "fc23.html"
+    result = subprocess.run(
+        [sys.executable, "-m", "dissector", "--hex", "01 17 0C 82 00 01 0C 82 00 01 02 7F FF",
+         "--hex", "01 17 02 12 34", "--profile", "atv71", "--report", str(page)],
+        cwd=ROOT, capture_output=True, text=True, timeout=120,
+    )
+    assert (result.returncode, result.stderr) == (0, "")
+    assert '"values":2,"marks":[],"marks_dropped":0,"x":[2.0,2.0],"y":[3276.7,466]}' in page.read_text()
+    dom = dump_dom(tmp_path, page)
+    assert errors(dom) == ""
+    (trend,) = charts(dom, "trend")
+    assert 'data-code="RFR"' in trend and 'data-drawn="uplot"' in trend

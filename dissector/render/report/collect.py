@@ -381,6 +381,10 @@ class ReportCollector:
             row = rows.get(register.address)
             if row is not series.row:
                 self._adopt(series, row)
+            if register.code != (None if row is None else row.code) and (row is None or row.words == 1):
+                # Named by another device (decoded before profile `auto` chose again, or with a choice
+                # taken back since): a series holds one reading, the file's, named with the last choice
+                register = self._named(frame, register)
         if event == UNREADABLE:
             status = register.status or "unreadable"
             if series.status != status:  # a span opens (the first state too: the chart starts unreadable)
@@ -396,32 +400,32 @@ class ReportCollector:
         series.values += 1
         series.columns.add(col, x, y)
 
-    def _y(self, series: Series, register: Register) -> float:
-        """The value drawn: as the slave's device now reads the word (the series' row, adopted first:
-        state(), engine_point()), else the raw word (named by labels). A register the history gives as
-        another device named it (a frame decoded before profile `auto` chose again, or a choice taken
-        back) is read again with the row: a series holds one reading, the one of the file, which is
-        named with the last choice throughout."""
-        row = series.row
-        if self._device is None or (row is not None and row.words != 1):
-            scaled, text, unit = register.scaled, register.text, register.unit  # (no device: as decoded)
-        elif row is None:
-            scaled, text, unit = None, None, None  # the device now names nothing there: the word itself
-        elif register.code != row.code or register.unit != row.unit:
-            scaled, text = _reading(row, register.value)  # type: ignore[arg-type]
-            unit = row.unit
-        else:
-            scaled, text, unit = register.scaled, register.text, register.unit
+    @staticmethod
+    def _y(series: Series, register: Register) -> float:
+        """The value drawn: scaled as the device reads it, else the raw word (named by labels); the
+        register named by the slave's device now, whose map row the series adopted (_adopt)."""
+        scaled = register.scaled
         if scaled is not None:
             if series.unit is None:
-                series.unit = unit
+                series.unit = register.unit
             return float(scaled)
+        text = register.text
         if text is not None:  # an enumeration or a bit field: the profile names the word
             series.step = True
             labels = series.labels
             if register.value not in labels and len(labels) < MAX_LABELS:
                 labels[register.value] = text  # type: ignore[index]
         return float(register.value)  # type: ignore[arg-type]
+
+    def _named(self, frame: Frame, register: Register) -> Register:
+        """The register as the slave's device now names it (Annotator.plain_register, as the engine's
+        values), its status kept."""
+        plain = getattr(self._annotate, "plain_register", None)
+        if plain is None or register.value is None:
+            return register
+        named = plain(frame.slave, frame.function, register.address, register.value)
+        named.status = register.status
+        return named
 
     def _adopt(self, series: Series, row: Any) -> None:
         """`row` (the map row the slave's device now names the series' address with; None: it names
@@ -461,11 +465,13 @@ class ReportCollector:
         self._event(x, "protection", series.slave, f"{_name(series)} readable again")
         series.status = None
 
-    def engine_point(self, slave: int, function: int, address: int, value: int) -> tuple[Series, float]:
+    def engine_point(self, slave: int, function: int, address: int, value: int,
+                     changed: bool = True) -> tuple[Series, float]:
         """For the compiled engine (dissector/accel/_report.h), which feeds the points of the values it
         counts itself and asks here once per value first seen (and for a series' first value): the
         series (made now: the engine checked MAX_SERIES) with what state() takes of the register, as
-        the annotator names it (Annotator.plain_register), and its y."""
+        the annotator names it (Annotator.plain_register), and its y. `changed`: the series' first value
+        since the slave's device changed (or its first): its map row adopted (else it is already)."""
         plain = getattr(self._annotate, "plain_register", None)
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
         series = self.series.get((slave, address)) or self._series(slave, register)
@@ -474,7 +480,7 @@ class ReportCollector:
         if self._device is None:
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
-        else:
+        elif changed:
             row = self._device(slave).rows.get(address)
             if row is not series.row:
                 self._adopt(series, row)
