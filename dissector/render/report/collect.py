@@ -123,13 +123,13 @@ class Columns:
         """Each column's points in the order of their x, none before the last x kept (a time that went
         back), a run of equal values by its ends only.
 
-        Several values at one x are all drawn, in the order they came, the last one last: an FC23
-        read/write writes a register and reads it back in one transaction, at its answer's time, and the
-        trend steps from the value written to the value read back, the parameter's state after it (what
-        the summary line and --stats' `last` say), as an IO graph shows two samples of one time. Of a
-        column's first, lowest, highest and last point (sorted by x, those at one x kept in that order),
-        a lowest or highest point equal to the first or the last is that point, not drawn twice; the last
-        point is drawn after the others even when it equals the first (a value left and come back to)."""
+        Several values at one x are all drawn, the first first and the last last: an FC23 read/write
+        writes a register and reads it back in one transaction, at its answer's time, and the trend steps
+        from the value written to the value read back, the parameter's state after it (what the summary
+        line and --stats' `last` say), as an IO graph shows two samples of one time. Of a column's first,
+        lowest, highest and last point (sorted by x, those at one x kept in that order), a lowest or
+        highest point equal to the first or the last is that point, not drawn twice; the last point is
+        drawn after the others even when it equals the first (a value left and come back to)."""
         done = self.done
         xs: list[float] = []
         ys: list[float] = []
