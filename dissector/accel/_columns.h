@@ -232,7 +232,7 @@ static PyObject *columns_levels(Columns *self, PyObject *unused) {
 }
 
 /* values() -> bytes and load(values): the doubles (8 a column) as bytes, for the rare rewrites (a profile
- * chosen later: collect.py remap) done in Python for both stores. */
+ * chosen later: reading.py remap) done in Python for both stores. */
 static PyObject *columns_values(Columns *self, PyObject *unused) {
     return PyBytes_FromStringAndSize((const char *)self->d, self->n * (Py_ssize_t)sizeof(double));
 }

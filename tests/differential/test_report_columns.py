@@ -17,7 +17,8 @@ import pytest
 from dissector.accel._summary import Columns as CompiledColumns
 from dissector.app.cli import Environment, run
 from dissector.pipeline import dissect
-from dissector.render.report.collect import COLUMNS, Columns, ReportCollector, drawn, remap
+from dissector.render.report.collect import COLUMNS, Columns, ReportCollector, drawn
+from dissector.render.report.reading import remap
 from dissector.sources.reader import open_source
 from dissector.sim.simulate import generate_session
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng

@@ -31,10 +31,10 @@ from array import array
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
-from dissector.devices.maps import interpret
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
+from dissector.render.report.reading import MAX_LABELS, adopt
 
 COLUMNS = 600
 TIMED_WIDTH, UNTIMED_WIDTH = 1e-3, 1.0  # a column's first width: a millisecond timed, a frame untimed
@@ -42,7 +42,6 @@ Y_DIGITS = 6  # a y not whole is drawn rounded to this many places
 MAX_SERIES = 400
 MAX_MARKS = 200
 MAX_EVENTS = 1000
-MAX_LABELS = 64
 EVENT_KINDS = ("exception", "protection", "crc", "noise", "silence", "unanswered")
 
 try:  # the same columns in C (dissector/accel/_columns.h): add() runs once per register value
@@ -170,19 +169,6 @@ def drawn(columns: Any, origin: float, digits: int, scale: float = 0.0,
     return [round(x - origin, digits) for x in xs], [_number(y) for y in ys]
 
 
-def remap(columns: Any, convert: Any) -> None:
-    """Every y of `columns` through `convert` (a profile chosen later scales raw words); each column's
-    lowest and highest points are found again, since a signed reading reorders them."""
-    done = array("d", columns.values())
-    for index in range(0, len(done), 8):
-        points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]
-        low = min(points, key=lambda point: point[1])
-        high = max(points, key=lambda point: point[1])
-        for k, (x, y) in enumerate((points[0], low, high, points[3])):
-            done[index + 2 * k], done[index + 2 * k + 1] = x, y
-    columns.load(done)
-
-
 def new_columns() -> Any:
     """The compiled columns when the extension is built (and VW3_PURE_PYTHON is not set)."""
     if CompiledColumns is not None and not os.environ.get("VW3_PURE_PYTHON"):
@@ -202,7 +188,7 @@ class Series:
     labels: dict[int, str] = field(default_factory=dict)
     columns: Any = field(default_factory=new_columns)
     # The map row the slave's device names the address with, whose reading of the words the points are
-    # (ReportCollector._adopt); None: no row, the points are the words themselves.
+    # (reading.py adopt); None: no row, the points are the words themselves.
     row: Any = None
     reserved: bool = False  # made by provisional(), no state yet: its label is its first state's
     values: int = 0
@@ -380,7 +366,7 @@ class ReportCollector:
         else:
             row = rows.get(register.address)
             if row is not series.row:
-                self._adopt(series, row)
+                adopt(series, row)
             if register.code != (None if row is None else row.code) and (row is None or row.words == 1):
                 # Named by another device (decoded before profile `auto` chose again, or with a choice
                 # taken back since): a series holds one reading, the file's, named with the last choice
@@ -403,7 +389,7 @@ class ReportCollector:
     @staticmethod
     def _y(series: Series, register: Register) -> float:
         """The value drawn: scaled as the device reads it, else the raw word (named by labels); the
-        register named by the slave's device now, whose map row the series adopted (_adopt)."""
+        register named by the slave's device now, whose map row the series adopted (reading.py adopt)."""
         scaled = register.scaled
         if scaled is not None:
             if series.unit is None:
@@ -426,39 +412,6 @@ class ReportCollector:
         named = plain(frame.slave, frame.function, register.address, register.value)
         named.status = register.status
         return named
-
-    def _adopt(self, series: Series, row: Any) -> None:
-        """`row` (the map row the slave's device now names the series' address with; None: it names
-        nothing there) becomes the series' reading: its names, its unit, and the points kept, each read
-        again from its word as the row reads it (a profile chosen, or taken back, after values were
-        drawn: they are drawn as the file, named with the last choice, draws them)."""
-        old, series.row = series.row, row
-        if old is not None and row is not None and old == row:  # the same row of a device built again
-            return
-        series.code, series.name = (None, None) if row is None else (row.code, row.name)
-        series.unit, series.step, series.labels = None, False, {}
-        columns = series.columns
-        if not len(columns):
-            return
-        if (old is not None and old.words != 1) or (row is not None and row.words != 1):
-            return  # a 32-bit value is read from two words: its points stay as they were read
-        words: list[int] = []
-
-        def again(y: float) -> float:
-            word = _word(old, y)
-            words.append(word)
-            return _reading(row, word)[0] if _scales(row) else float(word)
-
-        remap(columns, again)
-        if _scales(row):
-            series.unit = row.unit
-            return
-        for word in words:
-            text = _reading(row, word)[1]
-            if text is not None:
-                series.step = True
-                if word not in series.labels and len(series.labels) < MAX_LABELS:
-                    series.labels[word] = text
 
     def _readable_again(self, series: Series, x: float) -> None:
         self._mark(series, x, f"readable again ({series.status} before)")
@@ -483,7 +436,7 @@ class ReportCollector:
         elif changed:
             row = self._device(slave).rows.get(address)
             if row is not series.row:
-                self._adopt(series, row)
+                adopt(series, row)
         return series, self._y(series, register)  # type: ignore[arg-type]
 
     def renamed(self, slave: int) -> None:
@@ -497,7 +450,7 @@ class ReportCollector:
             if owner == slave:
                 row = rows.get(address)
                 if row is not series.row:
-                    self._adopt(series, row)
+                    adopt(series, row)
 
     @staticmethod
     def _mark(series: Series, x: float, text: str) -> None:
@@ -615,30 +568,6 @@ def _name(series: Series) -> str:
 def _exception_text(function: int, code: int, meaning: str | None) -> str:
     """An exception event's text (accel/reportfeed.py exception_event writes it too)."""
     return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
-
-
-def _scales(row: Any) -> bool:
-    """The row reads a word as a number (Register.scaled, maps.interpret): a scale, or a signed word."""
-    return row is not None and not row.enum and not row.bits and (row.scale is not None or row.signed)
-
-
-def _reading(row: Any, word: int) -> tuple[float | int | None, str | None]:
-    """The scaled value and text `row` reads `word` as (maps.interpret; None: no row, neither)."""
-    if row is None:
-        return None, None
-    reading = row.memo.get(word)
-    return interpret(row, word) if reading is None else reading
-
-
-def _word(row: Any, y: float) -> int:
-    """The word a point's y was read from with `row` (None, or a row that does not scale: y is the word)."""
-    if not _scales(row) or row.scale is None:
-        return int(y) & 0xFFFF  # (a signed word without a scale: its value)
-    guess = round(y / row.scale)
-    for word in (guess, guess - 1, guess + 1):
-        if interpret(row, word & 0xFFFF)[0] == y:
-            return word & 0xFFFF
-    return guess & 0xFFFF
 
 
 def _x_of(point: tuple[float, float]) -> float:

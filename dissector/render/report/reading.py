@@ -1,0 +1,83 @@
+"""How a trend reads its register's words (collect.py Series.row): as the map row of its slave's device
+now, the one the file's decode, named with the last choice of profile `auto` throughout, reads them with.
+When that row changes (the device chosen after values were drawn, or a choice taken back: standard input,
+one pass), `adopt` reads the points kept again from their words, and the series' names, unit and steps."""
+from __future__ import annotations
+
+from array import array
+from typing import Any
+
+from dissector.devices.maps import interpret
+
+MAX_LABELS = 64  # an enumeration's or bit field's texts kept for the chart's axis
+
+
+def remap(columns: Any, convert: Any) -> None:
+    """Every y of `columns` through `convert` (a profile chosen later scales raw words); each column's
+    lowest and highest points are found again, since a signed reading reorders them."""
+    done = array("d", columns.values())
+    for index in range(0, len(done), 8):
+        points = [(done[index + k], convert(done[index + k + 1])) for k in (0, 2, 4, 6)]
+        low = min(points, key=lambda point: point[1])
+        high = max(points, key=lambda point: point[1])
+        for k, (x, y) in enumerate((points[0], low, high, points[3])):
+            done[index + 2 * k], done[index + 2 * k + 1] = x, y
+    columns.load(done)
+
+
+def adopt(series: Any, row: Any) -> None:
+    """`row` (the map row the slave's device now names the series' address with; None: it names nothing
+    there) becomes the series' reading: its names, its unit, and the points kept, each read again from its
+    word as the row reads it (a profile chosen, or taken back, after values were drawn: they are drawn as
+    the file, named with the last choice, draws them)."""
+    old, series.row = series.row, row
+    if old is not None and row is not None and old == row:  # the same row of a device built again
+        return
+    series.code, series.name = (None, None) if row is None else (row.code, row.name)
+    series.unit, series.step, series.labels = None, False, {}
+    columns = series.columns
+    if not len(columns):
+        return
+    if (old is not None and old.words != 1) or (row is not None and row.words != 1):
+        return  # a 32-bit value is read from two words: its points stay as they were read
+    words: list[int] = []
+
+    def again(y: float) -> float:
+        word = word_of(old, y)
+        words.append(word)
+        return reading(row, word)[0] if scales(row) else float(word)  # type: ignore[return-value]
+
+    remap(columns, again)
+    if scales(row):
+        series.unit = row.unit
+        return
+    for word in words:
+        text = reading(row, word)[1]
+        if text is not None:
+            series.step = True
+            if word not in series.labels and len(series.labels) < MAX_LABELS:
+                series.labels[word] = text
+
+
+def scales(row: Any) -> bool:
+    """The row reads a word as a number (Register.scaled, maps.interpret): a scale, or a signed word."""
+    return row is not None and not row.enum and not row.bits and (row.scale is not None or row.signed)
+
+
+def reading(row: Any, word: int) -> tuple[float | int | None, str | None]:
+    """The scaled value and text `row` reads `word` as (maps.interpret; None: no row, neither)."""
+    if row is None:
+        return None, None
+    known = row.memo.get(word)
+    return interpret(row, word) if known is None else known
+
+
+def word_of(row: Any, y: float) -> int:
+    """The word a point's y was read from with `row` (None, or a row that does not scale: y is the word)."""
+    if not scales(row) or row.scale is None:
+        return int(y) & 0xFFFF  # (a signed word without a scale: its value)
+    guess = round(y / row.scale)
+    for word in (guess, guess - 1, guess + 1):
+        if interpret(row, word & 0xFFFF)[0] == y:
+            return word & 0xFFFF
+    return guess & 0xFFFF
