@@ -5986,13 +5986,7 @@ take_items = function(st, items, record)
           item = nil
         end
       end
-    end
-    if item ~= nil then
-      home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
-      local unpacked = st.unpacked
-      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
-    end
-    if not inside then
+    else
       item.at = 0
       if item.kind == NOISE then
         item.raw = string_of(item.bytes, 1, length)
@@ -6012,6 +6006,9 @@ take_items = function(st, items, record)
       end
     end
     if item ~= nil then
+      home[#home + 1] = item -- (a record holds its items in its array part: one table fewer a record)
+      local unpacked = st.unpacked
+      unpacked[#unpacked + 1], unpacked[#unpacked + 2] = home, #home
       item.bytes, item.src = nil, nil
       if item.kind ~= NOISE then take_frame(st, item) end
     end
