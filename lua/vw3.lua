@@ -5413,19 +5413,18 @@ end
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
 -- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
 local function select_device(st, f, b)
-  local frozen = st.frozen
-  if frozen ~= nil and st.fixed[f.slave] then
+  local frozen, slave = st.frozen, f.slave
+  if frozen ~= nil and st.fixed[slave] then
     -- Every frame annotated with the device chosen over the whole capture; the frames that chose still
     -- say so (vw3-decode reading a file says where each choice was made too).
     local said = frozen[f.number]
     if said ~= nil then f.profile_choice, f.profile_said = said[2], said[1] end
-    return device_for(st, f.slave)
+    return device_for(st, slave)
   end
   local choice = observe(st, f, b)
   if choice == nil then
     -- Read once, no device chosen for the slave yet while evidence may still come: its values are named
     -- with spec semantics only, which its device may name otherwise (annotator.py, Frame.provisional).
-    local slave = f.slave
     local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
@@ -5435,7 +5434,6 @@ local function select_device(st, f, b)
     end
     return device_for(st, slave)
   end
-  local slave = f.slave
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
   local history = st.history[slave]
