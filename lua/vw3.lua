@@ -4182,8 +4182,9 @@ package.preload["vw3.maps"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIMITS, concat, fill, floor, format, io, ipairs = DATA, LIMITS, concat, fill, floor, format, io, ipairs
-local math, next, select, string, tonumber, tostring = math, next, select, string, tonumber, tostring
+local DATA, LIMITS, MAX_SLAVE, concat, fill, floor, format = DATA, LIMITS, MAX_SLAVE, concat, fill, floor, format
+local io, ipairs, math, next, select, string, tonumber = io, ipairs, math, next, select, string, tonumber
+local tostring = tostring
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -4212,8 +4213,8 @@ local function parse_profile_choice(text)
         errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
       elseif PROFILES[name] == nil then
         errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
-      elseif slave > 247 then
-        errors[#errors + 1] = format("slave %d is outside 0..247", slave)
+      elseif slave > MAX_SLAVE then
+        errors[#errors + 1] = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
       elseif per_slave[slave] ~= nil then
         errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
       else

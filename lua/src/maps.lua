@@ -31,8 +31,8 @@ local function parse_profile_choice(text)
         errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
       elseif PROFILES[name] == nil then
         errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
-      elseif slave > 247 then
-        errors[#errors + 1] = format("slave %d is outside 0..247", slave)
+      elseif slave > MAX_SLAVE then
+        errors[#errors + 1] = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
       elseif per_slave[slave] ~= nil then
         errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
       else
