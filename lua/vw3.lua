@@ -4029,10 +4029,10 @@ local SPECIAL = {
     if fields.data_length % 2 == 1 then warn(f, say("odd_diagnostic_data", {})) end
   end,
   mei_response = function(f, b)
-    if f.fields.mei_type ~= 14 then return end
     -- The objects the reader listed become the frame's (its fields are dropped once it is done with):
     -- each named, its value as text, where it starts (its id) and its bytes (id and length too).
     local objects = f.fields.body.objects
+    if objects == nil then return end -- (another MEI type: the layout's switch read no device identification)
     for _, object in ipairs(objects) do
       -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
       local chars, at, size = {}, object.value_at, object.length
