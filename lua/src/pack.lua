@@ -161,14 +161,6 @@ local function expand_flat(st, k)
   return f
 end
 
--- A closed record that is one packed frame and nothing else is kept as that number itself. (A closed
--- record has no byte left to frame: the end of the capture adds nothing to it.)
-local function as_number(st, record, number, packed)
-  if record[2] == nil and next(record, 1) == nil and st.records[number] == record then
-    st.records[number] = packed
-  end
-end
-
 -- The item as the display reads it: a new table (an item never packed is itself).
 function pack.expand(p, st)
   if type(p) == "number" then return expand_flat(st, p) end
@@ -204,9 +196,13 @@ function pack.settle(st)
       list[kept + 1], list[kept + 2] = record, at
       kept = kept + 2
     else
-      local packed = pack_item(st, item)
+      local packed, number = pack_item(st, item), item.record
       record[at] = packed
-      if type(packed) == "number" then as_number(st, record, item.record, packed) end
+      -- A closed record that is one packed frame and nothing else is kept as that number itself. (A closed
+      -- record has no byte left to frame: the end of the capture adds nothing to it.)
+      if type(packed) == "number" and record[2] == nil and next(record, 1) == nil and st.records[number] == record then
+        st.records[number] = packed
+      end
     end
   end
   for index = #list, kept + 1, -1 do list[index] = nil end
