@@ -756,13 +756,13 @@ static int values_text(Engine *e, Slave *s, int slave, int function, const Words
     return 0;
 }
 
-/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0); `wrap` 0:
- * describe.plain_span, whose last address goes on past 65535. */
-static void span_text(Out *o, long long base, unsigned start, unsigned quantity, int wrap) {
+/* describe.span_text: `8400..8402 (3)` or `9001`; `40001..40016 (16)` PLC style (base >= 0). (A window past
+ * 65535, `65535..65539 (5)`, draws the warning `span`: handed over, never written here.) */
+static void span_text(Out *o, long long base, unsigned start, unsigned quantity) {
     out_label(o, base, start);
     if (quantity == 1) return;
     out_put(o, "..", 2);
-    out_label(o, base, wrap ? (start + quantity - 1) & 0xFFFF : start + quantity - 1);
+    out_label(o, base, start + quantity - 1);
     out_put(o, " (", 2);
     out_uint(o, quantity, 0);
     out_put(o, ")", 1);
@@ -894,9 +894,9 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
         case STEP_UNSPACE: /* describe.TEXT_FORMS' name: the name alone */
             e->out.len -= 1;
             break;
-        case STEP_SPAN: /* PLAIN_SPAN: describe._plain_span, FC23's read part, as its answer shows it PLC style */
+        case STEP_SPAN: /* PLAIN_SPAN: describe._plain_span, FC23's read part: the same text (PLC style too) */
         case STEP_PLAIN_SPAN:
-            span_text(&e->out, base, start, quantity, step->step == STEP_SPAN || base >= 0);
+            span_text(&e->out, base, start, quantity);
             break;
         case STEP_LABEL:
             out_label(&e->out, base, start);

@@ -484,7 +484,7 @@ def _span_label(frame: Frame, device: Device) -> None:
     if quantity == 1:
         frame.span_label = first
         return
-    end = (start + quantity - 1) & 0xFFFF
+    end = start + quantity - 1  # past 65535 as asked, as describe.span_text and the warning `span` show it
     last = labels.get(end)
     if last is None:
         last = labels[end] = plc_label(base, end)

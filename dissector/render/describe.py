@@ -14,6 +14,11 @@ MAX_FIFO_VALUES = 8  # FIFO values a summary shows
 _FUNCTION_NAMES = SPEC.functions
 
 
+def count_text(count: int, noun: str) -> str:
+    """`1 byte`, `2 bytes`: a count and its noun, singular for one (the plugin's tree.lua count_text)."""
+    return f"{count} {noun}" if count == 1 else f"{count} {noun}s"
+
+
 def address_text(address: int | None, label: str | None = None) -> str:
     if label is not None:
         return label
@@ -22,7 +27,8 @@ def address_text(address: int | None, label: str | None = None) -> str:
 
 def span_text(frame: Frame) -> str:
     """`8400..8402 (3)` or `9001` for the frame's start and quantity; `8400 (0)` for a quantity of 0 (no
-    register: the start the request names, never a range wrapped back to 8399)."""
+    register: the start the request names, never a range wrapped back to 8399). A window past 65535 shows
+    its last address as asked (`65535..65539 (5)`), as the warning `span` says it, never wrapped to 3."""
     start, quantity = frame.start, frame.quantity
     if frame.span_label is not None:
         return frame.span_label if quantity is None or quantity == 1 else f"{frame.span_label} ({quantity})"
@@ -33,12 +39,12 @@ def span_text(frame: Frame) -> str:
         return first
     if quantity == 0:
         return f"{first} (0)"
-    last = _label_for(frame, (start + quantity - 1) & 0xFFFF)
+    last = _label_for(frame, start + quantity - 1)
     return f"{first}..{last} ({quantity})"
 
 
 def plain_span(start: int, quantity: int | None) -> str:
-    """`8400..8402 (3)`, `8400` (one or no quantity), `8400 (0)` (no register: nothing wraps)."""
+    """`8400..8402 (3)`, `8400` (one or no quantity), `8400 (0)` (no register: nothing wraps), as span_text."""
     if quantity is None or quantity == 1:
         return str(start)
     if quantity == 0:
@@ -169,7 +175,7 @@ def info_text(frame: Frame) -> str:
         return f"{name} (malformed)"
     request = frame.kind is Kind.REQUEST
     describe = _DESCRIBERS[request].get(function)
-    detail = describe(frame, request) if describe else f"{len(frame.pdu) - 1} bytes of data"
+    detail = describe(frame, request) if describe else f"{count_text(len(frame.pdu) - 1, 'byte')} of data"
     return f"{name} {detail}".rstrip()
 
 
@@ -253,7 +259,7 @@ def _data(data: bytes) -> str:
 def _hex_preview(data: bytes) -> str:
     if len(data) <= MAX_DATA_BYTES:
         return data.hex()
-    return f"{data[:MAX_DATA_BYTES].hex()}… (+{len(data) - MAX_DATA_BYTES} bytes)"
+    return f"{data[:MAX_DATA_BYTES].hex()}… (+{count_text(len(data) - MAX_DATA_BYTES, 'byte')})"
 
 
 def _mei(frame: Frame, request: bool) -> str:
@@ -283,7 +289,7 @@ def _report_server_id(frame: Frame, request: bool) -> str:
     if request or "server_id" not in fields:
         return ""
     data = fields.additional_data
-    text = repr(data) if isinstance(data, str) else f"{len(data)} bytes"
+    text = repr(data) if isinstance(data, str) else count_text(len(data), "byte")
     return f"server id {fields.server_id}, run {fields.run_indicator}, {text}"
 
 

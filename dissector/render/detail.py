@@ -18,6 +18,7 @@ from dissector.model import BitList, Frame, Item, Kind, Noise, Register, Registe
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
+from dissector.render.describe import count_text
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
 
@@ -368,7 +369,9 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
         else:
             detail.run([f"            {'?' if bit.address is None else bit.address}: {bit.value}" for bit in bits])
     for obj in frame.objects or ():
-        add(f"        Object {obj.id} {obj.name}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
+        # `Object 5 ModelName: 'XY'`; one the spec does not name is `Object 128: 'ABC'` (its name says the id)
+        head = f"Object {obj.id} {obj.name}" if obj.id in SPEC.device_id_objects else obj.name
+        add(f"        {head}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
     crc = frame.crc
     if frame.notes and check_untyped(frame):  # --hex typed without its check: nothing was received
         detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: none typed "
@@ -391,7 +394,8 @@ def _build(item: Item, base: float | None, joined: bool) -> _Detail:
     out = detail.texts
     add = out.append
     if isinstance(item, Noise):
-        detail.styled(f"Item {item.number}: noise, {item.length} bytes at offset {item.offset}", "vw3.noise")
+        length = count_text(item.length, "byte")
+        detail.styled(f"Item {item.number}: noise, {length} at offset {item.offset}", "vw3.noise")
         add(f"    {noise_info(item)}")
         add(f"    Reason: {item.reason}")
         return detail

@@ -4,7 +4,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from dissector.model import Frame, Item, Kind, Noise
-from dissector.render.describe import info_text
+from dissector.render.describe import count_text, info_text
 
 if TYPE_CHECKING:
     from rich.text import Text
@@ -121,10 +121,15 @@ def tail_text(frame: Frame) -> str:
     return " ".join(text for text, _ in tail_parts(frame))
 
 
+def noise_text(length: int, offset: int) -> str:
+    """`1 byte of noise at offset 8`, `4 bytes of noise at offset 0`."""
+    return f"{count_text(length, 'byte')} of noise at offset {offset}"
+
+
 def noise_info(noise: Noise) -> str:
     preview = noise.raw[:NOISE_PREVIEW].hex(" ")
     more = "…" if noise.length > NOISE_PREVIEW else ""
-    return f"{noise.length} bytes of noise at offset {noise.offset}: {preview}{more}"
+    return f"{noise_text(noise.length, noise.offset)}: {preview}{more}"
 
 
 _KIND_COLUMN = {kind: f"{kind.value:<9}" for kind in Kind}

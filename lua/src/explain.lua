@@ -156,7 +156,8 @@ local function span_label(f, device)
   -- `40501..40504` for a PLC-style device, so requests without registers show 4X numbers too.
   local labels = PLC_LABELS[plc_base(device, f)]
   local quantity, first = f.quantity or 0, labels[f.start] -- (a quantity of 0 or none: one address)
-  f.span_label = quantity <= 1 and first or first .. ".." .. labels[(f.start + quantity - 1) % 0x10000]
+  -- (the last address past 65535 as asked, as annotator._span_label)
+  f.span_label = quantity <= 1 and first or first .. ".." .. labels[f.start + quantity - 1]
 end
 lane.span_label = span_label
 

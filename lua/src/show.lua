@@ -89,13 +89,13 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   if continued ~= nil then
     summaries = {}
     for _, part in ipairs(continued) do
-      local text = format("%d bytes continue in item %d (record %d)", part.count, part.item, part.record)
+      local text = format("%s continue in item %d (record %d)", count_text(part.count, "byte"), part.item, part.record)
       if full then
         local t = tree:add(proto, tvb:range(0, n), "VW3 bytes of a frame shown in a later record: " .. text)
         t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
         anchor = anchor or t
       end
-      summaries[#summaries + 1] = format("(%d bytes continue in #%d)", part.count, part.record)
+      summaries[#summaries + 1] = format("(%s continue in #%d)", count_text(part.count, "byte"), part.record)
     end
   end
   local frames = 0
@@ -105,8 +105,9 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     local t
     if item.kind == NOISE then
       -- (a run of the same noise, kept as one entry: its texts made once, for each of its items)
-      local text = format("noise (%d bytes)", item.length)
-      local expert_text = format("%d bytes outside any frame: %s", item.length, item.reason)
+      local bytes = count_text(item.length, "byte")
+      local text = format("noise (%s)", bytes)
+      local expert_text = format("%s outside any frame: %s", bytes, item.reason)
       for k = 0, (item.count or 1) - 1 do
         local shown = show_noise(item, shown_from, tree, full, k, expert_text)
         t = t or shown
@@ -127,10 +128,10 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     anchor = record_note(anchor, tree, full, tvb, n, ex.preference, "Preferences: " .. errors[index])
   end
   if record.waiting ~= nil and record.waiting > 0 then
-    local text = format("The record ends inside a frame: its last %d bytes are framed with the next records'",
-      record.waiting)
+    local text = format("The record ends inside a frame: its last %s framed with the next records'",
+      record.waiting == 1 and "byte is" or format("%d bytes are", record.waiting))
     anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
-    summaries, info = add_part(summaries, info, format("(%d bytes continue)", record.waiting))
+    summaries, info = add_part(summaries, info, format("(%s continue)", count_text(record.waiting, "byte")))
   end
   if info ~= nil then
     cols.info = info

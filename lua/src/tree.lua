@@ -5,6 +5,12 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
+-- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
+local function count_text(count, noun)
+  if count == 1 then return "1 " .. noun end
+  return format("%d %ss", count, noun)
+end
+
 local function add_text(tree, expert_info, text)
   tree:add_proto_expert_info(expert_info, text)
 end
@@ -163,7 +169,8 @@ local function summary(f)
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
   if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
   if quantity ~= nil and quantity > 1 then
-    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[(start + quantity - 1) % 0x10000]
+    -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
+    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
       .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
@@ -332,7 +339,7 @@ local function show_noise(item, tvb, tree, full, k, expert_text)
   local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
   if full then
     local r = tvb:range(item.at + k * length, length)
-    t = tree:add(proto, r, format("VW3 noise, %d bytes: %s", length, item.reason))
+    t = tree:add(proto, r, format("VW3 noise, %s: %s", count_text(length, "byte"), item.reason))
     t:add(pf.item, r, item.number + k):set_generated()
     t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
     t:add(pf.offset, r, item.offset + k * length):set_generated()
@@ -344,4 +351,4 @@ local function show_noise(item, tvb, tree, full, k, expert_text)
 end
 
 M.add_register, M.add_text, M.show_frame, M.show_noise = add_register, add_text, show_frame, show_noise
-M.summary, M.unseen = summary, unseen
+M.count_text, M.summary, M.unseen = count_text, summary, unseen

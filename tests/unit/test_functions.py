@@ -201,7 +201,7 @@ def test_spec_limits_are_warnings(request_hex: str, warning: str) -> None:
 
 def test_response_byte_count_disagreeing_with_request() -> None:
     items = decode(rtu("01 03 0000 0003") + rtu("01 03 04 0001 0002"))
-    assert items[1]["warnings"] == ["byte count 4 disagrees with the 3 registers asked"]
+    assert items[1]["warnings"] == ["byte count 4 disagrees with the registers asked (3)"]
     assert [r["address"] for r in items[1]["registers"]] == [0, 1]
 
 

@@ -23,13 +23,13 @@ GLITCHED = hx(
 )
 GLITCHED_LINES = [
     "     1            -   1 request   Read Holding Registers 1000..1001 (2)  CRC ok",
-    "     2            -   - noise     1 bytes of noise at offset 8: 00",
+    "     2            -   - noise     1 byte of noise at offset 8: 00",
     "     3            -   1 response  Read Holding Registers 1000..1001 (2): 1000=21094 1001=22279 [#1]  CRC ok",
-    "     4            -   - noise     1 bytes of noise at offset 18: fe",
+    "     4            -   - noise     1 byte of noise at offset 18: fe",
     "     5            -   1 request   Read Holding Registers 1002..1003 (2)  CRC ok",
-    "     6            -   - noise     1 bytes of noise at offset 27: 00",
+    "     6            -   - noise     1 byte of noise at offset 27: 00",
     "     7            -   1 response  Read Holding Registers 1002..1003 (2): 1002=42097 1003=17964 [#5]  CRC ok",
-    "     8            -   - noise     1 bytes of noise at offset 37: fe",
+    "     8            -   - noise     1 byte of noise at offset 37: fe",
 ]
 
 
@@ -79,7 +79,7 @@ def test_fc16_request_whose_byte_count_disagrees_with_its_quantity() -> None:
     """Altivar 212 manual: the drive answers exception 03 to a request with byte count 3 for 2 registers."""
     assert summary("--hex", "01 10 18 70 00 02 03 C4 00 17 70 D8 6F", "--hex", "01 90 03 0C 01") == [
         "     1            -   1 request   Write Multiple Registers 6256..6257 (2): 6256=50176 "
-        "[warning: byte count 3 disagrees with the quantity 2] [warning: 1 unexpected bytes after the data]  CRC ok",
+        "[warning: byte count 3 disagrees with the quantity 2] [warning: unexpected bytes after the data (1)]  CRC ok",
         "     2            -   1 exception Write Multiple Registers: exception 3 (Illegal Data Value) [#1]  CRC ok",
     ]
     # The same bytes as a raw stream: the quantity's length (13) is the frame, not noise.
