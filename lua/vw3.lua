@@ -6893,6 +6893,12 @@ local function record_note(anchor, tree, full, tvb, n, expert_info, text)
   return anchor
 end
 
+-- `1 byte continues`, `5 bytes continue`: a record's bytes framed with the next records'.
+local function continue_text(count)
+  if count == 1 then return "1 byte continues" end
+  return format("%d bytes continue", count)
+end
+
 -- One more part of a record's Info text: a single part stays a string, a list is made from the second.
 local function add_part(summaries, info, text)
   if summaries ~= nil then
@@ -6938,13 +6944,13 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
   if continued ~= nil then
     summaries = {}
     for _, part in ipairs(continued) do
-      local text = format("%s continue in item %d (record %d)", count_text(part.count, "byte"), part.item, part.record)
+      local text = format("%s in item %d (record %d)", continue_text(part.count), part.item, part.record)
       if full then
         local t = tree:add(proto, tvb:range(0, n), "VW3 bytes of a frame shown in a later record: " .. text)
         t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
         anchor = anchor or t
       end
-      summaries[#summaries + 1] = format("(%s continue in #%d)", count_text(part.count, "byte"), part.record)
+      summaries[#summaries + 1] = format("(%s in #%d)", continue_text(part.count), part.record)
     end
   end
   local frames = 0
@@ -6980,7 +6986,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     local text = format("The record ends inside a frame: its last %s framed with the next records'",
       record.waiting == 1 and "byte is" or format("%d bytes are", record.waiting))
     anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
-    summaries, info = add_part(summaries, info, format("(%s continue)", count_text(record.waiting, "byte")))
+    summaries, info = add_part(summaries, info, format("(%s)", continue_text(record.waiting)))
   end
   if info ~= nil then
     cols.info = info
