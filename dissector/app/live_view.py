@@ -26,6 +26,7 @@ from rich.table import Table
 from rich.text import Text
 
 from dissector.model import Frame, Item, Kind, Noise
+from dissector.render.describe import count_text
 from dissector.render.jsonout import item_to_dict
 
 _SLAVE_KIND = re.compile(r" *\d+ +\S+ +(\d+) (\w+)")  # a summary line's slave and kind (-t r, d, dd)
@@ -263,8 +264,9 @@ def header_table(stats: LiveStats) -> Table:
 def totals_text(stats: LiveStats) -> str:
     last = stats.last_response_time
     return (
-        f"{stats.frames} frames, {stats.crc_errors} CRC errors, {stats.unanswered} unanswered, "
-        f"{stats.noise_bytes} noise bytes, last response time "
+        f"{count_text(stats.frames, 'frame')}, {count_text(stats.crc_errors, 'CRC error')}, "
+        f"{stats.unanswered} unanswered, "
+        f"{count_text(stats.noise_bytes, 'noise byte')}, last response time "
         + (f"{last * 1000:.1f} ms" if last is not None else "-")
         + (f"; {stats.not_shown_text()}" if stats.not_shown else "")
     )

@@ -41,6 +41,7 @@ from rich.console import RenderableType
 
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.render import tables
+from dissector.render.describe import count_text
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import (
@@ -312,12 +313,15 @@ class StatsCollector:
         report = self.report(with_parameters=False, poll_rows=MAX_POLL_ROWS)  # (timings of the rows shown)
         blocks: list[str | TableSpec] = []
         summary = (
-            f"{report['frames']} frames, {report['noise']['bytes']} noise bytes in {report['noise']['items']} runs"
+            f"{count_text(report['frames'], 'frame')}, {count_text(report['noise']['bytes'], 'noise byte')} in "
+            f"{count_text(report['noise']['items'], 'run')}"
         )
         if report["registers_without_address"]:
-            summary += f", {report['registers_without_address']} register values without an address"
+            without = count_text(report['registers_without_address'], 'register value')
+            summary += f", {without} without an address"
         if report["parameter_events_dropped"]:
-            summary += (f", {report['parameter_events_dropped']} register values of parameters beyond the first "
+            dropped = count_text(report['parameter_events_dropped'], 'register value')
+            summary += (f", {dropped} of parameters beyond the first "
                         f"{MAX_PARAMETERS:,} not tracked")
         if len(self.captures) > 1:
             summary += f", from {merged_text(self.captures)}"

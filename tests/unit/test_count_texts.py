@@ -178,3 +178,32 @@ def test_fc23_read_window_past_65535_as_asked(engine: str, style: str, read: str
     ]
     assert out.splitlines()[1].startswith(
         f"     2            -   1 response  Read/Write Multiple Registers {read}: {values.replace('39', '0')} [#1] ")
+
+
+def test_stats_and_report_headers_read_singular_for_one(engine: str, tmp_path: Path) -> None:
+    """--stats' first line and the report's summary: one frame, one noise byte in one run, one register
+    value without an address (an answer with no request before it)."""
+    stream = b"\x00" + rtu("01 03 02 0064")
+    status, out, err = run_cli(["-", "-n", "--stats"], stdin=stream)
+    assert status == 0, err
+    assert out.splitlines()[0] == "1 frame, 1 noise byte in 1 run, 1 register value without an address"
+    report = tmp_path / "r.html"
+    status, out, err = run_cli(["-", "-n", "--report", str(report)], stdin=stream)
+    assert status == 0, err
+    assert '<p class="summary">1 frame, 1 noise byte in 1 run, no timestamps' in report.read_text()
+
+
+def test_stats_header_plural_for_two(engine: str) -> None:
+    stream = b"\x00\x00" + rtu("01 03 0010 0001") + rtu("01 03 02 0007")
+    status, out, err = run_cli(["-", "-n", "--stats"], stdin=stream)
+    assert status == 0, err
+    assert out.splitlines()[0] == "2 frames, 2 noise bytes in 1 run"
+
+
+def test_live_totals_read_singular_for_one() -> None:
+    from dissector.app.live_view import LiveStats, totals_text
+    from dissector.model import Noise
+
+    stats = LiveStats()
+    stats.add(Noise(offset=0, raw=b"\x00", time=None))
+    assert totals_text(stats) == "0 frames, 0 CRC errors, 0 unanswered, 1 noise byte, last response time -"

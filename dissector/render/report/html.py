@@ -13,6 +13,7 @@ from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
+from dissector.render.describe import count_text
 from dissector.render.stats_store import give_back
 from dissector.protocol.spec import SPEC
 
@@ -99,8 +100,8 @@ def report_pieces(
     parts: list[str] = []
     duration = summary["duration"]
     parts.append(
-        f"<p class=\"summary\">{summary['frames']} frames, {summary['noise']['bytes']} noise bytes in "
-        f"{summary['noise']['items']} runs"
+        f"<p class=\"summary\">{count_text(summary['frames'], 'frame')}, "
+        f"{count_text(summary['noise']['bytes'], 'noise byte')} in {count_text(summary['noise']['items'], 'run')}"
         + (f", {duration:.3f} s" if duration is not None else ", no timestamps (x axis: frame number)")
         + (f", from {_esc(merged_text(stats.captures))}" if len(stats.captures) > 1 else "")  # one bus, said
         + "</p>"
