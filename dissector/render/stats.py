@@ -403,7 +403,7 @@ class StatsCollector:
                 return text
             if quantity == 0:
                 return f"{text} (0)"  # no register: what the request says, nothing wrapped
-            return f"{text}..{label(row['slave'], row['function'], (first + quantity - 1) & 0xFFFF)} ({quantity})"
+            return f"{text}..{label(row['slave'], row['function'], first + quantity - 1)} ({quantity})"
 
         text = span(start, row.get("quantity"))
         if row.get("write_start") is not None:

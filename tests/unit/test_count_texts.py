@@ -207,3 +207,18 @@ def test_live_totals_read_singular_for_one() -> None:
     stats = LiveStats()
     stats.add(Noise(offset=0, raw=b"\x00", time=None))
     assert totals_text(stats) == "0 frames, 0 CRC errors, 0 unanswered, 1 noise byte, last response time -"
+
+
+def test_stats_poll_window_past_65535_as_the_summary_shows_it(engine: str, tmp_path: Path) -> None:
+    """--stats' poll cycle, PLC style, names the window as the summary line does (465535..465538), not
+    wrapped back to 40002."""
+    path = tmp_path / "poll.pcap"
+    with path.open("wb") as stream:
+        writer = PcapWriter(stream, flush=False)
+        for k in range(4):
+            writer.write(rtu("01 03 FFFE 0004"), T0 + k)
+            writer.write(rtu("01 03 08 0001 0002 0003 0004"), T0 + k + 0.010)
+    out = cli("--address-style", "plc", "--stats", str(path))
+    assert "    1  3 Read Holding Registers  465535..465538 (4)      4  1000.0     0.0       0" in out.splitlines()
+    first = cli("--address-style", "plc", str(path)).splitlines()[0]
+    assert "Read Holding Registers 465535..465538 (4)" in first
