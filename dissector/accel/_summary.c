@@ -832,6 +832,8 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
         if (value > range[1] || (!L->check_above[j] && value < range[0])) return 0;
     }
     if (L->span && out->start + out->quantity > 0x10000) return 0;
+    if (L->span && L->write_quantity_at && word(f + L->write_start_at) + word(f + L->write_quantity_at) > 0x10000)
+        return 0; /* (FC23: its written window too) */
     if (L->count_at) {
         unsigned count = field(f, L->count_at, L->count_width);
         if (count < (unsigned)L->min_count) return 0; /* malformed: the fixed fields after it are longer */

@@ -135,6 +135,7 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
     unpaired, span, odd_count, coil, echo, values = (
         rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo, rule.values
     )
+    write_window = rule.write_window if span else None
 
     def lift(frame: Frame, fields: Container) -> None:
         request = request_of(frame) if from_request else None
@@ -162,6 +163,10 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
                 frame.warnings.append(text("range", what=check.what, value=value, low=check.low, high=check.high))
         if span and start + quantity > 0x10000:
             frame.warnings.append(text("span", first=start, last=start + quantity - 1))
+        if write_window is not None:
+            first, many = fields[write_window[0]], fields[write_window[1]]
+            if first + many > 0x10000:
+                frame.warnings.append(text("span", first=first, last=first + many - 1))
         if count is not None:
             if count_from_request:  # the request's quantity: the window's already when it is the request's
                 of = None if request is None else quantity if quantity_from_request else request.quantity

@@ -233,6 +233,11 @@ local function lifter(rule, limit, layout)
   if rule.span then
     add("if first + many > 65536 then warn(f, say(\"span\", { first = first, last = first + many - 1 })) end")
   end
+  if rule.span and rule.write_window then -- (FC23: its written window too)
+    local written, count = field(rule.write_window[1]), field(rule.write_window[2])
+    add("if %s + %s > 65536 then warn(f, say(\"span\", { first = %s, last = %s + %s - 1 })) end", written, count,
+      written, written, count)
+  end
   if count then
     add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
     add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)

@@ -90,3 +90,12 @@ def test_one_byte_continued_in_the_next_record(tmp_path: Path) -> None:
     assert tshark(pcap, "-T", "fields", "-e", "_ws.col.Info", two_pass=False).splitlines() == [
         "1 Read Holding Registers request 16 [provisional]; (1 byte continues)",
         "1 Read Holding Registers response 16 [provisional]"]
+
+
+def test_fc23_windows_past_65535_draw_the_warning(tmp_path: Path) -> None:
+    from test_count_texts import FC23_PAST_65535
+
+    pcap = write_pcap(tmp_path / "fc23.pcap", [(data, T0 + at) for data, at in FC23_PAST_65535])
+    warnings = re.findall(r"\[Expert Info \(Warning/Protocol\): ([^\]]*)\]", tshark(pcap, "-V"))
+    assert [w for w in warnings if "past" in w] == [
+        "addresses 65535..65539 run past 65535", "addresses 65534..65536 run past 65535"]

@@ -155,8 +155,9 @@ def test_write_without_print_prints_nothing_even_with_detail(capture: Path, tmp_
 
 
 def fc23_polls(times: int) -> bytes:
-    """FC23 reading 65534..65537 (no warning: its windows are not checked for the span) and writing 16,
-    then a read of 16..17, `times` over: the engine writes the info of these (the first is handed over)."""
+    """FC23 reading 65534..65537 (its request warned: the window runs past 65535) and writing 16, then a
+    read of 16..17, `times` over: the engine writes the info of the answers (the first is handed over; the
+    requests, warned, are too)."""
     stream = b""
     for value in range(times):
         stream += rtu(f"01 17 FFFE 0004 0010 0001 02 00{value:02X}") + rtu(f"01 17 08 0001 0002 00{value:02X} 0004")
@@ -173,7 +174,8 @@ def test_fc23_read_window_past_65535_as_asked(engine: str, style: str, read: str
     assert status == 0, err
     write = "16=39" if style == "protocol" else "40017=39"
     assert out.splitlines()[-4:-2] == [
-        f"   157            -   1 request   Read/Write Multiple Registers read {read}, write {write}  CRC ok",
+        f"   157            -   1 request   Read/Write Multiple Registers read {read}, write {write} "
+        "[warning: addresses 65534..65537 run past 65535]  CRC ok",
         f"   158            -   1 response  Read/Write Multiple Registers {read}: {values} [#157]  CRC ok",
     ]
     assert out.splitlines()[1].startswith(
@@ -222,3 +224,27 @@ def test_stats_poll_window_past_65535_as_the_summary_shows_it(engine: str, tmp_p
     assert "    1  3 Read Holding Registers  465535..465538 (4)      4  1000.0     0.0       0" in out.splitlines()
     first = cli("--address-style", "plc", str(path)).splitlines()[0]
     assert "Read Holding Registers 465535..465538 (4)" in first
+
+
+FC23_PAST_65535 = [
+    (rtu("01 17 FFFF 0005 0000 0001 02 0001"), 0.0),  # its read window runs past 65535
+    (rtu("01 17 FFFF 0001 FFFE 0003 06 0001 0002 0003"), 1.0),  # its write window does
+    (rtu("01 17 0000 0001 0010 0001 02 0001"), 2.0),  # neither
+]
+
+
+def test_fc23_windows_past_65535_draw_the_warning(engine: str, tmp_path: Path) -> None:
+    """FC23's read window and its write window each draw the `span` warning as FC3's and FC16's do."""
+    path = tmp_path / "fc23.pcap"
+    with path.open("wb") as stream:
+        writer = PcapWriter(stream, flush=False)
+        for data, at in FC23_PAST_65535:
+            writer.write(data, T0 + at)
+    assert cli(str(path)).splitlines() == [
+        "     1     0.000000   1 request   Read/Write Multiple Registers read 65535..65539 (5), write 0=1 "
+        "[no response] [warning: addresses 65535..65539 run past 65535]  CRC ok",
+        "     2     1.000000   1 request   Read/Write Multiple Registers read 65535, write 65534=1 65535=2 0=3 "
+        "[no response] [warning: addresses 65534..65536 run past 65535]  CRC ok",
+        "     3     2.000000   1 request   Read/Write Multiple Registers read 0, write 16=1 [no response] "
+        "[the capture ends before any response]  CRC ok",
+    ]
