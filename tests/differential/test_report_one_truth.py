@@ -23,6 +23,7 @@ import pytest
 from dissector.accel._summary import Columns as CompiledColumns
 from dissector.app.cli import Environment, run
 from dissector.render.report.collect import MAX_SERIES, Columns
+from test_report_columns import report
 from test_timed_summary import frames_of, write_pcap
 
 WAYS = [(where, pure) for where in ("file", "stdin") for pure in (False, True)]
@@ -43,14 +44,9 @@ S8 = [(1700000001, 852099, "01060c810000dab2"), (1700000001, 854099, "01060c8100
 
 
 def page_data(argv: list[str], page: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> dict:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
-    stdout, stderr = io.StringIO(), io.StringIO()
-    assert run([*argv, "--report", str(page)], Environment(io.BytesIO(stdin), stdout, stderr, False, False)) == 0
+    """The data the page embeds, from a run of test_report_columns.report (engine or VW3_PURE_PYTHON=1)."""
     found = re.search(r'<script type="application/json" id="report-data">(.*?)</script>',
-                      page.read_text(encoding="utf-8"), re.S)
+                      report(argv, page, monkeypatch, pure, stdin), re.S)
     assert found is not None
     return json.loads(found.group(1))
 
