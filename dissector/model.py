@@ -46,6 +46,12 @@ class Stamp(float):
         return Stamp, (self.ns,)
 
 
+def stamped_before(time: float, than: float) -> bool:
+    """Is `time` earlier than `than` (time going backwards)? As floats, and by two Stamps' nanoseconds
+    where their floats are equal (near 1.7e9 s a float cannot tell 100 ns apart)."""
+    return time < than or time == than and time - than < 0
+
+
 class Kind(StrEnum):
     REQUEST = "request"
     RESPONSE = "response"

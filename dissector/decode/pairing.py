@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import weakref
 
-from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
+from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
 from dissector.protocol.rules import text
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
@@ -152,8 +152,8 @@ class Pairer:
             pending.response_ref = weakref.ref(item)
             self._pending = None
             time, asked = item.time, pending.time
-            if time is not None and asked is not None and (time < asked or time == asked and time - asked < 0):
-                backwards = pending  # (Stamps as floats, their ns where the floats are equal)
+            if time is not None and asked is not None and stamped_before(time, asked):
+                backwards = pending
         elif late is not None and late.slave == item.slave and late.function == item.function:
             assert self._timeout is not None and item.time is not None and late.time is not None
             item.warnings.append(text(

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming
-from dissector.model import Item, Kind
+from dissector.model import Item, Kind, stamped_before
 from dissector.framing.linespeed import LineSettings
 from dissector.render.stats_store import Coarse
 
@@ -271,7 +271,7 @@ class BusTiming:
         if self.first is None:
             self.first = back.stretch = time
             back.reach = end
-        elif time < previous or time == previous and time - previous < 0:  # type: ignore[operator]  # (Stamps: their ns)
+        elif time <= previous and stamped_before(time, previous):  # type: ignore[operator]  # (the call only then)
             back.items += 1  # time goes backwards: a new stretch
             back.spanned += back.reach - back.stretch  # type: ignore[operator]
             back.stretch, back.reach = time, end
