@@ -35,6 +35,7 @@ from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
 from dissector.render.report.reading import MAX_LABELS, adopt
+from dissector.render.summary import noise_text
 
 COLUMNS = 600
 TIMED_WIDTH, UNTIMED_WIDTH = 1e-3, 1.0  # a column's first width: a millisecond timed, a frame untimed
@@ -285,7 +286,7 @@ class ReportCollector:
             if warning.startswith("silence"):
                 self._event(x, "silence", getattr(item, "slave", None), warning)
         if item.kind is Kind.NOISE:
-            self._event(x, "noise", None, f"{item.length} bytes of noise at offset {item.offset}")
+            self._event(x, "noise", None, noise_text(item.length, item.offset))
             return
         frame: Frame = item  # type: ignore[assignment]
         if not frame.crc_ok:

@@ -3,7 +3,8 @@ to function 3`), each with its count and its first and last moment and frame: a 
 exception is one line, not a thousand. Numbers that vary between occurrences of the same event
 (noise offsets and lengths, silence durations, CRC values) do not split a group; its text shows each
 such number as the range its occurrences cover (`4..5 bytes of noise at offset 0..307`), never the
-first occurrence's alone.
+first occurrence's alone. Nor does a count's noun, singular for one (`1 byte of noise`, describe.count_text):
+the label reads it singular when the count is 1 in every occurrence, plural otherwise (`1..4 bytes`).
 """
 from __future__ import annotations
 
@@ -12,6 +13,10 @@ from dataclasses import dataclass
 
 MAX_GROUPS = 2000
 _VARYING = re.compile(r"\d+(?:\.\d+)?")
+# A varying number and the noun it counts, if one follows (`1 byte`, `4 bytes`): the noun is read
+# from the group's range of that number, never from its first occurrence.
+_COUNTED = re.compile(r"(\d+(?:\.\d+)?)(?:( byte)s?\b)?")
+_NOUN = re.compile(r"(N byte)s?\b")
 _VARYING_KINDS = frozenset(["noise", "silence", "crc", "unanswered"])
 
 
@@ -48,11 +53,14 @@ class Group:
             return self.text
         pieces = iter(self.ranges)
 
-        def shown(_match: re.Match[str]) -> str:
+        def shown(match: re.Match[str]) -> str:
             low, low_text, high, high_text = next(pieces)
-            return low_text if low == high else f"{low_text}..{high_text}"
+            number = low_text if low == high else f"{low_text}..{high_text}"
+            if match[2] is None:
+                return number
+            return f"{number}{match[2]}" if number == "1" else f"{number}{match[2]}s"
 
-        return _VARYING.sub(shown, self.text)
+        return _COUNTED.sub(shown, self.text)
 
 
 class EventGroups:
@@ -63,7 +71,7 @@ class EventGroups:
         self.ungrouped = 0
 
     def add(self, kind: str, slave: int | None, text: str, x: float, frame: int) -> None:
-        what = _VARYING.sub("N", text) if kind in _VARYING_KINDS else text
+        what = _NOUN.sub(r"\1s", _VARYING.sub("N", text)) if kind in _VARYING_KINDS else text
         key = (kind, slave, what)
         group = self.groups.get(key)
         if group is None:
