@@ -2,7 +2,7 @@
 
 Syntax, close to Wireshark's:
 
-    slave == 12 and code == "CHCF"          comparisons: == != < <= > >= (also eq ne lt le gt ge)
+    slave == 12 and code == "CHCF"          comparisons: == != ~= < <= > >= (also eq ne any_ne lt le gt ge)
     function in {3 4 23}   address in 8400..8402   address in {3201..3202 8501}
     warnings contains "byte count"          substring of a string, or of any element of a list
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
@@ -35,15 +35,16 @@ several registers, so these tests ask "is there a register such that...". The ru
 So `code == "CHCF" and status == "protected"` needs both on the same register (CHCF read as protected),
 not CHCF somewhere and a protected register elsewhere; `slave == 12 and code == "CHCF"` is "a register
 CHCF in a frame of slave 12". `not code == "CHCF"` is "no register is CHCF" (the `not` closes the
-scope), while `code != "CHCF"` is "some register is not CHCF": use `not` to exclude. The registers of a
+scope). `code != "CHCF"` is Wireshark's (since 3.6, also `all_ne`): "some register has a code and none is
+CHCF", a scope of its own, while `code ~= "CHCF"` (`any_ne`) is "some register is not CHCF". The registers of a
 frame are its `registers` and `bits` (whose address and value these fields test too), plus the
 addresses a frame names without carrying a value (a read request's start..start+quantity-1, a FC16
 confirmation): `address == 8401` matches the read request, its response and writes of 8401; those
 address-only entries have no value, code or status. Where a profile shows PLC-style references
 (`40001`), `address` also takes the number shown: `address == 40001` matches the register sent as 0.
 
-A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=`
-included. Errors raise FilterError, whose message shows the expression with a caret under the token.
+A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=` and
+`~=` included, as in Wireshark. Errors raise FilterError, whose message shows the expression with a caret under the token.
 """
 from __future__ import annotations
 
@@ -94,12 +95,14 @@ _TOKEN = re.compile(
   | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?)(?![0-9A-Za-z_#]))
   | (?P<string>")
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
-  | (?P<op>==|!=|<=|>=|&&|\|\||<|>|!|&|~)
+  | (?P<op>==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~)
   | (?P<punct>\.\.|[(){},])
     """,
     re.VERBOSE,
 )
-_WORD_OPS = {"eq": "==", "ne": "!=", "lt": "<", "le": "<=", "gt": ">", "ge": ">="}
+_WORD_OPS = {
+    "eq": "==", "ne": "!=", "all_ne": "!=", "any_ne": "~=", "lt": "<", "le": "<=", "gt": ">", "ge": ">=",
+}
 _KEYWORDS = {"and", "or", "not", "in", "contains", "matches", "true", "false"}
 _ESCAPES = {'"': '"', "\\": "\\", "n": "\n", "t": "\t"}
 
@@ -355,25 +358,14 @@ class _Parser:
             return (lambda item, reg: search(pattern, get(item, reg))), register
         if field == "address":
             get = address_of
+        if token.kind == "op" and token.value == "!=" and register:
+            # Wireshark's `a != b` (all_ne, since 3.6): some register has the field and none has it equal to b.
+            equal = self.parse_comparison(field, ftype, get, "==", token)
+            some_equal = quantify(equal)
+            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
+            return (lambda item, reg: some_present(item) and not some_equal(item)), False
         if token.kind == "op" and token.value != "!":
-            self.advance()
-            op = token.value
-            value_token = self.token
-            value = self.parse_value(field, ftype)
-            if ftype == "bool" and op not in ("==", "!="):
-                raise self.error(f"{field} is true or false: only == and != compare it", token)
-            if ftype == "list":
-                if op != "==":
-                    raise self.error(f"{field} is a list of texts: use == or contains", token)
-                return (lambda item, reg: any(v == value for v in get(item, reg) or ())), register
-            self._check_choice(field, value, value_token)
-            if field == "time" and isinstance(value, (int, float)) and 0 <= value < 1e9 and op != "!=":
-                raise self.error(
-                    f"time is seconds since the epoch (as --json prints it), and {value_token.text} is no date: "
-                    "time_relative counts from the first item, as the time column", value_token)
-            if field == "address":
-                return address_test(op, value), register
-            return (lambda item, reg: match_op(op, get(item, reg), value)), register
+            return self.parse_comparison(field, ftype, get, token.value, token), register
         if self.at("keyword", "contains"):
             self.advance()
             if ftype not in ("str", "list", "any"):
@@ -391,8 +383,33 @@ class _Parser:
                 return (lambda item, reg: any(in_members(v, members) for v in address_values(reg))), register
             return (lambda item, reg: in_members(get(item, reg), members)), register
         if token.kind in ("number", "string", "name") or self.at("keyword", "true", "false"):
-            raise self.error(f"expected an operator (== != < <= > >= & in contains matches) after {field}")
+            raise self.error(f"expected an operator (== != ~= < <= > >= & in contains matches) after {field}")
         return (lambda item, reg: is_present(get(item, reg))), register
+
+    def parse_comparison(self, field: str, ftype: str, get: Callable[..., Any], op: str, token: Token) -> Test:
+        """`field OP value` on one register (or the frame): `~=` is "differs", as `!=` was before Wireshark 3.6."""
+        self.advance()
+        written = token.value
+        value_token = self.token
+        value = self.parse_value(field, ftype)
+        if ftype == "bool" and written not in ("==", "!=", "~="):
+            raise self.error(f"{field} is true or false: only ==, != and ~= compare it", token)
+        if ftype == "list":
+            if op == "!=":  # all_ne: some element, and none equal
+                return lambda item, reg: bool(get(item, reg)) and all(v != value for v in get(item, reg))
+            if op != "==":
+                raise self.error(f"{field} is a list of texts: use ==, != or contains", token)
+            return lambda item, reg: any(v == value for v in get(item, reg) or ())
+        self._check_choice(field, value, value_token)
+        if field == "time" and isinstance(value, (int, float)) and 0 <= value < 1e9 and written not in ("!=", "~="):
+            raise self.error(
+                f"time is seconds since the epoch (as --json prints it), and {value_token.text} is no date: "
+                "time_relative counts from the first item, as the time column", value_token)
+        if op == "~=":
+            op = "!="  # one value (a frame's, or one register's): it is there and differs
+        if field == "address":
+            return address_test(op, value)
+        return lambda item, reg: match_op(op, get(item, reg), value)
 
     def parse_value(self, field: str, ftype: str) -> Any:
         token = self.token

@@ -344,7 +344,7 @@ def test_map_loader_names_the_line_of_every_error(header: str, rows: list[str]) 
 # -- display filters --------------------------------------------------------------------------------
 FILTER_WORDS = st.sampled_from([
     "slave", "function", "kind", "address", "value", "code", "status", "crc_ok", "warnings", "exception",
-    "time", "scaled", "name", "==", "!=", "<", ">=", "eq", "and", "or", "not", "!", "&&", "||", "in",
+    "time", "scaled", "name", "==", "!=", "~=", "any_ne", "<", ">=", "eq", "and", "or", "not", "!", "&&", "||", "in",
     "contains", "(", ")", "{", "}", "..", ",", "12", "0x20D1", "1.5", "8400..8402", '"CHCF"', '"a\\"b"',
     "true", "false", '"', "\\", "9" * 30, "-", "#",
 ])

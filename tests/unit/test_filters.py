@@ -44,9 +44,25 @@ CASES = [
     ("p38_protection.bin", 'value == 0x8000 and code == "CHCF"', [6, 8]),
     ("p38_protection.bin", 'address == 8401 and value == 3', [2, 4]),
     ("p38_protection.bin", 'slave == 12 and code == "CHCF"', [2, 4, 6, 8, 10, 12]),
-    # `not` closes the scope: "no register is CHCF"; != is "some register is not CHCF".
+    # `not` closes the scope: "no register is CHCF"; ~= (any_ne) is "some register is not CHCF".
     ("p38_protection.bin", 'not code == "CHCF"', [1, 3, 5, 7, 9, 11]),
-    ("p38_protection.bin", 'code != "CHCF"', [2, 4, 6, 8, 10, 12]),
+    ("p38_protection.bin", 'code ~= "CHCF"', [2, 4, 6, 8, 10, 12]),
+    ("p38_protection.bin", 'code any_ne "CHCF"', [2, 4, 6, 8, 10, 12]),
+    # != is Wireshark's all_ne (3.6+): some register has the field, none equal. tshark with the plugin,
+    # `-Y 'vw3.reg.value != 3'` on p38_protection.pcap, shows frames 6 and 8; `vw3.reg.value ~= 3` 2 4 6 8.
+    ("p38_protection.bin", 'code != "CHCF"', []),
+    ("p38_protection.bin", "value != 3", [6, 8]),
+    ("p38_protection.bin", "value all_ne 3", [6, 8]),
+    ("p38_protection.bin", "value ~= 3", [2, 4, 6, 8]),
+    ("p38_protection.bin", "value != 3 and slave == 12", [6, 8]),
+    ("p38_protection.bin", "not value != 3", [1, 2, 3, 4, 5, 7, 9, 10, 11, 12]),
+    ("p38_protection.bin", "address != 8401", []),
+    ("p38_protection.bin", "address != 8403", list(range(1, 13))),
+    # A frame field: present and different (a noise item has no slave).
+    ("p38_protection.bin", "slave != 12", []),
+    ("p38_protection.bin", "slave != 1", list(range(1, 13))),
+    ("sel749m_polling.bin", 'warnings != "x" and function == 16', [49, 55]),
+    ("sel749m_polling.bin", 'warnings != "byte count 6 disagrees with the quantity 2" and function == 16', [55]),
     # Read requests name their addresses; exception 02 to a read names the registers it is about.
     ("p38_protection.bin", "address == 8401", list(range(1, 13))),
     ("p38_protection.bin", "exception == 2", [10, 12]),
@@ -126,10 +142,10 @@ ERRORS = [
         "  code == CHCF\n          ^",
     ),
     ("(slave == 3", "expected ) to close the ( at column 1 (column 12)\n  (slave == 3\n             ^"),
-    ("crc_ok > true", "crc_ok is true or false: only == and != compare it (column 8)\n  crc_ok > true\n         ^"),
+    ("crc_ok > true", "crc_ok is true or false: only ==, != and ~= compare it (column 8)\n  crc_ok > true\n         ^"),
     ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
-    ("slave 3", "expected an operator (== != < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
+    ("slave 3", "expected an operator (== != ~= < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
     ("address in 8400", "expected .. (a range such as 8400..8402) or a set in { } (column 16)\n  address in 8400\n                 ^"),
     (
         "slave == 1 slave",
