@@ -27,7 +27,8 @@ from dataclasses import dataclass
 from typing import TextIO
 
 from dissector import __version__
-from dissector.app.live_options import PARITY_CHOICES, positive_int, positive_seconds
+from dissector.app.live_options import PARITY_CHOICES, positive_seconds
+from dissector.framing.linespeed import baud_rate  # the range vw3-decode --baud takes
 from dissector.errors import ExitStatus, LiveError, UsageError
 
 PROG = "vw3-extcap"
@@ -166,7 +167,7 @@ def build_parser() -> Parser:
     protocol.add_argument("--fifo", metavar="PATH", help="where the pcapng stream goes")
     options = parser.add_argument_group("capture options (the interface's dialog)")
     options.add_argument("--port", help="serial port or pyserial URL (default: the interface's port)")
-    options.add_argument("--baud", type=positive_int, default=19200, help="default 19200")
+    options.add_argument("--baud", type=baud_rate, default=19200, help="50..4,000,000, default 19200")
     options.add_argument("--parity", type=str.upper, choices=PARITY_CHOICES, default="E", help="default E")
     options.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
     options.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")

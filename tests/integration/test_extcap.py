@@ -341,6 +341,11 @@ def test_capture_filter_check_and_bad_arguments() -> None:
         (("--extcap-interface", IFACE, "--capture"), "--capture needs --fifo PATH"),
         (("--extcap-interface", IFACE, "--capture", "--fifo", "x", "--parity", "X"),
          "argument --parity: invalid choice: 'X' (choose from 'E', 'N', 'O') (see vw3-extcap --help)"),
+        # The speeds vw3-decode --baud takes, no others (a 1-baud capture used to start).
+        (("--extcap-interface", IFACE, "--capture", "--fifo", "x", "--baud", "1"),
+         "argument --baud: 1 baud is no Modbus serial line speed (50..4,000,000) (see vw3-extcap --help)"),
+        (("--extcap-interface", IFACE, "--capture", "--fifo", "x", "--baud", "99999999"),
+         "argument --baud: 99999999 baud is no Modbus serial line speed (50..4,000,000) (see vw3-extcap --help)"),
         (("--extcap-interface", IFACE, "--capture", "--fifo", "x", "--detect-seconds", "0"),
          "argument --detect-seconds: '0' must be a number of seconds more than 0 (see vw3-extcap --help)"),
         ((), "give --extcap-interfaces, or --extcap-interface NAME with --extcap-dlts, --extcap-config, "
