@@ -82,17 +82,6 @@ local DATA = {
       [255] = "ON",
     },
   },
-  ["limits"] = {
-    ["read_bits"] = { 1, 2000 },
-    ["read_registers"] = { 1, 125 },
-    ["write_coils"] = { 1, 1968 },
-    ["write_registers"] = { 1, 123 },
-    ["rw_read"] = { 1, 125 },
-    ["rw_write"] = { 1, 121 },
-    ["fifo_count"] = { 0, 31 },
-    ["max_adu"] = 256,
-    ["max_slave"] = 247,
-  },
   ["framing"] = {
     ["max_adu"] = 256,
     ["min_adu"] = 4,
@@ -3751,7 +3740,7 @@ local RULES = DATA.rules
 local FUNCTIONS = DATA.functions or {}
 local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
-local LIMITS = DATA.limits or {}
+local LIMITS = RULES.limits
 local NOT_BROADCAST = DATA.not_broadcast or {}
 
 -- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
@@ -3965,7 +3954,7 @@ local function lifter(rule, limit, layout)
   else add("local many = %s", quantity and field(quantity) or "nil") end
   add("f.start, f.quantity = first, many")
   for _, check in ipairs(rule.checks) do -- (test "above": the high bound only; its text names no low one)
-    local value, low, high = field(check.field), table.unpack(RULES.limits[check.limit or limit])
+    local value, low, high = field(check.field), table.unpack(LIMITS[check.limit or limit])
     local outside = check.test == "above" and format("%s > %d", value, high)
       or format("%s < %d or %s > %d", value, low, value, high)
     add("if %s then warn(f, say(%q, { what = %q, value = %s, low = %d, high = %d })) end", outside, check.test,

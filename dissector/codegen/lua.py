@@ -84,14 +84,13 @@ def _lua_string(text: str) -> str:
 
 def plugin_data() -> dict[str, Any]:
     """Everything the plugin takes from the Python side, as plain data."""
-    limits = {key: list(value) if isinstance(value, list) else value for key, value in SPEC.limits.items()}
     data: dict[str, Any] = {
         "functions": SPEC.functions,
         "exceptions": SPEC.exceptions,
         "diagnostics": SPEC.diagnostics,
         "device_id_objects": SPEC.device_id_objects,
         "names": SPEC.names,  # value names of layout fields (u8{NAMES}: the run indicator)
-        "limits": limits,
+        # (the spec limits: in the rule data, DATA.rules.limits, codegen/rules_lua.py)
         "framing": {
             "max_adu": framer.MAX_ADU,
             "min_adu": framer.MIN_ADU,
