@@ -2784,9 +2784,8 @@ local function crc_ok_at(b, i, length)
   crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
   return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
-
-M.concat, M.crc16, M.crc_ok_at, M.crc_scan = concat, crc16, crc_ok_at, crc_scan
-M.crc_string_ok, M.floor, M.format = crc_string_ok, floor, format
+M.concat, M.crc16, M.crc_ok_at, M.crc_scan, M.crc_string_ok = concat, crc16, crc_ok_at, crc_scan, crc_string_ok
+M.floor, M.format = floor, format
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -2904,10 +2903,9 @@ end
 local function possible_start(code)
   return AS_REQUEST[code] ~= nil
 end
-
 M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE, M.data_bytes = NEED, NOISE, NOISE_ITEM_MAX, NONE, data_bytes
-M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
+M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.data_bytes = NO_INTERPRETATION, REQUEST, RESPONSE, data_bytes
 M.interpretations, M.possible_start = interpretations, possible_start
 end
 
@@ -3029,10 +3027,8 @@ local function emit(s, frame, items)
   items[#items + 1] = frame
   expect_after(s, frame)
 end
-
-M.GLITCH = GLITCH
-M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
-M.lane, M.time_at = lane, time_at
+M.GLITCH, M.add_noise, M.boundary_at, M.emit, M.expect_after = GLITCH, add_noise, boundary_at, emit, expect_after
+M.flush_noise, M.lane, M.time_at = flush_noise, lane, time_at
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -3437,9 +3433,8 @@ local function run_rtu(s, final, items)
   end
   return i
 end
-
-M.fast_interpretation, M.rtu_frame = fast_interpretation, rtu_frame
-M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good
+M.fast_interpretation, M.rtu_frame, M.run_rtu = fast_interpretation, rtu_frame, run_rtu
+M.whole_crc_good = whole_crc_good
 end
 
 -- ---- vw3.ascii: lua/src/ascii.lua ----
@@ -3588,7 +3583,6 @@ local function run_ascii(s, final, items)
   end
   return i
 end
-
 M.MODE_SAMPLE, M.detect_mode, M.run_ascii = MODE_SAMPLE, detect_mode, run_ascii
 end
 
@@ -3719,7 +3713,6 @@ feed = function(s, bytes, time, boundary, final, built)
   if final then flush_noise(s, items) end
   return items
 end
-
 M.feed, M.feed_whole, M.takes_whole = feed, feed_whole, takes_whole
 end
 
@@ -4100,12 +4093,11 @@ local function decode_frame(f)
     warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))
   end
 end
-
-M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say, M.fill = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say, fill
-M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
-M.NOT_BROADCAST, M.bit_at, M.decode_frame = NOT_BROADCAST, bit_at, decode_frame
-M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
-M.release_run, M.u16, M.warn = release_run, u16, warn
+M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
+M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.START_FROM_REQUEST = LIFT_OF, LIMITS, NOT_BROADCAST, START_FROM_REQUEST
+M.bit_at, M.decode_frame, M.exception_name, M.fill = bit_at, decode_frame, exception_name, fill
+M.function_name, M.register_at, M.release_run, M.say, M.u16 = function_name, register_at, release_run, say, u16
+M.warn = warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -4165,7 +4157,6 @@ local function pair(st, f)
     note(f, UNMATCHED)
   end
 end
-
 M.pair = pair
 end
 
@@ -4543,9 +4534,11 @@ local function parse_map_choice(text, profile_names)
   return layers, errors
 end
 
-M.parse_map, M.python_repr = parse_map, python_repr
+-- (for the conformance runner, which reads map texts: the modules read files, load_map)
+M.parse_map = parse_map
 M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
 M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
+M.python_repr = python_repr
 end
 
 -- ---- vw3.device: lua/src/device.lua ----
@@ -4766,11 +4759,10 @@ local function interpret_wide(row, first, second)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
-
-M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
-M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
-M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.layered_rows, M.PLC_LABELS = layered_rows, PLC_LABELS
+M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
+M.consecutive, M.device_for, M.device_of, M.has_note = consecutive, device_for, device_of, has_note
+M.interpret, M.interpret_wide, M.layered_rows, M.note = interpret, interpret_wide, layered_rows, note
+M.span_name = span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -5004,10 +4996,8 @@ local function annotate_list(st, f, device, registers, read)
   end
   story.tell(f)
 end
-
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.plc_base, M.remember_writes, M.story, M.track = plc_base, remember_writes, story, track
-M.words_at = words_at
+M.plc_base, M.remember_writes, M.story, M.track, M.words_at = plc_base, remember_writes, story, track, words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -5180,10 +5170,8 @@ local function span_label(f, device)
   f.span_label = quantity <= 1 and first or first .. ".." .. labels[f.start + quantity - 1]
 end
 lane.span_label = span_label
-
 M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
-M.explain_objects, M.refused_registers = explain_objects, refused_registers
-M.span_label = span_label
+M.explain_objects, M.refused_registers, M.span_label = explain_objects, refused_registers, span_label
 end
 
 -- ---- vw3.selection: lua/src/selection.lua ----
@@ -5454,7 +5442,6 @@ local function device_now(st, f, b)
   if config.auto[f.slave] then return select_device(st, f, b) end
   return device_for(st, f.slave)
 end
-
 M.device_now = device_now
 end
 
@@ -5581,7 +5568,6 @@ local function register_view(st, f, run, b, index)
   end
   return view
 end
-
 M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
 M.new_state, M.register_view, M.string_of = new_state, register_view, string_of
 end
@@ -5799,9 +5785,8 @@ function pack.settle(st)
   end
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
-
-M.KIND_NUMBER, M.NUMBER_KIND, M.pack, M.put_flat = KIND_NUMBER, NUMBER_KIND, pack, put_flat
-M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot
+M.KIND_NUMBER, M.NUMBER_KIND, M.bit_slot, M.crc_slot = KIND_NUMBER, NUMBER_KIND, bit_slot, crc_slot
+M.head_slot, M.pack, M.put_flat, M.run_slot, M.span_slot = head_slot, pack, put_flat, run_slot, span_slot
 end
 
 -- ---- vw3.records: lua/src/records.lua ----
@@ -6341,7 +6326,6 @@ function lane.again(st)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end
 end
-
 M.dissect_record, M.finish, M.finish_safely, M.take_items = dissect_record, finish, finish_safely, take_items
 end
 
@@ -6465,9 +6449,8 @@ function proto.init()
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
-
-M.apply_prefs, M.ex, M.PARAMETER_FIELDS, M.pf, M.proto, M.stream_state = apply_prefs, ex, PARAMETER_FIELDS, pf, proto,
-  stream_state
+M.PARAMETER_FIELDS, M.apply_prefs, M.ex, M.pf, M.proto = PARAMETER_FIELDS, apply_prefs, ex, pf, proto
+M.stream_state = stream_state
 end
 
 -- ---- vw3.tree: lua/src/tree.lua ----
@@ -6830,9 +6813,8 @@ local function show_noise(item, tvb, tree, full, k, expert_text)
   add_text(t, ex.noise, expert_text)
   return t
 end
-
-M.add_register, M.add_text, M.show_frame, M.show_noise = add_register, add_text, show_frame, show_noise
-M.count_text, M.summary, M.unseen = count_text, summary, unseen
+M.add_register, M.add_text, M.count_text, M.show_frame = add_register, add_text, count_text, show_frame
+M.show_noise, M.summary, M.unseen = show_noise, summary, unseen
 end
 
 -- ---- vw3.show: lua/src/show.lua ----
@@ -7027,7 +7009,6 @@ local function dissect_now(st, tvb, pinfo, number)
   end
   return lane.decode(st, bytes, n, time, number)
 end
-
 M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
 M.tree_mode = tree_mode
 end

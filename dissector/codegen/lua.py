@@ -357,9 +357,27 @@ def _code_only(text: str) -> str:
     return _STRING_OR_COMMENT.sub(" ", text)
 
 
-def module_exports(text: str) -> list[str]:
-    """The names a module exports: the `M.NAME` its `M.a, M.b = a, b` lines set (refused: a line that
-    exports a name under another, `M.a, M.b = b, a`)."""
+def _declared(code: str) -> tuple[set[str], set[str]]:
+    """The names a module's code (no comments, no strings) declares: at its top level (`local function
+    NAME`, `local NAME, ... =` at a line's start), and anywhere (locals, parameters, loop variables)."""
+    top = set(re.findall(r"^local function (\w+)", code, re.M))
+    for names in re.findall(r"^local ([\w, ]+?)(?: =|$)", code, re.M):
+        top.update(part.strip() for part in names.split(","))
+    anywhere = set()
+    for names in re.findall(r"\bfunction\s*[\w.:]*\s*\(([^)]*)\)|\blocal\s+(?!function\b)([\w, ]+)|\bfor\s+([\w, ]+?)\s*(?:=|in\b)", code):
+        anywhere.update(part.strip() for group in names for part in group.split(","))
+    return top - {"M", "_ENV"}, anywhere
+
+
+def _uses(code: str) -> set[str]:
+    """The names a module's code names as names (a name followed by `=` is assigned or a table
+    constructor's key: no use)."""
+    return set(_TOKEN.findall(code + " ")) - {""}
+
+
+def own_exports(text: str) -> list[str]:
+    """The `M.NAME` a module's own `M.a, M.b = a, b` lines set: a name only the tests use, a table it builds
+    (refused: a line that exports a name under another, `M.a, M.b = b, a`)."""
     names = []
     for line in text.split("\n"):
         if line.startswith("M.") and " = " in line:
@@ -371,21 +389,42 @@ def module_exports(text: str) -> list[str]:
     return names
 
 
+def module_exports(text: str, later: list[str]) -> list[str]:
+    """The names a module shares, sorted: its own export lines' (own_exports), and its top-level locals
+    that a later module (`later`: their texts) names without declaring them anywhere, but for one that
+    would hide from them a global of Lua's or Wireshark's."""
+    top, _ = _declared(_code_only(text))
+    free: set[str] = set()
+    for other in later:
+        code = _code_only(other)
+        free |= _uses(code) - _declared(code)[1]
+    return sorted(((top & free) - LUA_GLOBALS) | set(own_exports(text)))
+
+
+def export_lines(text: str, names: list[str]) -> list[str]:
+    """The lines, at the module's end, that put in the shared table of names those of `names` its own lines
+    do not: `M.a, M.b = a, b`, as many names a line as fit in 116 characters."""
+    lines: list[str] = []
+    for name in (name for name in names if name not in own_exports(text)):
+        if lines:
+            targets, values = lines[-1].split(" = ")
+            longer = f"{targets}, M.{name} = {values}, {name}"
+            if len(longer) <= 116:
+                lines[-1] = longer
+                continue
+        lines.append(f"M.{name} = {name}")
+    return lines
+
+
 def module_bindings(name: str, text: str, available: set[str]) -> list[str]:
     """The lines that bind as locals what module `name` uses of the globals and of the earlier modules'
     exports (`available`), in sorted order, after its `local _ENV = M` line. Refused: a module that
     assigns such a name (it would assign the local, not the shared name)."""
     code = _code_only(text)
-    declared = set(re.findall(r"^local function (\w+)", code, re.M))
-    for names in re.findall(r"^local ([\w, ]+?)(?: =|$)", code, re.M):
-        declared.update(part.strip() for part in names.split(","))
     # (a global the module also names as a local or a parameter somewhere, as `base`, is left unbound: the
     # binding would stand for either)
-    anywhere = set()
-    for names in re.findall(r"\bfunction\s*[\w.:]*\s*\(([^)]*)\)|\blocal\s+(?!function\b)([\w, ]+)|\bfor\s+([\w, ]+?)\s*(?:=|in\b)", code):
-        anywhere.update(part.strip() for group in names for part in group.split(","))
-    # (a name followed by `=` is assigned or a table constructor's key: no use)
-    used = {token for token in _TOKEN.findall(code + " ")} & (available | (LUA_GLOBALS - anywhere))
+    declared, anywhere = _declared(code)
+    used = _uses(code) & (available | (LUA_GLOBALS - anywhere))
     used -= declared | {"M", "_ENV"}
     depth = 0  # (open brackets at a line's start: a `key = value` inside a table constructor is no assignment)
     for line in code.split("\n"):
@@ -418,18 +457,23 @@ def render_plugin(src: Path = SRC) -> str:
     header, body = "\n".join(lines[:cut]), "\n".join(lines[cut:]).lstrip("\n")
     parts = [header, "", render_data()]
     available = {"DATA"}  # (main.lua puts it in the shared table of names, vw3.env)
-    for name in module_names(main_text):
+    names = module_names(main_text)
+    texts = []
+    for name in names:
         path = src / f"{name}.lua"
         try:
-            text = path.read_text(encoding="utf-8")
+            texts.append(path.read_text(encoding="utf-8"))
         except OSError as error:
             raise GenerateError(f"{path}: {error.strerror or error} (listed in {MAIN})") from None
+    for index, (name, text) in enumerate(zip(names, texts)):
         lines = text.rstrip("\n").split("\n")
-        at = next((index for index, line in enumerate(lines) if line.startswith(ENV_LINE)), None)
+        at = next((number for number, line in enumerate(lines) if line.startswith(ENV_LINE)), None)
         if at is None:
-            raise GenerateError(f"{path}: no `{ENV_LINE}` line (after which the generator binds what it uses)")
+            raise GenerateError(f"{src / name}.lua: no `{ENV_LINE}` line (after which the generator binds what it uses)")
         lines[at + 1:at + 1] = module_bindings(name, text, available)
-        available.update(module_exports(text))
+        exports = module_exports(text, texts[index + 1:])
+        lines += export_lines(text, exports)
+        available.update(exports)
         parts.append(MODULE_LINE.format(name=name))
         parts.append(f'package.preload["vw3.{name}"] = function(...)')
         parts.append("\n".join(lines))

@@ -112,6 +112,3 @@ local function register_view(st, f, run, b, index)
   end
   return view
 end
-
-M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
-M.new_state, M.register_view, M.string_of = new_state, register_view, string_of

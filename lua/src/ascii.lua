@@ -140,5 +140,3 @@ local function run_ascii(s, final, items)
   end
   return i
 end
-
-M.MODE_SAMPLE, M.detect_mode, M.run_ascii = MODE_SAMPLE, detect_mode, run_ascii

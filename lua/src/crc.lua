@@ -152,6 +152,3 @@ local function crc_ok_at(b, i, length)
   crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
   return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
-
-M.concat, M.crc16, M.crc_ok_at, M.crc_scan = concat, crc16, crc_ok_at, crc_scan
-M.crc_string_ok, M.floor, M.format = crc_string_ok, floor, format

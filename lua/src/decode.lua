@@ -370,9 +370,3 @@ local function decode_frame(f)
     warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))
   end
 end
-
-M.CONFIRMED, M.LIFT_OF, M.START_FROM_REQUEST, M.say, M.fill = CONFIRMED, LIFT_OF, START_FROM_REQUEST, say, fill
-M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS, M.LIMITS = DIAGNOSTICS, EXCEPTIONS, FUNCTIONS, LIMITS
-M.NOT_BROADCAST, M.bit_at, M.decode_frame = NOT_BROADCAST, bit_at, decode_frame
-M.exception_name, M.function_name, M.register_at = exception_name, function_name, register_at
-M.release_run, M.u16, M.warn = release_run, u16, warn

@@ -211,8 +211,3 @@ local function interpret_wide(row, first, second)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
-
-M.address_name, M.address_runs, M.consecutive = address_name, address_runs, consecutive
-M.build_device, M.device_for, M.device_of, M.span_name = build_device, device_for, device_of, span_name
-M.has_note, M.interpret, M.interpret_wide, M.note = has_note, interpret, interpret_wide, note
-M.layered_rows, M.PLC_LABELS = layered_rows, PLC_LABELS

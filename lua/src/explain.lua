@@ -160,7 +160,3 @@ local function span_label(f, device)
   f.span_label = quantity <= 1 and first or first .. ".." .. labels[f.start + quantity - 1]
 end
 lane.span_label = span_label
-
-M.check_request, M.diagnostics_note, M.explain_exception = check_request, diagnostics_note, explain_exception
-M.explain_objects, M.refused_registers = explain_objects, refused_registers
-M.span_label = span_label

@@ -119,5 +119,3 @@ feed = function(s, bytes, time, boundary, final, built)
   if final then flush_noise(s, items) end
   return items
 end
-
-M.feed, M.feed_whole, M.takes_whole = feed, feed_whole, takes_whole

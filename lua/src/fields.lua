@@ -97,6 +97,3 @@ function proto.init()
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
-
-M.apply_prefs, M.ex, M.PARAMETER_FIELDS, M.pf, M.proto, M.stream_state = apply_prefs, ex, PARAMETER_FIELDS, pf, proto,
-  stream_state

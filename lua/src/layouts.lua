@@ -110,8 +110,3 @@ end
 local function possible_start(code)
   return AS_REQUEST[code] ~= nil
 end
-
-M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE, M.data_bytes = NEED, NOISE, NOISE_ITEM_MAX, NONE, data_bytes
-M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE = NO_INTERPRETATION, REQUEST, RESPONSE
-M.interpretations, M.possible_start = interpretations, possible_start

@@ -367,6 +367,5 @@ local function parse_map_choice(text, profile_names)
   return layers, errors
 end
 
-M.parse_map, M.python_repr = parse_map, python_repr
-M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
-M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
+-- (for the conformance runner, which reads map texts: the modules read files, load_map)
+M.parse_map = parse_map

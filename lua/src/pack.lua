@@ -207,6 +207,3 @@ function pack.settle(st)
   end
   for index = #list, kept + 1, -1 do list[index] = nil end
 end
-
-M.KIND_NUMBER, M.NUMBER_KIND, M.pack, M.put_flat = KIND_NUMBER, NUMBER_KIND, pack, put_flat
-M.head_slot, M.crc_slot, M.span_slot, M.run_slot, M.bit_slot = head_slot, crc_slot, span_slot, run_slot, bit_slot

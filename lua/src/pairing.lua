@@ -52,5 +52,3 @@ local function pair(st, f)
     note(f, UNMATCHED)
   end
 end
-
-M.pair = pair

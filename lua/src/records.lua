@@ -524,5 +524,3 @@ function lane.again(st)
   for key in pairs(st) do st[key] = nil end
   for key, value in pairs(fresh) do st[key] = value end
 end
-
-M.dissect_record, M.finish, M.finish_safely, M.take_items = dissect_record, finish, finish_safely, take_items

@@ -393,6 +393,3 @@ local function run_rtu(s, final, items)
   end
   return i
 end
-
-M.fast_interpretation, M.rtu_frame = fast_interpretation, rtu_frame
-M.run_rtu, M.whole_crc_good = run_rtu, whole_crc_good

@@ -260,5 +260,3 @@ local function device_now(st, f, b)
   if config.auto[f.slave] then return select_device(st, f, b) end
   return device_for(st, f.slave)
 end
-
-M.device_now = device_now

@@ -184,6 +184,3 @@ local function dissect_now(st, tvb, pinfo, number)
   end
   return lane.decode(st, bytes, n, time, number)
 end
-
-M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
-M.tree_mode = tree_mode

@@ -223,7 +223,3 @@ local function annotate_list(st, f, device, registers, read)
   end
   story.tell(f)
 end
-
-M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.plc_base, M.remember_writes, M.story, M.track = plc_base, remember_writes, story, track
-M.words_at = words_at

@@ -113,7 +113,3 @@ local function emit(s, frame, items)
   items[#items + 1] = frame
   expect_after(s, frame)
 end
-
-M.GLITCH = GLITCH
-M.add_noise, M.boundary_at, M.emit, M.expect_after, M.flush_noise = add_noise, boundary_at, emit, expect_after, flush_noise
-M.lane, M.time_at = lane, time_at

@@ -349,6 +349,3 @@ local function show_noise(item, tvb, tree, full, k, expert_text)
   add_text(t, ex.noise, expert_text)
   return t
 end
-
-M.add_register, M.add_text, M.show_frame, M.show_noise = add_register, add_text, show_frame, show_noise
-M.count_text, M.summary, M.unseen = count_text, summary, unseen
