@@ -279,7 +279,7 @@ class Sinks:
                 clamped = pcap.clamped_total
                 whose = "records' times" if clamped > 1 else "record's time"
                 self.env.stderr.write(
-                    f"{PROG}: warning: -w {shown(self.write_path)}: {clamped:,} {whose} outside "
+                    f"{PROG}: warning: -w {shown(self.write_path)}: {clamped} {whose} outside "
                     f"what {pcap.format} holds, written at the nearest time it holds\n"
                 )
         if self.watch is not None:

@@ -38,6 +38,7 @@ from dissector.errors import ExitStatus, LiveError, PortVanished
 from dissector.model import Chunk, Frame, Item, Stamp, up_to_frames
 from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
+from dissector.render.describe import count_text
 from dissector.sources.serial_port import reason
 
 IDLE_FLUSH = 0.020
@@ -111,7 +112,7 @@ class CaptureFiles:
             with contextlib.suppress(OSError, ValueError):
                 info = os.fstat(self._raw.fileno())
                 if stat.S_ISREG(info.st_mode):  # (a device such as /dev/full keeps nothing to count)
-                    kept = f"; {path} keeps {info.st_size:,} bytes"
+                    kept = f"; {path} keeps {count_text(info.st_size, 'byte')}"
         self.close()
         raise LiveError(f"cannot write {path}: {error.strerror or error}{kept}", ExitStatus.ERROR)
 

@@ -34,6 +34,7 @@ from typing import Any, Callable
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming
 from dissector.model import Item, Kind, stamped_before
 from dissector.framing.linespeed import LineSettings
+from dissector.render.describe import count_text
 from dissector.render.stats_store import Coarse
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
@@ -429,9 +430,9 @@ class BusTiming:
         settings = self.settings
         typed = settings.source == "--baud"
         what = f"--baud {settings.baud}" if typed else f"{settings.baud} baud ({settings.source})"
-        items = "frames would overlap the one before" if count > 1 else "frame would overlap the one before"
         hint = "" if typed or "--baud" in settings.source else " (--baud sets it)"
-        return f"{what}: {count:,} {items} at {settings.baud} baud: the line is faster?{hint}"
+        return (f"{what}: {count_text(count, 'frame')} would overlap the one before at {settings.baud} baud: "
+                f"the line is faster?{hint}")
 
     def render_plain(self, clock: Any = None) -> str:
         """The `Bus timing` section of --stats; `clock(seconds)` shows a time as the time column."""
@@ -477,9 +478,9 @@ class BusTiming:
                 )
         backwards = data["backwards"]
         if backwards["items"] or backwards["responses"]:
-            lines.append(f"time going backwards, left out of the timing: {_items(backwards['items'], 'item')} stamped "
-                         f"earlier than the item before, {_items(backwards['responses'], 'response')} earlier than "
-                         "its request")
+            lines.append(f"time going backwards, left out of the timing: {count_text(backwards['items'], 'item')} "
+                         f"stamped earlier than the item before, {count_text(backwards['responses'], 'response')} "
+                         "earlier than its request")
         if data["outages"]:
             lines.append("outages (two or more consecutive requests unanswered)")
             for outage in data["outages"]:
@@ -490,10 +491,6 @@ class BusTiming:
         else:
             lines.append("outages: none")
         return "\n".join(lines) + "\n"
-
-
-def _items(count: int, what: str) -> str:
-    return f"{count:,} {what}" + ("s" if count != 1 else "")
 
 
 def time_text(time_format: str, first: float | None) -> Any:

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import BinaryIO, Protocol
 
 from dissector.model import Item, Noise
+from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
 from dissector.render.pcapwriter import SNAPLEN, PcapWriter
 
@@ -304,7 +305,7 @@ class CaptureOutput:
         whole = max(0, records.whole - 1) if records is not None else 0  # the first write is the file header
         size = records.on_disk if records is not None else 0
         where = "standard output" if self.path == STDOUT else (self.paths[-1] if self.paths else self.path)
-        return f"{where} keeps {whole:,} whole record{'' if whole == 1 else 's'} ({size:,} bytes)"
+        return f"{where} keeps {count_text(whole, 'whole record')} ({count_text(size, 'byte')})"
 
     @property
     def clamped_total(self) -> int:
