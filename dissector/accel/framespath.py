@@ -6,16 +6,32 @@ unanswered request), which the decoder and the annotator then take as usual; eve
 damage, broadcasts, late answers, silences inside frames...) the Python stages frame themselves, as the
 timed summary path hands it over (timedpath.py). The renderers see the same items either way:
 tests/differential/test_timed_outputs.py holds the outputs byte-identical to VW3_PURE_PYTHON=1.
+
+With -c N the Python stages (app/paths.py decode_chunks) stop after the chunk whose items reach the Nth
+frame: everything that chunk gave (frames after the Nth too) went through the decoder, the annotator,
+the bus timing and the report, nothing after it. The engine frames many transactions in one run, so
+here it is given only bytes that cannot hold the Nth frame: a frame is at least MIN_ADU bytes and
+items do not share bytes, so while the bytes given and not yet come out as items are fewer than
+MIN_ADU times the frames still to show, no frame among them can be the Nth (_Counted.room). Blocks are
+built up to that size and a chunk (the source reads no record, nor warns of one, that the Python stages
+would not read) and cut at a chunk before it; at the first chunk that might hold the Nth frame the
+Python stages take the stream, as TimedPath.finish takes it, and go on chunk by chunk as decode_chunks
+does. tests/differential/test_count_engine.py and test_count_cut.py hold -c N byte-identical to
+VW3_PURE_PYTHON=1.
 """
 from __future__ import annotations
 
 import struct
 import weakref
+from bisect import bisect_left
 from collections.abc import Callable, Iterable
+from itertools import chain
 from typing import Any
 
 from dissector.accel import fastsummary
+from dissector.accel.records import Block
 from dissector.decode.fields import decode_frame
+from dissector.framing.rules import MIN_ADU
 from dissector.model import Chunk, Frame, Item, Kind, Stamp
 from dissector.pipeline import Dissector
 from dissector.render import bustiming
@@ -40,19 +56,113 @@ def decode(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: 
         if not sinks.done:  # -c N: nothing after the frame that reached it
             sinks.accept(items)
 
+    counted = _Counted(dissector, sinks, warn) if sinks.frames_left is not None else None
+    if counted is not None:
+        accept = counted.accept
     path = timedpath.TimedPath(dissector, None, Clock(), accept, lambda records: None, dissector.pairer.timeout)
     path.sync_clock = False  # (the engine writes no time column: the sinks' clock sees every item)
     path.engine.judge = _NOTHING
     path.engine.frames = True
     path.write_lines = _Frames(path, annotate, accept)
+    if counted is not None:
+        counted.run(chunks, path)
+        return True
     for block in blocks_from_chunks(chunks, dissector.framer.timing):
         path.feed(block)
         warn()
-        if sinks.done:  # -c N reached: the rest is not read (as decode_chunks)
-            return True
     path.finish()
     warn()
     return True
+
+
+class _Counted:
+    """-c N: the engine given bytes that cannot hold the Nth frame, the Python stages the rest (above)."""
+
+    def __init__(self, dissector: Dissector, sinks: Any, warn: Callable[[], None]) -> None:
+        self.dissector = dissector
+        self.sinks = sinks
+        self.warn = warn
+        self.given = 0  # bytes given to the engine's path
+        self.out = 0  # bytes of the items it gave out
+
+    def accept(self, items: list[Item]) -> None:
+        for item in items:
+            self.out += item.length
+        if not self.sinks.done:
+            self.sinks.accept(items)
+
+    def room(self) -> int:
+        """Bytes that may be given to the engine's path with no frame among them the Nth."""
+        return self.sinks.frames_left * MIN_ADU - (self.given - self.out)
+
+    def run(self, chunks: Iterable[Chunk], path: Any) -> None:
+        from dissector.accel.records import BlockBuilder, blocks_from_chunks
+
+        timing = self.dissector.framer.timing
+        builder = BlockBuilder(timing, getattr(chunks, "streaming", False))
+        most = builder.block_bytes
+        builder.block_bytes = max(1, min(most, self.room()))
+        blocks = blocks_from_chunks(chunks, timing, builder)
+        for block in blocks:
+            rest = self._engine(block, path)
+            if rest is not None:
+                builder.block_bytes = 1  # a chunk at a time from now on, as decode_chunks reads them
+                self._python(rest, blocks, path)
+                return
+            self.warn()
+            builder.block_bytes = max(1, min(most, self.room()))
+        path.finish()
+        self.warn()
+
+    def _engine(self, block: Block, path: Any) -> Block | None:
+        """The block's chunks to the engine's path while they cannot hold the Nth frame; the rest, if any."""
+        while True:
+            starts = block.starts
+            room = self.room()
+            count = bisect_left(starts, starts[0] + room)  # chunks starting within the room
+            if count == len(starts) and len(block.data) < room:
+                self.given += len(block.data)
+                path.feed(block)
+                return None
+            count -= 1  # the last of them may end past it
+            if count <= 0:
+                return block
+            head, block = _split(block, count)
+            self.given += len(head.data)
+            path.feed(head)
+
+    def _python(self, block: Block, blocks: Iterable[Block], path: Any) -> None:
+        """The Python stages from the chunk that may hold the Nth frame on, as decode_chunks: chunk by
+        chunk, up to the chunk that reaches it."""
+        dissector = self.dissector
+        if self.given:  # (else they have all the stream already)
+            if not path.python:
+                path._hand_over()
+            dissector.framer.pause_at(None)
+            for index in range(path.fed, len(path.starts)):
+                if self._chunk(path._chunk(index)):
+                    return
+        for each in chain([block], blocks):
+            for index in range(len(each.starts)):
+                if self._chunk(each.chunk(index)):
+                    return
+        self.accept(dissector.finish())
+        self.warn()
+
+    def _chunk(self, chunk: Chunk) -> bool:
+        self.accept(self.dissector.feed(chunk))
+        self.warn()
+        return self.sinks.done
+
+
+def _split(block: Block, count: int) -> tuple[Block, Block]:
+    """A block's first `count` chunks, and the rest."""
+    cut = block.starts[count] - block.starts[0]
+    kept = block.chunks
+    return (Block(block.data[:cut], block.starts[:count], block.times[:count], block.flags[:count], block.exact,
+                  kept[:count]),
+            Block(block.data[cut:], block.starts[count:], block.times[count:], block.flags[count:], block.exact,
+                  kept[count:]))
 
 
 class _Frames:

@@ -145,11 +145,12 @@ class BlockBuilder:
         yield from self.chunks(reader.records(Input(inp.stream, inp.name, prefix=buffer[position:])))
 
 
-def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
-    """The blocks of a source (sources/reader.py Source): pcap records in bulk, other chunks as they come."""
+def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None) -> Iterator[Block]:
+    """The blocks of a source (sources/reader.py Source): pcap records in bulk, other chunks as they come
+    (`builder`: one whose block_bytes its caller sets between blocks, framespath.py's -c N)."""
     from dissector.accel import fastsummary
 
-    builder = BlockBuilder(timing, getattr(source, "streaming", False))
+    builder = builder or BlockBuilder(timing, getattr(source, "streaming", False))
     head, rest = source.parts()
     try:
         yield from builder.chunks(head)
@@ -162,9 +163,10 @@ def source_blocks(source: Any, timing: LineTiming) -> Iterator[Block]:
         source.finished()
 
 
-def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming) -> Iterator[Block]:
+def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming,
+                       builder: BlockBuilder | None = None) -> Iterator[Block]:
     """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...)."""
     if hasattr(chunks, "parts"):
-        yield from source_blocks(chunks, timing)
+        yield from source_blocks(chunks, timing, builder)
         return
-    yield from BlockBuilder(timing).chunks(chunks)
+    yield from (builder or BlockBuilder(timing)).chunks(chunks)

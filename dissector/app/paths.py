@@ -69,9 +69,7 @@ def decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissec
             return  # pcap, pcapng: the compiled path
         if counted_only(sinks) and timedpath.count_input(chunks, dissector, sinks, annotate, warn):
             return  # --stats, --report of a pcap counted in the engine
-        # -c N: the Python stages, which stop at the Nth frame; the engine frames, decodes and annotates
-        # slices of 256 transactions, and the bus timing and device profiles of --stats and --report
-        # would cover the frames after the Nth (N frames are quickly read either way).
-        if sinks.frames_left is None and framespath.decode(chunks, dissector, sinks, annotate, warn):
+        # (-c N: the engine is given only bytes that cannot hold the Nth frame, framespath._Counted)
+        if framespath.decode(chunks, dissector, sinks, annotate, warn):
             return  # framed in C, shown by Python
     decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))

@@ -1,7 +1,8 @@
 """-c N with the compiled engine covers the first N frames only, as VW3_PURE_PYTHON=1 (and tshark -c):
 --stats' bus timing (load, gaps, turnaround) and device profiles must not see the frames after the Nth,
-which the engine's frames path (accel/framespath.py) frames, decodes and annotates 256 transactions at
-a time (app/paths.py keeps -c on the Python stages)."""
+which the engine's frames path (accel/framespath.py) frames many transactions at a time: it is given
+only the bytes that cannot hold the Nth frame, the Python stages the rest (framespath._Counted;
+test_count_cut.py)."""
 from __future__ import annotations
 
 import json
