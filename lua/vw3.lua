@@ -2634,11 +2634,22 @@ package.preload["vw3.crc"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.crc"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, collectgarbage, math, pcall, string, table = DATA, collectgarbage, math, pcall, string, table
+local DATA, collectgarbage, math, pcall, setmetatable = DATA, collectgarbage, math, pcall, setmetatable
+local string, table = string, table
 
 local floor = math.floor
 local format = string.format
 local concat = table.concat
+
+-- A table that makes each entry on its first use, make(key), and keeps it (texts and labels shown again
+-- and again: string.format costs more than a look-up).
+local function made_once(make)
+  return setmetatable({}, { __index = function(made, key)
+    local value = make(key)
+    made[key] = value
+    return value
+  end })
+end
 
 -- The collector in larger steps, and a new cycle at 1.5 times the memory in use rather than 2: the
 -- records of a capture stay for its whole length, the default small steps went over that large heap
@@ -2785,7 +2796,7 @@ local function crc_ok_at(b, i, length)
   return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
 M.concat, M.crc16, M.crc_ok_at, M.crc_scan, M.crc_string_ok = concat, crc16, crc_ok_at, crc_scan, crc_string_ok
-M.floor, M.format = floor, format
+M.floor, M.format, M.made_once = floor, format, made_once
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -4549,27 +4560,23 @@ package.preload["vw3.device"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat = AUTO, NO_INTERPRETATION, PROFILES, SELECTION, concat
-local floor, format, ipairs, math, next, pairs, say = floor, format, ipairs, math, next, pairs, say
-local setmetatable, tonumber = setmetatable, tonumber
+local floor, format, ipairs, made_once, math, next, pairs = floor, format, ipairs, made_once, math, next, pairs
+local say, tonumber = say, tonumber
 
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
 -- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536
 -- a base: addresses are 16 bits).
-local PLC_LABELS = setmetatable({}, { __index = function(all, base)
-  local labels = setmetatable({}, { __index = function(labels, address)
+local PLC_LABELS = made_once(function(base)
+  return made_once(function(address)
     local digits = math.max(5, #format("%d", base))
     local power = 10 ^ (digits - 1)
     local number = base + address
     if number > (floor(base / power) + 1) * power - 1 then
       number, digits = base * 10 - 9 + address, digits + 1
     end
-    local label = format("%0" .. digits .. "d", number)
-    labels[address] = label
-    return label
-  end })
-  all[base] = labels
-  return labels
-end })
+    return format("%0" .. digits .. "d", number)
+  end)
+end)
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
@@ -4678,11 +4685,7 @@ local function has_note(f, text)
   return false
 end
 
-local FIXED = setmetatable({}, { __index = function(formats, decimals)
-  local text = "%." .. decimals .. "f"
-  formats[decimals] = text
-  return text
-end })
+local FIXED = made_once(function(decimals) return "%." .. decimals .. "f" end)
 
 -- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
 -- and all).
@@ -6464,8 +6467,8 @@ local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, 
 local NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS
 local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
 local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
-local function_name, inferred_registers, ipairs, pf, proto = function_name, inferred_registers, ipairs, pf, proto
-local python_repr, register_view, say, setmetatable, string = python_repr, register_view, say, setmetatable, string
+local function_name, inferred_registers, ipairs, made_once = function_name, inferred_registers, ipairs, made_once
+local pf, proto, python_repr, register_view, say, string = pf, proto, python_repr, register_view, say, string
 local tonumber, tostring = tonumber, tostring
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
@@ -6613,11 +6616,7 @@ end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
-local DECIMAL = setmetatable({}, { __index = function(texts, number)
-  local text = format("%d", number)
-  texts[number] = text
-  return text
-end })
+local DECIMAL = made_once(function(number) return format("%d", number) end)
 
 local function summary(f)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)

@@ -8,6 +8,16 @@ local floor = math.floor
 local format = string.format
 local concat = table.concat
 
+-- A table that makes each entry on its first use, make(key), and keeps it (texts and labels shown again
+-- and again: string.format costs more than a look-up).
+local function made_once(make)
+  return setmetatable({}, { __index = function(made, key)
+    local value = make(key)
+    made[key] = value
+    return value
+  end })
+end
+
 -- The collector in larger steps, and a new cycle at 1.5 times the memory in use rather than 2: the
 -- records of a capture stay for its whole length, the default small steps went over that large heap
 -- again and again (bench/README.md), and the default pause let the garbage of a cycle double the peak.

@@ -7,21 +7,17 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- naming.plc_label: `40001 + address` up to 49999, then 6-digit references (`400001 + address`); coil
 -- references keep their zeros (00001). PLC_LABELS[base][address], each label made once (at most 65,536
 -- a base: addresses are 16 bits).
-local PLC_LABELS = setmetatable({}, { __index = function(all, base)
-  local labels = setmetatable({}, { __index = function(labels, address)
+local PLC_LABELS = made_once(function(base)
+  return made_once(function(address)
     local digits = math.max(5, #format("%d", base))
     local power = 10 ^ (digits - 1)
     local number = base + address
     if number > (floor(base / power) + 1) * power - 1 then
       number, digits = base * 10 - 9 + address, digits + 1
     end
-    local label = format("%0" .. digits .. "d", number)
-    labels[address] = label
-    return label
-  end })
-  all[base] = labels
-  return labels
-end })
+    return format("%0" .. digits .. "d", number)
+  end)
+end)
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
@@ -130,11 +126,7 @@ local function has_note(f, text)
   return false
 end
 
-local FIXED = setmetatable({}, { __index = function(formats, decimals)
-  local text = "%." .. decimals .. "f"
-  formats[decimals] = text
-  return text
-end })
+local FIXED = made_once(function(decimals) return "%." .. decimals .. "f" end)
 
 -- A value times its row's scale, rounded to the decimals the scale was written with, and its text (unit
 -- and all).

@@ -149,11 +149,7 @@ end
 
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
-local DECIMAL = setmetatable({}, { __index = function(texts, number)
-  local text = format("%d", number)
-  texts[number] = text
-  return text
-end })
+local DECIMAL = made_once(function(number) return format("%d", number) end)
 
 local function summary(f)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
