@@ -1064,16 +1064,38 @@ static int taken(Engine *e, Py_ssize_t *pos, const FrameRef *q, const FrameRef *
     return STEP_DONE;
 }
 
+/* A request the spec has no server answer ([pairing] never_answered: FC8 04 Force Listen Only Mode): a note
+ * of pairing.py's, the Python stages'. */
+static int never_answered_request(const uint8_t *f, Py_ssize_t length) {
+    for (int k = 0; k < NEVER_ANSWERED; k++)
+        if (f[1] == never_answered[k][0] && length >= 6 && word(f + 2) == never_answered[k][1]) return 1;
+    return 0;
+}
+
+/* Does answer a repeat of request q what the spec has it echo ([pairing] echo: FC8's sub-function)? One that
+ * does not answers nothing (pairing.py echoes). */
+static int echoes(const uint8_t *b, const FrameRef *q, const FrameRef *a) {
+    for (int k = 0; k < ECHOES; k++) {
+        Py_ssize_t count = answer_echo[k][1];
+        if (q->function == answer_echo[k][0])
+            return a->kind != KIND_RESPONSE ||
+                   (q->length >= 4 + count && a->length >= 4 + count && !memcmp(b + q->at + 2, b + a->at + 2, count));
+    }
+    return 1;
+}
+
 /* The frame after request q, expected as its answer: FRAME_OK (in *a: its answer, or the next request when
  * it was not answered), FRAME_NEED, or FRAME_HANDOVER, an answer later than the timeout too (no answer:
- * pairing.py's warning) or stamped before q (time going backwards: pairing.py's warning). A caller that
+ * pairing.py's warning), stamped before q (time going backwards: pairing.py's warning) or not echoing q (an
+ * answer to nothing: pairing.py's note). A caller that
  * does not take the transaction takes the expectation back. */
 static int answer_to(Engine *e, const uint8_t *b, Py_ssize_t n, const FrameRef *q, FrameRef *a) {
     e->expect_slave = q->slave;
     e->expect_function = q->function;
     int found = next_frame(e, b, q->at + q->length, n, a, q->decided);
-    if (found == FRAME_OK && a->kind != KIND_REQUEST && q->timed && a->timed &&
-        (a->ns < q->ns || (e->tl.timeout >= 0 && stamp_seconds(a->ns, q->ns) > e->tl.timeout)))
+    if (found == FRAME_OK && a->kind != KIND_REQUEST &&
+        ((q->timed && a->timed && (a->ns < q->ns || (e->tl.timeout >= 0 && stamp_seconds(a->ns, q->ns) > e->tl.timeout)))
+         || !echoes(b, q, a)))
         return FRAME_HANDOVER;
     return found;
 }
@@ -1085,7 +1107,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     FrameRef q, a;
     int found = next_frame(e, b, *pos, n, &q, e->tl.decided);
     if (found != FRAME_OK) return found == FRAME_NEED ? STEP_NEED : STEP_HANDOVER;
-    if (q.kind != KIND_REQUEST || q.slave == 0 || (e->judge != NULL && judged(e, &q))) return STEP_HANDOVER;
+    /* (a broadcast, a request no answer follows: awaiting nothing, pairing.py's) */
+    if (q.kind != KIND_REQUEST || q.slave == 0 || never_answered_request(b + q.at, q.length) ||
+        (e->judge != NULL && judged(e, &q)))
+        return STEP_HANDOVER;
     Slave *s = NULL;
     Lifted r, answer;
     if (e->judge == NULL) { /* (judged: framed and paired only) */

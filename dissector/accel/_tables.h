@@ -67,6 +67,13 @@ static const char *const subfunction_names[SUBFUNCTIONS] = {
     "Clear Overrun Counter and Flag",
 };
 
+/* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and
+ * {function, value of a request's first data word} that no answer follows. */
+#define ECHOES 1
+static const unsigned char answer_echo[ECHOES][2] = {{8, 2}};
+#define NEVER_ANSWERED 1
+static const unsigned short never_answered[NEVER_ANSWERED][2] = {{8, 4}};
+
 /* Frame length, CRC included: `fixed` when not 0, else by `special`: RULE_SCAN, a CRC scan from `extra`
  * bytes (table.Scan); the others read the byte (`width` 1) or big-endian word (2) at `position`:
  * RULE_COUNTED `extra` + it; RULE_SELECT the rule selected_rule[`chosen`] where it is `value`, else

@@ -25,6 +25,7 @@ from rich.live import Live
 from rich.table import Table
 from rich.text import Text
 
+from dissector.protocol.rules import awaits_answer
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.render.describe import count_text
 from dissector.render.jsonout import item_to_dict
@@ -73,7 +74,7 @@ class LiveStats:
             counts.crc_errors += 1
         if frame.kind is Kind.REQUEST:
             counts.requests += 1
-            if not frame.broadcast:
+            if awaits_answer(frame):  # (not a broadcast, nor FC8 04: no answer or unanswered ever settles those)
                 self._open.append(frame)
         elif frame.kind is Kind.EXCEPTION:
             counts.exceptions += 1

@@ -120,6 +120,16 @@ def render_header() -> str:
         *(f"    {c_rules.c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
         "};",
         "",
+        "/* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and",
+        " * {function, value of a request's first data word} that no answer follows. */",
+        f"#define ECHOES {len(SPEC.echo)}",
+        "static const unsigned char answer_echo[ECHOES][2] = {"
+        + ", ".join(f"{{{code}, {count}}}" for code, count in sorted(SPEC.echo.items())) + "};",
+        f"#define NEVER_ANSWERED {sum(map(len, SPEC.never_answered.values()))}",
+        "static const unsigned short never_answered[NEVER_ANSWERED][2] = {"
+        + ", ".join(f"{{{code}, {value}}}" for code, values in sorted(SPEC.never_answered.items())
+                    for value in sorted(values)) + "};",
+        "",
         "/* Frame length, CRC included: `fixed` when not 0, else by `special`: RULE_SCAN, a CRC scan from `extra`",
         " * bytes (table.Scan); the others read the byte (`width` 1) or big-endian word (2) at `position`:",
         " * RULE_COUNTED `extra` + it; RULE_SELECT the rule selected_rule[`chosen`] where it is `value`, else",

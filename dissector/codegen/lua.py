@@ -134,6 +134,8 @@ def plugin_data() -> dict[str, Any]:
         # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
         "crc_table": crc._TABLE,
         "not_broadcast": SPEC.not_broadcast,
+        # [pairing]: data bytes an answer echoes by function, values of a request's first data word no answer follows
+        "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered},
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
         # The display's texts: a provisional frame's mark in the summary and its line in -V.

@@ -1,10 +1,15 @@
 """Pairing: link each response to the request it answers, and say which requests went unanswered.
 
 Runs after the framer, which has already classified every frame. A request to slave 0 is a broadcast
-and expects no answer. A request followed by another request (or by the end of the capture) was not
-answered. With `hold=True` (files), a request is held back until the next frame tells whether it was
-answered, so its own line can say so, as tshark's second pass would. With `hold=False`, every item
-is released at once, and the next request carries the note instead.
+and expects no answer. A request the spec has no server answer (data/modbus.toml [pairing]
+never_answered: FC8 04 Force Listen Only Mode) is noted as such and never unanswered, though an
+exception (from a server that does not support it) still answers it. A response answers the open
+request of its slave and function when it echoes what the spec has it echo ([pairing] echo: an FC8
+answer's sub-function); one that does not answers nothing. A request followed by another request (or
+by the end of the capture) was not answered. With `hold=True` (files), a request is held back until
+the next frame tells whether it was answered, so its own line can say so, as tshark's second pass
+would. With `hold=False`, every item is released at once, and the next request carries the note
+instead.
 
 The timeout rule (with timestamps and a timeout): a request is answered only by a response whose first
 byte came at most `timeout` seconds after the request's, as a Modbus master gives up at its response
@@ -21,7 +26,7 @@ from __future__ import annotations
 import weakref
 
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
-from dissector.protocol.rules import text
+from dissector.protocol.rules import awaits_answer, echoes, text
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 
@@ -39,6 +44,9 @@ class Pairer:
         self._timeout = timeout
         self._pending: Frame | None = None
         self._pending_released = False
+        # The open request is one the spec has no server answer (never_answered): only an exception can
+        # answer it, and without one it is not unanswered.
+        self._answerless = False
         self._queue: list[Item] = []
         self._count = 0
 
@@ -73,7 +81,7 @@ class Pairer:
         out: list[Item] = []
         pending = self._pending
         if pending is not None and self._late(pending, now):
-            pending.unanswered = True
+            self._no_answer(pending)
             self._pending = None
             self._release(out)
         return out
@@ -89,7 +97,7 @@ class Pairer:
     def finish(self) -> list[Item]:
         out: list[Item] = []
         pending = self._pending
-        if pending is not None:
+        if pending is not None and not self._answerless:
             if self._pending_released:
                 pending.unanswered = True
             else:
@@ -105,6 +113,14 @@ class Pairer:
         return out
 
     # -- internals ---------------------------------------------------------------------------
+    def _no_answer(self, pending: Frame) -> bool:
+        """The open request's wait ended with no answer: it is unanswered (True), unless the spec has no
+        server answer it."""
+        if self._answerless:
+            return False
+        pending.unanswered = True
+        return True
+
     def _release(self, out: list[Item]) -> None:
         count = self._count
         for queued in self._queue:
@@ -125,20 +141,23 @@ class Pairer:
         if pending is not None and self._late(pending, item.time):
             # Past the timeout: the master gave up, this frame cannot be the answer.
             late, pending = pending, None
-            late.unanswered = True
+            self._no_answer(late)
             self._pending = None
             self._release(out)
         if item.kind is Kind.REQUEST:
-            if pending is not None:
-                pending.unanswered = True
-                if self._pending_released:
-                    item.notes.append(text("unanswered", number=pending.number))
+            if pending is not None and self._no_answer(pending) and self._pending_released:
+                item.notes.append(text("unanswered", number=pending.number))
             self._pending = None
             self._release(out)
             if item.slave == 0:
                 item.broadcast = True
                 self._enqueue(item, out)
                 return
+            # (awaiting nothing: the framer takes the next frame of its function for a request; an
+            # exception, which says what it is, may still answer it)
+            self._answerless = not awaits_answer(item)
+            if self._answerless:
+                item.notes.append(text("never_answered"))
             self._pending = item
             self._pending_released = False
             self._queue.append(item)
@@ -147,22 +166,23 @@ class Pairer:
             return
         # A response or an exception.
         backwards: Frame | None = None
-        if pending is not None and pending.slave == item.slave and pending.function == item.function:
+        if (pending is not None and pending.slave == item.slave and pending.function == item.function
+                and echoes(pending, item)):
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
             time, asked = item.time, pending.time
             if time is not None and asked is not None and stamped_before(time, asked):
                 backwards = pending
-        elif late is not None and late.slave == item.slave and late.function == item.function:
+        elif (late is not None and late.slave == item.slave and late.function == item.function
+                and echoes(late, item)):
             assert self._timeout is not None and item.time is not None and late.time is not None
             item.warnings.append(text(
                 "late", delay_ms=(item.time - late.time) * 1000, number=late.number, timeout_ms=self._timeout * 1000
             ))
         else:
             if pending is not None:
-                pending.unanswered = True
-                if self._pending_released:
+                if self._no_answer(pending) and self._pending_released:
                     item.notes.append(text("unanswered", number=pending.number))
                 self._pending = None
             item.notes.append(text("unmatched"))

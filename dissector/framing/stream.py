@@ -6,6 +6,7 @@ from abc import ABC, abstractmethod
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, silence_before
 from dissector.model import Chunk, Frame, Item, Kind, Noise
+from dissector.protocol.rules import awaits_answer
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
 # What a short low pulse on an idle line reads as: a start bit, k zero bits, then ones (FF << k). A bus
@@ -190,7 +191,8 @@ class StreamFramer(ABC):
         return self._glitch_runs >= GLITCHY_AFTER
 
     def _emit(self, frame: Frame, items: list[Item]) -> None:
-        """A frame is found: close the noise before it, and expect the answer to a request."""
+        """A frame is found: close the noise before it, and expect the answer to a request that awaits one
+        (protocol/rules.py awaits_answer: not a broadcast, not FC8 04 Force Listen Only Mode)."""
         noise = self._noise
         if noise:
             if self._glitches_only and len(noise) <= GLITCH_RUN and self._noise_offset and not self._noise_cut:
@@ -202,7 +204,7 @@ class StreamFramer(ABC):
         self._noise_cut = False
         items.append(frame)
         if frame.kind is Kind.REQUEST:
-            self._expect = (frame.slave, frame.function) if frame.slave != 0 else None
+            self._expect = (frame.slave, frame.function) if awaits_answer(frame) else None
         else:
             self._expect = None
 

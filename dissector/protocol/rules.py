@@ -12,6 +12,7 @@ import string
 from dataclasses import dataclass
 from enum import StrEnum
 
+from dissector.model import Frame, Kind
 from dissector.protocol.spec import SPEC
 
 REQUEST_PREFIX = "request."  # a window value taken from the request a frame answers
@@ -184,3 +185,24 @@ def text(key: str, **values: object) -> str:
 def echo_text(names: list[str]) -> str:
     """`the response's address and value differ from the request's`."""
     return text("echo", fields=" and ".join(names), verb="differs" if len(names) == 1 else "differ")
+
+
+# [pairing], by function code (the framer's expectation and decode/pairing.py follow it).
+NEVER_ANSWERED = SPEC.never_answered  # function -> values of a request's first data word no answer follows
+ECHO = SPEC.echo  # function -> data bytes an answer repeats from its request
+
+
+def awaits_answer(frame: Frame) -> bool:
+    """Does a request await an answer: not a broadcast, not one the spec has no server answer? The framer's
+    expectation and the pairing (decode/pairing.py) follow it."""
+    values = NEVER_ANSWERED.get(frame.function)
+    if values is None:
+        return frame.slave != 0
+    pdu = frame.pdu
+    return frame.slave != 0 and not (len(pdu) >= 3 and pdu[1] << 8 | pdu[2] in values)
+
+
+def echoes(request: Frame, answer: Frame) -> bool:
+    """Does a normal answer repeat what the spec has it repeat of its request (an FC8 sub-function)?"""
+    count = ECHO.get(request.function)
+    return count is None or answer.kind is not Kind.RESPONSE or request.pdu[1 : 1 + count] == answer.pdu[1 : 1 + count]

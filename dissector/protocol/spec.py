@@ -31,6 +31,10 @@ class Spec:
     layouts: dict[str, list[str]]  # each layout's fields (protocol/shapes.py, layouts.py)
     parts: dict[str, list[str]]  # the fields of the parts layouts repeat or switch to
     names: dict[str, dict[int, str]]  # value names of u8{NAMES} fields
+    # [pairing], by function code: the data bytes an answer echoes from its request (FC8: 2, the sub-function),
+    # the values of a request's first data word no answer follows (FC8: 4, Force Listen Only Mode)
+    echo: dict[int, int]
+    never_answered: dict[int, frozenset[int]]
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -65,6 +69,8 @@ def load_spec() -> Spec:
         layouts={str(key): [str(field) for field in value] for key, value in data["layouts"].items()},
         parts={str(key): [str(field) for field in value] for key, value in data["parts"].items()},
         names={str(key): _int_keys(value) for key, value in data["names"].items()},
+        echo={int(key): int(value) for key, value in data["pairing"]["echo"].items()},
+        never_answered={int(key): frozenset(value) for key, value in data["pairing"]["never_answered"].items()},
     )
 
 

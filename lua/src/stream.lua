@@ -81,9 +81,19 @@ local function add_noise(s, start, stop, reason, items)
   end
 end
 
--- What the framer expects after a frame: the answer to a request (not to a broadcast), else nothing.
+-- Does a request await an answer (protocol/rules.py awaits_answer): not a broadcast, not one the spec has no
+-- server answer (DATA.pairing.never_answered, by its first data word: FC8 04 Force Listen Only Mode).
+local NEVER_ANSWERED = DATA.pairing.never_answered
+local function awaits_answer(frame)
+  local values = NEVER_ANSWERED[frame.fn]
+  if values == nil or frame.data_len < 2 then return frame.slave ~= 0 end
+  local b, at = frame.b, frame.data_at
+  return frame.slave ~= 0 and not values[b[at] * 256 + b[at + 1]]
+end
+
+-- What the framer expects after a frame: the answer to a request that awaits one, else nothing.
 local function expect_after(s, frame)
-  if frame.kind == REQUEST and frame.slave ~= 0 then
+  if frame.kind == REQUEST and awaits_answer(frame) then
     s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
   else
     s.expect = nil

@@ -298,7 +298,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
   -- dissection, which is never a later pass's, and asks pinfo nothing).
-  local ends_unanswered = f.kind == REQUEST and st.pending == f and pinfo ~= nil and pinfo.visited
+  -- (a request the spec has no server answer, pairing's answerless, is never unanswered)
+  local ends_unanswered = f.kind == REQUEST and st.pending == f and not f.answerless and pinfo ~= nil and pinfo.visited
   -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
   if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
     add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")

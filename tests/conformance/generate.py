@@ -78,6 +78,9 @@ def _crafted() -> list[tuple[str, bytes]]:
         ("fc24 fifo count past the end", f("011804DE") + f("011800060005" + "0001" * 2)),
         ("fc17 byte count below 2", f("0111") + f("01110100")),
         ("fc8 unknown sub-function", f("010800630000") + f("010800630000")),
+        # (data/modbus.toml [pairing]: 04 is never answered, an answer echoes its request's sub-function)
+        ("fc8 force listen only mode", f("010800040000") + f("010800010000") * 2),
+        ("fc8 answer sub-function differs", f("010800010000") + f("010800020007") + f("010800020000") * 2),
         ("fc17 run indicator", f("0111") + f("011103011241")),
         ("fc17 version text", f("0111") + f("01110512FF56312E")),
         ("fc12 event log", f("010C") + f("010C080000000100022040")),

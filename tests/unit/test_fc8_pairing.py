@@ -1,0 +1,182 @@
+"""FC8 pairing as the spec states it (data/modbus.toml [pairing]): Force Listen Only Mode (08/04) is never
+answered (Modbus Application Protocol 6.8.1: "No response is returned"), so it awaits nothing, is noted
+as such and is never unanswered, though an exception (a server that does not support it) still answers
+it; an FC8 answer echoes its request's sub-function, so one that does not
+answers nothing. Before, an 08/04 took the next FC8 request of its slave for its answer and every later
+diagnostic of that slave shifted by one. Exact outputs for exact bytes, the summary, -V, --json, --stats
+and --report, under the compiled engine and the Python stages (VW3_PURE_PYTHON=1) alike."""
+from __future__ import annotations
+
+import io
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+from dissector.app.cli import Environment, run
+from dissector.render.pcapwriter import PcapWriter
+from helpers import rtu
+
+T0 = 1767225600.0
+LISTEN_ONLY = rtu("01 08 0004 0000")  # 01 08 00 04 00 00 A1 CA
+RESTART = rtu("01 08 0001 0000")  # 01 08 00 01 00 00 B1 CB
+REGISTER_QUERY, REGISTER_ANSWER = rtu("01 08 0002 0000"), rtu("01 08 0002 0007")
+REFUSED = rtu("01 88 01")  # exception 1: a server that does not support 04 says so
+NOTE = "no response expected: the spec's server returns none"
+
+
+def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
+    if pure:
+        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
+    else:
+        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+        from dissector.accel import fastsummary
+        assert fastsummary.available() and fastsummary.built()
+    out, err = io.StringIO(), io.StringIO()
+    assert run([*argv, "-n"], Environment(io.BytesIO(b""), out, err, False, False)) == 0
+    assert err.getvalue() == ""
+    return out.getvalue()
+
+
+def both(argv: list[str], monkeypatch: pytest.MonkeyPatch) -> str:
+    """The output, the same under the engine and the Python stages."""
+    engine, pure = decode(argv, monkeypatch, False), decode(argv, monkeypatch, True)
+    assert engine == pure
+    return engine
+
+
+def hexes(*frames: bytes) -> list[str]:
+    return [argument for frame in frames for argument in ("--hex", frame.hex(" "))]
+
+
+def capture(path: Path, frames: list[bytes], step: float = 0.010) -> Path:
+    with path.open("wb") as stream:
+        writer = PcapWriter(stream, flush=False)
+        for index, frame in enumerate(frames):
+            writer.write(frame, T0 + step * index)
+    return path
+
+
+def lines(text: str) -> list[str]:
+    return [re.sub(r"\s+", " ", line.strip()) for line in text.splitlines()]
+
+
+def test_listen_only_awaits_nothing_summary(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The reviewer's bytes: 08/04, then 08/01 and its echo.
+    assert lines(both(hexes(LISTEN_ONLY, RESTART, RESTART), monkeypatch)) == [
+        f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
+        "2 - 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "3 - 1 response Diagnostics 01h Restart Communications Option = 0 [#2] CRC ok",
+    ]
+
+
+def test_listen_only_then_another_sub_function(monkeypatch: pytest.MonkeyPatch) -> None:
+    # 08/04 then 08/02 and its answer: the 08/02 is a request, never the 08/04's answer.
+    assert lines(both(hexes(LISTEN_ONLY, REGISTER_QUERY, REGISTER_ANSWER), monkeypatch)) == [
+        f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
+        "2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] CRC ok",
+    ]
+
+
+def test_an_exception_still_answers_listen_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The exception answers the 08/04; an 08/04 at the end of the capture is not unanswered either.
+    assert lines(both(hexes(LISTEN_ONLY, REFUSED, RESTART, RESTART, LISTEN_ONLY), monkeypatch)) == [
+        f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
+        "2 - 1 exception Diagnostics: exception 1 (Illegal Function) [#1] CRC ok",
+        "3 - 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "4 - 1 response Diagnostics 01h Restart Communications Option = 0 [#3] CRC ok",
+        f"5 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
+    ]
+
+
+def test_answer_with_another_sub_function_answers_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
+    # 08/01 then an 08/02 answer: not 08/01's answer (it would echo 0001); the next 08/02 pair is unaffected.
+    assert lines(both(hexes(RESTART, REGISTER_ANSWER, REGISTER_QUERY, REGISTER_ANSWER), monkeypatch)) == [
+        "1 - 1 request Diagnostics 01h Restart Communications Option = 0 [no response] CRC ok",
+        "2 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [no request] "
+        "[response without a matching request in the capture] CRC ok",
+        "3 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        "4 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#3] CRC ok",
+    ]
+
+
+def test_summary_of_a_capture(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    assert lines(both([str(pcap)], monkeypatch)) == [
+        f"1 0.000000 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
+        "2 0.010000 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "3 0.020000 1 response Diagnostics 01h Restart Communications Option = 0 [#2, 10.0 ms] CRC ok",
+    ]
+
+
+def test_detail(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    detail = both([str(pcap), "-V"], monkeypatch)
+    frames = detail.split("\n\n")
+    assert frames[0].splitlines()[0] == "Frame 1: 8 bytes at offset 0, request (RTU)"
+    assert frames[0].splitlines()[-1] == f"    Note: {NOTE}"
+    assert "Response in frame" not in frames[0] and "no response" not in frames[0].replace(NOTE, "")
+    assert frames[1].splitlines()[0] == "Frame 2: 8 bytes at offset 8, request (RTU)"
+    assert frames[1].splitlines()[-1] == "    Response in frame: 3"
+    assert frames[2].splitlines()[0] == "Frame 3: 8 bytes at offset 16, response (RTU)"
+    assert frames[2].splitlines()[-2:] == ["    Request in frame: 2", "    Response time: 10.000 ms"]
+
+
+def test_json(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    records = [json.loads(line) for line in both([str(pcap), "--json"], monkeypatch).splitlines()]
+    picked = [{key: record.get(key) for key in
+               ("frame", "kind", "subfunction", "unanswered", "request_frame", "response_frame", "notes")}
+              for record in records]
+    assert picked == [
+        {"frame": 1, "kind": "request", "subfunction": 4, "unanswered": False, "request_frame": None,
+         "response_frame": None, "notes": [NOTE]},
+        {"frame": 2, "kind": "request", "subfunction": 1, "unanswered": False, "request_frame": None,
+         "response_frame": 3, "notes": []},
+        {"frame": 3, "kind": "response", "subfunction": 1, "unanswered": None, "request_frame": 2,
+         "response_frame": None, "notes": []},
+    ]
+    assert records[2]["response_time"] == 0.01
+
+
+def test_stats(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    stats = json.loads(both([str(pcap), "--stats", "--json"], monkeypatch))
+    assert stats["functions"] == [{
+        "slave": 1, "function": 8, "function_name": "Diagnostics", "requests": 2, "broadcasts": 0,
+        "responses": 1, "exceptions": {}, "unanswered": 0, "crc_errors": 0,
+        "response_time": {"count": 1, "min": 0.01, "median": 0.01, "p95": 0.01, "max": 0.01},
+    }]
+    table = both([str(pcap), "--stats"], monkeypatch)
+    assert "    1  8 Diagnostics    2     1                     0        0\n" in table
+
+
+def test_stats_poll_cycle(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A master that sends 08/04 every 100 ms: three requests, none a miss, none unanswered.
+    pcap = capture(tmp_path / "listen.pcap", [LISTEN_ONLY] * 3, step=0.100)
+    stats = json.loads(both([str(pcap), "--stats", "--json"], monkeypatch))
+    (function,) = stats["functions"]
+    assert (function["requests"], function["responses"], function["unanswered"]) == (3, 0, 0)
+    assert function["response_time"] is None
+    (poll,) = stats["poll_cycle"]
+    assert (poll["slave"], poll["function"], poll["count"], poll["no_answer"], poll["misses"]) == (1, 8, 3, 0, 0)
+    assert poll["period"] == pytest.approx(0.1)
+    assert stats["bus"]["outages"] == []
+
+
+def test_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    pcap = capture(tmp_path / "listen.pcap", [LISTEN_ONLY, RESTART, RESTART, LISTEN_ONLY, LISTEN_ONLY], step=0.100)
+    made = []
+    for pure in (False, True):
+        page = tmp_path / f"report{pure}.html"
+        decode([str(pcap), "--report", str(page)], monkeypatch, pure)
+        found = re.search(r'<script type="application/json" id="report-data">(.*?)</script>',
+                          page.read_text(encoding="utf-8"), re.S)
+        assert found is not None
+        made.append(json.loads(found.group(1)))
+    assert made[0] == made[1]
+    data = made[0]
+    assert data["event_counts"]["unanswered"] == 0
+    assert [event for event in data["events"] if event[1] == "unanswered"] == []
