@@ -3477,7 +3477,8 @@ package.preload["vw3.ascii"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, add_noise, crc16, emit, floor, flush_noise = DATA, add_noise, crc16, emit, floor, flush_noise
-local format, interpretations, ipairs, math, time_at = format, interpretations, ipairs, math, time_at
+local format, interpretations, ipairs, math, string = format, interpretations, ipairs, math, string
+local time_at = time_at
 -- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -3494,8 +3495,31 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
+-- Whether the sample holds a whole ASCII frame: ':', hex pairs (slave, function and LRC at least), LF (after
+-- CR, or alone), its LRC good (the binary bytes and the LRC sum to 0 modulo 256), whatever comes before it.
+-- (protocol/ascii.py holds_frame: one pass, the hex digits after a ':' looked at once)
+local function holds_frame(sample)
+  local n, byte = #sample, string.byte
+  local at = sample:find(":", 1, true)
+  while at ~= nil do
+    local stop = at + 1
+    while stop <= n and HEX[byte(sample, stop)] do stop = stop + 1 end
+    local digits = stop - at - 1
+    local ends = byte(sample, stop) == LF or (byte(sample, stop) == CR and byte(sample, stop + 1) == LF)
+    if ends and digits % 2 == 0 and digits >= 2 * MIN_BINARY then
+      local sum = 0
+      for k = at + 1, stop - 1, 2 do sum = sum + HEX[byte(sample, k)] * 16 + HEX[byte(sample, k + 1)] end
+      if sum % 256 == 0 then return true end
+    end
+    at = sample:find(":", stop, true) -- (the digits hold no ':')
+  end
+  return false
+end
+
 local function detect_mode(sample)
-  -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
+  -- 'ascii' when the sample holds a whole ASCII frame (whatever noise comes before it), or when a ':' is
+  -- followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF (protocol/ascii.py).
+  if holds_frame(sample) then return "ascii" end
   local colon = sample:find(":", 1, true)
   if colon == nil or colon == #sample then return "rtu" end
   for k = colon + 1, math.min(colon + 2, #sample) do -- (the one or two bytes after it)
@@ -7072,13 +7096,62 @@ local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, 
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_for, device_now, dissect_now, ex = detect_mode, device_for, device_now, dissect_now, ex
 local feed, finish_all, flush_noise, ipairs, math = feed, finish_all, flush_noise, ipairs, math
-local new_state, pack, package, pcall, pf, proto = new_state, pack, package, pcall, pf, proto
+local new_state, pack, package, pairs, pcall, pf, proto = new_state, pack, package, pairs, pcall, pf, proto
 local record_time, show_record, stream_state, take_items = record_time, show_record, stream_state, take_items
 local tostring, tree_mode, wtap = tostring, tree_mode, wtap
+
+-- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
+-- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
+-- noise before the first frame as a record of its own). Until that many have come, each record is held:
+-- its bytes and time kept, shown as bytes that continue. The record that completes them, or the end of
+-- the first pass, chooses the mode, and the held records are decoded first, in order, as if it had
+-- been known from the start (st.held: the records held, and the sample).
+local function decode_held(st)
+  local held = st.held
+  if held == nil then return end
+  st.held = nil
+  st.mode = detect_mode(held.sample)
+  for index = 1, #held do
+    local number, bytes, abs_ts = held[index][1], held[index][2], held[index][3]
+    -- (dissect_now reads the bytes and the time through stand-ins for the tvb and pinfo, gone since)
+    local ok, result = pcall(dissect_now, st, { raw = function() return bytes end }, { abs_ts = abs_ts }, number)
+    if not ok then result = { length = #bytes, error = tostring(result) } end
+    st.records[number] = result
+    if st.whole_record ~= nil or st.unpacked[1] ~= nil then pack.settle(st) end
+  end
+end
+
+-- A record's first dissection while its stream's mode is not chosen: the record kept in its place while
+-- it is held, else nil (the mode chosen with this record's bytes: it is decoded as any other).
+local function hold(st, tvb, pinfo, number, n)
+  local held = st.held
+  if held == nil then
+    held = { sample = "" }
+    st.held = held
+  end
+  local bytes = tvb:raw()
+  held.sample = held.sample .. bytes:sub(1, MODE_SAMPLE - #held.sample)
+  if #held.sample < MODE_SAMPLE then
+    held[#held + 1] = { number, bytes, pinfo.abs_ts }
+    local record = { length = n, waiting = n }
+    st.records[number] = record
+    return record
+  end
+  decode_held(st)
+  return nil
+end
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
+  if record == nil and st.mode == nil then
+    local n = tvb:len()
+    record = n > 0 and hold(st, tvb, pinfo, number, n) or nil
+    if record ~= nil then
+      show_record(st, record, tvb, pinfo, tree, n)
+      return n
+    end
+  end
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
@@ -7106,6 +7179,8 @@ local function dissect_records(st, tvb, pinfo, tree)
     return n
   end
   if not state.finished and pinfo.visited then
+    for _, other in pairs(udp_states) do decode_held(other) end
+    decode_held(state)
     finish_all(number)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end

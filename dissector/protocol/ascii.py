@@ -11,12 +11,40 @@ _ALPHABET = _HEX_DIGITS | {COLON, CR, LF}
 ASCII_SHARE = 0.9  # share of ASCII-mode characters in a sample that makes it ASCII mode
 
 
-def detect_mode(first_bytes: bytes) -> str:
-    """'ascii' when the bytes look like Modbus ASCII (a ':' then hex pairs, almost nothing else).
+def holds_frame(sample: bytes) -> bool:
+    """Whether the sample holds a whole Modbus ASCII frame: ':', hex pairs (slave, function and LRC at
+    least), LF (after CR, or alone: text files lose their CRs), its LRC good (the binary bytes and the
+    LRC sum to 0 modulo 256).
 
-    Binary RTU data is spread over all 256 byte values; a sample where nine bytes in ten are hex
-    digits, ':', CR or LF, with a ':' followed by hex, is ASCII mode.
+    Whatever comes before it: a capture that starts mid-frame or after line noise. Binary RTU data
+    practically never holds one (a ':', six or more hex digits, LF, and the sum: less than one chance
+    in 10^13 at each byte of random data). One pass over the sample: each ':' is looked at once, and the
+    hex digits after it are not looked at again.
     """
+    at = sample.find(b":")
+    while at >= 0:
+        stop = at + 1
+        while stop < len(sample) and sample[stop] in _HEX_DIGITS:
+            stop += 1
+        digits = stop - at - 1
+        ends = sample[stop : stop + 1] == b"\n" or sample[stop : stop + 2] == b"\r\n"
+        if ends and digits % 2 == 0 and digits >= 2 * MIN_BINARY:
+            if sum(bytes.fromhex(sample[at + 1 : stop].decode("ascii"))) % 256 == 0:
+                return True
+        at = sample.find(b":", stop)  # (the digits hold no ':')
+    return False
+
+
+def detect_mode(first_bytes: bytes) -> str:
+    """'ascii' when the first bytes of a stream look like Modbus ASCII, else 'rtu'.
+
+    ASCII when they hold a whole ASCII frame with a good LRC (holds_frame), whatever noise comes
+    before it; or, where no frame is whole in them (a first frame longer than the sample, bad LRCs), when
+    a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF (binary RTU
+    data is spread over all 256 byte values).
+    """
+    if holds_frame(first_bytes):
+        return "ascii"
     colon = first_bytes.find(b":")
     if colon < 0:
         return "rtu"

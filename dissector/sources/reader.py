@@ -227,10 +227,9 @@ def _start(
         sample, complete = _sniff(raw_input)
     except OSError as error:
         raise SourceError(f"{name}: cannot read: {error.strerror or error}") from None
+    warning = None
     if fmt is None:
         format, warning = detect_format(sample, complete)
-        if warning is not None:
-            log.warn("format", f"{name}: {warning}")
     else:
         format = FORMATS[fmt]
     if not sample:
@@ -254,7 +253,10 @@ def _start(
                     break
             mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
     if format == "raw" and mode == "ascii" and fmt is None:
-        format = "ascii"
+        # (text that starts mid-frame or after line noise: ASCII by its frames, which no warning contradicts)
+        format, warning = "ascii", None
+    if warning is not None:
+        log.warn("format", f"{name}: {warning}")
     source = Source(chunks, head, format, mode, name, log, closer)
     source.streaming = not _regular(stream)
     return source

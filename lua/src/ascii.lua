@@ -19,8 +19,31 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
+-- Whether the sample holds a whole ASCII frame: ':', hex pairs (slave, function and LRC at least), LF (after
+-- CR, or alone), its LRC good (the binary bytes and the LRC sum to 0 modulo 256), whatever comes before it.
+-- (protocol/ascii.py holds_frame: one pass, the hex digits after a ':' looked at once)
+local function holds_frame(sample)
+  local n, byte = #sample, string.byte
+  local at = sample:find(":", 1, true)
+  while at ~= nil do
+    local stop = at + 1
+    while stop <= n and HEX[byte(sample, stop)] do stop = stop + 1 end
+    local digits = stop - at - 1
+    local ends = byte(sample, stop) == LF or (byte(sample, stop) == CR and byte(sample, stop + 1) == LF)
+    if ends and digits % 2 == 0 and digits >= 2 * MIN_BINARY then
+      local sum = 0
+      for k = at + 1, stop - 1, 2 do sum = sum + HEX[byte(sample, k)] * 16 + HEX[byte(sample, k + 1)] end
+      if sum % 256 == 0 then return true end
+    end
+    at = sample:find(":", stop, true) -- (the digits hold no ':')
+  end
+  return false
+end
+
 local function detect_mode(sample)
-  -- 'ascii' when a ':' is followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF.
+  -- 'ascii' when the sample holds a whole ASCII frame (whatever noise comes before it), or when a ':' is
+  -- followed by hex digits and nine bytes in ten are hex digits, ':', CR or LF (protocol/ascii.py).
+  if holds_frame(sample) then return "ascii" end
   local colon = sample:find(":", 1, true)
   if colon == nil or colon == #sample then return "rtu" end
   for k = colon + 1, math.min(colon + 2, #sample) do -- (the one or two bytes after it)
