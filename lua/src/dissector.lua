@@ -6,57 +6,56 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 
 -- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
 -- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
--- noise before the first frame as a record of its own). Until that many have come, each record is held:
--- its bytes and time kept, shown as bytes that continue. The record that completes them, or the end of
--- the first pass, chooses the mode, and the held records are decoded first, in order, as if it had
--- been known from the start (st.held: the records held, and the sample).
-local function decode_held(st)
-  local held = st.held
-  if held == nil then return end
-  st.held = nil
-  st.mode = detect_mode(held.sample)
-  for index = 1, #held do
-    local number, bytes, abs_ts = held[index][1], held[index][2], held[index][3]
-    -- (dissect_now reads the bytes and the time through stand-ins for the tvb and pinfo, gone since)
-    local ok, result = pcall(dissect_now, st, { raw = function() return bytes end }, { abs_ts = abs_ts }, number)
-    if not ok then result = { length = #bytes, error = tostring(result) } end
-    st.records[number] = result
-    if st.whole_record ~= nil or st.unpacked[1] ~= nil then pack.settle(st) end
-  end
-end
-
--- A record's first dissection while its stream's mode is not chosen: the record kept in its place while
--- it is held, else nil (the mode chosen with this record's bytes: it is decoded as any other).
-local function hold(st, tvb, pinfo, number, n)
-  local held = st.held
-  if held == nil then
-    held = { sample = "" }
-    st.held = held
+-- noise before the first frame as a record of its own). Until that many have come, each record's bytes
+-- and time are kept (st.sample, with the bytes sampled), and the mode is what the bytes so far say:
+-- where a record changes it, the records kept are decoded again, in order, into a new state with the
+-- mode their bytes give, as if it had been known from the start (as lane.again does). The bytes of
+-- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
+-- once the mode is settled (or set by the preference).
+local function sample_mode(st, tvb, pinfo, number)
+  local sample = st.sample
+  if sample == nil then
+    if st.mode ~= nil then -- (the preference's)
+      st.sample = false
+      return
+    end
+    sample = { text = "" }
+    st.sample = sample
   end
   local bytes = tvb:raw()
-  held.sample = held.sample .. bytes:sub(1, MODE_SAMPLE - #held.sample)
-  if #held.sample < MODE_SAMPLE then
-    held[#held + 1] = { number, bytes, pinfo.abs_ts }
-    local record = { length = n, waiting = n }
-    st.records[number] = record
-    return record
+  sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
+  if #sample.text >= MODE_SAMPLE then
+    st.sample = false
+  else
+    sample[#sample + 1] = { number, bytes, pinfo.abs_ts }
   end
-  decode_held(st)
-  return nil
+  local mode = detect_mode(sample.text)
+  if st.mode == nil then
+    st.mode = mode
+  elseif mode ~= st.mode then
+    local fresh = new_state(st.timeout, mode)
+    fresh.sample = st.sample
+    for index = 1, #sample do
+      local kept, bytes_kept, abs_ts = sample[index][1], sample[index][2], sample[index][3]
+      if kept ~= number then
+        -- (dissect_now reads the bytes and the time through stand-ins for the tvb and pinfo, gone since)
+        local tvb_kept = { raw = function() return bytes_kept end }
+        local ok, result = pcall(dissect_now, fresh, tvb_kept, { abs_ts = abs_ts }, kept)
+        if not ok then result = { length = #bytes_kept, error = tostring(result) } end
+        fresh.records[kept] = result
+        if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+      end
+    end
+    for key in pairs(st) do st[key] = nil end
+    for key, value in pairs(fresh) do st[key] = value end
+  end
 end
 
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
-  if record == nil and st.mode == nil then
-    local n = tvb:len()
-    record = n > 0 and hold(st, tvb, pinfo, number, n) or nil
-    if record ~= nil then
-      show_record(st, record, tvb, pinfo, tree, n)
-      return n
-    end
-  end
   if record == nil then
+    if st.sample ~= false and tvb:len() > 0 then sample_mode(st, tvb, pinfo, number) end
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(dissect_now, st, tvb, pinfo, number)
@@ -83,8 +82,6 @@ local function dissect_records(st, tvb, pinfo, tree)
     return n
   end
   if not state.finished and pinfo.visited then
-    for _, other in pairs(udp_states) do decode_held(other) end
-    decode_held(state)
     finish_all(number)
     record = st.records[number] -- (lane.again may have decoded the capture again)
     if record == nil then return 0 end
