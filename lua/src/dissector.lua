@@ -23,6 +23,7 @@ local function sample_mode(st, tvb, pinfo, number)
     st.sample = sample
   end
   local bytes = tvb:raw()
+  if bytes == "" then return end
   sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
   if #sample.text >= MODE_SAMPLE then
     st.sample = false
@@ -51,14 +52,19 @@ local function sample_mode(st, tvb, pinfo, number)
   end
 end
 
+-- A record's first dissection while its stream's mode is sampled (an error in either shown on the record).
+local function sample_and_dissect(st, tvb, pinfo, number)
+  sample_mode(st, tvb, pinfo, number)
+  return dissect_now(st, tvb, pinfo, number)
+end
+
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
   if record == nil then
-    if st.sample ~= false and tvb:len() > 0 then sample_mode(st, tvb, pinfo, number) end
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
-    local ok, result, n, info = pcall(dissect_now, st, tvb, pinfo, number)
+    local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then
       if result == nil then return 0 end
       record = result
