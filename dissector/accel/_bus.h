@@ -85,9 +85,7 @@ static void *dense_add(Dense *d, const DenseKind *kind, const void *key, size_t 
     if (d->count == d->cap) {
         size_t cap = d->cap ? d->cap + d->cap / 2 : kind->first;
         cap = most && d->cap <= most && cap > most + 1 ? most + 1 : cap;
-        char *items = PyMem_Realloc(d->items, cap * kind->item);
-        if (items == NULL) return PyErr_NoMemory();
-        d->items = items, d->cap = cap;
+        if (resize(&d->items, &d->cap, cap, kind->item) < 0) return NULL;
     }
     if (4 * (d->count + 1) > 3 * d->size) {
         size_t size = d->size ? 2 * d->size : kind->first / 3 * 4;
@@ -228,15 +226,7 @@ static int close_run(Bus *b, int slave) {
     Run *run = &b->runs[slave];
     run->active = 0;
     if (run->requests < 2) return 0;
-    if (b->outage_count == b->outage_cap) {
-        size_t cap = b->outage_cap ? 2 * b->outage_cap : 16;
-        Run *outages = PyMem_Realloc(b->outages, cap * sizeof *outages);
-        if (outages == NULL) {
-            PyErr_NoMemory();
-            return -1;
-        }
-        b->outages = outages, b->outage_cap = cap;
-    }
+    if (grow(&b->outages, &b->outage_cap, b->outage_count + 1, sizeof *b->outages, 16) < 0) return -1;
     b->outages[b->outage_count++] = *run;
     return 0;
 }

@@ -7,24 +7,18 @@
 typedef struct {
     PyObject_HEAD
     double *d;
-    Py_ssize_t n, cap; /* doubles used, allocated */
+    Py_ssize_t n;      /* doubles used */
+    size_t cap;        /* doubles allocated */
     long long col;     /* the open column; -1 once closed */
 } Columns;
 
 static PyTypeObject ColumnsType;
 
 static int columns_grow(Columns *self, Py_ssize_t need) {
-    if (need <= self->cap) return 0;
-    Py_ssize_t cap = self->cap ? self->cap : 64; /* doubled up to 64 columns, then 8 more at a time: */
-    while (cap < need) cap += cap < 512 ? cap : 64; /* a series' COLUMNS + 1 columns fill 38 KB, not 64 */
-    double *d = PyMem_Realloc(self->d, (size_t)cap * sizeof(double));
-    if (d == NULL) {
-        PyErr_NoMemory();
-        return -1;
-    }
-    self->d = d;
-    self->cap = cap;
-    return 0;
+    if ((size_t)need <= self->cap) return 0;
+    size_t cap = self->cap ? self->cap : 64; /* doubled up to 64 columns, then 8 more at a time: */
+    while (cap < (size_t)need) cap += cap < 512 ? cap : 64; /* a series' COLUMNS + 1 columns fill 38 KB, not 64 */
+    return resize(&self->d, &self->cap, cap, sizeof *self->d);
 }
 
 static int columns_init(Columns *self, PyObject *args, PyObject *kwargs) {

@@ -62,6 +62,29 @@ static uint16_t crc16(const uint8_t *p, Py_ssize_t n) {
 static inline unsigned word(const uint8_t *p) { return (unsigned)p[0] << 8 | p[1]; }
 static unsigned field(const uint8_t *f, int at, int width) { return width == 2 ? word(f + at) : f[at]; }
 
+/* ---- growing arrays: the output, the memory log, dense tables, outages, --report's columns -------- */
+/* The array whose address is at `array` (a T **, any T; *cap items of `size` bytes) reallocated to `to`
+ * items: 0, or -1 with MemoryError set and the array unchanged. */
+static int resize(void *array, size_t *cap, size_t to, size_t size) {
+    void *items;
+    memcpy(&items, array, sizeof items);
+    if ((items = PyMem_Realloc(items, to * size)) == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    memcpy(array, &items, sizeof items);
+    *cap = to;
+    return 0;
+}
+
+/* The same array made to hold `need` items, its room doubled from `first` as needed. */
+static inline int grow(void *array, size_t *cap, size_t need, size_t size, size_t first) {
+    if (need <= *cap) return 0;
+    size_t to = *cap ? *cap : first;
+    while (to < need) to *= 2;
+    return resize(array, cap, to, size);
+}
+
 /* ---- output buffer ---------------------------------------------------------------------------- */
 /* Lines being written. After a failed allocation, `failed` is set with MemoryError raised; writers
  * check it once per line. */
@@ -69,18 +92,9 @@ typedef struct { char *data; size_t len, cap; int failed; } Out;
 
 static int out_reserve(Out *o, size_t more) {
     if (o->failed) return -1;
-    if (o->len + more <= o->cap) return 0;
-    size_t cap = o->cap ? o->cap : 1 << 16;
-    while (cap < o->len + more) cap *= 2;
-    char *data = PyMem_Realloc(o->data, cap);
-    if (data == NULL) {
-        o->failed = 1;
-        PyErr_NoMemory();
-        return -1;
-    }
-    o->data = data;
-    o->cap = cap;
-    return 0;
+    if (grow(&o->data, &o->cap, o->len + more, 1, 1 << 16) == 0) return 0;
+    o->failed = 1;
+    return -1;
 }
 
 static void out_put(Out *o, const char *s, size_t n) {
@@ -621,17 +635,7 @@ static int reads_are_quiet(Slave *s, const Words *w, const Words *written) {
 /* seen[address] = (value, frame number, "read" or "written"), as the annotator keeps it; logged here
  * and written to the dict by write_memory(). */
 static int remember(Engine *e, int slave, Slave *s, const Words *w, unsigned long long number, int written) {
-    if (e->log_len + w->count > e->log_cap) {
-        size_t cap = e->log_cap ? e->log_cap : 4096;
-        while (cap < e->log_len + w->count) cap *= 2;
-        Remembered *log = PyMem_Realloc(e->log, cap * sizeof *log);
-        if (log == NULL) {
-            PyErr_NoMemory();
-            return -1;
-        }
-        e->log = log;
-        e->log_cap = cap;
-    }
+    if (grow(&e->log, &e->log_cap, e->log_len + w->count, sizeof *e->log, 4096) < 0) return -1;
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         e->log[e->log_len++] = (Remembered){number, (uint16_t)address, (uint16_t)words_value(w, k),
