@@ -285,8 +285,7 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
         Run *run = &b->runs[slave];
         if (unanswered) {
             if (!run->active) {
-                Run fresh = {1, slave, *t, *t, 1, number, number, offset};
-                *run = fresh;
+                *run = (Run){1, slave, *t, *t, 1, number, number, offset};
             } else {
                 run->end = *t;
                 run->requests++;

@@ -267,8 +267,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         t->series = series; /* NULL: made by engine_point below (there is room: not full) */
     }
     if (s->namer != r->namers[slave]) { /* a new device for this slave: its values are read again */
-        Py_XINCREF(s->namer);
-        Py_XSETREF(r->namers[slave], s->namer);
+        Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));
         r->named[slave] = ++r->namings;
         if (++r->epochs[slave] >= 1u << 16) {
             memset(r->points, 0, REPORT_POINTS * sizeof *r->points);

@@ -99,8 +99,7 @@ static inline int param_state(Param *p, unsigned value, PyObject *status) {
     if (same < 0) return -1;
     int changed = p->has_last && !same;
     if (changed) p->counts[PARAM_CHANGES]++;
-    Py_XINCREF(status);
-    Py_XSETREF(p->status, status);
+    Py_XSETREF(p->status, Py_XNewRef(status));
     p->last = (uint16_t)value;
     p->has_last = 1;
     return changed;
@@ -130,13 +129,9 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
     PyObject *answer = named(namer, address, value);
     if (answer == NULL) return -1;
     PyObject *code = PyTuple_GET_ITEM(answer, 1);
-    if (code != Py_None) {
-        Py_INCREF(code);
-        Py_XSETREF(p->code, code);
-    }
+    if (code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
     Py_DECREF(answer);
-    Py_INCREF(namer);
-    Py_XSETREF(p->code_namer, namer);
+    Py_XSETREF(p->code_namer, Py_NewRef(namer));
     return 0;
 }
 
@@ -156,10 +151,7 @@ static int param_event(Stats *st, int slave, unsigned address, unsigned value, i
     (void)param_state(p, value, NULL);
     p->last_mapped = (uint8_t)mapped;
     Py_CLEAR(p->text);
-    if (p->namer != namer) {
-        Py_XINCREF(namer);
-        Py_XSETREF(p->namer, namer);
-    }
+    if (p->namer != namer) Py_XSETREF(p->namer, Py_XNewRef(namer));
     return 0;
 }
 
@@ -300,10 +292,7 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
         if (PyErr_Occurred()) return NULL;
         Py_RETURN_FALSE; /* not kept: no state, no change */
     }
-    if (code != Py_None && (event != EVENT_CONFIRM || created)) {
-        Py_INCREF(code);
-        Py_XSETREF(p->code, code);
-    }
+    if (code != Py_None && (event != EVENT_CONFIRM || created)) Py_XSETREF(p->code, Py_NewRef(code));
     if (event == EVENT_UNREADABLE && !PyUnicode_Check(text))
         return PyErr_Format(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
     if (!param_count(p, event)) Py_RETURN_FALSE;
@@ -311,8 +300,7 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
     int changed = param_state(p, value, event == EVENT_UNREADABLE ? text : NULL);
     if (changed < 0) return NULL;
     if (event != EVENT_UNREADABLE) {
-        Py_INCREF(text);
-        Py_XSETREF(p->text, text);
+        Py_XSETREF(p->text, Py_NewRef(text));
         Py_CLEAR(p->namer);
     }
     return PyBool_FromLong(changed);
@@ -334,8 +322,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
         }
         Py_CLEAR(p->code); /* the new device's code, none where it names nothing (not the old one's) */
         if (take_code(p, namer, p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last) < 0) return NULL;
-        Py_INCREF(namer);
-        Py_XSETREF(p->namer, namer);
+        Py_XSETREF(p->namer, Py_NewRef(namer));
         Py_CLEAR(p->text);
         p->last_mapped = 1;
     }
@@ -388,19 +375,12 @@ static int param_order(const void *a, const void *b) {
 /* The last value's text: the Python stages' (maybe None), else the namer's where the device names
  * the address; None for no text. A new reference. */
 static PyObject *param_text(const Param *p) {
-    if (p->status != NULL) {
-        Py_INCREF(p->status);
-        return p->status;
-    }
-    if (p->text != NULL) {
-        Py_INCREF(p->text);
-        return p->text;
-    }
+    if (p->status != NULL) return Py_NewRef(p->status);
+    if (p->text != NULL) return Py_NewRef(p->text);
     if (!p->has_last || !p->last_mapped || p->namer == NULL || p->namer == Py_None) Py_RETURN_NONE;
     PyObject *answer = named(p->namer, p->key & 0xFFFF, (unsigned)p->last);
     if (answer == NULL) return NULL;
-    PyObject *text = PyTuple_GET_ITEM(answer, 0);
-    Py_INCREF(text);
+    PyObject *text = Py_NewRef(PyTuple_GET_ITEM(answer, 0));
     Py_DECREF(answer);
     return text;
 }
@@ -427,10 +407,8 @@ static PyObject *param_row(const Param *p) {
         Py_XDECREF(row);
         return NULL;
     }
-    PyObject *code = p->code ? p->code : Py_None, *last = Py_None;
-    Py_INCREF(code);
-    if (p->has_last && p->status == NULL) last = PyLong_FromUnsignedLong(p->last);
-    else Py_INCREF(last);
+    PyObject *code = Py_NewRef(p->code ? p->code : Py_None);
+    PyObject *last = p->has_last && p->status == NULL ? PyLong_FromUnsignedLong(p->last) : Py_NewRef(Py_None);
     const uint32_t *n = p->counts;
     const unsigned long fields[] = {(p->key >> 16) & 0xFF, p->key & 0xFFFF, 0, n[PARAM_READS], n[PARAM_UNREADABLE],
                                     n[PARAM_WRITES], n[PARAM_REFUSED], 0, 0, n[PARAM_CHANGES]};
@@ -679,8 +657,8 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
         Py_XDECREF(responses);
         return NULL;
     }
-    PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : (Py_INCREF(Py_None), Py_None);
-    PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : (Py_INCREF(Py_None), Py_None);
+    PyObject *last_end = b->has_last_end ? PyFloat_FromDouble(b->last_end) : Py_NewRef(Py_None);
+    PyObject *answer_end = b->has_answer_end ? PyFloat_FromDouble(b->answer_end) : Py_NewRef(Py_None);
     return Py_BuildValue("{s:O,s:K,s:N,s:N,s:d,s:N,s:K,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:N,s:K,s:N,s:N,s:d,s:d}", "timed",
                          b->timed ? Py_True : Py_False, "untimed", b->untimed, "first", time_value(&b->first),
                          "last_end", last_end, "busy", b->busy, "answer_end", answer_end, "below_t35", b->below_t35,
