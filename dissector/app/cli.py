@@ -29,6 +29,7 @@ from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
 from dissector.render.output import Output
+from dissector.protocol.ascii import holds_frame
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
@@ -386,14 +387,30 @@ def _decode_inputs(
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"
+                hint = " (it holds Modbus ASCII frames: try --mode ascii)" if mode == "rtu" and _holds_ascii(path) else ""
                 env.stderr.write(
                     f"{PROG}: warning: {shown(name)}: no valid Modbus {mode.upper()} frame in {sinks.input_bytes} bytes "
                     "(every item is noise or a frame with a bad check): not a Modbus capture, or another format "
-                    "or line speed?\n"
+                    f"or line speed?{hint}\n"
                 )
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise
+
+
+ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)
+
+
+def _holds_ascii(path: str) -> bool:
+    """Whether the start of a file read as RTU holds a whole Modbus ASCII frame (an ASCII line behind more
+    noise than mode detection samples): the hint names --mode ascii. Standard input cannot be read again."""
+    if path == "-":
+        return False
+    try:
+        with open(path, "rb") as file:
+            return holds_frame(file.read(ASCII_HINT_BYTES))
+    except OSError:
+        return False
 
 
 def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
