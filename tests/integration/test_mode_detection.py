@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import run_cli
+from helpers import run_cli, use_engine
 from lua_compare import compare
 from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
 
@@ -51,10 +51,7 @@ EXPECTED = {
 
 
 def _decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tuple[str, str]:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+    use_engine(monkeypatch, pure)
     status, out, err = run_cli(argv)
     assert status == 0, err
     return out, err

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import run_cli
+from helpers import run_cli, use_engine
 from lua_compare import compare
 from lua_harness import ensure_tool, lua_items, python_items, record_lengths
 
@@ -41,10 +41,7 @@ MBRTU = ["-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""', "-o", "
 
 
 def _decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+    use_engine(monkeypatch, pure)
     status, out, err = run_cli(argv)
     assert status == 0, err
     return out

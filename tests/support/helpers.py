@@ -48,3 +48,15 @@ def write_9600_tap(path: object, t0: float = 1767225600.0) -> None:
             writer.write(request[4:], start + 4 * character + silence)
             writer.write(response, start + 8 * character + silence + 0.015)
         writer.close()
+
+
+def use_engine(monkeypatch: object, pure: bool) -> None:
+    """Run what follows under VW3_PURE_PYTHON=1 (`pure`) or under the compiled engine, which must be built:
+    a differential test that quietly ran Python twice would prove nothing."""
+    if pure:
+        monkeypatch.setenv("VW3_PURE_PYTHON", "1")  # type: ignore[attr-defined]
+        return
+    monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)  # type: ignore[attr-defined]
+    from dissector.accel import fastsummary
+
+    assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"

@@ -16,7 +16,7 @@ import pytest
 
 from dissector.app.cli import Environment, run
 from dissector.render.pcapwriter import PcapWriter
-from helpers import rtu
+from helpers import rtu, use_engine
 
 T0 = 1767225600.0
 LISTEN_ONLY = rtu("01 08 0004 0000")  # 01 08 00 04 00 00 A1 CA
@@ -27,12 +27,7 @@ NOTE = "no response expected: the spec's server returns none"
 
 
 def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
-        from dissector.accel import fastsummary
-        assert fastsummary.available() and fastsummary.built()
+    use_engine(monkeypatch, pure)
     out, err = io.StringIO(), io.StringIO()
     assert run([*argv, "-n"], Environment(io.BytesIO(b""), out, err, False, False)) == 0
     assert err.getvalue() == ""

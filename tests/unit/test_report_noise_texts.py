@@ -16,7 +16,7 @@ import pytest
 from dissector.app.cli import Environment, run
 from dissector.render.pcapwriter import PcapWriter
 from dissector.render.report.groups import EventGroups
-from helpers import rtu
+from helpers import rtu, use_engine
 
 T0 = 1767225600.0
 QUESTION, ANSWER = rtu("01 03 0010 0001"), rtu("01 03 02 0007")
@@ -40,12 +40,7 @@ def write(path: Path, noise: list[bytes]) -> Path:
 
 
 def report(argv: list[str], page: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> str:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
-        from dissector.accel import fastsummary
-        assert fastsummary.available() and fastsummary.built()
+    use_engine(monkeypatch, pure)
     out, err = io.StringIO(), io.StringIO()
     assert run([*argv, "-n", "--report", str(page)], Environment(io.BytesIO(stdin), out, err, False, False)) == 0
     assert err.getvalue() == ""
