@@ -43,11 +43,13 @@ HANDLED = table.COMPILED  # function codes the compiled path decodes (_summary.c
 EXPLAINED_MAX = 4096  # transactions' texts kept (bounded: memory stays flat)
 _PLAIN_READS = table.plain_register_reads()  # an exception 2 to these may change the annotator's memory
 WINDOW = 512  # bytes handed to the Python stages at a time while they have the stream
-# When the engine hands the stream straight back (a device or function codes it does not show), the
-# Python stages take a growing run of bytes at once instead of one frame at a time.
-SHORT_STRETCH = 4  # engine lines below which a stretch counts as short
-SHORT_STRETCHES = 1000000  # short stretches in a row before the runs start (exceptions come in clusters)
-MAX_RUN = 16384
+# Over noise and damaged frames, which the engine hands straight back, the Python stages frame up to
+# a stride of bytes at a time (doubling from NOISE_STRIDE to NOISE_STRIDE_MAX) instead of one item at
+# a time: past the noise's end they frame at most about as many bytes as the noise had, and 16 KiB.
+NOISE_STRIDE = 16
+NOISE_STRIDE_MAX = 16384
+SHORT_STRETCH = 16  # items the engine numbers before it hands over again, below which
+CALM_MAX = 8  # `calm` doubles (PythonSide)
 NEED, HANDOVER = 0, 1
 
 
@@ -273,6 +275,7 @@ class SummaryPath:
     The Python stages take the stream at the start of a transaction the engine would not show, frame
     one frame at a time, and give it back as soon as nothing is pending (no request awaiting its
     answer, no noise run open): both then agree on the item numbers and the framer's expectation.
+    Over noise and damage they go on by strides (PythonSide).
     """
 
     def __init__(self, dissector: Dissector, annotator: Any | None, write_items: Callable[[list[Item]], None],
@@ -292,10 +295,7 @@ class SummaryPath:
         self.pos = 0
         self.python = False  # the Python stages have the stream
         self.taken_at = 0  # where they took it
-        self.run_size = 0  # bytes the Python stages frame freely before looking for an idle point
-        self.run_left = 0
-        self.short_stretches = 0
-        self.stretch_start = 0  # engine count when it last took the stream back
+        self.side = PythonSide(dissector, write_items)
 
     def feed(self, data: bytes) -> None:
         if self.pos:
@@ -305,7 +305,7 @@ class SummaryPath:
         self.buf += data
         if self.python:
             self._python_frames()
-        else:
+        if not self.python:  # (and when they gave it back: the engine takes the rest of these bytes)
             self._engine_frames()
 
     def finish(self) -> None:
@@ -329,17 +329,8 @@ class SummaryPath:
     def _hand_over(self) -> None:
         self.taken_at = self.base + self.pos
         self.framer.restart_at(self.taken_at, self.engine.expect)
-        count = self.engine.count
-        self.pairer.count = count
-        if count - self.stretch_start < SHORT_STRETCH:
-            self.short_stretches += 1
-        else:
-            self.short_stretches = 0
-        if self.short_stretches >= SHORT_STRETCHES:
-            self.run_size = min(MAX_RUN, max(2 * self.run_size, WINDOW))
-        else:
-            self.run_size = 0
-        self.run_left = self.run_size
+        self.pairer.count = self.engine.count
+        self.side.take(self.engine.count)
         self.python = True
 
     def forget_changed(self) -> None:
@@ -354,16 +345,9 @@ class SummaryPath:
 
     def _python_frames(self) -> None:
         framer = self.framer
-        if self.run_left:
-            framer.pause_at(None)
-            run = self.buf[self.pos : self.pos + self.run_left]
-            self.pos += len(run)
-            self.write_items(self.dissector.feed(Chunk(run)))
-            self.run_left -= len(run)
-            if self.run_left:
-                return  # the run goes on with the next chunk
+        side = self.side
         while True:
-            if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+            if side.ready() and framer.offset > self.taken_at and self.pairer.idle:
                 self.forget_changed()
                 offset, rest, expect = framer.hand_back()
                 start = offset - self.base
@@ -372,31 +356,99 @@ class SummaryPath:
                 else:
                     self.buf = rest + self.buf[self.pos :]
                     self.base, self.pos = offset, 0
-                self.engine.count = self.stretch_start = self.pairer.count
+                self.engine.count = self.pairer.count
+                side.give(self.pairer.count)
                 self.engine.expect = expect
                 self.engine.glitchy = framer.glitchy  # (learnt by the framer alone: the engine hands glitches over)
                 self.python = False
                 return
-            if python_step(self.dissector, self.write_items):
+            if side.step():
                 continue
             if self.pos >= len(self.buf):
                 return  # it needs bytes that have not come yet
-            window = self.buf[self.pos : self.pos + WINDOW]
+            window = self.buf[self.pos : self.pos + (WINDOW if side.settled else max(WINDOW, side.stride))]
             self.pos += len(window)
-            items = self.dissector.feed(Chunk(window))
-            if items:
-                self.write_items(items)
+            side.write(self.dissector.feed(Chunk(window)))
 
 
-def python_step(dissector: Dissector, write_items: Callable[[list[Item]], None]) -> bool:
-    """One frame (or one noise run) from the Python stages, with the bytes they hold: did they advance?"""
-    framer = dissector.framer
-    before = framer.offset
-    framer.pause_at(before + 1)
-    items = dissector.feed(Chunk(b""))
-    if items:
-        write_items(items)
-    return framer.offset != before
+class PythonSide:
+    """The Python stages while they have the stream (SummaryPath, timedpath.TimedPath): they frame it
+    one item at a time, so that the engine takes it back at their first idle point, where both agree
+    on the item numbers and the framer's expectation. Noise and damaged frames the engine would hand
+    straight back: over them they frame by strides of bytes (NOISE_STRIDE, doubling up to NOISE_STRIDE_MAX),
+    and give the stream back only after `calm` intact frames in a row, which doubles (up to CALM_MAX)
+    each time the engine then numbered fewer than SHORT_STRETCH items before handing it over
+    again (noise every few frames: each hand-over costs more than the frames it saves). Any idle point
+    would do for the output, since both sides decide alike; these only save calls and hand-overs."""
+
+    __slots__ = ("dissector", "framer", "write_items", "settled", "stride", "calm", "run", "damaged", "back")
+
+    def __init__(self, dissector: Dissector, write_items: Callable[[list[Item]], None]) -> None:
+        self.dissector = dissector
+        self.framer = dissector.framer
+        self.write_items = write_items
+        self.settled = True  # `calm` intact frames since the last noise or damaged frame (or none of those)
+        self.stride = NOISE_STRIDE
+        self.calm = 1
+        self.run = 0  # intact frames in a row since the last noise or damaged frame
+        self.damaged = False  # this stretch of the Python stages had noise or a damaged frame
+        self.back = -1  # the engine's item count when it last took the stream back after damage
+
+    def take(self, count: int) -> None:
+        """They take the stream from the engine, whose item count is `count`."""
+        if self.back >= 0:
+            self.calm = min(2 * self.calm, CALM_MAX) if count - self.back < SHORT_STRETCH else 1
+            self.back = -1
+        self.settled = True
+        self.damaged = False
+        self.stride = NOISE_STRIDE
+
+    def give(self, count: int) -> None:
+        """They give the stream back, the item count being `count`."""
+        if self.damaged:
+            self.back = count
+
+    def ready(self) -> bool:
+        """May the engine take the stream back at this point, if framer and pairer are idle? Not in
+        noise (a run open, or the last item) nor soon after a damaged frame."""
+        return self.settled and self.framer.idle
+
+    def step(self) -> bool:
+        """One frame (or one noise run's next bytes), or up to a stride of bytes while not ready(),
+        with the bytes the framer holds: did it advance?"""
+        framer = self.framer
+        before = framer.offset
+        if self.settled and framer.idle:
+            framer.pause_at(before + 1)
+        else:
+            framer.pause_at(before + self.stride)
+            if self.stride < NOISE_STRIDE_MAX:
+                self.stride *= 2
+        self.write(self.dissector.feed(Chunk(b"")))
+        return framer.offset != before
+
+    def write(self, items: list[Item]) -> None:
+        """Items of the Python stages, out; counts the intact frames in a row."""
+        if not items:
+            return
+        if self.settled:
+            last = items[-1]
+            if type(last) is not Frame or last.crc != last.crc_expected:
+                self.settled = False
+                self.damaged = True
+                self.run = 0
+                self.stride = NOISE_STRIDE
+        else:
+            run = 0
+            for item in reversed(items):
+                if type(item) is not Frame or item.crc != item.crc_expected:
+                    self.run = 0
+                    break
+                run += 1
+            self.run += run
+            if self.run >= self.calm:
+                self.settled = True
+        self.write_items(items)
 
 
 def summarize(chunks: Iterable[Chunk], path: SummaryPath, after_chunk: Callable[[], None]) -> None:

@@ -18,7 +18,7 @@ from bisect import bisect_right
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from dissector.accel.fastsummary import NEED, built, make_engine, python_step
+from dissector.accel.fastsummary import NEED, PythonSide, built, make_engine
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
@@ -47,6 +47,7 @@ class TimedPath:
         timing = self.framer.timing
         self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
         self.write_items = write_items
+        self.side = PythonSide(dissector, write_items)  # the Python stages' steps over the stream
         self.write_lines = write_lines
         # The chunks not consumed yet: buf holds their bytes from stream offset `base` (inside chunk 0).
         self.buf = b""
@@ -121,6 +122,7 @@ class TimedPath:
         offset = self.base + self.pos
         self.taken_at = offset
         self.python = True
+        self.side.take(self.engine.count)
         if not self.starts:
             self.framer.restart_at(offset, self.engine.expect)
             return
@@ -164,12 +166,14 @@ class TimedPath:
                 if items:
                     self.write_items(items)
             return False
+        side = self.side
         while True:
-            if framer.offset > self.taken_at and framer.idle and self.pairer.idle:
+            if side.ready() and framer.offset > self.taken_at and self.pairer.idle:
                 self._forget_changed()
                 offset, rest, expect = framer.hand_back()
                 self.pos = offset - self.base
                 self.engine.count = self.pairer.count
+                side.give(self.pairer.count)
                 self.engine.expect = expect
                 self.engine.glitchy = framer.glitchy
                 self.engine.decided = offset + len(rest)  # where the framer's buffer ended: what it has seen
@@ -183,14 +187,13 @@ class TimedPath:
                     self.on_hand_back()
                 self.python = False
                 return True
-            if python_step(self.dissector, self.write_items):
+            if side.step():
                 continue
             if self.fed >= len(self.starts):
                 return False  # it needs chunks that have not come yet
             items = self.dissector.feed(self._chunk(self.fed))
             self.fed += 1
-            if items:
-                self.write_items(items)
+            side.write(items)
 
     def _forget_changed(self) -> None:
         changed = getattr(self.annotator, "changed", None)
