@@ -1272,12 +1272,12 @@ local DATA = {
         ["abbr"] = "vw3.data",
         ["ftype"] = "bytes",
         ["title"] = "Data",
-        ["help"] = "noise: the bytes outside any frame",
+        ["help"] = "noise: the bytes outside any frame; a PDU's data (FC8, FC43's other MEI types, a function without a layout)",
         ["plain"] = true,
       },
       {
         ["abbr"] = "vw3.byte_count",
-        ["ftype"] = "uint8",
+        ["ftype"] = "uint16",
         ["title"] = "Byte count",
         ["help"] = "the PDU's byte count",
         ["base"] = "DEC",
@@ -1397,6 +1397,204 @@ local DATA = {
           [0] = "second word (the value is read on the register before)",
           [2] = "this register and the next",
         },
+      },
+      {
+        ["abbr"] = "vw3.status",
+        ["ftype"] = "uint16",
+        ["title"] = "Status",
+        ["help"] = "FC7's exception status, FC11's and FC12's status word",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.bit_status",
+        ["ftype"] = "bytes",
+        ["title"] = "Status",
+        ["help"] = "the coils or inputs as sent, eight a byte (FC1, FC2, FC15)",
+        ["plain"] = true,
+      },
+      {
+        ["abbr"] = "vw3.value",
+        ["ftype"] = "uint16",
+        ["title"] = "Value",
+        ["help"] = "FC5's and FC6's value as sent",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.event_count",
+        ["ftype"] = "uint16",
+        ["title"] = "Event count",
+        ["help"] = "FC11's and FC12's event count",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.message_count",
+        ["ftype"] = "uint16",
+        ["title"] = "Message count",
+        ["help"] = "FC12's message count",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.events",
+        ["ftype"] = "bytes",
+        ["title"] = "Events",
+        ["help"] = "FC12's events, newest first",
+        ["plain"] = true,
+      },
+      {
+        ["abbr"] = "vw3.and_mask",
+        ["ftype"] = "uint16",
+        ["title"] = "And mask",
+        ["help"] = "FC22's AND mask",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.or_mask",
+        ["ftype"] = "uint16",
+        ["title"] = "Or mask",
+        ["help"] = "FC22's OR mask",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.write_start",
+        ["ftype"] = "uint16",
+        ["title"] = "Write start",
+        ["help"] = "FC23's first address written",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.write_quantity",
+        ["ftype"] = "uint16",
+        ["title"] = "Write quantity",
+        ["help"] = "FC23's registers written",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.odd_byte",
+        ["ftype"] = "uint8",
+        ["title"] = "Odd byte",
+        ["help"] = "the byte after the words of an odd byte count",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.fifo_count",
+        ["ftype"] = "uint16",
+        ["title"] = "FIFO count",
+        ["help"] = "FC24's count of values in the FIFO",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.fifo_value",
+        ["ftype"] = "uint16",
+        ["title"] = "FIFO value",
+        ["help"] = "FC24's values, the FIFO's first first",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.file.subrequest",
+        ["ftype"] = "none",
+        ["title"] = "Sub-request",
+        ["help"] = "FC20's sub-request (presence)",
+        ["plain"] = true,
+      },
+      {
+        ["abbr"] = "vw3.file.subresponse",
+        ["ftype"] = "none",
+        ["title"] = "Sub-response",
+        ["help"] = "FC20's sub-response (presence)",
+        ["plain"] = true,
+      },
+      {
+        ["abbr"] = "vw3.file.write",
+        ["ftype"] = "none",
+        ["title"] = "Record written",
+        ["help"] = "FC21's record written (presence)",
+        ["plain"] = true,
+      },
+      {
+        ["abbr"] = "vw3.file.reference_type",
+        ["ftype"] = "uint8",
+        ["title"] = "Reference type",
+        ["help"] = "FC20's and FC21's reference type (6)",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.file.number",
+        ["ftype"] = "uint16",
+        ["title"] = "File",
+        ["help"] = "FC20's and FC21's file number",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.file.record",
+        ["ftype"] = "uint16",
+        ["title"] = "Record",
+        ["help"] = "FC20's and FC21's record number",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.file.length",
+        ["ftype"] = "uint16",
+        ["title"] = "Length",
+        ["help"] = "FC20's and FC21's length: of the record in words, of a sub-response in bytes",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.file.value",
+        ["ftype"] = "uint16",
+        ["title"] = "Value",
+        ["help"] = "FC20's and FC21's record words",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.mei_type",
+        ["ftype"] = "uint8",
+        ["title"] = "MEI type",
+        ["help"] = "FC43's MEI type",
+        ["base"] = "DEC",
+        ["values"] = "mei_types",
+      },
+      {
+        ["abbr"] = "vw3.mei.read_code",
+        ["ftype"] = "uint8",
+        ["title"] = "Read code",
+        ["help"] = "FC43/14's read device id code",
+        ["base"] = "DEC",
+        ["values"] = "device_id_codes",
+      },
+      {
+        ["abbr"] = "vw3.mei.object_id",
+        ["ftype"] = "uint8",
+        ["title"] = "Object id",
+        ["help"] = "FC43/14's first object asked",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.mei.conformity",
+        ["ftype"] = "uint8",
+        ["title"] = "Conformity",
+        ["help"] = "FC43/14's conformity level",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.mei.more_follows",
+        ["ftype"] = "uint8",
+        ["title"] = "More follows",
+        ["help"] = "FC43/14: more objects follow (0xFF) or not (0)",
+        ["base"] = "DEC_HEX",
+      },
+      {
+        ["abbr"] = "vw3.mei.next_object_id",
+        ["ftype"] = "uint8",
+        ["title"] = "Next object id",
+        ["help"] = "FC43/14's next object id",
+        ["base"] = "DEC",
+      },
+      {
+        ["abbr"] = "vw3.mei.object_count",
+        ["ftype"] = "uint8",
+        ["title"] = "Object count",
+        ["help"] = "FC43/14's number of objects",
+        ["base"] = "DEC",
       },
     },
     ["experts"] = {
@@ -1876,6 +2074,86 @@ local DATA = {
         ["address"] = 12768,
         ["abbr"] = "vw3.atv71.nc8",
         ["title"] = "Com scanner output 8 value (NC8)",
+      },
+    },
+    ["pdu"] = {
+      ["diagnostics.data"] = { "data" },
+      ["other_mei.data"] = { "data" },
+      ["raw.data"] = { "data" },
+      ["read_bits_response.byte_count"] = { "byte_count" },
+      ["read_registers_response.byte_count"] = { "byte_count" },
+      ["write_coils_request.byte_count"] = { "byte_count" },
+      ["write_registers_request.byte_count"] = { "byte_count" },
+      ["read_write_request.byte_count"] = { "byte_count" },
+      ["fifo_response.byte_count"] = { "byte_count" },
+      ["comm_event_log_response.byte_count"] = { "byte_count" },
+      ["report_server_id_response.byte_count"] = { "byte_count" },
+      ["read_file_request.byte_count"] = { "byte_count" },
+      ["read_file_response.byte_count"] = { "byte_count" },
+      ["write_file.byte_count"] = { "byte_count" },
+      ["report_server_id_response.server_id"] = { "server_id" },
+      ["report_server_id_response.run_indicator"] = { "run_indicator" },
+      ["report_server_id_response.additional_data"] = { "additional_data", "additional_bytes" },
+      ["exception_status_response.status"] = { "status" },
+      ["comm_event_counter_response.status"] = { "status" },
+      ["comm_event_log_response.status"] = { "status" },
+      ["read_bits_response.status"] = { "bit_status" },
+      ["write_coils_request.status"] = { "bit_status" },
+      ["write_single.value"] = { "value" },
+      ["comm_event_counter_response.event_count"] = { "event_count" },
+      ["comm_event_log_response.event_count"] = { "event_count" },
+      ["comm_event_log_response.message_count"] = { "message_count" },
+      ["comm_event_log_response.events"] = { "events" },
+      ["mask_write.and_mask"] = { "and_mask" },
+      ["mask_write.or_mask"] = { "or_mask" },
+      ["read_write_request.write_start"] = { "write_start" },
+      ["read_write_request.write_quantity"] = { "write_quantity" },
+      ["read_registers_response.odd_byte"] = { "odd_byte" },
+      ["write_registers_request.odd_byte"] = { "odd_byte" },
+      ["read_write_request.odd_byte"] = { "odd_byte" },
+      ["fifo_response.fifo_count"] = { "fifo_count" },
+      ["fifo_response.values"] = { "fifo_value" },
+      ["read_file_request.subrequests"] = { "file_subrequest" },
+      ["read_file_response.subresponses"] = { "file_subresponse" },
+      ["write_file.records"] = { "file_write" },
+      ["file_subrequest.reference_type"] = { "file_reference_type" },
+      ["file_subresponse.reference_type"] = { "file_reference_type" },
+      ["file_record.reference_type"] = { "file_reference_type" },
+      ["file_subrequest.file"] = { "file_number" },
+      ["file_record.file"] = { "file_number" },
+      ["file_subrequest.record"] = { "file_record" },
+      ["file_record.record"] = { "file_record" },
+      ["file_subrequest.length"] = { "file_length" },
+      ["file_subresponse.length"] = { "file_length" },
+      ["file_record.length"] = { "file_length" },
+      ["file_subresponse.values"] = { "file_value" },
+      ["file_record.values"] = { "file_value" },
+      ["mei_request.mei_type"] = { "mei_type" },
+      ["mei_response.mei_type"] = { "mei_type" },
+      ["device_id_request.read_code"] = { "mei_read_code" },
+      ["device_id_response.read_code"] = { "mei_read_code" },
+      ["device_id_request.object_id"] = { "mei_object_id" },
+      ["device_id_response.conformity"] = { "mei_conformity" },
+      ["device_id_response.more_follows"] = { "mei_more_follows" },
+      ["device_id_response.next_object_id"] = { "mei_next_object_id" },
+      ["device_id_response.object_count"] = { "mei_object_count" },
+    },
+    ["names"] = {
+      ["mei_types"] = {
+        [13] = "CANopen General Reference",
+        [14] = "Read Device Identification",
+      },
+      ["device_id_codes"] = {
+        [1] = "basic",
+        [2] = "regular",
+        [3] = "extended",
+        [4] = "individual",
+      },
+    },
+    ["start_words"] = {
+      [24] = {
+        ["info"] = "pointer",
+        ["title"] = "FIFO pointer address",
       },
     },
   },
@@ -2631,7 +2909,7 @@ local DATA = {
 }
 do
 -- BEGIN RULES: python3 -m dissector.codegen (codegen/rules_lua.py, data/modbus.toml)
-local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=true,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["quantity"]="fifo_count",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_bits"},[2]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_bits"},[3]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_registers"},[4]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_registers"},[5]={["layout"]="write_single",["rule"]="write_single_coil"},[6]={["layout"]="write_single",["rule"]="write_single_register"},[7]={["layout"]="empty"},[8]={["layout"]="diagnostics",["special"]="diagnostics"},[11]={["layout"]="empty"},[12]={["layout"]="empty"},[15]={["layout"]="write_coils_request",["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["layout"]="write_registers_request",["rule"]="write_registers_request",["limit"]="write_registers"},[17]={["layout"]="empty"},[20]={["layout"]="read_file_request"},[21]={["layout"]="write_file"},[22]={["layout"]="mask_write",["rule"]="mask_write"},[23]={["layout"]="read_write_request",["rule"]="read_write_request"},[24]={["layout"]="fifo_request",["rule"]="fifo_request"},[43]={["layout"]="mei_request"}},["response"]={[1]={["layout"]="read_bits_response",["rule"]="read_bits_response"},[2]={["layout"]="read_bits_response",["rule"]="read_bits_response"},[3]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[4]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[5]={["layout"]="write_single",["rule"]="write_single_coil"},[6]={["layout"]="write_single",["rule"]="write_single_register"},[7]={["layout"]="exception_status_response"},[8]={["layout"]="diagnostics",["special"]="diagnostics"},[11]={["layout"]="comm_event_counter_response"},[12]={["layout"]="comm_event_log_response"},[15]={["layout"]="write_multiple_response",["rule"]="write_multiple_response"},[16]={["layout"]="write_multiple_response",["rule"]="write_multiple_response"},[17]={["layout"]="report_server_id_response",["special"]="report_server_id_response"},[20]={["layout"]="read_file_response"},[21]={["layout"]="write_file"},[22]={["layout"]="mask_write",["rule"]="mask_write"},[23]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[24]={["layout"]="fifo_response",["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["layout"]="mei_response",["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["confirmed"]={["echo"]={[6]=true},["answer"]={[16]=true,[23]=true}},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the bits asked ({quantity})",["format"]="byte count %s disagrees with the bits asked (%s)",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the registers asked ({quantity})",["format"]="byte count %s disagrees with the registers asked (%s)",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="unexpected bytes after the data ({count})",["format"]="unexpected bytes after the data (%s)",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["never_answered"]={["template"]="no response expected: the spec's server returns none",["format"]="no response expected: the spec's server returns none",["params"]={},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["backwards"]={["template"]="response stamped {ahead_ms:.1f} ms before request #{number}: time goes backwards, left out of the response times",["format"]="response stamped %.1f ms before request #%s: time goes backwards, left out of the response times",["params"]={"ahead_ms","number"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["no_frame"]={["template"]="no valid frame",["format"]="no valid frame",["params"]={},["repr"]={}},["too_short"]={["template"]="too short for a frame",["format"]="too short for a frame",["params"]={},["repr"]={}},["outside_ascii"]={["template"]="outside an ASCII frame",["format"]="outside an ASCII frame",["params"]={},["repr"]={}},["cut_by_colon"]={["template"]="ASCII frame cut short by the next ':'",["format"]="ASCII frame cut short by the next ':'",["params"]={},["repr"]={}},["no_line_end"]={["template"]="no CR LF within {limit} characters of the ':'",["format"]="no CR LF within %s characters of the ':'",["params"]={"limit"},["repr"]={}},["cut_by_end"]={["template"]="ASCII frame cut off by the end of the capture",["format"]="ASCII frame cut off by the end of the capture",["params"]={},["repr"]={}},["not_hex_pairs"]={["template"]="ASCII frame is not made of hex pairs",["format"]="ASCII frame is not made of hex pairs",["params"]={},["repr"]={}},["ascii_too_short"]={["template"]="ASCII frame too short",["format"]="ASCII frame too short",["params"]={},["repr"]={}},["no_layout"]={["template"]="no Modbus layout fits function {function} ({check})",["format"]="no Modbus layout fits function %s (%s)",["params"]={"function","check"},["repr"]={}},["lrc_ok"]={["template"]="LRC ok",["format"]="LRC ok",["params"]={},["repr"]={}},["lrc_wrong"]={["template"]="LRC {received:02X}, expected {expected:02X}",["format"]="LRC %02X, expected %02X",["params"]={"received","expected"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}},["became_protected"]={["template"]="became protected",["format"]="became protected",["params"]={},["repr"]={}},["became_unknown"]={["template"]="became non-existent or protected",["format"]="became non-existent or protected",["params"]={},["repr"]={}},["readable_again"]={["template"]="readable again",["format"]="readable again",["params"]={},["repr"]={}},["known_value"]={["template"]="{how} {value:d}",["format"]="%s %d",["params"]={"how","value"},["repr"]={}},["value_now"]={["template"]="{value:d} now",["format"]="%d now",["params"]={"value"},["repr"]={}},["marker_now"]={["template"]="16#8000 now",["format"]="16#8000 now",["params"]={},["repr"]={}},["event_one"]={["template"]="{name} {what}: {before} in frame #{frame:d}, {now}",["format"]="%s %s: %s in frame #%d, %s",["params"]={"name","what","before","frame","now"},["repr"]={}},["event_runs"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}",["format"]="%s %s (%d): %s in frame #%d",["params"]={"runs","what","count","how","frame"},["repr"]={}},["event_runs_now"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}, {now}",["format"]="%s %s (%d): %s in frame #%d, %s",["params"]={"runs","what","count","how","frame","now"},["repr"]={}},["marker_non_existent"]={["template"]="16#8000: non-existent (address not in the map)",["format"]="16#8000: non-existent (address not in the map)",["params"]={},["repr"]={}},["marker_protected"]={["template"]="16#8000: protected",["format"]="16#8000: protected",["params"]={},["repr"]={}},["first_word"]={["template"]="first word of a {kind}, the second is not in this frame",["format"]="first word of a %s, the second is not in this frame",["params"]={"kind"},["repr"]={}},["second_word"]={["template"]="second word of {code}",["format"]="second word of %s",["params"]={"code"},["repr"]={}},["not_listed"]={["template"]="{value:d} (not a listed value)",["format"]="%d (not a listed value)",["params"]={"value"},["repr"]={}},["no_bit_set"]={["template"]="no bit set",["format"]="no bit set",["params"]={},["repr"]={}},["bit_unnamed"]={["template"]="bit {bit:d}",["format"]="bit %d",["params"]={"bit"},["repr"]={}},["unscaled"]={["template"]="{value:d} (unscaled, in {unit})",["format"]="%d (unscaled, in %s)",["params"]={"value","unit"},["repr"]={}},["chosen_product_code"]={["template"]="Read Device Identification in frame #{frame:d}: ProductCode {value!r}",["format"]="Read Device Identification in frame #%d: ProductCode %s",["params"]={"frame","value"},["repr"]={"value"}},["chosen_function"]={["template"]="function {function:02X}h ({name}) in frame #{frame:d}",["format"]="function %02Xh (%s) in frame #%d",["params"]={"function","name","frame"},["repr"]={}},["chosen_unsupported"]={["template"]="function {function:d} answered in frame #{frame:d}, which the {device} does not support",["format"]="function %d answered in frame #%d, which the %s does not support",["params"]={"function","frame","device"},["repr"]={}},["chosen_fit"]={["template"]="traffic fits its map: {reads}",["format"]="traffic fits its map: %s",["params"]={"reads"},["repr"]={}},["chosen_fit_marker"]={["template"]="traffic fits its map: {reads}; 16#{protected:04X} at {marker:d}, its answer for a non-existent parameter",["format"]="traffic fits its map: %s; 16#%04X at %d, its answer for a non-existent parameter",["params"]={"reads","protected","marker"},["repr"]={}},["fit_read"]={["template"]="function {function:d} at {span} in frame #{frame:d}",["format"]="function %d at %s in frame #%d",["params"]={"function","span","frame"},["repr"]={}},["fit_read_again"]={["template"]="function {function:d} at {span} in frames #{frame:d} and #{again:d}",["format"]="function %d at %s in frames #%d and #%d",["params"]={"function","span","frame","again"},["repr"]={}},["user_function"]={["template"]="User-defined function {code}",["format"]="User-defined function %s",["params"]={"code"},["repr"]={}},["other_function"]={["template"]="Function {code}",["format"]="Function %s",["params"]={"code"},["repr"]={}},["missing_exception"]={["template"]="Missing exception code",["format"]="Missing exception code",["params"]={},["repr"]={}},["undefined_exception"]={["template"]="Unknown exception {code}",["format"]="Unknown exception %s",["params"]={"code"},["repr"]={}},["other_object"]={["template"]="Object {id}",["format"]="Object %s",["params"]={"id"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
+local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["odd_count"]=false},["read_bits_response"]={["start"]="request.start",["quantity"]="request.quantity",["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=0,["plus"]=0,["text"]="count_asked_bits"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["read_registers_response"]={["start"]="request.start",["quantity"]="request.quantity",["unpaired_unit"]=2,["checks"]={},["span"]=false,["count"]={["of"]="request.quantity",["unit"]=2,["plus"]=0,["text"]="count_asked_registers"},["odd_count"]=true,["values"]={["kind"]="registers",["field"]="values"}},["write_single_coil"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["coil"]="value",["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="coil",["field"]="value"}},["write_single_register"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"address","value"},["names"]="differing"},["values"]={["kind"]="register",["field"]="value"}},["write_coils_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=0,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="bits",["field"]="status"}},["write_registers_request"]={["start"]="start",["quantity"]="quantity",["checks"]={{["what"]="quantity",["field"]="quantity",["test"]="range"}},["span"]=true,["count"]={["of"]="quantity",["unit"]=2,["plus"]=0,["text"]="count_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values"}},["write_multiple_response"]={["start"]="start",["quantity"]="quantity",["checks"]={},["span"]=false,["odd_count"]=false,["echo"]={["fields"]={"start","quantity"},["names"]="all"}},["mask_write"]={["start"]="address",["quantity"]=1,["checks"]={},["span"]=false,["odd_count"]=false},["read_write_request"]={["start"]="read_start",["quantity"]="read_quantity",["checks"]={{["what"]="read quantity",["field"]="read_quantity",["limit"]="rw_read",["test"]="range"},{["what"]="write quantity",["field"]="write_quantity",["limit"]="rw_write",["test"]="range"}},["span"]=true,["count"]={["of"]="write_quantity",["unit"]=2,["plus"]=0,["text"]="count_write_quantity"},["odd_count"]=false,["values"]={["kind"]="registers",["field"]="values",["start"]="write_start"},["write_window"]={"write_start","write_quantity"}},["fifo_request"]={["start"]="address",["checks"]={},["span"]=false,["odd_count"]=false},["fifo_response"]={["start"]="request.start",["checks"]={{["what"]="FIFO count",["field"]="fifo_count",["limit"]="fifo_count",["test"]="above"}},["span"]=false,["count"]={["of"]="fifo_count",["unit"]=2,["plus"]=2,["text"]="count_fifo"},["odd_count"]=false}},["by_code"]={["request"]={[1]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_bits"},[2]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_bits"},[3]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_registers"},[4]={["layout"]="read_request",["rule"]="read_request",["limit"]="read_registers"},[5]={["layout"]="write_single",["rule"]="write_single_coil"},[6]={["layout"]="write_single",["rule"]="write_single_register"},[7]={["layout"]="empty"},[8]={["layout"]="diagnostics",["special"]="diagnostics"},[11]={["layout"]="empty"},[12]={["layout"]="empty"},[15]={["layout"]="write_coils_request",["rule"]="write_coils_request",["limit"]="write_coils"},[16]={["layout"]="write_registers_request",["rule"]="write_registers_request",["limit"]="write_registers"},[17]={["layout"]="empty"},[20]={["layout"]="read_file_request"},[21]={["layout"]="write_file"},[22]={["layout"]="mask_write",["rule"]="mask_write"},[23]={["layout"]="read_write_request",["rule"]="read_write_request"},[24]={["layout"]="fifo_request",["rule"]="fifo_request"},[43]={["layout"]="mei_request"}},["response"]={[1]={["layout"]="read_bits_response",["rule"]="read_bits_response"},[2]={["layout"]="read_bits_response",["rule"]="read_bits_response"},[3]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[4]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[5]={["layout"]="write_single",["rule"]="write_single_coil"},[6]={["layout"]="write_single",["rule"]="write_single_register"},[7]={["layout"]="exception_status_response"},[8]={["layout"]="diagnostics",["special"]="diagnostics"},[11]={["layout"]="comm_event_counter_response"},[12]={["layout"]="comm_event_log_response"},[15]={["layout"]="write_multiple_response",["rule"]="write_multiple_response"},[16]={["layout"]="write_multiple_response",["rule"]="write_multiple_response"},[17]={["layout"]="report_server_id_response",["special"]="report_server_id_response"},[20]={["layout"]="read_file_response"},[21]={["layout"]="write_file"},[22]={["layout"]="mask_write",["rule"]="mask_write"},[23]={["layout"]="read_registers_response",["rule"]="read_registers_response"},[24]={["layout"]="fifo_response",["rule"]="fifo_response",["limit"]="fifo_count"},[43]={["layout"]="mei_response",["special"]="mei_response"}}},["confirm"]={[5]="echo",[6]="echo",[15]="answer",[16]="answer",[23]="answer"},["confirmed"]={["echo"]={[6]=true},["answer"]={[16]=true,[23]=true}},["limits"]={["read_bits"]={1,2000},["read_registers"]={1,125},["write_coils"]={1,1968},["write_registers"]={1,123},["rw_read"]={1,125},["rw_write"]={1,121},["fifo_count"]={0,31}},["texts"]={["range"]={["template"]="{what} {value} outside the spec's {low}..{high}",["format"]="%s %s outside the spec's %s..%s",["params"]={"what","value","low","high"},["repr"]={}},["above"]={["template"]="{what} {value} above the spec's {high}",["format"]="%s %s above the spec's %s",["params"]={"what","value","high"},["repr"]={}},["span"]={["template"]="addresses {first}..{last} run past 65535",["format"]="addresses %s..%s run past 65535",["params"]={"first","last"},["repr"]={}},["count_asked_bits"]={["template"]="byte count {count} disagrees with the bits asked ({quantity})",["format"]="byte count %s disagrees with the bits asked (%s)",["params"]={"count","quantity"},["repr"]={}},["count_asked_registers"]={["template"]="byte count {count} disagrees with the registers asked ({quantity})",["format"]="byte count %s disagrees with the registers asked (%s)",["params"]={"count","quantity"},["repr"]={}},["count_quantity"]={["template"]="byte count {count} disagrees with the quantity {quantity}",["format"]="byte count %s disagrees with the quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_write_quantity"]={["template"]="byte count {count} disagrees with the write quantity {quantity}",["format"]="byte count %s disagrees with the write quantity %s",["params"]={"count","quantity"},["repr"]={}},["count_fifo"]={["template"]="byte count {count} disagrees with the FIFO count",["format"]="byte count %s disagrees with the FIFO count",["params"]={"count"},["repr"]={}},["odd_count"]={["template"]="odd byte count {count} for 16-bit registers",["format"]="odd byte count %s for 16-bit registers",["params"]={"count"},["repr"]={}},["coil_value"]={["template"]="coil value 0x{value:04X} is neither 0xFF00 (on) nor 0x0000 (off)",["format"]="coil value 0x%04X is neither 0xFF00 (on) nor 0x0000 (off)",["params"]={"value"},["repr"]={}},["echo"]={["template"]="the response's {fields} {verb} from the request's",["format"]="the response's %s %s from the request's",["params"]={"fields","verb"},["repr"]={}},["reserved_slave"]={["template"]="slave address {slave} is reserved (248..255 are no device's)",["format"]="slave address %s is reserved (248..255 are no device's)",["params"]={"slave"},["repr"]={}},["malformed"]={["template"]="malformed {kind}: {error}",["format"]="malformed %s: %s",["params"]={"kind","error"},["repr"]={}},["unknown_exception"]={["template"]="exception code {code} is not defined by the spec",["format"]="exception code %s is not defined by the spec",["params"]={"code"},["repr"]={}},["trailing"]={["template"]="unexpected bytes after the data ({count})",["format"]="unexpected bytes after the data (%s)",["params"]={"count"},["repr"]={}},["not_broadcast"]={["template"]="{function} cannot be broadcast (slave 0)",["format"]="%s cannot be broadcast (slave 0)",["params"]={"function"},["repr"]={}},["unknown_subfunction"]={["template"]="diagnostic sub-function {subfunction} is not defined by the spec",["format"]="diagnostic sub-function %s is not defined by the spec",["params"]={"subfunction"},["repr"]={}},["odd_diagnostic_data"]={["template"]="diagnostic data is not a whole number of words",["format"]="diagnostic data is not a whole number of words",["params"]={},["repr"]={}},["run_indicator"]={["template"]="run indicator 0x{value:02X} is neither 0x00 (OFF) nor 0xFF (ON)",["format"]="run indicator 0x%02X is neither 0x00 (OFF) nor 0xFF (ON)",["params"]={"value"},["repr"]={}},["unanswered"]={["template"]="request #{number} was not answered",["format"]="request #%s was not answered",["params"]={"number"},["repr"]={}},["never_answered"]={["template"]="no response expected: the spec's server returns none",["format"]="no response expected: the spec's server returns none",["params"]={},["repr"]={}},["unmatched"]={["template"]="response without a matching request in the capture",["format"]="response without a matching request in the capture",["params"]={},["repr"]={}},["capture_ends"]={["template"]="the capture ends before any response",["format"]="the capture ends before any response",["params"]={},["repr"]={}},["late"]={["template"]="response {delay_ms:.1f} ms after request #{number}, later than the {timeout_ms:.0f} ms timeout: not its answer",["format"]="response %.1f ms after request #%s, later than the %.0f ms timeout: not its answer",["params"]={"delay_ms","number","timeout_ms"},["repr"]={}},["backwards"]={["template"]="response stamped {ahead_ms:.1f} ms before request #{number}: time goes backwards, left out of the response times",["format"]="response stamped %.1f ms before request #%s: time goes backwards, left out of the response times",["params"]={"ahead_ms","number"},["repr"]={}},["lf_without_cr"]={["template"]="line ends with LF without CR (the spec ends a frame with CR LF)",["format"]="line ends with LF without CR (the spec ends a frame with CR LF)",["params"]={},["repr"]={}},["lower_case_hex"]={["template"]="lower-case hex digits (the spec wants upper case)",["format"]="lower-case hex digits (the spec wants upper case)",["params"]={},["repr"]={}},["inner_silence"]={["template"]="silence of {silence_ms:.3f} ms inside the frame before byte {byte} (longer than {limit})",["format"]="silence of %.3f ms inside the frame before byte %s (longer than %s)",["params"]={"silence_ms","byte","limit"},["repr"]={}},["no_frame"]={["template"]="no valid frame",["format"]="no valid frame",["params"]={},["repr"]={}},["too_short"]={["template"]="too short for a frame",["format"]="too short for a frame",["params"]={},["repr"]={}},["outside_ascii"]={["template"]="outside an ASCII frame",["format"]="outside an ASCII frame",["params"]={},["repr"]={}},["cut_by_colon"]={["template"]="ASCII frame cut short by the next ':'",["format"]="ASCII frame cut short by the next ':'",["params"]={},["repr"]={}},["no_line_end"]={["template"]="no CR LF within {limit} characters of the ':'",["format"]="no CR LF within %s characters of the ':'",["params"]={"limit"},["repr"]={}},["cut_by_end"]={["template"]="ASCII frame cut off by the end of the capture",["format"]="ASCII frame cut off by the end of the capture",["params"]={},["repr"]={}},["not_hex_pairs"]={["template"]="ASCII frame is not made of hex pairs",["format"]="ASCII frame is not made of hex pairs",["params"]={},["repr"]={}},["ascii_too_short"]={["template"]="ASCII frame too short",["format"]="ASCII frame too short",["params"]={},["repr"]={}},["no_layout"]={["template"]="no Modbus layout fits function {function} ({check})",["format"]="no Modbus layout fits function %s (%s)",["params"]={"function","check"},["repr"]={}},["lrc_ok"]={["template"]="LRC ok",["format"]="LRC ok",["params"]={},["repr"]={}},["lrc_wrong"]={["template"]="LRC {received:02X}, expected {expected:02X}",["format"]="LRC %02X, expected %02X",["params"]={"received","expected"},["repr"]={}},["not_supported"]={["template"]="{name} ({function}) is not supported by the {device}",["format"]="%s (%s) is not supported by the %s",["params"]={"name","function","device"},["repr"]={}},["inner_only"]={["template"]="{name} ({function}) is only valid inside an encapsulated packet on the {device}",["format"]="%s (%s) is only valid inside an encapsulated packet on the %s",["params"]={"name","function","device"},["repr"]={}},["device_broadcast"]={["template"]="{name} cannot be broadcast to the {device} (broadcast functions: {allowed})",["format"]="%s cannot be broadcast to the %s (broadcast functions: %s)",["params"]={"name","device","allowed"},["repr"]={}},["device_limit"]={["template"]="{what} {quantity} is beyond the {device}'s limit of {limit} words for {name}",["format"]="%s %s is beyond the %s's limit of %s words for %s",["params"]={"what","quantity","device","limit","name"},["repr"]={}},["exception_cause"]={["template"]="exception {code:02X} from the {device} to {name}: {causes}",["format"]="exception %02X from the %s to %s: %s",["params"]={"code","device","name","causes"},["repr"]={}},["exception_meaning"]={["template"]="exception {code:02X} from the {device}: {meaning}",["format"]="exception %02X from the %s: %s",["params"]={"code","device","meaning"},["repr"]={}},["exception_undocumented"]={["template"]="exception {code:02X} is not one the {device} documents ({known})",["format"]="exception %02X is not one the %s documents (%s)",["params"]={"code","device","known"},["repr"]={}},["revision_form"]={["template"]="{object} {value!r} is not in the MMmm form the {device} uses",["format"]="%s %s is not in the MMmm form the %s uses",["params"]={"object","value","device"},["repr"]={"value"}},["subfunction_meaning"]={["template"]="sub-function {subfunction:02X} on the {device}: {meaning}",["format"]="sub-function %02X on the %s: %s",["params"]={"subfunction","device","meaning"},["repr"]={}},["subfunction_value"]={["template"]="; value {value}",["format"]="; value %s",["params"]={"value"},["repr"]={}},["cause_counter"]={["template"]="{error} (increments the {counters} counter)",["format"]="%s (increments the %s counter)",["params"]={"error","counters"},["repr"]={}},["cause_counters"]={["template"]="{error} (increments the {counters} counters)",["format"]="%s (increments the %s counters)",["params"]={"error","counters"},["repr"]={}},["all_unreadable"]={["template"]="exception {code:02X} from the {device}: every parameter of this read is non-existent or protected: {parameters}",["format"]="exception %02X from the %s: every parameter of this read is non-existent or protected: %s",["params"]={"code","device","parameters"},["repr"]={}},["unmapped_run"]={["template"]="{span} non-existent ({count})",["format"]="%s non-existent (%s)",["params"]={"span","count"},["repr"]={}},["unreadable_now"]={["template"]="exception {code:02X} now",["format"]="exception %02X now",["params"]={"code"},["repr"]={}},["no_value"]={["template"]="no value: exception {code:02X}",["format"]="no value: exception %02X",["params"]={"code"},["repr"]={}},["became_protected"]={["template"]="became protected",["format"]="became protected",["params"]={},["repr"]={}},["became_unknown"]={["template"]="became non-existent or protected",["format"]="became non-existent or protected",["params"]={},["repr"]={}},["readable_again"]={["template"]="readable again",["format"]="readable again",["params"]={},["repr"]={}},["known_value"]={["template"]="{how} {value:d}",["format"]="%s %d",["params"]={"how","value"},["repr"]={}},["value_now"]={["template"]="{value:d} now",["format"]="%d now",["params"]={"value"},["repr"]={}},["marker_now"]={["template"]="16#8000 now",["format"]="16#8000 now",["params"]={},["repr"]={}},["event_one"]={["template"]="{name} {what}: {before} in frame #{frame:d}, {now}",["format"]="%s %s: %s in frame #%d, %s",["params"]={"name","what","before","frame","now"},["repr"]={}},["event_runs"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}",["format"]="%s %s (%d): %s in frame #%d",["params"]={"runs","what","count","how","frame"},["repr"]={}},["event_runs_now"]={["template"]="{runs} {what} ({count:d}): {how} in frame #{frame:d}, {now}",["format"]="%s %s (%d): %s in frame #%d, %s",["params"]={"runs","what","count","how","frame","now"},["repr"]={}},["marker_non_existent"]={["template"]="16#8000: non-existent (address not in the map)",["format"]="16#8000: non-existent (address not in the map)",["params"]={},["repr"]={}},["marker_protected"]={["template"]="16#8000: protected",["format"]="16#8000: protected",["params"]={},["repr"]={}},["first_word"]={["template"]="first word of a {kind}, the second is not in this frame",["format"]="first word of a %s, the second is not in this frame",["params"]={"kind"},["repr"]={}},["second_word"]={["template"]="second word of {code}",["format"]="second word of %s",["params"]={"code"},["repr"]={}},["not_listed"]={["template"]="{value:d} (not a listed value)",["format"]="%d (not a listed value)",["params"]={"value"},["repr"]={}},["no_bit_set"]={["template"]="no bit set",["format"]="no bit set",["params"]={},["repr"]={}},["bit_unnamed"]={["template"]="bit {bit:d}",["format"]="bit %d",["params"]={"bit"},["repr"]={}},["unscaled"]={["template"]="{value:d} (unscaled, in {unit})",["format"]="%d (unscaled, in %s)",["params"]={"value","unit"},["repr"]={}},["chosen_product_code"]={["template"]="Read Device Identification in frame #{frame:d}: ProductCode {value!r}",["format"]="Read Device Identification in frame #%d: ProductCode %s",["params"]={"frame","value"},["repr"]={"value"}},["chosen_function"]={["template"]="function {function:02X}h ({name}) in frame #{frame:d}",["format"]="function %02Xh (%s) in frame #%d",["params"]={"function","name","frame"},["repr"]={}},["chosen_unsupported"]={["template"]="function {function:d} answered in frame #{frame:d}, which the {device} does not support",["format"]="function %d answered in frame #%d, which the %s does not support",["params"]={"function","frame","device"},["repr"]={}},["chosen_fit"]={["template"]="traffic fits its map: {reads}",["format"]="traffic fits its map: %s",["params"]={"reads"},["repr"]={}},["chosen_fit_marker"]={["template"]="traffic fits its map: {reads}; 16#{protected:04X} at {marker:d}, its answer for a non-existent parameter",["format"]="traffic fits its map: %s; 16#%04X at %d, its answer for a non-existent parameter",["params"]={"reads","protected","marker"},["repr"]={}},["fit_read"]={["template"]="function {function:d} at {span} in frame #{frame:d}",["format"]="function %d at %s in frame #%d",["params"]={"function","span","frame"},["repr"]={}},["fit_read_again"]={["template"]="function {function:d} at {span} in frames #{frame:d} and #{again:d}",["format"]="function %d at %s in frames #%d and #%d",["params"]={"function","span","frame","again"},["repr"]={}},["user_function"]={["template"]="User-defined function {code}",["format"]="User-defined function %s",["params"]={"code"},["repr"]={}},["other_function"]={["template"]="Function {code}",["format"]="Function %s",["params"]={"code"},["repr"]={}},["missing_exception"]={["template"]="Missing exception code",["format"]="Missing exception code",["params"]={},["repr"]={}},["undefined_exception"]={["template"]="Unknown exception {code}",["format"]="Unknown exception %s",["params"]={"code"},["repr"]={}},["other_object"]={["template"]="Object {id}",["format"]="Object %s",["params"]={"id"},["repr"]={}}},["layouts"]={["read_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["read_bits_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["read_registers_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_single"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="value",["type"]="u16",["half"]=false,["minus"]=0}},["empty"]={},["diagnostics"]={{["name"]="subfunction",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["write_coils_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_registers_request"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["write_multiple_response"]={{["name"]="start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="quantity",["type"]="u16",["half"]=false,["minus"]=0}},["exception_status_response"]={{["name"]="status",["type"]="u8",["half"]=false,["minus"]=0}},["comm_event_counter_response"]={{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0}},["mask_write"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="and_mask",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="or_mask",["type"]="u16",["half"]=false,["minus"]=0}},["read_write_request"]={{["name"]="read_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="read_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_start",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="write_quantity",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="byte_count",["half"]=true,["minus"]=0},{["name"]="odd_byte",["type"]="odd",["count"]="byte_count",["half"]=false,["minus"]=0}},["fifo_request"]={{["name"]="address",["type"]="u16",["half"]=false,["minus"]=0}},["fifo_response"]={{["name"]="byte_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="fifo_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="fifo_count",["half"]=false,["minus"]=0}},["exception"]={{["name"]="exception_code",["type"]="u8",["half"]=false,["minus"]=0}},["raw"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}},["comm_event_log_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="status",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="event_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="message_count",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="events",["type"]="bytes",["count"]="byte_count",["half"]=false,["minus"]=6}},["report_server_id_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="server_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="run_indicator",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="additional_data",["type"]="text",["count"]="byte_count",["half"]=false,["minus"]=2}},["read_file_request"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subrequests",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subrequest"}},["read_file_response"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="subresponses",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_subresponse"}},["write_file"]={{["name"]="byte_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="records",["type"]="records",["count"]="byte_count",["half"]=false,["minus"]=0,["part"]="file_record"}},["mei_request"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_request"},{["part"]="other_mei"}}}},["mei_response"]={{["name"]="mei_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="body",["type"]="switch",["count"]="mei_type",["half"]=false,["minus"]=0,["cases"]={{["value"]=14,["part"]="device_id_response"},{["part"]="other_mei"}}}}},["parts"]={["file_subrequest"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0}},["file_subresponse"]={{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=true,["minus"]=1}},["file_record"]={{["name"]="reference_type",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="file",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="record",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u16",["half"]=false,["minus"]=0},{["name"]="values",["type"]="words",["count"]="length",["half"]=false,["minus"]=0}},["device_id_request"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_id",["type"]="u8",["half"]=false,["minus"]=0}},["device_id_response"]={{["name"]="read_code",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="conformity",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="more_follows",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="next_object_id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="object_count",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="objects",["type"]="array",["count"]="object_count",["half"]=false,["minus"]=0,["part"]="device_object"}},["device_object"]={{["name"]="id",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="length",["type"]="u8",["half"]=false,["minus"]=0},{["name"]="value",["type"]="bytes",["count"]="length",["half"]=false,["minus"]=0}},["other_mei"]={{["name"]="data",["type"]="rest",["half"]=false,["minus"]=0}}}}
 -- END RULES
 DATA.rules = RULES
 end
@@ -6440,7 +6718,8 @@ local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 -- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
 local VALUES = { kind = NUMBER_KIND, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
   run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
-  response = frametype and frametype.RESPONSE }
+  response = frametype and frametype.RESPONSE, mei_types = DATA.fields.names.mei_types,
+  device_id_codes = DATA.fields.names.device_id_codes }
 
 -- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
 -- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
@@ -6455,6 +6734,11 @@ for _, f in ipairs(DATA.fields.fields) do
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
   end
 end
+
+-- The fields that show each PDU field (data/pdu_fields.toml): PDU_FIELDS["LAYOUT.FIELD"], a text's
+-- string field first and its bytes' second (tree.lua add_pdu).
+local PDU_FIELDS = {}
+for name, names in pairs(DATA.fields.pdu) do PDU_FIELDS[name] = { pf[names[1]], names[2] and pf[names[2]] } end
 
 -- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
 -- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow
@@ -6523,8 +6807,8 @@ function proto.init()
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
 end
-M.PARAMETER_FIELDS, M.apply_prefs, M.ex, M.pf, M.proto = PARAMETER_FIELDS, apply_prefs, ex, pf, proto
-M.stream_state = stream_state
+M.PARAMETER_FIELDS, M.PDU_FIELDS, M.apply_prefs, M.ex, M.pf = PARAMETER_FIELDS, PDU_FIELDS, apply_prefs, ex, pf
+M.proto, M.stream_state = proto, stream_state
 end
 
 -- ---- vw3.tree: lua/src/tree.lua ----
@@ -6536,11 +6820,11 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
 local NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS
-local REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat = REQUEST, RESPONSE, START_FROM_REQUEST, bit_at, concat
-local device_of, ex, exception_name, floor, format = device_of, ex, exception_name, floor, format
-local function_name, inferred_registers, ipairs, made_once = function_name, inferred_registers, ipairs, made_once
-local pf, proto, python_repr, register_view, say, string = pf, proto, python_repr, register_view, say, string
-local tonumber, tostring = tonumber, tostring
+local PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST = PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST
+local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
+local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
+local made_once, math, pairs, pf, proto, python_repr = made_once, math, pairs, pf, proto, python_repr
+local register_view, say, string, tonumber, tostring = register_view, say, string, tonumber, tostring
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
@@ -6586,6 +6870,8 @@ end
 -- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
 -- made when a field needs it); .frame_length: the length of the frame's item. .checking: fields are
 -- checked (an invisible tree; it pays from the second register or bit on).
+local LAYOUT_OF = DATA.rules.by_code -- (by kind, then function code: its layout's name)
+local START_WORDS = DATA.fields.start_words -- (a start that is no window: data/pdu_fields.toml [start_words])
 local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
 -- The register or bit being added: `size` bytes at `at` in the frame (or the TvbRange `range`).
@@ -6685,6 +6971,95 @@ local function add_register(tree, tvb, f, reg, range, full, checking)
   end
 end
 
+-- The PDU's fields as vw3-decode -V lists them (detail.py _head_lines), in their layout's order
+-- (data/modbus.toml [layouts] and [parts], DATA.rules), each by the field data/pdu_fields.toml gives it
+-- (PDU_FIELDS; none: shown otherwise, the window, registers, bits, objects). Read from the frame's bytes
+-- when shown: a record keeps no fields. SHOWN[field]: a layout's or part's field's fields, or false.
+local LAYOUTS, PARTS, SHOWN = DATA.rules.layouts, DATA.rules.parts, {}
+for _, shapes in ipairs({ LAYOUTS, PARTS }) do
+  for owner, shape in pairs(shapes) do
+    for _, field in ipairs(shape) do SHOWN[field] = PDU_FIELDS[owner .. "." .. field.name] or false end
+  end
+end
+local FIXED = { u8 = 1, u16 = 2 }
+
+-- A counted field's bytes from its count's value (as shape_parser's size_of; odd: the byte an odd count leaves).
+local function counted_size(field, count)
+  if field.type == "odd" then return count % 2 end
+  local n = count - field.minus
+  if field.half then return n - n % 2 end
+  if field.type == "words" then return 2 * n end
+  return n
+end
+
+-- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
+-- measured); where they end, or nil when one does not fit (a record that ends its records: grammar.py).
+local function add_shape(t, tvb, f, b, shape, at, stop)
+  local values = {}
+  for _, field in ipairs(shape) do
+    local kind, shown = field.type, SHOWN[field]
+    local size = FIXED[kind]
+    if size ~= nil then
+      if at + size > stop then return nil end
+      local value = size == 1 and b[at] or b[at] * 256 + b[at + 1]
+      values[field.name] = value
+      if t and shown then t:add(shown[1], frame_range(tvb, f, at, size), value) end
+      at = at + size
+    elseif kind == "switch" then -- (the part for the earlier field's value, else the last: in place)
+      local cases = field.cases
+      local part = cases[#cases].part
+      for _, case in ipairs(cases) do
+        if case.value == values[field.count] then part = case.part break end
+      end
+      at = add_shape(t, tvb, f, b, PARTS[part], at, stop)
+      if at == nil then return nil end
+    elseif kind == "array" or kind == "records" then -- (parts: `count` of them, or filling `count` bytes)
+      local part, last, many = PARTS[field.part], stop, values[field.count]
+      if kind == "records" then last, many = at + many, math.huge end
+      if last > stop then return nil end
+      while many > 0 and at < last do
+        local after = add_shape(nil, tvb, f, b, part, at, last)
+        if after == nil then break end
+        if t and shown then
+          add_shape(t:add(shown[1], frame_range(tvb, f, at, after - at)), tvb, f, b, part, at, last)
+        end
+        at, many = after, many - 1
+      end
+      if kind == "records" then at = last end
+    else
+      size = kind == "rest" and stop - at or counted_size(field, values[field.count])
+      if size < 0 or at + size > stop then return nil end
+      if t and shown and size > 0 then
+        if kind == "words" then
+          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), b[k] * 256 + b[k + 1]) end
+        elseif kind == "odd" then
+          t:add(shown[1], frame_range(tvb, f, at, 1), b[at])
+        elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
+          local chars = {}
+          for k = at, at + size - 1 do
+            if b[k] < 32 or b[k] > 126 then chars = nil break end
+            chars[#chars + 1] = string.char(b[k])
+          end
+          if chars then t:add(shown[1], frame_range(tvb, f, at, size), concat(chars))
+          else t:add(shown[2], frame_range(tvb, f, at, size)) end
+        else
+          t:add(shown[1], frame_range(tvb, f, at, size))
+        end
+      end
+      at = at + size
+    end
+  end
+  return at
+end
+
+-- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`.
+local function add_pdu(t, tvb, f, stop)
+  local entry = LAYOUT_OF[f.kind] and LAYOUT_OF[f.kind][f.fn]
+  local layout = LAYOUTS[entry and entry.layout or "raw"]
+  if f.malformed or #layout == 0 then return end
+  add_shape(t, tvb, f, frame_bytes(f, tvb), layout, 2, stop)
+end
+
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
 local DECIMAL = made_once(function(number) return format("%d", number) end)
@@ -6701,18 +7076,27 @@ local function summary(f)
   if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
-  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
+  if start == nil then
+    local sub = f.subfunction -- (FC8: the sub-function, as vw3-decode's summary names it)
+    if sub == nil then return slave .. " " .. name .. " " .. kind .. tail end
+    return slave .. " " .. name .. " " .. kind .. " " .. format("%02Xh ", sub)
+      .. (f.subfunction_text or DIAGNOSTICS[sub] or "unknown sub-function") .. tail
+  end
   if quantity ~= nil and quantity > 1 then
     -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
     return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
       .. tail
+  end
+  local words = START_WORDS[f.fn]
+  if words ~= nil then
+    return slave .. " " .. name .. " " .. kind .. " " .. words.info .. " " .. DECIMAL[start] .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
 
 local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
-  local t, whole = tree, nil
+  local t, whole, crc_at = tree, nil, nil
   if full then
     whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
@@ -6730,7 +7114,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.provisional then -- (vw3-decode -V's line)
       t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
-    local crc_at = f.length - 2
+    crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     t:add(pf.crc, crc_range, f.crc)
@@ -6755,11 +7139,14 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
       if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
+      local words = START_WORDS[f.fn]
+      if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
     end
     if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
+    if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
     if f.subfunction ~= nil then
-      t:add(pf.subfunction, data_range, f.subfunction)
       local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
       if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
     end
@@ -6810,16 +7197,6 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         sub:add(pf.object_name, r, object.name):set_generated()
         sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
-      end
-    end
-    local server = f.server -- Report Server ID (FC17) response
-    if server then
-      t:add(pf.byte_count, frame_range(tvb, f, server.at, 1), server.byte_count)
-      t:add(pf.server_id, frame_range(tvb, f, server.at + 1, 1), server.id)
-      t:add(pf.run_indicator, frame_range(tvb, f, server.at + 2, 1), server.run)
-      if server.length > 0 then
-        local r = frame_range(tvb, f, server.at + 3, server.length)
-        if server.text then t:add(pf.additional_data, r, server.text) else t:add(pf.additional_bytes, r) end
       end
     end
     if f.request ~= nil then

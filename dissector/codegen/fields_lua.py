@@ -2,7 +2,10 @@
 render/filter_fields.py): per field its name, constructor, title, base, value strings and meaning, as
 lua/vw3.lua's DATA.fields.fields, which lua/src/fields.lua turns into ProtoFields; and the plugin's expert
 infos and preferences from the same file's [[expert]] and [[preference]] entries, as DATA.fields.experts and
-DATA.fields.preferences; and a field per parameter of the built-in register maps, DATA.fields.parameters."""
+DATA.fields.preferences; and a field per parameter of the built-in register maps, DATA.fields.parameters;
+the fields that show each PDU field (DATA.fields.pdu, data/pdu_fields.toml, with its plugin-only fields),
+the value strings they name from the spec (DATA.fields.names) and the words of a start that is no window
+(DATA.fields.start_words)."""
 from __future__ import annotations
 
 import re
@@ -11,6 +14,7 @@ from importlib import resources
 from typing import Any
 
 from dissector.errors import GenerateError
+from dissector.protocol.spec import SPEC
 from dissector.render.filter_fields import CATALOGUE
 
 # ProtoField constructors by their arguments: (abbr, title, base, values, mask, help) or (abbr, title, help)
@@ -18,14 +22,21 @@ INTEGER = frozenset({"uint8", "uint16", "uint32", "bool", "framenum"})
 PLAIN = frozenset({"string", "bytes", "none", "double", "relative_time"})
 
 
-def plugin_fields() -> dict[str, list[dict[str, Any]]]:
-    """The plugin's fields and expert infos: {"fields": [...], "experts": [...]}."""
+def plugin_fields() -> dict[str, Any]:
+    """The plugin's fields and expert infos: {"fields": [...], "experts": [...], ...}."""
     return {"fields": proto_fields(), "experts": experts(), "preferences": preferences(),
-            "parameters": parameter_fields()}
+            "parameters": parameter_fields(), "pdu": pdu_fields(),
+            "names": {"mei_types": SPEC.mei_types, "device_id_codes": SPEC.device_id_codes},
+            "start_words": {int(code): dict(words) for code, words in _pdu_catalogue()["start_words"].items()}}
 
 
 def _catalogue() -> dict[str, Any]:
     return tomllib.loads(resources.files("dissector").joinpath("data/fields.toml").read_text(encoding="utf-8"))
+
+
+def _pdu_catalogue() -> dict[str, Any]:
+    """data/pdu_fields.toml: read here only (vw3-decode reads data/fields.toml at each start)."""
+    return tomllib.loads(resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8"))
 
 
 def experts() -> list[dict[str, str]]:
@@ -53,7 +64,7 @@ def preferences() -> list[dict[str, Any]]:
 def proto_fields() -> list[dict[str, Any]]:
     """One table a plugin field, in the catalogue's order: {abbr, ftype, title, help, [base], [values]}."""
     out = []
-    for entry in CATALOGUE:
+    for entry in CATALOGUE + _pdu_catalogue()["field"]:
         if "filter" not in entry:
             continue
         ftype = entry["ftype"]
@@ -68,6 +79,34 @@ def proto_fields() -> list[dict[str, Any]]:
                 # (a value-string table: TOML keys are strings, Wireshark's are the numbers)
                 field[key] = {int(k): v for k, v in value.items()} if isinstance(value, dict) else value
         out.append(field)
+    return out
+
+
+def pdu_fields() -> dict[str, list[str]]:
+    """The fields that show each PDU field, {"LAYOUT.FIELD": [pf name, ...]} (pf.NAME: the filter without
+    `vw3.`, dots as `_`), a text field's string field first; every field of every layout and part
+    (data/modbus.toml) is shown so or listed in data/pdu_fields.toml's pdu_shown, a switch by the part it
+    chose."""
+    from dissector.protocol.shapes import PARTS, SHAPES, Type
+
+    pdu = _pdu_catalogue()
+    out: dict[str, list[str]] = {}
+    for entry in CATALOGUE + pdu["field"]:
+        for name in entry.get("pdu", pdu["pdu"].get(entry.get("filter"), ())):
+            out.setdefault(name, []).append(entry["filter"][4:].replace(".", "_"))
+            if entry["ftype"] == "string":  # (a text's string field first, its bytes' after)
+                out[name].insert(0, out[name].pop())
+    shown = set(pdu["pdu_shown"])
+    every = {f"{owner}.{field.name}": field for shapes in (SHAPES, PARTS) for owner, shape in shapes.items()
+             for field in shape}
+    for name, field in every.items():
+        if field.type is Type.SWITCH:
+            continue
+        if (name in out) == (name in shown):
+            raise GenerateError(f"data/fields.toml: PDU field {name}: "
+                                + ("shown twice (pdu and pdu_shown)" if name in out else "no field shows it"))
+    for name in (out.keys() | shown) - every.keys():
+        raise GenerateError(f"data/fields.toml: {name}: no such PDU field (data/modbus.toml [layouts], [parts])")
     return out
 
 

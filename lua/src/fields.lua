@@ -14,7 +14,8 @@ local proto = Proto("vw3", "VW3 Modbus serial (Altivar 71, SEL-749M)")
 -- The value strings data/fields.toml names (a field's `values`, when not a table of its own).
 local VALUES = { kind = NUMBER_KIND, functions = FUNCTIONS, exceptions = EXCEPTIONS, diagnostics = DIAGNOSTICS,
   run_indicator = DATA.names.run_indicator, request = frametype and frametype.REQUEST,
-  response = frametype and frametype.RESPONSE }
+  response = frametype and frametype.RESPONSE, mei_types = DATA.fields.names.mei_types,
+  device_id_codes = DATA.fields.names.device_id_codes }
 
 -- The fields, stated in data/fields.toml with vw3-decode's filter keys (codegen/fields_lua.py):
 -- pf.NAME is vw3.NAME's field, dots as `_` (vw3.reg.address: pf.reg_address).
@@ -29,6 +30,11 @@ for _, f in ipairs(DATA.fields.fields) do
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.base and base[f.base], values, nil, f.help)
   end
 end
+
+-- The fields that show each PDU field (data/pdu_fields.toml): PDU_FIELDS["LAYOUT.FIELD"], a text's
+-- string field first and its bytes' second (tree.lua add_pdu).
+local PDU_FIELDS = {}
+for name, names in pairs(DATA.fields.pdu) do PDU_FIELDS[name] = { pf[names[1]], names[2] and pf[names[2]] } end
 
 -- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
 -- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow

@@ -48,6 +48,8 @@ end
 -- unseen.tvb, .offset, .length: the bytes of the register or bit being added (its TvbRange, .range, is
 -- made when a field needs it); .frame_length: the length of the frame's item. .checking: fields are
 -- checked (an invisible tree; it pays from the second register or bit on).
+local LAYOUT_OF = DATA.rules.by_code -- (by kind, then function code: its layout's name)
+local START_WORDS = DATA.fields.start_words -- (a start that is no window: data/pdu_fields.toml [start_words])
 local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
 -- The register or bit being added: `size` bytes at `at` in the frame (or the TvbRange `range`).
@@ -147,6 +149,95 @@ local function add_register(tree, tvb, f, reg, range, full, checking)
   end
 end
 
+-- The PDU's fields as vw3-decode -V lists them (detail.py _head_lines), in their layout's order
+-- (data/modbus.toml [layouts] and [parts], DATA.rules), each by the field data/pdu_fields.toml gives it
+-- (PDU_FIELDS; none: shown otherwise, the window, registers, bits, objects). Read from the frame's bytes
+-- when shown: a record keeps no fields. SHOWN[field]: a layout's or part's field's fields, or false.
+local LAYOUTS, PARTS, SHOWN = DATA.rules.layouts, DATA.rules.parts, {}
+for _, shapes in ipairs({ LAYOUTS, PARTS }) do
+  for owner, shape in pairs(shapes) do
+    for _, field in ipairs(shape) do SHOWN[field] = PDU_FIELDS[owner .. "." .. field.name] or false end
+  end
+end
+local FIXED = { u8 = 1, u16 = 2 }
+
+-- A counted field's bytes from its count's value (as shape_parser's size_of; odd: the byte an odd count leaves).
+local function counted_size(field, count)
+  if field.type == "odd" then return count % 2 end
+  local n = count - field.minus
+  if field.half then return n - n % 2 end
+  if field.type == "words" then return 2 * n end
+  return n
+end
+
+-- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
+-- measured); where they end, or nil when one does not fit (a record that ends its records: grammar.py).
+local function add_shape(t, tvb, f, b, shape, at, stop)
+  local values = {}
+  for _, field in ipairs(shape) do
+    local kind, shown = field.type, SHOWN[field]
+    local size = FIXED[kind]
+    if size ~= nil then
+      if at + size > stop then return nil end
+      local value = size == 1 and b[at] or b[at] * 256 + b[at + 1]
+      values[field.name] = value
+      if t and shown then t:add(shown[1], frame_range(tvb, f, at, size), value) end
+      at = at + size
+    elseif kind == "switch" then -- (the part for the earlier field's value, else the last: in place)
+      local cases = field.cases
+      local part = cases[#cases].part
+      for _, case in ipairs(cases) do
+        if case.value == values[field.count] then part = case.part break end
+      end
+      at = add_shape(t, tvb, f, b, PARTS[part], at, stop)
+      if at == nil then return nil end
+    elseif kind == "array" or kind == "records" then -- (parts: `count` of them, or filling `count` bytes)
+      local part, last, many = PARTS[field.part], stop, values[field.count]
+      if kind == "records" then last, many = at + many, math.huge end
+      if last > stop then return nil end
+      while many > 0 and at < last do
+        local after = add_shape(nil, tvb, f, b, part, at, last)
+        if after == nil then break end
+        if t and shown then
+          add_shape(t:add(shown[1], frame_range(tvb, f, at, after - at)), tvb, f, b, part, at, last)
+        end
+        at, many = after, many - 1
+      end
+      if kind == "records" then at = last end
+    else
+      size = kind == "rest" and stop - at or counted_size(field, values[field.count])
+      if size < 0 or at + size > stop then return nil end
+      if t and shown and size > 0 then
+        if kind == "words" then
+          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), b[k] * 256 + b[k + 1]) end
+        elseif kind == "odd" then
+          t:add(shown[1], frame_range(tvb, f, at, 1), b[at])
+        elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
+          local chars = {}
+          for k = at, at + size - 1 do
+            if b[k] < 32 or b[k] > 126 then chars = nil break end
+            chars[#chars + 1] = string.char(b[k])
+          end
+          if chars then t:add(shown[1], frame_range(tvb, f, at, size), concat(chars))
+          else t:add(shown[2], frame_range(tvb, f, at, size)) end
+        else
+          t:add(shown[1], frame_range(tvb, f, at, size))
+        end
+      end
+      at = at + size
+    end
+  end
+  return at
+end
+
+-- The PDU's fields of a frame that parsed (not an exception's: its code is shown as such), under `t`.
+local function add_pdu(t, tvb, f, stop)
+  local entry = LAYOUT_OF[f.kind] and LAYOUT_OF[f.kind][f.fn]
+  local layout = LAYOUTS[entry and entry.layout or "raw"]
+  if f.malformed or #layout == 0 then return end
+  add_shape(t, tvb, f, frame_bytes(f, tvb), layout, 2, stop)
+end
+
 -- Decimal texts of the numbers the Info column shows, made once each (string.format costs more than
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
 local DECIMAL = made_once(function(number) return format("%d", number) end)
@@ -163,18 +254,27 @@ local function summary(f)
   if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
-  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
+  if start == nil then
+    local sub = f.subfunction -- (FC8: the sub-function, as vw3-decode's summary names it)
+    if sub == nil then return slave .. " " .. name .. " " .. kind .. tail end
+    return slave .. " " .. name .. " " .. kind .. " " .. format("%02Xh ", sub)
+      .. (f.subfunction_text or DIAGNOSTICS[sub] or "unknown sub-function") .. tail
+  end
   if quantity ~= nil and quantity > 1 then
     -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
     return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
       .. tail
+  end
+  local words = START_WORDS[f.fn]
+  if words ~= nil then
+    return slave .. " " .. name .. " " .. kind .. " " .. words.info .. " " .. DECIMAL[start] .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
 
 local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
-  local t, whole = tree, nil
+  local t, whole, crc_at = tree, nil, nil
   if full then
     whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
@@ -192,7 +292,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.provisional then -- (vw3-decode -V's line)
       t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
     end
-    local crc_at = f.length - 2
+    crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
     t:add(pf.crc, crc_range, f.crc)
@@ -217,11 +317,14 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     if f.start ~= nil then
       local item = t:add(pf.start, data_range, f.start)
       if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
+      local words = START_WORDS[f.fn]
+      if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
     end
     if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
+    if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
     if f.subfunction ~= nil then
-      t:add(pf.subfunction, data_range, f.subfunction)
       local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
       if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
     end
@@ -272,16 +375,6 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         sub:add(pf.object_name, r, object.name):set_generated()
         sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
-      end
-    end
-    local server = f.server -- Report Server ID (FC17) response
-    if server then
-      t:add(pf.byte_count, frame_range(tvb, f, server.at, 1), server.byte_count)
-      t:add(pf.server_id, frame_range(tvb, f, server.at + 1, 1), server.id)
-      t:add(pf.run_indicator, frame_range(tvb, f, server.at + 2, 1), server.run)
-      if server.length > 0 then
-        local r = frame_range(tvb, f, server.at + 3, server.length)
-        if server.text then t:add(pf.additional_data, r, server.text) else t:add(pf.additional_bytes, r) end
       end
     end
     if f.request ~= nil then

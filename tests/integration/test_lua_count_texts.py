@@ -27,8 +27,8 @@ INFO = [
     "1 Write Multiple Coils response 65535..65544",
     "1 Encapsulated Interface Transport request",
     "1 Encapsulated Interface Transport response",
-    "1 Diagnostics request",
-    "1 Diagnostics response",
+    "1 Diagnostics request 00h Return Query Data",  # (the sub-function, as vw3-decode names it)
+    "1 Diagnostics response 00h Return Query Data",
     "1 Read Holding Registers request 16",
     "1 Read Holding Registers response 16",
     "1 Read Coils request 32",
