@@ -49,7 +49,7 @@ WINDOW = 512  # bytes handed to the Python stages at a time while they have the 
 NOISE_STRIDE = 16
 NOISE_STRIDE_MAX = 16384
 SHORT_STRETCH = 16  # items the engine numbers before it hands over again, below which
-CALM_MAX = 8  # `calm` doubles (PythonSide)
+CALM_MAX = 32  # `calm` doubles (PythonSide)
 NEED, HANDOVER = 0, 1
 
 
