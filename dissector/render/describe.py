@@ -176,6 +176,8 @@ def info_text(frame: Frame) -> str:
     request = frame.kind is Kind.REQUEST
     describe = _DESCRIBERS[request].get(function)
     detail = describe(frame, request) if describe else f"{count_text(len(frame.pdu) - 1, 'byte')} of data"
+    if detail.startswith(": "):  # a bit read's answer without its request: no window before the bits
+        return f"{name}{detail}"
     return f"{name} {detail}".rstrip()
 
 
