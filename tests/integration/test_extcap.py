@@ -316,7 +316,7 @@ def test_errors_reach_tshark_as_one_line(config: dict[str, str]) -> None:
         ((), f"{IFACE} needs the gateway's address: --port socket://HOST:PORT"),
         (("-o", f"{PREF}port:/dev/nonexistent-vw3", ), "cannot open /dev/nonexistent-vw3: No such file or directory"),
         (("-o", f"{PREF}port:/dev/null", "-o", f"{PREF}baud:fast"),
-         "argument --baud: 'fast' is not a whole number (see vw3-extcap --help)"),
+         "argument --baud: 'fast' is not a whole number of baud (see vw3-extcap --help)"),
         (("-o", f"{PREF}port:/dev/null", "-f", "port 502"),
          "capture filters are not supported on a serial bus: use a display filter (vw3.slave == 12)"),
     ]

@@ -53,6 +53,7 @@ def test_p38_protection_story_under_lua54() -> None:
         "vw3: VW3 Modbus RTU, 12 Read Holding Registers response 8400..8402",
         "vw3.item=4", "vw3.kind=2", "vw3.mode=rtu", "vw3.slave=12", "vw3.function=3",
         "vw3.function_name=Read Holding Registers", "vw3.profile=atv71", "vw3.crc=9422", "vw3.crc_expected=9422", "vw3.crc_ok=true", "vw3.start=8400", "vw3.quantity=3",
+        "vw3.byte_count=6",  # the PDU's byte count, as vw3-decode -V lists it
         "vw3.reg=Register 8400 = 32768: 16#8000: non-existent (address not in the map) [non-existent]",
         "vw3.reg.address=8400", "vw3.reg.value=32768",
         "vw3.reg.text=16#8000: non-existent (address not in the map)", "vw3.reg.status=non-existent",
