@@ -90,6 +90,6 @@ def field_listing() -> str:
     for key, owners in pdu_keys().items():  # fields.KEY: the keys of the protocol table's layouts
         lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {_owners(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
-    lines.append("operators: == != < <= > >= & in {..} a..b contains matches ~ and or not ( ); "
-                 "values: 12 0x8000 16#8000 \"text\" true false")
+    lines.append("operators: == != (all_ne: has it, none equal) ~= (any_ne: some differs) < <= > >= & in {..} a..b "
+                 "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 \"text\" true false")
     return "\n".join(lines) + "\n"
