@@ -4367,17 +4367,9 @@ local SPECIAL = {
     f.objects = objects
   end,
   report_server_id_response = function(f, b)
-    -- the additional data as text when every byte is printable ASCII (a version string), as Python
-    local fields, d = f.fields, f.data_at
-    local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
+    -- (the tree shows its fields from the layout, tree.lua add_pdu)
+    local run = f.fields.run_indicator
     if DATA.names.run_indicator[run] == nil then warn(f, say("run_indicator", { value = run })) end -- (OFF, ON)
-    for k = 0, length - 1 do
-      local byte = b[fields.additional_data_at + k]
-      if byte < 32 or byte > 126 then chars = nil break end
-      chars[#chars + 1] = string.char(byte)
-    end
-    f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
-      text = length > 0 and chars and concat(chars) or nil }
   end,
 }
 
@@ -5946,7 +5938,7 @@ local floor, format, ipairs, load, next, table, type = floor, format, ipairs, lo
 -- from the second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
-  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
+  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii",
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
 -- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
@@ -6245,7 +6237,7 @@ end
 -- Not a provisional one: its Info text says so, the lanes take a request of a settled slave.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
-      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
+      or item.profile_choice or item.subfunction or item.objects or item.crc ~= item.crc_expected
       or item.provisional then
     return
   end

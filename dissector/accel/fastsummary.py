@@ -371,6 +371,11 @@ class SummaryPath:
             side.write(self.dissector.feed(Chunk(window)))
 
 
+def _intact(item: Item) -> bool:
+    """A frame whose check is good (not noise, not damaged)."""
+    return type(item) is Frame and item.crc_ok
+
+
 class PythonSide:
     """The Python stages while they have the stream (SummaryPath, timedpath.TimedPath): they frame it
     one item at a time, so that the engine takes it back at their first idle point, where both agree
@@ -433,7 +438,7 @@ class PythonSide:
             return
         if self.settled:
             last = items[-1]
-            if type(last) is not Frame or last.crc != last.crc_expected:
+            if not _intact(last):
                 self.settled = False
                 self.damaged = True
                 self.run = 0
@@ -441,7 +446,7 @@ class PythonSide:
         else:
             run = 0
             for item in reversed(items):
-                if type(item) is not Frame or item.crc != item.crc_expected:
+                if not _intact(item):
                     self.run = 0
                     break
                 run += 1

@@ -124,10 +124,10 @@ class LiveStats:
         responses = sum(c.responses for c in self.slaves.values())
         exceptions = sum(c.exceptions for c in self.slaves.values())
         return (
-            f"{_count(self.frames, 'frame')} ({_count(requests, 'request')}, "
-            f"{_count(responses, 'response')}, {_count(exceptions, 'exception')}) "
-            f"from {_count(len(self.slaves), 'slave')}, {_count(self.crc_errors, 'CRC error')}, "
-            f"{self.unanswered} unanswered, {_count(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
+            f"{count_text(self.frames, 'frame')} ({count_text(requests, 'request')}, "
+            f"{count_text(responses, 'response')}, {count_text(exceptions, 'exception')}) "
+            f"from {count_text(len(self.slaves), 'slave')}, {count_text(self.crc_errors, 'CRC error')}, "
+            f"{self.unanswered} unanswered, {count_text(self.noise_bytes, 'noise byte')} in {seconds:.1f} s"
         )
 
     def not_shown_text(self) -> str:
@@ -135,11 +135,7 @@ class LiveStats:
         if not self.not_shown:
             return ""
         where = ", the capture files hold them" if self.files else ", no capture file holds them (-w, --raw)"
-        return f"{_count(self.not_shown, 'item')} not shown (the display fell behind){where}"
-
-
-def _count(number: int, noun: str) -> str:
-    return f"{number} {noun}{'' if number == 1 else 's'}"
+        return f"{count_text(self.not_shown, 'item')} not shown (the display fell behind){where}"
 
 
 class Sink(Protocol):

@@ -87,7 +87,7 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     _RESPONSE_FIRST_FAST,
 )
 from dissector.framing.stream import GLITCH_BYTES, StreamFramer
-from dissector.protocol.rules import NEVER_ANSWERED, awaits_answer, text
+from dissector.protocol.rules import awaits_answer, text
 
 # Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
@@ -408,8 +408,7 @@ class RtuFramer(StreamFramer):
                         )
                         if kind is Kind.REQUEST:
                             # (awaits_answer: not a broadcast, not a request the spec has no server answer)
-                            answered = slave and (function not in NEVER_ANSWERED or awaits_answer(items[-1]))
-                            self._expect = (slave, function) if answered else None
+                            self._expect = (slave, function) if awaits_answer(items[-1]) else None
                         else:
                             self._expect = None
                         self._noise_cut = False

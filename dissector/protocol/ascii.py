@@ -1,6 +1,8 @@
 """Modbus ASCII's alphabet and sizes, and how to tell an ASCII-mode byte stream from RTU."""
 from __future__ import annotations
 
+from dissector.protocol.crc import lrc
+
 COLON, CR, LF = 0x3A, 0x0D, 0x0A
 MAX_BINARY = 255  # slave + PDU (253) + LRC
 MAX_ASCII = 1 + 2 * MAX_BINARY + 2  # ':' + hex pairs + CR LF
@@ -29,7 +31,8 @@ def holds_frame(sample: bytes) -> bool:
         digits = stop - at - 1
         ends = sample[stop : stop + 1] == b"\n" or sample[stop : stop + 2] == b"\r\n"
         if ends and digits % 2 == 0 and digits >= 2 * MIN_BINARY:
-            if sum(bytes.fromhex(sample[at + 1 : stop].decode("ascii"))) % 256 == 0:
+            binary = bytes.fromhex(sample[at + 1 : stop].decode("ascii"))
+            if lrc(binary[:-1]) == binary[-1]:
                 return True
         at = sample.find(b":", stop)  # (the digits hold no ':')
     return False

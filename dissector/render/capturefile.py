@@ -35,7 +35,7 @@ STDOUT = "-"
 def noise_comment(item: Item) -> str | None:
     """The pcapng comment of a record: why its bytes are not a frame."""
     if isinstance(item, Noise):
-        return f"noise: {item.length} byte{'' if item.length == 1 else 's'}, {item.reason}"
+        return f"noise: {count_text(item.length, 'byte')}, {item.reason}"
     return None
 
 

@@ -310,17 +310,9 @@ local SPECIAL = {
     f.objects = objects
   end,
   report_server_id_response = function(f, b)
-    -- the additional data as text when every byte is printable ASCII (a version string), as Python
-    local fields, d = f.fields, f.data_at
-    local run, length, chars = fields.run_indicator, fields.byte_count - 2, {}
+    -- (the tree shows its fields from the layout, tree.lua add_pdu)
+    local run = f.fields.run_indicator
     if DATA.names.run_indicator[run] == nil then warn(f, say("run_indicator", { value = run })) end -- (OFF, ON)
-    for k = 0, length - 1 do
-      local byte = b[fields.additional_data_at + k]
-      if byte < 32 or byte > 126 then chars = nil break end
-      chars[#chars + 1] = string.char(byte)
-    end
-    f.server = { at = d, byte_count = fields.byte_count, id = fields.server_id, run = run, length = length,
-      text = length > 0 and chars and concat(chars) or nil }
   end,
 }
 

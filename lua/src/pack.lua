@@ -16,7 +16,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- from the second pass on (`tshark -2`, which the parity tests run).
 local pack = {}
 local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
-  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "server", "ascii",
+  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii",
   "raw", "inferred", "profile_choice", "profile_said", "provisional" }
 -- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }

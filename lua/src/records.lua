@@ -91,7 +91,7 @@ end
 -- Not a provisional one: its Info text says so, the lanes take a request of a settled slave.
 local function remember_request(bytes, item, device)
   if item.kind ~= REQUEST or item.slave == 0 or not device or item.warnings or item.notes or item.malformed
-      or item.profile_choice or item.subfunction or item.objects or item.server or item.crc ~= item.crc_expected
+      or item.profile_choice or item.subfunction or item.objects or item.crc ~= item.crc_expected
       or item.provisional then
     return
   end

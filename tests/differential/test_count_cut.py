@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from helpers import use_engine
+
 from dissector.accel import fastsummary, framespath
 from dissector.app.cli import Environment, run
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
@@ -27,11 +29,7 @@ _FRAMES = framespath._Frames._frames  # (unwrapped: each run counts its own)
 
 def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> tuple[str, list[int]]:
     """The output (stdout and stderr) and the numbers of the frames the engine framed."""
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
-        assert fastsummary.available() and fastsummary.built(), "the compiled engine must be built"
+    use_engine(monkeypatch, pure)
     framed: list[int] = []
     make = _FRAMES
 

@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from helpers import use_engine
+
 from dissector.accel._summary import Columns as CompiledColumns
 from dissector.app.cli import Environment, run
 from dissector.pipeline import dissect
@@ -28,10 +30,7 @@ CAPTURES = ROOT / "captures"
 
 
 def report(argv: list[str], page: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> str:
-    if pure:
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
+    use_engine(monkeypatch, pure)
     stdout, stderr = io.StringIO(), io.StringIO()
     assert run([*argv, "--report", str(page)], Environment(io.BytesIO(stdin), stdout, stderr, False, False)) == 0
     return page.read_text(encoding="utf-8") + stdout.getvalue() + stderr.getvalue()

@@ -225,6 +225,10 @@ def test_vw3_decode_fc24_says_pointer_count_and_values(tmp_path: Path, pure: str
     env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
     if pure:
         env["VW3_PURE_PYTHON"] = pure
+    else:  # a missing engine would run the Python stages twice
+        from dissector.accel import fastsummary
+
+        assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"
 
     def run(*args: str) -> str:
         result = subprocess.run([sys.executable, "-m", "dissector", str(pcap), *args], capture_output=True,

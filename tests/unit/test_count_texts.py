@@ -21,7 +21,7 @@ from pathlib import Path
 import pytest
 
 from dissector.render.pcapwriter import PcapWriter
-from helpers import rtu, run_cli
+from helpers import rtu, run_cli, use_engine
 
 T0 = 1767225600.0
 # (bytes, seconds after T0): each record one frame or one noise run
@@ -89,12 +89,7 @@ def capture(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.fixture(params=["engine", "pure"])
 def engine(request: pytest.FixtureRequest, monkeypatch: pytest.MonkeyPatch) -> str:
-    if request.param == "pure":
-        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
-    else:
-        monkeypatch.delenv("VW3_PURE_PYTHON", raising=False)
-        from dissector.accel import fastsummary
-        assert fastsummary.available() and fastsummary.built()
+    use_engine(monkeypatch, request.param == "pure")
     return request.param
 
 
