@@ -176,6 +176,11 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             while not thread.done.wait(WAIT):
                 if stop.signal is not None:
                     thread.stop.set()
+            if thread.status != ExitStatus.OK and not output.reader_gone:
+                # Said before the fifo closes: tshark takes its end as the capture's and may be gone
+                # before a line written after it.
+                err.write(f"{prog}: error: {thread.reason}\n")
+                err.flush()
         except BrokenPipeError:
             return ExitStatus.OK  # the reader went before the header was written
         except OSError as error:
@@ -185,11 +190,7 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             if output is not None:
                 output.close()
             port.close()
-    if thread.status == ExitStatus.OK or output.reader_gone:
-        return ExitStatus.OK
-    err.write(f"{prog}: error: {thread.reason}\n")
-    err.flush()
-    return thread.status
+    return ExitStatus.OK if output.reader_gone else thread.status
 
 
 def release(fifo: str | None, status: int, stopped: Callable[[], bool] = lambda: False) -> int:
