@@ -32,9 +32,12 @@ RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P
 
 @dataclass(frozen=True, slots=True)
 class Capture:
-    name: str  # the `capture` column: the file's name, or the ring buffer's (`bus.pcap`)
+    shown: str  # as the command line named it: the file, or the ring buffer's `folder/bus.pcap`
     files: tuple[str, ...]
-    key: str  # the path its output files are named after
+    # The `capture` column, and what its output files are named after: `shown` made absolute here, not
+    # on a worker whose working folder may differ. Names repeat across a plant's buses (line1/bus.pcap,
+    # line2/bus.pcap): the path does not.
+    path: str
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,15 +79,12 @@ def group_captures(paths: list[str]) -> list[Capture]:
     for what, value in order:
         if what == "file":
             path = value  # type: ignore[assignment]
-            captures.append(Capture(os.path.basename(path), (path,), path))  # type: ignore[arg-type]
+            captures.append(Capture(path, (path,), os.path.abspath(path)))  # type: ignore[arg-type]
             continue
         folder, prefix, suffix = value  # type: ignore[misc]
         files = tuple(path for _number, path in sorted(rings[value]))  # type: ignore[index]
-        if len(files) == 1:
-            captures.append(Capture(os.path.basename(files[0]), files, files[0]))
-        else:
-            name = prefix + suffix
-            captures.append(Capture(name, files, os.path.join(folder, name)))
+        shown = files[0] if len(files) == 1 else os.path.join(folder, prefix + suffix)
+        captures.append(Capture(shown, files, os.path.abspath(shown)))
     return captures
 
 
@@ -121,14 +121,14 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     from dissector.app.profile_options import annotator_from_args
     from dissector.export.parquet import CaptureTables, file_stem
 
-    result = CaptureResult(capture.name)
+    result = CaptureResult(capture.shown)
     try:
         annotate = annotator_from_args(settings.profile_args) if settings.profile_args is not None else None
     except ProfileError as error:
         result.error = str(error)
         return result
     try:
-        tables = CaptureTables(settings.directory, capture.name, file_stem(capture.key))
+        tables = CaptureTables(settings.directory, capture.path, file_stem(capture.path))
     except OSError as error:  # DIR/frames and the others could not be made
         result.error = f"--parquet {settings.directory}: {error.strerror or error}"
         return result
@@ -234,7 +234,7 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
             return
         rows = result.rows
         stdout.write(  # type: ignore[attr-defined]
-            f"{result.capture}: {rows['frames']} frames, {rows['registers']} registers, {rows['events']} events\n"
+            f"{shown(result.capture)}: {rows['frames']} frames, {rows['registers']} registers, {rows['events']} events\n"
         )
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)

@@ -1,8 +1,10 @@
 """`--parquet DIR`: the bus as three tables any engine reads (DuckDB, Polars, pandas, Spark).
 
 DIR/frames/, DIR/registers/ and DIR/events/ each get one file per capture, `NAME-HASH.parquet` (the
-capture's file name and 8 hex digits of its path, so captures of the same name in two folders do not
-overwrite each other, and a capture decoded again replaces its own files). Rows are made from the
+capture's file name and 8 hex digits of its absolute path, so captures of the same name in two folders do
+not overwrite each other, and a capture decoded again replaces its own files). Every row starts with
+`capture`, that absolute path (what tells line1/bus.pcap from line2/bus.pcap), and `file`, the name of
+the file of a ring buffer it came from. Rows are made from the
 NDJSON records (`render.jsonout.item_to_dict`) and `-T registers`' rows (`render.registers`), so the
 dataset says what `--json` says. Types are real: times are `timestamp[us, UTC]`, response times
 `double` seconds, codes `string`, absent values null. The schema (SCHEMAS) is in README.md.
@@ -77,8 +79,9 @@ def microseconds(time: float | None) -> int | None:
 
 
 def file_stem(capture_path: str) -> str:
+    """`NAME-HASH` of an absolute capture path: its file name and 8 hex digits of the path."""
     base = os.path.basename(capture_path) or "capture"
-    digest = hashlib.sha1(os.path.abspath(capture_path).encode()).hexdigest()[:8]
+    digest = hashlib.sha1(capture_path.encode()).hexdigest()[:8]
     safe = "".join(char if char.isalnum() or char in "._-" else "_" for char in base)
     return f"{safe}-{digest}"
 
@@ -133,7 +136,7 @@ class CaptureTables:
     """The three tables of one capture; `add` takes its items in stream order."""
 
     directory: str
-    capture: str  # the capture's name as a column
+    capture: str  # the `capture` column: the capture's absolute path
     stem: str
     tables: dict[str, _Table] = field(default_factory=dict)
     # (first byte offset in the capture's stream, file name) per file, in order: an item is in the file

@@ -57,7 +57,7 @@ def dataset(tmp_path_factory: pytest.TempPathFactory, inputs: list[Path]) -> Pat
     out = tmp_path_factory.mktemp("parquet") / "data"
     result = _cli("--parquet", str(out), *map(str, inputs))
     assert (result.returncode, result.stderr) == (0, "")
-    assert result.stdout.splitlines()[0] == "ascii_session.bin: 10 frames, 9 registers, 2 events"
+    assert result.stdout.splitlines()[0] == f"{ROOT / 'captures' / 'ascii_session.bin'}: 10 frames, 9 registers, 2 events"
     return out
 
 
@@ -72,7 +72,7 @@ def test_tables_hold_what_json_says(dataset: Path, inputs: list[Path], name: str
     records = _records(capture)
     frames = _query(
         f"SELECT {QUOTED_KEYS}, epoch_us(time), hex(raw), warnings, notes "
-        f"FROM read_parquet('{dataset}/frames/*.parquet') WHERE capture = '{capture.name}' ORDER BY frame"
+        f"FROM read_parquet('{dataset}/frames/*.parquet') WHERE capture = '{capture}' ORDER BY frame"
     )
     assert len(frames) == len(records)
     for row, record in zip(frames, records):
@@ -82,7 +82,7 @@ def test_tables_hold_what_json_says(dataset: Path, inputs: list[Path], name: str
 
     registers = _query(
         "SELECT frame, access, address, value, code, name, unit, scaled, status, text, label, epoch_us(time) "
-        f"FROM read_parquet('{dataset}/registers/**/*.parquet') WHERE capture = '{capture.name}' "
+        f"FROM read_parquet('{dataset}/registers/**/*.parquet') WHERE capture = '{capture}' "
         "ORDER BY frame, access DESC, address"
     )
     expected_registers = []
@@ -97,7 +97,7 @@ def test_tables_hold_what_json_says(dataset: Path, inputs: list[Path], name: str
     assert sorted(registers, key=repr) == sorted(expected_registers, key=repr)
 
     events = dict(_query(
-        f"SELECT kind, count(*) FROM read_parquet('{dataset}/events/*.parquet') WHERE capture = '{capture.name}' GROUP BY kind"
+        f"SELECT kind, count(*) FROM read_parquet('{dataset}/events/*.parquet') WHERE capture = '{capture}' GROUP BY kind"
     ))
     assert events.get("exception", 0) == sum(r["kind"] == "exception" and r["crc_ok"] for r in records)
     assert events.get("crc", 0) == sum(r["kind"] != "noise" and not r["crc_ok"] for r in records)
@@ -115,10 +115,10 @@ def test_tables_hold_what_json_says(dataset: Path, inputs: list[Path], name: str
 def test_p38_protections_and_noisy_bus_outage(dataset: Path) -> None:
     rows = _query(
         f"SELECT capture, kind, frame, slave, address, code, status FROM read_parquet('{dataset}/events/*.parquet') "
-        "WHERE kind IN ('protected', 'non-existent', 'readable-again') AND capture LIKE 'p38%' ORDER BY capture, frame, address"
+        "WHERE kind IN ('protected', 'non-existent', 'readable-again') AND file LIKE 'p38%' ORDER BY capture, frame, address"
     )
     for suffix in (".bin", ".pcap"):
-        assert [row[1:] for row in rows if row[0] == "p38_protection" + suffix] == [
+        assert [row[1:] for row in rows if row[0] == str(ROOT / "captures" / f"p38_protection{suffix}")] == [
             # frame 2: profile auto needs more than one answer (issue 26), and chooses over the whole
             # capture before the decode (issue 27)
             ("non-existent", 2, 12, 8400, None, "non-existent"),
@@ -139,14 +139,17 @@ def test_readme_queries_run_as_they_stand(dataset: Path) -> None:
     queries = re.findall(r"```sql\n(.*?)```", section, re.S)
     assert len(queries) == 2
     protected = _query(queries[0].replace("DIR", str(dataset)))
-    assert [(row[0], row[2], row[4], row[6]) for row in protected if row[0].endswith(".pcap")] == [
+    # (The README's rows show a capture decoded from /srv/vw3/captures: the names are compared.)
+    assert [(os.path.basename(row[0]), row[2], row[4], row[6]) for row in protected if row[0].endswith(".pcap")] == [
         ("p38_protection.pcap", "CHCF", "protected", 6), ("p38_protection.pcap", "COP", "protected", 10)]
     assert str(protected[-1][5]) == "2026-01-01 00:00:02.115075+00:00"
     hourly = _query(queries[1].replace("DIR", str(dataset)))
-    noisy = [row for row in hourly if row[0] == "noisy_bus.pcap"]
+    noisy = [row for row in hourly if row[0] == str(ROOT / "captures" / "noisy_bus.pcap")]
     assert [(row[1], row[3], row[4], row[6]) for row in noisy] == [(1, 8, 11.7, 13.3), (12, 8, 9.1, 13.5)]
-    for line in re.findall(r"│ (\w+\.pcap) +│ +(\d+) │ [^│]+│ +(\d+) │ +([\d.]+) │ +([\d.]+) │ +([\d.]+) │", section):
-        match = [row for row in hourly if row[0] == line[0] and row[1] == int(line[1])]
+    shown = re.findall(r"│ /srv/vw3/captures/(\w+\.pcap) +│ +(\d+) │ [^│]+│ +(\d+) │ +([\d.]+) │ +([\d.]+) │ +([\d.]+) │", section)
+    assert len(shown) == 3
+    for line in shown:
+        match = [row for row in hourly if row[0] == str(ROOT / "captures" / line[0]) and row[1] == int(line[1])]
         assert match and match[0][3:] == (int(line[2]), float(line[3]), float(line[4]), float(line[5]))
 
 
@@ -162,7 +165,7 @@ def test_the_line_speed_of_a_pcapng_is_its_interface_description(dataset: Path) 
     """9600 baud, as --json of the file says (tests/unit/test_linespeed.py): t1.5 is 1.719 ms; at the
     19200 baud assumed without the description, all three requests would have a silence event."""
     silences = _query(f"SELECT frame, text FROM read_parquet('{dataset}/events/*.parquet') "
-                      f"WHERE capture = '{TAP}' AND kind = 'silence'")
+                      f"WHERE file = '{TAP}' AND kind = 'silence'")
     assert silences == [
         (3, "silence of 2.000 ms inside the frame before byte 4 (longer than t1.5 = 1.719 ms at 9600 baud)")]
 
@@ -184,7 +187,7 @@ def test_ring_buffer_files_are_one_capture(tmp_path: Path) -> None:
     files = sorted(ring.iterdir())
     assert len(files) >= 2 and all(re.fullmatch(r"bus_\d{5}_\d{14}\.pcap", path.name) for path in files)
     result = _cli("--parquet", str(tmp_path / "data"), *map(str, reversed(files)), "--jobs", "2")
-    assert (result.returncode, result.stdout) == (0, "bus.pcap: 104 frames, 181 registers, 1 events\n")
+    assert (result.returncode, result.stdout) == (0, f"{ring / 'bus.pcap'}: 104 frames, 181 registers, 1 events\n")
     _cli("--parquet", str(tmp_path / "whole"), str(source))
     columns = "frame, kind, epoch_us(time), slave, function, request_frame, response_time, raw"
     ringed = _query(f"SELECT {columns} FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY frame")
@@ -192,7 +195,31 @@ def test_ring_buffer_files_are_one_capture(tmp_path: Path) -> None:
     assert ringed == whole
     files_seen = _query(f"SELECT DISTINCT capture, file FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY file")
     # A response at the start of file 2 answers the request at the end of file 1: paired, as in one file.
-    assert files_seen == [("bus.pcap", path.name) for path in files if path.stat().st_size > 24]  # not a bare header
+    assert files_seen == [(str(ring / "bus.pcap"), path.name) for path in files if path.stat().st_size > 24]  # not a bare header
+
+
+def test_captures_of_the_same_name_in_two_folders_stay_apart(tmp_path: Path) -> None:
+    """line1/bus.pcap and line2/bus.pcap: two captures in every table, told apart by `capture`."""
+    for folder, source in (("line1", "p38_protection.pcap"), ("line2", "noisy_bus.pcap")):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / "bus.pcap").write_bytes((ROOT / "captures" / source).read_bytes())
+    result = subprocess.run([sys.executable, "-m", "dissector", "--parquet", "data", "line1/bus.pcap", "line2/bus.pcap"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300, env=ENV)
+    assert (result.returncode, result.stderr) == (0, "")
+    assert result.stdout.splitlines() == ["line1/bus.pcap: 12 frames, 18 registers, 5 events",
+                                          "line2/bus.pcap: 38 frames, 52 registers, 4 events"]
+    line1, line2 = str(tmp_path / "line1" / "bus.pcap"), str(tmp_path / "line2" / "bus.pcap")
+    for table in ("frames", "registers", "events"):
+        assert _query(f"SELECT capture, file, count(*) FROM read_parquet('{tmp_path}/data/{table}/*.parquet') "
+                      "GROUP BY ALL ORDER BY ALL") == [
+            (line1, "bus.pcap", {"frames": 12, "registers": 18, "events": 5}[table]),
+            (line2, "bus.pcap", {"frames": 38, "registers": 52, "events": 4}[table])]
+    assert len(os.listdir(tmp_path / "data" / "frames")) == 2
+    # Decoded again from elsewhere, a capture replaces its own files and keeps its name in the rows.
+    again = _cli("--parquet", str(tmp_path / "data"), os.path.relpath(line1, ROOT))
+    assert again.returncode == 0 and len(os.listdir(tmp_path / "data" / "frames")) == 2
+    assert _query(f"SELECT DISTINCT capture FROM read_parquet('{tmp_path}/data/frames/*.parquet') ORDER BY 1") == [
+        (line1,), (line2,)]
 
 
 def _free_port() -> int:
@@ -266,7 +293,7 @@ def test_a_bad_capture_is_one_line_and_the_others_are_written(tmp_path: Path) ->
     bad.write_bytes(b"\xd4\xc3\xb2\xa1" + b"\x00" * 10)
     status, out, err = run_cli(["--parquet", str(tmp_path / "d"), str(bad), str(ROOT / "captures" / "p38_protection.pcap")])
     assert status == 2
-    assert out == "p38_protection.pcap: 12 frames, 18 registers, 5 events\n"
+    assert out == f"{ROOT / 'captures' / 'p38_protection.pcap'}: 12 frames, 18 registers, 5 events\n"
     assert len(err.splitlines()) == 1 and err.startswith("vw3-decode: ") and "bad.pcap" in err
     assert sorted(os.listdir(tmp_path / "d" / "frames")) == [f for f in os.listdir(tmp_path / "d" / "frames") if f.startswith("p38")]
 
