@@ -31,14 +31,61 @@ class Repair:
     note: str
 
 
+# How manuals, logs and the README print an ASCII frame's end: the C escapes `\r\n` (typed in a shell's
+# quotes they stay a backslash and a letter), the words CR LF, <CR><LF>, [CR][LF]. None holds a hex digit
+# pair, so taking them off never eats a byte.
+_ASCII_ENDS = ("\\r", "\\n", "<cr>", "<lf>", "[cr]", "[lf]", "cr", "lf")
+_HEX_DIGITS = frozenset("0123456789ABCDEFabcdef")
+
+
+def _without_end(frame: str) -> str:
+    """A typed frame without the CR LF written after it (_ASCII_ENDS, any case, any spacing)."""
+    frame = frame.rstrip()
+    while True:
+        end = next((end for end in _ASCII_ENDS if frame.lower().endswith(end)), None)
+        if end is None:
+            return frame
+        frame = frame[: -len(end)].rstrip()
+
+
+def _shown(text: str) -> str:
+    """`text` in quotes as typed (a backslash stays one), escaped only when it holds what a terminal
+    would not show as itself."""
+    return f"'{text}'" if text.isprintable() else repr(text)
+
+
+def ascii_frames(text: str, where: str = "--hex") -> bytes:
+    """The bytes of Modbus ASCII frames typed as printed: `:02062329000AA2`, `:0206 2329 000A A2`, with or
+    without their end (`\\r\\n`, `CR LF`: _ASCII_ENDS), several in a row (`:...A2\\r\\n:...`). Each frame
+    is `:`, its hex digits as typed (spaces between whole bytes dropped, as in a hex dump) and CR LF.
+    Anything else is refused (UsageError): a typed frame that became noise would say nothing of why."""
+    typed = text.strip()
+    out = bytearray()
+    for frame in typed.split(":")[1:]:
+        groups = _without_end(frame).split()
+        for group in groups:
+            bad = next((char for char in group if char not in _HEX_DIGITS), None)
+            if bad is not None:
+                raise UsageError(
+                    f"{where}: {_shown(bad)} in {_shown(typed)} is not a hex digit (an ASCII frame is ':', hex "
+                    "digits and CR LF, which may be typed as \\r\\n or CR LF, or left out)"
+                )
+            if len(group) % 2:
+                raise UsageError(f"{where}: '{group}' is an odd number of hex digits (each group is whole bytes)")
+        if not groups:
+            raise UsageError(f"{where}: no hex digits after a ':' in {_shown(typed)}")
+        out += b":" + "".join(groups).encode("ascii") + b"\r\n"
+    return bytes(out)
+
+
 def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex") -> Chunk:
     """Bytes typed from a manual or pasted from a log: hex pairs (`0C 03 20 D0 ...`, `0x0C,0x03`,
     `0C:03:20:D0`), a decimal list (`12, 3, 32, 208`; notation.py says when a list is decimal), or a
-    Modbus ASCII frame as printed (`:02062329000AA2`; the CR LF may be left out). One argument is one
-    frame: a boundary follows. `notation` carries what earlier arguments showed."""
+    Modbus ASCII frame as printed (`:02062329000AA2`, ascii_frames). One argument is one frame: a boundary
+    follows. `notation` carries what earlier arguments showed."""
     stripped = text.strip()
     if stripped.startswith(":"):
-        return Chunk(stripped.encode("ascii", "replace") + b"\r\n", None, True)
+        return Chunk(ascii_frames(text, where), None, True)
     try:
         data = (notation if notation is not None else Notation()).read(text, where)
     except NotationError as error:

@@ -2,7 +2,9 @@
 
 The format is read from the content, never from the file name: pcap and pcapng by their magic
 numbers, a text hex dump or a Modbus ASCII byte stream by the shape of their first lines, anything
-else as raw serial bytes. The framing mode (RTU or ASCII) is then read from the first payload bytes.
+else as raw serial bytes. Text saved with a byte order mark (UTF-8, UTF-16, UTF-32: Notepad, PowerShell)
+is judged and read as its text when it is in a text format (encoding.py). The framing mode (RTU or
+ASCII) is then read from the first payload bytes.
 `fmt` and `mode` override either guess.
 
 Everything streams: files are read in chunk_size pieces and a pcap record becomes one Chunk (with
@@ -22,6 +24,7 @@ from typing import BinaryIO
 from dissector.protocol.ascii import detect_mode
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.dumps import dump_tool, read_dump
+from dissector.sources.encoding import Encoding, decoded, marked, text_input
 from dissector.sources.hexdump import looks_like_hexdump, read_hexdump
 from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
@@ -37,6 +40,7 @@ FORMATS = {"raw": "raw", "pcap": "pcap", "pcapng": "pcapng", "hex": "hexdump", "
 # A format given for a one-frame-a-line dump also says how its numbers are written.
 NOTATIONS = {"hex": HEX, "hexdump": HEX, "decimal": DECIMAL}
 MODES = ("rtu", "ascii")
+TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 MODE_SAMPLE = 64  # payload bytes looked at to choose RTU or ASCII
@@ -70,6 +74,29 @@ READERS: dict[str, Reader] = {
 
 def _is_text(sample: bytes) -> bool:
     return bool(sample) and all(byte in _TEXT for byte in sample)
+
+
+def _text_of(sample: bytes, complete: bool) -> tuple[Encoding, bytes, bool] | None:
+    """(encoding, decoded sample, whether that is all) of an input whose BOM names an encoding it decodes
+    in (encoding.py); else None."""
+    encoding = marked(sample)
+    text = decoded(sample, encoding, complete) if encoding is not None else None
+    return (encoding, *text) if encoding is not None and text is not None else None
+
+
+def detect_text(sample: bytes, complete: bool) -> tuple[str, str | None, Encoding | None]:
+    """detect_format, and the encoding to read the input in: a BOM's (encoding.py), when the text after it
+    is in a text format; else None, and the input is judged as the bytes it is (a binary capture that
+    starts with FF FE stays binary)."""
+    text = _text_of(sample, complete)
+    if text is not None and _is_text(text[1]):  # (never judged by its magic numbers: they are not text)
+        encoding, body, whole = text
+        format, warning = detect_format(body, whole)
+        if format != "raw":
+            return format, warning, encoding
+        if warning is not None:  # text in no format we read: its bytes, as any text's
+            return "raw", warning.replace("the input is text", f"the input is text ({encoding.name})"), None
+    return (*detect_format(sample, complete), None)
 
 
 def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
@@ -124,7 +151,9 @@ def _sniff(inp: Input) -> tuple[bytes, bool]:
             return sample, True
         sample += part
         if len(sample) >= 4 and not _is_text(sample):
-            break
+            text = _text_of(sample, False)
+            if text is None or not _is_text(text[1]):
+                break
         if sample.count(b"\n") >= SNIFF_LINES:
             break
     return sample, False
@@ -228,13 +257,18 @@ def _start(
     except OSError as error:
         raise SourceError(f"{name}: cannot read: {error.strerror or error}") from None
     warning = None
+    encoding = None
     if fmt is None:
-        format, warning = detect_format(sample, complete)
+        format, warning, encoding = detect_text(sample, complete)
     else:
         format = FORMATS[fmt]
+        text = _text_of(sample, complete) if format in TEXT_FORMATS else None
+        encoding = text[0] if text is not None else None
     if not sample:
         log.warn("empty", f"{name}: the input is empty")
     inp = Input(stream, name, prefix=sample)
+    if encoding is not None:
+        inp = text_input(inp, encoding)
     if fmt in NOTATIONS:
         chunks = read_hexdump(inp, log, chunk_size, Notation(NOTATIONS[fmt], fixed=True))
     else:
