@@ -373,6 +373,12 @@ typedef struct {
     long long decided;   /* run_timed(): the Python framer's buffer end when it takes this frame */
 } FrameRef;
 
+/* The frame of `length` bytes at i ends in the CRC of the bytes before it. */
+static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
+    Py_ssize_t stop = i + length - 2;
+    return crc16(b + i, length - 2) == (uint16_t)(b[stop] | b[stop + 1] << 8);
+}
+
 /* A length rule's answer as framing/rules.py gives it: a length (0: the layout cannot apply), more
  * bytes needed, or a CRC scan from a minimum length (its Scan). */
 enum { LENGTH_OK, LENGTH_NEED, LENGTH_SCAN };
@@ -393,23 +399,20 @@ static Length rule_length(const LengthRule *rule, const uint8_t *b, Py_ssize_t i
         return (Length){LENGTH_OK, length == rule->count_extra + b[i + rule->count_at] ? 0 : length};
     }
     case RULE_MEI_OBJECTS: { /* `value` objects from `extra`: an id, a length byte, that many bytes each */
+        /* Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC
+         * fails): a CRC scan from the list's start (rules.py _mei_objects), the careful path's. */
+        const Length fallback = {LENGTH_SCAN, rule->extra + 2};
         Py_ssize_t stop = rule->extra;
         for (Py_ssize_t k = value; k > 0; k--) {
-            if (i + stop + 1 >= n) return need;
+            if (i + stop + 1 >= n) return fallback;
             stop += 2 + b[i + stop + 1];
-            if (stop > MAX_ADU) return (Length){LENGTH_OK, 0};
+            if (stop > MAX_ADU) return fallback;
         }
-        return (Length){LENGTH_OK, stop + 2};
+        return i + stop + 2 <= n && crc_ok(b, i, stop + 2) ? (Length){LENGTH_OK, stop + 2} : fallback;
     }
     default: /* counted */
         return (Length){LENGTH_OK, rule->extra + value};
     }
-}
-
-/* The frame of `length` bytes at i ends in the CRC of the bytes before it. */
-static inline int crc_ok(const uint8_t *b, Py_ssize_t i, Py_ssize_t length) {
-    Py_ssize_t stop = i + length - 2;
-    return crc16(b + i, length - 2) == (uint16_t)(b[stop] | b[stop + 1] << 8);
 }
 
 /* A CRC scan of the frame at i over the lengths minimum..maximum (crc.crc_lengths): crc_next gives, in

@@ -80,7 +80,7 @@ static const unsigned short never_answered[NEVER_ANSWERED][2] = {{8, 4}};
  * selected_rule[`otherwise`] (table.Select); RULE_BY_QUANTITY, framing/rules.py quantity_rule: `extra` + it
  * (a quantity) x `unit` bytes (0: bits, ceil(q / 8)), none where that is the byte count's length,
  * count_extra + the byte at count_at; RULE_MEI_OBJECTS, rules.py _mei_objects: it objects (an id, a
- * length byte, that many bytes) from `extra`. */
+ * length byte, that many bytes) from `extra`, else (no valid CRC where they end) a CRC scan from `extra` + 2. */
 enum { RULE_COUNTED, RULE_SCAN, RULE_SELECT, RULE_BY_QUANTITY, RULE_MEI_OBJECTS };
 typedef struct { int fixed, position, extra, width, special, unit, count_at, count_extra, value, chosen, otherwise; } LengthRule;
 static const LengthRule selected_rule[] = {

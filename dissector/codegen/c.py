@@ -136,7 +136,7 @@ def render_header() -> str:
         " * selected_rule[`otherwise`] (table.Select); RULE_BY_QUANTITY, framing/rules.py quantity_rule: `extra` + it",
         " * (a quantity) x `unit` bytes (0: bits, ceil(q / 8)), none where that is the byte count's length,",
         " * count_extra + the byte at count_at; RULE_MEI_OBJECTS, rules.py _mei_objects: it objects (an id, a",
-        " * length byte, that many bytes) from `extra`. */",
+        " * length byte, that many bytes) from `extra`, else (no valid CRC where they end) a CRC scan from `extra` + 2. */",
         f"enum {{ {', '.join(f'RULE_{kind.upper()}' for kind in _KINDS)} }};",
         f"typedef struct {{ int {', '.join(_FIELDS + _SELECT_FIELDS)}; }} LengthRule;",
         "static const LengthRule selected_rule[] = {",

@@ -86,7 +86,9 @@ def regular(shape: tuple[Field, ...], part: bool = False) -> Callable[..., objec
             code += [f"    {name} = ListContainer()", f"    p = {position}",
                      f"    while p < {stop}:" if records else f"    for _ in range({count}):",
                      f"        r = P_{field.part}(pdu, p, {stop if records else 'n'})",
-                     "        if r is None:", "            return None", "        item, p = r", f"        {name}.append(item)"]
+                     # (an array's part that does not fit ends it: a count the data do not hold, layouts._UpTo)
+                     "        if r is None:", "            return None" if records else "            break",
+                     "        item, p = r", f"        {name}.append(item)"]
             if not records:
                 code.append(f"    {stop} = p")
             position = stop

@@ -253,6 +253,10 @@ def _mei_response(frame: Frame, fields: Container) -> None:
         )
         for obj in fields["body"]["objects"]
     ]
+    # (a count the frame does not hold: the objects there are shown, the layout's array stops at its end)
+    declared = fields["body"]["object_count"]
+    if len(frame.objects) < declared:
+        frame.warnings.append(text("object_count", count=declared, present=len(frame.objects)))
 
 
 # Handlers by name; the protocol table says which (function code, direction) uses which. Every name

@@ -14,7 +14,8 @@ come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because tha
 response layout fit, the expectation decides: after a request to slave S with function F, a frame
 from S with F is its response. Function codes whose data has no length rule (FC8 sub-function 0,
 FC43 MEI 13, user-defined and vendor codes) are found by scanning for the shortest length with a
-valid CRC. Any address is framed: 248..255 are reserved (pymodbus uses 254 and 255), the decoder
+valid CRC, and an FC43/14 object list that does not end in a valid CRC (a device that declares more
+objects than it sends) by one from its start. Any address is framed: 248..255 are reserved (pymodbus uses 254 and 255), the decoder
 warns.
 
 CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
@@ -235,6 +236,8 @@ class RtuFramer(StreamFramer):
                     waiting.append(NEED)
                 elif found:
                     valid.append((kind, found))
+                elif MIN_ADU <= length.declared <= min(MAX_ADU, n - i):
+                    damaged.append((kind, length.declared))  # (the length its fields give, its CRC bad)
                 continue
             if length == NEED:
                 if not final:
@@ -325,7 +328,12 @@ class RtuFramer(StreamFramer):
             return None
         kind, rule = choices[0]
         length = rule(buf, i, n)
-        if type(length) is Scan or (length != NEED and not n - i < length <= MAX_ADU):
+        if type(length) is Scan:
+            # (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
+            if length.declared == NONE or self._scan(buf, i, n, length, True):
+                return None
+            length = length.declared
+        if length != NEED and not n - i < length <= MAX_ADU:
             return None
         if self._intact_inside(buf, i, n - i, n, True):
             return None

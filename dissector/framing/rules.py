@@ -51,7 +51,13 @@ def _count16(position: int, extra: int) -> LengthRule:
 
 
 class Scan(int):
-    """A length rule's answer when the layout gives no length: scan for a CRC from this minimum."""
+    """A length rule's answer when the layout gives no length: scan for a CRC from this minimum.
+
+    `declared`: the length the frame's own fields gave when they do not end in a valid CRC (a rule with a
+    CRC fallback, _mei_objects), NEED when they run past the bytes there, NONE for a plain scan: the
+    framer shows a damaged frame of that length, or an answer cut by the end of the capture, by it."""
+
+    declared = NONE
 
 
 def _crc_ok(buf: bytes | bytearray, i: int, length: int) -> bool:
@@ -83,7 +89,17 @@ def _select(select: table.Select) -> LengthRule:
 
 
 def _mei_objects(position: int, start: int) -> LengthRule:
-    """Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`."""
+    """Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
+
+    A device may declare more objects than it sends (or fewer): where the walk does not end in a valid CRC
+    (it runs past the bytes there or past an RTU frame, or the CRC there fails), the frame is the shortest
+    CRC match from the list's start (a Scan of start + 2, the CRC), its `declared` the walk's length."""
+    minimum = start + 2
+
+    def fallback(declared: int) -> Scan:
+        found = Scan(minimum)
+        found.declared = declared
+        return found
 
     def rule(buf: bytes | bytearray, i: int, n: int) -> int:
         if i + position >= n:
@@ -91,11 +107,14 @@ def _mei_objects(position: int, start: int) -> LengthRule:
         stop = start
         for _ in range(buf[i + position]):
             if i + stop + 1 >= n:
-                return NEED
+                return fallback(NEED)
             stop += 2 + buf[i + stop + 1]
             if stop > MAX_ADU:
-                return NONE
-        return stop + 2
+                return fallback(NONE)
+        length = stop + 2
+        if i + length <= n and _crc_ok(buf, i, length):
+            return length
+        return fallback(length)
 
     return rule
 

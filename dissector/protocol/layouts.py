@@ -23,6 +23,8 @@ from construct import (
     If,
     Int8ub,
     Int16ub,
+    ListContainer,
+    StreamError,
     Struct,
     Switch,
     this,
@@ -42,6 +44,26 @@ class _TextWhenPrintable(Adapter):  # type: ignore[misc]
 
     def _encode(self, obj: str | bytes, context: object, path: str) -> bytes:
         return obj.encode("ascii") if isinstance(obj, str) else obj
+
+
+class _UpTo(Array):  # type: ignore[misc]
+    """`count` parts, fewer when the data end first (a part that does not fit ends them): a device may
+    declare more FC43 objects than it sends; the decoder warns (decode/fields.py)."""
+
+    def _parse(self, stream: object, context: object, path: str) -> ListContainer:
+        count = self.count(context) if callable(self.count) else self.count
+        parts = ListContainer()
+        for _ in range(count):
+            start = stream.tell()  # type: ignore[attr-defined]
+            try:
+                parts.append(self.subcon._parsereport(stream, context, path))
+            except StreamError:
+                stream.seek(start)  # type: ignore[attr-defined]
+                break
+        return parts
+
+    def _emitparse(self, code: object) -> str:
+        raise NotImplementedError  # (construct then calls _parse from its compiled parsers)
 
 
 def _count(field: Field) -> object:
@@ -74,7 +96,7 @@ def _subcon(field: Field) -> Construct:
         return name / If(this[field.count] % 2 == 1, Bytes(1))
     if field.type is Type.RECORDS:
         return name / FixedSized(count, GreedyRange(_part(field.part)))
-    return name / Array(count, _part(field.part))  # Type.ARRAY
+    return name / _UpTo(count, _part(field.part))  # Type.ARRAY
 
 
 def _part(name: str | None) -> Struct:

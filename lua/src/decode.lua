@@ -139,11 +139,11 @@ local function shape_parser(shape, offsets) -- (offsets: filled with where each 
       if static then lines[#lines + 1] = format("local p = %d", static) end
       static = nil
       local count = format("v%d", index_of[field.count])
-      if kind == "array" then -- (count parts one after the other)
+      if kind == "array" then -- (count parts one after the other; one that does not fit ends them: layouts._UpTo)
         lines[#lines + 1] = format("local a%d = {}", index)
         lines[#lines + 1] = format("for k = 1, %s do", count)
         lines[#lines + 1] = format("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
-        lines[#lines + 1] = "  if used == nil then return nil, item end"
+        lines[#lines + 1] = "  if used == nil then break end"
         lines[#lines + 1] = format("  a%d[k], p = item, p + used", index)
         lines[#lines + 1] = "end"
         keys[#keys + 1] = format("[%q] = a%d", name, index)
@@ -308,6 +308,9 @@ local SPECIAL = {
       object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil
     end
     f.objects = objects
+    -- (a count the frame does not hold: the objects there are shown, decode/fields.py)
+    local declared = f.fields.body.object_count
+    if #objects < declared then warn(f, say("object_count", { count = declared, present = #objects })) end
   end,
   report_server_id_response = function(f, b)
     -- (the tree shows its fields from the layout, tree.lua add_pdu)

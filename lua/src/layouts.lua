@@ -50,16 +50,21 @@ local function select(position, width, value, chosen, otherwise)
 end
 
 -- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
+-- Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC fails), a CRC
+-- scan from the list's start (start + 2, rules.py _mei_objects), with the walk's length (NEED: past the
+-- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture.
 local function mei_objects(position, start)
+  local minimum = start + 2
   return function(b, i, n)
     if i + position >= n then return NEED end
     local stop = start
     for _ = 1, b[i + position] do
-      if i + stop + 1 >= n then return NEED end
+      if i + stop + 1 >= n then return minimum, true, NEED end
       stop = stop + 2 + b[i + stop + 1]
-      if stop > MAX_ADU then return NONE end
+      if stop > MAX_ADU then return minimum, true, NONE end
     end
-    return stop + 2
+    if i + stop + 2 <= n and crc_ok_at(b, i, stop + 2) then return stop + 2 end
+    return minimum, true, stop + 2
   end
 end
 

@@ -113,23 +113,6 @@ local function anchored(s, i)
   return s.noise == nil or s.glitches_only or boundary_at(s, i)
 end
 
--- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
--- (rtu.py _cut_answer)? The reason, or nil.
-local function cut_answer(s, b, i, n)
-  if n - i < 2 then return nil end
-  local slave, code = b[i], b[i + 1]
-  if s.expect ~= slave * 256 + code % 128 then return nil end
-  local first = interpretations(s, slave, code)[1]
-  if first == nil then return nil end
-  local length, is_scan = first[2](b, i, n)
-  if is_scan or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then return nil end
-  if intact_inside(s, b, i, n - i, n, true) then return nil end
-  local what = "exception response"
-  if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
-end
-
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
 -- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
@@ -191,6 +174,30 @@ local function scan_match(s, b, i, n, minimum, final)
   return NONE
 end
 
+-- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
+-- (rtu.py _cut_answer)? The reason, or nil.
+local function cut_answer(s, b, i, n)
+  if n - i < 2 then return nil end
+  local slave, code = b[i], b[i + 1]
+  if s.expect ~= slave * 256 + code % 128 then return nil end
+  local first = interpretations(s, slave, code)[1]
+  if first == nil then return nil end
+  local length, is_scan, declared = first[2](b, i, n)
+  if is_scan then
+    -- (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
+    if declared == nil or declared == NONE then return nil end
+    scanned.b = nil -- (match's scans are kept for its position only)
+    if scan_match(s, b, i, n, length, true) ~= NONE then return nil end
+    length = declared
+  end
+  if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
+  if intact_inside(s, b, i, n - i, n, true) then return nil end
+  local what = "exception response"
+  if first[1] == RESPONSE then what = "response" end
+  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
+end
+
 -- The list with value appended (a new list for nil: most positions have none).
 local function added(list, value)
   if list == nil then return { value } end
@@ -211,13 +218,15 @@ local function match(s, b, i, n, final)
   local list = interpretations(s, slave, code)
   for index = 1, #list do
     local kind = list[index][1]
-    local length, is_scan = list[index][2](b, i, n)
+    local length, is_scan, declared = list[index][2](b, i, n)
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
         waiting = added(waiting, NEED)
       elseif found > 0 then
         valid = added(valid, { kind, found })
+      elseif declared ~= nil and declared >= MIN_ADU and declared <= MAX_ADU and declared <= n - i then
+        damaged = added(damaged, { kind, declared }) -- (the length its fields give, its CRC bad: rtu.py)
       end
     elseif length == NEED then
       if not final then waiting = added(waiting, NEED) end
