@@ -116,31 +116,32 @@ class Stopped(Exception):
     """SIGTERM arrived before the capture started."""
 
 
-def detected(settings: PortSettings, seconds: float, stop: StopFlag) -> PortSettings:
-    """The baud rate and parity --detect finds on the port (vw3-decode --detect's scoring)."""
-    from dissector.app.detect import SerialListener, detect
-    from dissector.app.detect import Heard
+def detected(settings: PortSettings, seconds: float, stop: StopFlag) -> tuple[PortSettings, str]:
+    """The settings and framing (rtu, ascii) --detect finds on the port (vw3-decode --detect's
+    scoring). Both framings at their own data sizes: the dialog says its settings are then ignored."""
+    from dissector.app.detect import Heard, Setting, SerialListener, detect, framings, nothing_found
 
     port = open_port(settings)
 
     class Listener(SerialListener):
-        def listen(self, baud: int, parity: str, seconds: float) -> Heard:
+        def listen(self, setting: Setting, seconds: float) -> Heard:
             if stop.signal is not None:
                 raise Stopped
-            return super().listen(baud, parity, seconds)
+            return super().listen(setting, seconds)
 
     try:
-        scores = detect(Listener(port), seconds)
+        scores = detect(Listener(port), seconds, tried=framings(None, None))
     except OSError as error:
         raise LiveError(f"{settings.port} went away during --detect ({error})", ExitStatus.ERROR) from None
     finally:
         port.close()
     best = scores[0]
     if best.frame_bytes == 0:
-        raise LiveError(
-            f"--detect heard no CRC-valid frame on {settings.port} at any setting (is there traffic? "
-            "are A and B swapped?)", ExitStatus.ERROR)
-    return PortSettings(settings.port, best.baud, best.parity, settings.stopbits, settings.bytesize)
+        # The dialog's framing and data bits are ignored under --detect: vw3-decode's options are named.
+        advice = f"vw3-decode --live {settings.port} --detect"
+        raise LiveError(f"--detect on {settings.port}: {nothing_found(scores, advice)}", ExitStatus.ERROR)
+    where = best.where
+    return PortSettings(settings.port, where.baud, where.parity, where.stopbits, where.bytesize), best.mode
 
 
 def description(args: argparse.Namespace, settings: PortSettings) -> str:
@@ -156,8 +157,9 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
         output: FifoOutput | None = None
         try:
             settings = PortSettings(port_name, args.baud, args.parity, args.stopbits, args.bytesize)
+            mode = args.mode
             if args.detect:
-                settings = detected(settings, args.detect_seconds, stop)
+                settings, mode = detected(settings, args.detect_seconds, stop)
             port = open_port(settings)
         except Stopped:
             return ExitStatus.OK  # Wireshark is stopping: nobody is left to read the fifo
@@ -170,7 +172,7 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
             if stream is None:
                 return ExitStatus.OK  # stopped, or nobody came to read
             output = FifoOutput(stream, args.fifo, (settings.port, description(args, settings)))
-            thread = CaptureThread(port, live_framer(args.mode, settings.baud), CaptureFiles(output, None),
+            thread = CaptureThread(port, live_framer(mode, settings.baud), CaptureFiles(output, None),
                                    Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port)
             thread.start()
             while not thread.done.wait(WAIT):

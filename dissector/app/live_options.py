@@ -6,6 +6,17 @@ import argparse
 from dissector.framing.linespeed import baud_rate  # --baud's range, for files and live alike
 
 PARITY_CHOICES = ("E", "N", "O")
+BYTESIZE_GIVEN = "bytesize_given"  # set by --bytesize: --detect then tries that size only
+
+
+class GivenBytesize(argparse.Action):
+    """Stores --bytesize and notes that it was given (its default, 8, is RTU's: --detect tries
+    ASCII at 7 data bits unless told otherwise)."""
+
+    def __call__(self, parser: argparse.ArgumentParser, namespace: argparse.Namespace,
+                 values: object, option_string: str | None = None) -> None:
+        setattr(namespace, self.dest, values)
+        setattr(namespace, BYTESIZE_GIVEN, True)
 
 
 def positive_int(text: str) -> int:
@@ -43,7 +54,10 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
         help="parity: E (default, the Modbus default), N or O",
     )
     group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
-    group.add_argument("--bytesize", type=int, choices=[5, 6, 7, 8], default=8, help="default 8")
+    group.add_argument(
+        "--bytesize", type=int, choices=[5, 6, 7, 8], default=8, action=GivenBytesize,
+        help="data bits, default 8 (--detect tries 8 for RTU and 7 for ASCII unless given)",
+    )
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
     group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
     group.add_argument(
@@ -52,6 +66,7 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     )
     group.add_argument(
         "--detect", nargs="?", type=positive_seconds, const=2.0, metavar="SECONDS",
-        help="find the baud rate and parity: listen SECONDS (default 2) at each of "
-        "9600..115200 x E/N/O and print the command line to use",
+        help="find the framing, baud rate and parity: listen SECONDS (default 2) at each of "
+        "9600..115200 x 8E1/8N1/8O1 (RTU) and 7E1/7N2/7O1 (ASCII; --mode and --bytesize narrow "
+        "this) and print the command line to use",
     )

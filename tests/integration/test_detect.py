@@ -12,7 +12,6 @@ import io
 import os
 import subprocess
 import sys
-import termios as termios_module
 import threading
 import time
 import types
@@ -21,11 +20,11 @@ import pytest
 import serial
 
 from dissector.protocol.crc import with_crc
-from dissector.app.detect import BAUDS, Heard, SerialListener, detect, rank, score, unmark
+from dissector.app.detect import BAUDS, Heard, SerialListener, Setting, detect, rank, score, unmark
 from dissector.app.live import run_live
 from dissector.render.summary import summary_line
 from live_bus import ROOT, open_pty
-from uart_sim import SimListener, SimSerial, Wire, receive, traffic
+from uart_sim import SimListener, SimSerial, TtyFeeder, Wire, receive, traffic
 
 FRAMES = traffic(40, seed=2)
 WIRE = Wire(38400, "E", FRAMES)
@@ -69,7 +68,7 @@ def test_detect_finds_38400_8E1() -> None:
 
 def test_ties_without_error_marks_prefer_even_parity() -> None:
     frame = bytes.fromhex("0103006b00037417")
-    scores = rank([score(38400, parity, Heard(frame)) for parity in "NOE"])
+    scores = rank([score(Setting(38400, parity), Heard(frame)) for parity in "NOE"])
     assert [s.parity for s in scores] == ["E", "N", "O"]
     assert scores[0].describe() == (
         "38400 8E1: 1 CRC-valid frames (8 bytes), 8 bytes heard, errors not reported by this port"
@@ -98,13 +97,13 @@ def test_serial_listener_marks_errors_through_the_tty_layer() -> None:
             os.write(master, frame)
 
         threading.Thread(target=later).start()
-        heard = listener.listen(115200, "N", 0.2)
+        heard = listener.listen(Setting(115200, "N"), 0.2)
     finally:
         port.close()
         os.close(master)
         os.close(slave)
     assert heard == Heard(frame, frozenset(), marked=True)
-    assert score(115200, "N", heard).frames == 1
+    assert score(Setting(115200, "N"), heard).frames == 1
 
 
 @pytest.fixture
@@ -120,22 +119,25 @@ def uartsim() -> types.ModuleType:
     del sys.modules["vw3sim"], sys.modules["vw3sim.protocol_uartsim"]
 
 
-def detect_args(port: str, seconds: float) -> argparse.Namespace:
+def detect_args(port: str, seconds: float, mode: str | None = None) -> argparse.Namespace:
     return argparse.Namespace(
         live=port, baud=19200, parity="E", stopbits=1, bytesize=8, raw=None, duration=None,
-        count=None, detect=seconds, write=None, json=False, timeout=1.0,
+        count=None, detect=seconds, write=None, json=False, timeout=1.0, mode=mode,
     )
 
 
-def test_cli_detect_on_a_simulated_port(uartsim: types.ModuleType) -> None:
+# Without --mode, RTU's 8-bit settings and ASCII's 7-bit ones are tried; the RTU report is the same.
+@pytest.mark.parametrize("mode, count", [(None, 30), ("rtu", 15)])
+def test_cli_detect_on_a_simulated_port(uartsim: types.ModuleType, mode: str | None, count: int) -> None:
     SimSerial.WIRE = Wire(38400, "E", traffic(40, seed=6))
     out, err = io.StringIO(), io.StringIO()
-    status = run_live(detect_args("uartsim://bus", 0.25), out, err, False, summary_line, None)
+    status = run_live(detect_args("uartsim://bus", 0.25, mode), out, err, False, summary_line, None)
     assert status == 0, err.getvalue()
     assert out.getvalue() == "vw3-decode --live uartsim://bus --baud 38400 --parity E\n"
     lines = err.getvalue().splitlines()
-    assert lines[0] == "vw3-decode: listening on uartsim://bus for 0.25 s at each of 15 settings"
+    assert lines[0] == f"vw3-decode: listening on uartsim://bus for 0.25 s at each of {count} settings"
     assert lines[1].startswith("  38400 8E1: ")
+    assert len(lines) == count + 2
     # Without error marks the three parities of the right baud rate hear alike; the report says so.
     assert lines[-1] == (
         "vw3-decode: 38400 8N1, 38400 8O1 heard frames as well as 38400 8E1 (this port does not "
@@ -143,54 +145,30 @@ def test_cli_detect_on_a_simulated_port(uartsim: types.ModuleType) -> None:
     )
 
 
-def test_cli_detect_hears_nothing() -> None:
+@pytest.mark.parametrize("mode, looked_for", [
+    (None, "CRC-valid RTU frame or Modbus ASCII frame with a good LRC"),
+    ("rtu", "CRC-valid frame"),
+    ("ascii", "Modbus ASCII frame with a good LRC"),
+])
+def test_cli_detect_hears_nothing(mode: str | None, looked_for: str) -> None:
     out, err = io.StringIO(), io.StringIO()
-    status = run_live(detect_args("loop://", 0.02), out, err, False, summary_line, None)
+    status = run_live(detect_args("loop://", 0.02, mode), out, err, False, summary_line, None)
     assert status == 1
     assert out.getvalue() == ""
     assert err.getvalue().splitlines()[-1] == (
-        "vw3-decode: no CRC-valid frame heard at any setting (is there traffic? are A and B swapped?)"
+        f"vw3-decode: no {looked_for} heard at any setting (is there traffic? are A and B swapped?)"
     )
 
 
-SPEEDS = {getattr(termios_module, f"B{baud}"): baud for baud in BAUDS + (19200,)}
-
-
-class TtyFeeder(threading.Thread):
-    """Writes into a pty what a UART at the sniffer's current baud rate would hear of WIRE.
-
-    The speed is read from the terminal itself (termios on the master side reports the slave's), so
-    the sniffer's own reconfiguration drives what it hears. A pty drops PARENB, so the feeder
-    cannot see the parity and hears as 8N1; nor can it mark errors (the kernel would escape them).
-    """
-
-    def __init__(self, master: int, wire: Wire) -> None:
-        super().__init__(daemon=True)
-        self.master, self.wire = master, wire
-        self.stop = threading.Event()
-
-    def run(self) -> None:
-        start = time.monotonic()
-        resume, speed = 0.0, None
-        while not self.stop.wait(0.005):
-            now = time.monotonic() - start
-            current = SPEEDS.get(termios_module.tcgetattr(self.master)[4])
-            if current != speed:
-                speed, resume = current, now  # the receiver starts over at a new setting
-            if speed is None:
-                continue
-            data, _, resume = receive(self.wire, speed, "N", resume, now)
-            if data:
-                os.write(self.master, data)
-
-
-def test_cli_detect_on_a_pty(tmp_path) -> None:
+@pytest.mark.parametrize("mode", [None, "rtu"])
+def test_cli_detect_on_a_pty(mode: str | None) -> None:
     master, slave, path = open_pty()
     feeder = TtyFeeder(master, Wire(38400, "E", traffic(40, seed=8)))
     feeder.start()
     try:
         process = subprocess.run(
-            [sys.executable, "-m", "dissector", "--live", path, "--detect", "0.3"],
+            [sys.executable, "-m", "dissector", "--live", path, "--detect", "0.3",
+             *(["--mode", mode] if mode else [])],
             cwd=ROOT, capture_output=True, text=True, timeout=60,
         )
     finally:
@@ -202,12 +180,17 @@ def test_cli_detect_on_a_pty(tmp_path) -> None:
     assert process.stdout == f"vw3-decode --live {path} --baud 38400 --parity E\n"
     lines = process.stderr.splitlines()
     assert lines[1].startswith("  38400 8E1: ") and "0 bytes flagged" in lines[1]
-    # A pty marks no errors at any parity: 8N1 is as likely, and the report says so.
+    # A pty marks no errors at any parity: 8N1 and 8O1 are as likely, and the report says so.
     assert lines[-1] == (
-        "vw3-decode: 38400 8N1 heard frames as well as 38400 8E1 (no more parity or framing errors "
-        "were flagged there): E was chosen as the Modbus default"
+        "vw3-decode: 38400 8N1, 38400 8O1 heard frames as well as 38400 8E1 (no more parity or framing "
+        "errors were flagged there): E was chosen as the Modbus default"
     )
-    # Every setting is reported, including those the pty refused (a parity change alone: 8O1).
-    assert sorted(line.split(":")[0].strip() for line in lines[1:16]) == sorted(
-        f"{baud} 8{parity}1" for baud in BAUDS for parity in "ENO"
-    )
+    # Every setting is reported: the baud rate changes at each, which a pty accepts with any parity.
+    tried = [f"{baud} 8{parity}1" for baud in BAUDS for parity in "ENO"]
+    if mode is None:
+        tried += [f"{baud} 7{format}" for baud in BAUDS for format in ("E1", "N2", "O1")]
+    assert lines[0] == f"vw3-decode: listening on {path} for 0.3 s at each of {len(tried)} settings"
+    assert sorted(line.split(":")[0].strip() for line in lines[1:-1]) == sorted(tried)
+    assert all("CRC-valid frames" in line for line in lines[1:-1] if " 8" in line.split(":")[0])
+    assert all(": 0 ASCII frames with a good LRC (0 bytes), " in line
+               for line in lines[1:-1] if " 7" in line.split(":")[0])

@@ -3,7 +3,7 @@
 A pseudo-terminal ignores baud rate and parity, so the wrong settings are emulated: the bus is a
 line level over time (bit cells at the wire's baud rate, idle high between frames), and the
 receiver does what a 16550-style UART does: wait for a falling edge, check the start bit at half a
-bit, sample 8 data bits (LSB first), the parity bit if any and the stop bit at the middle of each of
+bit, sample 7 or 8 data bits (LSB first), the parity bit if any and the stop bit at the middle of each of
 *its own* bit times, flag a parity or framing error, and hunt for the next falling edge after the
 stop sample. It is a model: real UARTs sample 16 times a bit and vote, and resynchronise after a
 framing error in their own ways; what it shows is that the scoring rejects mis-sampled bytes.
@@ -11,7 +11,10 @@ framing error in their own ways; what it shows is that the scoring rejects mis-s
 from __future__ import annotations
 
 import math
+import os
 import random
+import termios
+import threading
 import struct
 import time
 from bisect import bisect_left
@@ -20,7 +23,7 @@ from dataclasses import dataclass
 import serial
 
 from dissector.protocol.crc import with_crc
-from dissector.app.detect import Heard
+from dissector.app.detect import BAUDS, Heard, Setting
 
 
 def parity_bit(byte: int, parity: str) -> int:
@@ -28,22 +31,24 @@ def parity_bit(byte: int, parity: str) -> int:
     return ones if parity == "E" else 1 - ones
 
 
-def encode_byte(byte: int, parity: str) -> bytes:
-    bits = [0, *((byte >> i) & 1 for i in range(8))]
+def encode_byte(byte: int, parity: str, size: int = 8, stops: int = 1) -> bytes:
+    bits = [0, *((byte >> i) & 1 for i in range(size))]
     if parity != "N":
         bits.append(parity_bit(byte, parity))
-    bits.append(1)
+    bits += [1] * stops
     return bytes(bits)
 
 
 class Wire:
-    """A line carrying `frames` at (baud, parity), each followed by its gap; it repeats forever."""
+    """A line carrying `frames` at (baud, parity, data bits, stop bits), each followed by its gap; it
+    repeats forever."""
 
-    def __init__(self, baud: int, parity: str, frames: list[tuple[bytes, float]], lead: float = 0.005):
+    def __init__(self, baud: int, parity: str, frames: list[tuple[bytes, float]], lead: float = 0.005,
+                 size: int = 8, stops: int = 1):
         bits = bytearray(b"\x01" * round(lead * baud))
         for frame, gap in frames:
             for byte in frame:
-                bits += encode_byte(byte, parity)
+                bits += encode_byte(byte, parity, size, stops)
             bits += b"\x01" * round(gap * baud)
         self.bits = bytes(bits)
         self.bit_time = 1 / baud
@@ -64,24 +69,27 @@ class Wire:
         return (cycle * n + self.falls[index]) * self.bit_time
 
 
-def receive(wire: Wire, baud: int, parity: str, start: float, end: float) -> tuple[bytes, set[int], float]:
-    """Bytes a receiver at (baud, parity) completes between start and end; where to resume."""
+def receive(
+    wire: Wire, baud: int, parity: str, start: float, end: float, size: int = 8
+) -> tuple[bytes, set[int], float]:
+    """Bytes a receiver at (baud, parity, data bits) completes between start and end; where to resume.
+    It checks one stop bit, as UARTs do."""
     bit = 1 / baud
     out = bytearray()
     errors: set[int] = set()
     t = start
     while True:
         edge = wire.next_fall(t)
-        stop_at = edge + (10.5 if parity != "N" else 9.5) * bit
+        stop_at = edge + (size + 2.5 if parity != "N" else size + 1.5) * bit
         if stop_at > end:
             return bytes(out), errors, edge
         if wire.level(edge + bit / 2) != 0:  # a glitch, not a start bit
             t = edge + bit / 2
             continue
-        byte = sum(wire.level(edge + (1.5 + i) * bit) << i for i in range(8))
+        byte = sum(wire.level(edge + (1.5 + i) * bit) << i for i in range(size))
         bad = False
         if parity != "N":
-            bad = wire.level(edge + 9.5 * bit) != parity_bit(byte, parity)
+            bad = wire.level(edge + (size + 1.5) * bit) != parity_bit(byte, parity)
         bad = bad or wire.level(stop_at) == 0
         if bad:
             errors.add(len(out))
@@ -103,14 +111,25 @@ def traffic(transactions: int, seed: int) -> list[tuple[bytes, float]]:
     return frames
 
 
+def ascii_traffic(transactions: int, seed: int) -> list[tuple[bytes, float]]:
+    """traffic() in Modbus ASCII: ':', the hex pairs of slave, PDU and LRC, CR LF (MODBUS over Serial
+    Line V1.02, 2.5.2); the gaps are the same."""
+    frames = []
+    for frame, gap in traffic(transactions, seed):
+        adu = frame[:-2]
+        frames.append((b":" + (adu + bytes([(-sum(adu)) & 0xFF])).hex().upper().encode() + b"\r\n", gap))
+    return frames
+
+
 @dataclass
 class SimListener:
     """detect.Listener over one pass of the wire, with the receiver's error flags (marked)."""
 
     wire: Wire
 
-    def listen(self, baud: int, parity: str, seconds: float) -> Heard:
-        data, errors, _ = receive(self.wire, baud, parity, 0.0, min(seconds, self.wire.duration))
+    def listen(self, setting: Setting, seconds: float) -> Heard:
+        data, errors, _ = receive(self.wire, setting.baud, setting.parity, 0.0,
+                                  min(seconds, self.wire.duration), setting.bytesize)
         return Heard(data, frozenset(errors), marked=True)
 
 
@@ -138,7 +157,8 @@ class SimSerial(serial.SerialBase):
     def _pull(self) -> None:
         assert self.WIRE is not None
         parity = {serial.PARITY_NONE: "N", serial.PARITY_EVEN: "E", serial.PARITY_ODD: "O"}[self.parity]
-        data, _, self._resume = receive(self.WIRE, self.baudrate, parity, self._resume, self._now())
+        data, _, self._resume = receive(self.WIRE, self.baudrate, parity, self._resume, self._now(),
+                                        self.bytesize)
         self._buffer += data
 
     @property
@@ -163,3 +183,36 @@ class SimSerial(serial.SerialBase):
 
     def close(self) -> None:
         self.is_open = False
+
+
+SPEEDS = {getattr(termios, f"B{baud}"): baud for baud in BAUDS + (19200,)}
+
+
+class TtyFeeder(threading.Thread):
+    """Writes into a pty what a UART at the sniffer's current baud rate would hear of `wire`.
+
+    The speed is read from the terminal itself (termios on the master side reports the slave's), so
+    the sniffer's own reconfiguration drives what it hears. A pty drops PARENB and CSIZE, so the feeder
+    cannot see the parity nor the data bits: it hears as `receiver` (parity, data bits) says, 8N1 by
+    default; nor can it mark errors (the kernel would escape them).
+    """
+
+    def __init__(self, master: int, wire: Wire, receiver: tuple[str, int] = ("N", 8)) -> None:
+        super().__init__(daemon=True)
+        self.master, self.wire, self.receiver = master, wire, receiver
+        self.stop = threading.Event()
+
+    def run(self) -> None:
+        start = time.monotonic()
+        resume, speed = 0.0, None
+        parity, size = self.receiver
+        while not self.stop.wait(0.005):
+            now = time.monotonic() - start
+            current = SPEEDS.get(termios.tcgetattr(self.master)[4])
+            if current != speed:
+                speed, resume = current, now  # the receiver starts over at a new setting
+            if speed is None:
+                continue
+            data, _, resume = receive(self.wire, speed, parity, resume, now, size)
+            if data:
+                os.write(self.master, data)
