@@ -139,11 +139,11 @@ def print_config(out: TextIO, interface: Interface) -> None:
     out.write("arg {number=5}{call=--mode}{display=Framing}{type=selector}{default=rtu}{group=Serial port}\n")
     _selector(out, 5, (("rtu", "Modbus RTU"), ("ascii", "Modbus ASCII")), "rtu")
     out.write("arg {number=6}{call=--detect}{display=Find the baud rate and parity first (--detect)}"
-              "{type=boolflag}{default=false}{tooltip=Listen at 9600..115200 baud x even/none/odd parity "
-              "and capture at the setting that hears CRC-valid frames; the settings above are then "
-              "ignored}{group=Detect}\n")
+              "{type=boolflag}{default=false}{tooltip=Listen at 9600..115200 baud x even/none/odd parity, "
+              "RTU at 8 data bits and ASCII at 7, and capture at the setting and framing that hear valid "
+              "frames; the settings above are then ignored}{group=Detect}\n")
     out.write("arg {number=7}{call=--detect-seconds}{display=Seconds at each setting}{type=double}"
-              "{default=2}{range=0.1,60}{tooltip=15 settings are tried}{group=Detect}\n")
+              "{default=2}{range=0.1,60}{tooltip=30 settings are tried}{group=Detect}\n")
     out.write("arg {number=8}{call=--description}{display=Interface description}{type=string}"
               "{tooltip=Written in the capture file's interface description, before the port and its "
               "settings (pcapng if_description)}{group=Capture}\n")
@@ -174,7 +174,7 @@ def build_parser() -> Parser:
     options.add_argument("--mode", type=str.lower, choices=["rtu", "ascii"], default="rtu", help="default rtu")
     options.add_argument("--detect", action="store_true", help="find the baud rate and parity first")
     options.add_argument("--detect-seconds", type=positive_seconds, default=2.0, metavar="SECONDS",
-                         help="seconds at each of the 15 settings --detect tries (default 2)")
+                         help="seconds at each of the 30 settings --detect tries (default 2)")
     options.add_argument("--description", default="", help="pcapng interface description (before the settings)")
     install = parser.add_argument_group("installing")
     install.add_argument("--install", nargs="?", const="", metavar="DIR",
