@@ -1,5 +1,6 @@
-"""The README's `$ vw3-decode ...` examples are what vw3-decode prints: each shown line, in order, is a
-line of the real output (`...` stands for lines left out; the example's own lines may not be reordered).
+"""The README's `$ vw3-decode ...` examples are what vw3-decode prints: the shown lines are the real
+output's, in order, and only a `...` line stands for lines left out (stdout, then stderr as a terminal
+shows it after the run).
 A change of output that leaves the README behind fails here, not in a user's terminal."""
 from __future__ import annotations
 
@@ -28,9 +29,14 @@ def test_an_example_is_what_vw3_decode_prints(command: str, shown: str, monkeypa
     status = run(shlex.split(command), Environment(io.BytesIO(), out, err, stdout_isatty=False, stderr_isatty=True))
     assert status == 0, err.getvalue()
     printed = (out.getvalue() + err.getvalue()).splitlines()
-    at = 0
+    at, gap = 0, False  # gap: a `...` since the last line shown, so lines may be left out here
     for line in shown.splitlines():
-        if line.strip() == "..." or not line.strip():
+        if line.strip() == "...":
+            gap = True
             continue
-        assert line in printed[at:], (line, printed)
-        at = printed.index(line, at) + 1
+        if gap:
+            assert line in printed[at:], (line, printed[at:])
+            at = printed.index(line, at)
+        else:
+            assert printed[at:at + 1] == [line], (line, printed[at:at + 3])
+        at, gap = at + 1, False
