@@ -12,8 +12,10 @@ interface description says: `19200 8N2`). From there:
 - master turnaround: from the end of an answer (response or exception) to the start of the next
   request: median, p95, max;
 - response times per slave against `--timeout`: the margin is timeout - the slowest response;
-- outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing),
-  from the first such request to the last, with their count and frames.
+- outages: two or more consecutive requests to a slave left unanswered (broadcasts expect nothing,
+  nor does a request the spec's server never answers, FC8 04 Force Listen Only Mode, unless an
+  exception answered it: such a request is neither one of them nor ends them), from the first such
+  request to the last, with their count and frames.
 Time going backwards (a pcap whose records go back, a clock step; the summary shows those times as
 they are) is left out of the figures, never averaged in: an item stamped before the item before it
 has no gap and no turnaround and starts a new stretch of time (the load is the busy time over the
@@ -33,11 +35,20 @@ from typing import Any, Callable
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming
 from dissector.model import Item, Kind, stamped_before
+from dissector.protocol.rules import awaits_answer
 from dissector.framing.linespeed import LineSettings
 from dissector.render.describe import count_text
 from dissector.render.stats_store import Coarse
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
+
+
+def _awaits_nothing(frame: Any) -> bool:
+    """A request no answer is expected of: a broadcast, or one the spec's server never answers ([pairing]
+    never_answered: FC8 04) that no exception answered. Its silence is no outage, nor does it end one."""
+    return frame.kind is Kind.REQUEST and (
+        frame.broadcast or (not awaits_answer(frame) and frame.response is None)
+    )
 GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
 MINUTE = 60.0
 CLOSE_MARGIN = 0.9  # a response slower than this part of the timeout is close to it
@@ -258,7 +269,8 @@ class BusTiming:
                 response_time = frame.response_time
                 if response_time is not None and response_time < 0:
                     response_time = self._backwards(frame)
-                self.store.bus_item(time, frame.length, _KINDS[frame.kind], frame.slave, frame.broadcast,
+                # (a request that awaits nothing goes as a broadcast: the store's bus_add skips its outage run)
+                self.store.bus_item(time, frame.length, _KINDS[frame.kind], frame.slave, _awaits_nothing(frame),
                                     frame.unanswered, frame.crc_ok, response_time, frame.number, frame.offset)
             return
         if time is None:
@@ -303,7 +315,7 @@ class BusTiming:
             if self._answer_end is not None:
                 self.turnaround.add(time - self._answer_end)
             self._answer_end = None
-            if not frame.broadcast:  # type: ignore[union-attr]
+            if not _awaits_nothing(frame):
                 self._request(frame, time)
             return
         self._answer_end = end
