@@ -391,23 +391,26 @@ def own_exports(text: str) -> list[str]:
     return names
 
 
-def module_exports(text: str, later: list[str]) -> list[str]:
+def free_names(text: str) -> set[str]:
+    """The names a module's code names without declaring them anywhere (what it takes from elsewhere)."""
+    code = _code_only(text)
+    return _uses(code) - _declared(code)[1]
+
+
+def module_exports(text: str, later_free: set[str]) -> list[str]:
     """The names a module shares, sorted: its own export lines' (own_exports), and its top-level locals
-    that a later module (`later`: their texts) names without declaring them anywhere, but for one that
-    would hide from them a global of Lua's or Wireshark's."""
+    that a later module names without declaring them anywhere (`later_free`: the union of their
+    free_names), but for one that would hide from them a global of Lua's or Wireshark's."""
     top, _ = _declared(_code_only(text))
-    free: set[str] = set()
-    for other in later:
-        code = _code_only(other)
-        free |= _uses(code) - _declared(code)[1]
-    return sorted(((top & free) - LUA_GLOBALS) | set(own_exports(text)))
+    return sorted(((top & later_free) - LUA_GLOBALS) | set(own_exports(text)))
 
 
 def export_lines(text: str, names: list[str]) -> list[str]:
     """The lines, at the module's end, that put in the shared table of names those of `names` its own lines
     do not: `M.a, M.b = a, b`, as many names a line as fit in 116 characters."""
     lines: list[str] = []
-    for name in (name for name in names if name not in own_exports(text)):
+    own = set(own_exports(text))
+    for name in (name for name in names if name not in own):
         if lines:
             targets, values = lines[-1].split(" = ")
             longer = f"{targets}, M.{name} = {values}, {name}"
@@ -467,13 +470,18 @@ def render_plugin(src: Path = SRC) -> str:
             texts.append(path.read_text(encoding="utf-8"))
         except OSError as error:
             raise GenerateError(f"{path}: {error.strerror or error} (listed in {MAIN})") from None
+    # (what the modules after each one take from elsewhere: each module's text read once, from the last)
+    later_free: list[set[str]] = [set()]
+    for text in reversed(texts[1:]):
+        later_free.append(later_free[-1] | free_names(text))
+    later_free.reverse()
     for index, (name, text) in enumerate(zip(names, texts)):
         lines = text.rstrip("\n").split("\n")
         at = next((number for number, line in enumerate(lines) if line.startswith(ENV_LINE)), None)
         if at is None:
             raise GenerateError(f"{src / name}.lua: no `{ENV_LINE}` line (after which the generator binds what it uses)")
         lines[at + 1:at + 1] = module_bindings(name, text, available)
-        exports = module_exports(text, texts[index + 1:])
+        exports = module_exports(text, later_free[index])
         lines += export_lines(text, exports)
         available.update(exports)
         parts.append(MODULE_LINE.format(name=name))

@@ -19,23 +19,34 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 
+local function lrc(bytes_, count)
+  local sum = 0
+  for k = 0, count - 1 do sum = sum + bytes_[k] end
+  return (256 - sum % 256) % 256
+end
+
+-- The bytes of `count` hex pairs at b[at], bin[0 .. count - 1], and whether a digit is lower case (nil: no hex).
+local function hex_pairs(b, at, count)
+  local bin, lower = {}, false
+  for k = 0, count - 1 do
+    local high, low = b[at + 2 * k], b[at + 1 + 2 * k]
+    if not (HEX[high] and HEX[low]) then return nil end
+    if high >= 97 or low >= 97 then lower = true end
+    bin[k] = HEX[high] * 16 + HEX[low]
+  end
+  return bin, lower
+end
+
 -- Whether the sample holds a whole ASCII frame: ':', hex pairs (slave, function and LRC at least), LF (after
 -- CR, or alone), its LRC good (the binary bytes and the LRC sum to 0 modulo 256), whatever comes before it.
 -- (protocol/ascii.py holds_frame: one pass, the hex digits after a ':' looked at once)
 local function holds_frame(sample)
-  local n, byte = #sample, string.byte
-  local at = sample:find(":", 1, true)
-  while at ~= nil do
-    local stop = at + 1
-    while stop <= n and HEX[byte(sample, stop)] do stop = stop + 1 end
-    local digits = stop - at - 1
-    local ends = byte(sample, stop) == LF or (byte(sample, stop) == CR and byte(sample, stop + 1) == LF)
-    if ends and digits % 2 == 0 and digits >= 2 * MIN_BINARY then
-      local sum = 0
-      for k = at + 1, stop - 1, 2 do sum = sum + HEX[byte(sample, k)] * 16 + HEX[byte(sample, k + 1)] end
-      if sum % 256 == 0 then return true end
+  for digits in sample:gmatch(":(%x*)\r?\n") do
+    local count = floor(#digits / 2)
+    if #digits % 2 == 0 and count >= MIN_BINARY then
+      local bin = hex_pairs({ digits:byte(1, -1) }, 1, count)
+      if lrc(bin, count - 1) == bin[count - 1] then return true end
     end
-    at = sample:find(":", stop, true) -- (the digits hold no ':')
   end
   return false
 end
@@ -55,12 +66,6 @@ local function detect_mode(sample)
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
-end
-
-local function lrc(bytes_, count)
-  local sum = 0
-  for k = 0, count - 1 do sum = sum + bytes_[k] end
-  return (256 - sum % 256) % 256
 end
 
 local function classify_ascii(s, adu, count)
@@ -95,13 +100,9 @@ local function ascii_candidate(s, at, length, items)
   local digits = length - 3
   if lost_cr then digits = length - 2 end
   if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
-  local bin, count, lower = {}, floor(digits / 2), false
-  for k = 0, count - 1 do
-    local high, low = b[at + 1 + 2 * k], b[at + 2 + 2 * k]
-    if not (HEX[high] and HEX[low]) then return reject(s, at, length, NOT_HEX_PAIRS, items) end
-    if high >= 97 or low >= 97 then lower = true end
-    bin[k] = HEX[high] * 16 + HEX[low]
-  end
+  local count = floor(digits / 2)
+  local bin, lower = hex_pairs(b, at + 1, count)
+  if bin == nil then return reject(s, at, length, NOT_HEX_PAIRS, items) end
   if count < MIN_BINARY then return reject(s, at, length, ASCII_TOO_SHORT, items) end
   local slave, code = bin[0], bin[1]
   local received, expected = bin[count - 1], lrc(bin, count - 1)
