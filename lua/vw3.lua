@@ -7480,11 +7480,11 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
-local detect_mode, device_for, device_now, dissect_now, ex = detect_mode, device_for, device_now, dissect_now, ex
-local feed, finish_all, flush_noise, ipairs, math = feed, finish_all, flush_noise, ipairs, math
-local new_state, pack, package, pairs, pcall, pf, proto = new_state, pack, package, pairs, pcall, pf, proto
-local record_time, show_record, stream_state, take_items = record_time, show_record, stream_state, take_items
-local tostring, tree_mode, wtap = tostring, tree_mode, wtap
+local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
+local finish_all, flush_noise, ipairs, math, new_state = finish_all, flush_noise, ipairs, math, new_state
+local pack, package, pairs, pcall, pf, proto, record_time = pack, package, pairs, pcall, pf, proto, record_time
+local show_record, stream_state, take_items, tostring = show_record, stream_state, take_items, tostring
+local tree_mode, wtap = tree_mode, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
 -- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
@@ -7685,7 +7685,7 @@ DissectorTable.get("udp.port"):add_for_decode_as(proto)
 -- file of its own so that serial captures pay nothing for it: its field extractors make Wireshark build
 -- a tree for every packet. (Each script has globals of its own; package.loaded is shared.)
 package.loaded.vw3_plugin = {
-  new_state = new_state, device_for = device_for, device_now = device_now, annotate_registers = annotate_list,
+  new_state = new_state, device_now = device_now, annotate_registers = annotate_list,
   reads = READS,
   add_register = add_register, add_text = add_text, pf = pf, ex = ex, REQUEST = REQUEST, RESPONSE = RESPONSE,
 }
