@@ -24,10 +24,19 @@ the one-pass target is stated). It counts a third dissector too, the floor: a Lu
 only what any Lua dissector of records must (read the record's number, bytes and time, look at the
 tree, set the Protocol and Info columns), so that what the plugin's own work costs is told apart from
 what calling Lua from Wireshark costs. Slow (some 50 times a run): use it with --frames 20000.
+--plugin may be given more than once with --instructions: each plugin is counted on the same captures,
+mbrtu and the floor once. The counts repeat run after run: tshark runs with address space randomisation
+off (setarch -R) and a clock stopped at one second (a time() of our own, built with cc into --out),
+because Lua 5.2 seeds its string hashes with the time and the heap's addresses: with either moving, the
+same plugin counted twice differed by up to 0.3 %. Two plugins still differ by where their strings land:
+Wireshark's column look-up (cols.protocol, cols.info: some 70 strcmp a record) costs 23 to 34
+instructions a strcmp by the address of the Lua string it compares (some 0.5 % of the plant mix's count),
+so a difference under that is no difference of the plugin's work.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import shutil
 import statistics
@@ -108,10 +117,35 @@ def measure(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str
     return {"speed": speed, "memory": memory, "round_median": statistics.median(round_ratios)}
 
 
-def instructions(command: list[str]) -> int:
+# time() stopped at one second: the seed Lua 5.2 takes from the clock (luai_makeseed) the same every run.
+FIXED_TIME_C = "#include <time.h>\ntime_t time(time_t *t) { if (t) *t = 1700000000; return 1700000000; }\n"
+REPEATABLE: dict[str, str] = {}  # (the environment and prefix that make a count repeat: repeatable())
+
+
+def repeatable(out: Path) -> list[str]:
+    """The prefix (setarch -R) and, in REPEATABLE, the LD_PRELOAD that make a count repeat run after run;
+    none where cc or setarch is missing (said once)."""
+    compiler, setarch = shutil.which("cc"), shutil.which("setarch")
+    if compiler is None or setarch is None:
+        print("  (no cc or setarch: counts vary run to run by up to 0.3 %)")
+        return []
+    source, library = out / "fixed_time.c", out / "fixed_time.so"
+    source.write_text(FIXED_TIME_C)
+    built = subprocess.run([compiler, "-shared", "-fPIC", "-o", str(library), str(source)], capture_output=True,
+                           text=True)
+    if built.returncode != 0:
+        print(f"  (cc failed, counts vary run to run by up to 0.3 %: {built.stderr.strip()[:200]})")
+        return []
+    REPEATABLE["LD_PRELOAD"] = str(library)
+    return [setarch, "-R"]
+
+
+def instructions(command: list[str], prefix: list[str] | None = None) -> int:
     """Machine instructions of one run of `command` under callgrind (its output thrown away)."""
-    probe = subprocess.run(["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null", *command],
-                           stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=ROOT)
+    env = dict(os.environ, **REPEATABLE) if prefix else None
+    probe = subprocess.run([*(prefix or []), "valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null",
+                            *command], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, cwd=ROOT,
+                           env=env)
     found = re.search(r"Collected : (\d+)", probe.stderr)
     if probe.returncode != 0 or found is None:
         sys.exit(f"failed under valgrind ({probe.returncode}): {' '.join(command)}\n{probe.stderr[-2000:]}")
@@ -133,37 +167,44 @@ end
 PROJECTED_RECORDS = 100_000  # the timed run's default length, where the one-pass target is stated
 
 
-def per_record(command: list[str], pcap: Path, empty: Path, frames: int) -> tuple[int, int, float]:
+def per_record(command: list[str], pcap: Path, empty: Path, frames: int,
+               prefix: list[str]) -> tuple[int, int, float]:
     """Instructions of one pass over `pcap`, over the empty capture, and their difference a record."""
-    total, start = instructions(command + [str(pcap)]), instructions(command + [str(empty)])
+    total, start = instructions(command + [str(pcap)], prefix), instructions(command + [str(empty)], prefix)
     return total, start, (total - start) / frames
 
 
-def count(name: str, pcap: Path, options: list[str], plugin: Path, tshark: str, out: Path) -> float:
-    """One pass of the plugin, of mbrtu and of the floor in instructions; the per-record ratio (start-up apart)."""
+def count(name: str, pcap: Path, options: list[str], plugins: list[Path], tshark: str, out: Path) -> float:
+    """One pass of each plugin, of mbrtu and of the floor in instructions; the per-record ratio of the first
+    plugin (start-up apart)."""
     frames = pcap_records(pcap)
     empty = out / "lua-empty.pcap"
     empty.write_bytes(pcap.read_bytes()[:24])  # the pcap header alone: tshark's start-up and end
     floor_script = out / "lua-floor.lua"
     floor_script.write_text(FLOOR_DISSECTOR)
-    lua = [tshark, "-X", f"lua_script:{plugin}", "-o", USER_DLT, *options, "-r"]
+    prefix = repeatable(out)
     mbrtu = [tshark, *MBRTU_OPTIONS, "-r"]
     floor = [tshark, "-X", f"lua_script:{floor_script}", "-o", USER_DLT, "-r"]
-    plugin_total, plugin_start, per_plugin = per_record(lua, pcap, empty, frames)
-    mbrtu_total, mbrtu_start, per_mbrtu = per_record(mbrtu, pcap, empty, frames)
-    _floor_total, _floor_start, per_floor = per_record(floor, pcap, empty, frames)
+    mbrtu_total, mbrtu_start, per_mbrtu = per_record(mbrtu, pcap, empty, frames, prefix)
+    _floor_total, _floor_start, per_floor = per_record(floor, pcap, empty, frames, prefix)
     print(f"{name}: {pcap.name}, {frames} records (instructions, one pass)")
-    print(f"  vw3.lua {plugin_total / 1e9:7.3f} G, start-up {plugin_start / 1e9:.3f} G, {per_plugin:,.0f} a record")
     print(f"  mbrtu   {mbrtu_total / 1e9:7.3f} G, start-up {mbrtu_start / 1e9:.3f} G, {per_mbrtu:,.0f} a record")
-    print(f"  floor   {per_floor:,.0f} a record (a Lua dissector that reads the record and sets its columns): "
-          f"the plugin's own work {per_plugin - per_floor:,.0f} a record")
-    print(f"  vw3.lua at {mbrtu_total / plugin_total:.2f}x mbrtu's instructions on this capture, "
-          f"{per_mbrtu / per_plugin:.2f}x a record")
-    # The speed target is stated at the timed run's length: the start-ups weigh less there than here.
-    projected = (mbrtu_start + PROJECTED_RECORDS * per_mbrtu) / (plugin_start + PROJECTED_RECORDS * per_plugin)
-    print(f"  at {PROJECTED_RECORDS:,} records (start-ups and the counts a record above): "
-          f"vw3.lua at {projected:.3f}x mbrtu's instructions")
-    return per_mbrtu / per_plugin
+    print(f"  floor   {per_floor:,.0f} a record (a Lua dissector that reads the record and sets its columns)")
+    ratios = []
+    for plugin in plugins:
+        lua = [tshark, "-X", f"lua_script:{plugin}", "-o", USER_DLT, *options, "-r"]
+        plugin_total, plugin_start, per_plugin = per_record(lua, pcap, empty, frames, prefix)
+        print(f"  {plugin}")
+        print(f"    vw3.lua {plugin_total / 1e9:7.3f} G, start-up {plugin_start / 1e9:.3f} G, {per_plugin:,.0f} a "
+              f"record, the plugin's own work {per_plugin - per_floor:,.0f} a record")
+        print(f"    vw3.lua at {mbrtu_total / plugin_total:.2f}x mbrtu's instructions on this capture, "
+              f"{per_mbrtu / per_plugin:.2f}x a record")
+        # The speed target is stated at the timed run's length: the start-ups weigh less there than here.
+        projected = (mbrtu_start + PROJECTED_RECORDS * per_mbrtu) / (plugin_start + PROJECTED_RECORDS * per_plugin)
+        print(f"    at {PROJECTED_RECORDS:,} records (start-ups and the counts a record above): "
+              f"vw3.lua at {projected:.3f}x mbrtu's instructions")
+        ratios.append(per_mbrtu / per_plugin)
+    return ratios[0]
 
 
 def main() -> int:
@@ -173,7 +214,8 @@ def main() -> int:
     parser.add_argument("--mix", action="append", choices=[mix.name for mix in MIXES],
                         help="only these mixes (default: plant and max-size)")
     parser.add_argument("--pcap", type=Path, help="time this capture instead of the mixes")
-    parser.add_argument("--plugin", type=Path, default=PLUGIN, help="the plugin file (default lua/vw3.lua)")
+    parser.add_argument("--plugin", type=Path, action="append",
+                        help="the plugin file (default lua/vw3.lua); more than one with --instructions")
     parser.add_argument("--out", type=Path, default=ROOT / "bench" / "out")
     parser.add_argument("--instructions", action="store_true",
                         help="count machine instructions under valgrind instead of timing")
@@ -182,14 +224,17 @@ def main() -> int:
     if tshark is None:
         sys.exit("tshark is not installed: apt-get install -y tshark")
     version = subprocess.run([tshark, "--version"], capture_output=True, text=True).stdout.splitlines()[0]
-    plugin = args.plugin.resolve()
-    print(f"{version}\nplugin: {plugin}")
+    plugins = [path.resolve() for path in args.plugin or [PLUGIN]]
+    if len(plugins) > 1 and not args.instructions:
+        sys.exit("more than one --plugin: only with --instructions (timings of several are not one run)")
+    plugin = plugins[0]
+    print(f"{version}\nplugin: {', '.join(str(path) for path in plugins)}")
     args.out.mkdir(parents=True, exist_ok=True)
     if args.instructions and shutil.which("valgrind") is None:
         sys.exit("valgrind is not installed: apt-get install -y valgrind")
     if args.pcap:
         if args.instructions:
-            count(args.pcap.name, args.pcap.resolve(), [], plugin, tshark, args.out)
+            count(args.pcap.name, args.pcap.resolve(), [], plugins, tshark, args.out)
         else:
             measure(args.pcap.name, args.pcap.resolve(), [], plugin, tshark, args.repeat, args.out)
         return 0
@@ -197,7 +242,7 @@ def main() -> int:
     for mix in chosen:
         _raw, pcap = write_capture(mix.records(args.frames), args.out / f"lua-{mix.name}")
         if args.instructions:
-            count(mix.name, pcap, plugin_options(mix.options), plugin, tshark, args.out)
+            count(mix.name, pcap, plugin_options(mix.options), plugins, tshark, args.out)
         else:
             measure(mix.name, pcap, plugin_options(mix.options), plugin, tshark, args.repeat, args.out)
     return 0
