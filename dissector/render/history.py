@@ -19,6 +19,15 @@ What a good frame (CRC/LRC ok) tells, per register with an address, in this orde
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 
+A 32-bit map row (`type` uint32/int32/float32, README) is one parameter, at the row's address: the frame
+that carries both its words (Register.words 2 on the first, 0 on the second) tells one event, whose value
+is the 32-bit word pair as the row orders it (high word first: `last` in --stats --json) and whose text is
+the summary's; listeners get a copy of the first register with that value. A word of such a row without
+the other in its frame (a read of 101..102 over rows at 100 and 102) is half a value: no event, no
+parameter of its own, only counted (`half_values`). The compiled store keeps 16-bit words only
+(dissector/accel/_stats.h Param.last): a run whose maps have 32-bit rows keeps its history in the Python
+store (`new_store(wide=True)`), and the engine then counts nothing itself (StatsCollector.engine_store).
+
 A value counts as the device of its slave reads it. Read once (standard input, live), a frame decoded
 before profile `auto` chose its slave's device (Frame.provisional) was named with spec semantics only:
 the history holds it back, at most a slave's judging frames (FIT_FRAMES), until the slave's first frame
@@ -43,6 +52,8 @@ import dataclasses
 from collections.abc import Callable
 from typing import Any, Protocol
 
+from dissector.devices.maps import interpret_wide
+from dissector.devices.profiles import load_profile_map
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
@@ -66,7 +77,8 @@ _NOW = object()  # finish(): held frames read with their slave's profile now
 
 class Listener(Protocol):
     def state(self, frame: Frame, register: Register, event: int, changed: bool) -> None:
-        """A register that set its parameter's state (READ, UNREADABLE, CONFIRM, WRITE_OBSERVED)."""
+        """A register that set its parameter's state (READ, UNREADABLE, CONFIRM, WRITE_OBSERVED); a 32-bit
+        value is its first register (`words` 2) with `value` the 32-bit word pair (wide_pair)."""
 
     def renamed(self, slave: int) -> None:
         """This slave's profile changed: what was kept of it is to be read with the new one."""
@@ -79,8 +91,11 @@ class ProvisionalListener(Listener, Protocol):
 
 class History:
     def __init__(self, annotate: object = None, store: Any = None) -> None:
-        self.store = new_store() if store is None else store
+        self.store = new_store(wide_maps(annotate)) if store is None else store
         self.registers_without_address = 0
+        # Registers that are one word of a 32-bit map row whose other word is not in their frame.
+        self.half_values = 0
+        self._device: Callable[[int], Any] | None = getattr(annotate, "device", None)
         self.listeners: list[Listener] = []
         self._profile_for: Callable[[int], object] | None = getattr(annotate, "profile_for", None)
         self._namer: Callable[[int], Any] | None = getattr(annotate, "namer", None)
@@ -221,6 +236,7 @@ class History:
             return
         param = self.store.param
         slave = frame.slave
+        registers = self._values(slave, registers)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
         for register in registers:
             address = register.address
@@ -240,6 +256,7 @@ class History:
         # The hot loop of --stats: one store call a register.
         param = self.store.param
         slave = frame.slave
+        registers = self._values(slave, registers)
         listeners = self.listeners
         for register in registers:
             address = register.address
@@ -260,7 +277,7 @@ class History:
     def _tell(self, frame: Frame, registers: list[Register], event: int | None) -> None:
         """A provisional frame's states, as decoded, to the listeners that show them (None: reads)."""
         listeners = self._watching
-        for register in registers:
+        for register in self._values(frame.slave, registers, counted=False):
             if register.address is None:
                 continue
             told = event
@@ -269,8 +286,83 @@ class History:
             for listener in listeners:
                 listener.provisional(frame, register, told)
 
+    def _values(self, slave: int, registers: Any, counted: bool = True) -> Any:
+        """The registers as the parameters' values: a 32-bit value once, its first register with the word
+        pair as its value; a word of a 32-bit row without the other left out (counted in half_values
+        when `counted`). The registers as they are when the slave's map has no 32-bit row."""
+        device = None if self._device is None else self._device(slave)
+        if device is None or not device.wide:
+            return registers
+        rows = device.rows
+        values: list[Register] = []
+        for index, register in enumerate(registers):
+            words = register.words
+            address = register.address
+            if address is None:
+                values.append(register)
+                continue
+            if words == 0:  # a second word: told with its first
+                continue
+            if words == 2:
+                second = registers[index + 1]
+                pair = wide_pair(rows.get(address), register.value, second.value)
+                values.append(dataclasses.replace(register, value=pair))
+                continue
+            row = rows.get(address)
+            if row is not None and row.words == 2:  # a first word alone
+                if register.status in UNREADABLE_STATUSES:
+                    values.append(register)  # an exception the profile explains: the whole value is unreadable
+                elif counted:
+                    self.half_values += 1
+                continue
+            before = rows.get((address - 1) & 0xFFFF)
+            if before is not None and before.words == 2:  # a second word
+                with_first = index > 0 and registers[index - 1].address == (address - 1) & 0xFFFF
+                if counted and not (with_first and register.status in UNREADABLE_STATUSES):
+                    self.half_values += 1  # (unreadable with its first: told with it)
+                continue
+            values.append(register)
+        return values
+
     def _rename(self, slave: int) -> None:
         if self._namer is not None:
-            self.store.rename({slave: self._namer(slave)})
+            self.store.rename({slave: self._wide_namer(slave, self._namer(slave))})
         for listener in self.listeners:
             listener.renamed(slave)
+
+    def _wide_namer(self, slave: int, namer: Callable[[int, int], Any]) -> Callable[[int, int], Any]:
+        """The slave's namer, reading a 32-bit row's kept value (a word pair) as the row does."""
+        if self._device is None or not self._device(slave).wide:
+            return namer
+        rows = self._device(slave).rows
+
+        def name(address: int, value: int) -> Any:
+            row = rows.get(address)
+            if row is None or row.words != 2:
+                return namer(address, value)
+            return wide_text(row, value)[1], row.code
+
+        return name
+
+
+def wide_pair(row: Any, first: int, second: int) -> int:
+    """A 32-bit value's words, in the order they came on the wire, as one number, high word first (the
+    row's `order`; ABCD when no row names it now)."""
+    high, low = (second, first) if row is not None and row.swapped else (first, second)
+    return high << 16 | low
+
+
+def wide_text(row: Any, pair: int) -> tuple[float | int | None, str]:
+    """The scaled value and text a 32-bit row gives a word pair (wide_pair), as the summary shows it."""
+    high, low = pair >> 16 & 0xFFFF, pair & 0xFFFF
+    return interpret_wide(row, *((low, high) if row.swapped else (high, low)))
+
+
+def wide_maps(annotate: object) -> bool:
+    """A map of the run (a profile's, in use or that `auto` may choose, or a --map file) has 32-bit rows."""
+    profiles = getattr(annotate, "profiles", None)
+    if profiles is None:
+        return False
+    maps = [load_profile_map(profile) for profile in profiles()]
+    maps += [layer.rows for layer in getattr(annotate, "layers", ())]
+    return any(row.words == 2 for rows in maps for row in rows.values())

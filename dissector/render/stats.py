@@ -27,6 +27,9 @@ Counting rules (the table headers say the same):
   `last_text` and `last_status` the status); `changes` counts when that state differs from the
   previous one (the lines --watch prints). Registers without an address (an answer whose request is
   not in the capture) are counted in `registers_without_address`, not attached to a parameter.
+- A 32-bit map row is one parameter at its address, its `last` the word pair (high word first), its
+  text the summary's; a word of one without the other in its frame is no value: counted in
+  `half_values` only (render/history.py).
 - p95 is the nearest-rank 95th percentile: the smallest time with at least 95 % of the times <= it.
 """
 from __future__ import annotations
@@ -113,7 +116,13 @@ class StatsCollector:
         bus timing `bus` (render/bustiming.py) kept there too, for the rest of the run: the Python
         stages' items go there as well, in stream order. None when the store is not compiled, or
         when what Python counted already cannot go there (requests in the poll cycle, a bus that
-        heard items)."""
+        heard items).
+
+        The routing rule of --stats and --report (app/paths.py, accel/timedpath.py take the engine's
+        path only with this store): the engine counts when the store is compiled, which it is not under
+        VW3_PURE_PYTHON, nor when the run's maps have 32-bit rows (stats_store.new_store `wide`: a
+        32-bit value is one parameter of a word pair, the compiled store keeps 16-bit words), so a map
+        with 32-bit rows is counted by the Python stages, engine built or not."""
         if not hasattr(self.store, "poll"):
             return None
         if not self.attached:
@@ -253,6 +262,7 @@ class StatsCollector:
             "noise": {"items": self.noise_items, "bytes": self.noise_bytes},
             "duration": None if first_time is None or last_time is None else last_time - first_time,
             "registers_without_address": self.history.registers_without_address,
+            "half_values": self.history.half_values,
             # Parameters are kept up to MAX_PARAMETERS; the register events of further ones are counted.
             "parameter_limit": MAX_PARAMETERS,
             "parameter_events_dropped": self.store.dropped,
@@ -319,6 +329,9 @@ class StatsCollector:
         if report["registers_without_address"]:
             without = count_text(report['registers_without_address'], 'register value')
             summary += f", {without} without an address"
+        if report["half_values"]:
+            half = count_text(report['half_values'], 'register value')
+            summary += f", {half} one word of a 32-bit value without the other"
         if report["parameter_events_dropped"]:
             dropped = count_text(report['parameter_events_dropped'], 'register value')
             summary += (f", {dropped} of parameters beyond the first "

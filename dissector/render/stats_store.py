@@ -244,8 +244,11 @@ def stamp(time: tuple[float, int | None] | None) -> float | None:
     return time[0] if time[1] is None else Stamp(time[1])
 
 
-def new_store() -> Any:
-    """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set)."""
-    if CompiledStore is not None and not os.environ.get("VW3_PURE_PYTHON"):
+def new_store(wide: bool = False) -> Any:
+    """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set); the Python one when
+    `wide`, the run's maps having 32-bit rows: their values are word pairs, and the compiled store keeps a
+    16-bit word a parameter (_stats.h Param.last), so --stats and --report are then counted by the Python
+    stages (StatsCollector.engine_store: the engine counts only into a compiled store)."""
+    if CompiledStore is not None and not wide and not os.environ.get("VW3_PURE_PYTHON"):
         return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY)
     return ParameterTable()

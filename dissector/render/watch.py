@@ -37,7 +37,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
-from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, History
+from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, History, wide_text
 from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
@@ -114,6 +114,8 @@ def value_text(register: Register, bits: bool = False) -> tuple[str, str | None]
         return status, None  # type: ignore[return-value]
     if register.value is None:
         return register.text or "no value", None
+    if register.words == 2 and register.scaled is None:  # a 32-bit float with no number (nan, inf)
+        return register.text or "no value", None
     if register.scaled is not None:
         text = register.text or str(register.scaled)
         unit = register.unit
@@ -140,6 +142,7 @@ class _State:
     profile: object  # the profile it was named with
     status: str | None = None  # the read status (the history's state) when it is not a value
     code: str | None = None  # provisional: the code it was decoded with (None: shown by address)
+    wide: bool = False  # a 32-bit value: `value` is its word pair (render/history.py wide_pair)
 
     def differs(self, other: _State) -> bool:
         """A change as the parameter history counts one (render/stats_store.py)."""
@@ -300,7 +303,7 @@ class Watcher:
             register = _as_written(register)  # a written value has no read status
         bits = not provisional and self._bits(frame.slave, register.address)  # type: ignore[arg-type]
         text, unit = value_text(register, bits)
-        return _State(register.value, function, text, unit, profile, None, register.code)
+        return _State(register.value, function, text, unit, profile, None, register.code, register.words == 2)
 
     def _bits(self, slave: int, address: int) -> bool:
         if self._device is None:
@@ -318,6 +321,12 @@ class Watcher:
         """A state as the slave's device names it now (named again when its profile changed since)."""
         if state.value is None or self._profile_for is None or self._profile_for(slave) is state.profile:
             return state.text, state.unit
+        if state.wide:  # a word pair: read by the device's 32-bit row, if it still has one there
+            row = self._device(slave).rows.get(address) if self._device is not None else None
+            if row is None or row.words != 2:
+                return state.text, state.unit
+            scaled, text = wide_text(row, state.value)
+            return value_text(Register(address, state.value, scaled=scaled, text=text, unit=row.unit, words=2))
         register = self.annotate.plain_register(slave, state.function, address, state.value)  # type: ignore[attr-defined]
         return value_text(register, self._bits(slave, address))
 

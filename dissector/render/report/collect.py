@@ -368,7 +368,8 @@ class ReportCollector:
             row = rows.get(register.address)
             if row is not series.row:
                 adopt(series, row)
-            if register.code != (None if row is None else row.code) and (row is None or row.words == 1):
+            if (register.code != (None if row is None else row.code) and (row is None or row.words == 1)
+                    and register.words == 1):  # (a word pair is read by a 32-bit row only)
                 # Named by another device (decoded before profile `auto` chose again, or with a choice
                 # taken back since): a series holds one reading, the file's, named with the last choice
                 register = self._named(frame, register)
@@ -381,9 +382,11 @@ class ReportCollector:
                 self._mark(series, x, status + how)
                 self._event(x, "protection", slave, f"{_name(series)} {status}{how}")
             return
-        y = self._y(series, register)
         if series.status is not None:
             self._readable_again(series, x)
+        if register.words == 2 and register.scaled is None:
+            return  # a 32-bit float with no number (nan, inf): nothing to draw
+        y = self._y(series, register)
         series.values += 1
         series.columns.add(col, x, y)
 
