@@ -2196,7 +2196,48 @@ local DATA = {
         [7] = "write refused: the motor is running (configuration parameter)",
       },
       ["documented"] = "01, 02, 03, 04, 06, 07",
-      ["exception_causes"] = {},
+      ["exception_causes"] = {
+        [771] = {
+          {
+            ["text"] = "quantity beyond the card's limit",
+            ["when"] = "quantity",
+          },
+          {
+            ["text"] = "value not permitted",
+            ["when"] = nil,
+          },
+        },
+        [1027] = {
+          {
+            ["text"] = "quantity beyond the card's limit",
+            ["when"] = "quantity",
+          },
+          {
+            ["text"] = "value not permitted",
+            ["when"] = nil,
+          },
+        },
+        [4099] = {
+          {
+            ["text"] = "quantity beyond the card's limit",
+            ["when"] = "quantity",
+          },
+          {
+            ["text"] = "value not permitted",
+            ["when"] = nil,
+          },
+        },
+        [5891] = {
+          {
+            ["text"] = "quantity beyond the card's limit",
+            ["when"] = "quantity",
+          },
+          {
+            ["text"] = "value not permitted",
+            ["when"] = nil,
+          },
+        },
+      },
       ["diagnostics"] = {
         [15] = "broadcast messages received (the spec's 0F counts requests not answered)",
       },
