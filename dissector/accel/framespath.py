@@ -8,13 +8,14 @@ timed summary path hands it over (timedpath.py). The renderers see the same item
 tests/differential/test_timed_outputs.py holds the outputs byte-identical to VW3_PURE_PYTHON=1.
 
 With -c N the Python stages (app/paths.py decode_chunks) stop after the chunk whose items reach the Nth
-frame: everything that chunk gave (frames after the Nth too) went through the decoder, the annotator,
-the bus timing and the report, nothing after it. The engine frames many transactions in one run, so
-here it is given only bytes that cannot hold the Nth frame: a frame is at least MIN_ADU bytes and
-items do not share bytes, so while the bytes given and not yet come out as items are fewer than
-MIN_ADU times the frames still to show, no frame among them can be the Nth (_Counted.room). Blocks are
+item (frame or noise run: each a packet, app/cli.py Sinks._up_to_count): everything that chunk gave
+(items after the Nth too) went through the decoder, the annotator, the bus timing and the report,
+nothing after it. The engine frames many transactions in one run, so here it is given only bytes that
+cannot hold the Nth item: an item is at least a byte and items do not share bytes, so while the bytes
+given and not yet come out as items are fewer than the items still to show, none among them can be
+the Nth (_Counted.room). Blocks are
 built up to that size and a chunk (the source reads no record, nor warns of one, that the Python stages
-would not read) and cut at a chunk before it; at the first chunk that might hold the Nth frame the
+would not read) and cut at a chunk before it; at the first chunk that might hold the Nth item the
 Python stages take the stream, as TimedPath.finish takes it, and go on chunk by chunk as decode_chunks
 does. tests/differential/test_count_engine.py and test_count_cut.py hold -c N byte-identical to
 VW3_PURE_PYTHON=1.
@@ -31,7 +32,6 @@ from typing import Any
 from dissector.accel import fastsummary
 from dissector.accel.records import Block
 from dissector.decode.fields import decode_frame
-from dissector.framing.rules import MIN_ADU
 from dissector.model import Chunk, Frame, Item, Kind, Stamp
 from dissector.pipeline import Dissector
 from dissector.render import bustiming
@@ -76,7 +76,7 @@ def decode(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: 
 
 
 class _Counted:
-    """-c N: the engine given bytes that cannot hold the Nth frame, the Python stages the rest (above)."""
+    """-c N: the engine given bytes that cannot hold the Nth item, the Python stages the rest (above)."""
 
     def __init__(self, dissector: Dissector, sinks: Any, warn: Callable[[], None]) -> None:
         self.dissector = dissector
@@ -92,8 +92,8 @@ class _Counted:
             self.sinks.accept(items)
 
     def room(self) -> int:
-        """Bytes that may be given to the engine's path with no frame among them the Nth."""
-        return self.sinks.frames_left * MIN_ADU - (self.given - self.out)
+        """Bytes that may be given to the engine's path with no item among them the Nth."""
+        return self.sinks.frames_left - (self.given - self.out)
 
     def run(self, chunks: Iterable[Chunk], path: Any) -> None:
         from dissector.accel.records import BlockBuilder, blocks_from_chunks
@@ -115,7 +115,7 @@ class _Counted:
         self.warn()
 
     def _engine(self, block: Block, path: Any) -> Block | None:
-        """The block's chunks to the engine's path while they cannot hold the Nth frame; the rest, if any."""
+        """The block's chunks to the engine's path while they cannot hold the Nth item; the rest, if any."""
         while True:
             starts = block.starts
             room = self.room()
@@ -132,7 +132,7 @@ class _Counted:
             path.feed(head)
 
     def _python(self, block: Block, blocks: Iterable[Block], path: Any) -> None:
-        """The Python stages from the chunk that may hold the Nth frame on, as decode_chunks: chunk by
+        """The Python stages from the chunk that may hold the Nth item on, as decode_chunks: chunk by
         chunk, up to the chunk that reaches it."""
         dissector = self.dissector
         if self.given:  # (else they have all the stream already)

@@ -24,7 +24,7 @@ from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
 from dissector.app.paths import Fix, decode_one
 from dissector.model import Chunk, Frame, Item
-from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
+from dissector.render.capturefile import STDOUT, CaptureOutput, Interface, open_output, pcapng_interface
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
@@ -33,7 +33,7 @@ from dissector.protocol.ascii import holds_frame
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
-from dissector.framing.linespeed import line_settings
+from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
 from dissector.framing.timing import GapChecker
 
@@ -128,11 +128,14 @@ class Sinks:
         if args.write is not None:
             try:
                 stdout = getattr(env.stdout, "buffer", None)
-                self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout)
+                first = args.files[0] if args.files and not args.hex else None
+                interface = write_interface(first, "pcapng" if args.format in (None, "pcapng") else None, args)
+                self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface)
             except ValueError as error:
                 raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
+        self.speed_lost = False  # the warning that pcap loses a description's line speed was given
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count
         self.wrote: str | None = None  # the report written (said last, on a terminal)
@@ -238,14 +241,14 @@ class Sinks:
         context.previous = previous
 
     def _up_to_count(self, items: list[Item]) -> list[Item]:
-        """Items up to and including the frame that reaches -c N; then the decoding stops."""
+        """Items up to and including the Nth of -c N; then the decoding stops. Every item counts, a noise
+        run as a frame: each is a packet (a line here, a record of -w, a packet of the plugin), and
+        tshark -c N stops at N packets."""
         assert self.frames_left is not None
-        for index, item in enumerate(items):
-            if isinstance(item, Frame):
-                self.frames_left -= 1
-                if self.frames_left == 0:
-                    self.done = True
-                    return items[: index + 1]
+        if len(items) < self.frames_left:
+            self.frames_left -= len(items)
+            return items
+        items, self.frames_left, self.done = items[: self.frames_left], 0, True
         return items
 
     def abandon(self, refused: bool = False) -> None:
@@ -367,6 +370,8 @@ def _decode_inputs(
                 sinks.bus.new_input(mode, line, title, sinks.stats)
             sinks.output.new_input(title if sinks.show else None)  # no ==> header over nothing
             sinks.restart_times()
+            if sinks.pcap is not None:
+                _keep_interface(sinks, args, env, path, source_format, line)
             sinks.extra = {"file": title} if title is not None else None
 
             def warn() -> None:
@@ -383,7 +388,8 @@ def _decode_inputs(
             )
             sinks.valid_frames = sinks.input_bytes = 0
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
-            if sinks.input_bytes and not sinks.valid_frames and path is not None:
+            # (-c N may stop in an input's first noise run, before its frames: not judged then.)
+            if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage
                 # (--hex bytes typed from a manual have their own notes: a CRC typo is spelled out).
                 name = path if path != "-" else "standard input"
@@ -396,6 +402,31 @@ def _decode_inputs(
     except BaseException as error:
         sinks.abandon(isinstance(error, SourceError))
         raise
+
+
+def write_interface(path: str | None, source_format: str | None, args: DecodeOptions) -> Interface | None:
+    """The interface the -w file says its records were captured on: the input pcapng's (name and
+    description, as editcap and tshark -w keep them), its description replaced by the speed decoded at
+    when --baud is typed (framing/linespeed.py reads it back)."""
+    kept = pcapng_interface(path) if path not in (None, "-") and source_format == "pcapng" else None
+    if args.baud_given:
+        return (kept[0] if kept is not None else None, f"{args.baud} baud (--baud)")
+    return kept
+
+
+def _keep_interface(sinks: Sinks, args: DecodeOptions, env: Environment, path: str | None,
+                    source_format: str | None, line: LineSettings) -> None:
+    assert sinks.pcap is not None
+    sinks.pcap.use_interface(write_interface(path, source_format, args))
+    if sinks.pcap.format == "pcap" and line.source == FROM_PCAPNG and not sinks.speed_lost:
+        # tshark -F pcap drops the interface silently; the line speed read there would be lost unseen.
+        sinks.speed_lost = True
+        name = shown(path if path is not None else "")
+        env.stderr.write(
+            f"{PROG}: warning: -w {shown(args.write)}: pcap has no interface description: the line speed "
+            f"{line.baud} baud of {name} is not kept (write pcapng, -F pcapng, to keep it; or read it back "
+            f"with --baud {line.baud})\n"
+        )
 
 
 ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)

@@ -7,7 +7,13 @@ instant and `-w - | wireshark -k -i -` sees each record as it is heard.
 The ring buffer follows dumpcap's `-b`: `filesize:N` switches to the next file once a file holds N kB
 (1000 bytes), `duration:S` once it has been open S seconds, `files:K` keeps only the newest K files.
 Files are named as dumpcap names them, `prefix_NNNNN_YYYYmmddHHMMSS.suffix` from `-w prefix.suffix`
-(number from 00001, local time of opening). A record is never split: each file is a valid capture.
+(number from 00001, local time of the file's first record). A record is never split: each file is a
+valid capture. The next file is opened by the record that goes in it, so a filesize switch at the end
+leaves no header-only file (that would count against files:K and push out a file with records).
+
+Live, `duration:S` is wall-clock time, files switching with or without bytes heard (dumpcap). Decoding
+a file, it is the records' time, as `editcap -i S` splits: windows of S seconds from the first record
+(a record exactly at a window's end stays in it), a window without records makes no file.
 
 A record is never torn either: records reach the file through `WholeRecords`, which on a failed write
 (a full disk, a file size limit) cuts the file back to the last whole record and counts what it kept,
@@ -18,15 +24,17 @@ from __future__ import annotations
 import contextlib
 import os
 import stat
+import struct
 import time
 from collections import deque
 from dataclasses import dataclass
+from collections.abc import Iterator
 from typing import BinaryIO, Protocol
 
 from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
-from dissector.render.pcapwriter import SNAPLEN, PcapWriter
+from dissector.render.pcapwriter import SNAPLEN, PcapWriter, split_time
 
 FORMATS = ("pcap", "pcapng")
 STDOUT = "-"
@@ -114,6 +122,8 @@ class RecordWriter(Protocol):
 
     def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None: ...
 
+    def use_interface(self, name: str | None, description: str | None) -> None: ...
+
     def close(self) -> None: ...
 
 
@@ -155,11 +165,63 @@ def file_format(path: str, requested: str | None) -> str:
     return "pcapng" if path.lower().endswith(".pcapng") else "pcap"
 
 
+def _micros(timestamp: float) -> int:
+    seconds, micros = split_time(timestamp)
+    return seconds * 1_000_000 + micros
+
+
 def ring_name(path: str, number: int, opened: float) -> str:
     """dumpcap's name for the file number `number` of the ring `path`."""
     root, suffix = os.path.splitext(path)
-    stamp = time.strftime("%Y%m%d%H%M%S", time.localtime(opened))
+    try:
+        local = time.localtime(split_time(opened)[0])
+    except (OverflowError, OSError, ValueError):  # a record's time no calendar holds: name it by now
+        local = time.localtime()
+    stamp = time.strftime("%Y%m%d%H%M%S", local)
     return f"{root}_{number:05d}_{stamp}{suffix}"
+
+
+Interface = tuple[str | None, str | None]  # pcapng if_name, if_description
+
+
+def pcapng_interface(path: str) -> Interface | None:
+    """The name and description of a pcapng file's first interface, for the -w file to keep (as
+    editcap and tshark -w keep a capture's interfaces); None when the file is no pcapng or names none.
+    The file's head is hostile data: every length is checked against what was read."""
+    try:
+        with open(path, "rb") as stream:
+            head = stream.read(HEAD_BYTES)
+    except OSError:
+        return None
+    if len(head) < 12 or head[:4] != b"\x0a\x0d\x0d\x0a":
+        return None
+    order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
+    position = 0
+    while position + 12 <= len(head):
+        block_type, total = struct.unpack_from(order + "II", head, position)
+        if total < 12 or total % 4 or position + total > len(head):
+            return None
+        if block_type == 1:  # IDB: link type, reserved, snaplen, then options
+            texts = dict(_text_options(head[position + 16 : position + total - 4], order))
+            name, description = texts.get(2), texts.get(3)
+            return (name, description) if name or description else None
+        if block_type in (6, 3, 2):  # a packet before any interface: nothing to keep
+            return None
+        position += total
+    return None
+
+
+def _text_options(body: bytes, order: str) -> Iterator[tuple[int, str]]:
+    position = 0
+    while position + 4 <= len(body):
+        code, length = struct.unpack_from(order + "HH", body, position)
+        if code == 0 or position + 4 + length > len(body):
+            return
+        yield code, body[position + 4 : position + 4 + length].decode("utf-8", "replace")
+        position += 4 + length + (-length % 4)
+
+
+HEAD_BYTES = 1 << 20  # the section and first interface blocks are far smaller
 
 
 class CaptureOutput:
@@ -172,7 +234,7 @@ class CaptureOutput:
         ring: Ring | None = None,
         flush: bool = True,
         stdout: BinaryIO | None = None,
-        interface: tuple[str, str] | None = None,
+        interface: Interface | None = None,
     ) -> None:
         self.path = path
         self.format = file_format(path, fmt)
@@ -183,6 +245,9 @@ class CaptureOutput:
         self._writer: RecordWriter | None = None
         self._number = 0
         self._opened = 0.0
+        self._in_file = 0  # records in the file being written
+        self._full = False  # filesize reached: the next record opens the next file
+        self._window_end: int | None = None  # decoding: microseconds where the file's duration window ends
         self.paths: list[str] = []  # every file written, in order (a ring's deleted ones too)
         self._kept: deque[str] = deque()
         self._records: WholeRecords | None = None
@@ -200,7 +265,10 @@ class CaptureOutput:
             return f"{self.paths[0]} .. {self.paths[-1]}" if len(self.paths) > 1 else self.paths[0]
         return self.path
 
-    def _open(self) -> None:
+    def _open(self, stamp: float | None = None) -> None:
+        """Open the next file; `stamp`: the time its name says (its first record's), else now."""
+        self._in_file = 0
+        self._full = False
         if self.path == STDOUT:
             if self._stdout is None:
                 raise OSError("standard output is not a byte stream")
@@ -211,7 +279,7 @@ class CaptureOutput:
             target = self.path
             if self.ring is not None:
                 self._number += 1
-                target = ring_name(self.path, self._number, self._opened)
+                target = ring_name(self.path, self._number, self._opened if stamp is None else stamp)
             # Unbuffered: WholeRecords batches whole records itself (one write(2) a record when live,
             # on disk before it is handed on).
             stream = WholeRecords(open(target, "wb", buffering=0), self._flush, truncate=True)  # noqa: SIM115
@@ -239,11 +307,57 @@ class CaptureOutput:
     def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
         if self._writer is None:
             raise OSError("the capture file is closed")
-        self.tick()
-        self._writer.write(data, timestamp, comment)
         ring = self.ring
+        if ring is not None:
+            if self._flush:  # live: times are now
+                self.tick()
+                if self._full:
+                    self._next()
+            else:
+                self._switch_on(timestamp, ring)
+        self._writer.write(data, timestamp, comment)
+        self._in_file += 1
         if ring is not None and ring.filesize is not None and self._writer.size >= ring.filesize * 1000:
-            self._next()
+            self._full = True
+
+    def _switch_on(self, timestamp: float | None, ring: Ring) -> None:
+        """Decoding: the next file when this record's time or the file's size says so."""
+        window = max(1, round(ring.duration * 1_000_000)) if ring.duration is not None else None
+        if self._full:
+            self._next(timestamp)
+            if timestamp is not None and window is not None:  # a filesize switch restarts the window,
+                self._window_end = _micros(timestamp) + window  # as dumpcap's timer restarts
+            return
+        if timestamp is None:
+            return  # (no time: nothing to switch on)
+        if self._in_file == 0 and self._number == 1:
+            self._rename(timestamp)  # the first file, opened before any record, named for its first
+        if window is None:
+            return
+        micros, end = _micros(timestamp), self._window_end
+        if end is None:
+            self._window_end = micros + window
+        elif micros > end:
+            self._window_end = end - (end - micros) // window * window  # the window holding it
+            self._next(timestamp)
+
+    def _rename(self, stamp: float) -> None:
+        """The file opened before any record was known takes the name of its first record's time."""
+        new = ring_name(self.path, self._number, stamp)
+        old = self.paths[-1]
+        if new != old:
+            os.replace(old, new)
+            self.paths[-1] = self._kept[-1] = new
+
+    def use_interface(self, interface: Interface | None) -> None:
+        """The interface the next records were captured on (the next input of a decode): pcapng
+        describes it (a new interface block when it differs), pcap has no place for it."""
+        if interface == self._interface:
+            return
+        self.release()  # a held noise run belongs to the input before
+        self._interface = interface
+        if self._writer is not None:
+            self._writer.use_interface(*(interface or (None, None)))
 
     def write_items(self, items: list[Item]) -> None:
         """Write items of a decode so that the file decodes back to the same items: a record an item,
@@ -288,15 +402,15 @@ class CaptureOutput:
             self.write(held[0], held[1], "; ".join(held[2]))
 
     def tick(self, now: float | None = None) -> None:
-        """A ring with duration:S switches files on time, heard bytes or not (as dumpcap)."""
+        """Live, a ring with duration:S switches files on time, heard bytes or not (as dumpcap)."""
         ring = self.ring
-        if ring is not None and ring.duration is not None and self._writer is not None:
+        if ring is not None and ring.duration is not None and self._writer is not None and self._flush:
             if (now if now is not None else time.time()) - self._opened >= ring.duration:
                 self._next()
 
-    def _next(self) -> None:
+    def _next(self, stamp: float | None = None) -> None:
         self._close_writer()
-        self._open()
+        self._open(stamp)
 
     @property
     def kept(self) -> str:
@@ -361,7 +475,7 @@ def open_output(
     ring_specs: list[str] | tuple[str, ...],
     flush: bool,
     stdout: BinaryIO | None,
-    interface: tuple[str, str] | None = None,
+    interface: Interface | None = None,
 ) -> CaptureOutput:
     """The -w output from the options; ValueError for bad -b options, OSError from the system."""
     ring = Ring.parse(list(ring_specs)) if ring_specs else None

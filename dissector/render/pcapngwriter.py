@@ -1,4 +1,4 @@
-"""Writing pcapng files: one section, one interface (the serial port), one packet block a record.
+"""Writing pcapng files: one section, an interface a capture (the serial port), one packet block a record.
 
 Beside what classic pcap holds, the interface says what the port was (`if_name`, and the serial
 settings in `if_description`: `/dev/ttyUSB0 19200 8E1`) and each record may carry a comment
@@ -50,16 +50,37 @@ class PcapngWriter:
         self._flush = flush
         self._last_time = 0.0
         section = struct.pack("<IHHq", BYTE_ORDER_MAGIC, 1, 0, -1) + _options([(SHB_USERAPPL, application)])
-        interface_options = [(IF_NAME, if_name)] if if_name else []
-        if if_description:
-            interface_options.append((IF_DESCRIPTION, if_description))
-        interface = struct.pack("<HHI", linktype, 0, SNAPLEN) + _options(interface_options)
-        head = _block(SHB, section) + _block(IDB, interface)
+        self._linktype = linktype
+        # The interfaces described so far, in order (an EPB names its interface by this index).
+        self._interfaces: list[tuple[str | None, str | None]] = [(if_name, if_description)]
+        self._interface = 0
+        head = _block(SHB, section) + self._interface_block(if_name, if_description)
         self.size = len(head)
         self.clamped = 0  # records whose time was before 1970 or past 64 bits of microseconds
         stream.write(head)
         if flush:
             stream.flush()
+
+    def _interface_block(self, name: str | None, description: str | None) -> bytes:
+        options = [(IF_NAME, name)] if name else []
+        if description:
+            options.append((IF_DESCRIPTION, description))
+        return _block(IDB, struct.pack("<HHI", self._linktype, 0, SNAPLEN) + _options(options))
+
+    def use_interface(self, name: str | None, description: str | None) -> None:
+        """The next records' interface: a new interface block unless the file describes it already
+        (one decode of several captures keeps each capture's interface, as mergecap does)."""
+        key = (name, description)
+        if key in self._interfaces:
+            self._interface = self._interfaces.index(key)
+            return
+        block = self._interface_block(name, description)
+        self._stream.write(block)
+        self.size += len(block)
+        self._interfaces.append(key)
+        self._interface = len(self._interfaces) - 1
+        if self._flush:
+            self._stream.flush()
 
     def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
         if timestamp is None:
@@ -69,7 +90,7 @@ class PcapngWriter:
         self.clamped += moved
         units = seconds * 1_000_000 + micros
         body = (
-            struct.pack("<IIIII", 0, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
+            struct.pack("<IIIII", self._interface, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
             + data
             + b"\0" * (-len(data) % 4)
             + _options([(OPT_COMMENT, comment)] if comment else [])

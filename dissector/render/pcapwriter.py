@@ -70,5 +70,8 @@ class PcapWriter:
         if self._flush:
             self._stream.flush()
 
+    def use_interface(self, name: str | None, description: str | None) -> None:
+        """pcap has no interface description: nothing to write (CaptureOutput warns of a lost line speed)."""
+
     def close(self) -> None:
         self._stream.close()

@@ -1,5 +1,5 @@
 """-c N on the compiled engine's frames path (accel/framespath.py _Counted): the engine frames the bytes that
-cannot hold the Nth frame, the Python stages the chunk that may and the ones after, chunk by chunk, as
+cannot hold the Nth item, the Python stages the chunk that may and the ones after, chunk by chunk, as
 decode_chunks does with VW3_PURE_PYTHON=1. The outputs are byte-identical to the Python stages' for N
 anywhere in random captures (damaged frames, noise runs, a record a frame or the stream cut anywhere,
 records without a time), for the summary, -V, --json, -Y, --stats (its bus timing and device profiles
@@ -112,6 +112,10 @@ def test_the_engine_frames_up_to_the_cut(tmp_path: Path, monkeypatch: pytest.Mon
     out, framed = same([str(path), "-c", "400", "--stats"], monkeypatch)
     assert out.startswith("400 frames, 0 noise bytes in 0 runs,")
     before = [number for number in uncut if number <= 400]
-    # The Python stages take the last frames: as many as the bytes the engine holds (requests awaiting
-    # their answer) and the next record could make at MIN_ADU bytes a frame.
-    assert framed == before[: len(framed)] and len(before) - 40 <= len(framed) < len(before)
+    # The Python stages take the chunk from which the items left (-c counts noise runs too, and one may
+    # be a byte) could fit in the bytes the engine holds (requests awaiting their answer, what it looks
+    # ahead at) and the next record: records of up to 256 bytes, so from a few hundred items before N.
+    assert framed == before[: len(framed)] and 40 <= len(framed) < len(before)
+    out, framed = same([str(path), "-c", "1000", "--stats"], monkeypatch)  # (588 items: N past the end)
+    assert out.startswith(f"{frames} frames, 0 noise bytes in 0 runs,")
+    assert framed == uncut[: len(framed)] and len(uncut) - 30 <= len(framed) < len(uncut)
