@@ -6,7 +6,8 @@ The Python live path (app/live_capture.py, app/live.py) frames each read in the 
 decides, from what its framer holds, when to close a frame after a silence (CaptureThread.flush_due)
 and before which time no frame is still to come (safe_time: a request past its --timeout is then shown
 unanswered). Here the capture thread only reads, stamps and writes --raw, and hands the reads on
-(`framer=None`); the display feeds them to a TimedPath as chunks, many reads in one block, and takes
+(`framer=None`); the display feeds them to a TimedPath as chunks (each byte at its arrival:
+sources/serial_times.py, as the capture thread feeds its framer), many reads in one block, and takes
 the same decisions at the same reads:
 
 - while the engine has the stream, the Python framer would hold nothing the engine has shown, and a
@@ -43,6 +44,7 @@ from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_frames
 from dissector.decode.pairing import capture_ended
 from dissector.pipeline import Dissector
 from dissector.render.timefmt import Clock
+from dissector.sources.serial_times import ReadClock
 
 NO_SILENCE_CHECK = 1e300  # live has no GapChecker: a silence inside a frame is no warning, no handover
 Read = tuple[bytes, Stamp, float]  # (bytes, stamp, monotonic time): one read of the port
@@ -68,7 +70,7 @@ class LivePath:
     def __init__(self, dissector: Dissector, annotate: Any | None, clock: Clock | None,
                  write_items: Callable[[list[Item]], None], write_lines: Callable[[bytes], None],
                  timeout: float | None, silence: float, silence_long: float, summary: bool,
-                 count: int | None = None) -> None:
+                 count: int | None = None, char_time: float | None = None) -> None:
         self.dissector = dissector
         self.left = count  # -c: frames still to show (None: no count)
         self.done = False  # -c reached: nothing more is read or shown
@@ -101,6 +103,8 @@ class LivePath:
         path.engine.set_timing(timing.char_time, NO_SILENCE_CHECK, timeout, clock_code)
         self.path = path
         self.builder = BlockBuilder(timing)
+        # Each byte's arrival, as the capture thread's framer is fed (sources/serial_times.py).
+        self.clock = ReadClock(char_time if char_time is not None else timing.char_time)
         self._last_data = 0.0
         self._pending = False  # bytes fed since the last flush (CaptureThread._pending)
         self._tried = False  # a flush tried during this silence (CaptureThread._tried)
@@ -196,14 +200,18 @@ class LivePath:
         return last - oldest <= self.timeout
 
     def _add(self, data: bytes, stamp: Stamp) -> None:
-        for block in self.builder.add(Chunk(data, time=stamp)):
-            self.path.feed(block)
+        builder, path = self.builder, self.path
+        for chunk in self.clock.chunks(data, stamp):
+            for block in builder.add(chunk):
+                path.feed(block)
 
     def _feed_block(self) -> None:
         for block in self.builder.flush():
             self.path.feed(block)
 
     def _idle(self, stamp: Stamp, now: float) -> None:
+        self.clock.chunks(b"", stamp)
+        stamp = self.clock.promise(stamp)  # (the capture thread's safe time after a read that timed out)
         if self.done:
             return
         if not self._pending:

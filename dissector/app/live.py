@@ -53,6 +53,7 @@ from dissector.model import Item
 from dissector.pipeline import Annotator, Dissector
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.sources.serial_port import PARITIES, PortSettings, open_port
+from dissector.sources.serial_times import char_time
 
 PROG = "vw3-decode"
 assert set(PARITIES) == set(PARITY_CHOICES)
@@ -64,6 +65,12 @@ WAIT = 0.02  # the display wakes at least this often (timeouts, the stop flag, r
 
 def port_settings(args: argparse.Namespace) -> PortSettings:
     return PortSettings(args.live, args.baud, args.parity, args.stopbits, args.bytesize)
+
+
+def live_char_time(args: argparse.Namespace) -> float:
+    """Seconds a character of the port's settings takes (a read's bytes are timed by it)."""
+    settings = port_settings(args)
+    return char_time(settings.baud, settings.bytesize, settings.parity, settings.stopbits)
 
 
 def live_framer(mode: str | None, baud: int) -> AsciiFramer | RtuFramer:
@@ -99,15 +106,19 @@ def capture_output(args: argparse.Namespace, stdout: BinaryIO | None) -> Capture
         raise LiveError(f"cannot write {path}: {error.strerror or error}") from None
 
 
+# SIGHUP too: closing the SSH session or terminal a capture runs in ends it as dumpcap ends, files whole.
+STOP_SIGNALS = tuple(getattr(signal, name) for name in ("SIGINT", "SIGTERM", "SIGHUP") if hasattr(signal, name))
+
+
 class StopFlag:
-    """Set by SIGINT/SIGTERM: the read loop sees it within one read timeout and stops cleanly."""
+    """Set by SIGINT, SIGTERM or SIGHUP: the read loop sees it within one read timeout and stops cleanly."""
 
     def __init__(self) -> None:
         self.signal: int | None = None
         self._previous: dict[int, object] = {}
 
     def __enter__(self) -> StopFlag:
-        for signum in (signal.SIGINT, signal.SIGTERM):
+        for signum in STOP_SIGNALS:
             try:
                 self._previous[signum] = signal.signal(signum, self._handle)
             except ValueError:  # not the main thread: the caller handles signals
@@ -326,7 +337,7 @@ def _live_path(compiled: str, dissector: Dissector, annotate: Annotator | None, 
 
     return LivePath(dissector, annotate, clock, shown_.items, shown_.lines, getattr(args, "timeout", None),
                     silence_threshold(args.baud), IDLE_FLUSH_LONG, compiled == "summary",
-                    getattr(args, "count", None))
+                    getattr(args, "count", None), live_char_time(args))
 
 
 def _replay(path: str, capture: CaptureThread, handoff: Handoff, dissector: Dissector, shown_: Shown,
@@ -419,7 +430,7 @@ def run_live(
     handoff = Handoff(HANDOFF_READS_LIMIT) if compiled is not None else Handoff()
     capture = CaptureThread(
         port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]
-        port_name=args.live,
+        port_name=args.live, char_time=live_char_time(args),
     )
     started = time.monotonic()
     sink: Sink = NullSink()
@@ -449,6 +460,16 @@ def run_live(
             sink.close()
         except (BrokenPipeError, OSError):
             pass
+    try:
+        _summary(err, live, compiled, stats, handoff, sink, started, files, capture)
+    except (OSError, ValueError):
+        pass  # stderr is gone (the terminal closed: SIGHUP); the files are whole, closed above
+    return capture.status
+
+
+def _summary(err: TextIO, live: Any, compiled: str | None, stats: LiveStats, handoff: Handoff, sink: Sink,
+             started: float, files: CaptureFiles, capture: CaptureThread) -> None:
+    """The capture's last lines on stderr: an error if it failed, then what it saw and wrote."""
     if live is not None and os.environ.get(REPORT_ENV):
         err.write(f"{PROG}: live path: engine ({compiled}), {live.engine_items} frames from the engine, "
                   f"{live.python_items} items from the Python stages\n")
@@ -463,4 +484,3 @@ def run_live(
     hidden = stats.not_shown_text()
     err.write(f"{PROG}: {stats.summary(seconds)}{written}{'; ' + hidden if hidden else ''}\n")
     err.flush()
-    return status

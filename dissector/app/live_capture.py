@@ -14,8 +14,13 @@ adapter may also pause inside a frame, and a flush there would cut it into noise
 the flush is first tried on a copy of the framer, and done only if it closes a CRC-valid frame.
 Anything else (a damaged frame, noise, a partial frame) waits for IDLE_FLUSH_LONG of silence.
 
-Reads are stamped to the microsecond, as the pcap stores them, so that the decode of the -w file
-computes the same response times, to the last bit, as the live display.
+A read returns once its last byte has come, so each read is framed as its bytes' arrivals, each
+byte at the read's stamp less the character times after it (sources/serial_times.py ReadClock): a
+frame's time, as everywhere else, is its first byte's. --raw and the tape (VW3_LIVE_TAPE) keep the
+reads as made, stamps included.
+
+Reads are stamped to the microsecond, and so are the byte times, as the pcap stores them, so that the
+decode of the -w file computes the same response times, to the last bit, as the live display.
 """
 from __future__ import annotations
 
@@ -40,6 +45,7 @@ from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
 from dissector.render.describe import count_text
 from dissector.sources.serial_port import reason
+from dissector.sources.serial_times import ReadClock, char_time
 
 IDLE_FLUSH = 0.020
 IDLE_FLUSH_LONG = 0.250
@@ -54,6 +60,11 @@ def silence_threshold(baud: int) -> float:
     """max(t3.5, IDLE_FLUSH); t3.5 is fixed at 1.75 ms above 19200 baud (Serial Line Guide)."""
     t35 = 3.5 * 11 / baud if baud <= 19200 else 0.00175
     return max(t35, IDLE_FLUSH)
+
+
+def port_char_time(port: serial.SerialBase) -> float:
+    """char_time of an open pyserial port (its parity is pyserial's letter, N for none)."""
+    return char_time(port.baudrate, port.bytesize, port.parity, port.stopbits)
 
 
 def stamp_now() -> Stamp:
@@ -227,6 +238,8 @@ class CaptureThread:
     count: int | None = None
     silence_long: float = IDLE_FLUSH_LONG
     port_name: str = ""
+    # Seconds a character takes (char_time): None, the port's (port_char_time)
+    char_time: float | None = None
     reason: str = "interrupted"
     status: ExitStatus = ExitStatus.OK
     frames: int = 0
@@ -235,6 +248,7 @@ class CaptureThread:
     _last_data: float = 0.0  # monotonic time of the last read that gave bytes
     _pending: bool = False  # bytes fed since the last idle flush
     _tried: bool = False  # flush_due already tried a copy of the framer during this silence
+    _clock: ReadClock | None = None  # the framer's byte times (none without a framer: LivePath's)
 
     def start(self) -> None:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
@@ -330,19 +344,25 @@ class CaptureThread:
         if framer is None:
             self.handoff.put([(data, stamp, now)], None)  # type: ignore[list-item]
             return True
+        clock = self._clock
+        if clock is None:
+            clock = self._clock = ReadClock(self.char_time or port_char_time(self.port))
+        chunks = clock.chunks(data, stamp)
         if data:
             self._last_data = now
             self._pending, self._tried = True, False
-            return self.deliver(framer.feed(Chunk(data, time=stamp)), self.safe_time(stamp))
+            items = [item for chunk in chunks for item in framer.feed(chunk)]
+            return self.deliver(items, self.safe_time(stamp))
+        safe = clock.promise(stamp)
         if self._pending:
             silent = now - self._last_data
             if self.flush_due(silent, self._tried):
                 self._pending = False
-                if not self.deliver(framer.finish(), stamp):
+                if not self.deliver(framer.finish(), safe):
                     return False
             else:
-                self.handoff.put([], self.safe_time(stamp))
+                self.handoff.put([], self.safe_time(safe))
             self._tried = self._tried or silent >= self.silence
         else:
-            self.handoff.put([], stamp)
+            self.handoff.put([], safe)
         return True

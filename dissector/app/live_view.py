@@ -316,11 +316,17 @@ class RichSink:
 
     def tick(self) -> None:
         now = time.monotonic()
-        if self._dirty and now - self._drawn >= REDRAW_INTERVAL:
-            self._live.refresh()
+        if self._dirty and now - self._drawn >= REDRAW_INTERVAL and self.failed is None:
+            try:
+                self._live.refresh()
+            except (OSError, ValueError) as error:
+                # The terminal is gone (EIO once the SSH session or window closed): the display stops
+                # the capture, as when a reader of our output goes away; the files stay whole.
+                self.failed = error
             self._dirty = False
             self._drawn = now
 
     def close(self) -> None:
-        self._live.refresh()
+        if self.failed is None:
+            self._live.refresh()
         self._live.stop()
