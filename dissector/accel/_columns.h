@@ -106,47 +106,28 @@ static int round_to(double v, int digits, double *r) {
 }
 
 /* round(v, digits) as json.dumps writes it into the page (its repr; a whole y: its int), after a comma
- * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text, trailing
- * zeros dropped (no other decimal of `digits` digits or fewer is within half an ulp of it): one dtoa. */
-static const double tens[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-
+ * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text (fixed_text,
+ * as the rounding's dtoa), trailing zeros dropped: no other decimal of `digits` digits or fewer is within
+ * half an ulp of it. */
 static void json_number(Out *o, double v, int digits, int whole) {
-    char buffer[32] = "", *text = NULL;
+    char text[64];
     double a = fabs(v), r;
+    if (o->data[o->len - 1] != '[') out_put(o, ",", 1);
     if (whole && a < 9e15) {
-        unsigned long long n = (unsigned long long)a;
-        char *at = buffer + sizeof buffer - 1;
-        do *--at = (char)('0' + n % 10); while (n /= 10);
-        if (v < 0) *--at = '-';
-        memmove(buffer, at, (size_t)(buffer + sizeof buffer - at));
+        if (v < 0) out_put(o, "-", 1);
+        out_uint(o, (unsigned long long)a, 0);
     } else if (whole || (a != 0.0 && (a < 1e-4 || a >= 1e9))) {
-        if (round_to(v, whole ? 0 : digits, &r) == 0)
-            text = PyOS_double_to_string(r, whole ? 'f' : 'r', 0, whole ? 0 : Py_DTSF_ADD_DOT_0, NULL);
-    } else if ((r = v * tens[digits], fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3)) {
-        /* v * 10^digits is within 1e-4 of the exact product: its nearest integer is the rounding's */
-        unsigned long long n = (unsigned long long)llabs(llround(r));
-        char *end = buffer + sizeof buffer - 1, *at = end;
-        int places = digits ? digits : 1;
-        for (int k = 0; k < places; k++, n /= digits ? 10 : 1) *--at = (char)('0' + (digits ? n % 10 : 0));
-        *--at = '.';
-        do *--at = (char)('0' + n % 10); while (n /= 10);
-        if (signbit(v)) *--at = '-';
-        while (end[-1] == '0' && end[-2] != '.') end--;
-        *end = 0;
-        memmove(buffer, at, (size_t)(end - at + 1));
-    } else if ((text = PyOS_double_to_string(v, 'f', digits, 0, NULL)) != NULL) {
-        size_t n = strlen(text);
-        while (digits > 0 && text[n - 1] == '0') n--;
-        PyOS_snprintf(buffer, sizeof buffer, "%.*s%s", (int)n, text, text[n - 1] == '.' ? "0" : digits ? "" : ".0");
-        PyMem_Free(text);
-        text = NULL;
+        char *repr = round_to(v, whole ? 0 : digits, &r) < 0 ? NULL
+                   : PyOS_double_to_string(r, whole ? 'f' : 'r', 0, whole ? 0 : Py_DTSF_ADD_DOT_0, NULL);
+        if (repr == NULL) o->failed = 1;
+        else out_cstr(o, repr);
+        PyMem_Free(repr);
+    } else {
+        int n = fixed_text(text, v, digits);
+        if (!digits) text[n++] = '.', text[n++] = '0'; /* (a float's repr: 12.0) */
+        while (text[n - 1] == '0' && text[n - 2] != '.') n--;
+        out_put(o, text, (size_t)n);
     }
-    if (text == NULL && !buffer[0]) o->failed = 1;
-    if (!o->failed) {
-        if (o->data[o->len - 1] != '[') out_put(o, ",", 1);
-        out_cstr(o, text != NULL ? text : buffer);
-    }
-    PyMem_Free(text);
 }
 
 /* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text: each column's

@@ -186,6 +186,15 @@ static int report_event(Report *r, const Time *x, const char *kind, int slave, P
     return status;
 }
 
+/* `o` (a new reference, or NULL) as compiled Columns: NULL with an exception set when it is not. */
+static Columns *as_columns(PyObject *o, const char *what) {
+    if (o != NULL && !PyObject_TypeCheck(o, &ColumnsType)) {
+        Py_CLEAR(o);
+        PyErr_Format(PyExc_TypeError, "%s: compiled Columns expected", what);
+    }
+    return (Columns *)o;
+}
+
 /* Health._point: a response time `y` of `slave` at `x`. */
 static int health_point(Report *r, int slave, const Time *x, double y) {
     if (r->health == Py_None) return 0;
@@ -195,19 +204,12 @@ static int health_point(Report *r, int slave, const Time *x, double y) {
     }
     while (x->d >= r->h_limit)
         if (report_call(r, r->health, "_double", 1, NULL) < 0) return -1;
-    if (r->h_columns[slave] == NULL) {
-        PyObject *key = PyLong_FromLong(slave), *columns = key ? PyDict_GetItemWithError(r->h_series, key) : NULL;
-        Py_XINCREF(columns);
-        if (columns == NULL && !PyErr_Occurred() && (columns = PyObject_CallNoArgs((PyObject *)&ColumnsType)) != NULL &&
-            PyDict_SetItem(r->h_series, key, columns) < 0)
-            Py_CLEAR(columns);
+    if (r->h_columns[slave] == NULL) { /* its series' columns, made unless the Python stages made them */
+        PyObject *key = PyLong_FromLong(slave), *made = key ? PyObject_CallNoArgs((PyObject *)&ColumnsType) : NULL;
+        PyObject *columns = made ? Py_XNewRef(PyDict_SetDefault(r->h_series, key, made)) : NULL;
+        Py_XDECREF(made);
         Py_XDECREF(key);
-        if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
-            Py_CLEAR(columns);
-            PyErr_SetString(PyExc_TypeError, "Health.series: compiled Columns expected");
-        }
-        if (columns == NULL) return -1;
-        r->h_columns[slave] = (Columns *)columns;
+        if ((r->h_columns[slave] = as_columns(columns, "Health.series")) == NULL) return -1;
     }
     return columns_point(r->h_columns[slave], report_col(x, &r->h_origin, r->h_width), x->d, y);
 }
@@ -220,14 +222,10 @@ static Trend *trend_slot(Report *r, uint32_t key) {
 
 /* The series of `key` known from now on (its columns kept). */
 static int trend_keep(Report *r, Trend *t, uint32_t key, PyObject *series) {
-    PyObject *columns = PyObject_GetAttrString(series, "columns");
-    if (columns != NULL && !PyObject_TypeCheck(columns, &ColumnsType)) {
-        Py_CLEAR(columns);
-        PyErr_SetString(PyExc_TypeError, "Series.columns: compiled Columns expected");
-    }
+    Columns *columns = as_columns(PyObject_GetAttrString(series, "columns"), "Series.columns");
     if (columns == NULL) return -1;
     t->series = Py_NewRef(series);
-    t->columns = (Columns *)columns;
+    t->columns = columns;
     t->key = key;
     t->gen = r->gen - 1;
     return 0;
@@ -241,8 +239,9 @@ static int trends_full(Report *r) {
     int slave, address;
     while (PyDict_Next(r->series, &at, &key, &series)) {
         if (!PyArg_ParseTuple(key, "ii", &slave, &address)) return -1;
-        Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address);
-        if (!t->key && trend_keep(r, t, 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address, series) < 0) return -1;
+        uint32_t k = 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address;
+        Trend *t = trend_slot(r, k);
+        if (!t->key && trend_keep(r, t, k, series) < 0) return -1;
     }
     r->full = 1;
     return 0;
@@ -251,18 +250,19 @@ static int trends_full(Report *r) {
 /* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
-    Trend *t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
+    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | address;
+    Trend *t = trend_slot(r, key);
     if (!t->key && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
         if (trends_full(r) < 0) return -1;
-        t = trend_slot(r, 1u << 24 | (uint32_t)slave << 16 | address);
+        t = trend_slot(r, key);
     }
     if (!t->key && r->full) { /* none kept: never one */
         r->dropped++;
         return 0;
     }
     if (!t->key) {
-        PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
-        Py_XDECREF(key);
+        PyObject *pair = Py_BuildValue("(iI)", slave, address), *series = pair ? PyDict_GetItemWithError(r->series, pair) : NULL;
+        Py_XDECREF(pair);
         if (series == NULL && PyErr_Occurred()) return -1;
         t->series = series; /* NULL: made by engine_point below (there is room: not full) */
     }
@@ -310,7 +310,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
             r->point_count++;
         }
     }
-    if (!t->key && trend_keep(r, t, 1u << 24 | (uint32_t)slave << 16 | address, t->series) < 0) return -1;
+    if (!t->key && trend_keep(r, t, key, t->series) < 0) return -1;
     if (t->gen != r->gen) {
         PyObject *status = PyObject_GetAttrString(t->series, "status");
         if (status == NULL) return -1;

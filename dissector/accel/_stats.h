@@ -135,31 +135,36 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
     return 0;
 }
 
-/* One register's event, from a transaction the engine shows: texts and codes from `namer` (the slave's
- * device). The code is asked once per parameter and namer, only where the device names the address;
- * CONFIRM sets it only on a parameter's first sight (ParameterTable.param). */
-static int param_event(Stats *st, int slave, unsigned address, unsigned value, int event, PyObject *namer,
-                       int mapped) {
+/* One register's event: its code given (`code`, the Python stages'), or asked of `namer` (the slave's device,
+ * for a transaction the engine shows: once per parameter and namer, only where the device names the address);
+ * CONFIRM sets it only on a parameter's first sight (ParameterTable.param). An event that sets the state
+ * keeps the value, or the read status `status`, and the value's text (`text`, the Python stages', or NULL: the
+ * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error. */
+static int param_event(Stats *st, int slave, unsigned address, unsigned value, int event, PyObject *code,
+                       PyObject *status, PyObject *text, PyObject *namer, int mapped) {
     int created;
     Param *p = param_get(st, slave, address, &created);
     if (p == NULL) return PyErr_Occurred() ? -1 : 0;
-    if (mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
-        (event != EVENT_CONFIRM || created)) {
-        if (take_code(p, namer, address, value) < 0) return -1;
+    if (event != EVENT_CONFIRM || created) {
+        if (code != NULL && code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
+        else if (code == NULL && mapped && namer != NULL && namer != Py_None && p->code_namer != namer &&
+                 take_code(p, namer, address, value) < 0)
+            return -1;
     }
     if (!param_count(p, event)) return 0;
-    (void)param_state(p, value, NULL);
+    int changed = param_state(p, value, status);
+    if (changed < 0 || status != NULL) return changed;
     p->last_mapped = (uint8_t)mapped;
-    Py_CLEAR(p->text);
+    Py_XSETREF(p->text, Py_XNewRef(text));
     if (p->namer != namer) Py_XSETREF(p->namer, Py_XNewRef(namer));
-    return 0;
+    return changed;
 }
 
 static int words_event(Stats *st, Slave *s, int slave, const Words *w, int event) {
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
-        if (param_event(st, slave, address, words_value(w, k), event, s->namer, bit(s->mapped, address)) < 0)
-            return -1;
+        int mapped = bit(s->mapped, address);
+        if (param_event(st, slave, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0) return -1;
     }
     return 0;
 }
@@ -264,11 +269,8 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 static void stats_dealloc(Stats *st) {
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
-        Py_XDECREF(p->text);
-        Py_XDECREF(p->namer);
-        Py_XDECREF(p->code);
-        Py_XDECREF(p->code_namer);
-        Py_XDECREF(p->status);
+        PyObject *objects[] = {p->text, p->namer, p->code, p->code_namer, p->status};
+        for (int j = 0; j < 5; j++) Py_XDECREF(objects[j]);
     }
     Py_XDECREF(st->report);
     Dense *tables[TALLIES + 2] = {&st->params, &st->polls};
@@ -286,24 +288,13 @@ static PyObject *stats_param(Stats *st, PyObject *args) {
     if (!PyArg_ParseTuple(args, "iIiIOO", &slave, &address, &event, &value, &code, &text)) return NULL;
     if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF)
         return PyErr_Format(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event");
-    int created;
-    Param *p = param_get(st, slave, address, &created);
-    if (p == NULL) {
-        if (PyErr_Occurred()) return NULL;
-        Py_RETURN_FALSE; /* not kept: no state, no change */
-    }
-    if (code != Py_None && (event != EVENT_CONFIRM || created)) Py_XSETREF(p->code, Py_NewRef(code));
     if (event == EVENT_UNREADABLE && !PyUnicode_Check(text))
         return PyErr_Format(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
-    if (!param_count(p, event)) Py_RETURN_FALSE;
     /* UNREADABLE (16#8000 or an explained exception): `text` is the status, no value */
-    int changed = param_state(p, value, event == EVENT_UNREADABLE ? text : NULL);
-    if (changed < 0) return NULL;
-    if (event != EVENT_UNREADABLE) {
-        Py_XSETREF(p->text, Py_NewRef(text));
-        Py_CLEAR(p->namer);
-    }
-    return PyBool_FromLong(changed);
+    int unreadable = event == EVENT_UNREADABLE;
+    int changed = param_event(st, slave, address, value, event, code, unreadable ? text : NULL,
+                              unreadable ? NULL : text, NULL, 0);
+    return changed < 0 ? NULL : PyBool_FromLong(changed);
 }
 
 /* rename({slave: namer}): the values kept of these slaves were read before their profile was chosen:
@@ -532,31 +523,6 @@ static PyObject *stats_stamp(Stats *st, PyObject *time) {
     Py_RETURN_NONE;
 }
 
-/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*); sums (TALLY_MINUTES) as floats. */
-static PyObject *stats_tallies(Stats *st, PyObject *arg) {
-    int kind;
-    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
-    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
-    const Tallies *table = &st->tallies[kind];
-    PyObject *owners = PyDict_New();
-    for (size_t k = 0; owners != NULL && k < table->d.count; k++) {
-        const Tally *t = (const Tally *)table->d.items + k;
-        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
-        PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
-        PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
-        if (inner == NULL && owner != NULL && !PyErr_Occurred() && (inner = PyDict_New()) != NULL) {
-            if (PyDict_SetItem(owners, owner, inner) < 0) Py_CLEAR(owners);
-            Py_DECREF(inner); /* owners holds it */
-        }
-        if (owners == NULL || inner == NULL || key == NULL || value == NULL || PyDict_SetItem(inner, key, value) < 0)
-            Py_CLEAR(owners);
-        Py_XDECREF(owner);
-        Py_XDECREF(key);
-        Py_XDECREF(value);
-    }
-    return owners;
-}
-
 static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
     PyObject *rows = PyList_New(0);
     for (size_t k = 0; rows != NULL && k < count; k++) {
@@ -616,6 +582,27 @@ static PyObject *tally_groups(const Tallies *table, uint32_t mask, PyObject *(*r
     }
     PyMem_Free(all);
     return groups;
+}
+
+/* {key: count} of one owner's tallies; its sums as floats (`sums`: TALLY_MINUTES). */
+static PyObject *tally_dict(const Tally *t, size_t n, int sums) {
+    PyObject *counts = PyDict_New();
+    for (size_t k = 0; counts != NULL && k < n; k++) {
+        PyObject *key = PyLong_FromLongLong(t[k].key);
+        PyObject *value = sums ? PyFloat_FromDouble(t[k].value) : PyLong_FromDouble(t[k].value);
+        if (key == NULL || value == NULL || PyDict_SetItem(counts, key, value) < 0) Py_CLEAR(counts);
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+    }
+    return counts;
+}
+
+/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*), by owner and key. */
+static PyObject *stats_tallies(Stats *st, PyObject *arg) {
+    int kind;
+    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
+    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
+    return tally_groups(&st->tallies[kind], ~0u, tally_dict, kind == TALLY_MINUTES);
 }
 
 /* stats.time_summary of one owner's response times (ns), in seconds: (count, min, median, p95, max, the
