@@ -106,9 +106,11 @@ static int round_to(double v, int digits, double *r) {
 }
 
 /* round(v, digits) as json.dumps writes it into the page (its repr; a whole y: its int), after a comma
- * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text (fixed_text,
- * as the rounding's dtoa), trailing zeros dropped: no other decimal of `digits` digits or fewer is within
- * half an ulp of it. */
+ * unless first. Between 1e-4 and 1e9 the repr of the rounded value is its fixed-point text (as the
+ * rounding's dtoa makes it: fixed_text), trailing zeros dropped: no other decimal of `digits` digits or
+ * fewer is within half an ulp of it. */
+static const double tens[] = {1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
 static void json_number(Out *o, double v, int digits, int whole) {
     char text[64];
     double a = fabs(v), r;
@@ -123,7 +125,11 @@ static void json_number(Out *o, double v, int digits, int whole) {
         else out_cstr(o, repr);
         PyMem_Free(repr);
     } else {
-        int n = fixed_text(text, v, digits);
+        /* v * 10^digits, within 1e-4 of the exact product away from a half: its nearest integer is the rounding's */
+        r = v * tens[digits];
+        int n = fabs(r) < 1e12 && fabs(r - floor(r) - 0.5) > 1e-3
+                    ? fixed_digits(text, (unsigned long long)llabs(llround(r)), digits, signbit(v))
+                    : fixed_text(text, v, digits);
         if (!digits) text[n++] = '.', text[n++] = '0'; /* (a float's repr: 12.0) */
         while (text[n - 1] == '0' && text[n - 2] != '.') n--;
         out_put(o, text, (size_t)n);

@@ -133,25 +133,16 @@ static int report_push(Report *r, int counts) {
     return 0;
 }
 
-/* target.method(*args) with the scalars given back first (and taken again after, with `pull`). */
-static int report_call(Report *r, PyObject *target, const char *method, int pull, const char *format, ...) {
-    if (report_push(r, 0) < 0) return -1;
-    PyObject *args = NULL;
-    if (format != NULL) {
-        va_list va;
-        va_start(va, format);
-        args = Py_VaBuildValue(format, va);
-        va_end(va);
-        if (args == NULL) return -1;
-    }
-    PyObject *f = PyObject_GetAttrString(target, method);
-    PyObject *result = f == NULL ? NULL : args != NULL ? PyObject_CallObject(f, args) : PyObject_CallNoArgs(f);
-    Py_XDECREF(f);
-    Py_XDECREF(args);
+/* A Python method's result: 0 (the scalars taken again after it, with `pull`), or -1. */
+static int report_called(Report *r, PyObject *result, int pull) {
     if (result == NULL) return -1;
     Py_DECREF(result);
     return pull ? report_pull(r) : 0;
 }
+
+/* target.method(args of a Py_BuildValue format, NULL: none) with the scalars given back first. */
+#define report_call(r, target, method, pull, ...) \
+    (report_push(r, 0) < 0 ? -1 : report_called(r, PyObject_CallMethod(target, method, __VA_ARGS__), pull))
 
 /* ReportCollector._x: the x of the frame numbered `number` (its time, or the number untimed). */
 static int report_x(Report *r, int timed, long long ns, unsigned long long number, Time *x) {
@@ -250,19 +241,19 @@ static int trends_full(Report *r) {
 /* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
-    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | address;
-    Trend *t = trend_slot(r, key);
+    uint32_t tag = 1u << 24 | (uint32_t)slave << 16 | address;
+    Trend *t = trend_slot(r, tag);
     if (!t->key && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
         if (trends_full(r) < 0) return -1;
-        t = trend_slot(r, key);
+        t = trend_slot(r, tag);
     }
     if (!t->key && r->full) { /* none kept: never one */
         r->dropped++;
         return 0;
     }
     if (!t->key) {
-        PyObject *pair = Py_BuildValue("(iI)", slave, address), *series = pair ? PyDict_GetItemWithError(r->series, pair) : NULL;
-        Py_XDECREF(pair);
+        PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
+        Py_XDECREF(key);
         if (series == NULL && PyErr_Occurred()) return -1;
         t->series = series; /* NULL: made by engine_point below (there is room: not full) */
     }
@@ -310,7 +301,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
             r->point_count++;
         }
     }
-    if (!t->key && trend_keep(r, t, key, t->series) < 0) return -1;
+    if (!t->key && trend_keep(r, t, tag, t->series) < 0) return -1;
     if (t->gen != r->gen) {
         PyObject *status = PyObject_GetAttrString(t->series, "status");
         if (status == NULL) return -1;

@@ -139,9 +139,11 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
  * for a transaction the engine shows: once per parameter and namer, only where the device names the address);
  * CONFIRM sets it only on a parameter's first sight (ParameterTable.param). An event that sets the state
  * keeps the value, or the read status `status`, and the value's text (`text`, the Python stages', or NULL: the
- * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error. */
-static int param_event(Stats *st, int slave, unsigned address, unsigned value, int event, PyObject *code,
-                       PyObject *status, PyObject *text, PyObject *namer, int mapped) {
+ * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error.
+ * (Inlined: in words_event, once per register, the constant arguments fold away.) */
+static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, unsigned address, unsigned value,
+                                                              int event, PyObject *code, PyObject *status,
+                                                              PyObject *text, PyObject *namer, int mapped) {
     int created;
     Param *p = param_get(st, slave, address, &created);
     if (p == NULL) return PyErr_Occurred() ? -1 : 0;
@@ -164,7 +166,8 @@ static int words_event(Stats *st, Slave *s, int slave, const Words *w, int event
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         int mapped = bit(s->mapped, address);
-        if (param_event(st, slave, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0) return -1;
+        if (param_event(st, slave, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0)
+            return -1;
     }
     return 0;
 }
@@ -469,16 +472,14 @@ static PyObject *stats_writes(Stats *st, PyObject *args) {
 
 /* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
 static PyObject *stats_polls(Stats *st, PyObject *unused) {
+    static const char *const keys[] = {"()", "(I)", "(II)", "(III)", "(IIII)", "(IIIII)", "(IIIIII)"}; /* by size */
     PyObject *rows = PyList_New((Py_ssize_t)st->polls.count);
     for (size_t k = 0; rows != NULL && k < st->polls.count; k++) {
         const Poll *p = (const Poll *)st->polls.items + k;
-        PyObject *key = PyTuple_New(p->key.size), *row = NULL;
-        for (uint32_t j = 0; key != NULL && j < p->key.size; j++) {
-            PyObject *v = PyLong_FromUnsignedLong(p->key.fields[j]);
-            if (v == NULL) Py_CLEAR(key);
-            else PyTuple_SET_ITEM(key, j, v);
-        }
-        if (key == NULL || (row = Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed)) == NULL) Py_CLEAR(rows);
+        const uint32_t *f = p->key.fields;
+        PyObject *key = Py_BuildValue(keys[p->key.size], f[0], f[1], f[2], f[3], f[4], f[5]);
+        PyObject *row = key != NULL ? Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed) : NULL;
+        if (row == NULL) Py_CLEAR(rows);
         else PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
     }
     return rows;

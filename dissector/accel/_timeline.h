@@ -104,6 +104,19 @@ static int silence_inside(Timeline *t, long long at, Py_ssize_t length) {
     return 0;
 }
 
+/* q / 10^digits as fixed-point text with `digits` places (none: no point), minus when `negative`, into
+ * text[64]: its length. */
+static int fixed_digits(char *text, unsigned long long q, int digits, int negative) {
+    char digits_out[64], *p = digits_out + sizeof digits_out;
+    for (int k = 0; k < digits; k++, q /= 10) *--p = (char)('0' + q % 10);
+    if (digits) *--p = '.';
+    do *--p = (char)('0' + q % 10); while (q /= 10);
+    if (negative) *--p = '-';
+    int n = (int)(digits_out + sizeof digits_out - p);
+    memcpy(text, p, (size_t)n);
+    return n;
+}
+
 /* The text of a double as Python's f"{value:.{digits}f}" (both round the exact binary value, half to
  * even) into text[64], its length (0: too long): value = m * 2^e exactly, so value * 10^digits is
  * m * 10^digits shifted, rounded on the bits shifted out; snprintf (a third of a pcap summary's time)
@@ -123,14 +136,7 @@ static int fixed_text(char *text, double value, int digits) {
             q = (unsigned long long)whole;
             if (rest > half || (rest == half && (q & 1))) q++;
         }
-        char digits_out[64], *p = digits_out + sizeof digits_out;
-        for (int k = 0; k < digits; k++, q /= 10) *--p = (char)('0' + q % 10);
-        *--p = '.';
-        do *--p = (char)('0' + q % 10); while (q /= 10);
-        if (signbit(value)) *--p = '-';
-        int n = (int)(digits_out + sizeof digits_out - p);
-        memcpy(text, p, (size_t)n);
-        return n;
+        return fixed_digits(text, q, digits, signbit(value));
     }
 #endif
     int n = snprintf(text, 64, "%.*f", digits, value);
