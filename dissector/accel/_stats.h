@@ -549,8 +549,6 @@ static PyObject *stats_response(Stats *st, PyObject *args) {
     Py_RETURN_NONE;
 }
 
-static PyObject *time_bins(const Tally *t, size_t n, int bins);
-
 static int tally_order(const void *a, const void *b) {
     const Tally *x = a, *y = b;
     if (x->tag != y->tag) return x->tag < y->tag ? -1 : 1;
@@ -604,6 +602,56 @@ static PyObject *stats_tallies(Stats *st, PyObject *arg) {
     if (!PyArg_Parse(arg, "i", &kind)) return NULL;
     if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
     return tally_groups(&st->tallies[kind], ~0u, tally_dict, kind == TALLY_MINUTES);
+}
+
+/* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:
+ * from the lowest to the highest, (high - low) / bins wide (FLAT_BIN when all are equal); None: no bins. */
+static PyObject *time_bins(const Tally *t, size_t n, int bins) {
+    if (bins <= 0) Py_RETURN_NONE;
+    double low = (double)t[0].key / 1e9, width = ((double)t[n - 1].key / 1e9 - low) / bins, *counts;
+    if (width == 0.0) width = FLAT_BIN;
+    if ((counts = PyMem_Calloc((size_t)bins, sizeof *counts)) == NULL) return PyErr_NoMemory();
+    for (size_t k = 0; k < n; k++) {
+        long long bin = (long long)(((double)t[k].key / 1e9 - low) / width);
+        counts[bin < bins - 1 ? bin : bins - 1] += t[k].value;
+    }
+    PyObject *list = PyList_New(bins);
+    for (int k = 0; list != NULL && k < bins; k++) {
+        PyObject *count = PyLong_FromDouble(counts[k]);
+        if (count == NULL) Py_CLEAR(list);
+        else PyList_SET_ITEM(list, k, count);
+    }
+    PyMem_Free(counts);
+    return list;
+}
+
+/* pollcycle._timing of each poll key's intervals (TALLY_INTERVALS, in POLL_STEP s steps), exactly: None where a
+ * variance's sum is past what a double holds exactly (the Python stages then work it out). */
+static PyObject *poll_timing(const Tally *t, size_t n, int unused) {
+    double total = 0, kept = 0;
+    for (size_t k = 0; k < n; k++) total += t[k].value;
+    long long median = tally_nth(t, n, floor((total + 1) / 2)), skipped = 0, deviation = 0;
+    if (median <= 0) return Py_BuildValue("(d)", 0.0);
+    __int128 sum = 0;
+    for (size_t k = 0; k < n; k++) {
+        long long count = (long long)t[k].value, step = t[k].key;
+        if ((double)step >= POLL_SKIP_FACTOR * (double)median) {
+            skipped += ((long long)rint((double)step / (double)median) - 1) * count;
+            continue;
+        }
+        long long d = llabs(step - median);
+        deviation = d > deviation ? d : deviation;
+        kept += (double)count;
+        sum += (__int128)d * d * count;
+    }
+    if (sum >= (__int128)1 << 53) Py_RETURN_NONE;
+    double variance = kept ? (double)sum / kept : 0.0;
+    return Py_BuildValue("(dddL)", (double)median * POLL_STEP, (double)deviation * POLL_STEP, sqrt(variance) * POLL_STEP,
+                         skipped);
+}
+
+static PyObject *stats_poll_timings(Stats *st, PyObject *unused) {
+    return tally_groups(&st->tallies[TALLY_INTERVALS], ~0u, poll_timing, 0);
 }
 
 /* stats.time_summary of one owner's response times (ns), in seconds: (count, min, median, p95, max, the
@@ -676,8 +724,6 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     bus_init(&st->bus);
     return 0;
 }
-
-static PyObject *stats_poll_timings(Stats *st, PyObject *unused);
 
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
