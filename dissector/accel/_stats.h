@@ -272,8 +272,11 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
 static void stats_dealloc(Stats *st) {
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
-        PyObject *objects[] = {p->text, p->namer, p->code, p->code_namer, p->status};
-        for (int j = 0; j < 5; j++) Py_XDECREF(objects[j]);
+        Py_XDECREF(p->text);
+        Py_XDECREF(p->namer);
+        Py_XDECREF(p->code);
+        Py_XDECREF(p->code_namer);
+        Py_XDECREF(p->status);
     }
     Py_XDECREF(st->report);
     Dense *tables[TALLIES + 2] = {&st->params, &st->polls};
@@ -472,14 +475,16 @@ static PyObject *stats_writes(Stats *st, PyObject *args) {
 
 /* polls() -> [(key, first frame, count, failed)] in the order the keys were first seen */
 static PyObject *stats_polls(Stats *st, PyObject *unused) {
-    static const char *const keys[] = {"()", "(I)", "(II)", "(III)", "(IIII)", "(IIIII)", "(IIIIII)"}; /* by size */
     PyObject *rows = PyList_New((Py_ssize_t)st->polls.count);
     for (size_t k = 0; rows != NULL && k < st->polls.count; k++) {
         const Poll *p = (const Poll *)st->polls.items + k;
-        const uint32_t *f = p->key.fields;
-        PyObject *key = Py_BuildValue(keys[p->key.size], f[0], f[1], f[2], f[3], f[4], f[5]);
-        PyObject *row = key != NULL ? Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed) : NULL;
-        if (row == NULL) Py_CLEAR(rows);
+        PyObject *key = PyTuple_New(p->key.size), *row = NULL;
+        for (uint32_t j = 0; key != NULL && j < p->key.size; j++) {
+            PyObject *v = PyLong_FromUnsignedLong(p->key.fields[j]);
+            if (v == NULL) Py_CLEAR(key);
+            else PyTuple_SET_ITEM(key, j, v);
+        }
+        if (key == NULL || (row = Py_BuildValue("(NKKK)", key, p->first, p->count, p->failed)) == NULL) Py_CLEAR(rows);
         else PyList_SET_ITEM(rows, (Py_ssize_t)k, row);
     }
     return rows;
@@ -522,6 +527,31 @@ static PyObject *stats_stamp(Stats *st, PyObject *time) {
     if (read_time(time, &t) < 0) return NULL;
     stats_seen(&st->bus, &t);
     Py_RETURN_NONE;
+}
+
+/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*); sums (TALLY_MINUTES) as floats. */
+static PyObject *stats_tallies(Stats *st, PyObject *arg) {
+    int kind;
+    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
+    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
+    const Tallies *table = &st->tallies[kind];
+    PyObject *owners = PyDict_New();
+    for (size_t k = 0; owners != NULL && k < table->d.count; k++) {
+        const Tally *t = (const Tally *)table->d.items + k;
+        PyObject *owner = PyLong_FromUnsignedLong(t->tag & 0xFFFFFF), *key = PyLong_FromLongLong(t->key);
+        PyObject *value = kind == TALLY_MINUTES ? PyFloat_FromDouble(t->value) : PyLong_FromDouble(t->value);
+        PyObject *inner = owner != NULL ? PyDict_GetItemWithError(owners, owner) : NULL;
+        if (inner == NULL && owner != NULL && !PyErr_Occurred() && (inner = PyDict_New()) != NULL) {
+            if (PyDict_SetItem(owners, owner, inner) < 0) Py_CLEAR(owners);
+            Py_DECREF(inner); /* owners holds it */
+        }
+        if (owners == NULL || inner == NULL || key == NULL || value == NULL || PyDict_SetItem(inner, key, value) < 0)
+            Py_CLEAR(owners);
+        Py_XDECREF(owner);
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+    }
+    return owners;
 }
 
 static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
@@ -581,27 +611,6 @@ static PyObject *tally_groups(const Tallies *table, uint32_t mask, PyObject *(*r
     }
     PyMem_Free(all);
     return groups;
-}
-
-/* {key: count} of one owner's tallies; its sums as floats (`sums`: TALLY_MINUTES). */
-static PyObject *tally_dict(const Tally *t, size_t n, int sums) {
-    PyObject *counts = PyDict_New();
-    for (size_t k = 0; counts != NULL && k < n; k++) {
-        PyObject *key = PyLong_FromLongLong(t[k].key);
-        PyObject *value = sums ? PyFloat_FromDouble(t[k].value) : PyLong_FromDouble(t[k].value);
-        if (key == NULL || value == NULL || PyDict_SetItem(counts, key, value) < 0) Py_CLEAR(counts);
-        Py_XDECREF(key);
-        Py_XDECREF(value);
-    }
-    return counts;
-}
-
-/* tallies(kind) -> {owner: {key: count}} of one histogram (_bus.h TALLY_*), by owner and key. */
-static PyObject *stats_tallies(Stats *st, PyObject *arg) {
-    int kind;
-    if (!PyArg_Parse(arg, "i", &kind)) return NULL;
-    if (kind < 0 || kind >= TALLIES) return PyErr_Format(PyExc_ValueError, "tallies: an unknown kind");
-    return tally_groups(&st->tallies[kind], ~0u, tally_dict, kind == TALLY_MINUTES);
 }
 
 /* The counts of a histogram of `bins` bins of n sorted response times (ns) as html.py _slaves makes it:

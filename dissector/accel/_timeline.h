@@ -106,7 +106,7 @@ static int silence_inside(Timeline *t, long long at, Py_ssize_t length) {
 
 /* q / 10^digits as fixed-point text with `digits` places (none: no point), minus when `negative`, into
  * text[64]: its length. */
-static int fixed_digits(char *text, unsigned long long q, int digits, int negative) {
+static inline int fixed_digits(char *text, unsigned long long q, int digits, int negative) {
     char digits_out[64], *p = digits_out + sizeof digits_out;
     for (int k = 0; k < digits; k++, q /= 10) *--p = (char)('0' + q % 10);
     if (digits) *--p = '.';
