@@ -4,8 +4,9 @@ lua/vw3.lua's DATA.fields.fields, which lua/src/fields.lua turns into ProtoField
 infos and preferences from the same file's [[expert]] and [[preference]] entries, as DATA.fields.experts and
 DATA.fields.preferences; and a field per parameter of the built-in register maps, DATA.fields.parameters;
 the fields that show each PDU field (DATA.fields.pdu, data/pdu_fields.toml, with its plugin-only fields),
-the value strings they name from the spec (DATA.fields.names) and the words of a start that is no window
-(DATA.fields.start_words)."""
+the value strings they name from the spec (DATA.fields.names) and the title of a start that is no window
+(DATA.fields.start_words); and the Info column's forms vw3-decode gives each function code in each direction
+(render/describe.py TEXT_FORMS: DATA.fields.info), with their limits and words."""
 from __future__ import annotations
 
 import re
@@ -27,7 +28,54 @@ def plugin_fields() -> dict[str, Any]:
     return {"fields": proto_fields(), "experts": experts(), "preferences": preferences(),
             "parameters": parameter_fields(), "pdu": pdu_fields(),
             "names": {"mei_types": SPEC.mei_types, "device_id_codes": SPEC.device_id_codes},
-            "start_words": {int(code): dict(words) for code, words in _pdu_catalogue()["start_words"].items()}}
+            "start_words": start_words(), "info": info_forms()}
+
+
+def start_words() -> dict[int, dict[str, str]]:
+    """{code: {title}}: how the tree names a start that is no window (FC24's FIFO pointer, which vw3-decode's
+    Info text calls `pointer`, render/describe.py TEXT_FORMS): vw3-decode -V's label of the field
+    (render/detail.py FUNCTION_LABELS)."""
+    from dissector.render.describe import _FORMS
+    from dissector.render.detail import FUNCTION_LABELS
+
+    out = {}
+    for (code, request), (_text, form) in sorted(_FORMS.items()):
+        if not request or form != "pointer":
+            continue
+        titles = [label for (function, _key), label in FUNCTION_LABELS.items() if function == code]
+        if len(titles) != 1:
+            raise GenerateError(f"render/detail.py FUNCTION_LABELS: {len(titles)} labels for function {code}'s "
+                                "pointer, not one")
+        out[code] = {"title": titles[0]}
+    return out
+
+
+# The steps of describe.TEXT_FORMS the plugin interprets (lua/src/tree.lua info_text): those of the frame's
+# fields read from its bytes, and `label` (its window as the plugin names it, start or PLC label). A form
+# of other steps (the registers' values, bits, spans) keeps the plugin's own text (the window).
+PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label"})
+# The describers of describe._BY_NAME the plugin has too (tree.lua BY_NAME), by name.
+PLUGIN_BY_NAME = frozenset({"mei", "report_server_id", "file_record"})
+
+
+def info_forms() -> dict[str, Any]:
+    """The Info column's forms (render/describe.py TEXT_FORMS) that the plugin says as vw3-decode does: by
+    direction and function code, their steps (texts, and steps as lists; a describer of describe._BY_NAME:
+    its name), and the limits and words they use."""
+    from dissector.render import describe
+
+    forms: dict[str, dict[int, str]] = {"request": {}, "response": {}}
+    steps: dict[str, list[Any]] = {}
+    for (code, request), (text, form) in sorted(describe._FORMS.items()):
+        if form is None and text in PLUGIN_BY_NAME:  # (its steps: the describer's name)
+            forms["request" if request else "response"][code] = steps[text] = text
+        if form is None or not all(isinstance(step, str) or step[0] in PLUGIN_STEPS
+                                   for step in describe.TEXT_FORMS[form]):
+            continue
+        forms["request" if request else "response"][code] = form
+        steps[form] = [step if isinstance(step, str) else list(step) for step in describe.TEXT_FORMS[form]]
+    return {"forms": forms, "steps": steps, "max_data_bytes": describe.MAX_DATA_BYTES,
+            "max_fifo_values": describe.MAX_FIFO_VALUES, "unknown_subfunction": describe.UNKNOWN_SUBFUNCTION}
 
 
 def _catalogue() -> dict[str, Any]:

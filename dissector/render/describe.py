@@ -11,6 +11,9 @@ from dissector.protocol.table import FUNCTIONS, Data
 MAX_VALUES = 6  # register values a summary shows (the compiled engine reads these three in _tables.h)
 MAX_BITS = 32  # bits a summary shows
 MAX_FIFO_VALUES = 8  # FIFO values a summary shows
+# An FC8 sub-function neither the spec nor the profile names, in the Info text and -V (the plugin's too:
+# codegen/fields_lua.py info_forms)
+UNKNOWN_SUBFUNCTION = "unknown sub-function"
 _FUNCTION_NAMES = SPEC.functions
 
 
@@ -206,7 +209,7 @@ _OF_FRAME: dict[str, Callable[[Frame], str]] = {
 _OF_FIELD: dict[str, Callable[[Frame, Any], str]] = {
     "coil": _coil, "single": _single, "dec": lambda frame, value: str(value),
     # FC8's sub-function as the profile names it, else the spec
-    "subfunction": lambda frame, sub: frame.subfunction_text or SPEC.diagnostics.get(sub, "unknown sub-function"),
+    "subfunction": lambda frame, sub: frame.subfunction_text or SPEC.diagnostics.get(sub, UNKNOWN_SUBFUNCTION),
     "data": lambda frame, data: _data(data),
 }
 

@@ -18,7 +18,7 @@ from dissector.model import BitList, Frame, Item, Kind, Noise, Register, Registe
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
-from dissector.render.describe import count_text
+from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
 
@@ -83,8 +83,25 @@ _MODBUS_RTU = "    Modbus RTU"
 _FUNCTION_LINES: dict[int, str] = {}  # spec names only: a profile's names vary per slave
 _SLAVE_LINES: dict[int, str] = {}
 _CRC_OK_LINES: dict[int, str] = {}
-_INT_FIELD_LINES: dict[tuple[str, int], str] = {}  # `        Start: 8400 (0x20D0)` by (key, value)
+_INT_FIELD_LINES: dict[tuple[Any, int], str] = {}  # `        Start: 8400 (0x20D0)` by (key, value)
 _INT_FIELD_LINES_MAX = 1 << 16
+# A PDU field's label: its key's words, the first capitalized, the spec's acronyms as it writes them
+# (`FIFO count`, `MEI type`); by (function, key), the spec's name of a field its key does not say (FC24's
+# `address` is the FIFO Pointer Address, Application Protocol 6.18, as the Info text's `pointer`). The
+# plugin's tree says the same (codegen/fields_lua.py start_words; data/pdu_fields.toml titles).
+_ACRONYMS = {"fifo": "FIFO", "mei": "MEI"}
+FUNCTION_LABELS: dict[tuple[int, str], str] = {(24, "address"): "FIFO pointer address"}
+_LABELLED = frozenset(function for function, _key in FUNCTION_LABELS)
+
+
+def field_label(key: str, function: int | None = None) -> str:
+    label = FUNCTION_LABELS.get((function, key)) if function is not None else None
+    if label is None:
+        words = [_ACRONYMS.get(word, word) for word in key.split("_")]
+        words[0] = words[0][:1].upper() + words[0][1:]
+        label = " ".join(words)
+    return label
+
 
 # A register's lines depend on its fields only; polled blocks repeat them, so they are kept by
 # content (bounded: cleared when full, so memory stays flat on values that never repeat): the texts,
@@ -226,7 +243,7 @@ def _register_lines(detail: _Detail, registers: Sequence[Register]) -> None:
 
 
 def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
-    label = _INDENT[depth] + name.replace("_", " ").capitalize()
+    label = _INDENT[depth] + field_label(name)
     texts = detail.texts
     if isinstance(value, dict):
         texts.append(label)
@@ -327,23 +344,25 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
     elif frame.fields is not None:
         registers = frame.registers
         lines = _INT_FIELD_LINES
+        labelled = function in _LABELLED  # (its lines kept by function too: `FIFO pointer address`)
         for key, value in frame.fields.items():
             if value is None or key[0] == "_" or key in ("values", "status") and registers:
                 continue
             if type(value) is int:  # the common case, inline and kept: `Start: 8400 (0x20D0)`
-                line = lines.get((key, value))
+                kept = (function, key) if labelled else key
+                line = lines.get((kept, value))
                 if line is None:
                     if len(lines) >= _INT_FIELD_LINES_MAX:
                         lines.clear()
-                    label = "        " + key.replace("_", " ").capitalize()
-                    line = lines[key, value] = f"{label}: {value} (0x{value:X})"
+                    label = "        " + field_label(key, function)
+                    line = lines[kept, value] = f"{label}: {value} (0x{value:X})"
                 add(line)
                 continue
             if key == "trailing" and not value:
                 continue
             _field_lines(detail, 2, key, value)
     if frame.subfunction is not None:
-        sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, "unknown")
+        sub_name = frame.subfunction_text or SPEC.diagnostics.get(frame.subfunction, UNKNOWN_SUBFUNCTION)
         add(f"        Sub-function name: {sub_name}")
 
 

@@ -77,7 +77,8 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
         or item.profile_choice or item.inferred or (registers ~= nil and registers.status ~= nil) then
       show_frame(st, item, tvb, tree, nil, false)
     end
-    cols.info = item.info or summary(item) -- (info: a known request's, see known_requests)
+    -- (info: a known request's, see known_requests; the frame is the record's own, its bytes the tvb's)
+    cols.info = item.info or summary(item, tvb)
     return
   end
   if type(record) == "number" then record = { record } end
@@ -122,7 +123,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries, info = add_part(summaries, info, item.info or summary(item)) -- (info: see known_requests)
+      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from)) -- (info: see known_requests)
     end
     anchor = anchor or t
   end

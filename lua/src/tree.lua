@@ -49,7 +49,7 @@ end
 -- made when a field needs it); .frame_length: the length of the frame's item. .checking: fields are
 -- checked (an invisible tree; it pays from the second register or bit on).
 local LAYOUT_OF = DATA.rules.by_code -- (by kind, then function code: its layout's name)
-local START_WORDS = DATA.fields.start_words -- (a start that is no window: data/pdu_fields.toml [start_words])
+local START_WORDS = DATA.fields.start_words -- (a start that is no window: FC24's pointer, codegen/fields_lua.py)
 local unseen = { serial = 0, faked = {}, checked = {}, generated = false, no_row = {} }
 
 -- The register or bit being added: `size` bytes at `at` in the frame (or the TvbRange `range`).
@@ -242,9 +242,165 @@ end
 -- the rest of a summary; slaves and addresses repeat). Bounded: addresses are 16 bits.
 local DECIMAL = made_once(function(number) return format("%d", number) end)
 
-local function summary(f)
+-- The Info text's forms that vw3-decode's describe.TEXT_FORMS gives and the plugin says alike, by kind and
+-- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
+-- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
+-- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
+-- FORMS[fn][kind]: the form's steps (one lookup a frame, nil for the usual codes).
+local INFO = DATA.fields.info
+local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
+local UNKNOWN_SUBFUNCTION = INFO.unknown_subfunction
+local FORMS = {}
+for kind, forms in pairs(INFO.forms) do
+  for fn, form in pairs(forms) do
+    FORMS[fn] = FORMS[fn] or {}
+    FORMS[fn][kind] = INFO.steps[form]
+  end
+end
+local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
+local HEX_FORMAT = made_once(function(digits) return "%0" .. digits .. "X" end)
+
+-- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
+-- field of no fixed size: by kind and function code, made once.
+local FIELD_AT = { [REQUEST] = {}, [RESPONSE] = {} }
+local function fields_at(kind, fn)
+  local at_of = FIELD_AT[kind][fn]
+  if at_of ~= nil then return at_of end
+  at_of = {}
+  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
+  local at = 2
+  for _, field in ipairs(LAYOUTS[entry and entry.layout or "raw"]) do
+    local size = FIXED[field.type]
+    at_of[field.name] = { at = at, size = size }
+    if size == nil then break end
+    at = at + size
+  end
+  FIELD_AT[kind][fn] = at_of
+  return at_of
+end
+
+-- describe._data: FC8's data (b[first..last]), ` = 7` for a word, ` data 0a0b…` (its first MAX_DATA_BYTES
+-- bytes, then how many more) for other data, nothing for none.
+local function data_text(b, first, last)
+  local size = last - first + 1
+  if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
+  if size <= 0 then return "" end
+  local hex = {}
+  for k = 1, size < MAX_DATA_BYTES and size or MAX_DATA_BYTES do hex[k] = HEX_BYTE[b[first + k - 1]] end
+  if size <= MAX_DATA_BYTES then return " data " .. concat(hex) end
+  return " data " .. concat(hex) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
+end
+
+-- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
+local function fifo_values(b, count, first, last)
+  local parts = {}
+  for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
+    local at = first + 2 * k
+    if at + 1 > last then break end
+    parts[#parts + 1] = " " .. DECIMAL[b[at] * 256 + b[at + 1]]
+  end
+  return concat(parts)
+end
+
+-- The text of a form (describe._interpreter): its texts, and its steps on the frame's fields, read from
+-- b (the frame's slave byte at b[base], its data ending at b[last]).
+local function form_text(f, steps, b, base, last)
+  local at_of, parts = fields_at(f.kind, f.fn), {}
+  for index = 1, #steps do
+    local step = steps[index]
+    if type(step) == "string" then
+      parts[index] = step
+    else
+      local what, place = step[1], at_of[step[2]]
+      local value = nil
+      if place ~= nil and place.size ~= nil then
+        value = place.size == 1 and b[base + place.at] or b[base + place.at] * 256 + b[base + place.at + 1]
+      end
+      local text
+      if what == "dec" then
+        text = DECIMAL[value]
+      elseif what == "hex" then
+        text = format(HEX_FORMAT[step[3]], value)
+      elseif what == "label" then -- (span_text: the window as named, PLC style too)
+        text = f.span_label or (f.start and DECIMAL[f.start]) or ""
+      elseif what == "coil" then
+        text = value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
+      elseif what == "subfunction" then -- (as the profile names it, else the spec)
+        text = f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
+      elseif what == "data" then
+        text = data_text(b, base + place.at, last)
+      else -- fifo: the values after their count
+        text = fifo_values(b, value, base + at_of[step[3]].at, last)
+      end
+      parts[index] = text
+    end
+  end
+  return concat(parts)
+end
+
+-- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on
+-- the frame's bytes b (its slave byte at b[base], its data ending at b[last]).
+local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.names.device_id_codes
+local RUN_INDICATOR = DATA.names.run_indicator
+local BY_NAME = {}
+
+-- describe._mei: `Read Device Identification, basic, from object 0`; an answer its objects' values (a
+-- revision the profile decoded as such: `V2.1`), another MEI type its name.
+function BY_NAME.mei(f, b, base)
+  local mei_type = b[base + 2]
+  local mei = MEI_TYPES[mei_type] or "MEI " .. DECIMAL[mei_type]
+  if mei_type ~= 14 then return mei end
+  local code = DEVICE_ID_CODES[b[base + 3]] or DECIMAL[b[base + 3]]
+  if f.kind == REQUEST then return mei .. ", " .. code .. ", from object " .. DECIMAL[b[base + 4]] end
+  local parts = {}
+  for index, object in ipairs(f.objects or NO_INTERPRETATION) do
+    local text = object.text
+    if text == nil or not text:match("^V%d+%.%d+$") then text = python_repr(object.value) end
+    parts[index] = object.name .. "=" .. text
+  end
+  return mei .. ", " .. code .. ": " .. concat(parts, " ")
+end
+
+-- describe._report_server_id: an answer's `server id 18, run ON, 'V1.'` (its data as text where every byte
+-- is printable ASCII, else counted).
+function BY_NAME.report_server_id(f, b, base)
+  if f.kind == REQUEST then return "" end
+  local count, run, chars = b[base + 2] - 2, b[base + 4], {}
+  for k = base + 5, base + 4 + count do
+    if b[k] < 32 or b[k] > 126 then chars = nil break end
+    chars[#chars + 1] = string.char(b[k])
+  end
+  local data = count > 0 and chars and python_repr(concat(chars)) or count_text(count, "byte")
+  return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
+end
+
+-- describe._file_record: `2 record group(s)`, the sub-requests, sub-responses or records its byte count holds.
+function BY_NAME.file_record(f, b, base)
+  local entry = LAYOUT_OF[f.kind][f.fn]
+  local field = LAYOUTS[entry.layout][2] -- (after the byte count: the records)
+  local part, at = PARTS[field.part], base + 3
+  local last, groups = at + b[base + 2], 0
+  while at < last do
+    at = add_shape(nil, nil, f, b, part, at, last)
+    if at == nil then break end
+    groups = groups + 1
+  end
+  return DECIMAL[groups] .. " record group(s)"
+end
+
+-- The Info text of a form, or of a describer of BY_NAME (steps: its name).
+local function info_text(f, steps, b, base, last)
+  if type(steps) == "string" then return BY_NAME[steps](f, b, base, last) end
+  return form_text(f, steps, b, base, last)
+end
+
+-- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
+-- remember_request), from its byte table then.
+local function summary(f, tvb)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
   local kind, fn = f.kind, f.fn
+  local steps = FORMS[fn]
+  if steps ~= nil then steps = steps[kind] end
   local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
   if kind == EXCEPTION then
     kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
@@ -252,22 +408,25 @@ local function summary(f)
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
   if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
+  -- (describe.info_text: a frame whose fields did not parse says so)
+  if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
+  if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
+    local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
+    if tvb ~= nil then
+      b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
+      if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
+    end
+    if b ~= nil then
+      return (slave .. " " .. name .. " " .. kind .. " " .. info_text(f, steps, b, base, last)):gsub(" +$", "") .. tail
+    end
+  end
   local start, quantity, label = f.start, f.quantity, f.span_label
   if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
-  if start == nil then
-    local sub = f.subfunction -- (FC8: the sub-function, as vw3-decode's summary names it)
-    if sub == nil then return slave .. " " .. name .. " " .. kind .. tail end
-    return slave .. " " .. name .. " " .. kind .. " " .. format("%02Xh ", sub)
-      .. (f.subfunction_text or DIAGNOSTICS[sub] or "unknown sub-function") .. tail
-  end
+  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
   if quantity ~= nil and quantity > 1 then
     -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
     return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
       .. tail
-  end
-  local words = START_WORDS[f.fn]
-  if words ~= nil then
-    return slave .. " " .. name .. " " .. kind .. " " .. words.info .. " " .. DECIMAL[start] .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
@@ -278,7 +437,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full then
     whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
-    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f)))
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb)))
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()

@@ -25,10 +25,12 @@ INFO = [
     "noise (1 byte)",
     "1 Write Multiple Coils request 65535..65544",
     "1 Write Multiple Coils response 65535..65544",
-    "1 Encapsulated Interface Transport request",
-    "1 Encapsulated Interface Transport response",
-    "1 Diagnostics request 00h Return Query Data",  # (the sub-function, as vw3-decode names it)
-    "1 Diagnostics response 00h Return Query Data",
+    "1 Encapsulated Interface Transport request Read Device Identification, individual, from object 128",
+    "1 Encapsulated Interface Transport response Read Device Identification, individual: Object 128='ABC' "
+    "ModelName='XY'",
+    # (the sub-function and its data, as vw3-decode says them: 16 bytes, then `(+1 byte)`, singular)
+    "1 Diagnostics request 00h Return Query Data data 0102030405060708090a0b0c0d0e0f10… (+1 byte)",
+    "1 Diagnostics response 00h Return Query Data data 0102030405060708090a0b0c0d0e0f10… (+1 byte)",
     "1 Read Holding Registers request 16",
     "1 Read Holding Registers response 16",
     "1 Read Coils request 32",

@@ -2,8 +2,9 @@
 add_pdu), for every public function code, with filterable vw3.* fields: FC7's status, FC8's data, FC11's
 and FC12's counters, FC12's events, FC20's sub-requests and sub-responses, FC21's records, FC22's masks,
 FC23's write window, FC24's FIFO count and values, FC43's MEI type and device-id header, FC1/FC15's packed
-status. FC8's Info column names the sub-function as vw3-decode's summary does; FC24 says what it is, a
-FIFO pointer address (`pointer 1246`), never a window of registers (`1246..1248`), in the plugin and in
+status. FC8's Info column names the sub-function and its data as vw3-decode's summary does (`= 300`); FC24's
+request says what it is, a FIFO pointer address (`pointer 1246`), never a window of registers (`1246..1248`),
+its answer its values (`3 values: 1 2 3`), in the plugin and in
 vw3-decode --json alike (no `quantity`: the FIFO count is the PDU field fifo_count). Real tshark with
 -X lua_script:lua/vw3.lua; vw3-decode under the compiled engine and VW3_PURE_PYTHON=1."""
 from __future__ import annotations
@@ -42,58 +43,59 @@ T0 = 1700000000.0
 # mode, slave, function, profile, CRC, links), as tshark -V prints them.
 TREES: list[tuple[str, list[str]]] = [
     ("VW3 Modbus RTU, 1 Read Exception Status request", []),
-    ("VW3 Modbus RTU, 1 Read Exception Status response", ["    Status: 109 (0x006d)"]),
-    ("VW3 Modbus RTU, 1 Diagnostics request 0Bh Return Bus Message Count", [
+    ("VW3 Modbus RTU, 1 Read Exception Status response status 0x6D", ["    Status: 109 (0x006d)"]),
+    ("VW3 Modbus RTU, 1 Diagnostics request 0Bh Return Bus Message Count = 0", [
         "    Sub-function: Return Bus Message Count (11)", "    Data: 0000",
         "    [Sub-function name: Return Bus Message Count]"]),
-    ("VW3 Modbus RTU, 1 Diagnostics response 0Bh Return Bus Message Count", [
+    ("VW3 Modbus RTU, 1 Diagnostics response 0Bh Return Bus Message Count = 300", [
         "    Sub-function: Return Bus Message Count (11)", "    Data: 012c",
         "    [Sub-function name: Return Bus Message Count]"]),
     ("VW3 Modbus RTU, 1 Get Comm Event Counter request", []),
-    ("VW3 Modbus RTU, 1 Get Comm Event Counter response", ["    Status: 65535 (0xffff)", "    Event count: 264"]),
+    ("VW3 Modbus RTU, 1 Get Comm Event Counter response status 0xFFFF, 264 events", ["    Status: 65535 (0xffff)", "    Event count: 264"]),
     ("VW3 Modbus RTU, 1 Get Comm Event Log request", []),
-    ("VW3 Modbus RTU, 1 Get Comm Event Log response", [
+    ("VW3 Modbus RTU, 1 Get Comm Event Log response status 0x00", [
         "    Byte count: 8", "    Status: 0 (0x0000)", "    Event count: 264", "    Message count: 289",
         "    Events: 2000"]),
     ("VW3 Modbus RTU, 1 Report Server ID request", []),
-    ("VW3 Modbus RTU, 1 Report Server ID response", [
+    ("VW3 Modbus RTU, 1 Report Server ID response server id 1, run ON, 'ABCD'", [
         "    Byte count: 6", "    Server id: 1 (0x01)", "    Run indicator: ON (0xff)", "    Additional data: ABCD"]),
-    ("VW3 Modbus RTU, 1 Read File Record request", [
+    ("VW3 Modbus RTU, 1 Read File Record request 2 record group(s)", [
         "    Byte count: 14",
         "    Sub-request", "        Reference type: 6", "        File: 4", "        Record: 1", "        Length: 2",
         "    Sub-request", "        Reference type: 6", "        File: 3", "        Record: 9", "        Length: 2"]),
-    ("VW3 Modbus RTU, 1 Read File Record response", [
+    ("VW3 Modbus RTU, 1 Read File Record response 2 record group(s)", [
         "    Byte count: 12",
         "    Sub-response", "        Length: 5", "        Reference type: 6", "        Value: 3582 (0x0dfe)",
         "        Value: 32 (0x0020)",
         "    Sub-response", "        Length: 5", "        Reference type: 6", "        Value: 13261 (0x33cd)",
         "        Value: 64 (0x0040)"]),
 ] + [
-    (f"VW3 Modbus RTU, 1 Write File Record {kind}", [
+    (f"VW3 Modbus RTU, 1 Write File Record {kind} 1 record group(s)", [
         "    Byte count: 13", "    Record written", "        Reference type: 6", "        File: 4",
         "        Record: 7", "        Length: 3", "        Value: 1711 (0x06af)", "        Value: 1214 (0x04be)",
         "        Value: 4109 (0x100d)"]) for kind in ("request", "response")
 ] + [
-    (f"VW3 Modbus RTU, 1 Mask Write Register {kind} 4", [
+    (f"VW3 Modbus RTU, 1 Mask Write Register {kind} 4 AND 0x00F2 OR 0x0025", [
         "    Start address: 4", "    [Quantity: 1]", "    And mask: 242 (0x00f2)", "    Or mask: 37 (0x0025)"])
     for kind in ("request", "response")
 ] + [
     ("VW3 Modbus RTU, 1 Read FIFO Queue request pointer 1246", ["    FIFO pointer address: 1246"]),
-    ("VW3 Modbus RTU, 1 Read FIFO Queue response pointer 1246", [
+    ("VW3 Modbus RTU, 1 Read FIFO Queue response 3 values: 1 2 3", [
         "    [FIFO pointer address: 1246]", "    Byte count: 8", "    FIFO count: 3", "    FIFO value: 1 (0x0001)",
         "    FIFO value: 2 (0x0002)", "    FIFO value: 3 (0x0003)"]),
-    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport request", [
+    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport request Read Device Identification, basic, from object 0", [
         "    MEI type: Read Device Identification (14)", "    Read code: basic (1)", "    Object id: 0"]),
-    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response", [
+    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response Read Device Identification, basic: "
+     "VendorName='ABC' ProductCode='XY' MajorMinorRevision='1000'", [
         "    MEI type: Read Device Identification (14)", "    Read code: basic (1)", "    Conformity: 1 (0x01)",
         "    More follows: 0 (0x00)", "    Next object id: 0", "    Object count: 3",
         "    VendorName: 'ABC'", "        Object id: 0", "        [Name: VendorName]", "        Value: ABC",
         "    ProductCode: 'XY'", "        Object id: 1", "        [Name: ProductCode]", "        Value: XY",
         "    MajorMinorRevision: '1000'", "        Object id: 2", "        [Name: MajorMinorRevision]",
         "        Value: 1000"]),
-    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport request", [
+    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport request CANopen General Reference", [
         "    MEI type: CANopen General Reference (13)", "    Data: 010203"]),
-    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response", [
+    ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response CANopen General Reference", [
         "    MEI type: CANopen General Reference (13)", "    Data: 0a0b"]),
     ("VW3 Modbus RTU, 1 Write Multiple Coils request 0..9", [
         "    Start address: 0", "    [Quantity: 10]", "    Byte count: 2", "    Status: ff03",
@@ -178,9 +180,10 @@ def test_pdu_fields_filter_and_print(capture: Path) -> None:
 
 def test_info_column_names_fc8_sub_function_and_fc24_pointer(capture: Path) -> None:
     info = _tshark(capture, "-T", "fields", "-e", "_ws.col.Info").splitlines()
-    assert info[2:4] == ["1 Diagnostics request 0Bh Return Bus Message Count",
-                         "1 Diagnostics response 0Bh Return Bus Message Count"]
-    assert info[16:18] == ["1 Read FIFO Queue request pointer 1246", "1 Read FIFO Queue response pointer 1246"]
+    # (as vw3-decode's Info: FC8's data after the sub-function, FC24's answer its values, not its request's pointer)
+    assert info[2:4] == ["1 Diagnostics request 0Bh Return Bus Message Count = 0",
+                         "1 Diagnostics response 0Bh Return Bus Message Count = 300"]
+    assert info[16:18] == ["1 Read FIFO Queue request pointer 1246", "1 Read FIFO Queue response 3 values: 1 2 3"]
     # one pass (Wireshark opening the file) says the same
     one = run_tshark(capture, "-T", "fields", "-e", "_ws.col.Info", two_pass=False)
     assert one.stdout.splitlines()[16:18] == info[16:18]
@@ -208,7 +211,7 @@ FIFO_DETAIL = """Frame 2: 14 bytes at offset 6, response (RTU)
         Slave: 1
         Function: 24 (0x18) Read FIFO Queue
         Byte count: 8 (0x8)
-        Fifo count: 3 (0x3)
+        FIFO count: 3 (0x3)
         Values (3)
             [0]: 1 (0x1)
             [1]: 2 (0x2)

@@ -86,8 +86,11 @@ def test_device_identification_and_a_record_with_two_frames() -> None:
     record = section(lines, 1)
     # (one record: its second pass keeps the single pass's view, as vw3-decode reading it once: the
     # request, read before the identification that follows it, is provisional)
-    assert record[0] == ("record 1: 2 Encapsulated Interface Transport request [provisional]; "
-                         "2 Encapsulated Interface Transport response")
+    # (the Info as vw3-decode's: the objects' values, the revision as the ATV71 profile reads it)
+    assert record[0] == ("record 1: 2 Encapsulated Interface Transport request Read Device Identification, basic, "
+                         "from object 0 [provisional]; 2 Encapsulated Interface Transport response Read Device "
+                         "Identification, basic: VendorName='Telemecanique' ProductCode='ATV71HU15M3' "
+                         "MajorMinorRevision=V2.1 UserApplicationName='MACHINE 4'")
     assert "vw3.request_frame=1" in record and "vw3.response_frame=1" in record
     objects = [line for line in record if line.startswith("vw3.object")]
     assert objects[:5] == ["vw3.object=VendorName: 'Telemecanique'", "vw3.object.id=0",
