@@ -7207,7 +7207,6 @@ for kind, forms in pairs(INFO.forms) do
   end
 end
 local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
-local HEX_FORMAT = made_once(function(digits) return "%0" .. digits .. "X" end)
 
 -- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
 -- field of no fixed size: by kind and function code, made once.
@@ -7269,7 +7268,7 @@ local function form_text(f, steps, b, base, last)
       if what == "dec" then
         text = DECIMAL[value]
       elseif what == "hex" then
-        text = format(HEX_FORMAT[step[3]], value)
+        text = format("%0" .. step[3] .. "X", value)
       elseif what == "label" then -- (span_text: the window as named, PLC style too)
         text = f.span_label or (f.start and DECIMAL[f.start]) or ""
       elseif what == "coil" then
@@ -7307,7 +7306,7 @@ function BY_NAME.mei(f, b, base)
     if text == nil or not text:match("^V%d+%.%d+$") then text = python_repr(object.value) end
     parts[index] = object.name .. "=" .. text
   end
-  return mei .. ", " .. code .. ": " .. concat(parts, " ")
+  return mei .. ", " .. code .. ":" .. (parts[1] and " " or "") .. concat(parts, " ")
 end
 
 -- describe._report_server_id: an answer's `server id 18, run ON, 'V1.'` (its data as text where every byte
@@ -7366,7 +7365,8 @@ local function summary(f, tvb)
       if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
     end
     if b ~= nil then
-      return (slave .. " " .. name .. " " .. kind .. " " .. info_text(f, steps, b, base, last)):gsub(" +$", "") .. tail
+      local text = info_text(f, steps, b, base, last) -- (describe.info_text's rstrip: no space before none)
+      return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
   local start, quantity, label = f.start, f.quantity, f.span_label
