@@ -359,16 +359,11 @@ class Noise:
 Item = Frame | Noise
 
 
-def up_to_frames(items: list[Item], room: int) -> tuple[list[Item], int]:
-    """The items up to the room-th frame (-c's cut: noise before it kept, nothing after it), and the
-    room left."""
-    kept: list[Item] = []
-    for item in items:
-        if room <= 0:
-            break
-        kept.append(item)
-        room -= isinstance(item, Frame)
-    return kept, room
+def up_to_items(items: list[Item], room: int) -> tuple[list[Item], int]:
+    """The first `room` items (-c's cut: frames and noise runs alike, each a packet, as tshark -c counts
+    packets), and the room left."""
+    kept = items[: max(room, 0)]
+    return kept, room - len(kept)
 
 
 @dataclass(slots=True)

@@ -40,7 +40,7 @@ from typing import Any
 from dissector.accel import fastsummary
 from dissector.accel.records import BlockBuilder
 from dissector.accel.timedpath import CLOCKS, TimedPath, usable
-from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_frames
+from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_items
 from dissector.decode.pairing import capture_ended
 from dissector.pipeline import Dissector
 from dissector.render.timefmt import Clock
@@ -72,7 +72,7 @@ class LivePath:
                  timeout: float | None, silence: float, silence_long: float, summary: bool,
                  count: int | None = None, char_time: float | None = None) -> None:
         self.dissector = dissector
-        self.left = count  # -c: frames still to show (None: no count)
+        self.left = count  # -c: items still to show (None: no count)
         self.done = False  # -c reached: nothing more is read or shown
         if count is not None:
             assert not summary, "-c: the Python stages show the engine's frames"
@@ -127,7 +127,7 @@ class LivePath:
 
     # -- -c N ---------------------------------------------------------------------------------------------
     def _cut_engine(self, frames: list[Item]) -> list[Item]:
-        """The engine's frames of a slice up to the Nth; a request that is the Nth is finished as
+        """The engine's frames of a slice up to the Nth item; a request that is the Nth is finished as
         Pairer.finish finishes the request it awaits an answer for when the capture ends."""
         left = self.left
         assert left is not None
@@ -145,7 +145,7 @@ class LivePath:
     def _cut_framed(self, items: list[Item]) -> list[Item]:
         """The Python framer's items up to the Nth frame, as CaptureThread.deliver keeps them."""
         assert self.left is not None
-        kept, self.left = up_to_frames(items, self.left)
+        kept, self.left = up_to_items(items, self.left)
         if self.left <= 0:
             self.done = True
         return kept

@@ -40,7 +40,7 @@ from collections.abc import Iterator
 import serial
 
 from dissector.errors import ExitStatus, LiveError, PortVanished
-from dissector.model import Chunk, Frame, Item, Stamp, up_to_frames
+from dissector.model import Chunk, Frame, Item, Stamp, up_to_items
 from dissector.pipeline import Framer
 from dissector.render.capturefile import CaptureOutput, noise_comment
 from dissector.render.describe import count_text
@@ -265,9 +265,9 @@ class CaptureThread:
     def deliver(self, items: list[Item], safe: float | None) -> bool:
         """Write, then hand on; False once --count frames are written."""
         if self.count is not None:
-            items = up_to_frames(items, self.count - self.frames)[0]
+            items = up_to_items(items, self.count - self.frames)[0]
         self.files.items(items)
-        self.frames += sum(isinstance(item, Frame) for item in items)
+        self.frames += len(items)  # (-c counts items: frames and noise runs)
         self.handoff.put(items, safe)
         return self.count is None or self.frames < self.count
 

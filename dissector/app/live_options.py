@@ -62,7 +62,7 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
     group.add_argument(
         "-c", "--count", type=positive_int, metavar="N",
-        help="stop after N frames (live, or shown from files: after -Y), as tshark -c",
+        help="stop after N items, frames and noise runs alike (live, or shown from files: after -Y), as tshark -c counts packets",
     )
     group.add_argument(
         "--detect", nargs="?", type=positive_seconds, const=2.0, metavar="SECONDS",

@@ -69,7 +69,7 @@ def decode_one(chunks: Iterable[Chunk], mode: str, timed: bool, fix: Fix, dissec
             return  # pcap, pcapng: the compiled path
         if counted_only(sinks) and timedpath.count_input(chunks, dissector, sinks, annotate, warn):
             return  # --stats, --report of a pcap counted in the engine
-        # (-c N: the engine is given only bytes that cannot hold the Nth frame, framespath._Counted)
+        # (-c N: the engine is given only bytes that cannot hold the Nth item, framespath._Counted)
         if framespath.decode(chunks, dissector, sinks, annotate, warn):
             return  # framed in C, shown by Python
     decode_chunks(chunks, dissector, sinks, warn, fix or (lambda items: items))

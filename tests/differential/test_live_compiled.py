@@ -197,16 +197,23 @@ def test_count_cut_where_the_python_stages_cut(output: int, tmp_path: Path) -> N
     capture's frames, the whole capture."""
     tape = write_tape(tmp_path / "plant.tape", plant_mix(600, seed=3 + output), seed=3 + output, damage=0.05)
     rng = random.Random(output)
-    total = None  # frames in the capture
+    total = total_items = None  # frames, items in the capture (-c 2000: all of it)
     for count in [2000, 1, 2, 3, 50, 51] + [rng.randint(4, 560) for _ in range(4)]:
         options = ["-c", str(count), *COUNT_OUTPUTS[output]] + (PLANT if count % 2 else [])
         python_out, python_err, _none = decode(tape, options, True)
         engine_out, engine_err, engine_frames = decode(tape, options, False)
         assert engine_frames >= min(count, 100) // 4
         assert (engine_out, engine_err) == (python_out, python_err)
+        # -c counts items, frames and noise runs alike (-V: "Frame N:" and "Item N: noise" headings).
+        items = len(re.findall(r"^(?:Frame|Item) \d+: ", python_out, re.M)) if output == 1 else None
+        if output == 2:
+            items = python_out.count("\n")
         frames = int(re.search(r"vw3-decode: (\d+) frames?", python_err.splitlines()[-1]).group(1))
         total = total or frames
-        assert frames == min(count, total) and total > 560
+        assert frames <= min(count, total) and total > 560
+        if items is not None:
+            total_items = total_items or items
+            assert items == min(count, total_items) and total_items >= total
         if count == 1 and output == 0:
             assert python_out.count("\n") == 1 and "[no response]" in python_out, python_out
 
@@ -232,7 +239,7 @@ def test_count_written_files(tmp_path: Path) -> None:
 @pytest.mark.parametrize("pure", [False, True], ids=["engine-live", "python-live"])
 def test_pty_count_capture_replayed_by_the_other_side(pure: bool, tmp_path: Path) -> None:
     """A live capture on a pseudo-terminal stopped by -c 40 (not by SIGINT), its reads replayed by the other
-    side: the same 40 frames. The engine, holding a request until its answer, reads further than the
+    side: the same 40 items. The engine, holding a request until its answer, reads further than the
     Python stages' capture thread: the tape it leaves holds more, the Python replay cuts at the same frame."""
     tape = tmp_path / "pty.tape"
     options = ["--timeout", "0.2", "-c", "40", "-V"]
@@ -242,4 +249,5 @@ def test_pty_count_capture_replayed_by_the_other_side(pure: bool, tmp_path: Path
     assert max(live_engine, engine) >= 10
     assert out == live_out
     assert err == live_err
-    assert "vw3-decode: 40 frames" in err
+    # -c counts items: frames and noise runs ("Frame N:" and "Item N: noise" headings of -V).
+    assert len(re.findall(r"^(?:Frame|Item) \d+: ", out, re.M)) == 40

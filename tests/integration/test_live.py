@@ -256,6 +256,26 @@ def test_count_and_plain_lines(tmp_path: Path) -> None:
     assert stderr.startswith("vw3-decode: 3 frames (2 requests, 1 response, 0 exceptions)")
 
 
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
+def test_count_counts_noise_runs_as_items(pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    """-c counts items, frames and noise runs alike, as a file decode's -c and tshark -c (packets)."""
+    if pure:
+        monkeypatch.setenv("VW3_PURE_PYTHON", "1")
+    bus = Bus()
+    sniffer = Sniffer.start(bus.c_path, "--baud", "115200", "--count", "3", "--json")
+    try:
+        os.write(bus.c, bytes.fromhex("ff ff ff ff"))  # line noise before the first frame
+        time.sleep(0.1)  # a silence: the run is closed as noise
+        our_master(bus.a_slave, 2, seed=11)
+        status, stderr = sniffer.wait()
+    finally:
+        bus.close()
+    assert status == 0, stderr
+    kinds = [json.loads(line)["kind"] for _, line in sniffer.lines]
+    assert kinds == ["noise", "request", "response"]
+    assert stderr.startswith("vw3-decode: 2 frames (1 request, 1 response, 0 exceptions)"), stderr
+
+
 def test_flush_idle_keeps_pairing() -> None:
     request = with_crc(bytes.fromhex("01 03 00 6B 00 01".replace(" ", "")))
     response = with_crc(bytes.fromhex("01 03 02 00 2A".replace(" ", "")))
