@@ -3310,19 +3310,64 @@ for code, rules in pairs(RULES) do
 end
 local NO_INTERPRETATION = {}
 
-local function interpretations(st, slave, code)
-  if st.expect == slave * 256 + code then return AS_RESPONSE[code] or NO_INTERPRETATION end
+-- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited, as far as they have come?
+local function echo_at(echo, b, i, n)
+  for k = 1, #echo do
+    local at = i + 1 + k
+    if at >= n then return true end
+    if b[at] ~= echo[k] then return false end
+  end
+  return true
+end
+
+-- Do the bytes at b[i] begin the answer awaited (rtu.py _awaited): its slave and function (an exception's
+-- too) and, for a normal answer, what the spec has it repeat of the request (st.echo, kept by await_echo:
+-- DATA.pairing.echo, an FC8 sub-function)? An FC8 frame that does not is the master's next request.
+local function awaited(st, b, i, n)
+  local code = b[i + 1]
+  if st.expect ~= b[i] * 256 + code % 128 then return false end
+  local echo = st.echo
+  return echo == nil or echo.expect ~= st.expect or code >= 128 or echo_at(echo, b, i, n)
+end
+
+-- The interpretations at b[i], likeliest first. Without the bytes (b nil: feed_whole, classify_ascii) an
+-- echo awaited cannot be weighed: none then, and the general path frames the record.
+local function interpretations(st, slave, code, b, i, n)
+  if st.expect == slave * 256 + code then
+    local echo = st.echo
+    if echo ~= nil and echo.expect == st.expect then
+      if b == nil then return NO_INTERPRETATION end
+      if not echo_at(echo, b, i, n) then return AS_REQUEST[code] or NO_INTERPRETATION end
+    end
+    return AS_RESPONSE[code] or NO_INTERPRETATION
+  end
   return AS_REQUEST[code] or NO_INTERPRETATION
+end
+
+-- What the answer awaited after `frame` must repeat of it (st.echo: DATA.pairing.echo's data bytes, an
+-- FC8 sub-function), kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation
+-- (vw3.stream's expect_after, the quick lanes), with the expectation it was kept for: a later request of
+-- another code, which does not call this, leaves it aside (echo.expect: awaited).
+local ECHO_CODES = DATA.pairing.echo
+local function await_echo(st, frame)
+  local count = ECHO_CODES[frame.fn]
+  if st.expect == nil or frame.data_len < count then
+    st.echo = nil
+    return
+  end
+  local echo, b, at = { expect = st.expect }, frame.b, frame.data_at
+  for k = 1, count do echo[k] = b[at + k - 1] end
+  st.echo = echo
 end
 
 -- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?
 local function possible_start(code)
   return AS_REQUEST[code] ~= nil
 end
-M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE, M.MIN_ADU = EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE, MIN_ADU
-M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = NEED, NOISE, NOISE_ITEM_MAX, NONE
-M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.data_bytes = NO_INTERPRETATION, REQUEST, RESPONSE, data_bytes
-M.interpretations, M.possible_start = interpretations, possible_start
+M.ECHO_CODES, M.EXCEPTION, M.FRAMING, M.MAX_ADU, M.MAX_SLAVE = ECHO_CODES, EXCEPTION, FRAMING, MAX_ADU, MAX_SLAVE
+M.MIN_ADU, M.NEED, M.NOISE, M.NOISE_ITEM_MAX, M.NONE = MIN_ADU, NEED, NOISE, NOISE_ITEM_MAX, NONE
+M.NO_INTERPRETATION, M.REQUEST, M.RESPONSE, M.await_echo = NO_INTERPRETATION, REQUEST, RESPONSE, await_echo
+M.awaited, M.data_bytes, M.interpretations, M.possible_start = awaited, data_bytes, interpretations, possible_start
 end
 
 -- ---- vw3.stream: lua/src/stream.lua ----
@@ -3465,11 +3510,12 @@ package.preload["vw3.rtu"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE
-local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
-local RESPONSE, add_noise, boundary_at, crc16, crc_ok_at = RESPONSE, add_noise, boundary_at, crc16, crc_ok_at
-local crc_scan, crc_string_ok, emit, format = crc_scan, crc_string_ok, emit, format
-local interpretations, math, possible_start, table, time_at = interpretations, math, possible_start, table, time_at
+local DATA, ECHO_CODES, EXCEPTION, FRAMING, GLITCH, MAX_ADU = DATA, ECHO_CODES, EXCEPTION, FRAMING, GLITCH, MAX_ADU
+local MAX_SLAVE, MIN_ADU, NEED, NONE, NO_INTERPRETATION = MAX_SLAVE, MIN_ADU, NEED, NONE, NO_INTERPRETATION
+local REQUEST, RESPONSE, add_noise, await_echo, awaited = REQUEST, RESPONSE, add_noise, await_echo, awaited
+local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
+local crc_string_ok, emit, format, interpretations, math = crc_string_ok, emit, format, interpretations, math
+local possible_start, table, time_at = possible_start, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = format(DATA.rules.texts.no_frame.format), format(DATA.rules.texts.too_short.format)
@@ -3483,7 +3529,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   end
   local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
   local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
-  local list = interpretations(s, slave, b[i + 1])
+  local list = interpretations(s, slave, b[i + 1], b, i, n)
   for index = 1, #list do
     local length, is_scan = list[index][2](b, i, n)
     if is_scan then
@@ -3646,8 +3692,8 @@ end
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
   local slave, code = b[i], b[i + 1]
-  if s.expect ~= slave * 256 + code % 128 then return nil end
-  local first = interpretations(s, slave, code)[1]
+  if not awaited(s, b, i, n) then return nil end
+  local first = interpretations(s, slave, code, b, i, n)[1]
   if first == nil then return nil end
   local length, is_scan, declared = first[2](b, i, n)
   if is_scan then
@@ -3682,7 +3728,8 @@ local function match(s, b, i, n, final)
     if after then return NONE end
   end
   local valid, damaged, waiting = nil, nil, nil
-  local list = interpretations(s, slave, code)
+  local list = interpretations(s, slave, code, b, i, n)
+  local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
     local length, is_scan, declared = list[index][2](b, i, n)
@@ -3711,7 +3758,7 @@ local function match(s, b, i, n, final)
     local kind, length = valid[1][1], valid[1][2]
     -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
     -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
-    local expected = kind == RESPONSE and s.expect == slave * 256 + code
+    local expected = kind == RESPONSE and awaits
     if not expected and not boundary_at(s, i + length) and waiting ~= nil then
       for index = 1, #waiting do
         if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
@@ -3735,7 +3782,7 @@ local function match(s, b, i, n, final)
     for index = 1, #valid do
       if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
     end
-    if s.expect == slave * 256 + code and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
+    if awaits and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
     for index = 1, #valid do
       local following = valid_frame_at(s, b, i + valid[index][2], n, final)
       if following == nil then return NEED end
@@ -3758,7 +3805,7 @@ local function match(s, b, i, n, final)
   -- intact frame that follows it).
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
-    local following = followed(s, b, i + length, n, final, s.expect == slave * 256 + code % 128)
+    local following = followed(s, b, i + length, n, final, awaits)
     if following == nil then return NEED end
     if following then
       local inside = intact_inside(s, b, i, length, n, final)
@@ -3819,7 +3866,7 @@ local function run_rtu(s, final, items)
       return n
     end
     local slave, code = b[i], b[i + 1]
-    local first = interpretations(s, slave, code)[1]
+    local first = interpretations(s, slave, code, b, i, n)[1]
     if first == nil then
       -- No frame starts here: skip to the next byte pair that could start one.
       local stop = i + 1
@@ -3848,7 +3895,7 @@ local function run_rtu(s, final, items)
         end
         kind, length, crc_ok = match(s, b, i, n, final)
         if kind == NEED then break end
-        if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
+        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
             and not anchored(s, i) then
           -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
           -- such a frame counts only when the line confirms it (rtu.py _confirmed).
@@ -3862,7 +3909,9 @@ local function run_rtu(s, final, items)
         i = i + 1
       else
         local offset = s.base + i
-        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
+        emit(s, frame, items)
+        if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
         i = i + length
       end
     end
@@ -6275,15 +6324,16 @@ package.preload["vw3.records"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.records"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE = CONFIRMED, DATA, FRAMING, KIND_NUMBER, MODE_SAMPLE
-local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
-local annotate_with, bit_slot, build_device, crc_slot = annotate_with, bit_slot, build_device, crc_slot
-local crc_string_ok, data_bytes, decode_frame, detect_mode = crc_string_ok, data_bytes, decode_frame, detect_mode
-local device_for, device_now, feed, feed_whole, head_slot = device_for, device_now, feed, feed_whole, head_slot
-local ipairs, lane, math, new_state, next, pack, pair = ipairs, lane, math, new_state, next, pack, pair
-local pairs, pcall, put_flat, release_run, remember_writes = pairs, pcall, put_flat, release_run, remember_writes
-local run_slot, span_slot, story, string, string_of = run_slot, span_slot, story, string, string_of
-local takes_whole, tostring, type, whole_crc_good = takes_whole, tostring, type, whole_crc_good
+local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER
+local MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST = MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST
+local RESPONSE, annotate_with, await_echo, bit_slot = RESPONSE, annotate_with, await_echo, bit_slot
+local build_device, crc_slot, crc_string_ok, data_bytes = build_device, crc_slot, crc_string_ok, data_bytes
+local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
+local feed, feed_whole, head_slot, ipairs, lane, math = feed, feed_whole, head_slot, ipairs, lane, math
+local new_state, next, pack, pair, pairs, pcall, put_flat = new_state, next, pack, pair, pairs, pcall, put_flat
+local release_run, remember_writes, run_slot, span_slot = release_run, remember_writes, run_slot, span_slot
+local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
+local whole_crc_good = whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -6667,6 +6717,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, crc, crc,
     time
   f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
+  if ECHO_CODES[code] then await_echo(st, f) end -- (what its answer must repeat, an FC8 sub-function)
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
   f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
@@ -6702,6 +6753,7 @@ dissect_record = function(st, bytes, time, number)
     local frame
     frame, built = feed_whole(st, bytes, time)
     if frame ~= nil then
+      if ECHO_CODES[frame.fn] then await_echo(st, frame) end -- (what its answer must repeat)
       local record = { frame }
       st.last = record
       frame.number, frame.record = st.count, number -- (counted by feed_whole)

@@ -5,7 +5,8 @@ and expects no answer. A request the spec has no server answer (data/modbus.toml
 never_answered: FC8 04 Force Listen Only Mode) is noted as such and never unanswered, though an
 exception (from a server that does not support it) still answers it. A response answers the open
 request of its slave and function when it echoes what the spec has it echo ([pairing] echo: an FC8
-answer's sub-function); one that does not answers nothing. A request followed by another request (or
+answer's sub-function); one that does not answers nothing (the RTU framer weighs the echo already and
+frames such an FC8 frame as the master's next request: RtuFramer._awaited). A request followed by another request (or
 by the end of the capture) was not answered. With `hold=True` (files), a request is held back until
 the next frame tells whether it was answered, so its own line can say so, as tshark's second pass
 would. With `hold=False`, every item is released at once, and the next request carries the note

@@ -12,11 +12,12 @@ disagree, as in the Altivar 212 manual's example...), and the CRC confirms the c
 come first: a CRC-only framer accepts `01 04 02 03 01 78` as a frame because that 6-byte prefix of the
 7-byte response `01 04 02 03 01 78 00` happens to carry a valid CRC. Where both a request and a
 response layout fit, the expectation decides: after a request to slave S with function F, a frame
-from S with F is its response. Function codes whose data has no length rule (FC8 sub-function 0,
-FC43 MEI 13, user-defined and vendor codes) are found by scanning for the shortest length with a
-valid CRC, and an FC43/14 object list that does not end in a valid CRC (a device that declares more
-objects than it sends) by one from its start. Any address is framed: 248..255 are reserved (pymodbus uses 254 and 255), the decoder
-warns.
+from S with F is its response, if it repeats what the spec has an answer echo ([pairing] echo: an FC8
+sub-function; an FC8 frame that does not is the master's next request, the same shape). Function
+codes whose data has no length rule (FC8 sub-function 0, FC43 MEI 13, user-defined and vendor codes)
+are found by scanning for the shortest length with a valid CRC, and an FC43/14 object list that does
+not end in a valid CRC (a device that declares more objects than it sends) by one from its start.
+Any address is framed: 248..255 are reserved (pymodbus uses 254 and 255), the decoder warns.
 
 CRC-16/MODBUS has no final XOR, so a frame whose CRC high byte is 00 (1 frame in 256) also checks
 without that last byte, and any frame followed by a 00 checks one byte longer: when two layouts
@@ -88,7 +89,7 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     _RESPONSE_FIRST_FAST,
 )
 from dissector.framing.stream import GLITCH_BYTES, StreamFramer
-from dissector.protocol.rules import awaits_answer, text
+from dissector.protocol.rules import text
 
 # Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
@@ -99,8 +100,23 @@ class RtuFramer(StreamFramer):
 
     mode = "rtu"
 
-    def _interpretations(self, slave: int, function: int) -> tuple[tuple[Kind, LengthRule], ...]:
-        return interpretations(slave, function, self._expect)
+    def _awaited(self, buf: bytearray, i: int) -> bool:
+        """Do the bytes at i begin the answer awaited: its slave and function (an exception's too) and, for a
+        normal answer, what the spec has it repeat of the request (_echo, [pairing] echo: an FC8
+        sub-function, as far as its bytes have come)? An FC8 frame that does not is the master's next
+        request: an FC8 request and its answer have the same shape (decode/pairing.py pairs it so too)."""
+        function = buf[i + 1]
+        if self._expect != (buf[i], function & 0x7F):
+            return False
+        echo = self._echo
+        if not echo or function & 0x80:
+            return True
+        got = buf[i + 2 : i + 2 + len(echo)]
+        return got == echo[: len(got)]
+
+    def _interpretations(self, buf: bytearray, i: int) -> tuple[tuple[Kind, LengthRule], ...]:
+        """(rules.py interpretations, with the echo weighed: _awaited)"""
+        return (RESPONSE_FIRST if self._awaited(buf, i) else REQUEST_FIRST).get(buf[i + 1], ())
 
     def _valid_frame_at(
         self, buf: bytearray, i: int, n: int, final: bool, scan: bool = True
@@ -111,9 +127,8 @@ class RtuFramer(StreamFramer):
         """
         if n - i < MIN_ADU:
             return None if not final else (i == n)
-        slave, function = buf[i], buf[i + 1]
         undecided = False  # a CRC scan found nothing yet, but a longer frame may still arrive
-        for _kind, rule in self._interpretations(slave, function):
+        for _kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
             if type(length) is Scan:
                 if scan:
@@ -228,7 +243,8 @@ class RtuFramer(StreamFramer):
         valid: list[tuple[Kind, int]] = []
         damaged: list[tuple[Kind, int]] = []
         waiting: list[int] = []  # lengths of layouts whose bytes have not all arrived (NEED: unknown)
-        for kind, rule in self._interpretations(slave, function):
+        awaited = self._awaited(buf, i)
+        for kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
             if type(length) is Scan:
                 found = self._scan(buf, i, n, length, final)
@@ -255,7 +271,7 @@ class RtuFramer(StreamFramer):
             # CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one
             # byte longer. Unless this is the answer awaited (preferred below too, whatever follows),
             # wait when a layout one byte longer may still arrive.
-            expected = kind is Kind.RESPONSE and self._expect == (slave, function)
+            expected = kind is Kind.RESPONSE and awaited
             if (
                 not expected
                 and not self._boundary_at(i + length)  # the record ends here: nothing longer
@@ -278,7 +294,7 @@ class RtuFramer(StreamFramer):
             for kind, length in valid:
                 if self._boundary_at(i + length):
                     return (kind, length, True)
-            if self._expect == (slave, function) and valid[0][0] is Kind.RESPONSE:
+            if awaited and valid[0][0] is Kind.RESPONSE:
                 # The answer awaited beats a reading one byte longer that the 00 after it makes check;
                 # it is also what the shortcut above takes when the 00 has not arrived yet.
                 return (*valid[0], True)
@@ -306,7 +322,7 @@ class RtuFramer(StreamFramer):
         # (a cut frame must not swallow the intact frame that follows it).
         for kind, length in damaged:
             # (the end of the input says little of a damaged frame: the awaited answer's only)
-            following = self._followed(buf, i + length, n, final, self._expect == (slave, function & 0x7F))
+            following = self._followed(buf, i + length, n, final, awaited)
             if following is None:
                 return NEED
             if following:
@@ -321,9 +337,9 @@ class RtuFramer(StreamFramer):
     def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:
         """At the end of the input: do bytes i..n begin the answer awaited, cut by the end of the
         capture? The reason to show them with, or None."""
-        if n - i < 2 or self._expect != (buf[i], buf[i + 1] & 0x7F):
+        if n - i < 2 or not self._awaited(buf, i):
             return None
-        choices = self._interpretations(buf[i], buf[i + 1])
+        choices = self._interpretations(buf, i)
         if not choices:
             return None
         kind, rule = choices[0]
@@ -378,9 +394,11 @@ class RtuFramer(StreamFramer):
             # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
             slave = buf[i]
             function = buf[i + 1]
-            first = (
-                _RESPONSE_FIRST_FAST if self._expect == (slave, function) else _REQUEST_FIRST_FAST
-            ).get(function)
+            # (the answer awaited: its slave and function, and its echo where one is due, _awaited)
+            awaited = self._expect == (slave, function & 0x7F) and (
+                not self._echo or function & 0x80 or self._awaited(buf, i)
+            )
+            first = (_RESPONSE_FIRST_FAST if awaited else _REQUEST_FIRST_FAST).get(function)
             if first is None:
                 # No frame starts here: skip at C speed to the next byte pair that could start one.
                 found = _POSSIBLE_START.search(buf, i + 1)
@@ -390,7 +408,7 @@ class RtuFramer(StreamFramer):
                 continue
             if (
                 not self._noise
-                and (first[0] is not Kind.EXCEPTION or self._expect == (slave, function & 0x7F))
+                and (first[0] is not Kind.EXCEPTION or awaited)
                 and slave not in GLITCH_ADDRESSES  # (weighed by _match: a glitch byte before a frame?)
             ):
                 kind, length, rule = first
@@ -414,11 +432,8 @@ class RtuFramer(StreamFramer):
                                 crc,
                             )
                         )
-                        if kind is Kind.REQUEST:
-                            # (awaits_answer: not a broadcast, not a request the spec has no server answer)
-                            self._expect = (slave, function) if awaits_answer(items[-1]) else None
-                        else:
-                            self._expect = None
+                        # (awaits_answer: not a broadcast, not a request the spec has no server answer)
+                        self._await_after(items[-1])
                         self._noise_cut = False
                         i += length
                         continue
@@ -436,7 +451,7 @@ class RtuFramer(StreamFramer):
                 i += 1
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
-            awaited = kind is not Kind.REQUEST and self._expect == (slave, function & 0x7F)
+            awaited = awaited and kind is not Kind.REQUEST
             if crc_ok and not awaited and not self._anchored(i):
                 # Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout
                 # tried, so such a frame counts only when the line confirms it (_confirmed).

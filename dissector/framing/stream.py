@@ -6,7 +6,7 @@ from abc import ABC, abstractmethod
 
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, silence_before
 from dissector.model import Chunk, Frame, Item, Kind, Noise
-from dissector.protocol.rules import awaits_answer
+from dissector.protocol.rules import awaits_answer, echoed
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
 # What a short low pulse on an idle line reads as: a start bit, k zero bits, then ones (FF << k). A bus
@@ -50,6 +50,9 @@ class StreamFramer(ABC):
         # a frame one byte longer (both check: CRC-16/MODBUS has no final XOR).
         self._glitch_runs = 0
         self._expect: tuple[int, int] | None = None  # (slave, function) awaiting a response
+        # What its normal answer repeats of the request ([pairing] echo, an FC8 sub-function; b"": nothing or not
+        # known, after a hand-over): a frame of that slave and function that does not is the master's next request.
+        self._echo = b""
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
 
@@ -104,6 +107,7 @@ class StreamFramer(ABC):
         self._times = []
         self._boundaries = set()
         self._expect = expect
+        self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._glitches_only = True
         self._noise_cut = False
 
@@ -203,8 +207,13 @@ class StreamFramer(ABC):
         self._flush_noise(items)
         self._noise_cut = False
         items.append(frame)
-        if frame.kind is Kind.REQUEST:
-            self._expect = (frame.slave, frame.function) if awaits_answer(frame) else None
+        self._await_after(frame)
+
+    def _await_after(self, frame: Frame) -> None:
+        """The answer a frame leaves awaited: a request's that awaits one, with what it must echo; else none."""
+        if frame.kind is Kind.REQUEST and awaits_answer(frame):
+            self._expect = (frame.slave, frame.function)
+            self._echo = echoed(frame)
         else:
             self._expect = None
 

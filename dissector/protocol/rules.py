@@ -202,6 +202,13 @@ def awaits_answer(frame: Frame) -> bool:
     return frame.slave != 0 and not (len(pdu) >= 3 and pdu[1] << 8 | pdu[2] in values)
 
 
+def echoed(request: Frame) -> bytes:
+    """The data bytes of a request its answer must repeat ([pairing] echo: an FC8 sub-function); b"": none.
+    The framer's expectation holds them: a frame that does not repeat them is not the answer awaited."""
+    count = ECHO.get(request.function)
+    return request.pdu[1 : 1 + count] if count is not None else b""
+
+
 def echoes(request: Frame, answer: Frame) -> bool:
     """Does a normal answer repeat what the spec has it repeat of its request (an FC8 sub-function)?"""
     count = ECHO.get(request.function)

@@ -106,9 +106,54 @@ for code, rules in pairs(RULES) do
 end
 local NO_INTERPRETATION = {}
 
-local function interpretations(st, slave, code)
-  if st.expect == slave * 256 + code then return AS_RESPONSE[code] or NO_INTERPRETATION end
+-- Do the bytes from b[i] (up to b[n - 1]) repeat the echo awaited, as far as they have come?
+local function echo_at(echo, b, i, n)
+  for k = 1, #echo do
+    local at = i + 1 + k
+    if at >= n then return true end
+    if b[at] ~= echo[k] then return false end
+  end
+  return true
+end
+
+-- Do the bytes at b[i] begin the answer awaited (rtu.py _awaited): its slave and function (an exception's
+-- too) and, for a normal answer, what the spec has it repeat of the request (st.echo, kept by await_echo:
+-- DATA.pairing.echo, an FC8 sub-function)? An FC8 frame that does not is the master's next request.
+local function awaited(st, b, i, n)
+  local code = b[i + 1]
+  if st.expect ~= b[i] * 256 + code % 128 then return false end
+  local echo = st.echo
+  return echo == nil or echo.expect ~= st.expect or code >= 128 or echo_at(echo, b, i, n)
+end
+
+-- The interpretations at b[i], likeliest first. Without the bytes (b nil: feed_whole, classify_ascii) an
+-- echo awaited cannot be weighed: none then, and the general path frames the record.
+local function interpretations(st, slave, code, b, i, n)
+  if st.expect == slave * 256 + code then
+    local echo = st.echo
+    if echo ~= nil and echo.expect == st.expect then
+      if b == nil then return NO_INTERPRETATION end
+      if not echo_at(echo, b, i, n) then return AS_REQUEST[code] or NO_INTERPRETATION end
+    end
+    return AS_RESPONSE[code] or NO_INTERPRETATION
+  end
   return AS_REQUEST[code] or NO_INTERPRETATION
+end
+
+-- What the answer awaited after `frame` must repeat of it (st.echo: DATA.pairing.echo's data bytes, an
+-- FC8 sub-function), kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation
+-- (vw3.stream's expect_after, the quick lanes), with the expectation it was kept for: a later request of
+-- another code, which does not call this, leaves it aside (echo.expect: awaited).
+local ECHO_CODES = DATA.pairing.echo
+local function await_echo(st, frame)
+  local count = ECHO_CODES[frame.fn]
+  if st.expect == nil or frame.data_len < count then
+    st.echo = nil
+    return
+  end
+  local echo, b, at = { expect = st.expect }, frame.b, frame.data_at
+  for k = 1, count do echo[k] = b[at + k - 1] end
+  st.echo = echo
 end
 
 -- Can a frame start with this function code (any address before it: rules.py _POSSIBLE_START)?

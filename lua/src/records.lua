@@ -386,6 +386,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   f.kind, f.offset, f.length, f.slave, f.fn, f.crc, f.crc_expected, f.time = REQUEST, offset, n, slave, code, crc, crc,
     time
   f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
+  if ECHO_CODES[code] then await_echo(st, f) end -- (what its answer must repeat, an FC8 sub-function)
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
   f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
@@ -421,6 +422,7 @@ dissect_record = function(st, bytes, time, number)
     local frame
     frame, built = feed_whole(st, bytes, time)
     if frame ~= nil then
+      if ECHO_CODES[frame.fn] then await_echo(st, frame) end -- (what its answer must repeat)
       local record = { frame }
       st.last = record
       frame.number, frame.record = st.count, number -- (counted by feed_whole)

@@ -16,7 +16,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   end
   local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
   local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
-  local list = interpretations(s, slave, b[i + 1])
+  local list = interpretations(s, slave, b[i + 1], b, i, n)
   for index = 1, #list do
     local length, is_scan = list[index][2](b, i, n)
     if is_scan then
@@ -179,8 +179,8 @@ end
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
   local slave, code = b[i], b[i + 1]
-  if s.expect ~= slave * 256 + code % 128 then return nil end
-  local first = interpretations(s, slave, code)[1]
+  if not awaited(s, b, i, n) then return nil end
+  local first = interpretations(s, slave, code, b, i, n)[1]
   if first == nil then return nil end
   local length, is_scan, declared = first[2](b, i, n)
   if is_scan then
@@ -215,7 +215,8 @@ local function match(s, b, i, n, final)
     if after then return NONE end
   end
   local valid, damaged, waiting = nil, nil, nil
-  local list = interpretations(s, slave, code)
+  local list = interpretations(s, slave, code, b, i, n)
+  local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
     local length, is_scan, declared = list[index][2](b, i, n)
@@ -244,7 +245,7 @@ local function match(s, b, i, n, final)
     local kind, length = valid[1][1], valid[1][2]
     -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
     -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
-    local expected = kind == RESPONSE and s.expect == slave * 256 + code
+    local expected = kind == RESPONSE and awaits
     if not expected and not boundary_at(s, i + length) and waiting ~= nil then
       for index = 1, #waiting do
         if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
@@ -268,7 +269,7 @@ local function match(s, b, i, n, final)
     for index = 1, #valid do
       if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
     end
-    if s.expect == slave * 256 + code and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
+    if awaits and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
     for index = 1, #valid do
       local following = valid_frame_at(s, b, i + valid[index][2], n, final)
       if following == nil then return NEED end
@@ -291,7 +292,7 @@ local function match(s, b, i, n, final)
   -- intact frame that follows it).
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
-    local following = followed(s, b, i + length, n, final, s.expect == slave * 256 + code % 128)
+    local following = followed(s, b, i + length, n, final, awaits)
     if following == nil then return NEED end
     if following then
       local inside = intact_inside(s, b, i, length, n, final)
@@ -352,7 +353,7 @@ local function run_rtu(s, final, items)
       return n
     end
     local slave, code = b[i], b[i + 1]
-    local first = interpretations(s, slave, code)[1]
+    local first = interpretations(s, slave, code, b, i, n)[1]
     if first == nil then
       -- No frame starts here: skip to the next byte pair that could start one.
       local stop = i + 1
@@ -381,7 +382,7 @@ local function run_rtu(s, final, items)
         end
         kind, length, crc_ok = match(s, b, i, n, final)
         if kind == NEED then break end
-        if kind ~= NONE and crc_ok and (kind == REQUEST or s.expect ~= slave * 256 + code % 128)
+        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
             and not anchored(s, i) then
           -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
           -- such a frame counts only when the line confirms it (rtu.py _confirmed).
@@ -395,7 +396,9 @@ local function run_rtu(s, final, items)
         i = i + 1
       else
         local offset = s.base + i
-        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
+        emit(s, frame, items)
+        if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
         i = i + length
       end
     end

@@ -1,6 +1,6 @@
 """The plugin pairs FC8 as vw3-decode does (tests/unit/test_fc8_pairing.py, data/modbus.toml [pairing]):
 Force Listen Only Mode (08/04) awaits no answer and says so (an exception still answers it), an FC8 answer whose sub-function differs from
-its request's answers nothing. Real tshark with -X lua_script:lua/vw3.lua, -2 and one pass, every
+its request's is the master's next request. Real tshark with -X lua_script:lua/vw3.lua, -2 and one pass, every
 frame in a record of its own and the 08/04 sharing its record with the next request."""
 from __future__ import annotations
 
@@ -64,11 +64,23 @@ def test_an_exception_still_answers_listen_only(tmp_path: Path, two_pass: bool) 
     ]
 
 
-def test_answer_with_another_sub_function_answers_nothing(tmp_path: Path) -> None:
-    pcap = records(tmp_path / "echo.pcap", [RESTART, REGISTER_ANSWER, REGISTER_QUERY, REGISTER_ANSWER])
-    assert tshark(pcap, *FIELDS).splitlines() == [
-        "1;1;;;1;",
-        "2;2;;;;response without a matching request in the capture",
-        "1;2;;4;;",
-        "2;2;3;;;",
+RETURN_COUNT = rtu("01 08 000B 0000")  # Return Bus Message Count
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_a_frame_that_does_not_echo_the_sub_function_is_the_next_request(tmp_path: Path, two_pass: bool) -> None:
+    # 08/0B unanswered, then 08/02: the master's next request (not 08/0B's answer, which would echo 000B),
+    # and its answer pairs with it. Before: "response without a matching request", its answer a request.
+    pcap = records(tmp_path / "echo.pcap", [RETURN_COUNT, REGISTER_QUERY, REGISTER_ANSWER, RESTART, RESTART])
+    assert tshark(pcap, *FIELDS, two_pass=two_pass).splitlines() == [
+        "1;11;;;1;" if two_pass else "1;11;;;;",  # (one pass: its wait ends at the next request, not read yet)
+        "1;2;;3;;" if two_pass else "1;2;;;;",
+        "2;2;2;;;",
+        "1;1;;5;;" if two_pass else "1;1;;;;",
+        "2;1;4;;;",
     ]
+
+
+def test_the_echo_is_weighed_in_one_record(tmp_path: Path) -> None:
+    pcap = write_pcap(tmp_path / "one.pcap", [(RETURN_COUNT + REGISTER_QUERY + REGISTER_ANSWER, T0)])
+    assert tshark(pcap, *FIELDS).splitlines() == ["1,1,2;11,2,2;1;1;1;"]

@@ -1,8 +1,8 @@
 """FC8 pairing as the spec states it (data/modbus.toml [pairing]): Force Listen Only Mode (08/04) is never
 answered (Modbus Application Protocol 6.8.1: "No response is returned"), so it awaits nothing, is noted
 as such and is never unanswered, though an exception (a server that does not support it) still answers
-it; an FC8 answer echoes its request's sub-function, so one that does not
-answers nothing. Before, an 08/04 took the next FC8 request of its slave for its answer and every later
+it; an FC8 answer echoes its request's sub-function, so an FC8 frame that does not is no answer but the
+master's next request (requests and answers have the same shape). Before, an 08/04 took the next FC8 request of its slave for its answer and every later
 diagnostic of that slave shifted by one. Exact outputs for exact bytes, the summary, -V, --json, --stats
 and --report, under the compiled engine and the Python stages (VW3_PURE_PYTHON=1) alike."""
 from __future__ import annotations
@@ -86,14 +86,49 @@ def test_an_exception_still_answers_listen_only(monkeypatch: pytest.MonkeyPatch)
     ]
 
 
-def test_answer_with_another_sub_function_answers_nothing(monkeypatch: pytest.MonkeyPatch) -> None:
-    # 08/01 then an 08/02 answer: not 08/01's answer (it would echo 0001); the next 08/02 pair is unaffected.
-    assert lines(both(hexes(RESTART, REGISTER_ANSWER, REGISTER_QUERY, REGISTER_ANSWER), monkeypatch)) == [
-        "1 - 1 request Diagnostics 01h Restart Communications Option = 0 [no response] CRC ok",
-        "2 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [no request] "
-        "[response without a matching request in the capture] CRC ok",
-        "3 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
-        "4 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#3] CRC ok",
+RETURN_COUNT = rtu("01 08 000B 0000")  # 01 08 00 0B 00 00 91 C9: Return Bus Message Count
+
+
+@pytest.mark.parametrize("answer", [False, True])
+def test_a_frame_that_does_not_echo_the_sub_function_is_the_next_request(
+    answer: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # 08/0B unanswered, then 08/02: not 08/0B's answer (it would echo 000B) but the master's next request,
+    # the same shape (the framer weighs the echo, data/modbus.toml [pairing]); its answer pairs with it.
+    # Before, the 08/02 was "response [no request] [response without a matching request in the capture]"
+    # and its answer a request.
+    frames = (RETURN_COUNT, REGISTER_QUERY, REGISTER_ANSWER) if answer else (RETURN_COUNT, REGISTER_QUERY)
+    assert lines(both(hexes(*frames), monkeypatch)) == [
+        "1 - 1 request Diagnostics 0Bh Return Bus Message Count = 0 [no response] CRC ok",
+        *(["2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+           "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] CRC ok"] if answer else
+          ["2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 [no response] "
+           "[the capture ends before any response] CRC ok"]),
+    ]
+
+
+def test_the_echo_is_weighed_in_one_run_of_bytes_and_in_a_pcap(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # (framed in one go, the framer's expectation decides; a pcap's records, the same)
+    assert lines(both(["--hex", (RETURN_COUNT + REGISTER_QUERY + REGISTER_ANSWER).hex(" ")], monkeypatch)) == [
+        "1 - 1 request Diagnostics 0Bh Return Bus Message Count = 0 [no response] CRC ok",
+        "2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] CRC ok",
+    ]
+    pcap = capture(tmp_path / "echo.pcap", [RETURN_COUNT, REGISTER_QUERY, REGISTER_ANSWER, RESTART, RESTART])
+    assert lines(both([str(pcap)], monkeypatch)) == [
+        "1 0.000000 1 request Diagnostics 0Bh Return Bus Message Count = 0 [no response] CRC ok",
+        "2 0.010000 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        "3 0.020000 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2, 10.0 ms] CRC ok",
+        "4 0.030000 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "5 0.040000 1 response Diagnostics 01h Restart Communications Option = 0 [#4, 10.0 ms] CRC ok",
+    ]
+
+
+def test_an_answer_that_echoes_is_its_answer_whatever_its_data(monkeypatch: pytest.MonkeyPatch) -> None:
+    # The echo is the sub-function alone: 08/02's answer carries the register, not the request's 0000.
+    assert lines(both(hexes(REGISTER_QUERY, REGISTER_ANSWER), monkeypatch)) == [
+        "1 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        "2 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#1] CRC ok",
     ]
 
 
