@@ -3256,7 +3256,9 @@ end
 -- Walk the FC43/14 object list: its count at `position`, then (id, length, value) per object from `start`.
 -- Where the walk does not end in a valid CRC (past the bytes there or an RTU frame, or its CRC fails), a CRC
 -- scan from the list's start (start + 2, rules.py _mei_objects), with the walk's length (NEED: past the
--- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture.
+-- bytes) as a third value: the framer's damaged frame or answer cut by the end of the capture. A walk that
+-- ends where the bytes do (a record of one frame) gives its length and, fourth, the scan's minimum: the
+-- framer checks the CRC there once (feed_whole by the record's string) and scans where it fails.
 local function mei_objects(position, start)
   local minimum = start + 2
   return function(b, i, n)
@@ -3267,8 +3269,10 @@ local function mei_objects(position, start)
       stop = stop + 2 + b[i + stop + 1]
       if stop > MAX_ADU then return minimum, true, NONE end
     end
-    if i + stop + 2 <= n and crc_ok_at(b, i, stop + 2) then return stop + 2 end
-    return minimum, true, stop + 2
+    local length = stop + 2
+    if i + length == n and length <= MAX_ADU then return length, false, nil, minimum end
+    if i + length < n and crc_ok_at(b, i, length) then return length end
+    return minimum, true, length
   end
 end
 
@@ -3531,7 +3535,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
   local list = interpretations(s, slave, b[i + 1], b, i, n)
   for index = 1, #list do
-    local length, is_scan = list[index][2](b, i, n)
+    local length, is_scan, _, fallback = list[index][2](b, i, n)
     if is_scan then
       if scan ~= false then
         if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
@@ -3545,6 +3549,9 @@ local function valid_frame_at(s, b, i, n, final, scan)
         if not final then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
+      elseif fallback ~= nil and scan ~= false then -- (its rule's CRC scan where the CRC fails: as is_scan)
+        if crc_scan(b, i, fallback, math.min(n - i, MAX_ADU)) > 0 then return true end
+        undecided = undecided or (not final and n - i < MAX_ADU)
       end
     end
   end
@@ -3732,7 +3739,7 @@ local function match(s, b, i, n, final)
   local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
-    local length, is_scan, declared = list[index][2](b, i, n)
+    local length, is_scan, declared, fallback = list[index][2](b, i, n)
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
@@ -3749,6 +3756,15 @@ local function match(s, b, i, n, final)
         if not final then waiting = added(waiting, length) end
       elseif crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
+      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails: as is_scan above)
+        local found = scan_match(s, b, i, n, fallback, final)
+        if found == NEED then
+          waiting = added(waiting, NEED)
+        elseif found > 0 then
+          valid = added(valid, { kind, found })
+        else
+          damaged = added(damaged, { kind, length })
+        end
       else
         damaged = added(damaged, { kind, length })
       end

@@ -18,7 +18,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
   local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
   local list = interpretations(s, slave, b[i + 1], b, i, n)
   for index = 1, #list do
-    local length, is_scan = list[index][2](b, i, n)
+    local length, is_scan, _, fallback = list[index][2](b, i, n)
     if is_scan then
       if scan ~= false then
         if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
@@ -32,6 +32,9 @@ local function valid_frame_at(s, b, i, n, final, scan)
         if not final then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
+      elseif fallback ~= nil and scan ~= false then -- (its rule's CRC scan where the CRC fails: as is_scan)
+        if crc_scan(b, i, fallback, math.min(n - i, MAX_ADU)) > 0 then return true end
+        undecided = undecided or (not final and n - i < MAX_ADU)
       end
     end
   end
@@ -219,7 +222,7 @@ local function match(s, b, i, n, final)
   local awaits = awaited(s, b, i, n) -- (the answer awaited, its echo weighed)
   for index = 1, #list do
     local kind = list[index][1]
-    local length, is_scan, declared = list[index][2](b, i, n)
+    local length, is_scan, declared, fallback = list[index][2](b, i, n)
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
@@ -236,6 +239,15 @@ local function match(s, b, i, n, final)
         if not final then waiting = added(waiting, length) end
       elseif crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
+      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails: as is_scan above)
+        local found = scan_match(s, b, i, n, fallback, final)
+        if found == NEED then
+          waiting = added(waiting, NEED)
+        elseif found > 0 then
+          valid = added(valid, { kind, found })
+        else
+          damaged = added(damaged, { kind, length })
+        end
       else
         damaged = added(damaged, { kind, length })
       end

@@ -44,6 +44,18 @@ def test_in_one_record_with_the_next_request(tmp_path: Path) -> None:
     ]
 
 
+def test_a_walk_that_ends_with_the_record(tmp_path: Path) -> None:
+    # 147 bytes in the record, as many as the walk asks for: the plugin checks the CRC there once and scans
+    # where it fails (lua/src/layouts.lua's fourth value), as the Python stages do.
+    poll = rtu("02 03 0000 0001")
+    lines = fields(tmp_path / "record.pcap", [REQUEST, SHORT + poll * 16])
+    ones = ",".join(["1"] * 16)
+    assert lines == [
+        "1;;2;;;;;1",
+        f"2,{ones};1;;{ones};the capture ends before any response;{WARNING};ABC,XY;1,{ones}",
+    ]
+
+
 @pytest.mark.parametrize(("cut", "reason"), [(20, "20 of 24 bytes"), (15, "15 bytes of it")])
 def test_an_answer_cut_by_the_end_of_the_capture(tmp_path: Path, cut: int, reason: str) -> None:
     assert fields(tmp_path / "cut.pcap", [REQUEST, FULL[:cut]]) == [

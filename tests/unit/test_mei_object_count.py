@@ -77,6 +77,21 @@ def test_a_pcap_and_ascii(tmp_path: Path, pure: bool, monkeypatch: pytest.Monkey
 
 
 @pytest.mark.parametrize("pure", [False, True])
+def test_a_walk_that_ends_with_the_record(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The answer, then 16 reads of slave 2 in its record: 147 bytes, as many as the walk asks for (the CRC
+    # taken for a third object of 7E bytes); the CRC there fails, the scan finds the answer's end.
+    poll = rtu("02 03 0000 0001")
+    pcap = capture(tmp_path / "record.pcap", [bytes.fromhex(REQUEST), bytes.fromhex(SHORT) + poll * 16])
+    lines = decode([pcap], pure, monkeypatch)
+    assert lines[:3] == [
+        f"     1     0.000000   1 request   {ASKED}  CRC ok",
+        f"     2     0.050000   1 response  {ANSWER} [#1, 50.0 ms] {WARNING}  CRC ok",
+        "     3     0.050000   2 request   Read Holding Registers 0 [no response]  CRC ok",
+    ]
+    assert len(lines) == 18 and lines[-1].startswith("    18     0.050000   2 request   Read Holding Registers 0 ")
+
+
+@pytest.mark.parametrize("pure", [False, True])
 @pytest.mark.parametrize(("cut", "reason"), [
     (20, "20 of 24 bytes"),  # the walk's length known: 24
     (15, "15 bytes of it"),  # the third object's length byte not there: its length unknown
