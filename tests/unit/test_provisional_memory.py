@@ -1,0 +1,61 @@
+"""Reading once (standard input, live), the parameters read in frames named before profile `auto` chose
+the slave's device are remembered by that device once it is chosen (Annotator._recall): the frame that
+settles the profile says "became protected" as the file decode (two passes) and --watch do. Python
+stages and compiled engine."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from helpers import rtu, run_cli, use_engine
+
+# ATV71 reads of 8400..8402 (p.38: 16#8000 for a non-existent or protected parameter): CHCF = 3, then
+# 16#8000 in the answer that makes profile `auto` choose the drive (/tmp/hunter2/seq4.txt).
+SEQ4 = "0c0320d000030eef\n0c030680000003000217e4\n0c0320d000030eef\n0c0306800080000002ce24\n"
+NOTE = "[CHCF (8401) became protected: read 3 in frame #2, 16#8000 now]"
+FOURTH = ("     4            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected "
+          f"COP=Cd (command) [#3] {NOTE}  CRC ok")
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_stdin_tells_the_change_on_the_choosing_frame(monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    status, out, err = run_cli(["-"], stdin=SEQ4.encode())
+    assert status == 0, err
+    lines = out.splitlines()
+    assert lines[1].endswith("8400=32768 8401=3 8402=2 [#1] [provisional]  CRC ok")  # named before the choice
+    assert lines[3] == FOURTH
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_stdin_json_and_verbose_carry_it(monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    status, out, err = run_cli(["-", "--json"], stdin=SEQ4.encode())
+    assert status == 0, err
+    fourth = json.loads(out.splitlines()[3])
+    assert fourth["notes"] == [NOTE[1:-1]] or [note.get("text") for note in fourth["notes"]] == [NOTE[1:-1]]
+    status, out, err = run_cli(["-", "-V"], stdin=SEQ4.encode())
+    assert f"    Note: {NOTE[1:-1]}\n" in out.split("Frame 4:")[1]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_file_and_stdin_agree_after_the_choice(monkeypatch: pytest.MonkeyPatch, pure: bool, tmp_path) -> None:
+    """Writes confirmed in provisional frames (FC6 echo, FC16 answer) count as known values too, and a
+    parameter 16#8000 before the choice is not `became protected` after it."""
+    use_engine(monkeypatch, pure)
+    frames = [
+        rtu("0C 06 20 D1 00 03"), rtu("0C 06 20 D1 00 03"),  # write CHCF = 3 (echo)
+        rtu("0C 10 20 D2 00 01 02 00 02"), rtu("0C 10 20 D2 00 01"),  # write COP = 2 (answered)
+        rtu("0C 03 20 D0 00 03"), rtu("0C 03 06 8000 8000 8000"),  # 16#8000 at 8400: the choice
+    ]
+    data = b"".join(frames)
+    path = tmp_path / "seq.bin"
+    path.write_bytes(data)
+    _, two, _ = run_cli([str(path)])
+    _, one, _ = run_cli(["-"], stdin=data)
+    last = ("     6            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected "
+            "COP=protected [#5] [CHCF (8401) became protected: written 3 in frame #2, 16#8000 now] "
+            "[COP (8402) became protected: written 2 in frame #4, 16#8000 now]  CRC ok")
+    assert one.splitlines()[-1] == last
+    assert two.splitlines()[-1] == last
