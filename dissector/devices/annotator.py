@@ -177,8 +177,8 @@ class Annotator:
             if function in _READS:
                 for register in self.reread(frame) or ():
                     address = register.address
-                    if address is None or register.value is None or register.status == "ambiguous":
-                        continue
+                    if address is None or register.value is None or register.status in (None, "ambiguous"):
+                        continue  # (None: the profile has no 16#8000, and _annotate remembers no read then)
                     if register.status in ("protected", "non-existent"):
                         seen[address] = (None, number, register.status)
                     else:
