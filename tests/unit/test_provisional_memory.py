@@ -59,3 +59,16 @@ def test_file_and_stdin_agree_after_the_choice(monkeypatch: pytest.MonkeyPatch, 
             "[COP (8402) became protected: written 2 in frame #4, 16#8000 now]  CRC ok")
     assert one.splitlines()[-1] == last
     assert two.splitlines()[-1] == last
+
+
+def test_plugin_one_pass_tells_it_too(tmp_path) -> None:
+    """tshark without -2 reads once, as vw3-decode reads standard input: the same note on frame 4 (this
+    needs lua/src/selection.lua to hold and recall the provisional frames, as annotator.py does)."""
+    from lua_harness import run_tshark, write_pcap
+
+    records = [(bytes.fromhex(line), 1.0 + 0.05 * index) for index, line in enumerate(SEQ4.split())]
+    pcap = write_pcap(tmp_path / "seq4.pcap", records)
+    for two_pass in (False, True):
+        done = run_tshark(pcap, "-T", "fields", "-e", "vw3.note", two_pass=two_pass)
+        assert done.returncode == 0, done.stderr
+        assert done.stdout.splitlines() == ["", "", "", NOTE[1:-1]]
