@@ -349,11 +349,26 @@ def interpret_wide(definition: RegisterDef, first: int, second: int) -> tuple[fl
             value = int(value)
         text = f"{value:.{definition.decimals}f}"
     elif isinstance(value, float):
-        text = "nan" if value != value else f"{value:.7g}"  # float32 holds about 7 significant digits
+        text = float32_text(value)
     else:
         text = str(value)
     unit = definition.unit
     return value, text if unit is None else f"{text} {unit}"
+
+
+def float32_text(value: float) -> str:
+    """The fewest significant digits (1 to 9) that read back as the same float32, written as `%.7g`
+    writes them (no exponent below 1e7, trailing zeros dropped): two values that differ print differently
+    (%.7g alone gave `1` for both 16#3F800000 and 16#3F800001)."""
+    packed = struct.pack(">f", value)
+    for digits in range(1, 9):
+        text = f"{value:.{digits}g}"
+        try:
+            if struct.pack(">f", float(text)) == packed:
+                return f"{float(text):.{max(digits, 7)}g}"  # (the same digits: 50, not 5e+01)
+        except OverflowError:  # rounded past the largest float32 (3.4e+38 for 16#7F7FFFFF)
+            continue
+    return f"{value:.9g}"  # 9 digits always read back as the same float32
 
 
 def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, str | None]:
