@@ -174,32 +174,54 @@ local function interpret(row, value)
   return scaled_value(row, raw_value)
 end
 
+-- maps.float32_text: the fewest significant digits (1 to 9) that read back as the same float32, as %.7g
+-- writes them.
+-- `spacing`: the float32 spacing at the value, `below`: toward zero (half of it at a power of two), `even`:
+-- its last fraction bit is 0 (a text exactly half way reads back as the even one).
+local function float32_text(value, spacing, below, even)
+  for digits = 1, 8 do
+    local text = format("%." .. digits .. "g", value)
+    local gap = math.abs(tonumber(text)) - math.abs(value)
+    local half = (gap < 0 and below or spacing) / 2
+    if math.abs(gap) < half or (math.abs(gap) == half and even) then
+      if value == 0 then return text end -- (Lua 5.4 reads "-0" as the integer 0)
+      return format("%." .. math.max(digits, 7) .. "g", tonumber(text)) -- (the same digits: 50, not 5e+01)
+    end
+  end
+  return format("%.9g", value) -- (9 digits always read back as the same float32)
+end
+
 -- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
 local function interpret_wide(row, first, second)
   local high, low = first, second
   if row.swapped then high, low = second, first end
-  local value
+  local value, text
   if row.kind == "float32" then
     -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
     local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
     if high >= 0x8000 then sign = -1.0 end
     local exponent = floor(high / 128) % 256
     local fraction = (high % 128) * 65536 + low
+    local spacing = 2 ^ -149
     if exponent == 255 then
       if fraction ~= 0 then return nil, "nan" end
       return nil, sign > 0 and "inf" or "-inf" -- (no number JSON can hold)
     elseif exponent == 0 then
-      value = sign * fraction * 2 ^ -149
+      value = sign * fraction * spacing
     else
-      value = sign * (8388608 + fraction) * 2 ^ (exponent - 150)
+      spacing = 2 ^ (exponent - 150)
+      value = sign * (8388608 + fraction) * spacing
+    end
+    if row.scale == nil then
+      local below = (fraction == 0 and exponent > 1) and spacing / 2 or spacing
+      text = float32_text(value, spacing, below, low % 2 == 0)
     end
   else
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
   if row.scale ~= nil then return scaled_value(row, value) end
-  -- (float32 holds about 7 significant digits)
-  local text = row.kind == "float32" and format("%.7g", value) or format("%d", value)
+  text = text or format("%d", value)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text
 end
