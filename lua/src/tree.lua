@@ -401,8 +401,8 @@ local function summary(f, tvb)
   local steps = FORMS[fn]
   if steps ~= nil then steps = steps[kind] end
   local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
-  if kind == EXCEPTION then
-    kind = kind .. " " .. (f.exception_meaning or exception_name(f.exception_code))
+  if kind == EXCEPTION then -- (by the spec, as vw3-decode's summary; the device's meaning: its note)
+    kind = kind .. " " .. DECIMAL[f.exception_code] .. " (" .. exception_name(f.exception_code) .. ")"
   end
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)

@@ -115,7 +115,7 @@ TREES += [
             f"    Register {address} = {value}", f"        [Address: {address}]",
             f"        Value: {value} (0x{value:04x})")]]),
     ("VW3 Modbus RTU, 1 Read Holding Registers request 0..1", ["    Start address: 0", "    [Quantity: 2]"]),
-    ("VW3 Modbus RTU, 1 Read Holding Registers exception Illegal Data Address", [
+    ("VW3 Modbus RTU, 1 Read Holding Registers exception 2 (Illegal Data Address)", [
         "    Exception code: Illegal Data Address (2)",
         "    [Expert Info (Note/Response): Exception 2: Illegal Data Address]",
         "        [Exception 2: Illegal Data Address]", "        [Severity level: Note]", "        [Group: Response]",
