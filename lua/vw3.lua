@@ -7126,11 +7126,11 @@ package.preload["vw3.tree"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
-local NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, NSTime, PARAMETER_FIELDS
+local NOISE, NO_INTERPRETATION, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, PARAMETER_FIELDS
 local PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST = PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST
 local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
 local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
-local made_once, math, pairs, pf, proto, python_repr = made_once, math, pairs, pf, proto, python_repr
+local lane, made_once, math, pairs, pf, proto, python_repr = lane, made_once, math, pairs, pf, proto, python_repr
 local register_view, say, string, tonumber, tostring, type = register_view, say, string, tonumber, tostring, type
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
@@ -7667,13 +7667,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
     if f.request ~= nil then
       t:add(pf.request_frame, whole, f.request.record):set_generated()
-      if f.time ~= nil and f.request.time ~= nil then
-        local delta = f.time - f.request.time
-        local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
-        local seconds = floor(delta * sign)
-        t:add(pf.response_time, whole, NSTime.new(sign * seconds, sign * floor((delta * sign - seconds) * 1e9 + 0.5)))
-          :set_generated()
-      end
+      local delta = lane.response_time(f) -- (show.lua)
+      if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
     end
     if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
   end
@@ -7738,10 +7733,10 @@ package.preload["vw3.show"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat = AUTO, ByteArray, EXCEPTION, NOISE, add_text, concat
-local count_text, ex, finish_safely, format, ipairs, lane = count_text, ex, finish_safely, format, ipairs, lane
-local pack, pairs, pf, proto, show_frame, show_noise = pack, pairs, pf, proto, show_frame, show_noise
-local summary, type, unseen = summary, type, unseen
+local AUTO, ByteArray, EXCEPTION, NOISE, NSTime, add_text = AUTO, ByteArray, EXCEPTION, NOISE, NSTime, add_text
+local concat, count_text, ex, finish_safely, format, ipairs = concat, count_text, ex, finish_safely, format, ipairs
+local lane, math, pack, pairs, pf, proto, show_frame = lane, math, pack, pairs, pf, proto, show_frame
+local show_noise, summary, type, unseen = show_noise, summary, type, unseen
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -7752,6 +7747,24 @@ local function record_time(pinfo, number)
   local time = pinfo.abs_ts
   if time == 0 then return nil end
   return time
+end
+
+-- Each record's time from the capture's first (pinfo.rel_ts), by record number: kept across lane.again,
+-- which makes the stream's state anew; each record's first dissection writes its own.
+local REL_TIMES = {}
+
+-- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
+-- capture's first where they agree with their absolute times (a time reference set between them does
+-- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
+function lane.response_time(f)
+  local request = f.request
+  if f.time == nil or request.time == nil then return nil end
+  local delta, asked, got = f.time - request.time, REL_TIMES[request.record], REL_TIMES[f.record]
+  local exact = asked and got and got - asked
+  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
+  local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
+  local seconds = math.floor(delta * sign)
+  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
 end
 
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
@@ -7910,6 +7923,12 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
+  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
+  -- is not; lane.response_time. Not for an RTAC record, timed by the RTAC.)
+  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
+  -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
+  local rel = pinfo.rel_ts
+  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac_times[number] == nil and rel or nil end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not

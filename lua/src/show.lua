@@ -15,6 +15,24 @@ local function record_time(pinfo, number)
   return time
 end
 
+-- Each record's time from the capture's first (pinfo.rel_ts), by record number: kept across lane.again,
+-- which makes the stream's state anew; each record's first dissection writes its own.
+local REL_TIMES = {}
+
+-- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
+-- capture's first where they agree with their absolute times (a time reference set between them does
+-- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
+function lane.response_time(f)
+  local request = f.request
+  if f.time == nil or request.time == nil then return nil end
+  local delta, asked, got = f.time - request.time, REL_TIMES[request.record], REL_TIMES[f.record]
+  local exact = asked and got and got - asked
+  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
+  local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
+  local seconds = math.floor(delta * sign)
+  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
+end
+
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
 -- that neither shows details nor filters on fields: tshark's first pass, a summary without filters); its
 -- `text` is nil, where a real tree's root is Wireshark's own "Wireshark Lua fake item". "unseen": an
@@ -171,6 +189,12 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
+  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
+  -- is not; lane.response_time. Not for an RTAC record, timed by the RTAC.)
+  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
+  -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
+  local rel = pinfo.rel_ts
+  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac_times[number] == nil and rel or nil end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not

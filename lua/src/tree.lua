@@ -538,13 +538,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     end
     if f.request ~= nil then
       t:add(pf.request_frame, whole, f.request.record):set_generated()
-      if f.time ~= nil and f.request.time ~= nil then
-        local delta = f.time - f.request.time
-        local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
-        local seconds = floor(delta * sign)
-        t:add(pf.response_time, whole, NSTime.new(sign * seconds, sign * floor((delta * sign - seconds) * 1e9 + 0.5)))
-          :set_generated()
-      end
+      local delta = lane.response_time(f) -- (show.lua)
+      if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
     end
     if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
   end
