@@ -4614,10 +4614,9 @@ local function decode_frame(f)
   end
 end
 M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
-M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.START_FROM_REQUEST = LIFT_OF, LIMITS, NOT_BROADCAST, START_FROM_REQUEST
-M.bit_at, M.decode_frame, M.exception_name, M.fill = bit_at, decode_frame, exception_name, fill
-M.function_name, M.register_at, M.release_run, M.say, M.u16 = function_name, register_at, release_run, say, u16
-M.warn = warn
+M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
+M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
+M.register_at, M.release_run, M.say, M.u16, M.warn = register_at, release_run, say, u16, warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -7126,12 +7125,12 @@ package.preload["vw3.tree"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
-local NOISE, NO_INTERPRETATION, PARAMETER_FIELDS = NOISE, NO_INTERPRETATION, PARAMETER_FIELDS
-local PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST = PDU_FIELDS, REQUEST, RESPONSE, START_FROM_REQUEST
-local bit_at, concat, device_of, ex, exception_name, floor = bit_at, concat, device_of, ex, exception_name, floor
-local format, function_name, inferred_registers, ipairs = format, function_name, inferred_registers, ipairs
-local lane, made_once, math, pairs, pf, proto, python_repr = lane, made_once, math, pairs, pf, proto, python_repr
-local register_view, say, string, tonumber, tostring, type = register_view, say, string, tonumber, tostring, type
+local NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS = NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS
+local REQUEST, RESPONSE, bit_at, concat, device_of, ex = REQUEST, RESPONSE, bit_at, concat, device_of, ex
+local exception_name, floor, format, function_name = exception_name, floor, format, function_name
+local inferred_registers, ipairs, lane, made_once, math = inferred_registers, ipairs, lane, made_once, math
+local pairs, pf, proto, python_repr, register_view, say = pairs, pf, proto, python_repr, register_view, say
+local string, tonumber, tostring, type = string, tonumber, tostring, type
 local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
@@ -7560,6 +7559,19 @@ local function summary(f, tvb)
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
 
+-- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
+-- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).
+local function add_window(t, tvb, f, field, what, value)
+  local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
+  local rule = entry and DATA.rules.lift[entry.rule]
+  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
+  if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
+  local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
+  -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)
+  if name ~= what then item:set_text(name:sub(1, 1):upper() .. name:sub(2):gsub("_", " ") .. ": " .. value) end
+  return item
+end
+
 local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
   local t, whole, crc_at = tree, nil, nil
@@ -7603,12 +7615,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full then
     local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
-      local item = t:add(pf.start, data_range, f.start)
-      if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
+      local item = add_window(t, tvb, f, pf.start, "start", f.start)
       local words = START_WORDS[f.fn]
       if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
     end
-    if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
+    if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
     if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
     if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
@@ -7704,26 +7715,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
 end
-
--- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
--- (expert_text: the run's text, made once for all its items by the caller)
-local function show_noise(item, tvb, tree, full, k, expert_text)
-  local length = item.length
-  local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
-  if full then
-    local r = tvb:range(item.at + k * length, length)
-    t = tree:add(proto, r, format("VW3 noise, %s: %s", count_text(length, "byte"), item.reason))
-    t:add(pf.item, r, item.number + k):set_generated()
-    t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
-    t:add(pf.offset, r, item.offset + k * length):set_generated()
-    t:add(pf.noise_reason, r, item.reason):set_generated()
-    t:add(pf.data, r)
-  end
-  add_text(t, ex.noise, expert_text)
-  return t
-end
 M.add_register, M.add_text, M.count_text, M.show_frame = add_register, add_text, count_text, show_frame
-M.show_noise, M.summary, M.unseen = show_noise, summary, unseen
+M.summary, M.unseen = summary, unseen
 end
 
 -- ---- vw3.show: lua/src/show.lua ----
@@ -7733,10 +7726,10 @@ package.preload["vw3.show"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, ByteArray, EXCEPTION, NOISE, NSTime, add_text = AUTO, ByteArray, EXCEPTION, NOISE, NSTime, add_text
-local concat, count_text, ex, finish_safely, format, ipairs = concat, count_text, ex, finish_safely, format, ipairs
-local lane, math, pack, pairs, pf, proto, show_frame = lane, math, pack, pairs, pf, proto, show_frame
-local show_noise, summary, type, unseen = show_noise, summary, type, unseen
+local AUTO, ByteArray, EXCEPTION, KIND_NUMBER, NOISE = AUTO, ByteArray, EXCEPTION, KIND_NUMBER, NOISE
+local NSTime, add_text, concat, count_text, ex = NSTime, add_text, concat, count_text, ex
+local finish_safely, format, ipairs, lane, math, pack = finish_safely, format, ipairs, lane, math, pack
+local pairs, pf, proto, show_frame, summary, type, unseen = pairs, pf, proto, show_frame, summary, type, unseen
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -7784,6 +7777,24 @@ end
 local function item_tvb(item, tvb)
   if item.raw == nil then return tvb end
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
+end
+
+-- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
+-- (expert_text: the run's text, made once for all its items by the caller)
+local function show_noise(item, tvb, tree, full, k, expert_text)
+  local length = item.length
+  local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
+  if full then
+    local r = tvb:range(item.at + k * length, length)
+    t = tree:add(proto, r, format("VW3 noise, %s: %s", count_text(length, "byte"), item.reason))
+    t:add(pf.item, r, item.number + k):set_generated()
+    t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
+    t:add(pf.offset, r, item.offset + k * length):set_generated()
+    t:add(pf.noise_reason, r, item.reason):set_generated()
+    t:add(pf.data, r)
+  end
+  add_text(t, ex.noise, expert_text)
+  return t
 end
 
 -- A record-level note, on the item they go on: the first item shown, else one of their own. Returns it.

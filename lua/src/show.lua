@@ -52,6 +52,24 @@ local function item_tvb(item, tvb)
   return ByteArray.new(item.raw, true):tvb(item.kind == NOISE and "VW3 noise" or "VW3 reassembled frame")
 end
 
+-- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
+-- (expert_text: the run's text, made once for all its items by the caller)
+local function show_noise(item, tvb, tree, full, k, expert_text)
+  local length = item.length
+  local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
+  if full then
+    local r = tvb:range(item.at + k * length, length)
+    t = tree:add(proto, r, format("VW3 noise, %s: %s", count_text(length, "byte"), item.reason))
+    t:add(pf.item, r, item.number + k):set_generated()
+    t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
+    t:add(pf.offset, r, item.offset + k * length):set_generated()
+    t:add(pf.noise_reason, r, item.reason):set_generated()
+    t:add(pf.data, r)
+  end
+  add_text(t, ex.noise, expert_text)
+  return t
+end
+
 -- A record-level note, on the item they go on: the first item shown, else one of their own. Returns it.
 local function record_note(anchor, tree, full, tvb, n, expert_info, text)
   if anchor == nil then

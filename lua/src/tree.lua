@@ -431,6 +431,19 @@ local function summary(f, tvb)
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
 end
 
+-- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
+-- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).
+local function add_window(t, tvb, f, field, what, value)
+  local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
+  local rule = entry and DATA.rules.lift[entry.rule]
+  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
+  if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
+  local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
+  -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)
+  if name ~= what then item:set_text(name:sub(1, 1):upper() .. name:sub(2):gsub("_", " ") .. ": " .. value) end
+  return item
+end
+
 local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
   local t, whole, crc_at = tree, nil, nil
@@ -474,12 +487,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full then
     local data_range = frame_range(tvb, f, 2, 2)
     if f.start ~= nil then
-      local item = t:add(pf.start, data_range, f.start)
-      if f.kind == RESPONSE and START_FROM_REQUEST[f.fn] then item:set_generated() end
+      local item = add_window(t, tvb, f, pf.start, "start", f.start)
       local words = START_WORDS[f.fn]
       if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
     end
-    if f.quantity ~= nil then t:add(pf.quantity, whole, f.quantity):set_generated() end
+    if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
     if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
     if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
     if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
@@ -574,22 +586,4 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
   return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
-end
-
--- The noise item `k` places after `item` (0: itself; a run of the same noise is kept as one entry).
--- (expert_text: the run's text, made once for all its items by the caller)
-local function show_noise(item, tvb, tree, full, k, expert_text)
-  local length = item.length
-  local t = tree -- (the item's own, when a tree is wanted: as show_frame's)
-  if full then
-    local r = tvb:range(item.at + k * length, length)
-    t = tree:add(proto, r, format("VW3 noise, %s: %s", count_text(length, "byte"), item.reason))
-    t:add(pf.item, r, item.number + k):set_generated()
-    t:add(pf.kind, r, KIND_NUMBER[NOISE]):set_generated()
-    t:add(pf.offset, r, item.offset + k * length):set_generated()
-    t:add(pf.noise_reason, r, item.reason):set_generated()
-    t:add(pf.data, r)
-  end
-  add_text(t, ex.noise, expert_text)
-  return t
 end

@@ -91,7 +91,7 @@ function stub.tvb(bytes)
     return self.bytes:sub(offset + 1, offset + length)
   end
   function tvb:range(offset, length)
-    assert(offset >= 0 and length >= 1 and offset + length <= #self.bytes,
+    assert(offset >= 0 and length >= 0 and offset + length <= #self.bytes, -- (0: an empty range, as Wireshark allows)
       string.format("stub: range(%d, %d) outside a %d-byte tvb", offset, length, #self.bytes))
     return { kind = "range", offset = offset, length = length }
   end
