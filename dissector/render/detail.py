@@ -326,8 +326,10 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
     function = frame.function
     function_text = frame.function_text
     if kind is _EXCEPTION:
-        code = function | 0x80
-        add(f"        Function: {code} (0x{code:02X}) {function_text or SPEC.function_name(function)}")
+        # The function as -Y's `function` and --json hold it (tshark's modbus alike); the byte's high bit
+        # said apart, as the exception it marks.
+        name = function_text or SPEC.function_name(function)
+        add(f"        Function: {function} (0x{function:02X}) {name}, exception (0x{function | 0x80:02X})")
     elif function_text is None:
         line = _FUNCTION_LINES.get(function)
         if line is None:
