@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from dissector.errors import UsageError
-from dissector.render.filter_fields import FRAME_FIELDS, REGISTER_FIELDS  # not filters: its compiler is for -Y only
+from dissector.render.filter_fields import ALIASES, FRAME_FIELDS, REGISTER_FIELDS  # not filters: -Y only
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
@@ -129,6 +129,7 @@ def parse_fields_options(fields: list[str], settings: list[str]) -> FieldsOption
 
 
 def check_field(key: str) -> None:
+    key = ALIASES.get(key, key)  # (-e exception: the exception_code column, headed as asked)
     head = key.split(".", 1)[0]
     if key in TIME_FIELDS:
         return
@@ -144,7 +145,7 @@ def check_field(key: str) -> None:
         return
     import difflib
 
-    names = [*FRAME_FIELDS, *REGISTER_FIELDS, *EXTRA_FRAME_KEYS, *TIME_FIELDS]
+    names = [*FRAME_FIELDS, *REGISTER_FIELDS, *EXTRA_FRAME_KEYS, *TIME_FIELDS, *ALIASES]
     close = difflib.get_close_matches(key, names, n=1)
     hint = f" (did you mean {close[0]}?)" if close else " (see the NDJSON keys in the README)"
     raise UsageError(f"-e {key}: not a field{hint}")
@@ -161,7 +162,7 @@ def _text(value: Any) -> str:
 
 
 def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
-    head, _dot, rest = key.partition(".")
+    head, _dot, rest = ALIASES.get(key, key).partition(".")
     if head in REGISTER_FIELDS:
         # One occurrence per register, empty where the register has no such key (8400 has no code):
         # the columns of one frame line up, and -E occurrence=f names the same register in each.

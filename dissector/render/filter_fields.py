@@ -22,6 +22,8 @@ FRAME_FIELDS: dict[str, str] = _group("frame")
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
+# Other names of fields, as -G fields lists them (`alias: exception`): -Y and -e take them alike.
+ALIASES: dict[str, str] = {"exception": "exception_code"}
 # field -> its meaning as -G fields lists it (with what only vw3-decode's filters take, as `alias: exception`)
 FIELD_HELP: dict[str, str] = {
     entry["key"]: entry["help"] + (f" ({entry['note']})" if "note" in entry else "")
