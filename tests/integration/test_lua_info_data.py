@@ -54,7 +54,8 @@ INFO = [
     ("request", "Read FIFO Queue pointer 16"),
     ("response", "Read FIFO Queue 3 values: 10 11 12"),
     ("request", "Diagnostics 0Bh Return Bus Message Count = 0"),
-    ("response", "Diagnostics 02h Return Diagnostic Register = 0"),
+    # (no echo of 0Bh: not its answer but the master's next request, as an FC8 answer echoes, 515aff6)
+    ("request", "Diagnostics 02h Return Diagnostic Register = 0"),
     ("request", "Diagnostics 00h Return Query Data"),
     ("response", "Diagnostics 00h Return Query Data"),
     ("request", f"Diagnostics 00h Return Query Data {PLUS_TWO}"),
@@ -77,7 +78,7 @@ ODD = " [warning: diagnostic data is not a whole number of words]"
 UNKNOWN = " [warning: diagnostic sub-function 99 is not defined by the spec]"
 # vw3-decode's tails of the frames that have one (by index), after `[#n, 1000.0 ms]` for an answer
 TAILS = {
-    4: " [no response]", 5: " [no request] [response without a matching request in the capture]",
+    4: " [no response]", 5: " [no response]",
     10: ODD, 11: ODD, 14: UNKNOWN, 15: UNKNOWN, 16: " [no response expected: the spec's server returns none]",
     22: " [warning: malformed response: stream read less than specified amount, expected 2, found 0 at "
         "(parsing) -> values]",
