@@ -55,7 +55,7 @@ from typing import Any
 
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
-    _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing, unknown_pdu_key,
+    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing, unknown_pdu_key,
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
@@ -74,7 +74,6 @@ from dissector.render.filter_match import (
 
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
-ALIASES = {"exception": "exception_code"}
 MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
 Item = dict[str, Any]
