@@ -7935,8 +7935,6 @@ local function dissect_now(st, tvb, pinfo, number)
   if n == 0 then return nil end
   local time = record_time(pinfo, number)
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
-  -- is not; lane.response_time. Not for an RTAC record, timed by the RTAC.)
-  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
   if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac_times[number] == nil and rel or nil end

@@ -137,7 +137,7 @@ class Sinks:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
         self.speed_lost = False  # the warning that pcap loses a description's line speed was given
         self.extra: dict[str, object] | None = None
-        self.frames_left: int | None = args.count
+        self.frames_left: int | None = args.count  # -c: items (frames and noise runs) still to show
         self.wrote: str | None = None  # the report written (said last, on a terminal)
         self.done = False  # -c N reached
 

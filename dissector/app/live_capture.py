@@ -242,7 +242,7 @@ class CaptureThread:
     char_time: float | None = None
     reason: str = "interrupted"
     status: ExitStatus = ExitStatus.OK
-    frames: int = 0
+    frames: int = 0  # items written (-c counts items: frames and noise runs)
     stop: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     _last_data: float = 0.0  # monotonic time of the last read that gave bytes
@@ -263,7 +263,7 @@ class CaptureThread:
         return any(isinstance(item, Frame) and item.crc_ok for item in trial)
 
     def deliver(self, items: list[Item], safe: float | None) -> bool:
-        """Write, then hand on; False once --count frames are written."""
+        """Write, then hand on; False once --count items are written."""
         if self.count is not None:
             items = up_to_items(items, self.count - self.frames)[0]
         self.files.items(items)
@@ -338,7 +338,7 @@ class CaptureThread:
     def step(self, data: bytes, stamp: Stamp, now: float) -> bool:
         """One read of the port (`data`, maybe none) stamped `stamp` at monotonic time `now`: frame it
         and hand the items on, or close what the framer holds after a silence; False once --count
-        frames are written. Without a framer (the compiled live path, dissector/accel/livepath.py)
+        items are written. Without a framer (the compiled live path, dissector/accel/livepath.py)
         the read itself is handed on, and the display frames it."""
         framer = self.framer
         if framer is None:

@@ -4,7 +4,8 @@ A read returns once its last byte has come: its stamp is that byte's arrival, an
 read came about n-1-k character times earlier (a USB adapter delivers a request and its answer in one
 read). So each byte's time is the stamp less the character times after it, never earlier than the
 previous read's stamp (its bytes came first), nor than ADAPTER_HOLD before a read that gave none (an
-adapter may hold bytes that long: a read that times out proves the line silent only until then).
+adapter may hold bytes that long: a read that times out proves the line silent only until then),
+unless the clock stepped back since (a stamp before those: the times start again from this read).
 Times stay whole microseconds, as the pcap stores them.
 """
 from __future__ import annotations
@@ -33,6 +34,10 @@ class ReadClock:
         """The bytes of a read stamped `stamp`, a chunk for each arrival time (bytes held back to the
         floor share one); a read that timed out (no bytes) gives none and moves the floor (`promise`)."""
         floor = self.floor
+        if floor is not None and stamp.ns < floor:
+            # The wall clock stepped back (NTP): the earlier reads' times say nothing of this one's bytes,
+            # which would otherwise all be held at the floor until the clock caught up with it.
+            floor = None
         if not data:
             self.floor = self.promise(stamp).ns if floor is None else max(floor, self.promise(stamp).ns)
             return []

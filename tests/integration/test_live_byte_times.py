@@ -71,8 +71,19 @@ def test_a_read_that_timed_out_bounds_the_next() -> None:
     chunks = clock.chunks(bytes(500), Stamp(S + 1_000_000))
     assert chunks[0].time.ns == S - ADAPTER_HOLD_NS
     assert chunks[-1].time.ns == S + 1_000_000 and len(chunks[-1].data) == 1
-    # A clock stepped back never times a byte before one already timed.
-    assert times(clock.chunks(b"\x07", Stamp(S - 5_000_000))) == [("07", 1_000_000)]
+    # The wall clock stepped back (NTP) 5 ms: the bytes follow it, as the pcap's times do, rather than
+    # all being held at the last stamp until the clock catches up.
+    assert times(clock.chunks(b"\x07", Stamp(S - 5_000_000))) == [("07", -5_000_000)]
+
+
+def test_a_clock_stepped_back_is_followed() -> None:
+    """Two seconds back: each read after it is dated from its own stamp (before the fix, every byte for
+    two seconds had the time of the last read before the step: response times 0, --timeout never due)."""
+    clock = ReadClock(11 / 19200)
+    clock.chunks(bytes(8), Stamp(S))
+    back = S - 2_000_000_000
+    assert [times(clock.chunks(b"\x01\x02", Stamp(back + k * 10_000_000))) for k in range(3)] == [
+        [("01", k * 10_000_000 - 2_000_573_000), ("02", k * 10_000_000 - 2_000_000_000)] for k in range(3)]
 
 
 def burst_lines(pure: bool, tmp_path: Path) -> tuple[list[str], list[tuple[float, bytes]], bytes]:
