@@ -3324,7 +3324,7 @@ local function echo_at(echo, b, i, n)
   return true
 end
 
--- Do the bytes at b[i] begin the answer awaited (rtu.py _awaited): its slave and function (an exception's
+-- Do the bytes at b[i] begin the answer awaited (rules.py Awaiting._awaited): its slave and function (an exception's
 -- too) and, for a normal answer, what the spec has it repeat of the request (st.echo, kept by await_echo:
 -- DATA.pairing.echo, an FC8 sub-function)? An FC8 frame that does not is the master's next request.
 local function awaited(st, b, i, n)
@@ -3945,8 +3945,9 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, add_noise, crc16, emit, floor, flush_noise = DATA, add_noise, crc16, emit, floor, flush_noise
-local format, interpretations, ipairs, math, time_at = format, interpretations, ipairs, math, time_at
+local DATA, ECHO_CODES, add_noise, await_echo, crc16, emit = DATA, ECHO_CODES, add_noise, await_echo, crc16, emit
+local floor, flush_noise, format, interpretations, ipairs = floor, flush_noise, format, interpretations, ipairs
+local math, time_at = math, time_at
 -- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -4021,7 +4022,7 @@ local function classify_ascii(s, adu, count)
   equivalent[count] = crc % 256
   equivalent[count + 1] = floor(crc / 256)
   local length = count + 2
-  for _, interpretation in ipairs(interpretations(s, slave, code)) do
+  for _, interpretation in ipairs(interpretations(s, slave, code, equivalent, 0, length)) do
     -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
     local found, is_scan = interpretation[2](equivalent, 0, length)
     if found == length or (is_scan and length >= found) then return interpretation[1] end
@@ -4066,6 +4067,7 @@ local function ascii_candidate(s, at, length, items)
   if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   emit(s, frame, items)
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
 end
 
 local function run_ascii(s, final, items)

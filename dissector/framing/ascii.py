@@ -2,7 +2,7 @@
 
 Unlike RTU, ASCII frames delimit themselves: a frame starts at ':' and ends at LF, so no length rule
 is needed to cut the stream. The length rules still decide what a frame is: the decoded binary gets
-the same request / response / exception classification as an RTU frame (framer.interpretations, applied to
+the same request / response / exception classification as an RTU frame (rules.py Awaiting._interpretations, applied to
 the RTU frame that would carry the same bytes), so an ASCII frame whose length fits no layout is
 shown as noise, as it would be in RTU.
 
@@ -19,7 +19,7 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from dissector.protocol.crc import crc_bytes, lrc
-from dissector.framing.rtu import Scan, interpretations
+from dissector.framing.rtu import Awaiting, Scan
 from dissector.model import Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
@@ -27,7 +27,7 @@ from dissector.protocol.ascii import _HEX_DIGITS, COLON, MAX_ASCII, MIN_BINARY
 from dissector.protocol.rules import text
 
 
-class AsciiFramer(StreamFramer):
+class AsciiFramer(Awaiting, StreamFramer):
     """Push parser with RtuFramer's interface: feed chunks, collect items in stream order."""
 
     mode = "ascii"
@@ -105,10 +105,9 @@ class AsciiFramer(StreamFramer):
 
     def _classify(self, adu: bytes) -> Kind | None:
         """The kind an RTU frame with the same bytes would have, by the framer's length rules."""
-        slave, function = adu[0], adu[1]
         equivalent = adu + crc_bytes(adu)
         length = len(equivalent)
-        for kind, rule in interpretations(slave, function, self._expect):
+        for kind, rule in self._interpretations(equivalent, 0):
             found = rule(equivalent, 0, length)
             # A layout without a length rule fits any length from its minimum: the ':' and CR LF
             # already delimit the frame.

@@ -79,7 +79,7 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     OTHER_FUNCTIONS,
     REQUEST_FIRST,
     RESPONSE_FIRST,
-    interpretations,
+    Awaiting,
     _POSSIBLE_START,
     GLITCH_SKIP,
     NOT_BROADCAST,
@@ -95,28 +95,10 @@ from dissector.protocol.rules import text
 NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
 
 
-class RtuFramer(StreamFramer):
+class RtuFramer(Awaiting, StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
 
     mode = "rtu"
-
-    def _awaited(self, buf: bytearray, i: int) -> bool:
-        """Do the bytes at i begin the answer awaited: its slave and function (an exception's too) and, for a
-        normal answer, what the spec has it repeat of the request (_echo, [pairing] echo: an FC8
-        sub-function, as far as its bytes have come)? An FC8 frame that does not is the master's next
-        request: an FC8 request and its answer have the same shape (decode/pairing.py pairs it so too)."""
-        function = buf[i + 1]
-        if self._expect != (buf[i], function & 0x7F):
-            return False
-        echo = self._echo
-        if not echo or function & 0x80:
-            return True
-        got = buf[i + 2 : i + 2 + len(echo)]
-        return got == echo[: len(got)]
-
-    def _interpretations(self, buf: bytearray, i: int) -> tuple[tuple[Kind, LengthRule], ...]:
-        """(rules.py interpretations, with the echo weighed: _awaited)"""
-        return (RESPONSE_FIRST if self._awaited(buf, i) else REQUEST_FIRST).get(buf[i + 1], ())
 
     def _valid_frame_at(
         self, buf: bytearray, i: int, n: int, final: bool, scan: bool = True

@@ -176,14 +176,31 @@ for _code, (_request_rule, _response_rule) in RULES.items():
 
 
 
-def interpretations(
-    slave: int, function: int, expect: tuple[int, int] | None
-) -> tuple[tuple[Kind, LengthRule], ...]:
-    """The (kind, length rule) pairs a frame starting with slave and function may have, likeliest
-    first: after a request from (slave, function), its response. Empty: no frame starts here."""
-    if expect == (slave, function):
-        return RESPONSE_FIRST.get(function, ())
-    return REQUEST_FIRST.get(function, ())
+class Awaiting:
+    """What a framer (RTU and ASCII alike) reads a frame start as, given the answer it awaits: its
+    `_expect` (slave, function) and `_echo` (the bytes the answer repeats, StreamFramer._await_after)."""
+
+    _expect: tuple[int, int] | None
+    _echo: bytes
+
+    def _awaited(self, buf: bytes | bytearray, i: int) -> bool:
+        """Do the bytes at i begin the answer awaited: its slave and function (an exception's too) and, for a
+        normal answer, what the spec has it repeat of the request (_echo, [pairing] echo: an FC8
+        sub-function, as far as its bytes have come)? An FC8 frame that does not is the master's next
+        request: an FC8 request and its answer have the same shape (decode/pairing.py pairs it so too)."""
+        function = buf[i + 1]
+        if self._expect != (buf[i], function & 0x7F):
+            return False
+        echo = self._echo
+        if not echo or function & 0x80:
+            return True
+        got = buf[i + 2 : i + 2 + len(echo)]
+        return got == echo[: len(got)]
+
+    def _interpretations(self, buf: bytes | bytearray, i: int) -> tuple[tuple[Kind, LengthRule], ...]:
+        """The (kind, length rule) pairs a frame at i may have, likeliest first: after a request, its
+        answer's (_awaited); else a request's. Empty: no frame starts here."""
+        return (RESPONSE_FIRST if self._awaited(buf, i) else REQUEST_FIRST).get(buf[i + 1], ())
 
 
 # A byte pair that may start a frame: any address (248..255 are reserved, framed with a warning by the

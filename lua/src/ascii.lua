@@ -77,7 +77,7 @@ local function classify_ascii(s, adu, count)
   equivalent[count] = crc % 256
   equivalent[count + 1] = floor(crc / 256)
   local length = count + 2
-  for _, interpretation in ipairs(interpretations(s, slave, code)) do
+  for _, interpretation in ipairs(interpretations(s, slave, code, equivalent, 0, length)) do
     -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
     local found, is_scan = interpretation[2](equivalent, 0, length)
     if found == length or (is_scan and length >= found) then return interpretation[1] end
@@ -122,6 +122,7 @@ local function ascii_candidate(s, at, length, items)
   if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   emit(s, frame, items)
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
 end
 
 local function run_ascii(s, final, items)

@@ -120,7 +120,7 @@ local function echo_at(echo, b, i, n)
   return true
 end
 
--- Do the bytes at b[i] begin the answer awaited (rtu.py _awaited): its slave and function (an exception's
+-- Do the bytes at b[i] begin the answer awaited (rules.py Awaiting._awaited): its slave and function (an exception's
 -- too) and, for a normal answer, what the spec has it repeat of the request (st.echo, kept by await_echo:
 -- DATA.pairing.echo, an FC8 sub-function)? An FC8 frame that does not is the master's next request.
 local function awaited(st, b, i, n)

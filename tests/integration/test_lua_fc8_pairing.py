@@ -84,3 +84,24 @@ def test_a_frame_that_does_not_echo_the_sub_function_is_the_next_request(tmp_pat
 def test_the_echo_is_weighed_in_one_record(tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "one.pcap", [(RETURN_COUNT + REGISTER_QUERY + REGISTER_ANSWER, T0)])
     assert tshark(pcap, *FIELDS).splitlines() == ["1,1,2;11,2,2;1;1;1;"]
+
+
+def ascii_line(frame: bytes) -> bytes:
+    """The RTU frame's ADU as a Modbus ASCII line (':' hex LRC CR LF)."""
+    adu = frame[:-2]
+    return b":" + (adu + bytes([-sum(adu) & 0xFF])).hex().upper().encode() + b"\r\n"
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_ascii_weighs_the_echo_as_rtu_does(tmp_path: Path, two_pass: bool) -> None:
+    # The same exchange in Modbus ASCII: 08/02 after 08/0B is the next request, its answer pairs with it
+    # (before: 'response' with no request, its answer a request, as vw3-decode also read it).
+    frames = [RETURN_COUNT, REGISTER_QUERY, REGISTER_ANSWER, RESTART, RESTART]
+    pcap = records(tmp_path / "echo-ascii.pcap", [ascii_line(frame) for frame in frames])
+    assert tshark(pcap, *FIELDS, two_pass=two_pass).splitlines() == [
+        "1;11;;;1;" if two_pass else "1;11;;;;",
+        "1;2;;3;;" if two_pass else "1;2;;;;",
+        "2;2;2;;;",
+        "1;1;;5;;" if two_pass else "1;1;;;;",
+        "2;1;4;;;",
+    ]

@@ -210,3 +210,15 @@ def test_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     data = made[0]
     assert data["event_counts"]["unanswered"] == 0
     assert [event for event in data["events"] if event[1] == "unanswered"] == []
+
+
+def test_ascii_weighs_the_echo_as_rtu_does(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The same exchange in Modbus ASCII (before: the 08/02 query 'response [no request]', its answer a
+    # request, where RTU already paired them).
+    text = tmp_path / "echo.txt"
+    text.write_text(":0108000B0000EC\r\n:010800020000F5\r\n:010800020007EE\r\n")
+    assert lines(both([str(text), "--mode", "ascii"], monkeypatch)) == [
+        "1 - 1 request Diagnostics 0Bh Return Bus Message Count = 0 [no response] LRC ok",
+        "2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 LRC ok",
+        "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] LRC ok",
+    ]
