@@ -48,6 +48,20 @@ def _without_end(frame: str) -> str:
         frame = frame[: -len(end)].rstrip()
 
 
+def _without_typed_end(groups: list[str]) -> list[str]:
+    """The groups without a CR LF typed as the hex of its bytes (`... A2 0D 0A`, as manuals print an
+    ASCII frame's bytes), when that is what the LRC says: the digits before it end with a good LRC and
+    the digits with it do not."""
+    if len(groups) < 3 or [group.upper() for group in groups[-2:]] != ["0D", "0A"]:
+        return groups
+
+    def lrc_good(digits: str) -> bool:
+        data = bytes.fromhex(digits)
+        return len(data) >= 2 and lrc(data[:-1]) == data[-1]
+
+    return groups[:-2] if lrc_good("".join(groups[:-2])) and not lrc_good("".join(groups)) else groups
+
+
 def _shown(text: str) -> str:
     """`text` in quotes as typed (a backslash stays one), escaped only when it holds what a terminal
     would not show as itself."""
@@ -74,6 +88,7 @@ def ascii_frames(text: str, where: str = "--hex") -> bytes:
                 raise UsageError(f"{where}: '{group}' is an odd number of hex digits (each group is whole bytes)")
         if not groups:
             raise UsageError(f"{where}: no hex digits after a ':' in {_shown(typed)}")
+        groups = _without_typed_end(groups)
         out += b":" + "".join(groups).encode("ascii") + b"\r\n"
     return bytes(out)
 

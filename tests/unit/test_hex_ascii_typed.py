@@ -29,6 +29,8 @@ WIRE = "3a30323036323332393030304141320d0a"  # :02062329000AA2 CR LF, as a seria
     ":02062329000AA2<CR><LF>",
     ":02062329000AA2 [cr][lf]",
     ":02062329000AA2\\n",
+    ":02062329000AA2 0D 0A",  # the CR LF as the hex of its bytes, as manuals print a frame's bytes
+    ":0206 2329 000A A2 0d 0a",
 ])
 def test_an_ascii_frame_typed_as_printed_is_decoded(typed: str, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     use_engine(monkeypatch, pure)
@@ -46,16 +48,18 @@ def test_frames_in_one_argument_and_a_missing_lrc(pure: bool, monkeypatch: pytes
     assert run_cli(["--hex", ":0206 2329 000A\\r\\n"]) == (0, (
         "     1            -   2 request   Write Single Register 9001 = 10 [no response] [the capture ends before "
         "any response] [no LRC typed: append A2]  LRC computed (none typed)\n"), "")
+    # 0D 0A that the LRC says are data stay data: 0206 2329 0D0A is a write of 0x0D0A, its LRC typed after
+    assert run_cli(["--hex", ":0206 2329 0D 0A 95"])[1].endswith("Write Single Register 9001 = 3338 [no response] "
+                                                             "[the capture ends before any response]  LRC ok\n")
     # a bad LRC is the framer's to show, typed with spaces or not
     assert run_cli(["--hex", ":0206 2329 000A A3 CR LF"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
-    # hex digits that make no frame are the framer's noise, as RTU bytes that make none: `0D 0A` is two more
-    # bytes of the frame (an ASCII frame's digits are characters: its CR LF is not typed in hex)
+    # `0D 0A` after a frame whose LRC is good without them is its CR LF typed as the hex of its bytes (before:
+    # two more digits of the frame, 21 bytes of noise): -x shows the 17 bytes of the wire
     status, out, err = run_cli(["-x", "--hex", ":02062329000AA2 0D 0A"])
     assert (status, err) == (0, "")
-    assert out.splitlines() == [
-        "     1            -   - noise     21 bytes of noise at offset 0: 3a 30 32 30 36 32 33 32 39 30 30 30 41 41 32 30…",
-        "0000  3a 30 32 30 36 32 33 32 39 30 30 30 41 41 32 30   :02062329000AA20",
-        "0010  44 30 41 0d 0a                                    D0A..",
+    assert out.splitlines()[1:] == [
+        "0000  3a 30 32 30 36 32 33 32 39 30 30 30 41 41 32 0d   :02062329000AA2.",
+        "0010  0a                                                .",
         "",
     ]
 
