@@ -62,8 +62,9 @@ class _UpTo(Array):  # type: ignore[misc]
                 break
         return parts
 
-    def _emitparse(self, code: object) -> str:
-        raise NotImplementedError  # (construct then calls _parse from its compiled parsers)
+    # Not compiled: construct's own default (Construct._emitparse), not Array's fixed-count loop, so that
+    # the compiled parsers link this instance and call its _parse above.
+    _emitparse = Construct._emitparse
 
 
 def _count(field: Field) -> object:
