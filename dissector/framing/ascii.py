@@ -8,9 +8,11 @@ shown as noise, as it would be in RTU.
 
 A candidate that is cut short (a new ':' before the LF, no LF within the longest legal frame, the
 end of the capture), that is not made of hex pairs or whose layout fits nothing becomes a Noise item
-of its own, with the reason; a line that lost its CR (text files lose them) is a frame with a warning,
-and so is one from a reserved address (248..255, the decoder's warning); bytes between frames are
-noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
+of its own, with the reason; the answer awaited cut by the end of the capture says so as in RTU ("the
+capture ends inside the response (10 of 17 bytes)", bytes on the wire), which pairing shows on its
+request. A line that lost its CR (text files lose them) is a frame with a warning, and so is one that
+lost its LF (CR, then the next ':': the CR ends the line, a cut frame ends in a hex digit), and one
+from a reserved address (248..255, the decoder's warning); bytes between frames are noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
 damaged. The answer does not depend on how the stream is split into chunks.
 
 The delimiter is always LF here: FC8 sub-function 3 can change it on a device, which a passive tap
@@ -19,11 +21,11 @@ could follow only by decoding that request; frames after such a change show up a
 from __future__ import annotations
 
 from dissector.protocol.crc import crc_bytes, lrc
-from dissector.framing.rtu import Awaiting, Scan
-from dissector.model import Frame, Item, Kind, Noise
+from dissector.framing.rtu import MAX_ADU, NEED, Awaiting, Scan
+from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
-from dissector.protocol.ascii import _HEX_DIGITS, COLON, MAX_ASCII, MIN_BINARY
+from dissector.protocol.ascii import _HEX_DIGITS, COLON, CR, MAX_ASCII, MIN_BINARY
 from dissector.protocol.rules import text
 
 
@@ -48,7 +50,10 @@ class AsciiFramer(Awaiting, StreamFramer):
             lf = buf.find(b"\n", i + 1, limit)
             colon = buf.find(b":", i + 1, limit)
             if colon >= 0 and (lf < 0 or colon < lf):
-                self._reject(bytes(buf[i:colon]), i, text("cut_by_colon"), items)
+                if buf[colon - 1] == CR:  # (the LF lost: the CR ended the line)
+                    self._candidate(bytes(buf[i:colon]), i, items)
+                else:
+                    self._reject(bytes(buf[i:colon]), i, text("cut_by_colon"), items)
                 i = colon
             elif lf >= 0:
                 self._candidate(bytes(buf[i : lf + 1]), i, items)
@@ -57,7 +62,7 @@ class AsciiFramer(Awaiting, StreamFramer):
                 self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
             elif final:
-                self._reject(bytes(buf[i:n]), i, text("cut_by_end"), items)
+                self._reject(bytes(buf[i:n]), i, self._cut_answer(buf, i, n) or text("cut_by_end"), items)
                 i = n
             else:
                 break  # wait for the rest of the frame
@@ -66,8 +71,10 @@ class AsciiFramer(Awaiting, StreamFramer):
         return items
 
     def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
-        """A ':' ... LF run: a Frame when it is one, a Noise item saying why not otherwise."""
-        body = raw[1:-1]
+        """A ':' ... LF run (or ':' ... CR, its LF lost): a Frame when it is one, a Noise item saying why
+        not otherwise."""
+        lost_lf = raw[-1] == CR
+        body = raw[1:] if lost_lf else raw[1:-1]
         # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame.
         lost_cr = not body.endswith(b"\r")
         digits = body if lost_cr else body[:-1]
@@ -97,11 +104,37 @@ class AsciiFramer(Awaiting, StreamFramer):
             crc_expected=expected,
             mode="ascii",
         )
-        if lost_cr:
+        if lost_lf:
+            frame.warnings.append(text("cr_without_lf"))
+        elif lost_cr:
             frame.warnings.append(text("lf_without_cr"))
         if digits != digits.upper():
             frame.warnings.append(text("lower_case_hex"))
         self._emit(frame, items)
+
+    def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:
+        """At the end of the input: do bytes i..n (':' and hex digits, a CR at most after them) begin the
+        answer awaited, cut by the end of the capture (rtu.py _cut_answer)? The reason, or None."""
+        digits = bytes(buf[i + 1 : n - 1 if buf[n - 1] == CR else n])
+        pairs = len(digits) // 2
+        if pairs < 2 or any(byte not in _HEX_DIGITS for byte in digits):
+            return None
+        binary = bytes.fromhex(digits[: 2 * pairs].decode("ascii"))
+        if not self._awaited(binary, 0):
+            return None
+        choices = self._interpretations(binary, 0)
+        if not choices:
+            return None
+        kind, rule = choices[0]
+        length = rule(binary, 0, pairs)  # (the RTU frame's, its 2-byte CRC an LRC here)
+        if type(length) is Scan:
+            length = length.declared if length.declared > 0 else NEED
+        characters = 1 + 2 * (length - 1) + 2  # ':', the hex pairs of the ADU and the LRC, CR LF
+        if length != NEED and not (n - i < characters and length <= MAX_ADU):
+            return None
+        what = "response" if kind is Kind.RESPONSE else "exception response"
+        size = f"{n - i} of {characters} bytes" if length != NEED else f"{n - i} bytes of it"
+        return f"{CUT_ANSWER}{what} ({size})"
 
     def _classify(self, adu: bytes) -> Kind | None:
         """The kind an RTU frame with the same bytes would have, by the framer's length rules."""

@@ -6,6 +6,7 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
+local CR_WITHOUT_LF = format(TEXTS.cr_without_lf.format)
 local OUTSIDE_ASCII, NOT_HEX_PAIRS = format(TEXTS.outside_ascii.format), format(TEXTS.not_hex_pairs.format)
 local CUT_BY_COLON, CUT_BY_END = format(TEXTS.cut_by_colon.format), format(TEXTS.cut_by_end.format)
 local ASCII_TOO_SHORT, LRC_OK = format(TEXTS.ascii_too_short.format), format(TEXTS.lrc_ok.format)
@@ -95,10 +96,12 @@ end
 local function ascii_candidate(s, at, length, items)
   -- b[at .. at + length - 1]: ':' digits CR LF
   local b = s.b
-  -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py).
-  local lost_cr = length < 3 or b[at + length - 2] ~= CR
+  -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py); so does a CR
+  -- whose LF was lost (run_ascii: CR, then the next ':').
+  local lost_lf = b[at + length - 1] == CR
+  local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
   local digits = length - 3
-  if lost_cr then digits = length - 2 end
+  if lost_cr or lost_lf then digits = length - 2 end
   if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
@@ -118,11 +121,39 @@ local function ascii_candidate(s, at, length, items)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr or lower then frame.warnings = {} end
+  if lost_cr or lost_lf or lower then frame.warnings = {} end
+  if lost_lf then frame.warnings[1] = CR_WITHOUT_LF end
   if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   emit(s, frame, items)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
+end
+
+-- At the end of the input: do b[i .. n - 1] (':' and hex digits, a CR at most after them) begin the answer
+-- awaited, cut by the end of the capture (ascii.py _cut_answer)? The reason, or nil.
+local function ascii_cut_answer(s, b, i, n)
+  local stop = n
+  if b[n - 1] == CR then stop = n - 1 end
+  local count = floor((stop - i - 1) / 2)
+  if count < 2 then return nil end
+  for k = i + 1, stop - 1 do
+    if not HEX[b[k]] then return nil end
+  end
+  local bin = hex_pairs(b, i + 1, count)
+  if not awaited(s, bin, 0, count) then return nil end
+  local first = interpretations(s, bin[0], bin[1], bin, 0, count)[1]
+  if first == nil then return nil end
+  local length, is_scan, declared = first[2](bin, 0, count) -- (the RTU frame's, its 2-byte CRC an LRC here)
+  if is_scan then
+    length = NEED
+    if declared ~= nil and declared > 0 then length = declared end
+  end
+  local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
+  if length ~= NEED and not (n - i < characters and length <= MAX_ADU) then return nil end
+  local what = "exception response"
+  if first[1] == RESPONSE then what = "response" end
+  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, characters)
 end
 
 local function run_ascii(s, final, items)
@@ -146,7 +177,10 @@ local function run_ascii(s, final, items)
           break
         end
       end
-      if stop ~= nil and b[stop] == COLON then
+      if stop ~= nil and b[stop] == COLON and b[stop - 1] == CR then
+        ascii_candidate(s, i, stop - i, items) -- (the LF lost: the CR ended the line)
+        i = stop
+      elseif stop ~= nil and b[stop] == COLON then
         reject(s, i, stop - i, CUT_BY_COLON, items)
         i = stop
       elseif stop ~= nil then
@@ -156,7 +190,7 @@ local function run_ascii(s, final, items)
         reject(s, i, MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII), items)
         i = i + MAX_ASCII
       elseif final then
-        reject(s, i, n - i, CUT_BY_END, items)
+        reject(s, i, n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END, items)
         i = n
       else
         break -- wait for the rest of the frame
