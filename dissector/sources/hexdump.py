@@ -25,6 +25,7 @@ sample (a whole capture on one line), on the part of it the sample holds.
 """
 from __future__ import annotations
 
+import codecs
 import math
 import re
 from collections.abc import Callable, Iterator
@@ -45,6 +46,7 @@ _DATETIME = re.compile(r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}
 _TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?)")
 _HEX = re.compile(r"(?:[0-9A-Fa-f]{2})+")
 _LABEL = re.compile(r"[TR]X:", re.IGNORECASE)
+CONTROL = re.compile(rb"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")  # bytes no text has (tab, CR and LF aside)
 _CUT_TOKEN = re.compile(r"[\[{]?(?:0[xX])?[0-9A-Fa-f:]{2,}")
 
 
@@ -218,13 +220,23 @@ def _lines(inp: Input, chunk_size: int) -> Iterator[bytes]:
         yield from lines
 
 
+def characters(text: bytes, complete: bool = True) -> str:
+    """The characters of a text's bytes: UTF-8, else an 8-bit code page's (Latin-1: what is not ASCII
+    is in comments, which are dropped); a UTF-8 character cut by a sample's end (not `complete`) is
+    left out."""
+    try:
+        return codecs.getincrementaldecoder("utf-8")().decode(text, final=complete)
+    except UnicodeDecodeError:
+        return text.decode("latin-1")
+
+
 def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
-    """(line number, text) of a text input; SourceError at the first line that is not ASCII."""
+    """(line number, text) of a text input; SourceError at the first line with a control byte (binary
+    data). Characters beyond ASCII are taken (comments); the line's reader refuses them elsewhere."""
     for number, raw in enumerate(_lines(inp, chunk_size), start=1):
-        try:
-            yield number, raw.decode("ascii")
-        except UnicodeDecodeError:
-            raise SourceError(f"{inp.name} line {number}: binary data in a hex dump") from None
+        if CONTROL.search(raw):
+            raise SourceError(f"{inp.name} line {number}: binary data in a hex dump")
+        yield number, characters(raw)
 
 
 def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object, bytes] | None]) -> Iterator[Chunk]:

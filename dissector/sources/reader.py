@@ -25,7 +25,7 @@ from dissector.protocol.ascii import detect_mode
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
-from dissector.sources.hexdump import looks_like_hexdump, read_hexdump
+from dissector.sources.hexdump import CONTROL, characters, looks_like_hexdump, read_hexdump
 from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
 from dissector.sources.pcapng import is_pcapng, read_pcapng
@@ -43,11 +43,11 @@ MODES = ("rtu", "ascii")
 TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii"})  # read as text when a BOM says so
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
+SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
 MODE_SAMPLE = 64  # payload bytes looked at to choose RTU or ASCII
 MIN_CHUNK = 256
 
 _GZIP = b"\x1f\x8b"
-_TEXT = frozenset(range(0x20, 0x7F)) | {0x09, 0x0A, 0x0D}
 
 Reader = Callable[[Input, WarningLog, int], Iterator[Chunk]]
 
@@ -73,7 +73,10 @@ READERS: dict[str, Reader] = {
 
 
 def _is_text(sample: bytes) -> bool:
-    return bool(sample) and all(byte in _TEXT for byte in sample)
+    """Printable characters, tabs and line ends: ASCII, and bytes from 80h up, which a text in UTF-8 or
+    an 8-bit code page has in its comments (`# Drehzahl ändern`). A control byte makes it binary (every
+    RTU frame has one: its function code)."""
+    return bool(sample) and CONTROL.search(sample) is None
 
 
 def _text_of(sample: bytes, complete: bool) -> tuple[Encoding, bytes, bool] | None:
@@ -109,7 +112,7 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         raise SourceError("compressed input (gzip): decompress it first")
     if not _is_text(sample):
         return "raw", None
-    text = sample.decode("ascii")
+    text = characters(sample, complete)
     if text.lstrip().startswith(":"):
         return "ascii", None
     if looks_like_traffic(text, complete):
@@ -119,6 +122,8 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         return tool, None
     if looks_like_hexdump(text, complete):
         return "hexdump", None
+    if not sample.isascii() and text == sample.decode("latin-1"):  # not UTF-8: no more text than any binary
+        return "raw", None
     return "raw", "the input is text, but neither a hex dump nor Modbus ASCII: decoded as raw bytes"
 
 
@@ -144,9 +149,8 @@ def _sniff(inp: Input) -> tuple[bytes, bool]:
     Reads as little as decides the question, so that a live pipe is not held back for long.
     """
     sample = b""
-    while len(sample) < SNIFF_BYTES:
-        part = inp.stream.read1(SNIFF_BYTES - len(sample)) if hasattr(inp.stream, "read1") else (
-            inp.stream.read(SNIFF_BYTES - len(sample)))
+    while True:
+        part = inp.stream.read1(SNIFF_BYTES) if hasattr(inp.stream, "read1") else inp.stream.read(SNIFF_BYTES)
         if not part:
             return sample, True
         sample += part
@@ -154,9 +158,18 @@ def _sniff(inp: Input) -> tuple[bytes, bool]:
             text = _text_of(sample, False)
             if text is None or not _is_text(text[1]):
                 break
-        if sample.count(b"\n") >= SNIFF_LINES:
+        if (sample.count(b"\n") >= SNIFF_LINES or len(sample) >= SNIFF_BYTES) and not _comments_only(sample):
             break
     return sample, False
+
+
+def _comments_only(sample: bytes) -> bool:
+    """Lines of text so far (the last maybe cut), each blank or a `#` comment, and room to read on: a hex
+    dump's header, which says nothing of the format; its first data line does."""
+    text = _text_of(sample, False)
+    body = text[1] if text is not None else sample
+    return (len(sample) < SNIFF_COMMENTS and _is_text(body)
+            and all(not line.strip() or line.lstrip().startswith(b"#") for line in body.split(b"\n")))
 
 
 class Source:
