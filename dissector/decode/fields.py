@@ -4,7 +4,7 @@ Runs after pairing, because a response's registers are numbered from the request
 limits are checked here and reported as warnings, never raised.
 
 The generic lifter (`lifter`) interprets the rule tables of data/modbus.toml [lift] (protocol/rules.py)
-for every handler but the few named special cases below (diagnostics, the server id, FC43 objects);
+for every handler but the few named special cases below (diagnostics, the server id, FC43's code and objects);
 each rule is prepared once (its limits looked up), so that a frame costs a few attribute tests. The
 compiled engine (accel/_summary.c) and the plugin interpret the same rules from their generated tables.
 Warnings come in the order the table's comment gives: checks, span, byte count, odd count, coil, echo.
@@ -242,8 +242,21 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
         frame.warnings.append(text("run_indicator", value=int(indicator)))
 
 
+_DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)
+_DEVICE_ID_CODES = _limits("device_id_code")
+
+
+def _mei_request(frame: Frame, fields: Container) -> None:
+    if fields["mei_type"] != _DEVICE_ID:
+        return
+    code = fields["body"]["read_code"]
+    low, high = _DEVICE_ID_CODES
+    if not low <= code <= high:
+        frame.warnings.append(text("device_id_code", code=code, low=low, high=high))
+
+
 def _mei_response(frame: Frame, fields: Container) -> None:
-    if fields["mei_type"] != 14:
+    if fields["mei_type"] != _DEVICE_ID:
         return
     frame.objects = [
         DeviceObject(
@@ -264,6 +277,7 @@ def _mei_response(frame: Frame, fields: Container) -> None:
 # cases below are the layouts no rule describes.
 SPECIAL_HANDLERS = {
     "diagnostics": _diagnostics,
+    "mei_request": _mei_request,
     "mei_response": _mei_response,
     "report_server_id_response": _report_server_id_response,
 }

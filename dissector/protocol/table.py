@@ -271,7 +271,7 @@ FUNCTIONS: tuple[Function, ...] = (
     ),
     Function(
         43,
-        _layout("mei_request", Select(2, 1, _DEVICE_ID, Fixed(7), Scan(5))),
+        _layout("mei_request", Select(2, 1, _DEVICE_ID, Fixed(7), Scan(5)), "mei_request"),
         _layout("mei_response", Select(2, 1, _DEVICE_ID, Special("mei_objects", 7, 8), Scan(5)), "mei_response"),
         Access.DIAGNOSTIC,
         compiled=Compiled(texts=True), text="mei",

@@ -292,6 +292,13 @@ local SPECIAL = {
     end
     if fields.data_length % 2 == 1 then warn(f, say("odd_diagnostic_data", {})) end
   end,
+  mei_request = function(f, b)
+    -- (another MEI type: the layout's switch read no Read Device ID code)
+    local code, limit = f.fields.body.read_code, LIMITS.device_id_code
+    if code ~= nil and (code < limit[1] or code > limit[2]) then
+      warn(f, say("device_id_code", { code = code, low = limit[1], high = limit[2] }))
+    end
+  end,
   mei_response = function(f, b)
     -- The objects the reader listed become the frame's (its fields are dropped once it is done with):
     -- each named, its value as text, where it starts (its id) and its bytes (id and length too).
