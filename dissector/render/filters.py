@@ -414,9 +414,12 @@ class _Parser:
         token = self.token
         if token.kind == "end":
             raise self.error(f"expected a value to compare {field} with")
-        if ftype == "bool":
+        if ftype == "bool":  # true/false, or 1/0 as Wireshark takes them and -T fields prints them
+            if token.kind == "number" and token.value in (0, 1) and isinstance(token.value, int):
+                self.advance()
+                return token.value == 1
             if not self.at("keyword", "true", "false"):
-                raise self.error(f"{field} is true or false, not {self._describe(token)}")
+                raise self.error(f"{field} is true or false (or 1 or 0), not {self._describe(token)}")
             self.advance()
             return token.value == "true"
         if ftype == "number":

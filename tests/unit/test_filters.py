@@ -101,6 +101,9 @@ CASES = [
     ),
     ("noisy_bus.bin", "not crc_ok", [1, 17, 34]),  # noise has no crc_ok: "not" of an absent field
     ("noisy_bus.bin", "crc_ok == false", [17]),
+    ("noisy_bus.bin", "crc_ok == 0", [17]),  # 1 and 0 as Wireshark takes them and -T fields prints them
+    ("noisy_bus.bin", "crc_ok != 1", [17]),
+    ("noisy_bus.bin", "unanswered == 1", [28, 29]),
     ("noisy_bus.bin", 'kind == "noise"', [1, 34]),
     ("noisy_bus.bin", "unanswered", [28, 29]),
     ("noisy_bus.bin", "slave == 5 or length < 5", [1, 28, 29]),
@@ -142,6 +145,7 @@ ERRORS = [
         "  code == CHCF\n          ^",
     ),
     ("(slave == 3", "expected ) to close the ( at column 1 (column 12)\n  (slave == 3\n             ^"),
+    ("crc_ok == 2", "crc_ok is true or false (or 1 or 0), not '2' (column 11)\n  crc_ok == 2\n            ^"),
     ("crc_ok > true", "crc_ok is true or false: only ==, != and ~= compare it (column 8)\n  crc_ok > true\n         ^"),
     ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
