@@ -1,7 +1,9 @@
 """Pairing: link each response to the request it answers, and say which requests went unanswered.
 
 Runs after the framer, which has already classified every frame. A request to slave 0 is a broadcast
-and expects no answer. A request the spec has no server answer (data/modbus.toml [pairing]
+and expects no answer: a response from slave 0 answers nothing and is warned about (no server answers a
+broadcast, and a server answers with its own address), naming the broadcast it follows when it is of its
+function. A request the spec has no server answer (data/modbus.toml [pairing]
 never_answered: FC8 04 Force Listen Only Mode) is noted as such and never unanswered, though an
 exception (from a server that does not support it) still answers it. A response answers the open
 request of its slave and function when it echoes what the spec has it echo ([pairing] echo: an FC8
@@ -48,6 +50,7 @@ class Pairer:
         # The open request is one the spec has no server answer (never_answered): only an exception can
         # answer it, and without one it is not unanswered.
         self._answerless = False
+        self._broadcast: Frame | None = None  # the last request, when it was a broadcast
         self._queue: list[Item] = []
         self._count = 0
 
@@ -150,6 +153,7 @@ class Pairer:
                 item.notes.append(text("unanswered", number=pending.number))
             self._pending = None
             self._release(out)
+            self._broadcast = item if item.slave == 0 else None
             if item.slave == 0:
                 item.broadcast = True
                 self._enqueue(item, out)
@@ -186,7 +190,13 @@ class Pairer:
                 if self._no_answer(pending) and self._pending_released:
                     item.notes.append(text("unanswered", number=pending.number))
                 self._pending = None
-            item.notes.append(text("unmatched"))
+            broadcast = self._broadcast
+            if item.slave == 0 and broadcast is not None and broadcast.function == item.function:
+                item.warnings.append(text("broadcast_answered", number=broadcast.number))
+            else:
+                if item.slave == 0:
+                    item.warnings.append(text("broadcast_address"))
+                item.notes.append(text("unmatched"))
         self._queue.append(item)
         self._release(out)
         if backwards is not None:  # (numbered now)

@@ -3,13 +3,14 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local UNMATCHED = say("unmatched", {})
+local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local ECHO = DATA.pairing.echo
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function
--- when it echoes what the spec has it echo (DATA.pairing.echo: an FC8 sub-function); a broadcast awaits nothing,
+-- when it echoes what the spec has it echo (DATA.pairing.echo: an FC8 sub-function); a broadcast awaits nothing
+-- (a response from slave 0 answers nothing, with a warning: after a broadcast of its function, naming it),
 -- and a request the spec has no server answer (awaits_answer, vw3.stream's: FC8 04) only an exception (the framer
 -- awaits nothing after it), never unanswered (f.answerless).
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
@@ -52,7 +53,9 @@ local function pair(st, f)
     if pending ~= nil then unanswered(st, pending) end
     if f.slave == 0 then
       f.broadcast = true
+      st.broadcast = f -- (the last request, a broadcast: a response from slave 0 after it answers it wrongly)
     else
+      st.broadcast = nil
       if not awaits_answer(f) then
         note(f, NEVER_ANSWERED_NOTE)
         f.answerless = true
@@ -74,6 +77,12 @@ local function pair(st, f)
   else
     if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
-    note(f, UNMATCHED)
+    local broadcast = st.broadcast
+    if f.slave == 0 and broadcast ~= nil and broadcast.fn == f.fn then
+      warn(f, say("broadcast_answered", { number = broadcast.number }))
+    else
+      if f.slave == 0 then warn(f, BROADCAST_ADDRESS) end
+      note(f, UNMATCHED)
+    end
   end
 end
