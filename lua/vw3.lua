@@ -2288,6 +2288,18 @@ local DATA = {
             ["when"] = nil,
           },
         },
+        [1538] = {
+          {
+            ["text"] = "address does not exist",
+            ["when"] = nil,
+          },
+        },
+        [4098] = {
+          {
+            ["text"] = "address does not exist",
+            ["when"] = nil,
+          },
+        },
         [4099] = {
           {
             ["text"] = "quantity beyond the card's limit",
