@@ -158,7 +158,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         result.error = str(error)
     except OSError as error:
         tables.abandon()
-        result.error = f"{settings.directory}: {error.strerror or error}"
+        result.error = f"--parquet {settings.directory}: writing {capture.shown}: {error.strerror or error}"
     except BaseException:  # Ctrl-C or a worker's end: no half-written .part files left behind
         tables.abandon()
         raise
@@ -202,7 +202,7 @@ def run_captures(captures: list[Capture], settings: JobSettings, jobs: int, sche
 def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog: str) -> int:
     """The --parquet run: one line per capture written, errors one line each; exit 2 if any failed."""
     from dissector.app.options import baud_given, shown
-    from dissector.export.parquet import need_pyarrow
+    from dissector.export.parquet import need_pyarrow, remove_empty_tables
 
     need_pyarrow()
     if not args.files:
@@ -213,6 +213,8 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         if not os.path.isfile(path):
             raise UsageError(f"{path}: no such file")
     created = not os.path.exists(args.parquet)
+    if not created and not os.path.isdir(args.parquet):
+        raise UsageError(f"--parquet {args.parquet}: not a directory (DIR is the dataset's folder)")
     try:
         os.makedirs(args.parquet, exist_ok=True)
     except OSError as error:
@@ -238,6 +240,8 @@ def parquet_main(args: argparse.Namespace, stdout: object, stderr: object, prog:
         )
 
     run_captures(captures, settings, args.jobs, args.scheduler, report)
+    if failed:
+        remove_empty_tables(settings.directory)
     if failed and created:
         try:
             os.rmdir(args.parquet)  # nothing was written: the refused run leaves no empty folder

@@ -224,10 +224,16 @@ class CaptureTables:
         return {name: table.rows for name, table in self.tables.items()}
 
     def abandon(self) -> None:
-        """Remove what this capture wrote, and the table folders it leaves empty: a refused input leaves no dataset."""
+        """Remove what this capture wrote. Its table folders stay: another capture's worker may have made
+        them and be about to write there (remove_empty_tables, once every worker is done)."""
         for table in self.tables.values():
             table.abandon()
-            try:
-                os.rmdir(os.path.dirname(table.path))  # only when empty: other captures' files stay
-            except OSError:
-                pass
+
+
+def remove_empty_tables(directory: str) -> None:
+    """The table folders no capture wrote into (every capture refused): a refused run leaves no dataset."""
+    for name in schemas():
+        try:
+            os.rmdir(os.path.join(directory, name))  # only when empty: captures' files stay
+        except OSError:
+            pass

@@ -322,3 +322,35 @@ def test_a_refused_capture_leaves_no_dataset_behind(tmp_path: Path) -> None:
     (kept / "notes.txt").write_text("the engineer's own file")
     assert run_cli(["--parquet", str(kept), str(late)])[0] == 2
     assert sorted(os.listdir(kept)) == ["notes.txt"]  # a folder that was there stays, with what it held
+
+
+def test_a_refused_capture_does_not_take_the_folders_another_worker_writes_in(tmp_path: Path) -> None:
+    """Hunter's race (--jobs 2, good and cut captures: 1 run in 3): a refused capture's abandon() removed
+    DIR/registers while it was still empty, and the worker of a good capture, which had made it and opens
+    its file on first rows, failed ('Failed to open local file .../registers/good1...parquet.part'),
+    leaving good1 with frames but no registers. Here the two workers' steps in that order."""
+    from dissector.export.parquet import CaptureTables
+
+    from dissector.devices.build import build_annotator
+    from dissector.framing.rtu import RtuFramer
+    from dissector.pipeline import Dissector
+    from dissector.sources.reader import open_source
+
+    good = CaptureTables(str(tmp_path), "/caps/good.pcap", "good")  # worker 1 makes DIR/frames, registers...
+    refused = CaptureTables(str(tmp_path), "/caps/bad.hex", "bad")
+    refused.abandon()  # worker 2's capture is refused before worker 1 wrote a row
+    dissector = Dissector(framer=RtuFramer(19200), annotate=build_annotator(["atv71"], [], None))
+    with open_source(str(ROOT / "captures" / "p38_protection.pcap")) as source:
+        for chunk in source:
+            good.add(dissector.feed(chunk))
+    good.add(dissector.finish())
+    rows = good.close()
+    assert rows == {"frames": 12, "registers": 18, "events": 5}
+    assert sorted(os.listdir(tmp_path / "registers")) == ["good.parquet"]
+
+
+def test_a_dataset_folder_that_is_a_file_is_named_so(tmp_path: Path) -> None:
+    taken = tmp_path / "p38.pcapng"
+    taken.write_bytes(b"")
+    assert run_cli(["--parquet", str(taken), str(ROOT / "captures" / "p38_protection.pcap")]) == (
+        2, "", f"vw3-decode: --parquet {taken}: not a directory (DIR is the dataset's folder)\n")
