@@ -5621,8 +5621,7 @@ local function annotate_list(st, f, device, registers, read)
   story.tell(f)
 end
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.plc_base, M.remember, M.remember_writes, M.story, M.track = plc_base, remember, remember_writes, story, track
-M.words_at = words_at
+M.plc_base, M.remember_writes, M.story, M.track, M.words_at = plc_base, remember_writes, story, track, words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -5806,12 +5805,10 @@ package.preload["vw3.selection"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.selection"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CONFIRMED, EXCEPTION, NOISE, PLAIN_READS, PROFILES = CONFIRMED, EXCEPTION, NOISE, PLAIN_READS, PROFILES
-local READS, READ_LIMIT, RESPONSE, SELECTION, build_device = READS, READ_LIMIT, RESPONSE, SELECTION, build_device
-local device_for, format, ipairs, lane, layered_rows, math = device_for, format, ipairs, lane, layered_rows, math
-local next, pairs, python_repr, refused_registers = next, pairs, python_repr, refused_registers
-local register_at, remember, remember_writes, say = register_at, remember, remember_writes, say
-local span_name, table, words_at = span_name, table, words_at
+local NOISE, PROFILES, READS, RESPONSE, SELECTION = NOISE, PROFILES, READS, RESPONSE, SELECTION
+local build_device, device_for, format, ipairs, lane = build_device, device_for, format, ipairs, lane
+local layered_rows, math, next, pairs, python_repr = layered_rows, math, next, pairs, python_repr
+local register_at, say, span_name, table = register_at, say, span_name, table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -6021,87 +6018,44 @@ function lane.counted(judged, answer)
   judged.frames = judged.frames + 1
 end
 
--- A provisional frame that tells of parameters (a read, a confirmed write, an exception 02 to a read),
--- kept per slave and address (the last one: bounded) until the slave's choice (annotator.py _hold).
+-- A provisional frame kept, per slave until its choice, for the chosen device to annotate again (device_now;
+-- annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
+-- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
+-- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
+-- are provisional until FIT_FRAMES of them at most.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 local function hold(st, f, b)
-  if f.crc ~= f.crc_expected then return end -- (a damaged frame tells nothing)
-  local kind, fn, request = f.kind, f.fn, f.request
-  local runs = {}
-  if kind == RESPONSE then
-    if CONFIRMED.answer[fn] and request ~= nil and request.registers ~= nil and request.registers.count > 0 then
-      runs[#runs + 1] = request.registers
-    elseif READS[fn] == nil and not CONFIRMED.echo[fn] then
-      return
-    end
-    if f.registers ~= nil and f.registers.count ~= nil and f.registers.count > 0 then runs[#runs + 1] = f.registers end
-  elseif kind == EXCEPTION and PLAIN_READS[fn] and request ~= nil and request.start ~= nil
-      and request.quantity ~= nil and request.quantity > 0 then
-    runs[1] = { start = request.start, count = math.min(request.quantity, READ_LIMIT) }
-  else
-    return
+  local copy = copied(f)
+  copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
+  local run = f.registers
+  if run ~= nil and run.count == nil then
+    copy.registers = {}
+    for index, reg in ipairs(run) do copy.registers[index] = { address = reg.address, value = reg.value } end
+  elseif run ~= nil then
+    copy.registers = copied(run)
+  end
+  if f.request ~= nil then
+    copy.request = copied(f.request)
+    if f.request.registers ~= nil then copy.request.registers = copied(f.request.registers) end
+  end
+  if f.objects ~= nil then
+    copy.objects = {}
+    for index, object in ipairs(f.objects) do copy.objects[index] = copied(object) end
   end
   st.held = st.held or {}
   local held = st.held[f.slave] or {}
   st.held[f.slave] = held
-  local entry = { f = f, b = b }
-  for _, run in ipairs(runs) do
-    if run.start ~= nil then
-      for index = 0, run.count - 1 do held[(run.start + index) % 0x10000] = entry end
-    end
-  end
-end
-
--- The slave's provisional frames told to the device just chosen, memory only (annotator.py _recall): a
--- parameter read before the choice and 16#8000 after it `became protected`, as with -2.
-local function recall(device, held)
-  if not device.track then return end
-  local entries, known = {}, {}
-  for _, entry in pairs(held) do
-    if not known[entry] then known[entry] = true; entries[#entries + 1] = entry end
-  end
-  table.sort(entries, function(x, y) return x.f.number < y.f.number end)
-  local seen, profile = device.seen, device.profile
-  for _, entry in ipairs(entries) do
-    local f, b = entry.f, entry.b
-    local fn, number, request = f.fn, f.number, f.request
-    if f.kind == EXCEPTION then
-      if f.exception_code == profile.all_protected_exception
-          and profile.exception_causes[fn * 256 + f.exception_code] == nil then
-        for _, lost in ipairs(refused_registers(device, request)) do
-          remember(seen, lost.address, nil, number, lost.status)
-        end
-      end
-    else
-      if CONFIRMED.answer[fn] and request ~= nil and request.registers ~= nil
-          and request.registers.count > 0 and request.registers.b ~= nil then
-        remember_writes(seen, number, request.registers, request.registers.b)
-      end
-      local run, protected = f.registers, profile.protected_value
-      if READS[fn] ~= nil and protected ~= nil and run ~= nil and run.count ~= nil and run.start ~= nil then
-        local count = run.count
-        for index = 0, count - 1 do
-          local address, value = register_at(run, b, index)
-          local row = device.rows[address]
-          if value == protected and count > 1 and words_at(device.rows, address, index, count) == 1 then
-            if row == nil then
-              remember(seen, address, nil, number, "non-existent")
-            elseif not row.ambiguous_8000 then
-              remember(seen, address, nil, number, "protected")
-            end
-          else
-            remember(seen, address, value, number, "read")
-          end
-        end
-      end
-      if CONFIRMED.echo[fn] and run ~= nil and run.count ~= nil and run.count > 0 then
-        remember_writes(seen, number, run, b)
-      end
-    end
-  end
+  held[#held + 1] = copy
 end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
--- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), and
+-- then the copies of the slave's provisional frames (hold), for device_now to annotate again.
 local function select_device(st, f, b)
   local frozen, slave = st.frozen, f.slave
   if frozen ~= nil and st.fixed[slave] then
@@ -6130,7 +6084,7 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
   local history = st.history[slave]
-  local device = st.devices[slave]
+  local device, held = st.devices[slave], nil
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
   if not choice.same then
     st.chosen[slave] = choice.profile
@@ -6141,22 +6095,14 @@ local function select_device(st, f, b)
     end
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
-    local held = st.held and st.held[slave]
-    if held ~= nil then
-      st.held[slave] = nil
-      recall(device, held)
-    end
     f.profile_choice = choice.reason
+    held = st.held and st.held[slave]
+    if held ~= nil then st.held[slave] = nil end
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  return device
+  return device, held
 end
-
-local function device_now(st, f, b)
-  if config.auto[f.slave] then return select_device(st, f, b) end
-  return device_for(st, f.slave)
-end
-M.device_now = device_now
+M.select_device = select_device
 end
 
 -- ---- vw3.annotator: lua/src/annotator.lua ----
@@ -6167,12 +6113,14 @@ package.preload["vw3.annotator"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST = AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST
-local RESPONSE, annotate_registers, check_request, concat = RESPONSE, annotate_registers, check_request, concat
-local describe, device_of, diagnostics_note = describe, device_of, diagnostics_note
-local explain_exception, explain_objects, ipairs, math = explain_exception, explain_objects, ipairs, math
-local pairs, parse_map_choice, parse_profile_choice = pairs, parse_map_choice, parse_profile_choice
+local RESPONSE, annotate_list, annotate_registers = RESPONSE, annotate_list, annotate_registers
+local check_request, concat, describe, device_for = check_request, concat, describe, device_for
+local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
+local explain_objects, ipairs, math, pairs = explain_objects, ipairs, math, pairs
+local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
 local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
-local select, span_label, string, table, words_at = select, span_label, string, table, words_at
+local select, select_device, span_label, string, table = select, select_device, span_label, string, table
+local words_at = words_at
 
 local function annotate_with(st, f, b, device)
   if not device then return end
@@ -6204,6 +6152,28 @@ local function annotate_with(st, f, b, device)
   -- look up, some 800 instructions a record on the plant mix under callgrind)
   if f.fn == 8 and f.subfunction ~= nil then diagnostics_note(f, device, b) end
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
+end
+
+-- Profile auto chose a device with a frame: the slave's provisional frames (their copies, kept by hold)
+-- annotated again with it, as they would have been had it been known from the first (-2): it remembers of
+-- them what the one annotate path remembers, so a parameter read in one and 16#8000 now `became
+-- protected` (annotator.py _observe). What they tell again is dropped with the copies.
+local function annotate_again(st, device, held)
+  for _, copy in ipairs(held) do
+    local run = copy.registers
+    if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path)
+      annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
+    else
+      annotate_with(st, copy, copy.b, device)
+    end
+  end
+end
+
+local function device_now(st, f, b)
+  if not config.auto[f.slave] then return device_for(st, f.slave) end
+  local device, held = select_device(st, f, b)
+  if held ~= nil then annotate_again(st, device, held) end
+  return device
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
@@ -6288,8 +6258,9 @@ local function register_view(st, f, run, b, index)
   end
   return view
 end
-M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
-M.new_state, M.register_view, M.string_of = new_state, register_view, string_of
+M.annotate_with, M.configure, M.device_now = annotate_with, configure, device_now
+M.inferred_registers, M.new_state, M.register_view = inferred_registers, new_state, register_view
+M.string_of = string_of
 end
 
 -- ---- vw3.pack: lua/src/pack.lua ----

@@ -12,11 +12,12 @@ per frame is a few dictionary lookups per register.
 """
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable, Sequence
 
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
-from dissector.devices.explain import PLAIN_READS, READ_LIMIT, all_unreadable_registers, explain_exception
+from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
 from dissector.devices.naming import name_register, name_wide, plc_label
@@ -61,9 +62,9 @@ class Annotator:
         self.changed: set[int] = set()  # slaves whose profile changed (the compiled path reloads them)
         self._settled: set[int] = set()
         self._rereading: dict[tuple[int, str], Device] = {}  # reread()'s devices of other profiles
-        # slave -> address -> the last provisional frame that told of it, until the slave's choice:
-        # what the chosen device must remember of them (_recall). One frame per address: bounded.
-        self._held: dict[int, dict[int, Frame]] = {}
+        # slave -> copies of its provisional frames, until its choice (_observe annotates them again):
+        # bounded, a slave's frames are provisional until selection.FIT_FRAMES of them at most.
+        self._held: dict[int, list[Frame]] = {}
         for profile in [default, *per_slave.values()]:
             self._builder.build(profile, None)  # load every map now: errors before the first frame
 
@@ -117,74 +118,20 @@ class Annotator:
         if slave not in self._settled and selector.settled(slave):  # type: ignore[union-attr]
             self._settled.add(slave)
             self.changed.add(slave)
-        held = self._held.pop(slave, None) if choice is not None or slave in self._settled else None
+        held = self._held.pop(slave, ()) if choice is not None or slave in self._settled else ()
         if choice is None:
             return None
         profile = self.selector.profile(choice.profile) or self.default  # type: ignore[union-attr]
         self._chosen[slave] = profile
         device = self._devices[slave] = self._builder.build(profile, slave)
         self.changed.add(slave)
-        if held and device.track:
-            self._recall(device, held)
+        # The slave's provisional frames annotated again with the device just chosen, as they would have
+        # been had it been known from the first (a file, read twice): it remembers of them what the one
+        # annotate path remembers, so a parameter read in one and 16#8000 now `became protected`. On
+        # copies (_scratch): those frames were shown, what is told of them again is dropped.
+        for copy in held:
+            self._annotate_frame(copy, device)
         return device
-
-    def _hold(self, frame: Frame) -> None:
-        """A provisional frame that tells of parameters (a read, a confirmed write, an exception 02 to a
-        read), kept for _recall."""
-        kind = frame.kind
-        function = frame.function
-        if kind is _RESPONSE:
-            registers = frame.registers
-            if function in _BY_ANSWER and frame.request is not None and frame.request.registers:
-                registers = [*(registers or ()), *frame.request.registers]
-            elif not (function in _READS or function in _BY_ECHO):
-                return
-        elif kind is _EXCEPTION and function in PLAIN_READS and frame.request is not None:
-            request = frame.request
-            if request.start is None or not request.quantity:
-                return
-            held = self._held.setdefault(frame.slave, {})
-            for index in range(min(request.quantity, READ_LIMIT)):
-                held[(request.start + index) & 0xFFFF] = frame
-            return
-        else:
-            return
-        if registers:
-            held = self._held.setdefault(frame.slave, {})
-            for register in registers:
-                if register.address is not None:
-                    held[register.address] = frame
-
-    def _recall(self, device: Device, held: dict[int, Frame]) -> None:
-        """The slave's provisional frames told to the device just chosen, as they would have been had it
-        been known from the first (a file, read twice): a parameter read in a provisional frame and
-        protected in a later one `became protected`. Memory only: those frames' lines were shown."""
-        seen = device.seen
-        frames = sorted({id(frame): frame for frame in held.values()}.values(), key=lambda frame: frame.number)
-        for frame in frames:
-            kind = frame.kind
-            function = frame.function
-            number = frame.number
-            if kind is _EXCEPTION:
-                if frame.exception_code != device.profile.all_protected_exception:
-                    continue
-                for register in self.reread(frame) or ():
-                    seen[register.address] = (None, number, register.status)  # type: ignore[index,assignment]
-                continue
-            request = frame.request
-            if function in _BY_ANSWER and request is not None and request.registers:
-                remember_writes(frame, device, request.registers)
-            if function in _READS:
-                for register in self.reread(frame) or ():
-                    address = register.address
-                    if address is None or register.value is None or register.status in (None, "ambiguous"):
-                        continue  # (None: the profile has no 16#8000, and _annotate remembers no read then)
-                    if register.status in ("protected", "non-existent"):
-                        seen[address] = (None, number, register.status)
-                    else:
-                        seen[address] = (register.value, number, "read")
-            if function in _BY_ECHO and frame.registers:
-                remember_writes(frame, device, frame.registers)
 
     def freeze(self) -> None:
         """The selector has seen the whole input (app/preselect.py): every slave's device is the one
@@ -424,10 +371,13 @@ class Annotator:
             choice = frame.profile_choice = self.selector.choice(frame.slave)  # type: ignore[union-attr]
             if choice is None and frame.slave != 0 and not self.selector.settled(frame.slave):  # type: ignore[union-attr]
                 frame.provisional = True  # read once: no device yet, and evidence may still come
-                if frame.crc_ok:
-                    self._hold(frame)
+                self._held.setdefault(frame.slave, []).append(_scratch(frame))
         if device is None:
             device = self.device(frame.slave)
+        self._annotate_frame(frame, device)
+
+    def _annotate_frame(self, frame: Frame, device: Device) -> None:
+        """The one annotate path: a frame, or a provisional frame's copy (_observe), with `device`."""
         kind = frame.kind
         function = frame.function
         special_name = device.profile.function_names.get(function)
@@ -525,6 +475,18 @@ class Annotator:
             if last is not None and last[0] is None:
                 readable_again(address, row, register.label, last, value, events)
             seen[address] = (value, number, "read")
+
+
+def _scratch(frame: Frame) -> Frame:
+    """A copy of a frame for the annotate path to change freely (names, statuses, notes), taken before it
+    is annotated: its registers and device objects fresh, as decoded."""
+    registers = frame.registers
+    if type(registers) is RegisterList:
+        registers = RegisterList(registers.start, registers.values)
+    elif registers:
+        registers = [Register(register.address, register.value) for register in registers]
+    objects = frame.objects and [DeviceObject(obj.id, obj.name, obj.value) for obj in frame.objects]
+    return dataclasses.replace(frame, registers=registers, objects=objects, notes=[], warnings=[])
 
 
 def _labels(labels: dict[int, str], base: int, addresses: Sequence[int]) -> list[str]:

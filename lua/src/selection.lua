@@ -212,87 +212,44 @@ function lane.counted(judged, answer)
   judged.frames = judged.frames + 1
 end
 
--- A provisional frame that tells of parameters (a read, a confirmed write, an exception 02 to a read),
--- kept per slave and address (the last one: bounded) until the slave's choice (annotator.py _hold).
+-- A provisional frame kept, per slave until its choice, for the chosen device to annotate again (device_now;
+-- annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
+-- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
+-- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
+-- are provisional until FIT_FRAMES of them at most.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 local function hold(st, f, b)
-  if f.crc ~= f.crc_expected then return end -- (a damaged frame tells nothing)
-  local kind, fn, request = f.kind, f.fn, f.request
-  local runs = {}
-  if kind == RESPONSE then
-    if CONFIRMED.answer[fn] and request ~= nil and request.registers ~= nil and request.registers.count > 0 then
-      runs[#runs + 1] = request.registers
-    elseif READS[fn] == nil and not CONFIRMED.echo[fn] then
-      return
-    end
-    if f.registers ~= nil and f.registers.count ~= nil and f.registers.count > 0 then runs[#runs + 1] = f.registers end
-  elseif kind == EXCEPTION and PLAIN_READS[fn] and request ~= nil and request.start ~= nil
-      and request.quantity ~= nil and request.quantity > 0 then
-    runs[1] = { start = request.start, count = math.min(request.quantity, READ_LIMIT) }
-  else
-    return
+  local copy = copied(f)
+  copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
+  local run = f.registers
+  if run ~= nil and run.count == nil then
+    copy.registers = {}
+    for index, reg in ipairs(run) do copy.registers[index] = { address = reg.address, value = reg.value } end
+  elseif run ~= nil then
+    copy.registers = copied(run)
+  end
+  if f.request ~= nil then
+    copy.request = copied(f.request)
+    if f.request.registers ~= nil then copy.request.registers = copied(f.request.registers) end
+  end
+  if f.objects ~= nil then
+    copy.objects = {}
+    for index, object in ipairs(f.objects) do copy.objects[index] = copied(object) end
   end
   st.held = st.held or {}
   local held = st.held[f.slave] or {}
   st.held[f.slave] = held
-  local entry = { f = f, b = b }
-  for _, run in ipairs(runs) do
-    if run.start ~= nil then
-      for index = 0, run.count - 1 do held[(run.start + index) % 0x10000] = entry end
-    end
-  end
-end
-
--- The slave's provisional frames told to the device just chosen, memory only (annotator.py _recall): a
--- parameter read before the choice and 16#8000 after it `became protected`, as with -2.
-local function recall(device, held)
-  if not device.track then return end
-  local entries, known = {}, {}
-  for _, entry in pairs(held) do
-    if not known[entry] then known[entry] = true; entries[#entries + 1] = entry end
-  end
-  table.sort(entries, function(x, y) return x.f.number < y.f.number end)
-  local seen, profile = device.seen, device.profile
-  for _, entry in ipairs(entries) do
-    local f, b = entry.f, entry.b
-    local fn, number, request = f.fn, f.number, f.request
-    if f.kind == EXCEPTION then
-      if f.exception_code == profile.all_protected_exception
-          and profile.exception_causes[fn * 256 + f.exception_code] == nil then
-        for _, lost in ipairs(refused_registers(device, request)) do
-          remember(seen, lost.address, nil, number, lost.status)
-        end
-      end
-    else
-      if CONFIRMED.answer[fn] and request ~= nil and request.registers ~= nil
-          and request.registers.count > 0 and request.registers.b ~= nil then
-        remember_writes(seen, number, request.registers, request.registers.b)
-      end
-      local run, protected = f.registers, profile.protected_value
-      if READS[fn] ~= nil and protected ~= nil and run ~= nil and run.count ~= nil and run.start ~= nil then
-        local count = run.count
-        for index = 0, count - 1 do
-          local address, value = register_at(run, b, index)
-          local row = device.rows[address]
-          if value == protected and count > 1 and words_at(device.rows, address, index, count) == 1 then
-            if row == nil then
-              remember(seen, address, nil, number, "non-existent")
-            elseif not row.ambiguous_8000 then
-              remember(seen, address, nil, number, "protected")
-            end
-          else
-            remember(seen, address, value, number, "read")
-          end
-        end
-      end
-      if CONFIRMED.echo[fn] and run ~= nil and run.count ~= nil and run.count > 0 then
-        remember_writes(seen, number, run, b)
-      end
-    end
-  end
+  held[#held + 1] = copy
 end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
--- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice).
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), and
+-- then the copies of the slave's provisional frames (hold), for device_now to annotate again.
 local function select_device(st, f, b)
   local frozen, slave = st.frozen, f.slave
   if frozen ~= nil and st.fixed[slave] then
@@ -321,7 +278,7 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
   local history = st.history[slave]
-  local device = st.devices[slave]
+  local device, held = st.devices[slave], nil
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
   if not choice.same then
     st.chosen[slave] = choice.profile
@@ -332,18 +289,10 @@ local function select_device(st, f, b)
     end
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
-    local held = st.held and st.held[slave]
-    if held ~= nil then
-      st.held[slave] = nil
-      recall(device, held)
-    end
     f.profile_choice = choice.reason
+    held = st.held and st.held[slave]
+    if held ~= nil then st.held[slave] = nil end
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  return device
-end
-
-local function device_now(st, f, b)
-  if config.auto[f.slave] then return select_device(st, f, b) end
-  return device_for(st, f.slave)
+  return device, held
 end

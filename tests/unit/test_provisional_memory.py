@@ -1,7 +1,7 @@
 """Reading once (standard input, live), the parameters read in frames named before profile `auto` chose
-the slave's device are remembered by that device once it is chosen (Annotator._recall): the frame that
-settles the profile says "became protected" as the file decode (two passes) and --watch do. Python
-stages and compiled engine."""
+the slave's device are remembered by that device once it is chosen (Annotator._observe annotates those
+frames again): the frame that settles the profile says "became protected" as the file decode (two
+passes) and --watch do. Python stages and compiled engine."""
 from __future__ import annotations
 
 import json
