@@ -6,9 +6,10 @@ The Python live path (app/live_capture.py, app/live.py) frames each read in the 
 decides, from what its framer holds, when to close a frame after a silence (CaptureThread.flush_due)
 and before which time no frame is still to come (safe_time: a request past its --timeout is then shown
 unanswered). Here the capture thread only reads, stamps and writes --raw, and hands the reads on
-(`framer=None`); the display feeds them to a TimedPath as chunks (each byte at its arrival:
-sources/serial_times.py, as the capture thread feeds its framer), many reads in one block, and takes
-the same decisions at the same reads:
+(`framer=None`); the display feeds them to a TimedPath, many reads in one block, each byte at its
+arrival (sources/serial_times.py, as the capture thread's framer times them): a read's runs of bytes
+with one time are the block's chunks (_ReadBlocks: their arrays made at once, not a Chunk a byte),
+and it takes the same decisions at the same reads:
 
 - while the engine has the stream, the Python framer would hold nothing the engine has shown, and a
   request it holds is at the engine's position: so a silence closes nothing and no request expires
@@ -38,13 +39,14 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 from dissector.accel import fastsummary
-from dissector.accel.records import BlockBuilder
+from dissector.accel.records import SILENCE_BEFORE, TIMED, Block, BlockBuilder
 from dissector.accel.timedpath import CLOCKS, TimedPath, usable
 from dissector.model import Chunk, Frame, Item, Kind, Stamp, up_to_items
 from dissector.decode.pairing import capture_ended
+from dissector.framing.timing import may_pause, silence_before
 from dissector.pipeline import Dissector
 from dissector.render.timefmt import Clock
-from dissector.sources.serial_times import ReadClock
+from dissector.sources.serial_times import ByteTimes, ReadClock
 
 NO_SILENCE_CHECK = 1e300  # live has no GapChecker: a silence inside a frame is no warning, no handover
 Read = tuple[bytes, Stamp, float]  # (bytes, stamp, monotonic time): one read of the port
@@ -102,7 +104,7 @@ class LivePath:
         timing = self.framer.timing
         path.engine.set_timing(timing.char_time, NO_SILENCE_CHECK, timeout, clock_code)
         self.path = path
-        self.builder = BlockBuilder(timing)
+        self.builder = _ReadBlocks(timing)
         # Each byte's arrival, as the capture thread's framer is fed (sources/serial_times.py).
         self.clock = ReadClock(char_time if char_time is not None else timing.char_time)
         self._last_data = 0.0
@@ -200,10 +202,10 @@ class LivePath:
         return last - oldest <= self.timeout
 
     def _add(self, data: bytes, stamp: Stamp) -> None:
-        builder, path = self.builder, self.path
-        for chunk in self.clock.chunks(data, stamp):
-            for block in builder.add(chunk):
-                path.feed(block)
+        times = self.clock.byte_times(data, stamp)
+        assert times is not None
+        for block in self.builder.add_read(data, times, self.clock) or ():
+            self.path.feed(block)
 
     def _feed_block(self) -> None:
         for block in self.builder.flush():
@@ -292,6 +294,46 @@ class LivePath:
         while path._python_frames() if path.python else path._engine_frames():
             pass
 
+
+class _ReadBlocks(BlockBuilder):
+    """BlockBuilder with a read added at once: its runs of bytes with one time (ReadClock.runs) are
+    the block's chunks, their offsets, times and flags as add() gives each of them fed as a Chunk,
+    the Chunks made only where the Python stages take the stream (Block.chunk)."""
+
+    _step = -1.0  # the character time (us) _pausing was found for (timing.may_pause): the same for every read
+    _pausing = True
+
+    def add_read(self, data: bytes, times: ByteTimes, clock: ReadClock) -> list[Block] | None:
+        """The blocks filled (None: none, the usual case: a generator costs as much as the rest)."""
+        if times.step_us != self._step:
+            self._step, self._pausing = times.step_us, may_pause(times.step_us, self.timing)
+        offset = self.offset
+        packed = None
+        if not (self._pausing or not self.exact or self.size + len(data) >= self.block_bytes):
+            packed = clock.packed(times, offset)
+        if packed is not None:
+            starts, ns = packed
+            first, last = ns[0], ns[-1]
+        if packed is None or first < -(1 << 62) or last >= 1 << 62:
+            # (a silence inside the read, times the engine cannot subtract, a block full inside it:
+            # rare, and exact as each run fed as a Chunk)
+            runs, stamps = clock.runs(times)
+            ends = [*runs[1:], len(data)]
+            return [block for start, end, time in zip(runs, ends, stamps)
+                    for block in self.add(Chunk(data[start:end], time=Stamp(time)))]
+        count = len(starts)
+        flags = bytearray((TIMED,)) * count
+        if self.previous is not None and silence_before(self.previous, offset, Stamp(first), self.timing):
+            flags[0] |= SILENCE_BEFORE
+        self.previous = (starts[-1], Stamp(last))
+        self.pieces.append(data)
+        self.kept.extend([None] * count)
+        self.starts += starts
+        self.times += ns
+        self.flags += flags
+        self.offset += len(data)
+        self.size += len(data)
+        return None
 
 
 class _CountedFramer:

@@ -15,8 +15,8 @@ the flush is first tried on a copy of the framer, and done only if it closes a C
 Anything else (a damaged frame, noise, a partial frame) waits for IDLE_FLUSH_LONG of silence.
 
 A read returns once its last byte has come, so each read is framed as its bytes' arrivals, each
-byte at the read's stamp less the character times after it (sources/serial_times.py ReadClock): a
-frame's time, as everywhere else, is its first byte's. --raw and the tape (VW3_LIVE_TAPE) keep the
+byte at the read's stamp less the character times after it (sources/serial_times.py ReadClock: one
+chunk that times each of its bytes): a frame's time, as everywhere else, is its first byte's. --raw and the tape (VW3_LIVE_TAPE) keep the
 reads as made, stamps included.
 
 Reads are stamped to the microsecond, and so are the byte times, as the pcap stores them, so that the
@@ -347,12 +347,11 @@ class CaptureThread:
         clock = self._clock
         if clock is None:
             clock = self._clock = ReadClock(self.char_time or port_char_time(self.port))
-        chunks = clock.chunks(data, stamp)
-        if data:
+        chunk = clock.chunk(data, stamp)
+        if chunk is not None:
             self._last_data = now
             self._pending, self._tried = True, False
-            items = [item for chunk in chunks for item in framer.feed(chunk)]
-            return self.deliver(items, self.safe_time(stamp))
+            return self.deliver(framer.feed(chunk), self.safe_time(stamp))
         safe = clock.promise(stamp)
         if self._pending:
             silent = now - self._last_data

@@ -1,12 +1,18 @@
 """What both framers (RTU and ASCII) keep between chunks: the bytes not framed yet, the time each
-chunk arrived, the expectation of an answer, and the noise run being built."""
+chunk arrived, the expectation of an answer, and the noise run being built.
+
+A chunk may time each of its bytes (sources/serial_times.py ByteTimedChunk: a serial port's read, its
+bytes a character apart): it is framed, timed and weighed as the chunks of its runs of bytes with one
+time would be, fed one by one (live capture fed those from 4173324 to 09ae941, and framed each byte on
+its own: 5 times the work, bench/live_feed.py)."""
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
-from dissector.framing.timing import DEFAULT_BAUD, LineTiming, silence_before
+from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
+from dissector.sources.serial_times import ByteTimedChunk, ByteTimes
 
 NOISE_ITEM_MAX = 4096  # noise runs are cut into items of this size: memory stays bounded on garbage
 # What a short low pulse on an idle line reads as: a start bit, k zero bits, then ones (FF << k). A bus
@@ -32,8 +38,10 @@ class StreamFramer(ABC):
         self._timing = LineTiming(baud, self.mode)  # what a silence between chunks is (silence_before)
         self._buf = bytearray()
         self._base = 0  # absolute offset of _buf[0]
-        self._times: list[tuple[int, float | None]] = []  # (absolute offset, time) of chunk starts
+        # (absolute offset, time, its bytes' times or None) of chunk starts
+        self._times: list[tuple[int, float | None, ByteTimes | None]] = []
         self._timed = False
+        self._steady_step = -1.0  # a ByteTimes.step_us with which no silence is inside a chunk (timing.may_pause)
         # Where a source said a frame boundary is (a pcap record's end): breaks ties between layouts.
         self._boundaries: set[int] = set()
         self._noise = bytearray()
@@ -59,11 +67,17 @@ class StreamFramer(ABC):
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
             start = self._base + len(self._buf)
+            byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
             if chunk.time is not None:
                 self._timed = True
-                if self._times and silence_before(self._times[-1], start, chunk.time, self._timing):
+                if self._times and silence_before(self._last_run(), start, chunk.time, self._timing):
                     self._boundaries.add(start)  # a silence on the line: evidence, like a record's end
-            self._times.append((start, chunk.time))
+                if byte_times is not None and byte_times.step_us != self._steady_step:
+                    if may_pause(byte_times.step_us, self._timing):
+                        self._boundaries.update(silences_inside(byte_times, start, self._timing))
+                    else:
+                        self._steady_step = byte_times.step_us  # (every read of a port has the same)
+            self._times.append((start, chunk.time, byte_times))
             self._buf += chunk.data
             if chunk.boundary:
                 self._boundaries.add(self._base + len(self._buf))
@@ -117,8 +131,11 @@ class StreamFramer(ABC):
         chunks fed after it are timed and weighed as if the stream had never changed hands."""
         self.restart_at(offset, expect)
         self._timed = self._timed or chunk.time is not None
-        self._times = [(chunk_start, chunk.time)]
+        byte_times = chunk.times if isinstance(chunk, ByteTimedChunk) else None
+        self._times = [(chunk_start, chunk.time, byte_times)]
         self._buf += chunk.data[offset - chunk_start :]
+        if byte_times is not None and chunk.time is not None:
+            self._boundaries.update(at for at in silences_inside(byte_times, chunk_start, self._timing) if at >= offset)
         if chunk.boundary:
             self._boundaries.add(chunk_start + len(chunk.data))
 
@@ -140,9 +157,18 @@ class StreamFramer(ABC):
         times = self._times
         # Chunks are few per frame: walk back from the newest.
         for index in range(len(times) - 1, -1, -1):
-            if times[index][0] <= offset:
-                return times[index][1]
+            start, time, byte_times = times[index]
+            if start <= offset:
+                return time if byte_times is None or time is None else byte_times.at(offset - start)
         return None
+
+    def _last_run(self) -> tuple[int, float | None]:
+        """(offset, time) of the last bytes fed with one time: the chunk before the next, for silence_before."""
+        start, time, byte_times = self._times[-1]
+        if byte_times is None or time is None:
+            return start, time
+        index = byte_times.last_run()
+        return start + index, byte_times.at(index)
 
     def _consume(self, count: int) -> None:
         """Drop the first `count` buffered bytes (framed or noise) and the chunk times before them."""
@@ -150,7 +176,7 @@ class StreamFramer(ABC):
         self._base += count
         times = self._times
         keep = 0
-        for index, (offset, _time) in enumerate(times):
+        for index, (offset, _time, _byte_times) in enumerate(times):
             if offset <= self._base:
                 keep = index
         if keep:

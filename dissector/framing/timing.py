@@ -19,11 +19,15 @@ character time would be too short for UARTs' interrupt handling. An ASCII charac
 """
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
-from dissector.model import Chunk, Frame, Item
+from dissector.model import Chunk, Frame, Item, Stamp
 from dissector.protocol.rules import text
+
+if TYPE_CHECKING:
+    from dissector.sources.serial_times import ByteTimes
 
 DEFAULT_BAUD = 19200
 RTU_BITS_PER_CHAR = 11
@@ -151,3 +155,25 @@ def silence_before(previous: tuple[int, float | None], start: int, time: float, 
     bursts whose times say little about the gaps inside them."""
     offset, before = previous
     return before is not None and line_silence(offset, before, start, time, timing) >= timing.t35
+
+
+
+def may_pause(step_us: float, timing: LineTiming) -> bool:
+    """Could the line look silent for t3.5 inside a read whose bytes came `step_us` apart (a serial
+    port's: sources/serial_times.py ByteTimes), between two of its runs of bytes with one time? Their
+    times differ by at most step_us + 1 us (each rounded to the us) and the bytes of the first take a
+    character or more, so not unless the step is far longer than the line's characters."""
+    return (step_us + 1) * 1e-6 - timing.char_time >= timing.t35 / 2
+
+
+def silences_inside(times: ByteTimes, start: int, timing: LineTiming) -> Iterator[int]:
+    """Stream offsets (of the read starting at `start`) of the runs of its bytes after which
+    silence_before holds from the run before: what feeding each run as a chunk would mark."""
+    if not may_pause(times.step_us, timing):
+        return
+    previous: tuple[int, float | None] | None = None
+    for index, ns in times.runs():
+        time = Stamp(ns)
+        if previous is not None and silence_before(previous, start + index, time, timing):
+            yield start + index
+        previous = (start + index, time)

@@ -16,7 +16,6 @@ import signal
 import subprocess
 import sys
 import termios
-import threading
 import time
 from pathlib import Path
 
@@ -161,15 +160,9 @@ def test_paced_line_frames_at_their_first_byte(pure: bool, tmp_path: Path) -> No
     env["VW3_LIVE_TAPE"] = str(tape)
     bus = Bus(baud=9600, seed=3)
     pcap = tmp_path / "paced.pcap"
-    process = subprocess.Popen(
-        [sys.executable, "-m", "dissector", "--live", bus.c_path, "--baud", "9600", "--json", "-w", str(pcap)],
-        cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-    )
-    sniffer = Sniffer(process)
     try:
-        assert process.stderr is not None
-        assert process.stderr.readline().startswith("vw3-decode: listening on ")
-        threading.Thread(target=sniffer._collect, daemon=True).start()
+        sniffer = Sniffer.start(bus.c_path, "--baud", "9600", "--json", "-w", str(pcap), env=env)
+        assert sniffer.ready.startswith("vw3-decode: listening on ")
         our_master(bus.a_slave, 40, seed=8)
         sniffer.wait_lines(80)
         status, stderr = sniffer.interrupt()

@@ -183,10 +183,12 @@ class Sniffer:
     ready: str = ""
 
     @classmethod
-    def start(cls, path: str, *options: str) -> Sniffer:
+    def start(cls, path: str, *options: str, env: dict[str, str] | None = None) -> Sniffer:
+        """`env`: the sniffer's environment (None: this one's), e.g. with VW3_PURE_PYTHON or VW3_LIVE_TAPE."""
         process = subprocess.Popen(
             [sys.executable, "-m", "dissector", "--live", path, "-n", *options],
             cwd=ROOT,
+            env=env,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
             text=True,
