@@ -3,7 +3,7 @@
  * offset, its time in ns (Stamp.from_parts: seconds * 1e9 + fraction * 1e9 // units) and its flags
  * (_timeline.h: timed, a record end, a silence of t3.5 before it: timing.silence_before). It stops before
  * a record the Python reader must see (one captured in part, or longer than a chunk: their warnings and
- * splits are its), and at the buffer's end. Included by _summary.c. */
+ * splits are its; one whose fraction of a second is 1 s or more: its refusal), and at the buffer's end. Included by _summary.c. */
 #ifndef VW3_RECORDS_H
 #define VW3_RECORDS_H
 
@@ -53,7 +53,7 @@ static PyObject *module_scan_pcap(PyObject *self, PyObject *args) {
     while (pos + 16 <= n) {
         uint32_t seconds = read_u32(b + pos, swapped), fraction = read_u32(b + pos + 4, swapped);
         uint32_t captured = read_u32(b + pos + 8, swapped), original = read_u32(b + pos + 12, swapped);
-        if (captured < original || (Py_ssize_t)captured > chunk_size) {
+        if (captured < original || (Py_ssize_t)captured > chunk_size || fraction >= units) {
             stop = SCAN_SPECIAL;
             break;
         }

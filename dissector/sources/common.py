@@ -144,7 +144,7 @@ def check_linktype(name: str, linktype: int, where: str = "") -> None:
 
 
 def rtac_header(
-    head: bytes, record: int, log: WarningLog
+    head: bytes, record: int, log: WarningLog, name: str = "-"
 ) -> tuple[Stamp, int] | None:
     """(time, header length) from an RTAC serial record's start; None when the header is cut.
 
@@ -159,6 +159,10 @@ def rtac_header(
         )
         return None
     seconds, micros, event, _lines, _footer = RTAC_HEADER.unpack_from(head)
+    if micros >= 1_000_000:
+        # (4294967295 us read as 4294.97 s put a response 71 minutes before its request)
+        raise SourceError(f"{name}: record {record}: RTAC microseconds {micros} are not below 1000000: "
+                          "a corrupt time stamp?")
     trouble = RTAC_TROUBLE_EVENTS.get(event)
     if trouble is not None:
         log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
@@ -194,7 +198,7 @@ def record_chunks(
                 "(the capture ends inside it); the bytes that are there are decoded",
             )
         if first and linktype == LINKTYPE_RTAC_SERIAL:
-            header = rtac_header(piece, record, log)
+            header = rtac_header(piece, record, log, inp.name)
             if header is None:
                 inp.skip(remaining)
                 return

@@ -10,7 +10,14 @@ import struct
 from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
-from dissector.sources.common import Input, SourceError, WarningLog, check_linktype, record_chunks
+from dissector.sources.common import (
+    LINKTYPE_RTAC_SERIAL,
+    Input,
+    SourceError,
+    WarningLog,
+    check_linktype,
+    record_chunks,
+)
 
 # Magic as the first four bytes of the file -> (struct byte order, timestamp fraction units).
 MAGICS: dict[bytes, tuple[str, int]] = {
@@ -40,6 +47,7 @@ class PcapRecords:
         self.chunk_size = chunk_size
         self.record = 0
         self.between = False  # the last chunk given ended a record: the next bytes are a record header
+        self.holding = False  # a record's header is read but its chunks are not all given yet
         self.order, self.units, self.linktype = "<", 1_000_000, 0
         self._chunks = self._read()
 
@@ -48,7 +56,7 @@ class PcapRecords:
 
     def __next__(self) -> Chunk:
         chunk = next(self._chunks)
-        self.between = chunk.boundary
+        self.between = chunk.boundary and not self.holding
         return chunk
 
     def _read(self) -> Iterator[Chunk]:
@@ -72,23 +80,74 @@ class PcapRecords:
         """The chunks of the records `inp` holds from its position on."""
         log = self.log
         record_header = struct.Struct(self.order + "IIII")
+        held = EpochRecord(self.chunk_size)
         while True:
             head = inp.read(RECORD_HEADER_SIZE)
             if not head:
+                yield from held.release(False)
                 return
             self.record += 1
             if len(head) < RECORD_HEADER_SIZE:
+                yield from held.release(False)
                 log.warn(
                     "truncated input",
                     f"record {self.record}: the capture ends inside its header ({len(head)} of 16 bytes)",
                 )
                 return
             seconds, fraction, captured, original = record_header.unpack(head)
+            if fraction >= self.units:
+                raise SourceError(f"{inp.name}: record {self.record}: {fraction_error(fraction, self.units)}")
             if captured < original:
                 log.warn(
                     "records captured in part",
                     f"record {self.record}: only {captured} of its {original} bytes were captured",
                 )
-            # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
-            time = Stamp.from_parts(seconds, fraction, self.units) if seconds or fraction else None
-            yield from record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
+            time: Stamp | None = Stamp.from_parts(seconds, fraction, self.units)
+            chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
+            epoch = not (seconds or fraction)
+            if epoch and self.record == 1 and self.linktype != LINKTYPE_RTAC_SERIAL and held.hold(captured, chunks):
+                continue
+            if held.chunks is not None:
+                self.holding = True
+                yield from held.release(not epoch)
+                self.holding = False
+            if epoch and self.linktype != LINKTYPE_RTAC_SERIAL:
+                # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
+                chunks = record_chunks(inp, captured, None, self.linktype, self.record, log, self.chunk_size)
+            yield from chunks
+
+
+def fraction_error(fraction: int, units: int) -> str:
+    """Why a record's fraction of a second is refused (libpcap.c takes one >= 1 s as a sign of a
+    misread header; tshark shows it unnormalised: 0.385 s for 4,000,000,000 us)."""
+    return (f"fraction of a second {fraction} is not below {units} (1 s in the file's units): "
+            "a corrupt time stamp?")
+
+
+class EpochRecord:
+    """A capture's first record when stamped at the epoch, held until the second record's time says
+    what it is. vw3-decode -w writes untimed input at the epoch, every record; a capture that starts at
+    1970-01-01 00:00:00 (a time-of-day log of day 0) has later times after it. So the first record at
+    the epoch is timed when the second record is not at the epoch, untimed otherwise; records after
+    the first at the epoch are untimed. Only a record of one chunk is held (memory stays bounded): a
+    longer one at the epoch is untimed."""
+
+    def __init__(self, chunk_size: int) -> None:
+        self.chunk_size = chunk_size
+        self.chunks: list[Chunk] | None = None
+
+    def hold(self, captured: int, chunks: Iterator[Chunk]) -> bool:
+        """Hold a first record at the epoch (its `chunks`, not yet read, timed) when it is one chunk;
+        False when there is nothing to hold (then `chunks` is unread)."""
+        if not captured or captured > self.chunk_size:
+            return False
+        self.chunks = []
+        for chunk in chunks:  # (one by one: a record cut short keeps what was read, for release)
+            self.chunks.append(chunk)
+        return True
+
+    def release(self, timed: bool) -> Iterator[Chunk]:
+        """The held chunks: at the epoch when the record after is `timed`, untimed otherwise."""
+        chunks, self.chunks = self.chunks, None
+        for chunk in chunks or ():
+            yield chunk if timed else Chunk(chunk.data, None, chunk.boundary)

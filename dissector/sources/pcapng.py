@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
+    LINKTYPE_RTAC_SERIAL,
     Input,
     SourceError,
     WarningLog,
@@ -23,6 +24,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
+from dissector.sources.pcap import EpochRecord
 
 SHB = 0x0A0D0D0A
 SHB_MAGIC = bytes.fromhex("0a0d0d0a")
@@ -85,6 +87,7 @@ class _Reader:
         self.interfaces: list[Interface] = []
         self.record = 0
         self.used_interfaces: set[int] = set()
+        self.held = EpochRecord(chunk_size)  # the first packet, at the epoch, until the next says (pcap.py)
 
     def run(self) -> Iterator[Chunk]:
         inp = self.inp
@@ -208,13 +211,21 @@ class _Reader:
             )
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
-        # vw3-decode -w writes records at the epoch when its input had no times: keep them untimed.
-        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units) if high or low else None
-        if time is not None:
-            outside = outside_time_range(time.ns, interface.offset)
-            if outside is not None:
-                raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
-        yield from self._data(captured, original, time, interface, body_length - 20, start)
+        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
+        epoch = not (high or low)
+        outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
+        if outside is not None:
+            raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
+        yield from self.held.release(not epoch)
+        chunks = self._data(captured, original, time, interface, body_length - 20, start)
+        if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
+                and self.held.hold(captured, chunks)):
+            return
+        if epoch:
+            # vw3-decode -w writes records at the epoch when its input had no times: untimed (pcap.py
+            # EpochRecord); an RTAC record carries its own time.
+            chunks = self._data(captured, original, None, interface, body_length - 20, start)
+        yield from chunks
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:
         raw = self.inp.read(4)
@@ -227,6 +238,7 @@ class _Reader:
         if interface.snaplen:
             captured = min(captured, interface.snaplen)
         # A simple packet block has no timestamp.
+        yield from self.held.release(False)
         yield from self._data(captured, original, None, interface, body_length - 4, start)
 
     def _data(
@@ -281,7 +293,9 @@ HEAD_BYTES = 4 * MAX_HEADER_BLOCK
 
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+    reader = _Reader(inp, log, chunk_size)
     try:
-        yield from _Reader(inp, log, chunk_size).run()
+        yield from reader.run()
     except _Ended:
-        return
+        pass
+    yield from reader.held.release(False)
