@@ -175,9 +175,10 @@ class ReadClock:
         char_us = self.char_us
         back.extend(round(j * char_us) * 1000 for j in range(len(back), lanes))
         self._lanes = lanes
-        self._ones = ((1 << 64 * lanes) - 1) // ((1 << 64) - 1)
-        self._ramp = sum(k << 64 * k for k in range(lanes))
-        self._back_lanes = sum(back[j] << 64 * j for j in range(lanes))
+        # (from the bytes of an array: a sum of shifted ints would take time quadratic in the lanes)
+        self._ones = int.from_bytes((array("q", (1,)) * lanes).tobytes(), "little")
+        self._ramp = int.from_bytes(array("q", range(lanes)).tobytes(), "little")
+        self._back_lanes = int.from_bytes(array("q", back[:lanes]).tobytes(), "little")
 
     @staticmethod
     def promise(stamp: Stamp) -> Stamp:
