@@ -445,7 +445,8 @@ class CaptureOutput:
                 self._close_writer()
 
     def discard_if_empty(self) -> None:
-        """Close; a file that holds no record is removed (a refused input leaves no header-only file)."""
+        """Close; a file that holds no record is removed (a refused input leaves no header-only file).
+        One that holds records keeps them, as tshark -w keeps what it wrote before a damaged packet."""
         if self._writer is not None:
             try:
                 self.release()
@@ -453,8 +454,8 @@ class CaptureOutput:
                 self.close()
                 raise
         records = self._records
+        self.close()  # (counted after: records waiting in memory are written by closing)
         empty = records is not None and records.whole <= 1  # the first write is the file header
-        self.close()
         if empty and self.path != STDOUT and self.paths and regular_file(self.paths[-1]):
             with contextlib.suppress(OSError):
                 os.unlink(self.paths[-1])

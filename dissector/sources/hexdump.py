@@ -11,8 +11,11 @@
 A leading timestamp is recognised only in shapes a hex group can never take (a hex group has no
 '.', '-' or ':'): seconds with a decimal point (`12.5`, `1700000000.125`), an ISO 8601 date-time
 (`2024-05-01T10:00:00.125`, `2024-05-01 10:00:00.125`, naive means UTC), or a time of day
-(`10:00:00.125`, seconds since midnight). It may be wrapped in [ ] or followed by ':'. A line that is
-only `10:00:00` is the colon-hex bytes 10 00 00, not a time without data.
+(`10:00:00.125`, seconds since midnight); a date-time's or time of day's fraction may follow ','
+(`10:00:00,125`, as Python's logging writes it). A date or time of day that does not exist
+(`2024-02-30`, `24:00:00`, `10:00:60`: no leap second, as datetime) refuses the line. A stamp may be
+wrapped in [ ] or followed by ':'. A line that is only `10:00:00` is the colon-hex bytes 10 00 00, not a
+time without data.
 
 A time of day has no date, so a log that runs past midnight would go back a day: a time of day more
 than 12 hours earlier than the one before it is on the next day (`23:59:59.900` then `00:00:00.010`
@@ -21,7 +24,9 @@ backwards as the log says (a clock step: shown as it is, left out of --stats' ti
 date-times are absolute: kept as they are.
 
 Whether the input is a hex dump is judged on its first lines; when the first line is longer than the
-sample (a whole capture on one line), on the part of it the sample holds.
+sample (a whole capture on one line), on the part of it the sample holds. The last line of an input,
+when no line end closes it and it reads as a line cut short (`0C 03 2`), is the input cut short: its
+whole bytes are decoded, with a warning (read_lines).
 """
 from __future__ import annotations
 
@@ -42,8 +47,10 @@ DAY_NS = 86_400 * 1_000_000_000
 
 _SECONDS = re.compile(r"\d+\.\d+")
 _DATE = re.compile(r"\d{4}-\d{2}-\d{2}")
-_DATETIME = re.compile(r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:?\d{2})?")
-_TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:\.\d+)?)")
+# A date-time's or time of day's fraction after '.' or ',' (ISO 8601 allows both; Python's logging writes
+# `2024-05-01 10:00:00,125`).
+_DATETIME = re.compile(r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}([.,]\d+)?(Z|[+-]\d{2}:?\d{2})?")
+_TIME_OF_DAY = re.compile(r"(\d{2}):(\d{2}):(\d{2}(?:[.,]\d+)?)")
 _HEX = re.compile(r"(?:[0-9A-Fa-f]{2})+")
 _LABEL = re.compile(r"[TR]X:", re.IGNORECASE)
 CONTROL = re.compile(rb"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")  # bytes no text has (tab, CR and LF aside)
@@ -78,8 +85,9 @@ class HexLineError(MalformedInput):
 
 
 class TimeRangeError(HexLineError):
-    """A well-formed time stamp outside the times every output can show: the input is a dump (the
-    sniffers say so) and reading it refuses the line."""
+    """A time stamp in shape, refused for its value (a date or time of day that does not exist, a time
+    outside what every output can show): the input is a dump (the sniffers say so) and reading it
+    refuses the line."""
 
 
 def _strip_stamp(token: str) -> str:
@@ -116,14 +124,23 @@ def _stamp(tokens: list[str]) -> tuple[Stamp | None, int]:
             return _epoch(joined), 2
     match = _TIME_OF_DAY.fullmatch(first)
     if match:
-        hours, minutes, seconds = match.groups()
-        return TimeOfDay((int(hours) * 3600 + int(minutes) * 60) * 1_000_000_000 + _nanoseconds(seconds)), 1
+        return _time_of_day(first, *match.groups()), 1
     return None, 0
 
 
+def _time_of_day(text: str, hours: str, minutes: str, seconds: str) -> TimeOfDay:
+    """The time of day `text`, its fields in range as a date-time's must be (datetime's own words). A leap
+    second (23:59:60) is refused as well: a date-time refuses it, and the computer clocks loggers read
+    never show it (they repeat or smear a second)."""
+    for value, field, limit in ((hours, "hour", 23), (minutes, "minute", 59), (seconds, "second", 59)):
+        if int(value.replace(",", ".").partition(".")[0]) > limit:
+            raise TimeRangeError(f"bad time of day {text!r}: {field} must be in 0..{limit}")
+    return TimeOfDay((int(hours) * 3600 + int(minutes) * 60) * 1_000_000_000 + _nanoseconds(seconds))
+
+
 def _nanoseconds(decimal: str) -> int:
-    """`12.5` -> 12_500_000_000, exactly (digits past the ninth are dropped)."""
-    whole, _dot, fraction = decimal.partition(".")
+    """`12.5` (or `12,5`) -> 12_500_000_000, exactly (digits past the ninth are dropped)."""
+    whole, _dot, fraction = decimal.replace(",", ".").partition(".")
     return int(whole) * 1_000_000_000 + int((fraction + "000000000")[:9])
 
 
@@ -131,7 +148,7 @@ def _epoch(text: str) -> Stamp:
     try:
         moment = datetime.fromisoformat(text)
     except ValueError as error:
-        raise HexLineError(f"bad timestamp {text!r}: {error}") from None
+        raise TimeRangeError(f"bad timestamp {text!r}: {error}") from None
     if moment.tzinfo is None:
         moment = moment.replace(tzinfo=timezone.utc)
     return Stamp((moment - _EPOCH) // timedelta(microseconds=1) * 1000)
@@ -145,9 +162,10 @@ def parse_line(line: str, notation: Notation | None = None, where: str = "") -> 
     if not text:
         return None
     tokens = text.split()
-    time, used = _timestamp(tokens)
-    if used == len(tokens) == 1 and _TIME_OF_DAY.fullmatch(tokens[0]):
-        time, used = None, 0  # `10:00:00` alone: colon hex, not a time without data
+    if len(tokens) == 1 and _TIME_OF_DAY.fullmatch(tokens[0]):
+        time, used = None, 0  # `10:00:00` alone (or `99:99:99`): colon hex, not a time without data
+    else:
+        time, used = _timestamp(tokens)
     if used < len(tokens) and _LABEL.fullmatch(tokens[used]):
         used += 1
     if used == len(tokens):
@@ -163,29 +181,42 @@ def parse_line(line: str, notation: Notation | None = None, where: str = "") -> 
     return time, data
 
 
-def looks_like_hexdump(text: str, complete: bool) -> bool:
-    """Do the lines of `text` (the input's first bytes) all parse, with data on at least one?
+def looks_like_hexdump(text: str, complete: bool, most: bool = False) -> bool:
+    """Do the lines of `text` (the input's first bytes) parse, with data on at least one? All of them;
+    with `most`, more of them than not (a log with a typo or a stray line in it is still a hex dump, and
+    reading it names the line).
 
     The last line is left out unless `complete`: it may be cut where the sample ends. When no line
     is whole, the part of the first one the sample holds is judged, without its last (cut) number.
-    A byte list refused for its meaning (notation.RefusedList) counts: reading it says why.
+    A byte list refused for its meaning (notation.RefusedList) or a time stamp for its value counts:
+    reading it says why.
     """
     lines = text.splitlines()
     cut = ""
-    if not complete and not text.endswith(("\n", "\r")) and lines:
+    unended = not text.endswith(("\n", "\r"))
+    if not complete and unended and lines:
         cut = lines.pop()
     notation = Notation()
-    found = False
+
+    def parse(line: str, number: int) -> tuple[Stamp | None, bytes] | None:
+        return parse_line(line, notation, f"line {number}")
+
+    found = refused = 0
     for number, line in enumerate(lines, start=1):
         try:
-            parsed = parse_line(line, notation, f"line {number}")
+            parsed = parse(line, number)
         except (RefusedList, TimeRangeError):
             return True
         except HexLineError:
-            return False
-        found = found or parsed is not None
-    if found or not cut or "#" in cut:
-        return found
+            if complete and unended and number == len(lines) and _cut_line(line, number, parse) is not None:
+                continue  # the input's last line, cut short: reading it says so
+            if not most:
+                return False
+            refused += 1
+            continue
+        found += parsed is not None
+    if found or refused or not cut or "#" in cut:
+        return found > refused
     return _cut_line_is_hex(cut, notation)
 
 
@@ -204,20 +235,22 @@ def _cut_line_is_hex(cut: str, notation: Notation) -> bool:
     return bool(_CUT_TOKEN.fullmatch(last))
 
 
-def _lines(inp: Input, chunk_size: int) -> Iterator[bytes]:
+def _lines(inp: Input, chunk_size: int) -> Iterator[tuple[bytes, bool]]:
+    """(line, whether a line end closes it): only the last line of an input may have none."""
     pending = b""
     while True:
         block = inp.read_some(chunk_size)
         if not block:
             if pending:
-                yield pending
+                yield pending, False
             return
         pending += block
         lines = pending.split(b"\n")
         pending = lines.pop()
         if len(pending) > MAX_LINE:
             raise SourceError(f"{inp.name}: a line longer than {MAX_LINE} bytes: not a hex dump")
-        yield from lines
+        for line in lines:
+            yield line, True
 
 
 def characters(text: bytes, complete: bool = True) -> str:
@@ -230,24 +263,82 @@ def characters(text: bytes, complete: bool = True) -> str:
         return text.decode("latin-1")
 
 
-def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
-    """(line number, text) of a text input; SourceError at the first line with a control byte (binary
-    data). Characters beyond ASCII are taken (comments); the line's reader refuses them elsewhere."""
-    for number, raw in enumerate(_lines(inp, chunk_size), start=1):
+def ended_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str, bool]]:
+    """(line number, text, whether a line end closes it) of a text input; SourceError at the first line
+    with a control byte (binary data). Characters beyond ASCII are taken (comments); the line's reader
+    refuses them elsewhere."""
+    for number, (raw, ended) in enumerate(_lines(inp, chunk_size), start=1):
         if CONTROL.search(raw):
             raise SourceError(f"{inp.name} line {number}: binary data in a hex dump")
-        yield number, characters(raw)
+        yield number, characters(raw), ended
 
 
-def read_lines(inp: Input, chunk_size: int, parse: Callable[[str], tuple[object, bytes] | None]) -> Iterator[Chunk]:
+def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
+    """(line number, text) of a text input, as ended_lines."""
+    for number, line, _ended in ended_lines(inp, chunk_size):
+        yield number, line
+
+
+# The last characters of a line cut short: part of a byte, a number or a time stamp (`0C 03 2`, `10:00:0`).
+_CUT_TAIL = re.compile(r"[0-9A-Fa-fxXTtRrZ:.,+\-\[\]{}]+")
+_STAMP_PART = re.compile(r"[0-9:.,+\-TZ\[\] ]*")  # what a time stamp cut before its bytes leaves
+
+
+LineParser = Callable[[str, int], "tuple[Stamp | None, bytes] | None"]  # (line, its number) -> (time, bytes)
+
+
+def _cut_line(line: str, number: int, parse: LineParser) -> tuple[Stamp | None, bytes, str] | None:
+    """(time, whole bytes, the rest) of the input's last line when it has no line end and what it holds
+    is a line cut short: all but its last word reads, and that word is part of a number or a time.
+    None when it is not (a bad line is an error wherever it is; one with a comment was not cut before it)."""
+    if "#" in line:
+        return None
+    text = line.rstrip()
+    end = max(text.rfind(" "), text.rfind(","), text.rfind("\t"))
+    head, rest = text[: max(end, 0)].rstrip(" ,\t"), text[end + 1 :]
+    if not _CUT_TAIL.fullmatch(rest):
+        return None
+    if not head.strip():
+        return None, b"", rest
+    try:
+        parsed = parse(head, number)
+    except ValueError:
+        # (a time stamp alone, or part of one: nothing whole came before the cut)
+        return (None, b"", text.strip()) if _STAMP_PART.fullmatch(head) else None
+    if parsed is None:
+        return None, b"", rest
+    return parsed[0], parsed[1], rest
+
+
+def _plural(count: int, noun: str) -> str:
+    return f"{count} {noun}" if count == 1 else f"{count} {noun}s"
+
+
+def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) -> Iterator[Chunk]:
     """One chunk per line that `parse` finds bytes in; a line it refuses (ValueError) ends the read
-    with the line's number. Times of day are placed on their days (Days)."""
+    with the line's number. Times of day are placed on their days (Days).
+
+    The last line, when no line end closes it and it reads as a line cut short (the logger stopped while
+    writing it, the file was copied while written), is the input cut short: its whole bytes are decoded,
+    with a warning, as a pcap's cut record is (tshark: "cut short in the middle of a packet")."""
     days = Days()
-    for number, line in text_lines(inp, chunk_size):
+    for number, line, ended in ended_lines(inp, chunk_size):
         try:
-            parsed = parse(line)
+            parsed = parse(line, number)
         except ValueError as error:
-            raise SourceError(f"{inp.name} line {number}: {error}") from None
+            cut = None if ended else _cut_line(line, number, parse)
+            if cut is None:
+                raise SourceError(f"{inp.name} line {number}: {error}") from None
+            time, data, rest = cut
+            shown = rest if len(rest) <= 24 else rest[:24] + "..."
+            are = "is" if len(data) == 1 else "are"
+            kept = (f"its {_plural(len(data), 'whole byte')} {are} decoded, the rest ({shown!r}) is not"
+                    if data else f"it holds no whole byte ({shown!r} is not read)")
+            log.warn("truncated input", f"{inp.name} line {number} is cut short (the input ends inside it, "
+                     f"without a line end): {kept}")
+            if data:
+                yield Chunk(data, days.place(time), False)
+            return
         if parsed is not None:
             time, data = parsed
             yield Chunk(data, days.place(time), True)  # type: ignore[arg-type]
@@ -257,14 +348,6 @@ def read_hexdump(
     inp: Input, log: WarningLog, chunk_size: int, notation: Notation | None = None
 ) -> Iterator[Chunk]:
     """One chunk per line with bytes; `notation` fixes hex or decimal (--format), else learned. Times
-    of day are placed on their days (Days)."""
-    notation = notation if notation is not None else Notation()
-    days = Days()
-    for number, line in text_lines(inp, chunk_size):
-        try:
-            parsed = parse_line(line, notation, f"line {number}")
-        except ValueError as error:
-            raise SourceError(f"{inp.name} line {number}: {error}") from None
-        if parsed is not None:
-            time, data = parsed
-            yield Chunk(data, days.place(time), True)
+    of day are placed on their days (Days); a last line cut short as read_lines says."""
+    known = notation if notation is not None else Notation()
+    return read_lines(inp, log, chunk_size, lambda line, number: parse_line(line, known, f"line {number}"))

@@ -41,6 +41,8 @@ class RefusedList(NotationError):
 def _problem(token: str) -> str:
     if re.fullmatch(r"[0-9A-Fa-f]+", token):
         return "an odd number of hex digits"
+    if token.startswith("//"):  # a C-style note: the dump's comments are its own, and say so
+        return "not hex (a comment starts with #)"
     return "not hex"
 
 

@@ -122,6 +122,12 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
         return tool, None
     if looks_like_hexdump(text, complete):
         return "hexdump", None
+    # Most lines of a format and a few not (a typo, a cut line, a note without `#`): that format, whose
+    # reader names the line it refuses, rather than the text's characters decoded as bytes.
+    if looks_like_traffic(text, complete, most=True):
+        return "traffic", None
+    if looks_like_hexdump(text, complete, most=True):
+        return "hexdump", None
     if not sample.isascii() and text == sample.decode("latin-1"):  # not UTF-8: no more text than any binary
         return "raw", None
     return "raw", "the input is text, but neither a hex dump nor Modbus ASCII: decoded as raw bytes"
@@ -130,7 +136,7 @@ def detect_format(sample: bytes, complete: bool) -> tuple[str, str | None]:
 def _open(path: str, stdin: BinaryIO | None = None) -> tuple[BinaryIO, str, bool]:
     """(stream, display name, whether to close it)."""
     if path == "-":
-        return (stdin if stdin is not None else sys.stdin.buffer), "<stdin>", False
+        return (stdin if stdin is not None else sys.stdin.buffer), "standard input", False  # (the README's name)
     try:
         if stat.S_ISDIR(os.stat(path).st_mode):
             raise SourceError(f"{path}: is a directory, not a capture")

@@ -8,7 +8,7 @@
 Tx is what the program sent, Rx what it received; for a master that is request and response, for a
 slave simulator the other way round, so the direction is not used to decide what a frame is: the
 framer does, as for any capture. A line with a direction but no bytes (a timeout) is skipped; any
-other line is an error. Times follow the hex-dump reader's rules (a time of day counts from midnight,
+other line is an error, but the last one cut short by the end of the input (hexdump.read_lines). Times follow the hex-dump reader's rules (a time of day counts from midnight,
 and is on the next day when it is more than 12 hours earlier than the one before: hexdump.Days).
 """
 from __future__ import annotations
@@ -18,7 +18,7 @@ from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, WarningLog
-from dissector.sources.hexdump import HexLineError, TimeRangeError, _timestamp, read_lines
+from dissector.sources.hexdump import HexLineError, TimeRangeError, _cut_line, _timestamp, read_lines
 
 # Found with search(), then the line is cut in plain steps: one regular expression with optional
 # parts on both sides backtracked exponentially on lines of spaces (50 s for 400 characters).
@@ -70,20 +70,32 @@ def parse_traffic_line(line: str) -> tuple[Stamp | None, bytes] | None:
     return (time, data) if data else None
 
 
-def looks_like_traffic(text: str, complete: bool) -> bool:
+def looks_like_traffic(text: str, complete: bool, most: bool = False) -> bool:
+    """Are the lines of `text` (the input's first bytes, the last left out unless `complete`) traffic
+    lines, with bytes on at least one? All of them; with `most`, more of them than not (a stray line
+    in a log: reading it names the line)."""
     lines = text.splitlines()
-    if not complete and not text.endswith(("\n", "\r")):
+    unended = not text.endswith(("\n", "\r"))
+    if not complete and unended:
         lines = lines[:-1]
-    found = False
-    for line in lines:
+    found = refused = 0
+    for number, line in enumerate(lines, start=1):
         try:
-            found = parse_traffic_line(line) is not None or found
+            found += parse_traffic_line(line) is not None
         except TimeRangeError:
             return True  # a traffic line whose time reading refuses
         except ValueError:
-            return False
-    return found
+            if complete and unended and number == len(lines) and _cut_line(line, number, _parse) is not None:
+                continue  # the input's last line, cut short: reading it says so
+            if not most:
+                return False
+            refused += 1
+    return found > refused
+
+
+def _parse(line: str, _number: int) -> tuple[Stamp | None, bytes] | None:
+    return parse_traffic_line(line)
 
 
 def read_traffic(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    return read_lines(inp, chunk_size, parse_traffic_line)
+    return read_lines(inp, log, chunk_size, _parse)

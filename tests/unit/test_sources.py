@@ -365,7 +365,7 @@ def test_stdin(monkeypatch: pytest.MonkeyPatch) -> None:
     content = pcap([(T0, 0, REQUEST), (T0, 12_000, RESPONSE)])
     monkeypatch.setattr(sys, "stdin", io.TextIOWrapper(io.BufferedReader(io.BytesIO(content))))
     source = open_source("-")
-    assert (source.name, source.format) == ("<stdin>", "pcap")
+    assert (source.name, source.format) == ("standard input", "pcap")
     assert list(source) == [Chunk(REQUEST, float(T0), True), Chunk(RESPONSE, T0 + 0.012, True)]
 
 
