@@ -8,12 +8,13 @@ stream cut across records, Modbus/TCP through vw3_modbus.lua)."""
 from __future__ import annotations
 
 import struct
+import subprocess
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu, run_cli, use_engine
-from lua_harness import PLUGIN, lua_items, run_tshark, write_pcap
+from lua_harness import PLUGIN, ensure_tool, lua_items, run_tshark, write_pcap
 from lua_net import NetWriter
 
 READ = rtu("0C 03 20D0 0003")  # 8400..8402: 8400 is in no map of the ATV71 (its 16#8000 is evidence)
@@ -120,6 +121,38 @@ def test_plugin_one_pass_stream_across_records(tmp_path: Path, name: str) -> Non
         assert told == [["CHCF (8401) became protected: read 3 in frame #2, 16#8000 now"], _notes(line)]
     else:
         assert told == [_notes(line)]
+
+
+# The plugin's pure part under plain Lua (no Wireshark): records fed one frame each, read once.
+LUA_RUNNER = """
+local vw3 = dofile(arg[1])
+vw3.configure("", nil, "")
+local st, records, frames = vw3.new_state(nil, "rtu"), {}, {}
+for line in io.lines(arg[2]) do
+  local bytes = line:gsub("%x%x", function(h) return string.char(tonumber(h, 16)) end)
+  records[#records + 1] = vw3.dissect_record(st, bytes, nil, #records + 1)
+end
+vw3.finish(st) -- (the end of the input: what waits is framed, in the last record)
+for _, record in ipairs(records) do
+  for _, f in ipairs(record) do frames[#frames + 1] = f end
+end
+table.sort(frames, function(a, b) return a.number < b.number end)
+for _, f in ipairs(frames) do print(table.concat(f.notes or {}, "^")) end
+"""
+
+
+@pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_plain_lua_reading_once(tmp_path: Path, lua: str, name: str) -> None:
+    frames, choosing, line = CASES[name]
+    (tmp_path / "runner.lua").write_text(LUA_RUNNER, encoding="utf-8")
+    (tmp_path / "frames.txt").write_text("".join(frame.hex() + "\n" for frame in frames), encoding="ascii")
+    done = subprocess.run([ensure_tool(lua, lua), str(tmp_path / "runner.lua"), str(PLUGIN), str(tmp_path / "frames.txt")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    rows = done.stdout.splitlines()
+    assert len(rows) == len(frames)
+    assert rows[choosing - 1].split("^") == _notes(line)
 
 
 TCP_CASES = {
