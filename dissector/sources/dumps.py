@@ -8,7 +8,9 @@
 The offset column says where each line's bytes belong: a `*` (both tools squeeze repeated lines)
 is expanded, and a line that does not continue where the previous one ended is an error, since
 bytes would be missing or doubled. The character column is ignored. The bytes are a stream, not one
-frame a line: chunks carry no boundary and no time.
+frame a line: chunks carry no boundary and no time. The last line, cut short by the end of the input (no
+line end: the dump copied while written), gives its whole bytes with a warning, as a hex dump's
+(hexdump.read_lines).
 """
 from __future__ import annotations
 
@@ -17,7 +19,7 @@ from collections.abc import Callable, Iterator
 
 from dissector.model import Chunk
 from dissector.sources.common import Input, SourceError, WarningLog
-from dissector.sources.hexdump import text_lines
+from dissector.sources.hexdump import cut_short, ended_lines
 
 _XXD = re.compile(r"([0-9a-fA-F]{6,16}): ((?:[0-9a-fA-F]{2})+(?: (?:[0-9a-fA-F]{2})+)*)(?:  .*)?")
 _HEXDUMP_C = re.compile(r"([0-9a-fA-F]{8,16})  ((?:[0-9a-fA-F]{2} {1,2})*[0-9a-fA-F]{2}) *(?:\|.*\|)?")
@@ -41,17 +43,47 @@ def _parse(line: str, tool: str) -> tuple[int, bytes] | None:
     return int(match.group(1), 16), bytes.fromhex(match.group(2).replace(" ", ""))
 
 
+# The start of a dump line cut short: its offset, the hex it holds (the last number maybe cut), and where
+# the cut line stops: at its end, or in the character column after the hex.
+_CUT = {"xxd": re.compile(r"([0-9a-fA-F]{6,16}):((?: [0-9a-fA-F]+)*)(?: .*)?"),
+        "hexdump-C": re.compile(r"([0-9a-fA-F]{8,16})((?: {1,2}[0-9a-fA-F]+)*)(?: +\|.*)? *")}
+_CUT_OFFSET = re.compile(r"[0-9a-fA-F]{1,16}:?")
+
+
+def _cut(line: str, tool: str) -> tuple[int | None, bytes, str] | None:
+    """(offset, whole bytes, the cut digit) of the input's last line when it is one of the tool's lines cut
+    short (no line end: the dump was copied while written); None when it is no such line."""
+    text = line.rstrip("\r\n")
+    if _CUT_OFFSET.fullmatch(text.strip()):
+        return None, b"", text.strip()
+    match = _CUT[tool].fullmatch(text)
+    if match is None:
+        return None
+    groups = match.group(2).split()
+    if any(len(group) % 2 for group in groups[:-1]):
+        return None  # half a byte before the last number: not a cut
+    digits = "".join(groups)
+    return int(match.group(1), 16), bytes.fromhex(digits[: len(digits) & ~1]), digits[len(digits) & ~1 :]
+
+
 def dump_tool(text: str, complete: bool) -> str | None:
-    """"xxd" or "hexdump-C" when every line of the sample is one of that tool's lines, else None."""
+    """"xxd" or "hexdump-C" when every line of the sample is one of that tool's lines, else None (the
+    input's last line may be one cut short)."""
     lines = text.splitlines()
-    if not complete and not text.endswith(("\n", "\r")):
+    unended = not text.endswith(("\n", "\r"))
+    if not complete and unended:
         lines = lines[:-1]
     lines = [line for line in lines if line.strip()]
     if not lines:
         return None
     for tool in ("xxd", "hexdump-C"):
         try:
-            parsed = [_parse(line, tool) for line in lines]
+            parsed = [_parse(line, tool) for line in lines[:-1]]
+            try:
+                parsed.append(_parse(lines[-1], tool))
+            except ValueError:
+                if not (complete and unended and len(lines) > 1 and _cut(lines[-1], tool) is not None):
+                    raise
         except ValueError:
             continue
         if parsed[0] is not None and parsed[0][0] == 0 and parsed[0][1]:
@@ -75,13 +107,20 @@ def read_dump(tool: str) -> Callable[[Input, WarningLog, int], Iterator[Chunk]]:
         position = expanded = 0
         repeat: bytes | None = None  # the line a `*` repeats
         squeezed = False
-        for number, line in text_lines(inp, chunk_size):
+        cut: tuple[int | None, bytes, str] | None = None
+        for number, line, ended in ended_lines(inp, chunk_size):
             if not line.strip():
                 continue
             try:
                 parsed = _parse(line, tool)
             except ValueError as error:
-                raise SourceError(f"{inp.name} line {number}: {error}") from None
+                cut = None if ended else _cut(line, tool)
+                if cut is None:
+                    raise SourceError(f"{inp.name} line {number}: {error}") from None
+                log.warn("truncated input", cut_short(inp.name, number, cut[1], cut[2]))
+                if cut[0] is None:
+                    return
+                parsed = cut[0], cut[1]
             if parsed is None:
                 squeezed = True
                 continue

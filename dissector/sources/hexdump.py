@@ -310,8 +310,16 @@ def _cut_line(line: str, number: int, parse: LineParser) -> tuple[Stamp | None, 
     return parsed[0], parsed[1], rest
 
 
-def _plural(count: int, noun: str) -> str:
-    return f"{count} {noun}" if count == 1 else f"{count} {noun}s"
+def cut_short(name: str, number: int, data: bytes, rest: str) -> str:
+    """The warning for the input's last line cut short: what of it is decoded, what is not."""
+    shown = rest if len(rest) <= 24 else rest[:24] + "..."
+    whole = f"{len(data)} whole byte" if len(data) == 1 else f"{len(data)} whole bytes"
+    if not data:
+        kept = f"it holds no whole byte ({shown!r} is not read)"
+    else:
+        kept = f"its {whole} {'is' if len(data) == 1 else 'are'} decoded" + (f", the rest ({shown!r}) is not"
+                                                                          if rest else "")
+    return f"{name} line {number} is cut short (the input ends inside it, without a line end): {kept}"
 
 
 def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) -> Iterator[Chunk]:
@@ -330,12 +338,7 @@ def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) 
             if cut is None:
                 raise SourceError(f"{inp.name} line {number}: {error}") from None
             time, data, rest = cut
-            shown = rest if len(rest) <= 24 else rest[:24] + "..."
-            are = "is" if len(data) == 1 else "are"
-            kept = (f"its {_plural(len(data), 'whole byte')} {are} decoded, the rest ({shown!r}) is not"
-                    if data else f"it holds no whole byte ({shown!r} is not read)")
-            log.warn("truncated input", f"{inp.name} line {number} is cut short (the input ends inside it, "
-                     f"without a line end): {kept}")
+            log.warn("truncated input", cut_short(inp.name, number, data, rest))
             if data:
                 yield Chunk(data, days.place(time), False)
             return

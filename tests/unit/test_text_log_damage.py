@@ -1,5 +1,5 @@
-"""Text logs (hex dumps, traffic logs) as they come from the field: a stray line, a last line cut short, a
-time of day that does not exist, standard input. Through the command line, engine and VW3_PURE_PYTHON=1.
+"""Text logs (hex dumps, traffic logs, xxd and hexdump -C dumps) as they come from the field: a stray line,
+a last line cut short, a time of day that does not exist, standard input. Through the command line, engine and VW3_PURE_PYTHON=1.
 
 Before: one bad line among the first ~19 (the sample the format is judged on) made the whole log raw
 ASCII bytes, exit 0, with only `the input is text, but neither a hex dump nor Modbus ASCII` (the same line
@@ -177,6 +177,39 @@ def test_the_same_line_with_its_line_end_is_an_error(tmp_path: Path, pure: bool,
     use_engine(monkeypatch, pure)
     assert _decode(tmp_path, "\n".join(P38) + "\n0C 03 2\n") == (
         2, "", "vw3-decode: FILE line 13: '2' is an odd number of hex digits\n")
+
+
+# xxd and hexdump -C of the p.38 request and answer, then the request and the answer's first 5 bytes.
+XXD = ("00000000: 0c03 20d0 0003 0eef 0c03 0680 0000 0300  .. .............\n"
+       "00000010: 0217 e40c 0320 d000 030e ef0c 0306 8000  ..... ..........\n")
+HEXDUMP_C = ("00000000  0c 03 20 d0 00 03 0e ef  0c 03 06 80 00 00 03 00  |.. .............|\n"
+             "00000010  02 17 e4 0c 03 20 d0 00  03 0e ef 0c 03 06 80 00  |..... ..........|\n")
+THIRD = "     3            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
+DUMP_CUTS = [
+    (XXD[:111], "its 13 whole bytes are decoded, the rest ('0') is not",  # `... ef0c 030`: inside a byte
+     THIRD + "[the capture ends inside the response (2 bytes of it)]  CRC ok\n"
+     "     4            -   - noise     2 bytes of noise at offset 27: 0c 03\n"),
+    (XXD[:108], "its 12 whole bytes are decoded",  # `... ef0c `: before the character column
+     THIRD + "[the capture ends before any response]  CRC ok\n"
+     "     4            -   - noise     1 byte of noise at offset 27: 0c\n"),
+    (HEXDUMP_C[:145], "its 16 whole bytes are decoded",  # `... 80 00  |.....`: in the character column
+     THIRD + "[the capture ends inside the response (5 of 11 bytes)]  CRC ok\n"
+     "     4            -   - noise     5 bytes of noise at offset 27: 0c 03 06 80 00\n"),
+]
+
+
+@ENGINES
+@pytest.mark.parametrize(("dump", "said", "shown"), DUMP_CUTS, ids=["xxd-byte", "xxd-column", "hexdump-C"])
+def test_an_xxd_or_hexdump_c_dump_cut_mid_line(tmp_path: Path, pure: bool, dump: str, said: str, shown: str,
+                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    use_engine(monkeypatch, pure)
+    # Before: the cut last line made the whole dump raw text (`111 bytes of noise`), exit 0.
+    assert _decode(tmp_path, dump) == (0, PAIR + shown, (
+        f"vw3-decode: warning: FILE line 2 is cut short (the input ends inside it, without a line end): {said}\n"))
+    # Half a byte before the last number is no cut (the bytes after it would be wrong): no xxd dump, as before.
+    status, _out, err = _decode(tmp_path, XXD.splitlines(keepends=True)[0] + "00000010: 0217 e4 0c0 3")
+    assert (status, err.splitlines()[0]) == (0, "vw3-decode: warning: FILE: the input is text, but neither a hex "
+                                                "dump nor Modbus ASCII: decoded as raw bytes")
 
 
 # -- -w keeps what it wrote when a later line is refused (tshark -w keeps its packets) ----------------------
