@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import copy
 import gc
 import io
 import json
 import os
 import sys
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import BinaryIO, TextIO
 
@@ -20,11 +21,10 @@ from dissector.errors import ExitStatus, OutputError, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
-from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
-from dissector.app.paths import Fix, decode_one
+from dissector.app.paths import decode_one
 from dissector.model import Chunk, Frame, Item
-from dissector.render.capturefile import STDOUT, CaptureOutput, Interface, open_output, pcapng_interface
+from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
@@ -33,11 +33,12 @@ from dissector.protocol.ascii import holds_frame
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
-from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings
-from dissector.sources.reader import NOTATIONS, SourceError, open_source
+from dissector.app.inputs import (
+    PacketInterface, input_line, inputs, is_pcapng_file, keep_interface, open_interface, write_interface,
+)
+from dissector.sources.reader import SourceError, open_source
 from dissector.framing.timing import GapChecker
 
-TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 
 @dataclass
@@ -315,31 +316,6 @@ def _annotator(args: argparse.Namespace) -> Annotator | None:
     return annotator_from_args(args)
 
 
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix, tuple[str | None, str | None]]
-
-
-def _inputs(args: DecodeOptions, env: Environment) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed, fix, (path, format)) per input."""
-    several = len(args.files) + bool(args.hex) > 1
-    if args.hex:
-        typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
-        fix = typed.fix if typed.repairs else None
-        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix, (None, None)
-    for path in args.files:
-        stdin = env.stdin if path == "-" else None
-        source = open_source(path, args.format, mode=args.mode, stdin=stdin)
-        chunks: Iterable[Chunk] = source
-        # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
-        # --watch come at the end.
-        quiet = (args.report is not None or args.stats) and not (args.output.detail or args.output.hexdump)
-        if env.stderr_isatty and (quiet or not env.stdout_isatty) and path != "-" and not args.output.records:
-            from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
-
-            chunks = progress_for(source, path, env.stderr)
-        timed = source.format in TIMED_FORMATS
-        yield (path if several else None), chunks, source.mode, source.take_warnings, timed, None, (path, source.format)
-
-
 def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | None) -> int:
     sinks = Sinks(args, env, annotate)
     try:
@@ -360,25 +336,31 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
 def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
+    first_bus: dict[str | None, int] = {}  # per file split by interface, its first interface's ordinal
+    # The devices as they are before any frame, for the other interfaces of a pcapng (~13 ms a copy).
+    pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
     try:
-        for title, chunks, mode, take_warnings, timed, fix, (path, source_format) in _inputs(args, env):
+        for title, chunks, mode, take_warnings, timed, fix, (path, source_format), bus in inputs(args, env):
             if sinks.done:
                 break
-            # The one line speed of this input, for the framer, the silence checks and the bus timing.
-            line = line_settings(path, source_format, args.baud if args.baud_given else None)
+            line = input_line(path, source_format, args, bus)
             if sinks.bus is not None:  # (several inputs: --stats says they were counted as one bus)
                 sinks.bus.new_input(mode, line, title, sinks.stats)
             sinks.output.new_input(title if sinks.show else None)  # no ==> header over nothing
             sinks.restart_times()
             if sinks.pcap is not None:
-                _keep_interface(sinks, args, env, path, source_format, line)
+                keep_interface(sinks, args, env, path, source_format, line, bus)
             sinks.extra = {"file": title} if title is not None else None
 
             def warn() -> None:
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            _choose_profiles(annotate, args, chunks, mode, path, line.baud)
+            if bus is not None and pristine is not None and bus.ordinal != first_bus.setdefault(path, bus.ordinal):
+                # Another interface is another bus: its slave 12 is not the first bus's (a device of its own,
+                # as the run's before any frame). Its profile choices (auto) are its own too.
+                annotate = copy.deepcopy(pristine)
+            _choose_profiles(annotate, args, chunks, mode, path, line.baud, bus)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
@@ -404,31 +386,6 @@ def _decode_inputs(
         raise
 
 
-def write_interface(path: str | None, source_format: str | None, args: DecodeOptions) -> Interface | None:
-    """The interface the -w file says its records were captured on: the input pcapng's (name and
-    description, as editcap and tshark -w keep them), its description replaced by the speed decoded at
-    when --baud is typed (framing/linespeed.py reads it back)."""
-    kept = pcapng_interface(path) if path not in (None, "-") and source_format == "pcapng" else None
-    if args.baud_given:
-        return (kept[0] if kept is not None else None, f"{args.baud} baud (--baud)")
-    return kept
-
-
-def _keep_interface(sinks: Sinks, args: DecodeOptions, env: Environment, path: str | None,
-                    source_format: str | None, line: LineSettings) -> None:
-    assert sinks.pcap is not None
-    sinks.pcap.use_interface(write_interface(path, source_format, args))
-    if sinks.pcap.format == "pcap" and line.source == FROM_PCAPNG and not sinks.speed_lost:
-        # tshark -F pcap drops the interface silently; the line speed read there would be lost unseen.
-        sinks.speed_lost = True
-        name = shown(path if path is not None else "")
-        env.stderr.write(
-            f"{PROG}: warning: -w {shown(args.write)}: pcap has no interface description: the line speed "
-            f"{line.baud} baud of {name} is not kept (write pcapng, -F pcapng, to keep it; or read it back "
-            f"with --baud {line.baud})\n"
-        )
-
-
 ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads again (once, after the run)
 
 
@@ -445,7 +402,7 @@ def _holds_ascii(path: str) -> bool:
 
 
 def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
-                     path: str | None, baud: int) -> None:
+                     path: str | None, baud: int, bus: PacketInterface | None = None) -> None:
     """Profile `auto`: the choices made over the whole input first, where it can be read twice."""
     if getattr(annotate, "selector", None) is None:
         return
@@ -454,7 +411,8 @@ def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: It
     if path is None:  # --hex: its chunks are a list
         choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
     elif rereadable(path):
-        with open_source(path, args.format, mode=args.mode) as again:
+        reread = open_source(path, args.format, mode=args.mode) if bus is None else open_interface(path, bus.ordinal, mode)
+        with reread as again:
             choose_profiles(annotate, again, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]

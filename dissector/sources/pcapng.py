@@ -44,6 +44,8 @@ class Interface:
     units: int = 1_000_000  # timestamp units per second (if_tsresol)
     offset: int = 0  # seconds added to every timestamp (if_tsoffset)
     texts: tuple[str, ...] = ()  # if_name and if_description, in the file's order
+    name: str | None = None  # if_name
+    description: str | None = None  # if_description
 
 
 def is_pcapng(head: bytes) -> bool:
@@ -73,13 +75,25 @@ def _interface(body: bytes, order: str, name: str) -> Interface:
         elif code == OPT_TSOFFSET and len(value) == 8:
             interface.offset = struct.unpack(order + "q", value)[0]
         elif code in (OPT_IF_NAME, OPT_IF_DESCRIPTION):
-            interface.texts += (value.decode("utf-8", "replace"),)
+            text = value.decode("utf-8", "replace")
+            interface.texts += (text,)
+            if code == OPT_IF_NAME:
+                interface.name = text
+            else:
+                interface.description = text
     return interface
 
 
 class _Reader:
-    def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False) -> None:
+    """`only`: the ordinal of the one interface whose packets are read (interfaces numbered in the
+    order the file describes them, across sections); the others' packets are passed over."""
+
+    def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
+                 only: int | None = None) -> None:
         self.inp = inp
+        self.only = only
+        self.described = 0  # interfaces described so far in the file, all sections
+        self.ordinals: list[int] = []  # the section's interfaces' ordinals in the file
         self.first_interface = first_interface  # stop once the first interface is described
         self.log = log
         self.chunk_size = chunk_size
@@ -118,6 +132,8 @@ class _Reader:
                 if body is None:
                     return
                 self.interfaces.append(_interface(body, self.order, inp.name))
+                self.ordinals.append(self.described)
+                self.described += 1
                 if self.first_interface:
                     return
             elif block_type in (EPB, OPB):
@@ -153,6 +169,7 @@ class _Reader:
             raise SourceError(f"{self.inp.name}: section header at byte {start} has length {total}")
         # A new section starts its own list of interfaces.
         self.interfaces = []
+        self.ordinals = []
         if self._body(total - 16, start, "section header") is None:
             return False
         return self._trailer(total, start)
@@ -178,6 +195,16 @@ class _Reader:
             )
         return True
 
+    def _other(self, index: int, space: int, start: int) -> bool:
+        """Whether the packet is another interface's than the one read (`only`); its `space` bytes
+        are then passed over."""
+        if self.only is None or (index < len(self.ordinals) and self.ordinals[index] == self.only):
+            return False
+        if self.inp.skip(space) < space:
+            self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
+            raise _Ended()
+        return True
+
     def _interface_for(self, index: int, start: int) -> Interface:
         if index >= len(self.interfaces):
             raise SourceError(
@@ -186,12 +213,14 @@ class _Reader:
             )
         interface = self.interfaces[index]
         check_linktype(self.inp.name, interface.linktype, f"interface {index}: ")
-        if index not in self.used_interfaces:
+        if index not in self.used_interfaces and self.only is None:
             self.used_interfaces.add(index)
             if len(self.used_interfaces) == 2:
+                # (a file is read once per interface, each its own bus: cli.py _inputs; a pipe cannot be)
                 self.log.warn(
                     "interfaces",
-                    "packets come from several interfaces; their bytes are decoded as one stream",
+                    "packets come from several interfaces; their bytes are decoded as one stream "
+                    "(vw3-decode FILE decodes each interface as its own bus: save standard input to a file)",
                 )
         return interface
 
@@ -209,6 +238,8 @@ class _Reader:
             raise SourceError(
                 f"{inp.name}: packet block at byte {start}: {captured} bytes do not fit in the block"
             )
+        if self._other(index, body_length - 20, start):
+            return
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
         time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
@@ -233,6 +264,8 @@ class _Reader:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             return
         original = struct.unpack(self.order + "I", raw)[0]
+        if self._other(0, body_length - 4, start):
+            return
         interface = self._interface_for(0, start)
         captured = min(original, body_length - 4)
         if interface.snaplen:
@@ -292,8 +325,9 @@ def first_interface(path: str) -> Interface | None:
 HEAD_BYTES = 4 * MAX_HEADER_BLOCK
 
 
-def read_pcapng(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
-    reader = _Reader(inp, log, chunk_size)
+def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None) -> Iterator[Chunk]:
+    """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal)."""
+    reader = _Reader(inp, log, chunk_size, only=only)
     try:
         yield from reader.run()
     except _Ended:

@@ -248,7 +248,8 @@ def test_pcapng_big_endian_tsresol_tsoffset_and_rtac(tmp_path: Path) -> None:
     # ns resolution + 100 s offset; the RTAC header's own time; 2^-10 s resolution.
     assert list(source) == [Chunk(REQUEST, 101.5, True), Chunk(RESPONSE, T0 + 40e-6, True),
                             Chunk(EXCEPTION, 3.5, True)]
-    assert source.warnings == ["packets come from several interfaces; their bytes are decoded as one stream"]
+    assert source.warnings == ["packets come from several interfaces; their bytes are decoded as one stream "
+                               "(vw3-decode FILE decodes each interface as its own bus: save standard input to a file)"]
 
 
 def test_pcapng_interface_with_other_linktype_is_an_error(tmp_path: Path) -> None:

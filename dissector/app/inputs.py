@@ -1,0 +1,103 @@
+"""The inputs of a file decode (cli.py decode_files): --hex bytes, then each FILE, a pcapng with packets
+from several interfaces as one input per interface (sources/interfaces.py), and the interface a -w
+pcapng keeps for each.
+"""
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Iterator
+from typing import Any
+
+from dissector.app.hexinput import HexInput
+from dissector.app.options import PROG, DecodeOptions, shown
+from dissector.app.paths import Fix
+from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
+from dissector.model import Chunk
+from dissector.render.capturefile import Interface, pcapng_interface
+from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
+from dissector.sources.pcapng import is_pcapng
+from dissector.sources.reader import NOTATIONS, open_source
+
+TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
+
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix, tuple[str | None, str | None],
+              "PacketInterface | None"]
+
+
+def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
+    """(title, chunks, mode, take_warnings, timed, fix, (path, format), interface) per input: a pcapng file
+    with packets from several interfaces is one input per interface, each its own bus (sources/interfaces.py),
+    titled `file: interface name`."""
+    several = len(args.files) + bool(args.hex) > 1
+    if args.hex:
+        typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
+        fix = typed.fix if typed.repairs else None
+        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix, (None, None), None
+    for path in args.files:
+        buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
+        for bus in buses if len(buses) > 1 else [None]:
+            stdin = env.stdin if path == "-" else None
+            if bus is None:
+                source = open_source(path, args.format, mode=args.mode, stdin=stdin)
+            else:
+                source = open_interface(path, bus.ordinal, args.mode)
+            chunks: Iterable[Chunk] = source
+            # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
+            # --watch come at the end.
+            quiet = (args.report is not None or args.stats) and not (args.output.detail or args.output.hexdump)
+            if env.stderr_isatty and (quiet or not env.stdout_isatty) and path != "-" and not args.output.records:
+                from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
+
+                chunks = progress_for(source, path, env.stderr)
+            timed = source.format in TIMED_FORMATS
+            title = path if bus is None else f"{path}: {bus.label()}"
+            yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings, timed,
+                   None, (path, source.format), bus)
+
+
+def is_pcapng_file(path: str) -> bool:
+    if path == "-":
+        return False
+    try:
+        with open(path, "rb") as file:
+            return is_pcapng(file.read(4))
+    except OSError:
+        return False
+
+
+def write_interface(path: str | None, source_format: str | None, args: DecodeOptions,
+                    bus: PacketInterface | None = None) -> Interface | None:
+    """The interface the -w file says its records were captured on: the input pcapng's (name and
+    description, as editcap and tshark -w keep them; `bus`: the one interface decoded, of several), its
+    description replaced by the speed decoded at when --baud is typed (framing/linespeed.py reads it back)."""
+    kept = pcapng_interface(path) if path not in (None, "-") and source_format == "pcapng" else None
+    if bus is not None:
+        named = bus.interface
+        kept = (named.name, named.description) if named.name or named.description else None
+    if args.baud_given:
+        return (kept[0] if kept is not None else None, f"{args.baud} baud (--baud)")
+    return kept
+
+
+def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,
+                    source_format: str | None, line: LineSettings, bus: PacketInterface | None = None) -> None:
+    assert sinks.pcap is not None
+    sinks.pcap.use_interface(write_interface(path, source_format, args, bus))
+    if sinks.pcap.format == "pcap" and line.source == FROM_PCAPNG and not sinks.speed_lost:
+        # tshark -F pcap drops the interface silently; the line speed read there would be lost unseen.
+        sinks.speed_lost = True
+        name = shown(path if path is not None else "")
+        env.stderr.write(
+            f"{PROG}: warning: -w {shown(args.write)}: pcap has no interface description: the line speed "
+            f"{line.baud} baud of {name} is not kept (write pcapng, -F pcapng, to keep it; or read it back "
+            f"with --baud {line.baud})\n"
+        )
+
+
+def input_line(path: str | None, source_format: str | None, args: DecodeOptions,
+               bus: PacketInterface | None) -> LineSettings:
+    """The one line speed of an input, for the framer, the silence checks and the bus timing: --baud, else
+    its pcapng interface's description (`bus`: the one interface decoded, of several), else 19200."""
+    line = line_settings(path, source_format, args.baud if args.baud_given else None)
+    if bus is not None and not args.baud_given:
+        line = settings_from_text(" ".join(bus.interface.texts)) or line_settings(None, None, None)
+    return line

@@ -1,0 +1,118 @@
+"""A pcapng with packets from several interfaces, read as one input per interface: each interface is its
+own bus (what Wireshark writes capturing two serial lines at once), so each gets its own framer, pairing
+and timing instead of one stream of both lines' bytes (bus A's answer paired with bus B's request, a
+frame split over two records with the other bus's record between them read as noise).
+
+A regular file is read once per interface (sources/pcapng.py `only`: the other interfaces' packets are
+passed over), so memory stays bounded whatever the file's size; which interfaces carry packets is found
+first by walking the block headers, seeking over the bodies. Standard input cannot be read twice: it
+stays one stream, with the reader's warning saying so.
+"""
+from __future__ import annotations
+
+import os
+import stat
+import struct
+from dataclasses import dataclass
+
+from dissector.sources.common import Input, SourceError, WarningLog
+from dissector.sources.pcapng import (
+    EPB,
+    IDB,
+    MAX_HEADER_BLOCK,
+    OPB,
+    SHB_MAGIC,
+    SPB,
+    Interface,
+    _interface,
+    read_pcapng,
+)
+
+SCAN_BUFFER = 1 << 20  # the walk's reads: seeks over short bodies stay inside the buffer
+
+
+@dataclass(slots=True)
+class PacketInterface:
+    ordinal: int  # in the order the file describes its interfaces, across sections (from 0)
+    interface: Interface
+
+    def label(self) -> str:
+        """The interface as a title names it: its if_name, else its description, else its number."""
+        return self.interface.name or self.interface.description or f"interface {self.ordinal}"
+
+
+def packet_interfaces(path: str) -> list[PacketInterface]:
+    """The interfaces of a regular pcapng file that carry packets, in the file's order; [] for anything
+    else (another format, standard input, a file that cannot say: the one-stream reader reports it)."""
+    try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return []
+        with open(path, "rb", buffering=SCAN_BUFFER) as stream:
+            return _walk(stream, os.fstat(stream.fileno()).st_size, path)
+    except (OSError, struct.error, ValueError, SourceError):
+        return []
+
+
+def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignore[no-untyped-def]
+    if stream.read(4) != SHB_MAGIC:
+        return []
+    described: list[Interface] = []
+    section: list[int] = []  # the section's interfaces' ordinals
+    used: set[int] = set()
+    order = "<"
+    position = 0
+    while position + 12 <= size:
+        stream.seek(position)
+        head = stream.read(12)
+        if len(head) < 12:
+            break
+        if head[:4] == SHB_MAGIC:
+            order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
+            section = []
+        block_type, total = struct.unpack(order + "II", head[:8])
+        if total < 12 or total % 4 or position + total > size:
+            break
+        if block_type == IDB:
+            if total - 12 > MAX_HEADER_BLOCK:
+                break
+            body = head[8:] + stream.read(total - 16)
+            section.append(len(described))
+            described.append(_interface(body, order, path))
+        elif block_type in (EPB, OPB, SPB):
+            if block_type == SPB:
+                index = 0
+            elif block_type == EPB:
+                index = struct.unpack(order + "I", head[8:12])[0]
+            else:
+                index = struct.unpack(order + "H", head[8:10])[0]
+            if index < len(section):
+                used.add(section[index])
+        position += total
+    return [PacketInterface(ordinal, described[ordinal]) for ordinal in sorted(used)]
+
+
+def open_interface(path: str, ordinal: int, mode: str | None, chunk_size: int = 65536):  # type: ignore[no-untyped-def]
+    """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`."""
+    from dissector.protocol.ascii import detect_mode
+    from dissector.sources.reader import MIN_CHUNK, MODE_SAMPLE, Source
+
+    chunk_size = max(chunk_size, MIN_CHUNK)
+    stream = open(path, "rb")
+    try:
+        log = WarningLog()
+        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal)
+        head: list = []
+        if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
+            seen = 0
+            for chunk in chunks:
+                head.append(chunk)
+                seen += len(chunk.data)
+                if seen >= MODE_SAMPLE:
+                    break
+            mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
+        source = Source(chunks, head, "pcapng", mode, path, log, stream.close)
+        source.streaming = False
+        return source
+    except BaseException:
+        stream.close()
+        raise
