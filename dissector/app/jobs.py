@@ -13,13 +13,15 @@ from __future__ import annotations
 import argparse
 import os
 import re
+from typing import Any
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
-from dissector.framing.linespeed import line_settings
+from dissector.framing.linespeed import line_settings, settings_from_text
+from dissector.sources.interfaces import open_interface, packet_interfaces
 from dissector.framing.timing import GapChecker
 from dissector.pipeline import Dissector
 from dissector.render.bustiming import BusTiming
@@ -36,8 +38,9 @@ class Capture:
     files: tuple[str, ...]
     # The `capture` column, and what its output files are named after: `shown` made absolute here, not
     # on a worker whose working folder may differ. Names repeat across a plant's buses (line1/bus.pcap,
-    # line2/bus.pcap): the path does not.
+    # line2/bus.pcap): the path does not. One interface of a pcapng of several: `path#N` (N its ordinal).
     path: str
+    interface: int | None = None  # a pcapng's interface (its ordinal), each its own bus (sources/interfaces.py)
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,6 +71,10 @@ def group_captures(paths: list[str]) -> list[Capture]:
         folder, base = os.path.split(path)
         match = RING_NAME.match(base)
         if match is None:
+            buses = packet_interfaces(path)
+            if len(buses) > 1:  # (a pcapng with packets from several interfaces: one capture per bus)
+                order += [("bus", (path, bus)) for bus in buses]
+                continue
             order.append(("file", path))
             continue
         key = (folder, match["prefix"], match["suffix"] or "")
@@ -81,6 +88,11 @@ def group_captures(paths: list[str]) -> list[Capture]:
             path = value  # type: ignore[assignment]
             captures.append(Capture(path, (path,), os.path.abspath(path)))  # type: ignore[arg-type]
             continue
+        if what == "bus":
+            path, bus = value  # type: ignore[misc]
+            captures.append(Capture(f"{path}: {bus.label()}", (path,), f"{os.path.abspath(path)}#{bus.ordinal}",
+                                    bus.ordinal))
+            continue
         folder, prefix, suffix = value  # type: ignore[misc]
         files = tuple(path for _number, path in sorted(rings[value]))  # type: ignore[index]
         shown = files[0] if len(files) == 1 else os.path.join(folder, prefix + suffix)
@@ -88,10 +100,17 @@ def group_captures(paths: list[str]) -> list[Capture]:
     return captures
 
 
-def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult) -> Iterator[object]:
+def _open(path: str, settings: JobSettings, interface: int | None) -> Any:
+    if interface is None:
+        return open_source(path, settings.format, mode=settings.mode)
+    return open_interface(path, interface, settings.mode)
+
+
+def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
+            interface: int | None = None) -> Iterator[object]:
     offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
     for path in files:
-        source = open_source(path, settings.format, mode=settings.mode)
+        source = _open(path, settings, interface)
         try:
             tables.files.append((offset, os.path.basename(path)))  # type: ignore[attr-defined]
             for chunk in source:
@@ -102,7 +121,8 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
             source.close()
 
 
-def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings, mode: str, baud: int) -> None:
+def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSettings, mode: str, baud: int,
+                     interface: int | None = None) -> None:
     """Profile `auto` over the capture's files first, as one stream (app/preselect.py, issue 27)."""
     if getattr(annotate, "selector", None) is None:
         return
@@ -110,7 +130,7 @@ def _choose_profiles(annotate: object, files: tuple[str, ...], settings: JobSett
 
     def chunks() -> Iterator[object]:
         for path in files:
-            with open_source(path, settings.format, mode=settings.mode) as source:
+            with _open(path, settings, interface) as source:
                 yield from source
 
     choose_profiles(annotate, chunks(), mode, baud, settings.timeout)  # type: ignore[arg-type]
@@ -134,16 +154,20 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         return result
     bus = BusTiming(settings.timeout)
     try:
-        with open_source(capture.files[0], settings.format, mode=settings.mode) as first:
+        with _open(capture.files[0], settings, capture.interface) as first:
             mode, source_format = first.mode, first.format  # the first file's, as one stream's
         # The one line speed of this capture, as a single-process decode of it gets (framing/linespeed.py).
         line = line_settings(capture.files[0], source_format, settings.baud)
+        if capture.interface is not None and settings.baud is None:  # (that interface's own description)
+            texts = next((bus.interface.texts for bus in packet_interfaces(capture.files[0])
+                          if bus.ordinal == capture.interface), ())
+            line = settings_from_text(" ".join(texts)) or line_settings(None, None, None)
         bus.new_input(mode, line)
         framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)
         dissector = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
                               gaps=GapChecker(line.baud, mode) if source_format in TIMED_FORMATS else None)
-        _choose_profiles(annotate, capture.files, settings, mode, line.baud)
-        for chunk in _chunks(capture.files, settings, tables, result):
+        _choose_profiles(annotate, capture.files, settings, mode, line.baud, capture.interface)
+        for chunk in _chunks(capture.files, settings, tables, result, capture.interface):
             items = dissector.feed(chunk)  # type: ignore[arg-type]
             tables.add(items)
             bus.add_items(items)

@@ -141,3 +141,16 @@ def test_standard_input_stays_one_stream_and_says_so(monkeypatch: pytest.MonkeyP
     assert status == 0
     assert err == ("vw3-decode: warning: packets come from several interfaces; their bytes are decoded as one "
                    "stream (vw3-decode FILE decodes each interface as its own bus: save standard input to a file)\n")
+
+
+def test_parquet_makes_one_capture_per_interface(tmp_path: Path) -> None:
+    pq = pytest.importorskip("pyarrow.parquet")
+    path = tmp_path / "two.pcapng"
+    path.write_bytes(_pcapng(["/dev/pts/0", "/dev/pts/1"], SPLIT))
+    status, out, err = run_cli(["--parquet", str(tmp_path / "pq"), str(path)])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [f"{path}: /dev/pts/0: 2 frames, 3 registers, 0 events",
+                                f"{path}: /dev/pts/1: 2 frames, 3 registers, 0 events"]
+    tables = [pq.read_table(file) for file in sorted((tmp_path / "pq" / "frames").iterdir())]
+    assert [(table.column("capture").to_pylist(), table.column("request_frame").to_pylist()) for table in tables] == [
+        ([f"{path}#0"] * 2, [None, 1]), ([f"{path}#1"] * 2, [None, 1])]
