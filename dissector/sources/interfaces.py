@@ -28,7 +28,7 @@ from dissector.sources.pcapng import (
     read_pcapng,
 )
 
-SCAN_BUFFER = 1 << 20  # the walk's reads: seeks over short bodies stay inside the buffer
+SCAN_BUFFER = 1 << 20  # the walk's reads
 
 
 @dataclass(slots=True)
@@ -47,25 +47,29 @@ def packet_interfaces(path: str) -> list[PacketInterface]:
     try:
         if not stat.S_ISREG(os.stat(path).st_mode):
             return []
-        with open(path, "rb", buffering=SCAN_BUFFER) as stream:
+        with open(path, "rb", buffering=0) as stream:
             return _walk(stream, os.fstat(stream.fileno()).st_size, path)
     except (OSError, struct.error, ValueError, SourceError):
         return []
 
 
 def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignore[no-untyped-def]
+    """Block by block from a megabyte read at a time (a block header parsed in memory, bodies passed over)."""
     if stream.read(4) != SHB_MAGIC:
         return []
     described: list[Interface] = []
     section: list[int] = []  # the section's interfaces' ordinals
     used: set[int] = set()
     order = "<"
-    position = 0
+    buffer, base, position = b"", 0, 0  # buffer holds the file's bytes from `base` on
     while position + 12 <= size:
-        stream.seek(position)
-        head = stream.read(12)
-        if len(head) < 12:
-            break
+        if position + 12 > base + len(buffer) or position < base:
+            stream.seek(position)
+            buffer, base = stream.read(SCAN_BUFFER), position
+            if len(buffer) < 12:
+                break
+        at = position - base
+        head = buffer[at : at + 12]
         if head[:4] == SHB_MAGIC:
             order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
             section = []
@@ -75,7 +79,12 @@ def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignor
         if block_type == IDB:
             if total - 12 > MAX_HEADER_BLOCK:
                 break
-            body = head[8:] + stream.read(total - 16)
+            if position + total > base + len(buffer):
+                stream.seek(position + 8)
+                body = stream.read(total - 12)
+                buffer, base = b"", 0
+            else:
+                body = buffer[at + 8 : at + total - 4]
             section.append(len(described))
             described.append(_interface(body, order, path))
         elif block_type in (EPB, OPB, SPB):
