@@ -39,7 +39,7 @@ from datetime import datetime, timedelta, timezone
 from dissector.errors import MalformedInput
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, SourceError, WarningLog, outside_time_range
-from dissector.sources.notation import RefusedList, Notation, NotationError
+from dissector.sources.notation import RefusedList, Notation, NotationError, split_list
 
 MAX_LINE = 1 << 20  # a whole capture pasted on one line is a hex dump too; memory stays bounded
 _EPOCH = datetime(1970, 1, 1, tzinfo=timezone.utc)
@@ -183,8 +183,8 @@ def parse_line(line: str, notation: Notation | None = None, where: str = "") -> 
 
 def looks_like_hexdump(text: str, complete: bool, most: bool = False) -> bool:
     """Do the lines of `text` (the input's first bytes) parse, with data on at least one? All of them;
-    with `most`, more of them than not (a log with a typo or a stray line in it is still a hex dump, and
-    reading it names the line).
+    with `most`, more of them than not, a line of mostly bytes with a typo in it counting as a dump's (a
+    log with a typo or a stray line in it is still a hex dump, and reading it names the line).
 
     The last line is left out unless `complete`: it may be cut where the sample ends. When no line
     is whole, the part of the first one the sample holds is judged, without its last (cut) number.
@@ -212,12 +212,27 @@ def looks_like_hexdump(text: str, complete: bool, most: bool = False) -> bool:
                 continue  # the input's last line, cut short: reading it says so
             if not most:
                 return False
-            refused += 1
+            if _mostly_bytes(line):
+                found += 1  # a byte list with a typo in it (`... 02 CE 2`, `EF // retry`): a dump's line
+            else:
+                refused += 1
             continue
         found += parsed is not None
     if found or refused or not cut or "#" in cut:
         return found > refused
     return _cut_line_is_hex(cut, notation)
+
+
+# A word of a byte list: whole hex bytes (`0C`, `0C03`), colon or 0x hex (`0C:03`, `0x0C`).
+_BYTE_WORD = re.compile(r"(?:0[xX])?(?:[0-9A-Fa-f]{2})+(?::[0-9A-Fa-f]{2})*|0[xX][0-9A-Fa-f]")
+
+
+def _mostly_bytes(line: str) -> bool:
+    """A line that does not read, but whose words are mostly bytes (two at least): a dump line with a typo
+    or a note in it, not a line of some other text."""
+    words = split_list(line.split("#", 1)[0])
+    bytes_ = sum(1 for word in words if _BYTE_WORD.fullmatch(word))
+    return bytes_ >= 2 and bytes_ * 2 > len(words)
 
 
 def _cut_line_is_hex(cut: str, notation: Notation) -> bool:

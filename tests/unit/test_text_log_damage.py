@@ -70,6 +70,18 @@ def test_a_typo_is_named_wherever_it_is(tmp_path: Path, pure: bool, line: int,
 
 
 @ENGINES
+@pytest.mark.parametrize(("second", "error"), [
+    ("0C 03 06 80 00 00 03 00 02 17 E", "'E' is an odd number of hex digits"),
+    (ANSWER + " ZZ", "'ZZ' is not hex"),
+])
+def test_a_typo_in_a_two_line_log(tmp_path: Path, pure: bool, second: str, error: str,
+                                  monkeypatch: pytest.MonkeyPatch) -> None:
+    use_engine(monkeypatch, pure)
+    # One line good, one of bytes with a typo: a dump (before: raw text, exit 0).
+    assert _decode(tmp_path, f"{REQUEST}\n{second}\n") == (2, "", f"vw3-decode: FILE line 2: {error}\n")
+
+
+@ENGINES
 def test_a_c_style_note_says_how_comments_are_written(tmp_path: Path, pure: bool,
                                                       monkeypatch: pytest.MonkeyPatch) -> None:
     use_engine(monkeypatch, pure)
