@@ -67,6 +67,13 @@ static const char *const subfunction_names[SUBFUNCTIONS] = {
     "Clear Overrun Counter and Flag",
 };
 
+/* An FC8 request's data word that draws neither a note nor a warning, by sub-function (data/modbus.toml
+ * [diagnostic_data], decode/fields.py _diagnostic_data): DIAG_ANY any (the sub-function is not listed),
+ * DIAG_NONE none (a character: always a note). */
+#define DIAG_ANY -1
+#define DIAG_NONE -2
+static const long diagnostic_quiet[SUBFUNCTIONS] = {-1, 0, 0, -2, 0, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, -1, 0};
+
 /* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and
  * {function, value of a request's first data word} that no answer follows. */
 #define ECHOES 1

@@ -82,6 +82,18 @@ def _clocks() -> list[str]:
     ]
 
 
+def _quiet_word(subfunction: int) -> int:
+    """diagnostic_quiet's entry: the one word an FC8 request of this sub-function may carry without a note or
+    a warning ([diagnostic_data]'s with no meaning to say), -1 any, -2 none."""
+    rule = SPEC.diagnostic_data.get(subfunction)
+    if rule is None:
+        return -1
+    quiet = [word for word, meaning in (rule.data or {}).items() if not meaning]
+    if len(quiet) > 1:
+        raise GenerateError(f"[diagnostic_data] {subfunction}: the engine keeps one quiet word, not {quiet}")
+    return quiet[0] if quiet else -2
+
+
 def render_header() -> str:
     entries = [entry for entry in table.FUNCTIONS if entry.compiled is not None]
     known_slots, known_rows, selected = _known_rules()
@@ -119,6 +131,14 @@ def render_header() -> str:
         "static const char *const subfunction_names[SUBFUNCTIONS] = {",
         *(f"    {c_rules.c_string(SPEC.diagnostics.get(number))}," for number in range(max(SPEC.diagnostics) + 1)),
         "};",
+        "",
+        "/* An FC8 request's data word that draws neither a note nor a warning, by sub-function (data/modbus.toml",
+        " * [diagnostic_data], decode/fields.py _diagnostic_data): DIAG_ANY any (the sub-function is not listed),",
+        " * DIAG_NONE none (a character: always a note). */",
+        "#define DIAG_ANY -1",
+        "#define DIAG_NONE -2",
+        "static const long diagnostic_quiet[SUBFUNCTIONS] = {"
+        + ", ".join(str(_quiet_word(number)) for number in range(max(SPEC.diagnostics) + 1)) + "};",
         "",
         "/* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and",
         " * {function, value of a request's first data word} that no answer follows. */",

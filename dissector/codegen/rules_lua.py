@@ -115,7 +115,16 @@ def rules_data() -> dict[str, Any]:
         # to): what the plugin's reader reads.
         "layouts": {name: _shape(shape) for name, shape in SHAPES.items()},
         "parts": {name: _shape(shape) for name, shape in PARTS.items()},
+        # An FC8 request's data word by sub-function ([diagnostic_data], fields._diagnostic_data): the words
+        # allowed with what each asks, in order (`words`), or the character it sets (and its names).
+        "diagnostic_data": {sub: _diagnostic_data(rule) for sub, rule in sorted(SPEC.diagnostic_data.items())},
     }
+
+
+def _diagnostic_data(rule: Any) -> dict[str, Any]:
+    if rule.data is not None:
+        return {"data": dict(sorted(rule.data.items())), "words": sorted(rule.data)}
+    return {"character": rule.character, "names": dict(sorted((rule.names or {}).items()))}
 
 
 def render_rules() -> str:

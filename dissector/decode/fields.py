@@ -21,7 +21,7 @@ from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
 from dissector.protocol.rules import LIFTS, REQUEST_PREFIX, Echo, Lift, Names, Test, ValueKind, echo_text, text
 from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register, RegisterList
-from dissector.protocol.spec import SPEC
+from dissector.protocol.spec import SPEC, DiagnosticData
 
 _MAX_SLAVE = int(SPEC.limits["max_slave"])  # type: ignore[call-overload]  # 248..255 reserved
 
@@ -39,17 +39,20 @@ def decode_frame(frame: Frame) -> Frame:
     if kind is _REQUEST and rtu and not frame.broadcast:
         known = _REQUESTS.get(frame.raw)
         if known is not None:  # a polled request: what its bytes decoded to last time
-            frame.fields, frame.start, frame.quantity, frame.subfunction, warnings = known
+            frame.fields, frame.start, frame.quantity, frame.subfunction, warnings, notes = known
             if warnings:
                 frame.warnings.extend(warnings)
+            if notes:  # (FC8's data: what it asks, diagnostic_data)
+                frame.notes.extend(notes)
             return frame
-        before = len(frame.warnings)
+        before, noted = len(frame.warnings), len(frame.notes)
         _decode(frame, function, kind, frame.raw[1:-2])
         if frame.fields is not None and frame.registers is None and frame.bits is None and frame.objects is None:
             if len(_REQUESTS) >= _REQUESTS_MAX:
                 _REQUESTS.clear()
             _REQUESTS[frame.raw] = (
-                frame.fields, frame.start, frame.quantity, frame.subfunction, tuple(frame.warnings[before:])
+                frame.fields, frame.start, frame.quantity, frame.subfunction, tuple(frame.warnings[before:]),
+                tuple(frame.notes[noted:]),
             )
         return frame
     return _decode(frame, function, kind, frame.raw[1:-2] if rtu else frame.pdu)
@@ -59,7 +62,7 @@ def decode_frame(frame: Frame) -> Frame:
 # to is kept by those bytes (fields are never changed after decoding, so frames may share them).
 # Bounded: cleared when full.
 _REQUEST = Kind.REQUEST
-_REQUESTS: dict[bytes, tuple[Container, int | None, int | None, int | None, tuple[str, ...]]] = {}
+_REQUESTS: dict[bytes, tuple[Container, int | None, int | None, int | None, tuple[str, ...], tuple[str, ...]]] = {}
 _REQUESTS_MAX = 1 << 14
 
 
@@ -234,6 +237,37 @@ def _diagnostics(frame: Frame, fields: Container) -> None:
         frame.warnings.append(text("unknown_subfunction", subfunction=fields["subfunction"]))
     if len(fields["data"]) % 2:
         frame.warnings.append(text("odd_diagnostic_data"))
+    elif frame.kind is _REQUEST:
+        rule = SPEC.diagnostic_data.get(fields["subfunction"])
+        if rule is not None:
+            _diagnostic_data(frame, fields["subfunction"], bytes(fields["data"]), rule)
+
+
+def _diagnostic_data(frame: Frame, subfunction: int, data: bytes, rule: DiagnosticData) -> None:
+    """An FC8 request's data word as the spec has it for its sub-function ([diagnostic_data]): what it asks
+    (a note), or a warning where the spec allows another."""
+    word = int.from_bytes(data, "big") if len(data) == 2 else None
+    if rule.data is not None:
+        meaning = rule.data.get(word) if word is not None else None
+        if meaning is None:
+            allowed = " or ".join(f"{value:04X}" for value in sorted(rule.data))
+        else:
+            if meaning:
+                frame.notes.append(meaning)
+            return
+    elif word is not None and word & 0xFF == 0:
+        code = word >> 8
+        name = (rule.names or {}).get(code)
+        if name is None and 0x20 < code < 0x7F:
+            name = f"'{chr(code)}'"
+        frame.notes.append(
+            text("diagnostic_character", what=rule.character, character=name, code=code) if name is not None
+            else text("diagnostic_byte", what=rule.character, code=code))
+        return
+    else:
+        allowed = text("character_then_00")
+    frame.warnings.append(text("diagnostic_data", data=data.hex().upper() or "(none)", subfunction=subfunction,
+                               allowed=allowed))
 
 
 def _report_server_id_response(frame: Frame, fields: Container) -> None:

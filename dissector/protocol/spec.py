@@ -11,6 +11,16 @@ def _int_keys(table: dict[str, object]) -> dict[int, str]:
 
 
 @dataclass(frozen=True, slots=True)
+class DiagnosticData:
+    """What an FC8 request's data word is for one sub-function ([diagnostic_data]): the words allowed and what
+    each asks ("": nothing to say), or the character it sets (`character`: what, `names`: of unprintable ones)."""
+
+    data: dict[int, str] | None = None
+    character: str | None = None
+    names: dict[int, str] | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class Spec:
     functions: dict[int, str]
     exceptions: dict[int, str]
@@ -35,6 +45,7 @@ class Spec:
     # the values of a request's first data word no answer follows (FC8: 4, Force Listen Only Mode)
     echo: dict[int, int]
     never_answered: dict[int, frozenset[int]]
+    diagnostic_data: dict[int, DiagnosticData]  # FC8 request data by sub-function
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -71,6 +82,16 @@ def load_spec() -> Spec:
         names={str(key): _int_keys(value) for key, value in data["names"].items()},
         echo={int(key): int(value) for key, value in data["pairing"]["echo"].items()},
         never_answered={int(key): frozenset(value) for key, value in data["pairing"]["never_answered"].items()},
+        diagnostic_data={int(key): _diagnostic_data(value) for key, value in data["diagnostic_data"].items()},
+    )
+
+
+def _diagnostic_data(entry: dict[str, object]) -> DiagnosticData:
+    words, names = entry.get("data"), entry.get("names")
+    return DiagnosticData(
+        data=None if words is None else _int_keys(words),  # type: ignore[arg-type]
+        character=None if entry.get("character") is None else str(entry["character"]),
+        names=None if names is None else _int_keys(names),  # type: ignore[arg-type]
     )
 
 

@@ -282,6 +282,42 @@ local function lifter(rule, limit, layout)
   return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes)
 end
 
+-- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
+-- _diagnostic_data): what it asks (a note), or a warning where the spec allows another.
+local DIAGNOSTIC_DATA = RULES.diagnostic_data
+local function diagnostic_data(f, b, subfunction, rule)
+  local at, count = f.data_at + 2, f.fields.data_length
+  local word = nil
+  if count == 2 then word = b[at] * 256 + b[at + 1] end
+  local allowed
+  if rule.data ~= nil then
+    local meaning = word ~= nil and rule.data[word] or nil
+    if meaning ~= nil then
+      if meaning ~= "" then note(f, meaning) end
+      return
+    end
+    local words = {}
+    for index, value in ipairs(rule.words) do words[index] = format("%04X", value) end
+    allowed = concat(words, " or ")
+  elseif word ~= nil and word % 256 == 0 then
+    local code = floor(word / 256)
+    local name = rule.names[code]
+    if name == nil and code > 32 and code < 127 then name = "'" .. string.char(code) .. "'" end
+    if name ~= nil then
+      note(f, say("diagnostic_character", { what = rule.character, character = name, code = code }))
+    else
+      note(f, say("diagnostic_byte", { what = rule.character, code = code }))
+    end
+    return
+  else
+    allowed = say("character_then_00", {})
+  end
+  local digits = {} -- (the data as sent, in hex: only for the warning)
+  for k = 0, count - 1 do digits[#digits + 1] = format("%02X", b[at + k]) end
+  local data = #digits > 0 and concat(digits) or "(none)"
+  warn(f, say("diagnostic_data", { data = data, subfunction = subfunction, allowed = allowed }))
+end
+
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {
   diagnostics = function(f, b)
@@ -290,7 +326,12 @@ local SPECIAL = {
     if DIAGNOSTICS[fields.subfunction] == nil then
       warn(f, say("unknown_subfunction", { subfunction = fields.subfunction }))
     end
-    if fields.data_length % 2 == 1 then warn(f, say("odd_diagnostic_data", {})) end
+    if fields.data_length % 2 == 1 then
+      warn(f, say("odd_diagnostic_data", {}))
+    elseif f.kind == REQUEST then
+      local rule = DIAGNOSTIC_DATA[fields.subfunction]
+      if rule ~= nil then diagnostic_data(f, b, fields.subfunction, rule) end
+    end
   end,
   mei_request = function(f, b)
     -- (another MEI type: the layout's switch read no Read Device ID code)
