@@ -20,6 +20,15 @@ timeout; a later frame ends the wait, the request is unanswered and a late respo
 So whether a request was answered is known `timeout` seconds after it at the latest: a live capture
 calls `expire(now)` to release it then, and shows the line the decode of its capture file gives.
 
+A master's retry (the retry rule): FC5, FC6 and FC8's Return Query Data answer with the bytes of the request,
+so the framer reads the frame identical to a request that follows it as its answer. One that comes later
+than `timeout` after the request is the master's retry of it, a request (the first was not answered),
+and the frame after it that the framer would read as the retry's answer answers it. The framer, which has
+no timeout, read the retry as an answer and so awaits nothing after it (and, after the retry's answer,
+which it read as a request, awaits an answer): until the next frame agrees with it again (_retried,
+_echoed), a frame of the same shape both ways (SAME_SHAPE) takes the kind the framer would have given it
+(the pairer is not idle meanwhile, so no other engine takes the stream with the framer's expectation).
+
 Time going backwards (a pcap whose records go back, a clock step): a response stamped before its
 request still answers it, its response time shown as it is (negative, as Wireshark shows a negative
 delta) with a warning that it is left out of the response times (--stats, the bus timing).
@@ -29,9 +38,15 @@ from __future__ import annotations
 import weakref
 
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
-from dissector.protocol.rules import awaits_answer, echoes, text
+from dissector.protocol import table
+from dissector.protocol.rules import awaits_answer, echoed, echoes, text
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
+# Function codes whose request and answer have the same layout: the framer frames such a frame alike
+# whichever it awaits, only its kind depends on it (the retry rule).
+SAME_SHAPE = frozenset(
+    code for code, request, response in table.known_layouts() if request.length == response.length
+)
 
 
 def capture_ended(request: Frame, cut: str | None = None) -> None:
@@ -53,11 +68,18 @@ class Pairer:
         self._broadcast: Frame | None = None  # the last request, when it was a broadcast
         self._queue: list[Item] = []
         self._count = 0
+        # The retry rule: the open request is a retry the framer read as an answer (it awaits nothing);
+        # the last frame is an answer the framer read as a request (it awaits that frame's answer).
+        self._retried: Frame | None = None
+        self._echoed: Frame | None = None
+        # A request expire() released (live): the framer still awaits its answer, so the next frame may be
+        # its retry, as when the frame itself ends the wait.
+        self._expired: Frame | None = None
 
     @property
     def idle(self) -> bool:
-        """No request awaits its answer and nothing is held back."""
-        return self._pending is None and not self._queue
+        """No request awaits its answer, nothing is held back, and the framer awaits what this awaits."""
+        return self._pending is None and not self._queue and self._echoed is None
 
     @property
     def timeout(self) -> float | None:
@@ -87,6 +109,8 @@ class Pairer:
         if pending is not None and self._late(pending, now):
             self._no_answer(pending)
             self._pending = None
+            self._expired = pending if pending is not self._retried else None
+            self._retried = None  # (the pairer awaits nothing now, nor does the framer after a retry)
             self._release(out)
         return out
 
@@ -148,6 +172,24 @@ class Pairer:
             self._no_answer(late)
             self._pending = None
             self._release(out)
+        retried, echoed_, expired = self._retried, self._echoed, self._expired
+        self._retried = self._echoed = self._expired = None
+        if item.function in SAME_SHAPE:
+            ended = late if late is not None else expired  # (the request whose wait this frame or expire ended)
+            if item.kind is Kind.RESPONSE and ended is not None and item.raw == ended.raw:
+                # The retry rule: the request again, past the timeout: the master's retry.
+                item.kind = Kind.REQUEST
+                late = None
+                self._retried = item if awaits_answer(item) else None
+            elif item.kind is Kind.REQUEST and pending is not None and pending is retried and _awaited(retried, item):
+                # What the framer, had it awaited the retry's answer, would have read as that answer.
+                item.kind = Kind.RESPONSE
+                self._echoed = item if awaits_answer(item) else None
+            elif (item.kind is Kind.RESPONSE and pending is None and late is None and echoed_ is not None
+                    and _awaited(echoed_, item)):
+                # The framer awaited an answer to an answer: had it not, it would have read a request.
+                item.kind = Kind.REQUEST
+                self._retried = item if awaits_answer(item) else None
         if item.kind is Kind.REQUEST:
             if pending is not None and self._no_answer(pending) and self._pending_released:
                 item.notes.append(text("unanswered", number=pending.number))
@@ -207,3 +249,12 @@ class Pairer:
         self._queue.append(item)
         if self._pending is None or not self._hold or len(self._queue) > HOLD_LIMIT:
             self._release(out)
+
+
+def _awaited(request: Frame, frame: Frame) -> bool:
+    """Would the framer, awaiting `request`'s answer, read `frame` as it (rules.py Awaiting._awaited)?"""
+    if (frame.slave, frame.function) != (request.slave, request.function):
+        return False
+    echo = echoed(request)
+    got = frame.pdu[1 : 1 + len(echo)]
+    return got == echo[: len(got)]

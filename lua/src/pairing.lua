@@ -16,6 +16,42 @@ local ECHO = DATA.pairing.echo
 -- The timeout rule: a frame later than the timeout after the open request ends the wait (unanswered).
 -- Time going backwards: an answer stamped before its request still answers it, with a warning (its
 -- negative response time is shown as it is and left out of the response times).
+-- The retry rule (pairing.py): a frame identical to the open request (FC5, FC6, FC8's echo), later than the
+-- timeout, is the master's retry, and the frame after it the framer would read as its answer answers it;
+-- until the framer's expectation agrees again (st.retried, st.echoed), a frame of SAME_SHAPE takes the kind
+-- the framer would have given it.
+
+-- Are two length rules of DATA.protocol.rules the same (a select's rules are tables too)?
+local function same_rule(a, b)
+  if type(a) ~= "table" or type(b) ~= "table" then return a == b end
+  if #a ~= #b then return false end
+  for k = 1, #a do
+    if not same_rule(a[k], b[k]) then return false end
+  end
+  return true
+end
+-- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits.
+local SAME_SHAPE = {}
+for code, rules in pairs(DATA.protocol.rules) do
+  if same_rule(rules[1], rules[2]) then SAME_SHAPE[code] = true end
+end
+
+-- What identifies a frame's bytes after its slave and function: its data and its CRC (LRC), as one number up
+-- to 4 data bytes (FC5, FC6: exact in a double), else as a string. A request keeps it as f.sent (its byte
+-- table may go before its answer comes).
+local function sent(f)
+  local b = f.b
+  if b == nil then return f.sent end
+  local at, count = f.data_at, f.data_len
+  if count <= 4 then
+    local value = count
+    for k = 0, count - 1 do value = value * 256 + b[at + k] end
+    return value * 65536 + f.crc
+  end
+  local bytes = {}
+  for k = 0, count - 1 do bytes[k + 1] = string.char(b[at + k]) end
+  return table.concat(bytes) .. ";" .. f.crc
+end
 
 -- A request whose wait ended unanswered (but an answerless one, which none was expected of): no answer can
 -- ask for its fields and bytes any more, and the stream awaits no answer.
@@ -40,6 +76,11 @@ local function echoes(request, answer)
   return ECHO[request.fn] == nil or answer.kind ~= RESPONSE or request.echoed == echoed(answer)
 end
 
+-- Would the framer, awaiting `request`'s answer, read `f` as it (rules.py Awaiting._awaited)?
+local function awaited_as(request, f)
+  return f.slave == request.slave and f.fn == request.fn and (ECHO[f.fn] == nil or request.echoed == echoed(f))
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
@@ -48,6 +89,27 @@ local function pair(st, f)
     and f.time - pending.time > timeout then
     unanswered(st, pending)
     late, pending = pending, nil
+  end
+  local retried, echoed_by = st.retried, st.echoed
+  st.retried, st.echoed = nil, nil
+  if SAME_SHAPE[f.fn] and f.b ~= nil then
+    local kind = f.kind
+    if kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and sent(late) == sent(f) then
+      -- The request again, past the timeout: the master's retry.
+      f.kind, late = REQUEST, nil
+      if awaits_answer(f) then st.retried = f end
+    elseif kind == REQUEST and pending ~= nil and pending == retried and awaited_as(retried, f) then
+      -- What the framer, had it awaited the retry's answer, would have read as that answer.
+      f.kind = RESPONSE
+      if awaits_answer(f) then
+        if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
+        st.echoed = f
+      end
+    elseif kind == RESPONSE and pending == nil and late == nil and echoed_by ~= nil and awaited_as(echoed_by, f) then
+      -- The framer awaited an answer to an answer: had it not, it would have read a request.
+      f.kind = REQUEST
+      if awaits_answer(f) then st.retried = f end
+    end
   end
   if f.kind == REQUEST then
     if pending ~= nil then unanswered(st, pending) end
@@ -61,6 +123,7 @@ local function pair(st, f)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
+      if SAME_SHAPE[f.fn] and f.b ~= nil then f.sent = sent(f) end -- (the retry rule compares a retry with it)
       st.pending = f
     end
     return
