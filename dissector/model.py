@@ -296,6 +296,7 @@ class Frame:
     # Profile `auto`: the choice (devices.selection.ProfileChoice) that gave this frame's slave the device
     # annotating it, with its reason; None for forced profiles and slaves without evidence.
     profile_choice: Any = None
+    profile: str | None = None  # the device profile that annotated the frame (forced, auto's choice, or generic)
     # Read once (live, standard input): profile `auto` had not chosen this slave's device yet and still
     # may, so its values were named with spec semantics only and may read otherwise later (issue 27).
     provisional: bool = False

@@ -374,6 +374,7 @@ class Annotator:
                 self._held.setdefault(frame.slave, []).append(_scratch(frame))
         if device is None:
             device = self.device(frame.slave)
+        frame.profile = device.profile.name
         self._annotate_frame(frame, device)
 
     def _annotate_frame(self, frame: Frame, device: Device) -> None:

@@ -88,6 +88,8 @@ def _head(frame: Frame) -> dict[str, Any]:
     if choice is not None:
         out["profile"] = choice.profile
         out["profile_reason"] = choice.reason
+    elif frame.profile is not None:
+        out["profile"] = frame.profile
     if frame.provisional:
         out["provisional"] = True
     return out
@@ -241,6 +243,8 @@ def _head_json(frame: Frame) -> str:
     choice = frame.profile_choice
     if choice is not None:
         text += f', "profile": {_json_string(choice.profile)}, "profile_reason": {_json_string(choice.reason)}'
+    elif frame.profile is not None:
+        text += f', "profile": {_json_string(frame.profile)}'
     if frame.provisional:
         text += ', "provisional": true'
     return text

@@ -153,8 +153,8 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
         ],
         "warnings": [_warning(text) for text in item.texts.get("warning", [])],
         "notes": item.texts.get("note", []),
-        # (vw3.profile is on every frame; vw3.profile_reason only where `auto` chose, as --json's keys)
-        "profile": (fields.get("profile") if "profile_reason" in fields else None, fields.get("profile_reason")),
+        # (the profile that annotated the frame, as --json's `profile`; the reason only where `auto` chose)
+        "profile": (fields.get("profile"), fields.get("profile_reason")),
     }
 
 

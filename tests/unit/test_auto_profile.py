@@ -179,11 +179,11 @@ def test_json_and_choices_agree() -> None:
     for frame in (first, second):
         assert [register.get("code") for register in frame["registers"]] == [None, "CHCF", "COP"]
         assert (frame["profile"], frame["profile_reason"]) == ("atv71", P38_REASON)
-    # Read once (standard input), frame 2 comes before the evidence: no device named.
+    # Read once (standard input), frame 2 comes before the evidence: no device named, generic's semantics.
     once = cli("-", "--json", stdin=P38.read_bytes())[1]
     first = json.loads(once.splitlines()[1])
     assert [register.get("code") for register in first["registers"]] == [None, None, None]
-    assert "profile" not in first and "profile_reason" not in first
+    assert first["profile"] == "generic" and "profile_reason" not in first
 
 
 # Issue 26: a Schneider iEM3255 energy meter reads its INT64 energy at 3203..3206 (here 123456 Wh), which
@@ -222,7 +222,7 @@ def test_minus_v_and_json_say_which_profile_named_the_registers_and_why() -> Non
     assert detail.split("\n\n")[3].splitlines()[-2:] == ["    Request in frame: 3", f"    Profile: atv71 ({DRIVE_REASON})"]
     records = [json.loads(line) for line in cli("--json", "-", stdin=DRIVE_READS)[1].splitlines()]
     assert [(record.get("profile"), record.get("profile_reason")) for record in records] == (
-        [(None, None)] * 3 + [("atv71", DRIVE_REASON)])
+        [("generic", None)] * 3 + [("atv71", DRIVE_REASON)])
     assert [register.get("code") for register in records[1]["registers"]] == [None, None]
     assert [register.get("code") for register in records[3]["registers"]] == ["CHCF", "COP"]
     forced = cli("--json", "--profile", "atv71", "-", stdin=DRIVE_READS)[1]
@@ -231,7 +231,11 @@ def test_minus_v_and_json_say_which_profile_named_the_registers_and_why() -> Non
 
 def test_the_profile_and_its_reason_are_fields_and_filter_keys() -> None:
     out = cli("-T", "fields", "-e", "frame", "-e", "profile", "-e", "profile_reason", "-", stdin=DRIVE_READS)[1]
-    assert out.splitlines() == ["1\t\t", "2\t\t", "3\t\t", f"4\tatv71\t{DRIVE_REASON}"]
+    # (the profile that annotated each frame, as the plugin's vw3.profile; the reason where auto chose)
+    assert out.splitlines() == ["1\tgeneric\t", "2\tgeneric\t", "3\tgeneric\t", f"4\tatv71\t{DRIVE_REASON}"]
     shown = cli("-Y", 'profile == "atv71"', "-", stdin=DRIVE_READS)[1]
     assert [line.split()[0] for line in shown.splitlines()] == ["4"]
-    assert [line.split()[0] for line in cli("-Y", "!profile", "-", stdin=DRIVE_READS)[1].splitlines()] == ["1", "2", "3"]
+    assert [line.split()[0] for line in cli("-Y", "!profile_reason", "-", stdin=DRIVE_READS)[1].splitlines()] == ["1", "2", "3"]
+    assert [line.split()[0] for line in cli("-Y", 'profile == "generic"', "-", stdin=DRIVE_READS)[1].splitlines()] == ["1", "2", "3"]
+    forced = cli("-T", "fields", "-e", "profile", "--profile", "atv71", "-", stdin=DRIVE_READS)[1]
+    assert forced.splitlines() == ["atv71"] * 4  # forced: named, as vw3.profile names it

@@ -60,7 +60,7 @@ def test_a_meter_polling_3203_stays_generic_and_a_drive_is_named_from_its_first_
     path = tmp_path / "meter.bin"
     path.write_bytes(meter + drive)
     items = [json.loads(line) for line in run_cli([str(path), "--json"])[1].splitlines()]
-    assert [item.get("profile") for item in items] == [None] * 10 + ["atv71"] * 4
+    assert [item.get("profile") for item in items] == ["generic"] * 10 + ["atv71"] * 4
     assert all("code" not in register for item in items[:10] for register in item.get("registers", []))
     assert [r.get("code") for r in items[11]["registers"]] == ["RFR", "FRH"] and items[11]["frame"] == 12
 
