@@ -6122,8 +6122,8 @@ function lane.counted(judged, answer)
   judged.frames = judged.frames + 1
 end
 
--- A provisional frame kept, per slave until its choice, for the chosen device to annotate again (device_now;
--- annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
+-- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
+-- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
@@ -6158,8 +6158,8 @@ local function hold(st, f, b)
 end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
--- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), and
--- then the copies of the slave's provisional frames (hold), for device_now to annotate again.
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), which
+-- then annotates the copies of the slave's provisional frames again (hold; lane.annotate_again).
 local function select_device(st, f, b)
   local frozen, slave = st.frozen, f.slave
   if frozen ~= nil and st.fixed[slave] then
@@ -6188,7 +6188,7 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
   local history = st.history[slave]
-  local device, held = st.devices[slave], nil
+  local device = st.devices[slave]
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
   if not choice.same then
     st.chosen[slave] = choice.profile
@@ -6200,13 +6200,21 @@ local function select_device(st, f, b)
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
     f.profile_choice = choice.reason
-    held = st.held and st.held[slave]
-    if held ~= nil then st.held[slave] = nil end
+    local held = st.held and st.held[slave]
+    if held ~= nil then
+      st.held[slave] = nil
+      lane.annotate_again(st, device, held) -- (defined with the annotate path, lua/src/annotator.lua)
+    end
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  return device, held
+  return device
 end
-M.select_device = select_device
+
+local function device_now(st, f, b)
+  if config.auto[f.slave] then return select_device(st, f, b) end
+  return device_for(st, f.slave)
+end
+M.device_now = device_now
 end
 
 -- ---- vw3.annotator: lua/src/annotator.lua ----
@@ -6218,13 +6226,12 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST = AUTO, CONFIRMED, EXCEPTION, PROFILES, READS, REQUEST
 local RESPONSE, annotate_list, annotate_registers = RESPONSE, annotate_list, annotate_registers
-local check_request, concat, describe, device_for = check_request, concat, describe, device_for
-local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, ipairs, math, pairs = explain_objects, ipairs, math, pairs
-local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
-local refused_registers, register_at, remember_writes, say = refused_registers, register_at, remember_writes, say
-local select, select_device, span_label, string, table = select, select_device, span_label, string, table
-local words_at = words_at
+local check_request, concat, describe, device_of = check_request, concat, describe, device_of
+local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
+local ipairs, lane, math, pairs, parse_map_choice = ipairs, lane, math, pairs, parse_map_choice
+local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
+local remember_writes, say, select, span_label, string = remember_writes, say, select, span_label, string
+local table, words_at = table, words_at
 
 local function annotate_with(st, f, b, device)
   if not device then return end
@@ -6258,11 +6265,11 @@ local function annotate_with(st, f, b, device)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 
--- Profile auto chose a device with a frame: the slave's provisional frames (their copies, kept by hold)
--- annotated again with it, as they would have been had it been known from the first (-2): it remembers of
--- them what the one annotate path remembers, so a parameter read in one and 16#8000 now `became
--- protected` (annotator.py _observe). What they tell again is dropped with the copies.
-local function annotate_again(st, device, held)
+-- Profile auto chose a device with a frame (select_device): the slave's provisional frames (their copies,
+-- kept by hold) annotated again with it, as they would have been had it been known from the first (-2): it
+-- remembers of them what the one annotate path remembers, so a parameter read in one and 16#8000 now
+-- `became protected` (annotator.py _observe). What they tell again is dropped with the copies.
+function lane.annotate_again(st, device, held)
   for _, copy in ipairs(held) do
     local run = copy.registers
     if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path)
@@ -6271,13 +6278,6 @@ local function annotate_again(st, device, held)
       annotate_with(st, copy, copy.b, device)
     end
   end
-end
-
-local function device_now(st, f, b)
-  if not config.auto[f.slave] then return device_for(st, f.slave) end
-  local device, held = select_device(st, f, b)
-  if held ~= nil then annotate_again(st, device, held) end
-  return device
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,
@@ -6362,9 +6362,8 @@ local function register_view(st, f, run, b, index)
   end
   return view
 end
-M.annotate_with, M.configure, M.device_now = annotate_with, configure, device_now
-M.inferred_registers, M.new_state, M.register_view = inferred_registers, new_state, register_view
-M.string_of = string_of
+M.annotate_with, M.configure, M.inferred_registers = annotate_with, configure, inferred_registers
+M.new_state, M.register_view, M.string_of = new_state, register_view, string_of
 end
 
 -- ---- vw3.pack: lua/src/pack.lua ----

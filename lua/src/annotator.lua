@@ -36,11 +36,11 @@ local function annotate_with(st, f, b, device)
   if f.objects ~= nil and #f.objects > 0 then explain_objects(f, device.profile) end
 end
 
--- Profile auto chose a device with a frame: the slave's provisional frames (their copies, kept by hold)
--- annotated again with it, as they would have been had it been known from the first (-2): it remembers of
--- them what the one annotate path remembers, so a parameter read in one and 16#8000 now `became
--- protected` (annotator.py _observe). What they tell again is dropped with the copies.
-local function annotate_again(st, device, held)
+-- Profile auto chose a device with a frame (select_device): the slave's provisional frames (their copies,
+-- kept by hold) annotated again with it, as they would have been had it been known from the first (-2): it
+-- remembers of them what the one annotate path remembers, so a parameter read in one and 16#8000 now
+-- `became protected` (annotator.py _observe). What they tell again is dropped with the copies.
+function lane.annotate_again(st, device, held)
   for _, copy in ipairs(held) do
     local run = copy.registers
     if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path)
@@ -49,13 +49,6 @@ local function annotate_again(st, device, held)
       annotate_with(st, copy, copy.b, device)
     end
   end
-end
-
-local function device_now(st, f, b)
-  if not config.auto[f.slave] then return device_for(st, f.slave) end
-  local device, held = select_device(st, f, b)
-  if held ~= nil then annotate_again(st, device, held) end
-  return device
 end
 
 -- The registers an exception 02 tells about (explain._all_unreadable): each address of the refused read,

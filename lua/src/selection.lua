@@ -212,8 +212,8 @@ function lane.counted(judged, answer)
   judged.frames = judged.frames + 1
 end
 
--- A provisional frame kept, per slave until its choice, for the chosen device to annotate again (device_now;
--- annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
+-- A provisional frame kept, per slave until its choice, for the chosen device to annotate again
+-- (lane.annotate_again; annotator.py _held, _scratch): a copy the annotate path may change freely, taken before the frame is
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
@@ -248,8 +248,8 @@ local function hold(st, f, b)
 end
 
 -- The device for f under profile `auto`: a new one when this frame decides a slave's profile (kept in
--- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), and
--- then the copies of the slave's provisional frames (hold), for device_now to annotate again.
+-- the slave's history for the display of earlier frames, and said on this frame: f.profile_choice), which
+-- then annotates the copies of the slave's provisional frames again (hold; lane.annotate_again).
 local function select_device(st, f, b)
   local frozen, slave = st.frozen, f.slave
   if frozen ~= nil and st.fixed[slave] then
@@ -278,7 +278,7 @@ local function select_device(st, f, b)
   -- (said on the later passes, where every frame bears the slave's last reason: the frame it comes from says so)
   st.said[f.number] = { choice.profile, choice.reason }
   local history = st.history[slave]
-  local device, held = st.devices[slave], nil
+  local device = st.devices[slave]
   -- (choice.same: kept, and said with its new reason from here on, nothing announced, as vw3-decode)
   if not choice.same then
     st.chosen[slave] = choice.profile
@@ -290,9 +290,17 @@ local function select_device(st, f, b)
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
     f.profile_choice = choice.reason
-    held = st.held and st.held[slave]
-    if held ~= nil then st.held[slave] = nil end
+    local held = st.held and st.held[slave]
+    if held ~= nil then
+      st.held[slave] = nil
+      lane.annotate_again(st, device, held) -- (defined with the annotate path, lua/src/annotator.lua)
+    end
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
-  return device, held
+  return device
+end
+
+local function device_now(st, f, b)
+  if config.auto[f.slave] then return select_device(st, f, b) end
+  return device_for(st, f.slave)
 end
