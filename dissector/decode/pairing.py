@@ -93,6 +93,8 @@ class Pairer:
 
     @count.setter
     def count(self, value: int) -> None:
+        if value != self._count:  # items numbered elsewhere (the engine): the last request is not the one kept
+            self._broadcast = None
         self._count = value
 
     def push(self, items: list[Item]) -> list[Item]:
