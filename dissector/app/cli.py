@@ -28,6 +28,7 @@ from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args, report_profiles
 from dissector.app.samefile import refuse_same_files
+from dissector.render.buses import Bus, Buses
 from dissector.render.output import Output
 from dissector.protocol.ascii import holds_frame
 from dissector.protocol.printable import printable
@@ -107,9 +108,15 @@ class Sinks:
 
             self.watch = watcher(args.watch, self.text_out.write, self.json, annotate, self.stats.history,  # type: ignore[union-attr]
                                  Clock(args.output.time_format))
+        self.options = args
+        self.buses = Buses(Bus([], self.stats, self.bus, self.watch), self._new_bus)  # (one, unless interfaces)
+        self.current: Bus | None = None
         self.report = None
         if args.report is not None:
+            from dissector.app.inputs import refuse_several_buses
             from dissector.render.report import ReportFile
+
+            refuse_several_buses(args)  # (before the report file is made)
 
             # The report's counts are --stats' numbers, its parameters the same history's.
             # File names are data: a non-UTF-8 name (n\xff.pcap) or an ESC in one is shown escaped.
@@ -141,6 +148,30 @@ class Sinks:
         self.frames_left: int | None = args.count  # -c: items (frames and noise runs) still to show
         self.wrote: str | None = None  # the report written (said last, on a terminal)
         self.done = False  # -c N reached
+
+    def _new_bus(self, title: str | None, annotate: Annotator | None) -> Bus:
+        from dissector.render.buses import new_bus  # another interface's counts
+
+        return new_bus(self, annotate)
+
+    def new_input(self, key: object, title: str | None, annotate: Annotator | None, mode: str, line: object) -> None:
+        """An input of the bus `key` (render/buses.py: None, the files read as one stream; a pcapng's
+        interface otherwise): its counts become the current ones."""
+        from dissector.render.buses import header, title as bus_title
+        from dissector.render.watch import printer
+
+        bus = self.buses.switch(key, title, annotate)
+        heard, self.current = self.current, bus
+        self.stats, self.bus, self.watch = bus.stats, bus.timing, bus.watch
+        if self.bus is not None:
+            if key is not None:  # (its warning names it)
+                self.bus.warn = lambda text: self.env.stderr.write(f"{PROG}: warning: {shown(title)}: {text}\n")
+            self.bus.new_input(mode, line, title, self.stats)  # (several files: counted as one bus, said)
+        if self.watch is not None and (key is not None or heard not in (None, bus)):
+            if self.json:
+                self.watch.on_change = printer(self.text_out.write, True, bus_title(bus))
+            elif bus is not heard:
+                self.text_out.write(header(bus, heard is None))
 
     @property
     def plain_summary_only(self) -> bool:
@@ -272,8 +303,10 @@ class Sinks:
         return OutputError(f"-w {self.write_path}: {error.strerror or error}{kept}")
 
     def close(self) -> None:
-        if self.stats is not None:
-            self.stats.history.finish()  # frames held until their slave's profile was chosen (read once)
+        buses = self.buses.all()
+        for bus in buses:
+            if bus.stats is not None:
+                bus.stats.history.finish()  # frames held until their slave's profile was chosen (read once)
         if self.pcap is not None:
             try:
                 self.pcap.close()
@@ -287,26 +320,19 @@ class Sinks:
                     f"{PROG}: warning: -w {shown(self.write_path)}: {clamped} {whose} outside "
                     f"what {pcap.format} holds, written at the nearest time it holds\n"
                 )
-        if self.watch is not None:
-            self.watch.finish()
+        for bus in buses:
+            if bus.watch is not None:
+                bus.watch.finish()
         if self.report is not None:
             report, self.report = self.report, None
             extras = {"bus": self.bus, "health": self.health, "time_format": self.clock.format}
             report.write(self.stats, extras)  # type: ignore[arg-type]
             self.wrote = report.path
         if self.stats is not None and self.stats_shown:
-            if self.json:
-                self.stats.write_json(self.text_out.write, {"bus": self.bus.report()} if self.bus is not None else None)
-            else:
-                self.output.flush()
-                if self.output.console is not None:
-                    self.output.console.print(self.stats.render())
-                else:  # piped: plain tables at full width, no rich layout cost
-                    self.text_out.write(self.stats.render_plain())
-                if self.bus is not None:
-                    from dissector.render.bustiming import time_text
+            from dissector.render.buses import write_stats
 
-                    self.text_out.write(self.bus.render_plain(time_text(self.clock.format, self.bus.first)))
+            for index, bus in enumerate(buses):
+                write_stats(self, bus, index if self.buses.several else None)
         self.output.flush()
 
 
@@ -336,7 +362,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
 def _decode_inputs(
     args: DecodeOptions, env: Environment, sinks: Sinks, annotate: Annotator | None
 ) -> None:
-    first_bus: dict[str | None, int] = {}  # per file split by interface, its first interface's ordinal
+    devices: dict[object, Annotator | None] = {}  # per bus (pcapng interface) its annotator
     # The devices as they are before any frame, for the other interfaces of a pcapng (~13 ms a copy).
     pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
     try:
@@ -344,8 +370,14 @@ def _decode_inputs(
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
-            if sinks.bus is not None:  # (several inputs: --stats says they were counted as one bus)
-                sinks.bus.new_input(mode, line, title, sinks.stats)
+            # An interface is a bus, the same in every file (ring files, as mergecap joins them); files read
+            # as one stream are one bus's pieces.
+            key = None if bus is None else (bus.label(), bus.ordinal)
+            if pristine is not None:
+                # Another bus's slave 12 is not the first bus's: a device of its own (as the run's before any
+                # frame), its own profile choices (auto) and counts (--stats, --watch).
+                annotate = devices.setdefault(key, annotate if not devices else copy.deepcopy(pristine))
+            sinks.new_input(key, title, annotate, mode, line)
             sinks.output.new_input(title if sinks.show else None)  # no ==> header over nothing
             sinks.restart_times()
             if sinks.pcap is not None:
@@ -356,10 +388,6 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            if bus is not None and pristine is not None and bus.ordinal != first_bus.setdefault(path, bus.ordinal):
-                # Another interface is another bus: its slave 12 is not the first bus's (a device of its own,
-                # as the run's before any frame). Its profile choices (auto) are its own too.
-                annotate = copy.deepcopy(pristine)
             _choose_profiles(annotate, args, chunks, mode, path, line.baud, bus)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(

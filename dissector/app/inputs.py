@@ -8,6 +8,7 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from dissector.app.hexinput import HexInput
+from dissector.errors import UsageError
 from dissector.app.options import PROG, DecodeOptions, shown
 from dissector.app.paths import Fix
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
@@ -101,3 +102,17 @@ def input_line(path: str | None, source_format: str | None, args: DecodeOptions,
     if bus is not None and not args.baud_given:
         line = settings_from_text(" ".join(bus.interface.texts)) or line_settings(None, None, None)
     return line
+
+
+def refuse_several_buses(args: DecodeOptions) -> None:
+    """--report draws one bus: a pcapng with packets from several interfaces (several buses) is refused,
+    with a way to split it, before anything is decoded or written."""
+    for path in args.files:
+        buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
+        if len(buses) > 1:
+            names, name = ", ".join(bus.label() for bus in buses), path  # (escaped where it is shown)
+            raise UsageError(
+                f"--report: {name} has packets from {len(buses)} interfaces, each its own bus ({names}): a report "
+                f"draws one bus: report on each interface saved alone (tshark -r {name} -Y 'frame.interface_id == "
+                f"{buses[0].ordinal}' -w bus.pcapng), or count them all with --stats"
+            )

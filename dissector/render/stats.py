@@ -301,10 +301,12 @@ class StatsCollector:
                 "changes": changes,
             }
 
-    def write_json(self, write: Callable[[str], object], extra: dict[str, Any] | None = None) -> None:
-        """The JSON form (and `extra` keys) as one line, its parameters written in batches, never one
-        string of them all (64 slaves' worth of parameters was a 643 MB line)."""
-        report = self.report(with_parameters=False)
+    def write_json(self, write: Callable[[str], object], extra: dict[str, Any] | None = None,
+                   name: dict[str, Any] | None = None) -> None:
+        """The JSON form (and `extra` keys; `name` keys first: the bus's `file`, render/buses.py) as one
+        line, its parameters written in batches, never one string of them all (64 slaves' worth of
+        parameters was a 643 MB line)."""
+        report = {**(name or {}), **self.report(with_parameters=False)}
         report.update(extra or {})
         head, tail = json.dumps(report).split('"parameters": null', 1)
         write(head + '"parameters": [')

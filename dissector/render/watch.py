@@ -386,7 +386,10 @@ class WatchSink:
         self._pump.close()
 
 
-def printer(write: Callable[[str], None], as_json: bool) -> Callable[[Change], None]:
+def printer(write: Callable[[str], None], as_json: bool, file: str | None = None) -> Callable[[Change], None]:
+    """`file`: the bus's title, of several (render/buses.py), as --json's items name their input."""
     if as_json:
+        if file is not None:
+            return lambda change: write(json.dumps({**change.record(), "file": file}) + "\n")
         return lambda change: write(json.dumps(change.record()) + "\n")
     return lambda change: write(change.line() + "\n")
