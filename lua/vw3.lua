@@ -6895,8 +6895,9 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
     list[last], list[last - 1] = nil, nil
     request_record[1] = packed
     st.records[pending.record] = packed
-    local spare = lane.spare
+    local spare, spare_records = lane.spare, lane.spare_records
     if #spare < 4 then spare[#spare + 1] = pending end
+    if #spare_records < 4 then spare_records[#spare_records + 1] = request_record end -- (its record too)
   else
     pending.response = { record = number }
   end
@@ -6932,7 +6933,7 @@ end
 -- under a layout rule that holds now (annotate_one would note it).
 -- Returns the record, as dissect_record does (shown and kept by dissect_records as such), and its Info
 -- text; nil, with nothing changed, for any other record.
-lane.spare = {}
+lane.spare, lane.spare_records = {}, {}
 function lane.request(st, bytes, n, time, number, slave, code, quiet)
   local byte = string.byte
   local known = known_requests.entries[bytes]
@@ -7004,7 +7005,14 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   end
   f.slots = slots
   st.pending = f
-  local record = { f }
+  local spare_records = lane.spare_records
+  local record = spare_records[#spare_records]
+  if record == nil then
+    record = { f }
+  else
+    spare_records[#spare_records] = nil
+    record[1] = f
+  end
   st.last = record
   st.whole_record = record
   return record, f.info
@@ -7258,19 +7266,17 @@ end
 
 -- ---- vw3.tree: lua/src/tree.lua ----
 package.preload["vw3.tree"] = function(...)
--- vw3.tree: Wireshark: a frame's tree (registers, bits, objects, links, notes) and Info text.
+-- vw3.tree: Wireshark: a frame's registers, bits and PDU fields (show.lua show_frame), and its Info text.
 -- Mirrors dissector/render/detail.py, dissector/render/summary.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS, KIND_NUMBER
+local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
 local NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS = NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS
-local REQUEST, RESPONSE, bit_at, concat, device_of, ex = REQUEST, RESPONSE, bit_at, concat, device_of, ex
-local exception_name, floor, format, function_name = exception_name, floor, format, function_name
-local inferred_registers, ipairs, lane, made_once, math = inferred_registers, ipairs, lane, made_once, math
-local pairs, pf, proto, python_repr, register_view, say = pairs, pf, proto, python_repr, register_view, say
-local string, tonumber, tostring, type = string, tonumber, tostring, type
-local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
+local REQUEST, RESPONSE, concat, ex, exception_name, floor = REQUEST, RESPONSE, concat, ex, exception_name, floor
+local format, function_name, ipairs, made_once, math, pairs = format, function_name, ipairs, made_once, math, pairs
+local pf, python_repr, string, table, tonumber, tostring = pf, python_repr, string, table, tonumber, tostring
+local type = type
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -7439,9 +7445,11 @@ end
 
 -- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
 -- measured); where they end, or nil when one does not fit (a record that ends its records: grammar.py).
-local function add_shape(t, tvb, f, b, shape, at, stop)
-  local values = {}
-  for _, field in ipairs(shape) do
+-- (values: a table to keep the fields' values in, for a shape measured again and again)
+local function add_shape(t, tvb, f, b, shape, at, stop, values)
+  values = values or {}
+  for index = 1, #shape do
+    local field = shape[index]
     local kind, shown = field.type, SHOWN[field]
     local size = FIXED[kind]
     if size ~= nil then
@@ -7513,18 +7521,14 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
 -- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
 -- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
--- FORMS[fn][kind]: the form's steps (one lookup a frame, nil for the usual codes).
+-- FORMS[fn][kind]: the form made into a function of the frame (below; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
 local UNKNOWN_SUBFUNCTION = INFO.unknown_subfunction
-local FORMS = {}
-for kind, forms in pairs(INFO.forms) do
-  for fn, form in pairs(forms) do
-    FORMS[fn] = FORMS[fn] or {}
-    FORMS[fn][kind] = INFO.steps[form]
-  end
-end
 local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
+-- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
+-- time costs more, in the collector, than the text).
+local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
 
 -- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
 -- field of no fixed size: by kind and function code, made once.
@@ -7551,64 +7555,97 @@ local function data_text(b, first, last)
   local size = last - first + 1
   if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
   if size <= 0 then return "" end
-  local hex = {}
-  for k = 1, size < MAX_DATA_BYTES and size or MAX_DATA_BYTES do hex[k] = HEX_BYTE[b[first + k - 1]] end
-  if size <= MAX_DATA_BYTES then return " data " .. concat(hex) end
-  return " data " .. concat(hex) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
+  local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
+  for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
+  if size <= MAX_DATA_BYTES then return " data " .. concat(HEX, "", 1, shown) end
+  return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
 -- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
 local function fifo_values(b, count, first, last)
-  local parts = {}
+  local made = 0
   for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
     local at = first + 2 * k
     if at + 1 > last then break end
-    parts[#parts + 1] = " " .. DECIMAL[b[at] * 256 + b[at + 1]]
+    made = made + 1
+    VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
   end
-  return concat(parts)
+  if made == 0 then return "" end
+  return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The text of a form (describe._interpreter): its texts, and its steps on the frame's fields, read from
--- b (the frame's slave byte at b[base], its data ending at b[last]).
-local function form_text(f, steps, b, base, last)
-  local at_of, parts = fields_at(f.kind, f.fn), {}
-  for index = 1, #steps do
+-- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
+-- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
+-- value read as u8 or u16 (nil where the field has no fixed size).
+local STEPS = {}
+function STEPS.dec(at, size)
+  if size == nil then return function() return DECIMAL[nil] end end
+  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
+end
+function STEPS.hex(at, size, digits)
+  local pattern = "%0" .. digits .. "X"
+  return function(f, b, base)
+    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
+  end
+end
+function STEPS.label() -- (span_text: the window as named, PLC style too)
+  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
+end
+function STEPS.coil(at, size)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
+  end
+end
+function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
+  end
+end
+function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
+function STEPS.fifo(at, size, values_at) -- (the values after their count)
+  return function(f, b, base, last)
+    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
+      base + values_at, last)
+  end
+end
+
+-- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
+local function form_function(steps, at_of)
+  local texts, made, count = {}, {}, #steps
+  for index = 1, count do
     local step = steps[index]
     if type(step) == "string" then
-      parts[index] = step
+      texts[index] = step
     else
-      local what, place = step[1], at_of[step[2]]
-      local value = nil
-      if place ~= nil and place.size ~= nil then
-        value = place.size == 1 and b[base + place.at] or b[base + place.at] * 256 + b[base + place.at + 1]
-      end
-      local text
-      if what == "dec" then
-        text = DECIMAL[value]
-      elseif what == "hex" then
-        text = format("%0" .. step[3] .. "X", value)
-      elseif what == "label" then -- (span_text: the window as named, PLC style too)
-        text = f.span_label or (f.start and DECIMAL[f.start]) or ""
-      elseif what == "coil" then
-        text = value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-      elseif what == "subfunction" then -- (as the profile names it, else the spec)
-        text = f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-      elseif what == "data" then
-        text = data_text(b, base + place.at, last)
-      else -- fifo: the values after their count
-        text = fifo_values(b, value, base + at_of[step[3]].at, last)
-      end
-      parts[index] = text
+      local place, extra = at_of[step[2]], step[3]
+      if step[1] == "fifo" then extra = at_of[step[3]].at end
+      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
     end
   end
-  return concat(parts)
+  return function(f, b, base, last)
+    for index = 1, count do
+      MADE[index] = texts[index] or made[index](f, b, base, last)
+    end
+    return concat(MADE, "", 1, count)
+  end
 end
-
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on
 -- the frame's bytes b (its slave byte at b[base], its data ending at b[last]).
 local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.names.device_id_codes
 local RUN_INDICATOR = DATA.names.run_indicator
 local BY_NAME = {}
+
+-- python_repr of a device's text, without its walk character by character where the text is printable
+-- ASCII with no backslash and not both quotes (Python's repr then only puts it in quotes).
+local function repr_text(text)
+  if not text:find("[^ -~]") and not text:find("\\", 1, true) then
+    if not text:find("'", 1, true) then return "'" .. text .. "'" end
+    if not text:find('"', 1, true) then return '"' .. text .. '"' end
+  end
+  return python_repr(text)
+end
 
 -- describe._mei: `Read Device Identification, basic, from object 0`; an answer its objects' values (a
 -- revision the profile decoded as such: `V2.1`), another MEI type its name.
@@ -7621,7 +7658,7 @@ function BY_NAME.mei(f, b, base)
   local parts = {}
   for index, object in ipairs(f.objects or NO_INTERPRETATION) do
     local text = object.text
-    if text == nil or not text:match("^V%d+%.%d+$") then text = python_repr(object.value) end
+    if text == nil or not text:match("^V%d+%.%d+$") then text = repr_text(object.value) end
     parts[index] = object.name .. "=" .. text
   end
   return mei .. ", " .. code .. ":" .. (parts[1] and " " or "") .. concat(parts, " ")
@@ -7631,12 +7668,12 @@ end
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST then return "" end
-  local count, run, chars = b[base + 2] - 2, b[base + 4], {}
+  local count, run, text = b[base + 2] - 2, b[base + 4], true
   for k = base + 5, base + 4 + count do
-    if b[k] < 32 or b[k] > 126 then chars = nil break end
-    chars[#chars + 1] = string.char(b[k])
+    if b[k] < 32 or b[k] > 126 then text = false break end
   end
-  local data = count > 0 and chars and python_repr(concat(chars)) or count_text(count, "byte")
+  if count > 0 and text then text = repr_text(string.char(table.unpack(b, base + 5, base + 4 + count))) end
+  local data = count > 0 and text or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
@@ -7647,17 +7684,21 @@ function BY_NAME.file_record(f, b, base)
   local part, at = PARTS[field.part], base + 3
   local last, groups = at + b[base + 2], 0
   while at < last do
-    at = add_shape(nil, nil, f, b, part, at, last)
+    at = add_shape(nil, nil, f, b, part, at, last, GROUP)
     if at == nil then break end
     groups = groups + 1
   end
   return DECIMAL[groups] .. " record group(s)"
 end
 
--- The Info text of a form, or of a describer of BY_NAME (steps: its name).
-local function info_text(f, steps, b, base, last)
-  if type(steps) == "string" then return BY_NAME[steps](f, b, base, last) end
-  return form_text(f, steps, b, base, last)
+-- Each form made once: by function code, then kind (a describer of BY_NAME: the form is its name).
+local FORMS = {}
+for kind, forms in pairs(INFO.forms) do
+  for fn, form in pairs(forms) do
+    local steps = INFO.steps[form]
+    FORMS[fn] = FORMS[fn] or {}
+    FORMS[fn][kind] = type(steps) == "string" and BY_NAME[steps] or form_function(steps, fields_at(kind, fn))
+  end
 end
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
@@ -7678,12 +7719,12 @@ local function summary(f, tvb)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
-    if tvb ~= nil then
+    if b == nil and tvb ~= nil then
       b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
       if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
     end
     if b ~= nil then
-      local text = info_text(f, steps, b, base, last) -- (describe.info_text's rstrip: no space before none)
+      local text = steps(f, b, base, last) -- (describe.info_text's rstrip: no space before none)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
@@ -7696,6 +7737,57 @@ local function summary(f, tvb)
       .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
+end
+M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
+M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fields_at, frame_bytes
+M.frame_range, M.summary, M.unseen = frame_range, summary, unseen
+end
+
+-- ---- vw3.show: lua/src/show.lua ----
+package.preload["vw3.show"] = function(...)
+-- vw3.show: Wireshark: a frame's item and a record's items shown, a record's first dissection, the first pass's end.
+-- Mirrors no Python module.
+-- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
+local M = require("vw3.env")
+local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION = AUTO, ByteArray, DATA, DIAGNOSTICS, EXCEPTION
+local KIND_NUMBER, NOISE, NO_INTERPRETATION, NSTime = KIND_NUMBER, NOISE, NO_INTERPRETATION, NSTime
+local REQUEST, START_WORDS, add_pdu, add_register, add_said = REQUEST, START_WORDS, add_pdu, add_register, add_said
+local add_text, bit_at, concat, count_text, device_of, ex = add_text, bit_at, concat, count_text, device_of, ex
+local exception_name, fields_at, finish_safely, floor = exception_name, fields_at, finish_safely, floor
+local format, frame_bytes, frame_range, function_name = format, frame_bytes, frame_range, function_name
+local inferred_registers, ipairs, lane, math, pack, pairs = inferred_registers, ipairs, lane, math, pack, pairs
+local pf, proto, python_repr, register_view, say, summary = pf, proto, python_repr, register_view, say, summary
+local tostring, type, unseen = tostring, type, unseen
+local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
+
+-- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
+-- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
+-- the record's time otherwise.
+local function record_time(pinfo, number)
+  local rtac = rtac_times[number or pinfo.number]
+  if rtac ~= nil then return rtac end
+  local time = pinfo.abs_ts
+  if time == 0 then return nil end
+  return time
+end
+
+-- Each record's time from the capture's first (pinfo.rel_ts), by record number: kept across lane.again,
+-- which makes the stream's state anew; each record's first dissection writes its own.
+local REL_TIMES = {}
+
+-- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
+-- capture's first where they agree with their absolute times (a time reference set between them does
+-- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
+function lane.response_time(f)
+  local request = f.request
+  if f.time == nil or request.time == nil then return nil end
+  local delta, asked, got = f.time - request.time, REL_TIMES[request.record], REL_TIMES[f.record]
+  local exact = asked and got and got - asked
+  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
+  local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
+  local seconds = math.floor(delta * sign)
+  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
 end
 
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
@@ -7853,50 +7945,6 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end
   return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
-end
-M.add_register, M.add_text, M.count_text, M.show_frame = add_register, add_text, count_text, show_frame
-M.summary, M.unseen = summary, unseen
-end
-
--- ---- vw3.show: lua/src/show.lua ----
-package.preload["vw3.show"] = function(...)
--- vw3.show: Wireshark: a record's items shown, the first dissection of a record, the end of the first pass.
--- Mirrors no Python module.
--- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
-local M = require("vw3.env")
-local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local AUTO, ByteArray, EXCEPTION, KIND_NUMBER, NOISE = AUTO, ByteArray, EXCEPTION, KIND_NUMBER, NOISE
-local NSTime, add_text, concat, count_text, ex = NSTime, add_text, concat, count_text, ex
-local finish_safely, format, ipairs, lane, math, pack = finish_safely, format, ipairs, lane, math, pack
-local pairs, pf, proto, show_frame, summary, type, unseen = pairs, pf, proto, show_frame, summary, type, unseen
-
--- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
--- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
--- the record's time otherwise.
-local function record_time(pinfo, number)
-  local rtac = rtac_times[number or pinfo.number]
-  if rtac ~= nil then return rtac end
-  local time = pinfo.abs_ts
-  if time == 0 then return nil end
-  return time
-end
-
--- Each record's time from the capture's first (pinfo.rel_ts), by record number: kept across lane.again,
--- which makes the stream's state anew; each record's first dissection writes its own.
-local REL_TIMES = {}
-
--- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
--- capture's first where they agree with their absolute times (a time reference set between them does
--- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
-function lane.response_time(f)
-  local request = f.request
-  if f.time == nil or request.time == nil then return nil end
-  local delta, asked, got = f.time - request.time, REL_TIMES[request.record], REL_TIMES[f.record]
-  local exact = asked and got and got - asked
-  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
-  local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
-  local seconds = math.floor(delta * sign)
-  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
 end
 
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
@@ -8072,27 +8120,33 @@ local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
   if n == 0 then return nil end
-  local time = record_time(pinfo, number)
+  -- (record_time, written out: its RTAC time looked up once)
+  local rtac = rtac_times[number]
+  local time = rtac
+  if rtac == nil then
+    time = pinfo.abs_ts
+    if time == 0 then time = nil end
+  end
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac_times[number] == nil and rel or nil end
+  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or nil end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
     -- after the first pass is over: a live capture's later records are never decoded again).
     local again = st.again
     if again == nil then
-      again = { order = {}, bytes = {}, times = {} }
+      again = { order = {}, bytes = {}, times = {}, count = 0 }
       st.again = again
     end
-    again.order[#again.order + 1] = number
+    local count = again.count + 1 -- (counted: #again.order searches the list each record)
+    again.order[count], again.count = number, count
     again.bytes[number], again.times[number] = bytes, time or false
   end
   return lane.decode(st, bytes, n, time, number)
 end
 M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
-M.tree_mode = tree_mode
 end
 
 -- ---- vw3.dissector: lua/src/dissector.lua ----
@@ -8108,8 +8162,8 @@ local add_register, add_text, annotate_list, apply_prefs = add_register, add_tex
 local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
 local finish_all, flush_noise, ipairs, math, new_state = finish_all, flush_noise, ipairs, math, new_state
 local pack, package, pairs, pcall, pf, proto, record_time = pack, package, pairs, pcall, pf, proto, record_time
-local show_record, stream_state, take_items, tostring = show_record, stream_state, take_items, tostring
-local tree_mode, wtap = tree_mode, wtap
+local show_record, stream_state, take_items, tostring, type = show_record, stream_state, take_items, tostring, type
+local wtap = wtap
 
 -- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
 -- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
@@ -8181,7 +8235,8 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    if info ~= nil and not tree_mode(tree) and config.errors[1] == nil then
+    -- (not tree_mode(tree), written out: no tree)
+    if info ~= nil and type(tree) == "userdata" and tree.text == nil and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
       -- say but its Info text where no tree is wanted.
       local cols = pinfo.cols

@@ -74,7 +74,8 @@ local function dissect_records(st, tvb, pinfo, tree)
       record = { length = n, error = tostring(result) }
     end
     st.records[number] = record
-    if info ~= nil and not tree_mode(tree) and config.errors[1] == nil then
+    -- (not tree_mode(tree), written out: no tree)
+    if info ~= nil and type(tree) == "userdata" and tree.text == nil and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
       -- say but its Info text where no tree is wanted.
       local cols = pinfo.cols

@@ -298,8 +298,9 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
     list[last], list[last - 1] = nil, nil
     request_record[1] = packed
     st.records[pending.record] = packed
-    local spare = lane.spare
+    local spare, spare_records = lane.spare, lane.spare_records
     if #spare < 4 then spare[#spare + 1] = pending end
+    if #spare_records < 4 then spare_records[#spare_records + 1] = request_record end -- (its record too)
   else
     pending.response = { record = number }
   end
@@ -335,7 +336,7 @@ end
 -- under a layout rule that holds now (annotate_one would note it).
 -- Returns the record, as dissect_record does (shown and kept by dissect_records as such), and its Info
 -- text; nil, with nothing changed, for any other record.
-lane.spare = {}
+lane.spare, lane.spare_records = {}, {}
 function lane.request(st, bytes, n, time, number, slave, code, quiet)
   local byte = string.byte
   local known = known_requests.entries[bytes]
@@ -407,7 +408,14 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
   end
   f.slots = slots
   st.pending = f
-  local record = { f }
+  local spare_records = lane.spare_records
+  local record = spare_records[#spare_records]
+  if record == nil then
+    record = { f }
+  else
+    spare_records[#spare_records] = nil
+    record[1] = f
+  end
   st.last = record
   st.whole_record = record
   return record, f.info

@@ -1,8 +1,9 @@
--- vw3.show: Wireshark: a record's items shown, the first dissection of a record, the end of the first pass.
+-- vw3.show: Wireshark: a frame's item and a record's items shown, a record's first dissection, the first pass's end.
 -- Mirrors no Python module.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
+local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -31,6 +32,163 @@ function lane.response_time(f)
   local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
   local seconds = math.floor(delta * sign)
   return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
+end
+
+-- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
+-- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).
+local function add_window(t, tvb, f, field, what, value)
+  local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
+  local rule = entry and DATA.rules.lift[entry.rule]
+  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
+  if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
+  local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
+  -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)
+  if name ~= what then item:set_text(name:sub(1, 1):upper() .. name:sub(2):gsub("_", " ") .. ": " .. value) end
+  return item
+end
+
+local function show_frame(st, f, tvb, tree, pinfo, full)
+  local crc_ok = f.crc == f.crc_expected
+  local t, whole, crc_at = tree, nil, nil
+  if full then
+    whole = tvb:range(f.at, f.length)
+    t = tree:add(proto, whole)
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb)))
+    t:add(pf.item, whole, f.number):set_generated()
+    t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
+    t:add(pf.offset, whole, f.offset):set_generated()
+    t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
+    t:add(pf.slave, frame_range(tvb, f, 0, 1), f.slave) -- (the slave byte is the first of the frame's byte table)
+    t:add(pf["function"], frame_range(tvb, f, 1, 1), f.fn)
+    t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
+    local device, reason = device_of(st, f)
+    if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
+    if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
+    if f.provisional then -- (vw3-decode -V's line)
+      t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
+    end
+    crc_at = f.length - 2
+    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
+    local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
+    t:add(pf.crc, crc_range, f.crc)
+    t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
+    t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
+  end
+  if not crc_ok then -- (ASCII: the LRC, one byte)
+    local text = f.ascii and "Bad LRC: 0x%02X, expected 0x%02X" or "Bad CRC: 0x%04X, expected 0x%04X"
+    add_text(t, ex.crc_bad, format(text, f.crc, f.crc_expected))
+  end
+  if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
+  if f.kind == EXCEPTION then
+    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
+    add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
+    if full then
+      t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
+      if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
+    end
+  end
+  if full then
+    local data_range = frame_range(tvb, f, 2, 2)
+    if f.start ~= nil then
+      local item = add_window(t, tvb, f, pf.start, "start", f.start)
+      local words = START_WORDS[f.fn]
+      if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
+    end
+    if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
+    if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
+    if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
+    if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
+    if f.subfunction ~= nil then
+      local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
+      if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
+    end
+  end
+  local registers = f.registers
+  if registers and registers.count > 0 and (full or registers.status ~= nil) then
+    -- (no tree: only the expert infos of the registers that are not ok, no value needed: it is 16#8000)
+    local b, statuses = full and frame_bytes(f, tvb) or nil, registers.status or NO_INTERPRETATION
+    local checking = full == "unseen" and registers.count > 1
+    for index = 0, registers.count - 1 do
+      if full or statuses[index] ~= nil then
+        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, full, checking)
+      end
+    end
+  end
+  if f.inferred then
+    for _, reg in ipairs(inferred_registers(st, f)) do add_register(t, tvb, f, reg, nil, full and true) end
+  end
+  if full then
+    local bits = f.bits
+    if bits and bits.count > 0 then
+      local b = bits.single == nil and frame_bytes(f, tvb) or nil
+      local checking, add = full == "unseen" and bits.count > 1, unseen.add
+      for index = 0, bits.count - 1 do
+        local address, value, k = bit_at(bits, b, index, true)
+        unseen.at(tvb, f, k, 1, nil, checking)
+        local sub = add(t, pf.bit)
+        sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
+        if address ~= nil then add(sub, pf.bit_address, address, true) end
+        add(sub, pf.bit_value, value, true)
+      end
+    end
+    if unseen.generated then
+      -- what the skipped set_generated() calls of faked items would have done
+      unseen.generated = false
+      t:set_generated()
+    end
+    if f.objects then
+      for _, object in ipairs(f.objects) do
+        local r = frame_range(tvb, f, object.offset, object.length)
+        local sub = t:add(pf.object, r)
+        -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
+        -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
+        -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
+        local shown = python_repr(object.value)
+        sub:set_text(format("%s: %s", object.name, shown))
+        sub:add(pf.object_id, r, object.id)
+        sub:add(pf.object_name, r, object.name):set_generated()
+        sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
+        if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
+      end
+    end
+    if f.request ~= nil then
+      t:add(pf.request_frame, whole, f.request.record):set_generated()
+      local delta = lane.response_time(f) -- (show.lua)
+      if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
+    end
+    if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
+  end
+  -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
+  -- dissection, which is never a later pass's, and asks pinfo nothing).
+  -- (a request the spec has no server answer, pairing's answerless, is never unanswered)
+  local ends_unanswered = f.kind == REQUEST and st.pending == f and not f.answerless and pinfo ~= nil and pinfo.visited
+  -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
+  if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
+    add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")
+  end
+  if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
+    -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
+    local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
+      f.profile_choice)
+    add_said(t, whole, pf.profile_choice, text, ex.profile, text)
+  end
+  -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
+  -- label Wireshark cuts at 240 bytes).
+  local warnings = f.warnings or NO_INTERPRETATION
+  for index = 1, #warnings do
+    local text = warnings[index]
+    local malformed = f.malformed and text:sub(1, 10) == "malformed "
+    add_said(t, whole, pf.warning, text, malformed and ex.malformed or ex.warning, text)
+  end
+  local notes = f.notes or NO_INTERPRETATION
+  local count = #notes
+  for index = 1, count + (ends_unanswered and 1 or 0) do
+    local text = st.cut_note or CAPTURE_ENDS
+    if index <= count then text = notes[index] end
+    local unmatched = f.no_request and text == UNMATCHED
+    add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
+  end
+  return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
 end
 
 -- What kind of tree Wireshark passes. false: none, an empty TreeItem with no proto_tree behind it (a pass
@@ -206,21 +364,28 @@ local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
   if n == 0 then return nil end
-  local time = record_time(pinfo, number)
+  -- (record_time, written out: its RTAC time looked up once)
+  local rtac = rtac_times[number]
+  local time = rtac
+  if rtac == nil then
+    time = pinfo.abs_ts
+    if time == 0 then time = nil end
+  end
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac_times[number] == nil and rel or nil end
+  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or nil end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
     -- after the first pass is over: a live capture's later records are never decoded again).
     local again = st.again
     if again == nil then
-      again = { order = {}, bytes = {}, times = {} }
+      again = { order = {}, bytes = {}, times = {}, count = 0 }
       st.again = again
     end
-    again.order[#again.order + 1] = number
+    local count = again.count + 1 -- (counted: #again.order searches the list each record)
+    again.order[count], again.count = number, count
     again.bytes[number], again.times[number] = bytes, time or false
   end
   return lane.decode(st, bytes, n, time, number)

@@ -1,9 +1,8 @@
--- vw3.tree: Wireshark: a frame's tree (registers, bits, objects, links, notes) and Info text.
+-- vw3.tree: Wireshark: a frame's registers, bits and PDU fields (show.lua show_frame), and its Info text.
 -- Mirrors dissector/render/detail.py, dissector/render/summary.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -172,9 +171,11 @@ end
 
 -- The fields of `shape` read from b[at] on, the data ending before b[stop], added to `t` (nil: only
 -- measured); where they end, or nil when one does not fit (a record that ends its records: grammar.py).
-local function add_shape(t, tvb, f, b, shape, at, stop)
-  local values = {}
-  for _, field in ipairs(shape) do
+-- (values: a table to keep the fields' values in, for a shape measured again and again)
+local function add_shape(t, tvb, f, b, shape, at, stop, values)
+  values = values or {}
+  for index = 1, #shape do
+    local field = shape[index]
     local kind, shown = field.type, SHOWN[field]
     local size = FIXED[kind]
     if size ~= nil then
@@ -246,18 +247,14 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
 -- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
 -- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
--- FORMS[fn][kind]: the form's steps (one lookup a frame, nil for the usual codes).
+-- FORMS[fn][kind]: the form made into a function of the frame (below; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
 local UNKNOWN_SUBFUNCTION = INFO.unknown_subfunction
-local FORMS = {}
-for kind, forms in pairs(INFO.forms) do
-  for fn, form in pairs(forms) do
-    FORMS[fn] = FORMS[fn] or {}
-    FORMS[fn][kind] = INFO.steps[form]
-  end
-end
 local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
+-- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
+-- time costs more, in the collector, than the text).
+local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
 
 -- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
 -- field of no fixed size: by kind and function code, made once.
@@ -284,64 +281,97 @@ local function data_text(b, first, last)
   local size = last - first + 1
   if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
   if size <= 0 then return "" end
-  local hex = {}
-  for k = 1, size < MAX_DATA_BYTES and size or MAX_DATA_BYTES do hex[k] = HEX_BYTE[b[first + k - 1]] end
-  if size <= MAX_DATA_BYTES then return " data " .. concat(hex) end
-  return " data " .. concat(hex) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
+  local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
+  for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
+  if size <= MAX_DATA_BYTES then return " data " .. concat(HEX, "", 1, shown) end
+  return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
 -- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
 local function fifo_values(b, count, first, last)
-  local parts = {}
+  local made = 0
   for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
     local at = first + 2 * k
     if at + 1 > last then break end
-    parts[#parts + 1] = " " .. DECIMAL[b[at] * 256 + b[at + 1]]
+    made = made + 1
+    VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
   end
-  return concat(parts)
+  if made == 0 then return "" end
+  return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The text of a form (describe._interpreter): its texts, and its steps on the frame's fields, read from
--- b (the frame's slave byte at b[base], its data ending at b[last]).
-local function form_text(f, steps, b, base, last)
-  local at_of, parts = fields_at(f.kind, f.fn), {}
-  for index = 1, #steps do
+-- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
+-- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
+-- value read as u8 or u16 (nil where the field has no fixed size).
+local STEPS = {}
+function STEPS.dec(at, size)
+  if size == nil then return function() return DECIMAL[nil] end end
+  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
+end
+function STEPS.hex(at, size, digits)
+  local pattern = "%0" .. digits .. "X"
+  return function(f, b, base)
+    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
+  end
+end
+function STEPS.label() -- (span_text: the window as named, PLC style too)
+  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
+end
+function STEPS.coil(at, size)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
+  end
+end
+function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
+  end
+end
+function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
+function STEPS.fifo(at, size, values_at) -- (the values after their count)
+  return function(f, b, base, last)
+    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
+      base + values_at, last)
+  end
+end
+
+-- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
+local function form_function(steps, at_of)
+  local texts, made, count = {}, {}, #steps
+  for index = 1, count do
     local step = steps[index]
     if type(step) == "string" then
-      parts[index] = step
+      texts[index] = step
     else
-      local what, place = step[1], at_of[step[2]]
-      local value = nil
-      if place ~= nil and place.size ~= nil then
-        value = place.size == 1 and b[base + place.at] or b[base + place.at] * 256 + b[base + place.at + 1]
-      end
-      local text
-      if what == "dec" then
-        text = DECIMAL[value]
-      elseif what == "hex" then
-        text = format("%0" .. step[3] .. "X", value)
-      elseif what == "label" then -- (span_text: the window as named, PLC style too)
-        text = f.span_label or (f.start and DECIMAL[f.start]) or ""
-      elseif what == "coil" then
-        text = value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-      elseif what == "subfunction" then -- (as the profile names it, else the spec)
-        text = f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-      elseif what == "data" then
-        text = data_text(b, base + place.at, last)
-      else -- fifo: the values after their count
-        text = fifo_values(b, value, base + at_of[step[3]].at, last)
-      end
-      parts[index] = text
+      local place, extra = at_of[step[2]], step[3]
+      if step[1] == "fifo" then extra = at_of[step[3]].at end
+      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
     end
   end
-  return concat(parts)
+  return function(f, b, base, last)
+    for index = 1, count do
+      MADE[index] = texts[index] or made[index](f, b, base, last)
+    end
+    return concat(MADE, "", 1, count)
+  end
 end
-
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on
 -- the frame's bytes b (its slave byte at b[base], its data ending at b[last]).
 local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.names.device_id_codes
 local RUN_INDICATOR = DATA.names.run_indicator
 local BY_NAME = {}
+
+-- python_repr of a device's text, without its walk character by character where the text is printable
+-- ASCII with no backslash and not both quotes (Python's repr then only puts it in quotes).
+local function repr_text(text)
+  if not text:find("[^ -~]") and not text:find("\\", 1, true) then
+    if not text:find("'", 1, true) then return "'" .. text .. "'" end
+    if not text:find('"', 1, true) then return '"' .. text .. '"' end
+  end
+  return python_repr(text)
+end
 
 -- describe._mei: `Read Device Identification, basic, from object 0`; an answer its objects' values (a
 -- revision the profile decoded as such: `V2.1`), another MEI type its name.
@@ -354,7 +384,7 @@ function BY_NAME.mei(f, b, base)
   local parts = {}
   for index, object in ipairs(f.objects or NO_INTERPRETATION) do
     local text = object.text
-    if text == nil or not text:match("^V%d+%.%d+$") then text = python_repr(object.value) end
+    if text == nil or not text:match("^V%d+%.%d+$") then text = repr_text(object.value) end
     parts[index] = object.name .. "=" .. text
   end
   return mei .. ", " .. code .. ":" .. (parts[1] and " " or "") .. concat(parts, " ")
@@ -364,12 +394,12 @@ end
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST then return "" end
-  local count, run, chars = b[base + 2] - 2, b[base + 4], {}
+  local count, run, text = b[base + 2] - 2, b[base + 4], true
   for k = base + 5, base + 4 + count do
-    if b[k] < 32 or b[k] > 126 then chars = nil break end
-    chars[#chars + 1] = string.char(b[k])
+    if b[k] < 32 or b[k] > 126 then text = false break end
   end
-  local data = count > 0 and chars and python_repr(concat(chars)) or count_text(count, "byte")
+  if count > 0 and text then text = repr_text(string.char(table.unpack(b, base + 5, base + 4 + count))) end
+  local data = count > 0 and text or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
@@ -380,17 +410,21 @@ function BY_NAME.file_record(f, b, base)
   local part, at = PARTS[field.part], base + 3
   local last, groups = at + b[base + 2], 0
   while at < last do
-    at = add_shape(nil, nil, f, b, part, at, last)
+    at = add_shape(nil, nil, f, b, part, at, last, GROUP)
     if at == nil then break end
     groups = groups + 1
   end
   return DECIMAL[groups] .. " record group(s)"
 end
 
--- The Info text of a form, or of a describer of BY_NAME (steps: its name).
-local function info_text(f, steps, b, base, last)
-  if type(steps) == "string" then return BY_NAME[steps](f, b, base, last) end
-  return form_text(f, steps, b, base, last)
+-- Each form made once: by function code, then kind (a describer of BY_NAME: the form is its name).
+local FORMS = {}
+for kind, forms in pairs(INFO.forms) do
+  for fn, form in pairs(forms) do
+    local steps = INFO.steps[form]
+    FORMS[fn] = FORMS[fn] or {}
+    FORMS[fn][kind] = type(steps) == "string" and BY_NAME[steps] or form_function(steps, fields_at(kind, fn))
+  end
 end
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
@@ -411,12 +445,12 @@ local function summary(f, tvb)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
-    if tvb ~= nil then
+    if b == nil and tvb ~= nil then
       b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
       if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
     end
     if b ~= nil then
-      local text = info_text(f, steps, b, base, last) -- (describe.info_text's rstrip: no space before none)
+      local text = steps(f, b, base, last) -- (describe.info_text's rstrip: no space before none)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
@@ -429,161 +463,4 @@ local function summary(f, tvb)
       .. tail
   end
   return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
-end
-
--- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
--- bytes where the frame does not hold it (a read's answer: its request's; FC5's and FC6's quantity of one).
-local function add_window(t, tvb, f, field, what, value)
-  local entry = f.kind ~= EXCEPTION and DATA.rules.by_code[f.kind][f.fn]
-  local rule = entry and DATA.rules.lift[entry.rule]
-  local place = rule and type(rule[what]) == "string" and fields_at(f.kind, f.fn)[rule[what]]
-  if not (place and place.size) then return t:add(field, tvb:range(f.at, 0), value):set_generated() end
-  local item, name = t:add(field, frame_range(tvb, f, place.at, place.size), value), rule[what]
-  -- (named as vw3-decode -V names the PDU field where it is not the window's own: FC23's `Read start`)
-  if name ~= what then item:set_text(name:sub(1, 1):upper() .. name:sub(2):gsub("_", " ") .. ": " .. value) end
-  return item
-end
-
-local function show_frame(st, f, tvb, tree, pinfo, full)
-  local crc_ok = f.crc == f.crc_expected
-  local t, whole, crc_at = tree, nil, nil
-  if full then
-    whole = tvb:range(f.at, f.length)
-    t = tree:add(proto, whole)
-    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb)))
-    t:add(pf.item, whole, f.number):set_generated()
-    t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
-    t:add(pf.offset, whole, f.offset):set_generated()
-    t:add(pf.mode, whole, f.ascii and "ascii" or "rtu"):set_generated()
-    t:add(pf.slave, frame_range(tvb, f, 0, 1), f.slave) -- (the slave byte is the first of the frame's byte table)
-    t:add(pf["function"], frame_range(tvb, f, 1, 1), f.fn)
-    t:add(pf.function_name, whole, f.function_text or function_name(f.fn)):set_generated()
-    local device, reason = device_of(st, f)
-    if device then t:add(pf.profile, whole, device.profile.name):set_generated() end
-    if reason then t:add(pf.profile_reason, whole, reason):set_generated() end
-    if f.provisional then -- (vw3-decode -V's line)
-      t:add(pf.provisional, whole, true):set_generated():set_text(DATA.render.provisional_line)
-    end
-    crc_at = f.length - 2
-    if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
-    local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
-    t:add(pf.crc, crc_range, f.crc)
-    t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
-    t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
-  end
-  if not crc_ok then -- (ASCII: the LRC, one byte)
-    local text = f.ascii and "Bad LRC: 0x%02X, expected 0x%02X" or "Bad CRC: 0x%04X, expected 0x%04X"
-    add_text(t, ex.crc_bad, format(text, f.crc, f.crc_expected))
-  end
-  if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
-  if f.kind == EXCEPTION then
-    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
-    add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
-    if full then
-      t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
-      if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end
-    end
-  end
-  if full then
-    local data_range = frame_range(tvb, f, 2, 2)
-    if f.start ~= nil then
-      local item = add_window(t, tvb, f, pf.start, "start", f.start)
-      local words = START_WORDS[f.fn]
-      if words ~= nil then item:set_text(words.title .. ": " .. f.start) end
-    end
-    if f.quantity ~= nil then add_window(t, tvb, f, pf.quantity, "quantity", f.quantity) end
-    if f.span_label ~= nil then t:add(pf.span_label, whole, f.span_label):set_generated() end
-    if f.subfunction ~= nil then t:add(pf.subfunction, data_range, f.subfunction) end
-    if f.kind ~= EXCEPTION then add_pdu(t, tvb, f, crc_at) end
-    if f.subfunction ~= nil then
-      local name = f.subfunction_text or DIAGNOSTICS[f.subfunction]
-      if name ~= nil then t:add(pf.subfunction_name, whole, name):set_generated() end
-    end
-  end
-  local registers = f.registers
-  if registers and registers.count > 0 and (full or registers.status ~= nil) then
-    -- (no tree: only the expert infos of the registers that are not ok, no value needed: it is 16#8000)
-    local b, statuses = full and frame_bytes(f, tvb) or nil, registers.status or NO_INTERPRETATION
-    local checking = full == "unseen" and registers.count > 1
-    for index = 0, registers.count - 1 do
-      if full or statuses[index] ~= nil then
-        add_register(t, tvb, f, register_view(st, f, registers, b, index), nil, full, checking)
-      end
-    end
-  end
-  if f.inferred then
-    for _, reg in ipairs(inferred_registers(st, f)) do add_register(t, tvb, f, reg, nil, full and true) end
-  end
-  if full then
-    local bits = f.bits
-    if bits and bits.count > 0 then
-      local b = bits.single == nil and frame_bytes(f, tvb) or nil
-      local checking, add = full == "unseen" and bits.count > 1, unseen.add
-      for index = 0, bits.count - 1 do
-        local address, value, k = bit_at(bits, b, index, true)
-        unseen.at(tvb, f, k, 1, nil, checking)
-        local sub = add(t, pf.bit)
-        sub:set_text(format("Bit %s = %d", address and tostring(address) or "?", value))
-        if address ~= nil then add(sub, pf.bit_address, address, true) end
-        add(sub, pf.bit_value, value, true)
-      end
-    end
-    if unseen.generated then
-      -- what the skipped set_generated() calls of faked items would have done
-      unseen.generated = false
-      t:set_generated()
-    end
-    if f.objects then
-      for _, object in ipairs(f.objects) do
-        local r = frame_range(tvb, f, object.offset, object.length)
-        local sub = t:add(pf.object, r)
-        -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
-        -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
-        -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
-        local shown = python_repr(object.value)
-        sub:set_text(format("%s: %s", object.name, shown))
-        sub:add(pf.object_id, r, object.id)
-        sub:add(pf.object_name, r, object.name):set_generated()
-        sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
-        if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
-      end
-    end
-    if f.request ~= nil then
-      t:add(pf.request_frame, whole, f.request.record):set_generated()
-      local delta = lane.response_time(f) -- (show.lua)
-      if delta ~= nil then t:add(pf.response_time, whole, delta):set_generated() end
-    end
-    if f.response ~= nil then t:add(pf.response_frame, whole, f.response.record):set_generated() end
-  end
-  -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
-  -- dissection, which is never a later pass's, and asks pinfo nothing).
-  -- (a request the spec has no server answer, pairing's answerless, is never unanswered)
-  local ends_unanswered = f.kind == REQUEST and st.pending == f and not f.answerless and pinfo ~= nil and pinfo.visited
-  -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
-  if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
-    add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")
-  end
-  if f.profile_choice ~= nil then -- (profile auto: this frame decided the slave's device, as ProfileChoice.text)
-    -- (profile_said: the device chosen there, where lane.again annotates with the one chosen at last)
-    local text = format("slave %d: %s (%s)", f.slave, f.profile_said or device_of(st, f).profile.name,
-      f.profile_choice)
-    add_said(t, whole, pf.profile_choice, text, ex.profile, text)
-  end
-  -- Each warning and note is a string field (full text, filterable) carrying its expert info (whose
-  -- label Wireshark cuts at 240 bytes).
-  local warnings = f.warnings or NO_INTERPRETATION
-  for index = 1, #warnings do
-    local text = warnings[index]
-    local malformed = f.malformed and text:sub(1, 10) == "malformed "
-    add_said(t, whole, pf.warning, text, malformed and ex.malformed or ex.warning, text)
-  end
-  local notes = f.notes or NO_INTERPRETATION
-  local count = #notes
-  for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = st.cut_note or CAPTURE_ENDS
-    if index <= count then text = notes[index] end
-    local unmatched = f.no_request and text == UNMATCHED
-    add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
-  end
-  return t -- (the frame's item; with no tree, the tree it was given, where the record's own notes go too)
 end
