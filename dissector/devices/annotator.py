@@ -436,6 +436,8 @@ class Annotator:
                 return
         # A single-register read of an unreadable parameter draws an exception, not 16#8000 (p.38).
         multi = len(registers) > 1
+        if multi and protected is not None and _all_marked(frame, device, registers, protected):
+            protected = None  # (nothing is known unreadable: no story, each value kept as read)
         seen = device.seen
         number = frame.number
         for index, register in enumerate(registers):
@@ -476,6 +478,18 @@ class Annotator:
             if last is not None and last[0] is None:
                 readable_again(address, row, register.label, last, value, events)
             seen[address] = (value, number, "read")
+
+
+def _all_marked(frame: Frame, device: Device, registers: Sequence[Register], protected: int) -> bool:
+    """Every value 16#8000 where the device answers an exception when every parameter is unreadable (p.38):
+    then one at least is the value itself; each register ambiguous, and the frame says why."""
+    code = device.profile.all_protected_exception
+    if code is None or any(register.value != protected for register in registers):
+        return False
+    for register in registers:
+        register.status = "ambiguous"
+    frame.notes.append(text("all_marked", protected=protected, device=device.profile.device, code=code))
+    return True
 
 
 def _scratch(frame: Frame) -> Frame:

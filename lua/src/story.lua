@@ -134,6 +134,18 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
   return rule ~= nil, status
 end
 
+-- Every value at 16#8000 where the device answers an exception when every parameter is unreadable (p.38;
+-- annotator._all_marked): one at least is the value itself, so each is ambiguous and none is followed.
+local function all_marked(f, device, count, value_at, protected)
+  local code = device.profile.all_protected_exception
+  if code == nil then return false end
+  for index = 0, count - 1 do
+    if value_at(index) ~= protected then return false end
+  end
+  note(f, say("all_marked", { protected = protected, device = device.profile.device, code = code }))
+  return true
+end
+
 local function plc_base(device, f)
   if device.plc == nil then return nil end
   return device.plc[f.fn] or device.plc_default
@@ -178,9 +190,16 @@ local function annotate_registers(f, device, run, b, read)
   if read then protected = device.profile.protected_value end
   local count = run.count
   local multi = count > 1
+  local first = run.first
+  if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no closure)
+      and all_marked(f, device, count, function(index) return b[first + 2 * index] * 256 + b[first + 2 * index + 1] end,
+        protected) then
+    protected = nil
+    run.status = {}
+    for index = 0, count - 1 do run.status[index] = "ambiguous" end
+  end
   -- Nothing to follow: no 16#8000 story, no layout that depends on another register.
   if protected == nil and next(device.depend) == nil then return end
-  local first = run.first
   local base = plc_base(device, f)
   local rows = device.rows
   for index = 0, count - 1 do
@@ -209,6 +228,11 @@ local function annotate_list(st, f, device, registers, read)
   local base = plc_base(device, f)
   local count = #registers
   local multi = count > 1
+  local marked = false
+  if multi and protected ~= nil
+      and all_marked(f, device, count, function(index) return registers[index + 1].value end, protected) then
+    protected, marked = nil, true
+  end
   for index, reg in ipairs(registers) do
     local address = reg.address
     if address ~= nil then
@@ -218,6 +242,7 @@ local function annotate_list(st, f, device, registers, read)
       if words == 2 and (next_reg == nil or next_reg.address ~= (address + 1) % 0x10000) then words = 1 end
       if words == 0 and registers[index - 1].address ~= (address + 0xFFFF) % 0x10000 then words = 1 end
       local plain, status = annotate_one(f, device, address, reg.value, protected, multi, reg.label, words)
+      if marked then status = "ambiguous" end
       describe(device, f, reg, plain, status, words, next_reg and next_reg.value)
     end
   end
