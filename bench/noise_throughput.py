@@ -13,7 +13,10 @@ run, beside a clean stream of the same size for the engine's own speed. Kinds (e
   frames;
 - glitches: the plant mix with a turn-around glitch byte on both sides of half its frames
   (dissector.sim.line, `glitches both sides`);
-- plant: the plant mix as it is (no noise): the engine's speed on valid traffic.
+- plant: the plant mix as it is (no noise): the engine's speed on valid traffic;
+- stuck-0c, stuck-01, babble-0103: a line stuck on one value (0C: FC12, whose request and answer both
+  fit everywhere; 01) or a device babbling 01 03 (hostile traffic: every position may start a frame, each
+  weighed in full before framing/rtu.py _repeats).
 For each kind and each side (the engine; VW3_PURE_PYTHON=1) it takes the CPU seconds (user + system) of
 `python3 -m dissector FILE` (plus --option), best of --repeat interleaved rounds, checks that both
 outputs are the same bytes, and prints the ratio (above 1: the engine is faster). With --instructions
@@ -86,6 +89,10 @@ def plant(size: int) -> bytes:
     return b"".join(_plant_frames(size))
 
 
+def repeated(pattern: bytes):
+    return lambda size: pattern * (size // len(pattern))
+
+
 KINDS = {
     "random": (random_bytes, []),
     "zeros": (zeros, []),
@@ -93,6 +100,9 @@ KINDS = {
     "garbage": (garbage, PLANT_OPTIONS),
     "glitches": (glitches, PLANT_OPTIONS),
     "plant": (plant, PLANT_OPTIONS),
+    "stuck-0c": (repeated(b"\x0c"), []),
+    "stuck-01": (repeated(b"\x01"), []),
+    "babble-0103": (repeated(b"\x01\x03"), []),
 }
 
 # Runs a command and prints the CPU seconds (user + system) of it and its children.

@@ -88,11 +88,20 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     _SPECIAL,
     _RESPONSE_FIRST_FAST,
 )
-from dissector.framing.stream import GLITCH_BYTES, StreamFramer
+from dissector.framing.stream import GLITCH_BYTES, NOISE_ITEM_MAX, StreamFramer
 from dissector.protocol.rules import text
 
 # Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
+
+# A repeated pattern (a line stuck on one value, a babbling device: 0C 0C 0C..., 01 03 01 03...) makes
+# every position a possible frame start weighed in full (_match: layouts, CRCs, what follows): ~50 times
+# the cost per byte of random bytes, which the regular expression skips. A position's decision reads the
+# bytes of REPEAT_WINDOW from it at most (a CRC scan's frame, then glitch bytes and a frame after it: 2 x
+# MAX_ADU + GLITCH_SKIP, with margin), so where the bytes repeat with a period, a position decides as the
+# one a period before it did, under the same framer state (_repeats).
+REPEAT_WINDOW = 3 * MAX_ADU
+REPEAT_PROBE = 16  # bytes the period is found by (the last ones decided, found again up to MAX_ADU back)
 
 
 class RtuFramer(Awaiting, StreamFramer):
@@ -360,12 +369,51 @@ class RtuFramer(Awaiting, StreamFramer):
             return self._answered(buf, i, end, n, final)
         return False
 
+    def _repeats(self, buf: bytearray, i: int, since: int, n: int, stop: int) -> tuple[int, int]:
+        """Positions since..i-1 were all noise, decided with this _run's buffer under the framer's state of
+        now (the caller's). If the bytes from some period p (<= MAX_ADU) before i repeat with period p, a
+        position k from i on decides as k - p did, as long as its REPEAT_WINDOW holds no boundary and lies
+        in the repetition and the buffer. (noise to i..end: its end, at most `stop`; the index before which
+        trying again finds no more)."""
+        found = buf.rfind(buf[i - REPEAT_PROBE : i], max(since, i - REPEAT_PROBE - MAX_ADU), i - 1)
+        if found < 0:
+            return i, i + 4 * REPEAT_PROBE  # (random bytes: trying at every position cost them a third more)
+        period = i - REPEAT_PROBE - found
+        first = i - period  # (>= since: positions first..i-1 have decided)
+        limit = min(n, stop + REPEAT_WINDOW)
+        if self._boundaries:
+            # (none inside the windows: the stream's record ends and silences are evidence)
+            limit = min([limit, *(at - self._base for at in self._boundaries if at - self._base >= first)])
+        # The repetition's end: buf[x] == buf[x + period] for x from first up to end - period.
+        end, step = i, REPEAT_WINDOW
+        while end < limit:
+            step = min(step, limit - end)
+            if buf[end - period : end - period + step] == buf[end : end + step]:
+                end += step
+                step *= 2
+                continue
+            low, high = 0, step  # (bytes end..end+low repeat, end..end+high do not)
+            while high - low > 1:
+                middle = (low + high) // 2
+                if buf[end - period : end - period + middle] == buf[end : end + middle]:
+                    low = middle
+                else:
+                    high = middle
+            end += low
+            break
+        last = end - REPEAT_WINDOW  # (the last position whose window lies in the repetition)
+        if last < i:
+            return i, max(i + 1, end)
+        return (stop, stop) if last + 1 >= stop else (last + 1, end)
+
     def _run(self, final: bool) -> list[Item]:
         buf = self._buf
         n = len(buf)
         i = 0
         items: list[Item] = []
         paused_from = n if self._pause is None else max(0, self._pause - self._base)
+        # Positions since..i-1 decided as noise under the framer's state of now (_repeats); -1: none.
+        since, retry, cut, only = -1, 0, False, False
         while n - i >= MIN_ADU or (final and i < n):
             if i >= paused_from:
                 break
@@ -373,6 +421,18 @@ class RtuFramer(Awaiting, StreamFramer):
                 self._add_noise(i, n, self._cut_answer(buf, i, n) or TOO_SHORT, items)
                 i = n
                 break
+            # (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
+            if not self._noise or final:
+                since = -1
+            elif since < 0 or self._noise_cut != cut or self._glitches_only != only:
+                since, cut, only = i, self._noise_cut, self._glitches_only
+            elif i >= retry and i - since >= REPEAT_PROBE:
+                # (the noise item cut at NOISE_ITEM_MAX changes the state: a decision after it is made anew)
+                end, retry = self._repeats(buf, i, since, n, min(paused_from, i + NOISE_ITEM_MAX - len(self._noise)))
+                if end > i:
+                    self._add_noise(i, end, NO_FRAME, items)
+                    i = end
+                    continue
             # Fast path: the likeliest interpretation checks out (nearly every frame of a clean bus).
             slave = buf[i]
             function = buf[i + 1]
