@@ -4724,7 +4724,7 @@ package.preload["vw3.pairing"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, REQUEST, RESPONSE, awaits_answer, pairs = DATA, REQUEST, RESPONSE, awaits_answer, pairs
-local release_run, say, string, table, type, warn = release_run, say, string, table, type, warn
+local release_run, say, type, warn = release_run, say, type, warn
 local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local ECHO = DATA.pairing.echo
@@ -4758,21 +4758,32 @@ for code, rules in pairs(DATA.protocol.rules) do
   if same_rule(rules[1], rules[2]) then SAME_SHAPE[code] = true end
 end
 
--- What identifies a frame's bytes after its slave and function: its data and its CRC (LRC), as one number up
--- to 4 data bytes (FC5, FC6: exact in a double), else as a string. A request keeps it as f.sent (its byte
--- table may go before its answer comes).
-local function sent(f)
-  local b = f.b
-  if b == nil then return f.sent end
-  local at, count = f.data_at, f.data_len
-  if count <= 4 then
-    local value = count
-    for k = 0, count - 1 do value = value * 256 + b[at + k] end
-    return value * 65536 + f.crc
+-- A short frame's bytes after its slave and function (up to 4 data bytes, FC5 and FC6's: its data and CRC
+-- (LRC) as one number, exact in a double), kept by a request as f.sent: its byte table may go before its
+-- answer comes. nil: a longer frame (not copied: a copy would cost every large request).
+local function short_bytes(f)
+  local b, count = f.b, f.data_len
+  if count > 4 then return nil end
+  local at, value = f.data_at, count
+  for k = 0, count - 1 do value = value * 256 + b[at + k] end
+  return value * 65536 + f.crc
+end
+
+-- Are the bytes of `f` (its byte table at hand) those of `request` (same slave and function)? A request
+-- whose byte table has gone (and its data's place): a short one kept them (f.sent), a longer one's length
+-- and CRC stand for them.
+local function same_bytes(request, f)
+  if request.length ~= f.length or request.crc ~= f.crc then return false end
+  local a, b = request.b, f.b
+  if a == nil then
+    local kept = request.sent
+    return kept == nil or kept == short_bytes(f)
   end
-  local bytes = {}
-  for k = 0, count - 1 do bytes[k + 1] = string.char(b[at + k]) end
-  return table.concat(bytes) .. ";" .. f.crc
+  local i, j = request.data_at, f.data_at
+  for k = 0, f.data_len - 1 do
+    if a[i + k] ~= b[j + k] then return false end
+  end
+  return true
 end
 
 -- A request whose wait ended unanswered (but an answerless one, which none was expected of): no answer can
@@ -4815,22 +4826,27 @@ local function pair(st, f)
   local retried, echoed_by = st.retried, st.echoed
   st.retried, st.echoed = nil, nil
   if SAME_SHAPE[f.fn] and f.b ~= nil then
-    local kind = f.kind
-    if kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and sent(late) == sent(f) then
-      -- The request again, past the timeout: the master's retry.
-      f.kind, late = REQUEST, nil
-      if awaits_answer(f) then st.retried = f end
-    elseif kind == REQUEST and pending ~= nil and pending == retried and awaited_as(retried, f) then
-      -- What the framer, had it awaited the retry's answer, would have read as that answer.
-      f.kind = RESPONSE
+    -- First the kind the framer would have given the frame had it awaited what the pairing awaits.
+    local flipped = false
+    if f.kind == REQUEST and retried ~= nil and (retried == pending or retried == late) and awaited_as(retried, f) then
+      -- What the framer, had it awaited the retry's answer, would have read as that answer (it awaits this
+      -- frame's answer now).
+      f.kind, flipped = RESPONSE, true
       if awaits_answer(f) then
         if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
         st.echoed = f
       end
-    elseif kind == RESPONSE and pending == nil and late == nil and echoed_by ~= nil and awaited_as(echoed_by, f) then
+    elseif f.kind == RESPONSE and pending == nil and late == nil and echoed_by ~= nil and awaited_as(echoed_by, f) then
       -- The framer awaited an answer to an answer: had it not, it would have read a request.
       f.kind = REQUEST
       if awaits_answer(f) then st.retried = f end
+    end
+    if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(late, f) then
+      -- The request again, past the timeout: the master's retry. (The framer read it as an answer and awaits
+      -- nothing, unless it read it as a request: flipped.)
+      f.kind, late = REQUEST, nil
+      st.echoed = nil
+      if awaits_answer(f) and not flipped then st.retried = f end
     end
   end
   if f.kind == REQUEST then
@@ -4845,7 +4861,7 @@ local function pair(st, f)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
-      if SAME_SHAPE[f.fn] and f.b ~= nil then f.sent = sent(f) end -- (the retry rule compares a retry with it)
+      if SAME_SHAPE[f.fn] and f.b ~= nil then f.sent = short_bytes(f) end -- (the retry rule compares a retry with it)
       st.pending = f
     end
     return

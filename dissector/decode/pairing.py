@@ -79,7 +79,7 @@ class Pairer:
     @property
     def idle(self) -> bool:
         """No request awaits its answer, nothing is held back, and the framer awaits what this awaits."""
-        return self._pending is None and not self._queue and self._echoed is None
+        return self._pending is None and not self._queue and self._echoed is None and self._retried is None
 
     @property
     def timeout(self) -> float | None:
@@ -111,8 +111,7 @@ class Pairer:
         if pending is not None and self._late(pending, now):
             self._no_answer(pending)
             self._pending = None
-            self._expired = pending if pending is not self._retried else None
-            self._retried = None  # (the pairer awaits nothing now, nor does the framer after a retry)
+            self._expired = pending  # (and _retried kept: the framer still awaits nothing after a retry)
             self._release(out)
         return out
 
@@ -177,21 +176,28 @@ class Pairer:
         retried, echoed_, expired = self._retried, self._echoed, self._expired
         self._retried = self._echoed = self._expired = None
         if item.function in SAME_SHAPE:
-            ended = late if late is not None else expired  # (the request whose wait this frame or expire ended)
-            if item.kind is Kind.RESPONSE and ended is not None and item.raw == ended.raw:
-                # The retry rule: the request again, past the timeout: the master's retry.
-                item.kind = Kind.REQUEST
-                late = None
-                self._retried = item if awaits_answer(item) else None
-            elif item.kind is Kind.REQUEST and pending is not None and pending is retried and _awaited(retried, item):
-                # What the framer, had it awaited the retry's answer, would have read as that answer.
+            # First the kind the framer would have given the frame had it awaited what the pairer awaits.
+            flipped = False
+            if (item.kind is Kind.REQUEST and retried is not None
+                    and (retried is pending or retried is late or retried is expired) and _awaited(retried, item)):
+                # What the framer, had it awaited the retry's answer, would have read as that answer (it
+                # awaits this frame's answer now).
                 item.kind = Kind.RESPONSE
+                flipped = True
                 self._echoed = item if awaits_answer(item) else None
             elif (item.kind is Kind.RESPONSE and pending is None and late is None and echoed_ is not None
                     and _awaited(echoed_, item)):
                 # The framer awaited an answer to an answer: had it not, it would have read a request.
                 item.kind = Kind.REQUEST
                 self._retried = item if awaits_answer(item) else None
+            ended = late if late is not None else expired  # (the request whose wait this frame or expire ended)
+            if item.kind is Kind.RESPONSE and ended is not None and item.raw == ended.raw:
+                # The retry rule: the request again, past the timeout: the master's retry. (The framer
+                # read it as an answer and awaits nothing, unless it read it as a request: flipped.)
+                item.kind = Kind.REQUEST
+                late = None
+                self._echoed = None
+                self._retried = item if awaits_answer(item) and not flipped else None
         if item.kind is Kind.REQUEST:
             if pending is not None and self._no_answer(pending) and self._pending_released:
                 item.notes.append(text("unanswered", number=pending.number))

@@ -109,6 +109,24 @@ def test_fc5_and_fc8_echo_retries(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
     )
 
 
+def test_a_request_sharing_its_record_and_a_late_answer_that_differs(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # (an answer past the timeout that is not the request's bytes stays a late answer)
+    frames = [(0.0, READ), (0.012, READ_ANSWER + HSP), (0.6, HSP), (0.612, HSP), (1.0, HSP_LOW), (1.5, HSP)]
+    out, _ = assert_same([pcap(tmp_path, frames), "--profile", "atv71", "--timeout", "0.4"], monkeypatch)
+    assert out == (
+        "     1     0.000000  12 request   Read Holding Registers 3201..3202 (2)  CRC ok\n"
+        "     2     0.012000  12 response  Read Holding Registers 3201..3202 (2): ETA=Ready to switch on RFR=0.2 Hz"
+        " [#1, 12.0 ms]  CRC ok\n"
+        "     3     0.012000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]  CRC ok\n"
+        "     4     0.600000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
+        "     5     0.612000  12 response  Write Single Register 3104 HSP=50.0 Hz [#4, 12.0 ms]  CRC ok\n"
+        "     6     1.000000  12 request   Write Single Register 3104 HSP=45.0 Hz [no response]  CRC ok\n"
+        "     7     1.500000  12 response  Write Single Register 3104 HSP=50.0 Hz [no request] [warning: response"
+        " 500.0 ms after request #6, later than the 400 ms timeout: not its answer]  CRC ok\n"
+    )
+
+
 def ascii_frame(binary: bytes) -> bytes:
     body = binary[:-2]  # (the RTU CRC off: ASCII's LRC instead)
     lrc = -sum(body) & 0xFF

@@ -89,3 +89,26 @@ def test_ascii(tmp_path: Path, two_pass: bool) -> None:
         "1;;5;;;" if two_pass else "1;;;;;",
         "2;4;;;;",
     ]
+
+
+@pytest.mark.parametrize("quick", ["TRUE", "FALSE"])
+def test_a_request_met_before(tmp_path: Path, quick: str) -> None:
+    # (the request at 0.1 s is known by its bytes: the quick lane of requests takes it, byte table and all)
+    frames = [(0.0, HSP), (0.012, HSP), (0.1, HSP), (0.6, HSP), (0.612, HSP), (0.7, READ), (0.712, READ_ANSWER)]
+    assert tshark(capture(tmp_path, frames), *FIELDS, "-o", f"vw3.quick_lanes:{quick}").splitlines() == [
+        "1;;2;;;", "2;1;;;;", "1;;;1;;", "1;;5;;;", "2;4;;;;", "1;;7;;;", "2;6;;;;"]
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_a_request_sharing_its_record(tmp_path: Path, two_pass: bool) -> None:
+    # (the request's byte table is gone when its retry comes: it kept its bytes)
+    # then an answer past the timeout that is not the request's bytes: a late answer (as vw3-decode)
+    frames = [(0.0, READ), (0.012, READ_ANSWER + HSP), (0.6, HSP), (0.612, HSP), (1.0, HSP_LOW), (1.5, HSP)]
+    assert tshark(capture(tmp_path, frames), *FIELDS, two_pass=two_pass).splitlines() == [
+        "1;;2;;;" if two_pass else "1;;;;;",
+        "2,1;1;;1;;" if two_pass else "2,1;1;;;;",
+        "1;;4;;;" if two_pass else "1;;;;;",
+        "2;3;;;;",
+        "1;;;1;;" if two_pass else "1;;;;;",
+        "2;;;;response 500.0 ms after request #6, later than the 400 ms timeout: not its answer;",
+    ]
