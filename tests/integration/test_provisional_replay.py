@@ -19,6 +19,11 @@ from lua_net import NetWriter
 
 READ = rtu("0C 03 20D0 0003")  # 8400..8402: 8400 is in no map of the ATV71 (its 16#8000 is evidence)
 PREFIX = "            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent "
+# 8400..8413, FR1 (8413) read as 1: not every value 16#8000 (that answer keeps each one ambiguous, p.38)
+READ14 = rtu("0C 03 20D0 000E")
+ANSWER14 = rtu("0C 03 1C" + " 8000" * 13 + " 0001")
+PREFIX14 = "            -  12 response  Read Holding Registers 8400..8413 (14): 8400=non-existent "
+REST14 = "8403=non-existent 8404=non-existent 8405=non-existent … (+8)"
 # name -> (frames, the frame that makes profile auto choose, its summary line)
 CASES = {
     "two_slaves": (
@@ -30,15 +35,15 @@ CASES = {
     ),
     "writes": (
         [rtu("0C 06 20D1 0003"), rtu("0C 06 20D1 0003"), rtu("0C 10 20D2 0001 02 0002"), rtu("0C 10 20D2 0001"),
-         READ, rtu("0C 03 06 8000 8000 8000")],
+         READ14, ANSWER14],
         6,
-        f"     6{PREFIX}CHCF=protected COP=protected [#5] [CHCF (8401) became protected: written 3 in frame #2, "
+        f"     6{PREFIX14}CHCF=protected COP=protected {REST14} [#5] [CHCF (8401) became protected: written 3 in frame #2, "
         "16#8000 now] [COP (8402) became protected: written 2 in frame #4, 16#8000 now]  CRC ok",
     ),
     "fc23": (  # FC23 writes COP (8402) and reads 8400..8401
-        [rtu("0C 17 20D0 0002 20D2 0001 02 0002"), rtu("0C 17 04 8000 0003"), READ, rtu("0C 03 06 8000 8000 8000")],
+        [rtu("0C 17 20D0 0002 20D2 0001 02 0002"), rtu("0C 17 04 8000 0003"), READ14, ANSWER14],
         4,
-        f"     4{PREFIX}CHCF=protected COP=protected [#3] [CHCF (8401) became protected: read 3 in frame #2, "
+        f"     4{PREFIX14}CHCF=protected COP=protected {REST14} [#3] [CHCF (8401) became protected: read 3 in frame #2, "
         "16#8000 now] [COP (8402) became protected: written 2 in frame #2, 16#8000 now]  CRC ok",
     ),
     "exception": (  # exception 02: every parameter of the read of 8401..8402 unreadable (p.38)
