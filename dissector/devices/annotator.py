@@ -20,7 +20,7 @@ from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
-from dissector.devices.naming import name_register, name_wide, plc_label
+from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
 from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
@@ -297,13 +297,7 @@ class Annotator:
                 continue
             if plc is not None:
                 register.label = plc_label(plc, address)
-            row = rows.get(address)
-            if row is None or register.words == 0:
-                continue
-            if row.words == 2:
-                name_wide(fresh, index, row)
-            else:
-                name_register(register, row, row)
+            name_from_map(fresh, index, rows)
         protected = profile.protected_value if kind is _RESPONSE and function in _READS else None
         if protected is not None:
             multi = len(fresh) > 1
@@ -311,7 +305,8 @@ class Annotator:
                 if register.address is None:
                     continue
                 if register.value == protected and multi and register.words == 1:
-                    unreadable_status(register, rows.get(register.address))
+                    # (a 32-bit value's second word alone: that value's 16#8000, ambiguous as its first's)
+                    unreadable_status(register, rows.get(register.address) or wide_before(rows, register.address))
                 else:
                     register.status = "ok"
         return fresh
@@ -429,8 +424,10 @@ class Annotator:
             if registers.start is None:
                 return  # no addresses: nothing to name or label
             addresses = registers.addresses
-            if not rows or rows.keys().isdisjoint(addresses):
-                # No map row in the block and no 16#8000 to check: at most labels, set in bulk.
+            alone = device.wide and wide_before(rows, registers.start)
+            if not rows or (rows.keys().isdisjoint(addresses) and not alone):
+                # No map row in the block (nor a 32-bit row's second word first) and no 16#8000 to check: at
+                # most labels, set in bulk.
                 if labels is not None:
                     registers.labels = _labels(labels, base, addresses)
                 return
@@ -468,10 +465,13 @@ class Annotator:
                         if len(memo) < MEMO_LIMIT:
                             memo[value] = reading
                     register.scaled, register.text = reading
+            elif index == 0:  # (a second word without its first can only come first)
+                name_second_alone(rows, register)
             if protected is None:
                 continue
             if value == protected and multi and register.words == 1:
-                unreadable(frame, device, register, row, events)
+                # (a 32-bit value's second word alone: that value's 16#8000, ambiguous as its first's)
+                unreadable(frame, device, register, row or wide_before(rows, address), events)
                 continue
             register.status = "ok"
             last = seen.get(address)

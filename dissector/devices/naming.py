@@ -62,3 +62,38 @@ def name_wide(registers: Sequence[Register], index: int, row: RegisterDef) -> No
     second.source = row.source
     second.text = text("second_word", code=row.code)
     second.words = 0
+
+
+def wide_before(rows: dict[int, RegisterDef], address: int) -> RegisterDef | None:
+    """The 32-bit row whose second register `address` is (the row at the address before), or None."""
+    before = rows.get((address - 1) & 0xFFFF)
+    return before if before is not None and before.words == 2 else None
+
+
+def name_second_alone(rows: dict[int, RegisterDef], register: Register) -> None:
+    """A frame's first register when it is the second of a 32-bit row (the row before) whose first is not in
+    the frame: named, its value unread (it needs the first word), as name_wide names a first word alone."""
+    row = wide_before(rows, register.address)  # type: ignore[arg-type]
+    if row is None:
+        return
+    register.code = row.code
+    register.name = row.name
+    register.unit = row.unit
+    register.source = row.source
+    register.text = text("second_word_alone", kind=row.kind)
+
+
+def name_from_map(registers: Sequence[Register], index: int, rows: dict[int, RegisterDef]) -> None:
+    """Name registers[index] (consecutive registers) from the map: its row, 32-bit or not, or the row whose
+    second word it is when that row's first is not in the frame (Annotator.reread; _annotate inlines it)."""
+    register = registers[index]
+    row = rows.get(register.address)  # type: ignore[arg-type]
+    if row is None:
+        if index == 0:  # (a second word without its first can only come first)
+            name_second_alone(rows, register)
+    elif register.words == 0:
+        return  # the second word of the value before: named with it
+    elif row.words == 2:
+        name_wide(registers, index, row)
+    else:
+        name_register(register, row, row)

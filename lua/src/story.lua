@@ -95,6 +95,12 @@ local function words_at(rows, address, index, count)
   return words
 end
 
+-- The 32-bit row whose second register `address` is (naming.wide_before), or false.
+local function rows_before(rows, address)
+  local before = rows[(address + 0xFFFF) % 0x10000]
+  return before ~= nil and before.words == 2 and before
+end
+
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
@@ -121,7 +127,10 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     status = "ok"
     -- (a word of a 32-bit value is no parameter on its own)
     if value == protected and multi and words == 1 then
-      if row == nil then
+      local before = row == nil and rows_before(device.rows, address)
+      if before then
+        status = "ambiguous" -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
+      elseif row == nil then
         status = "non-existent"
       elseif row.ambiguous_8000 then
         status = "ambiguous"
@@ -174,6 +183,9 @@ local function describe(device, f, reg, plain, status, words, second)
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
     named = rows[(address + 0xFFFF) % 0x10000]
     text = say("second_word", named)
+  else
+    local before = rows_before(rows, address) -- (its first word is not in the frame: naming.name_second_alone)
+    if before then named, text = before, say("second_word_alone", before) end
   end
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words

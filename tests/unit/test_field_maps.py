@@ -76,8 +76,9 @@ def test_32_bit_values_are_one_value_over_two_registers(tmp_path: Path) -> None:
         "     2            -   5 response  Read Holding Registers 100..107 (8): PWR=-123.4 kW FREQ=50 Hz "
         "ENERGY=123456789 kWh TEMP=-12.5 °C [#1] [provisional]  CRC ok"  # read once under profile auto
     )
-    # A read that holds one word of a value says so.
-    assert out[3].endswith("101=1 FREQ=first word of a float32, the second is not in this frame [#3] [provisional]  CRC ok")
+    # A read that holds one word of a value says so, the second word as the first.
+    assert out[3].endswith("(2): PWR=second word of the int32, the first is not in this frame "
+                           "FREQ=first word of the float32, the second is not in this frame [#3] [provisional]  CRC ok")
     registers = json.loads(run_cli(["-", "--map", str(path), "--json"], stdin=data)[1].splitlines()[1])["registers"]
     assert registers[2] == {"address": 102, "value": 0, "code": "FREQ", "name": "Frequency", "unit": "Hz",
                             "scaled": 50.0, "text": "50 Hz", "words": 2}
