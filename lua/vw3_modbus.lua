@@ -54,8 +54,9 @@ end
 local function transaction_key(pinfo, to_server)
   local client, client_port, server, server_port = pinfo.dst, pinfo.dst_port, pinfo.src, pinfo.src_port
   if to_server then client, client_port, server, server_port = server, server_port, client, client_port end
-  return format("%s:%d>%s:%d#%s", tostring(client), client_port, tostring(server), server_port,
-    tostring(first_value(modbus_fields.transaction)))
+  -- (tostring: a port may be absent, as under the test stub or a capture whose transport has none)
+  return format("%s:%s>%s:%s#%s", tostring(client), tostring(client_port), tostring(server),
+    tostring(server_port), tostring(first_value(modbus_fields.transaction)))
 end
 
 -- A request (first pass): kept until its answer comes, as the RTU plugin pairs it (start and quantity).
