@@ -355,63 +355,111 @@ local function whole_crc_good(bytes, n)
   return true
 end
 
+-- A repeated pattern (a line stuck on one value, a babbling device) makes every position a possible frame
+-- start weighed in full: where the bytes repeat with a period, a position whose window (the most a decision
+-- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
+-- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
+-- from i (at most `stop`) and the index before which trying again finds no more.
+local REPEAT_WINDOW, REPEAT_PROBE, NOISE_ITEM_MAX = 3 * MAX_ADU, 16, FRAMING.noise_item_max
+local function repeats(s, b, i, since, n, stop)
+  local from, period = i - REPEAT_PROBE, nil
+  for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
+    local k = 0
+    while k < REPEAT_PROBE and b[from + k] == b[from - p + k] do k = k + 1 end
+    if k == REPEAT_PROBE then
+      period = p
+      break
+    end
+  end
+  if period == nil then return i, i + 4 * REPEAT_PROBE end
+  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at >= first and at < limit then limit = at end
+  end
+  local stop_at = i
+  while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
+  local last = stop_at - REPEAT_WINDOW
+  if last < i then return i, math.max(i + 1, stop_at) end
+  if last + 1 >= stop then return stop, stop end
+  return last + 1, stop_at
+end
+
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
 local function run_rtu(s, final, items)
   local b, n = s.b, s.n
   local i = 0
+  local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
+    local skipped = false
     if n - i < MIN_ADU then
       add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
-    local slave, code = b[i], b[i + 1]
-    local first = interpretations(s, slave, code, b, i, n)[1]
-    if first == nil then
-      -- No frame starts here: skip to the next byte pair that could start one.
-      local stop = i + 1
-      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
-      if stop >= n - 1 then stop = final and n or n - 1 end
-      add_noise(s, i, stop, NO_FRAME, items)
-      i = stop
-    else
-      local kind, length, crc_ok = nil, nil, true
-      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
-      -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
-      -- what match would weigh): nearly every frame of a clean bus.
-      if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
-        local found, is_scan = first[2](b, i, n)
-        if not is_scan and found >= MIN_ADU and found <= MAX_ADU
-            and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
-            and crc_ok_at(b, i, found) then
-          kind, length = first[1], found
-        end
+    -- (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
+    if s.noise == nil or final then
+      since = -1
+    elseif since < 0 or s.noise_cut ~= was_cut or s.glitches_only ~= was_only then
+      since, was_cut, was_only = i, s.noise_cut, s.glitches_only
+    elseif i >= retry and i - since >= REPEAT_PROBE then
+      local stop
+      stop, retry = repeats(s, b, i, since, n, i + NOISE_ITEM_MAX - s.noise.length)
+      if stop > i then
+        add_noise(s, i, stop, NO_FRAME, items)
+        i = stop
+        skipped = true
       end
-      if kind == nil then
-        local cut = final and cut_answer(s, b, i, n)
-        if cut then
-          add_noise(s, i, n, cut, items)
-          return n
-        end
-        kind, length, crc_ok = match(s, b, i, n, final)
-        if kind == NEED then break end
-        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
-            and not anchored(s, i) then
-          -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
-          -- such a frame counts only when the line confirms it (rtu.py _confirmed).
-          local following = confirmed(s, b, i, kind, length, n, final)
-          if following == nil then break end
-          if not following then kind = NONE end
-        end
-      end
-      if kind == NONE then
-        add_noise(s, i, i + 1, NO_FRAME, items)
-        i = i + 1
+    end
+    if not skipped then
+      local slave, code = b[i], b[i + 1]
+      local first = interpretations(s, slave, code, b, i, n)[1]
+      if first == nil then
+        -- No frame starts here: skip to the next byte pair that could start one.
+        local stop = i + 1
+        while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
+        if stop >= n - 1 then stop = final and n or n - 1 end
+        add_noise(s, i, stop, NO_FRAME, items)
+        i = stop
       else
-        local offset = s.base + i
-        local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
-        emit(s, frame, items)
-        if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
-        i = i + length
+        local kind, length, crc_ok = nil, nil, true
+        -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
+        -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
+        -- what match would weigh): nearly every frame of a clean bus.
+        if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
+          local found, is_scan = first[2](b, i, n)
+          if not is_scan and found >= MIN_ADU and found <= MAX_ADU
+              and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
+              and crc_ok_at(b, i, found) then
+            kind, length = first[1], found
+          end
+        end
+        if kind == nil then
+          local cut = final and cut_answer(s, b, i, n)
+          if cut then
+            add_noise(s, i, n, cut, items)
+            return n
+          end
+          kind, length, crc_ok = match(s, b, i, n, final)
+          if kind == NEED then break end
+          if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
+              and not anchored(s, i) then
+            -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
+            -- such a frame counts only when the line confirms it (rtu.py _confirmed).
+            local following = confirmed(s, b, i, kind, length, n, final)
+            if following == nil then break end
+            if not following then kind = NONE end
+          end
+        end
+        if kind == NONE then
+          add_noise(s, i, i + 1, NO_FRAME, items)
+          i = i + 1
+        else
+          local offset = s.base + i
+          local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
+          emit(s, frame, items)
+          if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
+          i = i + length
+        end
       end
     end
   end
