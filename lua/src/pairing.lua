@@ -102,7 +102,8 @@ local function pair(st, f)
     late, pending = pending, nil
   end
   local retried, echoed_by = st.retried, st.echoed
-  st.retried, st.echoed = nil, nil
+  -- (written only when set: a nil written to a key the table lacks makes the key)
+  if retried ~= nil or echoed_by ~= nil then st.retried, st.echoed = nil, nil end
   if SAME_SHAPE[f.fn] and f.b ~= nil then
     -- First the kind the framer would have given the frame had it awaited what the pairing awaits.
     local flipped = false
@@ -139,7 +140,7 @@ local function pair(st, f)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
-      if SAME_SHAPE[f.fn] and f.b ~= nil then f.sent = short_bytes(f) end -- (the retry rule compares a retry with it)
+      if SAME_SHAPE[f.fn] and f.b ~= nil and f.data_len <= 4 then f.sent = short_bytes(f) end -- (a retry is compared with it)
       st.pending = f
     end
     return
