@@ -37,8 +37,8 @@ for code, rules in pairs(DATA.protocol.rules) do
 end
 
 -- A short frame's bytes after its slave and function (up to 4 data bytes, FC5 and FC6's: its data and CRC
--- (LRC) as one number, exact in a double), kept by a request as f.sent: its byte table may go before its
--- answer comes. nil: a longer frame (not copied: a copy would cost every large request).
+-- (LRC) as one number, exact in a double), kept for the open request as st.sent (st.sent_for: which): its
+-- byte table may go before its answer comes (a key of the frame's own would outgrow its table).
 local function short_bytes(f)
   local b, count = f.b, f.data_len
   if count > 4 then return nil end
@@ -48,14 +48,14 @@ local function short_bytes(f)
 end
 
 -- Are the bytes of `f` (its byte table at hand) those of `request` (same slave and function)? A request
--- whose byte table has gone (and its data's place): a short one kept them (f.sent), a longer one's length
+-- whose byte table has gone (and its data's place): a short one kept them (st.sent), a longer one's length
 -- and CRC stand for them.
-local function same_bytes(request, f)
+local function same_bytes(st, request, f)
   if request.length ~= f.length or request.crc ~= f.crc then return false end
   local a, b = request.b, f.b
   if a == nil then
-    local kept = request.sent
-    return kept == nil or kept == short_bytes(f)
+    if f.data_len > 4 then return true end
+    return st.sent_for == request and st.sent == short_bytes(f)
   end
   local i, j = request.data_at, f.data_at
   for k = 0, f.data_len - 1 do
@@ -120,7 +120,7 @@ local function pair(st, f)
       f.kind = REQUEST
       if awaits_answer(f) then st.retried = f end
     end
-    if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(late, f) then
+    if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(st, late, f) then
       -- The request again, past the timeout: the master's retry. (The framer read it as an answer and awaits
       -- nothing, unless it read it as a request: flipped.)
       f.kind, late = REQUEST, nil
@@ -140,7 +140,7 @@ local function pair(st, f)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
-      if SAME_SHAPE[f.fn] and f.b ~= nil and f.data_len <= 4 then f.sent = short_bytes(f) end -- (a retry is compared with it)
+      if SAME_SHAPE[f.fn] and f.b ~= nil and f.data_len <= 4 then st.sent, st.sent_for = short_bytes(f), f end
       st.pending = f
     end
     return
