@@ -163,7 +163,8 @@ local function scan_match(s, b, i, n, minimum, final)
     for k = 1, #lengths do
       local length = lengths[k]
       local following
-      if pass == 1 then following = valid_frame_at(s, b, i + length, n, final)
+      -- (a record's end right after it settles the first pass as a frame there would: _timedframe.h decide_at)
+      if pass == 1 then following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
       else following = followed(s, b, i + length, n, final) end
       if following == nil then return NEED end
       if following then
@@ -208,14 +209,32 @@ local function added(list, value)
   return list
 end
 
+-- Does a layout with a length rule at i check out and end where its record does? The
+-- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
+-- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
+local function ends_record(s, b, i, n)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    local length, is_scan = list[index][2](b, i, n)
+    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
+        and crc_ok_at(b, i, length) then
+      return true
+    end
+  end
+  return false
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
   if GLITCH_ADDRESSES[slave] then -- (a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
-    if after == nil then return NEED end
-    if after then return NONE end
+    if after == nil then
+      if not ends_record(s, b, i, n) then return NEED end
+    elseif after then
+      return NONE
+    end
   end
   local valid, damaged, waiting = nil, nil, nil
   local list = interpretations(s, slave, code, b, i, n)
