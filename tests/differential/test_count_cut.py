@@ -105,7 +105,9 @@ def test_the_engine_frames_up_to_the_cut(tmp_path: Path, monkeypatch: pytest.Mon
     stages alone, the engine framed nothing)."""
     path, frames = capture(tmp_path, 0, "frame")
     _out, uncut = decode([str(path), "-V"], monkeypatch, pure=False)
-    assert len(uncut) > frames * 3 // 4  # (broadcasts, exceptions, late answers: the Python stages')
+    # (broadcasts, exceptions, late answers: the Python stages'; a late FC5/FC6 echo is a master's retry since
+    # bd48460, a request whose wait the Python stages follow to the next frame: 436 of this bus's 588)
+    assert len(uncut) > frames * 2 // 3
     out, framed = same([str(path), "-c", "1000000", "--stats"], monkeypatch)
     assert out.startswith(f"{frames} frames, 0 noise bytes in 0 runs,")
     assert framed == uncut

@@ -194,11 +194,11 @@ def test_info_column_names_fc8_sub_function_and_fc24_pointer(capture: Path) -> N
 FIFO_JSON = [
     {"frame": 1, "kind": "request", "offset": 0, "length": 6, "time": T0, "raw": "011804de0347", "mode": "rtu",
      "slave": 1, "function": 24, "function_name": "Read FIFO Queue", "crc_ok": True, "crc": 18179,
-     "crc_expected": 18179, "broadcast": False, "start": 1246, "response_frame": 2, "unanswered": False,
+     "crc_expected": 18179, "broadcast": False, "start": 1246, "profile": "generic", "response_frame": 2, "unanswered": False,
      "fields": {"address": 1246}, "warnings": [], "notes": []},
     {"frame": 2, "kind": "response", "offset": 6, "length": 14, "time": T0 + 0.01,
      "raw": "0118000800030001000200036fa0", "mode": "rtu", "slave": 1, "function": 24, "function_name": "Read FIFO Queue", "crc_ok": True, "crc": 41071,
-     "crc_expected": 41071, "broadcast": False, "start": 1246, "request_frame": 1, "response_time": 0.01,
+     "crc_expected": 41071, "broadcast": False, "start": 1246, "profile": "generic", "request_frame": 1, "response_time": 0.01,
      "fields": {"byte_count": 8, "fifo_count": 3, "values": [1, 2, 3]}, "warnings": [], "notes": []},
 ]
 FIFO_SUMMARY = [

@@ -47,15 +47,16 @@ def test_file_and_stdin_agree_after_the_choice(monkeypatch: pytest.MonkeyPatch, 
     frames = [
         rtu("0C 06 20 D1 00 03"), rtu("0C 06 20 D1 00 03"),  # write CHCF = 3 (echo)
         rtu("0C 10 20 D2 00 01 02 00 02"), rtu("0C 10 20 D2 00 01"),  # write COP = 2 (answered)
-        rtu("0C 03 20 D0 00 03"), rtu("0C 03 06 8000 8000 8000"),  # 16#8000 at 8400: the choice
+        # 16#8000 at 8400: the choice (FR1 at 8413 read as 1: an answer all 16#8000 is ambiguous, p.38)
+        rtu("0C 03 20 D0 00 0E"), rtu("0C 03 1C" + " 8000" * 13 + " 0001"),
     ]
     data = b"".join(frames)
     path = tmp_path / "seq.bin"
     path.write_bytes(data)
     _, two, _ = run_cli([str(path)])
     _, one, _ = run_cli(["-"], stdin=data)
-    last = ("     6            -  12 response  Read Holding Registers 8400..8402 (3): 8400=non-existent CHCF=protected "
-            "COP=protected [#5] [CHCF (8401) became protected: written 3 in frame #2, 16#8000 now] "
+    last = ("     6            -  12 response  Read Holding Registers 8400..8413 (14): 8400=non-existent CHCF=protected "
+            "COP=protected 8403=non-existent 8404=non-existent 8405=non-existent … (+8) [#5] [CHCF (8401) became protected: written 3 in frame #2, 16#8000 now] "
             "[COP (8402) became protected: written 2 in frame #4, 16#8000 now]  CRC ok")
     assert one.splitlines()[-1] == last
     assert two.splitlines()[-1] == last
