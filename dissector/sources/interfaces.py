@@ -102,8 +102,7 @@ def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignor
 
 def open_interface(path: str, ordinal: int, mode: str | None, chunk_size: int = 65536):  # type: ignore[no-untyped-def]
     """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`."""
-    from dissector.protocol.ascii import detect_mode
-    from dissector.sources.reader import MIN_CHUNK, MODE_SAMPLE, Source
+    from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
 
     chunk_size = max(chunk_size, MIN_CHUNK)
     stream = open(path, "rb")
@@ -112,13 +111,7 @@ def open_interface(path: str, ordinal: int, mode: str | None, chunk_size: int = 
         chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal)
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
-            seen = 0
-            for chunk in chunks:
-                head.append(chunk)
-                seen += len(chunk.data)
-                if seen >= MODE_SAMPLE:
-                    break
-            mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
+            mode, head = sampled_mode(chunks)
         source = Source(chunks, head, "pcapng", mode, path, log, stream.close)
         source.streaming = False
         return source

@@ -265,6 +265,18 @@ def open_source(
         raise
 
 
+def sampled_mode(chunks: Iterator[Chunk]) -> tuple[str, list[Chunk]]:
+    """The mode the first payload bytes decide, and the chunks read for that (replayed first)."""
+    head: list[Chunk] = []
+    seen = 0
+    for chunk in chunks:
+        head.append(chunk)
+        seen += len(chunk.data)
+        if seen >= MODE_SAMPLE:
+            break
+    return detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE]), head
+
+
 def _start(
     stream: BinaryIO, name: str, fmt: str | None, mode: str | None, chunk_size: int,
     closer: Callable[[], None],
@@ -292,19 +304,9 @@ def _start(
         chunks = read_hexdump(inp, log, chunk_size, Notation(NOTATIONS[fmt], fixed=True))
     else:
         chunks = READERS[format](inp, log, chunk_size)
-    # The first payload bytes decide the mode; the chunks read for that are replayed first.
     head: list[Chunk] = []
     if mode is None:
-        if format == "ascii":
-            mode = "ascii"
-        else:
-            seen = 0
-            for chunk in chunks:
-                head.append(chunk)
-                seen += len(chunk.data)
-                if seen >= MODE_SAMPLE:
-                    break
-            mode = detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE])
+        mode, head = ("ascii", []) if format == "ascii" else sampled_mode(chunks)
     if format == "raw" and mode == "ascii" and fmt is None:
         # (text that starts mid-frame or after line noise: ASCII by its frames, which no warning contradicts)
         format, warning = "ascii", None
