@@ -235,14 +235,19 @@ def _mostly_bytes(line: str) -> bool:
     return bytes_ >= 2 and bytes_ * 2 > len(words)
 
 
+def _last_word(line: str) -> tuple[str, str]:
+    """(what comes before the last word of a line, that word): where a line cut short was cut."""
+    line = line.rstrip()
+    end = max(line.rfind(" "), line.rfind(","), line.rfind("\t"))
+    return line[: max(end, 0)].rstrip(" ,\t"), line[end + 1 :]
+
+
 def _cut_line_is_hex(cut: str, notation: Notation) -> bool:
     """The first line, cut by the sample's end: its whole numbers parse, and the cut one could."""
-    cut = cut.rstrip()
-    end = max(cut.rfind(" "), cut.rfind(","), cut.rfind("\t"))
-    head, last = cut[: max(end, 0)], cut[end + 1 :]
-    if head.strip(" ,\t"):
+    head, last = _last_word(cut)
+    if head:
         try:
-            return parse_line(head.rstrip(" ,\t"), notation, "line 1") is not None
+            return parse_line(head, notation, "line 1") is not None
         except (RefusedList, TimeRangeError):
             return True
         except HexLineError:
@@ -288,12 +293,6 @@ def ended_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str, bool]]:
         yield number, characters(raw), ended
 
 
-def text_lines(inp: Input, chunk_size: int) -> Iterator[tuple[int, str]]:
-    """(line number, text) of a text input, as ended_lines."""
-    for number, line, _ended in ended_lines(inp, chunk_size):
-        yield number, line
-
-
 # The last characters of a line cut short: part of a byte, a number or a time stamp (`0C 03 2`, `10:00:0`).
 _CUT_TAIL = re.compile(r"[0-9A-Fa-fxXTtRrZ:.,+\-\[\]{}]+")
 _STAMP_PART = re.compile(r"[0-9:.,+\-TZ\[\] ]*")  # what a time stamp cut before its bytes leaves
@@ -309,11 +308,10 @@ def _cut_line(line: str, number: int, parse: LineParser) -> tuple[Stamp | None, 
     if "#" in line:
         return None
     text = line.rstrip()
-    end = max(text.rfind(" "), text.rfind(","), text.rfind("\t"))
-    head, rest = text[: max(end, 0)].rstrip(" ,\t"), text[end + 1 :]
+    head, rest = _last_word(text)
     if not _CUT_TAIL.fullmatch(rest):
         return None
-    if not head.strip():
+    if not head:
         return None, b"", rest
     try:
         parsed = parse(head, number)
