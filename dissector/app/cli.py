@@ -26,7 +26,7 @@ from dissector.app.paths import decode_one
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
-from dissector.app.profile_options import annotator_from_args, report_profiles
+from dissector.app.profile_options import annotator_from_args
 from dissector.app.samefile import refuse_same_files
 from dissector.render.buses import Bus, Buses
 from dissector.render.output import Output
@@ -35,7 +35,8 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    PacketInterface, input_line, inputs, is_pcapng_file, keep_interface, open_interface, write_interface,
+    PacketInterface, input_line, inputs, is_pcapng_file, keep_interface, open_interface, profile_notes,
+    write_interface,
 )
 from dissector.sources.reader import SourceError, open_source
 from dissector.framing.timing import GapChecker
@@ -109,19 +110,17 @@ class Sinks:
             self.watch = watcher(args.watch, self.text_out.write, self.json, annotate, self.stats.history,  # type: ignore[union-attr]
                                  Clock(args.output.time_format))
         self.options = args
-        self.buses = Buses(Bus([], self.stats, self.bus, self.watch), self._new_bus)  # (one, unless interfaces)
         self.current: Bus | None = None
         self.report = None
         if args.report is not None:
-            from dissector.app.inputs import refuse_several_buses
             from dissector.render.report import ReportFile
-
-            refuse_several_buses(args)  # (before the report file is made)
 
             # The report's counts are --stats' numbers, its parameters the same history's.
             # File names are data: a non-UTF-8 name (n\xff.pcap) or an ESC in one is shown escaped.
             names = [printable(name) for name in args.files] + (["--hex"] if args.hex else [])
             self.report = ReportFile(args.report, annotate, names, self.stats)  # type: ignore[arg-type]
+        collector = self.report.collector if self.report is not None else None  # (one bus, unless interfaces)
+        self.buses = Buses(Bus([], self.stats, self.bus, self.watch, collector, self.health), self._new_bus)
         # --report writes a file: the items are printed too when an item format is asked for
         # (--report r.html --json), never silently dropped.
         asked = args.output.records or args.output.detail or args.output.hexdump
@@ -162,7 +161,9 @@ class Sinks:
 
         bus = self.buses.switch(key, title, annotate)
         heard, self.current = self.current, bus
-        self.stats, self.bus, self.watch = bus.stats, bus.timing, bus.watch
+        self.stats, self.bus, self.watch, self.health = bus.stats, bus.timing, bus.watch, bus.health
+        if self.report is not None:
+            self.report.collector = bus.report
         if self.bus is not None:
             if key is not None:  # (its warning names it)
                 self.bus.warn = lambda text: self.env.stderr.write(f"{PROG}: warning: {shown(title)}: {text}\n")
@@ -324,9 +325,10 @@ class Sinks:
             if bus.watch is not None:
                 bus.watch.finish()
         if self.report is not None:
+            from dissector.render.buses import write_report_page
+
             report, self.report = self.report, None
-            extras = {"bus": self.bus, "health": self.health, "time_format": self.clock.format}
-            report.write(self.stats, extras)  # type: ignore[arg-type]
+            write_report_page(self, report, buses)
             self.wrote = report.path
         if self.stats is not None and self.stats_shown:
             from dissector.render.buses import write_stats
@@ -347,7 +349,7 @@ def decode_files(args: DecodeOptions, env: Environment, annotate: Annotator | No
     try:
         _decode_inputs(args, env, sinks, annotate)
         sinks.close()
-        report_profiles(annotate, env.stderr, env.stderr_isatty)
+        profile_notes(sinks.buses, annotate, env.stderr, env.stderr_isatty)
         if sinks.wrote is not None and env.stderr_isatty:
             env.stderr.write(f"{PROG}: wrote {shown(sinks.wrote)}\n")
     except BrokenPipeError:

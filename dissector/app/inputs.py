@@ -8,9 +8,9 @@ from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
 from dissector.app.hexinput import HexInput
-from dissector.errors import UsageError
 from dissector.app.options import PROG, DecodeOptions, shown
 from dissector.app.paths import Fix
+from dissector.app.profile_options import report_profiles
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
 from dissector.model import Chunk
 from dissector.render.capturefile import Interface, pcapng_interface
@@ -104,15 +104,16 @@ def input_line(path: str | None, source_format: str | None, args: DecodeOptions,
     return line
 
 
-def refuse_several_buses(args: DecodeOptions) -> None:
-    """--report draws one bus: a pcapng with packets from several interfaces (several buses) is refused,
-    with a way to split it, before anything is decoded or written."""
-    for path in args.files:
-        buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
-        if len(buses) > 1:
-            names, name = ", ".join(bus.label() for bus in buses), path  # (escaped where it is shown)
-            raise UsageError(
-                f"--report: {name} has packets from {len(buses)} interfaces, each its own bus ({names}): a report "
-                f"draws one bus: report on each interface saved alone (tshark -r {name} -Y 'frame.interface_id == "
-                f"{buses[0].ordinal}' -w bus.pcapng), or count them all with --stats"
-            )
+def profile_notes(buses: Any, annotate: Any, stderr: Any, is_terminal: bool) -> None:
+    """Profile `auto`'s notes on a terminal (profile_options.report_profiles): of several buses (a pcapng's
+    interfaces, render/buses.py), each bus's own, named by its title as its warnings are."""
+    if not buses.several:
+        report_profiles(annotate, stderr, is_terminal)
+        return
+    if not is_terminal:
+        return
+    from dissector.render.buses import title
+
+    for bus in buses.all():
+        for line in getattr(bus.annotate, "profile_report", lambda: [])():
+            stderr.write(f"{PROG}: {shown(title(bus))}: {shown(line)}\n")

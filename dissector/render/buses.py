@@ -1,14 +1,14 @@
-"""--stats and --watch of several buses: a pcapng with packets from several interfaces is one input per
-interface, each its own bus (app/inputs.py), so each has its own statistics, parameter history, bus timing
-and watched states here: slave 12 of bus A is not slave 12 of bus B (its response times, its parameters'
-values and its outages are its own). Several FILES stay one bus's pieces, as mergecap would join them:
-files read as one stream are one bus, and an interface is one bus over every file that has it (the ring
-files of a two-line capture: two buses).
+"""--stats, --watch and --report of several buses: a pcapng with packets from several interfaces is one
+input per interface, each its own bus (app/inputs.py), so each has its own statistics, parameter history,
+bus timing, watched states and report (its collector and response times over time) here: slave 12 of bus
+A is not slave 12 of bus B (its response times, its parameters' values and its outages are its own).
+Several FILES stay one bus's pieces, as mergecap would join them: files read as one stream are one bus,
+and an interface is one bus over every file that has it (the ring files of a two-line capture: two buses).
 
-Sinks (app/cli.py) reads the current bus's `stats`, `timing` and `watch`; `Buses.switch` makes a bus
-current at each input, and the results are written bus by bus, each under its title as the decode
-shows it (`==> two.pcapng: /dev/pts/1 <==`, --json's `file`). One bus (the usual case) writes exactly
-what it wrote before.
+Sinks (app/cli.py) reads the current bus's `stats`, `timing`, `watch`, `report` and `health`;
+`Buses.switch` makes a bus current at each input, and the results are written bus by bus, each under
+its title as the decode shows it (`==> two.pcapng: /dev/pts/1 <==`, --json's `file`, a section of the
+report's page). One bus (the usual case) writes exactly what it wrote before.
 """
 from __future__ import annotations
 
@@ -25,6 +25,9 @@ class Bus:
     stats: Any  # render/stats.py StatsCollector (its History), or None
     timing: Any  # render/bustiming.py BusTiming, or None
     watch: Any  # render/watch.py Watcher, or None
+    report: Any = None  # render/report/collect.py ReportCollector (--report), or None
+    health: Any = None  # render/report/health.py Health (--report), or None
+    annotate: Any = None  # its annotator: its devices, profile `auto`'s choices (their notes on stderr)
 
 
 class Buses:
@@ -44,6 +47,7 @@ class Buses:
         if bus is None:
             bus = self.first if not self.known else self.make(title, annotate)
             self.known[key] = bus
+            bus.annotate = annotate
         if title is not None and title not in bus.names:
             bus.names.append(title)
         return bus
@@ -68,8 +72,9 @@ def header(bus: Bus, first: bool) -> str:
 
 def new_bus(sinks: Any, annotate: Any) -> Bus:
     """Another interface's counts (app/cli.py Sinks makes the first): its own statistics and parameter
-    history (its annotator's devices and profile choices), bus timing and watch, as the Sinks counts."""
-    args, stats, timing, watch = sinks.options, None, None, None
+    history (its annotator's devices and profile choices), bus timing, watch and report, as the Sinks
+    counts."""
+    args, stats, timing, watch, report, health = sinks.options, None, None, None, None, None
     if sinks.stats is not None:
         from dissector.render.history import History
         from dissector.render.stats import StatsCollector
@@ -85,7 +90,24 @@ def new_bus(sinks: Any, annotate: Any) -> Bus:
 
         history = stats.history  # type: ignore[union-attr]  # (--watch makes the statistics too)
         watch = watcher(args.watch, sinks.text_out.write, sinks.json, annotate, history, Clock(args.output.time_format))
-    return Bus([], stats, timing, watch)
+    if sinks.report is not None:
+        from dissector.render.report.collect import ReportCollector
+        from dissector.render.report.health import Health
+
+        report, health = ReportCollector(annotate, stats.history), Health()  # type: ignore[union-attr]
+    return Bus([], stats, timing, watch, report, health)
+
+
+def write_report_page(sinks: Any, report: Any, buses: list[Bus]) -> None:
+    """--report: one bus's page as it always was, or a page of several buses, each a section under its
+    title (render/report/html.py buses_pieces), each drawn from its own counts and clock."""
+    def extras(bus: Bus) -> dict[str, Any]:
+        return {"bus": bus.timing, "health": bus.health, "time_format": sinks.clock.format}
+
+    if len(buses) == 1:
+        report.write(buses[0].stats, extras(buses[0]))
+    else:
+        report.write_buses([(title(bus), bus.report, bus.stats, extras(bus)) for bus in buses])
 
 
 def write_stats(sinks: Any, bus: Bus, index: int | None) -> None:

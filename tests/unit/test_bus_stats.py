@@ -2,7 +2,7 @@
 lines at once): each interface is its own bus (render/buses.py), counted under its title. Before, both
 were 'counted as one bus, as mergecap would join them': slave 12 of /dev/pts/0 and of /dev/pts/1 one
 device, 8401 read 4 times with 2 changes (3 on one bus, 2 then 3 on the other), --watch
-'12 8401 3 -> 2' where no value changed. --report draws one bus: refused with a way to split the file.
+'12 8401 3 -> 2' where no value changed. --report: a section a bus (test_bus_report.py).
 """
 from __future__ import annotations
 
@@ -197,15 +197,3 @@ def test_ring_files_join_each_interface(tmp_path: Path, monkeypatch: pytest.Monk
         "2 captures counted as one bus: gaps and turnarounds restart at each capture, the load is over the span "
         "from the first item to the last",
     ]
-
-
-@BOTH
-def test_report_of_several_buses_is_refused(two: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
-                                            pure: bool) -> None:
-    report = tmp_path / "r.html"
-    status, out, err = _run(["--report", str(report), str(two)], monkeypatch, pure)
-    assert (status, out) == (2, "")
-    assert err == (f"vw3-decode: --report: {two} has packets from 2 interfaces, each its own bus (/dev/pts/0, "
-                   f"/dev/pts/1): a report draws one bus: report on each interface saved alone (tshark -r {two} -Y "
-                   "'frame.interface_id == 0' -w bus.pcapng), or count them all with --stats\n")
-    assert not report.exists()

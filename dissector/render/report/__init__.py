@@ -6,7 +6,7 @@ import os
 from dissector.errors import UsageError
 from dissector.render.capturefile import regular_file
 from dissector.render.report.collect import ReportCollector
-from dissector.render.report.html import render_report, write_report
+from dissector.render.report.html import buses_pieces, render_report, write_pieces, write_report
 from dissector.render.stats import StatsCollector
 
 __all__ = ["ReportCollector", "ReportFile", "render_report", "write_report"]
@@ -30,6 +30,10 @@ class ReportFile:
 
     def write(self, stats: StatsCollector, extras: dict | None = None) -> None:
         write_report(self.stream, self.path, self.collector, stats, self.title, extras)
+
+    def write_buses(self, buses: list[tuple[str, ReportCollector, StatsCollector, dict]]) -> None:
+        """The page of several buses (render/buses.py): per bus its name, collector, statistics and extras."""
+        write_pieces(self.stream, self.path, buses_pieces(buses, self.title or "vw3-decode report"))
 
     def abandon(self, discard: bool = False) -> None:
         """Close the file; `discard`: the input was refused, and the report (written only at the end)

@@ -14,6 +14,7 @@ from dissector.render.report.markup import _esc, _ms, _table
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
 from dissector.render.describe import count_text
+from dissector.protocol.printable import printable
 from dissector.render.stats_store import give_back
 from dissector.protocol.spec import SPEC
 
@@ -87,7 +88,81 @@ def report_pieces(
 ) -> Iterator[str]:
     """The page in pieces, in order (render_report joins them; write_report writes them one by one, so
     that a large report's points are never one string and its copies: issue 28, flat memory)."""
-    extras = extras or {}
+    pieces = _bus_pieces(collector, stats, extras or {})
+    body = next(pieces)  # (made before the page's head is written, as it always was)
+    yield _page_head(title, _NAV.format(anchor=""))
+    yield body
+    yield from pieces
+    yield _page_tail(_static("report.js"))
+
+
+def buses_pieces(buses: list[tuple[str, ReportCollector, StatsCollector, dict[str, Any]]],
+                 title: str = "vw3-decode report") -> Iterator[str]:
+    """The page of several buses (a pcapng's interfaces, render/buses.py), in pieces: each bus a section
+    under its name as the decode titles it, with the sections one bus's page has, its own anchors and its
+    own data block (report-data-N). The bus names are bus data (a pcapng's if_name): escaped as text."""
+    links = " ".join(f'<a href="#b{index}">{_esc(printable(name))}</a>' for index, (name, *_rest) in enumerate(buses))
+    yield _page_head(title, f"<nav>buses: {links}</nav>\n", _BUSES_STYLE)
+    for index, (name, collector, stats, extras) in enumerate(buses):
+        anchor = f"b{index}-"
+        pieces = _bus_pieces(collector, stats, extras, anchor, f"report-data-{index}")
+        body = next(pieces)
+        yield (f'<section class="bus" id="b{index}"><h2 class="bus">{_esc(printable(name))}</h2>\n'
+               + _NAV.format(anchor=anchor) + body)
+        yield from pieces
+        yield "</section>\n"
+    yield _page_tail(_SCOPED.replace("REPORT_JS", _static("report.js")))
+
+
+_NAV = ('<nav><a href="#{anchor}slaves">slaves</a> <a href="#{anchor}bus">bus</a> <a href="#{anchor}poll">poll '
+        'cycle</a> <a href="#{anchor}events">events</a> <a href="#{anchor}parameters">parameters</a></nav>\n')
+_BUSES_STYLE = ("<style>section.bus { border-top: 3px solid #555; margin-top: 2em; } "
+                "h2.bus { border: 0; font-size: 1.35em; }</style>\n")
+# report.js draws one bus: the block "report-data" and the charts of `document`. A page of several buses
+# runs it once a bus, given a document whose look-ups stay in that bus's section (so one bus's page, and
+# report.js, stay as they were); one bus's failure is shown and does not stop the others' charts.
+_SCOPED = """(function () {
+  var page = document, charts = 0;
+  function draw(document) {
+REPORT_JS  }
+  page.querySelectorAll("section.bus").forEach(function (section, index) {
+    try {
+      draw({
+        getElementById: function (id) { return page.getElementById(id === "report-data" ? "report-data-" + index : id); },
+        querySelectorAll: function (selector) { return section.querySelectorAll(selector); },
+        createElement: function (name) { return page.createElement(name); },
+        createTextNode: function (text) { return page.createTextNode(text); },
+        body: section
+      });
+    } catch (error) { window.onerror(String(error)); }
+    charts += Number(section.getAttribute("data-charts") || 0);
+  });
+  page.body.setAttribute("data-charts", String(charts));
+})();
+"""
+
+
+def _page_head(title: str, nav: str, style: str = "") -> str:
+    return (
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+        f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"
+        "<script>window.reportErrors=[];window.onerror=function(m,s,l,c,e){window.reportErrors.push(String(m));"
+        "var d=document.getElementById('errors');if(d){d.textContent=window.reportErrors.join('\\n');}};</script>\n"
+        f"{style}</head><body><h1>{_esc(title)}</h1><pre id=\"errors\"></pre>" + nav
+    )
+
+
+def _page_tail(script: str) -> str:
+    return (
+        f"<script>/* uPlot 1.6.31, (c) Leon Sorokin, MIT licence */\n{_static('uPlot.iife.min.js')}</script>\n"
+        f"<script>{script}</script>\n</body></html>\n"
+    )
+
+
+def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[str, Any], anchor: str = "",
+                block: str = "report-data") -> Iterator[str]:
+    """One bus's sections (the first piece, made before any is written), then its data block's pieces.
+    `anchor` prefixes its ids (a page of several buses), `block` is its data block's id."""
     bus, health = extras.get("bus"), extras.get("health")
     give_back()  # (the decoding's freed memory: the page's objects are made next)
     data = collector.data(points=False)
@@ -107,7 +182,7 @@ def report_pieces(
         + "</p>"
     )
     # -- slaves
-    parts.append('<h2 id="slaves">Slaves</h2>')
+    parts.append(f'<h2 id="{anchor}slaves">Slaves</h2>')
     if summary["profiles"]:
         parts.append("<h3>Device profiles</h3>" + _table(["slave", "profile", "why"], [
             [choice["slave"], choice["profile"],
@@ -129,7 +204,7 @@ def report_pieces(
                 f'<div class="chart rt" data-slave="{entry["slave"]}"><h3>Slave {entry["slave"]}: response '
                 f'times (ms), {entry["time"]["count"]} answers</h3></div>'
             )
-    parts.extend(bus_section(data, bus, health, when))
+    parts.extend(bus_section(data, bus, health, when, anchor))
     function_rows = [
         [row["slave"], f"{row['function']} {row['function_name']}", row["requests"], row["responses"],
          exception_counts(row["exceptions"]), row["unanswered"],
@@ -140,7 +215,7 @@ def report_pieces(
         ["slave", "function", "requests", "responses", "exceptions", "unanswered", "CRC errors"],
         function_rows, "numbers") + "</details>")
     # -- poll cycle
-    parts.append('<h2 id="poll">Poll cycle</h2>')
+    parts.append(f'<h2 id="{anchor}poll">Poll cycle</h2>')
     poll = summary["poll_cycle"]
     if poll:
         parts.append(_table(
@@ -156,15 +231,15 @@ def report_pieces(
     else:
         parts.append("<p>No request repeats 3 times or more.</p>")
     # -- events
-    parts.append('<h2 id="events">Events</h2>')
+    parts.append(f'<h2 id="{anchor}events">Events</h2>')
     counts = data["event_counts"]
     parts.append("<p>" + ", ".join(f"{kind}: {counts[kind]}" for kind in EVENT_KINDS) + "</p>")
     parts.append('<div class="chart timeline"></div>')
     parts.extend(event_groups(collector, data, when))
     # -- parameters
-    parts.append('<h2 id="parameters">Parameters</h2>')
+    parts.append(f'<h2 id="{anchor}parameters">Parameters</h2>')
     single = single_values(collector, data)
-    parts.extend(parameter_index(data, single))
+    parts.extend(parameter_index(data, single, anchor))
     for index, parameter in enumerate(data["parameters"]):
         if index in single:
             continue
@@ -180,7 +255,7 @@ def report_pieces(
         if parameter["marks_dropped"]:
             marks += f"<li>… {parameter['marks_dropped']} more</li>"
         parts.append(
-            f'<div class="chart trend" id="p{index}" data-index="{index}" data-code="{_esc(code or "")}">'
+            f'<div class="chart trend" id="{anchor}p{index}" data-index="{index}" data-code="{_esc(code or "")}">'
             f'<h3>Slave {parameter["slave"]}: <span class="code">{_esc(head)}</span> '
             f'<small>{_esc("; ".join(filter(None, [extra, str(parameter["values"]) + " values"])))}</small></h3>'
             + (f'<ul class="marks">{marks}</ul>' if marks else "")
@@ -206,18 +281,9 @@ def report_pieces(
     head = json.dumps(data, separators=(",", ":"), allow_nan=False)
     # Every `<` as \u003c (only JSON strings hold one): neither `</script>` nor `<!--` from a map's
     # text can end the block or swallow the page's scripts (piece by piece: the same text).
-    yield (
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
-        f"<title>{_esc(title)}</title>\n<style>{_static('uPlot.min.css')}\n{_static('report.css')}</style>\n"
-        "<script>window.reportErrors=[];window.onerror=function(m,s,l,c,e){window.reportErrors.push(String(m));"
-        "var d=document.getElementById('errors');if(d){d.textContent=window.reportErrors.join('\\n');}};</script>\n"
-        f"</head><body><h1>{_esc(title)}</h1><pre id=\"errors\"></pre>"
-        '<nav><a href="#slaves">slaves</a> <a href="#bus">bus</a> <a href="#poll">poll cycle</a> '
-        '<a href="#events">events</a> <a href="#parameters">parameters</a></nav>\n'
-    )
     yield "\n".join(parts)
     del parts
-    yield '\n<script type="application/json" id="report-data">'
+    yield f'\n<script type="application/json" id="{block}">'
     if responses is None:
         yield head[:-1].replace("<", "\\u003c")
     else:
@@ -232,11 +298,7 @@ def report_pieces(
     yield ',"parameters":'
     for piece in collector.parameters_json_pieces():
         yield piece.replace("<", "\\u003c")
-    yield (
-        "}</script>\n"
-        f"<script>/* uPlot 1.6.31, (c) Leon Sorokin, MIT licence */\n{_static('uPlot.iife.min.js')}</script>\n"
-        f"<script>{_static('report.js')}</script>\n</body></html>\n"
-    )
+    yield "}</script>\n"
 
 
 def _when(x: float, timed: bool) -> str:
@@ -248,7 +310,11 @@ def write_report(
     extras: dict[str, Any] | None = None,
 ) -> None:
     """Write and close the report (opened by the caller before decoding, so a bad path fails first)."""
-    pieces = report_pieces(collector, stats, title or "vw3-decode report", extras)
+    write_pieces(stream, path, report_pieces(collector, stats, title or "vw3-decode report", extras))
+
+
+def write_pieces(stream: TextIO, path: str, pieces: Iterator[str]) -> None:
+    """Write a page piece by piece and close its file (a page of one bus or of several)."""
     try:
         with stream:
             for piece in pieces:

@@ -24,9 +24,11 @@ def _clock(data: dict[str, Any], time_format: str) -> Callable[[float], str]:
     return lambda x: clock.text(SimpleNamespace(time=x))  # type: ignore[arg-type]
 
 
-def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[float], str]) -> list[str]:
-    """Bus timing (bustiming.py) and the response-time charts; adds their series to `data`."""
-    parts = ['<h2 id="bus">Bus</h2>']
+def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[float], str],
+                anchor: str = "") -> list[str]:
+    """Bus timing (bustiming.py) and the response-time charts; adds their series to `data`. `anchor`
+    prefixes the ids (a page of several buses: html.py buses_pieces)."""
+    parts = [f'<h2 id="{anchor}bus">Bus</h2>']
     if bus is None:
         return parts + ["<p>No bus timing for this report.</p>"]
     report = bus.report()
@@ -123,7 +125,7 @@ def _value_text(parameter: dict[str, Any], value: float) -> str:
     return f"{number} {parameter['unit']}" if parameter["unit"] else str(number)
 
 
-def parameter_index(data: dict[str, Any], single: dict[int, float]) -> list[str]:
+def parameter_index(data: dict[str, Any], single: dict[int, float], anchor: str = "") -> list[str]:
     """Links to every trend, named parameters first; the one-value parameters as a table."""
     parameters = data["parameters"]
     if not parameters:
@@ -135,12 +137,12 @@ def parameter_index(data: dict[str, Any], single: dict[int, float]) -> list[str]
         parameter = parameters[index]
         shown = parameter.get("label") or str(parameter["address"])  # as --address-style shows it
         name = parameter["code"] or shown
-        target = "single" if index in single else f"p{index}"
+        target = f"{anchor}single" if index in single else f"{anchor}p{index}"
         title = _esc(f"slave {parameter['slave']}, {shown}: {parameter['name'] or ''}")
         links.append(f'<a href="#{target}" title="{title}">{_esc(name)}</a>')
     parts = ['<p class="index">' + " ".join(links) + "</p>"]
     if single:
-        parts.append('<h3 id="single">Parameters with a single value</h3>' + _table(
+        parts.append(f'<h3 id="{anchor}single">Parameters with a single value</h3>' + _table(
             ["slave", "address", "code", "name", "value", "values"],
             [[parameters[index]["slave"], parameters[index].get("label") or parameters[index]["address"],
               parameters[index]["code"] or "",
