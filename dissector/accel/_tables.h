@@ -247,7 +247,7 @@ static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "
 enum { TEXT_REQUEST_INFO, TEXT_REQUEST_TAIL, TEXT_RESPONSE_INFO, TEXT_RESPONSE_TAIL, TEXTS };
 static const char *const text_names[TEXTS] = {"request_info", "request_tail", "response_info", "response_tail"};
 
-enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
+enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_EVENT_LOG, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
 enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };
 enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };
 /* How the engine lifts a frame of a compiled code in one direction, from its lifting rule
@@ -315,7 +315,7 @@ enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN,
  * bits, registers, or a printed field (`field`: its index in InfoForm.at, -1 none) as a number (`number`:
  * STEP_HEX's least digits, STEP_FIFO's values field). */
 typedef struct { int step, field, number; const char *text; int length; } Step;
-#define MAX_STEPS 6
+#define MAX_STEPS 8
 static const Step form_steps[][MAX_STEPS] = {
     {{STEP_NONE, -1, 0, NULL, 0}}, /* none */
     {{STEP_UNSPACE, -1, 0, NULL, 0}}, /* name */
@@ -327,6 +327,7 @@ static const Step form_steps[][MAX_STEPS] = {
     {{STEP_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " written", 8}}, /* written */
     {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 2, NULL, 0}}, /* status */
     {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events", 7}}, /* counter */
+    {{STEP_TEXT, -1, 0, "status 0x", 9}, {STEP_HEX, 0, 4, NULL, 0}, {STEP_TEXT, -1, 0, ", ", 2}, {STEP_DEC, 1, 0, NULL, 0}, {STEP_TEXT, -1, 0, " events, ", 9}, {STEP_DEC, 2, 0, NULL, 0}, {STEP_TEXT, -1, 0, " messages", 9}}, /* event_log */
     {{STEP_HEX, 0, 2, NULL, 0}, {STEP_TEXT, -1, 0, "h ", 2}, {STEP_SUBFUNCTION, 0, 0, NULL, 0}, {STEP_DATA, 1, 0, NULL, 0}}, /* diagnostics */
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
     {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
@@ -354,7 +355,7 @@ static const Rules rules[HANDLED] = {
     {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {2, 0, 0}, {1, 0, 0}}}}, /* 7 */
     {1, 0, 0, 0, {{form_steps[FORM_DIAGNOSTICS], {2, 4, 0}, {2, 0, 0}}, {form_steps[FORM_DIAGNOSTICS], {2, 4, 0}, {2, 0, 0}}}}, /* 8 */
     {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_COUNTER], {2, 4, 0}, {2, 2, 0}}}}, /* 11 */
-    {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_STATUS], {3, 0, 0}, {2, 0, 0}}}}, /* 12 */
+    {0, 0, 0, 0, {{form_steps[FORM_NAME], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_EVENT_LOG], {3, 5, 7}, {2, 2, 2}}}}, /* 12 */
     {0, 2, 0, 0, {{form_steps[FORM_BITS], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_WRITTEN], {0, 0, 0}, {0, 0, 0}}}}, /* 15 */
     {0, 2, 0, 0, {{form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_WRITTEN], {0, 0, 0}, {0, 0, 0}}}}, /* 16 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 17 */

@@ -214,7 +214,7 @@ FUNCTIONS: tuple[Function, ...] = (
     ),
     Function(
         12, _layout("empty", Fixed(4)), _layout("comm_event_log_response", _BYTE_COUNT), Access.DIAGNOSTIC,
-        compiled=Compiled(),
+        compiled=Compiled(), text="comm_event_log",
     ),
     Function(
         15,

@@ -126,8 +126,10 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "coil": [("label",), ("coil", "value")],
     "single": [("label",), ("single", "value")],
     "written": [("span",), " written"],
-    "status": ["status 0x", ("hex", "status", 2)],  # at least two digits: FC7's byte, FC12's word
+    "status": ["status 0x", ("hex", "status", 2)],  # FC7's byte
     "counter": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events"],
+    "event_log": ["status 0x", ("hex", "status", 4), ", ", ("dec", "event_count"), " events, ", ("dec", "message_count"),
+                  " messages"],
     # `00h Return Query Data data 0a0b… (+4 bytes)`, `0Bh Return Bus Message Count = 7`
     "diagnostics": [("hex", "subfunction", 2), "h ", ("subfunction", "subfunction"), ("data", "data")],
     # the address as sent, even PLC style
@@ -145,6 +147,7 @@ DESCRIBER_FORMS: dict[str, tuple[str | tuple[str, str], str | tuple[str, str]]] 
     "write_single_register": ("single", "single"),
     "simple": ("name", "status"),
     "comm_event_counter": ("name", "counter"),
+    "comm_event_log": ("name", "event_log"),
     "diagnostics": ("diagnostics", "diagnostics"),
     "write_multiple": (("bits", "values"), "written"),
     "mask_write": ("mask", "mask"),

@@ -475,7 +475,7 @@ def test_simple_codes_exact_lines_from_the_engine() -> None:
         "request   Get Comm Event Counter",
         "response  Get Comm Event Counter status 0xFFFF, 258 events [#3]",
         "request   Get Comm Event Log",
-        "response  Get Comm Event Log status 0x12 [#5]",
+        "response  Get Comm Event Log status 0x0012, 7 events, 9 messages [#5]",
         "request   Mask Write Register 4 AND 0x0FF0 OR 0x00A5",
         "response  Mask Write Register 4 AND 0x0FF0 OR 0x00A5 [#7]",
         "request   Read FIFO Queue pointer 256",

@@ -226,7 +226,7 @@ OTHERS = [
     (rtu("01 0B"), "Get Comm Event Counter", "request", "", None),
     (rtu("01 0B FFFF 0108"), "Get Comm Event Counter", "response", "status 0xFFFF, 264 events", None),
     (rtu("01 0C"), "Get Comm Event Log", "request", "", None),
-    (rtu("01 0C 08 0000 0108 0121 2000"), "Get Comm Event Log", "response", "status 0x00", None),
+    (rtu("01 0C 08 0000 0108 0121 2000"), "Get Comm Event Log", "response", "status 0x0000, 264 events, 289 messages", None),
     (rtu("01 11"), "Report Server ID", "request", "", None),
     (rtu("01 11 06 01 FF 41 42 43 44"), "Report Server ID", "response", "server id 1, run ON, 'ABCD'", None),
     (rtu("01 11"), "Report Server ID", "request", "", None),

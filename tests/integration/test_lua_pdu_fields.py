@@ -53,7 +53,7 @@ TREES: list[tuple[str, list[str]]] = [
     ("VW3 Modbus RTU, 1 Get Comm Event Counter request", []),
     ("VW3 Modbus RTU, 1 Get Comm Event Counter response status 0xFFFF, 264 events", ["    Status: 65535 (0xffff)", "    Event count: 264"]),
     ("VW3 Modbus RTU, 1 Get Comm Event Log request", []),
-    ("VW3 Modbus RTU, 1 Get Comm Event Log response status 0x00", [
+    ("VW3 Modbus RTU, 1 Get Comm Event Log response status 0x0000, 264 events, 289 messages", [
         "    Byte count: 8", "    Status: 0 (0x0000)", "    Event count: 264", "    Message count: 289",
         "    Events: 2000"]),
     ("VW3 Modbus RTU, 1 Report Server ID request", []),
