@@ -60,6 +60,7 @@ def schemas() -> dict[str, Any]:
             ("frame", pa.int64()), ("time", time), ("slave", pa.int16()), ("function", pa.int16()),
             ("access", text), ("address", pa.int32()), ("label", text), ("code", text), ("name", text),
             ("value", pa.int64()), ("scaled", pa.float64()), ("unit", text), ("status", text), ("text", text),
+            ("words", pa.int8()),  # --json's `words` (absent there: 1); null for a coil or input bit
         ]),
         "events": pa.schema(common + [
             ("kind", text), ("time", time), ("end", time), ("frame", pa.int64()), ("last_frame", pa.int64()),
@@ -169,8 +170,9 @@ class CaptureTables:
             row["raw"] = item.raw
             frames.add(row)
             if "registers" in record or "bits" in record:
-                for register in register_rows(record):
-                    register.update(common, time=time)
+                words = [element.get("words", 1) for element in record.get("registers") or []]
+                for index, register in enumerate(register_rows(record)):  # (registers first, then bits)
+                    register.update(common, time=time, words=words[index] if index < len(words) else None)
                     registers.add(register)
                     self._status(register, time)
             self._events(record, time)
