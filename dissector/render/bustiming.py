@@ -8,7 +8,11 @@ interface description says: `19200 8N2`). From there:
 - inter-frame gaps: the silence between the end of one item and the start of the next, as a
   histogram, with the gaps shorter than t3.5 counted (the Serial Line Guide's frame separator:
   3.5 character times up to 19200 baud, 1.75 ms above); a negative gap is a timestamp earlier than
-  the previous item's end (an adapter that stamps bursts) and counts as below t3.5;
+  the previous item's end (an adapter that stamps bursts) and counts as below t3.5. t3.5 is an RTU
+  rule: a Modbus ASCII frame runs from ':' to CR LF (Serial Line Guide 2.5.2), so no silence
+  separates ASCII frames and their gaps are not judged (`t35`, `gaps_below_t35` null when every
+  capture of the bus is ASCII); the ASCII rule, up to 1 s between a frame's characters, is
+  framing/timing.py's check, a warning on the frame;
 - master turnaround: from the end of an answer (response or exception) to the start of the next
   request: median, p95, max;
 - response times per slave against `--timeout`: the margin is timeout - the slowest response;
@@ -33,7 +37,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
-from dissector.framing.timing import DEFAULT_BAUD, LineTiming
+from dissector.framing.timing import DEFAULT_BAUD, LineTiming, mode_bits
 from dissector.model import Item, Kind, stamped_before
 from dissector.protocol.rules import awaits_answer
 from dissector.framing.linespeed import LineSettings
@@ -51,6 +55,11 @@ def _awaits_nothing(frame: Any) -> bool:
     )
 GAP_EDGES_MS = (1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0)
 MINUTE = 60.0
+# Serial Line Guide 2.5.2: ':' starts an ASCII frame, CR LF ends it; up to 1 s between its characters.
+ASCII_FRAMING = ("Modbus ASCII, ':' to CR LF: no silence separates frames, so t3.5 and t1.5 (RTU rules) "
+                 "are not applied and the line speed only times the characters (load, gaps); a frame's "
+                 "characters may be up to 1 s apart (a longer silence is warned on its frame)")
+MIXED_FRAMING = "RTU and Modbus ASCII captures: gaps below t3.5 counted in the RTU captures only"
 CLOSE_MARGIN = 0.9  # a response slower than this part of the timeout is close to it
 
 
@@ -192,6 +201,7 @@ class BusTiming:
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
     inputs: int = 0  # files decoded (new_input): several are one bus, as mergecap joins them
+    modes: set[str] = field(default_factory=set)  # the framing of each (new_input): t3.5 judges RTU gaps only
     # Told once, at the end, of a line speed at which the items overlap (overlap_warning; a wrong --baud).
     warn: Callable[[str], object] | None = None
 
@@ -201,6 +211,7 @@ class BusTiming:
         `title`: its name when several are decoded, kept in `stats.captures` too (--stats' header)."""
         self.mode = mode
         self.inputs += 1
+        self.modes.add(mode)
         if title is not None and stats is not None:
             stats.captures.append(title)
         if settings is not None:
@@ -208,7 +219,7 @@ class BusTiming:
         self.last_end = None
         self._answer_end = None
         if self.store is not None:
-            self.store.bus_line(self.char_time, self.t35, self.timeout, True)
+            self.store.bus_line(self.char_time, self._gap_floor, self.timeout, True)
 
     @property
     def fresh(self) -> bool:
@@ -217,7 +228,7 @@ class BusTiming:
 
     def attach(self, store: Any) -> None:
         self.store = store
-        store.bus_line(self.char_time, self.t35, self.timeout, False)
+        store.bus_line(self.char_time, self._gap_floor, self.timeout, False)
 
     def take_back(self) -> None:
         """The compiled store's state, here (once the items are all heard)."""
@@ -254,6 +265,17 @@ class BusTiming:
     @property
     def t35(self) -> float:
         return LineTiming(self.settings.baud, "rtu").t35
+
+    @property
+    def _gap_floor(self) -> float:
+        """The gap below which the capture at hand's gaps are counted: t3.5 in RTU, none in ASCII."""
+        return -math.inf if self.mode == "ascii" else self.t35
+
+    @property
+    def framings(self) -> str:
+        """`rtu`, `ascii`, or `mixed` (RTU and ASCII captures counted as one bus), from the captures decoded."""
+        modes = self.modes or {self.mode}
+        return "mixed" if len(modes) > 1 else "ascii" if modes == {"ascii"} else "rtu"
 
     def add_items(self, items: list[Item]) -> None:
         for item in items:
@@ -299,7 +321,7 @@ class BusTiming:
         if previous is not None:
             gap = time - previous
             self.gaps.add(gap)
-            if gap < self.t35:
+            if gap < self._gap_floor:
                 self.gaps_below_t35 += 1
             milliseconds = gap * 1000
             index = 0
@@ -391,6 +413,7 @@ class BusTiming:
         """The `bus` object of --stats --json."""
         self.finish()
         settings = self.settings
+        ascii_only = self.framings == "ascii"
         turnaround = self.turnaround.summary()
         histogram = []
         edges = (0.0, *GAP_EDGES_MS)
@@ -409,13 +432,13 @@ class BusTiming:
             "baud": settings.baud,
             "baud_source": settings.source,
             "bits_per_char": settings.char_bits(self.mode),
-            "t35": _round(self.t35),
+            "t35": None if ascii_only else _round(self.t35),
             "timeout": self.timeout,
             "span": None if self.span() is None else _round(self.span()),  # type: ignore[arg-type]
             "load": None if self.load() is None else round(self.load(), 6),  # type: ignore[arg-type]
             "load_per_minute": self.load_per_minute(),
             "gaps": self.gaps.summary(),
-            "gaps_below_t35": self.gaps_below_t35 if self.timed else None,
+            "gaps_below_t35": self.gaps_below_t35 if self.timed and not ascii_only else None,
             # items starting before the previous one ends at this speed: a wrong --baud (a warning says so)
             "overlaps": self.overlaps() if self.timed else None,
             "gap_histogram": histogram if self.timed else [],
@@ -446,14 +469,31 @@ class BusTiming:
         return (f"{what}: {count_text(count, 'frame')} would overlap the one before at {settings.baud} baud: "
                 f"the line is faster?{hint}")
 
+    def line_text(self, data: dict[str, Any]) -> str:
+        """The line's speed and character (`data`: report()'s); an ASCII character's bits said when assumed."""
+        framing, bits = self.framings, f"{data['bits_per_char']} bits a character"
+        if self.settings.bits is None and framing == "ascii":
+            bits += " (start, 7 data, parity or a second stop, stop)"
+        elif self.settings.bits is None and framing == "mixed":
+            bits = f"{mode_bits('rtu')} bits a character in RTU, {mode_bits('ascii')} in ASCII"
+        return f"{data['baud']} baud ({data['baud_source']}), {bits}"
+
+    def framing_text(self) -> str | None:
+        """What applies to the gaps when the bus is not all RTU (None: it is; t3.5 then says it all)."""
+        framing = self.framings
+        if framing == "ascii":
+            return ASCII_FRAMING
+        return MIXED_FRAMING if framing == "mixed" else None
+
     def render_plain(self, clock: Any = None) -> str:
         """The `Bus timing` section of --stats; `clock(seconds)` shows a time as the time column."""
         data = self.report()
         show = clock or (lambda seconds: f"{seconds:.6f}")
         lines = ["", "Bus timing"]
-        source = data["baud_source"]
-        lines.append(f"line: {data['baud']} baud ({source}), {data['bits_per_char']} bits a character, "
-                     f"t3.5 {data['t35'] * 1000:.3f} ms, timeout {data['timeout'] * 1000:g} ms")
+        rule = f"t3.5 {data['t35'] * 1000:.3f} ms, " if data["t35"] is not None else ""
+        lines.append(f"line: {self.line_text(data)}, {rule}timeout {data['timeout'] * 1000:g} ms")
+        if (framing := self.framing_text()) is not None:
+            lines.append(f"framing: {framing}")
         if self.inputs > 1:
             lines.append(f"{self.inputs} captures counted as one bus: gaps and turnarounds restart at each "
                          "capture, the load is over the span from the first item to the last")
@@ -470,8 +510,9 @@ class BusTiming:
         lines.append(text)
         gaps = data["gaps"]
         if gaps is not None:
+            below = "" if data["gaps_below_t35"] is None else f", {data['gaps_below_t35']} below t3.5"
             lines.append(
-                f"inter-frame gaps: {gaps['count']}, {data['gaps_below_t35']} below t3.5; min {gaps['min'] * 1000:.3f}"
+                f"inter-frame gaps: {gaps['count']}{below}; min {gaps['min'] * 1000:.3f}"
                 f" median {gaps['median'] * 1000:.3f} p95 {gaps['p95'] * 1000:.3f} max {gaps['max'] * 1000:.3f} ms"
             )
             lines.append("  " + ", ".join(gap_bins(data["gap_histogram"])))

@@ -51,13 +51,14 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
     if not report["timed"]:
         return parts + ["<p>No timestamps in this capture: load, gaps, turnaround and outages need a pcap, "
                         "pcapng or timed dump.</p>"]
-    line = f"{report['baud']} baud ({report['baud_source']}), {report['bits_per_char']} bits a character"
     load = report["load"]
-    rows = [
-        ["line", line], ["load", "-" if load is None else f"{load * 100:.1f} %"],
-        ["t3.5", f"{report['t35'] * 1000:.3f} ms"],
-        ["gaps below t3.5", f"{report['gaps_below_t35']} of {(report['gaps'] or {}).get('count', 0)}"],
-    ]
+    rows = [["line", bus.line_text(report)], ["load", "-" if load is None else f"{load * 100:.1f} %"]]
+    framing = bus.framing_text()
+    if framing is not None:  # an ASCII bus, or RTU and ASCII captures: what applies to the gaps
+        rows.append(["framing", framing])
+    if report["t35"] is not None:
+        rows.append(["t3.5", f"{report['t35'] * 1000:.3f} ms"])
+        rows.append(["gaps below t3.5", f"{report['gaps_below_t35']} of {(report['gaps'] or {}).get('count', 0)}"])
     bins = gap_bins(report["gap_histogram"])
     if bins:
         rows.append(["inter-frame gaps", ", ".join(bins)])
