@@ -86,9 +86,20 @@ def dump_tool(text: str, complete: bool) -> str | None:
                     raise
         except ValueError:
             continue
-        if parsed[0] is not None and parsed[0][0] == 0 and parsed[0][1]:
+        if parsed[0] is not None and parsed[0][1] and (parsed[0][0] == 0 or _marked(lines, tool)):
             return tool
     return None
+
+
+def _marked(lines: list[str], tool: str) -> bool:
+    """Do the lines carry the tool's own marks, which no plain hex dump has (xxd's colon after the offset,
+    which its lines parsed with; hexdump -C's |...| column on every line of bytes)? Then a dump whose
+    first line is not at offset 0 (its head cut off) is still the tool's, and its reader says which bytes
+    are missing, where a plain hex dump reader would stumble on the offsets or the character column."""
+    if tool == "xxd":
+        return True
+    data_lines = [line for line in lines if line.strip() != "*" and not _OFFSET_ONLY.fullmatch(line.strip())]
+    return bool(data_lines) and all(line.rstrip().endswith("|") for line in data_lines)
 
 
 def _repeated(line: bytes, count: int, chunk_size: int) -> Iterator[Chunk]:

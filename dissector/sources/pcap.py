@@ -48,7 +48,7 @@ class PcapRecords:
         self.record = 0
         self.between = False  # the last chunk given ended a record: the next bytes are a record header
         self.holding = False  # a record's header is read but its chunks are not all given yet
-        self.order, self.units, self.linktype = "<", 1_000_000, 0
+        self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
         self._chunks = self._read()
 
     def __iter__(self) -> PcapRecords:
@@ -70,7 +70,7 @@ class PcapRecords:
                 f"{inp.name}: truncated pcap file header ({len(header)} of {FILE_HEADER_SIZE} bytes)"
             )
         self.order, self.units = MAGICS[magic]
-        _major, _minor, _zone, _sigfigs, _snaplen, network = struct.unpack(self.order + "HHiIII", header[4:])
+        _major, _minor, _zone, _sigfigs, self.snaplen, network = struct.unpack(self.order + "HHiIII", header[4:])
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
         check_linktype(inp.name, self.linktype)
@@ -101,6 +101,12 @@ class PcapRecords:
                 log.warn(
                     "records captured in part",
                     f"record {self.record}: only {captured} of its {original} bytes were captured",
+                )
+            if 0 < self.snaplen < captured:  # (a damaged header or record: libpcap captures at most snaplen)
+                log.warn(
+                    "records longer than the snapshot length",
+                    f"record {self.record}: {captured} bytes, more than the file header's snapshot length "
+                    f"({self.snaplen}): a damaged file?",
                 )
             time: Stamp | None = Stamp.from_parts(seconds, fraction, self.units)
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
