@@ -4,8 +4,11 @@ A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`
 `fields` as `fields.KEY`, `time_relative`, `time_delta` or `time_delta_displayed` (seconds, as tshark's
 frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
 ...), which has one occurrence per register (and bit) the frame carries, empty where that register has
-no such key, so that the register columns of a line stay aligned. Lists (`warnings`, `notes`)
-have one occurrence per element. As tshark: `-E occurrence=f|l|a` picks the first, last or all
+no such key, so that the register columns of a line stay aligned; `address` then lists the addresses
+the frame names without carrying them (a read request's window), which -Y's `address` tests too. Lists
+(`warnings`, `notes`) have one occurrence per element. A key the Wireshark plugin has a field for is
+written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scaled` 4, `response_time`
+0.020000000, and `broadcast`, `unanswered` nothing where false. As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
 goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
 `-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
@@ -32,7 +35,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from dissector.errors import UsageError
-from dissector.render.filter_fields import ALIASES, FRAME_FIELDS, REGISTER_FIELDS  # not filters: -Y only
+from dissector.render.filter_fields import ALIASES, CATALOGUE, FRAME_FIELDS, REGISTER_FIELDS  # not filters: -Y only
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
@@ -161,18 +164,45 @@ def _text(value: Any) -> str:
     return str(value)
 
 
+_HEX_DIGITS = {"uint8": 2, "uint16": 4, "uint32": 8}
+
+
+def _shown_as(entry: dict[str, Any]) -> Any:
+    """How tshark 4.0 prints the plugin's field of a key (data/fields.toml), as a function of a value not
+    None or bool; None: as _text. -T fields of both then write the same text for the same frame."""
+    ftype = entry.get("ftype")
+    if entry.get("base") == "HEX" and ftype in _HEX_DIGITS:
+        return f"0x{{:0{_HEX_DIGITS[ftype]}x}}".format  # (crc 0x7734, not 30516)
+    if ftype == "double":
+        return "{:.15g}".format  # (scaled 4, not 4.0; 15 digits, as Wireshark shows a double)
+    if ftype == "relative_time":
+        return "{:.9f}".format  # (0.020000000: seconds and nanoseconds; vw3-decode's times are whole ns)
+    return None
+
+
+SHOWN_AS = {entry["key"]: shown for entry in CATALOGUE if "key" in entry and (shown := _shown_as(entry))}
+# Present only where true in the plugin (vw3.unanswered): where false, no occurrence, as tshark prints it.
+ONLY_TRUE = frozenset(entry["key"] for entry in CATALOGUE if entry.get("only_true"))
+
+
 def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
     head, _dot, rest = ALIASES.get(key, key).partition(".")
     if head in REGISTER_FIELDS:
         # One occurrence per register, empty where the register has no such key (8400 has no code):
         # the columns of one frame line up, and -E occurrence=f names the same register in each.
         elements = (record.get("registers") or []) + (record.get("bits") or [])
-        return [element.get(head) for element in elements]
+        values = [element.get(head) for element in elements]
+        if head == "address":  # then the addresses it names without their values, as -Y's `address` tests
+            # them (a read request's window) and the plugin's hidden vw3.reg.address (vw3.bit.address) has them
+            from dissector.render.filters import _elements
+
+            values += [element["address"] for element in _elements(record)[len(elements):]]
+        return values
     value = record.get(head)
     if rest:
         for part in rest.split("."):
             value = value.get(part) if isinstance(value, dict) else None
-    if value is None:
+    if value is None or value is False and head in ONLY_TRUE:
         return []
     if isinstance(value, list) and head in ("warnings", "notes"):
         return value
@@ -201,7 +231,10 @@ class FieldsWriter:
                 values = values[:1]
             elif values and options.occurrence == "l":
                 values = values[-1:]
-            text = printable(options.aggregator.join(_text(value) for value in values))
+            shown = SHOWN_AS.get(ALIASES.get(key, key))
+            text = printable(options.aggregator.join(
+                shown(value) if shown is not None and value is not None and not isinstance(value, bool)
+                else _text(value) for value in values))
             if self._neutralise:
                 out.append(spreadsheet_cell(text, quote))
             elif quote:

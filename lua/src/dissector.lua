@@ -191,7 +191,12 @@ if ok_original and rtac_original ~= nil then
   local rtac_time = Proto("vw3rtac", "VW3 RTAC timestamp")
   function rtac_time.dissector(tvb, pinfo, tree)
     if tvb:len() >= 8 and not pinfo.visited then
-      rtac_times[pinfo.number] = tvb:range(0, 4):uint() + tvb:range(4, 4):uint() / 1000000
+      local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
+      rtac_times[pinfo.number] = seconds + micros / 1000000
+      -- (and from the capture's first RTAC second: a double near 1.7e9 is 0.2 us coarse, so response
+      -- times come from these, exact to the microsecond: 0.020000000, not 0.019999981; lane.response_time)
+      rtac_first = rtac_first or seconds
+      rtac_rel[pinfo.number] = seconds - rtac_first + micros / 1000000
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

@@ -96,7 +96,7 @@ function proto.init()
   newest_record = 0 -- (the newest record's number: show.lua finish_all)
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
-  rtac_times = {}
+  rtac_times, rtac_rel, rtac_first = {}, {}, nil
   apply_prefs()
   -- Streams of records: the serial capture's (state), one per UDP conversation, one per TCP connection
   -- (with the records of each TCP call: dissector.lua).

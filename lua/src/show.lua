@@ -47,6 +47,35 @@ local function add_window(t, tvb, f, field, what, value)
   return item
 end
 
+-- The addresses a frame names without carrying their values (a read request's window, FC15's and FC16's
+-- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
+-- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
+-- vw3-decode's `address == 8401` (the same addresses: render/filters.py _elements, at most 2000).
+local BIT_WINDOW = {} -- (fn -> true: its request or answer carries bits, lift values "bits" or "coil")
+for _, by_fn in pairs(DATA.rules.by_code) do
+  for fn, entry in pairs(by_fn) do
+    local values = entry.rule and DATA.rules.lift[entry.rule].values
+    if values and (values.kind == "bits" or values.kind == "coil") then BIT_WINDOW[fn] = true end
+  end
+end
+
+local function add_named(t, tvb, f, full)
+  local start, quantity, run = f.start, f.quantity, f.registers or f.bits
+  if start == nil or quantity == nil or f.kind == EXCEPTION then return end
+  local count, first = run and run.count or 0, run and run.start
+  if count > 0 and count == quantity and first == start then return end -- (its values cover the window)
+  local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
+  for address = start, start + math.min(math.max(quantity, 1), 2000) - 1 do
+    address = address % 0x10000
+    if first == nil or (address - first) % 0x10000 >= count then
+      local item = t:add(field, at, address)
+      -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
+      if full == "unseen" and item.len ~= 0 then return end
+      item:set_hidden()
+    end
+  end
+end
+
 local function show_frame(st, f, tvb, tree, pinfo, full)
   local crc_ok = f.crc == f.crc_expected
   local t, whole, crc_at = tree, nil, nil
@@ -131,6 +160,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         add(sub, pf.bit_value, value, true)
       end
     end
+    add_named(t, tvb, f, full)
     if unseen.generated then
       -- what the skipped set_generated() calls of faked items would have done
       unseen.generated = false
@@ -372,9 +402,9 @@ local function dissect_now(st, tvb, pinfo, number)
     if time == 0 then time = nil end
   end
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
-  -- is not; lane.response_time. Not an RTAC record's, timed by the RTAC; stand-ins for pinfo have none.)
+  -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or nil end
+  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number] end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not

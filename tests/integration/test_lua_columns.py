@@ -4,6 +4,10 @@
 vw3.reg.address -e vw3.reg.code` pairs them and `-E occurrence=f` names the first register's code, not
 the first code; the statuses are vw3-decode's words (ok, protected, non-existent, ambiguous).
 
+A frame's `vw3.reg.address` (`vw3.bit.address`) then lists, hidden, the addresses it names without their
+values (a read request's window), as vw3-decode's `address` does after its registers: no other key has
+occurrences for them.
+
 Numbers (`vw3.reg.value`, `.scaled`, `.words`) keep their types (`vw3.reg.scaled > 5`): tshark 4.0 cannot
 print an empty number, and a text field of the same name makes it crash on `vw3.reg.value == 3`. Their
 occurrences are compared with vw3-decode's non-empty ones, in order.
@@ -12,6 +16,7 @@ Every shipped capture and a simulator session, real tshark 4.0.17, against vw3-d
 """
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
@@ -42,7 +47,7 @@ def plugin_rows(pcap: Path, *options: str, two_pass: bool = True, first: bool = 
     for line in result.stdout.splitlines():
         cells = line.split("\t")
         values = {key.split(".", 1)[1]: _split(cell) for key, cell in zip(keys, cells[2:])}
-        registers = max(len(values[f"reg.{key}"]) for key in ("address", "value", *TEXT_KEYS))
+        registers = max(len(values[f"reg.{key}"]) for key in ("value", *TEXT_KEYS))  # (not the named addresses)
         for key in TEXT_KEYS:
             # (one register's empty occurrence prints as an empty cell, as no occurrence would)
             if registers == 1 and not values[f"reg.{key}"]:
@@ -56,7 +61,7 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
     keys = ("address", *TEXT_KEYS, *NUMBER_KEYS)
     command = [sys.executable, "-m", "dissector", "-" if stdin else str(pcap), *options, "-T", "fields",
                "-E", f"aggregator={SEP}", *(["-E", "occurrence=f"] if first else []), "-e", "frame"]
-    for key in keys:
+    for key in ("registers", "bits", *keys):
         command += ["-e", key]
     run = subprocess.run(command, capture_output=True, cwd=ROOT, timeout=600,
                          input=pcap.read_bytes() if stdin else None)
@@ -64,11 +69,14 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
     rows = {}
     for line in run.stdout.decode().splitlines():
         cells = line.split("\t")
-        count = len(_split(cells[1]))
+        count = sum(len(json.loads(cell)) for cell in cells[1:3] if cell)  # the registers and bits it carries
         values = {}
-        for key, cell in zip(keys, cells[1:]):
+        for key, cell in zip(keys, cells[3:]):
             # (one register without the key prints an empty cell: one empty occurrence, not none)
-            values[key] = cell.split(SEP) if count else []
+            values[key] = cell.split(SEP) if count or (key == "address" and cell) else []
+            if key == "address":  # (then the addresses named without values)
+                assert len(values[key]) >= count or (first and len(values[key]) == 1), (key, line)
+                continue
             assert len(values[key]) == count or (first and len(values[key]) == 1), (key, line)
         rows[int(cells[0])] = values
     return rows
@@ -81,7 +89,7 @@ def _split(cell: str) -> list[str]:
 def differences(plugin: dict[int, dict], python: dict[int, dict]) -> list[str]:
     out = []
     for record, row in plugin.items():
-        bits = len(row["bit.address"])
+        bits = len(row["bit.value"])  # (bit.address: and the named addresses of a coil function)
         expected: dict[str, list[str]] = {key: [] for key in ("address", *TEXT_KEYS, *NUMBER_KEYS)}
         for item in row["items"]:
             for key, values in python[item].items():
@@ -133,8 +141,11 @@ def test_register_columns_of_a_simulator_session(tmp_path: Path) -> None:
 def test_p38_rows_exactly() -> None:
     p38 = ROOT / "captures" / "p38_protection.pcap"
     rows = plugin_rows(p38, two_pass=False)
+    # (the requests name 8400..8402 too: hidden vw3.reg.address, no other register field)
+    assert [(record, row["reg.address"], row["reg.code"]) for record, row in rows.items() if record % 2] == [
+        (record, ["8400", "8401", "8402"], []) for record in (1, 3, 5, 7, 9, 11)]
     assert [(record, row["reg.address"], row["reg.code"], row["reg.status"]) for record, row in rows.items()
-            if row["reg.address"]] == [
+            if row["reg.status"]] == [
         (2, ["8400", "8401", "8402"], ["", "", ""], ["", "", ""]),  # (one pass: slave 12 is still generic)
         (4, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "ok", "ok"]),
         (6, ["8400", "8401", "8402"], ["", "CHCF", "COP"], ["non-existent", "protected", "ok"]),
@@ -149,9 +160,9 @@ def test_p38_rows_exactly() -> None:
         record: row for record, row in rows.items() if record != 2}
     # -E occurrence=f: the first register's code (8400 has none), as vw3-decode says it
     first = plugin_rows(p38, two_pass=False, first=True)
-    assert [row["reg.code"] for row in first.values() if row["reg.address"]] == [[""]] * 6  # (it said CHCF)
+    assert [row["reg.code"] for row in first.values() if row["reg.status"]] == [[""]] * 6  # (it said CHCF)
     python = python_rows(p38, stdin=True, first=True)
-    assert [row["code"] for row in python.values() if row["address"]] == [[""]] * 6
+    assert [row["code"] for row in python.values() if row["status"]] == [[""]] * 6
     # Filters keep their types: codes and statuses by name, values as numbers.
     tshark = ensure_tool("tshark", "tshark")
     for expression, frames in (('vw3.reg.code == "CHCF" && vw3.reg.status == "protected"', "6 8 10 12"),

@@ -45,7 +45,7 @@ def test_a_crc_nobody_typed_is_called_received_by_no_output() -> None:
     record = json.loads(run_cli(["--json", *typed])[1])
     assert (record["crc_ok"], record["crc"], record["crc_expected"], record["crc_typed"]) == (None, None, 0xEF0E, False)
     assert run_cli(["-T", "fields", "-e", "frame", "-e", "crc_ok", "-e", "crc", "-e", "crc_expected", "-e", "crc_typed",
-                    *typed])[1] == "1\t\t\t61198\t0\n"
+                    *typed])[1] == "1\t\t\t0xef0e\t0\n"  # (crc as tshark writes vw3.crc)
     out = run_cli(["-x", *typed])[1]
     assert out.splitlines()[1:] == ["0000  0c 03 20 d0 00 03                                 .. ...", ""]
     assert run_cli(["-Y", "crc_ok", *typed])[1] == ""

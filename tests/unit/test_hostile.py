@@ -264,8 +264,9 @@ def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Pa
     status, out, err = run_cli([str(capture), "-T", "fields", "-e", "frame", "-e", "start", "-e", "quantity",
                                 "-e", "address", "-e", "value"])
     assert (status, err) == (0, "")
-    assert out.splitlines() == ["1\t8400\t0\t\t", "2\t8400\t0\t\t", "3\t10\t0\t20\t255", "4\t10\t0\t\t",
-                                "5\t16\t0\t\t", "6\t16\t0\t\t"]
+    # (`address` also lists what a frame names without a value, as -Y's address: its start, as reference_num)
+    assert out.splitlines() == ["1\t8400\t0\t8400\t", "2\t8400\t0\t8400\t", "3\t10\t0\t20,10\t255",
+                                "4\t10\t0\t10\t", "5\t16\t0\t16\t", "6\t16\t0\t16\t"]
     status, out, err = run_cli([str(capture), "-T", "registers"])
     assert (status, out, err) == (0, "3\t\t1\t23\twrite\t20\t\t\t\t255\t\t\t\t\n", "")  # only frame 3 names a register
 
