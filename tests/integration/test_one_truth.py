@@ -32,6 +32,7 @@ def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
     params: dict[tuple[int, int], dict] = {}
     changes: list[tuple[int, int, int]] = []  # (frame, slave, address)
     protections: list[tuple[int, int]] = []  # (frame, slave)
+    moments: set[tuple[int, int, str]] = set()
 
     def param(slave: int, register: dict) -> dict:
         return params.setdefault((slave, register["address"]), {
@@ -44,10 +45,15 @@ def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
         if old is not None and old != new:
             entry["changes"] += 1
             changes.append((record["frame"], record["slave"], register["address"]))
+        # The report tells a frame's spans opened as one event, and those it closed as another.
+        moment = None
         if unreadable and entry["status"] != new:
-            protections.append((record["frame"], record["slave"]))  # an unreadable span opens
+            moment = (record["frame"], record["slave"], "opened")  # an unreadable span opens
         elif not unreadable and entry["status"] is not None:
-            protections.append((record["frame"], record["slave"]))  # readable again
+            moment = (record["frame"], record["slave"], "closed")  # readable again
+        if moment is not None and moment not in moments:
+            moments.add(moment)
+            protections.append(moment[:2])
         entry["status"] = new if unreadable else None
         entry["state"] = new
 
@@ -164,7 +170,7 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
         listed = [event for event in data["events"] if event[1] == "protection"]
         origin = 0 if not data["timed"] else None
         if origin == 0 and not data["events_dropped"]:
-            assert [(int(x), slave) for x, _kind, slave, _text in listed] == protections, path
+            assert [(int(event[0]), event[2]) for event in listed] == protections, path
 
         # -T fields: one row per item, register keys one occurrence per register
         status, out, _ = run_cli([path, "-T", "fields", "-e", "frame", "-e", "slave", "-e", "address",
@@ -397,7 +403,7 @@ def test_standard_input_says_what_the_file_says(tmp_path: Path) -> None:
         data_ = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
         assert data_["event_counts"]["protection"] == len(protections), path
         if not data_["timed"] and not data_["events_dropped"]:
-            assert [(int(x), slave) for x, kind, slave, _text in data_["events"] if kind == "protection"] == protections
+            assert [(int(event[0]), event[2]) for event in data_["events"] if event[1] == "protection"] == protections
         assert run_cli([path, "--report", str(page), *options])[0] == 0
         from_file = json.loads(re.search(r'id="report-data">(.*?)</script>', page.read_text(encoding="utf-8")).group(1))
         # The whole report's data, but which series it keeps beyond its bound (first come: the frames

@@ -18,6 +18,7 @@
   capture outgrows COLUMNS of them. The series kept (MAX_SERIES) are the first seen in the stream.
 - Events: exceptions, protections, CRC errors, noise bursts, silences inside frames (the timing
   warnings), unanswered requests; counted per column for the timeline, the first MAX_EVENTS listed.
+  Protection events are a frame's, its registers in their detail (moments.py); chart marks a register's.
   An exception is told with the meaning its slave's device gives the code (on standard input, for a
   frame decoded before profile `auto` chose the device: the meaning of the device chosen).
 The x axis is the capture time (Unix seconds) when items are time-stamped, the frame number otherwise
@@ -29,11 +30,13 @@ import json
 import os
 from array import array
 from dataclasses import dataclass, field
+from operator import itemgetter
 from typing import Any, Iterator
 
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
+from dissector.render.report.moments import Moments
 from dissector.render.report.reading import MAX_LABELS, adopt
 from dissector.render.summary import noise_text
 
@@ -143,7 +146,7 @@ class Columns:
             if last != first or len(ends) > 1:
                 ends.append(last)
             if len(ends) > 1:
-                ends.sort(key=_x_of)  # stable: points at one x keep the order above
+                ends.sort(key=itemgetter(0))  # by x, stable: points at one x keep the order above
             for x, y in ends:
                 if xs and (x < xs[-1] or (x == xs[-1] and y == ys[-1])):
                     continue
@@ -214,7 +217,7 @@ class ReportCollector:
         self.series: dict[tuple[int, int], Series] = {}
         self.series_dropped = 0
         self.spans = 0  # unreadable spans opened (the compiled engine reads the statuses again when it grows)
-        self.events: list[tuple[float, str, int | None, str]] = []
+        self.events: list[tuple[float, str, int | None, str, str | None]] = []  # (x, kind, slave, text, detail)
         self.events_dropped = 0
         self.event_columns: dict[str, dict[int, int]] = {kind: {} for kind in EVENT_KINDS}
         self.event_counts: dict[str, int] = {kind: 0 for kind in EVENT_KINDS}
@@ -231,6 +234,7 @@ class ReportCollector:
         # Exceptions told before their slave's device was chosen: (event index or None, slave, function,
         # code, text told), retold with the device's meaning by data()
         self._pending: list[tuple[int | None, int, int, int, str]] = []
+        self._moments = Moments()  # the protection moments of the frame at hand, until flush()
 
     # -- the x axis -------------------------------------------------------------------------------
     def _double(self) -> None:
@@ -280,6 +284,7 @@ class ReportCollector:
             self.add(item)
 
     def add(self, item: Item) -> None:
+        self.flush()
         self._at = None
         x = self._x(item)
         for warning in item.warnings:
@@ -310,16 +315,32 @@ class ReportCollector:
         if self.owns_history:
             self.history.add(frame)
 
-    def _event(self, x: float, kind: str, slave: int | None, text: str) -> None:
+    def _event(self, x: float, kind: str, slave: int | None, text: str, detail: str | None = None,
+               number: int | None = None) -> None:
+        if number is None:  # the item at hand's (the engine's too): after the protection moments before it
+            self.flush()
+            number = self.number
         self.event_counts[kind] += 1
-        self.groups.add(kind, slave, text, x, self.number)
+        self.groups.add(kind, slave, text, x, number, detail)
         counts = self.event_columns[kind]
         col = self._col(x)
         counts[col] = counts.get(col, 0) + 1
         if len(self.events) < MAX_EVENTS:
-            self.events.append((x, kind, slave, text))
+            self.events.append((x, kind, slave, text, detail))
         else:
             self.events_dropped += 1
+
+    def _moment(self, x: float, slave: int, series: Series, status: str | None, how: str = "") -> None:
+        """A series' unreadable span opened (`status`) or closed (None) by the frame at hand (moments.py)."""
+        key = (self.number, x, slave)
+        if self._moments.key not in (None, key):
+            self.flush()
+        self._moments.add(key, series, status, how)
+
+    def flush(self) -> None:
+        """The protection events of the frame whose registers were given last (events keep their order)."""
+        for number, x, slave, text, detail in self._moments.take():
+            self._event(x, "protection", slave, text, detail, number)
 
     def _series(self, slave: int, register: Register) -> Series | None:
         key = (slave, register.address)
@@ -380,7 +401,7 @@ class ReportCollector:
                 self.spans += 1
                 how = f" (exception {frame.exception_code:02X})" if frame.kind is Kind.EXCEPTION else ""
                 self._mark(series, x, status + how)
-                self._event(x, "protection", slave, f"{_name(series)} {status}{how}")
+                self._moment(x, slave, series, status, how)
             return
         if series.status is not None:
             self._readable_again(series, x)
@@ -419,7 +440,7 @@ class ReportCollector:
 
     def _readable_again(self, series: Series, x: float) -> None:
         self._mark(series, x, f"readable again ({series.status} before)")
-        self._event(x, "protection", series.slave, f"{_name(series)} readable again")
+        self._moment(x, series.slave, series, None)
         series.status = None
 
     def engine_point(self, slave: int, function: int, address: int, value: int,
@@ -468,6 +489,7 @@ class ReportCollector:
         """Everything the page's script draws, JSON-ready, x relative to `origin`. With points=False
         the parameters come without their x/y lists: `parameters_json` writes those one series at a
         time, so that the points of a large report are never all Python objects at once."""
+        self.flush()
         if self.last_x is not None:
             while (self.last_x - (self.origin or 0.0)) / self.width >= COLUMNS:  # at most COLUMNS columns drawn
                 self._double()
@@ -489,7 +511,8 @@ class ReportCollector:
             "column_width": width,
             "parameters": parameters,
             "parameters_dropped": self.series_dropped,
-            "events": [[round(x - origin, digits), kind, slave, text] for x, kind, slave, text in self.events],
+            "events": [[round(x - origin, digits), kind, slave, text, *(() if detail is None else (detail,))]
+                       for x, kind, slave, text, detail in self.events],
             "events_dropped": self.events_dropped,
             "event_counts": self.event_counts,
             "event_columns": columns,
@@ -504,7 +527,7 @@ class ReportCollector:
             if text == told:
                 continue
             if index is not None:
-                self.events[index] = (*self.events[index][:3], text)
+                self.events[index] = (*self.events[index][:3], text, None)
             self.groups.retell("exception", slave, told, text)
         self._pending.clear()
 
@@ -564,18 +587,9 @@ class ReportCollector:
         return entry
 
 
-def _name(series: Series) -> str:
-    shown = series.label or str(series.address)
-    return f"{series.code} ({shown})" if series.code else shown
-
-
 def _exception_text(function: int, code: int, meaning: str | None) -> str:
     """An exception event's text (accel/reportfeed.py exception_event writes it too)."""
     return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
-
-
-def _x_of(point: tuple[float, float]) -> float:
-    return point[0]
 
 
 def _json(value: Any) -> str:

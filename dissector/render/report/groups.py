@@ -32,6 +32,7 @@ class Group:
     last_frame: int
     # Per varying number of the text, in order: (lowest, its text, highest, its text).
     ranges: list[tuple[float, str, float, str]] | None = None
+    detail: str | None = None  # a protection event's registers, each told (collect.py, moments.py)
 
     def widen(self, text: str) -> None:
         numbers = _VARYING.findall(text)
@@ -70,9 +71,9 @@ class EventGroups:
         self.groups: dict[tuple[str, int | None, str], Group] = {}
         self.ungrouped = 0
 
-    def add(self, kind: str, slave: int | None, text: str, x: float, frame: int) -> None:
+    def add(self, kind: str, slave: int | None, text: str, x: float, frame: int, detail: str | None = None) -> None:
         what = _NOUN.sub(r"\1s", _VARYING.sub("N", text)) if kind in _VARYING_KINDS else text
-        key = (kind, slave, what)
+        key = (kind, slave, what if detail is None else f"{what}\n{detail}")  # (a span's other statuses: another)
         group = self.groups.get(key)
         if group is None:
             if len(self.groups) >= MAX_GROUPS:
@@ -81,7 +82,7 @@ class EventGroups:
             ranges = None
             if kind in _VARYING_KINDS:
                 ranges = [(float(number), number, float(number), number) for number in _VARYING.findall(text)]
-            self.groups[key] = Group(kind, slave, text, 1, x, frame, x, frame, ranges)
+            self.groups[key] = Group(kind, slave, text, 1, x, frame, x, frame, ranges, detail)
             return
         group.count += 1
         group.last_x, group.last_frame = x, frame

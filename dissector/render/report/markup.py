@@ -8,11 +8,24 @@ import re
 _SPECIAL = re.compile("[&<>\"']")
 
 
+class Markup(str):
+    """A cell's HTML, made of escaped text (_details): _table writes it as it is."""
+
+
 def _esc(value: object) -> str:
     if type(value) is int:  # (most cells of the poll table: nothing to escape)
         return str(value)
+    if type(value) is Markup:
+        return value
     text = "" if value is None else str(value)
     return html.escape(text) if _SPECIAL.search(text) else text
+
+
+def _details(summary: str, detail: str | None) -> str:
+    """A text, with its detail folded under it when it has one (a protection event's registers)."""
+    if detail is None:
+        return summary
+    return Markup(f"<details><summary>{_esc(summary)}</summary>{_esc(detail)}</details>")
 
 
 def _ms(seconds: float | None) -> str:

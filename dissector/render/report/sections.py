@@ -10,7 +10,7 @@ from typing import Any
 
 from dissector.render.bustiming import gap_bins
 from dissector.render.report.collect import ReportCollector
-from dissector.render.report.markup import _esc, _ms, _table
+from dissector.render.report.markup import _details, _esc, _ms, _table
 from dissector.render.timefmt import Clock
 
 MAX_GROUP_ROWS = 1000
@@ -88,10 +88,11 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
 
 
 def event_groups(collector: ReportCollector, data: dict[str, Any], when: Callable[[float], str]) -> list[str]:
+    collector.flush()  # (data() did: the last frame's protection events are in)
     groups = collector.groups.rows()
     if not groups:
         return []
-    rows = [[group.kind, "" if group.slave is None else group.slave, group.label, group.count,
+    rows = [[group.kind, "" if group.slave is None else group.slave, _details(group.label, group.detail), group.count,
              f"{when(group.first_x)} #{group.first_frame}" if data["timed"] else f"#{group.first_frame}",
              (f"{when(group.last_x)} #{group.last_frame}" if data["timed"] else f"#{group.last_frame}")
              if group.count > 1 else ""]
