@@ -5,10 +5,9 @@ exception (`CHCF (8401) protected, COP (8402) protected, 8403..8412 non-existent
 made readable again are another. One register is told alone, as before (`CHCF (8401) protected`)."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-if TYPE_CHECKING:
-    from dissector.render.report.collect import Series
+Series = Any  # collect.py's Series (importing it here would be a cycle)
 
 
 class Moments:
