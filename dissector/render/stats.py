@@ -367,9 +367,8 @@ class StatsCollector:
                                    *(_ms(timing[key]) for key in ("min", "median", "p95", "max"))])
         if report["profiles"]:
             profiles = TableSpec("Device profiles", ["slave", "profile", "why"], [True, False, False])
-            for choice in report["profiles"]:
-                why = choice["reason"] + (f" (frame #{choice['frame']})" if choice["frame"] is not None else "")
-                profiles.rows.append([str(choice["slave"]), choice["profile"], why])
+            for choice in report["profiles"]:  # (a reason names the frame that decided it: said once)
+                profiles.rows.append([str(choice["slave"]), choice["profile"], choice["reason"]])
             blocks += [profiles, ""]
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:

@@ -281,16 +281,18 @@ def test_profile_rows_say_which_slave_got_which_profile_and_why() -> None:
     from dissector.render.report.html import render_report
     from dissector.render.report import ReportCollector
 
-    # The annotator's choices() (profile `auto`): asked once, at the end.
+    # The annotator's choices() (profile `auto`): asked once, at the end. A reason names the frame that decided
+    # it; the table says it once (it said "(frame #2)" again after it).
+    identified = "Read Device Identification in frame #2: ProductCode 'ATV71HU15M3'"
     choices = [
-        SimpleNamespace(slave=2, profile="atv71", reason="ProductCode ATV71HU15M3", frame=2),
+        SimpleNamespace(slave=2, profile="atv71", reason=identified, frame=2),
         SimpleNamespace(slave=5, profile="generic", reason="no evidence of a device: spec semantics only", frame=None),
     ]
     stats = StatsCollector(lambda: choices)
     for item in dissect(open_source(str(CAPTURES / "atv71_commissioning.pcap")), annotate=build_annotator(["atv71"], [])):
         stats.add(item)
     assert stats.report()["profiles"] == [
-        {"slave": 2, "profile": "atv71", "reason": "ProductCode ATV71HU15M3", "frame": 2},
+        {"slave": 2, "profile": "atv71", "reason": identified, "frame": 2},
         {"slave": 5, "profile": "generic", "reason": "no evidence of a device: spec semantics only", "frame": None},
     ]
     lines = stats.render_plain().splitlines()
@@ -298,9 +300,10 @@ def test_profile_rows_say_which_slave_got_which_profile_and_why() -> None:
     assert lines[start : start + 5] == [
         "Device profiles",
         "slave  profile  why",
-        "-" * 60,
-        "    2  atv71    ProductCode ATV71HU15M3 (frame #2)",
+        "-" * 81,
+        f"    2  atv71    {identified}",
         "    5  generic  no evidence of a device: spec semantics only",
     ]
-    assert "<td>2</td><td>atv71</td><td>ProductCode ATV71HU15M3 (frame #2)</td>" in render_report(ReportCollector(), stats)
+    shown = identified.replace("'", "&#x27;")
+    assert f"<td>2</td><td>atv71</td><td>{shown}</td>" in render_report(ReportCollector(), stats)
     assert "Device profiles" not in collect("p38_protection.pcap").render_plain()  # no choices(): no table

@@ -185,8 +185,7 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     parts.append(f'<h2 id="{anchor}slaves">Slaves</h2>')
     if summary["profiles"]:
         parts.append("<h3>Device profiles</h3>" + _table(["slave", "profile", "why"], [
-            [choice["slave"], choice["profile"],
-             choice["reason"] + (f" (frame #{choice['frame']})" if choice["frame"] is not None else "")]
+            [choice["slave"], choice["profile"], choice["reason"]]  # (it names the frame that decided it)
             for choice in summary["profiles"]
         ]))
     rows = []
