@@ -61,6 +61,10 @@ ASCII_FRAMING = ("Modbus ASCII, ':' to CR LF: no silence separates frames, so t3
                  "characters may be up to 1 s apart (a longer silence is warned on its frame)")
 MIXED_FRAMING = "RTU and Modbus ASCII captures: gaps below t3.5 counted in the RTU captures only"
 CLOSE_MARGIN = 0.9  # a response slower than this part of the timeout is close to it
+# Why an input has no timing: its items have no times (a raw .bin), or it has no item at all (a pcap whose
+# records are all empty, or that has none: times of nothing on the line are no timing either).
+UNTIMED = "no timestamps in this input: load, gaps, turnaround and outages need a pcap, pcapng or timed dump"
+UNHEARD = "no bytes in this input (no frame, no noise): no load, gaps, turnaround or outages to measure"
 
 
 class Quantiles:
@@ -450,6 +454,11 @@ class BusTiming:
             "backwards": {"items": self.backwards.items, "responses": self.backwards.responses} if self.timed else None,
         }
 
+    def untimed_text(self) -> str:
+        """Why an input has no timing (report()'s `timed` false): UNHEARD when it gave no item, UNTIMED else."""
+        self.take_back()
+        return UNTIMED if self.timed or self.untimed_items else UNHEARD
+
     def overlaps(self) -> int:
         """Items that start before the previous one ends at this line speed (by more than half a
         percentile bucket, 5 us): a negative gap, so a negative turnaround too."""
@@ -498,8 +507,7 @@ class BusTiming:
             lines.append(f"{self.inputs} captures counted as one bus: gaps and turnarounds restart at each "
                          "capture, the load is over the span from the first item to the last")
         if not data["timed"]:
-            lines.append("no timestamps in this input: load, gaps, turnaround and outages need a pcap, "
-                         "pcapng or timed dump")
+            lines.append(self.untimed_text())
             return "\n".join(lines) + "\n"
         minutes = data["load_per_minute"]
         busiest = max(minutes, key=lambda entry: entry["load"]) if minutes else None

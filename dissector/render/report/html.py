@@ -174,10 +174,11 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     ]
     parts: list[str] = []
     duration = summary["duration"]
+    heard = summary["frames"] or summary["noise"]["items"]  # (nothing: no time to tell, nor any x axis)
     parts.append(
         f"<p class=\"summary\">{count_text(summary['frames'], 'frame')}, "
         f"{count_text(summary['noise']['bytes'], 'noise byte')} in {count_text(summary['noise']['items'], 'run')}"
-        + (f", {duration:.3f} s" if duration is not None else ", no timestamps (x axis: frame number)")
+        + (f", {duration:.3f} s" if duration is not None else ", no timestamps (x axis: frame number)" if heard else "")
         + (f", from {_esc(merged_text(stats.captures))}" if len(stats.captures) > 1 else "")  # one bus, said
         + "</p>"
     )

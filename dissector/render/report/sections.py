@@ -8,7 +8,7 @@ from collections.abc import Callable
 from types import SimpleNamespace
 from typing import Any
 
-from dissector.render.bustiming import gap_bins
+from dissector.render.bustiming import UNHEARD, gap_bins
 from dissector.render.report.collect import ReportCollector
 from dissector.render.report.markup import _details, _esc, _ms, _table
 from dissector.render.timefmt import Clock
@@ -49,8 +49,10 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
         data["responses"].append({"slave": slave, "answers": 0, "points": _no_points})
     data["responses"].sort(key=lambda entry: entry["slave"])
     if not report["timed"]:
-        return parts + ["<p>No timestamps in this capture: load, gaps, turnaround and outages need a pcap, "
-                        "pcapng or timed dump.</p>"]
+        said = ("No bytes in this input (no frame, no noise): no load, gaps, turnaround or outages to measure"
+                if bus.untimed_text() == UNHEARD else
+                "No timestamps in this capture: load, gaps, turnaround and outages need a pcap, pcapng or timed dump")
+        return parts + [f"<p>{said}.</p>"]
     load = report["load"]
     rows = [["line", bus.line_text(report)], ["load", "-" if load is None else f"{load * 100:.1f} %"]]
     framing = bus.framing_text()
