@@ -94,13 +94,18 @@ class _Table:
         self.path = path
         self.schema = schema
         self.names = tuple(schema.names)
+        # What a row without the column gets: null, but an empty list for a list column (a noise run's
+        # record has no `notes`: it has none, as a frame with none has [], never "unknown").
+        import pyarrow as pa
+
+        self.absent = tuple([] if pa.types.is_list(column.type) else None for column in schema)
         self.pending: list[tuple[Any, ...]] = []  # rows in schema order, made into columns per row group
         self.rows = 0
         self.writer: Any = None
 
     def add(self, row: dict[str, Any]) -> None:
         pending = self.pending
-        pending.append(tuple(map(row.get, self.names)))  # absent keys: null
+        pending.append(tuple(map(row.get, self.names, self.absent)))  # absent keys: null, or []
         if len(pending) >= ROWS_PER_GROUP:
             self.flush()
 
