@@ -483,16 +483,18 @@ static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_
     }
 }
 
-/* RtuFramer._scan in step (no noise open): the shortest CRC match that an intact frame follows.
- * Both of the framer's interpretations scan alike, so the first one's kind stands. */
+/* RtuFramer._scan in step (no noise open): the shortest CRC match that an intact frame (or a record's
+ * end, a silence) follows. Both of the framer's interpretations scan alike, so the first one's kind stands. */
 static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
+    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
     Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
     /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer);
      * on a line that leaves 00 glitches, only the second (the 00 after a frame is one). */
     for (int glitches = e->glitchy ? 1 : 0; glitches < 2 && minimum <= maximum; glitches++) {
         CrcScan scan = crc_scan(b, i, minimum, maximum);
         for (Py_ssize_t length; (length = crc_next(&scan)) != 0;) {
-            int following = glitches ? followed(e, b, i + length, n) : valid_frame_at(e, b, i + length, n);
+            int following = glitches ? followed(e, b, i + length, n)
+                            : t->active && boundary_at(t, t->base + i + length) ? 1 : valid_frame_at(e, b, i + length, n);
             if (following < 0) return FRAME_NEED;
             if (following) return length;
         }

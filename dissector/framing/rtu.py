@@ -48,8 +48,9 @@ The evidence a real line gives, weighed where a frame with a good CRC is found (
   the line confirms its end as above (the end of the input only for the answer awaited), its address
   is a device's (1..247, or 0 with a function a broadcast may carry), it does not start with a glitch
   byte before a frame, and it holds no intact frame inside (a cut frame must not swallow the frames
-  after it). The answer awaited cut by the end of the capture is noise whose reason says so
-  ("the capture ends inside the response (8 of 9 bytes)"), never a frame of another kind.
+  after it; where records are frames, this one's or the next, none crossing its record's end). The
+  answer awaited cut by the end of the capture is noise whose reason says so ("the capture ends
+  inside the response (8 of 9 bytes)"), never a frame of another kind.
 Otherwise the byte is noise and the framer resynchronises. Measured by bench/noise_accuracy.py (see
 README.md, Framing real lines): recovery and invented frames per kind of noise. Noise runs are
 emitted in items of at most NOISE_ITEM_MAX bytes so that memory stays bounded on a garbage input.
@@ -209,7 +210,8 @@ class RtuFramer(Awaiting, StreamFramer):
                 if glitches:
                     following = self._followed(buf, i + length, n, final)
                 else:
-                    following = self._valid_frame_at(buf, i + length, n, final)
+                    # (a record's end right after it settles as a frame there would)
+                    following = self._boundary_at(i + length) or self._valid_frame_at(buf, i + length, n, final)
                 if following is None:
                     return NEED
                 # In step (right after a frame) a scanned frame is trusted over a short frame that may
@@ -222,14 +224,27 @@ class RtuFramer(Awaiting, StreamFramer):
                         return length
         return NEED if n - i < MAX_ADU and not final else NONE
 
+    def _ends_record(self, buf: bytearray, i: int, n: int) -> bool:
+        """Does a layout with a length rule at i check out and end where its record does? The source says
+        a frame ends there: a glitch-byte reading of buf[i] before a longer frame crossing that end is not
+        waited for, which held every later record in a single pass (the plugin in a live capture)."""
+        for _kind, rule in self._interpretations(buf, i):
+            length = rule(buf, i, n)
+            if type(length) is not Scan and MIN_ADU <= length <= MAX_ADU and i + length <= n and (
+                self._boundary_at(i + length) and _crc_ok(buf, i, length)
+            ):
+                return True
+        return False
+
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
         slave, function = buf[i], buf[i + 1]
         if slave in GLITCH_ADDRESSES:
             after = self._valid_frame_at(buf, i + 1, n, final)
             if after is None:
-                return NEED
-            if after:
+                if not self._ends_record(buf, i, n):
+                    return NEED
+            elif after:
                 return NONE  # a glitch byte before a frame
         valid: list[tuple[Kind, int]] = []
         damaged: list[tuple[Kind, int]] = []
@@ -317,7 +332,15 @@ class RtuFramer(Awaiting, StreamFramer):
             if following is None:
                 return NEED
             if following:
-                inside = self._intact_inside(buf, i, length, n, final)
+                # Records that are frames (a record that is this one, or the next one a frame: _ends_record)
+                # say no frame it holds crosses its record's end: one is not waited for (which held every
+                # later record in the plugin's one pass). A record's end alone does not say it: a USB
+                # adapter's reads end anywhere (bench/noise_accuracy.py, bursts).
+                end = i + length
+                bounded = self._boundary_at(end) and (
+                    self._record_starts_at(i) or (n - end >= MIN_ADU and self._ends_record(buf, end, n))
+                )
+                inside = self._intact_inside(buf, i, length, end if bounded else n, final or bounded)
                 if inside is None:
                     return NEED
                 if inside:

@@ -44,6 +44,9 @@ class StreamFramer(ABC):
         self._steady_step = -1.0  # a ByteTimes.step_us with which no silence is inside a chunk (timing.may_pause)
         # Where a source said a frame boundary is (a pcap record's end): breaks ties between layouts.
         self._boundaries: set[int] = set()
+        # Where a chunk that ends a record (boundary=True: a pcap record, fed whole) starts, kept apart from
+        # the boundaries (a silence is one too): a record that is one frame is the source's word (rtu.py).
+        self._record_starts: set[int] = set()
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
@@ -81,6 +84,7 @@ class StreamFramer(ABC):
             self._buf += chunk.data
             if chunk.boundary:
                 self._boundaries.add(self._base + len(self._buf))
+                self._record_starts.add(start)
         return self._run(final=False)
 
     def finish(self) -> list[Item]:
@@ -120,6 +124,7 @@ class StreamFramer(ABC):
         self._base = offset
         self._times = []
         self._boundaries = set()
+        self._record_starts = set()
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._glitches_only = True
@@ -138,6 +143,7 @@ class StreamFramer(ABC):
             self._boundaries.update(at for at in silences_inside(byte_times, chunk_start, self._timing) if at >= offset)
         if chunk.boundary:
             self._boundaries.add(chunk_start + len(chunk.data))
+            self._record_starts.add(chunk_start)
 
     def hand_back(self) -> tuple[int, bytes, tuple[int, int] | None]:
         """(offset, bytes not framed yet, expectation) for another engine; the buffer is emptied."""
@@ -184,10 +190,17 @@ class StreamFramer(ABC):
         if self._boundaries:
             # (one at the new base still counts: the next run starts there, however the feeding went)
             self._boundaries = {offset for offset in self._boundaries if offset >= self._base}
+        if self._record_starts:
+            self._record_starts = {offset for offset in self._record_starts if offset >= self._base}
 
     def _boundary_at(self, index: int) -> bool:
         """Did the source mark a frame boundary after buffer index `index`?"""
         return self._base + index in self._boundaries
+
+    def _record_starts_at(self, index: int) -> bool:
+        """Does a chunk that ends a record start at buffer index `index` (kept where another engine hands
+        the stream over inside it, take_over, as the record's end before it is not)?"""
+        return self._base + index in self._record_starts
 
     def _add_noise(self, start: int, end: int, reason: str, items: list[Item]) -> None:
         """Bytes start..end of the buffer belong to no frame."""

@@ -224,6 +224,15 @@ local function ends_record(s, b, i, n)
   return false
 end
 
+-- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
+local function record_start(s, i)
+  local at, times = s.base + i, s.times
+  for index = 1, #times, 2 do
+    if times[index] == at then return true end
+  end
+  return false
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
@@ -323,10 +332,13 @@ local function match(s, b, i, n, final)
   -- intact frame that follows it).
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
-    local following = followed(s, b, i + length, n, final, awaits)
+    local stop = i + length
+    local following = followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
-      local inside = intact_inside(s, b, i, length, n, final)
+      -- (records that are frames, this one or the next: none it holds crosses its record's end, rtu.py)
+      local bounded = boundary_at(s, stop) and (record_start(s, i) or (n - stop >= MIN_ADU and ends_record(s, b, stop, n)))
+      local inside = intact_inside(s, b, i, length, bounded and stop or n, final or bounded)
       if inside == nil then return NEED end
       if not inside then return kind, length, false end
     end
