@@ -15,6 +15,7 @@ from dissector.protocol.spec import SPEC
 
 # Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
 PLAIN_READS = table.plain_register_reads()
+REGISTER_READS = table.register_reads()  # (FC23 too: its read part may be the one refused)
 SHORT_PARTS = 6  # runs of parameters a summary line names in an exception explanation
 READ_LIMIT = int(SPEC.limits["read_registers"][1])  # type: ignore[index]
 _EXPLAINED_LIMIT = 4096  # explanations kept per device: memory stays bounded whatever the capture
@@ -42,7 +43,10 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     elif all_unreadable and request is not None and request.start is not None and request.quantity:
         _all_unreadable(frame, device, request, events)
     elif code in profile.exceptions:
-        frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=profile.exceptions[code]))
+        meaning = profile.exceptions[code]
+        if code == profile.all_protected_exception and function in REGISTER_READS:
+            meaning = text("all_protected_read", meaning=meaning)  # (not to a write: it reads nothing)
+        frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=meaning))
     elif profile.exceptions:
         known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))

@@ -119,7 +119,11 @@ local function explain_exception(f, device)
     -- them from the request and the device: inferred_registers), as vw3-decode lists them.
     f.inferred = true
   elseif meanings[code] ~= nil then
-    note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meanings[code] }))
+    local meaning = meanings[code]
+    if code == profile.all_protected_exception and READS[f.fn] ~= nil then -- (not to a write: it reads nothing)
+      meaning = say("all_protected_read", { meaning = meaning })
+    end
+    note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meaning }))
   elseif next(meanings) ~= nil then
     note(f, say("exception_undocumented", { code = code, device = profile.device, known = profile.documented }))
   end

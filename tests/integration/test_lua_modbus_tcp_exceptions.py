@@ -103,6 +103,6 @@ def test_exceptions_without_their_read_get_the_device_meaning(tmp_path: Path) ->
     rows = {row[0]: (row[1], row[5]) for row in _rows(pcap, *ATV71)}
     assert rows["1"] == ("", "exception 02 from the VW3 A3 303: address does not exist "
                              "(also: every parameter read is non-existent or protected)")
-    assert rows["3"] == ("", "exception 02 from the VW3 A3 303 to Write Single Register: address does not exist")
+    assert rows["3"] == ("", "exception 02 from the VW3 A3 303: address does not exist")
     assert rows["5"] == ("", "exception 03 from the VW3 A3 303 to Write Multiple Registers: "
                              "quantity beyond the card's limit")
