@@ -28,16 +28,25 @@ end
 local names_proto = Proto("vw3names", "VW3 register names for Wireshark's Modbus dissection")
 names_proto.prefs.enabled = Pref.bool("Name registers in Wireshark's Modbus dissection", true,
   "Add the register names, values and 16#8000 status of the device profiles to modbus packets")
+-- Wireshark 4.0's fields; FC6 and FC23 carry no register numbers there (reference and modbus.data).
 local modbus_fields = {}
-for key, name in pairs({ unit = "mbtcp.unit_id", code = "modbus.func_code", number = "modbus.regnum16",
-  value = "modbus.regval_uint16", request = "modbus.request_frame", start = "modbus.reference_num",
-  quantity = "modbus.word_cnt", exception = "modbus.exception_code", transaction = "mbtcp.trans_id" }) do
+for key, name in pairs({ code = "modbus.func_code", number = "modbus.regnum16", value = "modbus.regval_uint16",
+  request = "modbus.request_frame", start = "modbus.reference_num", quantity = "modbus.word_cnt",
+  exception = "modbus.exception_code", data = "modbus.data", read_start = "modbus.read_reference_num",
+  read_quantity = "modbus.read_word_cnt", write_start = "modbus.write_reference_num",
+  write_quantity = "modbus.write_word_cnt", unit = "mbtcp.unit_id", transaction = "mbtcp.trans_id",
+  length = "mbtcp.len" }) do
   local ok, field = pcall(Field.new, name)
   if ok then modbus_fields[key] = field end
 end
+-- The fields sorted to their ADU (a TCP segment may carry several, each its own unit and transaction).
+local ADU_FIELDS = { "code", "number", "value", "request", "start", "quantity", "exception", "data", "read_start",
+  "read_quantity", "write_start", "write_quantity", "unit" }
+local floor = math.floor
 local names_state = vw3.new_state(nil)
 -- Requests not answered yet, by connection and transaction: Wireshark gives an exception no
--- modbus.request_frame, and an exception 02 to a read is told from the read (p.38).
+-- modbus.request_frame, and an exception 02 to a read is told from the read (p.38); an FC23 answer's
+-- registers are those of its request's read window, an FC16 or FC23 answer confirms the request's writes.
 local asked, asked_count, ASKED_LIMIT = {}, 0, 4096
 
 function names_proto.init()
@@ -45,125 +54,232 @@ function names_proto.init()
   asked, asked_count = {}, 0
 end
 
-local function first_value(field)
-  local found = field and field()
+local function first_value(list)
+  local found = list and list[1]
   return found and found.value
 end
 
--- The transaction a packet is part of, from the client's side (to_server: the packet is a request).
-local function transaction_key(pinfo, to_server)
+-- The ADUs of a packet, in dissection order: each mbtcp.trans_id starts one, its MBAP length gives its
+-- end. A field is its ADU's by data source and offset; the source is told by its length, or where two
+-- ADUs of one length overlap (a reassembled ADU and the segment's own ones), by its first bytes too.
+local function source_key(fi, strong)
+  local source = fi.source
+  if source == nil then return "" end
+  if strong then return tostring(source) end
+  return source:len()
+end
+
+local function split_adus()
+  local transactions = modbus_fields.transaction and { modbus_fields.transaction() } or {}
+  local lengths = modbus_fields.length and { modbus_fields.length() } or {}
+  if #transactions == 0 or #transactions ~= #lengths then
+    return { { all = true, transaction = first_value(transactions) } } -- (no MBAP: the packet is one)
+  end
+  local adus, strong, last_of = {}, false, {}
+  for index, fi in ipairs(transactions) do
+    local start = fi.offset
+    local adu = { start = start, stop = start + 6 + lengths[index].value, key = source_key(fi, false),
+      transaction = fi.value, fi = fi, fields = {} }
+    local before = last_of[adu.key]
+    if before ~= nil and start < before.stop then strong = true end -- (in one source, ADUs follow each other)
+    last_of[adu.key] = adu
+    adus[index] = adu
+  end
+  if strong then
+    for _, adu in ipairs(adus) do adu.key = source_key(adu.fi, true) end
+  end
+  for _, key in ipairs(ADU_FIELDS) do
+    local extractor = modbus_fields[key]
+    local k = 1
+    for _, fi in ipairs(extractor and { extractor() } or {}) do
+      local offset, source = fi.offset, source_key(fi, strong)
+      -- (fields come in dissection order, as the ADUs do: the search goes on from the last one's)
+      for at = k, #adus do
+        local adu = adus[at]
+        if adu.key == source and offset >= adu.start and offset < adu.stop then
+          local list = adu.fields[key] or {}
+          list[#list + 1] = fi
+          adu.fields[key], k = list, at
+          break
+        end
+      end
+    end
+  end
+  return adus
+end
+
+local function whole(key)
+  local extractor = modbus_fields[key]
+  return extractor and { extractor() } or nil
+end
+
+-- The ADU's fields of a kind (the whole packet's where it has no MBAP).
+local function fields_of(adu, key)
+  if adu.all then return whole(key) end
+  return adu.fields[key]
+end
+
+-- The transaction an ADU is part of, from the client's side (to_server: the ADU is a request).
+local function transaction_key(pinfo, to_server, transaction)
   local client, client_port, server, server_port = pinfo.dst, pinfo.dst_port, pinfo.src, pinfo.src_port
   if to_server then client, client_port, server, server_port = server, server_port, client, client_port end
   -- (tostring: a port may be absent, as under the test stub or a capture whose transport has none)
   return format("%s:%s>%s:%s#%s", tostring(client), tostring(client_port), tostring(server),
-    tostring(server_port), tostring(first_value(modbus_fields.transaction)))
+    tostring(server_port), tostring(transaction))
 end
 
--- A request (first pass): kept until its answer comes, as the RTU plugin pairs it (start and quantity).
-local function remember_request(pinfo, code)
+-- The registers of an ADU with their value bytes (range), as Wireshark lists them (regnum16, regval), or
+-- from modbus.data where Wireshark 4.0 lists none: FC6's reference, FC23's write window, and an FC23
+-- answer's read window from its request.
+local function registers_of(adu, fn, request)
+  local registers = {}
+  local numbers, values = fields_of(adu, "number"), fields_of(adu, "value")
+  if numbers ~= nil and values ~= nil and #numbers > 0 then
+    for index = 1, math.min(#numbers, #values) do
+      local value = values[index]
+      registers[index] = { address = numbers[index].value, value = value.value, range = value.range }
+    end
+    return registers
+  end
+  local data = fields_of(adu, "data")
+  data = data and data[1]
+  if data == nil then return registers end
+  local start, count = nil, floor(data.len / 2)
+  if fn == 6 then
+    start, count = first_value(fields_of(adu, "start")), math.min(count, 1)
+  elseif fn == 23 and fields_of(adu, "request") == nil then
+    start, count = first_value(fields_of(adu, "write_start")), math.min(count,
+      first_value(fields_of(adu, "write_quantity")) or 0)
+  elseif fn == 23 and request ~= nil and request.fn == 23 then
+    start, count = request.start, math.min(count, request.quantity or 0)
+  end
+  if start == nil then return registers end
+  local range = data.range
+  for index = 0, count - 1 do
+    local bytes = range:range(2 * index, 2)
+    registers[index + 1] = { address = (start + index) % 0x10000, value = bytes:uint(), range = bytes }
+  end
+  return registers
+end
+
+-- The value ranges of an ADU's registers, in order (a later pass: the names were made on the first).
+local function ranges_of(adu)
+  local ranges = {}
+  local values = fields_of(adu, "value")
+  if values ~= nil and #values > 0 then
+    for index, value in ipairs(values) do ranges[index] = value.range end
+    return ranges
+  end
+  local data = fields_of(adu, "data")
+  data = data and data[1]
+  if data == nil then return ranges end
+  for index = 0, floor(data.len / 2) - 1 do ranges[index + 1] = data.range:range(2 * index, 2) end
+  return ranges
+end
+
+-- A request (first pass): kept until its answer comes, as the RTU plugin pairs it: its window (FC23:
+-- the read one) and the registers it writes.
+local function remember_request(pinfo, adu, fn, slave, written)
   if asked_count >= ASKED_LIMIT then asked, asked_count = {}, 0 end -- (requests never answered: bounded)
-  asked[transaction_key(pinfo, true)] = { kind = vw3.REQUEST, fn = code % 128,
-    start = first_value(modbus_fields.start), quantity = first_value(modbus_fields.quantity),
-    slave = first_value(modbus_fields.unit) or 0, number = pinfo.number }
+  local start = first_value(fields_of(adu, "start")) or first_value(fields_of(adu, "read_start"))
+  local quantity = first_value(fields_of(adu, "quantity")) or first_value(fields_of(adu, "read_quantity"))
+  asked[transaction_key(pinfo, true, adu.transaction)] = { kind = vw3.REQUEST, fn = fn % 128, start = start,
+    quantity = quantity, slave = slave, number = pinfo.number, written = written }
   asked_count = asked_count + 1
 end
 
-local function answered(pinfo)
-  local key = transaction_key(pinfo, false)
+local function answered(pinfo, adu)
+  local key = transaction_key(pinfo, false, adu.transaction)
   local request = asked[key]
   if request ~= nil then asked[key], asked_count = nil, asked_count - 1 end
   return request
 end
 
+-- Writes the device confirmed go into the parameter story, as the RTU plugin's ([confirm]: FC6's echo,
+-- FC16's and FC23's answer): a later 16#8000 there is told against the value written.
+local function remember_writes(device, number, registers)
+  if not device.track then return end
+  for _, reg in ipairs(registers) do
+    local value = reg.value
+    env.remember_writes(device.seen, number, { start = reg.address, count = 1, first = 1 },
+      { floor(value / 256), value % 256 })
+  end
+end
+
 -- An exception (first pass) explained as the RTU plugin explains it (explain_exception): the device's
 -- meaning, or for an exception 02 to a read, the parameters of the read with the status it tells.
-local function explain(pinfo, fn, code)
-  local f = { slave = first_value(modbus_fields.unit) or 0, fn = fn % 128,
-    kind = env.EXCEPTION, exception_code = code, request = answered(pinfo), notes = {}, warnings = {},
-    number = pinfo.number, unit_zero = true }
+local function explain(pinfo, adu, fn, code, slave)
+  local f = { slave = slave, fn = fn % 128, kind = env.EXCEPTION, exception_code = code,
+    request = answered(pinfo, adu), notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
   local device = vw3.device_now(names_state, f)
-  if not device then return nil end
+  if not device then return false end
   env.explain_exception(f, device)
   local registers = f.inferred and env.inferred_registers(names_state, f) or {}
-  return { registers = registers, notes = f.notes, device = device }
+  return { registers = registers, notes = f.notes, device = device, slave = slave }
 end
 
-local function add_tree(tvb, tree, done, slave)
+-- One ADU, first pass (in capture order: the protection story and profile auto follow it): what its
+-- tree shows, or false. A request is remembered, an answer paired; registers are named.
+local function name_adu(pinfo, adu)
+  local fn = first_value(fields_of(adu, "code"))
+  if fn == nil then return false end
+  local slave = first_value(fields_of(adu, "unit")) or 0
+  local code = first_value(fields_of(adu, "exception"))
+  if code ~= nil then return explain(pinfo, adu, fn, code, slave) end
+  local response = fields_of(adu, "request") ~= nil
+  local request = response and answered(pinfo, adu) or nil
+  local registers = registers_of(adu, fn % 128, request)
+  if not response then remember_request(pinfo, adu, fn, slave, registers) end
+  local f = { slave = slave, fn = fn % 128, kind = response and vw3.RESPONSE or vw3.REQUEST,
+    registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
+  local confirmed = response and request ~= nil and request.written ~= nil and #request.written > 0
+    and env.CONFIRMED.answer[f.fn]
+  if #registers == 0 then
+    -- (an FC16 answer: no registers to name, nor evidence for profile auto; its request's writes count)
+    if confirmed then remember_writes(env.device_of(names_state, f), pinfo.number, request.written) end
+    return false
+  end
+  local device = vw3.device_now(names_state, f)
+  if not device then return false end
+  if confirmed then remember_writes(device, pinfo.number, request.written) end -- (FC23 writes, then reads)
+  vw3.annotate_registers(names_state, f, device, registers, response and vw3.reads[f.fn] ~= nil)
+  if response and env.CONFIRMED.echo[f.fn] then remember_writes(device, pinfo.number, registers) end
+  return { registers = registers, notes = f.notes, device = device, slave = slave }
+end
+
+local function add_tree(tvb, tree, done, whole_range)
   if #done.registers == 0 and #done.notes == 0 then return end
-  local t = tree:add(names_proto, tvb:range(0, tvb:len()))
-  t:set_text(format("VW3 register names (%s, unit %d)", done.device.profile.title, slave))
+  local t = tree:add(names_proto, whole_range)
+  t:set_text(format("VW3 register names (%s, unit %d)", done.device.profile.title, done.slave))
   local fake = { offset = 0, at = 0, bi = 0, length = tvb:len(), data_at = 2, data_len = 0 }
-  for _, reg in ipairs(done.registers) do
-    local range = reg.field and reg.field.range
-    if range ~= nil then
-      vw3.add_register(t, tvb, fake, reg, range)
-    else
-      vw3.add_register(t, tvb, fake, reg)
-    end
-  end
-  for _, text in ipairs(done.notes) do vw3.add_text(t:add(pf.note, tvb:range(0, tvb:len()), text), ex.note, text) end
-end
-
--- A packet without register numbers: a request to remember, or an exception to explain.
-local function dissect_other(tvb, pinfo, tree)
-  local fn, code = first_value(modbus_fields.code), first_value(modbus_fields.exception)
-  local done = names_state.records[pinfo.number]
-  if done == nil and fn ~= nil then -- (once, in capture order, as the registers below)
-    if code ~= nil then
-      done = explain(pinfo, fn, code)
-    elseif first_value(modbus_fields.request) == nil then
-      remember_request(pinfo, fn)
-    else
-      answered(pinfo)
-    end
-    names_state.records[pinfo.number] = done or false
-  end
-  if done then add_tree(tvb, tree, done, first_value(modbus_fields.unit) or 0) end
+  for _, reg in ipairs(done.registers) do vw3.add_register(t, tvb, fake, reg, reg.range or whole_range) end
+  for _, text in ipairs(done.notes) do vw3.add_text(t:add(pf.note, whole_range, text), ex.note, text) end
 end
 
 function names_proto.dissector(tvb, pinfo, tree)
-  if modbus_fields.number == nil or modbus_fields.value == nil then return end
-  -- Every packet comes here: the cheapest test first (no register numbers, no table made).
-  if modbus_fields.number() == nil then
-    if (modbus_fields.start and modbus_fields.start() or modbus_fields.exception and modbus_fields.exception())
-        and names_proto.prefs.enabled and modbus_fields.code and env then
-      dissect_other(tvb, pinfo, tree)
-    end
-    return
-  end
-  if not names_proto.prefs.enabled then return end
-  if tvb:len() == 0 then return end
-  local numbers = { modbus_fields.number() }
-  if #numbers == 0 then return end
-  local values = { modbus_fields.value() }
-  local codes = modbus_fields.code and { modbus_fields.code() } or {}
-  local units = modbus_fields.unit and { modbus_fields.unit() } or {}
-  local requests = modbus_fields.request and { modbus_fields.request() } or {}
-  local registers = {}
-  for index = 1, math.min(#numbers, #values) do
-    registers[index] = { address = numbers[index].value, value = values[index].value, field = values[index] }
-  end
-  local code = codes[1] and codes[1].value or 3
-  local f = {
-    slave = units[1] and units[1].value or 0, fn = code % 128,
-    kind = (#requests > 0) and vw3.RESPONSE or vw3.REQUEST,
-    registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true,
-  }
-  -- The protection story and profile auto follow the capture order: computed once, on the first pass,
-  -- then reused.
+  -- Every packet comes here: the cheapest test first (no Modbus PDU, no table made).
+  if modbus_fields.code == nil or modbus_fields.code() == nil then return end
+  if not names_proto.prefs.enabled or env == nil or tvb:len() == 0 then return end
+  local adus = split_adus()
   local done = names_state.records[pinfo.number]
-  if done == nil then
-    local device = vw3.device_now(names_state, f)
-    if not device then return end
-    if f.kind == vw3.REQUEST then remember_request(pinfo, code) else answered(pinfo) end
-    vw3.annotate_registers(names_state, f, device, registers, f.kind == vw3.RESPONSE and vw3.reads[f.fn] ~= nil)
-    done = { registers = registers, notes = f.notes, device = device }
+  if done == nil then -- (once, in capture order)
+    done = {}
+    for index, adu in ipairs(adus) do done[index] = name_adu(pinfo, adu) end
     names_state.records[pinfo.number] = done
-  else
-    for index, reg in ipairs(done.registers) do
-      if registers[index] ~= nil then reg.field = registers[index].field end
+  end
+  for index, adu in ipairs(adus) do
+    local named = done[index]
+    if named then
+      -- (the ranges are this dissection's: a later pass shows the names made on the first)
+      local ranges = ranges_of(adu)
+      for at, reg in ipairs(named.registers) do reg.range = ranges[at] end
+      local whole_range = tvb:range(0, tvb:len())
+      if adu.fi ~= nil then
+        local source = adu.fi.source
+        whole_range = source:range(adu.start, math.min(adu.stop, source:len()) - adu.start)
+      end
+      add_tree(tvb, tree, named, whole_range)
     end
   end
-  add_tree(tvb, tree, done, f.slave)
 end
 register_postdissector(names_proto)
