@@ -35,11 +35,15 @@ class Dissector:
         hold: bool = True,
         timeout: float | None = None,
         gaps: GapChecker | None = None,
+        live: bool = False,
     ) -> None:
         self.framer = framer if framer is not None else RtuFramer()
         self.pairer = Pairer(hold=hold, timeout=timeout)
         self.annotate = annotate
         self.gaps = gaps
+        # A file ends when its last bytes came (a request within its timeout of that: not known whether it
+        # was answered); live, when the clock says (expire: a request past its timeout is unanswered).
+        self._stamps_end = not live
 
     def _finish_items(self, items: list[Item]) -> list[Item]:
         annotate = self.annotate
@@ -56,6 +60,8 @@ class Dissector:
     def feed(self, chunk: Chunk) -> list[Item]:
         if self.gaps is not None:
             self.gaps.observe(chunk)
+        if self._stamps_end and chunk.data and chunk.time is not None:
+            self.pairer.end = chunk.time
         return self._finish_items(self.pairer.push(self.framer.feed(chunk)))
 
     def push(self, items: list[Item]) -> list[Item]:

@@ -25,8 +25,8 @@ them, which is when the Python live path shows them.
 
 With -c N (`count`), the Python live path's capture thread keeps its framer's items up to the Nth frame
 and stops (CaptureThread.deliver); the display then finishes the pairer, so a request that is the Nth
-frame is unanswered, "the capture ends" before its answer. Here the engine's frames of each slice are
-cut at the Nth before they are decoded and annotated (a request that is the Nth is finished as the
+frame is not known to be answered or not, "the capture ends" before its answer (pairing.capture_ended).
+Here the engine's frames of each slice are cut at the Nth before they are decoded and annotated (a request that is the Nth is finished as the
 pairer would finish it), and the Python stages' framer, when they have the stream, is cut as the
 capture thread cuts it (_CountedFramer); nothing is read after the cut, and finish() then finishes
 only the pairer (the capture thread does not finish its framer after a count). tests/differential/test_live_compiled.py holds

@@ -422,11 +422,11 @@ def run_live(
     compiled = compiled_mode(args, is_terminal, clock)
     if compiled is not None:
         # The capture thread only reads; the display frames (dissector/accel/livepath.py).
-        dissector = Dissector(framer=framer, hold=True, annotate=annotate, timeout=timeout)
+        dissector = Dissector(framer=framer, hold=True, annotate=annotate, timeout=timeout, live=True)
         framer = None  # type: ignore[assignment]
     else:
         # The framer is the capture thread's; the dissector pairs, decodes and annotates what it frames.
-        dissector = Dissector(hold=True, annotate=annotate, timeout=timeout)
+        dissector = Dissector(hold=True, annotate=annotate, timeout=timeout, live=True)
     handoff = Handoff(HANDOFF_READS_LIMIT) if compiled is not None else Handoff()
     capture = CaptureThread(
         port, framer, files, handoff, silence_threshold(args.baud), args.duration, args.count,  # type: ignore[arg-type]

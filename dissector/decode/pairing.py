@@ -9,7 +9,9 @@ exception (from a server that does not support it) still answers it. A response 
 request of its slave and function when it echoes what the spec has it echo ([pairing] echo: an FC8
 answer's sub-function); one that does not answers nothing (the RTU framer weighs the echo already and
 frames such an FC8 frame as the master's next request: RtuFramer._awaited). A request followed by another request (or
-by the end of the capture) was not answered. With `hold=True` (files), a request is held back until
+by the end of the capture more than the timeout after it) was not answered; one the capture ends
+sooner after (a live capture stopped by -c, a file cut right after a request) may have been: that is not
+known, it is not counted unanswered and its note says so. With `hold=True` (files), a request is held back until
 the next frame tells whether it was answered, so its own line can say so, as tshark's second pass
 would. With `hold=False`, every item is released at once, and the next request carries the note
 instead.
@@ -49,11 +51,21 @@ SAME_SHAPE = frozenset(
 )
 
 
-def capture_ended(request: Frame, cut: str | None = None) -> None:
-    """A request whose answer the capture does not hold: unanswered, and why (an answer cut by the end
-    of the capture, else "the capture ends")."""
-    request.unanswered = True
-    request.notes.append(cut or text("capture_ends"))
+def capture_ended(request: Frame, cut: str | None = None, waited: float | None = None,
+                  timeout: float | None = None) -> None:
+    """A request whose answer the capture does not hold, its last bytes heard `waited` seconds after the
+    request's (None: not known). Past the timeout the master gave up: unanswered. Sooner, the slave may
+    have answered after the capture stopped: not known, and not counted unanswered. The note says why (an
+    answer cut by the end of the capture: it did answer)."""
+    if timeout is not None and waited is not None and waited > timeout:
+        request.unanswered = True
+        request.notes.append(cut or text("capture_ends"))
+    elif cut is not None:
+        request.notes.append(cut)
+    elif waited is None or timeout is None or waited <= 0:
+        request.notes.append(text("capture_ends_unknown"))
+    else:
+        request.notes.append(text("capture_ends_within", waited_ms=waited * 1000, timeout_ms=timeout * 1000))
 
 
 class Pairer:
@@ -62,6 +74,8 @@ class Pairer:
         self._timeout = timeout
         self._pending: Frame | None = None
         self._pending_released = False
+        # When the capture's last bytes came (Dissector.feed: its last chunk's time; None: not known).
+        self.end: float | None = None
         # The open request is one the spec has no server answer (never_answered): only an exception can
         # answer it, and without one it is not unanswered.
         self._answerless = False
@@ -127,8 +141,10 @@ class Pairer:
         out: list[Item] = []
         pending = self._pending
         if pending is not None and not self._answerless:
-            if self._pending_released:
-                pending.unanswered = True
+            end, asked = self.end, pending.time
+            waited = end - asked if end is not None and asked is not None else None
+            if self._pending_released:  # (its line is out: only the count can still say it)
+                pending.unanswered = self._timeout is not None and waited is not None and waited > self._timeout
             else:
                 # The framer names an answer cut by the end of the capture (RtuFramer._cut_answer).
                 cut = next(
@@ -136,7 +152,7 @@ class Pairer:
                      if isinstance(item, Noise) and item.reason.startswith(CUT_ANSWER)),
                     None,
                 )
-                capture_ended(pending, cut)
+                capture_ended(pending, cut, waited, self._timeout)
         self._pending = None
         self._release(out)
         return out

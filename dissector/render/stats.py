@@ -13,7 +13,8 @@ Counting rules (the table headers say the same):
   contents cannot be trusted, so it is neither a request nor a response nor an exception.
 - requests: good requests, broadcasts included; `broadcasts` counts those to slave 0. responses: normal
   answers; exceptions: exception answers, by code. unanswered: requests the pairing stage found no
-  answer for (broadcasts expect none). Response times: answers (normal or exception) paired with their
+  answer for (broadcasts expect none; a request the capture ends within its timeout of: not known, not
+  counted). Response times: answers (normal or exception) paired with their
   request and both timed, but an answer stamped before its request (time going backwards: pairing.py's
   warning; the bus timing counts them).
 - Per parameter (slave, address, and its code when a profile names it), by the rules of the parameter

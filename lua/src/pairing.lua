@@ -5,6 +5,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
+local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
 local ECHO = DATA.pairing.echo
 
 -- ---------------------------------------------------------------------------------------------------
@@ -165,4 +166,18 @@ local function pair(st, f)
       note(f, UNMATCHED)
     end
   end
+end
+
+-- The capture ends with request f awaiting its answer (the second pass: the first has read it all):
+-- pairing.py capture_ended. Its last record (st.times' last time) later than the timeout after f: the
+-- master gave up, unanswered; sooner, the slave may have answered after the capture stopped: not known.
+-- Returns whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
+local function ended(st, f)
+  local times, timeout, cut = st.times, st.timeout, st.cut_note
+  local last = times[#times]
+  local waited = last and f.time and last - f.time or nil
+  if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
+  if cut ~= nil then return false, cut end
+  if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end
+  return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })
 end

@@ -3,7 +3,7 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.show"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local CAPTURE_ENDS, UNMATCHED = say("capture_ends", {}), say("unmatched", {}) -- (data/modbus.toml [texts])
+local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 
 -- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
 -- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
@@ -190,8 +190,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   -- Known only once the whole capture has been read (second pass; pinfo nil: the record's first
   -- dissection, which is never a later pass's, and asks pinfo nothing).
-  -- (a request the spec has no server answer, pairing's answerless, is never unanswered)
-  local ends_unanswered = f.kind == REQUEST and st.pending == f and not f.answerless and pinfo ~= nil and pinfo.visited
+  -- (a request the spec has no server answer, pairing's answerless, is never unanswered; the end: vw3.pairing's ended)
+  local ends_unanswered, ends_note = false, nil
+  if f.kind == REQUEST and st.pending == f and not f.answerless and pinfo ~= nil and pinfo.visited then
+    ends_unanswered, ends_note = ended(st, f)
+  end
   -- (present only when true: `-Y vw3.unanswered` then finds exactly the requests not answered)
   if f.kind == REQUEST and (f.unanswered or ends_unanswered) then
     add_said(t, whole, pf.unanswered, true, ex.unanswered, "Request not answered")
@@ -212,8 +215,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   local notes = f.notes or NO_INTERPRETATION
   local count = #notes
-  for index = 1, count + (ends_unanswered and 1 or 0) do
-    local text = st.cut_note or CAPTURE_ENDS
+  for index = 1, count + (ends_note and 1 or 0) do
+    local text = ends_note
     if index <= count then text = notes[index] end
     local unmatched = f.no_request and text == UNMATCHED
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)

@@ -90,7 +90,8 @@ local function framing(case)
 end
 
 -- Paired as take_frame pairs (lua/src/pairing), numbered as take_items numbers; the request still awaited
--- at the end is unanswered with the note the display gives it (lua/src/tree: the capture's cut, or none).
+-- at the end has what the display gives it at the second pass (lua/src/pairing ended: unanswered or not
+-- known, its note).
 local function paired(case)
   local st, items = framed(case)
   for index, item in ipairs(items) do
@@ -116,8 +117,10 @@ local function pairing(case)
       for _, text in ipairs(list(item.notes)) do notes[#notes + 1] = text end
       local unanswered = item.unanswered == true
       if item == st.pending then
-        unanswered = true
-        notes[#notes + 1] = cut or "the capture ends before any response"
+        st.cut_note = cut
+        local note
+        unanswered, note = M.ended(st, item)
+        notes[#notes + 1] = note
       end
       got[index] = { number = index, request = item.request and item.request.number, unanswered = unanswered,
         broadcast = item.broadcast == true, notes = notes }

@@ -65,8 +65,8 @@ def test_within_the_timeout_the_identical_frame_is_the_answer(
     assert out == (
         "     1     0.000000  12 request   Write Single Register 3104 HSP=50.0 Hz  CRC ok\n"
         "     2     0.500000  12 response  Write Single Register 3104 HSP=50.0 Hz [#1, 500.0 ms]  CRC ok\n"
-        "     3     0.512000  12 request   Write Single Register 3104 HSP=50.0 Hz [no response]"
-        " [the capture ends before any response]  CRC ok\n"
+        "     3     0.512000  12 request   Write Single Register 3104 HSP=50.0 Hz "
+        "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
     )
 
 
@@ -104,8 +104,8 @@ def test_fc5_and_fc8_echo_retries(tmp_path: Path, monkeypatch: pytest.MonkeyPatc
         "     4     0.600000   1 request   Diagnostics 00h Return Query Data = 42295 [no response]  CRC ok\n"
         "     5     1.100000   1 request   Diagnostics 00h Return Query Data = 42295  CRC ok\n"
         "     6     1.110000   1 response  Diagnostics 00h Return Query Data = 42295 [#5, 10.0 ms]  CRC ok\n"
-        "     7     1.200000   1 request   Diagnostics 00h Return Query Data = 42295 [no response]"
-        " [the capture ends before any response]  CRC ok\n"
+        "     7     1.200000   1 request   Diagnostics 00h Return Query Data = 42295 "
+        "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
     )
 
 

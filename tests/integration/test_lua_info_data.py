@@ -178,7 +178,8 @@ def test_ascii_frames_say_the_same(tmp_path: Path, pure: bool) -> None:
         "Diagnostics 0Bh Return Bus Message Count = 300 [#1, 1000.0 ms]  LRC ok",
         "Read FIFO Queue pointer 16  LRC ok",
         "Read FIFO Queue 3 values: 10 11 12 [#3, 1000.0 ms]  LRC ok",
-        f"Diagnostics 00h Return Query Data {PLUS_TWO} [no response] [the capture ends before any response]  LRC ok"]
+        f"Diagnostics 00h Return Query Data {PLUS_TWO} [the capture ends before any response: not known whether it was "
+        "answered]  LRC ok"]
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])

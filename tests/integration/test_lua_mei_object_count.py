@@ -19,6 +19,7 @@ SHORT = bytes.fromhex("01 2b 0e 01 01 00 00 03 00 03 41 42 43 01 02 58 59 03 7e"
 FULL = rtu("01 2b 0e 01 01 00 00 03 00 03 41 42 43 01 02 58 59 02 03 31 2e 30")
 READ = bytes.fromhex("01 03 00 00 00 01 84 0a")
 WARNING = "number of objects 3 disagrees with the objects present (2)"
+UNKNOWN = "the capture ends before any response: not known whether it was answered"
 FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.kind", "-e", "vw3.request_frame", "-e", "vw3.response_frame",
           "-e", "vw3.unanswered", "-e", "vw3.note", "-e", "vw3.warning", "-e", "vw3.object.value", "-e", "vw3.crc_ok"]
 
@@ -40,7 +41,7 @@ def test_the_answer_with_fewer_objects(tmp_path: Path) -> None:
 def test_in_one_record_with_the_next_request(tmp_path: Path) -> None:
     assert fields(tmp_path / "stream.pcap", [REQUEST, SHORT + READ]) == [
         "1;;2;;;;;1",
-        f"2,1;1;;1;the capture ends before any response;{WARNING};ABC,XY;1,1",
+        f"2,1;1;;;{UNKNOWN};{WARNING};ABC,XY;1,1",
     ]
 
 
@@ -52,13 +53,13 @@ def test_a_walk_that_ends_with_the_record(tmp_path: Path) -> None:
     ones = ",".join(["1"] * 16)
     assert lines == [
         "1;;2;;;;;1",
-        f"2,{ones};1;;{ones};the capture ends before any response;{WARNING};ABC,XY;1,{ones}",
+        f"2,{ones};1;;{ones[2:]};{UNKNOWN};{WARNING};ABC,XY;1,{ones}",  # (the last request: not known)
     ]
 
 
 @pytest.mark.parametrize(("cut", "reason"), [(20, "20 of 24 bytes"), (15, "15 bytes of it")])
 def test_an_answer_cut_by_the_end_of_the_capture(tmp_path: Path, cut: int, reason: str) -> None:
     assert fields(tmp_path / "cut.pcap", [REQUEST, FULL[:cut]]) == [
-        f"1;;;1;the capture ends inside the response ({reason});;;1",
+        f"1;;;;the capture ends inside the response ({reason});;;1",  # (it did answer)
         "4;;;;;;;",
     ]

@@ -147,7 +147,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
     exports and of the globals (the pairing module: DATA, pairs and type; REQUEST and RESPONSE
     from layouts; awaits_answer from stream; release_run, say and warn from decode);
     at its end it exports the module's top-level locals a later module names (pairing's pair, which records
-    calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
+    calls, and ended, which show calls; not layouts' `select`, a length rule's maker, which would hide Lua's select from the later modules),
     besides the module's own export lines; and refuses a module that assigns such a name or an export line
     that exports a name as another."""
     plugin = PLUGIN.read_text(encoding="utf-8")
@@ -156,7 +156,7 @@ def test_the_generator_binds_what_each_module_uses(tmp_path: Path, capsys: pytes
         "local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)",
         "local DATA, REQUEST, RESPONSE, awaits_answer, pairs = DATA, REQUEST, RESPONSE, awaits_answer, pairs",
         "local release_run, say, type, warn = release_run, say, type, warn"]
-    assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.pair = pair")
+    assert pairing.split("\nend\n\n-- ---- vw3.")[0].endswith("\nM.ended, M.pair = ended, pair")
     assert "M.pair" not in (SRC / "pairing.lua").read_text(encoding="utf-8")
     layouts = plugin.split('package.preload["vw3.layouts"] = function(...)\n')[1].split("\nend\n\n-- ---- vw3.")[0]
     assert "local function select(" in layouts and "M.select" not in layouts and "M.possible_start" in layouts

@@ -54,22 +54,22 @@ CASES = {
     ),
     "cut response": (
         REQUEST + ANSWER[:15],
-        [f"1 - 12 request {READ} [no response] [the capture ends inside the response (15 of 23 bytes)] LRC ok",
+        [f"1 - 12 request {READ} [the capture ends inside the response (15 of 23 bytes)] LRC ok",
          "2 - - noise 15 bytes of noise at offset 17: 3a 30 43 30 33 30 36 38 30 30 30 30 30 30 33"],
     ),
     "cut before its LF": (
         REQUEST + ANSWER[:-1],
-        [f"1 - 12 request {READ} [no response] [the capture ends inside the response (22 of 23 bytes)] LRC ok",
+        [f"1 - 12 request {READ} [the capture ends inside the response (22 of 23 bytes)] LRC ok",
          "2 - - noise 22 bytes of noise at offset 17: 3a 30 43 30 33 30 36 38 30 30 30 30 30 30 33 30…"],
     ),
     "cut before the byte count": (
         REQUEST + b":0C03",
-        [f"1 - 12 request {READ} [no response] [the capture ends inside the response (5 bytes of it)] LRC ok",
+        [f"1 - 12 request {READ} [the capture ends inside the response (5 bytes of it)] LRC ok",
          "2 - - noise 5 bytes of noise at offset 17: 3a 30 43 30 33"],
     ),
     "cut exception": (
         REQUEST + b":0C83",
-        [f"1 - 12 request {READ} [no response] "
+        [f"1 - 12 request {READ} "
          "[the capture ends inside the exception response (5 of 11 bytes)] LRC ok",
          "2 - - noise 5 bytes of noise at offset 17: 3a 30 43 38 33"],
     ),
@@ -81,7 +81,7 @@ CASES = {
     ),
     "cut answer of another slave": (
         REQUEST + line("0B 03 06 80 00 00 03 00 02")[:15],
-        [f"1 - 12 request {READ} [no response] [the capture ends before any response] LRC ok",
+        [f"1 - 12 request {READ} [the capture ends before any response: not known whether it was answered] LRC ok",
          "2 - - noise 15 bytes of noise at offset 17: 3a 30 42 30 33 30 36 38 30 30 30 30 30 30 33"],
     ),
 }
@@ -159,7 +159,8 @@ def test_cut_response_detail_and_json(monkeypatch: pytest.MonkeyPatch) -> None:
         "    15 bytes of noise at offset 17: 3a 30 43 30 33 30 36 38 30 30 30 30 30 30 33",
         f"    Reason: {reason}",
     ]
-    assert tree.split("\n\n")[0].splitlines()[-2:] == ["    No response", f"    Note: {reason}"]
+    # (the slave did answer, the capture ends inside it: not "No response")
+    assert tree.split("\n\n")[0].splitlines()[-2:] == ["        LRC: 0x00FE [LRC ok]", f"    Note: {reason}"]
     request, noise = (json.loads(row) for row in both(data, ["--json"], monkeypatch).splitlines())
-    assert (request["unanswered"], request["notes"]) == (True, [reason])
+    assert (request["unanswered"], request["notes"]) == (False, [reason])
     assert (noise["kind"], noise["offset"], noise["length"], noise["reason"]) == ("noise", 17, 15, reason)

@@ -19,8 +19,8 @@ REQUEST = bytes.fromhex("0C0320D000030EEF")
 ANSWER_A = bytes.fromhex("0C030680000003000217E4")  # 8400 16#8000, 8401=3, 8402=2
 ANSWER_B = bytes.fromhex("0C0306000100020003A5E4")  # 8400=1, 8401=2, 8402=3
 ANSWER_B2 = bytes.fromhex("0C0306000100030003F424")  # 8401 now 3
-# /dev/pts/0: two polls answered in 8 ms. /dev/pts/1: answered in 9 and 12 ms, 8401 changes, then two
-# requests unanswered (an outage of its slave 12, not of /dev/pts/0's).
+# /dev/pts/0: two polls answered in 8 ms. /dev/pts/1: answered in 9 and 12 ms, 8401 changes, then a request
+# unanswered (the next comes 200 ms later) and one the capture ends with (not known whether it was answered).
 PACKETS = [(0, 0, REQUEST), (1, 2000, REQUEST), (0, 8000, ANSWER_A), (1, 11_000, ANSWER_B),
            (0, 200_000, REQUEST), (1, 202_000, REQUEST), (0, 208_000, ANSWER_A), (1, 214_000, ANSWER_B2),
            (1, 402_000, REQUEST), (1, 602_000, REQUEST)]
@@ -105,7 +105,7 @@ outages: none
 ==> {two}: /dev/pts/1 <==
 6 frames, 0 noise bytes in 0 runs
 
-{TRAFFIC.format(row="   12  3 Read Holding Registers    4     2                     2        0")}
+{TRAFFIC.format(row="   12  3 Read Holding Registers    4     2                     1        0")}
 Response times (ms)
 slave  function                  count  min  median   p95   max
 ---------------------------------------------------------------
@@ -114,7 +114,7 @@ slave  function                  count  min  median   p95   max
 Poll cycle (requests repeated 3 times or more)
 slave  function                  addresses       count  period  jitter  misses
 ------------------------------------------------------------------------------
-   12  3 Read Holding Registers  8400..8402 (3)      4   200.0     0.0       2
+   12  3 Read Holding Registers  8400..8402 (3)      4   200.0     0.0       1
 period: median interval (ms); jitter: largest deviation from it (ms); misses: cycles skipped (intervals of 1.5 \
 periods or more) + requests without a normal answer
 
@@ -134,8 +134,7 @@ inter-frame gaps: 5, 0 below t3.5; min 4.416 median 181.700 p95 195.417 max 195.
 master turnaround (answer end to next request, ms): median 183.199 p95 184.698 max 184.698 (2)
 {RESPONSES}
    12          2       10.5    12.0    12.0                 988.0                0
-outages (two or more consecutive requests unanswered)
-  slave 12 silent 0.400000 - 0.600000, 2 requests unanswered (frames 5..6)
+outages: none
 """
 
 
@@ -158,8 +157,8 @@ def test_stats_json_is_one_line_a_bus(two: Path, monkeypatch: pytest.MonkeyPatch
         (f"{two}: /dev/pts/0", 4, [(12, 2, 0, 2)],
          [(8400, 0, 2, None, 0), (8401, 2, 0, 3, 0), (8402, 2, 0, 2, 0)], [(12, 2, 0.008)], [],
          [(12, "atv71")]),  # 16#8000 at 8400: its device's non-existent parameter
-        (f"{two}: /dev/pts/1", 6, [(12, 4, 2, 2)],
-         [(8400, 2, 0, 1, 0), (8401, 2, 0, 3, 1), (8402, 2, 0, 3, 0)], [(12, 2, 0.012)], [(12, 2, 5)],
+        (f"{two}: /dev/pts/1", 6, [(12, 4, 1, 2)],
+         [(8400, 2, 0, 1, 0), (8401, 2, 0, 3, 1), (8402, 2, 0, 3, 0)], [(12, 2, 0.012)], [],
          [(12, "generic")]),  # its own slave 12: no evidence of the first bus's device
     ]
 

@@ -46,8 +46,8 @@ def test_summary(monkeypatch: pytest.MonkeyPatch) -> None:
         f"2 - 1 exception {FC43}: exception 3 (Illegal Data Value) [#1] CRC ok",
         f"3 - 1 request {FC43} Read Device Identification, basic, from object 0 CRC ok",
         f"4 - 1 response {FC43} Read Device Identification, basic: VendorName='ABC' [#3] CRC ok",
-        f"5 - 1 request {FC43} Read Device Identification, 5, from object 0 [no response] "
-        f"[the capture ends before any response] [warning: {WARNING}] CRC ok",
+        f"5 - 1 request {FC43} Read Device Identification, 5, from object 0 "
+        f"[the capture ends before any response: not known whether it was answered] [warning: {WARNING}] CRC ok",
     ]
 
 

@@ -102,8 +102,8 @@ def test_a_frame_that_does_not_echo_the_sub_function_is_the_next_request(
         "1 - 1 request Diagnostics 0Bh Return Bus Message Count = 0 [no response] CRC ok",
         *(["2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
            "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] CRC ok"] if answer else
-          ["2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 [no response] "
-           "[the capture ends before any response] CRC ok"]),
+          ["2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 "
+           "[the capture ends before any response: not known whether it was answered] CRC ok"]),
     ]
 
 

@@ -12,8 +12,8 @@ import pytest
 from helpers import run_cli, use_engine
 
 ENGINES = pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
-ALONE = ("     1            -   2 request   Write Single Register 9001 = 10 [no response] "
-         "[the capture ends before any response]  LRC ok\n")
+ALONE = ("     1            -   2 request   Write Single Register 9001 = 10 "
+         "[the capture ends before any response: not known whether it was answered]  LRC ok\n")
 WIRE = "3a30323036323332393030304141320d0a"  # :02062329000AA2 CR LF, as a serial line carries it
 
 
@@ -46,11 +46,12 @@ def test_frames_in_one_argument_and_a_missing_lrc(pure: bool, monkeypatch: pytes
         "     1            -   2 request   Write Single Register 9001 = 10  LRC ok\n"
         "     2            -   2 response  Write Single Register 9001 = 10 [#1]  LRC ok\n"), "")
     assert run_cli(["--hex", ":0206 2329 000A\\r\\n"]) == (0, (
-        "     1            -   2 request   Write Single Register 9001 = 10 [no response] [the capture ends before "
-        "any response] [no LRC typed: append A2]  LRC computed (none typed)\n"), "")
+        "     1            -   2 request   Write Single Register 9001 = 10 [the capture ends before any response: "
+        "not known whether it was answered] [no LRC typed: append A2]  LRC computed (none typed)\n"), "")
     # 0D 0A that the LRC says are data stay data: 0206 2329 0D0A is a write of 0x0D0A, its LRC typed after
-    assert run_cli(["--hex", ":0206 2329 0D 0A 95"])[1].endswith("Write Single Register 9001 = 3338 [no response] "
-                                                             "[the capture ends before any response]  LRC ok\n")
+    assert run_cli(["--hex", ":0206 2329 0D 0A 95"])[1].endswith(
+        "Write Single Register 9001 = 3338 [the capture ends before any response: not known whether it was answered]  "
+        "LRC ok\n")
     # a bad LRC is the framer's to show, typed with spaces or not
     assert run_cli(["--hex", ":0206 2329 000A A3 CR LF"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
     # `0D 0A` after a frame whose LRC is good without them is its CR LF typed as the hex of its bytes (before:

@@ -11,8 +11,8 @@ def test_a_crc_typo_is_decoded_and_the_crc_spelled_out() -> None:
     status, out, err = run_cli(["--hex", "0C 03 20 D0 00 03 0E EE"])
     assert (status, err) == (0, "")
     assert out == (
-        "     1            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
-        "[the capture ends before any response] [warning: CRC bad: received 0xEE0E, expected 0xEF0E "
+        "     1            -  12 request   Read Holding Registers 8400..8402 (3) "
+        "[the capture ends before any response: not known whether it was answered] [warning: CRC bad: received 0xEE0E, expected 0xEF0E "
         "(on the wire 0E EE typed, 0E EF expected)]  CRC BAD (received 0xEE0E, expected 0xEF0E)\n"
     )
     record = json.loads(run_cli(["--json", "--hex", "0C 03 20 D0 00 03 0E EE"])[1])
@@ -71,7 +71,7 @@ def test_bytes_that_are_no_frame_either_way_stay_noise() -> None:
 
 def test_a_good_frame_is_untouched() -> None:
     out = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF"])[1]
-    assert out.endswith("(3) [no response] [the capture ends before any response]  CRC ok\n")
+    assert out.endswith("(3) [the capture ends before any response: not known whether it was answered]  CRC ok\n")
 
 
 def test_an_ascii_frame_typed_without_its_lrc_gets_the_lrc_to_append() -> None:
@@ -79,8 +79,8 @@ def test_an_ascii_frame_typed_without_its_lrc_gets_the_lrc_to_append() -> None:
     # (a request alone is no evidence of a device: profile `auto` names nothing; `--profile atv71` does)
     out = run_cli(["--hex", ":02062329000A", "--profile", "atv71"])[1]
     assert out == (
-        "     1            -   2 request   Write Single Register 9001 ACC=10 (unscaled, in s) [no response] "
-        "[the capture ends before any response] [no LRC typed: append A2]  LRC computed (none typed)\n"
+        "     1            -   2 request   Write Single Register 9001 ACC=10 (unscaled, in s) "
+        "[the capture ends before any response: not known whether it was answered] [no LRC typed: append A2]  LRC computed (none typed)\n"
     )
     assert run_cli(["--hex", ":02062329000AA3"])[1].endswith("LRC BAD (received 0xA3, expected 0xA2)\n")
 

@@ -56,7 +56,7 @@ def test_in_a_stream_with_frames_after_it(pure: bool, monkeypatch: pytest.Monkey
     assert decode(["--hex", f"{REQUEST} {SHORT} {READ}"], pure, monkeypatch) == [
         f"     1            -   1 request   {ASKED}  CRC ok",
         f"     2            -   1 response  {ANSWER} [#1] {WARNING}  CRC ok",
-        "     3            -   1 request   Read Holding Registers 0 [no response] [the capture ends before any response]  CRC ok",
+        "     3            -   1 request   Read Holding Registers 0 [the capture ends before any response: not known whether it was answered]  CRC ok",
     ]
 
 
@@ -102,7 +102,7 @@ def test_an_answer_cut_by_the_end_of_the_capture_says_so(
     pcap = capture(tmp_path / "cut.pcap", [bytes.fromhex(REQUEST), FULL[:cut]])
     shown = " ".join(f"{byte:02x}" for byte in FULL[:min(cut, 16)]) + ("…" if cut > 16 else "")
     assert decode([pcap], pure, monkeypatch) == [
-        f"     1     0.000000   1 request   {ASKED} [no response] [the capture ends inside the response ({reason})]  CRC ok",
+        f"     1     0.000000   1 request   {ASKED} [the capture ends inside the response ({reason})]  CRC ok",
         f"     2     0.050000   - noise     {cut} bytes of noise at offset 7: {shown}",
     ]
 
@@ -118,5 +118,5 @@ def test_the_whole_answer_and_a_damaged_one(pure: bool, monkeypatch: pytest.Monk
     assert decode(["--hex", f"{REQUEST} {damaged} {READ}"], pure, monkeypatch) == [
         f"     1            -   1 request   {ASKED}  CRC ok",
         f"     2            -   1 response  {ANSWER} [#1]  CRC BAD (received 0x7E03, expected 0xBB52)",
-        "     3            -   1 request   Read Holding Registers 0 [no response] [the capture ends before any response]  CRC ok",
+        "     3            -   1 request   Read Holding Registers 0 [the capture ends before any response: not known whether it was answered]  CRC ok",
     ]

@@ -16,15 +16,15 @@ from dissector.sources import dumps
 from dissector.sources.reader import SourceError, open_source
 from helpers import run_cli
 
-READ_22 = "     1            -   1 request   Read Holding Registers 22..23 (2) [no response] " \
-          "[the capture ends before any response]  CRC ok\n"
+READ_22 = "     1            -   1 request   Read Holding Registers 22..23 (2) " \
+          "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
 READ_22_PAIR = (
     "     1            -   1 request   Read Holding Registers 22..23 (2)  CRC ok\n"
     "     2            -   1 response  Read Holding Registers 22..23 (2): 22=1 23=2 [#1]  CRC ok\n"
 )
 # ESPHome's log of a read of 80 input registers at 0 of slave 2; the CRC is F0 05 on the wire.
-ESPHOME = "     1            -   2 request   Read Input Registers 0..79 (80) [no response] " \
-          "[the capture ends before any response]  CRC ok\n"
+ESPHOME = "     1            -   2 request   Read Input Registers 0..79 (80) " \
+          "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
 
 
 def decode(tmp_path: Path, text: str, *options: str) -> tuple[int, str, str]:

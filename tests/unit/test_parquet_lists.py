@@ -15,7 +15,8 @@ pq = pytest.importorskip("pyarrow.parquet")
 
 BOTH = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
 # Noise, ATV71 reads of CHCF (8401): 3, then a request with a bad CRC, the read again and exception 02; an
-# FC43 request with read code 5 (a warning) left unanswered; glitch bytes at the end (noise).
+# FC43 request with read code 5 (a warning) the capture ends after (not known whether it was answered);
+# glitch bytes at the end (noise).
 READ = rtu("0C 03 20 D1 00 01")
 DATA = (bytes.fromhex("00fffff0") + READ + rtu("0C 03 02 00 03") + READ[:-1] + b"\x00" + READ + rtu("0C 83 02")
         + rtu("01 2B 0E 05 00") + bytes.fromhex("fee0"))
@@ -43,7 +44,7 @@ def test_list_columns_are_empty_lists_not_null(tmp_path: Path, monkeypatch: pyte
         (4, "request", False, [], []),
         (5, "request", True, [], []),
         (6, "exception", True, [], PROTECTED),
-        (7, "request", True, [CODE5], ["the capture ends before any response"]),
+        (7, "request", True, [CODE5], ["the capture ends before any response: not known whether it was answered"]),
         (8, "noise", None, [], []),
     ]
     for name in ("registers", "events"):  # no list column there: nothing to be null or []

@@ -135,7 +135,7 @@ def test_cmd_bits_not_named_in_io_profile() -> None:
     plain = frames(chcf_io + write_cmd)
     assert (plain[2].registers[0].code, plain[2].registers[0].text) == ("CMD", None)
     assert plain[2].notes == [
-        "the capture ends before any response",
+        "the capture ends before any response: not known whether it was answered",
         "CHCF = 3 (I/O profile): CMD bits are assigned by configuration",
     ]
 

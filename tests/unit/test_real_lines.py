@@ -100,7 +100,7 @@ def test_fc15_and_fc23_requests_framed_by_their_quantity_too() -> None:
 
 def test_a_response_cut_by_the_end_of_the_capture() -> None:
     assert summary("--hex", "14 04 00 34 00 02 32 C0", "--hex", "14 04 04 14 00 00 FA 7D") == [
-        "     1            -  20 request   Read Input Registers 52..53 (2) [no response] "
+        "     1            -  20 request   Read Input Registers 52..53 (2) "
         "[the capture ends inside the response (8 of 9 bytes)]  CRC ok",
         "     2            -   - noise     8 bytes of noise at offset 8: 14 04 04 14 00 00 fa 7d",
     ]

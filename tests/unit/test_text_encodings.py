@@ -18,8 +18,8 @@ from helpers import hx, run_cli, use_engine
 
 REQUEST = "0C 03 20 D0 00 03 0E EF"
 ANSWER = "0C 03 06 80 00 00 03 00 02 17 E4"
-ALONE = ("     1            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
-         "[the capture ends before any response]  CRC ok\n")
+ALONE = ("     1            -  12 request   Read Holding Registers 8400..8402 (3) "
+         "[the capture ends before any response: not known whether it was answered]  CRC ok\n")
 PAIR = ("     1            -  12 request   Read Holding Registers 8400..8402 (3)  CRC ok\n"
         "     2            -  12 response  Read Holding Registers 8400..8402 (3): 8400=32768 8401=3 8402=2 [#1]  CRC ok\n")
 ASCII_PAIR = ("     1            -   2 request   Write Single Register 9001 = 10  LRC ok\n"

@@ -149,8 +149,8 @@ def test_a_log_cut_mid_line(tmp_path: Path, pure: bool, monkeypatch: pytest.Monk
 @ENGINES
 def test_a_log_cut_in_its_time_stamp(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     use_engine(monkeypatch, pure)
-    shown = ("     1     0.000000  12 request   Read Holding Registers 8400..8402 (3) [no response] "
-             "[the capture ends before any response]  CRC ok\n")
+    shown = ("     1     0.000000  12 request   Read Holding Registers 8400..8402 (3) "
+             "[the capture ends before any response: not known whether it was answered]  CRC ok\n")
     assert _decode(tmp_path, f"10:00:00.000 {REQUEST}\n10:00:0") == (0, shown, (
         "vw3-decode: warning: FILE line 2 is cut short (the input ends inside it, without a line end): "
         "it holds no whole byte ('10:00:0' is not read)\n"))
@@ -163,7 +163,7 @@ def test_a_log_cut_in_its_time_stamp(tmp_path: Path, pure: bool, monkeypatch: py
 def test_a_traffic_log_cut_mid_line(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
     use_engine(monkeypatch, pure)
     log = f"Tx:000000-{REQUEST}\nRx:000001-{ANSWER}\nTx:000002-{REQUEST}\nRx:000003-0C 03 06 8"
-    shown = PAIR + ("     3            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
+    shown = PAIR + ("     3            -  12 request   Read Holding Registers 8400..8402 (3) "
                     "[the capture ends inside the response (3 of 11 bytes)]  CRC ok\n"
                     "     4            -   - noise     3 bytes of noise at offset 27: 0c 03 06\n")
     assert _decode(tmp_path, log) == (0, shown, (
@@ -196,13 +196,13 @@ XXD = ("00000000: 0c03 20d0 0003 0eef 0c03 0680 0000 0300  .. .............\n"
        "00000010: 0217 e40c 0320 d000 030e ef0c 0306 8000  ..... ..........\n")
 HEXDUMP_C = ("00000000  0c 03 20 d0 00 03 0e ef  0c 03 06 80 00 00 03 00  |.. .............|\n"
              "00000010  02 17 e4 0c 03 20 d0 00  03 0e ef 0c 03 06 80 00  |..... ..........|\n")
-THIRD = "     3            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
+THIRD = "     3            -  12 request   Read Holding Registers 8400..8402 (3) "
 DUMP_CUTS = [
     (XXD[:111], "its 13 whole bytes are decoded, the rest ('0') is not",  # `... ef0c 030`: inside a byte
      THIRD + "[the capture ends inside the response (2 bytes of it)]  CRC ok\n"
      "     4            -   - noise     2 bytes of noise at offset 27: 0c 03\n"),
     (XXD[:108], "its 12 whole bytes are decoded",  # `... ef0c `: before the character column
-     THIRD + "[the capture ends before any response]  CRC ok\n"
+     THIRD + "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
      "     4            -   - noise     1 byte of noise at offset 27: 0c\n"),
     (HEXDUMP_C[:145], "its 16 whole bytes are decoded",  # `... 80 00  |.....`: in the character column
      THIRD + "[the capture ends inside the response (5 of 11 bytes)]  CRC ok\n"
@@ -282,8 +282,8 @@ def test_colon_hex_alone_is_no_time(tmp_path: Path, pure: bool, monkeypatch: pyt
     use_engine(monkeypatch, pure)
     # `99:99:99` alone is the bytes 99 99 99 (colon hex), not a time of day without data.
     assert _decode(tmp_path, "0C:03:20:D0:00:03:0E:EF\n99:99:99\n") == (0, (
-        "     1            -  12 request   Read Holding Registers 8400..8402 (3) [no response] "
-        "[the capture ends before any response]  CRC ok\n"
+        "     1            -  12 request   Read Holding Registers 8400..8402 (3) "
+        "[the capture ends before any response: not known whether it was answered]  CRC ok\n"
         "     2            -   - noise     3 bytes of noise at offset 8: 99 99 99\n"), "")
     assert _decode(tmp_path, "23:59:59.999 0C:03:20:D0:00:03:0E:EF\n")[0] == 0
 
