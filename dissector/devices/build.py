@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from dissector.devices.annotator import Annotator, MapLayer
-from dissector.devices.maps import load_map_file
+from dissector.devices.maps import load_map_file, overlay
 from dissector.devices.maps import RegisterMap
 from dissector.devices.profiles import (
     ADDRESS_STYLES, AUTO, BUILTIN_PROFILES, DEFAULT_PROFILE, FALLBACK_PROFILE, Profile, load_profile,
@@ -105,6 +105,6 @@ def build_annotator(
             rows: RegisterMap = dict(load_profile_map(profile))
             for layer in layers:
                 if layer.profile == profile.name:
-                    rows.update(layer.rows)
+                    rows = overlay(rows, layer.rows)
             selector.candidates.append((profile, rows))
     return Annotator(default, per_slave, layers, address_style, selector)

@@ -8,7 +8,7 @@ import dataclasses
 import functools
 from dataclasses import dataclass, field
 
-from dissector.devices.maps import RegisterDef, RegisterMap
+from dissector.devices.maps import RegisterDef, RegisterMap, overlay
 from dissector.devices.profiles import BitsDepend, Profile, load_profile_map
 
 # What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
@@ -70,9 +70,7 @@ class DeviceBuilder:
                 continue
             if layer.profile is not None and layer.profile != profile.name:
                 continue
-            if rows is base:
-                rows = dict(base)
-            rows.update(layer.rows)
+            rows = overlay(rows, layer.rows)  # (a copy: the base map is shared)
         depend: dict[int, BitsDepend] = {}
         plain: dict[int, RegisterDef] = {}
         for rule in profile.bits_depend:

@@ -308,6 +308,23 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     return rows
 
 
+def overlay(rows: RegisterMap, layer: RegisterMap) -> RegisterMap:
+    """`rows` with a --map layer over them (a new map). A layer row hides every row it overlaps, a 32-bit
+    row's two registers counted: the user's file says what those registers are (a built-in row it covers
+    is what it corrects, and the built-in map is not the user's to edit), so each register is named one
+    way in every output. parse_map refuses the same overlap inside one file, where both rows are the
+    user's and neither can be taken for the correction."""
+    merged = dict(rows)
+    for address, row in layer.items():
+        before = merged.get(address - 1)
+        if before is not None and before.words == 2 and address - 1 not in layer:
+            del merged[address - 1]  # (a 32-bit row whose second register the layer names)
+        if row.words == 2 and address + 1 not in layer:
+            merged.pop(address + 1, None)
+    merged.update(layer)
+    return merged
+
+
 def load_map_file(path: str | Path) -> RegisterMap:
     path = Path(path)
     data = read_capped(path, MAX_MAP_BYTES, "map", "register map")

@@ -55,7 +55,14 @@ local function layered_rows(profile, applies)
   for address, row in pairs(profile.map or {}) do rows[address] = row end
   for _, layer in ipairs(config.layers) do
     if applies(layer) then
-      for address, row in pairs(layer.rows) do rows[address] = row end
+      -- (maps.overlay: a layer row hides every row it overlaps, a 32-bit row's two registers counted)
+      local mine = layer.rows
+      for address, row in pairs(mine) do
+        local before = rows[address - 1]
+        if before ~= nil and before.words == 2 and mine[address - 1] == nil then rows[address - 1] = nil end
+        if row.words == 2 and mine[address + 1] == nil then rows[address + 1] = nil end
+      end
+      for address, row in pairs(mine) do rows[address] = row end
     end
   end
   return rows
