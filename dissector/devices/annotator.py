@@ -65,6 +65,7 @@ class Annotator:
         # slave -> copies of its provisional frames, until its choice (_observe annotates them again):
         # bounded, a slave's frames are provisional until selection.FIT_FRAMES of them at most.
         self._held: dict[int, list[Frame]] = {}
+        self._broadcasting: dict[str, Device] = {}  # slave 0's device by profile (_broadcast)
         for profile in [default, *per_slave.values()]:
             self._builder.build(profile, None)  # load every map now: errors before the first frame
 
@@ -175,10 +176,14 @@ class Annotator:
     def compilable(self, slave: int) -> bool:
         """The compiled path may show this slave's plain transactions: its profile is settled, and its
         map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
+        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+            return False  # (named with the device of the slaves chosen so far, and a note says so: _broadcast)
         return self.settled(slave) and not self.device(slave).wide
 
     # -- setup ----------------------------------------------------------------------------------------
     def device(self, slave: int) -> Device:
+        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+            return self._broadcast()[0]  # (as the choices stand now: a broadcast read again at the end)
         device = self._devices.get(slave)
         if device is None:
             device = self._devices[slave] = self._builder.build(self.profile_for(slave), slave)
@@ -188,6 +193,8 @@ class Annotator:
     def chosen_profile(self, choice: ProfileChoice | None) -> Profile:
         """The profile a choice names (None: the fallback a slave has until one is made)."""
         found = None if choice is None or self.selector is None else self.selector.profile(choice.profile)
+        if found is None and choice is not None:  # (a broadcast's: a profile forced for a slave, _broadcast)
+            found = next((profile for profile in self.per_slave.values() if profile.name == choice.profile), None)
         return found or self.default
 
     def profiles(self) -> list[Profile]:
@@ -222,6 +229,8 @@ class Annotator:
         return {code: frozenset(addresses) for code, addresses in found.items()}
 
     def profile_for(self, slave: int) -> Profile:
+        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+            return self.device(0).profile
         profile = self.per_slave.get(slave)
         if profile is None:
             profile = self._chosen.get(slave, self.default)
@@ -359,18 +368,34 @@ class Annotator:
     # -- per frame ----------------------------------------------------------------------------------------
     def __call__(self, frame: Frame) -> None:
         device = self._devices.get(frame.slave)
-        if self.selector is not None and frame.slave not in self.per_slave:
+        if frame.slave == 0 and self.selector is not None and 0 not in self.per_slave:
+            device, said, frame.profile_choice, frame.provisional = self._broadcast()
+            if said is not None:
+                frame.notes.append(said)
+        elif self.selector is not None and frame.slave not in self.per_slave:
             chosen = self._observe(frame)
             if chosen is not None:
                 device = chosen
             choice = frame.profile_choice = self.selector.choice(frame.slave)  # type: ignore[union-attr]
-            if choice is None and frame.slave != 0 and not self.selector.settled(frame.slave):  # type: ignore[union-attr]
-                frame.provisional = True  # read once: no device yet, and evidence may still come
+            if self.selector.open(frame.slave):  # type: ignore[union-attr]
+                # read once: no device yet (or the one chosen taken back), and evidence may still come
+                frame.provisional = True
                 self._held.setdefault(frame.slave, []).append(_scratch(frame))
         if device is None:
             device = self.device(frame.slave)
         frame.profile = device.profile.name
         self._annotate_frame(frame, device)
+
+    def _broadcast(self) -> tuple[Device, str | None, ProfileChoice | None, bool]:
+        """Slave 0 under profile `auto`: its device as the choices stand (Selector.broadcast)."""
+        profile, said, choice, provisional = self.selector.broadcast(self.per_slave)  # type: ignore[union-attr]
+        device = self._broadcasting.get(profile.name)
+        if device is None:
+            device = self._broadcasting[profile.name] = self._builder.build(profile, 0)
+        if self._devices.get(0) is not device:
+            self._devices[0], self._chosen[0] = device, profile
+            self.changed.add(0)
+        return device, said, choice, provisional
 
     def _annotate_frame(self, frame: Frame, device: Device) -> None:
         """The one annotate path: a frame, or a provisional frame's copy (_observe), with `device`."""

@@ -13,7 +13,8 @@ data/profiles/*.toml):
   non-existent marker at an address its map lacks (what the VW3 card does, p.38). An answer the map
   cannot explain (a register it does not know, a function the device does not support) rules the
   profile out for that slave. Traffic is judged on a slave's first answers (FIT_ANSWERS); a later
-  answer to a function the chosen profile does not support takes the choice back.
+  answer to a function the chosen profile does not support takes the choice back (that device is then
+  ruled out, and the slave's traffic judged on for the others while it is not settled).
 Until evidence arrives a slave gets spec semantics only (`generic`): no device claims. The choice's
 reason names the frames, and every frame a chosen profile annotates carries it (Frame.profile: -V's
 `Profile:` line, --json's `profile`).
@@ -111,6 +112,17 @@ class Selector:
             or (judged.choice is not None and judged.choice.final)
         )
 
+    def open(self, slave: int) -> bool:
+        """Profile `auto` has no device for this slave (none chosen yet, or the one chosen taken back) and
+        may still choose one from its traffic: its frames are provisional."""
+        if self.frozen or slave == 0:
+            return False
+        judged = self._slaves.get(slave)
+        if judged is None:
+            return True
+        choice = judged.choice
+        return (choice is None or choice.profile == self.fallback.name) and not self.settled(slave)
+
     def chosen(self) -> dict[int, ProfileChoice]:
         """The choice of every slave that has one, by slave."""
         return {slave: judged.choice for slave, judged in self._slaves.items() if judged.choice is not None}
@@ -141,7 +153,7 @@ class Selector:
         if frame.kind is not Kind.RESPONSE or not frame.crc_ok:
             return None
         judged.answers += 1
-        if current is not None:
+        if current is not None and current.profile != self.fallback.name:
             profile = self.profile(current.profile)
             if profile is not None and profile.functions is not None and frame.function not in profile.functions:
                 judged.choice = ProfileChoice(
@@ -149,6 +161,10 @@ class Selector:
                     text("chosen_unsupported", function=frame.function, frame=frame.number, device=profile.device),
                     frame.number, False,
                 )
+                # (the device taken back is ruled out; the other candidates are judged on, while the slave is)
+                if judged.ruled_out is not None and judged.evidence is not None:
+                    judged.ruled_out.add(profile.name)
+                    judged.evidence.pop(profile.name, None)
                 return judged.choice
             return None
         if not judging:
@@ -190,6 +206,29 @@ class Selector:
             frame.slave, profile.name, evidence[profile.name].reason(profile.protected_value), frame.number, False
         )
         return judged.choice
+
+    def broadcast(self, forced: dict[int, Profile]) -> tuple[Profile, str | None, ProfileChoice | None, bool]:
+        """Slave 0's profile: a broadcast reaches every slave, so it is named with the profile of every slave
+        with a device (forced in `forced`, or chosen so far; over the whole input when frozen), and a note
+        says so (and the choice a frame says, inferred); slaves of different devices leave it the fallback,
+        and a note says why.
+        Last: a slave met may still get a device, which may name it otherwise (read once: provisional)."""
+        fallback = self.fallback.name
+        named = {slave: profile for slave, profile in forced.items() if slave and profile.name != fallback}
+        for slave, judged in self._slaves.items():
+            choice = judged.choice
+            if choice is not None and choice.profile != fallback:
+                named[slave] = self.profile(choice.profile) or self.fallback
+        provisional = any(map(self.open, self._slaves))
+        if len({profile.name for profile in named.values()}) == 1:
+            profile = next(iter(named.values()))
+            slaves = f"slave{'s' if len(named) > 1 else ''} {', '.join(map(str, sorted(named)))}"
+            said = text("broadcast_profile", profile=profile.name, slaves=slaves)
+            return profile, said, ProfileChoice(0, profile.name, said, None, False), provisional
+        if named:
+            slaves = ", ".join(f"slave {slave} {named[slave].name}" for slave in sorted(named))
+            return self.fallback, text("broadcast_mixed", slaves=slaves), None, provisional
+        return self.fallback, None, None, provisional
 
     def profile(self, name: str) -> Profile | None:
         for profile, _ in self.candidates:

@@ -16,6 +16,7 @@ local CANDIDATES = SELECTION.candidates
 -- code's name on it; the ProductCode prefixes that identify one, { prefix, candidate } in that order.
 local IDENTIFYING, PRODUCT_CODES = SELECTION.identifying, SELECTION.product_codes
 local FIT_ANSWERS, FIT_FRAMES, FIT_READS = SELECTION.fit_answers, SELECTION.fit_frames, SELECTION.fit_reads
+local FALLBACK = SELECTION.fallback
 
 -- Does the slave's current choice not support function fn (an answer to it takes the choice back)?
 local function unsupported(current, fn)
@@ -26,6 +27,13 @@ end
 local function settled(judged)
   return judged.answers >= FIT_ANSWERS or judged.frames >= FIT_FRAMES
     or (judged.choice ~= nil and judged.choice.final)
+end
+
+-- No device for the slave (none chosen, or the one chosen taken back) while its traffic may still choose
+-- one (Selector.open): its frames are provisional. (Written out where every frame asks: lane.quiet, select_device.)
+local function open(judged)
+  local choice = judged.choice
+  return (choice == nil or choice.profile == FALLBACK) and not settled(judged)
 end
 
 local function candidate_rows(name)
@@ -141,10 +149,12 @@ local function observe(st, f, b)
   end
   if f.kind ~= RESPONSE or f.crc ~= f.crc_expected then return nil end
   judged.answers = judged.answers + 1
-  if current ~= nil then
+  if current ~= nil and current.profile ~= SELECTION.fallback then
     if unsupported(current, f.fn) then
       judged.choice = { profile = SELECTION.fallback, final = false, reason = say("chosen_unsupported",
         { ["function"] = f.fn, frame = f.number, device = PROFILES[current.profile].device }) }
+      -- (the device taken back is ruled out; the others are judged on, while the slave is)
+      judged.ruled_out[current.profile], judged.evidence[current.profile] = true, nil
       return judged.choice
     end
     return nil
@@ -200,7 +210,7 @@ function lane.quiet(st, slave, fn, answer)
   if judged == nil then return false end
   local current = judged.choice
   if current ~= nil and current.final then return true end
-  if current == nil and not settled(judged) then return false end -- (a provisional frame: observe's path)
+  if (current == nil or current.profile == FALLBACK) and not settled(judged) then return false end -- (open: provisional)
   if answer and current ~= nil and unsupported(current, fn) then return false end
   return judged
 end
@@ -266,7 +276,9 @@ local function select_device(st, f, b)
     local judged = slave ~= 0 and st.judged[slave]
     -- (decoded again, the capture so far is read as a file: no frame provisional; a record read after
     -- that, in a capture that goes on, is read once again: lane.again's `going_on`)
-    if judged and judged.choice == nil and not settled(judged) and (st.frozen == nil or st.going_on) then
+    local choice = judged and judged.choice -- (open(judged), written out)
+    if judged and (choice == nil or choice.profile == FALLBACK) and not settled(judged)
+        and (st.frozen == nil or st.going_on) then
       f.provisional = true
       st.provisional = true -- (lane.again: the later passes show no frame provisional)
       hold(st, f, b)
@@ -295,12 +307,69 @@ local function select_device(st, f, b)
       st.held[slave] = nil
       lane.annotate_again(st, device, held) -- (defined with the annotate path, lua/src/annotator.lua)
     end
+    if open(st.judged[slave]) then -- (a choice taken back: no device while evidence may still come)
+      f.provisional, st.provisional = true, true
+      hold(st, f, b)
+    end
   end
   history[#history + 1] = { number = f.number, device = device, reason = choice.reason }
   return device
 end
 
+-- Slave 0 under profile `auto` (Annotator._broadcast): a broadcast reaches every slave, so it is named with
+-- the profile of every slave with a device (forced, or chosen so far; over the whole capture with -2), which
+-- a note says; slaves of different devices leave it spec semantics, and a note says why.
+local function broadcast_device(st, f)
+  local fallback, named, slaves = SELECTION.fallback, {}, {}
+  for _, chosen in ipairs({ config.per_slave, st.chosen }) do
+    for slave, name in pairs(chosen) do
+      if slave ~= 0 and name ~= fallback and named[slave] == nil then
+        named[slave] = name
+        slaves[#slaves + 1] = slave
+      end
+    end
+  end
+  table.sort(slaves)
+  local name, parts = nil, {}
+  for index, slave in ipairs(slaves) do
+    name = (index == 1 or name == named[slave]) and named[slave] or false
+    parts[index] = format("slave %d %s", slave, named[slave])
+  end
+  local said = nil -- (the reason the frame says, vw3.profile_reason: Frame.profile_choice)
+  if name then
+    said = say("broadcast_profile", { profile = name,
+      slaves = (#slaves > 1 and "slaves " or "slave ") .. concat(slaves, ", ") })
+    note(f, said)
+  elseif name == false then
+    note(f, say("broadcast_mixed", { slaves = concat(parts, ", ") }))
+  end
+  -- Read once, while a slave met may still get a device, what names a broadcast may change: provisional.
+  if st.frozen == nil or st.going_on then
+    for _, judged in pairs(st.judged) do
+      if open(judged) then f.provisional, st.provisional = true, true end
+    end
+  end
+  name = name or fallback
+  st.broadcasting = st.broadcasting or {}
+  local device, before = st.broadcasting[name], st.devices[0]
+  if device == nil then
+    device = build_device(PROFILES[name], 0)
+    st.broadcasting[name] = device
+  end
+  local history = st.history[0]
+  local last = history and history[#history]
+  if before ~= device or (last and last.reason) ~= said then -- (device_of: the earlier frames keep theirs)
+    history = history or { before and { number = 0, device = before } or nil }
+    history[#history + 1] = { number = f.number, device = device, reason = said }
+    st.history[0], st.devices[0] = history, device
+  end
+  return device
+end
+
 local function device_now(st, f, b)
-  if config.auto[f.slave] then return select_device(st, f, b) end
+  if config.auto[f.slave] then
+    if f.slave == 0 and not f.unit_zero then return broadcast_device(st, f) end
+    return select_device(st, f, b)
+  end
   return device_for(st, f.slave)
 end

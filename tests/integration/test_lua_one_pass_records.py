@@ -25,9 +25,10 @@ ODD = {
     "fc8_00": rtu("0C 08 0000 1234"),
 }
 READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+# (slave 0 read once while slave 12 may still get a device, which would name a broadcast: provisional)
 SAID = {
-    "broadcast": "0 Write Single Register request 3201",
-    "exception_0": "0 Write Multiple Registers exception 2 (Illegal Data Address)",
+    "broadcast": "0 Write Single Register request 3201 [provisional]",
+    "exception_0": "0 Write Multiple Registers exception 2 (Illegal Data Address) [provisional]",
     "fc8_00": "12 Diagnostics request 00h Return Query Data = 4660 [provisional]",
 }
 
