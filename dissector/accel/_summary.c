@@ -856,7 +856,7 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
         if (L->odd_count && count & 1) return 0;
     }
     if (L->coil_at && word(f + L->coil_at) != COIL_ON && word(f + L->coil_at) != COIL_OFF) return 0;
-    for (int j = 0; j < 2 && L->echo_at[j]; j++)
+    for (int j = 0; j < MAX_ECHO && L->echo_at[j]; j++)
         if (word(f + L->echo_at[j]) != word(request->frame + L->echo_request_at[j])) return 0;
     if (L->values == VALUES_BITS) out->bits = f + L->values_at;
     if (L->values == VALUES_BLOCK || L->values == VALUES_ONE)

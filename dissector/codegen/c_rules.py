@@ -124,7 +124,8 @@ def _check_limit(check: Check, layout: Layout, limits: tuple[str, ...], code: in
     return limits.index(name)
 
 
-# The Lift struct's members in order (see LIFT_STRUCT); check_*, echo_*: two each at most.
+# The Lift struct's members in order (see LIFT_STRUCT); check_*: two at most, echo_*: MAX_ECHO (FC22's three).
+MAX_ECHO = 3
 LIFT_FIELDS = (
     "special", "start_at", "quantity_at", "quantity", "check_at", "check_width", "check_limit", "check_above", "span",
     "count_at", "count_width", "min_count", "count_rule", "count_of_at", "count_unit", "count_plus", "odd_count",
@@ -139,7 +140,7 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     request = kind is Kind.REQUEST
     row: dict[str, int | list[int]] = {name: 0 for name in LIFT_FIELDS}
     row.update(special=_named_case(layout), quantity=int(request), check_at=[0, 0], check_width=[0, 0], check_limit=[-1, -1],
-               check_above=[0, 0], echo_at=[0, 0], echo_request_at=[0, 0])
+               check_above=[0, 0], echo_at=[0] * MAX_ECHO, echo_request_at=[0] * MAX_ECHO)
     if entry.compiled is not None and entry.compiled.texts:
         return row  # the texts come from the Python stages
     grammar = layout.grammar
@@ -152,8 +153,10 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     if rule is None:
         return row
     echo = rule.echo.fields if rule.echo and not request else ()  # what an answer repeats
-    if len(echo) > 2 or any(field_width(grammar, name) != 2 for name in echo):
-        raise GenerateError(f"function {code}: the engine compares two 16-bit echo fields at most")
+    if len(echo) > MAX_ECHO or any(field_width(grammar, name) != 2 for name in echo) or rule.echo and rule.echo.data:
+        raise GenerateError(f"function {code}: the engine compares {MAX_ECHO} 16-bit echo fields at most")
+    if rule.parts is not None:
+        raise GenerateError(f"function {code}: the engine checks no parts (its texts come from Python)")
     if len(rule.checks) > 2:
         raise GenerateError(f"function {code}: the engine checks two fields of a frame at most")
     quantity = rule.quantity
@@ -163,8 +166,8 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     row.update(
         start_at=at(_own(rule.start)), quantity_at=at(_own(rule.quantity)), quantity=quantity, span=int(rule.span),
         odd_count=int(rule.odd_count), coil_at=at(rule.coil),
-        echo_at=[at(name) for name in echo] + [0] * (2 - len(echo)),
-        echo_request_at=[field_at(entry.request.grammar, name, code) for name in echo] + [0] * (2 - len(echo)),
+        echo_at=[at(name) for name in echo] + [0] * (MAX_ECHO - len(echo)),
+        echo_request_at=[field_at(entry.request.grammar, name, code) for name in echo] + [0] * (MAX_ECHO - len(echo)),
         values=VALUES[values.kind if values else None], values_at=at(values.field) if values else 0,
         write_start_at=at(values.start) if values and values.start and values.start != rule.start else 0,
         write_quantity_at=at(rule.write_window[1]) if rule.write_window else 0,
@@ -235,7 +238,7 @@ LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direc
 typedef struct {
     int special, start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
     int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count;
-    int coil_at, echo_at[2], echo_request_at[2], values, values_at, write_start_at, write_quantity_at;
+    int coil_at, echo_at[MAX_ECHO], echo_request_at[MAX_ECHO], values, values_at, write_start_at, write_quantity_at;
 } Lift;"""
 
 RULES_STRUCT = """/* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
@@ -320,6 +323,7 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
         "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
         "enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };",
+        f"#define MAX_ECHO {MAX_ECHO}",
         LIFT_STRUCT,
     ]
     for kind in (Kind.REQUEST, Kind.RESPONSE):

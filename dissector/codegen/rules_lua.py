@@ -19,7 +19,7 @@ from typing import Any
 from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Confirm, Lift, params
+from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Check, Confirm, Lift, params
 from dissector.protocol.shapes import PARTS, SHAPES, Field
 from dissector.protocol.spec import SPEC
 
@@ -62,15 +62,25 @@ def lua_format(template: str) -> str:
     return "".join(out)
 
 
+def _checks(checks: tuple[Check, ...]) -> list[dict[str, Any]]:
+    return [{"what": c.what, "field": c.field, "limit": c.limit, "test": str(c.test)} for c in checks]
+
+
 def _lift(rule: Lift) -> dict[str, Any]:
     return {
         "start": rule.start, "quantity": rule.quantity, "unpaired_unit": rule.unpaired_unit,
-        "checks": [{"what": c.what, "field": c.field, "limit": c.limit, "test": str(c.test)} for c in rule.checks],
+        "checks": _checks(rule.checks),
         "span": rule.span,
         "count": None if rule.count is None else {
             "of": rule.count.of, "unit": rule.count.unit, "plus": rule.count.plus, "text": rule.count.text},
         "odd_count": rule.odd_count, "coil": rule.coil,
-        "echo": None if rule.echo is None else {"fields": list(rule.echo.fields), "names": str(rule.echo.names)},
+        "echo": None if rule.echo is None else {"fields": list(rule.echo.fields), "names": str(rule.echo.names),
+                                                "data": rule.echo.data},
+        "parts": None if rule.parts is None else {
+            "field": rule.parts.field, "name": rule.parts.name, "checks": _checks(rule.parts.checks),
+            "request": rule.parts.request, "length": None if rule.parts.length is None else {
+                "field": rule.parts.length.field, "of": rule.parts.length.of, "unit": rule.parts.length.unit,
+                "plus": rule.parts.length.plus, "text": rule.parts.length.text}},
         "values": None if rule.values is None else {
             "kind": str(rule.values.kind), "field": rule.values.field, "start": rule.values.start},
         "write_window": None if rule.write_window is None else list(rule.write_window),

@@ -7,7 +7,7 @@ The generic lifter (`lifter`) interprets the rule tables of data/modbus.toml [li
 for every handler but the few named special cases below (diagnostics, the server id, FC43's code and objects);
 each rule is prepared once (its limits looked up), so that a frame costs a few attribute tests. The
 compiled engine (accel/_summary.c) and the plugin interpret the same rules from their generated tables.
-Warnings come in the order the table's comment gives: checks, span, byte count, odd count, coil, echo.
+Warnings come in the order the table's comment gives: checks, span, byte count, odd count, coil, echo, parts.
 """
 from __future__ import annotations
 
@@ -19,7 +19,9 @@ from construct import Container
 from dissector.decode.fastpath import fast_parse
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
-from dissector.protocol.rules import LIFTS, REQUEST_PREFIX, Echo, Lift, Names, Test, ValueKind, echo_text, text
+from dissector.protocol.rules import (
+    LIFTS, REQUEST_PREFIX, Echo, Lift, Names, Parts, Test, ValueKind, echo_text, range_text, text,
+)
 from dissector.model import Bit, BitList, DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol.spec import SPEC, DiagnosticData
 
@@ -134,10 +136,12 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
     )
     count = rule.count
     count_field, count_from_request = _source(count.of if count else None, "request.quantity")
-    from_request = start_from_request or quantity_from_request or count_from_request or rule.echo is not None
+    from_request = (start_from_request or quantity_from_request or count_from_request or rule.echo is not None
+                    or (rule.parts is not None and rule.parts.request is not None))
     unpaired, span, odd_count, coil, echo, values = (
         rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo, rule.values
     )
+    parts = None if rule.parts is None else (rule.parts, _part_checks(rule.parts))
     write_window = rule.write_window if span else None
 
     def lift(frame: Frame, fields: Container) -> None:
@@ -163,7 +167,7 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
                 if value > check.high:
                     frame.warnings.append(text("above", what=check.what, value=value, high=check.high))
             elif not check.low <= value <= check.high:
-                frame.warnings.append(text("range", what=check.what, value=value, low=check.low, high=check.high))
+                frame.warnings.append(range_text(check.what, value, check.low, check.high))
         if span and start + quantity > 0x10000:
             frame.warnings.append(text("span", first=start, last=start + quantity - 1))
         if write_window is not None:
@@ -185,6 +189,8 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
             frame.warnings.append(text("coil_value", value=fields[coil]))
         if request is not None and echo is not None:
             _check_echo(frame, fields, request, echo)
+        if parts is not None:
+            _check_parts(frame, fields, request, *parts)
         if values is not None:
             data = fields[values.field]
             kind = values.kind
@@ -216,10 +222,43 @@ def _source(name: str | None, window: str) -> tuple[str | None, bool]:
 def _check_echo(frame: Frame, fields: Container, request: Frame, echo: Echo) -> None:
     """An answer that repeats its request (FC5/FC6's address and value, FC15/FC16's start and quantity)
     but differs from it wrote something else."""
+    if echo.data:  # (FC21: the whole data, after the function code)
+        if frame.pdu[1:] != request.pdu[1:]:
+            frame.warnings.append(echo_text(["data"]))
+        return
     answered = request.fields
     differ = [name for name in echo.fields if answered[name] != fields[name]]
     if differ:
         frame.warnings.append(echo_text(differ if echo.names is _DIFFERING else list(echo.fields)))
+
+
+def _part_checks(parts: Parts) -> list[_Check]:
+    return [_Check(check.what, check.field, *_limits(check.limit), check.test is Test.ABOVE)  # type: ignore[arg-type]
+            for check in parts.checks]
+
+
+def _check_parts(frame: Frame, fields: Container, request: Frame | None, parts: Parts, checks: list[_Check]) -> None:
+    """Each part of a records field (FC20's sub-requests and sub-responses, FC21's records) by its checks,
+    and an answer's against the request's part in its place (FC20: the record length asked)."""
+    items = fields[parts.field]
+    for index, item in enumerate(items, start=1):
+        for check in checks:
+            value = item[check.field]
+            if value > check.high or (not check.above and value < check.low):
+                what = f"{parts.name} {index}'s {check.what}"
+                frame.warnings.append(text("above", what=what, value=value, high=check.high) if check.above
+                                      else range_text(what, value, check.low, check.high))
+    if request is None or parts.request is None:
+        return
+    asked = request.fields[parts.request]
+    if len(asked) != len(items):
+        frame.warnings.append(text("part_count", part=parts.name, count=len(items), quantity=len(asked)))
+    length = parts.length
+    if length is not None:
+        for index, (item, part) in enumerate(zip(items, asked), start=1):
+            if item[length.field] != length.plus + length.unit * part[length.of]:
+                frame.warnings.append(text(length.text, part=parts.name, index=index, count=item[length.field],
+                                           quantity=part[length.of]))
 
 
 def _request_of(frame: Frame) -> Frame | None:
@@ -270,10 +309,19 @@ def _diagnostic_data(frame: Frame, subfunction: int, data: bytes, rule: Diagnost
                                allowed=allowed))
 
 
+_RUN_VALUES = frozenset(SPEC.names["run_indicator"])  # 00 OFF, FF ON
+
+
 def _report_server_id_response(frame: Frame, fields: Container) -> None:
+    """The spec's server id is device specific in length (Application Protocol 6.17), the run indicator the
+    byte after it: the layout reads a one-byte id (libmodbus); a longer id (pymodbus: a name, the run
+    indicator last) has a run indicator further on. Only an answer with no 00 or FF after its first byte has
+    none where any id length puts it."""
     indicator = fields["run_indicator"]
     if not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
-        frame.warnings.append(text("run_indicator", value=int(indicator)))
+        data = frame.pdu[3 : 2 + fields["byte_count"]]  # (after the function code, byte count, first id byte)
+        if not any(byte in _RUN_VALUES for byte in data):
+            frame.warnings.append(text("run_indicator", value=int(indicator)))
 
 
 _DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)

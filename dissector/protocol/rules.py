@@ -62,6 +62,30 @@ class Names(StrEnum):
 class Echo:
     fields: tuple[str, ...]
     names: Names
+    data: bool = False  # the answer repeats the request's data whole (FC21): no fields named
+
+
+@dataclass(frozen=True, slots=True)
+class PartLength:
+    """A part's `field` must be `plus` + `unit` x the field `of` of the request's part in its place."""
+
+    field: str
+    of: str
+    unit: int
+    plus: int
+    text: str
+
+
+@dataclass(frozen=True, slots=True)
+class Parts:
+    """Each part of a records field checked (FC20, FC21): its `checks`, and with `request` (the request's
+    records field) against the request's part in its place."""
+
+    field: str
+    name: str  # what a part is called in a text, before its place (`sub-request 2`)
+    checks: tuple[Check, ...] = ()
+    request: str | None = None
+    length: PartLength | None = None
 
 
 class ValueKind(StrEnum):
@@ -94,6 +118,7 @@ class Lift:
     echo: Echo | None = None
     values: Values | None = None
     write_window: tuple[str, str] | None = None
+    parts: Parts | None = None
 
     def fields(self) -> set[str]:
         """The grammar fields the rule names of its own frame (the request's are the window's)."""
@@ -111,6 +136,8 @@ class Lift:
             names.update(self.write_window)
         if self.count:
             names.add("byte_count")
+        if self.parts:
+            names.add(self.parts.field)
         return names
 
 
@@ -130,25 +157,38 @@ def _lift(name: str, entry: dict[str, object]) -> Lift:
         echo = entry.get("echo")
         values = entry.get("values")
         window = entry.get("write_window")
+        parts = entry.get("parts")
         return Lift(
             name,
             start=entry.get("start"),  # type: ignore[arg-type]
             quantity=entry.get("quantity"),  # type: ignore[arg-type]
             unpaired_unit=entry.get("unpaired_unit"),  # type: ignore[arg-type]
-            checks=tuple(
-                Check(c["what"], c["field"], c.get("limit"), Test(c.get("test", "range")))
-                for c in entry.get("checks", ())  # type: ignore[attr-defined]
-            ),
+            checks=_checks(entry.get("checks", [])),  # type: ignore[arg-type]
             span=bool(entry.get("span", False)),
             count=None if count is None else Count(count["of"], int(count["unit"]), count["text"], int(count.get("plus", 0))),  # type: ignore[index, attr-defined]
             odd_count=bool(entry.get("odd_count", False)),
             coil=entry.get("coil"),  # type: ignore[arg-type]
-            echo=None if echo is None else Echo(tuple(echo["fields"]), Names(echo["names"])),  # type: ignore[index]
+            echo=None if echo is None else Echo(  # type: ignore[index, attr-defined]
+                tuple(echo.get("fields", ())), Names(echo.get("names", "differing")), bool(echo.get("data", False))),
+            parts=None if parts is None else _parts(parts),  # type: ignore[arg-type]
             values=None if values is None else Values(ValueKind(values["kind"]), values["field"], values.get("start")),  # type: ignore[index, attr-defined]
             write_window=None if window is None else (window[0], window[1]),  # type: ignore[index]
         )
     except (KeyError, TypeError, ValueError) as error:
         raise RuleError(f"[lift.{name}]: {error}") from None
+
+
+def _checks(entries: list[dict[str, str]]) -> tuple[Check, ...]:
+    return tuple(Check(c["what"], c["field"], c.get("limit"), Test(c.get("test", "range"))) for c in entries)
+
+
+def _parts(entry: dict[str, object]) -> Parts:
+    length = entry.get("length")
+    return Parts(
+        entry["field"], entry["name"], _checks(entry.get("checks", [])), entry.get("request"),  # type: ignore[arg-type]
+        None if length is None else PartLength(  # type: ignore[index]
+            length["field"], length["of"], int(length["unit"]), int(length.get("plus", 0)), length["text"]),
+    )
 
 
 LIFTS: dict[str, Lift] = {name: _lift(name, entry) for name, entry in SPEC.lift.items()}  # type: ignore[arg-type]
@@ -180,6 +220,13 @@ def params(key: str) -> tuple[str, ...]:
 def text(key: str, **values: object) -> str:
     """The catalogue's text `key` with its parameters filled in."""
     return TEXTS[key].format(**values)
+
+
+def range_text(what: str, value: int, low: int, high: int) -> str:
+    """A value outside the spec's low..high; `is not the spec's 6` where it allows one value only."""
+    if low == high:
+        return text("range_one", what=what, value=value, low=low)
+    return text("range", what=what, value=value, low=low, high=high)
 
 
 def echo_text(names: list[str]) -> str:

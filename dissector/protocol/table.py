@@ -240,11 +240,15 @@ FUNCTIONS: tuple[Function, ...] = (
         compiled=Compiled(texts=True), text="report_server_id",
     ),
     Function(
-        20, _layout("read_file_request", _BYTE_COUNT), _layout("read_file_response", _BYTE_COUNT), Access.READ,
+        20,
+        _layout("read_file_request", _BYTE_COUNT, "read_file_request"),
+        _layout("read_file_response", _BYTE_COUNT, "read_file_response"),
+        Access.READ,
         compiled=Compiled(texts=True), text="file_record",
     ),
     Function(
-        21, _layout("write_file", _BYTE_COUNT), _layout("write_file", _BYTE_COUNT), Access.WRITE, echo=True,
+        21, _layout("write_file", _BYTE_COUNT, "write_file"), _layout("write_file", _BYTE_COUNT, "write_file"),
+        Access.WRITE, echo=True,
         compiled=Compiled(texts=True), text="file_record",
     ),
     Function(

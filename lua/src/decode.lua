@@ -201,14 +201,56 @@ local function echo_check(f, fields, request, echo)
   warn(f, say("echo", { fields = concat(differ, " and "), verb = #differ == 1 and "differs" or "differ" }))
 end
 
+-- A value outside the spec's low..high (protocol/rules.py range_text): one the spec allows alone named.
+local function range_text(what, value, low, high)
+  if low == high then return say("range_one", { what = what, value = value, low = low }) end
+  return say("range", { what = what, value = value, low = low, high = high })
+end
+
+-- The data bytes after the function code, as a string: what an answer that echoes them whole is held to (FC21).
+local function data_bytes_of(f, b) return string.char(table.unpack(b, f.data_at, f.data_at + f.data_len - 1)) end
+
+-- Each part of a records field (decode/fields.py _check_parts; FC20, FC21): its checks, an answer's against
+-- the request's part in its place. The parts read become the field's list (an answer reads its request's).
+local function check_parts(f, b, fields, request, parts, at, size)
+  local items, stop, read = {}, at + size, PARTS[parts.part]
+  while at < stop do
+    local used, item = read(b, at, stop - at)
+    if used == nil then break end
+    items[#items + 1], at = item, at + used
+  end
+  fields[parts.field] = items
+  for index, item in ipairs(items) do
+    for _, check in ipairs(parts.checks) do
+      local value, low, high = item[check.field], LIMITS[check.limit][1], LIMITS[check.limit][2]
+      if value > high or (check.test ~= "above" and value < low) then
+        local what = format("%s %d's %s", parts.name, index, check.what)
+        warn(f, check.test == "above" and say("above", { what = what, value = value, high = high })
+          or range_text(what, value, low, high))
+      end
+    end
+  end
+  local asked = request ~= nil and parts.request ~= nil and request.fields[parts.request] or nil
+  if asked == nil then return end
+  if #asked ~= #items then warn(f, say("part_count", { part = parts.name, count = #items, quantity = #asked })) end
+  local length = parts.length
+  for index = 1, length and math.min(#asked, #items) or 0 do
+    local given, of = items[index][length.field], asked[index][length.of]
+    if given ~= length.plus + length.unit * of then
+      warn(f, say(length.text, { part = parts.name, index = index, count = given, quantity = of }))
+    end
+  end
+end
+
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo, data_bytes = ...",
+  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_parts, parts, data_bytes_of = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
-  if start == REQUEST_START or quantity == REQUEST_QUANTITY or (count and count.of == REQUEST_QUANTITY) or rule.echo then
+  if start == REQUEST_START or quantity == REQUEST_QUANTITY or (count and count.of == REQUEST_QUANTITY) or rule.echo
+    or (rule.parts and rule.parts.request) then
     add("local request = f.request")
     add("if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)")
   end
@@ -225,10 +267,13 @@ local function lifter(rule, limit, layout)
   add("f.start, f.quantity = first, many")
   for _, check in ipairs(rule.checks) do -- (test "above": the high bound only; its text names no low one)
     local value, low, high = field(check.field), table.unpack(LIMITS[check.limit or limit])
-    local outside = check.test == "above" and format("%s > %d", value, high)
-      or format("%s < %d or %s > %d", value, low, value, high)
-    add("if %s then warn(f, say(%q, { what = %q, value = %s, low = %d, high = %d })) end", outside, check.test,
-      check.what, value, low, high)
+    if check.test == "above" then
+      add("if %s > %d then warn(f, say(\"above\", { what = %q, value = %s, high = %d })) end", value, high, check.what,
+        value, high)
+    else
+      add("if %s < %d or %s > %d then warn(f, range_text(%q, %s, %d, %d)) end", value, low, value, high, check.what,
+        value, low, high)
+    end
   end
   if rule.span then
     add("if first + many > 65536 then warn(f, say(\"span\", { first = first, last = first + many - 1 })) end")
@@ -251,7 +296,12 @@ local function lifter(rule, limit, layout)
     add("if %s ~= 65280 and %s ~= 0 then warn(f, say(\"coil_value\", { value = %s })) end", field(rule.coil),
       field(rule.coil), field(rule.coil))
   end
-  if rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
+  if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole; a request keeps it)
+    add("if request == nil then fields.data_bytes = data_bytes_of(f, b)")
+    add("elseif request.fields.data_bytes ~= data_bytes_of(f, b) then")
+    add("  warn(f, say(\"echo\", { fields = \"data\", verb = \"differs\" }))")
+    add("end")
+  elseif rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
     local differs = {}
     for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
     add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
@@ -278,8 +328,17 @@ local function lifter(rule, limit, layout)
         field(values.field))
     end
   end
+  if rule.parts then -- (its parts by the layout's part, in the bytes its count gives)
+    local parts = rule.parts
+    for _, item in ipairs(shape) do
+      if item.name == parts.field then parts.part, parts.count = item.part, item.count end
+    end
+    add("check_parts(f, b, fields, %s, parts, %s, %s)", parts.request and "request" or "nil",
+      field(parts.field .. "_at"), field(parts.count))
+  end
   add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes)
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_parts,
+    rule.parts, data_bytes_of)
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -316,6 +375,15 @@ local function diagnostic_data(f, b, subfunction, rule)
   for k = 0, count - 1 do digits[#digits + 1] = format("%02X", b[at + k]) end
   local data = #digits > 0 and concat(digits) or "(none)"
   warn(f, say("diagnostic_data", { data = data, subfunction = subfunction, allowed = allowed }))
+end
+
+-- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): is a byte
+-- from b[from] to b[last] a run indicator (00, FF) that may follow a longer id?
+local function run_indicator_after(b, from, last, names)
+  for k = from, last do
+    if names[b[k]] ~= nil then return true end
+  end
+  return false
 end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
@@ -362,8 +430,10 @@ local SPECIAL = {
   end,
   report_server_id_response = function(f, b)
     -- (the tree shows its fields from the layout, tree.lua add_pdu)
-    local run = f.fields.run_indicator
-    if DATA.names.run_indicator[run] == nil then warn(f, say("run_indicator", { value = run })) end -- (OFF, ON)
+    local run, names = f.fields.run_indicator, DATA.names.run_indicator
+    if names[run] == nil and not run_indicator_after(b, f.data_at + 2, f.data_at + f.fields.byte_count, names) then
+      warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
+    end
   end,
 }
 

@@ -58,9 +58,10 @@ def test_plugin_shows_the_fields(tmp_path: Path) -> None:
     assert not items[1].experts
     text = run_tshark(pcap, "-V").stdout
     assert "    Server id: 180 (0xb4)\n    Run indicator: ON (0xff)\n    Additional data: LMB3.1.6\n" in text
-    odd = write_pcap(tmp_path / "odd.pcap", [(REQUEST, 1.0), (bytes.fromhex("11 11 04 01 12 00 01 B9 88"), 1.01)])
+    # (no 00 or FF after the first byte: no run indicator where a longer server id would put one either)
+    odd = write_pcap(tmp_path / "odd.pcap", [(REQUEST, 1.0), (bytes.fromhex("11 11 04 01 12 01 02 C9 28"), 1.01)])
     odd_items, _, _ = lua_items(odd)
-    assert "additional_data" not in odd_items[1].fields and odd_items[1].fields["additional_bytes"] == "00:01"
+    assert "additional_data" not in odd_items[1].fields and odd_items[1].fields["additional_bytes"] == "01:02"
     assert odd_items[1].texts["warning"] == ["run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)"]
 
 

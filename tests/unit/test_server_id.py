@@ -12,10 +12,11 @@ def test_libmodbus_answer_in_vw3_decode() -> None:
 
 
 def test_odd_run_indicator_and_binary_data() -> None:
-    # run indicator 0x12, data 00 01: the number, a warning, the bytes in hex
-    status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", "11 11 04 01 12 00 01", "-V"])
+    # run indicator 0x12, data 01 02 (no 00 or FF after the first byte, where a longer id's run indicator
+    # would be: tests/unit/test_server_id_length.py): the number, a warning, the bytes in hex
+    status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", "11 11 04 01 12 01 02", "-V"])
     assert status == 0
-    assert "        Run indicator: 18 (0x12)\n        Additional data: 00 01\n" in out
+    assert "        Run indicator: 18 (0x12)\n        Additional data: 01 02\n" in out
     assert "Warning: run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)" in out
     status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", rtu("11 11 01 B4").hex(" "), "--json"])
     assert json.loads(out.splitlines()[1])["warnings"] == [
