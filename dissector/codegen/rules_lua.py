@@ -66,6 +66,51 @@ def _checks(checks: tuple[Check, ...]) -> list[dict[str, Any]]:
     return [{"what": c.what, "field": c.field, "limit": c.limit, "test": str(c.test)} for c in checks]
 
 
+def _part_shape(rule: Lift) -> tuple[Field, ...]:
+    """The [parts] entry a rule's records field repeats (every layout naming the field repeats the same)."""
+    names = {f.part for shape in SHAPES.values() for f in shape if f.name == rule.parts.field and f.part}  # type: ignore[union-attr]
+    if len(names) != 1:
+        raise ValueError(f"[lift.{rule.name}] parts: {rule.parts.field!r} repeats {sorted(names)} parts")  # type: ignore[union-attr, type-var]
+    return PARTS[names.pop()]  # type: ignore[arg-type]
+
+
+def _at(shape: tuple[Field, ...], name: str) -> list[int]:
+    """[offset, width] of a fixed-size field of a part, among the fixed-size fields it starts with."""
+    offset = 0
+    for f in shape:
+        if f.size is None:
+            break
+        if f.name == name:
+            return [offset, f.size]
+        offset += f.size
+    raise ValueError(f"no fixed-size field {name!r} at the start of a part")
+
+
+def _parts(rule: Lift) -> dict[str, Any]:
+    """A parts rule with where each field it reads is in its part and each part's size (the plugin walks the
+    parts in the frame's bytes, making no table for one: check_parts), and what of a request's parts an answer
+    asks for (`keep`: the field a request's rule keeps a list of)."""
+    parts, shape = rule.parts, _part_shape(rule)
+    assert parts is not None
+    fixed = sum(f.size or 0 for f in shape if f.size is not None)
+    counted = [f for f in shape if f.size is None]
+    if len(counted) > 1 or any(f is not shape[-1] for f in counted) or (counted and counted[0].type not in ("words", "bytes")):
+        raise ValueError(f"[lift.{rule.name}] parts: one counted field (words, bytes), last, at most")
+    size = None if not counted else {
+        "at": _at(shape, counted[0].count or ""), "minus": counted[0].minus, "half": counted[0].half,
+        "words": counted[0].type == "words"}
+    keep = [other.parts.length.of for other in LIFTS.values() if other.parts is not None and other.parts.length
+            and other.parts.request == parts.field]
+    return {
+        "field": parts.field, "name": parts.name, "fixed": fixed, "size": size,
+        "checks": [{"what": c.what, "at": _at(shape, c.field), "limit": c.limit, "test": str(c.test)} for c in parts.checks],
+        "request": parts.request, "keep": _at(shape, keep[0]) if keep else None,
+        "length": None if parts.length is None else {
+            "at": _at(shape, parts.length.field), "unit": parts.length.unit, "plus": parts.length.plus,
+            "text": parts.length.text},
+    }
+
+
 def _lift(rule: Lift) -> dict[str, Any]:
     return {
         "start": rule.start, "quantity": rule.quantity, "unpaired_unit": rule.unpaired_unit,
@@ -76,11 +121,7 @@ def _lift(rule: Lift) -> dict[str, Any]:
         "odd_count": rule.odd_count, "coil": rule.coil,
         "echo": None if rule.echo is None else {"fields": list(rule.echo.fields), "names": str(rule.echo.names),
                                                 "data": rule.echo.data},
-        "parts": None if rule.parts is None else {
-            "field": rule.parts.field, "name": rule.parts.name, "checks": _checks(rule.parts.checks),
-            "request": rule.parts.request, "length": None if rule.parts.length is None else {
-                "field": rule.parts.length.field, "of": rule.parts.length.of, "unit": rule.parts.length.unit,
-                "plus": rule.parts.length.plus, "text": rule.parts.length.text}},
+        "parts": None if rule.parts is None else _parts(rule),
         "values": None if rule.values is None else {
             "kind": str(rule.values.kind), "field": rule.values.field, "start": rule.values.start},
         "write_window": None if rule.write_window is None else list(rule.write_window),

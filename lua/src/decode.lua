@@ -210,42 +210,67 @@ end
 -- The data bytes after the function code, as a string: what an answer that echoes them whole is held to (FC21).
 local function data_bytes_of(f, b) return string.char(table.unpack(b, f.data_at, f.data_at + f.data_len - 1)) end
 
--- Each part of a records field (decode/fields.py _check_parts; FC20, FC21): its checks, an answer's against
--- the request's part in its place. The parts read become the field's list (an answer reads its request's).
-local function check_parts(f, b, fields, request, parts, at, size)
-  local items, stop, read = {}, at + size, PARTS[parts.part]
-  while at < stop do
-    local used, item = read(b, at, stop - at)
-    if used == nil then break end
-    items[#items + 1], at = item, at + used
-  end
-  fields[parts.field] = items
-  for index, item in ipairs(items) do
-    for _, check in ipairs(parts.checks) do
-      local value, low, high = item[check.field], LIMITS[check.limit][1], LIMITS[check.limit][2]
-      if value > high or (check.test ~= "above" and value < low) then
-        local what = format("%s %d's %s", parts.name, index, check.what)
-        warn(f, check.test == "above" and say("above", { what = what, value = value, high = high })
-          or range_text(what, value, low, high))
-      end
-    end
-  end
-  local asked = request ~= nil and parts.request ~= nil and request.fields[parts.request] or nil
-  if asked == nil then return end
-  if #asked ~= #items then warn(f, say("part_count", { part = parts.name, count = #items, quantity = #asked })) end
+-- An answer's parts against its request's (decode/fields.py _check_parts; FC20): as many, each of the length its
+-- request part asks (`given`: the answer's length fields, `asked`: what its request kept of its parts).
+local function check_asked(f, parts, index, given, asked)
   local length = parts.length
-  for index = 1, length and math.min(#asked, #items) or 0 do
-    local given, of = items[index][length.field], asked[index][length.of]
-    if given ~= length.plus + length.unit * of then
-      warn(f, say(length.text, { part = parts.name, index = index, count = given, quantity = of }))
+  if #asked ~= index then warn(f, say("part_count", { part = parts.name, count = index, quantity = #asked })) end
+  for k = 1, given and math.min(#asked, index) or 0 do
+    if given[k] ~= length.plus + length.unit * asked[k] then
+      warn(f, say(length.text, { part = parts.name, index = k, count = given[k], quantity = asked[k] }))
     end
+  end
+end
+
+-- The lines of a lifter walking each part of a records field in the frame's bytes (FC20, FC21): its checks
+-- (range_text, "above"), what an answer asks of a request's part kept (`keep`), an answer's length fields
+-- (check_asked). Where its fields are and its size come from RULES (codegen/rules_lua.py); a part that does
+-- not fit ends them, as the grammar's. Constants in place, no table a part.
+local function parts_lines(add, parts, at, size, request)
+  local function read(spec) -- (a field of the part at `p`: its offset and width)
+    return spec[2] == 1 and format("b[p + %d]", spec[1]) or format("b[p + %d] * 256 + b[p + %d]", spec[1], spec[1] + 1)
+  end
+  add("local p, stop, index = %s, %s + %s, 0", at, at, size)
+  if parts.keep then add("local kept = {}") end
+  if parts.length then add("local given = {}") end
+  add("while p + %d <= stop do", parts.fixed)
+  local bytes = format("%d", parts.fixed)
+  if parts.size then
+    local counted = parts.size
+    add("local n = %s - %d", read(counted.at), counted.minus)
+    add("if n < 0 then break end")
+    bytes = format("%d + %s", parts.fixed, counted.half and "n - n % 2" or counted.words and "2 * n" or "n")
+  end
+  add("if p + %s > stop then break end", bytes)
+  add("index = index + 1")
+  for _, check in ipairs(parts.checks) do
+    local low, high = LIMITS[check.limit][1], LIMITS[check.limit][2]
+    add("local v = %s", read(check.at))
+    local what = format("%q .. index .. %q", parts.name .. " ", "'s " .. check.what)
+    if check.test == "above" then
+      add("if v > %d then warn(f, say(\"above\", { what = %s, value = v, high = %d })) end", high, what, high)
+    else
+      local outside = low == high and format("v ~= %d", low) or low == 0 and format("v > %d", high) -- (unsigned)
+        or format("v < %d or v > %d", low, high)
+      add("if %s then warn(f, range_text(%s, v, %d, %d)) end", outside, what, low, high)
+    end
+  end
+  if parts.keep then add("kept[index] = %s", read(parts.keep)) end
+  if parts.length then add("given[index] = %s", read(parts.length.at)) end
+  add("p = p + %s", bytes)
+  add("end")
+  if parts.keep then add("fields[%q] = kept", parts.field) end
+  if parts.request then
+    add("if %s ~= nil and request.fields[%q] ~= nil then", request, parts.request)
+    add("  check_asked(f, parts, index, %s, request.fields[%q])", parts.length and "given" or "nil", parts.request)
+    add("end")
   end
 end
 
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_parts, parts, data_bytes_of = ...",
+  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, data_bytes_of = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -296,8 +321,8 @@ local function lifter(rule, limit, layout)
     add("if %s ~= 65280 and %s ~= 0 then warn(f, say(\"coil_value\", { value = %s })) end", field(rule.coil),
       field(rule.coil), field(rule.coil))
   end
-  if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole; a request keeps it)
-    add("if request == nil then fields.data_bytes = data_bytes_of(f, b)")
+  if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole)
+    add("if request == nil then fields.data_bytes = data_bytes_of(f, b)") -- (a request keeps them for its answer)
     add("elseif request.fields.data_bytes ~= data_bytes_of(f, b) then")
     add("  warn(f, say(\"echo\", { fields = \"data\", verb = \"differs\" }))")
     add("end")
@@ -329,15 +354,14 @@ local function lifter(rule, limit, layout)
     end
   end
   if rule.parts then -- (its parts by the layout's part, in the bytes its count gives)
-    local parts = rule.parts
+    local count
     for _, item in ipairs(shape) do
-      if item.name == parts.field then parts.part, parts.count = item.part, item.count end
+      if item.name == rule.parts.field then count = item.count end
     end
-    add("check_parts(f, b, fields, %s, parts, %s, %s)", parts.request and "request" or "nil",
-      field(parts.field .. "_at"), field(parts.count))
+    parts_lines(add, rule.parts, field(rule.parts.field .. "_at"), field(count), "request")
   end
   add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_parts,
+  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_asked,
     rule.parts, data_bytes_of)
 end
 
