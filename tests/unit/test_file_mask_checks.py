@@ -67,6 +67,7 @@ def test_reference_type_and_record_number_are_the_specs(monkeypatch: pytest.Monk
         "     3            -   1 request   Read File Record 2 record group(s)  CRC ok",
         "     4            -   1 response  Read File Record 1 record group(s) [#3] "
         "[warning: number of sub-responses 1 disagrees with the request's (2)]  CRC ok",
-        "     5            -   1 request   Write File Record 1 record group(s) [no response] "
-        "[the capture ends before any response] [warning: record 1's reference type 7 is not the spec's 6]  CRC ok",
+        "     5            -   1 request   Write File Record 1 record group(s) "
+        "[the capture ends before any response: not known whether it was answered] "
+        "[warning: record 1's reference type 7 is not the spec's 6]  CRC ok",
     ]
