@@ -325,7 +325,8 @@ class Frame:
     def raw_binary(self) -> bytes:
         """The ADU as binary bytes (for ASCII frames: the hex pairs decoded, LRC included)."""
         if self.mode == "ascii":
-            return bytes.fromhex(self.raw[1:].rstrip(b"\r\n").decode("ascii"))  # (the CR may be lost)
+            # (the hex pairs end at the CR, which may be lost; a line ends with LF or the character 08/03 set)
+            return bytes.fromhex(self.raw[1:].split(b"\r", 1)[0].rstrip(b"\n").decode("ascii"))
         return self.raw
 
     @property

@@ -15,8 +15,11 @@ lost its LF (CR, then the next ':': the CR ends the line, a cut frame ends in a 
 from a reserved address (248..255, the decoder's warning); bytes between frames are noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
 damaged. The answer does not depend on how the stream is split into chunks.
 
-The delimiter is always LF here: FC8 sub-function 3 can change it on a device, which a passive tap
-could follow only by decoding that request; frames after such a change show up as noise.
+FC8 sub-function 3 (Change ASCII Input Delimiter) replaces the LF of a slave's lines with the character its
+request's data carries (the high byte, [diagnostic_data] `character`): once the slave's answer echoes the
+change, CR and that character end a line too (the frame keeps both bytes), for any slave, as LF still does
+(no byte says which slave a line is for before it is read). A change back to LF, or to CR or ':' (which
+cannot end a line after a CR), drops the slave's character.
 """
 from __future__ import annotations
 
@@ -25,14 +28,24 @@ from dissector.framing.rtu import MAX_ADU, NEED, Awaiting, Scan
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
-from dissector.protocol.ascii import _HEX_DIGITS, COLON, CR, MAX_ASCII, MIN_BINARY
+from dissector.protocol.ascii import _HEX_DIGITS, COLON, CR, LF, MAX_ASCII, MIN_BINARY
 from dissector.protocol.rules import text
+from dissector.protocol.spec import SPEC
+from dissector.framing.timing import DEFAULT_BAUD
+
+# FC8 sub-functions whose request data word is a character then 00: the delimiter they set (sub-function 3).
+_DELIMITER_SUBFUNCTIONS = frozenset(sub for sub, rule in SPEC.diagnostic_data.items() if rule.character)
 
 
 class AsciiFramer(Awaiting, StreamFramer):
     """Push parser with RtuFramer's interface: feed chunks, collect items in stream order."""
 
     mode = "ascii"
+
+    def __init__(self, baud: int = DEFAULT_BAUD) -> None:
+        super().__init__(baud)
+        self._delimiters: dict[int, int] = {}  # slave -> the character 08/03 set in place of LF
+        self._line_ends = b""  # those characters: each ends a line after a CR
 
     def _run(self, final: bool) -> list[Item]:
         buf = self._buf
@@ -48,6 +61,8 @@ class AsciiFramer(Awaiting, StreamFramer):
                 continue
             limit = min(n, i + MAX_ASCII)
             lf = buf.find(b"\n", i + 1, limit)
+            if self._line_ends:
+                lf = self._changed_end(buf, i, limit, lf)
             colon = buf.find(b":", i + 1, limit)
             if colon >= 0 and (lf < 0 or colon < lf):
                 if buf[colon - 1] == CR:  # (the LF lost: the CR ended the line)
@@ -69,6 +84,29 @@ class AsciiFramer(Awaiting, StreamFramer):
         if i:
             self._consume(i)
         return items
+
+    def _changed_end(self, buf: bytearray, i: int, limit: int, lf: int) -> int:
+        """Where the line from i ends: at a delimiter 08/03 set, after a CR, before the LF at `lf` (-1: none)
+        and `limit` (its position); else at `lf`."""
+        stop = limit if lf < 0 else lf
+        cr = buf.find(b"\r", i + 1, stop)
+        while 0 <= cr < stop - 1:
+            if buf[cr + 1] in self._line_ends:
+                return cr + 1
+            cr = buf.find(b"\r", cr + 1, stop)
+        return lf
+
+    def _changed(self, binary: bytes) -> None:
+        """A normal answer to 08/03 (Change ASCII Input Delimiter) echoes the change: its slave's lines may end
+        with CR and that character from now on."""
+        if binary[1] != 8 or len(binary) != 7 or binary[2] << 8 | binary[3] not in _DELIMITER_SUBFUNCTIONS:
+            return
+        character = binary[4]
+        if binary[5] or character in (LF, CR, COLON):
+            self._delimiters.pop(binary[0], None)
+        else:
+            self._delimiters[binary[0]] = character
+        self._line_ends = bytes(sorted(set(self._delimiters.values())))
 
     def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
         """A ':' ... LF run (or ':' ... CR, its LF lost): a Frame when it is one, a Noise item saying why
@@ -110,6 +148,8 @@ class AsciiFramer(Awaiting, StreamFramer):
             frame.warnings.append(text("lf_without_cr"))
         if digits != digits.upper():
             frame.warnings.append(text("lower_case_hex"))
+        if kind is Kind.RESPONSE and received == expected:
+            self._changed(binary)
         self._emit(frame, items)
 
     def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:

@@ -19,6 +19,9 @@ local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.a
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
+-- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
+local SETS_DELIMITER = {}
+for sub, rule in pairs(DATA.rules.diagnostic_data) do SETS_DELIMITER[sub] = rule.character ~= nil or nil end
 
 local function lrc(bytes_, count)
   local sum = 0
@@ -86,6 +89,23 @@ local function classify_ascii(s, adu, count)
   return nil
 end
 
+-- A normal answer to 08/03 echoes the change: its slave's lines may end with CR and that character from now on
+-- (s.line_ends, any slave's; LF still ends one); back to LF, CR or ':' drops it (ascii.py _changed).
+local function changed(s, bin, count)
+  if bin[1] ~= 8 or count ~= 7 or not SETS_DELIMITER[bin[2] * 256 + bin[3]] then return end
+  local character = bin[4]
+  s.delimiters = s.delimiters or {}
+  s.delimiters[bin[0]] = nil
+  if bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON then
+    s.delimiters[bin[0]] = character
+  end
+  s.line_ends = nil
+  for _, byte in pairs(s.delimiters) do
+    s.line_ends = s.line_ends or {}
+    s.line_ends[byte] = true
+  end
+end
+
 -- A run of ASCII bytes that is no frame, with the reason: a noise item of its own.
 local function reject(s, at, length, reason, items)
   flush_noise(s, items)
@@ -125,6 +145,7 @@ local function ascii_candidate(s, at, length, items)
   if lost_lf then frame.warnings[1] = CR_WITHOUT_LF end
   if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
+  if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
 end
@@ -169,11 +190,14 @@ local function run_ascii(s, final, items)
       local limit = math.min(n, i + MAX_ASCII)
       -- (the first LF or ':' after it, in one scan that stops there: two scans to the limit cost 513
       -- reads a ':' in a flood of them)
-      local stop = nil
+      local stop, ends = nil, s.line_ends -- (ends: the characters 08/03 set, each ending a line after a CR)
       for k = i + 1, limit - 1 do
         local byte = b[k]
         if byte == LF or byte == COLON then
           stop = k
+          break
+        elseif ends ~= nil and byte == CR and k + 1 < limit and ends[b[k + 1]] then
+          stop = k + 1
           break
         end
       end

@@ -1,0 +1,90 @@
+"""FC8 sub-function 03 (Change ASCII Input Delimiter) in Modbus ASCII: once the slave's answer echoes the
+change, a line may end with CR and the character its data's high byte carries (here '!'); the frame keeps both
+bytes (before: the frame was noise, "ASCII frame cut short by the next ':'"). A change back to LF ends that:
+a later CR '!' line is noise again. vw3-decode's summary and --json, under the compiled engine and
+VW3_PURE_PYTHON=1 (ASCII is framed in Python either way), whatever the chunks; the plugin:
+tests/integration/test_lua_ascii_delimiter.py."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from helpers import run_cli, use_engine
+
+from dissector.framing.ascii import AsciiFramer
+from dissector.model import Chunk
+from dissector.protocol.crc import lrc
+
+
+def line(pdu: str) -> bytes:
+    """`:` and the hex pairs of slave, PDU and LRC (no line end)."""
+    binary = bytes.fromhex(pdu.replace(" ", ""))
+    return b":" + (binary + bytes([lrc(binary)])).hex().upper().encode("ascii")
+
+
+LINES = [
+    line("01 03 0001 0001") + b"\r\n", line("01 03 02 0005") + b"\r\n",
+    line("01 08 0003 2100") + b"\r\n", line("01 08 0003 2100") + b"\r\n",  # '!' (21h) from now on
+    line("01 03 0001 0001") + b"\r!", line("01 03 02 0007") + b"\r!",
+    line("01 03 0001 0001") + b"\r\n", line("01 03 02 0008") + b"\r\n",  # (LF still ends a line)
+    line("01 08 0003 0A00") + b"\r\n", line("01 08 0003 0A00") + b"\r\n",  # back to LF
+    line("01 03 0001 0001") + b"\r!", line("01 03 02 0009") + b"\r!",
+]
+DATA = b"".join(LINES)
+SUMMARY = [
+    "     1            -   1 request   Read Holding Registers 1  LRC ok",
+    "     2            -   1 response  Read Holding Registers 1: 1=5 [#1]  LRC ok",
+    "     3            -   1 request   Diagnostics 03h Change ASCII Input Delimiter = 8448 "
+    "[new ASCII input delimiter: '!' (21h)]  LRC ok",
+    "     4            -   1 response  Diagnostics 03h Change ASCII Input Delimiter = 8448 [#3]  LRC ok",
+    "     5            -   1 request   Read Holding Registers 1  LRC ok",
+    "     6            -   1 response  Read Holding Registers 1: 1=7 [#5]  LRC ok",
+    "     7            -   1 request   Read Holding Registers 1  LRC ok",
+    "     8            -   1 response  Read Holding Registers 1: 1=8 [#7]  LRC ok",
+    "     9            -   1 request   Diagnostics 03h Change ASCII Input Delimiter = 2560 "
+    "[new ASCII input delimiter: LF (0Ah)]  LRC ok",
+    "    10            -   1 response  Diagnostics 03h Change ASCII Input Delimiter = 2560 [#9]  LRC ok",
+    "    11            -   - noise     17 bytes of noise at offset 164: "
+    "3a 30 31 30 33 30 30 30 31 30 30 30 31 46 41 0d…",
+    "    12            -   - noise     15 bytes of noise at offset 181: "
+    "3a 30 31 30 33 30 32 30 30 30 39 46 31 0d 21",
+]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_a_line_ends_with_the_delimiter_03_set(tmp_path: Path, pure: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    use_engine(monkeypatch, pure)
+    path = tmp_path / "delimiter.txt"
+    path.write_bytes(DATA)
+    assert run_cli([str(path)]) == (0, "\n".join(SUMMARY) + "\n", "")
+    items = [json.loads(row) for row in run_cli(["--json", str(path)])[1].splitlines()]
+    assert [(item["kind"], bytes.fromhex(item["raw"])) for item in items] == [
+        *[(kind, raw) for kind, raw in zip(["request", "response"] * 5, LINES[:10])],
+        ("noise", LINES[10]), ("noise", LINES[11])]
+    assert [item.get("reason") for item in items[10:]] == [
+        "ASCII frame cut short by the next ':'", "ASCII frame cut off by the end of the capture"]
+    assert items[5]["registers"] == [{"address": 1, "value": 7}]
+
+
+def test_the_same_whatever_the_chunks() -> None:
+    def items(chunks: list[bytes]) -> list[tuple[str, int, bytes]]:
+        framer, out = AsciiFramer(), []
+        for chunk in chunks:
+            out += framer.feed(Chunk(chunk))
+        out += framer.finish()
+        return [(type(item).__name__, item.offset, item.raw) for item in out]
+
+    whole = items([DATA])
+    assert [kind for kind, _, _ in whole] == ["Frame"] * 10 + ["Noise"] * 2
+    for size in (1, 2, 3, 16):
+        assert items([DATA[at : at + size] for at in range(0, len(DATA), size)]) == whole
+
+
+def test_no_change_without_the_answer() -> None:
+    # The request alone (no echo: the slave did not take it), or an exception to it: CR '!' ends no line.
+    for answer in (b"", line("01 88 01") + b"\r\n"):
+        framer = AsciiFramer()
+        out = framer.feed(Chunk(LINES[2] + answer + LINES[4] + LINES[5])) + framer.finish()
+        assert [(type(item).__name__, item.raw) for item in out[-2:]] == [("Noise", LINES[4]), ("Noise", LINES[5])]
