@@ -811,13 +811,17 @@ typedef struct {
 static const char *subfunction_name(unsigned sub) { return sub < SUBFUNCTIONS ? subfunction_names[sub] : NULL; }
 
 /* fields._diagnostics and the annotator's _diagnostics say nothing of an FC8 frame: a sub-function
- * the spec defines, whole words of data, no meaning on this device, and for a request the data word that
- * says nothing more (diagnostic_quiet: fields._diagnostic_data). 1 quiet, 0 hand over. */
-static int diagnostics_are_plain(const Slave *s, const uint8_t *f, Py_ssize_t length, int request) {
+ * the spec defines, whole words of data, no meaning on this device, for a request the data word that
+ * says nothing more (diagnostic_quiet: fields._diagnostic_data), for an answer (its `request` given) its request's
+ * data where it repeats them (diagnostic_echo: fields._diagnostics). 1 quiet, 0 hand over. */
+static int diagnostics_are_plain(const Slave *s, const uint8_t *f, Py_ssize_t length, const Lifted *request) {
     unsigned sub = word(f + 2);
     if ((length - 6) & 1 || bit(s->explained, sub) || subfunction_name(sub) == NULL) return 0;
+    if (request != NULL)
+        return !diagnostic_echo[sub]
+               || (request->length == length && memcmp(request->frame + 4, f + 4, (size_t)(length - 6)) == 0);
     long quiet = diagnostic_quiet[sub];
-    return !request || quiet == DIAG_ANY || (length == 8 && (long)word(f + 4) == quiet);
+    return quiet == DIAG_ANY || (length == 8 && (long)word(f + 4) == quiet);
 }
 
 /* describe.bits_text: the first 32 bits as 0/1, then `… (+n)` */
@@ -834,7 +838,7 @@ static void bits_text(Out *o, const uint8_t *packed, unsigned count) {
 static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const Lift *L, const Lifted *request,
                       Lifted *out) {
     *out = (Lifted){0, 1, {0, 0, NULL}, NULL, f, length};
-    if (L->special) return diagnostics_are_plain(s, f, length, request == NULL);
+    if (L->special) return diagnostics_are_plain(s, f, length, request);
     out->start = L->start_at ? word(f + L->start_at) : request != NULL ? request->start : 0;
     out->quantity = L->quantity_at ? word(f + L->quantity_at) : L->quantity || request == NULL ? (unsigned)L->quantity
                                                                                                : request->quantity;

@@ -74,6 +74,10 @@ static const char *const subfunction_names[SUBFUNCTIONS] = {
 #define DIAG_NONE -2
 static const long diagnostic_quiet[SUBFUNCTIONS] = {-1, 0, 0, -2, 0, -1, -1, -1, -1, -1, 0, 0, 0, 0, 0, 0, 0, 0, 0, -1, 0};
 
+/* 1: an FC8 answer of this sub-function repeats its request's data (data/modbus.toml [diagnostic_answers],
+ * decode/fields.py _diagnostics), one that differs draws a warning. */
+static const unsigned char diagnostic_echo[SUBFUNCTIONS] = {1, 1, 0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+
 /* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and
  * {function, value of a request's first data word} that no answer follows. */
 #define ECHOES 1

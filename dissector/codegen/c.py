@@ -140,6 +140,11 @@ def render_header() -> str:
         "static const long diagnostic_quiet[SUBFUNCTIONS] = {"
         + ", ".join(str(_quiet_word(number)) for number in range(max(SPEC.diagnostics) + 1)) + "};",
         "",
+        "/* 1: an FC8 answer of this sub-function repeats its request's data (data/modbus.toml [diagnostic_answers],",
+        " * decode/fields.py _diagnostics), one that differs draws a warning. */",
+        "static const unsigned char diagnostic_echo[SUBFUNCTIONS] = {"
+        + ", ".join(str(int(number in SPEC.diagnostic_echoes)) for number in range(max(SPEC.diagnostics) + 1)) + "};",
+        "",
         "/* Pairing (data/modbus.toml [pairing]): {function, data bytes an answer echoes of its request}, and",
         " * {function, value of a request's first data word} that no answer follows. */",
         f"#define ECHOES {len(SPEC.echo)}",

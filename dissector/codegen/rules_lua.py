@@ -169,6 +169,8 @@ def rules_data() -> dict[str, Any]:
         # An FC8 request's data word by sub-function ([diagnostic_data], fields._diagnostic_data): the words
         # allowed with what each asks, in order (`words`), or the character it sets (and its names).
         "diagnostic_data": {sub: _diagnostic_data(rule) for sub, rule in sorted(SPEC.diagnostic_data.items())},
+        # The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers], fields._diagnostics).
+        "diagnostic_echoes": SPEC.diagnostic_echoes,
     }
 
 

@@ -280,6 +280,11 @@ def _diagnostics(frame: Frame, fields: Container) -> None:
         rule = SPEC.diagnostic_data.get(fields["subfunction"])
         if rule is not None:
             _diagnostic_data(frame, fields["subfunction"], bytes(fields["data"]), rule)
+    elif fields["subfunction"] in SPEC.diagnostic_echoes:
+        # An answer that repeats its request's data ([diagnostic_answers]) but differs answered other data.
+        request = _request_of(frame)  # (the pairing had it repeat the sub-function)
+        if request is not None and bytes(request.fields["data"]) != bytes(fields["data"]):
+            frame.warnings.append(echo_text(["data"]))
 
 
 def _diagnostic_data(frame: Frame, subfunction: int, data: bytes, rule: DiagnosticData) -> None:

@@ -46,6 +46,7 @@ class Spec:
     echo: dict[int, int]
     never_answered: dict[int, frozenset[int]]
     diagnostic_data: dict[int, DiagnosticData]  # FC8 request data by sub-function
+    diagnostic_echoes: frozenset[int]  # FC8 sub-functions whose response repeats the request's data
 
     def function_name(self, code: int) -> str:
         name = self.functions.get(code)
@@ -83,6 +84,7 @@ def load_spec() -> Spec:
         echo={int(key): int(value) for key, value in data["pairing"]["echo"].items()},
         never_answered={int(key): frozenset(value) for key, value in data["pairing"]["never_answered"].items()},
         diagnostic_data={int(key): _diagnostic_data(value) for key, value in data["diagnostic_data"].items()},
+        diagnostic_echoes=frozenset(int(sub) for sub in data["diagnostic_answers"]["echo"]),
     )
 
 

@@ -410,11 +410,18 @@ local function run_indicator_after(b, from, last, names)
   return false
 end
 
+-- The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers]): a request's data are
+-- kept in its fields as a string (its byte table is dropped before its answer comes), an answer's compared.
+local DIAGNOSTIC_ECHOES = RULES.diagnostic_echoes
+local function data_string(f, b) return string.char(table.unpack(b, f.data_at + 2, f.data_at + 1 + f.fields.data_length)) end
+
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {
   diagnostics = function(f, b)
     local fields = f.fields
+    local echoes, request = DIAGNOSTIC_ECHOES[fields.subfunction], f.request
     f.subfunction = fields.subfunction
+    if echoes and f.kind == REQUEST then fields.echoed = data_string(f, b) end
     if DIAGNOSTICS[fields.subfunction] == nil then
       warn(f, say("unknown_subfunction", { subfunction = fields.subfunction }))
     end
@@ -423,6 +430,8 @@ local SPECIAL = {
     elseif f.kind == REQUEST then
       local rule = DIAGNOSTIC_DATA[fields.subfunction]
       if rule ~= nil then diagnostic_data(f, b, fields.subfunction, rule) end
+    elseif echoes and request ~= nil and request.fields ~= nil and request.fields.echoed ~= data_string(f, b) then
+      warn(f, say("echo", { fields = "data", verb = "differs" })) -- (it answered other data: fields._diagnostics)
     end
   end,
   mei_request = function(f, b)
