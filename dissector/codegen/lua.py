@@ -267,7 +267,7 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "exception_causes": causes,
         "diagnostics": dict(sorted(profile.diagnostics.items())),
         "objects": {
-            key: {"meaning": meaning.meaning, "format": meaning.format}
+            key: {"meaning": meaning.meaning, "format": meaning.format, "max_length": meaning.max_length}
             for key, meaning in sorted(profile.objects.items())
         },
         "function_names": dict(sorted(profile.function_names.items())),

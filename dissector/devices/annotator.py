@@ -2,10 +2,10 @@
 
 Called once per frame after decode_frame. Each job has its own module: which profile a slave gets
 (selection.py, profile `auto`), register naming and scaling (naming.py), the parameter memory and its
-16#8000 story (memory.py, told as notes by story.py), exception explanations (explain.py) and device
-limits (checks.py); the per-slave setup is device.py. What is left here is the order of those steps
-for each kind of frame, and the answers renderers and the compiled summary path
-(dissector/accel/fastsummary.py) ask for.
+16#8000 story (memory.py, told as notes by story.py), exception explanations (explain.py), device
+limits (checks.py) and identification objects (objects.py); the per-slave setup is device.py. What is
+left here is the order of those steps for each kind of frame, and the answers renderers and the compiled
+summary path (dissector/accel/fastsummary.py) ask for.
 
 Everything is precomputed per slave on first sight (profile, merged map, address labels), so the cost
 per frame is a few dictionary lookups per register.
@@ -21,6 +21,7 @@ from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, exp
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
+from dissector.devices.objects import check_objects
 from dissector.devices.profiles import Profile
 from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
@@ -432,7 +433,7 @@ class Annotator:
         if frame.subfunction is not None:  # FC8: only its lifter sets one
             _diagnostics(frame, device)
         if frame.objects:
-            _objects(frame, device.profile, frame.objects)
+            check_objects(frame, device.profile, frame.objects)
 
     def _annotate(
         self, frame: Frame, device: Device, registers: Sequence[Register], read: bool, events: list[Event]
@@ -581,19 +582,4 @@ def _diagnostics(frame: Frame, device: Device) -> None:
     if frame.kind is Kind.RESPONSE and fields is not None and len(fields.data) == 2:
         note += text("subfunction_value", value=int.from_bytes(fields.data, "big"))
     frame.notes.append(note)
-
-
-def _objects(frame: Frame, profile: Profile, objects: list[DeviceObject]) -> None:
-    for obj in objects:
-        meaning = profile.objects.get(obj.id)
-        if meaning is None:
-            continue
-        if meaning.format == "MMmm":
-            value = obj.value
-            if len(value) == 4 and value.isascii() and value.isdigit():
-                obj.text = f"V{int(value[:2])}.{int(value[2:])}"
-                continue
-            frame.notes.append(text("revision_form", object=obj.name, value=value, device=profile.device))
-        obj.text = meaning.meaning
-
 

@@ -50,6 +50,7 @@ class ExceptionCause:
 class ObjectMeaning:
     meaning: str
     format: str | None = None
+    max_length: int | None = None  # the most bytes the device's value holds (ATV71 [DEVICE NAME]: 16)
 
 
 @dataclass(frozen=True, slots=True)
@@ -186,7 +187,9 @@ def _objects(reader: _Reader, data: dict[str, Any]) -> dict[int, ObjectMeaning]:
         form = reader.string(entry, "format")
         if form not in (None, "MMmm"):
             raise reader.fail(f"[objects.{key}] format {form!r} is unknown (known: MMmm)")
-        out[object_id] = ObjectMeaning(entry["meaning"], form)
+        longest = entry.get("max_length")
+        out[object_id] = ObjectMeaning(entry["meaning"], form, None if longest is None else reader.integer(
+            longest, f"[objects.{key}] max_length", 1, 255))
     return out
 
 

@@ -132,6 +132,11 @@ end
 local function explain_objects(f, profile)
   for _, object in ipairs(f.objects) do
     local meaning, value = profile.objects[object.id], object.value
+    local size = object.length - 2 -- (its id and length byte, then the bytes sent)
+    if meaning ~= nil and meaning.max_length ~= nil and size > meaning.max_length then
+      warn(f, say("object_length", { object = object.name, length = size, device = profile.device,
+        limit = meaning.max_length }))
+    end
     if meaning ~= nil and meaning.format == "MMmm" and value:match("^%d%d%d%d$") then -- (a revision, V5.2)
       object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
     elseif meaning ~= nil then
