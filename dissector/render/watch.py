@@ -13,7 +13,9 @@ confirmed by a normal answer), or a read status a device profile gave it: `prote
 (16#8000 in a multi-register read, VW3 A3 303 p.38; or an exception the profile explains as "every
 parameter read is non-existent or protected", said as `protected (exception 02)`). The first state seen
 is not a change; an unchanged state prints nothing; a value after a status is the parameter readable
-again. Values are named as the summary names them; a bit field (a status word) is shown as the manuals
+again. A broadcast write (slave 0) is shown each time, whatever came before: it writes every slave, whose
+states it may or may not change, so its old state is `?` (JSON null) and it is marked `[broadcast: every
+slave]` (JSON `"broadcast": true`). Values are named as the summary names them; a bit field (a status word) is shown as the manuals
 write it, `16#0231`, with its bits named.
 
 Names are checked: a code no map of the run knows is an error with the nearest known codes, and codes
@@ -37,7 +39,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
-from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, History, wide_text
+from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
 from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
@@ -54,23 +56,26 @@ class Change:
     provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
     time_relative: float | None = None  # seconds since the first item, as -T fields' time_relative
     label: str | None = None  # the address as --address-style shows it (plc: 40001), None: the address
+    broadcast: bool = False  # a broadcast write: every slave written, whatever their states were (old: ?)
 
     def line(self) -> str:
         name = self.code or self.label or str(self.address)
         unit = f" ({self.unit})" if self.unit else ""
-        mark = " [provisional]" if self.provisional else ""
+        mark = (" [provisional]" if self.provisional else "") + (" [broadcast: every slave]" if self.broadcast else "")
         return f"{self.frame:>6} {self.column:>12} {self.slave:>3} {name} {self.old} -> {self.new}{unit}{mark}"
 
     def record(self) -> dict[str, object]:
         record: dict[str, object] = {
             "time": self.time, "time_relative": self.time_relative, "frame": self.frame, "slave": self.slave,
             "address": self.address,
-            "code": self.code, "old": self.old, "new": self.new, "unit": self.unit,
+            "code": self.code, "old": None if self.broadcast else self.old, "new": self.new, "unit": self.unit,
         }
         if self.label is not None:
             record["label"] = self.label
         if self.provisional:
             record["provisional"] = True
+        if self.broadcast:
+            record["broadcast"] = True
         return record
 
 
@@ -157,7 +162,7 @@ class _Pending:
     time_relative: float | None
     column: str
     key: tuple[int, int]
-    old: _State
+    old: _State | None  # None: a broadcast write (every slave's state, not known)
     new: _State
 
 
@@ -233,7 +238,9 @@ class Watcher:
         if frame.provisional:
             return  # re-read once the device was chosen: its change (if any) was shown provisional
         self._shown.pop(key, None)  # type: ignore[arg-type]
-        if changed and old is not None:
+        if event == WRITE_OBSERVED and frame.broadcast:
+            self._emit(self._pending(frame, key, None, new))  # type: ignore[arg-type]
+        elif changed and old is not None:
             self._emit(self._pending(frame, key, old, new))  # type: ignore[arg-type]
 
     def provisional(self, frame: Frame, register: Register, event: int) -> None:
@@ -248,7 +255,7 @@ class Watcher:
         if old is not None and old.differs(new):
             self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
 
-    def _pending(self, frame: Frame, key: tuple[int, int], old: _State, new: _State) -> _Pending:
+    def _pending(self, frame: Frame, key: tuple[int, int], old: _State | None, new: _State) -> _Pending:
         if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
             self._column = (frame, self.clock.text(frame))
         time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
@@ -275,15 +282,16 @@ class Watcher:
                 return
             # No device yet: an address a candidate's map names with a watched code is shown by its
             # number, provisional, as --watch ADDRESS shows it (by address and by code agree).
+        old = pending.old
         if provisional:  # as decoded, whatever the history knows by now (the same in any batch)
-            (old_text, _), (new_text, unit) = (pending.old.text, None), (pending.new.text, pending.new.unit)
+            (old_text, _), (new_text, unit) = (old.text if old else "?", None), (pending.new.text, pending.new.unit)
         else:
-            old_text, _ = self._text(slave, address, pending.old)
+            old_text = self._text(slave, address, old)[0] if old else "?"
             new_text, unit = self._text(slave, address, pending.new)
         if old_text == new_text:
             return  # the same once named by the same device
         self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
-                              unit, pending.column, provisional, pending.time_relative, label))
+                              unit, pending.column, provisional, pending.time_relative, label, old is None))
 
     def _label(self, slave: int, function: int, address: int) -> str | None:
         """The address as the summary shows it under --address-style (devices.naming.plc_label), or None."""
