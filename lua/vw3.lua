@@ -1673,7 +1673,7 @@ local DATA = {
         ["filter"] = "vw3.expert.record.partial",
         ["title"] = "Record ends inside a frame",
         ["group"] = "REASSEMBLE",
-        ["severity"] = "WARN",
+        ["severity"] = "NOTE",
       },
       {
         ["name"] = "preference",
@@ -8168,7 +8168,7 @@ local function summary(f, tvb)
   end
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
-  if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
+  if f.crc ~= f.crc_expected then tail = tail .. (f.ascii and " BAD LRC" or " BAD CRC") end
   -- (describe.info_text: a frame whose fields did not parse says so)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
@@ -8226,8 +8226,9 @@ local function record_time(pinfo, number)
   return time
 end
 
--- Each record's time from the capture's first (pinfo.rel_ts), by record number: kept across lane.again,
--- which makes the stream's state anew; each record's first dissection writes its own.
+-- Each record's time from the capture's first (pinfo.rel_ts), by the record's time (a frame's time is the
+-- time of the record holding its first byte, which may be before the record it is shown in): kept
+-- across lane.again, which makes the stream's state anew; each record's first dissection writes its own.
 local REL_TIMES = {}
 
 -- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
@@ -8236,7 +8237,7 @@ local REL_TIMES = {}
 function lane.response_time(f)
   local request = f.request
   if f.time == nil or request.time == nil then return nil end
-  local delta, asked, got = f.time - request.time, REL_TIMES[request.record], REL_TIMES[f.record]
+  local delta, asked, got = f.time - request.time, REL_TIMES[request.time], REL_TIMES[f.time]
   local exact = asked and got and got - asked
   if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
   local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
@@ -8309,9 +8310,15 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
-    t:add(pf.crc, crc_range, f.crc)
-    t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
-    t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
+    local crc, expected = t:add(pf.crc, crc_range, f.crc), t:add(pf.crc_expected, crc_range, f.crc_expected)
+    local ok = t:add(pf.crc_ok, crc_range, crc_ok)
+    expected:set_generated()
+    ok:set_generated()
+    if f.ascii then -- (the same fields, named for ASCII's check: one byte, an LRC)
+      crc:set_text(format("LRC: 0x%02x", f.crc))
+      expected:set_text(format("Expected LRC: 0x%02x", f.crc_expected))
+      ok:set_text(crc_ok and "LRC OK: True" or "LRC OK: False")
+    end
   end
   if not crc_ok then -- (ASCII: the LRC, one byte)
     local text = f.ascii and "Bad LRC: 0x%02X, expected 0x%02X" or "Bad CRC: 0x%04X, expected 0x%04X"
@@ -8535,8 +8542,10 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     for _, part in ipairs(continued) do
       local text = format("%s in item %d (record %d)", continue_text(part.count), part.item, part.record)
       if full then
-        local t = tree:add(proto, tvb:range(0, n), "VW3 bytes of a frame shown in a later record: " .. text)
-        t:add(pf.continued_in, tvb:range(0, n), part.record):set_generated()
+        local count = math.min(part.count, n) -- (the record's last bytes: those the frame goes on with)
+        local range = tvb:range(n - count, count)
+        local t = tree:add(proto, range, "VW3 bytes of a frame shown in a later record: " .. text)
+        t:add(pf.continued_in, range, part.record):set_generated()
         anchor = anchor or t
       end
       summaries[#summaries + 1] = format("(%s in #%d)", continue_text(part.count), part.record)
@@ -8617,7 +8626,7 @@ local function dissect_now(st, tvb, pinfo, number)
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number] end
+  if rel ~= nil and time ~= nil then REL_TIMES[time] = rtac == nil and rel or rtac_rel[number] end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not

@@ -440,7 +440,7 @@ local function summary(f, tvb)
   end
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
-  if f.crc ~= f.crc_expected then tail = tail .. " BAD CRC" end
+  if f.crc ~= f.crc_expected then tail = tail .. (f.ascii and " BAD LRC" or " BAD CRC") end
   -- (describe.info_text: a frame whose fields did not parse says so)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
