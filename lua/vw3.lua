@@ -7713,6 +7713,7 @@ function proto.init()
   -- (with the records of each TCP call: dissector.lua).
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
+  record_streams = {} -- (each record's stream, where interfaces are told apart: dissector.lua serial_state)
 end
 M.PARAMETER_FIELDS, M.PDU_FIELDS, M.apply_prefs, M.ex, M.pf = PARAMETER_FIELDS, PDU_FIELDS, apply_prefs, ex, pf
 M.proto, M.stream_state = proto, stream_state
@@ -8656,7 +8657,7 @@ local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, D
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
-local finish_all, flush_noise, ipairs, math, new_state = finish_all, flush_noise, ipairs, math, new_state
+local finish_all, flush_noise, ipairs, math, new_state, os = finish_all, flush_noise, ipairs, math, new_state, os
 local pack, package, pairs, pcall, pf, proto, record_time = pack, package, pairs, pcall, pf, proto, record_time
 local show_record, stream_state, take_items, tostring, type = show_record, stream_state, take_items, tostring, type
 local wtap = wtap
@@ -8826,11 +8827,38 @@ end
 -- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
 local PT_TCP, PT_UDP = 2, 3
 
+-- A pcapng of several interfaces (mergecap -I none) holds several buses, as vw3-decode reads them: with
+-- VW3_INTERFACES=1 in the environment, each interface's records are a stream of their own (interface 0:
+-- `state`, the others kept with the UDP streams, which the first pass's end finishes too). Opt-in: Lua
+-- reads frame.interface_id only through a field extractor, and one makes Wireshark build every record's
+-- tree (tshark's one pass some 6 times slower on bench/lua_throughput.py's plant mix). tshark -2's first
+-- pass builds no tree without a display filter (-Y): there the extractor sees nothing, and a record
+-- keeps the stream its first dissection chose (record_streams), so both passes agree.
+local INTERFACE = os.getenv("VW3_INTERFACES") == "1" and Field.new("frame.interface_id") or nil
+
+local function serial_state(pinfo)
+  local number = pinfo.number
+  local st = record_streams[number]
+  if st ~= nil then return st end
+  local id = INTERFACE()
+  st = state
+  if id ~= nil and id.value ~= 0 then
+    local key = "interface " .. id.value
+    st = udp_states[key]
+    if st == nil then
+      st = stream_state()
+      udp_states[key] = st
+    end
+  end
+  record_streams[number] = st
+  return st
+end
+
 function proto.dissector(tvb, pinfo, tree)
   local port_type = pinfo.port_type
   if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
   if port_type == PT_UDP then return dissect_records(conversation_state(udp_states, pinfo), tvb, pinfo, tree) end
-  return dissect_records(state, tvb, pinfo, tree)
+  return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
 end
 
 -- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)

@@ -169,11 +169,38 @@ end
 -- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
 local PT_TCP, PT_UDP = 2, 3
 
+-- A pcapng of several interfaces (mergecap -I none) holds several buses, as vw3-decode reads them: with
+-- VW3_INTERFACES=1 in the environment, each interface's records are a stream of their own (interface 0:
+-- `state`, the others kept with the UDP streams, which the first pass's end finishes too). Opt-in: Lua
+-- reads frame.interface_id only through a field extractor, and one makes Wireshark build every record's
+-- tree (tshark's one pass some 6 times slower on bench/lua_throughput.py's plant mix). tshark -2's first
+-- pass builds no tree without a display filter (-Y): there the extractor sees nothing, and a record
+-- keeps the stream its first dissection chose (record_streams), so both passes agree.
+local INTERFACE = os.getenv("VW3_INTERFACES") == "1" and Field.new("frame.interface_id") or nil
+
+local function serial_state(pinfo)
+  local number = pinfo.number
+  local st = record_streams[number]
+  if st ~= nil then return st end
+  local id = INTERFACE()
+  st = state
+  if id ~= nil and id.value ~= 0 then
+    local key = "interface " .. id.value
+    st = udp_states[key]
+    if st == nil then
+      st = stream_state()
+      udp_states[key] = st
+    end
+  end
+  record_streams[number] = st
+  return st
+end
+
 function proto.dissector(tvb, pinfo, tree)
   local port_type = pinfo.port_type
   if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
   if port_type == PT_UDP then return dissect_records(conversation_state(udp_states, pinfo), tvb, pinfo, tree) end
-  return dissect_records(state, tvb, pinfo, tree)
+  return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
 end
 
 -- Registration: Decode As for RTAC serial records and TCP, and an optional TCP port. Linktype 147 (USER0)

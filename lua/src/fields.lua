@@ -102,4 +102,5 @@ function proto.init()
   -- (with the records of each TCP call: dissector.lua).
   state = stream_state()
   udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
+  record_streams = {} -- (each record's stream, where interfaces are told apart: dissector.lua serial_state)
 end

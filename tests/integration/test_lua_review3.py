@@ -72,3 +72,32 @@ def test_ascii_check_is_an_lrc(tmp_path, lrc: str) -> None:
     # (the fields stay vw3.crc*, one filter for both modes)
     found = run_tshark(pcap, "-T", "fields", "-e", "vw3.crc", "-e", "vw3.crc_ok").stdout
     assert found.splitlines() == ["0x00" + lrc.lower() + "\t" + ("0" if lrc == "A3" else "1")]
+
+
+def _columns(pcap, *options: str, two_pass: bool) -> list[tuple[str, ...]]:
+    got = run_tshark(pcap, *options, "-T", "fields", "-e", "frame.interface_id", "-e", "_ws.col.Info", "-e",
+                     "vw3.response_time", "-e", "_ws.expert.message", two_pass=two_pass)
+    assert got.returncode == 0 and not lua_errors(got.stdout + got.stderr), got.stderr
+    return [tuple(line.split("\t")) for line in got.stdout.splitlines()]
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_interfaces_are_buses_of_their_own(tmp_path, monkeypatch, two_pass: bool) -> None:
+    # Two captures merged into one pcapng, one interface each (mergecap -I none): with VW3_INTERFACES=1
+    # each interface shows what its capture alone shows (framing, pairing, response times, devices), as
+    # vw3-decode reads each interface as a bus. (tshark -2 needs a display filter for it: -Y frame.)
+    from lua_harness import ROOT, ensure_tool
+    import subprocess
+    captures = [ROOT / "captures" / "p38_protection.pcap", ROOT / "captures" / "sel749m_polling.pcap"]
+    merged = tmp_path / "merged.pcapng"
+    subprocess.run([ensure_tool("mergecap", "wireshark-common"), "-I", "none", "-w", str(merged), *map(str, captures)],
+                   check=True)
+    options = ("-Y", "frame") if two_pass else ()
+    one_bus = _columns(merged, *options, two_pass=two_pass)
+    monkeypatch.setenv("VW3_INTERFACES", "1")
+    rows = _columns(merged, *options, two_pass=two_pass)
+    for interface, capture in enumerate(captures):
+        alone = [row[1:] for row in _columns(capture, *options, two_pass=two_pass)]
+        assert [row[1:] for row in rows if row[0] == str(interface)] == alone
+    assert not any("Request not answered" in row[3] for row in rows)
+    assert one_bus != rows  # (without it: one bus, as before)
