@@ -8227,10 +8227,19 @@ local function record_time(pinfo, number)
   return time
 end
 
--- Each record's time from the capture's first (pinfo.rel_ts), by the record's time (a frame's time is the
--- time of the record holding its first byte, which may be before the record it is shown in): kept
--- across lane.again, which makes the stream's state anew; each record's first dissection writes its own.
-local REL_TIMES = {}
+-- Each record's time from the capture's first (pinfo.rel_ts) and its time, by record number: kept across
+-- lane.again, which makes the stream's state anew; each record's first dissection writes its own.
+local REL_TIMES, TIMES = {}, {}
+
+-- A frame's time from the capture's first: that of the record holding its first byte (the frame's time),
+-- the record it is shown in or one a little before (a frame cut across records); nil where none is.
+local function rel_time(f, number)
+  local time = f.time
+  for k = number, math.max(number - 64, 1), -1 do
+    if TIMES[k] == time then return REL_TIMES[k] end
+  end
+  return nil
+end
 
 -- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
 -- capture's first where they agree with their absolute times (a time reference set between them does
@@ -8238,7 +8247,7 @@ local REL_TIMES = {}
 function lane.response_time(f)
   local request = f.request
   if f.time == nil or request.time == nil then return nil end
-  local delta, asked, got = f.time - request.time, REL_TIMES[request.time], REL_TIMES[f.time]
+  local delta, asked, got = f.time - request.time, rel_time(request, request.record), rel_time(f, f.record)
   local exact = asked and got and got - asked
   if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
   local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
@@ -8627,7 +8636,9 @@ local function dissect_now(st, tvb, pinfo, number)
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil and time ~= nil then REL_TIMES[time] = rtac == nil and rel or rtac_rel[number] end
+  if rel ~= nil then
+    REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
+  end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
