@@ -6612,8 +6612,8 @@ local function select_device(st, f, b)
 end
 
 -- Slave 0 under profile `auto` (Annotator._broadcast): a broadcast reaches every slave, so it is named with
--- the profile of every slave with a device (forced, or chosen so far; over the whole capture with -2), which
--- a note says; slaves of different devices leave it spec semantics, and a note says why.
+-- the profile of every slave with a device (forced, or chosen so far; over the whole capture with -2), its
+-- profile reason says so; slaves of different devices leave it spec semantics, and a note says why.
 local function broadcast_device(st, f)
   local fallback, named, slaves = SELECTION.fallback, {}, {}
   for _, chosen in ipairs({ config.per_slave, st.chosen }) do
@@ -6634,15 +6634,18 @@ local function broadcast_device(st, f)
   if name then
     said = say("broadcast_profile", { profile = name,
       slaves = (#slaves > 1 and "slaves " or "slave ") .. concat(slaves, ", ") })
-    note(f, said)
   elseif name == false then
     note(f, say("broadcast_mixed", { slaves = concat(parts, ", ") }))
   end
-  -- Read once, while a slave met may still get a device, what names a broadcast may change: provisional.
+  -- Read once, while no slave is met or one met may still get a device, what names a broadcast may change:
+  -- provisional.
   if st.frozen == nil or st.going_on then
-    for _, judged in pairs(st.judged) do
+    local met = false
+    for slave, judged in pairs(st.judged) do
+      met = met or slave ~= 0
       if open(judged) then f.provisional, st.provisional = true, true end
     end
+    if not met then f.provisional, st.provisional = true, true end
   end
   name = name or fallback
   st.broadcasting = st.broadcasting or {}

@@ -178,7 +178,7 @@ class Annotator:
         """The compiled path may show this slave's plain transactions: its profile is settled, and its
         map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
         if slave == 0 and self.selector is not None and 0 not in self.per_slave:
-            return False  # (named with the device of the slaves chosen so far, and a note says so: _broadcast)
+            return False  # (named with the device of the slaves met so far: _broadcast)
         return self.settled(slave) and not self.device(slave).wide
 
     # -- setup ----------------------------------------------------------------------------------------
