@@ -16,20 +16,18 @@ local function record_time(pinfo, number)
   return time
 end
 
--- Each record's time from the capture's first (pinfo.rel_ts), by record number, and the time of each
--- record that ends inside a frame (SPLIT_TIMES): kept across lane.again, which makes the stream's state
--- anew; each record's first dissection writes its own.
-local REL_TIMES, SPLIT_TIMES = {}, {}
+-- Each record's time from the capture's first (pinfo.rel_ts) and its time, by record number: kept across
+-- lane.again, which makes the stream's state anew; each record's first dissection writes its own.
+local REL_TIMES, TIMES = {}, {}
 
--- A frame's time from the capture's first: that of the record holding its first byte (the frame's
--- time): one of the records before the one it is shown in that end inside it, or that one.
+-- A frame's time from the capture's first: that of the record holding its first byte (the frame's time),
+-- the record it is shown in or one a little before (a frame cut across records); nil where none is.
 local function rel_time(f, number)
-  local time, k = f.time, number - 1
-  while SPLIT_TIMES[k] ~= nil do
-    if SPLIT_TIMES[k] == time then return REL_TIMES[k] end
-    k = k - 1
+  local time = f.time
+  for k = number, math.max(number - 64, 1), -1 do
+    if TIMES[k] == time then return REL_TIMES[k] end
   end
-  return REL_TIMES[number]
+  return nil
 end
 
 -- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
@@ -427,7 +425,9 @@ local function dissect_now(st, tvb, pinfo, number)
   -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
   -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
   local rel = pinfo.rel_ts
-  if rel ~= nil then REL_TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number] end
+  if rel ~= nil then
+    REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
+  end
   if number > newest_record then newest_record = number end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
@@ -441,7 +441,5 @@ local function dissect_now(st, tvb, pinfo, number)
     again.order[count], again.count = number, count
     again.bytes[number], again.times[number] = bytes, time or false
   end
-  local record, length, info = lane.decode(st, bytes, n, time, number)
-  if type(record) == "table" and record.waiting ~= nil then SPLIT_TIMES[number] = time or false end
-  return record, length, info
+  return lane.decode(st, bytes, n, time, number)
 end
