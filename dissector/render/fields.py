@@ -5,7 +5,10 @@ A KEY is any key of the NDJSON object (`frame`, `time`, `slave`, `response_time`
 frame.time_* fields: from the first item, the previous captured, the previous shown), or a register key (`address`, `value`, `code`, `name`, `scaled`, `status`,
 ...), which has one occurrence per register (and bit) the frame carries, empty where that register has
 no such key, so that the register columns of a line stay aligned; `address` then lists the addresses
-the frame names without carrying them (a read request's window), which -Y's `address` tests too. Lists
+the frame names without carrying them (a read request's window), which -Y's `address` tests too, and the
+other register keys have an empty occurrence for each of them (`-E occurrence=l` of `-e address -e value`
+stays one register's). The plugin's vw3.reg.address has them too (hidden), but tshark writes no empty
+occurrence of a field: `-e vw3.reg.address -e vw3.reg.value` does not line up on a request. Lists
 (`warnings`, `notes`) have one occurrence per element. A key the Wireshark plugin has a field for is
 written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scaled` 4, `response_time`
 0.020000000, and `broadcast`, `unanswered` nothing where false. As tshark: `-E occurrence=f|l|a` picks the first, last or all
@@ -190,14 +193,14 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
     if head in REGISTER_FIELDS:
         # One occurrence per register, empty where the register has no such key (8400 has no code):
         # the columns of one frame line up, and -E occurrence=f names the same register in each.
-        elements = (record.get("registers") or []) + (record.get("bits") or [])
-        values = [element.get(head) for element in elements]
-        if head == "address":  # then the addresses it names without their values, as -Y's `address` tests
-            # them (a read request's window) and the plugin's hidden vw3.reg.address (vw3.bit.address) has them
-            from dissector.render.filters import _elements
+        # Then the addresses the frame names without their values (a read request's window), as -Y's
+        # `address` tests them and the plugin's hidden vw3.reg.address (vw3.bit.address) has them; the other
+        # keys have an empty occurrence there, so that occurrence=l still pairs an address with its value.
+        from dissector.render.filters import _elements
 
-            values += [element["address"] for element in _elements(record)[len(elements):]]
-        return values
+        carried = len(record.get("registers") or []) + len(record.get("bits") or [])
+        return [element.get(head) if index < carried or head == "address" else None
+                for index, element in enumerate(_elements(record))]
     value = record.get(head)
     if rest:
         for part in rest.split("."):

@@ -73,11 +73,16 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
         values = {}
         for key, cell in zip(keys, cells[3:]):
             # (one register without the key prints an empty cell: one empty occurrence, not none)
-            values[key] = cell.split(SEP) if count or (key == "address" and cell) else []
             if key == "address":  # (then the addresses named without values)
+                values[key] = cell.split(SEP) if count or cell else []
                 assert len(values[key]) >= count or (first and len(values[key]) == 1), (key, line)
+                named = len(values[key])
                 continue
-            assert len(values[key]) == count or (first and len(values[key]) == 1), (key, line)
+            # (the addresses named without values: an empty occurrence of each other key, columns aligned)
+            occurrences = cell.split(SEP) if named else []
+            assert len(occurrences) == named or (first and len(occurrences) == 1), (key, line)
+            assert not any(occurrences[count:]), (key, line)
+            values[key] = occurrences[:count]
         rows[int(cells[0])] = values
     return rows
 

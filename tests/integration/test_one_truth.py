@@ -180,12 +180,13 @@ def test_stats_report_watch_and_fields_say_what_the_json_says(tmp_path: Path) ->
             elements = (record.get("registers") or []) + (record.get("bits") or [])
             cells = ["" if element.get(key) is None else str(element[key]) for element in elements]
             start, quantity = record.get("start"), record.get("quantity")
-            if key == "address" and start is not None and quantity is not None and record["kind"] != "exception":
-                # then the addresses the frame names without carrying them (a read request's window, README)
+            if start is not None and quantity is not None and record["kind"] != "exception":
+                # then the addresses the frame names without carrying them (a read request's window, README),
+                # an empty occurrence of every other register key for each (the columns stay aligned)
                 carried = [element.get("address") for element in elements]
                 if carried[:1] != [start] or len(carried) != quantity:
                     window = [(start + k) % 65536 for k in range(min(max(quantity, 1), 2000))]
-                    cells += [str(address) for address in window if address not in carried]
+                    cells += [str(address) if key == "address" else "" for address in window if address not in carried]
             cell = ",".join(cells)
             # A cell holding the aggregator (or ; or ") is one double-quoted CSV cell (issue 32).
             return '"' + cell.replace('"', '""') + '"' if any(char in cell for char in ',;"') else cell

@@ -34,7 +34,7 @@ def test_fields_csv_with_header_and_double_quotes() -> None:
     assert (status, err) == (0, "")
     assert out.splitlines() == [
         "frame,kind,response_time,code,value",  # the header is never quoted, as tshark
-        '"1","request","","",""',
+        '"1","request","",",,",",,"',  # the read window: an empty occurrence each, columns aligned
         '"2","response","0.010157000",",CHCF,COP","32768,3,2"',  # 8400 has no code: one occurrence each
     ]
 
