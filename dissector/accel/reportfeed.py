@@ -20,7 +20,12 @@ def exception_event(annotator: Any | None) -> Callable[[int, int, int], str]:
     device = getattr(annotator, "device", None)
 
     def text(slave: int, function: int, code: int) -> str:
-        meaning = None if device is None else device(slave).profile.exceptions.get(code)
+        if device is None:
+            meaning = None
+        else:
+            from dissector.devices.explain import device_meaning  # (to a read, p.38's clause: as explain.py)
+
+            meaning = device_meaning(device(slave).profile, function, code)
         return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
 
     return text

@@ -17,7 +17,7 @@ from collections.abc import Callable, Sequence
 
 from dissector.devices.checks import check_request, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
-from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, explain_exception
+from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
@@ -213,7 +213,9 @@ class Annotator:
         return {
             "profile": frozenset(profile.name for profile in profiles),
             "function_name": frozenset(name for p in profiles for name in p.function_names.values()),
-            "exception_meaning": frozenset(text for p in profiles for text in p.exceptions.values()),
+            # (the code's meaning, and to a read of registers the meaning with p.38's clause: explain.py)
+            "exception_meaning": frozenset(text for p in profiles for code, meaning in p.exceptions.items()
+                                           for text in (meaning, device_meaning(p, min(_READS), code))),
             "subfunction_name": frozenset(text for p in profiles for text in p.diagnostics.values()),
         }
 

@@ -43,14 +43,22 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     elif all_unreadable and request is not None and request.start is not None and request.quantity:
         _all_unreadable(frame, device, request, events)
     elif code in profile.exceptions:
-        meaning = profile.exceptions[code]
-        if code == profile.all_protected_exception and function in REGISTER_READS:
-            meaning = text("all_protected_read", meaning=meaning)  # (not to a write: it reads nothing)
+        meaning = device_meaning(profile, function, code)
         frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=meaning))
     elif profile.exceptions:
         known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
-    frame.exception_text = profile.exceptions.get(code)
+    frame.exception_text = device_meaning(profile, function, code)
+
+
+def device_meaning(profile: Profile, function: int, code: int) -> str | None:
+    """The profile's meaning of an exception code to this function: to a read of registers, its
+    all_protected_exception also says p.38's clause (every parameter read is non-existent or protected);
+    to a write, the code's meaning alone (it reads nothing). Frame.exception_text; the report's events."""
+    meaning = profile.exceptions.get(code)
+    if meaning is not None and code == profile.all_protected_exception and function & 0x7F in REGISTER_READS:
+        return text("all_protected_read", meaning=meaning)
+    return meaning
 
 
 def _pick_causes(

@@ -97,6 +97,16 @@ local function all_unreadable(f, device)
   end
 end
 
+-- The profile's meaning of a code to this function: to a read of registers its all_protected_exception
+-- says p.38's clause too; to a write, the code's meaning alone (explain.device_meaning).
+local function device_meaning(profile, fn, code)
+  local meaning = profile.exceptions[code]
+  if meaning ~= nil and code == profile.all_protected_exception and READS[fn] ~= nil then
+    return say("all_protected_read", { meaning = meaning })
+  end
+  return meaning
+end
+
 local function explain_exception(f, device)
   local profile = device.profile
   local code = f.exception_code
@@ -104,7 +114,7 @@ local function explain_exception(f, device)
   local name = f.function_text or function_name(f.fn)
   local causes = profile.exception_causes[f.fn * 256 + code]
   local meanings = profile.exceptions
-  f.exception_meaning = meanings[code]
+  f.exception_meaning = device_meaning(profile, f.fn, code)
   local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
@@ -119,11 +129,7 @@ local function explain_exception(f, device)
     -- them from the request and the device: inferred_registers), as vw3-decode lists them.
     f.inferred = true
   elseif meanings[code] ~= nil then
-    local meaning = meanings[code]
-    if code == profile.all_protected_exception and READS[f.fn] ~= nil then -- (not to a write: it reads nothing)
-      meaning = say("all_protected_read", { meaning = meaning })
-    end
-    note(f, say("exception_meaning", { code = code, device = profile.device, meaning = meaning }))
+    note(f, say("exception_meaning", { code = code, device = profile.device, meaning = f.exception_meaning }))
   elseif next(meanings) ~= nil then
     note(f, say("exception_undocumented", { code = code, device = profile.device, known = profile.documented }))
   end

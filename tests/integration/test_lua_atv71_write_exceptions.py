@@ -12,7 +12,7 @@ from helpers import rtu
 from lua_harness import ROOT, lua_errors, run_tshark, write_pcap
 
 sys.path.insert(0, str(ROOT / "tests" / "unit"))
-from test_atv71_write_exceptions import FRAMES, MEANING, NOTES  # noqa: E402
+from test_atv71_write_exceptions import FRAMES, MEANINGS, NOTES  # noqa: E402
 
 pytestmark = pytest.mark.integration
 
@@ -24,4 +24,5 @@ def test_exception_02_per_access(tmp_path: Path, two_pass: bool) -> None:
     got = run_tshark(pcap, "-o", "vw3.profiles:atv71", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
                      "-e", "vw3.note", "-e", "vw3.exception_meaning", "-Y", "vw3.kind == 3", two_pass=two_pass)
     assert not lua_errors(got.stdout + got.stderr)
-    assert got.stdout.splitlines() == [f"{2 * index + 2}|{note}|{MEANING}" for index, note in enumerate(NOTES)]
+    assert got.stdout.splitlines() == [f"{2 * index + 2}|{note}|{meaning}"
+                                       for index, (note, meaning) in enumerate(zip(NOTES, MEANINGS))]

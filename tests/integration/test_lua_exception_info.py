@@ -14,7 +14,7 @@ def test_exception_info_names_the_spec_exception() -> None:
     got = run_tshark(ROOT / "captures" / "p38_protection.pcap", "-T", "fields", "-e", "frame.number",
                      "-e", "_ws.col.Info", "-e", "vw3.exception_meaning", "-Y", "vw3.kind == 3")
     assert not lua_errors(got.stdout + got.stderr)
-    meaning = "address does not exist"  # (the code's; the clause about reads is the note's: test_atv71_write_exceptions)
+    meaning = "address does not exist (also: every parameter read is non-existent or protected)"  # (p.38: a read)
     assert got.stdout.splitlines() == [
         f"10\t12 Read Holding Registers exception 2 (Illegal Data Address)\t{meaning}",
         f"12\t12 Read Holding Registers exception 2 (Illegal Data Address)\t{meaning}",

@@ -116,7 +116,7 @@ def test_p38_protection_events_are_marked(tmp_path: Path) -> None:
     assert marks == [("1.059949", "1.059949: protected")]
     # Events grouped, with their frame numbers although the capture is timed.
     assert "<td>protection</td><td>12</td><td>CHCF (8401) protected</td><td>1</td><td>1.059949 #6</td><td></td>" in dom
-    assert ("<td>exception</td><td>12</td><td>exception 02 to function 3: address does not exist"
+    assert ("<td>exception</td><td>12</td><td>exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"
             "</td><td>2</td><td>2.105960 #10</td><td>2.627401 #12</td>") in dom
 
 

@@ -2,7 +2,7 @@
 registers (FC3, FC4, FC23) it also says every parameter read is non-existent or protected (p.38), to a write
 (FC5, FC6, FC15, FC16, FC22) it does not: data/profiles/atv71.toml [exceptions] and all_protected_exception,
 data/modbus.toml [texts] all_protected_read. The meaning of the code (exception_meaning, -V's "Meaning on this
-device") is the card's, whatever the function. vw3-decode's summary, -V and --json, under the compiled engine
+device", the report's event) says the clause to a read too. vw3-decode's summary, -V and --json, under the compiled engine
 and VW3_PURE_PYTHON=1; the plugin: tests/integration/test_lua_atv71_write_exceptions.py."""
 from __future__ import annotations
 
@@ -21,6 +21,8 @@ FRAMES = ["0C 06 20D1 0003", "0C 86 02", "0C 10 0C81 0002 04 0001 0002", "0C 90 
           "0C 17 0C82 0002 20D1 0001 02 0003", "0C 97 02", "0C 03 20D0 0003", "0C 83 02",
           "0C 05 0001 FF00", "0C 85 02", "0C 0F 0001 0008 01 FF", "0C 8F 02", "0C 16 20D1 00FF 0000", "0C 96 02"]
 MEANING = "address does not exist"
+READ_MEANING = f"{MEANING} (also: every parameter read is non-existent or protected)"  # (p.38: to a read)
+MEANINGS = [MEANING, MEANING, READ_MEANING, READ_MEANING, MEANING, MEANING, MEANING]  # FC23 and FC3 read
 WRITE = f"exception 02 from the VW3 A3 303: {MEANING}"
 NOTES = [
     WRITE,
@@ -64,10 +66,10 @@ def test_verbose_and_json(capture: Path, pure: bool, monkeypatch: pytest.MonkeyP
     use_engine(monkeypatch, pure)
     frames = [json.loads(line) for line in run_cli(["--profile", "atv71", "--json", str(capture)])[1].splitlines()]
     assert [frame["notes"] for frame in frames[1::2]] == [[note] for note in NOTES]
-    # The card's meaning of the code stays its own key (its exceptions table, whatever the function).
-    assert [frame["exception_meaning"] for frame in frames[1::2]] == [MEANING] * 7
+    # The card's meaning of the code, to a read with p.38's clause (before: the clause nowhere but a note).
+    assert [frame["exception_meaning"] for frame in frames[1::2]] == MEANINGS
     verbose = run_cli(["--profile", "atv71", "-V", str(capture)])[1]
     assert [line.strip() for line in verbose.splitlines() if line.strip().startswith("Note:")] == [
         f"Note: {note}" for note in NOTES]
     assert [line.strip() for line in verbose.splitlines() if "Meaning on this device" in line] == [
-        f"Meaning on this device: {MEANING}"] * 7
+        f"Meaning on this device: {meaning}" for meaning in MEANINGS]

@@ -39,7 +39,7 @@ def test_p38_frame_10_names_the_spec_exception_and_the_device_meaning_once() -> 
     # The device meaning stays a key of its own in JSON.
     frame = json.loads(run_cli([str(P38), "--json"])[1].splitlines()[9])
     assert frame["exception_name"] == "Illegal Data Address"
-    assert frame["exception_meaning"] == "address does not exist"
+    assert frame["exception_meaning"] == "address does not exist (also: every parameter read is non-existent or protected)"  # (p.38: a read)
 
 
 def test_readable_again_is_one_note_with_a_range() -> None:

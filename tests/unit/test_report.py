@@ -86,7 +86,7 @@ def test_untimed_events_are_numbered_by_their_frames() -> None:
         # Grouped (issue 29): kind, slave, event, count, first and last frame.
         rows = re.findall(
             r"<tr><td>(\w+)</td><td>(\d*)</td><td>([^<]*)</td><td>(\d+)</td><td>(#\d+)</td><td>(#\d+|)</td></tr>", page)
-        exception = "exception 02 to function 3: address does not exist"
+        exception = "exception 02 to function 3: address does not exist (also: every parameter read is non-existent or protected)"
         expected = {
             "p38_protection.bin": [
                 # #2: profile auto chooses the ATV71 over the whole file, before the decode (issue 27)
