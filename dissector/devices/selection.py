@@ -209,25 +209,29 @@ class Selector:
 
     def broadcast(self, forced: dict[int, Profile]) -> tuple[Profile, str | None, ProfileChoice | None, bool]:
         """Slave 0's profile: a broadcast reaches every slave, so it is named with the profile of every slave
-        with a device (forced in `forced`, or chosen so far; over the whole input when frozen), the choice
-        saying so (inferred); slaves of different devices leave it the fallback, and a note says why (the one
-        said; None else).
+        met (forced in `forced`, or chosen so far; over the whole input when frozen), the choice saying so
+        (inferred); slaves of different devices, or one met without a device, leave it the fallback, and a
+        note says why (the one said; None else).
         Last: a slave met may still get a device, or none is met yet, which may name it otherwise (read once:
         provisional)."""
         fallback = self.fallback.name
         named = {slave: profile for slave, profile in forced.items() if slave and profile.name != fallback}
+        unknown = []
         for slave, judged in self._slaves.items():
             choice = judged.choice
             if choice is not None and choice.profile != fallback:
                 named[slave] = self.profile(choice.profile) or self.fallback
+            elif slave not in named:
+                unknown.append(slave)
         provisional = not self.frozen and (not self._slaves or any(map(self.open, self._slaves)))
-        if len({profile.name for profile in named.values()}) == 1:
+        if len({profile.name for profile in named.values()}) == 1 and not unknown:
             profile = next(iter(named.values()))
             slaves = f"slave{'s' if len(named) > 1 else ''} {', '.join(map(str, sorted(named)))}"
             said = text("broadcast_profile", profile=profile.name, slaves=slaves)
             return profile, None, ProfileChoice(0, profile.name, said, None, False), provisional
         if named:
-            slaves = ", ".join(f"slave {slave} {named[slave].name}" for slave in sorted(named))
+            kinds = {slave: profile.name for slave, profile in named.items()} | dict.fromkeys(unknown, "unknown")
+            slaves = ", ".join(f"slave {slave} {kinds[slave]}" for slave in sorted(kinds))
             return self.fallback, text("broadcast_mixed", slaves=slaves), None, provisional
         return self.fallback, None, None, provisional
 

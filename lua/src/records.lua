@@ -506,7 +506,9 @@ function lane.again(st)
   local fresh = new_state(st.timeout, st.mode)
   local frozen, chosen, history, fixed = {}, {}, {}, {}
   for number, reason in pairs(st.said) do frozen[number] = reason end
+  local met = {} -- (every slave the first pass met: a broadcast reaches them all, selection.broadcast_device)
   for slave, judged in pairs(st.judged) do
+    met[slave] = true
     local choice = judged.choice
     if choice ~= nil and PROFILES[choice.profile] ~= nil then
       local device = build_device(PROFILES[choice.profile], slave)
@@ -515,7 +517,7 @@ function lane.again(st)
     end
   end
   -- (the other slaves are judged again as they come: more records may follow in a live capture)
-  fresh.frozen, fresh.chosen, fresh.history, fresh.fixed = frozen, chosen, history, fixed
+  fresh.frozen, fresh.chosen, fresh.history, fresh.fixed, fresh.met = frozen, chosen, history, fixed, met
   local records = st.records
   for _, number in ipairs(again.order) do
     local bytes, time = again.bytes[number], again.times[number] or nil -- (false: a record without a time)

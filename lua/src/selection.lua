@@ -317,8 +317,9 @@ local function select_device(st, f, b)
 end
 
 -- Slave 0 under profile `auto` (Annotator._broadcast): a broadcast reaches every slave, so it is named with
--- the profile of every slave with a device (forced, or chosen so far; over the whole capture with -2), its
--- profile reason says so; slaves of different devices leave it spec semantics, and a note says why.
+-- the profile of every slave met (forced, or chosen so far; over the whole capture with -2: st.met), its
+-- profile reason says so; slaves of different devices, or one met without a device, leave it spec
+-- semantics, and a note says why.
 local function broadcast_device(st, f)
   local fallback, named, slaves = SELECTION.fallback, {}, {}
   for _, chosen in ipairs({ config.per_slave, st.chosen }) do
@@ -329,12 +330,22 @@ local function broadcast_device(st, f)
       end
     end
   end
+  local known = #slaves
+  for _, met in ipairs({ st.met or {}, st.judged }) do
+    for slave in pairs(met) do
+      if slave ~= 0 and named[slave] == nil then -- (met without a device: unknown)
+        named[slave] = "unknown"
+        slaves[#slaves + 1] = slave
+      end
+    end
+  end
   table.sort(slaves)
   local name, parts = nil, {}
   for index, slave in ipairs(slaves) do
     name = (index == 1 or name == named[slave]) and named[slave] or false
     parts[index] = format("slave %d %s", slave, named[slave])
   end
+  if name == "unknown" then name = known > 0 and false or nil end
   local said = nil -- (the reason the frame says, vw3.profile_reason: Frame.profile_choice)
   if name then
     said = say("broadcast_profile", { profile = name,

@@ -1,11 +1,11 @@
-"""A broadcast (slave 0) reaches every slave: under profile `auto` its registers are named with the profile
-every slave with a device has (chosen, or forced per slave), its profile reason (-V Profile,
-vw3.profile_reason) saying it was inferred (not repeated as a note); when those slaves are different devices,
-a note says no one device names them. Before, every broadcast under `auto`
-was `generic` (`8401 = 3 [broadcast]`) while `--profile atv71` named it CHCF. Exact summary lines for exact
-bytes (a file, read twice: the choices over the whole input; standard input: the choices so far, and a
-broadcast is provisional while no slave is met or one met may still get a device), engine
-and VW3_PURE_PYTHON=1; the plugin (tshark 4.0.17, one pass and -2) field by field as vw3-decode."""
+"""A broadcast (slave 0) reaches every slave: under profile `auto` its registers are named with the profile every
+slave met has (chosen, or forced per slave), its profile reason (-V Profile, vw3.profile_reason) saying it was
+inferred (not repeated as a note); when those slaves are different devices, or one met has no device (unknown), a
+note says no one device names them. Before, every broadcast under `auto` was `generic` (`8401 = 3 [broadcast]`)
+while `--profile atv71` named it CHCF. Exact summary lines for exact bytes (a file, read twice: the choices over
+the whole input; standard input: the choices so far, and a broadcast is provisional while no slave is met or one
+met may still get a device), engine and VW3_PURE_PYTHON=1; the plugin (tshark 4.0.17, one pass and -2) field by
+field as vw3-decode."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -80,18 +80,21 @@ def test_a_broadcast_is_named_by_the_device_every_slave_shares(tmp_path: Path, m
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
-def test_a_broadcast_of_slaves_of_different_devices_is_spec_semantics(
+def test_a_slave_met_without_a_device_leaves_a_broadcast_spec_semantics(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
     use_engine(monkeypatch, pure)
     pcap = _pcap(tmp_path)
+    # Slave 5 stays generic over the file: the broadcasts reach it too, no one device names them
+    unknown = MIXED.format("unknown")
     status, out, err = run_cli([str(pcap)])
-    last = LAST.format("").replace("8401 = 3", "8401 CHCF=IO (I/O profile)")
-    assert (status, out.splitlines(), err) == (0, HEAD + NAMED + SLAVE_5 + [last], "")
-    # Read once: at frame 9 slave 5 may still get a device, which may name the broadcast otherwise
+    expected = HEAD + [line.format(unknown) for line in SPEC] + SLAVE_5 + [LAST.format(unknown)]
+    assert (status, out.splitlines(), err) == (0, expected, "")
+    # Read once: slave 5 not met yet at frames 5 and 6; at frame 9 it may still get a device (provisional)
     status, out, err = run_cli(["-"], stdin=pcap.read_bytes())
-    later = last.replace("[broadcast]", "[broadcast] [provisional]")
-    assert (status, out.splitlines()[4:], err) == (0, NAMED + _provisional(SLAVE_5) + [later], "")
-    # Slave 5 forced to another device: slaves of different devices, the note says why
+    lines = out.splitlines()
+    last = LAST.format(" [provisional]" + unknown)
+    assert (status, lines[4:], err) == (0, NAMED + _provisional(SLAVE_5) + [last], "")
+    # Slave 5 forced to another device: slaves of different devices
     mixed = MIXED.format("sel749m")
     status, out, err = run_cli([str(pcap), "--profile", "5=sel749m"])
     plc = [line.replace(" 0", " 40001", 1).replace(" 0=7", " 40001=7") for line in SLAVE_5]  # (its 4X style)
@@ -118,21 +121,32 @@ def test_plugin_names_a_broadcast_as_vw3_decode(tmp_path: Path, two_pass: bool) 
                      two_pass=two_pass)
     assert not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
     assert got.stdout.splitlines()[4:] == [f"atv71\t{REASON}\t"] * 2
-    pcap = _pcap(tmp_path)
-    got = run_tshark(pcap, "-T", "fields", "-e", "vw3.profile", "-e", "vw3.note", two_pass=two_pass)
-    assert [got.stdout.splitlines()[index] for index in (4, 5, 8)] == ["atv71\t"] * 3
-    provisional = run_tshark(pcap, "-T", "fields", "-e", "vw3.provisional", two_pass=two_pass).stdout.splitlines()
-    assert provisional == ([""] * 9 if two_pass else ["1", "1", "1", "", "", "", "1", "1", "1"])
     first = _pcap(tmp_path, [RECORDS[4], *P38])
     provisional = run_tshark(first, "-T", "fields", "-e", "vw3.provisional", two_pass=two_pass).stdout.splitlines()
     assert provisional == ([""] * 5 if two_pass else ["1", "1", "1", "1", ""])
-    for capture in (named, pcap, first):
+    for capture in (named, first):
         lua, _, _ = lua_items(capture, two_pass=two_pass)
         differences = compare(python_items(capture, one_pass=not two_pass), lua,
                               ignore=LATER if not two_pass else frozenset())
         assert not differences, "\n".join(differences[:40])
+    pcap = _pcap(tmp_path)
     lua, _, _ = lua_items(pcap, "-o", "vw3.profiles:auto,5=sel749m", two_pass=two_pass)
     differences = compare(python_items(pcap, ["auto", "5=sel749m"], one_pass=not two_pass), lua,
                           ignore=LATER if not two_pass else frozenset())
     assert not differences, "\n".join(differences[:40])
 
+
+
+@pytest.mark.parametrize("two_pass", [False, True], ids=["one-pass", "two-pass"])
+def test_plugin_counts_a_slave_without_a_device_as_vw3_decode(tmp_path: Path, two_pass: bool) -> None:
+    pcap = _pcap(tmp_path)
+    got = run_tshark(pcap, "-T", "fields", "-e", "vw3.profile", "-e", "vw3.note", two_pass=two_pass)
+    assert not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
+    unknown = MIXED.format("unknown")[2:-1]
+    broadcasts = [got.stdout.splitlines()[index] for index in (4, 5, 8)]
+    assert broadcasts == ([f"generic\t{unknown}"] * 3 if two_pass else ["atv71\t"] * 2 + [f"generic\t{unknown}"])
+    provisional = run_tshark(pcap, "-T", "fields", "-e", "vw3.provisional", two_pass=two_pass).stdout.splitlines()
+    assert provisional == ([""] * 9 if two_pass else ["1", "1", "1", "", "", "", "1", "1", "1"])
+    lua, _, _ = lua_items(pcap, two_pass=two_pass)
+    differences = compare(python_items(pcap, one_pass=not two_pass), lua, ignore=LATER if not two_pass else frozenset())
+    assert not differences, "\n".join(differences[:40])
