@@ -506,7 +506,7 @@ function lane.again(st)
   local fresh = new_state(st.timeout, st.mode)
   local frozen, chosen, history, fixed = {}, {}, {}, {}
   for number, reason in pairs(st.said) do frozen[number] = reason end
-  local met = {} -- (every slave the first pass met: a broadcast reaches them all, selection.broadcast_device)
+  local met = {} -- (every slave the first pass met: a broadcast reaches them all, the selection stage's broadcast_device)
   for slave, judged in pairs(st.judged) do
     met[slave] = true
     local choice = judged.choice
