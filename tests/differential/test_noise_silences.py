@@ -54,8 +54,8 @@ def test_noise_without_a_silence_stays_one_run(tmp_path: Path, monkeypatch: pyte
     assert out == [
         "     1     0.000000   - noise     6 bytes of noise at offset 0: ff 00 aa ff 00 aa",
         f"     2     3.000000   {NOISE_LINE.format(6)}",
-        "     3     3.000000  12 request   Read Holding Registers 8400..8402 (3) [the capture ends 1000.0 ms after the"
-        " request, within the 1000 ms timeout: not known whether it was answered]  CRC ok",
+        "     3     3.000000  12 request   Read Holding Registers 8400..8402 (3) [no response]"
+        " [the capture ends before any response]  CRC ok",
         f"     4     4.000000   {NOISE_LINE.format(17)}",
     ]
     assert bus[0] == "load: 0.3 %"
