@@ -3401,7 +3401,7 @@ package.preload["vw3.stream"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math = DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math
-local pairs = pairs
+local next, pairs, table = next, pairs, table
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -3458,9 +3458,24 @@ end
 
 -- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
 -- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record ends a
--- noise run (found where noise is added, from the records' times: nothing is added to a frame's path).
+-- noise run.
 local DEFAULT_BAUD, RTU_BITS = 19200, 11
 local T35 = 3.5 * RTU_BITS / DEFAULT_BAUD
+function lane.mark_silence(s, start, time)
+  local times = s.times
+  local count = #times
+  local before = times[count]
+  -- (RTU only, as stream.py _add_noise: ASCII allows a second's silence inside a frame)
+  if count == 0 or not before or time == nil or s.mode == "ascii" then return end
+  if time - before - (start - times[count - 1]) * RTU_BITS / DEFAULT_BAUD >= T35 then
+    local silences = s.silences
+    if silences == nil then
+      silences = {}
+      s.silences = silences
+    end
+    silences[start] = true
+  end
+end
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
@@ -3484,27 +3499,29 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
-  local times = s.times
-  if #times > 2 and s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
-    -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one for
-    -- the framer's decisions, its items are cut there (_add_noise).
-    for index = 3, #times, 2 do
-      local offset, time, before = times[index], times[index + 1], times[index - 1]
+  local silences = s.silences
+  if silences ~= nil and next(silences) ~= nil then
+    -- (stream.py _add_noise: the run stays one for the framer's decisions, its items are cut at silences)
+    local cuts = {}
+    for offset in pairs(silences) do
       local at = offset - base
-      if at >= start and at < stop and time and before
-          and time - before - (offset - times[index - 2]) * RTU_BITS / DEFAULT_BAUD >= T35 then
-        if at > start then add_run(s, b, start, at, reason, items) end
-        local noise = s.noise
-        if noise ~= nil then
-          local parts = noise.parts
-          if parts == nil then
-            parts = {}
-            noise.parts = parts
-          end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time
+      if at >= start and at < stop then cuts[#cuts + 1] = at end
+    end
+    table.sort(cuts)
+    for index = 1, #cuts do
+      local at = cuts[index]
+      if at > start then add_run(s, b, start, at, reason, items) end
+      local noise = s.noise
+      if noise ~= nil then
+        local parts = noise.parts
+        if parts == nil then
+          parts = {}
+          noise.parts = parts
         end
-        start = at
+        local time = time_at(s, base + at)
+        parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time == nil and false or time
       end
+      start = at
     end
   end
   add_run(s, b, start, stop, reason, items)
@@ -4402,6 +4419,12 @@ local function consume(s, count)
   for offset in pairs(s.boundaries) do
     if offset < base then s.boundaries[offset] = nil end
   end
+  local silences = s.silences
+  if silences ~= nil then
+    for offset in pairs(silences) do
+      if offset < base then silences[offset] = nil end
+    end
+  end
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -4469,6 +4492,8 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
+    -- (stream.py feed: silence_before; one with no byte waiting and no noise run open cuts nothing)
+    if time ~= nil and (at > 0 or s.noise ~= nil) then lane.mark_silence(s, s.base + at, time) end
     local times = s.times
     local count = #times
     times[count + 1] = s.base + at

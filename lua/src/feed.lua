@@ -37,6 +37,12 @@ local function consume(s, count)
   for offset in pairs(s.boundaries) do
     if offset < base then s.boundaries[offset] = nil end
   end
+  local silences = s.silences
+  if silences ~= nil then
+    for offset in pairs(silences) do
+      if offset < base then silences[offset] = nil end
+    end
+  end
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -104,6 +110,8 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
+    -- (stream.py feed: silence_before; one with no byte waiting and no noise run open cuts nothing)
+    if time ~= nil and (at > 0 or s.noise ~= nil) then lane.mark_silence(s, s.base + at, time) end
     local times = s.times
     local count = #times
     times[count + 1] = s.base + at

@@ -59,9 +59,24 @@ end
 
 -- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
 -- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record ends a
--- noise run (found where noise is added, from the records' times: nothing is added to a frame's path).
+-- noise run.
 local DEFAULT_BAUD, RTU_BITS = 19200, 11
 local T35 = 3.5 * RTU_BITS / DEFAULT_BAUD
+function lane.mark_silence(s, start, time)
+  local times = s.times
+  local count = #times
+  local before = times[count]
+  -- (RTU only, as stream.py _add_noise: ASCII allows a second's silence inside a frame)
+  if count == 0 or not before or time == nil or s.mode == "ascii" then return end
+  if time - before - (start - times[count - 1]) * RTU_BITS / DEFAULT_BAUD >= T35 then
+    local silences = s.silences
+    if silences == nil then
+      silences = {}
+      s.silences = silences
+    end
+    silences[start] = true
+  end
+end
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
@@ -85,27 +100,29 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
-  local times = s.times
-  if #times > 2 and s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
-    -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one for
-    -- the framer's decisions, its items are cut there (_add_noise).
-    for index = 3, #times, 2 do
-      local offset, time, before = times[index], times[index + 1], times[index - 1]
+  local silences = s.silences
+  if silences ~= nil and next(silences) ~= nil then
+    -- (stream.py _add_noise: the run stays one for the framer's decisions, its items are cut at silences)
+    local cuts = {}
+    for offset in pairs(silences) do
       local at = offset - base
-      if at >= start and at < stop and time and before
-          and time - before - (offset - times[index - 2]) * RTU_BITS / DEFAULT_BAUD >= T35 then
-        if at > start then add_run(s, b, start, at, reason, items) end
-        local noise = s.noise
-        if noise ~= nil then
-          local parts = noise.parts
-          if parts == nil then
-            parts = {}
-            noise.parts = parts
-          end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time
+      if at >= start and at < stop then cuts[#cuts + 1] = at end
+    end
+    table.sort(cuts)
+    for index = 1, #cuts do
+      local at = cuts[index]
+      if at > start then add_run(s, b, start, at, reason, items) end
+      local noise = s.noise
+      if noise ~= nil then
+        local parts = noise.parts
+        if parts == nil then
+          parts = {}
+          noise.parts = parts
         end
-        start = at
+        local time = time_at(s, base + at)
+        parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time == nil and false or time
       end
+      start = at
     end
   end
   add_run(s, b, start, stop, reason, items)
