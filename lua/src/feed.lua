@@ -110,8 +110,7 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
-    -- (stream.py feed: silence_before; one with no byte waiting and no noise run open cuts nothing)
-    if time ~= nil and (at > 0 or s.noise ~= nil) then lane.mark_silence(s, s.base + at, time) end
+    if time ~= nil then lane.mark_silence(s, s.base + at, time) end -- (stream.py feed: silence_before)
     local times = s.times
     local count = #times
     times[count + 1] = s.base + at
