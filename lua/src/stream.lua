@@ -57,9 +57,8 @@ local function flush_noise(s, items)
   end
 end
 
--- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
--- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record ends a
--- noise run.
+-- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD, RTU's bits a
+-- character, t3.5): the plugin has no line speed setting. A silence of t3.5 before a record ends a noise run.
 local DEFAULT_BAUD, RTU_BITS = 19200, 11
 local T35 = 3.5 * RTU_BITS / DEFAULT_BAUD
 function lane.mark_silence(s, start, time)
