@@ -3401,7 +3401,7 @@ package.preload["vw3.stream"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math = DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math
-local next, pairs, table = next, pairs, table
+local pairs = pairs
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -3432,51 +3432,14 @@ end
 
 -- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
 -- (and buffers) it came from, and is shown in one piece.
--- A run with silences inside (noise.parts, add_noise) is given out as one item per stretch between them.
 local function flush_noise(s, items)
   local noise = s.noise
   if noise ~= nil then
-    local parts = noise.parts
     items[#items + 1] = noise
-    if parts ~= nil then
-      local bytes_, length = noise.bytes, noise.length
-      for index = 1, #parts, 3 do
-        local begin = parts[index]
-        local stop = parts[index + 3] or length
-        local piece = { kind = NOISE, offset = noise.offset + begin, length = stop - begin, reason = parts[index + 1],
-                        time = parts[index + 2] or nil, bytes = {} }
-        local copy = piece.bytes
-        for k = begin + 1, stop do copy[k - begin] = bytes_[k] end
-        items[#items + 1] = piece
-      end
-      for k = length, parts[1] + 1, -1 do bytes_[k] = nil end
-      noise.length, noise.parts = parts[1], nil
-    end
     s.noise = nil
   end
 end
 
--- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD, RTU's bits a
--- character, t3.5): the plugin has no line speed setting. A silence of t3.5 before a record ends a noise run.
-local DEFAULT_BAUD, RTU_BITS = 19200, 11
-local T35 = 3.5 * RTU_BITS / DEFAULT_BAUD
-function lane.mark_silence(s, start, time)
-  local times = s.times
-  local count = #times
-  local before = times[count]
-  -- (RTU only, as stream.py _add_noise: ASCII allows a second's silence inside a frame)
-  if count == 0 or not before or time == nil or s.mode == "ascii" then return end
-  if time - before - (start - times[count - 1]) * RTU_BITS / DEFAULT_BAUD >= T35 then
-    local silences = s.silences
-    if silences == nil then
-      silences = {}
-      s.silences = silences
-    end
-    silences[start] = true
-  end
-end
-
-local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
   -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
@@ -3498,36 +3461,6 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
-  local silences = s.silences
-  if silences ~= nil and next(silences) ~= nil then
-    -- (stream.py _add_noise: the run stays one for the framer's decisions, its items are cut at silences)
-    local cuts = {}
-    for offset in pairs(silences) do
-      local at = offset - base
-      if at >= start and at < stop then cuts[#cuts + 1] = at end
-    end
-    table.sort(cuts)
-    for index = 1, #cuts do
-      local at = cuts[index]
-      if at > start then add_run(s, b, start, at, reason, items) end
-      local noise = s.noise
-      if noise ~= nil then
-        local parts = noise.parts
-        if parts == nil then
-          parts = {}
-          noise.parts = parts
-        end
-        local time = time_at(s, base + at)
-        parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time == nil and false or time
-      end
-      start = at
-    end
-  end
-  add_run(s, b, start, stop, reason, items)
-end
-
--- Bytes start .. stop - 1 go to the noise run (no silence inside them).
-add_run = function(s, b, start, stop, reason, items)
   while start < stop do
     local noise = s.noise
     if noise == nil then
@@ -4418,12 +4351,6 @@ local function consume(s, count)
   for offset in pairs(s.boundaries) do
     if offset < base then s.boundaries[offset] = nil end
   end
-  local silences = s.silences
-  if silences ~= nil then
-    for offset in pairs(silences) do
-      if offset < base then silences[offset] = nil end
-    end
-  end
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -4491,7 +4418,6 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
-    if time ~= nil then lane.mark_silence(s, s.base + at, time) end -- (stream.py feed: silence_before)
     local times = s.times
     local count = #times
     times[count + 1] = s.base + at

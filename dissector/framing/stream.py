@@ -230,7 +230,7 @@ class StreamFramer(ABC):
                 check_from = max(inside)
         if self._glitches_only:
             self._glitches_only = not buf[check_from:end].translate(None, _GLITCHES)
-        if self._silences and self.mode == "rtu":  # (ASCII allows a second's silence inside a frame)
+        if self._silences:
             base = self._base
             for at in sorted(offset - base for offset in self._silences if start <= offset - base < end):
                 if at > start:

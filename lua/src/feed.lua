@@ -37,12 +37,6 @@ local function consume(s, count)
   for offset in pairs(s.boundaries) do
     if offset < base then s.boundaries[offset] = nil end
   end
-  local silences = s.silences
-  if silences ~= nil then
-    for offset in pairs(silences) do
-      if offset < base then silences[offset] = nil end
-    end
-  end
 end
 
 -- Can a record of n bytes from `slave` be one whole frame where no byte waits (feed_whole, the quick lanes)?
@@ -110,7 +104,6 @@ feed = function(s, bytes, time, boundary, final, built)
       k = k + 8
     end
     for rest = k, n do b[at + rest - 1] = byte(bytes, rest) end
-    if time ~= nil then lane.mark_silence(s, s.base + at, time) end -- (stream.py feed: silence_before)
     local times = s.times
     local count = #times
     times[count + 1] = s.base + at
