@@ -178,36 +178,15 @@ local function scan_match(s, b, i, n, minimum, final)
   return NONE
 end
 
--- A counted layout's length when its count is 0, by kind and code (rtu.py _COUNTS_NOTHING): every count of the
--- spec counts something, so a reading with a bad CRC that counts nothing is no frame.
-local COUNTS_NOTHING = { [REQUEST] = {}, [RESPONSE] = {} }
-for code, rules in pairs(DATA.protocol.rules) do
-  for index, kind in ipairs({ REQUEST, RESPONSE }) do
-    local spec = rules[index]
-    if spec[1] == "count8" or spec[1] == "count16" then COUNTS_NOTHING[kind][code] = spec[3] end
-  end
-end
-local function counts_nothing(b, i, kind, length)
-  local counted = COUNTS_NOTHING[kind]
-  return counted ~= nil and counted[b[i + 1]] == length
-end
-
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
   local slave, code = b[i], b[i + 1]
   if not awaited(s, b, i, n) then return nil end
-  -- (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
-  local list, first, length, is_scan, declared = interpretations(s, slave, code, b, i, n), nil, nil, nil, nil
-  for index = 1, #list do
-    length, is_scan, declared = list[index][2](b, i, n)
-    if is_scan or not counts_nothing(b, i, list[index][1], length) then
-      first = list[index]
-      break
-    end
-  end
+  local first = interpretations(s, slave, code, b, i, n)[1]
   if first == nil then return nil end
+  local length, is_scan, declared = first[2](b, i, n)
   if is_scan then
     -- (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
     if declared == nil or declared == NONE then return nil end
@@ -219,10 +198,6 @@ local function cut_answer(s, b, i, n)
   if intact_inside(s, b, i, n - i, n, true) then return nil end
   local what = "exception response"
   if first[1] == RESPONSE then what = "response" end
-  if first[1] == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
-    local size = length == NEED and format("%d bytes of it", n - i) or format("%d of %d bytes", n - i, length)
-    return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
-  end
   if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
   return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
 end
@@ -258,17 +233,6 @@ local function record_start(s, i)
   return false
 end
 
--- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)? Then
--- it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
-local function crosses_framed_record(s, b, i, stop, n)
-  local base = s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
-  end
-  return false
-end
-
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
@@ -300,7 +264,7 @@ local function match(s, b, i, n, final)
       if not final then waiting = added(waiting, NEED) end
     elseif length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
-        if not final and not crosses_framed_record(s, b, i, i + length, n) then waiting = added(waiting, length) end
+        if not final then waiting = added(waiting, length) end
       elseif crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
       elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails: as is_scan above)
@@ -312,7 +276,7 @@ local function match(s, b, i, n, final)
         else
           damaged = added(damaged, { kind, length })
         end
-      elseif not counts_nothing(b, i, kind, length) then
+      else
         damaged = added(damaged, { kind, length })
       end
     end
@@ -369,7 +333,7 @@ local function match(s, b, i, n, final)
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
     local stop = i + length
-    local following = not crosses_framed_record(s, b, i, stop, n) and followed(s, b, stop, n, final, awaits)
+    local following = followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
       -- (records that are frames, this one or the next: none it holds crosses its record's end, rtu.py)
