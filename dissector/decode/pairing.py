@@ -144,7 +144,7 @@ class Pairer:
             end, asked = self.end, pending.time
             waited = end - asked if end is not None and asked is not None else None
             if self._pending_released:  # (its line is out: only the count can still say it)
-                pending.unanswered = self._timeout is not None and waited is not None and waited > self._timeout
+                pending.unanswered = self._late(pending, end)
             else:
                 # The framer names an answer cut by the end of the capture (RtuFramer._cut_answer).
                 cut = next(

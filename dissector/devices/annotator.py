@@ -174,16 +174,20 @@ class Annotator:
         choice = self.selector.choice(slave)
         return choice is not None and choice.final
 
+    def _inferred_broadcast(self, slave: int) -> bool:
+        """Slave 0 under profile auto, not forced: named with the device the slaves share (_broadcast)."""
+        return slave == 0 and self.selector is not None and 0 not in self.per_slave
+
     def compilable(self, slave: int) -> bool:
         """The compiled path may show this slave's plain transactions: its profile is settled, and its
         map has no 32-bit rows (a register's text would depend on its neighbour's value)."""
-        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+        if self._inferred_broadcast(slave):
             return False  # (named with the device of the slaves met so far: _broadcast)
         return self.settled(slave) and not self.device(slave).wide
 
     # -- setup ----------------------------------------------------------------------------------------
     def device(self, slave: int) -> Device:
-        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+        if self._inferred_broadcast(slave):
             return self._broadcast()[0]  # (as the choices stand now: a broadcast read again at the end)
         device = self._devices.get(slave)
         if device is None:
@@ -232,7 +236,7 @@ class Annotator:
         return {code: frozenset(addresses) for code, addresses in found.items()}
 
     def profile_for(self, slave: int) -> Profile:
-        if slave == 0 and self.selector is not None and 0 not in self.per_slave:
+        if self._inferred_broadcast(slave):
             return self.device(0).profile
         profile = self.per_slave.get(slave)
         if profile is None:
@@ -371,7 +375,7 @@ class Annotator:
     # -- per frame ----------------------------------------------------------------------------------------
     def __call__(self, frame: Frame) -> None:
         device = self._devices.get(frame.slave)
-        if frame.slave == 0 and self.selector is not None and 0 not in self.per_slave:
+        if self._inferred_broadcast(frame.slave):
             device, said, frame.profile_choice, frame.provisional = self._broadcast()
             if said is not None:
                 frame.notes.append(said)
