@@ -39,6 +39,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filter_fields import ALIASES, CATALOGUE, FRAME_FIELDS, REGISTER_FIELDS  # not filters: -Y only
+from dissector.render.filter_match import item_elements
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
 
@@ -196,11 +197,9 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
         # Then the addresses the frame names without their values (a read request's window), as -Y's
         # `address` tests them and the plugin's hidden vw3.reg.address (vw3.bit.address) has them; the other
         # keys have an empty occurrence there, so that occurrence=l still pairs an address with its value.
-        from dissector.render.filters import _elements
-
         carried = len(record.get("registers") or []) + len(record.get("bits") or [])
         return [element.get(head) if index < carried or head == "address" else None
-                for index, element in enumerate(_elements(record))]
+                for index, element in enumerate(item_elements(record))]
     value = record.get(head)
     if rest:
         for part in rest.split("."):

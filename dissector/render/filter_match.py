@@ -92,3 +92,30 @@ def address_test(op: str, value: Any) -> Test:
             match_op("==", v, value) for v in address_values(reg)
         )
     return lambda item, reg: any(match_op(op, v, value) for v in address_values(reg))
+
+
+MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
+
+
+def item_elements(item: Item) -> list[dict[str, Any]]:
+    """The registers and bits of an item, plus address-only entries for addresses it names."""
+    registers = item.get("registers") or []
+    bits = item.get("bits")
+    elements: list[dict[str, Any]] = registers + bits if bits else registers
+    start, quantity = item.get("start"), item.get("quantity")
+    if not (is_number(start) and is_number(quantity)) or item.get("kind") == "exception":
+        return elements
+    if elements and len(elements) == quantity and elements[0].get("address") == start:
+        return elements  # a read response: its values already cover start..start+quantity-1
+    known = {element.get("address") for element in elements}
+    span = item.get("span_label")
+    first = label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
+    synthesized = [
+        {"address": address & 0xFFFF}
+        if first is None
+        else {"address": address & 0xFFFF, "label": str(first + address - int(start))}
+        # A quantity of 0 (a malformed read) still names its start address, as tshark's reference_num.
+        for address in range(int(start), int(start) + min(max(int(quantity), 1), MAX_SYNTHESIZED))
+        if address & 0xFFFF not in known
+    ]
+    return elements + synthesized if synthesized else elements

@@ -65,16 +65,14 @@ from dissector.render.filter_match import (
     any_bit,
     contains_text,
     in_members,
-    label_number,
     match_op,
-    is_number,
     is_present,
+    item_elements,
     search,
 )
 
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
-MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
@@ -176,30 +174,6 @@ def tokenize(text: str) -> list[Token]:
         i = match.end()
     tokens.append(Token("end", "", None, len(text)))
     return tokens
-
-
-def _elements(item: Item) -> list[dict[str, Any]]:
-    """The registers and bits of an item, plus address-only entries for addresses it names."""
-    registers = item.get("registers") or []
-    bits = item.get("bits")
-    elements: list[dict[str, Any]] = registers + bits if bits else registers
-    start, quantity = item.get("start"), item.get("quantity")
-    if not (is_number(start) and is_number(quantity)) or item.get("kind") == "exception":
-        return elements
-    if elements and len(elements) == quantity and elements[0].get("address") == start:
-        return elements  # a read response: its values already cover start..start+quantity-1
-    known = {element.get("address") for element in elements}
-    span = item.get("span_label")
-    first = label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
-    synthesized = [
-        {"address": address & 0xFFFF}
-        if first is None
-        else {"address": address & 0xFFFF, "label": str(first + address - int(start))}
-        # A quantity of 0 (a malformed read) still names its start address, as tshark's reference_num.
-        for address in range(int(start), int(start) + min(max(int(quantity), 1), MAX_SYNTHESIZED))
-        if address & 0xFFFF not in known
-    ]
-    return elements + synthesized if synthesized else elements
 
 
 class _Parser:
@@ -550,7 +524,7 @@ def quantify(test: Test) -> Callable[[Item], bool]:
         def some_split(item: Item) -> bool:
             if not frame_part(item, None):
                 return False
-            elements = _elements(item)
+            elements = item_elements(item)
             if not elements:
                 return register_part(item, None)
             return any(register_part(item, element) for element in elements)
@@ -558,7 +532,7 @@ def quantify(test: Test) -> Callable[[Item], bool]:
         return some_split
 
     def some(item: Item) -> bool:
-        elements = _elements(item)
+        elements = item_elements(item)
         if not elements:
             return test(item, None)
         return any(test(item, element) for element in elements)
