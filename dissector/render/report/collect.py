@@ -522,8 +522,10 @@ class ReportCollector:
         """The exceptions of frames decoded before profile `auto` chose their slave's device (standard
         input) told with the meaning the device it chose gives them (Frame.exception_text: the profile's
         meaning of the code), as the file, named with the last choice throughout, tells them."""
+        from dissector.devices.explain import device_meaning  # (to a read, p.38's clause: as explain.py)
+
         for index, slave, function, code, told in self._pending:
-            text = _exception_text(function, code, self._device(slave).profile.exceptions.get(code))  # type: ignore[misc]
+            text = _exception_text(function, code, device_meaning(self._device(slave).profile, function, code))  # type: ignore[misc]
             if text == told:
                 continue
             if index is not None:
