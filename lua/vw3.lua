@@ -8206,7 +8206,7 @@ end
 -- The addresses a frame names without carrying their values (a read request's window, FC15's and FC16's
 -- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
 -- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
--- vw3-decode's `address == 8401` (the same addresses: render/filters.py _elements, at most 2000).
+-- vw3-decode's `address == 8401` (the same addresses: render/filter_match.py item_elements, at most 2000).
 local BIT_WINDOW = {} -- (fn -> true: its request or answer carries bits, lift values "bits" or "coil")
 for _, by_fn in pairs(DATA.rules.by_code) do
   for fn, entry in pairs(by_fn) do

@@ -519,11 +519,9 @@ class ReportCollector:
         }
 
     def _retell(self) -> None:
-        """The exceptions of frames decoded before profile `auto` chose their slave's device (standard
-        input) told with the meaning the device it chose gives them (Frame.exception_text: the profile's
-        meaning of the code), as the file, named with the last choice throughout, tells them."""
-        from dissector.devices.explain import device_meaning  # (to a read, p.38's clause: as explain.py)
-
+        """Exceptions decoded before profile `auto` chose their slave's device (standard input) told as
+        the file tells them: with the chosen device's meaning (explain.device_meaning, p.38's clause too)."""
+        from dissector.devices.explain import device_meaning
         for index, slave, function, code, told in self._pending:
             text = _exception_text(function, code, device_meaning(self._device(slave).profile, function, code))  # type: ignore[misc]
             if text == told:
