@@ -4267,7 +4267,7 @@ local function run_ascii(s, final, items)
   end
   return i
 end
-M.MODE_SAMPLE, M.detect_mode, M.run_ascii = MODE_SAMPLE, detect_mode, run_ascii
+M.MODE_SAMPLE, M.detect_mode, M.hex_pairs, M.run_ascii = MODE_SAMPLE, detect_mode, hex_pairs, run_ascii
 end
 
 -- ---- vw3.feed: lua/src/feed.lua ----
@@ -4924,7 +4924,7 @@ local function decode_frame(f)
   end
 end
 M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
-M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
+M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.SIZES, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, SIZES, bit_at
 M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
 M.register_at, M.release_run, M.say, M.u16, M.warn = register_at, release_run, say, u16, warn
 end
@@ -5497,7 +5497,7 @@ end
 M.parse_map = parse_map
 M.AUTO, M.PLAIN_READS, M.PROFILES, M.READS, M.READ_LIMIT = AUTO, PLAIN_READS, PROFILES, READS, READ_LIMIT
 M.SELECTION, M.parse_map_choice, M.parse_profile_choice = SELECTION, parse_map_choice, parse_profile_choice
-M.python_repr = python_repr
+M.printable, M.python_repr = printable, python_repr
 end
 
 -- ---- vw3.device: lua/src/device.lua ----
@@ -7663,10 +7663,10 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
 local NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS = NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS
-local REQUEST, RESPONSE, concat, ex, exception_name, floor = REQUEST, RESPONSE, concat, ex, exception_name, floor
-local format, function_name, ipairs, made_once, math, pairs = format, function_name, ipairs, made_once, math, pairs
-local pf, python_repr, string, table, tonumber, tostring = pf, python_repr, string, table, tonumber, tostring
-local type = type
+local REQUEST, RESPONSE, SIZES, concat, ex, exception_name = REQUEST, RESPONSE, SIZES, concat, ex, exception_name
+local floor, format, function_name, hex_pairs, ipairs = floor, format, function_name, hex_pairs, ipairs
+local made_once, math, pairs, pf, python_repr, string = made_once, math, pairs, pf, python_repr, string
+local table, tostring, type, u16 = table, tostring, type, u16
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -7765,14 +7765,11 @@ end
 
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
-  if not f.ascii then -- (the bytes as they are, 0-based)
-    local raw = tvb:raw(f.at, f.length)
-    return { [0] = string.byte(raw, 1), string.byte(raw, 2, -1) }
+  if f.ascii then -- (the hex pairs between the colon and CR LF, as the framer read them)
+    return (hex_pairs({ string.byte(tvb:raw(f.at + 1, f.length - 3), 1, -1) }, 1, floor((f.length - 3) / 2)))
   end
-  local raw = tvb:raw(f.at + 1, f.length - 3)
-  local b = {}
-  for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
-  return b
+  local raw = tvb:raw(f.at, f.length) -- (the bytes as they are, 0-based)
+  return { [0] = string.byte(raw, 1), string.byte(raw, 2, -1) }
 end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
@@ -7822,7 +7819,14 @@ for _, shapes in ipairs({ LAYOUTS, PARTS }) do
     for _, field in ipairs(shape) do SHOWN[field] = PDU_FIELDS[owner .. "." .. field.name] or false end
   end
 end
-local FIXED = { u8 = 1, u16 = 2 }
+
+-- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
+local function printable(b, first, last)
+  for k = first, last do
+    if b[k] < 32 or b[k] > 126 then return nil end
+  end
+  return string.char(table.unpack(b, first, last))
+end
 
 -- A counted field's bytes from its count's value (as shape_parser's size_of; odd: the byte an odd count leaves).
 local function counted_size(field, count)
@@ -7841,10 +7845,10 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   for index = 1, #shape do
     local field = shape[index]
     local kind, shown = field.type, SHOWN[field]
-    local size = FIXED[kind]
+    local size = SIZES[kind]
     if size ~= nil then
       if at + size > stop then return nil end
-      local value = size == 1 and b[at] or b[at] * 256 + b[at + 1]
+      local value = size == 1 and b[at] or u16(b, at)
       values[field.name] = value
       if t and shown then t:add(shown[1], frame_range(tvb, f, at, size), value) end
       at = at + size
@@ -7874,16 +7878,12 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
       if size < 0 or at + size > stop then return nil end
       if t and shown and size > 0 then
         if kind == "words" then
-          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), b[k] * 256 + b[k + 1]) end
+          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), u16(b, k)) end
         elseif kind == "odd" then
           t:add(shown[1], frame_range(tvb, f, at, 1), b[at])
         elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
-          local chars = {}
-          for k = at, at + size - 1 do
-            if b[k] < 32 or b[k] > 126 then chars = nil break end
-            chars[#chars + 1] = string.char(b[k])
-          end
-          if chars then t:add(shown[1], frame_range(tvb, f, at, size), concat(chars))
+          local text = printable(b, at, at + size - 1)
+          if text then t:add(shown[1], frame_range(tvb, f, at, size), text)
           else t:add(shown[2], frame_range(tvb, f, at, size)) end
         else
           t:add(shown[1], frame_range(tvb, f, at, size))
@@ -7930,7 +7930,7 @@ local function fields_at(kind, fn)
   local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
   local at = 2
   for _, field in ipairs(LAYOUTS[entry and entry.layout or "raw"]) do
-    local size = FIXED[field.type]
+    local size = SIZES[field.type]
     at_of[field.name] = { at = at, size = size }
     if size == nil then break end
     at = at + size
@@ -7943,7 +7943,7 @@ end
 -- bytes, then how many more) for other data, nothing for none.
 local function data_text(b, first, last)
   local size = last - first + 1
-  if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
+  if size == 2 then return " = " .. DECIMAL[u16(b, first)] end
   if size <= 0 then return "" end
   local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
   for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
@@ -7951,72 +7951,52 @@ local function data_text(b, first, last)
   return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
--- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
-local function fifo_values(b, count, first, last)
+-- The steps of a form (describe._interpreter) on the frame f and its bytes b, its data ending at b[last]:
+-- STEPS[name](value, f, b, at, last, extra), where value is the step's field's at b[at] read as u8 or u16
+-- (nil where the field has no fixed size), extra what the step's number says, made once (hex: its pattern;
+-- fifo: where the values are after their count).
+local STEPS = {
+  dec = function(value) return DECIMAL[value] end,
+  hex = function(value, f, b, at, last, pattern) return format(pattern, value) end,
+  label = function(value, f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end, -- (span_text)
+  coil = function(value) return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value) end,
+  -- (the sub-function as the profile names it, else the spec)
+  subfunction = function(value, f) return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION end,
+  data = function(value, f, b, at, last) return data_text(b, at, last) end,
+}
+-- describe's fifo step: the first MAX_FIFO_VALUES of `count` values (none past b[last]).
+function STEPS.fifo(count, f, b, at, last, after)
   local made = 0
-  for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
-    local at = first + 2 * k
-    if at + 1 > last then break end
+  for k = at + after, at + after + 2 * (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 2, 2 do
+    if k + 1 > last then break end
     made = made + 1
-    VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
+    VALUES[made] = DECIMAL[u16(b, k)]
   end
   if made == 0 then return "" end
   return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
--- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
--- value read as u8 or u16 (nil where the field has no fixed size).
-local STEPS = {}
-function STEPS.dec(at, size)
-  if size == nil then return function() return DECIMAL[nil] end end
-  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
-end
-function STEPS.hex(at, size, digits)
-  local pattern = "%0" .. digits .. "X"
-  return function(f, b, base)
-    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
-  end
-end
-function STEPS.label() -- (span_text: the window as named, PLC style too)
-  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
-end
-function STEPS.coil(at, size)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-  end
-end
-function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-  end
-end
-function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
-function STEPS.fifo(at, size, values_at) -- (the values after their count)
-  return function(f, b, base, last)
-    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
-      base + values_at, last)
-  end
-end
-
--- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
+-- A form as one function of the frame and its bytes (its slave byte at b[base]): its texts as they are,
+-- its steps' made by STEPS on their fields' places (fields_at), put together in MADE.
 local function form_function(steps, at_of)
-  local texts, made, count = {}, {}, #steps
-  for index = 1, count do
-    local step = steps[index]
-    if type(step) == "string" then
-      texts[index] = step
-    else
-      local place, extra = at_of[step[2]], step[3]
-      if step[1] == "fifo" then extra = at_of[step[3]].at end
-      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
+  local count, texts, places, extras = #steps, {}, {}, {}
+  for index, step in ipairs(steps) do
+    texts[index] = type(step) == "string" and step
+    if not texts[index] then
+      local place = at_of[step[2]] or NO_INTERPRETATION
+      places[index] = place
+      extras[index] = step[1] == "hex" and "%0" .. step[3] .. "X" or step[1] == "fifo" and at_of[step[3]].at - place.at
     end
   end
   return function(f, b, base, last)
     for index = 1, count do
-      MADE[index] = texts[index] or made[index](f, b, base, last)
+      local text, place = texts[index], places[index]
+      if not text then
+        local at, size = base + (place.at or 0), place.size
+        local value = size == 1 and b[at] or size == 2 and u16(b, at) or nil
+        text = STEPS[steps[index][1]](value, f, b, at, last, extras[index])
+      end
+      MADE[index] = text
     end
     return concat(MADE, "", 1, count)
   end
@@ -8058,12 +8038,9 @@ end
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST then return "" end
-  local count, run, text = b[base + 2] - 2, b[base + 4], true
-  for k = base + 5, base + 4 + count do
-    if b[k] < 32 or b[k] > 126 then text = false break end
-  end
-  if count > 0 and text then text = repr_text(string.char(table.unpack(b, base + 5, base + 4 + count))) end
-  local data = count > 0 and text or count_text(count, "byte")
+  local count, run = b[base + 2] - 2, b[base + 4]
+  local text = count > 0 and printable(b, base + 5, base + 4 + count)
+  local data = text and repr_text(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
@@ -8435,8 +8412,7 @@ end
 
 -- `1 byte continues`, `5 bytes continue`: a record's bytes framed with the next records'.
 local function continue_text(count)
-  if count == 1 then return "1 byte continues" end
-  return format("%d bytes continue", count)
+  return count_text(count, "byte") .. (count == 1 and " continues" or " continue")
 end
 
 -- One more part of a record's Info text: a single part stays a string, a list is made from the second.
@@ -8702,17 +8678,21 @@ local function dissect_records(st, tvb, pinfo, tree)
   return n
 end
 
--- A connection's or conversation's stream, by its two ends (the same both ways).
-local function conversation_state(states, pinfo)
-  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
-  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
-  local key = a < b and a .. " " .. b or b .. " " .. a
+-- The stream kept under `key` in `states` (a connection's, a conversation's, an interface's), new the first time.
+local function stream_of(states, key)
   local st = states[key]
   if st == nil then
     st = stream_state()
     states[key] = st
   end
   return st
+end
+
+-- A connection's or conversation's stream, by its two ends (the same both ways).
+local function conversation_state(states, pinfo)
+  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
+  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
+  return stream_of(states, a < b and a .. " " .. b or b .. " " .. a)
 end
 
 -- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
@@ -8753,12 +8733,8 @@ local function dissect_tcp(tvb, pinfo, tree)
   local record = calls[tcp_call.index]
   local first = record == nil
   if first then
-    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
-    if ok then
-      record = result
-    else
-      record = { length = n, error = tostring(result) }
-    end
+    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n) -- (result: a record when ok)
+    record = ok and result or { length = n, error = tostring(result) }
     calls[tcp_call.index] = record
   end
   if record.desegment_offset ~= nil then
@@ -8788,14 +8764,7 @@ local function serial_state(pinfo)
   if st ~= nil then return st end
   local id = INTERFACE()
   st = state
-  if id ~= nil and id.value ~= 0 then
-    local key = "interface " .. id.value
-    st = udp_states[key]
-    if st == nil then
-      st = stream_state()
-      udp_states[key] = st
-    end
-  end
+  if id ~= nil and id.value ~= 0 then st = stream_of(udp_states, "interface " .. id.value) end
   record_streams[number] = st
   return st
 end

@@ -98,17 +98,21 @@ local function dissect_records(st, tvb, pinfo, tree)
   return n
 end
 
--- A connection's or conversation's stream, by its two ends (the same both ways).
-local function conversation_state(states, pinfo)
-  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
-  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
-  local key = a < b and a .. " " .. b or b .. " " .. a
+-- The stream kept under `key` in `states` (a connection's, a conversation's, an interface's), new the first time.
+local function stream_of(states, key)
   local st = states[key]
   if st == nil then
     st = stream_state()
     states[key] = st
   end
   return st
+end
+
+-- A connection's or conversation's stream, by its two ends (the same both ways).
+local function conversation_state(states, pinfo)
+  local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
+  local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
+  return stream_of(states, a < b and a .. " " .. b or b .. " " .. a)
 end
 
 -- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
@@ -149,12 +153,8 @@ local function dissect_tcp(tvb, pinfo, tree)
   local record = calls[tcp_call.index]
   local first = record == nil
   if first then
-    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n)
-    if ok then
-      record = result
-    else
-      record = { length = n, error = tostring(result) }
-    end
+    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n) -- (result: a record when ok)
+    record = ok and result or { length = n, error = tostring(result) }
     calls[tcp_call.index] = record
   end
   if record.desegment_offset ~= nil then
@@ -184,14 +184,7 @@ local function serial_state(pinfo)
   if st ~= nil then return st end
   local id = INTERFACE()
   st = state
-  if id ~= nil and id.value ~= 0 then
-    local key = "interface " .. id.value
-    st = udp_states[key]
-    if st == nil then
-      st = stream_state()
-      udp_states[key] = st
-    end
-  end
+  if id ~= nil and id.value ~= 0 then st = stream_of(udp_states, "interface " .. id.value) end
   record_streams[number] = st
   return st
 end

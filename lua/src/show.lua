@@ -289,8 +289,7 @@ end
 
 -- `1 byte continues`, `5 bytes continue`: a record's bytes framed with the next records'.
 local function continue_text(count)
-  if count == 1 then return "1 byte continues" end
-  return format("%d bytes continue", count)
+  return count_text(count, "byte") .. (count == 1 and " continues" or " continue")
 end
 
 -- One more part of a record's Info text: a single part stays a string, a list is made from the second.

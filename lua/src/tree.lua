@@ -101,14 +101,11 @@ end
 
 -- The frame's byte table for the display, from the tvb it is shown from (ASCII: the hex pairs decoded).
 local function frame_bytes(f, tvb)
-  if not f.ascii then -- (the bytes as they are, 0-based)
-    local raw = tvb:raw(f.at, f.length)
-    return { [0] = string.byte(raw, 1), string.byte(raw, 2, -1) }
+  if f.ascii then -- (the hex pairs between the colon and CR LF, as the framer read them)
+    return (hex_pairs({ string.byte(tvb:raw(f.at + 1, f.length - 3), 1, -1) }, 1, floor((f.length - 3) / 2)))
   end
-  local raw = tvb:raw(f.at + 1, f.length - 3)
-  local b = {}
-  for k = 0, floor((f.length - 3) / 2) - 1 do b[k] = tonumber(raw:sub(2 * k + 1, 2 * k + 2), 16) end
-  return b
+  local raw = tvb:raw(f.at, f.length) -- (the bytes as they are, 0-based)
+  return { [0] = string.byte(raw, 1), string.byte(raw, 2, -1) }
 end
 
 -- `full` false: the tree is Wireshark's empty one (a pass that shows no details and filters on nothing):
@@ -158,7 +155,14 @@ for _, shapes in ipairs({ LAYOUTS, PARTS }) do
     for _, field in ipairs(shape) do SHOWN[field] = PDU_FIELDS[owner .. "." .. field.name] or false end
   end
 end
-local FIXED = { u8 = 1, u16 = 2 }
+
+-- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
+local function printable(b, first, last)
+  for k = first, last do
+    if b[k] < 32 or b[k] > 126 then return nil end
+  end
+  return string.char(table.unpack(b, first, last))
+end
 
 -- A counted field's bytes from its count's value (as shape_parser's size_of; odd: the byte an odd count leaves).
 local function counted_size(field, count)
@@ -177,10 +181,10 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   for index = 1, #shape do
     local field = shape[index]
     local kind, shown = field.type, SHOWN[field]
-    local size = FIXED[kind]
+    local size = SIZES[kind]
     if size ~= nil then
       if at + size > stop then return nil end
-      local value = size == 1 and b[at] or b[at] * 256 + b[at + 1]
+      local value = size == 1 and b[at] or u16(b, at)
       values[field.name] = value
       if t and shown then t:add(shown[1], frame_range(tvb, f, at, size), value) end
       at = at + size
@@ -210,16 +214,12 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
       if size < 0 or at + size > stop then return nil end
       if t and shown and size > 0 then
         if kind == "words" then
-          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), b[k] * 256 + b[k + 1]) end
+          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), u16(b, k)) end
         elseif kind == "odd" then
           t:add(shown[1], frame_range(tvb, f, at, 1), b[at])
         elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
-          local chars = {}
-          for k = at, at + size - 1 do
-            if b[k] < 32 or b[k] > 126 then chars = nil break end
-            chars[#chars + 1] = string.char(b[k])
-          end
-          if chars then t:add(shown[1], frame_range(tvb, f, at, size), concat(chars))
+          local text = printable(b, at, at + size - 1)
+          if text then t:add(shown[1], frame_range(tvb, f, at, size), text)
           else t:add(shown[2], frame_range(tvb, f, at, size)) end
         else
           t:add(shown[1], frame_range(tvb, f, at, size))
@@ -266,7 +266,7 @@ local function fields_at(kind, fn)
   local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
   local at = 2
   for _, field in ipairs(LAYOUTS[entry and entry.layout or "raw"]) do
-    local size = FIXED[field.type]
+    local size = SIZES[field.type]
     at_of[field.name] = { at = at, size = size }
     if size == nil then break end
     at = at + size
@@ -279,7 +279,7 @@ end
 -- bytes, then how many more) for other data, nothing for none.
 local function data_text(b, first, last)
   local size = last - first + 1
-  if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
+  if size == 2 then return " = " .. DECIMAL[u16(b, first)] end
   if size <= 0 then return "" end
   local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
   for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
@@ -287,72 +287,52 @@ local function data_text(b, first, last)
   return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
--- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
-local function fifo_values(b, count, first, last)
+-- The steps of a form (describe._interpreter) on the frame f and its bytes b, its data ending at b[last]:
+-- STEPS[name](value, f, b, at, last, extra), where value is the step's field's at b[at] read as u8 or u16
+-- (nil where the field has no fixed size), extra what the step's number says, made once (hex: its pattern;
+-- fifo: where the values are after their count).
+local STEPS = {
+  dec = function(value) return DECIMAL[value] end,
+  hex = function(value, f, b, at, last, pattern) return format(pattern, value) end,
+  label = function(value, f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end, -- (span_text)
+  coil = function(value) return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value) end,
+  -- (the sub-function as the profile names it, else the spec)
+  subfunction = function(value, f) return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION end,
+  data = function(value, f, b, at, last) return data_text(b, at, last) end,
+}
+-- describe's fifo step: the first MAX_FIFO_VALUES of `count` values (none past b[last]).
+function STEPS.fifo(count, f, b, at, last, after)
   local made = 0
-  for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
-    local at = first + 2 * k
-    if at + 1 > last then break end
+  for k = at + after, at + after + 2 * (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 2, 2 do
+    if k + 1 > last then break end
     made = made + 1
-    VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
+    VALUES[made] = DECIMAL[u16(b, k)]
   end
   if made == 0 then return "" end
   return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
--- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
--- value read as u8 or u16 (nil where the field has no fixed size).
-local STEPS = {}
-function STEPS.dec(at, size)
-  if size == nil then return function() return DECIMAL[nil] end end
-  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
-end
-function STEPS.hex(at, size, digits)
-  local pattern = "%0" .. digits .. "X"
-  return function(f, b, base)
-    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
-  end
-end
-function STEPS.label() -- (span_text: the window as named, PLC style too)
-  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
-end
-function STEPS.coil(at, size)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-  end
-end
-function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-  end
-end
-function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
-function STEPS.fifo(at, size, values_at) -- (the values after their count)
-  return function(f, b, base, last)
-    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
-      base + values_at, last)
-  end
-end
-
--- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
+-- A form as one function of the frame and its bytes (its slave byte at b[base]): its texts as they are,
+-- its steps' made by STEPS on their fields' places (fields_at), put together in MADE.
 local function form_function(steps, at_of)
-  local texts, made, count = {}, {}, #steps
-  for index = 1, count do
-    local step = steps[index]
-    if type(step) == "string" then
-      texts[index] = step
-    else
-      local place, extra = at_of[step[2]], step[3]
-      if step[1] == "fifo" then extra = at_of[step[3]].at end
-      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
+  local count, texts, places, extras = #steps, {}, {}, {}
+  for index, step in ipairs(steps) do
+    texts[index] = type(step) == "string" and step
+    if not texts[index] then
+      local place = at_of[step[2]] or NO_INTERPRETATION
+      places[index] = place
+      extras[index] = step[1] == "hex" and "%0" .. step[3] .. "X" or step[1] == "fifo" and at_of[step[3]].at - place.at
     end
   end
   return function(f, b, base, last)
     for index = 1, count do
-      MADE[index] = texts[index] or made[index](f, b, base, last)
+      local text, place = texts[index], places[index]
+      if not text then
+        local at, size = base + (place.at or 0), place.size
+        local value = size == 1 and b[at] or size == 2 and u16(b, at) or nil
+        text = STEPS[steps[index][1]](value, f, b, at, last, extras[index])
+      end
+      MADE[index] = text
     end
     return concat(MADE, "", 1, count)
   end
@@ -394,12 +374,9 @@ end
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST then return "" end
-  local count, run, text = b[base + 2] - 2, b[base + 4], true
-  for k = base + 5, base + 4 + count do
-    if b[k] < 32 or b[k] > 126 then text = false break end
-  end
-  if count > 0 and text then text = repr_text(string.char(table.unpack(b, base + 5, base + 4 + count))) end
-  local data = count > 0 and text or count_text(count, "byte")
+  local count, run = b[base + 2] - 2, b[base + 4]
+  local text = count > 0 and printable(b, base + 5, base + 4 + count)
+  local data = text and repr_text(text) or count_text(count, "byte")
   return "server id " .. DECIMAL[b[base + 3]] .. ", run " .. (RUN_INDICATOR[run] or DECIMAL[run]) .. ", " .. data
 end
 
