@@ -109,10 +109,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     crc_at = f.length - 2
     if f.ascii then crc_at = floor((f.length - 3) / 2) - 1 end
     local crc_range = frame_range(tvb, f, crc_at, f.ascii and 1 or 2)
-    local crc, expected = t:add(pf.crc, crc_range, f.crc), t:add(pf.crc_expected, crc_range, f.crc_expected)
-    local ok = t:add(pf.crc_ok, crc_range, crc_ok)
-    expected:set_generated()
-    ok:set_generated()
+    local crc = t:add(pf.crc, crc_range, f.crc)
+    local expected = t:add(pf.crc_expected, crc_range, f.crc_expected):set_generated()
+    local ok = t:add(pf.crc_ok, crc_range, crc_ok):set_generated()
     if f.ascii then -- (the same fields, named for ASCII's check: one byte, an LRC)
       crc:set_text(format("LRC: 0x%02x", f.crc))
       expected:set_text(format("Expected LRC: 0x%02x", f.crc_expected))
@@ -384,13 +383,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     anchor = record_note(anchor, tree, full, tvb, n, ex.partial, text)
     summaries, info = add_part(summaries, info, format("(%s)", continue_text(record.waiting)))
   end
-  if info ~= nil then
-    cols.info = info
-  elseif summaries == nil then
-    cols.info = ""
-  else
-    cols.info = concat(summaries, "; ")
-  end
+  cols.info = info or (summaries and concat(summaries, "; ")) or ""
 end
 
 -- The first pass is over: what still waits at the end of the capture is framed now, in every stream.
