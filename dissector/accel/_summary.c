@@ -872,24 +872,24 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
     return 1;
 }
 
-/* The decoder's and the annotator's checks of a request (a handled code: frame_kind): 1 quiet, 0 hand over,
- * -1 error. */
-static int request_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, Lifted *r) {
-    int k = handled_index(f[1]);
-    if (s->check[k] < 0) return 0;
-    if (!lift_frame(s, f, length, &request_lift[k], NULL, r)) return 0;
-    /* checks.within_limits: the device's own quantity limits (its second: the written window's, FC23) */
-    if (s->check[k] >= 1 && (long)r->quantity > s->limit[k][0]) return 0;
-    if (s->check[k] == 2 && (!request_lift[k].write_quantity_at || (long)r->values.count > s->limit[k][1])) return 0;
-    return words_are_plain(s, e->run_number, &r->values);
-}
-
-/* summary.summary_line's head of frame f: number, time (`-`: untimed), slave, kind */
-static void line_head(Engine *e, const FrameRef *f, unsigned long long number) {
-    out_uint(&e->out, number, 6);
-    out_time_column(&e->out, &e->tl, f->timed, f->ns);
-    out_uint(&e->out, (unsigned)f->slave, 3);
-    out_cstr(&e->out, kind_column[f->kind]);
+/* The decoder's and the annotator's checks of a frame (a handled code: frame_kind) by its lifting rule
+ * (lift_frame), the `request` it answers given (NULL: f is a request, held to the device's quantity limits,
+ * checks.within_limits; their second: FC23's written window); its window and data in *out, the registers
+ * an answer reads (FC3, FC4, FC23) in *reads; its registers plain, its reads quiet. 1 quiet, 0 hand over,
+ * -1 error. (Not an answer to a code of table.Compiled.texts: transaction() gives those to texts_lines.) */
+static int frame_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Lifted *request,
+                          Lifted *out, Words *reads) {
+    int k = handled_index(f[1]), check = s->check[k];
+    const Lift *L = request != NULL ? &response_lift[k] : &request_lift[k];
+    *reads = (Words){0, 0, NULL};
+    if (!lift_frame(s, f, length, L, request, out)) return 0;
+    if (request == NULL && (check < 0 || (check >= 1 && (long)out->quantity > s->limit[k][0]) ||
+                            (check == 2 && (!L->write_quantity_at || (long)out->values.count > s->limit[k][1]))))
+        return 0;
+    int plain = words_are_plain(s, e->run_number, &out->values);
+    if (plain <= 0 || request == NULL || L->values != VALUES_BLOCK) return plain;
+    *reads = out->values;
+    return rules[k].reads ? reads_are_quiet(s, reads, &request->values) : 1;
 }
 
 /* The Info column by its describer's form (info->steps: those of form_steps, _tables.h, generated from
@@ -979,11 +979,24 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
     return last > 0x20 && last < 0x7F;
 }
 
-/* The line `number` of frame f after its info: ` [no response]` (`unanswered`) or, for an answer, the
- * pairing with its request (the line before; NULL: f is a request), the tail from the Python stages (NULL:
- * none), the CRC. 1, -1 error. */
-static int line_end(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number, int unanswered,
-                    PyObject *tail) {
+/* The line `number` of frame f: summary.summary_line's head (number, time (`-`: untimed), slave, kind), its
+ * info, ` [no response]` (`unanswered`), for an answer the pairing with its `request` (the line before;
+ * NULL: f is a request), the tail, the CRC. The info is written from the frame as `lifted` (after the
+ * slave's function name) or, with `lifted` NULL, is the Python stages' `info`, with their `tail` (NULL:
+ * none). 1 written, 0 hand over, -1 error. */
+static int line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number, int unanswered,
+                Slave *s, const Lifted *lifted, PyObject *info, PyObject *tail) {
+    out_uint(&e->out, number, 6);
+    out_time_column(&e->out, &e->tl, f->timed, f->ns);
+    out_uint(&e->out, (unsigned)f->slave, 3);
+    out_cstr(&e->out, kind_column[f->kind]);
+    int k = handled_index(f->function & 0x7F);
+    if (out_str(&e->out, lifted != NULL ? s->name[k] : info) < 0) return -1; /* (refuses a text not a str) */
+    if (lifted != NULL) {
+        out_put(&e->out, " ", 1);
+        int written = info_text(e, s, &rules[k].info[request != NULL], lifted);
+        if (written <= 0) return written;
+    }
     if (unanswered) out_cstr(&e->out, " [no response]");
     if (request != NULL) {
         out_put(&e->out, " ", 1);
@@ -992,41 +1005,6 @@ static int line_end(Engine *e, const FrameRef *f, const FrameRef *request, unsig
     if (tail != NULL && out_str(&e->out, tail) < 0) return -1;
     out_cstr(&e->out, "  CRC ok\n");
     return e->out.failed ? -1 : 1;
-}
-
-/* The line of frame f as lifted: a request's (`unanswered`: `[no response]`), or with its `request` an
- * answer's, paired with it. 1 written, 0 hand over, -1 error. */
-static int frame_line(Engine *e, Slave *s, const Lifted *lifted, const FrameRef *f, const FrameRef *request,
-                      unsigned long long number, int unanswered) {
-    int answer = request != NULL, k = handled_index(f->function);
-    line_head(e, f, number);
-    if (out_str(&e->out, s->name[k]) < 0) return -1; /* the function name, then the info text */
-    out_put(&e->out, " ", 1);
-    int written = info_text(e, s, &rules[k].info[answer], lifted);
-    if (written <= 0) return written;
-    return line_end(e, f, request, number, unanswered, NULL);
-}
-
-/* The answer's checks by its lifting rule (lift_frame) and the annotator's (its registers plain, its reads
- * quiet); its window and data in *a, the registers it reads (FC3, FC4, FC23) in *reads. 1 quiet, 0 hand over.
- * (Not an answer to a code of table.Compiled.texts: transaction() gives those to texts_lines.) */
-static int response_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t length, const Lifted *r, Lifted *a,
-                             Words *reads) {
-    int k = handled_index(f[1]);
-    *reads = (Words){0, 0, NULL};
-    if (!lift_frame(s, f, length, &response_lift[k], r, a)) return 0;
-    int plain = words_are_plain(s, e->run_number, &a->values);
-    if (plain <= 0 || response_lift[k].values != VALUES_BLOCK) return plain;
-    *reads = a->values;
-    return rules[k].reads ? reads_are_quiet(s, reads, &r->values) : 1;
-}
-
-/* One line whose info and tail come from Python: number, time, slave, kind, info, pairing, tail, CRC. */
-static int texts_line(Engine *e, const FrameRef *f, const FrameRef *request, unsigned long long number,
-                      PyObject *info, int unanswered, PyObject *tail) {
-    line_head(e, f, number);
-    if (out_str(&e->out, info) < 0) return -1;
-    return line_end(e, f, request, number, unanswered, tail);
 }
 
 /* A transaction whose texts come from the Python stages (fastsummary.transaction_texts: a code of
@@ -1047,12 +1025,11 @@ static int texts_lines(Engine *e, const FrameRef *q, const uint8_t *b, const Fra
     PyObject *item = read_fields(texts, text_names, keys, TEXTS, "texts (a fastsummary.Texts)");
     Py_DECREF(texts);
     if (item == NULL) return -1;
-    /* (out_str refuses a text that is not a str) */
-    int status = texts_line(e, q, NULL, number, PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO), a == NULL,
-                            PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
+    int status = line(e, q, NULL, number, a == NULL, NULL, NULL, PyTuple_GET_ITEM(item, TEXT_REQUEST_INFO),
+                      PyTuple_GET_ITEM(item, TEXT_REQUEST_TAIL));
     if (status > 0 && a != NULL)
-        status = texts_line(e, a, q, number + 1, PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO), 0,
-                            PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
+        status = line(e, a, q, number + 1, 0, NULL, NULL, PyTuple_GET_ITEM(item, TEXT_RESPONSE_INFO),
+                      PyTuple_GET_ITEM(item, TEXT_RESPONSE_TAIL));
     Py_DECREF(item);
     return status;
 }
@@ -1129,11 +1106,12 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         return STEP_HANDOVER;
     Slave *s = NULL;
     Lifted r, answer;
+    Words reads = {0, 0, NULL};
     if (e->judge == NULL) { /* (judged: framed and paired only) */
         s = &e->slaves[q.slave];
         if (!s->loaded && load_slave(e, q.slave) < 0) return STEP_ERROR;
         if (!s->usable) return STEP_HANDOVER;
-        int quiet = request_is_quiet(e, s, b + q.at, q.length, &r);
+        int quiet = frame_is_quiet(e, s, b + q.at, q.length, NULL, &r, &reads);
         if (quiet <= 0) return quiet < 0 ? STEP_ERROR : STEP_HANDOVER;
     }
     int saved_slave = e->expect_slave, saved_function = e->expect_function;
@@ -1143,7 +1121,6 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
     /* The next frame is a request: this one was not answered (pairing.py). */
     int answered = found == FRAME_OK && a.kind != KIND_REQUEST, written = 0;
     const Words *writes = s != NULL && r.values.values != NULL ? &r.values : NULL; /* (s: not judged) */
-    Words reads = {0, 0, NULL};
     if (e->judge != NULL) {
         written = found == FRAME_OK && (!answered || !judged(e, &a)) ? frames_record(e, &q, answered ? &a : NULL) : 0;
     } else if (found == FRAME_OK && rules[handled_index(q.function)].texts != (answered && a.kind == KIND_EXCEPTION)) {
@@ -1151,10 +1128,10 @@ static int transaction(Engine *e, const uint8_t *b, Py_ssize_t n, Py_ssize_t *po
         written = texts_lines(e, &q, b, answered ? &a : NULL, e->count + 1);
     } else if (found == FRAME_OK && (!answered || a.kind == KIND_RESPONSE)) {
         /* (not an exception to a code of table.Compiled.texts: the Python stages') */
-        written = answered ? response_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 1;
-        if (written > 0) written = frame_line(e, s, &r, &q, NULL, e->count + 1, !answered);
+        written = answered ? frame_is_quiet(e, s, b + a.at, a.length, &r, &answer, &reads) : 1;
+        if (written > 0) written = line(e, &q, NULL, e->count + 1, !answered, s, &r, NULL, NULL);
         if (written > 0 && answered) {
-            written = frame_line(e, s, &answer, &a, &q, e->count + 2, 0);
+            written = line(e, &a, &q, e->count + 2, 0, s, &answer, NULL, NULL);
             if (written > 0 && track(e, s, b + a.at, writes, &reads, e->count + 2) < 0) written = -1;
         }
     }
