@@ -7663,10 +7663,10 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
 local NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS = NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS
-local REQUEST, RESPONSE, SIZES, concat, ex, exception_name = REQUEST, RESPONSE, SIZES, concat, ex, exception_name
-local floor, format, function_name, hex_pairs, ipairs = floor, format, function_name, hex_pairs, ipairs
-local made_once, math, pairs, pf, python_repr, string = made_once, math, pairs, pf, python_repr, string
-local table, tostring, type, u16 = table, tostring, type, u16
+local REQUEST, SIZES, concat, ex, exception_name, floor = REQUEST, SIZES, concat, ex, exception_name, floor
+local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
+local math, pairs, pf, python_repr, string, table, tostring = math, pairs, pf, python_repr, string, table, tostring
+local type, u16 = type, u16
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -7920,23 +7920,21 @@ local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- time costs more, in the collector, than the text).
 local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
 
--- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
--- field of no fixed size: by kind and function code, made once.
-local FIELD_AT = { [REQUEST] = {}, [RESPONSE] = {} }
-local function fields_at(kind, fn)
-  local at_of = FIELD_AT[kind][fn]
-  if at_of ~= nil then return at_of end
-  at_of = {}
-  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
-  local at = 2
-  for _, field in ipairs(LAYOUTS[entry and entry.layout or "raw"]) do
+-- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
+-- fixed size, made once a layout; fields_at: those of the layout a frame's kind and function code read.
+local FIELD_AT = made_once(function(layout)
+  local at_of, at = {}, 2
+  for _, field in ipairs(LAYOUTS[layout]) do
     local size = SIZES[field.type]
     at_of[field.name] = { at = at, size = size }
     if size == nil then break end
     at = at + size
   end
-  FIELD_AT[kind][fn] = at_of
   return at_of
+end)
+local function fields_at(kind, fn)
+  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
+  return FIELD_AT[entry and entry.layout or "raw"]
 end
 
 -- describe._data: FC8's data (b[first..last]), ` = 7` for a word, ` data 0a0b…` (its first MAX_DATA_BYTES
@@ -8584,19 +8582,20 @@ local wtap = wtap
 -- where a record changes it, the records kept are decoded again, in order, into a new state with the
 -- mode their bytes give, as if it had been known from the start (as lane.again does). The bytes of
 -- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
--- once the mode is settled (or set by the preference).
-local function sample_mode(st, tvb, pinfo, number)
+-- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
+-- either shown on the record).
+local function sample_and_dissect(st, tvb, pinfo, number)
   local sample = st.sample
   if sample == nil then
     if st.mode ~= nil then -- (the preference's)
       st.sample = false
-      return
+      return dissect_now(st, tvb, pinfo, number)
     end
     sample = { text = "" }
     st.sample = sample
   end
   local bytes = tvb:raw()
-  if bytes == "" then return end
+  if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
   if #sample.text >= MODE_SAMPLE then
     st.sample = false
@@ -8623,11 +8622,6 @@ local function sample_mode(st, tvb, pinfo, number)
     for key in pairs(st) do st[key] = nil end
     for key, value in pairs(fresh) do st[key] = value end
   end
-end
-
--- A record's first dissection while its stream's mode is sampled (an error in either shown on the record).
-local function sample_and_dissect(st, tvb, pinfo, number)
-  sample_mode(st, tvb, pinfo, number)
   return dissect_now(st, tvb, pinfo, number)
 end
 

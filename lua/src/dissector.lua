@@ -11,19 +11,20 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- where a record changes it, the records kept are decoded again, in order, into a new state with the
 -- mode their bytes give, as if it had been known from the start (as lane.again does). The bytes of
 -- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
--- once the mode is settled (or set by the preference).
-local function sample_mode(st, tvb, pinfo, number)
+-- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
+-- either shown on the record).
+local function sample_and_dissect(st, tvb, pinfo, number)
   local sample = st.sample
   if sample == nil then
     if st.mode ~= nil then -- (the preference's)
       st.sample = false
-      return
+      return dissect_now(st, tvb, pinfo, number)
     end
     sample = { text = "" }
     st.sample = sample
   end
   local bytes = tvb:raw()
-  if bytes == "" then return end
+  if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
   if #sample.text >= MODE_SAMPLE then
     st.sample = false
@@ -50,11 +51,6 @@ local function sample_mode(st, tvb, pinfo, number)
     for key in pairs(st) do st[key] = nil end
     for key, value in pairs(fresh) do st[key] = value end
   end
-end
-
--- A record's first dissection while its stream's mode is sampled (an error in either shown on the record).
-local function sample_and_dissect(st, tvb, pinfo, number)
-  sample_mode(st, tvb, pinfo, number)
   return dissect_now(st, tvb, pinfo, number)
 end
 

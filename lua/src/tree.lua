@@ -256,23 +256,21 @@ local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- time costs more, in the collector, than the text).
 local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
 
--- Where each field of the frame's layout begins (from the slave byte, 0) and its size, up to the first
--- field of no fixed size: by kind and function code, made once.
-local FIELD_AT = { [REQUEST] = {}, [RESPONSE] = {} }
-local function fields_at(kind, fn)
-  local at_of = FIELD_AT[kind][fn]
-  if at_of ~= nil then return at_of end
-  at_of = {}
-  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
-  local at = 2
-  for _, field in ipairs(LAYOUTS[entry and entry.layout or "raw"]) do
+-- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
+-- fixed size, made once a layout; fields_at: those of the layout a frame's kind and function code read.
+local FIELD_AT = made_once(function(layout)
+  local at_of, at = {}, 2
+  for _, field in ipairs(LAYOUTS[layout]) do
     local size = SIZES[field.type]
     at_of[field.name] = { at = at, size = size }
     if size == nil then break end
     at = at + size
   end
-  FIELD_AT[kind][fn] = at_of
   return at_of
+end)
+local function fields_at(kind, fn)
+  local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
+  return FIELD_AT[entry and entry.layout or "raw"]
 end
 
 -- describe._data: FC8's data (b[first..last]), ` = 7` for a word, ` data 0a0b…` (its first MAX_DATA_BYTES
