@@ -261,6 +261,9 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "broadcast_allowed": checks.broadcast_allowed(profile),  # (as the device's broadcast warning lists them)
         "protected_value": profile.protected_value,
         "all_protected_exception": profile.all_protected_exception,
+        # (its meaning to a read of registers, with p.38's clause: explain.device_meaning)
+        "all_protected_read": explain.device_meaning(profile, min(explain.REGISTER_READS), profile.all_protected_exception)
+        if profile.all_protected_exception is not None else None,
         "limits": {code: list(values) for code, values in sorted(profile.limits.items())},
         "exceptions": dict(sorted(profile.exceptions.items())),
         "documented": explain.documented(profile),  # (as the undocumented exception's note lists them)

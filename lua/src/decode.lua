@@ -207,8 +207,22 @@ local function range_text(what, value, low, high)
   return say("range", { what = what, value = value, low = low, high = high })
 end
 
--- The data bytes after the function code, as a string: what an answer that echoes them whole is held to (FC21).
-local function data_bytes_of(f, b) return string.char(table.unpack(b, f.data_at, f.data_at + f.data_len - 1)) end
+-- The data bytes after the function code (after `skip` more: FC8's sub-function), as a string.
+local function data_bytes_of(f, b, skip)
+  return string.char(table.unpack(b, f.data_at + skip, f.data_at + f.data_len - 1))
+end
+
+-- An answer that repeats its request's data whole (FC21's; from `skip`: an FC8 sub-function's,
+-- [diagnostic_answers]): a request keeps them as a string (its byte table is dropped before its answer comes);
+-- an answer that differs answered other data (fields._diagnostics, _check_echo).
+local function check_data_echo(f, b, request, skip)
+  local data = data_bytes_of(f, b, skip)
+  if f.kind == REQUEST then
+    f.fields.echoed = data
+  elseif request ~= nil and request.fields ~= nil and request.fields.echoed ~= data then
+    warn(f, say("echo", { fields = "data", verb = "differs" }))
+  end
+end
 
 -- An answer's parts against its request's (decode/fields.py _check_parts; FC20): as many, each of the length its
 -- request part asks (`given`: the answer's length fields, `asked`: what its request kept of its parts).
@@ -270,7 +284,7 @@ end
 local function lifter(rule, limit, layout)
   local shape = RULES.layouts[layout] or {}
   local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, data_bytes_of = ...",
+  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, check_data_echo = ...",
     "return function(f, b)", "local fields = f.fields" }
   local function add(...) out[#out + 1] = format(...) end
   local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
@@ -322,10 +336,7 @@ local function lifter(rule, limit, layout)
       field(rule.coil), field(rule.coil))
   end
   if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole)
-    add("if request == nil then fields.data_bytes = data_bytes_of(f, b)") -- (a request keeps them for its answer)
-    add("elseif request.fields.data_bytes ~= data_bytes_of(f, b) then")
-    add("  warn(f, say(\"echo\", { fields = \"data\", verb = \"differs\" }))")
-    add("end")
+    add("check_data_echo(f, b, request, 0)")
   elseif rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
     local differs = {}
     for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
@@ -362,7 +373,7 @@ local function lifter(rule, limit, layout)
   end
   add("end")
   return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_asked,
-    rule.parts, data_bytes_of)
+    rule.parts, check_data_echo)
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -370,35 +381,22 @@ end
 local DIAGNOSTIC_DATA = RULES.diagnostic_data
 local function diagnostic_data(f, b, subfunction, rule)
   local at, count = f.data_at + 2, f.fields.data_length
-  local word = nil
-  if count == 2 then word = b[at] * 256 + b[at + 1] end
-  local allowed
-  if rule.data ~= nil then
-    local meaning = word ~= nil and rule.data[word] or nil
-    if meaning ~= nil then
-      if meaning ~= "" then note(f, meaning) end
-      return
-    end
-    local words = {}
-    for index, value in ipairs(rule.words) do words[index] = format("%04X", value) end
-    allowed = concat(words, " or ")
-  elseif word ~= nil and word % 256 == 0 then
+  local word = count == 2 and u16(b, at) or nil
+  local meaning = rule.data and word and rule.data[word]
+  if meaning then
+    if meaning ~= "" then note(f, meaning) end
+  elseif rule.data == nil and word and word % 256 == 0 then
     local code = floor(word / 256)
-    local name = rule.names[code]
-    if name == nil and code > 32 and code < 127 then name = "'" .. string.char(code) .. "'" end
-    if name ~= nil then
-      note(f, say("diagnostic_character", { what = rule.character, character = name, code = code }))
-    else
-      note(f, say("diagnostic_byte", { what = rule.character, code = code }))
-    end
-    return
+    local name = rule.names[code] or code > 32 and code < 127 and "'" .. string.char(code) .. "'"
+    note(f, name and say("diagnostic_character", { what = rule.character, character = name, code = code })
+      or say("diagnostic_byte", { what = rule.character, code = code }))
   else
-    allowed = say("character_then_00", {})
+    local allowed = {} -- (the words the spec allows, or its character then 00; the data as sent, in hex)
+    for index, value in ipairs(rule.words or {}) do allowed[index] = format("%04X", value) end
+    local data = data_bytes_of(f, b, 2):gsub(".", function(byte) return format("%02X", byte:byte()) end)
+    warn(f, say("diagnostic_data", { data = data ~= "" and data or "(none)", subfunction = subfunction,
+      allowed = rule.data and concat(allowed, " or ") or say("character_then_00", {}) }))
   end
-  local digits = {} -- (the data as sent, in hex: only for the warning)
-  for k = 0, count - 1 do digits[#digits + 1] = format("%02X", b[at + k]) end
-  local data = #digits > 0 and concat(digits) or "(none)"
-  warn(f, say("diagnostic_data", { data = data, subfunction = subfunction, allowed = allowed }))
 end
 
 -- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): is a byte
@@ -413,25 +411,19 @@ end
 -- The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers]): a request's data are
 -- kept in its fields as a string (its byte table is dropped before its answer comes), an answer's compared.
 local DIAGNOSTIC_ECHOES = RULES.diagnostic_echoes
-local function data_string(f, b) return string.char(table.unpack(b, f.data_at + 2, f.data_at + 1 + f.fields.data_length)) end
 
 -- The named special cases no rule describes (decode/fields.py SPECIAL_HANDLERS).
 local SPECIAL = {
   diagnostics = function(f, b)
     local fields = f.fields
-    local echoes, request = DIAGNOSTIC_ECHOES[fields.subfunction], f.request
-    f.subfunction = fields.subfunction
-    if echoes and f.kind == REQUEST then fields.echoed = data_string(f, b) end
-    if DIAGNOSTICS[fields.subfunction] == nil then
-      warn(f, say("unknown_subfunction", { subfunction = fields.subfunction }))
-    end
-    if fields.data_length % 2 == 1 then
-      warn(f, say("odd_diagnostic_data", {}))
-    elseif f.kind == REQUEST then
-      local rule = DIAGNOSTIC_DATA[fields.subfunction]
-      if rule ~= nil then diagnostic_data(f, b, fields.subfunction, rule) end
-    elseif echoes and request ~= nil and request.fields ~= nil and request.fields.echoed ~= data_string(f, b) then
-      warn(f, say("echo", { fields = "data", verb = "differs" })) -- (it answered other data: fields._diagnostics)
+    local subfunction, odd = fields.subfunction, fields.data_length % 2 == 1
+    local rule = f.kind == REQUEST and DIAGNOSTIC_DATA[subfunction]
+    f.subfunction = subfunction
+    if DIAGNOSTICS[subfunction] == nil then warn(f, say("unknown_subfunction", { subfunction = subfunction })) end
+    if odd then warn(f, say("odd_diagnostic_data", {})) end
+    if rule and not odd then diagnostic_data(f, b, subfunction, rule) end
+    if DIAGNOSTIC_ECHOES[subfunction] and (f.kind == REQUEST or not odd) then
+      check_data_echo(f, b, f.request, 2)
     end
   end,
   mei_request = function(f, b)
@@ -481,10 +473,6 @@ for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES
     H[kind][code] = rule and lifter(rule, entry.limit, entry.layout) or SPECIAL[entry.special]
   end
 end
-
--- The answers whose start is their request's (a field the display shows as generated): FC1-4, 23, 24.
-local START_FROM_REQUEST = {}
-for code, rule in pairs(LIFT_OF[RESPONSE]) do START_FROM_REQUEST[code] = rule.start == REQUEST_START end
 
 -- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
 -- by their echo (FC6), by a normal answer (FC16, FC23).

@@ -97,16 +97,6 @@ local function all_unreadable(f, device)
   end
 end
 
--- The profile's meaning of a code to this function: to a read of registers its all_protected_exception
--- says p.38's clause too; to a write, the code's meaning alone (explain.device_meaning).
-local function device_meaning(profile, fn, code)
-  local meaning = profile.exceptions[code]
-  if meaning ~= nil and code == profile.all_protected_exception and READS[fn] ~= nil then
-    return say("all_protected_read", { meaning = meaning })
-  end
-  return meaning
-end
-
 local function explain_exception(f, device)
   local profile = device.profile
   local code = f.exception_code
@@ -114,7 +104,9 @@ local function explain_exception(f, device)
   local name = f.function_text or function_name(f.fn)
   local causes = profile.exception_causes[f.fn * 256 + code]
   local meanings = profile.exceptions
-  f.exception_meaning = device_meaning(profile, f.fn, code)
+  -- (to a read of registers its all_protected_exception says p.38's clause too: explain.device_meaning)
+  local read = READS[f.fn] ~= nil and code == profile.all_protected_exception
+  f.exception_meaning = read and profile.all_protected_read or meanings[code]
   local request = f.request
   if causes ~= nil and #causes > 0 then
     local texts = {}
