@@ -101,17 +101,8 @@ local function size_of(field, count)
 end
 
 local function shape_parser(shape, offsets) -- (offsets: filled with where each field at a constant offset is)
-  local lines, keys, index_of = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}
-  local fixed, names = 0, {}
-  for _, field in ipairs(shape) do
-    if SIZES[field.type] == nil then break end
-    fixed, names[#names + 1] = fixed + SIZES[field.type], field.name
-  end
-  if fixed > 0 then
-    local last = table.remove(names)
-    local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
-    lines[3] = format("if len < %d then return nil, %q end", fixed, "too short for " .. what)
-  end
+  local lines, keys, index_of, names = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}, {}
+  local function add(...) lines[#lines + 1] = format(...) end
   local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
   for _, field in ipairs(shape) do
     if field.count ~= nil then counts[field.count] = true end
@@ -122,30 +113,29 @@ local function shape_parser(shape, offsets) -- (offsets: filled with where each 
     index_of[name], offsets[name] = index, static
     local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
     if size ~= nil then
-      if not static then
-        lines[#lines + 1] = format("if p + %d > len then return nil, %q end", size, "too short for " .. name)
-      end
+      if not static then add("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
+      if static then names[#names + 1] = name end -- (the fixed fields first: one length check for them all, below)
       local value = format("b[%s]", here)
       if size == 2 then value = format("%s * 256 + b[%s]", value, static and format("d + %d", static + 1) or "d + p + 1") end
       if counts[name] or not static then
-        lines[#lines + 1] = format("local v%d = %s", index, value)
+        add("local v%d = %s", index, value)
         value = format("v%d", index)
       end
       keys[#keys + 1] = format("[%q] = %s", name, value)
-      if static then static = static + size else lines[#lines + 1] = format("p = p + %d", size) end
+      if static then static = static + size else add("p = p + %d", size) end
     elseif kind == "rest" then
       keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", static and format("%d", static) or "p")
     else
-      if static then lines[#lines + 1] = format("local p = %d", static) end
+      if static then add("local p = %d", static) end
       static = nil
       local count = format("v%d", index_of[field.count])
       if kind == "array" then -- (count parts one after the other; one that does not fit ends them: layouts._UpTo)
-        lines[#lines + 1] = format("local a%d = {}", index)
-        lines[#lines + 1] = format("for k = 1, %s do", count)
-        lines[#lines + 1] = format("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
-        lines[#lines + 1] = "  if used == nil then break end"
-        lines[#lines + 1] = format("  a%d[k], p = item, p + used", index)
-        lines[#lines + 1] = "end"
+        add("local a%d = {}", index)
+        add("for k = 1, %s do", count)
+        add("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
+        add("  if used == nil then break end")
+        add("  a%d[k], p = item, p + used", index)
+        add("end")
         keys[#keys + 1] = format("[%q] = a%d", name, index)
       elseif kind == "switch" then -- (the part for the field's value, else the last one)
         local choice = {}
@@ -153,26 +143,31 @@ local function shape_parser(shape, offsets) -- (offsets: filled with where each 
           choice[#choice + 1] = case.value and format("%s == %d and PARTS[%q]", count, case.value, case.part)
             or format("PARTS[%q]", case.part)
         end
-        lines[#lines + 1] = format("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
-        lines[#lines + 1] = format("if used == nil then return nil, c%d end", index)
-        lines[#lines + 1] = "p = p + used"
+        add("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
+        add("if used == nil then return nil, c%d end", index)
+        add("p = p + used")
         keys[#keys + 1] = format("[%q] = c%d", name, index)
       else
-        lines[#lines + 1] = format("local s%d = %s", index, size_of(field, count))
-        lines[#lines + 1] = format("if %sp + s%d > len then return nil, %q end", field.minus > 0
-          and format("s%d < 0 or ", index) or "", index, field.count .. " past the end")
+        add("local s%d = %s", index, size_of(field, count))
+        local negative = field.minus > 0 and format("s%d < 0 or ", index) or "" -- (less `minus`: maybe below 0)
+        add("if %sp + s%d > len then return nil, %q end", negative, index, field.count .. " past the end")
         if kind ~= "odd" then -- (where an odd byte is, nothing asks)
-          lines[#lines + 1] = format("local a%d = d + p", index)
+          add("local a%d = d + p", index)
           keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
         end
-        lines[#lines + 1] = format("p = p + s%d", index)
+        add("p = p + s%d", index)
       end
     end
   end
+  if #names > 0 then
+    local last = table.remove(names)
+    local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
+    local fixed = offsets[last] + SIZES[shape[index_of[last]].type] -- (where the last of them ends)
+    table.insert(lines, 3, format("if len < %d then return nil, %q end", fixed, "too short for " .. what))
+  end
   local trailing = #shape == 0 or shape[#shape].type ~= "rest"
-  lines[#lines + 1] = format("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p",
-    concat(keys, ", "))
-  lines[#lines + 1] = "end"
+  add("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p", concat(keys, ", "))
+  add("end")
   return load(concat(lines, "\n"))(PARTS)
 end
 
@@ -236,6 +231,18 @@ local function check_asked(f, parts, index, given, asked)
   end
 end
 
+-- The line that checks `value` (an expression) against low..high, `what` (an expression) naming it; test
+-- "above": the high bound only (its text names no low one). The fields are unsigned: a low bound of 0 is none.
+local function check_line(check, value, what, low, high)
+  if check.test == "above" then
+    return format("if %s > %d then warn(f, say(\"above\", { what = %s, value = %s, high = %d })) end", value, high,
+      what, value, high)
+  end
+  local outside = low == high and format("%s ~= %d", value, low) or low == 0 and format("%s > %d", value, high)
+    or format("%s < %d or %s > %d", value, low, value, high)
+  return format("if %s then warn(f, range_text(%s, %s, %d, %d)) end", outside, what, value, low, high)
+end
+
 -- The lines of a lifter walking each part of a records field in the frame's bytes (FC20, FC21): its checks
 -- (range_text, "above"), what an answer asks of a request's part kept (`keep`), an answer's length fields
 -- (check_asked). Where its fields are and its size come from RULES (codegen/rules_lua.py); a part that does
@@ -258,16 +265,9 @@ local function parts_lines(add, parts, at, size, request)
   add("if p + %s > stop then break end", bytes)
   add("index = index + 1")
   for _, check in ipairs(parts.checks) do
-    local low, high = LIMITS[check.limit][1], LIMITS[check.limit][2]
     add("local v = %s", read(check.at))
     local what = format("%q .. index .. %q", parts.name .. " ", "'s " .. check.what)
-    if check.test == "above" then
-      add("if v > %d then warn(f, say(\"above\", { what = %s, value = v, high = %d })) end", high, what, high)
-    else
-      local outside = low == high and format("v ~= %d", low) or low == 0 and format("v > %d", high) -- (unsigned)
-        or format("v < %d or v > %d", low, high)
-      add("if %s then warn(f, range_text(%s, v, %d, %d)) end", outside, what, low, high)
-    end
+    add("%s", check_line(check, "v", what, table.unpack(LIMITS[check.limit])))
   end
   if parts.keep then add("kept[index] = %s", read(parts.keep)) end
   if parts.length then add("given[index] = %s", read(parts.length.at)) end
@@ -304,24 +304,17 @@ local function lifter(rule, limit, layout)
     end
   else add("local many = %s", quantity and field(quantity) or "nil") end
   add("f.start, f.quantity = first, many")
-  for _, check in ipairs(rule.checks) do -- (test "above": the high bound only; its text names no low one)
-    local value, low, high = field(check.field), table.unpack(LIMITS[check.limit or limit])
-    if check.test == "above" then
-      add("if %s > %d then warn(f, say(\"above\", { what = %q, value = %s, high = %d })) end", value, high, check.what,
-        value, high)
-    else
-      add("if %s < %d or %s > %d then warn(f, range_text(%q, %s, %d, %d)) end", value, low, value, high, check.what,
-        value, low, high)
-    end
+  for _, check in ipairs(rule.checks) do
+    local low, high = table.unpack(LIMITS[check.limit or limit])
+    add("%s", check_line(check, field(check.field), format("%q", check.what), low, high))
   end
-  if rule.span then
-    add("if first + many > 65536 then warn(f, say(\"span\", { first = first, last = first + many - 1 })) end")
+  local function span(first, many) -- (a window past the last address, 65535)
+    local text = "if %s + %s > 65536 then warn(f, say(\"span\", { first = %s, last = %s + %s - 1 })) end"
+    add(text, first, many, first, first, many)
   end
-  if rule.span and rule.write_window then -- (FC23: its written window too)
-    local written, count = field(rule.write_window[1]), field(rule.write_window[2])
-    add("if %s + %s > 65536 then warn(f, say(\"span\", { first = %s, last = %s + %s - 1 })) end", written, count,
-      written, written, count)
-  end
+  if rule.span then span("first", "many") end
+  local window = rule.write_window -- (FC23: its written window too)
+  if rule.span and window then span(field(window[1]), field(window[2])) end
   if count then
     add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
     add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)
