@@ -104,6 +104,17 @@ static void *dense_add(Dense *d, const DenseKind *kind, const void *key, size_t 
     return item;
 }
 
+/* Every item gone, the room kept. */
+static void dense_clear(Dense *d) {
+    d->count = 0;
+    if (d->index != NULL) memset(d->index, 0, d->size * sizeof *d->index);
+}
+
+static void dense_free(Dense *d) {
+    PyMem_Free(d->items);
+    PyMem_Free(d->index);
+}
+
 /* ---- tallies: (kind, key) -> a count or a sum, for every histogram of the report and the counts ---- */
 typedef struct {
     uint64_t tag; /* (TALLY_* + 1) << 24 | its owner (slave << 8 | function, slave, poll order) */
@@ -138,9 +149,8 @@ static double *tally(Tallies *t, uint64_t tag, long long key) {
  * the k-th entry goes to the k-th position or before; fewer: no growth). */
 static void tally_coarsen(Tallies *t) {
     size_t n = t->d.count;
-    t->d.count = 0;
+    dense_clear(&t->d);
     t->shift++;
-    memset(t->d.index, 0, t->d.size * sizeof *t->d.index);
     long long mask = -(1LL << t->shift);
     for (size_t k = 0; k < n; k++) {
         Tally old = ((Tally *)t->d.items)[k];

@@ -10,38 +10,49 @@
  * an event, a doubling, a span readable again). collect.py stays the reference (VW3_PURE_PYTHON=1).
  * Times stay a model.Stamp where the Python stages have one (Time, _bus.h): x - origin is exact. */
 
-#define REPORT_POINTS (1 << 17) /* y of (namer epoch, function, slave, address, value), at most half full */
+#define REPORT_POINTS (1 << 16) /* y of (namer epoch, function, slave, address, value) kept at most */
 
 typedef struct {
-    uint32_t key;             /* 1 << 24 | slave << 16 | address; 0: empty */
+    uint32_t key;             /* 1 << 24 | slave << 16 | address */
     int readable;             /* series.status was None when read (gen: while no span opened since) */
     unsigned gen;
     unsigned long long values; /* points not yet added to series.values */
     uint64_t last;            /* the point key of its last value (most polls read what they read before), */
     double last_y;            /* and its y */
     unsigned long long naming; /* the slave's naming its series last adopted (engine_point) */
-    PyObject *series;         /* owned */
-    Columns *columns;         /* owned: series.columns */
+    PyObject *series;         /* owned once kept (columns set); borrowed or NULL before */
+    Columns *columns;         /* owned: series.columns; NULL: the series not kept yet */
 } Trend;
 
 typedef struct {
-    uint64_t key; /* 0: empty */
+    uint64_t key;
     double y;
 } Point;
+
+static size_t trend_hash(const void *key) { return (size_t)mix(*(const uint32_t *)key); }
+static size_t point_hash(const void *key) { return (size_t)mix(*(const uint64_t *)key); }
+
+static const DenseKind TREND_KIND = {sizeof(Trend), sizeof(uint32_t), 96, trend_hash};
+static const DenseKind POINT_KIND = {sizeof(Point), sizeof(uint64_t), 768, point_hash};
+
+/* An x axis of COLUMNS pixel columns, ReportCollector's or Health's: from its first x, doubled by the
+ * Python side (_double) whenever an x reaches its limit. */
+typedef struct {
+    Time origin;
+    double width, limit;
+} Axis;
 
 typedef struct {
     PyObject_HEAD
     PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
     PyObject *series, *h_series; /* their containers */
     int timed;   /* -1: not known yet */
-    Time origin, first, last, h_origin;
-    double width, limit, h_width, h_limit;
+    Time first, last;
+    Axis axis, h_axis; /* the collector's and health's */
     unsigned long long number, dropped;
     Columns *h_columns[256];
-    Trend *trends;     /* open addressing, at most half full: the series kept (MAX_SERIES) */
-    size_t trend_slots;
-    Point *points;
-    size_t point_count;
+    Dense trends; /* of Trend: the series kept (MAX_SERIES) */
+    Dense points; /* of Point */
     PyObject *namers[256]; /* the namer each slave's cached points were read with */
     unsigned epochs[256];
     unsigned long long namings, named[256]; /* namer changes, and the count at each slave's last one */
@@ -71,12 +82,12 @@ static const struct {
     const char *name;
     size_t at;
 } scalars[] = {
-    {0, AS_FLAG, "timed", offsetof(Report, timed)},       {0, AS_TIME, "origin", offsetof(Report, origin)},
+    {0, AS_FLAG, "timed", offsetof(Report, timed)},       {0, AS_TIME, "origin", offsetof(Report, axis.origin)},
     {0, AS_TIME, "first_x", offsetof(Report, first)},     {0, AS_TIME, "last_x", offsetof(Report, last)},
-    {0, AS_FLOAT, "width", offsetof(Report, width)},      {0, AS_FLOAT, "limit", offsetof(Report, limit)},
+    {0, AS_FLOAT, "width", offsetof(Report, axis.width)}, {0, AS_FLOAT, "limit", offsetof(Report, axis.limit)},
     {0, AS_COUNT, "number", offsetof(Report, number)},    {0, AS_COUNT, "spans", offsetof(Report, spans)},
-    {1, AS_TIME, "origin", offsetof(Report, h_origin)},   {1, AS_FLOAT, "width", offsetof(Report, h_width)},
-    {1, AS_FLOAT, "limit", offsetof(Report, h_limit)},
+    {1, AS_TIME, "origin", offsetof(Report, h_axis.origin)}, {1, AS_FLOAT, "width", offsetof(Report, h_axis.width)},
+    {1, AS_FLOAT, "limit", offsetof(Report, h_axis.limit)},
 };
 #define SCALARS (sizeof scalars / sizeof *scalars)
 
@@ -119,8 +130,8 @@ static int report_push(Report *r, int counts) {
     }
     if (!counts) return 0;
     const char *names[2] = {"series_dropped", "values"};
-    for (size_t k = 0; k <= r->trend_slots; k++) { /* k == trend_slots: the collector's series_dropped */
-        Trend *t = k < r->trend_slots ? &r->trends[k] : NULL;
+    for (size_t k = 0; k <= r->trends.count; k++) { /* k == count: the collector's series_dropped */
+        Trend *t = k < r->trends.count ? (Trend *)r->trends.items + k : NULL;
         unsigned long long *n = t != NULL ? &t->values : &r->dropped;
         if (!*n) continue;
         PyObject *o = t != NULL ? t->series : r->collector, *had = PyObject_GetAttrString(o, names[t != NULL]);
@@ -144,28 +155,34 @@ static int report_called(Report *r, PyObject *result, int pull) {
 #define report_call(r, target, method, pull, ...) \
     (report_push(r, 0) < 0 ? -1 : report_called(r, PyObject_CallMethod(target, method, __VA_ARGS__), pull))
 
+/* x on the axis `a` of `owner` (the collector or health), which doubles it until x falls in it: 0 or -1. */
+static int axis_reach(Report *r, Axis *a, PyObject *owner, const Time *x) {
+    if (!a->origin.has) {
+        a->origin = *x;
+        a->limit = x->d + COLUMNS * a->width;
+    }
+    while (x->d >= a->limit)
+        if (report_call(r, owner, "_double", 1, NULL) < 0) return -1;
+    return 0;
+}
+
+static long long axis_col(const Axis *a, const Time *x) {
+    long long col = (long long)(time_sub(x, &a->origin) / a->width);
+    return col > 0 ? col : 0;
+}
+
 /* ReportCollector._x: the x of the frame numbered `number` (its time, or the number untimed). */
 static int report_x(Report *r, int timed, long long ns, unsigned long long number, Time *x) {
     r->number = number;
     if (r->timed < 0) {
         r->timed = timed;
-        r->width = timed ? TIMED_WIDTH : UNTIMED_WIDTH;
+        r->axis.width = timed ? TIMED_WIDTH : UNTIMED_WIDTH;
     }
     *x = !r->timed ? (Time){1, 0, 0, (double)number} : timed ? stamp_time(1, ns) : (Time){1, 0, 0, 0.0};
-    if (!r->origin.has) {
-        r->origin = *x;
-        r->limit = x->d + COLUMNS * r->width;
-    }
-    while (x->d >= r->limit)
-        if (report_call(r, r->collector, "_double", 1, NULL) < 0) return -1;
+    if (axis_reach(r, &r->axis, r->collector, x) < 0) return -1;
     if (!r->first.has) r->first = *x;
     if (!r->last.has || x->d > r->last.d) r->last = *x;
     return 0;
-}
-
-static long long report_col(const Time *x, const Time *origin, double width) {
-    long long col = (long long)(time_sub(x, origin) / width);
-    return col > 0 ? col : 0;
 }
 
 /* ReportCollector._event: `text` a new reference (NULL: an error). */
@@ -189,12 +206,7 @@ static Columns *as_columns(PyObject *o, const char *what) {
 /* Health._point: a response time `y` of `slave` at `x`. */
 static int health_point(Report *r, int slave, const Time *x, double y) {
     if (r->health == Py_None) return 0;
-    if (!r->h_origin.has) {
-        r->h_origin = *x;
-        r->h_limit = x->d + COLUMNS * r->h_width;
-    }
-    while (x->d >= r->h_limit)
-        if (report_call(r, r->health, "_double", 1, NULL) < 0) return -1;
+    if (axis_reach(r, &r->h_axis, r->health, x) < 0) return -1;
     if (r->h_columns[slave] == NULL) { /* its series' columns, made unless the Python stages made them */
         PyObject *key = PyLong_FromLong(slave), *made = key ? PyObject_CallNoArgs((PyObject *)&ColumnsType) : NULL;
         PyObject *columns = made ? Py_XNewRef(PyDict_SetDefault(r->h_series, key, made)) : NULL;
@@ -202,22 +214,15 @@ static int health_point(Report *r, int slave, const Time *x, double y) {
         Py_XDECREF(key);
         if ((r->h_columns[slave] = as_columns(columns, "Health.series")) == NULL) return -1;
     }
-    return columns_point(r->h_columns[slave], report_col(x, &r->h_origin, r->h_width), x->d, y);
+    return columns_point(r->h_columns[slave], axis_col(&r->h_axis, x), x->d, y);
 }
 
-static Trend *trend_slot(Report *r, uint32_t key) {
-    size_t slot = (size_t)mix(key) & (r->trend_slots - 1);
-    while (r->trends[slot].key && r->trends[slot].key != key) slot = (slot + 1) & (r->trend_slots - 1);
-    return &r->trends[slot];
-}
-
-/* The series of `key` known from now on (its columns kept). */
-static int trend_keep(Report *r, Trend *t, uint32_t key, PyObject *series) {
+/* The series of trend t known from now on (its columns kept). */
+static int trend_keep(Report *r, Trend *t, PyObject *series) {
     Columns *columns = as_columns(PyObject_GetAttrString(series, "columns"), "Series.columns");
     if (columns == NULL) return -1;
     t->series = Py_NewRef(series);
     t->columns = columns;
-    t->key = key;
     t->gen = r->gen - 1;
     return 0;
 }
@@ -231,8 +236,9 @@ static int trends_full(Report *r) {
     while (PyDict_Next(r->series, &at, &key, &series)) {
         if (!PyArg_ParseTuple(key, "ii", &slave, &address)) return -1;
         uint32_t k = 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address;
-        Trend *t = trend_slot(r, k);
-        if (!t->key && trend_keep(r, t, k, series) < 0) return -1;
+        Trend *t = dense_find(&r->trends, &TREND_KIND, &k);
+        if (t == NULL && (t = dense_add(&r->trends, &TREND_KIND, &k, 0)) == NULL) return -1;
+        if (t->columns == NULL && trend_keep(r, t, series) < 0) return -1;
     }
     r->full = 1;
     return 0;
@@ -242,16 +248,17 @@ static int trends_full(Report *r) {
 static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
                         const Time *x, long long col) {
     uint32_t tag = 1u << 24 | (uint32_t)slave << 16 | address;
-    Trend *t = trend_slot(r, tag);
-    if (!t->key && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
+    Trend *t = dense_find(&r->trends, &TREND_KIND, &tag);
+    if (t == NULL && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
         if (trends_full(r) < 0) return -1;
-        t = trend_slot(r, tag);
+        t = dense_find(&r->trends, &TREND_KIND, &tag);
     }
-    if (!t->key && r->full) { /* none kept: never one */
+    if (t == NULL && r->full) { /* none kept: never one */
         r->dropped++;
         return 0;
     }
-    if (!t->key) {
+    if (t == NULL && (t = dense_add(&r->trends, &TREND_KIND, &tag, 0)) == NULL) return -1;
+    if (t->columns == NULL) {
         PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
         Py_XDECREF(key);
         if (series == NULL && PyErr_Occurred()) return -1;
@@ -261,8 +268,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         Py_XSETREF(r->namers[slave], Py_XNewRef(s->namer));
         r->named[slave] = ++r->namings;
         if (++r->epochs[slave] >= 1u << 16) {
-            memset(r->points, 0, REPORT_POINTS * sizeof *r->points);
-            r->point_count = 0;
+            dense_clear(&r->points);
             memset(r->epochs, 0, sizeof r->epochs);
         }
     }
@@ -270,18 +276,16 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
     uint64_t pkey = 1ULL << 63 | (uint64_t)r->epochs[slave] << 46 | (uint64_t)handled_index(function) << 40 |
                     (uint64_t)slave << 32 | (uint64_t)address << 16 | value;
     Point *p = NULL;
+    int keep_point = 0; /* a mapped value first seen: its y kept */
     double y = value; /* an address the device does not name: the raw word */
     /* Asked: a value first seen (engine_point adopts the device's map row for its series: its points read
      * again when the slave's device changed), and an address the device does not name, once a change. */
     int ask = t->series == NULL;
-    if (mapped && t->key && t->last == pkey) {
+    if (mapped && t->last == pkey) {
         y = t->last_y;
     } else if (mapped) {
-        size_t slot = (size_t)mix(pkey) & (REPORT_POINTS - 1);
-        while (r->points[slot].key && r->points[slot].key != pkey) slot = (slot + 1) & (REPORT_POINTS - 1);
-        p = &r->points[slot];
-        if (p->key) y = p->y;
-        else ask = 1;
+        if ((p = dense_find(&r->points, &POINT_KIND, &pkey)) != NULL) y = p->y;
+        else ask = keep_point = 1;
     } else if (t->naming != r->named[slave]) {
         ask = 1;
     }
@@ -296,12 +300,12 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
         Py_DECREF(answer);
         if (PyErr_Occurred()) return -1;
         t->naming = r->named[slave];
-        if (p != NULL && !p->key && r->point_count < REPORT_POINTS / 2) {
-            p->key = pkey, p->y = y;
-            r->point_count++;
+        if (keep_point && r->points.count < REPORT_POINTS) {
+            if ((p = dense_add(&r->points, &POINT_KIND, &pkey, REPORT_POINTS)) == NULL) return -1;
+            p->y = y;
         }
     }
-    if (!t->key && trend_keep(r, t, tag, t->series) < 0) return -1;
+    if (t->columns == NULL && trend_keep(r, t, t->series) < 0) return -1;
     if (t->gen != r->gen) {
         PyObject *status = PyObject_GetAttrString(t->series, "status");
         if (status == NULL) return -1;
@@ -335,7 +339,7 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
     if (qf->timed && af->timed && health_point(r, slave, &at, stamp_seconds(af->ns, qf->ns)) < 0) return -1;
     if (a[1] & 0x80)
         return report_event(r, &x, "exception", slave, PyObject_CallFunction(r->exception, "iii", slave, function, a[2]));
-    long long col = report_col(&x, &r->origin, r->width);
+    long long col = axis_col(&r->axis, &x);
     for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
         const Words *w = pass ? reads : confirmed;
         for (unsigned k = 0; w != NULL && k < w->count; k++)
@@ -359,28 +363,21 @@ static int report_init(Report *r, PyObject *args, PyObject *kwargs) {
     r->series = PyObject_GetAttrString(r->collector, "series");
     if (r->health != Py_None) r->h_series = PyObject_GetAttrString(r->health, "series");
     if (r->series == NULL || (r->health != Py_None && r->h_series == NULL)) return -1;
-    for (r->trend_slots = 64; r->trend_slots < 2 * (size_t)MAX_SERIES + 2;) r->trend_slots *= 2;
-    r->trends = PyMem_Calloc(r->trend_slots, sizeof *r->trends);
-    r->points = PyMem_Calloc(REPORT_POINTS, sizeof *r->points);
-    if (r->trends == NULL || r->points == NULL) {
-        PyErr_NoMemory();
-        return -1;
-    }
     return report_pull(r);
 }
 
 static void report_dealloc(Report *r) {
-    for (size_t k = 0; r->trends != NULL && k < r->trend_slots; k++) {
-        if (!r->trends[k].key) continue; /* (a series not kept yet is borrowed) */
-        Py_XDECREF(r->trends[k].series);
-        Py_XDECREF(r->trends[k].columns);
+    for (Trend *t = (Trend *)r->trends.items; t < (Trend *)r->trends.items + r->trends.count; t++) {
+        if (t->columns == NULL) continue; /* (a series not kept yet is borrowed) */
+        Py_DECREF(t->series);
+        Py_DECREF(t->columns);
     }
     for (int k = 0; k < 256; k++) {
         Py_XDECREF(r->h_columns[k]);
         Py_XDECREF(r->namers[k]);
     }
-    PyMem_Free(r->trends);
-    PyMem_Free(r->points);
+    dense_free(&r->trends);
+    dense_free(&r->points);
     PyObject *objects[] = {r->collector, r->health, r->stamp, r->exception, r->series, r->h_series};
     for (int k = 0; k < 6; k++) Py_XDECREF(objects[k]);
     Py_TYPE(r)->tp_free((PyObject *)r);

@@ -279,9 +279,9 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(p->status);
     }
     Py_XDECREF(st->report);
-    Dense *tables[TALLIES + 2] = {&st->params, &st->polls};
-    for (int k = 0; k < TALLIES; k++) tables[k + 2] = &st->tallies[k].d;
-    for (int k = 0; k < TALLIES + 2; k++) PyMem_Free(tables[k]->items), PyMem_Free(tables[k]->index);
+    dense_free(&st->params);
+    dense_free(&st->polls);
+    for (int k = 0; k < TALLIES; k++) dense_free(&st->tallies[k].d);
     PyMem_Free(st->bus.outages);
     Py_TYPE(st)->tp_free((PyObject *)st);
 }
