@@ -4692,7 +4692,8 @@ local function parts_lines(add, parts, at, size, request)
 end
 
 local function lifter(rule, limit, layout)
-  local shape = RULES.layouts[layout] or {}
+  local named = {} -- (the layout's fields by name)
+  for _, item in ipairs(RULES.layouts[layout] or {}) do named[item.name] = item end
   local function field(name) return format("fields[%q]", name) end
   local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, check_data_echo = ...",
     "return function(f, b)", "local fields = f.fields" }
@@ -4746,12 +4747,8 @@ local function lifter(rule, limit, layout)
     add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
   end
   if values then -- (a run's `shift`: see release_run; a block's from its count field, in words or bytes)
-    local at, counted = field(values.field .. "_at"), nil
-    for _, item in ipairs(shape) do
-      if item.name == values.field and item.count then
-        counted = item.half and format("floor(%s / 2)", field(item.count)) or field(item.count)
-      end
-    end
+    local at, item = field(values.field .. "_at"), named[values.field] or {}
+    local counted = item.count and (item.half and format("floor(%s / 2)", field(item.count)) or field(item.count))
     local offset = (OFFSETS[layout] or {})[values.field] -- (one value at a fixed offset of the data)
     if values.kind == "registers" then
       add("f.registers = { b = b, first = %s, count = %s, start = %s, shift = nil }", at, counted,
@@ -4768,11 +4765,8 @@ local function lifter(rule, limit, layout)
     end
   end
   if rule.parts then -- (its parts by the layout's part, in the bytes its count gives)
-    local count
-    for _, item in ipairs(shape) do
-      if item.name == rule.parts.field then count = item.count end
-    end
-    parts_lines(add, rule.parts, field(rule.parts.field .. "_at"), field(count), "request")
+    local name = rule.parts.field
+    parts_lines(add, rule.parts, field(name .. "_at"), field(named[name].count), "request")
   end
   add("end")
   return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_asked,
