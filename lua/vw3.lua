@@ -986,6 +986,40 @@ local DATA = {
       [65280] = true,
     },
   },
+  ["lanes"] = {
+    ["run_answers"] = {
+      [1] = {
+        ["bits"] = true,
+        ["extra"] = 5,
+        ["unit"] = 0,
+      },
+      [2] = {
+        ["bits"] = true,
+        ["extra"] = 5,
+        ["unit"] = 0,
+      },
+      [3] = {
+        ["bits"] = false,
+        ["extra"] = 5,
+        ["unit"] = 2,
+      },
+      [4] = {
+        ["bits"] = false,
+        ["extra"] = 5,
+        ["unit"] = 2,
+      },
+      [23] = {
+        ["bits"] = false,
+        ["extra"] = 5,
+        ["unit"] = 2,
+      },
+    },
+    ["header_lengths"] = {
+      [15] = 7,
+      [16] = 7,
+      [23] = 11,
+    },
+  },
   ["render"] = {
     ["provisional"] = "[provisional]",
     ["provisional_line"] = "Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec semantics only, which its device may name otherwise)",
@@ -3046,6 +3080,132 @@ local RULES = {["lift"]={["read_request"]={["start"]="start",["quantity"]="quant
 }}
 -- END RULES
 DATA.rules = RULES
+end
+do
+local floor = math.floor
+local encode = {}
+function encode.head(kind, slave, fn, length)
+  return kind + 4 * (slave + 256 * (fn + 256 * (length)))
+end
+function encode.crcs(crc_expected, crc)
+  return crc_expected + 65536 * (crc)
+end
+function encode.span(quantity, start)
+  if quantity == nil then quantity = 0 else quantity = quantity + 1 end
+  if start == nil then start = 0 else start = start + 1 end
+  return quantity + 65537 * (start)
+end
+function encode.registers(first, count, start)
+  if start == nil then start = 0 else start = start + 1 end
+  return first + 65536 * (count + 65536 * (start))
+end
+function encode.bits(first, count, start, single)
+  if start == nil then start = 0 else start = start + 1 end
+  if single == nil then single = 0 else single = single + 1 end
+  return first + 65536 * (count + 65536 * (start + 65537 * (single)))
+end
+local function put(st, s1, s2, s3, s4, s5, s6, s7, s8, s9, s10, s11, s12, s13)
+  local flat, k = st.flat, st.flat_n
+  flat[k + 1] = s1
+  flat[k + 2] = s2
+  flat[k + 3] = s3
+  flat[k + 4] = s4
+  flat[k + 5] = s5
+  if s6 == nil then s6 = false end
+  flat[k + 6] = s6
+  flat[k + 7] = s7
+  flat[k + 8] = s8
+  flat[k + 9] = s9
+  flat[k + 10] = s10
+  if s11 == nil then s11 = false end
+  flat[k + 11] = s11
+  if s12 == nil then s12 = false end
+  flat[k + 12] = s12
+  if s13 == nil then s13 = false end
+  flat[k + 13] = s13
+  st.flat_n = k + 13
+  return k
+end
+local function expand(flat, k)
+  local s1 = flat[k + 1]
+  local kind = s1 % 4
+  s1 = floor((s1 - kind) / 4)
+  local slave = s1 % 256
+  s1 = floor((s1 - slave) / 256)
+  local fn = s1 % 256
+  s1 = floor((s1 - fn) / 256)
+  local length = s1
+  local s2 = flat[k + 2]
+  local at = s2
+  local s3 = flat[k + 3]
+  local number = s3
+  local s4 = flat[k + 4]
+  local offset = s4
+  local s5 = flat[k + 5]
+  local record = s5
+  local s6 = flat[k + 6]
+  local time = s6
+  if time == false then time = nil end
+  local s7 = flat[k + 7]
+  local crc_expected = s7 % 65536
+  s7 = floor((s7 - crc_expected) / 65536)
+  local crc = s7
+  local s8 = flat[k + 8]
+  local quantity = s8 % 65537
+  s8 = floor((s8 - quantity) / 65537)
+  if quantity == 0 then quantity = nil else quantity = quantity - 1 end
+  local start = s8
+  if start == 0 then start = nil else start = start - 1 end
+  local s9 = flat[k + 9]
+  if s9 == false then
+    s9 = nil
+  else
+    local first = s9 % 65536
+    s9 = floor((s9 - first) / 65536)
+    local count = s9 % 65536
+    s9 = floor((s9 - count) / 65536)
+    local start = s9
+    if start == 0 then start = nil else start = start - 1 end
+    s9 = { first = first, count = count, start = start }
+  end
+  local s10 = flat[k + 10]
+  if s10 == false then
+    s10 = nil
+  else
+    local first = s10 % 65536
+    s10 = floor((s10 - first) / 65536)
+    local count = s10 % 65536
+    s10 = floor((s10 - count) / 65536)
+    local start = s10 % 65537
+    s10 = floor((s10 - start) / 65537)
+    if start == 0 then start = nil else start = start - 1 end
+    local single = s10
+    if single == 0 then single = nil else single = single - 1 end
+    s10 = { first = first, count = count, start = start, single = single }
+  end
+  local s11 = flat[k + 11]
+  local link = s11
+  if link == false then link = nil end
+  local s12 = flat[k + 12]
+  local request_time = s12
+  if request_time == false then request_time = nil end
+  local s13 = flat[k + 13]
+  local span_label = s13
+  if span_label == false then span_label = nil end
+  return { kind = kind, slave = slave, fn = fn, length = length, at = at, number = number, offset = offset,
+    record = record, time = time, crc_expected = crc_expected, crc = crc, quantity = quantity, start = start,
+    registers = s9, bits = s10, span_label = span_label }, link, request_time
+end
+local function has_rare(f)
+  return f.registers and (f.registers.status or f.registers.plain) or f.warnings or f.notes or f.unanswered or
+    f.broadcast or f.no_request or f.malformed or f.function_text or f.exception_code or
+    f.exception_meaning or f.subfunction or f.subfunction_text or f.objects or f.ascii or f.raw or
+    f.inferred or f.profile_choice or f.profile_said or f.provisional
+end
+DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare,
+  rare = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
+    "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii", "raw",
+    "inferred", "profile_choice", "profile_said", "provisional" } }
 end
 -- END GENERATED DATA
 
@@ -6730,10 +6890,9 @@ package.preload["vw3.pack"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pack"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local EXCEPTION, NOISE, REQUEST, RESPONSE, assert, concat = EXCEPTION, NOISE, REQUEST, RESPONSE, assert, concat
-local floor, format, ipairs, load, next, table, type = floor, format, ipairs, load, next, table, type
+local DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next, type = DATA, EXCEPTION, NOISE, REQUEST, RESPONSE, next, type
 
--- What a record keeps of a frame for the later passes, packed: numbers, SLOTS of one flat array per
+-- What a record keeps of a frame for the later passes, packed: numbers, slots of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
@@ -6742,87 +6901,15 @@ local floor, format, ipairs, load, next, table, type = floor, format, ipairs, lo
 -- name each other by record (and the request's time): no links between kept tables. The keys a frame
 -- holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame
 -- each time it shows it. A key the display reads must have a slot or be in RARE: one missing shows only
--- from the second pass on (`tshark -2`, which the parity tests run).
+-- from the second pass on (`tshark -2`, which the parity tests run). The slots and the code that fills and
+-- reads them: DATA.pack (codegen/pack_lua.py SLOTS): put_flat(st, every slot's value), the frame's first
+-- slot in st.flat; expand_slots(flat, that slot), its keys and runs in a table, then link and request_time.
 local pack = {}
-local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
-  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii",
-  "raw", "inferred", "profile_choice", "profile_said", "provisional" }
+local RARE, has_rare, put_flat, expand_slots = DATA.pack.rare, DATA.pack.has_rare, DATA.pack.put, DATA.pack.expand
 -- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
 local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION, NOISE }
-
--- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
--- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
--- the test)
-local tests = { "f.registers and (f.registers.status or f.registers.plain)" }
-for index = 1, #RARE do tests[#tests + 1] = "f." .. RARE[index] end
-local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
-
-local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
--- The slots of a packed frame, in order: each the keys it packs, lowest first, each but the last followed
--- by its radix (the next key multiplies it). A key that may be missing is one more than it is, 0 for none
--- (`+`), or false for none (`?`). A slot with a name is made by ENCODE[name] from its keys; a run's
--- (registers, bits) packs the keys of the frame's run (false where it has none). The kind is KIND_NUMBER's;
--- link is the request's record, or minus the response's; span_label the span label, or the table of the
--- rare keys and the span label.
-local SLOTS = {
-  { name = "head", "kind", 4, "slave", 256, "fn", 256, "length" }, { "at" }, { "number" }, { "offset" }, { "record" },
-  { "time?" }, { name = "crcs", "crc_expected", SHORT, "crc" }, { name = "span", "quantity+", 65537, "start+" },
-  { name = "registers", "first", SHORT, "count", SHORT, "start+" },
-  { name = "bits", "first", SHORT, "count", SHORT, "start+", 65537, "single+" },
-  { "link?" }, { "request_time?" }, { "span_label?" },
-}
-local RUNS, APART = { registers = true, bits = true }, { link = true, request_time = true }
-
--- From SLOTS, as Lua source run once (straight code, no loop a frame): ENCODE[name](keys, lowest first);
--- put_flat(st, every slot's value), the frame's first slot in st.flat; expand_slots(flat, that slot), its
--- keys and runs in a table, then the keys APART. (put_flat writes one statement a slot, in order: a
--- multiple assignment stores its last target first, past the end of the array part, where the key goes
--- to the hash part until the table is rebuilt.)
-local ENCODE, put_flat, expand_slots = {}, nil, nil
-do
-  -- (a key's code put and got, X its name)
-  local PUT = { ["+"] = "if X == nil then X = 0 else X = X + 1 end ", ["?"] = "", [""] = "" }
-  local GOT = { ["+"] = " if X == 0 then X = nil else X = X - 1 end", ["?"] = " if X == false then X = nil end",
-    [""] = "" }
-  local source, params, put, get, keys, apart = { "local floor, ENCODE = ..." }, {}, {}, {}, {}, {}
-  for at, slot in ipairs(SLOTS) do
-    local v, fields, before, got, sum = "s" .. at, {}, "", {}, nil
-    params[at], get[at] = v, format("local %s = flat[k + %d] ", v, at)
-    for index = #slot, 1, -2 do -- (the last key first: the others multiply it)
-      local radix, key, how = slot[index + 1], slot[index]:match("^([%w_]+)([+?]?)$")
-      table.insert(fields, 1, key)
-      before = PUT[how]:gsub("X", key) .. before
-      sum = sum and format("%s + %d * (%s)", key, radix, sum) or key
-      if how == "?" then put[#put + 1] = format("if %s == nil then %s = false end", v, v) end
-      local split = radix and format("local %s = %s %% %d; %s = floor((%s - %s) / %d)", key, v, radix, v, v, key, radix)
-      table.insert(got, 1, (split or format("local %s = %s", key, v)) .. GOT[how]:gsub("X", key))
-    end
-    if slot.name then
-      source[#source + 1] = format("ENCODE.%s = function(%s) %sreturn %s end", slot.name, concat(fields, ", "), before,
-        sum)
-    end
-    if RUNS[slot.name] then
-      -- (a run's keys in a table of their own, made where the slot holds one)
-      local run = {}
-      for index, key in ipairs(fields) do run[index] = key .. " = " .. key end
-      get[at] = get[at] .. format("if %s == false then %s = nil else %s %s = { %s } end", v, v, concat(got, " "), v,
-        concat(run, ", "))
-      keys[#keys + 1] = format("%s = %s", slot.name, v)
-    else
-      get[at] = get[at] .. concat(got, " ")
-      for _, key in ipairs(fields) do
-        if APART[key] then apart[#apart + 1] = key else keys[#keys + 1] = key .. " = " .. key end
-      end
-    end
-    put[#put + 1] = format("flat[k + %d] = %s", at, v)
-  end
-  source[#source + 1] = format("return function(st, %s) local flat, k = st.flat, st.flat_n %s st.flat_n = k + %d "
-    .. "return k end,", concat(params, ", "), concat(put, " "), #SLOTS)
-  source[#source + 1] = format("function(flat, k) %s return { %s }, %s end", concat(get, " "), concat(keys, ", "),
-    concat(apart, ", "))
-  put_flat, expand_slots = assert(load(concat(source, "\n"), "=vw3.pack.SLOTS"))(floor, ENCODE)
-end
+local ENCODE = DATA.pack.encode
 local head_slot, crc_slot, span_slot, run_slot, bit_slot = ENCODE.head, ENCODE.crcs, ENCODE.span, ENCODE.registers,
   ENCODE.bits
 
@@ -7013,17 +7100,10 @@ end
 -- (remember_request makes them, the quick lanes of requests use them). Bounded: a new table after MAX entries.
 local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 
--- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
--- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values.
-known_requests.header_lengths = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
-  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
-    known_requests.header_lengths[code] = rule[2] + 1
-  end
-end
+-- Requests that write a block of values (FC15, FC16, FC23), by the length of their bytes before the values
+-- (DATA.lanes, codegen/lanes_lua.py): decoded from those bytes alone (the values are a run read when shown).
+-- A master writes its setpoints every cycle with new values.
+known_requests.header_lengths = DATA.lanes.header_lengths
 
 -- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
 -- layout rule, which may be noted)?
@@ -7159,18 +7239,10 @@ take_items = function(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
--- The functions whose answer is a run of the registers or bits its request asked for, from its fourth
--- byte (the rule data: its lifting rule's start, count (by unit, 0: bits) and values; the length rule that
--- count, in the third byte, plus an extra), and the frame the Info text of a quick answer is made from.
-local RUN_ANSWERS = {}
-for code, entry in pairs(DATA.rules.by_code.response) do
-  local lift, rule = DATA.rules.lift[entry.rule or ""], DATA.protocol.rules[code][2]
-  local kind = lift and lift.start == "request.start" and lift.count and lift.count.of == "request.quantity"
-    and lift.values and lift.values.kind
-  if (kind == "registers" or kind == "bits") and rule[1] == "count8" and rule[2] == 2 then
-    RUN_ANSWERS[code] = { bits = kind == "bits", extra = rule[3], unit = lift.count.unit }
-  end
-end
+-- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:
+-- whether bits, the extra of its length rule (its byte count plus that), the count's unit (DATA.lanes); and
+-- the frame the Info text of a quick answer is made from.
+local RUN_ANSWERS = DATA.lanes.run_answers
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
 local LANE_VALUES, LANE_LASTS = {}, {}
 

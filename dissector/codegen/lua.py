@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from dissector.codegen import fields_lua, printable_table
+from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import evidence, rtu as framer, stream as streambuf
@@ -138,6 +138,7 @@ def plugin_data() -> dict[str, Any]:
         "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered},
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
+        "lanes": lanes_lua.lanes_data(),  # (what the quick lanes take of the protocol table: codegen/lanes_lua.py)
         # The display's texts: a provisional frame's mark in the summary and its line in -V.
         "render": {"provisional": summary.PROVISIONAL, "provisional_line": detail.PROVISIONAL_LINE.strip()},
         "fields": fields_lua.plugin_fields(),  # the ProtoFields, from data/fields.toml (codegen/fields_lua.py)
@@ -326,7 +327,8 @@ def render_data() -> str:
     # (in a block of its own: the modules below are closures of this chunk, a `local RULES` in their
     # scope would hide the length rules the framing modules share under that name)
     rules = ["do", rules_lua.render_rules().rstrip("\n"), "DATA.rules = RULES", "end"]
-    lines = [BEGIN, "local DATA = " + lua_literal(data), *rules, END]
+    # (DATA.pack: how a record's frames are packed, codegen/pack_lua.py)
+    lines = [BEGIN, "local DATA = " + lua_literal(data), *rules, *pack_lua.render_pack(), END]
     return "\n".join(lines) + "\n"
 
 

@@ -4,7 +4,7 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
--- What a record keeps of a frame for the later passes, packed: numbers, SLOTS of one flat array per
+-- What a record keeps of a frame for the later passes, packed: numbers, slots of one flat array per
 -- stream (st.flat), the item being the number of its first slot. A table with named keys keeps the hash
 -- it grew to while the frame was decoded (some 25 keys, 1.3 KB); numbers are no objects: the collector
 -- goes over the array's slots in one sweep instead of following a table (or two, or three) a frame, and
@@ -13,87 +13,15 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- name each other by record (and the request's time): no links between kept tables. The keys a frame
 -- holds rarely are kept in a table in its last slot (with its span label). The display unpacks a frame
 -- each time it shows it. A key the display reads must have a slot or be in RARE: one missing shows only
--- from the second pass on (`tshark -2`, which the parity tests run).
+-- from the second pass on (`tshark -2`, which the parity tests run). The slots and the code that fills and
+-- reads them: DATA.pack (codegen/pack_lua.py SLOTS): put_flat(st, every slot's value), the frame's first
+-- slot in st.flat; expand_slots(flat, that slot), its keys and runs in a table, then link and request_time.
 local pack = {}
-local RARE = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
-  "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii",
-  "raw", "inferred", "profile_choice", "profile_said", "provisional" }
+local RARE, has_rare, put_flat, expand_slots = DATA.pack.rare, DATA.pack.has_rare, DATA.pack.put, DATA.pack.expand
 -- The kinds by number and the numbers by kind: a packed frame's kind, and vw3.kind's values (lua/src/fields.lua).
 local KIND_NUMBER = { [REQUEST] = 1, [RESPONSE] = 2, [EXCEPTION] = 3, [NOISE] = 4 }
 local NUMBER_KIND = { REQUEST, RESPONSE, EXCEPTION, NOISE }
-
--- Does the frame hold a rare key, or a run one (a status other than ok, a register read with its plain
--- layout)? (one expression, made from RARE: no loop a frame; a rare key is never false: its truth is
--- the test)
-local tests = { "f.registers and (f.registers.status or f.registers.plain)" }
-for index = 1, #RARE do tests[#tests + 1] = "f." .. RARE[index] end
-local has_rare = assert(load("return function(f) return " .. concat(tests, " or ") .. " end"))()
-
-local SHORT = 65536 -- (the runs' first byte and count: frame indices, under 65,536 in any frame)
--- The slots of a packed frame, in order: each the keys it packs, lowest first, each but the last followed
--- by its radix (the next key multiplies it). A key that may be missing is one more than it is, 0 for none
--- (`+`), or false for none (`?`). A slot with a name is made by ENCODE[name] from its keys; a run's
--- (registers, bits) packs the keys of the frame's run (false where it has none). The kind is KIND_NUMBER's;
--- link is the request's record, or minus the response's; span_label the span label, or the table of the
--- rare keys and the span label.
-local SLOTS = {
-  { name = "head", "kind", 4, "slave", 256, "fn", 256, "length" }, { "at" }, { "number" }, { "offset" }, { "record" },
-  { "time?" }, { name = "crcs", "crc_expected", SHORT, "crc" }, { name = "span", "quantity+", 65537, "start+" },
-  { name = "registers", "first", SHORT, "count", SHORT, "start+" },
-  { name = "bits", "first", SHORT, "count", SHORT, "start+", 65537, "single+" },
-  { "link?" }, { "request_time?" }, { "span_label?" },
-}
-local RUNS, APART = { registers = true, bits = true }, { link = true, request_time = true }
-
--- From SLOTS, as Lua source run once (straight code, no loop a frame): ENCODE[name](keys, lowest first);
--- put_flat(st, every slot's value), the frame's first slot in st.flat; expand_slots(flat, that slot), its
--- keys and runs in a table, then the keys APART. (put_flat writes one statement a slot, in order: a
--- multiple assignment stores its last target first, past the end of the array part, where the key goes
--- to the hash part until the table is rebuilt.)
-local ENCODE, put_flat, expand_slots = {}, nil, nil
-do
-  -- (a key's code put and got, X its name)
-  local PUT = { ["+"] = "if X == nil then X = 0 else X = X + 1 end ", ["?"] = "", [""] = "" }
-  local GOT = { ["+"] = " if X == 0 then X = nil else X = X - 1 end", ["?"] = " if X == false then X = nil end",
-    [""] = "" }
-  local source, params, put, get, keys, apart = { "local floor, ENCODE = ..." }, {}, {}, {}, {}, {}
-  for at, slot in ipairs(SLOTS) do
-    local v, fields, before, got, sum = "s" .. at, {}, "", {}, nil
-    params[at], get[at] = v, format("local %s = flat[k + %d] ", v, at)
-    for index = #slot, 1, -2 do -- (the last key first: the others multiply it)
-      local radix, key, how = slot[index + 1], slot[index]:match("^([%w_]+)([+?]?)$")
-      table.insert(fields, 1, key)
-      before = PUT[how]:gsub("X", key) .. before
-      sum = sum and format("%s + %d * (%s)", key, radix, sum) or key
-      if how == "?" then put[#put + 1] = format("if %s == nil then %s = false end", v, v) end
-      local split = radix and format("local %s = %s %% %d; %s = floor((%s - %s) / %d)", key, v, radix, v, v, key, radix)
-      table.insert(got, 1, (split or format("local %s = %s", key, v)) .. GOT[how]:gsub("X", key))
-    end
-    if slot.name then
-      source[#source + 1] = format("ENCODE.%s = function(%s) %sreturn %s end", slot.name, concat(fields, ", "), before,
-        sum)
-    end
-    if RUNS[slot.name] then
-      -- (a run's keys in a table of their own, made where the slot holds one)
-      local run = {}
-      for index, key in ipairs(fields) do run[index] = key .. " = " .. key end
-      get[at] = get[at] .. format("if %s == false then %s = nil else %s %s = { %s } end", v, v, concat(got, " "), v,
-        concat(run, ", "))
-      keys[#keys + 1] = format("%s = %s", slot.name, v)
-    else
-      get[at] = get[at] .. concat(got, " ")
-      for _, key in ipairs(fields) do
-        if APART[key] then apart[#apart + 1] = key else keys[#keys + 1] = key .. " = " .. key end
-      end
-    end
-    put[#put + 1] = format("flat[k + %d] = %s", at, v)
-  end
-  source[#source + 1] = format("return function(st, %s) local flat, k = st.flat, st.flat_n %s st.flat_n = k + %d "
-    .. "return k end,", concat(params, ", "), concat(put, " "), #SLOTS)
-  source[#source + 1] = format("function(flat, k) %s return { %s }, %s end", concat(get, " "), concat(keys, ", "),
-    concat(apart, ", "))
-  put_flat, expand_slots = assert(load(concat(source, "\n"), "=vw3.pack.SLOTS"))(floor, ENCODE)
-end
+local ENCODE = DATA.pack.encode
 local head_slot, crc_slot, span_slot, run_slot, bit_slot = ENCODE.head, ENCODE.crcs, ENCODE.span, ENCODE.registers,
   ENCODE.bits
 

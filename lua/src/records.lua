@@ -59,17 +59,10 @@ end
 -- (remember_request makes them, the quick lanes of requests use them). Bounded: a new table after MAX entries.
 local known_requests = { entries = {}, headers = {}, count = 0, MAX = 4096 }
 
--- Requests that write, by the length of their bytes before the values (slave, function, addresses,
--- quantities, byte count: the protocol table's count8 rule, whose count is the values' bytes): those
--- whose lifting rule reads a block of values (FC15, FC16, FC23), decoded from those bytes alone (the
--- values are a run read when shown). A master writes its setpoints every cycle with new values.
-known_requests.header_lengths = {}
-for code, entry in pairs(DATA.rules.by_code.request) do
-  local values, rule = entry.rule and DATA.rules.lift[entry.rule].values, DATA.protocol.rules[code][1]
-  if values and (values.kind == "registers" or values.kind == "bits") and rule[1] == "count8" then
-    known_requests.header_lengths[code] = rule[2] + 1
-  end
-end
+-- Requests that write a block of values (FC15, FC16, FC23), by the length of their bytes before the values
+-- (DATA.lanes, codegen/lanes_lua.py): decoded from those bytes alone (the values are a run read when shown).
+-- A master writes its setpoints every cycle with new values.
+known_requests.header_lengths = DATA.lanes.header_lengths
 
 -- Does the device annotate a request's registers (annotate_registers, not reading: only those under a
 -- layout rule, which may be noted)?
@@ -205,18 +198,10 @@ take_items = function(st, items, record)
   for index = count, kept + 1, -1 do open[index] = nil end
 end
 
--- The functions whose answer is a run of the registers or bits its request asked for, from its fourth
--- byte (the rule data: its lifting rule's start, count (by unit, 0: bits) and values; the length rule that
--- count, in the third byte, plus an extra), and the frame the Info text of a quick answer is made from.
-local RUN_ANSWERS = {}
-for code, entry in pairs(DATA.rules.by_code.response) do
-  local lift, rule = DATA.rules.lift[entry.rule or ""], DATA.protocol.rules[code][2]
-  local kind = lift and lift.start == "request.start" and lift.count and lift.count.of == "request.quantity"
-    and lift.values and lift.values.kind
-  if (kind == "registers" or kind == "bits") and rule[1] == "count8" and rule[2] == 2 then
-    RUN_ANSWERS[code] = { bits = kind == "bits", extra = rule[3], unit = lift.count.unit }
-  end
-end
+-- The functions whose answer is a run of the registers or bits its request asked for, from its fourth byte:
+-- whether bits, the extra of its length rule (its byte count plus that), the count's unit (DATA.lanes); and
+-- the frame the Info text of a quick answer is made from.
+local RUN_ANSWERS = DATA.lanes.run_answers
 local ANSWER = { kind = RESPONSE, fn = 0, slave = 0, start = 0, quantity = 0, crc = 0, crc_expected = 0 }
 local LANE_VALUES, LANE_LASTS = {}, {}
 
