@@ -5264,9 +5264,9 @@ package.preload["vw3.maps"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.maps"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, LIMITS, MAX_SLAVE, concat, fill, floor, format = DATA, LIMITS, MAX_SLAVE, concat, fill, floor, format
-local io, ipairs, math, next, select, string, tonumber = io, ipairs, math, next, select, string, tonumber
-local tostring = tostring
+local DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor = DATA, LIMITS, MAX_SLAVE, concat, error, fill, floor
+local format, io, ipairs, math, next, pcall, select, string = format, io, ipairs, math, next, pcall, select, string
+local tonumber, tostring, type = tonumber, tostring, type
 
 
 -- ---------------------------------------------------------------------------------------------------
@@ -5289,28 +5289,25 @@ local function parse_profile_choice(text)
   local default, per_slave, errors = nil, {}, {}
   for part in string.gmatch(text or "", "[^,;%s]+") do
     local slave, name = string.match(part, "^(%d+)=(.+)$")
-    if slave ~= nil then
-      slave = tonumber(slave)
-      if name == AUTO then
-        errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
-      elseif PROFILES[name] == nil then
-        errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
-      elseif slave > MAX_SLAVE then
-        errors[#errors + 1] = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
-      elseif per_slave[slave] ~= nil then
-        errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
-      else
-        per_slave[slave] = name
-      end
-    elseif PROFILES[part] ~= nil or part == AUTO then
-      if default ~= nil then
-        errors[#errors + 1] = format("%q: a default profile (%s) is already set", part, default)
-      else
-        default = part
-      end
+    slave = slave and tonumber(slave)
+    local problem = nil
+    if slave == nil and (PROFILES[part] ~= nil or part == AUTO) then
+      problem = default and format("%q: a default profile (%s) is already set", part, default)
+      default = default or part
+    elseif slave == nil then
+      problem = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+    elseif name == AUTO then
+      problem = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
+    elseif PROFILES[name] == nil then
+      problem = format("profile %q for slave %d is not built in", name, slave)
+    elseif slave > MAX_SLAVE then
+      problem = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
+    elseif per_slave[slave] ~= nil then
+      problem = format("%q: slave %d already has a profile", part, slave)
     else
-      errors[#errors + 1] = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+      per_slave[slave] = name
     end
+    errors[#errors + 1] = problem
   end
   return default or DATA.default_profile, per_slave, errors
 end
@@ -5380,8 +5377,21 @@ local function python_repr(text)
   return quote .. printable(text, quote) .. quote
 end
 
--- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr.
-local function wrong(key, values) return fill(MESSAGES[key], values, python_repr) end
+-- A map refused: raised, as maps.py raises ProfileError, with what is wrong; `attempt` tells it.
+local function refuse(problem) error({ problem }, 0) end
+
+-- fn's result, or nil and what refused the map (a fault of the reader's own is raised again).
+local function attempt(fn, ...)
+  local done, result = pcall(fn, ...)
+  if done then return result end
+  if type(result) ~= "table" then error(result, 0) end
+  return nil, result[1]
+end
+
+-- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr, after the place
+-- of the line read (`origin:line: `, read_map's).
+local line_read = ""
+local function wrong(key, values) refuse(line_read .. fill(MESSAGES[key], values, python_repr)) end
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote;
 -- a quote left open at the line's end closes there (the dialect is not strict).
@@ -5416,24 +5426,22 @@ local function map_int(text)
   return nil
 end
 
-local function map_pairs(text, what, low, high)
-  local out = {}
+local function map_pairs(text, what)
+  local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
     part = strip(part)
     if part ~= "" then
       local key, label = part:match("^([^=]*)=(.*)$")
-      if key == nil or strip(label) == "" then return nil, wrong("pair", { what = what, part = part }) end
-      local number = map_int(key)
-      if number == nil then return nil, wrong("pair_number", { what = what, part = part, key = strip(key) }) end
+      if key == nil or strip(label) == "" then wrong("pair", { what = what, part = part }) end
+      local number = map_int(key) or wrong("pair_number", { what = what, part = part, key = strip(key) })
       if number < low or number > high then
-        return nil, wrong("pair_range", { what = what, part = part, number = number, low = low, high = high })
+        wrong("pair_range", { what = what, part = part, number = number, low = low, high = high })
       end
-      if out[number] ~= nil then return nil, wrong("pair_twice", { what = what, part = part, number = number }) end
+      if out[number] ~= nil then wrong("pair_twice", { what = what, part = part, number = number }) end
       out[number] = printable(strip(label))
     end
   end
-  if next(out) == nil then return nil end
-  return out
+  return next(out) ~= nil and out or nil
 end
 
 -- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0), or nil
@@ -5448,51 +5456,49 @@ local function scale_decimals(text)
   return decimals
 end
 
+-- A column of a few choices (access, signed, type, order): its cell, case folded, or `default` when empty;
+-- the column's message (maps.py MESSAGES, keyed by the column's name) when it is none of `allowed`.
+local SIGNED = { ["0"] = true, ["1"] = true }
+local function choice(values, column, fold, default, allowed)
+  local text = fold(strip(values[column] or ""))
+  if text == "" then text = default end
+  if text ~= "" and not allowed[text] then wrong(column, { text = text }) end
+  return text
+end
+
 local function map_row(values)
-  local address = map_int(values.address or "")
-  if address == nil then return nil, wrong("address", { text = values.address or "" }) end
-  if address < 0 or address > 0xFFFF then return nil, wrong("address_range", { address = address }) end
-  local code = printable(strip(values.code or ""))
-  if code == "" then return nil, wrong("code") end
-  local row = { code = code }
-  for _, key in ipairs({ "name", "unit", "source" }) do
+  local address = map_int(values.address or "") or wrong("address", { text = values.address or "" })
+  if address < 0 or address > 0xFFFF then wrong("address_range", { address = address }) end
+  local row = {}
+  for _, key in ipairs({ "code", "name", "unit", "source" }) do
     local text = printable(strip(values[key] or ""))
     if text ~= "" then row[key] = text end
   end
+  if row.code == nil then wrong("code") end
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
-    local decimals = scale_decimals(scale_text)
-    local scale = decimals and tonumber(scale_text)
-    if not scale then return nil, wrong("scale", { text = scale_text }) end
-    if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
-      return nil, wrong("scale_range", { text = scale_text })
+    row.decimals = scale_decimals(scale_text)
+    row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
+    local size = math.abs(row.scale)
+    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf) and 0
+      wrong("scale_range", { text = scale_text })
     end
-    row.scale, row.decimals = scale, decimals
   end
-  local access = strip(values.access or ""):upper()
-  if access ~= "" and not ACCESS[access] then return nil, wrong("access", { text = access }) end
-  local problem
-  row.enum, problem = map_pairs(values.enum or "", "enum", PAIRS.enum[1], PAIRS.enum[2])
-  if problem then return nil, problem end
-  row.bits, problem = map_pairs(values.bits or "", "bits", PAIRS.bits[1], PAIRS.bits[2])
-  if problem then return nil, problem end
-  local signed = strip(values.signed or "")
-  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, wrong("signed", { text = signed }) end
-  local kind = strip(values.type or ""):lower()
-  if kind == "" then kind = FORMAT.default_types[signed == "1" and 2 or 1] end
+  choice(values, "access", string.upper, "", ACCESS)
+  row.enum = map_pairs(values.enum or "", "enum")
+  row.bits = map_pairs(values.bits or "", "bits")
+  local signed = choice(values, "signed", tostring, "", SIGNED)
+  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
   local words = TYPES[kind]
-  if words == nil then return nil, wrong("type", { text = kind }) end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
-  local order = strip(values.order or ""):upper()
-  if order == "" then order = FORMAT.order_list[1] end
-  if not ORDERS[order] then return nil, wrong("order", { text = order }) end
+  local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
-    if row.enum or row.bits then return nil, wrong("wide_labels", { kind = kind }) end
-    if address == 0xFFFF then return nil, wrong("wide_last", { kind = kind, address = address }) end
+    if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
+    if address == 0xFFFF then wrong("wide_last", { kind = kind, address = address }) end
     row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
-  if row.signed and row.enum then return nil, wrong("signed_enum") end
+  if row.signed and row.enum then wrong("signed_enum") end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -5508,21 +5514,21 @@ local function sniff(header)
   return best
 end
 
--- The rows of a map's text, or nil and `origin:line: what is wrong` (maps.parse_map, message for message):
--- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale. Bytes that
--- are not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
-local function parse_map(text, origin)
+-- The rows of a map's text (maps.parse_map, message for message; `origin` names it): UTF-8 with
+-- or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale. Bytes that are
+-- not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
+local function read_map(text, origin)
   for char in (text:find("[\128-\255]") and text or ""):gmatch(UTF8_CHAR) do
-    if code_point(char) == nil then return nil, format("%s: not UTF-8 text", origin) end
+    if code_point(char) == nil then refuse(origin .. ": not UTF-8 text") end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
-  local header, rows, first_line, order, number, delimiter = nil, {}, {}, {}, 0, ","
-  local function at(line, problem) return format("%s:%d: %s", origin, line, problem) end
+  local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
   for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     number = number + 1
+    line_read = format("%s:%d: ", origin, number)
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
       if header == nil then delimiter = sniff(line) end
@@ -5532,17 +5538,17 @@ local function parse_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then return nil, at(number, wrong("unknown_column", { name = name })) end
+          if not KNOWN_COLUMN[name] then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then return nil, at(number, wrong("missing_column", { name = required })) end
+          if not named[required] then wrong("missing_column", { name = required }) end
         end
-        if twice then return nil, at(number, wrong("column_twice")) end
+        if twice then wrong("column_twice") end
       else
         if #cells ~= #header then
           local separator = delimiter == "," and "comma" or python_repr(delimiter)
-          return nil, at(number, wrong("fields", { count = #cells, header = #header, separator = separator }))
+          wrong("fields", { count = #cells, header = #header, separator = separator })
         end
         local values = {}
         for index, name in ipairs(header) do values[name] = cells[index] end
@@ -5550,10 +5556,7 @@ local function parse_map(text, origin)
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
         local address, row = map_row(values)
-        if address == nil then return nil, at(number, row) end
-        if rows[address] ~= nil then
-          return nil, at(number, wrong("address_twice", { address = address, line = first_line[address] }))
-        end
+        if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
         rows[address], first_line[address] = row, number
         order[#order + 1] = address
       end
@@ -5563,33 +5566,35 @@ local function parse_map(text, origin)
   for _, first in ipairs(order) do
     local row, second = rows[first], first + 1
     if row.words == 2 and rows[second] ~= nil then
-      return nil, at(first_line[second], wrong("second_register",
-        { address = second, code = row.code, kind = row.kind, line = first_line[first] }))
+      line_read = format("%s:%d: ", origin, first_line[second])
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = first_line[first] })
     end
   end
-  if header == nil then return nil, format("%s: %s", origin, wrong("no_header")) end
+  line_read = origin .. ": "
+  if header == nil then wrong("no_header") end
   return rows
 end
 
--- A map file's rows (parse_map), or nil and what is wrong with it.
+-- The rows of a map's text, or nil and `origin:line: what is wrong` (`origin: ...` for the whole text).
+local function parse_map(text, origin) return attempt(read_map, text, origin) end
+
+-- A map file's rows (read_map); what is wrong with it refused.
 local function load_map(path)
   -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
   -- write returns at once on Linux and the seek below refuses it. A file without write permission is
   -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
   local handle, open_error = io.open(path, "r+b")
   if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
-  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
+  if handle == nil then refuse(format("%s: cannot read the map: %s", path, tostring(open_error))) end
   local size = handle:seek("end")
   local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
   handle:close()
-  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
+  if size == nil then refuse(format("%s: not a file that can be read whole (a FIFO or a socket)", path)) end
   if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
-    return nil, format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576))
+    refuse(format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576)))
   end
-  if not text then
-    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
-  end
-  return parse_map(text, path)
+  if not text and size ~= 0 then refuse(format("%s: cannot read the map: not a file", path)) end
+  return read_map(text or "", path)
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
@@ -5597,34 +5602,24 @@ local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
     spec = strip(spec)
-    if spec ~= "" then
-      local target, path = spec:match("^([^=]*)=(.+)$")
-      if target ~= nil then
-        target = strip(target)
-        local whole = io.open(spec, "rb")
-        if whole ~= nil then whole:close(); target, path = nil, spec end
+    local target, path = spec:match("^([^=]*)=(.+)$")
+    local whole = target and io.open(spec, "rb") -- (a file whose name holds `=`: the spec is its path)
+    if whole then whole:close() end
+    if whole or target == nil then
+      target, path = nil, spec
+    end
+    target = target and strip(target)
+    local slave = target and target:match("^%d+$") and tonumber(target)
+    if spec == "" then
+      -- (nothing between two `;`)
+    elseif target and not slave and not profile_names[target] then
+      errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
+    else
+      local rows, problem = attempt(load_map, path)
+      if rows == nil then
+        errors[#errors + 1] = problem
       else
-        path = spec
-      end
-      local layer = {}
-      if target == nil then
-        -- every slave
-      elseif target:match("^%d+$") then
-        layer.slave = tonumber(target)
-      elseif profile_names[target] then
-        layer.profile = target
-      else
-        errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
-        layer = nil
-      end
-      if layer ~= nil then
-        local rows, problem = load_map(path)
-        if rows == nil then
-          errors[#errors + 1] = problem
-        else
-          layer.rows = rows
-          layers[#layers + 1] = layer
-        end
+        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil }
       end
     end
   end
@@ -5666,8 +5661,7 @@ end)
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
-  if row ~= nil then return format("%s (%s)", row.code, shown) end
-  return shown
+  return row and format("%s (%s)", row.code, shown) or shown
 end
 
 -- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
@@ -5713,6 +5707,13 @@ local function layered_rows(profile, applies)
   return rows
 end
 
+-- A shallow copy of a table.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -5725,10 +5726,8 @@ local function build_device(profile, slave)
       local row = rows[address]
       if row ~= nil then
         depend[address] = rule
-        local copy = {}
-        for key, value in pairs(row) do copy[key] = value end
-        copy.bits = nil
-        plain[address] = copy
+        plain[address] = copied(row)
+        plain[address].bits = nil
       end
     end
   end
@@ -5798,11 +5797,7 @@ for bit_ = 0, 15 do BIT_NAMES[bit_] = say("bit_unnamed", { bit = bit_ }) end
 local function interpret(row, value)
   local raw_value = value
   if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
-  if row.enum then
-    local label = row.enum[value]
-    if label ~= nil then return nil, label end
-    return nil, say("not_listed", { value = value })
-  end
+  if row.enum then return nil, row.enum[value] or say("not_listed", { value = value }) end
   if row.bits then
     local names, bits, rest = {}, row.bits, value
     for bit_ = 0, 15 do
@@ -5812,8 +5807,7 @@ local function interpret(row, value)
       end
       rest = rest / 2
     end
-    if #names == 0 then return nil, NO_BIT_SET end
-    return nil, concat(names, ", ")
+    return nil, #names == 0 and NO_BIT_SET or concat(names, ", ")
   end
   if row.scale == nil then
     -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
@@ -5849,15 +5843,14 @@ local function interpret_wide(row, first, second)
   if row.swapped then high, low = second, first end
   local value, text
   if row.kind == "float32" then
-    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
-    local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
-    if high >= 0x8000 then sign = -1.0 end
+    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2); the sign a float: Lua
+    -- 5.4's integer -1 * 0 would lose the sign of -0.0
+    local sign = high >= 0x8000 and -1.0 or 1.0
     local exponent = floor(high / 128) % 256
     local fraction = (high % 128) * 65536 + low
     local spacing = 2 ^ -149
-    if exponent == 255 then
-      if fraction ~= 0 then return nil, "nan" end
-      return nil, sign > 0 and "inf" or "-inf" -- (no number JSON can hold)
+    if exponent == 255 then -- (no number JSON can hold)
+      return nil, fraction ~= 0 and "nan" or sign > 0 and "inf" or "-inf"
     elseif exponent == 0 then
       value = sign * fraction * spacing
     else
@@ -5878,9 +5871,9 @@ local function interpret_wide(row, first, second)
   return value, text
 end
 M.PLC_LABELS, M.address_name, M.address_runs, M.build_device = PLC_LABELS, address_name, address_runs, build_device
-M.consecutive, M.device_for, M.device_of, M.has_note = consecutive, device_for, device_of, has_note
-M.interpret, M.interpret_wide, M.layered_rows, M.note = interpret, interpret_wide, layered_rows, note
-M.span_name = span_name
+M.consecutive, M.copied, M.device_for, M.device_of = consecutive, copied, device_for, device_of
+M.has_note, M.interpret, M.interpret_wide, M.layered_rows = has_note, interpret, interpret_wide, layered_rows
+M.note, M.span_name = note, span_name
 end
 
 -- ---- vw3.story: lua/src/story.lua ----
@@ -5976,14 +5969,10 @@ end
 -- What register `index` of a frame's consecutive registers is of a 32-bit map row (naming.name_wide):
 -- 2 its first word (the value is read here), 0 its second word, 1 a register on its own.
 local function words_at(rows, address, index, count)
-  local words = 1
-  if index > 0 then
-    local before = rows[(address + 0xFFFF) % 0x10000]
-    if before ~= nil and before.words == 2 then words = 0 end
-  end
   local row = rows[address]
-  if row ~= nil and row.words == 2 and index + 1 < count then words = 2 end
-  return words
+  if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
+  local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
+  return before and before.words == 2 and 0 or 1
 end
 
 -- The 32-bit row whose second register `address` is (naming.wide_before), or false.
@@ -5995,11 +5984,9 @@ end
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
-  if row == nil or row.words == 2 then return nil end
-  local rule = device.depend[address]
-  if rule == nil then return nil end
-  local last = device.seen[rule.on]
-  if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then return rule end
+  local rule = row ~= nil and row.words ~= 2 and device.depend[address]
+  local last = rule and device.seen[rule.on]
+  if last and last.value ~= nil and rule.plain_when[last.value] then return rule end
   return nil
 end
 
@@ -6018,15 +6005,10 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     status = "ok"
     -- (a word of a 32-bit value is no parameter on its own)
     if value == protected and multi and words == 1 then
-      local before = row == nil and rows_before(device.rows, address)
-      if before then
-        status = "ambiguous" -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
-      elseif row == nil then
-        status = "non-existent"
-      elseif row.ambiguous_8000 then
-        status = "ambiguous"
+      if row == nil then -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
+        status = rows_before(device.rows, address) and "ambiguous" or "non-existent"
       else
-        status = "protected"
+        status = row.ambiguous_8000 and "ambiguous" or "protected"
       end
     end
     track(device.seen, f, address, row, value, status, MARKER_NOW, label)
@@ -6047,8 +6029,7 @@ local function all_marked(f, device, count, value_at, protected)
 end
 
 local function plc_base(device, f)
-  if device.plc == nil then return nil end
-  return device.plc[f.fn] or device.plc_default
+  return device.plc and (device.plc[f.fn] or device.plc_default)
 end
 
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
@@ -6059,18 +6040,12 @@ local function describe(device, f, reg, plain, status, words, second)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
-  if row ~= nil then
-    if row.words == 2 then
-      if words == 2 then
-        scaled, text = interpret_wide(row, value, second)
-      else
-        text = say("first_word", row)
-      end
-    else
-      local used = row
-      if plain then used = device.plain[address] end
-      scaled, text = interpret(used, value)
-    end
+  if row ~= nil and row.words ~= 2 then
+    scaled, text = interpret(plain and device.plain[address] or row, value)
+  elseif row ~= nil and words == 2 then
+    scaled, text = interpret_wide(row, value, second)
+  elseif row ~= nil then
+    text = say("first_word", row)
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
     named = rows[(address + 0xFFFF) % 0x10000]
     text = say("second_word", named)
@@ -6089,11 +6064,9 @@ end
 local function annotate_registers(f, device, run, b, read)
   local start = run.start
   if start == nil then return end
-  local protected = nil
-  if read then protected = device.profile.protected_value end
-  local count = run.count
+  local protected = read and device.profile.protected_value or nil
+  local count, first = run.count, run.first
   local multi = count > 1
-  local first = run.first
   if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no closure)
       and all_marked(f, device, count, function(index) return b[first + 2 * index] * 256 + b[first + 2 * index + 1] end,
         protected) then
@@ -6126,8 +6099,7 @@ end
 -- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
 -- gets its row, label, scaled value, text, status and words.
 local function annotate_list(st, f, device, registers, read)
-  local protected = nil
-  if read then protected = device.profile.protected_value end
+  local protected = read and device.profile.protected_value or nil
   local base = plc_base(device, f)
   local count = #registers
   local multi = count > 1
@@ -6344,9 +6316,10 @@ package.preload["vw3.selection"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local NOISE, PROFILES, READS, RESPONSE, SELECTION = NOISE, PROFILES, READS, RESPONSE, SELECTION
-local build_device, concat, device_for, format, ipairs = build_device, concat, device_for, format, ipairs
-local lane, layered_rows, math, next, note, pairs = lane, layered_rows, math, next, note, pairs
-local python_repr, register_at, say, span_name, table = python_repr, register_at, say, span_name, table
+local build_device, concat, copied, device_for, format = build_device, concat, copied, device_for, format
+local ipairs, lane, layered_rows, made_once, math, next = ipairs, lane, layered_rows, made_once, math, next
+local note, pairs, python_repr, register_at, say, span_name = note, pairs, python_repr, register_at, say, span_name
+local table = table
 
 -- Profile `auto` (devices/selection.py, rule for rule): a slave is taken for a device on evidence, in
 -- capture order, as vw3-decode reads its input: a Read Device Identification ProductCode or a function
@@ -6382,13 +6355,10 @@ end
 
 local function candidate_rows(name)
   -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
-  config.fit_rows = config.fit_rows or {}
-  local rows = config.fit_rows[name]
-  if rows == nil then
-    rows = layered_rows(PROFILES[name], function(layer) return layer.profile == name end)
-    config.fit_rows[name] = rows
-  end
-  return rows
+  config.fit_rows = config.fit_rows or made_once(function(candidate)
+    return layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+  end)
+  return config.fit_rows[name]
 end
 
 local function identified(f)
@@ -6514,11 +6484,8 @@ local function observe(st, f, b)
     if verdict == false then
       ruled_out[name], evidence[name] = true, nil
     elseif verdict ~= nil then
-      local found = evidence[name]
-      if found == nil then
-        found = { reads = {}, order = {}, answers = 0 }
-        evidence[name] = found
-      end
+      local found = evidence[name] or { reads = {}, order = {}, answers = 0 }
+      evidence[name] = found
       local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
       local read = found.reads[key]
       if read == nil then
@@ -6571,12 +6538,6 @@ end
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
-local function copied(t)
-  local copy = {}
-  for key, value in pairs(t) do copy[key] = value end
-  return copy
-end
-
 local function hold(st, f, b)
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
@@ -6639,9 +6600,8 @@ local function select_device(st, f, b)
   if not choice.same then
     st.chosen[slave] = choice.profile
     if history == nil then
-      history = {}
+      history = { device and { number = 0, device = device } or nil }
       st.history[slave] = history
-      if device then history[1] = { number = 0, device = device } end
     end
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
@@ -6666,19 +6626,12 @@ end
 -- semantics, and a note says why.
 local function broadcast_device(st, f)
   local fallback, named, slaves = SELECTION.fallback, {}, {}
-  for _, chosen in ipairs({ config.per_slave, st.chosen }) do
-    for slave, name in pairs(chosen) do
+  -- (the slaves with a device, forced or chosen so far; then those met without one: unknown)
+  for pass, source in ipairs({ config.per_slave, st.chosen, st.met or {}, st.judged }) do
+    for slave, name in pairs(source) do
+      if pass > 2 then name = "unknown" end
       if slave ~= 0 and name ~= fallback and named[slave] == nil then
         named[slave] = name
-        slaves[#slaves + 1] = slave
-      end
-    end
-  end
-  local known = #slaves
-  for _, met in ipairs({ st.met or {}, st.judged }) do
-    for slave in pairs(met) do
-      if slave ~= 0 and named[slave] == nil then -- (met without a device: unknown)
-        named[slave] = "unknown"
         slaves[#slaves + 1] = slave
       end
     end
@@ -6689,7 +6642,7 @@ local function broadcast_device(st, f)
     name = (index == 1 or name == named[slave]) and named[slave] or false
     parts[index] = format("slave %d %s", slave, named[slave])
   end
-  if name == "unknown" then name = known > 0 and false or nil end
+  if name == "unknown" then name = nil end -- (every slave met without a device)
   local said = nil -- (the reason the frame says, vw3.profile_reason: Frame.profile_choice)
   if name then
     said = say("broadcast_profile", { profile = name,
@@ -6708,12 +6661,9 @@ local function broadcast_device(st, f)
     if not met then f.provisional, st.provisional = true, true end
   end
   name = name or fallback
-  st.broadcasting = st.broadcasting or {}
+  -- (slave 0's device under each profile, built once)
+  st.broadcasting = st.broadcasting or made_once(function(named) return build_device(PROFILES[named], 0) end)
   local device, before = st.broadcasting[name], st.devices[0]
-  if device == nil then
-    device = build_device(PROFILES[name], 0)
-    st.broadcasting[name] = device
-  end
   local history = st.history[0]
   local last = history and history[#history]
   if before ~= device or (last and last.reason) ~= said then -- (device_of: the earlier frames keep theirs)

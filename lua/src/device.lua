@@ -21,8 +21,7 @@ end)
 
 local function address_name(row, address, label)
   local shown = label or format("%d", address)
-  if row ~= nil then return format("%s (%s)", row.code, shown) end
-  return shown
+  return row and format("%s (%s)", row.code, shown) or shown
 end
 
 -- Neighbouring addresses told as ranges (devices/story.py, explain.py): entries (.address, .row, .label)
@@ -68,6 +67,13 @@ local function layered_rows(profile, applies)
   return rows
 end
 
+-- A shallow copy of a table.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
 -- parameter memory (a new profile for a slave starts a new memory, as the annotator builds a new Device).
 local function build_device(profile, slave)
@@ -80,10 +86,8 @@ local function build_device(profile, slave)
       local row = rows[address]
       if row ~= nil then
         depend[address] = rule
-        local copy = {}
-        for key, value in pairs(row) do copy[key] = value end
-        copy.bits = nil
-        plain[address] = copy
+        plain[address] = copied(row)
+        plain[address].bits = nil
       end
     end
   end
@@ -153,11 +157,7 @@ for bit_ = 0, 15 do BIT_NAMES[bit_] = say("bit_unnamed", { bit = bit_ }) end
 local function interpret(row, value)
   local raw_value = value
   if row.signed and value >= 0x8000 then raw_value = value - 0x10000 end
-  if row.enum then
-    local label = row.enum[value]
-    if label ~= nil then return nil, label end
-    return nil, say("not_listed", { value = value })
-  end
+  if row.enum then return nil, row.enum[value] or say("not_listed", { value = value }) end
   if row.bits then
     local names, bits, rest = {}, row.bits, value
     for bit_ = 0, 15 do
@@ -167,8 +167,7 @@ local function interpret(row, value)
       end
       rest = rest / 2
     end
-    if #names == 0 then return nil, NO_BIT_SET end
-    return nil, concat(names, ", ")
+    return nil, #names == 0 and NO_BIT_SET or concat(names, ", ")
   end
   if row.scale == nil then
     -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
@@ -204,15 +203,14 @@ local function interpret_wide(row, first, second)
   if row.swapped then high, low = second, first end
   local value, text
   if row.kind == "float32" then
-    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2)
-    local sign = 1.0 -- (a float: Lua 5.4's integer -1 * 0 would lose the sign of -0.0)
-    if high >= 0x8000 then sign = -1.0 end
+    -- IEEE 754 single precision, from its fields (no bitwise operators in Lua 5.2); the sign a float: Lua
+    -- 5.4's integer -1 * 0 would lose the sign of -0.0
+    local sign = high >= 0x8000 and -1.0 or 1.0
     local exponent = floor(high / 128) % 256
     local fraction = (high % 128) * 65536 + low
     local spacing = 2 ^ -149
-    if exponent == 255 then
-      if fraction ~= 0 then return nil, "nan" end
-      return nil, sign > 0 and "inf" or "-inf" -- (no number JSON can hold)
+    if exponent == 255 then -- (no number JSON can hold)
+      return nil, fraction ~= 0 and "nan" or sign > 0 and "inf" or "-inf"
     elseif exponent == 0 then
       value = sign * fraction * spacing
     else

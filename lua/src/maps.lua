@@ -25,28 +25,25 @@ local function parse_profile_choice(text)
   local default, per_slave, errors = nil, {}, {}
   for part in string.gmatch(text or "", "[^,;%s]+") do
     local slave, name = string.match(part, "^(%d+)=(.+)$")
-    if slave ~= nil then
-      slave = tonumber(slave)
-      if name == AUTO then
-        errors[#errors + 1] = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
-      elseif PROFILES[name] == nil then
-        errors[#errors + 1] = format("profile %q for slave %d is not built in", name, slave)
-      elseif slave > MAX_SLAVE then
-        errors[#errors + 1] = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
-      elseif per_slave[slave] ~= nil then
-        errors[#errors + 1] = format("%q: slave %d already has a profile", part, slave)
-      else
-        per_slave[slave] = name
-      end
-    elseif PROFILES[part] ~= nil or part == AUTO then
-      if default ~= nil then
-        errors[#errors + 1] = format("%q: a default profile (%s) is already set", part, default)
-      else
-        default = part
-      end
+    slave = slave and tonumber(slave)
+    local problem = nil
+    if slave == nil and (PROFILES[part] ~= nil or part == AUTO) then
+      problem = default and format("%q: a default profile (%s) is already set", part, default)
+      default = default or part
+    elseif slave == nil then
+      problem = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+    elseif name == AUTO then
+      problem = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
+    elseif PROFILES[name] == nil then
+      problem = format("profile %q for slave %d is not built in", name, slave)
+    elseif slave > MAX_SLAVE then
+      problem = format("slave %d is outside 0..%d", slave, MAX_SLAVE)
+    elseif per_slave[slave] ~= nil then
+      problem = format("%q: slave %d already has a profile", part, slave)
     else
-      errors[#errors + 1] = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+      per_slave[slave] = name
     end
+    errors[#errors + 1] = problem
   end
   return default or DATA.default_profile, per_slave, errors
 end
@@ -116,8 +113,21 @@ local function python_repr(text)
   return quote .. printable(text, quote) .. quote
 end
 
--- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr.
-local function wrong(key, values) return fill(MESSAGES[key], values, python_repr) end
+-- A map refused: raised, as maps.py raises ProfileError, with what is wrong; `attempt` tells it.
+local function refuse(problem) error({ problem }, 0) end
+
+-- fn's result, or nil and what refused the map (a fault of the reader's own is raised again).
+local function attempt(fn, ...)
+  local done, result = pcall(fn, ...)
+  if done then return result end
+  if type(result) ~= "table" then error(result, 0) end
+  return nil, result[1]
+end
+
+-- A map error in maps.py's words (its MESSAGES, by key), `!r` parameters as Python's repr, after the place
+-- of the line read (`origin:line: `, read_map's).
+local line_read = ""
+local function wrong(key, values) refuse(line_read .. fill(MESSAGES[key], values, python_repr)) end
 
 -- One CSV line as Python's csv.reader (excel dialect) splits it: commas, "quoted" fields, "" for a quote;
 -- a quote left open at the line's end closes there (the dialect is not strict).
@@ -152,24 +162,22 @@ local function map_int(text)
   return nil
 end
 
-local function map_pairs(text, what, low, high)
-  local out = {}
+local function map_pairs(text, what)
+  local out, low, high = {}, PAIRS[what][1], PAIRS[what][2]
   for part in (text .. ";"):gmatch("([^;]*);") do
     part = strip(part)
     if part ~= "" then
       local key, label = part:match("^([^=]*)=(.*)$")
-      if key == nil or strip(label) == "" then return nil, wrong("pair", { what = what, part = part }) end
-      local number = map_int(key)
-      if number == nil then return nil, wrong("pair_number", { what = what, part = part, key = strip(key) }) end
+      if key == nil or strip(label) == "" then wrong("pair", { what = what, part = part }) end
+      local number = map_int(key) or wrong("pair_number", { what = what, part = part, key = strip(key) })
       if number < low or number > high then
-        return nil, wrong("pair_range", { what = what, part = part, number = number, low = low, high = high })
+        wrong("pair_range", { what = what, part = part, number = number, low = low, high = high })
       end
-      if out[number] ~= nil then return nil, wrong("pair_twice", { what = what, part = part, number = number }) end
+      if out[number] ~= nil then wrong("pair_twice", { what = what, part = part, number = number }) end
       out[number] = printable(strip(label))
     end
   end
-  if next(out) == nil then return nil end
-  return out
+  return next(out) ~= nil and out or nil
 end
 
 -- Digits after the decimal point of a scale written as text ("0.1" -> 1, "1e-2" -> 2, "10" -> 0), or nil
@@ -184,51 +192,49 @@ local function scale_decimals(text)
   return decimals
 end
 
+-- A column of a few choices (access, signed, type, order): its cell, case folded, or `default` when empty;
+-- the column's message (maps.py MESSAGES, keyed by the column's name) when it is none of `allowed`.
+local SIGNED = { ["0"] = true, ["1"] = true }
+local function choice(values, column, fold, default, allowed)
+  local text = fold(strip(values[column] or ""))
+  if text == "" then text = default end
+  if text ~= "" and not allowed[text] then wrong(column, { text = text }) end
+  return text
+end
+
 local function map_row(values)
-  local address = map_int(values.address or "")
-  if address == nil then return nil, wrong("address", { text = values.address or "" }) end
-  if address < 0 or address > 0xFFFF then return nil, wrong("address_range", { address = address }) end
-  local code = printable(strip(values.code or ""))
-  if code == "" then return nil, wrong("code") end
-  local row = { code = code }
-  for _, key in ipairs({ "name", "unit", "source" }) do
+  local address = map_int(values.address or "") or wrong("address", { text = values.address or "" })
+  if address < 0 or address > 0xFFFF then wrong("address_range", { address = address }) end
+  local row = {}
+  for _, key in ipairs({ "code", "name", "unit", "source" }) do
     local text = printable(strip(values[key] or ""))
     if text ~= "" then row[key] = text end
   end
+  if row.code == nil then wrong("code") end
   local scale_text = strip(values.scale or "")
   if scale_text ~= "" then
-    local decimals = scale_decimals(scale_text)
-    local scale = decimals and tonumber(scale_text)
-    if not scale then return nil, wrong("scale", { text = scale_text }) end
-    if not (math.abs(scale) >= SCALE_MIN and math.abs(scale) <= SCALE_MAX) then -- also 1e999 (inf) and 0
-      return nil, wrong("scale_range", { text = scale_text })
+    row.decimals = scale_decimals(scale_text)
+    row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
+    local size = math.abs(row.scale)
+    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf) and 0
+      wrong("scale_range", { text = scale_text })
     end
-    row.scale, row.decimals = scale, decimals
   end
-  local access = strip(values.access or ""):upper()
-  if access ~= "" and not ACCESS[access] then return nil, wrong("access", { text = access }) end
-  local problem
-  row.enum, problem = map_pairs(values.enum or "", "enum", PAIRS.enum[1], PAIRS.enum[2])
-  if problem then return nil, problem end
-  row.bits, problem = map_pairs(values.bits or "", "bits", PAIRS.bits[1], PAIRS.bits[2])
-  if problem then return nil, problem end
-  local signed = strip(values.signed or "")
-  if signed ~= "" and signed ~= "0" and signed ~= "1" then return nil, wrong("signed", { text = signed }) end
-  local kind = strip(values.type or ""):lower()
-  if kind == "" then kind = FORMAT.default_types[signed == "1" and 2 or 1] end
+  choice(values, "access", string.upper, "", ACCESS)
+  row.enum = map_pairs(values.enum or "", "enum")
+  row.bits = map_pairs(values.bits or "", "bits")
+  local signed = choice(values, "signed", tostring, "", SIGNED)
+  local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
   local words = TYPES[kind]
-  if words == nil then return nil, wrong("type", { text = kind }) end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
-  local order = strip(values.order or ""):upper()
-  if order == "" then order = FORMAT.order_list[1] end
-  if not ORDERS[order] then return nil, wrong("order", { text = order }) end
+  local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
-    if row.enum or row.bits then return nil, wrong("wide_labels", { kind = kind }) end
-    if address == 0xFFFF then return nil, wrong("wide_last", { kind = kind, address = address }) end
+    if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
+    if address == 0xFFFF then wrong("wide_last", { kind = kind, address = address }) end
     row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
-  if row.signed and row.enum then return nil, wrong("signed_enum") end
+  if row.signed and row.enum then wrong("signed_enum") end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -244,21 +250,21 @@ local function sniff(header)
   return best
 end
 
--- The rows of a map's text, or nil and `origin:line: what is wrong` (maps.parse_map, message for message):
--- UTF-8 with or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale. Bytes that
--- are not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
-local function parse_map(text, origin)
+-- The rows of a map's text (maps.parse_map, message for message; `origin` names it): UTF-8 with
+-- or without a BOM, `,` or European Excel's `;` (or tab) with its decimal comma in scale. Bytes that are
+-- not UTF-8 are refused as maps.load_map_file refuses them (Python's strict decoder, no surrogateescape).
+local function read_map(text, origin)
   for char in (text:find("[\128-\255]") and text or ""):gmatch(UTF8_CHAR) do
-    if code_point(char) == nil then return nil, format("%s: not UTF-8 text", origin) end
+    if code_point(char) == nil then refuse(origin .. ": not UTF-8 text") end
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
-  local header, rows, first_line, order, number, delimiter = nil, {}, {}, {}, 0, ","
-  local function at(line, problem) return format("%s:%d: %s", origin, line, problem) end
+  local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
   for line in (text .. "\n"):gmatch("([^\n]*)\n") do
     number = number + 1
+    line_read = format("%s:%d: ", origin, number)
     local stripped = strip(line)
     if stripped ~= "" and stripped:sub(1, 1) ~= "#" then
       if header == nil then delimiter = sniff(line) end
@@ -268,17 +274,17 @@ local function parse_map(text, origin)
         local named, twice = {}, false -- (the columns named, and whether one is named twice: told last)
         for index, cell in ipairs(cells) do
           local name = strip(cell):lower()
-          if not KNOWN_COLUMN[name] then return nil, at(number, wrong("unknown_column", { name = name })) end
+          if not KNOWN_COLUMN[name] then wrong("unknown_column", { name = name }) end
           header[index], named[name], twice = name, true, twice or named[name] ~= nil
         end
         for _, required in ipairs(FORMAT.required) do
-          if not named[required] then return nil, at(number, wrong("missing_column", { name = required })) end
+          if not named[required] then wrong("missing_column", { name = required }) end
         end
-        if twice then return nil, at(number, wrong("column_twice")) end
+        if twice then wrong("column_twice") end
       else
         if #cells ~= #header then
           local separator = delimiter == "," and "comma" or python_repr(delimiter)
-          return nil, at(number, wrong("fields", { count = #cells, header = #header, separator = separator }))
+          wrong("fields", { count = #cells, header = #header, separator = separator })
         end
         local values = {}
         for index, name in ipairs(header) do values[name] = cells[index] end
@@ -286,10 +292,7 @@ local function parse_map(text, origin)
           values.scale = values.scale:gsub(",", ".") -- `0,1`: the decimal comma of the same spreadsheets
         end
         local address, row = map_row(values)
-        if address == nil then return nil, at(number, row) end
-        if rows[address] ~= nil then
-          return nil, at(number, wrong("address_twice", { address = address, line = first_line[address] }))
-        end
+        if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
         rows[address], first_line[address] = row, number
         order[#order + 1] = address
       end
@@ -299,33 +302,35 @@ local function parse_map(text, origin)
   for _, first in ipairs(order) do
     local row, second = rows[first], first + 1
     if row.words == 2 and rows[second] ~= nil then
-      return nil, at(first_line[second], wrong("second_register",
-        { address = second, code = row.code, kind = row.kind, line = first_line[first] }))
+      line_read = format("%s:%d: ", origin, first_line[second])
+      wrong("second_register", { address = second, code = row.code, kind = row.kind, line = first_line[first] })
     end
   end
-  if header == nil then return nil, format("%s: %s", origin, wrong("no_header")) end
+  line_read = origin .. ": "
+  if header == nil then wrong("no_header") end
   return rows
 end
 
--- A map file's rows (parse_map), or nil and what is wrong with it.
+-- The rows of a map's text, or nil and `origin:line: what is wrong` (`origin: ...` for the whole text).
+local function parse_map(text, origin) return attempt(read_map, text, origin) end
+
+-- A map file's rows (read_map); what is wrong with it refused.
 local function load_map(path)
   -- Read and write, never read only: opening a FIFO read only waits for a writer (tshark hung), read and
   -- write returns at once on Linux and the seek below refuses it. A file without write permission is
   -- opened read only. A directory fails to open (or to read), a device or a file over 16 MiB is refused.
   local handle, open_error = io.open(path, "r+b")
   if handle == nil and tostring(open_error):find("ermission") then handle, open_error = io.open(path, "rb") end
-  if handle == nil then return nil, format("%s: cannot read the map: %s", path, tostring(open_error)) end
+  if handle == nil then refuse(format("%s: cannot read the map: %s", path, tostring(open_error))) end
   local size = handle:seek("end")
   local text = size ~= nil and size <= MAX_MAP_BYTES and handle:seek("set") and handle:read(MAX_MAP_BYTES + 1)
   handle:close()
-  if size == nil then return nil, format("%s: not a file that can be read whole (a FIFO or a socket)", path) end
+  if size == nil then refuse(format("%s: not a file that can be read whole (a FIFO or a socket)", path)) end
   if size > MAX_MAP_BYTES or (text and #text > MAX_MAP_BYTES) then
-    return nil, format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576))
+    refuse(format("%s: larger than %d MiB, not a register map", path, floor(MAX_MAP_BYTES / 1048576)))
   end
-  if not text then
-    if size == 0 then text = "" else return nil, format("%s: cannot read the map: not a file", path) end
-  end
-  return parse_map(text, path)
+  if not text and size ~= 0 then refuse(format("%s: cannot read the map: not a file", path)) end
+  return read_map(text or "", path)
 end
 
 -- "FILE;3=FILE;sel749m=FILE" -> layers { rows, slave, profile } in order, and errors.
@@ -333,34 +338,24 @@ local function parse_map_choice(text, profile_names)
   local layers, errors = {}, {}
   for spec in (text or ""):gmatch("[^;]+") do
     spec = strip(spec)
-    if spec ~= "" then
-      local target, path = spec:match("^([^=]*)=(.+)$")
-      if target ~= nil then
-        target = strip(target)
-        local whole = io.open(spec, "rb")
-        if whole ~= nil then whole:close(); target, path = nil, spec end
+    local target, path = spec:match("^([^=]*)=(.+)$")
+    local whole = target and io.open(spec, "rb") -- (a file whose name holds `=`: the spec is its path)
+    if whole then whole:close() end
+    if whole or target == nil then
+      target, path = nil, spec
+    end
+    target = target and strip(target)
+    local slave = target and target:match("^%d+$") and tonumber(target)
+    if spec == "" then
+      -- (nothing between two `;`)
+    elseif target and not slave and not profile_names[target] then
+      errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
+    else
+      local rows, problem = attempt(load_map, path)
+      if rows == nil then
+        errors[#errors + 1] = problem
       else
-        path = spec
-      end
-      local layer = {}
-      if target == nil then
-        -- every slave
-      elseif target:match("^%d+$") then
-        layer.slave = tonumber(target)
-      elseif profile_names[target] then
-        layer.profile = target
-      else
-        errors[#errors + 1] = format("map %q: %q is neither a slave address nor a profile in use", spec, target)
-        layer = nil
-      end
-      if layer ~= nil then
-        local rows, problem = load_map(path)
-        if rows == nil then
-          errors[#errors + 1] = problem
-        else
-          layer.rows = rows
-          layers[#layers + 1] = layer
-        end
+        layers[#layers + 1] = { rows = rows, slave = slave, profile = not slave and target or nil }
       end
     end
   end

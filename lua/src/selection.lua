@@ -38,13 +38,10 @@ end
 
 local function candidate_rows(name)
   -- a candidate's map as traffic is judged against it: its own rows and the map layers given for it
-  config.fit_rows = config.fit_rows or {}
-  local rows = config.fit_rows[name]
-  if rows == nil then
-    rows = layered_rows(PROFILES[name], function(layer) return layer.profile == name end)
-    config.fit_rows[name] = rows
-  end
-  return rows
+  config.fit_rows = config.fit_rows or made_once(function(candidate)
+    return layered_rows(PROFILES[candidate], function(layer) return layer.profile == candidate end)
+  end)
+  return config.fit_rows[name]
 end
 
 local function identified(f)
@@ -170,11 +167,8 @@ local function observe(st, f, b)
     if verdict == false then
       ruled_out[name], evidence[name] = true, nil
     elseif verdict ~= nil then
-      local found = evidence[name]
-      if found == nil then
-        found = { reads = {}, order = {}, answers = 0 }
-        evidence[name] = found
-      end
+      local found = evidence[name] or { reads = {}, order = {}, answers = 0 }
+      evidence[name] = found
       local key = format("%d:%d:%d", f.fn, registers[1].address, #registers)
       local read = found.reads[key]
       if read == nil then
@@ -227,12 +221,6 @@ end
 -- annotated and its bytes released (take_frame): its own runs (its request's too, with their bytes),
 -- device objects and registers of vw3_modbus.lua's list, no notes or warnings. Bounded: a slave's frames
 -- are provisional until FIT_FRAMES of them at most.
-local function copied(t)
-  local copy = {}
-  for key, value in pairs(t) do copy[key] = value end
-  return copy
-end
-
 local function hold(st, f, b)
   local copy = copied(f)
   copy.b, copy.notes, copy.warnings, copy.events = b, nil, nil, nil
@@ -295,9 +283,8 @@ local function select_device(st, f, b)
   if not choice.same then
     st.chosen[slave] = choice.profile
     if history == nil then
-      history = {}
+      history = { device and { number = 0, device = device } or nil }
       st.history[slave] = history
-      if device then history[1] = { number = 0, device = device } end
     end
     device = build_device(PROFILES[choice.profile], slave)
     st.devices[slave] = device
@@ -322,19 +309,12 @@ end
 -- semantics, and a note says why.
 local function broadcast_device(st, f)
   local fallback, named, slaves = SELECTION.fallback, {}, {}
-  for _, chosen in ipairs({ config.per_slave, st.chosen }) do
-    for slave, name in pairs(chosen) do
+  -- (the slaves with a device, forced or chosen so far; then those met without one: unknown)
+  for pass, source in ipairs({ config.per_slave, st.chosen, st.met or {}, st.judged }) do
+    for slave, name in pairs(source) do
+      if pass > 2 then name = "unknown" end
       if slave ~= 0 and name ~= fallback and named[slave] == nil then
         named[slave] = name
-        slaves[#slaves + 1] = slave
-      end
-    end
-  end
-  local known = #slaves
-  for _, met in ipairs({ st.met or {}, st.judged }) do
-    for slave in pairs(met) do
-      if slave ~= 0 and named[slave] == nil then -- (met without a device: unknown)
-        named[slave] = "unknown"
         slaves[#slaves + 1] = slave
       end
     end
@@ -345,7 +325,7 @@ local function broadcast_device(st, f)
     name = (index == 1 or name == named[slave]) and named[slave] or false
     parts[index] = format("slave %d %s", slave, named[slave])
   end
-  if name == "unknown" then name = known > 0 and false or nil end
+  if name == "unknown" then name = nil end -- (every slave met without a device)
   local said = nil -- (the reason the frame says, vw3.profile_reason: Frame.profile_choice)
   if name then
     said = say("broadcast_profile", { profile = name,
@@ -364,12 +344,9 @@ local function broadcast_device(st, f)
     if not met then f.provisional, st.provisional = true, true end
   end
   name = name or fallback
-  st.broadcasting = st.broadcasting or {}
+  -- (slave 0's device under each profile, built once)
+  st.broadcasting = st.broadcasting or made_once(function(named) return build_device(PROFILES[named], 0) end)
   local device, before = st.broadcasting[name], st.devices[0]
-  if device == nil then
-    device = build_device(PROFILES[name], 0)
-    st.broadcasting[name] = device
-  end
   local history = st.history[0]
   local last = history and history[#history]
   if before ~= device or (last and last.reason) ~= said then -- (device_of: the earlier frames keep theirs)

@@ -85,14 +85,10 @@ end
 -- What register `index` of a frame's consecutive registers is of a 32-bit map row (naming.name_wide):
 -- 2 its first word (the value is read here), 0 its second word, 1 a register on its own.
 local function words_at(rows, address, index, count)
-  local words = 1
-  if index > 0 then
-    local before = rows[(address + 0xFFFF) % 0x10000]
-    if before ~= nil and before.words == 2 then words = 0 end
-  end
   local row = rows[address]
-  if row ~= nil and row.words == 2 and index + 1 < count then words = 2 end
-  return words
+  if row ~= nil and row.words == 2 and index + 1 < count then return 2 end
+  local before = index > 0 and rows[(address + 0xFFFF) % 0x10000]
+  return before and before.words == 2 and 0 or 1
 end
 
 -- The 32-bit row whose second register `address` is (naming.wide_before), or false.
@@ -104,11 +100,9 @@ end
 -- The bits_depend rule under which the register at `address` (its map row `row`) is read with its plain
 -- layout now (the register it depends on last held a value that says so), or nil.
 function story.plain_rule(device, address, row)
-  if row == nil or row.words == 2 then return nil end
-  local rule = device.depend[address]
-  if rule == nil then return nil end
-  local last = device.seen[rule.on]
-  if last ~= nil and last.value ~= nil and rule.plain_when[last.value] then return rule end
+  local rule = row ~= nil and row.words ~= 2 and device.depend[address]
+  local last = rule and device.seen[rule.on]
+  if last and last.value ~= nil and rule.plain_when[last.value] then return rule end
   return nil
 end
 
@@ -127,15 +121,10 @@ local function annotate_one(f, device, address, value, protected, multi, label, 
     status = "ok"
     -- (a word of a 32-bit value is no parameter on its own)
     if value == protected and multi and words == 1 then
-      local before = row == nil and rows_before(device.rows, address)
-      if before then
-        status = "ambiguous" -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
-      elseif row == nil then
-        status = "non-existent"
-      elseif row.ambiguous_8000 then
-        status = "ambiguous"
+      if row == nil then -- (a 32-bit value's second word alone: that value's 16#8000, as its first's)
+        status = rows_before(device.rows, address) and "ambiguous" or "non-existent"
       else
-        status = "protected"
+        status = row.ambiguous_8000 and "ambiguous" or "protected"
       end
     end
     track(device.seen, f, address, row, value, status, MARKER_NOW, label)
@@ -156,8 +145,7 @@ local function all_marked(f, device, count, value_at, protected)
 end
 
 local function plc_base(device, f)
-  if device.plc == nil then return nil end
-  return device.plc[f.fn] or device.plc_default
+  return device.plc and (device.plc[f.fn] or device.plc_default)
 end
 
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
@@ -168,18 +156,12 @@ local function describe(device, f, reg, plain, status, words, second)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
-  if row ~= nil then
-    if row.words == 2 then
-      if words == 2 then
-        scaled, text = interpret_wide(row, value, second)
-      else
-        text = say("first_word", row)
-      end
-    else
-      local used = row
-      if plain then used = device.plain[address] end
-      scaled, text = interpret(used, value)
-    end
+  if row ~= nil and row.words ~= 2 then
+    scaled, text = interpret(plain and device.plain[address] or row, value)
+  elseif row ~= nil and words == 2 then
+    scaled, text = interpret_wide(row, value, second)
+  elseif row ~= nil then
+    text = say("first_word", row)
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
     named = rows[(address + 0xFFFF) % 0x10000]
     text = say("second_word", named)
@@ -198,11 +180,9 @@ end
 local function annotate_registers(f, device, run, b, read)
   local start = run.start
   if start == nil then return end
-  local protected = nil
-  if read then protected = device.profile.protected_value end
-  local count = run.count
+  local protected = read and device.profile.protected_value or nil
+  local count, first = run.count, run.first
   local multi = count > 1
-  local first = run.first
   if multi and protected ~= nil and b[first] * 256 + b[first + 1] == protected -- (the usual answer: no closure)
       and all_marked(f, device, count, function(index) return b[first + 2 * index] * 256 + b[first + 2 * index + 1] end,
         protected) then
@@ -235,8 +215,7 @@ end
 -- The same for a list of registers { address, value } (the Modbus/TCP naming of vw3_modbus.lua): each
 -- gets its row, label, scaled value, text, status and words.
 local function annotate_list(st, f, device, registers, read)
-  local protected = nil
-  if read then protected = device.profile.protected_value end
+  local protected = read and device.profile.protected_value or nil
   local base = plc_base(device, f)
   local count = #registers
   local multi = count > 1
