@@ -3563,8 +3563,9 @@ package.preload["vw3.stream"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math = DATA, FRAMING, NOISE, NOISE_ITEM_MAX, REQUEST, math
-local pairs = pairs
+local DATA, ECHO_CODES, FRAMING, NEED, NOISE = DATA, ECHO_CODES, FRAMING, NEED, NOISE
+local NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
+local awaited, format, interpretations, math, pairs = awaited, format, interpretations, math, pairs
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -3684,9 +3685,28 @@ local function emit(s, frame, items)
   s.noise_cut = false
   items[#items + 1] = frame
   expect_after(s, frame)
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
-M.GLITCH, M.add_noise, M.awaits_answer, M.boundary_at, M.emit = GLITCH, add_noise, awaits_answer, boundary_at, emit
-M.expect_after, M.flush_noise, M.lane, M.time_at = expect_after, flush_noise, lane, time_at
+
+-- The first interpretation of the answer awaited at b[i] and what its rule gives there (length, is_scan,
+-- declared), or nil: what the framers weigh at the end of the capture (rtu.py, ascii.py _cut_answer).
+local function awaited_reading(s, b, i, n)
+  if not awaited(s, b, i, n) then return nil end
+  local first = interpretations(s, b[i], b[i + 1], b, i, n)[1]
+  if first == nil then return nil end
+  return first[1], first[2](b, i, n)
+end
+
+-- Why bytes are noise when they begin the answer awaited (of `kind`) and the capture ends inside it:
+-- `got` of its `total` bytes (NEED: not known).
+local function cut_reason(kind, got, total)
+  local what = kind == RESPONSE and "response" or "exception response"
+  if total == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, got) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, got, total)
+end
+M.GLITCH, M.add_noise, M.awaited_reading, M.awaits_answer = GLITCH, add_noise, awaited_reading, awaits_answer
+M.boundary_at, M.cut_reason, M.emit, M.expect_after = boundary_at, cut_reason, emit, expect_after
+M.flush_noise, M.lane, M.time_at = flush_noise, lane, time_at
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -3696,12 +3716,13 @@ package.preload["vw3.rtu"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.rtu"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, ECHO_CODES, EXCEPTION, FRAMING, GLITCH, MAX_ADU = DATA, ECHO_CODES, EXCEPTION, FRAMING, GLITCH, MAX_ADU
-local MAX_SLAVE, MIN_ADU, NEED, NONE, NO_INTERPRETATION = MAX_SLAVE, MIN_ADU, NEED, NONE, NO_INTERPRETATION
-local REQUEST, RESPONSE, add_noise, await_echo, awaited = REQUEST, RESPONSE, add_noise, await_echo, awaited
+local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE
+local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
+local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
 local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
-local crc_string_ok, emit, format, interpretations, math = crc_string_ok, emit, format, interpretations, math
-local pairs, possible_start, table, time_at = pairs, possible_start, table, time_at
+local crc_string_ok, cut_reason, emit, format = crc_string_ok, cut_reason, emit, format
+local interpretations, math, pairs, possible_start, table = interpretations, math, pairs, possible_start, table
+local time_at = time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = format(DATA.rules.texts.no_frame.format), format(DATA.rules.texts.too_short.format)
@@ -3713,59 +3734,54 @@ local function valid_frame_at(s, b, i, n, final, scan)
     if final then return i == n end
     return nil
   end
-  local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
-  local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
-  local list = interpretations(s, slave, b[i + 1], b, i, n)
+  local found = false -- (nil: a CRC scan found nothing yet, but a longer frame may still arrive)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n) -- (any address: 248..255 are framed)
   for index = 1, #list do
     local length, is_scan, _, fallback = list[index][2](b, i, n)
-    if is_scan then
-      if scan ~= false then
-        if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
-        undecided = undecided or (not final and n - i < MAX_ADU)
-      end
-    elseif length == NEED then
+    if not is_scan and length == NEED then
       if final then return false end
       return nil
-    elseif length >= MIN_ADU and length <= MAX_ADU then
+    elseif not is_scan and length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
         if not final then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
-      elseif fallback ~= nil and scan ~= false then -- (its rule's CRC scan where the CRC fails: as is_scan)
-        if crc_scan(b, i, fallback, math.min(n - i, MAX_ADU)) > 0 then return true end
-        undecided = undecided or (not final and n - i < MAX_ADU)
+      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails)
+        is_scan, length = true, fallback
       end
     end
+    if is_scan and scan ~= false then
+      if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
+      if not final and n - i < MAX_ADU then found = nil end
+    end
   end
-  if undecided then return nil end
-  return false
+  return found
 end
 
 -- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
 -- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
 -- the input was cut.
 local function intact_inside(s, b, i, length, n, final)
-  local undecided = false
+  local found = false
   for j = i + 1, i + length - 1 do
-    local found = valid_frame_at(s, b, j, n, final, false)
-    if found then return true end
-    if found == nil then undecided = true end
+    local at = valid_frame_at(s, b, j, n, final, false)
+    if at then return true end
+    if at == nil then found = nil end
   end
-  if undecided then return nil end
-  return false
+  return found
 end
 
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
--- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
--- that tell have not come yet.
-local function followed(s, b, stop, n, final, at_end)
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes (at most `skip`,
+-- GLITCH_SKIP unless given); nil: the bytes that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end, skip)
   local j = stop
   while true do
     if final and j == n then return at_end ~= false end
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
-    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
+    if j < n and GLITCH[b[j]] and j - stop < (skip or GLITCH_SKIP) then j = j + 1 else return false end
   end
 end
 
@@ -3808,11 +3824,6 @@ local function confirmed(s, b, i, kind, length, n, final)
     return answered(s, b, i, stop, n, final)
   end
   return false
-end
-
--- Is i where a frame is expected: in step, at a record boundary, after nothing but glitch bytes since one?
-local function anchored(s, i)
-  return s.noise == nil or s.glitches_only or boundary_at(s, i)
 end
 
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
@@ -3861,10 +3872,8 @@ local function scan_match(s, b, i, n, minimum, final)
   for pass = from, 2 do
     for k = 1, #lengths do
       local length = lengths[k]
-      local following
       -- (a record's end right after it settles the first pass as a frame there would: _timedframe.h decide_at)
-      if pass == 1 then following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
-      else following = followed(s, b, i + length, n, final) end
+      local following = followed(s, b, i + length, n, final, true, pass == 1 and 0 or GLITCH_SKIP)
       if following == nil then return NEED end
       if following then
         local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
@@ -3881,11 +3890,8 @@ end
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
-  local slave, code = b[i], b[i + 1]
-  if not awaited(s, b, i, n) then return nil end
-  local first = interpretations(s, slave, code, b, i, n)[1]
-  if first == nil then return nil end
-  local length, is_scan, declared = first[2](b, i, n)
+  local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
+  if kind == nil then return nil end
   if is_scan then
     -- (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
     if declared == nil or declared == NONE then return nil end
@@ -3895,10 +3901,7 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  local what = "exception response"
-  if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
+  return cut_reason(kind, n - i, length)
 end
 
 -- The list with value appended (a new list for nil: most positions have none).
@@ -3932,17 +3935,32 @@ local function record_start(s, i)
   return false
 end
 
+-- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at,
+-- boundary_after) finds a frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
+local function first_confirmed(s, b, i, n, final, list, test)
+  for index = 1, #list do
+    local following = test(s, b, i + list[index][2], n, final)
+    if following == nil then return NEED end
+    if following then return list[index] end
+  end
+  return nil
+end
+local function boundary_after(s, _, stop) return boundary_at(s, stop) end
+
+local function shortest_first(list)
+  local order = { table.unpack(list) }
+  table.sort(order, function(x, y) return x[2] < y[2] end)
+  return order
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
   if GLITCH_ADDRESSES[slave] then -- (a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
-    if after == nil then
-      if not ends_record(s, b, i, n) then return NEED end
-    elseif after then
-      return NONE
-    end
+    if after then return NONE end
+    if after == nil and not ends_record(s, b, i, n) then return NEED end
   end
   local valid, damaged, waiting = nil, nil, nil
   local list = interpretations(s, slave, code, b, i, n)
@@ -3950,6 +3968,18 @@ local function match(s, b, i, n, final)
   for index = 1, #list do
     local kind = list[index][1]
     local length, is_scan, declared, fallback = list[index][2](b, i, n)
+    local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
+    if not is_scan and (length == NEED or (sized and i + length > n)) then
+      if not final then waiting = added(waiting, length) end -- (its bytes have not all come)
+    elseif sized then
+      if crc_ok_at(b, i, length) then
+        valid = added(valid, { kind, length })
+      elseif fallback == nil then
+        damaged = added(damaged, { kind, length })
+      else -- (its rule's CRC scan where the CRC fails)
+        is_scan, length, declared = true, fallback, length
+      end
+    end
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
@@ -3959,62 +3989,29 @@ local function match(s, b, i, n, final)
       elseif declared ~= nil and declared >= MIN_ADU and declared <= MAX_ADU and declared <= n - i then
         damaged = added(damaged, { kind, declared }) -- (the length its fields give, its CRC bad: rtu.py)
       end
-    elseif length == NEED then
-      if not final then waiting = added(waiting, NEED) end
-    elseif length >= MIN_ADU and length <= MAX_ADU then
-      if i + length > n then
-        if not final then waiting = added(waiting, length) end
-      elseif crc_ok_at(b, i, length) then
-        valid = added(valid, { kind, length })
-      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails: as is_scan above)
-        local found = scan_match(s, b, i, n, fallback, final)
-        if found == NEED then
-          waiting = added(waiting, NEED)
-        elseif found > 0 then
-          valid = added(valid, { kind, found })
-        else
-          damaged = added(damaged, { kind, length })
-        end
-      else
-        damaged = added(damaged, { kind, length })
-      end
     end
-  end
-  if valid ~= nil and #valid == 1 then
-    local kind, length = valid[1][1], valid[1][2]
-    -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
-    -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
-    local expected = kind == RESPONSE and awaits
-    if not expected and not boundary_at(s, i + length) and waiting ~= nil then
-      for index = 1, #waiting do
-        if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
-      end
-    end
-    return kind, length, true
   end
   if valid ~= nil then
-    -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
-    -- else a record boundary, the answer awaited, then what follows decides.
-    if s.glitch_runs >= GLITCHY_AFTER then
-      local order = {}
-      for index = 1, #valid do order[index] = valid[index] end
-      table.sort(order, function(x, y) return x[2] < y[2] end)
-      for index = 1, #order do
-        local following = followed(s, b, i + order[index][2], n, final)
-        if following == nil then return NEED end
-        if following then return order[index][1], order[index][2], true end
+    local chosen = valid[1]
+    if #valid == 1 then
+      -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
+      -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
+      if waiting ~= nil and not (chosen[1] == RESPONSE and awaits) and not boundary_at(s, i + chosen[2]) then
+        for index = 1, #waiting do
+          if waiting[index] == NEED or waiting[index] == chosen[2] + 1 then return NEED end
+        end
       end
+    else
+      -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
+      -- else a record boundary, the answer awaited, then what follows decides.
+      local glitchy = s.glitch_runs >= GLITCHY_AFTER
+      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed)
+        or first_confirmed(s, b, i, n, final, valid, boundary_after)
+        or (awaits and chosen[1] == RESPONSE and chosen)
+        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or chosen
+      if chosen == NEED then return NEED end
     end
-    for index = 1, #valid do
-      if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
-    end
-    if awaits and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
-    for index = 1, #valid do
-      local following = valid_frame_at(s, b, i + valid[index][2], n, final)
-      if following == nil then return NEED end
-      if following then return valid[index][1], valid[index][2], true end
-    end
-    return valid[1][1], valid[1][2], true
+    return chosen[1], chosen[2], true
   end
   if waiting ~= nil then return NEED end
   -- (a reserved address counts with a good CRC only: a glitch byte is one too; so does a broadcast the
@@ -4121,76 +4118,69 @@ local function run_rtu(s, final, items)
   local i = 0
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
-    local skipped = false
     if n - i < MIN_ADU then
       add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
+    local stop, first = i, nil -- (noise to stop: a repetition decided before, or bytes no frame starts at)
     -- (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
     if s.noise == nil or final then
       since = -1
     elseif since < 0 or s.noise_cut ~= was_cut or s.glitches_only ~= was_only then
       since, was_cut, was_only = i, s.noise_cut, s.glitches_only
     elseif i >= retry and i - since >= REPEAT_PROBE then
-      local stop
       stop, retry = repeats(s, b, i, since, n, i + NOISE_ITEM_MAX - s.noise.length)
-      if stop > i then
-        add_noise(s, i, stop, NO_FRAME, items)
-        i = stop
-        skipped = true
+    end
+    local slave, code = b[i], b[i + 1]
+    if stop == i then first = interpretations(s, slave, code, b, i, n)[1] end
+    if stop == i and first == nil then
+      -- No frame starts here: skip to the next byte pair that could start one.
+      stop = i + 1
+      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
+      if stop >= n - 1 then stop = final and n or n - 1 end
+    end
+    if stop == i then
+      local kind, length, crc_ok = nil, nil, true
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
+      -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
+      -- what match would weigh): nearly every frame of a clean bus.
+      if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
+        local found, is_scan = first[2](b, i, n)
+        if not is_scan and found >= MIN_ADU and found <= MAX_ADU
+            and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
+            and crc_ok_at(b, i, found) then
+          kind, length = first[1], found
+        end
+      end
+      if kind == nil then
+        local cut = final and cut_answer(s, b, i, n)
+        if cut then
+          add_noise(s, i, n, cut, items)
+          return n
+        end
+        kind, length, crc_ok = match(s, b, i, n, final)
+        if kind == NEED then break end
+        -- Resynchronising inside noise (not in step, at a record boundary, after nothing but glitch bytes
+        -- since one): random bytes pass a CRC 1 time in 65,536 per layout tried, so such a frame counts
+        -- only when the line confirms it (rtu.py _confirmed).
+        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
+            and not (s.noise == nil or s.glitches_only or boundary_at(s, i)) then
+          local following = confirmed(s, b, i, kind, length, n, final)
+          if following == nil then break end
+          if not following then kind = NONE end
+        end
+      end
+      if kind == NONE then
+        stop = i + 1
+      else
+        local offset = s.base + i
+        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        i = i + length
       end
     end
-    if not skipped then
-      local slave, code = b[i], b[i + 1]
-      local first = interpretations(s, slave, code, b, i, n)[1]
-      if first == nil then
-        -- No frame starts here: skip to the next byte pair that could start one.
-        local stop = i + 1
-        while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
-        if stop >= n - 1 then stop = final and n or n - 1 end
-        add_noise(s, i, stop, NO_FRAME, items)
-        i = stop
-      else
-        local kind, length, crc_ok = nil, nil, true
-        -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
-        -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
-        -- what match would weigh): nearly every frame of a clean bus.
-        if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
-          local found, is_scan = first[2](b, i, n)
-          if not is_scan and found >= MIN_ADU and found <= MAX_ADU
-              and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
-              and crc_ok_at(b, i, found) then
-            kind, length = first[1], found
-          end
-        end
-        if kind == nil then
-          local cut = final and cut_answer(s, b, i, n)
-          if cut then
-            add_noise(s, i, n, cut, items)
-            return n
-          end
-          kind, length, crc_ok = match(s, b, i, n, final)
-          if kind == NEED then break end
-          if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
-              and not anchored(s, i) then
-            -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
-            -- such a frame counts only when the line confirms it (rtu.py _confirmed).
-            local following = confirmed(s, b, i, kind, length, n, final)
-            if following == nil then break end
-            if not following then kind = NONE end
-          end
-        end
-        if kind == NONE then
-          add_noise(s, i, i + 1, NO_FRAME, items)
-          i = i + 1
-        else
-          local offset = s.base + i
-          local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
-          emit(s, frame, items)
-          if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
-          i = i + length
-        end
-      end
+    if stop > i then
+      add_noise(s, i, stop, NO_FRAME, items)
+      i = stop
     end
   end
   return i
@@ -4206,10 +4196,10 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, RESPONSE = DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, RESPONSE
-local add_noise, await_echo, awaited, crc16, emit, floor = add_noise, await_echo, awaited, crc16, emit, floor
+local DATA, MAX_ADU, NEED, RESPONSE, add_noise = DATA, MAX_ADU, NEED, RESPONSE, add_noise
+local awaited_reading, crc16, cut_reason, emit, floor = awaited_reading, crc16, cut_reason, emit, floor
 local flush_noise, format, interpretations, ipairs, math = flush_noise, format, interpretations, ipairs, math
-local pairs, time_at = pairs, time_at
+local pairs, table, time_at = pairs, table, time_at
 -- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
 local TEXTS = DATA.rules.texts
 local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
@@ -4281,14 +4271,11 @@ end
 
 local function classify_ascii(s, adu, count)
   -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
-  local slave, code = adu[0], adu[1]
   local crc = crc16(adu, 0, count)
-  local equivalent = {}
-  for k = 0, count - 1 do equivalent[k] = adu[k] end
-  equivalent[count] = crc % 256
-  equivalent[count + 1] = floor(crc / 256)
+  local equivalent = { [0] = adu[0], table.unpack(adu, 1, count - 1) }
+  equivalent[count], equivalent[count + 1] = crc % 256, floor(crc / 256)
   local length = count + 2
-  for _, interpretation in ipairs(interpretations(s, slave, code, equivalent, 0, length)) do
+  for _, interpretation in ipairs(interpretations(s, adu[0], adu[1], equivalent, 0, length)) do
     -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
     local found, is_scan = interpretation[2](equivalent, 0, length)
     if found == length or (is_scan and length >= found) then return interpretation[1] end
@@ -4300,14 +4287,11 @@ end
 -- (s.line_ends, any slave's; LF still ends one); back to LF, CR or ':' drops it (ascii.py _changed).
 local function changed(s, bin, count)
   if bin[1] ~= 8 or count ~= 7 or not SETS_DELIMITER[bin[2] * 256 + bin[3]] then return end
-  local character = bin[4]
-  s.delimiters = s.delimiters or {}
-  s.delimiters[bin[0]] = nil
-  if bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON then
-    s.delimiters[bin[0]] = character
-  end
-  s.line_ends = nil
-  for _, byte in pairs(s.delimiters) do
+  local character, delimiters = bin[4], s.delimiters or {}
+  local kept = bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON
+  delimiters[bin[0]] = kept and character or nil
+  s.delimiters, s.line_ends = delimiters, nil
+  for _, byte in pairs(delimiters) do
     s.line_ends = s.line_ends or {}
     s.line_ends[byte] = true
   end
@@ -4320,15 +4304,15 @@ local function reject(s, at, length, reason, items)
   flush_noise(s, items)
 end
 
-local function ascii_candidate(s, at, length, items)
-  -- b[at .. at + length - 1]: ':' digits CR LF
+-- A line, b[at .. at + length - 1] (':' digits CR LF): a frame, or noise with the reason it is none.
+local function ascii_candidate(s, at, length, items, reason)
+  if reason ~= nil then return reject(s, at, length, reason, items) end
   local b = s.b
   -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py); so does a CR
   -- whose LF was lost (run_ascii: CR, then the next ':').
   local lost_lf = b[at + length - 1] == CR
   local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
-  local digits = length - 3
-  if lost_cr or lost_lf then digits = length - 2 end
+  local digits = (lost_cr or lost_lf) and length - 2 or length - 3
   if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
@@ -4338,8 +4322,7 @@ local function ascii_candidate(s, at, length, items)
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
-    local check = LRC_OK
-    if received ~= expected then check = format(TEXTS.lrc_wrong.format, received, expected) end
+    local check = received == expected and LRC_OK or format(TEXTS.lrc_wrong.format, received, expected)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   local offset = s.base + at
@@ -4354,7 +4337,6 @@ local function ascii_candidate(s, at, length, items)
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
-  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
 end
 
 -- At the end of the input: do b[i .. n - 1] (':' and hex digits, a CR at most after them) begin the answer
@@ -4367,21 +4349,14 @@ local function ascii_cut_answer(s, b, i, n)
   for k = i + 1, stop - 1 do
     if not HEX[b[k]] then return nil end
   end
-  local bin = hex_pairs(b, i + 1, count)
-  if not awaited(s, bin, 0, count) then return nil end
-  local first = interpretations(s, bin[0], bin[1], bin, 0, count)[1]
-  if first == nil then return nil end
-  local length, is_scan, declared = first[2](bin, 0, count) -- (the RTU frame's, its 2-byte CRC an LRC here)
-  if is_scan then
-    length = NEED
-    if declared ~= nil and declared > 0 then length = declared end
-  end
+  -- (the RTU frame's length, its 2-byte CRC an LRC here)
+  local kind, length, is_scan, declared = awaited_reading(s, hex_pairs(b, i + 1, count), 0, count)
+  if kind == nil then return nil end
+  if is_scan then length = declared ~= nil and declared > 0 and declared or NEED end
+  if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
-  if length ~= NEED and not (n - i < characters and length <= MAX_ADU) then return nil end
-  local what = "exception response"
-  if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, characters)
+  if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
+  return nil
 end
 
 local function run_ascii(s, final, items)
@@ -4408,24 +4383,21 @@ local function run_ascii(s, final, items)
           break
         end
       end
-      if stop ~= nil and b[stop] == COLON and b[stop - 1] == CR then
-        ascii_candidate(s, i, stop - i, items) -- (the LF lost: the CR ended the line)
-        i = stop
-      elseif stop ~= nil and b[stop] == COLON then
-        reject(s, i, stop - i, CUT_BY_COLON, items)
-        i = stop
+      local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
+      if stop ~= nil and b[stop] == COLON then
+        length = stop - i
+        if b[stop - 1] ~= CR then reason = CUT_BY_COLON end -- (after a CR: the LF lost, the CR ends the line)
       elseif stop ~= nil then
-        ascii_candidate(s, i, stop + 1 - i, items)
-        i = stop + 1
+        length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
-        reject(s, i, MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII), items)
-        i = i + MAX_ASCII
+        length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
       elseif final then
-        reject(s, i, n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END, items)
-        i = n
+        length, reason = n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END
       else
         break -- wait for the rest of the frame
       end
+      ascii_candidate(s, i, length, items, reason)
+      i = i + length
     end
   end
   return i

@@ -74,14 +74,11 @@ end
 
 local function classify_ascii(s, adu, count)
   -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
-  local slave, code = adu[0], adu[1]
   local crc = crc16(adu, 0, count)
-  local equivalent = {}
-  for k = 0, count - 1 do equivalent[k] = adu[k] end
-  equivalent[count] = crc % 256
-  equivalent[count + 1] = floor(crc / 256)
+  local equivalent = { [0] = adu[0], table.unpack(adu, 1, count - 1) }
+  equivalent[count], equivalent[count + 1] = crc % 256, floor(crc / 256)
   local length = count + 2
-  for _, interpretation in ipairs(interpretations(s, slave, code, equivalent, 0, length)) do
+  for _, interpretation in ipairs(interpretations(s, adu[0], adu[1], equivalent, 0, length)) do
     -- A layout without a length rule fits any length from its minimum: ':' and CR LF delimit the frame.
     local found, is_scan = interpretation[2](equivalent, 0, length)
     if found == length or (is_scan and length >= found) then return interpretation[1] end
@@ -93,14 +90,11 @@ end
 -- (s.line_ends, any slave's; LF still ends one); back to LF, CR or ':' drops it (ascii.py _changed).
 local function changed(s, bin, count)
   if bin[1] ~= 8 or count ~= 7 or not SETS_DELIMITER[bin[2] * 256 + bin[3]] then return end
-  local character = bin[4]
-  s.delimiters = s.delimiters or {}
-  s.delimiters[bin[0]] = nil
-  if bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON then
-    s.delimiters[bin[0]] = character
-  end
-  s.line_ends = nil
-  for _, byte in pairs(s.delimiters) do
+  local character, delimiters = bin[4], s.delimiters or {}
+  local kept = bin[5] == 0 and character ~= LF and character ~= CR and character ~= COLON
+  delimiters[bin[0]] = kept and character or nil
+  s.delimiters, s.line_ends = delimiters, nil
+  for _, byte in pairs(delimiters) do
     s.line_ends = s.line_ends or {}
     s.line_ends[byte] = true
   end
@@ -113,15 +107,15 @@ local function reject(s, at, length, reason, items)
   flush_noise(s, items)
 end
 
-local function ascii_candidate(s, at, length, items)
-  -- b[at .. at + length - 1]: ':' digits CR LF
+-- A line, b[at .. at + length - 1] (':' digits CR LF): a frame, or noise with the reason it is none.
+local function ascii_candidate(s, at, length, items, reason)
+  if reason ~= nil then return reject(s, at, length, reason, items) end
   local b = s.b
   -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py); so does a CR
   -- whose LF was lost (run_ascii: CR, then the next ':').
   local lost_lf = b[at + length - 1] == CR
   local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
-  local digits = length - 3
-  if lost_cr or lost_lf then digits = length - 2 end
+  local digits = (lost_cr or lost_lf) and length - 2 or length - 3
   if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
@@ -131,8 +125,7 @@ local function ascii_candidate(s, at, length, items)
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
-    local check = LRC_OK
-    if received ~= expected then check = format(TEXTS.lrc_wrong.format, received, expected) end
+    local check = received == expected and LRC_OK or format(TEXTS.lrc_wrong.format, received, expected)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   local offset = s.base + at
@@ -147,7 +140,6 @@ local function ascii_candidate(s, at, length, items)
   if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
   if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
-  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, as in RTU)
 end
 
 -- At the end of the input: do b[i .. n - 1] (':' and hex digits, a CR at most after them) begin the answer
@@ -160,21 +152,14 @@ local function ascii_cut_answer(s, b, i, n)
   for k = i + 1, stop - 1 do
     if not HEX[b[k]] then return nil end
   end
-  local bin = hex_pairs(b, i + 1, count)
-  if not awaited(s, bin, 0, count) then return nil end
-  local first = interpretations(s, bin[0], bin[1], bin, 0, count)[1]
-  if first == nil then return nil end
-  local length, is_scan, declared = first[2](bin, 0, count) -- (the RTU frame's, its 2-byte CRC an LRC here)
-  if is_scan then
-    length = NEED
-    if declared ~= nil and declared > 0 then length = declared end
-  end
+  -- (the RTU frame's length, its 2-byte CRC an LRC here)
+  local kind, length, is_scan, declared = awaited_reading(s, hex_pairs(b, i + 1, count), 0, count)
+  if kind == nil then return nil end
+  if is_scan then length = declared ~= nil and declared > 0 and declared or NEED end
+  if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
-  if length ~= NEED and not (n - i < characters and length <= MAX_ADU) then return nil end
-  local what = "exception response"
-  if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, characters)
+  if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end
+  return nil
 end
 
 local function run_ascii(s, final, items)
@@ -201,24 +186,21 @@ local function run_ascii(s, final, items)
           break
         end
       end
-      if stop ~= nil and b[stop] == COLON and b[stop - 1] == CR then
-        ascii_candidate(s, i, stop - i, items) -- (the LF lost: the CR ended the line)
-        i = stop
-      elseif stop ~= nil and b[stop] == COLON then
-        reject(s, i, stop - i, CUT_BY_COLON, items)
-        i = stop
+      local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
+      if stop ~= nil and b[stop] == COLON then
+        length = stop - i
+        if b[stop - 1] ~= CR then reason = CUT_BY_COLON end -- (after a CR: the LF lost, the CR ends the line)
       elseif stop ~= nil then
-        ascii_candidate(s, i, stop + 1 - i, items)
-        i = stop + 1
+        length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
-        reject(s, i, MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII), items)
-        i = i + MAX_ASCII
+        length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
       elseif final then
-        reject(s, i, n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END, items)
-        i = n
+        length, reason = n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END
       else
         break -- wait for the rest of the frame
       end
+      ascii_candidate(s, i, length, items, reason)
+      i = i + length
     end
   end
   return i

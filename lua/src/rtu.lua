@@ -14,59 +14,54 @@ local function valid_frame_at(s, b, i, n, final, scan)
     if final then return i == n end
     return nil
   end
-  local slave = b[i] -- (any address: 248..255 are framed, the decoder warns)
-  local undecided = false -- a CRC scan found nothing yet, but a longer frame may still arrive
-  local list = interpretations(s, slave, b[i + 1], b, i, n)
+  local found = false -- (nil: a CRC scan found nothing yet, but a longer frame may still arrive)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n) -- (any address: 248..255 are framed)
   for index = 1, #list do
     local length, is_scan, _, fallback = list[index][2](b, i, n)
-    if is_scan then
-      if scan ~= false then
-        if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
-        undecided = undecided or (not final and n - i < MAX_ADU)
-      end
-    elseif length == NEED then
+    if not is_scan and length == NEED then
       if final then return false end
       return nil
-    elseif length >= MIN_ADU and length <= MAX_ADU then
+    elseif not is_scan and length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
         if not final then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
-      elseif fallback ~= nil and scan ~= false then -- (its rule's CRC scan where the CRC fails: as is_scan)
-        if crc_scan(b, i, fallback, math.min(n - i, MAX_ADU)) > 0 then return true end
-        undecided = undecided or (not final and n - i < MAX_ADU)
+      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails)
+        is_scan, length = true, fallback
       end
     end
+    if is_scan and scan ~= false then
+      if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
+      if not final and n - i < MAX_ADU then found = nil end
+    end
   end
-  if undecided then return nil end
-  return false
+  return found
 end
 
 -- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
 -- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
 -- the input was cut.
 local function intact_inside(s, b, i, length, n, final)
-  local undecided = false
+  local found = false
   for j = i + 1, i + length - 1 do
-    local found = valid_frame_at(s, b, j, n, final, false)
-    if found then return true end
-    if found == nil then undecided = true end
+    local at = valid_frame_at(s, b, j, n, final, false)
+    if at then return true end
+    if at == nil then found = nil end
   end
-  if undecided then return nil end
-  return false
+  return found
 end
 
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
--- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
--- that tell have not come yet.
-local function followed(s, b, stop, n, final, at_end)
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes (at most `skip`,
+-- GLITCH_SKIP unless given); nil: the bytes that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end, skip)
   local j = stop
   while true do
     if final and j == n then return at_end ~= false end
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
-    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
+    if j < n and GLITCH[b[j]] and j - stop < (skip or GLITCH_SKIP) then j = j + 1 else return false end
   end
 end
 
@@ -109,11 +104,6 @@ local function confirmed(s, b, i, kind, length, n, final)
     return answered(s, b, i, stop, n, final)
   end
   return false
-end
-
--- Is i where a frame is expected: in step, at a record boundary, after nothing but glitch bytes since one?
-local function anchored(s, i)
-  return s.noise == nil or s.glitches_only or boundary_at(s, i)
 end
 
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
@@ -162,10 +152,8 @@ local function scan_match(s, b, i, n, minimum, final)
   for pass = from, 2 do
     for k = 1, #lengths do
       local length = lengths[k]
-      local following
       -- (a record's end right after it settles the first pass as a frame there would: _timedframe.h decide_at)
-      if pass == 1 then following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
-      else following = followed(s, b, i + length, n, final) end
+      local following = followed(s, b, i + length, n, final, true, pass == 1 and 0 or GLITCH_SKIP)
       if following == nil then return NEED end
       if following then
         local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
@@ -182,11 +170,8 @@ end
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
-  local slave, code = b[i], b[i + 1]
-  if not awaited(s, b, i, n) then return nil end
-  local first = interpretations(s, slave, code, b, i, n)[1]
-  if first == nil then return nil end
-  local length, is_scan, declared = first[2](b, i, n)
+  local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
+  if kind == nil then return nil end
   if is_scan then
     -- (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
     if declared == nil or declared == NONE then return nil end
@@ -196,10 +181,7 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  local what = "exception response"
-  if first[1] == RESPONSE then what = "response" end
-  if length == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, n - i) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, n - i, length)
+  return cut_reason(kind, n - i, length)
 end
 
 -- The list with value appended (a new list for nil: most positions have none).
@@ -233,17 +215,32 @@ local function record_start(s, i)
   return false
 end
 
+-- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at,
+-- boundary_after) finds a frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
+local function first_confirmed(s, b, i, n, final, list, test)
+  for index = 1, #list do
+    local following = test(s, b, i + list[index][2], n, final)
+    if following == nil then return NEED end
+    if following then return list[index] end
+  end
+  return nil
+end
+local function boundary_after(s, _, stop) return boundary_at(s, stop) end
+
+local function shortest_first(list)
+  local order = { table.unpack(list) }
+  table.sort(order, function(x, y) return x[2] < y[2] end)
+  return order
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
   local slave, code = b[i], b[i + 1]
   if GLITCH_ADDRESSES[slave] then -- (a glitch byte that is no device's address, before an intact frame)
     local after = valid_frame_at(s, b, i + 1, n, final)
-    if after == nil then
-      if not ends_record(s, b, i, n) then return NEED end
-    elseif after then
-      return NONE
-    end
+    if after then return NONE end
+    if after == nil and not ends_record(s, b, i, n) then return NEED end
   end
   local valid, damaged, waiting = nil, nil, nil
   local list = interpretations(s, slave, code, b, i, n)
@@ -251,6 +248,18 @@ local function match(s, b, i, n, final)
   for index = 1, #list do
     local kind = list[index][1]
     local length, is_scan, declared, fallback = list[index][2](b, i, n)
+    local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
+    if not is_scan and (length == NEED or (sized and i + length > n)) then
+      if not final then waiting = added(waiting, length) end -- (its bytes have not all come)
+    elseif sized then
+      if crc_ok_at(b, i, length) then
+        valid = added(valid, { kind, length })
+      elseif fallback == nil then
+        damaged = added(damaged, { kind, length })
+      else -- (its rule's CRC scan where the CRC fails)
+        is_scan, length, declared = true, fallback, length
+      end
+    end
     if is_scan then
       local found = scan_match(s, b, i, n, length, final)
       if found == NEED then
@@ -260,62 +269,29 @@ local function match(s, b, i, n, final)
       elseif declared ~= nil and declared >= MIN_ADU and declared <= MAX_ADU and declared <= n - i then
         damaged = added(damaged, { kind, declared }) -- (the length its fields give, its CRC bad: rtu.py)
       end
-    elseif length == NEED then
-      if not final then waiting = added(waiting, NEED) end
-    elseif length >= MIN_ADU and length <= MAX_ADU then
-      if i + length > n then
-        if not final then waiting = added(waiting, length) end
-      elseif crc_ok_at(b, i, length) then
-        valid = added(valid, { kind, length })
-      elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails: as is_scan above)
-        local found = scan_match(s, b, i, n, fallback, final)
-        if found == NEED then
-          waiting = added(waiting, NEED)
-        elseif found > 0 then
-          valid = added(valid, { kind, found })
-        else
-          damaged = added(damaged, { kind, length })
-        end
-      else
-        damaged = added(damaged, { kind, length })
-      end
     end
-  end
-  if valid ~= nil and #valid == 1 then
-    local kind, length = valid[1][1], valid[1][2]
-    -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
-    -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
-    local expected = kind == RESPONSE and awaits
-    if not expected and not boundary_at(s, i + length) and waiting ~= nil then
-      for index = 1, #waiting do
-        if waiting[index] == NEED or waiting[index] == length + 1 then return NEED end
-      end
-    end
-    return kind, length, true
   end
   if valid ~= nil then
-    -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
-    -- else a record boundary, the answer awaited, then what follows decides.
-    if s.glitch_runs >= GLITCHY_AFTER then
-      local order = {}
-      for index = 1, #valid do order[index] = valid[index] end
-      table.sort(order, function(x, y) return x[2] < y[2] end)
-      for index = 1, #order do
-        local following = followed(s, b, i + order[index][2], n, final)
-        if following == nil then return NEED end
-        if following then return order[index][1], order[index][2], true end
+    local chosen = valid[1]
+    if #valid == 1 then
+      -- CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one byte
+      -- longer. Unless this is the answer awaited, wait when a layout one byte longer may still arrive.
+      if waiting ~= nil and not (chosen[1] == RESPONSE and awaits) and not boundary_at(s, i + chosen[2]) then
+        for index = 1, #waiting do
+          if waiting[index] == NEED or waiting[index] == chosen[2] + 1 then return NEED end
+        end
       end
+    else
+      -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
+      -- else a record boundary, the answer awaited, then what follows decides.
+      local glitchy = s.glitch_runs >= GLITCHY_AFTER
+      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed)
+        or first_confirmed(s, b, i, n, final, valid, boundary_after)
+        or (awaits and chosen[1] == RESPONSE and chosen)
+        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or chosen
+      if chosen == NEED then return NEED end
     end
-    for index = 1, #valid do
-      if boundary_at(s, i + valid[index][2]) then return valid[index][1], valid[index][2], true end
-    end
-    if awaits and valid[1][1] == RESPONSE then return valid[1][1], valid[1][2], true end
-    for index = 1, #valid do
-      local following = valid_frame_at(s, b, i + valid[index][2], n, final)
-      if following == nil then return NEED end
-      if following then return valid[index][1], valid[index][2], true end
-    end
-    return valid[1][1], valid[1][2], true
+    return chosen[1], chosen[2], true
   end
   if waiting ~= nil then return NEED end
   -- (a reserved address counts with a good CRC only: a glitch byte is one too; so does a broadcast the
@@ -422,76 +398,69 @@ local function run_rtu(s, final, items)
   local i = 0
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
-    local skipped = false
     if n - i < MIN_ADU then
       add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
+    local stop, first = i, nil -- (noise to stop: a repetition decided before, or bytes no frame starts at)
     -- (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
     if s.noise == nil or final then
       since = -1
     elseif since < 0 or s.noise_cut ~= was_cut or s.glitches_only ~= was_only then
       since, was_cut, was_only = i, s.noise_cut, s.glitches_only
     elseif i >= retry and i - since >= REPEAT_PROBE then
-      local stop
       stop, retry = repeats(s, b, i, since, n, i + NOISE_ITEM_MAX - s.noise.length)
-      if stop > i then
-        add_noise(s, i, stop, NO_FRAME, items)
-        i = stop
-        skipped = true
+    end
+    local slave, code = b[i], b[i + 1]
+    if stop == i then first = interpretations(s, slave, code, b, i, n)[1] end
+    if stop == i and first == nil then
+      -- No frame starts here: skip to the next byte pair that could start one.
+      stop = i + 1
+      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
+      if stop >= n - 1 then stop = final and n or n - 1 end
+    end
+    if stop == i then
+      local kind, length, crc_ok = nil, nil, true
+      -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
+      -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
+      -- what match would weigh): nearly every frame of a clean bus.
+      if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
+        local found, is_scan = first[2](b, i, n)
+        if not is_scan and found >= MIN_ADU and found <= MAX_ADU
+            and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
+            and crc_ok_at(b, i, found) then
+          kind, length = first[1], found
+        end
+      end
+      if kind == nil then
+        local cut = final and cut_answer(s, b, i, n)
+        if cut then
+          add_noise(s, i, n, cut, items)
+          return n
+        end
+        kind, length, crc_ok = match(s, b, i, n, final)
+        if kind == NEED then break end
+        -- Resynchronising inside noise (not in step, at a record boundary, after nothing but glitch bytes
+        -- since one): random bytes pass a CRC 1 time in 65,536 per layout tried, so such a frame counts
+        -- only when the line confirms it (rtu.py _confirmed).
+        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
+            and not (s.noise == nil or s.glitches_only or boundary_at(s, i)) then
+          local following = confirmed(s, b, i, kind, length, n, final)
+          if following == nil then break end
+          if not following then kind = NONE end
+        end
+      end
+      if kind == NONE then
+        stop = i + 1
+      else
+        local offset = s.base + i
+        emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
+        i = i + length
       end
     end
-    if not skipped then
-      local slave, code = b[i], b[i + 1]
-      local first = interpretations(s, slave, code, b, i, n)[1]
-      if first == nil then
-        -- No frame starts here: skip to the next byte pair that could start one.
-        local stop = i + 1
-        while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
-        if stop >= n - 1 then stop = final and n or n - 1 end
-        add_noise(s, i, stop, NO_FRAME, items)
-        i = stop
-      else
-        local kind, length, crc_ok = nil, nil, true
-        -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
-        -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
-        -- what match would weigh): nearly every frame of a clean bus.
-        if s.noise == nil and fast_interpretation(s, first, slave, code) and not GLITCH_ADDRESSES[slave] then
-          local found, is_scan = first[2](b, i, n)
-          if not is_scan and found >= MIN_ADU and found <= MAX_ADU
-              and ((i + found < n and b[i + found] ~= 0) or (i + found == n and boundary_at(s, n)))
-              and crc_ok_at(b, i, found) then
-            kind, length = first[1], found
-          end
-        end
-        if kind == nil then
-          local cut = final and cut_answer(s, b, i, n)
-          if cut then
-            add_noise(s, i, n, cut, items)
-            return n
-          end
-          kind, length, crc_ok = match(s, b, i, n, final)
-          if kind == NEED then break end
-          if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
-              and not anchored(s, i) then
-            -- Resynchronising inside noise: random bytes pass a CRC 1 time in 65,536 per layout tried, so
-            -- such a frame counts only when the line confirms it (rtu.py _confirmed).
-            local following = confirmed(s, b, i, kind, length, n, final)
-            if following == nil then break end
-            if not following then kind = NONE end
-          end
-        end
-        if kind == NONE then
-          add_noise(s, i, i + 1, NO_FRAME, items)
-          i = i + 1
-        else
-          local offset = s.base + i
-          local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok)
-          emit(s, frame, items)
-          if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat)
-          i = i + length
-        end
-      end
+    if stop > i then
+      add_noise(s, i, stop, NO_FRAME, items)
+      i = stop
     end
   end
   return i

@@ -122,4 +122,22 @@ local function emit(s, frame, items)
   s.noise_cut = false
   items[#items + 1] = frame
   expect_after(s, frame)
+  if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
+end
+
+-- The first interpretation of the answer awaited at b[i] and what its rule gives there (length, is_scan,
+-- declared), or nil: what the framers weigh at the end of the capture (rtu.py, ascii.py _cut_answer).
+local function awaited_reading(s, b, i, n)
+  if not awaited(s, b, i, n) then return nil end
+  local first = interpretations(s, b[i], b[i + 1], b, i, n)[1]
+  if first == nil then return nil end
+  return first[1], first[2](b, i, n)
+end
+
+-- Why bytes are noise when they begin the answer awaited (of `kind`) and the capture ends inside it:
+-- `got` of its `total` bytes (NEED: not known).
+local function cut_reason(kind, got, total)
+  local what = kind == RESPONSE and "response" or "exception response"
+  if total == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, got) end
+  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, got, total)
 end
