@@ -1222,27 +1222,21 @@ static PyObject *engine_get_object(Engine *e, void *closure) {
     return Py_NewRef(value != NULL ? value : Py_None);
 }
 
-/* stats and judge are set between two runs only, to an object that `fits` or to None (NULL). */
-static int set_between_runs(Engine *e, PyObject **field, PyObject *value, int fits, const char *name,
-                            const char *expected) {
-    if (!idle(e, name)) return -1;
-    if (value != NULL && value != Py_None && !fits) {
-        PyErr_Format(PyExc_TypeError, "%s: %s", name, expected);
+/* stats and judge (at offset `closure`) are set between two runs only, to a Stats or to the judge bitmap
+ * (a bit per slave and function code), or to None (NULL). */
+static int engine_set_object(Engine *e, PyObject *value, void *closure) {
+    int judge = (size_t)closure == offsetof(Engine, judge);
+    int fits = value == NULL || value == Py_None || (judge ? PyBytes_Check(value) && PyBytes_GET_SIZE(value) == 256 * 32
+                                                           : PyObject_TypeCheck(value, &StatsType));
+    if (!idle(e, judge ? "judge" : "stats")) return -1;
+    if (!fits) {
+        PyErr_SetString(PyExc_TypeError, judge ? "judge: 8192 bytes (a bit per slave and function code) or None"
+                                               : "stats: a Stats or None");
         return -1;
     }
+    PyObject **field = (PyObject **)((char *)e + (size_t)closure);
     Py_XSETREF(*field, value == Py_None ? NULL : Py_XNewRef(value));
     return 0;
-}
-
-static int engine_set_judge(Engine *e, PyObject *value, void *closure) {
-    int fits = value != NULL && PyBytes_Check(value) && PyBytes_GET_SIZE(value) == 256 * 32;
-    return set_between_runs(e, &e->judge, value, fits, "judge",
-                            "8192 bytes (a bit per slave and function code) or None");
-}
-
-static int engine_set_stats(Engine *e, PyObject *value, void *closure) {
-    int fits = value != NULL && PyObject_TypeCheck(value, &StatsType);
-    return set_between_runs(e, &e->stats, value, fits, "stats", "a Stats or None");
 }
 
 /* The objects an engine holds: its three callbacks in engine_init's order, then what it keeps. */
@@ -1335,9 +1329,9 @@ static PyMemberDef engine_members[] = {
 };
 
 static PyGetSetDef engine_getset[] = {
-    {"stats", (getter)engine_get_object, (setter)engine_set_stats,
+    {"stats", (getter)engine_get_object, (setter)engine_set_object,
      "a Stats that counts every transaction shown here (--stats), or None", (void *)offsetof(Engine, stats)},
-    {"judge", (getter)engine_get_object, (setter)engine_set_judge,
+    {"judge", (getter)engine_get_object, (setter)engine_set_object,
      "profile auto's first pass: a bit per (slave, function) whose frames go to the Python stages; no lines",
      (void *)offsetof(Engine, judge)},
     {NULL, NULL, NULL, NULL, NULL},
