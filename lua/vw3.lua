@@ -5344,8 +5344,7 @@ end
 
 -- str.__repr__ of a text (a device object's latin-1 characters are held as UTF-8 too), quotes as Python picks.
 local function python_repr(text)
-  local quote = "'"
-  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
+  local quote = text:find("'", 1, true) and not text:find('"', 1, true) and '"' or "'"
   return quote .. printable(text, quote) .. quote
 end
 
@@ -5394,8 +5393,7 @@ local function map_int(text)
   text = strip(text)
   local hex = text:match("^16#(%x+)$") or text:match("^0[xX](%x+)$")
   if hex then return tonumber(hex, 16) end
-  if text:match("^[+-]?%d+$") then return tonumber(text) end
-  return nil
+  return text:match("^[+-]?%d+$") and tonumber(text) or nil
 end
 
 local function map_pairs(text, what)
@@ -5423,9 +5421,7 @@ local function scale_decimals(text)
   if mantissa == nil then mantissa, exponent = text:match("^[+-]?([%d.]+)$"), "0" end
   if mantissa == nil or not mantissa:match("^%d*%.?%d*$") or not mantissa:match("%d") then return nil end
   local fraction = (mantissa:match("%.(%d*)$") or ""):gsub("0+$", "")
-  local decimals = #fraction - tonumber(exponent)
-  if decimals < 0 then return 0 end
-  return decimals
+  return math.max(0, #fraction - tonumber(exponent))
 end
 
 -- A column of a few choices (access, signed, type, order): its cell, case folded, or `default` when empty;
@@ -5659,11 +5655,17 @@ local function span_name(run)
   return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
 end
 
+-- A shallow copy of a table.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 -- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
 local function layered_rows(profile, applies)
   if #config.layers == 0 then return profile.map or {} end
-  local rows = {}
-  for address, row in pairs(profile.map or {}) do rows[address] = row end
+  local rows = copied(profile.map or {})
   for _, layer in ipairs(config.layers) do
     if applies(layer) then
       -- (maps.overlay: a layer row hides every row it overlaps, a 32-bit row's two registers counted)
@@ -5677,13 +5679,6 @@ local function layered_rows(profile, applies)
     end
   end
   return rows
-end
-
--- A shallow copy of a table.
-local function copied(t)
-  local copy = {}
-  for key, value in pairs(t) do copy[key] = value end
-  return copy
 end
 
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own
@@ -6387,8 +6382,7 @@ local function fits(f, name, registers)
       return false
     end
   end
-  if known == 0 then return nil end
-  return marker or true
+  return known > 0 and (marker or true) or nil
 end
 
 -- selection._Evidence: the reads a candidate's map explains (found.order: their keys as first seen).
@@ -6522,7 +6516,7 @@ local function hold(st, f, b)
   end
   if f.request ~= nil then
     copy.request = copied(f.request)
-    if f.request.registers ~= nil then copy.request.registers = copied(f.request.registers) end
+    copy.request.registers = f.request.registers and copied(f.request.registers)
   end
   if f.objects ~= nil then
     copy.objects = {}

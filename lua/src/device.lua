@@ -47,11 +47,17 @@ local function span_name(run)
   return (a.label or format("%d", a.address)) .. ".." .. (b.label or format("%d", b.address))
 end
 
+-- A shallow copy of a table.
+local function copied(t)
+  local copy = {}
+  for key, value in pairs(t) do copy[key] = value end
+  return copy
+end
+
 -- A profile's map with the map layers given at run time laid over it, those for which applies(layer).
 local function layered_rows(profile, applies)
   if #config.layers == 0 then return profile.map or {} end
-  local rows = {}
-  for address, row in pairs(profile.map or {}) do rows[address] = row end
+  local rows = copied(profile.map or {})
   for _, layer in ipairs(config.layers) do
     if applies(layer) then
       -- (maps.overlay: a layer row hides every row it overlaps, a 32-bit row's two registers counted)
@@ -65,13 +71,6 @@ local function layered_rows(profile, applies)
     end
   end
   return rows
-end
-
--- A shallow copy of a table.
-local function copied(t)
-  local copy = {}
-  for key, value in pairs(t) do copy[key] = value end
-  return copy
 end
 
 -- The device of a slave under a profile: merged map, bits_depend rules, address style, and its own

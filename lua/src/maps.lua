@@ -108,8 +108,7 @@ end
 
 -- str.__repr__ of a text (a device object's latin-1 characters are held as UTF-8 too), quotes as Python picks.
 local function python_repr(text)
-  local quote = "'"
-  if text:find("'", 1, true) and not text:find('"', 1, true) then quote = '"' end
+  local quote = text:find("'", 1, true) and not text:find('"', 1, true) and '"' or "'"
   return quote .. printable(text, quote) .. quote
 end
 
@@ -158,8 +157,7 @@ local function map_int(text)
   text = strip(text)
   local hex = text:match("^16#(%x+)$") or text:match("^0[xX](%x+)$")
   if hex then return tonumber(hex, 16) end
-  if text:match("^[+-]?%d+$") then return tonumber(text) end
-  return nil
+  return text:match("^[+-]?%d+$") and tonumber(text) or nil
 end
 
 local function map_pairs(text, what)
@@ -187,9 +185,7 @@ local function scale_decimals(text)
   if mantissa == nil then mantissa, exponent = text:match("^[+-]?([%d.]+)$"), "0" end
   if mantissa == nil or not mantissa:match("^%d*%.?%d*$") or not mantissa:match("%d") then return nil end
   local fraction = (mantissa:match("%.(%d*)$") or ""):gsub("0+$", "")
-  local decimals = #fraction - tonumber(exponent)
-  if decimals < 0 then return 0 end
-  return decimals
+  return math.max(0, #fraction - tonumber(exponent))
 end
 
 -- A column of a few choices (access, signed, type, order): its cell, case folded, or `default` when empty;

@@ -98,8 +98,7 @@ local function fits(f, name, registers)
       return false
     end
   end
-  if known == 0 then return nil end
-  return marker or true
+  return known > 0 and (marker or true) or nil
 end
 
 -- selection._Evidence: the reads a candidate's map explains (found.order: their keys as first seen).
@@ -233,7 +232,7 @@ local function hold(st, f, b)
   end
   if f.request ~= nil then
     copy.request = copied(f.request)
-    if f.request.registers ~= nil then copy.request.registers = copied(f.request.registers) end
+    copy.request.registers = f.request.registers and copied(f.request.registers)
   end
   if f.objects ~= nil then
     copy.objects = {}
