@@ -168,6 +168,9 @@ local DATA = {
     },
     ["delimiters"] = { 58, 13, 10 },
     ["mode_sample"] = 64,
+    ["sets_delimiter"] = {
+      [3] = true,
+    },
   },
   ["map_format"] = {
     ["columns"] = {
@@ -724,6 +727,34 @@ local DATA = {
     [20] = true,
     [24] = true,
     [43] = true,
+  },
+  ["plain_texts"] = {
+    ["odd_diagnostic_data"] = "diagnostic data is not a whole number of words",
+    ["character_then_00"] = "a character, then 00",
+    ["never_answered"] = "no response expected: the spec's server returns none",
+    ["unmatched"] = "response without a matching request in the capture",
+    ["broadcast_address"] = "response from slave 0, the broadcast address: a server answers with its own address",
+    ["capture_ends"] = "the capture ends before any response",
+    ["capture_ends_unknown"] = "the capture ends before any response: not known whether it was answered",
+    ["lf_without_cr"] = "line ends with LF without CR (the spec ends a frame with CR LF)",
+    ["cr_without_lf"] = "line ends with CR without LF, before the next ':' (the spec ends a frame with CR LF)",
+    ["lower_case_hex"] = "lower-case hex digits (the spec wants upper case)",
+    ["no_frame"] = "no valid frame",
+    ["too_short"] = "too short for a frame",
+    ["outside_ascii"] = "outside an ASCII frame",
+    ["cut_by_colon"] = "ASCII frame cut short by the next ':'",
+    ["cut_by_end"] = "ASCII frame cut off by the end of the capture",
+    ["not_hex_pairs"] = "ASCII frame is not made of hex pairs",
+    ["ascii_too_short"] = "ASCII frame too short",
+    ["lrc_ok"] = "LRC ok",
+    ["became_protected"] = "became protected",
+    ["became_unknown"] = "became non-existent or protected",
+    ["readable_again"] = "readable again",
+    ["marker_now"] = "16#8000 now",
+    ["marker_non_existent"] = "16#8000: non-existent (address not in the map)",
+    ["marker_protected"] = "16#8000: protected",
+    ["no_bit_set"] = "no bit set",
+    ["missing_exception"] = "Missing exception code",
   },
   ["pairing"] = {
     ["echo"] = {
@@ -3720,12 +3751,11 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
 local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
 local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
-local crc_string_ok, cut_reason, emit, format = crc_string_ok, cut_reason, emit, format
-local interpretations, math, pairs, possible_start, table = interpretations, math, pairs, possible_start, table
-local time_at = time_at
+local crc_string_ok, cut_reason, emit, interpretations = crc_string_ok, cut_reason, emit, interpretations
+local math, pairs, possible_start, table, time_at = math, pairs, possible_start, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
-local NO_FRAME, TOO_SHORT = format(DATA.rules.texts.no_frame.format), format(DATA.rules.texts.too_short.format)
+local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -3772,16 +3802,16 @@ local function intact_inside(s, b, i, length, n, final)
 end
 
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
--- false), a record boundary, or an intact frame, right there or after a few glitch bytes (at most `skip`,
--- GLITCH_SKIP unless given); nil: the bytes that tell have not come yet.
-local function followed(s, b, stop, n, final, at_end, skip)
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
+-- that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end)
   local j = stop
   while true do
     if final and j == n then return at_end ~= false end
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
-    if j < n and GLITCH[b[j]] and j - stop < (skip or GLITCH_SKIP) then j = j + 1 else return false end
+    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
   end
 end
 
@@ -3872,8 +3902,10 @@ local function scan_match(s, b, i, n, minimum, final)
   for pass = from, 2 do
     for k = 1, #lengths do
       local length = lengths[k]
+      local following
       -- (a record's end right after it settles the first pass as a frame there would: _timedframe.h decide_at)
-      local following = followed(s, b, i + length, n, final, true, pass == 1 and 0 or GLITCH_SKIP)
+      if pass == 1 then following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
+      else following = followed(s, b, i + length, n, final) end
       if following == nil then return NEED end
       if following then
         local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
@@ -3935,8 +3967,8 @@ local function record_start(s, i)
   return false
 end
 
--- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at,
--- boundary_after) finds a frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
+-- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at) finds a
+-- frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
 local function first_confirmed(s, b, i, n, final, list, test)
   for index = 1, #list do
     local following = test(s, b, i + list[index][2], n, final)
@@ -3945,7 +3977,6 @@ local function first_confirmed(s, b, i, n, final, list, test)
   end
   return nil
 end
-local function boundary_after(s, _, stop) return boundary_at(s, stop) end
 
 local function shortest_first(list)
   local order = { table.unpack(list) }
@@ -4005,10 +4036,12 @@ local function match(s, b, i, n, final)
       -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
       -- else a record boundary, the answer awaited, then what follows decides.
       local glitchy = s.glitch_runs >= GLITCHY_AFTER
-      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed)
-        or first_confirmed(s, b, i, n, final, valid, boundary_after)
-        or (awaits and chosen[1] == RESPONSE and chosen)
-        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or chosen
+      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed) or nil
+      for index = 1, #valid do
+        if chosen == nil and boundary_at(s, i + valid[index][2]) then chosen = valid[index] end
+      end
+      chosen = chosen or (awaits and valid[1][1] == RESPONSE and valid[1])
+        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or valid[1]
       if chosen == NEED then return NEED end
     end
     return chosen[1], chosen[2], true
@@ -4122,7 +4155,7 @@ local function run_rtu(s, final, items)
       add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
-    local stop, first = i, nil -- (noise to stop: a repetition decided before, or bytes no frame starts at)
+    local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
     -- (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
     if s.noise == nil or final then
       since = -1
@@ -4132,14 +4165,17 @@ local function run_rtu(s, final, items)
       stop, retry = repeats(s, b, i, since, n, i + NOISE_ITEM_MAX - s.noise.length)
     end
     local slave, code = b[i], b[i + 1]
-    if stop == i then first = interpretations(s, slave, code, b, i, n)[1] end
-    if stop == i and first == nil then
-      -- No frame starts here: skip to the next byte pair that could start one.
-      stop = i + 1
-      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
-      if stop >= n - 1 then stop = final and n or n - 1 end
-    end
-    if stop == i then
+    local first = stop == i and interpretations(s, slave, code, b, i, n)[1] or nil
+    if first == nil then
+      if stop == i then
+        -- No frame starts here: skip to the next byte pair that could start one.
+        stop = i + 1
+        while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
+        if stop >= n - 1 then stop = final and n or n - 1 end
+      end
+      add_noise(s, i, stop, NO_FRAME, items)
+      i = stop
+    else
       local kind, length, crc_ok = nil, nil, true
       -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
       -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
@@ -4171,16 +4207,13 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == NONE then
-        stop = i + 1
+        add_noise(s, i, i + 1, NO_FRAME, items)
+        i = i + 1
       else
         local offset = s.base + i
         emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
         i = i + length
       end
-    end
-    if stop > i then
-      add_noise(s, i, stop, NO_FRAME, items)
-      i = stop
     end
   end
   return i
@@ -4200,13 +4233,9 @@ local DATA, MAX_ADU, NEED, RESPONSE, add_noise = DATA, MAX_ADU, NEED, RESPONSE, 
 local awaited_reading, crc16, cut_reason, emit, floor = awaited_reading, crc16, cut_reason, emit, floor
 local flush_noise, format, interpretations, ipairs, math = flush_noise, format, interpretations, ipairs, math
 local pairs, table, time_at = pairs, table, time_at
--- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
-local TEXTS = DATA.rules.texts
-local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
-local CR_WITHOUT_LF = format(TEXTS.cr_without_lf.format)
-local OUTSIDE_ASCII, NOT_HEX_PAIRS = format(TEXTS.outside_ascii.format), format(TEXTS.not_hex_pairs.format)
-local CUT_BY_COLON, CUT_BY_END = format(TEXTS.cut_by_colon.format), format(TEXTS.cut_by_end.format)
-local ASCII_TOO_SHORT, LRC_OK = format(TEXTS.ascii_too_short.format), format(TEXTS.lrc_ok.format)
+-- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
+-- filled in; the others' formats take them in the text's order)
+local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
@@ -4217,8 +4246,7 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 -- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
-local SETS_DELIMITER = {}
-for sub, rule in pairs(DATA.rules.diagnostic_data) do SETS_DELIMITER[sub] = rule.character ~= nil or nil end
+local SETS_DELIMITER = DATA.ascii.sets_delimiter
 
 local function lrc(bytes_, count)
   local sum = 0
@@ -4313,16 +4341,16 @@ local function ascii_candidate(s, at, length, items, reason)
   local lost_lf = b[at + length - 1] == CR
   local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
   local digits = (lost_cr or lost_lf) and length - 2 or length - 3
-  if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
+  if digits % 2 == 1 then return reject(s, at, length, TEXT.not_hex_pairs, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
-  if bin == nil then return reject(s, at, length, NOT_HEX_PAIRS, items) end
-  if count < MIN_BINARY then return reject(s, at, length, ASCII_TOO_SHORT, items) end
+  if bin == nil then return reject(s, at, length, TEXT.not_hex_pairs, items) end
+  if count < MIN_BINARY then return reject(s, at, length, TEXT.ascii_too_short, items) end
   local slave, code = bin[0], bin[1]
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
-    local check = received == expected and LRC_OK or format(TEXTS.lrc_wrong.format, received, expected)
+    local check = received == expected and TEXT.lrc_ok or format(TEXTS.lrc_wrong.format, received, expected)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   local offset = s.base + at
@@ -4332,9 +4360,9 @@ local function ascii_candidate(s, at, length, items, reason)
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
   if lost_cr or lost_lf or lower then frame.warnings = {} end
-  if lost_lf then frame.warnings[1] = CR_WITHOUT_LF end
-  if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
-  if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
+  if lost_lf then frame.warnings[1] = TEXT.cr_without_lf end
+  if lost_cr then frame.warnings[1] = TEXT.lf_without_cr end
+  if lower then frame.warnings[#frame.warnings + 1] = TEXT.lower_case_hex end
   if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
 end
@@ -4366,7 +4394,7 @@ local function run_ascii(s, final, items)
     if b[i] ~= COLON then
       local stop = i + 1
       while stop < n and b[stop] ~= COLON do stop = stop + 1 end
-      add_noise(s, i, stop, OUTSIDE_ASCII, items)
+      add_noise(s, i, stop, TEXT.outside_ascii, items)
       i = stop
     else
       local limit = math.min(n, i + MAX_ASCII)
@@ -4386,13 +4414,13 @@ local function run_ascii(s, final, items)
       local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
       if stop ~= nil and b[stop] == COLON then
         length = stop - i
-        if b[stop - 1] ~= CR then reason = CUT_BY_COLON end -- (after a CR: the LF lost, the CR ends the line)
+        if b[stop - 1] ~= CR then reason = TEXT.cut_by_colon end -- (after a CR: the LF lost, the CR ends it)
       elseif stop ~= nil then
         length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
         length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
       elseif final then
-        length, reason = n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END
+        length, reason = n - i, ascii_cut_answer(s, b, i, n) or TEXT.cut_by_end
       else
         break -- wait for the rest of the frame
       end

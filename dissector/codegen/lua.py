@@ -22,9 +22,9 @@ from typing import Any
 from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table
 from dissector.devices import maps
 from dissector.errors import GenerateError
-from dissector.framing import evidence, rtu as framer, stream as streambuf
+from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
 from dissector.model import CUT_ANSWER
-from dissector.protocol import ascii as ascii_mode, crc, table
+from dissector.protocol import ascii as ascii_mode, crc, rules, table
 from dissector.protocol.spec import SPEC
 from dissector.render import detail, summary
 from dissector.sources import reader
@@ -112,6 +112,8 @@ def plugin_data() -> dict[str, Any]:
             "alphabet": ascii_mode._ALPHABET,  # (the characters of ASCII mode: hex digits, ':', CR, LF)
             "delimiters": [ascii_mode.COLON, ascii_mode.CR, ascii_mode.LF],
             "mode_sample": reader.MODE_SAMPLE,
+            # FC8 sub-functions whose data word is a character then 00: the line end they set (framing/ascii.py).
+            "sets_delimiter": ascii_framer._DELIMITER_SUBFUNCTIONS,
         },
         "map_format": {
             "columns": frozenset(maps.COLUMNS),
@@ -134,6 +136,9 @@ def plugin_data() -> dict[str, Any]:
         # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
         "crc_table": crc._TABLE,
         "not_broadcast": SPEC.not_broadcast,
+        # The catalogue's texts that take no parameters, filled in (protocol/rules.py text()): noise reasons,
+        # the framers' warnings.
+        "plain_texts": {key: rules.text(key) for key in rules.TEXTS if not rules.params(key)},
         # [pairing]: data bytes an answer echoes by function, values of a request's first data word no answer follows
         "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered},
         "user_defined": SPEC.user_defined,

@@ -3,13 +3,9 @@
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
--- (the catalogue's texts, data/modbus.toml [texts], parameters in the text's order: warnings, noise reasons)
-local TEXTS = DATA.rules.texts
-local LF_WITHOUT_CR, LOWER_CASE_HEX = format(TEXTS.lf_without_cr.format), format(TEXTS.lower_case_hex.format)
-local CR_WITHOUT_LF = format(TEXTS.cr_without_lf.format)
-local OUTSIDE_ASCII, NOT_HEX_PAIRS = format(TEXTS.outside_ascii.format), format(TEXTS.not_hex_pairs.format)
-local CUT_BY_COLON, CUT_BY_END = format(TEXTS.cut_by_colon.format), format(TEXTS.cut_by_end.format)
-local ASCII_TOO_SHORT, LRC_OK = format(TEXTS.ascii_too_short.format), format(TEXTS.lrc_ok.format)
+-- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
+-- filled in; the others' formats take them in the text's order)
+local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
 
 -- ---------------------------------------------------------------------------------------------------
 -- Modbus ASCII (dissector/framing/ascii.py): ':' + hex pairs (slave, function, data, LRC) + CR LF. The frame
@@ -20,8 +16,7 @@ local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
 local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
 -- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
-local SETS_DELIMITER = {}
-for sub, rule in pairs(DATA.rules.diagnostic_data) do SETS_DELIMITER[sub] = rule.character ~= nil or nil end
+local SETS_DELIMITER = DATA.ascii.sets_delimiter
 
 local function lrc(bytes_, count)
   local sum = 0
@@ -116,16 +111,16 @@ local function ascii_candidate(s, at, length, items, reason)
   local lost_lf = b[at + length - 1] == CR
   local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
   local digits = (lost_cr or lost_lf) and length - 2 or length - 3
-  if digits % 2 == 1 then return reject(s, at, length, NOT_HEX_PAIRS, items) end
+  if digits % 2 == 1 then return reject(s, at, length, TEXT.not_hex_pairs, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
-  if bin == nil then return reject(s, at, length, NOT_HEX_PAIRS, items) end
-  if count < MIN_BINARY then return reject(s, at, length, ASCII_TOO_SHORT, items) end
+  if bin == nil then return reject(s, at, length, TEXT.not_hex_pairs, items) end
+  if count < MIN_BINARY then return reject(s, at, length, TEXT.ascii_too_short, items) end
   local slave, code = bin[0], bin[1]
   local received, expected = bin[count - 1], lrc(bin, count - 1)
   local kind = classify_ascii(s, bin, count - 1)
   if kind == nil then
-    local check = received == expected and LRC_OK or format(TEXTS.lrc_wrong.format, received, expected)
+    local check = received == expected and TEXT.lrc_ok or format(TEXTS.lrc_wrong.format, received, expected)
     return reject(s, at, length, format(TEXTS.no_layout.format, code, check), items)
   end
   local offset = s.base + at
@@ -135,9 +130,9 @@ local function ascii_candidate(s, at, length, items, reason)
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
   if lost_cr or lost_lf or lower then frame.warnings = {} end
-  if lost_lf then frame.warnings[1] = CR_WITHOUT_LF end
-  if lost_cr then frame.warnings[1] = LF_WITHOUT_CR end
-  if lower then frame.warnings[#frame.warnings + 1] = LOWER_CASE_HEX end
+  if lost_lf then frame.warnings[1] = TEXT.cr_without_lf end
+  if lost_cr then frame.warnings[1] = TEXT.lf_without_cr end
+  if lower then frame.warnings[#frame.warnings + 1] = TEXT.lower_case_hex end
   if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
 end
@@ -169,7 +164,7 @@ local function run_ascii(s, final, items)
     if b[i] ~= COLON then
       local stop = i + 1
       while stop < n and b[stop] ~= COLON do stop = stop + 1 end
-      add_noise(s, i, stop, OUTSIDE_ASCII, items)
+      add_noise(s, i, stop, TEXT.outside_ascii, items)
       i = stop
     else
       local limit = math.min(n, i + MAX_ASCII)
@@ -189,13 +184,13 @@ local function run_ascii(s, final, items)
       local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
       if stop ~= nil and b[stop] == COLON then
         length = stop - i
-        if b[stop - 1] ~= CR then reason = CUT_BY_COLON end -- (after a CR: the LF lost, the CR ends the line)
+        if b[stop - 1] ~= CR then reason = TEXT.cut_by_colon end -- (after a CR: the LF lost, the CR ends it)
       elseif stop ~= nil then
         length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
         length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
       elseif final then
-        length, reason = n - i, ascii_cut_answer(s, b, i, n) or CUT_BY_END
+        length, reason = n - i, ascii_cut_answer(s, b, i, n) or TEXT.cut_by_end
       else
         break -- wait for the rest of the frame
       end

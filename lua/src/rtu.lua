@@ -5,7 +5,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
-local NO_FRAME, TOO_SHORT = format(DATA.rules.texts.no_frame.format), format(DATA.rules.texts.too_short.format)
+local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
@@ -52,16 +52,16 @@ local function intact_inside(s, b, i, length, n, final)
 end
 
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
--- false), a record boundary, or an intact frame, right there or after a few glitch bytes (at most `skip`,
--- GLITCH_SKIP unless given); nil: the bytes that tell have not come yet.
-local function followed(s, b, stop, n, final, at_end, skip)
+-- false), a record boundary, or an intact frame, right there or after a few glitch bytes; nil: the bytes
+-- that tell have not come yet.
+local function followed(s, b, stop, n, final, at_end)
   local j = stop
   while true do
     if final and j == n then return at_end ~= false end
     if boundary_at(s, j) then return true end
     local found = valid_frame_at(s, b, j, n, final)
     if found ~= false then return found end
-    if j < n and GLITCH[b[j]] and j - stop < (skip or GLITCH_SKIP) then j = j + 1 else return false end
+    if j < n and GLITCH[b[j]] and j - stop < GLITCH_SKIP then j = j + 1 else return false end
   end
 end
 
@@ -152,8 +152,10 @@ local function scan_match(s, b, i, n, minimum, final)
   for pass = from, 2 do
     for k = 1, #lengths do
       local length = lengths[k]
+      local following
       -- (a record's end right after it settles the first pass as a frame there would: _timedframe.h decide_at)
-      local following = followed(s, b, i + length, n, final, true, pass == 1 and 0 or GLITCH_SKIP)
+      if pass == 1 then following = boundary_at(s, i + length) or valid_frame_at(s, b, i + length, n, final)
+      else following = followed(s, b, i + length, n, final) end
       if following == nil then return NEED end
       if following then
         local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
@@ -215,8 +217,8 @@ local function record_start(s, i)
   return false
 end
 
--- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at,
--- boundary_after) finds a frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
+-- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at) finds a
+-- frame's end confirmed; NEED when the bytes that tell have not come; nil: none.
 local function first_confirmed(s, b, i, n, final, list, test)
   for index = 1, #list do
     local following = test(s, b, i + list[index][2], n, final)
@@ -225,7 +227,6 @@ local function first_confirmed(s, b, i, n, final, list, test)
   end
   return nil
 end
-local function boundary_after(s, _, stop) return boundary_at(s, stop) end
 
 local function shortest_first(list)
   local order = { table.unpack(list) }
@@ -285,10 +286,12 @@ local function match(s, b, i, n, final)
       -- Two layouts check out: on a line that leaves 00 glitches the shortest reading it confirms (rtu.py),
       -- else a record boundary, the answer awaited, then what follows decides.
       local glitchy = s.glitch_runs >= GLITCHY_AFTER
-      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed)
-        or first_confirmed(s, b, i, n, final, valid, boundary_after)
-        or (awaits and chosen[1] == RESPONSE and chosen)
-        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or chosen
+      chosen = glitchy and first_confirmed(s, b, i, n, final, shortest_first(valid), followed) or nil
+      for index = 1, #valid do
+        if chosen == nil and boundary_at(s, i + valid[index][2]) then chosen = valid[index] end
+      end
+      chosen = chosen or (awaits and valid[1][1] == RESPONSE and valid[1])
+        or first_confirmed(s, b, i, n, final, valid, valid_frame_at) or valid[1]
       if chosen == NEED then return NEED end
     end
     return chosen[1], chosen[2], true
@@ -402,7 +405,7 @@ local function run_rtu(s, final, items)
       add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
       return n
     end
-    local stop, first = i, nil -- (noise to stop: a repetition decided before, or bytes no frame starts at)
+    local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
     -- (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
     if s.noise == nil or final then
       since = -1
@@ -412,14 +415,17 @@ local function run_rtu(s, final, items)
       stop, retry = repeats(s, b, i, since, n, i + NOISE_ITEM_MAX - s.noise.length)
     end
     local slave, code = b[i], b[i + 1]
-    if stop == i then first = interpretations(s, slave, code, b, i, n)[1] end
-    if stop == i and first == nil then
-      -- No frame starts here: skip to the next byte pair that could start one.
-      stop = i + 1
-      while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
-      if stop >= n - 1 then stop = final and n or n - 1 end
-    end
-    if stop == i then
+    local first = stop == i and interpretations(s, slave, code, b, i, n)[1] or nil
+    if first == nil then
+      if stop == i then
+        -- No frame starts here: skip to the next byte pair that could start one.
+        stop = i + 1
+        while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
+        if stop >= n - 1 then stop = final and n or n - 1 end
+      end
+      add_noise(s, i, stop, NO_FRAME, items)
+      i = stop
+    else
       local kind, length, crc_ok = nil, nil, true
       -- Fast path: the likeliest interpretation checks out and the next byte is not a 00 (which may belong
       -- to a longer frame, see match), or the frame ends where the record does (a record boundary settles
@@ -451,16 +457,13 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == NONE then
-        stop = i + 1
+        add_noise(s, i, i + 1, NO_FRAME, items)
+        i = i + 1
       else
         local offset = s.base + i
         emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)
         i = i + length
       end
-    end
-    if stop > i then
-      add_noise(s, i, stop, NO_FRAME, items)
-      i = stop
     end
   end
   return i
