@@ -6035,12 +6035,14 @@ local function describe(device, f, reg, plain, status, words, second)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
-  if row ~= nil and row.words ~= 2 then
-    scaled, text = interpret(plain and device.plain[address] or row, value)
-  elseif row ~= nil and words == 2 then
-    scaled, text = interpret_wide(row, value, second)
-  elseif row ~= nil then
-    text = say("first_word", row)
+  if row ~= nil then -- (nested: most registers of a frame have no row, and each test here is paid per register)
+    if row.words ~= 2 then
+      scaled, text = interpret(plain and device.plain[address] or row, value)
+    elseif words == 2 then
+      scaled, text = interpret_wide(row, value, second)
+    else
+      text = say("first_word", row)
+    end
   elseif words == 0 then -- (a row of its own names a second word as any register, naming.py's loop)
     named = rows[(address + 0xFFFF) % 0x10000]
     text = say("second_word", named)
