@@ -275,6 +275,7 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "documented": explain.documented(profile),  # (as the undocumented exception's note lists them)
         "exception_causes": causes,
         "diagnostics": dict(sorted(profile.diagnostics.items())),
+        "subfunctions": profile.subfunctions,
         "objects": {
             key: {"meaning": meaning.meaning, "format": meaning.format, "max_length": meaning.max_length}
             for key, meaning in sorted(profile.objects.items())

@@ -36,6 +36,9 @@ def check_request(frame: Frame, device: Device) -> None:
         frame.warnings.append(text("not_supported", name=name, function=function, device=profile.device))
     elif function in profile.inner_only:
         frame.warnings.append(text("inner_only", name=name, function=function, device=profile.device))
+    elif _unsupported_subfunction(frame, profile):
+        frame.warnings.append(text("subfunction_not_supported", subfunction=frame.subfunction,
+                                   name=SPEC.diagnostics[frame.subfunction], device=profile.device))
     limits = profile.limits.get(function)
     if limits is not None:
         _check_limits(frame, profile, name, limits)
@@ -48,6 +51,13 @@ def check_request(frame: Frame, device: Device) -> None:
         frame.warnings.append(
             text("device_broadcast", name=name, device=profile.device, allowed=broadcast_allowed(profile))
         )
+
+
+def _unsupported_subfunction(frame: Frame, profile: Profile) -> bool:
+    """An FC8 sub-function the spec defines (fields.py warned of the others) that this device does not answer."""
+    sub = frame.subfunction
+    return profile.subfunctions is not None and sub is not None and sub in SPEC.diagnostics and (
+        sub not in profile.subfunctions)
 
 
 def broadcast_allowed(profile: Profile) -> str:

@@ -78,6 +78,7 @@ class Profile:
     exceptions: dict[int, str] = field(default_factory=dict)
     exception_causes: dict[tuple[int, int], tuple[ExceptionCause, ...]] = field(default_factory=dict)
     diagnostics: dict[int, str] = field(default_factory=dict)
+    subfunctions: frozenset[int] | None = None  # the FC8 sub-functions it answers (None: every one the spec has)
     objects: dict[int, ObjectMeaning] = field(default_factory=dict)
     function_names: dict[int, str] = field(default_factory=dict)
     plc_base: dict[int, int] = field(default_factory=dict)
@@ -218,7 +219,7 @@ _KNOWN_KEYS = frozenset(
     [
         "name", "title", "device", "map", "address_style", "functions", "inner_only", "broadcast",
         "protected_value", "all_protected_exception", "limits", "exceptions", "exception_causes",
-        "diagnostics", "objects", "function_names", "plc_base", "bits_depend", "identify",
+        "diagnostics", "subfunctions", "objects", "function_names", "plc_base", "bits_depend", "identify",
     ]
 )
 
@@ -284,6 +285,7 @@ def parse_profile(text: str, origin: str) -> Profile:
         exceptions=reader.code_names(data, "exceptions"),
         exception_causes=_causes(reader, data),
         diagnostics=reader.code_names(data, "diagnostics", 0xFFFF),
+        subfunctions=reader.codes(data, "subfunctions"),
         objects=_objects(reader, data),
         function_names=reader.code_names(data, "function_names"),
         plc_base=plc_base,

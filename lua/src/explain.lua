@@ -18,8 +18,11 @@ local function check_request(f, device)
   local code = f.fn
   local refused = profile.functions ~= nil and not profile.functions[code] and "not_supported"
     or profile.inner_only[code] and "inner_only"
+  local sub = f.subfunction
   if refused then
     warn(f, say(refused, { name = f.function_text or function_name(code), ["function"] = code, device = profile.device }))
+  elseif sub ~= nil and profile.subfunctions ~= nil and DATA.diagnostics[sub] ~= nil and not profile.subfunctions[sub] then
+    warn(f, say("subfunction_not_supported", { subfunction = sub, name = DATA.diagnostics[sub], device = profile.device }))
   end
   local limits = profile.limits[code]
   if limits ~= nil then
