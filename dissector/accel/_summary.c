@@ -176,7 +176,7 @@ typedef struct {
     uint8_t *dependent;       /* addresses with a bits_depend rule */
     uint8_t *sources;         /* the addresses those rules depend on */
     uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
-    uint8_t *explained;       /* FC8 sub-functions the device profile explains (a note: Python's) */
+    uint8_t *explained;       /* FC8 sub-functions the device explains or lacks (a note, a warning: Python's) */
     long long base[HANDLED];  /* PLC-style display: 40001 + address (naming.plc_label); -1: none */
     unsigned long depend_run; /* the run() the answer below was found in */
     unsigned depend_address;

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.decode.fields import decode_frame
+from dissector.devices.checks import unsupported_subfunctions
 from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
 from dissector.render.describe import function_label, info_text, register_text
@@ -135,7 +136,7 @@ def make_engine(annotator: Any | None, shown: bool = True) -> Any:
             for function, (special, check) in checks.items()
         }
         device = annotator.device(slave)
-        explained = frozenset(device.profile.diagnostics)
+        explained = frozenset(device.profile.diagnostics) | unsupported_subfunctions(device.profile)
         return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases, explained,
                           annotator.namer(slave))
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 
-from dissector.devices.checks import check_request, within_limits
+from dissector.devices.checks import check_request, check_subfunction, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
@@ -418,6 +418,8 @@ class Annotator:
             if frame.broadcast or function not in device.unchecked:
                 if frame.broadcast or not within_limits(frame, device):
                     check_request(frame, device)
+            elif frame.subfunction is not None:
+                check_subfunction(frame, device.profile)
         elif kind is _EXCEPTION:
             explain_exception(frame, device, events)
             if events:

@@ -36,9 +36,8 @@ def check_request(frame: Frame, device: Device) -> None:
         frame.warnings.append(text("not_supported", name=name, function=function, device=profile.device))
     elif function in profile.inner_only:
         frame.warnings.append(text("inner_only", name=name, function=function, device=profile.device))
-    elif _unsupported_subfunction(frame, profile):
-        frame.warnings.append(text("subfunction_not_supported", subfunction=frame.subfunction,
-                                   name=SPEC.diagnostics[frame.subfunction], device=profile.device))
+    else:
+        check_subfunction(frame, profile)
     limits = profile.limits.get(function)
     if limits is not None:
         _check_limits(frame, profile, name, limits)
@@ -53,11 +52,21 @@ def check_request(frame: Frame, device: Device) -> None:
         )
 
 
-def _unsupported_subfunction(frame: Frame, profile: Profile) -> bool:
-    """An FC8 sub-function the spec defines (fields.py warned of the others) that this device does not answer."""
-    sub = frame.subfunction
-    return profile.subfunctions is not None and sub is not None and sub in SPEC.diagnostics and (
-        sub not in profile.subfunctions)
+def unsupported_subfunctions(profile: Profile) -> frozenset[int]:
+    """The FC8 sub-functions the spec defines (fields.py warned of the others) that this device does not
+    answer: the engine hands their requests to the Python stages (accel/fastsummary.py)."""
+    if profile.subfunctions is None:
+        return frozenset()
+    return frozenset(SPEC.diagnostics) - profile.subfunctions
+
+
+def check_subfunction(frame: Frame, profile: Profile) -> None:
+    """A request's FC8 sub-function that this device does not answer, as a warning (its FC8 requests are
+    otherwise unchecked: the annotator calls this alone for them)."""
+    sub, answered = frame.subfunction, profile.subfunctions
+    if answered is not None and sub is not None and sub not in answered and sub in SPEC.diagnostics:
+        frame.warnings.append(text("subfunction_not_supported", subfunction=sub, name=SPEC.diagnostics[sub],
+                                   device=profile.device))
 
 
 def broadcast_allowed(profile: Profile) -> str:

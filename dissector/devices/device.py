@@ -10,7 +10,6 @@ from dataclasses import dataclass, field
 
 from dissector.devices.maps import RegisterDef, RegisterMap, overlay
 from dissector.devices.profiles import BitsDepend, Profile, load_profile_map
-from dissector.protocol.table import subfunction_requests
 
 # What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
 # (how is then its status); how "read" or "written" otherwise. Plain tuples: this is the hot path.
@@ -89,8 +88,7 @@ class DeviceBuilder:
             plc=dict(profile.plc_base) if style == "plc" else None,
             plc_default=profile.plc_base_default,
             track=profile.protected_value is not None or bool(depend),
-            unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits) | (
-                subfunction_requests() if profile.subfunctions is not None else frozenset())),
+            unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits)),
             wide=any(row.words == 2 for row in rows.values()),
             limited={
                 function: limits
@@ -101,7 +99,7 @@ class DeviceBuilder:
 
 
 @functools.lru_cache(maxsize=64)
-def _unchecked(supported: frozenset[int], inner_only: frozenset[int], checked: frozenset[int]) -> frozenset[int]:
-    """Device.unchecked (checked: codes with limits or sub-functions to check), one set for the slaves of one
-    profile (a set of 256 codes is 16 KB: 247 slaves of the generic profile kept 4 MB of them; issue 28)."""
-    return frozenset(supported - inner_only - checked)
+def _unchecked(supported: frozenset[int], inner_only: frozenset[int], limited: frozenset[int]) -> frozenset[int]:
+    """Device.unchecked, one set for the slaves of one profile (a set of 256 codes is 16 KB: 247 slaves of
+    the generic profile kept 4 MB of them; issue 28)."""
+    return frozenset(supported - inner_only - limited)

@@ -341,11 +341,6 @@ def register_reads() -> frozenset[int]:
     )
 
 
-def subfunction_requests() -> frozenset[int]:
-    """Codes whose requests name a sub-function (FC8): a device may answer only some (Profile.subfunctions)."""
-    return frozenset(entry.code for entry in FUNCTIONS if entry.request.handler == "diagnostics")
-
-
 def plain_register_reads() -> frozenset[int]:
     """Reads with no write part: an exception to them concerns the registers read alone."""
     return frozenset(entry.code for entry in FUNCTIONS if entry.data is Data.REGISTERS and entry.access is Access.READ)
