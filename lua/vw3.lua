@@ -7949,7 +7949,7 @@ end
 -- bytes, then how many more) for other data, nothing for none.
 local function data_text(b, first, last)
   local size = last - first + 1
-  if size == 2 then return " = " .. DECIMAL[u16(b, first)] end
+  if size == 2 then return " = " .. DECIMAL[b[first] * 256 + b[first + 1]] end
   if size <= 0 then return "" end
   local shown = size < MAX_DATA_BYTES and size or MAX_DATA_BYTES
   for k = 1, shown do HEX[k] = HEX_BYTE[b[first + k - 1]] end
@@ -7957,52 +7957,72 @@ local function data_text(b, first, last)
   return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
--- The steps of a form (describe._interpreter) on the frame f and its bytes b, its data ending at b[last]:
--- STEPS[name](value, f, b, at, last, extra), where value is the step's field's at b[at] read as u8 or u16
--- (nil where the field has no fixed size), extra what the step's number says, made once (hex: its pattern;
--- fifo: where the values are after their count).
-local STEPS = {
-  dec = function(value) return DECIMAL[value] end,
-  hex = function(value, f, b, at, last, pattern) return format(pattern, value) end,
-  label = function(value, f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end, -- (span_text)
-  coil = function(value) return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value) end,
-  -- (the sub-function as the profile names it, else the spec)
-  subfunction = function(value, f) return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION end,
-  data = function(value, f, b, at, last) return data_text(b, at, last) end,
-}
--- describe's fifo step: the first MAX_FIFO_VALUES of `count` values (none past b[last]).
-function STEPS.fifo(count, f, b, at, last, after)
+-- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
+local function fifo_values(b, count, first, last)
   local made = 0
-  for k = at + after, at + after + 2 * (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 2, 2 do
-    if k + 1 > last then break end
+  for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
+    local at = first + 2 * k
+    if at + 1 > last then break end
     made = made + 1
-    VALUES[made] = DECIMAL[u16(b, k)]
+    VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
   end
   if made == 0 then return "" end
   return " " .. concat(VALUES, " ", 1, made)
 end
 
--- A form as one function of the frame and its bytes (its slave byte at b[base]): its texts as they are,
--- its steps' made by STEPS on their fields' places (fields_at), put together in MADE.
+-- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
+-- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
+-- value read as u8 or u16 (nil where the field has no fixed size).
+local STEPS = {}
+function STEPS.dec(at, size)
+  if size == nil then return function() return DECIMAL[nil] end end
+  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
+end
+function STEPS.hex(at, size, digits)
+  local pattern = "%0" .. digits .. "X"
+  return function(f, b, base)
+    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
+  end
+end
+function STEPS.label() -- (span_text: the window as named, PLC style too)
+  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
+end
+function STEPS.coil(at, size)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
+  end
+end
+function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
+  return function(f, b, base)
+    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
+    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
+  end
+end
+function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
+function STEPS.fifo(at, size, values_at) -- (the values after their count)
+  return function(f, b, base, last)
+    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
+      base + values_at, last)
+  end
+end
+
+-- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
 local function form_function(steps, at_of)
-  local count, texts, places, extras = #steps, {}, {}, {}
-  for index, step in ipairs(steps) do
-    texts[index] = type(step) == "string" and step
-    if not texts[index] then
-      local place = at_of[step[2]] or NO_INTERPRETATION
-      places[index] = place
-      extras[index] = step[1] == "hex" and "%0" .. step[3] .. "X" or step[1] == "fifo" and at_of[step[3]].at - place.at
+  local texts, made, count = {}, {}, #steps
+  for index = 1, count do
+    local step = steps[index]
+    if type(step) == "string" then
+      texts[index] = step
+    else
+      local place, extra = at_of[step[2]], step[3]
+      if step[1] == "fifo" then extra = at_of[step[3]].at end
+      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
     end
   end
   return function(f, b, base, last)
     for index = 1, count do
-      local text, place = texts[index], places[index]
-      if not text then
-        local at, size = base + (place.at or 0), place.size
-        local value = size == 1 and b[at] or size == 2 and u16(b, at) or nil
-        text = STEPS[steps[index][1]](value, f, b, at, last, extras[index])
-      end
-      MADE[index] = text
+      MADE[index] = texts[index] or made[index](f, b, base, last)
     end
     return concat(MADE, "", 1, count)
   end
