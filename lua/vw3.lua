@@ -765,6 +765,38 @@ local DATA = {
         [4] = true,
       },
     },
+    ["same_shape"] = {
+      [5] = true,
+      [6] = true,
+      [8] = true,
+      [20] = true,
+      [21] = true,
+      [22] = true,
+      [65] = true,
+      [66] = true,
+      [67] = true,
+      [68] = true,
+      [69] = true,
+      [70] = true,
+      [71] = true,
+      [72] = true,
+      [96] = true,
+      [97] = true,
+      [98] = true,
+      [100] = true,
+      [101] = true,
+      [102] = true,
+      [103] = true,
+      [104] = true,
+      [105] = true,
+      [106] = true,
+      [107] = true,
+      [108] = true,
+      [109] = true,
+      [110] = true,
+      [125] = true,
+      [126] = true,
+    },
   },
   ["user_defined"] = {
     [65] = true,
@@ -5091,8 +5123,8 @@ package.preload["vw3.pairing"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.pairing"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, REQUEST, RESPONSE, awaits_answer, pairs = DATA, REQUEST, RESPONSE, awaits_answer, pairs
-local release_run, say, type, warn = release_run, say, type, warn
+local DATA, REQUEST, RESPONSE, awaits_answer, release_run = DATA, REQUEST, RESPONSE, awaits_answer, release_run
+local say, warn = say, warn
 local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
@@ -5112,20 +5144,9 @@ local ECHO = DATA.pairing.echo
 -- until the framer's expectation agrees again (st.retried, st.echoed), a frame of SAME_SHAPE takes the kind
 -- the framer would have given it.
 
--- Are two length rules of DATA.protocol.rules the same (a select's rules are tables too)?
-local function same_rule(a, b)
-  if type(a) ~= "table" or type(b) ~= "table" then return a == b end
-  if #a ~= #b then return false end
-  for k = 1, #a do
-    if not same_rule(a[k], b[k]) then return false end
-  end
-  return true
-end
--- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits.
-local SAME_SHAPE = {}
-for code, rules in pairs(DATA.protocol.rules) do
-  if same_rule(rules[1], rules[2]) then SAME_SHAPE[code] = true end
-end
+-- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits
+-- (pairing.py SAME_SHAPE, from the protocol table).
+local SAME_SHAPE = DATA.pairing.same_shape
 
 -- A short frame's bytes after its slave and function (up to 4 data bytes, FC5 and FC6's: its data and CRC
 -- (LRC) as one number, exact in a double), kept for the open request as st.sent (st.sent_for: which): its

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table
+from dissector.decode import pairing
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
@@ -140,7 +141,7 @@ def plugin_data() -> dict[str, Any]:
         # the framers' warnings.
         "plain_texts": {key: rules.text(key) for key in rules.TEXTS if not rules.params(key)},
         # [pairing]: data bytes an answer echoes by function, values of a request's first data word no answer follows
-        "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered},
+        "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered, "same_shape": pairing.SAME_SHAPE},
         "user_defined": SPEC.user_defined,
         "protocol": protocol_tables(),
         "lanes": lanes_lua.lanes_data(),  # (what the quick lanes take of the protocol table: codegen/lanes_lua.py)

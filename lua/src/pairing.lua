@@ -22,20 +22,9 @@ local ECHO = DATA.pairing.echo
 -- until the framer's expectation agrees again (st.retried, st.echoed), a frame of SAME_SHAPE takes the kind
 -- the framer would have given it.
 
--- Are two length rules of DATA.protocol.rules the same (a select's rules are tables too)?
-local function same_rule(a, b)
-  if type(a) ~= "table" or type(b) ~= "table" then return a == b end
-  if #a ~= #b then return false end
-  for k = 1, #a do
-    if not same_rule(a[k], b[k]) then return false end
-  end
-  return true
-end
--- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits.
-local SAME_SHAPE = {}
-for code, rules in pairs(DATA.protocol.rules) do
-  if same_rule(rules[1], rules[2]) then SAME_SHAPE[code] = true end
-end
+-- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits
+-- (pairing.py SAME_SHAPE, from the protocol table).
+local SAME_SHAPE = DATA.pairing.same_shape
 
 -- A short frame's bytes after its slave and function (up to 4 data bytes, FC5 and FC6's: its data and CRC
 -- (LRC) as one number, exact in a double), kept for the open request as st.sent (st.sent_for: which): its
