@@ -111,7 +111,8 @@ def test_modules_are_small_stages_that_name_their_python_module() -> None:
     assert {"dissector/framing/rtu.py", "dissector/framing/ascii.py", "dissector/framing/stream.py",
             "dissector/decode/pairing.py", "dissector/decode/fields.py", "dissector/devices/selection.py",
             "dissector/devices/annotator.py", "dissector/devices/story.py", "dissector/pipeline.py"} <= mirrored
-    assert sum((SRC / f"{name}.lua").read_text().count("\n") for name in PURE + WIRESHARK) > 4000
+    # (the logic is in the modules, not left in vw3.lua; below issue 30's target of about 3,426 lines)
+    assert sum((SRC / f"{name}.lua").read_text().count("\n") for name in PURE + WIRESHARK) > 3000
 
 
 def test_check_fails_when_vw3_lua_is_not_the_assembly(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -2,14 +2,16 @@
 (tests/unit/test_wide_second_alone.py's frames): real tshark, one pass and two."""
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu
-from lua_harness import lua_errors, run_tshark, write_pcap
+from lua_harness import ROOT, lua_errors, run_tshark, write_pcap
 
-from test_wide_second_alone import ATV, FIRST_FREQ, MAP, SECOND_FREQ, SECOND_PWR, SEL
+sys.path.insert(0, str(ROOT / "tests" / "unit"))  # (its frames: collected alone, that module is not on the path)
+from test_wide_second_alone import ATV, FIRST_FREQ, MAP, SECOND_FREQ, SECOND_PWR, SEL  # noqa: E402
 
 pytestmark = pytest.mark.integration
 
