@@ -114,7 +114,7 @@ def plugin_data() -> dict[str, Any]:
             "delimiters": [ascii_mode.COLON, ascii_mode.CR, ascii_mode.LF],
             "mode_sample": reader.MODE_SAMPLE,
             # FC8 sub-functions whose data word is a character then 00: the line end they set (framing/ascii.py).
-            "sets_delimiter": ascii_framer._DELIMITER_SUBFUNCTIONS,
+            "sets_delimiter": ascii_framer.DELIMITER_SUBFUNCTIONS,
         },
         "map_format": {
             "columns": frozenset(maps.COLUMNS),

@@ -34,7 +34,7 @@ from dissector.protocol.spec import SPEC
 from dissector.framing.timing import DEFAULT_BAUD
 
 # FC8 sub-functions whose request data word is a character then 00: the delimiter they set (sub-function 3).
-_DELIMITER_SUBFUNCTIONS = frozenset(sub for sub, rule in SPEC.diagnostic_data.items() if rule.character)
+DELIMITER_SUBFUNCTIONS = frozenset(sub for sub, rule in SPEC.diagnostic_data.items() if rule.character)
 
 
 class AsciiFramer(Awaiting, StreamFramer):
@@ -99,7 +99,7 @@ class AsciiFramer(Awaiting, StreamFramer):
     def _changed(self, binary: bytes) -> None:
         """A normal answer to 08/03 (Change ASCII Input Delimiter) echoes the change: its slave's lines may end
         with CR and that character from now on."""
-        if binary[1] != 8 or len(binary) != 7 or binary[2] << 8 | binary[3] not in _DELIMITER_SUBFUNCTIONS:
+        if binary[1] != 8 or len(binary) != 7 or binary[2] << 8 | binary[3] not in DELIMITER_SUBFUNCTIONS:
             return
         character = binary[4]
         if binary[5] or character in (LF, CR, COLON):
