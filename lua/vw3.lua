@@ -5325,15 +5325,20 @@ config = { default = DATA.default_profile, per_slave = {}, style = nil, errors =
 local function parse_profile_choice(text)
   -- as build_annotator reads `--profile` options: one default (a profile or auto), SLAVE=PROFILE entries
   local default, per_slave, errors = nil, {}, {}
-  for part in string.gmatch(text or "", "[^,;%s]+") do
-    local slave, name = string.match(part, "^(%d+)=(.+)$")
-    slave = slave and tonumber(slave)
+  -- (spaces around '=' are not a separator: `12 = atv71` is build.py's _split_target's `12=atv71`)
+  for part in string.gmatch(string.gsub(text or "", "%s*=%s*", "="), "[^,;%s]+") do
+    local target, name = string.match(part, "^([^=]*)=(.*)$")
+    local slave = target and string.match(target, "^%d+$") and tonumber(target)
     local problem = nil
-    if slave == nil and (PROFILES[part] ~= nil or part == AUTO) then
+    if target == nil and (PROFILES[part] ~= nil or part == AUTO) then
       problem = default and format("%q: a default profile (%s) is already set", part, default)
       default = default or part
-    elseif slave == nil then
+    elseif target == nil then
       problem = format("%q is neither a built-in profile, auto, nor SLAVE=PROFILE", part)
+    elseif slave == nil then
+      problem = format("%q: %q is not a slave address", part, target)
+    elseif name == "" then
+      problem = format("%q: nothing after '='", part)
     elseif name == AUTO then
       problem = format("%q: auto is for every slave (a default, not SLAVE=auto)", part)
     elseif PROFILES[name] == nil then

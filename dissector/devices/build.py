@@ -16,21 +16,22 @@ from dissector.errors import ProfileError
 
 
 def _split_target(spec: str, option: str) -> tuple[str | None, str]:
-    """`12=atv71` -> ("12", "atv71"); `atv71` -> (None, "atv71")."""
+    """`12=atv71` -> ("12", "atv71"); `atv71` -> (None, "atv71"); spaces around '=' are not the name's
+    (`12 = atv71`), as the plugin's profiles preference reads them."""
     target, sep, rest = spec.partition("=")
     if not sep:
         return None, spec
-    target = target.strip()
+    target, rest = target.strip(), rest.strip()
     if not rest:
         raise ProfileError(f"{option} {spec!r}: nothing after '='")
     return target, rest
 
 
 def _slave(text: str, option: str, spec: str) -> int:
-    try:
-        slave = int(text, 10)
-    except ValueError:
-        raise ProfileError(f"{option} {spec!r}: {text!r} is not a slave address") from None
+    # ASCII digits only: int() would also take '+1', '1_0' (10) and other scripts' digits
+    if not (text.isascii() and text.isdigit()):
+        raise ProfileError(f"{option} {spec!r}: {text!r} is not a slave address")
+    slave = int(text, 10)
     if not 0 <= slave <= 247:
         raise ProfileError(f"{option} {spec!r}: slave {slave} is outside 0..247")
     return slave
