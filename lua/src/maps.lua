@@ -345,7 +345,7 @@ local function parse_map_choice(text, profile_names)
     if whole or target == nil then
       target, path = nil, spec
     end
-    target = target and strip(target)
+    target, path = target and strip(target), strip(path) -- (`3 = FILE`: build.py's _split_target)
     local slave = target and target:match("^%d+$") and tonumber(target)
     if spec == "" then
       -- (nothing between two `;`)

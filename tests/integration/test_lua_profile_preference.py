@@ -41,3 +41,15 @@ def test_a_slave_address_is_ascii_digits(target: str) -> None:
     _, record_experts, _ = lua_items(CAPTURE, "-o", f"vw3.profiles:{choice}")
     said = {text for _, text in record_experts if text.startswith("Preferences")}
     assert said == {f'Preferences: "{choice}": "{target}" is not a slave address'}
+
+
+def test_a_map_choice_with_spaces_around_the_equals_sign(tmp_path) -> None:
+    # `--map "1 = FILE"` and the maps preference `1 = FILE`: slave 1's map, the path without the spaces
+    sel = tmp_path / "sel.csv"
+    sel.write_text("address,code,name\n0,IA,Phase A current\n")
+    python = python_items(CAPTURE, ["1=sel749m"], "--map", f"1 = {sel}")
+    lua, record_experts, _ = lua_items(CAPTURE, "-o", "vw3.profiles:1=sel749m", "-o", f"vw3.maps:1 = {sel}")
+    assert not [text for _, text in record_experts if text.startswith("Preferences")]
+    assert not compare(python, lua)
+    codes = {reg.get("code") for item in python for reg in item.data.get("registers", [])}
+    assert "IA" in codes
