@@ -9,7 +9,7 @@ from typing import Protocol
 
 from dissector.decode.fields import decode_frame
 from dissector.framing.rtu import RtuFramer
-from dissector.model import Chunk, Frame, Item
+from dissector.model import Chunk, Frame, Item, stamped_before
 from dissector.decode.pairing import Pairer
 from dissector.framing.timing import GapChecker
 
@@ -36,6 +36,7 @@ class Dissector:
         timeout: float | None = None,
         gaps: GapChecker | None = None,
         live: bool = False,
+        recorded: Callable[[], float | None] | None = None,
     ) -> None:
         self.framer = framer if framer is not None else RtuFramer()
         self.pairer = Pairer(hold=hold, timeout=timeout)
@@ -44,6 +45,9 @@ class Dissector:
         # A file ends when its last bytes came (a request within its timeout of that: not known whether it
         # was answered); live, when the clock says (expire: a request past its timeout is unanswered).
         self._stamps_end = not live
+        # A file: asked at its end when its tap last recorded, later than its last bytes where another
+        # bus's records (a pcapng's other interfaces) or an empty record went on (Source.recorded_until).
+        self.recorded = recorded
 
     def _finish_items(self, items: list[Item]) -> list[Item]:
         annotate = self.annotate
@@ -83,6 +87,9 @@ class Dissector:
 
     def finish(self) -> list[Item]:
         items = self.pairer.push(self.framer.finish())
+        recorded = self.recorded() if self._stamps_end and self.recorded is not None else None
+        if recorded is not None and (self.pairer.end is None or stamped_before(self.pairer.end, recorded)):
+            self.pairer.end = recorded
         items += self.pairer.finish()
         return self._finish_items(items)
 

@@ -368,7 +368,8 @@ def _decode_inputs(
     # The devices as they are before any frame, for the other interfaces of a pcapng (~13 ms a copy).
     pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
     try:
-        for title, chunks, mode, take_warnings, timed, fix, (path, source_format), bus in inputs(args, env):
+        for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
+             bus) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -397,6 +398,7 @@ def _decode_inputs(
                 annotate=annotate,
                 timeout=args.timeout,
                 gaps=GapChecker(line.baud, mode) if timed else None,
+                recorded=recorded,
             )
             sinks.valid_frames = sinks.input_bytes = 0
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)

@@ -20,19 +20,21 @@ from dissector.sources.reader import NOTATIONS, open_source
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
-Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], bool, Fix, tuple[str | None, str | None],
-              "PacketInterface | None"]
+Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
+              tuple[str | None, str | None], "PacketInterface | None"]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, timed, fix, (path, format), interface) per input: a pcapng file
-    with packets from several interfaces is one input per interface, each its own bus (sources/interfaces.py),
-    titled `file: interface name`."""
+    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface) per input: a
+    pcapng file with packets from several interfaces is one input per interface, each its own bus
+    (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
+    made (Source.recorded_until: the other interfaces' records too)."""
     several = len(args.files) + bool(args.hex) > 1
     if args.hex:
         typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
         fix = typed.fix if typed.repairs else None
-        yield ("--hex" if several else None), typed.chunks, typed.mode, list, False, fix, (None, None), None
+        yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, False, fix, (None, None),
+               None)
     for path in args.files:
         buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
         for bus in buses if len(buses) > 1 else [None]:
@@ -51,8 +53,8 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
                 chunks = progress_for(source, path, env.stderr)
             timed = source.format in TIMED_FORMATS
             title = path if bus is None else f"{path}: {bus.label()}"
-            yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings, timed,
-                   None, (path, source.format), bus)
+            yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings,
+                   lambda source=source: source.recorded_until, timed, None, (path, source.format), bus)
 
 
 def is_pcapng_file(path: str) -> bool:

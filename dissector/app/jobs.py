@@ -107,7 +107,8 @@ def _open(path: str, settings: JobSettings, interface: int | None) -> Any:
 
 
 def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, result: CaptureResult,
-            interface: int | None = None) -> Iterator[object]:
+            interface: int | None = None, recorded: list[Any] | None = None) -> Iterator[object]:
+    """`recorded`: each file's Source.recorded_until, once read (the last says when the capture ends)."""
     offset = 0  # payload bytes of the files before: where each file starts in the capture's stream
     for path in files:
         source = _open(path, settings, interface)
@@ -117,6 +118,8 @@ def _chunks(files: tuple[str, ...], settings: JobSettings, tables: object, resul
                 offset += len(chunk.data)
                 yield chunk
             result.warnings.extend(source.take_warnings())
+            if recorded is not None:
+                recorded.append(source.recorded_until)
         finally:
             source.close()
 
@@ -164,10 +167,12 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
             line = settings_from_text(" ".join(texts)) or line_settings(None, None, None)
         bus.new_input(mode, line)
         framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)
+        recorded: list[Any] = []
         dissector = Dissector(framer=framer, annotate=annotate, timeout=settings.timeout,
-                              gaps=GapChecker(line.baud, mode) if source_format in TIMED_FORMATS else None)
+                              gaps=GapChecker(line.baud, mode) if source_format in TIMED_FORMATS else None,
+                              recorded=lambda: recorded[-1] if recorded else None)
         _choose_profiles(annotate, capture.files, settings, mode, line.baud, capture.interface)
-        for chunk in _chunks(capture.files, settings, tables, result, capture.interface):
+        for chunk in _chunks(capture.files, settings, tables, result, capture.interface, recorded):
             items = dissector.feed(chunk)  # type: ignore[arg-type]
             tables.add(items)
             bus.add_items(items)

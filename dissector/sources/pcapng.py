@@ -102,6 +102,9 @@ class _Reader:
         self.record = 0
         self.used_interfaces: set[int] = set()
         self.held = EpochRecord(chunk_size)  # the first packet, at the epoch, until the next says (pcap.py)
+        # The time of the last timed packet read, any interface's, empty or not: the tap was recording then
+        # (read_pcapng's recorded_until).
+        self.last_time: Stamp | None = None
 
     def run(self) -> Iterator[Chunk]:
         inp = self.inp
@@ -238,12 +241,14 @@ class _Reader:
             raise SourceError(
                 f"{inp.name}: packet block at byte {start}: {captured} bytes do not fit in the block"
             )
+        epoch = not (high or low)
+        if not epoch and index < len(self.interfaces):
+            self._recorded(self.interfaces[index], high << 32 | low)
         if self._other(index, body_length - 20, start):
             return
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
         time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
-        epoch = not (high or low)
         outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
         if outside is not None:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
@@ -257,6 +262,16 @@ class _Reader:
             # EpochRecord); an RTAC record carries its own time.
             chunks = self._data(captured, original, None, interface, body_length - 20, start)
         yield from chunks
+
+    def _recorded(self, interface: Interface, stamp: int) -> None:
+        """A timed packet was recorded (another interface's, or empty, too). An RTAC record's time is in
+        its bytes: its chunks carry it (Dissector.feed)."""
+        if interface.linktype == LINKTYPE_RTAC_SERIAL:
+            return
+        seconds, fraction = divmod(stamp, interface.units)
+        time = Stamp.from_parts(interface.offset + seconds, fraction, interface.units)
+        if outside_time_range(time.ns, interface.offset) is None:  # (else the record's reading refuses it)
+            self.last_time = time
 
     def _simple(self, body_length: int, start: int) -> Iterator[Chunk]:
         raw = self.inp.read(4)
@@ -325,11 +340,34 @@ def first_interface(path: str) -> Interface | None:
 HEAD_BYTES = 4 * MAX_HEADER_BLOCK
 
 
-def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None) -> Iterator[Chunk]:
+class PcapngChunks:
+    """The chunks of a pcapng's packets, and `recorded_until`: the time of its last timed packet, of any
+    interface, empty or not (None: none), once read. The tap recorded every line until then: a request
+    near the end of one interface's bus waited as long as the other interfaces' records went on
+    (Dissector's `recorded`)."""
+
+    def __init__(self, reader: _Reader) -> None:
+        self._reader = reader
+        self._chunks = self._read()
+
+    def __iter__(self) -> Iterator[Chunk]:
+        return self._chunks  # (the one generator: a loop that stops early resumes where it stopped)
+
+    def __next__(self) -> Chunk:
+        return next(self._chunks)
+
+    @property
+    def recorded_until(self) -> Stamp | None:
+        return self._reader.last_time
+
+    def _read(self) -> Iterator[Chunk]:
+        try:
+            yield from self._reader.run()
+        except _Ended:
+            pass
+        yield from self._reader.held.release(False)
+
+
+def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None) -> PcapngChunks:
     """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal)."""
-    reader = _Reader(inp, log, chunk_size, only=only)
-    try:
-        yield from reader.run()
-    except _Ended:
-        pass
-    yield from reader.held.release(False)
+    return PcapngChunks(_Reader(inp, log, chunk_size, only=only))

@@ -30,7 +30,7 @@ from dissector.sources.notation import DECIMAL, HEX, Notation
 from dissector.sources.pcap import is_pcap, read_pcap
 from dissector.sources.pcapng import is_pcapng, read_pcapng
 from dissector.sources.traffic import looks_like_traffic, read_traffic
-from dissector.model import Chunk
+from dissector.model import Chunk, Stamp
 
 __all__ = ["FORMATS", "Source", "SourceError", "detect_format", "open_source"]
 
@@ -204,6 +204,12 @@ class Source:
     @property
     def warnings(self) -> list[str]:
         return self._log.messages
+
+    @property
+    def recorded_until(self) -> Stamp | None:
+        """Once read: when the capture's last record was made, one no chunk holds too (a pcapng's other
+        interfaces', an empty one: sources/pcapng.py PcapngChunks); None: its last chunk says."""
+        return getattr(self._chunks, "recorded_until", None)
 
     def take_warnings(self) -> list[str]:
         new = self._log.messages[self._taken :]
