@@ -3287,6 +3287,550 @@ DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare,
     "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii", "raw",
     "inferred", "profile_choice", "profile_said", "provisional" } }
 end
+do
+local PARTS, PARSERS = {}, {} -- (a layout's reader calls its parts' by name)
+PARTS.file_subrequest = function(b, d, len)
+  if len < 7 then return nil, "too short for reference_type, file, record and length" end
+  return 7, {
+    ["reference_type"] = b[d], ["file"] = b[d + 1] * 256 + b[d + 2], ["record"] = b[d + 3] * 256 + b[d + 4],
+    ["length"] = b[d + 5] * 256 + b[d + 6]
+  }
+end
+PARTS.file_subresponse = function(b, d, len)
+  if len < 2 then return nil, "too short for length and reference_type" end
+  local v1 = b[d]
+  local p = 2
+  local s3 = (v1 - 1) - (v1 - 1) % 2
+  if s3 < 0 or p + s3 > len then return nil, "length past the end" end
+  local a3 = d + p
+  p = p + s3
+  return p, { ["length"] = v1, ["reference_type"] = b[d + 1], ["values_at"] = a3 }
+end
+PARTS.file_record = function(b, d, len)
+  if len < 7 then return nil, "too short for reference_type, file, record and length" end
+  local v4 = b[d + 5] * 256 + b[d + 6]
+  local p = 7
+  local s5 = 2 * v4
+  if p + s5 > len then return nil, "length past the end" end
+  local a5 = d + p
+  p = p + s5
+  return p, {
+    ["reference_type"] = b[d], ["file"] = b[d + 1] * 256 + b[d + 2], ["record"] = b[d + 3] * 256 + b[d + 4],
+    ["length"] = v4, ["values_at"] = a5
+  }
+end
+PARTS.device_id_request = function(b, d, len)
+  if len < 2 then return nil, "too short for read_code and object_id" end
+  return 2, { ["read_code"] = b[d], ["object_id"] = b[d + 1] }
+end
+PARTS.device_id_response = function(b, d, len)
+  if len < 5 then return nil, "too short for read_code, conformity, more_follows, next_object_id and object_count" end
+  local v5 = b[d + 4]
+  local p = 5
+  local a6 = {}
+  for k = 1, v5 do
+    local used, item = PARTS["device_object"](b, d + p, len - p)
+    if used == nil then break end
+    a6[k], p = item, p + used
+  end
+  return p, {
+    ["read_code"] = b[d], ["conformity"] = b[d + 1], ["more_follows"] = b[d + 2], ["next_object_id"] = b[d + 3],
+    ["object_count"] = v5, ["objects"] = a6
+  }
+end
+PARTS.device_object = function(b, d, len)
+  if len < 2 then return nil, "too short for id and length" end
+  local v2 = b[d + 1]
+  local p = 2
+  local s3 = v2
+  if p + s3 > len then return nil, "length past the end" end
+  local a3 = d + p
+  p = p + s3
+  return p, { ["id"] = b[d], ["length"] = v2, ["value_at"] = a3 }
+end
+PARTS.other_mei = function(b, d, len)
+  return len, { ["data_length"] = len - 0 }
+end
+PARSERS.read_request = function(b, d, len)
+  if len < 4 then return nil, "too short for start and quantity" end
+  return 4, { ["start"] = b[d] * 256 + b[d + 1], ["quantity"] = b[d + 2] * 256 + b[d + 3] }
+end
+PARSERS.read_bits_response = function(b, d, len)
+  if len < 1 then return nil, "too short for byte_count" end
+  local v1 = b[d]
+  local p = 1
+  local s2 = v1
+  if p + s2 > len then return nil, "byte_count past the end" end
+  local a2 = d + p
+  p = p + s2
+  return p, { ["byte_count"] = v1, ["status_at"] = a2 }
+end
+PARSERS.read_registers_response = function(b, d, len)
+  if len < 1 then return nil, "too short for byte_count" end
+  local v1 = b[d]
+  local p = 1
+  local s2 = v1 - v1 % 2
+  if p + s2 > len then return nil, "byte_count past the end" end
+  local a2 = d + p
+  p = p + s2
+  local s3 = v1 % 2
+  if p + s3 > len then return nil, "byte_count past the end" end
+  p = p + s3
+  return p, { ["byte_count"] = v1, ["values_at"] = a2 }
+end
+PARSERS.write_single = function(b, d, len)
+  if len < 4 then return nil, "too short for address and value" end
+  return 4, { ["address"] = b[d] * 256 + b[d + 1], ["value"] = b[d + 2] * 256 + b[d + 3] }
+end
+PARSERS.empty = function(b, d, len)
+  return 0, {  }
+end
+PARSERS.diagnostics = function(b, d, len)
+  if len < 2 then return nil, "too short for subfunction" end
+  return len, { ["subfunction"] = b[d] * 256 + b[d + 1], ["data_length"] = len - 2 }
+end
+PARSERS.write_coils_request = function(b, d, len)
+  if len < 5 then return nil, "too short for start, quantity and byte_count" end
+  local v3 = b[d + 4]
+  local p = 5
+  local s4 = v3
+  if p + s4 > len then return nil, "byte_count past the end" end
+  local a4 = d + p
+  p = p + s4
+  return p, {
+    ["start"] = b[d] * 256 + b[d + 1], ["quantity"] = b[d + 2] * 256 + b[d + 3], ["byte_count"] = v3,
+    ["status_at"] = a4
+  }
+end
+PARSERS.write_registers_request = function(b, d, len)
+  if len < 5 then return nil, "too short for start, quantity and byte_count" end
+  local v3 = b[d + 4]
+  local p = 5
+  local s4 = v3 - v3 % 2
+  if p + s4 > len then return nil, "byte_count past the end" end
+  local a4 = d + p
+  p = p + s4
+  local s5 = v3 % 2
+  if p + s5 > len then return nil, "byte_count past the end" end
+  p = p + s5
+  return p, {
+    ["start"] = b[d] * 256 + b[d + 1], ["quantity"] = b[d + 2] * 256 + b[d + 3], ["byte_count"] = v3,
+    ["values_at"] = a4
+  }
+end
+PARSERS.write_multiple_response = function(b, d, len)
+  if len < 4 then return nil, "too short for start and quantity" end
+  return 4, { ["start"] = b[d] * 256 + b[d + 1], ["quantity"] = b[d + 2] * 256 + b[d + 3] }
+end
+PARSERS.exception_status_response = function(b, d, len)
+  if len < 1 then return nil, "too short for status" end
+  return 1, { ["status"] = b[d] }
+end
+PARSERS.comm_event_counter_response = function(b, d, len)
+  if len < 4 then return nil, "too short for status and event_count" end
+  return 4, { ["status"] = b[d] * 256 + b[d + 1], ["event_count"] = b[d + 2] * 256 + b[d + 3] }
+end
+PARSERS.mask_write = function(b, d, len)
+  if len < 6 then return nil, "too short for address, and_mask and or_mask" end
+  return 6, {
+    ["address"] = b[d] * 256 + b[d + 1], ["and_mask"] = b[d + 2] * 256 + b[d + 3],
+    ["or_mask"] = b[d + 4] * 256 + b[d + 5]
+  }
+end
+PARSERS.read_write_request = function(b, d, len)
+  if len < 9 then return nil, "too short for read_start, read_quantity, write_start, write_quantity and byte_count" end
+  local v5 = b[d + 8]
+  local p = 9
+  local s6 = v5 - v5 % 2
+  if p + s6 > len then return nil, "byte_count past the end" end
+  local a6 = d + p
+  p = p + s6
+  local s7 = v5 % 2
+  if p + s7 > len then return nil, "byte_count past the end" end
+  p = p + s7
+  return p, {
+    ["read_start"] = b[d] * 256 + b[d + 1], ["read_quantity"] = b[d + 2] * 256 + b[d + 3],
+    ["write_start"] = b[d + 4] * 256 + b[d + 5], ["write_quantity"] = b[d + 6] * 256 + b[d + 7],
+    ["byte_count"] = v5, ["values_at"] = a6
+  }
+end
+PARSERS.fifo_request = function(b, d, len)
+  if len < 2 then return nil, "too short for address" end
+  return 2, { ["address"] = b[d] * 256 + b[d + 1] }
+end
+PARSERS.fifo_response = function(b, d, len)
+  if len < 4 then return nil, "too short for byte_count and fifo_count" end
+  local v2 = b[d + 2] * 256 + b[d + 3]
+  local p = 4
+  local s3 = 2 * v2
+  if p + s3 > len then return nil, "fifo_count past the end" end
+  local a3 = d + p
+  p = p + s3
+  return p, { ["byte_count"] = b[d] * 256 + b[d + 1], ["fifo_count"] = v2, ["values_at"] = a3 }
+end
+PARSERS.exception = function(b, d, len)
+  if len < 1 then return nil, "too short for exception_code" end
+  return 1, { ["exception_code"] = b[d] }
+end
+PARSERS.raw = function(b, d, len)
+  return len, { ["data_length"] = len - 0 }
+end
+PARSERS.comm_event_log_response = function(b, d, len)
+  if len < 7 then return nil, "too short for byte_count, status, event_count and message_count" end
+  local v1 = b[d]
+  local p = 7
+  local s5 = (v1 - 6)
+  if s5 < 0 or p + s5 > len then return nil, "byte_count past the end" end
+  local a5 = d + p
+  p = p + s5
+  return p, {
+    ["byte_count"] = v1, ["status"] = b[d + 1] * 256 + b[d + 2], ["event_count"] = b[d + 3] * 256 + b[d + 4],
+    ["message_count"] = b[d + 5] * 256 + b[d + 6], ["events_at"] = a5
+  }
+end
+PARSERS.report_server_id_response = function(b, d, len)
+  if len < 3 then return nil, "too short for byte_count, server_id and run_indicator" end
+  local v1 = b[d]
+  local p = 3
+  local s4 = (v1 - 2)
+  if s4 < 0 or p + s4 > len then return nil, "byte_count past the end" end
+  local a4 = d + p
+  p = p + s4
+  return p, {
+    ["byte_count"] = v1, ["server_id"] = b[d + 1], ["run_indicator"] = b[d + 2], ["additional_data_at"] = a4
+  }
+end
+PARSERS.read_file_request = function(b, d, len)
+  if len < 1 then return nil, "too short for byte_count" end
+  local v1 = b[d]
+  local p = 1
+  local s2 = v1
+  if p + s2 > len then return nil, "byte_count past the end" end
+  local a2 = d + p
+  p = p + s2
+  return p, { ["byte_count"] = v1, ["subrequests_at"] = a2 }
+end
+PARSERS.read_file_response = function(b, d, len)
+  if len < 1 then return nil, "too short for byte_count" end
+  local v1 = b[d]
+  local p = 1
+  local s2 = v1
+  if p + s2 > len then return nil, "byte_count past the end" end
+  local a2 = d + p
+  p = p + s2
+  return p, { ["byte_count"] = v1, ["subresponses_at"] = a2 }
+end
+PARSERS.write_file = function(b, d, len)
+  if len < 1 then return nil, "too short for byte_count" end
+  local v1 = b[d]
+  local p = 1
+  local s2 = v1
+  if p + s2 > len then return nil, "byte_count past the end" end
+  local a2 = d + p
+  p = p + s2
+  return p, { ["byte_count"] = v1, ["records_at"] = a2 }
+end
+PARSERS.mei_request = function(b, d, len)
+  if len < 1 then return nil, "too short for mei_type" end
+  local v1 = b[d]
+  local p = 1
+  local used, c2 = (v1 == 14 and PARTS["device_id_request"] or PARTS["other_mei"])(b, d + p, len - p)
+  if used == nil then return nil, c2 end
+  p = p + used
+  return p, { ["mei_type"] = v1, ["body"] = c2 }
+end
+PARSERS.mei_response = function(b, d, len)
+  if len < 1 then return nil, "too short for mei_type" end
+  local v1 = b[d]
+  local p = 1
+  local used, c2 = (v1 == 14 and PARTS["device_id_response"] or PARTS["other_mei"])(b, d + p, len - p)
+  if used == nil then return nil, c2 end
+  p = p + used
+  return p, { ["mei_type"] = v1, ["body"] = c2 }
+end
+DATA.parsers = PARSERS
+function DATA.lifters(warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
+  local floor, lift = math.floor, DATA.rules.lift
+  local handler = {} -- (by rule, and limit where codes give a rule several)
+  handler.read_request_read_bits = function(f, b)
+    local fields = f.fields
+    local first = fields["start"]
+    local many = fields["quantity"]
+    f.start, f.quantity = first, many
+    if fields["quantity"] < 1 or fields["quantity"] > 2000 then
+      warn(f, range_text("quantity", fields["quantity"], 1, 2000))
+    end
+    if first + many > 65536 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+  end
+  handler.read_request_read_registers = function(f, b)
+    local fields = f.fields
+    local first = fields["start"]
+    local many = fields["quantity"]
+    f.start, f.quantity = first, many
+    if fields["quantity"] < 1 or fields["quantity"] > 125 then
+      warn(f, range_text("quantity", fields["quantity"], 1, 125))
+    end
+    if first + many > 65536 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+  end
+  do
+    local echo = lift.write_single_coil.echo
+    handler.write_single_coil = function(f, b)
+      local fields = f.fields
+      local request = f.request
+      if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+      local first = fields["address"]
+      local many = 1
+      f.start, f.quantity = first, many
+      if fields["value"] ~= 65280 and fields["value"] ~= 0 then
+        warn(f, say("coil_value", { value = fields["value"] }))
+      end
+      if request ~= nil and (
+        request.fields["address"] ~= fields["address"] or request.fields["value"] ~= fields["value"]
+      ) then echo_check(f, fields, request, echo) end
+      f.bits = { first = f.data_at + 2, count = 1, start = first, single = fields["value"] == 65280 and 1 or 0 }
+    end
+  end
+  do
+    local echo = lift.write_single_register.echo
+    handler.write_single_register = function(f, b)
+      local fields = f.fields
+      local request = f.request
+      if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+      local first = fields["address"]
+      local many = 1
+      f.start, f.quantity = first, many
+      if request ~= nil and (
+        request.fields["address"] ~= fields["address"] or request.fields["value"] ~= fields["value"]
+      ) then echo_check(f, fields, request, echo) end
+      f.registers = { b = b, first = f.data_at + 2, count = 1, start = first, shift = nil }
+    end
+  end
+  handler.write_coils_request = function(f, b)
+    local fields = f.fields
+    local first = fields["start"]
+    local many = fields["quantity"]
+    f.start, f.quantity = first, many
+    if fields["quantity"] < 1 or fields["quantity"] > 1968 then
+      warn(f, range_text("quantity", fields["quantity"], 1, 1968))
+    end
+    if first + many > 65536 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+    local of = fields["quantity"]
+    if of ~= nil and fields.byte_count ~= 0 + data_bytes(of, 0) then
+      warn(f, say("count_quantity", { count = fields.byte_count, quantity = of }))
+    end
+    local count = 8 * fields["byte_count"]
+    if many ~= nil and many < count then count = many end
+    f.bits = { b = b, first = fields["status_at"], count = count, start = first, shift = nil }
+  end
+  handler.write_registers_request = function(f, b)
+    local fields = f.fields
+    local first = fields["start"]
+    local many = fields["quantity"]
+    f.start, f.quantity = first, many
+    if fields["quantity"] < 1 or fields["quantity"] > 123 then
+      warn(f, range_text("quantity", fields["quantity"], 1, 123))
+    end
+    if first + many > 65536 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+    local of = fields["quantity"]
+    if of ~= nil and fields.byte_count ~= 0 + data_bytes(of, 2) then
+      warn(f, say("count_quantity", { count = fields.byte_count, quantity = of }))
+    end
+    f.registers = {
+      b = b, first = fields["values_at"], count = floor(fields["byte_count"] / 2), start = first, shift = nil
+    }
+  end
+  handler.read_file_request = function(f, b)
+    local fields = f.fields
+    local first = nil
+    local many = nil
+    f.start, f.quantity = first, many
+    local p, stop, index = fields["subrequests_at"], fields["subrequests_at"] + fields["byte_count"], 0
+    local kept = {}
+    while p + 7 <= stop do
+      if p + 7 > stop then break end
+      index = index + 1
+      local v = b[p + 0]
+      if v ~= 6 then warn(f, range_text("sub-request " .. index .. "'s reference type", v, 6, 6)) end
+      local v = b[p + 3] * 256 + b[p + 4]
+      if v > 9999 then warn(f, range_text("sub-request " .. index .. "'s record number", v, 0, 9999)) end
+      kept[index] = b[p + 5] * 256 + b[p + 6]
+      p = p + 7
+    end
+    fields["subrequests"] = kept
+  end
+  handler.write_file = function(f, b)
+    local fields = f.fields
+    local request = f.request
+    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+    local first = nil
+    local many = nil
+    f.start, f.quantity = first, many
+    check_data_echo(f, b, request, 0)
+    local p, stop, index = fields["records_at"], fields["records_at"] + fields["byte_count"], 0
+    while p + 7 <= stop do
+      local n = b[p + 5] * 256 + b[p + 6] - 0
+      if n < 0 then break end
+      if p + 7 + 2 * n > stop then break end
+      index = index + 1
+      local v = b[p + 0]
+      if v ~= 6 then warn(f, range_text("record " .. index .. "'s reference type", v, 6, 6)) end
+      local v = b[p + 3] * 256 + b[p + 4]
+      if v > 9999 then warn(f, range_text("record " .. index .. "'s record number", v, 0, 9999)) end
+      p = p + 7 + 2 * n
+    end
+  end
+  do
+    local echo = lift.mask_write.echo
+    handler.mask_write = function(f, b)
+      local fields = f.fields
+      local request = f.request
+      if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+      local first = fields["address"]
+      local many = 1
+      f.start, f.quantity = first, many
+      if request ~= nil and (
+        request.fields["address"] ~= fields["address"] or request.fields["and_mask"] ~= fields["and_mask"] or
+        request.fields["or_mask"] ~= fields["or_mask"]
+      ) then echo_check(f, fields, request, echo) end
+    end
+  end
+  handler.read_write_request = function(f, b)
+    local fields = f.fields
+    local first = fields["read_start"]
+    local many = fields["read_quantity"]
+    f.start, f.quantity = first, many
+    if fields["read_quantity"] < 1 or fields["read_quantity"] > 125 then
+      warn(f, range_text("read quantity", fields["read_quantity"], 1, 125))
+    end
+    if fields["write_quantity"] < 1 or fields["write_quantity"] > 121 then
+      warn(f, range_text("write quantity", fields["write_quantity"], 1, 121))
+    end
+    if first + many > 65536 then warn(f, say("span", { first = first, last = first + many - 1 })) end
+    if fields["write_start"] + fields["write_quantity"] > 65536 then
+      warn(f, say("span", { first = fields["write_start"], last = fields["write_start"] + fields["write_quantity"] - 1 }))
+    end
+    local of = fields["write_quantity"]
+    if of ~= nil and fields.byte_count ~= 0 + data_bytes(of, 2) then
+      warn(f, say("count_write_quantity", { count = fields.byte_count, quantity = of }))
+    end
+    f.registers = {
+      b = b, first = fields["values_at"], count = floor(fields["byte_count"] / 2), start = fields["write_start"],
+      shift = nil
+    }
+  end
+  handler.fifo_request = function(f, b)
+    local fields = f.fields
+    local first = fields["address"]
+    local many = nil
+    f.start, f.quantity = first, many
+  end
+  handler.read_bits_response = function(f, b)
+    local fields = f.fields
+    local request = f.request
+    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+    local first = request and request.start
+    local many = request and request.quantity
+    f.start, f.quantity = first, many
+    local of = request and request.quantity
+    if of ~= nil and fields.byte_count ~= 0 + data_bytes(of, 0) then
+      warn(f, say("count_asked_bits", { count = fields.byte_count, quantity = of }))
+    end
+    local count = 8 * fields["byte_count"]
+    if many ~= nil and many < count then count = many end
+    f.bits = { b = b, first = fields["status_at"], count = count, start = first, shift = nil }
+  end
+  handler.read_registers_response = function(f, b)
+    local fields = f.fields
+    local request = f.request
+    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+    local first = request and request.start
+    local many = request and request.quantity
+    if many == nil and fields.byte_count % 2 == 0 then many = floor(fields.byte_count / 2) end
+    f.start, f.quantity = first, many
+    local of = request and request.quantity
+    if of ~= nil and fields.byte_count ~= 0 + data_bytes(of, 2) then
+      warn(f, say("count_asked_registers", { count = fields.byte_count, quantity = of }))
+    end
+    if fields.byte_count % 2 == 1 then warn(f, say("odd_count", { count = fields.byte_count })) end
+    f.registers = {
+      b = b, first = fields["values_at"], count = floor(fields["byte_count"] / 2), start = first, shift = nil
+    }
+  end
+  do
+    local echo = lift.write_multiple_response.echo
+    handler.write_multiple_response = function(f, b)
+      local fields = f.fields
+      local request = f.request
+      if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+      local first = fields["start"]
+      local many = fields["quantity"]
+      f.start, f.quantity = first, many
+      if request ~= nil and (
+        request.fields["start"] ~= fields["start"] or request.fields["quantity"] ~= fields["quantity"]
+      ) then echo_check(f, fields, request, echo) end
+    end
+  end
+  do
+    local parts = lift.read_file_response.parts
+    handler.read_file_response = function(f, b)
+      local fields = f.fields
+      local request = f.request
+      if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+      local first = nil
+      local many = nil
+      f.start, f.quantity = first, many
+      local p, stop, index = fields["subresponses_at"], fields["subresponses_at"] + fields["byte_count"], 0
+      local given = {}
+      while p + 2 <= stop do
+        local n = b[p + 0] - 1
+        if n < 0 then break end
+        if p + 2 + n - n % 2 > stop then break end
+        index = index + 1
+        local v = b[p + 1]
+        if v ~= 6 then warn(f, range_text("sub-response " .. index .. "'s reference type", v, 6, 6)) end
+        given[index] = b[p + 0]
+        p = p + 2 + n - n % 2
+      end
+      if request ~= nil and request.fields["subrequests"] ~= nil then
+        check_asked(f, parts, index, given, request.fields["subrequests"])
+      end
+    end
+  end
+  handler.fifo_response = function(f, b)
+    local fields = f.fields
+    local request = f.request
+    if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)
+    local first = request and request.start
+    local many = nil
+    f.start, f.quantity = first, many
+    if fields["fifo_count"] > 31 then
+      warn(f, say("above", { what = "FIFO count", value = fields["fifo_count"], high = 31 }))
+    end
+    local of = fields["fifo_count"]
+    if of ~= nil and fields.byte_count ~= 2 + data_bytes(of, 2) then
+      warn(f, say("count_fifo", { count = fields.byte_count, quantity = of }))
+    end
+  end
+  return {
+    request = {
+      [1] = handler.read_request_read_bits, [2] = handler.read_request_read_bits,
+      [3] = handler.read_request_read_registers, [4] = handler.read_request_read_registers,
+      [5] = handler.write_single_coil, [6] = handler.write_single_register,
+      [15] = handler.write_coils_request, [16] = handler.write_registers_request,
+      [20] = handler.read_file_request, [21] = handler.write_file, [22] = handler.mask_write,
+      [23] = handler.read_write_request, [24] = handler.fifo_request
+    },
+    response = {
+      [1] = handler.read_bits_response, [2] = handler.read_bits_response,
+      [3] = handler.read_registers_response, [4] = handler.read_registers_response,
+      [5] = handler.write_single_coil, [6] = handler.write_single_register,
+      [15] = handler.write_multiple_response, [16] = handler.write_multiple_response,
+      [20] = handler.read_file_response, [21] = handler.write_file, [22] = handler.mask_write,
+      [23] = handler.read_registers_response, [24] = handler.fifo_response
+    },
+  }
+end
+end
 -- END GENERATED DATA
 
 -- ---- vw3.crc: lua/src/crc.lua ----
@@ -4620,8 +5164,8 @@ package.preload["vw3.decode"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, RESPONSE, concat
-local data_bytes, floor, format, ipairs, load, math, pairs = data_bytes, floor, format, ipairs, load, math, pairs
-local string, table, type = string, table, type
+local data_bytes, floor, format, ipairs, math, pairs = data_bytes, floor, format, ipairs, math, pairs
+local string, table = string, table
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -4665,8 +5209,8 @@ local function warn(frame, text)
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
 end
 
--- Registers and bits are runs (made by the lifter below): where their values start in the frame's byte
--- table, how many, the first address. A value is read from the bytes each time it is needed (the first
+-- Registers and bits are runs (made by the lifting rules' handlers): where their values start in the frame's
+-- byte table, how many, the first address. A value is read from the bytes each time it is needed (the first
 -- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
 -- the tvb), so a record keeps one small table for a read of 125 registers, not 125.
 
@@ -4698,114 +5242,18 @@ local function bit_at(run, b, index, shift)
   return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
 
--- Each parser gets the byte table, the first data byte and the data length. It returns the number of
--- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
--- do not fit the grammar (Python: GrammarError -> "malformed ...").
--- Every layout is read as its description says (data/modbus.toml [layouts] and [parts], protocol/shapes.py):
--- u8 and u16 fields by name, a counted field (bytes, text, words, odd, records) by where it starts
--- (NAME_at), the rest of the data by its length (NAME_length), an array of parts as a list of their
--- fields, a switch as the fields of the part it chose. Each description is made into a Lua function once
--- (load), so that a frame costs what a hand-written parser costs: one length check for the fixed fields
--- that come first, read at constant offsets, and the fields in one table constructor.
+-- The readers of the layouts (data/modbus.toml [layouts] and [parts], protocol/shapes.py) by name, written out
+-- by the code generator (DATA.parsers, codegen/decode_lua.py); which code uses which: RULES.by_code, below. Each
+-- gets the byte table, the first data byte and the data length, and returns the number of bytes its layout
+-- consumed (the rest is `trailing`) and the fields, or nil and why the data do not fit (Python: GrammarError
+-- -> "malformed ..."). The display reads the fields by their sizes (tree.lua).
 local SIZES = { u8 = 1, u16 = 2 }
-local PARTS = {} -- (the parts' readers, which the layouts' call by name)
-
--- A counted field's size in bytes, from the local holding its count: less `minus` (which may make it
--- negative: the data do not fit), words(n/2) a whole number of words.
-local function size_of(field, count)
-  if field.type == "odd" then return format("%s %% 2", count) end
-  local n = field.minus > 0 and format("(%s - %d)", count, field.minus) or count
-  if field.half then return format("%s - %s %% 2", n, n) end
-  return field.type == "words" and "2 * " .. n or n
-end
-
-local function shape_parser(shape, offsets) -- (offsets: filled with where each field at a constant offset is)
-  local lines, keys, index_of, names = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}, {}
-  local function add(...) lines[#lines + 1] = format(...) end
-  local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
-  for _, field in ipairs(shape) do
-    if field.count ~= nil then counts[field.count] = true end
-  end
-  local static = 0 -- where the next field starts while it is a constant; then `p`
-  for index, field in ipairs(shape) do
-    local name, kind, size = field.name, field.type, SIZES[field.type]
-    index_of[name], offsets[name] = index, static
-    local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
-    if size ~= nil then
-      if not static then add("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
-      if static then names[#names + 1] = name end -- (the fixed fields first: one length check for them all, below)
-      local value = format("b[%s]", here)
-      if size == 2 then value = format("%s * 256 + b[%s]", value, static and format("d + %d", static + 1) or "d + p + 1") end
-      if counts[name] or not static then
-        add("local v%d = %s", index, value)
-        value = format("v%d", index)
-      end
-      keys[#keys + 1] = format("[%q] = %s", name, value)
-      if static then static = static + size else add("p = p + %d", size) end
-    elseif kind == "rest" then
-      keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", static and format("%d", static) or "p")
-    else
-      if static then add("local p = %d", static) end
-      static = nil
-      local count = format("v%d", index_of[field.count])
-      if kind == "array" then -- (count parts one after the other; one that does not fit ends them: layouts._UpTo)
-        add("local a%d = {}", index)
-        add("for k = 1, %s do", count)
-        add("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
-        add("  if used == nil then break end")
-        add("  a%d[k], p = item, p + used", index)
-        add("end")
-        keys[#keys + 1] = format("[%q] = a%d", name, index)
-      elseif kind == "switch" then -- (the part for the field's value, else the last one)
-        local choice = {}
-        for _, case in ipairs(field.cases) do
-          choice[#choice + 1] = case.value and format("%s == %d and PARTS[%q]", count, case.value, case.part)
-            or format("PARTS[%q]", case.part)
-        end
-        add("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
-        add("if used == nil then return nil, c%d end", index)
-        add("p = p + used")
-        keys[#keys + 1] = format("[%q] = c%d", name, index)
-      else
-        add("local s%d = %s", index, size_of(field, count))
-        local negative = field.minus > 0 and format("s%d < 0 or ", index) or "" -- (less `minus`: maybe below 0)
-        add("if %sp + s%d > len then return nil, %q end", negative, index, field.count .. " past the end")
-        if kind ~= "odd" then -- (where an odd byte is, nothing asks)
-          add("local a%d = d + p", index)
-          keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
-        end
-        add("p = p + s%d", index)
-      end
-    end
-  end
-  if #names > 0 then
-    local last = table.remove(names)
-    local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
-    local fixed = offsets[last] + SIZES[shape[index_of[last]].type] -- (where the last of them ends)
-    table.insert(lines, 3, format("if len < %d then return nil, %q end", fixed, "too short for " .. what))
-  end
-  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
-  add("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p", concat(keys, ", "))
-  add("end")
-  return load(concat(lines, "\n"))(PARTS)
-end
-
--- Parsers by layout name (dissector/protocol/layouts.py), and where their fields are when that is a
--- constant; which code uses which: the generated table (RULES.by_code, below).
-local PARSERS, OFFSETS = {}, {}
-for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape, {}) end
-for name, shape in pairs(RULES.layouts) do
-  OFFSETS[name] = {}
-  PARSERS[name] = shape_parser(shape, OFFSETS[name])
-end
+local PARSERS = DATA.parsers
 
 -- ---------------------------------------------------------------------------------------------------
--- The generic lifter (decode/fields.py lifter): one rule of data/modbus.toml [lift] prepared for one
--- function code and direction, as a handler. Warnings in the table's order: checks, span, byte count,
--- odd count, coil, echo. Like the parsers, each rule is written out as a Lua function once (load), its
--- limits and fields in place, so that a frame costs what a hand-written handler costs.
-local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
-
+-- The lifting rules of data/modbus.toml [lift] (decode/fields.py lifter) are handlers written out by the code
+-- generator (DATA.lifters, codegen/decode_lua.py), each rule's limits and fields in place; they call the helpers
+-- below. Warnings in the table's order: checks, span, byte count, odd count, coil, echo.
 local function echo_check(f, fields, request, echo)
   local answered, differ = request.fields, {}
   for _, name in ipairs(echo.fields) do
@@ -4848,138 +5296,6 @@ local function check_asked(f, parts, index, given, asked)
       warn(f, say(length.text, { part = parts.name, index = k, count = given[k], quantity = asked[k] }))
     end
   end
-end
-
--- The line that checks `value` (an expression) against low..high, `what` (an expression) naming it; test
--- "above": the high bound only (its text names no low one). The fields are unsigned: a low bound of 0 is none.
-local function check_line(check, value, what, low, high)
-  if check.test == "above" then
-    return format("if %s > %d then warn(f, say(\"above\", { what = %s, value = %s, high = %d })) end", value, high,
-      what, value, high)
-  end
-  local outside = low == high and format("%s ~= %d", value, low) or low == 0 and format("%s > %d", value, high)
-    or format("%s < %d or %s > %d", value, low, value, high)
-  return format("if %s then warn(f, range_text(%s, %s, %d, %d)) end", outside, what, value, low, high)
-end
-
--- The lines of a lifter walking each part of a records field in the frame's bytes (FC20, FC21): its checks
--- (range_text, "above"), what an answer asks of a request's part kept (`keep`), an answer's length fields
--- (check_asked). Where its fields are and its size come from RULES (codegen/rules_lua.py); a part that does
--- not fit ends them, as the grammar's. Constants in place, no table a part.
-local function parts_lines(add, parts, at, size, request)
-  local function read(spec) -- (a field of the part at `p`: its offset and width)
-    return spec[2] == 1 and format("b[p + %d]", spec[1]) or format("b[p + %d] * 256 + b[p + %d]", spec[1], spec[1] + 1)
-  end
-  add("local p, stop, index = %s, %s + %s, 0", at, at, size)
-  if parts.keep then add("local kept = {}") end
-  if parts.length then add("local given = {}") end
-  add("while p + %d <= stop do", parts.fixed)
-  local bytes = format("%d", parts.fixed)
-  if parts.size then
-    local counted = parts.size
-    add("local n = %s - %d", read(counted.at), counted.minus)
-    add("if n < 0 then break end")
-    bytes = format("%d + %s", parts.fixed, counted.half and "n - n % 2" or counted.words and "2 * n" or "n")
-  end
-  add("if p + %s > stop then break end", bytes)
-  add("index = index + 1")
-  for _, check in ipairs(parts.checks) do
-    add("local v = %s", read(check.at))
-    local what = format("%q .. index .. %q", parts.name .. " ", "'s " .. check.what)
-    add("%s", check_line(check, "v", what, table.unpack(LIMITS[check.limit])))
-  end
-  if parts.keep then add("kept[index] = %s", read(parts.keep)) end
-  if parts.length then add("given[index] = %s", read(parts.length.at)) end
-  add("p = p + %s", bytes)
-  add("end")
-  if parts.keep then add("fields[%q] = kept", parts.field) end
-  if parts.request then
-    add("if %s ~= nil and request.fields[%q] ~= nil then", request, parts.request)
-    add("  check_asked(f, parts, index, %s, request.fields[%q])", parts.length and "given" or "nil", parts.request)
-    add("end")
-  end
-end
-
-local function lifter(rule, limit, layout)
-  local named = {} -- (the layout's fields by name)
-  for _, item in ipairs(RULES.layouts[layout] or {}) do named[item.name] = item end
-  local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, check_data_echo = ...",
-    "return function(f, b)", "local fields = f.fields" }
-  local function add(...) out[#out + 1] = format(...) end
-  local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
-  if start == REQUEST_START or quantity == REQUEST_QUANTITY or (count and count.of == REQUEST_QUANTITY) or rule.echo
-    or (rule.parts and rule.parts.request) then
-    add("local request = f.request")
-    add("if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)")
-  end
-  if start == REQUEST_START then add("local first = request and request.start")
-  else add("local first = %s", start and field(start) or "nil") end
-  if type(quantity) == "number" then add("local many = %d", quantity)
-  elseif quantity == REQUEST_QUANTITY then
-    add("local many = request and request.quantity")
-    if rule.unpaired_unit then
-      add("if many == nil and fields.byte_count %% %d == 0 then many = floor(fields.byte_count / %d) end",
-        rule.unpaired_unit, rule.unpaired_unit)
-    end
-  else add("local many = %s", quantity and field(quantity) or "nil") end
-  add("f.start, f.quantity = first, many")
-  for _, check in ipairs(rule.checks) do
-    local low, high = table.unpack(LIMITS[check.limit or limit])
-    add("%s", check_line(check, field(check.field), format("%q", check.what), low, high))
-  end
-  local function span(first, many) -- (a window past the last address, 65535)
-    local text = "if %s + %s > 65536 then warn(f, say(\"span\", { first = %s, last = %s + %s - 1 })) end"
-    add(text, first, many, first, first, many)
-  end
-  if rule.span then span("first", "many") end
-  local window = rule.write_window -- (FC23: its written window too)
-  if rule.span and window then span(field(window[1]), field(window[2])) end
-  if count then
-    add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
-    add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)
-    add("  warn(f, say(%q, { count = fields.byte_count, quantity = of }))", count.text)
-    add("end")
-  end
-  if rule.odd_count then
-    add("if fields.byte_count %% 2 == 1 then warn(f, say(\"odd_count\", { count = fields.byte_count })) end")
-  end
-  if rule.coil then
-    add("if %s ~= 65280 and %s ~= 0 then warn(f, say(\"coil_value\", { value = %s })) end", field(rule.coil),
-      field(rule.coil), field(rule.coil))
-  end
-  if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole)
-    add("check_data_echo(f, b, request, 0)")
-  elseif rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
-    local differs = {}
-    for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
-    add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
-  end
-  if values then -- (a run's `shift`: see release_run; a block's from its count field, in words or bytes)
-    local at, item = field(values.field .. "_at"), named[values.field] or {}
-    local counted = item.count and (item.half and format("floor(%s / 2)", field(item.count)) or field(item.count))
-    local offset = (OFFSETS[layout] or {})[values.field] -- (one value at a fixed offset of the data)
-    if values.kind == "registers" then
-      add("f.registers = { b = b, first = %s, count = %s, start = %s, shift = nil }", at, counted,
-        values.start and field(values.start) or "first")
-    elseif values.kind == "bits" then
-      add("local count = 8 * %s", counted)
-      add("if many ~= nil and many < count then count = many end")
-      add("f.bits = { b = b, first = %s, count = count, start = first, shift = nil }", at)
-    elseif values.kind == "register" then
-      add("f.registers = { b = b, first = f.data_at + %d, count = 1, start = first, shift = nil }", offset)
-    else
-      add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
-        field(values.field))
-    end
-  end
-  if rule.parts then -- (its parts by the layout's part, in the bytes its count gives)
-    local name = rule.parts.field
-    parts_lines(add, rule.parts, field(name .. "_at"), field(named[name].count), "request")
-  end
-  add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_asked,
-    rule.parts, check_data_echo)
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -5070,13 +5386,13 @@ local SPECIAL = {
 
 -- Per direction and code: the parser of its layout (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a
 -- named special case) and its handler (H): the generic lifter where the table has a rule, else the special case.
+local LIFTERS = DATA.lifters(warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
 local GRAMMARS, LIFT_OF, H = {}, {}, {}
 for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
   GRAMMARS[kind], LIFT_OF[kind], H[kind] = {}, {}, {}
   for code, entry in pairs(codes) do
-    local rule = RULES.lift[entry.rule]
-    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], rule
-    H[kind][code] = rule and lifter(rule, entry.limit, entry.layout) or SPECIAL[entry.special]
+    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], RULES.lift[entry.rule]
+    H[kind][code] = LIFTERS[kind][code] or SPECIAL[entry.special]
   end
 end
 

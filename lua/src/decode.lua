@@ -46,8 +46,8 @@ local function warn(frame, text)
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
 end
 
--- Registers and bits are runs (made by the lifter below): where their values start in the frame's byte
--- table, how many, the first address. A value is read from the bytes each time it is needed (the first
+-- Registers and bits are runs (made by the lifting rules' handlers): where their values start in the frame's
+-- byte table, how many, the first address. A value is read from the bytes each time it is needed (the first
 -- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
 -- the tvb), so a record keeps one small table for a read of 125 registers, not 125.
 
@@ -79,114 +79,18 @@ local function bit_at(run, b, index, shift)
   return address, floor(b[k] / 2 ^ (index % 8)) % 2, k
 end
 
--- Each parser gets the byte table, the first data byte and the data length. It returns the number of
--- bytes its grammar consumed (the rest is `trailing`) and the fields, or nil and a reason when the data
--- do not fit the grammar (Python: GrammarError -> "malformed ...").
--- Every layout is read as its description says (data/modbus.toml [layouts] and [parts], protocol/shapes.py):
--- u8 and u16 fields by name, a counted field (bytes, text, words, odd, records) by where it starts
--- (NAME_at), the rest of the data by its length (NAME_length), an array of parts as a list of their
--- fields, a switch as the fields of the part it chose. Each description is made into a Lua function once
--- (load), so that a frame costs what a hand-written parser costs: one length check for the fixed fields
--- that come first, read at constant offsets, and the fields in one table constructor.
+-- The readers of the layouts (data/modbus.toml [layouts] and [parts], protocol/shapes.py) by name, written out
+-- by the code generator (DATA.parsers, codegen/decode_lua.py); which code uses which: RULES.by_code, below. Each
+-- gets the byte table, the first data byte and the data length, and returns the number of bytes its layout
+-- consumed (the rest is `trailing`) and the fields, or nil and why the data do not fit (Python: GrammarError
+-- -> "malformed ..."). The display reads the fields by their sizes (tree.lua).
 local SIZES = { u8 = 1, u16 = 2 }
-local PARTS = {} -- (the parts' readers, which the layouts' call by name)
-
--- A counted field's size in bytes, from the local holding its count: less `minus` (which may make it
--- negative: the data do not fit), words(n/2) a whole number of words.
-local function size_of(field, count)
-  if field.type == "odd" then return format("%s %% 2", count) end
-  local n = field.minus > 0 and format("(%s - %d)", count, field.minus) or count
-  if field.half then return format("%s - %s %% 2", n, n) end
-  return field.type == "words" and "2 * " .. n or n
-end
-
-local function shape_parser(shape, offsets) -- (offsets: filled with where each field at a constant offset is)
-  local lines, keys, index_of, names = { "local PARTS = ...", "return function(b, d, len)" }, {}, {}, {}
-  local function add(...) lines[#lines + 1] = format(...) end
-  local counts = {} -- (the fields a later one counts by: read into a local; the others in the constructor)
-  for _, field in ipairs(shape) do
-    if field.count ~= nil then counts[field.count] = true end
-  end
-  local static = 0 -- where the next field starts while it is a constant; then `p`
-  for index, field in ipairs(shape) do
-    local name, kind, size = field.name, field.type, SIZES[field.type]
-    index_of[name], offsets[name] = index, static
-    local here = static and (static == 0 and "d" or format("d + %d", static)) or "d + p"
-    if size ~= nil then
-      if not static then add("if p + %d > len then return nil, %q end", size, "too short for " .. name) end
-      if static then names[#names + 1] = name end -- (the fixed fields first: one length check for them all, below)
-      local value = format("b[%s]", here)
-      if size == 2 then value = format("%s * 256 + b[%s]", value, static and format("d + %d", static + 1) or "d + p + 1") end
-      if counts[name] or not static then
-        add("local v%d = %s", index, value)
-        value = format("v%d", index)
-      end
-      keys[#keys + 1] = format("[%q] = %s", name, value)
-      if static then static = static + size else add("p = p + %d", size) end
-    elseif kind == "rest" then
-      keys[#keys + 1] = format("[%q] = len - %s", name .. "_length", static and format("%d", static) or "p")
-    else
-      if static then add("local p = %d", static) end
-      static = nil
-      local count = format("v%d", index_of[field.count])
-      if kind == "array" then -- (count parts one after the other; one that does not fit ends them: layouts._UpTo)
-        add("local a%d = {}", index)
-        add("for k = 1, %s do", count)
-        add("  local used, item = PARTS[%q](b, d + p, len - p)", field.part)
-        add("  if used == nil then break end")
-        add("  a%d[k], p = item, p + used", index)
-        add("end")
-        keys[#keys + 1] = format("[%q] = a%d", name, index)
-      elseif kind == "switch" then -- (the part for the field's value, else the last one)
-        local choice = {}
-        for _, case in ipairs(field.cases) do
-          choice[#choice + 1] = case.value and format("%s == %d and PARTS[%q]", count, case.value, case.part)
-            or format("PARTS[%q]", case.part)
-        end
-        add("local used, c%d = (%s)(b, d + p, len - p)", index, concat(choice, " or "))
-        add("if used == nil then return nil, c%d end", index)
-        add("p = p + used")
-        keys[#keys + 1] = format("[%q] = c%d", name, index)
-      else
-        add("local s%d = %s", index, size_of(field, count))
-        local negative = field.minus > 0 and format("s%d < 0 or ", index) or "" -- (less `minus`: maybe below 0)
-        add("if %sp + s%d > len then return nil, %q end", negative, index, field.count .. " past the end")
-        if kind ~= "odd" then -- (where an odd byte is, nothing asks)
-          add("local a%d = d + p", index)
-          keys[#keys + 1] = format("[%q] = a%d", name .. "_at", index)
-        end
-        add("p = p + s%d", index)
-      end
-    end
-  end
-  if #names > 0 then
-    local last = table.remove(names)
-    local what = #names > 0 and concat(names, ", ") .. " and " .. last or last
-    local fixed = offsets[last] + SIZES[shape[index_of[last]].type] -- (where the last of them ends)
-    table.insert(lines, 3, format("if len < %d then return nil, %q end", fixed, "too short for " .. what))
-  end
-  local trailing = #shape == 0 or shape[#shape].type ~= "rest"
-  add("return %s, { %s }", not trailing and "len" or static and format("%d", static) or "p", concat(keys, ", "))
-  add("end")
-  return load(concat(lines, "\n"))(PARTS)
-end
-
--- Parsers by layout name (dissector/protocol/layouts.py), and where their fields are when that is a
--- constant; which code uses which: the generated table (RULES.by_code, below).
-local PARSERS, OFFSETS = {}, {}
-for name, shape in pairs(RULES.parts) do PARTS[name] = shape_parser(shape, {}) end
-for name, shape in pairs(RULES.layouts) do
-  OFFSETS[name] = {}
-  PARSERS[name] = shape_parser(shape, OFFSETS[name])
-end
+local PARSERS = DATA.parsers
 
 -- ---------------------------------------------------------------------------------------------------
--- The generic lifter (decode/fields.py lifter): one rule of data/modbus.toml [lift] prepared for one
--- function code and direction, as a handler. Warnings in the table's order: checks, span, byte count,
--- odd count, coil, echo. Like the parsers, each rule is written out as a Lua function once (load), its
--- limits and fields in place, so that a frame costs what a hand-written handler costs.
-local REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
-
+-- The lifting rules of data/modbus.toml [lift] (decode/fields.py lifter) are handlers written out by the code
+-- generator (DATA.lifters, codegen/decode_lua.py), each rule's limits and fields in place; they call the helpers
+-- below. Warnings in the table's order: checks, span, byte count, odd count, coil, echo.
 local function echo_check(f, fields, request, echo)
   local answered, differ = request.fields, {}
   for _, name in ipairs(echo.fields) do
@@ -229,138 +133,6 @@ local function check_asked(f, parts, index, given, asked)
       warn(f, say(length.text, { part = parts.name, index = k, count = given[k], quantity = asked[k] }))
     end
   end
-end
-
--- The line that checks `value` (an expression) against low..high, `what` (an expression) naming it; test
--- "above": the high bound only (its text names no low one). The fields are unsigned: a low bound of 0 is none.
-local function check_line(check, value, what, low, high)
-  if check.test == "above" then
-    return format("if %s > %d then warn(f, say(\"above\", { what = %s, value = %s, high = %d })) end", value, high,
-      what, value, high)
-  end
-  local outside = low == high and format("%s ~= %d", value, low) or low == 0 and format("%s > %d", value, high)
-    or format("%s < %d or %s > %d", value, low, value, high)
-  return format("if %s then warn(f, range_text(%s, %s, %d, %d)) end", outside, what, value, low, high)
-end
-
--- The lines of a lifter walking each part of a records field in the frame's bytes (FC20, FC21): its checks
--- (range_text, "above"), what an answer asks of a request's part kept (`keep`), an answer's length fields
--- (check_asked). Where its fields are and its size come from RULES (codegen/rules_lua.py); a part that does
--- not fit ends them, as the grammar's. Constants in place, no table a part.
-local function parts_lines(add, parts, at, size, request)
-  local function read(spec) -- (a field of the part at `p`: its offset and width)
-    return spec[2] == 1 and format("b[p + %d]", spec[1]) or format("b[p + %d] * 256 + b[p + %d]", spec[1], spec[1] + 1)
-  end
-  add("local p, stop, index = %s, %s + %s, 0", at, at, size)
-  if parts.keep then add("local kept = {}") end
-  if parts.length then add("local given = {}") end
-  add("while p + %d <= stop do", parts.fixed)
-  local bytes = format("%d", parts.fixed)
-  if parts.size then
-    local counted = parts.size
-    add("local n = %s - %d", read(counted.at), counted.minus)
-    add("if n < 0 then break end")
-    bytes = format("%d + %s", parts.fixed, counted.half and "n - n % 2" or counted.words and "2 * n" or "n")
-  end
-  add("if p + %s > stop then break end", bytes)
-  add("index = index + 1")
-  for _, check in ipairs(parts.checks) do
-    add("local v = %s", read(check.at))
-    local what = format("%q .. index .. %q", parts.name .. " ", "'s " .. check.what)
-    add("%s", check_line(check, "v", what, table.unpack(LIMITS[check.limit])))
-  end
-  if parts.keep then add("kept[index] = %s", read(parts.keep)) end
-  if parts.length then add("given[index] = %s", read(parts.length.at)) end
-  add("p = p + %s", bytes)
-  add("end")
-  if parts.keep then add("fields[%q] = kept", parts.field) end
-  if parts.request then
-    add("if %s ~= nil and request.fields[%q] ~= nil then", request, parts.request)
-    add("  check_asked(f, parts, index, %s, request.fields[%q])", parts.length and "given" or "nil", parts.request)
-    add("end")
-  end
-end
-
-local function lifter(rule, limit, layout)
-  local named = {} -- (the layout's fields by name)
-  for _, item in ipairs(RULES.layouts[layout] or {}) do named[item.name] = item end
-  local function field(name) return format("fields[%q]", name) end
-  local out = { "local warn, say, floor, echo_check, echo, data_bytes, range_text, check_asked, parts, check_data_echo = ...",
-    "return function(f, b)", "local fields = f.fields" }
-  local function add(...) out[#out + 1] = format(...) end
-  local start, quantity, count, values = rule.start, rule.quantity, rule.count, rule.values
-  if start == REQUEST_START or quantity == REQUEST_QUANTITY or (count and count.of == REQUEST_QUANTITY) or rule.echo
-    or (rule.parts and rule.parts.request) then
-    add("local request = f.request")
-    add("if request ~= nil and request.fields == nil then request = nil end -- (its data did not parse)")
-  end
-  if start == REQUEST_START then add("local first = request and request.start")
-  else add("local first = %s", start and field(start) or "nil") end
-  if type(quantity) == "number" then add("local many = %d", quantity)
-  elseif quantity == REQUEST_QUANTITY then
-    add("local many = request and request.quantity")
-    if rule.unpaired_unit then
-      add("if many == nil and fields.byte_count %% %d == 0 then many = floor(fields.byte_count / %d) end",
-        rule.unpaired_unit, rule.unpaired_unit)
-    end
-  else add("local many = %s", quantity and field(quantity) or "nil") end
-  add("f.start, f.quantity = first, many")
-  for _, check in ipairs(rule.checks) do
-    local low, high = table.unpack(LIMITS[check.limit or limit])
-    add("%s", check_line(check, field(check.field), format("%q", check.what), low, high))
-  end
-  local function span(first, many) -- (a window past the last address, 65535)
-    local text = "if %s + %s > 65536 then warn(f, say(\"span\", { first = %s, last = %s + %s - 1 })) end"
-    add(text, first, many, first, first, many)
-  end
-  if rule.span then span("first", "many") end
-  local window = rule.write_window -- (FC23: its written window too)
-  if rule.span and window then span(field(window[1]), field(window[2])) end
-  if count then
-    add("local of = %s", count.of == REQUEST_QUANTITY and "request and request.quantity" or field(count.of))
-    add("if of ~= nil and fields.byte_count ~= %d + data_bytes(of, %d) then", count.plus, count.unit)
-    add("  warn(f, say(%q, { count = fields.byte_count, quantity = of }))", count.text)
-    add("end")
-  end
-  if rule.odd_count then
-    add("if fields.byte_count %% 2 == 1 then warn(f, say(\"odd_count\", { count = fields.byte_count })) end")
-  end
-  if rule.coil then
-    add("if %s ~= 65280 and %s ~= 0 then warn(f, say(\"coil_value\", { value = %s })) end", field(rule.coil),
-      field(rule.coil), field(rule.coil))
-  end
-  if rule.echo and rule.echo.data then -- (FC21: the answer repeats the request's data whole)
-    add("check_data_echo(f, b, request, 0)")
-  elseif rule.echo then -- (an answer that repeats its request but differs from it wrote something else)
-    local differs = {}
-    for index, name in ipairs(rule.echo.fields) do differs[index] = format("request.fields[%q] ~= %s", name, field(name)) end
-    add("if request ~= nil and (%s) then echo_check(f, fields, request, echo) end", concat(differs, " or "))
-  end
-  if values then -- (a run's `shift`: see release_run; a block's from its count field, in words or bytes)
-    local at, item = field(values.field .. "_at"), named[values.field] or {}
-    local counted = item.count and (item.half and format("floor(%s / 2)", field(item.count)) or field(item.count))
-    local offset = (OFFSETS[layout] or {})[values.field] -- (one value at a fixed offset of the data)
-    if values.kind == "registers" then
-      add("f.registers = { b = b, first = %s, count = %s, start = %s, shift = nil }", at, counted,
-        values.start and field(values.start) or "first")
-    elseif values.kind == "bits" then
-      add("local count = 8 * %s", counted)
-      add("if many ~= nil and many < count then count = many end")
-      add("f.bits = { b = b, first = %s, count = count, start = first, shift = nil }", at)
-    elseif values.kind == "register" then
-      add("f.registers = { b = b, first = f.data_at + %d, count = 1, start = first, shift = nil }", offset)
-    else
-      add("f.bits = { first = f.data_at + %d, count = 1, start = first, single = %s == 65280 and 1 or 0 }", offset,
-        field(values.field))
-    end
-  end
-  if rule.parts then -- (its parts by the layout's part, in the bytes its count gives)
-    local name = rule.parts.field
-    parts_lines(add, rule.parts, field(name .. "_at"), field(named[name].count), "request")
-  end
-  add("end")
-  return load(concat(out, "\n"))(warn, say, floor, echo_check, rule.echo, data_bytes, range_text, check_asked,
-    rule.parts, check_data_echo)
 end
 
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
@@ -451,13 +223,13 @@ local SPECIAL = {
 
 -- Per direction and code: the parser of its layout (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a
 -- named special case) and its handler (H): the generic lifter where the table has a rule, else the special case.
+local LIFTERS = DATA.lifters(warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
 local GRAMMARS, LIFT_OF, H = {}, {}, {}
 for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
   GRAMMARS[kind], LIFT_OF[kind], H[kind] = {}, {}, {}
   for code, entry in pairs(codes) do
-    local rule = RULES.lift[entry.rule]
-    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], rule
-    H[kind][code] = rule and lifter(rule, entry.limit, entry.layout) or SPECIAL[entry.special]
+    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], RULES.lift[entry.rule]
+    H[kind][code] = LIFTERS[kind][code] or SPECIAL[entry.special]
   end
 end
 
