@@ -31,6 +31,12 @@ which it read as a request, awaits an answer): until the next frame agrees with 
 _echoed), a frame of the same shape both ways (SAME_SHAPE) takes the kind the framer would have given it
 (the pairer is not idle meanwhile, so no other engine takes the stream with the framer's expectation).
 
+Listen Only Mode (Application Protocol 6.8.1): after an FC8 04 request to it (or broadcast), a slave answers
+nothing until an FC8 01 Restart Communications Option request (to it or broadcast), which it does not answer
+either. Such requests are noted as such (texts listen_only, listen_only_ends) and never unanswered; an
+exception to the FC8 04 itself says the slave did not enter the mode. The state is per slave: while any
+slave is in the mode the pairer is not idle, so the C engine, which does not keep it, does not take the stream.
+
 Time going backwards (a pcap whose records go back, a clock step): a response stamped before its
 request still answers it, its response time shown as it is (negative, as Wireshark shows a negative
 delta) with a warning that it is left out of the response times (--stats, the bus timing).
@@ -49,6 +55,8 @@ HOLD_LIMIT = 64  # items held behind an open request before it is released anywa
 SAME_SHAPE = frozenset(
     code for code, request, response in table.known_layouts() if request.length == response.length
 )
+# FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
+DIAGNOSTICS, LISTEN_ONLY, RESTART = 8, 4, 1
 
 
 def capture_ended(request: Frame, cut: str | None = None, waited: float | None = None,
@@ -89,11 +97,16 @@ class Pairer:
         # A request expire() released (live): the framer still awaits its answer, so the next frame may be
         # its retry, as when the frame itself ends the wait.
         self._expired: Frame | None = None
+        # Listen Only Mode: the FC8 04 request each slave is in it since (None: left it), and the broadcast
+        # one every slave not in _listening is in it since.
+        self._listening: dict[int, Frame | None] = {}
+        self._listening_all: Frame | None = None
 
     @property
     def idle(self) -> bool:
         """No request awaits its answer, nothing is held back, and the framer awaits what this awaits."""
-        return self._pending is None and not self._queue and self._echoed is None and self._retried is None
+        return (self._pending is None and not self._queue and self._echoed is None and self._retried is None
+                and self._listening_all is None and not self._listening)
 
     @property
     def timeout(self) -> float | None:
@@ -220,14 +233,19 @@ class Pairer:
             self._pending = None
             self._release(out)
             self._broadcast = item if item.slave == 0 else None
+            since = self._listen_only(item)
             if item.slave == 0:
                 item.broadcast = True
                 self._enqueue(item, out)
                 return
             # (awaiting nothing: the framer takes the next frame of its function for a request; an
             # exception, which says what it is, may still answer it)
-            self._answerless = not awaits_answer(item)
-            if self._answerless:
+            self._answerless = not awaits_answer(item) or since is not None
+            if since is not None:
+                key = "listen_only_ends" if _sub_function(item) == RESTART else "listen_only"
+                how = text("listen_only_broadcast") if since.slave == 0 else ""
+                item.notes.append(text(key, slave=item.slave, number=since.number, how=how))
+            elif self._answerless:
                 item.notes.append(text("never_answered"))
             self._pending = item
             self._pending_released = False
@@ -239,6 +257,8 @@ class Pairer:
         backwards: Frame | None = None
         if (pending is not None and pending.slave == item.slave and pending.function == item.function
                 and echoes(pending, item)):
+            if item.kind is Kind.EXCEPTION and self._listening.get(item.slave) is pending:
+                self._listening.pop(item.slave)  # (it refused the FC8 04: not in the mode)
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
@@ -269,10 +289,38 @@ class Pairer:
             ahead_ms = (backwards.time - item.time) * 1000  # type: ignore[operator]
             item.warnings.append(text("backwards", ahead_ms=ahead_ms, number=backwards.number))
 
+    def _listen_only(self, request: Frame) -> Frame | None:
+        """Follow Listen Only Mode through a request: the FC8 04 request its slave was in the mode since
+        (None: not in it). An FC8 04 enters it, an FC8 01 leaves it; slave 0 (broadcast): every slave."""
+        slave = request.slave
+        since = None if slave == 0 else self._listening.get(slave, self._listening_all)
+        if request.function == DIAGNOSTICS and request.crc_ok:
+            sub = _sub_function(request)
+            if sub == LISTEN_ONLY and since is None:
+                if slave == 0:
+                    self._listening_all = request
+                    self._listening.clear()
+                else:
+                    self._listening[slave] = request
+            elif sub == RESTART:
+                if slave == 0:
+                    self._listening_all = None
+                    self._listening.clear()
+                elif self._listening_all is not None:
+                    self._listening[slave] = None
+                else:
+                    self._listening.pop(slave, None)
+        return since
+
     def _enqueue(self, item: Item, out: list[Item]) -> None:
         self._queue.append(item)
         if self._pending is None or not self._hold or len(self._queue) > HOLD_LIMIT:
             self._release(out)
+
+
+def _sub_function(request: Frame) -> int | None:
+    pdu = request.pdu
+    return pdu[1] << 8 | pdu[2] if len(pdu) >= 3 else None
 
 
 def _awaited(request: Frame, frame: Frame) -> bool:

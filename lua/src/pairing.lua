@@ -7,6 +7,9 @@ local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_addres
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
 local ECHO = DATA.pairing.echo
+local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
+-- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
+local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
 -- ---------------------------------------------------------------------------------------------------
 -- Pairing (dissector/decode/pairing.py): a response answers the open request with its slave and function
@@ -21,6 +24,43 @@ local ECHO = DATA.pairing.echo
 -- timeout, is the master's retry, and the frame after it the framer would read as its answer answers it;
 -- until the framer's expectation agrees again (st.retried, st.echoed), a frame of SAME_SHAPE takes the kind
 -- the framer would have given it.
+
+-- Listen Only Mode (pairing.py _listen_only): after 08/04 (to the slave or broadcast) a slave answers nothing,
+-- until 08/01 (to it or broadcast), which it does not answer either. st.listening (nil: no slave in the mode):
+-- the 08/04 each slave is in it since (false: left it); st.listening_all: the broadcast one, for the others.
+-- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
+-- f's sub-function.
+local function listen_only(st, f)
+  local slave, listening, since = f.slave, st.listening, nil
+  if listening ~= nil and slave ~= 0 then
+    since = listening[slave]
+    if since == nil then since = st.listening_all end
+    if since == false then since = nil end
+  end
+  local sub = nil
+  if f.fn == FC8_CODE and f.data_len >= 2 and f.crc == f.crc_expected then
+    local b, at = f.b, f.data_at
+    sub = b[at] * 256 + b[at + 1]
+    if sub == SUB_LISTEN_ONLY and since == nil then
+      if slave == 0 then
+        st.listening, st.listening_all = {}, f
+      else
+        if listening == nil then listening = {}; st.listening = listening end
+        listening[slave] = f
+      end
+    elseif sub == SUB_RESTART and listening ~= nil then
+      if slave == 0 then
+        st.listening, st.listening_all = nil, nil
+      elseif st.listening_all ~= nil then
+        listening[slave] = false
+      else
+        listening[slave] = nil
+        if next(listening) == nil then st.listening = nil end
+      end
+    end
+  end
+  return since, sub
+end
 
 -- Codes whose request and answer have the same layout: framed alike, whichever the framer awaits
 -- (pairing.py SAME_SHAPE, from the protocol table).
@@ -120,12 +160,18 @@ local function pair(st, f)
   end
   if f.kind == REQUEST then
     if pending ~= nil then unanswered(st, pending) end
+    local since, sub = nil, nil
+    if f.fn == FC8_CODE or st.listening ~= nil then since, sub = listen_only(st, f) end
     if f.slave == 0 then
       f.broadcast = true
       st.broadcast = f -- (the last request, a broadcast: a response from slave 0 after it answers it wrongly)
     else
       st.broadcast = nil
-      if not awaits_answer(f) then
+      if since ~= nil then
+        note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
+          { slave = f.slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }))
+        f.answerless = true
+      elseif not awaits_answer(f) then
         note(f, NEVER_ANSWERED_NOTE)
         f.answerless = true
       end
@@ -136,6 +182,11 @@ local function pair(st, f)
     return
   end
   if pending ~= nil and pending.slave == f.slave and pending.fn == f.fn and echoes(pending, f) then
+    local listening = st.listening
+    if listening ~= nil and f.kind == EXCEPTION and listening[f.slave] == pending then
+      listening[f.slave] = nil -- (it refused the 08/04: not in the mode)
+      if next(listening) == nil and st.listening_all == nil then st.listening = nil end
+    end
     f.request = pending
     pending.response = f
     st.pending = nil

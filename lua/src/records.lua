@@ -465,7 +465,7 @@ lane.quick = VW3_QUICK_LANES ~= false
 function lane.decode(st, bytes, n, time, number)
   local slave, code = string.byte(bytes, 1, 2)
   local answer = st.pending ~= nil
-  if lane.quick and st.open[1] == nil and takes_whole(st, n, slave)
+  if lane.quick and st.open[1] == nil and st.listening == nil and takes_whole(st, n, slave)
       and (st.expect == slave * 256 + code) == answer then
     local quiet = nil -- (what lane.counted counts the frame in; nil: profile auto is not in use for the slave)
     if config.auto[slave] then quiet = lane.quiet(st, slave, code, answer) end

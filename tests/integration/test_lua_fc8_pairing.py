@@ -18,6 +18,9 @@ LISTEN_ONLY, RESTART = rtu("01 08 0004 0000"), rtu("01 08 0001 0000")
 REGISTER_QUERY, REGISTER_ANSWER = rtu("01 08 0002 0000"), rtu("01 08 0002 0007")
 REFUSED = rtu("01 88 01")  # exception 1: a server that does not support 04 says so
 NOTE = "no response expected: the spec's server returns none"
+# (after 08/04 the slave is in listen-only mode: it answers nothing, 08/01 included, which ends the mode)
+ENDS = "slave 1 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this"
+LISTENING = "slave 1 is in listen-only mode since #1 (08/04): it does not answer"
 FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.kind", "-e", "vw3.subfunction", "-e", "vw3.request_frame",
           "-e", "vw3.response_frame", "-e", "vw3.unanswered", "-e", "vw3.note"]
 
@@ -37,7 +40,7 @@ def test_listen_only_awaits_nothing(tmp_path: Path, two_pass: bool) -> None:
     pcap = records(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
     assert tshark(pcap, *FIELDS, two_pass=two_pass).splitlines() == [
         f"1;4;;;;{NOTE}",
-        "1;1;;3;;" if two_pass else "1;1;;;;",  # (one pass: the answer is not read yet)
+        f"1;1;;3;;{ENDS}" if two_pass else f"1;1;;;;{ENDS}",  # (one pass: the answer is not read yet)
         "2;1;2;;;",
     ]
     tree = tshark(pcap, "-V", two_pass=two_pass)
@@ -49,7 +52,7 @@ def test_listen_only_in_one_record_with_the_next_request(tmp_path: Path) -> None
     # (framed in one go: the framer's expectation, not the pairing alone, must know 08/04 awaits nothing;
     # request_frame and response_frame are record numbers)
     pcap = write_pcap(tmp_path / "one.pcap", [(LISTEN_ONLY + REGISTER_QUERY, T0), (REGISTER_ANSWER, T0 + 0.010)])
-    assert tshark(pcap, *FIELDS).splitlines() == [f"1,1;4,2;;2;;{NOTE}", "2;2;1;;;"]
+    assert tshark(pcap, *FIELDS).splitlines() == [f"1,1;4,2;;2;;{NOTE},{LISTENING}", "2;2;1;;;"]
 
 
 @pytest.mark.parametrize("two_pass", [True, False])

@@ -24,6 +24,9 @@ RESTART = rtu("01 08 0001 0000")  # 01 08 00 01 00 00 B1 CB
 REGISTER_QUERY, REGISTER_ANSWER = rtu("01 08 0002 0000"), rtu("01 08 0002 0007")
 REFUSED = rtu("01 88 01")  # exception 1: a server that does not support 04 says so
 NOTE = "no response expected: the spec's server returns none"
+# (after 08/04 the slave is in listen-only mode: it answers nothing, 08/01 included, which ends the mode)
+ENDS = "slave 1 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this"
+LISTENING = "slave 1 is in listen-only mode since #1 (08/04): it does not answer"
 
 
 def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
@@ -61,7 +64,7 @@ def test_listen_only_awaits_nothing_summary(monkeypatch: pytest.MonkeyPatch) -> 
     # The reviewer's bytes: 08/04, then 08/01 and its echo.
     assert lines(both(hexes(LISTEN_ONLY, RESTART, RESTART), monkeypatch)) == [
         f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
-        "2 - 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        f"2 - 1 request Diagnostics 01h Restart Communications Option = 0 [{ENDS}] CRC ok",
         "3 - 1 response Diagnostics 01h Restart Communications Option = 0 [#2] CRC ok",
     ]
 
@@ -70,7 +73,7 @@ def test_listen_only_then_another_sub_function(monkeypatch: pytest.MonkeyPatch) 
     # 08/04 then 08/02 and its answer: the 08/02 is a request, never the 08/04's answer.
     assert lines(both(hexes(LISTEN_ONLY, REGISTER_QUERY, REGISTER_ANSWER), monkeypatch)) == [
         f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
-        "2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 CRC ok",
+        f"2 - 1 request Diagnostics 02h Return Diagnostic Register = 0 [{LISTENING}] CRC ok",
         "3 - 1 response Diagnostics 02h Return Diagnostic Register = 7 [#2] CRC ok",
     ]
 
@@ -136,7 +139,7 @@ def test_summary_of_a_capture(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
     assert lines(both([str(pcap)], monkeypatch)) == [
         f"1 0.000000 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
-        "2 0.010000 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        f"2 0.010000 1 request Diagnostics 01h Restart Communications Option = 0 [{ENDS}] CRC ok",
         "3 0.020000 1 response Diagnostics 01h Restart Communications Option = 0 [#2, 10.0 ms] CRC ok",
     ]
 
@@ -149,7 +152,7 @@ def test_detail(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     assert frames[0].splitlines()[-1] == f"    Note: {NOTE}"
     assert "Response in frame" not in frames[0] and "no response" not in frames[0].replace(NOTE, "")
     assert frames[1].splitlines()[0] == "Frame 2: 8 bytes at offset 8, request (RTU)"
-    assert frames[1].splitlines()[-1] == "    Response in frame: 3"
+    assert frames[1].splitlines()[-2:] == ["    Response in frame: 3", f"    Note: {ENDS}"]
     assert frames[2].splitlines()[0] == "Frame 3: 8 bytes at offset 16, response (RTU)"
     assert frames[2].splitlines()[-2:] == ["    Request in frame: 2", "    Response time: 10.000 ms"]
 
@@ -164,7 +167,7 @@ def test_json(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         {"frame": 1, "kind": "request", "subfunction": 4, "unanswered": False, "request_frame": None,
          "response_frame": None, "notes": [NOTE]},
         {"frame": 2, "kind": "request", "subfunction": 1, "unanswered": False, "request_frame": None,
-         "response_frame": 3, "notes": []},
+         "response_frame": 3, "notes": [ENDS]},
         {"frame": 3, "kind": "response", "subfunction": 1, "unanswered": None, "request_frame": 2,
          "response_frame": None, "notes": []},
     ]

@@ -18,7 +18,7 @@ from helpers import rtu, use_engine
 
 T0 = 1767225600.0
 READ, ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
-LISTEN_ONLY = rtu("01 08 0004 0000")
+LISTEN_ONLY, RESTART = rtu("01 08 0004 0000"), rtu("01 08 0001 0000")
 REFUSED = rtu("01 88 01")  # exception 1: a server that does not support 04 says so
 HEADER = "outages (two or more consecutive requests unanswered)"
 
@@ -49,14 +49,21 @@ def outages(text: str) -> list[str]:
 def test_listen_only_between_unanswered_polls_neither_counts_nor_ends_the_run(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    # (the polls after 08/04 find the slave in listen-only mode: not answering them is no outage)
     frames = [READ, READ, LISTEN_ONLY, READ, READ, ANSWER]
     assert outages(stats(frames, tmp_path, monkeypatch)) == [
         HEADER,
-        "  slave 1 silent 0.000000 - 0.300000, 3 requests unanswered (frames 1..4)",
+        "  slave 1 silent 0.000000 - 0.100000, 2 requests unanswered (frames 1..2)",
+    ]
+    # (and until 08/01 Restart Communications Option, which it does not answer either)
+    frames = [LISTEN_ONLY, READ, READ, RESTART, READ, READ, READ, ANSWER]
+    assert outages(stats(frames, tmp_path, monkeypatch)) == [
+        HEADER,
+        "  slave 1 silent 0.400000 - 0.500000, 2 requests unanswered (frames 5..6)",
     ]
     (outage,) = json.loads(stats(frames, tmp_path, monkeypatch, "--json"))["bus"]["outages"]
-    assert (outage["requests"], outage["first_frame"], outage["last_frame"]) == (3, 1, 4)
-    assert outage["end"] - outage["start"] == pytest.approx(0.3)
+    assert (outage["requests"], outage["first_frame"], outage["last_frame"]) == (2, 5, 6)
+    assert outage["end"] - outage["start"] == pytest.approx(0.1)
 
 
 def test_listen_only_alone_is_no_outage_and_makes_none(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

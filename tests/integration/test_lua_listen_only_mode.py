@@ -1,0 +1,62 @@
+"""The plugin follows Listen Only Mode per slave as vw3-decode does (tests/unit/test_listen_only_mode.py): after
+08/04 (to the slave or broadcast) the slave's requests say it does not answer and are not unanswered, until
+08/01, which says it ends the mode. Before, each request was unanswered ("No response"). Real tshark with
+-X lua_script:lua/vw3.lua, -2 and one pass."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from helpers import rtu
+from lua_harness import lua_errors, run_tshark, write_pcap
+
+pytestmark = pytest.mark.integration
+
+T0 = 1700000000.0
+LISTEN_ONLY, RESTART = rtu("0C 08 0004 0000"), rtu("0C 08 0001 0000")
+READ, ANSWER = rtu("0C 03 20D1 0001"), rtu("0C 03 02 0003")
+BROADCAST_LISTEN_ONLY, BROADCAST_RESTART, OTHER = rtu("00 08 0004 0000"), rtu("00 08 0001 0000"), rtu("05 03 20D1 0001")
+FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.slave", "-e", "vw3.kind", "-e", "vw3.unanswered",
+          "-e", "vw3.note"]
+NOTE = "no response expected: the spec's server returns none"
+
+
+def tshark(frames: list[tuple[bytes, float]], tmp_path: Path, two_pass: bool) -> list[str]:
+    pcap = write_pcap(tmp_path / "lo.pcap", [(frame, T0 + at) for frame, at in frames])
+    result = run_tshark(pcap, *FIELDS, two_pass=two_pass)
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    return result.stdout.splitlines()
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_a_slave_in_listen_only_mode(tmp_path: Path, two_pass: bool) -> None:
+    frames = [(LISTEN_ONLY, 0.0), (READ, 1.0), (READ, 2.0), (RESTART, 3.0), (RESTART, 3.02), (READ, 4.0),
+              (ANSWER, 4.02)]
+    assert tshark(frames, tmp_path, two_pass) == [
+        f"12;1;;{NOTE}",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this",
+        "12;2;;",
+        "12;1;;",
+        "12;2;;",
+    ]
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_a_broadcast_08_04(tmp_path: Path, two_pass: bool) -> None:
+    frames = [(BROADCAST_LISTEN_ONLY, 0.0), (READ, 0.1), (OTHER, 0.2), (RESTART, 0.3), (READ, 0.4), (ANSWER, 0.42),
+              (OTHER, 0.5), (BROADCAST_RESTART, 0.6), (OTHER, 0.7), (OTHER, 2.0)]
+    assert tshark(frames, tmp_path, two_pass) == [
+        "0;1;;",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04, broadcast): it does not answer",
+        "5;1;;slave 5 is in listen-only mode since #1 (08/04, broadcast): it does not answer",
+        "12;1;;slave 12 leaves listen-only mode (since #1, 08/04, broadcast): the spec's server does not answer this",
+        "12;1;;",
+        "12;2;;",
+        "5;1;;slave 5 is in listen-only mode since #1 (08/04, broadcast): it does not answer",
+        "0;1;;",
+        "5;1;1;" if two_pass else "5;1;;",
+        "5;1;;the capture ends before any response: not known whether it was answered" if two_pass else "5;1;;",
+    ]
