@@ -115,13 +115,16 @@ class PathEngine(_summary.Engine if _summary is not None else object):  # type: 
         self.timeout = -1.0 if timeout is None else timeout
 
 
-def make_engine(annotator: Any | None, shown: bool = True) -> Any:
+def make_engine(annotator: Any | None, shown: bool = True, pairer: Any | None = None) -> Any:
     """The compiled engine, told about devices by `annotator` (None: spec semantics only, as -n);
-    `shown` False: nothing reads its lines (--stats alone), its transactions are only counted."""
+    `shown` False: nothing reads its lines (--stats alone), its transactions are only counted; told by
+    `pairer` (pairing.py) which slaves are in Listen Only Mode."""
     plain = SlaveFacts(True, {function: (function_label(function, None), ()) for function in HANDLED})
     unknown = SlaveFacts(False)
 
     def slave_info(slave: int) -> SlaveFacts:
+        if pairer is not None and pairer.in_listen_only(slave):
+            return unknown  # (the engine keeps no mode: pairing.py notes the slave's requests)
         if annotator is None:
             return plain
         if not hasattr(annotator, "summary_facts"):  # an annotator the compiled path knows nothing of
@@ -286,7 +289,7 @@ class SummaryPath:
         self.dissector = dissector
         self.framer = dissector.framer
         self.pairer = dissector.pairer
-        self.engine = make_engine(annotator)
+        self.engine = make_engine(annotator, pairer=self.pairer)
         self.engine.stats = stats
         self.annotator = annotator
         self.write_items = write_items
@@ -337,12 +340,7 @@ class SummaryPath:
     def forget_changed(self) -> None:
         """Slaves whose device profile changed (or settled) while the Python stages had the stream are
         asked about again: the engine shows them from then on."""
-        annotator = self.annotator
-        changed = getattr(annotator, "changed", None)
-        if changed:
-            for slave in changed:
-                self.engine.forget(slave)
-            changed.clear()
+        forget_changed(self.engine, self.annotator, self.pairer)
 
     def _python_frames(self) -> None:
         framer = self.framer
@@ -370,6 +368,16 @@ class SummaryPath:
             window = self.buf[self.pos : self.pos + (WINDOW if side.settled else max(WINDOW, side.stride))]
             self.pos += len(window)
             side.write(self.dissector.feed(Chunk(window)))
+
+
+def forget_changed(engine: Any, annotator: Any | None, pairer: Any) -> None:
+    """The engine asks slave_info again about the slaves whose device profile changed (or settled) or
+    whose Listen Only Mode did (pairing.py) while the Python stages had the stream."""
+    for changed in (getattr(annotator, "changed", None), pairer.listen_changed):
+        if changed:
+            for slave in changed:
+                engine.forget(slave)
+            changed.clear()
 
 
 def _intact(item: Item) -> bool:

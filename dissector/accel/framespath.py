@@ -61,7 +61,7 @@ def decode(chunks: Iterable[Chunk], dissector: Dissector, sinks: Any, annotate: 
         accept = counted.accept
     path = timedpath.TimedPath(dissector, None, Clock(), accept, lambda records: None, dissector.pairer.timeout)
     path.sync_clock = False  # (the engine writes no time column: the sinks' clock sees every item)
-    path.engine.judge = _NOTHING
+    path.judge = _NOTHING
     path.engine.frames = True
     path.write_lines = _Frames(path, annotate, accept)
     if counted is not None:

@@ -95,7 +95,7 @@ class LivePath:
 
             path = TimedPath(dissector, None, Clock(), self._items, lambda records: None, timeout)
             path.sync_clock = False  # (the display's clock sees every item)
-            path.engine.judge = _NOTHING
+            path.judge = _NOTHING
             path.engine.frames = True
             path.write_lines = frames = _Frames(path, annotate, self._engine_frames)
             if count is not None:

@@ -71,10 +71,10 @@ def choose(annotate: Any, chunks: Iterable[Chunk], framer: Any, pairer: Any,
     if not fastsummary.available() or not timedpath.usable(Clock()):
         return False
     path = timedpath.TimedPath(_Framing(framer, pairer), None, Clock(), judge, _no_lines, timeout)  # type: ignore[arg-type]
-    path.engine.judge = judged(annotate)
+    path.judge = judged(annotate)
 
     def again() -> None:
-        path.engine.judge = judged(annotate)
+        path.judge = judged(annotate)
 
     path.on_hand_back = again
     timedpath.summarize_timed(blocks_from_chunks(chunks, framer.timing), path, lambda: None)

@@ -18,7 +18,7 @@ from bisect import bisect_right
 from collections.abc import Callable, Iterable
 from typing import Any
 
-from dissector.accel.fastsummary import NEED, PythonSide, built, make_engine
+from dissector.accel.fastsummary import NEED, PythonSide, built, forget_changed, make_engine
 from dissector.accel.records import Block
 from dissector.model import Chunk, Item, Stamp
 from dissector.pipeline import Dissector
@@ -43,7 +43,8 @@ class TimedPath:
         self.pairer = dissector.pairer
         self.annotator = annotator
         self.clock = clock
-        self.engine = make_engine(annotator, shown)  # shown False: its lines are only counted (--stats)
+        # (shown False: its lines are only counted, --stats)
+        self.engine = make_engine(annotator, shown, self.pairer)
         timing = self.framer.timing
         self.engine.set_timing(timing.char_time, timing.max_silence, timeout, CLOCKS[clock.format])
         self.write_items = write_items
@@ -67,6 +68,7 @@ class TimedPath:
         self.sync_clock = True  # the engine writes the time column: the clock's references go with the stream
         self.numbered = 0  # items numbered before the engine's last run
         self.report: Any | None = None  # a compiled Report the engine feeds (reportfeed.py): synced around runs
+        self._judge: bytes | None = None
 
     # -- input ------------------------------------------------------------------------------------
     def feed(self, block: Block) -> None:
@@ -196,11 +198,27 @@ class TimedPath:
             side.write(items)
 
     def _forget_changed(self) -> None:
-        changed = getattr(self.annotator, "changed", None)
-        if changed:
-            for slave in changed:
-                self.engine.forget(slave)
-            changed.clear()
+        if self._judge is not None and self.pairer.listen_changed:
+            self.judge = self._judge  # (with the slaves in Listen Only Mode now)
+        forget_changed(self.engine, self.annotator, self.pairer)
+
+    @property
+    def judge(self) -> bytes | None:
+        """Judge mode (_judge.h): a bit per (slave, function code) whose transactions the Python stages take;
+        None: not in it. The engine's bitmap adds every code of the slaves in Listen Only Mode (pairing.py
+        in_listen_only), whose mode it does not keep."""
+        return self._judge
+
+    @judge.setter
+    def judge(self, rows: bytes | None) -> None:
+        self._judge = rows
+        listening = self.pairer.listen_only_slaves() if rows is not None else None
+        if listening:
+            marked = bytearray(rows)  # type: ignore[arg-type]
+            for slave in listening:
+                marked[slave * 32 : slave * 32 + 32] = b"\xff" * 32
+            rows = bytes(marked)
+        self.engine.judge = rows
 
     # -- the chunks kept ------------------------------------------------------------------------------
     def _chunk_of(self, offset: int) -> int:

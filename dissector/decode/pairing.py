@@ -32,10 +32,11 @@ _echoed), a frame of the same shape both ways (SAME_SHAPE) takes the kind the fr
 (the pairer is not idle meanwhile, so no other engine takes the stream with the framer's expectation).
 
 Listen Only Mode (Application Protocol 6.8.1): after an FC8 04 request to it (or broadcast), a slave answers
-nothing until an FC8 01 Restart Communications Option request (to it or broadcast), which it does not answer
-either. Such requests are noted as such (texts listen_only, listen_only_ends) and never unanswered; an
-exception to the FC8 04 itself says the slave did not enter the mode. The state is per slave: while any
-slave is in the mode the pairer is not idle, so the C engine, which does not keep it, does not take the stream.
+nothing until an FC8 01 Restart Communications Option request (to it or broadcast), which it acts on but
+does not answer. Such requests are noted as such (texts listen_only, listen_only_ends) and never unanswered;
+an exception to the FC8 04 itself says the slave did not enter the mode; a damaged request (bad CRC or LRC)
+is not acted on. The state is per slave: the C engine, which does not keep it, hands the transactions of a
+slave in the mode to the Python stages (in_listen_only; listen_changed: the slaves it must ask about again).
 
 Time going backwards (a pcap whose records go back, a clock step): a response stamped before its
 request still answers it, its response time shown as it is (negative, as Wireshark shows a negative
@@ -101,12 +102,22 @@ class Pairer:
         # one every slave not in _listening is in it since.
         self._listening: dict[int, Frame | None] = {}
         self._listening_all: Frame | None = None
+        self.listen_changed: set[int] = set()  # slaves whose mode changed since the engine last asked
 
     @property
     def idle(self) -> bool:
         """No request awaits its answer, nothing is held back, and the framer awaits what this awaits."""
-        return (self._pending is None and not self._queue and self._echoed is None and self._retried is None
-                and self._listening_all is None and not self._listening)
+        return self._pending is None and not self._queue and self._echoed is None and self._retried is None
+
+    def in_listen_only(self, slave: int) -> bool:
+        """Is the slave in Listen Only Mode (a broadcast's: slave 0 is none)?"""
+        return slave != 0 and self._listening.get(slave, self._listening_all) is not None
+
+    def listen_only_slaves(self) -> list[int]:
+        """The slaves in Listen Only Mode."""
+        if self._listening_all is None:
+            return [slave for slave, since in self._listening.items() if since is not None]
+        return [slave for slave in range(1, 256) if self._listening.get(slave, self._listening_all) is not None]
 
     @property
     def timeout(self) -> float | None:
@@ -233,7 +244,7 @@ class Pairer:
             self._pending = None
             self._release(out)
             self._broadcast = item if item.slave == 0 else None
-            since = self._listen_only(item)
+            since, ends = self._listen_only(item)
             if item.slave == 0:
                 item.broadcast = True
                 self._enqueue(item, out)
@@ -242,7 +253,7 @@ class Pairer:
             # exception, which says what it is, may still answer it)
             self._answerless = not awaits_answer(item) or since is not None
             if since is not None:
-                key = "listen_only_ends" if _sub_function(item) == RESTART else "listen_only"
+                key = "listen_only_ends" if ends else "listen_only"
                 how = text("listen_only_broadcast") if since.slave == 0 else ""
                 item.notes.append(text(key, slave=item.slave, number=since.number, how=how))
             elif self._answerless:
@@ -259,6 +270,7 @@ class Pairer:
                 and echoes(pending, item)):
             if item.kind is Kind.EXCEPTION and self._listening.get(item.slave) is pending:
                 self._listening.pop(item.slave)  # (it refused the FC8 04: not in the mode)
+                self.listen_changed.add(item.slave)
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
@@ -289,28 +301,31 @@ class Pairer:
             ahead_ms = (backwards.time - item.time) * 1000  # type: ignore[operator]
             item.warnings.append(text("backwards", ahead_ms=ahead_ms, number=backwards.number))
 
-    def _listen_only(self, request: Frame) -> Frame | None:
+    def _listen_only(self, request: Frame) -> tuple[Frame | None, bool]:
         """Follow Listen Only Mode through a request: the FC8 04 request its slave was in the mode since
-        (None: not in it). An FC8 04 enters it, an FC8 01 leaves it; slave 0 (broadcast): every slave."""
+        (None: not in it), and whether this request ends the mode. An intact FC8 04 enters it, an intact
+        FC8 01 leaves it; slave 0 (broadcast): every slave."""
         slave = request.slave
         since = None if slave == 0 else self._listening.get(slave, self._listening_all)
-        if request.function == DIAGNOSTICS and request.crc_ok:
-            sub = _sub_function(request)
-            if sub == LISTEN_ONLY and since is None:
-                if slave == 0:
-                    self._listening_all = request
-                    self._listening.clear()
-                else:
-                    self._listening[slave] = request
-            elif sub == RESTART:
-                if slave == 0:
-                    self._listening_all = None
-                    self._listening.clear()
-                elif self._listening_all is not None:
-                    self._listening[slave] = None
-                else:
-                    self._listening.pop(slave, None)
-        return since
+        sub = _sub_function(request) if request.function == DIAGNOSTICS and request.crc_ok else None
+        if sub == LISTEN_ONLY and since is None:
+            if slave == 0:
+                self._listening_all = request
+                self._listening.clear()
+            else:
+                self._listening[slave] = request
+        elif sub == RESTART:
+            if slave == 0:
+                self._listening_all = None
+                self._listening.clear()
+            elif self._listening_all is not None:
+                self._listening[slave] = None
+            else:
+                self._listening.pop(slave, None)
+        else:
+            return since, False
+        self.listen_changed.update(range(1, 256) if slave == 0 else (slave,))
+        return since, sub == RESTART
 
     def _enqueue(self, item: Item, out: list[Item]) -> None:
         self._queue.append(item)

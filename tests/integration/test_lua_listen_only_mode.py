@@ -60,3 +60,17 @@ def test_a_broadcast_08_04(tmp_path: Path, two_pass: bool) -> None:
         "5;1;1;" if two_pass else "5;1;;",
         "5;1;;the capture ends before any response: not known whether it was answered" if two_pass else "5;1;;",
     ]
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_a_damaged_08_01_does_not_end_it(tmp_path: Path, two_pass: bool) -> None:
+    # (as vw3-decode: tests/unit/test_listen_only_mode.py; a random ASCII session found them apart)
+    damaged = RESTART[:-1] + bytes([RESTART[-1] ^ 0xFF])
+    frames = [(LISTEN_ONLY, 0.0), (damaged, 1.0), (READ, 2.0), (RESTART, 3.0), (READ, 4.0), (ANSWER, 4.02)]
+    assert tshark(frames, tmp_path, two_pass)[1:] == [
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this",
+        "12;1;;",
+        "12;2;;",
+    ]

@@ -103,3 +103,21 @@ def test_an_exception_to_08_04_leaves_the_slave_out_of_it(tmp_path: Path, monkey
         "4 2.000000 12 request Read Holding Registers 8401 "
         "[the capture ends before any response: not known whether it was answered] CRC ok",
     ]
+
+
+def test_a_damaged_08_01_does_not_end_it(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # (a slave acts on no frame whose check fails: it stays in the mode, and the 08/01 says so; before, the
+    # note said it left while the next request still found it in the mode, and the plugin said otherwise)
+    damaged = RESTART[:-1] + bytes([RESTART[-1] ^ 0xFF])
+    frames = [(LISTEN_ONLY, 0.0), (damaged, 1.0), (READ, 2.0), (RESTART, 3.0), (READ, 4.0), (ANSWER, 4.02)]
+    assert lines(decode(frames, tmp_path, monkeypatch))[1:] == [
+        "2 1.000000 12 request Diagnostics 01h Restart Communications Option = 0 "
+        "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] "
+        "CRC BAD (received 0x29B0, expected 0xD6B0)",
+        "3 2.000000 12 request Read Holding Registers 8401 "
+        "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] CRC ok",
+        "4 3.000000 12 request Diagnostics 01h Restart Communications Option = 0 "
+        "[slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this] CRC ok",
+        "5 4.000000 12 request Read Holding Registers 8401 CRC ok",
+        "6 4.020000 12 response Read Holding Registers 8401: 8401=3 [#5, 20.0 ms] CRC ok",
+    ]
