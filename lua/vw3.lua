@@ -8230,7 +8230,8 @@ local function printable(b, first, last)
   return string.char(table.unpack(b, first, last))
 end
 
--- A counted field's bytes from its count's value (as shape_parser's size_of; odd: the byte an odd count leaves).
+-- A counted field's bytes from its count's value (as codegen/decode_lua.py's _size_of; odd: the byte an
+-- odd count leaves).
 local function counted_size(field, count)
   if field.type == "odd" then return count % 2 end
   local n = count - field.minus

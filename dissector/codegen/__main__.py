@@ -4,7 +4,8 @@ The generated files are checked in (a build or a Wireshark install needs no Pyth
   dissector/accel/_tables.h   the compiled summary path's per-code tables (codegen/c.py)
   lua/vw3.lua, the assembly of lua/src/*.lua with, between its GENERATED markers, the plugin's data
       (codegen/lua.py) and, between the RULES markers inside them, the lifting rules, layouts,
-      confirmations and texts of data/modbus.toml (codegen/rules_lua.py) its modules interpret
+      confirmations and texts of data/modbus.toml (codegen/rules_lua.py) its modules interpret, and the
+      layouts' readers and the lifting rules' handlers written out from them (codegen/decode_lua.py)
 """
 from __future__ import annotations
 
