@@ -277,6 +277,7 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
         "exception_causes": causes,
         "diagnostics": dict(sorted(profile.diagnostics.items())),
         "subfunctions": profile.subfunctions,
+        "diagnostic_constants": dict(sorted(profile.diagnostic_constants.items())),
         "objects": {
             key: {"meaning": meaning.meaning, "format": meaning.format, "max_length": meaning.max_length}
             for key, meaning in sorted(profile.objects.items())

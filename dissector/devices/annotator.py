@@ -588,6 +588,11 @@ def _diagnostics(frame: Frame, device: Device) -> None:
     note = text("subfunction_meaning", subfunction=sub, device=profile.device, meaning=meaning)
     fields = frame.fields
     if frame.kind is Kind.RESPONSE and fields is not None and len(fields.data) == 2:
-        note += text("subfunction_value", value=int.from_bytes(fields.data, "big"))
+        value = int.from_bytes(fields.data, "big")
+        note += text("subfunction_value", value=value)
+        constant = profile.diagnostic_constants.get(sub)  # type: ignore[arg-type]
+        if constant is not None and value != constant:
+            frame.warnings.append(text("diagnostic_constant", subfunction=sub, device=profile.device,
+                                       constant=constant, value=value))
     frame.notes.append(note)
 

@@ -79,6 +79,7 @@ class Profile:
     exception_causes: dict[tuple[int, int], tuple[ExceptionCause, ...]] = field(default_factory=dict)
     diagnostics: dict[int, str] = field(default_factory=dict)
     subfunctions: frozenset[int] | None = None  # the FC8 sub-functions it answers (None: every one the spec has)
+    diagnostic_constants: dict[int, int] = field(default_factory=dict)  # FC8 counters' one documented value
     objects: dict[int, ObjectMeaning] = field(default_factory=dict)
     function_names: dict[int, str] = field(default_factory=dict)
     plc_base: dict[int, int] = field(default_factory=dict)
@@ -219,7 +220,7 @@ _KNOWN_KEYS = frozenset(
     [
         "name", "title", "device", "map", "address_style", "functions", "inner_only", "broadcast",
         "protected_value", "all_protected_exception", "limits", "exceptions", "exception_causes",
-        "diagnostics", "subfunctions", "objects", "function_names", "plc_base", "bits_depend", "identify",
+        "diagnostics", "subfunctions", "diagnostic_constants", "objects", "function_names", "plc_base", "bits_depend", "identify",
     ]
 )
 
@@ -286,6 +287,11 @@ def parse_profile(text: str, origin: str) -> Profile:
         exception_causes=_causes(reader, data),
         diagnostics=reader.code_names(data, "diagnostics", 0xFFFF),
         subfunctions=reader.codes(data, "subfunctions"),
+        diagnostic_constants={
+            reader.integer(code, "[diagnostic_constants] key", 0, 0xFFFF):
+                reader.integer(value, f"[diagnostic_constants] {code}")
+            for code, value in reader.table(data, "diagnostic_constants").items()
+        },
         objects=_objects(reader, data),
         function_names=reader.code_names(data, "function_names"),
         plc_base=plc_base,

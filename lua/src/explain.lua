@@ -157,7 +157,13 @@ local function diagnostics_note(f, device, b)
   f.subfunction_text = meaning
   local text = say("subfunction_meaning", { subfunction = sub, device = profile.device, meaning = meaning })
   if f.kind == RESPONSE and f.fields ~= nil and f.fields.data_length == 2 then
-    text = text .. say("subfunction_value", { value = u16(b, f.data_at + 2) })
+    local value = u16(b, f.data_at + 2)
+    text = text .. say("subfunction_value", { value = value })
+    local constant = profile.diagnostic_constants[sub]
+    if constant ~= nil and value ~= constant then
+      warn(f, say("diagnostic_constant",
+        { subfunction = sub, device = profile.device, constant = constant, value = value }))
+    end
   end
   note(f, text)
 end

@@ -55,3 +55,47 @@ def test_the_plugin_warns_as_vw3_decode(tmp_path: Path, two_pass: bool) -> None:
                      "-e", "vw3.warning", two_pass=two_pass)
     assert not lua_errors(got.stdout + got.stderr)
     assert got.stdout.splitlines() == [f"{number}|{WARNED.get(number, '')}" for number in range(1, len(REQUESTS) + 1)]
+
+
+# Chapter 8: the card's 10 (NAK count) and 11 (slave-busy count) are always 0 (shared/reference); an answer
+# with another value did not come from those counters (atv71.toml [diagnostic_constants]).
+COUNTERS = [("0C 08 0010 0000", "0C 08 0010 0000"), ("0C 08 0011 0000", "0C 08 0011 0005"),
+            ("0C 08 0010 0000", "0C 08 0010 0100"), ("0C 08 0012 0000", "0C 08 0012 0003")]
+CONSTANT = "the VW3 A3 303 documents sub-function {:02X} as always 0: this answer says {}"
+NAK = "sub-function 10 on the VW3 A3 303: NAK count (always 0 on this card)"
+BUSY = "sub-function 11 on the VW3 A3 303: slave-busy count (always 0 on this card)"
+COUNTER_LINES = [
+    f"     1            -  12 request   Diagnostics 10h NAK count (always 0 on this card) = 0 [{NAK}]  CRC ok",
+    f"     2            -  12 response  Diagnostics 10h NAK count (always 0 on this card) = 0 [#1] [{NAK}; value 0]"
+    "  CRC ok",
+    f"     3            -  12 request   Diagnostics 11h slave-busy count (always 0 on this card) = 0 [{BUSY}]  CRC ok",
+    f"     4            -  12 response  Diagnostics 11h slave-busy count (always 0 on this card) = 5 [#3] [{BUSY}; "
+    f"value 5] [warning: {CONSTANT.format(0x11, 5)}]  CRC ok",
+    f"     5            -  12 request   Diagnostics 10h NAK count (always 0 on this card) = 0 [{NAK}]  CRC ok",
+    f"     6            -  12 response  Diagnostics 10h NAK count (always 0 on this card) = 256 [#5] [{NAK}; "
+    f"value 256] [warning: {CONSTANT.format(0x10, 256)}]  CRC ok",
+    "     7            -  12 request   Diagnostics 12h Return Bus Character Overrun Count = 0  CRC ok",
+    "     8            -  12 response  Diagnostics 12h Return Bus Character Overrun Count = 3 [#7]  CRC ok",
+]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_the_cards_constant_counters_are_checked(monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    frames = [frame for pair in COUNTERS for frame in pair]
+    status, out, err = run_cli(["--hex", " ".join(rtu(frame).hex() for frame in frames), "--profile", "atv71"])
+    assert status == 0, err
+    assert out.splitlines() == COUNTER_LINES
+    status, out, err = run_cli(["--hex", " ".join(rtu(frame).hex() for frame in frames), "--profile", "generic"])
+    assert status == 0 and "[warning:" not in out and "always" not in out, out
+
+
+def test_the_plugin_checks_the_constant_counters_as_vw3_decode(tmp_path: Path) -> None:
+    frames = [frame for pair in COUNTERS for frame in pair]
+    pcap = write_pcap(tmp_path / "fc8.pcap", [(rtu(frame), 1700000000 + 0.05 * index)
+                                              for index, frame in enumerate(frames)])
+    got = run_tshark(pcap, "-o", "vw3.profiles:atv71", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
+                     "-e", "vw3.warning")
+    assert not lua_errors(got.stdout + got.stderr)
+    warned = {4: CONSTANT.format(0x11, 5), 6: CONSTANT.format(0x10, 256)}
+    assert got.stdout.splitlines() == [f"{number}|{warned.get(number, '')}" for number in range(1, 9)]
