@@ -47,10 +47,16 @@ class StreamFramer(ABC):
         # Where a chunk that ends a record (boundary=True: a pcap record, fed whole) starts, kept apart from
         # the boundaries (a silence is one too): a record that is one frame is the source's word (rtu.py).
         self._record_starts: set[int] = set()
+        # Where a silence of t3.5 or more is (kept apart from the record ends): noise bytes after one cannot be
+        # the same frame's as the ones before, so a noise run is given out as one item per stretch between them.
+        self._silences: set[int] = set()
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
         self._noise_time: float | None = None
+        # (index in _noise, reason, time) of each stretch after a silence inside the run (_add_noise): the
+        # run stays one for the framer's decisions (fast path, repeats, glitches), its items are cut there.
+        self._noise_parts: list[tuple[int, str, float | None]] = []
         # Every noise byte since the last frame (or boundary) is a glitch byte (rtu.GLITCH_BYTES): the
         # next frame start is still where one is expected (RtuFramer._anchored).
         self._glitches_only = True
@@ -75,9 +81,13 @@ class StreamFramer(ABC):
                 self._timed = True
                 if self._times and silence_before(self._last_run(), start, chunk.time, self._timing):
                     self._boundaries.add(start)  # a silence on the line: evidence, like a record's end
+                    self._silences.add(start)
                 if byte_times is not None and byte_times.step_us != self._steady_step:
                     if may_pause(byte_times.step_us, self._timing):
-                        self._boundaries.update(silences_inside(byte_times, start, self._timing))
+                        # (a list: both sets take it, an iterator would fill the first alone)
+                        inside = list(silences_inside(byte_times, start, self._timing))
+                        self._boundaries.update(inside)
+                        self._silences.update(inside)
                     else:
                         self._steady_step = byte_times.step_us  # (every read of a port has the same)
             self._times.append((start, chunk.time, byte_times))
@@ -125,6 +135,7 @@ class StreamFramer(ABC):
         self._times = []
         self._boundaries = set()
         self._record_starts = set()
+        self._silences = set()
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._glitches_only = True
@@ -140,7 +151,9 @@ class StreamFramer(ABC):
         self._times = [(chunk_start, chunk.time, byte_times)]
         self._buf += chunk.data[offset - chunk_start :]
         if byte_times is not None and chunk.time is not None:
-            self._boundaries.update(at for at in silences_inside(byte_times, chunk_start, self._timing) if at >= offset)
+            inside = [at for at in silences_inside(byte_times, chunk_start, self._timing) if at >= offset]
+            self._boundaries.update(inside)
+            self._silences.update(inside)
         if chunk.boundary:
             self._boundaries.add(chunk_start + len(chunk.data))
             self._record_starts.add(chunk_start)
@@ -192,6 +205,8 @@ class StreamFramer(ABC):
             self._boundaries = {offset for offset in self._boundaries if offset >= self._base}
         if self._record_starts:
             self._record_starts = {offset for offset in self._record_starts if offset >= self._base}
+        if self._silences:
+            self._silences = {offset for offset in self._silences if offset >= self._base}
 
     def _boundary_at(self, index: int) -> bool:
         """Did the source mark a frame boundary after buffer index `index`?"""
@@ -216,6 +231,20 @@ class StreamFramer(ABC):
                 check_from = max(inside)
         if self._glitches_only:
             self._glitches_only = not buf[check_from:end].translate(None, _GLITCHES)
+        if self._silences and self.mode == "rtu":  # (ASCII allows a second's silence inside a frame)
+            base = self._base
+            for at in sorted(offset - base for offset in self._silences if start <= offset - base < end):
+                if at > start:
+                    self._add_run(start, at, reason, items)
+                # (a silence right where a run was cut at NOISE_ITEM_MAX starts the next item anyway)
+                if self._noise:
+                    self._noise_parts.append((len(self._noise), reason, self._time_at(base + at)))
+                start = at
+        self._add_run(start, end, reason, items)
+
+    def _add_run(self, start: int, end: int, reason: str, items: list[Item]) -> None:
+        """Bytes start..end of the buffer go to the noise run (no silence inside them)."""
+        buf = self._buf
         while start < end:
             if not self._noise:
                 self._noise_offset = self._base + start
@@ -258,12 +287,10 @@ class StreamFramer(ABC):
 
     def _flush_noise(self, items: list[Item]) -> None:
         if self._noise:
-            items.append(
-                Noise(
-                    offset=self._noise_offset,
-                    raw=bytes(self._noise),
-                    time=self._noise_time,
-                    reason=self._noise_reason,
-                )
-            )
+            noise, parts = self._noise, self._noise_parts
+            cuts = [(0, self._noise_reason, self._noise_time), *parts, (len(noise), "", None)]
+            for (begin, reason, time), (stop, _reason, _time) in zip(cuts, cuts[1:]):
+                raw = bytes(noise[begin:stop])
+                items.append(Noise(offset=self._noise_offset + begin, raw=raw, time=time, reason=reason))
             self._noise = bytearray()
+            self._noise_parts = []
