@@ -24,8 +24,10 @@ local function consume(s, count)
   local base = s.base
   local times = s.times
   local count, keep = #times, 1
+  -- (the record holding the base, or the one before a record starting there: the silence before that record
+  -- is measured from it when its bytes join a noise run: add_noise)
   for index = 1, count, 2 do
-    if times[index] <= base then keep = index end
+    if times[index] < base then keep = index end
   end
   if keep > 1 then
     -- (moved down in place: no new list)

@@ -33,14 +33,37 @@ end
 
 -- Bytes of the noise run being built are copied out of the buffer: the run may outlast the records
 -- (and buffers) it came from, and is shown in one piece.
+-- A run with silences inside (noise.parts, add_noise) is given out as one item per stretch between them.
 local function flush_noise(s, items)
   local noise = s.noise
   if noise ~= nil then
+    local parts = noise.parts
     items[#items + 1] = noise
+    if parts ~= nil then
+      local bytes_, length = noise.bytes, noise.length
+      for index = 1, #parts, 3 do
+        local begin = parts[index]
+        local stop = parts[index + 3] or length
+        local piece = { kind = NOISE, offset = noise.offset + begin, length = stop - begin,
+                        reason = parts[index + 1], time = parts[index + 2], bytes = {} }
+        local copy = piece.bytes
+        for k = begin + 1, stop do copy[k - begin] = bytes_[k] end
+        items[#items + 1] = piece
+      end
+      for k = length, parts[1] + 1, -1 do bytes_[k] = nil end
+      noise.length, noise.parts = parts[1], nil
+    end
     s.noise = nil
   end
 end
 
+-- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
+-- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record
+-- ends a noise run (found where noise is added, from the records' times: nothing is added to a frame's path).
+local DEFAULT_BAUD, RTU_BITS = 19200, 11
+local CHAR_TIME, T35 = RTU_BITS / DEFAULT_BAUD, 3.5 * RTU_BITS / DEFAULT_BAUD
+
+local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
   -- Only glitch bytes since the last frame or boundary (stream.py _add_noise): the next start is anchored.
@@ -62,6 +85,35 @@ local function add_noise(s, start, stop, reason, items)
       end
     end
   end
+  local times = s.times
+  if #times > 2 and s.mode ~= "ascii" then -- (ASCII allows a second's silence inside a frame: stream.py)
+    -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one
+    -- for the framer's decisions, its items are cut there (_add_noise).
+    for index = 3, #times, 2 do
+      local offset, time, before = times[index], times[index + 1], times[index - 1]
+      local at = offset - base
+      if at >= stop then break end -- (oldest first)
+      if at >= start and time and before
+          and time - before - (offset - times[index - 2]) * CHAR_TIME >= T35 then
+        if at > start then add_run(s, b, start, at, reason, items) end
+        local noise = s.noise
+        if noise ~= nil then
+          local parts = noise.parts
+          if parts == nil then
+            parts = {}
+            noise.parts = parts
+          end
+          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time
+        end
+        start = at
+      end
+    end
+  end
+  add_run(s, b, start, stop, reason, items)
+end
+
+-- Bytes start .. stop - 1 go to the noise run (no silence inside them).
+add_run = function(s, b, start, stop, reason, items)
   while start < stop do
     local noise = s.noise
     if noise == nil then
