@@ -4405,8 +4405,9 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
 local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
 local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
-local crc_string_ok, cut_reason, emit, interpretations = crc_string_ok, cut_reason, emit, interpretations
-local math, pairs, possible_start, table, time_at = math, pairs, possible_start, table, time_at
+local crc_string_ok, cut_reason, emit, format = crc_string_ok, cut_reason, emit, format
+local interpretations, ipairs, math, pairs, possible_start = interpretations, ipairs, math, pairs, possible_start
+local table, time_at = table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
@@ -4572,11 +4573,37 @@ local function scan_match(s, b, i, n, minimum, final)
   return NONE
 end
 
+-- A counted layout's length when its count is 0, by kind and code (rtu.py _COUNTS_NOTHING): every count of the
+-- spec counts something, so a reading with a bad CRC that counts nothing is no frame.
+local COUNTS_NOTHING = { [REQUEST] = {}, [RESPONSE] = {} }
+for code, rules in pairs(DATA.protocol.rules) do
+  for index, kind in ipairs({ REQUEST, RESPONSE }) do
+    local spec = rules[index]
+    if spec[1] == "count8" or spec[1] == "count16" then COUNTS_NOTHING[kind][code] = spec[3] end
+  end
+end
+local function counts_nothing(b, i, kind, length)
+  local counted = COUNTS_NOTHING[kind]
+  return counted ~= nil and counted[b[i + 1]] == length
+end
+
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
+  -- (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
   local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
+  if kind ~= nil and not is_scan and counts_nothing(b, i, kind, length) then
+    kind = nil
+    local list = interpretations(s, b[i], b[i + 1], b, i, n)
+    for index = 2, #list do
+      length, is_scan, declared = list[index][2](b, i, n)
+      if is_scan or not counts_nothing(b, i, list[index][1], length) then
+        kind = list[index][1]
+        break
+      end
+    end
+  end
   if kind == nil then return nil end
   if is_scan then
     -- (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
@@ -4587,6 +4614,10 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
+  if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
+    local size = length == NEED and format("%d bytes of it", n - i) or format("%d of %d bytes", n - i, length)
+    return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
+  end
   return cut_reason(kind, n - i, length)
 end
 
@@ -4660,7 +4691,7 @@ local function match(s, b, i, n, final)
       if crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
       elseif fallback == nil then
-        damaged = added(damaged, { kind, length })
+        if not counts_nothing(b, i, kind, length) then damaged = added(damaged, { kind, length }) end
       else -- (its rule's CRC scan where the CRC fails)
         is_scan, length, declared = true, fallback, length
       end

@@ -90,10 +90,27 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
     _RESPONSE_FIRST_FAST,
 )
 from dissector.framing.stream import GLITCH_BYTES, NOISE_ITEM_MAX, StreamFramer
+from dissector.protocol import table
 from dissector.protocol.rules import text
 
 # Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
+
+# (function code, kind) -> the length of a layout whose length is a byte count's (protocol table Counted) when
+# that count is 0: every count of the spec counts something (a read's quantity is 1 or more, a write's too, a
+# FIFO's count word...), so a reading with a bad CRC that counts nothing is no frame but the start of another
+# one (a request cut by the end of the capture, '01 03 00 00 00', read as an answer with byte count 0).
+_COUNTS_NOTHING = {
+    (code, kind): layout.length.extra
+    for code, request, response in table.known_layouts()
+    for kind, layout in ((Kind.REQUEST, request), (Kind.RESPONSE, response))
+    if isinstance(layout.length, table.Counted)
+}
+
+
+def _counts_nothing(buf: bytearray, i: int, kind: Kind, length: int) -> bool:
+    """Is the reading (kind, length) at i a counted layout whose count is 0 (_COUNTS_NOTHING)?"""
+    return _COUNTS_NOTHING.get((buf[i + 1], kind)) == length
 
 # A repeated pattern (a line stuck on one value, a babbling device: 0C 0C 0C..., 01 03 01 03...) makes
 # every position a possible frame start weighed in full (_match: layouts, CRCs, what follows): ~50 times
@@ -271,7 +288,10 @@ class RtuFramer(Awaiting, StreamFramer):
                 if not final:
                     waiting.append(length)
                 continue
-            (valid if _crc_ok(buf, i, length) else damaged).append((kind, length))
+            if _crc_ok(buf, i, length):
+                valid.append((kind, length))
+            elif not _counts_nothing(buf, i, kind, length):
+                damaged.append((kind, length))
         if len(valid) == 1:
             kind, length = valid[0]
             # CRC-16/MODBUS has no final XOR: a frame followed by a 00 byte also checks as a frame one
@@ -353,11 +373,13 @@ class RtuFramer(Awaiting, StreamFramer):
         capture? The reason to show them with, or None."""
         if n - i < 2 or not self._awaited(buf, i):
             return None
-        choices = self._interpretations(buf, i)
-        if not choices:
+        # (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
+        for kind, rule in self._interpretations(buf, i):
+            length = rule(buf, i, n)
+            if type(length) is Scan or not _counts_nothing(buf, i, kind, length):
+                break
+        else:
             return None
-        kind, rule = choices[0]
-        length = rule(buf, i, n)
         if type(length) is Scan:
             # (a rule with a CRC fallback: cut only when the bytes there hold no frame a scan finds)
             if length.declared == NONE or self._scan(buf, i, n, length, True):
@@ -367,8 +389,11 @@ class RtuFramer(Awaiting, StreamFramer):
             return None
         if self._intact_inside(buf, i, n - i, n, True):
             return None
-        what = "response" if kind is Kind.RESPONSE else "exception response"
         size = f"{n - i} of {length} bytes" if length != NEED else f"{n - i} bytes of it"
+        if kind is Kind.REQUEST:
+            # ('... inside a request': not the answer's words, which the request awaiting it takes, pairing.py)
+            return f"{CUT_ANSWER[:-4]}a request ({size})"
+        what = "response" if kind is Kind.RESPONSE else "exception response"
         return f"{CUT_ANSWER}{what} ({size})"
 
     def cut_answer(self, data: bytes) -> str | None:
