@@ -12,6 +12,7 @@ chunks (pcapng, hex dumps...) are gathered as they come. The silence flag is the
 """
 from __future__ import annotations
 
+import struct
 from array import array
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
@@ -116,6 +117,7 @@ class BlockBuilder:
         inp = reader.inp
         big_endian = reader.order == ">"
         buffer, position = b"", 0
+        empties: tuple[bytes, int] | None = None  # the last scan's records, when it passed over empty ones
         while True:
             # (a pipe's bytes as they come; a file's a megabyte at a time)
             data = inp.read_some(READ_BYTES) if self.streaming else inp.read(READ_BYTES)
@@ -134,15 +136,35 @@ class BlockBuilder:
             reader.record += records
             if last is not None:
                 self.previous = (last[0], Stamp(last[1]) if last[2] else None)
+            if records:
+                # The last record's time (PcapRecords.recorded_until): the last chunk's, unless the scan
+                # passed over empty records after it; then, once, from the last buffer's record headers.
+                empties = (buffer, position) if records > len(flags) else None
+                if empties is None and last[2]:
+                    reader.recorded_until = Stamp(last[1])
             if span is not None:
                 self._span(*span)
             if flags:
                 yield Block(payload, array("q", starts), array("q", times), flags, self.exact)
             if stop or not data:
                 break
+        if empties is not None:
+            reader.recorded_until = last_record_time(*empties, reader) or reader.recorded_until
         # A record the Python reader must see, or the end (a record cut short: its warning): it reads
         # the rest, from the bytes not scanned.
         yield from self.chunks(reader.records(Input(inp.stream, inp.name, prefix=buffer[position:])))
+
+
+def last_record_time(buffer: bytes, end: int, reader: Any) -> Stamp | None:
+    """The time of the last timed record of `buffer` up to `end` (pcap records from its start)."""
+    header = struct.Struct(reader.order + "IIII")
+    position, time = 0, None
+    while position + 16 <= end:
+        seconds, fraction, captured, _original = header.unpack_from(buffer, position)
+        if seconds or fraction:
+            time = Stamp.from_parts(seconds, fraction, reader.units)
+        position += 16 + captured
+    return time
 
 
 def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None) -> Iterator[Block]:

@@ -39,7 +39,9 @@ def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> PcapRecords:
 
 
 class PcapRecords:
-    """The chunks of a pcap's records (an iterator); `blocks` reads the rest in bulk (accel/records.py)."""
+    """The chunks of a pcap's records (an iterator); `blocks` reads the rest in bulk (accel/records.py).
+    `recorded_until`, once read: the time of its last timed record, empty or not (None: none), when the tap
+    was last recording (Dissector's `recorded`; the bulk reader sets it for the records it reads)."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int) -> None:
         self.inp = inp
@@ -49,6 +51,7 @@ class PcapRecords:
         self.between = False  # the last chunk given ended a record: the next bytes are a record header
         self.holding = False  # a record's header is read but its chunks are not all given yet
         self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
+        self.recorded_until: Stamp | None = None
         self._chunks = self._read()
 
     def __iter__(self) -> PcapRecords:
@@ -111,6 +114,8 @@ class PcapRecords:
             time: Stamp | None = Stamp.from_parts(seconds, fraction, self.units)
             chunks = record_chunks(inp, captured, time, self.linktype, self.record, log, self.chunk_size)
             epoch = not (seconds or fraction)
+            if not epoch and self.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
+                self.recorded_until = time
             if epoch and self.record == 1 and self.linktype != LINKTYPE_RTAC_SERIAL and held.hold(captured, chunks):
                 continue
             if held.chunks is not None:

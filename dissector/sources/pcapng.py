@@ -242,9 +242,9 @@ class _Reader:
                 f"{inp.name}: packet block at byte {start}: {captured} bytes do not fit in the block"
             )
         epoch = not (high or low)
-        if not epoch and index < len(self.interfaces):
-            self._recorded(self.interfaces[index], high << 32 | low)
         if self._other(index, body_length - 20, start):
+            if not epoch and index < len(self.interfaces):
+                self._recorded(self.interfaces[index], high << 32 | low)
             return
         interface = self._interface_for(index, start)
         seconds, fraction = divmod(high << 32 | low, interface.units)
@@ -252,6 +252,8 @@ class _Reader:
         outside = outside_time_range(time.ns, interface.offset) if not epoch or self.record == 0 else None
         if outside is not None:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
+        if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
+            self.last_time = time
         yield from self.held.release(not epoch)
         chunks = self._data(captured, original, time, interface, body_length - 20, start)
         if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
@@ -264,8 +266,8 @@ class _Reader:
         yield from chunks
 
     def _recorded(self, interface: Interface, stamp: int) -> None:
-        """A timed packet was recorded (another interface's, or empty, too). An RTAC record's time is in
-        its bytes: its chunks carry it (Dissector.feed)."""
+        """Another interface's timed packet was recorded (passed over). An RTAC record's time is in its
+        bytes: that interface's chunks carry it (Dissector.feed)."""
         if interface.linktype == LINKTYPE_RTAC_SERIAL:
             return
         seconds, fraction = divmod(stamp, interface.units)
