@@ -1832,6 +1832,13 @@ local DATA = {
         ["help"] = "Flag responses later than this after their request, as vw3-decode --timeout does (0: off)",
       },
       {
+        ["name"] = "baud",
+        ["type"] = "uint",
+        ["title"] = "Line speed (baud)",
+        ["default"] = 19200,
+        ["help"] = "The serial line's speed, as vw3-decode --baud (50..4000000; another value: 19200, its default): a silence of t3.5 at this speed before a record ends a run of noise (RTU)",
+      },
+      {
         ["name"] = "tcp_port",
         ["type"] = "uint",
         ["title"] = "RTU over TCP port",
@@ -4253,11 +4260,20 @@ local function flush_noise(s, items)
   end
 end
 
--- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
--- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record
--- ends a noise run (found where noise is added, from the records' times: nothing is added to a frame's path).
-local DEFAULT_BAUD, RTU_BITS = 19200, 11
-local CHAR_TIME, T35 = RTU_BITS / DEFAULT_BAUD, 3.5 * RTU_BITS / DEFAULT_BAUD
+-- The line's timing as the Python framers take it (framing/timing.py LineTiming, RTU_BITS_PER_CHAR; t3.5 is
+-- FIXED_T35 above FIXED_TIMING_ABOVE baud): at the `baud` preference's speed, as vw3-decode --baud; a speed
+-- --baud refuses (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of
+-- t3.5 before a record ends a noise run (found where noise is added, from the records' times: nothing is
+-- added to a frame's path).
+local DEFAULT_BAUD, RTU_BITS, FIXED_TIMING_ABOVE, FIXED_T35 = 19200, 11, 19200, 1750e-6
+local MIN_BAUD, MAX_BAUD = 50, 4000000
+local CHAR_TIME, T35
+function lane.line_speed(baud)
+  if baud < MIN_BAUD or baud > MAX_BAUD then baud = DEFAULT_BAUD end
+  CHAR_TIME = RTU_BITS / baud
+  T35 = baud > FIXED_TIMING_ABOVE and FIXED_T35 or 3.5 * RTU_BITS / baud
+end
+lane.line_speed(DEFAULT_BAUD)
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
@@ -9092,10 +9108,10 @@ local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, D
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
-local finish_all, flush_noise, ipairs, math, new_state, os = finish_all, flush_noise, ipairs, math, new_state, os
-local pack, package, pairs, pcall, pf, proto, record_time = pack, package, pairs, pcall, pf, proto, record_time
-local show_record, stream_state, take_items, tostring, type = show_record, stream_state, take_items, tostring, type
-local wtap = wtap
+local finish_all, flush_noise, ipairs, lane, math = finish_all, flush_noise, ipairs, lane, math
+local new_state, os, pack, package, pairs, pcall, pf, proto = new_state, os, pack, package, pairs, pcall, pf, proto
+local record_time, show_record, stream_state, take_items = record_time, show_record, stream_state, take_items
+local tostring, type, wtap = tostring, type, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
 -- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
@@ -9339,6 +9355,7 @@ function proto.prefs_changed()
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
     registered.user0 = proto.prefs.user0
   end
+  lane.line_speed(proto.prefs.baud)
   apply_prefs()
 end
 end

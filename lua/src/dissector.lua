@@ -246,5 +246,6 @@ function proto.prefs_changed()
     if proto.prefs.user0 then wtap_encap:add(wtap.USER0, proto) else wtap_encap:remove(wtap.USER0, proto) end
     registered.user0 = proto.prefs.user0
   end
+  lane.line_speed(proto.prefs.baud)
   apply_prefs()
 end

@@ -57,11 +57,20 @@ local function flush_noise(s, items)
   end
 end
 
--- The line's timing as the Python framers take it without --baud (framing/timing.py DEFAULT_BAUD,
--- RTU_BITS_PER_CHAR, LineTiming): the plugin has no line speed setting. A silence of t3.5 before a record
--- ends a noise run (found where noise is added, from the records' times: nothing is added to a frame's path).
-local DEFAULT_BAUD, RTU_BITS = 19200, 11
-local CHAR_TIME, T35 = RTU_BITS / DEFAULT_BAUD, 3.5 * RTU_BITS / DEFAULT_BAUD
+-- The line's timing as the Python framers take it (framing/timing.py LineTiming, RTU_BITS_PER_CHAR; t3.5 is
+-- FIXED_T35 above FIXED_TIMING_ABOVE baud): at the `baud` preference's speed, as vw3-decode --baud; a speed
+-- --baud refuses (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of
+-- t3.5 before a record ends a noise run (found where noise is added, from the records' times: nothing is
+-- added to a frame's path).
+local DEFAULT_BAUD, RTU_BITS, FIXED_TIMING_ABOVE, FIXED_T35 = 19200, 11, 19200, 1750e-6
+local MIN_BAUD, MAX_BAUD = 50, 4000000
+local CHAR_TIME, T35
+function lane.line_speed(baud)
+  if baud < MIN_BAUD or baud > MAX_BAUD then baud = DEFAULT_BAUD end
+  CHAR_TIME = RTU_BITS / baud
+  T35 = baud > FIXED_TIMING_ABOVE and FIXED_T35 or 3.5 * RTU_BITS / baud
+end
+lane.line_speed(DEFAULT_BAUD)
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
