@@ -35,7 +35,10 @@ Listen Only Mode (Application Protocol 6.8.1): after an FC8 04 request to it (or
 nothing until an FC8 01 Restart Communications Option request (to it or broadcast), which it acts on but
 does not answer. Such requests are noted as such (texts listen_only, listen_only_ends) and never unanswered;
 an exception to the FC8 04 itself says the slave did not enter the mode; a damaged request (bad CRC or LRC)
-is not acted on. The state is per slave: the C engine, which does not keep it, hands the transactions of a
+is not acted on. A frame identical to such a request (FC5, FC6, FC8's echo), which the framer reads as its
+answer, is the master's repeat of it (the retry rule's _retried when the slave answers that: after 08/01); a
+frame that differs from it is the slave's answer (it did not take the mode), as the framer reads it.
+The state is per slave: the C engine, which does not keep it, hands the transactions of a
 slave in the mode to the Python stages (in_listen_only; listen_changed: the slaves it must ask about again).
 
 Time going backwards (a pcap whose records go back, a clock step): a response stamped before its
@@ -103,6 +106,7 @@ class Pairer:
         self._listening: dict[int, Frame | None] = {}
         self._listening_all: Frame | None = None
         self.listen_changed: set[int] = set()  # slaves whose mode changed since the engine last asked
+        self._unheard: Frame | None = None  # the last request to a slave in the mode
 
     @property
     def idle(self) -> bool:
@@ -229,7 +233,7 @@ class Pairer:
                     and _awaited(echoed_, item)):
                 # The framer awaited an answer to an answer: had it not, it would have read a request.
                 item.kind = Kind.REQUEST
-                self._retried = item if awaits_answer(item) else None
+                self._retried = item if self._answered(item) else None
             ended = late if late is not None else expired  # (the request whose wait this frame or expire ended)
             if item.kind is Kind.RESPONSE and ended is not None and item.raw == ended.raw:
                 # The retry rule: the request again, past the timeout: the master's retry. (The framer
@@ -237,7 +241,14 @@ class Pairer:
                 item.kind = Kind.REQUEST
                 late = None
                 self._echoed = None
-                self._retried = item if awaits_answer(item) and not flipped else None
+                self._retried = item if self._answered(item) and not flipped else None
+            if (not flipped and item.kind is Kind.RESPONSE and pending is not None and pending is self._unheard
+                    and item.raw == pending.raw):
+                # A slave in Listen Only Mode answers nothing, the 08/01 that ends the mode included: the request
+                # again is the master's repeat. (The framer read it as an answer and awaits nothing.)
+                item.kind = Kind.REQUEST
+                self._echoed = None
+                self._retried = item if self._answered(item) else None
         if item.kind is Kind.REQUEST:
             if pending is not None and self._no_answer(pending) and self._pending_released:
                 item.notes.append(text("unanswered", number=pending.number))
@@ -252,6 +263,7 @@ class Pairer:
             # (awaiting nothing: the framer takes the next frame of its function for a request; an
             # exception, which says what it is, may still answer it)
             self._answerless = not awaits_answer(item) or since is not None
+            self._unheard = item if since is not None else None
             if since is not None:
                 key = "listen_only_ends" if ends else "listen_only"
                 how = text("listen_only_broadcast") if since.slave == 0 else ""
@@ -300,6 +312,11 @@ class Pairer:
         if backwards is not None:  # (numbered now)
             ahead_ms = (backwards.time - item.time) * 1000  # type: ignore[operator]
             item.warnings.append(text("backwards", ahead_ms=ahead_ms, number=backwards.number))
+
+    def _answered(self, request: Frame) -> bool:
+        """Would a server answer this request (not one the spec has none answer, not to a slave in Listen Only
+        Mode)?"""
+        return awaits_answer(request) and not self.in_listen_only(request.slave)
 
     def _listen_only(self, request: Frame) -> tuple[Frame | None, bool]:
         """Follow Listen Only Mode through a request: the FC8 04 request its slave was in the mode since

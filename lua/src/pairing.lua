@@ -26,17 +26,22 @@ local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 -- the framer would have given it.
 
 -- Listen Only Mode (pairing.py _listen_only): after 08/04 (to the slave or broadcast) a slave answers nothing,
--- until 08/01 (to it or broadcast), which it does not answer either. st.listening (nil: no slave in the mode):
--- the 08/04 each slave is in it since (false: left it); st.listening_all: the broadcast one, for the others.
+-- until 08/01 (to it or broadcast), which it acts on but does not answer. st.listening (nil: no slave in the
+-- mode): the 08/04 each slave is in it since (false: left it); st.listening_all: the broadcast one, for the
+-- others. The 08/04 a slave is in the mode since (nil: not in it).
+local function listening_since(st, slave)
+  local listening = st.listening
+  if listening == nil or slave == 0 then return nil end
+  local since = listening[slave]
+  if since == nil then since = st.listening_all end
+  if since == false then return nil end
+  return since
+end
+
 -- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
--- f's sub-function.
+-- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
 local function listen_only(st, f)
-  local slave, listening, since = f.slave, st.listening, nil
-  if listening ~= nil and slave ~= 0 then
-    since = listening[slave]
-    if since == nil then since = st.listening_all end
-    if since == false then since = nil end
-  end
+  local slave, listening, since = f.slave, st.listening, listening_since(st, f.slave)
   local sub = nil
   if f.fn == FC8_CODE and f.data_len >= 2 and f.crc == f.crc_expected then
     local b, at = f.b, f.data_at
@@ -122,6 +127,12 @@ local function awaited_as(request, f)
   return f.slave == request.slave and f.fn == request.fn and (ECHO[f.fn] == nil or request.echoed == echoed(f))
 end
 
+-- Would a server answer request f (pairing.py _answered): not one the spec has none answer, not to a slave in
+-- Listen Only Mode?
+local function answered(st, f)
+  return awaits_answer(f) and listening_since(st, f.slave) == nil
+end
+
 local function pair(st, f)
   local pending = st.pending
   local timeout = st.timeout
@@ -148,14 +159,22 @@ local function pair(st, f)
     elseif f.kind == RESPONSE and pending == nil and late == nil and echoed_by ~= nil and awaited_as(echoed_by, f) then
       -- The framer awaited an answer to an answer: had it not, it would have read a request.
       f.kind = REQUEST
-      if awaits_answer(f) then st.retried = f end
+      if answered(st, f) then st.retried = f end
     end
     if f.kind == RESPONSE and late ~= nil and late.slave == f.slave and late.fn == f.fn and same_bytes(st, late, f) then
       -- The request again, past the timeout: the master's retry. (The framer read it as an answer and awaits
       -- nothing, unless it read it as a request: flipped.)
       f.kind, late = REQUEST, nil
       st.echoed = nil
-      if awaits_answer(f) and not flipped then st.retried = f end
+      if answered(st, f) and not flipped then st.retried = f end
+    end
+    if not flipped and f.kind == RESPONSE and pending ~= nil and pending.unheard and pending.slave == f.slave
+        and pending.fn == f.fn and same_bytes(st, pending, f) then
+      -- A slave in Listen Only Mode answers nothing, the 08/01 that ends the mode included: the request again is
+      -- the master's repeat. (The framer read it as an answer and awaits nothing.)
+      f.kind = REQUEST
+      st.echoed = nil
+      if answered(st, f) then st.retried = f end
     end
   end
   if f.kind == REQUEST then
@@ -170,7 +189,7 @@ local function pair(st, f)
       if since ~= nil then
         note(f, say(sub == SUB_RESTART and "listen_only_ends" or "listen_only",
           { slave = f.slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }))
-        f.answerless = true
+        f.answerless, f.unheard = true, true
       elseif not awaits_answer(f) then
         note(f, NEVER_ANSWERED_NOTE)
         f.answerless = true

@@ -79,7 +79,7 @@ def _crafted() -> list[tuple[str, bytes]]:
         ("fc17 byte count below 2", f("0111") + f("01110100")),
         ("fc8 unknown sub-function", f("010800630000") + f("010800630000")),
         # (data/modbus.toml [pairing]: 04 is never answered, an answer echoes its request's sub-function)
-        ("fc8 force listen only mode", f("010800040000") + f("010800010000") * 2),
+        ("fc8 force listen only mode", f("010800040000") + f("010800010000") * 3),  # (08/01, repeat, echo)
         ("fc8 answer sub-function differs", f("010800010000") + f("010800020007") + f("010800020000") * 2),
         ("fc17 run indicator", f("0111") + f("011103011241")),
         ("fc17 version text", f("0111") + f("01110512FF56312E")),

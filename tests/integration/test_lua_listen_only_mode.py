@@ -31,14 +31,27 @@ def tshark(frames: list[tuple[bytes, float]], tmp_path: Path, two_pass: bool) ->
 
 @pytest.mark.parametrize("two_pass", [True, False])
 def test_a_slave_in_listen_only_mode(tmp_path: Path, two_pass: bool) -> None:
-    frames = [(LISTEN_ONLY, 0.0), (READ, 1.0), (READ, 2.0), (RESTART, 3.0), (RESTART, 3.02), (READ, 4.0),
-              (ANSWER, 4.02)]
+    # (the slave answers only the master's repeat of the 08/01 that ended the mode)
+    frames = [(LISTEN_ONLY, 0.0), (READ, 1.0), (READ, 2.0), (RESTART, 3.0), (RESTART, 3.5), (RESTART, 3.52),
+              (READ, 4.0), (ANSWER, 4.02)]
     assert tshark(frames, tmp_path, two_pass) == [
         f"12;1;;{NOTE}",
         "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
         "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
         "12;1;;slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this",
+        "12;1;;",
         "12;2;;",
+        "12;1;;",
+        "12;2;;",
+    ]
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_the_same_08_01_again_is_no_answer(tmp_path: Path, two_pass: bool) -> None:
+    # (before: the second 08/01, 20 ms after the first, was taken for the echo the spec's server never sends)
+    frames = [(LISTEN_ONLY, 0.0), (RESTART, 3.0), (RESTART, 3.02), (READ, 4.0), (ANSWER, 4.02)]
+    assert tshark(frames, tmp_path, two_pass)[2:] == [
+        "12;1;1;" if two_pass else "12;1;;",  # (one pass: its wait has not ended yet)
         "12;1;;",
         "12;2;;",
     ]
@@ -71,6 +84,34 @@ def test_a_damaged_08_01_does_not_end_it(tmp_path: Path, two_pass: bool) -> None
         "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
         "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
         "12;1;;slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this",
+        "12;1;;",
+        "12;2;;",
+    ]
+
+
+def ascii_line(frame: bytes) -> bytes:
+    """The RTU frame's ADU as a Modbus ASCII line (':' hex LRC CR LF)."""
+    adu = frame[:-2]
+    return b":" + (adu + bytes([-sum(adu) & 0xFF])).hex().upper().encode() + b"\r\n"
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+def test_in_ascii_as_in_rtu(tmp_path: Path, two_pass: bool) -> None:
+    # (as tests/unit/test_listen_only_mode.py test_in_ascii_as_in_rtu: 08/01 ends the mode unanswered, the same
+    # again is the master's repeat, which the slave answers; a line whose LRC fails ends nothing)
+    damaged = ascii_line(RESTART).replace(b"EB\r\n", b"EC\r\n")  # (LRC EB)
+    lines = [ascii_line(LISTEN_ONLY), damaged, ascii_line(READ), *[ascii_line(RESTART)] * 3, ascii_line(READ),
+             ascii_line(ANSWER)]
+    pcap = write_pcap(tmp_path / "lo-ascii.pcap", [(line, T0 + 0.5 * k) for k, line in enumerate(lines)])
+    result = run_tshark(pcap, *FIELDS, two_pass=two_pass)
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    assert result.stdout.splitlines() == [
+        f"12;1;;{NOTE}",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 is in listen-only mode since #1 (08/04): it does not answer",
+        "12;1;;slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this",
+        "12;1;;",
+        "12;2;;",
         "12;1;;",
         "12;2;;",
     ]

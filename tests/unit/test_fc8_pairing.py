@@ -27,6 +27,9 @@ NOTE = "no response expected: the spec's server returns none"
 # (after 08/04 the slave is in listen-only mode: it answers nothing, 08/01 included, which ends the mode)
 ENDS = "slave 1 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this"
 LISTENING = "slave 1 is in listen-only mode since #1 (08/04): it does not answer"
+ENDS_CUT = "the capture ends before any response: not known whether it was answered"
+# 08/04, then 08/01 (unanswered: it ends the mode), the master's repeat of it and its echo
+SESSION = [LISTEN_ONLY, RESTART, RESTART, RESTART]
 
 
 def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> str:
@@ -61,11 +64,16 @@ def lines(text: str) -> list[str]:
 
 
 def test_listen_only_awaits_nothing_summary(monkeypatch: pytest.MonkeyPatch) -> None:
-    # The reviewer's bytes: 08/04, then 08/01 and its echo.
+    # The reviewer's bytes: 08/04, then 08/01 and the same again, the master's repeat (the slave in the mode
+    # does not answer the 08/01 that ends it: before, the third frame was taken for its echo).
     assert lines(both(hexes(LISTEN_ONLY, RESTART, RESTART), monkeypatch)) == [
         f"1 - 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
         f"2 - 1 request Diagnostics 01h Restart Communications Option = 0 [{ENDS}] CRC ok",
-        "3 - 1 response Diagnostics 01h Restart Communications Option = 0 [#2] CRC ok",
+        f"3 - 1 request Diagnostics 01h Restart Communications Option = 0 [{ENDS_CUT}] CRC ok",
+    ]
+    assert lines(both(hexes(*SESSION), monkeypatch))[2:] == [
+        "3 - 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "4 - 1 response Diagnostics 01h Restart Communications Option = 0 [#3] CRC ok",
     ]
 
 
@@ -136,29 +144,32 @@ def test_an_answer_that_echoes_is_its_answer_whatever_its_data(monkeypatch: pyte
 
 
 def test_summary_of_a_capture(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    pcap = capture(tmp_path / "fc8.pcap", SESSION)
     assert lines(both([str(pcap)], monkeypatch)) == [
         f"1 0.000000 1 request Diagnostics 04h Force Listen Only Mode = 0 [{NOTE}] CRC ok",
         f"2 0.010000 1 request Diagnostics 01h Restart Communications Option = 0 [{ENDS}] CRC ok",
-        "3 0.020000 1 response Diagnostics 01h Restart Communications Option = 0 [#2, 10.0 ms] CRC ok",
+        "3 0.020000 1 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "4 0.030000 1 response Diagnostics 01h Restart Communications Option = 0 [#3, 10.0 ms] CRC ok",
     ]
 
 
 def test_detail(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    pcap = capture(tmp_path / "fc8.pcap", SESSION)
     detail = both([str(pcap), "-V"], monkeypatch)
     frames = detail.split("\n\n")
     assert frames[0].splitlines()[0] == "Frame 1: 8 bytes at offset 0, request (RTU)"
     assert frames[0].splitlines()[-1] == f"    Note: {NOTE}"
     assert "Response in frame" not in frames[0] and "no response" not in frames[0].replace(NOTE, "")
     assert frames[1].splitlines()[0] == "Frame 2: 8 bytes at offset 8, request (RTU)"
-    assert frames[1].splitlines()[-2:] == ["    Response in frame: 3", f"    Note: {ENDS}"]
-    assert frames[2].splitlines()[0] == "Frame 3: 8 bytes at offset 16, response (RTU)"
-    assert frames[2].splitlines()[-2:] == ["    Request in frame: 2", "    Response time: 10.000 ms"]
+    assert frames[1].splitlines()[-1] == f"    Note: {ENDS}" and "Response in frame" not in frames[1]
+    assert frames[2].splitlines()[0] == "Frame 3: 8 bytes at offset 16, request (RTU)"
+    assert frames[2].splitlines()[-1] == "    Response in frame: 4"
+    assert frames[3].splitlines()[0] == "Frame 4: 8 bytes at offset 24, response (RTU)"
+    assert frames[3].splitlines()[-2:] == ["    Request in frame: 3", "    Response time: 10.000 ms"]
 
 
 def test_json(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    pcap = capture(tmp_path / "fc8.pcap", SESSION)
     records = [json.loads(line) for line in both([str(pcap), "--json"], monkeypatch).splitlines()]
     picked = [{key: record.get(key) for key in
                ("frame", "kind", "subfunction", "unanswered", "request_frame", "response_frame", "notes")}
@@ -167,23 +178,25 @@ def test_json(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         {"frame": 1, "kind": "request", "subfunction": 4, "unanswered": False, "request_frame": None,
          "response_frame": None, "notes": [NOTE]},
         {"frame": 2, "kind": "request", "subfunction": 1, "unanswered": False, "request_frame": None,
-         "response_frame": 3, "notes": [ENDS]},
-        {"frame": 3, "kind": "response", "subfunction": 1, "unanswered": None, "request_frame": 2,
+         "response_frame": None, "notes": [ENDS]},
+        {"frame": 3, "kind": "request", "subfunction": 1, "unanswered": False, "request_frame": None,
+         "response_frame": 4, "notes": []},
+        {"frame": 4, "kind": "response", "subfunction": 1, "unanswered": None, "request_frame": 3,
          "response_frame": None, "notes": []},
     ]
-    assert records[2]["response_time"] == 0.01
+    assert records[3]["response_time"] == 0.01
 
 
 def test_stats(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    pcap = capture(tmp_path / "fc8.pcap", [LISTEN_ONLY, RESTART, RESTART])
+    pcap = capture(tmp_path / "fc8.pcap", SESSION)
     stats = json.loads(both([str(pcap), "--stats", "--json"], monkeypatch))
     assert stats["functions"] == [{
-        "slave": 1, "function": 8, "function_name": "Diagnostics", "requests": 2, "broadcasts": 0,
+        "slave": 1, "function": 8, "function_name": "Diagnostics", "requests": 3, "broadcasts": 0,
         "responses": 1, "exceptions": {}, "unanswered": 0, "crc_errors": 0,
         "response_time": {"count": 1, "min": 0.01, "median": 0.01, "p95": 0.01, "max": 0.01},
     }]
     table = both([str(pcap), "--stats"], monkeypatch)
-    assert "    1  8 Diagnostics    2     1                     0        0\n" in table
+    assert "    1  8 Diagnostics    3     1                     0        0\n" in table
 
 
 def test_stats_poll_cycle(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -200,7 +213,7 @@ def test_stats_poll_cycle(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> No
 
 
 def test_report(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    pcap = capture(tmp_path / "listen.pcap", [LISTEN_ONLY, RESTART, RESTART, LISTEN_ONLY, LISTEN_ONLY], step=0.100)
+    pcap = capture(tmp_path / "listen.pcap", [*SESSION, LISTEN_ONLY, LISTEN_ONLY], step=0.100)
     made = []
     for pure in (False, True):
         page = tmp_path / f"report{pure}.html"

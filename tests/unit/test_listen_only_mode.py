@@ -45,7 +45,9 @@ def lines(text: str) -> list[str]:
     return [re.sub(r"\s+", " ", line.strip()) for line in text.splitlines()]
 
 
-HUNT = [(LISTEN_ONLY, 0.0), (READ, 1.0), (READ, 2.0), (RESTART, 3.0), (RESTART, 3.02), (READ, 4.0), (ANSWER, 4.02)]
+# (the 08/01 that ends the mode is not answered: the master repeats it, and the slave answers the repeat)
+HUNT = [(LISTEN_ONLY, 0.0), (READ, 1.0), (READ, 2.0), (RESTART, 3.0), (RESTART, 3.5), (RESTART, 3.52), (READ, 4.0),
+        (ANSWER, 4.02)]
 
 
 def test_the_requests_of_a_slave_in_listen_only_mode_say_why_none_is_answered(
@@ -59,16 +61,28 @@ def test_the_requests_of_a_slave_in_listen_only_mode_say_why_none_is_answered(
         "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] CRC ok",
         "4 3.000000 12 request Diagnostics 01h Restart Communications Option = 0 "
         "[slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this] CRC ok",
-        "5 3.020000 12 response Diagnostics 01h Restart Communications Option = 0 [#4, 20.0 ms] CRC ok",
-        "6 4.000000 12 request Read Holding Registers 8401 CRC ok",
-        "7 4.020000 12 response Read Holding Registers 8401: 8401=3 [#6, 20.0 ms] CRC ok",
+        "5 3.500000 12 request Diagnostics 01h Restart Communications Option = 0 CRC ok",
+        "6 3.520000 12 response Diagnostics 01h Restart Communications Option = 0 [#5, 20.0 ms] CRC ok",
+        "7 4.000000 12 request Read Holding Registers 8401 CRC ok",
+        "8 4.020000 12 response Read Holding Registers 8401: 8401=3 [#7, 20.0 ms] CRC ok",
+    ]
+
+
+def test_the_same_08_01_again_is_no_answer(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # The spec's server in the mode does not answer the 08/01 that ends it: the same frame 20 ms later is the
+    # master's repeat, a request (it awaits an answer: [no response]), not the echo (before: '[#2, 20.0 ms]').
+    frames = [(LISTEN_ONLY, 0.0), (RESTART, 3.0), (RESTART, 3.02), (READ, 4.0), (ANSWER, 4.02)]
+    assert lines(decode(frames, tmp_path, monkeypatch))[2:] == [
+        "3 3.020000 12 request Diagnostics 01h Restart Communications Option = 0 [no response] CRC ok",
+        "4 4.000000 12 request Read Holding Registers 8401 CRC ok",
+        "5 4.020000 12 response Read Holding Registers 8401: 8401=3 [#4, 20.0 ms] CRC ok",
     ]
 
 
 def test_stats_count_them_not_as_no_reply(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     table = lines(decode(HUNT, tmp_path, monkeypatch, "--stats"))
     assert "12 3 Read Holding Registers 3 1 0 0" in table
-    assert "12 8 Diagnostics 2 1 0 0" in table
+    assert "12 8 Diagnostics 3 1 0 0" in table  # (08/04, 08/01 and its repeat, which is answered)
     # (one miss: the cycle the master skipped for the 08/01; none for the requests it did not answer)
     assert "12 3 Read Holding Registers 8401 3 1000.0 0.0 1" in table
 
@@ -120,4 +134,30 @@ def test_a_damaged_08_01_does_not_end_it(tmp_path: Path, monkeypatch: pytest.Mon
         "[slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this] CRC ok",
         "5 4.000000 12 request Read Holding Registers 8401 CRC ok",
         "6 4.020000 12 response Read Holding Registers 8401: 8401=3 [#5, 20.0 ms] CRC ok",
+    ]
+
+
+def ascii_line(frame: bytes) -> bytes:
+    """The RTU frame's ADU as a Modbus ASCII line (':' hex LRC CR LF)."""
+    adu = frame[:-2]
+    return b":" + (adu + bytes([-sum(adu) & 0xFF])).hex().upper().encode() + b"\r\n"
+
+
+def test_in_ascii_as_in_rtu(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # (and the plugin alike: tests/integration/test_lua_listen_only_mode.py test_in_ascii_as_in_rtu)
+    damaged = ascii_line(RESTART).replace(b"EB\r\n", b"EC\r\n")  # (LRC EB)
+    sent = [ascii_line(LISTEN_ONLY), damaged, ascii_line(READ), *[ascii_line(RESTART)] * 3, ascii_line(READ),
+            ascii_line(ANSWER)]
+    frames = [(line, 0.5 * k) for k, line in enumerate(sent)]
+    assert lines(decode(frames, tmp_path, monkeypatch, "--mode", "ascii"))[1:] == [
+        "2 0.500000 12 request Diagnostics 01h Restart Communications Option = 0 "
+        "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] LRC BAD (received 0xEC, expected 0xEB)",
+        "3 1.000000 12 request Read Holding Registers 8401 "
+        "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] LRC ok",
+        "4 1.500000 12 request Diagnostics 01h Restart Communications Option = 0 "
+        "[slave 12 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this] LRC ok",
+        "5 2.000000 12 request Diagnostics 01h Restart Communications Option = 0 LRC ok",
+        "6 2.500000 12 response Diagnostics 01h Restart Communications Option = 0 [#5, 500.0 ms] LRC ok",
+        "7 3.000000 12 request Read Holding Registers 8401 LRC ok",
+        "8 3.500000 12 response Read Holding Registers 8401: 8401=3 [#7, 500.0 ms] LRC ok",
     ]
