@@ -235,7 +235,7 @@ class Pairer:
                 item.kind = Kind.REQUEST
                 self._retried = item if self._answered(item) else None
             ended = late if late is not None else expired  # (the request whose wait this frame or expire ended)
-            if item.kind is Kind.RESPONSE and ended is not None and item.raw == ended.raw:
+            if item.kind is Kind.RESPONSE and ended is not None and _repeats(ended, item):
                 # The retry rule: the request again, past the timeout: the master's retry. (The framer
                 # read it as an answer and awaits nothing, unless it read it as a request: flipped.)
                 item.kind = Kind.REQUEST
@@ -243,7 +243,7 @@ class Pairer:
                 self._echoed = None
                 self._retried = item if self._answered(item) and not flipped else None
             if (not flipped and item.kind is Kind.RESPONSE and pending is not None and pending is self._unheard
-                    and item.raw == pending.raw):
+                    and _repeats(pending, item)):
                 # A slave in Listen Only Mode answers nothing, the 08/01 that ends the mode included: the request
                 # again is the master's repeat. (The framer read it as an answer and awaits nothing.)
                 item.kind = Kind.REQUEST
@@ -353,6 +353,13 @@ class Pairer:
 def _sub_function(request: Frame) -> int | None:
     pdu = request.pdu
     return pdu[1] << 8 | pdu[2] if len(pdu) >= 3 else None
+
+
+def _repeats(request: Frame, frame: Frame) -> bool:
+    """Is `frame` the request again: its length, slave, function, data and check (in ASCII, hex digits of
+    either case: pairing.lua same_bytes)?"""
+    return (frame.length == request.length and frame.slave == request.slave and frame.crc == request.crc
+            and frame.pdu == request.pdu)
 
 
 def _awaited(request: Frame, frame: Frame) -> bool:
