@@ -5776,12 +5776,14 @@ local function pair(st, f)
 end
 
 -- The capture ends with request f awaiting its answer (the second pass: the first has read it all):
--- pairing.py capture_ended. Its last record (st.times' last time) later than the timeout after f: the
--- master gave up, unanswered; sooner, the slave may have answered after the capture stopped: not known.
--- Returns whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
+-- pairing.py capture_ended. The capture's last record (any stream's, empty or not: recorded_until; else
+-- st.times' last time, as Dissector.finish takes the later) later than the timeout after f: the master gave
+-- up, unanswered; sooner, the slave may have answered after the capture stopped: not known. Returns
+-- whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
 local function ended(st, f)
   local times, timeout, cut = st.times, st.timeout, st.cut_note
   local last = times[#times]
+  if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
   local waited = last and f.time and last - f.time or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
   if cut ~= nil then return false, cut end
@@ -8176,6 +8178,7 @@ end
 -- Each capture starts here (Wireshark calls it before the first record is dissected): the plugin's state.
 function proto.init()
   newest_record = 0 -- (the newest record's number: show.lua finish_all)
+  recorded_until = nil -- (the last timed record's time, any stream's, empty or not: vw3.pairing's ended)
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times, rtac_rel, rtac_first = {}, {}, nil
@@ -9099,6 +9102,7 @@ local function dissect_now(st, tvb, pinfo, number)
     REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
   end
   if number > newest_record then newest_record = number end
+  if number >= newest_record and time ~= nil then recorded_until = time end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
     -- after the first pass is over: a live capture's later records are never decoded again).
@@ -9190,7 +9194,12 @@ local function dissect_records(st, tvb, pinfo, tree)
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then
-      if result == nil then return 0 end
+      if result == nil then
+        -- An empty record: nothing to decode, but the tap was recording then (vw3.pairing's ended).
+        local time = number >= newest_record and record_time(pinfo, number) or nil
+        if time ~= nil then recorded_until = time end
+        return 0
+      end
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.

@@ -62,7 +62,12 @@ local function dissect_records(st, tvb, pinfo, tree)
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then
-      if result == nil then return 0 end
+      if result == nil then
+        -- An empty record: nothing to decode, but the tap was recording then (vw3.pairing's ended).
+        local time = number >= newest_record and record_time(pinfo, number) or nil
+        if time ~= nil then recorded_until = time end
+        return 0
+      end
       record = result
     else
       -- A bug must not make later passes dissect this record again (pairing twice): keep the error.

@@ -94,6 +94,7 @@ end
 -- Each capture starts here (Wireshark calls it before the first record is dissected): the plugin's state.
 function proto.init()
   newest_record = 0 -- (the newest record's number: show.lua finish_all)
+  recorded_until = nil -- (the last timed record's time, any stream's, empty or not: vw3.pairing's ended)
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times, rtac_rel, rtac_first = {}, {}, nil

@@ -228,12 +228,14 @@ local function pair(st, f)
 end
 
 -- The capture ends with request f awaiting its answer (the second pass: the first has read it all):
--- pairing.py capture_ended. Its last record (st.times' last time) later than the timeout after f: the
--- master gave up, unanswered; sooner, the slave may have answered after the capture stopped: not known.
--- Returns whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
+-- pairing.py capture_ended. The capture's last record (any stream's, empty or not: recorded_until; else
+-- st.times' last time, as Dissector.finish takes the later) later than the timeout after f: the master gave
+-- up, unanswered; sooner, the slave may have answered after the capture stopped: not known. Returns
+-- whether f is unanswered and its note (st.cut_note: an answer cut by the end, it did answer).
 local function ended(st, f)
   local times, timeout, cut = st.times, st.timeout, st.cut_note
   local last = times[#times]
+  if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
   local waited = last and f.time and last - f.time or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
   if cut ~= nil then return false, cut end

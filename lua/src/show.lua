@@ -421,6 +421,7 @@ local function dissect_now(st, tvb, pinfo, number)
     REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
   end
   if number > newest_record then newest_record = number end
+  if number >= newest_record and time ~= nil then recorded_until = time end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
     -- after the first pass is over: a live capture's later records are never decoded again).
