@@ -3847,6 +3847,105 @@ function DATA.lifters(warn, say, echo_check, data_bytes, range_text, check_asked
   }
 end
 end
+function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
+  local format = string.format
+  local form = {} -- (by form; by code and kind too where its layouts place its fields apart)
+  form.coil = function(f, b, base, last)
+    local coil = b[base + 4] * 256 + b[base + 5]
+    return (f.span_label or (f.start and DECIMAL[f.start]) or "")
+      .. (coil == 0xFF00 and " = ON" or coil == 0 and " = OFF" or format(" = 0x%04X", coil))
+  end
+  form.diagnostics = function(f, b, base, last)
+    local subfunction = b[base + 2] * 256 + b[base + 3]
+    return format("%02X", subfunction) .. "h "
+      .. (f.subfunction_text or DIAGNOSTICS[subfunction] or "unknown sub-function")
+      .. data_text(b, base + 4, last)
+  end
+  form.mask = function(f, b, base, last)
+    return DECIMAL[b[base + 2] * 256 + b[base + 3]] .. " AND 0x"
+      .. format("%04X", b[base + 4] * 256 + b[base + 5]) .. " OR 0x"
+      .. format("%04X", b[base + 6] * 256 + b[base + 7])
+  end
+  form.pointer = function(f, b, base, last)
+    return "pointer " .. DECIMAL[b[base + 2] * 256 + b[base + 3]]
+  end
+  form.status = function(f, b, base, last)
+    return "status 0x" .. format("%02X", b[base + 2])
+  end
+  form.counter = function(f, b, base, last)
+    return "status 0x" .. format("%04X", b[base + 2] * 256 + b[base + 3]) .. ", "
+      .. DECIMAL[b[base + 4] * 256 + b[base + 5]] .. " events"
+  end
+  form.event_log = function(f, b, base, last)
+    return "status 0x" .. format("%04X", b[base + 3] * 256 + b[base + 4]) .. ", "
+      .. DECIMAL[b[base + 5] * 256 + b[base + 6]] .. " events, " .. DECIMAL[b[base + 7] * 256 + b[base + 8]]
+      .. " messages"
+  end
+  form.fifo = function(f, b, base, last)
+    local fifo_count = b[base + 4] * 256 + b[base + 5]
+    return DECIMAL[fifo_count] .. " values:" .. fifo_values(b, fifo_count, base + 6, last)
+  end
+  return {
+    [5] = { request = form.coil, response = form.coil },
+    [7] = { response = form.status },
+    [8] = { request = form.diagnostics, response = form.diagnostics },
+    [11] = { response = form.counter },
+    [12] = { response = form.event_log },
+    [17] = { request = BY_NAME.report_server_id, response = BY_NAME.report_server_id },
+    [20] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
+    [21] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
+    [22] = { request = form.mask, response = form.mask },
+    [24] = { request = form.pointer, response = form.fifo },
+    [43] = { request = BY_NAME.mei, response = BY_NAME.mei },
+  }
+end
+DATA.field_places = {
+  read_request = { start = { at = 2, size = 2 }, quantity = { at = 4, size = 2 } },
+  read_bits_response = { byte_count = { at = 2, size = 1 }, status = { at = 3 } },
+  read_registers_response = { byte_count = { at = 2, size = 1 }, values = { at = 3 } },
+  write_single = { address = { at = 2, size = 2 }, value = { at = 4, size = 2 } },
+  empty = {},
+  diagnostics = { subfunction = { at = 2, size = 2 }, data = { at = 4 } },
+  write_coils_request = {
+    start = { at = 2, size = 2 }, quantity = { at = 4, size = 2 }, byte_count = { at = 6, size = 1 },
+    status = { at = 7 }
+  },
+  write_registers_request = {
+    start = { at = 2, size = 2 }, quantity = { at = 4, size = 2 }, byte_count = { at = 6, size = 1 },
+    values = { at = 7 }
+  },
+  write_multiple_response = { start = { at = 2, size = 2 }, quantity = { at = 4, size = 2 } },
+  exception_status_response = { status = { at = 2, size = 1 } },
+  comm_event_counter_response = { status = { at = 2, size = 2 }, event_count = { at = 4, size = 2 } },
+  mask_write = {
+    address = { at = 2, size = 2 }, and_mask = { at = 4, size = 2 }, or_mask = { at = 6, size = 2 }
+  },
+  read_write_request = {
+    read_start = { at = 2, size = 2 }, read_quantity = { at = 4, size = 2 },
+    write_start = { at = 6, size = 2 }, write_quantity = { at = 8, size = 2 },
+    byte_count = { at = 10, size = 1 }, values = { at = 11 }
+  },
+  fifo_request = { address = { at = 2, size = 2 } },
+  fifo_response = {
+    byte_count = { at = 2, size = 2 }, fifo_count = { at = 4, size = 2 }, values = { at = 6 }
+  },
+  exception = { exception_code = { at = 2, size = 1 } },
+  raw = { data = { at = 2 } },
+  comm_event_log_response = {
+    byte_count = { at = 2, size = 1 }, status = { at = 3, size = 2 }, event_count = { at = 5, size = 2 },
+    message_count = { at = 7, size = 2 }, events = { at = 9 }
+  },
+  report_server_id_response = {
+    byte_count = { at = 2, size = 1 }, server_id = { at = 3, size = 1 }, run_indicator = { at = 4, size = 1 },
+    additional_data = { at = 5 }
+  },
+  read_file_request = { byte_count = { at = 2, size = 1 }, subrequests = { at = 3 } },
+  read_file_response = { byte_count = { at = 2, size = 1 }, subresponses = { at = 3 } },
+  write_file = { byte_count = { at = 2, size = 1 }, records = { at = 3 } },
+  mei_request = { mei_type = { at = 2, size = 1 }, body = { at = 3 } },
+  mei_response = { mei_type = { at = 2, size = 1 }, body = { at = 3 } },
+}
+DATA.bit_windows = { [1] = true, [2] = true, [5] = true, [15] = true }
 -- END GENERATED DATA
 
 -- ---- vw3.crc: lua/src/crc.lua ----
@@ -8205,7 +8304,7 @@ local NO_INTERPRETATION, PARAMETER_FIELDS, PDU_FIELDS = NO_INTERPRETATION, PARAM
 local REQUEST, SIZES, concat, ex, exception_name, floor = REQUEST, SIZES, concat, ex, exception_name, floor
 local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
 local math, pairs, pf, python_repr, string, table, tostring = math, pairs, pf, python_repr, string, table, tostring
-local type, u16 = type, u16
+local u16 = u16
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -8451,27 +8550,18 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
 -- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
 -- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
--- FORMS[fn][kind]: the form made into a function of the frame (below; nil for the usual codes).
+-- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
-local UNKNOWN_SUBFUNCTION = INFO.unknown_subfunction
 local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
 -- time costs more, in the collector, than the text).
-local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
+local HEX, VALUES, GROUP = {}, {}, {}
 
 -- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
--- fixed size, made once a layout; fields_at: those of the layout a frame's kind and function code read.
-local FIELD_AT = made_once(function(layout)
-  local at_of, at = {}, 2
-  for _, field in ipairs(LAYOUTS[layout]) do
-    local size = SIZES[field.type]
-    at_of[field.name] = { at = at, size = size }
-    if size == nil then break end
-    at = at + size
-  end
-  return at_of
-end)
+-- fixed size (DATA.field_places, codegen/display_lua.py); fields_at: those of the layout a frame's kind and
+-- function code read.
+local FIELD_AT = DATA.field_places
 local function fields_at(kind, fn)
   local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
   return FIELD_AT[entry and entry.layout or "raw"]
@@ -8502,63 +8592,6 @@ local function fifo_values(b, count, first, last)
   return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
--- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
--- value read as u8 or u16 (nil where the field has no fixed size).
-local STEPS = {}
-function STEPS.dec(at, size)
-  if size == nil then return function() return DECIMAL[nil] end end
-  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
-end
-function STEPS.hex(at, size, digits)
-  local pattern = "%0" .. digits .. "X"
-  return function(f, b, base)
-    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
-  end
-end
-function STEPS.label() -- (span_text: the window as named, PLC style too)
-  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
-end
-function STEPS.coil(at, size)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-  end
-end
-function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-  end
-end
-function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
-function STEPS.fifo(at, size, values_at) -- (the values after their count)
-  return function(f, b, base, last)
-    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
-      base + values_at, last)
-  end
-end
-
--- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
-local function form_function(steps, at_of)
-  local texts, made, count = {}, {}, #steps
-  for index = 1, count do
-    local step = steps[index]
-    if type(step) == "string" then
-      texts[index] = step
-    else
-      local place, extra = at_of[step[2]], step[3]
-      if step[1] == "fifo" then extra = at_of[step[3]].at end
-      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
-    end
-  end
-  return function(f, b, base, last)
-    for index = 1, count do
-      MADE[index] = texts[index] or made[index](f, b, base, last)
-    end
-    return concat(MADE, "", 1, count)
-  end
-end
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on
 -- the frame's bytes b (its slave byte at b[base], its data ending at b[last]).
 local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.names.device_id_codes
@@ -8616,15 +8649,10 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
--- Each form made once: by function code, then kind (a describer of BY_NAME: the form is its name).
-local FORMS = {}
-for kind, forms in pairs(INFO.forms) do
-  for fn, form in pairs(forms) do
-    local steps = INFO.steps[form]
-    FORMS[fn] = FORMS[fn] or {}
-    FORMS[fn][kind] = type(steps) == "string" and BY_NAME[steps] or form_function(steps, fields_at(kind, fn))
-  end
-end
+-- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
+-- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
+-- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
 -- remember_request), from its byte table then.
@@ -8742,13 +8770,9 @@ end
 -- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
 -- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
 -- vw3-decode's `address == 8401` (the same addresses: render/filter_match.py item_elements, at most 2000).
-local BIT_WINDOW = {} -- (fn -> true: its request or answer carries bits, lift values "bits" or "coil")
-for _, by_fn in pairs(DATA.rules.by_code) do
-  for fn, entry in pairs(by_fn) do
-    local values = entry.rule and DATA.rules.lift[entry.rule].values
-    if values and (values.kind == "bits" or values.kind == "coil") then BIT_WINDOW[fn] = true end
-  end
-end
+-- (BIT_WINDOW[fn]: its request or answer carries bits, its lifting rule's values "bits" or "coil";
+-- DATA.bit_windows, codegen/display_lua.py)
+local BIT_WINDOW = DATA.bit_windows
 
 local function add_named(t, tvb, f, full)
   local start, quantity, run = f.start, f.quantity, f.registers or f.bits

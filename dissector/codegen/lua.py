@@ -329,16 +329,18 @@ def render_data() -> str:
     """The generated data between the markers: `local DATA = {...}`, then the rule tables of
     data/modbus.toml (codegen/rules_lua.py: `local RULES = {...}`, what the modules' lifter, parsers and
     texts interpret), which the modules reach as DATA.rules."""
-    from dissector.codegen import decode_lua, rules_lua  # (they import this module's lua_literal)
+    from dissector.codegen import decode_lua, display_lua, rules_lua  # (they import this module's lua_literal)
 
     data = plugin_data()
     # (in a block of its own: the modules below are closures of this chunk, a `local RULES` in their
     # scope would hide the length rules the framing modules share under that name)
     rules = ["do", rules_lua.render_rules().rstrip("\n"), "DATA.rules = RULES", "end"]
     # (DATA.pack: how a record's frames are packed, codegen/pack_lua.py; DATA.parsers and DATA.lifters: the
-    # layouts' readers and the lifting rules' handlers, written out from the rule data, codegen/decode_lua.py)
+    # layouts' readers and the lifting rules' handlers, written out from the rule data, codegen/decode_lua.py;
+    # DATA.info_forms, .field_places, .bit_windows: the Info texts of describe.TEXT_FORMS's forms and the display's
+    # tables, codegen/display_lua.py)
     lines = [BEGIN, "local DATA = " + lua_literal(data), *rules, *pack_lua.render_pack(), *decode_lua.render_decoders(),
-             END]
+             *display_lua.render_display(), END]
     return "\n".join(lines) + "\n"
 
 

@@ -61,13 +61,9 @@ end
 -- answers, FC22, FC23's read window), each a hidden vw3.reg.address (vw3.bit.address: a coil function's),
 -- as Wireshark's hidden ip.addr: `vw3.reg.address == 8401` finds the request that asked for 8401 too, as
 -- vw3-decode's `address == 8401` (the same addresses: render/filter_match.py item_elements, at most 2000).
-local BIT_WINDOW = {} -- (fn -> true: its request or answer carries bits, lift values "bits" or "coil")
-for _, by_fn in pairs(DATA.rules.by_code) do
-  for fn, entry in pairs(by_fn) do
-    local values = entry.rule and DATA.rules.lift[entry.rule].values
-    if values and (values.kind == "bits" or values.kind == "coil") then BIT_WINDOW[fn] = true end
-  end
-end
+-- (BIT_WINDOW[fn]: its request or answer carries bits, its lifting rule's values "bits" or "coil";
+-- DATA.bit_windows, codegen/display_lua.py)
+local BIT_WINDOW = DATA.bit_windows
 
 local function add_named(t, tvb, f, full)
   local start, quantity, run = f.start, f.quantity, f.registers or f.bits

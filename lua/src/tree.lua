@@ -248,27 +248,18 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
 -- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
 -- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
--- FORMS[fn][kind]: the form made into a function of the frame (below; nil for the usual codes).
+-- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
-local UNKNOWN_SUBFUNCTION = INFO.unknown_subfunction
 local HEX_BYTE = made_once(function(value) return format("%02x", value) end)
 -- Tables the texts are put together in, reused (Info texts are made for every record shown: a table each
 -- time costs more, in the collector, than the text).
-local MADE, HEX, VALUES, GROUP = {}, {}, {}, {}
+local HEX, VALUES, GROUP = {}, {}, {}
 
 -- Where each field of a layout begins (from the slave byte, 0) and its size, up to the first field of no
--- fixed size, made once a layout; fields_at: those of the layout a frame's kind and function code read.
-local FIELD_AT = made_once(function(layout)
-  local at_of, at = {}, 2
-  for _, field in ipairs(LAYOUTS[layout]) do
-    local size = SIZES[field.type]
-    at_of[field.name] = { at = at, size = size }
-    if size == nil then break end
-    at = at + size
-  end
-  return at_of
-end)
+-- fixed size (DATA.field_places, codegen/display_lua.py); fields_at: those of the layout a frame's kind and
+-- function code read.
+local FIELD_AT = DATA.field_places
 local function fields_at(kind, fn)
   local entry = LAYOUT_OF[kind] and LAYOUT_OF[kind][fn]
   return FIELD_AT[entry and entry.layout or "raw"]
@@ -299,63 +290,6 @@ local function fifo_values(b, count, first, last)
   return " " .. concat(VALUES, " ", 1, made)
 end
 
--- The steps of a form (describe._interpreter), each made once into a function of the frame f and its bytes
--- b (its slave byte at b[base], its data ending at b[last]), its field's place (fields_at) known then: its
--- value read as u8 or u16 (nil where the field has no fixed size).
-local STEPS = {}
-function STEPS.dec(at, size)
-  if size == nil then return function() return DECIMAL[nil] end end
-  return function(f, b, base) return DECIMAL[size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]] end
-end
-function STEPS.hex(at, size, digits)
-  local pattern = "%0" .. digits .. "X"
-  return function(f, b, base)
-    return format(pattern, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]))
-  end
-end
-function STEPS.label() -- (span_text: the window as named, PLC style too)
-  return function(f) return f.span_label or (f.start and DECIMAL[f.start]) or "" end
-end
-function STEPS.coil(at, size)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return value == 0xFF00 and " = ON" or value == 0 and " = OFF" or format(" = 0x%04X", value)
-  end
-end
-function STEPS.subfunction(at, size) -- (as the profile names it, else the spec)
-  return function(f, b, base)
-    local value = size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1])
-    return f.subfunction_text or DIAGNOSTICS[value] or UNKNOWN_SUBFUNCTION
-  end
-end
-function STEPS.data(at) return function(f, b, base, last) return data_text(b, base + at, last) end end
-function STEPS.fifo(at, size, values_at) -- (the values after their count)
-  return function(f, b, base, last)
-    return fifo_values(b, size and (size == 1 and b[base + at] or b[base + at] * 256 + b[base + at + 1]),
-      base + values_at, last)
-  end
-end
-
--- A form as one function: its texts as they are, its steps made by STEPS, put together in MADE.
-local function form_function(steps, at_of)
-  local texts, made, count = {}, {}, #steps
-  for index = 1, count do
-    local step = steps[index]
-    if type(step) == "string" then
-      texts[index] = step
-    else
-      local place, extra = at_of[step[2]], step[3]
-      if step[1] == "fifo" then extra = at_of[step[3]].at end
-      texts[index], made[index] = false, STEPS[step[1]](place and place.at, place and place.size, extra)
-    end
-  end
-  return function(f, b, base, last)
-    for index = 1, count do
-      MADE[index] = texts[index] or made[index](f, b, base, last)
-    end
-    return concat(MADE, "", 1, count)
-  end
-end
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on
 -- the frame's bytes b (its slave byte at b[base], its data ending at b[last]).
 local MEI_TYPES, DEVICE_ID_CODES = DATA.fields.names.mei_types, DATA.fields.names.device_id_codes
@@ -413,15 +347,10 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
--- Each form made once: by function code, then kind (a describer of BY_NAME: the form is its name).
-local FORMS = {}
-for kind, forms in pairs(INFO.forms) do
-  for fn, form in pairs(forms) do
-    local steps = INFO.steps[form]
-    FORMS[fn] = FORMS[fn] or {}
-    FORMS[fn][kind] = type(steps) == "string" and BY_NAME[steps] or form_function(steps, fields_at(kind, fn))
-  end
-end
+-- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
+-- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
+-- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
 -- remember_request), from its byte table then.
