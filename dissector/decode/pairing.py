@@ -283,6 +283,8 @@ class Pairer:
             if item.kind is Kind.EXCEPTION and self._listening.get(item.slave) is pending:
                 self._listening.pop(item.slave)  # (it refused the FC8 04: not in the mode)
                 self.listen_changed.add(item.slave)
+            elif pending is self._unheard:
+                self._heard(pending, item)
             item.request = pending
             pending.response_ref = weakref.ref(item)
             self._pending = None
@@ -317,6 +319,25 @@ class Pairer:
         """Would a server answer this request (not one the spec has none answer, not to a slave in Listen Only
         Mode)?"""
         return awaits_answer(request) and not self.in_listen_only(request.slave)
+
+    def _heard(self, request: Frame, answer: Item) -> None:
+        """A slave taken to be in Listen Only Mode answered (not the request again: _repeats): it is not in the
+        mode (it did not take the 08/04, or restarted), and its request's note is taken back while held."""
+        slave = request.slave
+        since = self._listening.get(slave, self._listening_all)
+        if since is None:  # (the 08/01 that ended the mode: already out of it)
+            return
+        if self._listening_all is not None:
+            self._listening[slave] = None
+        else:
+            self._listening.pop(slave, None)
+        self.listen_changed.add(slave)
+        how = text("listen_only_broadcast") if since.slave == 0 else ""
+        values = {"slave": slave, "number": since.number, "how": how}
+        if not self._pending_released:
+            said = text("listen_only", **values)
+            request.notes[:] = [note for note in request.notes if note != said]
+        answer.notes.append(text("listen_only_answered", **values))
 
     def _listen_only(self, request: Frame) -> tuple[Frame | None, bool]:
         """Follow Listen Only Mode through a request: the FC8 04 request its slave was in the mode since

@@ -40,6 +40,27 @@ end
 
 -- Follows the mode through request f; returns the 08/04 its slave was in the mode since (nil: not in it) and
 -- f's sub-function (nil: not an intact FC8 request, which no slave acts on).
+-- A slave taken to be in the mode answered (pairing.py _heard): it is not in it; its request's note goes.
+local function heard(st, request, answer)
+  local slave = request.slave
+  local since = listening_since(st, slave)
+  if not since then return end -- (the 08/01 that ended the mode: already out of it)
+  local listening = st.listening
+  if st.listening_all ~= nil then
+    listening[slave] = false
+  else
+    listening[slave] = nil
+    if next(listening) == nil then st.listening = nil end
+  end
+  local values = { slave = slave, number = since.number, how = since.slave == 0 and LISTEN_ONLY_BROADCAST or "" }
+  local said, notes, kept = say("listen_only", values), request.notes or {}, {}
+  for index = 1, #notes do
+    if notes[index] ~= said then kept[#kept + 1] = notes[index] end
+  end
+  request.notes = kept[1] ~= nil and kept or nil -- (notes are made with their first: none is nil)
+  note(answer, say("listen_only_answered", values))
+end
+
 local function listen_only(st, f)
   local slave, listening, since = f.slave, st.listening, listening_since(st, f.slave)
   local sub = nil
@@ -205,6 +226,8 @@ local function pair(st, f)
     if listening ~= nil and f.kind == EXCEPTION and listening[f.slave] == pending then
       listening[f.slave] = nil -- (it refused the 08/04: not in the mode)
       if next(listening) == nil and st.listening_all == nil then st.listening = nil end
+    elseif pending.unheard then
+      heard(st, pending, f)
     end
     f.request = pending
     pending.response = f

@@ -80,6 +80,8 @@ UNKNOWN = " [warning: diagnostic sub-function 99 is not defined by the spec]"
 TAILS = {
     4: " [no response]", 5: " [no response]",
     10: ODD, 11: ODD, 14: UNKNOWN, 15: UNKNOWN, 16: " [no response expected: the spec's server returns none]",
+    # (the FC24 answers after the 08/04 show the slave did not take Listen Only Mode: pairing.py _heard)
+    18: " [slave 1 answers: it is not in listen-only mode (#17, 08/04)]",
     22: " [warning: malformed response: stream read less than specified amount, expected 2, found 0 at "
         "(parsing) -> values]",
 }

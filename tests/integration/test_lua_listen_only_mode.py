@@ -116,3 +116,15 @@ def test_in_ascii_as_in_rtu(tmp_path: Path, two_pass: bool) -> None:
         "12;1;;",
         "12;2;;",
     ]
+
+
+def test_a_slave_that_answers_is_not_in_the_mode(tmp_path: Path) -> None:
+    # (pairing.py _heard: the request's note is taken back, the answer says why it pairs; -2 shows it final)
+    frames = [(LISTEN_ONLY, 0.0), (READ, 1.0), (ANSWER, 1.02), (READ, 2.0), (READ, 3.5)]
+    assert tshark(frames, tmp_path, True) == [
+        f"12;1;;{NOTE}",
+        "12;1;;",
+        "12;2;;slave 12 answers: it is not in listen-only mode (#1, 08/04)",
+        "12;1;1;",
+        "12;1;;the capture ends before any response: not known whether it was answered",
+    ]

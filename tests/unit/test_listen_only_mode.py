@@ -168,3 +168,21 @@ def test_in_ascii_as_in_rtu(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> 
         "7 3.000000 12 request Read Holding Registers 8401 LRC ok",
         "8 3.500000 12 response Read Holding Registers 8401: 8401=3 [#7, 500.0 ms] LRC ok",
     ]
+
+
+
+# A slave taken to be in the mode that answers (not the request again, which is the master's repeat) did not take
+# the 08/04 or restarted: its request keeps no "does not answer" note, the answer says why it pairs, and the
+# slave is out of the mode (its next request unanswered is [no response]).
+def test_a_slave_that_answers_is_not_in_the_mode(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    heard = [(LISTEN_ONLY, 0.0), (READ, 1.0), (ANSWER, 1.02), (READ, 2.0), (READ, 3.5)]
+    assert lines(decode(heard, tmp_path, monkeypatch)) == [
+        "1 0.000000 12 request Diagnostics 04h Force Listen Only Mode = 0 "
+        "[no response expected: the spec's server returns none] CRC ok",
+        "2 1.000000 12 request Read Holding Registers 8401 CRC ok",
+        "3 1.020000 12 response Read Holding Registers 8401: 8401=3 [#2, 20.0 ms] "
+        "[slave 12 answers: it is not in listen-only mode (#1, 08/04)] CRC ok",
+        "4 2.000000 12 request Read Holding Registers 8401 [no response] CRC ok",
+        "5 3.500000 12 request Read Holding Registers 8401 [the capture ends before any response: not known whether "
+        "it was answered] CRC ok",
+    ]
