@@ -20,7 +20,6 @@ REFUSED = rtu("01 88 01")  # exception 1: a server that does not support 04 says
 NOTE = "no response expected: the spec's server returns none"
 # (after 08/04 the slave is in listen-only mode: it answers nothing, 08/01 included, which ends the mode)
 ENDS = "slave 1 leaves listen-only mode (since #1, 08/04): the spec's server does not answer this"
-LISTENING = "slave 1 is in listen-only mode since #1 (08/04): it does not answer"
 FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.kind", "-e", "vw3.subfunction", "-e", "vw3.request_frame",
           "-e", "vw3.response_frame", "-e", "vw3.unanswered", "-e", "vw3.note"]
 
