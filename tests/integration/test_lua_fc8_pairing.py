@@ -53,7 +53,7 @@ def test_listen_only_in_one_record_with_the_next_request(tmp_path: Path) -> None
     # (framed in one go: the framer's expectation, not the pairing alone, must know 08/04 awaits nothing;
     # request_frame and response_frame are record numbers)
     pcap = write_pcap(tmp_path / "one.pcap", [(LISTEN_ONLY + REGISTER_QUERY, T0), (REGISTER_ANSWER, T0 + 0.010)])
-    # (the slave answers the 08/02: not in listen-only mode after all, pairing.lua heard)
+    # (the slave answers the 08/02: not in listen-only mode after all; the plugin's pairing module, heard)
     assert tshark(pcap, *FIELDS).splitlines() == [
         f"1,1;4,2;;2;;{NOTE}", "2;2;1;;;slave 1 answers: it is not in listen-only mode (#1, 08/04)"]
 
