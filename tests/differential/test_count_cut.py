@@ -9,51 +9,16 @@ before: a capture of 20,000 records with -c 1000000 was decoded at the Python st
 The extension must be built: it is not skipped."""
 from __future__ import annotations
 
-import io
 import random
 from pathlib import Path
 
 import pytest
 
-from helpers import use_engine
-
-from dissector.accel import fastsummary, framespath
-from dissector.app.cli import Environment, run
+from helpers import decode_counting_frames as decode, engine_output_as_python as same
 from test_timed_summary import cut_records, frames_of, write_pcap, write_pcapng
 
 OPTIONS = [["--stats"], ["-V"], ["--json"], ["-Y", "slave == 1 or function == 3", "--stats"], ["--profile", "auto", "--stats"],
            ["-t", "d"]]
-
-_FRAMES = framespath._Frames._frames  # (unwrapped: each run counts its own)
-
-
-def decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool, stdin: bytes = b"") -> tuple[str, list[int]]:
-    """The output (stdout and stderr) and the numbers of the frames the engine framed."""
-    use_engine(monkeypatch, pure)
-    framed: list[int] = []
-    make = _FRAMES
-
-    def counting(self: framespath._Frames, records: bytes) -> None:
-        accept = self.accept
-        self.accept = lambda items: (framed.extend(item.number for item in items), accept(items))
-        try:
-            make(self, records)
-        finally:
-            self.accept = accept
-
-    monkeypatch.setattr(framespath._Frames, "_frames", counting)
-    stdout, stderr = io.StringIO(), io.StringIO()
-    assert run(argv, Environment(io.BytesIO(stdin), stdout, stderr, False, False)) == 0
-    return stdout.getvalue() + stderr.getvalue(), framed
-
-
-def same(argv: list[str], monkeypatch: pytest.MonkeyPatch, stdin: bytes = b"") -> tuple[str, list[int]]:
-    engine, framed = decode(argv, monkeypatch, pure=False, stdin=stdin)
-    reference, none = decode(argv, monkeypatch, pure=True, stdin=stdin)
-    assert none == []
-    assert engine == reference, argv
-    return engine, framed
-
 
 def capture(tmp_path: Path, seed: int, how: str) -> tuple[Path, int]:
     """A random bus (some frames damaged) as pcap or pcapng records; and how many frames it holds."""

@@ -6,18 +6,16 @@ mode): a random bus's share of the engine fell from 436 to 133 of 588 frames (te
 must be built: it is not skipped."""
 from __future__ import annotations
 
-import io
 from pathlib import Path
 
 import pytest
 
-from dissector.accel import fastsummary, framespath
-from dissector.app.cli import Environment, run
+from dissector.accel import fastsummary
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk
 from dissector.pipeline import Dissector
 from dissector.render.summary import summary_line
-from helpers import rtu, use_engine
+from helpers import engine_output_as_python as frames_path, rtu, use_engine
 from test_timed_summary import write_pcap
 
 LISTEN_ONLY, RESTART = rtu("0C 08 0004 0000"), rtu("0C 08 0001 0000")
@@ -58,30 +56,6 @@ def test_the_engine_takes_the_other_slaves_while_one_listens() -> None:
         "[slave 12 is in listen-only mode since #1 (08/04): it does not answer] CRC ok")
     # (of the 83 lines, slave 5's 60 and slave 12's 20 after its 08/01, but where a hand-over costs one)
     assert len(expected) == 83 and engine >= 70
-
-
-def frames_path(argv: list[str], monkeypatch: pytest.MonkeyPatch) -> tuple[str, list[int]]:
-    """-V, --json... through accel/framespath.py: the output, and the numbers of the frames the engine framed;
-    the output equal to VW3_PURE_PYTHON=1's."""
-    outputs, framed = [], []
-    make = framespath._Frames._frames
-
-    def counting(self: framespath._Frames, records: bytes) -> None:
-        accept = self.accept
-        self.accept = lambda items: (framed.extend(item.number for item in items), accept(items))
-        try:
-            make(self, records)
-        finally:
-            self.accept = accept
-
-    monkeypatch.setattr(framespath._Frames, "_frames", counting)
-    for pure in (False, True):
-        use_engine(monkeypatch, pure)
-        out, err = io.StringIO(), io.StringIO()
-        assert run(argv, Environment(io.BytesIO(b""), out, err, False, False)) == 0
-        outputs.append(out.getvalue() + err.getvalue())
-    assert outputs[0] == outputs[1]
-    return outputs[0], framed
 
 
 def test_frames_mode_after_a_broadcast_08_04(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

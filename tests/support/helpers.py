@@ -60,3 +60,37 @@ def use_engine(monkeypatch: object, pure: bool) -> None:
     from dissector.accel import fastsummary
 
     assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"
+
+
+def decode_counting_frames(argv: list[str], monkeypatch: object, pure: bool, stdin: bytes = b"") -> tuple[str, list[int]]:
+    """`vw3-decode argv`'s output (stdout then stderr, exit 0 asserted) and the numbers of the frames the
+    compiled engine's frames path (accel/framespath.py) framed: none under VW3_PURE_PYTHON=1."""
+    from dissector.accel import framespath
+
+    use_engine(monkeypatch, pure)
+    framed: list[int] = []
+    make = framespath._Frames._frames
+
+    def counting(self: framespath._Frames, records: bytes) -> None:
+        accept = self.accept
+        self.accept = lambda items: (framed.extend(item.number for item in items), accept(items))
+        try:
+            make(self, records)
+        finally:
+            self.accept = accept
+
+    monkeypatch.setattr(framespath._Frames, "_frames", counting)  # type: ignore[attr-defined]
+    stdout, stderr = io.StringIO(), io.StringIO()
+    assert run(argv, Environment(io.BytesIO(stdin), stdout, stderr, False, False)) == 0
+    monkeypatch.setattr(framespath._Frames, "_frames", make)  # type: ignore[attr-defined]  # (the next call wraps the original)
+    return stdout.getvalue() + stderr.getvalue(), framed
+
+
+def engine_output_as_python(argv: list[str], monkeypatch: object, stdin: bytes = b"") -> tuple[str, list[int]]:
+    """The output of `vw3-decode argv` (asserted byte-identical under the engine and VW3_PURE_PYTHON=1) and
+    the numbers of the frames the engine framed."""
+    engine, framed = decode_counting_frames(argv, monkeypatch, pure=False, stdin=stdin)
+    reference, none = decode_counting_frames(argv, monkeypatch, pure=True, stdin=stdin)
+    assert none == []
+    assert engine == reference, argv
+    return engine, framed
