@@ -252,7 +252,7 @@ enum { TEXT_REQUEST_INFO, TEXT_REQUEST_TAIL, TEXT_RESPONSE_INFO, TEXT_RESPONSE_T
 static const char *const text_names[TEXTS] = {"request_info", "request_tail", "response_info", "response_tail"};
 
 enum { FORM_NONE, FORM_NAME, FORM_SPAN, FORM_BITS, FORM_VALUES, FORM_COIL, FORM_SINGLE, FORM_WRITTEN, FORM_STATUS, FORM_COUNTER, FORM_EVENT_LOG, FORM_DIAGNOSTICS, FORM_MASK, FORM_POINTER, FORM_READ_WRITE, FORM_FIFO, FORM_PYTHON };
-enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };
+enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER, CONFIRM_MASK };
 enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };
 #define MAX_ECHO 3
 /* How the engine lifts a frame of a compiled code in one direction, from its lifting rule
@@ -342,9 +342,10 @@ static const Step form_steps[][MAX_STEPS] = {
 };
 /* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
  *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
- *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
- *   (table.Compiled.texts); info: the request's and the response's Info column, the steps of its form
- *   (form_steps) printing the fields at at[] of width[] bytes (0: from its offset only). */
+ *   answer, 3 masks the echo confirms (the Python stages'); reads: the answer's registers are values read;
+ *   texts: the texts come from the Python stages (table.Compiled.texts); info: the request's and the
+ *   response's Info column, the steps of its form (form_steps) printing the fields at at[] of width[] bytes
+ *   (0: from its offset only). */
 typedef struct { const Step *steps; int at[3], width[3]; } InfoForm;
 typedef struct {
     int special, confirm, reads, texts;
@@ -366,7 +367,7 @@ static const Rules rules[HANDLED] = {
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 17 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 20 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 21 */
-    {0, 0, 0, 0, {{form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}, {form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}}}, /* 22 */
+    {0, 3, 0, 0, {{form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}, {form_steps[FORM_MASK], {2, 4, 6}, {2, 2, 2}}}}, /* 22 */
     {0, 2, 1, 0, {{form_steps[FORM_READ_WRITE], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_VALUES], {0, 0, 0}, {0, 0, 0}}}}, /* 23 */
     {0, 0, 0, 0, {{form_steps[FORM_POINTER], {2, 0, 0}, {2, 0, 0}}, {form_steps[FORM_FIFO], {4, 6, 0}, {2, 0, 0}}}}, /* 24 */
     {0, 0, 0, 1, {{form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}, {form_steps[FORM_PYTHON], {0, 0, 0}, {0, 0, 0}}}}, /* 43 */

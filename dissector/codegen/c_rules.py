@@ -216,7 +216,7 @@ def rules_row(entry: Function) -> dict[str, int | list[int] | str]:
     request, response = entry.request, entry.response
     return dict(
         special=_named_case(request) | _named_case(response),
-        confirm={None: 0, Confirm.ECHO: 1, Confirm.ANSWER: 2}[CONFIRM.get(code)],
+        confirm={None: 0, Confirm.ECHO: 1, Confirm.ANSWER: 2, Confirm.MASK: 3}[CONFIRM.get(code)],
         reads=int(code in table.register_reads()),
         texts=int(entry.compiled is not None and entry.compiled.texts),
         info="{" + ", ".join(_info(entry, kind) for kind in (Kind.REQUEST, Kind.RESPONSE)) + "}",
@@ -243,9 +243,10 @@ typedef struct {
 
 RULES_STRUCT = """/* What the engine does with a transaction of a compiled code (codegen/c_rules.py):
  *   special: 1 diagnostics (FC8's named case); confirm ([confirm]): 1 by the answer's echo, 2 by a normal
- *   answer; reads: the answer's registers are values read; texts: the texts come from the Python stages
- *   (table.Compiled.texts); info: the request's and the response's Info column, the steps of its form
- *   (form_steps) printing the fields at at[] of width[] bytes (0: from its offset only). */
+ *   answer, 3 masks the echo confirms (the Python stages'); reads: the answer's registers are values read;
+ *   texts: the texts come from the Python stages (table.Compiled.texts); info: the request's and the
+ *   response's Info column, the steps of its form (form_steps) printing the fields at at[] of width[] bytes
+ *   (0: from its offset only). */
 typedef struct { const Step *steps; int at[3], width[3]; } InfoForm;
 typedef struct {
     int special, confirm, reads, texts;
@@ -321,7 +322,7 @@ def render(entries: list[Function], limits: tuple[str, ...]) -> list[str]:
         *_field_names(Texts, "TEXT", "TEXTS", "text_names"),
         "",
         "enum { " + ", ".join(f"FORM_{name.upper()}" for name in FORMS) + " };",
-        "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER };",
+        "enum { CONFIRM_NONE, CONFIRM_ECHO, CONFIRM_ANSWER, CONFIRM_MASK };",
         "enum { VALUES_NONE, VALUES_BLOCK, VALUES_ONE, VALUES_BITS };",
         f"#define MAX_ECHO {MAX_ECHO}",
         LIFT_STRUCT,

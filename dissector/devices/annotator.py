@@ -19,7 +19,7 @@ from dissector.devices.checks import check_request, check_subfunction, within_li
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
-from dissector.devices.memory import readable_again, remember_writes, unreadable, unreadable_status
+from dissector.devices.memory import readable_again, remember_mask, remember_writes, unreadable, unreadable_status
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
 from dissector.devices.objects import check_objects
 from dissector.devices.profiles import Profile
@@ -27,7 +27,7 @@ from dissector.devices.selection import ProfileChoice, Selector
 from dissector.devices.story import Event, tell
 from dissector.model import DeviceObject, Frame, Kind, Register, RegisterList
 from dissector.protocol import table
-from dissector.protocol.rules import Confirm, text
+from dissector.protocol.rules import CONFIRM, Confirm, text
 from dissector.protocol.spec import SPEC
 
 __all__ = ["Annotator", "MapLayer", "ProfileChoice"]
@@ -430,6 +430,8 @@ class Annotator:
             request = frame.request
             if request is not None and request.registers:
                 remember_writes(frame, device, request.registers)
+        elif device.track and CONFIRM.get(function) is Confirm.MASK:
+            remember_mask(frame, device)
         registers = frame.registers
         if registers:
             read = kind is _RESPONSE and function in _READS

@@ -67,3 +67,20 @@ def remember_writes(frame: Frame, device: Device, registers: Sequence[Register])
     for register in registers:
         if register.address is not None:
             seen[register.address] = (register.value, number, "written")
+
+
+def remember_mask(frame: Frame, device: Device) -> None:
+    """A Mask Write its echo confirms (data/modbus.toml [confirm] "mask"): the register holds (current AND
+    and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16), written as FC6's value is; where
+    the current value is not known (and_mask 0 replaces every bit), the parameter is forgotten."""
+    fields = frame.fields
+    if fields is None:
+        return  # (malformed: nothing confirmed)
+    seen = device.seen
+    address, and_mask = fields.address, fields.and_mask
+    last = seen.get(address)
+    current = 0 if and_mask == 0 else last[0] if last is not None else None
+    if current is None:
+        seen.pop(address, None)
+        return
+    seen[address] = ((current & and_mask) | (fields.or_mask & ~and_mask & 0xFFFF), frame.number, "written")

@@ -198,6 +198,7 @@ LIFTS: dict[str, Lift] = {name: _lift(name, entry) for name, entry in SPEC.lift.
 class Confirm(StrEnum):
     ECHO = "echo"  # the answer repeats the values written
     ANSWER = "answer"  # a normal answer confirms the request's values
+    MASK = "mask"  # the echo confirms masks applied to the value held (FC22)
 
 
 CONFIRM: dict[int, Confirm] = {code: Confirm(how) for code, how in SPEC.confirm.items()}

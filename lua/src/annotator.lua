@@ -4,6 +4,12 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
+-- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
+local MASK_WRITES = {}
+for code, how in pairs(DATA.rules.confirm) do
+  if how == "mask" then MASK_WRITES[code] = true end
+end
+
 local function annotate_with(st, f, b, device)
   if not device then return end
   local special_name = device.profile.function_names[f.fn]
@@ -22,6 +28,8 @@ local function annotate_with(st, f, b, device)
     -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes
     -- before it reads).
     remember_writes(device.seen, f.number, request.registers, request.registers.b)
+  elseif kind == RESPONSE and device.track and MASK_WRITES[f.fn] and f.fields ~= nil then
+    remember_mask(device.seen, f.number, f.fields)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then

@@ -82,6 +82,20 @@ local function remember_writes(seen, number, run, b)
   end
 end
 
+-- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
+-- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
+-- (and_mask 0 replaces every bit), the parameter is forgotten.
+local function remember_mask(seen, number, fields)
+  local and_mask, last = fields.and_mask, seen[fields.address]
+  local current = and_mask == 0 and 0 or last ~= nil and last.value or nil
+  if current == nil then
+    seen[fields.address] = nil
+    return
+  end
+  local value = bit.bor(bit.band(current, and_mask), bit.band(fields.or_mask, bit.bnot(and_mask), 0xFFFF))
+  remember(seen, fields.address, value, number, "written")
+end
+
 -- What register `index` of a frame's consecutive registers is of a 32-bit map row (naming.name_wide):
 -- 2 its first word (the value is read here), 0 its second word, 1 a register on its own.
 local function words_at(rows, address, index, count)
