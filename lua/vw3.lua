@@ -6624,6 +6624,11 @@ local function remember_writes(seen, number, run, b)
   end
 end
 
+-- The same for a list of registers { address, value } (vw3_modbus.lua's frames, annotate_list's lists).
+local function remember_list(seen, number, registers)
+  for _, reg in ipairs(registers) do remember(seen, reg.address, reg.value, number, "written") end
+end
+
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.
@@ -6798,8 +6803,8 @@ local function annotate_list(st, f, device, registers, read)
   story.tell(f)
 end
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.plc_base, M.remember_mask, M.remember_writes, M.story = plc_base, remember_mask, remember_writes, story
-M.track, M.words_at = track, words_at
+M.plc_base, M.remember_list, M.remember_mask = plc_base, remember_list, remember_mask
+M.remember_writes, M.story, M.track, M.words_at = remember_writes, story, track, words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -7380,8 +7385,8 @@ local check_request, concat, describe, device_of = check_request, concat, descri
 local diagnostics_note, explain_exception, explain_objects = diagnostics_note, explain_exception, explain_objects
 local ipairs, lane, math, pairs, parse_map_choice = ipairs, lane, math, pairs, parse_map_choice
 local parse_profile_choice, refused_registers, register_at = parse_profile_choice, refused_registers, register_at
-local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
-local span_label, string, table, words_at = span_label, string, table, words_at
+local remember_list, remember_mask, remember_writes, say = remember_list, remember_mask, remember_writes, say
+local select, span_label, string, table, words_at = select, span_label, string, table, words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
 local MASK_WRITES = {}
@@ -7430,8 +7435,12 @@ end
 function lane.annotate_again(st, device, held)
   for _, copy in ipairs(held) do
     local run = copy.registers
-    if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path)
+    if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path, name_adu)
+      -- (the writes its answer confirms, `written`: FC23's before it reads; then FC6's echo)
+      local seen = device.track and device.seen
+      if seen and copy.written ~= nil then remember_list(seen, copy.number, copy.written) end
       annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
+      if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then remember_list(seen, copy.number, run) end
     else
       annotate_with(st, copy, copy.b, device)
     end

@@ -82,6 +82,11 @@ local function remember_writes(seen, number, run, b)
   end
 end
 
+-- The same for a list of registers { address, value } (vw3_modbus.lua's frames, annotate_list's lists).
+local function remember_list(seen, number, registers)
+  for _, reg in ipairs(registers) do remember(seen, reg.address, reg.value, number, "written") end
+end
+
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.

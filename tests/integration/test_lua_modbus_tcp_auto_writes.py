@@ -1,0 +1,41 @@
+"""Writes confirmed under Wireshark's Modbus/TCP before profile `auto` chose the unit's device are remembered
+by the device it chooses (annotator.lua annotate_again replays vw3_modbus.lua's held frames as its name_adu
+did: an FC6 echo's value, as the RTU plugin's annotate_with and vw3-decode's annotator), so a later 16#8000
+is told against the value written, as tests/integration/test_provisional_replay.py's RTU case `writes` tells
+it. Before, the replay named the registers only: the chosen ATV71 had no memory of the write and said nothing.
+tshark one pass and -2 (the names are made once, in capture order)."""
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+import pytest
+
+from lua_harness import PLUGIN, lua_errors, run_tshark
+from lua_net import NetWriter
+
+pytestmark = pytest.mark.integration
+
+# unit 12: FC6 8401 (CHCF) = 3 and its echo; a read of 8400..8413, 16#8000 but FR1 (8413) = 1, that makes
+# profile auto choose the ATV71 (8400 in no map: its 16#8000 is evidence)
+PAIRS = [("0620D10003", "0620D10003"), ("0320D0000E", "031C" + "8000" * 13 + "0001")]
+EXPECTED = [
+    "|", "|", "|",
+    ",CHCF,COP,,,,,,,,,,,FR1|CHCF (8401) became protected: written 3 in frame #2, 16#8000 now",
+]
+
+
+@pytest.mark.parametrize("two_pass", [False, True])
+def test_a_write_before_the_choice_is_remembered(tmp_path: Path, two_pass: bool) -> None:
+    writer = NetWriter(tmp_path / "mbtcp.pcap")
+    time = 1.0
+    for transaction, (request, response) in enumerate(PAIRS, start=1):
+        for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
+            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
+            time += 0.01
+    writer.close()
+    done = run_tshark(tmp_path / "mbtcp.pcap", "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}", "-T", "fields",
+                      "-E", "separator=|", "-e", "vw3.reg.code", "-e", "vw3.note", two_pass=two_pass)
+    assert done.returncode == 0, done.stderr
+    assert not lua_errors(done.stdout + done.stderr)
+    assert done.stdout.splitlines() == EXPECTED
