@@ -6541,9 +6541,9 @@ package.preload["vw3.story"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.story"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local PLC_LABELS, address_name, address_runs, bit, concat = PLC_LABELS, address_name, address_runs, bit, concat
+local PLC_LABELS, address_name, address_runs, concat = PLC_LABELS, address_name, address_runs, concat
 local consecutive, has_note, interpret, interpret_wide = consecutive, has_note, interpret, interpret_wide
-local ipairs, next, note, register_at, say, span_name = ipairs, next, note, register_at, say, span_name
+local ipairs, math, next, note, register_at, say, span_name = ipairs, math, next, note, register_at, say, span_name
 local table = table
 
 -- Parameter events of one frame, told as one note per event kind and past (devices/story.py):
@@ -6632,14 +6632,20 @@ end
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.
+-- (bit by bit, low first: the current value's where and_mask has a 1, or_mask's where it has a 0)
 local function remember_mask(seen, number, fields)
-  local and_mask, last = fields.and_mask, seen[fields.address]
+  local and_mask, or_mask, last = fields.and_mask, fields.or_mask, seen[fields.address]
   local current = and_mask == 0 and 0 or last ~= nil and last.value or nil
   if current == nil then
     seen[fields.address] = nil
     return
   end
-  local value = bit.bor(bit.band(current, and_mask), bit.band(fields.or_mask, bit.bnot(and_mask), 0xFFFF))
+  local value, weight = 0, 1
+  for _ = 1, 16 do
+    if (and_mask % 2 == 1 and current or or_mask) % 2 == 1 then value = value + weight end
+    current, and_mask, or_mask = math.floor(current / 2), math.floor(and_mask / 2), math.floor(or_mask / 2)
+    weight = weight * 2
+  end
   remember(seen, fields.address, value, number, "written")
 end
 

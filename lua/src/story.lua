@@ -90,14 +90,20 @@ end
 -- A Mask Write its echo confirms ([confirm] "mask", memory.remember_mask): the register holds (current AND
 -- and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16); where the current value is not known
 -- (and_mask 0 replaces every bit), the parameter is forgotten.
+-- (bit by bit, low first: the current value's where and_mask has a 1, or_mask's where it has a 0)
 local function remember_mask(seen, number, fields)
-  local and_mask, last = fields.and_mask, seen[fields.address]
+  local and_mask, or_mask, last = fields.and_mask, fields.or_mask, seen[fields.address]
   local current = and_mask == 0 and 0 or last ~= nil and last.value or nil
   if current == nil then
     seen[fields.address] = nil
     return
   end
-  local value = bit.bor(bit.band(current, and_mask), bit.band(fields.or_mask, bit.bnot(and_mask), 0xFFFF))
+  local value, weight = 0, 1
+  for _ = 1, 16 do
+    if (and_mask % 2 == 1 and current or or_mask) % 2 == 1 then value = value + weight end
+    current, and_mask, or_mask = math.floor(current / 2), math.floor(and_mask / 2), math.floor(or_mask / 2)
+    weight = weight * 2
+  end
   remember(seen, fields.address, value, number, "written")
 end
 

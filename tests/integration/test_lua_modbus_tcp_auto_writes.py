@@ -1,9 +1,9 @@
 """Writes confirmed under Wireshark's Modbus/TCP before profile `auto` chose the unit's device are remembered
-by the device it chooses (annotator.lua annotate_again replays vw3_modbus.lua's held frames as its name_adu
-did: an FC6 echo's value, as the RTU plugin's annotate_with and vw3-decode's annotator), so a later 16#8000
-is told against the value written, as tests/integration/test_provisional_replay.py's RTU case `writes` tells
-it. Before, the replay named the registers only: the chosen ATV71 had no memory of the write and said nothing.
-tshark one pass and -2 (the names are made once, in capture order)."""
+by the device it chooses (lua/src/annotator.lua, annotate_again, replays the held frames of vw3_modbus.lua
+as its name_adu did: an FC6 echo's value, as the RTU plugin's annotate_with and vw3-decode's annotator), so a
+later 16#8000 is told against the value written, as an RTU capture tells it (the case `writes` of the
+provisional replay tests). Before, the replay named the registers only: the chosen ATV71 had no memory of the
+write and said nothing. tshark one pass and -2 (the names are made once, in capture order)."""
 from __future__ import annotations
 
 import struct

@@ -9,13 +9,15 @@ VW3_PURE_PYTHON=1; under a profile whose device supports FC22 the engine hands a
 writes to the Python stages) and the plugin (tshark -2 and one pass)."""
 from __future__ import annotations
 
+import random
 import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu, run_cli, use_engine
-from lua_harness import lua_errors, run_tshark, write_pcap
+from lua_harness import PLUGIN, ensure_tool, lua_errors, run_tshark, write_pcap
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -100,3 +102,31 @@ def test_the_plugin_follows_a_confirmed_mask_write(tmp_path: Path, two_pass: boo
                      "-e", "vw3.reg.text", "-e", "vw3.note", "-Y", 'vw3.kind == "response"', two_pass=two_pass)
     assert not lua_errors(got.stdout + got.stderr)
     assert got.stdout.splitlines() == PLUGIN_LINES
+
+
+# The plugin's pure part under plain Lua (no Wireshark, no `bit` module): the mask computed by arithmetic.
+MASK_RUNNER = """
+local vw3 = dofile(arg[1])
+local env = package.loaded["vw3.env"]
+for line in io.lines(arg[2]) do
+  local current, and_mask, or_mask = line:match("(%d+) (%d+) (%d+)")
+  local seen = { [7] = { value = tonumber(current), frame = 1, how = "read" } }
+  env.remember_mask(seen, 2, { address = 7, and_mask = tonumber(and_mask), or_mask = tonumber(or_mask) })
+  print(seen[7].value, seen[7].frame, seen[7].how)
+end
+"""
+
+
+@pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
+def test_plain_lua_computes_the_mask_as_the_spec(tmp_path: Path, lua: str) -> None:
+    chosen = random.Random(22)
+    cases = [(0x12, 0xF2, 0x25), (0, 0, 0xFFFF), (0xFFFF, 0xFFFF, 0), (0xFFFF, 0, 0), (0x8000, 0x7FFF, 0x8000)]
+    cases += [(chosen.randrange(65536), chosen.randrange(65536), chosen.randrange(65536)) for _ in range(200)]
+    (tmp_path / "runner.lua").write_text(MASK_RUNNER, encoding="utf-8")
+    (tmp_path / "cases.txt").write_text("".join(f"{a} {b} {c}\n" for a, b, c in cases), encoding="ascii")
+    done = subprocess.run([ensure_tool(lua, lua), str(tmp_path / "runner.lua"), str(PLUGIN), str(tmp_path / "cases.txt")],
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines()[0] == "23\t2\twritten"
+    assert [int(line.split()[0]) for line in done.stdout.splitlines()] == [
+        (current & and_mask) | (or_mask & ~and_mask & 0xFFFF) for current, and_mask, or_mask in cases]
