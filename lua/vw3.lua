@@ -7446,7 +7446,9 @@ function lane.annotate_again(st, device, held)
       local seen = device.track and device.seen
       if seen and copy.written ~= nil then remember_list(seen, copy.number, copy.written) end
       annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
-      if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then remember_list(seen, copy.number, run) end
+      if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then
+        remember_list(seen, copy.number, run)
+      end
     else
       annotate_with(st, copy, copy.b, device)
     end

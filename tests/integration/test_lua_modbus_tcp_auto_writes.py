@@ -34,8 +34,9 @@ def test_a_write_before_the_choice_is_remembered(tmp_path: Path, two_pass: bool)
             writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
             time += 0.01
     writer.close()
-    done = run_tshark(tmp_path / "mbtcp.pcap", "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}", "-T", "fields",
-                      "-E", "separator=|", "-e", "vw3.reg.code", "-e", "vw3.note", two_pass=two_pass)
+    names = ("-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}")
+    done = run_tshark(tmp_path / "mbtcp.pcap", *names, "-T", "fields", "-E", "separator=|", "-e", "vw3.reg.code",
+                      "-e", "vw3.note", two_pass=two_pass)
     assert done.returncode == 0, done.stderr
     assert not lua_errors(done.stdout + done.stderr)
     assert done.stdout.splitlines() == EXPECTED

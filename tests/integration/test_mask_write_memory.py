@@ -124,8 +124,8 @@ def test_plain_lua_computes_the_mask_as_the_spec(tmp_path: Path, lua: str) -> No
     cases += [(chosen.randrange(65536), chosen.randrange(65536), chosen.randrange(65536)) for _ in range(200)]
     (tmp_path / "runner.lua").write_text(MASK_RUNNER, encoding="utf-8")
     (tmp_path / "cases.txt").write_text("".join(f"{a} {b} {c}\n" for a, b, c in cases), encoding="ascii")
-    done = subprocess.run([ensure_tool(lua, lua), str(tmp_path / "runner.lua"), str(PLUGIN), str(tmp_path / "cases.txt")],
-                          capture_output=True, text=True, timeout=120)
+    command = [ensure_tool(lua, lua), str(tmp_path / "runner.lua"), str(PLUGIN), str(tmp_path / "cases.txt")]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines()[0] == "23\t2\twritten"
     assert [int(line.split()[0]) for line in done.stdout.splitlines()] == [
