@@ -1088,6 +1088,19 @@ local DATA = {
     ["provisional"] = "[provisional]",
     ["provisional_line"] = "Profile: provisional (profile auto has not chosen this slave's device yet: values named with spec semantics only, which its device may name otherwise)",
   },
+  ["timing"] = {
+    ["default_baud"] = 19200,
+    ["rtu_bits"] = 11,
+    ["ascii_bits"] = 10,
+    ["fixed_above"] = 19200,
+    ["fixed_t15"] = 0.00075,
+    ["fixed_t35"] = 0.00175,
+    ["ascii_max_silence"] = 1.0,
+    ["min_baud"] = 50,
+    ["max_baud"] = 4000000,
+    ["rtu_limit"] = "t1.5 = %.3f ms at %d baud",
+    ["ascii_limit"] = "the 1 s ASCII limit",
+  },
   ["fields"] = {
     ["fields"] = {
       {
@@ -4359,20 +4372,50 @@ local function flush_noise(s, items)
   end
 end
 
--- The line's timing as the Python framers take it (framing/timing.py LineTiming, RTU_BITS_PER_CHAR; t3.5 is
--- FIXED_T35 above FIXED_TIMING_ABOVE baud): at the `baud` preference's speed, as vw3-decode --baud; a speed
--- --baud refuses (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of
--- t3.5 before a record ends a noise run (found where noise is added, from the records' times: nothing is
--- added to a frame's path).
-local DEFAULT_BAUD, RTU_BITS, FIXED_TIMING_ABOVE, FIXED_T35 = 19200, 11, 19200, 1750e-6
-local MIN_BAUD, MAX_BAUD = 50, 4000000
-local CHAR_TIME, T35
+-- The line's timing as the Python framers take it (framing/timing.py LineTiming; DATA.timing, written from
+-- it by codegen/timing_lua.py): at the `baud` preference's speed, as vw3-decode --baud; a speed --baud refuses
+-- (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of t3.5 before a
+-- record ends a noise run (found where noise is added, from the records' times: nothing is added to a frame's
+-- path); one longer than t1.5 inside a frame (ASCII: 1 s) is warned of (inner_gaps).
+local TIMING = DATA.timing
+local CHAR_TIME, ASCII_CHAR_TIME, T15, T35, RTU_LIMIT
 function lane.line_speed(baud)
-  if baud < MIN_BAUD or baud > MAX_BAUD then baud = DEFAULT_BAUD end
-  CHAR_TIME = RTU_BITS / baud
-  T35 = baud > FIXED_TIMING_ABOVE and FIXED_T35 or 3.5 * RTU_BITS / baud
+  if baud < TIMING.min_baud or baud > TIMING.max_baud then baud = TIMING.default_baud end
+  local bits, fixed = TIMING.rtu_bits, baud > TIMING.fixed_above
+  CHAR_TIME, ASCII_CHAR_TIME = bits / baud, TIMING.ascii_bits / baud
+  -- (in LineTiming._rtu_interval's order of operations: the same doubles)
+  T15 = fixed and TIMING.fixed_t15 or 1.5 * bits / baud
+  T35 = fixed and TIMING.fixed_t35 or 3.5 * bits / baud
+  RTU_LIMIT = format(TIMING.rtu_limit, T15 * 1000, baud)
 end
-lane.line_speed(DEFAULT_BAUD)
+lane.line_speed(TIMING.default_baud)
+
+-- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
+-- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
+local NS = 1e9
+
+-- Silences longer than allowed inside the frame (timing.py inner_gaps: between the records it spans, each
+-- less its bytes' time on the line), as warnings kept in frame.gaps: take_frame adds them after the
+-- pairing's, where vw3-decode's GapChecker adds them (pipeline.py). s.times holds the frame's records yet.
+local function inner_gaps(s, frame)
+  local times, offset = s.times, frame.offset
+  local stop, ascii = offset + frame.length, s.mode == "ascii"
+  local char_time, limit = CHAR_TIME, T15
+  if ascii then char_time, limit = ASCII_CHAR_TIME, TIMING.ascii_max_silence end
+  for index = 3, #times, 2 do
+    local start, time, before = times[index], times[index + 1], times[index - 1]
+    if start >= stop then break end -- (oldest first)
+    if start > offset and time and before then
+      local silence = (time - before) / NS - (start - times[index - 2]) * char_time
+      if silence > limit then
+        local gaps = frame.gaps or {}
+        frame.gaps = gaps
+        gaps[#gaps + 1] = say("inner_silence", { silence_ms = silence * 1000, byte = start - offset,
+          limit = ascii and TIMING.ascii_limit or RTU_LIMIT })
+      end
+    end
+  end
+end
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
@@ -4405,7 +4448,7 @@ local function add_noise(s, start, stop, reason, items)
       local at = offset - base
       if at >= stop then break end -- (oldest first)
       if at >= start and time and before
-          and time - before - (offset - times[index - 2]) * CHAR_TIME >= T35 then
+          and (time - before) / NS - (offset - times[index - 2]) * CHAR_TIME >= T35 then
         if at > start then add_run(s, b, start, at, reason, items) end
         local noise = s.noise
         if noise ~= nil then
@@ -4483,6 +4526,7 @@ local function emit(s, frame, items)
   end
   flush_noise(s, items)
   s.noise_cut = false
+  if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
   items[#items + 1] = frame
   expect_after(s, frame)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
@@ -5655,6 +5699,9 @@ local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
 local ECHO = DATA.pairing.echo
 local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
+-- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
+-- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
+local NS = 1e9
 -- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
@@ -5806,7 +5853,7 @@ local function pair(st, f)
   local timeout = st.timeout
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
-    and f.time - pending.time > timeout then
+    and (f.time - pending.time) / NS > timeout then
     unanswered(st, pending)
     late, pending = pending, nil
   end
@@ -5880,10 +5927,11 @@ local function pair(st, f)
     pending.response = f
     st.pending = nil
     if f.time ~= nil and pending.time ~= nil and f.time < pending.time then
-      warn(f, say("backwards", { ahead_ms = (pending.time - f.time) * 1000, number = pending.number }))
+      warn(f, say("backwards", { ahead_ms = (pending.time - f.time) / NS * 1000, number = pending.number }))
     end
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn and echoes(late, f) then
-    warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
+    warn(f, say("late", { delay_ms = (f.time - late.time) / NS * 1000, number = late.number,
+      timeout_ms = timeout * 1000 }))
   else
     if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
@@ -5906,7 +5954,7 @@ local function ended(st, f)
   local times, timeout, cut = st.times, st.timeout, st.cut_note
   local last = times[#times]
   if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
-  local waited = last and f.time and last - f.time or nil
+  local waited = last and f.time and (last - f.time) / NS or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
   if cut ~= nil then return false, cut end
   if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end
@@ -7701,7 +7749,7 @@ local feed, feed_whole, head_slot, ipairs, lane, math = feed, feed_whole, head_s
 local new_state, next, pack, pair, pairs, pcall, put_flat = new_state, next, pack, pair, pairs, pcall, put_flat
 local release_run, remember_writes, run_slot, span_slot = release_run, remember_writes, run_slot, span_slot
 local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
-local whole_crc_good = whole_crc_good
+local warn, whole_crc_good = warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -7714,6 +7762,11 @@ end
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
+  local gaps = item.gaps -- (silences inside the frame, vw3.stream's inner_gaps: after the pairing's warnings)
+  if gaps ~= nil then
+    for index = 1, #gaps do warn(item, gaps[index]) end
+    item.gaps = nil
+  end
   decode_frame(item)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
@@ -7918,7 +7971,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if n ~= run.extra + count or not whole_crc_good(bytes, n) then return nil end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
-  if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
+  if timeout ~= nil and time ~= nil and asked ~= nil and (time - asked) / 1e9 > timeout then return nil end -- (ns)
   -- the lifting rules of read_registers_response, read_bits_response: the request's start and quantity, its
   -- byte count agreeing
   if pending.fields == nil then return nil end
@@ -8777,43 +8830,82 @@ local pack, pairs, pf, proto, python_repr, register_view = pack, pairs, pf, prot
 local say, summary, tostring, type, unseen = say, summary, tostring, type, unseen
 local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 
--- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
--- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
--- the record's time otherwise.
-local function record_time(pinfo, number)
-  local rtac = rtac_times[number or pinfo.number]
-  if rtac ~= nil then return rtac end
-  local time = pinfo.abs_ts
-  if time == 0 then return nil end
-  return time
+-- Record times in integer nanoseconds from a base second of the capture (a double holds them exactly up to
+-- 2^53: 104 days), as vw3-decode's Stamps keep the nanoseconds the file wrote (model.py Stamp): every
+-- difference (response times, silences, the timeout) is then exact, and its text has vw3-decode's digits.
+-- pinfo.abs_ts, a double near 1.7e9 s, is 238 ns coarse: a response time of 2.05 ms read 2.0 or 2.1 ms by
+-- chance. pinfo.rel_ts (from Wireshark's reference record, the capture's first) and delta_ts (from the record
+-- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
+-- serial stream (`state`, made by proto.init); clock.times: each record's (false: none), by number.
+local NS = 1e9
+local clock = {}
+local function capture_clock(abs)
+  if clock.capture ~= state then clock = { capture = state, times = {}, nanos = false } end
+  if clock.base == nil and abs ~= nil then clock.base = floor(abs) end
+  return clock
 end
 
--- Each record's time from the capture's first (pinfo.rel_ts) and its time, by record number: kept across
--- lane.again, which makes the stream's state anew; each record's first dissection writes its own.
-local REL_TIMES, TIMES = {}, {}
+-- A time from abs_ts alone (238 ns coarse), on the microsecond while the capture's exact differences are
+-- whole microseconds (a pcap's us, where the rounding makes it exact).
+local function coarse_ns(c, abs)
+  local ns = floor((abs - c.base) * NS + 0.5)
+  if not c.nanos then ns = floor(ns / 1000 + 0.5) * 1000 end
+  return ns
+end
 
--- A frame's time from the capture's first: that of the record holding its first byte (the frame's time),
--- the record it is shown in or one a little before (a frame cut across records); nil where none is.
-local function rel_time(f, number)
-  local time = f.time
-  for k = number, math.max(number - 64, 1), -1 do
-    if TIMES[k] == time then return REL_TIMES[k] end
+-- An exact difference in ns (seconds read as a double), and whether the capture has nanoseconds.
+local function exact_ns(c, seconds)
+  local ns = floor(seconds * NS + 0.5)
+  if ns % 1000 ~= 0 then c.nanos = true end
+  return ns
+end
+
+-- The record's time from the one before (delta_ts) where that one's is known, else from abs_ts.
+local function chained_ns(c, pinfo, number, abs)
+  local before, delta = c.times[number - 1], pinfo.delta_ts
+  if before and delta ~= nil and math.abs(delta) < 4e6 then return before + exact_ns(c, delta) end
+  return coarse_ns(c, abs)
+end
+
+-- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
+-- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
+-- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
+local function record_ns(pinfo, number)
+  local abs = pinfo.abs_ts
+  local c = capture_clock(abs ~= 0 and abs or nil)
+  local known = c.times[number]
+  if known ~= nil then return known or nil end
+  local ns = rtac_times[number]
+  if ns == nil and abs ~= 0 then
+    local rel = pinfo.rel_ts
+    local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
+    if reference and c.reference ~= nil and math.abs(reference - c.reference) < 1e-6 then
+      ns = c.reference_ns + exact_ns(c, rel)
+    else
+      -- The first record, or a new reference (a time reference set in the GUI): from the record before.
+      ns = chained_ns(c, pinfo, number, abs)
+      if reference and math.abs(reference) >= 1 then c.reference, c.reference_ns = reference, ns - exact_ns(c, rel) end
+    end
   end
-  return nil
+  c.times[number] = ns or false
+  return ns
 end
 
--- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
--- capture's first where they agree with their absolute times (a time reference set between them does
--- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
+-- An RTAC record's own timestamp (u32 seconds, u32 microseconds) in ns, exact.
+function lane.rtac_ns(seconds, micros)
+  local c = capture_clock(seconds)
+  return (seconds - c.base) * NS + micros * 1000
+end
+
+-- A response's time since its request (vw3.response_time), an NSTime, exact: 0.010157000, not abs_ts's
+-- 0.010157108. nil where either has no time.
 function lane.response_time(f)
   local request = f.request
   if f.time == nil or request.time == nil then return nil end
-  local delta, asked, got = f.time - request.time, rel_time(request, request.record), rel_time(f, f.record)
-  local exact = asked and got and got - asked
-  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
+  local delta = f.time - request.time
   local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
-  local seconds = math.floor(delta * sign)
-  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
+  local seconds = floor(delta * sign / NS)
+  return NSTime.new(sign * seconds, sign * (delta * sign - seconds * NS))
 end
 
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
@@ -9175,19 +9267,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
   if n == 0 then return nil end
-  -- (record_time, written out: its RTAC time looked up once)
-  local rtac = rtac_times[number]
-  local time = rtac
-  if rtac == nil then
-    time = pinfo.abs_ts
-    if time == 0 then time = nil end
-  end
-  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
-  -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
-  local rel = pinfo.rel_ts
-  if rel ~= nil then
-    REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
-  end
+  local time = record_ns(pinfo, number)
   if number > newest_record then newest_record = number end
   if number >= newest_record and time ~= nil then recorded_until = time end
   if config.default == AUTO and not state.finished then
@@ -9204,7 +9284,7 @@ local function dissect_now(st, tvb, pinfo, number)
   end
   return lane.decode(st, bytes, n, time, number)
 end
-M.dissect_now, M.finish_all, M.record_time, M.show_record = dissect_now, finish_all, record_time, show_record
+M.dissect_now, M.finish_all, M.record_ns, M.show_record = dissect_now, finish_all, record_ns, show_record
 end
 
 -- ---- vw3.dissector: lua/src/dissector.lua ----
@@ -9220,7 +9300,7 @@ local add_register, add_text, annotate_list, apply_prefs = add_register, add_tex
 local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
 local finish_all, flush_noise, ipairs, lane, math = finish_all, flush_noise, ipairs, lane, math
 local new_state, os, pack, package, pairs, pcall, pf, proto = new_state, os, pack, package, pairs, pcall, pf, proto
-local record_time, show_record, stream_state, take_items = record_time, show_record, stream_state, take_items
+local record_ns, show_record, stream_state, take_items = record_ns, show_record, stream_state, take_items
 local tostring, type, wtap = tostring, type, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
@@ -9248,7 +9328,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   if #sample.text >= MODE_SAMPLE then
     st.sample = false
   else
-    sample[#sample + 1] = { number, bytes, pinfo.abs_ts }
+    sample[#sample + 1] = { number, bytes }
   end
   local mode = detect_mode(sample.text)
   if st.mode == nil then
@@ -9257,11 +9337,12 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     local fresh = new_state(st.timeout, mode)
     fresh.sample = st.sample
     for index = 1, #sample do
-      local kept, bytes_kept, abs_ts = sample[index][1], sample[index][2], sample[index][3]
+      local kept, bytes_kept = sample[index][1], sample[index][2]
       if kept ~= number then
-        -- (dissect_now reads the bytes and the time through stand-ins for the tvb and pinfo, gone since)
+        -- (dissect_now reads the bytes through a stand-in for the tvb, gone since; the time is the record's
+        -- kept one: show.lua record_ns)
         local tvb_kept = { raw = function() return bytes_kept end }
-        local ok, result = pcall(dissect_now, fresh, tvb_kept, { abs_ts = abs_ts }, kept)
+        local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, kept)
         if not ok then result = { length = #bytes_kept, error = tostring(result) } end
         fresh.records[kept] = result
         if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
@@ -9283,7 +9364,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     if ok then
       if result == nil then
         -- An empty record: nothing to decode, but the tap was recording then (vw3.pairing's ended).
-        local time = number >= newest_record and record_time(pinfo, number) or nil
+        local time = number >= newest_record and record_ns(pinfo, number) or nil
         if time ~= nil then recorded_until = time end
         return 0
       end
@@ -9348,7 +9429,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
   local record = { number = pinfo.number, start = 0, length = n }
   st.open = { record }
-  local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
+  local items = feed(st, tvb:raw(0, n), record_ns(pinfo, pinfo.number), false, false)
   flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
   local used = st.base
   take_items(st, items, record)
@@ -9432,11 +9513,7 @@ if ok_original and rtac_original ~= nil then
   function rtac_time.dissector(tvb, pinfo, tree)
     if tvb:len() >= 8 and not pinfo.visited then
       local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
-      rtac_times[pinfo.number] = seconds + micros / 1000000
-      -- (and from the capture's first RTAC second: a double near 1.7e9 is 0.2 us coarse, so response
-      -- times come from these, exact to the microsecond: 0.020000000, not 0.019999981; lane.response_time)
-      rtac_first = rtac_first or seconds
-      rtac_rel[pinfo.number] = seconds - rtac_first + micros / 1000000
+      rtac_times[pinfo.number] = lane.rtac_ns(seconds, micros) -- (in ns, exact: show.lua record_ns)
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

@@ -19,7 +19,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table
+from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table, timing_lua
 from dissector.decode import pairing
 from dissector.devices import maps
 from dissector.errors import GenerateError
@@ -147,6 +147,7 @@ def plugin_data() -> dict[str, Any]:
         "lanes": lanes_lua.lanes_data(),  # (what the quick lanes take of the protocol table: codegen/lanes_lua.py)
         # The display's texts: a provisional frame's mark in the summary and its line in -V.
         "render": {"provisional": summary.PROVISIONAL, "provisional_line": detail.PROVISIONAL_LINE.strip()},
+        "timing": timing_lua.timing_data(),  # the line's timing (framing/timing.py: codegen/timing_lua.py)
         "fields": fields_lua.plugin_fields(),  # the ProtoFields, from data/fields.toml (codegen/fields_lua.py)
     }
     data.update(_profile_data())

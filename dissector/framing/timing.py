@@ -36,6 +36,9 @@ FIXED_TIMING_ABOVE = 19200  # baud rate above which t1.5 and t3.5 are fixed
 FIXED_T15 = 750e-6
 FIXED_T35 = 1750e-6
 ASCII_MAX_SILENCE = 1.0
+# How a silence inside a frame names the limit it passed (describe_limit; the plugin's DATA.timing).
+RTU_LIMIT = "t1.5 = {t15_ms:.3f} ms at {baud:d} baud"
+ASCII_LIMIT = "the 1 s ASCII limit"
 
 
 def mode_bits(mode: str) -> int:
@@ -71,8 +74,8 @@ class LineTiming:
 
     def describe_limit(self) -> str:
         if self.mode == "ascii":
-            return "the 1 s ASCII limit"
-        return f"t1.5 = {self.t15 * 1000:.3f} ms at {self.baud} baud"
+            return ASCII_LIMIT
+        return RTU_LIMIT.format(t15_ms=self.t15 * 1000, baud=self.baud)
 
 
 def line_silence(previous_offset: int, previous_time: float, start: int, time: float, timing: LineTiming) -> float:

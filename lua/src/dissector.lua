@@ -29,7 +29,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   if #sample.text >= MODE_SAMPLE then
     st.sample = false
   else
-    sample[#sample + 1] = { number, bytes, pinfo.abs_ts }
+    sample[#sample + 1] = { number, bytes }
   end
   local mode = detect_mode(sample.text)
   if st.mode == nil then
@@ -38,11 +38,12 @@ local function sample_and_dissect(st, tvb, pinfo, number)
     local fresh = new_state(st.timeout, mode)
     fresh.sample = st.sample
     for index = 1, #sample do
-      local kept, bytes_kept, abs_ts = sample[index][1], sample[index][2], sample[index][3]
+      local kept, bytes_kept = sample[index][1], sample[index][2]
       if kept ~= number then
-        -- (dissect_now reads the bytes and the time through stand-ins for the tvb and pinfo, gone since)
+        -- (dissect_now reads the bytes through a stand-in for the tvb, gone since; the time is the record's
+        -- kept one: show.lua record_ns)
         local tvb_kept = { raw = function() return bytes_kept end }
-        local ok, result = pcall(dissect_now, fresh, tvb_kept, { abs_ts = abs_ts }, kept)
+        local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, kept)
         if not ok then result = { length = #bytes_kept, error = tostring(result) } end
         fresh.records[kept] = result
         if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
@@ -64,7 +65,7 @@ local function dissect_records(st, tvb, pinfo, tree)
     if ok then
       if result == nil then
         -- An empty record: nothing to decode, but the tap was recording then (vw3.pairing's ended).
-        local time = number >= newest_record and record_time(pinfo, number) or nil
+        local time = number >= newest_record and record_ns(pinfo, number) or nil
         if time ~= nil then recorded_until = time end
         return 0
       end
@@ -129,7 +130,7 @@ local function dissect_tcp_now(st, tvb, pinfo, n)
   st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
   local record = { number = pinfo.number, start = 0, length = n }
   st.open = { record }
-  local items = feed(st, tvb:raw(0, n), record_time(pinfo), false, false)
+  local items = feed(st, tvb:raw(0, n), record_ns(pinfo, pinfo.number), false, false)
   flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
   local used = st.base
   take_items(st, items, record)
@@ -213,11 +214,7 @@ if ok_original and rtac_original ~= nil then
   function rtac_time.dissector(tvb, pinfo, tree)
     if tvb:len() >= 8 and not pinfo.visited then
       local seconds, micros = tvb:range(0, 4):uint(), tvb:range(4, 4):uint()
-      rtac_times[pinfo.number] = seconds + micros / 1000000
-      -- (and from the capture's first RTAC second: a double near 1.7e9 is 0.2 us coarse, so response
-      -- times come from these, exact to the microsecond: 0.020000000, not 0.019999981; lane.response_time)
-      rtac_first = rtac_first or seconds
-      rtac_rel[pinfo.number] = seconds - rtac_first + micros / 1000000
+      rtac_times[pinfo.number] = lane.rtac_ns(seconds, micros) -- (in ns, exact: show.lua record_ns)
     end
     return rtac_original:call(tvb, pinfo, tree)
   end

@@ -8,6 +8,9 @@ local NEVER_ANSWERED_NOTE = say("never_answered", {})
 local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
 local ECHO = DATA.pairing.echo
 local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
+-- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
+-- vw3-decode's Stamps subtract (model.py Stamp.__sub__): the same doubles, the same digits in the texts.
+local NS = 1e9
 -- FC8's sub-functions that enter and leave Listen Only Mode (Application Protocol 6.8.1).
 local FC8_CODE, SUB_LISTEN_ONLY, SUB_RESTART = 8, 4, 1
 
@@ -159,7 +162,7 @@ local function pair(st, f)
   local timeout = st.timeout
   local late = nil
   if pending ~= nil and timeout ~= nil and f.time ~= nil and pending.time ~= nil
-    and f.time - pending.time > timeout then
+    and (f.time - pending.time) / NS > timeout then
     unanswered(st, pending)
     late, pending = pending, nil
   end
@@ -233,10 +236,11 @@ local function pair(st, f)
     pending.response = f
     st.pending = nil
     if f.time ~= nil and pending.time ~= nil and f.time < pending.time then
-      warn(f, say("backwards", { ahead_ms = (pending.time - f.time) * 1000, number = pending.number }))
+      warn(f, say("backwards", { ahead_ms = (pending.time - f.time) / NS * 1000, number = pending.number }))
     end
   elseif late ~= nil and late.slave == f.slave and late.fn == f.fn and echoes(late, f) then
-    warn(f, say("late", { delay_ms = (f.time - late.time) * 1000, number = late.number, timeout_ms = timeout * 1000 }))
+    warn(f, say("late", { delay_ms = (f.time - late.time) / NS * 1000, number = late.number,
+      timeout_ms = timeout * 1000 }))
   else
     if pending ~= nil then unanswered(st, pending) end
     f.no_request = true
@@ -259,7 +263,7 @@ local function ended(st, f)
   local times, timeout, cut = st.times, st.timeout, st.cut_note
   local last = times[#times]
   if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
-  local waited = last and f.time and last - f.time or nil
+  local waited = last and f.time and (last - f.time) / NS or nil
   if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
   if cut ~= nil then return false, cut end
   if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end

@@ -15,6 +15,11 @@ end
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
+  local gaps = item.gaps -- (silences inside the frame, vw3.stream's inner_gaps: after the pairing's warnings)
+  if gaps ~= nil then
+    for index = 1, #gaps do warn(item, gaps[index]) end
+    item.gaps = nil
+  end
   decode_frame(item)
   local device = device_now(st, item, item.b)
   annotate_with(st, item, item.b, device)
@@ -219,7 +224,7 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   if n ~= run.extra + count or not whole_crc_good(bytes, n) then return nil end
   -- pair: on time (else the request went unanswered)
   local timeout, asked = st.timeout, pending.time
-  if timeout ~= nil and time ~= nil and asked ~= nil and time - asked > timeout then return nil end
+  if timeout ~= nil and time ~= nil and asked ~= nil and (time - asked) / 1e9 > timeout then return nil end -- (ns)
   -- the lifting rules of read_registers_response, read_bits_response: the request's start and quantity, its
   -- byte count agreeing
   if pending.fields == nil then return nil end

@@ -5,43 +5,82 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local UNMATCHED = say("unmatched", {}) -- (data/modbus.toml [texts])
 
--- The time of a record, as vw3-decode reads it: the RTAC's own timestamp for RTAC serial records (when
--- the device saw the bytes), none for records at the epoch (vw3-decode -w writes those for untimed input),
--- the record's time otherwise.
-local function record_time(pinfo, number)
-  local rtac = rtac_times[number or pinfo.number]
-  if rtac ~= nil then return rtac end
-  local time = pinfo.abs_ts
-  if time == 0 then return nil end
-  return time
+-- Record times in integer nanoseconds from a base second of the capture (a double holds them exactly up to
+-- 2^53: 104 days), as vw3-decode's Stamps keep the nanoseconds the file wrote (model.py Stamp): every
+-- difference (response times, silences, the timeout) is then exact, and its text has vw3-decode's digits.
+-- pinfo.abs_ts, a double near 1.7e9 s, is 238 ns coarse: a response time of 2.05 ms read 2.0 or 2.1 ms by
+-- chance. pinfo.rel_ts (from Wireshark's reference record, the capture's first) and delta_ts (from the record
+-- before) are small: their nanoseconds are exact. The clock is the capture's: a new one with each capture's
+-- serial stream (`state`, made by proto.init); clock.times: each record's (false: none), by number.
+local NS = 1e9
+local clock = {}
+local function capture_clock(abs)
+  if clock.capture ~= state then clock = { capture = state, times = {}, nanos = false } end
+  if clock.base == nil and abs ~= nil then clock.base = floor(abs) end
+  return clock
 end
 
--- Each record's time from the capture's first (pinfo.rel_ts) and its time, by record number: kept across
--- lane.again, which makes the stream's state anew; each record's first dissection writes its own.
-local REL_TIMES, TIMES = {}, {}
+-- A time from abs_ts alone (238 ns coarse), on the microsecond while the capture's exact differences are
+-- whole microseconds (a pcap's us, where the rounding makes it exact).
+local function coarse_ns(c, abs)
+  local ns = floor((abs - c.base) * NS + 0.5)
+  if not c.nanos then ns = floor(ns / 1000 + 0.5) * 1000 end
+  return ns
+end
 
--- A frame's time from the capture's first: that of the record holding its first byte (the frame's time),
--- the record it is shown in or one a little before (a frame cut across records); nil where none is.
-local function rel_time(f, number)
-  local time = f.time
-  for k = number, math.max(number - 64, 1), -1 do
-    if TIMES[k] == time then return REL_TIMES[k] end
+-- An exact difference in ns (seconds read as a double), and whether the capture has nanoseconds.
+local function exact_ns(c, seconds)
+  local ns = floor(seconds * NS + 0.5)
+  if ns % 1000 ~= 0 then c.nanos = true end
+  return ns
+end
+
+-- The record's time from the one before (delta_ts) where that one's is known, else from abs_ts.
+local function chained_ns(c, pinfo, number, abs)
+  local before, delta = c.times[number - 1], pinfo.delta_ts
+  if before and delta ~= nil and math.abs(delta) < 4e6 then return before + exact_ns(c, delta) end
+  return coarse_ns(c, abs)
+end
+
+-- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
+-- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
+-- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
+local function record_ns(pinfo, number)
+  local abs = pinfo.abs_ts
+  local c = capture_clock(abs ~= 0 and abs or nil)
+  local known = c.times[number]
+  if known ~= nil then return known or nil end
+  local ns = rtac_times[number]
+  if ns == nil and abs ~= 0 then
+    local rel = pinfo.rel_ts
+    local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
+    if reference and c.reference ~= nil and math.abs(reference - c.reference) < 1e-6 then
+      ns = c.reference_ns + exact_ns(c, rel)
+    else
+      -- The first record, or a new reference (a time reference set in the GUI): from the record before.
+      ns = chained_ns(c, pinfo, number, abs)
+      if reference and math.abs(reference) >= 1 then c.reference, c.reference_ns = reference, ns - exact_ns(c, rel) end
+    end
   end
-  return nil
+  c.times[number] = ns or false
+  return ns
 end
 
--- A response's time since its request (vw3.response_time), an NSTime: from both records' times from the
--- capture's first where they agree with their absolute times (a time reference set between them does
--- not), to the nanosecond: 0.010157000, not abs_ts's 0.010157108. nil where either has no time.
+-- An RTAC record's own timestamp (u32 seconds, u32 microseconds) in ns, exact.
+function lane.rtac_ns(seconds, micros)
+  local c = capture_clock(seconds)
+  return (seconds - c.base) * NS + micros * 1000
+end
+
+-- A response's time since its request (vw3.response_time), an NSTime, exact: 0.010157000, not abs_ts's
+-- 0.010157108. nil where either has no time.
 function lane.response_time(f)
   local request = f.request
   if f.time == nil or request.time == nil then return nil end
-  local delta, asked, got = f.time - request.time, rel_time(request, request.record), rel_time(f, f.record)
-  local exact = asked and got and got - asked
-  if exact ~= nil and math.abs(exact - delta) < 1e-6 then delta = exact end
+  local delta = f.time - request.time
   local sign = delta < 0 and -1 or 1 -- (stamped before its request: both parts negative, as an nstime holds it)
-  local seconds = math.floor(delta * sign)
-  return NSTime.new(sign * seconds, sign * math.floor((delta * sign - seconds) * 1e9 + 0.5))
+  local seconds = floor(delta * sign / NS)
+  return NSTime.new(sign * seconds, sign * (delta * sign - seconds * NS))
 end
 
 -- The window's start or quantity (what) on the bytes its lifting rule read it from; generated and on no
@@ -403,19 +442,7 @@ local function dissect_now(st, tvb, pinfo, number)
   local bytes = tvb:raw()
   local n = #bytes
   if n == 0 then return nil end
-  -- (record_time, written out: its RTAC time looked up once)
-  local rtac = rtac_times[number]
-  local time = rtac
-  if rtac == nil then
-    time = pinfo.abs_ts
-    if time == 0 then time = nil end
-  end
-  -- (its time from the capture's first too: exact to the nanosecond, where abs_ts, a double near 1.7e9,
-  -- is not; lane.response_time. An RTAC record's from the RTAC's first time; stand-ins for pinfo have none.)
-  local rel = pinfo.rel_ts
-  if rel ~= nil then
-    REL_TIMES[number], TIMES[number] = time ~= nil and rtac == nil and rel or rtac_rel[number], time
-  end
+  local time = record_ns(pinfo, number)
   if number > newest_record then newest_record = number end
   if number >= newest_record and time ~= nil then recorded_until = time end
   if config.default == AUTO and not state.finished then

@@ -57,20 +57,50 @@ local function flush_noise(s, items)
   end
 end
 
--- The line's timing as the Python framers take it (framing/timing.py LineTiming, RTU_BITS_PER_CHAR; t3.5 is
--- FIXED_T35 above FIXED_TIMING_ABOVE baud): at the `baud` preference's speed, as vw3-decode --baud; a speed
--- --baud refuses (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of
--- t3.5 before a record ends a noise run (found where noise is added, from the records' times: nothing is
--- added to a frame's path).
-local DEFAULT_BAUD, RTU_BITS, FIXED_TIMING_ABOVE, FIXED_T35 = 19200, 11, 19200, 1750e-6
-local MIN_BAUD, MAX_BAUD = 50, 4000000
-local CHAR_TIME, T35
+-- The line's timing as the Python framers take it (framing/timing.py LineTiming; DATA.timing, written from
+-- it by codegen/timing_lua.py): at the `baud` preference's speed, as vw3-decode --baud; a speed --baud refuses
+-- (linespeed.py MIN_BAUD, MAX_BAUD; 0) is DEFAULT_BAUD, vw3-decode's without it. A silence of t3.5 before a
+-- record ends a noise run (found where noise is added, from the records' times: nothing is added to a frame's
+-- path); one longer than t1.5 inside a frame (ASCII: 1 s) is warned of (inner_gaps).
+local TIMING = DATA.timing
+local CHAR_TIME, ASCII_CHAR_TIME, T15, T35, RTU_LIMIT
 function lane.line_speed(baud)
-  if baud < MIN_BAUD or baud > MAX_BAUD then baud = DEFAULT_BAUD end
-  CHAR_TIME = RTU_BITS / baud
-  T35 = baud > FIXED_TIMING_ABOVE and FIXED_T35 or 3.5 * RTU_BITS / baud
+  if baud < TIMING.min_baud or baud > TIMING.max_baud then baud = TIMING.default_baud end
+  local bits, fixed = TIMING.rtu_bits, baud > TIMING.fixed_above
+  CHAR_TIME, ASCII_CHAR_TIME = bits / baud, TIMING.ascii_bits / baud
+  -- (in LineTiming._rtu_interval's order of operations: the same doubles)
+  T15 = fixed and TIMING.fixed_t15 or 1.5 * bits / baud
+  T35 = fixed and TIMING.fixed_t35 or 3.5 * bits / baud
+  RTU_LIMIT = format(TIMING.rtu_limit, T15 * 1000, baud)
 end
-lane.line_speed(DEFAULT_BAUD)
+lane.line_speed(TIMING.default_baud)
+
+-- Record times are integer nanoseconds (show.lua record_ns): a difference in seconds is theirs divided
+-- once, as vw3-decode's Stamps subtract (model.py Stamp.__sub__), so that every comparison and text agrees.
+local NS = 1e9
+
+-- Silences longer than allowed inside the frame (timing.py inner_gaps: between the records it spans, each
+-- less its bytes' time on the line), as warnings kept in frame.gaps: take_frame adds them after the
+-- pairing's, where vw3-decode's GapChecker adds them (pipeline.py). s.times holds the frame's records yet.
+local function inner_gaps(s, frame)
+  local times, offset = s.times, frame.offset
+  local stop, ascii = offset + frame.length, s.mode == "ascii"
+  local char_time, limit = CHAR_TIME, T15
+  if ascii then char_time, limit = ASCII_CHAR_TIME, TIMING.ascii_max_silence end
+  for index = 3, #times, 2 do
+    local start, time, before = times[index], times[index + 1], times[index - 1]
+    if start >= stop then break end -- (oldest first)
+    if start > offset and time and before then
+      local silence = (time - before) / NS - (start - times[index - 2]) * char_time
+      if silence > limit then
+        local gaps = frame.gaps or {}
+        frame.gaps = gaps
+        gaps[#gaps + 1] = say("inner_silence", { silence_ms = silence * 1000, byte = start - offset,
+          limit = ascii and TIMING.ascii_limit or RTU_LIMIT })
+      end
+    end
+  end
+end
 
 local add_run
 local function add_noise(s, start, stop, reason, items)
@@ -103,7 +133,7 @@ local function add_noise(s, start, stop, reason, items)
       local at = offset - base
       if at >= stop then break end -- (oldest first)
       if at >= start and time and before
-          and time - before - (offset - times[index - 2]) * CHAR_TIME >= T35 then
+          and (time - before) / NS - (offset - times[index - 2]) * CHAR_TIME >= T35 then
         if at > start then add_run(s, b, start, at, reason, items) end
         local noise = s.noise
         if noise ~= nil then
@@ -181,6 +211,7 @@ local function emit(s, frame, items)
   end
   flush_noise(s, items)
   s.noise_cut = false
+  if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
   items[#items + 1] = frame
   expect_after(s, frame)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)

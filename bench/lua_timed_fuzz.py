@@ -1,0 +1,108 @@
+"""Differential campaign of the Wireshark Lua plugin (lua/vw3.lua under tshark -2) against `vw3-decode --json`
+on random timed captures.
+
+    python3 bench/lua_timed_fuzz.py FIRST_SEED LAST_SEED [--plugin PATH]
+
+Per seed, the random bus of bench/timed_fuzz.py (bench/noise_accuracy.py sessions: every public code,
+broadcasts, unanswered requests, answers from 2 ms to past the 1 s timeout), damaged at a random rate, with
+glitch bytes after some frames, cut into pcap (us or ns) or pcapng records (one frame a record, bursts cut
+anywhere with some late inside a frame, or some records untimed: tests/differential/test_timed_summary.py
+cut_records), decoded by both with a random line speed (--baud, the plugin's `baud` preference) and response
+timeout (--timeout, `timeout_ms`), then compared frame by frame (tests/support/lua_compare.py: every field,
+warning and note, response times). Prints each difference (seed, how the records were cut, the options, the
+first differing frame and field) and the count. tests/integration/test_lua_timed_parity.py holds a bounded
+version of this. --plugin: another build of the plugin (a baseline) than lua/vw3.lua.
+"""
+from __future__ import annotations
+
+import json
+import random
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "support"), str(ROOT / "tests" / "differential"), str(ROOT / "bench")]
+
+import lua_harness  # noqa: E402
+import test_timed_summary as timed  # noqa: E402
+from lua_compare import compare  # noqa: E402
+from lua_harness import lua_items, place_items, PythonItem  # noqa: E402
+
+BAUDS = [None, 9600, 19200, 115200]
+TIMEOUTS_MS = [None, 30, 500]  # (None: both sides' default, 1000 ms)
+
+
+def capture_of(seed: int, folder: Path) -> tuple[Path, list[int], str]:
+    """The seed's capture, its records' lengths, and how its records were cut."""
+    rng = random.Random(seed)
+    frames = timed.frames_of(seed, damaged=rng.choice([0, 0.02, 0.1, 0.3]))
+    if rng.random() < 0.5:  # glitch bytes after frames
+        frames = [(frame + bytes([rng.choice([0, 0xFE, 0xFF])]) if rng.random() < 0.3 else frame, ns)
+                  for frame, ns in frames]
+    how = rng.choice(["frame", "bursts", "untimed"])
+    records = timed.cut_records(rng, frames, how)
+    capture = folder / f"bus{seed}.pcap"
+    if rng.random() < 0.3:
+        capture = capture.with_suffix(".pcapng")
+        timed.write_pcapng(capture, records)
+        how += " pcapng"
+    else:
+        nano = rng.random() < 0.5
+        timed.write_pcap(capture, records, nano=nano)
+        how += " pcap-ns" if nano else " pcap-us"
+    return capture, [len(data) for data, _ns in records], how
+
+
+def options_of(seed: int) -> tuple[list[str], list[str]]:
+    """(vw3-decode's options, the plugin's preferences) of the seed: a line speed and a timeout, or none."""
+    rng = random.Random(seed * 31 + 7)
+    cli: list[str] = []
+    prefs: list[str] = []
+    baud, timeout_ms = rng.choice(BAUDS), rng.choice(TIMEOUTS_MS)
+    if baud is not None:
+        cli += ["--baud", str(baud)]
+        prefs += ["-o", f"vw3.baud:{baud}"]
+    if timeout_ms is not None:
+        cli += ["--timeout", str(timeout_ms / 1000)]
+        prefs += ["-o", f"vw3.timeout_ms:{timeout_ms}"]
+    return cli, prefs
+
+
+def python_items(capture: Path, lengths: list[int], options: list[str]) -> list[PythonItem]:
+    """vw3-decode FILE --json (the file read twice, as the plugin shows it under tshark -2)."""
+    command = [sys.executable, "-m", "dissector", str(capture), "--json", *options]
+    run = subprocess.run(command, capture_output=True, cwd=ROOT, timeout=900)
+    if run.returncode != 0:
+        raise AssertionError(f"{' '.join(command)} failed: {run.stderr.decode(errors='replace')[-2000:]}")
+    return place_items([json.loads(line) for line in run.stdout.decode().splitlines() if line.strip()], lengths)
+
+
+def differences_of(seed: int, folder: Path) -> tuple[str, list[str], list[str]]:
+    """How the seed's records were cut, its options, and every difference between the two sides."""
+    capture, lengths, how = capture_of(seed, folder)
+    cli, prefs = options_of(seed)
+    python = python_items(capture, lengths, cli)
+    lua, _record_experts, _stderr = lua_items(capture, *prefs)
+    return how, cli, compare(python, lua)
+
+
+def main() -> int:
+    first, last = int(sys.argv[1]), int(sys.argv[2])
+    if "--plugin" in sys.argv:
+        lua_harness.PLUGIN = Path(sys.argv[sys.argv.index("--plugin") + 1]).resolve()
+    differing = 0
+    with tempfile.TemporaryDirectory() as folder:
+        for seed in range(first, last + 1):
+            how, cli, differences = differences_of(seed, Path(folder))
+            if differences:
+                differing += 1
+                print(f"difference: seed {seed} ({how}, {' '.join(cli) or 'defaults'}): {len(differences)} field(s);"
+                      f" first: {differences[0][:300]}", flush=True)
+    print(f"seeds {first}..{last}: {differing} seed(s) with differences")
+    return 1 if differing else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
