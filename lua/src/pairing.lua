@@ -95,26 +95,32 @@ end
 -- (pairing.py SAME_SHAPE, from the protocol table).
 local SAME_SHAPE = DATA.pairing.same_shape
 
--- A short frame's bytes after its slave and function (up to 4 data bytes, FC5 and FC6's: its data and CRC
--- (LRC) as one number, exact in a double), kept for the open request as st.sent (st.sent_for: which): its
--- byte table may go before its answer comes (a key of the frame's own would outgrow its table).
-local function short_bytes(f)
-  local b, count = f.b, f.data_len
-  if count > 4 then return nil end
-  local at, value = f.data_at, count
+-- What stands for a frame's bytes after its slave and function once its byte table has gone (kept for the open
+-- request as st.sent, st.sent_for: which; a key of the frame's own would outgrow its table): a short one's
+-- (up to 4 data bytes, FC5 and FC6's) data and CRC (LRC) as one number, exact in a double; a longer one's
+-- length and CRC where the CRC is good (nil), its data as a string where it is not: a damaged frame's CRC
+-- says nothing of its data (a request whose answer kept its length and CRC but not its data was read as
+-- the request again, the master's retry, where vw3-decode's _repeats compares the data).
+local function sent_key(f)
+  local b, count, at = f.b, f.data_len, f.data_at
+  if count > 4 then
+    if f.crc == f.crc_expected then return nil end
+    return string_of(b, at, count)
+  end
+  local value = count
   for k = 0, count - 1 do value = value * 256 + b[at + k] end
   return value * 65536 + f.crc
 end
 
 -- Are the bytes of `f` (its byte table at hand) those of `request` (same slave and function)? A request
--- whose byte table has gone (and its data's place): a short one kept them (st.sent), a longer one's length
--- and CRC stand for them.
+-- whose byte table has gone: what stands for them (sent_key), else (a request not kept) a longer one's length
+-- and good CRC.
 local function same_bytes(st, request, f)
   if request.length ~= f.length or request.crc ~= f.crc then return false end
   local a, b = request.b, f.b
   if a == nil then
-    if f.data_len > 4 then return true end
-    return st.sent_for == request and st.sent == short_bytes(f)
+    if st.sent_for == request then return st.sent == sent_key(f) end
+    return f.data_len > 4 and f.crc == f.crc_expected
   end
   local i, j = request.data_at, f.data_at
   for k = 0, f.data_len - 1 do
@@ -219,7 +225,7 @@ local function pair(st, f)
         f.answerless = true
       end
       if ECHO[f.fn] ~= nil then f.echoed = echoed(f) end
-      if SAME_SHAPE[f.fn] and f.b ~= nil and f.data_len <= 4 then st.sent, st.sent_for = short_bytes(f), f end
+      if SAME_SHAPE[f.fn] and f.b ~= nil then st.sent, st.sent_for = sent_key(f), f end
       st.pending = f
     end
     return
