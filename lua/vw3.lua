@@ -1100,6 +1100,7 @@ local DATA = {
     ["max_baud"] = 4000000,
     ["rtu_limit"] = "t1.5 = %.3f ms at %d baud",
     ["ascii_limit"] = "the 1 s ASCII limit",
+    ["held_record_max"] = 65536,
   },
   ["fields"] = {
     ["fields"] = {
@@ -8897,6 +8898,16 @@ local function record_ns(pinfo, number)
   return ns
 end
 
+-- Is the second record timed (not at the epoch), the first record's time then the epoch's (dissector.lua
+-- epoch_first)?
+function lane.epoch_timed(pinfo)
+  local abs = pinfo.abs_ts
+  if abs == 0 or rtac_times[pinfo.number] ~= nil then return false end
+  local c = capture_clock(abs)
+  c.times[1] = -c.base * NS -- (exact: 1.7e18 is a multiple of 2^9)
+  return true
+end
+
 -- An RTAC record's own timestamp (u32 seconds, u32 microseconds) in ns, exact.
 function lane.rtac_ns(seconds, micros)
   local c = capture_clock(seconds)
@@ -9300,7 +9311,7 @@ package.preload["vw3.dissector"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DESEGMENT_ONE_MORE_SEGMENT, DissectorTable
+local DATA, DESEGMENT_ONE_MORE_SEGMENT, DissectorTable = DATA, DESEGMENT_ONE_MORE_SEGMENT, DissectorTable
 local MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE = MODE_SAMPLE, Proto, READS, REQUEST, RESPONSE
 local add_register, add_text, annotate_list, apply_prefs = add_register, add_text, annotate_list, apply_prefs
 local detect_mode, device_now, dissect_now, ex, feed = detect_mode, device_now, dissect_now, ex, feed
@@ -9318,6 +9329,45 @@ local tostring, type, wtap = tostring, type, wtap
 -- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
 -- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
 -- either shown on the record).
+-- The records `kept` ({ number, bytes } each; but `except`) decoded again, in order, into a new state of
+-- `mode`, which takes st's place (the same table: `state` and udp_states keep naming it). Their times are
+-- those kept (show.lua record_ns).
+local function decode_again(st, kept, mode, except)
+  local fresh = new_state(st.timeout, mode)
+  fresh.sample = st.sample
+  for index = 1, #kept do
+    local number, bytes_kept = kept[index][1], kept[index][2]
+    if number ~= except then
+      -- (dissect_now reads the bytes through a stand-in for the tvb, gone since)
+      local tvb_kept = { raw = function() return bytes_kept end }
+      local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, number)
+      if not ok then result = { length = #bytes_kept, error = tostring(result) } end
+      fresh.records[number] = result
+      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+    end
+  end
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end
+
+-- A capture's first record at the epoch is timed (time 0) when the second is not, untimed otherwise
+-- (sources/pcap.py EpochRecord: a time-of-day log of day 0 starts there; vw3-decode -w writes untimed input
+-- at the epoch, every record), where it has bytes, at most a chunk of them (reader.py open_source). Its
+-- bytes are kept (st.epoch_first) until the second record's first dissection says: then, timed, it is
+-- decoded again with its time. (tshark without -2 has shown it already: untimed, as read.)
+local function epoch_first(st, tvb, pinfo, number)
+  if number == 1 then
+    local n = tvb:len()
+    if n > 0 and n <= DATA.timing.held_record_max and pinfo.abs_ts == 0 and rtac_times[1] == nil then
+      st.epoch_first = tvb:raw()
+    end
+  elseif st.epoch_first ~= nil then
+    local bytes = st.epoch_first
+    st.epoch_first = nil
+    if lane.epoch_timed(pinfo) then decode_again(st, { { 1, bytes } }, st.mode) end
+  end
+end
+
 local function sample_and_dissect(st, tvb, pinfo, number)
   local sample = st.sample
   if sample == nil then
@@ -9340,22 +9390,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   if st.mode == nil then
     st.mode = mode
   elseif mode ~= st.mode then
-    local fresh = new_state(st.timeout, mode)
-    fresh.sample = st.sample
-    for index = 1, #sample do
-      local kept, bytes_kept = sample[index][1], sample[index][2]
-      if kept ~= number then
-        -- (dissect_now reads the bytes through a stand-in for the tvb, gone since; the time is the record's
-        -- kept one: show.lua record_ns)
-        local tvb_kept = { raw = function() return bytes_kept end }
-        local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, kept)
-        if not ok then result = { length = #bytes_kept, error = tostring(result) } end
-        fresh.records[kept] = result
-        if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
-      end
-    end
-    for key in pairs(st) do st[key] = nil end
-    for key, value in pairs(fresh) do st[key] = value end
+    decode_again(st, sample, mode, number)
   end
   return dissect_now(st, tvb, pinfo, number)
 end
@@ -9365,6 +9400,7 @@ local function dissect_records(st, tvb, pinfo, tree)
   local record = st.records[number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
+    if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then

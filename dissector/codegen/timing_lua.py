@@ -4,9 +4,11 @@ character, t1.5 and t3.5, their fixed values above 19200 baud, ASCII's silence l
 and of how a silence inside a frame names its limit."""
 from __future__ import annotations
 
+import inspect
 from typing import Any
 
 from dissector.framing import linespeed, timing
+from dissector.sources import reader
 
 
 def timing_data() -> dict[str, Any]:
@@ -25,4 +27,6 @@ def timing_data() -> dict[str, Any]:
         # (LineTiming.describe_limit: string.format patterns, the RTU one taking t1.5 in ms and the speed)
         "rtu_limit": lua_format(timing.RTU_LIMIT),
         "ascii_limit": timing.ASCII_LIMIT,
+        # A capture's first record at the epoch is held (pcap.py EpochRecord) when one chunk holds it.
+        "held_record_max": inspect.signature(reader.open_source).parameters["chunk_size"].default,
     }

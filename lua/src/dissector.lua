@@ -13,6 +13,45 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 -- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
 -- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
 -- either shown on the record).
+-- The records `kept` ({ number, bytes } each; but `except`) decoded again, in order, into a new state of
+-- `mode`, which takes st's place (the same table: `state` and udp_states keep naming it). Their times are
+-- those kept (show.lua record_ns).
+local function decode_again(st, kept, mode, except)
+  local fresh = new_state(st.timeout, mode)
+  fresh.sample = st.sample
+  for index = 1, #kept do
+    local number, bytes_kept = kept[index][1], kept[index][2]
+    if number ~= except then
+      -- (dissect_now reads the bytes through a stand-in for the tvb, gone since)
+      local tvb_kept = { raw = function() return bytes_kept end }
+      local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, number)
+      if not ok then result = { length = #bytes_kept, error = tostring(result) } end
+      fresh.records[number] = result
+      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+    end
+  end
+  for key in pairs(st) do st[key] = nil end
+  for key, value in pairs(fresh) do st[key] = value end
+end
+
+-- A capture's first record at the epoch is timed (time 0) when the second is not, untimed otherwise
+-- (sources/pcap.py EpochRecord: a time-of-day log of day 0 starts there; vw3-decode -w writes untimed input
+-- at the epoch, every record), where it has bytes, at most a chunk of them (reader.py open_source). Its
+-- bytes are kept (st.epoch_first) until the second record's first dissection says: then, timed, it is
+-- decoded again with its time. (tshark without -2 has shown it already: untimed, as read.)
+local function epoch_first(st, tvb, pinfo, number)
+  if number == 1 then
+    local n = tvb:len()
+    if n > 0 and n <= DATA.timing.held_record_max and pinfo.abs_ts == 0 and rtac_times[1] == nil then
+      st.epoch_first = tvb:raw()
+    end
+  elseif st.epoch_first ~= nil then
+    local bytes = st.epoch_first
+    st.epoch_first = nil
+    if lane.epoch_timed(pinfo) then decode_again(st, { { 1, bytes } }, st.mode) end
+  end
+end
+
 local function sample_and_dissect(st, tvb, pinfo, number)
   local sample = st.sample
   if sample == nil then
@@ -35,22 +74,7 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   if st.mode == nil then
     st.mode = mode
   elseif mode ~= st.mode then
-    local fresh = new_state(st.timeout, mode)
-    fresh.sample = st.sample
-    for index = 1, #sample do
-      local kept, bytes_kept = sample[index][1], sample[index][2]
-      if kept ~= number then
-        -- (dissect_now reads the bytes through a stand-in for the tvb, gone since; the time is the record's
-        -- kept one: show.lua record_ns)
-        local tvb_kept = { raw = function() return bytes_kept end }
-        local ok, result = pcall(dissect_now, fresh, tvb_kept, {}, kept)
-        if not ok then result = { length = #bytes_kept, error = tostring(result) } end
-        fresh.records[kept] = result
-        if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
-      end
-    end
-    for key in pairs(st) do st[key] = nil end
-    for key, value in pairs(fresh) do st[key] = value end
+    decode_again(st, sample, mode, number)
   end
   return dissect_now(st, tvb, pinfo, number)
 end
@@ -60,6 +84,7 @@ local function dissect_records(st, tvb, pinfo, tree)
   local record = st.records[number]
   if record == nil then
     -- First pass (pinfo.visited false): frame, pair and decode in capture order; later passes reuse it.
+    if number <= 2 then epoch_first(st, tvb, pinfo, number) end
     -- (A record is kept from its first dissection on: the first pass asks pinfo nothing more.)
     local ok, result, n, info = pcall(st.sample ~= false and sample_and_dissect or dissect_now, st, tvb, pinfo, number)
     if ok then

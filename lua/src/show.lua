@@ -66,6 +66,16 @@ local function record_ns(pinfo, number)
   return ns
 end
 
+-- Is the second record timed (not at the epoch), the first record's time then the epoch's (dissector.lua
+-- epoch_first)?
+function lane.epoch_timed(pinfo)
+  local abs = pinfo.abs_ts
+  if abs == 0 or rtac_times[pinfo.number] ~= nil then return false end
+  local c = capture_clock(abs)
+  c.times[1] = -c.base * NS -- (exact: 1.7e18 is a multiple of 2^9)
+  return true
+end
+
 -- An RTAC record's own timestamp (u32 seconds, u32 microseconds) in ns, exact.
 function lane.rtac_ns(seconds, micros)
   local c = capture_clock(seconds)

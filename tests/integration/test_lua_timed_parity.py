@@ -98,3 +98,19 @@ def test_damaged_answer_past_the_timeout_is_no_retry(tmp_path: Path) -> None:
     lua = _said(records, ["response 1500.0 ms after request #1, later than the 1000 ms timeout: not its answer"],
                 tmp_path)
     assert [item.fields.get("kind") for item in lua if item.fields.get("kind")] == ["1", "2"]
+
+
+def test_first_record_at_the_epoch_is_timed_when_the_second_is_not(tmp_path: Path) -> None:
+    """sources/pcap.py EpochRecord: a capture's first record at the epoch is timed (a time-of-day log of day 0)
+    when the second is not, untimed when it is too (vw3-decode -w's untimed records). Before, the plugin took
+    every record at the epoch as untimed: the request begun at the epoch was answered 10 ms after its end,
+    where vw3-decode says it waited 1.7e9 s (a silence inside it, its answer past the timeout)."""
+    timed = [(READ[:3], 0), (READ[3:], BASE), (ANSWER, BASE + 10_000_000)]
+    lua = _said(timed, [
+        "silence of 1700000000121.738 ms inside the frame before byte 3 (longer than t1.5 = 0.859 ms at 19200 baud)",
+        "response 1700000000133.5 ms after request #1, later than the 1000 ms timeout: not its answer",
+    ], tmp_path)
+    assert not [item for item in lua if "response_time" in item.fields]
+    untimed = [(READ[:3], 0), (READ[3:], 0), (ANSWER, BASE + 10_000_000)]
+    lua = _said(untimed, [], tmp_path)
+    assert [item.fields.get("response_time") for item in lua if item.fields.get("kind") == "2"] == [None]
