@@ -9,7 +9,7 @@ from collections.abc import Callable
 from dissector.framing.stream import GLITCH_BYTES
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.crc import crc16
+from dissector.protocol.crc import crc16, crc_lengths
 from dissector.protocol.rules import data_bytes
 from dissector.protocol.spec import SPEC
 
@@ -174,6 +174,26 @@ for _code, (_request_rule, _response_rule) in RULES.items():
     RESPONSE_FIRST[_code] = ((Kind.RESPONSE, _response_rule), (Kind.REQUEST, _request_rule), *_extra)
     REQUEST_FIRST[_code | 0x80] = RESPONSE_FIRST[_code | 0x80] = ((Kind.EXCEPTION, _EXCEPTION_RULE),)
 
+
+
+def spans_a_frame(data: bytes | bytearray) -> bool:
+    """Have these bytes, a record of their own, a frame's shape: a layout at their first byte whose length
+    (its rule's, a CRC scan's match, or the length its fields declare) is all of them, CRC good or bad?
+    Between its record's start and end such a reading is a frame (rtu.py _match: a record that is a frame is
+    the source's word); ending an input that has no records it is not, unless awaited (rtu.py _followed:
+    the end of the input says little). The -w writer reads it so (render/capturefile.py
+    CaptureOutput.release)."""
+    n = len(data)
+    if not MIN_ADU <= n <= MAX_ADU:
+        return False
+    for _kind, rule in REQUEST_FIRST.get(data[1], ()):
+        length = rule(data, 0, n)
+        if type(length) is Scan:
+            if length.declared == n or n in crc_lengths(data, 0, length, n):
+                return True
+        elif length == n:
+            return True
+    return False
 
 
 class Awaiting:

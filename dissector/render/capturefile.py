@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from collections.abc import Iterator
 from typing import BinaryIO, Protocol
 
+from dissector.framing.rules import spans_a_frame
 from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
@@ -46,6 +47,8 @@ def noise_comment(item: Item) -> str | None:
         return f"noise: {count_text(item.length, 'byte')}, {item.reason}"
     return None
 
+
+HeldRecord = tuple[bytes, float | None, list[str], int]  # held by write_items: (bytes, time, comments, end offset)
 
 FLUSH_BYTES = 1 << 16  # records are written in batches of about this much when not live
 
@@ -252,8 +255,9 @@ class CaptureOutput:
         self._kept: deque[str] = deque()
         self._records: WholeRecords | None = None
         self.clamped = 0  # records of closed files whose time the format could not hold
-        # A noise run write_items holds for the item after it: (bytes, time, comments, stream end offset).
-        self._held: tuple[bytes, float | None, list[str], int] | None = None
+        # A noise run write_items holds for the item after it, and the record before it (release).
+        self._held: HeldRecord | None = None
+        self._last: HeldRecord | None = None
         self._open()
 
     @property
@@ -362,7 +366,8 @@ class CaptureOutput:
     def write_items(self, items: list[Item]) -> None:
         """Write items of a decode so that the file decodes back to the same items: a record an item,
         except that a noise run shares the record of the item after it when that is more noise or a
-        damaged frame (one heard at the same time, within SNAPLEN bytes).
+        damaged frame (one heard at the same time, within SNAPLEN bytes), or, ending the input, the
+        record before it when alone it would be a frame by its shape (release).
 
         A reader takes a record's end for a pause of the line, evidence that a frame ends there
         (framing/rtu.py _followed), and the line gave none where a noise run stops: a record ending there
@@ -370,7 +375,6 @@ class CaptureOutput:
         01 e9 bb b8 2b), or of a damaged frame ending where the noise did, that the decode had found no
         frame. Before an intact frame the record ends all the same (each frame a record of its own, as
         Wireshark's mbrtu reads them): that frame is the framer's evidence there anyway."""
-        write = self.write
         for item in items:
             held = self._held
             if held is not None:
@@ -387,19 +391,52 @@ class CaptureOutput:
                         continue
                     self._held = None
                     comments.append(f"then a damaged frame ({item.length} bytes)")
-                    write(data + item.raw, timestamp, "; ".join(comments))
+                    self._record((data + item.raw, timestamp, comments, end + item.length))
                     continue
-                self.release()
+                self._held = None
+                self._record(held)
             if isinstance(item, Noise):
                 self._held = (item.raw, item.time, [noise_comment(item) or ""], item.offset + item.length)
             else:
-                write(item.raw, item.time)
+                self._record((item.raw, item.time, [], item.offset + item.length))
+
+    def _record(self, record: HeldRecord) -> None:
+        """Write the record held before this one and hold this one (release may add to it)."""
+        last, self._last = self._last, record
+        if last is not None:
+            self.write(last[0], last[1], "; ".join(last[2]) or None)
 
     def release(self) -> None:
-        """Write the noise run write_items holds (the input ends, or the file is closed)."""
-        held, self._held = self._held, None
-        if held is not None:
-            self.write(held[0], held[1], "; ".join(held[2]))
+        """Write the records write_items holds (the input ends, or the file is closed).
+
+        A noise run ending the input that alone would be a frame by its shape (framing/rules.py
+        spans_a_frame) goes at the end of the record before it (heard at the same time, right before it,
+        within SNAPLEN bytes). The input's end says little of a frame there, unless it is the answer
+        awaited (framing/rtu.py _followed), and the decode found none; a record's start and end would
+        bound one (the record a damaged FC21 request, 1c 15 13 06 ... 09 b2, after cd 0b 14 e7). Not
+        at a record's start, the reader decides its bytes at the end of the input, as the decode did."""
+        held, last = self._held, self._last
+        self._held = self._last = None
+        if held is not None and last is not None and self._joins(last, held):
+            data, timestamp, comments, _end = last
+            frame = [] if comments else [f"a frame ({count_text(len(data), 'byte')})"]
+            noise = [f"then {comment}" for comment in held[2]]
+            self.write(data + held[0], timestamp, "; ".join([*comments, *frame, *noise]))
+            return
+        for record in (last, held):
+            if record is not None:
+                self.write(record[0], record[1], "; ".join(record[2]) or None)
+
+    @staticmethod
+    def _joins(last: HeldRecord, noise: HeldRecord) -> bool:
+        """May the noise run ending the input go at the end of the record before it (release)?"""
+        data = noise[0]
+        return (
+            last[3] == noise[3] - len(data)
+            and last[1] == noise[1]
+            and len(last[0]) + len(data) <= SNAPLEN
+            and spans_a_frame(data)
+        )
 
     def tick(self, now: float | None = None) -> None:
         """Live, a ring with duration:S switches files on time, heard bytes or not (as dumpcap)."""

@@ -1,5 +1,5 @@
-"""Writing classic pcap files, one Modbus frame (or noise run) a record (a decode's noise run shares the
-record of a damaged frame after it: capturefile.CaptureOutput.write_items).
+"""Writing classic pcap files, one Modbus frame (or noise run) a record (a decode's noise run may share the
+record of a damaged frame after it, or of the item before it: capturefile.CaptureOutput.write_items).
 
 Every record is written and flushed whole, header first, so a reader that opens the file while it is
 being written sees only complete records, and a crash loses nothing already written.

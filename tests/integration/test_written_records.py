@@ -5,7 +5,9 @@ _followed). The writer wrote every noise run as a record of its own, so a record
 given no such evidence, and the stream read back made a frame of a CRC-valid tail of a noise run, or of
 a damaged frame ending where the noise did (7 of 30 damaged streams in a review). A noise run now shares
 the record of the damaged frame or noise after it (render/capturefile.py CaptureOutput.write_items); an
-intact frame is still a record of its own, as Wireshark's mbrtu reads them.
+intact frame is still a record of its own, as Wireshark's mbrtu reads them. A noise run ending the input that
+alone would be a frame by its shape goes at the end of the record before it (CaptureOutput.release): the
+input's end says little of a frame, a record's start and end would bound one.
 """
 from __future__ import annotations
 
@@ -37,6 +39,15 @@ REVIEW_LINES = [
     "     3            -  12 request   Write Multiple Registers 3202: 3202=100 "
     "[the capture ends before any response: not known whether it was answered]  CRC ok",
 ]
+# The end of damaged_stream(101): an intact FC11 request to slave 205, then 24 bytes shaped as a damaged FC21
+# request to slave 28 (byte count 0x13: 24 bytes, CRC bad) that the input's end does not confirm (not the
+# answer awaited). A record of its own, its start and end bounded it: read back, 'Write File Record ... CRC BAD'.
+TAIL = "cd 0b 14 e7 1c 15 13 06 00 08 04 b4 00 04 1f d3 94 25 86 08 35 78 68 4f b0 b6 09 b2"
+TAIL_LINES = [
+    "     1            - 205 request   Get Comm Event Counter "
+    "[the capture ends before any response: not known whether it was answered]  CRC ok",
+    "     2            -   - noise     24 bytes of noise at offset 4: 1c 15 13 06 00 08 04 b4 00 04 1f d3 94 25 86 08…",
+]
 MBRTU = ["-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""', "-o", "mbrtu.crc_verification:TRUE"]
 
 
@@ -65,6 +76,23 @@ def test_the_review_stream_decodes_back_to_the_same_items(
     # The noise run and the damaged exception after it are one record; the intact request is its own.
     assert record_lengths(written) == [13, 11]
     assert _decode([str(written)], monkeypatch, pure).splitlines() == REVIEW_LINES
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
+def test_a_noise_run_ending_the_input_shaped_as_a_frame_shares_the_record_before_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool
+) -> None:
+    written, comments = tmp_path / "tail.pcap", tmp_path / "tail.pcapng"
+    assert _decode(["--hex", TAIL], monkeypatch, pure).splitlines() == TAIL_LINES
+    for path in (written, comments):
+        assert _decode(["--hex", TAIL, "-w", str(path)], monkeypatch, pure) == ""
+        assert _decode([str(path)], monkeypatch, pure).splitlines() == TAIL_LINES
+    assert record_lengths(written) == [28]
+    # A noise run that is no frame by its shape keeps its record: the request alone, then the noise.
+    shorter = _decode(["--hex", TAIL[:-6]], monkeypatch, pure)
+    assert _decode(["--hex", TAIL[:-6], "-w", str(written)], monkeypatch, pure) == ""
+    assert record_lengths(written) == [4, 22]
+    assert _decode([str(written)], monkeypatch, pure) == shorter
 
 
 def _items(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tuple[list[dict], str]:
@@ -107,7 +135,8 @@ def test_the_plugin_reads_the_written_records_as_vw3_decode(tmp_path: Path) -> N
     raw = tmp_path / "stream.bin"
     # The review's stream, and damaged streams that decoded back otherwise before (a CRC-valid tail of a
     # noise run, a damaged frame ending where a noise run did).
-    streams = [bytes.fromhex(REVIEW), *(damaged_stream(seed) for seed in (1, 3, 10, 17))]
+    # Then streams ending in noise shaped as a frame (101 ends in TAIL), written in the record before it.
+    streams = [bytes.fromhex(REVIEW), *(damaged_stream(seed) for seed in (1, 3, 10, 17, 101, 322))]
     for number, data in enumerate(streams):
         raw.write_bytes(data)
         written = tmp_path / f"written{number}.pcap"
