@@ -253,6 +253,17 @@ class RtuFramer(Awaiting, StreamFramer):
                 return True
         return False
 
+    def _crosses_framed_record(self, buf: bytearray, i: int, end: int, n: int) -> bool:
+        """Would a frame at i..end swallow a record (or the bytes after a silence) that is a frame of its own
+        (_ends_record)? Then it is none: waiting for its bytes (a long answer read from noise, 'ff 01 b0': 181
+        bytes) held every later record in one pass, and a damaged reading of it hid the frame."""
+        base = self._base
+        for offset in self._boundaries:
+            at = offset - base
+            if i < at < end and n - at >= MIN_ADU and self._ends_record(buf, at, n):
+                return True
+        return False
+
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
         slave, function = buf[i], buf[i + 1]
@@ -285,7 +296,7 @@ class RtuFramer(Awaiting, StreamFramer):
             if length < MIN_ADU or length > MAX_ADU:
                 continue
             if i + length > n:
-                if not final:
+                if not final and not (self._boundaries and self._crosses_framed_record(buf, i, i + length, n)):
                     waiting.append(length)
                 continue
             if _crc_ok(buf, i, length):
@@ -347,6 +358,8 @@ class RtuFramer(Awaiting, StreamFramer):
         # (an intact frame, a boundary, after glitch bytes or not) and it holds no intact frame inside
         # (a cut frame must not swallow the intact frame that follows it).
         for kind, length in damaged:
+            if self._boundaries and self._crosses_framed_record(buf, i, i + length, n):
+                continue
             # (the end of the input says little of a damaged frame: the awaited answer's only)
             following = self._followed(buf, i + length, n, final, awaited)
             if following is None:

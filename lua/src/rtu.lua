@@ -264,6 +264,17 @@ local function shortest_first(list)
   return order
 end
 
+-- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
+-- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
+local function crosses_framed_record(s, b, i, stop, n)
+  local base = s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
+  end
+  return false
+end
+
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).
 local function match(s, b, i, n, final)
   scanned.b = nil -- (a scan is kept within one position's match only: s.b may change between them)
@@ -281,7 +292,10 @@ local function match(s, b, i, n, final)
     local length, is_scan, declared, fallback = list[index][2](b, i, n)
     local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
     if not is_scan and (length == NEED or (sized and i + length > n)) then
-      if not final then waiting = added(waiting, length) end -- (its bytes have not all come)
+      -- (its bytes have not all come; not waited for if they would swallow a record that is a frame)
+      if not final and (length == NEED or not crosses_framed_record(s, b, i, i + length, n)) then
+        waiting = added(waiting, length)
+      end
     elseif sized then
       if crc_ok_at(b, i, length) then
         valid = added(valid, { kind, length })
@@ -342,7 +356,7 @@ local function match(s, b, i, n, final)
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
     local stop = i + length
-    local following = followed(s, b, stop, n, final, awaits)
+    local following = not crosses_framed_record(s, b, i, stop, n) and followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
       -- (records that are frames, this one or the next: none it holds crosses its record's end, rtu.py)

@@ -1,0 +1,61 @@
+"""tshark's single pass (no -2) where a reading waits for bytes past a record that is a frame of its own
+(framing/rtu.py _crosses_framed_record, lua/src/rtu.lua crosses_framed_record): 'ff ff 01 b0' before a request
+in one record read 'ff 01' as slave 255 FC1 whose answer would be 181 bytes, and the request cut short by the
+next record ('01 03 00 00 00', a repeated request's first bytes) as a request of 8 bytes: that record and every
+later one showed '(N bytes continue)' to the end of the capture. A reading that would swallow a record that is a
+frame is none. Exact Info, one pass and -2, and every field as vw3-decode says it (reading once; reading twice)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from helpers import rtu
+from lua_compare import compare
+from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_pcap
+
+pytestmark = pytest.mark.integration
+LATER = frozenset(["response_frame", "unanswered"])  # (what one pass cannot know when it shows a request)
+
+REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+ONE, ONE_ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
+READ_ONE, ONE_ANSWERED = "1 Read Holding Registers request 0", "1 Read Holding Registers response 0"
+
+
+def _infos(pcap: Path, two_pass: bool) -> list[str]:
+    got = run_tshark(pcap, "-T", "fields", "-e", "_ws.col.Info", two_pass=two_pass)
+    assert not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
+    return got.stdout.splitlines()
+
+
+def _same_as_vw3_decode(pcap: Path, one_pass: bool = True) -> None:
+    if one_pass:
+        one, _, _ = lua_items(pcap, two_pass=False)
+        differences = compare(python_items(pcap, one_pass=True), one, ignore=LATER)
+        assert not differences, "\n".join(differences[:40])
+    two, _, _ = lua_items(pcap)
+    differences = compare(python_items(pcap), two)
+    assert not differences, "\n".join(differences[:40])
+
+
+def test_noise_read_as_a_long_answer_before_records_that_are_frames(tmp_path: Path) -> None:
+    records = [(REQUEST, 0.0), (ANSWER, 0.01), (bytes.fromhex("ffff01b0") + REQUEST, 2.0), (ANSWER, 2.06),
+               (REQUEST, 4.0), (ANSWER, 4.01)]
+    pcap = write_pcap(tmp_path / "long.pcap", [(data, 1700000000 + time) for data, time in records])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)", ANSWERED, READ, ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, f"noise (4 bytes); {READ}", ANSWERED, READ, ANSWERED]
+    # (one pass cannot show record 3's noise and request, settled by record 4, in record 3: -2 does)
+    _same_as_vw3_decode(pcap, one_pass=False)
+
+
+def test_a_request_cut_short_by_the_next_record(tmp_path: Path) -> None:
+    records = [(ONE, 0.0), (ONE[:5], 1.0), (ONE, 2.0), (ONE_ANSWER, 2.01)]
+    pcap = write_pcap(tmp_path / "cut.pcap", [(data, 1700000000 + time) for data, time in records])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ_ONE} [provisional]", "(5 bytes continue)", f"{READ_ONE} [provisional]",
+        f"{ONE_ANSWERED} [provisional]"]
+    assert _infos(pcap, two_pass=True) == [READ_ONE, "noise (5 bytes)", READ_ONE, ONE_ANSWERED]
+    # (one pass cannot show record 2's noise, settled by record 3, in record 2: -2 does)
+    _same_as_vw3_decode(pcap, one_pass=False)
