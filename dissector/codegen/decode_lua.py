@@ -13,7 +13,6 @@ from typing import Any
 from dissector.codegen.lua import lua_literal
 from dissector.codegen.rules_lua import rules_data
 
-SIZES = {"u8": 1, "u16": 2}
 REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
 WIDTH = 110  # (a longer line is wrapped where Lua allows it: between a constructor's keys, around an if's body)
 # The decoder's helpers the handlers call (lua/src/decode.lua; data_bytes: lua/src/layouts.lua): their upvalues.
@@ -66,7 +65,7 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
     counts = {field["count"] for field in shape if field["count"] is not None}  # (read into a local)
     static: int | None = 0  # where the next field starts while that is a constant; then `p`
     for index, field in enumerate(shape, 1):
-        name, kind, size = field["name"], field["type"], SIZES.get(field["type"])
+        name, kind, size = field["name"], field["type"], field["size"]
         index_of[name] = index
         if static is not None:
             offsets[name] = static
@@ -116,7 +115,7 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
                 body.append(f"p = p + s{index}")
     if fixed:
         what = ", ".join(fixed[:-1]) + " and " + fixed[-1] if len(fixed) > 1 else fixed[0]
-        end = offsets[fixed[-1]] + SIZES[shape[index_of[fixed[-1]] - 1]["type"]]  # (where the last one ends)
+        end = offsets[fixed[-1]] + shape[index_of[fixed[-1]] - 1]["size"]  # (where the last one ends)
         body.insert(0, f"if len < {end} then return nil, {lua_literal('too short for ' + what)} end")
     trailing = not shape or shape[-1]["type"] != "rest"
     used = "len" if not trailing else str(static) if static is not None else "p"
@@ -275,8 +274,9 @@ def _handler_names(by_code: dict[str, dict[int, Any]]) -> dict[tuple[str, str | 
 
 
 def render_decoders() -> list[str]:
-    """The Lua lines, inside the generated block, that define DATA.parsers (the readers by layout name) and
-    DATA.lifters (given the decoder's helpers, the handlers by direction and code)."""
+    """The Lua lines, inside the generated block, that define DATA.parsers (the readers by layout name),
+    DATA.grammars and DATA.lift_of (by direction and code: its layout's reader, its lifting rule) and
+    DATA.lifters (given the named special cases and the decoder's helpers, the handlers by direction and code)."""
     rules = rules_data()
     lines = ["do", "local PARTS, PARSERS = {}, {} -- (a layout's reader calls its parts' by name)"]
     offsets = {}
@@ -284,7 +284,15 @@ def render_decoders() -> list[str]:
         for name, shape in shapes.items():
             body, offsets[name] = reader(shape)
             lines += _function(table + _key(name), body, "b, d, len", "")
-    lines += ["DATA.parsers = PARSERS", f"function DATA.lifters({', '.join(HELPERS)})",
+    lines.append("DATA.parsers = PARSERS")
+    # (per direction and code: its layout's reader, and its lifting rule's data, which the device checks read)
+    for target, table, key in (("grammars", "PARSERS", "layout"), ("lift_of", "DATA.rules.lift", "rule")):
+        lines.append(f"DATA.{target} = {{")
+        for kind, codes in rules["by_code"].items():
+            entries = [f"[{code}] = {table}{_key(entry[key])}" for code, entry in codes.items() if entry[key]]
+            lines += _wrap(f"  {kind} = {{ ", entries, ", ", " },", "  ")
+        lines.append("}")
+    lines += [f"function DATA.lifters(special, {', '.join(HELPERS)})",
               "  local floor, lift = math.floor, DATA.rules.lift",
               "  local handler = {} -- (by rule, and limit where codes give a rule several)"]
     names = _handler_names(rules["by_code"])
@@ -303,7 +311,9 @@ def render_decoders() -> list[str]:
             lines += _function("handler" + _key(name), body, "f, b", "  ")
     lines.append("  return {")
     for kind, codes in rules["by_code"].items():
-        entries = [f"[{code}] = handler{_key(names[entry['rule'], entry['limit'], entry['layout']])}"
-                   for code, entry in codes.items() if entry["rule"]]
+        # (a code without a rule: the named special case's handler, lua/src/decode.lua SPECIAL)
+        entries = [f"[{code}] = handler{_key(names[entry['rule'], entry['limit'], entry['layout']])}" if entry["rule"]
+                   else f"[{code}] = special{_key(entry['special'])}" for code, entry in codes.items()
+                   if entry["rule"] or entry["special"]]
         lines += _wrap(f"    {kind} = {{ ", entries, ", ", " },", "    ")
     return [*lines, "  }", "end", "end"]

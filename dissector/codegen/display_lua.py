@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from dissector.codegen.decode_lua import SIZES, WIDTH, _key, _wrap
+from dissector.codegen.decode_lua import WIDTH, _key, _wrap
 from dissector.codegen.fields_lua import info_forms
 from dissector.codegen.lua import lua_literal
 from dissector.codegen.rules_lua import rules_data
@@ -31,7 +31,7 @@ def field_places(shape: list[dict[str, Any]]) -> dict[str, tuple[int, int | None
     fixed size (that one too: where it begins, no size)."""
     places, at = {}, 2
     for field in shape:
-        size = SIZES.get(field["type"])
+        size = field["size"]
         places[field["name"]] = (at, size)
         if size is None:
             break

@@ -24,7 +24,7 @@ from dissector.decode import pairing
 from dissector.devices import maps
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
-from dissector.model import CUT_ANSWER
+from dissector.model import CUT_ANSWER, Kind
 from dissector.protocol import ascii as ascii_mode, crc, rules, table
 from dissector.protocol.spec import SPEC
 from dissector.render import detail, summary
@@ -202,6 +202,11 @@ def protocol_tables() -> dict[str, Any]:
             for code, request, response in table.known_layouts()
         },
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
+        # A counted layout's length when its count is 0, by kind and code (framing/rtu.py _COUNTS_NOTHING).
+        "counts_nothing": {
+            str(kind): {code: length for (code, of), length in sorted(framer._COUNTS_NOTHING.items()) if of is kind}
+            for kind in (Kind.REQUEST, Kind.RESPONSE)
+        },
         "reads": table.register_reads(),
         "plain_reads": table.plain_register_reads(),
         # The reads whose quantity limits make a request plausible on its own (framing/evidence.py).

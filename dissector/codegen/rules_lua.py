@@ -129,7 +129,7 @@ def _lift(rule: Lift) -> dict[str, Any]:
 
 
 def _shape(shape: tuple[Field, ...]) -> list[dict[str, Any]]:
-    return [{"name": f.name, "type": str(f.type), "count": f.count, "half": f.half, "minus": f.minus, "part": f.part,
+    return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half, "minus": f.minus, "part": f.part,
              # (switch: the parts by value, the last the default's)
              "cases": [{"value": value, "part": part} for value, part in f.cases] or None} for f in shape]
 

@@ -80,11 +80,10 @@ local function bit_at(run, b, index, shift)
 end
 
 -- The readers of the layouts (data/modbus.toml [layouts] and [parts], protocol/shapes.py) by name, written out
--- by the code generator (DATA.parsers, codegen/decode_lua.py); which code uses which: RULES.by_code, below. Each
+-- by the code generator (DATA.parsers, codegen/decode_lua.py); which code uses which: DATA.grammars, below. Each
 -- gets the byte table, the first data byte and the data length, and returns the number of bytes its layout
 -- consumed (the rest is `trailing`) and the fields, or nil and why the data do not fit (Python: GrammarError
--- -> "malformed ..."). The display reads the fields by their sizes (tree.lua).
-local SIZES = { u8 = 1, u16 = 2 }
+-- -> "malformed ..."). The display reads the fields by their sizes (a fixed one's: its .size, tree.lua).
 local PARSERS = DATA.parsers
 
 -- ---------------------------------------------------------------------------------------------------
@@ -221,17 +220,11 @@ local SPECIAL = {
   end,
 }
 
--- Per direction and code: the parser of its layout (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a
--- named special case) and its handler (H): the generic lifter where the table has a rule, else the special case.
-local LIFTERS = DATA.lifters(warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
-local GRAMMARS, LIFT_OF, H = {}, {}, {}
-for kind, codes in pairs({ [REQUEST] = RULES.by_code.request, [RESPONSE] = RULES.by_code.response }) do
-  GRAMMARS[kind], LIFT_OF[kind], H[kind] = {}, {}, {}
-  for code, entry in pairs(codes) do
-    GRAMMARS[kind][code], LIFT_OF[kind][code] = PARSERS[entry.layout], RULES.lift[entry.rule]
-    H[kind][code] = LIFTERS[kind][code] or SPECIAL[entry.special]
-  end
-end
+-- Per direction and code, written out by the code generator from RULES.by_code: the parser of its layout
+-- (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a named special case) and its handler (H): the lifting
+-- rule's where the table has one, else the special case's.
+local GRAMMARS, LIFT_OF = DATA.grammars, DATA.lift_of
+local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
 
 -- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
 -- by their echo (FC6), by a normal answer (FC16, FC23).

@@ -181,8 +181,7 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   values = values or {}
   for index = 1, #shape do
     local field = shape[index]
-    local kind, shown = field.type, SHOWN[field]
-    local size = SIZES[kind]
+    local kind, shown, size = field.type, SHOWN[field], field.size
     if size ~= nil then
       if at + size > stop then return nil end
       local value = size == 1 and b[at] or u16(b, at)
