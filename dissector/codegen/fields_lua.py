@@ -3,7 +3,8 @@ render/filter_fields.py): per field its name, constructor, title, base, value st
 lua/vw3.lua's DATA.fields.fields, which lua/src/fields.lua turns into ProtoFields; and the plugin's expert
 infos and preferences from the same file's [[expert]] and [[preference]] entries, as DATA.fields.experts and
 DATA.fields.preferences; and a field per parameter of the built-in register maps, DATA.fields.parameters;
-the fields that show each PDU field (DATA.fields.pdu, data/pdu_fields.toml, with its plugin-only fields),
+the fields that show each PDU field (data/pdu_fields.toml, with its plugin-only fields: each layout field's
+`shown` in DATA.rules, codegen/rules_lua.py),
 the value strings they name from the spec (DATA.fields.names) and the title of a start that is no window
 (DATA.fields.start_words); and the Info column's forms vw3-decode gives each function code in each direction
 (render/describe.py TEXT_FORMS: DATA.fields.info), with their limits and words."""
@@ -26,7 +27,7 @@ PLAIN = frozenset({"string", "bytes", "none", "double", "relative_time"})
 def plugin_fields() -> dict[str, Any]:
     """The plugin's fields and expert infos: {"fields": [...], "experts": [...], ...}."""
     return {"fields": proto_fields(), "experts": experts(), "preferences": preferences(),
-            "parameters": parameter_fields(), "pdu": pdu_fields(),
+            "parameters": parameter_fields(),
             "names": {"mei_types": SPEC.mei_types, "device_id_codes": SPEC.device_id_codes},
             "start_words": start_words(), "info": info_forms()}
 

@@ -140,6 +140,8 @@ def plugin_data() -> dict[str, Any]:
         # The catalogue's texts that take no parameters, filled in (protocol/rules.py text()): noise reasons,
         # the framers' warnings.
         "plain_texts": {key: rules.text(key) for key in rules.TEXTS if not rules.params(key)},
+        # A register's bits without a name in its map row, by bit, as maps.interpret names them.
+        "bit_names": {bit: rules.text("bit_unnamed", bit=bit) for bit in range(16)},
         # [pairing]: data bytes an answer echoes by function, values of a request's first data word no answer follows
         "pairing": {"echo": SPEC.echo, "never_answered": SPEC.never_answered, "same_shape": pairing.SAME_SHAPE},
         "user_defined": SPEC.user_defined,

@@ -16,6 +16,7 @@ import string
 from pathlib import Path
 from typing import Any
 
+from dissector.codegen import fields_lua
 from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
@@ -128,8 +129,11 @@ def _lift(rule: Lift) -> dict[str, Any]:
     }
 
 
-def _shape(shape: tuple[Field, ...]) -> list[dict[str, Any]]:
-    return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half, "minus": f.minus, "part": f.part,
+def _shape(owner: str, shape: tuple[Field, ...], shown: dict[str, list[str]]) -> list[dict[str, Any]]:
+    """A layout's or part's fields: each with its size (a fixed one's), what its size or part comes from, and the
+    plugin fields that show it (`shown`: codegen/fields_lua.py pdu_fields; none: the display shows it otherwise)."""
+    return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half, "minus": f.minus,
+             "part": f.part, "shown": shown.get(f"{owner}.{f.name}"),
              # (switch: the parts by value, the last the default's)
              "cases": [{"value": value, "part": part} for value, part in f.cases] or None} for f in shape]
 
@@ -137,6 +141,7 @@ def _shape(shape: tuple[Field, ...]) -> list[dict[str, Any]]:
 def rules_data() -> dict[str, Any]:
     """Everything the plugin needs to interpret the rule tables, as plain data."""
     by_code: dict[str, dict[int, Any]] = {}
+    shown = fields_lua.pdu_fields()
     for kind in (Kind.REQUEST, Kind.RESPONSE):
         layouts = table.by_kind("name")[kind]
         handlers = table.by_kind("handler")[kind]
@@ -164,8 +169,8 @@ def rules_data() -> dict[str, Any]:
                   for key in TEXTS},
         # Every layout's fields in order (data/modbus.toml [layouts], and the [parts] they repeat or switch
         # to): what the plugin's reader reads.
-        "layouts": {name: _shape(shape) for name, shape in SHAPES.items()},
-        "parts": {name: _shape(shape) for name, shape in PARTS.items()},
+        "layouts": {name: _shape(name, shape, shown) for name, shape in SHAPES.items()},
+        "parts": {name: _shape(name, shape, shown) for name, shape in PARTS.items()},
         # An FC8 request's data word by sub-function ([diagnostic_data], fields._diagnostic_data): the words
         # allowed with what each asks, in order (`words`), or the character it sets (and its names).
         "diagnostic_data": {sub: _diagnostic_data(rule) for sub, rule in sorted(SPEC.diagnostic_data.items())},

@@ -149,8 +149,7 @@ local function scaled_value(row, value)
   return scaled, text
 end
 
-local BIT_NAMES, NO_BIT_SET = {}, say("no_bit_set", {}) -- (maps.py's texts: data/modbus.toml [texts])
-for bit_ = 0, 15 do BIT_NAMES[bit_] = say("bit_unnamed", { bit = bit_ }) end
+local BIT_NAMES, NO_BIT_SET = DATA.bit_names, DATA.plain_texts.no_bit_set -- (maps.py's texts, filled in)
 
 -- maps.interpret: the scaled value and its display text.
 local function interpret(row, value)

@@ -31,11 +31,6 @@ for _, f in ipairs(DATA.fields.fields) do
   end
 end
 
--- The fields that show each PDU field (data/pdu_fields.toml): PDU_FIELDS["LAYOUT.FIELD"], a text's
--- string field first and its bytes' second (tree.lua add_pdu).
-local PDU_FIELDS = {}
-for name, names in pairs(DATA.fields.pdu) do PDU_FIELDS[name] = { pf[names[1]], names[2] and pf[names[2]] } end
-
 -- The protocol's fields: the catalogue's (pf), then the per-parameter fields, one per row of the built-in
 -- register maps (DATA.fields.parameters, codegen/fields_lua.py: vw3.atv71.rfr, ...), by the row they follow
 -- (tree.lua add_register).

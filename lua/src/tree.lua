@@ -146,15 +146,10 @@ local function add_register(tree, tvb, f, reg, range, full, checking)
 end
 
 -- The PDU's fields as vw3-decode -V lists them (detail.py _head_lines), in their layout's order
--- (data/modbus.toml [layouts] and [parts], DATA.rules), each by the field data/pdu_fields.toml gives it
--- (PDU_FIELDS; none: shown otherwise, the window, registers, bits, objects). Read from the frame's bytes
--- when shown: a record keeps no fields. SHOWN[field]: a layout's or part's field's fields, or false.
-local LAYOUTS, PARTS, SHOWN = DATA.rules.layouts, DATA.rules.parts, {}
-for _, shapes in ipairs({ LAYOUTS, PARTS }) do
-  for owner, shape in pairs(shapes) do
-    for _, field in ipairs(shape) do SHOWN[field] = PDU_FIELDS[owner .. "." .. field.name] or false end
-  end
-end
+-- (data/modbus.toml [layouts] and [parts], DATA.rules), each by the fields data/pdu_fields.toml gives it
+-- (field.shown: their pf names, a text's string field first and its bytes' second; none: shown otherwise,
+-- the window, registers, bits, objects). Read from the frame's bytes when shown: a record keeps no fields.
+local LAYOUTS, PARTS = DATA.rules.layouts, DATA.rules.parts
 
 -- b[first..last] as text where every byte is printable ASCII (as vw3-decode shows a device's data), else nil.
 local function printable(b, first, last)
@@ -181,12 +176,12 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   values = values or {}
   for index = 1, #shape do
     local field = shape[index]
-    local kind, shown, size = field.type, SHOWN[field], field.size
+    local kind, shown, size = field.type, field.shown, field.size
     if size ~= nil then
       if at + size > stop then return nil end
       local value = size == 1 and b[at] or u16(b, at)
       values[field.name] = value
-      if t and shown then t:add(shown[1], frame_range(tvb, f, at, size), value) end
+      if t and shown then t:add(pf[shown[1]], frame_range(tvb, f, at, size), value) end
       at = at + size
     elseif kind == "switch" then -- (the part for the earlier field's value, else the last: in place)
       local cases = field.cases
@@ -204,7 +199,7 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
         local after = add_shape(nil, tvb, f, b, part, at, last)
         if after == nil then break end
         if t and shown then
-          add_shape(t:add(shown[1], frame_range(tvb, f, at, after - at)), tvb, f, b, part, at, last)
+          add_shape(t:add(pf[shown[1]], frame_range(tvb, f, at, after - at)), tvb, f, b, part, at, last)
         end
         at, many = after, many - 1
       end
@@ -214,15 +209,15 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
       if size < 0 or at + size > stop then return nil end
       if t and shown and size > 0 then
         if kind == "words" then
-          for k = at, at + size - 2, 2 do t:add(shown[1], frame_range(tvb, f, k, 2), u16(b, k)) end
+          for k = at, at + size - 2, 2 do t:add(pf[shown[1]], frame_range(tvb, f, k, 2), u16(b, k)) end
         elseif kind == "odd" then
-          t:add(shown[1], frame_range(tvb, f, at, 1), b[at])
+          t:add(pf[shown[1]], frame_range(tvb, f, at, 1), b[at])
         elseif kind == "text" then -- (as text where every byte is printable ASCII, as vw3-decode)
           local text = printable(b, at, at + size - 1)
-          if text then t:add(shown[1], frame_range(tvb, f, at, size), text)
-          else t:add(shown[2], frame_range(tvb, f, at, size)) end
+          if text then t:add(pf[shown[1]], frame_range(tvb, f, at, size), text)
+          else t:add(pf[shown[2]], frame_range(tvb, f, at, size)) end
         else
-          t:add(shown[1], frame_range(tvb, f, at, size))
+          t:add(pf[shown[1]], frame_range(tvb, f, at, size))
         end
       end
       at = at + size
