@@ -20,7 +20,7 @@ from dissector.codegen import fields_lua
 from dissector.codegen.lua import lua_literal as scalar_literal
 from dissector.model import Kind
 from dissector.protocol import table
-from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Check, Confirm, Lift, params
+from dissector.protocol.rules import CONFIRM, LIFTS, TEXTS, Check, Confirm, Lift, params, text
 from dissector.protocol.shapes import PARTS, SHAPES, Field
 from dissector.protocol.spec import SPEC
 
@@ -172,7 +172,8 @@ def rules_data() -> dict[str, Any]:
         "layouts": {name: _shape(name, shape, shown) for name, shape in SHAPES.items()},
         "parts": {name: _shape(name, shape, shown) for name, shape in PARTS.items()},
         # An FC8 request's data word by sub-function ([diagnostic_data], fields._diagnostic_data): the words
-        # allowed with what each asks, in order (`words`), or the character it sets (and its names).
+        # allowed with what each asks, or the character it sets (and its names); and what its warning says is
+        # allowed (`allowed`: the words in hex, or a character then 00).
         "diagnostic_data": {sub: _diagnostic_data(rule) for sub, rule in sorted(SPEC.diagnostic_data.items())},
         # The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers], fields._diagnostics).
         "diagnostic_echoes": SPEC.diagnostic_echoes,
@@ -181,8 +182,10 @@ def rules_data() -> dict[str, Any]:
 
 def _diagnostic_data(rule: Any) -> dict[str, Any]:
     if rule.data is not None:
-        return {"data": dict(sorted(rule.data.items())), "words": sorted(rule.data)}
-    return {"character": rule.character, "names": dict(sorted((rule.names or {}).items()))}
+        return {"data": dict(sorted(rule.data.items())),
+                "allowed": " or ".join(f"{value:04X}" for value in sorted(rule.data))}
+    return {"character": rule.character, "names": dict(sorted((rule.names or {}).items())),
+            "allowed": text("character_then_00")}
 
 
 def render_rules() -> str:

@@ -149,11 +149,10 @@ local function diagnostic_data(f, b, subfunction, rule)
     note(f, name and say("diagnostic_character", { what = rule.character, character = name, code = code })
       or say("diagnostic_byte", { what = rule.character, code = code }))
   else
-    local allowed = {} -- (the words the spec allows, or its character then 00; the data as sent, in hex)
-    for index, value in ipairs(rule.words or {}) do allowed[index] = format("%04X", value) end
+    -- (the data as sent, in hex; rule.allowed: the words the spec allows, or its character then 00)
     local data = data_bytes_of(f, b, 2):gsub(".", function(byte) return format("%02X", byte:byte()) end)
     warn(f, say("diagnostic_data", { data = data ~= "" and data or "(none)", subfunction = subfunction,
-      allowed = rule.data and concat(allowed, " or ") or say("character_then_00", {}) }))
+      allowed = rule.allowed }))
   end
 end
 
