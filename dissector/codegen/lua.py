@@ -103,6 +103,9 @@ def plugin_data() -> dict[str, Any]:
             "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
             "glitch_bytes": streambuf.GLITCH_BYTES,
             "glitch_addresses": framer.GLITCH_ADDRESSES,
+            # A repetition's period found by the last REPEAT_PROBE bytes, the window a position's decision reads.
+            "repeat_probe": framer.REPEAT_PROBE,
+            "repeat_window": framer.REPEAT_WINDOW,
             "cut_answer": CUT_ANSWER,
         },
         "ascii": {

@@ -158,6 +158,8 @@ def rules_data() -> dict[str, Any]:
         "lift": {name: _lift(rule) for name, rule in LIFTS.items()},
         "by_code": by_code,
         "confirm": {code: str(how) for code, how in CONFIRM.items()},
+        # The codes by how [confirm] says each write is confirmed (the masks an echo confirms: FC22).
+        "by_confirm": {str(how): {code: True for code, said in CONFIRM.items() if said is how} for how in Confirm},
         # The register writes by how the annotator's parameter memory takes them as confirmed
         # (table.confirmed_registers, annotator.py _BY_ECHO, _BY_ANSWER): by their echo FC6, by a normal
         # answer FC16 and FC23.
