@@ -6896,7 +6896,7 @@ end
 -- ---- vw3.explain: lua/src/explain.lua ----
 package.preload["vw3.explain"] = function(...)
 -- vw3.explain: device checks of requests, exceptions explained, device objects and diagnostics.
--- Mirrors dissector/devices/checks.py, dissector/devices/explain.py.
+-- Mirrors dissector/devices/checks.py, dissector/devices/explain.py, dissector/devices/objects.py.
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.explain"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
@@ -8438,7 +8438,7 @@ end
 -- ---- vw3.tree: lua/src/tree.lua ----
 package.preload["vw3.tree"] = function(...)
 -- vw3.tree: Wireshark: a frame's registers, bits and PDU fields (show.lua show_frame), and its Info text.
--- Mirrors dissector/render/detail.py, dissector/render/summary.py.
+-- Mirrors dissector/render/detail.py, dissector/render/summary.py, dissector/render/describe.py (Info forms).
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.tree"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
