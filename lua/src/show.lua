@@ -114,19 +114,30 @@ end
 -- DATA.bit_windows, codegen/display_lua.py)
 local BIT_WINDOW = DATA.bit_windows
 
-local function add_named(t, tvb, f, full)
+-- A PLC-style device's (base: its PLC base) register addresses carry their label too, a hidden vw3.reg.label
+-- as a register of the window has it: `vw3.reg.label == "40102"` finds the request, as vw3-decode's `label`.
+local function add_named(t, tvb, f, full, base)
   local start, quantity, run = f.start, f.quantity, f.registers or f.bits
   if start == nil or quantity == nil or f.kind == EXCEPTION then return end
   local count, first = run and run.count or 0, run and run.start
   if count > 0 and count == quantity and first == start then return end -- (its values cover the window)
   local field, at = BIT_WINDOW[f.fn] and pf.bit_address or pf.reg_address, tvb:range(f.at, 0)
+  local labels = base ~= nil and not BIT_WINDOW[f.fn] and PLC_LABELS[base] or nil
+  local named = true
   for address = start, start + math.min(math.max(quantity, 1), 2000) - 1 do
     address = address % 0x10000
     if first == nil or (address - first) % 0x10000 >= count then
-      local item = t:add(field, at, address)
-      -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
-      if full == "unseen" and item.len ~= 0 then return end
-      item:set_hidden()
+      if named then
+        local item = t:add(field, at, address)
+        -- (faked, the frame's item handed back: an invisible tree that needs no such field, unseen.add)
+        named = not (full == "unseen" and item.len ~= 0)
+        if named then item:set_hidden() end
+      end
+      if labels ~= nil then
+        local item = t:add(pf.reg_label, at, labels[address])
+        if full == "unseen" and item.len ~= 0 then labels = nil else item:set_hidden() end
+      end
+      if not named and labels == nil then return end
     end
   end
 end
@@ -220,7 +231,8 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
         add(sub, pf.bit_value, value, true)
       end
     end
-    add_named(t, tvb, f, full)
+    local device = device_of(st, f)
+    add_named(t, tvb, f, full, device and plc_base(device, f))
     if unseen.generated then
       -- what the skipped set_generated() calls of faked items would have done
       unseen.generated = false
