@@ -234,9 +234,12 @@ local function name_adu(pinfo, adu)
     registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
   local confirmed = response and request ~= nil and request.written ~= nil and #request.written > 0
     and env.CONFIRMED.answer[f.fn]
+  -- (kept with the frame: profile auto, choosing later, remembers them again when it names the frame anew)
+  if confirmed then f.written = request.written end
   if #registers == 0 then
-    -- (an FC16 answer: no registers to name, nor evidence for profile auto; its request's writes count)
-    if confirmed then remember_writes(env.device_of(names_state, f), pinfo.number, request.written) end
+    -- (an FC16 answer: no registers to name; its request's writes count, held as any frame before a choice)
+    local device = confirmed and vw3.device_now(names_state, f)
+    if device then remember_writes(device, pinfo.number, request.written) end
     return false
   end
   local device = vw3.device_now(names_state, f)

@@ -40,3 +40,30 @@ def test_a_write_before_the_choice_is_remembered(tmp_path: Path, two_pass: bool)
     assert done.returncode == 0, done.stderr
     assert not lua_errors(done.stdout + done.stderr)
     assert done.stdout.splitlines() == EXPECTED
+
+
+# The confirmed writes are kept with the frame and an FC16 answer is held as any frame before the choice:
+# FC6 8401 (CHCF) = 3, then FC16 8402 (COP) = 2 before the choice (an FC16 answer carries no registers).
+PAIRS_MULTIPLE = [("0620D10003", "0620D10003"), ("1020D20001020002", "1020D20001"),
+                  ("0320D0000E", "031C" + "8000" * 13 + "0001")]
+EXPECTED_MULTIPLE = [
+    "|", "|", "|", "|", "|",
+    ",CHCF,COP,,,,,,,,,,,FR1|CHCF (8401) became protected: written 3 in frame #2, 16#8000 now,"
+    "COP (8402) became protected: written 2 in frame #4, 16#8000 now",
+]
+
+
+@pytest.mark.parametrize("two_pass", [False, True])
+def test_writes_an_answer_confirms_before_the_choice_are_remembered(tmp_path: Path, two_pass: bool) -> None:
+    writer = NetWriter(tmp_path / "mbtcp.pcap")
+    time = 1.0
+    for transaction, (request, response) in enumerate(PAIRS_MULTIPLE, start=1):
+        for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
+            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
+            time += 0.01
+    writer.close()
+    done = run_tshark(tmp_path / "mbtcp.pcap", "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}", "-T", "fields",
+                      "-E", "separator=|", "-e", "vw3.reg.code", "-e", "vw3.note", two_pass=two_pass)
+    assert done.returncode == 0, done.stderr
+    assert not lua_errors(done.stdout + done.stderr)
+    assert done.stdout.splitlines() == EXPECTED_MULTIPLE
