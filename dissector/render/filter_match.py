@@ -5,6 +5,8 @@ import re
 from collections.abc import Callable
 from typing import Any
 
+from dissector.devices.naming import plc_label
+
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
 
@@ -94,6 +96,18 @@ def address_test(op: str, value: Any) -> Test:
     return lambda item, reg: any(match_op(op, v, value) for v in address_values(reg))
 
 
+def _label_base(first: str, start: int) -> int | None:
+    """The PLC base whose label of `start` is `first` (`40001` for 49999 at 9998 and for 410000 at 9999), so
+    a window's other addresses are labelled as its registers are (naming.plc_label: 49999, then 410000)."""
+    number = label_number(first)
+    if number is None:
+        return None
+    for base in (number - start, (number - start + 9) // 10):  # (a 5-digit label, or past its top)
+        if base >= 0 and plc_label(base, start) == first:
+            return base
+    return None
+
+
 MAX_SYNTHESIZED = 2000  # address-only entries made for one frame (the spec's largest read quantity)
 
 
@@ -109,11 +123,11 @@ def item_elements(item: Item) -> list[dict[str, Any]]:
         return elements  # a read response: its values already cover start..start+quantity-1
     known = {element.get("address") for element in elements}
     span = item.get("span_label")
-    first = label_number(span.split("..", 1)[0]) if isinstance(span, str) else None
+    base = _label_base(span.split("..", 1)[0], int(start)) if isinstance(span, str) else None
     synthesized = [
         {"address": address & 0xFFFF}
-        if first is None
-        else {"address": address & 0xFFFF, "label": str(first + address - int(start))}
+        if base is None
+        else {"address": address & 0xFFFF, "label": plc_label(base, address)}
         # A quantity of 0 (a malformed read) still names its start address, as tshark's reference_num.
         for address in range(int(start), int(start) + min(max(int(quantity), 1), MAX_SYNTHESIZED))
         if address & 0xFFFF not in known

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli
+from helpers import rtu, run_cli, use_engine
 from lua_harness import lua_errors, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -61,3 +61,24 @@ def test_a_label_filter_finds_what_vw3_decode_finds(capture: Path, two_pass: boo
                      two_pass=two_pass)
     assert not lua_errors(got.stdout + got.stderr)
     assert got.stdout.split() == ["1", "2", "3", "4", "7", "8", "9", "10"]
+
+
+# A window across 49999: the registers' labels turn 6-digit (naming.plc_label: 49999, 410000, 410001), and so
+# do the window's. vw3-decode's filter gave the request's window 50000 (49999 + 1), which no screen shows.
+ACROSS = ["01 03 270E 0003", "01 03 06 0001 0002 0003", "01 10 270E 0002 04 000A 000B", "01 10 270E 0002"]
+
+
+@pytest.mark.parametrize("label, frames", [("410000", [1, 2, 3, 4]), ("49999", [1, 2, 3, 4]), ("50000", [])])
+def test_a_window_across_49999_is_labelled_as_its_registers(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                            label: str, frames: list[int]) -> None:
+    capture = write_pcap(tmp_path / "across.pcap", [(rtu(frame), 1700000000 + index * 0.01)
+                                                    for index, frame in enumerate(ACROSS)])
+    for pure in (False, True):
+        use_engine(monkeypatch, pure)
+        status, out, err = run_cli([str(capture), "--profile", "generic", "--address-style", "plc",
+                                    "-Y", f'label == "{label}"'])
+        assert (status, err) == (0, "")
+        assert [int(line.split()[0]) for line in out.splitlines()] == frames
+    got = run_tshark(capture, *PLC, "-Y", f'vw3.reg.label == "{label}"', "-T", "fields", "-e", "frame.number")
+    assert not lua_errors(got.stdout + got.stderr)
+    assert [int(number) for number in got.stdout.split()] == frames
