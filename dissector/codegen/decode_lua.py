@@ -276,7 +276,8 @@ def _handler_names(by_code: dict[str, dict[int, Any]]) -> dict[tuple[str, str | 
 def render_decoders() -> list[str]:
     """The Lua lines, inside the generated block, that define DATA.parsers (the readers by layout name),
     DATA.grammars and DATA.lift_of (by direction and code: its layout's reader, its lifting rule) and
-    DATA.lifters (given the named special cases and the decoder's helpers, the handlers by direction and code)."""
+    DATA.lifters (given the named special cases and the decoder's helpers, the handlers by direction and
+    code)."""
     rules = rules_data()
     lines = ["do", "local PARTS, PARSERS = {}, {} -- (a layout's reader calls its parts' by name)"]
     offsets = {}
@@ -312,8 +313,8 @@ def render_decoders() -> list[str]:
     lines.append("  return {")
     for kind, codes in rules["by_code"].items():
         # (a code without a rule: the named special case's handler, lua/src/decode.lua SPECIAL)
-        entries = [f"[{code}] = handler{_key(names[entry['rule'], entry['limit'], entry['layout']])}" if entry["rule"]
-                   else f"[{code}] = special{_key(entry['special'])}" for code, entry in codes.items()
-                   if entry["rule"] or entry["special"]]
+        entries = [f"[{code}] = special{_key(entry['special'])}" if not entry["rule"]
+                   else f"[{code}] = handler{_key(names[entry['rule'], entry['limit'], entry['layout']])}"
+                   for code, entry in codes.items() if entry["rule"] or entry["special"]]
         lines += _wrap(f"    {kind} = {{ ", entries, ", ", " },", "    ")
     return [*lines, "  }", "end", "end"]

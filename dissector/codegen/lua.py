@@ -103,7 +103,7 @@ def plugin_data() -> dict[str, Any]:
             "glitch_score_max": streambuf.GLITCH_SCORE_MAX,
             "glitch_bytes": streambuf.GLITCH_BYTES,
             "glitch_addresses": framer.GLITCH_ADDRESSES,
-            # A repetition's period found by the last REPEAT_PROBE bytes, the window a position's decision reads.
+            # (a repetition's period is found by the last REPEAT_PROBE bytes; the window a decision reads)
             "repeat_probe": framer.REPEAT_PROBE,
             "repeat_window": framer.REPEAT_WINDOW,
             "cut_answer": CUT_ANSWER,
@@ -209,7 +209,8 @@ def protocol_tables() -> dict[str, Any]:
         "exception_rule": _length_rule(table.EXCEPTION_LAYOUT.length),
         # A counted layout's length when its count is 0, by kind and code (framing/rtu.py _COUNTS_NOTHING).
         "counts_nothing": {
-            str(kind): {code: length for (code, of), length in sorted(framer._COUNTS_NOTHING.items()) if of is kind}
+            str(kind): {code: length for (code, of), length in sorted(framer._COUNTS_NOTHING.items())
+                        if of is kind}
             for kind in (Kind.REQUEST, Kind.RESPONSE)
         },
         "reads": table.register_reads(),

@@ -130,10 +130,11 @@ def _lift(rule: Lift) -> dict[str, Any]:
 
 
 def _shape(owner: str, shape: tuple[Field, ...], shown: dict[str, list[str]]) -> list[dict[str, Any]]:
-    """A layout's or part's fields: each with its size (a fixed one's), what its size or part comes from, and the
-    plugin fields that show it (`shown`: codegen/fields_lua.py pdu_fields; none: the display shows it otherwise)."""
-    return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half, "minus": f.minus,
-             "part": f.part, "shown": shown.get(f"{owner}.{f.name}"),
+    """A layout's or part's fields: each with its size (a fixed one's), what its size or part comes from,
+    and the plugin fields that show it (`shown`: codegen/fields_lua.py pdu_fields; none: the display shows
+    it otherwise)."""
+    return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half,
+             "minus": f.minus, "part": f.part, "shown": shown.get(f"{owner}.{f.name}"),
              # (switch: the parts by value, the last the default's)
              "cases": [{"value": value, "part": part} for value, part in f.cases] or None} for f in shape]
 
@@ -159,7 +160,8 @@ def rules_data() -> dict[str, Any]:
         "by_code": by_code,
         "confirm": {code: str(how) for code, how in CONFIRM.items()},
         # The codes by how [confirm] says each write is confirmed (the masks an echo confirms: FC22).
-        "by_confirm": {str(how): {code: True for code, said in CONFIRM.items() if said is how} for how in Confirm},
+        "by_confirm": {str(how): {code: True for code, said in CONFIRM.items() if said is how}
+                       for how in Confirm},
         # The register writes by how the annotator's parameter memory takes them as confirmed
         # (table.confirmed_registers, annotator.py _BY_ECHO, _BY_ANSWER): by their echo FC6, by a normal
         # answer FC16 and FC23.
