@@ -46,23 +46,28 @@ end
 -- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
 -- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
 local function record_ns(pinfo, number)
-  local abs = pinfo.abs_ts
-  local c = capture_clock(abs ~= 0 and abs or nil)
-  local known = c.times[number]
-  if known ~= nil then return known or nil end
+  local abs, c = pinfo.abs_ts, clock
+  if c.capture ~= state or c.base == nil then c = capture_clock(abs ~= 0 and abs or nil) end
+  local times = c.times
+  if abs == nil then return times[number] or nil end -- (a stand-in for a record's pinfo: its time kept)
   local ns = rtac_times[number]
   if ns == nil and abs ~= 0 then
-    local rel = pinfo.rel_ts
-    local reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
-    if reference and c.reference ~= nil and math.abs(reference - c.reference) < 1e-6 then
-      ns = c.reference_ns + exact_ns(c, rel)
+    local rel, reference = pinfo.rel_ts, c.reference
+    local drift = reference ~= nil and rel ~= nil and abs - rel - reference
+    if drift and drift < 1e-6 and drift > -1e-6 then
+      -- (nearly every record: from the reference record's time, written out without calls; the clock's nanos
+      -- flag is for the times from abs_ts alone, which a capture with a reference of its own has only at its
+      -- start)
+      local from = rel * NS + 0.5
+      ns = c.reference_ns + (from - from % 1)
     else
       -- The first record, or a new reference (a time reference set in the GUI): from the record before.
       ns = chained_ns(c, pinfo, number, abs)
+      reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
       if reference and math.abs(reference) >= 1 then c.reference, c.reference_ns = reference, ns - exact_ns(c, rel) end
     end
   end
-  c.times[number] = ns or false
+  times[number] = ns or false
   return ns
 end
 
