@@ -4691,6 +4691,45 @@ local function confirmed(s, b, i, kind, length, n, final)
   return false
 end
 
+-- Does a layout with a length rule at i check out and end where its record does? The
+-- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
+-- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
+local function ends_record(s, b, i, n)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    local length, is_scan = list[index][2](b, i, n)
+    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
+        and crc_ok_at(b, i, length) then
+      return true
+    end
+  end
+  return false
+end
+
+-- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
+-- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
+local function crosses_framed_record(s, b, i, stop, n)
+  local base = s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
+  end
+  return false
+end
+
+-- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
+-- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
+local function framed_reach(s, b, i, n)
+  local base, reach = s.base, n
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at < reach and at < i + MAX_ADU and n - at >= MIN_ADU and ends_record(s, b, at, n) then
+      reach = at
+    end
+  end
+  return reach
+end
+
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
 -- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
 -- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
@@ -4704,7 +4743,9 @@ local run = { start = 0, stop = 0 }
 local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
 local function crc_lengths(b, i, n, minimum, last)
   local memo = scanned
-  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum then return memo.lengths end
+  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
+    return memo.lengths
+  end
   local c = b[i]
   if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
   local stop = run.stop
@@ -4723,7 +4764,7 @@ local function crc_lengths(b, i, n, minimum, last)
       flood_lengths[key], flood_kept = lengths, flood_kept + 1
     end
   end
-  memo.b, memo.i, memo.n, memo.minimum, memo.lengths = b, i, n, minimum, lengths
+  memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
   return lengths
 end
 
@@ -4733,7 +4774,8 @@ end
 local function scan_match(s, b, i, n, minimum, final)
   local from = 1
   if s.glitch_runs >= GLITCHY_AFTER then from = 2 end -- (a 00 after a frame is a glitch: rtu.py _scan)
-  local lengths = crc_lengths(b, i, n, minimum, math.min(n - i, MAX_ADU)) -- (none when minimum is past it)
+  local reach = framed_reach(s, b, i, n)
+  local lengths = crc_lengths(b, i, n, minimum, math.min(reach - i, MAX_ADU)) -- (none when minimum is past it)
   for pass = from, 2 do
     for k = 1, #lengths do
       local length = lengths[k]
@@ -4749,7 +4791,8 @@ local function scan_match(s, b, i, n, minimum, final)
       end
     end
   end
-  if n - i < MAX_ADU and not final then return NEED end
+  -- (up to a record that is a frame, every byte has come: nothing longer to wait for)
+  if reach == n and n - i < MAX_ADU and not final then return NEED end
   return NONE
 end
 
@@ -4808,21 +4851,6 @@ local function added(list, value)
   return list
 end
 
--- Does a layout with a length rule at i check out and end where its record does? The
--- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
--- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
-local function ends_record(s, b, i, n)
-  local list = interpretations(s, b[i], b[i + 1], b, i, n)
-  for index = 1, #list do
-    local length, is_scan = list[index][2](b, i, n)
-    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
-        and crc_ok_at(b, i, length) then
-      return true
-    end
-  end
-  return false
-end
-
 -- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
 local function record_start(s, i)
   local at, times = s.base + i, s.times
@@ -4847,17 +4875,6 @@ local function shortest_first(list)
   local order = { table.unpack(list) }
   table.sort(order, function(x, y) return x[2] < y[2] end)
   return order
-end
-
--- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
--- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
-local function crosses_framed_record(s, b, i, stop, n)
-  local base = s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
-  end
-  return false
 end
 
 -- kind, length, crc_ok for a frame at i; NEED (more bytes needed) or NONE (no frame starts at i).

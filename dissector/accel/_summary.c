@@ -471,6 +471,34 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     return undecided ? -1 : 0;
 }
 
+/* RtuFramer._ends_record: a layout with a length rule at j (valid_frame_at's) checks out and ends where a record
+ * does, or a silence begins. */
+static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
+    Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
+    int k = known_slot[b[j + 1] & 0x7F];
+    if (k < 0) return 0;
+    const LengthRule *rules[3] = {&known_rule[k][0], &known_rule[k][1], &known_rule[k][LAYOUT_BY_QUANTITY]};
+    int count = b[j + 1] & 0x80 ? 1 : rules[2]->special ? 3 : 2;
+    if (b[j + 1] & 0x80) rules[0] = &exception_rule;
+    Py_ssize_t length;
+    for (int r = 0; r < count; r++)
+        if (rule_check(rules[r], b, j, n, &length) == 1 && boundary_at(t, t->base + j + length)) return 1;
+    return 0;
+}
+
+/* RtuFramer._framed_reach: where a CRC scan from i stops, the first record after i (a chunk's end that is a
+ * boundary) that is a frame of its own, else n; n on an untimed stream (no records). */
+static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n) {
+    Timeline *t = (Timeline *)&e->tl;
+    if (!t->active) return n;
+    for (Py_ssize_t k = chunk_of(t, t->base + i); k < t->count; k++) {
+        Py_ssize_t at = (Py_ssize_t)(chunk_end(t, k) - t->base);
+        if (at >= i + MAX_ADU || n - at < MIN_ADU) break;
+        if (at > i && boundary_at(t, t->base + at) && ends_record(e, b, at, n)) return at;
+    }
+    return n;
+}
+
 /* RtuFramer._followed (not final, no boundaries in this path): an intact frame at `end`, or after a few
  * glitch bytes. 1 yes, 0 no, -1 more bytes needed. */
 static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_t n) {
@@ -487,7 +515,8 @@ static int followed(const Engine *e, const uint8_t *b, Py_ssize_t end, Py_ssize_
  * end, a silence) follows. Both of the framer's interpretations scan alike, so the first one's kind stands. */
 static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n, Py_ssize_t minimum) {
     Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
-    Py_ssize_t maximum = n - i < MAX_ADU ? n - i : MAX_ADU;
+    Py_ssize_t reach = framed_reach(e, b, i, n); /* (no scan across a record that is a frame of its own) */
+    Py_ssize_t maximum = reach - i < MAX_ADU ? reach - i : MAX_ADU;
     /* First a frame right after it, then one after glitch bytes (a frame and a 00 check one byte longer);
      * on a line that leaves 00 glitches, only the second (the 00 after a frame is one). */
     for (int glitches = e->glitchy ? 1 : 0; glitches < 2 && minimum <= maximum; glitches++) {
@@ -499,7 +528,8 @@ static Py_ssize_t scan_length(const Engine *e, const uint8_t *b, Py_ssize_t i, P
             if (following) return length;
         }
     }
-    return n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER; /* nothing: noise, the careful path's */
+    /* nothing: noise, the careful path's; or bytes to come (none up to a record that is a frame) */
+    return reach == n && n - i < MAX_ADU ? FRAME_NEED : FRAME_HANDOVER;
 }
 
 /* Frame length by the first interpretation (framing/rules.py _REQUEST_FIRST_FAST / _RESPONSE_FIRST_FAST);

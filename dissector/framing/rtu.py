@@ -216,9 +216,11 @@ class RtuFramer(Awaiting, StreamFramer):
         """A frame without a length rule: the shortest CRC match that the line confirms (_followed:
         an intact frame, the end, a boundary, after glitch bytes or not). A CRC scan alone would take
         noise for frames: each length tried is a 1 in 65,536 chance of a match. (The following frame
-        also settles the 00 case of _match.)
+        also settles the 00 case of _match.) It does not reach across a record that is a frame of its own
+        (_framed_reach).
         """
-        lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
+        reach = self._framed_reach(buf, i, n) if self._boundaries else n
+        lengths = crc_lengths(buf, i, minimum, min(reach - i, MAX_ADU))
         # First a frame (or the end) right after it; only then one after glitch bytes: a frame followed
         # by a 00 checks one byte longer too (no final XOR). On a line that leaves glitches (glitchy),
         # the 00 is one: the shortest length the line confirms, glitch bytes skipped, wins.
@@ -239,7 +241,8 @@ class RtuFramer(Awaiting, StreamFramer):
                         return NEED
                     if not inside:
                         return length
-        return NEED if n - i < MAX_ADU and not final else NONE
+        # (up to a record that is a frame, every byte has come: nothing longer to wait for)
+        return NEED if reach == n and n - i < MAX_ADU and not final else NONE
 
     def _ends_record(self, buf: bytearray, i: int, n: int) -> bool:
         """Does a layout with a length rule at i check out and end where its record does? The source says
@@ -263,6 +266,18 @@ class RtuFramer(Awaiting, StreamFramer):
             if i < at < end and n - at >= MIN_ADU and self._ends_record(buf, at, n):
                 return True
         return False
+
+    def _framed_reach(self, buf: bytearray, i: int, n: int) -> int:
+        """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
+        its own (_ends_record), else n. A scan across it read noise and the frame after it as one frame (a
+        'User-defined function 70' of 85 bytes, the CRC matching by chance) and waited for up to MAX_ADU
+        bytes past it, which held later records in one pass, as _crosses_framed_record's readings did."""
+        base, reach = self._base, n
+        for offset in self._boundaries:
+            at = offset - base
+            if i < at < min(reach, i + MAX_ADU) and n - at >= MIN_ADU and self._ends_record(buf, at, n):
+                reach = at
+        return reach
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""

@@ -48,6 +48,16 @@ TAIL_LINES = [
     "[the capture ends before any response: not known whether it was answered]  CRC ok",
     "     2            -   - noise     24 bytes of noise at offset 4: 1c 15 13 06 00 08 04 b4 00 04 1f d3 94 25 86 08…",
 ]
+# damaged_stream(3051): a noise run whose first bytes read as slave 41's user-defined function 70 (a CRC scan, no
+# length rule), then an intact FC43 request. Written as two records, the scan from the noise record's start
+# checked 85 bytes by chance, across the request's record: read back as 'User-defined function 70 81 bytes of
+# data'. A CRC scan stops at a record that is a frame of its own (framing/rtu.py _framed_reach).
+SCANNED = [
+    "    16            -   - noise     78 bytes of noise at offset 697: "
+    "29 46 3c 0d aa 3b e5 7f 07 98 93 c7 7e 4c b5 b1…",
+    "    17            - 175 request   Encapsulated Interface Transport Read Device Identification, basic, "
+    "from object 0 [no response]  CRC ok",
+]
 MBRTU = ["-o", 'uat:user_dlts:"User 0 (DLT=147)","mbrtu","0","","0",""', "-o", "mbrtu.crc_verification:TRUE"]
 
 
@@ -93,6 +103,19 @@ def test_a_noise_run_ending_the_input_shaped_as_a_frame_shares_the_record_before
     assert _decode(["--hex", TAIL[:-6], "-w", str(written)], monkeypatch, pure) == ""
     assert record_lengths(written) == [4, 22]
     assert _decode([str(written)], monkeypatch, pure) == shorter
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
+def test_a_crc_scan_does_not_reach_across_a_record_that_is_a_frame(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool
+) -> None:
+    raw, written = tmp_path / "stream.bin", tmp_path / "stream.pcap"
+    raw.write_bytes(damaged_stream(3051))
+    items, lines = _items([str(raw), "--format", "raw"], monkeypatch, pure)
+    assert lines.splitlines()[15:17] == SCANNED
+    assert _decode([str(raw), "--format", "raw", "-w", str(written)], monkeypatch, pure) == ""
+    assert record_lengths(written)[13:15] == [78, 7]  # (the noise run, then the request)
+    assert _items([str(written)], monkeypatch, pure) == (items, lines)
 
 
 def _items(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tuple[list[dict], str]:
