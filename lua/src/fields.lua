@@ -92,7 +92,7 @@ function proto.init()
   recorded_until = nil -- (the last timed record's time, any stream's, empty or not: vw3.pairing's ended)
   -- RTAC timestamps per frame number. Wireshark's field extractors see nothing on a first pass without a
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
-  rtac_times, rtac_rel, rtac_first = {}, {}, nil
+  rtac_times = {}
   apply_prefs()
   -- Streams of records: the serial capture's (state), one per UDP conversation, one per TCP connection
   -- (with the records of each TCP call: dissector.lua).
