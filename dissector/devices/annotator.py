@@ -19,7 +19,9 @@ from dissector.devices.checks import check_request, check_subfunction, within_li
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
-from dissector.devices.memory import readable_again, remember_mask, remember_writes, unreadable, unreadable_status
+from dissector.devices.memory import (
+    readable_again, remember_answered, remember_mask, remember_writes, unreadable, unreadable_status,
+)
 from dissector.devices.naming import name_from_map, name_register, name_second_alone, name_wide, plc_label, wide_before
 from dissector.devices.objects import check_objects
 from dissector.devices.profiles import Profile
@@ -67,6 +69,7 @@ class Annotator:
         # bounded, a slave's frames are provisional until selection.FIT_FRAMES of them at most.
         self._held: dict[int, list[Frame]] = {}
         self._broadcasting: dict[str, Device] = {}  # slave 0's device by profile (_broadcast)
+        self.masked: dict[int, int | None] | None = None  # remember_mask's values, for render/history.py
         for profile in [default, *per_slave.values()]:
             self._builder.build(profile, None)  # load every map now: errors before the first frame
 
@@ -426,12 +429,9 @@ class Annotator:
                 frame.notes.extend(tell(events))
             return
         elif device.track and function in _BY_ANSWER:
-            # Writes a normal answer confirms (FC16 answers carry no values; FC23 writes before it reads).
-            request = frame.request
-            if request is not None and request.registers:
-                remember_writes(frame, device, request.registers)
+            remember_answered(frame, device)  # (FC23 writes before it reads)
         elif device.track and CONFIRM.get(function) is Confirm.MASK:
-            remember_mask(frame, device)
+            remember_mask(frame, device, self.masked)
         registers = frame.registers
         if registers:
             read = kind is _RESPONSE and function in _READS

@@ -69,10 +69,19 @@ def remember_writes(frame: Frame, device: Device, registers: Sequence[Register])
             seen[register.address] = (register.value, number, "written")
 
 
-def remember_mask(frame: Frame, device: Device) -> None:
+def remember_answered(frame: Frame, device: Device) -> None:
+    """The writes a normal answer confirms: its request's registers (an FC16 answer carries no values)."""
+    request = frame.request
+    if request is not None and request.registers:
+        remember_writes(frame, device, request.registers)
+
+
+def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | None = None) -> None:
     """A Mask Write its echo confirms (data/modbus.toml [confirm] "mask"): the register holds (current AND
     and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16), written as FC6's value is; where
-    the current value is not known (and_mask 0 replaces every bit), the parameter is forgotten."""
+    the current value is not known (and_mask 0 replaces every bit), the parameter is forgotten. The value
+    written (None: not known) also in `masked` by the echo's frame number, for the parameter history
+    (render/history.py) to count it."""
     fields = frame.fields
     if fields is None:
         return  # (malformed: nothing confirmed)
@@ -80,7 +89,10 @@ def remember_mask(frame: Frame, device: Device) -> None:
     address, and_mask = fields.address, fields.and_mask
     last = seen.get(address)
     current = 0 if and_mask == 0 else last[0] if last is not None else None
-    if current is None:
+    value = None if current is None else (current & and_mask) | (fields.or_mask & ~and_mask & 0xFFFF)
+    if value is None:
         seen.pop(address, None)
-        return
-    seen[address] = ((current & and_mask) | (fields.or_mask & ~and_mask & 0xFFFF), frame.number, "written")
+    else:
+        seen[address] = (value, frame.number, "written")
+    if masked is not None:
+        masked[frame.number] = value

@@ -8,7 +8,7 @@ a counted change, a report mark is a change into or out of a read status, and no
 with another or with the registers `--json` shows for the same frame.
 
 What a good frame (CRC/LRC ok) tells, per register with an address, in this order:
-- a request to write (FC6/16/23): WRITE (WRITE_OBSERVED for a broadcast, which nothing will confirm);
+- a request to write (FC6/16/22/23): WRITE (WRITE_OBSERVED for a broadcast, which nothing will confirm);
 - an exception: REFUSED for each register its write request asked to write; UNREADABLE for each
   register the profile lists in the exception itself (an exception the device documents as "every
   parameter read is non-existent or protected", VW3 A3 303 p.38: `--json` shows them with `value` null
@@ -16,6 +16,10 @@ What a good frame (CRC/LRC ok) tells, per register with an address, in this orde
 - a normal answer: CONFIRM for the values it confirms written (FC6 echo, the FC16/23 request's values;
   FC23 writes before it reads), then READ for each value read (FC3/4/23), or UNREADABLE when the profile
   gave it a read status (`protected`, `non-existent`: 16#8000 in a multi-register read).
+A Mask Write (FC22, [confirm] "mask") is a write of its register: its echo confirms the value the
+parameter memory gave the register (memory.remember_mask, Annotator.masked; where the slave's device
+follows no memory, known only when and_mask is 0: or_mask); where that value is not known, the write is
+counted and its parameter's state stays as it was, as for a write nothing confirmed.
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 
@@ -55,7 +59,7 @@ from typing import Any, Protocol
 from dissector.devices.maps import interpret_wide
 from dissector.devices.profiles import load_profile_map
 from dissector.model import Frame, Item, Kind, Register
-from dissector.protocol.rules import Confirm
+from dissector.protocol.rules import Confirm, confirmed_by
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
 from dissector.render.stats_store import CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store
 
@@ -70,6 +74,7 @@ WRITE_FUNCTIONS = register_writes()
 # How those writes are confirmed (data/modbus.toml [confirm]): FC6 by its echo, FC16/FC23 by a normal answer.
 _BY_ECHO = confirmed_registers(Confirm.ECHO)
 _BY_ANSWER = confirmed_registers(Confirm.ANSWER)
+_BY_MASK = confirmed_by(Confirm.MASK)  # FC22: its echo confirms masks, the value is the memory's
 # Register statuses a profile gives to a read that returned a marker rather than a value (p.38).
 UNREADABLE_STATUSES = frozenset(["protected", "non-existent"])
 _NOW = object()  # finish(): held frames read with their slave's profile now
@@ -104,6 +109,9 @@ class History:
         self.annotate = annotate  # for the outputs' names (PLC-style labels)
         self._renamed: dict[int, int] = {}  # slave -> the choice frame its values were named again for
         self._held: dict[int, list[Frame]] = {}  # slave -> its provisional frames, until its choice
+        self._masked: dict[int, int | None] = {}  # the annotator's Mask Write values (Annotator.masked)
+        if getattr(annotate, "masked", 0) is None:
+            annotate.masked = self._masked  # type: ignore[union-attr]
 
     def add(self, item: Item) -> None:
         """A decoded item, in stream order (noise and damaged frames tell nothing of parameters)."""
@@ -159,6 +167,9 @@ class History:
                 registers = self._reread(frame, profile)
             elif registers and self._stale(slave, frame.number):
                 registers = self._fresh(frame, registers)
+        if function in _BY_MASK:
+            self._mask(frame, provisional)
+            return
         if kind is Kind.REQUEST:
             if function in WRITE_FUNCTIONS and registers:
                 # A broadcast write: no answer will confirm it, the request is all there is.
@@ -187,6 +198,33 @@ class History:
             self._events(frame, written, CONFIRM, confirmed=True, provisional=provisional)
         if function in READ_FUNCTIONS and registers:
             self._reads(frame, registers, provisional)
+
+    def _mask(self, frame: Frame, provisional: bool) -> None:
+        """A Mask Write's events, as an FC6 write's of the value it gives its register (the module's doc)."""
+        request = frame if frame.kind is Kind.REQUEST else frame.request
+        fields = None if request is None or not request.crc_ok else request.fields
+        if fields is None or getattr(fields, "and_mask", None) is None:
+            return  # (an answer without its request, or malformed: nothing of a parameter known)
+        value = fields.or_mask if fields.and_mask == 0 else None
+        if frame.kind is Kind.RESPONSE:
+            masked = self._masked
+            known = masked.get(frame.number, value) if provisional else masked.pop(frame.number, value)
+            if known is not None:
+                self._events(frame, [self._named(frame, fields.address, known)], CONFIRM, confirmed=True,
+                             provisional=provisional)
+            return
+        if frame.kind is Kind.EXCEPTION:
+            event = REFUSED
+        elif frame.broadcast and value is not None:
+            event = WRITE_OBSERVED
+        else:
+            event = WRITE
+        self._events(frame, [self._named(frame, fields.address, value or 0)], event, provisional=provisional)
+
+    def _named(self, frame: Frame, address: int, value: int) -> Register:
+        """A register as the slave's device names it (plain: no note applies)."""
+        plain = getattr(self._annotate, "plain_register", None)
+        return Register(address, value) if plain is None else plain(frame.slave, frame.function, address, value)
 
     def named_by(self, frame: Frame) -> object:
         """The profile the registers listeners get were named with: the slave's profile now."""
