@@ -4592,6 +4592,45 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
+-- Does a layout with a length rule at i check out and end where its record does? The
+-- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
+-- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
+local function ends_record(s, b, i, n)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    local length, is_scan = list[index][2](b, i, n)
+    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
+        and crc_ok_at(b, i, length) then
+      return true
+    end
+  end
+  return false
+end
+
+-- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
+-- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
+local function crosses_framed_record(s, b, i, stop, n)
+  local base = s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
+  end
+  return false
+end
+
+-- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
+-- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
+local function framed_reach(s, b, i, n)
+  local base, reach = s.base, n
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at < reach and at < i + MAX_ADU and n - at >= MIN_ADU and ends_record(s, b, at, n) then
+      reach = at
+    end
+  end
+  return reach
+end
+
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
 -- will come). With scan false, only layouts with a length rule count (rtu.py _valid_frame_at).
 local function valid_frame_at(s, b, i, n, final, scan)
@@ -4616,8 +4655,9 @@ local function valid_frame_at(s, b, i, n, final, scan)
       end
     end
     if is_scan and scan ~= false then
-      if crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
-      if not final and n - i < MAX_ADU then found = nil end
+      local reach = framed_reach(s, b, i, n) -- (not across a record that is a frame: rtu.py _valid_frame_at)
+      if crc_scan(b, i, length, math.min(reach - i, MAX_ADU)) > 0 then return true end
+      if not final and reach == n and n - i < MAX_ADU then found = nil end
     end
   end
   return found
@@ -4689,45 +4729,6 @@ local function confirmed(s, b, i, kind, length, n, final)
     return answered(s, b, i, stop, n, final)
   end
   return false
-end
-
--- Does a layout with a length rule at i check out and end where its record does? The
--- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
--- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
-local function ends_record(s, b, i, n)
-  local list = interpretations(s, b[i], b[i + 1], b, i, n)
-  for index = 1, #list do
-    local length, is_scan = list[index][2](b, i, n)
-    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
-        and crc_ok_at(b, i, length) then
-      return true
-    end
-  end
-  return false
-end
-
--- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
--- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
-local function crosses_framed_record(s, b, i, stop, n)
-  local base = s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
-  end
-  return false
-end
-
--- Where a CRC scan from i stops (rtu.py _framed_reach): the first record after i that is a frame of its own, else
--- n. A scan across it read noise and that frame as one frame, and waited for bytes past it in one pass.
-local function framed_reach(s, b, i, n)
-  local base, reach = s.base, n
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < reach and at < i + MAX_ADU and n - at >= MIN_ADU and ends_record(s, b, at, n) then
-      reach = at
-    end
-  end
-  return reach
 end
 
 -- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py

@@ -445,6 +445,8 @@ static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py
     return i + *length > n ? 2 : crc_ok(b, i, *length);
 }
 
+static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n); /* (below) */
+
 /* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
  * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
@@ -461,9 +463,10 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     for (int r = 0; r < count; r++) {
         int found = rule_check(rules[r], b, j, n, &length);
         if (found < 0) {
-            CrcScan scan = crc_scan(b, j, length, n - j < MAX_ADU ? n - j : MAX_ADU); /* RtuFramer._shortest_crc */
+            Py_ssize_t reach = framed_reach(e, b, j, n); /* (not across a record that is a frame) */
+            CrcScan scan = crc_scan(b, j, length, reach - j < MAX_ADU ? reach - j : MAX_ADU); /* _shortest_crc */
             if (crc_next(&scan)) return 1;
-            undecided = undecided || n - j < MAX_ADU;
+            undecided = undecided || (reach == n && n - j < MAX_ADU);
         } else if (found) {
             return found == 1 ? 1 : -1;
         }

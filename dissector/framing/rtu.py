@@ -141,9 +141,10 @@ class RtuFramer(Awaiting, StreamFramer):
             length = rule(buf, i, n)
             if type(length) is Scan:
                 if scan:
-                    if self._shortest_crc(buf, i, n, length):
+                    reach = self._framed_reach(buf, i, n) if self._boundaries else n  # (up to it all has come)
+                    if self._shortest_crc(buf, i, reach, length):
                         return True
-                    undecided = undecided or (not final and n - i < MAX_ADU)
+                    undecided = undecided or (not final and reach == n and n - i < MAX_ADU)
                 continue
             if length == NEED:
                 return None if not final else False
@@ -269,9 +270,8 @@ class RtuFramer(Awaiting, StreamFramer):
 
     def _framed_reach(self, buf: bytearray, i: int, n: int) -> int:
         """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
-        its own (_ends_record), else n. A scan across it read noise and the frame after it as one frame (a
-        'User-defined function 70' of 85 bytes, the CRC matching by chance) and waited for up to MAX_ADU
-        bytes past it, which held later records in one pass, as _crosses_framed_record's readings did."""
+        its own (_ends_record), else n. Across it a scan read noise and that frame as one frame (its CRC
+        matching by chance) and waited for MAX_ADU bytes, holding later records in one pass."""
         base, reach = self._base, n
         for offset in self._boundaries:
             at = offset - base

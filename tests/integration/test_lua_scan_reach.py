@@ -75,3 +75,16 @@ def test_a_scan_after_a_request_gives_up_at_a_record_that_is_a_frame(tmp_path: P
     assert _infos(pcap, two_pass=True) == [
         READ, ANSWERED, f"{other}; noise (4 bytes)", READ, ANSWERED, READ, ANSWERED]
     _same_as_vw3_decode(pcap)
+
+
+def test_a_damaged_request_before_a_scan_start_is_settled_by_the_next_record(tmp_path: Path) -> None:
+    # (whether the damaged request ends where a frame starts: the scan from '29 46' waited for up to 256 bytes)
+    first = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1]) + bytes.fromhex("29460102")
+    records = [(REQUEST, 0.0), (ANSWER, 0.01), (first, 2.0), (REQUEST, 3.0), (ANSWER, 3.01), (REQUEST, 4.0),
+               (ANSWER, 4.01)]
+    pcap = write_pcap(tmp_path / "damaged.pcap", [(data, 1700000000 + time) for data, time in records])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)", f"{READ} [provisional]",
+        ANSWERED, READ, ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (12 bytes)", READ, ANSWERED, READ, ANSWERED]
+    _same_as_vw3_decode(pcap)
