@@ -64,10 +64,9 @@ def parse_pdu(function: int, kind: Kind, data: bytes) -> Container:
     grammar = grammar_for(function, kind)
     try:
         return _compiled(grammar).parse(data)
-    except ConstructError as error:
-        raise _grammar_error(error) from None
-    except (struct.error, ValueError, IndexError, OverflowError, EOFError):
-        # The compiled parsers fail with plain Python errors; the interpreted grammar names the path.
+    except (ConstructError, struct.error, ValueError, IndexError, OverflowError, EOFError):
+        # The compiled parsers fail with plain Python errors, or without the path (a linked instance's
+        # `(???)`); the interpreted grammar names it.
         try:
             return grammar.parse(data)
         except ConstructError as error:

@@ -46,6 +46,13 @@ class _TextWhenPrintable(Adapter):  # type: ignore[misc]
         return obj.encode("ascii") if isinstance(obj, str) else obj
 
 
+class _Exact(Bytes):  # type: ignore[misc]
+    """`count` bytes, a StreamError when fewer are left (as Bytes parses them, and the plugin's readers):
+    Construct's compiled Bytes reads `io.read(count)` and took 1 byte for an FC15 byte count of 137."""
+
+    _emitparse = Construct._emitparse  # (not compiled: the compiled parsers call _parse above)
+
+
 class _UpTo(Array):  # type: ignore[misc]
     """`count` parts, fewer when the data end first (a part that does not fit ends them): a device may
     declare more FC43 objects than it sends; the decoder warns (decode/fields.py)."""
@@ -88,9 +95,9 @@ def _subcon(field: Field) -> Construct:
         return name / Switch(this[field.count], cases, default=_part(field.cases[-1][1]))
     count = _count(field)
     if field.type is Type.BYTES:
-        return name / Bytes(count)
+        return name / _Exact(count)
     if field.type is Type.TEXT:
-        return name / _TextWhenPrintable(Bytes(count))
+        return name / _TextWhenPrintable(_Exact(count))
     if field.type is Type.WORDS:
         return name / Array(count, Int16ub)
     if field.type is Type.ODD:
