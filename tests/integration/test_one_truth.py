@@ -21,6 +21,7 @@ from dissector.sim.simulate import generate_session, write_capture
 
 CAPTURES = ROOT / "captures"
 WRITES = (6, 16, 23)
+MASK_WRITE = 22  # (a write of its register: its echo gives the masked value where the last is known)
 READS = (3, 4, 23)
 UNREADABLE = ("protected", "non-existent")
 
@@ -68,10 +69,12 @@ def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
         slave, function = record["slave"], record["function"]
         registers = [r for r in record.get("registers") or [] if r["address"] is not None]
         request = by_frame.get(record.get("request_frame"))
+        if function == MASK_WRITE and record["kind"] != "exception" and "fields" in record:
+            registers = [{"address": record["fields"]["address"]}]  # (its one register, as a write's)
         if record["kind"] == "request":
             row["requests"] += 1
             row["unanswered"] += bool(record.get("unanswered"))
-            if function in WRITES:
+            if function in WRITES or function == MASK_WRITE:
                 for register in registers:
                     param(slave, register)["writes"] += 1
                     if record["broadcast"]:
@@ -80,6 +83,8 @@ def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
         written = []
         if request is not None and request["crc_ok"] and request["function"] in WRITES:
             written = [r for r in request.get("registers") or [] if r["address"] is not None]
+        elif request is not None and request["crc_ok"] and request["function"] == MASK_WRITE and "fields" in request:
+            written = [{"address": request["fields"]["address"]}]
         if record["kind"] == "exception":
             code = str(record["exception_code"])
             row["exceptions"][code] = row["exceptions"].get(code, 0) + 1
@@ -90,6 +95,12 @@ def derive(records: list[dict]) -> tuple[dict, dict, list, list]:
             confirmed = registers if function == 6 else written if function in (16, 23) else []
             for register in confirmed:
                 state(record, register, ("value", register["value"]), False)
+            if function == MASK_WRITE and registers:  # (Application Protocol 6.16, where the value is known)
+                fields, old = record["fields"], param(slave, registers[0])["state"]
+                if fields["and_mask"] == 0 or isinstance(old, tuple):
+                    current = old[1] if isinstance(old, tuple) else 0
+                    masked = current & fields["and_mask"] | fields["or_mask"] & ~fields["and_mask"] & 0xFFFF
+                    state(record, registers[0], ("value", masked), False)
             if function not in READS:
                 continue
         for register in registers:
