@@ -4586,8 +4586,8 @@ local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_
 local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
 local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
 local crc_string_ok, cut_reason, emit, format = crc_string_ok, cut_reason, emit, format
-local interpretations, ipairs, math, pairs, possible_start = interpretations, ipairs, math, pairs, possible_start
-local table, time_at = table, time_at
+local interpretations, math, pairs, possible_start, table = interpretations, math, pairs, possible_start, table
+local time_at = time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
@@ -4799,13 +4799,7 @@ end
 
 -- A counted layout's length when its count is 0, by kind and code (rtu.py _COUNTS_NOTHING): every count of the
 -- spec counts something, so a reading with a bad CRC that counts nothing is no frame.
-local COUNTS_NOTHING = { [REQUEST] = {}, [RESPONSE] = {} }
-for code, rules in pairs(DATA.protocol.rules) do
-  for index, kind in ipairs({ REQUEST, RESPONSE }) do
-    local spec = rules[index]
-    if spec[1] == "count8" or spec[1] == "count16" then COUNTS_NOTHING[kind][code] = spec[3] end
-  end
-end
+local COUNTS_NOTHING = DATA.protocol.counts_nothing -- (written out from that table by the code generator)
 local function counts_nothing(b, i, kind, length)
   local counted = COUNTS_NOTHING[kind]
   return counted ~= nil and counted[b[i + 1]] == length
@@ -5017,7 +5011,8 @@ end
 -- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
 -- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
 -- from i (at most `stop`) and the index before which trying again finds no more.
-local REPEAT_WINDOW, REPEAT_PROBE, NOISE_ITEM_MAX = 3 * MAX_ADU, 16, FRAMING.noise_item_max
+local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
+local NOISE_ITEM_MAX = FRAMING.noise_item_max
 local function repeats(s, b, i, since, n, stop)
   local from, period = i - REPEAT_PROBE, nil
   for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
@@ -7493,10 +7488,7 @@ local remember_list, remember_mask, remember_writes, say = remember_list, rememb
 local select, span_label, string, table, words_at = select, span_label, string, table, words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
-local MASK_WRITES = {}
-for code, how in pairs(DATA.rules.confirm) do
-  if how == "mask" then MASK_WRITES[code] = true end
-end
+local MASK_WRITES = DATA.rules.by_confirm.mask
 
 local function annotate_with(st, f, b, device)
   if not device then return end

@@ -5,10 +5,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
-local MASK_WRITES = {}
-for code, how in pairs(DATA.rules.confirm) do
-  if how == "mask" then MASK_WRITES[code] = true end
-end
+local MASK_WRITES = DATA.rules.by_confirm.mask
 
 local function annotate_with(st, f, b, device)
   if not device then return end

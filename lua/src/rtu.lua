@@ -214,13 +214,7 @@ end
 
 -- A counted layout's length when its count is 0, by kind and code (rtu.py _COUNTS_NOTHING): every count of the
 -- spec counts something, so a reading with a bad CRC that counts nothing is no frame.
-local COUNTS_NOTHING = { [REQUEST] = {}, [RESPONSE] = {} }
-for code, rules in pairs(DATA.protocol.rules) do
-  for index, kind in ipairs({ REQUEST, RESPONSE }) do
-    local spec = rules[index]
-    if spec[1] == "count8" or spec[1] == "count16" then COUNTS_NOTHING[kind][code] = spec[3] end
-  end
-end
+local COUNTS_NOTHING = DATA.protocol.counts_nothing -- (written out from that table by the code generator)
 local function counts_nothing(b, i, kind, length)
   local counted = COUNTS_NOTHING[kind]
   return counted ~= nil and counted[b[i + 1]] == length
@@ -432,7 +426,8 @@ end
 -- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
 -- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
 -- from i (at most `stop`) and the index before which trying again finds no more.
-local REPEAT_WINDOW, REPEAT_PROBE, NOISE_ITEM_MAX = 3 * MAX_ADU, 16, FRAMING.noise_item_max
+local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
+local NOISE_ITEM_MAX = FRAMING.noise_item_max
 local function repeats(s, b, i, since, n, stop)
   local from, period = i - REPEAT_PROBE, nil
   for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
