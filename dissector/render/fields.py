@@ -196,9 +196,10 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
         # the columns of one frame line up, and -E occurrence=f names the same register in each.
         # Then the addresses the frame names without their values (a read request's window), as -Y's
         # `address` tests them and the plugin's hidden vw3.reg.address (vw3.bit.address) has them; the other
-        # keys have an empty occurrence there, so that occurrence=l still pairs an address with its value.
+        # keys have an empty occurrence there, so that occurrence=l still pairs an address with its value, but
+        # `label`: a register window's PLC labels, as -Y's `label` tests them and the plugin's vw3.reg.label.
         carried = len(record.get("registers") or []) + len(record.get("bits") or [])
-        return [element.get(head) if index < carried or head == "address" else None
+        return [element.get(head) if index < carried or head in ("address", "label") else None
                 for index, element in enumerate(item_elements(record))]
     value = record.get(head)
     if rest:

@@ -6,6 +6,8 @@ from collections.abc import Callable
 from typing import Any
 
 from dissector.devices.naming import plc_label
+from dissector.protocol import table
+from dissector.protocol.rules import LIFTS, ValueKind
 
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
@@ -96,6 +98,13 @@ def address_test(op: str, value: Any) -> Test:
     return lambda item, reg: any(match_op(op, v, value) for v in address_values(reg))
 
 
+# The codes whose request or answer carries bits (its lifting rule's values): their windows' addresses are
+# bits', and bits carry no label (the plugin's DATA.bit_windows, codegen/display_lua.py).
+BIT_WINDOWS = frozenset(code for handlers in table.by_kind("handler").values() for code, name in handlers.items()
+                        if (lift := LIFTS.get(str(name))) is not None and lift.values is not None
+                        and lift.values.kind in (ValueKind.BITS, ValueKind.COIL))
+
+
 def _label_base(first: str, start: int) -> int | None:
     """The PLC base whose label of `start` is `first` (`40001` for 49999 at 9998 and for 410000 at 9999), so
     a window's other addresses are labelled as its registers are (naming.plc_label: 49999, then 410000)."""
@@ -123,7 +132,8 @@ def item_elements(item: Item) -> list[dict[str, Any]]:
         return elements  # a read response: its values already cover start..start+quantity-1
     known = {element.get("address") for element in elements}
     span = item.get("span_label")
-    base = _label_base(span.split("..", 1)[0], int(start)) if isinstance(span, str) else None
+    labelled = isinstance(span, str) and item.get("function") not in BIT_WINDOWS
+    base = _label_base(span.split("..", 1)[0], int(start)) if labelled else None  # type: ignore[union-attr]
     synthesized = [
         {"address": address & 0xFFFF}
         if base is None

@@ -5,8 +5,8 @@ vw3.reg.address -e vw3.reg.code` pairs them and `-E occurrence=f` names the firs
 the first code; the statuses are vw3-decode's words (ok, protected, non-existent, ambiguous).
 
 A frame's `vw3.reg.address` (`vw3.bit.address`) then lists, hidden, the addresses it names without their
-values (a read request's window), as vw3-decode's `address` does after its registers: no other key has
-occurrences for them.
+values (a read request's window), as vw3-decode's `address` does after its registers, and a register
+window's `vw3.reg.label` its PLC labels, as vw3-decode's `label`: no other key has occurrences for them.
 
 Numbers (`vw3.reg.value`, `.scaled`, `.words`) keep their types (`vw3.reg.scaled > 5`): tshark 4.0 cannot
 print an empty number, and a text field of the same name makes it crash on `vw3.reg.value == 3`. Their
@@ -47,7 +47,8 @@ def plugin_rows(pcap: Path, *options: str, two_pass: bool = True, first: bool = 
     for line in result.stdout.splitlines():
         cells = line.split("\t")
         values = {key.split(".", 1)[1]: _split(cell) for key, cell in zip(keys, cells[2:])}
-        registers = max(len(values[f"reg.{key}"]) for key in ("value", *TEXT_KEYS))  # (not the named addresses)
+        # (not the named addresses, nor a register window's labels)
+        registers = max(len(values[f"reg.{key}"]) for key in ("value", *TEXT_KEYS) if key != "label")
         for key in TEXT_KEYS:
             # (one register's empty occurrence prints as an empty cell, as no occurrence would)
             if registers == 1 and not values[f"reg.{key}"]:
@@ -81,6 +82,9 @@ def python_rows(pcap: Path, *options: str, stdin: bool = False, first: bool = Fa
             # (the addresses named without values: an empty occurrence of each other key, columns aligned)
             occurrences = cell.split(SEP) if named else []
             assert len(occurrences) == named or (first and len(occurrences) == 1), (key, line)
+            if key == "label":  # (a register window's PLC labels, as the plugin's hidden vw3.reg.label)
+                values[key] = occurrences[:count] + [label for label in occurrences[count:] if label]
+                continue
             assert not any(occurrences[count:]), (key, line)
             values[key] = occurrences[:count]
         rows[int(cells[0])] = values

@@ -82,3 +82,20 @@ def test_a_window_across_49999_is_labelled_as_its_registers(tmp_path: Path, monk
     got = run_tshark(capture, *PLC, "-Y", f'vw3.reg.label == "{label}"', "-T", "fields", "-e", "frame.number")
     assert not lua_errors(got.stdout + got.stderr)
     assert [int(number) for number in got.stdout.split()] == frames
+
+
+def test_fields_and_bit_windows_as_the_plugin(capture: Path, tmp_path: Path) -> None:
+    # vw3-decode -T fields' `label` lists a register window's labels after its registers', as vw3.reg.label;
+    # a coil window has none (bits carry no label: `label == "00002"` found the coil read, not its answer).
+    status, out, err = run_cli([str(capture), "--profile", "generic", "--address-style", "plc", "-T", "fields",
+                                "-e", "frame", "-e", "label", "-E", "aggregator=,"])
+    assert (status, err) == (0, "")
+    assert out.splitlines()[:4] == ["1\t40101,40102,40103", "2\t40101,40102,40103", "3\t40101,40102",
+                                    "4\t40101,40102"]
+    coils = write_pcap(tmp_path / "coils.pcap", [(rtu("01 01 0000 0003"), 1700000000.0),
+                                                 (rtu("01 01 01 05"), 1700000000.01)])
+    status, out, err = run_cli([str(coils), "--profile", "generic", "--address-style", "plc", "-Y", 'label == "00002"'])
+    assert (status, out, err) == (0, "", "")
+    got = run_tshark(coils, *PLC, "-Y", 'vw3.reg.label == "00002"', "-T", "fields", "-e", "frame.number")
+    assert not lua_errors(got.stdout + got.stderr)
+    assert got.stdout == ""
