@@ -25,21 +25,25 @@ EXPECTED = [
 ]
 
 
-@pytest.mark.parametrize("two_pass", [False, True])
-def test_a_write_before_the_choice_is_remembered(tmp_path: Path, two_pass: bool) -> None:
+def codes_and_notes(tmp_path: Path, pairs: list[tuple[str, str]], two_pass: bool) -> list[str]:
+    """The pairs as Modbus/TCP transactions to unit 12, read by vw3_modbus.lua: each frame's codes | notes."""
     writer = NetWriter(tmp_path / "mbtcp.pcap")
     time = 1.0
-    for transaction, (request, response) in enumerate(PAIRS, start=1):
+    for transaction, (request, response) in enumerate(pairs, start=1):
         for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
             writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
             time += 0.01
     writer.close()
-    names = ("-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}")
-    done = run_tshark(tmp_path / "mbtcp.pcap", *names, "-T", "fields", "-E", "separator=|", "-e", "vw3.reg.code",
-                      "-e", "vw3.note", two_pass=two_pass)
+    done = run_tshark(tmp_path / "mbtcp.pcap", "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}", "-T", "fields",
+                      "-E", "separator=|", "-e", "vw3.reg.code", "-e", "vw3.note", two_pass=two_pass)
     assert done.returncode == 0, done.stderr
     assert not lua_errors(done.stdout + done.stderr)
-    assert done.stdout.splitlines() == EXPECTED
+    return done.stdout.splitlines()
+
+
+@pytest.mark.parametrize("two_pass", [False, True])
+def test_a_write_before_the_choice_is_remembered(tmp_path: Path, two_pass: bool) -> None:
+    assert codes_and_notes(tmp_path, PAIRS, two_pass) == EXPECTED
 
 
 # The confirmed writes are kept with the frame and an FC16 answer is held as any frame before the choice:
@@ -55,15 +59,4 @@ EXPECTED_MULTIPLE = [
 
 @pytest.mark.parametrize("two_pass", [False, True])
 def test_writes_an_answer_confirms_before_the_choice_are_remembered(tmp_path: Path, two_pass: bool) -> None:
-    writer = NetWriter(tmp_path / "mbtcp.pcap")
-    time = 1.0
-    for transaction, (request, response) in enumerate(PAIRS_MULTIPLE, start=1):
-        for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
-            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
-            time += 0.01
-    writer.close()
-    done = run_tshark(tmp_path / "mbtcp.pcap", "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}", "-T", "fields",
-                      "-E", "separator=|", "-e", "vw3.reg.code", "-e", "vw3.note", two_pass=two_pass)
-    assert done.returncode == 0, done.stderr
-    assert not lua_errors(done.stdout + done.stderr)
-    assert done.stdout.splitlines() == EXPECTED_MULTIPLE
+    assert codes_and_notes(tmp_path, PAIRS_MULTIPLE, two_pass) == EXPECTED_MULTIPLE
