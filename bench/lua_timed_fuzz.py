@@ -28,31 +28,11 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tests" / "support"), str(ROOT / "tests" /
 import lua_harness  # noqa: E402
 import test_timed_summary as timed  # noqa: E402
 from lua_compare import compare  # noqa: E402
+from timed_fuzz import capture_of  # noqa: E402
 from lua_harness import lua_items, place_items, PythonItem  # noqa: E402
 
 BAUDS = [None, 9600, 19200, 115200]
 TIMEOUTS_MS = [None, 30, 500]  # (None: both sides' default, 1000 ms)
-
-
-def capture_of(seed: int, folder: Path) -> tuple[Path, list[int], str]:
-    """The seed's capture, its records' lengths, and how its records were cut."""
-    rng = random.Random(seed)
-    frames = timed.frames_of(seed, damaged=rng.choice([0, 0.02, 0.1, 0.3]))
-    if rng.random() < 0.5:  # glitch bytes after frames
-        frames = [(frame + bytes([rng.choice([0, 0xFE, 0xFF])]) if rng.random() < 0.3 else frame, ns)
-                  for frame, ns in frames]
-    how = rng.choice(["frame", "bursts", "untimed"])
-    records = timed.cut_records(rng, frames, how)
-    capture = folder / f"bus{seed}.pcap"
-    if rng.random() < 0.3:
-        capture = capture.with_suffix(".pcapng")
-        timed.write_pcapng(capture, records)
-        how += " pcapng"
-    else:
-        nano = rng.random() < 0.5
-        timed.write_pcap(capture, records, nano=nano)
-        how += " pcap-ns" if nano else " pcap-us"
-    return capture, [len(data) for data, _ns in records], how
 
 
 def options_of(seed: int) -> tuple[list[str], list[str]]:

@@ -31,6 +31,27 @@ OUTPUTS = [["--json"], ["-V"], ["--stats"], ["-x"], ["-T", "fields", "-e", "fram
            ["--stats", "--json"]]
 
 
+def capture_of(seed: int, folder: Path, rng: random.Random | None = None) -> tuple[Path, list[int], str]:
+    """The seed's capture, its records' lengths, and how its records were cut (rng: the seed's, to go on with)."""
+    rng = rng or random.Random(seed)
+    frames = timed.frames_of(seed, damaged=rng.choice([0, 0.02, 0.1, 0.3]))
+    if rng.random() < 0.5:  # glitch bytes after frames
+        frames = [(frame + bytes([rng.choice([0, 0xFE, 0xFF])]) if rng.random() < 0.3 else frame, ns)
+                  for frame, ns in frames]
+    how = rng.choice(["frame", "bursts", "untimed"])
+    records = timed.cut_records(rng, frames, how)
+    capture = folder / f"bus{seed}.pcap"
+    if rng.random() < 0.3:
+        capture = capture.with_suffix(".pcapng")
+        timed.write_pcapng(capture, records)
+        how += " pcapng"
+    else:
+        nano = rng.random() < 0.5
+        timed.write_pcap(capture, records, nano=nano)
+        how += " pcap-ns" if nano else " pcap-us"
+    return capture, [len(data) for data, _ns in records], how
+
+
 def decode(argv: list[str], pure: bool) -> str:
     if pure:
         os.environ["VW3_PURE_PYTHON"] = "1"
@@ -48,18 +69,7 @@ def main() -> int:
     with tempfile.TemporaryDirectory() as folder:
         for seed in range(first, last):
             rng = random.Random(seed)
-            frames = timed.frames_of(seed, damaged=rng.choice([0, 0.02, 0.1, 0.3]))
-            if rng.random() < 0.5:  # glitch bytes after frames
-                frames = [(frame + bytes([rng.choice([0, 0xFE, 0xFF])]) if rng.random() < 0.3 else frame, ns)
-                          for frame, ns in frames]
-            how = rng.choice(["frame", "bursts", "untimed"])
-            records = timed.cut_records(rng, frames, how)
-            capture = Path(folder) / "bus.pcap"
-            if rng.random() < 0.3:
-                capture = capture.with_suffix(".pcapng")
-                timed.write_pcapng(capture, records)
-            else:
-                timed.write_pcap(capture, records, nano=rng.random() < 0.5)
+            capture, _lengths, how = capture_of(seed, Path(folder), rng)
             options = rng.choice(timed.OPTIONS + OUTPUTS)
             if stats_only:
                 options = [*rng.choice([[], ["--json"]]), "--stats", *rng.choice(timed.OPTIONS)]
