@@ -7532,9 +7532,11 @@ function lane.annotate_again(st, device, held)
   for _, copy in ipairs(held) do
     local run = copy.registers
     if run ~= nil and run.count == nil then -- (a frame of vw3_modbus.lua's: its annotate path, name_adu)
-      -- (the writes its answer confirms, `written`: FC23's before it reads; then FC6's echo)
+      -- (the writes its answer confirms, `written`: FC23's before it reads; an FC22 echo's masks, `fields`;
+      -- then FC6's echo)
       local seen = device.track and device.seen
       if seen and copy.written ~= nil then remember_list(seen, copy.number, copy.written) end
+      if seen and copy.fields ~= nil then remember_mask(seen, copy.number, copy.fields) end
       annotate_list(st, copy, device, run, copy.kind == RESPONSE and READS[copy.fn] ~= nil)
       if seen and copy.kind == RESPONSE and CONFIRMED.echo[copy.fn] then
         remember_list(seen, copy.number, run)

@@ -16,6 +16,8 @@ local format = string.format
 local pf, ex = vw3.pf, vw3.ex
 -- The RTU plugin's modules (package.loaded is shared): an exception is explained by its own functions.
 local env = package.loaded["vw3.env"]
+-- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
+local MASK_WRITES = env ~= nil and env.DATA.rules.by_confirm.mask or {}
 
 if set_plugin_info then
   set_plugin_info({
@@ -35,13 +37,13 @@ for key, name in pairs({ code = "modbus.func_code", number = "modbus.regnum16", 
   exception = "modbus.exception_code", data = "modbus.data", read_start = "modbus.read_reference_num",
   read_quantity = "modbus.read_word_cnt", write_start = "modbus.write_reference_num",
   write_quantity = "modbus.write_word_cnt", unit = "mbtcp.unit_id", transaction = "mbtcp.trans_id",
-  length = "mbtcp.len" }) do
+  length = "mbtcp.len", and_mask = "modbus.and_mask", or_mask = "modbus.or_mask" }) do
   local ok, field = pcall(Field.new, name)
   if ok then modbus_fields[key] = field end
 end
 -- The fields sorted to their ADU (a TCP segment may carry several, each its own unit and transaction).
 local ADU_FIELDS = { "code", "number", "value", "request", "start", "quantity", "exception", "data", "read_start",
-  "read_quantity", "write_start", "write_quantity", "unit" }
+  "read_quantity", "write_start", "write_quantity", "unit", "and_mask", "or_mask" }
 local floor = math.floor
 local names_state = vw3.new_state(nil)
 -- Requests not answered yet, by connection and transaction: Wireshark gives an exception no
@@ -218,6 +220,14 @@ local function explain(pinfo, adu, fn, code, slave)
   return { registers = registers, notes = f.notes, device = device, slave = slave }
 end
 
+-- An FC22 echo's masks, as the RTU plugin's f.fields (lua/src/story.lua remember_mask), or nil.
+local function masks_of(adu)
+  local address = first_value(fields_of(adu, "start"))
+  local and_mask, or_mask = first_value(fields_of(adu, "and_mask")), first_value(fields_of(adu, "or_mask"))
+  if address == nil or and_mask == nil or or_mask == nil then return nil end
+  return { address = address, and_mask = and_mask, or_mask = or_mask }
+end
+
 -- One ADU, first pass (in capture order: the protection story and profile auto follow it): what its
 -- tree shows, or false. A request is remembered, an answer paired; registers are named.
 local function name_adu(pinfo, adu)
@@ -236,10 +246,16 @@ local function name_adu(pinfo, adu)
     and env.CONFIRMED.answer[f.fn]
   -- (kept with the frame: profile auto, choosing later, remembers them again when it names the frame anew)
   if confirmed then f.written = request.written end
+  -- (an FC22 echo: the masks it confirms, kept with the frame as `written` is)
+  if response and MASK_WRITES[f.fn] then f.fields = masks_of(adu) end
   if #registers == 0 then
-    -- (an FC16 answer: no registers to name; its request's writes count, held as any frame before a choice)
-    local device = confirmed and vw3.device_now(names_state, f)
-    if device then remember_writes(device, pinfo.number, request.written) end
+    -- (an FC16 answer or an FC22 echo: no registers to name; the writes it confirms count, held as any
+    -- frame before a choice)
+    local device = (confirmed or f.fields ~= nil) and vw3.device_now(names_state, f)
+    if device and confirmed then remember_writes(device, pinfo.number, request.written) end
+    if device and f.fields ~= nil and device.track then
+      env.remember_mask(device.seen, pinfo.number, f.fields)
+    end
     return false
   end
   local device = vw3.device_now(names_state, f)
