@@ -7,6 +7,7 @@ The memory is the Device's `seen` dict, which the compiled summary path also kee
 """
 from __future__ import annotations
 
+import weakref
 from collections.abc import Sequence
 
 from dissector.devices.device import Device
@@ -81,7 +82,9 @@ def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | 
     and_mask) OR (or_mask AND NOT and_mask) (Application Protocol 6.16), written as FC6's value is; where
     the current value is not known (and_mask 0 replaces every bit), the parameter is forgotten. The value
     written (None: not known) also in `masked` by the echo's frame number, for the parameter history
-    (render/history.py) to count it."""
+    (render/history.py) to count it with its request's masks: only where it has that request, and no longer
+    than the request lives (the echo holds it), so an echo the history never reads (dropped by -Y or -c)
+    takes its entry with it: `masked` holds no more entries than echoes alive."""
     fields = frame.fields
     if fields is None:
         return  # (malformed: nothing confirmed)
@@ -94,5 +97,8 @@ def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | 
         seen.pop(address, None)
     else:
         seen[address] = (value, frame.number, "written")
-    if masked is not None:
+    request = frame.request
+    if masked is not None and request is not None and request.crc_ok:
+        if frame.number not in masked:  # (a provisional frame's copy, annotated again, shares its request)
+            weakref.finalize(request, masked.pop, frame.number, None)
         masked[frame.number] = value
