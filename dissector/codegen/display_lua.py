@@ -17,6 +17,7 @@ from dissector.codegen.fields_lua import info_forms
 from dissector.codegen.lua import lua_literal
 from dissector.codegen.rules_lua import rules_data
 from dissector.errors import GenerateError
+from dissector.protocol import table
 
 # tree.lua's helpers the forms call, and its describers of describe._BY_NAME: DATA.info_forms's arguments.
 HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "BY_NAME")
@@ -100,8 +101,9 @@ def _field_key(name: str) -> str:
 
 def render_display() -> list[str]:
     """The Lua lines, inside the generated block, that define DATA.info_forms (below), DATA.field_places (by
-    layout, where each field begins and its size: field_places) and DATA.bit_windows (the codes whose request
-    or answer carries bits, its lifting rule's values "bits" or "coil": its window's addresses are bits')."""
+    layout, where each field begins and its size: field_places) and DATA.bit_windows (table.bit_windows: the
+    codes whose request or answer carries bits, its lifting rule's values "bits" or "coil": its window's
+    addresses are bits')."""
     rules = rules_data()
     lines = ["DATA.field_places = {"]
     for layout, shape in rules["layouts"].items():
@@ -109,10 +111,7 @@ def render_display() -> list[str]:
                   for name, (at, size) in field_places(shape).items()]
         lines += _wrap(f"  {_field_key(layout)} = {{ ", places, ", ", " },", "  ") if places else [
             f"  {_field_key(layout)} = {{}},"]
-    values = {name: rule["values"] or {} for name, rule in rules["lift"].items()}
-    bits = sorted({code for codes in rules["by_code"].values() for code, entry in codes.items()
-                   if entry["rule"] and values[entry["rule"]].get("kind") in ("bits", "coil")})
-    bit_windows = ", ".join(f"[{code}] = true" for code in bits)
+    bit_windows = ", ".join(f"[{code}] = true" for code in sorted(table.bit_windows()))
     return [*render_info_forms(), *lines, "}", f"DATA.bit_windows = {{ {bit_windows} }}"]
 
 

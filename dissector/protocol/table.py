@@ -21,7 +21,7 @@ from construct import Construct, Struct
 
 from dissector.model import Kind
 from dissector.protocol import layouts as L
-from dissector.protocol.rules import LIFTS, Confirm, Lift, confirmed_by
+from dissector.protocol.rules import LIFTS, Confirm, Lift, ValueKind, confirmed_by
 from dissector.protocol.spec import SPEC
 
 
@@ -388,6 +388,17 @@ def confirmed_registers(how: Confirm) -> frozenset[int]:
     """Register writes `how` confirms (data/modbus.toml [confirm]): by its echo FC6, by a normal answer
     FC16 and FC23."""
     return confirmed_by(how, register_writes())
+
+
+def bit_windows() -> frozenset[int]:
+    """Codes whose request or answer carries bits (its lifting rule's values "bits" or "coil": FC1, 2, 5,
+    15): their windows' addresses are bits', and bits carry no label (render/filter_match.py, the plugin's
+    DATA.bit_windows from codegen/display_lua.py)."""
+    return frozenset(
+        entry.code for entry in FUNCTIONS for kind in (Kind.REQUEST, Kind.RESPONSE)
+        if (rule := lift_of(entry.code, kind)) is not None and rule.values is not None
+        and rule.values.kind in (ValueKind.BITS, ValueKind.COIL)
+    )
 
 
 def coil_requests() -> frozenset[int]:

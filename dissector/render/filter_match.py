@@ -7,7 +7,6 @@ from typing import Any
 
 from dissector.devices.naming import plc_label
 from dissector.protocol import table
-from dissector.protocol.rules import LIFTS, ValueKind
 
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
@@ -98,11 +97,9 @@ def address_test(op: str, value: Any) -> Test:
     return lambda item, reg: any(match_op(op, v, value) for v in address_values(reg))
 
 
-# The codes whose request or answer carries bits (its lifting rule's values): their windows' addresses are
-# bits', and bits carry no label (the plugin's DATA.bit_windows, codegen/display_lua.py).
-BIT_WINDOWS = frozenset(code for handlers in table.by_kind("handler").values() for code, name in handlers.items()
-                        if (lift := LIFTS.get(str(name))) is not None and lift.values is not None
-                        and lift.values.kind in (ValueKind.BITS, ValueKind.COIL))
+# The codes whose request or answer carries bits: their windows' addresses are bits', which carry no label
+# (the plugin's DATA.bit_windows, from the same table.bit_windows).
+BIT_WINDOWS = table.bit_windows()
 
 
 def _label_base(first: str, start: int) -> int | None:
