@@ -8,7 +8,7 @@ import inspect
 from typing import Any
 
 from dissector.framing import linespeed, timing
-from dissector.sources import reader
+from dissector.sources import pcap, reader
 
 
 def timing_data() -> dict[str, Any]:
@@ -28,5 +28,7 @@ def timing_data() -> dict[str, Any]:
         "rtu_limit": lua_format(timing.RTU_LIMIT),
         "ascii_limit": timing.ASCII_LIMIT,
         # A capture's first record at the epoch is held (pcap.py EpochRecord) when one chunk holds it.
+        # ... and timed only when the second record falls within day 0 (pcap.py within_day_zero).
+        "day_zero_end": pcap.DAY_ZERO_END,
         "held_record_max": inspect.signature(reader.open_source).parameters["chunk_size"].default,
     }

@@ -120,7 +120,7 @@ class PcapRecords:
                 continue
             if held.chunks is not None:
                 self.holding = True
-                yield from held.release(not epoch)
+                yield from held.release(within_day_zero(epoch, seconds))
                 self.holding = False
             if epoch and self.linktype != LINKTYPE_RTAC_SERIAL:
                 # (-w's untimed record: see EpochRecord; an RTAC record carries its own time)
@@ -135,13 +135,23 @@ def fraction_error(fraction: int, units: int) -> str:
             "a corrupt time stamp?")
 
 
+DAY_ZERO_END = 86_400  # s: where a time-of-day log of day 0 (1970-01-01) ends
+
+
+def within_day_zero(epoch: bool, seconds: int) -> bool:
+    """Does a second record at `seconds` since the epoch make the first, at the epoch, a timed record
+    (EpochRecord)? Only within day 0: a record at a real date after it says the first was untimed."""
+    return not epoch and seconds < DAY_ZERO_END
+
+
 class EpochRecord:
     """A capture's first record when stamped at the epoch, held until the second record's time says
     what it is. vw3-decode -w writes untimed input at the epoch, every record; a capture that starts at
-    1970-01-01 00:00:00 (a time-of-day log of day 0) has later times after it. So the first record at
-    the epoch is timed when the second record is not at the epoch, untimed otherwise; records after
-    the first at the epoch are untimed. Only a record of one chunk is held (memory stays bounded): a
-    longer one at the epoch is untimed."""
+    1970-01-01 00:00:00 (a time-of-day log of day 0) has later times of that day after it. So the first
+    record at the epoch is timed when the second record is not at the epoch but within day 0, untimed
+    otherwise (an untimed record before a real date's is not 54 years of silence); records after the
+    first at the epoch are untimed. Only a record of one chunk is held (memory stays bounded): a longer
+    one at the epoch is untimed."""
 
     def __init__(self, chunk_size: int) -> None:
         self.chunk_size = chunk_size

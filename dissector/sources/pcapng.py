@@ -24,7 +24,7 @@ from dissector.sources.common import (
     outside_time_range,
     record_chunks,
 )
-from dissector.sources.pcap import EpochRecord
+from dissector.sources.pcap import EpochRecord, within_day_zero
 
 SHB = 0x0A0D0D0A
 SHB_MAGIC = bytes.fromhex("0a0d0d0a")
@@ -254,7 +254,7 @@ class _Reader:
             raise SourceError(f"{inp.name}: packet block at byte {start}: {outside}")
         if not epoch and interface.linktype != LINKTYPE_RTAC_SERIAL:  # (an RTAC record's time is in its bytes)
             self.last_time = time
-        yield from self.held.release(not epoch)
+        yield from self.held.release(within_day_zero(epoch, seconds))
         chunks = self._data(captured, original, time, interface, body_length - 20, start)
         if (epoch and self.record == 0 and interface.linktype != LINKTYPE_RTAC_SERIAL
                 and self.held.hold(captured, chunks)):

@@ -71,11 +71,11 @@ local function record_ns(pinfo, number)
   return ns
 end
 
--- Is the second record timed (not at the epoch), the first record's time then the epoch's (dissector.lua
--- epoch_first)?
+-- Is the second record timed (not at the epoch but within day 0: pcap.py within_day_zero), the first
+-- record's time then the epoch's (dissector.lua epoch_first)?
 function lane.epoch_timed(pinfo)
   local abs = pinfo.abs_ts
-  if abs == 0 or rtac_times[pinfo.number] ~= nil then return false end
+  if abs == 0 or abs >= DATA.timing.day_zero_end or rtac_times[pinfo.number] ~= nil then return false end
   local c = capture_clock(abs)
   c.times[1] = -c.base * NS -- (exact: 1.7e18 is a multiple of 2^9)
   return true

@@ -100,17 +100,24 @@ def test_damaged_answer_past_the_timeout_is_no_retry(tmp_path: Path) -> None:
     assert [item.fields.get("kind") for item in lua if item.fields.get("kind")] == ["1", "2"]
 
 
-def test_first_record_at_the_epoch_is_timed_when_the_second_is_not(tmp_path: Path) -> None:
+def test_first_record_at_the_epoch_is_timed_when_the_second_is_within_day_0(tmp_path: Path) -> None:
     """sources/pcap.py EpochRecord: a capture's first record at the epoch is timed (a time-of-day log of day 0)
-    when the second is not, untimed when it is too (vw3-decode -w's untimed records). Before, the plugin took
-    every record at the epoch as untimed: the request begun at the epoch was answered 10 ms after its end,
-    where vw3-decode says it waited 1.7e9 s (a silence inside it, its answer past the timeout)."""
-    timed = [(READ[:3], 0), (READ[3:], BASE), (ANSWER, BASE + 10_000_000)]
+    when the second is not at the epoch but within day 0, untimed otherwise (vw3-decode -w's untimed records,
+    an untimed record before a real date's). Before, the plugin took every record at the epoch as untimed; then
+    both took one before a real date's as timed: a silence of 1700000000121.738 ms inside the request, its
+    answer 1700000000133.5 ms after it, past the timeout."""
+    day_zero = 3_600 * 10**9 + 123_456_789  # 01:00 on 1 January 1970
+    timed = [(READ[:3], 0), (READ[3:], day_zero), (ANSWER, day_zero + 10_000_000)]
     lua = _said(timed, [
-        "silence of 1700000000121.738 ms inside the frame before byte 3 (longer than t1.5 = 0.859 ms at 19200 baud)",
-        "response 1700000000133.5 ms after request #1, later than the 1000 ms timeout: not its answer",
+        "silence of 3600121.738 ms inside the frame before byte 3 (longer than t1.5 = 0.859 ms at 19200 baud)",
+        "response 3600133.5 ms after request #1, later than the 1000 ms timeout: not its answer",
     ], tmp_path)
     assert not [item for item in lua if "response_time" in item.fields]
+    real_date = [(READ[:3], 0), (READ[3:], BASE), (ANSWER, BASE + 10_000_000)]
+    lua = _said(real_date, [], tmp_path)
+    said = [text for item in lua for kind in ("warning", "note") for text in item.texts.get(kind, [])]
+    assert not [text for text in said if "silence" in text or "timeout" in text], said
+    assert [item.fields["kind"] for item in lua if "kind" in item.fields] == ["1", "2"]  # (the answer paired)
     untimed = [(READ[:3], 0), (READ[3:], 0), (ANSWER, BASE + 10_000_000)]
     lua = _said(untimed, [], tmp_path)
     assert [item.fields.get("response_time") for item in lua if item.fields.get("kind") == "2"] == [None]

@@ -47,6 +47,19 @@ def _pcap(records: list[tuple[int, int, bytes]], linktype: int = 147, nano: bool
     return out
 
 
+def _pcapng(records: list[tuple[int, int, bytes]]) -> bytes:
+    """One interface (linktype 147, microseconds) and its packets (seconds, microseconds, bytes)."""
+    def block(kind: int, body: bytes) -> bytes:
+        return struct.pack("<II", kind, 12 + len(body)) + body + struct.pack("<I", 12 + len(body))
+
+    out = block(0x0A0D0D0A, struct.pack("<IHHq", 0x1A2B3C4D, 1, 0, -1)) + block(1, struct.pack("<HHI", 147, 0, 0))
+    for seconds, micros, data in records:
+        stamp = seconds * 1_000_000 + micros
+        out += block(6, struct.pack("<IIIII", 0, stamp >> 32, stamp & 0xFFFFFFFF, len(data), len(data))
+                     + data + b"\0" * (-len(data) % 4))
+    return out
+
+
 def _decode(argv: list[str], monkeypatch: pytest.MonkeyPatch, pure: bool) -> tuple[int, str, str]:
     use_engine(monkeypatch, pure)
     return run_cli(argv)
@@ -106,6 +119,26 @@ def test_only_the_first_record_at_the_epoch_can_be_timed(
     assert [line[:20] for line in lines] == [
         "     1     0.000000 ", "     2     0.010000 ", "     3     0.500000 ", "     4     0.512000 ",
         "     5            - ", "     6     0.600000 "]
+
+
+@BOTH
+@pytest.mark.parametrize("pcapng", [False, True])
+def test_a_first_record_at_the_epoch_before_a_real_date_is_untimed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool, pcapng: bool
+) -> None:
+    # Timed only as the start of a time-of-day log of day 0: before a record of 2023 it is untimed, not
+    # the start of a 54-year silence inside the request (the request's bytes cut across the two records).
+    records = [(0, 0, REQUEST[:3]), (1_700_000_000, 500_000, REQUEST[3:]), (1_700_000_000, 520_000, RESPONSE)]
+    path = tmp_path / ("e.pcapng" if pcapng else "e.pcap")
+    path.write_bytes(_pcapng(records) if pcapng else _pcap(records))
+    status, text, err = _decode([str(path), "-t", "r"], monkeypatch, pure)
+    assert (status, err) == (0, "")
+    assert [line[:20] for line in text.splitlines()] == ["     1            - ", "     2     0.000000 "]
+    assert "[#1]" in text and "silence" not in text and "timeout" not in text
+    day_zero = [(0, 0, REQUEST[:3]), (3_600, 500_000, REQUEST[3:]), (3_600, 520_000, RESPONSE)]
+    path.write_bytes(_pcapng(day_zero) if pcapng else _pcap(day_zero))
+    text = _decode([str(path), "-t", "r"], monkeypatch, pure)[1]
+    assert "silence of 3600498.281 ms inside the frame before byte 3" in text
 
 
 @BOTH
