@@ -14,6 +14,7 @@ Python stages for what it hands back) against the Python stages' alone (tests/di
 """
 from __future__ import annotations
 
+import argparse
 import random
 import sys
 import time
@@ -323,9 +324,12 @@ def minimize(parts, name, splits):
 
 
 def main():
-    numbers = [argument for argument in sys.argv[1:] if argument != "--stats"]
-    budget = float(numbers[0]) if numbers else 300
-    seed0 = int(numbers[1]) if len(numbers) > 1 else 0
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("seconds", type=float, nargs="?", default=300, help="how long to run (default 300)")
+    parser.add_argument("first_seed", type=int, nargs="?", default=0)
+    parser.add_argument("--stats", action="store_true", help="compare --stats instead (read at import: STATS)")
+    arguments = parser.parse_args()
+    budget, seed0 = arguments.seconds, arguments.first_seed
     end = time.time() + budget
     seed = seed0
     runs = engine = total = 0

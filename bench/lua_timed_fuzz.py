@@ -15,6 +15,7 @@ version of this. --plugin: another build of the plugin (a baseline) than lua/vw3
 """
 from __future__ import annotations
 
+import argparse
 import json
 import random
 import subprocess
@@ -69,9 +70,14 @@ def differences_of(seed: int, folder: Path) -> tuple[str, list[str], list[str]]:
 
 
 def main() -> int:
-    first, last = int(sys.argv[1]), int(sys.argv[2])
-    if "--plugin" in sys.argv:
-        lua_harness.PLUGIN = Path(sys.argv[sys.argv.index("--plugin") + 1]).resolve()
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("first", type=int, metavar="FIRST_SEED")
+    parser.add_argument("last", type=int, metavar="LAST_SEED", help="the last seed run (inclusive)")
+    parser.add_argument("--plugin", type=Path, help="another build of the plugin than lua/vw3.lua")
+    arguments = parser.parse_args()
+    first, last = arguments.first, arguments.last
+    if arguments.plugin:
+        lua_harness.PLUGIN = arguments.plugin.resolve()
     differing = 0
     with tempfile.TemporaryDirectory() as folder:
         for seed in range(first, last + 1):

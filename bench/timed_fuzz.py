@@ -14,6 +14,7 @@ tests/differential/test_timed_summary.py and test_timed_outputs.py hold bounded 
 """
 from __future__ import annotations
 
+import argparse
 import io
 import os
 import random
@@ -63,11 +64,15 @@ def decode(argv: list[str], pure: bool) -> str:
 
 
 def main() -> int:
-    first, last = int(sys.argv[1]), int(sys.argv[2])
-    stats_only = "--stats" in sys.argv[3:]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("first", type=int, metavar="FIRST_SEED")
+    parser.add_argument("last", type=int, metavar="LAST_SEED", help="the last seed run (inclusive)")
+    parser.add_argument("--stats", action="store_true", help="compare only the outputs the engine counts")
+    arguments = parser.parse_args()
+    first, last, stats_only = arguments.first, arguments.last, arguments.stats
     differences = 0
     with tempfile.TemporaryDirectory() as folder:
-        for seed in range(first, last):
+        for seed in range(first, last + 1):
             rng = random.Random(seed)
             capture, _lengths, how = capture_of(seed, Path(folder), rng)
             options = rng.choice(timed.OPTIONS + OUTPUTS)
@@ -83,7 +88,7 @@ def main() -> int:
                         print("  compiled:", fast_line[:200])
                         print("  Python:  ", pure_line[:200])
                         break
-    print(f"seeds {first}..{last - 1}: {differences} difference(s)")
+    print(f"seeds {first}..{last}: {differences} difference(s)")
     return 1 if differences else 0
 
 
