@@ -447,6 +447,13 @@ static int rule_check(const LengthRule *rule, const uint8_t *b, Py_ssize_t i, Py
 
 static Py_ssize_t framed_reach(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t n); /* (below) */
 
+/* RtuFramer._crosses_framed_record: a reading at i of `length` bytes (-1: more than there are) would swallow a
+ * record that is a frame of its own, the first one after i (framed_reach) starting inside it: it is none. */
+static int crosses_framed_record(const Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t length, Py_ssize_t n) {
+    Py_ssize_t reach = framed_reach(e, b, i, n);
+    return reach < n && reach < (length < 0 ? n : i + length);
+}
+
 /* RtuFramer._valid_frame_at (not final, with scans): 1 an intact frame starts at j, 0 none, -1 more
  * bytes needed to know. The interpretations are the framer's, in its order for the expectation. */
 static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
@@ -467,8 +474,8 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
             CrcScan scan = crc_scan(b, j, length, reach - j < MAX_ADU ? reach - j : MAX_ADU); /* _shortest_crc */
             if (crc_next(&scan)) return 1;
             undecided = undecided || (reach == n && n - j < MAX_ADU);
-        } else if (found) {
-            return found == 1 ? 1 : -1;
+        } else if (found == 1 || (found == 2 && !crosses_framed_record(e, b, j, length, n))) {
+            return found == 1 ? 1 : -1; /* (bytes to come: not waited for across a record that is a frame) */
         }
     }
     return undecided ? -1 : 0;

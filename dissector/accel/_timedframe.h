@@ -10,9 +10,10 @@
 
 /* The other layouts of a frame at i (_match's interpretations after the first) with the bytes up to m:
  * -1 one is a CRC scan (hand over); else how many check out, with the shortest such length in *shortest,
- * and whether one waits for more bytes (NEED, or `length` + 1: the 00 after a frame) in *waits. */
-static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, Py_ssize_t length,
-                         Py_ssize_t *shortest, int *waits) {
+ * and whether one waits for more bytes (NEED, or `length` + 1: the 00 after a frame; not across a record that is
+ * a frame of its own) in *waits. */
+static int other_layouts(const Engine *e, int function, int kind, const uint8_t *b, Py_ssize_t i, Py_ssize_t m,
+                         Py_ssize_t length, Py_ssize_t *shortest, int *waits) {
     const LengthRule *rules = known_rule[known_slot[function]];
     const LengthRule *others[2] = {&rules[kind != KIND_RESPONSE], &rules[LAYOUT_BY_QUANTITY]};
     int valid = 0;
@@ -21,7 +22,8 @@ static int other_layouts(int function, int kind, const uint8_t *b, Py_ssize_t i,
         Py_ssize_t other;
         int found = rule_check(others[w], b, i, m, &other);
         if (found < 0) return -1;
-        if (found == 2 && (other == -1 || other == length + 1)) *waits = 1;
+        if (found == 2 && (other == -1 || other == length + 1) && !crosses_framed_record(e, b, i, other, m))
+            *waits = 1;
         if (found != 1) continue;
         valid++;
         if (other < *shortest) *shortest = other;
@@ -52,15 +54,17 @@ static int decide_at(Engine *e, const uint8_t *b, Py_ssize_t i, Py_ssize_t m, in
     Py_ssize_t shortest = MAX_ADU + 1;
     int waits, valid;
     if (length == FRAME_NEED || i + length > m) {
-        /* The first layout waits for its bytes: _match waits too, unless another one checks out. */
+        /* The first layout waits for its bytes: _match waits too, unless another one checks out, or they would
+         * swallow a record that is a frame of its own (then _match weighs the others without it). */
+        if (crosses_framed_record(e, b, i, length, m)) return FRAME_HANDOVER;
         if (kind == KIND_EXCEPTION) return FRAME_NEED;
-        valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
+        valid = other_layouts(e, function, kind, b, i, m, length, &shortest, &waits);
         return valid == 0 ? FRAME_NEED : FRAME_HANDOVER;
     }
     if (!crc_ok(b, i, length)) return FRAME_HANDOVER;
     if ((i + length < m && b[i + length] != 0) || kind == KIND_EXCEPTION) return FRAME_OK; /* (its fast path) */
     /* _match: this layout checks out; it stands alone unless another one does too, or may. */
-    valid = other_layouts(function, kind, b, i, m, length, &shortest, &waits);
+    valid = other_layouts(e, function, kind, b, i, m, length, &shortest, &waits);
     if (valid < 0) return FRAME_HANDOVER;
     if (valid) {
         /* Two layouts check out (a FC23 request whose response reading is as long, FC5's echo): a

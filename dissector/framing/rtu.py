@@ -147,11 +147,13 @@ class RtuFramer(Awaiting, StreamFramer):
                     undecided = undecided or (not final and reach == n and n - i < MAX_ADU)
                 continue
             if length == NEED:
-                return None if not final else False
+                if final or not self._crosses_framed_record(buf, i, length, n):
+                    return None if not final else False
+                continue  # (bytes that would swallow a record that is a frame: none, not waited for)
             if length < MIN_ADU or length > MAX_ADU:
                 continue
             if i + length > n:
-                if final:
+                if final or self._crosses_framed_record(buf, i, length, n):
                     continue
                 return None
             if _crc_ok(buf, i, length):
@@ -257,11 +259,12 @@ class RtuFramer(Awaiting, StreamFramer):
                 return True
         return False
 
-    def _crosses_framed_record(self, buf: bytearray, i: int, end: int, n: int) -> bool:
-        """Would a frame at i..end swallow a record (or the bytes after a silence) that is a frame of its own
-        (_ends_record)? Then it is none: waiting for its bytes (a long answer read from noise, 'ff 01 b0': 181
-        bytes) held every later record in one pass, and a damaged reading of it hid the frame."""
-        base = self._base
+    def _crosses_framed_record(self, buf: bytearray, i: int, length: int, n: int) -> bool:
+        """Would a reading at i of `length` bytes (NEED: more than there are) swallow a record (or the bytes after
+        a silence) that is a frame of its own (_ends_record)? Then it is none, whether its bytes have come or
+        not: waiting for them (a long answer read from noise, 'ff 01 b0': 181 bytes; an FC23 request's byte
+        count) held every later record in one pass, and a damaged reading of it hid the frame."""
+        base, end = self._base, n if length == NEED else i + length
         for offset in self._boundaries:
             at = offset - base
             if i < at < end and n - at >= MIN_ADU and self._ends_record(buf, at, n):
@@ -304,14 +307,10 @@ class RtuFramer(Awaiting, StreamFramer):
                 elif MIN_ADU <= length.declared <= min(MAX_ADU, n - i):
                     damaged.append((kind, length.declared))  # (the length its fields give, its CRC bad)
                 continue
-            if length == NEED:
-                if not final:
-                    waiting.append(NEED)
+            if length != NEED and (length < MIN_ADU or length > MAX_ADU):
                 continue
-            if length < MIN_ADU or length > MAX_ADU:
-                continue
-            if i + length > n:
-                if not final and not (self._boundaries and self._crosses_framed_record(buf, i, i + length, n)):
+            if length == NEED or i + length > n:
+                if not final and not self._crosses_framed_record(buf, i, length, n):
                     waiting.append(length)
                 continue
             if _crc_ok(buf, i, length):
@@ -373,7 +372,7 @@ class RtuFramer(Awaiting, StreamFramer):
         # (an intact frame, a boundary, after glitch bytes or not) and it holds no intact frame inside
         # (a cut frame must not swallow the intact frame that follows it).
         for kind, length in damaged:
-            if self._boundaries and self._crosses_framed_record(buf, i, i + length, n):
+            if self._crosses_framed_record(buf, i, length, n):
                 continue
             # (the end of the input says little of a damaged frame: the awaited answer's only)
             following = self._followed(buf, i + length, n, final, awaited)

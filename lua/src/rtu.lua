@@ -22,10 +22,11 @@ local function ends_record(s, b, i, n)
   return false
 end
 
--- Would a frame at i .. stop - 1 swallow a record that is a frame of its own (rtu.py _crosses_framed_record)?
--- Then it is none: waiting for its bytes (a long answer read from noise) held every later record in one pass.
-local function crosses_framed_record(s, b, i, stop, n)
-  local base = s.base
+-- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own
+-- (rtu.py _crosses_framed_record)? Then it is none, its bytes come or not: waiting for them (a long answer read
+-- from noise, an FC23 request's byte count) held every later record in one pass.
+local function crosses_framed_record(s, b, i, length, n)
+  local base, stop = s.base, length == NEED and n or i + length
   for offset in pairs(s.boundaries) do
     local at = offset - base
     if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
@@ -59,10 +60,11 @@ local function valid_frame_at(s, b, i, n, final, scan)
     local length, is_scan, _, fallback = list[index][2](b, i, n)
     if not is_scan and length == NEED then
       if final then return false end
-      return nil
+      -- (bytes that would swallow a record that is a frame: none, not waited for)
+      if not crosses_framed_record(s, b, i, length, n) then return nil end
     elseif not is_scan and length >= MIN_ADU and length <= MAX_ADU then
       if i + length > n then
-        if not final then return nil end
+        if not final and not crosses_framed_record(s, b, i, length, n) then return nil end
       elseif crc_ok_at(b, i, length) then
         return true
       elseif fallback ~= nil then -- (its rule's CRC scan where the CRC fails)
@@ -305,7 +307,7 @@ local function match(s, b, i, n, final)
     local sized = not is_scan and length >= MIN_ADU and length <= MAX_ADU
     if not is_scan and (length == NEED or (sized and i + length > n)) then
       -- (its bytes have not all come; not waited for if they would swallow a record that is a frame)
-      if not final and (length == NEED or not crosses_framed_record(s, b, i, i + length, n)) then
+      if not final and not crosses_framed_record(s, b, i, length, n) then
         waiting = added(waiting, length)
       end
     elseif sized then
@@ -368,7 +370,7 @@ local function match(s, b, i, n, final)
   for index = 1, #(damaged or NO_INTERPRETATION) do
     local kind, length = damaged[index][1], damaged[index][2]
     local stop = i + length
-    local following = not crosses_framed_record(s, b, i, stop, n) and followed(s, b, stop, n, final, awaits)
+    local following = not crosses_framed_record(s, b, i, length, n) and followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
       -- (records that are frames, this one or the next: none it holds crosses its record's end, rtu.py)

@@ -1,0 +1,88 @@
+"""tshark's single pass (no -2) where a reading inside "does an intact frame start here" waits for bytes past a
+record that is a frame of its own (framing/rtu.py _crosses_framed_record, in _valid_frame_at as in _match;
+lua/src/rtu.lua valid_frame_at): a damaged request then '0c 01 be 11' in one record (slave 12's FC1, an answer of 195
+bytes) held that record and every later one, each '(N bytes continue)', until 195 bytes had come; so did an FC23
+request's start whose byte count had not come. The next record, a frame, settles it: a record that is itself a
+whole frame ends any hold before it. The -w output of damaged_stream(3051): 14 of its 19 records '(N bytes
+continue)' in one pass, now only the 8 that are no frame of their own. Exact Info, one pass and -2, and every field
+as vw3-decode says it."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from helpers import rtu
+from lua_compare import compare
+from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
+from test_written_records import damaged_stream
+
+pytestmark = pytest.mark.integration
+
+REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
+DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
+COUNTER = rtu("0C 0B")  # (a 4-byte request: Get Comm Event Counter)
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+COUNTED = "12 Get Comm Event Counter request"
+
+
+def _infos(pcap: Path, two_pass: bool) -> list[str]:
+    got = run_tshark(pcap, "-T", "fields", "-e", "_ws.col.Info", two_pass=two_pass)
+    assert not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
+    return got.stdout.splitlines()
+
+
+def _same_as_vw3_decode(pcap: Path) -> None:
+    # (one pass cannot show a record's noise, settled by the next record, in that record: -2 does, as vw3-decode)
+    two, _, _ = lua_items(pcap)
+    differences = compare(python_items(pcap), two)
+    assert not differences, "\n".join(differences[:40])
+
+
+def _capture(tmp_path: Path, records: list[bytes]) -> Path:
+    times = [0.0, 0.01, 2.0, 3.0, 3.01, 4.0, 4.01]
+    return write_pcap(tmp_path / "held.pcap", [(data, 1700000000 + time) for data, time in zip(records, times)])
+
+
+def test_a_long_reading_after_a_damaged_request_is_settled_by_the_next_record(tmp_path: Path) -> None:
+    pcap = _capture(tmp_path, [REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c01be11"), REQUEST, ANSWER, REQUEST,
+                               ANSWER])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)", f"{READ} [provisional]",
+        ANSWERED, READ, ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (12 bytes)", READ, ANSWERED, READ, ANSWERED]
+    _same_as_vw3_decode(pcap)
+
+
+def test_a_reading_whose_length_has_not_come_is_settled_by_the_next_record(tmp_path: Path) -> None:
+    pcap = _capture(tmp_path, [REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(12 bytes continue)",
+        f"{COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (12 bytes)", COUNTED, READ, ANSWERED]
+    _same_as_vw3_decode(pcap)
+
+
+def test_a_frame_start_whose_length_has_not_come_is_settled_by_the_next_record(tmp_path: Path) -> None:
+    pcap = _capture(tmp_path, [REQUEST, ANSWER, bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", "(4 bytes continue)",
+        f"{COUNTED} [provisional]", f"{READ} [provisional]", ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, "noise (4 bytes)", COUNTED, READ, ANSWERED]
+    _same_as_vw3_decode(pcap)
+
+
+def test_a_written_damaged_stream_holds_only_the_records_that_are_no_frame(tmp_path: Path) -> None:
+    raw, pcap = tmp_path / "stream.bin", tmp_path / "stream.pcap"
+    raw.write_bytes(damaged_stream(3051))
+    subprocess.run([sys.executable, "-m", "dissector", str(raw), "--format", "raw", "-w", str(pcap)], cwd=ROOT,
+                   check=True, timeout=300)
+    one, two = _infos(pcap, two_pass=False), _infos(pcap, two_pass=True)
+    held = [number for number, info in enumerate(one, 1) if info.endswith(("bytes continue)", "byte continues)"))]
+    assert held == [1, 4, 6, 10, 13, 14, 16, 18]  # (noise, or a damaged frame: the next record may continue them)
+    # (every other record shows what -2 shows, provisional or not)
+    assert [info.removesuffix(" [provisional]") for number, info in enumerate(one, 1) if number not in held] == [
+        info for number, info in enumerate(two, 1) if number not in held]
+    _same_as_vw3_decode(pcap)

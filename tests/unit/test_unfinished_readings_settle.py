@@ -1,0 +1,53 @@
+"""A reading whose bytes have not all come is not waited for when they would swallow a record that is a frame of
+its own (framing/rtu.py _crosses_framed_record), in "does an intact frame start here" (_valid_frame_at: what follows
+a damaged frame, a glitch byte, a scanned frame) as in the framer's own readings (_match). Fed record by record (the
+plugin's single pass, live capture), a damaged request then '0c 01 be 11' in one record (slave 12's FC1: a request
+of 8 bytes, an answer of 5 + 0xbe = 195) held every later record until 195 bytes had come, past records that are
+frames; so did an FC23 request's start ('0c 17 00 01': its byte count not come yet, NEED). The record after it,
+a frame, settles it: noise, then the frame. damaged_stream(3051) written by -w held records 2..5 and 7..9 (tshark's
+one pass: '(N bytes continue)'). Pure Python framer; the engine: tests/differential/test_unfinished_readings.py;
+the plugin: tests/integration/test_lua_unfinished_readings.py."""
+from __future__ import annotations
+
+from dissector.framing.rtu import RtuFramer
+from dissector.model import Chunk
+from dissector.protocol.crc import with_crc
+
+REQUEST, ANSWER = with_crc(bytes.fromhex("0C0320D00003")), with_crc(bytes.fromhex("0C0306800000030002"))
+DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
+COUNTER = with_crc(bytes.fromhex("0C0B"))  # (a 4-byte request: Get Comm Event Counter)
+
+
+def _fed(records: list[bytes]) -> tuple[list[list[str]], list[str]]:
+    framer = RtuFramer()
+    got = [[f"{item.kind.value} {bytes(item.raw).hex()}"
+            for item in framer.feed(Chunk(data, 1700000000 + index, boundary=True))]
+           for index, data in enumerate(records)]
+    return got, [f"{item.kind.value} {bytes(item.raw).hex()}" for item in framer.finish()]
+
+
+def test_a_long_reading_after_a_damaged_request_is_settled_by_the_next_record() -> None:
+    got, rest = _fed([REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c01be11"), REQUEST, ANSWER, REQUEST, ANSWER])
+    assert got == [["request 0c0320d000030eef"], ["response 0c030680000003000217e4"], [],
+                   ["noise 0c0320d000030eee0c01be11", "request 0c0320d000030eef"],
+                   ["response 0c030680000003000217e4"], ["request 0c0320d000030eef"],
+                   ["response 0c030680000003000217e4"]]
+    assert rest == []
+
+
+def test_a_reading_whose_length_has_not_come_is_settled_by_the_next_record() -> None:
+    # (the FC23 request's byte count is its 11th byte: past the 4-byte request after it)
+    got, rest = _fed([REQUEST, ANSWER, DAMAGED + bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
+    assert got == [["request 0c0320d000030eef"], ["response 0c030680000003000217e4"], [],
+                   ["noise 0c0320d000030eee0c170001", f"request {COUNTER.hex()}"],
+                   ["request 0c0320d000030eef"], ["response 0c030680000003000217e4"]]
+    assert rest == []
+
+
+def test_a_frame_start_whose_length_has_not_come_is_not_waited_for_across_a_framed_record() -> None:
+    # (a record of its own, '0c 17 00 01' waited for its byte count as an FC23 request, past the request after it)
+    got, rest = _fed([REQUEST, ANSWER, bytes.fromhex("0c170001"), COUNTER, REQUEST, ANSWER])
+    assert got == [["request 0c0320d000030eef"], ["response 0c030680000003000217e4"], [],
+                   ["noise 0c170001", f"request {COUNTER.hex()}"], ["request 0c0320d000030eef"],
+                   ["response 0c030680000003000217e4"]]
+    assert rest == []
