@@ -62,11 +62,17 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
     its length (NAME_length), an array as a list of its parts' fields, a switch as the part's it chose, all in
     one table constructor. Also where each field at a constant offset is."""
     body, keys, index_of, fixed, offsets = [], [], {}, [], {}
-    counts = {field["count"] for field in shape if field["count"] is not None}  # (read into a local)
+    # (the fields a count or a condition reads, into a local)
+    counts = {field[key] for field in shape for key in ("count", "when") if field.get(key) is not None}
     static: int | None = 0  # where the next field starts while that is a constant; then `p`
     for index, field in enumerate(shape, 1):
         name, kind, size = field["name"], field["type"], field["size"]
         index_of[name] = index
+        when = field.get("when")
+        if when is not None and static is not None:  # (?(n-k): where it starts, and what follows, is `p`)
+            body.append(f"local p = {static}")
+            static = None
+        before = len(body)
         if static is not None:
             offsets[name] = static
         if size is not None:
@@ -113,6 +119,14 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
                     body.append(f"local a{index} = d + p")
                     keys.append(f"[{lua_literal(name + '_at')}] = a{index}")
                 body.append(f"p = p + s{index}")
+        if when is not None:  # (read where its condition holds; its locals nil where not)
+            lines = body[before:]
+            hoisted = [line.split()[1] for line in lines if line.startswith("local ")]
+            del body[before:]
+            body += [f"local {', '.join(hoisted)}"] * bool(hoisted)
+            body.append(f"if v{index_of[when]} - {field.get('when_minus', 0)} > 0 then")
+            body += [f"  {line.removeprefix('local ')}" for line in lines]
+            body.append("end")
     if fixed:
         what = ", ".join(fixed[:-1]) + " and " + fixed[-1] if len(fixed) > 1 else fixed[0]
         end = offsets[fixed[-1]] + shape[index_of[fixed[-1]] - 1]["size"]  # (where the last one ends)

@@ -32,7 +32,7 @@ def field_places(shape: list[dict[str, Any]]) -> dict[str, tuple[int, int | None
     fixed size (that one too: where it begins, no size)."""
     places, at = {}, 2
     for field in shape:
-        size = field["size"]
+        size = None if field.get("when") else field["size"]  # (?(n-k): maybe absent, nothing after fixed)
         places[field["name"]] = (at, size)
         if size is None:
             break

@@ -135,6 +135,8 @@ def _shape(owner: str, shape: tuple[Field, ...], shown: dict[str, list[str]]) ->
     it otherwise)."""
     return [{"name": f.name, "type": str(f.type), "size": f.size, "count": f.count, "half": f.half,
              "minus": f.minus, "part": f.part, "shown": shown.get(f"{owner}.{f.name}"),
+             # (?(n-k): present only where the field `when` less `when_minus` is above 0)
+             "when": f.when, "when_minus": f.when_minus if f.when else None,
              # (switch: the parts by value, the last the default's)
              "cases": [{"value": value, "part": part} for value, part in f.cases] or None} for f in shape]
 

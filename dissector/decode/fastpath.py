@@ -39,8 +39,8 @@ def regular(shape: tuple[Field, ...], part: bool = False) -> Callable[..., objec
     methods: a generic loop over the fields cost 1.5 to 4 times the hand-written parsers this replaces,
     on the path every frame takes. Field names are identifiers (protocol/shapes.py checks them).
     A part's parser (`part`) reads from `at` to `n` and gives its Container and where it ends.
-    None for a layout with text or named values: the grammar's adapters make those."""
-    if any(field.type is Type.TEXT or field.names for field in shape):
+    None for a layout with text, named values or fields present on a condition: the grammar makes those."""
+    if any(field.type is Type.TEXT or field.names or field.when for field in shape):
         return None
     parts = {name: regular(PARTS[name], part=True) for field in shape
              for name in [field.part, *(case for _, case in field.cases)] if name is not None}

@@ -321,9 +321,12 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
     """The spec's server id is device specific in length (Application Protocol 6.17), the run indicator the
     byte after it: the layout reads a one-byte id (libmodbus); a longer id (pymodbus: a name, the run
     indicator last) has a run indicator further on. Only an answer with no 00 or FF after its first byte has
-    none where any id length puts it."""
+    none where any id length puts it; a byte count of 1 (the layout's ?(byte_count-1)) holds the id alone,
+    the spec's run indicator is missing."""
     indicator = fields["run_indicator"]
-    if not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
+    if indicator is None:
+        frame.warnings.append(text("no_run_indicator", count=fields["byte_count"]))
+    elif not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
         data = frame.pdu[3 : 2 + fields["byte_count"]]  # (after the function code, byte count, first id byte)
         if not any(byte in _RUN_VALUES for byte in data):
             frame.warnings.append(text("run_indicator", value=int(indicator)))

@@ -81,6 +81,12 @@ def _count(field: Field) -> object:
 
 
 def _subcon(field: Field) -> Construct:
+    if field.when is not None:  # (?(n-k): None where the count leaves no room for it)
+        return field.name / If(this[field.when] - field.when_minus > 0, _present(field))
+    return _present(field)
+
+
+def _present(field: Field) -> Construct:
     name = field.name
     if field.type is Type.U8:
         if field.names is not None:

@@ -39,6 +39,10 @@ class Field:
     part: str | None = None  # records, array: the [parts] entry repeated
     cases: tuple[tuple[int | None, str], ...] = ()  # switch: (value, part), the last (None, default)
     names: str | None = None  # u8{NAMES}: the [names] table of its values
+    # ?(n-k): present only when the earlier field `when` less `when_minus` is above 0 (else None), as a
+    # byte count that leaves no room for it says
+    when: str | None = None
+    when_minus: int = 0
 
     @property
     def size(self) -> int | None:
@@ -54,6 +58,7 @@ _FIELD = re.compile(
     r"(?P<name>[A-Za-z_][A-Za-z0-9_]*):(?:(?P<fixed>u8|u16)(?:\{(?P<names>\w+)\})?|(?P<rest>rest)"
     r"|(?P<counted>bytes|text|words|odd|records|array)\((?P<count>\w+)(?:-(?P<minus>\d+))?(?P<half>/2)?(?:,(?P<part>\w+))?\)"
     r"|switch\((?P<on>\w+),(?P<cases>(?:\d+=\w+,)+)(?P<default>\w+)\))"
+    r"(?:\?\((?P<when>\w+)(?:-(?P<when_minus>\d+))?\))?"
 )
 _REPEATED = {"records", "array"}
 
@@ -66,8 +71,9 @@ def parse_shape(name: str, description: list[str]) -> tuple[Field, ...]:
             raise ShapeError(f"[layouts] {name}: {text!r} is no field (name:u8, u16, bytes(n), words(n), words(n/2), "
                              "odd(n), rest, text(n), records(n, PART), array(n, PART), switch(f, K=PART, PART))")
         count = match["count"] or match["on"]
-        if count is not None and count not in {field.name for field in fields}:
-            raise ShapeError(f"[layouts] {name}: {text!r} counts by {count!r}, no earlier field")
+        for earlier in (count, match["when"]):
+            if earlier is not None and earlier not in {field.name for field in fields}:
+                raise ShapeError(f"[layouts] {name}: {text!r} counts by {earlier!r}, no earlier field")
         if match["half"] and match["counted"] != "words":
             raise ShapeError(f"[layouts] {name}: {text!r}: only words take a half count")
         if keyword.iskeyword(match["name"]) or match["name"] == "trailing":
@@ -82,7 +88,7 @@ def parse_shape(name: str, description: list[str]) -> tuple[Field, ...]:
         if fields and fields[-1].type is Type.REST:
             raise ShapeError(f"[layouts] {name}: {text!r} after the rest of the data")
         fields.append(Field(match["name"], kind, count, bool(match["half"]), int(match["minus"] or 0), match["part"],
-                            cases, match["names"]))
+                            cases, match["names"], match["when"], int(match["when_minus"] or 0)))
     return tuple(fields)
 
 

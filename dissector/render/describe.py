@@ -296,6 +296,8 @@ def _report_server_id(frame: Frame, request: bool) -> str:
     fields = frame.fields
     if request or "server_id" not in fields:
         return ""
+    if fields.run_indicator is None:  # (byte count 1: the id alone, data/modbus.toml ?(byte_count-1))
+        return f"server id {fields.server_id}"
     data = fields.additional_data
     text = repr(data) if isinstance(data, str) else count_text(len(data), "byte")
     return f"server id {fields.server_id}, run {fields.run_indicator}, {text}"

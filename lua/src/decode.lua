@@ -212,8 +212,10 @@ local SPECIAL = {
   end,
   report_server_id_response = function(f, b)
     -- (the tree shows its fields from the layout, tree.lua add_pdu)
-    local run, names = f.fields.run_indicator, DATA.names.run_indicator
-    if names[run] == nil and not run_indicator_after(b, f.data_at + 2, f.data_at + f.fields.byte_count, names) then
+    local run, names, count = f.fields.run_indicator, DATA.names.run_indicator, f.fields.byte_count
+    if run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
+      warn(f, say("no_run_indicator", { count = count }))
+    elseif names[run] == nil and not run_indicator_after(b, f.data_at + 2, f.data_at + count, names) then
       warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
     end
   end,

@@ -177,7 +177,9 @@ local function add_shape(t, tvb, f, b, shape, at, stop, values)
   for index = 1, #shape do
     local field = shape[index]
     local kind, shown, size = field.type, field.shown, field.size
-    if size ~= nil then
+    if field.when ~= nil and values[field.when] - field.when_minus <= 0 then
+      -- (?(n-k): absent, its count leaves it no room: data/modbus.toml)
+    elseif size ~= nil then
       if at + size > stop then return nil end
       local value = size == 1 and b[at] or u16(b, at)
       values[field.name] = value
@@ -321,6 +323,7 @@ end
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
   if f.kind == REQUEST then return "" end
+  if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
   local text = count > 0 and printable(b, base + 5, base + 4 + count)
   local data = text and repr_text(text) or count_text(count, "byte")

@@ -18,7 +18,8 @@ def test_odd_run_indicator_and_binary_data() -> None:
     assert status == 0
     assert "        Run indicator: 18 (0x12)\n        Additional data: 01 02\n" in out
     assert "Warning: run indicator 0x12 is neither 0x00 (OFF) nor 0xFF (ON)" in out
+    # byte count 1: the server id alone (data/modbus.toml ?(byte_count-1)), the run indicator missing
     status, out, _ = run_cli(["-n", "--hex", "11 11", "--hex", rtu("11 11 01 B4").hex(" "), "--json"])
-    assert json.loads(out.splitlines()[1])["warnings"] == [
-        "malformed response: stream read less than specified amount, expected 1, found 0 at (parsing) -> run_indicator"
-    ]
+    answer = json.loads(out.splitlines()[1])
+    assert answer["warnings"] == ["no run indicator status: byte count 1 holds the server id alone"]
+    assert answer["fields"] == {"byte_count": 1, "server_id": 180}
