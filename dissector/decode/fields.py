@@ -256,9 +256,10 @@ def _check_parts(frame: Frame, fields: Container, request: Frame | None, parts: 
     length = parts.length
     if length is not None:
         for index, (item, part) in enumerate(zip(items, asked), start=1):
-            if item[length.field] != length.plus + length.unit * part[length.of]:
-                frame.warnings.append(text(length.text, part=parts.name, index=index, count=item[length.field],
-                                           quantity=part[length.of]))
+            given = item[length.field]
+            if given != length.plus + length.unit * part[length.of]:
+                frame.warnings.append(text(length.text, part=parts.name, index=index, count=given,
+                                           held=length.held(given), quantity=part[length.of]))
 
 
 def _request_of(frame: Frame) -> Frame | None:

@@ -75,6 +75,12 @@ class PartLength:
     plus: int
     text: str
 
+    def held(self, given: int) -> str:
+        """What a part's `field` of `given` holds in the request's unit (FC20: length 5 holds 2 registers), the
+        bytes short of a whole one after them: the warning says both sides in one unit."""
+        whole, rest = divmod(max(given - self.plus, 0), self.unit)
+        return f"{whole} and {rest} byte(s)" if rest else str(whole)
+
 
 @dataclass(frozen=True, slots=True)
 class Parts:

@@ -129,7 +129,11 @@ local function check_asked(f, parts, index, given, asked)
   if #asked ~= index then warn(f, say("part_count", { part = parts.name, count = index, quantity = #asked })) end
   for k = 1, given and math.min(#asked, index) or 0 do
     if given[k] ~= length.plus + length.unit * asked[k] then
-      warn(f, say(length.text, { part = parts.name, index = k, count = given[k], quantity = asked[k] }))
+      -- (what the length holds in the request's unit: protocol/rules.py PartLength.held)
+      local data = math.max(given[k] - length.plus, 0)
+      local whole, rest = math.floor(data / length.unit), data % length.unit
+      local held = rest > 0 and (whole .. " and " .. rest .. " byte(s)") or tostring(whole)
+      warn(f, say(length.text, { part = parts.name, index = k, count = given[k], held = held, quantity = asked[k] }))
     end
   end
 end

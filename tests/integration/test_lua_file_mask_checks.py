@@ -30,7 +30,7 @@ def test_file_and_mask_answers_are_checked(tmp_path: Path) -> None:
     assert [item.texts.get("warning", []) for item in items] == [
         [], ["the response's or_mask differs from the request's"], [], [],
         [], ["the response's data differs from the request's"], [], [],
-        [], ["sub-response 1's length 7 disagrees with the record length asked (2)"],
+        [], ["sub-response 1's length 7 holds registers (3), not the record length asked (2)"],
         ["sub-request 1's reference type 5 is not the spec's 6",
          "sub-request 1's record number 10000 outside the spec's 0..9999"], [],
         [], ["number of sub-responses 1 disagrees with the request's (2)"],

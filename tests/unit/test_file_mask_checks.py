@@ -35,7 +35,7 @@ def test_answers_that_do_not_repeat_their_request_are_warned(monkeypatch: pytest
         "[warning: the response's data differs from the request's]  CRC ok",
         "     5            -   1 request   Read File Record 1 record group(s)  CRC ok",
         "     6            -   1 response  Read File Record 1 record group(s) [#5] "
-        "[warning: sub-response 1's length 7 disagrees with the record length asked (2)]  CRC ok",
+        "[warning: sub-response 1's length 7 holds registers (3), not the record length asked (2)]  CRC ok",
     ]
 
 
