@@ -194,17 +194,31 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     return result
 
 
+def check_scheduler(address: str) -> None:
+    """Refuse a --scheduler that is no tcp://HOST:PORT (or tls://) at once, not after a 30 s wait."""
+    from urllib.parse import urlsplit
+
+    try:
+        parts = urlsplit(address)
+        known = parts.scheme in ("tcp", "tls") and parts.hostname and parts.port is not None and parts.port > 0
+    except ValueError:  # (a port past 65535, an unclosed [)
+        known = False
+    if not known:
+        raise UsageError(f"--scheduler {address!r}: not an address of the form tcp://HOST:PORT")
+
+
 def run_captures(captures: list[Capture], settings: JobSettings, jobs: int, scheduler: str | None,
                  report: Callable[[CaptureResult], None]) -> None:
     """Decode every capture here, in `jobs` processes, or on a Dask cluster; results as they end."""
     if scheduler is not None:
+        check_scheduler(scheduler)
         try:
             from distributed import Client, as_completed
         except ImportError:
             raise UsageError("--scheduler needs dask distributed: pip install 'vw3-dissector[cluster]'") from None
         try:
             client = Client(scheduler, timeout=30)
-        except (OSError, TimeoutError) as error:
+        except (OSError, TimeoutError, ValueError) as error:
             raise UsageError(f"--scheduler {scheduler}: cannot connect: {error}") from None
         try:
             futures = [client.submit(decode_capture, capture, settings, pure=False) for capture in captures]

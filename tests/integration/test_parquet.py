@@ -286,6 +286,9 @@ def test_missing_extras_are_named(monkeypatch: pytest.MonkeyPatch, tmp_path: Pat
         (["--parquet", "D", "--jobs", "2", "--scheduler", "tcp://h:1"],
          "--jobs and --scheduler: choose one (the cluster's workers are its processes)"),
         (["--parquet", "D", "--jobs", "x"], "argument --jobs: 'x' is not a number of processes (1 or more) (see vw3-decode --help)"),
+        # (a traceback before: distributed's ValueError; a port past 65535 waited 30 s to say it cannot connect)
+        *((["--parquet", "D", "--scheduler", address], f"--scheduler {address!r}: not an address of the form tcp://HOST:PORT")
+          for address in ["foo", "tcp://127.0.0.1", "", "tcp://[::1", "http://x:1", "tcp://127.0.0.1:99999"]),
     ],
 )
 def test_contradictions_are_refused(argv: list[str], message: str) -> None:
