@@ -89,6 +89,7 @@ class Token:
 _TOKEN = re.compile(
     r"""
     (?P<space>\s+)
+  | (?P<dashed>\d+-\d+)(?![0-9A-Za-z_#.])
   | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?)(?![0-9A-Za-z_#]))
   | (?P<string>")
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
@@ -156,6 +157,9 @@ def tokenize(text: str) -> list[Token]:
             tokens.append(Token("string", text[i:end], value, i))
             i = end
             continue
+        if group == "dashed":  # (as tshark refuses it: 1-3 read as 1 and -3 would match frame 1 alone)
+            low, high = word.split("-")
+            raise FilterError(f"{word!r} is not a number: a range is written {low}..{high}", text, i)
         if group == "number":
             if len(word) > 40:  # also keeps int() below Python's digit limit
                 raise FilterError("number too long", text, i)
