@@ -9,7 +9,7 @@ the frame names without carrying them (a read request's window), which -Y's `add
 other register keys have an empty occurrence for each of them (`-E occurrence=l` of `-e address -e value`
 stays one register's). The plugin's vw3.reg.address has them too (hidden), but tshark writes no empty
 occurrence of a field: `-e vw3.reg.address -e vw3.reg.value` does not line up on a request. Lists
-(`warnings`, `notes`) have one occurrence per element. A key the Wireshark plugin has a field for is
+(`warnings`, `notes`, a `fields.KEY` such as `fields.values`) have one occurrence per element. A key the Wireshark plugin has a field for is
 written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scaled` 4, `response_time`
 0.020000000, and `broadcast`, `unanswered` nothing where false. As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
@@ -207,8 +207,8 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
             value = value.get(part) if isinstance(value, dict) else None
     if value is None or value is False and head in ONLY_TRUE:
         return []
-    if isinstance(value, list) and head in ("warnings", "notes"):
-        return value
+    if isinstance(value, list) and head in ("warnings", "notes", "fields"):
+        return value  # (a repeated field: fields.values, as -Y's fields.KEY tests each element)
     return [value]
 
 

@@ -296,17 +296,35 @@ class _Parser:
         else:
             raise self.error(f"unknown field {name_token.text!r}{self._suggest(name_token.text)}", name_token)
         context = self.context
+        if inner is not None:
+            return self.parse_pdu_key_test(field, inner)
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
                 return None if reg is None else reg.get(field)
-            if inner is not None:
-                fields = item.get("fields")
-                return fields.get(inner) if isinstance(fields, dict) else None
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
             return item.get(field)
 
+        return self.parse_operation(field, ftype, get, register)
+
+    def parse_pdu_key_test(self, field: str, key: str) -> tuple[Test, bool]:
+        """`fields.KEY OP value`: a key holding a list (fields.values, fields.sub_requests...) is a repeated
+        field, as in Wireshark: the test holds when one element passes it, `!=` when every element differs."""
+        all_ne = self.at("op", "!=")
+        test, _ = self.parse_operation(field, "any", lambda item, element: element, False)
+
+        def elements(item: Item) -> list[Any]:
+            fields = item.get("fields")
+            value = fields.get(key) if isinstance(fields, dict) else None
+            return value if isinstance(value, list) else [] if value is None else [value]
+
+        if all_ne:
+            return (lambda item, reg: bool(values := elements(item)) and all(test(item, v) for v in values)), False
+        return (lambda item, reg: any(test(item, v) for v in elements(item))), False
+
+    def parse_operation(self, field: str, ftype: str, get: Callable[..., Any], register: bool) -> tuple[Test, bool]:
+        """What follows a field's name: an operator and its value, or nothing (presence)."""
         token = self.token
         if ftype == "struct":
             if not (self.at("end") or self.at("punct", ")") or self.at("keyword", "and", "or") or self.at("op", "&&", "||")):
@@ -424,7 +442,7 @@ class _Parser:
         if ftype in ("bool", "list"):
             raise self.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
         if not self.at("punct", "{"):
-            if ftype != "number":
+            if ftype not in ("number", "any"):
                 raise self.error("expected { after in (a set such as {\"CHCF\" \"COP\"})")
             return [self.parse_member(field, ftype, require_range=True)]
         opening = self.advance()
@@ -445,7 +463,7 @@ class _Parser:
         low = self.parse_value(field, ftype)
         self._check_choice(field, low, value_token)
         if self.at("punct", ".."):
-            if ftype != "number":
+            if ftype not in ("number", "any"):
                 raise self.error(f"ranges need numbers; {field} is a text")
             self.advance()
             high = self.parse_value(field, ftype)

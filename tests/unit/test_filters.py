@@ -293,6 +293,28 @@ def test_the_values_that_exist_still_match() -> None:
         "vw3-decode: function_name 'Read Parameter Information' does not exist (column 18)")
 
 
+def test_a_pdu_key_holding_a_list_is_a_repeated_field() -> None:
+    # fields.values of a write (frame 4: 40 600 500 0, frame 6: 3 2), as Wireshark tests a repeated field:
+    # one element passes, != when every element differs; -e lists each element as an occurrence.
+    # Before, the list was compared whole: == 40 and > 550 matched nothing, and -e printed [40,600,500,0].
+    capture = str(CAPTURES / "atv71_commissioning.pcap")
+
+    def frames(expression: str) -> list[int]:
+        status, out, err = run_cli([capture, "-Y", f"({expression}) and frame <= 6", "-T", "fields", "-e", "frame"])
+        assert (status, err) == (0, ""), expression
+        return [int(frame) for frame in out.split()]
+
+    assert frames("fields.values == 40") == [4]
+    assert frames("fields.values > 550") == [4]
+    assert frames("fields.values in {2..3}") == [6]
+    assert frames("fields.values != 40") == [6]
+    assert frames("fields.values ~= 40") == [4, 6]
+    assert frames("fields.values") == [4, 6]
+    argv = [capture, "-T", "fields", "-e", "frame", "-e", "fields.values", "-Y", "frame in {4 6}"]
+    assert run_cli(argv) == (0, "4\t40,600,500,0\n6\t3,2\n", "")
+    assert run_cli([*argv, "-E", "occurrence=l", "-E", "aggregator=/s"]) == (0, "4\t0\n6\t2\n", "")
+
+
 def test_fields_key_of_t_fields_is_checked_and_listed() -> None:
     p38 = str(CAPTURES / "p38_protection.pcap")
     assert run_cli([p38, "-T", "fields", "-e", "fields.strat"]) == (2, "", (
