@@ -324,11 +324,11 @@ class SerialListener:
 
 
 def command_line(port: str, best: Score) -> str:
-    """The vw3-decode --live line that captures at `best` (its defaults left out: RTU, 8 data bits,
-    1 stop bit)."""
+    """The vw3-decode --live line that captures at `best` (its defaults left out: RTU, the mode's data
+    bits (8, 7 for ASCII), 1 stop bit)."""
     where = best.where
     mode = " --mode ascii" if best.mode == "ascii" else ""
-    size = f" --bytesize {where.bytesize}" if where.bytesize != 8 else ""
+    size = f" --bytesize {where.bytesize}" if where.bytesize != (7 if best.mode == "ascii" else 8) else ""
     stop = f" --stopbits {where.stopbits}" if where.stopbits != 1 else ""
     return f"{PROG} --live {port}{mode} --baud {where.baud} --parity {where.parity}{size}{stop}"
 

@@ -43,7 +43,7 @@ from dissector.app.live_capture import (
     Tape,
     silence_threshold,
 )
-from dissector.app.live_options import PARITY_CHOICES
+from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES
 from dissector.app.options import shown  # typed names are data: control characters escaped
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
@@ -64,7 +64,11 @@ WAIT = 0.02  # the display wakes at least this often (timeouts, the stop flag, r
 
 
 def port_settings(args: argparse.Namespace) -> PortSettings:
-    return PortSettings(args.live, args.baud, args.parity, args.stopbits, args.bytesize)
+    """The port's settings; without --bytesize, the mode's data bits (Serial Line Guide 2.5: RTU 8, ASCII 7)."""
+    bytesize = args.bytesize
+    if not getattr(args, BYTESIZE_GIVEN, False) and getattr(args, "mode", None) == "ascii":
+        bytesize = 7
+    return PortSettings(args.live, args.baud, args.parity, args.stopbits, bytesize)
 
 
 def live_char_time(args: argparse.Namespace) -> float:

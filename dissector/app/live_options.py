@@ -56,13 +56,13 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
     group.add_argument(
         "--bytesize", type=int, choices=[5, 6, 7, 8], default=8, action=GivenBytesize,
-        help="data bits, default 8 (--detect tries 8 for RTU and 7 for ASCII unless given)",
+        help="data bits, default 8, 7 with --mode ascii (--detect tries 8 for RTU and 7 for ASCII unless given)",
     )
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
     group.add_argument("--duration", type=positive_seconds, metavar="SECONDS", help="stop after SECONDS")
     group.add_argument(
         "-c", "--count", type=positive_int, metavar="N",
-        help="stop after N items, frames and noise runs alike (live, or shown from files: after -Y), as tshark -c counts packets",
+        help="stop after N items, frames and noise runs alike, each a packet (live, or shown from files: after -Y, where tshark -c counts the packets read)",
     )
     group.add_argument(
         "--detect", nargs="?", type=positive_seconds, const=2.0, metavar="SECONDS",

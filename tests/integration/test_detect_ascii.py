@@ -54,7 +54,7 @@ def test_auto_finds_ascii_7e1() -> None:
         "0 bytes flagged"
     )
     assert command_line("/dev/ttyUSB0", best) == (
-        "vw3-decode --live /dev/ttyUSB0 --mode ascii --baud 19200 --parity E --bytesize 7"
+        "vw3-decode --live /dev/ttyUSB0 --mode ascii --baud 19200 --parity E"
     )
     found = by_setting(scores)
     # 7O1 flags every parity bit; 7N2 takes the parity bit for its stop bit (flagged where it is 0).
@@ -70,7 +70,7 @@ def test_auto_finds_ascii_7n2() -> None:
     best = detect(SimListener(wire), 10.0, tried=framings(None, None))[0]
     assert (best.where, best.mode, best.frames) == (Setting(19200, "N", 7, 2), "ascii", 40)
     assert command_line("COM3", best) == (
-        "vw3-decode --live COM3 --mode ascii --baud 19200 --parity N --bytesize 7 --stopbits 2"
+        "vw3-decode --live COM3 --mode ascii --baud 19200 --parity N --stopbits 2"
     )
 
 
@@ -84,7 +84,7 @@ def test_ascii_with_8_data_bits_needs_bytesize_8() -> None:
     )
     best = detect(SimListener(wire), 10.0, tried=framings("ascii", 8))[0]
     assert (best.where, best.mode, best.frames) == (Setting(19200, "N", 8, 1), "ascii", 40)
-    assert command_line("COM3", best) == "vw3-decode --live COM3 --mode ascii --baud 19200 --parity N"
+    assert command_line("COM3", best) == "vw3-decode --live COM3 --mode ascii --baud 19200 --parity N --bytesize 8"
     # --bytesize 8 without --mode: RTU and ASCII scored on the bytes of the same 15 listens.
     scores = detect(SimListener(wire), 10.0, tried=framings(None, 8))
     assert len(scores) == 30 and {s.where.bytesize for s in scores} == {8}
@@ -175,7 +175,7 @@ def test_cli_detects_ascii_on_a_pty(options: tuple[str, ...], tried: list[str]) 
     finally:
         bus.close()
     assert done.returncode == 0, done.stderr
-    assert done.stdout == f"vw3-decode --live {bus.path} --mode ascii --baud 38400 --parity E --bytesize 7\n"
+    assert done.stdout == f"vw3-decode --live {bus.path} --mode ascii --baud 38400 --parity E\n"
     lines = done.stderr.splitlines()
     assert lines[0] == f"vw3-decode: listening on {bus.path} for 0.3 s at each of {len(tried)} settings"
     assert lines[1].startswith("  38400 7E1: ") and " ASCII frames with a good LRC (" in lines[1]

@@ -350,6 +350,18 @@ def test_run_live_on_loop_url_writes_nothing() -> None:
     assert "vw3-decode: 0 frames (0 requests, 0 responses, 0 exceptions)" in err.getvalue()
 
 
+def test_mode_ascii_listens_at_7_data_bits_unless_told() -> None:
+    """Modbus ASCII is 7 data bits (Serial Line Guide 2.5.2.1): `--mode ascii` alone opened at 8E1, where a
+    7E1 bus is heard as garbage."""
+    from dissector.app.options import build_parser
+
+    for extra, heard in [([], "19200 7E1"), (["--bytesize", "8"], "19200 8E1")]:
+        args = build_parser().parse_args(["--live", "loop://", "--mode", "ascii", "--duration", "0.1", *extra])
+        out, err = io.StringIO(), io.StringIO()
+        assert run_live(args, out, err, False, summary_line, None) == 0
+        assert err.getvalue().splitlines()[0] == f"vw3-decode: listening on loop:// at {heard}"
+
+
 def test_rich_live_view_on_a_terminal() -> None:
     """is_terminal: the rich view (header of counters, last frames) instead of plain lines."""
     bus = Bus()
