@@ -169,6 +169,8 @@ class StatsCollector:
         stats = self._function(item.slave, item.function)
         if not item.crc_ok:
             stats.crc_errors += 1
+            if item.kind is not Kind.REQUEST:
+                self.poll.add_answer(item)  # (a damaged answer to its request: that cycle missed)
             return
         self.history.add(item)
         if item.kind is Kind.REQUEST:

@@ -58,6 +58,8 @@ def test_p38_exceptions_are_misses_and_noisy_bus_timeouts() -> None:
     assert (row["skipped"], row["no_answer"], row["misses"]) == (0, 2, 2)  # frames 10 and 12
     rows = {(r["slave"], r["function"], r["start"]): r for r in poll_rows("noisy_bus.pcap")}
     assert set(rows) == {(12, 3, 3201), (1, 3, 0)}  # slave 5's two timed-out requests are no cycle
+    # Frame 17 answers slave 1's request #16 with a bad CRC: that cycle missed (before: no_answer 0, misses 3).
+    assert (rows[1, 3, 0]["no_answer"], rows[1, 3, 0]["misses"]) == (1, 4)
 
 
 def test_untimed_capture_has_counts_without_period() -> None:
