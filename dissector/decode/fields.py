@@ -328,9 +328,16 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
     if indicator is None:
         frame.warnings.append(text("no_run_indicator", count=fields["byte_count"]))
     elif not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
-        data = frame.pdu[3 : 2 + fields["byte_count"]]  # (after the function code, byte count, first id byte)
-        if not any(byte in _RUN_VALUES for byte in data):
+        data = frame.pdu[2 : 2 + fields["byte_count"]]  # (after the function code and byte count)
+        end = next((at for at in range(1, len(data)) if data[at] in _RUN_VALUES), None)
+        if end is None:
             frame.warnings.append(text("run_indicator", value=int(indicator)))
+        else:  # (the id runs to the first 00 or FF after its first byte: pymodbus's name, then FF)
+            server_id = data[:end]
+            shown = (repr(server_id.decode("ascii")) if all(0x20 <= byte < 0x7F for byte in server_id)
+                     else server_id.hex(" ").upper())
+            frame.warnings.append(text("longer_server_id", value=int(indicator), server_id=shown,
+                                       run=SPEC.names["run_indicator"][data[end]]))
 
 
 _DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)

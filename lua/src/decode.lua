@@ -160,13 +160,13 @@ local function diagnostic_data(f, b, subfunction, rule)
   end
 end
 
--- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): is a byte
--- from b[from] to b[last] a run indicator (00, FF) that may follow a longer id?
+-- An FC17 answer's server id is device specific in length (fields.py _report_server_id_response): where is
+-- the first byte from b[from] to b[last] that is a run indicator (00, FF) that may follow a longer id? (nil)
 local function run_indicator_after(b, from, last, names)
   for k = from, last do
-    if names[b[k]] ~= nil then return true end
+    if names[b[k]] ~= nil then return k end
   end
-  return false
+  return nil
 end
 
 -- The FC8 sub-functions whose answer repeats the request's data ([diagnostic_answers]): a request's data are
@@ -219,8 +219,17 @@ local SPECIAL = {
     local run, names, count = f.fields.run_indicator, DATA.names.run_indicator, f.fields.byte_count
     if run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
       warn(f, say("no_run_indicator", { count = count }))
-    elseif names[run] == nil and not run_indicator_after(b, f.data_at + 2, f.data_at + count, names) then
-      warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
+    elseif names[run] == nil then
+      local first = f.data_at + 1 -- (the server id's first byte)
+      local ends = run_indicator_after(b, first + 1, f.data_at + count, names)
+      if ends == nil then
+        warn(f, say("run_indicator", { value = run })) -- (OFF, ON: none where any length of server id puts it)
+      else -- (the id runs to the first 00 or FF after its first byte: fields.py _report_server_id_response)
+        local text, hex = string.char(table.unpack(b, first, ends - 1)), {}
+        for k = first, ends - 1 do hex[#hex + 1] = format("%02X", b[k]) end
+        local shown = text:find("[^ -~]") and concat(hex, " ") or python_repr(text)
+        warn(f, say("longer_server_id", { value = run, server_id = shown, run = names[b[ends]] }))
+      end
     end
   end,
 }

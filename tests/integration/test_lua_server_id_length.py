@@ -1,6 +1,7 @@
 """The plugin reads FC17's run indicator as vw3-decode does (tests/unit/test_server_id_length.py): pymodbus's
-answer (a name as the server id, the run indicator last) and a two-byte id draw no warning; an answer with no
-00 or FF after its first byte does, in vw3-decode's words."""
+answer (a name as the server id, the run indicator last) and a two-byte id draw a warning that names the
+longer id; an answer with no 00 or FF after its first byte one that there is no run indicator, in
+vw3-decode's words."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -23,5 +24,8 @@ def test_a_longer_server_id_is_no_bad_run_indicator(tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "fc17.pcap", [(bytes.fromhex(frame), 1.0 + 0.1 * n) for n, frame in enumerate(FRAMES)])
     items, _, _ = lua_items(pcap)
     assert [item.texts.get("warning", []) for item in items] == [
-        [], [], [], [], [], ["run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON)"],
+        [], ["run indicator 0x65 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably "
+             "'Telemecanique-ATV71HU15M3-0201', then run ON"],
+        [], ["run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably 01 02, then run ON"],
+        [], ["run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON)"],
     ]
