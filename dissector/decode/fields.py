@@ -342,6 +342,8 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
 
 _DEVICE_ID = 14  # FC43's MEI type Read Device Identification (protocol/table.py)
 _DEVICE_ID_CODES = _limits("device_id_code")
+_MANDATORY_OBJECTS = ", ".join(SPEC.device_id_objects[id] for id in range(_limits("device_id_mandatory")[0],
+                                                                           _limits("device_id_mandatory")[1] + 1))
 
 
 def _mei_request(frame: Frame, fields: Container) -> None:
@@ -368,6 +370,8 @@ def _mei_response(frame: Frame, fields: Container) -> None:
     declared = fields["body"]["object_count"]
     if len(frame.objects) < declared:
         frame.warnings.append(text("object_count", count=declared, present=len(frame.objects)))
+    if not frame.objects:  # (the basic objects are mandatory: a server sends one at least)
+        frame.warnings.append(text("no_objects", names=_MANDATORY_OBJECTS))
 
 
 # Handlers by name; the protocol table says which (function code, direction) uses which. Every name

@@ -278,8 +278,10 @@ def _mei(frame: Frame, request: bool) -> str:
     code = SPEC.device_id_codes.get(fields.body.read_code, str(fields.body.read_code))
     if request:
         return f"{mei}, {code}, from object {fields.body.object_id}"
-    objects = " ".join(f"{obj.name}={_object_value(obj)}" for obj in frame.objects or [])
-    return f"{mei}, {code}: {objects}"
+    objects = "".join(f" {obj.name}={_object_value(obj)}" for obj in frame.objects or [])
+    # (More Follows FF: the server sends the rest from the next object id on, 6.21)
+    more = f" (more follows from object {fields.body.next_object_id})" if fields.body.more_follows == 0xFF else ""
+    return f"{mei}, {code}:{objects}{more}"
 
 
 _VERSION = re.compile(r"V\d+\.\d+")

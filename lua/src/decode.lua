@@ -12,6 +12,12 @@ local EXCEPTIONS = DATA.exceptions or {}
 local DIAGNOSTICS = DATA.diagnostics or {}
 local LIMITS = RULES.limits
 local NOT_BROADCAST = DATA.not_broadcast or {}
+-- FC43's mandatory objects by name (RULES.limits.device_id_mandatory): `VendorName, ProductCode, ...`
+local MANDATORY_OBJECTS = {}
+for id = LIMITS.device_id_mandatory[1], LIMITS.device_id_mandatory[2] do
+  MANDATORY_OBJECTS[#MANDATORY_OBJECTS + 1] = DATA.device_id_objects[id]
+end
+MANDATORY_OBJECTS = table.concat(MANDATORY_OBJECTS, ", ")
 
 -- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
 -- with its parameters by name, as Python fills them in: the texts here and maps.py's MESSAGES alike.
@@ -213,6 +219,7 @@ local SPECIAL = {
     -- (a count the frame does not hold: the objects there are shown, decode/fields.py)
     local declared = f.fields.body.object_count
     if #objects < declared then warn(f, say("object_count", { count = declared, present = #objects })) end
+    if #objects == 0 then warn(f, say("no_objects", { names = MANDATORY_OBJECTS })) end -- (fields.py _mei_response)
   end,
   report_server_id_response = function(f, b)
     -- (the tree shows its fields from the layout, tree.lua add_pdu)

@@ -18,10 +18,10 @@ from lua_harness import lua_items, write_pcap
 pytestmark = pytest.mark.integration
 
 FRAMES = [rtu("05 11"), rtu("05 11 09 50 79 6D 6F 64 62 75 73 FF"),  # pymodbus: 'Pymodbus', then ON
-          rtu("05 11"), rtu("05 11 05 01 02 00 41 42")]  # a two-byte id 01 02, then OFF, 'AB'
-WARNINGS = [[], ["run indicator 0x79 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably 'Pymodbus', "
-                 "then run ON"],
-            [], ["run indicator 0x02 is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably 01 02, then run OFF"]]
+          rtu("05 11"), rtu("05 11 05 01 02 00 41 42")]  # a two-byte id 01 02, then OFF, 00 41 42
+NOT_RUN = "run indicator 0x{:02X} is neither 0x00 (OFF) nor 0xFF (ON): the server id is probably "
+WARNINGS = [[], [NOT_RUN.format(0x79) + "'Pymodbus', then run ON"],
+            [], [NOT_RUN.format(0x02) + "01 02, then run OFF"]]
 
 
 @pytest.mark.parametrize("pure", [False, True])
@@ -34,7 +34,8 @@ def test_vw3_decode_says_the_longer_id(tmp_path: Path, monkeypatch: pytest.Monke
     assert out.splitlines()[1::2] == [
         f"     2            -   5 response  Report Server ID server id 80, run 121, 7 bytes [#1] "
         f"[warning: {WARNINGS[1][0]}]  CRC ok",
-        f"     4            -   5 response  Report Server ID server id 1, run 2, 3 bytes [#3] [warning: {WARNINGS[3][0]}]  CRC ok",
+        f"     4            -   5 response  Report Server ID server id 1, run 2, 3 bytes [#3] "
+        f"[warning: {WARNINGS[3][0]}]  CRC ok",
     ]
 
 
