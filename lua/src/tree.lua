@@ -316,7 +316,10 @@ function BY_NAME.mei(f, b, base)
     if text == nil or not text:match("^V%d+%.%d+$") then text = repr_text(object.value) end
     parts[index] = object.name .. "=" .. text
   end
-  return mei .. ", " .. code .. ":" .. (parts[1] and " " or "") .. concat(parts, " ")
+  -- (More Follows FF: the server sends the rest from the next object id on, describe._mei)
+  local next_id = b[base + 5] == 255 and b[base + 6]
+  local more = next_id and " (more follows from object " .. DECIMAL[next_id] .. ")"
+  return mei .. ", " .. code .. ":" .. (parts[1] and " " or "") .. concat(parts, " ") .. (more or "")
 end
 
 -- describe._report_server_id: an answer's `server id 18, run ON, 'V1.'` (its data as text where every byte
