@@ -152,6 +152,20 @@ def instructions(command: list[str], prefix: list[str] | None = None) -> int:
     return int(found.group(1))
 
 
+def peak_rss(command: list[str], prefix: list[str], out: Path) -> float:
+    """Peak RSS (MB) of one run of `command` (as repeatable as the counts: the same prefix and clock)."""
+    saved = {key: os.environ.get(key) for key in REPEATABLE}
+    os.environ.update(REPEATABLE)  # (run_once's probe passes its environment on to tshark)
+    try:
+        return run_once([*prefix, *command], out / "lua_output.txt")[1]
+    finally:
+        for key, value in saved.items():
+            if value is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = value
+
+
 # The floor (see --instructions): named vw3, so that the same DLT_USER entry hands it the records.
 FLOOR_DISSECTOR = """local proto = Proto("vw3", "Lua dissector floor")
 function proto.dissector(tvb, pinfo, tree)
@@ -190,6 +204,8 @@ def count(name: str, pcap: Path, options: list[str], plugins: list[Path], tshark
     print(f"{name}: {pcap.name}, {frames} records (instructions, one pass)")
     print(f"  mbrtu   {mbrtu_total / 1e9:7.3f} G, start-up {mbrtu_start / 1e9:.3f} G, {per_mbrtu:,.0f} a record")
     print(f"  floor   {per_floor:,.0f} a record (a Lua dissector that reads the record and sets its columns)")
+    mbrtu_rss = peak_rss(mbrtu[:1] + ["-2"] + mbrtu[1:] + [str(pcap)], prefix, out)
+    print(f"  mbrtu   tshark -2: peak RSS {mbrtu_rss:.1f} MB")
     ratios = []
     for plugin in plugins:
         lua = [tshark, "-X", f"lua_script:{plugin}", "-o", USER_DLT, *options, "-r"]
@@ -199,6 +215,10 @@ def count(name: str, pcap: Path, options: list[str], plugins: list[Path], tshark
               f"record, the plugin's own work {per_plugin - per_floor:,.0f} a record")
         print(f"    vw3.lua at {mbrtu_total / plugin_total:.2f}x mbrtu's instructions on this capture, "
               f"{per_mbrtu / per_plugin:.2f}x a record")
+        # Memory beside the counts, so that plugins compare in one run: tshark -2's peak RSS (the timed
+        # run's memory figure), one run each (the heap's size moves little from run to run).
+        rss = peak_rss(lua[:1] + ["-2"] + lua[1:] + [str(pcap)], prefix, out)
+        print(f"    tshark -2: peak RSS {rss:.1f} MB ({rss / mbrtu_rss:.2f}x mbrtu's)")
         # The speed target is stated at the timed run's length: the start-ups weigh less there than here.
         projected = (mbrtu_start + PROJECTED_RECORDS * per_mbrtu) / (plugin_start + PROJECTED_RECORDS * per_plugin)
         print(f"    at {PROJECTED_RECORDS:,} records (start-ups and the counts a record above): "

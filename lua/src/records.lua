@@ -294,28 +294,31 @@ function lane.answer(st, bytes, n, time, number, slave, code, quiet)
   else
     pending.response = { record = number }
   end
-  -- The Info text and span label (PLC-style devices: 4X numbers), the same for every answer of the
-  -- device's function and read window: made once (summary, span_label), bounded.
+  -- What is the same for every answer of the device's function and read window, made once, bounded:
+  -- its Info text, span label (PLC-style devices: 4X numbers; false: none) and the slots it is kept in but
+  -- those of its place, time and CRC (as pack.settle keeps it: a response at the start of its own record,
+  -- whose registers, or bits, are a run from its fourth byte).
   local key = (code * 65536 + start) * 65536 + quantity
   local infos = device.lane_infos
   if infos == nil or infos.count >= 256 then
-    infos = { count = 0, labels = {} }
+    infos = { count = 0 }
     device.lane_infos = infos
   end
-  local info = infos[key]
-  if info == nil then
+  local same = infos[key]
+  if same == nil then
     ANSWER.fn, ANSWER.slave, ANSWER.start, ANSWER.quantity, ANSWER.span_label = code, slave, start, quantity, nil
     if device.plc ~= nil then lane.span_label(ANSWER, device) end
-    info = summary(ANSWER)
-    infos[key], infos.labels[key], infos.count = info, ANSWER.span_label, infos.count + 1
+    local registers, coils = false, false
+    if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
+    same = { summary(ANSWER), ANSWER.span_label or false, head_slot(KIND_NUMBER[RESPONSE], slave, code, n),
+      span_slot(quantity, start), registers, coils }
+    infos[key], infos.count = same, infos.count + 1
   end
-  -- Kept as pack.settle would keep it: a response with a good CRC, at the start of its own record, whose
-  -- registers (or bits) are a run from its fourth byte, its request in record pending.record.
+  -- Kept with its request in record pending.record, its CRC good.
   local crc_low, crc_high = byte(bytes, n - 1, n)
-  local crc, registers, coils = crc_low + crc_high * 256, false, false
-  if bits then coils = bit_slot(3, quantity, start, nil) else registers = run_slot(3, quantity, start) end
-  return put_flat(st, head_slot(KIND_NUMBER[RESPONSE], slave, code, n), 0, item, offset, number, time,
-    crc_slot(crc, crc), span_slot(quantity, start), registers, coils, pending.record, asked, infos.labels[key]), info
+  local crc = crc_low + crc_high * 256
+  return put_flat(st, same[3], 0, item, offset, number, time, crc_slot(crc, crc), same[4], same[5], same[6],
+    pending.record, asked, same[2]), same[1]
 end
 
 -- The quick lane of requests (see lane.decode): a record that is a request met before (known_requests: by
@@ -494,6 +497,9 @@ function lane.again(st)
   -- (nothing chosen after a slave's first frame, and no frame read before a choice could be made)
   if again == nil or (next(st.said) == nil and not st.provisional) then return end
   local fresh = new_state(st.timeout, st.mode)
+  -- The frames packed anew go over the first decoding's slots, from the first (no second array as long
+  -- held at the peak): each record's first decoding is dropped as it is decoded again, and none is read.
+  fresh.flat = st.flat
   local frozen, chosen, history, fixed = {}, {}, {}, {}
   for number, reason in pairs(st.said) do frozen[number] = reason end
   local met = {} -- (every slave the first pass met: a broadcast reaches them all, the selection stage's broadcast_device)
@@ -508,15 +514,25 @@ function lane.again(st)
   end
   -- (the other slaves are judged again as they come: more records may follow in a live capture)
   fresh.frozen, fresh.chosen, fresh.history, fresh.fixed, fresh.met = frozen, chosen, history, fixed, met
-  local records = st.records
-  for _, number in ipairs(again.order) do
-    local bytes, time = again.bytes[number], again.times[number] or nil -- (false: a record without a time)
-    local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
-    if not ok then result = { length = #bytes, error = tostring(result) } end
-    fresh.records[number] = result
-    records[number] = nil -- (the first decoding of the record is done with)
-    again.bytes[number] = nil
-    if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+  local records, kept = st.records, again.bytes
+  -- The records in number order, the order of their first dissection (a first pass reads the capture in
+  -- order): no list of that order kept a record.
+  local first, last = math.huge, 0
+  for number in pairs(kept) do
+    if number < first then first = number end
+    if number > last then last = number end
+  end
+  for number = first, last do
+    local bytes = kept[number]
+    if bytes ~= nil then
+      local time = again.times[number] or nil -- (false: a record without a time)
+      local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
+      if not ok then result = { length = #bytes, error = tostring(result) } end
+      fresh.records[number] = result
+      records[number] = nil -- (the first decoding of the record is done with)
+      kept[number] = nil
+      if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
+    end
   end
   finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as

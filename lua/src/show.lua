@@ -42,11 +42,10 @@ local function chained_ns(c, pinfo, number, abs)
   return coarse_ns(c, abs)
 end
 
--- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
--- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
--- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
-local function record_ns(pinfo, number)
-  local abs, c = pinfo.abs_ts, clock
+-- A record's time as record_ns reads it where it is not the usual case below: the first record, a new
+-- reference, an RTAC record, one at the epoch, a stand-in. (abs: pinfo.abs_ts, read already)
+local function other_record_ns(pinfo, number, abs)
+  local c = clock
   if c.capture ~= state or c.base == nil then c = capture_clock(abs ~= 0 and abs or nil) end
   local times = c.times
   if abs == nil then return times[number] or nil end -- (a stand-in for a record's pinfo: its time kept)
@@ -55,9 +54,8 @@ local function record_ns(pinfo, number)
     local rel, reference = pinfo.rel_ts, c.reference
     local drift = reference ~= nil and rel ~= nil and abs - rel - reference
     if drift and drift < 1e-6 and drift > -1e-6 then
-      -- (nearly every record: from the reference record's time, written out without calls; the clock's nanos
-      -- flag is for the times from abs_ts alone, which a capture with a reference of its own has only at its
-      -- start)
+      -- (the clock's nanos flag is for the times from abs_ts alone, which a capture with a reference of its
+      -- own has only at its start)
       local from = rel * NS + 0.5
       ns = c.reference_ns + (from - from % 1)
     else
@@ -68,6 +66,26 @@ local function record_ns(pinfo, number)
     end
   end
   times[number] = ns or false
+  return ns
+end
+
+-- A record's time as vw3-decode reads it, in ns (nil: none): the RTAC's own timestamp for RTAC serial
+-- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
+-- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
+local function record_ns(pinfo, number)
+  local abs, c = pinfo.abs_ts, clock
+  local reference = c.reference
+  -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
+  -- record; its time from the reference's, written out here (other_record_ns does the same, and the rest).
+  if reference == nil or abs == 0 or abs == nil or c.capture ~= state or rtac_times[number] ~= nil then
+    return other_record_ns(pinfo, number, abs)
+  end
+  local rel = pinfo.rel_ts
+  local drift = rel ~= nil and abs - rel - reference
+  if not (drift and drift < 1e-6 and drift > -1e-6) then return other_record_ns(pinfo, number, abs) end
+  local from = rel * NS + 0.5
+  local ns = c.reference_ns + (from - from % 1)
+  c.times[number] = ns
   return ns
 end
 
@@ -470,19 +488,20 @@ local function dissect_now(st, tvb, pinfo, number)
   local n = #bytes
   if n == 0 then return nil end
   local time = record_ns(pinfo, number)
-  if number > newest_record then newest_record = number end
-  if number >= newest_record and time ~= nil then recorded_until = time end
+  if number >= newest_record then
+    newest_record = number
+    if time ~= nil then recorded_until = time end
+  end
   if config.default == AUTO and not state.finished then
     -- Kept for lane.again: the whole capture decoded again with its choices, once they are known (not
-    -- after the first pass is over: a live capture's later records are never decoded again).
+    -- after the first pass is over: a live capture's later records are never decoded again). Their bytes
+    -- by number; their times are the clock's (record_ns keeps every record's, `false` for none).
     local again = st.again
     if again == nil then
-      again = { order = {}, bytes = {}, times = {}, count = 0 }
+      again = { bytes = {}, times = clock.times }
       st.again = again
     end
-    local count = again.count + 1 -- (counted: #again.order searches the list each record)
-    again.order[count], again.count = number, count
-    again.bytes[number], again.times[number] = bytes, time or false
+    again.bytes[number] = bytes
   end
   return lane.decode(st, bytes, n, time, number)
 end
