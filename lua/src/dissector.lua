@@ -79,6 +79,10 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   return dissect_now(st, tvb, pinfo, number)
 end
 
+-- Are the trees Wireshark's (userdata), not the test stub's (Lua tables)? The same for every record: asked
+-- of the first (a call of type() a record costs more than the test).
+local wireshark_trees = nil
+
 local function dissect_records(st, tvb, pinfo, tree)
   local number = pinfo.number -- (each field of pinfo is a call into Wireshark: read once)
   local record = st.records[number]
@@ -102,7 +106,8 @@ local function dissect_records(st, tvb, pinfo, tree)
     end
     st.records[number] = record
     -- (not tree_mode(tree), written out: no tree)
-    if info ~= nil and type(tree) == "userdata" and tree.text == nil and config.errors[1] == nil then
+    if wireshark_trees == nil then wireshark_trees = type(tree) == "userdata" end
+    if info ~= nil and wireshark_trees and tree.text == nil and config.errors[1] == nil then
       -- A record of the quick lanes: its one frame, a request or its answer (kept already), has nothing to
       -- say but its Info text where no tree is wanted.
       local cols = pinfo.cols
