@@ -481,8 +481,18 @@ static int valid_frame_at(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ss
     return undecided ? -1 : 0;
 }
 
-/* RtuFramer._ends_record: a layout with a length rule at j (valid_frame_at's) checks out and ends where a record
- * does, or a silence begins. */
+/* The first boundary (a record's end, a silence) after j, up to n; -1: none there. */
+static Py_ssize_t record_end(Timeline *t, Py_ssize_t j, Py_ssize_t n) {
+    for (Py_ssize_t k = chunk_of(t, t->base + j); k < t->count; k++) {
+        Py_ssize_t at = (Py_ssize_t)(chunk_end(t, k) - t->base);
+        if (at > n) break;
+        if (boundary_at(t, t->base + at)) return at;
+    }
+    return -1;
+}
+
+/* RtuFramer._ends_record: a layout at j (valid_frame_at's) checks out and ends where a record does, or a silence
+ * begins (a code without a length rule: its CRC checks there). */
 static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize_t n) {
     Timeline *t = (Timeline *)&e->tl; /* (its cursor only moves) */
     int k = known_slot[b[j + 1] & 0x7F];
@@ -491,8 +501,15 @@ static int ends_record(const Engine *e, const uint8_t *b, Py_ssize_t j, Py_ssize
     int count = b[j + 1] & 0x80 ? 1 : rules[2]->special ? 3 : 2;
     if (b[j + 1] & 0x80) rules[0] = &exception_rule;
     Py_ssize_t length;
-    for (int r = 0; r < count; r++)
-        if (rule_check(rules[r], b, j, n, &length) == 1 && boundary_at(t, t->base + j + length)) return 1;
+    for (int r = 0; r < count; r++) {
+        int found = rule_check(rules[r], b, j, n, &length);
+        if (found < 0) { /* (a CRC scan from `length` bytes) */
+            Py_ssize_t end = record_end(t, j, n);
+            if (end - j >= length && end - j >= MIN_ADU && end - j <= MAX_ADU && crc_ok(b, j, end - j)) return 1;
+        } else if (found == 1 && boundary_at(t, t->base + j + length)) {
+            return 1;
+        }
+    }
     return 0;
 }
 

@@ -215,6 +215,17 @@ class RtuFramer(Awaiting, StreamFramer):
             undecided = undecided or found is None
         return None if undecided else False
 
+    def _framed_inside(self, buf: bytearray, i: int, length: int, n: int, final: bool) -> bool | None:
+        """_intact_inside, where records that are frames (a record that is this one, or the next one a frame:
+        _ends_record) say no frame it holds crosses its record's end: one is not waited for (which held every
+        later record in the plugin's one pass). A record's end alone does not say it: a USB adapter's reads end
+        anywhere (bench/noise_accuracy.py, bursts)."""
+        end = i + length
+        bounded = self._boundary_at(end) and (
+            self._record_starts_at(i) or (n - end >= MIN_ADU and self._ends_record(buf, end, n))
+        )
+        return self._intact_inside(buf, i, length, end if bounded else n, final or bounded)
+
     def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
         """A frame without a length rule: the shortest CRC match that the line confirms (_followed:
         an intact frame, the end, a boundary, after glitch bytes or not). A CRC scan alone would take
@@ -239,7 +250,7 @@ class RtuFramer(Awaiting, StreamFramer):
                 # In step (right after a frame) a scanned frame is trusted over a short frame that may
                 # check by chance inside it; while resynchronising, an intact frame inside wins.
                 if following:
-                    inside = self._noise and self._intact_inside(buf, i, length, n, final)
+                    inside = self._noise and self._framed_inside(buf, i, length, n, final)
                     if inside is None:
                         return NEED
                     if not inside:
@@ -248,12 +259,15 @@ class RtuFramer(Awaiting, StreamFramer):
         return NEED if reach == n and n - i < MAX_ADU and not final else NONE
 
     def _ends_record(self, buf: bytearray, i: int, n: int) -> bool:
-        """Does a layout with a length rule at i check out and end where its record does? The source says
-        a frame ends there: a glitch-byte reading of buf[i] before a longer frame crossing that end is not
-        waited for, which held every later record in a single pass (the plugin in a live capture)."""
+        """Does a layout at i check out and end where its record does (a code without a length rule: its CRC
+        checks at the record's end)? The source says a frame ends there: a glitch-byte reading of buf[i] before
+        a longer frame crossing that end is not waited for, which held every later record in a single pass."""
         for _kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
-            if type(length) is not Scan and MIN_ADU <= length <= MAX_ADU and i + length <= n and (
+            if type(length) is Scan:
+                ends = [offset - self._base for offset in self._boundaries if i < offset - self._base <= n]
+                length = min(ends) - i if ends and min(ends) - i >= length else NONE
+            if MIN_ADU <= length <= MAX_ADU and i + length <= n and (
                 self._boundary_at(i + length) and _crc_ok(buf, i, length)
             ):
                 return True
@@ -261,15 +275,10 @@ class RtuFramer(Awaiting, StreamFramer):
 
     def _crosses_framed_record(self, buf: bytearray, i: int, length: int, n: int) -> bool:
         """Would a reading at i of `length` bytes (NEED: more than there are) swallow a record (or the bytes after
-        a silence) that is a frame of its own (_ends_record)? Then it is none, whether its bytes have come or
-        not: waiting for them (a long answer read from noise, 'ff 01 b0': 181 bytes; an FC23 request's byte
-        count) held every later record in one pass, and a damaged reading of it hid the frame."""
-        base, end = self._base, n if length == NEED else i + length
-        for offset in self._boundaries:
-            at = offset - base
-            if i < at < end and n - at >= MIN_ADU and self._ends_record(buf, at, n):
-                return True
-        return False
+        a silence) that is a frame of its own, the first after i (_framed_reach) starting inside it? Then it is
+        none, whether its bytes have come or not: waiting for them (a long answer read from noise, 'ff 01 b0';
+        an FC23 request's byte count) held every later record in one pass, and a damaged reading hid the frame."""
+        return self._framed_reach(buf, i, n) < (n if length == NEED else min(n, i + length))
 
     def _framed_reach(self, buf: bytearray, i: int, n: int) -> int:
         """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
@@ -379,15 +388,7 @@ class RtuFramer(Awaiting, StreamFramer):
             if following is None:
                 return NEED
             if following:
-                # Records that are frames (a record that is this one, or the next one a frame: _ends_record)
-                # say no frame it holds crosses its record's end: one is not waited for (which held every
-                # later record in the plugin's one pass). A record's end alone does not say it: a USB
-                # adapter's reads end anywhere (bench/noise_accuracy.py, bursts).
-                end = i + length
-                bounded = self._boundary_at(end) and (
-                    self._record_starts_at(i) or (n - end >= MIN_ADU and self._ends_record(buf, end, n))
-                )
-                inside = self._intact_inside(buf, i, length, end if bounded else n, final or bounded)
+                inside = self._framed_inside(buf, i, length, n, final)
                 if inside is None:
                     return NEED
                 if inside:

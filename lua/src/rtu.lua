@@ -7,29 +7,32 @@ local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, F
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
--- Does a layout with a length rule at i check out and end where its record does? The
--- source says a frame ends there: a glitch-byte reading of b[i] before a longer frame crossing that end is not
--- waited for, which in a single pass (a live capture, tshark without -2) held every later record.
+-- The first boundary (a record's end, a silence) after i, up to n; nil: none there.
+local function record_end(s, i, n)
+  local base, stop = s.base, nil
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at > i and at <= n and (stop == nil or at < stop) then stop = at end
+  end
+  return stop
+end
+
+-- Does a layout at i check out and end where its record does (a code without a length rule: its CRC checks at
+-- the record's end)? The source says a frame ends there: a glitch-byte reading of b[i] before a longer frame
+-- crossing that end is not waited for, which in a single pass (tshark without -2) held every later record.
 local function ends_record(s, b, i, n)
   local list = interpretations(s, b[i], b[i + 1], b, i, n)
   for index = 1, #list do
-    local length, is_scan = list[index][2](b, i, n)
-    if not is_scan and length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
+    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    if fallback ~= nil and not crc_ok_at(b, i, length) then is_scan, length = true, fallback end -- (its CRC scan)
+    if is_scan then -- (rtu.py _ends_record: the record's length, from the scan's minimum on)
+      local stop = record_end(s, i, n)
+      length = stop ~= nil and stop - i >= length and stop - i or 0
+    end
+    if length >= MIN_ADU and length <= MAX_ADU and i + length <= n and boundary_at(s, i + length)
         and crc_ok_at(b, i, length) then
       return true
     end
-  end
-  return false
-end
-
--- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own
--- (rtu.py _crosses_framed_record)? Then it is none, its bytes come or not: waiting for them (a long answer read
--- from noise, an FC23 request's byte count) held every later record in one pass.
-local function crosses_framed_record(s, b, i, length, n)
-  local base, stop = s.base, length == NEED and n or i + length
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at > i and at < stop and n - at >= MIN_ADU and ends_record(s, b, at, n) then return true end
   end
   return false
 end
@@ -45,6 +48,14 @@ local function framed_reach(s, b, i, n)
     end
   end
   return reach
+end
+
+-- Would a reading at i of `length` bytes (NEED: more than there are) swallow a record that is a frame of its own,
+-- the first after i (framed_reach) starting inside it (rtu.py _crosses_framed_record)? Then it is none, its bytes
+-- come or not: waiting for them (a long answer read from noise, an FC23 request's byte count) held every later
+-- record in one pass.
+local function crosses_framed_record(s, b, i, length, n)
+  return framed_reach(s, b, i, n) < (length == NEED and n or math.min(n, i + length))
 end
 
 -- Does an intact frame start at i? true, false, or nil when more bytes are needed to know (final: none
@@ -91,6 +102,23 @@ local function intact_inside(s, b, i, length, n, final)
     if at == nil then found = nil end
   end
   return found
+end
+
+-- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
+local function record_start(s, i)
+  local at, times = s.base + i, s.times
+  for index = 1, #times, 2 do
+    if times[index] == at then return true end
+  end
+  return false
+end
+
+-- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
+-- say no frame it holds crosses its record's end: one is not waited for (rtu.py _framed_inside).
+local function framed_inside(s, b, i, length, n, final)
+  local stop = i + length
+  local bounded = boundary_at(s, stop) and (record_start(s, i) or (n - stop >= MIN_ADU and ends_record(s, b, stop, n)))
+  return intact_inside(s, b, i, length, bounded and stop or n, final or bounded)
 end
 
 -- Does the line say a frame ends at `stop` (rtu.py _followed)? The end of the input (unless at_end is
@@ -203,7 +231,7 @@ local function scan_match(s, b, i, n, minimum, final)
       else following = followed(s, b, i + length, n, final) end
       if following == nil then return NEED end
       if following then
-        local inside = s.noise ~= nil and intact_inside(s, b, i, length, n, final)
+        local inside = s.noise ~= nil and framed_inside(s, b, i, length, n, final)
         if inside == nil then return NEED end
         if not inside then return length end
       end
@@ -261,15 +289,6 @@ local function added(list, value)
   if list == nil then return { value } end
   list[#list + 1] = value
   return list
-end
-
--- Does a record start at i (stream.py _record_starts_at)? Every record's start is in s.times while its bytes are.
-local function record_start(s, i)
-  local at, times = s.base + i, s.times
-  for index = 1, #times, 2 do
-    if times[index] == at then return true end
-  end
-  return false
 end
 
 -- The first reading of `list` ({ kind, length }) after which `test` (followed, valid_frame_at) finds a
@@ -373,9 +392,7 @@ local function match(s, b, i, n, final)
     local following = not crosses_framed_record(s, b, i, length, n) and followed(s, b, stop, n, final, awaits)
     if following == nil then return NEED end
     if following then
-      -- (records that are frames, this one or the next: none it holds crosses its record's end, rtu.py)
-      local bounded = boundary_at(s, stop) and (record_start(s, i) or (n - stop >= MIN_ADU and ends_record(s, b, stop, n)))
-      local inside = intact_inside(s, b, i, length, bounded and stop or n, final or bounded)
+      local inside = framed_inside(s, b, i, length, n, final)
       if inside == nil then return NEED end
       if not inside then return kind, length, false end
     end

@@ -16,6 +16,7 @@ from helpers import rtu
 from test_timed_summary import assert_same, write_pcap
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
+FC8 = bytes.fromhex("0c0800001234bb74")  # (its CRC register back at its start: it and a frame check as one)
 DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
 HEAD = bytes.fromhex("0c030c0001")  # (the answer awaited's first 5 bytes: byte count 12, 17 bytes)
 TAIL = rtu((HEAD + REQUEST + bytes.fromhex("0002")).hex())[-4:]  # (its CRC checks over the three records)
@@ -68,3 +69,23 @@ def test_what_follows_a_damaged_request_is_settled_by_the_next_record(
         f"     5     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 10.0 ms]  CRC ok",
     ]
 
+
+
+def test_an_fc8_scan_stops_at_a_record_that_is_a_scanned_frame(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # (a record of a code without a length rule whose CRC checks at its end is a frame of its own: _ends_record;
+    # the engine's ends_record alike. Before, the FC8/00 scan, which the engine frames itself in step, read both
+    # records as one Return Query Data of 16 bytes, its CRC checking over both)
+    user = rtu("0C 46 0102 0304")
+    records = [(REQUEST, 0.0), (ANSWER, 0.01), (FC8, 2.0), (user, 2.0 + 8 * CHARACTER), (REQUEST, 3.0),
+               (ANSWER, 3.01)]
+    assert _lines(tmp_path, records, monkeypatch) == [
+        f"     1     0.000000  {READ}",
+        f"     2     0.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#1, 10.0 ms]  CRC ok",
+        "     3     2.000000   - noise     8 bytes of noise at offset 19: 0c 08 00 00 12 34 bb 74",
+        "     4     2.004583  12 request   User-defined function 70 4 bytes of data [no response] "
+        "[warning: User-defined function 70 (70) is not supported by the VW3 A3 303]  CRC ok",
+        f"     5     3.000000  {READ}",
+        f"     6     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#5, 10.0 ms]  CRC ok",
+    ]

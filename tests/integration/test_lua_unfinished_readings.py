@@ -4,8 +4,9 @@ lua/src/rtu.lua valid_frame_at): a damaged request then '0c 01 be 11' in one rec
 bytes) held that record and every later one, each '(N bytes continue)', until 195 bytes had come; so did an FC23
 request's start whose byte count had not come. The next record, a frame, settles it: a record that is itself a
 whole frame ends any hold before it. The -w output of damaged_stream(3051): 14 of its 19 records '(N bytes
-continue)' in one pass, now only the 8 that are no frame of their own. Exact Info, one pass and -2, and every field
-as vw3-decode says it."""
+continue)' in one pass, now only the 8 that are no frame of their own. A record of a code without a length rule
+whose CRC checks at its end is a frame of its own too. Exact Info, one pass and -2, and every field as vw3-decode
+says it."""
 from __future__ import annotations
 
 import subprocess
@@ -85,4 +86,19 @@ def test_a_written_damaged_stream_holds_only_the_records_that_are_no_frame(tmp_p
     # (every other record shows what -2 shows, provisional or not)
     assert [info.removesuffix(" [provisional]") for number, info in enumerate(one, 1) if number not in held] == [
         info for number, info in enumerate(two, 1) if number not in held]
+    _same_as_vw3_decode(pcap)
+
+
+@pytest.mark.parametrize("first", ["29460102", "0c0800001234bb74", "0c03c8"], ids=["scan", "fc8", "answer"])
+def test_a_record_that_is_a_scanned_frame_settles_what_is_before_it(first: str, tmp_path: Path) -> None:
+    # (slave 12's user-defined 70, its CRC checking at its record's end: a frame of its own, lua/src/rtu.lua
+    # ends_record. Before, the record before it was held to the next record with a length rule, or the FC8/00
+    # scan, whose CRC checks over both records, read them as one Return Query Data)
+    held = bytes.fromhex(first)
+    pcap = _capture(tmp_path, [REQUEST, ANSWER, held, rtu("0C 46 0102 0304"), REQUEST, ANSWER])
+    user = "12 User-defined function 70 request"
+    assert _infos(pcap, two_pass=False) == [
+        f"{READ} [provisional]", f"{ANSWERED} [provisional]", f"({len(held)} bytes continue)", f"{user} [provisional]",
+        f"{READ} [provisional]", ANSWERED]
+    assert _infos(pcap, two_pass=True) == [READ, ANSWERED, f"noise ({len(held)} bytes)", user, READ, ANSWERED]
     _same_as_vw3_decode(pcap)

@@ -51,3 +51,20 @@ def test_a_frame_start_whose_length_has_not_come_is_not_waited_for_across_a_fram
                    ["noise 0c170001", f"request {COUNTER.hex()}"], ["request 0c0320d000030eef"],
                    ["response 0c030680000003000217e4"]]
     assert rest == []
+
+
+# A record that is a frame of a code without a length rule (slave 12's user-defined 70), its CRC checking at the
+# record's end, is a frame of its own too (_ends_record): a reading or a CRC scan before it does not reach across
+# it (before: '29 46 01 02' and '0c 03 c8' held to the next record with a length rule; the FC8/00 scan whose CRC
+# over both records checks read them as one Return Query Data of 16 bytes).
+USER = with_crc(bytes.fromhex("0C4601020304"))
+FC8 = bytes.fromhex("0c0800001234bb74")  # (its CRC register is back to its start: it and any frame check as one)
+
+
+def test_a_record_that_is_a_scanned_frame_settles_what_is_before_it() -> None:
+    for first in (bytes.fromhex("29460102"), FC8, bytes.fromhex("0c03c8")):
+        got, rest = _fed([REQUEST, ANSWER, first, USER, REQUEST, ANSWER])
+        assert got == [["request 0c0320d000030eef"], ["response 0c030680000003000217e4"], [],
+                       [f"noise {first.hex()}", "request 0c46010203042817"], ["request 0c0320d000030eef"],
+                       ["response 0c030680000003000217e4"]], first.hex()
+        assert rest == []
