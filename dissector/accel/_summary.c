@@ -913,6 +913,7 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
         if (L->count_rule) {
             unsigned of = L->count_of_at ? word(f + L->count_of_at) : request->quantity;
             if (count != L->count_plus + (L->count_unit ? of * L->count_unit : (of + 7) / 8)) return 0;
+            if (L->padding && (of & 7) && f[L->values_at + count - 1] >> (of & 7)) return 0; /* padding bits set */
         }
         if (L->odd_count && count & 1) return 0;
     }

@@ -129,7 +129,7 @@ MAX_ECHO = 3
 LIFT_FIELDS = (
     "special", "start_at", "quantity_at", "quantity", "check_at", "check_width", "check_limit", "check_above", "span",
     "count_at", "count_width", "min_count", "count_rule", "count_of_at", "count_unit", "count_plus", "odd_count",
-    "coil_at", "echo_at", "echo_request_at", "values", "values_at", "write_start_at", "write_quantity_at",
+    "padding", "coil_at", "echo_at", "echo_request_at", "values", "values_at", "write_start_at", "write_quantity_at",
 )
 VALUES = {None: 0, ValueKind.REGISTERS: 1, ValueKind.REGISTER: 2, ValueKind.BITS: 3, ValueKind.COIL: 0}
 
@@ -165,7 +165,7 @@ def lift_row(entry: Function, kind: Kind, limits: tuple[str, ...]) -> dict[str, 
     values = rule.values
     row.update(
         start_at=at(_own(rule.start)), quantity_at=at(_own(rule.quantity)), quantity=quantity, span=int(rule.span),
-        odd_count=int(rule.odd_count), coil_at=at(rule.coil),
+        odd_count=int(rule.odd_count), padding=int(rule.padding is not None), coil_at=at(rule.coil),
         echo_at=[at(name) for name in echo] + [0] * (MAX_ECHO - len(echo)),
         echo_request_at=[field_at(entry.request.grammar, name, code) for name in echo] + [0] * (MAX_ECHO - len(echo)),
         values=VALUES[values.kind if values else None], values_at=at(values.field) if values else 0,
@@ -231,13 +231,13 @@ LIFT_STRUCT = """/* How the engine lifts a frame of a compiled code in one direc
  *   span: start + quantity within the 65536 addresses;
  *   the byte count at count_at (count_width bytes), at least min_count; with count_rule it must be
  *   count_plus + of x count_unit (0: bits, ceil(of / 8)), `of` at count_of_at or the request's quantity;
- *   odd_count: an even count; coil_at: ON or OFF; echo_at[j] must equal the request's echo_request_at[j];
+ *   odd_count: an even count; padding: the bits' last byte 0 past the quantity; coil_at: ON or OFF; echo_at[j] must equal the request's echo_request_at[j];
  *   values (VALUES_*) at values_at: a block of the window's registers (at write_start_at and
  *   write_quantity_at when the frame writes a window of its own, FC23), one register at the window's start,
  *   or the window's bits. */
 typedef struct {
     int special, start_at, quantity_at, quantity, check_at[2], check_width[2], check_limit[2], check_above[2], span;
-    int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count;
+    int count_at, count_width, min_count, count_rule, count_of_at, count_unit, count_plus, odd_count, padding;
     int coil_at, echo_at[MAX_ECHO], echo_request_at[MAX_ECHO], values, values_at, write_start_at, write_quantity_at;
 } Lift;"""
 

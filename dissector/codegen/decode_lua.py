@@ -226,7 +226,13 @@ def lifter(rule: dict[str, Any], limit: str | None, shape: list[dict[str, Any]],
         of = "request and request.quantity" if count["of"] == REQUEST_QUANTITY else field(count["of"])
         text = f"say({lua_literal(count['text'])}, {{ count = fields.byte_count, quantity = of }})"
         out += [f"local of = {of}", f"if of ~= nil and fields.byte_count ~= {count['plus']} + data_bytes(of, "
-                f"{count['unit']}) then", f"  warn(f, {text})", "end"]
+                f"{count['unit']}) then", f"  warn(f, {text})"]
+        if rule["padding"] and values:  # (the last byte's bits past the quantity: 2^(of % 8) and up)
+            last = f"b[{field(values['field'] + '_at')} + fields.byte_count - 1]"
+            said = f"say({lua_literal(rule['padding'])}, {{ quantity = of, mask = unused }})"
+            out += ["elseif of ~= nil and of % 8 > 0 then", "  local low = floor(2 ^ (of % 8))",
+                    f"  local unused = {last} - {last} % low", f"  if unused > 0 then warn(f, {said}) end"]
+        out.append("end")
     if rule["odd_count"]:
         out += _if("fields.byte_count % 2 == 1", 'warn(f, say("odd_count", { count = fields.byte_count }))')
     if rule["coil"]:

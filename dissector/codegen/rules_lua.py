@@ -119,7 +119,7 @@ def _lift(rule: Lift) -> dict[str, Any]:
         "span": rule.span,
         "count": None if rule.count is None else {
             "of": rule.count.of, "unit": rule.count.unit, "plus": rule.count.plus, "text": rule.count.text},
-        "odd_count": rule.odd_count, "coil": rule.coil,
+        "odd_count": rule.odd_count, "padding": rule.padding, "coil": rule.coil,
         "echo": None if rule.echo is None else {"fields": list(rule.echo.fields), "names": str(rule.echo.names),
                                                 "data": rule.echo.data},
         "parts": None if rule.parts is None else _parts(rule),

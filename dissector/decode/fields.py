@@ -141,6 +141,7 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
     unpaired, span, odd_count, coil, echo, values = (
         rule.unpaired_unit, rule.span, rule.odd_count, rule.coil, rule.echo, rule.values
     )
+    padding = rule.padding if values is not None else None
     parts = None if rule.parts is None else (rule.parts, _part_checks(rule.parts))
     write_window = rule.write_window if span else None
 
@@ -183,6 +184,10 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
                 given = fields["byte_count"]
                 if given != count.plus + (of * count.unit if count.unit else (of + 7) >> 3):  # Count.expected
                     frame.warnings.append(text(count.text, count=given, quantity=of))
+                elif padding is not None and of & 7:  # (the last byte's bits past the quantity)
+                    unused = fields[values.field][-1] >> (of & 7) << (of & 7)
+                    if unused:
+                        frame.warnings.append(text(padding, quantity=of, mask=unused))
         if odd_count and fields["byte_count"] % 2:
             frame.warnings.append(text("odd_count", count=fields["byte_count"]))
         if coil is not None and fields[coil] not in (COIL_ON, COIL_OFF):

@@ -120,6 +120,7 @@ class Lift:
     span: bool = False
     count: Count | None = None
     odd_count: bool = False
+    padding: str | None = None  # bits: the text of padding bits set
     coil: str | None = None
     echo: Echo | None = None
     values: Values | None = None
@@ -173,6 +174,7 @@ def _lift(name: str, entry: dict[str, object]) -> Lift:
             span=bool(entry.get("span", False)),
             count=None if count is None else Count(count["of"], int(count["unit"]), count["text"], int(count.get("plus", 0))),  # type: ignore[index, attr-defined]
             odd_count=bool(entry.get("odd_count", False)),
+            padding=entry.get("padding"),  # type: ignore[arg-type]
             coil=entry.get("coil"),  # type: ignore[arg-type]
             echo=None if echo is None else Echo(  # type: ignore[index, attr-defined]
                 tuple(echo.get("fields", ())), Names(echo.get("names", "differing")), bool(echo.get("data", False))),
