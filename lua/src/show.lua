@@ -42,6 +42,11 @@ local function chained_ns(c, pinfo, number, abs)
   return coarse_ns(c, abs)
 end
 
+-- The clock record_ns reads the usual record's time from, in upvalues (fewer look-ups a record): the capture's
+-- serial stream, the reference record's time (abs_ts - rel_ts) and that in ns, the clock's times. Set
+-- where the clock learns its reference (other_record_ns).
+local usual_capture, usual_reference, usual_reference_ns, usual_times = nil, nil, nil, nil
+
 -- A record's time as record_ns reads it where it is not the usual case below: the first record, a new
 -- reference, an RTAC record, one at the epoch, a stand-in. (abs: pinfo.abs_ts, read already)
 local function other_record_ns(pinfo, number, abs)
@@ -62,7 +67,10 @@ local function other_record_ns(pinfo, number, abs)
       -- The first record, or a new reference (a time reference set in the GUI): from the record before.
       ns = chained_ns(c, pinfo, number, abs)
       reference = rel ~= nil and abs - rel -- (the reference record's time; 0: it has none)
-      if reference and math.abs(reference) >= 1 then c.reference, c.reference_ns = reference, ns - exact_ns(c, rel) end
+      if reference and math.abs(reference) >= 1 then
+        c.reference, c.reference_ns = reference, ns - exact_ns(c, rel)
+        usual_capture, usual_reference, usual_reference_ns, usual_times = state, reference, c.reference_ns, times
+      end
     end
   end
   times[number] = ns or false
@@ -73,19 +81,18 @@ end
 -- records (when the device saw the bytes: lane.rtac_ns), none for records at the epoch (vw3-decode -w
 -- writes those for untimed input), the record's time otherwise. Read once a record (kept in clock.times).
 local function record_ns(pinfo, number)
-  local abs, c = pinfo.abs_ts, clock
-  local reference = c.reference
+  local abs = pinfo.abs_ts
   -- Nearly every record: timed, of the capture whose reference record's time the clock knows, no RTAC
   -- record; its time from the reference's, written out here (other_record_ns does the same, and the rest).
-  if reference == nil or abs == 0 or abs == nil or c.capture ~= state or rtac_times[number] ~= nil then
+  if usual_capture ~= state or abs == 0 or abs == nil or rtac_times[number] ~= nil then
     return other_record_ns(pinfo, number, abs)
   end
   local rel = pinfo.rel_ts
-  local drift = rel ~= nil and abs - rel - reference
+  local drift = rel ~= nil and abs - rel - usual_reference
   if not (drift and drift < 1e-6 and drift > -1e-6) then return other_record_ns(pinfo, number, abs) end
   local from = rel * NS + 0.5
-  local ns = c.reference_ns + (from - from % 1)
-  c.times[number] = ns
+  local ns = usual_reference_ns + (from - from % 1)
+  usual_times[number] = ns
   return ns
 end
 
