@@ -169,7 +169,7 @@ end
 -- decoding with every slave's device fixed (lane.again), as vw3-decode reads a file.
 local function pipeline(case)
   local st = M.new_state(nil, case.mode)
-  st.again = { order = { 1 }, bytes = { [1] = bytes_of(case.input) }, times = { [1] = false } }
+  st.again = { bytes = { [1] = bytes_of(case.input) }, times = { [1] = false } } -- (lane.again: in number order)
   st.records[1] = M.dissect_record(st, bytes_of(case.input), nil, 1)
   M.pack.settle(st)
   M.finish(st)
