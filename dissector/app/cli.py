@@ -124,9 +124,8 @@ class Sinks:
         # --report writes a file: the items are printed too when an item format is asked for
         # (--report r.html --json), never silently dropped.
         asked = args.output.records or args.output.detail or args.output.hexdump
-        self.show = not args.stats and self.watch is None and (self.report is None or asked) and (
-            args.write is None or args.print_too
-        )
+        self.show = (not args.stats and not args.quiet and self.watch is None and (self.report is None or asked)
+                     and (args.write is None or args.print_too))
         self.output = Output(args.output, self.text_out, text_isatty,
                              lambda text: env.stderr.write(f"{PROG}: {shown(text)}\n"))
         self.clock = self.output.clock

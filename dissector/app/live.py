@@ -161,6 +161,8 @@ def _make_sink(
     stats: LiveStats,
     annotate: Annotator | None = None,
 ) -> Sink:
+    if getattr(args, "quiet", False):
+        return NullSink()  # (-q: no items; the summary line at the end stays, as tshark -q's)
     if getattr(args, "write", None) == STDOUT:
         # Standard output is the pcap: lines only with -P, on standard error (as tshark -w - -P).
         if not getattr(args, "print_too", False):

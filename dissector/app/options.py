@@ -53,6 +53,7 @@ class DecodeOptions:
     file_format: str | None = None  # -F
     ring: tuple[str, ...] = ()  # -b
     print_too: bool = False
+    quiet: bool = False  # -q
     stats: bool = False
     watch: str | None = None
     report: str | None = None
@@ -132,6 +133,10 @@ def build_parser() -> argparse.ArgumentParser:
         help="-w ring buffer, as dumpcap: a new file every KB kB or S seconds, keeping the last N",
     )
     output.add_argument("-P", dest="print_too", action="store_true", help="print the items even with -w")
+    output.add_argument(
+        "-q", dest="quiet", action="store_true",
+        help="print no items, as tshark -q (with -w, --stats, --watch or --report: their output alone)",
+    )
     output.add_argument(
         "--stats", action="store_true", help="statistics per slave, function and parameter instead of items"
     )
@@ -268,6 +273,7 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         file_format=args.file_format,
         ring=tuple(args.ring or ()),
         print_too=args.print_too,
+        quiet=args.quiet,
         stats=args.stats,
         watch=args.watch,
         report=args.report,
@@ -304,6 +310,7 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
         (args.duration is not None, "--duration needs --live PORT"),
         (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
+        (args.print_too and args.quiet, "-P prints the items, -q prints none: choose one"),
         (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
         (args.file_format is not None and args.write is None, "-F (file format) needs -w FILE"),
         (args.stats and (args.detail or args.hexdump), "--stats replaces the items: -V and -x show none"),

@@ -145,6 +145,7 @@ def test_fields_bom_and_json_alias() -> None:
         (["--raw", "out.bin"], "--raw (write the bytes heard) needs --live PORT"),
         (["-Y", "slave == 1", "-Y", "slave == 2"], "-Y given twice: combine the filters with and / or in one -Y"),
         (["-P"], "-P (print as well) needs -w FILE"),
+        (["-w", "x.pcap", "-P", "-q"], "-P prints the items, -q prints none: choose one"),
         (["--stats", "-V"], "--stats replaces the items: -V and -x show none"),
         (["-T", "fields", "-e", "frame", "-E", "separator=ab"],
          "-E separator=ab: one character (/t tab, /s space, or the character)"),
@@ -166,12 +167,21 @@ def test_contradicting_options_are_refused_with_one_line(argv: list[str], messag
 def test_several_inputs_announce_a_header_only_over_what_is_shown(tmp_path: Path) -> None:
     bin38 = P38.replace(".pcap", ".bin")
     out_pcap = str(tmp_path / "out.pcap")
-    for argv in (["-w", out_pcap], ["--stats"], ["--report", str(tmp_path / "r.html")]):
+    for argv in (["-w", out_pcap], ["--stats"], ["--report", str(tmp_path / "r.html")], ["-q"]):
         status, out, err = run_cli([*argv, P38, bin38])
         assert (status, err) == (0, "")
         assert "==>" not in out, argv  # (-w FILE printed two ==> file <== lines with nothing under them)
     status, out, err = run_cli(["-w", out_pcap, "-P", P38, bin38])
     assert [line for line in out.splitlines() if line.startswith("==>")] == [f"==> {P38} <==", f"==> {bin38} <=="]
+
+
+def test_q_prints_no_items_as_tshark_q(tmp_path: Path) -> None:
+    # tshark -q -w: the file alone; -q --stats: the statistics alone (-q was refused before: not an option).
+    out_pcap = str(tmp_path / "q.pcap")
+    assert run_cli(["-q", P38]) == (0, "", "")
+    assert run_cli(["-q", "-w", out_pcap, P38]) == (0, "", "")
+    assert run_cli([out_pcap])[1] == run_cli([P38])[1]
+    assert run_cli(["-q", "--stats", P38]) == run_cli(["--stats", P38])
 
 
 def test_the_simulator_runs_as_a_package() -> None:
