@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from test_timed_summary import assert_same, write_pcap
+from test_timed_summary import same_lines_of_records as _lines
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
 BAD = ANSWER[:-1] + bytes([ANSWER[-1] ^ 1])
@@ -19,16 +19,6 @@ LONGER = rtu((FC8 + b"\xff\xff").hex())  # (a CRC scan from the FC8 frame's star
 READ = "12 request   Read Holding Registers 8400..8402 (3)"
 VALUES = "8400=non-existent CHCF=IO (I/O profile) COP=Cd (command)"
 RAW = "8400=32768 8401=3 8402=2"  # (two good answers only: no profile chosen for slave 12)
-T0 = 1_700_000_000 * 10**9
-
-
-def _lines(tmp_path: Path, records: list[tuple[bytes, float]], monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    capture = tmp_path / "bus.pcap"
-    write_pcap(capture, [(data, T0 + round(time * 1e9)) for data, time in records])
-    out, _ = assert_same([str(capture)], monkeypatch)
-    for option in (["-V"], ["--json"], ["-x"]):
-        assert_same([str(capture), *option], monkeypatch)
-    return out.splitlines()
 
 
 def test_a_scanned_frame_ends_with_its_record(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

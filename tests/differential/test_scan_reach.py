@@ -13,7 +13,7 @@ import pytest
 
 from dissector.protocol.crc import crc16
 from helpers import rtu
-from test_timed_summary import assert_same, write_pcap
+from test_timed_summary import same_lines_of_records as _lines
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
 # (the last two bytes chosen so that the record and the request after it check as one frame)
@@ -21,17 +21,7 @@ FC8 = bytes.fromhex("0c0800001234bb74")
 USER = bytes.fromhex("2946a54dca182530bb1d6d132cded6237b2ed91e3f72480b")  # (user-defined code 70, slave 41)
 READ = "12 request   Read Holding Registers 8400..8402 (3)  CRC ok"
 VALUES = "8400=non-existent CHCF=IO (I/O profile) COP=Cd (command)"
-T0 = 1_700_000_000 * 10**9
 CHARACTER = 11 / 19200  # (the request follows the record's last byte at once: no silence inside)
-
-
-def _lines(tmp_path: Path, records: list[tuple[bytes, float]], monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    capture = tmp_path / "bus.pcap"
-    write_pcap(capture, [(data, T0 + round(time * 1e9)) for data, time in records])
-    out, _ = assert_same([str(capture)], monkeypatch)
-    for option in (["-V"], ["--json"], ["-x"]):
-        assert_same([str(capture), *option], monkeypatch)
-    return out.splitlines()
 
 
 def _crossing(first: bytes) -> list[tuple[bytes, float]]:

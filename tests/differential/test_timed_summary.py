@@ -110,6 +110,18 @@ def assert_same(argv: list[str], monkeypatch: pytest.MonkeyPatch, stdin: bytes =
     return fast, engine_lines
 
 
+def same_lines_of_records(tmp_path: Path, records: list[tuple[bytes, float]],
+                          monkeypatch: pytest.MonkeyPatch) -> list[str]:
+    """The summary lines of a pcap of `records` (bytes, seconds after 1700000000 s), the engine's equal to the
+    Python stages' there and under -V, --json and -x."""
+    capture = tmp_path / "bus.pcap"
+    write_pcap(capture, [(data, 1_700_000_000 * 10**9 + round(time * 1e9)) for data, time in records])
+    out, _ = assert_same([str(capture)], monkeypatch)
+    for option in (["-V"], ["--json"], ["-x"]):
+        assert_same([str(capture), *option], monkeypatch)
+    return out.splitlines()
+
+
 OPTIONS = [[], ["-n"], ["-t", "d"], ["-t", "dd"], ["--timeout", "0.03"], ["--baud", "9600"], ["--profile", "atv71"]]
 
 

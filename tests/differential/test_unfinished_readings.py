@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from test_timed_summary import assert_same, write_pcap
+from test_timed_summary import same_lines_of_records as _lines
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
 FC8 = bytes.fromhex("0c0800001234bb74")  # (its CRC register back at its start: it and a frame check as one)
@@ -24,16 +24,6 @@ READ = "12 request   Read Holding Registers 8400..8402 (3)  CRC ok"
 VALUES = "8400=non-existent CHCF=IO (I/O profile) COP=Cd (command)"
 RAW_VALUES = "8400=32768 8401=3 8402=2"  # (no read before names the device)
 CHARACTER = 11 / 19200
-T0 = 1_700_000_000 * 10**9
-
-
-def _lines(tmp_path: Path, records: list[tuple[bytes, float]], monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    capture = tmp_path / "bus.pcap"
-    write_pcap(capture, [(data, T0 + round(time * 1e9)) for data, time in records])
-    out, _ = assert_same([str(capture)], monkeypatch)
-    for option in (["-V"], ["--json"], ["-x"]):
-        assert_same([str(capture), *option], monkeypatch)
-    return out.splitlines()
 
 
 def test_the_answer_awaited_is_not_waited_for_across_a_request_s_record(
@@ -68,7 +58,6 @@ def test_what_follows_a_damaged_request_is_settled_by_the_next_record(
         f"     4     3.000000  {READ}",
         f"     5     3.010000  12 response  Read Holding Registers 8400..8402 (3): {VALUES} [#4, 10.0 ms]  CRC ok",
     ]
-
 
 
 def test_an_fc8_scan_stops_at_a_record_that_is_a_scanned_frame(

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import decode_frames, rtu
 from lua_harness import lua_items, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -23,11 +23,7 @@ WARNINGS = [[], ["padding bits set after the bits asked (10): 0x04"],
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_vw3_decode_warns_of_padding_bits(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    use_engine(monkeypatch, pure)
-    capture = tmp_path / "bits.bin"
-    capture.write_bytes(b"".join(FRAMES))
-    status, out, err = run_cli([str(capture)])
-    assert status == 0, err
+    out = decode_frames(FRAMES, tmp_path, monkeypatch, pure)
     assert out.splitlines()[1::2] == [
         "     2            -  12 response  Read Coils 0..9 (10): 1111111111 [#1] "
         f"[warning: {WARNINGS[1][0]}]  CRC ok",

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import decode_frames, rtu
 from lua_harness import lua_items, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -23,11 +23,7 @@ MORE = "VendorName='ABC' ProductCode='P1' MajorMinorRevision='V1.0' (more follow
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_vw3_decode(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    use_engine(monkeypatch, pure)
-    capture = tmp_path / "fc43.bin"
-    capture.write_bytes(b"".join(FRAMES))
-    status, out, err = run_cli([str(capture)])
-    assert status == 0, err
+    out = decode_frames(FRAMES, tmp_path, monkeypatch, pure)
     name = "Encapsulated Interface Transport Read Device Identification, basic:"
     assert out.splitlines()[1::2] == [
         f"     2            -   1 response  {name} [#1] [warning: {NONE}]  CRC ok",

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import decode_frames, rtu
 from lua_harness import lua_items, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -24,11 +24,7 @@ WARNINGS = [[], ["sub-response 1's length 5 holds registers (2), not the record 
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_vw3_decode_says_the_length_in_registers(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    use_engine(monkeypatch, pure)
-    capture = tmp_path / "fc20.bin"
-    capture.write_bytes(b"".join(FRAMES))
-    status, out, err = run_cli([str(capture)])
-    assert status == 0, err
+    out = decode_frames(FRAMES, tmp_path, monkeypatch, pure)
     lines = out.splitlines()
     assert lines[1] == ("     2            -   5 response  Read File Record 2 record group(s) [#1] "
                         + " ".join(f"[warning: {w}]" for w in WARNINGS[1]) + "  CRC ok")

@@ -16,8 +16,8 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from lua_compare import compare
-from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import ROOT, write_pcap
+from test_lua_scan_reach import _infos, _same_as_vw3_decode  # (Info per record; -2 as vw3-decode)
 from test_written_records import damaged_stream
 
 pytestmark = pytest.mark.integration
@@ -27,19 +27,6 @@ DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
 COUNTER = rtu("0C 0B")  # (a 4-byte request: Get Comm Event Counter)
 READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
 COUNTED = "12 Get Comm Event Counter request"
-
-
-def _infos(pcap: Path, two_pass: bool) -> list[str]:
-    got = run_tshark(pcap, "-T", "fields", "-e", "_ws.col.Info", two_pass=two_pass)
-    assert not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
-    return got.stdout.splitlines()
-
-
-def _same_as_vw3_decode(pcap: Path) -> None:
-    # (one pass cannot show a record's noise, settled by the next record, in that record: -2 does, as vw3-decode)
-    two, _, _ = lua_items(pcap)
-    differences = compare(python_items(pcap), two)
-    assert not differences, "\n".join(differences[:40])
 
 
 def _capture(tmp_path: Path, records: list[bytes]) -> Path:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import decode_frames, rtu
 from lua_harness import lua_items, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -24,16 +24,10 @@ LINE = f"     2            -  12 response  Report Server ID server id 180 [#1] [
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_vw3_decode_shows_the_server_id(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    use_engine(monkeypatch, pure)
-    capture = tmp_path / "fc17.bin"
-    capture.write_bytes(b"".join(FRAMES))
-    status, out, err = run_cli([str(capture)])
-    assert status == 0, err
-    assert out.splitlines()[1] == LINE
-    status, out, err = run_cli([str(capture), "--json"])
-    answer = json.loads(out.splitlines()[1])
+    assert decode_frames(FRAMES, tmp_path, monkeypatch, pure).splitlines()[1] == LINE
+    answer = json.loads(decode_frames(FRAMES, tmp_path, monkeypatch, pure, "--json").splitlines()[1])
     assert (answer["fields"], answer["warnings"]) == ({"byte_count": 1, "server_id": 180}, [WARNING])
-    status, out, err = run_cli([str(capture), "-V"])
+    out = decode_frames(FRAMES, tmp_path, monkeypatch, pure, "-V")
     assert "        Byte count: 1 (0x1)\n        Server id: 180 (0xB4)\n        CRC: " in out
 
 

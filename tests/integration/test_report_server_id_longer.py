@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import decode_frames, rtu
 from lua_harness import lua_items, write_pcap
 
 pytestmark = pytest.mark.integration
@@ -26,11 +26,7 @@ WARNINGS = [[], [NOT_RUN.format(0x79) + "'Pymodbus', then run ON"],
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_vw3_decode_says_the_longer_id(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    use_engine(monkeypatch, pure)
-    capture = tmp_path / "fc17.bin"
-    capture.write_bytes(b"".join(FRAMES))
-    status, out, err = run_cli([str(capture)])
-    assert status == 0, err
+    out = decode_frames(FRAMES, tmp_path, monkeypatch, pure)
     assert out.splitlines()[1::2] == [
         f"     2            -   5 response  Report Server ID server id 80, run 121, 7 bytes [#1] "
         f"[warning: {WARNINGS[1][0]}]  CRC ok",

@@ -62,6 +62,16 @@ def use_engine(monkeypatch: object, pure: bool) -> None:
     assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"
 
 
+def decode_frames(frames: list[bytes], tmp_path: object, monkeypatch: object, pure: bool, *options: str) -> str:
+    """vw3-decode's output of `frames` written as one raw capture, by the engine or the Python stages (`pure`)."""
+    use_engine(monkeypatch, pure)
+    capture = tmp_path / "frames.bin"  # type: ignore[operator]
+    capture.write_bytes(b"".join(frames))
+    status, out, err = run_cli([str(capture), *options])
+    assert status == 0, err
+    return out
+
+
 def decode_counting_frames(argv: list[str], monkeypatch: object, pure: bool, stdin: bytes = b"") -> tuple[str, list[int]]:
     """`vw3-decode argv`'s output (stdout then stderr, exit 0 asserted) and the numbers of the frames the
     compiled engine's frames path (accel/framespath.py) framed: none under VW3_PURE_PYTHON=1."""

@@ -9,21 +9,12 @@ one pass: '(N bytes continue)'). Pure Python framer; the engine: tests/different
 the plugin: tests/integration/test_lua_unfinished_readings.py."""
 from __future__ import annotations
 
-from dissector.framing.rtu import RtuFramer
-from dissector.model import Chunk
 from dissector.protocol.crc import with_crc
+from test_scan_reach_settles import _fed  # (records fed one by one, each a boundary)
 
 REQUEST, ANSWER = with_crc(bytes.fromhex("0C0320D00003")), with_crc(bytes.fromhex("0C0306800000030002"))
 DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
 COUNTER = with_crc(bytes.fromhex("0C0B"))  # (a 4-byte request: Get Comm Event Counter)
-
-
-def _fed(records: list[bytes]) -> tuple[list[list[str]], list[str]]:
-    framer = RtuFramer()
-    got = [[f"{item.kind.value} {bytes(item.raw).hex()}"
-            for item in framer.feed(Chunk(data, 1700000000 + index, boundary=True))]
-           for index, data in enumerate(records)]
-    return got, [f"{item.kind.value} {bytes(item.raw).hex()}" for item in framer.finish()]
 
 
 def test_a_long_reading_after_a_damaged_request_is_settled_by_the_next_record() -> None:
