@@ -32,6 +32,7 @@ from typing import Protocol, TextIO
 
 import serial
 
+from dissector.app.live_options import mode_bytesize
 from dissector.sources.serial_port import PARITIES, TERMIOS_ERRORS, PortSettings, open_port, termios
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -328,7 +329,7 @@ def command_line(port: str, best: Score) -> str:
     bits (8, 7 for ASCII), 1 stop bit)."""
     where = best.where
     mode = " --mode ascii" if best.mode == "ascii" else ""
-    size = f" --bytesize {where.bytesize}" if where.bytesize != (7 if best.mode == "ascii" else 8) else ""
+    size = f" --bytesize {where.bytesize}" if where.bytesize != mode_bytesize(best.mode) else ""
     stop = f" --stopbits {where.stopbits}" if where.stopbits != 1 else ""
     return f"{PROG} --live {port}{mode} --baud {where.baud} --parity {where.parity}{size}{stop}"
 

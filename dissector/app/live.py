@@ -43,7 +43,7 @@ from dissector.app.live_capture import (
     Tape,
     silence_threshold,
 )
-from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES
+from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES, mode_bytesize
 from dissector.app.options import shown  # typed names are data: control characters escaped
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
@@ -65,9 +65,7 @@ WAIT = 0.02  # the display wakes at least this often (timeouts, the stop flag, r
 
 def port_settings(args: argparse.Namespace) -> PortSettings:
     """The port's settings; without --bytesize, the mode's data bits (Serial Line Guide 2.5: RTU 8, ASCII 7)."""
-    bytesize = args.bytesize
-    if not getattr(args, BYTESIZE_GIVEN, False) and getattr(args, "mode", None) == "ascii":
-        bytesize = 7
+    bytesize = args.bytesize if getattr(args, BYTESIZE_GIVEN, False) else mode_bytesize(getattr(args, "mode", None))
     return PortSettings(args.live, args.baud, args.parity, args.stopbits, bytesize)
 
 

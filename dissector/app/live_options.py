@@ -9,6 +9,11 @@ PARITY_CHOICES = ("E", "N", "O")
 BYTESIZE_GIVEN = "bytesize_given"  # set by --bytesize: --detect then tries that size only
 
 
+def mode_bytesize(mode: str | None) -> int:
+    """The data bits of a mode's character (Serial Line Guide 2.5: RTU 8, ASCII 7)."""
+    return 7 if mode == "ascii" else 8
+
+
 class GivenBytesize(argparse.Action):
     """Stores --bytesize and notes that it was given (its default, 8, is RTU's: --detect tries
     ASCII at 7 data bits unless told otherwise)."""
@@ -55,7 +60,7 @@ def add_live_arguments(parser: argparse.ArgumentParser) -> None:
     )
     group.add_argument("--stopbits", type=float, choices=[1, 1.5, 2], default=1, help="default 1")
     group.add_argument(
-        "--bytesize", type=int, choices=[5, 6, 7, 8], default=8, action=GivenBytesize,
+        "--bytesize", type=int, choices=[5, 6, 7, 8], default=mode_bytesize("rtu"), action=GivenBytesize,
         help="data bits, default 8, 7 with --mode ascii (--detect tries 8 for RTU and 7 for ASCII unless given)",
     )
     group.add_argument("--raw", metavar="FILE", help="also write every byte heard to FILE, as heard")
