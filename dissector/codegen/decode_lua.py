@@ -16,7 +16,8 @@ from dissector.codegen.rules_lua import rules_data
 REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
 WIDTH = 110  # (a longer line is wrapped where Lua allows it: between a constructor's keys, around an if's body)
 # The decoder's helpers the handlers call (lua/src/decode.lua; data_bytes: lua/src/layouts.lua): their upvalues.
-HELPERS = ("warn", "say", "echo_check", "data_bytes", "range_text", "check_asked", "check_data_echo")
+HELPERS = ("warn", "say", "echo_check", "data_bytes", "range_text", "check_asked", "check_data_echo",
+           "past_quantity")
 
 
 def _wrap(head: str, items: list[str], joint: str, tail: str, indent: str) -> list[str]:
@@ -251,6 +252,12 @@ def lifter(rule: dict[str, Any], limit: str | None, shape: list[dict[str, Any]],
             counted = f"floor({counted} / 2)"
         if values["kind"] == "registers":
             first = field(values["start"]) if values["start"] else "first"
+            if values["most"]:  # (a write's words past its quantity: no register written, fields._past_quantity)
+                most, past = field(values["most"]), lua_literal(values["past"])
+                out += [f"local count, most = {counted}, {most}", "if count > most then",
+                        f"  past_quantity(f, b, {at} + 2 * most, 2 * (count - most), most, {past})",
+                        "  count = most", "end"]
+                counted = "count"
             out += _wrap("f.registers = { ", ["b = b", f"first = {at}", f"count = {counted}", f"start = {first}",
                                               "shift = nil"], ", ", " }", "")
         elif values["kind"] == "bits":
@@ -313,7 +320,7 @@ def render_decoders() -> list[str]:
             entries = [f"[{code}] = {table}{_key(entry[key])}" for code, entry in codes.items() if entry[key]]
             lines += _wrap(f"  {kind} = {{ ", entries, ", ", " },", "  ")
         lines.append("}")
-    lines += [f"function DATA.lifters(special, {', '.join(HELPERS)})",
+    lines += [*_wrap("function DATA.lifters(", ["special", *HELPERS], ", ", ")", ""),
               "  local floor, lift = math.floor, DATA.rules.lift",
               "  local handler = {} -- (by rule, and limit where codes give a rule several)"]
     names = _handler_names(rules["by_code"])

@@ -124,7 +124,8 @@ def _lift(rule: Lift) -> dict[str, Any]:
                                                 "data": rule.echo.data},
         "parts": None if rule.parts is None else _parts(rule),
         "values": None if rule.values is None else {
-            "kind": str(rule.values.kind), "field": rule.values.field, "start": rule.values.start},
+            "kind": str(rule.values.kind), "field": rule.values.field, "start": rule.values.start,
+            "most": rule.values.most, "past": rule.values.past},
         "write_window": None if rule.write_window is None else list(rule.write_window),
     }
 

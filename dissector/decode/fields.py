@@ -200,6 +200,8 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
             data = fields[values.field]
             kind = values.kind
             if kind is _REGISTERS:
+                if values.most is not None and len(data) > fields[values.most]:
+                    data = _past_quantity(frame, data, fields[values.most], values.past)  # type: ignore[arg-type]
                 # In bulk: a 125-register block makes no Register object until a view asks for one.
                 frame.registers = RegisterList(start if values.start is None else fields[values.start], data)
             elif kind is _BITS:
@@ -213,6 +215,14 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
 
     lift.__qualname__ = f"lifter[{rule.name}]"
     return lift
+
+
+def _past_quantity(frame: Frame, data: list[int], quantity: int, past: str) -> list[int]:
+    """The values a write's quantity takes; the words its byte count carries past them are no register
+    written: warned by their bytes (text `past`)."""
+    extra = " ".join(f"{word >> 8:02x} {word & 0xFF:02x}" for word in data[quantity:])
+    frame.warnings.append(text(past, count=2 * (len(data) - quantity), quantity=quantity, data=extra))
+    return data[:quantity]
 
 
 def _source(name: str | None, window: str) -> tuple[str | None, bool]:

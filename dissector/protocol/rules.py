@@ -106,6 +106,8 @@ class Values:
     kind: ValueKind
     field: str
     start: str | None = None  # a field; None: the window's start
+    most: str | None = None  # registers: a field, the most values there are (those past it: text `past`)
+    past: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -139,6 +141,8 @@ class Lift:
             names.add(self.values.field)
             if self.values.start:
                 names.add(self.values.start)
+            if self.values.most:
+                names.add(self.values.most)
         if self.write_window:
             names.update(self.write_window)
         if self.count:
@@ -179,7 +183,8 @@ def _lift(name: str, entry: dict[str, object]) -> Lift:
             echo=None if echo is None else Echo(  # type: ignore[index, attr-defined]
                 tuple(echo.get("fields", ())), Names(echo.get("names", "differing")), bool(echo.get("data", False))),
             parts=None if parts is None else _parts(parts),  # type: ignore[arg-type]
-            values=None if values is None else Values(ValueKind(values["kind"]), values["field"], values.get("start")),  # type: ignore[index, attr-defined]
+            values=None if values is None else Values(  # type: ignore[index, attr-defined]
+                ValueKind(values["kind"]), values["field"], values.get("start"), values.get("most"), values.get("past")),
             write_window=None if window is None else (window[0], window[1]),  # type: ignore[index]
         )
     except (KeyError, TypeError, ValueError) as error:

@@ -144,6 +144,14 @@ local function check_asked(f, parts, index, given, asked)
   end
 end
 
+-- A write's words past its quantity (fields.py _past_quantity), `size` bytes at b[at]: no register written,
+-- warned by their bytes (the text `key`).
+local function past_quantity(f, b, at, size, quantity, key)
+  local hex = {}
+  for k = at, at + size - 1 do hex[#hex + 1] = format("%02x", b[k]) end
+  warn(f, say(key, { count = size, quantity = quantity, data = concat(hex, " ") }))
+end
+
 -- An FC8 request's data word as the spec has it for its sub-function (RULES.diagnostic_data, fields.py
 -- _diagnostic_data): what it asks (a note), or a warning where the spec allows another.
 local DIAGNOSTIC_DATA = RULES.diagnostic_data
@@ -245,7 +253,8 @@ local SPECIAL = {
 -- (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a named special case) and its handler (H): the lifting
 -- rule's where the table has one, else the special case's.
 local GRAMMARS, LIFT_OF = DATA.grammars, DATA.lift_of
-local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo)
+local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo,
+  past_quantity)
 
 -- Register writes by how they are confirmed (data/modbus.toml [confirm]; annotator.py _BY_ECHO, _BY_ANSWER):
 -- by their echo (FC6), by a normal answer (FC16, FC23).

@@ -97,7 +97,7 @@ CASES = [
     (
         "sel749m_polling.bin",
         'address in {250, 302} or (address in 400..401 and kind == "request")',
-        [31, 37, 49, 55, 61],
+        [31, 37, 55, 61],  # (frame 49's 302 is past its quantity 2: no register written)
     ),
     ("noisy_bus.bin", "not crc_ok", [1, 17, 34]),  # noise has no crc_ok: "not" of an absent field
     ("noisy_bus.bin", "crc_ok == false", [17]),
