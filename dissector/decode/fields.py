@@ -338,9 +338,11 @@ def _report_server_id_response(frame: Frame, fields: Container) -> None:
     byte after it: the layout reads a one-byte id (libmodbus); a longer id (pymodbus: a name, the run
     indicator last) has a run indicator further on. Only an answer with no 00 or FF after its first byte has
     none where any id length puts it; a byte count of 1 (the layout's ?(byte_count-1)) holds the id alone,
-    the spec's run indicator is missing."""
+    the spec's run indicator is missing; a byte count of 0 neither."""
     indicator = fields["run_indicator"]
-    if indicator is None:
+    if fields["server_id"] is None:  # (byte count 0: the layout's ?(byte_count))
+        frame.warnings.append(text("no_server_id", count=fields["byte_count"]))
+    elif indicator is None:
         frame.warnings.append(text("no_run_indicator", count=fields["byte_count"]))
     elif not isinstance(indicator, str):  # construct's Enum gives the name (a str) for 00 and FF only
         data = frame.pdu[2 : 2 + fields["byte_count"]]  # (after the function code and byte count)

@@ -296,7 +296,7 @@ def _object_value(obj: DeviceObject) -> str:
 
 def _report_server_id(frame: Frame, request: bool) -> str:
     fields = frame.fields
-    if request or "server_id" not in fields:
+    if request or fields.get("server_id") is None:  # (byte count 0: none, data/modbus.toml ?(byte_count))
         return ""
     if fields.run_indicator is None:  # (byte count 1: the id alone, data/modbus.toml ?(byte_count-1))
         return f"server id {fields.server_id}"

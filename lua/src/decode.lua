@@ -232,7 +232,9 @@ local SPECIAL = {
   report_server_id_response = function(f, b)
     -- (the tree shows its fields from the layout, tree.lua add_pdu)
     local run, names, count = f.fields.run_indicator, DATA.names.run_indicator, f.fields.byte_count
-    if run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
+    if count == 0 then -- (no server id either: the layout's ?(byte_count))
+      warn(f, say("no_server_id", { count = count }))
+    elseif run == nil then -- (byte count 1: the server id alone, the layout's ?(byte_count-1))
       warn(f, say("no_run_indicator", { count = count }))
     elseif names[run] == nil then
       local first = f.data_at + 1 -- (the server id's first byte)

@@ -325,7 +325,7 @@ end
 -- describe._report_server_id: an answer's `server id 18, run ON, 'V1.'` (its data as text where every byte
 -- is printable ASCII, else counted).
 function BY_NAME.report_server_id(f, b, base)
-  if f.kind == REQUEST then return "" end
+  if f.kind == REQUEST or b[base + 2] == 0 then return "" end -- (byte count 0: no server id)
   if b[base + 2] < 2 then return "server id " .. DECIMAL[b[base + 3]] end -- (byte count 1: the id alone)
   local count, run = b[base + 2] - 2, b[base + 4]
   local text = count > 0 and printable(b, base + 5, base + 4 + count)
