@@ -137,7 +137,11 @@ local function registers_of(adu, fn, request)
   local registers = {}
   local numbers, values = fields_of(adu, "number"), fields_of(adu, "value")
   if numbers ~= nil and values ~= nil and #numbers > 0 then
-    for index = 1, math.min(#numbers, #values) do
+    local count = math.min(#numbers, #values)
+    if fn == 16 and fields_of(adu, "request") == nil then -- (values past the quantity: no register written,
+      count = math.min(count, first_value(fields_of(adu, "quantity")) or count) -- data/modbus.toml values' most)
+    end
+    for index = 1, count do
       local value = values[index]
       registers[index] = { address = numbers[index].value, value = value.value, range = value.range }
     end
