@@ -4362,7 +4362,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, ECHO_CODES, FRAMING, NEED, NOISE = DATA, ECHO_CODES, FRAMING, NEED, NOISE
 local NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local awaited, format, interpretations, math, pairs = awaited, format, interpretations, math, pairs
+local awaited, format, interpretations, math, pairs, type = awaited, format, interpretations, math, pairs, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -4542,10 +4542,45 @@ local function awaits_answer(frame)
   return frame.slave ~= 0 and not values[b[at] * 256 + b[at + 1]]
 end
 
+-- The length of the normal answer a request implies, where the protocol table fixes it by the request
+-- (framing/answers.py): an answer counted by a byte count (count8) whose lifting rule has that count follow the
+-- quantity the request asks (`request.quantity`, FC1..4 and FC23's reads). By code: the request's quantity word's
+-- place in the frame, the count's unit and plus, the answer's length besides its byte count.
+local ANSWERS = {}
+do
+  local lifts, by_code, places = DATA.rules.lift, DATA.rules.by_code, DATA.field_places
+  for code, answer in pairs(by_code.response) do
+    local count, request = answer.rule and lifts[answer.rule].count, by_code.request[code]
+    local asked = request and request.rule and lifts[request.rule].quantity
+    local counted = DATA.protocol.rules[code][2]
+    if count ~= nil and count.of == "request.quantity" and type(asked) == "string" and counted[1] == "count8" then
+      ANSWERS[code] = { places[request.layout][asked].at, count.unit, count.plus, counted[3] }
+    end
+  end
+end
+
+-- The length (CRC included) of the normal answer request `frame` implies (answers.py answer_length), nil: not
+-- known. The data a quantity asks: unit bytes an item, or bits 8 to a byte (unit 0: protocol/rules.py data_bytes).
+local function answer_length(frame)
+  local rule = ANSWERS[frame.fn]
+  if rule == nil or frame.data_len < rule[1] then return nil end
+  local b, at = frame.b, frame.data_at + rule[1] - 2
+  local quantity = b[at] * 256 + b[at + 1]
+  local data = rule[2] == 0 and math.floor((quantity + 7) / 8) or quantity * rule[2]
+  return rule[4] + rule[3] + data
+end
+
+-- The answer a request leaves awaited: its length (answer_length, s.answer_length), with the expectation and the
+-- request it was kept for (s.answer_for, s.answer_request). Called wherever a request sets the expectation.
+local function await_answer(s, frame)
+  s.answer_for, s.answer_request, s.answer_length = s.expect, frame, answer_length(frame)
+end
+
 -- What the framer expects after a frame: the answer to a request that awaits one, else nothing.
 local function expect_after(s, frame)
   if frame.kind == REQUEST and awaits_answer(frame) then
     s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
+    await_answer(s, frame)
   else
     s.expect = nil
   end
@@ -4586,16 +4621,29 @@ local function awaited_reading(s, b, i, n)
   return first[1], first[2](b, i, n)
 end
 
--- Why bytes are noise when they begin the answer awaited (of `kind`) and the capture ends inside it:
--- `got` of its `total` bytes (NEED: not known).
+-- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
+-- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
+-- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
+-- (Kept for another request, the length is left aside: one the pairing awaits now, s.pending, that a quick lane
+-- took without calling await_answer.)
+local function not_the_answer(s, kind, length)
+  local answer, pending = s.answer_length, s.pending
+  return kind == RESPONSE and answer ~= nil and s.answer_for == s.expect and length ~= NEED and length ~= answer
+    and (pending == nil or pending == s.answer_request)
+end
+
+-- Why bytes are noise when they begin the answer awaited (of `kind`, or a request read in its place) and the
+-- capture ends inside them: `got` of its `total` bytes (NEED: not known).
 local function cut_reason(kind, got, total)
-  local what = kind == RESPONSE and "response" or "exception response"
-  if total == NEED then return format("%s%s (%d bytes of it)", FRAMING.cut_answer, what, got) end
-  return format("%s%s (%d of %d bytes)", FRAMING.cut_answer, what, got, total)
+  local size = total == NEED and format("%d bytes of it", got) or format("%d of %d bytes", got, total)
+  if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
+    return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
+  end
+  return format("%s%s (%s)", FRAMING.cut_answer, kind == RESPONSE and "response" or "exception response", size)
 end
 M.GLITCH, M.add_noise, M.awaited_reading, M.awaits_answer = GLITCH, add_noise, awaited_reading, awaits_answer
 M.boundary_at, M.cut_reason, M.emit, M.expect_after = boundary_at, cut_reason, emit, expect_after
-M.flush_noise, M.lane, M.time_at = flush_noise, lane, time_at
+M.flush_noise, M.lane, M.not_the_answer, M.time_at = flush_noise, lane, not_the_answer, time_at
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -4609,8 +4657,8 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
 local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
 local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
-local crc_string_ok, cut_reason, emit, format = crc_string_ok, cut_reason, emit, format
-local interpretations, math, pairs, possible_start, table = interpretations, math, pairs, possible_start, table
+local crc_string_ok, cut_reason, emit, interpretations = crc_string_ok, cut_reason, emit, interpretations
+local math, not_the_answer, pairs, possible_start, table = math, not_the_answer, pairs, possible_start, table
 local time_at = time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
@@ -4863,14 +4911,16 @@ end
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
-  -- (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
+  -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
+  -- request repeated before the answer, or the next one)
   local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
-  if kind ~= nil and not is_scan and counts_nothing(b, i, kind, length) then
+  if kind ~= nil and not is_scan and (counts_nothing(b, i, kind, length) or not_the_answer(s, kind, length)) then
     kind = nil
     local list = interpretations(s, b[i], b[i + 1], b, i, n)
     for index = 2, #list do
       length, is_scan, declared = list[index][2](b, i, n)
-      if is_scan or not counts_nothing(b, i, list[index][1], length) then
+      local other = list[index][1]
+      if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
         kind = list[index][1]
         break
       end
@@ -4886,10 +4936,6 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
-    local size = length == NEED and format("%d bytes of it", n - i) or format("%d of %d bytes", n - i, length)
-    return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
-  end
   return cut_reason(kind, n - i, length)
 end
 
@@ -5164,10 +5210,10 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, MAX_ADU, NEED, RESPONSE, add_noise = DATA, MAX_ADU, NEED, RESPONSE, add_noise
-local awaited_reading, crc16, cut_reason, emit, floor = awaited_reading, crc16, cut_reason, emit, floor
-local flush_noise, format, interpretations, ipairs, math = flush_noise, format, interpretations, ipairs, math
-local pairs, table, time_at = pairs, table, time_at
+local DATA, MAX_ADU, NEED, RESPONSE, add_noise, awaited = DATA, MAX_ADU, NEED, RESPONSE, add_noise, awaited
+local crc16, cut_reason, emit, floor, flush_noise, format = crc16, cut_reason, emit, floor, flush_noise, format
+local interpretations, ipairs, math, not_the_answer, pairs = interpretations, ipairs, math, not_the_answer, pairs
+local table, time_at = table, time_at
 -- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
 -- filled in; the others' formats take them in the text's order)
 local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
@@ -5312,10 +5358,19 @@ local function ascii_cut_answer(s, b, i, n)
   for k = i + 1, stop - 1 do
     if not HEX[b[k]] then return nil end
   end
-  -- (the RTU frame's length, its 2-byte CRC an LRC here)
-  local kind, length, is_scan, declared = awaited_reading(s, hex_pairs(b, i + 1, count), 0, count)
+  -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
+  local bin = hex_pairs(b, i + 1, count)
+  if not awaited(s, bin, 0, count) then return nil end
+  local list, kind, length = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil
+  for index = 1, #list do
+    local found, is_scan, declared = list[index][2](bin, 0, count) -- (the RTU frame's: its CRC an LRC here)
+    if is_scan then found = declared ~= nil and declared > 0 and declared or NEED end
+    if not not_the_answer(s, list[index][1], found) then
+      kind, length = list[index][1], found
+      break
+    end
+  end
   if kind == nil then return nil end
-  if is_scan then length = declared ~= nil and declared > 0 and declared or NEED end
   if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
   if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end

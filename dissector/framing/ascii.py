@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from dissector.protocol.crc import crc_bytes, lrc
 from dissector.framing.rtu import MAX_ADU, NEED, Awaiting, Scan
-from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise
+from dissector.model import Frame, Item, Kind, Noise
 from dissector.framing.stream import StreamFramer
 
 from dissector.protocol.ascii import _HEX_DIGITS, COLON, CR, LF, MAX_ASCII, MIN_BINARY
@@ -162,19 +162,19 @@ class AsciiFramer(Awaiting, StreamFramer):
         binary = bytes.fromhex(digits[: 2 * pairs].decode("ascii"))
         if not self._awaited(binary, 0):
             return None
-        choices = self._interpretations(binary, 0)
-        if not choices:
+        # (the answer's reading, unless it is not as long as the request implies: then the next, the next request)
+        for kind, rule in self._interpretations(binary, 0):
+            length = rule(binary, 0, pairs)  # (the RTU frame's, its 2-byte CRC an LRC here)
+            if type(length) is Scan:
+                length = length.declared if length.declared > 0 else NEED
+            if not self._not_the_answer(kind, length):
+                break
+        else:
             return None
-        kind, rule = choices[0]
-        length = rule(binary, 0, pairs)  # (the RTU frame's, its 2-byte CRC an LRC here)
-        if type(length) is Scan:
-            length = length.declared if length.declared > 0 else NEED
         characters = 1 + 2 * (length - 1) + 2  # ':', the hex pairs of the ADU and the LRC, CR LF
         if length != NEED and not (n - i < characters and length <= MAX_ADU):
             return None
-        what = "response" if kind is Kind.RESPONSE else "exception response"
-        size = f"{n - i} of {characters} bytes" if length != NEED else f"{n - i} bytes of it"
-        return f"{CUT_ANSWER}{what} ({size})"
+        return self._cut_reason(kind, f"{n - i} of {characters} bytes" if length != NEED else f"{n - i} bytes of it")
 
     def _classify(self, adu: bytes) -> Kind | None:
         """The kind an RTU frame with the same bytes would have, by the framer's length rules."""

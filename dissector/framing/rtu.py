@@ -62,7 +62,7 @@ serial reads all drive the same object, and the answer does not depend on how th
 from __future__ import annotations
 
 from dissector.protocol.crc import crc16, crc_lengths
-from dissector.model import CUT_ANSWER, Frame, Item, Kind
+from dissector.model import Frame, Item, Kind
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
@@ -401,10 +401,13 @@ class RtuFramer(Awaiting, StreamFramer):
         capture? The reason to show them with, or None."""
         if n - i < 2 or not self._awaited(buf, i):
             return None
-        # (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
+        # (the answer's reading, unless it counts nothing or is not as long as the request implies: then the
+        # next, a request repeated before the answer, or the next one)
         for kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
-            if type(length) is Scan or not _counts_nothing(buf, i, kind, length):
+            if type(length) is Scan:
+                break
+            if not (_counts_nothing(buf, i, kind, length) or self._not_the_answer(kind, length)):
                 break
         else:
             return None
@@ -417,12 +420,7 @@ class RtuFramer(Awaiting, StreamFramer):
             return None
         if self._intact_inside(buf, i, n - i, n, True):
             return None
-        size = f"{n - i} of {length} bytes" if length != NEED else f"{n - i} bytes of it"
-        if kind is Kind.REQUEST:
-            # ('... inside a request': not the answer's words, which the request awaiting it takes, pairing.py)
-            return f"{CUT_ANSWER[:-4]}a request ({size})"
-        what = "response" if kind is Kind.RESPONSE else "exception response"
-        return f"{CUT_ANSWER}{what} ({size})"
+        return self._cut_reason(kind, f"{n - i} of {length} bytes" if length != NEED else f"{n - i} bytes of it")
 
     def cut_answer(self, data: bytes) -> str | None:
         """Would `data`, fed now and ended there, be the answer awaited cut by the end of the capture

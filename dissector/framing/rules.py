@@ -7,7 +7,7 @@ import re
 from collections.abc import Callable
 
 from dissector.framing.stream import GLITCH_BYTES
-from dissector.model import Kind
+from dissector.model import CUT_ANSWER, Kind
 from dissector.protocol import table
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.protocol.rules import data_bytes
@@ -202,6 +202,7 @@ class Awaiting:
 
     _expect: tuple[int, int] | None
     _echo: bytes
+    _answer: int | None
 
     def _awaited(self, buf: bytes | bytearray, i: int) -> bool:
         """Do the bytes at i begin the answer awaited: its slave and function (an exception's too) and, for a
@@ -216,6 +217,22 @@ class Awaiting:
             return True
         got = buf[i + 2 : i + 2 + len(echo)]
         return got == echo[: len(got)]
+
+    def _not_the_answer(self, kind: Kind, length: int) -> bool:
+        """Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length
+        than its request implies (_answer, answers.py)? Its byte count cannot be the answer's then: at the end
+        of the capture the bytes are read as the next request (0C 03 20 D0 after a read of 3 registers: 20 is
+        its address's high byte, not a byte count of 32)."""
+        return kind is Kind.RESPONSE and self._answer is not None and length != NEED and length != self._answer
+
+    @staticmethod
+    def _cut_reason(kind: Kind, size: str) -> str:
+        """Why bytes the end of the capture cuts are noise, read as `kind`, `size` of it ('4 of 8 bytes')."""
+        if kind is Kind.REQUEST:
+            # ('... inside a request': not the answer's words, which the request awaiting it takes, pairing.py)
+            return f"{CUT_ANSWER[:-4]}a request ({size})"
+        what = "response" if kind is Kind.RESPONSE else "exception response"
+        return f"{CUT_ANSWER}{what} ({size})"
 
     def _interpretations(self, buf: bytes | bytearray, i: int) -> tuple[tuple[Kind, LengthRule], ...]:
         """The (kind, length rule) pairs a frame at i may have, likeliest first: after a request, its

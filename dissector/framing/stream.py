@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from abc import ABC, abstractmethod
 
+from dissector.framing.answers import answer_length
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
@@ -70,6 +71,9 @@ class StreamFramer(ABC):
         # What its normal answer repeats of the request ([pairing] echo, an FC8 sub-function; b"": nothing or not
         # known, after a hand-over): a frame of that slave and function that does not is the master's next request.
         self._echo = b""
+        # The length of the normal answer awaited, where its request fixes it (answers.py; None: not known, after a
+        # hand-over too): a response reading of another length the end of the capture cuts is not that answer.
+        self._answer: int | None = None
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
 
@@ -138,6 +142,7 @@ class StreamFramer(ABC):
         self._silences = set()
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
+        self._answer = None
         self._glitches_only = True
         self._noise_cut = False
 
@@ -278,10 +283,12 @@ class StreamFramer(ABC):
         self._await_after(frame)
 
     def _await_after(self, frame: Frame) -> None:
-        """The answer a frame leaves awaited: a request's that awaits one, with what it must echo; else none."""
+        """The answer a frame leaves awaited: a request's that awaits one, with what it must echo and its length;
+        else none."""
         if frame.kind is Kind.REQUEST and awaits_answer(frame):
             self._expect = (frame.slave, frame.function)
             self._echo = echoed(frame)
+            self._answer = answer_length(frame)
         else:
             self._expect = None
 

@@ -147,10 +147,19 @@ local function ascii_cut_answer(s, b, i, n)
   for k = i + 1, stop - 1 do
     if not HEX[b[k]] then return nil end
   end
-  -- (the RTU frame's length, its 2-byte CRC an LRC here)
-  local kind, length, is_scan, declared = awaited_reading(s, hex_pairs(b, i + 1, count), 0, count)
+  -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
+  local bin = hex_pairs(b, i + 1, count)
+  if not awaited(s, bin, 0, count) then return nil end
+  local list, kind, length = interpretations(s, bin[0], bin[1], bin, 0, count), nil, nil
+  for index = 1, #list do
+    local found, is_scan, declared = list[index][2](bin, 0, count) -- (the RTU frame's: its CRC an LRC here)
+    if is_scan then found = declared ~= nil and declared > 0 and declared or NEED end
+    if not not_the_answer(s, list[index][1], found) then
+      kind, length = list[index][1], found
+      break
+    end
+  end
   if kind == nil then return nil end
-  if is_scan then length = declared ~= nil and declared > 0 and declared or NEED end
   if length == NEED then return cut_reason(kind, n - i, NEED) end
   local characters = 1 + 2 * (length - 1) + 2 -- ':', the hex pairs of the ADU and the LRC, CR LF
   if n - i < characters and length <= MAX_ADU then return cut_reason(kind, n - i, characters) end

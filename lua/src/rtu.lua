@@ -254,14 +254,16 @@ end
 -- (rtu.py _cut_answer)? The reason, or nil.
 local function cut_answer(s, b, i, n)
   if n - i < 2 then return nil end
-  -- (the answer's reading, unless it counts nothing: then the next, a request repeated before the answer)
+  -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
+  -- request repeated before the answer, or the next one)
   local kind, length, is_scan, declared = awaited_reading(s, b, i, n)
-  if kind ~= nil and not is_scan and counts_nothing(b, i, kind, length) then
+  if kind ~= nil and not is_scan and (counts_nothing(b, i, kind, length) or not_the_answer(s, kind, length)) then
     kind = nil
     local list = interpretations(s, b[i], b[i + 1], b, i, n)
     for index = 2, #list do
       length, is_scan, declared = list[index][2](b, i, n)
-      if is_scan or not counts_nothing(b, i, list[index][1], length) then
+      local other = list[index][1]
+      if is_scan or not (counts_nothing(b, i, other, length) or not_the_answer(s, other, length)) then
         kind = list[index][1]
         break
       end
@@ -277,10 +279,6 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
-    local size = length == NEED and format("%d bytes of it", n - i) or format("%d of %d bytes", n - i, length)
-    return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
-  end
   return cut_reason(kind, n - i, length)
 end
 
