@@ -15,7 +15,7 @@ import os
 import sys
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
-from typing import BinaryIO, TextIO
+from typing import Any, BinaryIO, TextIO
 
 from dissector.errors import ExitStatus, OutputError, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
@@ -27,6 +27,7 @@ from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
+from dissector.app.rings import group_files
 from dissector.app.samefile import refuse_same_files
 from dissector.render.buses import Bus, Buses
 from dissector.render.output import Output
@@ -35,10 +36,10 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    PacketInterface, input_line, inputs, is_pcapng_file, keep_interface, open_interface, profile_notes,
+    input_line, inputs, is_pcapng_file, keep_interface, profile_notes,
     write_interface,
 )
-from dissector.sources.reader import SourceError, open_source
+from dissector.sources.reader import SourceError
 from dissector.framing.timing import GapChecker
 
 
@@ -116,8 +117,10 @@ class Sinks:
             from dissector.render.report import ReportFile
 
             # The report's counts are --stats' numbers, its parameters the same history's.
-            # File names are data: a non-UTF-8 name (n\xff.pcap) or an ESC in one is shown escaped.
-            names = [printable(name) for name in args.files] + (["--hex"] if args.hex else [])
+            # File names are data: a non-UTF-8 name (n\xff.pcap) or an ESC in one is shown escaped. A ring
+            # buffer's files are one capture, named as its decode titles it (app/rings.py).
+            names = [printable(name) for name, _files in group_files(list(args.files))]
+            names += ["--hex"] if args.hex else []
             self.report = ReportFile(args.report, annotate, names, self.stats)  # type: ignore[arg-type]
         collector = self.report.collector if self.report is not None else None  # (one bus, unless interfaces)
         self.buses = Buses(Bus([], self.stats, self.bus, self.watch, collector, self.health), self._new_bus)
@@ -368,7 +371,7 @@ def _decode_inputs(
     pristine = copy.deepcopy(annotate) if annotate is not None and any(map(is_pcapng_file, args.files)) else None
     try:
         for (title, chunks, mode, take_warnings, recorded, timed, fix, (path, source_format),
-             bus) in inputs(args, env):
+             bus, again) in inputs(args, env):
             if sinks.done:
                 break
             line = input_line(path, source_format, args, bus)
@@ -390,7 +393,7 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            _choose_profiles(annotate, args, chunks, mode, path, line.baud, bus)
+            _choose_profiles(annotate, args, chunks, mode, path, again, line.baud)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
@@ -433,18 +436,18 @@ def _holds_ascii(path: str) -> bool:
 
 
 def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
-                     path: str | None, baud: int, bus: PacketInterface | None = None) -> None:
-    """Profile `auto`: the choices made over the whole input first, where it can be read twice."""
+                     path: str | None, again: Callable[[], Any] | None, baud: int) -> None:
+    """Profile `auto`: the choices made over the whole input first, where it can be read twice (`again`:
+    app/inputs.py)."""
     if getattr(annotate, "selector", None) is None:
         return
-    from dissector.app.preselect import choose_profiles, rereadable
+    from dissector.app.preselect import choose_profiles
 
     if path is None:  # --hex: its chunks are a list
         choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
-    elif rereadable(path):
-        reread = open_source(path, args.format, mode=args.mode) if bus is None else open_interface(path, bus.ordinal, mode)
-        with reread as again:
-            choose_profiles(annotate, again, mode, baud, args.timeout)  # type: ignore[arg-type]
+    elif again is not None:
+        with again() as reread:
+            choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]
     else:
         annotate.thaw()  # type: ignore[union-attr]
 

@@ -11,6 +11,7 @@ from dissector.app.hexinput import HexInput
 from dissector.app.options import PROG, DecodeOptions, shown
 from dissector.app.paths import Fix
 from dissector.app.profile_options import report_profiles
+from dissector.app.rings import RingSource, group_files
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
 from dissector.model import Chunk
 from dissector.render.capturefile import Interface, pcapng_interface
@@ -21,28 +22,30 @@ from dissector.sources.reader import NOTATIONS, open_source
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
 Input = tuple[str | None, Iterable[Chunk], str, Callable[[], list[str]], Callable[[], Any], bool, Fix,
-              tuple[str | None, str | None], "PacketInterface | None"]
+              tuple[str | None, str | None], "PacketInterface | None", "Callable[[], Any] | None"]
 
 
 def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
-    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface) per input: a
-    pcapng file with packets from several interfaces is one input per interface, each its own bus
+    """(title, chunks, mode, take_warnings, recorded, timed, fix, (path, format), interface, again) per
+    input: the files of one ring buffer are one input (app/rings.py), read as one stream, `path` its
+    first; a pcapng file with packets from several interfaces is one input per interface, each its own bus
     (sources/interfaces.py), titled `file: interface name`; `recorded`: once read, when its last record was
-    made (Source.recorded_until: the other interfaces' records too)."""
-    several = len(args.files) + bool(args.hex) > 1
+    made (Source.recorded_until: the other interfaces' records too); `again`: the same input opened anew,
+    for profile `auto` to read it twice (None: standard input, a FIFO, --hex: not read twice)."""
+    from dissector.app.preselect import rereadable
+
+    captures = group_files(args.files)
+    several = len(captures) + bool(args.hex) > 1
     if args.hex:
         typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
         fix = typed.fix if typed.repairs else None
         yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, False, fix, (None, None),
-               None)
-    for path in args.files:
+               None, None)
+    for shown_name, files in captures:
+        path = files[0]
         buses = packet_interfaces(path) if path != "-" and args.format in (None, "pcapng") else []
         for bus in buses if len(buses) > 1 else [None]:
-            stdin = env.stdin if path == "-" else None
-            if bus is None:
-                source = open_source(path, args.format, mode=args.mode, stdin=stdin)
-            else:
-                source = open_interface(path, bus.ordinal, args.mode)
+            source = _open_input(files, bus, args, env.stdin if path == "-" else None)
             chunks: Iterable[Chunk] = source
             # The bar shares the terminal with nothing: items go elsewhere, or only a report, --stats or
             # --watch come at the end.
@@ -50,11 +53,25 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             if env.stderr_isatty and (quiet or not env.stdout_isatty) and path != "-" and not args.output.records:
                 from dissector.render.progress import progress_for  # rich's progress bar: only for a terminal
 
-                chunks = progress_for(source, path, env.stderr)
+                chunks = progress_for(source, shown_name, env.stderr, files)
             timed = source.format in TIMED_FORMATS
-            title = path if bus is None else f"{path}: {bus.label()}"
+            title = shown_name if bus is None else f"{shown_name}: {bus.label()}"
+            again = (lambda files=files, bus=bus: _open_input(files, bus, args, None)) \
+                if all(map(rereadable, files)) else None
             yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings,
-                   lambda source=source: source.recorded_until, timed, None, (path, source.format), bus)
+                   lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
+                   again)
+
+
+def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: DecodeOptions, stdin: Any) -> Any:
+    """A Source of one capture's files (a RingSource of several), or of one interface of them."""
+    def open_file(path: str, mode: str | None) -> Any:
+        file_mode = mode or args.mode
+        if bus is None:
+            return open_source(path, args.format, mode=file_mode, stdin=stdin)
+        return open_interface(path, bus.ordinal, file_mode)
+
+    return open_file(files[0], None) if len(files) == 1 else RingSource(files, open_file)
 
 
 def is_pcapng_file(path: str) -> bool:

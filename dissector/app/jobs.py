@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
 from typing import Any
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
+from dissector.app.rings import group_files
 from dissector.errors import ExitStatus, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
@@ -28,8 +28,6 @@ from dissector.render.bustiming import BusTiming
 from dissector.sources.reader import SourceError, open_source
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])
-# dumpcap's ring buffer names: PREFIX_NNNNN_YYYYMMDDHHMMSS.EXT
-RING_NAME = re.compile(r"^(?P<prefix>.*)_(?P<number>\d{5,})_(?P<stamp>\d{14})(?P<suffix>\.[^./]*)?$")
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,38 +62,15 @@ class CaptureResult:
 
 
 def group_captures(paths: list[str]) -> list[Capture]:
-    """Files of one ring buffer (same folder, prefix and suffix) are one capture, by file number."""
-    rings: dict[tuple[str, str, str], list[tuple[int, str]]] = {}
-    order: list[tuple[str, object]] = []
-    for path in paths:
-        folder, base = os.path.split(path)
-        match = RING_NAME.match(base)
-        if match is None:
-            buses = packet_interfaces(path)
-            if len(buses) > 1:  # (a pcapng with packets from several interfaces: one capture per bus)
-                order += [("bus", (path, bus)) for bus in buses]
-                continue
-            order.append(("file", path))
-            continue
-        key = (folder, match["prefix"], match["suffix"] or "")
-        if key not in rings:
-            rings[key] = []
-            order.append(("ring", key))
-        rings[key].append((int(match["number"]), path))
+    """Files of one ring buffer are one capture (app/rings.py); a pcapng with packets from several
+    interfaces, one capture per interface (its bus, over every file of its ring)."""
     captures = []
-    for what, value in order:
-        if what == "file":
-            path = value  # type: ignore[assignment]
-            captures.append(Capture(path, (path,), os.path.abspath(path)))  # type: ignore[arg-type]
+    for shown, files in group_files(paths):
+        buses = packet_interfaces(files[0])
+        if len(buses) > 1:
+            captures += [Capture(f"{shown}: {bus.label()}", files, f"{os.path.abspath(shown)}#{bus.ordinal}",
+                                 bus.ordinal) for bus in buses]
             continue
-        if what == "bus":
-            path, bus = value  # type: ignore[misc]
-            captures.append(Capture(f"{path}: {bus.label()}", (path,), f"{os.path.abspath(path)}#{bus.ordinal}",
-                                    bus.ordinal))
-            continue
-        folder, prefix, suffix = value  # type: ignore[misc]
-        files = tuple(path for _number, path in sorted(rings[value]))  # type: ignore[index]
-        shown = files[0] if len(files) == 1 else os.path.join(folder, prefix + suffix)
         captures.append(Capture(shown, files, os.path.abspath(shown)))
     return captures
 

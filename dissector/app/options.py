@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from dissector import __version__
 from dissector.app.live_options import add_live_arguments, positive_seconds
 from dissector.app.profile_options import add_profile_arguments
+from dissector.app.rings import group_files
 from dissector.errors import UsageError
 from dissector.protocol.printable import printable
 from dissector.render.fields import FieldsOptions, parse_fields_options
@@ -258,7 +259,9 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
         fields = parse_fields_options(args.fields, args.field_options)
     registers = None
     if output_format == "registers":
-        registers = parse_registers_options(args.field_options, len(args.files) + bool(args.hex) > 1)
+        # A file column when several captures are read (one ring buffer's files are one: app/rings.py).
+        several = len(group_files(args.files)) + bool(args.hex) > 1
+        registers = parse_registers_options(args.field_options, several)
     return DecodeOptions(
         files=tuple(args.files),
         hex=tuple(args.hex),

@@ -13,9 +13,11 @@ from dissector.model import Chunk
 MIN_SIZE = 4 << 20  # smaller files decode in well under a second: no bar
 
 
-def progress_for(chunks: Iterable[Chunk], path: str, stream: TextIO) -> Iterable[Chunk]:
+def progress_for(chunks: Iterable[Chunk], path: str, stream: TextIO,
+                 files: tuple[str, ...] = ()) -> Iterable[Chunk]:
+    """`files`: those `chunks` come from, when not `path` alone (a ring buffer's: app/rings.py)."""
     try:
-        size = os.path.getsize(path)
+        size = sum(os.path.getsize(name) for name in files or (path,))
     except OSError:
         return chunks
     if size < MIN_SIZE:
