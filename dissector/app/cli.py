@@ -90,6 +90,7 @@ class Sinks:
             from dissector.render.stats import StatsCollector
 
             self.stats = StatsCollector(getattr(annotate, "choices", None), History(annotate))
+            self.stats.filtered = args.filter is not None or args.count is not None
         self.stats_shown = args.stats
         self.bus = None  # bus timing and slave health (render/bustiming.py), from every item heard
         self.health = None  # the report's response times over time (report/health.py)

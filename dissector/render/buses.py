@@ -80,6 +80,7 @@ def new_bus(sinks: Any, annotate: Any) -> Bus:
         from dissector.render.stats import StatsCollector
 
         stats = StatsCollector(getattr(annotate, "choices", None), History(annotate))
+        stats.filtered = sinks.stats.filtered
     if sinks.bus is not None:
         from dissector.render.bustiming import BusTiming
 

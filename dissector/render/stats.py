@@ -110,6 +110,9 @@ class StatsCollector:
         # the header line and the JSON (`merged_captures`) say.
         self.captures: list[str] = []
         self.attached = False  # the times, the poll cycle and the bus are counted in the compiled store
+        # Items were left out (-Y, -c N): the profiles of the slaves counted only, as tshark -z with a filter
+        # (profile `auto` chose over the whole input; a slave filtered out has no other row either).
+        self.filtered = False
 
     def engine_store(self, bus: Any | None = None) -> Any | None:
         """The compiled store, for the engine to count the transactions it shows itself (the compiled
@@ -233,7 +236,8 @@ class StatsCollector:
         functions = []
         # Attached to the compiled store, every response time is there: its summaries, worked out in C.
         summaries = self.store.time_summaries() if self.attached else None
-        for (slave, function), stats in sorted(self.all_functions().items()):
+        counted = sorted(self.all_functions().items())
+        for (slave, function), stats in counted:
             if summaries is None:
                 response_time = time_summary(stats.times)
             else:
@@ -254,6 +258,7 @@ class StatsCollector:
                 }
             )
         parameters = list(self.parameter_dicts()) if with_parameters else None
+        slaves = {slave for (slave, _function), _stats in counted}
         first_time, last_time = self.first_time, self.last_time
         if self.attached:
             state = self.store.bus_state()
@@ -276,6 +281,7 @@ class StatsCollector:
             "profiles": [
                 {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame}
                 for choice in (self.profiles() if self.profiles is not None else [])
+                if not self.filtered or choice.slave in slaves
             ],
         }
 
