@@ -18,13 +18,14 @@ quantity, subfunction, subfunction_name, exception_code (alias: exception), exce
 exception_meaning, span_label, request_frame, response_frame, response_time, unanswered, reason,
 warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed it (`fields.start`,
 `fields.byte_count`; bytes as hex text); `registers`, `bits`, `objects`, `fields` alone test presence.
-`time` is the JSON's (seconds since the epoch); `time_relative` the seconds since the first item of
-the input, and `time_delta` since the item captured before, as the time column shows them (tshark's
-frame.time_relative and frame.time_delta). A value of an enumerated field that does not exist is an
-error naming the nearest ones: kind, mode, status, code (the parameter codes of the run's maps),
-profile, function_name, exception_name, exception_meaning and subfunction_name (the spec's names and
-those of the run's profiles); so is a `fields.KEY` whose KEY no layout of the protocol table has
-(`-G fields` lists them).
+`time` is the JSON's (seconds since the epoch), compared with a number or a date and time in quotes as
+tshark's frame.time is (`time >= "2026-12-05 10:00"`, local time: render/filter_dates.py);
+`time_relative` the seconds since the first item of the input, and `time_delta` since the item captured
+before, as the time column shows them (tshark's frame.time_relative and frame.time_delta). A value of
+an enumerated field that does not exist is an error naming the nearest ones: kind, mode, status, code
+(the parameter codes of the run's maps), profile, function_name, exception_name, exception_meaning and
+subfunction_name (the spec's names and those of the run's profiles); so is a `fields.KEY` whose KEY no
+layout of the protocol table has (`-G fields` lists them).
 
 Register fields: address, value, code, name, unit, scaled, text, status, source, label. A frame carries
 several registers, so these tests ask "is there a register such that...". The rule:
@@ -283,7 +284,12 @@ class _Parser:
                 raise self.error(f"unknown field {name_token.text!r}: {problem}", name_token)
             register, ftype, inner = False, "any", field[7:]
         elif "." in field:
-            raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value", name_token)
+            # tshark's frame.time, frame.number...: said by the name vw3-decode gives them
+            ours = "frame" if field == "frame.number" else field.removeprefix("frame.")
+            known = ours in FRAME_FIELDS or ours in TIME_FILTER_FIELDS
+            hint = f" (vw3-decode names it {ours})" if known else ""
+            raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value"
+                             f"{hint}", name_token)
         elif field in FRAME_FIELDS:
             register, ftype = False, FRAME_FIELDS[field]
         elif field in REGISTER_FIELDS:
@@ -418,6 +424,14 @@ class _Parser:
                 raise self.error(f"{field} is true or false (or 1 or 0), not {self._describe(token)}")
             self.advance()
             return token.value == "true"
+        if field == "time" and token.kind == "string":  # a date and time, as tshark's frame.time takes
+            from dissector.render.filter_dates import EXAMPLES, absolute_time
+
+            seconds = absolute_time(token.value)
+            if seconds is None:
+                raise self.error(f"{token.text} is no date and time: write {EXAMPLES}")
+            self.advance()
+            return seconds
         if ftype == "number":
             if token.kind != "number":
                 raise self.error(f"{field} is a number, not {self._describe(token)}")
