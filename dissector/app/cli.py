@@ -503,8 +503,13 @@ def run(argv: list[str] | None, env: Environment) -> int:
         env.stderr.write(f"{PROG}: {shown(error)}\n")
         return ExitStatus.BAD_INPUT
     args.files = [*args.read, *args.files]
-    if getattr(args, "glossary", None) or "help" in (args.filter or []):
-        from dissector.render.filters import field_listing  # -G fields, -Y help: as tshark -G fields
+    if getattr(args, "glossary", None):
+        from dissector.render.glossary import glossary  # -G fields: tshark's tab-separated lines
+
+        env.stdout.write(glossary())
+        return ExitStatus.OK
+    if "help" in (args.filter or []):
+        from dissector.render.filters import field_listing  # -Y help: the same fields, to read
 
         env.stdout.write(field_listing())
         return ExitStatus.OK

@@ -1,9 +1,11 @@
-"""The fields of display filters and -T fields: names, types, meanings, and their listing (-Y help,
--G fields). Kept apart from filters.py (the parser) so each stays small; filters.py re-exports them."""
+"""The fields of display filters and -T fields: names, types, meanings, and their listing (-Y help;
+-G fields: render/glossary.py). Kept apart from filters.py (the parser) so each stays small; filters.py
+re-exports them."""
 from __future__ import annotations
 
 import tomllib
 from importlib import resources
+from collections.abc import Iterator
 from typing import Any
 
 # The catalogue of fields (data/fields.toml), shared with the Wireshark plugin (codegen/fields_lua.py
@@ -22,9 +24,10 @@ FRAME_FIELDS: dict[str, str] = _group("frame")
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
-# Other names of fields, as -G fields lists them (`alias: exception`): -Y and -e take them alike.
+# Other names of fields, as -Y help lists them (`alias: exception`): -Y and -e take them alike.
 ALIASES: dict[str, str] = {"exception": "exception_code"}
-# field -> its meaning as -G fields lists it (with what only vw3-decode's filters take, as `alias: exception`)
+# field -> its meaning as -Y help and -G fields list it (with what only vw3-decode's filters take, as
+# `alias: exception`)
 FIELD_HELP: dict[str, str] = {
     entry["key"]: entry["help"] + (f" ({entry['note']})" if "note" in entry else "")
     for entry in CATALOGUE if "key" in entry
@@ -34,23 +37,32 @@ _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": 
                "struct": "structure", "any": "value"}
 
 
+def layout_fields() -> Iterator[tuple[str, Any]]:
+    """(owner, named field of its grammar) for every PDU layout of the protocol table (protocol/table.py):
+    owner a function code, `exception` or `any` (the undecoded PDU of an unknown function)."""
+    from dissector.protocol import table
+
+    layouts = [(str(entry.code), layout)
+               for entry in table.FUNCTIONS for layout in (entry.request, entry.response)]
+    layouts += [("exception", table.EXCEPTION_LAYOUT), ("any", table.RAW_LAYOUT)]
+    for owner, layout in layouts:
+        grammar = layout.grammar
+        while getattr(grammar, "subcons", None) is None and getattr(grammar, "subcon", None) is not None:
+            grammar = grammar.subcon
+        for sub in getattr(grammar, "subcons", ()):
+            if sub.name:
+                yield owner, sub
+
+
 def pdu_keys() -> dict[str, tuple[str, ...]]:
-    """`fields.KEY`: every key a PDU layout of the protocol table (protocol/table.py) parses -> the
-    function codes (`exception`) whose frames have it, from the layouts' grammars, not a list kept here."""
+    """`fields.KEY`: every key a PDU layout of the protocol table parses -> the function codes
+    (`exception`) whose frames have it, from the layouts' grammars, not a list kept here."""
     global _PDU_KEYS
     if _PDU_KEYS is None:
-        from dissector.protocol import table
-
         found: dict[str, list[str]] = {}
-        layouts = [(str(entry.code), layout) for entry in table.FUNCTIONS for layout in (entry.request, entry.response)]
-        layouts += [("exception", table.EXCEPTION_LAYOUT), ("any", table.RAW_LAYOUT)]
-        for owner, layout in layouts:
-            grammar = layout.grammar
-            while getattr(grammar, "subcons", None) is None and getattr(grammar, "subcon", None) is not None:
-                grammar = grammar.subcon
-            for sub in getattr(grammar, "subcons", ()):
-                if sub.name and owner not in found.setdefault(sub.name, []):
-                    found[sub.name].append(owner)
+        for owner, sub in layout_fields():
+            if owner not in found.setdefault(sub.name, []):
+                found[sub.name].append(owner)
         _PDU_KEYS = {name: tuple(found[name]) for name in sorted(found)}
     return _PDU_KEYS
 
@@ -70,7 +82,7 @@ def unknown_pdu_key(key: str) -> str | None:
     return f"no PDU layout has the key {key!r}{hint}; -G fields lists them"
 
 
-def _owners(owners: tuple[str, ...]) -> str:
+def owners_text(owners: tuple[str, ...]) -> str:
     if owners == ("any",):
         return "the undecoded PDU of an unknown function"
     codes = [owner for owner in owners if owner not in ("exception", "any")]
@@ -83,14 +95,14 @@ def _owners(owners: tuple[str, ...]) -> str:
 
 
 def field_listing() -> str:
-    """`-Y help` (and `-G fields`): every field a filter and -T fields know, its type and meaning."""
+    """`-Y help`: every field a filter and -T fields know, its type and meaning, to read."""
     lines = ["Display filter and -T fields keys (-Y EXPR, -e KEY); register keys test one register at a time:"]
     groups = [("frame", FRAME_FIELDS), ("time", TIME_FILTER_FIELDS), ("register", REGISTER_FIELDS)]
     for group, fields in groups:
         for name, ftype in fields.items():
             lines.append(f"{name:<22} {group:<9} {_TYPE_WORDS[ftype]:<14} {FIELD_HELP.get(name, '')}")
     for key, owners in pdu_keys().items():  # fields.KEY: the keys of the protocol table's layouts
-        lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {_owners(owners)}")
+        lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {owners_text(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
     lines.append("operators: == != (all_ne: has it, none equal) ~= (any_ne: some differs) < <= > >= & in {..} a..b "
                  "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 \"text\" true false")

@@ -83,7 +83,7 @@ def test_filters_know_every_fields_key_and_list_them() -> None:
     )
     status, out, err = run_cli(["-Y", "help"])
     lines = out.splitlines()
-    assert status == 0 and err == "" and run_cli(["-G", "fields"])[1] == out
+    assert status == 0 and err == ""  # (-G fields: tshark's tab-separated form, test_glossary.py)
     names = {line.split()[0] for line in lines[1:-1]}
     from dissector.render.fields import EXTRA_FRAME_KEYS
     from dissector.render.filters import FRAME_FIELDS, REGISTER_FIELDS

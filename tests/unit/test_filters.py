@@ -321,7 +321,7 @@ def test_fields_key_of_t_fields_is_checked_and_listed() -> None:
         "vw3-decode: -e fields.strat: no PDU layout has the key 'strat' (did you mean fields.start, fields.status?); "
         "-G fields lists them\n"))
     assert run_cli([p38, "-T", "fields", "-e", "fields.start", "-c", "1"]) == (0, "8400\n", "")
-    listing = run_cli(["-G", "fields"])[1].splitlines()
+    listing = run_cli(["-Y", "help"])[1].splitlines()
     from dissector.protocol import table
 
     # Every key of the protocol table's layouts, with the functions whose PDU has it.
