@@ -4641,9 +4641,10 @@ local function cut_reason(kind, got, total)
   end
   return format("%s%s (%s)", FRAMING.cut_answer, kind == RESPONSE and "response" or "exception response", size)
 end
-M.GLITCH, M.add_noise, M.awaited_reading, M.awaits_answer = GLITCH, add_noise, awaited_reading, awaits_answer
-M.boundary_at, M.cut_reason, M.emit, M.expect_after = boundary_at, cut_reason, emit, expect_after
-M.flush_noise, M.lane, M.not_the_answer, M.time_at = flush_noise, lane, not_the_answer, time_at
+M.GLITCH, M.add_noise, M.await_answer, M.awaited_reading = GLITCH, add_noise, await_answer, awaited_reading
+M.awaits_answer, M.boundary_at, M.cut_reason, M.emit = awaits_answer, boundary_at, cut_reason, emit
+M.expect_after, M.flush_noise, M.lane, M.not_the_answer = expect_after, flush_noise, lane, not_the_answer
+M.time_at = time_at
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -7917,14 +7918,14 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER
 local MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST = MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST
-local RESPONSE, annotate_with, await_echo, bit_slot = RESPONSE, annotate_with, await_echo, bit_slot
-local build_device, crc_slot, crc_string_ok, data_bytes = build_device, crc_slot, crc_string_ok, data_bytes
-local decode_frame, detect_mode, device_for, device_now = decode_frame, detect_mode, device_for, device_now
-local feed, feed_whole, head_slot, ipairs, lane, math = feed, feed_whole, head_slot, ipairs, lane, math
-local new_state, next, pack, pair, pairs, pcall, put_flat = new_state, next, pack, pair, pairs, pcall, put_flat
-local release_run, remember_writes, run_slot, span_slot = release_run, remember_writes, run_slot, span_slot
-local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
-local warn, whole_crc_good = warn, whole_crc_good
+local RESPONSE, annotate_with, await_answer, await_echo = RESPONSE, annotate_with, await_answer, await_echo
+local bit_slot, build_device, crc_slot, crc_string_ok = bit_slot, build_device, crc_slot, crc_string_ok
+local data_bytes, decode_frame, detect_mode, device_for = data_bytes, decode_frame, detect_mode, device_for
+local device_now, feed, feed_whole, head_slot, ipairs, lane = device_now, feed, feed_whole, head_slot, ipairs, lane
+local math, new_state, next, pack, pair, pairs, pcall = math, new_state, next, pack, pair, pairs, pcall
+local put_flat, release_run, remember_writes, run_slot = put_flat, release_run, remember_writes, run_slot
+local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
+local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -8305,6 +8306,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     time
   f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
   if ECHO_CODES[code] then await_echo(st, f) end -- (what its answer must repeat, an FC8 sub-function)
+  await_answer(st, f) -- (the length of its answer, as vw3.stream's expect_after keeps it)
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
   f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info

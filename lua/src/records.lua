@@ -383,6 +383,7 @@ function lane.request(st, bytes, n, time, number, slave, code, quiet)
     time
   f.b, f.bi, f.data_at, f.data_len, f.number, f.record, f.at = b or known.b, 0, 2, n - 4, count, number, 0
   if ECHO_CODES[code] then await_echo(st, f) end -- (what its answer must repeat, an FC8 sub-function)
+  await_answer(st, f) -- (the length of its answer, as vw3.stream's expect_after keeps it)
   f.fields, f.start, f.quantity, f.request, f.response = known.fields, known.start, known.quantity, nil, nil
   f.registers, f.bits = copy_run(known.registers, b), copy_run(known.bits, b)
   f.function_text, f.span_label, f.info = known.function_text, known.span_label, known.info
