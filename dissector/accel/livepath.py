@@ -76,6 +76,7 @@ class LivePath:
         self.dissector = dissector
         self.left = count  # -c: items still to show (None: no count)
         self.done = False  # -c reached: nothing more is read or shown
+        self.cut_time: Stamp | None = None  # -c: the Nth item's time, where the capture stops
         if count is not None:
             assert not summary, "-c: the Python stages show the engine's frames"
             dissector.framer = _CountedFramer(dissector.framer, self)  # type: ignore[assignment]
@@ -138,6 +139,7 @@ class LivePath:
             return frames
         frames = frames[:left]
         self.left, self.done = 0, True
+        self._stop_at(frames)
         if frames and frames[-1].kind is Kind.REQUEST:  # its answer (or the frame that told) is past the cut
             last: Frame = frames[-1]  # type: ignore[assignment]
             last.response_ref = None
@@ -150,7 +152,15 @@ class LivePath:
         kept, self.left = up_to_items(items, self.left)
         if self.left <= 0:
             self.done = True
+            self._stop_at(kept)
         return kept
+
+    def _stop_at(self, kept: list[Item]) -> None:
+        """-c reached: the capture ends at its Nth item (kept's last), live as in its -w file (whose
+        closing record is there: live_capture.CaptureThread.stopped_at), even where the cut comes as
+        the pairer finishes."""
+        if kept:
+            self.cut_time = self.dissector.pairer.end = kept[-1].time  # type: ignore[assignment]
 
     # -- what goes in --------------------------------------------------------------------------------
     def feed(self, reads: Sequence[Read]) -> None:

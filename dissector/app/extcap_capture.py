@@ -173,7 +173,8 @@ def capture(args: argparse.Namespace, port_name: str, err: TextIO, prog: str) ->
                 return ExitStatus.OK  # stopped, or nobody came to read
             output = FifoOutput(stream, args.fifo, (settings.port, description(args, settings)))
             thread = CaptureThread(port, live_framer(mode, settings.baud), CaptureFiles(output, None),
-                                   Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port)
+                                   Handoff(limit=0), silence_threshold(settings.baud), port_name=settings.port,
+                                   closing_record=False)
             thread.start()
             while not thread.done.wait(WAIT):
                 if stop.signal is not None:

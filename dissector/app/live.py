@@ -49,7 +49,7 @@ from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, S
 from dissector.errors import ExitStatus, LiveError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
-from dissector.model import Item
+from dissector.model import Item, Stamp
 from dissector.pipeline import Annotator, Dissector
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.sources.serial_port import PARITIES, PortSettings, open_port
@@ -286,6 +286,15 @@ class Shown:
         self.sink.show_lines(lines)  # type: ignore[attr-defined]
 
 
+def stop_time(capture: CaptureThread, live: Any) -> Stamp | None:
+    """When the capture stopped: live's finish judges the last request's wait to then, as the decode of
+    the -w file does to its closing record (CaptureThread.stopped_at); -c reached on the compiled path,
+    its Nth item's time (LivePath._stop_at: the capture thread reads on until told)."""
+    if live is not None and live.done:
+        return live.cut_time  # type: ignore[no-any-return]
+    return capture.stopped_at()
+
+
 def display(capture: CaptureThread, handoff: Handoff, dissector: Dissector, sink: Sink, stats: LiveStats,
             stop: StopFlag, observe: Callable[[list[Item]], None] | None = None,
             news: Callable[[list[Item]], None] | None = None, live: Any = None,
@@ -315,12 +324,14 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
                 capture.reason = "count"
                 capture.stop.set()
         if closed and not shown.stopped:
+            dissector.pairer.end = stop_time(capture, live)
             live.finish()
         shown.write()  # (a -w ring switches files on time)
         sink.show([])
     else:
         out = dissector.push(items) if items else []
         if closed:
+            dissector.pairer.end = stop_time(capture, live)
             out += dissector.finish()
         elif safe is not None:
             out += dissector.expire(safe)
@@ -458,7 +469,7 @@ def run_live(
             capture.done.wait()
         if port is not None:
             port.close()
-        files.close()  # (the compiled path's -w: the display wrote it to the end)
+        files.close(stop_time(capture, live))  # (the compiled path's -w: the display wrote it to the end)
         stats.finish()
         try:
             sink.close()

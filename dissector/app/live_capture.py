@@ -79,6 +79,8 @@ class CaptureFiles:
         self.output = output
         self._raw_path = raw_path
         self._raw: BinaryIO | None = None
+        self.last_time: Stamp | None = None  # the time of the last item written (-c: where the capture stops)
+        self._closed = False
         if raw_path:
             try:
                 # Unbuffered: each read is one write(2), on disk before its frames are shown.
@@ -99,6 +101,8 @@ class CaptureFiles:
                 self._failed(self._raw_path, error)
 
     def items(self, items: list[Item]) -> None:
+        if items and isinstance(items[-1].time, Stamp):
+            self.last_time = items[-1].time
         if self.output is not None:
             try:
                 for item in items:
@@ -136,9 +140,18 @@ class CaptureFiles:
             except OSError:
                 pass
 
-    def close(self) -> None:
+    def close(self, stopped: Stamp | None = None) -> None:
+        """Close both; -w ends with a record of no byte at `stopped`, when the capture stopped (a file
+        records no other sign of it): its decode judges the last request's wait as live does. Not after
+        nothing: with no record before it, it would time nothing."""
         output, raw = self.output, self._raw
         self._raw = None
+        if output is not None and stopped is not None and self.last_time is not None and not self._closed:
+            try:
+                output.write(b"", stopped)
+            except OSError:
+                pass  # (a failed write was already reported; the records before are whole)
+        self._closed = True
         for stream in (output, raw):
             if stream is not None:
                 try:
@@ -249,6 +262,11 @@ class CaptureThread:
     _pending: bool = False  # bytes fed since the last idle flush
     _tried: bool = False  # flush_due already tried a copy of the framer during this silence
     _clock: ReadClock | None = None  # the framer's byte times (none without a framer: LivePath's)
+    # -w ends with a record of no byte at the stop (CaptureFiles.close); not the extcap's: Wireshark stops
+    # reading its fifo as it stops it, and its own file says when (dumpcap's interface statistics).
+    closing_record: bool = True
+    last_read: Stamp | None = None  # the stamp of the last read, with bytes or none
+    last_bytes: Stamp | None = None  # the stamp of the last read that gave bytes (its last byte's time)
 
     def start(self) -> None:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
@@ -276,6 +294,17 @@ class CaptureThread:
         held = getattr(self.framer, "held_since", None)
         return now if held is None else min(now, held)
 
+    def stopped_at(self) -> Stamp | None:
+        """When the capture stopped: no byte before it went unread (ReadClock.promise of the last read, or
+        the last byte's time if later). After -c, the last item's: the bytes after it are not written."""
+        if self.reason == "count":
+            return self.files.last_time
+        read, data = self.last_read, self.last_bytes
+        if read is None:
+            return None
+        promised = ReadClock.promise(read)
+        return data if data is not None and promised.ns < data.ns else promised
+
     def _run(self) -> None:
         try:
             self._loop()
@@ -301,7 +330,7 @@ class CaptureThread:
             if self.framer is None:
                 self.files.close_raw()  # (-w is the display's: what it still frames goes there)
             else:
-                self.files.close()
+                self.files.close(self.stopped_at() if self.closing_record else None)
             self.handoff.close()
             self.done.set()
 
@@ -340,6 +369,9 @@ class CaptureThread:
         and hand the items on, or close what the framer holds after a silence; False once --count
         items are written. Without a framer (the compiled live path, dissector/accel/livepath.py)
         the read itself is handed on, and the display frames it."""
+        self.last_read = stamp
+        if data:
+            self.last_bytes = stamp
         framer = self.framer
         if framer is None:
             self.handoff.put([(data, stamp, now)], None)  # type: ignore[list-item]

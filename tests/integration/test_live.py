@@ -22,7 +22,7 @@ from dissector.app.live_view import LiveStats, LiveView
 from dissector.model import Chunk, Frame
 from dissector.pipeline import Dissector
 from dissector.render.summary import summary_line
-from live_bus import Bus, Sniffer, our_master, read_pcap
+from live_bus import Bus, Sniffer, byte_records, our_master, read_pcap
 
 TRANSACTIONS = 1000
 LATENCY_LIMIT = 0.050
@@ -90,7 +90,7 @@ def run_capture(tmp_path: Path, master) -> tuple[Bus, Sniffer, list[dict]]:
     assert bus.relay.dropped == 0
     items = [json.loads(line) for _, line in sniffer.lines]
     check_items(bus, items)
-    assert [record for _, record in read_pcap(pcap)] == bus.slave.frames
+    assert [record for _, record in byte_records(pcap)] == bus.slave.frames
     assert raw.read_bytes() == b"".join(bus.slave.frames) == bytes(bus.relay.c_data)
     figures = sorted(latencies(bus, sniffer))
     p50, p99 = statistics.median(figures), figures[int(len(figures) * 0.99)]
@@ -189,7 +189,7 @@ def test_far_end_closed_mid_capture(tmp_path: Path) -> None:
     assert lines[0].startswith(f"vw3-decode: error: {bus.c_path} went away (")
     assert lines[0].endswith("); capture files closed")
     assert "Traceback" not in stderr
-    records = [record for _, record in read_pcap(pcap)]
+    records = [record for _, record in byte_records(pcap)]
     sent = bus.slave.frames
     assert_prefix(records, sent)
     # The hangup may discard input not yet read; frames heard 50 ms before it were shown and kept.

@@ -26,7 +26,7 @@ from dissector.app import live_view
 from dissector.app.live import run_live
 from dissector.protocol.crc import with_crc
 from dissector.render.summary import summary_line
-from live_bus import ROOT, Bus, PymodbusSlave, Sniffer, our_master, paced_writer, read_pcap, transactions
+from live_bus import ROOT, Bus, PymodbusSlave, Sniffer, byte_records, our_master, paced_writer, read_pcap, transactions
 
 pytestmark = pytest.mark.integration
 BAUD = 115200
@@ -261,7 +261,8 @@ def test_pcap_to_standard_output_into_tshark(tmp_path: Path) -> None:
     fields = tshark("-r", "-", "-T", "fields", "-e", "mbrtu.unit_id", "-e", "modbus.func_code",
                     "-e", "mbrtu.crc16.status", stdin=bytes(data))
     frames = bus.slave.frames
-    assert [line.split("\t") for line in fields] == [[str(f[0]), str(f[1]), "1"] for f in frames]
+    # (then the closing record, at the stop: a frame of no byte, nothing of Modbus in it)
+    assert [line.split("\t") for line in fields] == [[str(f[0]), str(f[1]), "1"] for f in frames] + [["", "", ""]]
 
 
 def test_ring_buffer_files_are_each_valid_and_hold_every_byte(tmp_path: Path) -> None:
@@ -283,8 +284,8 @@ def test_ring_buffer_files_are_each_valid_and_hold_every_byte(tmp_path: Path) ->
         assert len(tshark("-r", str(path))) == len(records)
         if path != files[-1]:
             assert 2000 <= path.stat().st_size < 2000 + 16 + 256  # switched after the record reaching 2 kB
-    together = [record for path in files for _, record in read_pcap(path)]
-    assert together == bus.slave.frames
+    together = [*(record for path in files[:-1] for record in read_pcap(path)), *byte_records(files[-1])]
+    assert [record for _, record in together] == bus.slave.frames
     assert f"wrote {files[0]} .. {files[-1]}" in stderr
 
 
@@ -326,8 +327,9 @@ def test_pcapng_written_live_is_read_back_by_both(tmp_path: Path, option: tuple[
     assert [item["kind"] for item in live].count("noise") == 1
     fields = tshark("-r", str(path), "-T", "fields", "-e", "frame.interface_name",
                     "-e", "frame.interface_description", "-e", "frame.comment", "-e", "mbrtu.unit_id")
-    assert len(fields) == len(live) == 81
+    assert len(fields) == len(live) + 1 == 82  # (and the closing record)
     description = f"serial port {bus.c_path}, 115200 baud, 8 data bits, even parity, 1 stop bit (115200 8E1)"
+    assert fields[-1] == f"{bus.c_path}\t{description}\t\t"
     for line, item in zip(fields, live):
         name, text, comment, unit = line.split("\t")
         assert (name, text) == (bus.c_path, description)
@@ -474,9 +476,10 @@ def test_vanishing_port_leaves_valid_pcapng_and_ring_files(tmp_path: Path) -> No
         shown = [json.loads(line)["raw"] for _, line in sniffer.lines]
         if seed == 0:
             kept = [item["raw"] for item in decode_file(pcapng)]
-            assert len(tshark("-r", str(pcapng))) == len(kept)
+            assert len(tshark("-r", str(pcapng))) == len(kept) + 1  # (and the closing record)
         else:
             files = sorted(tmp_path.glob("gone_*.pcap"))
             assert len(files) >= 2 and all(len(tshark("-r", str(path))) == len(read_pcap(path)) for path in files)
-            kept = [record.hex() for path in files for _, record in read_pcap(path)]
+            kept = [record.hex() for path in files[:-1] for _, record in read_pcap(path)]
+            kept += [record.hex() for _, record in byte_records(files[-1])]
         assert kept == shown and len(kept) >= 150  # every line shown is on disk, and nothing else

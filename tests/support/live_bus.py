@@ -266,6 +266,15 @@ def read_pcap(path: Path) -> list[tuple[float, bytes]]:
     return records
 
 
+def byte_records(path: Path) -> list[tuple[float, bytes]]:
+    """The records of bytes of a live capture stopped cleanly (SIGINT, SIGHUP, --duration, a port gone):
+    read_pcap's, after which the file holds its closing record, of no byte, at the stop
+    (live_capture.CaptureFiles.close; tests/integration/test_live_capture_end.py checks its time)."""
+    records = read_pcap(path)
+    assert records and records[-1][1] == b"", "no closing record"
+    return records[:-1]
+
+
 class PymodbusSlave(threading.Thread):
     """pymodbus's RTU server on `path` for `devices` (holding registers 0..299); requests to other
     slaves go unanswered, as on a bus where that slave is absent."""
