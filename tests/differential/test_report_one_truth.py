@@ -116,7 +116,8 @@ def test_capture_read_with_the_atv71_same_series_four_ways(tmp_path: Path, monke
     data = four_ways(s8_capture(tmp_path), ["--profile", "atv71"], tmp_path, monkeypatch)
     assert trend(data, 1, 3201) == ("ETA", None, True, {"0": "no bit set"}, 1, [0.002], [0])
     assert trend(data, 1, 3202) == ("RFR", "Hz", False, {}, 2, [3.0684, 3.0684], [3276.7, -3276.8])
-    assert trend(data, 1, 3203) == ("FRH", "Hz", False, {}, 2, [3.0684, 3.0684], [10, 6553.5])
+    # (FRH is signed, data/maps/atv71.csv: 16#FFFF is -0.1 Hz)
+    assert trend(data, 1, 3203) == ("FRH", "Hz", False, {}, 2, [3.0684, 3.0684], [10, -0.1])
     assert trend(data, 1, 3204) == ("LCR", "A", False, {}, 1, [3.0684], [10])
     assert series(data, 247, 8608)["marks"] == [[4.6184, "non-existent"]]
 
