@@ -65,13 +65,12 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
 
 def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: DecodeOptions, stdin: Any) -> Any:
     """A Source of one capture's files (a RingSource of several), or of one interface of them."""
-    def open_file(path: str, mode: str | None) -> Any:
-        file_mode = mode or args.mode
+    def open_file(path: str) -> Any:
         if bus is None:
-            return open_source(path, args.format, mode=file_mode, stdin=stdin)
-        return open_interface(path, bus.ordinal, file_mode)
+            return open_source(path, args.format, mode=args.mode, stdin=stdin)
+        return open_interface(path, bus.ordinal, args.mode)
 
-    return open_file(files[0], None) if len(files) == 1 else RingSource(files, open_file)
+    return open_file(files[0]) if len(files) == 1 else RingSource(files, open_file)
 
 
 def is_pcapng_file(path: str) -> bool:

@@ -46,13 +46,13 @@ def group_files(paths: list[str]) -> list[tuple[str, tuple[str, ...]]]:
 
 class RingSource:
     """The Sources (sources/reader.py) of a ring buffer's files as one: each file opened when the one
-    before it ends, read in the first file's mode (one capture has one framing). `open_file(path, mode)`:
-    mode None, the one asked for (or detected)."""
+    before it ends. The first file's mode is the capture's (its framing); each file is opened as the
+    first was (`open_file`), as --parquet does, so that a pcap's records stay readable in bulk."""
 
-    def __init__(self, files: tuple[str, ...], open_file: Callable[[str, str | None], Any]) -> None:
+    def __init__(self, files: tuple[str, ...], open_file: Callable[[str], Any]) -> None:
         self.files = files
         self._open = open_file
-        self.current = open_file(files[0], None)
+        self.current = open_file(files[0])
         self.format, self.mode, self.name = self.current.format, self.current.mode, self.current.name
         self.streaming = False
         self._warnings: list[str] = []
@@ -67,12 +67,18 @@ class RingSource:
         return taken
 
     def __iter__(self) -> Iterator[Chunk]:
+        for source in self.sources():
+            yield from source
+
+    def sources(self) -> Iterator[Any]:
+        """Instead of iterating: each file's Source in turn, for a reader that takes a Source's parts
+        (accel/records.py reads a pcap's records in bulk), its offsets and times going on across them."""
         try:
-            yield from self.current
+            yield self.current
             for path in self.files[1:]:
                 self._warnings += self.current.take_warnings()  # (a file's own, said as the next begins)
-                self.current = self._open(path, self.mode)
-                yield from self.current
+                self.current = self._open(path)
+                yield self.current
         finally:
             self.close()
 
