@@ -12,7 +12,8 @@ for what follows a damaged frame) is closed once the line has been silent for ID
 longer): on the wire, that silence ends every RTU frame. But a gateway (socket://) or a stalled
 adapter may also pause inside a frame, and a flush there would cut it into noise; so at IDLE_FLUSH
 the flush is first tried on a copy of the framer, and done only if it closes a CRC-valid frame.
-Anything else (a damaged frame, noise, a partial frame) waits for IDLE_FLUSH_LONG of silence.
+Anything else (a damaged frame, noise, a partial frame) waits for IDLE_FLUSH_LONG of silence. A Modbus
+ASCII frame ends at its LF, not at a silence: nothing is closed then (flush_due).
 
 A read returns once its last byte has come, so each read is framed as its bytes' arrivals, each
 byte at the read's stamp less the character times after it (sources/serial_times.py ReadClock: one
@@ -272,7 +273,12 @@ class CaptureThread:
         threading.Thread(target=self._run, name="capture", daemon=True).start()
 
     def flush_due(self, silent: float, tried: bool) -> bool:
-        """Whether to close what the framer holds after `silent` seconds without bytes."""
+        """Whether to close what the framer holds after `silent` seconds without bytes. Never in Modbus
+        ASCII: a frame ends at its LF, and may hold a second's silence (timing.ASCII_LIMIT); the decode of
+        the -w file cuts neither a frame nor a noise run at a silence (framing/stream.py _add_noise), so
+        live holds them as it does (a partial frame is closed when the capture ends)."""
+        if getattr(self.framer, "mode", None) == "ascii":
+            return False
         if silent >= self.silence_long:
             return True
         if tried or silent < self.silence:
