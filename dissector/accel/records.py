@@ -188,6 +188,12 @@ def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None 
 def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming,
                        builder: BlockBuilder | None = None) -> Iterator[Block]:
     """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...)."""
+    sources = getattr(chunks, "sources", None)
+    if sources is not None:  # a ring buffer's files (app/rings.py RingSource): one stream, each read in bulk
+        builder = builder or BlockBuilder(timing)
+        for source in sources():
+            yield from source_blocks(source, timing, builder)
+        return
     if hasattr(chunks, "parts"):
         yield from source_blocks(chunks, timing, builder)
         return
