@@ -165,3 +165,13 @@ def test_adapter_gone_ends_the_capture_at_its_last_read(tmp_path: Path) -> None:
     assert "went away" in err, err
     check_one_truth(path, live, ignore=("notes",))
     assert live[-1]["unanswered"] is True
+
+
+def test_duration_ends_the_capture_at_its_last_read(tmp_path: Path) -> None:
+    """--duration (-a) stops the capture: the file ends at its last read, as when stopped by hand."""
+    path = tmp_path / "duration.pcap"
+    live, err = sniff(path, [(READ, 0.1), (ANSWER, 0.1), (READ, 1.5)], ["--duration", "0.9"], {})
+    assert "1 unanswered" in err, err
+    records = record_times(path)
+    assert records[-1][0] - records[-2][0] > 200_000  # (the stop: past the last request's timeout)
+    check_one_truth(path, live, ignore=("notes",))
