@@ -210,17 +210,19 @@ local function answer_length(frame)
   return rule[4] + rule[3] + data
 end
 
--- The answer a request leaves awaited: its length (answer_length, s.answer_length), with the expectation and the
--- request it was kept for (s.answer_for, s.answer_request). Called wherever a request sets the expectation.
+-- The answer a request of the quick lanes (lane.request, lua/src/records.lua) leaves awaited: the request, with
+-- the expectation it set (s.answer_request, s.answer_for); its length is read from its bytes, which it keeps (its
+-- entry's), at the end of the capture alone (not_the_answer: false): a poll costs no more.
 local function await_answer(s, frame)
-  s.answer_for, s.answer_request, s.answer_length = s.expect, frame, answer_length(frame)
+  s.answer_for, s.answer_request, s.answer_length = s.expect, frame, false
 end
 
--- What the framer expects after a frame: the answer to a request that awaits one, else nothing.
+-- What the framer expects after a frame: the answer to a request that awaits one (with its length: the frame's
+-- bytes are dropped once it is decoded), else nothing.
 local function expect_after(s, frame)
   if frame.kind == REQUEST and awaits_answer(frame) then
     s.expect = frame.slave * 256 + frame.fn -- (a request's code is its function)
-    await_answer(s, frame)
+    s.answer_for, s.answer_request, s.answer_length = s.expect, frame, answer_length(frame)
   else
     s.expect = nil
   end
@@ -264,12 +266,15 @@ end
 -- Is a reading of `kind` and `length` at the answer awaited's start a normal answer of another length than its
 -- request implies (rules.py Awaiting._not_the_answer)? Its byte count cannot be the answer's: at the end of the
 -- capture the bytes are the next request (0C 03 20 D0 after a read of 3 registers: not a byte count of 32).
--- (Kept for another request, the length is left aside: one the pairing awaits now, s.pending, that a quick lane
--- took without calling await_answer.)
+-- (A request kept for another expectation, or other than the one the pairing awaits now, s.pending, is left aside:
+-- a quick lane that took a request without calling await_answer.)
 local function not_the_answer(s, kind, length)
-  local answer, pending = s.answer_length, s.pending
-  return kind == RESPONSE and answer ~= nil and s.answer_for == s.expect and length ~= NEED and length ~= answer
-    and (pending == nil or pending == s.answer_request)
+  local request, pending = s.answer_request, s.pending
+  if kind ~= RESPONSE or length == NEED or request == nil or s.answer_for ~= s.expect then return false end
+  if pending ~= nil and pending ~= request then return false end
+  local answer = s.answer_length
+  if answer == false then answer = answer_length(request) end
+  return answer ~= nil and length ~= answer
 end
 
 -- Why bytes are noise when they begin the answer awaited (of `kind`, or a request read in its place) and the
