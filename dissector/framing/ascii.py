@@ -11,13 +11,15 @@ end of the capture), that is not made of hex pairs or whose layout fits nothing 
 of its own, with the reason; the answer awaited cut by the end of the capture says so as in RTU ("the
 capture ends inside the response (10 of 17 bytes)", bytes on the wire), which pairing shows on its
 request. A line that lost its CR (text files lose them) is a frame with a warning, and so is one that
-lost its LF (CR, then the next ':': the CR ends the line, a cut frame ends in a hex digit), and one
+lost its LF (CR, then the next ':': the CR ends the line, a cut frame ends in a hex digit), one whose LF
+is another byte (CR, that byte, then ':' or the end: the frame keeps it, the warning names it), and one
 from a reserved address (248..255, the decoder's warning); bytes between frames are noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
 damaged. The answer does not depend on how the stream is split into chunks.
 
 FC8 sub-function 3 (Change ASCII Input Delimiter) replaces the LF of a slave's lines with the character its
 request's data carries (the high byte, [diagnostic_data] `character`): once the slave's answer echoes the
-change, CR and that character end a line too (the frame keeps both bytes), for any slave, as LF still does
+change (the echo may end with CR and it already), CR and that character end a line too (the frame keeps both
+bytes), for any slave, as LF still does
 (no byte says which slave a line is for before it is read). A change back to LF, or to CR or ':' (which
 cannot end a line after a CR), drops the slave's character.
 """
@@ -65,7 +67,8 @@ class AsciiFramer(Awaiting, StreamFramer):
                 lf = self._changed_end(buf, i, limit, lf)
             colon = buf.find(b":", i + 1, limit)
             if colon >= 0 and (lf < 0 or colon < lf):
-                if buf[colon - 1] == CR:  # (the LF lost: the CR ended the line)
+                # (the LF lost, or another byte in its place: the CR ended the line)
+                if buf[colon - 1] == CR or (colon - 2 > i and buf[colon - 2] == CR):
                     self._candidate(bytes(buf[i:colon]), i, items)
                 else:
                     self._reject(bytes(buf[i:colon]), i, text("cut_by_colon"), items)
@@ -76,6 +79,9 @@ class AsciiFramer(Awaiting, StreamFramer):
             elif n - i >= MAX_ASCII:
                 self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
+            elif final and n - i > 2 and buf[n - 2] == CR:  # (CR and a byte in the LF's place: a line)
+                self._candidate(bytes(buf[i:n]), i, items)
+                i = n
             elif final:
                 self._reject(bytes(buf[i:n]), i, self._cut_answer(buf, i, n) or text("cut_by_end"), items)
                 i = n
@@ -109,8 +115,8 @@ class AsciiFramer(Awaiting, StreamFramer):
         self._line_ends = bytes(sorted(set(self._delimiters.values())))
 
     def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
-        """A ':' ... LF run (or ':' ... CR, its LF lost): a Frame when it is one, a Noise item saying why
-        not otherwise."""
+        """A ':' ... LF run (or ':' ... CR, its LF lost, or ':' ... CR and the byte in the LF's place): a Frame
+        when it is one, a Noise item saying why not otherwise."""
         lost_lf = raw[-1] == CR
         body = raw[1:] if lost_lf else raw[1:-1]
         # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame.
@@ -142,14 +148,18 @@ class AsciiFramer(Awaiting, StreamFramer):
             crc_expected=expected,
             mode="ascii",
         )
+        ends = self._line_ends
+        if kind is Kind.RESPONSE and received == expected:
+            self._changed(binary)
         if lost_lf:
             frame.warnings.append(text("cr_without_lf"))
         elif lost_cr:
             frame.warnings.append(text("lf_without_cr"))
+        elif raw[-1] != LF and raw[-1] not in ends + self._line_ends:
+            # (a delimiter 08/03 set, before or by this echo, ends the line; any other byte there is damage)
+            frame.warnings.append(text("cr_then_byte", byte=raw[-1]))
         if digits != digits.upper():
             frame.warnings.append(text("lower_case_hex"))
-        if kind is Kind.RESPONSE and received == expected:
-            self._changed(binary)
         self._emit(frame, items)
 
     def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:

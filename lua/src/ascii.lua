@@ -102,7 +102,8 @@ local function reject(s, at, length, reason, items)
   flush_noise(s, items)
 end
 
--- A line, b[at .. at + length - 1] (':' digits CR LF): a frame, or noise with the reason it is none.
+-- A line, b[at .. at + length - 1] (':' digits CR LF, or CR and the byte in the LF's place): a frame, or noise
+-- with the reason it is none.
 local function ascii_candidate(s, at, length, items, reason)
   if reason ~= nil then return reject(s, at, length, reason, items) end
   local b = s.b
@@ -129,11 +130,16 @@ local function ascii_candidate(s, at, length, items, reason)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  if lost_cr or lost_lf or lower then frame.warnings = {} end
+  local last, ends = b[at + length - 1], s.line_ends
+  if kind == RESPONSE and received == expected then changed(s, bin, count) end
+  -- (a delimiter 08/03 set, before or by this echo, ends the line; any other byte there is damage)
+  local damaged = not (lost_cr or lost_lf) and last ~= LF and not (ends and ends[last])
+    and not (s.line_ends and s.line_ends[last])
+  if lost_cr or lost_lf or damaged or lower then frame.warnings = {} end
   if lost_lf then frame.warnings[1] = TEXT.cr_without_lf end
   if lost_cr then frame.warnings[1] = TEXT.lf_without_cr end
+  if damaged then frame.warnings[1] = format(TEXTS.cr_then_byte.format, last) end
   if lower then frame.warnings[#frame.warnings + 1] = TEXT.lower_case_hex end
-  if kind == RESPONSE and received == expected then changed(s, bin, count) end
   emit(s, frame, items)
 end
 
@@ -193,11 +199,14 @@ local function run_ascii(s, final, items)
       local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
       if stop ~= nil and b[stop] == COLON then
         length = stop - i
-        if b[stop - 1] ~= CR then reason = TEXT.cut_by_colon end -- (after a CR: the LF lost, the CR ends it)
+        -- (after a CR, or a CR and another byte: the LF lost or damaged, the CR ends it)
+        if b[stop - 1] ~= CR and not (stop - 2 > i and b[stop - 2] == CR) then reason = TEXT.cut_by_colon end
       elseif stop ~= nil then
         length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
         length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
+      elseif final and n - i > 2 and b[n - 2] == CR then
+        length = n - i -- (CR and a byte in the LF's place: a line)
       elseif final then
         length, reason = n - i, ascii_cut_answer(s, b, i, n) or TEXT.cut_by_end
       else

@@ -1,7 +1,8 @@
 """FC8 sub-function 03 (Change ASCII Input Delimiter) in Modbus ASCII: once the slave's answer echoes the
 change, a line may end with CR and the character its data's high byte carries (here '!'); the frame keeps both
 bytes (before: the frame was noise, "ASCII frame cut short by the next ':'"). A change back to LF ends that:
-a later CR '!' line is noise again. vw3-decode's summary and --json, under the compiled engine and
+a later CR '!' line is a frame with a warning naming the byte in the LF's place (before: noise, which encoded
+the defect; tests/unit/test_ascii_damaged_lf.py). vw3-decode's summary and --json, under the compiled engine and
 VW3_PURE_PYTHON=1 (ASCII is framed in Python either way), whatever the chunks; the plugin:
 tests/integration/test_lua_ascii_delimiter.py."""
 from __future__ import annotations
@@ -33,6 +34,7 @@ LINES = [
     line("01 03 0001 0001") + b"\r!", line("01 03 02 0009") + b"\r!",
 ]
 DATA = b"".join(LINES)
+NOT_LF = "line ends with CR then 21h where LF belongs (the spec ends a frame with CR LF)"
 SUMMARY = [
     "     1            -   1 request   Read Holding Registers 1  LRC ok",
     "     2            -   1 response  Read Holding Registers 1: 1=5 [#1]  LRC ok",
@@ -46,10 +48,8 @@ SUMMARY = [
     "     9            -   1 request   Diagnostics 03h Change ASCII Input Delimiter = 2560 "
     "[new ASCII input delimiter: LF (0Ah)]  LRC ok",
     "    10            -   1 response  Diagnostics 03h Change ASCII Input Delimiter = 2560 [#9]  LRC ok",
-    "    11            -   - noise     17 bytes of noise at offset 164: "
-    "3a 30 31 30 33 30 30 30 31 30 30 30 31 46 41 0d…",
-    "    12            -   - noise     15 bytes of noise at offset 181: "
-    "3a 30 31 30 33 30 32 30 30 30 39 46 31 0d 21",
+    f"    11            -   1 request   Read Holding Registers 1 [warning: {NOT_LF}]  LRC ok",
+    f"    12            -   1 response  Read Holding Registers 1: 1=9 [#11] [warning: {NOT_LF}]  LRC ok",
 ]
 
 
@@ -61,10 +61,8 @@ def test_a_line_ends_with_the_delimiter_03_set(tmp_path: Path, pure: bool, monke
     assert run_cli([str(path)]) == (0, "\n".join(SUMMARY) + "\n", "")
     items = [json.loads(row) for row in run_cli(["--json", str(path)])[1].splitlines()]
     assert [(item["kind"], bytes.fromhex(item["raw"])) for item in items] == [
-        *[(kind, raw) for kind, raw in zip(["request", "response"] * 5, LINES[:10])],
-        ("noise", LINES[10]), ("noise", LINES[11])]
-    assert [item.get("reason") for item in items[10:]] == [
-        "ASCII frame cut short by the next ':'", "ASCII frame cut off by the end of the capture"]
+        *[(kind, raw) for kind, raw in zip(["request", "response"] * 6, LINES)]]
+    assert [item["warnings"] for item in items[9:]] == [[], [NOT_LF], [NOT_LF]]
     assert items[5]["registers"] == [{"address": 1, "value": 7}]
 
 
@@ -77,14 +75,15 @@ def test_the_same_whatever_the_chunks() -> None:
         return [(type(item).__name__, item.offset, item.raw) for item in out]
 
     whole = items([DATA])
-    assert [kind for kind, _, _ in whole] == ["Frame"] * 10 + ["Noise"] * 2
+    assert [kind for kind, _, _ in whole] == ["Frame"] * 12
     for size in (1, 2, 3, 16):
         assert items([DATA[at : at + size] for at in range(0, len(DATA), size)]) == whole
 
 
 def test_no_change_without_the_answer() -> None:
-    # The request alone (no echo: the slave did not take it), or an exception to it: CR '!' ends no line.
+    # The request alone (no echo: the slave did not take it), or an exception to it: CR '!' is a damaged line end.
     for answer in (b"", line("01 88 01") + b"\r\n"):
         framer = AsciiFramer()
         out = framer.feed(Chunk(LINES[2] + answer + LINES[4] + LINES[5])) + framer.finish()
-        assert [(type(item).__name__, item.raw) for item in out[-2:]] == [("Noise", LINES[4]), ("Noise", LINES[5])]
+        assert [(type(item).__name__, item.raw, item.warnings) for item in out[-2:]] == [
+            ("Frame", LINES[4], [NOT_LF]), ("Frame", LINES[5], [NOT_LF])]
