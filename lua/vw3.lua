@@ -2322,7 +2322,7 @@ local DATA = {
         },
         ["fifo"] = {
           { "dec", "fifo_count" },
-          " values:",
+          " values",
           { "fifo", "fifo_count", "values" },
         },
         ["pointer"] = {
@@ -3958,7 +3958,7 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
   end
   form.fifo = function(f, b, base, last)
     local fifo_count = b[base + 4] * 256 + b[base + 5]
-    return DECIMAL[fifo_count] .. " values:" .. fifo_values(b, fifo_count, base + 6, last)
+    return DECIMAL[fifo_count] .. " values" .. fifo_values(b, fifo_count, base + 6, last)
   end
   return {
     [5] = { request = form.coil, response = form.coil },
@@ -8908,7 +8908,8 @@ local function data_text(b, first, last)
   return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
--- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
+-- describe._fifo: `:` and the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]),
+-- then how many more (`… (+2)`); nothing for none.
 local function fifo_values(b, count, first, last)
   local made = 0
   for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
@@ -8918,7 +8919,8 @@ local function fifo_values(b, count, first, last)
     VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
   end
   if made == 0 then return "" end
-  return " " .. concat(VALUES, " ", 1, made)
+  local more = count > made and made == MAX_FIFO_VALUES and " … (+" .. DECIMAL[count - made] .. ")" or ""
+  return ": " .. concat(VALUES, " ", 1, made) .. more
 end
 
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on

@@ -1027,10 +1027,15 @@ static int info_text(Engine *e, Slave *s, const InfoForm *info, const Lifted *li
             if (size > MAX_DATA_BYTES) out_more(&e->out, (unsigned long long)(size - MAX_DATA_BYTES), " bytes)");
             break;
         }
-        case STEP_FIFO: /* describe.TEXT_FORMS' fifo: the first of `value` words (rstrip: no space after none) */
+        case STEP_FIFO: /* describe._fifo: `:` and the first of `value` words, how many more; nothing for none */
+            if (value > 0) out_put(&e->out, ":", 1);
             for (unsigned j = 0; j < value && j < MAX_FIFO_VALUES; j++) {
                 out_put(&e->out, " ", 1);
                 out_uint(&e->out, word(f + info->at[step->number] + 2 * j), 0);
+            }
+            if (value > MAX_FIFO_VALUES) {
+                out_put(&e->out, " ", 1);
+                out_more(&e->out, value - MAX_FIFO_VALUES, ")");
             }
             break;
         }

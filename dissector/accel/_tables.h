@@ -337,7 +337,7 @@ static const Step form_steps[][MAX_STEPS] = {
     {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " AND 0x", 7}, {STEP_HEX, 1, 4, NULL, 0}, {STEP_TEXT, -1, 0, " OR 0x", 6}, {STEP_HEX, 2, 4, NULL, 0}}, /* mask */
     {{STEP_TEXT, -1, 0, "pointer ", 8}, {STEP_DEC, 0, 0, NULL, 0}}, /* pointer */
     {{STEP_TEXT, -1, 0, "read ", 5}, {STEP_PLAIN_SPAN, -1, 0, NULL, 0}, {STEP_TEXT, -1, 0, ", write ", 8}, {STEP_VALUES, -1, 0, NULL, 0}}, /* read_write */
-    {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " values:", 8}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
+    {{STEP_DEC, 0, 0, NULL, 0}, {STEP_TEXT, -1, 0, " values", 7}, {STEP_FIFO, 0, 1, NULL, 0}}, /* fifo */
     {{STEP_NONE, -1, 0, NULL, 0}}, /* python */
 };
 /* What the engine does with a transaction of a compiled code (codegen/c_rules.py):

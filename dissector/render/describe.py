@@ -136,7 +136,8 @@ TEXT_FORMS: dict[str, list[str | tuple[str | int, ...]]] = {
     "mask": [("dec", "address"), " AND 0x", ("hex", "and_mask", 4), " OR 0x", ("hex", "or_mask", 4)],
     "pointer": ["pointer ", ("dec", "address")],
     "read_write": ["read ", ("plain_span",), ", write ", ("values",)],  # PLC style: as its answer shows it
-    "fifo": [("dec", "fifo_count"), " values:", ("fifo", "fifo_count", "values")],
+    # `10 values: 0 100 … (+2)`, `0 values` (the step writes the colon before values it shows)
+    "fifo": [("dec", "fifo_count"), " values", ("fifo", "fifo_count", "values")],
     "python": [("none",)],
 }
 # The form of each describer (table.Function.text) in each direction, (request, response); a pair where it
@@ -227,8 +228,16 @@ def _step(step: tuple[str | int, ...]) -> Callable[[Frame], str]:
     if what == "hex":
         return lambda frame: f"{frame.fields[args[0]]:0{args[1]}X}"
     if what == "fifo":  # the values sent (the first MAX_FIFO_VALUES), whatever their count says
-        return lambda frame: "".join(f" {value}" for value in frame.fields[args[1]][:MAX_FIFO_VALUES])
+        return lambda frame: _fifo(frame.fields[args[1]])
     raise ValueError(f"describe: no step {what!r}")
+
+
+def _fifo(values: list[int]) -> str:
+    """`: 0 100 200`, then how many more past MAX_FIFO_VALUES (`… (+2)`, as values_text); nothing for none."""
+    if not values:
+        return ""
+    text = ":" + "".join(f" {value}" for value in values[:MAX_FIFO_VALUES])
+    return text + f" … (+{len(values) - MAX_FIFO_VALUES})" if len(values) > MAX_FIFO_VALUES else text
 
 
 def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:

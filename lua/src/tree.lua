@@ -273,7 +273,8 @@ local function data_text(b, first, last)
   return " data " .. concat(HEX, "", 1, shown) .. "… (+" .. count_text(size - MAX_DATA_BYTES, "byte") .. ")"
 end
 
--- describe's fifo step: the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]).
+-- describe._fifo: `:` and the first MAX_FIFO_VALUES of `count` values from b[first] (none past b[last]),
+-- then how many more (`… (+2)`); nothing for none.
 local function fifo_values(b, count, first, last)
   local made = 0
   for k = 0, (count < MAX_FIFO_VALUES and count or MAX_FIFO_VALUES) - 1 do
@@ -283,7 +284,8 @@ local function fifo_values(b, count, first, last)
     VALUES[made] = DECIMAL[b[at] * 256 + b[at + 1]]
   end
   if made == 0 then return "" end
-  return " " .. concat(VALUES, " ", 1, made)
+  local more = count > made and made == MAX_FIFO_VALUES and " … (+" .. DECIMAL[count - made] .. ")" or ""
+  return ": " .. concat(VALUES, " ", 1, made) .. more
 end
 
 -- The describers of describe._BY_NAME (FC43's MEI, FC17's server id, FC20's and FC21's record groups), on

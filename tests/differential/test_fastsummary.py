@@ -481,7 +481,7 @@ def test_simple_codes_exact_lines_from_the_engine() -> None:
         "request   Read FIFO Queue pointer 256",
         "response  Read FIFO Queue 2 values: 258 65535 [#9]",
         "request   Read FIFO Queue pointer 256",
-        "response  Read FIFO Queue 0 values: [#11]",
+        "response  Read FIFO Queue 0 values [#11]",
     ]
 
 

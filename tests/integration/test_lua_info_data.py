@@ -1,7 +1,7 @@
 """The plugin's Info column says FC8's data and FC24's values as vw3-decode does: `0Bh Return Bus Message
 Count = 300` (a word's value), ` data 0102…` (other data: its first 16 bytes, then `… (+2 bytes)`, `(+1 byte)`),
 nothing for none, in request and answer; an FC24 answer its FIFO count and first 8 values (`3 values: 10 11
-12`, `0 values:`, `9 values: 1 2 3 4 5 6 7 8`), never its request's pointer; a frame whose fields do not
+12`, `0 values`, `9 values: 1 2 3 4 5 6 7 8 … (+1)`), never its request's pointer; a frame whose fields do not
 parse `(malformed)`; and FC5's coil, FC7's and FC12's status, FC11's counters, FC17's server id, FC20's and
 FC21's record groups, FC22's masks, FC43's MEI as vw3-decode does, PLC style too, for a request met before
 too. The tree's title says the same. vw3-decode -V names FC24's pointer as the spec does,
@@ -68,9 +68,9 @@ INFO = [
     ("response", "Diagnostics 63h unknown sub-function = 0"),
     ("request", "Diagnostics 04h Force Listen Only Mode = 0"),
     ("request", "Read FIFO Queue pointer 16"),
-    ("response", "Read FIFO Queue 0 values:"),
+    ("response", "Read FIFO Queue 0 values"),
     ("request", "Read FIFO Queue pointer 16"),
-    ("response", "Read FIFO Queue 9 values: 1 2 3 4 5 6 7 8"),
+    ("response", "Read FIFO Queue 9 values: 1 2 3 4 5 6 7 8 … (+1)"),
     ("request", "Read FIFO Queue pointer 16"),
     ("response", "Read FIFO Queue (malformed)"),
 ]
