@@ -147,16 +147,15 @@ class CaptureFiles:
         nothing: with no record before it, it would time nothing."""
         output, raw = self.output, self._raw
         self._raw = None
-        if output is not None and stopped is not None and self.last_time is not None and not self._closed:
-            try:
-                output.write(b"", stopped)
-            except OSError:
-                pass  # (a failed write was already reported; the records before are whole)
+        ended = stopped is not None and self.last_time is not None and not self._closed
         self._closed = True
         for stream in (output, raw):
             if stream is not None:
                 try:
-                    stream.close()
+                    if stream is output and ended:
+                        output.close_at(stopped)  # type: ignore[union-attr,arg-type]
+                    else:
+                        stream.close()
                 except OSError:
                     pass  # what could not be written was already reported
 

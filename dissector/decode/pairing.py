@@ -66,12 +66,14 @@ DIAGNOSTICS, LISTEN_ONLY, RESTART = 8, 4, 1
 def capture_ended(request: Frame, cut: str | None = None, waited: float | None = None,
                   timeout: float | None = None) -> None:
     """A request whose answer the capture does not hold, its last bytes heard `waited` seconds after the
-    request's (None: not known). Past the timeout the master gave up: unanswered. Sooner, the slave may
-    have answered after the capture stopped: not known, and not counted unanswered. The note says why (an
-    answer cut by the end of the capture: it did answer)."""
+    request's (None: not known). Past the timeout the master gave up: unanswered, as when later bytes or a
+    live capture's clock tell (expire: a live line shown then, before the capture ended, says no more; nor
+    does the decode of its file). Sooner, the slave may have answered after the capture stopped: not known,
+    and not counted unanswered. The note says why (an answer cut by the end of the capture: it did answer)."""
     if timeout is not None and waited is not None and waited > timeout:
         request.unanswered = True
-        request.notes.append(cut or text("capture_ends"))
+        if cut is not None:
+            request.notes.append(cut)
     elif cut is not None:
         request.notes.append(cut)
     elif waited is None or timeout is None or waited <= 0:
@@ -291,11 +293,13 @@ class Pairer:
             time, asked = item.time, pending.time
             if time is not None and asked is not None and stamped_before(time, asked):
                 backwards = pending
-        elif (late is not None and late.slave == item.slave and late.function == item.function
-                and echoes(late, item)):
-            assert self._timeout is not None and item.time is not None and late.time is not None
+        elif (gave_up := late if late is not None else expired) is not None and (
+                gave_up.slave == item.slave and gave_up.function == item.function and echoes(gave_up, item)):
+            # Its request's wait ended before it: by its own time, or live by the clock (expire), alike.
+            assert self._timeout is not None and item.time is not None and gave_up.time is not None
             item.warnings.append(text(
-                "late", delay_ms=(item.time - late.time) * 1000, number=late.number, timeout_ms=self._timeout * 1000
+                "late", delay_ms=(item.time - gave_up.time) * 1000, number=gave_up.number,
+                timeout_ms=self._timeout * 1000,
             ))
         else:
             if pending is not None:

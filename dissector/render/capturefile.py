@@ -481,6 +481,15 @@ class CaptureOutput:
             finally:
                 self._close_writer()
 
+    def close_at(self, stopped: float) -> None:
+        """Live: close with a record of no byte at `stopped`, when the capture stopped, in the file being
+        written (a ring does not open the next for it: it ends what the last file holds)."""
+        if self._writer is not None:
+            try:
+                self._writer.write(b"", stopped)
+            finally:
+                self.close()
+
     def discard_if_empty(self) -> None:
         """Close; a file that holds no record is removed (a refused input leaves no header-only file).
         One that holds records keeps them, as tshark -w keeps what it wrote before a damaged packet."""

@@ -5,7 +5,7 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local UNMATCHED, BROADCAST_ADDRESS = say("unmatched", {}), say("broadcast_address", {})
 local NEVER_ANSWERED_NOTE = say("never_answered", {})
-local CAPTURE_ENDS, CAPTURE_ENDS_UNKNOWN = say("capture_ends", {}), say("capture_ends_unknown", {})
+local CAPTURE_ENDS_UNKNOWN = say("capture_ends_unknown", {})
 local ECHO = DATA.pairing.echo
 local LISTEN_ONLY_BROADCAST = say("listen_only_broadcast", {})
 -- Times are integer nanoseconds (show.lua record_ns); seconds are their differences divided once, as
@@ -270,7 +270,7 @@ local function ended(st, f)
   local last = times[#times]
   if recorded_until ~= nil and (not last or recorded_until > last) then last = recorded_until end
   local waited = last and f.time and (last - f.time) / NS or nil
-  if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut or CAPTURE_ENDS end
+  if timeout ~= nil and waited ~= nil and waited > timeout then return true, cut end
   if cut ~= nil then return false, cut end
   if timeout == nil or waited == nil or waited <= 0 then return false, CAPTURE_ENDS_UNKNOWN end
   return false, say("capture_ends_within", { waited_ms = waited * 1000, timeout_ms = timeout * 1000 })

@@ -208,8 +208,8 @@ def test_pymodbus_live_json_equals_the_decode_of_its_file(tmp_path: Path) -> Non
         absent += 1
         sniffer.wait_lines(2 * 60 - 3 + 1, timeout=3)
         shown_in_time = len(sniffer.lines)
-        # One more transaction: the file's last frame is then no request (at the end of a file, the
-        # decode notes that "the capture ends before any response"; live knows the timeout passed).
+        # One more transaction: the file's last frame is then no request (a last request is
+        # test_live_capture_end.py's).
         assert not client.read_holding_registers(0, count=1, device_id=1).isError()
         sniffer.wait_lines(2 * 60 - 3 + 3, timeout=3)
         status, stderr = sniffer.interrupt()
