@@ -379,7 +379,9 @@ def _mei_response(frame: Frame, fields: Container) -> None:
         DeviceObject(
             id=obj.id,
             name=SPEC.device_id_objects.get(obj.id) or text("other_object", id=obj.id),
-            value=obj.value.decode("latin-1"),
+            # Objects 0..6 are ASCII strings (Application Protocol 6.21), the private ones the device's own:
+            # ASCII as sent, every other byte as \xNN (never a guess at a charset; the bytes: fields.body)
+            value=obj.value.decode("ascii", "backslashreplace"),
         )
         for obj in fields["body"]["objects"]
     ]

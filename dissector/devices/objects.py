@@ -8,11 +8,12 @@ from dissector.protocol.rules import text
 
 
 def check_objects(frame: Frame, profile: Profile, objects: list[DeviceObject]) -> None:
-    for obj in objects:
+    sent = frame.fields["body"]["objects"]  # (the bytes sent: a value shows other bytes than ASCII as \xNN)
+    for obj, fields in zip(objects, sent):
         meaning = profile.objects.get(obj.id)
         if meaning is None:
             continue
-        size = len(obj.value.encode("latin-1"))  # (the bytes sent: the value is their latin-1 reading)
+        size = len(fields.value)
         if meaning.max_length is not None and size > meaning.max_length:
             frame.warnings.append(text("object_length", object=obj.name, length=size, device=profile.device,
                                        limit=meaning.max_length))

@@ -214,11 +214,11 @@ local SPECIAL = {
     local objects = f.fields.body.objects
     if objects == nil then return end -- (another MEI type: the layout's switch read no device identification)
     for _, object in ipairs(objects) do
-      -- The bytes read as latin-1 (as the Python decoder does), held as UTF-8 for Wireshark's strings.
+      -- ASCII as sent, every other byte as \xNN (decode/fields.py _mei_response: objects 0..6 are ASCII).
       local chars, at, size = {}, object.value_at, object.length
       for k = at, at + size - 1 do
         local byte = b[k]
-        chars[#chars + 1] = byte < 128 and string.char(byte) or string.char(192 + floor(byte / 64), 128 + byte % 64)
+        chars[#chars + 1] = byte < 128 and string.char(byte) or format("\\x%02x", byte)
       end
       object.name = DATA.device_id_objects[object.id] or say("other_object", { id = object.id })
       object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil

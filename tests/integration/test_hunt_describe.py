@@ -1,8 +1,11 @@
 """The hunt's Info texts (session 52), alike in vw3-decode (compiled engine and VW3_PURE_PYTHON=1) and the
 plugin under real tshark 4.0: an FC24 answer of more values than a summary shows ends with how many more
-(`… (+2)`, as register lists say it); an empty FIFO is `0 values`, no colon after it."""
+(`… (+2)`, as register lists say it); an empty FIFO is `0 values`, no colon after it. FC43's object values
+are ASCII as sent and every other byte `\\xNN` (objects 0..6 are ASCII strings, the private ones the
+device's own: never read as Latin-1, `Ã©`), in the Info text, -V, --json and the plugin's tree."""
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -21,14 +24,20 @@ RECORDS = [
     bytes.fromhex("11 18 04 de 07 87"),
     bytes.fromhex("11 18 00 16 00 0a 00 00 00 64 00 c8 01 2c 01 90 01 f4 02 58 02 bc 03 20 03 84 9e 09"),
     rtu("11 18 04de"), rtu("11 18 0002 0000"),  # an empty FIFO
+    # FC43: VendorName `été ` in UTF-8; a private object 0x80 of two bytes
+    rtu("11 2b 0e 01 00"), rtu("11 2b 0e 01 01 00 00 02 00 06 c3a974c3a920 80 02 abcd"),
 ]
+FIFO, MEI = "Read FIFO Queue", "Encapsulated Interface Transport"
+OBJECTS = r"VendorName='\\xc3\\xa9t\\xc3\\xa9 ' Object 128='\\xab\\xcd'"
 INFO = [
-    ("request", "Read FIFO Queue pointer 1246"),
-    ("response", "Read FIFO Queue 10 values: 0 100 200 300 400 500 600 700 … (+2)"),
-    ("request", "Read FIFO Queue pointer 1246"),
-    ("response", "Read FIFO Queue 0 values"),
+    ("request", FIFO, "pointer 1246"),
+    ("response", FIFO, "10 values: 0 100 200 300 400 500 600 700 … (+2)"),
+    ("request", FIFO, "pointer 1246"),
+    ("response", FIFO, "0 values"),
+    ("request", MEI, "Read Device Identification, basic, from object 0"),
+    ("response", MEI, f"Read Device Identification, basic: {OBJECTS}"),
 ]
-TAILS = {1: " [#1, 1000.0 ms]", 3: " [#3, 1000.0 ms]"}
+TAILS = {1: " [#1, 1000.0 ms]", 3: " [#3, 1000.0 ms]", 5: " [#5, 1000.0 ms]"}
 
 
 @pytest.fixture(scope="module")
@@ -39,22 +48,46 @@ def capture(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
 def test_vw3_decode_info(capture: Path, pure: bool) -> None:
+    assert vw3_decode(capture, pure).splitlines() == [
+        f"{index + 1:>6} {index:>12.6f}  17 {kind:<9} {name} {info}{TAILS.get(index, '')}  CRC ok"
+        for index, (kind, name, info) in enumerate(INFO)]
+
+
+def vw3_decode(capture: Path, pure: bool, *args: str) -> str:
     env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
     if pure:
         env["VW3_PURE_PYTHON"] = "1"
     else:  # a missing engine would run the Python stages twice
         from dissector.accel import fastsummary
         assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"
-    result = subprocess.run([sys.executable, "-m", "dissector", str(capture)], capture_output=True, text=True,
-                            env=env, cwd=ROOT, timeout=300)
+    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), *args], capture_output=True,
+                            text=True, env=env, cwd=ROOT, timeout=300)
     assert (result.returncode, result.stderr) == (0, "")
-    assert result.stdout.splitlines() == [
-        f"{index + 1:>6} {index:>12.6f}  17 {kind:<9} {info}{TAILS.get(index, '')}  CRC ok"
-        for index, (kind, info) in enumerate(INFO)]
+    return result.stdout
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
+def test_vw3_decode_objects(capture: Path, pure: bool) -> None:
+    detail = vw3_decode(capture, pure, "-V").splitlines()
+    assert [line.strip() for line in detail if line.startswith("        Object ")] == [
+        r"Object 0 VendorName: '\\xc3\\xa9t\\xc3\\xa9 '", r"Object 128: '\\xab\\xcd'"]
+    (response,) = [item for item in map(json.loads, vw3_decode(capture, pure, "--json").splitlines()) if item["frame"] == 6]
+    assert response["objects"] == [{"id": 0, "name": "VendorName", "value": r"\xc3\xa9t\xc3\xa9 "},
+                                   {"id": 128, "name": "Object 128", "value": r"\xab\xcd"}]
+
+
+def tshark(capture: Path, *args: str) -> str:
+    result = run_tshark(capture, *args)
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    return result.stdout
 
 
 def test_plugin_info(capture: Path) -> None:
-    result = run_tshark(capture, "-T", "fields", "-e", "_ws.col.Info")
-    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
-    names = len("Read FIFO Queue ")
-    assert result.stdout.splitlines() == [f"17 Read FIFO Queue {kind} {info[names:]}" for kind, info in INFO]
+    assert tshark(capture, "-T", "fields", "-e", "_ws.col.Info").splitlines() == [
+        f"17 {name} {kind} {info}" for kind, name, info in INFO]
+
+
+def test_plugin_objects(capture: Path) -> None:
+    values = tshark(capture, "-Y", "frame.number == 6", "-T", "fields", "-E", "occurrence=a", "-E", "aggregator=|",
+                    "-e", "vw3.object.value")
+    assert values.splitlines() == [r"\\xc3\\xa9t\\xc3\\xa9 |\\xab\\xcd"]

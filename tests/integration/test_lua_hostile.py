@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
@@ -13,7 +14,7 @@ import pytest
 
 from dissector.sim.simulate import generate_session
 from helpers import rtu
-from lua_harness import PLUGIN, USER_DLT, ensure_tool, lua_errors, run_tshark, write_pcap
+from lua_harness import PLUGIN, ROOT, USER_DLT, ensure_tool, lua_errors, run_tshark, write_pcap
 
 ESC = "\x1b"
 VENDOR = b"\x1b]8;;http://x\x1b\\LINK\x1b[2J\x07"
@@ -35,10 +36,12 @@ def test_fc43_object_values_are_escaped_in_every_output(tmp_path: Path) -> None:
     value = b"Ev\x1b[31mil\rCR\x07BEL\x7fDEL [/x] \xa0\xad\x85\xe9'\"\\"
     body = "0c2b0e0101000002" + "00" + f"{len(value):02x}" + value.hex() + "01" + "03" + b"X\x1bY".hex()
     pcap = write_pcap(tmp_path / "fc43.pcap", [(rtu("0c2b0e010100"), 1.0), (rtu(body), 1.1)])
-    python = subprocess.run(["vw3-decode", str(pcap), "-V"], capture_output=True, text=True, timeout=60)
+    python = subprocess.run([sys.executable, "-m", "dissector", str(pcap), "-V"], capture_output=True, text=True,
+                            cwd=ROOT, timeout=60)  # (this checkout's vw3-decode)
     assert python.returncode == 0, python.stderr
     said = [line.strip() for line in python.stdout.splitlines() if line.strip().startswith(("Object 0 ", "Object 1 "))]
-    assert said == ["Object 0 VendorName: 'Ev\\x1b[31mil\\rCR\\x07BEL\\x7fDEL [/x] \\xa0\\xad\\x85é\\'\"\\\\'",
+    # (bytes past ASCII as \xNN in the value, its backslash doubled by repr as every backslash)
+    assert said == ["Object 0 VendorName: 'Ev\\x1b[31mil\\rCR\\x07BEL\\x7fDEL [/x] \\\\xa0\\\\xad\\\\x85\\\\xe9\\'\"\\\\'",
                     "Object 1 ProductCode: 'X\\x1bY'"]
     texts = [line.split(": ", 1)[1] for line in said]  # vw3-decode's texts, quotes and all
     fields = run_tshark(pcap, "-T", "fields", "-E", "aggregator=|", "-e", "vw3.object.value")

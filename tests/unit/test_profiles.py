@@ -393,6 +393,6 @@ def test_a_revision_with_non_ascii_digits_is_not_read_as_a_version() -> None:
     response = rtu("02 2B 0E 01 02 00 00 01 02 04 30 B2 30 31")
     items = dissect_bytes(rtu("02 2B 0E 01 00") + response, annotate=build_annotator(["atv71"], []))
     (obj,) = items[1].objects
-    assert (obj.name, obj.value) == ("MajorMinorRevision", "0\xb201")
+    assert (obj.name, obj.value) == ("MajorMinorRevision", r"0\xb201")  # (the byte B2 as \xNN: not ASCII)
     assert obj.text != "V0.1" and not (obj.text or "").startswith("V")
     assert any("MMmm" in note for note in items[1].notes)
