@@ -31,15 +31,17 @@ static int handled_index(int function) {
 }
 
 /* The spec limits the lifting rules check (data/modbus.toml [limits]): {low, high} by LIMIT_*. */
-#define LIMIT_COUNT 7
+#define LIMIT_COUNT 9
 #define LIMIT_READ_BITS 0
 #define LIMIT_READ_REGISTERS 1
 #define LIMIT_WRITE_COILS 2
 #define LIMIT_WRITE_REGISTERS 3
-#define LIMIT_RW_READ 4
-#define LIMIT_RW_WRITE 5
-#define LIMIT_FIFO_COUNT 6
-static const long spec_limits[LIMIT_COUNT][2] = {{1, 2000}, {1, 125}, {1, 1968}, {1, 123}, {1, 125}, {1, 121}, {0, 31}};
+#define LIMIT_READ_FILE_BYTES 4
+#define LIMIT_WRITE_FILE_BYTES 5
+#define LIMIT_RW_READ 6
+#define LIMIT_RW_WRITE 7
+#define LIMIT_FIFO_COUNT 8
+static const long spec_limits[LIMIT_COUNT][2] = {{1, 2000}, {1, 125}, {1, 1968}, {1, 123}, {7, 245}, {9, 251}, {1, 125}, {1, 121}, {0, 31}};
 
 /* The spec's FC8 sub-function names by number (data/modbus.toml [diagnostics]); NULL: none. */
 #define SUBFUNCTIONS 21
@@ -289,7 +291,7 @@ static const Lift request_lift[HANDLED] = {
     {0, 0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 20 */
     {0, 0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 21 */
     {0, 2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 22 */
-    {0, 2, 4, 0, {4, 8}, {2, 2}, {4, 5}, {0, 0}, 1, 10, 1, 0, 1, 8, 2, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 1, 11, 6, 8}, /* 23 */
+    {0, 2, 4, 0, {4, 8}, {2, 2}, {6, 7}, {0, 0}, 1, 10, 1, 0, 1, 8, 2, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 1, 11, 6, 8}, /* 23 */
     {0, 2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 43 */
 };
@@ -311,7 +313,7 @@ static const Lift response_lift[HANDLED] = {
     {0, 0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 21 */
     {0, 2, 0, 1, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {2, 4, 6}, {2, 4, 6}, 0, 0, 0, 0}, /* 22 */
     {0, 0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 2, 1, 0, 1, 0, 2, 0, 1, 0, 0, {0, 0, 0}, {0, 0, 0}, 1, 3, 0, 0}, /* 23 */
-    {0, 0, 0, 0, {4, 0}, {2, 0}, {6, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 24 */
+    {0, 0, 0, 0, {4, 0}, {2, 0}, {8, -1}, {1, 0}, 0, 2, 2, 2, 1, 4, 2, 2, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 24 */
     {0, 0, 0, 0, {0, 0}, {0, 0}, {-1, -1}, {0, 0}, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, {0, 0, 0}, {0, 0, 0}, 0, 0, 0, 0}, /* 43 */
 };
 enum { STEP_END, STEP_NONE, STEP_TEXT, STEP_UNSPACE, STEP_SPAN, STEP_PLAIN_SPAN, STEP_LABEL, STEP_BITS, STEP_VALUES, STEP_COIL, STEP_SINGLE, STEP_DEC, STEP_HEX, STEP_SUBFUNCTION, STEP_DATA, STEP_FIFO };

@@ -14,7 +14,8 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from lua_harness import ROOT, lua_errors, run_tshark, write_pcap
+from lua_compare import compare, lua_shown
+from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
 
 pytestmark = pytest.mark.integration
 
@@ -91,3 +92,38 @@ def test_plugin_objects(capture: Path) -> None:
     values = tshark(capture, "-Y", "frame.number == 6", "-T", "fields", "-E", "occurrence=a", "-E", "aggregator=|",
                     "-e", "vw3.object.value")
     assert values.splitlines() == [r"\\xc3\\xa9t\\xc3\\xa9 |\\xab\\xcd"]
+
+
+# The hunt's requests no limit warned of: FC20's byte count 0 (the spec's 0x07..0xF5), FC21's record of no
+# word (and its byte count 7, the spec's 0x09..0xFB), FC23 broadcast (it reads: a broadcast only writes).
+LIMIT_RECORDS = [rtu("11 14 00"), rtu("11 15 07 06 0004 0007 0000"), rtu("00 17 0001 0002 0003 0001 02 0007")]
+LIMIT_LINES = [
+    "Read File Record 0 record group(s) [no response] [warning: byte count 0 outside the spec's 7..245]",
+    "Write File Record 1 record group(s) [no response] [warning: byte count 7 outside the spec's 9..251] "
+    "[warning: record 1's record length 0 outside the spec's 1..122]",
+    "Read/Write Multiple Registers read 1..2 (2), write 3=7 [broadcast] "
+    "[warning: Read/Write Multiple Registers cannot be broadcast (slave 0)]",
+]
+
+
+@pytest.fixture(scope="module")
+def limits(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return write_pcap(tmp_path_factory.mktemp("hunt_limits") / "limits.pcap",
+                      [(data, T0 + at) for at, data in enumerate(LIMIT_RECORDS)])
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
+def test_vw3_decode_limits(limits: Path, pure: bool) -> None:
+    slaves = [17, 17, 0]
+    assert vw3_decode(limits, pure).splitlines() == [
+        f"{index + 1:>6} {index:>12.6f} {slaves[index]:>3} request   {line}  CRC ok"
+        for index, line in enumerate(LIMIT_LINES)]
+
+
+def test_plugin_limits(limits: Path) -> None:
+    lua, _, _ = lua_items(limits)
+    assert compare(python_items(limits), lua) == []
+    assert [item.texts.get("warning") for item in lua_shown(lua)] == [
+        ["byte count 0 outside the spec's 7..245"],
+        ["byte count 7 outside the spec's 9..251", "record 1's record length 0 outside the spec's 1..122"],
+        ["Read/Write Multiple Registers cannot be broadcast (slave 0)"]]
