@@ -240,6 +240,10 @@ def _fifo(values: list[int]) -> str:
     return text + f" … (+{len(values) - MAX_FIFO_VALUES})" if len(values) > MAX_FIFO_VALUES else text
 
 
+def _after_colon(text: str) -> str:
+    return ": " + text if text else ""
+
+
 def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:
     """A describer of a form: its steps called for their texts, joined with its texts."""
     steps = TEXT_FORMS[form]
@@ -259,6 +263,9 @@ def _interpreter(form: str, values_alone: bool) -> Callable[[Frame, bool], str]:
         return lambda frame, request: head + one(frame) + tail
     if len(calls) == 2:
         (first, second), (head, middle, tail) = calls, texts
+        if middle == ": ":  # (no colon before values of none: `8401 (0)`, as `0 values`)
+            return lambda frame, request: (head + first(frame) + _after_colon(second(frame))
+                                           + tail).lstrip(strip)
         return lambda frame, request: (head + first(frame) + middle + second(frame) + tail).lstrip(strip)
     return lambda frame, request: "".join([text + call(frame) for text, call in zip(texts, calls)]) + texts[-1]
 

@@ -2,7 +2,8 @@
 plugin under real tshark 4.0: an FC24 answer of more values than a summary shows ends with how many more
 (`… (+2)`, as register lists say it); an empty FIFO is `0 values`, no colon after it. FC43's object values
 are ASCII as sent and every other byte `\\xNN` (objects 0..6 are ASCII strings, the private ones the
-device's own: never read as Latin-1, `Ã©`), in the Info text, -V, --json and the plugin's tree."""
+device's own: never read as Latin-1, `Ã©`), in the Info text, -V, --json and the plugin's tree. Limits the
+spec sets on FC20, FC21 and a broadcast FC23 are warned of; no colon before the values of none."""
 from __future__ import annotations
 
 import json
@@ -72,7 +73,8 @@ def test_vw3_decode_objects(capture: Path, pure: bool) -> None:
     detail = vw3_decode(capture, pure, "-V").splitlines()
     assert [line.strip() for line in detail if line.startswith("        Object ")] == [
         r"Object 0 VendorName: '\\xc3\\xa9t\\xc3\\xa9 '", r"Object 128: '\\xab\\xcd'"]
-    (response,) = [item for item in map(json.loads, vw3_decode(capture, pure, "--json").splitlines()) if item["frame"] == 6]
+    items = map(json.loads, vw3_decode(capture, pure, "--json").splitlines())
+    (response,) = [item for item in items if item["frame"] == 6]
     assert response["objects"] == [{"id": 0, "name": "VendorName", "value": r"\xc3\xa9t\xc3\xa9 "},
                                    {"id": 128, "name": "Object 128", "value": r"\xab\xcd"}]
 
@@ -89,15 +91,20 @@ def test_plugin_info(capture: Path) -> None:
 
 
 def test_plugin_objects(capture: Path) -> None:
-    values = tshark(capture, "-Y", "frame.number == 6", "-T", "fields", "-E", "occurrence=a", "-E", "aggregator=|",
-                    "-e", "vw3.object.value")
+    values = tshark(capture, "-Y", "frame.number == 6", "-T", "fields", "-E", "occurrence=a",
+                    "-E", "aggregator=|", "-e", "vw3.object.value")
     assert values.splitlines() == [r"\\xc3\\xa9t\\xc3\\xa9 |\\xab\\xcd"]
 
 
 # The hunt's requests no limit warned of: FC20's byte count 0 (the spec's 0x07..0xF5), FC21's record of no
 # word (and its byte count 7, the spec's 0x09..0xFB), FC23 broadcast (it reads: a broadcast only writes).
-LIMIT_RECORDS = [rtu("11 14 00"), rtu("11 15 07 06 0004 0007 0000"), rtu("00 17 0001 0002 0003 0001 02 0007")]
+# (First, no colon before the values of none: `8401 (0)`.)
+LIMIT_RECORDS = [rtu("11 10 20d1 0000 02 0005"), rtu("11 14 00"), rtu("11 15 07 06 0004 0007 0000"),
+                 rtu("00 17 0001 0002 0003 0001 02 0007")]
 LIMIT_LINES = [
+    "Write Multiple Registers 8401 (0) [no response] [warning: quantity 0 outside the spec's 1..123] "
+    "[warning: byte count 2 disagrees with the quantity 0] "
+    "[warning: 2 bytes past the quantity 0, not written: 00 05]",
     "Read File Record 0 record group(s) [no response] [warning: byte count 0 outside the spec's 7..245]",
     "Write File Record 1 record group(s) [no response] [warning: byte count 7 outside the spec's 9..251] "
     "[warning: record 1's record length 0 outside the spec's 1..122]",
@@ -114,7 +121,7 @@ def limits(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
 def test_vw3_decode_limits(limits: Path, pure: bool) -> None:
-    slaves = [17, 17, 0]
+    slaves = [17, 17, 17, 0]
     assert vw3_decode(limits, pure).splitlines() == [
         f"{index + 1:>6} {index:>12.6f} {slaves[index]:>3} request   {line}  CRC ok"
         for index, line in enumerate(LIMIT_LINES)]
@@ -124,6 +131,8 @@ def test_plugin_limits(limits: Path) -> None:
     lua, _, _ = lua_items(limits)
     assert compare(python_items(limits), lua) == []
     assert [item.texts.get("warning") for item in lua_shown(lua)] == [
+        ["quantity 0 outside the spec's 1..123", "byte count 2 disagrees with the quantity 0",
+         "2 bytes past the quantity 0, not written: 00 05"],
         ["byte count 0 outside the spec's 7..245"],
         ["byte count 7 outside the spec's 9..251", "record 1's record length 0 outside the spec's 1..122"],
         ["Read/Write Multiple Registers cannot be broadcast (slave 0)"]]

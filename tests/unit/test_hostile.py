@@ -237,11 +237,11 @@ def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Pa
     capture.write_bytes(b"".join(QUANTITY_0))
     lines = [
         "     1            -   1 request   Read Holding Registers {a} (0) [warning: quantity 0 outside the spec's 1..125]  CRC ok",
-        "     2            -   1 response  Read Holding Registers {a} (0): [#1]  CRC ok",
+        "     2            -   1 response  Read Holding Registers {a} (0) [#1]  CRC ok",
         "     3            -   1 request   Read/Write Multiple Registers read {b} (0), write {c}=255 "
         "[warning: read quantity 0 outside the spec's 1..125]  CRC ok",
-        "     4            -   1 response  Read/Write Multiple Registers {b} (0): [#3]  CRC ok",
-        "     5            -   1 request   Write Multiple Registers {d} (0): [warning: quantity 0 outside the spec's 1..123]  CRC ok",
+        "     4            -   1 response  Read/Write Multiple Registers {b} (0) [#3]  CRC ok",
+        "     5            -   1 request   Write Multiple Registers {d} (0) [warning: quantity 0 outside the spec's 1..123]  CRC ok",
         "     6            -   1 response  Write Multiple Registers {d} (0) written [#5]  CRC ok",
     ]
     for style, names in ((None, ("8400", "10", "20", "16")), ("plc", ("48401", "40011", "40021", "40017"))):
