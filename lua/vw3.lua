@@ -3304,12 +3304,12 @@ local function has_rare(f)
   return f.registers and (f.registers.status or f.registers.plain) or f.warnings or f.notes or f.unanswered or
     f.broadcast or f.no_request or f.malformed or f.function_text or f.exception_code or
     f.exception_meaning or f.subfunction or f.subfunction_text or f.objects or f.ascii or f.raw or
-    f.inferred or f.profile_choice or f.profile_said or f.provisional
+    f.inferred or f.profile_choice or f.profile_said or f.provisional or f.paired_notes
 end
 DATA.pack = { encode = encode, put = put, expand = expand, has_rare = has_rare,
   rare = { "warnings", "notes", "unanswered", "broadcast", "no_request", "malformed", "function_text",
     "exception_code", "exception_meaning", "subfunction", "subfunction_text", "objects", "ascii", "raw",
-    "inferred", "profile_choice", "profile_said", "provisional" } }
+    "inferred", "profile_choice", "profile_said", "provisional", "paired_notes" } }
 end
 do
 local PARTS, PARSERS = {}, {} -- (a layout's reader calls its parts' by name)
@@ -7974,6 +7974,9 @@ end
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
+  -- (how many notes pairing gave: the capture end's note goes after them, before decoding's, as the
+  -- Python pipeline's pairer finishes before decode_frame; the display puts it there)
+  if item.notes ~= nil then item.paired_notes = #item.notes end
   local gaps = item.gaps -- (silences inside the frame, vw3.stream's inner_gaps: after the pairing's warnings)
   if gaps ~= nil then
     for index = 1, #gaps do warn(item, gaps[index]) end

@@ -15,6 +15,9 @@ end
 -- Pair, decode and annotate a frame just numbered; the device it was annotated with.
 local function take_frame(st, item, whole)
   pair(st, item)
+  -- (how many notes pairing gave: the capture end's note goes after them, before decoding's, as the
+  -- Python pipeline's pairer finishes before decode_frame; the display puts it there)
+  if item.notes ~= nil then item.paired_notes = #item.notes end
   local gaps = item.gaps -- (silences inside the frame, vw3.stream's inner_gaps: after the pairing's warnings)
   if gaps ~= nil then
     for index = 1, #gaps do warn(item, gaps[index]) end
