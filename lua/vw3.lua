@@ -9372,10 +9372,11 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
     add_said(t, whole, pf.warning, text, malformed and ex.malformed or ex.warning, text)
   end
   local notes = f.notes or NO_INTERPRETATION
-  local count = #notes
+  -- (the capture end's note after the notes pairing gave, before decoding's: paired_notes, take_frame's count)
+  local count, at = #notes, ends_note and (f.paired_notes or 0) + 1
   for index = 1, count + (ends_note and 1 or 0) do
     local text = ends_note
-    if index <= count then text = notes[index] end
+    if index ~= at then text = notes[at and index > at and index - 1 or index] end
     local unmatched = f.no_request and text == UNMATCHED
     add_said(t, whole, pf.note, text, unmatched and ex.no_request or ex.note, text)
   end

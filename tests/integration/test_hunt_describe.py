@@ -136,3 +136,17 @@ def test_plugin_limits(limits: Path) -> None:
         ["byte count 0 outside the spec's 7..245"],
         ["byte count 7 outside the spec's 9..251", "record 1's record length 0 outside the spec's 1..122"],
         ["Read/Write Multiple Registers cannot be broadcast (slave 0)"]]
+
+
+def test_plugin_note_order_at_the_capture_end(tmp_path: Path) -> None:
+    """An FC8 request the capture ends after: the end's note, then decoding's (pipeline.py pairs first)."""
+    records = ["11 03 00 00 00 01 86 9a", "11 03 02 00 05 b9 84", "11 08 00 01 ff 00 f2 ab"]
+    pcap = write_pcap(tmp_path / "fc8.pcap", [(bytes.fromhex(data), T0 + at) for at, data in enumerate(records)])
+    notes = ["the capture ends before any response: not known whether it was answered",
+             "clear the communications event log"]
+    (request,) = [item for item in map(json.loads, vw3_decode(pcap, False, "--json").splitlines())
+                  if item["frame"] == 3]
+    assert request["notes"] == notes
+    lua, _, _ = lua_items(pcap)
+    assert compare(python_items(pcap), lua) == []
+    assert lua_shown(lua)[2].texts.get("note") == notes
