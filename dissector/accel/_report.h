@@ -13,7 +13,7 @@
 #define REPORT_POINTS (1 << 16) /* y of (namer epoch, function, slave, address, value) kept at most */
 
 typedef struct {
-    uint32_t key;             /* 1 << 24 | slave << 16 | address */
+    uint32_t key;             /* param_key (_stats.h): by slave, address, table */
     int readable;             /* series.status was None when read (gen: while no span opened since) */
     unsigned gen;
     unsigned long long values; /* points not yet added to series.values */
@@ -232,10 +232,10 @@ static int trend_keep(Report *r, Trend *t, PyObject *series) {
 static int trends_full(Report *r) {
     PyObject *key, *series;
     Py_ssize_t at = 0;
-    int slave, address;
+    int slave, table, address;
     while (PyDict_Next(r->series, &at, &key, &series)) {
-        if (!PyArg_ParseTuple(key, "ii", &slave, &address)) return -1;
-        uint32_t k = 1u << 24 | (uint32_t)slave << 16 | (uint32_t)address;
+        if (!PyArg_ParseTuple(key, "iii", &slave, &address, &table)) return -1;
+        uint32_t k = param_key(slave, table, (unsigned)address);
         Trend *t = dense_find(&r->trends, &TREND_KIND, &k);
         if (t == NULL && (t = dense_add(&r->trends, &TREND_KIND, &k, 0)) == NULL) return -1;
         if (t->columns == NULL && trend_keep(r, t, series) < 0) return -1;
@@ -244,10 +244,11 @@ static int trends_full(Report *r) {
     return 0;
 }
 
-/* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col. */
-static int report_value(Report *r, Slave *s, int slave, int function, unsigned address, unsigned value,
+/* ReportCollector.state of a value read or confirmed written (READ, CONFIRM) at x, in column col; `table`:
+ * the function's register table (Stats.tables). */
+static int report_value(Report *r, Slave *s, int slave, int function, int table, unsigned address, unsigned value,
                         const Time *x, long long col) {
-    uint32_t tag = 1u << 24 | (uint32_t)slave << 16 | address;
+    uint32_t tag = param_key(slave, table, address);
     Trend *t = dense_find(&r->trends, &TREND_KIND, &tag);
     if (t == NULL && !r->full && PyDict_Size(r->series) >= MAX_SERIES) {
         if (trends_full(r) < 0) return -1;
@@ -259,7 +260,7 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
     }
     if (t == NULL && (t = dense_add(&r->trends, &TREND_KIND, &tag, 0)) == NULL) return -1;
     if (t->columns == NULL) {
-        PyObject *key = Py_BuildValue("(iI)", slave, address), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
+        PyObject *key = Py_BuildValue("(iIi)", slave, address, table), *series = key ? PyDict_GetItemWithError(r->series, key) : NULL;
         Py_XDECREF(key);
         if (series == NULL && PyErr_Occurred()) return -1;
         t->series = series; /* NULL: made by engine_point below (there is room: not full) */
@@ -325,9 +326,10 @@ static int report_value(Report *r, Slave *s, int slave, int function, unsigned a
     return columns_point(t->columns, col, x->d, y);
 }
 
-/* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1. */
+/* What the report takes of a transaction the engine counts (see count_transaction): number, number + 1;
+ * `table`: its registers' table (Stats.tables). */
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *confirmed, const Words *reads, unsigned long long number) {
+                              const Words *confirmed, const Words *reads, unsigned long long number, int table) {
     Report *r = (Report *)report;
     const uint8_t *q = b + qf->at, *a = af != NULL ? b + af->at : NULL;
     int slave = q[0], function = q[1];
@@ -343,7 +345,8 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
     for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
         const Words *w = pass ? reads : confirmed;
         for (unsigned k = 0; w != NULL && k < w->count; k++)
-            if (report_value(r, s, slave, function, words_address(w, k), words_value(w, k), &x, col) < 0) return -1;
+            if (report_value(r, s, slave, function, table, words_address(w, k), words_value(w, k), &x, col) < 0)
+                return -1;
     }
     return 0;
 }

@@ -17,7 +17,7 @@
 #include "_bus.h" /* the time-dependent counts: bus timing, response times, poll intervals */
 
 typedef struct {
-    uint32_t key; /* 1 << 24 | slave << 16 | address */
+    uint32_t key; /* param_key: 1 << 27 | slave << 19 | address << 3 | table */
     uint32_t counts[PARAM_COUNTS]; /* by PARAM_* (c_stats.py): reads, unreadable, writes, refused, changes */
     uint16_t last;
     uint8_t has_last, last_mapped; /* last_mapped: the device named the address (else no text to ask) */
@@ -28,11 +28,21 @@ typedef struct {
     PyObject *status;     /* owned: the last state is this read status (`protected`...), not a value; NULL: a value */
 } Param;
 
+/* A parameter's key: by slave, address, table (stats_store.register_table: input registers and holding
+ * registers are tables of their own), in ParameterTable's order. */
+#define PARAM_TABLES 8
+static inline uint32_t param_key(int slave, int table, unsigned address) {
+    return 1u << 27 | (uint32_t)slave << 19 | (address & 0xFFFF) << 3 | (uint32_t)table;
+}
+#define PARAM_SLAVE(key) ((key) >> 19 & 0xFF)
+#define PARAM_ADDRESS(key) ((key) >> 3 & 0xFFFF)
+#define PARAM_TABLE(key) ((key) & (PARAM_TABLES - 1))
+
 /* A parameter's hash: neighbouring addresses of a slave in neighbouring slots (a read's registers touch a
  * few cache lines, not one each). */
 static size_t param_hash(const void *key) {
     uint32_t k = *(const uint32_t *)key;
-    return (size_t)(mix(k >> 4) + (k & 15));
+    return (size_t)(mix(k >> 7) + (k & 127));
 }
 
 /* (67,384 parameters of the max-size mix take 4.9 MB; open addressing of the Params took 9.4.) */
@@ -63,6 +73,7 @@ typedef struct {
     Dense polls;                  /* of Poll, in the order first seen, as PollCycle's dict keeps them */
     size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
+    uint8_t tables[256];          /* stats_store.TABLES: each function code's register table */
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
@@ -74,15 +85,15 @@ typedef struct {
 #define PARAMS(st) ((Param *)(st)->params.items)
 
 static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, const FrameRef *qf, const FrameRef *af,
-                              const Words *confirmed, const Words *reads, unsigned long long number);
+                              const Words *confirmed, const Words *reads, unsigned long long number, int table);
 
 static PyTypeObject StatsType;
 
-/* The parameter of (slave, address), made on first sight; *created says so. NULL with no exception set:
- * a new parameter past max_params (a flood over every address of every slave), not kept. (A Param
+/* The parameter of (slave, table, address), made on first sight; *created says so. NULL with no exception
+ * set: a new parameter past max_params (a flood over every address of every slave), not kept. (A Param
  * pointer is good until the next param_get.) */
-static Param *param_get(Stats *st, int slave, unsigned address, int *created) {
-    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | (address & 0xFFFF);
+static Param *param_get(Stats *st, int slave, int table, unsigned address, int *created) {
+    uint32_t key = param_key(slave, table, address);
     Param *p = dense_find(&st->params, &PARAM_KIND, &key);
     if ((*created = p == NULL) && st->params.count >= st->max_params) st->dropped++;
     else if (p == NULL) p = dense_add(&st->params, &PARAM_KIND, &key, 0);
@@ -141,11 +152,12 @@ static int take_code(Param *p, PyObject *namer, unsigned address, unsigned value
  * keeps the value, or the read status `status`, and the value's text (`text`, the Python stages', or NULL: the
  * namer's, asked when the report is made). 1: the state changed, 0: not (or not kept), -1: an error.
  * (Inlined: in words_event, once per register, the constant arguments fold away.) */
-static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, unsigned address, unsigned value,
-                                                              int event, PyObject *code, PyObject *status,
-                                                              PyObject *text, PyObject *namer, int mapped) {
+static inline __attribute__((always_inline)) int param_event(Stats *st, int slave, int table, unsigned address,
+                                                              unsigned value, int event, PyObject *code,
+                                                              PyObject *status, PyObject *text, PyObject *namer,
+                                                              int mapped) {
     int created;
-    Param *p = param_get(st, slave, address, &created);
+    Param *p = param_get(st, slave, table, address, &created);
     if (p == NULL) return PyErr_Occurred() ? -1 : 0;
     if (event != EVENT_CONFIRM || created) {
         if (code != NULL && code != Py_None) Py_XSETREF(p->code, Py_NewRef(code));
@@ -162,11 +174,12 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
     return changed;
 }
 
-static int words_event(Stats *st, Slave *s, int slave, const Words *w, int event) {
+static int words_event(Stats *st, Slave *s, int slave, int function, const Words *w, int event) {
+    int table = st->tables[function];
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         int mapped = bit(s->mapped, address);
-        if (param_event(st, slave, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0)
+        if (param_event(st, slave, table, address, words_value(w, k), event, NULL, NULL, NULL, s->namer, mapped) < 0)
             return -1;
     }
     return 0;
@@ -231,7 +244,9 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
-    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number) < 0) return -1;
+    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
+                                                    st->tables[function]) < 0)
+        return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
     if (bus_add(st->tallies, &st->bus, &qt, qf->length, KIND_REQUEST, slave, 0, af == NULL, 1, NULL, number,
@@ -256,16 +271,16 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         (answer == NULL && tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_UNANSWERED, 1) < 0) ||
         poll_request(st, &key, number, answer == NULL, &qt) < 0)
         return -1;
-    if (writes != NULL && words_event(st, s, slave, writes, EVENT_WRITE) < 0) return -1;
+    if (writes != NULL && words_event(st, s, slave, function, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
     if (answer[1] & 0x80) { /* an exception: counted by its code */
         if (tally_add(st->tallies, TALLY_COUNTS, owner, answer[2], 1) < 0) return -1;
         poll_fail(st, &key);
-        return writes != NULL ? words_event(st, s, slave, writes, EVENT_REFUSED) : 0;
+        return writes != NULL ? words_event(st, s, slave, function, writes, EVENT_REFUSED) : 0;
     }
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
-    if (confirmed != NULL && words_event(st, s, slave, confirmed, EVENT_CONFIRM) < 0) return -1;
-    return reads != NULL && reads->count ? words_event(st, s, slave, reads, EVENT_READ) : 0;
+    if (confirmed != NULL && words_event(st, s, slave, function, confirmed, EVENT_CONFIRM) < 0) return -1;
+    return reads != NULL && reads->count ? words_event(st, s, slave, function, reads, EVENT_READ) : 0;
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
@@ -286,19 +301,21 @@ static void stats_dealloc(Stats *st) {
     Py_TYPE(st)->tp_free((PyObject *)st);
 }
 
-/* param(slave, address, event, value, code, text): a register of a frame the Python stages showed. */
+/* param(slave, address, event, value, code, text, table=0): a register of a frame the Python stages showed. */
 static PyObject *stats_param(Stats *st, PyObject *args) {
-    int slave, event;
+    int slave, event, table = 0;
     unsigned address, value;
     PyObject *code, *text;
-    if (!PyArg_ParseTuple(args, "iIiIOO", &slave, &address, &event, &value, &code, &text)) return NULL;
-    if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF)
-        return PyErr_Format(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event");
+    if (!PyArg_ParseTuple(args, "iIiIOO|i", &slave, &address, &event, &value, &code, &text, &table)) return NULL;
+    if (slave < 0 || slave > 255 || address > 0xFFFF || event < 0 || event >= EVENTS || value > 0xFFFF ||
+        table < 0 || table >= PARAM_TABLES)
+        return PyErr_Format(PyExc_ValueError, "param: slave 0..255, address and value 0..65535, a known event, "
+                                              "table 0..7");
     if (event == EVENT_UNREADABLE && !PyUnicode_Check(text))
         return PyErr_Format(PyExc_TypeError, "param: an UNREADABLE event's text is its status");
     /* UNREADABLE (16#8000 or an explained exception): `text` is the status, no value */
     int unreadable = event == EVENT_UNREADABLE;
-    int changed = param_event(st, slave, address, value, event, code, unreadable ? text : NULL,
+    int changed = param_event(st, slave, table, address, value, event, code, unreadable ? text : NULL,
                               unreadable ? NULL : text, NULL, 0);
     return changed < 0 ? NULL : PyBool_FromLong(changed);
 }
@@ -309,7 +326,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
     if (!PyDict_Check(namers)) return PyErr_Format(PyExc_TypeError, "rename: a dict {slave: namer}");
     for (size_t k = 0; k < st->params.count; k++) {
         Param *p = &PARAMS(st)[k];
-        PyObject *slave = PyLong_FromUnsignedLong((p->key >> 16) & 0xFF);
+        PyObject *slave = PyLong_FromUnsignedLong(PARAM_SLAVE(p->key));
         if (slave == NULL) return NULL;
         PyObject *namer = PyDict_GetItemWithError(namers, slave);
         Py_DECREF(slave);
@@ -318,7 +335,7 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
             continue;
         }
         Py_CLEAR(p->code); /* the new device's code, none where it names nothing (not the old one's) */
-        if (take_code(p, namer, p->key & 0xFFFF, p->status ? 0u : (unsigned)p->last) < 0) return NULL;
+        if (take_code(p, namer, PARAM_ADDRESS(p->key), p->status ? 0u : (unsigned)p->last) < 0) return NULL;
         Py_XSETREF(p->namer, Py_NewRef(namer));
         Py_CLEAR(p->text);
         p->last_mapped = 1;
@@ -375,7 +392,7 @@ static PyObject *param_text(const Param *p) {
     if (p->status != NULL) return Py_NewRef(p->status);
     if (p->text != NULL) return Py_NewRef(p->text);
     if (!p->has_last || !p->last_mapped || p->namer == NULL || p->namer == Py_None) Py_RETURN_NONE;
-    PyObject *answer = named(p->namer, p->key & 0xFFFF, (unsigned)p->last);
+    PyObject *answer = named(p->namer, PARAM_ADDRESS(p->key), (unsigned)p->last);
     if (answer == NULL) return NULL;
     PyObject *text = Py_NewRef(PyTuple_GET_ITEM(answer, 0));
     Py_DECREF(answer);
@@ -395,11 +412,11 @@ static Param **param_sorted(Stats *st, size_t *n) {
     return order;
 }
 
-/* (slave, address, code, reads, unreadable, writes, refused, last, last_text, changes), built item by
+/* (slave, address, code, reads, unreadable, writes, refused, last, last_text, changes, table), built item by
  * item (Py_BuildValue's format parsing was a third of the cost); last_text the text of the last value,
  * None when nothing names it; when the last state is a read status, last is None and last_text the status. */
 static PyObject *param_row(const Param *p) {
-    PyObject *row = PyTuple_New(10), *text = row != NULL ? param_text(p) : NULL;
+    PyObject *row = PyTuple_New(11), *text = row != NULL ? param_text(p) : NULL;
     if (text == NULL) {
         Py_XDECREF(row);
         return NULL;
@@ -407,11 +424,11 @@ static PyObject *param_row(const Param *p) {
     PyObject *code = Py_NewRef(p->code ? p->code : Py_None);
     PyObject *last = p->has_last && p->status == NULL ? PyLong_FromUnsignedLong(p->last) : Py_NewRef(Py_None);
     const uint32_t *n = p->counts;
-    const unsigned long fields[] = {(p->key >> 16) & 0xFF, p->key & 0xFFFF, 0, n[PARAM_READS], n[PARAM_UNREADABLE],
-                                    n[PARAM_WRITES], n[PARAM_REFUSED], 0, 0, n[PARAM_CHANGES]};
-    for (int j = 0; j < 10; j++)
+    const unsigned long fields[] = {PARAM_SLAVE(p->key), PARAM_ADDRESS(p->key), 0, n[PARAM_READS], n[PARAM_UNREADABLE],
+                                    n[PARAM_WRITES], n[PARAM_REFUSED], 0, 0, n[PARAM_CHANGES], PARAM_TABLE(p->key)};
+    for (int j = 0; j < 11; j++)
         PyTuple_SET_ITEM(row, j, j == 2 ? code : j == 7 ? last : j == 8 ? text : PyLong_FromUnsignedLong(fields[j]));
-    for (int j = 0; j < 10; j++)
+    for (int j = 0; j < 11; j++)
         if (PyTuple_GET_ITEM(row, j) == NULL) { /* no memory for an int */
             Py_DECREF(row);
             return NULL;
@@ -419,10 +436,10 @@ static PyObject *param_row(const Param *p) {
     return row;
 }
 
-/* b follows a in --stats' parameter table's run: the next address of the slave, the same counts, both
+/* b follows a in --stats' parameter table's run: the next address of the slave's table, the same counts, both
  * named or both not (render/stats.py _parameter_table). */
 static int same_story(const Param *a, const Param *b) {
-    return b->key == a->key + 1 && (a->key & 0xFFFF) != 0xFFFF && memcmp(b->counts, a->counts, sizeof a->counts) == 0 &&
+    return b->key == a->key + 8 && PARAM_ADDRESS(a->key) != 0xFFFF && memcmp(b->counts, a->counts, sizeof a->counts) == 0 &&
            (b->code == NULL) == (a->code == NULL);
 }
 
@@ -462,13 +479,14 @@ static PyObject *stats_table(Stats *st, PyObject *args) {
                          totals[4]);
 }
 
-/* writes(slave, address) -> the writes counted of that parameter (0: none, or not kept): the report's
+/* writes(slave, address, table=0) -> the writes counted of that parameter (0: none, or not kept): the report's
  * setpoints (report/html.py). ("b": a slave past 0..255 is an OverflowError; "H" keeps an address's 16 bits.) */
 static PyObject *stats_writes(Stats *st, PyObject *args) {
-    unsigned char slave;
+    unsigned char slave, table = 0;
     unsigned short address;
-    if (!PyArg_ParseTuple(args, "bH", &slave, &address)) return NULL;
-    uint32_t key = 1u << 24 | (uint32_t)slave << 16 | address;
+    if (!PyArg_ParseTuple(args, "bH|b", &slave, &address, &table)) return NULL;
+    if (table >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "writes: table 0..7");
+    uint32_t key = param_key(slave, table, address);
     const Param *p = dense_find(&st->params, &PARAM_KIND, &key);
     return PyLong_FromUnsignedLong(p != NULL ? p->counts[PARAM_WRITES] : 0);
 }
@@ -715,17 +733,28 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          "spanned", b->spanned);
 }
 
-/* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY): the poll table follows at most
- * max_keys request keys (stats_store.MAX_KEYS), the parameter table keeps at most max_params parameters
+/* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY, tables=b""): the poll table follows at
+ * most max_keys request keys (stats_store.MAX_KEYS), the parameter table keeps at most max_params parameters
  * (MAX_PARAMETERS), each kind of histogram but the load per minute at most max_tally entries (MAX_TALLY,
- * _bus.h Tallies). */
+ * _bus.h Tallies); `tables`: each function code's register table (stats_store.TABLES; missing: 0). */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"max_keys", "max_params", "max_tally", NULL};
-    Py_ssize_t max_keys, max_params = MAX_PARAMETERS, max_tally = MAX_TALLY;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nn", keywords, &max_keys, &max_params, &max_tally)) return -1;
-    if (max_keys < 0 || max_params < 0 || max_tally < 0) {
-        PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0");
+    static char *keywords[] = {"max_keys", "max_params", "max_tally", "tables", NULL};
+    Py_ssize_t max_keys, max_params = MAX_PARAMETERS, max_tally = MAX_TALLY, size = 0;
+    const char *tables = NULL;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nny#", keywords, &max_keys, &max_params, &max_tally, &tables,
+                                     &size))
         return -1;
+    if (max_keys < 0 || max_params < 0 || max_tally < 0 || size > 256) {
+        PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0, tables 256 at most");
+        return -1;
+    }
+    memset(st->tables, 0, sizeof st->tables);
+    for (Py_ssize_t k = 0; k < size; k++) {
+        if ((uint8_t)tables[k] >= PARAM_TABLES) {
+            PyErr_SetString(PyExc_ValueError, "tables: 0..7 each");
+            return -1;
+        }
+        st->tables[k] = (uint8_t)tables[k];
     }
     st->max_keys = (size_t)max_keys;
     st->max_params = (size_t)max_params;
@@ -736,7 +765,7 @@ static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
 
 static PyMethodDef stats_methods[] = {
     {"param", (PyCFunction)stats_param, METH_VARARGS,
-     "param(slave, address, event, value, code, text): a register of a frame the Python stages showed\n"
+     "param(slave, address, event, value, code, text, table=0): a register of a frame the Python stages showed\n"
      "(event: stats_store.EVENTS' index; UNREADABLE's text is the status); True when the state changed."},
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
@@ -757,7 +786,8 @@ static PyMethodDef stats_methods[] = {
     {"table", (PyCFunction)stats_table, METH_VARARGS,
      "table(max_rows, group_min) -> (pieces, expanded, count, totals): the --stats parameter table's rows"},
     {"polls", (PyCFunction)stats_polls, METH_NOARGS, "[(key, first frame, count, failed)]"},
-    {"writes", (PyCFunction)stats_writes, METH_VARARGS, "writes(slave, address): the writes counted of a parameter"},
+    {"writes", (PyCFunction)stats_writes, METH_VARARGS,
+     "writes(slave, address, table=0): the writes counted of a parameter"},
     {NULL, NULL, 0, NULL},
 };
 

@@ -25,6 +25,7 @@ from dissector.model import Item, Stamp
 from dissector.render.history import UNREADABLE_STATUSES
 from dissector.render.jsonout import item_to_dict
 from dissector.render.registers import register_rows
+from dissector.render.stats_store import register_table
 
 ROWS_PER_GROUP = 1 << 16  # rows kept before a row group is written: memory stays flat
 TABLES = ("frames", "registers", "events")
@@ -190,7 +191,7 @@ class CaptureTables:
         """A parameter that turns unreadable (its status) or readable again: reads and exceptions."""
         if row["access"] not in ("read", "exception") or row["address"] is None:
             return
-        key = (row["slave"], row["address"])
+        key = (row["slave"], register_table(row["function"]), row["address"])  # a parameter, as the history's
         status = row["status"]
         before = self._state.get(key)
         now = status if status in UNREADABLE_STATUSES else "readable"

@@ -20,6 +20,9 @@ A Mask Write (FC22, [confirm] "mask") is a write of its register: its echo confi
 parameter memory gave the register (memory.remember_mask, Annotator.masked; where the slave's device
 follows no memory, known only when and_mask is 0: or_mask); where that value is not known, the write is
 counted and its parameter's state stays as it was, as for a write nothing confirmed.
+A parameter is a register of one table (Application Protocol 4.3: FC4 reads input registers, FC3/6/16/22/23
+holding registers: stats_store.register_table), so input register 5 and holding register 5 are two
+(kept by slave, address and table).
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 
@@ -61,7 +64,9 @@ from dissector.devices.profiles import load_profile_map
 from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm, confirmed_by
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
-from dissector.render.stats_store import CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store
+from dissector.render.stats_store import (
+    CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store, register_table,
+)
 
 __all__ = [
     "CONFIRM", "READ", "REFUSED", "UNREADABLE", "WRITE", "WRITE_OBSERVED", "History", "Listener",
@@ -274,6 +279,7 @@ class History:
             return
         param = self.store.param
         slave = frame.slave
+        table = register_table(frame.function)
         registers = self._values(slave, registers)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
         for register in registers:
@@ -282,7 +288,7 @@ class History:
                 if not confirmed:  # an answer without its request confirms nothing: not even counted
                     self.registers_without_address += 1
                 continue
-            changed = param(slave, address, event, register.value, register.code, register.text)
+            changed = param(slave, address, event, register.value, register.code, register.text, table)
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)
@@ -294,6 +300,7 @@ class History:
         # The hot loop of --stats: one store call a register.
         param = self.store.param
         slave = frame.slave
+        table = register_table(frame.function)
         registers = self._values(slave, registers)
         listeners = self.listeners
         for register in registers:
@@ -304,10 +311,10 @@ class History:
             status = register.status
             if status in UNREADABLE_STATUSES:
                 event = UNREADABLE
-                changed = param(slave, address, UNREADABLE, 0, register.code, status)
+                changed = param(slave, address, UNREADABLE, 0, register.code, status, table)
             else:
                 event = READ
-                changed = param(slave, address, READ, register.value, register.code, register.text)
+                changed = param(slave, address, READ, register.value, register.code, register.text, table)
             if listeners:
                 for listener in listeners:
                     listener.state(frame, register, event, changed)

@@ -2,8 +2,8 @@
 
 `StatsCollector.add(item)` takes the decoded items in stream order; `report()` gives a JSON-ready dict
 (`--stats --json`), `render()` rich tables and `render_plain()` plain ones. Memory stays bounded by the
-number of distinct (slave, function) pairs and (slave, address) parameters: response times are kept as
-a histogram of nanoseconds (exact for the micro- and nanosecond stamps of pcap and pcapng, and a few
+number of distinct (slave, function) pairs and (slave, table, address) parameters: response times are kept
+as a histogram of nanoseconds (exact for the micro- and nanosecond stamps of pcap and pcapng, and a few
 thousand entries where a capture has millions of answers). All pairs' histograms hold at most
 stats_store.MAX_TALLY entries together: past it (random times at 247 slaves, the max-size mix, filled
 1.3 GB at 1 GB of pcap) their times are rounded down to multiples of 2**k ns (stats_store.Coarse).
@@ -49,8 +49,8 @@ from dissector.render.describe import count_text
 from dissector.render.pollcycle import PollCycle, describe_key
 from dissector.render.history import UNREADABLE_STATUSES, History
 from dissector.render.stats_store import (
-    COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TALLY_COUNTS, Coarse, ParameterRow, give_back,
-    parameter_rows, stamp,
+    COUNT_REQUESTS, COUNT_RESPONSES, COUNT_UNANSWERED, MAX_PARAMETERS, TABLE_NAMES, TALLY_COUNTS, Coarse,
+    ParameterRow, give_back, parameter_rows, stamp, table_label, table_reader,
 )
 from dissector.render.tables import Cell, TableSpec
 from dissector.protocol.spec import SPEC
@@ -288,16 +288,15 @@ class StatsCollector:
     def parameter_dicts(self) -> Iterator[dict[str, Any]]:
         """The parameters of the JSON form, one at a time (write_json streams them)."""
         label = getattr(self.history.annotate, "label", None)
-        shown: Callable[[int, int], str] | None = None  # --address-style plc: `label` as the table's address
         for row in parameter_rows(self.store):
-            slave, address, code, reads, unreadable, writes, refused, last, last_text, changes = row
-            plc = label is not None and label(slave, 3, address) is not None
-            if plc and shown is None:
-                shown = self.parameter_address(self.poll.report(0))  # (windows only: no timings)
+            slave, address, code, reads, unreadable, writes, refused, last, last_text, changes, table = row
+            # --address-style plc: the address as the summary shows it, `label`
+            shown = None if label is None else label(slave, table_reader(table), address)
             yield {
                 "slave": slave,
                 "address": address,
-                **({"label": shown(slave, address)} if plc and shown is not None else {}),
+                "table": TABLE_NAMES[table],
+                **({"label": shown} if shown is not None else {}),
                 "code": code,
                 "reads": reads,
                 "unreadable": unreadable,
@@ -382,36 +381,19 @@ class StatsCollector:
         blocks += [traffic, "", times, ""]
         if report["poll_cycle"]:
             blocks += [_poll_table(report["poll_cycle"], self.poll_addresses), ""]
-        blocks.append(_parameter_table(self.store, self.parameter_address(report["poll_cycle"])))
+        blocks.append(_parameter_table(self.store, self.parameter_address))
         return blocks
 
-    def parameter_address(self, poll: list[dict[str, Any]]) -> Callable[[int, int], str]:
-        """(slave, address) -> the address as the summary shows it (PLC style: 40001, devices.naming's
-        plc_label through the annotator). A parameter is kept by (slave, address), not by function: it is
-        an input register (30001..) when an FC4 poll window holds it and no holding-register one does,
-        or when its slave was only ever read with FC4; a holding register (40001..) otherwise."""
+    def parameter_address(self, slave: int, address: int, table: int, last: int | None = None) -> str:
+        """A parameter's address (`last`: to that one, a run's) as the summary shows it: PLC style, the
+        references of its table (40001, 30001: devices.naming's plc_label through the annotator); else the
+        address, an input register's marked `input` (holding registers, most parameters, stay bare)."""
         label = getattr(self.history.annotate, "label", None)
-        if label is None:
-            return lambda slave, address: str(address)
-        windows: dict[tuple[int, bool], list[tuple[int, int]]] = {}
-        for row in poll:
-            start, quantity = row.get("start"), row.get("quantity")
-            if start is not None and quantity and row["function"] in (3, 4, 23):
-                windows.setdefault((row["slave"], row["function"] == 4), []).append((start, start + quantity))
-        functions: dict[int, set[int]] = {}
-        for slave, function in self.all_functions():
-            functions.setdefault(slave, set()).add(function)
-
-        def inside(slave: int, inputs: bool, address: int) -> bool:
-            return any(start <= address < end for start, end in windows.get((slave, inputs), ()))
-
-        def shown(slave: int, address: int) -> str:
-            inputs = functions.get(slave, set()) & {3, 4, 6, 16, 23} == {4} or (
-                inside(slave, True, address) and not inside(slave, False, address))
-            text = label(slave, 4 if inputs else 3, address)
-            return str(address) if text is None else text
-
-        return shown
+        function = table_reader(table)
+        if label is not None and label(slave, function, address) is not None:
+            return label(slave, function, address) + ("" if last is None else f"..{label(slave, function, last)}")
+        text = str(address) if last is None else f"{address}..{last}"
+        return table_label(None, table, text) or text
 
     def poll_addresses(self, row: dict[str, Any]) -> str:
         """A poll key's addresses as the summary shows them (PLC style: 40001..40016 (16))."""
@@ -479,7 +461,7 @@ def _poll_table(rows: list[dict[str, Any]], addresses: Callable[[dict[str, Any]]
     return table
 
 
-def _parameter_table(store: Any, address_text: Callable[[int, int], str] = lambda slave, address: str(address)) -> TableSpec:
+def _parameter_table(store: Any, address_text: Callable[..., str]) -> TableSpec:
     """One row per parameter, or per range of neighbouring addresses with the same story (same counts,
     all named or all unnamed); capped at MAX_PARAMETER_ROWS rows, then a total of them all: the runs
     are found by the store (stats_store.ParameterTable.table, or the compiled one's), which makes rows
@@ -501,12 +483,13 @@ def _parameter_table(store: Any, address_text: Callable[[int, int], str] = lambd
     return table
 
 
-def _parameter_row(members: list[ParameterRow], address_text: Callable[[int, int], str]) -> list[Cell]:
+def _parameter_row(members: list[ParameterRow], address_text: Callable[..., str]) -> list[Cell]:
+    """`address_text(slave, address, table, last=None)`: StatsCollector.parameter_address."""
     first, last = members[0], members[-1]
     if len(members) == 1:
-        address, code = address_text(first[0], first[1]), first[2] or ""
+        address, code = address_text(first[0], first[1], first[10]), first[2] or ""
     else:
-        address = f"{address_text(first[0], first[1])}..{address_text(last[0], last[1])} ({len(members)})"
+        address = f"{address_text(first[0], first[1], first[10], last[1])} ({len(members)})"
         code = f"{first[2]}..{last[2]}" if first[2] else ""
     texts = {row[8] if row[8] is not None or row[7] is None else str(row[7]) for row in members}
     last_value = texts.pop() if len(texts) == 1 else "(various)"

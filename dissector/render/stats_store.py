@@ -28,6 +28,8 @@ from itertools import chain
 from dataclasses import dataclass
 from typing import Any
 
+from dissector.protocol.spec import SPEC
+from dissector.protocol.table import register_reads
 
 try:
     from dissector.accel._summary import Stats as CompiledStore
@@ -63,7 +65,35 @@ MAX_PARAMETERS = 1 << 18
 MAX_TALLY = 1 << 16
 MAX_SHIFT = 62  # _bus.h TALLY_MAX_SHIFT
 
-ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int]
+ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int, int]
+
+# A parameter is a register of one table (Application Protocol 4.3: input registers and holding registers
+# are tables of their own; FC4's register 5 is not FC3's): the PLC reference class its code's registers
+# are in, as data/modbus.toml [plc_references] states it (FC4: 30001, 3X), else holding registers (4X).
+# Holding registers are 0: a store's parameter of no table given (the compiled store's default too).
+HOLDING_REGISTERS, INPUT_REGISTERS = 0, 1
+
+
+def register_table(function: int) -> int:
+    """The table (INPUT_REGISTERS, HOLDING_REGISTERS) of the registers a code reads or writes."""
+    return INPUT_REGISTERS if SPEC.plc_references.get(function, 0) // 10000 == 3 else HOLDING_REGISTERS
+
+
+# Each code's table, as the compiled store takes them (_stats.h Stats.tables).
+TABLES = bytes(register_table(code) for code in range(256))
+# Each table as --stats names it (its --json `table`; the text marks an input register's address so).
+TABLE_NAMES = {HOLDING_REGISTERS: "holding", INPUT_REGISTERS: "input"}
+
+
+def table_label(label: str | None, table: int, address: int | str) -> str | None:
+    """A parameter's address as the outputs show it: `label` (--address-style plc: 40001, 30001), else an
+    input register's marked `input 5` (holding register 5 is another parameter), else None: the address."""
+    return label if label is not None or table == HOLDING_REGISTERS else f"{TABLE_NAMES[table]} {address}"
+
+
+def table_reader(table: int) -> int:
+    """The code that reads a table's registers (FC3, FC4): whose PLC-style label (40001, 30001) they have."""
+    return min(code for code in register_reads() if register_table(code) == table)
 
 
 def give_back() -> None:
@@ -100,12 +130,13 @@ class ParameterTable:
     frames = 0  # frames counted by the compiled engine: none here
 
     def __init__(self, max_params: int = MAX_PARAMETERS) -> None:
-        self._parameters: dict[tuple[int, int], ParameterStats] = {}
+        self._parameters: dict[tuple[int, int, int], ParameterStats] = {}  # by (slave, address, table)
         self._max_params = max_params
         self.dropped = 0  # events of parameters beyond max_params, not kept
 
-    def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None) -> bool:
-        key = (slave, address)
+    def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None,
+              table: int = HOLDING_REGISTERS) -> bool:
+        key = (slave, address, table)
         stats = self._parameters.get(key)
         created = stats is None
         if stats is None:
@@ -134,7 +165,7 @@ class ParameterTable:
         return changed
 
     def rename(self, namers: dict[int, Any]) -> None:
-        for (slave, address), stats in self._parameters.items():
+        for (slave, address, _table), stats in self._parameters.items():
             namer = namers.get(slave)
             if namer is None:
                 continue
@@ -144,29 +175,32 @@ class ParameterTable:
                 stats.last_text = text
 
     def parameters(self) -> list[ParameterRow]:
-        """By (slave, address); last_text the last value's text, None when nothing names it."""
+        """By (slave, address, table); last_text the last value's text, None when nothing names it; the
+        table last (register_table)."""
         return [
             (slave, address, s.code, s.reads, s.unreadable, s.writes, s.refused,
-             None if s.status is not None else s.last, s.status if s.status is not None else s.last_text, s.changes)
-            for (slave, address), s in sorted(self._parameters.items())
+             None if s.status is not None else s.last, s.status if s.status is not None else s.last_text, s.changes,
+             table)
+            for (slave, address, table), s in sorted(self._parameters.items())
         ]
 
-    def writes(self, slave: int, address: int) -> int:
+    def writes(self, slave: int, address: int, table: int = HOLDING_REGISTERS) -> int:
         """The writes counted of that parameter (0: none, or not kept)."""
-        stats = self._parameters.get((slave, address))
+        stats = self._parameters.get((slave, address, table))
         return 0 if stats is None else stats.writes
 
     def table(self, max_rows: int, group_min: int) -> tuple[list[list[ParameterRow]], int, int, tuple[int, ...]]:
         """--stats' parameter table (render/stats.py _parameter_table): the rows of the first `max_rows`
         pieces, a piece being a run of `group_min` or more parameters with the same story (the next
-        address of the slave, the same counts, all named or all unnamed) or one parameter; how many
+        address of the slave's table, the same counts, all named or all unnamed) or one parameter; how many
         pieces in all; how many parameters; the sums of reads, unreadable, writes, refused, changes."""
         rows = self.parameters()
         pieces: list[list[ParameterRow]] = []
         expanded = first = 0
         for index, row in enumerate(rows):
             following = rows[index + 1] if index + 1 < len(rows) else None
-            if (following is not None and following[0] == row[0] and following[1] == row[1] + 1
+            if (following is not None and following[0] == row[0] and following[10] == row[10]
+                    and following[1] == row[1] + 1
                     and following[3:7] == row[3:7] and following[9] == row[9]
                     and (following[2] is None) == (row[2] is None)):
                 continue
@@ -186,7 +220,7 @@ class ParameterTable:
 
 
 def parameter_rows(store: Any) -> Iterator[ParameterRow]:
-    """Every parameter's row (ParameterTable.parameters) by (slave, address), from either store's table():
+    """Every parameter's row (ParameterTable.parameters) by (slave, address, table), from either store's table():
     with no limit on pieces and every run of the same story one piece."""
     return chain.from_iterable(store.table(sys.maxsize, 0)[0])
 
@@ -250,5 +284,5 @@ def new_store(wide: bool = False) -> Any:
     16-bit word a parameter (_stats.h Param.last), so --stats and --report are then counted by the Python
     stages (StatsCollector.engine_store: the engine counts only into a compiled store)."""
     if CompiledStore is not None and not wide and not os.environ.get("VW3_PURE_PYTHON"):
-        return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY)
+        return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY, TABLES)
     return ParameterTable()

@@ -8,7 +8,8 @@ new, unit, and `provisional` when true; `-t` shapes the text lines' time column 
 
 A watch line is a change of the parameter history (render/history.py): the state `--stats` counts in
 `changes` and `--report` draws, so the three cannot disagree. A parameter's state is what the wire last
-said of it: a value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23 request
+said of it (a parameter: a register of one table, input registers or holding registers, render/history.py):
+a value read (FC3/4/23 answers) or written and confirmed (FC6 echo, FC16/23 request
 confirmed by a normal answer), or a read status a device profile gave it: `protected`, `non-existent`
 (16#8000 in a multi-register read, VW3 A3 303 p.38; or an exception the profile explains as "every
 parameter read is non-existent or protected", said as `protected (exception 02)`). The first state seen
@@ -40,6 +41,7 @@ from typing import Any
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
+from dissector.render.stats_store import register_table, table_label
 from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
@@ -55,7 +57,8 @@ class Change:
     column: str = "-"  # the time column as -t formats it
     provisional: bool = False  # read before the slave's profile was chosen: its device may read it otherwise
     time_relative: float | None = None  # seconds since the first item, as -T fields' time_relative
-    label: str | None = None  # the address as --address-style shows it (plc: 40001), None: the address
+    # The address as --address-style shows it (plc: 40001; an input register's else `input 5`), None: the address.
+    label: str | None = None
     broadcast: bool = False  # a broadcast write: every slave written, whatever their states were (old: ?)
 
     def line(self) -> str:
@@ -161,7 +164,7 @@ class _Pending:
     frame: Frame
     time_relative: float | None
     column: str
-    key: tuple[int, int]
+    key: tuple[int, int, int]  # (slave, table, address)
     old: _State | None  # None: a broadcast write (every slave's state, not known)
     new: _State
 
@@ -195,8 +198,9 @@ class Watcher:
         # Addresses any profile of the run names with a watched code: followed for every slave, shown
         # when the slave's own profile gives them that code.
         self._candidates = frozenset(addresses).union(*(known.get(code, ()) for code in codes)) if known else addresses
-        self._state: dict[tuple[int, int], _State] = {}  # as the history holds it (re-read)
-        self._shown: dict[tuple[int, int], _State] = {}  # as provisional lines showed it
+        # By (slave, table, address), as the history keeps parameters.
+        self._state: dict[tuple[int, int, int], _State] = {}  # as the history holds it (re-read)
+        self._shown: dict[tuple[int, int, int], _State] = {}  # as provisional lines showed it
         self._column: tuple[Frame | None, str] = (None, "-")
 
     @property
@@ -231,7 +235,7 @@ class Watcher:
             label = register.label
             if label is None or not label.isdigit() or int(label) not in self.addresses:
                 return
-        key = (frame.slave, address)  # type: ignore[assignment]
+        key = (frame.slave, register_table(frame.function), address)  # type: ignore[assignment]
         new = self._read(frame, register, event)
         old = self._state.get(key)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
@@ -248,14 +252,14 @@ class Watcher:
         address = register.address
         if address not in self._candidates:
             return
-        key = (frame.slave, address)  # type: ignore[assignment]
+        key = (frame.slave, register_table(frame.function), address)  # type: ignore[assignment]
         new = self._read(frame, register, event, provisional=True)
         old = self._shown.get(key)  # type: ignore[arg-type]
         self._shown[key] = new  # type: ignore[index]
         if old is not None and old.differs(new):
             self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
 
-    def _pending(self, frame: Frame, key: tuple[int, int], old: _State | None, new: _State) -> _Pending:
+    def _pending(self, frame: Frame, key: tuple[int, int, int], old: _State | None, new: _State) -> _Pending:
         if self._column[0] is not frame:  # one text a frame: -t d takes the previous time once
             self._column = (frame, self.clock.text(frame))
         time = None if frame.time is None or self.clock.first is None else frame.time - self.clock.first
@@ -273,7 +277,7 @@ class Watcher:
         self.history.finish()
 
     def _emit(self, pending: _Pending, provisional: bool = False) -> None:
-        slave, address = pending.key
+        slave, table, address = pending.key
         code = pending.new.code if provisional else self._code(slave, address, pending.new)
         label = self._label(slave, pending.new.function, address)
         if (address not in self.addresses and (label is None or int(label) not in self.addresses)
@@ -291,7 +295,8 @@ class Watcher:
         if old_text == new_text:
             return  # the same once named by the same device
         self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
-                              unit, pending.column, provisional, pending.time_relative, label, old is None))
+                              unit, pending.column, provisional, pending.time_relative,
+                              table_label(label, table, address), old is None))
 
     def _label(self, slave: int, function: int, address: int) -> str | None:
         """The address as the summary shows it under --address-style (devices.naming.plc_label), or None."""

@@ -75,9 +75,9 @@ def test_the_json_stats_row_of_a_masked_parameter(tmp_path: Path, monkeypatch: p
     status, out, err = run_cli([str(_capture(tmp_path)), "--profile", "atv71", "--stats", "--json"])
     assert status == 0, err
     rows = json.loads(out)["parameters"]
-    assert rows[0] == {"slave": 12, "address": 8402, "code": "COP", "reads": 2, "unreadable": 0, "writes": 1,
-                       "refused": 0, "last": 23, "last_text": "23 (not a listed value)", "last_status": None,
-                       "changes": 1}
+    assert rows[0] == {"slave": 12, "address": 8402, "table": "holding", "code": "COP", "reads": 2, "unreadable": 0,
+                       "writes": 1, "refused": 0, "last": 23, "last_text": "23 (not a listed value)",
+                       "last_status": None, "changes": 1}
     assert [(row["address"], row["writes"], row["refused"], row["last"]) for row in rows[1:]] == [
         (8403, 1, 0, 5), (8404, 1, 0, None), (8405, 1, 1, None)]
 

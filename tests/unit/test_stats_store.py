@@ -10,7 +10,7 @@ import pytest
 
 from dissector.accel import _summary
 from dissector.render.stats_store import (
-    MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
+    HOLDING_REGISTERS, MAX_KEYS, MAX_TALLY, TALLY_TIMES, Coarse,
     CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, ParameterTable, new_store, parameter_rows,
 )
 
@@ -46,11 +46,11 @@ def test_one_story_in_both_stores() -> None:
         False, True, True, False, True, False, False, False, False, True, False, False, True, False, False,
     ]
     assert list(parameter_rows(compiled)) == python.parameters() == [
-        (0, 9001, None, 0, 0, 1, 0, 10, None, 0),  # no text: the tables and JSON show the number
-        (1, 7, "READ", 1, 0, 0, 0, 4, None, 1),
-        (5, 1, "X", 1, 2, 0, 0, None, "protected", 1),  # last: the status, no value
-        (5, 2, None, 0, 1, 0, 0, None, "non-existent", 0),
-        (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 3),  # 500 -> protected -> 500 -> 510
+        (0, 9001, None, 0, 0, 1, 0, 10, None, 0, HOLDING_REGISTERS),  # no text: the tables and JSON show the number
+        (1, 7, "READ", 1, 0, 0, 0, 4, None, 1, HOLDING_REGISTERS),
+        (5, 1, "X", 1, 2, 0, 0, None, "protected", 1, HOLDING_REGISTERS),  # last: the status, no value
+        (5, 2, None, 0, 1, 0, 0, None, "non-existent", 0, HOLDING_REGISTERS),
+        (12, 3104, "HSP", 2, 1, 2, 1, 510, "51.0 Hz", 3, HOLDING_REGISTERS),  # 500 -> protected -> 500 -> 510
     ]
     # A profile chosen later names the values kept of its slave (and leaves statuses as they are).
     namers = {1: lambda address, value: (f"{value} named", "NAMED"), 5: lambda address, value: ("never", "Y")}

@@ -38,6 +38,7 @@ from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
 from dissector.render.report.moments import Moments
 from dissector.render.report.reading import MAX_LABELS, adopt
+from dissector.render.stats_store import TABLE_NAMES, register_table, table_label
 from dissector.render.summary import noise_text
 
 COLUMNS = 600
@@ -184,7 +185,7 @@ def new_columns() -> Any:
 class Series:
     slave: int
     address: int
-    label: str | None = None  # the address as --address-style shows it (plc: 40001), None: the address
+    label: str | None = None  # as --address-style shows it (plc: 40001; stats_store.table_label), None: the address
     code: str | None = None
     name: str | None = None
     unit: str | None = None
@@ -214,7 +215,7 @@ class ReportCollector:
         self.origin: float | None = None
         self.width = 0.0
         self.limit = 0.0  # x beyond which the columns double
-        self.series: dict[tuple[int, int], Series] = {}
+        self.series: dict[tuple[int, int, int], Series] = {}  # by (slave, address, table), as the history
         self.series_dropped = 0
         self.spans = 0  # unreadable spans opened (the compiled engine reads the statuses again when it grows)
         self.events: list[tuple[float, str, int | None, str, str | None]] = []  # (x, kind, slave, text, detail)
@@ -342,14 +343,14 @@ class ReportCollector:
         for number, x, slave, text, detail in self._moments.take():
             self._event(x, "protection", slave, text, detail, number)
 
-    def _series(self, slave: int, register: Register) -> Series | None:
-        key = (slave, register.address)
+    def _series(self, slave: int, table: int, register: Register) -> Series | None:
+        key = (slave, register.address, table)
         series = self.series.get(key)  # type: ignore[arg-type]
         if series is None:
             if len(self.series) >= MAX_SERIES:
                 self.series_dropped += 1
                 return None
-            series = self.series[key] = Series(slave, register.address, register.label)  # type: ignore[index, arg-type]
+            series = self.series[key] = Series(slave, key[1], table_label(register.label, table, key[1]))  # type: ignore
         return series
 
     # -- the history's listener --------------------------------------------------------------------
@@ -358,7 +359,8 @@ class ReportCollector:
         the history holds the frame back and gives its states later, in the slave's choice's frame;
         its series is made now, so that the series kept (MAX_SERIES) are those seen first in the stream,
         as from the file, whose frames give their states in the stream's order."""
-        key = (frame.slave, register.address)
+        table = register_table(frame.function)
+        key = (frame.slave, register.address, table)
         if key not in self.series and len(self.series) < MAX_SERIES:
             self.series[key] = Series(frame.slave, register.address, reserved=True)  # type: ignore[arg-type]
 
@@ -372,16 +374,12 @@ class ReportCollector:
             rows = None if self._device is None else self._device(frame.slave).rows
             self._at, self._at_x, self._at_col, self._at_rows = frame, x, col, rows
         slave = frame.slave
-        series = self.series.get((slave, register.address))  # type: ignore[arg-type]
+        table = register_table(frame.function)
+        series = self.series.get((slave, register.address, table)) or self._series(slave, table, register)  # type: ignore
         if series is None:
-            if len(self.series) >= MAX_SERIES:  # the max-size mix: most registers are of no series kept
-                self.series_dropped += 1
-                return
-            series = self._series(slave, register)
-            if series is None:
-                return
+            return
         if series.reserved:
-            series.reserved, series.label = False, register.label
+            series.reserved, series.label = False, table_label(register.label, table, series.address)
         if rows is None:  # no device: the names the decode gave
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
@@ -452,9 +450,10 @@ class ReportCollector:
         since the slave's device changed (or its first): its map row adopted (else it is already)."""
         plain = getattr(self._annotate, "plain_register", None)
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
-        series = self.series.get((slave, address)) or self._series(slave, register)
+        table = register_table(function)
+        series = self.series.get((slave, address, table)) or self._series(slave, table, register)
         if series.reserved:
-            series.reserved, series.label = False, register.label
+            series.reserved, series.label = False, table_label(register.label, table, address)
         if self._device is None:
             if series.code is None and register.code is not None:
                 series.code, series.name = register.code, register.name
@@ -471,7 +470,7 @@ class ReportCollector:
         if self._device is None:
             return
         rows = self._device(slave).rows
-        for (owner, address), series in self.series.items():
+        for (owner, address, _table), series in self.series.items():
             if owner == slave:
                 row = rows.get(address)
                 if row is not series.row:
@@ -542,7 +541,7 @@ class ReportCollector:
             yield ("," if index else "") + self._parameter_json(key, series)
         yield "]"
 
-    def _parameter_json(self, key: tuple[int, int], series: Series) -> str:
+    def _parameter_json(self, key: tuple[int, int, int], series: Series) -> str:
         # The columns write their points' JSON themselves (the compiled ones in C, _columns.h
         # drawn_json; None: a value json.dumps refuses): x and y come last, as _parameter puts them.
         entry = self._parameter(key, series, False)
@@ -561,14 +560,15 @@ class ReportCollector:
         """What the data's x are relative to: the first item's time, or 0 (frame numbers as they are)."""
         return (self.origin or 0.0) if self.timed else 0.0
 
-    def _drawn(self) -> list[tuple[tuple[int, int], Series]]:
+    def _drawn(self) -> list[tuple[tuple[int, int, int], Series]]:
         return [(key, series) for key, series in sorted(self.series.items()) if series.values or series.marks]
 
-    def _parameter(self, key: tuple[int, int], series: Series, points: bool) -> dict[str, Any]:
+    def _parameter(self, key: tuple[int, int, int], series: Series, points: bool) -> dict[str, Any]:
         origin, digits = self._shift(), self._digits()
         entry: dict[str, Any] = {
             "slave": key[0],
             "address": key[1],
+            "table": TABLE_NAMES[key[2]],
             "label": series.label,
             "code": series.code,
             "name": series.name,

@@ -15,7 +15,7 @@ from dissector.render.report.sections import _clock, bus_section, event_groups, 
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
 from dissector.render.describe import count_text
 from dissector.protocol.printable import printable
-from dissector.render.stats_store import give_back
+from dissector.render.stats_store import HOLDING_REGISTERS, TABLE_NAMES, give_back
 from dissector.protocol.spec import SPEC
 
 HISTOGRAM_BINS = 40
@@ -264,15 +264,17 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
     if data["parameters_dropped"]:
         parts.append(f"<p class=\"note\">Only the first {len(data['parameters'])} parameters are drawn; "
                      f"{data['parameters_dropped']} values of others are in --stats.</p>")
-    drawn = {(parameter["slave"], parameter["address"]) for parameter in data.pop("parameters")}  # (their
-    # points are written series by series)
+    drawn = {(parameter["slave"], parameter["address"], parameter["table"])  # (their points are written
+             for parameter in data.pop("parameters")}  # series by series)
     data["clock"] = extras.get("time_format", "r")
     data["first"] = collector.first_x
     if health is not None:  # slave:address of the series drawn that requests asked to write, as the
         # parameter table counts them: setpoints, drawn as steps, since one holds until the next write
         # (report.js asks of no other: the max-size mix's 26,402 were 1.7 MB of text, 260 kB of the page)
+        # (Holding registers only: no code writes an input register.)
         writes = stats.store.writes
-        data["written"] = sorted("%d:%d" % key for key in drawn if writes(*key))
+        data["written"] = sorted("%d:%d" % (slave, address) for slave, address, table in drawn
+                                 if table == TABLE_NAMES[HOLDING_REGISTERS] and writes(slave, address))
     # The response-time series come as JSON text (health.py): written in where their key is, the last
     # occurrence of the stand-in (only "clock", "first" and "written" come after it).
     responses = data.get("responses")

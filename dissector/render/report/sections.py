@@ -10,6 +10,7 @@ from typing import Any
 
 from dissector.render.bustiming import UNHEARD, gap_bins
 from dissector.render.report.collect import ReportCollector
+from dissector.render.stats_store import TABLE_NAMES
 from dissector.render.report.markup import _details, _esc, _ms, _table
 from dissector.render.timefmt import Clock
 
@@ -112,7 +113,8 @@ def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int,
     for index, parameter in enumerate(data["parameters"]):
         if parameter["marks"] or not parameter["values"]:
             continue
-        series = collector.series.get((parameter["slave"], parameter["address"]))
+        table = next(table for table, name in TABLE_NAMES.items() if name == parameter["table"])
+        series = collector.series.get((parameter["slave"], parameter["address"], table))
         if series is None:
             continue
         levels = series.columns.levels()

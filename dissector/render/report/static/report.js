@@ -102,7 +102,8 @@
     var labels = p.labels || {};
     var keys = Object.keys(labels).map(Number).sort(function (a, b) { return a - b; });
     var axis = yAxis({}), shown = shortLabels(labels);
-    var step = p.step || written[p.slave + ":" + p.address];  // enumerations, and setpoints hold until written again
+    // Enumerations, and setpoints hold until written again (a holding register: no input register is written).
+    var step = p.step || (p.table === "holding" && written[p.slave + ":" + p.address]);
     if (p.step && keys.length && keys.length <= 16) {
       axis.splits = function () { return keys; };
       axis.values = function (u, splits) {
