@@ -21,7 +21,7 @@ from dissector.errors import ExitStatus, OutputError, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
-from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, shown
+from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, parse_arguments, shown
 from dissector.app.paths import decode_one
 from dissector.model import Chunk, Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
@@ -496,7 +496,7 @@ def run(argv: list[str] | None, env: Environment) -> int:
     try:
         # argparse writes usage, errors, --help and --version itself: to the injected terminal.
         with contextlib.redirect_stdout(env.stdout), contextlib.redirect_stderr(env.stderr):
-            args = parser.parse_args(argv)
+            args = parse_arguments(parser, argv)
     except SystemExit as exit_:
         return ExitStatus.BAD_INPUT if exit_.code else ExitStatus.OK
     except UsageError as error:

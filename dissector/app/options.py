@@ -9,7 +9,7 @@ import argparse
 from dataclasses import dataclass
 
 from dissector import __version__
-from dissector.app.live_options import add_live_arguments, positive_seconds
+from dissector.app.live_options import BYTESIZE_GIVEN, add_live_arguments, positive_seconds
 from dissector.app.profile_options import add_profile_arguments
 from dissector.app.rings import group_files
 from dissector.errors import UsageError
@@ -292,6 +292,24 @@ def decode_options(args: argparse.Namespace) -> DecodeOptions:
     )
 
 
+# The serial port's frame format, parsed with no default so that a typed one is known (--bytesize notes
+# itself: live_options.GivenBytesize): a file's line is --baud's, its characters the mode's (11 bits RTU,
+# 10 ASCII), so a typed format is refused there rather than silently left out of the bus timing.
+PORT_FORMAT = ("parity", "stopbits")
+
+
+def parse_arguments(parser: argparse.ArgumentParser, argv: list[str] | None) -> argparse.Namespace:
+    """parser.parse_args(argv); `port_format`: the frame format options typed (--parity, --stopbits,
+    --bytesize), the others at their defaults."""
+    args = parser.parse_args(argv, argparse.Namespace(**dict.fromkeys(PORT_FORMAT)))
+    args.port_format = [f"--{dest}" for dest in PORT_FORMAT if getattr(args, dest) is not None]
+    args.port_format += ["--bytesize"] if getattr(args, BYTESIZE_GIVEN, False) else []
+    for dest in PORT_FORMAT:
+        if getattr(args, dest) is None:
+            setattr(args, dest, parser.get_default(dest))
+    return args
+
+
 def _refuse_conflicts(args: argparse.Namespace) -> None:
     """Options that cannot both be meant are refused, never silently dropped."""
     json_given = args.json or args.output_format == "json"
@@ -312,6 +330,9 @@ def _refuse_conflicts(args: argparse.Namespace) -> None:
         (len(args.filter) > 1, "-Y given twice: combine the filters with and / or in one -Y"),
         (args.raw is not None, "--raw (write the bytes heard) needs --live PORT"),
         (args.duration is not None, "--duration needs --live PORT"),
+        (bool(getattr(args, "port_format", ())),
+         f"{', '.join(getattr(args, 'port_format', ()))}: the serial port's frame format needs --live PORT "
+         "(a file's line is --baud's, its characters the mode's: 11 bits RTU, 10 ASCII)"),
         (args.print_too and args.write is None, "-P (print as well) needs -w FILE"),
         (args.print_too and args.quiet, "-P prints the items, -q prints none: choose one"),
         (bool(args.ring) and args.write is None, "-b (ring buffer) needs -w FILE"),
