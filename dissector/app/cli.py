@@ -458,6 +458,7 @@ def _live(args: argparse.Namespace, env: Environment) -> int:
     # line for a contradiction or a bad filter, before the port is opened.
     checked = argparse.Namespace(**vars(args))
     checked.raw = checked.duration = None  # live options, which the file checks refuse
+    checked.port_format = []  # (the port's frame format: --parity, --stopbits, --bytesize)
     options = decode_options(checked)
     args.display, args.filter_text = options.output, options.filter
     annotate = _annotator(args)

@@ -45,3 +45,11 @@ def test_live_keeps_their_defaults_and_takes_them_typed() -> None:
     assert (plain.parity, plain.stopbits, plain.bytesize, plain.port_format) == ("E", 1, 8, [])
     typed = parse_arguments(parser, ["--live", "loop://", "--parity", "n", "--stopbits", "2"])
     assert (typed.parity, typed.stopbits, typed.port_format) == ("N", 2, ["--parity", "--stopbits"])
+
+
+def test_live_opens_the_port_with_them() -> None:
+    """`--live PORT --parity N` opens the port at 8N2 with --stopbits 2 (before this test, ebf0977 refused
+    them live too: the display check _live makes took them for a file's)."""
+    status, out, err = run_cli(["--live", "loop://", "--parity", "N", "--stopbits", "2", "--duration", "0.3"])
+    assert (status, out) == (0, ""), err
+    assert err.startswith("vw3-decode: listening on loop:// at 19200 8N2\n")
