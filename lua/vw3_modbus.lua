@@ -130,6 +130,14 @@ local function transaction_key(pinfo, to_server, transaction)
     tostring(server_port), tostring(transaction))
 end
 
+-- The field a request's written values are at most as many as (data/modbus.toml [lift] values' most:
+-- quantity, write_quantity), nil for a code without one.
+local function written_at_most(fn)
+  local code = env ~= nil and env.DATA.rules.by_code.request[fn]
+  local rule = code and code.rule and env.DATA.rules.lift[code.rule]
+  return rule and rule.values and rule.values.most
+end
+
 -- The registers of an ADU with their value bytes (range), as Wireshark lists them (regnum16, regval), or
 -- from modbus.data where Wireshark 4.0 lists none: FC6's reference, FC23's write window, and an FC23
 -- answer's read window from its request.
@@ -138,8 +146,9 @@ local function registers_of(adu, fn, request)
   local numbers, values = fields_of(adu, "number"), fields_of(adu, "value")
   if numbers ~= nil and values ~= nil and #numbers > 0 then
     local count = math.min(#numbers, #values)
-    if fn == 16 and fields_of(adu, "request") == nil then -- (values past the quantity: no register written,
-      count = math.min(count, first_value(fields_of(adu, "quantity")) or count) -- data/modbus.toml values' most)
+    local most = fields_of(adu, "request") == nil and written_at_most(fn)
+    if most then -- (values past the quantity: no register written)
+      count = math.min(count, first_value(fields_of(adu, most)) or count)
     end
     for index = 1, count do
       local value = values[index]
