@@ -7,20 +7,17 @@ spec sets on FC20, FC21 and a broadcast FC23 are warned of; no colon before the 
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu
 from lua_compare import compare, lua_shown
-from lua_harness import ROOT, lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_harness import lua_items, python_items, write_pcap
+from test_lua_info_data import T0, tshark, vw3_decode
 
 pytestmark = pytest.mark.integration
 
-T0 = 1767225600.0  # 2026-01-01 00:00:00 UTC; one record a second
 RECORDS = [
     # the hunt's: pointer 1246, 10 values (8 shown)
     bytes.fromhex("11 18 04 de 07 87"),
@@ -42,10 +39,14 @@ INFO = [
 TAILS = {1: " [#1, 1000.0 ms]", 3: " [#3, 1000.0 ms]", 5: " [#5, 1000.0 ms]"}
 
 
+def _one_a_second(tmp_path_factory: pytest.TempPathFactory, name: str, records: list[bytes]) -> Path:
+    return write_pcap(tmp_path_factory.mktemp(name) / f"{name}.pcap",
+                      [(data, T0 + at) for at, data in enumerate(records)])
+
+
 @pytest.fixture(scope="module")
 def capture(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return write_pcap(tmp_path_factory.mktemp("hunt_describe") / "hunt.pcap",
-                      [(data, T0 + at) for at, data in enumerate(RECORDS)])
+    return _one_a_second(tmp_path_factory, "hunt_describe", RECORDS)
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
@@ -53,19 +54,6 @@ def test_vw3_decode_info(capture: Path, pure: bool) -> None:
     assert vw3_decode(capture, pure).splitlines() == [
         f"{index + 1:>6} {index:>12.6f}  17 {kind:<9} {name} {info}{TAILS.get(index, '')}  CRC ok"
         for index, (kind, name, info) in enumerate(INFO)]
-
-
-def vw3_decode(capture: Path, pure: bool, *args: str) -> str:
-    env = {key: value for key, value in os.environ.items() if key != "VW3_PURE_PYTHON"}
-    if pure:
-        env["VW3_PURE_PYTHON"] = "1"
-    else:  # a missing engine would run the Python stages twice
-        from dissector.accel import fastsummary
-        assert fastsummary.available() and fastsummary.built(), "the compiled engine is not built"
-    result = subprocess.run([sys.executable, "-m", "dissector", str(capture), *args], capture_output=True,
-                            text=True, env=env, cwd=ROOT, timeout=300)
-    assert (result.returncode, result.stderr) == (0, "")
-    return result.stdout
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])
@@ -77,12 +65,6 @@ def test_vw3_decode_objects(capture: Path, pure: bool) -> None:
     (response,) = [item for item in items if item["frame"] == 6]
     assert response["objects"] == [{"id": 0, "name": "VendorName", "value": r"\xc3\xa9t\xc3\xa9 "},
                                    {"id": 128, "name": "Object 128", "value": r"\xab\xcd"}]
-
-
-def tshark(capture: Path, *args: str) -> str:
-    result = run_tshark(capture, *args)
-    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
-    return result.stdout
 
 
 def test_plugin_info(capture: Path) -> None:
@@ -115,8 +97,7 @@ LIMIT_LINES = [
 
 @pytest.fixture(scope="module")
 def limits(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return write_pcap(tmp_path_factory.mktemp("hunt_limits") / "limits.pcap",
-                      [(data, T0 + at) for at, data in enumerate(LIMIT_RECORDS)])
+    return _one_a_second(tmp_path_factory, "hunt_limits", LIMIT_RECORDS)
 
 
 @pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure-python"])

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import run_cli, stats_section, use_engine, write_rtu
 
 # COP (8402) read 18, masked AND 00F2 OR 0025 (the spec's example: 23), read 23; 8403 masked AND 0000 OR
 # 0005 (5 whatever it held); 8404 masked while nothing is known of it; 8405's mask refused (exception 01).
@@ -48,15 +48,7 @@ UNTRACKED = [
 
 
 def _capture(tmp_path: Path) -> Path:
-    capture = tmp_path / "mask.bin"
-    capture.write_bytes(b"".join(rtu(frame) for frame in FRAMES))
-    return capture
-
-
-def _parameter_table(out: str) -> list[str]:
-    lines = out.splitlines()
-    start = lines.index("Parameters") + 1
-    return lines[start : lines.index("", start)]
+    return write_rtu(tmp_path / "mask.bin", FRAMES)
 
 
 @pytest.mark.parametrize("pure", [False, True])
@@ -66,7 +58,7 @@ def test_stats_count_a_mask_write_as_a_write(tmp_path: Path, monkeypatch: pytest
     use_engine(monkeypatch, pure)
     status, out, err = run_cli([str(_capture(tmp_path)), *profile, "--stats"])
     assert status == 0, err
-    assert _parameter_table(out) == expected
+    assert stats_section(out) == expected
 
 
 @pytest.mark.parametrize("pure", [False, True])

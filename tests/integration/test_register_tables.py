@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import rtu, run_cli, use_engine
+from helpers import run_cli, stats_section, use_engine, write_rtu
 
 # Slave 17 polls holding register 5 (1) and input register 5 (2) twice, then reads 7 and 8, then writes
 # holding register 5 = 9 (FC6, echoed).
@@ -25,15 +25,7 @@ FRAMES = [
 
 
 def _capture(tmp_path: Path) -> Path:
-    capture = tmp_path / "tables.bin"
-    capture.write_bytes(b"".join(rtu(frame) for frame in FRAMES))
-    return capture
-
-
-def _parameter_table(out: str) -> list[str]:
-    lines = out.splitlines()
-    start = lines.index("Parameters") + 1
-    return lines[start : lines.index("", start)]
+    return write_rtu(tmp_path / "tables.bin", FRAMES)
 
 
 @pytest.mark.parametrize("pure", [False, True])
@@ -68,7 +60,7 @@ def test_stats_counts_each_table_apart(tmp_path: Path, monkeypatch: pytest.Monke
     use_engine(monkeypatch, pure)
     status, out, err = run_cli([str(_capture(tmp_path)), "--stats", *style])
     assert status == 0, err
-    assert _parameter_table(out) == [
+    assert stats_section(out) == [
         "slave   address  code  reads  unreadable  writes  refused  last  changes",
         "------------------------------------------------------------------------",
         f"   17   {holding}            3           0       1        0  9           2",

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import io
+from pathlib import Path
 
 from dissector.app.cli import Environment, run
 from dissector.protocol.crc import crc16_reference
@@ -13,6 +14,19 @@ def rtu(hex_text: str) -> bytes:
     """Slave + PDU from hex, with the CRC appended by the reference algorithm (low byte first)."""
     body = bytes.fromhex(hex_text.replace(" ", ""))
     return body + crc16_reference(body).to_bytes(2, "little")
+
+
+def write_rtu(path: Path, frames: list[str]) -> Path:
+    """A raw capture of RTU frames given as hex (rtu: their CRC appended), one after the other."""
+    path.write_bytes(b"".join(rtu(frame) for frame in frames))
+    return path
+
+
+def stats_section(out: str, title: str = "Parameters") -> list[str]:
+    """The lines of one --stats section, from under its title to the blank line after it."""
+    lines = out.splitlines()
+    start = lines.index(title) + 1
+    return lines[start : lines.index("", start)]
 
 
 def decode(data: bytes, **options: object) -> list[dict]:
