@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import struct
-import time
 from pathlib import Path
 
 import pytest
@@ -194,12 +193,12 @@ def test_generate_session_is_deterministic_and_decodes() -> None:
     assert answered + sum(1 for item in items if item.get("unanswered")) == 500
 
 
-def test_generate_session_200k_frames_is_fast() -> None:
-    started = time.perf_counter()
+def test_generate_session_of_100k_transactions() -> None:
+    # How fast it generates is bench/throughput.py's to measure, not a timed unit test's.
     records = generate_session(100_000, seed=0)
-    elapsed = time.perf_counter() - started
     assert len(records) > 190_000
-    assert elapsed < 3.0
+    times = [stamp for _data, stamp in records]
+    assert times == sorted(times)
 
 
 def test_cli_one_session_and_a_benchmark_file(tmp_path: Path) -> None:
