@@ -19,6 +19,7 @@ from construct import Container
 from dissector.decode.fastpath import fast_parse
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
+from dissector.protocol.printable import bytes_text
 from dissector.protocol.rules import (
     LIFTS, REQUEST_PREFIX, Echo, Lift, Names, Parts, Test, ValueKind, echo_text, range_text, text,
 )
@@ -380,8 +381,9 @@ def _mei_response(frame: Frame, fields: Container) -> None:
             id=obj.id,
             name=SPEC.device_id_objects.get(obj.id) or text("other_object", id=obj.id),
             # Objects 0..6 are ASCII strings (Application Protocol 6.21), the private ones the device's own:
-            # ASCII as sent, every other byte as \xNN (never a guess at a charset; the bytes: fields.body)
-            value=obj.value.decode("ascii", "backslashreplace"),
+            # as a bytes literal's text (printable.bytes_text: `\xc3` the byte C3, `\\` a backslash; never a
+            # guess at a charset; the bytes: fields.body), shown between single quotes
+            value=bytes_text(obj.value),
         )
         for obj in fields["body"]["objects"]
     ]

@@ -14,6 +14,15 @@ test_printable.py compares them when the versions are the same).
 """
 from __future__ import annotations
 
+# A byte as it is written in a Python bytes literal between single quotes (repr(b"...") with that quote):
+# printable ASCII as itself, the quote and the backslash escaped (\' and \\), \t \n \r, every other byte
+# \xNN. So the text holds no control character, and `\xc3` (the byte C3) never reads as the four bytes
+# 5C 78 63 33 (those are `\\xc3`): ast.literal_eval("b'" + text + "'") gives the bytes back.
+_BYTE_TEXT = [chr(byte) if 0x20 <= byte < 0x7F else f"\\x{byte:02x}" for byte in range(256)]
+_BYTE_TEXT[0x27], _BYTE_TEXT[0x5C] = "\\'", "\\\\"
+_BYTE_TEXT[0x09], _BYTE_TEXT[0x0A], _BYTE_TEXT[0x0D] = "\\t", "\\n", "\\r"
+_BYTE_TABLE = {byte: text for byte, text in enumerate(_BYTE_TEXT)}
+
 
 def _escape(char: str) -> str:
     code = ord(char)
@@ -27,3 +36,9 @@ def printable(text: str) -> str:
     if text.isprintable():
         return text
     return "".join(char if char.isprintable() else _escape(char) for char in text)
+
+
+
+def bytes_text(data: bytes) -> str:
+    """`data` as a bytes literal's text between single quotes (_BYTE_TEXT), shown as `'` + it + `'`."""
+    return data.decode("latin-1").translate(_BYTE_TABLE)

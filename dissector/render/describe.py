@@ -307,7 +307,7 @@ def _object_value(obj: DeviceObject) -> str:
     """The value as sent; a revision the profile decoded (`0201` -> `V2.1`) shows decoded."""
     if obj.text is not None and _VERSION.fullmatch(obj.text):
         return obj.text
-    return repr(obj.value)
+    return f"'{obj.value}'"  # (its quotes and backslashes escaped: printable.bytes_text)
 
 
 def _report_server_id(frame: Frame, request: bool) -> str:

@@ -392,7 +392,7 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
     for obj in frame.objects or ():
         # `Object 5 ModelName: 'XY'`; one the spec does not name is `Object 128: 'ABC'` (its name says the id)
         head = f"Object {obj.id} {obj.name}" if obj.id in SPEC.device_id_objects else obj.name
-        add(f"        {head}: {obj.value!r}" + (f" ({obj.text})" if obj.text else ""))
+        add(f"        {head}: '{obj.value}'" + (f" ({obj.text})" if obj.text else ""))
     crc = frame.crc
     if frame.notes and check_untyped(frame):  # --hex typed without its check: nothing was received
         detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: none typed "

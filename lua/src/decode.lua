@@ -18,6 +18,13 @@ for id = LIMITS.device_id_mandatory[1], LIMITS.device_id_mandatory[2] do
   MANDATORY_OBJECTS[#MANDATORY_OBJECTS + 1] = DATA.device_id_objects[id]
 end
 MANDATORY_OBJECTS = table.concat(MANDATORY_OBJECTS, ", ")
+-- A device object's byte as in a Python bytes literal between single quotes (printable.py _BYTE_TEXT):
+-- printable ASCII itself, \' and \\, \t \n \r, every other byte \xNN (never a control character).
+local BYTE_TEXT = {}
+for byte = 0, 255 do
+  BYTE_TEXT[byte] = byte >= 32 and byte < 127 and string.char(byte) or format("\\x%02x", byte)
+end
+BYTE_TEXT[39], BYTE_TEXT[92], BYTE_TEXT[9], BYTE_TEXT[10], BYTE_TEXT[13] = "\\'", "\\\\", "\\t", "\\n", "\\r"
 
 -- A catalogue entry's text (format, params; repr: the parameters Python writes as `!r`, shown by `quote`)
 -- with its parameters by name, as Python fills them in: the texts here and maps.py's MESSAGES alike.
@@ -214,12 +221,9 @@ local SPECIAL = {
     local objects = f.fields.body.objects
     if objects == nil then return end -- (another MEI type: the layout's switch read no device identification)
     for _, object in ipairs(objects) do
-      -- ASCII as sent, every other byte as \xNN (decode/fields.py _mei_response: objects 0..6 are ASCII).
+      -- as a bytes literal's text, shown between single quotes (decode/fields.py _mei_response)
       local chars, at, size = {}, object.value_at, object.length
-      for k = at, at + size - 1 do
-        local byte = b[k]
-        chars[#chars + 1] = byte < 128 and string.char(byte) or format("\\x%02x", byte)
-      end
+      for k = at, at + size - 1 do chars[#chars + 1] = BYTE_TEXT[b[k]] end
       object.name = DATA.device_id_objects[object.id] or say("other_object", { id = object.id })
       object.value, object.offset, object.length, object.value_at = concat(chars), at - 2, 2 + size, nil
     end

@@ -142,7 +142,7 @@ local function explain_objects(f, profile)
       object.text = format("V%d.%d", tonumber(value:sub(1, 2)), tonumber(value:sub(3, 4)))
     elseif meaning ~= nil then
       if meaning.format == "MMmm" then
-        note(f, say("revision_form", { object = object.name, value = python_repr(value), device = profile.device }))
+        note(f, say("revision_form", { object = object.name, value = value, device = profile.device }))
       end
       object.text = meaning.meaning
     end

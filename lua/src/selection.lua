@@ -51,7 +51,7 @@ local function identified(f)
         for _, claim in ipairs(PRODUCT_CODES) do
           if object.value:sub(1, #claim[1]) == claim[1] then
             return { profile = claim[2], final = true, reason = say("chosen_product_code",
-              { frame = f.number, value = python_repr(object.value) }) }
+              { frame = f.number, value = object.value }) }
           end
         end
       end

@@ -272,14 +272,13 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
       for _, object in ipairs(f.objects) do
         local r = frame_range(tvb, f, object.offset, object.length)
         local sub = t:add(pf.object, r)
-        -- A device's bytes are data: control characters (latin-1 held as UTF-8) escaped as vw3-decode's
-        -- -V and summary show them (Python's repr: \x1b, \r), in the label and in the field alike, never
-        -- written raw into tshark -V or -T fields (a terminal would run an ESC sequence).
-        local shown = python_repr(object.value)
-        sub:set_text(format("%s: %s", object.name, shown))
+        -- A device's bytes are data: the value holds no control character (printable.py bytes_text: \x1b, \r,
+        -- its quotes escaped), shown between quotes as vw3-decode's -V and summary show it, never written
+        -- raw into tshark -V or -T fields (a terminal would run an ESC sequence).
+        sub:set_text(format("%s: '%s'", object.name, object.value))
         sub:add(pf.object_id, r, object.id)
         sub:add(pf.object_name, r, object.name):set_generated()
-        sub:add(pf.object_value, r, shown:sub(2, -2)) -- (the text, without repr's quotes)
+        sub:add(pf.object_value, r, object.value)
         if object.text then sub:add(pf.object_text, r, object.text):set_generated() end
       end
     end

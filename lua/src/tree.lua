@@ -315,7 +315,7 @@ function BY_NAME.mei(f, b, base)
   local parts = {}
   for index, object in ipairs(f.objects or NO_INTERPRETATION) do
     local text = object.text
-    if text == nil or not text:match("^V%d+%.%d+$") then text = repr_text(object.value) end
+    if text == nil or not text:match("^V%d+%.%d+$") then text = "'" .. object.value .. "'" end
     parts[index] = object.name .. "=" .. text
   end
   -- (More Follows FF: the server sends the rest from the next object id on, describe._mei)

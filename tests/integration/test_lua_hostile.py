@@ -26,7 +26,7 @@ def test_fc43_objects_are_escaped_in_tshark_v(tmp_path: Path) -> None:
     result = run_tshark(pcap, "-V")
     assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr)
     assert ESC not in result.stdout and "\x07" not in result.stdout
-    # (as vw3-decode -V writes it: Python's repr, the backslash of the bytes doubled)
+    # (as vw3-decode -V writes it: a bytes literal's text, the byte 5C as \\)
     assert "    VendorName: '\\x1b]8;;http://x\\x1b\\\\LINK\\x1b[2J\\x07'\n" in result.stdout
 
 
@@ -40,8 +40,8 @@ def test_fc43_object_values_are_escaped_in_every_output(tmp_path: Path) -> None:
                             cwd=ROOT, timeout=60)  # (this checkout's vw3-decode)
     assert python.returncode == 0, python.stderr
     said = [line.strip() for line in python.stdout.splitlines() if line.strip().startswith(("Object 0 ", "Object 1 "))]
-    # (bytes past ASCII as \xNN in the value, its backslash doubled by repr as every backslash)
-    assert said == ["Object 0 VendorName: 'Ev\\x1b[31mil\\rCR\\x07BEL\\x7fDEL [/x] \\\\xa0\\\\xad\\\\x85\\\\xe9\\'\"\\\\'",
+    # (as a bytes literal: bytes past ASCII as \xNN, one backslash; the byte 5C as \\, the quote as \')
+    assert said == ["Object 0 VendorName: 'Ev\\x1b[31mil\\rCR\\x07BEL\\x7fDEL [/x] \\xa0\\xad\\x85\\xe9\\'\"\\\\'",
                     "Object 1 ProductCode: 'X\\x1bY'"]
     texts = [line.split(": ", 1)[1] for line in said]  # vw3-decode's texts, quotes and all
     fields = run_tshark(pcap, "-T", "fields", "-E", "aggregator=|", "-e", "vw3.object.value")

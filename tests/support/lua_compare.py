@@ -89,8 +89,8 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
             for reg in data.get("registers", [])
         ],
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
-        # (the plugin's object values are escaped as vw3-decode's -V writes them, repr without its quotes)
-        "objects": [(obj["id"], obj["name"], repr(obj["value"])[1:-1], obj.get("text")) for obj in data.get("objects", [])],
+        # (a value is a bytes literal's text, printable.bytes_text, in --json and the plugin's field alike)
+        "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
         "warnings": [_warning(text) for text in data["warnings"]],
         "notes": [text for text in data["notes"] if not _PAIRING_NOTE.match(text)],
         # profile auto: which profile named the frame's registers, and why
