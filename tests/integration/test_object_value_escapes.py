@@ -84,3 +84,18 @@ def test_a_profile_quotes_the_value_so(tmp_path: Path) -> None:
         assert item["profile_reason"] == r"Read Device Identification in frame #2: ProductCode 'ATV71\''"
     lua, _, _ = lua_items(pcap, "-o", "vw3.profiles:auto")
     assert compare(python_items(pcap, ["auto"]), lua) == []
+
+
+def test_every_byte_as_python_writes_it(tmp_path: Path) -> None:
+    """The 256 bytes in two answers' private objects: each value is repr(bytes)'s text (that repr escapes
+    the quote: the bytes hold both), in vw3-decode's --json and the plugin's vw3.object.value alike."""
+    halves = [bytes(range(128)), bytes(range(128, 256))]
+    answers = [rtu("11 2b 0e 01 01 00 00 01 80 80" + half.hex()) for half in halves]
+    records = [data for answer in answers for data in (rtu("11 2b 0e 01 00"), answer)]
+    pcap = write_pcap(tmp_path / "bytes.pcap", [(data, T0 + at) for at, data in enumerate(records)])
+    expected = [repr(half)[2:-1] for half in halves]
+    assert "\\'" in expected[0] and "\\\\" in expected[0]
+    items = map(json.loads, vw3_decode(pcap, False, "--json").splitlines())
+    assert [obj["value"] for item in items for obj in item.get("objects", [])] == expected
+    values = tshark(pcap, "-Y", "vw3.object", "-T", "fields", "-e", "vw3.object.value")
+    assert values.splitlines() == expected
