@@ -36,7 +36,7 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    input_line, inputs, is_pcapng_file, keep_interface, profile_notes,
+    CopyEnd, input_line, inputs, is_pcapng_file, keep_interface, profile_notes,
     write_interface,
 )
 from dissector.sources.reader import SourceError
@@ -135,6 +135,7 @@ class Sinks:
         self.clock = self.output.clock
         self.pcap: CaptureOutput | None = None
         self.write_path = args.write
+        self.copy_end = CopyEnd()  # -w: the record of no byte the copy closes with, at the input's end
         if args.write is not None:
             try:
                 stdout = getattr(env.stdout, "buffer", None)
@@ -237,6 +238,7 @@ class Sinks:
                 self.pcap.write_items(items)
             except OSError as error:
                 raise self._write_failed(error) from None
+            self.copy_end.written(items)
         if self.stats is not None:
             report = self.report.collector if self.report is not None else None
             for item in items:
@@ -313,7 +315,7 @@ class Sinks:
                 bus.stats.history.finish()  # frames held until their slave's profile was chosen (read once)
         if self.pcap is not None:
             try:
-                self.pcap.close()
+                self.copy_end.close(self.pcap)
             except OSError as error:
                 raise self._write_failed(error) from None
             pcap, self.pcap = self.pcap, None
@@ -405,6 +407,7 @@ def _decode_inputs(
             )
             sinks.valid_frames = sinks.input_bytes = 0
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
+            sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)
             # (-c N may stop in an input's first noise run, before its frames: not judged then.)
             if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:
                 # A PNG, a line read at the wrong speed: say so once, not only as noise and damage

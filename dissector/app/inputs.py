@@ -13,8 +13,8 @@ from dissector.app.paths import Fix
 from dissector.app.profile_options import report_profiles
 from dissector.app.rings import RingSource, group_files
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
-from dissector.model import Chunk
-from dissector.render.capturefile import Interface, pcapng_interface
+from dissector.model import Chunk, Item, stamped_before
+from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
 from dissector.sources.pcapng import is_pcapng
 from dissector.sources.reader import NOTATIONS, open_source
@@ -110,6 +110,33 @@ def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,
             f"{line.baud} baud of {name} is not kept (write pcapng, -F pcapng, to keep it; or read it back "
             f"with --baud {line.baud})\n"
         )
+
+
+class CopyEnd:
+    """Where a -w copy of a decode ends: a record of no byte at the input's end (Source.recorded_until: an
+    empty closing record of a live -w, another interface's records, a frame's last record) when that is
+    later than the copy's last record, so that its readers judge the last request to the same end as the
+    input's (pipeline.Dissector.finish), as live -w closes (live_capture.CaptureFiles.close). None after
+    -c N (the copy ends at the Nth item, as tshark -c N -w), for an untimed input (raw bytes: no time to
+    close at), nor when -Y kept nothing. -Y keeps it: the copy spans the capture it filtered."""
+
+    def __init__(self) -> None:
+        self.last: float | None = None  # the time of the copy's last record
+        self.end: float | None = None  # when the last input read to its end was recorded until
+
+    def written(self, items: list[Item]) -> None:
+        self.last = next((item.time for item in reversed(items) if item.time is not None), self.last)
+
+    def ended(self, recorded: float | None) -> None:
+        self.end = recorded
+
+    def close(self, pcap: CaptureOutput) -> None:
+        end, last = self.end, self.last
+        if end is None or last is None or not stamped_before(last, end):
+            pcap.close()
+            return
+        pcap.release()  # (the records it holds come before the end)
+        pcap.close_at(end)  # (in the file being written: a -b ring opens no file for it)
 
 
 def input_line(path: str | None, source_format: str | None, args: DecodeOptions,

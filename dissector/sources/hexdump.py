@@ -335,13 +335,36 @@ def cut_short(name: str, number: int, data: bytes, rest: str) -> str:
     return f"{name} line {number} is cut short (the input ends inside it, without a line end): {kept}"
 
 
-def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) -> Iterator[Chunk]:
+class StampedLines:
+    """The chunks of a one-frame-a-line text, and `recorded_until`: once read, the time of its last timed
+    line, where its decode ends (pipeline.Dissector.feed), as a pcap's last record says (-w's copy closes
+    there: app/inputs.py CopyEnd)."""
+
+    def __init__(self, chunks: Iterator[Chunk]) -> None:
+        self._chunks = chunks
+        self.recorded_until: Stamp | None = None
+
+    def __iter__(self) -> StampedLines:
+        return self
+
+    def __next__(self) -> Chunk:
+        chunk = next(self._chunks)
+        if chunk.data and chunk.time is not None:  # (as Dissector.feed's end)
+            self.recorded_until = chunk.time  # type: ignore[assignment]
+        return chunk
+
+
+def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) -> StampedLines:
     """One chunk per line that `parse` finds bytes in; a line it refuses (ValueError) ends the read
     with the line's number. Times of day are placed on their days (Days).
 
     The last line, when no line end closes it and it reads as a line cut short (the logger stopped while
     writing it, the file was copied while written), is the input cut short: its whole bytes are decoded,
     with a warning, as a pcap's cut record is (tshark: "cut short in the middle of a packet")."""
+    return StampedLines(_parsed_lines(inp, log, chunk_size, parse))
+
+
+def _parsed_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) -> Iterator[Chunk]:
     days = Days()
     for number, line, ended in ended_lines(inp, chunk_size):
         try:
@@ -362,7 +385,7 @@ def read_lines(inp: Input, log: WarningLog, chunk_size: int, parse: LineParser) 
 
 def read_hexdump(
     inp: Input, log: WarningLog, chunk_size: int, notation: Notation | None = None
-) -> Iterator[Chunk]:
+) -> StampedLines:
     """One chunk per line with bytes; `notation` fixes hex or decimal (--format), else learned. Times
     of day are placed on their days (Days); a last line cut short as read_lines says."""
     known = notation if notation is not None else Notation()

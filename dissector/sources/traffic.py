@@ -18,7 +18,9 @@ from collections.abc import Iterator
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import Input, WarningLog
-from dissector.sources.hexdump import HexLineError, TimeRangeError, _cut_line, _timestamp, read_lines
+from dissector.sources.hexdump import (
+    HexLineError, StampedLines, TimeRangeError, _cut_line, _timestamp, read_lines,
+)
 
 # Found with search(), then the line is cut in plain steps: one regular expression with optional
 # parts on both sides backtracked exponentially on lines of spaces (50 s for 400 characters).
@@ -97,5 +99,5 @@ def _parse(line: str, _number: int) -> tuple[Stamp | None, bytes] | None:
     return parse_traffic_line(line)
 
 
-def read_traffic(inp: Input, log: WarningLog, chunk_size: int) -> Iterator[Chunk]:
+def read_traffic(inp: Input, log: WarningLog, chunk_size: int) -> StampedLines:
     return read_lines(inp, log, chunk_size, _parse)
