@@ -125,11 +125,11 @@ def write_stats(sinks: Any, bus: Bus, index: int | None) -> None:
         if console is not None:
             from rich.text import Text
 
-            console.rule(Text(printable(title(bus))))
+            sinks.output.rule(Text(printable(title(bus))))
         else:
             write(header(bus, index == 0))
     if console is not None:
-        console.print(stats.render())
+        sinks.output.print_fitted(stats.render())
     else:  # piped: plain tables at full width, no rich layout cost
         write(stats.render_plain())
     if timing is not None:

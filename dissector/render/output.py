@@ -5,6 +5,7 @@ Plain output is built as strings and written in batches, which is what makes a p
 from __future__ import annotations
 
 import json
+import shutil
 from dataclasses import dataclass
 from collections.abc import Callable
 from typing import TYPE_CHECKING, TextIO
@@ -27,6 +28,8 @@ BATCH = 512
 # joined text is not a fresh memory mapping each time (malloc maps blocks over 128 KiB, page faults
 # and all): -V on the plant mix wrote ~2 MB per write before, 30-90 ms more for its 39 MB.
 FLUSH_CHARS = 1 << 16
+# rich's width where it must not wrap (a line longer than this is not a frame's)
+UNWRAPPED = 1 << 20
 
 
 @dataclass(frozen=True, slots=True)
@@ -88,6 +91,9 @@ class Output:
                 force_terminal=True if options.color == "always" else None,
                 highlight=False,
                 soft_wrap=False,
+                # No line break of rich's own: a frame's line and a -V line are one line each, as tshark
+                # prints them (the terminal wraps them; `| less -R` and grep see whole lines).
+                width=UNWRAPPED,
             )
         self._buffer: list[str] = []
         self.fields = None
@@ -105,6 +111,18 @@ class Output:
             if header is not None:
                 self._buffer.append(header)
 
+    def rule(self, title: object) -> None:
+        """A title rule across the terminal (rich only)."""
+        from rich.rule import Rule
+
+        self.print_fitted(Rule(title))  # type: ignore[arg-type]
+
+    def print_fitted(self, renderable: object) -> None:
+        """A rule or table laid out for the terminal's width (80 columns when not one, as rich's
+        default), not the unwrapped console's (rich only)."""
+        assert self.console is not None
+        self.console.print(renderable, width=shutil.get_terminal_size().columns)
+
     def new_input(self, title: str | None = None) -> None:
         """Times restart at each input; several inputs are announced as tail(1) does."""
         self.clock.reset()
@@ -114,7 +132,7 @@ class Output:
         if self.console is not None:
             from rich.text import Text
 
-            self.console.rule(Text(title))
+            self.rule(Text(title))
         elif not self.options.records:
             self._buffer.append(f"==> {title} <==")
 

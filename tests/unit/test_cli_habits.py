@@ -3,6 +3,7 @@ errors on one line, contradicting options refused, times from the capture's inte
 from __future__ import annotations
 
 import json
+import re
 import os
 import subprocess
 import sys
@@ -342,3 +343,25 @@ def test_time_fields_follow_the_capture_and_the_display() -> None:
     ]
     untimed = run_cli(["-T", "fields", "-e", "frame", "-e", "time_relative", "--hex", "0C 03 20 D0 00 03 0E EF"])
     assert untimed[1] == "1\t\n"
+
+
+@pytest.mark.parametrize("view", [[], ["-V"], ["--stats"]])
+def test_color_always_into_a_pipe_breaks_no_line(view: list[str]) -> None:
+    # `--color always | less -R` (or grep): rich wrapped every line at 80 columns, `CRC` and `ok` on two
+    # lines; tshark never breaks a line. The colored text is the plain text, line for line (-V: but the
+    # tree's guides), with only the terminal's width for --stats' tables (fitted, as before).
+    commissioning = str(ROOT / "captures" / "atv71_commissioning.pcap")
+    env = {**os.environ, "COLUMNS": "80"}
+    plain = _cli(commissioning, *view, env=env)
+    colored = _cli(commissioning, *view, "--color", "always", env=env)
+    assert (plain.returncode, colored.returncode) == (0, 0)
+    lines = [re.sub(r"\x1b\[[0-9;]*m", "", line) for line in colored.stdout.splitlines()]
+    if view == ["-V"]:
+        lines = [line.lstrip(" │├└─") for line in lines]
+        assert lines == [line.lstrip(" ") for line in plain.stdout.splitlines()]
+    elif view == []:
+        assert lines == plain.stdout.splitlines()
+        assert max(map(len, lines)) > 200  # (the FC43 answer's line)
+    else:  # (the bus timing's lines are written plain either way)
+        assert [line for line in lines if len(line) > 80] == [
+            line for line in plain.stdout.splitlines() if len(line) > 80 and line in lines]
