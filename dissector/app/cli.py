@@ -37,7 +37,7 @@ from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
     CopyEnd, input_line, inputs, is_pcapng_file, keep_interface, profile_notes,
-    write_interface,
+    write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.framing.timing import GapChecker
@@ -141,7 +141,8 @@ class Sinks:
                 stdout = getattr(env.stdout, "buffer", None)
                 first = args.files[0] if args.files and not args.hex else None
                 interface = write_interface(first, "pcapng" if args.format in (None, "pcapng") else None, args)
-                self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface)
+                self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface,
+                                        write_units(args.files))
             except ValueError as error:
                 raise UsageError(str(error)) from None
             except OSError as error:

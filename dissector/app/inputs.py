@@ -15,7 +15,9 @@ from dissector.app.rings import RingSource, group_files
 from dissector.framing.linespeed import FROM_PCAPNG, LineSettings, line_settings, settings_from_text
 from dissector.model import Chunk, Item, stamped_before
 from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
+from dissector.render.pcapwriter import MICROS, NANOS
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
+from dissector.sources.pcap import MAGICS
 from dissector.sources.pcapng import is_pcapng
 from dissector.sources.reader import NOTATIONS, open_source
 
@@ -95,6 +97,24 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
     if args.baud_given:
         return (kept[0] if kept is not None else None, f"{args.baud} baud (--baud)")
     return kept
+
+
+def write_units(paths: list[str]) -> int:
+    """The time units a -w copy writes: nanoseconds when a file decoded holds them (a nanosecond pcap, a
+    pcapng interface finer than microseconds), as tshark -w and editcap keep them; microseconds otherwise."""
+    for path in paths:
+        if path == "-":
+            continue
+        try:
+            with open(path, "rb") as file:
+                head = file.read(4)
+        except OSError:
+            continue
+        finer = MAGICS.get(head, ("", MICROS))[1] > MICROS or is_pcapng(head) and any(
+            bus.interface.units > MICROS for bus in packet_interfaces(path))
+        if finer:
+            return NANOS
+    return MICROS
 
 
 def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,

@@ -35,7 +35,7 @@ from dissector.framing.rules import spans_a_frame
 from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
-from dissector.render.pcapwriter import SNAPLEN, PcapWriter, split_time
+from dissector.render.pcapwriter import MICROS, SNAPLEN, PcapWriter, split_time
 
 FORMATS = ("pcap", "pcapng")
 STDOUT = "-"
@@ -238,8 +238,10 @@ class CaptureOutput:
         flush: bool = True,
         stdout: BinaryIO | None = None,
         interface: Interface | None = None,
+        units: int = MICROS,
     ) -> None:
         self.path = path
+        self._units = units  # of its times: a decode of a nanosecond capture writes nanoseconds
         self.format = file_format(path, fmt)
         self.ring = ring
         self._flush = flush
@@ -294,9 +296,10 @@ class CaptureOutput:
         try:
             if self.format == "pcapng":
                 name, description = self._interface or (None, None)
-                self._writer = PcapngWriter(binary, flush=self._flush, if_name=name, if_description=description)
+                self._writer = PcapngWriter(binary, flush=self._flush, if_name=name,
+                                            if_description=description, units=self._units)
             else:
-                self._writer = PcapWriter(binary, flush=self._flush)
+                self._writer = PcapWriter(binary, flush=self._flush, units=self._units)
         except OSError:
             self._close_writer()
             raise
@@ -523,6 +526,7 @@ def open_output(
     flush: bool,
     stdout: BinaryIO | None,
     interface: Interface | None = None,
+    units: int = MICROS,
 ) -> CaptureOutput:
     """The -w output from the options; ValueError for bad -b options, OSError from the system."""
     ring = Ring.parse(list(ring_specs)) if ring_specs else None
@@ -531,4 +535,4 @@ def open_output(
     if path == STDOUT and stdout is not None and stdout.isatty():
         # Binary records would garble the terminal (tshark and dumpcap refuse it too).
         raise ValueError("-w -: standard output is a terminal; pipe it (| wireshark -k -i -) or give a file")
-    return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface)
+    return CaptureOutput(path, fmt, ring, flush=flush, stdout=stdout, interface=interface, units=units)

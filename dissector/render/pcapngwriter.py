@@ -3,7 +3,8 @@
 Beside what classic pcap holds, the interface says what the port was (`if_name`, and the serial
 settings in `if_description`: `/dev/ttyUSB0 19200 8E1`) and each record may carry a comment
 (`opt_comment`): vw3-decode comments noise runs, so Wireshark's packet list says why bytes are not a
-frame. Timestamps are in microseconds (the default if_tsresol), as the classic pcap writer's.
+frame. Timestamps are in microseconds (the default if_tsresol), as the classic pcap writer's, or in
+nanoseconds (if_tsresol 9) for a copy of a nanosecond capture.
 Each block is written (and flushed) in one write, so the file is valid at any instant.
 """
 from __future__ import annotations
@@ -11,24 +12,26 @@ from __future__ import annotations
 import struct
 from typing import BinaryIO
 
-from dissector.render.pcapwriter import LINKTYPE_USER0, SNAPLEN, clamp_time, split_time
+from dissector.render.pcapwriter import LINKTYPE_USER0, MICROS, NANOS, SNAPLEN, clamp_time, split_time
 
 SHB, IDB, EPB = 0x0A0D0D0A, 0x00000001, 0x00000006
 BYTE_ORDER_MAGIC = 0x1A2B3C4D
 OPT_ENDOFOPT, OPT_COMMENT = 0, 1
 SHB_USERAPPL = 4
-IF_NAME, IF_DESCRIPTION = 2, 3
-SECONDS_MAX = (1 << 64) // 1_000_000 - 1  # microseconds in 64 bits: up to the year 586,912
+IF_NAME, IF_DESCRIPTION, IF_TSRESOL = 2, 3, 9
+# 64 bits of microseconds: up to the year 586,912; of nanoseconds: 2554.
+SECONDS_MAX = {MICROS: (1 << 64) // MICROS - 1, NANOS: (1 << 64) // NANOS - 1}
 
 
 def _option(code: int, value: bytes) -> bytes:
     return struct.pack("<HH", code, len(value)) + value + b"\0" * (-len(value) % 4)
 
 
-def _options(options: list[tuple[int, str]]) -> bytes:
+def _options(options: list[tuple[int, str | bytes]]) -> bytes:
     if not options:
         return b""
-    return b"".join(_option(code, text.encode("utf-8")) for code, text in options) + _option(OPT_ENDOFOPT, b"")
+    return b"".join(_option(code, value if isinstance(value, bytes) else value.encode("utf-8"))
+                    for code, value in options) + _option(OPT_ENDOFOPT, b"")
 
 
 def _block(block_type: int, body: bytes) -> bytes:
@@ -45,9 +48,12 @@ class PcapngWriter:
         if_name: str | None = None,
         if_description: str | None = None,
         application: str = "vw3-decode",
+        units: int = MICROS,
     ) -> None:
+        """`units`: MICROS, or NANOS (every interface's if_tsresol 9)."""
         self._stream = stream
         self._flush = flush
+        self._units = units
         self._last_time = 0.0
         section = struct.pack("<IHHq", BYTE_ORDER_MAGIC, 1, 0, -1) + _options([(SHB_USERAPPL, application)])
         self._linktype = linktype
@@ -62,9 +68,11 @@ class PcapngWriter:
             stream.flush()
 
     def _interface_block(self, name: str | None, description: str | None) -> bytes:
-        options = [(IF_NAME, name)] if name else []
+        options: list[tuple[int, str | bytes]] = [(IF_NAME, name)] if name else []
         if description:
             options.append((IF_DESCRIPTION, description))
+        if self._units == NANOS:
+            options.append((IF_TSRESOL, bytes([9])))
         return _block(IDB, struct.pack("<HHI", self._linktype, 0, SNAPLEN) + _options(options))
 
     def use_interface(self, name: str | None, description: str | None) -> None:
@@ -86,9 +94,11 @@ class PcapngWriter:
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
-        seconds, micros, moved = clamp_time(*split_time(timestamp), SECONDS_MAX)
+        per_second = self._units
+        seconds, fraction, moved = clamp_time(*split_time(timestamp, per_second), SECONDS_MAX[per_second],
+                                              per_second)
         self.clamped += moved
-        units = seconds * 1_000_000 + micros
+        units = seconds * per_second + fraction
         body = (
             struct.pack("<IIIII", self._interface, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
             + data

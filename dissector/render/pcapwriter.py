@@ -16,43 +16,50 @@ SNAPLEN = 65535
 _GLOBAL_HEADER = struct.Struct("<IHHiIII")
 _RECORD_HEADER = struct.Struct("<IIII")
 PCAP_MAGIC = 0xA1B2C3D4
+PCAP_MAGIC_NANO = 0xA1B23C4D  # times in nanoseconds (libpcap's, as tshark -w keeps a nanosecond capture's)
+MICROS, NANOS = 1_000_000, 1_000_000_000  # a format's time units per second
 
 
-def split_time(timestamp: float) -> tuple[int, int]:
-    """(seconds, microseconds) as pcap stores them; the reader's seconds + micros / 1e6 gives it back."""
+def split_time(timestamp: float, units: int = MICROS) -> tuple[int, int]:
+    """(seconds, fraction in 1/`units` s) as pcap stores them; the reader's seconds + fraction / units
+    gives it back."""
     ns = getattr(timestamp, "ns", None)  # a Stamp keeps its source's integer nanoseconds
     if ns is not None:
-        return divmod(int(ns) // 1000, 1_000_000)  # type: ignore[return-value]
+        return divmod(int(ns) // (NANOS // units), units)  # type: ignore[return-value]
     seconds = int(timestamp)
-    micros = int(round((timestamp - seconds) * 1_000_000))
-    if micros >= 1_000_000:
-        seconds, micros = seconds + 1, micros - 1_000_000
-    return seconds, micros
+    fraction = int(round((timestamp - seconds) * units))
+    if fraction >= units:
+        seconds, fraction = seconds + 1, fraction - units
+    return seconds, fraction
 
 
 PCAP_SECONDS_MAX = 0xFFFFFFFF  # classic pcap's u32 seconds: 1970-01-01 .. 2106-02-07
 
 
-def clamp_time(seconds: int, micros: int, most: int) -> tuple[int, int, bool]:
-    """(seconds, micros) within 0 .. `most` seconds (and its last microsecond), and whether it moved.
+def clamp_time(seconds: int, micros: int, most: int, units: int = MICROS) -> tuple[int, int, bool]:
+    """(seconds, micros) within 0 .. `most` seconds (and its last 1/`units` s), and whether it moved.
 
     A capture's stamps are data (a pcapng if_tsoffset of -2^62, 2^64 units): a record keeps its bytes
     at the nearest time the format can hold rather than failing half written."""
     if seconds < 0:
         return 0, 0, True
     if seconds > most:
-        return most, 999_999, True
+        return most, units - 1, True
     return seconds, micros, False
 
 
 class PcapWriter:
-    def __init__(self, stream: BinaryIO, linktype: int = LINKTYPE_USER0, flush: bool = True) -> None:
+    def __init__(self, stream: BinaryIO, linktype: int = LINKTYPE_USER0, flush: bool = True,
+                 units: int = MICROS) -> None:
+        """`units`: MICROS, or NANOS for a nanosecond pcap."""
         self._stream = stream
         self._flush = flush
+        self._units = units
         self._last_time = 0.0
         self.size = _GLOBAL_HEADER.size  # bytes written so far (ring buffer limits)
         self.clamped = 0  # records whose time was outside 1970..2106
-        stream.write(_GLOBAL_HEADER.pack(PCAP_MAGIC, 2, 4, 0, 0, SNAPLEN, linktype))
+        magic = PCAP_MAGIC_NANO if units == NANOS else PCAP_MAGIC
+        stream.write(_GLOBAL_HEADER.pack(magic, 2, 4, 0, 0, SNAPLEN, linktype))
         if flush:
             stream.flush()
 
@@ -62,10 +69,11 @@ class PcapWriter:
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
-        seconds, micros, moved = clamp_time(*split_time(timestamp), PCAP_SECONDS_MAX)
+        units = self._units
+        seconds, fraction, moved = clamp_time(*split_time(timestamp, units), PCAP_SECONDS_MAX, units)
         self.clamped += moved
         # One write(2) a record (unbuffered streams): a reader never sees a header without its bytes.
-        self._stream.write(_RECORD_HEADER.pack(seconds, micros, len(data), len(data)) + data)
+        self._stream.write(_RECORD_HEADER.pack(seconds, fraction, len(data), len(data)) + data)
         self.size += _RECORD_HEADER.size + len(data)
         if self._flush:
             self._stream.flush()

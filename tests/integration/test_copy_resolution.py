@@ -1,0 +1,97 @@
+"""A -w copy of a nanosecond capture keeps its nanoseconds (app/inputs.py write_units: a nanosecond pcap,
+a pcapng interface with if_tsresol finer than microseconds), as tshark -w and editcap keep them: COPY
+decodes as FILE does, the time column, --json's times and response times, and the plugin's.
+
+Before, every copy was written in microseconds: the time column said 0.010000 where FILE said 0.010001
+(10 000 700 ns), --json's response_time 0.004583 where FILE's was 0.004583876, the plugin's
+vw3.response_time the same. A microsecond capture is copied in microseconds, as before.
+"""
+from __future__ import annotations
+
+import json
+import os
+import struct
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from live_bus import ROOT
+from lua_harness import lua_errors, run_tshark
+
+pytestmark = pytest.mark.integration
+REQUEST = bytes.fromhex("010300000002C40B")  # slave 1 reads 0..1
+ANSWER = bytes.fromhex("010304000100022A32")
+SECONDS = 1_767_225_600
+RECORDS = [(REQUEST, 0), (ANSWER, 10_000_700), (REQUEST, 1_000_000_123), (ANSWER, 1_004_583_999)]  # ns
+LINES = [
+    "     1     0.000000   1 request   Read Holding Registers 0..1 (2)  CRC ok",
+    "     2     0.010001   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#1, 10.0 ms]  CRC ok",
+    "     3     1.000000   1 request   Read Holding Registers 0..1 (2)  CRC ok",
+    "     4     1.004584   1 response  Read Holding Registers 0..1 (2): 0=1 1=2 [#3, 4.6 ms]  CRC ok",
+]
+TIMES = [(1767225600.0, None), (1767225600.0100007, 0.0100007), (1767225601.0000002, None),
+         (1767225601.004584, 0.004583876)]
+PLUGIN = ["0.000000000;", "0.010000700;0.010000700", "1.000000123;", "1.004583999;0.004583876"]
+NANO_MAGIC, MICRO_MAGIC = bytes.fromhex("4d3cb2a1"), bytes.fromhex("d4c3b2a1")
+
+
+def nanosecond_pcap(path: Path) -> Path:
+    records = b"".join(struct.pack("<IIII", SECONDS + ns // 10**9, ns % 10**9, len(data), len(data)) + data
+                       for data, ns in RECORDS)
+    path.write_bytes(struct.pack("<IHHiIII", 0xA1B23C4D, 2, 4, 0, 0, 65535, 147) + records)
+    return path
+
+
+def run(*arguments: object) -> list[str]:
+    done = subprocess.run([sys.executable, "-m", "dissector", "-n", *map(str, arguments)], cwd=ROOT,
+                          env=dict(os.environ), capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0 and not done.stderr, done.stderr
+    return done.stdout.splitlines()
+
+
+def times(path: Path) -> list[tuple[float, float | None]]:
+    return [(item["time"], item.get("response_time")) for item in map(json.loads, run(path, "--json"))]
+
+
+def plugin(path: Path) -> list[str]:
+    result = run_tshark(path, "-T", "fields", "-E", "separator=;", "-e", "frame.time_relative",
+                        "-e", "vw3.response_time")
+    assert result.returncode == 0 and not lua_errors(result.stdout + result.stderr), result.stderr[-2000:]
+    return result.stdout.splitlines()
+
+
+@pytest.mark.parametrize("copy", ["pcap", "pcapng"])
+def test_a_nanosecond_capture_is_copied_in_nanoseconds(tmp_path: Path, copy: str) -> None:
+    original = nanosecond_pcap(tmp_path / "ns.pcap")
+    assert run(original) == LINES
+    assert times(original) == TIMES
+    written = tmp_path / f"copy.{copy}"
+    run(original, "-w", written)
+    assert run(written) == LINES  # was 0.010000 and 1.004583
+    assert times(written) == TIMES  # was (1767225600.01, 0.01), (1767225601.004583, 0.004583)
+    assert plugin(written) == plugin(original) == PLUGIN
+    if copy == "pcap":
+        assert written.read_bytes()[:4] == NANO_MAGIC
+    # A copy of the copy (a pcapng interface in nanoseconds, if_tsresol 9) keeps them too.
+    again = tmp_path / "again.pcap"
+    run(written, "-w", again)
+    assert again.read_bytes()[:4] == NANO_MAGIC and run(again) == LINES
+
+
+def test_a_microsecond_capture_stays_in_microseconds(tmp_path: Path) -> None:
+    original = tmp_path / "us.pcap"
+    run(nanosecond_pcap(tmp_path / "ns.pcap"), "-w", tmp_path / "first.pcap")
+    path = tmp_path / "first.pcap"
+    data = bytearray(path.read_bytes())
+    data[:4] = MICRO_MAGIC  # the same records in a microsecond pcap: their fractions rounded down
+    position = 24
+    while position < len(data):
+        seconds, fraction, length, _ = struct.unpack_from("<IIII", data, position)
+        struct.pack_into("<I", data, position + 4, fraction // 1000)
+        position += 16 + length
+    original.write_bytes(bytes(data))
+    written = tmp_path / "copy.pcap"
+    run(original, "-w", written)
+    assert written.read_bytes() == original.read_bytes()
