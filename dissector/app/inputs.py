@@ -4,6 +4,8 @@ pcapng keeps for each.
 """
 from __future__ import annotations
 
+import contextlib
+import struct
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
@@ -18,8 +20,9 @@ from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interf
 from dissector.render.pcapwriter import MICROS, NANOS
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
 from dissector.sources.pcap import MAGICS
-from dissector.sources.pcapng import is_pcapng
-from dissector.sources.reader import NOTATIONS, open_source
+from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
+from dissector.sources.pcapng import Interface as RecordedInterface
+from dissector.sources.reader import NOTATIONS, SourceError, open_source
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
@@ -99,22 +102,46 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
     return kept
 
 
-def write_units(paths: list[str]) -> int:
+def write_units(paths: list[str], stdin: Any = None) -> int:
     """The time units a -w copy writes: nanoseconds when a file decoded holds them (a nanosecond pcap, a
-    pcapng interface finer than microseconds), as tshark -w and editcap keep them; microseconds otherwise."""
+    pcapng interface finer than microseconds), as tshark -w and editcap keep them; microseconds otherwise.
+    Standard input is judged by what it holds already (peek: nothing read), its first interfaces."""
     for path in paths:
         if path == "-":
-            continue
-        try:
-            with open(path, "rb") as file:
-                head = file.read(4)
-        except OSError:
-            continue
-        finer = MAGICS.get(head, ("", MICROS))[1] > MICROS or is_pcapng(head) and any(
-            bus.interface.units > MICROS for bus in packet_interfaces(path))
-        if finer:
+            piped = hasattr(stdin, "peek") and not stdin.isatty()  # (a terminal: nothing to wait for here)
+            head = stdin.peek(STDIN_HEAD) if piped else b""
+            interfaces = stdin_interfaces(head)
+        else:
+            try:
+                with open(path, "rb") as file:
+                    head = file.read(4)
+            except OSError:
+                continue
+            interfaces = [bus.interface for bus in packet_interfaces(path)] if is_pcapng(head) else []
+        units = [MAGICS.get(head[:4], ("", MICROS))[1], *(interface.units for interface in interfaces)]
+        if max(units) > MICROS:
             return NANOS
     return MICROS
+
+
+STDIN_HEAD = 4096  # a pcapng's section and first interface blocks (tools write them at once)
+
+
+def stdin_interfaces(head: bytes) -> list[RecordedInterface]:
+    """The interfaces a pcapng's first bytes describe, before any packet (none: another format)."""
+    if not is_pcapng(head) or len(head) < 12:
+        return []
+    order = "<" if head[8:12] == b"\x4d\x3c\x2b\x1a" else ">"
+    found, position = [], 0
+    while position + 12 <= len(head):
+        block_type, total = struct.unpack_from(order + "II", head, position)
+        if total < 12 or total % 4 or position + total > len(head) or block_type not in (SHB, IDB):
+            break
+        if block_type == IDB:
+            with contextlib.suppress(SourceError):
+                found.append(_interface(head[position + 8 : position + total - 4], order, "standard input"))
+        position += total
+    return found
 
 
 def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,
