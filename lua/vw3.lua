@@ -6299,7 +6299,7 @@ local function printable(text, quote)
   end))
 end
 
--- str.__repr__ of a text (a device object's latin-1 characters are held as UTF-8 too), quotes as Python picks.
+-- str.__repr__ of a text (a map cell, a server id: UTF-8), quotes as Python picks.
 local function python_repr(text)
   local quote = text:find("'", 1, true) and not text:find('"', 1, true) and '"' or "'"
   return quote .. printable(text, quote) .. quote
