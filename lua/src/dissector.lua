@@ -140,62 +140,18 @@ local function stream_of(states, key)
   return st
 end
 
--- A connection's or conversation's stream, by its two ends (the same both ways).
-local function conversation_state(states, pinfo)
+-- A TCP connection's or UDP conversation's stream, by its transport and its two ends (the same both ways),
+-- kept with the other streams the first pass's end finishes (udp_states). RTU over TCP: each segment is a
+-- record of its connection's stream (both directions one stream, as the bus they carry: a request, its
+-- echo and its answer framed and paired in capture order), read as UDP datagrams and serial records are:
+-- bytes the framer cannot decide yet (a frame cut by the segment's end, a write it must tell from its
+-- echo) wait in the stream, not in TCP's reassembly, which is per direction and would hold one
+-- direction's bytes back from the other's. A frame is shown in the record that completes it, as on a
+-- serial capture (vw3-decode reading the same bytes).
+local function conversation_state(transport, pinfo)
   local a = tostring(pinfo.src) .. "/" .. tostring(pinfo.src_port)
   local b = tostring(pinfo.dst) .. "/" .. tostring(pinfo.dst_port)
-  return stream_of(states, a < b and a .. " " .. b or b .. " " .. a)
-end
-
--- RTU over TCP: one state per connection (the expectation and pairing of its own requests), and TCP's
--- reassembly for a frame split over segments: the framer frames what it can; where it needs more bytes,
--- TCP is asked for the next segment and hands the rest back with it (pinfo.desegment_offset/len). The
--- end of a segment is no frame boundary. Results are kept per frame and call (a segment that ends one
--- reassembled frame and starts the next calls the dissector twice) and shown again on later passes.
-local DESEGMENT_ONE_MORE = DESEGMENT_ONE_MORE_SEGMENT or 0x0fffffff
-
-local function dissect_tcp_now(st, tvb, pinfo, n)
-  if st.mode == nil then st.mode = detect_mode(tvb:raw(0, math.min(n, MODE_SAMPLE))) end
-  -- A new buffer each call: what was left over last time comes back at the start of this tvb.
-  st.b, st.n, st.base, st.boundaries, st.times, st.noise = {}, 0, 0, {}, {}, nil
-  local record = { number = pinfo.number, start = 0, length = n }
-  st.open = { record }
-  local items = feed(st, tvb:raw(0, n), record_ns(pinfo, pinfo.number), false, false)
-  flush_noise(st, items) -- (a noise run ends with the call: its bytes are not handed back)
-  local used = st.base
-  take_items(st, items, record)
-  if used < n and pinfo.can_desegment > 0 then
-    record.desegment_offset = used
-  end
-  record.waiting = nil
-  return record
-end
-
-local function dissect_tcp(tvb, pinfo, tree)
-  local n = tvb:len()
-  if n == 0 then return 0 end
-  if tcp_call.number ~= pinfo.number then tcp_call.number, tcp_call.index = pinfo.number, 0 end
-  tcp_call.index = tcp_call.index + 1
-  local calls = tcp_records[pinfo.number]
-  if calls == nil then
-    calls = {}
-    tcp_records[pinfo.number] = calls
-  end
-  local st = conversation_state(tcp_states, pinfo)
-  local record = calls[tcp_call.index]
-  local first = record == nil
-  if first then
-    local ok, result = pcall(dissect_tcp_now, st, tvb, pinfo, n) -- (result: a record when ok)
-    record = ok and result or { length = n, error = tostring(result) }
-    calls[tcp_call.index] = record
-  end
-  if record.desegment_offset ~= nil then
-    pinfo.desegment_offset = record.desegment_offset
-    pinfo.desegment_len = DESEGMENT_ONE_MORE
-  end
-  show_record(st, record, tvb, pinfo, tree, n)
-  if first then pack.settle(st) end -- (after the first showing, which reads the items as they were decoded)
-  return n
+  return stream_of(udp_states, transport .. (a < b and a .. " " .. b or b .. " " .. a))
 end
 
 -- Transport port types (Wireshark's port_type enum): TCP 2, UDP 3.
@@ -223,8 +179,8 @@ end
 
 function proto.dissector(tvb, pinfo, tree)
   local port_type = pinfo.port_type
-  if port_type == PT_TCP then return dissect_tcp(tvb, pinfo, tree) end
-  if port_type == PT_UDP then return dissect_records(conversation_state(udp_states, pinfo), tvb, pinfo, tree) end
+  if port_type == PT_TCP then return dissect_records(conversation_state("tcp ", pinfo), tvb, pinfo, tree) end
+  if port_type == PT_UDP then return dissect_records(conversation_state("udp ", pinfo), tvb, pinfo, tree) end
   return dissect_records(INTERFACE and serial_state(pinfo) or state, tvb, pinfo, tree)
 end
 
