@@ -104,7 +104,8 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
 
 def write_units(paths: list[str], stdin: Any = None) -> int:
     """The time units a -w copy writes: nanoseconds when a file decoded holds them (a nanosecond pcap, a
-    pcapng interface finer than microseconds), as tshark -w and editcap keep them; microseconds otherwise.
+    pcapng interface finer than microseconds, or in units microseconds cannot hold: if_tsresol 2^-10 s,
+    read to the nanosecond), as tshark -w and editcap keep them; microseconds otherwise.
     Standard input is judged by what it holds already (peek: nothing read), its first interfaces."""
     for path in paths:
         if path == "-":
@@ -119,7 +120,7 @@ def write_units(paths: list[str], stdin: Any = None) -> int:
                 continue
             interfaces = [bus.interface for bus in packet_interfaces(path)] if is_pcapng(head) else []
         units = [MAGICS.get(head[:4], ("", MICROS))[1], *(interface.units for interface in interfaces)]
-        if max(units) > MICROS:
+        if any(unit > MICROS or MICROS % unit for unit in units):
             return NANOS
     return MICROS
 

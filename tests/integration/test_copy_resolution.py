@@ -93,6 +93,30 @@ def test_standard_input_is_judged_by_its_head(tmp_path: Path, source: str) -> No
     assert written.read_bytes()[:4] == NANO_MAGIC and run(written) == LINES  # was 0.010000 and 1.004583
 
 
+def _block(block_type: int, body: bytes) -> bytes:
+    body += bytes(-len(body) % 4)
+    return struct.pack("<II", block_type, 12 + len(body)) + body + struct.pack("<I", 12 + len(body))
+
+
+def test_binary_units_are_copied_in_nanoseconds(tmp_path: Path) -> None:
+    """A pcapng interface in 1/1024 s (if_tsresol 0x8A): read to the nanosecond, which microseconds
+    cannot hold (1025/1024 s is 1.000976562 s: the time column's 1.000977 was 1.000976 in the copy)."""
+    section = _block(0x0A0D0D0A, struct.pack("<IHHq", 0x1A2B3C4D, 1, 0, -1))
+    tsresol = struct.pack("<HHB3x", 9, 1, 0x8A) + struct.pack("<HH", 0, 0)
+    interface = _block(1, struct.pack("<HHI", 147, 0, 65535) + tsresol)
+    start = SECONDS * 1024
+    packets = b"".join(
+        _block(6, struct.pack("<IIIII", 0, ticks >> 32, ticks & 0xFFFFFFFF, len(data), len(data)) + data)
+        for ticks, data in [(start, REQUEST), (start + 11, ANSWER), (start + 1025, ANSWER)])
+    original = tmp_path / "binary.pcapng"
+    original.write_bytes(section + interface + packets)
+    lines = run(original)
+    assert [line.split()[1] for line in lines] == ["0.000000", "0.010742", "1.000977"]
+    written = tmp_path / "copy.pcap"
+    run(original, "-w", written)
+    assert written.read_bytes()[:4] == NANO_MAGIC and run(written) == lines  # was 1.000976
+
+
 def test_a_microsecond_capture_stays_in_microseconds(tmp_path: Path) -> None:
     original = tmp_path / "us.pcap"
     run(nanosecond_pcap(tmp_path / "ns.pcap"), "-w", tmp_path / "first.pcap")
