@@ -4382,9 +4382,10 @@ package.preload["vw3.stream"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, ECHO_CODES, FRAMING, NEED, NOISE = DATA, ECHO_CODES, FRAMING, NEED, NOISE
+local DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, NOISE = DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, NOISE
 local NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
-local awaited, format, interpretations, math, pairs, type = awaited, format, interpretations, math, pairs, type
+local awaited, crc_string_ok, format, interpretations, math = awaited, crc_string_ok, format, interpretations, math
+local pairs, type = pairs, type
 
 -- Functions one module hands to another, in one table (`lane`), defined where their rules are. Among
 -- them the quick lanes (lane.answer, lane.request): a record that is the usual answer to the
@@ -4632,6 +4633,7 @@ local function emit(s, frame, items)
   s.noise_cut = false
   if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
   items[#items + 1] = frame
+  s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
@@ -4668,10 +4670,56 @@ local function cut_reason(kind, got, total)
   end
   return format("%s%s (%s)", FRAMING.cut_answer, kind == RESPONSE and "response" or "exception response", size)
 end
-M.GLITCH, M.add_noise, M.await_answer, M.awaited_reading = GLITCH, add_noise, await_answer, awaited_reading
-M.awaits_answer, M.boundary_at, M.cut_reason, M.emit = awaits_answer, boundary_at, cut_reason, emit
-M.expect_after, M.flush_noise, M.lane, M.not_the_answer = expect_after, flush_noise, lane, not_the_answer
-M.time_at = time_at
+
+-- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
+-- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
+-- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
+local CRC_SEEN_MAX = 32768
+local crc_seen, crc_seen_count = {}, 0
+
+-- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
+local function whole_crc_good(bytes, n)
+  if crc_seen[bytes] then return true end
+  if not crc_string_ok(bytes, n) then return false end
+  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
+  crc_seen[bytes] = true
+  crc_seen_count = crc_seen_count + 1
+  return true
+end
+
+-- A repeated pattern (a line stuck on one value, a babbling device) makes every position a possible frame
+-- start weighed in full: where the bytes repeat with a period, a position whose window (the most a decision
+-- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
+-- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
+-- from i (at most `stop`) and the index before which trying again finds no more.
+local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
+local function repeats(s, b, i, since, n, stop)
+  local from, period = i - REPEAT_PROBE, nil
+  for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
+    local k = 0
+    while k < REPEAT_PROBE and b[from + k] == b[from - p + k] do k = k + 1 end
+    if k == REPEAT_PROBE then
+      period = p
+      break
+    end
+  end
+  if period == nil then return i, i + 4 * REPEAT_PROBE end
+  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at >= first and at < limit then limit = at end
+  end
+  local stop_at = i
+  while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
+  local last = stop_at - REPEAT_WINDOW
+  if last < i then return i, math.max(i + 1, stop_at) end
+  if last + 1 >= stop then return stop, stop end
+  return last + 1, stop_at
+end
+M.GLITCH, M.REPEAT_PROBE, M.add_noise, M.await_answer = GLITCH, REPEAT_PROBE, add_noise, await_answer
+M.awaited_reading, M.awaits_answer, M.boundary_at = awaited_reading, awaits_answer, boundary_at
+M.cut_reason, M.emit, M.expect_after, M.flush_noise, M.lane = cut_reason, emit, expect_after, flush_noise, lane
+M.not_the_answer, M.repeats, M.time_at, M.whole_crc_good = not_the_answer, repeats, time_at, whole_crc_good
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -4682,12 +4730,12 @@ package.preload["vw3.rtu"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE
-local MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST = MIN_ADU, NEED, NONE, NO_INTERPRETATION, REQUEST
-local RESPONSE, add_noise, awaited, awaited_reading = RESPONSE, add_noise, awaited, awaited_reading
-local boundary_at, crc16, crc_ok_at, crc_scan = boundary_at, crc16, crc_ok_at, crc_scan
-local crc_string_ok, cut_reason, emit, interpretations = crc_string_ok, cut_reason, emit, interpretations
-local math, not_the_answer, pairs, possible_start, table = math, not_the_answer, pairs, possible_start, table
-local time_at = time_at
+local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
+local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
+local add_noise, awaited, awaited_reading, boundary_at = add_noise, awaited, awaited_reading, boundary_at
+local crc16, crc_ok_at, crc_scan, cut_reason, emit = crc16, crc_ok_at, crc_scan, cut_reason, emit
+local interpretations, math, not_the_answer, pairs = interpretations, math, not_the_answer, pairs
+local possible_start, repeats, table, time_at = possible_start, repeats, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
@@ -4777,7 +4825,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
 end
 
 -- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
--- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
+-- still to come may tell (bounded.py _intact_inside): deciding before they come made the answer depend on where
 -- the input was cut.
 local function intact_inside(s, b, i, length, n, final)
   local found = false
@@ -4799,7 +4847,7 @@ local function record_start(s, i)
 end
 
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
--- say no frame it holds crosses its record's end: one is not waited for (rtu.py _framed_inside).
+-- say no frame it holds crosses its record's end: one is not waited for (bounded.py _framed_inside).
 local function framed_inside(s, b, i, length, n, final)
   local stop = i + length
   local bounded = boundary_at(s, stop) and (record_start(s, i) or (n - stop >= MIN_ADU and ends_record(s, b, stop, n)))
@@ -5100,58 +5148,51 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   }
 end
 
+-- A bound (bounded.py _bounded_start): a record's start or end, a silence, the end of the last frame.
+local function bounded_start(s, i)
+  return boundary_at(s, i) or record_start(s, i) or s.framed_end == s.base + i
+end
+
+-- Does a layout at i whose length the bytes up to n hold check out (bounded.py _checks_out): an answer nobody
+-- asked for, shorter than a request, or cut before its request reading's byte count? (Unlike valid_frame_at, a
+-- request reading still without its length does not stop the others.)
+local function checks_out(s, b, i, n)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    if not is_scan and length >= MIN_ADU and length <= n - i and crc_ok_at(b, i, length) then return true end
+    if fallback ~= nil then is_scan, length = true, fallback end -- (its rule's CRC scan)
+    if is_scan and crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
+  end
+  return false
+end
+
+-- At the end of the input, where no answer awaited begins (cut_answer weighs that one): do the bytes from i, from
+-- a bound, begin a request whose length the table knows (or whose count has not come), cut by the end of the
+-- capture (the next poll: bounded.py _cut_request)? The reason, or nil.
+local function cut_request(s, b, i, n)
+  if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
+  local slave, code = b[i], b[i + 1]
+  if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
+  local list = interpretations(s, slave, code, b, i, n)
+  for index = 1, #list do
+    if list[index][1] == REQUEST then
+      local length, is_scan, _, fallback = list[index][2](b, i, n)
+      if is_scan or fallback ~= nil or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
+        return nil
+      end
+      if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
+      return cut_reason(REQUEST, n - i, length)
+    end
+  end
+  return nil
+end
+
 -- The interpretation the fast paths try at a frame start: the likeliest, unless it is an exception
 -- nobody awaits (those are weighed by match). nil: no fast path here.
 local function fast_interpretation(s, first, slave, code)
   if first ~= nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then return first end
   return nil
-end
-
--- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
--- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
--- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
-local CRC_SEEN_MAX = 32768
-local crc_seen, crc_seen_count = {}, 0
-
--- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
-local function whole_crc_good(bytes, n)
-  if crc_seen[bytes] then return true end
-  if not crc_string_ok(bytes, n) then return false end
-  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
-  crc_seen[bytes] = true
-  crc_seen_count = crc_seen_count + 1
-  return true
-end
-
--- A repeated pattern (a line stuck on one value, a babbling device) makes every position a possible frame
--- start weighed in full: where the bytes repeat with a period, a position whose window (the most a decision
--- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
--- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
--- from i (at most `stop`) and the index before which trying again finds no more.
-local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
-local NOISE_ITEM_MAX = FRAMING.noise_item_max
-local function repeats(s, b, i, since, n, stop)
-  local from, period = i - REPEAT_PROBE, nil
-  for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
-    local k = 0
-    while k < REPEAT_PROBE and b[from + k] == b[from - p + k] do k = k + 1 end
-    if k == REPEAT_PROBE then
-      period = p
-      break
-    end
-  end
-  if period == nil then return i, i + 4 * REPEAT_PROBE end
-  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= first and at < limit then limit = at end
-  end
-  local stop_at = i
-  while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
-  local last = stop_at - REPEAT_WINDOW
-  if last < i then return i, math.max(i + 1, stop_at) end
-  if last + 1 >= stop then return stop, stop end
-  return last + 1, stop_at
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -5161,7 +5202,7 @@ local function run_rtu(s, final, items)
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
-      add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
+      add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
       return n
     end
     local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
@@ -5198,7 +5239,7 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == nil then
-        local cut = final and cut_answer(s, b, i, n)
+        local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
         if cut then
           add_noise(s, i, n, cut, items)
           return n
@@ -5228,7 +5269,6 @@ local function run_rtu(s, final, items)
   return i
 end
 M.answered, M.fast_interpretation, M.rtu_frame, M.run_rtu = answered, fast_interpretation, rtu_frame, run_rtu
-M.whole_crc_good = whole_crc_good
 end
 
 -- ---- vw3.ascii: lua/src/ascii.lua ----

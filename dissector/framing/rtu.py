@@ -63,6 +63,7 @@ from __future__ import annotations
 
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
+from dissector.framing.bounded import Bounded
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
@@ -122,7 +123,7 @@ REPEAT_WINDOW = 3 * MAX_ADU
 REPEAT_PROBE = 16  # bytes the period is found by (the last ones decided, found again up to MAX_ADU back)
 
 
-class RtuFramer(Awaiting, StreamFramer):
+class RtuFramer(Bounded, Awaiting, StreamFramer):
     """Push parser: feed chunks, collect items. Items come out in stream order, unnumbered."""
 
     mode = "rtu"
@@ -202,29 +203,6 @@ class RtuFramer(Awaiting, StreamFramer):
     def _shortest_crc(buf: bytearray, i: int, n: int, minimum: int) -> int:
         lengths = crc_lengths(buf, i, minimum, min(n - i, MAX_ADU))
         return lengths[0] if lengths else 0
-
-    def _intact_inside(self, buf: bytearray, i: int, length: int, n: int, final: bool) -> bool | None:
-        """Does a frame with a length rule and a good CRC start inside bytes i..i+length? None when
-        bytes still to come may tell: a layout starting inside ends past the bytes buffered (deciding
-        before they come made the answer depend on where the input was cut)."""
-        undecided = False
-        for j in range(i + 1, i + length):
-            found = self._valid_frame_at(buf, j, n, final, scan=False)
-            if found:
-                return True
-            undecided = undecided or found is None
-        return None if undecided else False
-
-    def _framed_inside(self, buf: bytearray, i: int, length: int, n: int, final: bool) -> bool | None:
-        """_intact_inside, where records that are frames (a record that is this one, or the next one a frame:
-        _ends_record) say no frame it holds crosses its record's end: one is not waited for (which held every
-        later record in the plugin's one pass). A record's end alone does not say it: a USB adapter's reads end
-        anywhere (bench/noise_accuracy.py, bursts)."""
-        end = i + length
-        bounded = self._boundary_at(end) and (
-            self._record_starts_at(i) or (n - end >= MIN_ADU and self._ends_record(buf, end, n))
-        )
-        return self._intact_inside(buf, i, length, end if bounded else n, final or bounded)
 
     def _scan(self, buf: bytearray, i: int, n: int, minimum: int, final: bool) -> int:
         """A frame without a length rule: the shortest CRC match that the line confirms (_followed:
@@ -492,7 +470,7 @@ class RtuFramer(Awaiting, StreamFramer):
             if i >= paused_from:
                 break
             if n - i < MIN_ADU:
-                self._add_noise(i, n, self._cut_answer(buf, i, n) or TOO_SHORT, items)
+                self._add_noise(i, n, self._cut_tail(buf, i, n) or TOO_SHORT, items)
                 i = n
                 break
             # (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
@@ -554,7 +532,7 @@ class RtuFramer(Awaiting, StreamFramer):
                         i += length
                         continue
             if final:
-                cut = self._cut_answer(buf, i, n)
+                cut = self._cut_tail(buf, i, n)
                 if cut is not None:
                     self._add_noise(i, n, cut, items)
                     i = n

@@ -76,6 +76,7 @@ class StreamFramer(ABC):
         self._answer: int | None = None
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
+        self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
 
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
@@ -145,6 +146,8 @@ class StreamFramer(ABC):
         self._answer = None
         self._glitches_only = True
         self._noise_cut = False
+        # (the engine leaves the stream idle right after a frame it took, unless it took none)
+        self._framed_end = offset if offset else -1
 
     def take_over(self, offset: int, expect: tuple[int, int] | None, chunk_start: int, chunk: Chunk) -> None:
         """restart_at(offset) inside `chunk`, which starts at stream offset chunk_start: the bytes of it
@@ -291,6 +294,7 @@ class StreamFramer(ABC):
             self._answer = answer_length(frame)
         else:
             self._expect = None
+        self._framed_end = frame.offset + len(frame.raw)
 
     def _flush_noise(self, items: list[Item]) -> None:
         if self._noise:

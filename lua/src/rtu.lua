@@ -92,7 +92,7 @@ local function valid_frame_at(s, b, i, n, final, scan)
 end
 
 -- Does a frame with a length rule and a good CRC start inside the bytes i .. i + length - 1? nil when bytes
--- still to come may tell (rtu.py _intact_inside): deciding before they come made the answer depend on where
+-- still to come may tell (bounded.py _intact_inside): deciding before they come made the answer depend on where
 -- the input was cut.
 local function intact_inside(s, b, i, length, n, final)
   local found = false
@@ -114,7 +114,7 @@ local function record_start(s, i)
 end
 
 -- intact_inside, where records that are frames (a record that is this one, or the next one a frame: ends_record)
--- say no frame it holds crosses its record's end: one is not waited for (rtu.py _framed_inside).
+-- say no frame it holds crosses its record's end: one is not waited for (bounded.py _framed_inside).
 local function framed_inside(s, b, i, length, n, final)
   local stop = i + length
   local bounded = boundary_at(s, stop) and (record_start(s, i) or (n - stop >= MIN_ADU and ends_record(s, b, stop, n)))
@@ -415,58 +415,51 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   }
 end
 
+-- A bound (bounded.py _bounded_start): a record's start or end, a silence, the end of the last frame.
+local function bounded_start(s, i)
+  return boundary_at(s, i) or record_start(s, i) or s.framed_end == s.base + i
+end
+
+-- Does a layout at i whose length the bytes up to n hold check out (bounded.py _checks_out): an answer nobody
+-- asked for, shorter than a request, or cut before its request reading's byte count? (Unlike valid_frame_at, a
+-- request reading still without its length does not stop the others.)
+local function checks_out(s, b, i, n)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    local length, is_scan, _, fallback = list[index][2](b, i, n)
+    if not is_scan and length >= MIN_ADU and length <= n - i and crc_ok_at(b, i, length) then return true end
+    if fallback ~= nil then is_scan, length = true, fallback end -- (its rule's CRC scan)
+    if is_scan and crc_scan(b, i, length, math.min(n - i, MAX_ADU)) > 0 then return true end
+  end
+  return false
+end
+
+-- At the end of the input, where no answer awaited begins (cut_answer weighs that one): do the bytes from i, from
+-- a bound, begin a request whose length the table knows (or whose count has not come), cut by the end of the
+-- capture (the next poll: bounded.py _cut_request)? The reason, or nil.
+local function cut_request(s, b, i, n)
+  if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
+  local slave, code = b[i], b[i + 1]
+  if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
+  local list = interpretations(s, slave, code, b, i, n)
+  for index = 1, #list do
+    if list[index][1] == REQUEST then
+      local length, is_scan, _, fallback = list[index][2](b, i, n)
+      if is_scan or fallback ~= nil or (length ~= NEED and not (n - i < length and length <= MAX_ADU)) then
+        return nil
+      end
+      if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
+      return cut_reason(REQUEST, n - i, length)
+    end
+  end
+  return nil
+end
+
 -- The interpretation the fast paths try at a frame start: the likeliest, unless it is an exception
 -- nobody awaits (those are weighed by match). nil: no fast path here.
 local function fast_interpretation(s, first, slave, code)
   if first ~= nil and (first[1] ~= EXCEPTION or s.expect == slave * 256 + code % 128) then return first end
   return nil
-end
-
--- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
--- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
--- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
-local CRC_SEEN_MAX = 32768
-local crc_seen, crc_seen_count = {}, 0
-
--- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
-local function whole_crc_good(bytes, n)
-  if crc_seen[bytes] then return true end
-  if not crc_string_ok(bytes, n) then return false end
-  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
-  crc_seen[bytes] = true
-  crc_seen_count = crc_seen_count + 1
-  return true
-end
-
--- A repeated pattern (a line stuck on one value, a babbling device) makes every position a possible frame
--- start weighed in full: where the bytes repeat with a period, a position whose window (the most a decision
--- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
--- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
--- from i (at most `stop`) and the index before which trying again finds no more.
-local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
-local NOISE_ITEM_MAX = FRAMING.noise_item_max
-local function repeats(s, b, i, since, n, stop)
-  local from, period = i - REPEAT_PROBE, nil
-  for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
-    local k = 0
-    while k < REPEAT_PROBE and b[from + k] == b[from - p + k] do k = k + 1 end
-    if k == REPEAT_PROBE then
-      period = p
-      break
-    end
-  end
-  if period == nil then return i, i + 4 * REPEAT_PROBE end
-  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
-  for offset in pairs(s.boundaries) do
-    local at = offset - base
-    if at >= first and at < limit then limit = at end
-  end
-  local stop_at = i
-  while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
-  local last = stop_at - REPEAT_WINDOW
-  if last < i then return i, math.max(i + 1, stop_at) end
-  if last + 1 >= stop then return stop, stop end
-  return last + 1, stop_at
 end
 
 -- Frame what the buffer holds (rtu.py _run): items in stream order; the index of the first byte left.
@@ -476,7 +469,7 @@ local function run_rtu(s, final, items)
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
-      add_noise(s, i, n, cut_answer(s, b, i, n) or TOO_SHORT, items)
+      add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
       return n
     end
     local stop = i -- (noise to stop: a repetition decided before, or bytes no frame starts at)
@@ -513,7 +506,7 @@ local function run_rtu(s, final, items)
         end
       end
       if kind == nil then
-        local cut = final and cut_answer(s, b, i, n)
+        local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
         if cut then
           add_noise(s, i, n, cut, items)
           return n

@@ -250,6 +250,7 @@ local function emit(s, frame, items)
   s.noise_cut = false
   if s.times[3] ~= nil then inner_gaps(s, frame) end -- (a frame of one record has no silence inside)
   items[#items + 1] = frame
+  s.framed_end = frame.offset + frame.length -- (a bound: bounded.py _bounded_start)
   expect_after(s, frame)
   if ECHO_CODES[frame.fn] then await_echo(s, frame) end -- (what its answer must repeat, _await_after)
 end
@@ -285,4 +286,50 @@ local function cut_reason(kind, got, total)
     return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
   end
   return format("%s%s (%s)", FRAMING.cut_answer, kind == RESPONSE and "response" or "exception response", size)
+end
+
+-- Records that are one frame with a good CRC, by their bytes (a Lua string: interned, or hashed once,
+-- so a look-up is cheap): a polling bus sends the same requests every cycle, and the CRC costs most of
+-- the framing. A verdict depends on the bytes alone. Bounded: a new table after CRC_SEEN_MAX records.
+local CRC_SEEN_MAX = 32768
+local crc_seen, crc_seen_count = {}, 0
+
+-- Does a record's string (n bytes) hold one frame with a good CRC (feed_whole, the quick lanes)?
+local function whole_crc_good(bytes, n)
+  if crc_seen[bytes] then return true end
+  if not crc_string_ok(bytes, n) then return false end
+  if crc_seen_count >= CRC_SEEN_MAX then crc_seen, crc_seen_count = {}, 0 end
+  crc_seen[bytes] = true
+  crc_seen_count = crc_seen_count + 1
+  return true
+end
+
+-- A repeated pattern (a line stuck on one value, a babbling device) makes every position a possible frame
+-- start weighed in full: where the bytes repeat with a period, a position whose window (the most a decision
+-- reads: REPEAT_WINDOW) lies in the repetition decides as the one a period before it did, under the same
+-- state (rtu.py _repeats). Positions since .. i - 1 were noise under the state of now: the end of the noise
+-- from i (at most `stop`) and the index before which trying again finds no more.
+local REPEAT_WINDOW, REPEAT_PROBE = FRAMING.repeat_window, FRAMING.repeat_probe
+local function repeats(s, b, i, since, n, stop)
+  local from, period = i - REPEAT_PROBE, nil
+  for p = 1, math.min(MAX_ADU, from - since) do -- (the nearest: the last bytes found again)
+    local k = 0
+    while k < REPEAT_PROBE and b[from + k] == b[from - p + k] do k = k + 1 end
+    if k == REPEAT_PROBE then
+      period = p
+      break
+    end
+  end
+  if period == nil then return i, i + 4 * REPEAT_PROBE end
+  local first, limit, base = i - period, math.min(n, stop + REPEAT_WINDOW), s.base
+  for offset in pairs(s.boundaries) do
+    local at = offset - base
+    if at >= first and at < limit then limit = at end
+  end
+  local stop_at = i
+  while stop_at < limit and b[stop_at] == b[stop_at - period] do stop_at = stop_at + 1 end
+  local last = stop_at - REPEAT_WINDOW
+  if last < i then return i, math.max(i + 1, stop_at) end
+  if last + 1 >= stop then return stop, stop end
+  return last + 1, stop_at
 end
