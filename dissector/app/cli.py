@@ -147,7 +147,8 @@ class Sinks:
                 raise UsageError(str(error)) from None
             except OSError as error:
                 raise UsageError(f"-w {args.write}: {error.strerror or error}") from None
-        self.speed_lost = False  # the warning that pcap loses a description's line speed was given
+        # The warnings that pcap loses a description's line speed, and a pcapng's buses apart, were given.
+        self.speed_lost = self.buses_joined = False
         self.extra: dict[str, object] | None = None
         self.frames_left: int | None = args.count  # -c: items (frames and noise runs) still to show
         self.wrote: str | None = None  # the report written (said last, on a terminal)

@@ -158,6 +158,15 @@ def keep_interface(sinks: Any, args: DecodeOptions, env: Any, path: str | None,
             f"{line.baud} baud of {name} is not kept (write pcapng, -F pcapng, to keep it; or read it back "
             f"with --baud {line.baud})\n"
         )
+    if sinks.pcap.format == "pcap" and bus is not None and not sinks.buses_joined:
+        # Its buses' records one after the other in one stream: its decode pairs one bus's frames with
+        # another's, where the input's decode keeps each bus apart (sources/interfaces.py).
+        sinks.buses_joined = True
+        env.stderr.write(
+            f"{PROG}: warning: -w {shown(args.write)}: pcap has no interfaces: the buses of "
+            f"{shown(path or '')} are written one after the other as one stream, which decodes as one bus "
+            "(write pcapng, -F pcapng, to keep them apart)\n"
+        )
 
 
 class CopyEnd:

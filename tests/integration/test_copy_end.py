@@ -140,6 +140,28 @@ def test_another_interface_is_the_end(tmp_path: Path) -> None:
     assert run(written) == [line.replace(str(path), str(written)) for line in decoded]
 
 
+def test_a_pcap_copy_of_two_buses_says_it_joins_them(tmp_path: Path) -> None:
+    """pcap has no interfaces: the copy holds bus A's records, then bus B's, one stream that decodes as one
+    bus (B's request after A's, time going back). Said once, as the line speed pcap loses is (was silent)."""
+    path = tmp_path / "two.pcapng"
+    with path.open("wb") as stream:
+        writer = PcapngWriter(stream, flush=False, if_name="A")
+        for name, data, micros in [("A", REQUEST, 0), ("B", REQUEST, 500_000), ("A", ANSWER, 10_000)]:
+            writer.use_interface(name, None)
+            writer.write(data, Stamp((T0 + micros) * 1000))
+    written = tmp_path / "joined.pcap"
+    done = subprocess.run([sys.executable, "-m", "dissector", "-n", str(path), "-w", str(written)], cwd=ROOT,
+                          capture_output=True, text=True, timeout=120)
+    assert (done.returncode, done.stdout) == (0, "")
+    assert done.stderr == (
+        f"vw3-decode: warning: -w {written}: pcap has no interfaces: the buses of {path} are written one "
+        "after the other as one stream, which decodes as one bus (write pcapng, -F pcapng, to keep them "
+        "apart)\n")
+    assert [data for _time, data in read_pcap(written)] == [REQUEST, ANSWER, REQUEST]
+    assert run(tmp_path / "joined.pcap")[2].startswith("     3     0.500000   1 request ")
+    assert run(path, "-w", tmp_path / "kept.pcapng") == []  # (run: no warning for pcapng)
+
+
 def test_a_frame_ends_in_its_last_line(tmp_path: Path) -> None:
     """A hex dump's last request in two timed lines, 300 ms apart: the capture ends at its second line
     (hexdump.StampedLines), in the copy too, where it is one record at its first byte's time."""
