@@ -94,9 +94,9 @@ function proto.init()
   -- tree, so the RTAC header is read by a pass-through in front of Wireshark's own RTAC dissector.
   rtac_times = {}
   apply_prefs()
-  -- Streams of records: the serial capture's (state), one per UDP conversation, one per TCP connection
-  -- (with the records of each TCP call: dissector.lua).
+  -- Streams of records: the serial capture's (state); the others (one per UDP conversation, one per TCP
+  -- connection, one per further interface: dissector.lua) in udp_states, which the first pass's end finishes.
   state = stream_state()
-  udp_states, tcp_states, tcp_records, tcp_call = {}, {}, {}, { number = -1, index = 0 }
+  udp_states = {}
   record_streams = {} -- (each record's stream, where interfaces are told apart: dissector.lua serial_state)
 end
