@@ -74,6 +74,9 @@ typedef struct {
     size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
     uint8_t tables[256];          /* stats_store.TABLES: each function code's register table */
+    PyObject *device_tables;      /* stats_store.slave_tables: slave -> its device's tables (bytes), or NULL */
+    PyObject *slave_tables[256];  /* owned: each slave's, asked of device_tables with the slave's namer below */
+    PyObject *tables_namer[256];  /* owned: that namer (the engine's Slave gets a new one with a new device) */
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
@@ -174,8 +177,31 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
     return changed;
 }
 
-static int words_event(Stats *st, Slave *s, int slave, int function, const Words *w, int event) {
-    int table = st->tables[function];
+/* The table of a code's registers on the slave's device (Stats.device_tables; else the protocol's), asked
+ * again when the slave's namer is another (its device changed: profile `auto`); -1: an error. */
+static int slave_table(Stats *st, Slave *s, int slave, int function) {
+    if (st->device_tables == NULL) return st->tables[function];
+    if (st->slave_tables[slave] == NULL || st->tables_namer[slave] != s->namer) {
+        PyObject *tables = PyObject_CallFunction(st->device_tables, "i", slave);
+        if (tables == NULL) return -1;
+        if (!PyBytes_Check(tables) || PyBytes_GET_SIZE(tables) != 256) {
+            Py_DECREF(tables);
+            PyErr_SetString(PyExc_TypeError, "device tables: 256 bytes, a table each code");
+            return -1;
+        }
+        for (int k = 0; k < 256; k++)
+            if ((uint8_t)PyBytes_AS_STRING(tables)[k] >= PARAM_TABLES) {
+                Py_DECREF(tables);
+                PyErr_SetString(PyExc_ValueError, "device tables: 0..7 each");
+                return -1;
+            }
+        Py_XSETREF(st->slave_tables[slave], tables);
+        Py_XSETREF(st->tables_namer[slave], Py_XNewRef(s->namer));
+    }
+    return (uint8_t)PyBytes_AS_STRING(st->slave_tables[slave])[function];
+}
+
+static int words_event(Stats *st, Slave *s, int slave, int table, const Words *w, int event) {
     for (unsigned k = 0; k < w->count; k++) {
         unsigned address = words_address(w, k);
         int mapped = bit(s->mapped, address);
@@ -244,8 +270,9 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
     Words written; /* the writes a normal answer confirms (data/modbus.toml [confirm]): counted and drawn */
     const Words *confirmed =
         answer != NULL && !(answer[1] & 0x80) && confirmed_writes(answer, writes, &written) ? &written : NULL;
-    if (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
-                                                    st->tables[function]) < 0)
+    int table = slave_table(st, s, slave, function);
+    if (table < 0 || (st->report != NULL && report_transaction(st->report, s, b, qf, af, confirmed, reads, number,
+                                                                  table) < 0))
         return -1;
     Time qt = stamp_time(qf->timed, qf->ns);
     stats_seen(&st->bus, &qt);
@@ -271,16 +298,16 @@ static int count_transaction(Stats *st, Slave *s, const uint8_t *b, const FrameR
         (answer == NULL && tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_UNANSWERED, 1) < 0) ||
         poll_request(st, &key, number, answer == NULL, &qt) < 0)
         return -1;
-    if (writes != NULL && words_event(st, s, slave, function, writes, EVENT_WRITE) < 0) return -1;
+    if (writes != NULL && words_event(st, s, slave, table, writes, EVENT_WRITE) < 0) return -1;
     if (answer == NULL) return 0;
     if (answer[1] & 0x80) { /* an exception: counted by its code */
         if (tally_add(st->tallies, TALLY_COUNTS, owner, answer[2], 1) < 0) return -1;
         poll_fail(st, &key);
-        return writes != NULL ? words_event(st, s, slave, function, writes, EVENT_REFUSED) : 0;
+        return writes != NULL ? words_event(st, s, slave, table, writes, EVENT_REFUSED) : 0;
     }
     if (tally_add(st->tallies, TALLY_COUNTS, owner, COUNT_RESPONSES, 1) < 0) return -1;
-    if (confirmed != NULL && words_event(st, s, slave, function, confirmed, EVENT_CONFIRM) < 0) return -1;
-    return reads != NULL && reads->count ? words_event(st, s, slave, function, reads, EVENT_READ) : 0;
+    if (confirmed != NULL && words_event(st, s, slave, table, confirmed, EVENT_CONFIRM) < 0) return -1;
+    return reads != NULL && reads->count ? words_event(st, s, slave, table, reads, EVENT_READ) : 0;
 }
 
 /* ---- the Python object ------------------------------------------------------------------------- */
@@ -294,6 +321,11 @@ static void stats_dealloc(Stats *st) {
         Py_XDECREF(p->status);
     }
     Py_XDECREF(st->report);
+    Py_XDECREF(st->device_tables);
+    for (int k = 0; k < 256; k++) {
+        Py_XDECREF(st->slave_tables[k]);
+        Py_XDECREF(st->tables_namer[k]);
+    }
     dense_free(&st->params);
     dense_free(&st->polls);
     for (int k = 0; k < TALLIES; k++) dense_free(&st->tallies[k].d);
@@ -733,17 +765,25 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
                          "spanned", b->spanned);
 }
 
-/* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY, tables=b""): the poll table follows at
+/* Stats(max_keys, max_params=MAX_PARAMETERS, max_tally=MAX_TALLY, tables=b"", device_tables=None): the poll
+ * table follows at
  * most max_keys request keys (stats_store.MAX_KEYS), the parameter table keeps at most max_params parameters
  * (MAX_PARAMETERS), each kind of histogram but the load per minute at most max_tally entries (MAX_TALLY,
- * _bus.h Tallies); `tables`: each function code's register table (stats_store.TABLES; missing: 0). */
+ * _bus.h Tallies); `tables`: each function code's register table (stats_store.TABLES; missing: 0);
+ * `device_tables`: slave -> its device's tables instead (stats_store.slave_tables), None: `tables`. */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"max_keys", "max_params", "max_tally", "tables", NULL};
+    static char *keywords[] = {"max_keys", "max_params", "max_tally", "tables", "device_tables", NULL};
     Py_ssize_t max_keys, max_params = MAX_PARAMETERS, max_tally = MAX_TALLY, size = 0;
     const char *tables = NULL;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nny#", keywords, &max_keys, &max_params, &max_tally, &tables,
-                                     &size))
+    PyObject *device_tables = Py_None;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "n|nny#O", keywords, &max_keys, &max_params, &max_tally, &tables,
+                                     &size, &device_tables))
         return -1;
+    if (device_tables != Py_None && !PyCallable_Check(device_tables)) {
+        PyErr_SetString(PyExc_TypeError, "device_tables: slave -> bytes, or None");
+        return -1;
+    }
+    Py_XSETREF(st->device_tables, device_tables == Py_None ? NULL : Py_NewRef(device_tables));
     if (max_keys < 0 || max_params < 0 || max_tally < 0 || size > 256) {
         PyErr_SetString(PyExc_ValueError, "max_keys, max_params and max_tally must be >= 0, tables 256 at most");
         return -1;

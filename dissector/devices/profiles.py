@@ -36,6 +36,9 @@ AUTO = "auto"  # not a profile: each slave gets one from evidence in the capture
 DEFAULT_PROFILE = AUTO
 FALLBACK_PROFILE = "generic"  # what `auto` gives a slave until evidence arrives
 ADDRESS_STYLES = ("plc", "protocol")
+# What FC4 (Read Input Registers) reads: input registers, a table of their own (Application Protocol 4.3:
+# FC4's register 5 is not FC3's), or the holding registers, as FC3 does (one table: the ATV71's card).
+INPUT_REGISTERS = ("separate", "holding")
 _WHEN = ("quantity", "byte_count")
 
 
@@ -73,6 +76,7 @@ class Profile:
     inner_only: frozenset[int] = frozenset()
     broadcast: frozenset[int] | None = None
     protected_value: int | None = None
+    input_registers: str = "separate"  # INPUT_REGISTERS: FC4's registers a table of their own, or the holding ones
     all_protected_exception: int | None = None
     limits: dict[int, tuple[int, ...]] = field(default_factory=dict)
     exceptions: dict[int, str] = field(default_factory=dict)
@@ -219,7 +223,8 @@ def _bits_depend(reader: _Reader, data: dict[str, Any]) -> tuple[BitsDepend, ...
 _KNOWN_KEYS = frozenset(
     [
         "name", "title", "device", "map", "address_style", "functions", "inner_only", "broadcast",
-        "protected_value", "all_protected_exception", "limits", "exceptions", "exception_causes",
+        "protected_value", "input_registers", "all_protected_exception", "limits", "exceptions",
+        "exception_causes",
         "diagnostics", "subfunctions", "diagnostic_constants", "objects", "function_names", "plc_base", "bits_depend", "identify",
     ]
 )
@@ -267,6 +272,9 @@ def parse_profile(text: str, origin: str) -> Profile:
         raise reader.fail("[identify] traffic_fit must be true or false")
     protected = data.get("protected_value")
     all_protected = data.get("all_protected_exception")
+    input_registers = reader.string(data, "input_registers", INPUT_REGISTERS[0])
+    if input_registers not in INPUT_REGISTERS:
+        raise reader.fail(f"input_registers {input_registers!r} is not one of {', '.join(INPUT_REGISTERS)}")
     return Profile(
         name=name,
         title=reader.string(data, "title") or name,
@@ -278,6 +286,7 @@ def parse_profile(text: str, origin: str) -> Profile:
         inner_only=reader.codes(data, "inner_only") or frozenset(),
         broadcast=reader.codes(data, "broadcast"),
         protected_value=None if protected is None else reader.integer(protected, "protected_value"),
+        input_registers=input_registers,  # type: ignore[arg-type]
         all_protected_exception=(
             None if all_protected is None
             else reader.integer(all_protected, "all_protected_exception", 0, 255)

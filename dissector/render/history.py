@@ -22,7 +22,8 @@ follows no memory, known only when and_mask is 0: or_mask); where that value is 
 counted and its parameter's state stays as it was, as for a write nothing confirmed.
 A parameter is a register of one table (Application Protocol 4.3: FC4 reads input registers, FC3/6/16/22/23
 holding registers: stats_store.register_table), so input register 5 and holding register 5 are two
-(kept by slave, address and table).
+(kept by slave, address and table), unless the slave's device reads both with one table (profile
+input_registers "holding", the ATV71: FC4's 8401 is FC3's CHCF; stats_store.device_tables).
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 
@@ -65,7 +66,7 @@ from dissector.model import Frame, Item, Kind, Register
 from dissector.protocol.rules import Confirm, confirmed_by
 from dissector.protocol.table import confirmed_registers, register_reads, register_writes
 from dissector.render.stats_store import (
-    CONFIRM, READ, REFUSED, UNREADABLE, WRITE, WRITE_OBSERVED, new_store, register_table,
+    CONFIRM, READ, REFUSED, TABLES, UNREADABLE, WRITE, WRITE_OBSERVED, new_store, slave_tables,
 )
 
 __all__ = [
@@ -101,7 +102,9 @@ class ProvisionalListener(Listener, Protocol):
 
 class History:
     def __init__(self, annotate: object = None, store: Any = None) -> None:
-        self.store = new_store(wide_maps(annotate)) if store is None else store
+        # slave -> each code's register table on its device now (its FC4 may read the holding registers)
+        self.tables: Callable[[int], bytes] = slave_tables(annotate) or (lambda slave: TABLES)
+        self.store = new_store(wide_maps(annotate), slave_tables(annotate)) if store is None else store
         self.registers_without_address = 0
         # Registers that are one word of a 32-bit map row whose other word is not in their frame.
         self.half_values = 0
@@ -279,7 +282,7 @@ class History:
             return
         param = self.store.param
         slave = frame.slave
-        table = register_table(frame.function)
+        table = self.tables(slave)[frame.function]
         registers = self._values(slave, registers)
         listeners = self.listeners if event in (CONFIRM, WRITE_OBSERVED) else None
         for register in registers:
@@ -300,7 +303,7 @@ class History:
         # The hot loop of --stats: one store call a register.
         param = self.store.param
         slave = frame.slave
-        table = register_table(frame.function)
+        table = self.tables(slave)[frame.function]
         registers = self._values(slave, registers)
         listeners = self.listeners
         for register in registers:

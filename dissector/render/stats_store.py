@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import os
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from itertools import chain
 from dataclasses import dataclass
 from typing import Any
@@ -71,6 +71,7 @@ ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int, int]
 # are tables of their own; FC4's register 5 is not FC3's): the PLC reference class its code's registers
 # are in, as data/modbus.toml [plc_references] states it (FC4: 30001, 3X), else holding registers (4X).
 # Holding registers are 0: a store's parameter of no table given (the compiled store's default too).
+# A device may read both with one table (profile input_registers "holding": device_tables).
 HOLDING_REGISTERS, INPUT_REGISTERS = 0, 1
 
 
@@ -81,6 +82,20 @@ def register_table(function: int) -> int:
 
 # Each code's table, as the compiled store takes them (_stats.h Stats.tables).
 TABLES = bytes(register_table(code) for code in range(256))
+# ... on a device whose FC4 reads its holding registers (profile input_registers "holding": the ATV71).
+ONE_TABLE = bytes(HOLDING_REGISTERS for _code in range(256))
+
+
+def device_tables(profile: Any) -> bytes:
+    """Each code's register table on a slave of this profile (None: the protocol's, TABLES)."""
+    return ONE_TABLE if getattr(profile, "input_registers", None) == "holding" else TABLES
+
+
+def slave_tables(annotate: object) -> Callable[[int], bytes] | None:
+    """slave -> each code's register table on the slave's device now (device_tables); None without devices
+    (the protocol's tables). The device may change under profile `auto`: asked again each time."""
+    device = getattr(annotate, "device", None)
+    return None if device is None else lambda slave: device_tables(device(slave).profile)
 # Each table as --stats names it (its --json `table`; the text marks an input register's address so).
 TABLE_NAMES = {HOLDING_REGISTERS: "holding", INPUT_REGISTERS: "input"}
 
@@ -278,11 +293,12 @@ def stamp(time: tuple[float, int | None] | None) -> float | None:
     return time[0] if time[1] is None else Stamp(time[1])
 
 
-def new_store(wide: bool = False) -> Any:
+def new_store(wide: bool = False, tables: Callable[[int], bytes] | None = None) -> Any:
     """The compiled store when the extension is built (and VW3_PURE_PYTHON is not set); the Python one when
     `wide`, the run's maps having 32-bit rows: their values are word pairs, and the compiled store keeps a
     16-bit word a parameter (_stats.h Param.last), so --stats and --report are then counted by the Python
-    stages (StatsCollector.engine_store: the engine counts only into a compiled store)."""
+    stages (StatsCollector.engine_store: the engine counts only into a compiled store). `tables`: each
+    slave's (slave_tables), which the compiled store asks for the transactions the engine counts."""
     if CompiledStore is not None and not wide and not os.environ.get("VW3_PURE_PYTHON"):
-        return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY, TABLES)
+        return CompiledStore(MAX_KEYS, MAX_PARAMETERS, MAX_TALLY, TABLES, tables)
     return ParameterTable()

@@ -41,7 +41,7 @@ from typing import Any
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
-from dissector.render.stats_store import register_table, table_label
+from dissector.render.stats_store import table_label
 from dissector.render.timefmt import Clock
 
 @dataclass(frozen=True, slots=True)
@@ -235,7 +235,8 @@ class Watcher:
             label = register.label
             if label is None or not label.isdigit() or int(label) not in self.addresses:
                 return
-        key = (frame.slave, register_table(frame.function), address)  # type: ignore[assignment]
+        # (the slave's device's table: FC4 may read the holding registers, stats_store.device_tables)
+        key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event)
         old = self._state.get(key)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
@@ -252,7 +253,7 @@ class Watcher:
         address = register.address
         if address not in self._candidates:
             return
-        key = (frame.slave, register_table(frame.function), address)  # type: ignore[assignment]
+        key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event, provisional=True)
         old = self._shown.get(key)  # type: ignore[arg-type]
         self._shown[key] = new  # type: ignore[index]

@@ -38,7 +38,7 @@ from dissector.render.history import UNREADABLE, History
 from dissector.render.report.groups import EventGroups
 from dissector.render.report.moments import Moments
 from dissector.render.report.reading import MAX_LABELS, adopt
-from dissector.render.stats_store import TABLE_NAMES, register_table, table_label
+from dissector.render.stats_store import TABLE_NAMES, table_label
 from dissector.render.summary import noise_text
 
 COLUMNS = 600
@@ -359,7 +359,7 @@ class ReportCollector:
         the history holds the frame back and gives its states later, in the slave's choice's frame;
         its series is made now, so that the series kept (MAX_SERIES) are those seen first in the stream,
         as from the file, whose frames give their states in the stream's order."""
-        table = register_table(frame.function)
+        table = self.history.tables(frame.slave)[frame.function]
         key = (frame.slave, register.address, table)
         if key not in self.series and len(self.series) < MAX_SERIES:
             self.series[key] = Series(frame.slave, register.address, reserved=True)  # type: ignore[arg-type]
@@ -374,7 +374,7 @@ class ReportCollector:
             rows = None if self._device is None else self._device(frame.slave).rows
             self._at, self._at_x, self._at_col, self._at_rows = frame, x, col, rows
         slave = frame.slave
-        table = register_table(frame.function)
+        table = self.history.tables(frame.slave)[frame.function]
         series = self.series.get((slave, register.address, table)) or self._series(slave, table, register)  # type: ignore
         if series is None:
             return
@@ -450,7 +450,7 @@ class ReportCollector:
         since the slave's device changed (or its first): its map row adopted (else it is already)."""
         plain = getattr(self._annotate, "plain_register", None)
         register = Register(address, value) if plain is None else plain(slave, function, address, value)
-        table = register_table(function)
+        table = self.history.tables(slave)[function]
         series = self.series.get((slave, address, table)) or self._series(slave, table, register)
         if series.reserved:
             series.reserved, series.label = False, table_label(register.label, table, address)
