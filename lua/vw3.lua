@@ -3666,7 +3666,9 @@ function DATA.lifters(
       if request ~= nil and (
         request.fields["address"] ~= fields["address"] or request.fields["value"] ~= fields["value"]
       ) then echo_check(f, fields, request, echo) end
-      f.bits = { first = f.data_at + 2, count = 1, start = first, single = fields["value"] == 65280 and 1 or 0 }
+      if fields["value"] == 65280 or fields["value"] == 0 then
+        f.bits = { first = f.data_at + 2, count = 1, start = first, single = fields["value"] == 65280 and 1 or 0 }
+      end
     end
   end
   do

@@ -266,9 +266,12 @@ def lifter(rule: dict[str, Any], limit: str | None, shape: list[dict[str, Any]],
         elif values["kind"] == "register":
             out += _wrap("f.registers = { ", ["b = b", f"first = f.data_at + {offset}", "count = 1", "start = first",
                                               "shift = nil"], ", ", " }", "")
-        else:
-            out += _wrap("f.bits = { ", [f"first = f.data_at + {offset}", "count = 1", "start = first",
-                                         f"single = {field(values['field'])} == 65280 and 1 or 0"], ", ", " }", "")
+        else:  # (a value neither ON nor OFF is illegal and sets nothing, Application Protocol 6.5)
+            value = field(values["field"])
+            out += [f"if {value} == 65280 or {value} == 0 then"]
+            out += _wrap("  f.bits = { ", [f"first = f.data_at + {offset}", "count = 1", "start = first",
+                                           f"single = {value} == 65280 and 1 or 0"], ", ", " }", "  ")
+            out.append("end")
     if rule["parts"]:  # (its parts by the layout's part, in the bytes its count gives)
         name = rule["parts"]["field"]
         out += _parts_lines(rule["parts"], field(name + "_at"), field(named[name]["count"]), limits)

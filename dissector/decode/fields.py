@@ -211,7 +211,7 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
                 frame.bits = BitList(start, data, bits if quantity is None else min(quantity, bits))
             elif kind is _REGISTER:
                 frame.registers = [Register(start, data)]
-            else:
+            elif data in (COIL_ON, COIL_OFF):  # (any other value is illegal and sets nothing, 6.5)
                 frame.bits = [Bit(start, 1 if data == COIL_ON else 0)]
 
     lift.__qualname__ = f"lifter[{rule.name}]"
