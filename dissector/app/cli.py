@@ -28,6 +28,7 @@ from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
 from dissector.app.rings import group_files
+from dissector.app.preselect import rereadable
 from dissector.app.samefile import refuse_same_files
 from dissector.render.buses import Bus, Buses
 from dissector.render.output import Output
@@ -142,7 +143,7 @@ class Sinks:
                 first = args.files[0] if args.files and not args.hex else None
                 interface = write_interface(first, "pcapng" if args.format in (None, "pcapng") else None, args)
                 self.pcap = open_output(args.write, args.file_format, args.ring, False, stdout, interface,
-                                        write_units(args.files, env.stdin))
+                                        write_units(args.files, env.stdin, args.format))
             except ValueError as error:
                 raise UsageError(str(error)) from None
             except OSError as error:
@@ -431,8 +432,9 @@ ASCII_HINT_BYTES = 1 << 16  # how much of a file the --mode ascii hint reads aga
 
 def _holds_ascii(path: str) -> bool:
     """Whether the start of a file read as RTU holds a whole Modbus ASCII frame (an ASCII line behind more
-    noise than mode detection samples): the hint names --mode ascii. Standard input cannot be read again."""
-    if path == "-":
+    noise than mode detection samples): the hint names --mode ascii. Standard input, a FIFO cannot be read
+    again (opened again, a FIFO would wait for a writer)."""
+    if not rereadable(path):
         return False
     try:
         with open(path, "rb") as file:

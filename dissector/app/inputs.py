@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import contextlib
 import struct
+from itertools import islice
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
@@ -79,7 +80,9 @@ def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: Decod
 
 
 def is_pcapng_file(path: str) -> bool:
-    if path == "-":
+    from dissector.app.preselect import rereadable
+
+    if not rereadable(path):  # (standard input, a FIFO: its bytes are the decode's, and it is one stream)
         return False
     try:
         with open(path, "rb") as file:
@@ -93,7 +96,9 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
     """The interface the -w file says its records were captured on: the input pcapng's (name and
     description, as editcap and tshark -w keep them; `bus`: the one interface decoded, of several), its
     description replaced by the speed decoded at when --baud is typed (framing/linespeed.py reads it back)."""
-    kept = pcapng_interface(path) if path not in (None, "-") and source_format == "pcapng" else None
+    from dissector.app.preselect import rereadable
+
+    kept = pcapng_interface(path) if rereadable(path) and source_format == "pcapng" else None  # (not a FIFO)
     if bus is not None:
         named = bus.interface
         kept = (named.name, named.description) if named.name or named.description else None
@@ -102,27 +107,49 @@ def write_interface(path: str | None, source_format: str | None, args: DecodeOpt
     return kept
 
 
-def write_units(paths: list[str], stdin: Any = None) -> int:
+def write_units(paths: list[str], stdin: Any = None, fmt: str | None = None) -> int:
     """The time units a -w copy writes: nanoseconds when a file decoded holds them (a nanosecond pcap, a
     pcapng interface finer than microseconds, or in units microseconds cannot hold: if_tsresol 2^-10 s,
-    read to the nanosecond), as tshark -w and editcap keep them; microseconds otherwise.
-    Standard input is judged by what it holds already (peek: nothing read), its first interfaces."""
+    read to the nanosecond; a timed text whose first lines' times have nanoseconds, `date +%s.%N`), as
+    tshark -w and editcap keep them; microseconds otherwise. Standard input is judged by what it holds
+    already (peek: nothing read), its first interfaces; a FIFO is not read (microseconds)."""
+    from dissector.app.preselect import rereadable
+
     for path in paths:
         if path == "-":
             piped = hasattr(stdin, "peek") and not stdin.isatty()  # (a terminal: nothing to wait for here)
             head = stdin.peek(STDIN_HEAD) if piped else b""
             interfaces = stdin_interfaces(head)
         else:
+            if not rereadable(path):  # (a FIFO's bytes are the decode's: none read here)
+                continue
             try:
                 with open(path, "rb") as file:
                     head = file.read(4)
             except OSError:
                 continue
             interfaces = [bus.interface for bus in packet_interfaces(path)] if is_pcapng(head) else []
+            if head[:4] not in MAGICS and not interfaces and _text_nanoseconds(path, fmt):
+                return NANOS
         units = [MAGICS.get(head[:4], ("", MICROS))[1], *(interface.units for interface in interfaces)]
         if any(unit > MICROS or MICROS % unit for unit in units):
             return NANOS
     return MICROS
+
+
+TEXT_LINES = 16  # the lines of a timed text looked at: a logger writes every time alike
+
+
+def _text_nanoseconds(path: str, fmt: str | None) -> bool:
+    """Do the first lines of a hex dump or traffic log have times with nanoseconds?"""
+    try:
+        with open_source(path, fmt) as source:
+            if source.format not in ("hexdump", "traffic"):
+                return False
+            return any(chunk.time is not None and getattr(chunk.time, "ns", 0) % 1000
+                       for chunk in islice(source, TEXT_LINES))
+    except (SourceError, OSError):
+        return False  # (the decode says why)
 
 
 STDIN_HEAD = 4096  # a pcapng's section and first interface blocks (tools write them at once)

@@ -10,6 +10,8 @@ bounded whatever block sizes the file claims.
 from __future__ import annotations
 
 import io
+import os
+import stat
 import struct
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -321,9 +323,12 @@ def first_interface(path: str) -> Interface | None:
     """The first interface a pcapng file describes; None for another format, or a file that cannot say.
 
     Read from the file's first blocks (the interface precedes the packets it carries), at most
-    HEAD_BYTES, so asking costs the same whatever the capture's size.
+    HEAD_BYTES, so asking costs the same whatever the capture's size. Not from a FIFO: its bytes are the
+    decode's (read here, they would be gone).
     """
     try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return None
         with open(path, "rb") as stream:
             head = stream.read(HEAD_BYTES)
     except OSError:

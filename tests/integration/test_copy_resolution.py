@@ -117,6 +117,17 @@ def test_binary_units_are_copied_in_nanoseconds(tmp_path: Path) -> None:
     assert written.read_bytes()[:4] == NANO_MAGIC and run(written) == lines  # was 1.000976
 
 
+def test_a_text_log_with_nanoseconds(tmp_path: Path) -> None:
+    """A hex dump whose times have nanoseconds (`date +%s.%N`): its copy in nanoseconds (was 0.010000)."""
+    dump = tmp_path / "ns.txt"
+    lines = [f"{SECONDS + ns // 10**9}.{ns % 10**9:09d} {data.hex(' ')}\n" for data, ns in RECORDS]
+    dump.write_text("".join(lines))
+    assert run(dump) == LINES
+    written = tmp_path / "copy.pcap"
+    run(dump, "-w", written)
+    assert written.read_bytes()[:4] == NANO_MAGIC and run(written) == LINES
+
+
 def test_a_microsecond_capture_stays_in_microseconds(tmp_path: Path) -> None:
     original = tmp_path / "us.pcap"
     run(nanosecond_pcap(tmp_path / "ns.pcap"), "-w", tmp_path / "first.pcap")
