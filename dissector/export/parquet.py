@@ -76,7 +76,7 @@ def microseconds(time: float | None) -> int | None:
     if time is None:
         return None
     if isinstance(time, Stamp):
-        return time.ns // 1000
+        return (time.ns + 500) // 1000  # (rounded, as the text's times and --json's are)
     return round(time * 1_000_000)
 
 
