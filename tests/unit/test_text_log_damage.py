@@ -143,7 +143,7 @@ def test_a_log_cut_mid_line(tmp_path: Path, pure: bool, monkeypatch: pytest.Monk
     status, out, err = _decode(tmp_path, log, "--json")
     assert (status, err, out.count("\n")) == (0, CUT, 13)
     assert out.splitlines()[-1] == ('{"frame": 13, "kind": "noise", "offset": 102, "length": 2, "time": null, '
-                                    '"raw": "0c03", "reason": "too short for a frame", "warnings": []}')
+                                    '"raw": "0c03", "reason": "the capture ends inside a request (2 of 8 bytes)", "warnings": []}')
 
 
 @ENGINES
