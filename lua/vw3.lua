@@ -6893,6 +6893,9 @@ end
 
 -- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
 -- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
+-- (By address alone: the one profile here that follows parameters, the ATV71, reads its input registers as
+-- its holding registers, profile input_registers "holding"; Python keeps a separate table's apart,
+-- Device.memory, for a user's profile, which the plugin does not load.)
 local function remember(seen, address, value, number, how)
   local last = seen[address]
   if last ~= nil then

@@ -28,7 +28,7 @@ typedef struct {
     PyObject *status;     /* owned: the last state is this read status (`protected`...), not a value; NULL: a value */
 } Param;
 
-/* A parameter's key: by slave, address, table (stats_store.register_table: input registers and holding
+/* A parameter's key: by slave, address, table (profiles.register_table: input registers and holding
  * registers are tables of their own), in ParameterTable's order. */
 #define PARAM_TABLES 8
 static inline uint32_t param_key(int slave, int table, unsigned address) {
@@ -73,7 +73,7 @@ typedef struct {
     Dense polls;                  /* of Poll, in the order first seen, as PollCycle's dict keeps them */
     size_t max_keys;              /* stats_store.MAX_KEYS, given at creation */
     size_t max_params;            /* stats_store.MAX_PARAMETERS: parameters kept at most */
-    uint8_t tables[256];          /* stats_store.TABLES: each function code's register table */
+    uint8_t tables[256];          /* profiles.TABLES: each function code's register table */
     PyObject *device_tables;      /* stats_store.slave_tables: slave -> its device's tables (bytes), or NULL */
     PyObject *slave_tables[256];  /* owned: each slave's, asked of device_tables with the slave's namer below */
     PyObject *tables_namer[256];  /* owned: that namer (the engine's Slave gets a new one with a new device) */
@@ -769,7 +769,7 @@ static PyObject *stats_bus_state(Stats *st, PyObject *unused) {
  * table follows at
  * most max_keys request keys (stats_store.MAX_KEYS), the parameter table keeps at most max_params parameters
  * (MAX_PARAMETERS), each kind of histogram but the load per minute at most max_tally entries (MAX_TALLY,
- * _bus.h Tallies); `tables`: each function code's register table (stats_store.TABLES; missing: 0);
+ * _bus.h Tallies); `tables`: each function code's register table (profiles.TABLES; missing: 0);
  * `device_tables`: slave -> its device's tables instead (stats_store.slave_tables), None: `tables`. */
 static int stats_init(Stats *st, PyObject *args, PyObject *kwargs) {
     static char *keywords[] = {"max_keys", "max_params", "max_tally", "tables", "device_tables", NULL};

@@ -350,7 +350,8 @@ class Annotator:
         """What the compiled path must know of a slave to give the annotator's answers itself:
         (names and request checks per function, mapped addresses, bits_depend rules, their sources,
         the parameter memory, the protected value or -1, the PLC base per function or None). A check
-        is () for none, the device's limits, or None when every request must go to _check_request.
+        is () for none, the device's limits, or None when every request must go to the annotator
+        (Device.engine_check: _check_request, or a memory of its own).
         """
         device = self.device(slave)
         bases = None
@@ -358,11 +359,7 @@ class Annotator:
             bases = {function: device.plc.get(function, device.plc_default) for function in functions}
         checks: dict[int, tuple[str | None, tuple[int, ...] | None]] = {}
         for function in functions:
-            if function in device.unchecked:
-                check: tuple[int, ...] | None = ()
-            else:
-                check = device.limited.get(function)
-            checks[function] = (device.profile.function_names.get(function), check)
+            checks[function] = (device.profile.function_names.get(function), device.engine_check(function))
         depend = {address: (rule.on, rule.plain_when) for address, rule in device.depend.items()}
         protected = device.profile.protected_value
         return (
@@ -471,7 +468,7 @@ class Annotator:
         multi = len(registers) > 1
         if multi and protected is not None and _all_marked(frame, device, registers, protected):
             protected = None  # (nothing is known unreadable: no story, each value kept as read)
-        seen = device.seen
+        seen = device.memory(frame.function)
         number = frame.number
         for index, register in enumerate(registers):
             address = register.address

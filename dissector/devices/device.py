@@ -9,7 +9,7 @@ import functools
 from dataclasses import dataclass, field
 
 from dissector.devices.maps import RegisterDef, RegisterMap, overlay
-from dissector.devices.profiles import BitsDepend, Profile, load_profile_map
+from dissector.devices.profiles import INPUT_REGISTERS, BitsDepend, Profile, load_profile_map, register_table
 
 # What the annotator last knew of a parameter: (value, frame number, how). value None: unreadable
 # (how is then its status); how "read" or "written" otherwise. Plain tuples: this is the hot path.
@@ -43,6 +43,9 @@ class Device:
     limited: dict[int, tuple[int, ...]]
     wide: bool = False  # the map has 32-bit rows
     seen: dict[int, Seen] = field(default_factory=dict)
+    # The memory of the input registers (FC4's), where they are a table of their own (profile input_registers
+    # "separate": input register 5 is not holding register 5); None: FC4 reads the holding registers, `seen`.
+    input_seen: dict[int, Seen] | None = None
     labels: dict[int, dict[int, str]] = field(default_factory=dict)
     # Exception explanations depend on the request's bytes alone: a PLC that polls a protected block
     # draws the same exception again and again.
@@ -50,6 +53,20 @@ class Device:
 
     def base(self, function: int) -> int:
         return self.plc.get(function, self.plc_default)  # type: ignore[union-attr]
+
+    def memory(self, function: int) -> dict[int, Seen]:
+        """The parameter memory of the registers `function` reads or writes: its table's."""
+        if self.input_seen is not None and register_table(function) == INPUT_REGISTERS:
+            return self.input_seen
+        return self.seen
+
+    def engine_check(self, function: int) -> tuple[int, ...] | None:
+        """The compiled engine's request check of a code (Annotator.summary_facts): () none, the device's
+        limits, or None: every request is the annotator's (a check the engine lacks, or a memory of its own,
+        input_seen, which the engine does not keep: it keeps `seen`)."""
+        if self.track and self.memory(function) is not self.seen:
+            return None
+        return () if function in self.unchecked else self.limited.get(function)
 
 
 class DeviceBuilder:
@@ -90,6 +107,7 @@ class DeviceBuilder:
             track=profile.protected_value is not None or bool(depend),
             unchecked=_unchecked(supported, profile.inner_only, frozenset(profile.limits)),
             wide=any(row.words == 2 for row in rows.values()),
+            input_seen=None if profile.input_registers == "holding" else {},
             limited={
                 function: limits
                 for function, limits in profile.limits.items()

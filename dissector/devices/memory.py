@@ -3,7 +3,9 @@
 A multi-register read returns 16#8000 for a non-existent or protected parameter; a parameter read (or
 written) earlier and unreadable now "became protected", one unreadable before and read now is
 "readable again". One job: the story of each parameter, told as events (devices/story.py tells them).
-The memory is the Device's `seen` dict, which the compiled summary path also keeps up to date.
+The memory is the Device's `seen` dict, which the compiled summary path also keeps up to date; a device
+whose input registers are a table of their own (profile input_registers "separate") keeps theirs apart
+(Device.memory: FC4's 8401 is not FC3's; the compiled path hands such reads to the annotator).
 """
 from __future__ import annotations
 
@@ -46,12 +48,13 @@ def lost(
     label: str | None, events: list[Event],
 ) -> None:
     """Record a parameter as unreadable, telling the story if it was readable before."""
-    last = device.seen.get(address)
+    seen = device.memory(frame.function)
+    last = seen.get(address)
     if last is not None and last[0] is not None:
         became = text("became_protected" if row is not None else "became_unknown")
         before = text("known_value", how=last[2], value=last[0])
         events.append(Event(became, address, row, label, before, last[2], last[1], now, now, key=True))
-    device.seen[address] = (None, frame.number, status)
+    seen[address] = (None, frame.number, status)
 
 
 def readable_again(
@@ -63,7 +66,7 @@ def readable_again(
 
 
 def remember_writes(frame: Frame, device: Device, registers: Sequence[Register]) -> None:
-    seen = device.seen
+    seen = device.memory(frame.function)
     number = frame.number
     for register in registers:
         if register.address is not None:
@@ -88,7 +91,7 @@ def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | 
     fields = frame.fields
     if fields is None:
         return  # (malformed: nothing confirmed)
-    seen = device.seen
+    seen = device.memory(frame.function)
     address, and_mask = fields.address, fields.and_mask
     last = seen.get(address)
     current = 0 if and_mask == 0 else last[0] if last is not None else None

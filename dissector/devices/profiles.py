@@ -38,7 +38,7 @@ FALLBACK_PROFILE = "generic"  # what `auto` gives a slave until evidence arrives
 ADDRESS_STYLES = ("plc", "protocol")
 # What FC4 (Read Input Registers) reads: input registers, a table of their own (Application Protocol 4.3:
 # FC4's register 5 is not FC3's), or the holding registers, as FC3 does (one table: the ATV71's card).
-INPUT_REGISTERS = ("separate", "holding")
+INPUT_REGISTER_READS = ("separate", "holding")
 _WHEN = ("quantity", "byte_count")
 
 
@@ -76,7 +76,7 @@ class Profile:
     inner_only: frozenset[int] = frozenset()
     broadcast: frozenset[int] | None = None
     protected_value: int | None = None
-    input_registers: str = "separate"  # INPUT_REGISTERS: FC4's registers a table of their own, or the holding ones
+    input_registers: str = "separate"  # INPUT_REGISTER_READS: FC4's registers their own table, or holding
     all_protected_exception: int | None = None
     limits: dict[int, tuple[int, ...]] = field(default_factory=dict)
     exceptions: dict[int, str] = field(default_factory=dict)
@@ -93,6 +93,30 @@ class Profile:
     product_codes: tuple[str, ...] = ()  # FC43 ProductCode prefixes
     identifying_functions: frozenset[int] = frozenset()  # function codes only this device speaks
     traffic_fit: bool = False  # may be chosen because the traffic fits its map alone
+
+
+# A parameter is a register of one table (Application Protocol 4.3: input registers and holding registers
+# are tables of their own; FC4's register 5 is not FC3's): the PLC reference class its code's registers
+# are in, as data/modbus.toml [plc_references] states it (FC4: 30001, 3X), else holding registers (4X).
+# Holding registers are 0: a store's parameter of no table given (the compiled store's default too).
+# A device may read both with one table (profile input_registers "holding": device_tables).
+HOLDING_REGISTERS, INPUT_REGISTERS = 0, 1
+
+
+def register_table(function: int) -> int:
+    """The table (INPUT_REGISTERS, HOLDING_REGISTERS) of the registers a code reads or writes."""
+    return INPUT_REGISTERS if SPEC.plc_references.get(function, 0) // 10000 == 3 else HOLDING_REGISTERS
+
+
+# Each code's table, as the compiled store takes them (_stats.h Stats.tables, stats_store.new_store).
+TABLES = bytes(register_table(code) for code in range(256))
+# ... on a device whose FC4 reads its holding registers (profile input_registers "holding": the ATV71).
+ONE_TABLE = bytes(HOLDING_REGISTERS for _code in range(256))
+
+
+def device_tables(profile: Profile | None) -> bytes:
+    """Each code's register table on a slave of this profile (None: the protocol's, TABLES)."""
+    return ONE_TABLE if getattr(profile, "input_registers", None) == "holding" else TABLES
 
 
 # -- loading ------------------------------------------------------------------------------------------
@@ -272,9 +296,10 @@ def parse_profile(text: str, origin: str) -> Profile:
         raise reader.fail("[identify] traffic_fit must be true or false")
     protected = data.get("protected_value")
     all_protected = data.get("all_protected_exception")
-    input_registers = reader.string(data, "input_registers", INPUT_REGISTERS[0])
-    if input_registers not in INPUT_REGISTERS:
-        raise reader.fail(f"input_registers {input_registers!r} is not one of {', '.join(INPUT_REGISTERS)}")
+    input_registers = reader.string(data, "input_registers", INPUT_REGISTER_READS[0])
+    if input_registers not in INPUT_REGISTER_READS:
+        choices = ", ".join(INPUT_REGISTER_READS)
+        raise reader.fail(f"input_registers {input_registers!r} is not one of {choices}")
     return Profile(
         name=name,
         title=reader.string(data, "title") or name,

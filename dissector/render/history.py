@@ -21,9 +21,9 @@ parameter memory gave the register (memory.remember_mask, Annotator.masked; wher
 follows no memory, known only when and_mask is 0: or_mask); where that value is not known, the write is
 counted and its parameter's state stays as it was, as for a write nothing confirmed.
 A parameter is a register of one table (Application Protocol 4.3: FC4 reads input registers, FC3/6/16/22/23
-holding registers: stats_store.register_table), so input register 5 and holding register 5 are two
+holding registers: profiles.register_table), so input register 5 and holding register 5 are two
 (kept by slave, address and table), unless the slave's device reads both with one table (profile
-input_registers "holding", the ATV71: FC4's 8401 is FC3's CHCF; stats_store.device_tables).
+input_registers "holding", the ATV71: FC4's 8401 is FC3's CHCF; profiles.device_tables).
 A parameter's state is its last value or read status; the first state seen is no change. A register
 without an address (an answer whose request is not in the capture) is only counted.
 

@@ -28,7 +28,9 @@ from itertools import chain
 from dataclasses import dataclass
 from typing import Any
 
-from dissector.protocol.spec import SPEC
+from dissector.devices.profiles import (
+    HOLDING_REGISTERS, INPUT_REGISTERS, TABLES, device_tables, register_table,
+)
 from dissector.protocol.table import register_reads
 
 try:
@@ -67,28 +69,9 @@ MAX_SHIFT = 62  # _bus.h TALLY_MAX_SHIFT
 
 ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int, int]
 
-# A parameter is a register of one table (Application Protocol 4.3: input registers and holding registers
-# are tables of their own; FC4's register 5 is not FC3's): the PLC reference class its code's registers
-# are in, as data/modbus.toml [plc_references] states it (FC4: 30001, 3X), else holding registers (4X).
-# Holding registers are 0: a store's parameter of no table given (the compiled store's default too).
-# A device may read both with one table (profile input_registers "holding": device_tables).
-HOLDING_REGISTERS, INPUT_REGISTERS = 0, 1
-
-
-def register_table(function: int) -> int:
-    """The table (INPUT_REGISTERS, HOLDING_REGISTERS) of the registers a code reads or writes."""
-    return INPUT_REGISTERS if SPEC.plc_references.get(function, 0) // 10000 == 3 else HOLDING_REGISTERS
-
-
-# Each code's table, as the compiled store takes them (_stats.h Stats.tables).
-TABLES = bytes(register_table(code) for code in range(256))
-# ... on a device whose FC4 reads its holding registers (profile input_registers "holding": the ATV71).
-ONE_TABLE = bytes(HOLDING_REGISTERS for _code in range(256))
-
-
-def device_tables(profile: Any) -> bytes:
-    """Each code's register table on a slave of this profile (None: the protocol's, TABLES)."""
-    return ONE_TABLE if getattr(profile, "input_registers", None) == "holding" else TABLES
+# A parameter is a register of one table: profiles.register_table (input registers and holding registers,
+# Application Protocol 4.3; imported above, and from here by the outputs) and profiles.device_tables (a
+# device that reads both with one table).
 
 
 def slave_tables(annotate: object) -> Callable[[int], bytes] | None:
@@ -96,6 +79,8 @@ def slave_tables(annotate: object) -> Callable[[int], bytes] | None:
     (the protocol's tables). The device may change under profile `auto`: asked again each time."""
     device = getattr(annotate, "device", None)
     return None if device is None else lambda slave: device_tables(device(slave).profile)
+
+
 # Each table as --stats names it (its --json `table`; the text marks an input register's address so).
 TABLE_NAMES = {HOLDING_REGISTERS: "holding", INPUT_REGISTERS: "input"}
 

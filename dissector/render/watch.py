@@ -235,7 +235,7 @@ class Watcher:
             label = register.label
             if label is None or not label.isdigit() or int(label) not in self.addresses:
                 return
-        # (the slave's device's table: FC4 may read the holding registers, stats_store.device_tables)
+        # (the slave's device's table: FC4 may read the holding registers, profiles.device_tables)
         key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event)
         old = self._state.get(key)  # type: ignore[arg-type]

@@ -1,7 +1,7 @@
 """Whether FC4 reads a table of its own is a fact of the device (profile `input_registers`): on the ATV71's
 VW3 A3 303 card Read Holding Registers and Read Input Registers are identical (the manual's function table),
 so an FC4 read of 8401 is a read of CHCF, the parameter FC3 reads: --stats, --watch and --report show one
-parameter (stats_store.device_tables; the compiled store asks each slave's, _stats.h slave_table). A device
+parameter (profiles.device_tables; the compiled store asks each slave's, _stats.h slave_table). A device
 whose tables are separate (generic: Application Protocol 4.3) keeps input register N apart
 (tests/integration/test_register_tables.py). Before, the ATV71's CHCF was two rows, `8401 CHCF` and
 `input 8401 CHCF`, and --watch printed the FC4 read of the value written as a change."""

@@ -1,6 +1,6 @@
 """Input registers and holding registers are two tables (Modbus Application Protocol 4.3): input register 5
 (FC4) and holding register 5 (FC3, FC6, FC16, FC22, FC23) are two parameters in --watch, --stats and
---report (render/history.py keys parameters by slave, table and address; stats_store.register_table takes
+--report (render/history.py keys parameters by slave, table and address; profiles.register_table takes
 the table from data/modbus.toml [plc_references]: FC4's registers are 3X). Before, one parameter held both,
 and a poll of the two read as changes that never happened: `--watch 5` printed `17 5 1 -> 2`, `2 -> 1`,
 ... and --stats one row, reads 6, changes 6. The compiled engine (dissector/accel/_stats.h, _report.h)
