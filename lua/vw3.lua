@@ -5284,10 +5284,10 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, MAX_ADU, NEED, RESPONSE, add_noise, awaited = DATA, MAX_ADU, NEED, RESPONSE, add_noise, awaited
-local crc16, cut_reason, emit, floor, flush_noise, format = crc16, cut_reason, emit, floor, flush_noise, format
-local interpretations, ipairs, math, not_the_answer, pairs = interpretations, ipairs, math, not_the_answer, pairs
-local table, time_at = table, time_at
+local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE
+local add_noise, awaited, crc16, crc_scan, cut_reason, emit = add_noise, awaited, crc16, crc_scan, cut_reason, emit
+local floor, flush_noise, format, interpretations, ipairs = floor, flush_noise, format, interpretations, ipairs
+local math, not_the_answer, pairs, table, time_at = math, not_the_answer, pairs, table, time_at
 -- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
 -- filled in; the others' formats take them in the text's order)
 local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
@@ -5299,7 +5299,9 @@ local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
 local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
-local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
+local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes that tell a capture's mode: protocol/ascii.py)
+local MODE_REACH = 2 * MAX_ASCII -- (how far they grow while they cannot tell: protocol/ascii.py MODE_REACH)
+local PUBLIC = DATA.functions -- (the public function codes: an RTU frame that tells a stream is RTU has one)
 -- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
 local SETS_DELIMITER = DATA.ascii.sets_delimiter
 
@@ -5321,18 +5323,52 @@ local function hex_pairs(b, at, count)
   return bin, lower
 end
 
--- Whether the sample holds a whole ASCII frame: ':', hex pairs (slave, function and LRC at least), LF (after
--- CR, or alone), its LRC good (the binary bytes and the LRC sum to 0 modulo 256), whatever comes before it.
--- (protocol/ascii.py holds_frame: one pass, the hex digits after a ':' looked at once)
-local function holds_frame(sample)
-  for digits in sample:gmatch(":(%x*)\r?\n") do
+-- Where the first whole ASCII frame in the sample ends (its bytes up to there; nil: none): ':', hex pairs
+-- (slave, function and LRC at least), LF (after CR, or alone), its LRC good (the binary bytes and the LRC
+-- sum to 0 modulo 256), whatever comes before it.
+-- (protocol/ascii.py frame_end: one pass, the hex digits after a ':' looked at once)
+local function frame_end(sample)
+  for digits, after in sample:gmatch(":(%x*)\r?\n()") do
     local count = floor(#digits / 2)
     if #digits % 2 == 0 and count >= MIN_BINARY then
       local bin = hex_pairs({ digits:byte(1, -1) }, 1, count)
-      if lrc(bin, count - 1) == bin[count - 1] then return true end
+      if lrc(bin, count - 1) == bin[count - 1] then return after - 1 end
     end
   end
-  return false
+  return nil
+end
+
+local function holds_frame(sample)
+  return frame_end(sample) ~= nil
+end
+
+-- Could an RTU frame start at b[at]: a slave address, a public function code or its exception?
+local function rtu_start(b, at)
+  return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
+end
+
+-- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each
+-- ending in its CRC: one alone is no evidence (protocol/ascii.py rtu_pair_end). Only pairs that would end
+-- before the best so far are looked for.
+local function rtu_pair_end(sample)
+  local n = #sample
+  local b, lengths, best = { sample:byte(1, -1) }, {}, nil
+  for start = 1, n - 2 * MIN_ADU + 1 do -- (b[start]: the sample's byte start - 1 counted from 0)
+    if start - 1 + 2 * MIN_ADU > (best == nil and n or best - 1) then break end
+    if rtu_start(b, start) then
+      local first_last = (best == nil and n or best - 1) - MIN_ADU - (start - 1)
+      local count = crc_scan(b, start, MIN_ADU, math.min(first_last, MAX_ADU), lengths)
+      for k = 1, count do
+        local second = start + lengths[k]
+        local last = best == nil and n or best - 1 -- (the furthest a better pair ends)
+        if second - 1 + MIN_ADU <= last and rtu_start(b, second) then
+          local length = crc_scan(b, second, MIN_ADU, math.min(last - (second - 1), MAX_ADU))
+          if length > 0 then best = second - 1 + length end
+        end
+      end
+    end
+  end
+  return best
 end
 
 local function detect_mode(sample)
@@ -5350,6 +5386,21 @@ local function detect_mode(sample)
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
+end
+
+-- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come: not
+-- `complete`): ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to MODE_REACH
+-- bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode. An answer
+-- given while more can come stays the answer for any longer sample (protocol/ascii.py sample_mode).
+local function sample_mode(sample, complete)
+  if #sample < MODE_SAMPLE and not complete then return nil end
+  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return "ascii" end
+  sample = sample:sub(1, MODE_REACH)
+  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample)
+  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then return "rtu" end
+  if ascii_end ~= nil then return "ascii" end
+  if complete or #sample >= MODE_REACH then return detect_mode(sample) end
+  return nil
 end
 
 local function classify_ascii(s, adu, count)
@@ -5503,7 +5554,7 @@ local function run_ascii(s, final, items)
   end
   return i
 end
-M.MODE_SAMPLE, M.detect_mode, M.hex_pairs, M.run_ascii = MODE_SAMPLE, detect_mode, hex_pairs, run_ascii
+M.MODE_REACH, M.hex_pairs, M.run_ascii, M.sample_mode = MODE_REACH, hex_pairs, run_ascii, sample_mode
 end
 
 -- ---- vw3.feed: lua/src/feed.lua ----
@@ -8005,15 +8056,15 @@ package.preload["vw3.records"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER
-local MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST = MODE_SAMPLE, NOISE, PROFILES, READS, REQUEST
-local RESPONSE, annotate_with, await_answer, await_echo = RESPONSE, annotate_with, await_answer, await_echo
-local bit_slot, build_device, crc_slot, crc_string_ok = bit_slot, build_device, crc_slot, crc_string_ok
-local data_bytes, decode_frame, detect_mode, device_for = data_bytes, decode_frame, detect_mode, device_for
-local device_now, feed, feed_whole, head_slot, ipairs, lane = device_now, feed, feed_whole, head_slot, ipairs, lane
-local math, new_state, next, pack, pair, pairs, pcall = math, new_state, next, pack, pair, pairs, pcall
-local put_flat, release_run, remember_writes, run_slot = put_flat, release_run, remember_writes, run_slot
-local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
-local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
+local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
+local annotate_with, await_answer, await_echo, bit_slot = annotate_with, await_answer, await_echo, bit_slot
+local build_device, crc_slot, crc_string_ok, data_bytes = build_device, crc_slot, crc_string_ok, data_bytes
+local decode_frame, device_for, device_now, feed = decode_frame, device_for, device_now, feed
+local feed_whole, head_slot, ipairs, lane, math, new_state = feed_whole, head_slot, ipairs, lane, math, new_state
+local next, pack, pair, pairs, pcall, put_flat, release_run = next, pack, pair, pairs, pcall, put_flat, release_run
+local remember_writes, run_slot, sample_mode, span_slot = remember_writes, run_slot, sample_mode, span_slot
+local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
+local warn, whole_crc_good = warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -8433,7 +8484,7 @@ end
 
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
-  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  if st.mode == nil and n > 0 then st.mode = sample_mode(bytes, true) end -- (its bytes alone tell)
   local built = nil
   if st.open[1] == nil then
     -- A record that is one frame (take_items's work for it: the record closed, the frame at 0 in it)
@@ -9629,22 +9680,22 @@ package.preload["vw3.dissector"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.dissector"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, DissectorTable, MODE_SAMPLE, Proto, READS = DATA, DissectorTable, MODE_SAMPLE, Proto, READS
+local DATA, DissectorTable, MODE_REACH, Proto, READS = DATA, DissectorTable, MODE_REACH, Proto, READS
 local REQUEST, RESPONSE, add_register, add_text = REQUEST, RESPONSE, add_register, add_text
-local annotate_list, apply_prefs, detect_mode, device_now = annotate_list, apply_prefs, detect_mode, device_now
-local dissect_now, ex, finish_all, ipairs, lane, new_state = dissect_now, ex, finish_all, ipairs, lane, new_state
-local os, pack, package, pairs, pcall, pf, proto, record_ns = os, pack, package, pairs, pcall, pf, proto, record_ns
-local show_record, stream_state, tostring, type, wtap = show_record, stream_state, tostring, type, wtap
+local annotate_list, apply_prefs, device_now, dissect_now = annotate_list, apply_prefs, device_now, dissect_now
+local ex, finish_all, ipairs, lane, new_state, os, pack = ex, finish_all, ipairs, lane, new_state, os, pack
+local package, pairs, pcall, pf, proto, record_ns = package, pairs, pcall, pf, proto, record_ns
+local sample_mode, show_record, stream_state, tostring = sample_mode, show_record, stream_state, tostring
+local type, wtap = type, wtap
 
--- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
--- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
--- noise before the first frame as a record of its own). Until that many have come, each record's bytes
--- and time are kept (st.sample, with the bytes sampled), and the mode is what the bytes so far say:
--- where a record changes it, the records kept are decoded again, in order, into a new state with the
--- mode their bytes give, as if it had been known from the start (as lane.again does). The bytes of
--- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
--- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
--- either shown on the record).
+-- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
+-- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
+-- come in several records (vw3-decode -w writes a run of noise before the first frame as a record of its
+-- own). Until they tell, each record's bytes and time are kept (st.sample, with the bytes sampled), and
+-- the mode is what the bytes so far would give were the capture to end there: where a record changes it,
+-- the records kept are decoded again, in order, into a new state with the mode their bytes give, as if it
+-- had been known from the start (as lane.again does). st.sample: false once the mode is settled (or set by
+-- the preference). Then the record's first dissection (an error in either shown on the record).
 -- The records `kept` ({ number, bytes } each; but `except`) decoded again, in order, into a new state of
 -- `mode`, which takes st's place (the same table: `state` and udp_states keep naming it). Their times are
 -- those kept (show.lua record_ns).
@@ -9696,13 +9747,14 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   end
   local bytes = tvb:raw()
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
-  sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
-  if #sample.text >= MODE_SAMPLE then
+  sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
+  local mode = sample_mode(sample.text, false)
+  if mode ~= nil then
     st.sample = false
   else
     sample[#sample + 1] = { number, bytes }
+    mode = sample_mode(sample.text, true) -- (what vw3-decode would choose were the capture to end here)
   end
-  local mode = detect_mode(sample.text)
   if st.mode == nil then
     st.mode = mode
   elseif mode ~= st.mode then

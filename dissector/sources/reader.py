@@ -21,7 +21,7 @@ import sys
 from collections.abc import Callable, Iterator
 from typing import BinaryIO
 
-from dissector.protocol.ascii import detect_mode
+from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, sample_mode  # (MODE_SAMPLE: codegen's)
 from dissector.sources.common import Input, SourceError, WarningLog
 from dissector.sources.dumps import dump_tool, read_dump
 from dissector.sources.encoding import Encoding, decoded, marked, text_input
@@ -44,7 +44,6 @@ TEXT_FORMATS = frozenset({"hexdump", "xxd", "hexdump-C", "traffic", "ascii"})  #
 SNIFF_BYTES = 512  # enough to see a magic number or a few text lines
 SNIFF_LINES = 4  # a text sample with this many lines is enough to judge
 SNIFF_COMMENTS = 65536  # but a hex dump's header of comments is read to its first data line, this far
-MODE_SAMPLE = 64  # payload bytes looked at to choose RTU or ASCII
 MIN_CHUNK = 256
 
 _GZIP = b"\x1f\x8b"
@@ -272,15 +271,18 @@ def open_source(
 
 
 def sampled_mode(chunks: Iterator[Chunk]) -> tuple[str, list[Chunk]]:
-    """The mode the first payload bytes decide, and the chunks read for that (replayed first)."""
+    """The mode the first payload bytes decide (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, more
+    where they are line noise), and the chunks read for that (replayed first). Each chunk is judged as it
+    comes: a stream is decoded as soon as its bytes tell."""
     head: list[Chunk] = []
-    seen = 0
+    sample = b""
     for chunk in chunks:
         head.append(chunk)
-        seen += len(chunk.data)
-        if seen >= MODE_SAMPLE:
-            break
-    return detect_mode(b"".join(chunk.data for chunk in head)[:MODE_SAMPLE]), head
+        sample += chunk.data[: MODE_REACH - len(sample)]
+        mode = sample_mode(sample, False)  # (never None once MODE_REACH bytes have come)
+        if mode is not None:
+            return mode, head
+    return sample_mode(sample, True), head
 
 
 def _start(

@@ -14,7 +14,9 @@ local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
 local COLON, CR, LF = DATA.ascii.delimiters[1], DATA.ascii.delimiters[2], DATA.ascii.delimiters[3]
 local MAX_ASCII, MIN_BINARY, ASCII_SHARE = DATA.ascii.max_ascii, DATA.ascii.min_binary, DATA.ascii.share
 local HEX, ALPHABET = DATA.ascii.hex_digits, DATA.ascii.alphabet -- (HEX: each hex digit's value)
-local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes of a capture its mode is told from: sources/reader.py)
+local MODE_SAMPLE = DATA.ascii.mode_sample -- (the first bytes that tell a capture's mode: protocol/ascii.py)
+local MODE_REACH = 2 * MAX_ASCII -- (how far they grow while they cannot tell: protocol/ascii.py MODE_REACH)
+local PUBLIC = DATA.functions -- (the public function codes: an RTU frame that tells a stream is RTU has one)
 -- FC8 sub-functions whose data word is a character then 00: the line end they set in place of LF (03).
 local SETS_DELIMITER = DATA.ascii.sets_delimiter
 
@@ -36,18 +38,52 @@ local function hex_pairs(b, at, count)
   return bin, lower
 end
 
--- Whether the sample holds a whole ASCII frame: ':', hex pairs (slave, function and LRC at least), LF (after
--- CR, or alone), its LRC good (the binary bytes and the LRC sum to 0 modulo 256), whatever comes before it.
--- (protocol/ascii.py holds_frame: one pass, the hex digits after a ':' looked at once)
-local function holds_frame(sample)
-  for digits in sample:gmatch(":(%x*)\r?\n") do
+-- Where the first whole ASCII frame in the sample ends (its bytes up to there; nil: none): ':', hex pairs
+-- (slave, function and LRC at least), LF (after CR, or alone), its LRC good (the binary bytes and the LRC
+-- sum to 0 modulo 256), whatever comes before it.
+-- (protocol/ascii.py frame_end: one pass, the hex digits after a ':' looked at once)
+local function frame_end(sample)
+  for digits, after in sample:gmatch(":(%x*)\r?\n()") do
     local count = floor(#digits / 2)
     if #digits % 2 == 0 and count >= MIN_BINARY then
       local bin = hex_pairs({ digits:byte(1, -1) }, 1, count)
-      if lrc(bin, count - 1) == bin[count - 1] then return true end
+      if lrc(bin, count - 1) == bin[count - 1] then return after - 1 end
     end
   end
-  return false
+  return nil
+end
+
+local function holds_frame(sample)
+  return frame_end(sample) ~= nil
+end
+
+-- Could an RTU frame start at b[at]: a slave address, a public function code or its exception?
+local function rtu_start(b, at)
+  return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
+end
+
+-- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each
+-- ending in its CRC: one alone is no evidence (protocol/ascii.py rtu_pair_end). Only pairs that would end
+-- before the best so far are looked for.
+local function rtu_pair_end(sample)
+  local n = #sample
+  local b, lengths, best = { sample:byte(1, -1) }, {}, nil
+  for start = 1, n - 2 * MIN_ADU + 1 do -- (b[start]: the sample's byte start - 1 counted from 0)
+    if start - 1 + 2 * MIN_ADU > (best == nil and n or best - 1) then break end
+    if rtu_start(b, start) then
+      local first_last = (best == nil and n or best - 1) - MIN_ADU - (start - 1)
+      local count = crc_scan(b, start, MIN_ADU, math.min(first_last, MAX_ADU), lengths)
+      for k = 1, count do
+        local second = start + lengths[k]
+        local last = best == nil and n or best - 1 -- (the furthest a better pair ends)
+        if second - 1 + MIN_ADU <= last and rtu_start(b, second) then
+          local length = crc_scan(b, second, MIN_ADU, math.min(last - (second - 1), MAX_ADU))
+          if length > 0 then best = second - 1 + length end
+        end
+      end
+    end
+  end
+  return best
 end
 
 local function detect_mode(sample)
@@ -65,6 +101,21 @@ local function detect_mode(sample)
   end
   if inside >= ASCII_SHARE * #sample then return "ascii" end
   return "rtu"
+end
+
+-- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come: not
+-- `complete`): ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to MODE_REACH
+-- bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode. An answer
+-- given while more can come stays the answer for any longer sample (protocol/ascii.py sample_mode).
+local function sample_mode(sample, complete)
+  if #sample < MODE_SAMPLE and not complete then return nil end
+  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return "ascii" end
+  sample = sample:sub(1, MODE_REACH)
+  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample)
+  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then return "rtu" end
+  if ascii_end ~= nil then return "ascii" end
+  if complete or #sample >= MODE_REACH then return detect_mode(sample) end
+  return nil
 end
 
 local function classify_ascii(s, adu, count)

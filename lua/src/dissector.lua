@@ -4,15 +4,14 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 
--- A stream's mode, where no preference sets it, is told from its first MODE_SAMPLE bytes as vw3-decode
--- tells it (sources/reader.py), and those may come in several records (vw3-decode -w writes a run of
--- noise before the first frame as a record of its own). Until that many have come, each record's bytes
--- and time are kept (st.sample, with the bytes sampled), and the mode is what the bytes so far say:
--- where a record changes it, the records kept are decoded again, in order, into a new state with the
--- mode their bytes give, as if it had been known from the start (as lane.again does). The bytes of
--- a whole capture shorter than the sample choose as vw3-decode's whole input does. st.sample: false
--- once the mode is settled (or set by the preference). Then the record's first dissection (an error in
--- either shown on the record).
+-- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
+-- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
+-- come in several records (vw3-decode -w writes a run of noise before the first frame as a record of its
+-- own). Until they tell, each record's bytes and time are kept (st.sample, with the bytes sampled), and
+-- the mode is what the bytes so far would give were the capture to end there: where a record changes it,
+-- the records kept are decoded again, in order, into a new state with the mode their bytes give, as if it
+-- had been known from the start (as lane.again does). st.sample: false once the mode is settled (or set by
+-- the preference). Then the record's first dissection (an error in either shown on the record).
 -- The records `kept` ({ number, bytes } each; but `except`) decoded again, in order, into a new state of
 -- `mode`, which takes st's place (the same table: `state` and udp_states keep naming it). Their times are
 -- those kept (show.lua record_ns).
@@ -64,13 +63,14 @@ local function sample_and_dissect(st, tvb, pinfo, number)
   end
   local bytes = tvb:raw()
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
-  sample.text = sample.text .. bytes:sub(1, MODE_SAMPLE - #sample.text)
-  if #sample.text >= MODE_SAMPLE then
+  sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
+  local mode = sample_mode(sample.text, false)
+  if mode ~= nil then
     st.sample = false
   else
     sample[#sample + 1] = { number, bytes }
+    mode = sample_mode(sample.text, true) -- (what vw3-decode would choose were the capture to end here)
   end
-  local mode = detect_mode(sample.text)
   if st.mode == nil then
     st.mode = mode
   elseif mode ~= st.mode then

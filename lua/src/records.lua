@@ -422,7 +422,7 @@ end
 
 dissect_record = function(st, bytes, time, number)
   local n = #bytes
-  if st.mode == nil and n > 0 then st.mode = detect_mode(bytes:sub(1, MODE_SAMPLE)) end
+  if st.mode == nil and n > 0 then st.mode = sample_mode(bytes, true) end -- (its bytes alone tell)
   local built = nil
   if st.open[1] == nil then
     -- A record that is one frame (take_items's work for it: the record closed, the frame at 0 in it)

@@ -1,7 +1,8 @@
-"""The plugin tells a stream's mode from its first bytes as vw3-decode does (protocol/ascii.py detect_mode
-and holds_frame; lua/src/ascii.lua detect_mode, whose holds_frame reads the hex pairs with the ASCII
-framer's hex_pairs and checks them with its lrc): the same answer for the same sample, under plain lua5.2
-and lua5.4 (the pure modules, no tshark), on samples made to sit either side of each rule and on random
+"""The plugin tells a stream's mode from its first bytes as vw3-decode does (protocol/ascii.py sample_mode,
+detect_mode and holds_frame; lua/src/ascii.lua sample_mode and detect_mode, whose holds_frame reads the hex
+pairs with the ASCII framer's hex_pairs and checks them with its lrc): the same answer for the same sample
+(a whole input: `complete`; test_mode_after_long_noise.py covers the samples still growing), under plain
+lua5.2 and lua5.4 (the pure modules, no tshark), on samples made to sit either side of each rule and on random
 mixes of ':', hex digits, CR, LF and binary bytes."""
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ import pytest
 
 from lua_harness import PLUGIN, ensure_tool
 
-from dissector.protocol.ascii import detect_mode
+from dissector.protocol.ascii import detect_mode, sample_mode
 from dissector.sources.reader import MODE_SAMPLE
 
 LINE = b":02062329000AA2\r\n"  # slave 2 writes 10 to register 9001 (its LRC A2 good)
@@ -52,13 +53,13 @@ def _random_samples(count: int) -> list[bytes]:
 
 
 def _lua_modes(lua: str, samples: list[bytes], tmp_path: Path) -> list[str]:
-    """The plugin's detect_mode of each sample, run under `lua` on the pure modules."""
+    """The plugin's mode of each sample as a whole input, run under `lua` on the pure modules."""
     literals = ", ".join('"' + "".join(f"\\{byte:03d}" for byte in sample) + '"' for sample in samples)
     script = tmp_path / "modes.lua"
     script.write_text(
         f"dofile({str(PLUGIN)!r})\n"
-        'local detect_mode = package.loaded["vw3.env"].detect_mode\n'
-        f"for _, sample in ipairs({{ {literals} }}) do print(detect_mode(sample)) end\n",
+        'local sample_mode = package.loaded["vw3.env"].sample_mode\n'
+        f"for _, sample in ipairs({{ {literals} }}) do print(sample_mode(sample, true)) end\n",
         encoding="utf-8")
     result = subprocess.run([ensure_tool(lua, lua), str(script)], capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr[-2000:]
@@ -69,12 +70,13 @@ def _lua_modes(lua: str, samples: list[bytes], tmp_path: Path) -> list[str]:
 def test_the_plugin_tells_the_mode_vw3_decode_tells(lua: str, tmp_path: Path) -> None:
     samples = [sample for sample, _ in SAMPLES]
     assert [detect_mode(sample) for sample in samples] == [mode for _, mode in SAMPLES]
+    assert [sample_mode(sample, True) for sample in samples] == [mode for _, mode in SAMPLES]
     assert _lua_modes(lua, samples, tmp_path) == [mode for _, mode in SAMPLES]
 
 
 @pytest.mark.parametrize("lua", ["lua5.2", "lua5.4"])
 def test_random_samples_get_the_same_mode(lua: str, tmp_path: Path) -> None:
     samples = _random_samples(400)
-    expected = [detect_mode(sample) for sample in samples]
+    expected = [sample_mode(sample, True) for sample in samples]
     assert expected.count("ascii") >= 40 and expected.count("rtu") >= 40  # (both answers exercised)
     assert _lua_modes(lua, samples, tmp_path) == expected

@@ -177,16 +177,20 @@ def test_the_recorded_rtu_buses_hold_no_ascii_frame() -> None:
 
 
 def test_ascii_lines_behind_long_noise_get_the_mode_ascii_hint(tmp_path: Path) -> None:
-    # 60 bytes of noise hide the frames from the 64-byte sample: read as RTU, every byte noise; the
-    # warning then names --mode ascii, which decodes the 20 frames. Random-looking RTU noise gets no hint.
+    # 60 bytes of noise no longer hide the frames (the sample reads on: protocol/ascii.py sample_mode); 1044
+    # bytes (past MODE_REACH) do: read as RTU, every byte noise; the warning then names --mode ascii, which
+    # decodes the 20 frames. Random-looking RTU noise gets no hint.
+    early = tmp_path / "early.bin"
+    early.write_bytes(bytes(range(60)) + LINE * 20)
+    assert run_cli([str(early)])[1].splitlines()[-20:] == frames(3, 10)  # after 2 noise runs (':' in them)
     path = tmp_path / "late.bin"
-    path.write_bytes(bytes(range(60)) + LINE * 20)
+    path.write_bytes(bytes(range(58)) * 18 + LINE * 20)
     status, out, err = run_cli([str(path)])
     assert status == 0 and err == (
-        f"vw3-decode: warning: {path}: no valid Modbus RTU frame in 400 bytes (every item is noise or a frame "
-        "with a bad check): not a Modbus capture, or another format or line speed? (it holds Modbus ASCII "
+        f"vw3-decode: warning: {path}: no valid Modbus RTU frame in 1384 bytes (every item is noise or a "
+        "frame with a bad check): not a Modbus capture, or another format or line speed? (it holds Modbus ASCII "
         "frames: try --mode ascii)\n")
-    assert run_cli(["--mode", "ascii", str(path)])[1].splitlines()[-20:] == frames(3, 10)  # after 2 noise runs
+    assert run_cli(["--mode", "ascii", str(path)])[1].splitlines()[-20:] == frames(2, 10)  # after 1 noise run
     binary = tmp_path / "binary.bin"
     binary.write_bytes(bytes(range(200, 256)) * 5)
     assert run_cli([str(binary)])[2].endswith("or another format or line speed?\n")
