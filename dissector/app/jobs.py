@@ -118,6 +118,7 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
     """Decode one capture into DIR/frames, DIR/registers and DIR/events (runs in any process)."""
     from dissector.app.profile_options import annotator_from_args
     from dissector.export.parquet import CaptureTables, file_stem
+    from dissector.render.stats_store import slave_tables
 
     result = CaptureResult(capture.shown)
     try:
@@ -126,7 +127,8 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         result.error = str(error)
         return result
     try:
-        tables = CaptureTables(settings.directory, capture.path, file_stem(capture.path))
+        tables = CaptureTables(settings.directory, capture.path, file_stem(capture.path),
+                               register_tables=slave_tables(annotate))
     except OSError as error:  # DIR/frames and the others could not be made
         result.error = f"--parquet {settings.directory}: {error.strerror or error}"
         return result

@@ -16,7 +16,7 @@ from __future__ import annotations
 import bisect
 import hashlib
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -146,6 +146,8 @@ class CaptureTables:
     capture: str  # the `capture` column: the capture's absolute path
     stem: str
     tables: dict[str, _Table] = field(default_factory=dict)
+    # slave -> each code's register table on its device (stats_store.slave_tables; None: the protocol's)
+    register_tables: Callable[[int], bytes] | None = None
     # (first byte offset in the capture's stream, file name) per file, in order: an item is in the file
     # its first byte came from (the framer and the pairer hand items on later than their bytes).
     files: list[tuple[int, str]] = field(default_factory=list)
@@ -191,7 +193,10 @@ class CaptureTables:
         """A parameter that turns unreadable (its status) or readable again: reads and exceptions."""
         if row["access"] not in ("read", "exception") or row["address"] is None:
             return
-        key = (row["slave"], register_table(row["function"]), row["address"])  # a parameter, as the history's
+        slave, function = row["slave"], row["function"]
+        tables = self.register_tables
+        table = register_table(function) if tables is None else tables(slave)[function]
+        key = (slave, table, row["address"])  # a parameter, as the history's
         status = row["status"]
         before = self._state.get(key)
         now = status if status in UNREADABLE_STATUSES else "readable"
