@@ -26,6 +26,7 @@ from dissector.sources.pcapng import (
     Interface,
     _interface,
     read_pcapng,
+    serial,
 )
 
 SCAN_BUFFER = 1 << 20  # the walk's reads
@@ -35,6 +36,7 @@ SCAN_BUFFER = 1 << 20  # the walk's reads
 class PacketInterface:
     ordinal: int  # in the order the file describes its interfaces, across sections (from 0)
     interface: Interface
+    first: bool = False  # the file's first bus: it warns of the interfaces carrying no serial bytes
 
     def label(self) -> str:
         """The interface as a title names it: its if_name, else its description, else its number."""
@@ -97,18 +99,26 @@ def _walk(stream, size: int, path: str) -> list[PacketInterface]:  # type: ignor
             if index < len(section):
                 used.add(section[index])
         position += total
-    return [PacketInterface(ordinal, described[ordinal]) for ordinal in sorted(used)]
+    # (an interface carrying no serial bytes is no bus: the reader passes its packets over, saying so)
+    buses = [PacketInterface(ordinal, described[ordinal]) for ordinal in sorted(used)
+             if serial(described[ordinal].linktype)]
+    if buses:
+        buses[0].first = True
+    return buses
 
 
-def open_interface(path: str, ordinal: int, mode: str | None, chunk_size: int = 65536):  # type: ignore[no-untyped-def]
-    """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`."""
+def open_interface(  # type: ignore[no-untyped-def]
+    path: str, ordinal: int, mode: str | None, chunk_size: int = 65536, tell_skipped: bool = True
+):
+    """A Source (sources/reader.py) of the packets of one interface of the pcapng file `path`
+    (`tell_skipped`: this bus warns of the interfaces carrying no serial bytes; one bus of the file does)."""
     from dissector.sources.reader import MIN_CHUNK, Source, sampled_mode
 
     chunk_size = max(chunk_size, MIN_CHUNK)
     stream = open(path, "rb")
     try:
         log = WarningLog()
-        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal)
+        chunks = read_pcapng(Input(stream, path), log, chunk_size, only=ordinal, tell_skipped=tell_skipped)
         head: list = []
         if mode is None:  # as reader.py decides it: the first payload bytes, replayed first
             mode, head = sampled_mode(chunks)

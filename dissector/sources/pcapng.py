@@ -18,7 +18,9 @@ from dataclasses import dataclass
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
+    LINKTYPE_NAMES,
     LINKTYPE_RTAC_SERIAL,
+    LINKTYPE_USER0,
     Input,
     SourceError,
     WarningLog,
@@ -91,9 +93,10 @@ class _Reader:
     order the file describes them, across sections); the others' packets are passed over."""
 
     def __init__(self, inp: Input, log: WarningLog, chunk_size: int, first_interface: bool = False,
-                 only: int | None = None) -> None:
+                 only: int | None = None, tell_skipped: bool = True) -> None:
         self.inp = inp
         self.only = only
+        self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
         self.described = 0  # interfaces described so far in the file, all sections
         self.ordinals: list[int] = []  # the section's interfaces' ordinals in the file
         self.first_interface = first_interface  # stop once the first interface is described
@@ -107,6 +110,9 @@ class _Reader:
         # The time of the last timed packet read, any interface's, empty or not: the tap was recording then
         # (read_pcapng's recorded_until).
         self.last_time: Stamp | None = None
+        # Packets of interfaces carrying no serial bytes (an Ethernet tap beside the serial one), passed
+        # over: ordinal -> [linktype, records, bytes], told once at the end (skipped_warnings).
+        self.skipped: dict[int, list[int]] = {}
 
     def run(self) -> Iterator[Chunk]:
         inp = self.inp
@@ -200,10 +206,18 @@ class _Reader:
             )
         return True
 
-    def _other(self, index: int, space: int, start: int) -> bool:
-        """Whether the packet is another interface's than the one read (`only`); its `space` bytes
-        are then passed over."""
-        if self.only is None or (index < len(self.ordinals) and self.ordinals[index] == self.only):
+    def _other(self, index: int, space: int, start: int, captured: int) -> bool:
+        """Whether the packet is another interface's than the one read (`only`), or one of an interface
+        that carries no serial bytes (counted: skipped_warnings) while another interface does; its
+        `space` bytes are then passed over."""
+        unreadable = index < len(self.interfaces) and not serial(self.interfaces[index].linktype)
+        if unreadable and any(serial(interface.linktype) for interface in self.interfaces):
+            if self.tell_skipped:
+                linktype = self.interfaces[index].linktype
+                counts = self.skipped.setdefault(self.ordinals[index], [linktype, 0, 0])
+                counts[1] += 1
+                counts[2] += captured
+        elif self.only is None or (index < len(self.ordinals) and self.ordinals[index] == self.only):
             return False
         if self.inp.skip(space) < space:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
@@ -244,7 +258,7 @@ class _Reader:
                 f"{inp.name}: packet block at byte {start}: {captured} bytes do not fit in the block"
             )
         epoch = not (high or low)
-        if self._other(index, body_length - 20, start):
+        if self._other(index, body_length - 20, start, captured):
             if not epoch and index < len(self.interfaces):
                 self._recorded(self.interfaces[index], high << 32 | low)
             return
@@ -267,6 +281,17 @@ class _Reader:
             chunks = self._data(captured, original, None, interface, body_length - 20, start)
         yield from chunks
 
+    def skipped_warnings(self) -> None:
+        """One line per interface whose packets were passed over, with what they held (every byte of the
+        input accounted for)."""
+        for ordinal, (linktype, records, length) in sorted(self.skipped.items()):
+            label = LINKTYPE_NAMES.get(linktype, "not a serial line")
+            self.log.warn(
+                "skipped interfaces",
+                f"interface {ordinal}: linktype {linktype} ({label}) carries no serial bytes: "
+                f"{records} record{'s' if records != 1 else ''} ({length} bytes) skipped",
+            )
+
     def _recorded(self, interface: Interface, stamp: int) -> None:
         """Another interface's timed packet was recorded (passed over). An RTAC record's time is in its
         bytes: that interface's chunks carry it (Dissector.feed)."""
@@ -283,7 +308,7 @@ class _Reader:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             return
         original = struct.unpack(self.order + "I", raw)[0]
-        if self._other(0, body_length - 4, start):
+        if self._other(0, body_length - 4, start, min(original, body_length - 4)):
             return
         interface = self._interface_for(0, start)
         captured = min(original, body_length - 4)
@@ -313,6 +338,11 @@ class _Reader:
         if self.inp.skip(rest) < rest:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             raise _Ended()
+
+
+def serial(linktype: int) -> bool:
+    """Does an interface of this link type carry serial bytes vw3-decode reads (common.check_linktype)?"""
+    return linktype in (LINKTYPE_USER0, LINKTYPE_RTAC_SERIAL)
 
 
 class _Ended(Exception):
@@ -373,8 +403,11 @@ class PcapngChunks:
         except _Ended:
             pass
         yield from self._reader.held.release(False)
+        self._reader.skipped_warnings()
 
 
-def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None) -> PcapngChunks:
-    """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal)."""
-    return PcapngChunks(_Reader(inp, log, chunk_size, only=only))
+def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,
+                tell_skipped: bool = True) -> PcapngChunks:
+    """The chunks of a pcapng's packets (`only`: of that interface alone, by its ordinal; `tell_skipped`:
+    warn of the interfaces carrying no serial bytes)."""
+    return PcapngChunks(_Reader(inp, log, chunk_size, only=only, tell_skipped=tell_skipped))

@@ -1,0 +1,80 @@
+"""A pcapng whose serial interface has an Ethernet (or any non-serial) interface beside it: the serial
+interfaces are decoded, the others' packets skipped with one warning per interface saying how many records
+and bytes it held (every byte of the input accounted for). Before, the whole file was refused (exit 2) at
+the first Ethernet packet, though tshark decodes the serial interface. A file with no serial interface is
+still refused in one line."""
+from __future__ import annotations
+
+import struct
+from pathlib import Path
+
+import pytest
+
+from helpers import run_cli, use_engine
+
+REQUEST = bytes.fromhex("0C0320D000030EEF")
+ANSWER = bytes.fromhex("0C0306000100020003A5E4")  # 8400=1, CHCF=SEP, COP=ALL
+ETHERNET = b"\xff" * 6 + b"\x02" * 6 + b"\x08\x00" + b"E" * 40  # 54 bytes
+BOTH = pytest.mark.parametrize("pure", [False, True], ids=["engine", "python"])
+READ = "12 request   Read Holding Registers 8400..8402 (3)  CRC ok"
+ANSWERED = ("12 response  Read Holding Registers 8400..8402 (3): 8400=1 8401=2 8402=3 [#1, 10.0 ms]  CRC ok")
+NOT_READ = "interface 0: linktype 1 (Ethernet) carries no serial bytes"
+
+
+def _block(kind: int, body: bytes) -> bytes:
+    total = 12 + len(body)
+    return struct.pack("<II", kind, total) + body + struct.pack("<I", total)
+
+
+def _pcapng(linktypes: list[int], packets: list[tuple[int, int, bytes]]) -> bytes:
+    """Interfaces (their link types) and packets (interface, microseconds, bytes)."""
+    out = _block(0x0A0D0D0A, struct.pack("<IHHq", 0x1A2B3C4D, 1, 0, -1))
+    for linktype in linktypes:
+        out += _block(1, struct.pack("<HHI", linktype, 0, 0))
+    for interface, micros, data in packets:
+        stamp = 1_767_225_600_000_000 + micros
+        out += _block(6, struct.pack("<IIIII", interface, stamp >> 32, stamp & 0xFFFFFFFF, len(data), len(data))
+                      + data + b"\0" * (-len(data) % 4))
+    return out
+
+
+@BOTH
+def test_serial_interface_beside_ethernet_is_decoded(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool
+) -> None:
+    use_engine(monkeypatch, pure)
+    path = tmp_path / "serial_and_ethernet.pcapng"
+    path.write_bytes(_pcapng([1, 147], [(0, 0, ETHERNET), (1, 1000, REQUEST), (0, 5000, ETHERNET),
+                                        (1, 11_000, ANSWER)]))
+    status, out, err = run_cli([str(path)])
+    assert status == 0
+    assert out.splitlines() == [f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}"]
+    assert err.splitlines() == [f"vw3-decode: warning: {NOT_READ}: 2 records (108 bytes) skipped"]
+
+
+@BOTH
+def test_two_serial_buses_beside_ethernet_warn_once(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool
+) -> None:
+    use_engine(monkeypatch, pure)
+    path = tmp_path / "two_serial_and_ethernet.pcapng"
+    path.write_bytes(_pcapng([1, 147, 147], [(0, 0, ETHERNET), (1, 1000, REQUEST), (2, 2000, REQUEST),
+                                            (1, 11_000, ANSWER), (2, 12_000, ANSWER)]))
+    status, out, err = run_cli([str(path)])
+    assert status == 0
+    assert out.splitlines() == [
+        f"==> {path}: interface 1 <==", f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}",
+        f"==> {path}: interface 2 <==", f"     1     0.000000  {READ}", f"     2     0.010000  {ANSWERED}",
+    ]
+    assert err.splitlines() == [f"vw3-decode: warning: {NOT_READ}: 1 record (54 bytes) skipped"]
+
+
+@BOTH
+def test_no_serial_interface_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    path = tmp_path / "ethernet.pcapng"
+    path.write_bytes(_pcapng([1], [(0, 0, ETHERNET)]))
+    status, out, err = run_cli([str(path)])
+    assert (status, out) == (2, "")
+    assert err.splitlines() == [
+        f"vw3-decode: {path}: {NOT_READ}; supported: 147 (USER0) and 250 (RTAC serial)"]
