@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from dissector.errors import UsageError
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
+from dissector.framing.rules import spans_a_frame
 from dissector.model import Chunk, Frame, Item
 from dissector.protocol.crc import crc16, lrc
 from dissector.sources.notation import Notation, NotationError
@@ -111,10 +112,13 @@ def hex_chunk(text: str, notation: Notation | None = None, where: str = "--hex")
 
 
 def _one_frame(data: bytes, ascii: bool = False) -> bool:
-    """Does the framer find exactly one frame, with a good check, covering all of `data`?"""
+    """Does the framer find exactly one frame, with a good check, covering all of `data`, of a length a layout
+    gives (an RTU record with a good CRC is a frame whatever its length, framing/bounded.py: a typo's mending
+    asks for the table's shapes, rules.spans_a_frame)?"""
     framer = AsciiFramer() if ascii else RtuFramer()
     items = framer.feed(Chunk(data, None, True)) + framer.finish()
-    return len(items) == 1 and isinstance(items[0], Frame) and items[0].crc_ok and items[0].length == len(data)
+    whole = len(items) == 1 and isinstance(items[0], Frame) and items[0].crc_ok and items[0].length == len(data)
+    return whole and (ascii or spans_a_frame(data))
 
 
 def _wire(crc: int) -> str:

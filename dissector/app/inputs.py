@@ -45,7 +45,8 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
     if args.hex:
         typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
         fix = typed.fix if typed.repairs else None
-        yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, False, fix, (None, None),
+        # (timed: its arguments are records, whose ends the compiled timed path keeps; the raw path drops them)
+        yield (("--hex" if several else None), typed.chunks, typed.mode, list, lambda: None, True, fix, (None, None),
                None, None)
     for shown_name, files in captures:
         path = files[0]
