@@ -20,7 +20,7 @@ from dissector.model import Chunk, Item, stamped_before
 from dissector.render.capturefile import CaptureOutput, Interface, pcapng_interface
 from dissector.render.pcapwriter import MICROS, NANOS
 from dissector.sources.interfaces import PacketInterface, open_interface, packet_interfaces
-from dissector.sources.pcap import MAGICS
+from dissector.sources.pcap import MAGICS, is_pcap
 from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
 from dissector.sources.pcapng import Interface as RecordedInterface
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
@@ -130,7 +130,7 @@ def write_units(paths: list[str], stdin: Any = None, fmt: str | None = None) -> 
             except OSError:
                 continue
             interfaces = [bus.interface for bus in packet_interfaces(path)] if is_pcapng(head) else []
-            if head[:4] not in MAGICS and not interfaces and _text_nanoseconds(path, fmt):
+            if not is_pcap(head) and not interfaces and _text_nanoseconds(path, fmt):
                 return NANOS
         units = [MAGICS.get(head[:4], ("", MICROS))[1], *(interface.units for interface in interfaces)]
         if any(unit > MICROS or MICROS % unit for unit in units):

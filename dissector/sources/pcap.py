@@ -1,4 +1,5 @@
-"""Classic pcap (libpcap) files: both byte orders, microsecond and nanosecond timestamps.
+"""Classic pcap (libpcap) files: both byte orders, microsecond and nanosecond timestamps, and the
+modified pcap of Alexey Kuznetzov's patched libpcap (editcap -F modpcap, magic a1b2cd34).
 
 A record is one read of the serial line (one frame for most sniffers, any run of bytes for others):
 it becomes one Chunk with the record's time and boundary=True. Only the link types that carry raw
@@ -26,12 +27,16 @@ MAGICS: dict[bytes, tuple[str, int]] = {
     bytes.fromhex("4d3cb2a1"): ("<", 1_000_000_000),
     bytes.fromhex("a1b23c4d"): (">", 1_000_000_000),
 }
+# Modified pcap: microsecond times; each record header has 8 more bytes (ifindex u32, protocol u16,
+# pkt_type u8, pad u8), nothing a serial line needs.
+MODIFIED_MAGICS: dict[bytes, str] = {bytes.fromhex("34cdb2a1"): "<", bytes.fromhex("a1b2cd34"): ">"}
+MODIFIED_EXTRA = 8
 FILE_HEADER_SIZE = 24
 RECORD_HEADER_SIZE = 16
 
 
 def is_pcap(head: bytes) -> bool:
-    return head[:4] in MAGICS
+    return head[:4] in MAGICS or head[:4] in MODIFIED_MAGICS
 
 
 def read_pcap(inp: Input, log: WarningLog, chunk_size: int) -> PcapRecords:
@@ -51,6 +56,7 @@ class PcapRecords:
         self.between = False  # the last chunk given ended a record: the next bytes are a record header
         self.holding = False  # a record's header is read but its chunks are not all given yet
         self.order, self.units, self.linktype, self.snaplen = "<", 1_000_000, 0, 0
+        self.extra = 0  # record header bytes after the standard 16 (modified pcap)
         self.recorded_until: Stamp | None = None
         self._chunks = self._read()
 
@@ -59,20 +65,24 @@ class PcapRecords:
 
     def __next__(self) -> Chunk:
         chunk = next(self._chunks)
-        self.between = chunk.boundary and not self.holding
+        # (accel/records.py reads the rest in bulk from between two records: standard headers only)
+        self.between = chunk.boundary and not self.holding and not self.extra
         return chunk
 
     def _read(self) -> Iterator[Chunk]:
         inp = self.inp
         header = inp.read(FILE_HEADER_SIZE)
         magic = header[:4]
-        if magic not in MAGICS:
+        if not is_pcap(magic):
             raise SourceError(f"{inp.name}: not a pcap file (magic {magic.hex() or 'missing'})")
         if len(header) < FILE_HEADER_SIZE:
             raise SourceError(
                 f"{inp.name}: truncated pcap file header ({len(header)} of {FILE_HEADER_SIZE} bytes)"
             )
-        self.order, self.units = MAGICS[magic]
+        if magic in MODIFIED_MAGICS:
+            self.order, self.extra = MODIFIED_MAGICS[magic], MODIFIED_EXTRA
+        else:
+            self.order, self.units = MAGICS[magic]
         _major, _minor, _zone, _sigfigs, self.snaplen, network = struct.unpack(self.order + "HHiIII", header[4:])
         # The upper bits of the link-type field hold FCS information, irrelevant to a serial line.
         self.linktype = network & 0xFFFF
@@ -82,19 +92,20 @@ class PcapRecords:
     def records(self, inp: Input) -> Iterator[Chunk]:
         """The chunks of the records `inp` holds from its position on."""
         log = self.log
-        record_header = struct.Struct(self.order + "IIII")
+        record_header = struct.Struct(self.order + "IIII" + "x" * self.extra)
         held = EpochRecord(self.chunk_size)
         while True:
-            head = inp.read(RECORD_HEADER_SIZE)
+            head = inp.read(record_header.size)
             if not head:
                 yield from held.release(False)
                 return
             self.record += 1
-            if len(head) < RECORD_HEADER_SIZE:
+            if len(head) < record_header.size:
                 yield from held.release(False)
                 log.warn(
                     "truncated input",
-                    f"record {self.record}: the capture ends inside its header ({len(head)} of 16 bytes)",
+                    f"record {self.record}: the capture ends inside its header "
+                    f"({len(head)} of {record_header.size} bytes)",
                 )
                 return
             seconds, fraction, captured, original = record_header.unpack(head)
