@@ -36,6 +36,7 @@ from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
 from dissector.render.pcapwriter import MICROS, SNAPLEN, PcapWriter, split_time
+from dissector.sources.pcapng import serial
 
 FORMATS = ("pcap", "pcapng")
 STDOUT = "-"
@@ -188,7 +189,7 @@ Interface = tuple[str | None, str | None]  # pcapng if_name, if_description
 
 
 def pcapng_interface(path: str) -> Interface | None:
-    """The name and description of a pcapng file's first interface, for the -w file to keep (as
+    """The name and description of a pcapng file's first serial interface, for the -w file to keep (as
     editcap and tshark -w keep a capture's interfaces); None when the file is no pcapng or names none.
     The file's head is hostile data: every length is checked against what was read."""
     try:
@@ -204,6 +205,10 @@ def pcapng_interface(path: str) -> Interface | None:
         block_type, total = struct.unpack_from(order + "II", head, position)
         if total < 12 or total % 4 or position + total > len(head):
             return None
+        linktype = struct.unpack_from(order + "H", head, position + 8)[0]
+        if block_type == 1 and not serial(linktype):  # (an Ethernet interface beside the serial one: no bus)
+            position += total
+            continue
         if block_type == 1:  # IDB: link type, reserved, snaplen, then options
             texts = dict(_text_options(head[position + 16 : position + total - 4], order))
             name, description = texts.get(2), texts.get(3)

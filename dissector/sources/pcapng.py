@@ -99,7 +99,8 @@ class _Reader:
         self.tell_skipped = tell_skipped  # count the packets of interfaces not read (one bus of several says)
         self.described = 0  # interfaces described so far in the file, all sections
         self.ordinals: list[int] = []  # the section's interfaces' ordinals in the file
-        self.first_interface = first_interface  # stop once the first interface is described
+        # stop once the first serial interface is described (an Ethernet one beside it is no bus)
+        self.first_interface = first_interface
         self.log = log
         self.chunk_size = chunk_size
         self.order = "<"
@@ -145,7 +146,7 @@ class _Reader:
                 self.interfaces.append(_interface(body, self.order, inp.name))
                 self.ordinals.append(self.described)
                 self.described += 1
-                if self.first_interface:
+                if self.first_interface and serial(self.interfaces[-1].linktype):
                     return
             elif block_type in (EPB, OPB):
                 yield from self._packet(block_type, body_length, start)
@@ -350,7 +351,8 @@ class _Ended(Exception):
 
 
 def first_interface(path: str) -> Interface | None:
-    """The first interface a pcapng file describes; None for another format, or a file that cannot say.
+    """The first serial interface a pcapng file describes (else its first); None for another format, or a
+    file that cannot say.
 
     Read from the file's first blocks (the interface precedes the packets it carries), at most
     HEAD_BYTES, so asking costs the same whatever the capture's size. Not from a FIFO: its bytes are the
@@ -371,7 +373,8 @@ def first_interface(path: str) -> Interface | None:
             break  # a packet before any interface: not a valid file, nothing to say
     except (SourceError, _Ended):
         pass
-    return reader.interfaces[0] if reader.interfaces else None
+    serials = [interface for interface in reader.interfaces if serial(interface.linktype)]
+    return (serials or reader.interfaces or [None])[0]
 
 
 HEAD_BYTES = 4 * MAX_HEADER_BLOCK

@@ -78,3 +78,23 @@ def test_no_serial_interface_is_refused(tmp_path: Path, monkeypatch: pytest.Monk
     assert (status, out) == (2, "")
     assert err.splitlines() == [
         f"vw3-decode: {path}: {NOT_READ}; supported: 147 (USER0) and 250 (RTAC serial)"]
+
+
+def test_serial_interface_names_the_copy(tmp_path: Path) -> None:
+    # The serial interface's if_name and speed (framing/linespeed.py reads the description) are the file's,
+    # not the Ethernet interface's described before it.
+    from dissector.sources.pcapng import first_interface
+
+    path = tmp_path / "named.pcapng"
+    named = b"".join(struct.pack("<HH", code, len(text)) + text + b"\0" * (-len(text) % 4)
+                     for code, text in ((2, b"/dev/ttyUSB0"), (3, b"/dev/ttyUSB0 19200 8E1"))) + b"\0" * 4
+    content = _pcapng([1], [])
+    content += _block(1, struct.pack("<HHI", 147, 0, 0) + named)
+    path.write_bytes(content + _pcapng([], [(1, 0, REQUEST)])[28:])  # (after its section header)
+    interface = first_interface(str(path))
+    assert interface is not None and (interface.linktype, interface.name, interface.description) == (
+        147, "/dev/ttyUSB0", "/dev/ttyUSB0 19200 8E1")
+    status, _out, err = run_cli([str(path), "-w", str(tmp_path / "copy.pcapng")])
+    assert (status, err) == (0, "")
+    copied = first_interface(str(tmp_path / "copy.pcapng"))
+    assert copied is not None and (copied.linktype, copied.name) == (147, "/dev/ttyUSB0")
