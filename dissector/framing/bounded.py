@@ -1,22 +1,29 @@
-"""What the line's bounds say to the RTU framer (rtu.RtuFramer._run asks): bytes from a bound that begin a
-request are a request the end of the capture cuts, the next poll (_cut_request), where no answer awaited
-begins (RtuFramer._cut_answer weighs that one); the intact frames inside bytes, where records that are frames
-bound them too (_intact_inside, _framed_inside).
+"""What the line's bounds say to the RTU framer (rtu.RtuFramer._run asks): bytes with a good CRC between two
+bounds are a frame, whatever length the protocol table expects of their layout (asked where no layout checks
+out: _bounded_run); bytes from a bound that begin a request are a request the end of the capture cuts, the
+next poll (_cut_request), where no answer awaited begins (RtuFramer._cut_answer weighs that one); the intact
+frames inside bytes, where records that are frames bound them too (_intact_inside, _framed_inside).
 
 A bound is a record's start or end (a pcap record, a hex-dump line, a --hex argument), a silence of t3.5
-or more in a timed capture, or the end of a frame the framer took. Bytes after noise are bound by nothing:
-that their first two read as a slave and a function is a 1 in 256 chance or so for random bytes.
+or more in a timed capture, the end of a frame the framer took, and for a run's end the start of an intact
+frame or the end of the input. A run from one to the next is what tshark's mbrtu shows as a frame when a
+record holds it: pymodbus's answer to FC8 sub-function 15h (118 bytes where the table's FC8 layout takes 8),
+an exception to function 0 (`11 80 01` + CRC). Only the first CRC match from a bound that ends at one is
+taken: once in 65,536 runs for random bytes. Bytes after noise are bound by nothing (a raw byte stream
+resynchronising): no length is guessed there, each position and length tried would be another 1 in 65,536
+chance of inventing a frame.
 """
 from __future__ import annotations
 
 from dissector.framing.rules import MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, NOT_BROADCAST, Scan, _crc_ok
-from dissector.model import Kind
+from dissector.model import Frame, Kind
+from dissector.protocol.rules import text
 
 
 class Bounded:
     """What RtuFramer weighs at a bound (with its own methods: _boundary_at, _valid_frame_at...; _framed_end,
     StreamFramer's: where the last frame ends): the intact frames inside bytes, where records that are frames
-    bound them too; requests the end of the capture cuts."""
+    bound them too; runs the line bounds; requests the end of the capture cuts."""
 
     def _intact_inside(self, buf: bytearray, i: int, length: int, n: int, final: bool) -> bool | None:
         """Does a frame with a length rule and a good CRC start inside bytes i..i+length? None when
@@ -44,6 +51,55 @@ class Bounded:
     def _bounded_start(self, i: int) -> bool:
         """Does a bound (a record's start or end, a silence, a frame's end) fall at buffer index i?"""
         return self._boundary_at(i) or self._record_starts_at(i) or self._framed_end == self._base + i
+
+    def _bounded_run(self, buf: bytearray, i: int, n: int, final: bool) -> int:
+        """The length of the run from i to the next bound when its CRC is good: the first intact frame, record's
+        end or silence after i (a run crosses none: a USB read ends anywhere, but a frame across it is no run
+        the line bounds), or the end of the input; 0: none, NEED: the bytes that tell have not come yet. One
+        candidate a bound: an intact frame inside a run ends it, so a glitch byte before a frame is no run."""
+        if not self._bounded_start(i):
+            return 0
+        ends = [at - self._base for at in self._boundaries if i < at - self._base <= n]
+        # (up to a record's end or silence, the frames inside it only: as if the input ended there)
+        stop, last = (min(ends), True) if ends else (n, final)
+        for end in range(i + 1, min(stop, i + MAX_ADU) + 1):
+            found = self._valid_frame_at(buf, end, stop, last, scan=False)  # (at `stop` itself: True when last)
+            if found is None:
+                return NEED
+            if found:
+                return end - i if end - i >= MIN_ADU and _crc_ok(buf, i, end - i) else 0
+        return NEED if not last and n - i < MAX_ADU else 0
+
+    def _bounded_frame(self, buf: bytearray, i: int, length: int, n: int) -> Frame:
+        """The frame of the bounded run i..i+length, with a warning when its layout takes another length."""
+        function = buf[i + 1]
+        if function & 0x80:
+            kind = Kind.EXCEPTION
+        else:
+            kind = Kind.RESPONSE if self._awaited(buf, i) else Kind.REQUEST
+        raw = bytes(buf[i : i + length])
+        offset = self._base + i
+        crc = raw[-2] | raw[-1] << 8
+        frame = Frame(offset, raw, self._time_at(offset), kind, buf[i], function & 0x7F, crc, crc)
+        expected = self._expected_length(buf, i, n, kind)
+        if expected and expected != length:
+            frame.warnings.append(text("frame_length", length=length, expected=expected))
+        return frame
+
+    def _expected_length(self, buf: bytearray, i: int, n: int, kind: Kind) -> int:
+        """The length the protocol table's layout of `kind` at i takes (0: none it fixes by these bytes)."""
+        for found, rule in self._interpretations(buf, i):
+            if found is kind:
+                length = rule(buf, i, n)
+                return 0 if type(length) is Scan or length < MIN_ADU else length
+        return 0
+
+    def _take_bounded(self, buf: bytearray, i: int, n: int, final: bool, items: list) -> int:
+        """Emit the frame of a bounded run at i (_bounded_run): its length, 0 (none) or NEED."""
+        length = self._bounded_run(buf, i, n, final)
+        if length > 0:
+            self._emit(self._bounded_frame(buf, i, length, n), items)
+        return length
 
     def _cut_tail(self, buf: bytearray, i: int, n: int) -> str | None:
         """At the end of the input: the reason bytes i..n begin a frame the end of the capture cuts (the answer

@@ -494,6 +494,12 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
             )
             first = (_RESPONSE_FIRST_FAST if awaited else _REQUEST_FIRST_FAST).get(function)
             if first is None:
+                taken = self._take_bounded(buf, i, n, final, items)  # (a run the line bounds, bounded.py)
+                if taken == NEED:
+                    break
+                if taken:
+                    i += taken
+                    continue
                 # No frame starts here: skip at C speed to the next byte pair that could start one.
                 found = _POSSIBLE_START.search(buf, i + 1)
                 end = found.start() if found is not None else (n if final else n - 1)
@@ -534,12 +540,21 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
             if final:
                 cut = self._cut_tail(buf, i, n)
                 if cut is not None:
-                    self._add_noise(i, n, cut, items)
-                    i = n
-                    break
+                    taken = self._take_bounded(buf, i, n, final, items)  # (a run the line bounds wins)
+                    if not taken:
+                        self._add_noise(i, n, cut, items)
+                    i = i + taken if taken else n
+                    continue
             match = self._match(buf, i, n, final)
             if match == NEED:
                 break
+            if match == NONE or not match[2]:  # (no layout checks out: a run the line bounds wins, bounded.py)
+                taken = self._take_bounded(buf, i, n, final, items)
+                if taken == NEED:
+                    break
+                if taken:
+                    i += taken
+                    continue
             if match == NONE:
                 self._add_noise(i, i + 1, NO_FRAME, items)
                 i += 1

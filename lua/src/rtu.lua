@@ -415,10 +415,41 @@ local function rtu_frame(b, i, offset, time, kind, length, crc_ok)
   }
 end
 
--- A bound (bounded.py _bounded_start): a record's start or end, a silence, the end of the last frame.
+-- Runs the line bounds (framing/bounded.py): bytes with a good CRC from a bound (a record's start or end, a
+-- silence, the end of the last frame) to the next (the first intact frame, record's end or silence after it,
+-- the end of the input) are a frame, whatever length the table's layout takes: one candidate a bound, once in
+-- 65,536 runs for random bytes. Its length: 0 (none) or NEED.
 local function bounded_start(s, i)
   return boundary_at(s, i) or record_start(s, i) or s.framed_end == s.base + i
 end
+
+local function bounded_run(s, b, i, n, final)
+  if not bounded_start(s, i) then return 0 end
+  -- (up to a record's end or silence, the frames inside it only: as if the input ended there)
+  local stop, last = record_end(s, i, n), true
+  if stop == nil then stop, last = n, final end
+  for stop_at = i + 1, math.min(stop, i + MAX_ADU) do
+    local found = valid_frame_at(s, b, stop_at, stop, last, false) -- (at `stop` itself: true when last)
+    if found == nil then return NEED end
+    if found then return stop_at - i >= MIN_ADU and crc_ok_at(b, i, stop_at - i) and stop_at - i or 0 end
+  end
+  if not last and n - i < MAX_ADU then return NEED end
+  return 0
+end
+
+-- The length the table's layout of `kind` at i takes (bounded.py _expected_length), 0: none it fixes.
+local function expected_length(s, b, i, n, kind)
+  local list = interpretations(s, b[i], b[i + 1], b, i, n)
+  for index = 1, #list do
+    if list[index][1] == kind then
+      local length, is_scan, _, fallback = list[index][2](b, i, n)
+      if is_scan or (fallback ~= nil and not (i + length <= n and crc_ok_at(b, i, length))) then return 0 end
+      return length >= MIN_ADU and length or 0
+    end
+  end
+  return 0
+end
+
 
 -- Does a layout at i whose length the bytes up to n hold check out (bounded.py _checks_out): an answer nobody
 -- asked for, shorter than a request, or cut before its request reading's byte count? (Unlike valid_frame_at, a
@@ -455,6 +486,23 @@ local function cut_request(s, b, i, n)
   return nil
 end
 
+-- Emit the frame of a bounded run at i (bounded.py _take_bounded): its length, 0 (none) or NEED. A warning says
+-- the length its layout takes when that is another.
+local function take_bounded(s, b, i, n, final, items)
+  local length = bounded_run(s, b, i, n, final)
+  if length <= 0 then return length end
+  local code = b[i + 1]
+  local kind = code >= 128 and EXCEPTION or (awaited(s, b, i, n) and RESPONSE or REQUEST)
+  local offset = s.base + i
+  local frame = rtu_frame(b, i, offset, time_at(s, offset), kind, length, true)
+  local expected = expected_length(s, b, i, n, kind)
+  if expected ~= 0 and expected ~= length then
+    frame.warnings = { say("frame_length", { length = length, expected = expected }) }
+  end
+  emit(s, frame, items)
+  return length
+end
+
 -- The interpretation the fast paths try at a frame start: the likeliest, unless it is an exception
 -- nobody awaits (those are weighed by match). nil: no fast path here.
 local function fast_interpretation(s, first, slave, code)
@@ -483,7 +531,12 @@ local function run_rtu(s, final, items)
     end
     local slave, code = b[i], b[i + 1]
     local first = stop == i and interpretations(s, slave, code, b, i, n)[1] or nil
-    if first == nil then
+    -- (the length of a run the line bounds where no frame starts, or no layout checks out below: take_bounded)
+    local taken = first == nil and stop == i and take_bounded(s, b, i, n, final, items) or 0
+    if taken == NEED then break end
+    if taken > 0 then
+      i = i + taken
+    elseif first == nil then
       if stop == i then
         -- No frame starts here: skip to the next byte pair that could start one.
         stop = i + 1
@@ -508,22 +561,30 @@ local function run_rtu(s, final, items)
       if kind == nil then
         local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
         if cut then
-          add_noise(s, i, n, cut, items)
-          return n
+          taken = take_bounded(s, b, i, n, final, items)
+          if taken == 0 then
+            add_noise(s, i, n, cut, items)
+            return n
+          end
+        else
+          kind, length, crc_ok = match(s, b, i, n, final)
+          if kind == NEED then break end
+          if kind == NONE or not crc_ok then taken = take_bounded(s, b, i, n, final, items) end
+          if taken == NEED then break end
         end
-        kind, length, crc_ok = match(s, b, i, n, final)
-        if kind == NEED then break end
         -- Resynchronising inside noise (not in step, at a record boundary, after nothing but glitch bytes
         -- since one): random bytes pass a CRC 1 time in 65,536 per layout tried, so such a frame counts
         -- only when the line confirms it (rtu.py _confirmed).
-        if kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
+        if taken == 0 and kind ~= NONE and crc_ok and (kind == REQUEST or not awaited(s, b, i, n))
             and not (s.noise == nil or s.glitches_only or boundary_at(s, i)) then
           local following = confirmed(s, b, i, kind, length, n, final)
           if following == nil then break end
           if not following then kind = NONE end
         end
       end
-      if kind == NONE then
+      if taken > 0 then
+        i = i + taken
+      elseif kind == NONE then
         add_noise(s, i, i + 1, NO_FRAME, items)
         i = i + 1
       else
