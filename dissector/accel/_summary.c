@@ -177,6 +177,7 @@ typedef struct {
     uint8_t *sources;         /* the addresses those rules depend on */
     uint8_t *pending;         /* addresses whose newest memory entry is in the engine's log */
     uint8_t *explained;       /* FC8 sub-functions the device explains or lacks (a note, a warning: Python's) */
+    uint8_t *read_only;       /* read-only parameters: a write of one is warned (access.check_writes) */
     long long base[HANDLED];  /* PLC-style display: 40001 + address (naming.plc_label); -1: none */
     unsigned long depend_run; /* the run() the answer below was found in */
     unsigned depend_address;
@@ -226,13 +227,15 @@ typedef struct {
 } Engine;
 
 #define BITMAP_BYTES (65536 / 8)
-#define SLAVE_BITMAPS(s) {&(s)->mapped, &(s)->dependent, &(s)->sources, &(s)->pending, &(s)->explained}
+#define SLAVE_BITMAPS(s) \
+    {&(s)->mapped, &(s)->dependent, &(s)->sources, &(s)->pending, &(s)->explained, &(s)->read_only}
+#define SLAVE_SETS 6
 static const uint8_t no_addresses[BITMAP_BYTES]; /* an empty set's bitmap, shared (only pending is written) */
 
 static void slave_clear(Slave *s) {
     Py_CLEAR(s->info);
-    uint8_t **bitmaps[5] = SLAVE_BITMAPS(s);
-    for (int k = 0; k < 5; k++) {
+    uint8_t **bitmaps[SLAVE_SETS] = SLAVE_BITMAPS(s);
+    for (int k = 0; k < SLAVE_SETS; k++) {
         if (*bitmaps[k] != no_addresses) PyMem_Free(*bitmaps[k]);
         *bitmaps[k] = NULL;
     }
@@ -308,6 +311,7 @@ static int fill_slave(Slave *s, PyObject *info) {
     PyObject *bases = facts[FACT_BASES];
     if (!PyDict_Check(functions) || !PyAnySet_Check(facts[FACT_MAPPED]) || !PyDict_Check(facts[FACT_DEPEND]) ||
         !PyAnySet_Check(facts[FACT_SOURCES]) || !PyAnySet_Check(facts[FACT_DIAGNOSTICS]) ||
+        !PyAnySet_Check(facts[FACT_READ_ONLY]) ||
         (seen != Py_None && !PyDict_Check(seen)) ||
         (bases != Py_None && !PyDict_Check(bases)))
         return bad_info("facts of the wrong type");
@@ -331,9 +335,10 @@ static int fill_slave(Slave *s, PyObject *info) {
     }
     s->depend = facts[FACT_DEPEND];
     /* (a generic profile's slaves kept 4 x 8 KB of zeros each: 247 of them 8 MB; issue 28) */
-    PyObject *sets[5] = {facts[FACT_MAPPED], s->depend, facts[FACT_SOURCES], NULL, facts[FACT_DIAGNOSTICS]};
-    uint8_t **bitmaps[5] = SLAVE_BITMAPS(s);
-    for (int k = 0; k < 5; k++) {
+    PyObject *sets[SLAVE_SETS] = {facts[FACT_MAPPED], s->depend, facts[FACT_SOURCES], NULL,
+                                  facts[FACT_DIAGNOSTICS], facts[FACT_READ_ONLY]};
+    uint8_t **bitmaps[SLAVE_SETS] = SLAVE_BITMAPS(s);
+    for (int k = 0; k < SLAVE_SETS; k++) {
         Py_ssize_t n = sets[k] != NULL ? PyObject_Size(sets[k]) : seen != Py_None; /* (pending: track()'s) */
         *bitmaps[k] = n == 0 ? (uint8_t *)no_addresses : n > 0 ? PyMem_Calloc(1, BITMAP_BYTES) : NULL;
         if (*bitmaps[k] == NULL) return n < 0 ? -1 : (PyErr_NoMemory(), -1);
@@ -930,6 +935,15 @@ static int lift_frame(const Slave *s, const uint8_t *f, Py_ssize_t length, const
     return 1;
 }
 
+/* A write request (its values, FC6/16/23; FC22's address) of a read-only parameter: access.check_writes warns
+ * it (Python's). */
+static int writes_read_only(const Slave *s, const uint8_t *f, int k, const Lifted *lifted) {
+    if (rules[k].confirm == CONFIRM_MASK) return bit(s->read_only, word(f + 2));
+    for (unsigned j = 0; j < lifted->values.count; j++)
+        if (bit(s->read_only, words_address(&lifted->values, j))) return 1;
+    return 0;
+}
+
 /* The decoder's and the annotator's checks of a frame (a handled code: frame_kind) by its lifting rule
  * (lift_frame), the `request` it answers given (NULL: f is a request, held to the device's quantity limits,
  * checks.within_limits; their second: FC23's written window); its window and data in *out, the registers
@@ -947,6 +961,7 @@ static int frame_is_quiet(Engine *e, Slave *s, const uint8_t *f, Py_ssize_t leng
     if (request == NULL && (check < 0 || (check >= 1 && (long)out->quantity > s->limit[k][0]) ||
                             (check == 2 && (!L->write_quantity_at || (long)out->values.count > s->limit[k][1]))))
         return 0;
+    if (request == NULL && writes_read_only(s, f, k, out)) return 0;
     int plain = words_are_plain(s, e->run_number, &out->values);
     if (plain <= 0 || request == NULL || L->values != VALUES_BLOCK) return plain;
     *reads = out->values;

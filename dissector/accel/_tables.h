@@ -248,8 +248,8 @@ static const char *const kind_column[] = {NULL, " request   ", " response  ", " 
 enum { STATUS_NEED = 0, STATUS_HANDOVER = 1 };
 /* The fields of accel/fastsummary.py's SlaveFacts (what the engine knows of a slave) and Texts (what
  * the Python stages write of a transaction), read by name. */
-enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES, FACT_DIAGNOSTICS, FACT_NAMER, FACTS };
-static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen", "protected", "bases", "diagnostics", "namer"};
+enum { FACT_USABLE, FACT_FUNCTIONS, FACT_MAPPED, FACT_DEPEND, FACT_SOURCES, FACT_SEEN, FACT_PROTECTED, FACT_BASES, FACT_DIAGNOSTICS, FACT_NAMER, FACT_READ_ONLY, FACTS };
+static const char *const fact_names[FACTS] = {"usable", "functions", "mapped", "depend", "sources", "seen", "protected", "bases", "diagnostics", "namer", "read_only"};
 enum { TEXT_REQUEST_INFO, TEXT_REQUEST_TAIL, TEXT_RESPONSE_INFO, TEXT_RESPONSE_TAIL, TEXTS };
 static const char *const text_names[TEXTS] = {"request_info", "request_tail", "response_info", "response_tail"};
 

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from dissector.decode.fields import decode_frame
+from dissector.devices.access import read_only_addresses
 from dissector.devices.checks import unsupported_subfunctions
 from dissector.model import Chunk, Frame, Item, Kind
 from dissector.pipeline import Dissector
@@ -82,6 +83,7 @@ class SlaveFacts:
     # --stats: (address, value) -> (text, code) of a register as this slave's device names it now (a
     # profile change gives a new one); the engine asks it once per parameter, not once per value.
     namer: Callable[[int, int], tuple[str | None, str | None]] | None = None
+    read_only: frozenset[int] = frozenset()  # read-only parameters: a write of one is warned (devices/access.py)
 
 
 class PathEngine(_summary.Engine if _summary is not None else object):  # type: ignore[misc]
@@ -141,7 +143,7 @@ def make_engine(annotator: Any | None, shown: bool = True, pairer: Any | None = 
         device = annotator.device(slave)
         explained = frozenset(device.profile.diagnostics) | unsupported_subfunctions(device.profile)
         return SlaveFacts(True, functions, mapped, depend, sources, seen, protected, bases, explained,
-                          annotator.namer(slave))
+                          annotator.namer(slave), read_only_addresses(device))
 
     def piece(slave: int, function: int, address: int, value: int) -> tuple[str, bool]:
         register = annotator.plain_register(slave, function, address, value)

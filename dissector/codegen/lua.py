@@ -21,7 +21,7 @@ from typing import Any
 
 from dissector.codegen import fields_lua, lanes_lua, pack_lua, printable_table, timing_lua
 from dissector.decode import pairing
-from dissector.devices import maps
+from dissector.devices import access, maps
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
 from dissector.model import CUT_ANSWER, Kind
@@ -140,6 +140,7 @@ def plugin_data() -> dict[str, Any]:
         # CRC-16/MODBUS's one-byte table (protocol/crc.py): the plugin's CRC steps are built from it.
         "crc_table": crc._TABLE,
         "not_broadcast": SPEC.not_broadcast,
+        "read_only_exception": SPEC.read_only_exception,
         # The catalogue's texts that take no parameters, filled in (protocol/rules.py text()): noise reasons,
         # the framers' warnings.
         "plain_texts": {key: rules.text(key) for key in rules.TEXTS if not rules.params(key)},
@@ -330,6 +331,8 @@ def _row_table(row: Any) -> dict[str, Any]:
         out["decimals"] = row.decimals
     if row.ambiguous_8000:
         out["ambiguous_8000"] = True
+    if row.access == access.READ_ONLY:
+        out["read_only"] = True
     if row.words != 1:
         out["words"], out["kind"] = row.words, row.kind
     if row.swapped:

@@ -15,6 +15,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 
+from dissector.devices.access import check_writes
 from dissector.devices.checks import check_request, check_subfunction, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
@@ -420,6 +421,7 @@ class Annotator:
                     check_request(frame, device)
             elif frame.subfunction is not None:
                 check_subfunction(frame, device.profile)
+            check_writes(frame, device)
         elif kind is _EXCEPTION:
             explain_exception(frame, device, events)
             if events:

@@ -3,6 +3,7 @@ meaning is said once, in one note (with the relay counters an error increments, 
 refused read was made of). One job: what an exception means on this device."""
 from __future__ import annotations
 
+from dissector.devices.access import read_only_refusal
 from dissector.devices.device import Device
 from dissector.devices.memory import lost
 from dissector.devices.naming import address_name, plc_label
@@ -31,7 +32,10 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     causes = profile.exception_causes.get((function, code))
     all_unreadable = code == profile.all_protected_exception and function in PLAIN_READS
     request = frame.request
-    if causes:
+    refusal = read_only_refusal(frame, device)
+    if refusal is not None:  # (a write of read-only parameters: named rather than the code's meaning)
+        frame.notes.append(refusal)
+    elif causes:
         key = (function, code, None if request is None else request.raw)
         note = device.explained.get(key)
         if note is None:

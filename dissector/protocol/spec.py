@@ -32,6 +32,7 @@ class Spec:
     not_broadcast: frozenset[int]
     plc_references: dict[int, int]  # function -> PLC reference base (1: 00001, 10001, 30001)
     user_defined: frozenset[int]  # function codes the spec leaves to users
+    read_only_exception: int  # the exception that refuses a write of a read-only parameter
     # Codes with no public layout that a shipped device profile speaks (data/profiles/*.toml `functions`)
     vendor_functions: frozenset[int]
     # The rule tables protocol/rules.py reads: how a write is confirmed, how frames are lifted, the texts
@@ -73,6 +74,7 @@ def load_spec() -> Spec:
         limits=data["limits"],
         not_broadcast=frozenset(data["not_broadcast"]),
         plc_references={int(key): int(value) for key, value in data.get("plc_references", {}).items()},
+        read_only_exception=int(data["read_only_exception"]),
         user_defined=frozenset(code for low, high in data["user_defined"] for code in range(low, high + 1)),
         vendor_functions=_vendor_functions(frozenset(_int_keys(data["functions"]))),
         confirm=_int_keys(data["confirm"]),

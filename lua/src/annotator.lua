@@ -15,6 +15,7 @@ local function annotate_with(st, f, b, device)
   local kind = f.kind
   if kind == REQUEST then
     check_request(f, device)
+    check_writes(f, device)
   elseif kind == EXCEPTION then
     explain_exception(f, device)
     return

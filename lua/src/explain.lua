@@ -44,6 +44,35 @@ local function check_request(f, device)
   end
 end
 
+-- The read-only parameters (map access R: row.read_only) a write request touches, named `ETA (3201)`
+-- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run; vw3_modbus.lua's requests: a
+-- list, f.written), FC22 by its address.
+local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
+local function written_read_only(f, device)
+  local rows, named, code, addresses = device.rows, {}, f.fn, {}
+  local run = f.registers
+  if REGISTER_WRITES.echo[code] or REGISTER_WRITES.answer[code] then
+    if run ~= nil and run.start ~= nil and run.count ~= nil then
+      for index = 0, run.count - 1 do addresses[#addresses + 1] = (run.start + index) % 0x10000 end
+    end
+    for _, reg in ipairs(run == nil and f.written or {}) do addresses[#addresses + 1] = reg.address end
+  elseif MASK_WRITTEN[code] and f.start ~= nil then
+    addresses[1] = f.start
+  end
+  for _, address in ipairs(addresses) do
+    local row = rows[address]
+    if row ~= nil and row.read_only then named[#named + 1] = address_name(row, address) end
+  end
+  return named
+end
+
+-- A write request's read-only parameters, one warning each (access.check_writes).
+local function check_writes(f, device)
+  for _, parameter in ipairs(written_read_only(f, device)) do
+    warn(f, say("read_only", { parameter = parameter, access = "R" }))
+  end
+end
+
 local function holds(when, request, profile)
   local fields, quantity = request.fields, request.quantity
   if when == "quantity" then
@@ -111,7 +140,11 @@ local function explain_exception(f, device)
   local read = READS[f.fn] ~= nil and code == profile.all_protected_exception
   f.exception_meaning = read and profile.all_protected_read or meanings[code]
   local request = f.request
-  if causes ~= nil and #causes > 0 then
+  local refused = code == DATA.read_only_exception and request ~= nil and written_read_only(request, device)
+  if refused and #refused > 0 then -- (a write of read-only parameters: named rather than the code's meaning)
+    note(f, say("exception_read_only", { code = code, device = profile.device,
+      parameters = concat(refused, ", "), access = "R" }))
+  elseif causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,

@@ -418,8 +418,9 @@ def test_bit_codes_and_exceptions_exact_lines_from_the_engine() -> None:
 
 
 def test_exceptions_carry_the_device_explanations_from_the_engine() -> None:
-    # ATV71: exception 7 to a configuration write while running, 2 to a write of a read-only word;
-    # exception 2 to a read (every parameter protected) changes the parameter memory: Python shows it.
+    # ATV71: exception 7 to a configuration write while running; a write of a read-only word (ETA) is warned
+    # and its exception 2 names it, exception 2 to a read (every parameter protected) changes the parameter
+    # memory: Python shows those.
     data = (
         rtu("0c0620010002") + rtu("0c8607")
         + rtu("0c060c810001") + rtu("0c8602")
@@ -427,7 +428,7 @@ def test_exceptions_carry_the_device_explanations_from_the_engine() -> None:
         + rtu("0c0320d00001") + rtu("0c8302")
     )
     got = assert_same(data + rtu("0c0320d00001"), atv71)
-    assert got.engine_lines == 4
+    assert got.engine_lines == 2
     assert "exception 07 from the" in got.lines[1] and got.lines[1].endswith("[#1] [" + got.lines[1].split("[#1] [", 1)[1])
     sel = assert_same(rtu("010300000004") + rtu("018302") + rtu("011000000001020001") + rtu("019003") + b"\x01",
                       lambda: build_annotator(["sel749m"], [], None))

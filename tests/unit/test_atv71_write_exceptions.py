@@ -26,7 +26,8 @@ MEANINGS = [MEANING, MEANING, READ_MEANING, READ_MEANING, MEANING, MEANING, MEAN
 WRITE = f"exception 02 from the VW3 A3 303: {MEANING}"
 NOTES = [
     WRITE,
-    WRITE,
+    # (3201..3202 are read-only, ETA and RFR: the card refuses their write, named: devices/access.py)
+    "exception 02 from the VW3 A3 303: ETA (3201), RFR (3202) read-only (access R), not written",
     f"{WRITE} (also: every parameter read is non-existent or protected)",
     "exception 02 from the VW3 A3 303: every parameter of this read is non-existent or protected: "
     "8400 non-existent, CHCF (8401) protected, COP (8402) protected",

@@ -1,0 +1,60 @@
+"""Writes to parameters the map gives as read-only (its access column R, maps.ACCESS): the request is
+warned, and the exception that refuses it (data/modbus.toml read_only_exception) names them instead of the
+code's plain meaning. One job: what a write asks of a parameter it cannot change."""
+from __future__ import annotations
+
+from dissector.devices.device import Device
+from dissector.devices.naming import address_name
+from dissector.model import Frame
+from dissector.protocol import table
+from dissector.protocol.rules import CONFIRM, Confirm, text
+from dissector.protocol.spec import SPEC
+
+READ_ONLY = "R"  # the access of a parameter no write changes (README Device profiles; sim/devices.py)
+READ_ONLY_EXCEPTION = SPEC.read_only_exception
+_REGISTER_WRITES = table.register_writes()  # FC6, FC16, FC23: their request's registers are values written
+_MASK_WRITES = frozenset(code for code, how in CONFIRM.items() if how is Confirm.MASK)  # FC22: one register
+
+
+def written_read_only(frame: Frame, device: Device) -> list[str]:
+    """The read-only parameters a write request touches, named (`ETA (3201)`), in address order."""
+    rows = device.rows
+    if not rows:
+        return []
+    function = frame.function
+    if function in _REGISTER_WRITES:
+        addresses = [register.address for register in frame.registers or ()]
+    elif function in _MASK_WRITES and frame.start is not None:
+        addresses = [frame.start]
+    else:
+        return []
+    named = []
+    for address in addresses:
+        row = rows.get(address)
+        if row is not None and row.access == READ_ONLY:
+            named.append(address_name(row, address))
+    return named
+
+
+def read_only_addresses(device: Device) -> frozenset[int]:
+    """The addresses of the device's read-only parameters: the compiled path hands a write of one to these
+    checks (accel/fastsummary.py SlaveFacts.read_only)."""
+    return frozenset(address for address, row in device.rows.items() if row.access == READ_ONLY)
+
+
+def check_writes(frame: Frame, device: Device) -> None:
+    """A write request's read-only parameters, one warning each (the device refuses the write)."""
+    for parameter in written_read_only(frame, device):
+        frame.warnings.append(text("read_only", parameter=parameter, access=READ_ONLY))
+
+
+def read_only_refusal(frame: Frame, device: Device) -> str | None:
+    """The note of an exception read_only_exception to a write of read-only parameters, None otherwise."""
+    request = frame.request
+    if frame.exception_code != READ_ONLY_EXCEPTION or request is None:
+        return None
+    parameters = written_read_only(request, device)
+    if not parameters:
+        return None
+    return text("exception_read_only", code=frame.exception_code, device=device.profile.device,
+                parameters=", ".join(parameters), access=READ_ONLY)
