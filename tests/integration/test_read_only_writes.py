@@ -76,3 +76,13 @@ def test_the_plugin_warns_of_read_only_writes(tmp_path: Path, two_pass: bool) ->
     items, _, _ = lua_items(pcap, "-o", "vw3.profiles:atv71", two_pass=two_pass)
     assert [item.texts.get("warning", []) for item in items] == WARNINGS
     assert [item.texts.get("note", []) for item in items] == NOTES
+
+
+def test_the_plugin_reads_a_user_maps_access_column(tmp_path: Path) -> None:
+    (tmp_path / "user.csv").write_text(MAP)
+    pcap = write_pcap(tmp_path / "user.pcap", [(rtu(text), 1.0 + 0.1 * n) for n, text in enumerate(USER_HEX)])
+    items, _, _ = lua_items(pcap, "-o", f"vw3.maps:{tmp_path / 'user.csv'}")
+    spd = "SPD (100) is read-only (access R)"
+    refused = "exception 02 from the device: SPD (100) read-only (access R), not written"
+    assert [item.texts.get("warning", []) for item in items] == [[spd], [], [], [], [spd], []]
+    assert [item.texts.get("note", []) for item in items] == [[], [refused], [], [], [], [refused]]
