@@ -6592,7 +6592,7 @@ local function map_row(values)
       wrong("scale_range", { text = scale_text })
     end
   end
-  -- (a read-only parameter's write is warned, its refusal named: explain.lua written_read_only)
+  -- (a read-only parameter's write is warned, its refusal named: dissector/devices/access.py)
   row.read_only = choice(values, "access", string.upper, "", ACCESS) == "R" or nil
   row.enum = map_pairs(values.enum or "", "enum")
   row.bits = map_pairs(values.bits or "", "bits")
