@@ -100,4 +100,6 @@ def test_no_summary_line_over_1000_characters_on_the_max_size_session(tmp_path: 
         lines = out.splitlines()
         assert status == 0 and len(lines) >= 5900
         longest = max(lines, key=len)
-        assert len(longest) < 400, longest
+        # Values stop at six (`… (+N)`), notes and warnings each at NOTES_BUDGET, then counted: 406 here,
+        # an FC23 with two limit warnings and a read-only one counted (`[+1 more warning]`, 4ebcd87).
+        assert len(longest) < 450, longest
