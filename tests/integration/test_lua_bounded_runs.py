@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from lua_compare import compare
-from lua_harness import ensure_tool, lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_compare import assert_same_as_vw3_decode, tshark_fields
+from lua_harness import ensure_tool, write_pcap
 
 pytestmark = pytest.mark.integration
 
@@ -26,15 +26,6 @@ LONG = "frame length 118 disagrees with the spec's layout (8 bytes), its CRC goo
 UNDEFINED = "diagnostic sub-function 21 is not defined by the spec"
 
 
-def _fields(pcap: Path) -> list[str]:
-    got = run_tshark(pcap, *FIELDS)
-    assert got.returncode == 0 and not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
-    return got.stdout.splitlines()
-
-
-def _same_as_vw3_decode(pcap: Path) -> None:
-    differences = compare(python_items(pcap), lua_items(pcap)[0])
-    assert not differences, "\n".join(differences[:40])
 
 
 def _mbrtu(pcap: Path) -> list[str]:
@@ -47,9 +38,9 @@ def _mbrtu(pcap: Path) -> list[str]:
 
 def test_a_record_with_a_good_crc_is_a_frame(tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "plus.pcap", [(ASK_PLUS, T0), (PLUS, T0 + 0.1), (EXCEPTION_0, T0 + 1.0)])
-    assert _fields(pcap) == [f"1;8;{UNDEFINED};", f"2;8;{LONG},{UNDEFINED};", "3;0;;"]
+    assert tshark_fields(pcap, FIELDS) == [f"1;8;{UNDEFINED};", f"2;8;{LONG},{UNDEFINED};", "3;0;;"]
     assert _mbrtu(pcap) == ["1;8", "1;8", "17;0"]
-    _same_as_vw3_decode(pcap)
+    assert_same_as_vw3_decode(pcap)
 
 
 def test_a_run_crosses_no_read_end(tmp_path: Path) -> None:
@@ -57,4 +48,4 @@ def test_a_run_crosses_no_read_end(tmp_path: Path) -> None:
     records = [(ASK_PLUS, T0), (PLUS[:50], T0 + 0.01), (PLUS[50:100], T0 + 0.01 + 50 * char),
                (PLUS[100:], T0 + 0.01 + 100 * char), (POLL, T0 + 1.0)]
     pcap = write_pcap(tmp_path / "bursts.pcap", records)
-    _same_as_vw3_decode(pcap)
+    assert_same_as_vw3_decode(pcap)

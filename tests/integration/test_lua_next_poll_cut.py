@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from helpers import rtu
-from lua_compare import compare
-from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_pcap
+from lua_compare import assert_same_as_vw3_decode, tshark_fields
+from lua_harness import write_pcap
 
 pytestmark = pytest.mark.integration
 
@@ -19,15 +19,6 @@ POLL, ANSWER = rtu("01 03 0000 0002"), rtu("01 03 04 0001 0002")
 FIELDS = ["-T", "fields", "-E", "separator=;", "-e", "vw3.kind", "-e", "vw3.function", "-e", "vw3.noise.reason"]
 
 
-def _fields(pcap: Path) -> list[str]:
-    got = run_tshark(pcap, *FIELDS)
-    assert got.returncode == 0 and not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
-    return got.stdout.splitlines()
-
-
-def _same_as_vw3_decode(pcap: Path) -> None:
-    differences = compare(python_items(pcap), lua_items(pcap)[0])
-    assert not differences, "\n".join(differences[:40])
 
 
 @pytest.mark.parametrize(
@@ -40,5 +31,5 @@ def _same_as_vw3_decode(pcap: Path) -> None:
 )
 def test_the_next_poll_cut_after_an_answer(tail: bytes, third: str, tmp_path: Path) -> None:
     pcap = write_pcap(tmp_path / "cut.pcap", [(POLL, T0), (ANSWER, T0 + 0.01), (tail, T0 + 1.0)])
-    assert _fields(pcap) == ["1;3;", "2;3;", third]
-    _same_as_vw3_decode(pcap)
+    assert tshark_fields(pcap, FIELDS) == ["1;3;", "2;3;", third]
+    assert_same_as_vw3_decode(pcap)

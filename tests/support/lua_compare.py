@@ -4,7 +4,9 @@ from __future__ import annotations
 import re
 from typing import Any
 
-from lua_harness import LuaItem, PythonItem
+from pathlib import Path
+
+from lua_harness import LuaItem, PythonItem, lua_errors, lua_items, python_items, run_tshark
 
 _PAIRING_NOTE = re.compile(r"^request #\d+ was not answered$")
 _MALFORMED = re.compile(r"^(malformed (?:request|response|exception)):.*$")
@@ -220,3 +222,16 @@ def compare(python: list[PythonItem], lua: list[LuaItem], ignore: frozenset[str]
     if python_count != len(lua):
         differences.append(f"{python_count} items in vw3-decode --json, {len(lua)} shown by the plugin")
     return differences
+
+
+def tshark_fields(pcap: Path, fields: list[str]) -> list[str]:
+    """The plugin's `-T fields` rows for `fields` (tshark's own arguments), with no Lua error."""
+    got = run_tshark(pcap, *fields)
+    assert got.returncode == 0 and not lua_errors(got.stdout + got.stderr), got.stderr[-2000:]
+    return got.stdout.splitlines()
+
+
+def assert_same_as_vw3_decode(pcap: Path) -> None:
+    """The plugin's items are vw3-decode's, frame for frame."""
+    differences = compare(python_items(pcap), lua_items(pcap)[0])
+    assert not differences, "\n".join(differences[:40])
