@@ -267,7 +267,11 @@ def _profile_table(profile: Any, rows: dict[int, Any]) -> dict[str, Any]:
     from dissector.devices import checks, explain
 
     causes = {
-        function * 256 + code: [{"text": explain.cause_text(cause), "when": cause.when} for cause in entries]
+        # (its counters apart too: a refused read-only write's note names them, explain._read_only_note)
+        function * 256 + code: [
+            {"text": explain.cause_text(cause), "when": cause.when, "counters": list(cause.counters)}
+            for cause in entries
+        ]
         for (function, code), entries in sorted(profile.exception_causes.items())
     }
     return {

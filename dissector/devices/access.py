@@ -1,6 +1,7 @@
 """Writes to parameters the map gives as read-only (its access column R, maps.ACCESS): the request is
-warned, and the exception that refuses it (data/modbus.toml read_only_exception) names them instead of the
-code's plain meaning. One job: what a write asks of a parameter it cannot change."""
+warned, and the exception that refuses it (data/modbus.toml read_only_exception) means that refusal on the
+device (explain.py names them) instead of the code's plain meaning. One job: what a write asks of a
+parameter it cannot change."""
 from __future__ import annotations
 
 from dissector.devices.device import Device
@@ -12,6 +13,9 @@ from dissector.protocol.spec import SPEC
 
 READ_ONLY = "R"  # the access of a parameter no write changes (README Device profiles; sim/devices.py)
 READ_ONLY_EXCEPTION = SPEC.read_only_exception
+# Such an exception's meaning on the device (Frame.exception_text: `Meaning on this device`), whatever
+# the code's own meaning; the note names the parameters.
+READ_ONLY_MEANING = text("read_only_meaning", access=READ_ONLY)
 _REGISTER_WRITES = table.register_writes()  # FC6, FC16, FC23: their request's registers are values written
 _MASK_WRITES = frozenset(code for code, how in CONFIRM.items() if how is Confirm.MASK)  # FC22: one register
 
@@ -48,13 +52,10 @@ def check_writes(frame: Frame, device: Device) -> None:
         frame.warnings.append(text("read_only", parameter=parameter, access=READ_ONLY))
 
 
-def read_only_refusal(frame: Frame, device: Device) -> str | None:
-    """The note of an exception read_only_exception to a write of read-only parameters, None otherwise."""
+def refused_read_only(frame: Frame, device: Device) -> list[str]:
+    """The read-only parameters an exception read_only_exception refuses the write of (its request's),
+    named; empty for any other exception (explain.explain_exception names them in its note)."""
     request = frame.request
     if frame.exception_code != READ_ONLY_EXCEPTION or request is None:
-        return None
-    parameters = written_read_only(request, device)
-    if not parameters:
-        return None
-    return text("exception_read_only", code=frame.exception_code, device=device.profile.device,
-                parameters=", ".join(parameters), access=READ_ONLY)
+        return []
+    return written_read_only(request, device)

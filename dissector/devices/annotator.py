@@ -15,7 +15,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 
-from dissector.devices.access import check_writes
+from dissector.devices.access import READ_ONLY_MEANING, check_writes
 from dissector.devices.checks import check_request, check_subfunction, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
 from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
@@ -221,9 +221,10 @@ class Annotator:
         return {
             "profile": frozenset(profile.name for profile in profiles),
             "function_name": frozenset(name for p in profiles for name in p.function_names.values()),
-            # (the code's meaning, and to a read of registers the meaning with p.38's clause: explain.py)
+            # (the code's meaning, to a read of registers with p.38's clause, to a read-only write: explain.py)
             "exception_meaning": frozenset(text for p in profiles for code, meaning in p.exceptions.items()
-                                           for text in (meaning, device_meaning(p, min(_READS), code))),
+                                           for text in (meaning, device_meaning(p, min(_READS), code)))
+            | {READ_ONLY_MEANING},
             "subfunction_name": frozenset(text for p in profiles for text in p.diagnostics.values()),
         }
 

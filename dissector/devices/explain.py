@@ -3,7 +3,7 @@ meaning is said once, in one note (with the relay counters an error increments, 
 refused read was made of). One job: what an exception means on this device."""
 from __future__ import annotations
 
-from dissector.devices.access import read_only_refusal
+from dissector.devices.access import READ_ONLY, READ_ONLY_MEANING, refused_read_only
 from dissector.devices.device import Device
 from dissector.devices.memory import lost
 from dissector.devices.naming import address_name, plc_label
@@ -32,9 +32,9 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     causes = profile.exception_causes.get((function, code))
     all_unreadable = code == profile.all_protected_exception and function in PLAIN_READS
     request = frame.request
-    refusal = read_only_refusal(frame, device)
-    if refusal is not None:  # (a write of read-only parameters: named rather than the code's meaning)
-        frame.notes.append(refusal)
+    refused = refused_read_only(frame, device)
+    if refused:  # (a write of read-only parameters: named rather than the code's meaning)
+        frame.notes.append(_read_only_note(frame, profile, refused, causes))
     elif causes:
         key = (function, code, None if request is None else request.raw)
         note = device.explained.get(key)
@@ -52,7 +52,18 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     elif profile.exceptions:
         known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
-    frame.exception_text = device_meaning(profile, function, code)
+    frame.exception_text = READ_ONLY_MEANING if refused else device_meaning(profile, function, code)
+
+
+def _read_only_note(frame: Frame, profile: Profile, refused: list[str],
+                    causes: tuple[ExceptionCause, ...] | None) -> str:
+    """`exception 02 from the VW3 A3 303: ETA (3201) read-only (access R), not written`, with the relay
+    counters the device's causes of this code to this function increment (SEL-749M: any 02 to 06h)."""
+    refusal = text("read_only_refusal", parameters=", ".join(refused), access=READ_ONLY)
+    picked = _pick_causes(frame.request, profile, causes or ())
+    counters = [counter for cause in picked for counter in cause.counters]
+    meaning = counted(refusal, tuple(dict.fromkeys(counters)))
+    return text("exception_meaning", code=frame.exception_code, device=profile.device, meaning=meaning)
 
 
 def device_meaning(profile: Profile, function: int, code: int) -> str | None:
@@ -180,8 +191,12 @@ def documented(profile: Profile) -> str:
 def cause_text(cause: ExceptionCause) -> str:
     """A cause as an exception's note says it (with the counters it increments); the plugin's profile
     data carries each cause's text (codegen/lua.py)."""
-    if not cause.counters:
-        return cause.error
-    counters = cause.counters
-    return text("cause_counters" if len(counters) > 1 else "cause_counter", error=cause.error,
+    return counted(cause.error, cause.counters)
+
+
+def counted(error: str, counters: tuple[str, ...]) -> str:
+    """An error with the relay counters it increments (`... (increments the Illegal Write counter)`)."""
+    if not counters:
+        return error
+    return text("cause_counters" if len(counters) > 1 else "cause_counter", error=error,
                 counters=" and ".join(counters))

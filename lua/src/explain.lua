@@ -93,6 +93,27 @@ local function pick_causes(request, profile, causes)
   return #hits > 0 and hits or #plain > 0 and plain or causes
 end
 
+-- An error with the relay counters it increments (explain.counted).
+local function counted(error, counters)
+  if #counters == 0 then return error end
+  return say(#counters > 1 and "cause_counters" or "cause_counter", { error = error,
+    counters = concat(counters, " and ") })
+end
+
+-- The note of an exception refusing a write of read-only parameters, with the counters the device's causes
+-- of the code to the function increment (explain._read_only_note).
+local function read_only_note(f, profile, refused, causes)
+  local counters, seen = {}, {}
+  for _, cause in ipairs(causes and pick_causes(f.request, profile, causes) or {}) do
+    for _, counter in ipairs(cause.counters) do
+      if not seen[counter] then counters[#counters + 1], seen[counter] = counter, true end
+    end
+  end
+  local refusal = say("read_only_refusal", { parameters = concat(refused, ", "), access = "R" })
+  return say("exception_meaning", { code = f.exception_code, device = profile.device,
+    meaning = counted(refusal, counters) })
+end
+
 -- The registers of a read every parameter of which an exception 02 says non-existent or protected
 -- (explain._all_unreadable): each address with its row, label and that status, no value.
 local function refused_registers(device, request)
@@ -142,8 +163,8 @@ local function explain_exception(f, device)
   local request = f.request
   local refused = code == DATA.read_only_exception and request ~= nil and written_read_only(request, device)
   if refused and #refused > 0 then -- (a write of read-only parameters: named rather than the code's meaning)
-    note(f, say("exception_read_only", { code = code, device = profile.device,
-      parameters = concat(refused, ", "), access = "R" }))
+    f.exception_meaning = say("read_only_meaning", { access = "R" })
+    note(f, read_only_note(f, profile, refused, causes))
   elseif causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end

@@ -22,7 +22,9 @@ FRAMES = ["0C 06 20D1 0003", "0C 86 02", "0C 10 0C81 0002 04 0001 0002", "0C 90 
           "0C 05 0001 FF00", "0C 85 02", "0C 0F 0001 0008 01 FF", "0C 8F 02", "0C 16 20D1 00FF 0000", "0C 96 02"]
 MEANING = "address does not exist"
 READ_MEANING = f"{MEANING} (also: every parameter read is non-existent or protected)"  # (p.38: to a read)
-MEANINGS = [MEANING, MEANING, READ_MEANING, READ_MEANING, MEANING, MEANING, MEANING]  # FC23 and FC3 read
+# (the FC16 of 3201..3202, read-only: its refusal's meaning, data/modbus.toml read_only_meaning)
+REFUSED = "write refused: read-only parameter (access R)"
+MEANINGS = [MEANING, REFUSED, READ_MEANING, READ_MEANING, MEANING, MEANING, MEANING]  # FC23 and FC3 read
 WRITE = f"exception 02 from the VW3 A3 303: {MEANING}"
 NOTES = [
     WRITE,
