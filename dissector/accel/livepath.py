@@ -248,14 +248,15 @@ class LivePath:
             return False  # it would hold nothing: a flush closes nothing
         trial = copy.deepcopy(self.framer)
         trial.pause_at(None)
-        return any(isinstance(item, Frame) and item.crc_ok for item in trial.finish())
+        return any(isinstance(item, Frame) and item.crc_ok for item in trial.finish(silence=True))
 
     def _flush(self) -> None:
         """Close what the Python framer would hold (Dissector.flush_idle)."""
         if self.done or not self._to_python():
             return  # nothing held: nothing to close
         self.framer.pause_at(None)
-        self._items(self.dissector.flush_idle())
+        # (Dissector.flush_idle, but what the framer closes a silence cuts: the capture goes on)
+        self._items(self.dissector.push(self.framer.finish(silence=True)))
         self._run()
 
     def _expire(self, stamp: Stamp, safe: Stamp | None = None) -> None:
@@ -366,5 +367,5 @@ class _CountedFramer:
     def feed(self, chunk: Chunk) -> list[Item]:
         return self._live._cut_framed(self._framer.feed(chunk))
 
-    def finish(self) -> list[Item]:
-        return self._live._cut_framed(self._framer.finish())
+    def finish(self, silence: bool = False) -> list[Item]:
+        return self._live._cut_framed(self._framer.finish(silence))

@@ -282,7 +282,7 @@ class CaptureThread:
             return True
         if tried or silent < self.silence:
             return False
-        trial = copy.deepcopy(self.framer).finish()  # type: ignore[union-attr]
+        trial = copy.deepcopy(self.framer).finish(silence=True)  # type: ignore[union-attr]
         return any(isinstance(item, Frame) and item.crc_ok for item in trial)
 
     def deliver(self, items: list[Item], safe: float | None) -> bool:
@@ -394,7 +394,7 @@ class CaptureThread:
             silent = now - self._last_data
             if self.flush_due(silent, self._tried):
                 self._pending = False
-                if not self.deliver(framer.finish(), safe):
+                if not self.deliver(framer.finish(silence=True), safe):  # (the capture goes on: a silence cuts)
                     return False
             else:
                 self.handoff.put([], self.safe_time(safe))

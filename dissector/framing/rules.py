@@ -196,6 +196,11 @@ def spans_a_frame(data: bytes | bytearray) -> bool:
     return False
 
 
+# How bytes live closes at a silence are cut (_cut_reason): not by the capture's end (model.py CUT_ANSWER, which
+# pairing takes as the answer's fate: the capture goes on, and the answer may still come).
+SILENCE_CUTS = "a silence cuts "
+
+
 class Awaiting:
     """What a framer (RTU and ASCII alike) reads a frame start as, given the answer it awaits: its
     `_expect` (slave, function) and `_echo` (the bytes the answer repeats, StreamFramer._await_after)."""
@@ -203,6 +208,7 @@ class Awaiting:
     _expect: tuple[int, int] | None
     _echo: bytes
     _answer: int | None
+    _cut_by_silence: bool
 
     def _awaited(self, buf: bytes | bytearray, i: int) -> bool:
         """Do the bytes at i begin the answer awaited: its slave and function (an exception's too) and, for a
@@ -225,13 +231,15 @@ class Awaiting:
         its address's high byte, not a byte count of 32)."""
         return kind is Kind.RESPONSE and self._answer is not None and length != NEED and length != self._answer
 
-    @staticmethod
-    def _cut_reason(kind: Kind, size: str) -> str:
-        """Why bytes the end of the capture cuts are noise, read as `kind`, `size` of it ('4 of 8 bytes')."""
+    def _cut_reason(self, kind: Kind, size: str) -> str:
+        """Why bytes the end of the capture cuts are noise, read as `kind`, `size` of it ('4 of 8 bytes'); where
+        live closes them at a silence (StreamFramer.finish(silence=True)) the capture goes on: the silence cuts."""
+        what = "response" if kind is Kind.RESPONSE else "exception response"
+        if self._cut_by_silence:
+            return f"{SILENCE_CUTS}{'a request' if kind is Kind.REQUEST else 'the ' + what} ({size})"
         if kind is Kind.REQUEST:
             # ('... inside a request': not the answer's words, which the request awaiting it takes, pairing.py)
             return f"{CUT_ANSWER[:-4]}a request ({size})"
-        what = "response" if kind is Kind.RESPONSE else "exception response"
         return f"{CUT_ANSWER}{what} ({size})"
 
     def _interpretations(self, buf: bytes | bytearray, i: int) -> tuple[tuple[Kind, LengthRule], ...]:

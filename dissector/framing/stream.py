@@ -77,6 +77,7 @@ class StreamFramer(ABC):
         # Frame nothing that starts at or after this absolute offset yet (see pause_at).
         self._pause: int | None = None
         self._framed_end = -1  # absolute offset where the last frame ends (-1: none yet): a bound (bounded.py)
+        self._cut_by_silence = False  # finish(silence=True) runs: what it cuts, a silence cuts
 
     def feed(self, chunk: Chunk) -> list[Item]:
         if chunk.data:
@@ -102,8 +103,14 @@ class StreamFramer(ABC):
                 self._record_starts.add(start)
         return self._run(final=False)
 
-    def finish(self) -> list[Item]:
-        items = self._run(final=True)
+    def finish(self, silence: bool = False) -> list[Item]:
+        """Close what is buffered; `silence`: live closes it at a silence on the line, and the capture goes on
+        (a frame cut there is cut by the silence, not by the end of the capture: rules.Awaiting._cut_reason)."""
+        self._cut_by_silence = silence
+        try:
+            items = self._run(final=True)
+        finally:
+            self._cut_by_silence = False
         self._flush_noise(items)
         return items
 
