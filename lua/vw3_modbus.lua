@@ -198,9 +198,19 @@ local function remember_request(pinfo, adu, fn, slave, written)
   if asked_count >= ASKED_LIMIT then asked, asked_count = {}, 0 end -- (requests never answered: bounded)
   local start = first_value(fields_of(adu, "start")) or first_value(fields_of(adu, "read_start"))
   local quantity = first_value(fields_of(adu, "quantity")) or first_value(fields_of(adu, "read_quantity"))
-  asked[transaction_key(pinfo, true, adu.transaction)] = { kind = vw3.REQUEST, fn = fn % 128, start = start,
-    quantity = quantity, slave = slave, number = pinfo.number, written = written }
+  local request = { kind = vw3.REQUEST, fn = fn % 128, start = start, quantity = quantity, slave = slave,
+    number = pinfo.number, written = written }
+  asked[transaction_key(pinfo, true, adu.transaction)] = request
   asked_count = asked_count + 1
+  return request
+end
+
+-- A write request's read-only parameters (map access R), one warning each, as the RTU plugin warns them
+-- (access.check_writes: the registers written, FC22's address) and the answer's refusal names them.
+local function read_only_warnings(request, device)
+  local asking = { fn = request.fn, start = request.start, written = request.written }
+  env.check_writes(asking, device)
+  return asking.warnings or {}
 end
 
 local function answered(pinfo, adu)
@@ -252,7 +262,7 @@ local function name_adu(pinfo, adu)
   local response = fields_of(adu, "request") ~= nil
   local request = response and answered(pinfo, adu) or nil
   local registers = registers_of(adu, fn % 128, request)
-  if not response then remember_request(pinfo, adu, fn, slave, registers) end
+  local asking = not response and remember_request(pinfo, adu, fn, slave, registers)
   local f = { slave = slave, fn = fn % 128, kind = response and vw3.RESPONSE or vw3.REQUEST,
     registers = registers, notes = {}, warnings = {}, number = pinfo.number, unit_zero = true }
   local confirmed = response and request ~= nil and request.written ~= nil and #request.written > 0
@@ -263,28 +273,34 @@ local function name_adu(pinfo, adu)
   if response and MASK_WRITES[f.fn] then f.fields = masks_of(adu) end
   if #registers == 0 then
     -- (an FC16 answer or an FC22 echo: no registers to name; the writes it confirms count, held as any
-    -- frame before a choice)
-    local device = (confirmed or f.fields ~= nil) and vw3.device_now(names_state, f)
+    -- frame before a choice. An FC22 request: its address may be read-only)
+    local masking = asking and MASK_WRITES[f.fn] and asking.start ~= nil
+    local device = (confirmed or f.fields ~= nil or masking) and vw3.device_now(names_state, f)
     if device and confirmed then remember_writes(device, pinfo.number, request.written) end
     if device and f.fields ~= nil and device.track then
       env.remember_mask(device.seen, pinfo.number, f.fields)
     end
-    return false
+    local warnings = device and masking and read_only_warnings(asking, device)
+    if not warnings or #warnings == 0 then return false end
+    return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
   end
   local device = vw3.device_now(names_state, f)
   if not device then return false end
   if confirmed then remember_writes(device, pinfo.number, request.written) end -- (FC23 writes, then reads)
   vw3.annotate_registers(names_state, f, device, registers, response and vw3.reads[f.fn] ~= nil)
   if response and env.CONFIRMED.echo[f.fn] then remember_writes(device, pinfo.number, registers) end
-  return { registers = registers, notes = f.notes, device = device, slave = slave }
+  local warnings = asking and read_only_warnings(asking, device) or {}
+  return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
 end
 
 local function add_tree(tvb, tree, done, whole_range)
-  if #done.registers == 0 and #done.notes == 0 then return end
+  local warnings = done.warnings or {}
+  if #done.registers == 0 and #done.notes == 0 and #warnings == 0 then return end
   local t = tree:add(names_proto, whole_range)
   t:set_text(format("VW3 register names (%s, unit %d)", done.device.profile.title, done.slave))
   local fake = { offset = 0, at = 0, bi = 0, length = tvb:len(), data_at = 2, data_len = 0 }
   for _, reg in ipairs(done.registers) do vw3.add_register(t, tvb, fake, reg, reg.range or whole_range) end
+  for _, text in ipairs(warnings) do vw3.add_text(t:add(pf.warning, whole_range, text), ex.warning, text) end
   for _, text in ipairs(done.notes) do vw3.add_text(t:add(pf.note, whole_range, text), ex.note, text) end
 end
 

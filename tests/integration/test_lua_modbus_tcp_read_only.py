@@ -1,0 +1,64 @@
+"""lua/vw3_modbus.lua warns a Modbus/TCP write of a read-only map row (access R) on its request, as the
+serial plugin and vw3-decode warn it (devices/access.py check_writes: `ETA (3201) is read-only
+(access R)`): FC6, FC16, FC22's address, FC23's write window; the exception 02 refusing it already named the
+parameters (its note), and its meaning is the refusal's (test_read_only_meaning). Before, the request was
+silent. The same PDUs over RTU under vw3-decode give the same warnings and notes (vw3-decode reads serial
+captures only). Unit 12, profile atv71; tshark one pass and -2."""
+from __future__ import annotations
+
+import json
+import struct
+from pathlib import Path
+
+import pytest
+
+from helpers import run_cli, write_rtu
+from lua_harness import PLUGIN, lua_errors, run_tshark
+from lua_net import NetWriter
+
+pytestmark = pytest.mark.integration
+
+# (request, response) PDUs: FC6 of ETA (3201, R) refused 02; FC16 of ETA, RFR (3202, R) refused 02; FC22
+# of ETA refused 02; FC23 reading RFR, writing ETA, refused 02; FC6 of CHCF (8401, RW) echoed; FC16 of
+# CHCF, COP (8402, RW) answered.
+PAIRS = [("060C810007", "8602"), ("100C810002040001000A", "9002"), ("160C8100FF0000", "9602"),
+         ("170C8200010C8100010200 03".replace(" ", ""), "9702"), ("0620D10003", "0620D10003"),
+         ("1020D1000204000300 05".replace(" ", ""), "1020D10002")]
+ETA, RFR = "ETA (3201) is read-only (access R)", "RFR (3202) is read-only (access R)"
+WARNINGS = [ETA, f"{ETA},{RFR}", ETA, ETA, "", ""]
+REFUSED = "exception 02 from the VW3 A3 303: {} read-only (access R), not written"
+NOTES = [REFUSED.format("ETA (3201)"), REFUSED.format("ETA (3201), RFR (3202)"), REFUSED.format("ETA (3201)"),
+         REFUSED.format("ETA (3201)"), "", ""]
+
+
+def capture(path: Path) -> Path:
+    writer = NetWriter(path)
+    time = 1.0
+    for transaction, (request, response) in enumerate(PAIRS, start=1):
+        for to_server, pdu in ((True, bytes.fromhex(request)), (False, bytes.fromhex(response))):
+            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
+            time += 0.01
+    writer.close()
+    return path
+
+
+@pytest.mark.parametrize("two_pass", [False, True])
+def test_modbus_tcp_read_only_writes_warned(tmp_path: Path, two_pass: bool) -> None:
+    done = run_tshark(capture(tmp_path / "mbtcp.pcap"), "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}",
+                      "-o", "vw3.profiles:atv71", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
+                      "-e", "vw3.warning", "-e", "vw3.note", two_pass=two_pass)
+    assert done.returncode == 0, done.stderr
+    assert not lua_errors(done.stdout + done.stderr)
+    lines = done.stdout.splitlines()
+    assert lines[0::2] == [f"{2 * index + 1}|{warning}|" for index, warning in enumerate(WARNINGS)]
+    assert lines[1::2] == [f"{2 * index + 2}||{note}" for index, note in enumerate(NOTES)]
+
+
+def test_vw3_decode_says_the_same_of_these_pdus_over_rtu(tmp_path: Path) -> None:
+    path = write_rtu(tmp_path / "writes.rtu", [f"0C{pdu}" for pair in PAIRS for pdu in pair])
+    frames = [json.loads(line) for line in run_cli(["--profile", "atv71", "--json", str(path)])[1].splitlines()]
+    # (vw3-decode checks the request against the device too: the ATV71 has no FC22, vw3_modbus.lua says not)
+    unsupported = "Mask Write Register (22) is not supported by the VW3 A3 303"
+    assert [",".join(frame["warnings"]) for frame in frames[0::2]] == [
+        f"{unsupported},{warning}" if index == 2 else warning for index, warning in enumerate(WARNINGS)]
+    assert [",".join(frame["notes"]) for frame in frames[1::2]] == NOTES
