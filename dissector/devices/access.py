@@ -5,7 +5,7 @@ parameter it cannot change."""
 from __future__ import annotations
 
 from dissector.devices.device import Device
-from dissector.devices.naming import address_name
+from dissector.devices.naming import address_name, plc_label
 from dissector.model import Frame
 from dissector.protocol import table
 from dissector.protocol.rules import CONFIRM, Confirm, text
@@ -21,7 +21,8 @@ _MASK_WRITES = frozenset(code for code, how in CONFIRM.items() if how is Confirm
 
 
 def written_read_only(frame: Frame, device: Device) -> list[str]:
-    """The read-only parameters a write request touches, named (`ETA (3201)`), in address order."""
+    """The read-only parameters a write request touches, named (`ETA (3201)`; a PLC-style device's
+    reference: `SPD (40101)`), in address order."""
     rows = device.rows
     if not rows:
         return []
@@ -33,10 +34,11 @@ def written_read_only(frame: Frame, device: Device) -> list[str]:
     else:
         return []
     named = []
+    base = device.base(function) if device.plc is not None else None  # (as the frame shows it: 40101)
     for address in addresses:
         row = rows.get(address)
         if row is not None and row.access == READ_ONLY:
-            named.append(address_name(row, address))
+            named.append(address_name(row, address, None if base is None else plc_label(base, address)))
     return named
 
 

@@ -59,9 +59,12 @@ local function written_read_only(f, device)
   elseif MASK_WRITTEN[code] and f.start ~= nil then
     addresses[1] = f.start
   end
+  local base = plc_base(device, f) -- (a PLC-style device's reference, as the frame shows it: `SPD (40101)`)
   for _, address in ipairs(addresses) do
     local row = rows[address]
-    if row ~= nil and row.read_only then named[#named + 1] = address_name(row, address) end
+    if row ~= nil and row.read_only then
+      named[#named + 1] = address_name(row, address, base and PLC_LABELS[base][address])
+    end
   end
   return named
 end

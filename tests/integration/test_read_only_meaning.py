@@ -33,9 +33,11 @@ MAP = "address,code,name,access\n100,SPD,Speed,R\n101,SET,Setpoint,RW\n"
 SEL = ["03 06 00 64 00 01", "03 86 02", "03 10 00 64 00 02 04 00 01 00 02", "03 90 02", "03 06 00 66 00 01",
        "03 86 02"]
 COUNTERS = "(increments the Invalid Address and Illegal Write counters)"
-SEL_NOTES = [f"exception 02 from the SEL-749M: SPD (100) read-only (access R), not written {COUNTERS}"] * 2 + [
+# (a PLC-style device: its parameters named by the 4X reference the frame shows, 40101, as its other notes)
+SEL_NOTES = [f"exception 02 from the SEL-749M: SPD (40101) read-only (access R), not written {COUNTERS}"] * 2 + [
     f"exception 02 from the SEL-749M to Write Single Register: illegal register address {COUNTERS}"]
 SEL_MEANINGS = [MEANING, MEANING, "Illegal Data Address"]
+SEL_WARNINGS = [["SPD (40101) is read-only (access R)"]] * 2 + [[]]
 
 
 def capture(path: Path, frames: list[str]) -> Path:
@@ -84,7 +86,10 @@ def test_sel749m_refusal_keeps_its_counters(tmp_path: Path, monkeypatch: pytest.
     frames = [json.loads(line) for line in run_cli([*options, "--json"])[1].splitlines()]
     assert [(frame["exception_meaning"], frame["notes"]) for frame in frames[1::2]] == [
         (meaning, [note]) for meaning, note in zip(SEL_MEANINGS, SEL_NOTES)]
+    assert [frame["warnings"] for frame in frames[0::2]] == SEL_WARNINGS
     lines = run_cli(options)[1].splitlines()
+    assert lines[0] == ("     1     0.000000   3 request   Write Single Register 40101 SPD=1 "
+                        f"[warning: {SEL_WARNINGS[0][0]}]  CRC ok")
     assert lines[1] == ("     2     0.010000   3 exception Write Single Register: exception 2 (Illegal Data Address) "
                         f"[#1, 10.0 ms] [{SEL_NOTES[0]}]  CRC ok")
 
@@ -97,6 +102,10 @@ def test_the_plugin_says_the_same_meaning(tmp_path: Path, two_pass: bool) -> Non
                                                    f"vw3.maps:sel749m={tmp_path / 'sel.csv'}"], SEL_NOTES,
              SEL_MEANINGS)]
     for pcap, options, notes, meanings in runs:
+        if notes is SEL_NOTES:  # (the SEL's requests: its 4X references, as vw3-decode's)
+            warned = run_tshark(pcap, *options, "-T", "fields", "-e", "vw3.warning", "-Y", "vw3.kind == 1",
+                                two_pass=two_pass)
+            assert warned.stdout.splitlines() == [",".join(warnings) for warnings in SEL_WARNINGS]
         got = run_tshark(pcap, *options, "-T", "fields", "-E", "separator=|", "-e", "frame.number", "-e",
                          "vw3.note", "-e", "vw3.exception_meaning", "-e", "_ws.expert.message",
                          "-Y", "vw3.kind == 3", two_pass=two_pass)
