@@ -3,7 +3,8 @@ meaning is said once, in one note (with the relay counters an error increments, 
 refused read was made of). One job: what an exception means on this device."""
 from __future__ import annotations
 
-from dissector.devices.access import READ_ONLY, READ_ONLY_MEANING, refused_read_only
+from dissector.devices.access import (READ_ONLY, READ_ONLY_EXCEPTION, READ_ONLY_MEANING, refused_read_only,
+                                      written_read_only)
 from dissector.devices.device import Device
 from dissector.devices.memory import lost
 from dissector.devices.naming import address_name, plc_label
@@ -52,7 +53,16 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     elif profile.exceptions:
         known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
-    frame.exception_text = READ_ONLY_MEANING if refused else device_meaning(profile, function, code)
+    frame.exception_text = exception_meaning(device, function, code, request)
+
+
+def exception_meaning(device: Device, function: int, code: int, request: Frame | None) -> str | None:
+    """Frame.exception_text of an exception answering `request` on the device, as explain_exception gives
+    it: a refused write of read-only parameters means that (access.READ_ONLY_MEANING), else the code's
+    meaning. The report's events re-told once profile `auto` chose the device (report/collect.py)."""
+    if code == READ_ONLY_EXCEPTION and request is not None and written_read_only(request, device):
+        return READ_ONLY_MEANING
+    return device_meaning(device.profile, function, code)
 
 
 def _read_only_note(frame: Frame, profile: Profile, refused: list[str],
