@@ -1,4 +1,4 @@
-/* --report's pixel columns of one parameter series (render/report/collect.py `Columns`, which stays the
+/* --report's pixel columns of one parameter series (render/report/columns.py `Columns`, which stays the
  * reference under VW3_PURE_PYTHON=1): 8 doubles a column, the first, lowest, highest and last point
  * (fx fy nx ny mx my lx ly), in a growing array. The same arithmetic as the Python class, step for
  * step, so that the page is byte-identical: add() is once per register value of the capture, compact()
@@ -136,11 +136,11 @@ static void json_number(Out *o, double v, int digits, int whole) {
     }
 }
 
-/* drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text: each column's
+/* drawn_json(origin, digits, scale=0, places=0): columns.py drawn()'s lists as JSON text: each column's
  * points in the order of their x, several at one x all (an FC23 write and its read back: a step), none
  * before the last x kept, a run of equal values by its ends only (Columns.points), x - origin rounded to
  * `digits`, y an int when whole, else rounded to Y_DIGITS, or y * scale rounded to `places`, as json.dumps
- * writes them; None when a value is not finite (collect.py drawn() then asks the Python Columns.points of
+ * writes them; None when a value is not finite (columns.py drawn() then asks the Python Columns.points of
  * these columns' values()). */
 static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     double origin, scale = 0.0;
@@ -201,7 +201,7 @@ static PyObject *columns_drawn_json(Columns *self, PyObject *args) {
     return pair;
 }
 
-/* levels() -> (first y, lowest y, highest y), None when empty (collect.py Columns.levels). */
+/* levels() -> (first y, lowest y, highest y), None when empty (columns.py Columns.levels). */
 static PyObject *columns_levels(Columns *self, PyObject *unused) {
     if (!self->n) Py_RETURN_NONE;
     double low = self->d[1], high = self->d[1];
@@ -236,7 +236,7 @@ static PyMethodDef columns_methods[] = {
     {"close", (PyCFunction)columns_close, METH_NOARGS, "end the open column (the width is about to change)"},
     {"compact", (PyCFunction)columns_compact, METH_VARARGS, "compact(origin, width): merge columns now one"},
     {"drawn_json", (PyCFunction)columns_drawn_json, METH_VARARGS,
-     "drawn_json(origin, digits, scale=0, places=0): collect.py drawn()'s lists as JSON text, None when one is not\n"
+     "drawn_json(origin, digits, scale=0, places=0): columns.py drawn()'s lists as JSON text, None when one is not\n"
      "finite"},
     {"levels", (PyCFunction)columns_levels, METH_NOARGS, "(first y, lowest y, highest y), None when empty"},
     {"values", (PyCFunction)columns_values, METH_NOARGS, "the doubles as bytes, 8 a column"},
@@ -251,7 +251,7 @@ static PyTypeObject ColumnsType = {
     .tp_name = "dissector.accel._summary.Columns",
     .tp_basicsize = sizeof(Columns),
     .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "--report's pixel columns of one series (render/report/collect.py Columns).",
+    .tp_doc = "--report's pixel columns of one series (render/report/columns.py Columns).",
     .tp_new = PyType_GenericNew,
     .tp_init = (initproc)columns_init,
     .tp_dealloc = (destructor)columns_dealloc,

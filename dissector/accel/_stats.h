@@ -26,6 +26,7 @@ typedef struct {
     PyObject *code;       /* owned, NULL: none yet */
     PyObject *code_namer; /* owned: the namer the code was last asked of */
     PyObject *status;     /* owned: the last state is this read status (`protected`...), not a value; NULL: a value */
+    uint64_t order;       /* when its state was last set (Stats.states then): a merge keeps the later (rehome) */
 } Param;
 
 /* A parameter's key: by slave, address, table (profiles.register_table: input registers and holding
@@ -80,6 +81,7 @@ typedef struct {
     unsigned long long dropped;   /* events of parameters beyond max_params, not kept */
     unsigned long long untracked; /* requests of keys beyond max_keys */
     unsigned long long frames;    /* counted here (the engine's) */
+    uint64_t states;              /* states set so far (Param.order) */
     Tallies tallies[TALLIES];     /* response times, gaps, turnarounds, load per minute, intervals, counts */
     Bus bus;                      /* bustiming.BusTiming's state (_bus.h) */
     PyObject *report;             /* a Report (_report.h) fed what is counted here too, or NULL */
@@ -170,6 +172,7 @@ static inline __attribute__((always_inline)) int param_event(Stats *st, int slav
     }
     if (!param_count(p, event)) return 0;
     int changed = param_state(p, value, status);
+    p->order = ++st->states;
     if (changed < 0 || status != NULL) return changed;
     p->last_mapped = (uint8_t)mapped;
     Py_XSETREF(p->text, Py_XNewRef(text));
@@ -373,6 +376,77 @@ static PyObject *stats_rename(Stats *st, PyObject *namers) {
         p->last_mapped = 1;
     }
     Py_RETURN_NONE;
+}
+
+/* ParameterTable.rehome's merge: `moved`'s story joined to `kept`'s (the same parameter, kept in two tables):
+ * counts and changes summed, one change more where the two last states differ, the later state kept; `moved`'s
+ * references taken or released. 0, or -1 with an exception set. */
+static int param_merge(Param *kept, Param *moved) {
+    for (int j = 0; j < PARAM_COUNTS; j++) kept->counts[j] += moved->counts[j];
+    Param *first = kept->order <= moved->order ? kept : moved, *later = first == kept ? moved : kept;
+    if (first->has_last && later->has_last) {
+        int same = later->status == NULL ? first->status == NULL && first->last == later->last
+                   : first->status == NULL ? 0
+                                           : PyObject_RichCompareBool(first->status, later->status, Py_EQ);
+        if (same < 0) return -1;
+        if (!same) kept->counts[PARAM_CHANGES]++;
+    }
+    if (later == moved && moved->has_last) {
+        Py_XSETREF(kept->status, moved->status);
+        Py_XSETREF(kept->text, moved->text);
+        Py_XSETREF(kept->namer, moved->namer);
+        moved->status = moved->text = moved->namer = NULL; /* (taken) */
+        kept->last = moved->last, kept->has_last = 1, kept->last_mapped = moved->last_mapped, kept->order = moved->order;
+    }
+    if (kept->code == NULL) kept->code = moved->code, moved->code = NULL;
+    Py_CLEAR(moved->code);
+    Py_CLEAR(moved->code_namer);
+    Py_CLEAR(moved->status);
+    Py_CLEAR(moved->text);
+    Py_CLEAR(moved->namer);
+    return 0;
+}
+
+/* rehome(slave, homes): ParameterTable.rehome, the slave's parameters of each table moved to homes[table] (bytes,
+ * by table: stats_store.SlaveTables): the table built again, in the order first seen. */
+static PyObject *stats_rehome(Stats *st, PyObject *args) {
+    int slave;
+    const char *homes;
+    Py_ssize_t size;
+    if (!PyArg_ParseTuple(args, "iy#", &slave, &homes, &size)) return NULL;
+    if (slave < 0 || slave > 255 || size > PARAM_TABLES)
+        return PyErr_Format(PyExc_ValueError, "rehome: slave 0..255, %d tables at most", PARAM_TABLES);
+    for (Py_ssize_t t = 0; t < size; t++)
+        if ((uint8_t)homes[t] >= PARAM_TABLES) return PyErr_Format(PyExc_ValueError, "rehome: tables 0..7");
+    Dense rebuilt = {0};
+    for (size_t k = 0; k < st->params.count; k++) {
+        Param *p = &PARAMS(st)[k];
+        int table = PARAM_TABLE(p->key);
+        uint32_t key = (int)PARAM_SLAVE(p->key) == slave && table < size
+                           ? param_key(slave, (uint8_t)homes[table], PARAM_ADDRESS(p->key)) : p->key;
+        Param *kept = dense_find(&rebuilt, &PARAM_KIND, &key);
+        if (kept != NULL) {
+            if (param_merge(kept, p) < 0) goto failed;
+            continue;
+        }
+        if ((kept = dense_add(&rebuilt, &PARAM_KIND, &key, 0)) == NULL) goto failed;
+        *kept = *p, kept->key = key;
+        memset(p, 0, sizeof *p); /* (its references are kept's now) */
+    }
+    dense_free(&st->params);
+    st->params = rebuilt;
+    Py_RETURN_NONE;
+failed: /* no memory (the run ends on it): what was moved is dropped, each reference released once */
+    for (size_t k = 0; k < rebuilt.count; k++) {
+        Param *p = &((Param *)rebuilt.items)[k];
+        Py_CLEAR(p->code);
+        Py_CLEAR(p->code_namer);
+        Py_CLEAR(p->status);
+        Py_CLEAR(p->text);
+        Py_CLEAR(p->namer);
+    }
+    dense_free(&rebuilt);
+    return NULL;
 }
 
 /* A request key tuple (slave, function[, ...]) of up to 6 ints into *fields: 0 or -1. */
@@ -809,6 +883,8 @@ static PyMethodDef stats_methods[] = {
      "(event: stats_store.EVENTS' index; UNREADABLE's text is the status); True when the state changed."},
     {"rename", (PyCFunction)stats_rename, METH_O,
      "rename({slave: namer}): name the kept values of these slaves as their new profile does."},
+    {"rehome", (PyCFunction)stats_rehome, METH_VARARGS,
+     "rehome(slave, homes): move the slave's parameters of each table to homes[table] (bytes by table)."},
     {"poll", (PyCFunction)stats_poll, METH_VARARGS, "poll(key, frame number, failed, time=None): a good request."},
     {"poll_fail", (PyCFunction)stats_poll_fail, METH_O, "poll_fail(key): its answer was an exception."},
     {"bus_line", (PyCFunction)stats_bus_line, METH_VARARGS, "bus_line(char_time, t35, timeout, new_input)"},

@@ -51,7 +51,10 @@ standard input) hear such a frame at once as `provisional(frame, register, event
 and its re-read states later through `state()` with the frame still provisional: they write no line
 for those (the change was shown provisional), so re-reading never invents a change.
 When profile `auto` chooses again later (a choice taken back), the values kept of that slave are
-named again by the new device (`store.rename`), and listeners hear `renamed(slave)`.
+named again by the new device (`store.rename`), and listeners hear `renamed(slave)`. Where the new device
+reads a table with another's code (the ATV71 chosen after FC4 reads: its FC4 reads the holding
+registers), the parameters kept move to that table first (`store.rehome`, listeners' `rehomed(slave,
+homes)`): --stats shows one CHCF, not an input register beside it.
 """
 from __future__ import annotations
 
@@ -94,6 +97,10 @@ class Listener(Protocol):
     def renamed(self, slave: int) -> None:
         """This slave's profile changed: what was kept of it is to be read with the new one."""
 
+    def rehomed(self, slave: int, homes: bytes) -> None:
+        """Before renamed: its new device reads a table with another's code (History._rehome), what was kept
+        of each table moves to homes[table]."""
+
 
 class ProvisionalListener(Listener, Protocol):
     def provisional(self, frame: Frame, register: Register, event: int) -> None:
@@ -102,9 +109,13 @@ class ProvisionalListener(Listener, Protocol):
 
 class History:
     def __init__(self, annotate: object = None, store: Any = None) -> None:
-        # slave -> each code's register table on its device now (its FC4 may read the holding registers)
-        self.tables: Callable[[int], bytes] = slave_tables(annotate) or (lambda slave: TABLES)
-        self.store = new_store(wide_maps(annotate), slave_tables(annotate)) if store is None else store
+        # slave -> each code's register table on its device now (its FC4 may read the holding registers),
+        # which moves what the store and the listeners keep when it changes (_rehome)
+        tables = slave_tables(annotate)
+        self.tables: Callable[[int], bytes] = tables or (lambda slave: TABLES)
+        self.store = new_store(wide_maps(annotate), tables) if store is None else store
+        if tables is not None:
+            tables.moved = self._rehome
         self.registers_without_address = 0
         # Registers that are one word of a 32-bit map row whose other word is not in their frame.
         self.half_values = 0
@@ -371,6 +382,14 @@ class History:
                 continue
             values.append(register)
         return values
+
+    def _rehome(self, slave: int, homes: bytes) -> None:
+        """The slave's new device reads a table with another's code (SlaveTables): its parameters kept
+        before move there, with the listeners' states, and are named by the new device."""
+        self.store.rehome(slave, homes)
+        for listener in self.listeners:
+            listener.rehomed(slave, homes)
+        self._rename(slave)
 
     def _rename(self, slave: int) -> None:
         if self._namer is not None:

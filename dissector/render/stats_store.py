@@ -17,7 +17,8 @@ Events (StatsCollector's rules, render/stats.py):
 A register's code is kept when it has one; CONFIRM sets it on a parameter's first sight only.
 A parameter's state is its last value or read status; `param` answers whether the state changed (the
 first state is no change), and `changes` counts those: the same changes `--watch` prints.
-`rename({slave: namer})` names the kept values of slaves whose profile was chosen after they were read.
+`rename({slave: namer})` names the kept values of slaves whose profile was chosen after they were read;
+`rehome(slave, homes)` moves a slave's parameters to the tables its new device reads them with (SlaveTables).
 """
 from __future__ import annotations
 
@@ -74,11 +75,36 @@ ParameterRow = tuple[int, int, Any, int, int, int, int, Any, Any, int, int]
 # device that reads both with one table).
 
 
-def slave_tables(annotate: object) -> Callable[[int], bytes] | None:
-    """slave -> each code's register table on the slave's device now (device_tables); None without devices
-    (the protocol's tables). The device may change under profile `auto`: asked again each time."""
+class SlaveTables:
+    """slave -> each code's register table on the slave's device now (device_tables), asked again each
+    time: the device may change under profile `auto`. Both stores and every output key parameters through
+    it, so the first of them to ask after a slave's device changed sees the change: where the new device
+    reads a table with another's code (profile `auto` choosing the ATV71 after FC4 reads: its FC4 reads
+    the holding registers), `moved(slave, homes)` moves what was kept before the first event counted
+    with the new tables (homes: each table's new table, by table)."""
+
+    __slots__ = ("device", "given", "moved")
+
+    def __init__(self, device: Callable[[int], Any]) -> None:
+        self.device = device
+        self.given: dict[int, bytes] = {}  # the tables last given for each slave
+        self.moved: Callable[[int, bytes], None] | None = None
+
+    def __call__(self, slave: int) -> bytes:
+        tables = device_tables(self.device(slave).profile)
+        given = self.given.get(slave)
+        if given is not tables:
+            self.given[slave] = tables
+            homes = table_homes(tables)
+            if given is not None and self.moved is not None and homes != IDENTITY_HOMES:
+                self.moved(slave, homes)
+        return tables
+
+
+def slave_tables(annotate: object) -> SlaveTables | None:
+    """The run's SlaveTables; None without devices (the protocol's tables)."""
     device = getattr(annotate, "device", None)
-    return None if device is None else lambda slave: device_tables(device(slave).profile)
+    return None if device is None else SlaveTables(device)
 
 
 # Each table as --stats names it (its --json `table`; the text marks an input register's address so).
@@ -94,6 +120,15 @@ def table_label(label: str | None, table: int, address: int | str) -> str | None
 def table_reader(table: int) -> int:
     """The code that reads a table's registers (FC3, FC4): whose PLC-style label (40001, 30001) they have."""
     return min(code for code in register_reads() if register_table(code) == table)
+
+
+def table_homes(tables: bytes) -> bytes:
+    """By table, the table its registers are on a device of these tables (device_tables): the one its
+    reader code reads there (the ATV71's input registers are its holding registers)."""
+    return bytes(tables[table_reader(table)] for table in sorted(TABLE_NAMES))
+
+
+IDENTITY_HOMES = table_homes(TABLES)  # the protocol's: every table its own
 
 
 def give_back() -> None:
@@ -122,6 +157,15 @@ class ParameterStats:
     changes: int = 0
     status: str | None = None  # the last state is this read status, not a value
     seen: bool = False  # a state (value or status) was seen
+    order: int = 0  # when its state was last set (the store's count of states set): merges keep the later
+
+
+def differ(first: ParameterStats, later: ParameterStats) -> bool:
+    """Two states differ (as ParameterTable.param counts a change): a status from another, or from a value,
+    or two values."""
+    if first.status is not None or later.status is not None:
+        return first.status != later.status
+    return first.last != later.last
 
 
 class ParameterTable:
@@ -133,6 +177,7 @@ class ParameterTable:
         self._parameters: dict[tuple[int, int, int], ParameterStats] = {}  # by (slave, address, table)
         self._max_params = max_params
         self.dropped = 0  # events of parameters beyond max_params, not kept
+        self._states = 0  # states set so far (ParameterStats.order)
 
     def param(self, slave: int, address: int, event: int, value: int, code: str | None, text: str | None,
               table: int = HOLDING_REGISTERS) -> bool:
@@ -160,9 +205,34 @@ class ParameterTable:
             stats.last = value
             stats.last_text = text
         stats.seen = True
+        self._states += 1
+        stats.order = self._states
         if changed:
             stats.changes += 1
         return changed
+
+    def rehome(self, slave: int, homes: bytes) -> None:
+        """The slave's parameters of each table moved to homes[table] (SlaveTables). A parameter kept in
+        both is one story: its counts and changes summed, the state the later set, and one change more
+        where the two last states differ (their stories joined one after the other)."""
+        moving = sorted(key for key in self._parameters if key[0] == slave and homes[key[2]] != key[2])
+        for key in moving:
+            moved = self._parameters.pop(key)
+            home = (slave, key[1], homes[key[2]])
+            kept = self._parameters.get(home)
+            if kept is None:
+                self._parameters[home] = moved
+                continue
+            first, later = (kept, moved) if kept.order <= moved.order else (moved, kept)
+            for counter in ("reads", "unreadable", "writes", "refused", "changes"):
+                setattr(kept, counter, getattr(kept, counter) + getattr(moved, counter))
+            if first.seen and later.seen and differ(first, later):
+                kept.changes += 1
+            if later is moved and moved.seen:
+                kept.last, kept.last_text, kept.status, kept.order = moved.last, moved.last_text, moved.status, moved.order
+                kept.seen = True
+            if kept.code is None:
+                kept.code = moved.code
 
     def rename(self, namers: dict[int, Any]) -> None:
         for (slave, address, _table), stats in self._parameters.items():

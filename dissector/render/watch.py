@@ -198,7 +198,7 @@ class Watcher:
         # Addresses any profile of the run names with a watched code: followed for every slave, shown
         # when the slave's own profile gives them that code.
         self._candidates = frozenset(addresses).union(*(known.get(code, ()) for code in codes)) if known else addresses
-        # By (slave, table, address), as the history keeps parameters.
+        # By (slave, table, address), as the history keeps parameters; in the order last set (rehomed).
         self._state: dict[tuple[int, int, int], _State] = {}  # as the history holds it (re-read)
         self._shown: dict[tuple[int, int, int], _State] = {}  # as provisional lines showed it
         self._column: tuple[Frame | None, str] = (None, "-")
@@ -238,7 +238,7 @@ class Watcher:
         # (the slave's device's table: FC4 may read the holding registers, profiles.device_tables)
         key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event)
-        old = self._state.get(key)  # type: ignore[arg-type]
+        old = self._state.pop(key, None)  # type: ignore[arg-type]
         self._state[key] = new  # type: ignore[index]
         if frame.provisional:
             return  # re-read once the device was chosen: its change (if any) was shown provisional
@@ -255,7 +255,7 @@ class Watcher:
             return
         key = (frame.slave, self.history.tables(frame.slave)[frame.function], address)  # type: ignore
         new = self._read(frame, register, event, provisional=True)
-        old = self._shown.get(key)  # type: ignore[arg-type]
+        old = self._shown.pop(key, None)  # type: ignore[arg-type]
         self._shown[key] = new  # type: ignore[index]
         if old is not None and old.differs(new):
             self._emit(self._pending(frame, key, old, new), provisional=True)  # type: ignore[arg-type]
@@ -268,6 +268,18 @@ class Watcher:
 
     def renamed(self, slave: int) -> None:
         pass  # states keep their raw values: they are named again when written
+
+    def rehomed(self, slave: int, homes: bytes) -> None:
+        """The slave's states moved to the tables its new device reads them with (History._rehome): of two
+        states of one parameter, the later set is its state, as the history keeps it."""
+        for states in (self._state, self._shown):
+            order = {key: index for index, key in enumerate(states)}
+            for key in [key for key in order if key[0] == slave and homes[key[1]] != key[1]]:
+                home = (slave, homes[key[1]], key[2])
+                moved = states.pop(key)
+                if home not in order or order[home] < order[key]:
+                    states.pop(home, None)
+                    states[home] = moved
 
     # -- writing -----------------------------------------------------------------------------------
     def flush(self) -> None:

@@ -8,6 +8,7 @@ from array import array
 from typing import Any
 
 from dissector.devices.maps import interpret
+from dissector.render.stats_store import table_label, table_reader
 
 MAX_LABELS = 64  # an enumeration's or bit field's texts kept for the chart's axis
 
@@ -81,3 +82,35 @@ def word_of(row: Any, y: float) -> int:
         if interpret(row, word & 0xFFFF)[0] == y:
             return word & 0xFFFF
     return guess & 0xFFFF
+
+
+def rehome(series: dict[tuple[int, int, int], Any], slave: int, homes: bytes, label: Any) -> None:
+    """The slave's series (by slave, address, table) moved to homes[table] (History._rehome), joined to the
+    series kept there; `label`: the annotator's PLC-style labels (--address-style plc), or None."""
+    for key in [key for key in series if key[0] == slave and homes[key[2]] != key[2]]:
+        moved, home = series.pop(key), (slave, key[1], homes[key[2]])
+        moved.label = table_label(label and label(slave, table_reader(home[2]), key[1]), home[2], key[1])
+        if home in series:
+            join(series[home], moved)
+        else:
+            series[home] = moved
+
+
+def join(kept: Any, moved: Any) -> None:
+    """`moved` (a series of the same parameter, kept in another table before its slave's device was chosen:
+    History._rehome) joined to `kept`: its points, marks and counts; each column's points in the order of
+    their first x (Columns.points draws them so)."""
+    done = array("d", kept.columns.values())
+    more = array("d", moved.columns.values())
+    groups = sorted((done[at : at + 8] for at in range(0, len(done), 8)), key=lambda group: group[0])
+    groups = sorted(groups + [more[at : at + 8] for at in range(0, len(more), 8)], key=lambda group: group[0])
+    kept.columns.load(array("d", [value for group in groups for value in group]))
+    kept.columns.close()  # (its last group may be another column's now)
+    kept.values += moved.values
+    kept.marks = sorted(kept.marks + moved.marks, key=lambda mark: mark[0])
+    kept.marks_dropped += moved.marks_dropped
+    for value, text in moved.labels.items():
+        if len(kept.labels) < MAX_LABELS:
+            kept.labels.setdefault(value, text)
+    if kept.code is None:
+        kept.code, kept.name, kept.unit, kept.step = moved.code, moved.name, moved.unit, moved.step
