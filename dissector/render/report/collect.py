@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator
 
 from dissector.model import Frame, Item, Kind, Register
+from dissector.protocol.spec import SPEC
 from dissector.render.history import UNREADABLE, History
 # (Columns, drawn and Y_DIGITS are the report's from here too: health.py, the codegen, the tests)
 from dissector.render.report.columns import Y_DIGITS, Columns, compact_json as _json, drawn, new_columns
@@ -100,7 +101,7 @@ class ReportCollector:
         self.groups = EventGroups()
         # Exceptions told before their slave's device was chosen: (event index or None, slave, function,
         # code, text told), retold with the device's meaning by data()
-        self._pending: list[tuple[int | None, int, int, int, str]] = []
+        self._pending: list[tuple[int | None, int, int, int, str, Frame | None]] = []
         self._moments = Moments()  # the protection moments of the frame at hand, until flush()
 
     # -- the x axis -------------------------------------------------------------------------------
@@ -176,8 +177,10 @@ class ReportCollector:
                 told = _exception_text(frame.function, code, frame.exception_text)
                 if frame.provisional and self._device is not None:
                     # Decoded before profile `auto` chose the slave's device: no meaning yet (data() tells it)
+                    # (its request kept where it may be a refused read-only write: explain.exception_meaning)
+                    request = frame.request if code == SPEC.read_only_exception else None
                     self._pending.append((len(self.events) if len(self.events) < MAX_EVENTS else None,
-                                          frame.slave, frame.function, code, told))
+                                          frame.slave, frame.function, code, told, request))
                 self._event(x, "exception", frame.slave, told)
         if self.owns_history:
             self.history.add(frame)
@@ -389,10 +392,12 @@ class ReportCollector:
 
     def _retell(self) -> None:
         """Exceptions decoded before profile `auto` chose their slave's device (standard input) told as
-        the file tells them: with the chosen device's meaning (explain.device_meaning, p.38's clause too)."""
-        from dissector.devices.explain import device_meaning
-        for index, slave, function, code, told in self._pending:
-            text = _exception_text(function, code, device_meaning(self._device(slave).profile, function, code))  # type: ignore[misc]
+        the file tells them: with the chosen device's meaning (explain.exception_meaning: p.38's clause, a
+        refused read-only write's)."""
+        from dissector.devices.explain import exception_meaning
+        for index, slave, function, code, told, request in self._pending:
+            meaning = exception_meaning(self._device(slave), function, code, request)  # type: ignore[misc]
+            text = _exception_text(function, code, meaning)
             if text == told:
                 continue
             if index is not None:
