@@ -37,13 +37,15 @@ for key, name in pairs({ code = "modbus.func_code", number = "modbus.regnum16", 
   exception = "modbus.exception_code", data = "modbus.data", read_start = "modbus.read_reference_num",
   read_quantity = "modbus.read_word_cnt", write_start = "modbus.write_reference_num",
   write_quantity = "modbus.write_word_cnt", unit = "mbtcp.unit_id", transaction = "mbtcp.trans_id",
-  length = "mbtcp.len", and_mask = "modbus.and_mask", or_mask = "modbus.or_mask" }) do
+  length = "mbtcp.len", and_mask = "modbus.and_mask", or_mask = "modbus.or_mask",
+  bit_count = "modbus.bit_cnt", subfunction = "modbus.diagnostic_code" }) do
   local ok, field = pcall(Field.new, name)
   if ok then modbus_fields[key] = field end
 end
 -- The fields sorted to their ADU (a TCP segment may carry several, each its own unit and transaction).
 local ADU_FIELDS = { "code", "number", "value", "request", "start", "quantity", "exception", "data", "read_start",
-  "read_quantity", "write_start", "write_quantity", "unit", "and_mask", "or_mask" }
+  "read_quantity", "write_start", "write_quantity", "unit", "and_mask", "or_mask", "bit_count",
+  "subfunction" }
 local floor = math.floor
 local names_state = vw3.new_state(nil)
 -- Requests not answered yet, by connection and transaction: Wireshark gives an exception no
@@ -205,10 +207,20 @@ local function remember_request(pinfo, adu, fn, slave, written)
   return request
 end
 
--- A write request's read-only parameters (map access R), one warning each, as the RTU plugin warns them
--- (access.check_writes: the registers written, FC22's address) and the answer's refusal names them.
-local function read_only_warnings(request, device)
-  local asking = { fn = request.fn, start = request.start, written = request.written }
+-- A request checked against the device as the RTU plugin checks it (lua/src/annotator.lua): a function
+-- it lacks, a quantity past its limit (checks.check_request; FC23's by the lifting rule's fields), a
+-- read-only parameter written (access.check_writes: the registers written, FC22's address). The warnings.
+local function request_warnings(adu, request, device)
+  local fn = request.fn
+  local fields = {}
+  for _, key in ipairs({ "quantity", "read_quantity", "write_quantity" }) do
+    fields[key] = first_value(fields_of(adu, key))
+  end
+  local asking = { fn = fn, start = request.start, written = request.written, fields = fields,
+    quantity = fields.quantity or first_value(fields_of(adu, "bit_count")),
+    subfunction = first_value(fields_of(adu, "subfunction")),
+    function_text = device.profile.function_names[fn] }
+  env.check_request(asking, device)
   env.check_writes(asking, device)
   return asking.warnings or {}
 end
@@ -273,14 +285,13 @@ local function name_adu(pinfo, adu)
   if response and MASK_WRITES[f.fn] then f.fields = masks_of(adu) end
   if #registers == 0 then
     -- (an FC16 answer or an FC22 echo: no registers to name; the writes it confirms count, held as any
-    -- frame before a choice. An FC22 request: its address may be read-only)
-    local masking = asking and MASK_WRITES[f.fn] and asking.start ~= nil
-    local device = (confirmed or f.fields ~= nil or masking) and vw3.device_now(names_state, f)
+    -- frame before a choice. A request: checked against the device)
+    local device = (confirmed or f.fields ~= nil or asking) and vw3.device_now(names_state, f)
     if device and confirmed then remember_writes(device, pinfo.number, request.written) end
     if device and f.fields ~= nil and device.track then
       env.remember_mask(device.seen, pinfo.number, f.fields)
     end
-    local warnings = device and masking and read_only_warnings(asking, device)
+    local warnings = device and asking and request_warnings(adu, asking, device)
     if not warnings or #warnings == 0 then return false end
     return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
   end
@@ -289,7 +300,7 @@ local function name_adu(pinfo, adu)
   if confirmed then remember_writes(device, pinfo.number, request.written) end -- (FC23 writes, then reads)
   vw3.annotate_registers(names_state, f, device, registers, response and vw3.reads[f.fn] ~= nil)
   if response and env.CONFIRMED.echo[f.fn] then remember_writes(device, pinfo.number, registers) end
-  local warnings = asking and read_only_warnings(asking, device) or {}
+  local warnings = asking and request_warnings(adu, asking, device) or {}
   return { registers = registers, notes = f.notes, warnings = warnings, device = device, slave = slave }
 end
 
