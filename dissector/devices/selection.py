@@ -49,9 +49,28 @@ class ProfileChoice:
     reason: str
     frame: int | None  # the frame that decided it (None: forced with --profile, or no evidence)
     final: bool  # identification or forced: later traffic does not change it
+    # The input that frame is in, when several are read as one bus (their frame numbers restart with each).
+    source: str | None = None
 
     def text(self) -> str:
         return f"slave {self.slave}: {self.profile} ({self.reason})"
+
+
+class Cited(int):
+    """A frame number of one of several inputs read as one bus, whose numbers restart with each (as the
+    summary numbers them under each `==> FILE <==`): a reason cites it with its input, `#2 of b.bin`, the
+    way the texts' `{frame:d}` formats it. An int otherwise (choice_frame compares it)."""
+
+    source: str | None
+
+    def __new__(cls, number: int, source: str | None = None) -> Cited:
+        cited = super().__new__(cls, number)
+        cited.source = source
+        return cited
+
+    def __format__(self, spec: str) -> str:
+        number = int(self).__format__(spec)
+        return number if self.source is None else f"{number} of {self.source}"
 
 
 @dataclass(slots=True)
@@ -100,6 +119,12 @@ class Selector:
         self._identifying: dict[int, Profile] = {}
         self._identifying_from = -1
         self.frozen = False  # the choices were made over the whole input (a first pass): observe() is idle
+        # The input being read when several are one bus (render/buses.py Buses.switch), None for one:
+        # its name goes with the frames a reason cites (Cited).
+        self.source: str | None = None
+
+    def _cited(self, number: int) -> int:
+        return number if self.source is None else Cited(number, self.source)
 
     def settled(self, slave: int) -> bool:
         """No later frame can change this slave's profile unless it is handed to observe()."""
@@ -158,8 +183,9 @@ class Selector:
             if profile is not None and profile.functions is not None and frame.function not in profile.functions:
                 judged.choice = ProfileChoice(
                     slave, self.fallback.name,
-                    text("chosen_unsupported", function=frame.function, frame=frame.number, device=profile.device),
-                    frame.number, False,
+                    text("chosen_unsupported", function=frame.function, frame=self._cited(frame.number),
+                         device=profile.device),
+                    frame.number, False, self.source,
                 )
                 # (the device taken back is ruled out; the other candidates are judged on, while the slave is)
                 if judged.ruled_out is not None and judged.evidence is not None:
@@ -193,7 +219,7 @@ class Selector:
                 found = evidence[name] = _Evidence({}, {})
             registers = frame.registers or []
             read = (frame.function, registers[0].address or 0, len(registers))
-            found.reads.setdefault(read, []).append(frame.number)
+            found.reads.setdefault(read, []).append(self._cited(frame.number))
             found.spans.setdefault(read, _span(frame))
             if found.marker is None and verdict is not True:
                 found.marker = verdict
@@ -203,7 +229,8 @@ class Selector:
         profile = self.profile(ready[0])
         assert profile is not None
         judged.choice = ProfileChoice(
-            frame.slave, profile.name, evidence[profile.name].reason(profile.protected_value), frame.number, False
+            frame.slave, profile.name, evidence[profile.name].reason(profile.protected_value), frame.number, False,
+            self.source,
         )
         return judged.choice
 
@@ -250,8 +277,8 @@ class Selector:
                     if any(obj.value.startswith(code) for code in profile.product_codes):
                         return ProfileChoice(
                             frame.slave, profile.name,
-                            text("chosen_product_code", frame=frame.number, value=obj.value),
-                            frame.number, True,
+                            text("chosen_product_code", frame=self._cited(frame.number), value=obj.value),
+                            frame.number, True, self.source,
                         )
         if self._identifying_from != len(self.candidates):
             self._identifying = {}
@@ -263,7 +290,8 @@ class Selector:
             name = profile.function_names.get(frame.function, str(frame.function))
             return ProfileChoice(
                 frame.slave, profile.name,
-                text("chosen_function", function=frame.function, name=name, frame=frame.number), frame.number, True,
+                text("chosen_function", function=frame.function, name=name, frame=self._cited(frame.number)),
+                frame.number, True, self.source,
             )
         return None
 

@@ -50,6 +50,13 @@ class Buses:
             bus.annotate = annotate
         if title is not None and title not in bus.names:
             bus.names.append(title)
+        # Several files read as one bus number their frames each from 1 (the summary titles each): the
+        # evidence cited of them names its file (profile `auto`'s reasons, --watch lines).
+        selector = getattr(annotate, "selector", None)
+        if selector is not None and key is None:
+            selector.source = title
+        if bus.watch is not None and key is None:
+            bus.watch.source = title
         return bus
 
     @property

@@ -279,7 +279,8 @@ class StatsCollector:
             "poll_cycle": self.poll.report(poll_rows),
             **({"merged_captures": list(self.captures)} if len(self.captures) > 1 else {}),
             "profiles": [
-                {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame}
+                {"slave": choice.slave, "profile": choice.profile, "reason": choice.reason, "frame": choice.frame,
+                 **({"file": choice.source} if getattr(choice, "source", None) is not None else {})}
                 for choice in (self.profiles() if self.profiles is not None else [])
                 if not self.filtered or choice.slave in slaves
             ],

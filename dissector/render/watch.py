@@ -40,6 +40,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.model import Frame, Item, Kind, Register
+from dissector.protocol.printable import printable
 from dissector.render.history import READ, UNREADABLE, UNREADABLE_STATUSES, WRITE_OBSERVED, History, wide_text
 from dissector.render.stats_store import table_label
 from dissector.render.timefmt import Clock
@@ -60,6 +61,8 @@ class Change:
     # The address as --address-style shows it (plc: 40001; an input register's else `input 5`), None: the address.
     label: str | None = None
     broadcast: bool = False  # a broadcast write: every slave written, whatever their states were (old: ?)
+    # The input of its frame when several files are one bus (their frame numbers restart with each file).
+    file: str | None = None
 
     def line(self) -> str:
         name = self.code or self.label or str(self.address)
@@ -79,6 +82,8 @@ class Change:
             record["provisional"] = True
         if self.broadcast:
             record["broadcast"] = True
+        if self.file is not None:
+            record["file"] = self.file
         return record
 
 
@@ -202,6 +207,8 @@ class Watcher:
         self._state: dict[tuple[int, int, int], _State] = {}  # as the history holds it (re-read)
         self._shown: dict[tuple[int, int, int], _State] = {}  # as provisional lines showed it
         self._column: tuple[Frame | None, str] = (None, "-")
+        # The file being read when several are one bus (render/buses.py Buses.switch): lines name it.
+        self.source: str | None = None
 
     @property
     def base(self) -> float | None:
@@ -309,7 +316,7 @@ class Watcher:
             return  # the same once named by the same device
         self.on_change(Change(pending.frame.time, pending.frame.number, slave, address, code, old_text, new_text,
                               unit, pending.column, provisional, pending.time_relative,
-                              table_label(label, table, address), old is None))
+                              table_label(label, table, address), old is None, self.source))
 
     def _label(self, slave: int, function: int, address: int) -> str | None:
         """The address as the summary shows it under --address-style (devices.naming.plc_label), or None."""
@@ -413,9 +420,19 @@ class WatchSink:
 
 
 def printer(write: Callable[[str], None], as_json: bool, file: str | None = None) -> Callable[[Change], None]:
-    """`file`: the bus's title, of several (render/buses.py), as --json's items name their input."""
+    """`file`: the bus's title, of several (render/buses.py), as --json's items name their input. A change's
+    own file (several files one bus) is its JSON `file`, and a `==> FILE <==` line over its file's first
+    line, as the summary titles each file's items."""
     if as_json:
         if file is not None:
             return lambda change: write(json.dumps({**change.record(), "file": file}) + "\n")
         return lambda change: write(json.dumps(change.record()) + "\n")
-    return lambda change: write(change.line() + "\n")
+    titled: list[str | None] = [None]
+
+    def line(change: Change) -> None:
+        if change.file is not None and change.file != titled[0]:
+            titled[0] = change.file
+            write(f"==> {printable(change.file)} <==\n")
+        write(change.line() + "\n")
+
+    return line
