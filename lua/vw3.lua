@@ -4148,6 +4148,14 @@ end
 
 local byte, unpack = string.byte, table.unpack
 
+-- One byte into a running CRC, its register's two bytes (lo, hi; 0xFF, 0xFF: a new CRC): over bytes and then
+-- their CRC it runs to 0, 0. (The mode sample's pair scan, rtu_pair_end, runs one from each place a frame
+-- may start.)
+local function crc_step(lo, hi, value)
+  local index = XOR8[lo * 256 + value]
+  return XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+end
+
 -- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
 -- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
 -- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,
@@ -4247,8 +4255,8 @@ local function crc_ok_at(b, i, length)
   crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
   return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
-M.concat, M.crc16, M.crc_ok_at, M.crc_scan, M.crc_string_ok = concat, crc16, crc_ok_at, crc_scan, crc_string_ok
-M.floor, M.format, M.made_once = floor, format, made_once
+M.concat, M.crc16, M.crc_ok_at, M.crc_scan, M.crc_step = concat, crc16, crc_ok_at, crc_scan, crc_step
+M.crc_string_ok, M.floor, M.format, M.made_once = crc_string_ok, floor, format, made_once
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -5391,7 +5399,7 @@ package.preload["vw3.ascii"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE
-local add_noise, awaited, crc16, crc_scan, cut_reason, emit = add_noise, awaited, crc16, crc_scan, cut_reason, emit
+local add_noise, awaited, crc16, crc_step, cut_reason, emit = add_noise, awaited, crc16, crc_step, cut_reason, emit
 local floor, flush_noise, format, interpretations, ipairs = floor, flush_noise, format, interpretations, ipairs
 local math, not_the_answer, pairs, table, time_at = math, not_the_answer, pairs, table, time_at
 -- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
@@ -5453,28 +5461,47 @@ local function rtu_start(b, at)
   return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
 end
 
--- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each
--- ending in its CRC: one alone is no evidence (protocol/ascii.py rtu_pair_end). Only pairs that would end
--- before the best so far are looked for.
-local function rtu_pair_end(sample)
-  local n = #sample
-  local b, lengths, best = { sample:byte(1, -1) }, {}, nil
-  for start = 1, n - 2 * MIN_ADU + 1 do -- (b[start]: the sample's byte start - 1 counted from 0)
-    if start - 1 + 2 * MIN_ADU > (best == nil and n or best - 1) then break end
-    if rtu_start(b, start) then
-      local first_last = (best == nil and n or best - 1) - MIN_ADU - (start - 1)
-      local count = crc_scan(b, start, MIN_ADU, math.min(first_last, MAX_ADU), lengths)
-      for k = 1, count do
-        local second = start + lengths[k]
-        local last = best == nil and n or best - 1 -- (the furthest a better pair ends)
-        if second - 1 + MIN_ADU <= last and rtu_start(b, second) then
-          local length = crc_scan(b, second, MIN_ADU, math.min(last - (second - 1), MAX_ADU))
-          if length > 0 then best = second - 1 + length end
+-- A pass of rtu_pair_end over a sample that grows: the bytes read (b, n), the places a frame may start less
+-- than MAX_ADU bytes back with the running CRC of their bytes so far (starts, los, his), where frames end
+-- (ends[k]: one ends right before byte k), and where the first pair ends once it is found.
+local function pair_scan()
+  return { b = {}, n = 0, starts = {}, los = {}, his = {}, ends = {}, found = nil }
+end
+
+-- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each a
+-- slave address, a public function code (or its exception) and bytes ending in their CRC: one alone is no
+-- evidence (protocol/ascii.py rtu_pair_end). One pass, a byte a step: a running CRC from each place a frame
+-- may start (rtu_start), for MAX_ADU bytes; a frame ends where it runs to 0, a pair where that frame starts
+-- at another's end. `scan` (pair_scan) carries the pass of an earlier call on the start of the same sample:
+-- the plugin's held records (dissector.lua) are read once, not again from the start at each record.
+local function rtu_pair_end(sample, scan)
+  scan = scan or pair_scan()
+  local b, starts, los, his, ends = scan.b, scan.starts, scan.los, scan.his, scan.ends
+  for p = scan.n + 1, #sample do
+    if scan.found ~= nil then break end
+    local value = sample:byte(p)
+    b[p] = value
+    if p >= 2 and rtu_start(b, p - 1) then -- (the two bytes that tell a start have come)
+      local lo, hi = crc_step(0xFF, 0xFF, b[p - 1])
+      starts[#starts + 1], los[#starts + 1], his[#starts + 1] = p - 1, lo, hi
+    end
+    local kept, count = 0, #starts
+    for k = 1, count do
+      local start = starts[k]
+      if p - start < MAX_ADU then -- (a frame from there would be p - start + 1 bytes long)
+        local lo, hi = crc_step(los[k], his[k], value)
+        if lo == 0 and hi == 0 and p - start + 1 >= MIN_ADU then
+          ends[p + 1] = true
+          if ends[start] then scan.found = p end
         end
+        kept = kept + 1
+        starts[kept], los[kept], his[kept] = start, lo, hi
       end
     end
+    for k = count, kept + 1, -1 do starts[k], los[k], his[k] = nil, nil, nil end
+    scan.n = p
   end
-  return best
+  return scan.found
 end
 
 local function detect_mode(sample)
@@ -5494,20 +5521,35 @@ local function detect_mode(sample)
   return "rtu"
 end
 
--- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come: not
--- `complete`): ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to MODE_REACH
--- bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode. An answer
--- given while more can come stays the answer for any longer sample (protocol/ascii.py sample_mode).
-local function sample_mode(sample, complete)
-  if #sample < MODE_SAMPLE and not complete then return nil end
-  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return "ascii" end
+-- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come); and the mode
+-- they give were the stream to end there (protocol/ascii.py sample_mode, without and with `complete`: both
+-- from one look at the bytes). ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to
+-- MODE_REACH bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode.
+-- An answer given while more can come stays the answer for any longer sample. `scan`: rtu_pair_end's,
+-- carried.
+local function sample_modes(sample, scan)
+  local told = #sample >= MODE_SAMPLE -- (the first answer holds for any longer sample)
+  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
   sample = sample:sub(1, MODE_REACH)
-  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample)
-  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then return "rtu" end
-  if ascii_end ~= nil then return "ascii" end
-  if complete or #sample >= MODE_REACH then return detect_mode(sample) end
-  return nil
+  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample, scan)
+  local mode
+  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then
+    mode = "rtu"
+  elseif ascii_end ~= nil then
+    mode = "ascii"
+  else
+    mode, told = detect_mode(sample), #sample >= MODE_REACH
+  end
+  return told and mode or nil, mode
 end
+
+-- protocol/ascii.py sample_mode itself (the tests hold it and rtu_pair_end to Python's).
+local function sample_mode(sample, complete)
+  local now, ended = sample_modes(sample)
+  if complete then return ended end
+  return now
+end
+M.sample_mode, M.rtu_pair_end = sample_mode, rtu_pair_end
 
 local function classify_ascii(s, adu, count)
   -- The kind an RTU frame with the same bytes would have, by the framer's length rules.
@@ -5660,7 +5702,8 @@ local function run_ascii(s, final, items)
   end
   return i
 end
-M.MODE_REACH, M.hex_pairs, M.run_ascii, M.sample_mode = MODE_REACH, hex_pairs, run_ascii, sample_mode
+M.MODE_REACH, M.hex_pairs, M.pair_scan, M.run_ascii = MODE_REACH, hex_pairs, pair_scan, run_ascii
+M.sample_modes = sample_modes
 end
 
 -- ---- vw3.feed: lua/src/feed.lua ----
@@ -9850,10 +9893,10 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, DissectorTable, MODE_REACH, Proto, READS = DATA, DissectorTable, MODE_REACH, Proto, READS
 local REQUEST, RESPONSE, add_register, add_text = REQUEST, RESPONSE, add_register, add_text
 local annotate_list, apply_prefs, device_now, dissect_now = annotate_list, apply_prefs, device_now, dissect_now
-local ex, finish_all, ipairs, lane, new_state, os, pack = ex, finish_all, ipairs, lane, new_state, os, pack
-local package, pairs, pcall, pf, proto, record_ns = package, pairs, pcall, pf, proto, record_ns
-local sample_mode, show_record, stream_state, tostring = sample_mode, show_record, stream_state, tostring
-local type, wtap = type, wtap
+local ended, ex, finish_all, ipairs, lane, new_state, os = ended, ex, finish_all, ipairs, lane, new_state, os
+local pack, package, pair_scan, pairs, pcall, pf, proto = pack, package, pair_scan, pairs, pcall, pf, proto
+local record_ns, sample_modes, show_record, stream_state = record_ns, sample_modes, show_record, stream_state
+local tostring, type, wtap = tostring, type, wtap
 
 -- A stream's mode, where no preference sets it, is told from its first bytes as vw3-decode tells it
 -- (protocol/ascii.py sample_mode: MODE_SAMPLE bytes, up to MODE_REACH after line noise), and those may
@@ -9909,18 +9952,20 @@ local function sample_and_dissect(st, tvb, pinfo, number)
       st.sample = false
       return dissect_now(st, tvb, pinfo, number)
     end
-    sample = { text = "" }
+    sample = { text = "", scan = pair_scan() }
     st.sample = sample
   end
   local bytes = tvb:raw()
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
-  local mode = sample_mode(sample.text, false)
+  -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
+  -- the bytes of the records before are not scanned again: sample.scan)
+  local mode, ended = sample_modes(sample.text, sample.scan)
   if mode ~= nil then
     st.sample = false
   else
     sample[#sample + 1] = { number, bytes }
-    mode = sample_mode(sample.text, true) -- (what vw3-decode would choose were the capture to end here)
+    mode = ended
   end
   if st.mode == nil then
     st.mode = mode

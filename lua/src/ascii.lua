@@ -62,28 +62,47 @@ local function rtu_start(b, at)
   return b[at] <= MAX_SLAVE and PUBLIC[b[at + 1] % 128] ~= nil
 end
 
--- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each
--- ending in its CRC: one alone is no evidence (protocol/ascii.py rtu_pair_end). Only pairs that would end
--- before the best so far are looked for.
-local function rtu_pair_end(sample)
-  local n = #sample
-  local b, lengths, best = { sample:byte(1, -1) }, {}, nil
-  for start = 1, n - 2 * MIN_ADU + 1 do -- (b[start]: the sample's byte start - 1 counted from 0)
-    if start - 1 + 2 * MIN_ADU > (best == nil and n or best - 1) then break end
-    if rtu_start(b, start) then
-      local first_last = (best == nil and n or best - 1) - MIN_ADU - (start - 1)
-      local count = crc_scan(b, start, MIN_ADU, math.min(first_last, MAX_ADU), lengths)
-      for k = 1, count do
-        local second = start + lengths[k]
-        local last = best == nil and n or best - 1 -- (the furthest a better pair ends)
-        if second - 1 + MIN_ADU <= last and rtu_start(b, second) then
-          local length = crc_scan(b, second, MIN_ADU, math.min(last - (second - 1), MAX_ADU))
-          if length > 0 then best = second - 1 + length end
+-- A pass of rtu_pair_end over a sample that grows: the bytes read (b, n), the places a frame may start less
+-- than MAX_ADU bytes back with the running CRC of their bytes so far (starts, los, his), where frames end
+-- (ends[k]: one ends right before byte k), and where the first pair ends once it is found.
+local function pair_scan()
+  return { b = {}, n = 0, starts = {}, los = {}, his = {}, ends = {}, found = nil }
+end
+
+-- Where the first two RTU frames back to back end in the sample (its bytes up to there; nil: none), each a
+-- slave address, a public function code (or its exception) and bytes ending in their CRC: one alone is no
+-- evidence (protocol/ascii.py rtu_pair_end). One pass, a byte a step: a running CRC from each place a frame
+-- may start (rtu_start), for MAX_ADU bytes; a frame ends where it runs to 0, a pair where that frame starts
+-- at another's end. `scan` (pair_scan) carries the pass of an earlier call on the start of the same sample:
+-- the plugin's held records (dissector.lua) are read once, not again from the start at each record.
+local function rtu_pair_end(sample, scan)
+  scan = scan or pair_scan()
+  local b, starts, los, his, ends = scan.b, scan.starts, scan.los, scan.his, scan.ends
+  for p = scan.n + 1, #sample do
+    if scan.found ~= nil then break end
+    local value = sample:byte(p)
+    b[p] = value
+    if p >= 2 and rtu_start(b, p - 1) then -- (the two bytes that tell a start have come)
+      local lo, hi = crc_step(0xFF, 0xFF, b[p - 1])
+      starts[#starts + 1], los[#starts + 1], his[#starts + 1] = p - 1, lo, hi
+    end
+    local kept, count = 0, #starts
+    for k = 1, count do
+      local start = starts[k]
+      if p - start < MAX_ADU then -- (a frame from there would be p - start + 1 bytes long)
+        local lo, hi = crc_step(los[k], his[k], value)
+        if lo == 0 and hi == 0 and p - start + 1 >= MIN_ADU then
+          ends[p + 1] = true
+          if ends[start] then scan.found = p end
         end
+        kept = kept + 1
+        starts[kept], los[kept], his[kept] = start, lo, hi
       end
     end
+    for k = count, kept + 1, -1 do starts[k], los[k], his[k] = nil, nil, nil end
+    scan.n = p
   end
-  return best
+  return scan.found
 end
 
 local function detect_mode(sample)
@@ -103,20 +122,35 @@ local function detect_mode(sample)
   return "rtu"
 end
 
--- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come: not
--- `complete`): ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to MODE_REACH
--- bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode. An answer
--- given while more can come stays the answer for any longer sample (protocol/ascii.py sample_mode).
-local function sample_mode(sample, complete)
-  if #sample < MODE_SAMPLE and not complete then return nil end
-  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return "ascii" end
+-- The mode a stream's first bytes give, or nil while they cannot tell yet (more bytes can come); and the mode
+-- they give were the stream to end there (protocol/ascii.py sample_mode, without and with `complete`: both
+-- from one look at the bytes). ASCII when the first MODE_SAMPLE bytes hold a whole ASCII frame; else, up to
+-- MODE_REACH bytes, a whole ASCII frame or two RTU frames back to back, the first to end; else detect_mode.
+-- An answer given while more can come stays the answer for any longer sample. `scan`: rtu_pair_end's,
+-- carried.
+local function sample_modes(sample, scan)
+  local told = #sample >= MODE_SAMPLE -- (the first answer holds for any longer sample)
+  if holds_frame(sample:sub(1, MODE_SAMPLE)) then return told and "ascii" or nil, "ascii" end
   sample = sample:sub(1, MODE_REACH)
-  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample)
-  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then return "rtu" end
-  if ascii_end ~= nil then return "ascii" end
-  if complete or #sample >= MODE_REACH then return detect_mode(sample) end
-  return nil
+  local ascii_end, rtu_end = frame_end(sample), rtu_pair_end(sample, scan)
+  local mode
+  if rtu_end ~= nil and (ascii_end == nil or rtu_end < ascii_end) then
+    mode = "rtu"
+  elseif ascii_end ~= nil then
+    mode = "ascii"
+  else
+    mode, told = detect_mode(sample), #sample >= MODE_REACH
+  end
+  return told and mode or nil, mode
 end
+
+-- protocol/ascii.py sample_mode itself (the tests hold it and rtu_pair_end to Python's).
+local function sample_mode(sample, complete)
+  local now, ended = sample_modes(sample)
+  if complete then return ended end
+  return now
+end
+M.sample_mode, M.rtu_pair_end = sample_mode, rtu_pair_end
 
 local function classify_ascii(s, adu, count)
   -- The kind an RTU frame with the same bytes would have, by the framer's length rules.

@@ -63,6 +63,14 @@ end
 
 local byte, unpack = string.byte, table.unpack
 
+-- One byte into a running CRC, its register's two bytes (lo, hi; 0xFF, 0xFF: a new CRC): over bytes and then
+-- their CRC it runs to 0, 0. (The mode sample's pair scan, rtu_pair_end, runs one from each place a frame
+-- may start.)
+local function crc_step(lo, hi, value)
+  local index = XOR8[lo * 256 + value]
+  return XOR8[hi * 256 + CRC_LO[index]], CRC_HI[index]
+end
+
 -- CRC-16/MODBUS of bytes[from] .. bytes[to - 1], from the register l, h (its two bytes times 256, as TWO_LO
 -- and TWO_HI hold them: fewer operations a byte; 0xFF00, 0xFF00: a new CRC); returns the register so.
 -- `read` reads the bytes sixteen a call (then four, two, one): unpack from a 0-based byte table,

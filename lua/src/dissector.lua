@@ -58,18 +58,20 @@ local function sample_and_dissect(st, tvb, pinfo, number)
       st.sample = false
       return dissect_now(st, tvb, pinfo, number)
     end
-    sample = { text = "" }
+    sample = { text = "", scan = pair_scan() }
     st.sample = sample
   end
   local bytes = tvb:raw()
   if bytes == "" then return nil end -- (as dissect_now: nothing for an empty record)
   sample.text = sample.text .. bytes:sub(1, MODE_REACH - #sample.text)
-  local mode = sample_mode(sample.text, false)
+  -- (ended: what vw3-decode would choose were the capture to end here; one look at the bytes gives both, and
+  -- the bytes of the records before are not scanned again: sample.scan)
+  local mode, ended = sample_modes(sample.text, sample.scan)
   if mode ~= nil then
     st.sample = false
   else
     sample[#sample + 1] = { number, bytes }
-    mode = sample_mode(sample.text, true) -- (what vw3-decode would choose were the capture to end here)
+    mode = ended
   end
   if st.mode == nil then
     st.mode = mode

@@ -35,8 +35,8 @@ def live(tape: Path, pure: bool, *options: str) -> list[str]:
     env.pop("VW3_PURE_PYTHON", None)
     if pure:
         env["VW3_PURE_PYTHON"] = "1"
-    run = subprocess.run([sys.executable, "-m", "dissector", "--live", "/dev/ttyTAPE", "--baud", "19200", *options],
-                         cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
+    command = [sys.executable, "-m", "dissector", "--live", "/dev/ttyTAPE", "--baud", "19200", *options]
+    run = subprocess.run(command, cwd=ROOT, env=env, capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     return run.stdout.splitlines()
 
@@ -59,8 +59,8 @@ def test_a_silence_cuts_the_next_poll(pure: bool, tmp_path: Path) -> None:
 @ENGINES
 def test_a_silence_cuts_a_request_after_an_unanswered_one(pure: bool, tmp_path: Path) -> None:
     tape = tmp_path / "unanswered.tape"
-    tape.write_bytes(tape_of([(POLL, 100.0), (bytes.fromhex("01 10 0000"), 101.0), (POLL, 102.0), (ANSWER, 102.01)],
-                             random.Random(2)))
+    cut = bytes.fromhex("01 10 0000")
+    tape.write_bytes(tape_of([(POLL, 100.0), (cut, 101.0), (POLL, 102.0), (ANSWER, 102.01)], random.Random(2)))
     assert noise_reasons(live(tape, pure, "-n", "--json")) == ["a silence cuts a request (4 bytes of it)"]
 
 
@@ -83,7 +83,8 @@ def test_the_capture_ends_inside_a_request_still(pure: bool, tmp_path: Path) -> 
     tape = tmp_path / "end.tape"
     tape.write_bytes(b"".join(_TAPE_EVENT.pack(1000 + at, T0 + int(at * 1e9), len(data)) + data
                               for data, at in reads))
-    assert noise_reasons(live(tape, pure, "-n", "--json")) == ["the capture ends inside a request (4 of 8 bytes)"]
+    reasons = noise_reasons(live(tape, pure, "-n", "--json"))
+    assert reasons == ["the capture ends inside a request (4 of 8 bytes)"]
 
 
 @ENGINES
