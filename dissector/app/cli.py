@@ -13,9 +13,9 @@ import io
 import json
 import os
 import sys
-from collections.abc import Callable, Iterable
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, BinaryIO, TextIO
+from typing import BinaryIO, TextIO
 
 from dissector.errors import ExitStatus, OutputError, ProfileError, UsageError
 from dissector.framing.ascii import AsciiFramer
@@ -23,7 +23,7 @@ from dissector.render.filter_error import FilterError
 from dissector.framing.rtu import RtuFramer
 from dissector.app.options import PROG, DecodeOptions, build_parser, decode_options, parse_arguments, shown
 from dissector.app.paths import decode_one
-from dissector.model import Chunk, Frame, Item
+from dissector.model import Frame, Item
 from dissector.render.capturefile import STDOUT, CaptureOutput, open_output
 from dissector.pipeline import Annotator, Dissector
 from dissector.app.profile_options import annotator_from_args
@@ -37,12 +37,12 @@ from dissector.protocol.printable import printable
 from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
-    CopyEnd, input_line, inputs, is_pcapng_file, keep_interface, profile_notes,
-    write_interface, write_units,
+    CopyEnd, choose_profiles_first, comments_of, input_line, inputs, is_pcapng_file, item_pieces, keep_interface,
+    observe_records, profile_notes, tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
+from dissector.sources.trail import RecordTrail
 from dissector.framing.timing import GapChecker
-
 
 
 @dataclass
@@ -135,6 +135,7 @@ class Sinks:
                              lambda text: env.stderr.write(f"{PROG}: {shown(text)}\n"))
         self.clock = self.output.clock
         self.pcap: CaptureOutput | None = None
+        self.trail: RecordTrail | None = None  # the input's records (app/inputs.py observe_records)
         self.write_path = args.write
         self.copy_end = CopyEnd()  # -w: the record of no byte the copy closes with, at the input's end
         if args.write is not None:
@@ -216,6 +217,7 @@ class Sinks:
                 self.valid_frames += 1
         predicate = self.predicate
         records: list[dict] | None = None
+        pieces = item_pieces(self.trail, heard)  # (before -Y: the trail forgets what is behind an item)
         if self.watch is not None:
             self.watch.observe(items)  # the time column never depends on -Y
         if self.show:
@@ -238,10 +240,10 @@ class Sinks:
                 records = records[: len(items)]
         if self.pcap is not None:
             try:
-                self.pcap.write_items(items)
+                self.pcap.write_items(items, pieces)
             except OSError as error:
                 raise self._write_failed(error) from None
-            self.copy_end.written(items)
+            self.copy_end.written(items, pieces)
         if self.stats is not None:
             report = self.report.collector if self.report is not None else None
             for item in items:
@@ -253,7 +255,7 @@ class Sinks:
         if self.show:
             if self.clock.format == "d" or self.clock.deltas:
                 self.clock.keep(items)
-            self.output.write(items, self.extra, records)
+            self.output.write(items, self.extra, records, pieces and comments_of(pieces))
 
     def restart_times(self) -> None:
         """A new input: its times count from its own first item (as the time column)."""
@@ -399,7 +401,7 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            _choose_profiles(annotate, args, chunks, mode, path, again, line.baud)
+            choose_profiles_first(annotate, args, chunks, mode, path, again, line.baud)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,
@@ -409,7 +411,9 @@ def _decode_inputs(
                 recorded=recorded,
             )
             sinks.valid_frames = sinks.input_bytes = 0
+            chunks, sinks.trail = observe_records(chunks, source_format, sinks.pcap is not None)
             decode_one(chunks, mode, timed, fix, dissector, sinks, annotate, warn)
+            tell_comments(sinks, path, env.stderr)
             sinks.copy_end.ended(None if sinks.done else recorded())  # (-c N: the copy ends at the Nth)
             # (-c N may stop in an input's first noise run, before its frames: not judged then.)
             if sinks.input_bytes and not sinks.valid_frames and path is not None and not sinks.done:
@@ -441,23 +445,6 @@ def _holds_ascii(path: str) -> bool:
             return holds_frame(file.read(ASCII_HINT_BYTES))
     except OSError:
         return False
-
-
-def _choose_profiles(annotate: Annotator | None, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
-                     path: str | None, again: Callable[[], Any] | None, baud: int) -> None:
-    """Profile `auto`: the choices made over the whole input first, where it can be read twice (`again`:
-    app/inputs.py)."""
-    if getattr(annotate, "selector", None) is None:
-        return
-    from dissector.app.preselect import choose_profiles
-
-    if path is None:  # --hex: its chunks are a list
-        choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
-    elif again is not None:
-        with again() as reread:
-            choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]
-    else:
-        annotate.thaw()  # type: ignore[union-attr]
 
 
 def _live(args: argparse.Namespace, env: Environment) -> int:

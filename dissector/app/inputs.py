@@ -24,6 +24,7 @@ from dissector.sources.pcap import MAGICS, is_pcap
 from dissector.sources.pcapng import IDB, SHB, _interface, is_pcapng
 from dissector.sources.pcapng import Interface as RecordedInterface
 from dissector.sources.reader import NOTATIONS, SourceError, open_source
+from dissector.sources.trail import Piece, RecordTrail, item_comments, observed
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])  # formats whose records may carry times
 
@@ -209,8 +210,14 @@ class CopyEnd:
         self.last: float | None = None  # the time of the copy's last record
         self.end: float | None = None  # when the last input read to its end was recorded until
 
-    def written(self, items: list[Item]) -> None:
-        self.last = next((item.time for item in reversed(items) if item.time is not None), self.last)
+    def written(self, items: list[Item], pieces: dict[int, list[Piece]] | None = None) -> None:
+        """`pieces`: of the items written in several records (sources/trail.py), the last one's time."""
+        for item in reversed(items):
+            split = pieces.get(id(item)) if pieces else None
+            time = split[-1][1] if split else item.time
+            if time is not None:
+                self.last = time
+                return
 
     def ended(self, recorded: float | None) -> None:
         self.end = recorded
@@ -247,3 +254,70 @@ def profile_notes(buses: Any, annotate: Any, stderr: Any, is_terminal: bool) -> 
     for bus in buses.all():
         for line in getattr(bus.annotate, "profile_report", lambda: [])():
             stderr.write(f"{PROG}: {shown(title(bus))}: {shown(line)}\n")
+
+
+def observe_records(chunks: Iterable[Chunk], source_format: str | None,
+                    writing: bool) -> tuple[Iterable[Chunk], RecordTrail | None]:
+    """The chunks through a trail of their records (sources/trail.py): with -w (its times and comments), or
+    of a pcapng (its packet comments); as they are otherwise (no other input has comments)."""
+    if not writing and source_format != "pcapng":
+        return chunks, None
+    trail = RecordTrail(times=writing)
+    return observed(chunks, trail), trail
+
+
+def item_pieces(trail: RecordTrail | None, items: list[Item]) -> dict[int, list[Piece]] | None:
+    """The pieces of the items (heard, in order) that are not one record without comments, by id(item)."""
+    if trail is None or trail.idle:
+        return None
+    found = {}
+    for item in items:
+        pieces = trail.pieces(item)
+        if pieces is not None:
+            found[id(item)] = pieces
+    return found
+
+
+def comments_of(pieces: dict[int, list[Piece]]) -> dict[int, list[str]]:
+    """The packet comments of the items that have some, by id(item) (render/output.py Output.write)."""
+    found = {key: item_comments(split) for key, split in pieces.items()}
+    return {key: texts for key, texts in found.items() if texts}
+
+
+RECORDS_TOLD = 5  # record numbers a line about packet comments names
+
+
+def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
+    """After an input with packet comments: a -w pcap has no place for them (a warning), and a display
+    that does not show them (the summary, -x, -T fields) says where they are, once an input; -V, --json
+    and a pcapng -w show or keep them."""
+    trail = sinks.trail
+    if trail is None or not trail.comments:
+        return
+    numbers = sorted(set(trail.records))
+    records = ", ".join(map(str, numbers[:RECORDS_TOLD])) + (", ..." if len(numbers) > RECORDS_TOLD else "")
+    what = (f"{trail.comments} packet comment{'s' if trail.comments != 1 else ''} "
+            f"(record{'s' if len(numbers) != 1 else ''} {records})")
+    name = shown(path if path not in (None, "-") else "--hex" if path is None else "standard input")
+    if sinks.pcap is not None and sinks.pcap.format == "pcap":
+        stderr.write(f"{PROG}: warning: -w {shown(sinks.write_path)}: pcap has no packet comments: the {what} "
+                     f"of {name} are not kept (write pcapng, -F pcapng, to keep them)\n")
+    elif sinks.show and not (sinks.options.output.detail or sinks.options.output.json):
+        stderr.write(f"{PROG}: {name}: {what}: -V and --json show them\n")
+
+
+def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
+                          path: str | None, again: Callable[[], Any] | None, baud: int) -> None:
+    """Profile `auto`: the choices made over the whole input first, where it can be read twice (`again`:
+    inputs)."""
+    if getattr(annotate, "selector", None) is None:
+        return
+    from dissector.app.preselect import choose_profiles
+
+    if path is None:  # --hex: its chunks are a list
+        choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
+    elif again is not None:
+        with again() as reread:
+            choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]
+    else:
+        annotate.thaw()  # type: ignore[union-attr]

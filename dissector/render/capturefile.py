@@ -49,7 +49,10 @@ def noise_comment(item: Item) -> str | None:
     return None
 
 
-HeldRecord = tuple[bytes, float | None, list[str], int]  # held by write_items: (bytes, time, comments, end offset)
+# Held by write_items: (bytes, time, vw3-decode's comments, the input's packet comments, end offset, whether
+# it goes on an item begun in the record before: a -b ring keeps it in that record's file).
+HeldRecord = tuple[bytes, float | None, list[str], list[str], int, bool]
+Piece = tuple[int, float | None, tuple[str, ...]]  # sources/trail.py: (end in the item, time, comments)
 
 FLUSH_BYTES = 1 << 16  # records are written in batches of about this much when not live
 
@@ -124,7 +127,8 @@ class RecordWriter(Protocol):
     size: int
     clamped: int
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None: ...
+    def write(self, data: bytes, timestamp: float | None = None,
+              comment: str | list[str] | None = None) -> None: ...
 
     def use_interface(self, name: str | None, description: str | None) -> None: ...
 
@@ -316,11 +320,14 @@ class CaptureOutput:
                 except FileNotFoundError:
                     pass
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
+    def write(self, data: bytes, timestamp: float | None = None,
+              comment: str | list[str] | None = None, continued: bool = False) -> None:
+        """`comment`: a list is a comment each (pcapng); `continued`: the record goes on an item begun in the
+        record before, in the same file (each file of a ring decodes as its part of the decode)."""
         if self._writer is None:
             raise OSError("the capture file is closed")
         ring = self.ring
-        if ring is not None:
+        if ring is not None and not continued:
             if self._flush:  # live: times are now
                 self.tick()
                 if self._full:
@@ -371,7 +378,7 @@ class CaptureOutput:
         if self._writer is not None:
             self._writer.use_interface(*(interface or (None, None)))
 
-    def write_items(self, items: list[Item]) -> None:
+    def write_items(self, items: list[Item], pieces: dict[int, list[Piece]] | None = None) -> None:
         """Write items of a decode so that the file decodes back to the same items: a record an item,
         except that a noise run shares the record of the item after it when that is more noise or a
         damaged frame (one heard at the same time, within SNAPLEN bytes), or, ending the input, the
@@ -382,37 +389,61 @@ class CaptureOutput:
         made a frame of a CRC-valid tail of the noise (d1 | 03 17 02 00 00 c4 74, then the damaged frame
         01 e9 bb b8 2b), or of a damaged frame ending where the noise did, that the decode had found no
         frame. Before an intact frame the record ends all the same (each frame a record of its own, as
-        Wireshark's mbrtu reads them): that frame is the framer's evidence there anyway."""
+        Wireshark's mbrtu reads them): that frame is the framer's evidence there anyway.
+
+        `pieces` (sources/trail.py, by id(item)): an item whose input's time changes inside it is written
+        as a record a time, each at its own (a silence inside a frame reads back as one), and the input's
+        packet comments go on the records of the bytes they were on, each an opt_comment of its own."""
         for item in items:
-            held = self._held
-            if held is not None:
-                data, timestamp, comments, end = held
-                if (
-                    item.offset == end
-                    and item.time == timestamp
-                    and (isinstance(item, Noise) or not item.crc_ok)
-                    and len(data) + item.length <= SNAPLEN
-                ):
-                    if isinstance(item, Noise):
-                        comments.append(noise_comment(item) or "")
-                        self._held = (data + item.raw, timestamp, comments, end + item.length)
-                        continue
-                    self._held = None
-                    comments.append(f"then a damaged frame ({item.length} bytes)")
-                    self._record((data + item.raw, timestamp, comments, end + item.length))
-                    continue
-                self._held = None
-                self._record(held)
-            if isinstance(item, Noise):
-                self._held = (item.raw, item.time, [noise_comment(item) or ""], item.offset + item.length)
-            else:
-                self._record((item.raw, item.time, [], item.offset + item.length))
+            split = pieces.get(id(item)) if pieces else None
+            if split is None:
+                self._piece(item, 0, item.length, item.time, [])
+                continue
+            begin = 0
+            for end, time, comments in split:
+                self._piece(item, begin, end, time, list(comments))
+                begin = end
+
+    def _piece(self, item: Item, begin: int, end: int, time: float | None, users: list[str]) -> None:
+        """The item's bytes begin..end, a record's worth, with the input's packet comments `users`."""
+        noise = isinstance(item, Noise)
+        data = item.raw[begin:end] if begin or end < item.length else item.raw
+        first, last = begin == 0, end == item.length
+        held = self._held
+        if held is not None:
+            self._held = None
+            kept, timestamp, comments, notes, stop, continued = held
+            if (first and item.offset == stop and time == timestamp and (noise or not item.crc_ok)
+                    and len(kept) + len(data) <= SNAPLEN):
+                joined = (kept + data, timestamp, comments, notes + users, stop + len(data), continued)
+                if noise:
+                    comments.append(noise_comment(item) or "")
+                    if last:
+                        self._held = joined
+                    else:
+                        self._record(joined)
+                    return
+                comments.append(f"then a damaged frame ({item.length} bytes)")
+                self._record(joined)
+                return
+            self._record(held)
+        own = [noise_comment(item) or ""] if noise and first else []
+        record = (data, time, own, users, item.offset + end, not first)
+        if noise and last:
+            self._held = record
+        else:
+            self._record(record)
 
     def _record(self, record: HeldRecord) -> None:
         """Write the record held before this one and hold this one (release may add to it)."""
         last, self._last = self._last, record
         if last is not None:
-            self.write(last[0], last[1], "; ".join(last[2]) or None)
+            self._write_record(*last[:4], last[5])
+
+    def _write_record(self, data: bytes, time: float | None, own: list[str], users: list[str],
+                      continued: bool) -> None:
+        """A record with the input's packet comments, then vw3-decode's (one comment, "; " between)."""
+        self.write(data, time, [*users, "; ".join(own)] if own else users, continued)
 
     def release(self) -> None:
         """Write the records write_items holds (the input ends, or the file is closed).
@@ -426,21 +457,21 @@ class CaptureOutput:
         held, last = self._held, self._last
         self._held = self._last = None
         if held is not None and last is not None and self._joins(last, held):
-            data, timestamp, comments, _end = last
+            data, timestamp, comments, notes, _end, continued = last
             frame = [] if comments else [f"a frame ({count_text(len(data), 'byte')})"]
             noise = [f"then {comment}" for comment in held[2]]
-            self.write(data + held[0], timestamp, "; ".join([*comments, *frame, *noise]))
+            self._write_record(data + held[0], timestamp, [*comments, *frame, *noise], notes + held[3], continued)
             return
         for record in (last, held):
             if record is not None:
-                self.write(record[0], record[1], "; ".join(record[2]) or None)
+                self._write_record(*record[:4], record[5])
 
     @staticmethod
     def _joins(last: HeldRecord, noise: HeldRecord) -> bool:
         """May the noise run ending the input go at the end of the record before it (release)?"""
         data = noise[0]
         return (
-            last[3] == noise[3] - len(data)
+            last[4] == noise[4] - len(data)
             and last[1] == noise[1]
             and len(last[0]) + len(data) <= SNAPLEN
             and spans_a_frame(data)

@@ -141,14 +141,20 @@ class Output:
         items: list[Item],
         extra: dict[str, object] | None = None,
         records: list[dict] | None = None,
+        comments: dict[int, list[str]] | None = None,
     ) -> None:
-        """Show items; `records` are their NDJSON dicts when the caller has them already.
+        """Show items; `records` are their NDJSON dicts when the caller has them already; `comments`: the
+        packet comments of the items that have some, by id(item) (sources/trail.py): -V shows them
+        above the frame as tshark -V does ("Packet comments"), --json as the list `comments`.
 
         The clock must have observed them (and every item the filter dropped) before.
         """
         options = self.options
         out = self._buffer
         clock = self.clock
+        if comments and (options.detail or options.json):
+            self._write_commented(items, extra, records, comments)
+            return
         if options.detail and not (options.hexdump or options.records) and self.console is None:
             self._write_details(items)
             return
@@ -209,6 +215,28 @@ class Output:
                 size = 0
         if len(out) > BATCH:
             self.flush()
+
+    def _write_commented(self, items: list[Item], extra: dict[str, object] | None, records: list[dict] | None,
+                         comments: dict[int, list[str]]) -> None:
+        """write() of items some of which have packet comments: each commented one on its own."""
+        for index, item in enumerate(items):
+            texts = comments.get(id(item))
+            record = None if records is None else records[index : index + 1]
+            if texts is None:
+                self.write([item], extra, record)
+            elif self.options.json:
+                if record is not None:
+                    record[0]["comments"] = texts
+                self.write([item], {**(extra or {}), "comments": texts}, record)
+            else:
+                block = "\n".join(["Packet comments", *(f"    {printable(text)}" for text in texts)])
+                if self.console is not None:
+                    from rich.text import Text
+
+                    self.console.print(Text(block))
+                else:
+                    self._buffer.append(block)
+                self.write([item], extra, record)
 
     def _write_details(self, items: list[Item]) -> None:
         """write() for plain -V alone: each item's detail and an empty line."""

@@ -90,7 +90,9 @@ class PcapngWriter:
         if self._flush:
             self._stream.flush()
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
+        """`comment`: a list is an opt_comment each (the input's packet comments, then vw3-decode's)."""
+        comments = [comment] if isinstance(comment, str) else comment or []
         if timestamp is None:
             timestamp = self._last_time
         self._last_time = timestamp
@@ -103,7 +105,7 @@ class PcapngWriter:
             struct.pack("<IIIII", self._interface, units >> 32, units & 0xFFFFFFFF, len(data), len(data))
             + data
             + b"\0" * (-len(data) % 4)
-            + _options([(OPT_COMMENT, comment)] if comment else [])
+            + _options([(OPT_COMMENT, text) for text in comments if text])
         )
         block = _block(EPB, body)
         self._stream.write(block)

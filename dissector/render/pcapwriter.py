@@ -63,7 +63,7 @@ class PcapWriter:
         if flush:
             stream.flush()
 
-    def write(self, data: bytes, timestamp: float | None = None, comment: str | None = None) -> None:
+    def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
         """Append one record. Without a timestamp, the previous one is reused (0 at first).
         pcap has no place for a comment: it is for pcapng's sake."""
         if timestamp is None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import struct
 from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import BinaryIO
 
 from dissector.errors import SourceError
@@ -167,6 +168,16 @@ def rtac_header(
     if trouble is not None:
         log.warn("RTAC line events", f"record {record}: the RTAC reports a {trouble} (event {event:#04x})")
     return Stamp.from_parts(seconds, micros, 1_000_000), RTAC_HEADER.size
+
+
+@dataclass(slots=True)
+class NotedChunk(Chunk):
+    """The last chunk of a pcapng record that carries packet comments (opt_comment, as `editcap -a` or
+    Wireshark write them): the record's number and its comments, for -V, --json and -w (sources/trail.py).
+    """
+
+    record: int = 0
+    comments: tuple[str, ...] = ()
 
 
 def record_chunks(

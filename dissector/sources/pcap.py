@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import struct
 from collections.abc import Iterator
+from dataclasses import replace
 
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import (
@@ -182,4 +183,4 @@ class EpochRecord:
         """The held chunks: at the epoch when the record after is `timed`, untimed otherwise."""
         chunks, self.chunks = self.chunks, None
         for chunk in chunks or ():
-            yield chunk if timed else Chunk(chunk.data, None, chunk.boundary)
+            yield chunk if timed else replace(chunk, time=None)  # (a NotedChunk keeps its comments)

@@ -3,7 +3,9 @@ timestamp resolution (if_tsresol) and offset (if_tsoffset), and its texts (if_na
 what `vw3-decode --live -w` writes the serial settings in, framing/linespeed.py reads the speed there).
 
 Packets come from Enhanced (EPB), Simple (SPB, no timestamp) and obsolete Packet blocks (OPB).
-Blocks that carry no packet (name resolution, statistics, secrets, custom) are passed over; blocks
+A packet's comments (opt_comment: `editcap -a`, Wireshark's Packet Comment) ride on its record's last
+chunk (sources/common.py NotedChunk), except the ones vw3-decode writes itself (sources/trail.py
+own_comment). Blocks that carry no packet (name resolution, statistics, secrets, custom) are passed over; blocks
 of unknown type are skipped with a warning. Bodies are read piece by piece, so memory stays
 bounded whatever block sizes the file claims.
 """
@@ -22,6 +24,7 @@ from dissector.sources.common import (
     LINKTYPE_RTAC_SERIAL,
     LINKTYPE_USER0,
     Input,
+    NotedChunk,
     SourceError,
     WarningLog,
     check_linktype,
@@ -29,6 +32,7 @@ from dissector.sources.common import (
     record_chunks,
 )
 from dissector.sources.pcap import EpochRecord, within_day_zero
+from dissector.sources.trail import own_comment
 
 SHB = 0x0A0D0D0A
 SHB_MAGIC = bytes.fromhex("0a0d0d0a")
@@ -37,7 +41,7 @@ BYTE_ORDER_MAGIC = 0x1A2B3C4D
 # Blocks that carry no packet data: NRB, ISB, systemd journal, DSB, custom (copyable or not).
 NO_PACKET_BLOCKS = {4: "name resolution", 5: "interface statistics", 9: "systemd journal",
                     0x0A: "decryption secrets", 0x0BAD: "custom", 0x40000BAD: "custom"}
-OPT_END, OPT_IF_NAME, OPT_IF_DESCRIPTION, OPT_TSRESOL, OPT_TSOFFSET = 0, 2, 3, 9, 14
+OPT_END, OPT_COMMENT, OPT_IF_NAME, OPT_IF_DESCRIPTION, OPT_TSRESOL, OPT_TSOFFSET = 0, 1, 2, 3, 9, 14
 MAX_HEADER_BLOCK = 1 << 20  # SHB and IDB are parsed whole: a bigger one is corruption
 
 
@@ -114,6 +118,7 @@ class _Reader:
         # Packets of interfaces carrying no serial bytes (an Ethernet tap beside the serial one), passed
         # over: ordinal -> [linktype, records, bytes], told once at the end (skipped_warnings).
         self.skipped: dict[int, list[int]] = {}
+        self.unshown = 0  # packet comments of records with no serial byte: no item shows them (comment_warning)
 
     def run(self) -> Iterator[Chunk]:
         inp = self.inp
@@ -317,12 +322,15 @@ class _Reader:
             captured = min(captured, interface.snaplen)
         # A simple packet block has no timestamp.
         yield from self.held.release(False)
-        yield from self._data(captured, original, None, interface, body_length - 4, start)
+        yield from self._data(captured, original, None, interface, body_length - 4, start, options=False)
 
     def _data(
         self, captured: int, original: int, time: float | None, interface: Interface,
-        space: int, start: int,
+        space: int, start: int, options: bool = True,
     ) -> Iterator[Chunk]:
+        """The record's chunks; `options`: its block's options follow the packet data, padded to 4 bytes
+        (EPB, OPB; not SPB), and the packet comments among them go on its last chunk (held back until
+        they are read: they come after the data)."""
         self.record += 1
         if captured < original:
             self.log.warn(
@@ -330,15 +338,50 @@ class _Reader:
                 f"record {self.record}: only {captured} of its {original} bytes were captured",
             )
         before = self.inp.position
-        yield from record_chunks(
+        last: Chunk | None = None
+        for chunk in record_chunks(
             self.inp, captured, time, interface.linktype, self.record, self.log, self.chunk_size
-        )
+        ):
+            if last is not None:
+                yield last
+            last = chunk
         if self.inp.position - before < captured:
+            if last is not None:
+                yield last
             raise _Ended()
         rest = space - captured
-        if self.inp.skip(rest) < rest:
+        padding = -captured % 4
+        if options and padding < rest <= MAX_HEADER_BLOCK:
+            tail = self.inp.read(rest)
+            comments = self._comments(tail[padding:]) if len(tail) == rest else ()
+            read = len(tail)
+        else:
+            comments, read = (), self.inp.skip(rest)
+        if comments and last is not None:
+            last = NotedChunk(last.data, last.time, last.boundary, self.record, comments)
+        elif comments:
+            self.unshown += len(comments)
+        if last is not None:
+            yield last
+        if read < rest:
             self.log.warn("truncated input", f"the capture ends inside the packet block at byte {start}")
             raise _Ended()
+
+    def _comments(self, options: bytes) -> tuple[str, ...]:
+        """The packet's comments (opt_comment), but those vw3-decode wrote of its own decode."""
+        texts = (value.decode("utf-8", "replace") for code, value in _options(options, self.order)
+                 if code == OPT_COMMENT)
+        return tuple(text for text in texts if not own_comment(text))
+
+    def comment_warning(self) -> None:
+        """Comments of records with no serial byte (an empty record, an RTAC header alone): no item is
+        there to show them."""
+        if self.unshown:
+            self.log.warn(
+                "packet comments",
+                f"{self.unshown} packet comment{'s' if self.unshown != 1 else ''} on records with no serial "
+                "byte not shown (tshark -V shows them)",
+            )
 
 
 def serial(linktype: int) -> bool:
@@ -407,6 +450,7 @@ class PcapngChunks:
             pass
         yield from self._reader.held.release(False)
         self._reader.skipped_warnings()
+        self._reader.comment_warning()
 
 
 def read_pcapng(inp: Input, log: WarningLog, chunk_size: int, only: int | None = None,

@@ -123,10 +123,11 @@ def test_w_keeps_each_interface(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
     if tshark:  # the oracle: each record on its interface, named as in the input
         fields = subprocess.run([tshark, "-r", str(written), "-T", "fields", "-e", "frame.interface_name",
                                  "-e", "frame.len"], capture_output=True, text=True, check=True).stdout
-        # Then the closing record at the input's end, /dev/pts/0's last record 12 ms in (its answer's second
-        # half), later than the copy's last (app/inputs.py CopyEnd).
-        assert fields.splitlines() == ["/dev/pts/0\t8", "/dev/pts/0\t11", "/dev/pts/1\t8", "/dev/pts/1\t11",
-                                       "/dev/pts/1\t0"]
+        # /dev/pts/0's answer in the two records it came in, 2 ms apart (sources/trail.py: before, one record
+        # at the first's time). Then the closing record at the input's end, /dev/pts/0's last record 12 ms in
+        # (its answer's second half), later than the copy's last (app/inputs.py CopyEnd).
+        assert fields.splitlines() == ["/dev/pts/0\t8", "/dev/pts/0\t5", "/dev/pts/0\t6", "/dev/pts/1\t8",
+                                       "/dev/pts/1\t11", "/dev/pts/1\t0"]
 
 
 @BOTH

@@ -1,0 +1,147 @@
+"""What a decode keeps of its input's records beside the items (app/cli.py Sinks): the packet comments of
+a pcapng's records (sources/common.py NotedChunk) by the bytes they are on, and, for -w, where the
+input's time changes.
+
+A frame gets the comments of every record it has bytes in (a record of three frames: each of them), as
+-V and --json show them and -w keeps them. A -w copy writes an item across a change of time in the
+records it came in, each part at its own time (render/capturefile.py write_items): written as one
+record at its first byte's time, a frame that had a silence inside it lost that warning, and a noise run
+its times. Records of one time inside an item stay one record (the copy's frames are Wireshark's
+packets), so the parts are cut where the time changes, not at every record.
+
+The items come in the order of their bytes: what lies before an item asked about is forgotten, so
+memory holds the records of the items not yet out (and every comment of a summary the engine writes).
+"""
+from __future__ import annotations
+
+import re
+from collections import deque
+from collections.abc import Iterable, Iterator
+from typing import Any
+
+from dissector.model import Chunk, Item
+from dissector.sources.common import NotedChunk
+
+# The comments vw3-decode writes on the records of a -w copy (render/capturefile.py noise_comment,
+# CaptureOutput.write_items and release, joined by "; "): its decode's own words, which every decode of
+# the copy says again. Read back they are no packet comment: a copy of a copy does not say them twice.
+_OWN_PART = re.compile(r"(?:then )?noise: \d+ bytes?, .+|then a damaged frame \(\d+ bytes\)|a frame \(\d+ bytes?\)")
+
+
+def own_comment(text: str) -> bool:
+    """Is a pcapng comment one vw3-decode writes of its decode (above)?"""
+    return all(_OWN_PART.fullmatch(part) for part in text.split("; "))
+
+
+# A piece of an item: (its end, counted from the item's first byte; its time; the comments of its records).
+Piece = tuple[int, Any, tuple[str, ...]]
+
+
+def _key(time: Any) -> Any:
+    return getattr(time, "ns", time)  # (two Stamps 100 ns apart are one float near 1.7e9 s)
+
+
+class RecordTrail:
+    """The trail of one decode's stream (a ring buffer's files are one): `observe` its chunks, then ask
+    `pieces` of each item, in order. `times`: keep where the time changes (-w)."""
+
+    def __init__(self, times: bool) -> None:
+        self.times = times
+        self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
+        self._last: Any = None  # the time of the part being read (its _key)
+        self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) where the time changes
+        self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
+        self.comments = 0  # comments read
+        self.records: list[int] = []  # the records carrying them
+
+    def observe(self, chunks: Iterable[Chunk]) -> Iterator[Chunk]:
+        times, parts, last = self.times, self._parts, self._last
+        offset = start = self.offset  # (the record being read starts at `start`)
+        for chunk in chunks:
+            time = chunk.time
+            if times and time is not None and _key(time) != last:
+                last = self._last = _key(time)
+                parts.append((offset, time))
+            offset += len(chunk.data)
+            if type(chunk) is NotedChunk:
+                self._commented.append((start, offset, chunk.comments))
+                self.comments += len(chunk.comments)
+                self.records.append(chunk.record)
+            if chunk.boundary:
+                start = offset
+            self.offset = offset
+            yield chunk
+
+    @property
+    def idle(self) -> bool:
+        """Nothing to tell of any item yet: no times kept, no comment read."""
+        return not self.times and not self._commented
+
+    def pieces(self, item: Item) -> list[Piece] | None:
+        """The item's pieces, the first at the item's time; None for one piece without comments."""
+        start = item.offset
+        end = start + item.length
+        cuts: list[tuple[int, Any]] = []
+        parts = self._parts
+        while len(parts) > 1 and parts[1][0] <= start:
+            parts.popleft()
+        for first, time in parts:
+            if first >= end:
+                break
+            if first > start:
+                cuts.append((first - start, time))
+        commented = self._commented
+        while commented and commented[0][1] <= start:
+            commented.popleft()
+        if not cuts and not (commented and commented[0][0] < end):
+            return None
+        bounds = [(0, item.time), *cuts, (item.length, None)]
+        pieces: list[Piece] = []
+        for (begin, time), (stop, _next) in zip(bounds, bounds[1:]):
+            comments: list[str] = []
+            for first, last, texts in commented:
+                if first >= start + stop:
+                    break
+                if last > start + begin:
+                    comments += texts
+            pieces.append((stop, time, tuple(comments)))
+        return pieces
+
+
+def item_comments(pieces: list[Piece] | None) -> list[str]:
+    """The comments of an item of these pieces, in the order of its records."""
+    return [text for _end, _time, comments in pieces or () for text in comments]
+
+
+def observed(source: Any, trail: RecordTrail) -> Any:
+    """`source` (sources/reader.py Source, app/rings.py RingSource) with its chunks through the trail,
+    for every path that reads it: a Source's parts too (accel/records.py source_blocks: its
+    `streaming` kept), not read in bulk (a pcap's records, accel/records.py BlockBuilder.pcap, pass by
+    the trail only one by one)."""
+    if not hasattr(source, "parts"):
+        return _Observed(source, trail)
+    return _ObservedSource(source, trail)
+
+
+class _Observed:
+    def __init__(self, source: Any, trail: RecordTrail) -> None:
+        self.source = source
+        self.trail = trail
+        self.streaming = getattr(source, "streaming", False)
+
+    def __iter__(self) -> Iterator[Chunk]:
+        return self.trail.observe(self.source)
+
+
+class _ObservedSource(_Observed):
+    def parts(self) -> tuple[Iterable[Chunk], Iterable[Chunk]]:
+        head, rest = self.source.parts()
+        return [], self.trail.observe(_chain(head, rest))
+
+    def finished(self) -> None:
+        self.source.finished()
+
+
+def _chain(head: Iterable[Chunk], rest: Iterable[Chunk]) -> Iterator[Chunk]:
+    yield from head
+    yield from rest
