@@ -50,6 +50,7 @@ typedef struct {
     Time first, last;
     Axis axis, h_axis; /* the collector's and health's */
     unsigned long long number, dropped;
+    unsigned long long numbered; /* the frames of the files before (several files one bus: collect.py new_input) */
     Columns *h_columns[256];
     Dense trends; /* of Trend: the series kept (MAX_SERIES) */
     Dense points; /* of Point */
@@ -86,6 +87,7 @@ static const struct {
     {0, AS_TIME, "first_x", offsetof(Report, first)},     {0, AS_TIME, "last_x", offsetof(Report, last)},
     {0, AS_FLOAT, "width", offsetof(Report, axis.width)}, {0, AS_FLOAT, "limit", offsetof(Report, axis.limit)},
     {0, AS_COUNT, "number", offsetof(Report, number)},    {0, AS_COUNT, "spans", offsetof(Report, spans)},
+    {0, AS_COUNT, "numbered", offsetof(Report, numbered)},
     {1, AS_TIME, "origin", offsetof(Report, h_axis.origin)}, {1, AS_FLOAT, "width", offsetof(Report, h_axis.width)},
     {1, AS_FLOAT, "limit", offsetof(Report, h_axis.limit)},
 };
@@ -171,8 +173,10 @@ static long long axis_col(const Axis *a, const Time *x) {
     return col > 0 ? col : 0;
 }
 
-/* ReportCollector._x: the x of the frame numbered `number` (its time, or the number untimed). */
+/* ReportCollector._x: the x of the frame numbered `number` in its file (its time, or its number on from the files
+ * before, untimed). */
 static int report_x(Report *r, int timed, long long ns, unsigned long long number, Time *x) {
+    number += r->numbered;
     r->number = number;
     if (r->timed < 0) {
         r->timed = timed;

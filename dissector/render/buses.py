@@ -57,6 +57,8 @@ class Buses:
             selector.source = title
         if bus.watch is not None and key is None:
             bus.watch.source = title
+        if bus.report is not None and key is None and title is not None:
+            bus.report.new_input(title)
         return bus
 
     @property

@@ -6,6 +6,7 @@ Compiled engine and VW3_PURE_PYTHON=1."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -61,3 +62,42 @@ def test_watch_lines_under_their_file(files: list[str], monkeypatch: pytest.Monk
     ]
     status, out, err = run_cli(["--watch", "CHCF", "--json", *files])
     assert [(change["frame"], change["file"]) for change in map(json.loads, out.splitlines())] == [(4, "atv71.bin")]
+
+
+def _page(argv: list[str], page: Path) -> tuple[dict, str]:
+    status, _out, err = run_cli([*argv, "--report", str(page)])
+    assert status == 0, err
+    text = page.read_text(encoding="utf-8")
+    found = re.search(r'<script type="application/json" id="report-data">(.*?)</script>', text, re.S)
+    assert found is not None
+    return json.loads(found.group(1)), text
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_report_numbers_on_and_cites_by_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """Two untimed files, an exception in frame 4 of each: the report's x axis numbers the second file's frames
+    on (5..8), so its points and events are not drawn over the first's (or dropped as going back), and the
+    events table cites each by its file, as the summary numbers it."""
+    use_engine(monkeypatch, pure)
+    monkeypatch.chdir(tmp_path)
+    for name, value, address in (("a.bin", "0003", "9999"), ("b.bin", "0004", "9998")):
+        (tmp_path / name).write_bytes(rtu("0C 03 20D1 0001") + rtu(f"0C 03 02 {value}")
+                                      + rtu(f"0C 03 {address} 0001") + rtu("0C 83 02"))
+    data, text = _page(["a.bin", "b.bin"], tmp_path / "bus.html")
+    assert data["inputs"] == [[0, "a.bin"], [4, "b.bin"]]
+    assert [event[:2] for event in data["events"]] == [[4.0, "exception"], [8.0, "exception"]]
+    assert [(entry["x"], entry["y"]) for entry in data["parameters"]] == [([2.0, 6.0], [3, 4])]
+    assert ("<td>exception</td><td>12</td><td>exception 02 to function 3</td><td>2</td>"
+            "<td>#4 of a.bin</td><td>#4 of b.bin</td>") in text
+    single, text = _page(["a.bin"], tmp_path / "one.html")
+    assert "inputs" not in single and "<td>#4</td>" in text
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_report_one_chcf_over_the_files(files: list[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                        pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    data, text = _page(files, tmp_path / "bus.html")
+    assert "input 8401" not in text
+    assert [(entry["code"], entry["x"], entry["y"]) for entry in data["parameters"]] == [
+        ("CHCF", [2.0, 20.0, 24.0, 28.0], [3, 3, 4, 4])]

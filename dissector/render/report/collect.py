@@ -92,6 +92,11 @@ class ReportCollector:
         self.first_x: float | None = None
         self.last_x: float | None = None
         self.number = 0  # the frame number of the item at hand (events name their frame)
+        # Several files read as one bus number their frames each from 1: the report numbers them on, each
+        # file's from the last number of the one before (`numbered`), and cites them back by file (`inputs`:
+        # (numbered, file) each; markup.py cited).
+        self.numbered = 0
+        self.inputs: list[tuple[int, str]] = []
         # The frame whose registers the history is giving, with its x and column (the listener is
         # called once per register: the x axis is worked out once per frame); None after a doubling.
         self._at: Item | None = None
@@ -126,12 +131,17 @@ class ReportCollector:
             counts.clear()
             counts.update(merged)
 
+    def new_input(self, title: str) -> None:
+        """The next of several files read as one bus (render/buses.py): its frames numbered on."""
+        self.numbered = self.number
+        self.inputs.append((self.numbered, title))
+
     def _x(self, item: Item) -> float:
-        self.number = item.number
+        self.number = number = item.number + self.numbered
         if self.timed is None:
             self.timed = item.time is not None
             self.width = TIMED_WIDTH if self.timed else UNTIMED_WIDTH
-        x = (item.time if item.time is not None else 0.0) if self.timed else float(item.number)
+        x = (item.time if item.time is not None else 0.0) if self.timed else float(number)
         if self.origin is None:
             self.origin = x
             self.limit = x + COLUMNS * self.width
@@ -378,6 +388,7 @@ class ReportCollector:
                             "n": [counts[col] for col in sorted(counts)]})
         return {
             "timed": bool(self.timed),
+            **({"inputs": [list(entry) for entry in self.inputs]} if len(self.inputs) > 1 else {}),
             "origin": origin,
             "span": 0.0 if self.first_x is None or self.last_x is None else round(self.last_x - origin, digits),
             "column_width": width,

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import html
 import re
+from typing import Any
 
 
 _SPECIAL = re.compile("[&<>\"']")
@@ -36,3 +37,14 @@ def _table(headers: list[str], rows: list[list[object]], cls: str = "") -> str:
     head = "".join(f"<th>{_esc(header)}</th>" for header in headers)
     body = "".join("<tr><td>" + "</td><td>".join(map(_esc, row)) + "</td></tr>" if row else "<tr></tr>" for row in rows)
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def cited(data: dict[str, Any], number: int) -> str:
+    """A frame as the report cites it: `#12`; of several files read as one bus, whose frames the report
+    numbers on from file to file (collect.py new_input, data's `inputs`), by its number in its file as the
+    summary shows it under `==> FILE <==`: `#4 of b.bin`."""
+    inputs = data.get("inputs")
+    if not inputs:
+        return f"#{number}"
+    numbered, name = next((entry for entry in reversed(inputs) if entry[0] < number), inputs[0])
+    return f"#{number - numbered} of {name}"

@@ -11,7 +11,7 @@ from typing import Any
 from dissector.render.bustiming import UNHEARD, gap_bins
 from dissector.render.report.collect import ReportCollector
 from dissector.render.stats_store import TABLE_NAMES
-from dissector.render.report.markup import _details, _esc, _ms, _table
+from dissector.render.report.markup import _details, _esc, _ms, _table, cited
 from dissector.render.timefmt import Clock
 
 MAX_GROUP_ROWS = 1000
@@ -20,7 +20,7 @@ MAX_GROUP_ROWS = 1000
 def _clock(data: dict[str, Any], time_format: str) -> Callable[[float], str]:
     """An absolute x (epoch seconds, or a frame number without timestamps) as -t shows it."""
     if not data["timed"]:
-        return lambda x: f"#{int(x)}"
+        return lambda x: cited(data, int(x))
     clock = Clock("r" if time_format in ("d", "dd") else time_format, first=data["origin"])
     return lambda x: clock.text(SimpleNamespace(time=x))  # type: ignore[arg-type]
 
@@ -96,8 +96,9 @@ def event_groups(collector: ReportCollector, data: dict[str, Any], when: Callabl
     if not groups:
         return []
     rows = [[group.kind, "" if group.slave is None else group.slave, _details(group.label, group.detail), group.count,
-             f"{when(group.first_x)} #{group.first_frame}" if data["timed"] else f"#{group.first_frame}",
-             (f"{when(group.last_x)} #{group.last_frame}" if data["timed"] else f"#{group.last_frame}")
+             f"{when(group.first_x)} {cited(data, group.first_frame)}" if data["timed"]
+             else cited(data, group.first_frame),
+             (f"{when(group.last_x)} {cited(data, group.last_frame)}" if data["timed"] else cited(data, group.last_frame))
              if group.count > 1 else ""]
             for group in groups[:MAX_GROUP_ROWS]]
     parts = [_table(["kind", "slave", "event", "count", "first", "last"], rows, "events")]

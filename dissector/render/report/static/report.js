@@ -28,7 +28,8 @@
     return text.indexOf(".") < 0 ? text : text.replace(/\.?0+$/, "");
   }
   function xAxis() {
-    if (!timed) { return { label: "frame" }; }
+    // (several files read as one bus: their frames numbered on from file to file, data.inputs)
+    if (!timed) { return { label: data.inputs ? "frame, numbered on from file to file" : "frame" }; }
     if (wall) { return {}; }
     return { label: clock === "e" ? "epoch s" : "s", values: function (u, splits) { return splits.map(seconds); } };
   }
