@@ -11,7 +11,7 @@ stays one register's). The plugin's vw3.reg.address has them too (hidden), but t
 occurrence of a field: `-e vw3.reg.address -e vw3.reg.value` does not line up on a request. Lists
 (`warnings`, `notes`, a `fields.KEY` such as `fields.values`) have one occurrence per element. A key the Wireshark plugin has a field for is
 written as tshark 4.0 writes that field (data/fields.toml): `crc` 0x7734, `scaled` 4, `response_time`
-0.020000000, and `broadcast`, `unanswered` nothing where false. As tshark: `-E occurrence=f|l|a` picks the first, last or all
+0.020000000, and `broadcast`, `unanswered` nothing where false; `time` as tshark's frame.time_epoch (9 decimals). As tshark: `-E occurrence=f|l|a` picks the first, last or all
 occurrences, joined by `-E aggregator=` (default ,); `-E separator=` (default tab; /t tab, /s space)
 goes between fields; `-E quote=d|s|n` surrounds every value (the header is never quoted);
 `-E header=y` names the fields on a first line; `-E bom=y` starts with a UTF-8 byte order mark.
@@ -32,13 +32,16 @@ tshark writes them.
 """
 from __future__ import annotations
 
+import decimal
 import json
 import re
 from dataclasses import dataclass
 from typing import Any
 
 from dissector.errors import UsageError
-from dissector.render.filter_fields import ALIASES, CATALOGUE, FRAME_FIELDS, REGISTER_FIELDS  # not filters: -Y only
+from dissector.render.filter_fields import (  # not filters: -Y only
+    ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, REGISTER_FIELDS,
+)
 from dissector.render.filter_match import item_elements
 from dissector.protocol.printable import printable
 from dissector.render.timefmt import TIME_FIELDS
@@ -184,9 +187,20 @@ def _shown_as(entry: dict[str, Any]) -> Any:
     return None
 
 
+def epoch_text(time: float) -> str:
+    """`time` as tshark 4.0 writes frame.time_epoch: seconds and nanoseconds, 9 decimals always
+    (1767225600.006590000, not 1767225600.00659), exact from a Stamp's integer nanoseconds (a float near
+    1.7e9 s keeps about 0.2 us), else from the float's shortest decimal form."""
+    ns = getattr(time, "ns", None)
+    if ns is None:
+        ns = int(decimal.Decimal(repr(float(time))).scaleb(9).to_integral_value(decimal.ROUND_HALF_EVEN))
+    sign = "-" if ns < 0 else ""
+    whole, rest = divmod(abs(ns), 1_000_000_000)
+    return f"{sign}{whole}.{rest:09d}"
+
+
 SHOWN_AS = {entry["key"]: shown for entry in CATALOGUE if "key" in entry and (shown := _shown_as(entry))}
-# Present only where true in the plugin (vw3.unanswered): where false, no occurrence, as tshark prints it.
-ONLY_TRUE = frozenset(entry["key"] for entry in CATALOGUE if entry.get("only_true"))
+SHOWN_AS["time"] = epoch_text  # (no plugin field: tshark's own frame.time_epoch)
 
 
 def _occurrences(record: dict[str, Any], key: str) -> list[Any]:

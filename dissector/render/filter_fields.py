@@ -24,6 +24,9 @@ FRAME_FIELDS: dict[str, str] = _group("frame")
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
+# Present only where true in the plugin (vw3.unanswered): where false, no occurrence in -T fields and
+# absent to -Y (`broadcast` alone and `broadcast == false` match no frame a plain request), as tshark has it.
+ONLY_TRUE = frozenset(entry["key"] for entry in CATALOGUE if entry.get("only_true"))
 # Other names of fields, as -Y help lists them (`alias: exception`): -Y and -e take them alike.
 ALIASES: dict[str, str] = {"exception": "exception_code"}
 # field -> its meaning as -Y help and -G fields list it (with what only vw3-decode's filters take, as
@@ -105,5 +108,6 @@ def field_listing() -> str:
         lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {owners_text(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
     lines.append("operators: == != (all_ne: has it, none equal) ~= (any_ne: some differs) < <= > >= & in {..} a..b "
-                 "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 \"text\" true false")
+                 "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 \"text\" true false; a field "
+                 "alone tests its presence (crc_ok: checked, good or bad; crc_ok == 1: good)")
     return "\n".join(lines) + "\n"

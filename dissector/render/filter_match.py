@@ -13,7 +13,11 @@ Test = Callable[[Item, dict[str, Any] | None], bool]
 
 
 def is_present(value: Any) -> bool:
-    return value is not None and value is not False and value != "" and value != []
+    """Is the field there, as a bare field tests it in Wireshark: a false crc_ok is (frame 17 of
+    noisy_bus, bad CRC, has vw3.crc_ok = 0), a null one or an empty list is not. A key the plugin adds only
+    where true (data/fields.toml `only_true`: broadcast, unanswered, provisional) is absent where false:
+    filter_fields.ONLY_TRUE, applied by the parser."""
+    return value is not None and value != []
 
 
 def compare(op: str, left: Any, right: Any) -> bool:

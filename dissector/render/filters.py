@@ -8,7 +8,7 @@ Syntax, close to Wireshark's:
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
                                             as Wireshark's; (?-i) at the start makes it case-sensitive
     value & 0x8000                          bit test: some bit of the mask is set
-    crc_ok   not unanswered   exception     a bare field: present and not false (0 counts as present)
+    crc_ok   not unanswered   exception     a bare field: present, as in Wireshark (a false crc_ok is)
     not / !   and / &&   or / ||   ( )      strings in double quotes (\\" and \\\\ escapes), 0x.. hex,
                                             16#8000 (IEC, as the notes print values), true / false
 
@@ -45,7 +45,9 @@ address-only entries have no value, code or status. Where a profile shows PLC-st
 (`40001`), `address` also takes the number shown: `address == 40001` matches the register sent as 0.
 
 A test on a field the item lacks (a noise item's slave, an unannotated register's code) is false, `!=` and
-`~=` included, as in Wireshark. Errors raise FilterError, whose message shows the expression with a caret under the token.
+`~=` included, as in Wireshark. A bare field tests presence, as in Wireshark 4.0: `crc_ok` is every frame
+whose check was made (a bad one too: `crc_ok == 1` is the good ones), `not crc_ok` noise and --hex frames
+typed without it; broadcast, unanswered and provisional exist only where true, as the plugin adds them. Errors raise FilterError, whose message shows the expression with a caret under the token.
 """
 from __future__ import annotations
 
@@ -56,7 +58,8 @@ from typing import Any
 
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
-    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing, unknown_pdu_key,
+    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing,
+    unknown_pdu_key,
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
@@ -310,7 +313,8 @@ class _Parser:
                 return None if reg is None else reg.get(field)
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
-            return item.get(field)
+            value = item.get(field)
+            return None if value is False and field in ONLY_TRUE else value
 
         return self.parse_operation(field, ftype, get, register)
 

@@ -99,7 +99,10 @@ CASES = [
         'address in {250, 302} or (address in 400..401 and kind == "request")',
         [31, 37, 55, 61],  # (frame 49's 302 is past its quantity 2: no register written)
     ),
-    ("noisy_bus.bin", "not crc_ok", [1, 17, 34]),  # noise has no crc_ok: "not" of an absent field
+    # A bare field tests presence, as Wireshark's (tshark -Y '!vw3.crc_ok': 1 34): frame 17's bad CRC is
+    # a crc_ok, false.
+    ("noisy_bus.bin", "not crc_ok", [1, 34]),
+    ("noisy_bus.bin", "not crc_ok or crc_ok == 0", [1, 17, 34]),
     ("noisy_bus.bin", "crc_ok == false", [17]),
     ("noisy_bus.bin", "crc_ok == 0", [17]),  # 1 and 0 as Wireshark takes them and -T fields prints them
     ("noisy_bus.bin", "crc_ok != 1", [17]),
