@@ -289,21 +289,27 @@ RECORDS_TOLD = 5  # record numbers a line about packet comments names
 
 def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
     """After an input with packet comments: a -w pcap has no place for them (a warning), and a display
-    that does not show them (the summary, -x, -T fields) says where they are, once an input; -V, --json
-    and a pcapng -w show or keep them."""
+    that does not show them (the summary, -x, -T fields) says where they are; a line a file (a ring
+    buffer's files number their records each); -V, --json and a pcapng -w show or keep them."""
     trail = sinks.trail
     if trail is None or not trail.comments:
         return
-    numbers = sorted(set(trail.records))
-    records = ", ".join(map(str, numbers[:RECORDS_TOLD])) + (", ..." if len(numbers) > RECORDS_TOLD else "")
-    what = (f"{trail.comments} packet comment{'s' if trail.comments != 1 else ''} "
-            f"(record{'s' if len(numbers) != 1 else ''} {records})")
-    name = shown(path if path not in (None, "-") else "--hex" if path is None else "standard input")
-    if sinks.pcap is not None and sinks.pcap.format == "pcap":
-        stderr.write(f"{PROG}: warning: -w {shown(sinks.write_path)}: pcap has no packet comments: the {what} "
-                     f"of {name} are not kept (write pcapng, -F pcapng, to keep them)\n")
-    elif sinks.show and not (sinks.options.output.detail or sinks.options.output.json):
-        stderr.write(f"{PROG}: {name}: {what}: -V and --json show them\n")
+    files: dict[str | None, list[tuple[int, int]]] = {}
+    for name, record, comments in trail.records:
+        files.setdefault(name, []).append((record, comments))
+    for name, counts in files.items():
+        name = name or (path if path not in (None, "-") else "--hex" if path is None else "standard input")
+        count = sum(comments for _record, comments in counts)
+        numbers = sorted({record for record, _comments in counts})
+        records = ", ".join(map(str, numbers[:RECORDS_TOLD])) + (", ..." if len(numbers) > RECORDS_TOLD else "")
+        what = (f"{count} packet comment{'s' if count != 1 else ''} "
+                f"(record{'s' if len(numbers) != 1 else ''} {records})")
+        if sinks.pcap is not None and sinks.pcap.format == "pcap":
+            stderr.write(f"{PROG}: warning: -w {shown(sinks.write_path)}: pcap has no packet comments: the "
+                         f"{what} of {shown(name)} {'is' if count == 1 else 'are'} not kept (write pcapng, "
+                         "-F pcapng, to keep them)\n")
+        elif sinks.show and not (sinks.options.output.detail or sinks.options.output.json):
+            stderr.write(f"{PROG}: {shown(name)}: {what}: -V and --json show them\n")
 
 
 def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,

@@ -52,7 +52,9 @@ class RecordTrail:
         self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) where the time changes
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
         self.comments = 0  # comments read
-        self.records: list[int] = []  # the records carrying them
+        self.name: str | None = None  # the file being read, of a ring buffer's (None: the input's one)
+        # (file, record, comments) of each record carrying comments
+        self.records: list[tuple[str | None, int, int]] = []
 
     def observe(self, chunks: Iterable[Chunk]) -> Iterator[Chunk]:
         times, parts, last = self.times, self._parts, self._last
@@ -66,7 +68,7 @@ class RecordTrail:
             if type(chunk) is NotedChunk:
                 self._commented.append((start, offset, chunk.comments))
                 self.comments += len(chunk.comments)
-                self.records.append(chunk.record)
+                self.records.append((self.name, chunk.record, len(chunk.comments)))
             if chunk.boundary:
                 start = offset
             self.offset = offset
@@ -130,7 +132,16 @@ class _Observed:
         self.streaming = getattr(source, "streaming", False)
 
     def __iter__(self) -> Iterator[Chunk]:
-        return self.trail.observe(self.source)
+        sources = getattr(self.source, "sources", None)
+        if sources is None:
+            return self.trail.observe(self.source)
+        return self._files(sources())
+
+    def _files(self, sources: Iterable[Any]) -> Iterator[Chunk]:
+        """A ring buffer's files (app/rings.py RingSource) one after the other: each names its records."""
+        for source in sources:
+            self.trail.name = source.name
+            yield from self.trail.observe(source)
 
 
 class _ObservedSource(_Observed):

@@ -182,3 +182,25 @@ def test_own_comments(text: str) -> None:
 @pytest.mark.parametrize("text", ["noise here", "glitch", "noise: 3 bytes", "a frame (4 bytes); checked"])
 def test_user_comments(text: str) -> None:
     assert not own_comment(text)
+
+
+def test_a_ring_buffers_files_and_standard_input(tmp_path: Path) -> None:
+    """A ring buffer's files are one stream: each file's comments on its items, and each file named with
+    its own records (they number from 1 in each: before, one line named the first file for both). A
+    pcapng read from standard input has its comments too."""
+    import json
+
+    first = _write(tmp_path, [(0, REQUEST, ["one"]), (10_000, ANSWER, [])], "r_00001_20260101000000.pcapng")
+    second = _write(tmp_path, [(1_000_000, REQUEST, []), (1_010_000, ANSWER, ["four", "five"])],
+                    "r_00002_20260101000001.pcapng")
+    status, out, err = run_cli([str(first), str(second), "--json"])
+    assert (status, err) == (0, "")
+    assert [json.loads(line).get("comments") for line in out.splitlines()] == [["one"], None, None, ["four", "five"]]
+    assert run_cli([str(first), str(second)])[2] == (
+        f"vw3-decode: {first}: 1 packet comment (record 1): -V and --json show them\n"
+        f"vw3-decode: {second}: 2 packet comments (record 2): -V and --json show them\n")
+    status, out, err = run_cli(["-", "--json"], stdin=second.read_bytes())
+    assert (status, err) == (0, "")
+    assert [json.loads(line).get("comments") for line in out.splitlines()] == [None, ["four", "five"]]
+    assert run_cli(["-"], stdin=second.read_bytes())[2] == (
+        "vw3-decode: standard input: 2 packet comments (record 2): -V and --json show them\n")
