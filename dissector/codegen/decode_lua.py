@@ -12,6 +12,7 @@ from typing import Any
 
 from dissector.codegen.lua import lua_literal
 from dissector.codegen.rules_lua import rules_data
+from dissector.protocol.grammar import past_the_end, too_short_for
 
 REQUEST_START, REQUEST_QUANTITY = "request.start", "request.quantity"
 WIDTH = 110  # (a longer line is wrapped where Lua allows it: between a constructor's keys, around an if's body)
@@ -78,7 +79,7 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
             offsets[name] = static
         if size is not None:
             if static is None:
-                body.append(f"if p + {size} > len then return nil, {lua_literal('too short for ' + name)} end")
+                body.append(f"if p + {size} > len then return nil, {lua_literal(too_short_for([name]))} end")
                 value = "b[d + p]" + (" * 256 + b[d + p + 1]" if size == 2 else "")
             else:
                 fixed.append(name)
@@ -115,7 +116,7 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
                 body.append(f"local s{index} = {_size_of(field, count)}")
                 negative = f"s{index} < 0 or " if field["minus"] > 0 else ""  # (less `minus`: maybe below 0)
                 body.append(f"if {negative}p + s{index} > len then return nil, "
-                            f"{lua_literal(field['count'] + ' past the end')} end")
+                            f"{lua_literal(past_the_end(field['count']))} end")
                 if kind != "odd":  # (where an odd byte is, nothing asks)
                     body.append(f"local a{index} = d + p")
                     keys.append(f"[{lua_literal(name + '_at')}] = a{index}")
@@ -129,9 +130,8 @@ def reader(shape: list[dict[str, Any]]) -> tuple[list[str], dict[str, int]]:
             body += [f"  {line.removeprefix('local ')}" for line in lines]
             body.append("end")
     if fixed:
-        what = ", ".join(fixed[:-1]) + " and " + fixed[-1] if len(fixed) > 1 else fixed[0]
         end = offsets[fixed[-1]] + shape[index_of[fixed[-1]] - 1]["size"]  # (where the last one ends)
-        body.insert(0, f"if len < {end} then return nil, {lua_literal('too short for ' + what)} end")
+        body.insert(0, f"if len < {end} then return nil, {lua_literal(too_short_for(fixed))} end")
     trailing = not shape or shape[-1]["type"] != "rest"
     used = "len" if not trailing else str(static) if static is not None else "p"
     body += _wrap(f"return {used}, {{ ", keys, ", ", " }", "")

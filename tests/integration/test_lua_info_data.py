@@ -82,8 +82,7 @@ TAILS = {
     10: ODD, 11: ODD, 14: UNKNOWN, 15: UNKNOWN, 16: " [no response expected: the spec's server returns none]",
     # (the FC24 answers after the 08/04 show the slave did not take Listen Only Mode: pairing.py _heard)
     18: " [slave 1 answers: it is not in listen-only mode (#17, 08/04)]",
-    22: " [warning: malformed response: stream read less than specified amount, expected 2, found 0 at "
-        "(parsing) -> values]",
+    22: " [warning: malformed response: fifo_count past the end]",
 }
 ANSWERS = {1: 1, 3: 3, 7: 7, 9: 9, 11: 11, 13: 13, 15: 15, 18: 18, 20: 20, 22: 22}  # index: its request's frame
 

@@ -9,15 +9,8 @@ from pathlib import Path
 from lua_harness import LuaItem, PythonItem, lua_errors, lua_items, python_items, run_tshark
 
 _PAIRING_NOTE = re.compile(r"^request #\d+ was not answered$")
-_MALFORMED = re.compile(r"^(malformed (?:request|response|exception)):.*$")
 WARNING_EXPERTS = ("vw3.expert.warning", "vw3.expert.malformed")
 NOTE_EXPERTS = ("vw3.expert.note", "vw3.expert.no_request")
-
-
-def _warning(text: str) -> str:
-    # Construct's parse errors have no Lua counterpart word for word; what failed is compared.
-    match = _MALFORMED.match(text)
-    return match.group(1) if match else text
 
 
 # Every key of vw3-decode --json the plugin mirrors (or, for "fields", "raw", "offset", "time",
@@ -93,7 +86,7 @@ def python_frame(item: PythonItem, records: dict[int, int]) -> dict[str, Any]:
         "bits": [(bit["address"], bit["value"]) for bit in data.get("bits", [])],
         # (a value is a bytes literal's text, printable.bytes_text, in --json and the plugin's field alike)
         "objects": [(obj["id"], obj["name"], obj["value"], obj.get("text")) for obj in data.get("objects", [])],
-        "warnings": [_warning(text) for text in data["warnings"]],
+        "warnings": list(data["warnings"]),  # (a malformed PDU's words too: grammar.shortfall)
         "notes": [text for text in data["notes"] if not _PAIRING_NOTE.match(text)],
         # profile auto: which profile named the frame's registers, and why
         "profile": (data.get("profile"), data.get("profile_reason")),
@@ -153,7 +146,7 @@ def lua_frame(item: LuaItem) -> dict[str, Any]:
             (_int(obj.get("id")), obj.get("name"), obj.get("value"), obj.get("text"))
             for obj in item.objects
         ],
-        "warnings": [_warning(text) for text in item.texts.get("warning", [])],
+        "warnings": list(item.texts.get("warning", [])),
         "notes": item.texts.get("note", []),
         # (the profile that annotated the frame, as --json's `profile`; the reason only where `auto` chose)
         "profile": (fields.get("profile"), fields.get("profile_reason")),
