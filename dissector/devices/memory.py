@@ -5,15 +5,17 @@ written) earlier and unreadable now "became protected", one unreadable before an
 "readable again". One job: the story of each parameter, told as events (devices/story.py tells them).
 The memory is the Device's `seen` dict, which the compiled summary path also keeps up to date; a device
 whose input registers are a table of their own (profile input_registers "separate") keeps theirs apart
-(Device.memory: FC4's 8401 is not FC3's; the compiled path hands such reads to the annotator).
+(Device.memory: FC4's 8401 is not FC3's; the compiled path hands such reads to the annotator). Of several
+files read as one bus, the frames of a file read before are cited with it (cite_from).
 """
 from __future__ import annotations
 
 import weakref
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 
 from dissector.devices.device import Device
 from dissector.devices.maps import RegisterDef
+from dissector.devices.selection import Cited
 from dissector.devices.story import Event
 from dissector.model import Frame, Register
 from dissector.protocol.rules import text
@@ -105,3 +107,14 @@ def remember_mask(frame: Frame, device: Device, masked: dict[int, int | None] | 
         if frame.number not in masked:  # (a provisional frame's copy, annotated again, shares its request)
             weakref.finalize(request, masked.pop, frame.number, None)
         masked[frame.number] = value
+
+
+def cite_from(devices: Iterable[Device], source: str) -> None:
+    """Several files read as one bus number their frames each from 1: once `source` is read, the frames its
+    memory names are cited with it (selection.Cited: `read 3 in frame #2 of a.bin`), so a story told in
+    the next file does not name that file's own frame 2."""
+    for device in devices:
+        for seen in (device.seen, device.input_seen or {}):
+            for address, (value, number, how) in seen.items():
+                if type(number) is int:
+                    seen[address] = (value, Cited(number, source), how)

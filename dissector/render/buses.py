@@ -38,6 +38,7 @@ class Buses:
         self.make = make
         self.first = first
         self.known: dict[Any, Bus] = {}
+        self.reading: dict[Any, str | None] = {}  # by bus key, the file read last (several files one bus)
 
     def switch(self, key: Any, title: str | None, annotate: Any) -> Bus:
         """The bus of an input: `key` None for a file read as one stream (every such file is one bus),
@@ -51,7 +52,14 @@ class Buses:
         if title is not None and title not in bus.names:
             bus.names.append(title)
         # Several files read as one bus number their frames each from 1 (the summary titles each): the
-        # evidence cited of them names its file (profile `auto`'s reasons, --watch lines).
+        # evidence cited of them names its file (profile `auto`'s reasons, --watch lines, the parameter
+        # memory's frames of the files before: memory.cite_from).
+        before = self.reading.get(key)
+        self.reading[key] = title
+        if key is None and before is not None and before != title:
+            from dissector.devices.memory import cite_from
+
+            cite_from(getattr(annotate, "_devices", {}).values(), before)
         selector = getattr(annotate, "selector", None)
         if selector is not None and key is None:
             selector.source = title

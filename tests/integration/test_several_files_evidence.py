@@ -101,3 +101,23 @@ def test_report_one_chcf_over_the_files(files: list[str], tmp_path: Path, monkey
     assert "input 8401" not in text
     assert [(entry["code"], entry["x"], entry["y"]) for entry in data["parameters"]] == [
         ("CHCF", [2.0, 20.0, 24.0, 28.0], [3, 3, 4, 4])]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_memory_cites_a_frame_of_the_file_before(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """CHCF read 3 in a.bin's frame 2, then 16#8000 in b.bin's frame 2: the summary under b.bin said "read 3 in
+    frame #2", which is b.bin's own frame; now the frame of the file before is cited with it (memory.cite_from),
+    one of the same file by its number alone."""
+    use_engine(monkeypatch, pure)
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a.bin").write_bytes(rtu("0C 03 20D1 0002") + rtu("0C 03 04 0003 0002"))
+    (tmp_path / "b.bin").write_bytes(rtu("0C 03 20D1 0002") + rtu("0C 03 04 8000 0002"))
+    (tmp_path / "c.bin").write_bytes(rtu("0C 03 20D1 0001") + rtu("0C 03 02 0003")
+                                     + rtu("0C 03 20D1 0002") + rtu("0C 03 04 8000 0002"))
+    status, out, err = run_cli(["--profile", "atv71", "a.bin", "b.bin"])
+    assert status == 0, err
+    assert out.splitlines()[-1] == (
+        "     2            -  12 response  Read Holding Registers 8401..8402 (2): CHCF=protected COP=Cd (command) [#1] "
+        "[CHCF (8401) became protected: read 3 in frame #2 of a.bin, 16#8000 now]  CRC ok")
+    status, out, err = run_cli(["--profile", "atv71", "a.bin", "c.bin"])
+    assert out.splitlines()[-1].endswith("[CHCF (8401) became protected: read 3 in frame #2, 16#8000 now]  CRC ok")
