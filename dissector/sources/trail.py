@@ -1,16 +1,18 @@
 """What a decode keeps of its input's records beside the items (app/cli.py Sinks): the packet comments of
-a pcapng's records (sources/common.py NotedChunk) by the bytes they are on, and, for -w, where the
-input's time changes.
+a pcapng's records (sources/common.py NotedChunk) by the bytes they are on, and, for -w, the chunks
+(records, reads) its bytes came in.
 
 A frame gets the comments of every record it has bytes in (a record of three frames: each of them), as
--V and --json show them and -w keeps them. A -w copy writes an item across a change of time in the
-records it came in, each part at its own time (render/capturefile.py write_items): written as one
-record at its first byte's time, a frame that had a silence inside it lost that warning, and a noise run
-its times. Records of one time inside an item stay one record (the copy's frames are Wireshark's
-packets), so the parts are cut where the time changes, not at every record.
+-V and --json show them and -w keeps them. A -w copy writes an item whose input's time changes inside it
+as the chunks it came in, each a record at its own time (render/capturefile.py write_items): written as
+one record at its first byte's time, a frame that had a silence inside it lost that warning. The reader
+measures a silence from a chunk's time and length, so the copy's chunks before it must be the input's:
+only an item that begins where a chunk begins is cut so (one from inside a chunk that goes on into the
+next is one record, as before: cut, its first record's end would read later than the chunk's and make a
+silence up). An item without a time change inside stays one record (a frame a packet, as mbrtu reads it).
 
 The items come in the order of their bytes: what lies before an item asked about is forgotten, so
-memory holds the records of the items not yet out (and every comment of a summary the engine writes).
+memory holds the chunks of the items not yet out (and every comment of a summary the engine writes).
 """
 from __future__ import annotations
 
@@ -48,8 +50,7 @@ class RecordTrail:
     def __init__(self, times: bool) -> None:
         self.times = times
         self.offset = 0  # bytes observed: the next chunk's offset, as the framers count
-        self._last: Any = None  # the time of the part being read (its _key)
-        self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) where the time changes
+        self._parts: deque[tuple[int, Any]] = deque()  # (first byte, time) of each chunk (-w)
         self._commented: deque[tuple[int, int, tuple[str, ...]]] = deque()  # (first byte, end, comments)
         self.comments = 0  # comments read
         self.name: str | None = None  # the file being read, of a ring buffer's (None: the input's one)
@@ -57,13 +58,11 @@ class RecordTrail:
         self.records: list[tuple[str | None, int, int]] = []
 
     def observe(self, chunks: Iterable[Chunk]) -> Iterator[Chunk]:
-        times, parts, last = self.times, self._parts, self._last
+        times, parts = self.times, self._parts
         offset = start = self.offset  # (the record being read starts at `start`)
         for chunk in chunks:
-            time = chunk.time
-            if times and time is not None and _key(time) != last:
-                last = self._last = _key(time)
-                parts.append((offset, time))
+            if times:
+                parts.append((offset, chunk.time))
             offset += len(chunk.data)
             if type(chunk) is NotedChunk:
                 self._commented.append((start, offset, chunk.comments))
@@ -87,11 +86,17 @@ class RecordTrail:
         parts = self._parts
         while len(parts) > 1 and parts[1][0] <= start:
             parts.popleft()
-        for first, time in parts:
-            if first >= end:
-                break
-            if first > start:
-                cuts.append((first - start, time))
+        if parts and parts[0][0] == start:  # (an item from inside a chunk: see the module's docstring)
+            keys = {_key(parts[0][1])}
+            for first, time in parts:
+                if first >= end:
+                    break
+                if first > start:
+                    cuts.append((first - start, time))
+                    keys.add(_key(time))
+            keys.discard(None)
+            if len(keys) < 2:
+                cuts = []  # (no time changes inside: one record, a frame a packet)
         commented = self._commented
         while commented and commented[0][1] <= start:
             commented.popleft()
