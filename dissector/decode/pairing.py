@@ -7,8 +7,10 @@ function. A request the spec has no server answer (data/modbus.toml [pairing]
 never_answered: FC8 04 Force Listen Only Mode) is noted as such and never unanswered, though an
 exception (from a server that does not support it) still answers it. A response answers the open
 request of its slave and function when it echoes what the spec has it echo ([pairing] echo: an FC8
-answer's sub-function); one that does not answers nothing (the RTU framer weighs the echo already and
-frames such an FC8 frame as the master's next request: RtuFramer._awaited). A request followed by another request (or
+answer's sub-function) as far as both hold it (_same_echo); one that does not answers nothing (the RTU
+framer weighs the echo so already and frames such an FC8 frame as the master's next request:
+RtuFramer._awaited). A frame too short for the echo (malformed) pairs by its slave and function, as every
+malformed frame does and as tshark's mbrtu pairs (by unit and function alone). A request followed by another request (or
 by the end of the capture more than the timeout after it) was not answered; one the capture ends
 sooner after (a live capture stopped by -c, a file cut right after a request) may have been: that is not
 known, it is not counted unanswered and its note says so. With `hold=True` (files), a request is held back until
@@ -51,7 +53,7 @@ import weakref
 
 from dissector.model import CUT_ANSWER, Frame, Item, Kind, Noise, stamped_before
 from dissector.protocol import table
-from dissector.protocol.rules import awaits_answer, echoed, echoes, text
+from dissector.protocol.rules import awaits_answer, echoed, text
 
 HOLD_LIMIT = 64  # items held behind an open request before it is released anyway
 # Function codes whose request and answer have the same layout: the framer frames such a frame alike
@@ -281,7 +283,7 @@ class Pairer:
         # A response or an exception.
         backwards: Frame | None = None
         if (pending is not None and pending.slave == item.slave and pending.function == item.function
-                and echoes(pending, item)):
+                and _echoes(pending, item)):
             if item.kind is Kind.EXCEPTION and self._listening.get(item.slave) is pending:
                 self._listening.pop(item.slave)  # (it refused the FC8 04: not in the mode)
                 self.listen_changed.add(item.slave)
@@ -294,7 +296,7 @@ class Pairer:
             if time is not None and asked is not None and stamped_before(time, asked):
                 backwards = pending
         elif (gave_up := late if late is not None else expired) is not None and (
-                gave_up.slave == item.slave and gave_up.function == item.function and echoes(gave_up, item)):
+                gave_up.slave == item.slave and gave_up.function == item.function and _echoes(gave_up, item)):
             # Its request's wait ended before it: by its own time, or live by the clock (expire), alike.
             assert self._timeout is not None and item.time is not None and gave_up.time is not None
             item.warnings.append(text(
@@ -387,10 +389,21 @@ def _repeats(request: Frame, frame: Frame) -> bool:
             and frame.pdu == request.pdu)
 
 
-def _awaited(request: Frame, frame: Frame) -> bool:
-    """Would the framer, awaiting `request`'s answer, read `frame` as it (rules.py Awaiting._awaited)?"""
-    if (frame.slave, frame.function) != (request.slave, request.function):
-        return False
+def _same_echo(request: Frame, frame: Frame) -> bool:
+    """Do the two frames agree on what the spec has an answer repeat of its request (echoed: an FC8
+    sub-function) over the bytes of it both hold (pairing.lua same_echo)? A frame that holds none of it
+    disagrees with nothing."""
     echo = echoed(request)
     got = frame.pdu[1 : 1 + len(echo)]
     return got == echo[: len(got)]
+
+
+def _echoes(request: Frame, answer: Frame) -> bool:
+    """Does an answer of the request's slave and function answer it: an exception always, a normal answer
+    where it repeats what the spec has it repeat (_same_echo)?"""
+    return answer.kind is not Kind.RESPONSE or _same_echo(request, answer)
+
+
+def _awaited(request: Frame, frame: Frame) -> bool:
+    """Would the framer, awaiting `request`'s answer, read `frame` as it (rules.py Awaiting._awaited)?"""
+    return (frame.slave, frame.function) == (request.slave, request.function) and _same_echo(request, frame)

@@ -148,13 +148,15 @@ end
 -- FC8 sub-function), kept wherever a frame of a code with an echo (ECHO_CODES) sets the expectation
 -- (vw3.stream's expect_after, the quick lanes), with the expectation it was kept for: a later request of
 -- another code, which does not call this, leaves it aside (echo.expect: awaited).
+-- A frame too short for it keeps what it holds (rules.py echoed): the answer is weighed by those bytes.
 local ECHO_CODES = DATA.pairing.echo
 local function await_echo(st, frame)
-  local count = ECHO_CODES[frame.fn]
-  if st.expect == nil or frame.data_len < count then
+  if st.expect == nil then
     st.echo = nil
     return
   end
+  local count = ECHO_CODES[frame.fn]
+  if count > frame.data_len then count = frame.data_len end
   local echo, b, at = { expect = st.expect }, frame.b, frame.data_at
   for k = 1, count do echo[k] = b[at + k - 1] end
   st.echo = echo

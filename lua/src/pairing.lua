@@ -137,24 +137,34 @@ local function unanswered(st, pending)
   st.pending = nil
 end
 
--- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as one
--- number; nil: none. (A request keeps it: its byte table is gone when its answer comes.)
+-- What a frame holds of the bytes the spec has an answer echo (DATA.pairing.echo: FC8's sub-function), as a
+-- string (fewer bytes where the frame ends first); nil: none. (A request keeps it: its byte table is gone when
+-- its answer comes.)
 local function echoed(f)
   local count = ECHO[f.fn]
-  if count == nil or f.data_len < count then return nil end
-  local b, at, value = f.b, f.data_at, 0
-  for k = 0, count - 1 do value = value * 256 + b[at + k] end
-  return value
+  if count == nil then return nil end
+  if count > f.data_len then count = f.data_len end
+  return string_of(f.b, f.data_at, count)
 end
 
--- Does a normal answer repeat what the spec has it repeat of its request (pairing.py echoes)?
+-- Do the two agree on the echo over the bytes of it both hold (pairing.py _same_echo)? A frame too short for
+-- it (malformed) pairs by its slave and function, as every malformed frame does.
+local function same_echo(request, f)
+  local asked = request.echoed
+  if asked == nil then return true end
+  local got = echoed(f)
+  local both = #asked < #got and #asked or #got
+  return asked:sub(1, both) == got:sub(1, both)
+end
+
+-- Does a normal answer repeat what the spec has it repeat of its request (pairing.py _echoes)?
 local function echoes(request, answer)
-  return ECHO[request.fn] == nil or answer.kind ~= RESPONSE or request.echoed == echoed(answer)
+  return answer.kind ~= RESPONSE or same_echo(request, answer)
 end
 
 -- Would the framer, awaiting `request`'s answer, read `f` as it (rules.py Awaiting._awaited)?
 local function awaited_as(request, f)
-  return f.slave == request.slave and f.fn == request.fn and (ECHO[f.fn] == nil or request.echoed == echoed(f))
+  return f.slave == request.slave and f.fn == request.fn and same_echo(request, f)
 end
 
 -- Would a server answer request f (pairing.py _answered): not one the spec has none answer, not to a slave in
