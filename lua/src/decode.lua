@@ -275,6 +275,9 @@ local function decode_frame(f)
     if EXCEPTIONS[f.exception_code] == nil then
       warn(f, say("unknown_exception", { code = f.exception_code }))
     end
+    -- (bytes after the code: its layout's reader consumed one, decode/fields.py's trailing)
+    local used = PARSERS.exception(b, d, len)
+    if used ~= nil and used < len then warn(f, say("trailing", { count = len - used })) end
     return
   end
   local used, fields = (GRAMMARS[f.kind][f.fn] or PARSERS.raw)(b, d, len)

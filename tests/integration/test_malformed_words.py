@@ -105,3 +105,30 @@ def test_the_plugin_says_the_same(tmp_path: Path) -> None:
              "1 Encapsulated Interface Transport"]
     assert got.stdout.splitlines() == [f"{warnings}|{name} request (malformed)"
                                        for warnings, name in zip(_warnings(), names)]
+
+
+# An exception with a byte after its code: vw3-decode warned it (the exception layout's trailing), the plugin
+# did not (it read the code and stopped). Now both warn.
+EXCEPTION_TAIL = [rtu("01 03 0000 0001"), rtu("01 83 02 00")]
+TAIL_WARNINGS = ["frame length 6 disagrees with the spec's layout (5 bytes), its CRC good",
+                 "unexpected bytes after the data (1)"]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_an_exception_with_bytes_after_its_code(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    out = decode_frames(EXCEPTION_TAIL, tmp_path, monkeypatch, pure, "-n")
+    assert out.splitlines()[1] == (
+        "     2     0.500000   1 exception Read Holding Registers: exception 2 (Illegal Data Address) [#1, 500.0 ms]"
+        + "".join(f" [warning: {text}]" for text in TAIL_WARNINGS) + "  CRC ok")
+
+
+def test_the_plugin_warns_an_exceptions_bytes_after_its_code(tmp_path: Path) -> None:
+    capture = write_pcap(tmp_path / "exception.pcap",
+                         [(frame, T0 + index * 0.5) for index, frame in enumerate(EXCEPTION_TAIL)])
+    got = run_tshark(capture, "-T", "fields", "-E", "separator=|", "-E", "aggregator=,", "-e", "_ws.col.Info",
+                     "-e", "vw3.warning", "-e", "vw3.exception_code", "-e", "vw3.request_frame")
+    assert not lua_errors(got.stdout + got.stderr)
+    assert got.stdout.splitlines() == [
+        "1 Read Holding Registers request 0|||",
+        f"1 Read Holding Registers exception 2 (Illegal Data Address)|{','.join(TAIL_WARNINGS)}|2|1",
+    ]
