@@ -36,6 +36,7 @@ from dissector.model import Item, Noise
 from dissector.render.describe import count_text
 from dissector.render.pcapngwriter import PcapngWriter
 from dissector.render.pcapwriter import MICROS, SNAPLEN, PcapWriter, split_time
+from dissector.render.wholerecords import WholeRecords
 from dissector.sources.pcapng import serial
 
 FORMATS = ("pcap", "pcapng")
@@ -52,76 +53,8 @@ def noise_comment(item: Item) -> str | None:
 # Held by write_items: (bytes, time, vw3-decode's comments, the input's packet comments, end offset, whether
 # it goes on an item begun in the record before: a -b ring keeps it in that record's file).
 HeldRecord = tuple[bytes, float | None, list[str], list[str], int, bool]
-Piece = tuple[int, float | None, tuple[str, ...]]  # sources/trail.py: (end in the item, time, comments)
-
-FLUSH_BYTES = 1 << 16  # records are written in batches of about this much when not live
-
-
-class WholeRecords:
-    """A binary stream written a whole record (or file header) per `write`; never leaves part of one.
-
-    Records wait in memory up to FLUSH_BYTES (every one is written at once when `live`); a failed
-    write(2), or a short one, cuts the file back to the end of the last record it held whole
-    (ftruncate, for a regular file this opened) and raises the error. `whole` counts the writes on disk.
-    """
-
-    def __init__(self, stream: BinaryIO, live: bool, truncate: bool) -> None:
-        self._stream = stream
-        self._live = live
-        self._truncate = truncate
-        self._pending = bytearray()
-        self._ends: list[int] = []  # end of each waiting write in _pending
-        self.on_disk = 0  # bytes of whole writes in the file
-        self.whole = 0  # writes wholly in the file
-
-    def write(self, data: bytes) -> int:
-        self._pending += data
-        self._ends.append(len(self._pending))
-        if self._live or len(self._pending) >= FLUSH_BYTES:
-            self.flush()
-        return len(data)
-
-    def flush(self) -> None:
-        pending, ends = self._pending, self._ends
-        if not pending:
-            return
-        self._pending, self._ends = bytearray(), []
-        done = 0
-        try:
-            with memoryview(pending) as view:
-                while done < len(pending):
-                    wrote = self._stream.write(view[done:])
-                    if not wrote:  # a stream that takes nothing and says nothing: as good as full
-                        raise OSError(28, os.strerror(28))
-                    done += wrote
-            flush = getattr(self._stream, "flush", None)
-            if flush is not None:
-                flush()
-        except OSError:
-            kept = [end for end in ends if end <= done]
-            self._cut(self.on_disk + (kept[-1] if kept else 0))
-            self.whole += len(kept)
-            self.on_disk += kept[-1] if kept else 0
-            raise
-        self.whole += len(ends)
-        self.on_disk += len(pending)
-
-    def _cut(self, size: int) -> None:
-        if not self._truncate:
-            return
-        try:
-            fileno = self._stream.fileno()
-            if stat.S_ISREG(os.fstat(fileno).st_mode):
-                os.ftruncate(fileno, size)
-        except (OSError, ValueError):
-            pass  # nothing more can be done; the error being raised says the write failed
-
-    def close(self) -> None:
-        try:
-            self.flush()
-        finally:
-            self._stream.close()
-
+# sources/trail.py: (end in the item, time, comments, where its record begins in the stream)
+Piece = tuple[int, float | None, tuple[str, ...], int]
 
 class RecordWriter(Protocol):
     size: int
@@ -269,6 +202,9 @@ class CaptureOutput:
         # A noise run write_items holds for the item after it, and the record before it (release).
         self._held: HeldRecord | None = None
         self._last: HeldRecord | None = None
+        # Records before _last not written yet: an item from inside a chunk takes the chunk's earlier bytes
+        # into its first record (write_items); at most SNAPLEN bytes back.
+        self._done: deque[HeldRecord] = deque()
         self._open()
 
     @property
@@ -392,23 +328,60 @@ class CaptureOutput:
         Wireshark's mbrtu reads them): that frame is the framer's evidence there anyway.
 
         `pieces` (sources/trail.py, by id(item)): an item whose input's time changes inside it is written
-        as a record a time, each at its own (a silence inside a frame reads back as one), and the input's
-        packet comments go on the records of the bytes they were on, each an opt_comment of its own."""
+        as the chunks it came in, each a record at its own time (a silence inside a frame reads back as
+        one; from inside a chunk, its first record takes the chunk's earlier bytes: _absorb), and the
+        input's packet comments go on the records of the bytes they were on, each an opt_comment."""
         for item in items:
             split = pieces.get(id(item)) if pieces else None
+            lead = None
+            if split is not None and split[0][3] < item.offset:
+                lead = self._absorb(split[0][3], item.offset, split[0][0])
+                if lead is None:  # (written already: one record, as before)
+                    split = [(item.length, item.time, tuple(text for piece in split for text in piece[2]), 0)]
             if split is None:
                 self._piece(item, 0, item.length, item.time, [])
                 continue
             begin = 0
-            for end, time, comments in split:
-                self._piece(item, begin, end, time, list(comments))
+            for end, time, comments, _start in split:
+                self._piece(item, begin, end, time, list(comments), lead if begin == 0 else None)
                 begin = end
 
-    def _piece(self, item: Item, begin: int, end: int, time: float | None, users: list[str]) -> None:
-        """The item's bytes begin..end, a record's worth, with the input's packet comments `users`."""
+    def _absorb(self, anchor: int, offset: int, length: int) -> HeldRecord | None:
+        """The records not yet written holding the bytes anchor..offset, taken out as one (one that begins
+        before `anchor` cut there), to begin the record of the item after them (`length` bytes of it);
+        None when they are not all there."""
+        chain = [*self._done, *(record for record in (self._last, self._held) if record is not None)]
+        taken: list[HeldRecord] = []
+        while chain and chain[-1][4] > anchor:
+            taken.insert(0, chain.pop())
+        if not taken or taken[-1][4] != offset or offset - anchor + length > SNAPLEN:
+            return None
+        if any(after[4] - len(after[0]) != before[4] for before, after in zip(taken, taken[1:])):
+            return None
+        head = taken[0]
+        cut = anchor - (head[4] - len(head[0]))
+        if cut < 0:
+            return None
+        if cut:  # (a record of several chunks of one time)
+            chain.append((head[0][:cut], head[1], head[2], head[3], anchor, head[5]))
+            taken[0] = (head[0][cut:], head[1], [], [], head[4], True)
+        self._held = None
+        self._last = chain.pop() if chain else None
+        self._done = deque(chain)
+        return (b"".join(record[0] for record in taken), taken[0][1], [text for record in taken for text in record[2]],
+                [text for record in taken for text in record[3]], offset, taken[0][5])
+
+    def _piece(self, item: Item, begin: int, end: int, time: float | None, users: list[str],
+               lead: HeldRecord | None = None) -> None:
+        """The item's bytes begin..end, a record's worth, with the input's packet comments `users`; `lead`:
+        the chunk's bytes before it (_absorb), which its record begins with."""
         noise = isinstance(item, Noise)
         data = item.raw[begin:end] if begin or end < item.length else item.raw
         first, last = begin == 0, end == item.length
+        if lead is not None:
+            own = [*lead[2], *([noise_comment(item) or ""] if noise else [])]
+            self._record((lead[0] + data, lead[1], own, lead[3] + users, item.offset + end, lead[5]))
+            return
         held = self._held
         if held is not None:
             self._held = None
@@ -437,8 +410,12 @@ class CaptureOutput:
     def _record(self, record: HeldRecord) -> None:
         """Write the record held before this one and hold this one (release may add to it)."""
         last, self._last = self._last, record
+        done = self._done
         if last is not None:
-            self._write_record(*last[:4], last[5])
+            done.append(last)
+        while done and done[0][4] <= record[4] - SNAPLEN:
+            early = done.popleft()
+            self._write_record(*early[:4], early[5])
 
     def _write_record(self, data: bytes, time: float | None, own: list[str], users: list[str],
                       continued: bool) -> None:
@@ -454,6 +431,9 @@ class CaptureOutput:
         awaited (framing/rtu.py _followed), and the decode found none; a record's start and end would
         bound one (the record a damaged FC21 request, 1c 15 13 06 ... 09 b2, after cd 0b 14 e7). Not
         at a record's start, the reader decides its bytes at the end of the input, as the decode did."""
+        while self._done:
+            early = self._done.popleft()
+            self._write_record(*early[:4], early[5])
         held, last = self._held, self._last
         self._held = self._last = None
         if held is not None and last is not None and self._joins(last, held):

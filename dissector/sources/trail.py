@@ -7,9 +7,10 @@ A frame gets the comments of every record it has bytes in (a record of three fra
 as the chunks it came in, each a record at its own time (render/capturefile.py write_items): written as
 one record at its first byte's time, a frame that had a silence inside it lost that warning. The reader
 measures a silence from a chunk's time and length, so the copy's chunks before it must be the input's:
-only an item that begins where a chunk begins is cut so (one from inside a chunk that goes on into the
-next is one record, as before: cut, its first record's end would read later than the chunk's and make a
-silence up). An item without a time change inside stays one record (a frame a packet, as mbrtu reads it).
+the item is cut at every chunk inside it, and an item from inside a chunk has its first record begin
+where the chunk begins, the items before it in that chunk in it too (alone, its first record's end would
+read later than the chunk's and make a silence up; when they are written already, it is one record, as
+before). An item without a time change inside stays one record (a frame a packet, as mbrtu reads it).
 
 The items come in the order of their bytes: what lies before an item asked about is forgotten, so
 memory holds the chunks of the items not yet out (and every comment of a summary the engine writes).
@@ -35,8 +36,9 @@ def own_comment(text: str) -> bool:
     return all(_OWN_PART.fullmatch(part) for part in text.split("; "))
 
 
-# A piece of an item: (its end, counted from the item's first byte; its time; the comments of its records).
-Piece = tuple[int, Any, tuple[str, ...]]
+# A piece of an item: (its end, counted from the item's first byte; its time; the comments of its records;
+# where its record begins in the stream: before the item, for a first piece from inside a chunk).
+Piece = tuple[int, Any, tuple[str, ...], int]
 
 
 def _key(time: Any) -> Any:
@@ -86,7 +88,9 @@ class RecordTrail:
         parts = self._parts
         while len(parts) > 1 and parts[1][0] <= start:
             parts.popleft()
-        if parts and parts[0][0] == start:  # (an item from inside a chunk: see the module's docstring)
+        anchor = start  # where its first record must begin: the chunk's start (the module's docstring)
+        if parts and parts[0][0] <= start:
+            anchor = parts[0][0]
             keys = {_key(parts[0][1])}
             for first, time in parts:
                 if first >= end:
@@ -96,7 +100,7 @@ class RecordTrail:
                     keys.add(_key(time))
             keys.discard(None)
             if len(keys) < 2:
-                cuts = []  # (no time changes inside: one record, a frame a packet)
+                cuts, anchor = [], start  # (no time changes inside: one record, a frame a packet)
         commented = self._commented
         while commented and commented[0][1] <= start:
             commented.popleft()
@@ -111,13 +115,13 @@ class RecordTrail:
                     break
                 if last > start + begin:
                     comments += texts
-            pieces.append((stop, time, tuple(comments)))
+            pieces.append((stop, time, tuple(comments), start + begin if begin else anchor))
         return pieces
 
 
 def item_comments(pieces: list[Piece] | None) -> list[str]:
     """The comments of an item of these pieces, in the order of its records."""
-    return [text for _end, _time, comments in pieces or () for text in comments]
+    return [text for _end, _time, comments, _start in pieces or () for text in comments]
 
 
 def observed(source: Any, trail: RecordTrail) -> Any:
