@@ -19,8 +19,11 @@ def _group(group: str) -> dict[str, str]:
     return {entry["key"]: entry["type"] for entry in CATALOGUE if "key" in entry and entry.get("group", "frame") == group}
 
 
+# The ProtoField type of keys the plugin has no field for whose catalogue type does not tell it: raw is hex
+# text in the JSON, bytes to -Y (as tshark's frame: contains 0c:03, raw[0:2]); length counts bytes.
+OWN_FTYPES = {"raw": "bytes", "length": "uint32"}
 # field -> type, per group
-FRAME_FIELDS: dict[str, str] = _group("frame")
+FRAME_FIELDS: dict[str, str] = _group("frame") | {"raw": "bytes"}
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
@@ -37,7 +40,7 @@ FIELD_HELP: dict[str, str] = {
 }
 
 _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts",
-               "struct": "structure", "any": "value"}
+               "struct": "structure", "any": "value", "bytes": "byte string"}
 
 
 def layout_fields() -> Iterator[tuple[str, Any]]:
@@ -71,6 +74,41 @@ def pdu_keys() -> dict[str, tuple[str, ...]]:
 
 
 _PDU_KEYS: dict[str, tuple[str, ...]] | None = None
+
+
+def pdu_key_types() -> dict[str, str]:
+    """fields.KEY -> a ProtoField constructor, from the grammar's fields of that name in every layout:
+    uintN when each reads an integer or an array of them (fields.values: a repeated field, the widest),
+    bytes when each reads bytes, none (a structure: a sub-record, a choice) otherwise."""
+    found: dict[str, set[str]] = {}
+    for _owner, sub in layout_fields():
+        inner = getattr(sub, "subcon", sub)
+        if type(inner).__name__ == "Array":
+            inner = inner.subcon
+        kind = type(inner).__name__
+        if kind == "FormatField":
+            ftype = f"uint{8 * inner.length}"
+        else:
+            ftype = "bytes" if kind == "GreedyBytes" else "none"
+        found.setdefault(sub.name, set()).add(ftype)
+    types = {}
+    for key, kinds in found.items():
+        if all(kind.startswith("uint") for kind in kinds):
+            types[key] = max(kinds, key=lambda kind: int(kind[4:]))
+        else:
+            types[key] = kinds.pop() if len(kinds) == 1 else "none"
+    return types
+
+
+def whole_number(field: str) -> bool:
+    """Does tshark refuse 1.0 and 1e0 for the field (an integer or frame number: vw3.item == 1e0)?"""
+    if field.startswith("fields."):
+        return pdu_key_types().get(field[7:], "").startswith("uint")
+    ftype = FTYPES.get(field) or OWN_FTYPES.get(field, "")
+    return ftype.startswith("uint") or ftype == "framenum"
+
+
+FTYPES = {entry["key"]: entry["ftype"] for entry in CATALOGUE if "key" in entry and "ftype" in entry}
 
 
 def unknown_pdu_key(key: str) -> str | None:
@@ -107,7 +145,10 @@ def field_listing() -> str:
     for key, owners in pdu_keys().items():  # fields.KEY: the keys of the protocol table's layouts
         lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {owners_text(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
-    lines.append("operators: == != (all_ne: has it, none equal) ~= (any_ne: some differs) < <= > >= & in {..} a..b "
-                 "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 \"text\" true false; a field "
+    lines.append("operators: == != (all_ne: has it, none equal) ~= !== (any_ne: some differs) === (all_eq) "
+                 "< <= > >= & in {..} a..b "
+                 "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 13.5e-3 \"text\" true false, "
+                 "bytes "
+                 "0c:03 (raw contains 0c:03, raw[0:2] == 0c03); a field "
                  "alone tests its presence (crc_ok: checked, good or bad; crc_ok == 1: good)")
     return "\n".join(lines) + "\n"

@@ -48,7 +48,49 @@ def match_op(op: str, actual: Any, value: Any) -> bool:
         return False
     if isinstance(value, bool) != isinstance(actual, bool):
         return False
+    if isinstance(value, bytes):  # shorter first, then by the bytes (tshark: frame[0:2] > 0c is every frame)
+        if not isinstance(actual, bytes):
+            return False
+        return compare(op, (len(actual), actual), (len(value), value))
     return compare(op, actual, value)
+
+
+def as_bytes(hex_text: Any) -> bytes | None:
+    """The bytes of a value the item holds as hex text (raw, fields.data), None when it is none."""
+    try:
+        return bytes.fromhex(hex_text) if isinstance(hex_text, str) else None
+    except ValueError:
+        return None
+
+
+def cut_bytes(data: bytes, ranges: list[tuple[str | None, ...]]) -> bytes | None:
+    """The slice `ranges` of `data` joined, each (start, colon, length, last) as filters._RANGE reads it;
+    None (no field, as tshark's) when one does not fit."""
+    out = b""
+    for start_text, colon, length, last in ranges:
+        start = int(start_text or 0)
+        if start < 0:
+            start += len(data)
+        if last is not None:  # first-last, both included
+            end = int(last) + 1 if int(last) >= 0 else int(last) + len(data) + 1
+        elif colon is not None:  # start:length, start: (to the end)
+            end = len(data) if length is None else start + int(length)
+        else:  # one byte
+            end = start + 1
+        if start < 0 or end > len(data) or end <= start:
+            return None
+        out += data[start:end]
+    return out
+
+
+def any_bit_bytes(actual: Any, mask: bytes) -> bool:
+    """tshark's `frame[0:2] & 0f`: some bit set in both, byte by byte over the shorter."""
+    return isinstance(actual, bytes) and any(a & b for a, b in zip(actual, mask))
+
+
+def latin1(actual: Any) -> str | None:
+    """Bytes as a text of one character each (0x0c is \x0c), for matches, as Wireshark's on bytes."""
+    return actual.decode("latin-1") if isinstance(actual, bytes) else None
 
 
 def contains_text(actual: Any, value: str) -> bool:

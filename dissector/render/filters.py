@@ -2,22 +2,29 @@
 
 Syntax, close to Wireshark's:
 
-    slave == 12 and code == "CHCF"          comparisons: == != ~= < <= > >= (also eq ne any_ne lt le gt ge)
+    slave == 12 and code == "CHCF"          comparisons: == != ~= < <= > >= (also eq ne any_ne lt le gt ge),
+                                            === (all_eq: every occurrence equal), !== (any_ne, as ~=)
+    raw contains 0c:03   raw[0:2] == 0c03   raw is the item's bytes, as tshark's frame: hex bytes (0c:03
+                                            0c-03 0c.03 0c03), slices [start:length] [first-last] [:n]
+                                            [n:] [-2:] [4], a string its characters' bytes ("\\x0c")
     function in {3 4 23}   address in 8400..8402   address in {3201..3202 8501}
     warnings contains "byte count"          substring of a string, or of any element of a list
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
                                             as Wireshark's; (?-i) at the start makes it case-sensitive
     value & 0x8000                          bit test: some bit of the mask is set
     crc_ok   not unanswered   exception     a bare field: present, as in Wireshark (a false crc_ok is)
-    not / !   and / &&   or / ||   ( )      strings in double quotes (\\" and \\\\ escapes), 0x.. hex,
-                                            16#8000 (IEC, as the notes print values), true / false
+    not / !   and / &&   or / ||   ( )      strings in double quotes (\\" \\\\ \\n \\t \\xhh \\ooo escapes),
+                                            0x.. hex, 16#8000 (IEC, as the notes print values), 13.5e-3
+                                            (not for a whole-number field: tshark refuses frame == 1e0),
+                                            true / false
 
 Field names are the keys `-T fields` takes (`-Y help` lists them). Frame fields: frame, kind, offset,
 length, time, raw, mode, slave, function, function_name, crc_ok, crc, crc_expected, broadcast, start,
 quantity, subfunction, subfunction_name, exception_code (alias: exception), exception_name,
 exception_meaning, span_label, request_frame, response_frame, response_time, unanswered, reason,
 warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed it (`fields.start`,
-`fields.byte_count`; bytes as hex text); `registers`, `bits`, `objects`, `fields` alone test presence.
+`fields.byte_count`; fields.data bytes, as raw; fields.values a repeated number); `registers`, `bits`,
+`objects`, `fields` alone test presence.
 `time` is the JSON's (seconds since the epoch), compared with a number or a date and time in quotes as
 tshark's frame.time is (`time >= "2026-12-05 10:00"`, local time: render/filter_dates.py);
 `time_relative` the seconds since the first item of the input, and `time_delta` since the item captured
@@ -53,13 +60,12 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
     ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing,
-    unknown_pdu_key,
+    pdu_key_types, unknown_pdu_key, whole_number,
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
@@ -67,6 +73,10 @@ from dissector.render.filter_match import (
     address_test,
     address_values,
     any_bit,
+    any_bit_bytes,
+    as_bytes,
+    cut_bytes,
+    latin1,
     contains_text,
     in_members,
     match_op,
@@ -75,113 +85,15 @@ from dissector.render.filter_match import (
     search,
 )
 
+from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
+
+# One range of a slice: start:length, start:, :length, first-last or an offset (a start < 0: from the end)
+_RANGE = re.compile(r"(-?\d+)?(?:(:)(\d+)?|-(-?\d+))?")
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
 
 Item = dict[str, Any]
 Test = Callable[[Item, dict[str, Any] | None], bool]
-
-
-@dataclass(slots=True)
-class Token:
-    kind: str  # name, number, string, op, punct, end
-    text: str
-    value: Any
-    position: int
-
-
-_TOKEN = re.compile(
-    r"""
-    (?P<space>\s+)
-  | (?P<dashed>\d+-\d+)(?![0-9A-Za-z_#.])
-  | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?)(?![0-9A-Za-z_#]))
-  | (?P<string>")
-  | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
-  | (?P<op>==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~)
-  | (?P<punct>\.\.|[(){},])
-    """,
-    re.VERBOSE,
-)
-_WORD_OPS = {
-    "eq": "==", "ne": "!=", "all_ne": "!=", "any_ne": "~=", "lt": "<", "le": "<=", "gt": ">", "ge": ">=",
-}
-_KEYWORDS = {"and", "or", "not", "in", "contains", "matches", "true", "false"}
-_ESCAPES = {'"': '"', "\\": "\\", "n": "\n", "t": "\t"}
-
-
-def _string(text: str, start: int) -> tuple[str, int]:
-    out: list[str] = []
-    i = start + 1
-    while i < len(text):
-        char = text[i]
-        if char == '"':
-            return "".join(out), i + 1
-        if char == "\\":
-            if i + 1 >= len(text):
-                break
-            escaped = _ESCAPES.get(text[i + 1])
-            if escaped is None:
-                raise FilterError(f"unknown escape \\{text[i + 1]} in a string", text, i)
-            out.append(escaped)
-            i += 2
-            continue
-        out.append(char)
-        i += 1
-    raise FilterError("string not closed (a \" is missing)", text, start)
-
-
-def _number(word: str, text: str, position: int) -> int | float:
-    """0x8000, 16#8000 (IEC 61131-3 radix#digits, as the notes print values), 12 or 1.5."""
-    if word[:2] in ("0x", "0X"):
-        return int(word, 16)
-    if "#" in word:
-        radix, digits = word.split("#", 1)
-        if radix not in ("2", "8", "16"):
-            raise FilterError(f"{word}: the radix before # is 2, 8 or 16", text, position)
-        try:
-            return int(digits.replace("_", ""), int(radix))
-        except ValueError:
-            raise FilterError(f"{word}: {digits!r} are not base-{radix} digits", text, position) from None
-    return float(word) if "." in word else int(word)
-
-
-def tokenize(text: str) -> list[Token]:
-    tokens: list[Token] = []
-    i = 0
-    while i < len(text):
-        match = _TOKEN.match(text, i)
-        if match is None:
-            if text[i] == "=":
-                raise FilterError("a single = is not an operator: use == to compare", text, i)
-            raise FilterError(f"unexpected character {text[i]!r}", text, i)
-        group = match.lastgroup
-        word = match.group()
-        if group == "string":
-            value, end = _string(text, i)
-            tokens.append(Token("string", text[i:end], value, i))
-            i = end
-            continue
-        if group == "dashed":  # (as tshark refuses it: 1-3 read as 1 and -3 would match frame 1 alone)
-            low, high = word.split("-")
-            raise FilterError(f"{word!r} is not a number: a range is written {low}..{high}", text, i)
-        if group == "number":
-            if len(word) > 40:  # also keeps int() below Python's digit limit
-                raise FilterError("number too long", text, i)
-            number = _number(word, text, i)
-            tokens.append(Token("number", word, number, i))
-        elif group == "name":
-            lowered = word.lower()
-            if lowered in _WORD_OPS:
-                tokens.append(Token("op", word, _WORD_OPS[lowered], i))
-            elif lowered in _KEYWORDS:
-                tokens.append(Token("keyword", word, lowered, i))
-            else:
-                tokens.append(Token("name", word, word, i))
-        elif group in ("op", "punct"):
-            tokens.append(Token(group, word, word, i))
-        i = match.end()
-    tokens.append(Token("end", "", None, len(text)))
-    return tokens
 
 
 class _Parser:
@@ -307,6 +219,7 @@ class _Parser:
         context = self.context
         if inner is not None:
             return self.parse_pdu_key_test(field, inner)
+        cut = self.parse_slice(field, ftype)
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
@@ -314,22 +227,49 @@ class _Parser:
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
             value = item.get(field)
+            if ftype == "bytes":  # (hex text in the item)
+                value = as_bytes(value)
+                return value if cut is None or value is None else cut(value)
             return None if value is False and field in ONLY_TRUE else value
 
         return self.parse_operation(field, ftype, get, register)
+
+    def parse_slice(self, field: str, ftype: str) -> Callable[[bytes], bytes | None] | None:
+        """`raw[0:2]` (start:length), `raw[0-1]` (first-last), `raw[:2]`, `raw[2:]`, `raw[-2:]`, `raw[4]`,
+        several joined by commas (`raw[0,2:2]`), as Wireshark's slices; None: no slice follows."""
+        token = self.token
+        if token.kind != "slice":
+            return None
+        if ftype != "bytes":
+            raise self.error(f"{field} is a {_TYPE_WORDS[ftype]}: only raw, the item's bytes, takes a slice",
+                             token)
+        self.advance()
+        ranges = []
+        for part in token.text[1:-1].split(","):
+            match = _RANGE.fullmatch(part.strip())
+            if match is None or not part.strip():
+                raise self.error(f"{token.text}: a slice is [start:length], [first-last], [start:], "
+                                 "[:length] or [offset], as raw[0:2]", token)
+            ranges.append(match.groups())
+        return lambda data: cut_bytes(data, ranges)
 
     def parse_pdu_key_test(self, field: str, key: str) -> tuple[Test, bool]:
         """`fields.KEY OP value`: a key holding a list (fields.values, fields.sub_requests...) is a repeated
         field, as in Wireshark: the test holds when one element passes it, `!=` when every element differs."""
         all_ne = self.at("op", "!=")
-        test, _ = self.parse_operation(field, "any", lambda item, element: element, False)
+        all_eq = self.at("op", "===")
+        ftype = {"uint": "number", "byte": "bytes"}.get(pdu_key_types().get(key, "")[:4], "any")
+        if ftype == "bytes":  # (hex text in the item)
+            test, _ = self.parse_operation(field, ftype, lambda item, element: as_bytes(element), False)
+        else:
+            test, _ = self.parse_operation(field, ftype, lambda item, element: element, False)
 
         def elements(item: Item) -> list[Any]:
             fields = item.get("fields")
             value = fields.get(key) if isinstance(fields, dict) else None
             return value if isinstance(value, list) else [] if value is None else [value]
 
-        if all_ne:
+        if all_ne or all_eq:
             return (lambda item, reg: bool(values := elements(item)) and all(test(item, v) for v in values)), False
         return (lambda item, reg: any(test(item, v) for v in elements(item))), False
 
@@ -343,19 +283,23 @@ class _Parser:
             return (lambda item, reg: is_present(get(item, reg))), register
         if self.at("op", "&"):
             self.advance()
-            if ftype not in ("number", "any"):
+            if ftype not in ("number", "any", "bytes"):
                 raise self.error(f"& tests bits of a number; {field} is a {_TYPE_WORDS[ftype]}", token)
             mask_token = self.token
-            mask = self.parse_value(field, ftype)
+            mask = self.parse_value(field, "any" if ftype == "number" else ftype)  # (1.5: named below)
+            if ftype == "bytes":  # (some bit set in both, over the shorter: tshark's frame[0:2] & 0f)
+                return (lambda item, reg: any_bit_bytes(get(item, reg), mask)), register
             if not isinstance(mask, int):
                 raise self.error("& needs a whole-number mask such as 0x8000", mask_token)
             return (lambda item, reg: any_bit(get(item, reg), mask)), register
         if self.at("keyword", "matches") or self.at("op", "~"):
             self.advance()
-            if ftype not in ("str", "list", "any"):
+            if ftype not in ("str", "list", "any", "bytes"):
                 raise self.error(f"matches needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
             pattern_token = self.token
             pattern = _regex(self.parse_value(field, "str"), self.text, pattern_token.position)
+            if ftype == "bytes":  # each byte a character: "\x0c\x03" matches the bytes 0c 03
+                return (lambda item, reg: search(pattern, latin1(get(item, reg)))), register
             if ftype == "list":
                 return (
                     lambda item, reg: any(isinstance(v, str) and pattern.search(v) for v in get(item, reg) or ())
@@ -369,12 +313,21 @@ class _Parser:
             some_equal = quantify(equal)
             some_present = quantify(lambda item, reg: is_present(get(item, reg)))
             return (lambda item, reg: some_present(item) and not some_equal(item)), False
-        if token.kind == "op" and token.value != "!":
+        if token.kind == "op" and token.value == "===" and register:
+            # Wireshark 4.0's all_eq: some register has the field and every one that has it has it equal.
+            differs = quantify(self.parse_comparison(field, ftype, get, "~=", token))
+            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
+            return (lambda item, reg: some_present(item) and not differs(item)), False
+        if token.kind == "op" and token.value not in ("!", "&&", "||"):  # (crc_ok && ...: a bare crc_ok)
             return self.parse_comparison(field, ftype, get, token.value, token), register
         if self.at("keyword", "contains"):
             self.advance()
-            if ftype not in ("str", "list", "any"):
-                raise self.error(f"contains needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
+            if ftype not in ("str", "list", "any", "bytes"):
+                kind = _TYPE_WORDS[ftype]
+                raise self.error(f"contains needs a text or bytes field; {field} is a {kind}", token)
+            if ftype == "bytes":
+                data = self.parse_value(field, ftype)
+                return (lambda item, reg: isinstance(got := get(item, reg), bytes) and data in got), register
             value = self.parse_value(field, "str")
             if ftype == "list":
                 return (
@@ -382,12 +335,16 @@ class _Parser:
                 ), register
             return (lambda item, reg: contains_text(get(item, reg), value)), register
         if self.at("keyword", "in"):
+            if ftype == "bytes":
+                raise self.error(f"in takes numbers or texts; {field} is a byte string (tshark 4.0 refuses "
+                                 "it too): compare with == or contains")
             self.advance()
             members = self.parse_set(field, ftype)
             if field == "address":
                 return (lambda item, reg: any(in_members(v, members) for v in address_values(reg))), register
             return (lambda item, reg: in_members(get(item, reg), members)), register
-        if token.kind in ("number", "string", "name") or self.at("keyword", "true", "false"):
+        literal = token.kind in ("number", "string", "name", "bytes", "dashed", "slice")
+        if literal or self.at("keyword", "true", "false"):
             raise self.error(f"expected an operator (== != ~= < <= > >= & in contains matches) after {field}")
         return (lambda item, reg: is_present(get(item, reg))), register
 
@@ -397,14 +354,20 @@ class _Parser:
         written = token.value
         value_token = self.token
         value = self.parse_value(field, ftype)
-        if ftype == "bool" and written not in ("==", "!=", "~="):
+        if ftype == "bool" and written not in ("==", "!=", "~=", "==="):
             raise self.error(f"{field} is true or false: only ==, != and ~= compare it", token)
         if ftype == "list":
             if op == "!=":  # all_ne: some element, and none equal
                 return lambda item, reg: bool(get(item, reg)) and all(v != value for v in get(item, reg))
+            if op == "===":  # all_eq: some element, and all equal
+                return lambda item, reg: bool(get(item, reg)) and all(v == value for v in get(item, reg))
+            if op == "~=":  # any_ne: some element differs
+                return lambda item, reg: any(v != value for v in get(item, reg) or ())
             if op != "==":
-                raise self.error(f"{field} is a list of texts: use ==, != or contains", token)
+                raise self.error(f"{field} is a list of texts: use ==, !=, ~=, === or contains", token)
             return lambda item, reg: any(v == value for v in get(item, reg) or ())
+        if op == "===":
+            op = "=="  # one value (a frame's, one register's, one element's): all of it is equal
         self._check_choice(field, value, value_token)
         if field == "time" and isinstance(value, (int, float)) and 0 <= value < 1e9 and written not in ("!=", "~="):
             raise self.error(
@@ -436,11 +399,15 @@ class _Parser:
                 raise self.error(f"{token.text} is no date and time: write {EXAMPLES}")
             self.advance()
             return seconds
-        if ftype == "number":
-            if token.kind != "number":
-                raise self.error(f"{field} is a number, not {self._describe(token)}")
+        if ftype == "bytes":  # 0c:03 0c-03 0c.03 0c03, or a string: its characters' bytes (\x0c too)
+            data = token.data if token.kind == "string" else parse_bytes(token)
+            if data is None:
+                raise self.error(f"{field} is a byte string: write its bytes in hex as 0c:03 (or 0c-03, "
+                                 f"0c.03, 0c03), not {self._describe(token)}")
             self.advance()
-            return token.value
+            return data
+        if ftype == "number":
+            return self.parse_number(field, token)
         if ftype == "any":  # a key of the PDU's fields: a number, a text (bytes as hex), true or false
             if token.kind == "number" or token.kind == "string":
                 self.advance()
@@ -452,6 +419,22 @@ class _Parser:
         if token.kind != "string":
             hint = ' (strings go in double quotes: "...")' if token.kind in ("name", "number") else ""
             raise self.error(f"{field} is a text, not {self._describe(token)}{hint}")
+        self.advance()
+        return token.value
+
+    def parse_number(self, field: str, token: Token) -> int | float:
+        """A number for `field`: 1.5 and 13.5e-3 for a decimal one, but as tshark refuses `vw3.item == 1e0`
+        a whole-number field (an integer or frame number) takes whole numbers only."""
+        if token.kind == "dashed":  # (as tshark refuses it: 1-3 read as 1 and -3 would match frame 1 alone)
+            low, high = token.text.split("-")
+            raise self.error(f"{token.text!r} is not a number: a range is written {low}..{high}")
+        if token.kind == "bytes" and NUMBER.fullmatch(token.text):  # (12.50 and 1e0 read as bytes first)
+            token = Token("number", token.text, number(token.text, self.text, token.position), token.position)
+        if token.kind != "number":
+            raise self.error(f"{field} is a number, not {self._describe(token)}")
+        if isinstance(token.value, float) and whole_number(field):
+            raise self.error(f"{field} is a whole number, and {token.text} is not written as one "
+                             "(as tshark refuses it)")
         self.advance()
         return token.value
 

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from dissector.render.filter_fields import CATALOGUE, FIELD_HELP, layout_fields, owners_text, pdu_keys
+from dissector.render.filter_fields import (
+    CATALOGUE, FIELD_HELP, FRAME_FIELDS, OWN_FTYPES, owners_text, pdu_key_types, pdu_keys,
+)
 
 # The plugin's Proto (lua/src/fields.lua): tests/unit/test_glossary.py holds the two equal.
 PROTOCOL = ("VW3 Modbus serial (Altivar 71, SEL-749M)", "vw3")
@@ -20,10 +22,12 @@ FTYPES = {"string": ("FT_STRING", ""), "bool": ("FT_BOOLEAN", "0"), "double": ("
           "framenum": ("FT_FRAMENUM", ""), "relative_time": ("FT_RELATIVE_TIME", ""), "none": ("FT_NONE", ""),
           "bytes": ("FT_BYTES", "")}
 # vw3-decode's own type -> what a field of it would be: a number may be whole or decimal
-OWN_TYPES = {"number": "double", "str": "string", "bool": "bool", "list": "string", "struct": "none"}
+OWN_TYPES = {"number": "double", "str": "string", "bool": "bool", "list": "string", "struct": "none",
+             "bytes": "bytes"}
 # Which plugin constructors hold a value of each of vw3-decode's types
 KINDS = {"number": ("uint", "double", "framenum", "relative_time"), "str": ("string",), "bool": ("bool",),
-         "list": ("string",), "struct": ("none",)}
+         "list": ("string",), "struct": ("none",),
+         "bytes": ("bytes",)}
 
 
 def _type(ftype: str, base: str | None) -> tuple[str, str]:
@@ -33,37 +37,16 @@ def _type(ftype: str, base: str | None) -> tuple[str, str]:
 
 
 def _field(entry: dict[str, Any]) -> str:
-    key, ftype = entry["key"], entry.get("ftype")
-    if ftype is None or not ftype.startswith(KINDS[entry["type"]]):
-        ftype = OWN_TYPES[entry["type"]]
+    key, ftype = entry["key"], entry.get("ftype") or OWN_FTYPES.get(entry["key"])
+    own = FRAME_FIELDS.get(key, entry["type"])  # (raw: bytes to -Y, text in the JSON)
+    if ftype is None or not ftype.startswith(KINDS[own]):
+        ftype = OWN_TYPES[own]
     name = entry.get("title") or key.replace("_", " ").capitalize()
     return _line(name, key, *_type(ftype, entry.get("base")), FIELD_HELP[key])
 
 
 def _line(name: str, abbrev: str, ftype: str, base: str, blurb: str) -> str:
     return "\t".join(["F", name, abbrev, ftype, PROTOCOL[1], base, "0x0", blurb])
-
-
-def pdu_key_types() -> dict[str, str]:
-    """fields.KEY -> a ProtoField constructor, from the grammar's fields of that name in every layout:
-    uintN when each reads an integer (the widest), bytes when each reads bytes, none (a structure: a
-    list, a sub-record, a choice) otherwise."""
-    found: dict[str, set[str]] = {}
-    for _owner, sub in layout_fields():
-        inner = getattr(sub, "subcon", sub)
-        kind = type(inner).__name__
-        if kind == "FormatField":
-            ftype = f"uint{8 * inner.length}"
-        else:
-            ftype = "bytes" if kind == "GreedyBytes" else "none"
-        found.setdefault(sub.name, set()).add(ftype)
-    types = {}
-    for key, kinds in found.items():
-        if all(kind.startswith("uint") for kind in kinds):
-            types[key] = max(kinds, key=lambda kind: int(kind[4:]))
-        else:
-            types[key] = kinds.pop() if len(kinds) == 1 else "none"
-    return types
 
 
 def glossary() -> str:

@@ -159,7 +159,7 @@ ERRORS = [
         "unexpected 'slave': expected and, or or the end (column 12)\n  slave == 1 slave\n             ^",
     ),
     ('"abc', "string not closed (a \" is missing) (column 1)\n  \"abc\n  ^"),
-    ("slave contains 1", "contains needs a text field; slave is a number (column 7)\n  slave contains 1\n        ^"),
+    ("slave contains 1", "contains needs a text or bytes field; slave is a number (column 7)\n  slave contains 1\n        ^"),
     # (tshark refuses it too; read as {1 -3} it matched frame 1 alone)
     ("frame in {1-3}", "'1-3' is not a number: a range is written 1..3 (column 11)\n  frame in {1-3}\n            ^"),
     ("function in {}", "empty set: put values between { } (column 14)\n  function in {}\n               ^"),
