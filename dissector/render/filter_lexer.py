@@ -86,9 +86,21 @@ def _string(text: str, start: int) -> tuple[str, bytes, int]:
 
 
 def number(word: str, text: str, position: int) -> int | float:
-    """0x8000, 16#8000 (IEC 61131-3 radix#digits, as the notes print values), 12, 1.5 or 13.5e-3."""
+    """0x8000, 16#8000 (IEC 61131-3 radix#digits, as the notes print values), 12, 1.5 or 13.5e-3; as
+    Wireshark's, 0b1100 binary and 014 octal (a leading 0: vw3.slave == 014 is slave 12)."""
     if word[:2] in ("0x", "0X"):
         return int(word, 16)
+    if word[:2] in ("0b", "0B"):
+        try:
+            return int(word[2:], 2)
+        except ValueError:
+            raise FilterError(f"{word}: not binary digits", text, position) from None
+    if re.fullmatch(r"-?0\d+", word):
+        try:
+            return int(word, 8)
+        except ValueError:
+            raise FilterError(f"{word}: a leading 0 is octal (as in Wireshark), and 8 and 9 are no octal "
+                              "digits", text, position) from None
     if "#" in word:
         radix, digits = word.split("#", 1)
         if radix not in ("2", "8", "16"):

@@ -11,10 +11,13 @@ Syntax, close to Wireshark's:
     warnings contains "byte count"          substring of a string, or of any element of a list
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
                                             as Wireshark's; (?-i) at the start makes it case-sensitive
-    value & 0x8000                          bit test: some bit of the mask is set
+    value & 0x8000                          bit test: some bit of the mask is set; value & 0x8000 == 0
+                                            compares the masked value, as Wireshark's bitwise and
+    code[0:2] == "CH"                       a text's slice is its bytes (UTF-8), as Wireshark's
     crc_ok   not unanswered   exception     a bare field: present, as in Wireshark (a false crc_ok is)
     not / !   and / &&   or / ||   ( )      strings in double quotes (\\" \\\\ \\n \\t \\xhh \\ooo escapes),
-                                            0x.. hex, 16#8000 (IEC, as the notes print values), 13.5e-3
+                                            0x.. hex, 0b1100, 014 (octal, as Wireshark's), 16#8000
+                                            (IEC, as the notes print values), 13.5e-3
                                             (not for a whole-number field: tshark refuses frame == 1e0),
                                             true / false
 
@@ -79,6 +82,7 @@ from dissector.render.filter_match import (
     latin1,
     contains_text,
     in_members,
+    is_number,
     match_op,
     is_present,
     item_elements,
@@ -89,6 +93,7 @@ from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, to
 
 # One range of a slice: start:length, start:, :length, first-last or an offset (a start < 0: from the end)
 _RANGE = re.compile(r"(-?\d+)?(?:(:)(\d+)?|-(-?\d+))?")
+_COMPARISONS = ("==", "!=", "~=", "===", "<", "<=", ">", ">=")
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
 
@@ -220,19 +225,23 @@ class _Parser:
         if inner is not None:
             return self.parse_pdu_key_test(field, inner)
         cut = self.parse_slice(field, ftype)
+        text_cut = cut is not None and ftype == "str"  # (a text's slice is bytes of its UTF-8, as tshark's)
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
-                return None if reg is None else reg.get(field)
+                value = None if reg is None else reg.get(field)
+                return value if not text_cut or not isinstance(value, str) else cut(value.encode())
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
             value = item.get(field)
             if ftype == "bytes":  # (hex text in the item)
                 value = as_bytes(value)
                 return value if cut is None or value is None else cut(value)
+            if text_cut:
+                return cut(value.encode()) if isinstance(value, str) else None
             return None if value is False and field in ONLY_TRUE else value
 
-        return self.parse_operation(field, ftype, get, register)
+        return self.parse_operation(field, "bytes" if text_cut else ftype, get, register)
 
     def parse_slice(self, field: str, ftype: str) -> Callable[[bytes], bytes | None] | None:
         """`raw[0:2]` (start:length), `raw[0-1]` (first-last), `raw[:2]`, `raw[2:]`, `raw[-2:]`, `raw[4]`,
@@ -240,8 +249,8 @@ class _Parser:
         token = self.token
         if token.kind != "slice":
             return None
-        if ftype != "bytes":
-            raise self.error(f"{field} is a {_TYPE_WORDS[ftype]}: only raw, the item's bytes, takes a slice",
+        if ftype not in ("bytes", "str"):
+            raise self.error(f"{field} is a {_TYPE_WORDS[ftype]}: only bytes (raw) and texts take a slice",
                              token)
         self.advance()
         ranges = []
@@ -291,6 +300,12 @@ class _Parser:
                 return (lambda item, reg: any_bit_bytes(get(item, reg), mask)), register
             if not isinstance(mask, int):
                 raise self.error("& needs a whole-number mask such as 0x8000", mask_token)
+            if self.token.kind == "op" and self.token.value in _COMPARISONS:  # value & 0x8000 == 0x8000
+                def masked(item: Item, reg: dict[str, Any] | None) -> Any:
+                    value = get(item, reg)
+                    return value & mask if is_number(value) and isinstance(value, int) else None
+
+                return self.parse_comparison(field, "number", masked, self.token.value, self.token), register
             return (lambda item, reg: any_bit(get(item, reg), mask)), register
         if self.at("keyword", "matches") or self.at("op", "~"):
             self.advance()
@@ -368,7 +383,8 @@ class _Parser:
             return lambda item, reg: any(v == value for v in get(item, reg) or ())
         if op == "===":
             op = "=="  # one value (a frame's, one register's, one element's): all of it is equal
-        self._check_choice(field, value, value_token)
+        if written in ("==", "!=", "~=", "===") and not isinstance(value, bytes):  # (a misspelt name)
+            self._check_choice(field, value, value_token)
         if field == "time" and isinstance(value, (int, float)) and 0 <= value < 1e9 and written not in ("!=", "~="):
             raise self.error(
                 f"time is seconds since the epoch (as --json prints it), and {value_token.text} is no date: "
@@ -428,7 +444,8 @@ class _Parser:
         if token.kind == "dashed":  # (as tshark refuses it: 1-3 read as 1 and -3 would match frame 1 alone)
             low, high = token.text.split("-")
             raise self.error(f"{token.text!r} is not a number: a range is written {low}..{high}")
-        if token.kind == "bytes" and NUMBER.fullmatch(token.text):  # (12.50 and 1e0 read as bytes first)
+        if token.kind == "bytes" and (NUMBER.fullmatch(token.text) or token.text[:2] in ("0b", "0B")):
+            # (12.50, 1e0 and 0b1100 are read as bytes first)
             token = Token("number", token.text, number(token.text, self.text, token.position), token.position)
         if token.kind != "number":
             raise self.error(f"{field} is a number, not {self._describe(token)}")

@@ -159,7 +159,7 @@ def test_all_eq_and_any_ne_on_registers(capture: str, expression: str, expected:
      "raw is a byte string: write its bytes in hex as 0c:03 (or 0c-03, 0c.03, 0c03), not '0c0' (column 14)"),
     ("raw[0] in {0c 05}", "in takes numbers or texts; raw is a byte string (tshark 4.0 refuses it too): "
      "compare with == or contains (column 8)"),
-    ("slave[0] == 1", "slave is a number: only raw, the item's bytes, takes a slice (column 6)"),
+    ("slave[0] == 1", "slave is a number: only bytes (raw) and texts take a slice (column 6)"),
     ('notes contains "\\x"',
      "unknown escape \\x in a string (\\\" \\\\ \\n \\t \\xhh \\ooo ...) (column 17)"),
 ])
@@ -181,3 +181,30 @@ def test_glossary_types_as_tshark_would() -> None:
     assert "F\tRaw\traw\tFT_BYTES\tvw3\t\t0x0\tthe item's bytes, lowercase hex" in lines  # (was FT_STRING)
     assert ("F\tPDU values\tfields.values\tFT_UINT16\tvw3\tBASE_DEC\t0x0\tPDU key of functions 3 4 16 23 24"
             in lines)  # (was FT_NONE)
+
+
+P38 = str(ROOT / "captures" / "p38_protection.pcap")
+
+
+@pytest.mark.parametrize(("expression", "expected"), [
+    # Neighbours, each as tshark 4.0.17 with the plugin selects on p38_protection.pcap (frames 4..12, where
+    # the plugin knows the profile: its first three frames are provisional)
+    ("slave == 014", list(range(1, 13))),  # octal, as Wireshark's (before: 14, no frame)
+    ("slave == 0b1100", list(range(1, 13))),  # (before: refused)
+    ("value & 0x8000 == 0x8000", [2, 4, 6, 8]),  # & then a comparison (before: refused)
+    ("value & 0x8000 == 0", [2, 4, 6, 8]),  # (the 3 and 2 beside 16#8000)
+    ('function_name > "Read"', list(range(1, 13))),  # ordering texts (before: "'Read' does not exist")
+    ('function_name[0:4] == "Read"', list(range(1, 13))),  # a text's slice: its bytes (before: refused)
+    ('code[0:2] == "CH"', [2, 4, 6, 8, 10, 12]),
+    ('code[-1:] == "F"', [2, 4, 6, 8, 10, 12]),
+    ('code[0:2] === "CH"', []),  # (COP)
+])
+def test_neighbours_as_wireshark(expression: str, expected: list[int]) -> None:
+    assert frames(expression, P38) == expected
+
+
+def test_a_leading_zero_with_8_or_9_is_refused() -> None:
+    status, out, err = run_cli(["-Y", "slave == 019", P38])
+    assert (status, out) == (2, "")
+    assert err.splitlines()[0] == ("vw3-decode: 019: a leading 0 is octal (as in Wireshark), and 8 and 9 "
+                                   "are no octal digits (column 10)")
