@@ -121,3 +121,21 @@ def test_memory_cites_a_frame_of_the_file_before(tmp_path: Path, monkeypatch: py
         "[CHCF (8401) became protected: read 3 in frame #2 of a.bin, 16#8000 now]  CRC ok")
     status, out, err = run_cli(["--profile", "atv71", "a.bin", "c.bin"])
     assert out.splitlines()[-1].endswith("[CHCF (8401) became protected: read 3 in frame #2, 16#8000 now]  CRC ok")
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_report_empty_and_noise_files_between(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """An empty file and a file of line noise between two: the noise run is the noise file's frame 1, the
+    second exception b.bin's frame 4 (numbered on: x 9), and the empty file takes no number."""
+    use_engine(monkeypatch, pure)
+    monkeypatch.chdir(tmp_path)
+    for name, address in (("a.bin", "9999"), ("b.bin", "9998")):
+        (tmp_path / name).write_bytes(rtu("0C 03 20D1 0001") + rtu("0C 03 02 0003")
+                                      + rtu(f"0C 03 {address} 0001") + rtu("0C 83 02"))
+    (tmp_path / "empty.bin").write_bytes(b"")
+    (tmp_path / "noise.bin").write_bytes(b"\xff" * 300)
+    data, text = _page(["a.bin", "empty.bin", "noise.bin", "b.bin"], tmp_path / "bus.html")
+    assert data["inputs"] == [[0, "a.bin"], [4, "empty.bin"], [4, "noise.bin"], [5, "b.bin"]]
+    assert [event[:2] for event in data["events"]] == [[4.0, "exception"], [5.0, "noise"], [9.0, "exception"]]
+    assert "<td>#4 of a.bin</td><td>#4 of b.bin</td>" in text
+    assert "<td>300 bytes of noise at offset 0</td><td>1</td><td>#1 of noise.bin</td>" in text
