@@ -83,11 +83,15 @@ class RecordTrail:
     def pieces(self, item: Item) -> list[Piece] | None:
         """The item's pieces, the first at the item's time; None for one piece without comments."""
         start = item.offset
-        end = start + item.length
-        cuts: list[tuple[int, Any]] = []
-        parts = self._parts
+        end = start + len(item.raw)
+        parts, commented = self._parts, self._commented
         while len(parts) > 1 and parts[1][0] <= start:
             parts.popleft()
+        while commented and commented[0][1] <= start:
+            commented.popleft()
+        if (len(parts) < 2 or parts[1][0] >= end) and not (commented and commented[0][0] < end):
+            return None  # (within one chunk, no comment: the usual)
+        cuts: list[tuple[int, Any]] = []
         anchor = start  # where its first record must begin: the chunk's start (the module's docstring)
         if parts and parts[0][0] <= start:
             anchor = parts[0][0]
@@ -101,9 +105,6 @@ class RecordTrail:
             keys.discard(None)
             if len(keys) < 2:
                 cuts, anchor = [], start  # (no time changes inside: one record, a frame a packet)
-        commented = self._commented
-        while commented and commented[0][1] <= start:
-            commented.popleft()
         if not cuts and not (commented and commented[0][0] < end):
             return None
         bounds = [(0, item.time), *cuts, (item.length, None)]
