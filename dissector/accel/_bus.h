@@ -178,6 +178,7 @@ typedef struct {
     Time start, end;
     unsigned long long requests, first_frame, last_frame;
     long long offset;
+    unsigned first_input, last_input; /* the files of its first and last request (input below) */
 } Run;
 
 #define GAP_BINS (sizeof gap_edges_ms / sizeof *gap_edges_ms + 1)
@@ -192,6 +193,9 @@ typedef struct {
     Quantile gaps, turnaround, responses[256];
     unsigned long long histogram[GAP_BINS], below_t35, close[256];
     Run runs[256];
+    /* The file read, from 0 (bus_line's new inputs): several read as one bus number their frames each
+     * from 1, so an outage names the files of its frames (BusTiming.new_input). */
+    unsigned input;
     Run *outages; /* closed runs of two requests or more */
     size_t outage_count, outage_cap;
     Time first_seen, last_seen; /* StatsCollector.first_time, last_time */
@@ -295,11 +299,12 @@ static int bus_add(Tallies *tallies, Bus *b, const Time *t, long long length, in
         Run *run = &b->runs[slave];
         if (unanswered) {
             if (!run->active) {
-                *run = (Run){1, slave, *t, *t, 1, number, number, offset};
+                *run = (Run){1, slave, *t, *t, 1, number, number, offset, b->input, b->input};
             } else {
                 run->end = *t;
                 run->requests++;
                 run->last_frame = number;
+                run->last_input = b->input;
             }
         } else if (run->active && close_run(b, slave) < 0) {
             return -1;

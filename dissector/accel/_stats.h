@@ -619,7 +619,10 @@ static PyObject *stats_polls(Stats *st, PyObject *unused) {
 static PyObject *stats_bus_line(Stats *st, PyObject *args) {
     int fresh;
     if (!PyArg_ParseTuple(args, "dddp", &st->bus.char_time, &st->bus.t35, &st->bus.timeout, &fresh)) return NULL;
-    if (fresh) st->bus.has_last_end = st->bus.has_answer_end = 0;
+    if (fresh) {
+        st->bus.has_last_end = st->bus.has_answer_end = 0;
+        st->bus.input++;
+    }
     Py_RETURN_NONE;
 }
 
@@ -683,8 +686,9 @@ static PyObject *runs_value(const Run *runs, size_t count, int active_only) {
     for (size_t k = 0; rows != NULL && k < count; k++) {
         const Run *r = &runs[k];
         if (active_only && !r->active) continue;
-        PyObject *row = Py_BuildValue("(iNNKKKL)", r->slave, time_value(&r->start),
-                                      time_value(&r->end), r->requests, r->first_frame, r->last_frame, r->offset);
+        PyObject *row = Py_BuildValue("(iNNKKKLII)", r->slave, time_value(&r->start), time_value(&r->end),
+                                      r->requests, r->first_frame, r->last_frame, r->offset, r->first_input,
+                                      r->last_input);
         if (row == NULL || PyList_Append(rows, row) < 0) Py_CLEAR(rows);
         Py_XDECREF(row);
     }

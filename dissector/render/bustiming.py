@@ -42,6 +42,7 @@ from dissector.model import Item, Kind, stamped_before
 from dissector.protocol.rules import awaits_answer
 from dissector.framing.linespeed import LineSettings
 from dissector.render.describe import count_text
+from dissector.render.outages import Outage, Run, frames_cited
 from dissector.render.stats_store import Coarse
 
 RESOLUTION = 1e-5  # percentile buckets: 10 us
@@ -138,31 +139,6 @@ def _quantiles(low: float, high: float, buckets: dict[int, int] | None) -> Quant
 _KINDS = {Kind.REQUEST: 1, Kind.RESPONSE: 2, Kind.EXCEPTION: 3}
 
 
-@dataclass(slots=True)
-class Outage:
-    slave: int
-    start: float | None  # time of the first unanswered request
-    end: float | None  # time of the last
-    requests: int
-    first_frame: int
-    last_frame: int
-    offset: int = 0  # the first unanswered request's, in the input stream
-
-    def as_dict(self) -> dict[str, Any]:
-        return {"slave": self.slave, "start": self.start, "end": self.end, "requests": self.requests,
-                "first_frame": self.first_frame, "last_frame": self.last_frame}
-
-
-@dataclass(slots=True)
-class _Run:
-    start: float | None
-    end: float | None
-    requests: int
-    first_frame: int
-    last_frame: int
-    offset: int
-
-
 class Backwards:
     """Time going backwards, as BusTiming.add meets it: the items stamped before the item before them and
     the responses stamped before their request (counted only in BusTiming: their response time goes
@@ -198,13 +174,15 @@ class BusTiming:
     _response_tally: Coarse = field(default_factory=Coarse)  # the histograms of all of `responses`
     close_to_timeout: dict[int, int] = field(default_factory=dict)  # responses later than 90% of it
     outages: list[Outage] = field(default_factory=list)
-    _runs: dict[int, _Run] = field(default_factory=dict)
+    _runs: dict[int, Run] = field(default_factory=dict)
     _answer_end: float | None = None  # end of the last item when it was an answer
     backwards: Backwards = field(default_factory=Backwards)  # time going backwards
     # The compiled store (_summary.Stats, dissector/accel/_bus.h) that keeps all of the above while the
     # engine counts --stats (StatsCollector.engine_store): items go there, take_back() brings it here.
     store: Any = None
     inputs: int = 0  # files decoded (new_input): several are one bus, as mergecap joins them
+    titles: list[str] = field(default_factory=list)  # their names, as new_input has them
+    _input_base: int = 0  # the input the compiled store's count of them starts at (attach)
     modes: set[str] = field(default_factory=set)  # the framing of each (new_input): t3.5 judges RTU gaps only
     # Told once, at the end, of a line speed at which the items overlap (overlap_warning; a wrong --baud).
     warn: Callable[[str], object] | None = None
@@ -216,8 +194,12 @@ class BusTiming:
         self.mode = mode
         self.inputs += 1
         self.modes.add(mode)
+        if title is not None:
+            self.titles.append(title)
         if title is not None and stats is not None:
             stats.captures.append(title)
+        if stats is not None:  # (the poll cycle orders its rows by file too)
+            stats.poll.new_input()
         if settings is not None:
             self.settings = settings
         self.last_end = None
@@ -232,6 +214,7 @@ class BusTiming:
 
     def attach(self, store: Any) -> None:
         self.store = store
+        self._input_base = self.inputs - 1  # (its count of inputs starts at 0 here: -1 before any)
         store.bus_line(self.char_time, self._gap_floor, self.timeout, False)
 
     def take_back(self) -> None:
@@ -256,10 +239,13 @@ class BusTiming:
         self.responses = {slave: _quantiles(low, high, buckets.get(slave))
                           for slave, low, high, _close in state["responses"]}
         self.close_to_timeout = {slave: close for slave, _l, _h, close in state["responses"] if close}
-        self._runs = {slave: _Run(stamp(start), stamp(end), requests, first, last, offset)
-                      for slave, start, end, requests, first, last, offset in state["runs"]}
-        self.outages = [Outage(slave, stamp(start), stamp(end), requests, first, last, offset)
-                        for slave, start, end, requests, first, last, offset in state["outages"]]
+        base = self._input_base
+        self._runs = {slave: Run(stamp(start), stamp(end), requests, first, last, offset, base + one,
+                                  base + other)
+                      for slave, start, end, requests, first, last, offset, one, other in state["runs"]}
+        self.outages = [Outage(slave, stamp(start), stamp(end), requests, first, last, offset, base + one,
+                               base + other)
+                        for slave, start, end, requests, first, last, offset, one, other in state["outages"]]
         self.minutes = store.tallies(TALLY_MINUTES).get(0, {})
 
     @property
@@ -367,10 +353,12 @@ class BusTiming:
         slave = frame.slave
         run = self._runs.get(slave)
         if frame.unanswered:
+            here = self.inputs - 1
             if run is None:
-                self._runs[slave] = _Run(time, time, 1, frame.number, frame.number, frame.offset)
+                self._runs[slave] = Run(time, time, 1, frame.number, frame.number, frame.offset, here, here)
             else:
-                run.end, run.requests, run.last_frame = time, run.requests + 1, frame.number
+                run.end, run.requests = time, run.requests + 1
+                run.last_frame, run.last_input = frame.number, here
             return
         if run is not None:
             self._close(slave)
@@ -378,13 +366,15 @@ class BusTiming:
     def _close(self, slave: int) -> None:
         run = self._runs.pop(slave)
         if run.requests >= 2:
-            self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame, run.offset))
+            self.outages.append(Outage(slave, run.start, run.end, run.requests, run.first_frame, run.last_frame,
+                                       run.offset, run.first_input, run.last_input))
 
     def finish(self) -> None:
         self.take_back()
         for slave in sorted(self._runs):
             self._close(slave)
-        self.outages.sort(key=lambda outage: (outage.first_frame, outage.slave))
+        # in the order of time: several files read as one bus number their frames each from 1
+        self.outages.sort(key=lambda outage: (outage.first_input, outage.first_frame, outage.slave))
         warn, self.warn = self.warn, None  # once
         if warn is not None and (text := self.overlap_warning()) is not None:
             warn(text)
@@ -449,10 +439,15 @@ class BusTiming:
             "turnaround": None if turnaround is None else
             {key: turnaround[key] for key in ("count", "median", "p95", "max")},
             "responses": responses,
-            "outages": [outage.as_dict() for outage in self.outages],
+            "outages": [outage.as_dict(self.cited_titles()) for outage in self.outages],
             # time going backwards: items stamped before the item before them, responses before their request
             "backwards": {"items": self.backwards.items, "responses": self.backwards.responses} if self.timed else None,
         }
+
+    def cited_titles(self) -> list[str] | None:
+        """The files' names when several are read as one bus (each numbers its frames from 1), else None."""
+        titles = self.titles
+        return titles if len(titles) > 1 and len(titles) == self.inputs else None
 
     def untimed_text(self) -> str:
         """Why an input has no timing (report()'s `timed` false): UNHEARD when it gave no item, UNTIMED else."""
@@ -547,7 +542,7 @@ class BusTiming:
             for outage in data["outages"]:
                 lines.append(
                     f"  slave {outage['slave']} silent {show(outage['start'])} - {show(outage['end'])}, "
-                    f"{outage['requests']} requests unanswered (frames {outage['first_frame']}..{outage['last_frame']})"
+                    f"{outage['requests']} requests unanswered (frames {frames_cited(outage)})"
                 )
         else:
             lines.append("outages: none")

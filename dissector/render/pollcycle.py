@@ -17,10 +17,14 @@ Intervals are kept as a histogram of 100 us steps, so memory does not grow with 
 polls at a few distinct intervals; the keys' histograms hold MAX_TALLY entries together at most, then
 their steps are rounded down to multiples of 2**k: stats_store.Coarse); keys beyond MAX_KEYS are
 counted, not followed.
+Several files read as one bus number their frames each from 1: the rows are in the order of time, by
+file (the keys are made in the stream's order: how many there were as each file began says its file)
+then first frame.
 """
 from __future__ import annotations
 
 import math
+from bisect import bisect_right
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -55,10 +59,15 @@ class PollCycle:
         self._polls: dict[Key, _Poll] = {}
         self._intervals = Coarse()  # the keys' interval histograms, within MAX_TALLY entries together
         self.untracked = 0  # requests of keys beyond MAX_KEYS
+        self._inputs: list[int] = []  # the keys made as each file began (new_input)
 
     @property
     def empty(self) -> bool:
         return not self._polls and not self.untracked
+
+    def new_input(self) -> None:
+        """A file begins (BusTiming.new_input): the keys made from here on are its."""
+        self._inputs.append(len(self.store.polls()) if self.store is not None else len(self._polls))
 
     def add_request(self, frame: Frame) -> None:
         """A good request (CRC ok); its pairing (unanswered) must be final, as the sinks see it."""
@@ -107,7 +116,10 @@ class PollCycle:
             polls = [(key, _Poll(first, count, None, failed, intervals.get(order, {})),
                       timings.get(order))
                      for order, (key, first, count, failed) in enumerate(self.store.polls())]
-        for key, poll, timing in sorted(polls, key=lambda entry: entry[1].first_number):
+        inputs = self._inputs  # (by file, then first frame: each file numbers its frames from 1)
+        ordered = sorted(enumerate(polls),
+                         key=lambda entry: (bisect_right(inputs, entry[0]), entry[1][1].first_number))
+        for _order, (key, poll, timing) in ordered:
             if poll.count < MIN_REPEATS:
                 continue
             row: dict[str, Any] = {

@@ -9,6 +9,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from dissector.render.bustiming import UNHEARD, gap_bins
+from dissector.render.outages import frames_cited
 from dissector.render.report.collect import ReportCollector
 from dissector.render.stats_store import TABLE_NAMES
 from dissector.render.report.markup import _details, _esc, _ms, _table, cited
@@ -79,7 +80,7 @@ def bus_section(data: dict[str, Any], bus: Any, health: Any, when: Callable[[flo
         parts.append("<h3>Outages (two or more consecutive requests unanswered)</h3>" + _table(
             ["slave", "from", "to", "requests", "frames"],
             [[outage["slave"], when(outage["start"]), when(outage["end"]), outage["requests"],
-              f"#{outage['first_frame']}..#{outage['last_frame']}"] for outage in report["outages"]], "numbers"))
+              frames_cited(outage, "#")] for outage in report["outages"]], "numbers"))
     else:
         parts.append("<p>No outage: no slave left two consecutive requests unanswered.</p>")
     for entry in data["responses"]:
