@@ -102,3 +102,18 @@ def test_one_file_as_before(files: list[str]) -> None:
     status, out, err = run_cli(["--stats", "--json", "t1.pcap"])
     assert json.loads(out)["bus"]["outages"] == [{"slave": 1, "start": T0 + 0.43, "end": T0 + 0.53, "requests": 2,
                                                   "first_frame": 7, "last_frame": 8}]
+
+
+@BOTH
+def test_an_outage_over_two_files_cites_both(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    """s1.pcap ends with two requests unanswered and an FC8 04 (Force Listen Only Mode: no answer awaited, so
+    it neither counts nor ends the run); s2.pcap begins with two more: one outage of four, from s1.pcap's
+    frame 3 to s2.pcap's frame 2 (it said "frames 3..2")."""
+    use_engine(monkeypatch, pure)
+    monkeypatch.chdir(tmp_path)
+    _pcap(tmp_path / "s1.pcap", [A, A_ANSWER, A, A, rtu("01 08 0004 0000")], T0)
+    _pcap(tmp_path / "s2.pcap", [A, A, A, A_ANSWER], T0 + 60)
+    status, out, err = run_cli(["--stats", "s1.pcap", "s2.pcap"])
+    assert status == 0, err
+    assert _outage_lines(out) == [
+        "  slave 1 silent 0.110000 - 60.100000, 4 requests unanswered (frames 3 of s1.pcap..2 of s2.pcap)"]
