@@ -7107,6 +7107,13 @@ function story.tell(f)
   end
 end
 
+-- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
+-- device ignored it: Modbus over serial line 2.5.1.2): its values are shown, no status judged, no story
+-- told, no memory changed.
+local function verified(f)
+  return f.crc == f.crc_expected
+end
+
 -- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
 -- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
 -- (By address alone: the one profile here that follows parameters, the ATV71, reads its input registers as
@@ -7340,7 +7347,7 @@ local function annotate_list(st, f, device, registers, read)
 end
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
 M.plc_base, M.remember_list, M.remember_mask = plc_base, remember_list, remember_mask
-M.remember_writes, M.story, M.track, M.words_at = remember_writes, story, track, words_at
+M.remember_writes, M.story, M.track, M.verified, M.words_at = remember_writes, story, track, verified, words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -7980,7 +7987,7 @@ local explain_objects, ipairs, lane, math, pairs = explain_objects, ipairs, lane
 local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
 local refused_registers, register_at, remember_list = refused_registers, register_at, remember_list
 local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
-local span_label, string, table, words_at = span_label, string, table, words_at
+local span_label, string, table, track, verified, words_at = span_label, string, table, track, verified, words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
 local MASK_WRITES = DATA.rules.by_confirm.mask
@@ -7991,6 +7998,9 @@ local function annotate_with(st, f, b, device)
   if special_name ~= nil then f.function_text = special_name end
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
+  -- (a frame that failed its check: its values shown, nothing judged nor remembered)
+  local trusted = kind == REQUEST or verified(f)
+  local track = device.track and trusted
   if kind == REQUEST then
     check_request(f, device)
     check_writes(f, device)
@@ -7999,18 +8009,18 @@ local function annotate_with(st, f, b, device)
     return
   end
   local request = f.request
-  if kind == RESPONSE and device.track and CONFIRMED.answer[f.fn] and request ~= nil
+  if kind == RESPONSE and track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes
     -- before it reads).
     remember_writes(device.seen, f.number, request.registers, request.registers.b)
-  elseif kind == RESPONSE and device.track and MASK_WRITES[f.fn] and f.fields ~= nil then
+  elseif kind == RESPONSE and track and MASK_WRITES[f.fn] and f.fields ~= nil then
     remember_mask(device.seen, f.number, f.fields)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
-    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
+    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil and trusted)
+    if kind == RESPONSE and CONFIRMED.echo[f.fn] and track then
       remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
     end
   end
@@ -8116,7 +8126,9 @@ local function register_view(st, f, run, b, index)
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
     local status = run.status and run.status[index]
-    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+    -- (a frame that failed its check: none judged, not even ok)
+    if status == nil and f.kind == RESPONSE and verified(f) and READS[f.fn] ~= nil
+        and device.profile.protected_value ~= nil then
       status = "ok"
     end
     local words, second = words_at(device.rows, address, index, run.count), nil

@@ -320,7 +320,7 @@ class Annotator:
                 register.label = plc_label(plc, address)
             name_from_map(fresh, index, rows)
         protected = profile.protected_value if kind is _RESPONSE and function in _READS else None
-        if protected is not None:
+        if protected is not None and frame.crc_ok:  # (of a frame that failed its check: no status judged)
             multi = len(fresh) > 1
             for register in fresh:
                 if register.address is None:
@@ -408,14 +408,14 @@ class Annotator:
 
     def _annotate_frame(self, frame: Frame, device: Device) -> None:
         """The one annotate path: a frame, or a provisional frame's copy (_observe), with `device`."""
-        kind = frame.kind
-        function = frame.function
+        kind, function = frame.kind, frame.function
         special_name = device.profile.function_names.get(function)
         if special_name is not None:
             frame.function_text = special_name
         if device.plc is not None and frame.start is not None:
             _span_label(frame, device)
         events: list[Event] = []
+        trusted = frame.crc_ok  # (a frame that failed its check tells nothing of parameters: memory.py)
         if kind is _REQUEST:
             if frame.broadcast or function not in device.unchecked:
                 if frame.broadcast or not within_limits(frame, device):
@@ -428,15 +428,15 @@ class Annotator:
             if events:
                 frame.notes.extend(tell(events))
             return
-        elif device.track and function in _BY_ANSWER:
+        elif device.track and trusted and function in _BY_ANSWER:
             remember_answered(frame, device)  # (FC23 writes before it reads)
-        elif device.track and CONFIRM.get(function) is Confirm.MASK:
+        elif device.track and trusted and CONFIRM.get(function) is Confirm.MASK:
             remember_mask(frame, device, self.masked)
         registers = frame.registers
         if registers:
-            read = kind is _RESPONSE and function in _READS
+            read = kind is _RESPONSE and function in _READS and trusted
             self._annotate(frame, device, registers, read, events)
-            if kind is _RESPONSE and function in _BY_ECHO and device.track:
+            if kind is _RESPONSE and function in _BY_ECHO and device.track and trusted:
                 remember_writes(frame, device, registers)
             if events:
                 frame.notes.extend(tell(events))

@@ -7,6 +7,9 @@ The memory is the Device's `seen` dict, which the compiled summary path also kee
 whose input registers are a table of their own (profile input_registers "separate") keeps theirs apart
 (Device.memory: FC4's 8401 is not FC3's; the compiled path hands such reads to the annotator). Of several
 files read as one bus, the frames of a file read before are cited with it (cite_from).
+A frame that failed its check was ignored by the device (Modbus over serial line 2.5.1.2; SEL-749M p. D.3:
+"the check fails and the message is ignored"): its values are shown, but the annotator judges no status
+of them, tells no story and changes no memory (as --stats and --watch skip it).
 """
 from __future__ import annotations
 

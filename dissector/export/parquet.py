@@ -191,8 +191,8 @@ class CaptureTables:
 
     def _status(self, row: dict[str, Any], time: int | None) -> None:
         """A parameter that turns unreadable (its status) or readable again: reads and exceptions."""
-        if row["access"] not in ("read", "exception") or row["address"] is None:
-            return
+        if row["access"] not in ("read", "exception") or row["address"] is None or row["status"] is None:
+            return  # (no status: none judged, as of a frame that failed its check: it tells nothing)
         slave, function = row["slave"], row["function"]
         tables = self.register_tables
         table = register_table(function) if tables is None else tables(slave)[function]

@@ -13,6 +13,9 @@ local function annotate_with(st, f, b, device)
   if special_name ~= nil then f.function_text = special_name end
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
+  -- (a frame that failed its check: its values shown, nothing judged nor remembered)
+  local trusted = kind == REQUEST or verified(f)
+  local track = device.track and trusted
   if kind == REQUEST then
     check_request(f, device)
     check_writes(f, device)
@@ -21,18 +24,18 @@ local function annotate_with(st, f, b, device)
     return
   end
   local request = f.request
-  if kind == RESPONSE and device.track and CONFIRMED.answer[f.fn] and request ~= nil
+  if kind == RESPONSE and track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes
     -- before it reads).
     remember_writes(device.seen, f.number, request.registers, request.registers.b)
-  elseif kind == RESPONSE and device.track and MASK_WRITES[f.fn] and f.fields ~= nil then
+  elseif kind == RESPONSE and track and MASK_WRITES[f.fn] and f.fields ~= nil then
     remember_mask(device.seen, f.number, f.fields)
   end
   local registers = f.registers
   if registers ~= nil and registers.count > 0 then
-    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil)
-    if kind == RESPONSE and CONFIRMED.echo[f.fn] and device.track then
+    annotate_registers(f, device, registers, b, kind == RESPONSE and READS[f.fn] ~= nil and trusted)
+    if kind == RESPONSE and CONFIRMED.echo[f.fn] and track then
       remember_writes(device.seen, f.number, registers, b) -- ([confirm] "echo": FC6's own values)
     end
   end
@@ -138,7 +141,9 @@ local function register_view(st, f, run, b, index)
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
     local status = run.status and run.status[index]
-    if status == nil and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil then
+    -- (a frame that failed its check: none judged, not even ok)
+    if status == nil and f.kind == RESPONSE and verified(f) and READS[f.fn] ~= nil
+        and device.profile.protected_value ~= nil then
       status = "ok"
     end
     local words, second = words_at(device.rows, address, index, run.count), nil
