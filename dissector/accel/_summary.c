@@ -1146,8 +1146,9 @@ static int never_answered_request(const uint8_t *f, Py_ssize_t length) {
     return 0;
 }
 
-/* Does answer a repeat of request q what the spec has it echo ([pairing] echo: FC8's sub-function)? One that
- * does not answers nothing (pairing.py echoes). */
+/* Does answer a repeat of request q what the spec has it echo ([pairing] echo: FC8's sub-function), both
+ * holding it whole? Otherwise the Python stages decide (answer_to hands over): pairing.py _echoes weighs the
+ * bytes of it both hold. */
 static int echoes(const uint8_t *b, const FrameRef *q, const FrameRef *a) {
     for (int k = 0; k < ECHOES; k++) {
         Py_ssize_t count = answer_echo[k][1];

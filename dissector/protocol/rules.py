@@ -12,7 +12,7 @@ import string
 from dataclasses import dataclass
 from enum import StrEnum
 
-from dissector.model import Frame, Kind
+from dissector.model import Frame
 from dissector.protocol.spec import SPEC
 
 REQUEST_PREFIX = "request."  # a window value taken from the request a frame answers
@@ -269,8 +269,3 @@ def echoed(request: Frame) -> bytes:
     count = ECHO.get(request.function)
     return request.pdu[1 : 1 + count] if count is not None else b""
 
-
-def echoes(request: Frame, answer: Frame) -> bool:
-    """Does a normal answer repeat what the spec has it repeat of its request (an FC8 sub-function)?"""
-    count = ECHO.get(request.function)
-    return count is None or answer.kind is not Kind.RESPONSE or request.pdu[1 : 1 + count] == answer.pdu[1 : 1 + count]

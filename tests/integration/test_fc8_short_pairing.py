@@ -5,7 +5,7 @@ framer's _awaited and lua/src/layouts.lua await_echo alike). A frame that holds 
 and function, as every malformed frame does (an FC3 request too short for its quantity is answered) and as
 tshark's mbrtu pairs (unit and function alone).
 - 01 08 / 01 08 00 (10 ms apart): vw3-decode said `[no response]` and `[no request] [response without a matching
-  request]` (rules.echoes compared b"" with b"\\x00"); the plugin paired them. Now both pair them.
+  request]` (the echo check then compared b"" with b"\\x00"); the plugin paired them. Now both pair them.
 - 01 08 00 / 01 08 01: they disagree on the byte both hold: vw3-decode's framer read the second as the master's
   next request; the plugin's (await_echo kept no echo for a request too short for it) read it as the answer and
   paired it. Now both read two requests."""
