@@ -48,8 +48,13 @@ class Dissector:
         # A file: asked at its end when its tap last recorded, later than its last bytes where another
         # bus's records (a pcapng's other interfaces) or an empty record went on (Source.recorded_until).
         self.recorded = recorded
+        # --hex: the typed bytes put back in frames framed from mended ones (app/hexinput.py HexInput.fix),
+        # before they are decoded: a CRC typed bad is judged bad by the annotator as by every output.
+        self.fix: Callable[[list[Item]], list[Item]] | None = None
 
     def _finish_items(self, items: list[Item]) -> list[Item]:
+        if self.fix is not None:
+            items = self.fix(items)
         annotate = self.annotate
         gaps = self.gaps
         for item in items:

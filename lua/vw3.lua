@@ -7362,7 +7362,7 @@ local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, RE
 local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
 local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
 local plc_base, say, span_name, story, tonumber, track, u16 = plc_base, say, span_name, story, tonumber, track, u16
-local warn = warn
+local verified, warn = verified, warn
 
 -- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
 -- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
@@ -7533,7 +7533,8 @@ local function explain_exception(f, device)
     for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
       causes = concat(texts, " or ") }))
-  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
+  -- (a frame that failed its check tells nothing of the parameters, devices/memory.py: only the code's meaning)
+  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil and verified(f)
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(f, device)
     story.tell(f)

@@ -401,7 +401,7 @@ def _decode_inputs(
                 for warning in take_warnings():
                     env.stderr.write(f"{PROG}: warning: {shown(warning)}\n")
 
-            choose_profiles_first(annotate, args, chunks, mode, path, again, line.baud)
+            choose_profiles_first(annotate, args, chunks, mode, path, again, line.baud, fix)
             framer = AsciiFramer(line.baud) if mode == "ascii" else RtuFramer(line.baud)  # (its silences: evidence)
             dissector = Dissector(
                 framer=framer,

@@ -313,15 +313,16 @@ def tell_comments(sinks: Any, path: str | None, stderr: Any) -> None:
 
 
 def choose_profiles_first(annotate: Any, args: DecodeOptions, chunks: Iterable[Chunk], mode: str,
-                          path: str | None, again: Callable[[], Any] | None, baud: int) -> None:
+                          path: str | None, again: Callable[[], Any] | None, baud: int,
+                          fix: Callable[[list[Any]], list[Any]] | None = None) -> None:
     """Profile `auto`: the choices made over the whole input first, where it can be read twice (`again`:
-    inputs)."""
+    inputs; `fix`: --hex's typed bytes put back, preselect.choose_profiles)."""
     if getattr(annotate, "selector", None) is None:
         return
     from dissector.app.preselect import choose_profiles
 
     if path is None:  # --hex: its chunks are a list
-        choose_profiles(annotate, chunks, mode, baud, args.timeout)  # type: ignore[arg-type]
+        choose_profiles(annotate, chunks, mode, baud, args.timeout, fix)  # type: ignore[arg-type]
     elif again is not None:
         with again() as reread:
             choose_profiles(annotate, reread, mode, baud, args.timeout)  # type: ignore[arg-type]

@@ -18,13 +18,17 @@ def decode_chunks(
     warn: Callable[[], None] = lambda: None,
     fix: Callable[[list[Item]], list[Item]] = lambda items: items,
 ) -> None:
-    for chunk in chunks:
-        sinks.accept(fix(dissector.feed(chunk)))
+    dissector.fix = fix  # (before the frames are decoded and annotated: Dissector.fix; this input's only)
+    try:
+        for chunk in chunks:
+            sinks.accept(dissector.feed(chunk))
+            warn()
+            if sinks.done:
+                return
+        sinks.accept(dissector.finish())
         warn()
-        if sinks.done:
-            return
-    sinks.accept(fix(dissector.finish()))
-    warn()
+    finally:
+        dissector.fix = None
 
 
 def _drop(lines: bytes) -> None:

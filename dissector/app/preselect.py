@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import os
 import stat
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 
 from dissector.decode.fields import decode_frame
 from dissector.decode.pairing import Pairer
@@ -42,9 +42,11 @@ def rereadable(path: str | None) -> bool:
 
 
 def choose_profiles(
-    annotate: Annotator, chunks: Iterable[Chunk], mode: str, baud: int | None, timeout: float | None
+    annotate: Annotator, chunks: Iterable[Chunk], mode: str, baud: int | None, timeout: float | None,
+    fix: Callable[[list[Item]], list[Item]] | None = None,
 ) -> None:
-    """The first pass over `chunks`; the annotator is then frozen on the choices it made."""
+    """The first pass over `chunks`; the annotator is then frozen on the choices it made. `fix`: --hex's
+    typed bytes put back (app/hexinput.py HexInput.fix): a CRC typed bad is no evidence."""
     selector = annotate.selector
     if selector is None:
         return
@@ -56,7 +58,7 @@ def choose_profiles(
     observe = selector.observe
 
     def judge(items: list[Item]) -> None:
-        for item in items:
+        for item in items if fix is None else fix(items):
             if not isinstance(item, Frame):
                 continue
             slave = item.slave
@@ -66,7 +68,7 @@ def choose_profiles(
                 decode_frame(item)
             observe(item)
 
-    if mode == "rtu":
+    if mode == "rtu" and fix is None:
         from dissector.accel import preselect as compiled  # the same pass, framed in C (issue 28)
 
         if compiled.choose(annotate, chunks, framer, pairer, judge, timeout):

@@ -45,7 +45,8 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
             note = text("exception_cause", code=code, device=profile.device, name=name, causes=causes_text)
             _remember(device.explained, key, note)
         frame.notes.append(note)  # type: ignore[arg-type]
-    elif all_unreadable and request is not None and request.start is not None and request.quantity:
+    elif (all_unreadable and frame.crc_ok  # (a frame that failed its check tells nothing of parameters: memory.py)
+          and request is not None and request.start is not None and request.quantity):
         _all_unreadable(frame, device, request, events)
     elif code in profile.exceptions:
         meaning = device_meaning(profile, function, code)

@@ -173,7 +173,8 @@ local function explain_exception(f, device)
     for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
       causes = concat(texts, " or ") }))
-  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil
+  -- (a frame that failed its check tells nothing of the parameters, devices/memory.py: only the code's meaning)
+  elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil and verified(f)
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then
     all_unreadable(f, device)
     story.tell(f)

@@ -64,7 +64,8 @@ def test_vw3_decode_tells_no_story_from_a_bad_crc(tmp_path: Path, monkeypatch: p
     assert status == 0, err
     detail = out.split("Frame 4:")[1].split("Frame 5:")[0]
     assert "Status:" not in detail and "Note:" not in detail
-    shown = "        Register 8401: 32768 (0x8000)  CHCF [Profile]\n            Value: 32768 (not a listed value)\n"
+    shown = ("        Register 8401: 32768 (0x8000)  CHCF [Profile]\n"
+             "            Value: 32768 (not a listed value)\n")
     assert shown in detail
     status, out, err = run_cli([str(capture), "--profile", "atv71", "-T", "registers"])
     assert status == 0, err
@@ -86,7 +87,8 @@ def test_parquet_has_no_event_from_a_bad_crc(tmp_path: Path) -> None:
         f"SELECT kind, frame FROM read_parquet('{tables}/events/*.parquet') ORDER BY frame").fetchall()
     assert events == [("non-existent", 2), ("crc", 4)]  # (8400, unmapped: non-existent from the first read)
     statuses = duckdb.connect().execute(
-        f"SELECT frame, address, status FROM read_parquet('{tables}/registers/*.parquet') ORDER BY frame, address"
+        f"SELECT frame, address, status FROM read_parquet('{tables}/registers/*.parquet') "
+        "ORDER BY frame, address"
     ).fetchall()
     assert statuses == [(2, 8400, "non-existent"), (2, 8401, "ok"), (2, 8402, "ok"),
                         (4, 8400, None), (4, 8401, None), (4, 8402, None),
@@ -125,3 +127,51 @@ def test_the_plugin_judges_no_status_on_noisy_bus_frame_17(two_pass: bool) -> No
                       "-Y", "frame.number == 17", two_pass=two_pass)
     assert done.returncode == 0, done.stderr
     assert done.stdout.splitlines() == ["17|409,9664,486,519|,,,"]
+
+
+# An exception 02 to a read of 8401..8402, its CRC 00 00 (the ATV71's answer when every parameter read is
+# unreadable, p.38): its code's meaning only, no parameter named protected, no story; before, `8401..8402
+# became protected (2): read in frame #2, exception 02 now` and frame 6 `readable again`.
+BAD_EXCEPTION = [REQUEST, READ_3, "0C 03 20 D1 00 02 9E EF", "0C 83 02 00 00", REQUEST, READ_3]
+MEANING = ("exception 02 from the VW3 A3 303: address does not exist (also: every parameter read is "
+           "non-existent or protected)")
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_a_bad_crc_exception_02_tells_no_story(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                               pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    status, out, err = run_cli([str(_capture(tmp_path, BAD_EXCEPTION)), "--profile", "atv71", "--json"])
+    assert status == 0, err
+    records = [json.loads(line) for line in out.splitlines()]
+    assert [(record["notes"], record.get("registers")) for record in records[3:6:2]] == [
+        ([MEANING], None), ([], records[1]["registers"])]
+
+
+@pytest.mark.parametrize("two_pass", [False, True])
+def test_the_plugin_tells_no_story_from_a_bad_crc_exception(tmp_path: Path, two_pass: bool) -> None:
+    done = run_tshark(_capture(tmp_path, BAD_EXCEPTION), "-o", "vw3.profiles:atv71", "-T", "fields",
+                      "-E", "separator=|", "-e", "frame.number", "-e", "vw3.note", "-e", "vw3.reg.status",
+                      two_pass=two_pass)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.splitlines() == ["1||", "2||non-existent,ok,ok", "3||", f"4|{MEANING}|", "5||",
+                                        "6||non-existent,ok,ok"]
+
+
+def test_hex_a_crc_typed_bad_is_judged_bad(tmp_path: Path) -> None:
+    """--hex frames a CRC typed bad as the frame it mends (app/hexinput.py) and puts the typed bytes back
+    before the frame is decoded (pipeline.Dissector.fix) and before profile `auto` judges it: the story
+    and the evidence are as of the pcap (the hunt's repro; before, frame 4 `CHCF (8401) became protected`, the
+    profile `traffic fits its map ... in frames #2 and #4`)."""
+    hexes = [argument for frame in BAD_ANSWER for argument in ("--hex", frame)]
+    status, out, err = run_cli(hexes)
+    assert status == 0, err
+    lines = out.splitlines()
+    typo = " [warning: CRC bad: received 0x0000, expected 0x24CE (on the wire 00 00 typed, CE 24 expected)]"
+    assert lines[3] == ("     4            -" + ANSWER + SHOWN + " [#3]" + typo
+                        + "  CRC BAD (received 0x0000, expected 0x24CE)")
+    assert lines[5] == "     6            -" + ANSWER + GOOD + " [#5]  CRC ok"
+    status, out, err = run_cli(hexes + ["-V"])
+    assert status == 0, err
+    assert ("Profile: atv71 (traffic fits its map: function 3 at 8400..8402 in frames #2 and #6; 16#8000 at "
+            "8400, its answer for a non-existent parameter)") in out
