@@ -406,7 +406,9 @@ def _body_lines(detail: _Detail, frame: Frame) -> None:
         add(line)
     else:
         style = "vw3.crc.ok" if frame.crc_ok else "vw3.crc.bad"
-        detail.styled(f"        {'LRC' if frame.mode == 'ascii' else 'CRC'}: 0x{frame.crc:04X} [{crc_text(frame)}]", style)
+        # (an ASCII frame's LRC is one byte: shown as one, as the plugin's tree and Wireshark's do)
+        check, width = ("LRC", 2) if frame.mode == "ascii" else ("CRC", 4)
+        detail.styled(f"        {check}: 0x{frame.crc:0{width}X} [{crc_text(frame)}]", style)
 
 
 def _build(item: Item, base: float | None, joined: bool) -> _Detail:

@@ -139,7 +139,7 @@ def test_lost_lf_detail_and_json(monkeypatch: pytest.MonkeyPatch) -> None:
         "        Function: 3 (0x03) Read Holding Registers",
         "        Start: 8400 (0x20D0)",
         "        Quantity: 3 (0x3)",
-        "        LRC: 0x00FE [LRC ok]",
+        "        LRC: 0xFE [LRC ok]",
         "    Response in frame: 2",
         f"    Warning: {LOST_LF}",
     ]
@@ -160,7 +160,7 @@ def test_cut_response_detail_and_json(monkeypatch: pytest.MonkeyPatch) -> None:
         f"    Reason: {reason}",
     ]
     # (the slave did answer, the capture ends inside it: not "No response")
-    assert tree.split("\n\n")[0].splitlines()[-2:] == ["        LRC: 0x00FE [LRC ok]", f"    Note: {reason}"]
+    assert tree.split("\n\n")[0].splitlines()[-2:] == ["        LRC: 0xFE [LRC ok]", f"    Note: {reason}"]
     request, noise = (json.loads(row) for row in both(data, ["--json"], monkeypatch).splitlines())
     assert (request["unanswered"], request["notes"]) == (False, [reason])
     assert (noise["kind"], noise["offset"], noise["length"], noise["reason"]) == ("noise", 17, 15, reason)
