@@ -81,6 +81,14 @@ local DATA = {
       [0] = "OFF",
       [255] = "ON",
     },
+    ["device_id_conformity"] = {
+      [1] = "basic, stream access only",
+      [2] = "regular, stream access only",
+      [3] = "extended, stream access only",
+      [129] = "basic, stream and individual access",
+      [130] = "regular, stream and individual access",
+      [131] = "extended, stream and individual access",
+    },
   },
   ["framing"] = {
     ["max_adu"] = 256,
@@ -1729,6 +1737,7 @@ local DATA = {
         ["title"] = "Conformity",
         ["help"] = "FC43/14's conformity level",
         ["base"] = "DEC_HEX",
+        ["values"] = "device_id_conformity",
       },
       {
         ["abbr"] = "vw3.mei.more_follows",
@@ -8897,7 +8906,8 @@ local pf = {}
 for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
-  if type(values) == "string" then values = VALUES[values] end
+  -- (else a [names] table of data/modbus.toml: FC43/14's conformity levels)
+  if type(values) == "string" then values = VALUES[values] or DATA.names[values] end
   if f.plain then -- (a constructor of (abbr, title, help): codegen/fields_lua.py PLAIN)
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
   else

@@ -2,6 +2,9 @@
 from __future__ import annotations
 
 import re
+import tomllib
+from functools import cache
+from importlib import resources
 from typing import Any, Callable
 
 from dissector.model import DeviceObject, Frame, Kind, Register
@@ -15,6 +18,26 @@ MAX_FIFO_VALUES = 8  # FIFO values a summary shows
 # codegen/fields_lua.py info_forms)
 UNKNOWN_SUBFUNCTION = "unknown sub-function"
 _FUNCTION_NAMES = SPEC.functions
+
+@cache
+def value_names() -> dict[str, dict[int, str]]:
+    """{PDU field key: its values' names} (FC43's `mei_type`, `read_code`, `conformity`): the `values` that
+    data/pdu_fields.toml gives the plugin's fields, so vw3-decode -V and --json name them as its tree does. A
+    table is the spec's (data/modbus.toml [mei_types], [device_id_codes]) or one of its [names]."""
+    text = resources.files("dissector").joinpath("data/pdu_fields.toml").read_text(encoding="utf-8")
+    tables = {"mei_types": SPEC.mei_types, "device_id_codes": SPEC.device_id_codes, **SPEC.names}
+    names: dict[str, dict[int, str]] = {}
+    for entry in tomllib.loads(text)["field"]:
+        if "values" in entry:
+            for pdu in entry["pdu"]:
+                names[pdu.split(".")[1]] = tables[entry["values"]]
+    return names
+
+
+def named_value(table: dict[int, str], value: int) -> str:
+    """`Read Device Identification (14)`, `Unknown (9)`: a named value as Wireshark writes it."""
+    return f"{table.get(value, 'Unknown')} ({value})"
+
 
 
 def count_text(count: int, noun: str) -> str:

@@ -18,7 +18,7 @@ from dissector.model import BitList, Frame, Item, Kind, Noise, Register, Registe
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
 from dissector.protocol.printable import printable
-from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text
+from dissector.render.describe import UNKNOWN_SUBFUNCTION, count_text, named_value, value_names
 from dissector.render.summary import check_untyped, crc_text, noise_info
 from dissector.render.timefmt import whole_micros
 
@@ -262,7 +262,8 @@ def _field_lines(detail: _Detail, depth: int, name: str, value: Any) -> None:
     elif isinstance(value, bytes):
         texts.append(f"{label}: {value.hex(' ') or '(empty)'}")
     elif isinstance(value, int) and not isinstance(value, bool):
-        texts.append(f"{label}: {value} (0x{value:X})")
+        names = value_names().get(name)  # (the plugin's value strings: `Read code: basic (1)`)
+        texts.append(f"{label}: {value} (0x{value:X})" if names is None else f"{label}: {named_value(names, value)}")
     else:
         texts.append(f"{label}: {value}")
 
@@ -357,7 +358,9 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
                     if len(lines) >= _INT_FIELD_LINES_MAX:
                         lines.clear()
                     label = "        " + field_label(key, function)
-                    line = lines[kept, value] = f"{label}: {value} (0x{value:X})"
+                    names = value_names().get(key)
+                    shown = f"{value} (0x{value:X})" if names is None else named_value(names, value)
+                    line = lines[kept, value] = f"{label}: {shown}"
                 add(line)
                 continue
             if key == "trailing" and not value:

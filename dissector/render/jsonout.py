@@ -14,6 +14,7 @@ from typing import Any, TextIO
 from dissector.model import Bit, BitList, Frame, Item, Kind, Noise, Register, RegisterList
 from dissector.protocol.spec import SPEC
 from dissector.render.runs import AddressPieces, BitRuns, Pieces, interleave
+from dissector.render.describe import value_names
 from dissector.render.summary import check_untyped
 
 
@@ -326,6 +327,9 @@ def _fields_json(fields: dict[str, Any]) -> str:
             name = keys[key] = _json_string(key) + ": "
         if type(inner) is int:  # the common case, inline
             add(f"{name}{inner}")
+            names = value_names().get(key)
+            if names is not None:  # (FC43's `"mei_type_name": "Read Device Identification"` beside the number)
+                add(f"{_json_string(key + '_name')}: {_json_value(names.get(inner))}")
         elif key != "trailing" or inner:
             add(name + _json_value(inner))
     return "{" + ", ".join(texts) + "}"
@@ -406,11 +410,15 @@ def item_to_json(item: Item, extra: dict[str, Any] | None = None) -> str:
 def _plain(value: Any) -> Any:
     """Construct containers to JSON-friendly values (bytes as lowercase hex)."""
     if isinstance(value, dict):
-        return {
-            key: _plain(inner)
-            for key, inner in value.items()
-            if not key.startswith("_") and not (key == "trailing" and not inner) and inner is not None
-        }
+        out = {}
+        for key, inner in value.items():
+            if key.startswith("_") or (key == "trailing" and not inner) or inner is None:
+                continue
+            out[key] = _plain(inner)
+            names = value_names().get(key)
+            if names is not None and type(inner) is int:  # the value's name beside it (null: none known)
+                out[key + "_name"] = names.get(inner)
+        return out
     if isinstance(value, list):
         if value and type(value[0]) is int:  # register values: a list of ints, nothing to convert
             return list(value)

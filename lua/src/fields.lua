@@ -23,7 +23,8 @@ local pf = {}
 for _, f in ipairs(DATA.fields.fields) do
   local name = string.gsub(string.sub(f.abbr, 5), "%.", "_")
   local values = f.values
-  if type(values) == "string" then values = VALUES[values] end
+  -- (else a [names] table of data/modbus.toml: FC43/14's conformity levels)
+  if type(values) == "string" then values = VALUES[values] or DATA.names[values] end
   if f.plain then -- (a constructor of (abbr, title, help): codegen/fields_lua.py PLAIN)
     pf[name] = ProtoField[f.ftype](f.abbr, f.title, f.help)
   else

@@ -87,7 +87,8 @@ TREES: list[tuple[str, list[str]]] = [
         "    MEI type: Read Device Identification (14)", "    Read code: basic (1)", "    Object id: 0"]),
     ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response Read Device Identification, basic: "
      "VendorName='ABC' ProductCode='XY' MajorMinorRevision='1000'", [
-        "    MEI type: Read Device Identification (14)", "    Read code: basic (1)", "    Conformity: 1 (0x01)",
+        "    MEI type: Read Device Identification (14)", "    Read code: basic (1)",
+        "    Conformity: basic, stream access only (1)",
         "    More follows: 0 (0x00)", "    Next object id: 0", "    Object count: 3",
         "    VendorName: 'ABC'", "        Object id: 0", "        [Name: VendorName]", "        Value: ABC",
         "    ProductCode: 'XY'", "        Object id: 1", "        [Name: ProductCode]", "        Value: XY",

@@ -163,7 +163,8 @@ def test_fc24_read_fifo_queue() -> None:
 def test_fc43_mei13_and_unknown_function_are_framed_by_crc() -> None:
     items = decode(rtu("01 2B 0D 00 01 02 03") + rtu("01 64 01 02 03 04 05") + rtu("01 03 0000 0001"))
     assert [item["length"] for item in items] == [9, 9, 8]
-    assert items[0]["fields"] == {"mei_type": 13, "body": {"data": "00010203"}}
+    assert items[0]["fields"] == {"mei_type": 13, "mei_type_name": "CANopen General Reference",
+                                   "body": {"data": "00010203"}}
     assert items[1]["function_name"] == "User-defined function 100"
     assert items[1]["fields"] == {"data": "0102030405"}
 

@@ -56,7 +56,8 @@ def test_p32_device_identification() -> None:
     request, response = decode(DEVICE_ID_REQUEST + DEVICE_ID_RESPONSE)
     assert request["kind"] == "request"
     assert request["function"] == 43
-    assert request["fields"] == {"mei_type": 14, "body": {"read_code": 1, "object_id": 0}}
+    assert request["fields"] == {"mei_type": 14, "mei_type_name": "Read Device Identification",
+                                 "body": {"read_code": 1, "read_code_name": "basic", "object_id": 0}}
     assert response["kind"] == "response"
     assert response["length"] == 55
     assert response["crc_ok"] is True
