@@ -6126,14 +6126,18 @@ local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
   if f.slave > MAX_SLAVE then warn(f, say("reserved_slave", { slave = f.slave })) end
   if f.kind == EXCEPTION then
+    -- (its layout's reader: no code is malformed, bytes after it trailing, as decode/fields.py says)
+    local used, why = PARSERS.exception(b, d, len)
     f.fields = {}
+    if used == nil then
+      warn(f, say("malformed", { kind = f.kind, error = why }))
+      return
+    end
     f.exception_code = b[d]
     if EXCEPTIONS[f.exception_code] == nil then
       warn(f, say("unknown_exception", { code = f.exception_code }))
     end
-    -- (bytes after the code: its layout's reader consumed one, decode/fields.py's trailing)
-    local used = PARSERS.exception(b, d, len)
-    if used ~= nil and used < len then warn(f, say("trailing", { count = len - used })) end
+    if used < len then warn(f, say("trailing", { count = len - used })) end
     return
   end
   local used, fields = (GRAMMARS[f.kind][f.fn] or PARSERS.raw)(b, d, len)
@@ -9360,7 +9364,9 @@ local function summary(f, tvb)
   if steps ~= nil then steps = steps[kind] end
   local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
   if kind == EXCEPTION then -- (by the spec, as vw3-decode's summary; the device's meaning: its note)
-    kind = kind .. " " .. DECIMAL[f.exception_code] .. " (" .. exception_name(f.exception_code) .. ")"
+    -- (no code, a malformed exception: `?`, as describe.py's summary)
+    local code = f.exception_code and DECIMAL[f.exception_code] or "?"
+    kind = kind .. " " .. code .. " (" .. exception_name(f.exception_code) .. ")"
   end
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)
@@ -9616,8 +9622,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
-    add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
+    local code = f.exception_code -- (nil: none, a malformed exception)
+    if full and code ~= nil then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code) end
+    add_text(t, ex.exception, format("Exception %s: %s", code or "?", f.exception_meaning or exception_name(code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
       if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end

@@ -341,7 +341,8 @@ def _head_lines(detail: _Detail, frame: Frame) -> None:
         add(f"        Function: {function} (0x{function:02X}) {function_text}")
     if kind is _EXCEPTION:
         exception = frame.exception_code
-        detail.styled(f"        Exception: {exception} {SPEC.exception_name(exception)}", "vw3.exception")
+        shown = "?" if exception is None else exception  # (none: a malformed exception, as its summary)
+        detail.styled(f"        Exception: {shown} {SPEC.exception_name(exception)}", "vw3.exception")
         if frame.exception_text is not None:
             detail.styled(f"        Meaning on this device: {frame.exception_text}", "vw3.exception")
     elif frame.fields is not None:

@@ -270,14 +270,18 @@ local function decode_frame(f)
   local b, d, len = f.b, f.data_at, f.data_len
   if f.slave > MAX_SLAVE then warn(f, say("reserved_slave", { slave = f.slave })) end
   if f.kind == EXCEPTION then
+    -- (its layout's reader: no code is malformed, bytes after it trailing, as decode/fields.py says)
+    local used, why = PARSERS.exception(b, d, len)
     f.fields = {}
+    if used == nil then
+      warn(f, say("malformed", { kind = f.kind, error = why }))
+      return
+    end
     f.exception_code = b[d]
     if EXCEPTIONS[f.exception_code] == nil then
       warn(f, say("unknown_exception", { code = f.exception_code }))
     end
-    -- (bytes after the code: its layout's reader consumed one, decode/fields.py's trailing)
-    local used = PARSERS.exception(b, d, len)
-    if used ~= nil and used < len then warn(f, say("trailing", { count = len - used })) end
+    if used < len then warn(f, say("trailing", { count = len - used })) end
     return
   end
   local used, fields = (GRAMMARS[f.kind][f.fn] or PARSERS.raw)(b, d, len)

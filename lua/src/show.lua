@@ -210,8 +210,9 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   end
   if full and f.broadcast then t:add(pf.broadcast, whole, true):set_generated() end
   if f.kind == EXCEPTION then
-    if full then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), f.exception_code) end
-    add_text(t, ex.exception, format("Exception %d: %s", f.exception_code, f.exception_meaning or exception_name(f.exception_code)))
+    local code = f.exception_code -- (nil: none, a malformed exception)
+    if full and code ~= nil then t:add(pf.exception_code, frame_range(tvb, f, 2, 1), code) end
+    add_text(t, ex.exception, format("Exception %s: %s", code or "?", f.exception_meaning or exception_name(code)))
     if full then
       t:add(pf.exception_name, whole, exception_name(f.exception_code)):set_generated()
       if f.exception_meaning then t:add(pf.exception_meaning, whole, f.exception_meaning):set_generated() end

@@ -363,7 +363,9 @@ local function summary(f, tvb)
   if steps ~= nil then steps = steps[kind] end
   local slave, name = DECIMAL[f.slave], f.function_text or FUNCTIONS[fn] or function_name(fn)
   if kind == EXCEPTION then -- (by the spec, as vw3-decode's summary; the device's meaning: its note)
-    kind = kind .. " " .. DECIMAL[f.exception_code] .. " (" .. exception_name(f.exception_code) .. ")"
+    -- (no code, a malformed exception: `?`, as describe.py's summary)
+    local code = f.exception_code and DECIMAL[f.exception_code] or "?"
+    kind = kind .. " " .. code .. " (" .. exception_name(f.exception_code) .. ")"
   end
   local tail = ""
   if f.provisional then tail = " " .. DATA.render.provisional end -- (as vw3-decode's summary says it)

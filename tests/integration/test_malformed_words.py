@@ -132,3 +132,31 @@ def test_the_plugin_warns_an_exceptions_bytes_after_its_code(tmp_path: Path) -> 
         "1 Read Holding Registers request 0|||",
         f"1 Read Holding Registers exception 2 (Illegal Data Address)|{','.join(TAIL_WARNINGS)}|2|1",
     ]
+
+
+# An exception with no code (01 83 + CRC): vw3-decode said malformed; the plugin read the CRC's first byte as its
+# code ('exception code 65 is not defined by the spec'). Now both say malformed and show the code as `?`.
+NO_CODE = [rtu("01 03 0000 0001"), rtu("01 83")]
+NO_CODE_WARNINGS = ["frame length 4 disagrees with the spec's layout (5 bytes), its CRC good",
+                    "malformed exception: too short for exception_code"]
+
+
+@pytest.mark.parametrize("pure", [False, True])
+def test_an_exception_without_a_code(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    out = decode_frames(NO_CODE, tmp_path, monkeypatch, pure, "-n")
+    assert out.splitlines()[1] == (
+        "     2     0.500000   1 exception Read Holding Registers: exception ? (Missing exception code) [#1, 500.0 ms]"
+        + "".join(f" [warning: {text}]" for text in NO_CODE_WARNINGS) + "  CRC ok")
+    out = decode_frames(NO_CODE, tmp_path, monkeypatch, pure, "-n", "-V")
+    assert "        Exception: ? Missing exception code" in out.splitlines()
+
+
+def test_the_plugin_says_an_exception_without_a_code_is_malformed(tmp_path: Path) -> None:
+    capture = write_pcap(tmp_path / "exception.pcap", [(frame, T0 + index * 0.5) for index, frame in enumerate(NO_CODE)])
+    got = run_tshark(capture, "-T", "fields", "-E", "separator=|", "-E", "aggregator=,", "-e", "_ws.col.Info",
+                     "-e", "vw3.warning", "-e", "vw3.exception_code", "-e", "vw3.request_frame")
+    assert not lua_errors(got.stdout + got.stderr)
+    assert got.stdout.splitlines() == [
+        "1 Read Holding Registers request 0|||",
+        f"1 Read Holding Registers exception ? (Missing exception code)|{','.join(NO_CODE_WARNINGS)}||1",
+    ]
