@@ -59,11 +59,11 @@ CASES = {
         "     4            -  12 response  Read Holding Registers 8500..8501 (2): 8500=non-existent CMD=3 [#3] "
         "[CHCF = 3 (I/O profile): CMD bits are assigned by configuration]  CRC ok",
     ),
-    "damaged": (  # a frame with a bad CRC is annotated, and remembered, as any other
+    "damaged": (  # a frame with a bad CRC is decoded, not remembered: the device ignored it (de21138)
         [READ, rtu("0C 03 06 8000 0005 0002"), READ, rtu("0C 03 06 8000 0003 0002")[:-2] + b"\xff\xff",
          READ, rtu("0C 03 06 8000 8000 0002")],
         6,
-        f"     6{PREFIX}CHCF=protected COP=Cd (command) [#5] [CHCF (8401) became protected: read 3 in frame #4, "
+        f"     6{PREFIX}CHCF=protected COP=Cd (command) [#5] [CHCF (8401) became protected: read 5 in frame #2, "
         "16#8000 now]  CRC ok",
     ),
 }
