@@ -6,15 +6,12 @@ card's limit'). The same PDUs over RTU under vw3-decode give the same warnings a
 serial captures only). Unit 12, profile atv71; tshark one pass and -2."""
 from __future__ import annotations
 
-import json
-import struct
 from pathlib import Path
 
 import pytest
 
-from helpers import run_cli, write_rtu
-from lua_harness import PLUGIN, lua_errors, run_tshark
-from lua_net import NetWriter
+from lua_harness import PLUGIN
+from lua_net import assert_device_checks, assert_same_over_rtu, write_modbus_tcp_pairs
 
 pytestmark = pytest.mark.integration
 
@@ -33,31 +30,11 @@ NOTES = [LIMIT.format("Write Multiple Registers"), LIMIT.format("Read Holding Re
          ""]
 
 
-def capture(path: Path) -> Path:
-    writer = NetWriter(path)
-    time = 1.0
-    for transaction, (request, response) in enumerate(PAIRS, start=1):
-        for to_server, pdu in ((True, bytes.fromhex(request.replace(" ", ""))), (False, bytes.fromhex(response))):
-            writer.tcp(to_server, 40000, 502, struct.pack("!HHHB", transaction, 0, len(pdu) + 1, 12) + pdu, time)
-            time += 0.01
-    writer.close()
-    return path
-
-
 @pytest.mark.parametrize("two_pass", [False, True])
 def test_modbus_tcp_requests_checked_against_the_device(tmp_path: Path, two_pass: bool) -> None:
-    done = run_tshark(capture(tmp_path / "mbtcp.pcap"), "-X", f"lua_script:{PLUGIN.parent / 'vw3_modbus.lua'}",
-                      "-o", "vw3.profiles:atv71", "-T", "fields", "-E", "separator=|", "-e", "frame.number",
-                      "-e", "vw3.warning", "-e", "vw3.note", two_pass=two_pass)
-    assert done.returncode == 0, done.stderr
-    assert not lua_errors(done.stdout + done.stderr)
-    lines = done.stdout.splitlines()
-    assert lines[0::2] == [f"{2 * index + 1}|{warning}|" for index, warning in enumerate(WARNINGS)]
-    assert lines[1::2] == [f"{2 * index + 2}||{note}" for index, note in enumerate(NOTES)]
+    pcap = write_modbus_tcp_pairs(tmp_path / "mbtcp.pcap", PAIRS)
+    assert_device_checks(pcap, PLUGIN.parent / "vw3_modbus.lua", WARNINGS, NOTES, two_pass)
 
 
 def test_vw3_decode_says_the_same_of_these_pdus_over_rtu(tmp_path: Path) -> None:
-    path = write_rtu(tmp_path / "requests.rtu", [f"0C{pdu}".replace(" ", "") for pair in PAIRS for pdu in pair])
-    frames = [json.loads(line) for line in run_cli(["--profile", "atv71", "--json", str(path)])[1].splitlines()]
-    assert [",".join(frame["warnings"]) for frame in frames[0::2]] == WARNINGS
-    assert [",".join(frame["notes"]) for frame in frames[1::2]] == NOTES
+    assert_same_over_rtu(tmp_path / "requests.rtu", PAIRS, WARNINGS, NOTES)
