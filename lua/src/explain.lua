@@ -48,6 +48,7 @@ end
 -- (access.written_read_only): FC6, FC16, FC23 by the registers written (a run; vw3_modbus.lua's requests: a
 -- list, f.written), FC22 by its address.
 local REGISTER_WRITES, MASK_WRITTEN = DATA.rules.confirmed, DATA.rules.by_confirm.mask
+local READ_ONLY = "R" -- the access of a parameter no write changes (devices/access.py READ_ONLY)
 local function written_read_only(f, device)
   local rows, named, code, addresses = device.rows, {}, f.fn, {}
   local run = f.registers
@@ -72,7 +73,7 @@ end
 -- A write request's read-only parameters, one warning each (access.check_writes).
 local function check_writes(f, device)
   for _, parameter in ipairs(written_read_only(f, device)) do
-    warn(f, say("read_only", { parameter = parameter, access = "R" }))
+    warn(f, say("read_only", { parameter = parameter, access = READ_ONLY }))
   end
 end
 
@@ -112,7 +113,7 @@ local function read_only_note(f, profile, refused, causes)
       if not seen[counter] then counters[#counters + 1], seen[counter] = counter, true end
     end
   end
-  local refusal = say("read_only_refusal", { parameters = concat(refused, ", "), access = "R" })
+  local refusal = say("read_only_refusal", { parameters = concat(refused, ", "), access = READ_ONLY })
   return say("exception_meaning", { code = f.exception_code, device = profile.device,
     meaning = counted(refusal, counters) })
 end
@@ -166,7 +167,7 @@ local function explain_exception(f, device)
   local request = f.request
   local refused = code == DATA.read_only_exception and request ~= nil and written_read_only(request, device)
   if refused and #refused > 0 then -- (a write of read-only parameters: named rather than the code's meaning)
-    f.exception_meaning = say("read_only_meaning", { access = "R" })
+    f.exception_meaning = say("read_only_meaning", { access = READ_ONLY })
     note(f, read_only_note(f, profile, refused, causes))
   elseif causes ~= nil and #causes > 0 then
     local texts = {}

@@ -21,7 +21,7 @@ from __future__ import annotations
 import random
 from pathlib import Path
 
-from dissector.render.pcapwriter import PcapWriter
+from lua_harness import write_pcap
 
 CORPUS = Path(__file__).resolve().parents[1] / "corpus"
 CAPTURES = {  # name: the target the master writes (l/min; None: no write)
@@ -41,11 +41,7 @@ def records(name: str) -> list[tuple[float, bytes]]:
 
 
 def pcap(path: Path, reads: list[tuple[float, bytes]]) -> Path:
-    with path.open("wb") as stream:
-        writer = PcapWriter(stream, flush=False)
-        for time, data in reads:
-            writer.write(data, T0 + time)
-    return path
+    return write_pcap(path, [(data, T0 + time) for time, data in reads])
 
 
 def cut_anywhere(recorded: list[tuple[float, bytes]], seed: int) -> list[tuple[float, bytes]]:
