@@ -16,13 +16,18 @@ import struct
 from array import array
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from itertools import chain, islice
+from typing import TYPE_CHECKING, Any
 
 from dissector.framing.timing import LineTiming, silence_before
 from dissector.model import Chunk, Stamp
 from dissector.sources.common import LINKTYPE_USER0
 
+if TYPE_CHECKING:
+    from dissector.sources.trail import RecordTrail
+
 TIMED, RECORD_END, SILENCE_BEFORE = 1, 2, 4  # the engine's CHUNK_* (generated into _tables.h)
+TIMED_ONLY = bytes(flag & TIMED for flag in range(256))  # flags.translate: TIMED where a chunk is timed
 BLOCK_BYTES = 1 << 18  # bytes gathered before the engine runs: memory stays flat, calls few
 READ_BYTES = 1 << 20  # a pcap read at a time
 
@@ -109,8 +114,9 @@ class BlockBuilder:
             yield from self.add(chunk)
         yield from self.flush()
 
-    def pcap(self, reader: Any, scan: Any) -> Iterator[Block]:
-        """The rest of a pcap (sources/pcap.py PcapRecords, standing between two records) in bulk."""
+    def pcap(self, reader: Any, scan: Any, trail: RecordTrail | None = None) -> Iterator[Block]:
+        """The rest of a pcap (sources/pcap.py PcapRecords, standing between two records) in bulk; `trail`
+        (sources/trail.py) is told each block's reads before it is given out."""
         from dissector.sources.common import Input
 
         yield from self.flush()
@@ -136,23 +142,33 @@ class BlockBuilder:
             reader.record += records
             if last is not None:
                 self.previous = (last[0], Stamp(last[1]) if last[2] else None)
+            block = Block(payload, array("q", starts), array("q", times), flags, self.exact)
             if records:
-                # The last record's time (PcapRecords.recorded_until): the last chunk's, unless the scan
-                # passed over empty records after it; then, once, from the last buffer's record headers.
-                empties = (buffer, position) if records > len(flags) else None
-                if empties is None and last[2]:
-                    reader.recorded_until = Stamp(last[1])
+                # The last record's time (PcapRecords.recorded_until: every record's but one at the epoch):
+                # the last timed chunk's; where the scan passed over empty records, from its buffer's record
+                # headers, read once at the end, or when a later scan passes over more and times none.
+                timed = flags.translate(TIMED_ONLY).rfind(TIMED)
+                if empties is not None and timed < 0 and records > len(flags):
+                    reader.recorded_until = last_record_time(*empties, reader) or reader.recorded_until
+                if timed >= 0:
+                    reader.recorded_until = Stamp(block.times[timed])
+                    empties = None
+                if records > len(flags):
+                    empties = (buffer, position)
             if span is not None:
                 self._span(*span)
             if flags:
-                yield Block(payload, array("q", starts), array("q", times), flags, self.exact)
+                if trail is not None:
+                    observe_block(trail, block)
+                yield block
             if stop or not data:
                 break
         if empties is not None:
             reader.recorded_until = last_record_time(*empties, reader) or reader.recorded_until
         # A record the Python reader must see, or the end (a record cut short: its warning): it reads
         # the rest, from the bytes not scanned.
-        yield from self.chunks(reader.records(Input(inp.stream, inp.name, prefix=buffer[position:])))
+        rest = reader.records(Input(inp.stream, inp.name, prefix=buffer[position:]))
+        yield from self.chunks(rest if trail is None else trail.observe(rest))
 
 
 def last_record_time(buffer: bytes, end: int, reader: Any) -> Stamp | None:
@@ -167,34 +183,56 @@ def last_record_time(buffer: bytes, end: int, reader: Any) -> Stamp | None:
     return time
 
 
-def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None) -> Iterator[Block]:
+def observe_block(trail: RecordTrail, block: Block) -> None:
+    """A block read in bulk (a pcap's records: no comments) to the trail, as trail.observe takes chunks:
+    where each read begins and, for -w, its time (integer ns: a Stamp is made only where an item is cut)."""
+    times = None
+    if trail.times:
+        times = [ns if flag & TIMED else None for ns, flag in zip(block.times, block.flags)]
+    trail.observe_reads(block.starts, times, block.starts[0] + len(block.data))
+
+
+def source_blocks(source: Any, timing: LineTiming, builder: BlockBuilder | None = None,
+                  trail: RecordTrail | None = None) -> Iterator[Block]:
     """The blocks of a source (sources/reader.py Source): pcap records in bulk, other chunks as they come
-    (`builder`: one whose block_bytes its caller sets between blocks, framespath.py's -c N)."""
+    (`builder`: one whose block_bytes its caller sets between blocks, framespath.py's -c N), every chunk
+    through `trail` (sources/trail.py: -w's reads, a pcapng's comments) when one is given."""
     from dissector.accel import fastsummary
 
     builder = builder or BlockBuilder(timing, getattr(source, "streaming", False))
     head, rest = source.parts()
     try:
-        yield from builder.chunks(head)
         bulk = fastsummary.built()
         if bulk and getattr(rest, "between", False) and getattr(rest, "linktype", None) == LINKTYPE_USER0:
-            yield from builder.pcap(rest, fastsummary._summary.scan_pcap)
-        else:
+            yield from builder.chunks(head if trail is None else trail.observe(head))
+            yield from builder.pcap(rest, fastsummary._summary.scan_pcap, trail)
+        elif trail is None:
+            yield from builder.chunks(head)
             yield from builder.chunks(rest)
+        else:  # (one pass of the trail over both: a record may go on from the head into the rest)
+            chunks = trail.observe(chain(head, rest))
+            yield from builder.chunks(islice(chunks, len(head)))
+            yield from builder.chunks(chunks)
     finally:
         source.finished()
 
 
 def blocks_from_chunks(chunks: Iterable[Chunk], timing: LineTiming,
                        builder: BlockBuilder | None = None) -> Iterator[Block]:
-    """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...)."""
-    sources = getattr(chunks, "sources", None)
+    """Blocks of the chunks a source gives (any source: pcapng, RTAC records, hex dumps...). A source
+    observed by a trail (sources/trail.py observed: -w, a pcapng's comments) is read as it would be
+    unobserved, its pcap records in bulk too, the trail told of every read before its items are asked for."""
+    trail: RecordTrail | None = getattr(chunks, "trail", None)
+    source = chunks.source if trail is not None else chunks  # type: ignore[attr-defined]
+    sources = getattr(source, "sources", None)
     if sources is not None:  # a ring buffer's files (app/rings.py RingSource): one stream, each read in bulk
         builder = builder or BlockBuilder(timing)
-        for source in sources():
-            yield from source_blocks(source, timing, builder)
+        for each in sources():
+            if trail is not None:
+                trail.name = each.name  # (its records named by their file)
+            yield from source_blocks(each, timing, builder, trail)
         return
-    if hasattr(chunks, "parts"):
-        yield from source_blocks(chunks, timing, builder)
+    if hasattr(source, "parts"):
+        yield from source_blocks(source, timing, builder, trail)
         return
     yield from (builder or BlockBuilder(timing)).chunks(chunks)

@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import re
 from collections import deque
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any
 
-from dissector.model import Chunk, Item
+from dissector.model import Chunk, Item, Stamp
 from dissector.sources.common import NotedChunk
 
 # The comments vw3-decode writes on the records of a -w copy (render/capturefile.py noise_comment,
@@ -75,6 +75,13 @@ class RecordTrail:
             self.offset = offset
             yield chunk
 
+    def observe_reads(self, starts: Sequence[int], times: list[int | None] | None, end: int) -> None:
+        """Reads taken in bulk, which carry no comments (a pcap's records, accel/records.py observe_block),
+        as `observe` takes them: where each begins, its time in integer ns (-w), the end of the last."""
+        if self.times and times is not None:
+            self._parts.extend(zip(starts, times))
+        self.offset = end
+
     @property
     def idle(self) -> bool:
         """Nothing to tell of any item yet: no times kept, no comment read."""
@@ -100,7 +107,7 @@ class RecordTrail:
                 if first >= end:
                     break
                 if first > start:
-                    cuts.append((first - start, time))
+                    cuts.append((first - start, Stamp(time) if type(time) is int else time))  # (observe_reads)
                     keys.add(_key(time))
             keys.discard(None)
             if len(keys) < 2:
@@ -126,13 +133,10 @@ def item_comments(pieces: list[Piece] | None) -> list[str]:
 
 
 def observed(source: Any, trail: RecordTrail) -> Any:
-    """`source` (sources/reader.py Source, app/rings.py RingSource) with its chunks through the trail,
-    for every path that reads it: a Source's parts too (accel/records.py source_blocks: its
-    `streaming` kept), not read in bulk (a pcap's records, accel/records.py BlockBuilder.pcap, pass by
-    the trail only one by one)."""
-    if not hasattr(source, "parts"):
-        return _Observed(source, trail)
-    return _ObservedSource(source, trail)
+    """`source` (sources/reader.py Source, app/rings.py RingSource) with its chunks through the trail. The
+    compiled paths read what it wraps as they read a source (accel/records.py blocks_from_chunks: a pcap's
+    records in bulk, telling the trail of each block's reads, observe_reads)."""
+    return _Observed(source, trail)
 
 
 class _Observed:
@@ -152,17 +156,3 @@ class _Observed:
         for source in sources:
             self.trail.name = source.name
             yield from self.trail.observe(source)
-
-
-class _ObservedSource(_Observed):
-    def parts(self) -> tuple[Iterable[Chunk], Iterable[Chunk]]:
-        head, rest = self.source.parts()
-        return [], self.trail.observe(_chain(head, rest))
-
-    def finished(self) -> None:
-        self.source.finished()
-
-
-def _chain(head: Iterable[Chunk], rest: Iterable[Chunk]) -> Iterator[Chunk]:
-    yield from head
-    yield from rest
