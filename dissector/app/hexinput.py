@@ -10,7 +10,8 @@ frame is decoded and the check is spelled out:
     :02062329000A             -> decoded with the LRC computed; "no LRC typed: append A2"
 
 A frame is only taken that way when the framer, shown the bytes with the right CRC, finds exactly
-that one frame in them; anything else is fed as typed (and shows up as noise).
+that one frame in them; anything else is fed as typed (and shows up as noise). An argument whose bytes
+already split into frames with good CRCs (a request and its answer pasted as one) is fed as typed.
 """
 from __future__ import annotations
 
@@ -121,6 +122,20 @@ def _one_frame(data: bytes, ascii: bool = False) -> bool:
     return whole and (ascii or spans_a_frame(data))
 
 
+def _good_frames(data: bytes) -> bool:
+    """Do the bytes as typed already split into several frames, each with a good CRC, covering all of
+    `data`? Then the argument holds several frames (an answer pasted after its request, a log line) and
+    nothing was mistyped: a variable-length frame (FC8, a user-defined code) would otherwise be read as
+    one long frame whose last two bytes are its CRC."""
+    framer = RtuFramer()
+    items = framer.feed(Chunk(data, None, True)) + framer.finish()
+    return (
+        len(items) > 1
+        and all(isinstance(item, Frame) and item.crc_ok for item in items)
+        and sum(item.length for item in items) == len(data)
+    )
+
+
 def _wire(crc: int) -> str:
     return f"{crc & 0xFF:02X} {crc >> 8:02X}"
 
@@ -155,6 +170,8 @@ class HexInput:
         # An answer shorter than the request calls for is cut (the capture ends inside it), not mistyped;
         # unless it is whole once its CRC is appended.
         cut = awaiting.cut_answer(data) is not None
+        if _good_frames(data):
+            return chunk
         if len(data) >= 4 and not cut:
             body, typed = data[:-2], data[-2] | data[-1] << 8
             expected = crc16(body)

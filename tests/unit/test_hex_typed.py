@@ -89,3 +89,27 @@ def test_two_good_frames_in_one_argument_are_left_alone() -> None:
     out = run_cli(["--hex", "0C 03 20 D0 00 03 0E EF 0C 03 06 80 00 00 03 00 02 17 E4"])[1]
     lines = out.splitlines()
     assert len(lines) == 2 and all(line.endswith("CRC ok") and "typed" not in line for line in lines)
+
+
+def test_an_argument_holding_several_good_frames_is_not_mended_into_one() -> None:
+    # Hunt 55 (4): a variable-length frame (FC8, a user-defined code) then another frame in one argument was
+    # read as one frame whose last two bytes were a bad CRC (`data 1234ed4f020800001234`, CRC BAD); the same
+    # bytes in a file, or as two arguments, are two frames with good CRCs.
+    echo = "02 08 00 00 12 34 ed 4f 02 08 00 00 12 34 ed 4f"
+    status, out, err = run_cli(["--hex", echo])
+    assert (status, err) == (0, "")
+    assert out.splitlines() == [
+        "     1            -   2 request   Diagnostics 00h Return Query Data = 4660  CRC ok",
+        "     2            -   2 response  Diagnostics 00h Return Query Data = 4660 [#1]  CRC ok",
+    ]
+    assert run_cli(["--hex", "02 41 01 02 d1 d9 02 41 01 02 d1 d9"])[1].splitlines() == [
+        "     1            -   2 request   User-defined function 65 2 bytes of data  CRC ok",
+        "     2            -   2 response  User-defined function 65 2 bytes of data [#1]  CRC ok",
+    ]
+    assert run_cli(["--hex", "02 08 00 00 12 34 ed 4f 02 03 00 00 00 01 84 39"])[1].splitlines() == [
+        "     1            -   2 request   Diagnostics 00h Return Query Data = 4660 [no response]  CRC ok",
+        "     2            -   2 request   Read Holding Registers 0 "
+        "[the capture ends before any response: not known whether it was answered]  CRC ok",
+    ]
+    # A typo in one of them is still a typo: the bytes do not split into good frames, and stay as typed.
+    assert "CRC ok" not in run_cli(["--hex", "02 08 00 00 12 34 ed 4f 02 08 00 00 12 34 ed 4e"])[1]
