@@ -37,7 +37,7 @@ from dissector.sources.serial_port import PARITIES, TERMIOS_ERRORS, PortSettings
 from dissector.framing.ascii import AsciiFramer
 from dissector.framing.rtu import RtuFramer
 from dissector.model import Chunk, Frame
-from dissector.protocol.ascii import holds_frame
+from dissector.protocol.ascii import MODE_REACH, MODE_SAMPLE, holds_frame, rtu_pair_end, sample_mode
 
 BAUDS = (9600, 19200, 38400, 57600, 115200)
 PARITY_ORDER = ("E", "N", "O")  # also the order of preference when scores tie
@@ -45,7 +45,6 @@ PARITY_ORDER = ("E", "N", "O")  # also the order of preference when scores tie
 # RTU buses seldom follow (8N1) and ASCII buses do (7N2). A receiver's stop bits barely matter: it
 # checks the first one only.
 FORMATS = {8: (("E", 1), ("N", 1), ("O", 1)), 7: (("E", 1), ("N", 2), ("O", 1))}
-MODE_BYTESIZE = {"rtu": 8, "ascii": 7}  # each mode's usual data size
 PROG = "vw3-decode"
 
 
@@ -76,7 +75,7 @@ def framings(mode: str | None, bytesize: int | None) -> tuple[tuple[str, int], .
         raise DetectError("--bytesize 7: Modbus RTU is sent with 8 data bits")
     if bytesize == 7:
         modes = ("ascii",)
-    return tuple((each, bytesize or MODE_BYTESIZE[each]) for each in modes)
+    return tuple((each, bytesize or mode_bytesize(each)) for each in modes)
 
 
 def settings(bauds: tuple[int, ...], sizes: tuple[int, ...]) -> list[Setting]:
@@ -418,3 +417,46 @@ def given_bytesize(args: argparse.Namespace) -> int | None:
     from dissector.app.live_options import BYTESIZE_GIVEN
 
     return args.bytesize if getattr(args, BYTESIZE_GIVEN, False) else None
+
+
+# The sizes of the sample AsciiHeard judges at: an answer of sample_mode's holds for any longer sample, so a
+# few looks, the last at MODE_REACH bytes, are enough.
+HINT_SIZES = (MODE_SAMPLE, 2 * MODE_SAMPLE, 4 * MODE_SAMPLE, 8 * MODE_SAMPLE, MODE_REACH)
+
+
+def ascii_heard(sample: bytes) -> tuple[str, int] | None:
+    """The Modbus ASCII framing whose frames the first bytes an RTU capture heard hold, or None: ASCII as
+    heard (a file of these bytes is decoded as ASCII: sample_mode), or a 7-bit line heard by an 8-bit UART
+    (heard_as) where no two RTU frames came."""
+    if holds_frame(sample) and sample_mode(sample, True) == "ascii":
+        return ("ascii", 8)
+    if holds_frame(bytes(byte & 0x7F for byte in sample)) and rtu_pair_end(sample) is None:
+        return ("ascii", 7)
+    return None
+
+
+class AsciiHeard:
+    """--live without --mode at 8 data bits frames RTU (live_options.live_mode). When the first bytes heard
+    hold Modbus ASCII (ascii_heard), one line on `err` names the options that decode them, as --detect's report
+    does (_FOUND); the capture goes on as RTU (its lines and files are written as they come). Fed the bytes the
+    display takes in (app/live.py display_once), judged as they reach each of HINT_SIZES and at the end."""
+
+    def __init__(self, err: TextIO) -> None:
+        self.err = err
+        self.sample = b""
+        self.done = False
+
+    def __call__(self, data: bytes, closed: bool = False) -> None:
+        if self.done:
+            return
+        before = len(self.sample)
+        self.sample += data[: MODE_REACH - before]
+        if not closed and not any(before < size <= len(self.sample) for size in HINT_SIZES):
+            return
+        self.done = closed or len(self.sample) >= MODE_REACH
+        found = ascii_heard(self.sample)
+        if found is not None:
+            what, options = _FOUND[found]
+            self.err.write(f"{PROG}: the bytes heard hold {what}, framed here as RTU: capture with {options}\n")
+            self.err.flush()
+            self.done = True

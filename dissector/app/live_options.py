@@ -14,6 +14,16 @@ def mode_bytesize(mode: str | None) -> int:
     return 7 if mode == "ascii" else 8
 
 
+def live_mode(args: argparse.Namespace) -> str | None:
+    """The framing of a live capture: --mode, else Modbus ASCII when the port is set to 7 data bits (RTU's
+    binary needs 8: Serial Line Guide 2.5; --detect's framings() holds the same rule), else None (RTU, which
+    a live stream cannot be sniffed for before it starts: app/detect.py AsciiHeard hints instead)."""
+    mode = getattr(args, "mode", None)
+    if mode is None and getattr(args, BYTESIZE_GIVEN, False) and args.bytesize == mode_bytesize("ascii"):
+        return "ascii"
+    return mode
+
+
 class GivenBytesize(argparse.Action):
     """Stores --bytesize and notes that it was given (its default, 8, is RTU's: --detect tries
     ASCII at 7 data bits unless told otherwise)."""
