@@ -2268,6 +2268,7 @@ local DATA = {
       ["forms"] = {
         ["request"] = {
           [5] = "coil",
+          [6] = "single",
           [8] = "diagnostics",
           [17] = "report_server_id",
           [20] = "file_record",
@@ -2278,6 +2279,7 @@ local DATA = {
         },
         ["response"] = {
           [5] = "coil",
+          [6] = "single",
           [7] = "status",
           [8] = "diagnostics",
           [11] = "counter",
@@ -2294,6 +2296,10 @@ local DATA = {
         ["coil"] = {
           { "label" },
           { "coil", "value" },
+        },
+        ["single"] = {
+          { "label" },
+          { "single", "value" },
         },
         ["status"] = {
           "status 0x",
@@ -3990,46 +3996,51 @@ function DATA.lifters(
   }
 end
 end
-function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
+function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
   local format = string.format
   local form = {} -- (by form; by code and kind too where its layouts place its fields apart)
-  form.coil = function(f, b, base, last)
+  form.coil = function(f, b, base, last, st, device)
     local coil = b[base + 4] * 256 + b[base + 5]
     return (f.span_label or (f.start and DECIMAL[f.start]) or "")
       .. (coil == 0xFF00 and " = ON" or coil == 0 and " = OFF" or format(" = 0x%04X", coil))
   end
-  form.diagnostics = function(f, b, base, last)
+  form.single = function(f, b, base, last, st, device)
+    return (f.span_label or (f.start and DECIMAL[f.start]) or "")
+      .. single_text(f, st, device, b[base + 4] * 256 + b[base + 5])
+  end
+  form.diagnostics = function(f, b, base, last, st, device)
     local subfunction = b[base + 2] * 256 + b[base + 3]
     return format("%02X", subfunction) .. "h "
       .. (f.subfunction_text or DIAGNOSTICS[subfunction] or "unknown sub-function")
       .. data_text(b, base + 4, last)
   end
-  form.mask = function(f, b, base, last)
+  form.mask = function(f, b, base, last, st, device)
     return DECIMAL[b[base + 2] * 256 + b[base + 3]] .. " AND 0x"
       .. format("%04X", b[base + 4] * 256 + b[base + 5]) .. " OR 0x"
       .. format("%04X", b[base + 6] * 256 + b[base + 7])
   end
-  form.pointer = function(f, b, base, last)
+  form.pointer = function(f, b, base, last, st, device)
     return "pointer " .. DECIMAL[b[base + 2] * 256 + b[base + 3]]
   end
-  form.status = function(f, b, base, last)
+  form.status = function(f, b, base, last, st, device)
     return "status 0x" .. format("%02X", b[base + 2])
   end
-  form.counter = function(f, b, base, last)
+  form.counter = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 2] * 256 + b[base + 3]) .. ", "
       .. DECIMAL[b[base + 4] * 256 + b[base + 5]] .. " events"
   end
-  form.event_log = function(f, b, base, last)
+  form.event_log = function(f, b, base, last, st, device)
     return "status 0x" .. format("%04X", b[base + 3] * 256 + b[base + 4]) .. ", "
       .. DECIMAL[b[base + 5] * 256 + b[base + 6]] .. " events, " .. DECIMAL[b[base + 7] * 256 + b[base + 8]]
       .. " messages"
   end
-  form.fifo = function(f, b, base, last)
+  form.fifo = function(f, b, base, last, st, device)
     local fifo_count = b[base + 4] * 256 + b[base + 5]
     return DECIMAL[fifo_count] .. " values" .. fifo_values(b, fifo_count, base + 6, last)
   end
   return {
     [5] = { request = form.coil, response = form.coil },
+    [6] = { request = form.single, response = form.single },
     [7] = { response = form.status },
     [8] = { request = form.diagnostics, response = form.diagnostics },
     [11] = { response = form.counter },
@@ -9002,9 +9013,10 @@ local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS = DATA, DIAGNOSTICS, EXCEPTION, FUNCTIONS
 local NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat = NO_INTERPRETATION, PARAMETER_FIELDS, REQUEST, concat
-local ex, exception_name, floor, format, function_name = ex, exception_name, floor, format, function_name
-local hex_pairs, ipairs, made_once, math, pf, python_repr = hex_pairs, ipairs, made_once, math, pf, python_repr
-local string, table, tostring, u16 = string, table, tostring, u16
+local describe, device_of, ex, exception_name, floor = describe, device_of, ex, exception_name, floor
+local format, function_name, hex_pairs, ipairs, made_once = format, function_name, hex_pairs, ipairs, made_once
+local math, pairs, pf, python_repr, string, table, tostring = math, pairs, pf, python_repr, string, table, tostring
+local type, u16, words_at = type, u16, words_at
 
 -- `1 byte`, `2 bytes`: a count and its noun, singular for one (describe.count_text).
 local function count_text(count, noun)
@@ -9351,14 +9363,48 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
+-- describe._single: FC6's value, ` TFR=50.0 Hz` where the frame's device (device, else the stream st's
+-- for the frame) names its register or reads the value as a text, ` = 7` otherwise; the register named as
+-- the tree names it (vw3.story's describe), written as describe.register_text writes a write's register
+-- (a write's register has no status).
+local function single_text(f, st, device, value)
+  device = device or device_of(st, f)
+  local run = f.registers
+  if device ~= nil and run ~= nil and run.count > 0 and run.start ~= nil then
+    local reg = { address = run.start, value = value }
+    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(device.rows, run.start, 0, run.count))
+    local code = reg.row and reg.row.code
+    if code or reg.text then
+      return " " .. (code or reg.label or DECIMAL[run.start]) .. "=" .. (reg.text or DECIMAL[value])
+    end
+  end
+  return " = " .. DECIMAL[value]
+end
+
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
+
+-- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
+-- text needs the device (summary's st or device).
+local NAMING = {}
+for kind, forms in pairs(INFO.forms) do
+  for code, form in pairs(forms) do
+    for _, step in ipairs(type(INFO.steps[form]) == "table" and INFO.steps[form] or NO_INTERPRETATION) do
+      if type(step) == "table" and step[1] == "single" then
+        NAMING[code] = NAMING[code] or {}
+        NAMING[code][kind] = true
+      end
+    end
+  end
+end
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
--- remember_request), from its byte table then.
-local function summary(f, tvb)
+-- remember_request), from its byte table then. st: the frame's stream, or device: its device, where the
+-- text names a register as the device does (FC6); nil without either for such a frame (its text made
+-- where it is shown).
+local function summary(f, tvb, st, device)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
   local kind, fn = f.kind, f.fn
   local steps = FORMS[fn]
@@ -9375,13 +9421,14 @@ local function summary(f, tvb)
   -- (describe.info_text: a frame whose fields did not parse says so)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
+    if st == nil and device == nil and NAMING[fn] ~= nil and NAMING[fn][f.kind] then return nil end
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
     if b == nil and tvb ~= nil then
       b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
       if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
     end
     if b ~= nil then
-      local text = steps(f, b, base, last) -- (describe.info_text's rstrip: no space before none)
+      local text = steps(f, b, base, last, st, device) -- (describe.info_text's rstrip: no space before none)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
@@ -9591,7 +9638,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full then
     whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
-    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb)))
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb, st)))
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
@@ -9820,7 +9867,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
       show_frame(st, item, tvb, tree, nil, false)
     end
     -- (info: a known request's, see known_requests; the frame is the record's own, its bytes the tvb's)
-    cols.info = item.info or summary(item, tvb)
+    cols.info = item.info or summary(item, tvb, st)
     return
   end
   if type(record) == "number" then record = { record } end
@@ -9867,7 +9914,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from)) -- (info: see known_requests)
+      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from, st)) -- (info: see known_requests)
     end
     anchor = anchor or t
   end

@@ -20,9 +20,9 @@ from dissector.errors import GenerateError
 from dissector.protocol import table
 
 # tree.lua's helpers the forms call, and its describers of describe._BY_NAME: DATA.info_forms's arguments.
-HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "BY_NAME")
+HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "single_text", "BY_NAME")
 # (no field's local may hide them or the function's own names)
-TAKEN = frozenset({*HELPERS, "format", "form", "coil", "f", "b", "base", "last"})
+TAKEN = frozenset({*HELPERS, "format", "form", "coil", "f", "b", "base", "last", "st", "device"})
 LUA_KEYWORDS = frozenset("""and break do else elseif end false for function goto if in local nil not or repeat
     return then true until while""".split())
 
@@ -41,9 +41,10 @@ def field_places(shape: list[dict[str, Any]]) -> dict[str, tuple[int, int | None
 
 
 def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | None]]) -> list[str]:
-    """The body of one form's function, `function(f, b, base, last)`: the fields two steps read, each read
-    once into a local of its name, then its texts and its steps' texts (describe._OF_FRAME, _OF_FIELD, hex and
-    fifo) in one concatenation."""
+    """The body of one form's function, `function(f, b, base, last, st, device)`: the fields two steps read,
+    each read once into a local of its name, then its texts and its steps' texts (describe._OF_FRAME,
+    _OF_FIELD, hex and fifo) in one concatenation. (st, device: where the frame's device is found, for a
+    step that names a register: tree.lua summary)"""
     read_by = [step[1] for step in steps if not isinstance(step, str) and step[0] not in ("label", "data")]
     body, parts = [], []
 
@@ -78,6 +79,8 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
         elif what == "subfunction":  # (as the profile names it, else the spec)
             unknown = lua_literal(info_forms()["unknown_subfunction"])
             parts.append(f"(f.subfunction_text or DIAGNOSTICS[{value(step[1])}] or {unknown})")
+        elif what == "single":  # (describe._single: the register as the device names it)
+            parts.append(f"single_text(f, st, device, {value(step[1])})")
         elif what == "data":  # (describe._data: the field's bytes to the end of the data)
             parts.append(f"data_text(b, base + {places[step[1]][0]}, last)")
         elif what == "fifo":  # (the values after their count, describe's fifo step)
@@ -140,7 +143,7 @@ def render_info_forms() -> list[str]:
              "  local form = {} -- (by form; by code and kind too where its layouts place its fields apart)"]
     for bodies in functions.values():
         for name, body in bodies.items():
-            lines += [f"  form{_key(name)} = function(f, b, base, last)", *(f"    {line}" for line in body),
+            lines += [f"  form{_key(name)} = function(f, b, base, last, st, device)", *(f"    {line}" for line in body),
                       "  end"]
     lines.append("  return {")
     for code, kinds in sorted(chosen.items()):

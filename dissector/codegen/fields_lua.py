@@ -52,9 +52,10 @@ def start_words() -> dict[int, dict[str, str]]:
 
 
 # The steps of describe.TEXT_FORMS the plugin interprets (lua/src/tree.lua info_text): those of the frame's
-# fields read from its bytes, and `label` (its window as the plugin names it, start or PLC label). A form
-# of other steps (the registers' values, bits, spans) keeps the plugin's own text (the window).
-PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label"})
+# fields read from its bytes, `label` (its window as the plugin names it, start or PLC label) and `single`
+# (FC6's value, its register named by the device). A form of other steps (the registers' values, bits,
+# spans) keeps the plugin's own text (the window).
+PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "single"})
 # The describers of describe._BY_NAME the plugin has too (tree.lua BY_NAME), by name.
 PLUGIN_BY_NAME = frozenset({"mei", "report_server_id", "file_record"})
 

@@ -178,7 +178,7 @@ local function show_frame(st, f, tvb, tree, pinfo, full)
   if full then
     whole = tvb:range(f.at, f.length)
     t = tree:add(proto, whole)
-    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb)))
+    t:set_text(format("VW3 Modbus %s, %s", f.ascii and "ASCII" or "RTU", summary(f, tvb, st)))
     t:add(pf.item, whole, f.number):set_generated()
     t:add(pf.kind, whole, KIND_NUMBER[f.kind]):set_generated()
     t:add(pf.offset, whole, f.offset):set_generated()
@@ -407,7 +407,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
       show_frame(st, item, tvb, tree, nil, false)
     end
     -- (info: a known request's, see known_requests; the frame is the record's own, its bytes the tvb's)
-    cols.info = item.info or summary(item, tvb)
+    cols.info = item.info or summary(item, tvb, st)
     return
   end
   if type(record) == "number" then record = { record } end
@@ -454,7 +454,7 @@ local function show_record(st, record, tvb, pinfo, tree, n, whole)
     else
       frames = frames + 1
       t = show_frame(st, item, shown_from, tree, pinfo, full)
-      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from)) -- (info: see known_requests)
+      summaries, info = add_part(summaries, info, item.info or summary(item, shown_from, st)) -- (info: see known_requests)
     end
     anchor = anchor or t
   end

@@ -349,14 +349,48 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
+-- describe._single: FC6's value, ` TFR=50.0 Hz` where the frame's device (device, else the stream st's
+-- for the frame) names its register or reads the value as a text, ` = 7` otherwise; the register named as
+-- the tree names it (vw3.story's describe), written as describe.register_text writes a write's register
+-- (a write's register has no status).
+local function single_text(f, st, device, value)
+  device = device or device_of(st, f)
+  local run = f.registers
+  if device ~= nil and run ~= nil and run.count > 0 and run.start ~= nil then
+    local reg = { address = run.start, value = value }
+    describe(device, f, reg, run.plain and run.plain[0], nil, words_at(device.rows, run.start, 0, run.count))
+    local code = reg.row and reg.row.code
+    if code or reg.text then
+      return " " .. (code or reg.label or DECIMAL[run.start]) .. "=" .. (reg.text or DECIMAL[value])
+    end
+  end
+  return " = " .. DECIMAL[value]
+end
+
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
+
+-- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
+-- text needs the device (summary's st or device).
+local NAMING = {}
+for kind, forms in pairs(INFO.forms) do
+  for code, form in pairs(forms) do
+    for _, step in ipairs(type(INFO.steps[form]) == "table" and INFO.steps[form] or NO_INTERPRETATION) do
+      if type(step) == "table" and step[1] == "single" then
+        NAMING[code] = NAMING[code] or {}
+        NAMING[code][kind] = true
+      end
+    end
+  end
+end
 
 -- tvb: the frame's, where it is shown; nil where its text is made as it is decoded (vw3.records
--- remember_request), from its byte table then.
-local function summary(f, tvb)
+-- remember_request), from its byte table then. st: the frame's stream, or device: its device, where the
+-- text names a register as the device does (FC6); nil without either for such a frame (its text made
+-- where it is shown).
+local function summary(f, tvb, st, device)
   -- (one concatenation, one new string, for the usual frame: the Info text is made for every record shown)
   local kind, fn = f.kind, f.fn
   local steps = FORMS[fn]
@@ -373,13 +407,14 @@ local function summary(f, tvb)
   -- (describe.info_text: a frame whose fields did not parse says so)
   if f.malformed then return slave .. " " .. name .. " " .. kind .. " (malformed)" .. tail end
   if steps ~= nil then -- (its bytes: the tvb's, else its byte table's while it is decoded)
+    if st == nil and device == nil and NAMING[fn] ~= nil and NAMING[fn][f.kind] then return nil end
     local b, base, last = f.b, f.bi, f.b and f.data_at + f.data_len - 1
     if b == nil and tvb ~= nil then
       b, base, last = frame_bytes(f, tvb), 0, f.length - 3 -- (RTU: the CRC's two bytes after the data)
       if f.ascii then last = floor((f.length - 3) / 2) - 2 end -- (ASCII: the LRC's byte)
     end
     if b ~= nil then
-      local text = steps(f, b, base, last) -- (describe.info_text's rstrip: no space before none)
+      local text = steps(f, b, base, last, st, device) -- (describe.info_text's rstrip: no space before none)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end

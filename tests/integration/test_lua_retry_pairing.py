@@ -55,8 +55,9 @@ def test_retry_past_the_timeout(tmp_path: Path, two_pass: bool) -> None:
     ]
     if two_pass:
         info = tshark(pcap, "-T", "fields", "-e", "_ws.col.Info").splitlines()
-        assert info[:3] == ["12 Write Single Register request 3104", "12 Write Single Register request 3104",
-                            "12 Write Single Register response 3104"]
+        assert info[:3] == ["12 Write Single Register request 3104 HSP=50.0 Hz",
+                            "12 Write Single Register request 3104 HSP=50.0 Hz",
+                            "12 Write Single Register response 3104 HSP=50.0 Hz"]
 
 
 @pytest.mark.parametrize("two_pass", [True, False])

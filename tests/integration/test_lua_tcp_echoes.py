@@ -61,8 +61,8 @@ def _rows(pcap: Path, *args: str, profiles: tuple[str, ...] = ATV71, two_pass: b
 def test_write_echo_is_shown_in_its_own_segment_and_paired(tmp_path: Path) -> None:
     tcp, _ = _captures(tmp_path, "fc6")
     expected = [
-        ["1", "1", "", "", "8401", "12 Write Single Register request 8401"],
-        ["2", "2", "1", "0.010000000", "8401", "12 Write Single Register response 8401"],
+        ["1", "1", "", "", "8401", "12 Write Single Register request 8401 CHCF=IO (I/O profile)"],
+        ["2", "2", "1", "0.010000000", "8401", "12 Write Single Register response 8401 CHCF=IO (I/O profile)"],
         ["3", "1", "", "", "8401,8402", "12 Read Holding Registers request 8401..8402"],
         ["4", "2", "3", "0.010000000", "8401,8402", "12 Read Holding Registers response 8401..8402"],
     ]

@@ -81,13 +81,13 @@ def test_text_that_is_not_ascii_mode_still_says_so(tmp_path: Path, monkeypatch: 
 
 # The plugin's Info column for each record of the -w pcap (tshark -2).
 PLUGIN_INFO = {
-    "mid_frame": ["noise (9 bytes)"] + ["2 Write Single Register request 9001",
-                                        "2 Write Single Register response 9001"] * 3,
-    "one_zero": ["noise (1 byte)"] + ["2 Write Single Register request 9001",
-                                      "2 Write Single Register response 9001"] * 3,
-    "line_noise": ["noise (8 bytes)"] + ["2 Write Single Register request 9001",
-                                         "2 Write Single Register response 9001"] * 10,
-    "short": ["noise (1 byte)", "2 Write Single Register request 9001", "2 Write Single Register response 9001"],
+    "mid_frame": ["noise (9 bytes)"] + ["2 Write Single Register request 9001 = 10",
+                                        "2 Write Single Register response 9001 = 10"] * 3,
+    "one_zero": ["noise (1 byte)"] + ["2 Write Single Register request 9001 = 10",
+                                      "2 Write Single Register response 9001 = 10"] * 3,
+    "line_noise": ["noise (8 bytes)"] + ["2 Write Single Register request 9001 = 10",
+                                         "2 Write Single Register response 9001 = 10"] * 10,
+    "short": ["noise (1 byte)", "2 Write Single Register request 9001 = 10", "2 Write Single Register response 9001 = 10"],
 }
 
 
