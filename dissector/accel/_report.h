@@ -44,7 +44,7 @@ typedef struct {
 
 typedef struct {
     PyObject_HEAD
-    PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code) -> event text */
+    PyObject *collector, *health, *stamp, *exception; /* exception(slave, function, code, request): its event */
     PyObject *series, *h_series; /* their containers */
     int timed;   /* -1: not known yet */
     Time first, last;
@@ -343,8 +343,9 @@ static int report_transaction(PyObject *report, Slave *s, const uint8_t *b, cons
     if (report_x(r, af->timed, af->ns, number + 1, &x) < 0) return -1;
     Time at = stamp_time(1, af->ns);
     if (qf->timed && af->timed && health_point(r, slave, &at, stamp_seconds(af->ns, qf->ns)) < 0) return -1;
-    if (a[1] & 0x80)
-        return report_event(r, &x, "exception", slave, PyObject_CallFunction(r->exception, "iii", slave, function, a[2]));
+    if (a[1] & 0x80) /* (its request: the meaning may depend on it, reportfeed.py exception_event) */
+        return report_event(r, &x, "exception", slave, PyObject_CallFunction(r->exception, "iiiy#", slave, function,
+                                                                             a[2], q, qf->length));
     long long col = axis_col(&r->axis, &x);
     for (int pass = 0; pass < 2; pass++) { /* the writes confirmed first (FC23 writes before it reads) */
         const Words *w = pass ? reads : confirmed;

@@ -11,24 +11,35 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from dissector.model import Stamp
+from dissector.model import Frame, Kind, Stamp
 
 
-def exception_event(annotator: Any | None) -> Callable[[int, int, int], str]:
-    """The text of ReportCollector.add's exception event: the device's meaning of the code
-    (devices/explain.py: Frame.exception_text) for the slave's profile now."""
+def exception_event(annotator: Any | None) -> Callable[[int, int, int, bytes], str]:
+    """The text of ReportCollector.add's exception event (render/report/meaning.py): the meaning on the
+    slave's device now of the code answering the request (`request_raw`, its bytes with the CRC: decoded
+    only when the meaning depends on it)."""
     device = getattr(annotator, "device", None)
 
-    def text(slave: int, function: int, code: int) -> str:
-        if device is None:
-            meaning = None
-        else:
-            from dissector.devices.explain import device_meaning  # (to a read, p.38's clause: as explain.py)
+    def text(slave: int, function: int, code: int, request_raw: bytes) -> str:
+        from dissector.render.report.meaning import device_meaning, event_text, needs_request
 
-            meaning = device_meaning(device(slave).profile, function, code)
-        return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
+        if device is None:
+            return event_text(function, code, None)
+        owner = device(slave)
+        request = _request(request_raw) if needs_request(owner, function, code) else None
+        return event_text(function, code, device_meaning(owner, function, code, request))
 
     return text
+
+
+def _request(raw: bytes) -> Frame:
+    """A request frame decoded from its bytes, as the Python stages give it to the annotator."""
+    from dissector.decode.fields import decode_frame
+
+    crc = int.from_bytes(raw[-2:], "little")
+    request = Frame(0, raw, None, Kind.REQUEST, raw[0], raw[1] & 0x7F, crc, crc)
+    decode_frame(request)
+    return request
 
 
 def engine_report(collector: Any, health: Any | None, annotator: Any | None) -> Any:

@@ -30,13 +30,13 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator
 
 from dissector.model import Frame, Item, Kind, Register
-from dissector.protocol.spec import SPEC
 from dissector.render.history import UNREADABLE, History
 # (Columns, drawn and Y_DIGITS are the report's from here too: health.py, the codegen, the tests)
 from dissector.render.report.columns import Y_DIGITS, Columns, compact_json as _json, drawn, new_columns
 from dissector.render.report.groups import EventGroups
+from dissector.render.report.meaning import device_meaning, event_text
 from dissector.render.report.moments import Moments
-from dissector.render.report.reading import MAX_LABELS, adopt, rehome
+from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, summary_text
 from dissector.render.stats_store import TABLE_NAMES, table_label
 from dissector.render.summary import noise_text
 
@@ -58,6 +58,10 @@ class Series:
     unit: str | None = None
     step: bool = False  # an enumeration or a bit field: the raw word, drawn as steps
     labels: dict[int, str] = field(default_factory=dict)
+    # A value's text as the summary names it (reading.py summary_text), the last one named: the engine names
+    # each value once (engine_point), so this is the value's text only for a series of one value (the
+    # table of parameters with a single value: sections.py single_values)
+    text: str | None = None
     columns: Any = field(default_factory=new_columns)
     # The map row the slave's device names the address with, whose reading of the words the points are
     # (reading.py adopt); None: no row, the points are the words themselves.
@@ -184,13 +188,14 @@ class ReportCollector:
             if code is None:
                 self._event(x, "exception", frame.slave, "exception")
             else:
-                told = _exception_text(frame.function, code, frame.exception_text)
+                device = None if self._device is None else self._device(frame.slave)
+                told = event_text(frame.function, code, frame.exception_text if device is None else
+                                  device_meaning(device, frame.function, code, frame.request))
                 if frame.provisional and self._device is not None:
                     # Decoded before profile `auto` chose the slave's device: no meaning yet (data() tells it)
-                    # (its request kept where it may be a refused read-only write: explain.exception_meaning)
-                    request = frame.request if code == SPEC.read_only_exception else None
+                    # (its request kept: a refused read-only write, the causes it picks: meaning.py)
                     self._pending.append((len(self.events) if len(self.events) < MAX_EVENTS else None,
-                                          frame.slave, frame.function, code, told, request))
+                                          frame.slave, frame.function, code, told, frame.request))
                 self._event(x, "exception", frame.slave, told)
         if self.owns_history:
             self.history.add(frame)
@@ -290,15 +295,20 @@ class ReportCollector:
 
     @staticmethod
     def _y(series: Series, register: Register) -> float:
-        """The value drawn: scaled as the device reads it, else the raw word (named by labels); the
-        register named by the slave's device now, whose map row the series adopted (reading.py adopt)."""
+        """The value drawn: scaled as the device reads it, else the raw word, named by labels where the map
+        row is an enumeration or a bit field (a number not scaled keeps its unit); the register named by the
+        slave's device now, whose map row the series adopted (reading.py adopt)."""
+        series.text = summary_text(register)
         scaled = register.scaled
         if scaled is not None:
             if series.unit is None:
                 series.unit = register.unit
             return float(scaled)
         text = register.text
-        if text is not None:  # an enumeration or a bit field: the profile names the word
+        if not _names_word(series.row, register):  # a number the device does not scale: `10 (unscaled, in s)`
+            if series.unit is None:
+                series.unit = register.unit
+        elif text is not None:  # an enumeration or a bit field: the profile names the word
             series.step = True
             labels = series.labels
             if register.value not in labels and len(labels) < MAX_LABELS:
@@ -403,12 +413,11 @@ class ReportCollector:
 
     def _retell(self) -> None:
         """Exceptions decoded before profile `auto` chose their slave's device (standard input) told as
-        the file tells them: with the chosen device's meaning (explain.exception_meaning: p.38's clause, a
-        refused read-only write's)."""
-        from dissector.devices.explain import exception_meaning
+        the file tells them: with the chosen device's meaning (meaning.py device_meaning: p.38's clause, a
+        refused read-only write's, the causes the request picks)."""
         for index, slave, function, code, told, request in self._pending:
-            meaning = exception_meaning(self._device(slave), function, code, request)  # type: ignore[misc]
-            text = _exception_text(function, code, meaning)
+            meaning = device_meaning(self._device(slave), function, code, request)  # type: ignore[misc]
+            text = event_text(function, code, meaning)
             if text == told:
                 continue
             if index is not None:
@@ -473,6 +482,10 @@ class ReportCollector:
         return entry
 
 
-def _exception_text(function: int, code: int, meaning: str | None) -> str:
-    """An exception event's text (accel/reportfeed.py exception_event writes it too)."""
-    return f"exception {code:02X} to function {function & 0x7F}" + (f": {meaning}" if meaning else "")
+def _names_word(row: Any, register: Register) -> bool:
+    """The register's text names its word (an enumeration or a bit field: steps and labels) rather than
+    saying a number: as its map row reads words, or without a row (no device profile), when the text does
+    not start with the number itself (watch.py value_text)."""
+    if row is not None:
+        return labelled(row)
+    return register.text is not None and not register.text.startswith(f"{register.value} ")

@@ -1,14 +1,19 @@
 """How a trend reads its register's words (collect.py Series.row): as the map row of its slave's device
 now, the one the file's decode, named with the last choice of profile `auto` throughout, reads them with.
 When that row changes (the device chosen after values were drawn, or a choice taken back: standard input,
-one pass), `adopt` reads the points kept again from their words, and the series' names, unit and steps."""
+one pass), `adopt` reads the points kept again from their words, and the series' names, unit and steps.
+A word is drawn as steps, named by labels, only where its row is an enumeration or a bit field: a row that
+reads a number (scaled, signed, or with a unit and no scale) draws the number with its unit (`summary_text`
+says it as the summary and --watch do, for the table of parameters with a single value)."""
 from __future__ import annotations
 
 from array import array
 from typing import Any
 
 from dissector.devices.maps import interpret
+from dissector.model import Register
 from dissector.render.stats_store import table_label, table_reader
+from dissector.render.watch import value_text
 
 MAX_LABELS = 64  # an enumeration's or bit field's texts kept for the chart's axis
 
@@ -49,8 +54,12 @@ def adopt(series: Any, row: Any) -> None:
         return reading(row, word)[0] if scales(row) else float(word)  # type: ignore[return-value]
 
     remap(columns, again)
-    if scales(row):
-        series.unit = row.unit
+    if words:  # (the last column's last point: the last value)
+        scaled, text = reading(row, words[-1])
+        series.text = summary_text(Register(None, words[-1], unit=None if row is None else row.unit,
+                                            scaled=scaled, text=text))
+    if not labelled(row):
+        series.unit = None if row is None else row.unit
         return
     for word in words:
         text = reading(row, word)[1]
@@ -58,6 +67,18 @@ def adopt(series: Any, row: Any) -> None:
             series.step = True
             if word not in series.labels and len(series.labels) < MAX_LABELS:
                 series.labels[word] = text
+
+
+def labelled(row: Any) -> bool:
+    """The row names words rather than reading numbers: an enumeration or a bit field (drawn as steps)."""
+    return row is not None and bool(row.enum or row.bits)
+
+
+def summary_text(register: Register) -> str:
+    """A value as the summary names it, with its unit (watch.py value_text: `4.0 kHz`, `2 Cd (command)`,
+    an unscaled value's own text)."""
+    text, unit = value_text(register)
+    return text if unit is None else f"{text} {unit}"
 
 
 def scales(row: Any) -> bool:
@@ -114,3 +135,5 @@ def join(kept: Any, moved: Any) -> None:
             kept.labels.setdefault(value, text)
     if kept.code is None:
         kept.code, kept.name, kept.unit, kept.step = moved.code, moved.name, moved.unit, moved.step
+    if kept.text is None:
+        kept.text = moved.text

@@ -109,8 +109,9 @@ def event_groups(collector: ReportCollector, data: dict[str, Any], when: Callabl
     return parts
 
 
-def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int, float]:
-    """Parameters drawn from one value throughout and never unreadable: index -> the value."""
+def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int, str]:
+    """Parameters drawn from one value throughout and never unreadable: index -> the value as the summary
+    names it (Series.text; `4.0 kHz`, where the value drawn is 4)."""
     single = {}
     for index, parameter in enumerate(data["parameters"]):
         if parameter["marks"] or not parameter["values"]:
@@ -121,19 +122,15 @@ def single_values(collector: ReportCollector, data: dict[str, Any]) -> dict[int,
             continue
         levels = series.columns.levels()
         if levels is not None and levels[1] == levels[2]:
-            single[index] = levels[0]
+            single[index] = series.text if series.text is not None else _number(levels[0])
     return single
 
 
-def _value_text(parameter: dict[str, Any], value: float) -> str:
-    number = int(value) if value.is_integer() else value
-    label = parameter["labels"].get(str(number))
-    if label is not None:
-        return f"{number} {label}"
-    return f"{number} {parameter['unit']}" if parameter["unit"] else str(number)
+def _number(value: float) -> str:
+    return str(int(value) if value.is_integer() else value)
 
 
-def parameter_index(data: dict[str, Any], single: dict[int, float], anchor: str = "") -> list[str]:
+def parameter_index(data: dict[str, Any], single: dict[int, str], anchor: str = "") -> list[str]:
     """Links to every trend, named parameters first; the one-value parameters as a table."""
     parameters = data["parameters"]
     if not parameters:
@@ -154,7 +151,7 @@ def parameter_index(data: dict[str, Any], single: dict[int, float], anchor: str 
             ["slave", "address", "code", "name", "value", "values"],
             [[parameters[index]["slave"], parameters[index].get("label") or parameters[index]["address"],
               parameters[index]["code"] or "",
-              parameters[index]["name"] or "", _value_text(parameters[index], single[index]), parameters[index]["values"]]
+              parameters[index]["name"] or "", single[index], parameters[index]["values"]]
              for index in order if index in single], "single"))
     return parts
 
