@@ -20,8 +20,11 @@ def _group(group: str) -> dict[str, str]:
 
 
 # The ProtoField type of keys the plugin has no field for whose catalogue type does not tell it: raw is hex
-# text in the JSON, bytes to -Y (as tshark's frame: contains 0c:03, raw[0:2]); length counts bytes.
-OWN_FTYPES = {"raw": "bytes", "length": "uint32"}
+# text in the JSON, bytes to -Y (as tshark's frame: contains 0c:03, raw[0:2]); length counts bytes; the
+# times are tshark's frame.time_epoch, time_relative, time_delta (-T fields writes them as those), which
+# tshark 4.0.17 types FT_RELATIVE_TIME (a time takes 1.5, not 0x1, 1e-3 or '\x01'; + and - only).
+OWN_FTYPES = {"raw": "bytes", "length": "uint32", "time": "relative_time", "time_relative": "relative_time",
+              "time_delta": "relative_time", "time_delta_displayed": "relative_time"}
 # field -> type, per group
 FRAME_FIELDS: dict[str, str] = _group("frame") | {"raw": "bytes"}
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
@@ -149,6 +152,8 @@ def field_listing() -> str:
                  "< <= > >= & in {..} a..b "
                  "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 13.5e-3 \"text\" true false, "
                  "bytes "
-                 "0c:03 (raw contains 0c:03, raw[0:2] == 0c03); a field "
-                 "alone tests its presence (crc_ok: checked, good or bad; crc_ok == 1: good)")
+                 "0c:03 (raw contains 0c:03, raw[0:2] == 0c03), 'a'; a field "
+                 "alone tests its presence (crc_ok: checked, good or bad; crc_ok == 1: good); functions "
+                 "len() count() upper() lower() string() max() min() abs(), arithmetic + - * / % "
+                 "({slave + 1} == 13)")
     return "\n".join(lines) + "\n"

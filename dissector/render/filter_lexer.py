@@ -13,7 +13,7 @@ from dissector.render.filter_error import FilterError
 
 @dataclass(slots=True)
 class Token:
-    kind: str  # name, number, bytes, string, slice, op, punct, keyword, end
+    kind: str  # name, number, bytes, string, char, slice, op, punct, keyword, end
     text: str
     value: Any
     position: int
@@ -23,7 +23,7 @@ class Token:
 # A byte string: pairs of hex digits joined by one separator, as tshark's frame takes them, or a run of hex
 # digits starting with a digit and holding a letter (0c03); 12-34 and 12.50 are numbers to a number field.
 _BYTES = (r"[0-9A-Fa-f]{2}(?:[:.-][0-9A-Fa-f]{2})+(?![0-9A-Za-z_#:.-])"
-          r"|[0-9][0-9A-Fa-f]*[A-Fa-f][0-9A-Fa-f]*(?![0-9A-Za-z_#:.])")
+          r"|[0-9][0-9A-Fa-f]*[A-Fa-f][0-9A-Fa-f]*(?![0-9A-Za-z_#:.+-])")  # (1e-3: a number)
 _TOKEN = re.compile(
     r"""
     (?P<space>\s+)
@@ -32,8 +32,9 @@ _TOKEN = re.compile(
   | (?P<dashed>\d+-\d+)(?![0-9A-Za-z_#.])
   | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)(?![0-9A-Za-z_#]))
   | (?P<string>")
+  | (?P<char>')
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
-  | (?P<op>===|!==|==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~)
+  | (?P<op>===|!==|==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~|[-+*/%])
   | (?P<punct>\.\.|[(){},])
     """,
     re.VERBOSE,
@@ -85,6 +86,42 @@ def _string(text: str, start: int) -> tuple[str, bytes, int]:
     raise FilterError("string not closed (a \" is missing)", text, start)
 
 
+# The escapes a character constant takes, as tshark 4.0.17 reads them (not \n, which it refuses)
+_CHAR_ESCAPES = {"a": 7, "b": 8, "f": 12, "r": 13, "t": 9, "v": 11, "\\": 92, "'": 39, '"': 34}
+
+
+def _char(text: str, start: int) -> tuple[int, int]:
+    """The character constant at `start` (its opening quote): its value (a number, 'a' is 97, as
+    Wireshark's) and where it ends; refused as tshark 4.0.17 refuses it."""
+    i = start + 1
+    while i < len(text) and text[i] != "'":
+        i += 2 if text[i] == "\\" else 1
+    if i >= len(text):
+        raise FilterError("the final quote was missing from a character constant", text, start)
+    inside, written = text[start + 1:i], text[start:i + 1]
+    if not inside:
+        raise FilterError("empty character constant", text, start)
+    if inside[0] != "\\":
+        if len(inside) > 1:
+            raise FilterError(f"{written} is too long to be a valid character constant", text, start)
+        if not " " <= inside <= "~":
+            raise FilterError(f"{written}: a character constant is printable ASCII (write '\\xhh')", text,
+                              start)
+        return ord(inside), i + 1
+    if inside[1:] in _CHAR_ESCAPES:
+        return _CHAR_ESCAPES[inside[1:]], i + 1
+    numeric = _NUMERIC_ESCAPE.match(inside, 1)
+    if numeric is None:  # ('\n' too: tshark 4.0.17 refuses it)
+        raise FilterError(f"{written} isn't a valid character constant", text, start)
+    if numeric.end() < len(inside):
+        raise FilterError(f"{written} is too long to be a valid character constant", text, start)
+    digits = numeric.group()
+    code = int(digits[1:], 16) if digits[0] == "x" else int(digits, 8)
+    if code > 0xFF:
+        raise FilterError(f"{written} is too large to be a valid character constant", text, start)
+    return code, i + 1
+
+
 def number(word: str, text: str, position: int) -> int | float:
     """0x8000, 16#8000 (IEC 61131-3 radix#digits, as the notes print values), 12, 1.5 or 13.5e-3; as
     Wireshark's, 0b1100 binary and 014 octal (a leading 0: vw3.slave == 014 is slave 12)."""
@@ -125,6 +162,11 @@ def parse_bytes(token: Token) -> bytes | None:
     return None
 
 
+def _ends_value(token: Token) -> bool:
+    """Does `token` end an operand, so that a - after it subtracts?"""
+    return token.kind in ("name", "number", "char", "slice") or token.text in (")", "}")
+
+
 def tokenize(text: str) -> list[Token]:
     tokens: list[Token] = []
     i = 0
@@ -140,6 +182,19 @@ def tokenize(text: str) -> list[Token]:
             value, data, end = _string(text, i)
             tokens.append(Token("string", text[i:end], value, i, data))
             i = end
+            continue
+        if group == "char":
+            code, end = _char(text, i)
+            tokens.append(Token("char", text[i:end], code, i))
+            i = end
+            continue
+        if group == "number" and word[0] == "-" and tokens and _ends_value(tokens[-1]):
+            # slave -1: a subtraction, as tshark reads it (slave-1, a name tshark refuses, too)
+            if tokens[-1].position + len(tokens[-1].text) == i and tokens[-1].kind == "name":
+                raise FilterError(f"{tokens[-1].text}{word} is no field: put spaces around - to subtract",
+                                  text, tokens[-1].position)
+            tokens.append(Token("op", "-", "-", i))
+            i += 1
             continue
         if group in ("number", "bytes", "dashed") and len(word) > 40:  # (keeps int() below its digit limit)
             raise FilterError("number too long", text, i)

@@ -6,6 +6,7 @@ from collections.abc import Callable
 from typing import Any
 
 from dissector.devices.naming import plc_label
+from dissector.render.filter_error import FilterError
 from dissector.protocol import table
 
 Item = dict[str, Any]
@@ -35,6 +36,17 @@ def compare(op: str, left: Any, right: Any) -> bool:
         return bool(left >= right)
     except TypeError:  # a value of an unexpected type in the item: not a match
         return False
+
+
+def compile_regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
+    """Case-insensitive as Wireshark's matches; a leading (?-i) asks for case."""
+    flags = re.IGNORECASE
+    if pattern.startswith("(?-i)"):
+        pattern, flags = pattern[5:], 0
+    try:
+        return re.compile(pattern, flags)
+    except re.error as error:
+        raise FilterError(f"not a regular expression: {error}", text, position) from None
 
 
 def is_number(value: Any) -> bool:
@@ -186,3 +198,41 @@ def item_elements(item: Item) -> list[dict[str, Any]]:
         if address & 0xFFFF not in known
     ]
     return elements + synthesized if synthesized else elements
+
+
+class And:
+    """All of `tests`; `split` = (frame-level part, register-level part) when it has both."""
+
+    __slots__ = ("tests", "split")
+
+    def __init__(self, tests: list[Test]) -> None:
+        self.tests = tests
+        self.split: tuple[And, And] | None = None
+
+    def __call__(self, item: Item, reg: dict[str, Any] | None) -> bool:
+        return all(test(item, reg) for test in self.tests)
+
+
+def quantify(test: Test) -> Callable[[Item], bool]:
+    """Some register (or, for a frame without any, no register at all) makes `test` true."""
+    split = test.split if isinstance(test, And) else None
+    if split is not None:
+        frame_part, register_part = split
+
+        def some_split(item: Item) -> bool:
+            if not frame_part(item, None):
+                return False
+            elements = item_elements(item)
+            if not elements:
+                return register_part(item, None)
+            return any(register_part(item, element) for element in elements)
+
+        return some_split
+
+    def some(item: Item) -> bool:
+        elements = item_elements(item)
+        if not elements:
+            return test(item, None)
+        return any(test(item, element) for element in elements)
+
+    return some

@@ -19,7 +19,9 @@ Syntax, close to Wireshark's:
                                             0x.. hex, 0b1100, 014 (octal, as Wireshark's), 16#8000
                                             (IEC, as the notes print values), 13.5e-3
                                             (not for a whole-number field: tshark refuses frame == 1e0),
-                                            true / false
+                                            true / false, 'a' '\\x0c' (a character: its number)
+    len(raw) == 8   count(value) > 1        functions and arithmetic, as tshark 4.0.17's: len count upper
+    {slave + 1} == 13   value - 1 > 2       lower string max min abs; + - * / % & (render/filter_expr.py)
 
 Field names are the keys `-T fields` takes (`-Y help` lists them). Frame fields: frame, kind, offset,
 length, time, raw, mode, slave, function, function_name, crc_ok, crc, crc_expected, broadcast, start,
@@ -31,7 +33,8 @@ warnings, notes, file; `fields.KEY` for a key of the PDU as the grammar parsed i
 `time` is the JSON's (seconds since the epoch), compared with a number or a date and time in quotes as
 tshark's frame.time is (`time >= "2026-12-05 10:00"`, local time: render/filter_dates.py);
 `time_relative` the seconds since the first item of the input, and `time_delta` since the item captured
-before, as the time column shows them (tshark's frame.time_relative and frame.time_delta). A value of
+before, as the time column shows them (tshark's frame.time_relative and frame.time_delta): times, typed
+as tshark types those (FT_RELATIVE_TIME), take seconds in decimals (1.5, not 1e-3 or 0x1). A value of
 an enumerated field that does not exist is an error naming the nearest ones: kind, mode, status, code
 (the parameter codes of the run's maps), profile, function_name, exception_name, exception_meaning and
 subfunction_name (the spec's names and those of the run's profiles); so is a `fields.KEY` whose KEY no
@@ -72,10 +75,12 @@ from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
 from dissector.render.filter_match import (
+    And,
     address_of,
     address_test,
     address_values,
     any_bit,
+    compile_regex,
     any_bit_bytes,
     as_bytes,
     cut_bytes,
@@ -85,10 +90,13 @@ from dissector.render.filter_match import (
     is_number,
     match_op,
     is_present,
-    item_elements,
+    quantify,
     search,
 )
 
+from dissector.render.filter_ops import needs_expression, parse_expression_test
+from dissector.render.filter_values import TIME_TYPES, kind_of, time_literal, type_name, uint_limit
+from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
 
 # One range of a slice: start:length, start:, :length, first-last or an offset (a start < 0: from the end)
@@ -154,12 +162,12 @@ class _Parser:
         if len(parts) == 1:
             return parts[0]
         tests = [test for test, _uses in parts]
-        conjunction = _And(tests)
+        conjunction = And(tests)
         frame_tests = [test for test, uses in parts if not uses]
         register_tests = [test for test, uses in parts if uses]
         if frame_tests and register_tests:
             # Frame-level tests are checked once per frame, before any per-register work.
-            conjunction.split = (_And(frame_tests), _And(register_tests))
+            conjunction.split = (And(frame_tests), And(register_tests))
         return conjunction, bool(register_tests)
 
     def _enter(self) -> None:
@@ -190,42 +198,53 @@ class _Parser:
                 raise self.error(f"expected ) to close the ( at column {token.position + 1}")
             self.advance()
             return result
+        if needs_expression(self.tokens, self.index):  # functions, arithmetic, a field on the right
+            return parse_expression_test(self)
         if token.kind != "name":
             raise self.error(f"expected a field name, found {self._describe(token)}")
         return self.parse_test()
 
     def parse_test(self) -> tuple[Test, bool]:
         name_token = self.advance()
+        field, ftype, register = self.resolve_field(name_token)
+        if field.startswith("fields."):
+            return self.parse_pdu_key_test(field, field[7:])
+        cut = self.parse_slice(field, ftype)
+        text_cut = cut is not None and ftype == "str"  # (a text's slice is bytes of its UTF-8, as tshark's)
+        get = self.field_getter(field, ftype, register, cut)
+        return self.parse_operation(field, "bytes" if text_cut else ftype, get, register)
+
+    def resolve_field(self, name_token: Token) -> tuple[str, str, bool]:
+        """(field, type, whether a register's) of the name at `name_token`; an unknown name is an error."""
         field = ALIASES.get(name_token.value, name_token.value)
-        inner = None
         if field.startswith("fields."):
             problem = unknown_pdu_key(field[7:])
             if problem is not None:
                 raise self.error(f"unknown field {name_token.text!r}: {problem}", name_token)
-            register, ftype, inner = False, "any", field[7:]
-        elif "." in field:
+            return field, "any", False
+        if "." in field:
             # tshark's frame.time, frame.number...: said by the name vw3-decode gives them
             ours = "frame" if field == "frame.number" else field.removeprefix("frame.")
             known = ours in FRAME_FIELDS or ours in TIME_FILTER_FIELDS
             hint = f" (vw3-decode names it {ours})" if known else ""
             raise self.error(f"unknown field {name_token.text!r}: only fields.KEY names a key inside a value"
                              f"{hint}", name_token)
-        elif field in FRAME_FIELDS:
-            register, ftype = False, FRAME_FIELDS[field]
-        elif field in REGISTER_FIELDS:
-            register, ftype = True, REGISTER_FIELDS[field]
-        elif field in TIME_FILTER_FIELDS:
-            register, ftype = False, TIME_FILTER_FIELDS[field]
-        elif field == "time_delta_displayed":
+        if field in FRAME_FIELDS:
+            return field, FRAME_FIELDS[field], False
+        if field in REGISTER_FIELDS:
+            return field, REGISTER_FIELDS[field], True
+        if field in TIME_FILTER_FIELDS:
+            return field, TIME_FILTER_FIELDS[field], False
+        if field == "time_delta_displayed":
             raise self.error("time_delta_displayed depends on what is shown, so it cannot choose it: "
                              "use time_delta", name_token)
-        else:
-            raise self.error(f"unknown field {name_token.text!r}{self._suggest(name_token.text)}", name_token)
+        raise self.error(f"unknown field {name_token.text!r}{self._suggest(name_token.text)}", name_token)
+
+    def field_getter(self, field: str, ftype: str, register: bool, cut: Callable[[bytes], bytes | None] | None
+                     ) -> Callable[[Item, dict[str, Any] | None], Any]:
+        """How to read `field` (sliced by `cut`) of an item, or of one register of it."""
         context = self.context
-        if inner is not None:
-            return self.parse_pdu_key_test(field, inner)
-        cut = self.parse_slice(field, ftype)
-        text_cut = cut is not None and ftype == "str"  # (a text's slice is bytes of its UTF-8, as tshark's)
+        text_cut = cut is not None and ftype == "str"
 
         def get(item: Item, reg: dict[str, Any] | None) -> Any:
             if register:
@@ -241,7 +260,7 @@ class _Parser:
                 return cut(value.encode()) if isinstance(value, str) else None
             return None if value is False and field in ONLY_TRUE else value
 
-        return self.parse_operation(field, "bytes" if text_cut else ftype, get, register)
+        return get
 
     def parse_slice(self, field: str, ftype: str) -> Callable[[bytes], bytes | None] | None:
         """`raw[0:2]` (start:length), `raw[0-1]` (first-last), `raw[:2]`, `raw[2:]`, `raw[-2:]`, `raw[4]`,
@@ -294,6 +313,9 @@ class _Parser:
             self.advance()
             if ftype not in ("number", "any", "bytes"):
                 raise self.error(f"& tests bits of a number; {field} is a {_TYPE_WORDS[ftype]}", token)
+            if ftype == "number" and kind_of(field_type(field)) != "int":  # (a time, a decimal: as tshark)
+                raise self.error(f"& tests bits of a whole number; {field} is {type_name(field_type(field))}",
+                                 token)
             mask_token = self.token
             mask = self.parse_value(field, "any" if ftype == "number" else ftype)  # (1.5: named below)
             if ftype == "bytes":  # (some bit set in both, over the shorter: tshark's frame[0:2] & 0f)
@@ -312,7 +334,10 @@ class _Parser:
             if ftype not in ("str", "list", "any", "bytes"):
                 raise self.error(f"matches needs a text field; {field} is a {_TYPE_WORDS[ftype]}", token)
             pattern_token = self.token
-            pattern = _regex(self.parse_value(field, "str"), self.text, pattern_token.position)
+            if pattern_token.kind == "char":
+                raise self.error("matches takes a regular expression in double quotes, not a character "
+                                 "constant (as tshark)")
+            pattern = compile_regex(self.parse_value(field, "str"), self.text, pattern_token.position)
             if ftype == "bytes":  # each byte a character: "\x0c\x03" matches the bytes 0c 03
                 return (lambda item, reg: search(pattern, latin1(get(item, reg)))), register
             if ftype == "list":
@@ -399,8 +424,11 @@ class _Parser:
         token = self.token
         if token.kind == "end":
             raise self.error(f"expected a value to compare {field} with")
+        if token.kind == "char" and ftype in ("str", "list", "bytes"):  # 'R': a text's character, a byte
+            self.advance()
+            return bytes([token.value]) if ftype == "bytes" else chr(token.value)
         if ftype == "bool":  # true/false, or 1/0 as Wireshark takes them and -T fields prints them
-            if token.kind == "number" and token.value in (0, 1) and isinstance(token.value, int):
+            if token.kind in ("number", "char") and token.value in (0, 1) and isinstance(token.value, int):
                 self.advance()
                 return token.value == 1
             if not self.at("keyword", "true", "false"):
@@ -425,7 +453,7 @@ class _Parser:
         if ftype == "number":
             return self.parse_number(field, token)
         if ftype == "any":  # a key of the PDU's fields: a number, a text (bytes as hex), true or false
-            if token.kind == "number" or token.kind == "string":
+            if token.kind in ("number", "string", "char"):
                 self.advance()
                 return token.value
             if self.at("keyword", "true", "false"):
@@ -447,10 +475,22 @@ class _Parser:
         if token.kind == "bytes" and (NUMBER.fullmatch(token.text) or token.text[:2] in ("0b", "0B")):
             # (12.50, 1e0 and 0b1100 are read as bytes first)
             token = Token("number", token.text, number(token.text, self.text, token.position), token.position)
-        if token.kind != "number":
+        ftype = field_type(field)
+        if ftype in TIME_TYPES:  # seconds in decimals: tshark 4.0.17 refuses 1e-3, 0x1, '\x01' for a time
+            seconds = time_literal(token.text) if token.kind in ("number", "bytes") else None
+            if seconds is None:
+                raise self.error(f"{token.text} is not a valid time: {field} takes seconds written as 1.5 "
+                                 "(no exponent, hex or character; 9 decimals at most, as tshark)")
+            self.advance()
+            return seconds
+        if token.kind != "number" and token.kind != "char":
             raise self.error(f"{field} is a number, not {self._describe(token)}")
         if isinstance(token.value, float) and whole_number(field):
             raise self.error(f"{field} is a whole number, and {token.text} is not written as one "
+                             "(as tshark refuses it)")
+        limit = uint_limit(ftype)
+        if limit is not None and token.value > limit:
+            raise self.error(f"{token.text} is too big for {field}, {type_name(ftype)}: at most {limit} "
                              "(as tshark refuses it)")
         self.advance()
         return token.value
@@ -529,55 +569,6 @@ class _Parser:
         names = [*FRAME_FIELDS, *REGISTER_FIELDS, *ALIASES, *TIME_FILTER_FIELDS]
         close = difflib.get_close_matches(name.lower(), names, n=1)
         return f" (did you mean {close[0]}?)" if close else ""
-
-
-def _regex(pattern: str, text: str, position: int) -> re.Pattern[str]:
-    """Case-insensitive as Wireshark's matches; a leading (?-i) asks for case."""
-    flags = re.IGNORECASE
-    if pattern.startswith("(?-i)"):
-        pattern, flags = pattern[5:], 0
-    try:
-        return re.compile(pattern, flags)
-    except re.error as error:
-        raise FilterError(f"not a regular expression: {error}", text, position) from None
-
-
-class _And:
-    """All of `tests`; `split` = (frame-level part, register-level part) when it has both."""
-
-    __slots__ = ("tests", "split")
-
-    def __init__(self, tests: list[Test]) -> None:
-        self.tests = tests
-        self.split: tuple[_And, _And] | None = None
-
-    def __call__(self, item: Item, reg: dict[str, Any] | None) -> bool:
-        return all(test(item, reg) for test in self.tests)
-
-
-def quantify(test: Test) -> Callable[[Item], bool]:
-    """Some register (or, for a frame without any, no register at all) makes `test` true."""
-    split = test.split if isinstance(test, _And) else None
-    if split is not None:
-        frame_part, register_part = split
-
-        def some_split(item: Item) -> bool:
-            if not frame_part(item, None):
-                return False
-            elements = item_elements(item)
-            if not elements:
-                return register_part(item, None)
-            return any(register_part(item, element) for element in elements)
-
-        return some_split
-
-    def some(item: Item) -> bool:
-        elements = item_elements(item)
-        if not elements:
-            return test(item, None)
-        return any(test(item, element) for element in elements)
-
-    return some
 
 
 def compile_filter(text: str, context: FilterContext | None = None) -> Callable[[Item], bool]:

@@ -36,13 +36,32 @@ def _type(ftype: str, base: str | None) -> tuple[str, str]:
     return FTYPES[ftype]
 
 
-def _field(entry: dict[str, Any]) -> str:
+def _entry_type(entry: dict[str, Any]) -> tuple[str, str]:
+    """The tshark type and base column of a catalogue key."""
     key, ftype = entry["key"], entry.get("ftype") or OWN_FTYPES.get(entry["key"])
     own = FRAME_FIELDS.get(key, entry["type"])  # (raw: bytes to -Y, text in the JSON)
     if ftype is None or not ftype.startswith(KINDS[own]):
         ftype = OWN_TYPES[own]
-    name = entry.get("title") or key.replace("_", " ").capitalize()
-    return _line(name, key, *_type(ftype, entry.get("base")), FIELD_HELP[key])
+    return _type(ftype, entry.get("base"))
+
+
+def _field(entry: dict[str, Any]) -> str:
+    name = entry.get("title") or entry["key"].replace("_", " ").capitalize()
+    return _line(name, entry["key"], *_entry_type(entry), FIELD_HELP[entry["key"]])
+
+
+def field_type(key: str) -> str:
+    """The tshark type -G fields lists for a key (FT_UINT16, FT_STRING...), as -Y's functions and
+    arithmetic type it (render/filter_expr.py); FT_NONE for a name that is no key."""
+    if key.startswith("fields."):
+        return _type(pdu_key_types().get(key[7:], "none"), None)[0]
+    if key == "time_delta_displayed":
+        return FTYPES["relative_time"][0]
+    entry = _ENTRIES.get(key)
+    return "FT_NONE" if entry is None else _entry_type(entry)[0]
+
+
+_ENTRIES = {entry["key"]: entry for entry in CATALOGUE if "key" in entry}
 
 
 def _line(name: str, abbrev: str, ftype: str, base: str, blurb: str) -> str:
@@ -52,7 +71,8 @@ def _line(name: str, abbrev: str, ftype: str, base: str, blurb: str) -> str:
 def glossary() -> str:
     lines = ["\t".join(["P", *PROTOCOL])]
     lines += [_field(entry) for entry in CATALOGUE if "key" in entry]
-    lines.append(_line("Time delta from previous displayed frame", "time_delta_displayed", "FT_DOUBLE", "",
+    lines.append(_line("Time delta from previous displayed frame", "time_delta_displayed",
+                       *FTYPES["relative_time"],
                        "seconds since the item shown before (-T fields only)"))
     types = pdu_key_types()
     for key, owners in pdu_keys().items():  # fields.KEY: the keys of the protocol table's layouts

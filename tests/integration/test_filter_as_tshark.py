@@ -31,7 +31,7 @@ CASES = [
     ("noisy_bus.pcap", "raw[0:2] > 0c", "frame[0:2] > 0c"),
     ("noisy_bus.pcap", "raw[0:2] & 0f", "frame[0:2] & 0f"),
     ("noisy_bus.pcap", 'raw matches "^\\x0c\\x03"', 'frame matches "^\\x0c\\x03"'),
-    ("noisy_bus.pcap", "response_time >= 8.5e-3", "vw3.response_time >= 0.0085"),
+    ("noisy_bus.pcap", "response_time >= 0.0085", "vw3.response_time >= 0.0085"),
     ("noisy_bus.pcap", 'function_name contains "Read\\x20Holding"',
      'vw3.function_name contains "Read\\x20Holding"'),
     ("noisy_bus.pcap", "frame !== 1", "vw3.item !== 1"),

@@ -1,0 +1,243 @@
+"""A display-filter test with functions or arithmetic in it (render/filter_expr.py, filter_functions.py):
+its operands parsed, as tshark 4.0.17's grammar reads them,
+
+    sum := product (+|- product)...   product := unary (*|/|% unary)...
+    & below both (`value & 4 + 1` is `value & 5`)
+    unary := -unary | +unary | {expression} | name(arguments)[slice] | field[slice] | literal
+
+and compared. render/filters.py parses every other test itself: needs_expression tells which."""
+from __future__ import annotations
+
+from typing import Any
+
+from dissector.render.filter_expr import ARITHMETIC, Operand, arithmetic, constant, negative, typed
+from dissector.render.filter_fields import (
+    ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
+)
+from dissector.render.filter_functions import call
+from dissector.render.filter_match import compile_regex, match_op, quantify
+from dissector.render.filter_values import kind_of, type_name
+from dissector.render.glossary import field_type
+
+Item = dict[str, Any]
+COMPARISONS = ("==", "!=", "~=", "===", "<", "<=", ">", ">=")
+_LITERALS = ("number", "string", "char", "bytes", "dashed")
+
+
+def _is_field(token: Any) -> bool:
+    """A name that is a field (an unquoted word that is none stays the text or bytes it was)."""
+    if token.kind != "name":
+        return False
+    name = ALIASES.get(token.value, token.value)
+    if name.startswith("fields."):
+        return unknown_pdu_key(name[7:]) is None
+    return name in FRAME_FIELDS or name in REGISTER_FIELDS or name in TIME_FILTER_FIELDS
+
+
+def needs_expression(tokens: list[Any], index: int) -> bool:
+    """Does the test at `index` hold a function, arithmetic, or a field on the right of its comparison?"""
+    def at(i: int, kind: str, *values: str) -> bool:
+        return i < len(tokens) and tokens[i].kind == kind and (not values or tokens[i].value in values)
+
+    def opens_operand(i: int) -> bool:  # {...}, -x, +x or a call
+        return at(i, "punct", "{") or at(i, "op", "-", "+") or (at(i, "name") and at(i + 1, "punct", "("))
+
+    if opens_operand(index):
+        return True
+    if not at(index, "name"):
+        return False
+    i = index + 1 + at(index + 1, "slice")
+    if at(i, "op", *ARITHMETIC) or (at(i, "op", "&") and at(i + 2, "op", *ARITHMETIC)):
+        return True
+    if not at(i, "op", *COMPARISONS):
+        return False
+    right = i + 1
+    if opens_operand(right):
+        return True
+    if right < len(tokens) and _is_field(tokens[right]):
+        return True
+    return right < len(tokens) and tokens[right].kind in _LITERALS and at(right + 1, "op", *ARITHMETIC)
+
+
+# -- operands ----------------------------------------------------------------------------------
+def parse_expression(p: Any) -> Operand:
+    left = _parse_sum(p)
+    while p.at("op", "&"):
+        op = p.advance()
+        left = arithmetic(p, op, left, _parse_sum(p))
+    return left
+
+
+def _parse_sum(p: Any) -> Operand:
+    left = _parse_product(p)
+    while p.at("op", "+", "-"):
+        op = p.advance()
+        left = arithmetic(p, op, left, _parse_product(p))
+    return left
+
+
+def _parse_product(p: Any) -> Operand:
+    left = _parse_unary(p)
+    while p.at("op", "*", "/", "%"):
+        op = p.advance()
+        left = arithmetic(p, op, left, _parse_unary(p))
+    return left
+
+
+def _parse_unary(p: Any) -> Operand:
+    if p.at("op", "-", "+"):
+        op = p.advance()
+        p._enter()
+        operand = negative(p, op, _parse_unary(p))
+        p.depth -= 1
+        return operand
+    token = p.token
+    if p.at("punct", "{"):
+        p.advance()
+        p._enter()
+        inner = parse_expression(p)
+        p.depth -= 1
+        if not p.at("punct", "}"):
+            raise p.error(f"expected }} to close the {{ at column {token.position + 1}")
+        p.advance()
+        return inner
+    if token.kind == "name" and p.tokens[p.index + 1].kind == "punct" and p.tokens[p.index + 1].value == "(":
+        return _parse_call(p)
+    if token.kind == "name" and _is_field(token):
+        return _parse_field(p)
+    if token.kind in _LITERALS or p.at("keyword", "true", "false"):
+        p.advance()
+        return constant(p, token)
+    raise p.error(f"expected a field, a function, a number or a text, found {p._describe(token)}")
+
+
+def _parse_call(p: Any) -> Operand:
+    name = p.advance()
+    opening = p.advance()
+    p._enter()
+    arguments = []
+    while not p.at("punct", ")"):
+        if p.token.kind == "end":
+            raise p.error(f"expected ) to close the ( at column {opening.position + 1}")
+        arguments.append(parse_expression(p))
+        if not p.at("punct", ")"):
+            if not p.at("punct", ","):
+                raise p.error(f"expected , or ) in the arguments of {name.value}()")
+            p.advance()
+    p.advance()
+    p.depth -= 1
+    result = call(p, name, arguments)
+    if p.token.kind == "slice":  # lower(function_name)[0:4]: the bytes of the text, as a text field's slice
+        if kind_of(result.ftype) not in ("str", "bytes"):
+            raise p.error(f"{result.text} is {type_name(result.ftype)}: only texts and bytes take a slice")
+        cut = p.parse_slice(result.text, "str")
+        values = result.values
+        result = Operand(result.text, result.position, "FT_BYTES",
+                         lambda item, reg: [c for v in values(item, reg)
+                                            if (c := cut(_bytes(v))) is not None],
+                         register=result.register, function=result.function)
+    return result
+
+
+def _bytes(value: Any) -> bytes:
+    return value.encode() if isinstance(value, str) else value
+
+
+def _parse_field(p: Any) -> Operand:
+    token = p.advance()
+    field, ftype, register = p.resolve_field(token)
+    tshark_type = field_type(field)
+    if field.startswith("fields."):  # a repeated field: each element a value
+        key = field[7:]
+
+        def elements(item: Item, reg: dict[str, Any] | None) -> list[Any]:
+            fields = item.get("fields")
+            value = fields.get(key) if isinstance(fields, dict) else None
+            found = value if isinstance(value, list) else [] if value is None else [value]
+            if tshark_type == "FT_BYTES":  # (hex text in the item)
+                return [bytes.fromhex(v) if isinstance(v, str) else v for v in found]
+            return found
+
+        return Operand(token.text, token.position, tshark_type, elements, field=field, tokens=[token])
+    cut = p.parse_slice(field, ftype)
+    get = p.field_getter(field, ftype, register, cut)
+    if cut is not None:
+        tshark_type = "FT_BYTES"
+    if ftype == "list":  # warnings, notes: each text a value
+        return Operand(token.text, token.position, tshark_type, lambda item, reg: list(get(item, reg) or ()),
+                       register=register, field=field, tokens=[token])
+    return Operand(token.text, token.position, tshark_type,
+                   lambda item, reg: [] if (value := get(item, reg)) is None or value == [] else [value],
+                   register=register, field=field if cut is None else None, tokens=[token])
+
+
+# -- the test ------------------------------------------------------------------------------------
+def parse_expression_test(p: Any) -> tuple[Any, bool]:
+    """A test with functions or arithmetic: (test, whether it reads one register at a time)."""
+    start = p.token
+    left = parse_expression(p)
+    if left.fold is not None:
+        raise p.error("the left side of a comparison must hold a field (a constant on the left is refused, "
+                      "as tshark)", start)
+    token = p.token
+    if p.at("op", *COMPARISONS):
+        p.advance()
+        right = typed(p, parse_expression(p), left.ftype)
+        text_and_bytes = {left.ftype, right.ftype} == {"FT_STRING", "FT_BYTES"}
+        if kind_of(right.ftype) != kind_of(left.ftype) and not text_and_bytes:
+            raise p.error(f"{left.text} and {right.text} are not type compatible ({left.ftype}, "
+                          f"{right.ftype})", token)
+        return _comparison(token.value, left, right)
+    if p.at("keyword", "contains", "matches") or p.at("op", "~"):
+        return _search(p, token, left)
+    if p.at("keyword", "in"):
+        raise p.error(f"only a field can be tested for membership in a set (as tshark), not {left.text}")
+    if left.function is not None:
+        raise p.error(f"{left.text} alone tests nothing: compare it, as {left.text} > 0 (tshark cannot test "
+                      "whether a function is present)", start)
+    values = left.values  # arithmetic alone: some value is not 0, as tshark's
+    return (lambda item, reg: any(value for value in values(item, reg))), left.register
+
+
+def _comparison(op: str, left: Operand, right: Operand) -> tuple[Any, bool]:
+    """Some pair passes `op`; `~=` some pair differs; `!=` none is equal and `===` none differs, of a
+    left and a right that have values (over the frame's registers when one reads a register's)."""
+    lefts, rights = left.values, right.values
+    register = left.register or right.register
+    wanted = {"~=": "!=", "!=": "==", "===": "!="}.get(op, op)
+
+    def some(item: Item, reg: dict[str, Any] | None) -> bool:
+        found = lefts(item, reg)
+        return bool(found) and any(match_op(wanted, x, y) for y in rights(item, reg) for x in found)
+
+    if op not in ("!=", "==="):
+        return some, register
+
+    def present(item: Item, reg: dict[str, Any] | None) -> bool:
+        return bool(lefts(item, reg)) and bool(rights(item, reg))
+
+    if register:  # over the registers of the frame, as filters.py's != and ===
+        some_present, some_against = quantify(present), quantify(some)
+        return (lambda item, reg: some_present(item) and not some_against(item)), False
+    return (lambda item, reg: present(item, reg) and not some(item, reg)), False
+
+
+def _search(p: Any, token: Any, left: Operand) -> tuple[Any, bool]:
+    """contains and matches on a function's text (upper(code) contains "CH") or bytes."""
+    kind = kind_of(left.ftype)
+    word = "contains" if p.at("keyword", "contains") else "matches"
+    p.advance()
+    if kind not in ("str", "bytes"):
+        raise p.error(f"{left.text} is {type_name(left.ftype)}: it cannot take {word} (as tshark)", token)
+    values = left.values
+    if word == "matches":
+        if p.token.kind != "string":
+            raise p.error("matches takes a regular expression in double quotes (as tshark)")
+        pattern_token = p.advance()
+        pattern = compile_regex(pattern_token.value, p.text, pattern_token.position)
+        return (lambda item, reg: any(pattern.search(v if isinstance(v, str) else v.decode("latin-1"))
+                                      for v in values(item, reg))), left.register
+    if p.token.kind not in ("string", "char", "bytes", "name", "number"):
+        raise p.error(f"{word} takes a text or bytes, not {p._describe(p.token)}")
+    wanted = typed(p, constant(p, p.advance()), left.ftype).values({}, None)[0]
+    return (lambda item, reg: any(wanted in v for v in values(item, reg))), left.register
