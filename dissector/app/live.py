@@ -43,7 +43,8 @@ from dissector.app.live_capture import (
     Tape,
     silence_threshold,
 )
-from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES, mode_bytesize
+from dissector.app.detect import AsciiHeard
+from dissector.app.live_options import BYTESIZE_GIVEN, PARITY_CHOICES, live_mode, mode_bytesize
 from dissector.app.options import shown  # typed names are data: control characters escaped
 from dissector.app.live_view import LineSink, LiveStats, OutputPump, RichSink, Sink, json_line
 from dissector.errors import ExitStatus, LiveError
@@ -77,7 +78,8 @@ def live_char_time(args: argparse.Namespace) -> float:
 
 def live_framer(mode: str | None, baud: int) -> AsciiFramer | RtuFramer:
     """The capture thread's framer (vw3-decode --live, vw3-extcap). Modbus ASCII only with --mode
-    ascii: a live stream cannot be sniffed before it starts."""
+    ascii or 7 data bits (live_options.live_mode): a live stream cannot be sniffed before it starts (a hint
+    says when its bytes are ASCII: app/detect.py AsciiHeard)."""
     return AsciiFramer(baud) if mode == "ascii" else RtuFramer(baud)
 
 
@@ -239,8 +241,10 @@ class Shown:
     item heard, show it, and tell profile news."""
 
     def __init__(self, sink: Sink, stats: LiveStats, observe: Callable[[list[Item]], None] | None = None,
-                 news: Callable[[list[Item]], None] | None = None, capture: CaptureThread | None = None) -> None:
+                 news: Callable[[list[Item]], None] | None = None, capture: CaptureThread | None = None,
+                 heard: Callable[[bytes, bool], None] | None = None) -> None:
         self.sink, self.stats, self.observe, self.news = sink, stats, observe, news
+        self.heard = heard  # (app/detect.py AsciiHeard: RTU assumed, told the bytes heard)
         # The compiled live path: the display writes -w (before it shows, as the capture thread does);
         # a failed write stops the capture, and nothing more is shown.
         self.capture = capture
@@ -316,6 +320,8 @@ def display_once(capture: CaptureThread, handoff: Handoff, dissector: Dissector,
                  live: Any = None) -> tuple[str | None, bool]:
     """What the capture handed on (waiting up to `wait` for it): (why the display stops, closed)."""
     items, safe, closed = handoff.take(wait)
+    if shown.heard is not None:  # (the bytes heard: the reads on the compiled path, else the items framed)
+        shown.heard(b"".join(item[0] if live is not None else item.raw for item in items), closed)
     sink = shown.sink
     if live is not None:
         if items and not shown.stopped:
@@ -385,7 +391,7 @@ def compiled_mode(args: argparse.Namespace, is_terminal: bool, clock: Any) -> st
     thread stops at the read its framer reaches the count with, which the engine, holding a request
     until its answer, may reach later)."""
     count = getattr(args, "count", None)
-    if getattr(args, "mode", None) == "ascii" or (count is not None and getattr(args, "raw", None)):
+    if live_mode(args) == "ascii" or (count is not None and getattr(args, "raw", None)):
         return None
     from dissector.accel import livepath
 
@@ -429,9 +435,11 @@ def run_live(
         err.write(f"{PROG}: {shown(error)}\n")
         return error.status
     stats = LiveStats(files=bool(files.names))
-    err.write(f"{PROG}: listening on {shown(args.live)} at {port_settings(args).text()}\n")
+    mode = live_mode(args)
+    inferred = " (Modbus ASCII: 7 data bits carry no RTU)" if mode != getattr(args, "mode", None) else ""
+    err.write(f"{PROG}: listening on {shown(args.live)} at {port_settings(args).text()}{inferred}\n")
     err.flush()
-    framer = live_framer(getattr(args, "mode", None), args.baud)
+    framer = live_framer(mode, args.baud)
     timeout = getattr(args, "timeout", None)
     clock = getattr(observe, "__self__", None)  # (app/cli.py: the time column's Clock.observe)
     compiled = compiled_mode(args, is_terminal, clock)
@@ -456,7 +464,8 @@ def run_live(
                 capture.start()  # first: a sink that fails (a reader gone) must not leave done unset
             sink = _make_sink(args, out, err, is_terminal, render_line, render_text, stats, annotate)
             news = ProfileNews(annotate, err)
-            shown_ = Shown(sink, stats, observe, news, capture if compiled is not None else None)
+            heard = None if mode is not None else AsciiHeard(err)
+            shown_ = Shown(sink, stats, observe, news, capture if compiled is not None else None, heard)
             if compiled is not None:
                 live = _live_path(compiled, dissector, annotate, clock, shown_, args)
             if replay:
