@@ -293,7 +293,14 @@ local DATA = {
         },
       },
       ["scale_range"] = {
-        ["format"] = "scale %s is outside \194\1771e-12..1e+12 (and not 0)",
+        ["format"] = "scale %s is outside \194\1771e-12..1e+12",
+        ["params"] = { "text" },
+        ["repr"] = {
+          ["text"] = true,
+        },
+      },
+      ["scale_zero"] = {
+        ["format"] = "scale %s would make every value 0",
         ["params"] = { "text" },
         ["repr"] = {
           ["text"] = true,
@@ -369,6 +376,35 @@ local DATA = {
       ["signed_enum"] = {
         ["format"] = "a signed register cannot carry enum labels",
         ["params"] = {},
+        ["repr"] = {},
+      },
+      ["signed_type"] = {
+        ["format"] = "signed %s contradicts type %s",
+        ["params"] = { "text", "kind" },
+        ["repr"] = {
+          ["text"] = true,
+        },
+      },
+      ["order_one_word"] = {
+        ["format"] = "order %s swaps the words of a 32-bit value: type %s is one register",
+        ["params"] = { "text", "kind" },
+        ["repr"] = {
+          ["text"] = true,
+        },
+      },
+      ["enum_bits"] = {
+        ["format"] = "a register cannot carry both enum and bit labels",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["labels_quantity"] = {
+        ["format"] = "a register with %s labels cannot carry a %s (its value is a label)",
+        ["params"] = { "what", "column" },
+        ["repr"] = {},
+      },
+      ["code_twice"] = {
+        ["format"] = "code %s already names address %d (line %d)",
+        ["params"] = { "code", "address", "line" },
         ["repr"] = {},
       },
     },
@@ -6690,7 +6726,8 @@ local function map_row(values)
     row.decimals = scale_decimals(scale_text)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
-    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf) and 0
+    if size == 0 then wrong("scale_zero", { text = scale_text }) end
+    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf)
       wrong("scale_range", { text = scale_text })
     end
   end
@@ -6701,8 +6738,16 @@ local function map_row(values)
   local signed = choice(values, "signed", tostring, "", SIGNED)
   local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
   local words = TYPES[kind]
+  -- (the signed cell a type agrees with, when both are given: a float32 takes none)
+  local agrees = kind ~= "float32" and (FORMAT.signed_types[kind] and "1" or "0") or ""
+  if strip(values.type or "") ~= "" and signed ~= "" and signed ~= agrees then
+    wrong("signed_type", { text = signed, kind = kind })
+  end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
   local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
+  if words == 1 and order ~= FORMAT.order_list[1] then
+    wrong("order_one_word", { text = order, kind = kind })
+  end
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
     if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
@@ -6710,6 +6755,12 @@ local function map_row(values)
     row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
   if row.signed and row.enum then wrong("signed_enum") end
+  if row.enum and row.bits then wrong("enum_bits") end
+  for _, labels in ipairs({ { "enum", row.enum }, { "bit", row.bits } }) do
+    for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
+      if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
+    end
+  end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -6734,6 +6785,7 @@ local function read_map(text, origin)
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
+  local named = {} -- (code, ASCII case folded as --watch matches it -> its address)
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -6768,6 +6820,11 @@ local function read_map(text, origin)
         end
         local address, row = map_row(values)
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
+        local first = named[row.code:upper()]
+        if first ~= nil then
+          wrong("code_twice", { code = row.code, address = first, line = first_line[first] })
+        end
+        named[row.code:upper()] = address
         rows[address], first_line[address] = row, number
         order[#order + 1] = address
       end
@@ -7029,11 +7086,10 @@ local function interpret(row, value)
   return scaled_value(row, raw_value)
 end
 
--- maps.float32_text: the fewest significant digits (1 to 9) that read back as the same float32, as %.7g
--- writes them.
--- `spacing`: the float32 spacing at the value, `below`: toward zero (half of it at a power of two), `even`:
--- its last fraction bit is 0 (a text exactly half way reads back as the even one).
-local function float32_text(value, spacing, below, even)
+-- maps._shortest: the fewest significant digits (1 to 9) of `value` nearer to it than half the gap to a
+-- neighbour (`spacing` away from zero, `below` toward it; exactly half way, the `even` one takes it), as %.7g
+-- writes them. maps.float32_text: a float32 times its scale, the gaps scaled alike.
+local function shortest(value, spacing, below, even)
   for digits = 1, 8 do
     local text = format("%." .. digits .. "g", value)
     local gap = math.abs(tonumber(text)) - math.abs(value)
@@ -7043,7 +7099,7 @@ local function float32_text(value, spacing, below, even)
       return format("%." .. math.max(digits, 7) .. "g", tonumber(text)) -- (the same digits: 50, not 5e+01)
     end
   end
-  return format("%.9g", value) -- (9 digits always read back as the same float32)
+  return format("%.9g", value) -- (9 digits always tell a float32 from its neighbours)
 end
 
 -- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
@@ -7066,15 +7122,18 @@ local function interpret_wide(row, first, second)
       spacing = 2 ^ (exponent - 150)
       value = sign * (8388608 + fraction) * spacing
     end
-    if row.scale == nil then
-      local below = (fraction == 0 and exponent > 1) and spacing / 2 or spacing
-      text = float32_text(value, spacing, below, low % 2 == 0)
-    end
+    -- (a float has no fixed decimals: the scale multiplies; the product written as the float is, and its
+    -- value as the text says it)
+    local below = (fraction == 0 and exponent > 1) and spacing / 2 or spacing
+    local scale = row.scale or 1.0
+    local size = math.abs(scale)
+    text = shortest(value * scale, spacing * size, below * size, low % 2 == 0)
+    if row.scale ~= nil then value = tonumber(text) + 0.0 end
   else
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  if row.scale ~= nil then return scaled_value(row, value) end
+  if text == nil and row.scale ~= nil then return scaled_value(row, value) end
   text = text or format("%d", value)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text

@@ -5,19 +5,22 @@ from the data codegen writes into lua/vw3.lua): a header line naming the columns
 register. Lines starting with `#` are comments (the source legend lives there). Columns:
 
     address  logic address as sent on the wire (decimal, or 0x/16# hexadecimal)
-    code     short code shown to users (CHCF)
+    code     short code shown to users (CHCF); one register's (ASCII case aside, as --watch matches codes)
     name     long name ([Profile])
     unit     unit of the scaled value (Hz)
-    scale    multiply the raw value by this (0.1); empty: shown as is
+    scale    multiply the raw value by this (0.1): shown with the decimals the scale is written with, a
+             float32's product with the fewest digits that tell it from its neighbours'; empty: shown as is
     access   R, W or RW
     enum     value labels: `value=LABEL;value=LABEL`
-    bits     bit labels for status and control words: `bit=Label;bit=Label` (bits 0..15)
-    signed   `1` when the raw word is a two's complement signed value, empty (or 0) otherwise
+    bits     bit labels for status and control words: `bit=Label;bit=Label` (bits 0..15); a row has enum
+             or bits, not both, and labels take no scale nor unit (the value is a label)
+    signed   `1` when the raw word is a two's complement signed value, empty (or 0) otherwise; beside a
+             type, it agrees with it (1: int16, int32; 0: uint16, uint32; a float32 takes none)
     source   where the row comes from (a letter explained in the file's legend comment)
     type     uint16 (the default), int16 (as signed = 1), or a 32-bit value over this register and the
              next: uint32, int32, float32
     order    word order of a 32-bit value: ABCD (the first register holds the high word, the default) or
-             CDAB (the low word first, as many PLCs and meters send it)
+             CDAB (the low word first, as many PLCs and meters send it); a 16-bit row has no CDAB
 
 Maps come as spreadsheets save them: UTF-8 with or without a BOM, separated by `,` or, as European
 Excel writes CSV, `;` (or a tab), told from the header line (cells holding the separator are quoted).
@@ -72,7 +75,8 @@ MESSAGES = {
     "address_range": "address {address:d} is outside 0..65535",
     "code": "code is empty",
     "scale": "scale {text!r} is not a number",
-    "scale_range": "scale {text!r} is outside " + f"±{SCALE_MIN:g}..{SCALE_MAX:g}" + " (and not 0)",
+    "scale_range": "scale {text!r} is outside " + f"±{SCALE_MIN:g}..{SCALE_MAX:g}",
+    "scale_zero": "scale {text!r} would make every value 0",
     "access": "access {text!r} is not R, W or RW",
     "pair": "{what} entry {part!r} is not `number=label`",
     "pair_number": "{what} entry {part!r}: {key!r} is not a number",
@@ -85,6 +89,12 @@ MESSAGES = {
     "wide_last": "a {kind} value needs two registers: {address:d} is the last address",
     # Enumerations are listed as unsigned words; a signed register with labels is a map error.
     "signed_enum": "a signed register cannot carry enum labels",
+    # Columns that say opposite things: refused rather than one of them silently ignored.
+    "signed_type": "signed {text!r} contradicts type {kind}",
+    "order_one_word": "order {text!r} swaps the words of a 32-bit value: type {kind} is one register",
+    "enum_bits": "a register cannot carry both enum and bit labels",
+    "labels_quantity": "a register with {what} labels cannot carry a {column} (its value is a label)",
+    "code_twice": "code {code} already names address {address:d} (line {line:d})",
 }
 
 
@@ -192,7 +202,9 @@ def _row(values: dict[str, str]) -> RegisterDef:
             decimals = _decimals(raw_scale)
         except (ValueError, InvalidOperation):
             raise ValueError(_say("scale", text=raw_scale)) from None
-        if not SCALE_MIN <= abs(scale) <= SCALE_MAX:  # also nan, inf (1e999) and 0
+        if scale == 0:
+            raise ValueError(_say("scale_zero", text=raw_scale))
+        if not SCALE_MIN <= abs(scale) <= SCALE_MAX:  # also inf (1e999)
             raise ValueError(_say("scale_range", text=raw_scale))
     access = values.get("access", "").strip(_SPACE).translate(_UPPER) or None
     if access is not None and access not in ACCESS:
@@ -203,25 +215,38 @@ def _row(values: dict[str, str]) -> RegisterDef:
     if signed_text not in ("", "0", "1"):
         raise ValueError(_say("signed", text=signed_text))
     signed = signed_text == "1"
-    kind = values.get("type", "").strip(_SPACE).translate(_LOWER) or DEFAULT_TYPES[signed]
+    kind_text = values.get("type", "").strip(_SPACE).translate(_LOWER)
+    kind = kind_text or DEFAULT_TYPES[signed]
     if kind not in TYPES:
         raise ValueError(_say("type", text=kind))
+    agrees = "" if kind == "float32" else "01"[kind in SIGNED_TYPES]  # (a float32 takes no signed cell)
+    if kind_text and signed_text and signed_text != agrees:
+        raise ValueError(_say("signed_type", text=signed_text, kind=kind))
     signed = signed or kind in SIGNED_TYPES
     words = TYPES[kind]
     order = values.get("order", "").strip(_SPACE).translate(_UPPER) or ORDERS[0]
     if order not in ORDERS:
         raise ValueError(_say("order", text=order))
+    if words == 1 and order != ORDERS[0]:
+        raise ValueError(_say("order_one_word", text=order, kind=kind))
     if words == 2 and (enum or bits):
         raise ValueError(_say("wide_labels", kind=kind))
     if words == 2 and address == 0xFFFF:
         raise ValueError(_say("wide_last", kind=kind, address=address))
     if signed and enum:
         raise ValueError(_say("signed_enum"))
+    if enum and bits:
+        raise ValueError(_say("enum_bits"))
+    unit = printable(values.get("unit", "").strip(_SPACE)) or None
+    for what, labels in (("enum", enum), ("bit", bits)):
+        for column, given in (("scale", raw_scale), ("unit", unit)):
+            if labels and given:
+                raise ValueError(_say("labels_quantity", what=what, column=column))
     return RegisterDef(
         address=address,
         code=code,
         name=printable(values.get("name", "").strip(_SPACE)) or None,
-        unit=printable(values.get("unit", "").strip(_SPACE)) or None,
+        unit=unit,
         scale=scale,
         access=access,
         enum=enum,
@@ -255,6 +280,7 @@ def parse_map(text: str, origin: str) -> RegisterMap:
     delimiter = ","
     rows: RegisterMap = {}
     first_line: dict[int, int] = {}
+    named: dict[str, int] = {}  # code, ASCII case folded as --watch matches it -> its address
     wide: dict[int, int] = {}  # second register of a 32-bit row -> its first
     for number, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip(_SPACE)
@@ -294,8 +320,14 @@ def parse_map(text: str, origin: str) -> RegisterMap:
             raise ProfileError(
                 f"{origin}:{number}: " + _say("address_twice", address=row.address, line=first_line[row.address])
             )
+        folded = row.code.translate(_UPPER)
+        if folded in named:
+            first = named[folded]
+            raise ProfileError(f"{origin}:{number}: " + _say(
+                "code_twice", code=row.code, address=first, line=first_line[first]))
         rows[row.address] = row
         first_line[row.address] = number
+        named[folded] = row.address
         if row.words == 2:
             wide[row.address + 1] = row.address
     for second, first in wide.items():
@@ -351,41 +383,54 @@ def interpret_wide(definition: RegisterDef, first: int, second: int) -> tuple[fl
     high, low = (second, first) if definition.swapped else (first, second)
     raw32 = high << 16 | low
     value: float | int
+    scale = definition.scale
     if definition.kind == "float32":
         value = struct.unpack(">f", raw32.to_bytes(4, "big"))[0]
         if not math.isfinite(value):
             return None, str(value)  # nan, inf: no number JSON can hold
-    elif definition.kind == "int32" and raw32 & 0x80000000:
-        value = raw32 - 0x100000000
+        # A float has no fixed decimals: the scale multiplies, and the product is written as the float is
+        # (its value, as the text says it).
+        text = float32_text(value, 1.0 if scale is None else scale)
+        if scale is not None:
+            value = float(text)
     else:
-        value = raw32
-    scale = definition.scale
-    if scale is not None:
-        value = round(value * scale, definition.decimals)
-        if not definition.decimals:
-            value = int(value)
-        text = f"{value:.{definition.decimals}f}"
-    elif isinstance(value, float):
-        text = float32_text(value)
-    else:
-        text = str(value)
+        value = raw32 - 0x100000000 if definition.kind == "int32" and raw32 & 0x80000000 else raw32
+        if scale is not None:
+            value = round(value * scale, definition.decimals)
+            if not definition.decimals:
+                value = int(value)
+            text = f"{value:.{definition.decimals}f}"
+        else:
+            text = str(value)
     unit = definition.unit
     return value, text if unit is None else f"{text} {unit}"
 
 
-def float32_text(value: float) -> str:
-    """The fewest significant digits (1 to 9) that read back as the same float32, written as `%.7g`
-    writes them (no exponent below 1e7, trailing zeros dropped): two values that differ print differently
-    (%.7g alone gave `1` for both 16#3F800000 and 16#3F800001)."""
-    packed = struct.pack(">f", value)
+def float32_text(value: float, scale: float = 1.0) -> str:
+    """The float32 `value` times `scale` in the fewest significant digits (1 to 9) that tell it from its
+    neighbours' products (the scale 1: the text reads back as the same float32), written as `%.7g` writes
+    them (no exponent below 1e7, trailing zeros dropped): two values that differ print differently (%.7g
+    alone gave `1` for both 16#3F800000 and 16#3F800001). The plugin (device.lua) reads the same texts."""
+    bits = int.from_bytes(struct.pack(">f", value), "big")
+    exponent, fraction = bits >> 23 & 0xFF, bits & 0x7FFFFF
+    spacing = 2.0 ** (max(exponent, 1) - 150)  # between this float32 and the next away from zero
+    below = spacing / 2 if fraction == 0 and exponent > 1 else spacing  # (toward zero: half at a power of 2)
+    size = abs(scale)
+    return _shortest(value * scale, spacing * size, below * size, fraction % 2 == 0)
+
+
+def _shortest(value: float, spacing: float, below: float, even: bool) -> str:
+    """The fewest digits of `value` nearer to it than half the gap to a neighbour (`spacing` away from zero,
+    `below` toward it); exactly half way, the neighbour whose fraction ends in 0 (`even`) takes it."""
     for digits in range(1, 9):
         text = f"{value:.{digits}g}"
-        try:
-            if struct.pack(">f", float(text)) == packed:
-                return f"{float(text):.{max(digits, 7)}g}"  # (the same digits: 50, not 5e+01)
-        except OverflowError:  # rounded past the largest float32 (3.4e+38 for 16#7F7FFFFF)
-            continue
-    return f"{value:.9g}"  # 9 digits always read back as the same float32
+        gap = abs(float(text)) - abs(value)
+        half = (below if gap < 0 else spacing) / 2
+        if abs(gap) < half or (abs(gap) == half and even):
+            if value == 0:
+                return text
+            return f"{float(text):.{max(digits, 7)}g}"  # (the same digits: 50, not 5e+01)
+    return f"{value:.9g}"  # 9 digits always tell a float32 from its neighbours
 
 
 def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, str | None]:

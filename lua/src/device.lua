@@ -178,11 +178,10 @@ local function interpret(row, value)
   return scaled_value(row, raw_value)
 end
 
--- maps.float32_text: the fewest significant digits (1 to 9) that read back as the same float32, as %.7g
--- writes them.
--- `spacing`: the float32 spacing at the value, `below`: toward zero (half of it at a power of two), `even`:
--- its last fraction bit is 0 (a text exactly half way reads back as the even one).
-local function float32_text(value, spacing, below, even)
+-- maps._shortest: the fewest significant digits (1 to 9) of `value` nearer to it than half the gap to a
+-- neighbour (`spacing` away from zero, `below` toward it; exactly half way, the `even` one takes it), as %.7g
+-- writes them. maps.float32_text: a float32 times its scale, the gaps scaled alike.
+local function shortest(value, spacing, below, even)
   for digits = 1, 8 do
     local text = format("%." .. digits .. "g", value)
     local gap = math.abs(tonumber(text)) - math.abs(value)
@@ -192,7 +191,7 @@ local function float32_text(value, spacing, below, even)
       return format("%." .. math.max(digits, 7) .. "g", tonumber(text)) -- (the same digits: 50, not 5e+01)
     end
   end
-  return format("%.9g", value) -- (9 digits always read back as the same float32)
+  return format("%.9g", value) -- (9 digits always tell a float32 from its neighbours)
 end
 
 -- maps.interpret_wide: a 32-bit value from the words of its two registers, in the order they come.
@@ -215,15 +214,18 @@ local function interpret_wide(row, first, second)
       spacing = 2 ^ (exponent - 150)
       value = sign * (8388608 + fraction) * spacing
     end
-    if row.scale == nil then
-      local below = (fraction == 0 and exponent > 1) and spacing / 2 or spacing
-      text = float32_text(value, spacing, below, low % 2 == 0)
-    end
+    -- (a float has no fixed decimals: the scale multiplies; the product written as the float is, and its
+    -- value as the text says it)
+    local below = (fraction == 0 and exponent > 1) and spacing / 2 or spacing
+    local scale = row.scale or 1.0
+    local size = math.abs(scale)
+    text = shortest(value * scale, spacing * size, below * size, low % 2 == 0)
+    if row.scale ~= nil then value = tonumber(text) + 0.0 end
   else
     value = high * 65536 + low
     if row.kind == "int32" and high >= 0x8000 then value = value - 4294967296 end
   end
-  if row.scale ~= nil then return scaled_value(row, value) end
+  if text == nil and row.scale ~= nil then return scaled_value(row, value) end
   text = text or format("%d", value)
   if row.unit ~= nil then text = text .. " " .. row.unit end
   return value, text

@@ -217,7 +217,8 @@ local function map_row(values)
     row.decimals = scale_decimals(scale_text)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
-    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf) and 0
+    if size == 0 then wrong("scale_zero", { text = scale_text }) end
+    if not (size >= SCALE_MIN and size <= SCALE_MAX) then -- also 1e999 (inf)
       wrong("scale_range", { text = scale_text })
     end
   end
@@ -228,8 +229,16 @@ local function map_row(values)
   local signed = choice(values, "signed", tostring, "", SIGNED)
   local kind = choice(values, "type", string.lower, FORMAT.default_types[signed == "1" and 2 or 1], TYPES)
   local words = TYPES[kind]
+  -- (the signed cell a type agrees with, when both are given: a float32 takes none)
+  local agrees = kind ~= "float32" and (FORMAT.signed_types[kind] and "1" or "0") or ""
+  if strip(values.type or "") ~= "" and signed ~= "" and signed ~= agrees then
+    wrong("signed_type", { text = signed, kind = kind })
+  end
   row.signed = (signed == "1" or FORMAT.signed_types[kind]) or nil
   local order = choice(values, "order", string.upper, FORMAT.order_list[1], ORDERS)
+  if words == 1 and order ~= FORMAT.order_list[1] then
+    wrong("order_one_word", { text = order, kind = kind })
+  end
   if words == 2 then
     -- a 32-bit value over this register and the next (naming.name_wide reads it on the first)
     if row.enum or row.bits then wrong("wide_labels", { kind = kind }) end
@@ -237,6 +246,12 @@ local function map_row(values)
     row.words, row.kind, row.swapped = 2, kind, order == "CDAB" or nil
   end
   if row.signed and row.enum then wrong("signed_enum") end
+  if row.enum and row.bits then wrong("enum_bits") end
+  for _, labels in ipairs({ { "enum", row.enum }, { "bit", row.bits } }) do
+    for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
+      if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
+    end
+  end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
   return address, row
@@ -261,6 +276,7 @@ local function read_map(text, origin)
   end
   if text:sub(1, 3) == "\239\187\191" then text = text:sub(4) end
   local header, rows, first_line, order, delimiter, number = nil, {}, {}, {}, ",", 0
+  local named = {} -- (code, ASCII case folded as --watch matches it -> its address)
   -- (lines end where str.splitlines ends them: \r\n, \r, \n, \v, \f, \x1c-\x1e, U+0085, U+2028, U+2029)
   text = text:gsub("\r\n", "\n"):gsub("[\r\v\f\28-\30]", "\n")
   text = text:gsub("\194\133", "\n"):gsub("\226\128[\168\169]", "\n")
@@ -295,6 +311,11 @@ local function read_map(text, origin)
         end
         local address, row = map_row(values)
         if rows[address] ~= nil then wrong("address_twice", { address = address, line = first_line[address] }) end
+        local first = named[row.code:upper()]
+        if first ~= nil then
+          wrong("code_twice", { code = row.code, address = first, line = first_line[first] })
+        end
+        named[row.code:upper()] = address
         rows[address], first_line[address] = row, number
         order[#order + 1] = address
       end

@@ -77,7 +77,7 @@ def test_refuses_what_python_does_not_decode(lua: str, tmp_path: Path) -> None:
 
 NAMES_MAP = ("address,code,name,unit,enum\n"
              "1,A\u202eB,x\u3000y\u200bz,\ufeffkm,\n"
-             "2,C,\ue000\U0001f600,\u0378\U000e0001,1=\u202e;2=\U0001f600\n")
+             "2,C,\ue000\U0001f600\u0378\U000e0001,,1=\u202e;2=\U0001f600\n")  # (labels take no unit)
 
 
 def _session(tmp_path: Path) -> Path:

@@ -430,7 +430,8 @@ def test_map_scales_are_finite_and_keep_results_in_range(tmp_path: Path, scale: 
     map_file.write_text(f"address,code,scale\n8401,CHCF,{scale}\n", encoding="utf-8")
     with pytest.raises(ProfileError) as caught:
         load_map_file(map_file)
-    why = "is not a number" if scale in ("nan", "inf") else "is outside ±1e-12..1e+12 (and not 0)"
+    why = ("is not a number" if scale in ("nan", "inf") else "would make every value 0" if scale == "0"
+           else "is outside ±1e-12..1e+12")
     assert str(caught.value) == f"{map_file}:2: scale {scale!r} {why}"
     status, out, err = run_cli(["--map", str(map_file), "--hex", "0C 03 02 FF FF"])
     assert (status, out, err) == (2, "", f"{PROG}{caught.value}\n")
