@@ -40,7 +40,7 @@ from typing import Any
 
 from dissector.errors import UsageError
 from dissector.render.filter_fields import (  # not filters: -Y only
-    ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, REGISTER_FIELDS,
+    ALIASES, CATALOGUE, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS,
 )
 from dissector.render.filter_match import item_elements
 from dissector.protocol.printable import printable
@@ -215,13 +215,13 @@ def _occurrences(record: dict[str, Any], key: str) -> list[Any]:
         carried = len(record.get("registers") or []) + len(record.get("bits") or [])
         return [element.get(head) if index < carried or head in ("address", "label") else None
                 for index, element in enumerate(item_elements(record))]
-    value = record.get(head)
+    value = record.get(RECORD_KEYS.get(head, head))
     if rest:
         for part in rest.split("."):
             value = value.get(part) if isinstance(value, dict) else None
     if value is None or value is False and head in ONLY_TRUE:
         return []
-    if isinstance(value, list) and head in ("warnings", "notes", "fields"):
+    if isinstance(value, list) and head in ("warnings", "notes", "fields", "comment"):
         return value  # (a repeated field: fields.values, as -Y's fields.KEY tests each element)
     return [value]
 

@@ -25,8 +25,11 @@ def _group(group: str) -> dict[str, str]:
 # tshark 4.0.17 types FT_RELATIVE_TIME (a time takes 1.5, not 0x1, 1e-3 or '\x01'; + and - only).
 OWN_FTYPES = {"raw": "bytes", "length": "uint32", "time": "relative_time", "time_relative": "relative_time",
               "time_delta": "relative_time", "time_delta_displayed": "relative_time"}
+# Keys the catalogue has not, each read from another key of the record: a pcapng packet comment, tshark's
+# frame.comment (one occurrence each), is the JSON's `comments` (app/inputs.py comments_of puts them there).
+RECORD_KEYS = {"comment": "comments"}
 # field -> type, per group
-FRAME_FIELDS: dict[str, str] = _group("frame") | {"raw": "bytes"}
+FRAME_FIELDS: dict[str, str] = _group("frame") | {"raw": "bytes", "comment": "list"}
 # Numbers the time column shows, computed from the capture (FilterContext), as -T fields has them.
 TIME_FILTER_FIELDS: dict[str, str] = _group("time")
 REGISTER_FIELDS: dict[str, str] = _group("register")
@@ -40,7 +43,7 @@ ALIASES: dict[str, str] = {"exception": "exception_code"}
 FIELD_HELP: dict[str, str] = {
     entry["key"]: entry["help"] + (f" ({entry['note']})" if "note" in entry else "")
     for entry in CATALOGUE if "key" in entry
-}
+} | {"comment": "a pcapng packet comment (tshark's frame.comment), one occurrence each"}
 
 _TYPE_WORDS = {"number": "number", "str": "text", "bool": "true/false", "list": "list of texts",
                "struct": "structure", "any": "value", "bytes": "byte string"}

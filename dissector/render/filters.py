@@ -70,7 +70,8 @@ from typing import Any
 
 from dissector.render.filter_error import FilterError  # noqa: F401 (re-exported)
 from dissector.render.filter_fields import (  # noqa: F401 (re-exported: fields.py and -Y help use them)
-    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, REGISTER_FIELDS, TIME_FILTER_FIELDS, field_listing,
+    ALIASES, _TYPE_WORDS, FIELD_HELP, FRAME_FIELDS, ONLY_TRUE, RECORD_KEYS, REGISTER_FIELDS, TIME_FILTER_FIELDS,
+    field_listing,
     pdu_key_types, unknown_pdu_key, whole_number,
 )
 from dissector.render.filter_context import CHOICES, SHOWN_CHOICES, SPEC_NAMES, FilterContext  # noqa: F401
@@ -252,7 +253,7 @@ class _Parser:
                 return value if not text_cut or not isinstance(value, str) else cut(value.encode())
             if field in TIME_FILTER_FIELDS:
                 return context.seconds(item, field)
-            value = item.get(field)
+            value = item.get(RECORD_KEYS.get(field, field))
             if ftype == "bytes":  # (hex text in the item)
                 value = as_bytes(value)
                 return value if cut is None or value is None else cut(value)

@@ -57,6 +57,8 @@ def field_type(key: str) -> str:
         return _type(pdu_key_types().get(key[7:], "none"), None)[0]
     if key == "time_delta_displayed":
         return FTYPES["relative_time"][0]
+    if key == "comment":
+        return FTYPES["string"][0]
     entry = _ENTRIES.get(key)
     return "FT_NONE" if entry is None else _entry_type(entry)[0]
 
@@ -71,6 +73,7 @@ def _line(name: str, abbrev: str, ftype: str, base: str, blurb: str) -> str:
 def glossary() -> str:
     lines = ["\t".join(["P", *PROTOCOL])]
     lines += [_field(entry) for entry in CATALOGUE if "key" in entry]
+    lines.append(_line("Comment", "comment", *FTYPES["string"], FIELD_HELP["comment"]))
     lines.append(_line("Time delta from previous displayed frame", "time_delta_displayed",
                        *FTYPES["relative_time"],
                        "seconds since the item shown before (-T fields only)"))

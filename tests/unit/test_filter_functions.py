@@ -253,3 +253,34 @@ def test_glossary_types_times_as_tshark() -> None:
 def test_a_function_error_is_a_filter_error() -> None:
     with pytest.raises(FilterError, match="does not exist"):
         compile_filter("nosuch(slave) == 1")
+
+
+@pytest.mark.parametrize(("expression", "expected"), [
+    # `comment`: the record's packet comments (its JSON `comments`), one occurrence each, as tshark's
+    # frame.comment (FT_STRING); app/cli.py hands them to the filter (/work/patches/filters-comment.diff)
+    ("comment", [1, 2]),
+    ("!comment", [3]),
+    ('comment == "again"', [2]),
+    ('comment contains "pump"', [1]),
+    ('comment matches "^PUMP"', [1]),
+    ("count(comment) == 2", [2]),
+    ("len(comment) > 6", [1]),
+    ('upper(comment) == "ANSWER"', [2]),
+    ('comment != "answer"', [1]),
+])
+def test_comment_is_tsharks_frame_comment(expression: str, expected: list[int]) -> None:
+    records = [{"frame": 1, "comments": ["pump 2 check"]}, {"frame": 2, "comments": ["answer", "again"]},
+               {"frame": 3}]
+    test = compile_filter(expression)
+    assert [record["frame"] for record in records if test(record)] == expected
+
+
+def test_fields_writes_each_comment() -> None:
+    from dissector.render.fields import FieldsOptions, FieldsWriter
+
+    writer = FieldsWriter(FieldsOptions(("frame", "comment")))
+    assert writer.line({"frame": 2, "comments": ["answer", "again"]}) == "2\tanswer,again"
+    assert writer.line({"frame": 3}) == "3\t"
+    lines = run_cli(["-G", "fields"])[1].splitlines()
+    assert ("F\tComment\tcomment\tFT_STRING\tvw3\t\t0x0\ta pcapng packet comment (tshark's frame.comment), one "
+            "occurrence each") in lines
