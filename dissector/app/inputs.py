@@ -270,12 +270,7 @@ def item_pieces(trail: RecordTrail | None, items: list[Item]) -> dict[int, list[
     """The pieces of the items (heard, in order) that are not one record without comments, by id(item)."""
     if trail is None or trail.idle:
         return None
-    found = {}
-    for item in items:
-        pieces = trail.pieces(item)
-        if pieces is not None:
-            found[id(item)] = pieces
-    return found
+    return trail.split(items)
 
 
 def comments_of(pieces: dict[int, list[Piece]]) -> dict[int, list[str]]:

@@ -339,7 +339,10 @@ class CaptureOutput:
                 if lead is None:  # (written already: one record, as before)
                     split = [(item.length, item.time, tuple(text for piece in split for text in piece[2]), 0)]
             if split is None:
-                self._piece(item, 0, item.length, item.time, [])
+                if self._held is None and type(item) is not Noise:  # (the usual: a frame, its own record)
+                    self._record((item.raw, item.time, [], [], item.offset + item.length, False))
+                else:
+                    self._piece(item, 0, item.length, item.time, [])
                 continue
             begin = 0
             for end, time, comments, _start in split:
@@ -414,8 +417,8 @@ class CaptureOutput:
         if last is not None:
             done.append(last)
         while done and done[0][4] <= record[4] - SNAPLEN:
-            early = done.popleft()
-            self._write_record(*early[:4], early[5])
+            data, time, own, users, _end, continued = done.popleft()
+            self._write_record(data, time, own, users, continued)
 
     def _write_record(self, data: bytes, time: float | None, own: list[str], users: list[str],
                       continued: bool) -> None:

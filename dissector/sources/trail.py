@@ -87,6 +87,22 @@ class RecordTrail:
         """Nothing to tell of any item yet: no times kept, no comment read."""
         return not self.times and not self._commented
 
+    def split(self, items: list[Item]) -> dict[int, list[Piece]]:
+        """The pieces of the items (heard, in order) that are not one record without comments, by id(item):
+        `pieces` of each, but of an item within one chunk when no comment is kept (the usual) at once."""
+        found = {}
+        parts, commented = self._parts, self._commented
+        for item in items:
+            start = item.offset
+            while len(parts) > 1 and parts[1][0] <= start:
+                parts.popleft()
+            if not commented and (len(parts) < 2 or parts[1][0] >= start + len(item.raw)):
+                continue
+            pieces = self.pieces(item)
+            if pieces is not None:
+                found[id(item)] = pieces
+        return found
+
     def pieces(self, item: Item) -> list[Piece] | None:
         """The item's pieces, the first at the item's time; None for one piece without comments."""
         start = item.offset
