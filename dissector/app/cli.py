@@ -230,8 +230,16 @@ class Sinks:
             from dissector.render.jsonout import item_to_dict  # -Y only
 
             self._filter_times(items)
-            # The filter reads the NDJSON form; keep it for --json rather than building it twice.
-            pairs = [(item, record) for item in items if predicate(record := item_to_dict(item))]
+            # The filter reads the NDJSON form; keep it for --json rather than building it twice. With its
+            # packet comments: -Y comment, as tshark's frame.comment (render/filter_fields.py RECORD_KEYS).
+            noted = (pieces and comments_of(pieces)) or {}
+            pairs = []
+            for item in items:
+                record = item_to_dict(item)
+                if id(item) in noted:
+                    record["comments"] = noted[id(item)]
+                if predicate(record):
+                    pairs.append((item, record))
             items = [item for item, _record in pairs]
             records = [record for _item, record in pairs]
         if self.frames_left is not None:

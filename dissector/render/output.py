@@ -145,14 +145,15 @@ class Output:
     ) -> None:
         """Show items; `records` are their NDJSON dicts when the caller has them already; `comments`: the
         packet comments of the items that have some, by id(item) (sources/trail.py): -V shows them
-        above the frame as tshark -V does ("Packet comments"), --json as the list `comments`.
+        above the frame as tshark -V does ("Packet comments"), --json as the list `comments`, -T fields
+        as the key `comment` (tshark's frame.comment).
 
         The clock must have observed them (and every item the filter dropped) before.
         """
         options = self.options
         out = self._buffer
         clock = self.clock
-        if comments and (options.detail or options.json):
+        if comments and (options.detail or options.json or self.fields is not None):
             self._write_commented(items, extra, records, comments)
             return
         if options.detail and not (options.hexdump or options.records) and self.console is None:
@@ -224,7 +225,7 @@ class Output:
             record = None if records is None else records[index : index + 1]
             if texts is None:
                 self.write([item], extra, record)
-            elif self.options.json:
+            elif self.options.json or self.fields is not None:  # (-T fields -e comment: tshark's frame.comment)
                 if record is not None:
                     record[0]["comments"] = texts
                 self.write([item], {**(extra or {}), "comments": texts}, record)
