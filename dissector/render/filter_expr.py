@@ -30,6 +30,9 @@ Item = dict[str, Any]
 Values = Callable[[Item, dict[str, Any] | None], list[Any]]
 ARITHMETIC = ("+", "-", "*", "/", "%")
 MAX_PAIRS = 1 << 20  # an operation on more pairs of occurrences gives no value (never reached by a frame)
+# Operations in one operand: each nests a call when it is computed (as parentheses nest the parser), so a
+# longer chain is refused rather than run out of stack (`slave + 1 + 1 ...`).
+MAX_OPERATIONS = 128
 
 
 @dataclass(slots=True)
@@ -47,6 +50,15 @@ class Operand:
     function: str | None = None  # the function that gave it (alone it is no test)
     char: bool = False  # a character constant, which arithmetic refuses
     tokens: list[Token] = dataclass_field(default_factory=list)
+    size: int = 0  # operations in it (MAX_OPERATIONS)
+
+
+def counted(p: Any, operand: Operand, size: int, token: Token) -> Operand:
+    """`operand` of `size` operations, refused past MAX_OPERATIONS."""
+    if size > MAX_OPERATIONS:
+        raise p.error(f"more than {MAX_OPERATIONS} operations in one operand: split the filter", token)
+    operand.size = size
+    return operand
 
 
 def frame_values(operand: Operand, item: Item) -> list[Any]:
@@ -158,12 +170,14 @@ def arithmetic(p: Any, op: Token, left: Operand, right: Operand) -> Operand:
     for side in (left, right):
         _no_character(p, side)
     text = f"{left.text} {op.value} {right.text}"
+    size = left.size + right.size + 1
     if left.fold is not None and right.fold is not None:  # both constant: typed by what the whole meets
         def fold(ftype: str) -> list[Any]:
             operation = _operation(p, op, ftype, text)
             return _combine(operation, left.fold(ftype), right.fold(ftype))  # type: ignore[misc]
 
-        return Operand(text, left.position, fold=fold, tokens=left.tokens + right.tokens)
+        folded = Operand(text, left.position, fold=fold, tokens=left.tokens + right.tokens)
+        return counted(p, folded, size, op)
     ftype = left.ftype if left.fold is None else right.ftype
     left, right = typed(p, left, ftype), typed(p, right, ftype)
     if kind_of(left.ftype) != kind_of(right.ftype):
@@ -171,9 +185,10 @@ def arithmetic(p: Any, op: Token, left: Operand, right: Operand) -> Operand:
                       f"{right.ftype})", op)
     operation = _operation(p, op, ftype, left.text)
     left_values, right_values = left.values, right.values
-    return Operand(text, left.position, ftype,
-                   lambda item, reg: _combine(operation, left_values(item, reg), right_values(item, reg)),
-                   register=left.register or right.register)
+    combined = Operand(text, left.position, ftype,
+                       lambda item, reg: _combine(operation, left_values(item, reg), right_values(item, reg)),
+                       register=left.register or right.register)
+    return counted(p, combined, size, op)
 
 
 def _operation(p: Any, op: Token, ftype: str, text: str) -> Callable[[Any, Any], Any]:
@@ -186,18 +201,24 @@ def _operation(p: Any, op: Token, ftype: str, text: str) -> Callable[[Any, Any],
 def negative(p: Any, op: Token, operand: Operand) -> Operand:
     """-x (and +x, which is x)."""
     _no_character(p, operand)
+    if operand.fold is None and kind_of(operand.ftype) not in OPERATIONS:
+        raise p.error(f"{operand.text} is {type_name(operand.ftype)}: it cannot take a sign (as tshark)", op)
     if op.value == "+":
         return operand
     text = f"-{operand.text}"
     if operand.fold is not None:
         inner = operand.fold
-        return Operand(text, op.position, fold=lambda ftype: [-value for value in inner(ftype)],
-                       tokens=operand.tokens)
-    if kind_of(operand.ftype) not in OPERATIONS:
-        raise p.error(f"{operand.text} is {type_name(operand.ftype)}: it cannot be negated (as tshark)", op)
+
+        def fold(ftype: str) -> list[Any]:
+            if kind_of(ftype) not in OPERATIONS:  # (warnings == - "a")
+                raise p.error(f"{operand.text} cannot be negated: this is {type_name(ftype)}", op)
+            return [-value for value in inner(ftype)]
+
+        return counted(p, Operand(text, op.position, fold=fold, tokens=operand.tokens), operand.size + 1, op)
     values = operand.values
-    return Operand(text, op.position, operand.ftype,
-                   lambda item, reg: [-value for value in values(item, reg)], register=operand.register)
+    negated = Operand(text, op.position, operand.ftype,  # (a number or a time: checked above)
+                      lambda item, reg: [-value for value in values(item, reg)], register=operand.register)
+    return counted(p, negated, operand.size + 1, op)
 
 
 def _no_character(p: Any, operand: Operand) -> None:

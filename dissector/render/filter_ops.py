@@ -10,12 +10,12 @@ from __future__ import annotations
 
 from typing import Any
 
-from dissector.render.filter_expr import ARITHMETIC, Operand, arithmetic, constant, negative, typed
+from dissector.render.filter_expr import ARITHMETIC, Operand, arithmetic, constant, counted, negative, typed
 from dissector.render.filter_fields import (
     ALIASES, FRAME_FIELDS, REGISTER_FIELDS, TIME_FILTER_FIELDS, unknown_pdu_key,
 )
 from dissector.render.filter_functions import call
-from dissector.render.filter_match import compile_regex, match_op, quantify
+from dissector.render.filter_match import as_bytes, compile_regex, match_op, quantify
 from dissector.render.filter_values import kind_of, type_name
 from dissector.render.glossary import field_type
 
@@ -126,7 +126,7 @@ def _parse_call(p: Any) -> Operand:
             p.advance()
     p.advance()
     p.depth -= 1
-    result = call(p, name, arguments)
+    result = counted(p, call(p, name, arguments), max(argument.size for argument in arguments) + 1, name)
     if p.token.kind == "slice":  # lower(function_name)[0:4]: the bytes of the text, as a text field's slice
         if kind_of(result.ftype) not in ("str", "bytes"):
             raise p.error(f"{result.text} is {type_name(result.ftype)}: only texts and bytes take a slice")
@@ -135,7 +135,7 @@ def _parse_call(p: Any) -> Operand:
         result = Operand(result.text, result.position, "FT_BYTES",
                          lambda item, reg: [c for v in values(item, reg)
                                             if (c := cut(_bytes(v))) is not None],
-                         register=result.register, function=result.function)
+                         register=result.register, function=result.function, size=result.size)
     return result
 
 
@@ -155,7 +155,7 @@ def _parse_field(p: Any) -> Operand:
             value = fields.get(key) if isinstance(fields, dict) else None
             found = value if isinstance(value, list) else [] if value is None else [value]
             if tshark_type == "FT_BYTES":  # (hex text in the item)
-                return [bytes.fromhex(v) if isinstance(v, str) else v for v in found]
+                return [data for v in found if (data := as_bytes(v)) is not None]
             return found
 
         return Operand(token.text, token.position, tshark_type, elements, field=field, tokens=[token])

@@ -284,3 +284,28 @@ def test_fields_writes_each_comment() -> None:
     lines = run_cli(["-G", "fields"])[1].splitlines()
     assert ("F\tComment\tcomment\tFT_STRING\tvw3\t\t0x0\ta pcapng packet comment (tshark's frame.comment), one "
             "occurrence each") in lines
+
+
+def test_a_long_arithmetic_chain_is_refused_not_a_crash() -> None:
+    # each operation nests a call when computed: past 128 the filter is refused (before: RecursionError)
+    assert compile_filter("slave" + " + 1" * 128 + " == 140")({"slave": 12})
+    for text in ("slave" + " + 1" * 5000 + " == 3", "slave == 1" + " + 1" * 5000, "-" * 200 + "slave == 1"):
+        with pytest.raises(FilterError):
+            compile_filter(text)
+
+
+@pytest.mark.parametrize("expression", [
+    'warnings == - "a"',  # (before: TypeError, bad operand type for unary -)
+    'fields.data === - "protected"',
+    "+ fields.data",
+    "- raw == 1",
+])
+def test_a_sign_on_a_text_or_bytes_is_refused(expression: str) -> None:
+    with pytest.raises(FilterError):
+        compile_filter(expression)
+
+
+def test_bytes_of_a_key_that_are_no_hex_are_no_value() -> None:
+    # (before: ValueError from bytes.fromhex)
+    assert not compile_filter("fields.data == fields.data")({"fields": {"data": "zz"}})
+    assert compile_filter("fields.data == fields.data")({"fields": {"data": "0c03"}})

@@ -210,6 +210,9 @@ TOKENS = [
     "warnings", "time", "==", "!=", "<", ">=", "in", "contains", "and", "or", "not", "&&", "||", "!",
     "(", ")", "{", "}", "..", ",", "12", "0x20D1", "1.5", '"CHCF"', '"protected"', "true", "false",
     '"', "=", "$", "\\", "\x00", "é",
+    # functions, arithmetic and characters (render/filter_expr.py)
+    "+", "-", "*", "/", "%", "&", "len(", "count(", "upper(", "string(", "max(", "abs(", "raw", "raw[0:2]",
+    "'a'", "'\\x0c'", "'", "response_time", "time_relative", "scaled", "fields.values", "0", "-1",
 ]
 SAMPLES = [dict(item) for item in items("p38_protection.bin")] + [dict(item) for item in items("noisy_bus.bin")[:2]]
 
