@@ -1,14 +1,18 @@
 """Functions, arithmetic, character constants and times select the frames tshark 4.0.17 selects with the
 plugin, and what tshark refuses vw3-decode refuses (exit 2, one line): a real tshark, two passes, on the
-shipped captures (tests/unit/test_filter_functions.py holds the same frames as numbers)."""
+shipped captures (tests/unit/test_filter_functions.py holds the same frames as numbers); `comment` as
+tshark's frame.comment on a pcapng whose records carry packet comments."""
 from __future__ import annotations
 
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
 from lua_harness import ROOT, run_tshark
+
+from dissector.render.pcapngwriter import PcapngWriter
 
 CASES = [
     # (capture, vw3-decode -Y, tshark -Y with the plugin)
@@ -86,3 +90,34 @@ def test_refused_where_tshark_refuses(ours: str, wiresharks: str) -> None:
     assert mine.stderr.startswith("vw3-decode: ") and "Traceback" not in mine.stderr
     result = run_tshark(path, "-Y", wiresharks)
     assert result.returncode != 0 and result.stdout == ""
+
+
+COMMENTS = [
+    # (vw3-decode -Y, tshark -Y) on a pcapng whose records carry packet comments (opt_comment)
+    ("comment", "frame.comment"),
+    ("!comment", "!frame.comment"),
+    ('comment contains "pump"', 'frame.comment contains "pump"'),
+    ('comment matches "^AGAIN"', 'frame.comment matches "^AGAIN"'),
+    ('comment == "again"', 'frame.comment == "again"'),
+    ('comment != "again"', 'frame.comment != "again"'),
+    ("count(comment) == 2", "count(frame.comment) == 2"),
+    ("len(comment) > 6", "len(frame.comment) > 6"),
+    ('upper(comment) contains "PUMP"', 'upper(frame.comment) contains "PUMP"'),
+]
+
+
+@pytest.mark.parametrize(("ours", "wiresharks"), COMMENTS)
+def test_comment_selects_as_frame_comment(tmp_path: Path, ours: str, wiresharks: str) -> None:
+    path = tmp_path / "commented.pcapng"
+    request, answer = bytes.fromhex("0C0320D000030EEF"), bytes.fromhex("0C0306000100020003A5E4")
+    with path.open("wb") as stream:
+        writer = PcapngWriter(stream, flush=False)
+        for data, time, comments in [(request, 0.0, ["pump 2 check"]), (answer, 0.01, ["answer", "again"]),
+                                     (request, 1.0, None), (answer, 1.01, ["done"])]:
+            writer.write(data, time, comments)
+    command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
+    mine = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert mine.returncode == 0, mine.stderr
+    result = run_tshark(path, "-Y", wiresharks, "-T", "fields", "-e", "frame.number")
+    assert result.returncode == 0, result.stderr
+    assert [int(n) for n in mine.stdout.split()] == [int(n) for n in result.stdout.split()]

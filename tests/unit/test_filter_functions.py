@@ -257,7 +257,7 @@ def test_a_function_error_is_a_filter_error() -> None:
 
 @pytest.mark.parametrize(("expression", "expected"), [
     # `comment`: the record's packet comments (its JSON `comments`), one occurrence each, as tshark's
-    # frame.comment (FT_STRING); app/cli.py hands them to the filter (/work/patches/filters-comment.diff)
+    # frame.comment (FT_STRING); app/cli.py hands them to the filter with the record (d072bdf)
     ("comment", [1, 2]),
     ("!comment", [3]),
     ('comment == "again"', [2]),
@@ -282,8 +282,8 @@ def test_fields_writes_each_comment() -> None:
     assert writer.line({"frame": 2, "comments": ["answer", "again"]}) == "2\tanswer,again"
     assert writer.line({"frame": 3}) == "3\t"
     lines = run_cli(["-G", "fields"])[1].splitlines()
-    assert ("F\tComment\tcomment\tFT_STRING\tvw3\t\t0x0\ta pcapng packet comment (tshark's frame.comment), one "
-            "occurrence each") in lines
+    assert ("F\tComment\tcomment\tFT_STRING\tvw3\t\t0x0\ta pcapng packet comment (tshark's frame.comment), "
+            "one occurrence each") in lines
 
 
 def test_a_long_arithmetic_chain_is_refused_not_a_crash() -> None:
