@@ -2320,6 +2320,8 @@ local DATA = {
           [8] = "diagnostics",
           [11] = "counter",
           [12] = "event_log",
+          [15] = "written",
+          [16] = "written",
           [17] = "report_server_id",
           [20] = "file_record",
           [21] = "file_record",
@@ -2362,6 +2364,10 @@ local DATA = {
           " events, ",
           { "dec", "message_count" },
           " messages",
+        },
+        ["written"] = {
+          { "span" },
+          " written",
         },
         ["report_server_id"] = "report_server_id",
         ["file_record"] = "file_record",
@@ -4032,17 +4038,15 @@ function DATA.lifters(
   }
 end
 end
-function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
+function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
   local format = string.format
   local form = {} -- (by form; by code and kind too where its layouts place its fields apart)
   form.coil = function(f, b, base, last, st, device)
     local coil = b[base + 4] * 256 + b[base + 5]
-    return (f.span_label or (f.start and DECIMAL[f.start]) or "")
-      .. (coil == 0xFF00 and " = ON" or coil == 0 and " = OFF" or format(" = 0x%04X", coil))
+    return span_text(f) .. (coil == 0xFF00 and " = ON" or coil == 0 and " = OFF" or format(" = 0x%04X", coil))
   end
   form.single = function(f, b, base, last, st, device)
-    return (f.span_label or (f.start and DECIMAL[f.start]) or "")
-      .. single_text(f, st, device, b[base + 4] * 256 + b[base + 5])
+    return span_text(f) .. single_text(f, st, device, b[base + 4] * 256 + b[base + 5])
   end
   form.diagnostics = function(f, b, base, last, st, device)
     local subfunction = b[base + 2] * 256 + b[base + 3]
@@ -4070,6 +4074,9 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
       .. DECIMAL[b[base + 5] * 256 + b[base + 6]] .. " events, " .. DECIMAL[b[base + 7] * 256 + b[base + 8]]
       .. " messages"
   end
+  form.written = function(f, b, base, last, st, device)
+    return span_text(f) .. " written"
+  end
   form.fifo = function(f, b, base, last, st, device)
     local fifo_count = b[base + 4] * 256 + b[base + 5]
     return DECIMAL[fifo_count] .. " values" .. fifo_values(b, fifo_count, base + 6, last)
@@ -4081,6 +4088,8 @@ function DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_te
     [8] = { request = form.diagnostics, response = form.diagnostics },
     [11] = { response = form.counter },
     [12] = { response = form.event_log },
+    [15] = { response = form.written },
+    [16] = { response = form.written },
     [17] = { request = BY_NAME.report_server_id, response = BY_NAME.report_server_id },
     [20] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
     [21] = { request = BY_NAME.file_record, response = BY_NAME.file_record },
@@ -9315,8 +9324,9 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 
 -- The Info text's forms that vw3-decode's describe.TEXT_FORMS gives and the plugin says alike, by kind and
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
--- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
--- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
+-- FC5's coil, FC6's value, FC7's and FC12's status, FC11's counters, FC15's and FC16's `written`, FC22's
+-- masks, read from the frame's bytes (a record keeps no fields). The other forms keep the plugin's own text,
+-- the window (span_text): registers' values and bits are left out by design (fields_lua.py PLUGIN_STEPS).
 -- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
@@ -9422,6 +9432,22 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
+-- describe.span_text: the frame's window, `8400..8402 (3)`, `9001` (one), `8400 (0)` (none: nothing wraps),
+-- past 65535 as asked (`65535..65539 (5)`, as the warning `span` says it), PLC style its label (`40002..40003
+-- (2)`); `(3)` where only the quantity is known, nothing without either. (FC24's start is its pointer: its
+-- form says it, DATA.info_forms)
+local function span_text(f)
+  local start, quantity, label = f.start, f.quantity, f.span_label
+  if label ~= nil then
+    if quantity == nil or quantity == 1 then return label end
+    return label .. " (" .. DECIMAL[quantity] .. ")"
+  end
+  if start == nil then return quantity ~= nil and "(" .. DECIMAL[quantity] .. ")" or "" end
+  if quantity == nil or quantity == 1 then return DECIMAL[start] end
+  if quantity == 0 then return DECIMAL[start] .. " (0)" end
+  return DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1] .. " (" .. DECIMAL[quantity] .. ")"
+end
+
 -- describe._single: FC6's value, ` TFR=50.0 Hz` where the frame's device (device, else the stream st's
 -- for the frame) names its register or reads the value as a text, ` = 7` otherwise; the register named as
 -- the tree names it (vw3.story's describe), written as describe.register_text writes a write's register
@@ -9443,7 +9469,7 @@ end
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
 -- text needs the device (summary's st or device).
@@ -9491,15 +9517,13 @@ local function summary(f, tvb, st, device)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
-  local start, quantity, label = f.start, f.quantity, f.span_label
-  if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
-  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
-  if quantity ~= nil and quantity > 1 then
-    -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
-    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
-      .. tail
+  if f.kind == EXCEPTION then return slave .. " " .. name .. " " .. kind .. tail end -- (its code said)
+  local text = span_text(f)
+  if text == "" and LAYOUT_OF[kind][fn] == nil then -- (a code with no describer: its data counted)
+    local size = f.ascii and floor((f.length - 3) / 2) - 3 or f.length - 4 -- (but slave, code and check)
+    text = count_text(size, "byte") .. " of data"
   end
-  return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
+  return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end
 M.START_WORDS, M.add_pdu, M.add_register, M.add_said = START_WORDS, add_pdu, add_register, add_said
 M.add_text, M.count_text, M.fields_at, M.frame_bytes = add_text, count_text, fields_at, frame_bytes

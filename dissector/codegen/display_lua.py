@@ -20,7 +20,7 @@ from dissector.errors import GenerateError
 from dissector.protocol import table
 
 # tree.lua's helpers the forms call, and its describers of describe._BY_NAME: DATA.info_forms's arguments.
-HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "single_text", "BY_NAME")
+HELPERS = ("DECIMAL", "DIAGNOSTICS", "data_text", "fifo_values", "single_text", "span_text", "BY_NAME")
 # (no field's local may hide them or the function's own names)
 TAKEN = frozenset({*HELPERS, "format", "form", "coil", "f", "b", "base", "last", "st", "device"})
 LUA_KEYWORDS = frozenset("""and break do else elseif end false for function goto if in local nil not or repeat
@@ -45,7 +45,8 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
     each read once into a local of its name, then its texts and its steps' texts (describe._OF_FRAME,
     _OF_FIELD, hex and fifo) in one concatenation. (st, device: where the frame's device is found, for a
     step that names a register: tree.lua summary)"""
-    read_by = [step[1] for step in steps if not isinstance(step, str) and step[0] not in ("label", "data")]
+    read_by = [step[1] for step in steps
+               if not isinstance(step, str) and step[0] not in ("label", "span", "data")]
     body, parts = [], []
 
     def value(name: str) -> str:  # (the field's value: its local, or read where it is used)
@@ -66,8 +67,8 @@ def form_body(form: str, steps: list[Any], places: dict[str, tuple[int, int | No
             parts.append(lua_literal(step))
             continue
         what = step[0]
-        if what == "label":  # (span_text: the window as named, PLC style too)
-            parts.append('(f.span_label or (f.start and DECIMAL[f.start]) or "")')
+        if what in ("label", "span"):  # (describe.span_text: the window as named, PLC style too)
+            parts.append("span_text(f)")
         elif what == "dec":
             parts.append(f"DECIMAL[{value(step[1])}]")
         elif what == "hex":

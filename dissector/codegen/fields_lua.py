@@ -51,11 +51,14 @@ def start_words() -> dict[int, dict[str, str]]:
     return out
 
 
-# The steps of describe.TEXT_FORMS the plugin interprets (lua/src/tree.lua info_text): those of the frame's
-# fields read from its bytes, `label` (its window as the plugin names it, start or PLC label) and `single`
-# (FC6's value, its register named by the device). A form of other steps (the registers' values, bits,
-# spans) keeps the plugin's own text (the window).
-PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "single"})
+# The steps of describe.TEXT_FORMS the plugin interprets (lua/src/tree.lua summary): those of the frame's
+# fields read from its bytes, `label` and `span` (its window, tree.lua span_text) and `single` (FC6's value,
+# its register named by the device). A form of other steps keeps the plugin's own text, the window: the
+# registers' values and bits are left out of its Info by design (its quick lanes keep one Info text for
+# every answer to a window, and for a write's request met again with other values: vw3.records), and the
+# window alone is that text already (SPAN_ALONE, no form then).
+PLUGIN_STEPS = frozenset({"hex", "dec", "coil", "subfunction", "data", "fifo", "label", "span", "single"})
+SPAN_ALONE = [("span",)]
 # The describers of describe._BY_NAME the plugin has too (tree.lua BY_NAME), by name.
 PLUGIN_BY_NAME = frozenset({"mei", "report_server_id", "file_record"})
 
@@ -71,8 +74,8 @@ def info_forms() -> dict[str, Any]:
     for (code, request), (text, form) in sorted(describe._FORMS.items()):
         if form is None and text in PLUGIN_BY_NAME:  # (its steps: the describer's name)
             forms["request" if request else "response"][code] = steps[text] = text
-        if form is None or not all(isinstance(step, str) or step[0] in PLUGIN_STEPS
-                                   for step in describe.TEXT_FORMS[form]):
+        if form is None or describe.TEXT_FORMS[form] == SPAN_ALONE or not all(
+                isinstance(step, str) or step[0] in PLUGIN_STEPS for step in describe.TEXT_FORMS[form]):
             continue
         forms["request" if request else "response"][code] = form
         steps[form] = [step if isinstance(step, str) else list(step) for step in describe.TEXT_FORMS[form]]

@@ -242,8 +242,9 @@ local DECIMAL = made_once(function(number) return format("%d", number) end)
 
 -- The Info text's forms that vw3-decode's describe.TEXT_FORMS gives and the plugin says alike, by kind and
 -- function code (codegen/fields_lua.py info_forms): FC8's sub-function and data, FC24's pointer and values,
--- FC5's coil, FC7's and FC12's status, FC11's counters, FC22's masks, read from the frame's bytes (a record
--- keeps no fields). The other forms (values of registers, bits) keep the plugin's own text, the window.
+-- FC5's coil, FC6's value, FC7's and FC12's status, FC11's counters, FC15's and FC16's `written`, FC22's
+-- masks, read from the frame's bytes (a record keeps no fields). The other forms keep the plugin's own text,
+-- the window (span_text): registers' values and bits are left out by design (fields_lua.py PLUGIN_STEPS).
 -- FORMS[fn][kind]: the form as a function of the frame (below: DATA.info_forms; nil for the usual codes).
 local INFO = DATA.fields.info
 local MAX_DATA_BYTES, MAX_FIFO_VALUES = INFO.max_data_bytes, INFO.max_fifo_values
@@ -349,6 +350,22 @@ function BY_NAME.file_record(f, b, base)
   return DECIMAL[groups] .. " record group(s)"
 end
 
+-- describe.span_text: the frame's window, `8400..8402 (3)`, `9001` (one), `8400 (0)` (none: nothing wraps),
+-- past 65535 as asked (`65535..65539 (5)`, as the warning `span` says it), PLC style its label (`40002..40003
+-- (2)`); `(3)` where only the quantity is known, nothing without either. (FC24's start is its pointer: its
+-- form says it, DATA.info_forms)
+local function span_text(f)
+  local start, quantity, label = f.start, f.quantity, f.span_label
+  if label ~= nil then
+    if quantity == nil or quantity == 1 then return label end
+    return label .. " (" .. DECIMAL[quantity] .. ")"
+  end
+  if start == nil then return quantity ~= nil and "(" .. DECIMAL[quantity] .. ")" or "" end
+  if quantity == nil or quantity == 1 then return DECIMAL[start] end
+  if quantity == 0 then return DECIMAL[start] .. " (0)" end
+  return DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1] .. " (" .. DECIMAL[quantity] .. ")"
+end
+
 -- describe._single: FC6's value, ` TFR=50.0 Hz` where the frame's device (device, else the stream st's
 -- for the frame) names its register or reads the value as a text, ` = 7` otherwise; the register named as
 -- the tree names it (vw3.story's describe), written as describe.register_text writes a write's register
@@ -370,7 +387,7 @@ end
 -- Each form by function code, then kind: written out by the code generator from describe.TEXT_FORMS's
 -- steps as DATA.fields.info states them, each field read where its layout places it (DATA.info_forms,
 -- codegen/display_lua.py), calling the helpers above; a describer of BY_NAME by its name.
-local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, BY_NAME)
+local FORMS = DATA.info_forms(DECIMAL, DIAGNOSTICS, data_text, fifo_values, single_text, span_text, BY_NAME)
 
 -- NAMING[fn][kind]: the forms that name a register as the frame's device does (a `single` step): their
 -- text needs the device (summary's st or device).
@@ -418,13 +435,11 @@ local function summary(f, tvb, st, device)
       return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
     end
   end
-  local start, quantity, label = f.start, f.quantity, f.span_label
-  if label ~= nil then return slave .. " " .. name .. " " .. kind .. " " .. label .. tail end
-  if start == nil then return slave .. " " .. name .. " " .. kind .. tail end
-  if quantity ~= nil and quantity > 1 then
-    -- (past 65535 as asked, as vw3-decode's describe.span_text and the warning `span` show it)
-    return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. ".." .. DECIMAL[start + quantity - 1]
-      .. tail
+  if f.kind == EXCEPTION then return slave .. " " .. name .. " " .. kind .. tail end -- (its code said)
+  local text = span_text(f)
+  if text == "" and LAYOUT_OF[kind][fn] == nil then -- (a code with no describer: its data counted)
+    local size = f.ascii and floor((f.length - 3) / 2) - 3 or f.length - 4 -- (but slave, code and check)
+    text = count_text(size, "byte") .. " of data"
   end
-  return slave .. " " .. name .. " " .. kind .. " " .. DECIMAL[start] .. tail
+  return slave .. " " .. name .. " " .. kind .. (text == "" and "" or " " .. text) .. tail
 end

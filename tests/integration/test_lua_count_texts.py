@@ -20,11 +20,11 @@ from test_count_texts import RECORDS, T0  # noqa: E402
 pytestmark = pytest.mark.integration
 
 INFO = [
-    "1 Read Holding Registers request 65535..65539",
-    "1 Read Holding Registers response 65535..65539",
+    "1 Read Holding Registers request 65535..65539 (5)",
+    "1 Read Holding Registers response 65535..65539 (5)",
     "noise (1 byte)",
-    "1 Write Multiple Coils request 65535..65544",
-    "1 Write Multiple Coils response 65535..65544",
+    "1 Write Multiple Coils request 65535..65544 (10)",
+    "1 Write Multiple Coils response 65535..65544 (10) written",
     "1 Encapsulated Interface Transport request Read Device Identification, individual, from object 128",
     "1 Encapsulated Interface Transport response Read Device Identification, individual: Object 128='ABC' "
     "ModelName='XY'",
@@ -57,18 +57,18 @@ def test_info_column(capture: Path) -> None:
 def test_info_column_plc_style(capture: Path) -> None:
     lines = tshark(capture, "-o", "vw3.address_style:plc", "-T", "fields", "-e", "_ws.col.Info").splitlines()
     assert lines[:5] == [
-        "1 Read Holding Registers request 465536..465540",
-        "1 Read Holding Registers response 465536..465540",
+        "1 Read Holding Registers request 465536..465540 (5)",
+        "1 Read Holding Registers response 465536..465540 (5)",
         "noise (1 byte)",
-        "1 Write Multiple Coils request 065536..065545",
-        "1 Write Multiple Coils response 065536..065545",
+        "1 Write Multiple Coils request 065536..065545 (10)",
+        "1 Write Multiple Coils response 065536..065545 (10) written",
     ]
 
 
 def test_tree(capture: Path) -> None:
     tree = tshark(capture, "-V")
     for line in [
-        "VW3 Modbus RTU, 1 Read Holding Registers request 65535..65539\n",
+        "VW3 Modbus RTU, 1 Read Holding Registers request 65535..65539 (5)\n",
         "        [Expert Info (Warning/Protocol): addresses 65535..65539 run past 65535]\n",
         "VW3 noise, 1 byte: no valid frame\n",
         "    [Expert Info (Warning/Malformed): 1 byte outside any frame: no valid frame]\n",

@@ -99,6 +99,6 @@ def test_the_plugin_decodes_the_glitchy_line_as_vw3_decode(tmp_path: Path) -> No
     records = [(frame, 1_700_000_000 + index * 0.05) for index, frame in enumerate([POLL, ANSWER] * 60)]
     pcap = write_pcap(tmp_path / "glitchy.pcap", records)
     info = run_tshark(pcap, "-T", "fields", "-e", "_ws.col.Info").stdout.splitlines()
-    assert info == ["1 Read Holding Registers request 0..1; noise (1 byte)",
-                    "1 Read Holding Registers response 0..1; noise (1 byte)"] * 60
+    assert info == ["1 Read Holding Registers request 0..1 (2); noise (1 byte)",
+                    "1 Read Holding Registers response 0..1 (2); noise (1 byte)"] * 60
     assert_same_as_vw3_decode(pcap)

@@ -38,7 +38,7 @@ def test_noise_without_a_silence_stays_one_run(tmp_path: Path) -> None:
     # (2 ms apart: 0.28 ms of silence after 3 characters at 19200 baud, below t3.5)
     records = [(NOISE, 0.0), (NOISE, 0.002), (NOISE + REQUEST, 3.0), (NOISE, 4.0)]
     _check(tmp_path, records, ["(3 bytes continue in #2)", "noise (6 bytes)",
-                               "noise (3 bytes); 12 Read Holding Registers request 8400..8402", "noise (3 bytes)"])
+                               "noise (3 bytes); 12 Read Holding Registers request 8400..8402 (3)", "noise (3 bytes)"])
 
 
 def test_a_silence_before_the_record_the_framer_stopped_at(tmp_path: Path) -> None:

@@ -20,7 +20,7 @@ LATER = frozenset(["response_frame", "unanswered"])  # (what one pass cannot kno
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
 BAD = ANSWER[:-1] + bytes([ANSWER[-1] ^ 1])  # (CRC E5 17 for E4 17)
-READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402 (3)", "12 Read Holding Registers response 8400..8402 (3)"
 LATE = [(REQUEST, 2.0), (ANSWER, 2.01), (REQUEST, 4.0), (ANSWER, 4.05)]
 
 

@@ -18,7 +18,7 @@ pytestmark = pytest.mark.integration
 LATER = frozenset(["response_frame", "unanswered"])  # (what one pass cannot know when it shows a request)
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
-READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402 (3)", "12 Read Holding Registers response 8400..8402 (3)"
 ONE, ONE_ANSWER = rtu("01 03 0000 0001"), rtu("01 03 02 0007")
 READ_ONE, ONE_ANSWERED = "1 Read Holding Registers request 0", "1 Read Holding Registers response 0"
 

@@ -24,7 +24,7 @@ ODD = {
     "exception_0": rtu("00 90 02"),
     "fc8_00": rtu("0C 08 0000 1234"),
 }
-READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402 (3)", "12 Read Holding Registers response 8400..8402 (3)"
 # (slave 0 read once while slave 12 may still get a device, which would name a broadcast: provisional)
 SAID = {
     "broadcast": "0 Write Single Register request 3201 = 1 [provisional]",

@@ -98,24 +98,24 @@ TREES: list[tuple[str, list[str]]] = [
         "    MEI type: CANopen General Reference (13)", "    Data: 010203"]),
     ("VW3 Modbus RTU, 1 Encapsulated Interface Transport response CANopen General Reference", [
         "    MEI type: CANopen General Reference (13)", "    Data: 0a0b"]),
-    ("VW3 Modbus RTU, 1 Write Multiple Coils request 0..9", [
+    ("VW3 Modbus RTU, 1 Write Multiple Coils request 0..9 (10)", [
         "    Start address: 0", "    Quantity: 10", "    Byte count: 2", "    Status: ff03",
         *[line for bit in range(10)
           for line in (f"    Bit {bit} = 1", f"        [Address: {bit}]", "        [Value: 1]")]]),
-    ("VW3 Modbus RTU, 1 Write Multiple Coils response 0..9", ["    Start address: 0", "    Quantity: 10"]),
+    ("VW3 Modbus RTU, 1 Write Multiple Coils response 0..9 (10) written", ["    Start address: 0", "    Quantity: 10"]),
 ]
 TREES += [
-    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers request 3..8", [
+    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers request 3..8 (6)", [
         "    Read start: 3", "    Read quantity: 6", "    Write start: 14", "    Write quantity: 3",
         "    Byte count: 6",
         *[line for address in (14, 15, 16) for line in (
             f"    Register {address} = 255", f"        [Address: {address}]", "        Value: 255 (0x00ff)")]]),
-    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers response 3..8", [
+    ("VW3 Modbus RTU, 1 Read/Write Multiple Registers response 3..8 (6)", [
         "    [Start address: 3]", "    [Quantity: 6]", "    Byte count: 12",
         *[line for address, value in ((3, 254), (4, 2765), (5, 1), (6, 3), (7, 13), (8, 255)) for line in (
             f"    Register {address} = {value}", f"        [Address: {address}]",
             f"        Value: {value} (0x{value:04x})")]]),
-    ("VW3 Modbus RTU, 1 Read Holding Registers request 0..1", ["    Start address: 0", "    Quantity: 2"]),
+    ("VW3 Modbus RTU, 1 Read Holding Registers request 0..1 (2)", ["    Start address: 0", "    Quantity: 2"]),
     ("VW3 Modbus RTU, 1 Read Holding Registers exception 2 (Illegal Data Address)", [
         "    Exception code: Illegal Data Address (2)",
         "    [Expert Info (Note/Response): Exception 2: Illegal Data Address]",

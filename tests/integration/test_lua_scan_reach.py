@@ -16,7 +16,7 @@ from lua_harness import lua_errors, lua_items, python_items, run_tshark, write_p
 pytestmark = pytest.mark.integration
 
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
-READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402 (3)", "12 Read Holding Registers response 8400..8402 (3)"
 # (the last two bytes of each chosen so that it and the request after it check as one frame)
 USER = bytes.fromhex("2946a54dca182530bb1d6d132cded6237b2ed91e3f72480b")
 FC8 = bytes.fromhex("0c0800001234bb74")

@@ -49,8 +49,8 @@ def test_p38_protection_story_under_lua54() -> None:
     lines = run([(SCENARIO_REQUEST, 1.0), (SCENARIO_1, 1.012), (SCENARIO_REQUEST, 2.0), (SCENARIO_2, 2.011),
                  (SCENARIO_REQUEST, 3.0), (SCENARIO_3, 3.0095)], "profiles=atv71")
     assert section(lines, 4) == [
-        "record 4: 12 Read Holding Registers response 8400..8402",
-        "vw3: VW3 Modbus RTU, 12 Read Holding Registers response 8400..8402",
+        "record 4: 12 Read Holding Registers response 8400..8402 (3)",
+        "vw3: VW3 Modbus RTU, 12 Read Holding Registers response 8400..8402 (3)",
         "vw3.item=4", "vw3.kind=2", "vw3.mode=rtu", "vw3.slave=12", "vw3.function=3",
         "vw3.function_name=Read Holding Registers", "vw3.profile=atv71", "vw3.crc=9422", "vw3.crc_expected=9422", "vw3.crc_ok=true", "vw3.start=8400", "vw3.quantity=3",
         "vw3.byte_count=6",  # the PDU's byte count, as vw3-decode -V lists it

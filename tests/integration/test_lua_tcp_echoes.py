@@ -63,8 +63,8 @@ def test_write_echo_is_shown_in_its_own_segment_and_paired(tmp_path: Path) -> No
     expected = [
         ["1", "1", "", "", "8401", "12 Write Single Register request 8401 CHCF=IO (I/O profile)"],
         ["2", "2", "1", "0.010000000", "8401", "12 Write Single Register response 8401 CHCF=IO (I/O profile)"],
-        ["3", "1", "", "", "8401,8402", "12 Read Holding Registers request 8401..8402"],
-        ["4", "2", "3", "0.010000000", "8401,8402", "12 Read Holding Registers response 8401..8402"],
+        ["3", "1", "", "", "8401,8402", "12 Read Holding Registers request 8401..8402 (2)"],
+        ["4", "2", "3", "0.010000000", "8401,8402", "12 Read Holding Registers response 8401..8402 (2)"],
     ]
     for two_pass in (True, False):
         assert _rows(tcp, "-o", "vw3.tcp_port:5020", two_pass=two_pass) == expected

@@ -25,7 +25,7 @@ pytestmark = pytest.mark.integration
 REQUEST, ANSWER = rtu("0C 03 20D0 0003"), rtu("0C 03 06 8000 0003 0002")
 DAMAGED = REQUEST[:-1] + bytes([REQUEST[-1] ^ 1])
 COUNTER = rtu("0C 0B")  # (a 4-byte request: Get Comm Event Counter)
-READ, ANSWERED = "12 Read Holding Registers request 8400..8402", "12 Read Holding Registers response 8400..8402"
+READ, ANSWERED = "12 Read Holding Registers request 8400..8402 (3)", "12 Read Holding Registers response 8400..8402 (3)"
 COUNTED = "12 Get Comm Event Counter request"
 
 
@@ -83,7 +83,7 @@ def test_a_record_that_is_a_scanned_frame_settles_what_is_before_it(first: str, 
     # scan, whose CRC checks over both records, read them as one Return Query Data)
     held = bytes.fromhex(first)
     pcap = _capture(tmp_path, [REQUEST, ANSWER, held, rtu("0C 46 0102 0304"), REQUEST, ANSWER])
-    user = "12 User-defined function 70 request"
+    user = "12 User-defined function 70 request 4 bytes of data"
     assert _infos(pcap, two_pass=False) == [
         f"{READ} [provisional]", f"{ANSWERED} [provisional]", f"({len(held)} bytes continue)", f"{user} [provisional]",
         f"{READ} [provisional]", ANSWERED]

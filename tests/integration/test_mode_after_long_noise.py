@@ -104,8 +104,8 @@ def test_noise_past_the_reach_leaves_rtu_and_the_mode_ascii_hint(tmp_path: Path)
 
 
 # The plugin's Info column for the records of vw3-decode -w's pcap: the noise run, then one a frame.
-PLUGIN_INFO = ["12 Read Holding Registers request 8401..8402",
-               "12 Read Holding Registers response 8401..8402"] * 5
+PLUGIN_INFO = ["12 Read Holding Registers request 8401..8402 (2)",
+               "12 Read Holding Registers response 8401..8402 (2)"] * 5
 
 
 @pytest.mark.parametrize("name", ["zeros50", "zeros70", "ff70", "random60", "zeros900"])
