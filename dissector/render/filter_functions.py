@@ -44,9 +44,8 @@ def call(p: Any, name: Any, arguments: list[Operand]) -> Operand:
         raise p.error(f"only a field can be given to {name.value}() (as tshark), not {argument.text}", name)
     values, ftype = argument.values, argument.ftype
     if name.value == "count":  # (the whole frame's, as tshark's)
-        counted = Operand(text, name.position, "FT_UINT32", function="count")
-        counted.values = lambda item, reg: [n] if (n := len(frame_values(argument, item))) else []
-        return counted
+        return Operand(text, name.position, "FT_UINT32", function="count",
+                       values=per_frame(lambda item: [n] if (n := len(frame_values(argument, item))) else []))
     if name.value == "len":
         size = wire_size(ftype)
         return Operand(text, name.position, "FT_UINT32",
@@ -95,12 +94,25 @@ def _extreme(p: Any, name: Any, text: str, arguments: list[Operand]) -> Operand:
         raise p.error(f"{first.text} cannot be ordered: {name.value}() takes numbers, texts or bytes", name)
     pick: Callable[..., Any] = max if name.value == "max" else min
 
-    def values(item: Item, reg: dict[str, Any] | None) -> list[Any]:
+    def values(item: Item) -> list[Any]:
         found = [value for argument in arguments for value in frame_values(argument, item)
                  if value is not None]
         return [pick(found)] if found else []
 
-    return Operand(text, name.position, first.ftype, values, function=name.value)
+    return Operand(text, name.position, first.ftype, per_frame(values), function=name.value)
+
+
+def per_frame(compute: Callable[[Item], list[Any]]) -> Callable[[Item, Any], list[Any]]:
+    """The values of a frame-wide function, computed once per item: a test on each register that
+    compares with it (count(value) == value) costs the registers once, not their square."""
+    last: list[Any] = [None, []]
+
+    def values(item: Item, reg: dict[str, Any] | None) -> list[Any]:
+        if last[0] is not item:
+            last[0], last[1] = item, compute(item)
+        return last[1]
+
+    return values
 
 
 def _absolute(p: Any, text: str, argument: Operand) -> Operand:

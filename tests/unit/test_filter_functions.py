@@ -309,3 +309,20 @@ def test_bytes_of_a_key_that_are_no_hex_are_no_value() -> None:
     # (before: ValueError from bytes.fromhex)
     assert not compile_filter("fields.data == fields.data")({"fields": {"data": "zz"}})
     assert compile_filter("fields.data == fields.data")({"fields": {"data": "0c03"}})
+
+
+def test_a_frame_wide_function_is_computed_once_per_frame() -> None:
+    # count(address) == address compares each register with the frame's count: the count is computed once
+    # per item (not once per register: a read of 2000 addresses was 2000 counts of 2000), anew for the next
+    import dissector.render.filter_expr as expr
+
+    calls = []
+    original = expr.item_elements
+    expr.item_elements = lambda item: calls.append(1) or original(item)  # type: ignore[assignment]
+    try:
+        test = compile_filter("count(address) == address")
+        assert test({"kind": "request", "function": 3, "start": 0, "quantity": 2000}) is False
+        assert len(calls) == 1  # (the count, once: before, once per register, 2000)
+        assert test({"kind": "request", "function": 3, "start": 1, "quantity": 2}) is True  # (address 2)
+    finally:
+        expr.item_elements = original  # type: ignore[assignment]
