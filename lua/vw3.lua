@@ -5913,8 +5913,8 @@ package.preload["vw3.decode"] = function(...)
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat = DATA, EXCEPTION, MAX_SLAVE, REQUEST, answered, concat
-local data_bytes, floor, format, ipairs, math, string = data_bytes, floor, format, ipairs, math, string
-local table, tostring = table, tostring
+local data_bytes, floor, format, ipairs, math, pairs = data_bytes, floor, format, ipairs, math, pairs
+local string, table, tostring = string, table, tostring
 local RULES = DATA.rules
 
 -- ---------------------------------------------------------------------------------------------------
@@ -5969,6 +5969,22 @@ local function u16(b, k) return b[k] * 256 + b[k + 1] end
 local function warn(frame, text)
   local warnings = frame.warnings
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
+end
+
+-- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
+-- device ignored it: Modbus over serial line 2.5.1.2): its values are shown, no status judged, no story
+-- told, no memory changed; nor does its answer take addresses from it (pairing.py trusted_request).
+local function verified(f)
+  return f.crc == f.crc_expected
+end
+
+-- The request an answer is read against (its window, its echo, what an exception refuses), nil when the
+-- capture has none or the tap's copy of it failed its check: the answer is paired, its addresses unknown
+-- and nothing is judged, told or remembered of them (pairing.py trusted_request).
+local function trusted_request(f)
+  local request = f.request
+  if request ~= nil and verified(request) then return request end
+  return nil
 end
 
 -- Registers and bits are runs (made by the lifting rules' handlers): where their values start in the frame's
@@ -6171,6 +6187,9 @@ local SPECIAL = {
 -- (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a named special case) and its handler (H): the lifting
 -- rule's where the table has one, else the special case's.
 local GRAMMARS, LIFT_OF = DATA.grammars, DATA.lift_of
+-- The codes whose answer's window is its request's ([lift] start `request.start`: FC1..4, FC23, FC24).
+local WINDOW_ASKED = {}
+for code, rule in pairs(LIFT_OF.response) do WINDOW_ASKED[code] = rule.start == "request.start" end
 local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo,
   past_quantity)
 
@@ -6206,6 +6225,13 @@ local function decode_frame(f)
   f.fields = fields
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
+  local request = f.request
+  if request ~= nil and not verified(request) and WINDOW_ASKED[f.fn] then
+    -- Its request failed its check (annotate_with kept none of its fields): no addresses
+    -- (decode/fields.py lifter, pairing.py trusted_request).
+    local text, notes = say("request_damaged", { check = f.ascii and "LRC" or "CRC" }), f.notes
+    if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+  end
   if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then
     warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))
@@ -6214,7 +6240,8 @@ end
 M.CONFIRMED, M.DIAGNOSTICS, M.EXCEPTIONS, M.FUNCTIONS = CONFIRMED, DIAGNOSTICS, EXCEPTIONS, FUNCTIONS
 M.LIFT_OF, M.LIMITS, M.NOT_BROADCAST, M.bit_at = LIFT_OF, LIMITS, NOT_BROADCAST, bit_at
 M.decode_frame, M.exception_name, M.fill, M.function_name = decode_frame, exception_name, fill, function_name
-M.register_at, M.release_run, M.say, M.u16, M.warn = register_at, release_run, say, u16, warn
+M.register_at, M.release_run, M.say, M.trusted_request, M.u16 = register_at, release_run, say, trusted_request, u16
+M.verified, M.warn = verified, warn
 end
 
 -- ---- vw3.pairing: lua/src/pairing.lua ----
@@ -7199,13 +7226,6 @@ function story.tell(f)
   end
 end
 
--- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
--- device ignored it: Modbus over serial line 2.5.1.2): its values are shown, no status judged, no story
--- told, no memory changed.
-local function verified(f)
-  return f.crc == f.crc_expected
-end
-
 -- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
 -- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
 -- (By address alone: the one profile here that follows parameters, the ATV71, reads its input registers as
@@ -7439,7 +7459,7 @@ local function annotate_list(st, f, device, registers, read)
 end
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
 M.plc_base, M.remember_list, M.remember_mask = plc_base, remember_list, remember_mask
-M.remember_writes, M.story, M.track, M.verified, M.words_at = remember_writes, story, track, verified, words_at
+M.remember_writes, M.story, M.track, M.words_at = remember_writes, story, track, words_at
 end
 
 -- ---- vw3.explain: lua/src/explain.lua ----
@@ -7453,8 +7473,8 @@ local DATA, LIFT_OF, NOT_BROADCAST, PLAIN_READS, PLC_LABELS = DATA, LIFT_OF, NOT
 local READS, READ_LIMIT, REQUEST, RESPONSE, address_name = READS, READ_LIMIT, REQUEST, RESPONSE, address_name
 local address_runs, concat, consecutive, format = address_runs, concat, consecutive, format
 local function_name, ipairs, lane, math, next, note = function_name, ipairs, lane, math, next, note
-local plc_base, say, span_name, story, tonumber, track, u16 = plc_base, say, span_name, story, tonumber, track, u16
-local verified, warn = verified, warn
+local plc_base, say, span_name, story, tonumber, track = plc_base, say, span_name, story, tonumber, track
+local trusted_request, u16, verified, warn = trusted_request, u16, verified, warn
 
 -- A quantity above the device's limit for the function (limit: nil when the device gives none). (Here a
 -- function is named as its frame shows it: f.function_text, the profile's name annotate_with set, or the spec's.)
@@ -7560,7 +7580,7 @@ end
 -- of the code to the function increment (explain._read_only_note).
 local function read_only_note(f, profile, refused, causes)
   local counters, seen = {}, {}
-  for _, cause in ipairs(causes and pick_causes(f.request, profile, causes) or {}) do
+  for _, cause in ipairs(causes and pick_causes(trusted_request(f), profile, causes) or {}) do
     for _, counter in ipairs(cause.counters) do
       if not seen[counter] then counters[#counters + 1], seen[counter] = counter, true end
     end
@@ -7616,7 +7636,7 @@ local function explain_exception(f, device)
   -- (to a read of registers its all_protected_exception says p.38's clause too: explain.device_meaning)
   local read = READS[f.fn] ~= nil and code == profile.all_protected_exception
   f.exception_meaning = read and profile.all_protected_read or meanings[code]
-  local request = f.request
+  local request = trusted_request(f) -- (one that failed its check refused what the tap did not see)
   local refused = code == DATA.read_only_exception and request ~= nil and written_read_only(request, device)
   if refused and #refused > 0 then -- (a write of read-only parameters: named rather than the code's meaning)
     f.exception_meaning = say("read_only_meaning", { access = READ_ONLY })
@@ -8081,7 +8101,8 @@ local explain_objects, ipairs, lane, math, pairs = explain_objects, ipairs, lane
 local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
 local refused_registers, register_at, remember_list = refused_registers, register_at, remember_list
 local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
-local span_label, string, table, track, verified, words_at = span_label, string, table, track, verified, words_at
+local span_label, string, table, track, trusted_request = span_label, string, table, track, trusted_request
+local verified, words_at = verified, words_at
 
 -- The codes whose echo confirms masks applied to the value held ([confirm] "mask": FC22).
 local MASK_WRITES = DATA.rules.by_confirm.mask
@@ -8093,16 +8114,19 @@ local function annotate_with(st, f, b, device)
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
   -- (a frame that failed its check: its values shown, nothing judged nor remembered)
-  local trusted = kind == REQUEST or verified(f)
+  local trusted = verified(f)
   local track = device.track and trusted
   if kind == REQUEST then
     check_request(f, device)
     check_writes(f, device)
+    -- (one that failed its check keeps none of its fields for its answer, which is decoded by its own bytes
+    -- as one with no request, and which no quick lane takes: pairing.py trusted_request)
+    if not trusted then f.fields = nil end
   elseif kind == EXCEPTION then
     explain_exception(f, device)
     return
   end
-  local request = f.request
+  local request = trusted_request(f)
   if kind == RESPONSE and track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes

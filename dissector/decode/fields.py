@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from construct import Container
 
 from dissector.decode.fastpath import fast_parse
+from dissector.decode.pairing import trusted_request
 from dissector.protocol import table
 from dissector.protocol.grammar import GrammarError, parse_pdu
 from dissector.protocol.printable import bytes_text
@@ -163,6 +164,8 @@ def lifter(rule: Lift, limit: str | None, request_of: RequestOf) -> Handler:
         else:
             quantity = None if quantity_field is None else fields[quantity_field]
         frame.start, frame.quantity = start, quantity
+        if start_from_request and request is None and frame.request is not None and not frame.request.crc_ok:
+            frame.notes.append(text("request_damaged", check="LRC" if frame.mode == "ascii" else "CRC"))
         for check in checks or ():
             value = fields[check.field]
             if check.above:
@@ -279,8 +282,9 @@ def _check_parts(frame: Frame, fields: Container, request: Frame | None, parts: 
 
 
 def _request_of(frame: Frame) -> Frame | None:
-    """The request a response answers, decoded; None when it is not in the capture or did not parse."""
-    request = frame.request
+    """The request a response answers, decoded; None when it is not in the capture, failed its check
+    (pairing.trusted_request) or did not parse."""
+    request = trusted_request(frame)
     if request is None:
         return None
     decode_frame(request)

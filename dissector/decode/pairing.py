@@ -377,6 +377,17 @@ class Pairer:
             self._release(out)
 
 
+def trusted_request(answer: Frame) -> Frame | None:
+    """The request an answer is read against (its window, its echo, what an exception refuses), None when
+    the capture has none or the tap's copy of it failed its check. A slave ignores a request that fails
+    its check (Modbus over serial line 2.5.1.2), so a good answer after a damaged one answers the bytes the
+    slave got, which the tap did not: the answer is paired (its number, its time) and its values shown,
+    but addresses taken from the damaged bytes are unknown (text request_damaged), and nothing is judged,
+    told or remembered of them (lua/src/decode.lua trusted_request)."""
+    request = answer.request
+    return request if request is not None and request.crc_ok else None
+
+
 def _sub_function(request: Frame) -> int | None:
     pdu = request.pdu
     return pdu[1] << 8 | pdu[2] if len(pdu) >= 3 else None

@@ -4,6 +4,7 @@ device (explain.py names them) instead of the code's plain meaning. One job: wha
 parameter it cannot change."""
 from __future__ import annotations
 
+from dissector.decode.pairing import trusted_request
 from dissector.devices.device import Device
 from dissector.devices.naming import address_name, plc_label
 from dissector.model import Frame
@@ -57,7 +58,7 @@ def check_writes(frame: Frame, device: Device) -> None:
 def refused_read_only(frame: Frame, device: Device) -> list[str]:
     """The read-only parameters an exception read_only_exception refuses the write of (its request's),
     named; empty for any other exception (explain.explain_exception names them in its note)."""
-    request = frame.request
+    request = trusted_request(frame)  # (not one that failed its check: what it asked is not known)
     if frame.exception_code != READ_ONLY_EXCEPTION or request is None:
         return []
     return written_read_only(request, device)

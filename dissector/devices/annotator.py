@@ -18,7 +18,7 @@ from collections.abc import Callable, Sequence
 from dissector.devices.access import READ_ONLY_MEANING, check_writes
 from dissector.devices.checks import check_request, check_subfunction, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
-from dissector.devices.explain import PLAIN_READS, all_unreadable_registers, device_meaning, explain_exception
+from dissector.devices.explain import all_unreadable_registers, device_meaning, explain_exception, refused_read
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import (
     readable_again, remember_answered, remember_mask, remember_writes, unreadable, unreadable_status,
@@ -300,12 +300,8 @@ class Annotator:
         function = frame.function
         kind = frame.kind
         if kind is _EXCEPTION:
-            request = frame.request
-            if (frame.exception_code is None or frame.exception_code != profile.all_protected_exception
-                    or function not in PLAIN_READS or request is None or request.start is None
-                    or not request.quantity or profile.exception_causes.get((function, frame.exception_code))):
-                return None
-            return all_unreadable_registers(frame, device, request)
+            request = refused_read(frame, device)
+            return None if request is None else all_unreadable_registers(frame, device, request)
         registers = frame.registers
         if not registers:
             return registers

@@ -3,6 +3,7 @@ meaning is said once, in one note (with the relay counters an error increments, 
 refused read was made of). One job: what an exception means on this device."""
 from __future__ import annotations
 
+from dissector.decode.pairing import trusted_request
 from dissector.devices.access import (READ_ONLY, READ_ONLY_EXCEPTION, READ_ONLY_MEANING, refused_read_only,
                                       written_read_only)
 from dissector.devices.device import Device
@@ -31,8 +32,7 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
     function = frame.function
     name = profile.function_names.get(function) or SPEC.function_name(function)
     causes = profile.exception_causes.get((function, code))
-    all_unreadable = code == profile.all_protected_exception and function in PLAIN_READS
-    request = frame.request
+    request = trusted_request(frame)  # (one that failed its check refused what the tap did not see)
     refused = refused_read_only(frame, device)
     if refused:  # (a write of read-only parameters: named rather than the code's meaning)
         frame.notes.append(_read_only_note(frame, profile, refused, causes))
@@ -45,9 +45,8 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
             note = text("exception_cause", code=code, device=profile.device, name=name, causes=causes_text)
             _remember(device.explained, key, note)
         frame.notes.append(note)  # type: ignore[arg-type]
-    elif (all_unreadable and frame.crc_ok  # (a frame that failed its check tells nothing of parameters: memory.py)
-          and request is not None and request.start is not None and request.quantity):
-        _all_unreadable(frame, device, request, events)
+    elif (read := refused_read(frame, device)) is not None:
+        _all_unreadable(frame, device, read, events)
     elif code in profile.exceptions:
         meaning = device_meaning(profile, function, code)
         frame.notes.append(text("exception_meaning", code=code, device=profile.device, meaning=meaning))
@@ -55,6 +54,20 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
         known = documented(profile)
         frame.notes.append(text("exception_undocumented", code=code, device=profile.device, known=known))
     frame.exception_text = exception_meaning(device, function, code, request)
+
+
+def refused_read(frame: Frame, device: Device) -> Frame | None:
+    """The read an exception says every parameter of is non-existent or protected (the device's
+    all_protected_exception to a plain read, with no cause of its own), or None: not such an exception, or
+    one that failed its check (it tells nothing of parameters: memory.py), or its request is not known
+    (pairing.trusted_request). explain_exception tells the story, Annotator.reread lists the registers."""
+    profile, code, function = device.profile, frame.exception_code, frame.function
+    request = trusted_request(frame)
+    if (code is None or code != profile.all_protected_exception or function not in PLAIN_READS or not frame.crc_ok
+            or request is None or request.start is None or not request.quantity
+            or profile.exception_causes.get((function, code))):
+        return None
+    return request
 
 
 def exception_meaning(device: Device, function: int, code: int, request: Frame | None) -> str | None:
@@ -71,7 +84,7 @@ def _read_only_note(frame: Frame, profile: Profile, refused: list[str],
     """`exception 02 from the VW3 A3 303: ETA (3201) read-only (access R), not written`, with the relay
     counters the device's causes of this code to this function increment (SEL-749M: any 02 to 06h)."""
     refusal = text("read_only_refusal", parameters=", ".join(refused), access=READ_ONLY)
-    picked = _pick_causes(frame.request, profile, causes or ())
+    picked = _pick_causes(trusted_request(frame), profile, causes or ())
     counters = [counter for cause in picked for counter in cause.counters]
     meaning = counted(refusal, tuple(dict.fromkeys(counters)))
     return text("exception_meaning", code=frame.exception_code, device=profile.device, meaning=meaning)

@@ -16,6 +16,7 @@ from __future__ import annotations
 import weakref
 from collections.abc import Iterable, Sequence
 
+from dissector.decode.pairing import trusted_request
 from dissector.devices.device import Device
 from dissector.devices.maps import RegisterDef
 from dissector.devices.selection import Cited
@@ -79,8 +80,9 @@ def remember_writes(frame: Frame, device: Device, registers: Sequence[Register])
 
 
 def remember_answered(frame: Frame, device: Device) -> None:
-    """The writes a normal answer confirms: its request's registers (an FC16 answer carries no values)."""
-    request = frame.request
+    """The writes a normal answer confirms: its request's registers (an FC16 answer carries no values), not
+    those of a request that failed its check (pairing.trusted_request)."""
+    request = trusted_request(frame)
     if request is not None and request.registers:
         remember_writes(frame, device, request.registers)
 

@@ -14,16 +14,19 @@ local function annotate_with(st, f, b, device)
   if device.plc ~= nil and f.start ~= nil then span_label(f, device) end
   local kind = f.kind
   -- (a frame that failed its check: its values shown, nothing judged nor remembered)
-  local trusted = kind == REQUEST or verified(f)
+  local trusted = verified(f)
   local track = device.track and trusted
   if kind == REQUEST then
     check_request(f, device)
     check_writes(f, device)
+    -- (one that failed its check keeps none of its fields for its answer, which is decoded by its own bytes
+    -- as one with no request, and which no quick lane takes: pairing.py trusted_request)
+    if not trusted then f.fields = nil end
   elseif kind == EXCEPTION then
     explain_exception(f, device)
     return
   end
-  local request = f.request
+  local request = trusted_request(f)
   if kind == RESPONSE and track and CONFIRMED.answer[f.fn] and request ~= nil
       and request.registers ~= nil and request.registers.count > 0 and request.registers.b ~= nil then
     -- Writes a normal answer confirms ([confirm] "answer": FC16 answers carry no values; FC23 writes

@@ -59,6 +59,22 @@ local function warn(frame, text)
   if warnings == nil then frame.warnings = { text } else warnings[#warnings + 1] = text end
 end
 
+-- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
+-- device ignored it: Modbus over serial line 2.5.1.2): its values are shown, no status judged, no story
+-- told, no memory changed; nor does its answer take addresses from it (pairing.py trusted_request).
+local function verified(f)
+  return f.crc == f.crc_expected
+end
+
+-- The request an answer is read against (its window, its echo, what an exception refuses), nil when the
+-- capture has none or the tap's copy of it failed its check: the answer is paired, its addresses unknown
+-- and nothing is judged, told or remembered of them (pairing.py trusted_request).
+local function trusted_request(f)
+  local request = f.request
+  if request ~= nil and verified(request) then return request end
+  return nil
+end
+
 -- Registers and bits are runs (made by the lifting rules' handlers): where their values start in the frame's
 -- byte table, how many, the first address. A value is read from the bytes each time it is needed (the first
 -- pass reads them from the frame's byte table, .b, dropped once the frame is done with; the display from
@@ -259,6 +275,9 @@ local SPECIAL = {
 -- (GRAMMARS), its lifting rule (LIFT_OF; nil: none or a named special case) and its handler (H): the lifting
 -- rule's where the table has one, else the special case's.
 local GRAMMARS, LIFT_OF = DATA.grammars, DATA.lift_of
+-- The codes whose answer's window is its request's ([lift] start `request.start`: FC1..4, FC23, FC24).
+local WINDOW_ASKED = {}
+for code, rule in pairs(LIFT_OF.response) do WINDOW_ASKED[code] = rule.start == "request.start" end
 local H = DATA.lifters(SPECIAL, warn, say, echo_check, data_bytes, range_text, check_asked, check_data_echo,
   past_quantity)
 
@@ -294,6 +313,13 @@ local function decode_frame(f)
   f.fields = fields
   local handler = H[f.kind][f.fn]
   if handler ~= nil then handler(f, b) end
+  local request = f.request
+  if request ~= nil and not verified(request) and WINDOW_ASKED[f.fn] then
+    -- Its request failed its check (annotate_with kept none of its fields): no addresses
+    -- (decode/fields.py lifter, pairing.py trusted_request).
+    local text, notes = say("request_damaged", { check = f.ascii and "LRC" or "CRC" }), f.notes
+    if notes == nil then f.notes = { text } else notes[#notes + 1] = text end
+  end
   if used < len then warn(f, say("trailing", { count = len - used })) end
   if f.broadcast and NOT_BROADCAST[f.fn] then
     warn(f, say("not_broadcast", { ["function"] = function_name(f.fn) }))

@@ -108,7 +108,7 @@ end
 -- of the code to the function increment (explain._read_only_note).
 local function read_only_note(f, profile, refused, causes)
   local counters, seen = {}, {}
-  for _, cause in ipairs(causes and pick_causes(f.request, profile, causes) or {}) do
+  for _, cause in ipairs(causes and pick_causes(trusted_request(f), profile, causes) or {}) do
     for _, counter in ipairs(cause.counters) do
       if not seen[counter] then counters[#counters + 1], seen[counter] = counter, true end
     end
@@ -164,7 +164,7 @@ local function explain_exception(f, device)
   -- (to a read of registers its all_protected_exception says p.38's clause too: explain.device_meaning)
   local read = READS[f.fn] ~= nil and code == profile.all_protected_exception
   f.exception_meaning = read and profile.all_protected_read or meanings[code]
-  local request = f.request
+  local request = trusted_request(f) -- (one that failed its check refused what the tap did not see)
   local refused = code == DATA.read_only_exception and request ~= nil and written_read_only(request, device)
   if refused and #refused > 0 then -- (a write of read-only parameters: named rather than the code's meaning)
     f.exception_meaning = say("read_only_meaning", { access = READ_ONLY })

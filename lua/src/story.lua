@@ -38,13 +38,6 @@ function story.tell(f)
   end
 end
 
--- Does the frame tell the parameters anything (devices/memory.py)? Not one that failed its check (the
--- device ignored it: Modbus over serial line 2.5.1.2): its values are shown, no status judged, no story
--- told, no memory changed.
-local function verified(f)
-  return f.crc == f.crc_expected
-end
-
 -- The parameter memory (devices/memory.py): per address its value (nil: unreadable), the frame and how
 -- it was known; an entry there is changed in place (the quick lanes hold the entries they will change).
 -- (By address alone: the one profile here that follows parameters, the ATV71, reads its input registers as

@@ -1,6 +1,6 @@
 """A frame that fails its check was ignored by the device (Modbus over serial line 2.5.1.2; SEL-749M
 p. D.3: "If there is no match, the check fails and the message is ignored"): it tells nothing of the
-parameters (devices/memory.py, lua/src/story.lua verified). Its values are decoded and shown, as Wireshark
+parameters (devices/memory.py, lua/src/decode.lua verified). Its values are decoded and shown, as Wireshark
 shows a bad-checksum packet, but no register gets a status (not even ok), no 16#8000 story starts and
 the parameter memory is left as it was, so the next good read is no `readable again`: as --stats and
 --watch have always counted (they skip bad-CRC frames). The VW3 A3 303 manual p.38 scenario-2 answer
