@@ -8521,7 +8521,7 @@ local function remember_request(bytes, item, device)
     known_requests.entries, known_requests.headers, known_requests.count = {}, {}, 0
   end
   local info = item.info
-  if info == nil and summary ~= nil then info = summary(item) end -- (nil: loaded without Wireshark)
+  if info == nil and summary ~= nil then info = summary(item, nil, nil, device) end -- (nil: loaded without Wireshark)
   item.info = info
   local entry = {
     device = device, crc = item.crc, b = item.b, fields = item.fields, start = item.start,
