@@ -106,5 +106,5 @@ def test_installed_by_copying_into_the_personal_plugins_folder(tmp_path: Path) -
     result = subprocess.run([tshark, "-n", "-r", str(capture)], capture_output=True, text=True, env=env)
     # (one pass: slave 12's device is chosen at frame 4, so frame 2 is provisional, as vw3-decode on stdin)
     assert result.stdout.splitlines()[1].split("→")[1].split() == [
-        "VW3", "11", "12", "Read", "Holding", "Registers", "response", "8400..8402", "[provisional]"
+        "VW3", "11", "12", "Read", "Holding", "Registers", "response", "8400..8402", "(3)", "[provisional]"
     ]
