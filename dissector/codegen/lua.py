@@ -125,6 +125,7 @@ def plugin_data() -> dict[str, Any]:
             "max_bytes": maps.MAX_MAP_BYTES,
             "scale_min": maps.SCALE_MIN,
             "scale_max": maps.SCALE_MAX,
+            "scale_unknown": maps.SCALE_UNKNOWN,
             "types": maps.TYPES,
             "orders": frozenset(maps.ORDERS),
             "order_list": list(maps.ORDERS),
@@ -333,6 +334,8 @@ def _row_table(row: Any) -> dict[str, Any]:
         out["signed"] = True
     if row.decimals:
         out["decimals"] = row.decimals
+    if row.scale_unknown:
+        out["scale_unknown"] = True
     if row.ambiguous_8000:
         out["ambiguous_8000"] = True
     if row.access == access.READ_ONLY:
