@@ -201,6 +201,7 @@ local DATA = {
     ["max_bytes"] = 16777216,
     ["scale_min"] = 1e-12,
     ["scale_max"] = 1000000000000.0,
+    ["scale_unknown"] = "?",
     ["types"] = {
       ["uint16"] = 1,
       ["int16"] = 1,
@@ -305,6 +306,16 @@ local DATA = {
         ["repr"] = {
           ["text"] = true,
         },
+      },
+      ["scale_unknown_unit"] = {
+        ["format"] = "scale '?' (the device sets it) needs the unit the value counts in",
+        ["params"] = {},
+        ["repr"] = {},
+      },
+      ["scale_unknown_wide"] = {
+        ["format"] = "scale '?' (the device sets it) is for a 16-bit register: type %s is two",
+        ["params"] = { "kind" },
+        ["repr"] = {},
       },
       ["access"] = {
         ["format"] = "access %s is not R, W or RW",
@@ -2961,12 +2972,14 @@ local DATA = {
           ["name"] = "Acceleration",
           ["unit"] = "s",
           ["source"] = "A",
+          ["scale_unknown"] = true,
         },
         [9002] = {
           ["code"] = "DEC",
           ["name"] = "Deceleration",
           ["unit"] = "s",
           ["source"] = "A",
+          ["scale_unknown"] = true,
         },
         [9630] = {
           ["code"] = "THR",
@@ -6601,8 +6614,8 @@ end
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`. The format's
 -- facts and its error messages are maps.py's (COLUMNS, REQUIRED, TYPES, ORDERS, ACCESS, MESSAGES,
--- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS), written into the
--- generated data.
+-- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, SCALE_UNKNOWN, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS),
+-- written into the generated data.
 local FORMAT = DATA.map_format
 local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
   FORMAT.orders, FORMAT.access
@@ -6758,7 +6771,7 @@ local function map_row(values)
   end
   if row.code == nil then wrong("code") end
   local scale_text = strip(values.scale or "")
-  if scale_text ~= "" then
+  if scale_text ~= "" and scale_text ~= FORMAT.scale_unknown then
     row.decimals = scale_decimals(scale_text)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
@@ -6796,6 +6809,12 @@ local function map_row(values)
     for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
       if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
     end
+  end
+  if scale_text == FORMAT.scale_unknown then
+    -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
+    if words == 2 then wrong("scale_unknown_wide", { kind = kind }) end
+    if row.unit == nil then wrong("scale_unknown_unit") end
+    row.scale_unknown = true
   end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil
@@ -7111,11 +7130,14 @@ local function interpret(row, value)
     end
     return nil, #names == 0 and NO_BIT_SET or concat(names, ", ")
   end
+  if row.scale_unknown then
+    -- the device's settings choose the scale (ACC/DEC: the ramp increment): the raw value, and the unit it
+    -- counts in unscaled
+    return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
+  end
   if row.scale == nil then
-    -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
-    if row.unit ~= nil then
-      return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
-    end
+    -- shown as is: a number in its unit (as a 32-bit row's), or the word itself
+    if row.unit ~= nil then return raw_value, format("%d %s", raw_value, row.unit) end
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end

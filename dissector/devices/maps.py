@@ -9,7 +9,9 @@ register. Lines starting with `#` are comments (the source legend lives there). 
     name     long name ([Profile])
     unit     unit of the scaled value (Hz)
     scale    multiply the raw value by this (0.1): shown with the decimals the scale is written with, a
-             float32's product with the fewest digits that tell it from its neighbours'; empty: shown as is
+             float32's product with the fewest digits that tell it from its neighbours'; empty: shown as is,
+             in its unit; `?`: a scale the device's settings choose (the ATV71's ACC and DEC, by its ramp
+             increment Inr), so the 16-bit raw value is shown unscaled, naming the unit it counts in
     access   R, W or RW
     enum     value labels: `value=LABEL;value=LABEL`
     bits     bit labels for status and control words: `bit=Label;bit=Label` (bits 0..15); a row has enum
@@ -61,6 +63,7 @@ MAX_MAP_BYTES = 16 << 20
 # Scales a device could mean (0.001 Hz .. GWh): any 16- or 32-bit raw value times one stays a finite
 # number with a bounded count of digits (1e308 times FFFF is inf; 1e-300 would print 300 decimals).
 SCALE_MIN, SCALE_MAX = 1e-12, 1e12
+SCALE_UNKNOWN = "?"  # the scale cell of a value whose scale the device's settings choose
 # What a malformed map is told (after `file:line: `), by key. The plugin's map reader (lua/src/maps.lua)
 # says the same texts: codegen/lua.py writes this table into lua/vw3.lua, `{NAME!r}` as Python's repr.
 MESSAGES = {
@@ -77,6 +80,9 @@ MESSAGES = {
     "scale": "scale {text!r} is not a number",
     "scale_range": "scale {text!r} is outside " + f"±{SCALE_MIN:g}..{SCALE_MAX:g}",
     "scale_zero": "scale {text!r} would make every value 0",
+    "scale_unknown_unit": f"scale {SCALE_UNKNOWN!r} (the device sets it) needs the unit the value counts in",
+    "scale_unknown_wide": f"scale {SCALE_UNKNOWN!r} (the device sets it) is for a 16-bit register: type "
+                          "{kind} is two",
     "access": "access {text!r} is not R, W or RW",
     "pair": "{what} entry {part!r} is not `number=label`",
     "pair_number": "{what} entry {part!r}: {key!r} is not a number",
@@ -116,6 +122,7 @@ class RegisterDef:
     source: str | None = None
     # Derived at load so that annotation is only lookups: digits to show after scaling (0.1 -> 1).
     decimals: int = 0
+    scale_unknown: bool = False  # scale `?`: the value counts in `unit` at a scale the device sets
     # 16#8000 is a value this register can really hold (signed, bit 15 labelled, or enumerated),
     # so a read of 16#8000 cannot be called protected with certainty.
     ambiguous_8000: bool = False
@@ -194,7 +201,7 @@ def _row(values: dict[str, str]) -> RegisterDef:
     scale: float | None = None
     decimals = 0
     raw_scale = values.get("scale", "").strip(_SPACE)
-    if raw_scale:
+    if raw_scale and raw_scale != SCALE_UNKNOWN:
         if not _SCALE.fullmatch(raw_scale):  # not float()'s 1_0, nan, inf, nor Unicode digits
             raise ValueError(_say("scale", text=raw_scale))
         try:
@@ -242,6 +249,10 @@ def _row(values: dict[str, str]) -> RegisterDef:
         for column, given in (("scale", raw_scale), ("unit", unit)):
             if labels and given:
                 raise ValueError(_say("labels_quantity", what=what, column=column))
+    if raw_scale == SCALE_UNKNOWN and words == 2:
+        raise ValueError(_say("scale_unknown_wide", kind=kind))
+    if raw_scale == SCALE_UNKNOWN and unit is None:
+        raise ValueError(_say("scale_unknown_unit"))
     return RegisterDef(
         address=address,
         code=code,
@@ -254,6 +265,7 @@ def _row(values: dict[str, str]) -> RegisterDef:
         signed=signed,
         source=printable(values.get("source", "").strip(_SPACE)) or None,
         decimals=decimals,
+        scale_unknown=raw_scale == SCALE_UNKNOWN,
         ambiguous_8000=signed or 15 in bits or 0x8000 in enum or words == 2,
         words=words,
         kind=kind,
@@ -445,13 +457,15 @@ def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, 
             definition.bits.get(bit) or say_text("bit_unnamed", bit=bit) for bit in range(16) if value >> bit & 1
         ]
         return None, ", ".join(names) if names else say_text("no_bit_set")
-    scale = definition.scale
+    scale, unit = definition.scale, definition.unit
+    if definition.scale_unknown:
+        # The device's settings choose the scale (ACC/DEC: the ramp increment): the raw value speaks for
+        # itself, signed with its sign, and names the unit it counts in unscaled.
+        return (raw if definition.signed else None), say_text("unscaled", value=raw, unit=unit)
     if scale is None:
-        # Without a scale the unit cannot be trusted (ACC/DEC depend on the ramp increment): the raw
-        # value speaks for itself, signed with its sign, and names the unit it counts in unscaled.
-        unit = definition.unit
+        # Shown as is: a number in its unit (as a 32-bit row's), or the word itself.
         if unit is not None:
-            return (raw if definition.signed else None), say_text("unscaled", value=raw, unit=unit)
+            return raw, f"{raw} {unit}"
         if definition.signed:
             return raw, str(raw)
         return None, None
@@ -459,5 +473,4 @@ def interpret(definition: RegisterDef, value: int) -> tuple[float | int | None, 
     if not definition.decimals:
         scaled = int(scaled)
     text = f"{scaled:.{definition.decimals}f}"
-    unit = definition.unit
     return scaled, text if unit is None else f"{text} {unit}"

@@ -167,11 +167,14 @@ local function interpret(row, value)
     end
     return nil, #names == 0 and NO_BIT_SET or concat(names, ", ")
   end
+  if row.scale_unknown then
+    -- the device's settings choose the scale (ACC/DEC: the ramp increment): the raw value, and the unit it
+    -- counts in unscaled
+    return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
+  end
   if row.scale == nil then
-    -- no scale (ACC/DEC: the ramp increment sets it): the raw value, and the unit it counts in unscaled
-    if row.unit ~= nil then
-      return row.signed and raw_value or nil, say("unscaled", { value = raw_value, unit = row.unit })
-    end
+    -- shown as is: a number in its unit (as a 32-bit row's), or the word itself
+    if row.unit ~= nil then return raw_value, format("%d %s", raw_value, row.unit) end
     if row.signed then return raw_value, format("%d", raw_value) end
     return nil, nil
   end

@@ -56,8 +56,8 @@ end
 -- Register maps given at run time (maps.py): the CSV format of dissector/data/maps, read from the files
 -- the "Register maps" preference names, like `vw3-decode --map [SLAVE=|PROFILE=]FILE`. The format's
 -- facts and its error messages are maps.py's (COLUMNS, REQUIRED, TYPES, ORDERS, ACCESS, MESSAGES,
--- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS), written into the
--- generated data.
+-- MAX_MAP_BYTES, SCALE_MIN, SCALE_MAX, SCALE_UNKNOWN, DEFAULT_TYPES, SIGNED_TYPES, PAIRS, SEPARATORS),
+-- written into the generated data.
 local FORMAT = DATA.map_format
 local MAX_MAP_BYTES, MESSAGES, TYPES, ORDERS, ACCESS = FORMAT.max_bytes, FORMAT.messages, FORMAT.types,
   FORMAT.orders, FORMAT.access
@@ -213,7 +213,7 @@ local function map_row(values)
   end
   if row.code == nil then wrong("code") end
   local scale_text = strip(values.scale or "")
-  if scale_text ~= "" then
+  if scale_text ~= "" and scale_text ~= FORMAT.scale_unknown then
     row.decimals = scale_decimals(scale_text)
     row.scale = row.decimals and tonumber(scale_text) or wrong("scale", { text = scale_text })
     local size = math.abs(row.scale)
@@ -251,6 +251,12 @@ local function map_row(values)
     for _, column in ipairs({ { "scale", scale_text ~= "" }, { "unit", row.unit ~= nil } }) do
       if labels[2] and column[2] then wrong("labels_quantity", { what = labels[1], column = column[1] }) end
     end
+  end
+  if scale_text == FORMAT.scale_unknown then
+    -- (a scale the device's settings choose: the raw word, naming the unit it counts in)
+    if words == 2 then wrong("scale_unknown_wide", { kind = kind }) end
+    if row.unit == nil then wrong("scale_unknown_unit") end
+    row.scale_unknown = true
   end
   row.ambiguous_8000 = (row.signed or (row.bits and row.bits[15]) or (row.enum and row.enum[0x8000]) or words == 2)
     and true or nil

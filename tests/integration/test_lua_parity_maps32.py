@@ -90,7 +90,7 @@ def test_wide_rows_for_every_slave(tmp_path: Path) -> None:
         (102, -1234, "-1234 W", 2), (103, None, "second word of POWER", 0),
         (104, 21.5, "21.5 C", 2), (105, None, "second word of TEMPF", 0),
         (106, 0.1234, "0.1234 m3/h", 2), (107, None, "second word of FLOW", 0),  # 12.34 * 0.01: no rounding
-        (108, None, None, 1), (109, -100, "-100 (unscaled, in rpm)", 1),  # no scale: the unit, unscaled
+        (108, None, None, 1), (109, -100, "-100 rpm", 1),  # no scale: shown as is, in its unit
         (110, -2147483648, "-2147483648", 2), (111, None, "second word of BIG", 0),
         (112, pytest.approx(0.1), "0.1", 2), (113, None, "second word of RATIO", 0),
     ]

@@ -106,3 +106,64 @@ def test_contradicting_columns_in_the_plugin(tmp_path: Path) -> None:
         message = f"{paths[number]}:2: {REFUSED[text]}"
         assert any(expert.endswith(message) for expert in experts), (message, experts)
     assert any(expert.endswith(str(tmp_path / str(len(REFUSED)) / CODE_TWICE_MESSAGE)) for expert in experts)
+
+
+# Item 2: a row with a unit and no scale is a number in its unit, `scaled` filled, whatever its type (a
+# uint16 said `50 (unscaled, in Hz)` with no scaled value, an int16 `-50 (unscaled, in Hz)` with one, a
+# uint32 and a float32 `65538 V`, `1.25 A`). `(unscaled, in s)` is for a scale the device's settings choose,
+# which the map says with scale `?` (the ATV71's ACC and DEC: data/maps/atv71.csv).
+UNITS = ("address,code,unit,scale,type,signed\n0,U16,Hz,,,\n1,S16,Hz,,,1\n2,U32,V,,uint32,\n"
+         "4,F32,A,,float32,\n6,N16,,,,\n7,R,s,?,,\n8,RS,s,?,int16,\n")
+UNITS_READ = (rtu("01 03 0000 0009"), rtu("01 03 12 0032 FFCE 0001 0002 3FA0 0000 0007 000A FFF6"))
+UNITS_LINE = "U16=50 Hz S16=-50 Hz U32=65538 V F32=1.25 A N16=7 R=10 (unscaled, in s)"  # (RS: `… (+1)`)
+UNITS_SCALED = [50, -50, 65538, None, 1.25, None, None, None, -10]
+
+
+def _units_pcap(tmp_path: Path) -> Path:
+    (tmp_path / "u.csv").write_text(UNITS)
+    return write_pcap(tmp_path / "u.pcap", [(UNITS_READ[0], 1767225600.0), (UNITS_READ[1], 1767225600.01)])
+
+
+@pytest.mark.parametrize("pure", [False, True], ids=["engine", "pure"])
+def test_a_unit_without_a_scale_is_a_number_in_it(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                  pure: bool) -> None:
+    use_engine(monkeypatch, pure)
+    pcap = _units_pcap(tmp_path)
+    status, out, err = run_cli(["--map", str(tmp_path / "u.csv"), str(pcap)])
+    assert status == 0, err
+    assert out.splitlines()[1] == ("     2     0.010000   1 response  Read Holding Registers 0..8 (9): "
+                                   f"{UNITS_LINE} … (+1) [#1, 10.0 ms]  CRC ok")
+    status, out, err = run_cli(["--map", str(tmp_path / "u.csv"), str(pcap), "-T", "registers"])
+    assert [line.split("\t")[10:] for line in out.splitlines()] == [  # scaled, unit, status, text
+        ["50", "Hz", "", "50 Hz"], ["-50", "Hz", "", "-50 Hz"], ["65538", "V", "", "65538 V"],
+        ["", "V", "", "second word of U32"], ["1.25", "A", "", "1.25 A"], ["", "A", "", "second word of F32"],
+        ["", "", "", ""], ["", "s", "", "10 (unscaled, in s)"], ["-10", "s", "", "-10 (unscaled, in s)"]]
+    status, out, err = run_cli(["--map", str(tmp_path / "u.csv"), str(pcap), "--json"])
+    assert [reg.get("scaled") for reg in json.loads(out.splitlines()[1])["registers"]] == UNITS_SCALED
+
+
+def test_a_unit_without_a_scale_in_the_plugin(tmp_path: Path) -> None:
+    items, _, _ = lua_items(_units_pcap(tmp_path), "-o", f"vw3.maps:{tmp_path / 'u.csv'}")
+    registers = items[1].registers
+    assert " ".join(f"{reg['code']}={reg['text']}" for reg in registers if "text" in reg
+                    and not reg["text"].startswith("second")) == UNITS_LINE.replace(" N16=7", "") + (
+                        " RS=-10 (unscaled, in s)")
+    assert [reg.get("scaled") and float(reg["scaled"]) for reg in registers] == UNITS_SCALED
+
+
+UNKNOWN_REFUSED = {
+    "address,code,scale\n1,X,?\n": "scale '?' (the device sets it) needs the unit the value counts in",
+    "address,code,unit,scale,type\n1,X,s,?,uint32\n":
+        "scale '?' (the device sets it) is for a 16-bit register: type uint32 is two",
+    "address,code,unit,scale,enum\n1,X,,?,1=a\n": f"a register with enum labels cannot carry a scale {LABEL}",
+}
+
+
+@pytest.mark.parametrize("text", list(UNKNOWN_REFUSED), ids=["no unit", "uint32", "enum"])
+def test_a_scale_the_device_sets_is_for_a_16_bit_number(tmp_path: Path, text: str) -> None:
+    (tmp_path / "map.csv").write_text(text)
+    status, out, err = run_cli(["--map", str(tmp_path / "map.csv"), str(_pcap(tmp_path))])
+    assert (status, out, err) == (2, "", f"vw3-decode: {tmp_path / 'map.csv'}:2: {UNKNOWN_REFUSED[text]}\n")
+    _, record_experts, _ = lua_items(_pcap(tmp_path), "-o", f"vw3.maps:{tmp_path / 'map.csv'}")
+    message = f"{tmp_path / 'map.csv'}:2: {UNKNOWN_REFUSED[text]}"
+    assert any(expert.endswith(message) for _, expert in record_experts), (message, record_experts)
