@@ -256,8 +256,9 @@ MAP_TEXTS = {
     # (what str.isprintable() refuses past U+00FF is escaped as Python writes it, \\uNNNN or \\UNNNNNNNN: a
     # bidi override, an ideographic space, a BOM inside a text, private use, a tag, unassigned code points;
     # a 4-byte emoji is printable)
-    "unicode texts": "address,code,name,unit,enum,source\n1,A\u202eB,x\u3000y\u200bz,\ufeffkm,"
-                     "1=\ue000;2=\U0001f600;3=\u0378\U000e0001\U0010ffff,s\U0001f600\n",
+    # (labels take no unit: the unit on a row of its own)
+    "unicode texts": "address,code,name,unit,enum,source\n1,A\u202eB,x\u3000y\u200bz,,"
+                     "1=\ue000;2=\U0001f600;3=\u0378\U000e0001\U0010ffff,s\U0001f600\n2,U,,\ufeffkm,,\n",
     "unicode in a message": "address,code,access\n1,A,\u202e\u3000\ufeff\ue000\U0001f600\u0378'\n",
     "quote left open": "address,code,name\n1,A,\"open, still\n",
     "address": "address,code\nx1,A\n",
