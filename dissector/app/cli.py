@@ -248,7 +248,9 @@ class Sinks:
                 records = records[: len(items)]
         if self.pcap is not None:
             try:
-                self.pcap.write_items(items, pieces)
+                last = heard[-1] if heard else None  # (items come in the order of their bytes)
+                settled = self.trail.settled(last.offset + last.length) if self.trail and last else None
+                self.pcap.write_items(items, pieces, settled)
             except OSError as error:
                 raise self._write_failed(error) from None
             self.copy_end.written(items, pieces)

@@ -205,6 +205,7 @@ class CaptureOutput:
         # Records before _last not written yet: an item from inside a chunk takes the chunk's earlier bytes
         # into its first record (write_items); at most SNAPLEN bytes back.
         self._done: deque[HeldRecord] = deque()
+        self._settled = -1  # a record ending there or before is out of _absorb's reach (write_items)
         self._open()
 
     @property
@@ -314,7 +315,8 @@ class CaptureOutput:
         if self._writer is not None:
             self._writer.use_interface(*(interface or (None, None)))
 
-    def write_items(self, items: list[Item], pieces: dict[int, list[Piece]] | None = None) -> None:
+    def write_items(self, items: list[Item], pieces: dict[int, list[Piece]] | None = None,
+                    settled: int | None = None) -> None:
         """Write items of a decode so that the file decodes back to the same items: a record an item,
         except that a noise run shares the record of the item after it when that is more noise or a
         damaged frame (one heard at the same time, within SNAPLEN bytes), or, ending the input, the
@@ -330,7 +332,17 @@ class CaptureOutput:
         `pieces` (sources/trail.py, by id(item)): an item whose input's time changes inside it is written
         as the chunks it came in, each a record at its own time (a silence inside a frame reads back as
         one; from inside a chunk, its first record takes the chunk's earlier bytes: _absorb), and the
-        input's packet comments go on the records of the bytes they were on, each an opt_comment."""
+        input's packet comments go on the records of the bytes they were on, each an opt_comment.
+        `settled` (sources/trail.py RecordTrail.settled): no item after these begins its first record before
+        this stream offset; when none of these does either (none takes earlier bytes), the records ending
+        there are out of _absorb's reach: they are written, not held back."""
+        absorbing = pieces and any(split[0][3] < item.offset
+                                   for item in items if (split := pieces.get(id(item))))
+        self._settled = -1 if settled is None or absorbing else settled
+        done = self._done
+        while done and done[0][4] <= self._settled:
+            data, time, own, users, _end, continued = done.popleft()
+            self._write_record(data, time, own, users, continued)
         for item in items:
             split = pieces.get(id(item)) if pieces else None
             lead = None
@@ -415,7 +427,11 @@ class CaptureOutput:
         last, self._last = self._last, record
         done = self._done
         if last is not None:
-            done.append(last)
+            if done or last[4] > self._settled:
+                done.append(last)
+            else:  # (out of _absorb's reach: write_items)
+                self._write_record(last[0], last[1], last[2], last[3], last[5])
+                return
         while done and done[0][4] <= record[4] - SNAPLEN:
             data, time, own, users, _end, continued = done.popleft()
             self._write_record(data, time, own, users, continued)

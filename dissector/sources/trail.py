@@ -103,6 +103,16 @@ class RecordTrail:
                 found[id(item)] = pieces
         return found
 
+    def settled(self, offset: int) -> int:
+        """Where the chunk holding byte `offset` begins (of those observed; `offset` past them): no item
+        from `offset` on begins its first record before it (the module's docstring)."""
+        begin = offset
+        for first, _time in self._parts:
+            if first > offset:
+                break
+            begin = first
+        return begin
+
     def pieces(self, item: Item) -> list[Piece] | None:
         """The item's pieces, the first at the item's time; None for one piece without comments."""
         start = item.offset
@@ -123,7 +133,8 @@ class RecordTrail:
                 if first >= end:
                     break
                 if first > start:
-                    cuts.append((first - start, Stamp(time) if type(time) is int else time))  # (observe_reads)
+                    # (a read taken in bulk keeps its time in integer ns: observe_reads)
+                    cuts.append((first - start, Stamp(time) if type(time) is int else time))
                     keys.add(_key(time))
             keys.discard(None)
             if len(keys) < 2:
