@@ -8435,13 +8435,13 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER = CONFIRMED, DATA, ECHO_CODES, FRAMING, KIND_NUMBER
 local NOISE, PROFILES, READS, REQUEST, RESPONSE = NOISE, PROFILES, READS, REQUEST, RESPONSE
 local annotate_with, await_answer, await_echo, bit_slot = annotate_with, await_answer, await_echo, bit_slot
-local build_device, crc_slot, crc_string_ok, data_bytes = build_device, crc_slot, crc_string_ok, data_bytes
-local decode_frame, device_for, device_now, feed = decode_frame, device_for, device_now, feed
-local feed_whole, head_slot, ipairs, lane, math, new_state = feed_whole, head_slot, ipairs, lane, math, new_state
-local next, pack, pair, pairs, pcall, put_flat, release_run = next, pack, pair, pairs, pcall, put_flat, release_run
-local remember_writes, run_slot, sample_mode, span_slot = remember_writes, run_slot, sample_mode, span_slot
-local story, string, string_of, takes_whole, tostring, type = story, string, string_of, takes_whole, tostring, type
-local warn, whole_crc_good = warn, whole_crc_good
+local build_device, collectgarbage, crc_slot, crc_string_ok = build_device, collectgarbage, crc_slot, crc_string_ok
+local data_bytes, decode_frame, device_for, device_now = data_bytes, decode_frame, device_for, device_now
+local feed, feed_whole, head_slot, ipairs, lane, math = feed, feed_whole, head_slot, ipairs, lane, math
+local new_state, next, pack, pair, pairs, pcall, put_flat = new_state, next, pack, pair, pairs, pcall, put_flat
+local release_run, remember_writes, run_slot, sample_mode = release_run, remember_writes, run_slot, sample_mode
+local span_slot, story, string, string_of, takes_whole = span_slot, story, string, string_of, takes_whole
+local tostring, type, warn, whole_crc_good = tostring, type, warn, whole_crc_good
 
 local take_items, dissect_record
 -- A run of a known request, for one frame (runs change with their frame: released, packed).
@@ -8960,6 +8960,15 @@ function lane.again(st)
   -- (the other slaves are judged again as they come: more records may follow in a live capture)
   fresh.frozen, fresh.chosen, fresh.history, fresh.fixed, fresh.met = frozen, chosen, history, fixed, met
   local records, kept = st.records, again.bytes
+  -- So do the records, each over its first decoding (a record the first pass kept no bytes of goes, as it
+  -- would from a new table): no second table as long held at the peak.
+  fresh.records = records
+  for number in pairs(records) do
+    if kept[number] == nil then records[number] = nil end
+  end
+  -- Each record decoded again makes its first decoding garbage, one for one: meanwhile the collector starts
+  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays).
+  local paused, pause = pcall(collectgarbage, "setpause", 100)
   -- The records in number order, the order of their first dissection (a first pass reads the capture in
   -- order): no list of that order kept a record.
   local first, last = math.huge, 0
@@ -8973,12 +8982,12 @@ function lane.again(st)
       local time = again.times[number] or nil -- (false: a record without a time)
       local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
       if not ok then result = { length = #bytes, error = tostring(result) } end
-      fresh.records[number] = result
-      records[number] = nil -- (the first decoding of the record is done with)
+      records[number] = result -- (over its first decoding, which is done with)
       kept[number] = nil
       if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
     end
   end
+  if paused then collectgarbage("setpause", pause) end
   finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.

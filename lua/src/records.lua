@@ -521,6 +521,15 @@ function lane.again(st)
   -- (the other slaves are judged again as they come: more records may follow in a live capture)
   fresh.frozen, fresh.chosen, fresh.history, fresh.fixed, fresh.met = frozen, chosen, history, fixed, met
   local records, kept = st.records, again.bytes
+  -- So do the records, each over its first decoding (a record the first pass kept no bytes of goes, as it
+  -- would from a new table): no second table as long held at the peak.
+  fresh.records = records
+  for number in pairs(records) do
+    if kept[number] == nil then records[number] = nil end
+  end
+  -- Each record decoded again makes its first decoding garbage, one for one: meanwhile the collector starts
+  -- its next cycle at once (the pause lua/src/crc.lua sets let that garbage grow the heap by half what stays).
+  local paused, pause = pcall(collectgarbage, "setpause", 100)
   -- The records in number order, the order of their first dissection (a first pass reads the capture in
   -- order): no list of that order kept a record.
   local first, last = math.huge, 0
@@ -534,12 +543,12 @@ function lane.again(st)
       local time = again.times[number] or nil -- (false: a record without a time)
       local ok, result = pcall(lane.decode, fresh, bytes, #bytes, time, number)
       if not ok then result = { length = #bytes, error = tostring(result) } end
-      fresh.records[number] = result
-      records[number] = nil -- (the first decoding of the record is done with)
+      records[number] = result -- (over its first decoding, which is done with)
       kept[number] = nil
       if fresh.whole_record ~= nil or fresh.unpacked[1] ~= nil then pack.settle(fresh) end
     end
   end
+  if paused then collectgarbage("setpause", pause) end
   finish_safely(fresh)
   -- Records read after this (Wireshark's packet details opened during a live capture) are read once, as
   -- vw3-decode --live reads them: a frame of a slave still judged is provisional again.
