@@ -38,7 +38,7 @@ from dissector.render.timefmt import Clock
 from dissector.render.summary import summary_line, summary_text
 from dissector.app.inputs import (
     CopyEnd, choose_profiles_first, comments_of, input_line, inputs, is_pcapng_file, item_pieces, keep_interface,
-    observe_records, profile_notes, tell_comments, write_interface, write_units,
+    observe_records, profile_notes, several_captures, tell_comments, write_interface, write_units,
 )
 from dissector.sources.reader import SourceError
 from dissector.sources.trail import RecordTrail
@@ -136,6 +136,7 @@ class Sinks:
         self.clock = self.output.clock
         self.pcap: CaptureOutput | None = None
         self.trail: RecordTrail | None = None  # the input's records (app/inputs.py observe_records)
+        self.several = several_captures(args)  # (each input titled: its frames cited with its title)
         self.write_path = args.write
         self.copy_end = CopyEnd()  # -w: the record of no byte the copy closes with, at the input's end
         if args.write is not None:
@@ -167,7 +168,9 @@ class Sinks:
         from dissector.render.buses import header, title as bus_title
         from dissector.render.watch import printer
 
-        bus = self.buses.switch(key, title, annotate)
+        # (several captures: a bus's evidence names the input it is in, and --watch titles its lines by it)
+        cited = title if self.several else None
+        bus = self.buses.switch(key, title, annotate, cited)
         heard, self.current = self.current, bus
         self.stats, self.bus, self.watch, self.health = bus.stats, bus.timing, bus.watch, bus.health
         if self.report is not None:
@@ -178,8 +181,8 @@ class Sinks:
             self.bus.new_input(mode, line, title, self.stats)  # (several files: counted as one bus, said)
         if self.watch is not None and (key is not None or heard not in (None, bus)):
             if self.json:
-                self.watch.on_change = printer(self.text_out.write, True, bus_title(bus))
-            elif bus is not heard:
+                self.watch.on_change = printer(self.text_out.write, True, None if cited else bus_title(bus))
+            elif bus is not heard and cited is None:
                 self.text_out.write(header(bus, heard is None))
 
     @property

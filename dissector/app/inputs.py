@@ -42,7 +42,7 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
     from dissector.app.preselect import rereadable
 
     captures = group_files(args.files)
-    several = len(captures) + bool(args.hex) > 1
+    several = several_captures(args)
     if args.hex:
         typed = HexInput(args.hex, args.mode, NOTATIONS.get(args.format or ""))
         fix = typed.fix if typed.repairs else None
@@ -69,6 +69,12 @@ def inputs(args: DecodeOptions, env: Any) -> Iterator[Input]:
             yield ((title if several or bus is not None else None), chunks, source.mode, source.take_warnings,
                    lambda source=source: source.recorded_until, timed, None, (path, source.format), bus,
                    again)
+
+
+def several_captures(args: DecodeOptions) -> bool:
+    """Are several captures decoded (files, a ring buffer's files counting one, --hex one)? Each input is
+    titled then, and numbers its frames from 1."""
+    return len(group_files(args.files)) + bool(args.hex) > 1
 
 
 def _open_input(files: tuple[str, ...], bus: PacketInterface | None, args: DecodeOptions, stdin: Any) -> Any:

@@ -40,10 +40,11 @@ class Buses:
         self.known: dict[Any, Bus] = {}
         self.reading: dict[Any, str | None] = {}  # by bus key, the file read last (several files one bus)
 
-    def switch(self, key: Any, title: str | None, annotate: Any) -> Bus:
+    def switch(self, key: Any, title: str | None, annotate: Any, cited: str | None) -> Bus:
         """The bus of an input: `key` None for a file read as one stream (every such file is one bus),
         (interface name, ordinal) for one interface of a pcapng, the same in every file that has it. The
-        first bus heard takes the first counts made (the run's annotator's)."""
+        first bus heard takes the first counts made (the run's annotator's). `cited`: the input's title
+        when several captures are decoded (a bus may hear several, each numbering its frames from 1)."""
         bus = self.known.get(key)
         if bus is None:
             bus = self.first if not self.known else self.make(title, annotate)
@@ -51,22 +52,23 @@ class Buses:
             bus.annotate = annotate
         if title is not None and title not in bus.names:
             bus.names.append(title)
-        # Several files read as one bus number their frames each from 1 (the summary titles each): the
-        # evidence cited of them names its file (profile `auto`'s reasons, --watch lines, the parameter
-        # memory's frames of the files before: memory.cite_from).
+        # Several captures read as one bus (files read as one stream, or an interface of several pcapng
+        # files) number their frames each from 1 (the summary titles each): the evidence cited of them
+        # names its input (profile `auto`'s reasons, --watch lines, the parameter memory's frames of the
+        # inputs before: memory.cite_from, the report's frames).
         before = self.reading.get(key)
-        self.reading[key] = title
-        if key is None and before is not None and before != title:
+        self.reading[key] = cited
+        if before is not None and before != cited:
             from dissector.devices.memory import cite_from
 
             cite_from(getattr(annotate, "_devices", {}).values(), before)
         selector = getattr(annotate, "selector", None)
-        if selector is not None and key is None:
-            selector.source = title
-        if bus.watch is not None and key is None:
-            bus.watch.source = title
-        if bus.report is not None and key is None and title is not None:
-            bus.report.new_input(title)
+        if selector is not None:
+            selector.source = cited
+        if bus.watch is not None:
+            bus.watch.source = cited
+        if bus.report is not None and cited is not None:
+            bus.report.new_input(cited)
         return bus
 
     @property
