@@ -26,6 +26,7 @@ from dissector.framing.timing import GapChecker
 from dissector.pipeline import Dissector
 from dissector.render.bustiming import BusTiming
 from dissector.sources.reader import SourceError, open_source
+from dissector.sources.trail import RecordTrail, item_comments
 
 TIMED_FORMATS = frozenset(["pcap", "pcapng", "hexdump", "traffic"])
 
@@ -149,12 +150,15 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
                               gaps=GapChecker(line.baud, mode) if source_format in TIMED_FORMATS else None,
                               recorded=lambda: recorded[-1] if recorded else None)
         _choose_profiles(annotate, capture.files, settings, mode, line.baud, capture.interface)
-        for chunk in _chunks(capture.files, settings, tables, result, capture.interface, recorded):
+        chunks = _chunks(capture.files, settings, tables, result, capture.interface, recorded)
+        # A pcapng's packet comments (sources/trail.py), on the frames of their records, as --json's `comments`.
+        trail = RecordTrail(times=False) if source_format == "pcapng" else None
+        for chunk in chunks if trail is None else trail.observe(chunks):  # type: ignore[arg-type]
             items = dissector.feed(chunk)  # type: ignore[arg-type]
-            tables.add(items)
+            tables.add(items, _comments(trail, items))
             bus.add_items(items)
         items = dissector.finish()
-        tables.add(items)
+        tables.add(items, _comments(trail, items))
         bus.add_items(items)
         bus.finish()
         tables.outages(bus.outages)
@@ -169,6 +173,14 @@ def decode_capture(capture: Capture, settings: JobSettings) -> CaptureResult:
         tables.abandon()
         raise
     return result
+
+
+def _comments(trail: RecordTrail | None, items: list[Any]) -> dict[int, list[str]] | None:
+    """The packet comments of the items (in order) that have some, by id(item)."""
+    if trail is None or trail.idle:
+        return None
+    found = {id(item): item_comments(trail.pieces(item)) for item in items}
+    return {key: texts for key, texts in found.items() if texts}
 
 
 def check_scheduler(address: str) -> None:

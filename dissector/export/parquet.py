@@ -55,7 +55,7 @@ def schemas() -> dict[str, Any]:
             ("exception_code", pa.int16()), ("exception_name", text), ("exception_meaning", text),
             ("request_frame", pa.int64()), ("response_time", pa.float64()), ("response_frame", pa.int64()),
             ("unanswered", pa.bool_()), ("reason", text), ("raw", pa.binary()),
-            ("warnings", pa.list_(text)), ("notes", pa.list_(text)),
+            ("warnings", pa.list_(text)), ("notes", pa.list_(text)), ("comments", pa.list_(text)),
         ]),
         "registers": pa.schema(common + [
             ("frame", pa.int64()), ("time", time), ("slave", pa.int16()), ("function", pa.int16()),
@@ -167,7 +167,8 @@ class CaptureTables:
         index = bisect.bisect_right(files, (offset, "\uffff")) - 1
         return files[max(index, 0)][1]
 
-    def add(self, items: Iterable[Item]) -> None:
+    def add(self, items: Iterable[Item], comments: dict[int, list[str]] | None = None) -> None:
+        """`comments`: the input's packet comments of the items that have some, by id(item) (--json's)."""
         frames, registers = self.tables["frames"], self.tables["registers"]
         for item in items:
             common = {"capture": self.capture, "file": self.file_of(item.offset)}
@@ -176,6 +177,8 @@ class CaptureTables:
             time = microseconds(item.time)
             row = dict(record, **common, time=time)
             row["raw"] = item.raw
+            if comments and id(item) in comments:
+                row["comments"] = comments[id(item)]
             frames.add(row)
             if "registers" in record or "bits" in record:
                 words = [element.get("words", 1) for element in record.get("registers") or []]

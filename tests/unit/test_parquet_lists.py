@@ -1,4 +1,4 @@
-"""--parquet's list columns (frames' `warnings`, `notes`) are [] when a row has none, on every row kind:
+"""--parquet's list columns (frames' `warnings`, `notes`, `comments`) are [] when a row has none, on every row kind:
 a noise run's `notes` was null (its --json record has no `notes` key) while a frame's was []. Read back
 with pyarrow: the exact rows for exact bytes, engine and VW3_PURE_PYTHON=1."""
 from __future__ import annotations
@@ -35,7 +35,8 @@ def test_list_columns_are_empty_lists_not_null(tmp_path: Path, monkeypatch: pyte
     (path,) = glob.glob(str(tmp_path / "data" / "frames" / "*.parquet"))
     table = pq.read_table(path)
     lists = [field.name for field in table.schema if pa.types.is_list(field.type)]
-    assert lists == ["warnings", "notes"]
+    assert lists == ["warnings", "notes", "comments"]
+    assert pq.read_table(path, columns=["comments"]).column(0).to_pylist() == [[]] * 8  # (no packet comment)
     rows = table.select(["frame", "kind", "crc_ok", "warnings", "notes"]).to_pylist()
     assert [tuple(row.values()) for row in rows] == [
         (1, "noise", None, [], []),
