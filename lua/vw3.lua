@@ -5479,10 +5479,11 @@ package.preload["vw3.ascii"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.ascii"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, RESPONSE
-local add_noise, awaited, crc16, crc_step, cut_reason, emit = add_noise, awaited, crc16, crc_step, cut_reason, emit
-local floor, flush_noise, format, interpretations, ipairs = floor, flush_noise, format, interpretations, ipairs
-local math, not_the_answer, pairs, table, time_at = math, not_the_answer, pairs, table, time_at
+local DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, REQUEST = DATA, MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, REQUEST
+local RESPONSE, add_noise, awaited, crc16, crc_step = RESPONSE, add_noise, awaited, crc16, crc_step
+local cut_reason, emit, floor, flush_noise, format = cut_reason, emit, floor, flush_noise, format
+local interpretations, ipairs, math, not_the_answer, pairs = interpretations, ipairs, math, not_the_answer, pairs
+local table, time_at = table, time_at
 -- (the catalogue's texts, data/modbus.toml [texts]: warnings, noise reasons; TEXT: those without parameters,
 -- filled in; the others' formats take them in the text's order)
 local TEXTS, TEXT = DATA.rules.texts, DATA.plain_texts
@@ -5667,16 +5668,36 @@ local function reject(s, at, length, reason, items)
   flush_noise(s, items)
 end
 
+-- The warning for a line ended by CR and `last` that its slave does not take, or nil (ascii.py _check_end;
+-- Application Protocol 6.8.1, 08/03: the character replaces LF at the end of the messages the slave takes in).
+-- A request to a slave that set one ends with it; a broadcast with LF or any slave's; an answer with LF or its
+-- slave's, before (`before`) or after this echo (the spec names the slave's input only).
+local function end_warning(s, kind, slave, last, before)
+  local delimiter = (s.delimiters or {})[slave]
+  if kind == REQUEST and delimiter ~= nil then
+    if last == delimiter then return nil end
+    return format(TEXTS.delimiter_expected.format, last, slave, delimiter)
+  end
+  local taken = last == before or last == delimiter
+  if slave == 0 then taken = s.line_ends ~= nil and s.line_ends[last] == true end
+  if last == LF or taken then return nil end
+  return format(TEXTS.cr_then_byte.format, last)
+end
+
 -- A line, b[at .. at + length - 1] (':' digits CR LF, or CR and the byte in the LF's place): a frame, or noise
--- with the reason it is none.
-local function ascii_candidate(s, at, length, items, reason)
+-- with the reason it is none. `at_end`: the line ends the capture.
+local function ascii_candidate(s, at, length, items, reason, at_end)
   if reason ~= nil then return reject(s, at, length, reason, items) end
   local b = s.b
   -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py); so does a CR
-  -- whose LF was lost (run_ascii: CR, then the next ':').
+  -- whose LF was lost (run_ascii: CR, then the next ':' or the end). A tty that turns LF into CR LF doubles
+  -- the CR: the frame keeps them all, with a warning.
   local lost_lf = b[at + length - 1] == CR
-  local lost_cr = not lost_lf and (length < 3 or b[at + length - 2] ~= CR)
-  local digits = (lost_cr or lost_lf) and length - 2 or length - 3
+  local stop = lost_lf and at + length - 1 or at + length - 2 -- (the last of the digits and CRs after them)
+  local crs = 0
+  while stop - crs > at and b[stop - crs] == CR do crs = crs + 1 end
+  local lost_cr = crs == 0
+  local digits = stop - at - crs
   if digits % 2 == 1 then return reject(s, at, length, TEXT.not_hex_pairs, items) end
   local count = floor(digits / 2)
   local bin, lower = hex_pairs(b, at + 1, count)
@@ -5695,27 +5716,28 @@ local function ascii_candidate(s, at, length, items, reason)
     crc = received, crc_expected = expected, ascii = true,
     b = bin, bi = 0, data_at = 2, data_len = count - 3, time = time_at(s, offset), src = b, src_at = at,
   }
-  local last, ends = b[at + length - 1], s.line_ends
+  local before = (s.delimiters or {})[slave]
   if kind == RESPONSE and received == expected then changed(s, bin, count) end
-  -- (a delimiter 08/03 set, before or by this echo, ends the line; any other byte there is damage)
-  local damaged = not (lost_cr or lost_lf) and last ~= LF and not (ends and ends[last])
-    and not (s.line_ends and s.line_ends[last])
-  if lost_cr or lost_lf or damaged or lower then frame.warnings = {} end
-  if lost_lf then frame.warnings[1] = TEXT.cr_without_lf end
-  if lost_cr then frame.warnings[1] = TEXT.lf_without_cr end
-  if damaged then frame.warnings[1] = format(TEXTS.cr_then_byte.format, last) end
-  if lower then frame.warnings[#frame.warnings + 1] = TEXT.lower_case_hex end
+  local warnings = {}
+  if lost_lf then
+    warnings[1] = at_end and TEXT.cr_at_end or TEXT.cr_without_lf
+  elseif lost_cr then
+    warnings[1] = TEXT.lf_without_cr
+  else
+    warnings[1] = end_warning(s, kind, slave, b[at + length - 1], before)
+  end
+  if crs > 1 then warnings[#warnings + 1] = format(TEXTS.extra_cr.format, crs) end
+  if lower then warnings[#warnings + 1] = TEXT.lower_case_hex end
+  if #warnings > 0 then frame.warnings = warnings end
   emit(s, frame, items)
 end
 
--- At the end of the input: do b[i .. n - 1] (':' and hex digits, a CR at most after them) begin the answer
--- awaited, cut by the end of the capture (ascii.py _cut_answer)? The reason, or nil.
+-- At the end of the input: do b[i .. n - 1] (':' and hex digits) begin the answer awaited, cut by the end of
+-- the capture (ascii.py _cut_answer)? The reason, or nil.
 local function ascii_cut_answer(s, b, i, n)
-  local stop = n
-  if b[n - 1] == CR then stop = n - 1 end
-  local count = floor((stop - i - 1) / 2)
+  local count = floor((n - i - 1) / 2)
   if count < 2 then return nil end
-  for k = i + 1, stop - 1 do
+  for k = i + 1, n - 1 do
     if not HEX[b[k]] then return nil end
   end
   -- The answer's reading, unless it is not as long as the request implies: then the next, the next request.
@@ -5761,7 +5783,7 @@ local function run_ascii(s, final, items)
           break
         end
       end
-      local length, reason = nil, nil -- (the line's bytes; reason: why they are no frame)
+      local length, reason, at_end = nil, nil, false -- (the line's bytes; reason: why they are no frame)
       if stop ~= nil and b[stop] == COLON then
         length = stop - i
         -- (after a CR, or a CR and another byte: the LF lost or damaged, the CR ends it)
@@ -5770,14 +5792,15 @@ local function run_ascii(s, final, items)
         length = stop + 1 - i
       elseif n - i >= MAX_ASCII then
         length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
-      elseif final and n - i > 2 and b[n - 2] == CR then
-        length = n - i -- (CR and a byte in the LF's place: a line)
+      elseif final and n - i > 2 and (b[n - 2] == CR or b[n - 1] == CR) then
+        -- (the line's CR, its LF lost or another byte in its place: a line, as before a ':')
+        length, at_end = n - i, true
       elseif final then
         length, reason = n - i, ascii_cut_answer(s, b, i, n) or TEXT.cut_by_end
       else
         break -- wait for the rest of the frame
       end
-      ascii_candidate(s, i, length, items, reason)
+      ascii_candidate(s, i, length, items, reason, at_end)
       i = i + length
     end
   end

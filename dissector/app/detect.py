@@ -437,9 +437,10 @@ def ascii_heard(sample: bytes) -> tuple[str, int] | None:
 
 class AsciiHeard:
     """--live without --mode at 8 data bits frames RTU (live_options.live_mode). When the first bytes heard
-    hold Modbus ASCII (ascii_heard), one line on `err` names the options that decode them, as --detect's report
-    does (_FOUND); the capture goes on as RTU (its lines and files are written as they come). Fed the bytes the
-    display takes in (app/live.py display_once), judged as they reach each of HINT_SIZES and at the end."""
+    hold Modbus ASCII (ascii_heard), one line on `err` names the options that decode them, as --detect's
+    report does (_FOUND); the capture goes on as RTU (its lines and files are written as they come). Fed the
+    bytes the display takes in (app/live.py display_once), judged as they reach each of HINT_SIZES and at
+    the end."""
 
     def __init__(self, err: TextIO) -> None:
         self.err = err
@@ -457,6 +458,7 @@ class AsciiHeard:
         found = ascii_heard(self.sample)
         if found is not None:
             what, options = _FOUND[found]
-            self.err.write(f"{PROG}: the bytes heard hold {what}, framed here as RTU: capture with {options}\n")
+            self.err.write(f"{PROG}: the bytes heard hold {what}, framed here as RTU: "
+                           f"capture with {options}\n")
             self.err.flush()
             self.done = True

@@ -11,7 +11,8 @@ end of the capture), that is not made of hex pairs or whose layout fits nothing 
 of its own, with the reason; the answer awaited cut by the end of the capture says so as in RTU ("the
 capture ends inside the response (10 of 17 bytes)", bytes on the wire), which pairing shows on its
 request. A line that lost its CR (text files lose them) is a frame with a warning, and so is one that
-lost its LF (CR, then the next ':': the CR ends the line, a cut frame ends in a hex digit), one whose LF
+lost its LF (CR, then the next ':' or the end of the capture: the CR ends the line, a cut frame ends in a hex
+digit), one with CRs doubled (a tty's LF to CR LF), one whose LF
 is another byte (CR, that byte, then ':' or the end: the frame keeps it, the warning names it), and one
 from a reserved address (248..255, the decoder's warning); bytes between frames are noise too. A bad LRC on a frame whose layout fits gives a Frame with crc != crc_expected, shown as
 damaged. The answer does not depend on how the stream is split into chunks.
@@ -21,7 +22,8 @@ request's data carries (the high byte, [diagnostic_data] `character`): once the 
 change (the echo may end with CR and it already), CR and that character end a line too (the frame keeps both
 bytes), for any slave, as LF still does
 (no byte says which slave a line is for before it is read). A change back to LF, or to CR or ':' (which
-cannot end a line after a CR), drops the slave's character.
+cannot end a line after a CR), drops the slave's character. Once read, a line is checked against its slave's
+(_check_end): a request to the slave that set a character ends with it, a warning says so otherwise.
 """
 from __future__ import annotations
 
@@ -79,8 +81,9 @@ class AsciiFramer(Awaiting, StreamFramer):
             elif n - i >= MAX_ASCII:
                 self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
-            elif final and n - i > 2 and buf[n - 2] == CR:  # (CR and a byte in the LF's place: a line)
-                self._candidate(bytes(buf[i:n]), i, items)
+            elif final and n - i > 2 and CR in (buf[n - 2], buf[n - 1]):
+                # (the line's CR, its LF lost or another byte in its place: a line, as before a ':')
+                self._candidate(bytes(buf[i:n]), i, items, at_end=True)
                 i = n
             elif final:
                 self._reject(bytes(buf[i:n]), i, self._cut_answer(buf, i, n) or text("cut_by_end"), items)
@@ -114,14 +117,16 @@ class AsciiFramer(Awaiting, StreamFramer):
             self._delimiters[binary[0]] = character
         self._line_ends = bytes(sorted(set(self._delimiters.values())))
 
-    def _candidate(self, raw: bytes, i: int, items: list[Item]) -> None:
+    def _candidate(self, raw: bytes, i: int, items: list[Item], at_end: bool = False) -> None:
         """A ':' ... LF run (or ':' ... CR, its LF lost, or ':' ... CR and the byte in the LF's place): a Frame
-        when it is one, a Noise item saying why not otherwise."""
+        when it is one, a Noise item saying why not otherwise. `at_end`: the run ends the capture."""
         lost_lf = raw[-1] == CR
         body = raw[1:] if lost_lf else raw[1:-1]
-        # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame.
-        lost_cr = not body.endswith(b"\r")
-        digits = body if lost_cr else body[:-1]
+        # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame. A tty
+        # that turns LF into CR LF doubles the CR: the frame keeps them all, with a warning.
+        digits = body.rstrip(b"\r")
+        crs = len(body) - len(digits)
+        lost_cr = crs == 0
         if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
             self._reject(raw, i, text("not_hex_pairs"), items)
             return
@@ -148,24 +153,41 @@ class AsciiFramer(Awaiting, StreamFramer):
             crc_expected=expected,
             mode="ascii",
         )
-        ends = self._line_ends
+        before = self._delimiters.get(slave)
         if kind is Kind.RESPONSE and received == expected:
             self._changed(binary)
         if lost_lf:
-            frame.warnings.append(text("cr_without_lf"))
+            frame.warnings.append(text("cr_at_end" if at_end else "cr_without_lf"))
         elif lost_cr:
             frame.warnings.append(text("lf_without_cr"))
-        elif raw[-1] != LF and raw[-1] not in ends + self._line_ends:
-            # (a delimiter 08/03 set, before or by this echo, ends the line; any other byte there is damage)
-            frame.warnings.append(text("cr_then_byte", byte=raw[-1]))
+        else:
+            self._check_end(frame, raw[-1], before)
+        if crs > 1:
+            frame.warnings.append(text("extra_cr", count=crs))
         if digits != digits.upper():
             frame.warnings.append(text("lower_case_hex"))
         self._emit(frame, items)
 
+    def _check_end(self, frame: Frame, last: int, before: int | None) -> None:
+        """Warn a line ended by CR and `last` that its slave does not take (Application Protocol 6.8.1, 08/03:
+        the character replaces LF at the end of the messages the slave takes in). A request to a slave that
+        set one ends with it; a broadcast with LF or any slave's (each listener takes its own); an answer with
+        LF or its slave's, before (`before`) or after this echo (the spec names the slave's input only: its
+        answers may keep LF)."""
+        slave = frame.slave
+        delimiter = self._delimiters.get(slave)
+        if frame.kind is Kind.REQUEST and delimiter is not None:
+            if last != delimiter:
+                frame.warnings.append(text("delimiter_expected", byte=last, slave=slave, delimiter=delimiter))
+            return
+        taken = self._line_ends if slave == 0 else (before, delimiter)
+        if last != LF and last not in taken:
+            frame.warnings.append(text("cr_then_byte", byte=last))
+
     def _cut_answer(self, buf: bytearray, i: int, n: int) -> str | None:
-        """At the end of the input: do bytes i..n (':' and hex digits, a CR at most after them) begin the
-        answer awaited, cut by the end of the capture (rtu.py _cut_answer)? The reason, or None."""
-        digits = bytes(buf[i + 1 : n - 1 if buf[n - 1] == CR else n])
+        """At the end of the input: do bytes i..n (':' and hex digits) begin the answer awaited, cut by the
+        end of the capture (rtu.py _cut_answer)? The reason, or None."""
+        digits = bytes(buf[i + 1 : n])
         pairs = len(digits) // 2
         if pairs < 2 or any(byte not in _HEX_DIGITS for byte in digits):
             return None

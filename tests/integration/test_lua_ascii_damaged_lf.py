@@ -13,7 +13,7 @@ import pytest
 from lua_harness import ROOT, lua_errors, run_tshark, write_pcap
 
 sys.path.insert(0, str(ROOT / "tests" / "unit"))
-from test_ascii_damaged_lf import ANSWER, CASES, CHANGE, DAMAGED, REQUEST  # noqa: E402
+from test_ascii_damaged_lf import ANSWER, CASES, CHANGE, DAMAGED, NOT_SET, REQUEST  # noqa: E402
 
 pytestmark = pytest.mark.integration
 
@@ -34,7 +34,7 @@ SHOWN = {
         "1,2,1,2", "1,1", DAMAGED.format(0x0B), [f"{READ} request 0", f"{READ} response 0 [provisional] BAD LRC",
                                                  f"{READ} request 0", f"{READ} response 0"]),
     "another delimiter than the one 08/03 set": (
-        "1,2,1,2", "1,1", DAMAGED.format(0x23), [SET.format("request"), SET.format("response"),
+        "1,2,1,2", "1,1", NOT_SET.format(0x23), [SET.format("request"), SET.format("response"),
                                                  f"{READ} request 0", f"{READ} response 0"]),
 }
 

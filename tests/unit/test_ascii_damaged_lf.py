@@ -23,6 +23,8 @@ from dissector.model import Chunk
 CHANGE = b":110800032100C3"  # slave 17, 08/03: '!' (21h) in place of LF
 REQUEST, ANSWER = b":110300000001EB", b":1103020005E5"  # Read Holding Registers 0 of slave 17, its answer 5
 DAMAGED = "line ends with CR then {:02X}h where LF belongs (the spec ends a frame with CR LF)"
+# (a request to a slave that set '!': before, DAMAGED, "where LF belongs", though LF was no longer its delimiter)
+NOT_SET = "line ends with CR then {:02X}h where slave 17's delimiter 21h belongs (set by its answer to 08/03)"
 SET = "Diagnostics 03h Change ASCII Input Delimiter = 8448"
 READ = "Read Holding Registers 0"
 
@@ -55,11 +57,11 @@ CASES = {
          f"     3            -  17 request   {READ}  LRC ok",
          f"     4            -  17 response  {READ}: 0=5 [#3]  LRC ok"],
     ),
-    "another delimiter than the one 08/03 set": (  # ('#' after the echo set '!': damaged, '!' still ends lines)
+    "another delimiter than the one 08/03 set": (  # ('#' after the echo set '!': '!' belongs, and ends lines)
         CHANGE + b"\r\n" + CHANGE + b"\r!" + REQUEST + b"\r#" + ANSWER + b"\r!",
         [f"     1            -  17 request   {SET} [new ASCII input delimiter: '!' (21h)]  LRC ok",
          f"     2            -  17 response  {SET} [#1]  LRC ok",
-         f"     3            -  17 request   {READ} [warning: {DAMAGED.format(0x23)}]  LRC ok",
+         f"     3            -  17 request   {READ} [warning: {NOT_SET.format(0x23)}]  LRC ok",
          f"     4            -  17 response  {READ}: 0=5 [#3]  LRC ok"],
     ),
 }

@@ -31,6 +31,7 @@ def line(hex_text: str, check: int | None = None, end: bytes = b"\r\n") -> bytes
 REQUEST = line("0C 03 20 D0 00 03")  # :0C0320D00003FE CR LF, Read Holding Registers 8400..8402
 ANSWER = line("0C 03 06 80 00 00 03 00 02")  # :0C030680000003000266 CR LF, 23 bytes
 LOST_LF = "line ends with CR without LF, before the next ':' (the spec ends a frame with CR LF)"
+LOST_LF_AT_END = "line ends with CR without LF, at the end of the capture (the spec ends a frame with CR LF)"
 READ = "Read Holding Registers 8400..8402 (3)"
 VALUES = "8400=32768 8401=3 8402=2"
 
@@ -58,10 +59,10 @@ CASES = {
         [f"1 - 12 request {READ} [the capture ends inside the response (15 of 23 bytes)] LRC ok",
          "2 - - noise 15 bytes of noise at offset 17: 3a 30 43 30 33 30 36 38 30 30 30 30 30 30 33"],
     ),
-    "cut before its LF": (
+    "cut before its LF": (  # (the line is whole to its CR: before, noise and "inside the response (22 of 23")
         REQUEST + ANSWER[:-1],
-        [f"1 - 12 request {READ} [the capture ends inside the response (22 of 23 bytes)] LRC ok",
-         "2 - - noise 22 bytes of noise at offset 17: 3a 30 43 30 33 30 36 38 30 30 30 30 30 30 33 30…"],
+        [f"1 - 12 request {READ} LRC ok",
+         f"2 - 12 response {READ}: {VALUES} [#1] [warning: {LOST_LF_AT_END}] LRC ok"],
     ),
     "cut before the byte count": (
         REQUEST + b":0C03",

@@ -40,7 +40,7 @@ def test_detect_tries_ascii_alone_at_seven_bits() -> None:
 
 @pytest.mark.parametrize(("data", "found"), [
     (ASCII, ("ascii", 8)), (SEVEN_E_ONE, ("ascii", 7)), (RTU, None), (bytes(range(256)) * 4, None),
-    (RTU + ASCII, None),  # (RTU frames came first, as a file of these bytes is RTU: protocol/ascii.py sample_mode)
+    (RTU + ASCII, None),  # (RTU frames came first: a file of these bytes is RTU, protocol/ascii.py sample_mode)
 ])
 def test_ascii_heard(data: bytes, found: tuple[str, int] | None) -> None:
     assert ascii_heard(data) == found
