@@ -7410,11 +7410,18 @@ local function plc_base(device, f)
   return device.plc and (device.plc[f.fn] or device.plc_default)
 end
 
+-- The display addresses of a frame's registers on a PLC-style device (`40101`), false on any other:
+-- describe's `labels`, which a caller naming many registers of one frame finds once (register_view).
+local function frame_labels(device, f)
+  local base = plc_base(device, f)
+  return base and PLC_LABELS[base] or false
+end
+
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
 -- the map row that names it, its scaled value and text, status, part of a 32-bit value (words; `second`:
--- the next word, when words is 2) and PLC label, from the plain layout flag (a bits_depend rule) and its
--- status: maps.interpret / interpret_wide, then the 16#8000 texts.
-local function describe(device, f, reg, plain, status, words, second)
+-- the next word, when words is 2) and PLC label (`labels`: frame_labels', nil to find them), from the plain
+-- layout flag (a bits_depend rule) and its status: maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, f, reg, plain, status, words, second, labels)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
@@ -7435,8 +7442,8 @@ local function describe(device, f, reg, plain, status, words, second)
   end
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
-  local base = plc_base(device, f)
-  if base ~= nil then reg.label = PLC_LABELS[base][address] end
+  if labels == nil then labels = frame_labels(device, f) end
+  if labels then reg.label = labels[address] end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
@@ -7504,7 +7511,7 @@ local function annotate_list(st, f, device, registers, read)
   story.tell(f)
 end
 M.annotate_list, M.annotate_registers, M.describe = annotate_list, annotate_registers, describe
-M.plc_base, M.remember_list, M.remember_mask = plc_base, remember_list, remember_mask
+M.frame_labels, M.plc_base, M.remember_list, M.remember_mask = frame_labels, plc_base, remember_list, remember_mask
 M.remember_writes, M.story, M.track, M.words_at = remember_writes, story, track, words_at
 end
 
@@ -8143,8 +8150,8 @@ local AUTO, CONFIRMED, DATA, EXCEPTION, PROFILES, READS = AUTO, CONFIRMED, DATA,
 local REQUEST, RESPONSE, annotate_list, annotate_registers = REQUEST, RESPONSE, annotate_list, annotate_registers
 local check_request, check_writes, concat, describe = check_request, check_writes, concat, describe
 local device_of, diagnostics_note, explain_exception = device_of, diagnostics_note, explain_exception
-local explain_objects, ipairs, lane, math, pairs = explain_objects, ipairs, lane, math, pairs
-local parse_map_choice, parse_profile_choice = parse_map_choice, parse_profile_choice
+local explain_objects, frame_labels, ipairs, lane, math = explain_objects, frame_labels, ipairs, lane, math
+local pairs, parse_map_choice, parse_profile_choice = pairs, parse_map_choice, parse_profile_choice
 local refused_registers, register_at, remember_list = refused_registers, register_at, remember_list
 local remember_mask, remember_writes, say, select = remember_mask, remember_writes, say, select
 local span_label, string, table, track, trusted_request = span_label, string, table, track, trusted_request
@@ -8273,13 +8280,18 @@ end
 -- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
 -- (its value is the profile's 16#8000, no bytes needed). The device is found again rather than kept
 -- with the run, once a frame shown: its registers are shown one after the other (device_of, a call a
--- register, was some 1 % of the plugin's own work on the plant mix).
-local shown_st, shown_f, shown_device = nil, nil, nil
+-- register, was some 1 % of the plugin's own work on the plant mix); so is the status a register with none of
+-- its own has, the same for every register of the frame: ok in a read from a device that marks unreadable
+-- parameters, nil in a frame that failed its check (none judged, not even ok) or any other.
+local shown_st, shown_f, shown_device, shown_ok, shown_labels = nil, nil, nil, nil, false
 local function register_view(st, f, run, b, index)
   local device = shown_device
   if f ~= shown_f or st ~= shown_st then
     device = device_of(st, f)
     shown_st, shown_f, shown_device = st, f, device
+    shown_ok = device and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil
+      and verified(f) and "ok" or nil
+    shown_labels = device and frame_labels(device, f)
   end
   local address, value, offset
   if b ~= nil then
@@ -8289,15 +8301,10 @@ local function register_view(st, f, run, b, index)
   end
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
-    local status = run.status and run.status[index]
-    -- (a frame that failed its check: none judged, not even ok)
-    if status == nil and f.kind == RESPONSE and verified(f) and READS[f.fn] ~= nil
-        and device.profile.protected_value ~= nil then
-      status = "ok"
-    end
+    local status = run.status and run.status[index] or shown_ok
     local words, second = words_at(device.rows, address, index, run.count), nil
     if words == 2 and b ~= nil then second = select(2, register_at(run, b, index + 1, true)) end
-    describe(device, f, view, run.plain and run.plain[index], status, words, second)
+    describe(device, f, view, run.plain and run.plain[index], status, words, second, shown_labels)
   end
   return view
 end

@@ -127,13 +127,18 @@ end
 -- One register of a run as add_register shows it. b nil: the register is one whose status is not ok
 -- (its value is the profile's 16#8000, no bytes needed). The device is found again rather than kept
 -- with the run, once a frame shown: its registers are shown one after the other (device_of, a call a
--- register, was some 1 % of the plugin's own work on the plant mix).
-local shown_st, shown_f, shown_device = nil, nil, nil
+-- register, was some 1 % of the plugin's own work on the plant mix); so is the status a register with none of
+-- its own has, the same for every register of the frame: ok in a read from a device that marks unreadable
+-- parameters, nil in a frame that failed its check (none judged, not even ok) or any other.
+local shown_st, shown_f, shown_device, shown_ok, shown_labels = nil, nil, nil, nil, false
 local function register_view(st, f, run, b, index)
   local device = shown_device
   if f ~= shown_f or st ~= shown_st then
     device = device_of(st, f)
     shown_st, shown_f, shown_device = st, f, device
+    shown_ok = device and f.kind == RESPONSE and READS[f.fn] ~= nil and device.profile.protected_value ~= nil
+      and verified(f) and "ok" or nil
+    shown_labels = device and frame_labels(device, f)
   end
   local address, value, offset
   if b ~= nil then
@@ -143,15 +148,10 @@ local function register_view(st, f, run, b, index)
   end
   local view = { address = address, value = value, offset = offset }
   if device and address ~= nil then
-    local status = run.status and run.status[index]
-    -- (a frame that failed its check: none judged, not even ok)
-    if status == nil and f.kind == RESPONSE and verified(f) and READS[f.fn] ~= nil
-        and device.profile.protected_value ~= nil then
-      status = "ok"
-    end
+    local status = run.status and run.status[index] or shown_ok
     local words, second = words_at(device.rows, address, index, run.count), nil
     if words == 2 and b ~= nil then second = select(2, register_at(run, b, index + 1, true)) end
-    describe(device, f, view, run.plain and run.plain[index], status, words, second)
+    describe(device, f, view, run.plain and run.plain[index], status, words, second, shown_labels)
   end
   return view
 end

@@ -176,11 +176,18 @@ local function plc_base(device, f)
   return device.plc and (device.plc[f.fn] or device.plc_default)
 end
 
+-- The display addresses of a frame's registers on a PLC-style device (`40101`), false on any other:
+-- describe's `labels`, which a caller naming many registers of one frame finds once (register_view).
+local function frame_labels(device, f)
+  local base = plc_base(device, f)
+  return base and PLC_LABELS[base] or false
+end
+
 -- A register of f as the display shows it (reg: its address and value; naming.name_register, name_wide):
 -- the map row that names it, its scaled value and text, status, part of a 32-bit value (words; `second`:
--- the next word, when words is 2) and PLC label, from the plain layout flag (a bits_depend rule) and its
--- status: maps.interpret / interpret_wide, then the 16#8000 texts.
-local function describe(device, f, reg, plain, status, words, second)
+-- the next word, when words is 2) and PLC label (`labels`: frame_labels', nil to find them), from the plain
+-- layout flag (a bits_depend rule) and its status: maps.interpret / interpret_wide, then the 16#8000 texts.
+local function describe(device, f, reg, plain, status, words, second, labels)
   local rows, address, value = device.rows, reg.address, reg.value
   local row = rows[address]
   local named, scaled, text = row, nil, nil
@@ -201,8 +208,8 @@ local function describe(device, f, reg, plain, status, words, second)
   end
   if MARKER_TEXTS[status] ~= nil then scaled, text = nil, MARKER_TEXTS[status] end
   reg.row, reg.scaled, reg.text, reg.status, reg.words = named, scaled, text, status, words
-  local base = plc_base(device, f)
-  if base ~= nil then reg.label = PLC_LABELS[base][address] end
+  if labels == nil then labels = frame_labels(device, f) end
+  if labels then reg.label = labels[address] end
 end
 
 -- A run of a frame: what the display cannot find again from the bytes is kept, and only where it is
