@@ -120,6 +120,7 @@ local DATA = {
     ["repeat_probe"] = 16,
     ["repeat_window"] = 768,
     ["cut_answer"] = "the capture ends inside the ",
+    ["silence_cuts"] = "a silence cuts ",
   },
   ["ascii"] = {
     ["max_ascii"] = 513,

@@ -24,6 +24,7 @@ from dissector.decode import pairing
 from dissector.devices import access, maps
 from dissector.errors import GenerateError
 from dissector.framing import ascii as ascii_framer, evidence, rtu as framer, stream as streambuf
+from dissector.framing.rules import SILENCE_CUTS
 from dissector.model import CUT_ANSWER, Kind
 from dissector.protocol import ascii as ascii_mode, crc, rules, table
 from dissector.protocol.spec import SPEC
@@ -107,6 +108,7 @@ def plugin_data() -> dict[str, Any]:
             "repeat_probe": framer.REPEAT_PROBE,
             "repeat_window": framer.REPEAT_WINDOW,
             "cut_answer": CUT_ANSWER,
+            "silence_cuts": SILENCE_CUTS,  # (live closes bytes at a silence, and a file says the same: rules.py)
         },
         "ascii": {
             "max_ascii": ascii_mode.MAX_ASCII,
