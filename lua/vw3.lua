@@ -4314,6 +4314,44 @@ local function crc_scan(b, i, minimum, last, lengths)
   return count
 end
 
+-- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
+-- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
+-- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
+-- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
+-- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
+-- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
+-- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
+-- found stays one).
+local scanned = { lengths = {} }
+local run = { start = 0, stop = 0 }
+local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
+local function crc_lengths(b, i, n, minimum, last)
+  local memo = scanned
+  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
+    return memo.lengths
+  end
+  local c = b[i]
+  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
+  local stop = run.stop
+  while stop < n and b[stop] == c do stop = stop + 1 end
+  run.stop = stop
+  local key, lengths = nil, nil
+  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
+    key = (c * 512 + minimum) * 512 + last
+    lengths = flood_lengths[key]
+  end
+  if lengths == nil then
+    lengths = {}
+    crc_scan(b, i, minimum, last, lengths)
+    if key ~= nil then
+      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
+      flood_lengths[key], flood_kept = lengths, flood_kept + 1
+    end
+  end
+  memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
+  return lengths
+end
+
 local function crc16(b, from, to)
   local l, h = crc_run(b, to, unpack, from, 0xFF00, 0xFF00)
   return h + floor(l / 256)
@@ -4335,8 +4373,9 @@ local function crc_ok_at(b, i, length)
   crc_b, crc_i, crc_to, crc_l, crc_h = b, i, stop, l, h
   return l == b[stop] * 256 and h == b[stop + 1] * 256
 end
-M.concat, M.crc16, M.crc_ok_at, M.crc_scan, M.crc_step = concat, crc16, crc_ok_at, crc_scan, crc_step
-M.crc_string_ok, M.floor, M.format, M.made_once = crc_string_ok, floor, format, made_once
+M.concat, M.crc16, M.crc_lengths, M.crc_ok_at, M.crc_scan = concat, crc16, crc_lengths, crc_ok_at, crc_scan
+M.crc_step, M.crc_string_ok, M.floor, M.format, M.made_once = crc_step, crc_string_ok, floor, format, made_once
+M.scanned = scanned
 end
 
 -- ---- vw3.layouts: lua/src/layouts.lua ----
@@ -4626,6 +4665,25 @@ local function inner_gaps(s, frame)
   end
 end
 
+-- Was the line silent for t3.5 before the record at s.times[index] (stream.py feed, timing.silence_before: from
+-- the record before it, less that record's bytes' time on the line)?
+local function silent_before(times, index)
+  local time, before = times[index + 1], times[index - 1]
+  return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
+end
+
+-- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences, as
+-- add_noise finds them), nil: none.
+local function silence_after(s, i, n)
+  local times, base = s.times, s.base
+  for index = 3, #times, 2 do
+    local at = times[index] - base
+    if at >= n then return nil end -- (oldest first)
+    if at > i and silent_before(times, index) then return at end
+  end
+  return nil
+end
+
 local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
@@ -4653,11 +4711,9 @@ local function add_noise(s, start, stop, reason, items)
     -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one
     -- for the framer's decisions, its items are cut there (_add_noise).
     for index = 3, #times, 2 do
-      local offset, time, before = times[index], times[index + 1], times[index - 1]
-      local at = offset - base
+      local at = times[index] - base
       if at >= stop then break end -- (oldest first)
-      if at >= start and time and before
-          and (time - before) / NS - (offset - times[index - 2]) * CHAR_TIME >= T35 then
+      if at >= start and silent_before(times, index) then
         if at > start then add_run(s, b, start, at, reason, items) end
         local noise = s.noise
         if noise ~= nil then
@@ -4666,7 +4722,7 @@ local function add_noise(s, start, stop, reason, items)
             parts = {}
             noise.parts = parts
           end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time
+          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, times[index + 1]
         end
         start = at
       end
@@ -4803,9 +4859,14 @@ local function not_the_answer(s, kind, length)
 end
 
 -- Why bytes are noise when they begin the answer awaited (of `kind`, or a request read in its place) and the
--- capture ends inside them: `got` of its `total` bytes (NEED: not known).
-local function cut_reason(kind, got, total)
+-- capture ends inside them: `got` of its `total` bytes (NEED: not known); `silence`: a silence cuts them, and the
+-- capture goes on (rules.py Awaiting._cut_reason; silence_cut, lua/src/rtu.lua).
+local function cut_reason(kind, got, total, silence)
   local size = total == NEED and format("%d bytes of it", got) or format("%d of %d bytes", got, total)
+  if silence then
+    local what = kind == REQUEST and "a request" or kind == RESPONSE and "the response" or "the exception response"
+    return format("%s%s (%s)", FRAMING.silence_cuts, what, size)
+  end
   if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
     return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
   end
@@ -4860,7 +4921,8 @@ end
 M.GLITCH, M.REPEAT_PROBE, M.add_noise, M.await_answer = GLITCH, REPEAT_PROBE, add_noise, await_answer
 M.awaited_reading, M.awaits_answer, M.boundary_at = awaited_reading, awaits_answer, boundary_at
 M.cut_reason, M.emit, M.expect_after, M.flush_noise, M.lane = cut_reason, emit, expect_after, flush_noise, lane
-M.not_the_answer, M.repeats, M.time_at, M.whole_crc_good = not_the_answer, repeats, time_at, whole_crc_good
+M.not_the_answer, M.repeats, M.silence_after, M.time_at = not_the_answer, repeats, silence_after, time_at
+M.whole_crc_good = whole_crc_good
 end
 
 -- ---- vw3.rtu: lua/src/rtu.lua ----
@@ -4874,9 +4936,10 @@ local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FR
 local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
 local add_noise, awaited, awaited_reading, boundary_at = add_noise, awaited, awaited_reading, boundary_at
-local crc16, crc_ok_at, crc_scan, cut_reason, emit = crc16, crc_ok_at, crc_scan, cut_reason, emit
-local interpretations, math, not_the_answer, pairs = interpretations, math, not_the_answer, pairs
-local possible_start, repeats, table, time_at = possible_start, repeats, table, time_at
+local crc16, crc_lengths, crc_ok_at, crc_scan, cut_reason = crc16, crc_lengths, crc_ok_at, crc_scan, cut_reason
+local emit, interpretations, math, not_the_answer, pairs = emit, interpretations, math, not_the_answer, pairs
+local possible_start, repeats, scanned, silence_after = possible_start, repeats, scanned, silence_after
+local table, time_at = table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
 -- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
 local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
@@ -5050,44 +5113,6 @@ local function confirmed(s, b, i, kind, length, n, final)
   return false
 end
 
--- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
--- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
--- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
--- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
--- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
--- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
--- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
--- found stays one).
-local scanned = { lengths = {} }
-local run = { start = 0, stop = 0 }
-local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
-local function crc_lengths(b, i, n, minimum, last)
-  local memo = scanned
-  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
-    return memo.lengths
-  end
-  local c = b[i]
-  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
-  local stop = run.stop
-  while stop < n and b[stop] == c do stop = stop + 1 end
-  run.stop = stop
-  local key, lengths = nil, nil
-  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
-    key = (c * 512 + minimum) * 512 + last
-    lengths = flood_lengths[key]
-  end
-  if lengths == nil then
-    lengths = {}
-    crc_scan(b, i, minimum, last, lengths)
-    if key ~= nil then
-      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
-      flood_lengths[key], flood_kept = lengths, flood_kept + 1
-    end
-  end
-  memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
-  return lengths
-end
-
 -- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
 -- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
 -- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
@@ -5125,8 +5150,8 @@ local function counts_nothing(b, i, kind, length)
 end
 
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
--- (rtu.py _cut_answer)? The reason, or nil.
-local function cut_answer(s, b, i, n)
+-- (rtu.py _cut_answer)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
+local function cut_answer(s, b, i, n, silence)
   if n - i < 2 then return nil end
   -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
   -- request repeated before the answer, or the next one)
@@ -5153,7 +5178,7 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  return cut_reason(kind, n - i, length)
+  return cut_reason(kind, n - i, length, silence)
 end
 
 -- The list with value appended (a new list for nil: most positions have none).
@@ -5341,8 +5366,8 @@ end
 
 -- At the end of the input, where no answer awaited begins (cut_answer weighs that one): do the bytes from i, from
 -- a bound, begin a request whose length the table knows (or whose count has not come), cut by the end of the
--- capture (the next poll: bounded.py _cut_request)? The reason, or nil.
-local function cut_request(s, b, i, n)
+-- capture (the next poll: bounded.py _cut_request)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
+local function cut_request(s, b, i, n, silence)
   if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
@@ -5354,10 +5379,22 @@ local function cut_request(s, b, i, n)
         return nil
       end
       if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
-      return cut_reason(REQUEST, n - i, length)
+      return cut_reason(REQUEST, n - i, length, silence)
     end
   end
   return nil
+end
+
+-- Do the bytes from i up to the first silence after it begin a frame the silence cuts, weighed as at the end of the
+-- input (bounded.py _silence_cut: live closes them there, and a file says what live says)? The silence's index and
+-- the reason, or nil. A layout with a good CRC across the silence is a frame (the silence inside it a warning).
+local function silence_cut(s, b, i, n)
+  if s.expect == nil and not bounded_start(s, i) then return nil end
+  local stop = silence_after(s, i, n)
+  if stop == nil then return nil end
+  local reason = cut_answer(s, b, i, stop, true) or cut_request(s, b, i, stop, true)
+  if reason == nil or checks_out(s, b, i, n) then return nil end
+  return stop, reason
 end
 
 -- Emit the frame of a bounded run at i (bounded.py _take_bounded): its length, 0 (none) or NEED. A warning says
@@ -5391,6 +5428,12 @@ local function run_rtu(s, final, items)
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
+      local stop, cut = silence_cut(s, b, i, n) -- (bytes a silence cuts first, as live closed them there)
+      while stop ~= nil do
+        add_noise(s, i, stop, cut, items)
+        i = stop
+        stop, cut = silence_cut(s, b, i, n)
+      end
       add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
       return n
     end
@@ -5435,10 +5478,13 @@ local function run_rtu(s, final, items)
       if kind == nil then
         local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
         if cut then
+          -- (noise: up to a silence inside that cuts them first, as live closed them there)
+          local upto, silence = silence_cut(s, b, i, n)
+          if upto ~= nil then cut = silence else upto = n end
           taken = take_bounded(s, b, i, n, final, items)
           if taken == 0 then
-            add_noise(s, i, n, cut, items)
-            return n
+            add_noise(s, i, upto, cut, items)
+            taken = upto - i -- (taken as noise)
           end
         else
           kind, length, crc_ok = match(s, b, i, n, final)
@@ -5459,8 +5505,11 @@ local function run_rtu(s, final, items)
       if taken > 0 then
         i = i + taken
       elseif kind == NONE then
-        add_noise(s, i, i + 1, NO_FRAME, items)
-        i = i + 1
+        -- (bytes up to a silence that begin a frame it cuts: their reason, as live's: silence_cut)
+        local upto, why = silence_cut(s, b, i, n)
+        if upto == nil then upto, why = i + 1, NO_FRAME end
+        add_noise(s, i, upto, why, items)
+        i = upto
       else
         local offset = s.base + i
         emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)

@@ -106,6 +106,25 @@ class Bounded:
         awaited: RtuFramer._cut_answer, else a request from a bound: _cut_request), or None."""
         return self._cut_answer(buf, i, n) or self._cut_request(buf, i, n)
 
+    def _silence_cut(self, buf: bytearray, i: int, n: int) -> tuple[int, str] | None:
+        """Do bytes i..s, up to the first silence s after i, begin a frame the silence cuts: the answer awaited or
+        a request from a bound, as _cut_tail weighs them at the end of the input (live closes them at the
+        silence: StreamFramer.finish(silence=True); a file must say what live says)? (s, the reason), or None.
+        A layout with a good CRC across the silence is a frame (the silence inside it a warning: timing.py)."""
+        if not self._silences or not (self._expect is not None or self._bounded_start(i)):
+            return None
+        base = self._base
+        ends = [at - base for at in self._silences if i < at - base < n]
+        if not ends:
+            return None
+        stop = min(ends)
+        self._cut_by_silence = True
+        try:
+            reason = self._cut_tail(buf, i, stop)
+        finally:
+            self._cut_by_silence = False
+        return (stop, reason) if reason is not None and not self._checks_out(buf, i, n) else None
+
     def _cut_request(self, buf: bytearray, i: int, n: int) -> str | None:
         """At the end of the input, where no answer awaited begins (_cut_answer weighs that one): do bytes i..n,
         from a bound, begin a request whose length the table knows (or whose count has not come), cut by the end

@@ -470,9 +470,10 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
             if i >= paused_from:
                 break
             if n - i < MIN_ADU:
-                self._add_noise(i, n, self._cut_tail(buf, i, n) or TOO_SHORT, items)
-                i = n
-                break
+                stop, reason = self._silence_cut(buf, i, n) or (n, self._cut_tail(buf, i, n) or TOO_SHORT)
+                self._add_noise(i, stop, reason, items)
+                i = stop
+                continue
             # (the answer awaited and the line's glitchiness change with a frame only, which ends the noise)
             if not self._noise or final:
                 since = -1
@@ -540,10 +541,12 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
             if final:
                 cut = self._cut_tail(buf, i, n)
                 if cut is not None:
+                    # (noise: up to a silence inside that cuts them first, as live closed them there)
+                    stop, cut = self._silence_cut(buf, i, n) or (n, cut)
                     taken = self._take_bounded(buf, i, n, final, items)  # (a run the line bounds wins)
                     if not taken:
-                        self._add_noise(i, n, cut, items)
-                    i = i + taken if taken else n
+                        self._add_noise(i, stop, cut, items)
+                    i = i + taken if taken else stop
                     continue
             match = self._match(buf, i, n, final)
             if match == NEED:
@@ -556,8 +559,10 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
                     i += taken
                     continue
             if match == NONE:
-                self._add_noise(i, i + 1, NO_FRAME, items)
-                i += 1
+                # (bytes up to a silence that begin a frame it cuts: their reason, as live's, _silence_cut)
+                stop, reason = self._silence_cut(buf, i, n) or (i + 1, NO_FRAME)
+                self._add_noise(i, stop, reason, items)
+                i = stop
                 continue
             kind, length, crc_ok = match  # type: ignore[misc]
             awaited = awaited and kind is not Kind.REQUEST

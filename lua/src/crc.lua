@@ -149,6 +149,44 @@ local function crc_scan(b, i, minimum, last, lengths)
   return count
 end
 
+-- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
+-- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
+-- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
+-- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
+-- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
+-- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
+-- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
+-- found stays one).
+local scanned = { lengths = {} }
+local run = { start = 0, stop = 0 }
+local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
+local function crc_lengths(b, i, n, minimum, last)
+  local memo = scanned
+  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
+    return memo.lengths
+  end
+  local c = b[i]
+  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
+  local stop = run.stop
+  while stop < n and b[stop] == c do stop = stop + 1 end
+  run.stop = stop
+  local key, lengths = nil, nil
+  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
+    key = (c * 512 + minimum) * 512 + last
+    lengths = flood_lengths[key]
+  end
+  if lengths == nil then
+    lengths = {}
+    crc_scan(b, i, minimum, last, lengths)
+    if key ~= nil then
+      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
+      flood_lengths[key], flood_kept = lengths, flood_kept + 1
+    end
+  end
+  memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
+  return lengths
+end
+
 local function crc16(b, from, to)
   local l, h = crc_run(b, to, unpack, from, 0xFF00, 0xFF00)
   return h + floor(l / 256)

@@ -176,44 +176,6 @@ local function confirmed(s, b, i, kind, length, n, final)
   return false
 end
 
--- The lengths from `minimum` to `last` at which the bytes from i end in a valid CRC, in order (rtu.py
--- crc_lengths). Kept for the position being matched: its interpretations (a code without a length rule
--- is scanned as a request and as a response) and scan_match's two passes share one scan, not four. A
--- flood of one byte that starts a scanned frame everywhere (0x2B, 0x69, 0x6E, 0x41: any slave, an
--- unknown code) would otherwise scan at every byte. A window of one byte value (a flood) has the same
--- lengths wherever it starts: they are kept by the byte, minimum and last (at most FLOOD_KEEP of them),
--- and the run of that byte around the position is kept per buffer (buffers are only appended to: a run
--- found stays one).
-local scanned = { lengths = {} }
-local run = { start = 0, stop = 0 }
-local flood_lengths, flood_kept, FLOOD_KEEP = {}, 0, 4096
-local function crc_lengths(b, i, n, minimum, last)
-  local memo = scanned
-  if memo.b == b and memo.i == i and memo.n == n and memo.minimum == minimum and memo.last == last then
-    return memo.lengths
-  end
-  local c = b[i]
-  if run.b ~= b or i < run.start or i >= run.stop then run.b, run.start, run.stop = b, i, i + 1 end
-  local stop = run.stop
-  while stop < n and b[stop] == c do stop = stop + 1 end
-  run.stop = stop
-  local key, lengths = nil, nil
-  if stop - i >= last then -- b[i] .. b[i + last - 1], every byte a scan reads, are c
-    key = (c * 512 + minimum) * 512 + last
-    lengths = flood_lengths[key]
-  end
-  if lengths == nil then
-    lengths = {}
-    crc_scan(b, i, minimum, last, lengths)
-    if key ~= nil then
-      if flood_kept >= FLOOD_KEEP then flood_lengths, flood_kept = {}, 0 end
-      flood_lengths[key], flood_kept = lengths, flood_kept + 1
-    end
-  end
-  memo.b, memo.i, memo.n, memo.minimum, memo.last, memo.lengths = b, i, n, minimum, last, lengths
-  return lengths
-end
-
 -- A frame without a length rule: the shortest CRC match the line confirms, first by a frame (or the end)
 -- right after it, then after glitch bytes (a frame and a 00 check one byte longer). In step a scanned
 -- frame is trusted over a short frame inside it; while resynchronising, the inner one wins.
@@ -251,8 +213,8 @@ local function counts_nothing(b, i, kind, length)
 end
 
 -- At the end of the input: do the bytes from i begin the answer awaited, cut by the end of the capture
--- (rtu.py _cut_answer)? The reason, or nil.
-local function cut_answer(s, b, i, n)
+-- (rtu.py _cut_answer)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
+local function cut_answer(s, b, i, n, silence)
   if n - i < 2 then return nil end
   -- (the answer's reading, unless it counts nothing or is not as long as the request implies: then the next, a
   -- request repeated before the answer, or the next one)
@@ -279,7 +241,7 @@ local function cut_answer(s, b, i, n)
   end
   if length ~= NEED and not (n - i < length and length <= MAX_ADU) then return nil end
   if intact_inside(s, b, i, n - i, n, true) then return nil end
-  return cut_reason(kind, n - i, length)
+  return cut_reason(kind, n - i, length, silence)
 end
 
 -- The list with value appended (a new list for nil: most positions have none).
@@ -467,8 +429,8 @@ end
 
 -- At the end of the input, where no answer awaited begins (cut_answer weighs that one): do the bytes from i, from
 -- a bound, begin a request whose length the table knows (or whose count has not come), cut by the end of the
--- capture (the next poll: bounded.py _cut_request)? The reason, or nil.
-local function cut_request(s, b, i, n)
+-- capture (the next poll: bounded.py _cut_request)? The reason, or nil. (`silence`: by a silence at n: silence_cut)
+local function cut_request(s, b, i, n, silence)
   if n - i < 2 or awaited(s, b, i, n) or not bounded_start(s, i) then return nil end
   local slave, code = b[i], b[i + 1]
   if not ((slave >= 1 and slave <= MAX_SLAVE) or (slave == 0 and not DATA.not_broadcast[code])) then return nil end
@@ -480,10 +442,22 @@ local function cut_request(s, b, i, n)
         return nil
       end
       if checks_out(s, b, i, n) or intact_inside(s, b, i, n - i, n, true) then return nil end
-      return cut_reason(REQUEST, n - i, length)
+      return cut_reason(REQUEST, n - i, length, silence)
     end
   end
   return nil
+end
+
+-- Do the bytes from i up to the first silence after it begin a frame the silence cuts, weighed as at the end of the
+-- input (bounded.py _silence_cut: live closes them there, and a file says what live says)? The silence's index and
+-- the reason, or nil. A layout with a good CRC across the silence is a frame (the silence inside it a warning).
+local function silence_cut(s, b, i, n)
+  if s.expect == nil and not bounded_start(s, i) then return nil end
+  local stop = silence_after(s, i, n)
+  if stop == nil then return nil end
+  local reason = cut_answer(s, b, i, stop, true) or cut_request(s, b, i, stop, true)
+  if reason == nil or checks_out(s, b, i, n) then return nil end
+  return stop, reason
 end
 
 -- Emit the frame of a bounded run at i (bounded.py _take_bounded): its length, 0 (none) or NEED. A warning says
@@ -517,6 +491,12 @@ local function run_rtu(s, final, items)
   local since, retry, was_cut, was_only = -1, 0, false, false
   while n - i >= MIN_ADU or (final and i < n) do
     if n - i < MIN_ADU then
+      local stop, cut = silence_cut(s, b, i, n) -- (bytes a silence cuts first, as live closed them there)
+      while stop ~= nil do
+        add_noise(s, i, stop, cut, items)
+        i = stop
+        stop, cut = silence_cut(s, b, i, n)
+      end
       add_noise(s, i, n, cut_answer(s, b, i, n) or cut_request(s, b, i, n) or TOO_SHORT, items)
       return n
     end
@@ -561,10 +541,13 @@ local function run_rtu(s, final, items)
       if kind == nil then
         local cut = final and (cut_answer(s, b, i, n) or cut_request(s, b, i, n))
         if cut then
+          -- (noise: up to a silence inside that cuts them first, as live closed them there)
+          local upto, silence = silence_cut(s, b, i, n)
+          if upto ~= nil then cut = silence else upto = n end
           taken = take_bounded(s, b, i, n, final, items)
           if taken == 0 then
-            add_noise(s, i, n, cut, items)
-            return n
+            add_noise(s, i, upto, cut, items)
+            taken = upto - i -- (taken as noise)
           end
         else
           kind, length, crc_ok = match(s, b, i, n, final)
@@ -585,8 +568,11 @@ local function run_rtu(s, final, items)
       if taken > 0 then
         i = i + taken
       elseif kind == NONE then
-        add_noise(s, i, i + 1, NO_FRAME, items)
-        i = i + 1
+        -- (bytes up to a silence that begin a frame it cuts: their reason, as live's: silence_cut)
+        local upto, why = silence_cut(s, b, i, n)
+        if upto == nil then upto, why = i + 1, NO_FRAME end
+        add_noise(s, i, upto, why, items)
+        i = upto
       else
         local offset = s.base + i
         emit(s, rtu_frame(b, i, offset, time_at(s, offset), kind, length, crc_ok), items)

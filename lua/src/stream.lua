@@ -102,6 +102,25 @@ local function inner_gaps(s, frame)
   end
 end
 
+-- Was the line silent for t3.5 before the record at s.times[index] (stream.py feed, timing.silence_before: from
+-- the record before it, less that record's bytes' time on the line)?
+local function silent_before(times, index)
+  local time, before = times[index + 1], times[index - 1]
+  return time and before and (time - before) / NS - (times[index] - times[index - 2]) * CHAR_TIME >= T35
+end
+
+-- The index of the first record after i, before n, that a silence of t3.5 comes before (stream.py _silences, as
+-- add_noise finds them), nil: none.
+local function silence_after(s, i, n)
+  local times, base = s.times, s.base
+  for index = 3, #times, 2 do
+    local at = times[index] - base
+    if at >= n then return nil end -- (oldest first)
+    if at > i and silent_before(times, index) then return at end
+  end
+  return nil
+end
+
 local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
@@ -129,11 +148,9 @@ local function add_noise(s, start, stop, reason, items)
     -- Records starting inside the bytes after a silence (stream.py feed, silence_before): the run stays one
     -- for the framer's decisions, its items are cut there (_add_noise).
     for index = 3, #times, 2 do
-      local offset, time, before = times[index], times[index + 1], times[index - 1]
-      local at = offset - base
+      local at = times[index] - base
       if at >= stop then break end -- (oldest first)
-      if at >= start and time and before
-          and (time - before) / NS - (offset - times[index - 2]) * CHAR_TIME >= T35 then
+      if at >= start and silent_before(times, index) then
         if at > start then add_run(s, b, start, at, reason, items) end
         local noise = s.noise
         if noise ~= nil then
@@ -142,7 +159,7 @@ local function add_noise(s, start, stop, reason, items)
             parts = {}
             noise.parts = parts
           end
-          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, time
+          parts[#parts + 1], parts[#parts + 2], parts[#parts + 3] = noise.length, reason, times[index + 1]
         end
         start = at
       end
@@ -279,9 +296,14 @@ local function not_the_answer(s, kind, length)
 end
 
 -- Why bytes are noise when they begin the answer awaited (of `kind`, or a request read in its place) and the
--- capture ends inside them: `got` of its `total` bytes (NEED: not known).
-local function cut_reason(kind, got, total)
+-- capture ends inside them: `got` of its `total` bytes (NEED: not known); `silence`: a silence cuts them, and the
+-- capture goes on (rules.py Awaiting._cut_reason; silence_cut, lua/src/rtu.lua).
+local function cut_reason(kind, got, total, silence)
   local size = total == NEED and format("%d bytes of it", got) or format("%d of %d bytes", got, total)
+  if silence then
+    local what = kind == REQUEST and "a request" or kind == RESPONSE and "the response" or "the exception response"
+    return format("%s%s (%s)", FRAMING.silence_cuts, what, size)
+  end
   if kind == REQUEST then -- ('... inside a request': not the answer's words, which its request takes: rtu.py)
     return format("%sa request (%s)", FRAMING.cut_answer:sub(1, -5), size)
   end

@@ -3,9 +3,9 @@ StreamFramer.finish(silence=True)), and the capture goes on. A request or an ans
 ends inside a request (4 of 8 bytes)' (e33fca3, 0cbf5f5), false: the next poll followed. It is 'a silence cuts a
 request (4 of 8 bytes)' ('a silence cuts the response (5 of 9 bytes)'); 'the capture ends' stays where the
 capture ends. Tapes of live reads (VW3_LIVE_REPLAY) decoded by the engine's live path and VW3_PURE_PYTHON=1's,
-exact lines. A file with timestamps (the pcap of those reads) and the plugin never said the capture ends there
-('no valid frame': the decode of a file closes nothing at a silence): held so, the plugin's in
-tests/integration/test_lua_silence_cut.py."""
+exact lines. A file with timestamps (the pcap of those reads) says what live says (it said 'no valid frame':
+framing/bounded.py _silence_cut; more in test_silence_cut_files.py), the plugin too
+(tests/integration/test_lua_silence_cut.py)."""
 from __future__ import annotations
 
 import json
@@ -88,9 +88,8 @@ def test_the_capture_ends_inside_a_request_still(pure: bool, tmp_path: Path) -> 
 
 
 @ENGINES
-def test_a_file_with_times_never_said_the_capture_ends(pure: bool, tmp_path: Path,
-                                                       monkeypatch: pytest.MonkeyPatch) -> None:
-    # (a silence in a file is evidence, never a cut: the bytes before it are noise of no frame)
+def test_a_file_with_times_says_what_live_says(pure: bool, tmp_path: Path) -> None:
+    # (the bytes before the silence are noise in a file as in live, and the silence cuts them: not the end)
     capture = tmp_path / "silence.pcap"
     write_pcap(capture, [(POLL, T0), (ANSWER, T0 + 10**7), (POLL[:4], T0 + 10**9), (POLL, T0 + 2 * 10**9),
                          (ANSWER, T0 + 2 * 10**9 + 10**7)])
@@ -101,4 +100,4 @@ def test_a_file_with_times_never_said_the_capture_ends(pure: bool, tmp_path: Pat
     run = subprocess.run([sys.executable, "-m", "dissector", "-n", "--json", str(capture)], cwd=ROOT, env=env,
                          capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
-    assert noise_reasons(run.stdout.splitlines()) == ["no valid frame"]
+    assert noise_reasons(run.stdout.splitlines()) == ["a silence cuts a request (4 of 8 bytes)"]
