@@ -4,12 +4,9 @@ and !==, exponents, escapes, octal, a masked comparison (session 54's hunt, defe
 their neighbours; tests/unit/test_filter_wireshark.py holds the same frames as numbers)."""
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pytest
 
-from lua_harness import ROOT, run_tshark
+from lua_harness import ROOT, assert_same_frames
 
 CASES = [
     # (capture, vw3-decode -Y, tshark -Y with the plugin)
@@ -48,9 +45,4 @@ CASES = [
 @pytest.mark.parametrize(("capture", "ours", "wiresharks"), CASES)
 def test_the_filter_selects_the_frames_tshark_selects(capture: str, ours: str, wiresharks: str) -> None:
     path = ROOT / "captures" / capture
-    command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
-    mine = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    assert mine.returncode == 0, mine.stderr
-    result = run_tshark(path, "-Y", wiresharks, "-T", "fields", "-e", "frame.number")
-    assert result.returncode == 0, result.stderr
-    assert [int(n) for n in mine.stdout.split()] == [int(n) for n in result.stdout.split()]
+    assert_same_frames(path, ours, wiresharks)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from lua_harness import ROOT, run_tshark
+from lua_harness import ROOT, assert_same_frames, run_tshark
 
 from dissector.render.pcapngwriter import PcapngWriter
 
@@ -73,12 +73,7 @@ REFUSED = [
 @pytest.mark.parametrize(("capture", "ours", "wiresharks"), CASES)
 def test_the_filter_selects_the_frames_tshark_selects(capture: str, ours: str, wiresharks: str) -> None:
     path = ROOT / "captures" / capture
-    command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
-    mine = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    assert mine.returncode == 0, mine.stderr
-    result = run_tshark(path, "-Y", wiresharks, "-T", "fields", "-e", "frame.number")
-    assert result.returncode == 0, result.stderr
-    assert [int(n) for n in mine.stdout.split()] == [int(n) for n in result.stdout.split()]
+    assert_same_frames(path, ours, wiresharks)
 
 
 @pytest.mark.parametrize(("ours", "wiresharks"), REFUSED)
@@ -115,9 +110,4 @@ def test_comment_selects_as_frame_comment(tmp_path: Path, ours: str, wiresharks:
         for data, time, comments in [(request, 0.0, ["pump 2 check"]), (answer, 0.01, ["answer", "again"]),
                                      (request, 1.0, None), (answer, 1.01, ["done"])]:
             writer.write(data, time, comments)
-    command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
-    mine = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    assert mine.returncode == 0, mine.stderr
-    result = run_tshark(path, "-Y", wiresharks, "-T", "fields", "-e", "frame.number")
-    assert result.returncode == 0, result.stderr
-    assert [int(n) for n in mine.stdout.split()] == [int(n) for n in result.stdout.split()]
+    assert_same_frames(path, ours, wiresharks)

@@ -5,6 +5,8 @@ import io
 from pathlib import Path
 
 from dissector.app.cli import Environment, run
+from dissector.framing.ascii import AsciiFramer
+from dissector.model import Chunk
 from dissector.protocol.crc import crc16_reference
 from dissector.pipeline import dissect_bytes
 from dissector.render.jsonout import item_to_dict
@@ -118,3 +120,14 @@ def engine_output_as_python(argv: list[str], monkeypatch: object, stdin: bytes =
     assert none == []
     assert engine == reference, argv
     return engine, framed
+
+
+def ascii_items(data: bytes, size: int | None = None) -> list[tuple[str, int, bytes, list[str]]]:
+    """What the ASCII framer makes of `data` fed whole, or in chunks of `size` bytes: (kind, offset, raw,
+    warnings) an item, so a test can check the framing does not depend on where the reads end."""
+    chunks = [data] if size is None else [data[at : at + size] for at in range(0, len(data), size)]
+    framer, out = AsciiFramer(), []
+    for chunk in chunks:
+        out += framer.feed(Chunk(chunk))
+    out += framer.finish()
+    return [(type(item).__name__, item.offset, item.raw, getattr(item, "warnings", [])) for item in out]

@@ -72,6 +72,16 @@ def run_tshark(pcap: Path, *args: str, timeout: float = 900, two_pass: bool = Tr
     return subprocess.run(command, capture_output=True, encoding="utf-8", errors="replace", timeout=timeout)
 
 
+
+def assert_same_frames(path: Path, ours: str, wiresharks: str) -> None:
+    """`vw3-decode -Y ours` selects the frame numbers tshark with the plugin selects with `-Y wiresharks`."""
+    command = [sys.executable, "-m", "dissector", "-Y", ours, "-T", "fields", "-e", "frame", str(path)]
+    mine = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert mine.returncode == 0, mine.stderr
+    result = run_tshark(path, "-Y", wiresharks, "-T", "fields", "-e", "frame.number")
+    assert result.returncode == 0, result.stderr
+    assert [int(n) for n in mine.stdout.split()] == [int(n) for n in result.stdout.split()]
+
 # -- reading tshark's PDML ---------------------------------------------------------------------------
 @dataclass
 class LuaItem:

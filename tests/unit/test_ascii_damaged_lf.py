@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import run_cli, use_engine
+from helpers import ascii_items, run_cli, use_engine
 
 from dissector.framing.ascii import AsciiFramer
 from dissector.model import Chunk
@@ -89,17 +89,10 @@ def test_the_hex_dump_shows_the_byte_in_the_lf_s_place(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("case", list(CASES))
 def test_the_same_whatever_the_chunks(case: str) -> None:
-    def items(chunks: list[bytes]) -> list[tuple[str, int, bytes, list[str]]]:
-        framer, out = AsciiFramer(), []
-        for chunk in chunks:
-            out += framer.feed(Chunk(chunk))
-        out += framer.finish()
-        return [(type(item).__name__, item.offset, item.raw, getattr(item, "warnings", [])) for item in out]
-
     data = CASES[case][0]
-    whole = items([data])
+    whole = ascii_items(data)
     for size in (1, 2, 3, 16):
-        assert items([data[at : at + size] for at in range(0, len(data), size)]) == whole
+        assert ascii_items(data, size) == whole
 
 
 def test_a_line_cut_in_its_digits_stays_noise() -> None:

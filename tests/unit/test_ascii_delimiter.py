@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import run_cli, use_engine
+from helpers import ascii_items, run_cli, use_engine
 
 from dissector.framing.ascii import AsciiFramer
 from dissector.model import Chunk
@@ -70,17 +70,10 @@ def test_a_line_ends_with_the_delimiter_03_set(tmp_path: Path, pure: bool, monke
 
 
 def test_the_same_whatever_the_chunks() -> None:
-    def items(chunks: list[bytes]) -> list[tuple[str, int, bytes]]:
-        framer, out = AsciiFramer(), []
-        for chunk in chunks:
-            out += framer.feed(Chunk(chunk))
-        out += framer.finish()
-        return [(type(item).__name__, item.offset, item.raw) for item in out]
-
-    whole = items([DATA])
-    assert [kind for kind, _, _ in whole] == ["Frame"] * 12
+    whole = ascii_items(DATA)
+    assert [kind for kind, _, _, _ in whole] == ["Frame"] * 12
     for size in (1, 2, 3, 16):
-        assert items([DATA[at : at + size] for at in range(0, len(DATA), size)]) == whole
+        assert ascii_items(DATA, size) == whole
 
 
 def test_no_change_without_the_answer() -> None:

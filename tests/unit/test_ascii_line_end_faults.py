@@ -16,10 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from dissector.framing.ascii import AsciiFramer
-from dissector.model import Chunk
 from dissector.protocol.crc import lrc
-from helpers import run_cli, use_engine
+from helpers import ascii_items, run_cli, use_engine
 
 
 def line(pdu: str, end: bytes = b"\r\n") -> bytes:
@@ -109,15 +107,8 @@ def test_summary(case: str, pure: bool, tmp_path: Path, monkeypatch: pytest.Monk
 
 @pytest.mark.parametrize("case", list(CASES))
 def test_the_same_whatever_the_chunks(case: str) -> None:
-    def items(chunks: list[bytes]) -> list[tuple[str, int, bytes, list[str]]]:
-        framer, out = AsciiFramer(), []
-        for chunk in chunks:
-            out += framer.feed(Chunk(chunk))
-        out += framer.finish()
-        return [(type(item).__name__, item.offset, item.raw, getattr(item, "warnings", [])) for item in out]
-
     data = CASES[case][0]
-    whole = items([data])
+    whole = ascii_items(data)
     assert {kind for kind, _, _, _ in whole} == {"Frame"} and b"".join(raw for _, _, raw, _ in whole) == data
     for size in (1, 2, 3, 16):
-        assert items([data[at : at + size] for at in range(0, len(data), size)]) == whole
+        assert ascii_items(data, size) == whole
