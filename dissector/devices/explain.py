@@ -40,8 +40,7 @@ def explain_exception(frame: Frame, device: Device, events: list[Event]) -> None
         key = (function, code, None if request is None else request.raw)
         note = device.explained.get(key)
         if note is None:
-            chosen = _pick_causes(request, profile, causes)
-            causes_text = " or ".join(cause_text(cause) for cause in chosen)
+            causes_text = causes_meaning(request, profile, causes)
             note = text("exception_cause", code=code, device=profile.device, name=name, causes=causes_text)
             _remember(device.explained, key, note)
         frame.notes.append(note)  # type: ignore[arg-type]
@@ -98,6 +97,11 @@ def device_meaning(profile: Profile, function: int, code: int) -> str | None:
     if meaning is not None and code == profile.all_protected_exception and function & 0x7F in REGISTER_READS:
         return text("all_protected_read", meaning=meaning)
     return meaning
+
+
+def causes_meaning(request: Frame | None, profile: Profile, causes: tuple[ExceptionCause, ...]) -> str:
+    """The causes the request picks, as the note tells them (`a or b`); the report's events say the same."""
+    return " or ".join(cause_text(cause) for cause in _pick_causes(request, profile, causes))
 
 
 def _pick_causes(

@@ -9,8 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 from dissector.devices.access import READ_ONLY_EXCEPTION, written_read_only
-# (_pick_causes: the note's own choice of causes by the request, so that the event and the note agree)
-from dissector.devices.explain import _pick_causes, cause_text, exception_meaning
+from dissector.devices.explain import causes_meaning, exception_meaning
 from dissector.model import Frame
 
 
@@ -30,5 +29,5 @@ def device_meaning(device: Any, function: int, code: int, request: Frame | None)
     profile = device.profile
     causes = profile.exception_causes.get((function, code))
     if causes and not (code == READ_ONLY_EXCEPTION and request is not None and written_read_only(request, device)):
-        return " or ".join(cause_text(cause) for cause in _pick_causes(request, profile, causes))
+        return causes_meaning(request, profile, causes)  # (the note's own choice, so event and note agree)
     return exception_meaning(device, function, code, request)
