@@ -152,7 +152,7 @@ def field_listing() -> str:
         lines.append(f"{'fields.' + key:<22} {'frame':<9} {'value':<14} {owners_text(owners)}")
     lines.append(f"{'time_delta_displayed':<22} {'-T only':<9} {'number':<14} seconds since the item shown before")
     lines.append("operators: == != (all_ne: has it, none equal) ~= !== (any_ne: some differs) === (all_eq) "
-                 "< <= > >= & in {..} a..b "
+                 "< <= > >= & in {3, 4, 8400..8402} "
                  "contains matches ~ and or not ( ); values: 12 0x8000 16#8000 13.5e-3 \"text\" true false, "
                  "bytes "
                  "0c:03 (raw contains 0c:03, raw[0:2] == 0c03), 'a'; a field "

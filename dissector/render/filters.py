@@ -7,7 +7,8 @@ Syntax, close to Wireshark's:
     raw contains 0c:03   raw[0:2] == 0c03   raw is the item's bytes, as tshark's frame: hex bytes (0c:03
                                             0c-03 0c.03 0c03), slices [start:length] [first-last] [:n]
                                             [n:] [-2:] [4], a string its characters' bytes ("\\x0c")
-    function in {3 4 23}   address in 8400..8402   address in {3201..3202 8501}
+    function in {3, 4, 23}                  sets: members separated by commas, ranges inside braces
+    address in {8400..8402, 8501}           ({3 4} and in 3..4 refused, as tshark 4.0.17 refuses them)
     warnings contains "byte count"          substring of a string, or of any element of a list
     notes matches "became (protected|non-existent)"   regular expression (also ~), case-insensitive
                                             as Wireshark's; (?-i) at the start makes it case-sensitive
@@ -131,6 +132,11 @@ class _Parser:
     def error(self, message: str, token: Token | None = None) -> FilterError:
         token = token or self.token
         return FilterError(message, self.text, token.position)
+
+    def unexpected(self, why: str) -> FilterError:
+        """tshark's refusal of a token out of place (`"13" was unexpected in this context.`), and why."""
+        what = "the end of the filter" if self.token.kind == "end" else f"{self.token.text!r}"
+        return self.error(f"{what} was unexpected in this context: {why}")
 
     def at(self, kind: str, *values: str) -> bool:
         token = self.token
@@ -497,27 +503,37 @@ class _Parser:
         return token.value
 
     def parse_set(self, field: str, ftype: str) -> list[tuple[Any, Any]]:
-        """`{a b c..d}` (commas optional) or a bare range `a..b`: a list of (low, high) pairs."""
+        """`{a, b, c..d}`: a list of (low, high) pairs. As tshark 4.0.17 reads a set, members are separated
+        by commas (`{3 4}`, `{3,}` and `{}` refused) and a range stands inside braces (`in 3..4` refused)."""
         if ftype in ("bool", "list"):
             raise self.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
         if not self.at("punct", "{"):
-            if ftype not in ("number", "any"):
-                raise self.error("expected { after in (a set such as {\"CHCF\" \"COP\"})")
-            return [self.parse_member(field, ftype, require_range=True)]
+            hint = ""
+            low, dots, high = (self.tokens[self.index:] + [self.tokens[-1]] * 2)[:3]
+            if dots.text == ".." and high.kind != "end":
+                hint = f" (a range goes in a set: {{{low.text}..{high.text}}})"
+            raise self.unexpected(f"expected {{ after in, a set such as {{3, 4, 8400..8402}}{hint}")
         opening = self.advance()
         members: list[tuple[Any, Any]] = []
-        while not self.at("punct", "}"):
+        while True:
             if self.token.kind == "end":
                 raise self.error(f"expected }} to close the {{ at column {opening.position + 1}")
-            members.append(self.parse_member(field, ftype, require_range=False))
-            if self.at("punct", ","):
-                self.advance()
-        if not members:
-            raise self.error("empty set: put values between { }")
+            if self.at("punct", "}"):
+                raise self.unexpected("a set holds values separated by commas, none after the last "
+                                      "(as tshark 4.0)" if members else "a set holds at least one value")
+            members.append(self.parse_member(field, ftype))
+            if self.at("punct", "}"):
+                break
+            if self.token.kind == "end":
+                raise self.error(f"expected }} to close the {{ at column {opening.position + 1}")
+            if not self.at("punct", ","):
+                raise self.unexpected("set members are separated by commas, as tshark 4.0 takes them "
+                                      "({3, 4})")
+            self.advance()
         self.advance()
         return members
 
-    def parse_member(self, field: str, ftype: str, require_range: bool) -> tuple[Any, Any]:
+    def parse_member(self, field: str, ftype: str) -> tuple[Any, Any]:
         value_token = self.token
         low = self.parse_value(field, ftype)
         self._check_choice(field, low, value_token)
@@ -527,8 +543,6 @@ class _Parser:
             self.advance()
             high = self.parse_value(field, ftype)
             return (low, high)
-        if require_range:
-            raise self.error("expected .. (a range such as 8400..8402) or a set in { }")
         return (low, low)
 
     # -- messages -----------------------------------------------------------------------------

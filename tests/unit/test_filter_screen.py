@@ -25,7 +25,7 @@ def test_plc_style_address_matches_the_number_shown() -> None:
     assert shown == [1, 2, 5, 6, 9, 10, 15, 16, 21, 22, 25, 27, 28, 33, 34, 39, 40, 43]
     # the protocol address still works, and both name the same registers
     assert _frames("--address-style", "plc", "-Y", "address == 1 and frame <= 44", SEL) == shown
-    assert _frames("--address-style", "plc", "-Y", "address in 40002..40002 and frame <= 44", SEL) == shown
+    assert _frames("--address-style", "plc", "-Y", "address in {40002..40002} and frame <= 44", SEL) == shown
     # register 300 shown as 40301: written by FC6, FC23 and FC16 (frame 49's "40303" is a third value
     # over a quantity of 2, and the FC16 confirmation 68 names 40301..40302 without values)
     assert _frames("--address-style", "plc", "-Y", "address == 40301", SEL) == [19, 20, 43, 49, 55, 67, 68]

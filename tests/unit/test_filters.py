@@ -69,8 +69,8 @@ CASES = [
     ("p38_protection.bin", 'kind == "exception" && slave == 12', [10, 12]),
     ("atv71_commissioning.bin", "exception_code == 7", [64]),
     ("atv71_commissioning.bin", 'function == 6 and code == "CHCF"', [7, 8, 63, 103, 104]),
-    ("atv71_commissioning.bin", 'code in {"FR1" "CD1"}', [9, 10, 11, 12, 14, 16]),
-    ("atv71_commissioning.bin", 'address in 8413..8423 and kind == "response"', [10, 12, 14, 16]),
+    ("atv71_commissioning.bin", 'code in {"FR1", "CD1"}', [9, 10, 11, 12, 14, 16]),
+    ("atv71_commissioning.bin", 'address in {8413..8423} and kind == "response"', [10, 12, 14, 16]),
     (
         "atv71_commissioning.bin",
         'function == 23 and code == "RFR" and value >= 300',
@@ -92,11 +92,11 @@ CASES = [
     ("atv71_commissioning.pcap", "response_time > 0.0175", [26, 56, 80, 82]),
     ("atv71_commissioning.pcap", "time < 1767225600.03", [1, 2]),
     ("sel749m_polling.bin", "exception", [14, 26, 32, 38, 44, 50, 56, 62]),
-    ("sel749m_polling.bin", "exception in {1 3}", [26, 32, 44, 50, 56]),
+    ("sel749m_polling.bin", "exception in {1, 3}", [26, 32, 44, 50, 56]),
     ("sel749m_polling.bin", 'function == 16 and warnings contains "byte count"', [49]),
     (
         "sel749m_polling.bin",
-        'address in {250, 302} or (address in 400..401 and kind == "request")',
+        'address in {250, 302} or (address in {400..401} and kind == "request")',
         [31, 37, 55, 61],  # (frame 49's 302 is past its quantity 2: no register written)
     ),
     # A bare field tests presence, as Wireshark's (tshark -Y '!vw3.crc_ok': 1 34): frame 17's bad CRC is
@@ -116,7 +116,7 @@ CASES = [
         'not slave == 12 and not kind == "noise" and function == 3 and kind == "request"',
         [4, 8, 12, 16, 18, 22, 26, 28, 29, 32, 37],
     ),
-    ("ascii_session.bin", 'mode == "ascii" and address in 9001..9002', [3, 4, 5, 6]),
+    ("ascii_session.bin", 'mode == "ascii" and address in {9001..9002}', [3, 4, 5, 6]),
 ]
 
 
@@ -153,7 +153,16 @@ ERRORS = [
     ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
     ("slave 3", "expected an operator (== != ~= < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
-    ("address in 8400", "expected .. (a range such as 8400..8402) or a set in { } (column 16)\n  address in 8400\n                 ^"),
+    ("address in 8400", "'8400' was unexpected in this context: expected { after in, a set such as {3, 4, 8400..8402} "
+     "(column 12)\n  address in 8400\n             ^"),
+    # (a set as tshark 4.0.17 reads it: members separated by commas, a range inside braces)
+    ("address in 8400..8402", "'8400' was unexpected in this context: expected { after in, a set such as "
+     "{3, 4, 8400..8402} (a range goes in a set: {8400..8402}) (column 12)\n  address in 8400..8402\n             ^"),
+    ("slave in {12 13}", "'13' was unexpected in this context: set members are separated by commas, as tshark 4.0 "
+     "takes them ({3, 4}) (column 14)\n  slave in {12 13}\n               ^"),
+    ("slave in {12,}", "'}' was unexpected in this context: a set holds values separated by commas, none after the "
+     "last (as tshark 4.0) (column 14)\n  slave in {12,}\n               ^"),
+    ("slave in {12", "expected } to close the { at column 10 (column 13)\n  slave in {12\n              ^"),
     (
         "slave == 1 slave",
         "unexpected 'slave': expected and, or or the end (column 12)\n  slave == 1 slave\n             ^",
@@ -162,7 +171,8 @@ ERRORS = [
     ("slave contains 1", "contains needs a text or bytes field; slave is a number (column 7)\n  slave contains 1\n        ^"),
     # (tshark refuses it too; read as {1 -3} it matched frame 1 alone)
     ("frame in {1-3}", "'1-3' is not a number: a range is written 1..3 (column 11)\n  frame in {1-3}\n            ^"),
-    ("function in {}", "empty set: put values between { } (column 14)\n  function in {}\n               ^"),
+    ("function in {}", "'}' was unexpected in this context: a set holds at least one value (column 14)\n"
+     "  function in {}\n               ^"),
     ("slave == 1 $", "unexpected character '$' (column 12)\n  slave == 1 $\n             ^"),
 ]
 
@@ -252,7 +262,7 @@ def test_negative_numbers_compare_with_signed_scaled_values() -> None:
     positive = {"kind": "response", "registers": [{"address": 3205, "value": 100, "scaled": 100}]}
     test = compile_filter("scaled < -1")
     assert (test(negative), test(positive)) == (True, False)
-    assert compile_filter("scaled in -200..-50")(negative) is True
+    assert compile_filter("scaled in {-200..-50}")(negative) is True
 
 
 # -- misspelt values of enumerated keys, and keys of the PDU's fields (issue 27) ---------------------------------------
@@ -267,8 +277,8 @@ from helpers import run_cli  # noqa: E402
      "exception_name 'Illegal Data Adress' does not exist (did you mean 'Illegal Data Address'?) (column 19)"),
     ('function_name == "Read Holding Register"',
      "function_name 'Read Holding Register' does not exist (did you mean 'Read Holding Registers'?) (column 18)"),
-    ('function_name in {"Read Holding Registers" "Write Single Registre"}',
-     "function_name 'Write Single Registre' does not exist (did you mean 'Write Single Register'?) (column 44)"),
+    ('function_name in {"Read Holding Registers", "Write Single Registre"}',
+     "function_name 'Write Single Registre' does not exist (did you mean 'Write Single Register'?) (column 45)"),
     ('subfunction_name == "Return Query Dat"',
      "subfunction_name 'Return Query Dat' does not exist (did you mean 'Return Query Data'?) (column 21)"),
     ("fields.strat == 8400",
@@ -317,7 +327,7 @@ def test_a_pdu_key_holding_a_list_is_a_repeated_field() -> None:
     assert frames("fields.values != 40") == [6]
     assert frames("fields.values ~= 40") == [4, 6]
     assert frames("fields.values") == [4, 6]
-    argv = [capture, "-T", "fields", "-e", "frame", "-e", "fields.values", "-Y", "frame in {4 6}"]
+    argv = [capture, "-T", "fields", "-e", "frame", "-e", "fields.values", "-Y", "frame in {4, 6}"]
     assert run_cli(argv) == (0, "4\t40,600,500,0\n6\t3,2\n", "")
     assert run_cli([*argv, "-E", "occurrence=l", "-E", "aggregator=/s"]) == (0, "4\t0\n6\t2\n", "")
 

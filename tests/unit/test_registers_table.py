@@ -35,7 +35,7 @@ def test_p38_one_row_per_register_of_frames_2_to_12() -> None:
 
 
 def test_writes_echoes_and_fc23_halves_with_units_and_scaled_values() -> None:
-    argv = ["-T", "registers", "-t", "ud", "-Y", "frame in {7 8 19 20}", str(CAPTURES / "atv71_commissioning.pcap")]
+    argv = ["-T", "registers", "-t", "ud", "-Y", "frame in {7, 8, 19, 20}", str(CAPTURES / "atv71_commissioning.pcap")]
     status, out, _err = run_cli(argv)
     assert status == 0
     assert out.splitlines() == [

@@ -1,0 +1,56 @@
+"""The syntax of -Y as tshark 4.0.17 reads it, against a real tshark running the plugin (two passes) on the
+shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
+a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
+(members separated by commas, a range inside braces)."""
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from lua_harness import ROOT, assert_same_frames, run_tshark
+
+CASES = [
+    # (capture, vw3-decode -Y, tshark -Y with the plugin)
+    ("noisy_bus.pcap", "slave in {12,13}", "vw3.slave in {12,13}"),
+    ("noisy_bus.pcap", "slave in {12 ,13}", "vw3.slave in {12 ,13}"),
+    ("noisy_bus.pcap", "slave in {10..12, 13}", "vw3.slave in {10..12, 13}"),
+    ("noisy_bus.pcap", "slave in {10 .. 12}", "vw3.slave in {10 .. 12}"),
+    ("atv71_commissioning.pcap", "scaled in {-200..50}", "vw3.reg.scaled in {-200..50}"),
+    ("atv71_commissioning.pcap", 'code in {"FR1", "CD1"}', 'vw3.reg.code in {"FR1", "CD1"}'),
+]
+
+REFUSED = [
+    # (capture, vw3-decode -Y, tshark -Y): both refuse
+    ("noisy_bus.pcap", "slave in {12 13}", "vw3.slave in {12 13}"),
+    ("noisy_bus.pcap", "slave in {10..12 13}", "vw3.slave in {10..12 13}"),
+    ("noisy_bus.pcap", "slave in {10..12,13 14}", "vw3.slave in {10..12,13 14}"),
+    ("atv71_commissioning.pcap", 'code in {"FR1" "CD1"}', 'vw3.reg.code in {"FR1" "CD1"}'),
+    ("noisy_bus.pcap", "slave in {12,}", "vw3.slave in {12,}"),
+    ("noisy_bus.pcap", "slave in {,12}", "vw3.slave in {,12}"),
+    ("noisy_bus.pcap", "slave in {12,,13}", "vw3.slave in {12,,13}"),
+    ("noisy_bus.pcap", "slave in {}", "vw3.slave in {}"),
+    ("noisy_bus.pcap", "slave in {12", "vw3.slave in {12"),
+    ("noisy_bus.pcap", "slave in 10..12", "vw3.slave in 10..12"),
+    ("noisy_bus.pcap", "slave in 12", "vw3.slave in 12"),
+]
+
+
+@pytest.mark.parametrize(("capture", "ours", "wiresharks"), CASES)
+def test_the_filter_selects_the_frames_tshark_selects(capture: str, ours: str, wiresharks: str) -> None:
+    assert_same_frames(ROOT / "captures" / capture, ours, wiresharks)
+
+
+@pytest.mark.parametrize(("capture", "ours", "wiresharks"), REFUSED)
+def test_refused_with_a_caret_where_tshark_refuses(capture: str, ours: str, wiresharks: str) -> None:
+    path = ROOT / "captures" / capture
+    mine = subprocess.run([sys.executable, "-m", "dissector", "-Y", ours, str(path)],
+                          capture_output=True, text=True, timeout=300)
+    assert (mine.returncode, mine.stdout) == (2, "")
+    lines = mine.stderr.splitlines()
+    assert lines[0].startswith("vw3-decode: ") and "Traceback" not in mine.stderr
+    assert lines[1:] == [f"  {ours}", "  " + " " * (len(lines[2]) - 3) + "^"]
+    result = run_tshark(path, "-Y", wiresharks)
+    assert result.returncode != 0 and result.stdout == ""
+    assert "unexpected" in result.stderr.lower() or "^" in result.stderr
