@@ -62,6 +62,7 @@ def schemas() -> dict[str, Any]:
             ("access", text), ("address", pa.int32()), ("label", text), ("code", text), ("name", text),
             ("value", pa.int64()), ("scaled", pa.float64()), ("unit", text), ("status", text), ("text", text),
             ("words", pa.int8()),  # --json's `words` (absent there: 1); null for a coil or input bit
+            ("write", text), ("exception_code", pa.int16()),  # -T registers' (registers.write_outcome)
         ]),
         "events": pa.schema(common + [
             ("kind", text), ("time", time), ("end", time), ("frame", pa.int64()), ("last_frame", pa.int64()),
@@ -182,7 +183,7 @@ class CaptureTables:
             frames.add(row)
             if "registers" in record or "bits" in record:
                 words = [element.get("words", 1) for element in record.get("registers") or []]
-                for index, register in enumerate(register_rows(record)):  # (registers first, then bits)
+                for index, register in enumerate(register_rows(record, item)):  # (registers first, then bits)
                     register.update(common, time=time, words=words[index] if index < len(words) else None)
                     registers.add(register)
                     self._status(register, time)

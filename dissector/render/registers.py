@@ -9,7 +9,14 @@ so `-T registers` cannot disagree with `--json` (and `--parquet`'s registers tab
 - `echo`: the value a write's answer repeats (FC5, FC6): the write confirmed;
 - `exception`: a register an exception tells the status of (ATV71 exception 02 to a read whose every
   parameter is non-existent or protected, p.38), `value` empty.
-`time` is the time column as `-t` shows it (empty for a capture without timestamps). `text` (last) is
+`write` says what became of a written value (the codes of data/modbus.toml [confirm] write, and it says
+how each is confirmed), as `--stats` counts it (render/history.py): `confirmed` (a normal answer; for a
+code confirmed by its echo, the echo repeats this value: the echo row itself is `confirmed`), `differs`
+(the echo answers another value: the echo row's is the one confirmed), `refused` (an exception answered,
+its code in `exception_code`), `unanswered`, `broadcast` (no answer comes to a broadcast) or `unknown`
+(the capture ends before any answer, or the request or its answer failed its check: --stats takes it as
+neither confirmed nor refused); empty on a read. `exception_code` is also an exception row's own.
+`time` is the time column as `-t` shows it (empty for a capture without timestamps). `text` is
 what the summary shows for the value: an enumeration's or a bit field's words, a scaled value and its
 unit, or the status.
 """
@@ -18,7 +25,8 @@ from __future__ import annotations
 from collections.abc import Iterator
 from typing import Any
 
-from dissector.protocol.table import FUNCTIONS
+from dissector.model import Frame, Item, Kind
+from dissector.protocol.rules import CONFIRM, Confirm, confirmed_by
 from dissector.protocol.printable import printable
 
 COLUMNS = (
@@ -27,7 +35,7 @@ COLUMNS = (
 )
 # Keys a row takes as they are from the register (or bit) object of the NDJSON record.
 REGISTER_KEYS = ("address", "label", "code", "name", "value", "scaled", "unit", "status", "text")
-ECHOES = frozenset(entry.code for entry in FUNCTIONS if entry.echo)
+ECHOES = confirmed_by(Confirm.ECHO)  # whose answer repeats the values written (FC5, FC6): `echo` rows
 
 
 def access_of(record: dict[str, Any]) -> str:
@@ -39,20 +47,55 @@ def access_of(record: dict[str, Any]) -> str:
     return "echo" if record["function"] in ECHOES else "read"
 
 
-def register_rows(record: dict[str, Any]) -> Iterator[dict[str, Any]]:
+def _echoed(frame: Frame) -> dict[int | None, Any]:
+    """The values an answer repeats, by address (its registers, or its coil)."""
+    return {element.address: element.value for element in (frame.registers or ()) or (frame.bits or ())}
+
+
+def write_outcome(record: dict[str, Any], item: Item | None) -> tuple[str | None, int | None, dict | None]:
+    """(`write`, `exception_code`, the echo's values by address or None) of a record's rows (the module's
+    doc); `item` is the record's frame: a request's answer is known from it only (None: what the record
+    tells alone, an answered request's outcome unknown to the caller: empty)."""
+    kind, function = record["kind"], record["function"]
+    if kind == "exception":
+        return None, record["exception_code"], None
+    how = CONFIRM.get(function)
+    if how is None:
+        return None, None, None
+    if kind == "response":  # an echo confirms its own values (--stats CONFIRM)
+        return ("confirmed" if record["crc_ok"] else "unknown") if how is Confirm.ECHO else None, None, None
+    if record["broadcast"]:
+        return "broadcast", None, None
+    if record["unanswered"]:
+        return "unanswered", None, None
+    answer = item.response if isinstance(item, Frame) else None
+    if answer is None:
+        # (no answer in the capture: it ends first; or the caller has not the frame)
+        return ("unknown" if item is not None or "response_frame" not in record else None), None, None
+    if not (record["crc_ok"] and answer.crc_ok):
+        return "unknown", None, None  # (--stats takes neither as a refusal or a confirmation)
+    if answer.kind is Kind.EXCEPTION:
+        return "refused", answer.exception_code, None
+    return "confirmed", None, _echoed(answer) if how is Confirm.ECHO else None
+
+
+def register_rows(record: dict[str, Any], item: Item | None = None) -> Iterator[dict[str, Any]]:
     """One dict per register and bit of an NDJSON record (none for noise), keys as COLUMNS but `time`
-    (the record's epoch seconds are the caller's to show)."""
+    (the record's epoch seconds are the caller's to show); `item`: the record's frame (write_outcome)."""
     elements = (record.get("registers") or []) + (record.get("bits") or [])
     if not elements:
         return
+    write, code, echoed = write_outcome(record, item)
     head = {
         "frame": record["frame"], "slave": record["slave"], "function": record["function"],
-        "access": access_of(record),
+        "access": access_of(record), "write": write, "exception_code": code,
     }
     for element in elements:
         row = dict(head)
         for key in REGISTER_KEYS:
             row[key] = element.get(key)
+        if echoed is not None and echoed.get(row["address"], None) != row["value"]:
+            row["write"] = "differs"
         yield row
 
 
