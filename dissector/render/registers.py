@@ -127,13 +127,14 @@ class RegistersWriter:
         """(the header line or None, what the first line starts with: the BOM or nothing)."""
         return (self.separator.join(self.columns) if self.header else None), ("\ufeff" if self.bom else "")
 
-    def lines(self, record: dict[str, Any], time: str | None) -> list[str]:
+    def lines(self, record: dict[str, Any], time: str | None, item: Item | None = None) -> list[str]:
+        """`item`: the record's frame, whose answer tells what became of its writes (write_outcome)."""
         from dissector.render.fields import spreadsheet_cell
 
         quote, separator = self.quote, self.separator
         file = record.get("file")
         out = []
-        for row in register_rows(record):
+        for row in register_rows(record, item):
             row["time"] = time
             if file is not None:
                 row["file"] = file
