@@ -99,6 +99,8 @@ class PcapRecords:
             head = inp.read(record_header.size)
             if not head:
                 yield from held.release(False)
+                if self.record == 0:  # (tshark shows nothing: say why the output is empty)
+                    log.warn("empty", f"{inp.name}: the capture holds no records")
                 return
             self.record += 1
             if len(head) < record_header.size:

@@ -449,6 +449,10 @@ class PcapngChunks:
         except _Ended:
             pass
         yield from self._reader.held.release(False)
+        reader = self._reader
+        if reader.record == 0 and not reader.skipped and reader.only is None:
+            # (tshark shows nothing: say why the output is empty)
+            reader.log.warn("empty", f"{reader.inp.name}: the capture holds no packets")
         self._reader.skipped_warnings()
         self._reader.comment_warning()
 
