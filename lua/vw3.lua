@@ -7747,8 +7747,10 @@ local function explain_exception(f, device)
   elseif causes ~= nil and #causes > 0 then
     local texts = {}
     for _, cause in ipairs(pick_causes(request, profile, causes)) do texts[#texts + 1] = cause.text end
+    -- (the meaning is the causes the request picks, as the note: explain.exception_meaning)
+    f.exception_meaning = concat(texts, " or ")
     note(f, say("exception_cause", { code = code, device = profile.device, name = name,
-      causes = concat(texts, " or ") }))
+      causes = f.exception_meaning }))
   -- (a frame that failed its check tells nothing of the parameters, devices/memory.py: only the code's meaning)
   elseif code == profile.all_protected_exception and PLAIN_READS[f.fn] and request ~= nil and verified(f)
       and request.start ~= nil and request.quantity ~= nil and request.quantity > 0 then

@@ -3,6 +3,8 @@ meaning is said once, in one note (with the relay counters an error increments, 
 refused read was made of). One job: what an exception means on this device."""
 from __future__ import annotations
 
+from itertools import combinations
+
 from dissector.decode.pairing import trusted_request
 from dissector.devices.access import (READ_ONLY, READ_ONLY_EXCEPTION, READ_ONLY_MEANING, refused_read_only,
                                       written_read_only)
@@ -70,12 +72,17 @@ def refused_read(frame: Frame, device: Device) -> Frame | None:
 
 
 def exception_meaning(device: Device, function: int, code: int, request: Frame | None) -> str | None:
-    """Frame.exception_text of an exception answering `request` on the device, as explain_exception gives
-    it: a refused write of read-only parameters means that (access.READ_ONLY_MEANING), else the code's
-    meaning. The report's events re-told once profile `auto` chose the device (report/collect.py)."""
+    """Frame.exception_text of an exception answering `request` (None: not known) on the device, what its
+    note says: a refused write of read-only parameters means that (access.READ_ONLY_MEANING); the causes
+    the device lists for the code to this function, those the request picks (causes_meaning); else the
+    code's meaning. The report's events too (report/meaning.py), re-told once profile `auto` chose the device."""
     if code == READ_ONLY_EXCEPTION and request is not None and written_read_only(request, device):
         return READ_ONLY_MEANING
-    return device_meaning(device.profile, function, code)
+    profile = device.profile
+    causes = profile.exception_causes.get((function & 0x7F, code))
+    if causes:
+        return causes_meaning(request, profile, causes)
+    return device_meaning(profile, function, code)
 
 
 def _read_only_note(frame: Frame, profile: Profile, refused: list[str],
@@ -102,6 +109,22 @@ def device_meaning(profile: Profile, function: int, code: int) -> str | None:
 def causes_meaning(request: Frame | None, profile: Profile, causes: tuple[ExceptionCause, ...]) -> str:
     """The causes the request picks, as the note tells them (`a or b`); the report's events say the same."""
     return " or ".join(cause_text(cause) for cause in _pick_causes(request, profile, causes))
+
+
+def known_meanings(profile: Profile) -> frozenset[str]:
+    """Every text exception_meaning can give on the profile, the display filter's exception_meaning values
+    (Annotator.filter_names): each code's meaning (to a read of registers, with p.38's clause), a refused
+    read-only write's, and the causes of each choice _pick_causes can make (all of them without a request)."""
+    found = {READ_ONLY_MEANING}
+    for code, meaning in profile.exceptions.items():
+        found |= {meaning, device_meaning(profile, min(REGISTER_READS), code) or meaning}
+    for causes in profile.exception_causes.values():
+        whens = sorted({cause.when for cause in causes if cause.when})
+        picks = [causes, tuple(cause for cause in causes if cause.when is None) or causes]
+        picks += [tuple(cause for cause in causes if cause.when in chosen)
+                  for size in range(1, len(whens) + 1) for chosen in combinations(whens, size)]
+        found |= {" or ".join(cause_text(cause) for cause in pick) for pick in picks}
+    return frozenset(found)
 
 
 def _pick_causes(

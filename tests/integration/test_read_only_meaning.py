@@ -36,7 +36,7 @@ COUNTERS = "(increments the Invalid Address and Illegal Write counters)"
 # (a PLC-style device: its parameters named by the 4X reference the frame shows, 40101, as its other notes)
 SEL_NOTES = [f"exception 02 from the SEL-749M: SPD (40101) read-only (access R), not written {COUNTERS}"] * 2 + [
     f"exception 02 from the SEL-749M to Write Single Register: illegal register address {COUNTERS}"]
-SEL_MEANINGS = [MEANING, MEANING, "Illegal Data Address"]
+SEL_MEANINGS = [MEANING, MEANING, f"illegal register address {COUNTERS}"]  # (the cause, as the note: explain.py)
 SEL_WARNINGS = [["SPD (40101) is read-only (access R)"]] * 2 + [[]]
 
 

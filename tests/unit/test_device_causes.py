@@ -49,12 +49,13 @@ def test_within_the_limit_keeps_the_meaning(monkeypatch: pytest.MonkeyPatch, pur
 
 
 @pytest.mark.parametrize("pure", [False, True])
-def test_verbose_keeps_the_card_meaning(monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+def test_verbose_says_the_cause(monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
+    # (the meaning is the cause the note and --report give, test_cause_meaning; within the limit the card's)
     use_engine(monkeypatch, pure)
     status, out, err = run_cli(["--profile", "atv71", "-V", "--hex", OVER, "--hex", REFUSED])
     assert status == 0, err
     frame = out.split("Frame 2:")[1]
-    assert "        Meaning on this device: value not permitted\n" in frame
+    assert "        Meaning on this device: quantity beyond the card's limit\n" in frame
     assert "    Note: exception 03 from the VW3 A3 303 to Read Holding Registers: quantity beyond the card's limit\n" in frame
 
 

@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from dissector.devices.access import READ_ONLY_EXCEPTION, written_read_only
-from dissector.devices.explain import causes_meaning, exception_meaning
+from dissector.devices.access import READ_ONLY_EXCEPTION
+from dissector.devices.explain import exception_meaning
 from dissector.model import Frame
 
 
@@ -25,9 +25,4 @@ def needs_request(device: Any, function: int, code: int) -> bool:
 
 def device_meaning(device: Any, function: int, code: int, request: Frame | None) -> str | None:
     """The exception's meaning on `device` answering `request` (None: not known), as its note says it."""
-    function &= 0x7F
-    profile = device.profile
-    causes = profile.exception_causes.get((function, code))
-    if causes and not (code == READ_ONLY_EXCEPTION and request is not None and written_read_only(request, device)):
-        return causes_meaning(request, profile, causes)  # (the note's own choice, so event and note agree)
-    return exception_meaning(device, function, code, request)
+    return exception_meaning(device, function & 0x7F, code, request)
