@@ -85,7 +85,8 @@ def test_a_number_without_a_scale_keeps_its_unit_and_says_what_stats_says(tmp_pa
     use_engine(monkeypatch, pure)
     argv = [str(_pcap(tmp_path / "atv71.pcap", ATV71)), "--profile", "atv71"]
     html, data = _report(tmp_path, argv)
-    assert _parameter(data, "ACC") == {"unit": "s", "step": False, "labels": {}, "y": [10]}
+    # (ACC's unit as its value's text says it, report.js's tooltip `10 (unscaled, in s)`: test_report_unscaled_tooltip)
+    assert _parameter(data, "ACC") == {"unit": "(unscaled, in s)", "step": False, "labels": {}, "y": [10]}
     assert _parameter(data, "SFR") == {"unit": "kHz", "step": False, "labels": {}, "y": [4]}
     said = _stats_texts(argv)
     assert _single_value(html, "SFR") == said["SFR"] == "4.0 kHz"
@@ -116,7 +117,7 @@ def test_values_read_before_auto_chose_are_read_again_as_numbers(tmp_path: Path,
     from_file, file_data = _report(tmp_path, [str(capture)])
     from_stdin, stdin_data = _report(tmp_path, ["-"], stdin=capture.read_bytes())
     for html, data in ((from_file, file_data), (from_stdin, stdin_data)):
-        assert _parameter(data, "ACC") == {"unit": "s", "step": False, "labels": {}, "y": [10]}
+        assert _parameter(data, "ACC") == {"unit": "(unscaled, in s)", "step": False, "labels": {}, "y": [10]}
         assert _single_value(html, "ACC") == _stats_texts([str(capture)])["ACC"]
 
 

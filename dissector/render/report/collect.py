@@ -36,7 +36,7 @@ from dissector.render.report.columns import Y_DIGITS, Columns, compact_json as _
 from dissector.render.report.groups import EventGroups
 from dissector.render.report.meaning import device_meaning, event_text
 from dissector.render.report.moments import Moments
-from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, summary_text
+from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, shown_unit, summary_text
 from dissector.render.stats_store import TABLE_NAMES, table_label
 from dissector.render.summary import noise_text
 
@@ -467,7 +467,7 @@ class ReportCollector:
             "label": series.label,
             "code": series.code,
             "name": series.name,
-            "unit": series.unit,
+            "unit": shown_unit(series.row, series.unit),  # (as the table says it: `(unscaled, in s)`)
             "step": series.step,
             "labels": {str(value): text for value, text in sorted(series.labels.items())},
             "values": series.values,

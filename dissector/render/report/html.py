@@ -11,6 +11,7 @@ from typing import Any, Iterator, TextIO
 from dissector.errors import OutputError
 from dissector.render.report.collect import EVENT_KINDS, ReportCollector
 from dissector.render.report.markup import _esc, _ms, _table
+from dissector.render.report.reading import unit_heading
 from dissector.render.report.sections import _clock, bus_section, event_groups, parameter_index, single_values
 from dissector.render.stats import StatsCollector, exception_counts, merged_text, time_summary
 from dissector.render.describe import count_text
@@ -246,7 +247,7 @@ def _bus_pieces(collector: ReportCollector, stats: StatsCollector, extras: dict[
         code = parameter["code"]
         shown = parameter.get("label") or str(parameter["address"])  # as --address-style shows it
         head = f"{code} ({shown})" if code else shown
-        extra = ", ".join(filter(None, [parameter["name"], parameter["unit"] and f"in {parameter['unit']}",
+        extra = ", ".join(filter(None, [parameter["name"], unit_heading(parameter["unit"]),
                                          "steps" if parameter["step"] else None]))
         marks = "".join(
             f'<li class="mark" data-x="{x}">{_esc(when(x + data["origin"]))}: {_esc(text)}</li>'

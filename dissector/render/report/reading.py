@@ -12,6 +12,7 @@ from typing import Any
 
 from dissector.devices.maps import interpret
 from dissector.model import Register
+from dissector.protocol.rules import text as say_text
 from dissector.render.stats_store import table_label, table_reader
 from dissector.render.watch import value_text
 
@@ -79,6 +80,30 @@ def summary_text(register: Register) -> str:
     an unscaled value's own text)."""
     text, unit = value_text(register)
     return text if unit is None else f"{text} {unit}"
+
+
+def shown_unit(row: Any, unit: str | None) -> str | None:
+    """The unit a trend's data gives (report.js: its axis label, each tooltip's `value unit`): what the
+    value's text says after its number (watch.py value_text), `(unscaled, in s)` where the device's
+    settings choose the row's scale (map scale `?`, maps.interpret: ACC/DEC), as the table says `10
+    (unscaled, in s)`; else the unit."""
+    if unit is None or row is None or not getattr(row, "scale_unknown", False):
+        return unit
+    return _unscaled(unit)
+
+
+def _unscaled(unit: str) -> str:
+    return say_text("unscaled", value=0, unit=unit).split(" ", 1)[1]  # (what follows the number, `0`)
+
+
+def unit_heading(unit: str | None) -> str | None:
+    """A trend's unit (shown_unit) as its heading says it: `in Hz`; unscaled, `unscaled, in s`."""
+    if unit is None:
+        return None
+    return unit[1:-1] if unit.startswith(_UNSCALED) else f"in {unit}"
+
+
+_UNSCALED = _unscaled("\0").split("\0")[0]  # `(unscaled, in `
 
 
 def scales(row: Any) -> bool:
