@@ -149,6 +149,17 @@ def number(word: str, text: str, position: int) -> int | float:
     return float(word) if any(c in word for c in ".eE") else int(word)
 
 
+def strtol(text: str) -> int | None:
+    """`text` read as C's strtol(text, &end, 0) reads a whole number (a slice's offsets in tshark 4.0.17):
+    a sign, then 0x hex, a leading 0 octal, or decimal; None when any of it is left unread."""
+    match = re.fullmatch(r"([-+]?)(0[xX][0-9A-Fa-f]+|0[0-7]*|[1-9][0-9]*)", text)
+    if match is None:
+        return None
+    sign, digits = match.groups()
+    value = int(digits, 16) if digits[:2] in ("0x", "0X") else int(digits, 8) if digits[0] == "0" else int(digits)
+    return -value if sign == "-" else value
+
+
 def parse_bytes(token: Token) -> bytes | None:
     """The bytes an unquoted literal names for a bytes field, as tshark reads one: pairs of hex digits
     with one separator (0c:03, 0c-03, 0c.03), a run of pairs (0c03) or one digit (1: 01); None if not."""

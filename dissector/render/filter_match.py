@@ -75,18 +75,18 @@ def as_bytes(hex_text: Any) -> bytes | None:
         return None
 
 
-def cut_bytes(data: bytes, ranges: list[tuple[str | None, ...]]) -> bytes | None:
-    """The slice `ranges` of `data` joined, each (start, colon, length, last) as filters._RANGE reads it;
-    None (no field, as tshark's) when one does not fit."""
+def cut_bytes(data: bytes, ranges: list[tuple[int | None, bool, int | None, int | None]]) -> bytes | None:
+    """The slice `ranges` of `data` joined, each (start, colon, length, last) as filters.parse_slice reads
+    it; None (no field, as tshark's) when one does not fit."""
     out = b""
-    for start_text, colon, length, last in ranges:
-        start = int(start_text or 0)
+    for start, colon, length, last in ranges:
+        start = start or 0
         if start < 0:
             start += len(data)
         if last is not None:  # first-last, both included
-            end = int(last) + 1 if int(last) >= 0 else int(last) + len(data) + 1
-        elif colon is not None:  # start:length, start: (to the end)
-            end = len(data) if length is None else start + int(length)
+            end = last + 1 if last >= 0 else last + len(data) + 1
+        elif colon:  # start:length, start: (to the end)
+            end = len(data) if length is None else start + length
         else:  # one byte
             end = start + 1
         if start < 0 or end > len(data) or end <= start:

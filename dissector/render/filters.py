@@ -85,7 +85,6 @@ from dissector.render.filter_match import (
     compile_regex,
     any_bit_bytes,
     as_bytes,
-    cut_bytes,
     latin1,
     contains_text,
     in_members,
@@ -97,12 +96,11 @@ from dissector.render.filter_match import (
 )
 
 from dissector.render.filter_ops import needs_expression, parse_expression_test
+from dissector.render.filter_syntax import parse_set, parse_slice
 from dissector.render.filter_values import TIME_TYPES, kind_of, time_literal, type_name, uint_limit
 from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
 
-# One range of a slice: start:length, start:, :length, first-last or an offset (a start < 0: from the end)
-_RANGE = re.compile(r"(-?\d+)?(?:(:)(\d+)?|-(-?\d+))?")
 _COMPARISONS = ("==", "!=", "~=", "===", "<", "<=", ">", ">=")
 MAX_DEPTH = 64  # nested parentheses and `not`: deeper is certainly a mistake, and recursion is bounded
 
@@ -270,23 +268,7 @@ class _Parser:
         return get
 
     def parse_slice(self, field: str, ftype: str) -> Callable[[bytes], bytes | None] | None:
-        """`raw[0:2]` (start:length), `raw[0-1]` (first-last), `raw[:2]`, `raw[2:]`, `raw[-2:]`, `raw[4]`,
-        several joined by commas (`raw[0,2:2]`), as Wireshark's slices; None: no slice follows."""
-        token = self.token
-        if token.kind != "slice":
-            return None
-        if ftype not in ("bytes", "str"):
-            raise self.error(f"{field} is a {_TYPE_WORDS[ftype]}: only bytes (raw) and texts take a slice",
-                             token)
-        self.advance()
-        ranges = []
-        for part in token.text[1:-1].split(","):
-            match = _RANGE.fullmatch(part.strip())
-            if match is None or not part.strip():
-                raise self.error(f"{token.text}: a slice is [start:length], [first-last], [start:], "
-                                 "[:length] or [offset], as raw[0:2]", token)
-            ranges.append(match.groups())
-        return lambda data: cut_bytes(data, ranges)
+        return parse_slice(self, field, ftype)  # (render/filter_syntax.py)
 
     def parse_pdu_key_test(self, field: str, key: str) -> tuple[Test, bool]:
         """`fields.KEY OP value`: a key holding a list (fields.values, fields.sub_requests...) is a repeated
@@ -503,47 +485,7 @@ class _Parser:
         return token.value
 
     def parse_set(self, field: str, ftype: str) -> list[tuple[Any, Any]]:
-        """`{a, b, c..d}`: a list of (low, high) pairs. As tshark 4.0.17 reads a set, members are separated
-        by commas (`{3 4}`, `{3,}` and `{}` refused) and a range stands inside braces (`in 3..4` refused)."""
-        if ftype in ("bool", "list"):
-            raise self.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
-        if not self.at("punct", "{"):
-            hint = ""
-            low, dots, high = (self.tokens[self.index:] + [self.tokens[-1]] * 2)[:3]
-            if dots.text == ".." and high.kind != "end":
-                hint = f" (a range goes in a set: {{{low.text}..{high.text}}})"
-            raise self.unexpected(f"expected {{ after in, a set such as {{3, 4, 8400..8402}}{hint}")
-        opening = self.advance()
-        members: list[tuple[Any, Any]] = []
-        while True:
-            if self.token.kind == "end":
-                raise self.error(f"expected }} to close the {{ at column {opening.position + 1}")
-            if self.at("punct", "}"):
-                raise self.unexpected("a set holds values separated by commas, none after the last "
-                                      "(as tshark 4.0)" if members else "a set holds at least one value")
-            members.append(self.parse_member(field, ftype))
-            if self.at("punct", "}"):
-                break
-            if self.token.kind == "end":
-                raise self.error(f"expected }} to close the {{ at column {opening.position + 1}")
-            if not self.at("punct", ","):
-                raise self.unexpected("set members are separated by commas, as tshark 4.0 takes them "
-                                      "({3, 4})")
-            self.advance()
-        self.advance()
-        return members
-
-    def parse_member(self, field: str, ftype: str) -> tuple[Any, Any]:
-        value_token = self.token
-        low = self.parse_value(field, ftype)
-        self._check_choice(field, low, value_token)
-        if self.at("punct", ".."):
-            if ftype not in ("number", "any"):
-                raise self.error(f"ranges need numbers; {field} is a text")
-            self.advance()
-            high = self.parse_value(field, ftype)
-            return (low, high)
-        return (low, low)
+        return parse_set(self, field, ftype)  # (render/filter_syntax.py)
 
     # -- messages -----------------------------------------------------------------------------
     def _check_choice(self, field: str, value: Any, token: Token) -> None:

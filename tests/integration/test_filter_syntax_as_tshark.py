@@ -1,7 +1,8 @@
 """The syntax of -Y as tshark 4.0.17 reads it, against a real tshark running the plugin (two passes) on the
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
-(members separated by commas, a range inside braces)."""
+(members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
+slice, a length that is not positive and first-last with first >= last refused)."""
 from __future__ import annotations
 
 import subprocess
@@ -19,6 +20,14 @@ CASES = [
     ("noisy_bus.pcap", "slave in {10 .. 12}", "vw3.slave in {10 .. 12}"),
     ("atv71_commissioning.pcap", "scaled in {-200..50}", "vw3.reg.scaled in {-200..50}"),
     ("atv71_commissioning.pcap", 'code in {"FR1", "CD1"}', 'vw3.reg.code in {"FR1", "CD1"}'),
+    ("noisy_bus.pcap", "raw[ 0 : 2 ] == 0c:03", "frame[ 0 : 2 ] == 0c:03"),
+    ("noisy_bus.pcap", "raw[0 :2] == 0c:03 or raw[4-5] == 00:03", "frame[0 :2] == 0c:03 or frame[4-5] == 00:03"),
+    ("noisy_bus.pcap", "raw[0x1] == 03", "frame[0x1] == 03"),
+    ("noisy_bus.pcap", "raw[1:0x2] == 0300", "frame[1:0x2] == 0300"),
+    ("noisy_bus.pcap", "raw[-0x2:] == 27:5a", "frame[-0x2:] == 27:5a"),
+    ("noisy_bus.pcap", "raw[0:2][1] == 03", "frame[0:2][1] == 03"),
+    ("noisy_bus.pcap", "raw[1:] [0:2] == 03:08", "frame[1:] [0:2] == 03:08"),
+    ("noisy_bus.pcap", "raw[0-1] == 0c03", "frame[0-1] == 0c03"),
 ]
 
 REFUSED = [
@@ -34,6 +43,15 @@ REFUSED = [
     ("noisy_bus.pcap", "slave in {12", "vw3.slave in {12"),
     ("noisy_bus.pcap", "slave in 10..12", "vw3.slave in 10..12"),
     ("noisy_bus.pcap", "slave in 12", "vw3.slave in 12"),
+    ("noisy_bus.pcap", "raw[2:0] == 0c", "frame[2:0] == 0c"),
+    ("noisy_bus.pcap", "raw[:0] == 0c", "frame[:0] == 0c"),
+    ("noisy_bus.pcap", "raw[:-1] == 0c", "frame[:-1] == 0c"),
+    ("noisy_bus.pcap", "raw[1-1] == 03", "frame[1-1] == 03"),
+    ("noisy_bus.pcap", "raw[2-1] == 03", "frame[2-1] == 03"),
+    ("noisy_bus.pcap", "raw[2147483648] == 0c", "frame[2147483648] == 0c"),
+    ("noisy_bus.pcap", "raw[0:2,] == 0c03", "frame[0:2,] == 0c03"),
+    ("noisy_bus.pcap", "raw[1e0] == 0c", "frame[1e0] == 0c"),
+    ("noisy_bus.pcap", "raw[08] == 0c", "frame[08] == 0c"),
 ]
 
 
