@@ -31,7 +31,7 @@ _TOKEN = re.compile(
   | (?P<bytes>""" + _BYTES + r""")
   | (?P<dashed>\d+-\d+)(?![0-9A-Za-z_#.])
   | (?P<number>(?:0[xX][0-9A-Fa-f]+|\d+\#[0-9A-Za-z_]+|-?\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)(?![0-9A-Za-z_#]))
-  | (?P<string>")
+  | (?P<string>[rR]?")
   | (?P<char>')
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*(?:\.[A-Za-z_][A-Za-z0-9_]*)*)
   | (?P<op>===|!==|==|!=|~=|<=|>=|&&|\|\||<|>|!|&|~|[-+*/%])
@@ -50,11 +50,14 @@ _NUMERIC_ESCAPE = re.compile(r"x[0-9A-Fa-f]{1,2}|[0-7]{1,3}")
 
 
 def _string(text: str, start: int) -> tuple[str, bytes, int]:
-    """The string at `start` (its opening quote): its text, its bytes (typed characters in UTF-8, each
-    \\xhh or octal \\ooo escape the one byte it names, as Wireshark's) and where it ends."""
+    """The string at `start` (its opening quote, or the r of a raw string r"..."): its text, its bytes
+    (typed characters in UTF-8, each \\xhh or octal \\ooo escape the one byte it names, as Wireshark's)
+    and where it ends. A raw string keeps its backslashes (r"\\s+" is the regular expression \\s+), and
+    \\" in it does not end it, as tshark 4.0.17 reads one."""
     out: list[str] = []
     data = bytearray()
-    i = start + 1
+    raw = text[start] in "rR"
+    i = start + 1 + raw
     while i < len(text):
         char = text[i]
         if char == '"':
@@ -62,6 +65,11 @@ def _string(text: str, start: int) -> tuple[str, bytes, int]:
         if char == "\\":
             if i + 1 >= len(text):
                 break
+            if raw:
+                out.append(text[i:i + 2])
+                data += text[i:i + 2].encode()
+                i += 2
+                continue
             numeric = _NUMERIC_ESCAPE.match(text, i + 1)
             if numeric is not None:
                 digits = numeric.group()

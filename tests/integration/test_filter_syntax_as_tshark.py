@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused)."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings."""
 from __future__ import annotations
 
 import subprocess
@@ -28,6 +28,12 @@ CASES = [
     ("noisy_bus.pcap", "raw[0:2][1] == 03", "frame[0:2][1] == 03"),
     ("noisy_bus.pcap", "raw[1:] [0:2] == 03:08", "frame[1:] [0:2] == 03:08"),
     ("noisy_bus.pcap", "raw[0-1] == 0c03", "frame[0-1] == 0c03"),
+    # raw strings keep their backslashes
+    ("noisy_bus.pcap", 'function_name matches r"^read\\sh"', 'vw3.function_name matches r"^read\\sh"'),
+    ("noisy_bus.pcap", 'function_name matches R"Read\\x20Holding"', 'vw3.function_name matches R"Read\\x20Holding"'),
+    ("noisy_bus.pcap", 'function_name contains r"\\x52"', 'vw3.function_name contains r"\\x52"'),
+    ("noisy_bus.pcap", 'function_name matches r"Read\\"H"', 'vw3.function_name matches r"Read\\"H"'),
+    ("noisy_bus.pcap", 'function_name in {r"Read Holding Registers"}', 'vw3.function_name in {r"Read Holding Registers"}'),
 ]
 
 REFUSED = [
@@ -52,6 +58,8 @@ REFUSED = [
     ("noisy_bus.pcap", "raw[0:2,] == 0c03", "frame[0:2,] == 0c03"),
     ("noisy_bus.pcap", "raw[1e0] == 0c", "frame[1e0] == 0c"),
     ("noisy_bus.pcap", "raw[08] == 0c", "frame[08] == 0c"),
+    ("noisy_bus.pcap", 'function_name matches r"Read\\"', 'vw3.function_name matches r"Read\\"'),
+    ("noisy_bus.pcap", 'function_name matches r "Read"', 'vw3.function_name matches r "Read"'),
 ]
 
 
