@@ -29,6 +29,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
+from dissector.decode.pairing import trusted_request
 from dissector.model import Frame, Item, Kind, Register
 from dissector.render.history import UNREADABLE, History
 # (Columns, drawn and Y_DIGITS are the report's from here too: health.py, the codegen, the tests)
@@ -189,13 +190,16 @@ class ReportCollector:
                 self._event(x, "exception", frame.slave, "exception")
             else:
                 device = None if self._device is None else self._device(frame.slave)
+                # (not a request that failed its check: the slave answered bytes the tap did not see,
+                # so its meaning picks nothing from it, as the note's: explain.explain_exception)
+                request = trusted_request(frame)
                 told = event_text(frame.function, code, frame.exception_text if device is None else
-                                  device_meaning(device, frame.function, code, frame.request))
+                                  device_meaning(device, frame.function, code, request))
                 if frame.provisional and self._device is not None:
                     # Decoded before profile `auto` chose the slave's device: no meaning yet (data() tells it)
                     # (its request kept: a refused read-only write, the causes it picks: meaning.py)
                     self._pending.append((len(self.events) if len(self.events) < MAX_EVENTS else None,
-                                          frame.slave, frame.function, code, told, frame.request))
+                                          frame.slave, frame.function, code, told, request))
                 self._event(x, "exception", frame.slave, told)
         if self.owns_history:
             self.history.add(frame)
