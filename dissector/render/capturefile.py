@@ -331,8 +331,9 @@ class CaptureOutput:
 
         `pieces` (sources/trail.py, by id(item)): an item whose input's time changes inside it is written
         as the chunks it came in, each a record at its own time (a silence inside a frame reads back as
-        one; from inside a chunk, its first record takes the chunk's earlier bytes: _absorb), and the
-        input's packet comments go on the records of the bytes they were on, each an opt_comment.
+        one), an item from inside a timed chunk has its first record take the chunk's earlier bytes
+        (_absorb: a copy of timed reads is its reads), and the input's packet comments go on the records
+        of the bytes they were on, each an opt_comment.
         `settled` (sources/trail.py RecordTrail.settled): no item after these begins its first record before
         this stream offset; when none of these does either (none takes earlier bytes), the records ending
         there are out of _absorb's reach: they are written, not held back."""
@@ -393,8 +394,8 @@ class CaptureOutput:
         noise = isinstance(item, Noise)
         data = item.raw[begin:end] if begin or end < item.length else item.raw
         first, last = begin == 0, end == item.length
-        if lead is not None:
-            own = [*lead[2], *([noise_comment(item) or ""] if noise else [])]
+        if lead is not None:  # (the noise after the read's first bytes: "then noise: ...", as release says it)
+            own = [*lead[2], *([f"then {noise_comment(item)}"] if noise else [])]
             self._record((lead[0] + data, lead[1], own, lead[3] + users, item.offset + end, lead[5]))
             return
         held = self._held
