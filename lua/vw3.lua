@@ -7652,11 +7652,22 @@ local function check_writes(f, device)
   end
 end
 
+local function outside(quantity, limit)
+  return limit ~= nil and quantity ~= nil and not (quantity >= 1 and quantity <= limit)
+end
+
 local function holds(when, request, profile)
-  local fields, quantity = request.fields, request.quantity
+  local fields = request.fields
   if when == "quantity" then
-    local limit = (profile.limits[request.fn] or { READ_LIMIT })[1]
-    return quantity ~= nil and not (quantity >= 1 and quantity <= limit)
+    -- Every quantity the request's lifting rule checks (FC23: read and write, as check_request warns of
+    -- them), each against the device's limit for it (without one, a read's READ_LIMIT): explain._holds
+    local limits = profile.limits[request.fn] or { READ_LIMIT }
+    local rule = LIFT_OF[REQUEST][request.fn]
+    if rule == nil or rule.write_window == nil or fields == nil then return outside(request.quantity, limits[1]) end
+    for index, check in ipairs(rule.checks) do
+      if outside(fields[check.field], limits[index]) then return true end
+    end
+    return false
   end
   return when == "byte_count" and fields ~= nil and fields.byte_count ~= nil and fields.quantity ~= nil
     and fields.byte_count ~= 2 * fields.quantity

@@ -13,10 +13,11 @@ from dissector.devices.memory import lost
 from dissector.devices.naming import address_name, plc_label
 from dissector.devices.profiles import ExceptionCause, Profile
 from dissector.devices.story import Event, listed
-from dissector.model import Frame, Note, Register
+from dissector.model import Frame, Kind, Note, Register
 from dissector.protocol import table
 from dissector.protocol.rules import text
 from dissector.protocol.spec import SPEC
+from dissector.protocol.table import lift_of
 
 # Reads whose exception can be explained parameter by parameter (FC23 may fail on its write part).
 PLAIN_READS = table.plain_register_reads()
@@ -222,10 +223,14 @@ def _remember(cache: dict[object, object], key: object, value: object) -> None:
 def _holds(when: str, request: Frame, profile: Profile) -> bool:
     fields = request.fields
     if when == "quantity":
-        quantity = request.quantity
-        limits = profile.limits.get(request.function)
-        limit = limits[0] if limits else READ_LIMIT
-        return quantity is not None and not 1 <= quantity <= limit
+        # Every quantity the request's lifting rule checks (FC23: read and write, as checks.py warns of
+        # them), each against the device's limit for it (without one, a read's READ_LIMIT)
+        limits = profile.limits.get(request.function) or (READ_LIMIT,)
+        rule = lift_of(request.function, Kind.REQUEST)
+        quantities = ([request.quantity] if rule is None or rule.write_window is None or fields is None
+                      else [fields[check.field] for check in rule.checks])
+        return any(quantity is not None and not 1 <= quantity <= limit
+                   for quantity, limit in zip(quantities, limits))
     if when == "byte_count":
         if fields is None or "byte_count" not in fields or "quantity" not in fields:
             return False
