@@ -24,7 +24,7 @@ from typing import Any
 
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes
 from dissector.render.filter_match import item_elements
-from dissector.render.filter_values import kind_of, time_literal, type_name, uint_limit
+from dissector.render.filter_values import bool_literal, kind_of, time_literal, type_name, uint_limit
 
 Item = dict[str, Any]
 Values = Callable[[Item, dict[str, Any] | None], list[Any]]
@@ -76,6 +76,8 @@ def literal_value(p: Any, token: Token, ftype: str) -> Any:
     kind = kind_of(ftype)
     if kind == "none":
         raise p.error(f"{token.text} has no type to take here: compare a field with it", token)
+    if kind == "bool":
+        return bool_literal(token, p.text, "it")
     if token.kind == "string":
         if kind == "str":
             return token.value
@@ -100,12 +102,8 @@ def literal_value(p: Any, token: Token, ftype: str) -> Any:
     value = token.value
     if token.kind == "bytes" and (NUMBER.fullmatch(token.text) or token.text[:2] in ("0b", "0B")):
         value = number(token.text, p.text, token.position)
-    elif token.kind not in ("number", "char") and not (kind == "bool" and token.text in ("true", "false")):
+    elif token.kind not in ("number", "char"):
         raise p.error(f"{token.text} is not a number", token)
-    if kind == "bool":
-        if value not in (0, 1, "true", "false") or isinstance(value, float):
-            raise p.error(f"{token.text} is not true or false (1 or 0)", token)
-        return value in (1, "true")
     if kind == "int" and isinstance(value, float):
         raise p.error(f"{token.text} is not a whole number, and this is {type_name(ftype)} (as tshark "
                       "refuses it)", token)

@@ -90,8 +90,9 @@ def _extreme(p: Any, name: Any, text: str, arguments: list[Operand]) -> Operand:
         if argument.ftype != first.ftype:
             raise p.error(f"the arguments of {name.value}() have one type: {first.text} is {first.ftype}, "
                           f"{argument.text} {argument.ftype} (as tshark)", name)
-    if kind_of(first.ftype) in ("bool", "none"):
-        raise p.error(f"{first.text} cannot be ordered: {name.value}() takes numbers, texts or bytes", name)
+    if kind_of(first.ftype) == "none":  # (true/false are ordered, false first, as tshark 4.0.17's)
+        raise p.error(f"{first.text} cannot be ordered: {name.value}() takes numbers, texts, bytes or "
+                      "true/false", name)
     pick: Callable[..., Any] = max if name.value == "max" else min
 
     def values(item: Item) -> list[Any]:

@@ -110,10 +110,10 @@ def contains_text(actual: Any, value: str) -> bool:
 
 
 def in_members(actual: Any, members: list[tuple[Any, Any]]) -> bool:
-    if actual is None or isinstance(actual, bool):
+    if actual is None:
         return False
-    for low, high in members:
-        if isinstance(low, str) != isinstance(actual, str):
+    for low, high in members:  # (a true/false field's members are true or false: crc_ok in {0..1})
+        if isinstance(low, str) != isinstance(actual, str) or isinstance(low, bool) != isinstance(actual, bool):
             continue
         if low == high:
             if actual == low:

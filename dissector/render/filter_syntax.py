@@ -69,7 +69,7 @@ def _slice_range(p: Any, part: str, token: Token) -> tuple[int | None, bool, int
 def parse_set(p: Any, field: str, ftype: str) -> list[tuple[Any, Any]]:
     """`{a, b, c..d}`: a list of (low, high) pairs. As tshark 4.0.17 reads a set, members are separated
     by commas (`{3 4}`, `{3,}` and `{}` refused) and a range stands inside braces (`in 3..4` refused)."""
-    if ftype in ("bool", "list"):
+    if ftype == "list":
         raise p.error(f"in needs a number or text field; {field} is a {_TYPE_WORDS[ftype]}")
     if not p.at("punct", "{"):
         hint = ""
@@ -103,7 +103,7 @@ def _parse_member(p: Any, field: str, ftype: str) -> tuple[Any, Any]:
     low = p.parse_value(field, ftype)
     p._check_choice(field, low, value_token)
     if p.at("punct", ".."):
-        if ftype not in ("number", "any"):
+        if ftype not in ("number", "any", "bool"):
             raise p.error(f"ranges need numbers; {field} is a text")
         p.advance()
         high = p.parse_value(field, ftype)

@@ -5,6 +5,7 @@ is the number of that character. render/filters.py and render/filter_expr.py rea
 from __future__ import annotations
 
 import re
+from typing import Any
 
 TIME_TYPES = ("FT_RELATIVE_TIME", "FT_ABSOLUTE_TIME")
 # Seconds as tshark 4.0.17 takes them for a time (1.5, 014 is 14, -1): no exponent, no hex, 9 decimals at most
@@ -51,3 +52,28 @@ def wire_size(ftype: str) -> int:
         return 4
     limit = uint_limit(ftype)
     return 0 if limit is None else limit.bit_length() // 8
+
+
+def bool_literal(token: Any, text: str, field: str) -> bool:
+    """What a literal means for a true/false field (FT_BOOLEAN), as tshark 4.0.17 reads it: true or false
+    in any case, quoted or not (crc_ok == "TRUE"), a whole number or a character, true unless 0
+    (crc_ok == 2, 0x10, '\\0'); a negative number, a decimal or another text refused as tshark refuses them."""
+    from dissector.render.filter_error import FilterError
+    from dissector.render.filter_lexer import number
+
+    if token.kind == "keyword" and token.value in ("true", "false"):
+        return token.value == "true"
+    if token.kind == "string" and token.value.lower() in ("true", "false"):
+        return token.value.lower() == "true"
+    value = token.value
+    if token.kind == "bytes" and token.text[:2] in ("0b", "0B"):  # (0b10 is read as bytes first)
+        value = number(token.text, text, token.position)
+    elif token.kind not in ("number", "char"):
+        value = None
+    if isinstance(value, int) and value < 0:
+        raise FilterError(f"{field} is true or false: it takes no negative number (tshark: FT_BOOLEAN "
+                          "cannot -)", text, token.position)
+    if not isinstance(value, int) or value >= 1 << 64:
+        raise FilterError(f"{token.text} cannot be found among the possible values for {field}: true, false "
+                          "or a whole number (0 is false, any other true)", text, token.position)
+    return value != 0

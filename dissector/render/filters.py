@@ -20,7 +20,9 @@ Syntax, close to Wireshark's:
                                             0x.. hex, 0b1100, 014 (octal, as Wireshark's), 16#8000
                                             (IEC, as the notes print values), 13.5e-3
                                             (not for a whole-number field: tshark refuses frame == 1e0),
-                                            true / false, 'a' '\\x0c' (a character: its number)
+                                            true / false (a true/false field also takes a whole number:
+                                            0 false, any other true, as tshark's), 'a' '\\x0c' (a character:
+                                            its number)
     len(raw) == 8   count(value) > 1        functions and arithmetic, as tshark 4.0.17's: len count upper
     {slave + 1} == 13   value - 1 > 2       lower string max min abs; + - * / % & (render/filter_expr.py)
 
@@ -97,7 +99,7 @@ from dissector.render.filter_match import (
 
 from dissector.render.filter_ops import needs_expression, parse_expression_test
 from dissector.render.filter_syntax import parse_set, parse_slice
-from dissector.render.filter_values import TIME_TYPES, kind_of, time_literal, type_name, uint_limit
+from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, time_literal, type_name, uint_limit
 from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
 
@@ -383,8 +385,6 @@ class _Parser:
         written = token.value
         value_token = self.token
         value = self.parse_value(field, ftype)
-        if ftype == "bool" and written not in ("==", "!=", "~=", "==="):
-            raise self.error(f"{field} is true or false: only ==, != and ~= compare it", token)
         if ftype == "list":
             if op == "!=":  # all_ne: some element, and none equal
                 return lambda item, reg: bool(get(item, reg)) and all(v != value for v in get(item, reg))
@@ -416,14 +416,10 @@ class _Parser:
         if token.kind == "char" and ftype in ("str", "list", "bytes"):  # 'R': a text's character, a byte
             self.advance()
             return bytes([token.value]) if ftype == "bytes" else chr(token.value)
-        if ftype == "bool":  # true/false, or 1/0 as Wireshark takes them and -T fields prints them
-            if token.kind in ("number", "char") and token.value in (0, 1) and isinstance(token.value, int):
-                self.advance()
-                return token.value == 1
-            if not self.at("keyword", "true", "false"):
-                raise self.error(f"{field} is true or false (or 1 or 0), not {self._describe(token)}")
+        if ftype == "bool":  # true, false, or a whole number as tshark 4.0.17 takes them (crc_ok == 2: true)
+            value = bool_literal(token, self.text, field)
             self.advance()
-            return token.value == "true"
+            return value
         if field == "time" and token.kind == "string":  # a date and time, as tshark's frame.time takes
             from dissector.render.filter_dates import EXAMPLES, absolute_time
 

@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused); raw strings."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields."""
 from __future__ import annotations
 
 import subprocess
@@ -34,6 +34,22 @@ CASES = [
     ("noisy_bus.pcap", 'function_name contains r"\\x52"', 'vw3.function_name contains r"\\x52"'),
     ("noisy_bus.pcap", 'function_name matches r"Read\\"H"', 'vw3.function_name matches r"Read\\"H"'),
     ("noisy_bus.pcap", 'function_name in {r"Read Holding Registers"}', 'vw3.function_name in {r"Read Holding Registers"}'),
+    # true/false fields: a whole number is true unless 0, true/false quoted or not, ordered (false first)
+    ("noisy_bus.pcap", "crc_ok == 2", "vw3.crc_ok == 2"),
+    ("noisy_bus.pcap", "crc_ok == 0x10 and slave == 12", "vw3.crc_ok == 0x10 and vw3.slave == 12"),
+    ("noisy_bus.pcap", "crc_ok == 0b10", "vw3.crc_ok == 0b10"),
+    ("noisy_bus.pcap", 'crc_ok == "TRUE"', 'vw3.crc_ok == "TRUE"'),
+    ("noisy_bus.pcap", 'crc_ok == "false"', 'vw3.crc_ok == "false"'),
+    ("noisy_bus.pcap", "crc_ok == '\\0'", "vw3.crc_ok == '\\0'"),
+    ("noisy_bus.pcap", "crc_ok < 1", "vw3.crc_ok < 1"),
+    ("noisy_bus.pcap", "crc_ok >= false", "vw3.crc_ok >= false"),
+    ("noisy_bus.pcap", "crc_ok > true", "vw3.crc_ok > true"),
+    ("noisy_bus.pcap", "crc_ok in {0..0}", "vw3.crc_ok in {0..0}"),
+    ("noisy_bus.pcap", "crc_ok in {2..3}", "vw3.crc_ok in {2..3}"),
+    ("noisy_bus.pcap", "crc_ok != 2", "vw3.crc_ok != 2"),
+    ("noisy_bus.pcap", "crc_ok === 4294967296", "vw3.crc_ok === 4294967296"),
+    ("noisy_bus.pcap", "broadcast == 7", "vw3.broadcast == 7"),
+    ("noisy_bus.pcap", "max(crc_ok) == 1", "max(vw3.crc_ok) == 1"),
 ]
 
 REFUSED = [
@@ -60,6 +76,14 @@ REFUSED = [
     ("noisy_bus.pcap", "raw[08] == 0c", "frame[08] == 0c"),
     ("noisy_bus.pcap", 'function_name matches r"Read\\"', 'vw3.function_name matches r"Read\\"'),
     ("noisy_bus.pcap", 'function_name matches r "Read"', 'vw3.function_name matches r "Read"'),
+    ("noisy_bus.pcap", 'crc_ok == "1"', 'vw3.crc_ok == "1"'),
+    ("noisy_bus.pcap", "crc_ok == -1", "vw3.crc_ok == -1"),
+    ("noisy_bus.pcap", "crc_ok == 1.5", "vw3.crc_ok == 1.5"),
+    ("noisy_bus.pcap", "crc_ok == 1e0", "vw3.crc_ok == 1e0"),
+    ("noisy_bus.pcap", "crc_ok == yes", "vw3.crc_ok == yes"),
+    ("noisy_bus.pcap", "crc_ok == 99999999999999999999", "vw3.crc_ok == 99999999999999999999"),
+    ("noisy_bus.pcap", "crc_ok & 1", "vw3.crc_ok & 1"),
+    ("noisy_bus.pcap", "crc_ok contains 1", "vw3.crc_ok contains 1"),
 ]
 
 

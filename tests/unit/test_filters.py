@@ -148,8 +148,11 @@ ERRORS = [
         "  code == CHCF\n          ^",
     ),
     ("(slave == 3", "expected ) to close the ( at column 1 (column 12)\n  (slave == 3\n             ^"),
-    ("crc_ok == 2", "crc_ok is true or false (or 1 or 0), not '2' (column 11)\n  crc_ok == 2\n            ^"),
-    ("crc_ok > true", "crc_ok is true or false: only ==, != and ~= compare it (column 8)\n  crc_ok > true\n         ^"),
+    # (as tshark 4.0.17 refuses them: crc_ok == 2 is true, crc_ok > false the good ones)
+    ("crc_ok == -1", "crc_ok is true or false: it takes no negative number (tshark: FT_BOOLEAN cannot -) "
+     "(column 11)\n  crc_ok == -1\n            ^"),
+    ("crc_ok == \"1\"", "\"1\" cannot be found among the possible values for crc_ok: true, false or a whole "
+     "number (0 is false, any other true) (column 11)\n  crc_ok == \"1\"\n            ^"),
     ('kind == "req"', "kind 'req' does not exist (did you mean 'request'?): kind is one of request, response, exception, noise (column 9)\n  kind == \"req\"\n          ^"),
     ("", "empty filter: give an expression such as slave == 12 (column 1)\n  \n  ^"),
     ("slave 3", "expected an operator (== != ~= < <= > >= & in contains matches) after slave (column 7)\n  slave 3\n        ^"),
