@@ -15,10 +15,10 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable, Sequence
 
-from dissector.devices.access import READ_ONLY_MEANING, check_writes
+from dissector.devices.access import check_writes
 from dissector.devices.checks import check_request, check_subfunction, within_limits
 from dissector.devices.device import Device, DeviceBuilder, MapLayer
-from dissector.devices.explain import all_unreadable_registers, device_meaning, explain_exception, refused_read
+from dissector.devices.explain import all_unreadable_registers, explain_exception, known_meanings, refused_read
 from dissector.devices.maps import MEMO_LIMIT, RegisterDef, interpret
 from dissector.devices.memory import (
     readable_again, remember_answered, remember_mask, remember_writes, unreadable, unreadable_status,
@@ -221,10 +221,8 @@ class Annotator:
         return {
             "profile": frozenset(profile.name for profile in profiles),
             "function_name": frozenset(name for p in profiles for name in p.function_names.values()),
-            # (the code's meaning, to a read of registers with p.38's clause, to a read-only write: explain.py)
-            "exception_meaning": frozenset(text for p in profiles for code, meaning in p.exceptions.items()
-                                           for text in (meaning, device_meaning(p, min(_READS), code)))
-            | {READ_ONLY_MEANING},
+            # (the code's meaning, to a read with p.38's clause, to a read-only write, the causes: explain.py)
+            "exception_meaning": frozenset(text for p in profiles for text in known_meanings(p)),
             "subfunction_name": frozenset(text for p in profiles for text in p.diagnostics.values()),
         }
 

@@ -174,7 +174,8 @@ class Output:
                     record = records[index] if records is not None else item_to_dict(item)
                     if extra:
                         record.update(extra)
-                    lines = self.registers.lines(record, None if item.time is None else clock.text(item))
+                    # (the item: a write's answer tells whether it was confirmed or refused)
+                    lines = self.registers.lines(record, None if item.time is None else clock.text(item), item)
                     out.extend(lines)
                     size += sum(map(len, lines))
                     continue

@@ -31,7 +31,7 @@ from dissector.protocol.printable import printable
 
 COLUMNS = (
     "frame", "time", "slave", "function", "access", "address", "label", "code", "name", "value", "scaled",
-    "unit", "status", "text",
+    "unit", "status", "text", "write", "exception_code",  # (the last two added later: positions kept)
 )
 # Keys a row takes as they are from the register (or bit) object of the NDJSON record.
 REGISTER_KEYS = ("address", "label", "code", "name", "value", "scaled", "unit", "status", "text")

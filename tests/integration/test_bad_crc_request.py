@@ -86,7 +86,8 @@ def test_an_answer_to_a_damaged_request_has_no_addresses(tmp_path: Path, monkeyp
     status, out, err = run_cli([capture, "--profile", "atv71", "-T", "registers"])
     assert status == 0, err
     assert [line.split("\t", 2)[2] for line in out.splitlines()[3:6]] == [
-        "12\t3\tread\t\t\t\t\t32768\t\t\t\t", "12\t3\tread\t\t\t\t\t32768\t\t\t\t", "12\t3\tread\t\t\t\t\t2\t\t\t\t"]
+        "12\t3\tread\t\t\t\t\t32768\t\t\t\t\t\t", "12\t3\tread\t\t\t\t\t32768\t\t\t\t\t\t",
+        "12\t3\tread\t\t\t\t\t2\t\t\t\t\t\t"]
     status, out, err = run_cli([capture, "--profile", "atv71", "--watch", "CHCF,COP"])
     assert (status, out) == (0, ""), err
     status, out, err = run_cli([capture, "--profile", "atv71", "--stats"])

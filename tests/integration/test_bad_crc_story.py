@@ -70,9 +70,9 @@ def test_vw3_decode_tells_no_story_from_a_bad_crc(tmp_path: Path, monkeypatch: p
     status, out, err = run_cli([str(capture), "--profile", "atv71", "-T", "registers"])
     assert status == 0, err
     assert [line.split("\t", 2)[2] for line in out.splitlines()[3:6]] == [
-        "12\t3\tread\t8400\t\t\t\t32768\t\t\t\t",
-        "12\t3\tread\t8401\t\tCHCF\tProfile\t32768\t\t\t\t32768 (not a listed value)",
-        "12\t3\tread\t8402\t\tCOP\tCopy channel 1 <> 2\t2\t\t\t\tCd (command)",
+        "12\t3\tread\t8400\t\t\t\t32768\t\t\t\t\t\t",
+        "12\t3\tread\t8401\t\tCHCF\tProfile\t32768\t\t\t\t32768 (not a listed value)\t\t",
+        "12\t3\tread\t8402\t\tCOP\tCopy channel 1 <> 2\t2\t\t\t\tCd (command)\t\t",
     ]
     status, out, err = run_cli([str(capture), "--profile", "atv71", "--watch", "CHCF"])
     assert (status, out) == (0, ""), err

@@ -111,3 +111,13 @@ def test_the_plugin_says_the_cause(tmp_path: Path, two_pass: bool) -> None:
             assert item == whole or (item.startswith("[Exception meaning on this device [truncated]: ")
                                      and whole[:-1].startswith(item[:-1].replace(" [truncated]", "", 1)))
 
+
+
+def test_the_display_filter_knows_the_causes(tmp_path: Path) -> None:
+    # (an enumerated value no profile of the run can give is an error: filter_context.py; the meanings a
+    # request may pick, explain.known_meanings)
+    path = str(capture(tmp_path / "sel.pcap", SEL))
+    for frame, meaning in zip(SEL_EXCEPTIONS, SEL_MEANINGS):
+        status, out, err = run_cli(["--profile", "sel749m", path, "-Y", f'exception_meaning == "{meaning}"', "-T",
+                                    "fields", "-e", "frame"])
+        assert (status, out, err) == (0, f"{frame}\n", "")

@@ -31,7 +31,7 @@ def test_no_bit_written_by_an_illegal_value(tmp_path: Path, monkeypatch: pytest.
                                                        [{"address": 173, "value": 1}]]
     assert [frame["warnings"] for frame in frames] == [[WARNING], [], [WARNING], [WARNING], [], []]
     assert run_cli(["-T", "registers", path])[1].splitlines() == [
-        "5\t\t1\t5\twrite\t173\t\t\t\t1\t\t\t\t", "6\t\t1\t5\techo\t173\t\t\t\t1\t\t\t\t"]
+        "5\t\t1\t5\twrite\t173\t\t\t\t1\t\t\t\t\tconfirmed\t", "6\t\t1\t5\techo\t173\t\t\t\t1\t\t\t\t\tconfirmed\t"]
     verbose = [line.strip() for line in run_cli(["-V", path])[1].splitlines()]
     assert [line for line in verbose if line.startswith(("Value:", "Bits", "172:", "173:", "Warning:"))] == [
         "Value: 4660 (0x1234)", f"Warning: {WARNING}", "Value: 4660 (0x1234)", f"Warning: {WARNING}",

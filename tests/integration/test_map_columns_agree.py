@@ -134,7 +134,7 @@ def test_a_unit_without_a_scale_is_a_number_in_it(tmp_path: Path, monkeypatch: p
     assert out.splitlines()[1] == ("     2     0.010000   1 response  Read Holding Registers 0..8 (9): "
                                    f"{UNITS_LINE} … (+1) [#1, 10.0 ms]  CRC ok")
     status, out, err = run_cli(["--map", str(tmp_path / "u.csv"), str(pcap), "-T", "registers"])
-    assert [line.split("\t")[10:] for line in out.splitlines()] == [  # scaled, unit, status, text
+    assert [line.split("\t")[10:14] for line in out.splitlines()] == [  # scaled, unit, status, text
         ["50", "Hz", "", "50 Hz"], ["-50", "Hz", "", "-50 Hz"], ["65538", "V", "", "65538 V"],
         ["", "V", "", "second word of U32"], ["1.25", "A", "", "1.25 A"], ["", "A", "", "second word of F32"],
         ["", "", "", ""], ["", "s", "", "10 (unscaled, in s)"], ["-10", "s", "", "-10 (unscaled, in s)"]]

@@ -349,7 +349,7 @@ def test_plc_style_is_the_same_in_every_output(tmp_path: Path) -> None:
     # -T fields and -T registers
     assert run_cli([*plc, "-T", "fields", "-e", "frame", "-e", "label", "-E", "occurrence=f", "-c", "4", sel])[1] == (
         "1\t40001\n2\t40001\n3\t30101\n4\t30101\n")  # (a request's window labelled too, as vw3.reg.label)
-    assert run_cli([*plc, "-T", "registers", "-c", "2", sel])[1].splitlines()[0] == "2\t\t1\t3\tread\t0\t40001\t\t\t403\t\t\t\t"
+    assert run_cli([*plc, "-T", "registers", "-c", "2", sel])[1].splitlines()[0] == "2\t\t1\t3\tread\t0\t40001\t\t\t403\t\t\t\t\t\t"
 
 
 def test_exception_counts_read_the_same_in_stats_and_report(tmp_path: Path) -> None:

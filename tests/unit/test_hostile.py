@@ -143,7 +143,7 @@ def test_codes_joined_by_the_aggregator_are_one_cell(tmp_path: Path) -> None:
     assert out.splitlines()[1] == "'2',',''=1+1,COP'"
     status, out, err = run_cli(["--map", str(map_file), "-T", "registers", "-E", "separator=,",
                                 str(ROOT / "captures" / "p38_protection.pcap")])
-    assert out.splitlines()[1] == "2,0.010157,12,3,read,8401,,'=1+1,x,3,,,ok,"
+    assert out.splitlines()[1] == "2,0.010157,12,3,read,8401,,'=1+1,x,3,,,ok,,,"
 
 
 @pytest.mark.parametrize("text, shown", [
@@ -268,7 +268,7 @@ def test_a_quantity_0_span_is_what_the_request_says_in_every_output(tmp_path: Pa
     assert out.splitlines() == ["1\t8400\t0\t8400\t", "2\t8400\t0\t8400\t", "3\t10\t0\t20,10\t255,",
                                 "4\t10\t0\t10\t", "5\t16\t0\t16\t", "6\t16\t0\t16\t"]
     status, out, err = run_cli([str(capture), "-T", "registers"])
-    assert (status, out, err) == (0, "3\t\t1\t23\twrite\t20\t\t\t\t255\t\t\t\t\n", "")  # only frame 3 names a register
+    assert (status, out, err) == (0, "3\t\t1\t23\twrite\t20\t\t\t\t255\t\t\t\t\tconfirmed\t\n", "")  # only frame 3 names a register
 
 
 def test_a_polled_quantity_0_read_in_stats(tmp_path: Path) -> None:

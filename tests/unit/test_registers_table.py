@@ -13,7 +13,7 @@ from helpers import rtu, run_cli
 
 CAPTURES = ROOT / "captures"
 P38 = str(CAPTURES / "p38_protection.pcap")
-HEADER = "frame,time,slave,function,access,address,label,code,name,value,scaled,unit,status,text"
+HEADER = "frame,time,slave,function,access,address,label,code,name,value,scaled,unit,status,text,write,exception_code"
 
 
 def test_p38_one_row_per_register_of_frames_2_to_12() -> None:
@@ -30,8 +30,8 @@ def test_p38_one_row_per_register_of_frames_2_to_12() -> None:
         ("6", "read", "32768", "protected"), ("8", "read", "32768", "protected"),
         ("10", "exception", "", "protected"), ("12", "exception", "", "protected"),
     ]
-    assert lines[2] == "2,0.010157,12,3,read,8401,,CHCF,Profile,3,,,ok,IO (I/O profile)"
-    assert lines[-2] == "12,2.627401,12,3,exception,8401,,CHCF,Profile,,,,protected,no value: exception 02"
+    assert lines[2] == "2,0.010157,12,3,read,8401,,CHCF,Profile,3,,,ok,IO (I/O profile),,"
+    assert lines[-2] == "12,2.627401,12,3,exception,8401,,CHCF,Profile,,,,protected,no value: exception 02,,2"
 
 
 def test_writes_echoes_and_fc23_halves_with_units_and_scaled_values() -> None:
@@ -39,13 +39,14 @@ def test_writes_echoes_and_fc23_halves_with_units_and_scaled_values() -> None:
     status, out, _err = run_cli(argv)
     assert status == 0
     assert out.splitlines() == [
-        "7\t2026-01-01 00:00:00.109240\t2\t6\twrite\t8401\t\tCHCF\tProfile\t2\t\t\t\tSEP (separate)",
-        "8\t2026-01-01 00:00:00.118019\t2\t6\techo\t8401\t\tCHCF\tProfile\t2\t\t\t\tSEP (separate)",
-        "19\t2026-01-01 00:00:00.234752\t2\t23\twrite\t8501\t\tCMD\tControl word\t6\t\t\t\tEnable voltage, No quick stop",
-        "19\t2026-01-01 00:00:00.234752\t2\t23\twrite\t8502\t\tLFR\tFrequency reference\t0\t0.0\tHz\t\t0.0 Hz",
+        "7\t2026-01-01 00:00:00.109240\t2\t6\twrite\t8401\t\tCHCF\tProfile\t2\t\t\t\tSEP (separate)\tconfirmed\t",
+        "8\t2026-01-01 00:00:00.118019\t2\t6\techo\t8401\t\tCHCF\tProfile\t2\t\t\t\tSEP (separate)\tconfirmed\t",
+        "19\t2026-01-01 00:00:00.234752\t2\t23\twrite\t8501\t\tCMD\tControl word\t6\t\t\t\tEnable voltage, No quick stop"
+        "\tconfirmed\t",
+        "19\t2026-01-01 00:00:00.234752\t2\t23\twrite\t8502\t\tLFR\tFrequency reference\t0\t0.0\tHz\t\t0.0 Hz\tconfirmed\t",
         "20\t2026-01-01 00:00:00.251380\t2\t23\tread\t3201\t\tETA\tStatus word\t561\t\t\tok\t"
-        "Ready to switch on, Voltage enabled, Quick stop inactive, Remote",
-        "20\t2026-01-01 00:00:00.251380\t2\t23\tread\t3202\t\tRFR\tOutput frequency\t0\t0.0\tHz\tok\t0.0 Hz",
+        "Ready to switch on, Voltage enabled, Quick stop inactive, Remote\t\t",
+        "20\t2026-01-01 00:00:00.251380\t2\t23\tread\t3202\t\tRFR\tOutput frequency\t0\t0.0\tHz\tok\t0.0 Hz\t\t",
     ]
 
 

@@ -108,7 +108,7 @@ def test_fields_and_registers_read_once_say_rows_are_provisional() -> None:
     assert (status, err) == (0, "") and out.splitlines()[:5] == ["1\t1", "2\t1", "3\t1", "4\t", "5\t"]
     status, out, err = run_cli(["-", "-T", "registers"], stdin=data)
     assert (status, err) == (0, warning.format("--json or -T fields -e provisional mark them"))
-    assert out.splitlines()[0] == "2\t\t12\t3\tread\t8400\t\t\t\t32768\t\t\t\t"
+    assert out.splitlines()[0] == "2\t\t12\t3\tread\t8400\t\t\t\t32768\t\t\t\t\t\t"
     # Read twice (a file by its name), nothing is provisional and nothing is said.
     assert run_cli([str(P38), "-T", "fields", "-e", "frame", "-e", "provisional"])[1:] == (
         "".join(f"{n}\t\n" for n in range(1, 13)), "")
