@@ -1,5 +1,6 @@
-"""An exception event's text, with the meaning on its slave's device that the summary's note gives the
-frame (devices/explain.py explain_exception), whatever the profile: a refused write of read-only
+"""An exception event's text, with the meaning on its slave's device that the frame's note, -V's `Meaning on
+this device` and --json's exception_meaning give it (devices/explain.py exception_meaning), whatever the
+profile, of the request its slave got (pairing.trusted_request): a refused write of read-only
 parameters says so; causes the profile lists for the code to this function (the SEL-749M's Appendix D,
 with the relay counters they increment) are the ones the request picks; else the code's meaning (to a
 read, p.38's clause too). The Python stages (collect.py add, _retell) and the engine's events
