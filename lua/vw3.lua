@@ -4562,8 +4562,8 @@ package.preload["vw3.stream"] = function(...)
 -- Assembled into lua/vw3.lua by python3 -m dissector.codegen (package.preload["vw3.stream"]).
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
-local DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, NOISE = DATA, ECHO_CODES, FRAMING, MAX_ADU, NEED, NOISE
-local NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
+local DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED = DATA, ECHO_CODES, FRAMING, MAX_ADU, MIN_ADU, NEED
+local NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo = NOISE, NOISE_ITEM_MAX, REQUEST, RESPONSE, await_echo
 local awaited, crc_string_ok, format, interpretations, math = awaited, crc_string_ok, format, interpretations, math
 local pairs, type = pairs, type
 
@@ -4684,6 +4684,14 @@ local function silence_after(s, i, n)
   return nil
 end
 
+-- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
+local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
+-- Why the byte at i, where no frame starts, is noise (bounded.py _no_frame): too short for a frame where a silence
+-- comes fewer than a frame's minimum bytes after it (live closes the bytes there), else no valid frame.
+local function no_frame(s, i)
+  return silence_after(s, i, i + MIN_ADU) and TOO_SHORT or NO_FRAME
+end
+
 local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
@@ -4750,6 +4758,17 @@ add_run = function(s, b, start, stop, reason, items)
       s.noise_cut = true
     end
   end
+end
+
+-- Bytes i .. stop - 1, where no frame starts, are noise (bounded.py _add_skipped): the bytes from each silence
+-- inside on with their own reason (no_frame), as live closes them there.
+local function add_skipped(s, i, stop, items)
+  local at = silence_after(s, i, stop)
+  while at ~= nil do
+    add_noise(s, i, at, no_frame(s, i), items)
+    i, at = at, silence_after(s, at, stop)
+  end
+  add_noise(s, i, stop, no_frame(s, i), items)
 end
 
 -- Does a request await an answer (protocol/rules.py awaits_answer): not a broadcast, not one the spec has no
@@ -4918,9 +4937,10 @@ local function repeats(s, b, i, since, n, stop)
   if last + 1 >= stop then return stop, stop end
   return last + 1, stop_at
 end
-M.GLITCH, M.REPEAT_PROBE, M.add_noise, M.await_answer = GLITCH, REPEAT_PROBE, add_noise, await_answer
-M.awaited_reading, M.awaits_answer, M.boundary_at = awaited_reading, awaits_answer, boundary_at
-M.cut_reason, M.emit, M.expect_after, M.flush_noise, M.lane = cut_reason, emit, expect_after, flush_noise, lane
+M.GLITCH, M.REPEAT_PROBE, M.TOO_SHORT, M.add_noise = GLITCH, REPEAT_PROBE, TOO_SHORT, add_noise
+M.add_skipped, M.await_answer, M.awaited_reading = add_skipped, await_answer, awaited_reading
+M.awaits_answer, M.boundary_at, M.cut_reason, M.emit = awaits_answer, boundary_at, cut_reason, emit
+M.expect_after, M.flush_noise, M.lane, M.no_frame = expect_after, flush_noise, lane, no_frame
 M.not_the_answer, M.repeats, M.silence_after, M.time_at = not_the_answer, repeats, silence_after, time_at
 M.whole_crc_good = whole_crc_good
 end
@@ -4935,14 +4955,13 @@ local _ENV = M -- (the globals and the other modules' exports; the generator bin
 local DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE = DATA, EXCEPTION, FRAMING, GLITCH, MAX_ADU, MAX_SLAVE
 local MIN_ADU, NEED, NOISE_ITEM_MAX, NONE = MIN_ADU, NEED, NOISE_ITEM_MAX, NONE
 local NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE = NO_INTERPRETATION, REPEAT_PROBE, REQUEST, RESPONSE
-local add_noise, awaited, awaited_reading, boundary_at = add_noise, awaited, awaited_reading, boundary_at
-local crc16, crc_lengths, crc_ok_at, crc_scan, cut_reason = crc16, crc_lengths, crc_ok_at, crc_scan, cut_reason
-local emit, interpretations, math, not_the_answer, pairs = emit, interpretations, math, not_the_answer, pairs
-local possible_start, repeats, scanned, silence_after = possible_start, repeats, scanned, silence_after
-local table, time_at = table, time_at
+local TOO_SHORT, add_noise, add_skipped, awaited = TOO_SHORT, add_noise, add_skipped, awaited
+local awaited_reading, boundary_at, crc16, crc_lengths = awaited_reading, boundary_at, crc16, crc_lengths
+local crc_ok_at, crc_scan, cut_reason, emit = crc_ok_at, crc_scan, cut_reason, emit
+local interpretations, math, no_frame, not_the_answer = interpretations, math, no_frame, not_the_answer
+local pairs, possible_start, repeats, scanned = pairs, possible_start, repeats, scanned
+local silence_after, table, time_at = silence_after, table, time_at
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
--- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
-local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
 -- The first boundary (a record's end, a silence) after i, up to n; nil: none there.
 local function record_end(s, i, n)
@@ -5460,7 +5479,7 @@ local function run_rtu(s, final, items)
         while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
         if stop >= n - 1 then stop = final and n or n - 1 end
       end
-      add_noise(s, i, stop, NO_FRAME, items)
+      add_skipped(s, i, stop, items)
       i = stop
     else
       local kind, length, crc_ok = nil, nil, true
@@ -5507,7 +5526,7 @@ local function run_rtu(s, final, items)
       elseif kind == NONE then
         -- (bytes up to a silence that begin a frame it cuts: their reason, as live's: silence_cut)
         local upto, why = silence_cut(s, b, i, n)
-        if upto == nil then upto, why = i + 1, NO_FRAME end
+        if upto == nil then upto, why = i + 1, no_frame(s, i) end
         add_noise(s, i, upto, why, items)
         i = upto
       else

@@ -19,6 +19,9 @@ from dissector.framing.rules import MAX_ADU, MAX_SLAVE, MIN_ADU, NEED, NOT_BROAD
 from dissector.model import Frame, Kind
 from dissector.protocol.rules import text
 
+# Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
+NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
+
 
 class Bounded:
     """What RtuFramer weighs at a bound (with its own methods: _boundary_at, _valid_frame_at...; _framed_end,
@@ -124,6 +127,28 @@ class Bounded:
         finally:
             self._cut_by_silence = False
         return (stop, reason) if reason is not None and not self._checks_out(buf, i, n) else None
+
+    def _no_frame(self, i: int) -> str:
+        """Why the byte at i, where no frame starts, is noise: 'no valid frame', or 'too short for a frame' where a
+        silence comes fewer than a frame's minimum bytes after it: live closes the bytes at the silence, too few for
+        one (_run's n - i < MIN_ADU at StreamFramer.finish), and a file says what live says. (A noise item's reason is
+        the one given for its first byte: where a run starts, or a silence inside it: _add_noise.)"""
+        silences = self._silences
+        if silences:
+            at = self._base + i
+            if at + 1 in silences or at + 2 in silences or at + 3 in silences:  # (MIN_ADU: 4)
+                return TOO_SHORT
+        return NO_FRAME
+
+    def _add_skipped(self, i: int, end: int, items: list) -> None:
+        """Bytes i..end, where no frame starts, are noise: the bytes from each silence inside on with their own
+        reason (_no_frame), as live closes them there."""
+        if self._silences:
+            base = self._base
+            for at in sorted(offset - base for offset in self._silences if i < offset - base < end):
+                self._add_noise(i, at, self._no_frame(i), items)
+                i = at
+        self._add_noise(i, end, self._no_frame(i), items)
 
     def _cut_request(self, buf: bytearray, i: int, n: int) -> str | None:
         """At the end of the input, where no answer awaited begins (_cut_answer weighs that one): do bytes i..n,

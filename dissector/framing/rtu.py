@@ -63,7 +63,7 @@ from __future__ import annotations
 
 from dissector.protocol.crc import crc16, crc_lengths
 from dissector.model import Frame, Item, Kind
-from dissector.framing.bounded import Bounded
+from dissector.framing.bounded import NO_FRAME, TOO_SHORT, Bounded
 from dissector.framing.evidence import plausible_request as _plausible_request
 from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's tables, by their old home)
     MAX_ADU,
@@ -93,9 +93,6 @@ from dissector.framing.rules import (  # noqa: F401 (re-exported: the framer's t
 from dissector.framing.stream import GLITCH_BYTES, NOISE_ITEM_MAX, StreamFramer
 from dissector.protocol import table
 from dissector.protocol.rules import text
-
-# Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
-NO_FRAME, TOO_SHORT = text("no_frame"), text("too_short")
 
 # (function code, kind) -> the length of a layout whose length is a byte count's (protocol table Counted) when
 # that count is 0: every count of the spec counts something (a read's quantity is 1 or more, a write's too, a
@@ -504,7 +501,7 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
                 # No frame starts here: skip at C speed to the next byte pair that could start one.
                 found = _POSSIBLE_START.search(buf, i + 1)
                 end = found.start() if found is not None else (n if final else n - 1)
-                self._add_noise(i, end, NO_FRAME, items)
+                self._add_skipped(i, end, items)
                 i = end
                 continue
             if (
@@ -560,7 +557,7 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
                     continue
             if match == NONE:
                 # (bytes up to a silence that begin a frame it cuts: their reason, as live's, _silence_cut)
-                stop, reason = self._silence_cut(buf, i, n) or (i + 1, NO_FRAME)
+                stop, reason = self._silence_cut(buf, i, n) or (i + 1, self._no_frame(i))
                 self._add_noise(i, stop, reason, items)
                 i = stop
                 continue
@@ -573,7 +570,7 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
                 if following is None:
                     break
                 if not following:
-                    self._add_noise(i, i + 1, NO_FRAME, items)
+                    self._add_noise(i, i + 1, self._no_frame(i), items)
                     i += 1
                     continue
             raw = bytes(buf[i : i + length])

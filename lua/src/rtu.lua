@@ -4,8 +4,6 @@
 local M = require("vw3.env")
 local _ENV = M -- (the globals and the other modules' exports; the generator binds those used here as locals)
 local GLITCH_ADDRESSES, GLITCH_SKIP, GLITCHY_AFTER = FRAMING.glitch_addresses, FRAMING.glitch_skip, FRAMING.glitchy_after
--- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
-local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
 
 -- The first boundary (a record's end, a silence) after i, up to n; nil: none there.
 local function record_end(s, i, n)
@@ -523,7 +521,7 @@ local function run_rtu(s, final, items)
         while stop < n - 1 and not possible_start(b[stop + 1]) do stop = stop + 1 end
         if stop >= n - 1 then stop = final and n or n - 1 end
       end
-      add_noise(s, i, stop, NO_FRAME, items)
+      add_skipped(s, i, stop, items)
       i = stop
     else
       local kind, length, crc_ok = nil, nil, true
@@ -570,7 +568,7 @@ local function run_rtu(s, final, items)
       elseif kind == NONE then
         -- (bytes up to a silence that begin a frame it cuts: their reason, as live's: silence_cut)
         local upto, why = silence_cut(s, b, i, n)
-        if upto == nil then upto, why = i + 1, NO_FRAME end
+        if upto == nil then upto, why = i + 1, no_frame(s, i) end
         add_noise(s, i, upto, why, items)
         i = upto
       else

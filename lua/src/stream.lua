@@ -121,6 +121,14 @@ local function silence_after(s, i, n)
   return nil
 end
 
+-- Why bytes are noise (data/modbus.toml [texts]): no frame starts there; too few left for one.
+local NO_FRAME, TOO_SHORT = DATA.plain_texts.no_frame, DATA.plain_texts.too_short
+-- Why the byte at i, where no frame starts, is noise (bounded.py _no_frame): too short for a frame where a silence
+-- comes fewer than a frame's minimum bytes after it (live closes the bytes there), else no valid frame.
+local function no_frame(s, i)
+  return silence_after(s, i, i + MIN_ADU) and TOO_SHORT or NO_FRAME
+end
+
 local add_run
 local function add_noise(s, start, stop, reason, items)
   local b = s.b
@@ -187,6 +195,17 @@ add_run = function(s, b, start, stop, reason, items)
       s.noise_cut = true
     end
   end
+end
+
+-- Bytes i .. stop - 1, where no frame starts, are noise (bounded.py _add_skipped): the bytes from each silence
+-- inside on with their own reason (no_frame), as live closes them there.
+local function add_skipped(s, i, stop, items)
+  local at = silence_after(s, i, stop)
+  while at ~= nil do
+    add_noise(s, i, at, no_frame(s, i), items)
+    i, at = at, silence_after(s, at, stop)
+  end
+  add_noise(s, i, stop, no_frame(s, i), items)
 end
 
 -- Does a request await an answer (protocol/rules.py awaits_answer): not a broadcast, not one the spec has no

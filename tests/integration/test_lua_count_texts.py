@@ -70,8 +70,8 @@ def test_tree(capture: Path) -> None:
     for line in [
         "VW3 Modbus RTU, 1 Read Holding Registers request 65535..65539 (5)\n",
         "        [Expert Info (Warning/Protocol): addresses 65535..65539 run past 65535]\n",
-        "VW3 noise, 1 byte: no valid frame\n",
-        "    [Expert Info (Warning/Malformed): 1 byte outside any frame: no valid frame]\n",
+        "VW3 noise, 1 byte: too short for a frame\n",
+        "    [Expert Info (Warning/Malformed): 1 byte outside any frame: too short for a frame]\n",
         "VW3 noise, 2 bytes: too short for a frame\n",
         "    Object 128: 'ABC'\n        Object id: 128\n",
         "        [Expert Info (Warning/Protocol): byte count 4 disagrees with the registers asked (1)]\n",
