@@ -396,7 +396,8 @@ class CaptureOutput:
         first, last = begin == 0, end == item.length
         if lead is not None:  # (the noise after the read's first bytes: "then noise: ...", as release says it)
             own = [*lead[2], *([f"then {noise_comment(item)}"] if noise else [])]
-            self._record((lead[0] + data, lead[1], own, lead[3] + users, item.offset + end, lead[5]))
+            # (at the time of the read it begins with, the item's: the records taken may be of an earlier one)
+            self._record((lead[0] + data, time, own, lead[3] + users, item.offset + end, lead[5]))
             return
         held = self._held
         if held is not None:

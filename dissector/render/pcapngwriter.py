@@ -54,7 +54,6 @@ class PcapngWriter:
         self._stream = stream
         self._flush = flush
         self._units = units
-        self._last_time = 0.0
         section = struct.pack("<IHHq", BYTE_ORDER_MAGIC, 1, 0, -1) + _options([(SHB_USERAPPL, application)])
         self._linktype = linktype
         # The interfaces described so far, in order (an EPB names its interface by this index).
@@ -93,9 +92,8 @@ class PcapngWriter:
     def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
         """`comment`: a list is an opt_comment each (the input's packet comments, then vw3-decode's)."""
         comments = [comment] if isinstance(comment, str) else comment or []
-        if timestamp is None:
-            timestamp = self._last_time
-        self._last_time = timestamp
+        if timestamp is None:  # (untimed: at the epoch, as the readers take it back: sources/pcap.py EpochRecord)
+            timestamp = 0.0
         per_second = self._units
         seconds, fraction, moved = clamp_time(*split_time(timestamp, per_second), SECONDS_MAX[per_second],
                                               per_second)

@@ -55,7 +55,6 @@ class PcapWriter:
         self._stream = stream
         self._flush = flush
         self._units = units
-        self._last_time = 0.0
         self.size = _GLOBAL_HEADER.size  # bytes written so far (ring buffer limits)
         self.clamped = 0  # records whose time was outside 1970..2106
         magic = PCAP_MAGIC_NANO if units == NANOS else PCAP_MAGIC
@@ -64,11 +63,11 @@ class PcapWriter:
             stream.flush()
 
     def write(self, data: bytes, timestamp: float | None = None, comment: str | list[str] | None = None) -> None:
-        """Append one record. Without a timestamp, the previous one is reused (0 at first).
-        pcap has no place for a comment: it is for pcapng's sake."""
-        if timestamp is None:
-            timestamp = self._last_time
-        self._last_time = timestamp
+        """Append one record; without a timestamp (an untimed record), at the epoch: the previous one's time
+        made an untimed input after a timed one timed (its answers '0.0 ms' after their requests), and so
+        an untimed record inside a timed capture. pcap has no place for a comment: it is for pcapng's sake."""
+        if timestamp is None:  # (untimed: at the epoch, as the readers take it back: sources/pcap.py EpochRecord)
+            timestamp = 0.0
         units = self._units
         seconds, fraction, moved = clamp_time(*split_time(timestamp, units), PCAP_SECONDS_MAX, units)
         self.clamped += moved
