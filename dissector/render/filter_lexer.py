@@ -223,7 +223,9 @@ def tokenize(text: str) -> list[Token]:
             tokens.append(Token(group, word, word, i))
         elif group == "name":
             lowered = word.lower()
-            if lowered in _WORD_OPS:
+            if word in ("any", "all"):  # (quantifiers, lowercase only, as tshark 4.0.17's)
+                tokens.append(Token("keyword", word, word, i))
+            elif lowered in _WORD_OPS:
                 tokens.append(Token("op", word, _WORD_OPS[lowered], i))
             elif lowered in _KEYWORDS:
                 tokens.append(Token("keyword", word, lowered, i))

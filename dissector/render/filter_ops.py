@@ -175,6 +175,7 @@ def _parse_field(p: Any) -> Operand:
 def parse_expression_test(p: Any) -> tuple[Any, bool]:
     """A test with functions or arithmetic: (test, whether it reads one register at a time)."""
     start = p.token
+    every = p.every  # (inside `all RELATION`: render/filter_quantifiers.py)
     left = parse_expression(p)
     if left.fold is not None:
         raise p.error("the left side of a comparison must hold a field (a constant on the left is refused, "
@@ -187,8 +188,10 @@ def parse_expression_test(p: Any) -> tuple[Any, bool]:
         if kind_of(right.ftype) != kind_of(left.ftype) and not text_and_bytes:
             raise p.error(f"{left.text} and {right.text} are not type compatible ({left.ftype}, "
                           f"{right.ftype})", token)
-        return _comparison(token.value, left, right)
+        return _comparison(token.value, left, right, every)
     if p.at("keyword", "contains", "matches") or p.at("op", "~"):
+        if every:
+            raise p.error(f"all with contains or matches takes a field, not {left.text}", token)
         return _search(p, token, left)
     if p.at("keyword", "in"):
         raise p.error(f"only a field can be tested for membership in a set (as tshark), not {left.text}")
@@ -199,18 +202,21 @@ def parse_expression_test(p: Any) -> tuple[Any, bool]:
     return (lambda item, reg: any(value for value in values(item, reg))), left.register
 
 
-def _comparison(op: str, left: Operand, right: Operand) -> tuple[Any, bool]:
+def _comparison(op: str, left: Operand, right: Operand, every: bool = False) -> tuple[Any, bool]:
     """Some pair passes `op`; `~=` some pair differs; `!=` none is equal and `===` none differs, of a
-    left and a right that have values (over the frame's registers when one reads a register's)."""
+    left and a right that have values (over the frame's registers when one reads a register's); under
+    `all` (`every`) no pair fails `op`."""
     lefts, rights = left.values, right.values
     register = left.register or right.register
     wanted = {"~=": "!=", "!=": "==", "===": "!="}.get(op, op)
 
     def some(item: Item, reg: dict[str, Any] | None) -> bool:
         found = lefts(item, reg)
+        if every and op not in ("!=", "==="):  # (a pair that fails op)
+            return bool(found) and any(not match_op(op, x, y) for y in rights(item, reg) for x in found)
         return bool(found) and any(match_op(wanted, x, y) for y in rights(item, reg) for x in found)
 
-    if op not in ("!=", "==="):
+    if op not in ("!=", "===") and not every:
         return some, register
 
     def present(item: Item, reg: dict[str, Any] | None) -> bool:

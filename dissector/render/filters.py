@@ -25,6 +25,8 @@ Syntax, close to Wireshark's:
                                             its number)
     len(raw) == 8   count(value) > 1        functions and arithmetic, as tshark 4.0.17's: len count upper
     {slave + 1} == 13   value - 1 > 2       lower string max min abs; + - * / % & (render/filter_expr.py)
+    all value > 2   any code != "CHCF"    quantifiers before a relation, as tshark 4.0.17's: every
+                                            occurrence, or some (render/filter_quantifiers.py)
 
 Field names are the keys `-T fields` takes (`-Y help` lists them). Frame fields: frame, kind, offset,
 length, time, raw, mode, slave, function, function_name, crc_ok, crc, crc_expected, broadcast, start,
@@ -99,6 +101,7 @@ from dissector.render.filter_match import (
 
 from dissector.render.filter_ops import needs_expression, parse_expression_test
 from dissector.render.filter_syntax import parse_set, parse_slice
+from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
 from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, time_literal, type_name, uint_limit
 from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
@@ -118,6 +121,8 @@ class _Parser:
         self.tokens = tokenize(text)
         self.index = 0
         self.depth = 0
+        self.every = False  # inside `all RELATION`: every occurrence must pass (filter_quantifiers.py)
+        self.presence: Test | None = None
 
     @property
     def token(self) -> Token:
@@ -205,6 +210,8 @@ class _Parser:
                 raise self.error(f"expected ) to close the ( at column {token.position + 1}")
             self.advance()
             return result
+        if self.at("keyword", "any", "all"):
+            return parse_quantified(self)
         if needs_expression(self.tokens, self.index):  # functions, arithmetic, a field on the right
             return parse_expression_test(self)
         if token.kind != "name":
@@ -219,6 +226,7 @@ class _Parser:
         cut = self.parse_slice(field, ftype)
         text_cut = cut is not None and ftype == "str"  # (a text's slice is bytes of its UTF-8, as tshark's)
         get = self.field_getter(field, ftype, register, cut)
+        self.presence = every_present(get)  # (the occurrences `all` asks about: filter_quantifiers.py)
         return self.parse_operation(field, "bytes" if text_cut else ftype, get, register)
 
     def resolve_field(self, name_token: Token) -> tuple[str, str, bool]:
@@ -288,7 +296,7 @@ class _Parser:
             value = fields.get(key) if isinstance(fields, dict) else None
             return value if isinstance(value, list) else [] if value is None else [value]
 
-        if all_ne or all_eq:
+        if all_ne or all_eq or self.every:
             return (lambda item, reg: bool(values := elements(item)) and all(test(item, v) for v in values)), False
         return (lambda item, reg: any(test(item, v) for v in elements(item))), False
 
@@ -318,7 +326,7 @@ class _Parser:
                     value = get(item, reg)
                     return value & mask if is_number(value) and isinstance(value, int) else None
 
-                return self.parse_comparison(field, "number", masked, self.token.value, self.token), register
+                return self._relation(field, "number", masked, register, self.token)
             return (lambda item, reg: any_bit(get(item, reg), mask)), register
         if self.at("keyword", "matches") or self.at("op", "~"):
             self.advance()
@@ -332,25 +340,14 @@ class _Parser:
             if ftype == "bytes":  # each byte a character: "\x0c\x03" matches the bytes 0c 03
                 return (lambda item, reg: search(pattern, latin1(get(item, reg)))), register
             if ftype == "list":
-                return (
-                    lambda item, reg: any(isinstance(v, str) and pattern.search(v) for v in get(item, reg) or ())
-                ), register
+                every = self.every
+                return (lambda item, reg: elements_pass(every, get(item, reg),
+                                                        lambda v: isinstance(v, str) and pattern.search(v))), register
             return (lambda item, reg: search(pattern, get(item, reg))), register
         if field == "address":
             get = address_of
-        if token.kind == "op" and token.value == "!=" and register:
-            # Wireshark's `a != b` (all_ne, since 3.6): some register has the field and none has it equal to b.
-            equal = self.parse_comparison(field, ftype, get, "==", token)
-            some_equal = quantify(equal)
-            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
-            return (lambda item, reg: some_present(item) and not some_equal(item)), False
-        if token.kind == "op" and token.value == "===" and register:
-            # Wireshark 4.0's all_eq: some register has the field and every one that has it has it equal.
-            differs = quantify(self.parse_comparison(field, ftype, get, "~=", token))
-            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
-            return (lambda item, reg: some_present(item) and not differs(item)), False
         if token.kind == "op" and token.value not in ("!", "&&", "||"):  # (crc_ok && ...: a bare crc_ok)
-            return self.parse_comparison(field, ftype, get, token.value, token), register
+            return self._relation(field, ftype, get, register, token)
         if self.at("keyword", "contains"):
             self.advance()
             if ftype not in ("str", "list", "any", "bytes"):
@@ -361,9 +358,9 @@ class _Parser:
                 return (lambda item, reg: isinstance(got := get(item, reg), bytes) and data in got), register
             value = self.parse_value(field, "str")
             if ftype == "list":
-                return (
-                    lambda item, reg: any(isinstance(v, str) and value in v for v in get(item, reg) or ())
-                ), register
+                every = self.every
+                return (lambda item, reg: elements_pass(every, get(item, reg),
+                                                        lambda v: isinstance(v, str) and value in v)), register
             return (lambda item, reg: contains_text(get(item, reg), value)), register
         if self.at("keyword", "in"):
             if ftype == "bytes":
@@ -372,12 +369,36 @@ class _Parser:
             self.advance()
             members = self.parse_set(field, ftype)
             if field == "address":
-                return (lambda item, reg: any(in_members(v, members) for v in address_values(reg))), register
-            return (lambda item, reg: in_members(get(item, reg), members)), register
+                def inside(item: Item, reg: dict[str, Any] | None, members: list[Any] = members) -> bool:
+                    return any(in_members(v, members) for v in address_values(reg))
+            else:
+                def inside(item: Item, reg: dict[str, Any] | None, members: list[Any] = members) -> bool:
+                    return in_members(get(item, reg), members)
+            if self.every and register:  # all x in {a, b}: all x are a, or all are b (tshark 4.0.17's)
+                present = every_present(get)
+                tests = [every_of(lambda item, reg, m=[m]: inside(item, reg, m), present) for m in members]
+                return (lambda item, reg: any(test(item, reg) for test in tests)), False
+            return inside, register
         literal = token.kind in ("number", "string", "name", "bytes", "dashed", "slice")
         if literal or self.at("keyword", "true", "false"):
             raise self.error(f"expected an operator (== != ~= < <= > >= & in contains matches) after {field}")
         return (lambda item, reg: is_present(get(item, reg))), register
+
+    def _relation(self, field: str, ftype: str, get: Callable[..., Any], register: bool, token: Token
+                  ) -> tuple[Test, bool]:
+        """`field OP value` with OP at `token`, over the frame's registers for a register's field."""
+        if token.value == "!=" and register:
+            # Wireshark's `a != b` (all_ne, since 3.6): some register has the field and none has it equal to b.
+            equal = self.parse_comparison(field, ftype, get, "==", token)
+            some_equal = quantify(equal)
+            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
+            return (lambda item, reg: some_present(item) and not some_equal(item)), False
+        if token.value == "===" and register:
+            # Wireshark 4.0's all_eq: some register has the field and every one that has it has it equal.
+            differs = quantify(self.parse_comparison(field, ftype, get, "~=", token))
+            some_present = quantify(lambda item, reg: is_present(get(item, reg)))
+            return (lambda item, reg: some_present(item) and not differs(item)), False
+        return self.parse_comparison(field, ftype, get, token.value, token), register
 
     def parse_comparison(self, field: str, ftype: str, get: Callable[..., Any], op: str, token: Token) -> Test:
         """`field OP value` on one register (or the frame): `~=` is "differs", as `!=` was before Wireshark 3.6."""

@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers."""
 from __future__ import annotations
 
 import subprocess
@@ -50,6 +50,28 @@ CASES = [
     ("noisy_bus.pcap", "crc_ok === 4294967296", "vw3.crc_ok === 4294967296"),
     ("noisy_bus.pcap", "broadcast == 7", "vw3.broadcast == 7"),
     ("noisy_bus.pcap", "max(crc_ok) == 1", "max(vw3.crc_ok) == 1"),
+    # quantifiers: any / all before a relation; a masked != is all_ne, as every !=
+    ("atv71_commissioning.pcap", "all value == 2", "all vw3.reg.value == 2"),
+    ("atv71_commissioning.pcap", "any value === 2", "any vw3.reg.value === 2"),
+    ("atv71_commissioning.pcap", "any value != 2", "any vw3.reg.value != 2"),
+    ("atv71_commissioning.pcap", "all value !== 2", "all vw3.reg.value !== 2"),
+    ("atv71_commissioning.pcap", "all value > 2", "all vw3.reg.value > 2"),
+    ("atv71_commissioning.pcap", "all value >= 0", "all vw3.reg.value >= 0"),
+    ("atv71_commissioning.pcap", "all value in {2, 3}", "all vw3.reg.value in {2, 3}"),
+    ("atv71_commissioning.pcap", "all value in {2..3}", "all vw3.reg.value in {2..3}"),
+    ("atv71_commissioning.pcap", "all address in {8400..8500, 3201}", "all vw3.reg.address in {8400..8500, 3201}"),
+    ("atv71_commissioning.pcap", 'all code matches "^C"', 'all vw3.reg.code matches "^C"'),
+    ("atv71_commissioning.pcap", 'all code contains "C"', 'all vw3.reg.code contains "C"'),
+    ("atv71_commissioning.pcap", 'any notes contains "a"', 'any vw3.note contains "a"'),
+    ("atv71_commissioning.pcap", 'all notes contains "a"', 'all vw3.note contains "a"'),
+    ("atv71_commissioning.pcap", "all value & 1 == 1", "all vw3.reg.value & 1 == 1"),
+    ("atv71_commissioning.pcap", "value & 1 != 1", "vw3.reg.value & 1 != 1"),
+    ("atv71_commissioning.pcap", "value & 1 === 0", "vw3.reg.value & 1 === 0"),
+    ("atv71_commissioning.pcap", "all value + 1 > 3", "all vw3.reg.value + 1 > 3"),
+    ("atv71_commissioning.pcap", "all len(code) == 4", "all len(vw3.reg.code) == 4"),
+    ("atv71_commissioning.pcap", "all value > slave", "all vw3.reg.value > vw3.slave"),
+    ("atv71_commissioning.pcap", 'not all value == 2 and any code == "CHCF"',
+     'not all vw3.reg.value == 2 and any vw3.reg.code == "CHCF"'),
 ]
 
 REFUSED = [
@@ -84,6 +106,13 @@ REFUSED = [
     ("noisy_bus.pcap", "crc_ok == 99999999999999999999", "vw3.crc_ok == 99999999999999999999"),
     ("noisy_bus.pcap", "crc_ok & 1", "vw3.crc_ok & 1"),
     ("noisy_bus.pcap", "crc_ok contains 1", "vw3.crc_ok contains 1"),
+    ("atv71_commissioning.pcap", "all value", "all vw3.reg.value"),
+    ("atv71_commissioning.pcap", "any value & 2", "any vw3.reg.value & 2"),
+    ("atv71_commissioning.pcap", "all (value == 2)", "all (vw3.reg.value == 2)"),
+    ("atv71_commissioning.pcap", "all not value == 2", "all not vw3.reg.value == 2"),
+    ("atv71_commissioning.pcap", "all all value == 2", "all all vw3.reg.value == 2"),
+    ("atv71_commissioning.pcap", "ALL value == 2", "ALL vw3.reg.value == 2"),
+    ("atv71_commissioning.pcap", "slave == any", "vw3.slave == any"),
 ]
 
 
