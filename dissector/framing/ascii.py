@@ -76,8 +76,13 @@ class AsciiFramer(Awaiting, StreamFramer):
                     self._reject(bytes(buf[i:colon]), i, text("cut_by_colon"), items)
                 i = colon
             elif lf >= 0:
-                self._candidate(bytes(buf[i : lf + 1]), i, items)
-                i = lf + 1
+                end = lf + 1
+                if buf[lf - 1] != CR:  # (no CR before the LF: a CR right after it is the line end reversed, LF CR)
+                    if end == n and not final:
+                        break  # (the next byte tells)
+                    end += end < n and buf[end] == CR
+                self._candidate(bytes(buf[i:end]), i, items)
+                i = end
             elif n - i >= MAX_ASCII:
                 self._reject(bytes(buf[i : i + MAX_ASCII]), i, text("no_line_end", limit=MAX_ASCII), items)
                 i += MAX_ASCII
@@ -120,13 +125,15 @@ class AsciiFramer(Awaiting, StreamFramer):
     def _candidate(self, raw: bytes, i: int, items: list[Item], at_end: bool = False) -> None:
         """A ':' ... LF run (or ':' ... CR, its LF lost, or ':' ... CR and the byte in the LF's place): a Frame
         when it is one, a Noise item saying why not otherwise. `at_end`: the run ends the capture."""
-        lost_lf = raw[-1] == CR
-        body = raw[1:] if lost_lf else raw[1:-1]
-        # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame. A tty
-        # that turns LF into CR LF doubles the CR: the frame keeps them all, with a warning.
+        reversed_end = raw[-2:] == b"\n\r"  # (LF CR: _run)
+        lost_lf = raw[-1] == CR and not reversed_end
+        body = raw[1:-2] if reversed_end else raw[1:] if lost_lf else raw[1:-1]
+        # Text files lose their CRs (a copy through a Unix tool, a log): LF alone still ends the frame; LF then CR
+        # (reversed) too, the frame keeping the CR. A tty that turns LF into CR LF doubles the CR: the frame keeps
+        # them all, with a warning.
         digits = body.rstrip(b"\r")
         crs = len(body) - len(digits)
-        lost_cr = crs == 0
+        lost_cr = crs == 0 and not reversed_end
         if len(digits) % 2 or any(byte not in _HEX_DIGITS for byte in digits):
             self._reject(raw, i, text("not_hex_pairs"), items)
             return
@@ -160,6 +167,8 @@ class AsciiFramer(Awaiting, StreamFramer):
             frame.warnings.append(text("cr_at_end" if at_end else "cr_without_lf"))
         elif lost_cr:
             frame.warnings.append(text("lf_without_cr"))
+        elif reversed_end:
+            frame.warnings.append(text("lf_then_cr"))
         else:
             self._check_end(frame, raw[-1], before)
         if crs > 1:

@@ -209,13 +209,15 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
   if reason ~= nil then return reject(s, at, length, reason, items) end
   local b = s.b
   -- Text files lose their CRs: LF alone still ends the frame, with a warning (ascii.py); so does a CR
-  -- whose LF was lost (run_ascii: CR, then the next ':' or the end). A tty that turns LF into CR LF doubles
-  -- the CR: the frame keeps them all, with a warning.
-  local lost_lf = b[at + length - 1] == CR
-  local stop = lost_lf and at + length - 1 or at + length - 2 -- (the last of the digits and CRs after them)
+  -- whose LF was lost (run_ascii: CR, then the next ':' or the end), and one ended LF CR, reversed (the frame
+  -- keeps the CR). A tty that turns LF into CR LF doubles the CR: the frame keeps them all, with a warning.
+  local reversed = b[at + length - 1] == CR and b[at + length - 2] == LF -- (LF CR: run_ascii)
+  local lost_lf = b[at + length - 1] == CR and not reversed
+  -- (the last of the digits and CRs after them)
+  local stop = lost_lf and at + length - 1 or at + length - (reversed and 3 or 2)
   local crs = 0
   while stop - crs > at and b[stop - crs] == CR do crs = crs + 1 end
-  local lost_cr = crs == 0
+  local lost_cr = crs == 0 and not reversed
   local digits = stop - at - crs
   if digits % 2 == 1 then return reject(s, at, length, TEXT.not_hex_pairs, items) end
   local count = floor(digits / 2)
@@ -242,6 +244,8 @@ local function ascii_candidate(s, at, length, items, reason, at_end)
     warnings[1] = at_end and TEXT.cr_at_end or TEXT.cr_without_lf
   elseif lost_cr then
     warnings[1] = TEXT.lf_without_cr
+  elseif reversed then
+    warnings[1] = TEXT.lf_then_cr
   else
     warnings[1] = end_warning(s, kind, slave, b[at + length - 1], before)
   end
@@ -309,6 +313,10 @@ local function run_ascii(s, final, items)
         if b[stop - 1] ~= CR and not (stop - 2 > i and b[stop - 2] == CR) then reason = TEXT.cut_by_colon end
       elseif stop ~= nil then
         length = stop + 1 - i
+        if b[stop - 1] ~= CR then -- (no CR before the LF: a CR right after it is the line end reversed, LF CR)
+          if stop + 1 == n and not final then break end -- (the next byte tells)
+          if stop + 1 < n and b[stop + 1] == CR then length = length + 1 end
+        end
       elseif n - i >= MAX_ASCII then
         length, reason = MAX_ASCII, format(TEXTS.no_line_end.format, MAX_ASCII)
       elseif final and n - i > 2 and (b[n - 2] == CR or b[n - 1] == CR) then
