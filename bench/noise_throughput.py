@@ -7,6 +7,7 @@ The engine hands noise and damaged frames to the Python stages (dissector/accel/
 such a stream it can be no faster than they are; this bench holds it to that, on the same files in one
 run, beside a clean stream of the same size for the engine's own speed. Kinds (each reproducible):
 - random: random bytes (a line read at the wrong baud rate, the worst case of the framer);
+- random-reads: the same bytes as a pcap of one-byte records (a USB tap's reads; --bytes 20000 is enough);
 - zeros: 00 bytes (a line held low), which no frame can start: skipped by a regular expression;
 - bad-crc: one FC16 request of 20 registers with a bad CRC, repeated (a damaged line, every frame);
 - garbage: the plant mix (dissector.sim.mixes.plant_mix) with 1..16 random bytes after a fifth of its
@@ -28,6 +29,7 @@ from __future__ import annotations
 import argparse
 import os
 import random
+import struct
 import subprocess
 import sys
 from pathlib import Path
@@ -57,6 +59,14 @@ def _plant_frames(size: int) -> list[bytes]:
 
 def random_bytes(size: int) -> bytes:
     return random.Random(44).randbytes(size)
+
+
+def random_reads(size: int) -> bytes:
+    """random_bytes as a pcap of one-byte records 1 ms apart: a USB tap's reads of a line at the wrong speed, each
+    record end a boundary the framer weighs (framing/offsets.py)."""
+    header = struct.pack("<IHHiIII", 0xA1B2C3D4, 2, 4, 0, 0, 65535, 147)
+    return header + b"".join(struct.pack("<IIII", 1_700_000_000 + index // 1000, index % 1000 * 1000, 1, 1)
+                             + bytes([byte]) for index, byte in enumerate(random_bytes(size)))
 
 
 def zeros(size: int) -> bytes:
@@ -95,6 +105,7 @@ def repeated(pattern: bytes):
 
 KINDS = {
     "random": (random_bytes, []),
+    "random-reads": (random_reads, []),
     "zeros": (zeros, []),
     "bad-crc": (bad_crc, []),
     "garbage": (garbage, PLANT_OPTIONS),

@@ -62,9 +62,9 @@ class Bounded:
         candidate a bound: an intact frame inside a run ends it, so a glitch byte before a frame is no run."""
         if not self._bounded_start(i):
             return 0
-        ends = [at - self._base for at in self._boundaries if i < at - self._base <= n]
+        end = self._boundaries.first_after(self._base + i, self._base + n)
         # (up to a record's end or silence, the frames inside it only: as if the input ended there)
-        stop, last = (min(ends), True) if ends else (n, final)
+        stop, last = (end - self._base, True) if end is not None else (n, final)
         for end in range(i + 1, min(stop, i + MAX_ADU) + 1):
             found = self._valid_frame_at(buf, end, stop, last, scan=False)  # (at `stop` itself: True when last)
             if found is None:
@@ -117,10 +117,10 @@ class Bounded:
         if not self._silences or not (self._expect is not None or self._bounded_start(i)):
             return None
         base = self._base
-        ends = [at - base for at in self._silences if i < at - base < n]
-        if not ends:
+        first = self._silences.first_after(base + i, base + n - 1)
+        if first is None:
             return None
-        stop = min(ends)
+        stop = first - base
         self._cut_by_silence = True
         try:
             reason = self._cut_tail(buf, i, stop)
@@ -145,7 +145,7 @@ class Bounded:
         reason (_no_frame), as live closes them there."""
         if self._silences:
             base = self._base
-            for at in sorted(offset - base for offset in self._silences if i < offset - base < end):
+            for at in [offset - base for offset in self._silences.within(base + i + 1, base + end)]:
                 self._add_noise(i, at, self._no_frame(i), items)
                 i = at
         self._add_noise(i, end, self._no_frame(i), items)

@@ -240,8 +240,8 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
         for _kind, rule in self._interpretations(buf, i):
             length = rule(buf, i, n)
             if type(length) is Scan:
-                ends = [offset - self._base for offset in self._boundaries if i < offset - self._base <= n]
-                length = min(ends) - i if ends and min(ends) - i >= length else NONE
+                end = self._boundaries.first_after(self._base + i, self._base + n)
+                length = end - self._base - i if end is not None and end - self._base - i >= length else NONE
             if MIN_ADU <= length <= MAX_ADU and i + length <= n and (
                 self._boundary_at(i + length) and _crc_ok(buf, i, length)
             ):
@@ -259,12 +259,18 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
         """Where a CRC scan from i stops: the first record (or bytes after a silence) after i that is a frame of
         its own (_ends_record), else n. Across it a scan read noise and that frame as one frame (its CRC
         matching by chance) and waited for MAX_ADU bytes, holding later records in one pass."""
-        base, reach = self._base, n
-        for offset in self._boundaries:
-            at = offset - base
-            if i < at < min(reach, i + MAX_ADU) and n - at >= MIN_ADU and self._ends_record(buf, at, n):
-                reach = at
-        return reach
+        base, memo = self._base, self._ends_memo
+        state = (base + n, self._expect, self._echo)  # (what _ends_record's answer depends on, besides the bytes)
+        if len(memo) > 4 * MAX_ADU:
+            memo.clear()
+        # (in ascending order: the first that is a frame of its own is the reach)
+        for offset in self._boundaries.within(base + i + 1, base + min(n - MIN_ADU + 1, i + MAX_ADU)):
+            known = memo.get(offset)
+            if known is None or known[0] != state:
+                known = memo[offset] = (state, self._ends_record(buf, offset - base, n))
+            if known[1]:
+                return offset - base
+        return n
 
     def _match(self, buf: bytearray, i: int, n: int, final: bool) -> tuple[Kind, int, bool] | int:
         """(kind, length, crc_ok) for a frame at i, NEED, or NONE when i starts no frame."""
@@ -432,7 +438,8 @@ class RtuFramer(Bounded, Awaiting, StreamFramer):
         limit = min(n, stop + REPEAT_WINDOW)
         if self._boundaries:
             # (none inside the windows: the stream's record ends and silences are evidence)
-            limit = min([limit, *(at - self._base for at in self._boundaries if at - self._base >= first)])
+            after = self._boundaries.first_after(self._base + first - 1, self._base + limit)
+            limit = limit if after is None else after - self._base
         # The repetition's end: buf[x] == buf[x + period] for x from first up to end - period.
         end, step = i, REPEAT_WINDOW
         while end < limit:

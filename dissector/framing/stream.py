@@ -10,6 +10,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 
 from dissector.framing.answers import answer_length
+from dissector.framing.offsets import Offsets
 from dissector.framing.timing import DEFAULT_BAUD, LineTiming, may_pause, silence_before, silences_inside
 from dissector.model import Chunk, Frame, Item, Kind, Noise
 from dissector.protocol.rules import awaits_answer, echoed
@@ -44,13 +45,16 @@ class StreamFramer(ABC):
         self._timed = False
         self._steady_step = -1.0  # a ByteTimes.step_us with which no silence is inside a chunk (timing.may_pause)
         # Where a source said a frame boundary is (a pcap record's end): breaks ties between layouts.
-        self._boundaries: set[int] = set()
+        self._boundaries = Offsets()
         # Where a chunk that ends a record (boundary=True: a pcap record, fed whole) starts, kept apart from
         # the boundaries (a silence is one too): a record that is one frame is the source's word (rtu.py).
-        self._record_starts: set[int] = set()
+        self._record_starts = Offsets()
         # Where a silence of t3.5 or more is (kept apart from the record ends): noise bytes after one cannot be
         # the same frame's as the ones before, so a noise run is given out as one item per stretch between them.
-        self._silences: set[int] = set()
+        self._silences = Offsets()
+        # A record end's answer to rtu.py _ends_record, with the state it was given in (the stream's end, the
+        # answer awaited): each CRC scan weighs the record ends ahead of it, asked again for every start.
+        self._ends_memo: dict[int, tuple[tuple[int, tuple[int, int] | None, bytes], bool]] = {}
         self._noise = bytearray()
         self._noise_offset = 0
         self._noise_reason = ""
@@ -145,9 +149,10 @@ class StreamFramer(ABC):
         self._buf = bytearray()
         self._base = offset
         self._times = []
-        self._boundaries = set()
-        self._record_starts = set()
-        self._silences = set()
+        self._boundaries = Offsets()
+        self._record_starts = Offsets()
+        self._silences = Offsets()
+        self._ends_memo = {}
         self._expect = expect
         self._echo = b""  # (the engine hands over where the frame there is no answer to check: not known)
         self._answer = None
@@ -215,13 +220,10 @@ class StreamFramer(ABC):
                 keep = index
         if keep:
             del times[:keep]
-        if self._boundaries:
-            # (one at the new base still counts: the next run starts there, however the feeding went)
-            self._boundaries = {offset for offset in self._boundaries if offset >= self._base}
-        if self._record_starts:
-            self._record_starts = {offset for offset in self._record_starts if offset >= self._base}
-        if self._silences:
-            self._silences = {offset for offset in self._silences if offset >= self._base}
+        # (a boundary at the new base still counts: the next run starts there, however the feeding went)
+        self._boundaries.drop_below(self._base)
+        self._record_starts.drop_below(self._base)
+        self._silences.drop_below(self._base)
 
     def _boundary_at(self, index: int) -> bool:
         """Did the source mark a frame boundary after buffer index `index`?"""
@@ -240,15 +242,15 @@ class StreamFramer(ABC):
         check_from = start
         if self._boundaries:
             # A boundary inside the run starts the glitch rule anew: only the bytes after it count.
-            inside = [offset - self._base for offset in self._boundaries if start <= offset - self._base < end]
+            inside = self._boundaries.within(self._base + start, self._base + end)
             if inside:
                 self._glitches_only = True
-                check_from = max(inside)
+                check_from = inside[-1] - self._base
         if self._glitches_only:
             self._glitches_only = not buf[check_from:end].translate(None, _GLITCHES)
         if self._silences and self.mode == "rtu":  # (ASCII allows a second's silence inside a frame)
             base = self._base
-            for at in sorted(offset - base for offset in self._silences if start <= offset - base < end):
+            for at in [offset - base for offset in self._silences.within(base + start, base + end)]:
                 if at > start:
                     self._add_run(start, at, reason, items)
                 # (a silence right where a run was cut at NOISE_ITEM_MAX starts the next item anyway)
