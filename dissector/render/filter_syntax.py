@@ -9,6 +9,7 @@ from typing import Any
 from dissector.render.filter_fields import _TYPE_WORDS
 from dissector.render.filter_lexer import Token, strtol
 from dissector.render.filter_match import cut_bytes
+from dissector.render.filter_values import negative_for_unsigned
 
 # One range of a slice: start:length, start:, :length, first-last or an offset (a start < 0: from the end)
 _RANGE = re.compile(r"\s*([-+]?\w+)?\s*(?:(:)\s*([-+]?\w+)?|-\s*([-+]?\w+))?\s*")
@@ -95,7 +96,8 @@ def parse_set(p: Any, field: str, ftype: str) -> list[tuple[Any, Any]]:
                                   "({3, 4})")
         p.advance()
     p.advance()
-    return members
+    # (a negative bound for an unsigned field: a member that holds no value, as in tshark 4.0.17)
+    return [member for member in members if not any(negative_for_unsigned(field, bound) for bound in member)]
 
 
 def _parse_member(p: Any, field: str, ftype: str) -> tuple[Any, Any]:

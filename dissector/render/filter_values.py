@@ -77,3 +77,14 @@ def bool_literal(token: Any, text: str, field: str) -> bool:
         raise FilterError(f"{token.text} cannot be found among the possible values for {field}: true, false "
                           "or a whole number (0 is false, any other true)", text, token.position)
     return value != 0
+
+
+def negative_for_unsigned(field: str, value: Any) -> bool:
+    """Is `value` a negative number for an unsigned field (slave > -1)? tshark 4.0.17 reads the - as an
+    operation whose signed result compares with no unsigned value: ==, <, >, in, ~= never hold, while
+    != (none is equal) and === (none differs) hold wherever the field is."""
+    from dissector.render.glossary import field_type
+
+    if not isinstance(value, (int, float)) or isinstance(value, bool) or value >= 0:
+        return False
+    return field_type(field).startswith("FT_UINT") or field_type(field) == "FT_FRAMENUM"

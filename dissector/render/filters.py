@@ -102,7 +102,7 @@ from dissector.render.filter_match import (
 from dissector.render.filter_ops import needs_expression, parse_expression_test
 from dissector.render.filter_syntax import parse_set, parse_slice
 from dissector.render.filter_quantifiers import elements_pass, every_of, every_present, parse_quantified
-from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, time_literal, type_name, uint_limit
+from dissector.render.filter_values import TIME_TYPES, bool_literal, kind_of, negative_for_unsigned, time_literal, type_name, uint_limit
 from dissector.render.glossary import field_type
 from dissector.render.filter_lexer import NUMBER, Token, number, parse_bytes, tokenize  # noqa: F401
 
@@ -406,6 +406,10 @@ class _Parser:
         written = token.value
         value_token = self.token
         value = self.parse_value(field, ftype)
+        if negative_for_unsigned(field, value):  # (tshark 4.0.17: slave > -1 holds for no frame)
+            # none is equal (all_ne), none differs (all_eq), none fails (all >): only these hold
+            holds = op in ("!=", "===") or self.every
+            return lambda item, reg: holds and is_present(get(item, reg))
         if ftype == "list":
             if op == "!=":  # all_ne: some element, and none equal
                 return lambda item, reg: bool(get(item, reg)) and all(v != value for v in get(item, reg))
@@ -495,7 +499,7 @@ class _Parser:
             raise self.error(f"{field} is a whole number, and {token.text} is not written as one "
                              "(as tshark refuses it)")
         limit = uint_limit(ftype)
-        if limit is not None and token.value > limit:
+        if limit is not None and abs(token.value) > limit:  # (-300 for a uint8 too: tshark reads - apart)
             raise self.error(f"{token.text} is too big for {field}, {type_name(ftype)}: at most {limit} "
                              "(as tshark refuses it)")
         self.advance()

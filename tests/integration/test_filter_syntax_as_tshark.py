@@ -2,7 +2,7 @@
 shipped captures: what tshark takes selects the same frames, what it refuses vw3-decode refuses (exit 2,
 a message, the filter and a caret under the token, no traceback). Session 56's filter hunt: sets
 (members separated by commas, a range inside braces); slices (blanks inside, C numbers, a slice of a
-slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers."""
+slice, a length that is not positive and first-last with first >= last refused); raw strings; true/false fields; any/all quantifiers; negative numbers."""
 from __future__ import annotations
 
 import subprocess
@@ -72,6 +72,21 @@ CASES = [
     ("atv71_commissioning.pcap", "all value > slave", "all vw3.reg.value > vw3.slave"),
     ("atv71_commissioning.pcap", 'not all value == 2 and any code == "CHCF"',
      'not all vw3.reg.value == 2 and any vw3.reg.code == "CHCF"'),
+    # a negative number compares with no unsigned field: only != and === (and all ...) hold
+    ("noisy_bus.pcap", "slave > -1", "vw3.slave > -1"),
+    ("noisy_bus.pcap", "slave >= -1", "vw3.slave >= -1"),
+    ("noisy_bus.pcap", "slave != -1", "vw3.slave != -1"),
+    ("noisy_bus.pcap", "slave ~= -1", "vw3.slave ~= -1"),
+    ("noisy_bus.pcap", "slave === -1", "vw3.slave === -1"),
+    ("noisy_bus.pcap", "slave in {-1, 12}", "vw3.slave in {-1, 12}"),
+    ("noisy_bus.pcap", "slave in {-1..20}", "vw3.slave in {-1..20}"),
+    ("noisy_bus.pcap", "frame > -1", "vw3.item > -1"),
+    ("atv71_commissioning.pcap", "value > -1", "vw3.reg.value > -1"),
+    ("atv71_commissioning.pcap", "value != -1", "vw3.reg.value != -1"),
+    ("atv71_commissioning.pcap", "value === -1", "vw3.reg.value === -1"),
+    ("atv71_commissioning.pcap", "all value > -1", "all vw3.reg.value > -1"),
+    ("atv71_commissioning.pcap", "address > -1", "vw3.reg.address > -1"),
+    ("atv71_commissioning.pcap", "scaled > -1", "vw3.reg.scaled > -1"),
 ]
 
 REFUSED = [
@@ -113,6 +128,7 @@ REFUSED = [
     ("atv71_commissioning.pcap", "all all value == 2", "all all vw3.reg.value == 2"),
     ("atv71_commissioning.pcap", "ALL value == 2", "ALL vw3.reg.value == 2"),
     ("atv71_commissioning.pcap", "slave == any", "vw3.slave == any"),
+    ("noisy_bus.pcap", "slave >= -300", "vw3.slave >= -300"),
 ]
 
 
