@@ -191,7 +191,7 @@ def test_a_register_written_and_read_back_at_one_time_draws_a_step(tmp_path: Pat
         cwd=ROOT, capture_output=True, text=True, timeout=120,
     )
     assert (result.returncode, result.stderr) == (0, "")
-    assert '"values":2,"marks":[],"marks_dropped":0,"x":[2.0,2.0],"y":[3276.7,466]}' in page.read_text()
+    assert '"values":2,"marks":[],"marks_dropped":0,"decimals":1,"x":[2.0,2.0],"y":[3276.7,466]}' in page.read_text()
     dom = dump_dom(tmp_path, page)
     assert errors(dom) == ""
     (trend,) = charts(dom, "trend")

@@ -22,6 +22,8 @@ ROOT = Path(__file__).resolve().parents[2]
 REPORT_JS = ROOT / "dissector" / "render" / "report" / "static" / "report.js"
 # Slave 2 (ATV71): FC16 of ACC, DEC = 10, 10 (9001..9002), then FC6 of ACC = 20: ACC a trend, DEC one value.
 FRAMES = ["02 10 23 29 00 02 04 00 0A 00 0A", "02 10 23 29 00 02", "02 06 23 29 00 14", "02 06 23 29 00 14"]
+# Then LFR (8502, scale 0.1 Hz) = 30.0 Hz, 30.5 Hz: a trend whose tooltip said `30 Hz` where the summary says 30.0
+SCALED = ["02 06 21 36 01 2C", "02 06 21 36 01 2C", "02 06 21 36 01 31", "02 06 21 36 01 31"]
 # report.js run with a uPlot that keeps each trend's options: its label, axis label and each point's tooltip
 HARNESS = r"""
 const fs = require("fs");
@@ -51,7 +53,7 @@ def test_tooltip_says_what_the_table_says(tmp_path: Path, monkeypatch: pytest.Mo
     assert node is not None, "node is missing"
     use_engine(monkeypatch, pure)
     path = write_pcap(tmp_path / "ramps.pcap", [(rtu(frame), 1700000000 + index * 0.01)
-                                                for index, frame in enumerate(FRAMES)])
+                                                for index, frame in enumerate(FRAMES + SCALED)])
     assert run_cli(["--profile", "atv71", str(path)])[1].splitlines()[2].endswith(
         "Write Single Register 9001 ACC=20 (unscaled, in s)  CRC ok")
     page = tmp_path / "ramps.html"
@@ -64,5 +66,6 @@ def test_tooltip_says_what_the_table_says(tmp_path: Path, monkeypatch: pytest.Mo
     done = subprocess.run([node, str(harness), str(page), str(REPORT_JS)], capture_output=True, text=True,
                           timeout=60)
     assert done.returncode == 0, done.stderr
-    assert json.loads(done.stdout) == [
+    assert json.loads(done.stdout) == [  # (by address)
+        {"label": "LFR", "axis": "Hz", "tips": ["30.0 Hz", "30.5 Hz"]},
         {"label": "ACC", "axis": "(unscaled, in s)", "tips": ["10 (unscaled, in s)", "20 (unscaled, in s)"]}]

@@ -37,7 +37,7 @@ from dissector.render.report.columns import Y_DIGITS, Columns, compact_json as _
 from dissector.render.report.groups import EventGroups
 from dissector.render.report.meaning import device_meaning, event_text
 from dissector.render.report.moments import Moments
-from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, shown_unit, summary_text
+from dissector.render.report.reading import MAX_LABELS, adopt, labelled, rehome, scales, shown_unit, summary_text
 from dissector.render.stats_store import TABLE_NAMES, table_label
 from dissector.render.summary import noise_text
 
@@ -478,6 +478,9 @@ class ReportCollector:
             "marks": [[round(x - origin, digits), text] for x, text in series.marks],
             "marks_dropped": series.marks_dropped,
         }
+        row = series.row
+        if row is not None and scales(row) and row.decimals:  # (the tooltip's digits, as the table's `30.0 Hz`)
+            entry["decimals"] = row.decimals
         if points:
             columns = series.columns
             columns.close()

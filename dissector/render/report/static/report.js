@@ -123,7 +123,12 @@
       series: [{}, {
         label: p.code || p.label || String(p.address), stroke: "#1f77b4", width: 1.5,
         paths: step ? uPlot.paths.stepped({ align: 1 }) : undefined,
-        value: function (u, v) { return v == null ? "-" : (labels[v] !== undefined ? v + " " + labels[v] : v + (p.unit ? " " + p.unit : "")); }
+        // (a scaled value with the decimals its scale is written with, as the table: `30.0 Hz`)
+        value: function (u, v) {
+          if (v == null) { return "-"; }
+          if (labels[v] !== undefined) { return v + " " + labels[v]; }
+          return (p.decimals ? v.toFixed(p.decimals) : v) + (p.unit ? " " + p.unit : "");
+        }
       }]
     };
     new uPlot(chartOptions(opts), [x, y], el);
