@@ -7,14 +7,13 @@ engine and VW3_PURE_PYTHON=1."""
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
 from helpers import rtu, run_cli, use_engine
-from lua_harness import write_pcap
+from lua_harness import ensure_tool, write_pcap
 
 pytestmark = pytest.mark.integration
 
@@ -49,8 +48,7 @@ process.stdout.write(JSON.stringify(drawn));
 
 @pytest.mark.parametrize("pure", [False, True])
 def test_tooltip_says_what_the_table_says(tmp_path: Path, monkeypatch: pytest.MonkeyPatch, pure: bool) -> None:
-    node = shutil.which("node")
-    assert node is not None, "node is missing"
+    node = ensure_tool("node", "nodejs")
     use_engine(monkeypatch, pure)
     path = write_pcap(tmp_path / "ramps.pcap", [(rtu(frame), 1700000000 + index * 0.01)
                                                 for index, frame in enumerate(FRAMES + SCALED)])
